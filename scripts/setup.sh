@@ -1,0 +1,40 @@
+#!/usr/bin/env bash
+# One-time, idempotent set-up for a fresh clone on a fresh Debian/Ubuntu machine:
+# system packages (bubblewrap, chromium, docker.io, debootstrap), npm dependencies,
+# the Langium generated parser, TypeScript builds and the C runtime.
+# Safe to run again: every step checks first and does nothing when already done.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+
+log() { printf '[setup] %s\n' "$*"; }
+
+need_pkgs=()
+command -v bwrap     >/dev/null 2>&1 || need_pkgs+=(bubblewrap)
+command -v chromium  >/dev/null 2>&1 || need_pkgs+=(chromium)
+command -v dockerd   >/dev/null 2>&1 || need_pkgs+=(docker.io)
+command -v debootstrap >/dev/null 2>&1 || need_pkgs+=(debootstrap)
+command -v gcc       >/dev/null 2>&1 || need_pkgs+=(gcc)
+command -v make      >/dev/null 2>&1 || need_pkgs+=(make)
+if [ ${#need_pkgs[@]} -gt 0 ]; then
+  if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
+    log "installing system packages: ${need_pkgs[*]}"
+    export DEBIAN_FRONTEND=noninteractive
+    apt-get update -qq >/dev/null
+    apt-get install -y -qq "${need_pkgs[@]}" >/dev/null
+  else
+    log "WARNING: missing system packages (${need_pkgs[*]}) and no root apt-get: install them yourself"
+  fi
+fi
+
+if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.json ]; then
+  log "npm install"
+  if [ -f package-lock.json ]; then npm ci --no-audit --no-fund --loglevel=error; else npm install --no-audit --no-fund --loglevel=error; fi
+fi
+
+log "building TypeScript packages"
+npm run build --silent
+
+log "building the C runtime"
+make -s -C runtime
+
+log "done"
