@@ -1,0 +1,51 @@
+#!/usr/bin/env node
+// Runs every benchmark of the project and merges their figures into bench/results.json.
+//
+// Convention: each benchmark is a command that writes one flat JSON object
+// (metric name -> number) to bench/parts/<part>.json. This script runs them in order,
+// merges the parts, writes bench/results.json and prints a readable table.
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, readFileSync, writeFileSync, existsSync, rmSync } from 'node:fs';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = join(dirname(fileURLToPath(import.meta.url)), '..');
+const partsDir = join(root, 'bench', 'parts');
+
+/** One entry per benchmark: the part file it writes and the command that writes it. */
+const benches = [
+  { part: 'runtime', cmd: ['make', '-s', '-C', 'runtime', 'bench'] },
+  { part: 'engines', cmd: ['make', '-s', '-C', 'runtime', 'bench-engines'] },
+  { part: 'language', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/language'] },
+  { part: 'codegen', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/codegen'] },
+  { part: 'build', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/build-service'] },
+  { part: 'ide', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/web-ide'] },
+];
+
+const only = process.argv.slice(2);
+mkdirSync(partsDir, { recursive: true });
+const results = {};
+const failures = [];
+for (const b of benches) {
+  if (only.length && !only.includes(b.part)) continue;
+  const file = join(partsDir, `${b.part}.json`);
+  if (existsSync(file)) rmSync(file);
+  const t0 = Date.now();
+  process.stderr.write(`[bench] ${b.part}: ${b.cmd.join(' ')}\n`);
+  const r = spawnSync(b.cmd[0], b.cmd.slice(1), { cwd: root, stdio: ['ignore', 'inherit', 'inherit'] });
+  const secs = ((Date.now() - t0) / 1000).toFixed(1);
+  if (r.status !== 0 || !existsSync(file)) {
+    failures.push(`${b.part} (exit ${r.status}, ${secs} s${existsSync(file) ? '' : ', no ' + file})`);
+    continue;
+  }
+  Object.assign(results, JSON.parse(readFileSync(file, 'utf8')));
+  process.stderr.write(`[bench] ${b.part}: done in ${secs} s\n`);
+}
+writeFileSync(join(root, 'bench', 'results.json'), JSON.stringify(results, null, 2) + '\n');
+const width = Math.max(10, ...Object.keys(results).map((k) => k.length));
+console.log(`${'metric'.padEnd(width)}  value`);
+for (const [k, v] of Object.entries(results)) console.log(`${k.padEnd(width)}  ${v}`);
+if (failures.length) {
+  console.error(`\n[bench] FAILED: ${failures.join('; ')}`);
+  process.exit(1);
+}
