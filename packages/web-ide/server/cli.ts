@@ -1,0 +1,59 @@
+import { resolve } from 'node:path';
+import { startIdeServer, DEFAULT_PORT } from './ide-server.js';
+
+export interface ServeArgs {
+  workspace: string;
+  port: number;
+  host: string;
+}
+
+/** Parses `[DIR] [--port N] [--host H]`; throws with a usage message on bad input. */
+export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
+  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1' };
+  for (let i = 0; i < argv.length; i++) {
+    const a = argv[i]!;
+    if (a === '--port' || a === '-p') {
+      const n = Number(argv[++i]);
+      if (!Number.isInteger(n) || n < 0 || n > 65535) throw new Error(`--port needs a number 0..65535, got ${argv[i] ?? 'nothing'}`);
+      out.port = n;
+    } else if (a.startsWith('--port=')) {
+      return parseServeArgs([...argv.slice(0, i), '--port', a.slice(7), ...argv.slice(i + 1)], defaultDir);
+    } else if (a === '--host') {
+      const h = argv[++i];
+      if (!h) throw new Error('--host needs an address');
+      out.host = h;
+    } else if (a.startsWith('-')) {
+      throw new Error(`unknown option ${a}\nusage: serve [DIR] [--port N] [--host ADDR]`);
+    } else out.workspace = a;
+  }
+  out.workspace = resolve(out.workspace);
+  return out;
+}
+
+/** Runs the server until SIGINT/SIGTERM; returns the exit code on failure to start. */
+export async function runServe(argv: string[], defaultDir: string): Promise<number> {
+  let args: ServeArgs;
+  try {
+    args = parseServeArgs(argv, defaultDir);
+  } catch (e) {
+    console.error(`error: ${(e as Error).message}`);
+    return 2;
+  }
+  try {
+    const ide = await startIdeServer(args);
+    console.log(`ContrACT Studio IDE: ${ide.url}/  (workspace ${ide.workspace})`);
+    console.log(`  ${ide.buildServiceNote}`);
+    if (args.host !== '127.0.0.1' && args.host !== 'localhost') console.warn(`  warning: listening on ${args.host}, reachable from other machines`);
+    const stop = () => {
+      void ide.close().then(() => process.exit(0));
+    };
+    process.once('SIGINT', stop);
+    process.once('SIGTERM', stop);
+    return await new Promise<number>(() => undefined);
+  } catch (e) {
+    const err = e as NodeJS.ErrnoException;
+    if (err.code === 'EADDRINUSE') console.error(`error: port ${args.port} is in use; pick another with --port N`);
+    else console.error(`error: ${err.message}`);
+    return 1;
+  }
+}

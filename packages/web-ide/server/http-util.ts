@@ -1,0 +1,49 @@
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import { HttpError } from './http-error.js';
+
+const MAX_BODY = 16 * 1024 * 1024;
+
+export async function readBody(req: IncomingMessage): Promise<string> {
+  const chunks: Buffer[] = [];
+  let size = 0;
+  for await (const chunk of req) {
+    size += (chunk as Buffer).length;
+    if (size > MAX_BODY) throw new HttpError(413, 'request body larger than 16 MiB');
+    chunks.push(chunk as Buffer);
+  }
+  return Buffer.concat(chunks).toString('utf8');
+}
+
+export async function readJson(req: IncomingMessage): Promise<Record<string, unknown>> {
+  const text = await readBody(req);
+  try {
+    const v = JSON.parse(text || '{}');
+    if (v === null || typeof v !== 'object' || Array.isArray(v)) throw new Error('not an object');
+    return v as Record<string, unknown>;
+  } catch {
+    throw new HttpError(400, 'request body must be a JSON object');
+  }
+}
+
+export function sendJson(res: ServerResponse, status: number, body: unknown): void {
+  const text = JSON.stringify(body);
+  res.writeHead(status, { 'content-type': 'application/json; charset=utf-8', 'cache-control': 'no-store' });
+  res.end(text);
+}
+
+export function sendError(res: ServerResponse, e: unknown): void {
+  if (e instanceof HttpError) return sendJson(res, e.status, { error: e.message });
+  const err = e as NodeJS.ErrnoException;
+  const byCode: Record<string, [number, string]> = {
+    ENOENT: [404, 'not found'],
+    EEXIST: [409, 'already exists'],
+    ENOTDIR: [400, 'not a folder'],
+    EISDIR: [400, 'is a folder'],
+    ENOTEMPTY: [409, 'folder not empty'],
+    EACCES: [403, 'permission denied'],
+    ENOSPC: [507, 'disk full'],
+  };
+  const known = err && err.code ? byCode[err.code] : undefined;
+  if (known) return sendJson(res, known[0], { error: `${known[1]}${err.path ? '' : ''}` });
+  sendJson(res, 500, { error: `internal error: ${err?.message ?? String(e)}` });
+}
