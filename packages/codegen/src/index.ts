@@ -1,0 +1,2 @@
+export * from './regions/index.js';
+export * from './writer/index.js';

@@ -1,0 +1,16 @@
+import { mkdirSync, renameSync, rmSync, writeFileSync } from 'node:fs';
+import { basename, dirname, join } from 'node:path';
+
+/** Writes `data` to `file` through a temporary file in the same folder and a rename: readers never see half a file. */
+export function writeFileAtomic(file: string, data: Buffer): void {
+    const dir = dirname(file);
+    mkdirSync(dir, { recursive: true });
+    const tmp = join(dir, `.${basename(file)}.tmp-${process.pid}`);
+    try {
+        writeFileSync(tmp, data);
+        renameSync(tmp, file);
+    } catch (e) {
+        rmSync(tmp, { force: true });
+        throw e;
+    }
+}

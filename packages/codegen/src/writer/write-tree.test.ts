@@ -1,0 +1,115 @@
+import { existsSync, readFileSync, statSync, utimesSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { afterEach, describe, expect, it } from 'vitest';
+import { region } from '../regions/markers.js';
+import { tempDir } from '../test-support/temp-dir.js';
+import { writeTree, type GeneratedFile } from './write-tree.js';
+
+let cleanups: Array<() => void> = [];
+afterEach(() => {
+    cleanups.forEach((c) => c());
+    cleanups = [];
+});
+function out(): string {
+    const t = tempDir();
+    cleanups.push(t.cleanup);
+    return t.dir;
+}
+
+const file = (path: string, ...ids: string[]): GeneratedFile => ({
+    path,
+    content: `// ${path}\n` + ids.map((id) => `code_${id}();\n${region(id, '\n//TODO\n')}\n`).join(''),
+});
+function edit(dir: string, path: string, id: string, text: string): void {
+    const abs = join(dir, path);
+    const src = readFileSync(abs, 'utf8');
+    const re = new RegExp(`(ID\\(${id}\\) ENABLED START\\*/)[\\s\\S]*?(/\\*PROTECTED REGION END)`);
+    writeFileSync(abs, src.replace(re, (_m, a: string, b: string) => a + text + b));
+}
+
+describe('writeTree', () => {
+    it('creates files, then rewrites nothing when regenerated unchanged (mtime stays)', () => {
+        const dir = out();
+        const files = [file('generated/a.c', 'x', 'y'), file('generated/sub/b.h', 'z')];
+        const first = writeTree(dir, files);
+        expect(first.created).toEqual(['generated/a.c', 'generated/sub/b.h']);
+        const past = new Date('2020-01-01T00:00:00Z');
+        utimesSync(join(dir, 'generated/a.c'), past, past);
+        const second = writeTree(dir, files);
+        expect(second.filesWritten).toBe(0);
+        expect(second.unchanged).toEqual(['generated/a.c', 'generated/sub/b.h']);
+        expect(statSync(join(dir, 'generated/a.c')).mtime.getTime()).toBe(past.getTime());
+    });
+
+    it('keeps user code across a regeneration that changes the surrounding code', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/a.c', 'x', 'y')]);
+        edit(dir, 'generated/a.c', 'y', 'int mine = 1;');
+        const r = writeTree(dir, [file('generated/a.c', 'w', 'y', 'x')]);
+        expect(r.updated).toEqual(['generated/a.c']);
+        expect(readFileSync(join(dir, 'generated/a.c'), 'utf8')).toContain(region('y', 'int mine = 1;'));
+    });
+
+    it('moves user code of a vanished region to orphans/, numbering later orphans of the same file', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/a.c', 'x', 'y')]);
+        edit(dir, 'generated/a.c', 'y', 'first();');
+        const r1 = writeTree(dir, [file('generated/a.c', 'x')]);
+        expect(r1.orphaned).toEqual(['orphans/generated/a.c']);
+        expect(r1.warnings[0]!.message).toMatch(/protected region\(s\) y moved to orphans\/generated\/a\.c/);
+        expect(readFileSync(join(dir, 'orphans/generated/a.c'), 'utf8')).toContain(region('y', 'first();'));
+        writeTree(dir, [file('generated/a.c', 'x', 'y')]);
+        edit(dir, 'generated/a.c', 'y', 'second();');
+        const r2 = writeTree(dir, [file('generated/a.c', 'x')]);
+        expect(r2.orphaned).toEqual(['orphans/generated/a.2.c']);
+        expect(readFileSync(join(dir, 'orphans/generated/a.c'), 'utf8')).toContain('first();');
+        expect(readFileSync(join(dir, 'orphans/generated/a.2.c'), 'utf8')).toContain('second();');
+    });
+
+    it('does not orphan a vanished region that holds a non-TODO generated default', () => {
+        const dir = out();
+        const withDefault = (ids: string[]): GeneratedFile => ({
+            path: 'generated/t.h',
+            content: ids.map((id) => region(id, `return ${id.length};`)).join('\n'),
+        });
+        writeTree(dir, [withDefault(['eq', 'diff'])]);
+        const r = writeTree(dir, [withDefault(['eq'])]);
+        expect(r.orphaned).toEqual([]);
+        expect(r.updated).toEqual(['generated/t.h']);
+    });
+
+    it('moves a deleted entity file holding user code to orphans/ and removes one without user code', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/m/A.c', 'x'), file('generated/n/B.c', 'x'), file('generated/k.c', 'x')]);
+        edit(dir, 'generated/m/A.c', 'x', 'keep_me();');
+        const r = writeTree(dir, [file('generated/k.c', 'x')]);
+        expect(r.orphaned).toEqual(['orphans/generated/m/A.c']);
+        expect(r.removed).toEqual(['generated/n/B.c']);
+        expect(existsSync(join(dir, 'generated/m'))).toBe(false);
+        expect(existsSync(join(dir, 'generated/n'))).toBe(false);
+        expect(readFileSync(join(dir, 'orphans/generated/m/A.c'), 'utf8')).toContain('keep_me();');
+    });
+
+    it('leaves a malformed file untouched with file and line, and still writes the rest', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/a.c', 'x'), file('generated/b.c', 'x')]);
+        const broken = '// broken\n/*PROTECTED REGION ID(x) ENABLED START*/\nuser code with no end\n';
+        writeFileSync(join(dir, 'generated/a.c'), broken);
+        const r = writeTree(dir, [file('generated/a.c', 'x', 'y'), file('generated/b.c', 'x', 'y'), file('generated/c.c', 'x')]);
+        expect(r.errors).toEqual([{ file: 'generated/a.c', line: 2, message: expect.stringMatching(/START without END; left untouched/) }]);
+        expect(readFileSync(join(dir, 'generated/a.c'), 'utf8')).toBe(broken);
+        expect(r.updated).toEqual(['generated/b.c']);
+        expect(r.created).toEqual(['generated/c.c']);
+    });
+
+    it('recognises user code without a manifest (tree from the original tool) and keeps it', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/old.c', 'x', 'y')]);
+        edit(dir, 'generated/old.c', 'x', 'legacy();');
+        writeFileSync(join(dir, '.contract-manifest.json'), '{ not json');
+        const r = writeTree(dir, [file('generated/new.c', 'x')]);
+        expect(r.warnings.map((w) => w.file)).toContain('.contract-manifest.json');
+        expect(r.orphaned).toEqual(['orphans/generated/old.c']);
+        expect(readFileSync(join(dir, 'orphans/generated/old.c'), 'utf8')).toContain('legacy();');
+    });
+});
