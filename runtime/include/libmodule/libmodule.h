@@ -1,0 +1,314 @@
+/*
+ * libmodule -- the ContrACT module runtime (C11 + POSIX).
+ *
+ * Every module, supervisor and the scheduler ORD is its own process. The library provides
+ * `main`: it creates the module's request mailbox and one queue per input data port inside the
+ * run directory (CONTRACT_RUN_DIR), opens the CSV log, sets the priority, then calls the
+ * generated `ModuleMain`. Modules are addressed by name inside one run directory.
+ *
+ * Sections of this header, by audience:
+ *   [GEN]    used by generated module.c files (report section 8.2) and by user code in them.
+ *   [ENGINE] used by the ORD scheduler / supervisor engines, the control tools, the launcher
+ *            and tests to drive *other* modules (requests, acks, raw events, waiting with fds).
+ * docs/runtime-api.md documents semantics, the IPC, limits and the CSV log columns.
+ */
+#ifndef LIBMODULE_LIBMODULE_H
+#define LIBMODULE_LIBMODULE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#ifdef __cplusplus
+extern "C" {
+#endif
+
+/* ------------------------------------------------------------------------------------------ */
+/* Limits                                                                                      */
+/* ------------------------------------------------------------------------------------------ */
+
+/** Longest module name + 1 (names are C identifiers, e.g. "MSC", "ORD", "GLB"). */
+#define CONTRACT_NAME_MAX 64
+/** Longest supervision-function name + 1 carried by a START request. */
+#define CONTRACT_FUNCTION_MAX 64
+/** Largest payload of a request (setparam value, event data, start arguments), in bytes.
+ *  Bigger payloads are refused with a clear error (never truncated). */
+#define CONTRACT_REQUEST_DATA_MAX 16384
+/** Largest value of one data port (IUSE / IPRODUCE entry size), in bytes. Checked at start-up. */
+#define CONTRACT_DATA_PORT_MAX 65536
+
+/* ------------------------------------------------------------------------------------------ */
+/* [GEN] Time                                                                                  */
+/* ------------------------------------------------------------------------------------------ */
+
+/** Nanoseconds on CLOCK_MONOTONIC (production / reception dates). */
+typedef int64_t RTIME;
+
+/** [GEN][ENGINE] Current CLOCK_MONOTONIC time in ns. */
+RTIME GetTime(void);
+
+/* ------------------------------------------------------------------------------------------ */
+/* [GEN] Requests and acknowledgements                                                         */
+/* ------------------------------------------------------------------------------------------ */
+
+typedef enum {
+    REQ_UNKNOWN = 0,   /* no request (loop state of the generated skeleton) */
+    REQ_START,         /* activate the module (supervisor: start Param.Start.Function with Data args) */
+    REQ_STOP,          /* interrupt the current run */
+    REQ_KILL,          /* end the process (ModuleMain returns) */
+    REQ_EVENT,         /* an event notification; data in Data, fetched by GetEventId */
+    REQ_SETPARAM,      /* new value for parameter port Param.SetParam.Port; value in Data */
+    REQ_SUBSCRIBE,     /* add a consumer to one of my output data ports */
+    REQ_UNSUBSCRIBE,   /* remove it */
+    REQ_SUB_EVENT,     /* add a subscriber to one of my output event ports */
+    REQ_UNSUB_EVENT,   /* remove it */
+    REQ_PURGE_MBX,     /* drop every pending value of my input data ports */
+    REQ_ACK,           /* [ENGINE] an acknowledgement (Param.Ack) delivered to the requester */
+    REQ_STATUS,        /* [ENGINE] status query; answered inside the library, never returned */
+    REQ_STATUS_REPLY   /* [ENGINE] answer to REQ_STATUS; Data holds a text line */
+} RequestType;
+
+/* Acknowledgement kinds: a bit mask. A requester puts the acks it wants in WantedAck;
+ * ACK_NOTHING set means "no ack wanted" (then ModAck may be empty). */
+#define ACK_START    0x01  /* the run started */
+#define ACK_FINISHED 0x02  /* the run finished normally */
+#define ACK_STOPPED  0x04  /* the run was stopped by REQ_STOP */
+#define ACK_KILLED   0x08  /* the module ends (REQ_KILL) */
+#define ACK_NOTDONE  0x10  /* the request could not be carried out (e.g. STOP while idle) */
+#define ACK_NOTHING  0x20  /* no acknowledgement wanted */
+/* Spellings of the report's generated code (typos kept as aliases). */
+#define ACK_NOHING   ACK_NOTHING
+#define ACK_NOthing  ACK_NOTHING
+
+/* Event subscription modes (IREACT "oneshot" column, SubscribeUserToEvent mode). */
+#define EVENT_CONTINUOUS 0
+#define EVENT_ONESHOT    1
+
+typedef struct { char ModAck[CONTRACT_NAME_MAX]; int WantedAck; int AckID;
+                 char Function[CONTRACT_FUNCTION_MAX]; /* supervisors: function to start ("" = default) */
+} StartParam;
+typedef struct { char ModAck[CONTRACT_NAME_MAX]; int WantedAck; int AckID; } StopParam;
+typedef struct { char ModAck[CONTRACT_NAME_MAX]; int WantedAck; int AckID; } KillParam;
+typedef struct { int sourcePort; char sourceModule[CONTRACT_NAME_MAX]; int targetPort; } EventParam;
+typedef struct { int Port; char ModAck[CONTRACT_NAME_MAX]; int WantedAck; int AckID; } SetParamParam;
+typedef struct { int SourcePort; char TargetModule[CONTRACT_NAME_MAX]; int TargetPort;
+                 int Periodicity; int isContextual; } SubscribeParam;
+typedef struct { int SourcePort; char TargetModule[CONTRACT_NAME_MAX]; int TargetPort; } UnsubscribeParam;
+typedef struct { char targetModule[CONTRACT_NAME_MAX]; int targetPort; int sourcePort; int mode; } SubscribeEventParam;
+typedef struct { char targetModule[CONTRACT_NAME_MAX]; int targetPort; int sourcePort; } UnsubscribeEventParam;
+/** REQ_ACK: `Module` acknowledges with `Ack` (one ACK_* bit) the request tagged `AckID`. */
+typedef struct { char Module[CONTRACT_NAME_MAX]; int Ack; int AckID; int RequestType; } AckParam;
+
+/**
+ * One request, as delivered by WaitForRequest / LookForRequest. Only the Param member that
+ * matches Type is meaningful. Payload bytes (setparam value, event data, start arguments as a
+ * NUL-terminated text "p={1.0,2.0},q=3") are in Data[0 .. DataSize-1].
+ */
+typedef struct {
+    RequestType Type;
+    char Sender[CONTRACT_NAME_MAX];   /* name of the module / tool that sent it */
+    RTIME ProductionTime;             /* sender's GetTime() when sent */
+    RTIME ReceptionTime;              /* receiver's GetTime() when received */
+    union {
+        StartParam Start;
+        StopParam Stop;
+        KillParam Kil;                /* sic: the report's spelling */
+        EventParam Event;
+        SetParamParam SetParam;
+        SubscribeParam Subscribe;
+        UnsubscribeParam Unsubscribe;
+        SubscribeEventParam SubscribeEvent;
+        UnsubscribeEventParam UnsubscribeEvent;
+        AckParam Ack;
+    } Param;
+    size_t DataSize;
+    unsigned char Data[CONTRACT_REQUEST_DATA_MAX];
+} RequestMessage;
+
+/** [GEN] Block until a request arrives; fills *msg. Returns msg, or NULL on error (message on
+ *  stderr). Status queries are answered inside and never returned. */
+RequestMessage *WaitForRequest(RequestMessage *msg);
+/** [GEN] Non-blocking: fills *msg and returns msg if a request is pending, else NULL
+ *  (*msg untouched). */
+RequestMessage *LookForRequest(RequestMessage *msg);
+/** [GEN] Send acknowledgement `ack` (one ACK_* bit) for request `ackId` to `module`.
+ *  Nothing is sent (returns 0) when `wantedAck` has ACK_NOTHING or `module` is empty.
+ *  Returns 0 on success, -1 on error (message on stderr). */
+int SendAck(const char *module, int wantedAck, int ack, int ackId);
+
+/* ------------------------------------------------------------------------------------------ */
+/* [GEN] Interface tables (defined by the generated module.c)                                  */
+/* ------------------------------------------------------------------------------------------ */
+
+/** Input data port: {&var, port, size, "producer"|"---", producerPort, periodicity}. */
+typedef struct { void *Variable; int Port; size_t Size; const char *SourceModule; int SourcePort;
+                 int Periodicity; } ModuleUse;
+/** Output data port: {&var, port, size}. */
+typedef struct { void *Variable; int Port; size_t Size; } ModuleProduce;
+/** Input event port: {&var, port, size, "producer"|"---", producerPort, oneshot}. */
+typedef struct { void *Variable; int Port; size_t Size; const char *SourceModule; int SourcePort;
+                 int OneShot; } ModuleReact;
+/** Output event port: {&var, port, size}. */
+typedef struct { void *Variable; int Port; size_t Size; } ModuleDetect;
+
+#define IUSE_TERM       { NULL, -1, 0, NULL, -1, 0 }
+#define IPRODUCE_TERM   { NULL, -1, 0 }
+#define IREACT_TERM     { NULL, -1, 0, NULL, -1, 0 }
+#define IDETECT_TERM    { NULL, -1, 0 }
+#define PARAM_SIZE_TERM ((size_t)0)
+/** "no module": the connection is made later by a subscription request. */
+#define NO_MODULE "---"
+
+/* Symbols the generated module.c defines (declared here so the library can use them). */
+extern char MODULE_NAME[];
+extern int MODULE_PRIORITY;           /* 1..99, higher = more urgent */
+extern ModuleUse IUSE[];
+extern ModuleProduce IPRODUCE[];
+extern ModuleReact IREACT[];
+extern ModuleDetect IDETECT[];
+extern size_t PARAM_SIZE_IN[];        /* size of each parameter port, in port order */
+extern size_t PARAM_SIZE_OUT[];       /* sizes this module sends with SetModuleParam */
+int ModuleMain(int argc, const char *argv[]);
+
+/* MODULE_DESCRIPTION("text"); MODULE_AUTHOR("name"); -- kept in the executable, shown by status. */
+#define MODULE_DESCRIPTION(text) const char ContractModuleDescription[] = text
+#define MODULE_AUTHOR(text) const char ContractModuleAuthor[] = text
+
+/* ------------------------------------------------------------------------------------------ */
+/* [GEN] Data flows                                                                            */
+/* ------------------------------------------------------------------------------------------ */
+
+/** Consume the oldest pending value of the input port whose IUSE variable is `var` into it.
+ *  Returns 1 if a value was read, 0 if none was pending (var unchanged), -1 on error. */
+int GetData(void *var, RTIME *productionTime, RTIME *receptionTime);
+/** Consume every pending value; `var` gets the newest. Same returns as GetData. */
+int GetLatestData(void *var, RTIME *productionTime, RTIME *receptionTime);
+/** Send the value of the output port whose IPRODUCE variable is `var` to each consumer whose
+ *  periodicity k divides the number of activations since it subscribed.
+ *  Returns the number of consumers it reached, -1 on error. */
+int PostData(void *var);
+/** Drop the pending values of the input port of `var`, or of every input port if NULL.
+ *  Returns the number of values dropped. */
+int PurgeData(void *var);
+
+/** At first activation: ask each producer named in IUSE (not "---") to send us its port. */
+int SubscribeVariables(void);
+/** At exit: cancel those subscriptions. */
+int UnsubscribeVariables(void);
+/** REQ_SUBSCRIBE handler: add `targetModule`:`targetPort` as consumer of my output data port
+ *  `sourcePort`, with periodicity k >= 1. isContextual: made by a schema activation (logged). */
+int SubscribeUser(int sourcePort, const char *targetModule, int targetPort, int periodicity, int isContextual);
+/** REQ_UNSUBSCRIBE handler. */
+int UnsubscribeUser(int sourcePort, const char *targetModule, int targetPort);
+
+/* ------------------------------------------------------------------------------------------ */
+/* [GEN] Event flows                                                                           */
+/* ------------------------------------------------------------------------------------------ */
+
+/** Notify the subscribers of the output event port whose IDETECT variable is `var`
+ *  (one-shot subscribers are removed after this notification). Returns subscribers reached, -1 on error. */
+int PostEvent(void *var);
+/** After WaitForRequest/LookForRequest returned a REQ_EVENT: copy its data into the IREACT
+ *  variable of the target port and return that port (-1 if unknown port or size mismatch). */
+int GetEventId(RTIME *productionTime, RTIME *receptionTime);
+/** At first activation: subscribe to each producer named in IREACT (not "---"). */
+int SubscribeEvent(void);
+/** At exit: cancel those subscriptions. */
+int UnsubscribeEvent(void);
+/** REQ_SUB_EVENT handler: `targetModule`:`targetPort` subscribes to my output event port
+ *  `sourcePort`, mode EVENT_CONTINUOUS or EVENT_ONESHOT. */
+int SubscribeUserToEvent(const char *targetModule, int targetPort, int sourcePort, int mode);
+/** REQ_UNSUB_EVENT handler. */
+int UnsubscribeUserToEvent(const char *targetModule, int targetPort, int sourcePort);
+
+/* ------------------------------------------------------------------------------------------ */
+/* [GEN] Parameters                                                                            */
+/* ------------------------------------------------------------------------------------------ */
+
+/** Send a REQ_SETPARAM for parameter port `port` of `module` with `size` bytes of `data`.
+ *  Returns 0, or -1 (unknown/not running module, size > CONTRACT_REQUEST_DATA_MAX). */
+int SetModuleParam(const char *moduleName, unsigned char port, void *data, unsigned long size);
+/** Copy the value of a REQ_SETPARAM into `dst` of `size` bytes. The sizes must match (and match
+ *  PARAM_SIZE_IN[port] when listed), else nothing is copied and -1 is returned. */
+int GetDataFromSetParamRequest(RequestMessage *msg, void *dst, size_t size,
+                               RTIME *productionTime, RTIME *receptionTime);
+
+/* ------------------------------------------------------------------------------------------ */
+/* [ENGINE] Driving other modules (ORD, supervisors, control tools, launcher, tests)           */
+/* ------------------------------------------------------------------------------------------ */
+/* All Send* functions return 0 on success, or a negative CONTRACT_E* code with a message on
+ * stderr. wantedAck is a mask of ACK_* (ACK_NOTHING: none); acks come back as REQ_ACK requests
+ * in the sender's own mailbox, tagged with ackId. */
+
+#define CONTRACT_OK            0
+#define CONTRACT_EUNKNOWN     -2   /* no such module in the run directory */
+#define CONTRACT_ENOTRUNNING  -3   /* its mailbox exists but nobody reads it (crashed) */
+#define CONTRACT_ETOOBIG      -4   /* payload larger than the limit */
+#define CONTRACT_EBUSY        -5   /* its mailbox stayed full past the send timeout (2 s) */
+#define CONTRACT_EINVAL       -6   /* bad argument */
+#define CONTRACT_ESYS         -7   /* other system error (errno kept) */
+/** Text for a CONTRACT_E* code. */
+const char *ContractStrError(int code);
+
+int SendStart(const char *module, int wantedAck, int ackId);
+/** Start a supervision function: `function` name and textual arguments "p={1.0,2.0},q=3"
+ *  (NULL/"" = defaults); the arguments travel in Data (NUL-terminated). */
+int SendStartFunction(const char *module, const char *function, const char *args, int wantedAck, int ackId);
+int SendStop(const char *module, int wantedAck, int ackId);
+int SendKill(const char *module, int wantedAck, int ackId);
+int SendSetParam(const char *module, int port, const void *value, size_t size, int wantedAck, int ackId);
+/** Connect producer:sourcePort -> consumer:targetPort * periodicity (request to the producer). */
+int SendSubscribe(const char *producer, int sourcePort, const char *consumer, int targetPort,
+                  int periodicity, int isContextual);
+int SendUnsubscribe(const char *producer, int sourcePort, const char *consumer, int targetPort);
+/** Connect producer:sourcePort =* / => consumer:targetPort (mode EVENT_CONTINUOUS/EVENT_ONESHOT). */
+int SendSubscribeEvent(const char *producer, int sourcePort, const char *consumer, int targetPort, int mode);
+int SendUnsubscribeEvent(const char *producer, int sourcePort, const char *consumer, int targetPort);
+int SendPurge(const char *module);
+/** Post an event with raw bytes to `module`'s input event port `targetPort`, as if it came
+ *  from my output port `sourcePort` (ORD:0 / ORD:1 notifications, supervisor notify). */
+int SendEvent(const char *module, int targetPort, int sourcePort, const void *data, size_t size);
+/** Send a prepared request (Sender, ProductionTime are filled in). */
+int SendRequest(const char *module, RequestMessage *msg);
+
+/** Wait for a request until the absolute CLOCK_MONOTONIC `deadline` (ns; <= 0: no wait,
+ *  INT64_MAX: forever). Returns 1 (msg filled), 0 (deadline passed), -1 (error / EINTR). */
+int WaitForRequestUntil(RequestMessage *msg, RTIME deadline);
+/** The mailbox file descriptor, to poll together with other fds (POLLIN: call LookForRequest).
+ *  Call LookForRequest until NULL before polling: requests kept by WaitForAck are not in the fd. */
+int MailboxFd(void);
+/** Number of requests kept by WaitForAck and not yet returned. */
+int PendingRequests(void);
+/** Wait for the REQ_ACK from `module` tagged `ackId` whose Ack is in `ackMask`, until `deadline`;
+ *  other requests received meanwhile are kept, in order, and returned by the next
+ *  WaitForRequest/LookForRequest. Returns 1 (ack in *ack, may be NULL), 0 timeout, -1 error. */
+int WaitForAck(const char *module, int ackId, int ackMask, RTIME deadline, RequestMessage *ack);
+/** Ask `module` for its status line (pid, activations, requests...). Returns 0 and fills text. */
+int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline);
+/** Does `module` exist / run in the run directory? CONTRACT_OK, CONTRACT_EUNKNOWN, CONTRACT_ENOTRUNNING. */
+int ModuleState(const char *module);
+
+/** For programs that are not modules (control tools, launcher, tests, benches): open a mailbox
+ *  named `name` in the run directory so that acks can come back. Removed at exit. Returns 0/-1. */
+int ContractClientInit(const char *name);
+/** Close the mailbox and remove every file this process created in the run directory. */
+void ContractShutdown(void);
+/** The run directory in use (CONTRACT_RUN_DIR, or the fresh one created at start-up). */
+const char *ContractRunDir(void);
+/** This process's module name. */
+const char *ContractSelfName(void);
+/** Number of START requests received so far (activations). */
+long ContractActivations(void);
+
+/** Add a record to this module's CSV log (see docs/runtime-api.md for the columns). */
+void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail);
+/** Flush the CSV log now. */
+void ContractLogFlush(void);
+
+/** Apply a priority 1..99: SCHED_FIFO if permitted, else one warning on stderr and a nice level.
+ *  CONTRACT_SCHED=other skips SCHED_FIFO. Returns 1 if SCHED_FIFO, 0 if nice fallback. */
+int ContractSetPriority(int priority);
+
+#ifdef __cplusplus
+}
+#endif
+#endif /* LIBMODULE_LIBMODULE_H */
