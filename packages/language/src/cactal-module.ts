@@ -1,0 +1,61 @@
+import { inject, type Module } from 'langium';
+import {
+    createDefaultModule, createDefaultSharedModule,
+    type DefaultSharedModuleContext, type LangiumServices, type LangiumSharedServices, type PartialLangiumServices
+} from 'langium/lsp';
+import { CactalGeneratedModule, CactalGeneratedSharedModule } from './generated/module.js';
+import { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
+import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
+import { ImportResolver } from './scoping/import-resolver.js';
+import { CactalDocumentValidator } from './validation/cactal-document-validator.js';
+import { registerValidationChecks } from './validation/cactal-validator.js';
+
+/** Services added by the Cactal language on top of Langium's. */
+export type CactalAddedServices = {
+    imports: {
+        ImportResolver: ImportResolver
+    }
+};
+
+/** All services of the Cactal language. */
+export type CactalServices = LangiumServices & CactalAddedServices;
+
+/** Cactal's own service implementations, bound over Langium's defaults. */
+export const CactalModule: Module<CactalServices, PartialLangiumServices & CactalAddedServices> = {
+    imports: {
+        ImportResolver: (services) => new ImportResolver(services)
+    },
+    references: {
+        ScopeProvider: (services) => new CactalScopeProvider(services),
+        ScopeComputation: (services) => new CactalScopeComputation(services)
+    },
+    validation: {
+        DocumentValidator: (services) => new CactalDocumentValidator(services)
+    }
+};
+
+/**
+ * Creates the shared services and the Cactal services. `context` gives the file system
+ * (`NodeFileSystem` from 'langium/node' in Node, `EmptyFileSystem` in a browser worker) and,
+ * for a language server, the LSP connection. `extra` modules override or extend services
+ * (the editor services are added this way).
+ */
+export function createCactalServices(
+    context: DefaultSharedModuleContext,
+    ...extra: Array<Module<CactalServices, PartialLangiumServices & Partial<CactalAddedServices>>>
+): { shared: LangiumSharedServices; Cactal: CactalServices } {
+    const shared = inject(createDefaultSharedModule(context), CactalGeneratedSharedModule);
+    const Cactal = (inject as (...modules: unknown[]) => CactalServices)(
+        createDefaultModule({ shared }),
+        CactalGeneratedModule,
+        CactalModule,
+        ...extra
+    );
+    shared.ServiceRegistry.register(Cactal);
+    registerValidationChecks(Cactal);
+    if (!context.connection) {
+        // No language server: the workspace is built on demand and nothing waits for a client.
+        shared.workspace.ConfigurationProvider.initialized({});
+    }
+    return { shared, Cactal };
+}

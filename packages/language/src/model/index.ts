@@ -1,0 +1,5 @@
+export * from './time.js';
+export * from './blocks.js';
+export * from './ports.js';
+export * from './types.js';
+export * from './values.js';

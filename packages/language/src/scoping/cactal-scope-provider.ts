@@ -1,0 +1,130 @@
+/**
+ * Scoping of every Cactal cross-reference (SPEC §2.1–2.6):
+ * - top-level names (types, functions, modules, supervisors, schemas): the file and its direct imports;
+ * - ports by index in the context of their owner, kind and direction (`MSC:1 -> MSD:2`);
+ * - members: schema parameters, supervision functions and their parameters, rule labels;
+ * - variables by context (schema parameters in a schema; parameters, locals and the supervisor's
+ *   port variables in a supervision function) and field paths by the type of the path so far.
+ */
+import {
+    AstUtils, DefaultScopeProvider, EMPTY_SCOPE, stream,
+    type AstNode, type AstNodeDescription, type ReferenceInfo, type Scope
+} from 'langium';
+import {
+    isActivateSchema, isActivateSupervisor, isDataCommunication, isEventCommunication, isFieldSegment,
+    isFunctionArgumentAssignment, isLocalBlock, isModule, isModuleEvent, isModuleInstance, isNotify,
+    isParameterize, isParameterSetting, isSchema, isSchemaArgument, isSubscribe, isSupervisionFunction,
+    isSupervisor, isVariableRef, isDurationEvent, isEndofEvent, isStartedEvent, isFunctionParameter,
+    type Module, type Port, type Supervisor
+} from '../generated/ast.js';
+import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
+import { portsOfKind, type PortDirection, type PortKind } from '../model/ports.js';
+import { typeOfPathPrefix } from '../model/types.js';
+import type { CactalServices } from '../cactal-module.js';
+import type { ImportResolver } from './import-resolver.js';
+
+export class CactalScopeProvider extends DefaultScopeProvider {
+    private readonly imports: ImportResolver;
+
+    constructor(services: CactalServices) {
+        super(services);
+        this.imports = services.imports.ImportResolver;
+    }
+
+    override getScope(context: ReferenceInfo): Scope {
+        const { container, property } = context;
+
+        if (isFieldSegment(container)) return this.fieldScope(container);
+        if (isVariableRef(container)) return this.variableScope(container);
+
+        // ports by index
+        if (isParameterSetting(container)) {
+            const owner = container.$container;
+            const module = isModuleInstance(owner) || isParameterize(owner) ? owner.module?.ref : undefined;
+            return isModule(module) ? this.indexScope(parametersOf(module)) : EMPTY_SCOPE;
+        }
+        if (isDataCommunication(container)) {
+            return property === 'sourcePort'
+                ? this.portScope(container.source?.ref, 'data', 'out')
+                : property === 'targetPort' ? this.portScope(container.target?.ref, 'data', 'in') : this.visibleScope(context);
+        }
+        if (isEventCommunication(container)) {
+            return property === 'sourcePort'
+                ? this.portScope(container.source?.ref, 'event', 'out')
+                : property === 'targetPort' ? this.portScope(container.target?.ref, 'event', 'in') : this.visibleScope(context);
+        }
+        if (isModuleEvent(container) && property === 'port') return this.portScope(container.source?.ref, 'event', 'out');
+        if (isSubscribe(container)) {
+            if (property === 'sourcePort') return this.portScope(container.source?.ref, 'event', 'out');
+            if (property === 'targetPort') return this.portScope(AstUtils.getContainerOfType(container, isSupervisor), 'event', 'in');
+        }
+        if (isNotify(container) && property === 'port') {
+            return this.portScope(AstUtils.getContainerOfType(container, isSupervisor), 'event', 'out');
+        }
+
+        // members
+        if (isSchemaArgument(container)) {
+            const schema = isActivateSchema(container.$container) ? container.$container.schema?.ref : undefined;
+            return schema ? this.createScopeForNodes(schema.parameters) : EMPTY_SCOPE;
+        }
+        if (isActivateSupervisor(container) && property === 'function') {
+            const sup = container.supervisor?.ref;
+            return sup ? this.createScopeForNodes(sup.functions) : EMPTY_SCOPE;
+        }
+        if (isFunctionArgumentAssignment(container)) {
+            const fn = isActivateSupervisor(container.$container) ? container.$container.function?.ref : undefined;
+            return fn ? this.createScopeForNodes(fn.parameters) : EMPTY_SCOPE;
+        }
+        if (isStartedEvent(container) || isEndofEvent(container) || isDurationEvent(container)) {
+            const fn = AstUtils.getContainerOfType(container, isSupervisionFunction);
+            return fn ? this.createScopeForNodes(rulesOf(fn)) : EMPTY_SCOPE;
+        }
+
+        // top-level names through imports
+        return this.visibleScope(context);
+    }
+
+    /** Top-level elements of the reference's type defined in the file or its direct imports. */
+    visibleScope(context: ReferenceInfo): Scope {
+        const type = this.reflection.getReferenceType(context);
+        const uris = this.imports.visibleUris(context.container);
+        return this.createScope(this.indexManager.allElements(type, uris));
+    }
+
+    /** Ports of an owner, named by their index. */
+    private portScope(owner: Module | Supervisor | undefined, kind: PortKind, direction: PortDirection): Scope {
+        if (!owner || (!isModule(owner) && !isSupervisor(owner))) return EMPTY_SCOPE;
+        return this.indexScope(portsOfKind(owner, kind, direction));
+    }
+
+    private indexScope(nodes: Array<Port | { index: number } & AstNode>): Scope {
+        const descriptions: AstNodeDescription[] = nodes
+            .filter((n) => typeof n.index === 'number')
+            .map((n) => this.descriptions.createDescription(n, String(n.index)));
+        return this.createScope(stream(descriptions));
+    }
+
+    private variableScope(ref: AstNode): Scope {
+        const fn = AstUtils.getContainerOfType(ref, isSupervisionFunction);
+        if (fn) {
+            if (AstUtils.getContainerOfType(ref, isFunctionParameter)) return EMPTY_SCOPE; // defaults are constants
+            if (AstUtils.getContainerOfType(ref, isLocalBlock)) return this.createScopeForNodes(fn.parameters);
+            const sup = fn.$container;
+            const ports = isSupervisor(sup) ? sup.eventFlows.flatMap((b) => b.ports) : [];
+            // locals first, then the supervisor's port variables, then parameters (rules may not use
+            // them: validation reports it with a clear message rather than "unresolved").
+            return this.createScopeForNodes([...localsOf(fn), ...ports, ...fn.parameters]);
+        }
+        const schema = AstUtils.getContainerOfType(ref, isSchema);
+        if (schema) return this.createScopeForNodes(schema.parameters);
+        return EMPTY_SCOPE;
+    }
+
+    private fieldScope(segment: AstNode & { $containerIndex?: number; $container: AstNode }): Scope {
+        const ref = segment.$container;
+        if (!isVariableRef(ref)) return EMPTY_SCOPE;
+        const index = segment.$containerIndex ?? ref.path.indexOf(segment as never);
+        const type = typeOfPathPrefix(ref, index);
+        return type.kind === 'struct' ? this.createScopeForNodes(type.datatype.fields) : EMPTY_SCOPE;
+    }
+}

@@ -1,0 +1,40 @@
+/**
+ * Diagnostic codes. Every diagnostic the Cactal language reports has a stable code declared in a
+ * per-area table (`codes/<area>.ts`) with its severity, what it means and an example that raises it.
+ * `codes/index.ts` aggregates the tables; `docs/diagnostics.md` is generated from them
+ * (`npm run docs:diagnostics -w packages/language`) and a test fails when it is stale.
+ */
+export type Severity = 'error' | 'warning' | 'info' | 'hint';
+
+export interface DiagnosticCode {
+    /** Stable identifier, kebab-case, prefixed by its area (`import-missing-file`). */
+    readonly code: string;
+    readonly severity: Severity;
+    /** What it means and what would be right. */
+    readonly description: string;
+    /** A Cactal snippet (or file set) that raises it. */
+    readonly example: string;
+}
+
+export interface CodeArea {
+    /** Section title in docs/diagnostics.md. */
+    readonly title: string;
+    /** SPEC section the area implements. */
+    readonly spec: string;
+    readonly codes: readonly DiagnosticCode[];
+}
+
+type Entry = Omit<DiagnosticCode, 'code'>;
+
+/**
+ * Declares an area's codes: `defineCodes('Imports', '§2.1', { 'import-cycle': {...} })` returns
+ * the area (for the doc) and a map code -> DiagnosticCode (for the validators).
+ */
+export function defineCodes<K extends string>(title: string, spec: string, entries: Record<K, Entry>):
+    { area: CodeArea; codes: Record<K, DiagnosticCode> } {
+    const codes = {} as Record<K, DiagnosticCode>;
+    for (const key of Object.keys(entries) as K[]) {
+        codes[key] = { code: key, ...entries[key] };
+    }
+    return { area: { title, spec, codes: Object.values(codes) }, codes };
+}

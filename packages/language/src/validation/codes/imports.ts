@@ -1,0 +1,45 @@
+import { defineCodes } from './code-table.js';
+
+/** SPEC §2.1: files and imports. */
+export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and imports', '§2.1', {
+    'import-missing-file': {
+        severity: 'error',
+        description: 'The imported file does not exist in the project. Paths resolve relative to the importing file.',
+        example: 'import "nosuchfile.contract";'
+    },
+    'import-cycle': {
+        severity: 'warning',
+        description: 'The file imports (directly or through other files) a file that imports it back. The message shows the cycle. Imports are not transitive, so a cycle is never needed.',
+        example: '// a.contract\nimport "b.contract";\n// b.contract\nimport "a.contract";'
+    },
+    'import-unused': {
+        severity: 'hint',
+        description: 'Nothing the file refers to comes from the imported file, nor from what those elements rely on (a schema\'s modules, a module\'s types), nor (for a file that activates a periodic schema) is it the scheduler configuration. Hints are not counted by `contract check` as warnings.',
+        example: 'import "datatype.contract";\nsynchronous module MSA { scheduling { C=1ms; } }'
+    },
+    'import-not-imported': {
+        severity: 'error',
+        description: 'The name is defined in another file of the project that this file does not import (imports are not transitive). The quick fix "add import" inserts the import; the diagnostic data holds `importPath`.',
+        example: '// smodule.contract (no import of datatype.contract)\nsynchronous module MSA { scheduling { C=1ms; } data flows { out :0 TypeA x; } }'
+    },
+    'import-duplicate': {
+        severity: 'warning',
+        description: 'The same file is imported twice.',
+        example: 'import "datatype.contract";\nimport "datatype.contract";'
+    },
+    'import-self': {
+        severity: 'warning',
+        description: 'A file imports itself.',
+        example: '// a.contract\nimport "a.contract";'
+    },
+    'import-not-at-top': {
+        severity: 'warning',
+        description: 'Imports belong at the top of the file, before any definition.',
+        example: 'datatype T {int a};\nimport "other.contract";'
+    },
+    'file-mixed-content': {
+        severity: 'warning',
+        description: 'A file holds either type definitions (datatypes and function prototypes, any number) or exactly one module, schema, scheduler configuration or supervisor.',
+        example: 'datatype T {int a};\nsynchronous module MSA { scheduling { C=1ms; } }'
+    }
+});

@@ -1,0 +1,25 @@
+/**
+ * All diagnostic code tables. Add a new area by creating `codes/<area>.ts` with `defineCodes`
+ * and listing it here; docs/diagnostics.md is regenerated from this list.
+ */
+import type { CodeArea, DiagnosticCode } from './code-table.js';
+import { syntaxArea } from './syntax.js';
+import { importsArea } from './imports.js';
+import { typesArea } from './types.js';
+import { modulesArea } from './modules.js';
+
+export * from './code-table.js';
+export { SyntaxCodes } from './syntax.js';
+export { ImportCodes } from './imports.js';
+export { TypeCodes } from './types.js';
+export { ModuleCodes } from './modules.js';
+
+export const CODE_AREAS: CodeArea[] = [syntaxArea, importsArea, typesArea, modulesArea];
+
+export function allCodes(): DiagnosticCode[] {
+    return CODE_AREAS.flatMap((a) => a.codes);
+}
+
+export function findCode(code: string): DiagnosticCode | undefined {
+    return allCodes().find((c) => c.code === code);
+}

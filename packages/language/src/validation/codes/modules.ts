@@ -1,0 +1,80 @@
+import { defineCodes } from './code-table.js';
+
+/** SPEC §2.3: modules (and the naming rules shared with supervisors and all identifiers). */
+export const { area: modulesArea, codes: ModuleCodes } = defineCodes('Modules and identifiers', '§2.3', {
+    'module-name-format': {
+        severity: 'error',
+        description: 'Module and supervisor names are exactly three upper-case letters (`[A-Z]{3}`). The quick fix upper-cases the name when that makes it valid; the diagnostic data holds `suggestion`.',
+        example: 'synchronous module msa { scheduling { C=1ms; } }'
+    },
+    'module-name-reserved': {
+        severity: 'error',
+        description: '`ORD` is the scheduler\'s name and cannot name a module or supervisor.',
+        example: 'synchronous module ORD { scheduling { C=1ms; } }'
+    },
+    'module-name-duplicate': {
+        severity: 'error',
+        description: 'Module and supervisor names are unique across the project (modules and supervisors together).',
+        example: '// a.contract\nsynchronous module MSA { scheduling { C=1ms; } }\n// b.contract\nasynchronous module MSA { }'
+    },
+    'identifier-c-keyword': {
+        severity: 'error',
+        description: 'The generated C uses Cactal names as they are, so a name cannot be a C keyword (`int`, `double`, `struct`, `switch`, ...).',
+        example: 'datatype T {int double};'
+    },
+    'identifier-reserved-prefix': {
+        severity: 'error',
+        description: 'Names starting with `_` are reserved for generated code.',
+        example: 'datatype T {int _a};'
+    },
+    'module-block-order': {
+        severity: 'error',
+        description: 'Module blocks come in the order `parameters`, `scheduling`, `data flows`, `event flows` (each at most once).',
+        example: 'synchronous module MSA { data flows { out :0 int x; } scheduling { C=1ms; } }'
+    },
+    'module-block-duplicate': {
+        severity: 'error',
+        description: 'A block appears twice in one module.',
+        example: 'synchronous module MSA { scheduling { C=1ms; } scheduling { C=2ms; } }'
+    },
+    'module-scheduling-missing': {
+        severity: 'error',
+        description: 'A synchronous module needs a `scheduling { C=<time>; }` block giving its nominal execution time.',
+        example: 'synchronous module MSA { data flows { out :0 int x; } }'
+    },
+    'module-scheduling-property': {
+        severity: 'error',
+        description: 'The scheduling block holds exactly one property, `C` (nominal execution time per cycle).',
+        example: 'synchronous module MSA { scheduling { D=1ms; } }'
+    },
+    'module-async-forbidden-block': {
+        severity: 'error',
+        description: 'An asynchronous module is not scheduled and exchanges no periodic data: no `scheduling` and no `data flows` block.',
+        example: 'asynchronous module MAA { scheduling { C=1ms; } }'
+    },
+    'module-sync-event-in': {
+        severity: 'error',
+        description: 'A synchronous module only has `out` event ports (it cannot react to events; use an asynchronous module).',
+        example: 'synchronous module MSA { scheduling { C=1ms; } event flows { in :0 int e; } }'
+    },
+    'port-index-duplicate': {
+        severity: 'error',
+        description: 'Port indexes are unique per kind and direction: parameters; data in; data out; event in; event out. The quick fix renumbers to the free index in the diagnostic data (`suggestedIndex`).',
+        example: 'synchronous module MSA { scheduling { C=1ms; } data flows { out :0 int a; out :0 int b; } }'
+    },
+    'port-index-negative': {
+        severity: 'error',
+        description: 'Port indexes are non-negative integers.',
+        example: 'synchronous module MSA { scheduling { C=1ms; } data flows { out :-1 int a; } }'
+    },
+    'member-name-duplicate': {
+        severity: 'error',
+        description: 'Every name in a module or supervisor interface (parameters and port variables) is unique within it.',
+        example: 'synchronous module MSA { scheduling { C=1ms; } data flows { out :0 int a; out :1 float a; } }'
+    },
+    'time-not-positive': {
+        severity: 'error',
+        description: 'Durations (`C`, `PERIOD`, `CRITICAL_DELAY`, `elapsed`, `duration`, persistence) are greater than zero: a number and a unit `ns`, `us`, `ms` or `s`.',
+        example: 'synchronous module MSA { scheduling { C=0ms; } }'
+    }
+});

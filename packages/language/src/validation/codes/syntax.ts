@@ -1,0 +1,20 @@
+import { defineCodes } from './code-table.js';
+
+/** Codes Langium gives to syntax and linking problems (kept as Langium names them). */
+export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and references', '§2', {
+    'lexing-error': {
+        severity: 'error',
+        description: 'A character sequence that is not a Cactal token (for example a stray `$` or an unterminated string).',
+        example: 'datatype T {int a = $};'
+    },
+    'parsing-error': {
+        severity: 'error',
+        description: 'The text does not follow the Cactal grammar; the message says which token was expected. Parsing recovers and the rest of the file is still checked.',
+        example: 'datatype T {int a = };'
+    },
+    'linking-error': {
+        severity: 'error',
+        description: 'A name or port index that does not resolve in its context: unknown type, module, schema, rule label, variable or field, or a port index that the module does not have with that kind and direction. The message lists what would be valid.',
+        example: 'synchronous module MSA { scheduling { C=1ms; } data flows { out :0 TypeZ x; } }'
+    }
+});
