@@ -1,0 +1,36 @@
+/** Minimal argument parsing: positionals and `--name value` / `--name=value` options. */
+import { UsageError } from './command.js';
+
+export interface ParsedArgs {
+    positionals: string[];
+    options: Map<string, string | true>;
+}
+
+/**
+ * `valued` lists options that take a value, `flags` those that do not; anything else is a
+ * usage error.
+ */
+export function parseArgs(args: string[], valued: string[], flags: string[] = []): ParsedArgs {
+    const positionals: string[] = [];
+    const options = new Map<string, string | true>();
+    for (let i = 0; i < args.length; i++) {
+        const arg = args[i]!;
+        if (arg === '--') { positionals.push(...args.slice(i + 1)); break; }
+        if (arg.startsWith('-') && arg !== '-') {
+            const eq = arg.indexOf('=');
+            const name = (eq >= 0 ? arg.slice(0, eq) : arg).replace(/^--?/, '');
+            if (valued.includes(name)) {
+                const value = eq >= 0 ? arg.slice(eq + 1) : args[++i];
+                if (value === undefined) throw new UsageError(`option --${name} needs a value`);
+                options.set(name, value);
+            } else if (flags.includes(name) && eq < 0) {
+                options.set(name, true);
+            } else {
+                throw new UsageError(`unknown option ${arg}`);
+            }
+        } else {
+            positionals.push(arg);
+        }
+    }
+    return { positionals, options };
+}

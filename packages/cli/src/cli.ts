@@ -1,0 +1,64 @@
+/** The `contract` dispatcher: `contract <command> [args]`, `contract --help`, `contract --version`. */
+import { readFileSync } from 'node:fs';
+import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from './command.js';
+import { COMMANDS } from './commands/index.js';
+
+function version(): string {
+    try {
+        const pkg = JSON.parse(readFileSync(new URL('../package.json', import.meta.url), 'utf8')) as { version?: string };
+        return pkg.version ?? 'unknown';
+    } catch {
+        return 'unknown';
+    }
+}
+
+export function helpText(commands: Command[] = COMMANDS): string {
+    const width = Math.max(...commands.map((c) => c.name.length));
+    return [
+        'usage: contract <command> [arguments]',
+        '',
+        'commands:',
+        ...commands.map((c) => `  ${c.name.padEnd(width)}  ${c.summary}`),
+        '',
+        'contract <command> --help shows the usage of a command.',
+        'exit status: 0 success, 1 failure (e.g. errors found), 2 bad usage.'
+    ].join('\n') + '\n';
+}
+
+export const processIO: CliIO = {
+    out: (text) => { process.stdout.write(text); },
+    err: (text) => { process.stderr.write(text); },
+    cwd: process.cwd()
+};
+
+/** Runs `contract` with the given arguments; resolves to the exit code. Never throws. */
+export async function runCli(argv: string[], io: CliIO = processIO, commands: Command[] = COMMANDS): Promise<number> {
+    const [name, ...rest] = argv;
+    if (!name || name === '--help' || name === '-h' || name === 'help') {
+        (name ? io.out : io.err)(helpText(commands));
+        return name ? EXIT_OK : EXIT_USAGE;
+    }
+    if (name === '--version' || name === '-v') {
+        io.out(`contract ${version()}\n`);
+        return EXIT_OK;
+    }
+    const command = commands.find((c) => c.name === name);
+    if (!command) {
+        io.err(`contract: unknown command '${name}'\n\n${helpText(commands)}`);
+        return EXIT_USAGE;
+    }
+    if (rest.includes('--help') || rest.includes('-h')) {
+        io.out(command.usage + '\n');
+        return EXIT_OK;
+    }
+    try {
+        return await command.run(rest, io);
+    } catch (err) {
+        if (err instanceof UsageError) {
+            io.err(`contract ${command.name}: ${err.message}\n${command.usage}\n`);
+            return EXIT_USAGE;
+        }
+        io.err(`contract ${command.name}: ${err instanceof Error ? err.message : String(err)}\n`);
+        return EXIT_FAILURE;
+    }
+}

@@ -1,0 +1,46 @@
+/**
+ * `contract check DIR [--format text|json|sarif]`: loads every `.contract` file under DIR, builds the
+ * workspace and prints its diagnostics. Exit 1 when there is an error, 0 otherwise, 2 on bad usage.
+ */
+import { stat } from 'node:fs/promises';
+import { join, resolve } from 'node:path';
+import { loadWorkspace, type WorkspaceDiagnostic } from '@contract-studio/language/node';
+import { parseArgs } from '../args.js';
+import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+import { formatJson, formatSarif, formatText, summarize } from '../diagnostic-format.js';
+
+const FORMATS = ['text', 'json', 'sarif'] as const;
+type Format = (typeof FORMATS)[number];
+
+export const checkCommand: Command = {
+    name: 'check',
+    summary: 'check a Cactal project and print its diagnostics',
+    usage: [
+        'usage: contract check DIR [--format text|json|sarif]',
+        '  text (default): one line per diagnostic, `DIR/file:line:col severity code message`',
+        '  json: {"diagnostics":[{"file","line","column","severity","code","message"}]} (file relative to DIR)',
+        '  sarif: SARIF 2.1.0 log',
+        'exit status: 1 when there is an error, 0 otherwise (warnings and hints do not fail), 2 on bad usage'
+    ].join('\n'),
+    async run(args: string[], io: CliIO): Promise<number> {
+        const { positionals, options } = parseArgs(args, ['format']);
+        if (positionals.length !== 1) throw new UsageError(positionals.length ? 'expected exactly one DIR' : 'missing DIR');
+        const format = (options.get('format') ?? 'text') as Format;
+        if (!FORMATS.includes(format)) throw new UsageError(`unknown format '${String(format)}' (expected text, json or sarif)`);
+        const dirArg = positionals[0]!;
+        const dir = resolve(io.cwd, dirArg);
+        const info = await stat(dir).catch(() => undefined);
+        if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+
+        const workspace = await loadWorkspace(dir);
+        const diagnostics: WorkspaceDiagnostic[] = workspace.diagnostics;
+        if (format === 'json') io.out(formatJson(diagnostics));
+        else if (format === 'sarif') io.out(formatSarif(diagnostics, dir));
+        else {
+            const text = formatText(diagnostics, (file) => join(dirArg, file));
+            if (text) io.out(text);
+            io.err(`${summarize(diagnostics)} in ${workspace.documents.length} file${workspace.documents.length === 1 ? '' : 's'}\n`);
+        }
+        return diagnostics.some((d) => d.severity === 'error') ? EXIT_FAILURE : EXIT_OK;
+    }
+};

@@ -1,0 +1,3 @@
+/** @contract-studio/language/node — Node-only entry: loading a workspace from disk. */
+export * from './load-workspace.js';
+export { NodeFileSystem } from 'langium/node';

@@ -1,0 +1,117 @@
+/**
+ * loadWorkspace(dir): parses, links and validates every `.contract` file under `dir` (Node file
+ * system) and returns the documents with their diagnostics in a tool-friendly form (1-based lines
+ * and columns, paths relative to `dir`). Used by `contract check`, code generation and the build service.
+ */
+import { readdir, readFile, stat } from 'node:fs/promises';
+import { join, relative, resolve, sep } from 'node:path';
+import { URI, type LangiumDocument } from 'langium';
+import { NodeFileSystem } from 'langium/node';
+import type { Diagnostic } from 'vscode-languageserver-types';
+import { createCactalServices, type CactalServices } from '../cactal-module.js';
+import type { Model } from '../generated/ast.js';
+
+export type SeverityName = 'error' | 'warning' | 'info' | 'hint';
+
+export interface WorkspaceDiagnostic {
+    /** Path relative to the workspace directory, with `/` separators. */
+    file: string;
+    /** 1-based. */
+    line: number;
+    /** 1-based. */
+    column: number;
+    endLine: number;
+    endColumn: number;
+    severity: SeverityName;
+    code: string;
+    message: string;
+    /** Extra data of the diagnostic (for quick fixes), if any. */
+    data?: unknown;
+}
+
+export interface WorkspaceDocument {
+    /** Path relative to the workspace directory, with `/` separators. */
+    file: string;
+    /** Absolute path. */
+    path: string;
+    document: LangiumDocument<Model>;
+    model: Model;
+}
+
+export interface LoadedWorkspace {
+    /** Absolute path of the workspace directory. */
+    dir: string;
+    documents: WorkspaceDocument[];
+    /** All diagnostics, sorted by file, line, column. */
+    diagnostics: WorkspaceDiagnostic[];
+    /** The services that built the workspace (to reuse for further queries). */
+    services: CactalServices;
+}
+
+export interface LoadWorkspaceOptions {
+    /** Services to reuse (default: fresh Node services). */
+    services?: CactalServices;
+    /** Directory names not to descend into (default: node_modules, .git, src-gen). */
+    skipDirs?: string[];
+}
+
+const SEVERITIES: Record<number, SeverityName> = { 1: 'error', 2: 'warning', 3: 'info', 4: 'hint' };
+const DEFAULT_SKIP = ['node_modules', '.git', 'src-gen'];
+
+/** Every `.contract` file under `dir`, sorted, as absolute paths. */
+export async function findContractFiles(dir: string, skipDirs: string[] = DEFAULT_SKIP): Promise<string[]> {
+    const found: string[] = [];
+    async function walk(d: string): Promise<void> {
+        const entries = await readdir(d, { withFileTypes: true });
+        for (const e of entries) {
+            const full = join(d, e.name);
+            if (e.isDirectory()) {
+                if (!skipDirs.includes(e.name)) await walk(full);
+            } else if (e.isFile() && e.name.endsWith('.contract')) {
+                found.push(full);
+            }
+        }
+    }
+    await walk(dir);
+    return found.sort();
+}
+
+/** Converts an LSP diagnostic of a file into the 1-based tool form. */
+export function toWorkspaceDiagnostic(file: string, d: Diagnostic): WorkspaceDiagnostic {
+    const code = d.code ?? (d.data as { code?: string } | undefined)?.code ?? 'unknown';
+    const out: WorkspaceDiagnostic = {
+        file,
+        line: d.range.start.line + 1,
+        column: d.range.start.character + 1,
+        endLine: d.range.end.line + 1,
+        endColumn: d.range.end.character + 1,
+        severity: SEVERITIES[d.severity ?? 1] ?? 'error',
+        code: String(code),
+        message: d.message
+    };
+    if (d.data !== undefined) out.data = d.data;
+    return out;
+}
+
+export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions = {}): Promise<LoadedWorkspace> {
+    const root = resolve(dir);
+    const info = await stat(root).catch(() => undefined);
+    if (!info?.isDirectory()) throw new Error(`${dir} is not a directory`);
+    const services = options.services ?? createCactalServices(NodeFileSystem).Cactal;
+    const shared = services.shared;
+    const files = await findContractFiles(root, options.skipDirs);
+    const documents: WorkspaceDocument[] = [];
+    for (const path of files) {
+        const text = await readFile(path, 'utf8');
+        const uri = URI.file(path);
+        const langiumDocs = shared.workspace.LangiumDocuments;
+        if (langiumDocs.hasDocument(uri)) langiumDocs.deleteDocument(uri);
+        const document = shared.workspace.LangiumDocumentFactory.fromString<Model>(text, uri);
+        langiumDocs.addDocument(document);
+        documents.push({ file: relative(root, path).split(sep).join('/'), path, document, model: document.parseResult.value });
+    }
+    await shared.workspace.DocumentBuilder.build(documents.map((d) => d.document), { validation: true });
+    const diagnostics = documents.flatMap((d) => (d.document.diagnostics ?? []).map((diag) => toWorkspaceDiagnostic(d.file, diag)));
+    diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
+    return { dir: root, documents, diagnostics, services };
+}
