@@ -1,0 +1,40 @@
+/**
+ * GET /api/jobs/:id/events as Server-Sent Events: replays the job's events after Last-Event-ID
+ * (or ?after=), then streams live ones; closes after the `end` event. Respects back-pressure by
+ * buffering in the socket (events are bounded by the output limits).
+ */
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import type { Job } from '../pipeline/job.js';
+import type { JobEvent } from '../pipeline/job-events.js';
+
+export function eventPayload(e: JobEvent): Record<string, unknown> {
+  const { type: _type, ...data } = e;
+  return data;
+}
+
+export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, after: number): void {
+  res.writeHead(200, {
+    'Content-Type': 'text/event-stream; charset=utf-8',
+    'Cache-Control': 'no-cache, no-transform',
+    Connection: 'keep-alive',
+    'X-Accel-Buffering': 'no',
+  });
+  res.write(': contract build service\n\n');
+  let closed = false;
+  const ping = setInterval(() => res.write(': ping\n\n'), 15_000);
+  ping.unref();
+  const stop = (): void => {
+    if (closed) return;
+    closed = true;
+    clearInterval(ping);
+    unsubscribe();
+    res.end();
+  };
+  const unsubscribe = job.events.subscribe(after, (e) => {
+    if (closed) return;
+    res.write(`id: ${e.seq}\nevent: ${e.type}\ndata: ${JSON.stringify(eventPayload(e))}\n\n`);
+    if (e.type === 'end') setImmediate(stop);
+  });
+  req.on('close', stop);
+  if (job.events.isEnded) setImmediate(stop);
+}

@@ -1,0 +1,14 @@
+/**
+ * @contract-studio/build-service — sandboxed gcc build + run of Cactal projects with live streams.
+ * See README.md, docs/build-service-api.md (HTTP API) and docs/sandbox.md (sandboxes, limits).
+ */
+export { createBuildServer, DEFAULT_PORT, type BuildServer, type BuildServerOptions } from './server.js';
+export { JobService, DEFAULT_RUNTIME_SOURCE, type BuildServiceOptions } from './job-service.js';
+export { ServiceError } from './service-errors.js';
+export { DEFAULT_LIMITS, CANCEL_DEADLINE_MS, describeLimitHit, mergeLimits, type Limits, type LimitHit, type Mechanism } from './limits.js';
+export type { Job, JobRequest, JobResult } from './pipeline/job.js';
+export type { JobEvent, JobStatus, JobStep, LineEvent } from './pipeline/job-events.js';
+export type { GccDiagnostic } from './pipeline/gcc-diagnostics.js';
+export type { ProtectedRegion } from './pipeline/protected-regions.js';
+export type { Sandbox, SandboxChoice, SandboxName, Mechanisms } from './sandbox/types.js';
+export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';

@@ -1,0 +1,237 @@
+/**
+ * The in-process build service: validates job requests, picks the sandbox, queues jobs with
+ * bounded concurrency (429 beyond concurrency + queueSize), runs them, keeps finished jobs (their
+ * full event log and result) up to `keepJobs`, and cleans everything up on close.
+ */
+import { randomBytes } from 'node:crypto';
+import { chmodSync, mkdtempSync, realpathSync } from 'node:fs';
+import { availableParallelism, tmpdir } from 'node:os';
+import { dirname, join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { DEFAULT_LIMITS, LimitsError, mergeLimits, type Limits } from './limits.js';
+import { Job, type JobRequest } from './pipeline/job.js';
+import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
+import { RuntimeCache } from './pipeline/runtime-cache.js';
+import { WorkspaceManager } from './pipeline/workspaces.js';
+import type { BwrapOptions } from './sandbox/bwrap.js';
+import type { DockerOptions } from './sandbox/docker.js';
+import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
+import type { SandboxChoice, SandboxName } from './sandbox/types.js';
+import { ServiceError } from './service-errors.js';
+import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
+
+export interface BuildServiceOptions {
+  /** Default sandbox of jobs that name none. Default 'auto'. */
+  sandbox?: SandboxChoice;
+  /** Jobs running at once. Default: the number of cores. */
+  concurrency?: number;
+  /** Jobs waiting beyond the running ones; more are refused (429). Default 2 x concurrency. */
+  queueSize?: number;
+  /** Overrides of DEFAULT_LIMITS for this service (jobs may only lower them). */
+  limits?: Partial<Limits>;
+  /** Folders a job's project.dir must be inside. Default [] (inline files only). */
+  projectRoots?: string[];
+  /** Where workspaces and the runtime cache live. Default: a fresh temp dir, removed on close. */
+  cacheDir?: string;
+  /** The runtime source folder (Seam 3). Default: the repository's runtime/. */
+  runtimeSource?: string;
+  /** Finished jobs kept for GET. Default 50. */
+  keepJobs?: number;
+  bwrap?: BwrapOptions;
+  docker?: DockerOptions;
+}
+
+const here = dirname(fileURLToPath(import.meta.url));
+export const DEFAULT_RUNTIME_SOURCE = resolve(here, '..', '..', '..', 'runtime');
+
+export class JobService {
+  readonly limits: Limits;
+  readonly concurrency: number;
+  readonly queueSize: number;
+  readonly defaultSandbox: SandboxChoice;
+  readonly sandboxes: SandboxRegistry;
+  private readonly jobs = new Map<string, Job>();
+  private readonly running = new Set<Job>();
+  private readonly waiting: { job: Job; start: () => void }[] = [];
+  private readonly projectRoots: string[];
+  private readonly cacheDir: string;
+  private readonly ownsCacheDir: boolean;
+  private readonly workspaces: WorkspaceManager;
+  private readonly runtime: RuntimeCache;
+  private readonly keepJobs: number;
+  private closed = false;
+
+  constructor(options: BuildServiceOptions = {}) {
+    this.limits = mergeLimits(DEFAULT_LIMITS, options.limits, false);
+    this.concurrency = Math.max(1, options.concurrency ?? availableParallelism());
+    this.queueSize = Math.max(0, options.queueSize ?? 2 * this.concurrency);
+    this.defaultSandbox = options.sandbox ?? 'auto';
+    this.keepJobs = options.keepJobs ?? 50;
+    this.sandboxes = new SandboxRegistry({ bwrap: options.bwrap, docker: options.docker });
+    this.projectRoots = (options.projectRoots ?? []).map((r) => realpathSync(r));
+    this.ownsCacheDir = !options.cacheDir;
+    this.cacheDir = options.cacheDir ?? mkdtempSync(join(tmpdir(), 'contract-build-'));
+    chmodSync(this.cacheDir, 0o711); // job uids must traverse it to reach their own work dir
+    this.workspaces = new WorkspaceManager(join(this.cacheDir, 'ws'), async (workDir) => {
+      await this.sandboxes.sandboxes.docker.release?.(workDir);
+    });
+    this.runtime = new RuntimeCache(options.runtimeSource ?? DEFAULT_RUNTIME_SOURCE, join(this.cacheDir, 'runtime'));
+  }
+
+  get stats(): { running: number; queued: number; concurrency: number; queueSize: number } {
+    return { running: this.running.size, queued: this.waiting.length, concurrency: this.concurrency, queueSize: this.queueSize };
+  }
+
+  get(id: string): Job | undefined {
+    return this.jobs.get(id);
+  }
+
+  list(): Job[] {
+    return [...this.jobs.values()].reverse();
+  }
+
+  /** Validates a request body (the JSON of POST /api/jobs); throws ServiceError 400/403. */
+  parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
+    if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', 'the body must be a JSON object');
+    const b = body as Record<string, unknown>;
+    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'limits']);
+    for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);
+    const action = b.action ?? 'build';
+    if (action !== 'build' && action !== 'run') throw new ServiceError(400, 'bad_request', 'action must be "build" or "run"');
+    const kind = (b.kind ?? 'cactal') as ProjectKind;
+    if (kind !== 'cactal' && kind !== 'make') throw new ServiceError(400, 'bad_request', 'kind must be "cactal" or "make"');
+    const sandbox = (b.sandbox ?? this.defaultSandbox) as SandboxChoice;
+    if (!SANDBOX_CHOICES.includes(sandbox)) throw new ServiceError(400, 'bad_request', `sandbox must be one of ${SANDBOX_CHOICES.join(', ')}`);
+    if (b.start !== undefined && (typeof b.start !== 'string' || b.start.length > 4096 || /[\n\0]/.test(b.start))) {
+      throw new ServiceError(400, 'bad_request', 'start must be a one-line string');
+    }
+    if (b.duration !== undefined && (typeof b.duration !== 'number' || !(b.duration > 0) || !Number.isFinite(b.duration))) {
+      throw new ServiceError(400, 'bad_request', 'duration must be a positive number of seconds');
+    }
+    let limits: Limits;
+    try {
+      limits = mergeLimits(this.limits, b.limits, true);
+    } catch (e) {
+      if (e instanceof LimitsError) throw new ServiceError(400, 'bad_request', e.message);
+      throw e;
+    }
+    const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, limits.runSeconds);
+    const { project, projectKey } = this.parseProject(b.project);
+    return {
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, limits },
+      sandbox,
+    };
+  }
+
+  private parseProject(raw: unknown): { project: ProjectSource; projectKey: string | null } {
+    if (!raw || typeof raw !== 'object') throw new ServiceError(400, 'bad_request', 'project must be {dir} or {files}');
+    const p = raw as Record<string, unknown>;
+    if ((p.dir === undefined) === (p.files === undefined)) throw new ServiceError(400, 'bad_request', 'project needs exactly one of dir, files');
+    if (p.files !== undefined) {
+      if (!p.files || typeof p.files !== 'object' || Array.isArray(p.files)) throw new ServiceError(400, 'bad_request', 'project.files must be an object path -> text');
+      const files: Record<string, string> = {};
+      for (const [rel, text] of Object.entries(p.files as Record<string, unknown>)) {
+        if (typeof text !== 'string') throw new ServiceError(400, 'bad_request', `project.files["${rel}"] must be a string`);
+        try {
+          files[checkRelativePath(rel)] = text;
+        } catch (e) {
+          throw new ServiceError(400, 'bad_request', (e as UnsafePathError).message);
+        }
+      }
+      return { project: { files }, projectKey: null };
+    }
+    if (typeof p.dir !== 'string' || !p.dir.startsWith('/')) throw new ServiceError(400, 'bad_request', 'project.dir must be an absolute path');
+    let real: string;
+    try {
+      real = realpathSync(p.dir);
+    } catch {
+      throw new ServiceError(400, 'bad_request', `project.dir ${p.dir} does not exist`);
+    }
+    if (!this.projectRoots.some((root) => isInside(root, real))) {
+      throw new ServiceError(403, 'forbidden_project', `project.dir ${p.dir} is outside the folders this service may build (${this.projectRoots.join(', ') || 'none: send inline files'})`);
+    }
+    return { project: { dir: real }, projectKey: real };
+  }
+
+  /** Submits a job: 400/403 bad request, 429 queue full, 503 sandbox unavailable. */
+  async submit(body: unknown): Promise<Job> {
+    if (this.closed) throw new ServiceError(503, 'closing', 'the build service is shutting down');
+    const { request, sandbox: choice } = this.parseRequest(body);
+    if (this.running.size + this.waiting.length >= this.concurrency + this.queueSize) {
+      throw new ServiceError(429, 'queue_full', `queue full: ${this.running.size} running, ${this.waiting.length} waiting (max ${this.concurrency} + ${this.queueSize}); retry later`);
+    }
+    let resolved;
+    try {
+      resolved = await this.sandboxes.resolve(choice);
+    } catch (e) {
+      if (e instanceof SandboxUnavailableError) throw new ServiceError(503, 'sandbox_unavailable', e.message);
+      throw e;
+    }
+    // re-check after the (async) probe: other submissions may have filled the queue meanwhile
+    if (this.running.size + this.waiting.length >= this.concurrency + this.queueSize) {
+      throw new ServiceError(429, 'queue_full', `queue full: ${this.running.size} running, ${this.waiting.length} waiting; retry later`);
+    }
+    const id = `j-${randomBytes(6).toString('hex')}`;
+    const job = new Job(id, request, resolved.sandbox.name);
+    job.warnings.push(...resolved.warnings);
+    job.sandboxNote = resolved.note;
+    this.jobs.set(id, job);
+    this.evictOld();
+    const start = (): void => {
+      this.running.add(job);
+      void job
+        .execute({
+          sandbox: resolved.sandbox,
+          sandboxNote: resolved.note,
+          runtime: this.runtime,
+          acquireWorkspace: (j) =>
+            j.request.projectKey
+              ? this.workspaces.acquireForProject(j.request.projectKey, resolved.sandbox.name as SandboxName)
+              : this.workspaces.acquireFresh(j.id),
+        })
+        .finally(() => {
+          this.running.delete(job);
+          this.pump();
+        });
+    };
+    if (this.running.size < this.concurrency) start();
+    else this.waiting.push({ job, start });
+    return job;
+  }
+
+  private pump(): void {
+    while (!this.closed && this.running.size < this.concurrency && this.waiting.length) this.waiting.shift()!.start();
+  }
+
+  private evictOld(): void {
+    const finished = [...this.jobs.values()].filter((j) => j.isDone);
+    const excess = this.jobs.size - this.keepJobs;
+    for (const j of finished.slice(0, Math.max(0, excess))) this.jobs.delete(j.id);
+  }
+
+  /** Cancels a job (queued: removed at once; running: stopped within 2 s). */
+  async cancel(id: string): Promise<Job | undefined> {
+    const job = this.jobs.get(id);
+    if (!job) return undefined;
+    const i = this.waiting.findIndex((w) => w.job === job);
+    if (i >= 0) {
+      this.waiting.splice(i, 1);
+      job.finishUnstarted('cancelled', 'cancelled');
+      return job;
+    }
+    await job.cancel();
+    return job;
+  }
+
+  /** Cancels every job, waits for them to release their resources, removes all work dirs. */
+  async close(): Promise<void> {
+    this.closed = true;
+    for (const w of this.waiting.splice(0)) w.job.finishUnstarted('cancelled: service closing', 'cancelled');
+    const running = [...this.running];
+    await Promise.all(running.map((j) => j.cancel()));
+    await Promise.all(running.map((j) => j.finished));
+    await this.workspaces.removeAll();
+    if (this.ownsCacheDir) await removeTreeNoFollow(this.cacheDir);
+    else await removeTreeNoFollow(join(this.cacheDir, 'ws'));
+  }
+}

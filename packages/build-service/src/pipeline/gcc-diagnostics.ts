@@ -1,0 +1,143 @@
+import { posix } from 'node:path';
+import { regionAt, type ProtectedRegion } from './protected-regions.js';
+
+/** One gcc problem, located in the job's tree (see docs/build-service-api.md). */
+export interface GccDiagnostic {
+  severity: 'error' | 'warning' | 'note';
+  message: string;
+  option?: string;
+  /** Relative to the tree root the job reports against (src-gen/ for Cactal projects). */
+  file: string | null;
+  line: number | null;
+  column: number | null;
+  endLine?: number;
+  endColumn?: number;
+  protectedRegion: ProtectedRegion | null;
+  children: GccDiagnostic[];
+}
+
+/**
+ * Where diagnostics point to: gcc reports paths relative to the directory make ran it in (or
+ * absolute, inside the sandbox). `resolve` turns such a path into a path relative to the reported
+ * tree root, or null when the file is outside it (system headers).
+ */
+export interface DiagnosticContext {
+  /** The sandbox-side absolute directory gcc ran in (make's current directory). */
+  cwd: string;
+  /** The sandbox-side absolute path of the reported tree root. */
+  root: string;
+  /** Protected regions of the files of the tree, indexed by root-relative path (trusted, read before the build). */
+  regions: ReadonlyMap<string, readonly ProtectedRegion[]>;
+}
+
+export function relativeToRoot(file: string, ctx: DiagnosticContext): string | null {
+  const abs = posix.resolve(ctx.cwd, file);
+  const rel = posix.relative(ctx.root, abs);
+  if (rel.startsWith('..') || posix.isAbsolute(rel)) return null;
+  return rel;
+}
+
+function severityOf(kind: unknown): GccDiagnostic['severity'] {
+  if (kind === 'error' || kind === 'fatal error' || kind === 'fatal') return 'error';
+  if (kind === 'warning') return 'warning';
+  return 'note';
+}
+
+function located(
+  base: Omit<GccDiagnostic, 'file' | 'protectedRegion'>,
+  rawFile: string | null,
+  ctx: DiagnosticContext,
+): GccDiagnostic {
+  const file = rawFile === null ? null : (relativeToRoot(rawFile, ctx) ?? rawFile);
+  const regions = file ? ctx.regions.get(file) : undefined;
+  const protectedRegion = regions && base.line !== null ? regionAt(regions, base.line) : null;
+  return { ...base, file, protectedRegion };
+}
+
+interface GccJsonLocation {
+  caret?: { file?: string; line?: number; column?: number };
+  finish?: { file?: string; line?: number; column?: number };
+}
+interface GccJsonDiagnostic {
+  kind?: string;
+  message?: string;
+  option?: string;
+  locations?: GccJsonLocation[];
+  children?: GccJsonDiagnostic[];
+}
+
+function fromJson(d: GccJsonDiagnostic, ctx: DiagnosticContext): GccDiagnostic {
+  const loc = d.locations?.[0];
+  const caret = loc?.caret;
+  return located(
+    {
+      severity: severityOf(d.kind),
+      message: String(d.message ?? ''),
+      ...(d.option ? { option: d.option } : {}),
+      line: caret?.line ?? null,
+      column: caret?.column ?? null,
+      ...(loc?.finish?.line ? { endLine: loc.finish.line } : {}),
+      ...(loc?.finish?.column ? { endColumn: loc.finish.column } : {}),
+      children: (d.children ?? []).map((c) => fromJson(c, ctx)),
+    },
+    caret?.file ?? null,
+    ctx,
+  );
+}
+
+/** True when a stderr line is gcc's `-fdiagnostics-format=json` output (one JSON array per compilation). */
+export function looksLikeGccJson(line: string): boolean {
+  return /^\[\s*(\]|\{\s*"kind")/.test(line);
+}
+
+/** Parses one line of gcc JSON diagnostics; null when it is not valid JSON of that shape. */
+export function parseGccJsonLine(line: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
+  let data: unknown;
+  try {
+    data = JSON.parse(line);
+  } catch {
+    return null;
+  }
+  if (!Array.isArray(data)) return null;
+  return (data as GccJsonDiagnostic[]).map((d) => fromJson(d, ctx));
+}
+
+const TEXT = /^(.+?):(\d+):(?:(\d+):)?\s+(fatal error|error|warning|note):\s+(.*?)(?:\s+\[(-W[^\]]+)\])?$/;
+
+/** Parses gcc's text format `file:line[:col]: severity: message [-Woption]` (fallback). */
+export function parseGccTextLine(line: string, ctx: DiagnosticContext): GccDiagnostic | null {
+  const m = TEXT.exec(line);
+  if (!m) return null;
+  const [, file, lineNo, col, kind, message, option] = m;
+  if (!file || file.includes(' ') && !file.includes('/')) return null;
+  return located(
+    {
+      severity: severityOf(kind),
+      message: message ?? '',
+      ...(option ? { option } : {}),
+      line: Number(lineNo),
+      column: col ? Number(col) : null,
+      children: [],
+    },
+    file,
+    ctx,
+  );
+}
+
+/** gcc-like one-line rendering, for the text log. */
+export function renderDiagnostic(d: GccDiagnostic): string {
+  const where = d.file ? `${d.file}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+  const opt = d.option ? ` [${d.option}]` : '';
+  const region = d.protectedRegion ? ` (in protected region ${d.protectedRegion.id})` : '';
+  return `${where}${d.severity}: ${d.message}${opt}${region}`;
+}
+
+/** make's "make[1]: Entering directory '/work/x'" -> '/work/x'. */
+export function makeEnteringDirectory(line: string): string | null {
+  const m = /^g?make(?:\[\d+\])?: Entering directory [`'"](.*)['"]$/.exec(line);
+  return m?.[1] ?? null;
+}
+export function makeLeavingDirectory(line: string): string | null {
+  const m = /^g?make(?:\[\d+\])?: Leaving directory [`'"](.*)['"]$/.exec(line);
+  return m?.[1] ?? null;
+}

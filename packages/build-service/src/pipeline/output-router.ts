@@ -1,0 +1,68 @@
+/**
+ * Turns the raw output lines of a step into job events:
+ *   build: tracks make's current directory ("Entering directory"), reads gcc diagnostics (JSON
+ *          lines from -fdiagnostics-format=json, or gcc's text format) and maps them to the tree;
+ *   run:   attributes each line to the module named by the launcher's tag ("[MAA] text").
+ */
+import { posix } from 'node:path';
+import {
+  looksLikeGccJson,
+  makeEnteringDirectory,
+  makeLeavingDirectory,
+  parseGccJsonLine,
+  parseGccTextLine,
+  renderDiagnostic,
+  type GccDiagnostic,
+} from './gcc-diagnostics.js';
+import type { ProtectedRegion } from './protected-regions.js';
+
+export interface RoutedLine {
+  source: string;
+  line: string;
+}
+
+export interface BuildRouterOptions {
+  /** Sandbox-side absolute directory make starts in. */
+  startDir: string;
+  /** Sandbox-side absolute tree root diagnostics are reported against. */
+  root: string;
+  regions: ReadonlyMap<string, readonly ProtectedRegion[]>;
+}
+
+export class BuildOutputRouter {
+  private readonly dirs: string[];
+
+  constructor(private readonly options: BuildRouterOptions) {
+    this.dirs = [options.startDir];
+  }
+
+  private get cwd(): string {
+    return this.dirs[this.dirs.length - 1] ?? this.options.startDir;
+  }
+
+  /** Returns the lines to log and the diagnostics found in one output line. */
+  route(line: string, stream: 'stdout' | 'stderr'): { lines: RoutedLine[]; diagnostics: GccDiagnostic[] } {
+    const entering = makeEnteringDirectory(line);
+    if (entering) this.dirs.push(posix.resolve(this.cwd, entering));
+    else if (makeLeavingDirectory(line) && this.dirs.length > 1) this.dirs.pop();
+    const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions };
+    if (stream === 'stderr' && looksLikeGccJson(line)) {
+      const diags = parseGccJsonLine(line, ctx);
+      if (diags) {
+        const lines = diags.flatMap((d) => [d, ...d.children]).map((d) => ({ source: 'build', line: renderDiagnostic(d) }));
+        return { lines, diagnostics: diags };
+      }
+    }
+    const text = parseGccTextLine(line, ctx);
+    return { lines: [{ source: 'build', line }], diagnostics: text && text.severity !== 'note' ? [text] : [] };
+  }
+}
+
+const MODULE_TAG = /^\[([A-Za-z_][A-Za-z0-9_.-]{0,63})\]\s?(.*)$/;
+
+/** "[MAA] hello" -> {source: 'MAA', line: 'hello'}; untagged lines come from 'run' (make, launcher). */
+export function routeRunLine(line: string): RoutedLine {
+  const m = MODULE_TAG.exec(line);
+  if (m) return { source: m[1]!, line: m[2] ?? '' };
+  return { source: 'run', line };
+}

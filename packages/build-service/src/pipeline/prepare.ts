@@ -1,0 +1,117 @@
+/**
+ * The "prepare" step: project -> stage/ (trusted copy) -> for Cactal projects load, validate and
+ * generate src-gen/ -> sync into work/ (the sandbox's folder) -> index the protected regions of
+ * the tree, so gcc diagnostics can say when they fall in user code.
+ */
+import { promises as fsp } from 'node:fs';
+import { join } from 'node:path';
+import type { CactalProblem } from './cactal-adapter.js';
+import { generateProject } from './cactal-adapter.js';
+import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
+import type { Workspace } from './workspaces.js';
+import { checkRelativePath, listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
+
+export type ProjectKind = 'cactal' | 'make';
+
+export type ProjectSource = { dir: string } | { files: Record<string, string> };
+
+export const MAX_FILE_BYTES = 8 * 1024 * 1024;
+export const MAX_PROJECT_BYTES = 64 * 1024 * 1024;
+
+/** Folder (relative to work/) the build reports diagnostics against and runs make in. */
+export function treeRoot(kind: ProjectKind): string {
+  return kind === 'cactal' ? 'src-gen' : '';
+}
+
+export function makeDir(kind: ProjectKind): string {
+  return kind === 'cactal' ? 'src-gen/generated/architecture' : '';
+}
+
+export interface PrepareOutcome {
+  ok: boolean;
+  problems: CactalProblem[];
+  regions: Map<string, ProtectedRegion[]>;
+  /** Files of work/ rewritten by this prepare (0 on a no-op rebuild). */
+  synced: number;
+}
+
+/** What of a project folder is copied: Cactal sources, the generated tree with user code, Makefile projects. */
+function acceptProjectPath(kind: ProjectKind) {
+  return (rel: string, isDir: boolean): boolean => {
+    const base = rel.split('/').pop() ?? rel;
+    if (base.startsWith('.') || base === 'node_modules') return false;
+    if (isDir) return !/(^|\/)(logs|run)$/.test(rel);
+    if (/\.(o|a|so|out|csv|log)$/.test(base)) return false;
+    if (kind === 'cactal') return rel.endsWith('.contract') || rel.startsWith('src-gen/');
+    return true;
+  };
+}
+
+async function stageProject(source: ProjectSource, kind: ProjectKind, stageProjectDir: string): Promise<void> {
+  const wanted = new Map<string, Buffer>();
+  let total = 0;
+  const add = (rel: string, data: Buffer): void => {
+    if (data.length > MAX_FILE_BYTES) throw new PrepareError(`${rel}: file larger than ${MAX_FILE_BYTES} bytes`);
+    total += data.length;
+    if (total > MAX_PROJECT_BYTES) throw new PrepareError(`project larger than ${MAX_PROJECT_BYTES} bytes`);
+    wanted.set(checkRelativePath(rel), data);
+  };
+  if ('files' in source) {
+    for (const [rel, text] of Object.entries(source.files)) add(rel, Buffer.from(text, 'utf8'));
+  } else {
+    const files = await listFilesNoFollow(source.dir, acceptProjectPath(kind));
+    for (const rel of files) {
+      const data = await readFileNoFollow(source.dir, rel, MAX_FILE_BYTES);
+      if (data) add(rel, data);
+    }
+  }
+  // drop staged sources that the project no longer has (stale .contract files would still load)
+  for (const rel of await listFilesNoFollow(stageProjectDir)) {
+    if (!wanted.has(rel) && (kind === 'make' || rel.endsWith('.contract'))) await removeTreeNoFollow(join(stageProjectDir, rel));
+  }
+  for (const [rel, data] of wanted) await syncFileNoFollow(stageProjectDir, rel, data);
+}
+
+export class PrepareError extends Error {}
+
+export async function prepareWorkspace(
+  ws: Workspace,
+  source: ProjectSource,
+  kind: ProjectKind,
+  log: (line: string) => void,
+): Promise<PrepareOutcome> {
+  const stageProjectDir = join(ws.stageDir, 'project');
+  await fsp.mkdir(stageProjectDir, { recursive: true, mode: 0o700 });
+  await stageProject(source, kind, stageProjectDir);
+  let problems: CactalProblem[] = [];
+  if (kind === 'cactal') {
+    const t0 = Date.now();
+    const outcome = await generateProject(stageProjectDir, join(stageProjectDir, 'src-gen'));
+    problems = outcome.problems;
+    for (const p of problems) log(`${p.file}:${p.line}:${p.column}: ${p.severity}: ${p.message}`);
+    if (problems.some((p) => p.severity === 'error')) {
+      log(`the project has ${problems.filter((p) => p.severity === 'error').length} error(s): nothing generated`);
+      return { ok: false, problems, regions: new Map(), synced: 0 };
+    }
+    log(`generated src-gen/ (${outcome.written} file(s) written, ${outcome.unchanged} unchanged) in ${Date.now() - t0} ms`);
+  }
+  const root = treeRoot(kind);
+  const stageTree = root ? join(stageProjectDir, root) : stageProjectDir;
+  const regions = new Map<string, ProtectedRegion[]>();
+  let synced = 0;
+  const files = await listFilesNoFollow(stageTree, (rel) => !/(^|\/)(logs|run)(\/|$)/.test(rel));
+  for (const rel of files) {
+    const data = await readFileNoFollow(stageTree, rel, MAX_FILE_BYTES);
+    if (!data) continue;
+    const target = root ? `${root}/${rel}` : rel;
+    const st = await fsp.lstat(join(stageTree, rel));
+    const mode = st.mode & 0o111 ? 0o755 : 0o644;
+    if (await syncFileNoFollow(ws.workDir, target, data, ws.owner, mode)) synced++;
+    if (/\.(c|h)$/.test(rel)) {
+      const found = findProtectedRegions(data.toString('utf8'));
+      if (found.length) regions.set(rel, found);
+    }
+  }
+  log(`work tree ready: ${files.length} file(s), ${synced} updated${ws.reused ? ' (incremental)' : ''}`);
+  return { ok: true, problems, regions, synced };
+}

@@ -1,0 +1,164 @@
+/**
+ * bubblewrap sandbox: new user/pid/net/ipc/uts (and cgroup) namespaces, host toolchain read-only,
+ * the work dir read-write at /work, a private /tmp, the prebuilt runtime read-only at
+ * /opt/contract/runtime, --die-with-parent, --new-session, a non-root uid (a distinct host uid per
+ * job when the service runs as root; uid 1000 inside), no new privileges.
+ * Memory and process limits: a per-job cgroup v1 when the service may create one, otherwise
+ * RLIMIT_AS / RLIMIT_NPROC set with prlimit under the job's own non-root host uid.
+ */
+import { execFile } from 'node:child_process';
+import { existsSync, lstatSync, readlinkSync } from 'node:fs';
+import { join } from 'node:path';
+import { promisify } from 'node:util';
+import { memoryBytes } from '../limits.js';
+import { JobCgroup } from './cgroup.js';
+import { startHostProcess } from './host-process.js';
+import type { Mechanisms, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
+
+const run = promisify(execFile);
+
+export const SANDBOX_WORK = '/work';
+export const SANDBOX_RUNTIME = '/opt/contract/runtime';
+const SANDBOX_UID = 1000;
+
+export type LimitMechanismChoice = 'auto' | 'cgroup' | 'rlimit';
+
+export interface BwrapOptions {
+  bwrapPath?: string;
+  /** 'auto' (default): cgroups when possible, else rlimits. Tests force 'rlimit'. */
+  limitMechanism?: LimitMechanismChoice;
+}
+
+/** Read-only binds of the host toolchain (usr-merged systems get symlinks instead). */
+function toolchainArgs(): string[] {
+  const args = ['--ro-bind', '/usr', '/usr'];
+  for (const top of ['/bin', '/sbin', '/lib', '/lib32', '/lib64', '/libx32']) {
+    let st;
+    try {
+      st = lstatSync(top);
+    } catch {
+      continue;
+    }
+    if (st.isSymbolicLink()) args.push('--symlink', readlinkSync(top), top);
+    else if (st.isDirectory()) args.push('--ro-bind', top, top);
+  }
+  // only what the toolchain needs from /etc: the loader cache and Debian's alternatives links
+  for (const f of ['/etc/ld.so.cache', '/etc/ld.so.conf', '/etc/alternatives', '/etc/localtime']) {
+    if (existsSync(f)) args.push('--ro-bind', f, f);
+  }
+  return args;
+}
+
+export class BwrapSandbox implements Sandbox {
+  readonly name = 'bwrap' as const;
+  readonly needsHostRuntime = true;
+  readonly unenforced: readonly string[] = [];
+  private readonly bwrap: string;
+  private readonly limitMechanism: LimitMechanismChoice;
+
+  constructor(options: BwrapOptions = {}) {
+    this.bwrap = options.bwrapPath ?? 'bwrap';
+    this.limitMechanism = options.limitMechanism ?? 'auto';
+  }
+
+  workPath(): string {
+    return SANDBOX_WORK;
+  }
+
+  runtimePath(): string {
+    return SANDBOX_RUNTIME;
+  }
+
+  async probe(): Promise<SandboxProbe> {
+    try {
+      const { stdout } = await run(this.bwrap, ['--version']);
+      const cg = JobCgroup.unavailableReason();
+      const limits = this.limitMechanism === 'rlimit' || cg ? `rlimits (${cg ?? 'forced'})` : 'cgroup-v1';
+      // user namespaces must work for the unprivileged job uid
+      await run(this.bwrap, ['--unshare-all', ...toolchainArgs(), '--', '/bin/true']);
+      return { available: true, detail: `${stdout.trim()}; memory/process limits via ${limits}` };
+    } catch (e) {
+      return {
+        available: false,
+        detail: `bubblewrap unusable: ${(e as Error).message.split('\n')[0]} — install it with "apt-get install bubblewrap" (Debian/Ubuntu) or "dnf install bubblewrap", and allow unprivileged user namespaces`,
+      };
+    }
+  }
+
+  async start(cmd: SandboxCommand): Promise<SandboxProcess> {
+    const isRoot = process.getuid?.() === 0;
+    let cgroup: JobCgroup | null = null;
+    let cgroupError = '';
+    if (this.limitMechanism !== 'rlimit') {
+      const reason = JobCgroup.unavailableReason();
+      if (reason === null) {
+        try {
+          cgroup = await JobCgroup.create(`contract-${cmd.name}`, memoryBytes(cmd.limits), cmd.limits.processes);
+        } catch (e) {
+          cgroupError = (e as Error).message;
+        }
+      } else cgroupError = reason;
+      if (!cgroup && this.limitMechanism === 'cgroup') throw new Error(`cgroups required but unavailable: ${cgroupError}`);
+    }
+    const owner = cmd.owner;
+    const hostUser = isRoot && owner ? `host uid ${owner.uid}` : `host uid ${process.getuid?.()}`;
+    const mechanisms: Mechanisms = {
+      memory: cgroup ? 'cgroup-v1' : 'rlimit-as',
+      processes: cgroup ? 'cgroup-v1' : 'rlimit-nproc',
+      network: 'netns',
+      filesystem: 'bwrap-ro-binds',
+      user: `uid ${SANDBOX_UID} in a user namespace (${hostUser})`,
+      time: 'service-timer',
+      output: 'service-counter',
+    };
+
+    const env: Record<string, string> = {
+      PATH: '/usr/local/bin:/usr/bin:/bin',
+      HOME: SANDBOX_WORK,
+      TMPDIR: '/tmp',
+      LANG: 'C.UTF-8',
+      ...cmd.env,
+    };
+    const bwrapArgs = [
+      '--unshare-user',
+      '--unshare-pid',
+      '--unshare-net',
+      '--unshare-ipc',
+      '--unshare-uts',
+      '--unshare-cgroup-try',
+      '--uid', String(SANDBOX_UID),
+      '--gid', String(SANDBOX_UID),
+      '--hostname', 'contract-sandbox',
+      ...toolchainArgs(),
+      '--proc', '/proc',
+      '--dev', '/dev',
+      '--tmpfs', '/tmp',
+      '--bind', cmd.workDir, SANDBOX_WORK,
+      ...(cmd.runtimeDir ? ['--ro-bind', cmd.runtimeDir, SANDBOX_RUNTIME] : []),
+      '--chdir', join(SANDBOX_WORK, cmd.cwd),
+      '--die-with-parent',
+      '--new-session',
+      '--clearenv',
+      ...Object.entries(env).flatMap(([k, v]) => ['--setenv', k, v]),
+      '--',
+      ...cmd.argv,
+    ];
+    const prefix: string[] = [];
+    if (!cgroup) {
+      prefix.push('prlimit', `--as=${memoryBytes(cmd.limits)}`, `--nproc=${cmd.limits.processes}`, '--');
+    }
+    if (isRoot && owner) {
+      prefix.push('setpriv', `--reuid=${owner.uid}`, `--regid=${owner.gid}`, '--clear-groups', '--no-new-privs', '--');
+    }
+    return startHostProcess({
+      argv: [...prefix, this.bwrap, ...bwrapArgs],
+      cwd: '/',
+      env: { PATH: '/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin' },
+      limits: cmd.limits,
+      mechanisms,
+      cgroup,
+      guessLimitsFromOutput: !cgroup,
+      cleanup: cgroup ? () => cgroup.destroy() : undefined,
+    });
+  }
+}

@@ -1,0 +1,146 @@
+/**
+ * Per-job cgroup v1 (memory + pids controllers): created as a child of the service's own cgroup in
+ * each hierarchy, limits written before any job process joins it, counters read to tell which limit
+ * was hit, every process in it killed at the end, then removed.
+ */
+import { promises as fsp, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+
+const CGROUP_ROOT = '/sys/fs/cgroup';
+const CONTROLLERS = ['memory', 'pids'] as const;
+type Controller = (typeof CONTROLLERS)[number];
+
+/** The service's own cgroup path per v1 controller, from /proc/self/cgroup. */
+function ownCgroupPaths(): Map<string, string> {
+  const out = new Map<string, string>();
+  let text: string;
+  try {
+    text = readFileSync('/proc/self/cgroup', 'utf8');
+  } catch {
+    return out;
+  }
+  for (const line of text.split('\n')) {
+    const [, controllers, path] = line.split(':');
+    if (!controllers || path === undefined) continue;
+    for (const c of controllers.split(',')) out.set(c, path);
+  }
+  return out;
+}
+
+export class JobCgroup {
+  private constructor(
+    readonly dirs: Record<Controller, string>,
+    private readonly baseline: { oomKills: number },
+  ) {}
+
+  /** Why cgroups cannot be used here (null when they can). Cached per process. */
+  static unavailableReason(): string | null {
+    if (probeCache !== undefined) return probeCache;
+    probeCache = probe();
+    return probeCache;
+  }
+
+  /** Creates the job's cgroups with the given limits; throws with a reason when impossible. */
+  static async create(name: string, memoryBytes: number, maxProcesses: number): Promise<JobCgroup> {
+    const own = ownCgroupPaths();
+    const dirs = {} as Record<Controller, string>;
+    try {
+      for (const c of CONTROLLERS) {
+        const dir = join(CGROUP_ROOT, c, own.get(c) ?? '/', name);
+        await fsp.mkdir(dir);
+        dirs[c] = dir;
+      }
+      await fsp.writeFile(join(dirs.memory, 'memory.limit_in_bytes'), String(memoryBytes));
+      // no swap beyond the limit where the kernel accounts swap (memsw may not exist)
+      await fsp.writeFile(join(dirs.memory, 'memory.memsw.limit_in_bytes'), String(memoryBytes)).catch(() => {});
+      await fsp.writeFile(join(dirs.pids, 'pids.max'), String(maxProcesses));
+    } catch (e) {
+      for (const d of Object.values(dirs)) await fsp.rmdir(d).catch(() => {});
+      throw e;
+    }
+    const cg = new JobCgroup(dirs, { oomKills: 0 });
+    cg.baseline.oomKills = await cg.oomKills();
+    return cg;
+  }
+
+  /** The cgroup.procs files a process writes its pid into to join the job (before exec). */
+  get procsFiles(): string[] {
+    return CONTROLLERS.map((c) => join(this.dirs[c], 'cgroup.procs'));
+  }
+
+  /** OOM kills inside the job since creation (memory.oom_control `oom_kill`, else memory.failcnt). */
+  async oomKills(): Promise<number> {
+    const text = await fsp.readFile(join(this.dirs.memory, 'memory.oom_control'), 'utf8').catch(() => '');
+    const m = /^oom_kill (\d+)$/m.exec(text);
+    if (m) return Number(m[1]) - this.baseline.oomKills;
+    const fail = await fsp.readFile(join(this.dirs.memory, 'memory.failcnt'), 'utf8').catch(() => '0');
+    return Number(fail.trim()) - this.baseline.oomKills;
+  }
+
+  /** Times a fork/clone was refused by pids.max (pids.events `max`). */
+  async pidsLimitHits(): Promise<number> {
+    const text = await fsp.readFile(join(this.dirs.pids, 'pids.events'), 'utf8').catch(() => '');
+    const m = /^max (\d+)$/m.exec(text);
+    return m ? Number(m[1]) : 0;
+  }
+
+  async pids(): Promise<number[]> {
+    const text = await fsp.readFile(join(this.dirs.pids, 'cgroup.procs'), 'utf8').catch(() => '');
+    return text
+      .split('\n')
+      .filter(Boolean)
+      .map(Number)
+      .filter((n) => Number.isInteger(n) && n > 0);
+  }
+
+  /** SIGKILLs every process of the job until none is left (or the deadline passes). */
+  async killAll(deadlineMs = 1500): Promise<boolean> {
+    const end = Date.now() + deadlineMs;
+    for (;;) {
+      const pids = await this.pids();
+      if (pids.length === 0) return true;
+      for (const pid of pids) {
+        try {
+          process.kill(pid, 'SIGKILL');
+        } catch {
+          /* already gone */
+        }
+      }
+      if (Date.now() > end) return false;
+      await new Promise((r) => setTimeout(r, 20));
+    }
+  }
+
+  /** Kills what is left and removes the cgroup directories. */
+  async destroy(): Promise<void> {
+    await this.killAll();
+    for (const c of CONTROLLERS) {
+      // rmdir may fail for a short while until the killed processes are reaped
+      for (let i = 0; i < 50; i++) {
+        try {
+          await fsp.rmdir(this.dirs[c]);
+          break;
+        } catch (e) {
+          if ((e as NodeJS.ErrnoException).code === 'ENOENT') break;
+          await new Promise((r) => setTimeout(r, 20));
+        }
+      }
+    }
+  }
+}
+
+let probeCache: string | null | undefined;
+
+function probe(): string | null {
+  if (process.getuid?.() !== 0) return 'the service does not run as root (cgroup v1 directories are not writable)';
+  const own = ownCgroupPaths();
+  for (const c of CONTROLLERS) {
+    if (!own.has(c)) return `cgroup v1 controller "${c}" is not mounted`;
+    try {
+      readFileSync(join(CGROUP_ROOT, c, own.get(c)!, 'cgroup.procs'));
+    } catch {
+      return `cgroup v1 controller "${c}" is not readable at ${join(CGROUP_ROOT, c)}`;
+    }
+  }
+  return null;
+}

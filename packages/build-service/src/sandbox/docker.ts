@@ -1,0 +1,185 @@
+/**
+ * Docker Engine sandbox (dockerode; honours DOCKER_HOST, so a remote engine works): image
+ * `contract-gcc` (gcc, make, the runtime at /opt/contract/runtime), NetworkMode none, read-only
+ * root, the job's files in a Docker volume at /work (filled through the API with a tar of the
+ * host work dir, so nothing needs to be shared with a remote engine; the volume of a project's
+ * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec, user 1000,
+ * no-new-privileges, all capabilities dropped, Memory (= MemorySwap) and PidsLimit.
+ * A memory kill is read from State.OOMKilled; a refused fork from the program's own messages.
+ */
+import { spawn } from 'node:child_process';
+import { createHash } from 'node:crypto';
+import { PassThrough } from 'node:stream';
+import Docker from 'dockerode';
+import type { LimitHit } from '../limits.js';
+import { memoryBytes } from '../limits.js';
+import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+
+export const DOCKER_IMAGE = 'contract-gcc';
+export const DOCKER_WORK = '/work';
+export const DOCKER_RUNTIME = '/opt/contract/runtime';
+const DOCKER_USER = '1000:1000';
+
+export interface DockerOptions {
+  image?: string;
+  /** dockerode options; default: from DOCKER_HOST (or the local socket). */
+  connection?: Docker.DockerOptions;
+}
+
+function tarOf(dir: string): Promise<Buffer> {
+  return new Promise((resolve, reject) => {
+    const child = spawn('tar', ['-C', dir, '--owner=1000', '--group=1000', '--numeric-owner', '-cf', '-', '.'], {
+      stdio: ['ignore', 'pipe', 'pipe'],
+    });
+    const chunks: Buffer[] = [];
+    let err = '';
+    child.stdout.on('data', (c: Buffer) => chunks.push(c));
+    child.stderr.on('data', (c: Buffer) => (err += c.toString()));
+    child.on('error', reject);
+    child.on('close', (code) => (code === 0 ? resolve(Buffer.concat(chunks)) : reject(new Error(`tar failed: ${err.trim()}`))));
+  });
+}
+
+export class DockerSandbox implements Sandbox {
+  readonly name = 'docker' as const;
+  readonly needsHostRuntime = false;
+  readonly unenforced: readonly string[] = [];
+  private readonly docker: Docker;
+  private readonly image: string;
+  private readonly volumes = new Map<string, string>();
+
+  constructor(options: DockerOptions = {}) {
+    this.docker = new Docker(options.connection);
+    this.image = options.image ?? DOCKER_IMAGE;
+  }
+
+  workPath(): string {
+    return DOCKER_WORK;
+  }
+
+  runtimePath(): string {
+    return DOCKER_RUNTIME;
+  }
+
+  private where(): string {
+    return process.env.DOCKER_HOST ?? 'unix:///var/run/docker.sock';
+  }
+
+  async probe(): Promise<SandboxProbe> {
+    try {
+      await Promise.race([
+        this.docker.ping(),
+        new Promise((_, reject) => setTimeout(() => reject(new Error('no answer within 3 s')), 3000)),
+      ]);
+    } catch (e) {
+      return { available: false, detail: `no Docker engine answers at ${this.where()} (${(e as Error).message.split('\n')[0]}); start one with scripts/docker-up.sh` };
+    }
+    try {
+      const info = await this.docker.getImage(this.image).inspect();
+      return { available: true, detail: `engine at ${this.where()}, image ${this.image} ${info.Id.slice(7, 19)}` };
+    } catch {
+      return { available: false, detail: `engine at ${this.where()} has no image "${this.image}"; build it with scripts/docker-up.sh` };
+    }
+  }
+
+  private volumeFor(workDir: string): string {
+    let v = this.volumes.get(workDir);
+    if (!v) {
+      v = `contract-ws-${createHash('sha256').update(workDir).digest('hex').slice(0, 16)}`;
+      this.volumes.set(workDir, v);
+    }
+    return v;
+  }
+
+  async start(cmd: SandboxCommand): Promise<SandboxProcess> {
+    const volume = this.volumeFor(cmd.workDir);
+    await this.docker.createVolume({ Name: volume, Labels: { 'contract-studio': 'workspace' } });
+    const bytes = memoryBytes(cmd.limits);
+    const container = await this.docker.createContainer({
+      name: `contract-${cmd.name}`,
+      Image: this.image,
+      Cmd: cmd.argv,
+      WorkingDir: cmd.cwd ? `${DOCKER_WORK}/${cmd.cwd}` : DOCKER_WORK,
+      User: DOCKER_USER,
+      Env: Object.entries({ PATH: '/usr/local/bin:/usr/bin:/bin', HOME: DOCKER_WORK, TMPDIR: '/tmp', LANG: 'C.UTF-8', ...cmd.env }).map(
+        ([k, v]) => `${k}=${v}`,
+      ),
+      NetworkDisabled: true,
+      Labels: { 'contract-studio': 'job' },
+      AttachStdout: true,
+      AttachStderr: true,
+      HostConfig: {
+        NetworkMode: 'none',
+        ReadonlyRootfs: true,
+        Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK }],
+        Tmpfs: { '/tmp': 'rw,exec,nosuid,nodev,size=268435456' },
+        SecurityOpt: ['no-new-privileges'],
+        CapDrop: ['ALL'],
+        Memory: bytes,
+        MemorySwap: bytes,
+        PidsLimit: cmd.limits.processes,
+        Init: true,
+      },
+    });
+    const removeContainer = async (): Promise<void> => {
+      await container.remove({ force: true }).catch(() => {});
+    };
+    try {
+      // the job's files, with their mtimes (make sees unchanged sources as unchanged)
+      await container.putArchive(await tarOf(cmd.workDir), { path: DOCKER_WORK, copyUIDGID: '1' } as never);
+      const stream = await container.attach({ stream: true, stdout: true, stderr: true });
+      const stdout = new PassThrough();
+      const stderr = new PassThrough();
+      this.docker.modem.demuxStream(stream, stdout, stderr);
+      stream.on('end', () => {
+        stdout.end();
+        stderr.end();
+      });
+      await container.start();
+      const mechanisms: Mechanisms = {
+        memory: 'docker',
+        processes: 'docker',
+        network: 'docker-network-none',
+        filesystem: 'docker-readonly-rootfs',
+        user: `docker user ${DOCKER_USER}`,
+        time: 'service-timer',
+        output: 'service-counter',
+      };
+      let limitHit: LimitHit | null = null;
+      let killing: Promise<void> | null = null;
+      const kill = (): Promise<void> => {
+        killing ??= container.kill().catch(() => {}).then(() => undefined);
+        return killing.then(() => done.then(() => undefined));
+      };
+      const done: Promise<SandboxExit> = (async () => {
+        const waited = (await container.wait().catch(() => ({ StatusCode: null }))) as { StatusCode: number | null };
+        const info = await container.inspect().catch(() => null);
+        if (info?.State?.OOMKilled && !limitHit) limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
+        await new Promise((r) => setTimeout(r, 50));
+        stdout.end();
+        stderr.end();
+        await removeContainer();
+        return { exitCode: waited.StatusCode, signal: null, limitHit };
+      })();
+      const noteLine = (line: string): void => {
+        if (limitHit) return;
+        if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) {
+          limitHit = { name: 'processes', value: cmd.limits.processes, unit: 'count', mechanism: 'docker' };
+          void kill();
+        }
+      };
+      return { stdout, stderr, mechanisms, done, kill, noteLine } as SandboxProcess;
+    } catch (e) {
+      await removeContainer();
+      throw e;
+    }
+  }
+
+  /** Removes the volume of a workspace that is being deleted. */
+  async release(workDir: string): Promise<void> {
+    const v = this.volumes.get(workDir);
+    if (!v) return;
+    this.volumes.delete(workDir);
+    await this.docker.getVolume(v).remove({ force: true }).catch(() => {});
+  }
+}

@@ -1,0 +1,140 @@
+/**
+ * Runs a sandbox command as a host process tree (used by the bwrap and none sandboxes): joins the
+ * job's cgroup before exec when there is one, watches the cgroup counters to name a memory or
+ * process limit hit, and kills the whole tree on demand.
+ */
+import { spawn } from 'node:child_process';
+import type { LimitHit, Limits } from '../limits.js';
+import { memoryBytes } from '../limits.js';
+import type { JobCgroup } from './cgroup.js';
+import type { Mechanisms, SandboxExit, SandboxProcess } from './types.js';
+
+export interface HostProcessOptions {
+  argv: string[];
+  cwd: string;
+  env: Record<string, string>;
+  limits: Limits;
+  mechanisms: Mechanisms;
+  cgroup: JobCgroup | null;
+  /** rlimit mode: guess limit hits from the messages of refused forks/allocations. */
+  guessLimitsFromOutput: boolean;
+  /** Called once every process is gone (removes the cgroup). */
+  cleanup?: () => Promise<void>;
+}
+
+const WATCH_INTERVAL_MS = 100;
+
+/** Shell prologue: write our pid into each cgroup.procs given before "--", then exec the rest. */
+const JOIN_CGROUP = 'for f; do [ "$f" = -- ] && break; echo $$ > "$f" || exit 125; shift; done; shift; exec "$@"';
+
+export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { noteLine(line: string): void } {
+  const argv = opts.cgroup ? ['/bin/sh', '-c', JOIN_CGROUP, 'contract-join', ...opts.cgroup.procsFiles, '--', ...opts.argv] : opts.argv;
+  const child = spawn(argv[0]!, argv.slice(1), {
+    cwd: opts.cwd,
+    env: opts.env,
+    stdio: ['ignore', 'pipe', 'pipe'],
+    detached: true, // own process group: kill(-pid) reaches what the cgroup/namespace may not
+  });
+  let limitHit: LimitHit | null = null;
+  let killing: Promise<void> | null = null;
+  let exited = false;
+
+  const killTree = async (): Promise<void> => {
+    if (child.pid !== undefined) {
+      try {
+        process.kill(-child.pid, 'SIGKILL');
+      } catch {
+        /* group gone */
+      }
+    }
+    if (opts.cgroup) await opts.cgroup.killAll();
+  };
+
+  const kill = (): Promise<void> => {
+    killing ??= killTree();
+    return killing.then(() => done.then(() => undefined));
+  };
+
+  const hit = (h: LimitHit): void => {
+    if (limitHit) return;
+    limitHit = h;
+    void kill();
+  };
+
+  const watcher = opts.cgroup
+    ? setInterval(() => {
+        void (async () => {
+          const cg = opts.cgroup!;
+          if ((await cg.oomKills()) > 0) {
+            hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: 'cgroup-v1' });
+          } else if ((await cg.pidsLimitHits()) > 0) {
+            hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: 'cgroup-v1' });
+          }
+        })().catch(() => {});
+      }, WATCH_INTERVAL_MS)
+    : null;
+
+  const done = new Promise<SandboxExit>((resolveDone) => {
+    let exit: { code: number | null; signal: NodeJS.Signals | null } | null = null;
+    let closed = false;
+    const finish = async (): Promise<void> => {
+      if (watcher) clearInterval(watcher);
+      // final look at the counters: the kernel may have killed the process just before it exited
+      if (opts.cgroup && !limitHit) {
+        if ((await opts.cgroup.oomKills()) > 0) {
+          limitHit = { name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: 'cgroup-v1' };
+        } else if ((await opts.cgroup.pidsLimitHits()) > 0) {
+          limitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: 'cgroup-v1' };
+        }
+      }
+      await killTree(); // nothing of the job outlives it
+      await opts.cleanup?.().catch(() => {});
+      resolveDone({ exitCode: exit?.code ?? null, signal: exit?.signal ?? null, limitHit });
+    };
+    child.on('error', (err) => {
+      exit = { code: 127, signal: null };
+      child.stderr?.emit('data', Buffer.from(`cannot start ${argv[0]}: ${err.message}\n`));
+      if (!closed) {
+        closed = true;
+        void finish();
+      }
+    });
+    child.on('exit', (code, signal) => {
+      exited = true;
+      exit = { code, signal };
+      // a daemonised grandchild may keep the pipes open: stop it, then give the pipes a moment
+      void killTree();
+      setTimeout(() => {
+        if (!closed) {
+          child.stdout?.destroy();
+          child.stderr?.destroy();
+          closed = true;
+          void finish();
+        }
+      }, 1000).unref();
+    });
+    child.on('close', () => {
+      if (closed) return;
+      closed = true;
+      void finish();
+    });
+  });
+
+  const noteLine = (line: string): void => {
+    if (!opts.guessLimitsFromOutput || limitHit || exited) return;
+    if (/Resource temporarily unavailable|fork(?:\(\))?: .*(?:EAGAIN|again)|cannot fork|fork failed/i.test(line)) {
+      hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: 'rlimit-nproc' });
+    } else if (/Cannot allocate memory|out of memory|std::bad_alloc|virtual memory exhausted/i.test(line)) {
+      hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: 'rlimit-as' });
+    }
+  };
+
+  return {
+    stdout: child.stdout!,
+    stderr: child.stderr!,
+    mechanisms: opts.mechanisms,
+    done,
+    kill,
+    noteLine,
+  };
+}

@@ -1,0 +1,60 @@
+/**
+ * No sandbox: plain host processes in the work dir, only when asked for explicitly. Time and output
+ * limits still hold (the service enforces them); nothing else does, and every job says so.
+ */
+import { startHostProcess } from './host-process.js';
+import type { Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
+import { join } from 'node:path';
+
+export const NONE_UNENFORCED = [
+  'network isolation',
+  'read-only root (the build can write anywhere the service user can)',
+  'non-root user',
+  'no new privileges',
+  'memory limit',
+  'process limit',
+] as const;
+
+export class NoSandbox implements Sandbox {
+  readonly name = 'none' as const;
+  readonly needsHostRuntime = true;
+  readonly unenforced: readonly string[] = NONE_UNENFORCED;
+
+  workPath(workDir: string): string {
+    return workDir;
+  }
+
+  runtimePath(runtimeDir: string): string {
+    return runtimeDir;
+  }
+
+  async probe(): Promise<SandboxProbe> {
+    return { available: true, detail: `no isolation; not enforced: ${NONE_UNENFORCED.join(', ')}` };
+  }
+
+  async start(cmd: SandboxCommand): Promise<SandboxProcess> {
+    return startHostProcess({
+      argv: cmd.argv,
+      cwd: join(cmd.workDir, cmd.cwd),
+      env: {
+        PATH: process.env.PATH ?? '/usr/local/bin:/usr/bin:/bin',
+        HOME: cmd.workDir,
+        TMPDIR: process.env.TMPDIR ?? '/tmp',
+        LANG: 'C.UTF-8',
+        ...cmd.env,
+      },
+      limits: cmd.limits,
+      mechanisms: {
+        memory: 'none',
+        processes: 'none',
+        network: 'none',
+        filesystem: 'none',
+        user: `none (service uid ${process.getuid?.()})`,
+        time: 'service-timer',
+        output: 'service-counter',
+      },
+      cgroup: null,
+      guessLimitsFromOutput: false,
+    });
+  }
+}

@@ -1,0 +1,71 @@
+import type { Readable } from 'node:stream';
+import type { LimitHit, Limits, Mechanism } from '../limits.js';
+
+export type SandboxName = 'bwrap' | 'docker' | 'none';
+export type SandboxChoice = SandboxName | 'auto';
+
+/** Which mechanism enforced each guarantee/limit for one sandboxed process (reported in job results). */
+export interface Mechanisms {
+  memory: Mechanism;
+  processes: Mechanism;
+  network: Mechanism;
+  filesystem: Mechanism;
+  user: string;
+  time: Mechanism;
+  output: Mechanism;
+}
+
+/** One command to run in the sandbox. */
+export interface SandboxCommand {
+  /** Unique per job step (names the cgroup / container). */
+  name: string;
+  /** Host path of the job's work dir: the only writable place besides a private /tmp. */
+  workDir: string;
+  /** Working directory, relative to the work dir. */
+  cwd: string;
+  argv: string[];
+  env: Record<string, string>;
+  limits: Limits;
+  /** Host path of the prebuilt runtime, mounted read-only at the sandbox's runtimePath (bwrap/none). */
+  runtimeDir?: string;
+  /** Host identity owning the work dir; the sandboxed processes run as this uid (bwrap). */
+  owner?: { uid: number; gid: number };
+}
+
+export interface SandboxExit {
+  exitCode: number | null;
+  signal: string | null;
+  /** A memory or process limit detected by the sandbox itself (time and output are the job's). */
+  limitHit: LimitHit | null;
+}
+
+export interface SandboxProcess {
+  readonly stdout: Readable;
+  readonly stderr: Readable;
+  readonly mechanisms: Mechanisms;
+  /** Resolves once every process of the command is gone. */
+  readonly done: Promise<SandboxExit>;
+  /** Stops every process of the command (idempotent); resolves when they are gone. */
+  kill(): Promise<void>;
+}
+
+export interface SandboxProbe {
+  available: boolean;
+  detail: string;
+}
+
+export interface Sandbox {
+  readonly name: SandboxName;
+  /** Where the work dir is seen by the sandboxed processes. */
+  workPath(workDir: string): string;
+  /** Where the runtime is seen by the sandboxed processes (the CONTRACT_RUNTIME value). */
+  runtimePath(runtimeDir: string): string;
+  /** Whether the runtime must be prebuilt on the host and passed as runtimeDir. */
+  readonly needsHostRuntime: boolean;
+  /** Limits this sandbox cannot enforce (named in warnings). */
+  readonly unenforced: readonly string[];
+  probe(): Promise<SandboxProbe>;
+  start(cmd: SandboxCommand): Promise<SandboxProcess>;
+  /** Called when a job's work dir is no longer needed (docker: removes the volume). */
+  release?(workDir: string): Promise<void>;
+}

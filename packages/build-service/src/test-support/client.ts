@@ -1,0 +1,45 @@
+/** Test/bench helpers: a tiny HTTP + SSE client of the build service. */
+import type { JobEvent } from '../pipeline/job-events.js';
+
+export async function postJob(base: string, body: unknown): Promise<{ status: number; json: Record<string, unknown>; headers: Headers }> {
+  const res = await fetch(`${base}/api/jobs`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: JSON.stringify(body) });
+  return { status: res.status, json: (await res.json()) as Record<string, unknown>, headers: res.headers };
+}
+
+export async function getJob(base: string, id: string): Promise<Record<string, any>> {
+  const res = await fetch(`${base}/api/jobs/${id}`);
+  return (await res.json()) as Record<string, any>;
+}
+
+/** Reads the SSE stream of a job until its end; `onEvent` sees each event as it arrives. */
+export async function readEvents(base: string, id: string, onEvent?: (e: JobEvent) => void, after = 0): Promise<JobEvent[]> {
+  const res = await fetch(`${base}/api/jobs/${id}/events${after ? `?after=${after}` : ''}`);
+  if (!res.ok || !res.body) throw new Error(`events: HTTP ${res.status}`);
+  const events: JobEvent[] = [];
+  const decoder = new TextDecoder();
+  let buf = '';
+  for await (const chunk of res.body as unknown as AsyncIterable<Uint8Array>) {
+    buf += decoder.decode(chunk, { stream: true });
+    let i;
+    while ((i = buf.indexOf('\n\n')) >= 0) {
+      const block = buf.slice(0, i);
+      buf = buf.slice(i + 2);
+      let type = '';
+      let data = '';
+      for (const l of block.split('\n')) {
+        if (l.startsWith('event: ')) type = l.slice(7);
+        else if (l.startsWith('data: ')) data += l.slice(6);
+      }
+      if (!type) continue;
+      const e = { type, ...JSON.parse(data) } as JobEvent;
+      events.push(e);
+      onEvent?.(e);
+    }
+  }
+  return events;
+}
+
+export async function waitJob(base: string, id: string): Promise<Record<string, any>> {
+  await readEvents(base, id);
+  return getJob(base, id);
+}

@@ -1,0 +1,87 @@
+/**
+ * Splits a byte stream into text lines, keeps at most `maxBytes` bytes of it (then reports the
+ * truncation once and drops the rest while still draining the stream, so the writer never blocks).
+ * A line is emitted without its newline; a line longer than `maxLineBytes` is split.
+ */
+export interface LineSplitterOptions {
+  maxBytes: number;
+  maxLineBytes?: number;
+  onLine(line: string): void;
+  onTruncated(keptBytes: number): void;
+}
+
+export class LineSplitter {
+  private pending: Buffer[] = [];
+  private pendingBytes = 0;
+  private keptBytes = 0;
+  private droppedBytes = 0;
+  private truncated = false;
+  private readonly maxLineBytes: number;
+
+  constructor(private readonly options: LineSplitterOptions) {
+    this.maxLineBytes = options.maxLineBytes ?? 64 * 1024;
+  }
+
+  get wasTruncated(): boolean {
+    return this.truncated;
+  }
+
+  get dropped(): number {
+    return this.droppedBytes;
+  }
+
+  push(chunk: Buffer): void {
+    if (this.truncated) {
+      this.droppedBytes += chunk.length;
+      return;
+    }
+    const room = this.options.maxBytes - this.keptBytes;
+    let data = chunk;
+    if (chunk.length > room) {
+      data = chunk.subarray(0, room);
+      this.droppedBytes += chunk.length - room;
+    }
+    this.keptBytes += data.length;
+    let start = 0;
+    for (let i = data.indexOf(10); i !== -1; i = data.indexOf(10, start)) {
+      this.appendPending(data.subarray(start, i));
+      this.flushPending();
+      start = i + 1;
+    }
+    if (start < data.length) this.appendPending(data.subarray(start));
+    if (data.length < chunk.length) {
+      if (this.pendingBytes > 0) this.flushPending();
+      this.truncated = true;
+      this.options.onTruncated(this.keptBytes);
+    }
+  }
+
+  /** End of stream: emits a last line that had no newline. */
+  end(): void {
+    if (this.pendingBytes > 0) this.flushPending();
+  }
+
+  private appendPending(part: Buffer): void {
+    let rest = part;
+    while (this.pendingBytes + rest.length > this.maxLineBytes) {
+      const take = this.maxLineBytes - this.pendingBytes;
+      this.pending.push(rest.subarray(0, take));
+      this.pendingBytes += take;
+      this.flushPending();
+      rest = rest.subarray(take);
+    }
+    if (rest.length) {
+      this.pending.push(rest);
+      this.pendingBytes += rest.length;
+    }
+  }
+
+  private flushPending(): void {
+    const buf = Buffer.concat(this.pending, this.pendingBytes);
+    this.pending = [];
+    this.pendingBytes = 0;
+    let text = buf.toString('utf8');
+    if (text.endsWith('\r')) text = text.slice(0, -1);
+    this.options.onLine(text);
+  }
+}

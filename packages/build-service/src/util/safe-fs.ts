@@ -1,0 +1,185 @@
+/**
+ * Host file operations on directories that sandboxed code may have written to.
+ *
+ * Rule (Judge0 CVE-2024-28185/28189): never open, chown or delete a host path through a link the
+ * sandboxed code could have planted. Every function here:
+ *   - checks each path component below the trusted root with lstat (a symlink or a non-directory
+ *     component is refused),
+ *   - opens files with O_NOFOLLOW and changes owners with fchown on the opened descriptor or lchown,
+ *   - removes trees without following symlinks (a link is unlinked, never traversed).
+ * They are only called while no process of the job is alive (the sandbox is stopped first), so the
+ * checks cannot race with the sandboxed code.
+ */
+import { constants, promises as fsp } from 'node:fs';
+import { dirname, join, relative, resolve, sep } from 'node:path';
+
+export class UnsafePathError extends Error {}
+
+export interface Owner {
+  uid: number;
+  gid: number;
+}
+
+/** `rel` must be a relative POSIX path without `..`, NUL, or empty components. */
+export function checkRelativePath(rel: string): string {
+  if (typeof rel !== 'string' || rel.length === 0 || rel.length > 4096) throw new UnsafePathError('empty or too long path');
+  if (rel.includes('\0') || rel.includes('\\')) throw new UnsafePathError(`invalid character in path "${rel}"`);
+  if (rel.startsWith('/')) throw new UnsafePathError(`absolute path not allowed: "${rel}"`);
+  const parts = rel.split('/');
+  for (const p of parts) {
+    if (p === '' || p === '.' || p === '..') throw new UnsafePathError(`path "${rel}" has an empty, "." or ".." component`);
+  }
+  return parts.join('/');
+}
+
+/**
+ * Creates the directories of `rel` (relative to the trusted `root`) one by one, refusing any
+ * existing component that is not a real directory. Returns the absolute path.
+ */
+export async function ensureDirNoFollow(root: string, rel: string, owner?: Owner): Promise<string> {
+  let current = root;
+  if (rel === '' || rel === '.') return root;
+  for (const part of checkRelativePath(rel).split('/')) {
+    current = join(current, part);
+    let st;
+    try {
+      st = await fsp.lstat(current);
+    } catch (e) {
+      if ((e as NodeJS.ErrnoException).code !== 'ENOENT') throw e;
+      await fsp.mkdir(current, { mode: 0o755 });
+      if (owner) await fsp.lchown(current, owner.uid, owner.gid);
+      continue;
+    }
+    if (!st.isDirectory()) throw new UnsafePathError(`refusing to use ${current}: not a directory (symlink or file)`);
+  }
+  return current;
+}
+
+/**
+ * Writes `content` to root/rel unless the file already holds exactly these bytes (then its mtime
+ * is kept, so make sees nothing new). Never follows a symlink. Returns true when it wrote.
+ */
+export async function syncFileNoFollow(
+  root: string,
+  rel: string,
+  content: Buffer,
+  owner?: Owner,
+  mode = 0o644,
+): Promise<boolean> {
+  const clean = checkRelativePath(rel);
+  const dir = await ensureDirNoFollow(root, dirname(clean) === '.' ? '' : dirname(clean), owner);
+  const path = join(dir, clean.split('/').pop()!);
+  let st;
+  try {
+    st = await fsp.lstat(path);
+  } catch (e) {
+    if ((e as NodeJS.ErrnoException).code !== 'ENOENT') throw e;
+  }
+  if (st && !st.isFile()) {
+    // something else sits there (maybe planted): remove it without following it
+    await removeTreeNoFollow(path);
+    st = undefined;
+  }
+  if (st && st.size === content.length) {
+    const fh = await fsp.open(path, constants.O_RDONLY | constants.O_NOFOLLOW);
+    try {
+      const old = await fh.readFile();
+      if (old.equals(content)) return false;
+    } finally {
+      await fh.close();
+    }
+  }
+  const fh = await fsp.open(path, constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, mode);
+  try {
+    await fh.writeFile(content);
+    if (owner) await fh.chown(owner.uid, owner.gid);
+    await fh.chmod(mode);
+  } finally {
+    await fh.close();
+  }
+  return true;
+}
+
+/** Reads root/rel without following symlinks in any component; null if absent or not a regular file. */
+export async function readFileNoFollow(root: string, rel: string, maxBytes = 16 * 1024 * 1024): Promise<Buffer | null> {
+  const clean = checkRelativePath(rel);
+  let current = root;
+  const parts = clean.split('/');
+  for (let i = 0; i < parts.length; i++) {
+    current = join(current, parts[i]!);
+    let st;
+    try {
+      st = await fsp.lstat(current);
+    } catch {
+      return null;
+    }
+    const last = i === parts.length - 1;
+    if (last ? !st.isFile() : !st.isDirectory()) return null;
+    if (last && st.size > maxBytes) return null;
+  }
+  const fh = await fsp.open(current, constants.O_RDONLY | constants.O_NOFOLLOW);
+  try {
+    return await fh.readFile();
+  } finally {
+    await fh.close();
+  }
+}
+
+/**
+ * Removes a tree without ever following a symlink: links are unlinked, directories are emptied
+ * entry by entry (made writable first when the sandbox removed their write bit).
+ */
+export async function removeTreeNoFollow(path: string): Promise<void> {
+  let st;
+  try {
+    st = await fsp.lstat(path);
+  } catch (e) {
+    if ((e as NodeJS.ErrnoException).code === 'ENOENT') return;
+    throw e;
+  }
+  if (!st.isDirectory()) {
+    await fsp.unlink(path).catch((e: NodeJS.ErrnoException) => {
+      if (e.code !== 'ENOENT') throw e;
+    });
+    return;
+  }
+  // a real directory (lstat said so): make it listable/writable for us, then empty it
+  if ((st.mode & 0o700) !== 0o700) await fsp.chmod(path, (st.mode & 0o7777) | 0o700).catch(() => {});
+  const entries = await fsp.readdir(path);
+  for (const name of entries) await removeTreeNoFollow(join(path, name));
+  await fsp.rmdir(path).catch((e: NodeJS.ErrnoException) => {
+    if (e.code !== 'ENOENT') throw e;
+  });
+}
+
+/** Lists regular files under root (relative POSIX paths), never entering symlinked dirs. */
+export async function listFilesNoFollow(
+  root: string,
+  accept: (rel: string, isDir: boolean) => boolean = () => true,
+  rel = '',
+): Promise<string[]> {
+  const out: string[] = [];
+  const dir = rel ? join(root, rel) : root;
+  let entries;
+  try {
+    entries = await fsp.readdir(dir, { withFileTypes: true });
+  } catch {
+    return out;
+  }
+  entries.sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+  for (const e of entries) {
+    const childRel = rel ? `${rel}/${e.name}` : e.name;
+    if (e.isDirectory()) {
+      if (accept(childRel, true)) out.push(...(await listFilesNoFollow(root, accept, childRel)));
+    } else if (e.isFile()) {
+      if (accept(childRel, false)) out.push(childRel);
+    }
+  }
+  return out;
+}
+
+/** True when `child` (already resolved) is `parent` or inside it. */
+export function isInside(parent: string, child: string): boolean {
+  const rel = relative(resolve(parent), resolve(child));
+  return rel === '' || (!rel.startsWith('..') && !rel.startsWith(sep) && rel !== '..');
+}
