@@ -1,0 +1,308 @@
+/* Process-wide runtime state: run directory, socket addresses, names, errors, clean-up. */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+#include "internal.h"
+
+ContractRuntime g_rt = { .run_dir_fd = -1, .mbx_fd = -1, .tx_fd = -1, .data_tx_fd = -1 };
+
+RTIME GetTime(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts);
+    return (RTIME)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+}
+
+void rt_error(const char *fmt, ...)
+{
+    char text[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    fprintf(stderr, "%s: error: %s\n", g_rt.name[0] ? g_rt.name : "libmodule", text);
+    ContractLog("error", "", -1, 0, text);
+}
+
+int rt_valid_name(const char *name)
+{
+    if (name == NULL || name[0] == '\0' || strlen(name) >= CONTRACT_NAME_MAX) return 0;
+    for (const char *p = name; *p; p++) {
+        char c = *p;
+        if (!((c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || (c >= '0' && c <= '9') ||
+              c == '_' || c == '-' || c == '.'))
+            return 0;
+    }
+    return name[0] != '.';
+}
+
+static int mkdir_p(const char *path)
+{
+    char tmp[PATH_MAX];
+    if (snprintf(tmp, sizeof tmp, "%s", path) >= (int)sizeof tmp) { errno = ENAMETOOLONG; return -1; }
+    for (char *p = tmp + 1; *p; p++) {
+        if (*p != '/') continue;
+        *p = '\0';
+        if (mkdir(tmp, 0755) != 0 && errno != EEXIST) return -1;
+        *p = '/';
+    }
+    if (mkdir(tmp, 0755) != 0 && errno != EEXIST) return -1;
+    return 0;
+}
+
+int rt_init_run_dir(void)
+{
+    if (g_rt.run_dir_fd >= 0) return 0;
+    const char *env = getenv("CONTRACT_RUN_DIR");
+    if (env != NULL && env[0] != '\0') {
+        if (mkdir_p(env) != 0) {
+            rt_error("cannot create run directory %s: %s", env, strerror(errno));
+            return -1;
+        }
+        if (realpath(env, g_rt.run_dir) == NULL) {
+            rt_error("run directory %s: %s", env, strerror(errno));
+            return -1;
+        }
+    } else {
+        const char *tmp = getenv("TMPDIR");
+        snprintf(g_rt.run_dir, sizeof g_rt.run_dir, "%s/contract-run-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+        if (mkdtemp(g_rt.run_dir) == NULL) {
+            rt_error("cannot create a run directory under %s: %s", tmp && *tmp ? tmp : "/tmp", strerror(errno));
+            return -1;
+        }
+        g_rt.run_dir_created = 1;
+        setenv("CONTRACT_RUN_DIR", g_rt.run_dir, 1);
+        fprintf(stderr, "%s: CONTRACT_RUN_DIR not set, using %s\n", g_rt.name, g_rt.run_dir);
+    }
+    g_rt.run_dir_fd = open(g_rt.run_dir, O_PATH | O_DIRECTORY | O_CLOEXEC);
+    if (g_rt.run_dir_fd < 0) {
+        rt_error("cannot open run directory %s: %s", g_rt.run_dir, strerror(errno));
+        return -1;
+    }
+    return 0;
+}
+
+const char *ContractRunDir(void) { return g_rt.run_dir; }
+const char *ContractSelfName(void) { return g_rt.name; }
+long ContractActivations(void) { return g_rt.activations; }
+
+int rt_addr(const char *file, struct sockaddr_un *sa, socklen_t *len)
+{
+    memset(sa, 0, sizeof *sa);
+    sa->sun_family = AF_UNIX;
+    int n = snprintf(sa->sun_path, sizeof sa->sun_path, "%s/%s", g_rt.run_dir, file);
+    if (n < 0 || (size_t)n >= sizeof sa->sun_path) {
+        /* Long run directory: go through the directory fd (Linux /proc magic link). */
+        n = snprintf(sa->sun_path, sizeof sa->sun_path, "/proc/self/fd/%d/%s", g_rt.run_dir_fd, file);
+        if (n < 0 || (size_t)n >= sizeof sa->sun_path) { errno = ENAMETOOLONG; return -1; }
+    }
+    *len = (socklen_t)(offsetof(struct sockaddr_un, sun_path) + (size_t)n + 1);
+    return 0;
+}
+
+int rt_module_addr(const char *module, const char *suffix, struct sockaddr_un *sa, socklen_t *len)
+{
+    char file[CONTRACT_NAME_MAX + 32];
+    if (!rt_valid_name(module)) { errno = EINVAL; return -1; }
+    snprintf(file, sizeof file, "%s%s", module, suffix);
+    return rt_addr(file, sa, len);
+}
+
+void rt_register_file(const char *file)
+{
+    if (g_rt.n_created < (int)(sizeof g_rt.created / sizeof g_rt.created[0]))
+        snprintf(g_rt.created[g_rt.n_created++], PATH_MAX, "%s", file);
+}
+
+int rt_bind_dgram(const char *file, int *fd_out)
+{
+    struct sockaddr_un sa;
+    socklen_t len;
+    if (rt_addr(file, &sa, &len) != 0) { rt_error("socket path for %s: %s", file, strerror(errno)); return -1; }
+    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    if (fd < 0) { rt_error("socket: %s", strerror(errno)); return -1; }
+    int rc = bind(fd, (struct sockaddr *)&sa, len);
+    if (rc != 0 && errno == EADDRINUSE) {
+        /* A socket file is there: alive (someone bound) or stale (its process died). */
+        int probe = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+        int alive = probe >= 0 && connect(probe, (struct sockaddr *)&sa, len) == 0;
+        if (probe >= 0) close(probe);
+        if (alive) {
+            rt_error("%s already exists and is in use in %s: is this module already running?", file, g_rt.run_dir);
+            close(fd);
+            return -1;
+        }
+        unlinkat(g_rt.run_dir_fd, file, 0);
+        rc = bind(fd, (struct sockaddr *)&sa, len);
+    }
+    if (rc != 0) {
+        rt_error("bind %s/%s: %s", g_rt.run_dir, file, strerror(errno));
+        close(fd);
+        return -1;
+    }
+    rt_register_file(file);
+    *fd_out = fd;
+    return 0;
+}
+
+int rt_open_tx(void)
+{
+    if (g_rt.tx_fd < 0) {
+        g_rt.tx_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+        if (g_rt.tx_fd < 0) { rt_error("socket: %s", strerror(errno)); return -1; }
+        struct timeval tv = { SEND_TIMEOUT_MS / 1000, (SEND_TIMEOUT_MS % 1000) * 1000 };
+        setsockopt(g_rt.tx_fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
+        int buf = 4 * 1024 * 1024;
+        setsockopt(g_rt.tx_fd, SOL_SOCKET, SO_SNDBUF, &buf, sizeof buf);
+    }
+    if (g_rt.data_tx_fd < 0) {
+        g_rt.data_tx_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
+        if (g_rt.data_tx_fd < 0) { rt_error("socket: %s", strerror(errno)); return -1; }
+        int buf = 4 * 1024 * 1024;
+        setsockopt(g_rt.data_tx_fd, SOL_SOCKET, SO_SNDBUF, &buf, sizeof buf);
+    }
+    return 0;
+}
+
+int rt_errno_to_code(int err)
+{
+    switch (err) {
+    case ENOENT: return CONTRACT_EUNKNOWN;
+    case ECONNREFUSED: return CONTRACT_ENOTRUNNING;
+    case EMSGSIZE: case ENOBUFS: return CONTRACT_ETOOBIG;
+    case EAGAIN: case ETIMEDOUT: return CONTRACT_EBUSY;
+    case EINVAL: return CONTRACT_EINVAL;
+    default: return CONTRACT_ESYS;
+    }
+}
+
+const char *ContractStrError(int code)
+{
+    switch (code) {
+    case CONTRACT_OK: return "ok";
+    case CONTRACT_EUNKNOWN: return "unknown module (no mailbox in the run directory)";
+    case CONTRACT_ENOTRUNNING: return "module not running (its mailbox is stale)";
+    case CONTRACT_ETOOBIG: return "message too large";
+    case CONTRACT_EBUSY: return "mailbox full: the module did not read its requests in time";
+    case CONTRACT_EINVAL: return "invalid argument";
+    default: return "system error";
+    }
+}
+
+const char *rt_request_name(int type)
+{
+    static const char *names[] = { "UNKNOWN", "START", "STOP", "KILL", "EVENT", "SETPARAM", "SUBSCRIBE",
+                                   "UNSUBSCRIBE", "SUB_EVENT", "UNSUB_EVENT", "PURGE_MBX", "ACK",
+                                   "STATUS", "STATUS_REPLY" };
+    if (type < 0 || type >= (int)(sizeof names / sizeof names[0])) return "INVALID";
+    return names[type];
+}
+
+const char *rt_ack_name(int ack)
+{
+    switch (ack) {
+    case ACK_START: return "ACK_START";
+    case ACK_FINISHED: return "ACK_FINISHED";
+    case ACK_STOPPED: return "ACK_STOPPED";
+    case ACK_KILLED: return "ACK_KILLED";
+    case ACK_NOTDONE: return "ACK_NOTDONE";
+    case ACK_NOTHING: return "ACK_NOTHING";
+    default: return "ACK_?";
+    }
+}
+
+int rt_write_pid_file(void)
+{
+    char file[CONTRACT_NAME_MAX + 8];
+    snprintf(file, sizeof file, "%s.pid", g_rt.name);
+    int fd = openat(g_rt.run_dir_fd, file, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    if (fd < 0) {
+        /* O_PATH dirfds cannot be used to create files on every kernel: fall back to the path. */
+        char path[PATH_MAX + CONTRACT_NAME_MAX + 8];
+        snprintf(path, sizeof path, "%s/%s", g_rt.run_dir, file);
+        fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+    }
+    if (fd < 0) { rt_error("cannot write %s/%s: %s", g_rt.run_dir, file, strerror(errno)); return -1; }
+    char text[32];
+    int n = snprintf(text, sizeof text, "%ld\n", (long)getpid());
+    if (write(fd, text, (size_t)n) != n) { close(fd); return -1; }
+    close(fd);
+    rt_register_file(file);
+    return 0;
+}
+
+static void remove_created_files(void)
+{
+    for (int i = 0; i < g_rt.n_created; i++) unlinkat(g_rt.run_dir_fd, g_rt.created[i], 0);
+    g_rt.n_created = 0;
+    if (g_rt.run_dir_created) rmdir(g_rt.run_dir); /* only if empty */
+}
+
+static void on_fatal_signal(int sig)
+{
+    remove_created_files(); /* unlinkat / rmdir are async-signal-safe */
+    signal(sig, SIG_DFL);
+    raise(sig);
+}
+
+void rt_install_signal_cleanup(void)
+{
+    struct sigaction sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_fatal_signal;
+    sigemptyset(&sa.sa_mask);
+    sa.sa_flags = SA_RESETHAND;
+    sigaction(SIGTERM, &sa, NULL);
+    sigaction(SIGINT, &sa, NULL);
+    sigaction(SIGHUP, &sa, NULL);
+    signal(SIGPIPE, SIG_IGN);
+}
+
+void ContractShutdown(void)
+{
+    rt_log_close();
+    rt_dataflow_teardown();
+    rt_eventflow_teardown();
+    if (g_rt.mbx_fd >= 0) { close(g_rt.mbx_fd); g_rt.mbx_fd = -1; }
+    if (g_rt.tx_fd >= 0) { close(g_rt.tx_fd); g_rt.tx_fd = -1; }
+    if (g_rt.data_tx_fd >= 0) { close(g_rt.data_tx_fd); g_rt.data_tx_fd = -1; }
+    remove_created_files();
+    while (g_rt.pending_head) {
+        Pending *p = g_rt.pending_head;
+        g_rt.pending_head = p->next;
+        free(p);
+    }
+    g_rt.pending_tail = NULL;
+    g_rt.pending_count = 0;
+    free(g_rt.last_event);
+    g_rt.last_event = NULL;
+    if (g_rt.run_dir_fd >= 0) { close(g_rt.run_dir_fd); g_rt.run_dir_fd = -1; }
+}
+
+static void shutdown_at_exit(void) { ContractShutdown(); }
+
+int ContractClientInit(const char *name)
+{
+    if (!rt_valid_name(name)) {
+        fprintf(stderr, "libmodule: error: invalid name '%s' (letters, digits, _ - . ; < %d chars)\n",
+                name ? name : "(null)", CONTRACT_NAME_MAX);
+        return -1;
+    }
+    snprintf(g_rt.name, sizeof g_rt.name, "%s", name);
+    if (rt_init_run_dir() != 0) return -1;
+    char file[CONTRACT_NAME_MAX + 8];
+    snprintf(file, sizeof file, "%s.mbx", name);
+    if (rt_bind_dgram(file, &g_rt.mbx_fd) != 0) return -1;
+    if (rt_open_tx() != 0) return -1;
+    static int registered = 0;
+    if (!registered) { atexit(shutdown_at_exit); registered = 1; }
+    return 0;
+}

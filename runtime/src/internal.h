@@ -1,0 +1,95 @@
+/* Private state and helpers shared by the libmodule sources (not installed). */
+#ifndef CONTRACT_INTERNAL_H
+#define CONTRACT_INTERNAL_H
+
+#include <limits.h>
+#include <stdio.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include "libmodule/libmodule.h"
+
+#define WIRE_MAGIC 0x43414354u /* "CACT" */
+#define WIRE_REQUEST 1u
+#define WIRE_DATA 2u
+#define SEND_TIMEOUT_MS 2000
+#define LOG_FLUSH_NS 50000000LL /* flush the CSV log at most 50 ms after a record, when idle */
+
+typedef struct { unsigned int magic; unsigned int kind; } WirePrefix;
+typedef struct { char producer[CONTRACT_NAME_MAX]; RTIME production; int port; unsigned int size; } DataHeader;
+
+/** Request header part of a RequestMessage (what travels before Data). */
+#define REQUEST_HEADER_SIZE (offsetof(RequestMessage, Data))
+
+typedef struct Subscriber {
+    struct Subscriber *next;
+    char module[CONTRACT_NAME_MAX];
+    int port;          /* consumer's input port */
+    int periodicity;   /* data: k >= 1; events: EVENT_CONTINUOUS / EVENT_ONESHOT */
+    int contextual;
+    long base;         /* producer's activations when subscribed */
+    struct sockaddr_un addr;
+    socklen_t addrlen;
+} Subscriber;
+
+typedef struct Pending { struct Pending *next; RequestMessage msg; } Pending;
+
+typedef struct {
+    char name[CONTRACT_NAME_MAX];
+    char run_dir[PATH_MAX];
+    int run_dir_fd;         /* O_PATH fd, for socket paths longer than sun_path */
+    int run_dir_created;    /* we created it (fresh dir under /tmp) */
+    int mbx_fd;
+    int tx_fd;              /* requests: blocking with SO_SNDTIMEO */
+    int data_tx_fd;         /* data: non-blocking */
+    int is_module;          /* interface tables bound */
+    ModuleUse *iuse; ModuleProduce *iproduce; ModuleReact *ireact; ModuleDetect *idetect;
+    size_t *param_in; size_t *param_out;
+    int n_iuse, n_iproduce, n_ireact, n_idetect;
+    int *in_fds;            /* one per IUSE entry */
+    unsigned char *scratch; /* receive buffer for data, CONTRACT_DATA_PORT_MAX + 1 */
+    Subscriber **data_subs; /* per IPRODUCE entry */
+    Subscriber **event_subs;/* per IDETECT entry */
+    RequestMessage *last_event;
+    Pending *pending_head, *pending_tail;
+    int pending_count;
+    long activations, requests;
+    int running;
+    char created[8][PATH_MAX]; /* files to remove at exit */
+    int n_created;
+    FILE *log;
+    RTIME log_dirty_since;  /* 0 = nothing unflushed */
+} ContractRuntime;
+
+extern ContractRuntime g_rt;
+
+/* core.c */
+int rt_valid_name(const char *name);
+int rt_init_run_dir(void);
+int rt_addr(const char *file, struct sockaddr_un *sa, socklen_t *len);
+int rt_module_addr(const char *module, const char *suffix, struct sockaddr_un *sa, socklen_t *len);
+int rt_bind_dgram(const char *file, int *fd_out);
+int rt_open_tx(void);
+void rt_register_file(const char *file);
+int rt_errno_to_code(int err);
+void rt_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+const char *rt_request_name(int type);
+const char *rt_ack_name(int ack);
+int rt_write_pid_file(void);
+void rt_install_signal_cleanup(void);
+
+/* mailbox.c */
+int rt_send_request_to(const char *module, RequestMessage *msg);
+
+/* csvlog.c */
+int rt_log_open(void);
+void rt_log_close(void);
+void rt_log_maybe_flush(RTIME now);
+
+/* dataflow.c / eventflow.c */
+int rt_dataflow_setup(void);
+void rt_dataflow_teardown(void);
+int rt_eventflow_setup(void);
+void rt_eventflow_teardown(void);
+void rt_remember_event(const RequestMessage *msg);
+
+#endif

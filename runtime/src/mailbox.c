@@ -1,0 +1,475 @@
+/* The request mailbox: receiving requests (WaitForRequest, LookForRequest, deadlines, acks),
+ * sending requests and acks to other modules. One AF_UNIX datagram socket per process,
+ * bound to <run dir>/<NAME>.mbx; one datagram = one request (prefix + header + payload). */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <poll.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/uio.h>
+#include <unistd.h>
+#include "internal.h"
+
+extern const char ContractModuleDescription[] __attribute__((weak));
+
+static RequestMessage rx_buffer; /* every datagram lands here first: user messages stay intact */
+
+/* ---------------------------------------------------------------- sending */
+
+int rt_send_request_to(const char *module, RequestMessage *msg)
+{
+    if (!rt_valid_name(module)) {
+        rt_error("invalid module name '%s'", module ? module : "(null)");
+        return CONTRACT_EINVAL;
+    }
+    if (msg->DataSize > CONTRACT_REQUEST_DATA_MAX) {
+        rt_error("%s request to %s: payload of %zu bytes exceeds the limit of %d bytes (not sent)",
+                 rt_request_name(msg->Type), module, msg->DataSize, CONTRACT_REQUEST_DATA_MAX);
+        return CONTRACT_ETOOBIG;
+    }
+    if (g_rt.run_dir_fd < 0 && rt_init_run_dir() != 0) return CONTRACT_ESYS;
+    if (rt_open_tx() != 0) return CONTRACT_ESYS;
+    struct sockaddr_un sa;
+    socklen_t len;
+    if (rt_module_addr(module, ".mbx", &sa, &len) != 0) {
+        rt_error("address of %s: %s", module, strerror(errno));
+        return CONTRACT_EINVAL;
+    }
+    snprintf(msg->Sender, sizeof msg->Sender, "%s", g_rt.name);
+    msg->ProductionTime = GetTime();
+    msg->ReceptionTime = 0;
+    WirePrefix pre = { WIRE_MAGIC, WIRE_REQUEST };
+    struct iovec iov[3] = { { &pre, sizeof pre }, { msg, REQUEST_HEADER_SIZE }, { msg->Data, msg->DataSize } };
+    struct msghdr mh;
+    memset(&mh, 0, sizeof mh);
+    mh.msg_name = &sa;
+    mh.msg_namelen = len;
+    mh.msg_iov = iov;
+    mh.msg_iovlen = msg->DataSize ? 3 : 2;
+    ssize_t n;
+    do n = sendmsg(g_rt.tx_fd, &mh, MSG_NOSIGNAL); while (n < 0 && errno == EINTR);
+    if (n < 0) {
+        int code = rt_errno_to_code(errno);
+        rt_error("%s request to %s: %s (%s)", rt_request_name(msg->Type), module, ContractStrError(code), strerror(errno));
+        return code;
+    }
+    return CONTRACT_OK;
+}
+
+int SendRequest(const char *module, RequestMessage *msg) { return rt_send_request_to(module, msg); }
+
+/* Small requests are built in this header-only buffer (Data never read beyond DataSize). */
+static RequestMessage *blank(RequestType type)
+{
+    static RequestMessage m;
+    memset(&m, 0, REQUEST_HEADER_SIZE);
+    m.Type = type;
+    return &m;
+}
+
+static void set_ack(char *modAck, int *wanted, int *id, int wantedAck, int ackId)
+{
+    snprintf(modAck, CONTRACT_NAME_MAX, "%s", g_rt.name);
+    *wanted = wantedAck;
+    *id = ackId;
+}
+
+int SendStart(const char *module, int wantedAck, int ackId)
+{
+    return SendStartFunction(module, NULL, NULL, wantedAck, ackId);
+}
+
+int SendStartFunction(const char *module, const char *function, const char *args, int wantedAck, int ackId)
+{
+    RequestMessage *m = blank(REQ_START);
+    set_ack(m->Param.Start.ModAck, &m->Param.Start.WantedAck, &m->Param.Start.AckID, wantedAck, ackId);
+    if (function) {
+        if (strlen(function) >= CONTRACT_FUNCTION_MAX) {
+            rt_error("function name '%s' too long (max %d)", function, CONTRACT_FUNCTION_MAX - 1);
+            return CONTRACT_EINVAL;
+        }
+        snprintf(m->Param.Start.Function, CONTRACT_FUNCTION_MAX, "%s", function);
+    }
+    if (args && *args) {
+        size_t n = strlen(args) + 1;
+        if (n > CONTRACT_REQUEST_DATA_MAX) {
+            rt_error("start arguments of %zu bytes exceed the limit of %d bytes", n, CONTRACT_REQUEST_DATA_MAX);
+            return CONTRACT_ETOOBIG;
+        }
+        memcpy(m->Data, args, n);
+        m->DataSize = n;
+    }
+    return rt_send_request_to(module, m);
+}
+
+int SendStop(const char *module, int wantedAck, int ackId)
+{
+    RequestMessage *m = blank(REQ_STOP);
+    set_ack(m->Param.Stop.ModAck, &m->Param.Stop.WantedAck, &m->Param.Stop.AckID, wantedAck, ackId);
+    return rt_send_request_to(module, m);
+}
+
+int SendKill(const char *module, int wantedAck, int ackId)
+{
+    RequestMessage *m = blank(REQ_KILL);
+    set_ack(m->Param.Kil.ModAck, &m->Param.Kil.WantedAck, &m->Param.Kil.AckID, wantedAck, ackId);
+    return rt_send_request_to(module, m);
+}
+
+int SendSetParam(const char *module, int port, const void *value, size_t size, int wantedAck, int ackId)
+{
+    if (size > CONTRACT_REQUEST_DATA_MAX) {
+        rt_error("setparam %s:%d: value of %zu bytes exceeds the limit of %d bytes (not sent)", module, port, size,
+                 CONTRACT_REQUEST_DATA_MAX);
+        return CONTRACT_ETOOBIG;
+    }
+    RequestMessage *m = blank(REQ_SETPARAM);
+    m->Param.SetParam.Port = port;
+    set_ack(m->Param.SetParam.ModAck, &m->Param.SetParam.WantedAck, &m->Param.SetParam.AckID, wantedAck, ackId);
+    if (size) memcpy(m->Data, value, size);
+    m->DataSize = size;
+    int rc = rt_send_request_to(module, m);
+    if (rc == CONTRACT_OK) ContractLog("setparam_sent", module, port, size, "");
+    return rc;
+}
+
+int SendSubscribe(const char *producer, int sourcePort, const char *consumer, int targetPort, int periodicity,
+                  int isContextual)
+{
+    RequestMessage *m = blank(REQ_SUBSCRIBE);
+    m->Param.Subscribe.SourcePort = sourcePort;
+    snprintf(m->Param.Subscribe.TargetModule, CONTRACT_NAME_MAX, "%s", consumer);
+    m->Param.Subscribe.TargetPort = targetPort;
+    m->Param.Subscribe.Periodicity = periodicity;
+    m->Param.Subscribe.isContextual = isContextual;
+    return rt_send_request_to(producer, m);
+}
+
+int SendUnsubscribe(const char *producer, int sourcePort, const char *consumer, int targetPort)
+{
+    RequestMessage *m = blank(REQ_UNSUBSCRIBE);
+    m->Param.Unsubscribe.SourcePort = sourcePort;
+    snprintf(m->Param.Unsubscribe.TargetModule, CONTRACT_NAME_MAX, "%s", consumer);
+    m->Param.Unsubscribe.TargetPort = targetPort;
+    return rt_send_request_to(producer, m);
+}
+
+int SendSubscribeEvent(const char *producer, int sourcePort, const char *consumer, int targetPort, int mode)
+{
+    RequestMessage *m = blank(REQ_SUB_EVENT);
+    snprintf(m->Param.SubscribeEvent.targetModule, CONTRACT_NAME_MAX, "%s", consumer);
+    m->Param.SubscribeEvent.targetPort = targetPort;
+    m->Param.SubscribeEvent.sourcePort = sourcePort;
+    m->Param.SubscribeEvent.mode = mode;
+    return rt_send_request_to(producer, m);
+}
+
+int SendUnsubscribeEvent(const char *producer, int sourcePort, const char *consumer, int targetPort)
+{
+    RequestMessage *m = blank(REQ_UNSUB_EVENT);
+    snprintf(m->Param.UnsubscribeEvent.targetModule, CONTRACT_NAME_MAX, "%s", consumer);
+    m->Param.UnsubscribeEvent.targetPort = targetPort;
+    m->Param.UnsubscribeEvent.sourcePort = sourcePort;
+    return rt_send_request_to(producer, m);
+}
+
+int SendPurge(const char *module) { return rt_send_request_to(module, blank(REQ_PURGE_MBX)); }
+
+int SendEvent(const char *module, int targetPort, int sourcePort, const void *data, size_t size)
+{
+    if (size > CONTRACT_REQUEST_DATA_MAX) {
+        rt_error("event %s:%d -> %s:%d: %zu bytes exceed the limit of %d bytes (not sent)", g_rt.name, sourcePort,
+                 module, targetPort, size, CONTRACT_REQUEST_DATA_MAX);
+        return CONTRACT_ETOOBIG;
+    }
+    RequestMessage *m = blank(REQ_EVENT);
+    m->Param.Event.sourcePort = sourcePort;
+    snprintf(m->Param.Event.sourceModule, CONTRACT_NAME_MAX, "%s", g_rt.name);
+    m->Param.Event.targetPort = targetPort;
+    if (size) memcpy(m->Data, data, size);
+    m->DataSize = size;
+    return rt_send_request_to(module, m);
+}
+
+int SetModuleParam(const char *moduleName, unsigned char port, void *data, unsigned long size)
+{
+    return SendSetParam(moduleName, port, data, size, ACK_NOTHING, -1) == CONTRACT_OK ? 0 : -1;
+}
+
+int SendAck(const char *module, int wantedAck, int ack, int ackId)
+{
+    if ((wantedAck & ACK_NOTHING) != 0 || module == NULL || module[0] == '\0') return 0;
+    RequestMessage *m = blank(REQ_ACK);
+    snprintf(m->Param.Ack.Module, CONTRACT_NAME_MAX, "%s", g_rt.name);
+    m->Param.Ack.Ack = ack;
+    m->Param.Ack.AckID = ackId;
+    if ((ack == ACK_FINISHED || ack == ACK_STOPPED) && g_rt.running) {
+        g_rt.running = 0;
+        char d[64];
+        snprintf(d, sizeof d, "activation=%ld %s", g_rt.activations, rt_ack_name(ack));
+        ContractLog("run_finished", "", -1, 0, d);
+    }
+    int rc = rt_send_request_to(module, m);
+    char detail[64];
+    snprintf(detail, sizeof detail, "%s id=%d", rt_ack_name(ack), ackId);
+    ContractLog(rc == CONTRACT_OK ? "ack_sent" : "ack_failed", module, -1, 0, detail);
+    return rc == CONTRACT_OK ? 0 : -1;
+}
+
+/* ---------------------------------------------------------------- receiving */
+
+static void reply_status(const RequestMessage *req)
+{
+    RequestMessage *m = blank(REQ_STATUS_REPLY);
+    int n = snprintf((char *)m->Data, 1024,
+                     "module=%s pid=%ld running=%s activations=%ld requests=%ld run_dir=%s description=\"%s\"",
+                     g_rt.name, (long)getpid(), g_rt.running ? "yes" : "no", g_rt.activations, g_rt.requests,
+                     g_rt.run_dir, ContractModuleDescription ? ContractModuleDescription : "");
+    m->DataSize = (size_t)(n < 1024 ? n : 1023) + 1;
+    rt_send_request_to(req->Sender, m);
+}
+
+/* Bookkeeping at reception. Returns 0 if the request was handled inside the library. */
+static int accept_request(RequestMessage *m)
+{
+    char detail[160];
+    int port = -1;
+    switch (m->Type) {
+    case REQ_STATUS:
+        reply_status(m);
+        return 0;
+    case REQ_ACK:
+        snprintf(detail, sizeof detail, "%s id=%d", rt_ack_name(m->Param.Ack.Ack), m->Param.Ack.AckID);
+        ContractLog("ack_received", m->Sender, -1, 0, detail);
+        return 1;
+    case REQ_START:
+        g_rt.activations++;
+        snprintf(detail, sizeof detail, "START%s%s", m->Param.Start.Function[0] ? " " : "", m->Param.Start.Function);
+        break;
+    case REQ_EVENT:
+        port = m->Param.Event.targetPort;
+        snprintf(detail, sizeof detail, "EVENT from_port=%d", m->Param.Event.sourcePort);
+        break;
+    case REQ_SETPARAM: port = m->Param.SetParam.Port; snprintf(detail, sizeof detail, "SETPARAM"); break;
+    case REQ_SUBSCRIBE:
+        port = m->Param.Subscribe.SourcePort;
+        snprintf(detail, sizeof detail, "SUBSCRIBE %s:%d *%d", m->Param.Subscribe.TargetModule,
+                 m->Param.Subscribe.TargetPort, m->Param.Subscribe.Periodicity);
+        break;
+    case REQ_SUB_EVENT:
+        port = m->Param.SubscribeEvent.sourcePort;
+        snprintf(detail, sizeof detail, "SUB_EVENT %s:%d %s", m->Param.SubscribeEvent.targetModule,
+                 m->Param.SubscribeEvent.targetPort, m->Param.SubscribeEvent.mode == EVENT_ONESHOT ? "oneshot" : "continuous");
+        break;
+    default: snprintf(detail, sizeof detail, "%s", rt_request_name(m->Type)); break;
+    }
+    g_rt.requests++;
+    ContractLog("request_received", m->Sender, port, m->DataSize, detail);
+    if (m->Type == REQ_START && !g_rt.running) {
+        g_rt.running = 1;
+        snprintf(detail, sizeof detail, "activation=%ld", g_rt.activations);
+        ContractLog("run_started", m->Sender, -1, 0, detail);
+    }
+    return 1;
+}
+
+/* One datagram from the mailbox into rx_buffer. Returns 1 (valid request), 0 (none: EAGAIN,
+ * or an invalid datagram that was reported and dropped), -1 (error, errno set). */
+static int receive_one(int flags)
+{
+    WirePrefix pre;
+    struct iovec iov[2] = { { &pre, sizeof pre }, { &rx_buffer, sizeof rx_buffer } };
+    struct msghdr mh;
+    memset(&mh, 0, sizeof mh);
+    mh.msg_iov = iov;
+    mh.msg_iovlen = 2;
+    ssize_t n = recvmsg(g_rt.mbx_fd, &mh, flags | MSG_TRUNC);
+    if (n < 0) {
+        if (errno == EAGAIN || errno == EWOULDBLOCK) return 0;
+        return -1;
+    }
+    RTIME now = GetTime();
+    if ((size_t)n < sizeof pre + REQUEST_HEADER_SIZE || pre.magic != WIRE_MAGIC || pre.kind != WIRE_REQUEST) {
+        rt_error("dropped a malformed datagram of %zd bytes in the mailbox", n);
+        return 0;
+    }
+    if ((mh.msg_flags & MSG_TRUNC) || (size_t)n != sizeof pre + REQUEST_HEADER_SIZE + rx_buffer.DataSize) {
+        rt_error("dropped a %s request from %.63s: size %zd does not match its header (payload %zu, max %d)",
+                 rt_request_name(rx_buffer.Type), rx_buffer.Sender, n, rx_buffer.DataSize, CONTRACT_REQUEST_DATA_MAX);
+        return 0;
+    }
+    rx_buffer.Sender[CONTRACT_NAME_MAX - 1] = '\0';
+    rx_buffer.ReceptionTime = now;
+    return accept_request(&rx_buffer);
+}
+
+static void deliver(RequestMessage *out, const RequestMessage *in)
+{
+    if (out != in) memcpy(out, in, REQUEST_HEADER_SIZE + in->DataSize);
+    if (out->Type == REQ_EVENT) rt_remember_event(out);
+}
+
+static int pop_pending(RequestMessage *out)
+{
+    Pending *p = g_rt.pending_head;
+    if (!p) return 0;
+    g_rt.pending_head = p->next;
+    if (!g_rt.pending_head) g_rt.pending_tail = NULL;
+    g_rt.pending_count--;
+    deliver(out, &p->msg);
+    free(p);
+    return 1;
+}
+
+static void push_pending(const RequestMessage *m)
+{
+    Pending *p = malloc(sizeof *p);
+    if (!p) { rt_error("out of memory: dropped a %s request", rt_request_name(m->Type)); return; }
+    memcpy(&p->msg, m, REQUEST_HEADER_SIZE + m->DataSize);
+    p->next = NULL;
+    if (g_rt.pending_tail) g_rt.pending_tail->next = p; else g_rt.pending_head = p;
+    g_rt.pending_tail = p;
+    g_rt.pending_count++;
+}
+
+static int check_mailbox(void)
+{
+    if (g_rt.mbx_fd >= 0) return 0;
+    fprintf(stderr, "%s: error: no mailbox (call ContractClientInit first, or run as a module)\n",
+            g_rt.name[0] ? g_rt.name : "libmodule");
+    errno = EBADF;
+    return -1;
+}
+
+/* Receive the next accepted request into rx_buffer until `deadline`. 1 / 0 timeout / -1 error. */
+static int receive_until(RTIME deadline)
+{
+    if (check_mailbox() != 0) return -1;
+    for (;;) {
+        int r = receive_one(MSG_DONTWAIT);
+        if (r != 0) return r;
+        RTIME now = GetTime();
+        rt_log_maybe_flush(now);
+        if (deadline <= now) return 0;
+        RTIME wait = deadline == INT64_MAX ? -1 : deadline - now;
+        if (g_rt.log_dirty_since) {
+            RTIME flush_in = g_rt.log_dirty_since + LOG_FLUSH_NS - now;
+            if (flush_in < 0) flush_in = 0;
+            if (wait < 0 || flush_in < wait) wait = flush_in;
+        }
+        if (wait < 0) {
+            r = receive_one(0); /* plain blocking receive: one system call */
+            if (r != 0) return r;
+            continue;
+        }
+        struct pollfd pfd = { g_rt.mbx_fd, POLLIN, 0 };
+        struct timespec ts = { (time_t)(wait / 1000000000LL), (long)(wait % 1000000000LL) };
+        int pr = ppoll(&pfd, 1, &ts, NULL);
+        if (pr < 0) return -1;
+    }
+}
+
+int WaitForRequestUntil(RequestMessage *msg, RTIME deadline)
+{
+    if (pop_pending(msg)) return 1;
+    int r = receive_until(deadline);
+    if (r == 1) deliver(msg, &rx_buffer);
+    return r;
+}
+
+RequestMessage *WaitForRequest(RequestMessage *msg)
+{
+    if (g_rt.running) { /* the skeleton waits only once a run is over */
+        g_rt.running = 0;
+        char d[48];
+        snprintf(d, sizeof d, "activation=%ld", g_rt.activations);
+        ContractLog("run_finished", "", -1, 0, d);
+    }
+    for (;;) {
+        int r = WaitForRequestUntil(msg, INT64_MAX);
+        if (r == 1) return msg;
+        if (r < 0 && errno != EINTR) {
+            rt_error("waiting for a request: %s", strerror(errno));
+            return NULL;
+        }
+    }
+}
+
+RequestMessage *LookForRequest(RequestMessage *msg)
+{
+    return WaitForRequestUntil(msg, 0) == 1 ? msg : NULL;
+}
+
+int MailboxFd(void) { return g_rt.mbx_fd; }
+int PendingRequests(void) { return g_rt.pending_count; }
+
+typedef int (*Matcher)(const RequestMessage *m, const void *ctx);
+
+static int wait_for_match(Matcher match, const void *ctx, RTIME deadline, RequestMessage *out)
+{
+    for (;;) {
+        int r = receive_until(deadline);
+        if (r <= 0) return r;
+        if (match(&rx_buffer, ctx)) {
+            if (out) deliver(out, &rx_buffer);
+            return 1;
+        }
+        push_pending(&rx_buffer);
+    }
+}
+
+typedef struct { const char *module; int ackId; int mask; } AckWanted;
+
+static int match_ack(const RequestMessage *m, const void *ctx)
+{
+    const AckWanted *w = ctx;
+    return m->Type == REQ_ACK && strcmp(m->Sender, w->module) == 0 && m->Param.Ack.AckID == w->ackId &&
+           (m->Param.Ack.Ack & w->mask) != 0;
+}
+
+int WaitForAck(const char *module, int ackId, int ackMask, RTIME deadline, RequestMessage *ack)
+{
+    AckWanted w = { module, ackId, ackMask };
+    return wait_for_match(match_ack, &w, deadline, ack);
+}
+
+static int match_status(const RequestMessage *m, const void *ctx)
+{
+    return m->Type == REQ_STATUS_REPLY && strcmp(m->Sender, (const char *)ctx) == 0;
+}
+
+int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline)
+{
+    int rc = rt_send_request_to(module, blank(REQ_STATUS));
+    if (rc != CONTRACT_OK) return rc;
+    RequestMessage *reply = malloc(sizeof *reply);
+    if (!reply) return CONTRACT_ESYS;
+    int r = wait_for_match(match_status, module, deadline, reply);
+    if (r == 1 && textSize > 0) {
+        size_t n = reply->DataSize < textSize ? reply->DataSize : textSize;
+        memcpy(text, reply->Data, n);
+        text[n ? n - 1 : 0] = '\0';
+    }
+    free(reply);
+    return r == 1 ? CONTRACT_OK : (r == 0 ? CONTRACT_EBUSY : CONTRACT_ESYS);
+}
+
+int ModuleState(const char *module)
+{
+    if (!rt_valid_name(module)) return CONTRACT_EINVAL;
+    if (g_rt.run_dir_fd < 0 && rt_init_run_dir() != 0) return CONTRACT_ESYS;
+    char file[CONTRACT_NAME_MAX + 8];
+    snprintf(file, sizeof file, "%s.mbx", module);
+    struct stat st;
+    if (fstatat(g_rt.run_dir_fd, file, &st, 0) != 0) return CONTRACT_EUNKNOWN;
+    struct sockaddr_un sa;
+    socklen_t len;
+    if (rt_addr(file, &sa, &len) != 0) return CONTRACT_EINVAL;
+    int probe = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    if (probe < 0) return CONTRACT_ESYS;
+    int rc = connect(probe, (struct sockaddr *)&sa, len) == 0 ? CONTRACT_OK : rt_errno_to_code(errno);
+    close(probe);
+    return rc;
+}
