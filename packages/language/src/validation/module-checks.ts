@@ -1,7 +1,182 @@
-import type { ValidationChecks } from 'langium';
-import type { CactalAstType } from '../generated/ast.js';
+/**
+ * SPEC §2.3: module and supervisor names, project-wide uniqueness, block order, synchronous and
+ * asynchronous restrictions, port indexes per kind and direction, member names, time literals.
+ */
+import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import {
+    isDataFlowsBlock, isEventFlowsBlock, isParametersBlock, isSchedulingBlock,
+    type CactalAstType, type Module, type ModuleBlock, type Parameter, type Port, type Supervisor, type TimeValue
+} from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
+import { parametersOf, schedulingPropertiesOf } from '../model/blocks.js';
+import { portsOf } from '../model/ports.js';
+import { parseTime } from '../model/time.js';
+import { ModuleCodes } from './codes/modules.js';
+import { otherLocations } from './locations.js';
+import { ProjectNames } from './project-index.js';
+import { report } from './report.js';
 
-export function moduleChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
-    return {};
+const NAME_PATTERN = /^[A-Z]{3}$/;
+const BLOCK_ORDER = ['parameters', 'scheduling', 'data flows', 'event flows'] as const;
+
+function blockName(block: ModuleBlock): (typeof BLOCK_ORDER)[number] {
+    if (isParametersBlock(block)) return 'parameters';
+    if (isSchedulingBlock(block)) return 'scheduling';
+    if (isDataFlowsBlock(block)) return 'data flows';
+    return 'event flows';
+}
+
+function blockKeyword(block: ModuleBlock): string {
+    return isDataFlowsBlock(block) ? 'data' : isEventFlowsBlock(block) ? 'event' : blockName(block);
+}
+
+export function moduleChecks(services: CactalServices): ValidationChecks<CactalAstType> {
+    const names = new ProjectNames(services);
+    const checkName = (node: Module | Supervisor, accept: ValidationAcceptor) => checkModuleName(node, names, accept);
+    return {
+        Module: [checkName, checkBlocks, checkPorts],
+        Supervisor: [checkName, checkPorts],
+        TimeValue: checkTime
+    };
+}
+
+function checkModuleName(node: Module | Supervisor, names: ProjectNames, accept: ValidationAcceptor): void {
+    const word = node.$type === 'Module' ? 'Module' : 'Supervisor';
+    if (!node.name) return;
+    if (node.name === 'ORD') {
+        report(accept, ModuleCodes['module-name-reserved'], `ORD is the scheduler's name: choose another three-letter name for this ${word.toLowerCase()}.`, { node, property: 'name' });
+        return;
+    }
+    if (!NAME_PATTERN.test(node.name)) {
+        const upper = node.name.toUpperCase();
+        const suggestion = NAME_PATTERN.test(upper) && upper !== 'ORD' ? upper : undefined;
+        report(accept, ModuleCodes['module-name-format'],
+            `${word} name '${node.name}' must be exactly three upper-case letters (A-Z)${suggestion ? `, e.g. '${suggestion}'` : ''}.`,
+            { node, property: 'name', data: suggestion ? { suggestion } : {} });
+        return;
+    }
+    const same = names.byName(['Module', 'Supervisor']).get(node.name);
+    if (same.length > 1) {
+        const where = otherLocations(AstUtils.getDocument(node).uri.toString(), same.map((d) => d.documentUri));
+        report(accept, ModuleCodes['module-name-duplicate'],
+            `'${node.name}' names more than one module or supervisor (also in ${where}); names are unique across the project.`,
+            { node, property: 'name' });
+    }
+}
+
+function checkBlocks(module: Module, accept: ValidationAcceptor): void {
+    const seen: Array<(typeof BLOCK_ORDER)[number]> = [];
+    for (const block of module.blocks) {
+        const name = blockName(block);
+        const rank = BLOCK_ORDER.indexOf(name);
+        if (seen.includes(name)) {
+            report(accept, ModuleCodes['module-block-duplicate'], `Module ${module.name} already has a '${name}' block: merge them into one.`, { node: block, keyword: blockKeyword(block) });
+            continue;
+        }
+        const later = seen.find((s) => BLOCK_ORDER.indexOf(s) > rank);
+        if (later) {
+            report(accept, ModuleCodes['module-block-order'],
+                `Block '${name}' must come before '${later}': the order is ${BLOCK_ORDER.join(', ')}.`,
+                { node: block, keyword: blockKeyword(block) });
+        }
+        seen.push(name);
+    }
+    const scheduling = module.blocks.filter(isSchedulingBlock);
+    if (module.kind === 'asynchronous') {
+        for (const block of module.blocks) {
+            if (isSchedulingBlock(block)) {
+                report(accept, ModuleCodes['module-async-forbidden-block'],
+                    `Asynchronous module ${module.name} is not scheduled: remove the 'scheduling' block, or declare it 'synchronous module'.`,
+                    { node: block, keyword: 'scheduling' });
+            } else if (isDataFlowsBlock(block)) {
+                report(accept, ModuleCodes['module-async-forbidden-block'],
+                    `Asynchronous module ${module.name} has no data ports: use event ports ('event flows') or declare it 'synchronous module'.`,
+                    { node: block, keyword: 'data' });
+            }
+        }
+        return;
+    }
+    if (scheduling.length === 0) {
+        report(accept, ModuleCodes['module-scheduling-missing'],
+            `Synchronous module ${module.name} needs a 'scheduling { C=<time>; }' block giving its nominal execution time (e.g. C=1ms).`,
+            { node: module, property: 'name' });
+        return;
+    }
+    const properties = schedulingPropertiesOf(module);
+    let hasC = false;
+    for (const p of properties) {
+        if (p.name !== 'C') {
+            report(accept, ModuleCodes['module-scheduling-property'], `Unknown scheduling property '${p.name}': the only one is C (nominal execution time, e.g. C=1ms).`, { node: p, property: 'name' });
+        } else if (hasC) {
+            report(accept, ModuleCodes['module-scheduling-property'], `C is given twice in module ${module.name}: keep one.`, { node: p, property: 'name' });
+        } else {
+            hasC = true;
+        }
+    }
+    if (!hasC) {
+        report(accept, ModuleCodes['module-scheduling-missing'],
+            `The scheduling block of ${module.name} must give C, the nominal execution time (e.g. C=1ms;).`, { node: scheduling[0]!, keyword: 'scheduling' });
+    }
+}
+
+/** Port indexes per kind and direction, parameters, member names; synchronous modules: out event ports only. */
+function checkPorts(owner: Module | Supervisor, accept: ValidationAcceptor): void {
+    const groups = new Map<string, Array<Port | Parameter>>();
+    const add = (key: string, node: Port | Parameter) => {
+        const list = groups.get(key) ?? [];
+        list.push(node);
+        groups.set(key, list);
+    };
+    const params = owner.$type === 'Module' ? parametersOf(owner) : [];
+    for (const p of params) add('parameter', p);
+    for (const info of portsOf(owner)) add(`${info.direction === 'in' ? 'input' : 'output'} ${info.kind}`, info.port);
+
+    for (const [group, members] of groups) {
+        const used = new Set<number>();
+        const allIndexes = new Set(members.map((m) => m.index));
+        for (const m of members) {
+            if (typeof m.index !== 'number' || Number.isNaN(m.index)) continue;
+            if (m.index < 0) {
+                report(accept, ModuleCodes['port-index-negative'], `Port index ${m.index} is negative: indexes are 0, 1, 2, ...`, { node: m, property: 'index' });
+                continue;
+            }
+            if (used.has(m.index)) {
+                let free = 0;
+                while (allIndexes.has(free)) free++;
+                allIndexes.add(free);
+                report(accept, ModuleCodes['port-index-duplicate'],
+                    `${group === 'parameter' ? 'Parameter' : group[0]!.toUpperCase() + group.slice(1)} port index :${m.index} is already used in ${owner.name}; indexes are unique per kind and direction (free: :${free}).`,
+                    { node: m, property: 'index', data: { suggestedIndex: free } });
+            }
+            used.add(m.index);
+        }
+    }
+
+    const names = new Set<string>();
+    for (const m of [...params, ...portsOf(owner).map((p) => p.port)]) {
+        if (!m.name) continue;
+        if (names.has(m.name)) {
+            report(accept, ModuleCodes['member-name-duplicate'],
+                `'${m.name}' is already a parameter or port variable of ${owner.name}: every name in its interface must be unique.`,
+                { node: m, property: 'name' });
+        }
+        names.add(m.name);
+    }
+
+    if (owner.$type === 'Module' && owner.kind === 'synchronous') {
+        for (const info of portsOf(owner)) {
+            if (info.kind === 'event' && info.direction === 'in') {
+                report(accept, ModuleCodes['module-sync-event-in'],
+                    `Synchronous module ${owner.name} cannot have input event port :${info.index}: it only has 'out' event ports (an asynchronous module reacts to events).`,
+                    { node: info.port, property: 'direction' });
+            }
+        }
+    }
+}
+
+function checkTime(time: TimeValue, accept: ValidationAcceptor): void {
+    const parsed = parseTime(time.text ?? '');
+    if (parsed && parsed.amount <= 0) {
+        report(accept, ModuleCodes['time-not-positive'], `Duration ${time.text} must be greater than zero (e.g. 500us, 1ms, 1s).`, { node: time });
+    }
 }

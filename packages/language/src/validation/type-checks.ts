@@ -1,7 +1,135 @@
-import type { ValidationChecks } from 'langium';
-import type { CactalAstType } from '../generated/ast.js';
+/** SPEC §2.2: datatypes, function prototypes, values in declarations, test/compute function use. */
+import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import {
+    isFunctionPrototype, isLocalVariable,
+    type CactalAstType, type Compute, type DataType, type FunctionPrototype, type FunctionTest,
+    type TypeRef, type Value
+} from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
+import { typeOf, typeRefText } from '../model/types.js';
+import { TypeCodes } from './codes/types.js';
+import { ProjectNames } from './project-index.js';
+import { report } from './report.js';
+import { checkValue } from './value-checker.js';
+import { otherLocations } from './locations.js';
 
-export function typeChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
-    return {};
+type Declaration = { $type: string; name: string; type: TypeRef; value?: Value };
+
+export function typeChecks(services: CactalServices): ValidationChecks<CactalAstType> {
+    const names = new ProjectNames(services);
+    const checkDeclaration = (decl: Declaration, accept: ValidationAcceptor) => {
+        if (!decl.value) return;
+        checkValue(decl.value, typeOf(decl.type), accept, {
+            // locals are initialised from constants and the function's parameters
+            allowVariables: isLocalVariable(decl as never),
+            what: `'${decl.name}'`
+        });
+    };
+    return {
+        DataType: [
+            (dt, accept) => checkUniqueTopLevel(names, dt, 'DataType', 'datatype', accept),
+            (dt, accept) => checkDuplicateMembers(dt.fields, 'field', dt.name, accept),
+            checkRecursiveDatatype
+        ],
+        FunctionPrototype: [
+            (fn, accept) => checkUniqueTopLevel(names, fn, 'FunctionPrototype', 'function', accept),
+            (fn, accept) => checkDuplicateMembers(fn.args, 'argument', fn.name, accept)
+        ],
+        TypeRef: checkTypeRef,
+        Field: checkDeclaration,
+        Parameter: checkDeclaration,
+        Port: checkDeclaration,
+        SchemaParameter: checkDeclaration,
+        FunctionParameter: checkDeclaration,
+        LocalVariable: checkDeclaration,
+        FunctionTest: (test, accept) => checkFunctionUse(test, 'bool', accept),
+        Compute: (compute, accept) => checkFunctionUse(compute, 'void', accept)
+    };
+}
+
+function checkUniqueTopLevel(names: ProjectNames, node: DataType | FunctionPrototype, type: string, word: string, accept: ValidationAcceptor): void {
+    if (!node.name) return;
+    const same = names.byName([type]).get(node.name);
+    if (same.length <= 1) return;
+    const where = otherLocations(AstUtils.getDocument(node).uri.toString(), same.map((d) => d.documentUri));
+    report(accept, TypeCodes['type-duplicate-name'],
+        `${word === 'datatype' ? 'Datatype' : 'Function'} '${node.name}' is defined more than once in the project (also in ${where}); ${word} names are unique across the project.`,
+        { node, property: 'name' });
+}
+
+export function checkDuplicateMembers(members: Array<{ name: string; $type: string } & object>, word: string, owner: string, accept: ValidationAcceptor): void {
+    const seen = new Set<string>();
+    for (const m of members) {
+        if (!m.name) continue;
+        if (seen.has(m.name)) {
+            report(accept, TypeCodes['type-duplicate-member'], `Duplicate ${word} '${m.name}' in ${owner}: each ${word} needs its own name.`, { node: m as never, property: 'name' });
+        }
+        seen.add(m.name);
+    }
+}
+
+function checkRecursiveDatatype(dt: DataType, accept: ValidationAcceptor): void {
+    const path: DataType[] = [];
+    const visiting = new Set<DataType>();
+    const done = new Set<DataType>();
+    const dfs = (current: DataType): DataType[] | undefined => {
+        if (current === dt && path.length > 0) return [...path, current];
+        if (visiting.has(current) || done.has(current)) return undefined;
+        visiting.add(current);
+        path.push(current);
+        for (const field of current.fields) {
+            const t = typeOf(field.type);
+            if (t.kind === 'struct') {
+                const found = dfs(t.datatype);
+                if (found) return found;
+            }
+        }
+        path.pop();
+        visiting.delete(current);
+        done.add(current);
+        return undefined;
+    };
+    const cycle = dfs(dt);
+    if (cycle) {
+        report(accept, TypeCodes['type-recursive'],
+            `Datatype '${dt.name}' contains itself: ${cycle.map((d) => d.name).join(' -> ')}. A datatype cannot contain itself, directly or through other datatypes.`,
+            { node: dt, property: 'name' });
+    }
+}
+
+function checkTypeRef(ref: TypeRef, accept: ValidationAcceptor): void {
+    const container = ref.$container;
+    if (isFunctionPrototype(container) && ref.$containerProperty === 'returnType') {
+        if (ref.primitive !== 'bool' && ref.primitive !== 'void') {
+            report(accept, TypeCodes['type-function-return'],
+                `Function '${container.name}' returns ${typeRefText(ref)}: a function returns bool (a test function, used in event tests) or void (a compute function, used by compute).`,
+                { node: ref });
+        }
+        return;
+    }
+    if (ref.primitive === 'bool' || ref.primitive === 'void') {
+        report(accept, TypeCodes['type-primitive-misuse'],
+            `${ref.primitive} is only a function return type; use int, float, string or a datatype here.`, { node: ref });
+    }
+}
+
+function checkFunctionUse(node: FunctionTest | Compute, expected: 'bool' | 'void', accept: ValidationAcceptor): void {
+    const fn = node.function?.ref;
+    if (!fn) return;
+    const returns = fn.returnType?.primitive;
+    if (returns !== expected && (returns === 'bool' || returns === 'void')) {
+        const message = expected === 'bool'
+            ? `'${fn.name}' is a compute function (returns void): only bool test functions can be used in an event test; call it with compute in the actions.`
+            : `'${fn.name}' is a test function (returns bool): compute calls void functions; use it in an event test <...> instead.`;
+        report(accept, TypeCodes['type-function-misuse'], message, { node, property: 'function' });
+    }
+    if (fn.args.length !== node.args.length) {
+        report(accept, TypeCodes['value-type-mismatch'],
+            `'${fn.name}' takes ${fn.args.length} argument${fn.args.length === 1 ? '' : 's'} (${fn.args.map((a) => `${typeRefText(a.type)} ${a.name}`).join(', ')}); ${node.args.length} given.`,
+            { node, property: 'function' });
+    }
+    const n = Math.min(fn.args.length, node.args.length);
+    for (let i = 0; i < n; i++) {
+        checkValue(node.args[i]!, typeOf(fn.args[i]!.type), accept, { allowVariables: true, what: `argument '${fn.args[i]!.name}' of ${fn.name}` });
+    }
 }

@@ -23,3 +23,4 @@ export function allCodes(): DiagnosticCode[] {
 export function findCode(code: string): DiagnosticCode | undefined {
     return allCodes().find((c) => c.code === code);
 }
+export { renderDiagnosticsDoc } from './render-doc.js';

@@ -1,0 +1,113 @@
+/**
+ * Type checking of written values (SPEC §2.2), reusable wherever a value is written: defaults,
+ * parameters, locals, parameterisations, extractions, notify, function arguments.
+ * - an int literal fits int and float; a real fits float only (a real for an int is an error);
+ * - a string literal fits string and is at most 255 bytes (UTF-8);
+ * - a structured value needs exactly one element per field of the datatype, recursively;
+ * - a variable (with field path) must have the same type (an int variable fits a float).
+ */
+import type { ValidationAcceptor } from 'langium';
+import {
+    isIntLiteral, isRealLiteral, isStringLiteral, isStructValue, isVariableRef, type Value
+} from '../generated/ast.js';
+import { sameType, typeName, typeOf, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
+import { TypeCodes } from './codes/types.js';
+import { report } from './report.js';
+
+export const MAX_STRING_BYTES = 255;
+
+const encoder = new TextEncoder();
+
+export interface ValueCheckOptions {
+    /** Whether variables (locals, parameters, port variables) may appear in the value. */
+    allowVariables: boolean;
+    /** What the value is for, used in messages: "default of field 'a'". */
+    what?: string;
+}
+
+function describeValue(value: Value): string {
+    if (isIntLiteral(value)) return `the integer ${value.value}`;
+    if (isRealLiteral(value)) return `the real ${value.$cstNode?.text ?? value.value}`;
+    if (isStringLiteral(value)) return 'a string';
+    if (isStructValue(value)) return 'a structured value {...}';
+    return `'${variableRefText(value)}'`;
+}
+
+function expectedText(expected: CactalType): string {
+    if (expected.kind === 'struct') {
+        const fields = expected.datatype.fields.map((f) => f.name).join(', ');
+        return `a ${expected.datatype.name} value {${fields}}`;
+    }
+    if (expected.kind === 'primitive') {
+        switch (expected.name) {
+            case 'int': return 'an int (integer literal)';
+            case 'float': return 'a float (real or integer literal)';
+            case 'string': return 'a string ("...")';
+            default: return `a ${expected.name}`;
+        }
+    }
+    return 'a value';
+}
+
+/** Checks `value` against `expected`; reports problems on the value nodes. */
+export function checkValue(value: Value, expected: CactalType, accept: ValidationAcceptor, options: ValueCheckOptions): void {
+    const where = options.what ? ` for ${options.what}` : '';
+    const mismatch = (found: string) =>
+        report(accept, TypeCodes['value-type-mismatch'], `Expected ${expectedText(expected)}${where}, found ${found}.`, { node: value });
+
+    if (isStringLiteral(value)) {
+        const bytes = encoder.encode(value.value).length;
+        if (bytes > MAX_STRING_BYTES) {
+            report(accept, TypeCodes['value-string-too-long'],
+                `This string is ${bytes} bytes long; strings hold at most ${MAX_STRING_BYTES} bytes (C char[256]).`, { node: value });
+        }
+    }
+    if (isVariableRef(value)) {
+        if (!options.allowVariables) {
+            if (value.variable?.ref || value.ordSchema) {
+                report(accept, TypeCodes['value-not-constant'], `Expected a constant${where}, found the variable '${variableRefText(value)}'.`, { node: value });
+            }
+            return;
+        }
+        const actual = typeOfVariableRef(value);
+        if (actual.kind === 'unknown' || expected.kind === 'unknown') return;
+        const intToFloat = expected.kind === 'primitive' && expected.name === 'float' && actual.kind === 'primitive' && actual.name === 'int';
+        if (!sameType(actual, expected) && !intToFloat) {
+            mismatch(`'${variableRefText(value)}' of type ${typeName(actual)}`);
+        }
+        return;
+    }
+    if (isStructValue(value)) {
+        if (expected.kind === 'unknown') {
+            for (const e of value.elements) checkValue(e, { kind: 'unknown' }, accept, options);
+            return;
+        }
+        if (expected.kind !== 'struct') return mismatch(describeValue(value));
+        const fields = expected.datatype.fields;
+        if (fields.length !== value.elements.length) {
+            report(accept, TypeCodes['value-struct-arity'],
+                `${expected.datatype.name} has ${fields.length} field${fields.length === 1 ? '' : 's'} (${fields.map((f) => f.name).join(', ')}); this value has ${value.elements.length} element${value.elements.length === 1 ? '' : 's'}${where}.`,
+                { node: value });
+        }
+        const n = Math.min(fields.length, value.elements.length);
+        for (let i = 0; i < n; i++) {
+            checkValue(value.elements[i]!, typeOf(fields[i]!.type), accept, { ...options, what: `field '${fields[i]!.name}' of ${expected.datatype.name}` });
+        }
+        return;
+    }
+    if (expected.kind === 'unknown') return;
+    if (expected.kind === 'struct') return mismatch(describeValue(value));
+    switch (expected.name) {
+        case 'int':
+            if (!isIntLiteral(value)) mismatch(describeValue(value) + (isRealLiteral(value) ? ' (a real cannot be an int)' : ''));
+            return;
+        case 'float':
+            if (!isIntLiteral(value) && !isRealLiteral(value)) mismatch(describeValue(value));
+            return;
+        case 'string':
+            if (!isStringLiteral(value)) mismatch(describeValue(value));
+            return;
+        default:
+            mismatch(describeValue(value));
+    }
+}
