@@ -1,0 +1,49 @@
+import { expandToNode, joinToNode, toString } from 'langium/generate';
+import type { FunctionPrototype, TypeRef } from '../model/architecture.js';
+import { cType } from './c/c-syntax.js';
+import { blockRegion } from './c/regions.js';
+
+/** `common/SharedFunction<f>.h`: a user test/compute function (report §5.2), arguments by pointer. */
+export function sharedFunctionPath(name: string): string {
+    return `generated/architecture/common/SharedFunction${name}.h`;
+}
+
+/** `char *`, `long *`, `double *`, `TypeA *`: every argument by pointer (SPEC §3). */
+export function cPointerType(t: TypeRef): string {
+    return `${cType(t)} *`;
+}
+
+/** The C prototype text of a user function: `int testit(char * arg1, TypeA * arg2)`. */
+export function cFunctionSignature(f: FunctionPrototype): string {
+    const ret = f.returns === 'bool' ? 'int' : 'void';
+    const args = f.args.length ? f.args.map((a) => `${cPointerType(a.type)} ${a.name}`).join(', ') : 'void';
+    return `${ret} ${f.name}(${args})`;
+}
+
+export function generateSharedFunctionHeader(f: FunctionPrototype): string {
+    const guard = `SHARED_FUNCTION_${f.name.toUpperCase()}_H`;
+    const deps = [...new Set(f.args.flatMap((a) => ('datatype' in a.type ? [a.type.datatype] : [])))];
+    const unused = f.args.map((a) => `(void)${a.name};`).join(' ');
+    const body = (unused ? `${unused} //remove once the arguments are used\n` : '') + '//TODO\n' +
+        (f.returns === 'bool' ? 'return 0;//return 0 when result is false otherwise must return 1\n' : '');
+    const node = expandToNode`
+        #ifndef ${guard}
+        #define ${guard}
+        #include <stdio.h>
+        #include <string.h>
+        #include "tools.h"
+        ${joinToNode(deps, (d) => `#include "Shared${d}.h"`, { appendNewLineIfNotEmpty: true })}
+
+        //from here you can make inclusions and definitions
+        ${blockRegion(`protect_additional_import_function_${f.name}`, '//TODO')}
+
+        static inline ${cFunctionSignature(f)};
+
+        static inline ${cFunctionSignature(f)}{
+            ${blockRegion(`protect_function_impl_${f.name}`, body)}
+        }
+
+        #endif
+    `;
+    return toString(node) + '\n';
+}

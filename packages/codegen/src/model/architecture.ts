@@ -1,0 +1,143 @@
+/**
+ * The architecture as the generators see it: plain data with references resolved to names.
+ * Built from Langium documents by `from-langium.ts`; tests and benchmarks may build it directly.
+ */
+
+export type PrimitiveName = 'int' | 'float' | 'string';
+
+/** A Cactal type: a primitive or a datatype (by name). */
+export type TypeRef = { primitive: PrimitiveName } | { datatype: string };
+
+/** A value as written in Cactal. `var` is a variable with a field path (`temp_message.value`, `ord_schema`). */
+export type Value =
+    | { kind: 'int'; value: number }
+    | { kind: 'real'; value: number }
+    | { kind: 'string'; value: string }
+    | { kind: 'struct'; elements: Value[] }
+    | { kind: 'var'; name: string; path: string[] };
+
+export interface Field {
+    name: string;
+    type: TypeRef;
+    default?: Value;
+}
+
+export interface Datatype {
+    name: string;
+    fields: Field[];
+}
+
+export interface FunctionPrototype {
+    name: string;
+    returns: 'bool' | 'void';
+    args: Array<{ name: string; type: TypeRef }>;
+}
+
+/** A parameter port or a data/event port of a module or supervisor. */
+export interface PortDecl {
+    name: string;
+    index: number;
+    type: TypeRef;
+    initial?: Value;
+}
+
+export interface Module {
+    name: string;
+    kind: 'synchronous' | 'asynchronous';
+    parameters: PortDecl[];
+    dataIn: PortDecl[];
+    dataOut: PortDecl[];
+    eventIn: PortDecl[];
+    eventOut: PortDecl[];
+    /** `C` of a synchronous module, in nanoseconds. */
+    wcetNs?: number;
+}
+
+export interface NamedValue {
+    name: string;
+    type: TypeRef;
+    default?: Value;
+}
+
+export interface ParamSetting {
+    port: number;
+    value: Value;
+}
+
+export interface Schema {
+    name: string;
+    kind: 'periodic' | 'event';
+    parameters: NamedValue[];
+    periodNs?: number;
+    criticalDelayNs?: number;
+    modules: Array<{ module: string; settings: ParamSetting[] }>;
+    precedences: Array<{ before: string; after: string }>;
+    dataFlows: Array<{ source: string; sourcePort: number; target: string; targetPort: number; periodicity: number }>;
+    eventFlows: Array<{ source: string; sourcePort: number; target: string; targetPort: number; oneShot: boolean }>;
+}
+
+export interface SchedulerConfiguration {
+    modules: string[];
+    schemas: string[];
+}
+
+export type Persistence = undefined | { ns: number } | 'infinite';
+
+export type Test =
+    | { op: '==' | '!=' | '<' | '>' | '<=' | '>='; left: Value; right: Value }
+    | { op: 'call'; function: string; args: Value[] };
+
+/** `target.path = value` (extractions, notify assignments). */
+export interface Assignment {
+    target: string;
+    path: string[];
+    value: Value;
+}
+
+export type Event =
+    | { kind: 'started' | 'endof'; rule: string; persistence: Persistence }
+    | { kind: 'duration'; rule: string; timeNs: number; persistence: Persistence }
+    | { kind: 'elapsed'; timeNs: number; persistence: Persistence }
+    | { kind: 'module'; source: string; port: number; tests: Test[][]; persistence: Persistence; extractions: Assignment[] };
+
+/** `c1 or c2 ...`, each clause `(e1 and e2 ...)`. */
+export type Condition = Event[][];
+
+export type Action =
+    | { kind: 'schema'; schema: string; assignments: Array<{ parameter: string; value: Value }> }
+    | { kind: 'parameterize'; module: string; settings: ParamSetting[] }
+    | { kind: 'supervisor'; supervisor: string; function: string; assignments: Array<{ parameter: string; value: Value }> }
+    | { kind: 'resttime' | 'critical'; module: string }
+    | { kind: 'compute'; function: string; args: Value[] }
+    | { kind: 'subscribe'; source: string; sourcePort: number; inPort: number; oneShot: boolean }
+    | { kind: 'notify'; port: number; assignments: Assignment[] };
+
+export interface Rule {
+    label: string;
+    pre: Condition;
+    actions: Action[];
+    post: Condition;
+}
+
+export interface SupervisionFunction {
+    name: string;
+    parameters: NamedValue[];
+    locals: NamedValue[];
+    rules: Rule[];
+}
+
+export interface Supervisor {
+    name: string;
+    eventIn: PortDecl[];
+    eventOut: PortDecl[];
+    functions: SupervisionFunction[];
+}
+
+export interface Architecture {
+    datatypes: Datatype[];
+    functions: FunctionPrototype[];
+    modules: Module[];
+    schemas: Schema[];
+    scheduler?: SchedulerConfiguration;
+    supervisors: Supervisor[];
+}
