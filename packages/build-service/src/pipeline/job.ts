@@ -70,6 +70,7 @@ export class Job {
   private readonly durations: Partial<Record<JobStep, number>> = {};
   private readonly truncated = { stdout: false, stderr: false };
   private mechanisms: Mechanisms | null = null;
+  private finalStatus: 'succeeded' | 'failed' | 'cancelled' | null = null;
   private finishedSignal!: () => void;
   /** Resolves when the job has ended and released everything it held. */
   readonly finished = new Promise<void>((r) => (this.finishedSignal = r));
@@ -104,6 +105,8 @@ export class Job {
     if (this.isDone) return;
     this.result = this.makeResult('prepare', false, null, null, message, null);
     this.finish(status);
+    this.emitEnd();
+    this.finishedSignal();
   }
 
   /** Cancels: kills the running sandbox (if any); the job ends with status "cancelled". */
@@ -202,6 +205,11 @@ export class Job {
     } finally {
       // the job's processes are all gone here (runStep awaits them), so the work dir is safe to touch
       if (ws) await ws.release().catch(() => {});
+      if (!this.finalStatus) {
+        this.result ??= this.makeResult(step, false, null, null, 'internal error: job ended without a result', null);
+        this.finish('failed');
+      }
+      this.emitEnd();
       this.finishedSignal();
     }
   }
@@ -311,10 +319,15 @@ export class Job {
     };
   }
 
+  /** Records the final status; the job's events end once its resources are released (emitEnd). */
   private finish(status: 'succeeded' | 'failed' | 'cancelled'): void {
-    if (this.isDone) return;
+    this.finalStatus ??= status;
+  }
+
+  private emitEnd(): void {
+    if (this.isDone || !this.finalStatus) return;
     this.finishedAt = Date.now();
-    this.setStatus(status);
+    this.setStatus(this.finalStatus);
     this.events.append({ type: 'end', result: this.result });
   }
 

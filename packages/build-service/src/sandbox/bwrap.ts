@@ -135,6 +135,7 @@ export class BwrapSandbox implements Sandbox {
       '--tmpfs', '/tmp',
       '--bind', cmd.workDir, SANDBOX_WORK,
       ...(cmd.runtimeDir ? ['--ro-bind', cmd.runtimeDir, SANDBOX_RUNTIME] : []),
+      '--remount-ro', '/',
       '--chdir', join(SANDBOX_WORK, cmd.cwd),
       '--die-with-parent',
       '--new-session',

@@ -4,6 +4,7 @@
  * process limit hit, and kills the whole tree on demand.
  */
 import { spawn } from 'node:child_process';
+import { readdirSync, readFileSync } from 'node:fs';
 import type { LimitHit, Limits } from '../limits.js';
 import { memoryBytes } from '../limits.js';
 import type { JobCgroup } from './cgroup.js';
@@ -38,11 +39,28 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
   let limitHit: LimitHit | null = null;
   let killing: Promise<void> | null = null;
   let exited = false;
+  let markExited!: () => void;
+  const exitedPromise = new Promise<void>((r) => (markExited = r));
 
+  /**
+   * Kills the inner processes first and the direct child last, so that every process is reaped by
+   * its own parent (killing the outer bwrap first would leave the namespace's init to PID 1).
+   */
   const killTree = async (): Promise<void> => {
-    if (child.pid !== undefined) {
+    const pid = child.pid;
+    const inner = new Set<number>(pid === undefined ? [] : descendantsOf(pid));
+    if (opts.cgroup) for (const p of await opts.cgroup.pids()) if (p !== pid) inner.add(p);
+    for (const p of inner) {
       try {
-        process.kill(-child.pid, 'SIGKILL');
+        process.kill(p, 'SIGKILL');
+      } catch {
+        /* already gone */
+      }
+    }
+    if (pid !== undefined && !exited) {
+      await Promise.race([exitedPromise, new Promise((r) => setTimeout(r, 700))]);
+      try {
+        process.kill(-pid, 'SIGKILL');
       } catch {
         /* group gone */
       }
@@ -101,6 +119,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
     });
     child.on('exit', (code, signal) => {
       exited = true;
+      markExited();
       exit = { code, signal };
       // a daemonised grandchild may keep the pipes open: stop it, then give the pipes a moment
       void killTree();
@@ -137,4 +156,29 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
     kill,
     noteLine,
   };
+}
+
+/** Every process below `root` (from /proc/<pid>/stat parent links), deepest last. */
+export function descendantsOf(root: number): number[] {
+  const parent = new Map<number, number>();
+  for (const name of readdirSync('/proc')) {
+    if (!/^\d+$/.test(name)) continue;
+    try {
+      const stat = readFileSync(`/proc/${name}/stat`, 'utf8');
+      const ppid = Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]);
+      parent.set(Number(name), ppid);
+    } catch {
+      /* exited meanwhile */
+    }
+  }
+  const out: number[] = [];
+  const frontier = [root];
+  while (frontier.length) {
+    const p = frontier.shift()!;
+    for (const [pid, pp] of parent) if (pp === p) {
+      out.push(pid);
+      frontier.push(pid);
+    }
+  }
+  return out;
 }
