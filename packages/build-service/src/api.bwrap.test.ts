@@ -1,0 +1,171 @@
+/**
+ * The HTTP API against real bwrap jobs: streaming order and completeness (SSE and WebSocket,
+ * live and replayed), queue full -> 429, cancel mid-build and mid-run within 2 s, diagnostics,
+ * request validation.
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import WebSocket from 'ws';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { CANCEL_DEADLINE_MS } from './limits.js';
+import type { JobEvent, LineEvent } from './pipeline/job-events.js';
+import { createBuildServer, type BuildServer } from './server.js';
+import { brokenProgram, honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
+import { getJob, postJob, readEvents } from './test-support/client.js';
+
+let server: BuildServer;
+let url: string;
+let cacheDir: string;
+
+beforeAll(async () => {
+  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
+  server = createBuildServer({ port: 0, concurrency: 2, queueSize: 1, cacheDir, sandbox: 'bwrap' });
+  url = (await server.listen()).url;
+});
+
+afterAll(async () => {
+  await server?.close();
+  rmSync(cacheDir, { recursive: true, force: true });
+});
+
+function wsEvents(id: string): Promise<JobEvent[]> {
+  return new Promise((resolve, reject) => {
+    const ws = new WebSocket(`${url.replace('http', 'ws')}/api/jobs/${id}/ws`);
+    const events: JobEvent[] = [];
+    ws.on('message', (d) => events.push(JSON.parse(String(d)) as JobEvent));
+    ws.on('close', () => resolve(events));
+    ws.on('error', reject);
+  });
+}
+
+function checkStream(lines: LineEvent[], stream: 'stdout' | 'stderr', prefix: string, n: number): void {
+  const got = lines.filter((l) => l.step === 'run' && l.stream === stream && l.line.startsWith(prefix)).map((l) => l.line);
+  expect(got).toEqual(Array.from({ length: n }, (_, i) => `${prefix} ${i}`));
+}
+
+describe('streaming', () => {
+  test('every line arrives once, in order per stream, live and on replay (SSE and WebSocket)', async () => {
+    const n = 3000;
+    const r = await postJob(url, { action: 'run', kind: 'make', project: { files: makeProject(honestProgram(n)) } });
+    expect(r.status).toBe(201);
+    const id = r.json.id as string;
+    const [live, ws] = await Promise.all([readEvents(url, id), wsEvents(id)]);
+    const replay = await readEvents(url, id);
+    for (const events of [live, ws, replay]) {
+      expect(events.map((e) => e.seq)).toEqual(Array.from({ length: events.length }, (_, i) => i + 1));
+      const lines = events.filter((e): e is LineEvent => e.type === 'line');
+      checkStream(lines, 'stdout', 'out', n);
+      checkStream(lines, 'stderr', 'err', n);
+      expect(events.at(-1)!.type).toBe('end');
+      for (const l of lines) expect(typeof l.t).toBe('number');
+    }
+    expect(JSON.stringify(ws)).toBe(JSON.stringify(live));
+    expect(JSON.stringify(replay)).toBe(JSON.stringify(live));
+    // resume after a given event
+    const tail = await readEvents(url, id, undefined, 10);
+    expect(tail[0]!.seq).toBe(11);
+    // the text log keeps every line
+    const log = await (await fetch(`${url}/api/jobs/${id}/log`)).text();
+    expect(log.split('\n').filter((l) => / run run stdout \| out \d+$/.test(l))).toHaveLength(n);
+  });
+});
+
+describe('diagnostics', () => {
+  test('gcc problems come back structured, with file, line and column', async () => {
+    const r = await postJob(url, { action: 'build', kind: 'make', project: { files: makeProject(brokenProgram) } });
+    const events = await readEvents(url, r.json.id as string);
+    const job = await getJob(url, r.json.id as string);
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toMatch(/^build failed: 1 error\(s\)/);
+    const err = job.diagnostics.find((d: any) => d.severity === 'error');
+    expect(err).toMatchObject({ file: 'main.c', line: 9, column: 10, message: expect.stringContaining('undeclared_thing') });
+    const warn = job.diagnostics.find((d: any) => d.severity === 'warning');
+    expect(warn).toMatchObject({ file: 'main.c', line: 8, option: '-Wunused-variable' });
+    expect(events.filter((e) => e.type === 'diagnostic')).toHaveLength(job.diagnostics.length);
+  });
+});
+
+describe('queue and cancel', () => {
+  test('a full queue answers 429; a queued job can be cancelled at once', async () => {
+    const loop = { action: 'run', kind: 'make', project: { files: makeProject(infiniteLoop) }, limits: { runSeconds: 30 } };
+    const a = await postJob(url, loop);
+    const b = await postJob(url, loop);
+    const c = await postJob(url, loop); // queued (queueSize 1)
+    const d = await postJob(url, loop);
+    expect([a.status, b.status, c.status]).toEqual([201, 201, 201]);
+    expect(d.status).toBe(429);
+    expect(d.json.code).toBe('queue_full');
+    expect(d.headers.get('retry-after')).toBe('2');
+    const cancelQueued = await fetch(`${url}/api/jobs/${c.json.id}`, { method: 'DELETE' });
+    expect(cancelQueued.status).toBe(202);
+    expect((await getJob(url, c.json.id as string)).status).toBe('cancelled');
+    for (const j of [a, b]) await fetch(`${url}/api/jobs/${j.json.id}`, { method: 'DELETE' });
+    for (const j of [a, b]) expect((await getJob(url, (await readEvents(url, j.json.id as string)) && (j.json.id as string))).status).toBe('cancelled');
+  });
+
+  async function cancelWhen(body: unknown, ready: (e: JobEvent) => boolean): Promise<{ ms: number; job: Record<string, any> }> {
+    const r = await postJob(url, body);
+    const id = r.json.id as string;
+    let t0 = 0;
+    let sent = false;
+    await readEvents(url, id, (e) => {
+      if (!sent && ready(e)) {
+        sent = true;
+        t0 = Date.now();
+        void fetch(`${url}/api/jobs/${id}`, { method: 'DELETE' });
+      }
+    });
+    return { ms: Date.now() - t0, job: await getJob(url, id) };
+  }
+
+  test('cancel mid-run stops everything within 2 s', async () => {
+    const { ms, job } = await cancelWhen(
+      { action: 'run', kind: 'make', project: { files: makeProject(infiniteLoop) } },
+      (e) => e.type === 'line' && e.line === 'looping',
+    );
+    expect(job.status).toBe('cancelled');
+    expect(job.result.message).toBe('cancelled');
+    expect(ms).toBeLessThan(CANCEL_DEADLINE_MS);
+  });
+
+  test('cancel mid-build stops everything within 2 s', async () => {
+    const files = makeProject(honestProgram(1));
+    files.Makefile = `all:\n\t@echo compiling; sleep 60\nrun:\n\ttrue\n`;
+    const { ms, job } = await cancelWhen({ action: 'build', kind: 'make', project: { files } }, (e) => e.type === 'line' && e.line === 'compiling');
+    expect(job.status).toBe('cancelled');
+    expect(job.result.step).toBe('build');
+    expect(ms).toBeLessThan(CANCEL_DEADLINE_MS);
+  });
+});
+
+describe('requests', () => {
+  test.each([
+    [{ project: { files: { '../x': '' } }, kind: 'make' }, 400, /"\.\." component/],
+    [{ project: { files: { '/etc/passwd': '' } }, kind: 'make' }, 400, /absolute path/],
+    [{ project: { dir: '/etc' } }, 403, /outside the folders/],
+    [{ project: { files: {} }, sandbox: 'chroot' }, 400, /sandbox must be one of/],
+    [{ project: { files: {} }, limits: { memoryMiB: 4096 } }, 400, /above the server's 512/],
+    [{ project: { files: {} }, limits: { cpu: 1 } }, 400, /unknown limit "cpu"/],
+    [{ project: { files: {} }, action: 'deploy' }, 400, /action must be/],
+  ])('%j -> %i', async (body, status, message) => {
+    const r = await postJob(url, body);
+    expect(r.status).toBe(status);
+    expect(r.json.error).toMatch(message);
+  });
+
+  test('invalid JSON and unknown ids get clear errors', async () => {
+    const bad = await fetch(`${url}/api/jobs`, { method: 'POST', body: '{nope' });
+    expect(bad.status).toBe(400);
+    expect(((await bad.json()) as { error: string }).error).toMatch(/invalid JSON/);
+    const missing = await fetch(`${url}/api/jobs/j-nothere`);
+    expect(missing.status).toBe(404);
+  });
+
+  test('GET /api/sandboxes says what auto picks and the limits', async () => {
+    const info = (await (await fetch(`${url}/api/sandboxes`)).json()) as Record<string, any>;
+    expect(info.auto).toBe('bwrap');
+    expect(info.limits).toMatchObject({ memoryMiB: 512, processes: 256, buildSeconds: 120, runSeconds: 60, outputBytesPerStream: 1048576 });
+    expect(info.sandboxes.find((s: any) => s.name === 'none').detail).toMatch(/not enforced: network isolation/);
+  });
+});
