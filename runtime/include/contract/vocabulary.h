@@ -98,7 +98,8 @@ extern const ContractType contract_type_string;
 /**
  * CONTRACT_DEFINE_TYPE(TypeA, default_ptr) defines `static const ContractType contract_type_TypeA`
  * with type-safe adapters around the generated eq_/diff_/inf_/sup_/infeq_/supeq_/set_/get_/print_
- * functions (no call through an incompatible function pointer). Use after including
+ * functions (no call through an incompatible function pointer), marked unused so that a type no
+ * table refers to does not warn. No semicolon after it. Use after including
  * SharedTypeA.h, e.g.
  *     static const TypeA contract_default_TypeA = {0.0, 0.0, 0.0};
  *     CONTRACT_DEFINE_TYPE(TypeA, &contract_default_TypeA)
@@ -113,7 +114,7 @@ extern const ContractType contract_type_string;
     static void contract_set_##T(void *d, void *s) { set_##T((T *)d, (T *)s); }               \
     static int contract_get_##T(void *d, char *text) { return get_##T((T *)d, text); }         \
     static void contract_print_##T(void *v) { print_##T((T *)v); }                             \
-    static const ContractType contract_type_##T = {                                            \
+    __attribute__((unused)) static const ContractType contract_type_##T = {                    \
         #T, CONTRACT_KIND_STRUCT, sizeof(T), (default_ptr),                                    \
         contract_eq_##T, contract_diff_##T, contract_inf_##T, contract_sup_##T,                \
         contract_infeq_##T, contract_supeq_##T, contract_set_##T, contract_get_##T,            \

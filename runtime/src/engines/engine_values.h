@@ -1,0 +1,57 @@
+/*
+ * engine_values.h — values described by ContractType: copy with long<->double conversion,
+ * comparisons (struct/string through the type's functions, int/float mixed numerically),
+ * reading value references and applying assignments. Shared by both engines.
+ */
+#ifndef CONTRACT_ENGINE_VALUES_H
+#define CONTRACT_ENGINE_VALUES_H
+
+#include "contract/vocabulary.h"
+
+/** Where the variables a reference may designate live, for one evaluation. Any may be NULL. */
+typedef struct EngineScope {
+    const ContractFunction *fn;   /* locals/params layout                                     */
+    unsigned char *locals;        /* the running function's locals block                      */
+    const unsigned char *params;  /* PARAM refs: function params or schema params block       */
+    const ContractVar *param_vars;/* layout of `params` (fn->params or schema->params)        */
+    int nparam_vars;
+    /* IN_PORT refs: current port variables of the supervisor */
+    const unsigned char *(*port_value)(void *ctx, int port, const ContractType **type);
+    void *port_ctx;
+    /* IN_PORT refs that designate the port of the occurrence at hand read its data instead */
+    int occ_port;                 /* -1: none                                                 */
+    const unsigned char *occ_data;
+    const char *ord_schema;       /* ORD_SCHEMA refs; NULL when not an ORD event              */
+} EngineScope;
+
+/** Pointer to the value a reference designates (field offset applied), or NULL if it cannot
+ *  be resolved in this scope. */
+const unsigned char *engine_ref_ptr(const EngineScope *s, const ContractRef *r);
+
+/** Copies a value of type `st` at `src` into a place of type `dt` at `dst`, converting
+ *  long<->double; other mismatches copy min(size) bytes (checked tables never do that). */
+void engine_copy_value(void *dst, const ContractType *dt, const void *src, const ContractType *st);
+
+/** Writes the default value of `t` (or `explicit_default` when non-NULL) at dst. */
+void engine_default_value(void *dst, const ContractType *t, const void *explicit_default);
+
+/** Evaluates `a op b` (op: EQ..GE). Returns 1/0. */
+int engine_compare(ContractTestOp op, const void *a, const ContractType *at, const void *b,
+                   const ContractType *bt);
+
+/** Applies assignment `as` to the block whose variables start at `base + vars[as->index]
+ *  .offset` (vars != NULL) or, when vars == NULL, to `base` directly (+ as->offset).
+ *  Returns 0, or -1 when its source cannot be resolved. */
+int engine_apply_assign(const EngineScope *s, const ContractAssign *as, unsigned char *base,
+                        const ContractVar *vars);
+
+/** Fills a block from its variables' defaults. */
+void engine_init_block(unsigned char *block, const ContractVar *vars, int nvars);
+
+/** Builds the value of a module parameter port into dst (size setting->type->size). */
+int engine_build_setting(const EngineScope *s, const ContractParamSetting *setting, void *dst);
+
+/** Copies a NUL-terminated string into a string value (char[256]), truncating. */
+void engine_set_string(char *dst, const char *src);
+
+#endif

@@ -1,0 +1,333 @@
+/* ord_core.c — see ord_core.h. Semantics: SPEC §4.2, decisions in docs/engines.md. */
+#define _POSIX_C_SOURCE 200809L
+#include "ord_core.h"
+
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "engine_values.h"
+
+typedef struct SchemaState {
+    const ContractSchema *s;
+    int active;
+    uint32_t act_id;
+    char requester[64];
+    unsigned char *params;
+    int64_t next_tick;
+    /* the current cycle */
+    int running;
+    int64_t cycle_tick;
+    int reported;          /* ORD:0 already emitted for this cycle */
+    int pending;           /* modules released or waiting, not finished */
+    int *npreds;           /* per module: number of predecessors (static) */
+    int *waiting;          /* per module: predecessors not yet finished this cycle */
+    char *released, *finished;
+    OrdSchemaStats stats;
+} SchemaState;
+
+struct OrdCore {
+    const ContractOrdVocabulary *v;
+    OrdIo io;
+    int64_t now;
+    int skip_late;         /* real time: ticks overtaken by a later due tick are missed */
+    SchemaState *st;
+};
+
+static void trace(OrdCore *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void trace(OrdCore *c, const char *fmt, ...) {
+    if (!c->io.trace) return;
+    char line[512];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    c->io.trace(c->io.ctx, c->now, line);
+}
+
+static int schema_index(const OrdCore *c, const char *name) {
+    for (int i = 0; i < c->v->nschemas; i++)
+        if (strcmp(c->v->schemas[i]->name, name) == 0) return i;
+    return -1;
+}
+
+static int shares_module(const ContractSchema *a, const ContractSchema *b) {
+    for (int i = 0; i < a->nmodules; i++)
+        for (int j = 0; j < b->nmodules; j++)
+            if (strcmp(a->modules[i].module, b->modules[j].module) == 0) return 1;
+    return 0;
+}
+
+static void release(OrdCore *c, SchemaState *ss, int m) {
+    ss->released[m] = 1;
+    trace(c, "release %s (%s)", ss->s->modules[m].module, ss->s->name);
+    if (c->io.release) c->io.release(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->cycle_tick);
+}
+
+static void finish_cycle(OrdCore *c, SchemaState *ss) {
+    ss->running = 0;
+    ss->stats.completed++;
+    int64_t rt = c->now - ss->cycle_tick;
+    if (rt > ss->stats.max_response_ns) ss->stats.max_response_ns = rt;
+}
+
+static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
+    const ContractSchema *s = ss->s;
+    ss->running = 1;
+    ss->cycle_tick = tick;
+    ss->reported = 0;
+    ss->pending = s->nmodules;
+    ss->stats.cycles++;
+    for (int m = 0; m < s->nmodules; m++) {
+        ss->waiting[m] = ss->npreds[m];
+        ss->released[m] = 0;
+        ss->finished[m] = 0;
+    }
+    if (s->nmodules == 0) {
+        finish_cycle(c, ss);
+        return;
+    }
+    for (int m = 0; m < s->nmodules && ss->running; m++)
+        if (ss->waiting[m] == 0) release(c, ss, m);
+}
+
+static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
+    int64_t tick = ss->next_tick;
+    ss->next_tick += ss->s->period_ns;
+    if (c->skip_late && until >= ss->next_tick) { /* a later tick is already due: this one is obsolete */
+        ss->stats.missed_ticks++;
+        trace(c, "missed tick of %s", ss->s->name);
+        return;
+    }
+    if (ss->running) {
+        ss->stats.overruns++;
+        trace(c, "overrun: %s cycle still running, release skipped", ss->s->name);
+        return;
+    }
+    start_cycle(c, ss, tick);
+}
+
+static void do_check(OrdCore *c, SchemaState *ss) {
+    ss->reported = 1;
+    ss->stats.deadline_misses++;
+    trace(c, "deadline miss: %s (ORD:0)", ss->s->name);
+    if (c->io.emit) c->io.emit(c->io.ctx, CONTRACT_ORD_EVENT_DEADLINE_MISS, ss->s->name);
+}
+
+/* fires ticks and checks due at or before `until` (strictly before when !inclusive) */
+static void run_until(OrdCore *c, int64_t until, int inclusive) {
+    for (;;) {
+        int best = -1, best_is_check = 0;
+        int64_t best_t = 0;
+        for (int i = 0; i < c->v->nschemas; i++) {
+            SchemaState *ss = &c->st[i];
+            if (!ss->active) continue;
+            if (ss->running && !ss->reported) {
+                int64_t tc = ss->cycle_tick + ss->s->critical_delay_ns;
+                if (best < 0 || tc < best_t || (tc == best_t && !best_is_check)) {
+                    best = i;
+                    best_t = tc;
+                    best_is_check = 1;
+                }
+            }
+            int64_t tt = ss->next_tick;
+            if (best < 0 || tt < best_t) {
+                best = i;
+                best_t = tt;
+                best_is_check = 0;
+            }
+        }
+        if (best < 0 || best_t > until || (!inclusive && best_t == until)) break;
+        if (best_t > c->now) c->now = best_t;
+        if (best_is_check) do_check(c, &c->st[best]);
+        else do_tick(c, &c->st[best], until);
+    }
+    if (until > c->now && inclusive) c->now = until;
+}
+
+void ord_core_advance(OrdCore *c, int64_t t) { run_until(c, t, 1); }
+
+int ord_core_next_deadline(const OrdCore *c, int64_t *deadline) {
+    int found = 0;
+    for (int i = 0; i < c->v->nschemas; i++) {
+        const SchemaState *ss = &c->st[i];
+        if (!ss->active) continue;
+        int64_t t = ss->next_tick;
+        if (ss->running && !ss->reported && ss->cycle_tick + ss->s->critical_delay_ns < t)
+            t = ss->cycle_tick + ss->s->critical_delay_ns;
+        if (!found || t < *deadline) *deadline = t;
+        found = 1;
+    }
+    return found;
+}
+
+int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *params, size_t size,
+                      const char *requester, uint32_t activation_id) {
+    ord_core_advance(c, t);
+    int i = schema_index(c, name);
+    if (i < 0) {
+        trace(c, "refused: unknown schema %s", name);
+        if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 0);
+        return -1;
+    }
+    SchemaState *ss = &c->st[i];
+    for (int j = 0; j < c->v->nschemas; j++) {
+        if (!c->st[j].active || !shares_module(ss->s, c->st[j].s)) continue;
+        trace(c, "conflict: %s shares a module with active %s (ORD:1)", name, c->st[j].s->name);
+        if (c->io.emit) c->io.emit(c->io.ctx, CONTRACT_ORD_EVENT_CONFLICT, name);
+        if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 0);
+        return -1;
+    }
+    const ContractSchema *s = ss->s;
+    engine_init_block(ss->params, s->params, s->nparams);
+    if (params) memcpy(ss->params, params, size < s->params_size ? size : s->params_size);
+    EngineScope scope;
+    memset(&scope, 0, sizeof scope);
+    scope.params = ss->params;
+    scope.param_vars = s->params;
+    scope.nparam_vars = s->nparams;
+    scope.occ_port = -1;
+    for (int m = 0; m < s->nmodules; m++)
+        for (int k = 0; k < s->modules[m].nsettings; k++) {
+            const ContractParamSetting *ps = &s->modules[m].settings[k];
+            unsigned char *val = malloc(ps->type->size);
+            if (val && engine_build_setting(&scope, ps, val) == 0 && c->io.set_param)
+                c->io.set_param(c->io.ctx, s->modules[m].module, ps->port, val, ps->type->size);
+            free(val);
+        }
+    for (int k = 0; k < s->ndata_flows; k++)
+        if (c->io.connect_data) c->io.connect_data(c->io.ctx, &s->data_flows[k]);
+    ss->active = 1;
+    ss->act_id = activation_id;
+    snprintf(ss->requester, sizeof ss->requester, "%s", requester ? requester : "");
+    ss->running = 0;
+    ss->next_tick = c->now;
+    trace(c, "activate %s", name);
+    if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 1);
+    ord_core_advance(c, c->now);
+    return 0;
+}
+
+int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *requester,
+                        uint32_t activation_id) {
+    ord_core_advance(c, t);
+    int i = schema_index(c, name);
+    SchemaState *ss = i < 0 ? NULL : &c->st[i];
+    if (!ss || !ss->active || (activation_id != 0 && activation_id != ss->act_id)) {
+        trace(c, "ignored: deactivate %s (not this activation)", name);
+        if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 0);
+        return -1;
+    }
+    ss->active = 0;
+    ss->running = 0;
+    for (int k = 0; k < ss->s->ndata_flows; k++)
+        if (c->io.disconnect_data) c->io.disconnect_data(c->io.ctx, &ss->s->data_flows[k]);
+    trace(c, "deactivate %s", name);
+    if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 1);
+    return 0;
+}
+
+void ord_core_module_finished(OrdCore *c, int64_t t, const char *module) {
+    run_until(c, t, 0); /* a check due exactly at t comes after this completion */
+    if (t > c->now) c->now = t;
+    for (int i = 0; i < c->v->nschemas; i++) {
+        SchemaState *ss = &c->st[i];
+        if (!ss->active || !ss->running) continue;
+        const ContractSchema *s = ss->s;
+        for (int m = 0; m < s->nmodules; m++) {
+            if (strcmp(s->modules[m].module, module) != 0 || !ss->released[m] || ss->finished[m])
+                continue;
+            ss->finished[m] = 1;
+            ss->pending--;
+            for (int e = 0; e < s->nprecedences; e++)
+                if (s->precedences[e].before == m) {
+                    int n = s->precedences[e].after;
+                    if (--ss->waiting[n] == 0 && !ss->released[n]) release(c, ss, n);
+                }
+            if (ss->pending == 0) finish_cycle(c, ss);
+            goto done;
+        }
+    }
+    trace(c, "ignored: %s finished outside a cycle", module);
+done:
+    run_until(c, t, 1);
+}
+
+void ord_core_set_skip_late_ticks(OrdCore *c, int on) { c->skip_late = on; }
+
+int ord_core_schema_active(const OrdCore *c, const char *name) {
+    int i = schema_index(c, name);
+    return i >= 0 && c->st[i].active;
+}
+
+int ord_core_stats(const OrdCore *c, const char *name, OrdSchemaStats *out) {
+    int i = schema_index(c, name);
+    if (i < 0) return -1;
+    *out = c->st[i].stats;
+    return 0;
+}
+
+OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *err, size_t errlen) {
+    if (contract_check_ord_vocabulary(v, err, errlen) != 0) return NULL;
+    OrdCore *c = calloc(1, sizeof *c);
+    if (!c) goto oom;
+    c->v = v;
+    if (io) c->io = *io;
+    c->now = INT64_MIN;
+    c->st = calloc((size_t)v->nschemas + 1, sizeof *c->st);
+    if (!c->st) goto oom;
+    for (int i = 0; i < v->nschemas; i++) {
+        SchemaState *ss = &c->st[i];
+        const ContractSchema *s = v->schemas[i];
+        ss->s = s;
+        size_t n = (size_t)s->nmodules + 1;
+        ss->params = calloc(1, s->params_size + 1);
+        ss->npreds = calloc(n, sizeof(int));
+        ss->waiting = calloc(n, sizeof(int));
+        ss->released = calloc(n, 1);
+        ss->finished = calloc(n, 1);
+        if (!ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
+        for (int e = 0; e < s->nprecedences; e++) ss->npreds[s->precedences[e].after]++;
+        /* the precedence graph must be acyclic: Kahn's algorithm */
+        int *w = ss->waiting, done = 0;
+        char *seen = ss->released;
+        for (int m = 0; m < s->nmodules; m++) { w[m] = ss->npreds[m]; seen[m] = 0; }
+        for (int progress = 1; progress;) {
+            progress = 0;
+            for (int m = 0; m < s->nmodules; m++)
+                if (!seen[m] && w[m] == 0) {
+                    seen[m] = 1;
+                    done++;
+                    progress = 1;
+                    for (int e = 0; e < s->nprecedences; e++)
+                        if (s->precedences[e].before == m) w[s->precedences[e].after]--;
+                }
+        }
+        if (done != s->nmodules) {
+            snprintf(err, errlen, "invalid tables: ORD schema %s: the scheduling graph has a cycle",
+                     s->name);
+            ord_core_destroy(c);
+            return NULL;
+        }
+    }
+    return c;
+oom:
+    snprintf(err, errlen, "out of memory creating ORD");
+    ord_core_destroy(c);
+    return NULL;
+}
+
+void ord_core_destroy(OrdCore *c) {
+    if (!c) return;
+    if (c->st)
+        for (int i = 0; i < c->v->nschemas; i++) {
+            free(c->st[i].params);
+            free(c->st[i].npreds);
+            free(c->st[i].waiting);
+            free(c->st[i].released);
+            free(c->st[i].finished);
+        }
+    free(c->st);
+    free(c);
+}

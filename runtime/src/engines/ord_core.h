@@ -1,0 +1,72 @@
+/*
+ * ord_core.h — the scheduler's deterministic core (SPEC §4.2).
+ *
+ * Like sup_core, it has no I/O and no clock: the caller passes times (virtual in tests,
+ * CLOCK_MONOTONIC in ord_main.c), reports module completions, and fires the core's deadlines
+ * with ord_core_advance(); ord_core_next_deadline() says when the next tick or critical-delay
+ * check is due. Releases happen at absolute times tick_k = activation + k * PERIOD (no drift).
+ */
+#ifndef CONTRACT_ORD_CORE_H
+#define CONTRACT_ORD_CORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "contract/vocabulary.h"
+
+typedef struct OrdIo {
+    void *ctx;
+    void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size);
+    void (*connect_data)(void *ctx, const ContractDataFlow *flow);
+    void (*disconnect_data)(void *ctx, const ContractDataFlow *flow);
+    /* start one activation (one cycle) of a synchronous module; the caller reports its end
+       with ord_core_module_finished() */
+    void (*release)(void *ctx, const char *module, const char *schema, int64_t tick);
+    /* ORD:0 / ORD:1 with the schema name, to every supervisor of the tables */
+    void (*emit)(void *ctx, int port, const char *schema);
+    /* answer to an activation / deactivation request: ok = 1 done, 0 refused */
+    void (*ack)(void *ctx, const char *requester, uint32_t activation_id, int ok);
+    void (*trace)(void *ctx, int64_t t, const char *line);
+} OrdIo;
+
+/** Figures of one schema since the core was created. */
+typedef struct OrdSchemaStats {
+    long cycles;            /* cycles released                                         */
+    long completed;         /* cycles whose every module finished                      */
+    long deadline_misses;   /* cycles not finished at tick + CRITICAL_DELAY (ORD:0)    */
+    long overruns;          /* ticks skipped because the previous cycle still ran      */
+    long missed_ticks;      /* ticks that passed while ORD could not run at all         */
+    int64_t max_response_ns;/* longest tick -> last module finished                    */
+} OrdSchemaStats;
+
+typedef struct OrdCore OrdCore;
+
+OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *err, size_t errlen);
+void ord_core_destroy(OrdCore *c);
+
+/** Activates schema `name` at time t with its parameter block (NULL: defaults). Refused (and
+ *  ORD:1 emitted) if it shares a module with an active schema, including itself. The first
+ *  cycle is released at t. Returns 0 when activated, -1 when refused or unknown. */
+int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *params, size_t size,
+                      const char *requester, uint32_t activation_id);
+/** Deactivates it (no further release, flows disconnected). activation_id 0 matches any;
+ *  otherwise it must be the id of the activation (a refused activation's undo does not
+ *  deactivate someone else's). Returns 0, or -1 if not active / not that activation. */
+int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *requester,
+                        uint32_t activation_id);
+/** A released module finished its activation at time t. */
+void ord_core_module_finished(OrdCore *c, int64_t t, const char *module);
+/** Fires every tick and critical-delay check due at or before t, in time order. */
+void ord_core_advance(OrdCore *c, int64_t t);
+/** 1 and the next deadline, or 0 when nothing is active. */
+int ord_core_next_deadline(const OrdCore *c, int64_t *deadline);
+
+/** Real-time mode (ord_main.c): when ORD itself ran so late that a later tick is already due,
+ *  the overtaken ticks are counted as missed instead of released back to back. Off by default
+ *  (virtual clock: every tick is processed). */
+void ord_core_set_skip_late_ticks(OrdCore *c, int on);
+
+int ord_core_schema_active(const OrdCore *c, const char *name);
+int ord_core_stats(const OrdCore *c, const char *name, OrdSchemaStats *out);
+
+#endif

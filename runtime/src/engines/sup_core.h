@@ -1,0 +1,91 @@
+/*
+ * sup_core.h — the supervisor rule engine's deterministic core (SPEC §4.3–4.4).
+ *
+ * No I/O and no clock of its own: the caller passes the time of every input (virtual clock in
+ * tests, CLOCK_MONOTONIC in sup_main.c) and the core acts on the world only through SupIo.
+ * Timed events (`elapsed`, `duration`) are timers the caller fires by calling
+ * sup_core_advance(); sup_core_next_deadline() says when the next one is due.
+ *
+ * Every input (module event, ORD event, start/stop of a function, timer) is processed to
+ * completion, including the `started`/`endof` events it produces (queued behind it), before
+ * the call returns. Calls must pass non-decreasing times.
+ */
+#ifndef CONTRACT_SUP_CORE_H
+#define CONTRACT_SUP_CORE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "contract/vocabulary.h"
+
+/** What the core asks of the world. Every callback may be NULL (then the action is a no-op). */
+typedef struct SupIo {
+    void *ctx;
+    /* periodic schemas: requests to ORD; `activation_id` identifies this activation (the
+       matching deactivation carries the same id) */
+    void (*ord_activate)(void *ctx, const ContractSchema *s, const void *params, size_t size,
+                         uint32_t activation_id);
+    void (*ord_deactivate)(void *ctx, const ContractSchema *s, uint32_t activation_id);
+    /* modules (event schemas, activate resttime/critical module, parameterize) */
+    int (*module_running)(void *ctx, const char *module);               /* 1 running, 0 not  */
+    void (*start_module)(void *ctx, const char *module, int priority);
+    void (*stop_module)(void *ctx, const char *module);
+    int (*set_priority)(void *ctx, const char *module, int priority);   /* returns previous  */
+    void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size);
+    void (*connect_events)(void *ctx, const ContractEventFlow *flow);
+    void (*disconnect_events)(void *ctx, const ContractEventFlow *flow);
+    /* the supervisor's own event ports */
+    void (*subscribe)(void *ctx, const char *module, int src_port, int in_port,
+                      ContractEventMode mode);
+    void (*unsubscribe)(void *ctx, const char *module, int src_port, int in_port);
+    void (*notify)(void *ctx, int out_port, const void *value, size_t size);
+    /* other supervisors' functions (own functions are handled inside the core);
+       start returns 0 when started, -1 when refused */
+    int (*start_function)(void *ctx, const char *supervisor, const char *function,
+                          const void *params, size_t size);
+    void (*stop_function)(void *ctx, const char *supervisor, const char *function);
+    /* one line per rule transition, function start/stop, refusal, ignored input */
+    void (*trace)(void *ctx, int64_t t, const char *line);
+} SupIo;
+
+typedef struct SupCore SupCore;
+
+/** Creates a core for checked tables. Returns NULL (and a message in err) on invalid tables
+ *  or out of memory. */
+SupCore *sup_core_create(const ContractSupervisorVocabulary *v, const SupIo *io, char *err,
+                         size_t errlen);
+void sup_core_destroy(SupCore *c);
+
+/** Starts function `name` at time t with a parameter block laid out as its params (NULL:
+ *  defaults). Returns 0, or -1 if unknown or already running (refused, traced). */
+int sup_core_start_function(SupCore *c, int64_t t, const char *name, const void *params,
+                            size_t size);
+/** Same, with parameters in text form `p1={1.0,2.0,3.0} p2="x"` (control tools). -1 on a
+ *  parse error, with a message in err. */
+int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const char *args,
+                                 char *err, size_t errlen);
+/** Stops a running function: its active rules are deactivated (undos run). 0 or -1. */
+int sup_core_stop_function(SupCore *c, int64_t t, const char *name);
+int sup_core_function_running(const SupCore *c, const char *name);
+
+/** An event from `module`'s out port `src_port` with its data. in_port >= 0 names the
+ *  supervisor in port it arrived on; -1: found from the active subscriptions. Events on no
+ *  active subscription are ignored (traced). */
+void sup_core_module_event(SupCore *c, int64_t t, const char *module, int src_port, int in_port,
+                           const void *data, size_t size);
+/** An ORD event (port 0: deadline miss, 1: conflict) carrying a schema name. */
+void sup_core_ord_event(SupCore *c, int64_t t, int port, const char *schema);
+
+/** Fires every timer due at or before t (in time order), then sets the clock to t. */
+void sup_core_advance(SupCore *c, int64_t t);
+/** 1 and the earliest timer deadline in *deadline, or 0 when no timer is armed. */
+int sup_core_next_deadline(const SupCore *c, int64_t *deadline);
+
+/** Introspection for tests and logs. */
+int sup_core_rule_active(const SupCore *c, const char *function, const char *label);
+const void *sup_core_local(const SupCore *c, const char *function, const char *local);
+const void *sup_core_in_port_value(const SupCore *c, int port);
+/** Number of events processed since creation (all kinds). */
+uint64_t sup_core_events_processed(const SupCore *c);
+
+#endif

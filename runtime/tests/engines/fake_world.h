@@ -1,0 +1,44 @@
+/*
+ * fake_world.h — a scripted world for the engines' cores: implements SupIo and OrdIo by
+ * recording every effect as one line of a TestLog, keeps which modules run (and at which
+ * priority), and a message bus between several supervisor cores (start/stop of functions,
+ * notifications to subscribers) delivered only when the test says so, like separate
+ * processes would.
+ */
+#ifndef ENGINES_TEST_FAKE_WORLD_H
+#define ENGINES_TEST_FAKE_WORLD_H
+
+#include "harness.h"
+#include "ord_core.h"
+#include "sup_core.h"
+
+#define FW_MAX 32
+
+typedef struct FakeBus FakeBus;
+
+typedef struct FakeWorld {
+    const char *name;        /* prefix of its log lines ("SUP: "), NULL for none */
+    TestLog *log;
+    FakeBus *bus;            /* NULL: no other supervisor */
+    int nrunning;
+    char running[FW_MAX][16];
+    int prio[FW_MAX];
+} FakeWorld;
+
+SupIo fake_sup_io(FakeWorld *w);
+OrdIo fake_ord_io(FakeWorld *w);
+/** Marks a module as already running (started by someone else) at a priority. */
+void fake_set_running(FakeWorld *w, const char *module, int priority);
+int fake_is_running(const FakeWorld *w, const char *module);
+/** Formats a value for log lines: ints, floats (%g), strings, TypeA {i,j,k}, TypeD {name,v}. */
+void fake_format(char *out, size_t n, const ContractType *t, const void *v);
+
+/* ---- bus between supervisor cores ---- */
+FakeBus *fake_bus_create(void);
+void fake_bus_destroy(FakeBus *b);
+void fake_bus_attach(FakeBus *b, const char *name, SupCore *core);
+/** Delivers every pending message (and those their processing sends) at time t. Returns
+ *  the number delivered. */
+int fake_bus_deliver(FakeBus *b, int64_t t);
+
+#endif
