@@ -1,0 +1,71 @@
+import { join, resolve } from 'node:path';
+import type { LangiumDocument } from 'langium';
+import type { Model } from '@contract-studio/language';
+import { generateFiles } from './generators/generate-files.js';
+import { ARCH_DIR } from './generators/build-settings.js';
+import { architectureFromModels } from './model/from-langium.js';
+import type { Architecture } from './model/architecture.js';
+import { runtimeFromArchitecture } from './runtime-location.js';
+import { emptyReport, type GenerationReport } from './writer/report.js';
+import { writeTree } from './writer/write-tree.js';
+
+export interface GenerateOptions {
+    /** The runtime folder the Makefiles point at by default (CONTRACT_RUNTIME); see runtime-location.ts. */
+    runtime?: string;
+}
+
+/** Anything that carries a Cactal model: a Langium document, a loadWorkspace() document, or a model. */
+export type ModelSource = LangiumDocument<Model> | { document: LangiumDocument<Model> } | Model;
+
+function documentOf(s: ModelSource): LangiumDocument<Model> | undefined {
+    if ('parseResult' in s) return s;
+    if ('document' in s) return s.document;
+    return (s as Model).$document as LangiumDocument<Model> | undefined;
+}
+
+function modelOf(s: ModelSource): Model {
+    const d = documentOf(s);
+    return d ? d.parseResult.value : (s as Model);
+}
+
+/** Writes the architecture's C tree (SPEC §3) into `outDir` (the project's src-gen), merging protected regions. */
+export function generateFromArchitecture(arch: Architecture, outDir: string, options: GenerateOptions = {}): GenerationReport {
+    const settings = { runtimeFromArchitecture: runtimeFromArchitecture(join(resolve(outDir), ARCH_DIR), options.runtime) };
+    let files;
+    try {
+        files = generateFiles(arch, settings);
+    } catch (e) {
+        const report = emptyReport();
+        report.errors.push({ file: '(model)', message: `cannot generate: ${(e as Error).message}` });
+        return report;
+    }
+    return writeTree(resolve(outDir), files);
+}
+
+/**
+ * Seam 4: generates the C tree of a checked Cactal workspace into `outDir`. Refuses (report with
+ * errors, nothing written) when a document has parse, link or validation errors.
+ */
+export function generateArchitecture(documents: ModelSource[], outDir: string, options: GenerateOptions = {}): GenerationReport {
+    const report = emptyReport();
+    const sorted = [...documents].sort((a, b) => {
+        const ua = documentOf(a)?.uri.toString() ?? '';
+        const ub = documentOf(b)?.uri.toString() ?? '';
+        return ua < ub ? -1 : ua > ub ? 1 : 0;
+    });
+    for (const source of sorted) {
+        const d = documentOf(source);
+        if (!d) continue;
+        const problems = [
+            ...d.parseResult.lexerErrors.map((e) => ({ line: e.line ?? 0, message: e.message })),
+            ...d.parseResult.parserErrors.map((e) => ({ line: e.token.startLine ?? 0, message: e.message })),
+            ...(d.diagnostics ?? []).filter((x) => x.severity === 1).map((x) => ({ line: x.range.start.line + 1, message: x.message })),
+        ];
+        for (const p of problems) report.errors.push({ file: d.uri.fsPath, line: p.line, message: p.message });
+    }
+    if (report.errors.length > 0) {
+        report.errors.unshift({ file: '(model)', message: 'the model has errors: nothing was generated (run `contract check` for details)' });
+        return report;
+    }
+    return generateFromArchitecture(architectureFromModels(sorted.map(modelOf)), outDir, options);
+}
