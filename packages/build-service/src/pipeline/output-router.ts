@@ -60,9 +60,13 @@ export class BuildOutputRouter {
 
 const MODULE_TAG = /^\[([A-Za-z_][A-Za-z0-9_.-]{0,63})\]\s?(.*)$/;
 
-/** "[MAA] hello" -> {source: 'MAA', line: 'hello'}; untagged lines come from 'run' (make, launcher). */
+/**
+ * "[MAA] hello" -> {source: 'MAA', line: 'hello'} (the launcher's module tags);
+ * "contract-launch: ..." -> source 'launcher'; other untagged lines (make) -> source 'run'.
+ */
 export function routeRunLine(line: string): RoutedLine {
   const m = MODULE_TAG.exec(line);
   if (m) return { source: m[1]!, line: m[2] ?? '' };
+  if (line.startsWith('contract-launch: ')) return { source: 'launcher', line: line.slice('contract-launch: '.length) };
   return { source: 'run', line };
 }

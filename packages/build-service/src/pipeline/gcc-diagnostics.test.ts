@@ -1,0 +1,90 @@
+import { execFileSync, spawnSync } from 'node:child_process';
+import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, describe, expect, test } from 'vitest';
+import { looksLikeGccJson, makeEnteringDirectory, parseGccJsonLine, parseGccTextLine, renderDiagnostic } from './gcc-diagnostics.js';
+import { findProtectedRegions, regionAt } from './protected-regions.js';
+import { BuildOutputRouter, routeRunLine } from './output-router.js';
+
+const dir = mkdtempSync(join(tmpdir(), 'gccdiag-'));
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+const SOURCE = [
+  '#include <stdio.h>', // 1
+  'int compute(int x) {', // 2
+  '  /*PROTECTED REGION ID(protect_compute_MAA) ENABLED START*/', // 3
+  '  int unused;', // 4
+  '  return x + missing;', // 5
+  '  /*PROTECTED REGION END*/', // 6
+  '}', // 7
+  'int other(void) { return undeclared_too; }', // 8
+  '',
+].join('\n');
+
+function compile(format: 'json' | 'text'): string {
+  mkdirSync(join(dir, 'MAA_mod'), { recursive: true });
+  writeFileSync(join(dir, 'MAA_mod', 'module.c'), SOURCE);
+  const r = spawnSync('gcc', ['-std=c11', '-Wall', '-c', 'module.c', '-o', '/dev/null', ...(format === 'json' ? ['-fdiagnostics-format=json'] : ['-fno-diagnostics-show-caret'])], {
+    cwd: join(dir, 'MAA_mod'),
+    encoding: 'utf8',
+  });
+  return r.stderr;
+}
+
+const ctx = () => ({
+  cwd: join(dir, 'MAA_mod'),
+  root: dir,
+  regions: new Map([['MAA_mod/module.c', findProtectedRegions(SOURCE)]]),
+});
+
+describe('protected regions', () => {
+  test('finds regions and the one enclosing a line', () => {
+    const regions = findProtectedRegions(SOURCE);
+    expect(regions).toEqual([{ id: 'protect_compute_MAA', startLine: 3, endLine: 6 }]);
+    expect(regionAt(regions, 5)?.id).toBe('protect_compute_MAA');
+    expect(regionAt(regions, 8)).toBeNull();
+  });
+});
+
+describe('gcc diagnostics', () => {
+  test('real gcc JSON output maps to tree-relative files, marks protected regions', () => {
+    const stderr = compile('json').trim();
+    expect(looksLikeGccJson(stderr)).toBe(true);
+    const diags = parseGccJsonLine(stderr, ctx())!;
+    const inRegion = diags.find((d) => /.missing. undeclared/.test(d.message))!;
+    expect(inRegion).toMatchObject({ severity: 'error', file: 'MAA_mod/module.c', line: 5, column: 14 });
+    expect(inRegion.protectedRegion).toEqual({ id: 'protect_compute_MAA', startLine: 3, endLine: 6 });
+    const outside = diags.find((d) => /.undeclared_too. undeclared/.test(d.message))!;
+    expect(outside).toMatchObject({ file: 'MAA_mod/module.c', line: 8, protectedRegion: null });
+    const warn = diags.find((d) => d.severity === 'warning')!;
+    expect(warn).toMatchObject({ line: 4, option: '-Wunused-variable' });
+    expect(renderDiagnostic(inRegion)).toMatch(/^MAA_mod\/module.c:5:14: error: .* \(in protected region protect_compute_MAA\)$/);
+  });
+
+  test('gcc text output is parsed the same way (fallback)', () => {
+    const lines = compile('text').split('\n');
+    const diags = lines.map((l) => parseGccTextLine(l, ctx())).filter((d) => d !== null);
+    const err = diags.find((d) => /.missing. undeclared/.test(d.message))!;
+    expect(err).toMatchObject({ severity: 'error', file: 'MAA_mod/module.c', line: 5, column: 14 });
+    expect(err.protectedRegion?.id).toBe('protect_compute_MAA');
+    expect(diags.find((d) => d.severity === 'warning')?.option).toBe('-Wunused-variable');
+  });
+
+  test('make directory tracking resolves paths of sub-makes', () => {
+    const router = new BuildOutputRouter({ startDir: '/work/src-gen/generated/architecture', root: '/work/src-gen', regions: new Map() });
+    router.route("make[1]: Entering directory '/work/src-gen/generated/MAA_mod'", 'stdout');
+    const { diagnostics } = router.route('module.c:12:3: error: expected ‘;’ before ‘}’ token', 'stderr');
+    expect(diagnostics[0]).toMatchObject({ file: 'generated/MAA_mod/module.c', line: 12, column: 3 });
+    router.route("make[1]: Leaving directory '/work/src-gen/generated/MAA_mod'", 'stdout');
+    expect(router.route('x.c:1:1: warning: w', 'stderr').diagnostics[0]!.file).toBe('generated/architecture/x.c');
+    expect(makeEnteringDirectory("make: Entering directory '/a b'")).toBe('/a b');
+    expect(execFileSync('gcc', ['--version'], { encoding: 'utf8' })).toMatch(/gcc/);
+  });
+
+  test('launcher tags name the module', () => {
+    expect(routeRunLine('[MAA] hello world')).toEqual({ source: 'MAA', line: 'hello world' });
+    expect(routeRunLine('contract-launch: module MSC exited')).toEqual({ source: 'launcher', line: 'module MSC exited' });
+    expect(routeRunLine('make: Entering directory')).toEqual({ source: 'run', line: 'make: Entering directory' });
+  });
+});

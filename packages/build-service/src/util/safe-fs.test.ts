@@ -1,0 +1,57 @@
+import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, symlinkSync, writeFileSync, lstatSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterEach, beforeEach, describe, expect, test } from 'vitest';
+import { checkRelativePath, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow, UnsafePathError } from './safe-fs.js';
+
+let root: string;
+let outside: string;
+beforeEach(() => {
+  root = mkdtempSync(join(tmpdir(), 'safefs-root-'));
+  outside = mkdtempSync(join(tmpdir(), 'safefs-outside-'));
+  writeFileSync(join(outside, 'secret'), 'host');
+});
+afterEach(() => {
+  rmSync(root, { recursive: true, force: true });
+  rmSync(outside, { recursive: true, force: true });
+});
+
+describe('safe fs (planted links never followed)', () => {
+  test('a symlinked file is replaced, its target untouched', async () => {
+    symlinkSync(join(outside, 'secret'), join(root, 'main.c'));
+    expect(await syncFileNoFollow(root, 'main.c', Buffer.from('int x;'))).toBe(true);
+    expect(readFileSync(join(outside, 'secret'), 'utf8')).toBe('host');
+    expect(lstatSync(join(root, 'main.c')).isFile()).toBe(true);
+  });
+
+  test('a symlinked directory component is refused', async () => {
+    symlinkSync(outside, join(root, 'src'));
+    await expect(syncFileNoFollow(root, 'src/secret', Buffer.from('x'))).rejects.toThrow(UnsafePathError);
+    expect(readFileSync(join(outside, 'secret'), 'utf8')).toBe('host');
+    expect(await readFileNoFollow(root, 'src/secret')).toBeNull();
+  });
+
+  test('unchanged content is not rewritten (mtime kept for make)', async () => {
+    await syncFileNoFollow(root, 'a/b.c', Buffer.from('same'));
+    const before = lstatSync(join(root, 'a/b.c')).mtimeMs;
+    await new Promise((r) => setTimeout(r, 20));
+    expect(await syncFileNoFollow(root, 'a/b.c', Buffer.from('same'))).toBe(false);
+    expect(lstatSync(join(root, 'a/b.c')).mtimeMs).toBe(before);
+  });
+
+  test('removing a tree unlinks links without entering them, even in unwritable dirs', async () => {
+    mkdirSync(join(root, 'd/e'), { recursive: true });
+    symlinkSync(outside, join(root, 'd/e/link'));
+    symlinkSync(join(outside, 'secret'), join(root, 'filelink'));
+    writeFileSync(join(root, 'd/e/f'), 'x');
+    const { chmodSync } = await import('node:fs');
+    chmodSync(join(root, 'd/e'), 0o500);
+    await removeTreeNoFollow(root);
+    expect(existsSync(root)).toBe(false);
+    expect(readFileSync(join(outside, 'secret'), 'utf8')).toBe('host');
+  });
+
+  test.each(['../x', '/abs', 'a//b', 'a/./b', '', 'a\\b'])('rejects path %j', (p) => {
+    expect(() => checkRelativePath(p)).toThrow(UnsafePathError);
+  });
+});
