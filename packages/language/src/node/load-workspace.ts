@@ -3,7 +3,8 @@
  * system) and returns the documents with their diagnostics in a tool-friendly form (1-based lines
  * and columns, paths relative to `dir`). Used by `contract check`, code generation and the build service.
  */
-import { readdir, readFile, stat } from 'node:fs/promises';
+import { readFileSync } from 'node:fs';
+import { readdir, stat } from 'node:fs/promises';
 import { join, relative, resolve, sep } from 'node:path';
 import { URI, type LangiumDocument } from 'langium';
 import { NodeFileSystem } from 'langium/node';
@@ -102,7 +103,7 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     const files = await findContractFiles(root, options.skipDirs);
     const documents: WorkspaceDocument[] = [];
     for (const path of files) {
-        const text = await readFile(path, 'utf8');
+        const text = readFileSync(path, 'utf8');
         const uri = URI.file(path);
         const langiumDocs = shared.workspace.LangiumDocuments;
         if (langiumDocs.hasDocument(uri)) langiumDocs.deleteDocument(uri);

@@ -7,7 +7,7 @@
  *   port variables in a supervision function) and field paths by the type of the path so far.
  */
 import {
-    AstUtils, DefaultScopeProvider, EMPTY_SCOPE, stream,
+    AstUtils, DefaultScopeProvider, EMPTY_SCOPE, MultiMapScope, WorkspaceCache, stream,
     type AstNode, type AstNodeDescription, type ReferenceInfo, type Scope
 } from 'langium';
 import {
@@ -25,10 +25,13 @@ import type { ImportResolver } from './import-resolver.js';
 
 export class CactalScopeProvider extends DefaultScopeProvider {
     private readonly imports: ImportResolver;
+    /** Visible top-level scope per (document, reference type), rebuilt after every workspace change. */
+    private readonly visibleScopes: WorkspaceCache<string, Scope>;
 
     constructor(services: CactalServices) {
         super(services);
         this.imports = services.imports.ImportResolver;
+        this.visibleScopes = new WorkspaceCache(services.shared);
     }
 
     override getScope(context: ReferenceInfo): Scope {
@@ -87,8 +90,21 @@ export class CactalScopeProvider extends DefaultScopeProvider {
     /** Top-level elements of the reference's type defined in the file or its direct imports. */
     visibleScope(context: ReferenceInfo): Scope {
         const type = this.reflection.getReferenceType(context);
-        const uris = this.imports.visibleUris(context.container);
-        return this.createScope(this.indexManager.allElements(type, uris));
+        const document = AstUtils.getDocument(context.container);
+        const key = `${document.uri.toString()}\u0000${type}`;
+        return this.visibleScopes.get(key, () => {
+            const uris = this.imports.visibleUris(context.container);
+            return new MultiMapScope(this.visibleElements(type, [...uris]));
+        });
+    }
+
+    /** Exported elements of `type` in the given documents (own document first). */
+    private visibleElements(type: string, uris: string[]): AstNodeDescription[] {
+        const index = this.indexManager as unknown as { getFileDescriptions?: (uri: string, type: string) => AstNodeDescription[] };
+        if (typeof index.getFileDescriptions === 'function') {
+            return uris.flatMap((uri) => index.getFileDescriptions!(uri, type));
+        }
+        return this.indexManager.allElements(type, new Set(uris)).toArray();
     }
 
     /** Ports of an owner, named by their index. */

@@ -1,5 +1,5 @@
 /** SPEC §2.1: imports (missing file, cycles, unused, duplicates, position) and file content. */
-import { AstUtils, UriUtils, type AstNode, type LangiumDocument, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { AstUtils, URI, UriUtils, WorkspaceCache, type AstNode, type LangiumDocument, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isActivateSchema, isDataType, isFunctionPrototype, isModel, isSchedulerConfiguration,
     type CactalAstType, type Import, type Model
@@ -14,11 +14,21 @@ export function importChecks(services: CactalServices): ValidationChecks<CactalA
     return { Model: (model, accept) => checker.checkModel(model, accept) };
 }
 
+interface ImportGraph {
+    edges: Map<string, string[]>;
+    /** file URI -> id of its strongly connected component */
+    component: Map<string, number>;
+}
+
 class ImportChecker {
     private readonly imports: ImportResolver;
+    private readonly graphCache: WorkspaceCache<string, ImportGraph>;
+    private readonly outgoingCache: WorkspaceCache<string, Set<string>>;
 
     constructor(private readonly services: CactalServices) {
         this.imports = services.imports.ImportResolver;
+        this.graphCache = new WorkspaceCache(services.shared);
+        this.outgoingCache = new WorkspaceCache(services.shared);
     }
 
     checkModel(model: Model, accept: ValidationAcceptor): void {
@@ -50,9 +60,9 @@ class ImportChecker {
                     { node: imp, property: 'path' });
                 continue;
             }
-            const cycle = this.findCycle(document, docs.getDocument(uri)!);
+            const cycle = this.findCycle(document.uri.toString(), key);
             if (cycle) {
-                const names = [document, ...cycle].map((d) => UriUtils.basename(d.uri));
+                const names = [document.uri.toString(), ...cycle].map((u) => UriUtils.basename(URI.parse(u)));
                 report(accept, ImportCodes['import-cycle'],
                     `Import cycle: ${names.join(' -> ')}. Imports are not transitive, so no file needs to import a file that imports it back.`,
                     { node: imp, property: 'path' });
@@ -64,62 +74,85 @@ class ImportChecker {
         this.checkContent(model, accept);
     }
 
-    /** A path of documents from `start` back to `origin` through imports (ending with origin), if any. */
-    private findCycle(origin: LangiumDocument, start: LangiumDocument): LangiumDocument[] | undefined {
-        const originKey = origin.uri.toString();
-        const visited = new Set<string>();
-        const docs = this.services.shared.workspace.LangiumDocuments;
-        const dfs = (doc: LangiumDocument, path: LangiumDocument[]): LangiumDocument[] | undefined => {
-            const key = doc.uri.toString();
-            if (key === originKey) return path;
-            if (visited.has(key)) return undefined;
-            visited.add(key);
-            const model = doc.parseResult.value;
-            if (!isModel(model)) return undefined;
-            for (const imp of model.imports) {
-                if (imp.path === undefined) continue;
-                const uri = this.imports.resolvePath(doc.uri, imp.path);
-                if (!docs.hasDocument(uri)) continue;
-                const next = docs.getDocument(uri)!;
-                const found = dfs(next, [...path, next]);
-                if (found) return found;
+    /** The import graph of the workspace with its strongly connected components (cached per build). */
+    private graph(): ImportGraph {
+        return this.graphCache.get('graph', () => {
+            const docs = this.services.shared.workspace.LangiumDocuments;
+            const edges = new Map<string, string[]>();
+            for (const doc of docs.all) {
+                const model = doc.parseResult.value;
+                const targets: string[] = [];
+                if (isModel(model)) {
+                    for (const imp of model.imports) {
+                        if (imp.path === undefined) continue;
+                        const uri = this.imports.resolvePath(doc.uri, imp.path);
+                        if (docs.hasDocument(uri)) targets.push(uri.toString());
+                    }
+                }
+                edges.set(doc.uri.toString(), targets);
             }
-            return undefined;
-        };
-        return dfs(start, [start]);
+            return { edges, component: stronglyConnectedComponents(edges) };
+        });
+    }
+
+    /** A path of file URIs from `start` back to `origin` (both included) inside their import cycle. */
+    private findCycle(origin: string, start: string): string[] | undefined {
+        const { edges, component } = this.graph();
+        const scc = component.get(origin);
+        if (scc === undefined || component.get(start) !== scc) return undefined;
+        const previous = new Map<string, string>([[start, start]]);
+        const queue = [start];
+        while (queue.length) {
+            const current = queue.shift()!;
+            for (const next of edges.get(current) ?? []) {
+                if (component.get(next) !== scc || previous.has(next)) continue;
+                previous.set(next, current);
+                if (next === origin) {
+                    const path = [origin];
+                    let cur = origin;
+                    while (cur !== start) { cur = previous.get(cur)!; path.unshift(cur); }
+                    return path;
+                }
+                queue.push(next);
+            }
+        }
+        return undefined;
+    }
+
+    /** Files the document's references point to (cached per build). */
+    private outgoing(document: LangiumDocument): Set<string> {
+        return this.outgoingCache.get(document.uri.toString(), () => {
+            const out = new Set<string>();
+            for (const reference of document.references) {
+                const target = (reference as { ref?: AstNode }).ref;
+                if (target) out.add(AstUtils.getDocument(target).uri.toString());
+            }
+            return out;
+        });
     }
 
     /**
-     * Files this one uses: those defining what it refers to, those defining what the referred
+     * Files this one uses: those defining what it refers to, those the files of the referred
      * elements themselves refer to (a schema's modules, a module's types), and the scheduler
      * configuration's file when this file activates a periodic schema.
      */
     private usedUris(model: Model, document: LangiumDocument): Set<string> {
         const used = new Set<string>();
         const own = document.uri.toString();
-        const referenced = new Set<AstNode>();
+        const docs = this.services.shared.workspace.LangiumDocuments;
         let activatesPeriodic = false;
         for (const node of AstUtils.streamAst(model)) {
-            if (isActivateSchema(node) && node.schema?.ref?.kind === 'periodic') activatesPeriodic = true;
-            for (const refInfo of AstUtils.streamReferences(node)) {
-                const target = (refInfo.reference as { ref?: AstNode }).ref;
-                if (!target) continue;
-                const targetDoc = AstUtils.getDocument(target);
-                if (targetDoc.uri.toString() === own) continue;
-                used.add(targetDoc.uri.toString());
-                referenced.add(topLevelOf(target));
-            }
+            if (isActivateSchema(node) && node.schema?.ref?.kind === 'periodic') { activatesPeriodic = true; break; }
         }
-        for (const element of referenced) {
-            for (const node of AstUtils.streamAst(element)) {
-                for (const refInfo of AstUtils.streamReferences(node)) {
-                    const target = (refInfo.reference as { ref?: AstNode }).ref;
-                    if (target) used.add(AstUtils.getDocument(target).uri.toString());
-                }
-            }
+        for (const uri of this.outgoing(document)) {
+            if (uri === own || used.has(uri)) continue;
+            used.add(uri);
+        }
+        for (const uri of [...used]) {
+            const doc = docs.getDocument(URI.parse(uri));
+            if (doc) for (const second of this.outgoing(doc)) used.add(second);
         }
         if (activatesPeriodic) {
-            const docs = this.services.shared.workspace.LangiumDocuments;
             for (const imp of model.imports) {
                 if (imp.path === undefined) continue;
                 const uri = this.imports.resolvePath(document.uri, imp.path);
@@ -150,10 +183,52 @@ class ImportChecker {
     }
 }
 
-function topLevelOf(node: AstNode): AstNode {
-    let current = node;
-    while (current.$container && !isModel(current.$container)) current = current.$container;
-    return current;
+/** Tarjan's algorithm (iterative): node -> component id. */
+export function stronglyConnectedComponents(edges: Map<string, string[]>): Map<string, number> {
+    const index = new Map<string, number>();
+    const low = new Map<string, number>();
+    const onStack = new Set<string>();
+    const stack: string[] = [];
+    const component = new Map<string, number>();
+    let counter = 0;
+    let components = 0;
+    for (const root of edges.keys()) {
+        if (index.has(root)) continue;
+        const work: Array<{ node: string; next: number }> = [{ node: root, next: 0 }];
+        index.set(root, counter); low.set(root, counter); counter++;
+        stack.push(root); onStack.add(root);
+        while (work.length) {
+            const frame = work[work.length - 1]!;
+            const targets = edges.get(frame.node) ?? [];
+            if (frame.next < targets.length) {
+                const t = targets[frame.next++]!;
+                if (!edges.has(t)) continue;
+                if (!index.has(t)) {
+                    index.set(t, counter); low.set(t, counter); counter++;
+                    stack.push(t); onStack.add(t);
+                    work.push({ node: t, next: 0 });
+                } else if (onStack.has(t)) {
+                    low.set(frame.node, Math.min(low.get(frame.node)!, index.get(t)!));
+                }
+                continue;
+            }
+            work.pop();
+            if (work.length) {
+                const parent = work[work.length - 1]!.node;
+                low.set(parent, Math.min(low.get(parent)!, low.get(frame.node)!));
+            }
+            if (low.get(frame.node) === index.get(frame.node)) {
+                let member: string;
+                do {
+                    member = stack.pop()!;
+                    onStack.delete(member);
+                    component.set(member, components);
+                } while (member !== frame.node);
+                components++;
+            }
+        }
+    }
+    return component;
 }
 
 function firstKeyword(node: AstNode): string {
