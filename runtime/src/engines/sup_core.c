@@ -444,7 +444,8 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
             if (engine_apply_assign(&s, &a->assigns[i], c->out_vals[oi], NULL) != 0)
                 trace(c, "error: cannot read the value notified on :%d", a->out_port);
         if (c->io.notify)
-            c->io.notify(c->io.ctx, a->out_port, c->out_vals[oi], c->v->out_ports[oi].type->size);
+            c->io.notify(c->io.ctx, a->out_port, c->v->out_ports[oi].type, c->out_vals[oi],
+                         c->v->out_ports[oi].type->size);
         break;
     }
     }

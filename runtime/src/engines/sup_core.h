@@ -38,7 +38,8 @@ typedef struct SupIo {
     void (*subscribe)(void *ctx, const char *module, int src_port, int in_port,
                       ContractEventMode mode);
     void (*unsubscribe)(void *ctx, const char *module, int src_port, int in_port);
-    void (*notify)(void *ctx, int out_port, const void *value, size_t size);
+    void (*notify)(void *ctx, int out_port, const ContractType *type, const void *value,
+                   size_t size);
     /* other supervisors' functions (own functions are handled inside the core);
        start returns 0 when started, -1 when refused */
     int (*start_function)(void *ctx, const char *supervisor, const char *function,

@@ -213,9 +213,11 @@ static void s_unsubscribe(void *ctx, const char *m, int sp, int ip) {
                 s->active = 0;
         }
 }
-static void s_notify(void *ctx, int port, const void *v, size_t size) {
+static void s_notify(void *ctx, int port, const ContractType *t, const void *v, size_t size) {
     FakeWorld *w = ctx;
-    WLOG(w, "notify :%d %.*s", port, 255, (const char *)v);
+    char buf[300];
+    fake_format(buf, sizeof buf, t, v);
+    WLOG(w, "notify :%d %s", port, buf);
     if (!w->bus) return;
     for (int i = 0; i < w->bus->nsubs; i++) {
         BusSub *s = &w->bus->subs[i];

@@ -29,7 +29,8 @@ typedef struct TestLog {
 
 void log_clear(TestLog *l);
 void log_add(TestLog *l, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-/** Lines of the log that start with one of the prefixes (NULL-terminated list), in order,
+/** Lines of the log that contain one of the `prefixes` strings (NULL-terminated list; NULL:
+ *  every line), in order,
  *  must be exactly `expected` (NULL-terminated). Prints a diff and fails the test otherwise. */
 void check_log_filtered(const TestLog *l, const char *const *prefixes, const char *const *expected,
                         const char *file, int line);

@@ -1,0 +1,198 @@
+/*
+ * test_ord.c — the scheduler core on a virtual clock: precedence in every cycle (diamond
+ * A -> B, A -> C, B -> D, C -> D), data flows connected with their periodicity, absolute
+ * release times, deadline miss (ORD:0) with an inclusive deadline, overrun skip, conflict
+ * refusal (ORD:1), two schemas with different periods, deactivation.
+ */
+#include <stdio.h>
+#include <string.h>
+
+#include "fake_world.h"
+
+#define MS 1000000LL
+
+static TestLog LOG;
+
+static const long k_gain = 4;
+static const ContractVar dia_params[] = {{"gain", &contract_type_long, 0, &k_gain}};
+static const ContractAssign dia_b_p1[] = {
+    {0, 0, &contract_type_long, {CONTRACT_REF_PARAM, 0, 0, &contract_type_long, NULL}}};
+static const ContractParamSetting dia_b_settings[] = {{1, &contract_type_long, 1, dia_b_p1}};
+static const ContractSchemaModule dia_modules[] = {
+    {"A", 0, NULL}, {"B", 1, dia_b_settings}, {"C", 0, NULL}, {"D", 0, NULL}};
+static const ContractPrecedence dia_prec[] = {{0, 1}, {0, 2}, {1, 3}, {2, 3}};
+static const ContractDataFlow dia_flows[] = {{"A", 0, "D", 0, 2}, {"B", 0, "D", 1, 1}};
+static const ContractSchema DIA = {"DIA", CONTRACT_SCHEMA_PERIODIC, 10 * MS, 6 * MS,
+                                   1, dia_params, sizeof(long), 4, dia_modules, 4, dia_prec,
+                                   2, dia_flows, 0, NULL};
+static const ContractSchemaModule oth_modules[] = {{"B", 0, NULL}, {"F", 0, NULL}};
+static const ContractSchema OTH = {"OTH", CONTRACT_SCHEMA_PERIODIC, 10 * MS, 10 * MS,
+                                   0, NULL, 0, 2, oth_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchemaModule fst_modules[] = {{"E", 0, NULL}};
+static const ContractSchema FST = {"FST", CONTRACT_SCHEMA_PERIODIC, 3 * MS, 3 * MS,
+                                   0, NULL, 0, 1, fst_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchema *const schemas[] = {&DIA, &OTH, &FST};
+static const ContractOrdModule modules[] = {{"A", 50, 0}, {"B", 50, 0}, {"C", 50, 0},
+                                            {"D", 50, 0}, {"E", 60, 0}, {"F", 50, 0}};
+static const char *const sups[] = {"SUP"};
+static const ContractOrdVocabulary VOC = {CONTRACT_VOCABULARY_VERSION, 6, modules, 3, schemas, 1, sups};
+
+static OrdCore *make(FakeWorld *w) {
+    log_clear(&LOG);
+    memset(w, 0, sizeof *w);
+    w->log = &LOG;
+    OrdIo io = fake_ord_io(w);
+    char err[256] = "";
+    OrdCore *c = ord_core_create(&VOC, &io, err, sizeof err);
+    if (!c) fprintf(stderr, "  %s\n", err);
+    return c;
+}
+
+static const char *const SCHED[] = {"release", "deadline", "overrun", "missed", NULL};
+
+/* runs one diamond cycle at tick: A 1ms, then B and C in parallel (C ends first), D after both */
+static void diamond_cycle(OrdCore *c, int64_t tick, int64_t d_end) {
+    ord_core_module_finished(c, tick + 1 * MS, "A");
+    ord_core_module_finished(c, tick + 2 * MS, "C");
+    ord_core_module_finished(c, tick + 3 * MS, "B");
+    ord_core_module_finished(c, tick + d_end, "D");
+}
+
+void test_ord_precedence_every_cycle(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    long gain = 9;
+    CHECK(ord_core_activate(c, 0, "DIA", &gain, sizeof gain, "SUP", 1) == 0);
+    for (int k = 0; k < 5; k++) diamond_cycle(c, k * 10 * MS, 4 * MS);
+    ord_core_advance(c, 49 * MS);
+    static char exp[64][LOG_LINE];
+    const char *expp[65];
+    int n = 0;
+    for (int k = 0; k < 5; k++) {
+        long base = k * 10000;
+        snprintf(exp[n++], LOG_LINE, "%ldus release A (DIA)", base);
+        snprintf(exp[n++], LOG_LINE, "%ldus release B (DIA)", base + 1000);
+        snprintf(exp[n++], LOG_LINE, "%ldus release C (DIA)", base + 1000);
+        snprintf(exp[n++], LOG_LINE, "%ldus release D (DIA)", base + 3000);
+    }
+    for (int i = 0; i < n; i++) expp[i] = exp[i];
+    expp[n] = NULL;
+    check_log_filtered(&LOG, SCHED, expp, __FILE__, __LINE__);
+    /* parameterised and connected before the first release, with periodicities */
+    CHECK_LOG(&LOG, "setparam B:1 <8 bytes>", "connect A:0 -> D:0 * 2", "connect B:0 -> D:1 * 1",
+              "0us activate DIA", "ack SUP #1 done", "0us release A (DIA)", "1000us release B (DIA)",
+              "1000us release C (DIA)", "3000us release D (DIA)", "10000us release A (DIA)",
+              "11000us release B (DIA)", "11000us release C (DIA)", "13000us release D (DIA)",
+              "20000us release A (DIA)", "21000us release B (DIA)", "21000us release C (DIA)",
+              "23000us release D (DIA)", "30000us release A (DIA)", "31000us release B (DIA)",
+              "31000us release C (DIA)", "33000us release D (DIA)", "40000us release A (DIA)",
+              "41000us release B (DIA)", "41000us release C (DIA)", "43000us release D (DIA)");
+    OrdSchemaStats st;
+    CHECK(ord_core_stats(c, "DIA", &st) == 0);
+    CHECK(st.cycles == 5 && st.completed == 5 && st.deadline_misses == 0 && st.overruns == 0);
+    CHECK(st.max_response_ns == 4 * MS);
+    ord_core_destroy(c);
+}
+
+void test_ord_deadline_miss_is_inclusive_and_emits_ord0(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1);
+    diamond_cycle(c, 0, 6 * MS);          /* finishes exactly at tick + CRITICAL_DELAY: in time */
+    diamond_cycle(c, 10 * MS, 6 * MS + 1); /* 1 ns late: ORD:0 at tick + 6ms */
+    ord_core_advance(c, 19 * MS);
+    CHECK(log_find(&LOG, "6000us deadline miss: DIA (ORD:0)", 0) < 0);
+    int i = log_find(&LOG, "16000us deadline miss: DIA (ORD:0)", 0);
+    CHECK(i >= 0);
+    CHECK(i >= 0 && log_find(&LOG, "emit ORD:0 DIA", i) == i + 1);
+    OrdSchemaStats st;
+    ord_core_stats(c, "DIA", &st);
+    CHECK(st.deadline_misses == 1 && st.completed == 2);
+    ord_core_destroy(c);
+}
+
+void test_ord_overrun_skips_release(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1);
+    diamond_cycle(c, 0, 12 * MS); /* still running at the 10ms tick */
+    ord_core_advance(c, 20 * MS);
+    check_log_filtered(&LOG, SCHED,
+                       (const char *const[]){"0us release A (DIA)", "1000us release B (DIA)",
+                                             "1000us release C (DIA)", "3000us release D (DIA)",
+                                             "6000us deadline miss: DIA (ORD:0)",
+                                             "10000us overrun: DIA cycle still running, release skipped",
+                                             "20000us release A (DIA)", NULL},
+                       __FILE__, __LINE__);
+    OrdSchemaStats st;
+    ord_core_stats(c, "DIA", &st);
+    CHECK(st.overruns == 1 && st.cycles == 2 && st.completed == 1);
+    ord_core_destroy(c);
+}
+
+void test_ord_conflict_refused_with_ord1(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    CHECK(ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1) == 0);
+    CHECK(ord_core_activate(c, 1 * MS, "OTH", NULL, 0, "SUP", 2) == -1);     /* shares B */
+    CHECK(ord_core_activate(c, 1 * MS, "DIA", NULL, 0, "GLB", 3) == -1);     /* itself */
+    CHECK(ord_core_deactivate(c, 2 * MS, "DIA", "GLB", 3) == -1); /* the refused one's undo */
+    CHECK(ord_core_schema_active(c, "DIA") && !ord_core_schema_active(c, "OTH"));
+    CHECK(log_find(&LOG, "emit ORD:1 OTH", 0) >= 0);
+    CHECK(log_find(&LOG, "ack SUP #2 refused", 0) >= 0);
+    CHECK(log_find(&LOG, "emit ORD:1 DIA", 0) >= 0);
+    CHECK(ord_core_activate(c, 3 * MS, "NOPE", NULL, 0, "SUP", 4) == -1);
+    CHECK(ord_core_deactivate(c, 4 * MS, "DIA", "SUP", 1) == 0);
+    CHECK(ord_core_activate(c, 5 * MS, "OTH", NULL, 0, "SUP", 5) == 0);      /* now free */
+    ord_core_destroy(c);
+}
+
+void test_ord_two_periods_and_deactivation(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1);
+    ord_core_activate(c, 0, "FST", NULL, 0, "SUP", 2);
+    for (int ms = 0; ms <= 40; ms++) { /* scripted in time order, 1 ms steps */
+        int64_t t = ms * MS;
+        if (ms < 14) {
+            static const char *const order[] = {NULL, "A", "C", "B", "D"};
+            if (ms % 10 >= 1 && ms % 10 <= 4) ord_core_module_finished(c, t, order[ms % 10]);
+        }
+        if (ms % 3 == 1) ord_core_module_finished(c, t, "E");
+        if (ms == 14) CHECK(ord_core_deactivate(c, t + 500000, "DIA", "SUP", 1) == 0);
+        ord_core_advance(c, t);
+    }
+    static const char *const rel[] = {"release", NULL};
+    int e = 0, dia = 0, last_dia = -1;
+    for (int i = 0; i < LOG.n; i++) {
+        if (strstr(LOG.lines[i], "release E")) e++;
+        if (strstr(LOG.lines[i], "release A (DIA)")) { dia++; last_dia = i; }
+    }
+    (void)rel;
+    CHECK(e == 14);  /* 0, 3, ..., 39 ms */
+    CHECK(dia == 2); /* 0 and 10 ms, nothing after the deactivation */
+    CHECK(last_dia >= 0 && strcmp(LOG.lines[last_dia], "10000us release A (DIA)") == 0);
+    CHECK(log_find(&LOG, "disconnect A:0 -> D:0", 0) >= 0);
+    CHECK(log_find(&LOG, "3000us release E (FST)", 0) >= 0);
+    CHECK(log_find(&LOG, "39000us release E (FST)", 0) >= 0);
+    int64_t d;
+    CHECK(ord_core_next_deadline(c, &d) == 1 && d == 42 * MS);
+    ord_core_destroy(c);
+}
+
+void test_ord_cyclic_graph_refused(void) {
+    static const ContractSchemaModule m2[] = {{"A", 0, NULL}, {"B", 0, NULL}};
+    static const ContractPrecedence cyc[] = {{0, 1}, {1, 0}};
+    static const ContractSchema CYC = {"CYC", CONTRACT_SCHEMA_PERIODIC, MS, MS, 0, NULL, 0, 2, m2,
+                                       2, cyc, 0, NULL, 0, NULL};
+    static const ContractSchema *const s[] = {&CYC};
+    ContractOrdVocabulary v = {CONTRACT_VOCABULARY_VERSION, 0, NULL, 1, s, 0, NULL};
+    char err[256] = "";
+    CHECK(ord_core_create(&v, NULL, err, sizeof err) == NULL);
+    CHECK(strstr(err, "CYC") && strstr(err, "cycle"));
+}
