@@ -1,0 +1,217 @@
+/**
+ * Every diagnostic code of SPEC §2.1–2.3 (and the syntax/linking codes): a case that raises it and
+ * a near-identical case that does not.
+ */
+import { EmptyFileSystem } from 'langium';
+import { beforeAll, describe, expect, it } from 'vitest';
+import { createCactalServices, type CactalServices } from '../src/cactal-module.js';
+import { CODE_AREAS } from '../src/validation/codes/index.js';
+import { build, codes, TYPES } from './helpers.js';
+
+type Files = Record<string, string>;
+interface Case { raise: Files; clean: Files; data?: Record<string, unknown> }
+
+const sync = (body: string, name = 'MSA') => `synchronous module ${name} { ${body} }`;
+const sup = (rule: string) => ({
+    't.contract': TYPES,
+    's.contract': `import "t.contract";\nsupervisor SUP { f() { local { TypeA t; } rules { R: [elapsed=1ms] ${rule} [elapsed=2ms] } } }`
+});
+
+export const CASES: Record<string, Case> = {
+    'lexing-error': { raise: { 'a.contract': 'datatype T {int a = 1 $};' }, clean: { 'a.contract': 'datatype T {int a = 1 };' } },
+    'parsing-error': { raise: { 'a.contract': 'datatype T {int a = };' }, clean: { 'a.contract': 'datatype T {int a = 1};' } },
+    'linking-error': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 TypeZ x; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int x; }') }
+    },
+    'import-missing-file': {
+        raise: { 'a.contract': 'import "nosuch.contract";\ndatatype A {int x};' },
+        clean: { 'a.contract': 'import "b.contract";\ndatatype A {B x};', 'b.contract': 'datatype B {int y};' }
+    },
+    'import-cycle': {
+        raise: { 'a.contract': 'import "b.contract";\ndatatype A {B b};', 'b.contract': 'import "a.contract";\ndatatype B {int x};' },
+        clean: { 'a.contract': 'import "b.contract";\ndatatype A {B b};', 'b.contract': 'datatype B {int x};' }
+    },
+    'import-unused': {
+        raise: { 'a.contract': 'import "b.contract";\ndatatype A {int b};', 'b.contract': 'datatype B {int y};' },
+        clean: { 'a.contract': 'import "b.contract";\ndatatype A {B b};', 'b.contract': 'datatype B {int y};' }
+    },
+    'import-not-imported': {
+        raise: { 'a.contract': 'datatype A {B b};', 'b.contract': 'datatype B {int y};' },
+        clean: { 'a.contract': 'import "b.contract";\ndatatype A {B b};', 'b.contract': 'datatype B {int y};' },
+        data: { importPath: 'b.contract' }
+    },
+    'import-duplicate': {
+        raise: { 'a.contract': 'import "b.contract";\nimport "./b.contract";\ndatatype A {B b};', 'b.contract': 'datatype B {int y};' },
+        clean: { 'a.contract': 'import "b.contract";\ndatatype A {B b};', 'b.contract': 'datatype B {int y};' }
+    },
+    'import-self': {
+        raise: { 'a.contract': 'import "a.contract";\ndatatype A {int b};' },
+        clean: { 'a.contract': 'datatype A {int b};' }
+    },
+    'import-not-at-top': {
+        raise: { 'a.contract': 'datatype A {B b};\nimport "b.contract";', 'b.contract': 'datatype B {int y};' },
+        clean: { 'a.contract': 'import "b.contract";\ndatatype A {B b};', 'b.contract': 'datatype B {int y};' }
+    },
+    'file-mixed-content': {
+        raise: { 'a.contract': `datatype T {int a};\n${sync('scheduling { C=1ms; } data flows { out :0 T x; }')}` },
+        clean: { 'a.contract': 'datatype T {int a};', 'm.contract': `import "a.contract";\n${sync('scheduling { C=1ms; } data flows { out :0 T x; }')}` }
+    },
+    'type-duplicate-name': {
+        raise: { 'a.contract': 'datatype T {int a};', 'b.contract': 'datatype T {float b};' },
+        clean: { 'a.contract': 'datatype T {int a};', 'b.contract': 'datatype U {float b};' }
+    },
+    'type-duplicate-member': {
+        raise: { 'a.contract': 'datatype T {int a, float a};' },
+        clean: { 'a.contract': 'datatype T {int a, float b};' }
+    },
+    'type-recursive': {
+        raise: { 'a.contract': 'datatype A {B b};\ndatatype B {A a};' },
+        clean: { 'a.contract': 'datatype A {B b};\ndatatype B {int a};' }
+    },
+    'type-primitive-misuse': {
+        raise: { 'a.contract': 'datatype T {bool flag};' },
+        clean: { 'a.contract': 'datatype T {int flag};' }
+    },
+    'type-function-return': {
+        raise: { 'a.contract': 'function int f(int a);' },
+        clean: { 'a.contract': 'function bool f(int a);' }
+    },
+    'type-function-misuse': {
+        raise: sup('compute testit("a", t)'),
+        clean: sup('compute doit("a", t.i)')
+    },
+    'value-type-mismatch': {
+        raise: { 'a.contract': 'datatype T {int a = 1.5};' },
+        clean: { 'a.contract': 'datatype T {float a = 1};' }
+    },
+    'value-struct-arity': {
+        raise: { 'a.contract': 'datatype A {float i, float j};\ndatatype B {A a = {1.0}};' },
+        clean: { 'a.contract': 'datatype A {float i, float j};\ndatatype B {A a = {1.0, 2}};' }
+    },
+    'value-string-too-long': {
+        raise: { 'a.contract': `datatype T {string s = "${'é'.repeat(128)}"};` },
+        clean: { 'a.contract': `datatype T {string s = "${'x'.repeat(255)}"};` }
+    },
+    'value-not-constant': {
+        raise: { 'a.contract': 'datatype T {string s = ord_schema};' },
+        clean: { 'a.contract': 'datatype T {string s = "ord_schema"};' }
+    },
+    'module-name-format': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; }', 'msa') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; }', 'MSA') },
+        data: { suggestion: 'MSA' }
+    },
+    'module-name-reserved': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; }', 'ORD') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; }', 'ORE') }
+    },
+    'module-name-duplicate': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; }'), 'b.contract': 'supervisor MSA { }' },
+        clean: { 'a.contract': sync('scheduling { C=1ms; }'), 'b.contract': 'supervisor MSB { }' }
+    },
+    'identifier-c-keyword': {
+        raise: { 'a.contract': 'datatype T {int double};' },
+        clean: { 'a.contract': 'datatype T {int double_};' }
+    },
+    'identifier-reserved-prefix': {
+        raise: { 'a.contract': 'datatype T {int _a};' },
+        clean: { 'a.contract': 'datatype T {int a_};' }
+    },
+    'module-block-order': {
+        raise: { 'a.contract': sync('data flows { out :0 int x; } scheduling { C=1ms; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int x; }') }
+    },
+    'module-block-duplicate': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } scheduling { C=1ms; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; }') }
+    },
+    'module-scheduling-missing': {
+        raise: { 'a.contract': sync('data flows { out :0 int x; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int x; }') }
+    },
+    'module-scheduling-property': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; D=1ms; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; }') }
+    },
+    'module-async-forbidden-block': {
+        raise: { 'a.contract': 'asynchronous module MAA { scheduling { C=1ms; } event flows { in :0 int e; } }' },
+        clean: { 'a.contract': 'asynchronous module MAA { event flows { in :0 int e; } }' }
+    },
+    'module-sync-event-in': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } event flows { in :0 int e; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } event flows { out :0 int e; }') }
+    },
+    'port-index-duplicate': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int a; out :0 int b; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int a; in :0 int b; }') },
+        data: { suggestedIndex: 1 }
+    },
+    'port-index-negative': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :-1 int a; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :1 int a; }') }
+    },
+    'member-name-duplicate': {
+        raise: { 'a.contract': sync('parameters { int a :0; } scheduling { C=1ms; } data flows { out :0 float a; }') },
+        clean: { 'a.contract': sync('parameters { int a :0; } scheduling { C=1ms; } data flows { out :0 float b; }') }
+    },
+    'time-not-positive': {
+        raise: { 'a.contract': sync('scheduling { C=0ms; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ns; }') }
+    }
+};
+
+const MY_AREAS = ['Syntax and references', 'Files and imports', 'Data types, values and functions', 'Modules and identifiers'];
+
+describe('diagnostic codes of §2.1–2.3: raised and not raised', () => {
+    let services: CactalServices;
+    beforeAll(() => { services = createCactalServices(EmptyFileSystem).Cactal; });
+
+    it('has a case for every code of its areas', () => {
+        const declared = CODE_AREAS.filter((a) => MY_AREAS.includes(a.title)).flatMap((a) => a.codes.map((c) => c.code));
+        expect(declared.filter((c) => !(c in CASES))).toEqual([]);
+    });
+
+    for (const [code, c] of Object.entries(CASES)) {
+        it(`${code}: raised`, async () => {
+            const built = await build(c.raise, services);
+            const found = built.diagnostics.filter((d) => d.code === code);
+            expect(found.length, built.lines.join('\n')).toBeGreaterThan(0);
+            const declared = CODE_AREAS.flatMap((a) => a.codes).find((d) => d.code === code)!;
+            expect(found[0]!.severity).toBe(declared.severity);
+            if (c.data) expect(found[0]!.data).toMatchObject(c.data);
+        });
+        it(`${code}: not raised by the near-identical case`, async () => {
+            const built = await build(c.clean, services);
+            expect(codes(built), built.lines.join('\n')).not.toContain(code);
+        });
+    }
+});
+
+describe('messages say what is wrong and what would be right', () => {
+    it('names the expected block order', async () => {
+        const built = await build(CASES['module-block-order']!.raise);
+        expect(built.lines.join('\n')).toContain('the order is parameters, scheduling, data flows, event flows');
+    });
+    it('shows the datatype cycle', async () => {
+        const built = await build(CASES['type-recursive']!.raise);
+        expect(built.lines.join('\n')).toContain('A -> B -> A');
+    });
+    it('shows the import cycle', async () => {
+        const built = await build(CASES['import-cycle']!.raise);
+        expect(built.lines.join('\n')).toContain('a.contract -> b.contract -> a.contract');
+    });
+    it('lists the available ports when a port index does not resolve', async () => {
+        const built = await build({
+            't.contract': TYPES,
+            'm.contract': `import "t.contract";\n${sync('scheduling { C=1ms; } data flows { in :0 TypeA a; out :1 TypeB b; }', 'MSC')}`,
+            'n.contract': `import "t.contract";\n${sync('scheduling { C=1ms; } data flows { in :2 TypeB c; }', 'MSD')}`,
+            's.contract': 'import "m.contract";\nimport "n.contract";\nperiodic schema s() { realtime { PERIOD=1s; CRITICAL_DELAY=1s; } modules { MSC (); MSD (); } communications { MSC:0 -> MSD:2 * 1; } }'
+        });
+        expect(built.lines.join('\n')).toContain('MSC has no output data port 0; its output data ports: :1 b.');
+    });
+    it('accepts an int literal for a float, rejects a real for an int', async () => {
+        const built = await build({ 'a.contract': 'datatype T {float f = 1, int i = 2.5};' });
+        expect(built.diagnostics.map((d) => d.message)).toEqual(["Expected an int (integer literal) for 'i', found the real 2.5 (a real cannot be an int)."]);
+    });
+});
