@@ -1,5 +1,5 @@
 import { existsSync } from 'node:fs';
-import { dirname, join, relative, resolve, sep } from 'node:path';
+import { dirname, isAbsolute, join, relative, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 /** Where the `contract-gcc` image installs the runtime (docs/architecture.md, seam 3). */
@@ -13,10 +13,12 @@ export function repoRuntime(): string | undefined {
 }
 
 /**
- * The CONTRACT_RUNTIME default written in the architecture Makefile: `runtime` if given (absolute
- * paths become relative to the architecture folder), else the repo's runtime, else the installed one.
+ * The CONTRACT_RUNTIME default written in the architecture Makefile: `runtime` if given (an
+ * absolute path becomes relative to the architecture folder, a relative one is taken as already
+ * relative to it), else the repo's runtime, else the installed one.
  */
 export function runtimeFromArchitecture(architectureDir: string, runtime?: string): string {
+    if (runtime !== undefined && !isAbsolute(runtime)) return runtime.split(sep).join('/');
     const target = runtime ?? repoRuntime();
     if (!target) return INSTALLED_RUNTIME;
     if (target === INSTALLED_RUNTIME) return target;

@@ -1,0 +1,83 @@
+import { cpSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { loadWorkspace } from '@contract-studio/language/node';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { generateArchitecture } from './generate-architecture.js';
+import { parseRegions } from './regions/parse-regions.js';
+import { readTree, tempDir } from './test-support/temp-dir.js';
+import { RUNTIME_DIR, ensureRuntimeLibrary, run } from './test-support/c-toolchain.js';
+
+const TUTORIAL = resolve(fileURLToPath(new URL('.', import.meta.url)), '..', '..', '..', 'examples', 'tutorial');
+const MODULES = 'generated/architecture/modules';
+
+/** A copy of the tutorial project (sources and committed src-gen with user code). */
+function copyTutorial(dir: string): void {
+    for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) cpSync(join(TUTORIAL, f), join(dir, f));
+    cpSync(join(TUTORIAL, 'src-gen'), join(dir, 'src-gen'), { recursive: true, filter: (src) => !/\/(run|logs)(\/|$)|_mod\/[A-Z]{3}$|tools\/control[A-Z]{3}$/.test(src) });
+}
+
+function enabledRegions(text: string, file: string): Map<string, string> {
+    return new Map(parseRegions(text, file).regions.filter((r) => r.enabled).map((r) => [r.id, r.content]));
+}
+
+describe('the tutorial project (examples/tutorial)', () => {
+    let dir: string;
+    let cleanup: () => void;
+    beforeAll(() => {
+        ({ dir, cleanup } = tempDir('codegen-tutorial-'));
+        copyTutorial(dir);
+    });
+    afterAll(() => cleanup());
+
+    it('committed src-gen is what the generator writes: regenerating it changes nothing', async () => {
+        const ws = await loadWorkspace(dir);
+        expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
+        const before = readTree(join(dir, 'src-gen'));
+        const report = generateArchitecture(ws.documents, join(dir, 'src-gen'), { runtime: '../../../../../runtime' });
+        expect(report.errors).toEqual([]);
+        expect(report.filesWritten).toBe(0);
+        expect(readTree(join(dir, 'src-gen'))).toEqual(before);
+    }, 60_000);
+
+    it("keeps the report's MAA and MSC user code when a port is added to MAA", async () => {
+        const maaFile = `${MODULES}/MAA_mod/module.c`;
+        const mscFile = `${MODULES}/MSC_mod/module.c`;
+        const maaBefore = enabledRegions(readFileSync(join(dir, 'src-gen', maaFile), 'latin1'), maaFile);
+        const mscBefore = readFileSync(join(dir, 'src-gen', mscFile), 'latin1');
+        expect(maaBefore.get('protect_exec_MAA')).toContain('_post_status("connected");');
+
+        const source = join(dir, 'amodule1.contract');
+        writeFileSync(source, readFileSync(source, 'utf8').replace('out :2 string connection_status;', 'out :2 string connection_status;\n        out :3 TypeD link_quality;'));
+        const ws = await loadWorkspace(dir);
+        expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
+        const report = generateArchitecture(ws.documents, join(dir, 'src-gen'));
+        expect(report.errors).toEqual([]);
+        expect(report.updated).toContain(maaFile);
+        expect(report.orphaned).toEqual([]);
+
+        const maaAfter = readFileSync(join(dir, 'src-gen', maaFile), 'latin1');
+        expect(maaAfter).toContain('TypeD link_quality = { "\\0", 0 };');
+        expect(maaAfter).toContain('{ &link_quality, 3, sizeof(TypeD)}');
+        const kept = enabledRegions(maaAfter, maaFile);
+        for (const [id, content] of maaBefore) expect(kept.get(id), id).toBe(content);
+        expect(readFileSync(join(dir, 'src-gen', mscFile), 'latin1')).toBe(mscBefore);
+    }, 60_000);
+
+    it('committed src-gen builds with gcc -std=c11 -Wall -Wextra -Werror against the runtime (make all, parallel)', () => {
+        const { dir: buildDir, cleanup: done } = tempDir('codegen-build-');
+        try {
+            copyTutorial(buildDir);
+            ensureRuntimeLibrary();
+            const arch = join(buildDir, 'src-gen', 'generated', 'architecture');
+            const out = run('make', ['-j2', '-C', arch, 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O1']);
+            expect(out).not.toMatch(/warning:/);
+            for (const exe of ['ORD', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'SUP', 'GLB']) {
+                expect(readdirSync(join(arch, 'modules', `${exe}_mod`))).toContain(exe);
+            }
+            expect(readdirSync(join(arch, 'tools'))).toContain('controlGLB');
+        } finally {
+            done();
+        }
+    }, 240_000);
+});
