@@ -167,7 +167,7 @@ export class Job {
       });
       if (!build.ok) {
         const errors = this.diagnostics.filter((d) => d.severity === 'error').length;
-        const message = build.message ?? `build failed: ${errors} error(s) (make exit ${build.exitCode})`;
+        const message = build.message ?? (errors ? `build failed: ${errors} error(s) (make exit ${build.exitCode})` : `build failed (make exit ${build.exitCode})`);
         this.result = this.makeResult('build', false, build.exitCode, build.signal, message, build.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;

@@ -126,7 +126,7 @@ export class DockerSandbox implements Sandbox {
     };
     try {
       // the job's files, with their mtimes (make sees unchanged sources as unchanged)
-      await container.putArchive(await tarOf(cmd.workDir), { path: DOCKER_WORK, copyUIDGID: '1' } as never);
+      await container.putArchive(await tarOf(cmd.workDir), { path: DOCKER_WORK });
       const stream = await container.attach({ stream: true, stdout: true, stderr: true });
       const stdout = new PassThrough();
       const stderr = new PassThrough();

@@ -1,0 +1,25 @@
+/**
+ * Adversarial jobs in the Docker sandbox (see test-support/adversarial-suite.ts); starts dockerd
+ * and bootstraps the image when needed, or says SKIPPED loudly with the reason.
+ */
+import Docker from 'dockerode';
+import { afterAll, describe, expect, test } from 'vitest';
+import { adversarialSuite } from './test-support/adversarial-suite.js';
+import { dockerUp } from './test-support/docker-env.js';
+
+const env = dockerUp();
+afterAll(() => env.stop());
+
+if (env.available) {
+  adversarialSuite('docker', 'docker', async () => {
+    const docker = new Docker();
+    const containers = await docker.listContainers({ all: true, filters: { label: ['contract-studio=job'] } });
+    expect(containers).toEqual([]);
+    const { Volumes } = await docker.listVolumes({ filters: { label: ['contract-studio=workspace'] } });
+    expect(Volumes ?? []).toEqual([]);
+  });
+} else {
+  describe('docker sandbox', () => {
+    test.skip(`SKIPPED: ${env.reason}`, () => {});
+  });
+}

@@ -1,0 +1,165 @@
+/**
+ * Adversarial programs in one sandbox, all submitted at once next to an honest job: each is
+ * stopped with the right message, the honest job completes untouched, nothing outlives the jobs.
+ * Used by adversarial.bwrap.test.ts and adversarial.docker.test.ts.
+ */
+import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { createServer, type Server } from 'node:net';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+
+import { createBuildServer, type BuildServer } from '../server.js';
+import {
+  bigAllocation,
+  connectProgram,
+  forkBomb,
+  honestProgram,
+  infiniteLoop,
+  makeProject,
+  outputFlood,
+  writeOutsideProgram,
+} from './c-projects.js';
+import { postJob, readEvents, getJob } from './client.js';
+import type { JobEvent, LineEvent } from '../pipeline/job-events.js';
+import type { SandboxName } from '../sandbox/types.js';
+
+interface Outcome {
+  job: Record<string, any>;
+  events: JobEvent[];
+  lines: LineEvent[];
+}
+
+export function adversarialSuite(sandbox: SandboxName, mechanism: string, extraChecks: () => Promise<void> = async () => {}): void {
+let server: BuildServer;
+let url: string;
+let listener: Server;
+let connections = 0;
+let hostDir: string;
+let cacheDir: string;
+const outcomes: Record<string, Outcome> = {};
+
+async function runToEnd(name: string, files: Record<string, string>, limits: Record<string, number> = {}): Promise<void> {
+  const r = await postJob(url, { action: 'run', kind: 'make', sandbox, project: { files }, limits });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const events = await readEvents(url, r.json.id as string);
+  outcomes[name] = { job: await getJob(url, r.json.id as string), events, lines: events.filter((e): e is LineEvent => e.type === 'line') };
+}
+
+beforeAll(async () => {
+  hostDir = mkdtempSync(join(tmpdir(), 'contract-host-'));
+  writeFileSync(join(hostDir, 'secret.txt'), 'host data\n');
+  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
+  listener = createServer((s) => {
+    connections++;
+    s.destroy();
+  });
+  await new Promise<void>((r) => listener.listen(0, '127.0.0.1', r));
+  const port = (listener.address() as { port: number }).port;
+  server = createBuildServer({ port: 0, concurrency: 7, queueSize: 0, cacheDir });
+  url = (await server.listen()).url;
+  await Promise.all([
+    runToEnd('honest', makeProject(honestProgram(200))),
+    runToEnd('forkBomb', makeProject(forkBomb)),
+    runToEnd('allocation', makeProject(bigAllocation)),
+    runToEnd('loop', makeProject(infiniteLoop), { runSeconds: 4 }),
+    runToEnd('connect', makeProject(connectProgram(port))),
+    runToEnd(
+      'writeOutside',
+      makeProject(writeOutsideProgram([join(hostDir, 'pwned.txt'), join(hostDir, 'secret.txt'), '/usr/pwned', '/etc/pwned', '/pwned', '/tmp/private-ok'])),
+    ),
+    runToEnd('flood', makeProject(outputFlood)),
+  ]);
+}, 180_000);
+
+afterAll(async () => {
+  await server?.close();
+  listener?.close();
+  rmSync(hostDir, { recursive: true, force: true });
+  rmSync(cacheDir, { recursive: true, force: true });
+});
+
+describe(`${sandbox} sandbox, adversarial jobs running together`, () => {
+  test('the honest job completes with all its output', () => {
+    const { job, lines } = outcomes.honest!;
+    expect(job.status).toBe('succeeded');
+    expect(lines.filter((l) => l.step === 'run' && l.stream === 'stdout' && /^out \d+$/.test(l.line))).toHaveLength(200);
+    expect(lines.filter((l) => l.step === 'run' && l.stream === 'stderr' && /^err \d+$/.test(l.line))).toHaveLength(200);
+    expect(lines.some((l) => l.line === 'honest done')).toBe(true);
+    expect(job.result.mechanisms).toMatchObject({ memory: mechanism, processes: mechanism });
+  });
+
+  test('a fork bomb is stopped by the process limit', () => {
+    const { job } = outcomes.forkBomb!;
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toBe('killed: process limit 256');
+    expect(job.result.limitHit).toEqual({ name: 'processes', value: 256, unit: 'count', mechanism });
+  });
+
+  test('a 4 GiB allocation is stopped by the memory limit', () => {
+    const { job } = outcomes.allocation!;
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toBe('killed: memory limit 512 MiB');
+    expect(job.result.limitHit).toMatchObject({ name: 'memory', value: 512 * 1024 * 1024, mechanism });
+  });
+
+  test('an infinite loop is stopped by the run time limit', () => {
+    const { job, events } = outcomes.loop!;
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toBe('killed: run time limit 4 s');
+    expect(events.some((e) => e.type === 'limit')).toBe(true);
+    expect(job.result.durations_ms.run).toBeLessThan(4000 + 2000);
+  });
+
+  test('connect() to a server listening on the host 127.0.0.1 fails (own empty network)', () => {
+    const { job, lines } = outcomes.connect!;
+    expect(job.status).toBe('succeeded');
+    expect(lines.some((l) => /^connect failed: (Connection refused|Network is unreachable)$/.test(l.line))).toBe(true);
+    expect(lines.some((l) => l.line === 'CONNECTED')).toBe(false);
+    expect(connections).toBe(0);
+  });
+
+  test('writing outside the work dir is refused; the host is untouched', () => {
+    const { job, lines } = outcomes.writeOutside!;
+    expect(job.status).toBe('succeeded');
+    const text = lines.map((l) => l.line);
+    for (const p of [join(hostDir, 'pwned.txt'), join(hostDir, 'secret.txt'), '/usr/pwned', '/etc/pwned', '/pwned']) {
+      expect(text.some((t) => t.startsWith(`refused ${p}:`)), p).toBe(true);
+    }
+    // /tmp inside the sandbox is private and writable (the compiler needs it), not the host's
+    expect(text).toContain('WROTE /tmp/private-ok');
+    expect(existsSync('/tmp/private-ok')).toBe(false);
+    expect(existsSync(join(hostDir, 'pwned.txt'))).toBe(false);
+    expect(readFileSync(join(hostDir, 'secret.txt'), 'utf8')).toBe('host data\n');
+    expect(existsSync('/usr/pwned') || existsSync('/etc/pwned') || existsSync('/pwned')).toBe(false);
+  });
+
+  test('100 MiB of output is cut at 1 MiB per stream with a notice; the job is not confused by it', () => {
+    const { job, lines } = outcomes.flood!;
+    expect(job.status).toBe('succeeded');
+    expect(job.result.truncated.stdout).toBe(true);
+    const kept = lines.filter((l) => l.step === 'run' && l.stream === 'stdout').reduce((n, l) => n + Buffer.byteLength(l.line) + 1, 0);
+    expect(kept).toBeLessThanOrEqual(1024 * 1024 + 1); // + the newline the cut last line did not have
+    expect(kept).toBeGreaterThan(1000 * 1024);
+    expect(lines.filter((l) => l.stream === 'system' && l.line === '[output truncated: stdout limit 1 MiB reached]')).toHaveLength(1);
+    expect(lines.some((l) => l.line === 'flood done')).toBe(false);
+  });
+
+  test('nothing outlives the jobs: no process of a job uid, no job cgroup, no fresh work dir', async () => {
+    const ps = readdirSync('/proc').filter((p) => /^\d+$/.test(p));
+    const jobProcs = ps.filter((p) => {
+      try {
+        const uid = /^Uid:\s+(\d+)/m.exec(readFileSync(`/proc/${p}/status`, 'utf8'))?.[1];
+        return Number(uid) >= 100_000 && Number(uid) < 160_000;
+      } catch {
+        return false;
+      }
+    });
+    expect(jobProcs.map((p) => { try { return p + ' ' + readFileSync(`/proc/${p}/status`, 'utf8').split('\n').slice(0, 9).join(' | '); } catch { return p + ' gone'; } })).toEqual([]);
+    const ownPids = readFileSync('/proc/self/cgroup', 'utf8').match(/^\d+:pids:(.*)$/m)?.[1] ?? '/';
+    expect(readdirSync(join('/sys/fs/cgroup/pids', ownPids)).filter((d) => d.startsWith('contract-'))).toEqual([]);
+    expect(readdirSync(join(cacheDir, 'ws'))).toEqual([]);
+    await extraChecks();
+  });
+});
+}
