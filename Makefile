@@ -11,9 +11,7 @@ start: setup
 	node packages/cli/bin/contract.js serve examples/tutorial
 
 test: setup
-	$(MAKE) -C runtime test
-	npm test
-	@echo "all test suites finished"
+	node scripts/run-tests.mjs
 
 bench: setup
 	npm run bench

@@ -1,0 +1,79 @@
+#!/usr/bin/env node
+// Runs every test suite of the project in turn, streams their output, and ends with one
+// summary line `N passed, N failed` (plus skipped) over all suites. Exit code 1 if any suite
+// failed or ran no test.
+//
+// Suites: the C runtime (its runner prints `N passed, N failed`), then each npm workspace's
+// vitest run (read through vitest's JSON reporter).
+import { spawn } from 'node:child_process';
+import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, dirname } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+const root = join(dirname(fileURLToPath(import.meta.url)), '..');
+const rootPkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8'));
+const only = process.argv.slice(2);
+const scratch = mkdtempSync(join(tmpdir(), 'contract-tests-'));
+
+/** Runs a command, echoing its output live; resolves with its exit code and full output. */
+function run(cmd, args, opts = {}) {
+  return new Promise((resolve) => {
+    const child = spawn(cmd, args, { cwd: root, stdio: ['ignore', 'pipe', 'pipe'], ...opts });
+    let out = '';
+    child.stdout.on('data', (d) => { out += d; process.stdout.write(d); });
+    child.stderr.on('data', (d) => { out += d; process.stderr.write(d); });
+    child.on('close', (code, signal) => resolve({ code: code ?? (signal ? 128 : 1), out }));
+  });
+}
+
+/** Sums every `N passed, N failed` line a C runner printed. */
+function countCRunner(out) {
+  let passed = 0, failed = 0, seen = false;
+  for (const m of out.matchAll(/^\s*(?:\w+:\s*)?(\d+) passed, (\d+) failed/gm)) {
+    passed += Number(m[1]); failed += Number(m[2]); seen = true;
+  }
+  return seen ? { passed, failed, skipped: 0 } : null;
+}
+
+const suites = [
+  {
+    name: 'runtime (C, plain + ASan/UBSan, engines)',
+    exec: () => run('make', ['-s', '-C', 'runtime', 'test']),
+    count: (r) => countCRunner(r.out),
+  },
+  ...rootPkg.workspaces.map((ws) => ({
+    name: ws,
+    exec: () => {
+      const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
+      if (!pkg.scripts?.test) return Promise.resolve(null);
+      const json = join(scratch, ws.replace(/\W/g, '_') + '.json');
+      return run('npx', ['vitest', 'run', '--reporter=default', '--reporter=json', `--outputFile=${json}`],
+        { cwd: join(root, ws) }).then((r) => ({ ...r, json }));
+    },
+    count: (r) => {
+      if (!r.json || !existsSync(r.json)) return null;
+      const j = JSON.parse(readFileSync(r.json, 'utf8'));
+      return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0) };
+    },
+  })),
+];
+
+const totals = { passed: 0, failed: 0, skipped: 0 };
+const problems = [];
+for (const s of suites) {
+  if (only.length && !only.some((o) => s.name.includes(o))) continue;
+  console.log(`\n=== ${s.name} ===`);
+  const r = await s.exec();
+  if (r === null) { console.log('(no tests)'); continue; }
+  const c = s.count(r);
+  if (!c) { problems.push(`${s.name}: exit ${r.code}, no test count found`); continue; }
+  totals.passed += c.passed; totals.failed += c.failed; totals.skipped += c.skipped;
+  if (r.code !== 0 || c.failed > 0) problems.push(`${s.name}: exit ${r.code}, ${c.failed} failed`);
+  if (c.passed + c.failed === 0) problems.push(`${s.name}: ran no test`);
+  console.log(`=== ${s.name}: ${c.passed} passed, ${c.failed} failed, ${c.skipped} skipped ===`);
+}
+rmSync(scratch, { recursive: true, force: true });
+if (problems.length) console.log(`\nFAILED suites:\n  ${problems.join('\n  ')}`);
+console.log(`\n${totals.passed} passed, ${totals.failed} failed, ${totals.skipped} skipped`);
+process.exit(problems.length ? 1 : 0);
