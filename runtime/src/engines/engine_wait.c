@@ -1,0 +1,50 @@
+/* engine_wait.c — see engine_wait.h. */
+#define _GNU_SOURCE
+#include "engine_wait.h"
+
+#include <errno.h>
+#include <poll.h>
+#include <stdio.h>
+#include <string.h>
+#include <sys/prctl.h>
+#include <sys/timerfd.h>
+#include <time.h>
+#include <unistd.h>
+
+static int timer_fd = -1;
+
+static int ensure_timer(void) {
+    if (timer_fd >= 0) return 0;
+    timer_fd = timerfd_create(CLOCK_MONOTONIC, TFD_CLOEXEC | TFD_NONBLOCK);
+    if (timer_fd < 0) {
+        fprintf(stderr, "%s: timerfd_create: %s\n", ContractSelfName(), strerror(errno));
+        return -1;
+    }
+    prctl(PR_SET_TIMERSLACK, 1UL, 0, 0, 0); /* wake at the deadline, not up to 50 us later */
+    return 0;
+}
+
+int engine_wait(RequestMessage *m, int64_t deadline) {
+    if (ensure_timer() != 0) return -1;
+    for (;;) {
+        if (LookForRequest(m)) return 1;
+        if (deadline != INT64_MAX && GetTime() >= deadline) return 0;
+        struct itimerspec its;
+        memset(&its, 0, sizeof its);
+        if (deadline != INT64_MAX) {
+            its.it_value.tv_sec = (time_t)(deadline / 1000000000LL);
+            its.it_value.tv_nsec = (long)(deadline % 1000000000LL);
+        }
+        if (timerfd_settime(timer_fd, TFD_TIMER_ABSTIME, &its, NULL) != 0) return -1;
+        struct pollfd p[2] = {{MailboxFd(), POLLIN, 0}, {timer_fd, POLLIN, 0}};
+        int r = poll(p, 2, -1);
+        if (r < 0) {
+            if (errno == EINTR) continue;
+            return -1;
+        }
+        if (p[1].revents & POLLIN) {
+            uint64_t expirations;
+            if (read(timer_fd, &expirations, sizeof expirations) < 0 && errno != EAGAIN) return -1;
+        }
+    }
+}

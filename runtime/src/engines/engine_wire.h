@@ -1,0 +1,29 @@
+/*
+ * engine_wire.h — how the engines talk to each other over libmodule requests (supervisor ->
+ * ORD schema activation, supervisor -> supervisor function activation). See sup_main.c for
+ * the conventions and docs/engines.md.
+ */
+#ifndef CONTRACT_ENGINE_WIRE_H
+#define CONTRACT_ENGINE_WIRE_H
+
+#include <stddef.h>
+
+#include "libmodule/libmodule.h"
+
+/** Prefix of a binary argument block in a REQ_START's Data (text arguments never start
+ *  with a control character). */
+#define CONTRACT_BINARY_ARGS_MAGIC "\001CTRB"
+#define CONTRACT_BINARY_ARGS_MAGIC_LEN 5
+
+/** REQ_START to `module` for `function` (a supervision function or, to ORD, a schema) with a
+ *  binary parameter block; no ack wanted; tagged ackId. Returns a CONTRACT_* code. */
+int engine_send_start(const char *module, const char *function, const void *block, size_t size,
+                      int ackId);
+/** REQ_STOP to `module` naming `function` (or schema) in Data; tagged ackId. */
+int engine_send_stop(const char *module, const char *function, int ackId);
+/** 1 and the block when the request's Data is a binary argument block, else 0. */
+int engine_binary_args(const RequestMessage *m, const unsigned char **block, size_t *size);
+/** Copies the request's Data as a NUL-terminated string (truncated to n-1). */
+void engine_data_string(const RequestMessage *m, char *out, size_t n);
+
+#endif

@@ -1,0 +1,234 @@
+/*
+ * ord_main.c — binds the scheduler core (ord_core.c) to libmodule.
+ *
+ * Requests ORD understands (see docs/engines.md):
+ *  - REQ_START, Function = schema name, Data = CONTRACT_BINARY_ARGS_MAGIC + parameter block
+ *    (or nothing: defaults), AckID = activation id -> activate (ack ACK_START / ACK_NOTDONE);
+ *  - REQ_STOP, Data = schema name (empty: every active schema), AckID = the activation id
+ *    (0: any) -> deactivate (ack ACK_STOPPED / ACK_NOTDONE);
+ *  - REQ_ACK from a released module (ACK_FINISHED, or ACK_STOPPED/ACK_NOTDONE: the module
+ *    did not run) -> the module finished its activation;
+ *  - REQ_KILL -> ORD ends.
+ * Releases are REQ_START requests to the modules with ACK_FINISHED wanted, sent at absolute
+ * CLOCK_MONOTONIC ticks (engine_wait: timerfd, TFD_TIMER_ABSTIME). ORD:0 / ORD:1 go to every
+ * supervisor of the tables as REQ_EVENT from source port 0 / 1 (target port -1), Data = the
+ * schema name as a Cactal string (char[256]).
+ *
+ * CONTRACT_ORD_STATS=<file>: at exit, ORD writes there a JSON object with its release
+ * lateness figures (used by the benchmark).
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contract/vocabulary.h"
+#include "engine_wait.h"
+#include "engine_wire.h"
+#include "libmodule/libmodule.h"
+#include "ord_core.h"
+
+typedef struct OrdBinding {
+    const ContractOrdVocabulary *v;
+    /* reply address of the request being handled (acks) */
+    const char *reply_to;
+    int reply_wanted;
+    int next_release_id;
+    /* release lateness samples (first release of each cycle), for CONTRACT_ORD_STATS */
+    int record;
+    int64_t *late;
+    size_t nlate, caplate;
+    const char *last_schema[64];
+    int64_t last_tick[64];
+} OrdBinding;
+
+static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
+    (void)ctx;
+    int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "ORD: cannot set parameter %d of %s: %s\n", port, m, ContractStrError(rc));
+}
+
+static void b_connect(void *ctx, const ContractDataFlow *f) {
+    (void)ctx;
+    int rc = SendSubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port, f->periodicity, 1);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "ORD: cannot connect %s:%d -> %s:%d: %s\n", f->src_module, f->src_port,
+                f->dst_module, f->dst_port, ContractStrError(rc));
+}
+
+static void b_disconnect(void *ctx, const ContractDataFlow *f) {
+    (void)ctx;
+    SendUnsubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port);
+}
+
+static void record_lateness(OrdBinding *b, const char *schema, int64_t tick) {
+    int slot = -1;
+    for (int i = 0; i < 64; i++) {
+        if (b->last_schema[i] == schema) { slot = i; break; }
+        if (!b->last_schema[i]) { b->last_schema[i] = schema; b->last_tick[i] = INT64_MIN; slot = i; break; }
+    }
+    if (slot < 0 || b->last_tick[slot] == tick) return; /* not the first release of this cycle */
+    b->last_tick[slot] = tick;
+    if (b->nlate == b->caplate) {
+        size_t n = b->caplate ? b->caplate * 2 : 16384;
+        int64_t *p = realloc(b->late, n * sizeof *p);
+        if (!p) return;
+        b->late = p;
+        b->caplate = n;
+    }
+    b->late[b->nlate++] = GetTime() - tick;
+}
+
+static void b_release(void *ctx, const char *m, const char *schema, int64_t tick) {
+    OrdBinding *b = ctx;
+    if (b->record) record_lateness(b, schema, tick);
+    int id = ++b->next_release_id;
+    int rc = SendStart(m, ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE, id);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "ORD: cannot release %s (%s): %s\n", m, schema, ContractStrError(rc));
+}
+
+static void b_emit(void *ctx, int port, const char *schema) {
+    OrdBinding *b = ctx;
+    char name[CONTRACT_STRING_SIZE];
+    memset(name, 0, sizeof name);
+    strncpy(name, schema, sizeof name - 1);
+    for (int i = 0; i < b->v->nsupervisors; i++) {
+        int rc = SendEvent(b->v->supervisors[i], -1, port, name, sizeof name);
+        if (rc != CONTRACT_OK && rc != CONTRACT_EUNKNOWN)
+            fprintf(stderr, "ORD: cannot notify ORD:%d to %s: %s\n", port, b->v->supervisors[i],
+                    ContractStrError(rc));
+    }
+}
+
+static void b_ack(void *ctx, const char *requester, uint32_t id, int ok) {
+    OrdBinding *b = ctx;
+    (void)requester;
+    if (b->reply_to) SendAck(b->reply_to, b->reply_wanted, ok ? ACK_START : ACK_NOTDONE, (int)id);
+}
+
+static void b_trace(void *ctx, int64_t t, const char *line) {
+    (void)ctx;
+    (void)t;
+    /* releases are too frequent for stdout; everything goes to the CSV log */
+    if (strncmp(line, "release ", 8) != 0) {
+        printf("%s\n", line);
+        ContractLog("scheduler", "", -1, 0, line);
+    }
+}
+
+static int cmp64(const void *a, const void *b) {
+    int64_t x = *(const int64_t *)a, y = *(const int64_t *)b;
+    return (x > y) - (x < y);
+}
+
+static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
+    FILE *f = fopen(path, "w");
+    if (!f) {
+        perror(path);
+        return;
+    }
+    long cycles = 0, completed = 0, misses = 0, overruns = 0, missed = 0;
+    for (int i = 0; i < b->v->nschemas; i++) {
+        OrdSchemaStats st;
+        if (ord_core_stats(c, b->v->schemas[i]->name, &st) != 0) continue;
+        cycles += st.cycles;
+        completed += st.completed;
+        misses += st.deadline_misses;
+        overruns += st.overruns;
+        missed += st.missed_ticks;
+    }
+    double p50 = 0, p99 = 0, max = 0;
+    if (b->nlate) {
+        qsort(b->late, b->nlate, sizeof *b->late, cmp64);
+        p50 = (double)b->late[b->nlate / 2] / 1000.0;
+        p99 = (double)b->late[(size_t)((double)(b->nlate - 1) * 0.99)] / 1000.0;
+        max = (double)b->late[b->nlate - 1] / 1000.0;
+    }
+    fprintf(f,
+            "{\"cycles\": %ld, \"completed\": %ld, \"deadline_misses\": %ld, \"overruns\": %ld, "
+            "\"missed_ticks\": %ld, \"release_late_us_p50\": %.3f, \"release_late_us_p99\": %.3f, "
+            "\"release_late_us_max\": %.3f, \"samples\": %zu}\n",
+            cycles, completed, misses, overruns, missed, p50, p99, max, b->nlate);
+    fclose(f);
+}
+
+int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv[]) {
+    (void)argc;
+    (void)argv;
+    OrdBinding b;
+    memset(&b, 0, sizeof b);
+    b.v = v;
+    const char *stats_path = getenv("CONTRACT_ORD_STATS");
+    b.record = stats_path && *stats_path;
+    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace};
+    char err[512] = "";
+    OrdCore *c = ord_core_create(v, &io, err, sizeof err);
+    if (!c) {
+        fprintf(stderr, "ORD: %s\n", err);
+        return 2;
+    }
+    ord_core_set_skip_late_ticks(c, 1);
+    RequestMessage *m = malloc(sizeof *m);
+    if (!m) {
+        ord_core_destroy(c);
+        return 2;
+    }
+    for (;;) {
+        int64_t deadline = INT64_MAX;
+        ord_core_next_deadline(c, &deadline);
+        int got = engine_wait(m, deadline);
+        int64_t now = GetTime();
+        if (got < 0) continue;
+        if (got == 0) {
+            ord_core_advance(c, now);
+            continue;
+        }
+        b.reply_to = NULL;
+        switch (m->Type) {
+        case REQ_START: {
+            const unsigned char *block = NULL;
+            size_t size = 0;
+            engine_binary_args(m, &block, &size);
+            b.reply_to = m->Param.Start.ModAck[0] ? m->Param.Start.ModAck : m->Sender;
+            b.reply_wanted = m->Param.Start.WantedAck;
+            ord_core_activate(c, now, m->Param.Start.Function, block, size, m->Sender,
+                              (uint32_t)m->Param.Start.AckID);
+            break;
+        }
+        case REQ_STOP: {
+            char name[CONTRACT_STRING_SIZE] = "";
+            engine_data_string(m, name, sizeof name);
+            int ok = 1;
+            if (name[0]) {
+                ok = ord_core_deactivate(c, now, name, m->Sender, (uint32_t)m->Param.Stop.AckID) == 0;
+            } else {
+                for (int i = 0; i < v->nschemas; i++)
+                    if (ord_core_schema_active(c, v->schemas[i]->name))
+                        ord_core_deactivate(c, now, v->schemas[i]->name, m->Sender, 0);
+            }
+            SendAck(m->Param.Stop.ModAck[0] ? m->Param.Stop.ModAck : m->Sender, m->Param.Stop.WantedAck,
+                    ok ? ACK_STOPPED : ACK_NOTDONE, m->Param.Stop.AckID);
+            break;
+        }
+        case REQ_ACK:
+            if (m->Param.Ack.Ack & (ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE))
+                ord_core_module_finished(c, m->ReceptionTime ? m->ReceptionTime : now, m->Param.Ack.Module);
+            break;
+        case REQ_KILL:
+            SendAck(m->Param.Kil.ModAck[0] ? m->Param.Kil.ModAck : m->Sender, m->Param.Kil.WantedAck,
+                    ACK_KILLED, m->Param.Kil.AckID);
+            goto out;
+        default:
+            break;
+        }
+    }
+out:
+    if (b.record) write_stats(&b, c, stats_path);
+    free(b.late);
+    free(m);
+    ord_core_destroy(c);
+    return 0;
+}

@@ -1,0 +1,243 @@
+/*
+ * sup_main.c — binds the supervisor core (sup_core.c) to libmodule: requests in the mailbox
+ * become core inputs, the core's SupIo calls become requests to ORD, modules and other
+ * supervisors. Timers: engine_wait() (timerfd on the core's next absolute CLOCK_MONOTONIC
+ * deadline, polled together with the mailbox); no sleep loop.
+ *
+ * Wire conventions between engines (see docs/engines.md):
+ *  - start a supervision function: REQ_START, Param.Start.Function = name ("" = the first
+ *    function), Data = text arguments "p={1.0,2.0,3.0},q=3" (control tools) or
+ *    CONTRACT_BINARY_ARGS_MAGIC followed by the parameter block (engines);
+ *  - stop one: REQ_STOP with Data = the function name (empty: every running function);
+ *  - periodic schemas: REQ_START to ORD with Function = schema name, Data = parameter block,
+ *    AckID = activation id; deactivation: REQ_STOP to ORD with Data = schema name, same AckID;
+ *  - ORD events arrive as REQ_EVENT from module "ORD", source port 0/1, Data = schema name.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "contract/vocabulary.h"
+#include "engine_wait.h"
+#include "engine_wire.h"
+#include "libmodule/libmodule.h"
+#include "sup_core.h"
+
+typedef struct SupBinding {
+    const ContractSupervisorVocabulary *v;
+    int warned_priority;
+} SupBinding;
+
+static void b_ord_activate(void *ctx, const ContractSchema *s, const void *params, size_t size,
+                           uint32_t id) {
+    (void)ctx;
+    int rc = engine_send_start("ORD", s->name, params, size, (int)id);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "%s: cannot ask ORD to activate %s: %s\n", ContractSelfName(), s->name,
+                ContractStrError(rc));
+}
+
+static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
+    (void)ctx;
+    int rc = engine_send_stop("ORD", s->name, (int)id);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "%s: cannot ask ORD to deactivate %s: %s\n", ContractSelfName(), s->name,
+                ContractStrError(rc));
+}
+
+static void b_start_module(void *ctx, const char *m, int prio) {
+    SupBinding *b = ctx;
+    if (!b->warned_priority) {
+        fprintf(stderr, "%s: note: modules started by a supervisor keep their own priority "
+                        "(libmodule cannot set another process's priority; wanted %d for %s)\n",
+                ContractSelfName(), prio, m);
+        b->warned_priority = 1;
+    }
+    int rc = SendStart(m, ACK_NOTHING, 0);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+}
+
+static void b_stop_module(void *ctx, const char *m) {
+    (void)ctx;
+    int rc = SendStop(m, ACK_NOTHING, 0);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+}
+
+static int b_set_priority(void *ctx, const char *m, int prio) {
+    char detail[96];
+    (void)ctx;
+    snprintf(detail, sizeof detail, "priority %d requested (not applied: other process)", prio);
+    ContractLog("priority", m, -1, 0, detail);
+    return -1;
+}
+
+static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
+    (void)ctx;
+    int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
+    if (rc != CONTRACT_OK)
+        fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,
+                ContractStrError(rc));
+}
+
+static int mode_of(ContractEventMode m) { return m == CONTRACT_ONESHOT ? EVENT_ONESHOT : EVENT_CONTINUOUS; }
+
+static void b_connect(void *ctx, const ContractEventFlow *f) {
+    (void)ctx;
+    SendSubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port, mode_of(f->mode));
+}
+
+static void b_disconnect(void *ctx, const ContractEventFlow *f) {
+    (void)ctx;
+    SendUnsubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port);
+}
+
+static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode) {
+    (void)ctx;
+    SendSubscribeEvent(m, sp, ContractSelfName(), ip, mode_of(mode));
+}
+
+static void b_unsubscribe(void *ctx, const char *m, int sp, int ip) {
+    (void)ctx;
+    SendUnsubscribeEvent(m, sp, ContractSelfName(), ip);
+}
+
+static void b_notify(void *ctx, int port, const ContractType *t, const void *v, size_t size) {
+    (void)ctx;
+    (void)t;
+    for (int i = 0; IDETECT[i].Variable != NULL; i++) {
+        if (IDETECT[i].Port != port) continue;
+        memcpy(IDETECT[i].Variable, v, size < IDETECT[i].Size ? size : IDETECT[i].Size);
+        PostEvent(IDETECT[i].Variable);
+        return;
+    }
+    fprintf(stderr, "%s: notify :%d: the module has no such IDETECT port\n", ContractSelfName(), port);
+}
+
+static int b_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size) {
+    (void)ctx;
+    int rc = engine_send_start(sup, fn, p, size, 0);
+    if (rc != CONTRACT_OK) {
+        fprintf(stderr, "%s: cannot start %s.%s: %s\n", ContractSelfName(), sup, fn, ContractStrError(rc));
+        return -1;
+    }
+    return 0;
+}
+
+static void b_stop_function(void *ctx, const char *sup, const char *fn) {
+    (void)ctx;
+    engine_send_stop(sup, fn, 0);
+}
+
+static void b_trace(void *ctx, int64_t t, const char *line) {
+    (void)ctx;
+    (void)t;
+    printf("%s\n", line);
+    ContractLog("supervisor", "", -1, 0, line);
+}
+
+static void stop_all(SupCore *c, const ContractSupervisorVocabulary *v, int64_t t) {
+    for (int f = 0; f < v->nfunctions; f++)
+        if (sup_core_function_running(c, v->functions[f].name))
+            sup_core_stop_function(c, t, v->functions[f].name);
+}
+
+static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, RequestMessage *m, int64_t t) {
+    const char *fn = m->Param.Start.Function[0] ? m->Param.Start.Function
+                                                : (v->nfunctions ? v->functions[0].name : "");
+    char err[256] = "";
+    int rc;
+    const unsigned char *block;
+    size_t size;
+    if (engine_binary_args(m, &block, &size)) {
+        rc = sup_core_start_function(c, t, fn, block, size);
+        if (rc != 0) snprintf(err, sizeof err, "%s.%s refused (unknown or already running)", v->name, fn);
+    } else {
+        char args[CONTRACT_REQUEST_DATA_MAX + 1];
+        size_t n = m->DataSize < CONTRACT_REQUEST_DATA_MAX ? m->DataSize : CONTRACT_REQUEST_DATA_MAX;
+        memcpy(args, m->Data, n);
+        args[n] = '\0';
+        rc = sup_core_start_function_text(c, t, fn, args, err, sizeof err);
+    }
+    if (rc != 0) fprintf(stderr, "%s: start refused: %s\n", v->name, err);
+    SendAck(m->Param.Start.ModAck[0] ? m->Param.Start.ModAck : m->Sender, m->Param.Start.WantedAck,
+            rc == 0 ? ACK_START : ACK_NOTDONE, m->Param.Start.AckID);
+}
+
+int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, const char *argv[]) {
+    (void)argc;
+    (void)argv;
+    SupBinding b = {v, 0};
+    SupIo io = {&b, b_ord_activate, b_ord_deactivate, NULL, b_start_module, b_stop_module,
+                b_set_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
+                b_notify, b_start_function, b_stop_function, b_trace};
+    char err[512] = "";
+    SupCore *c = sup_core_create(v, &io, err, sizeof err);
+    if (!c) {
+        fprintf(stderr, "%s: %s\n", v && v->name ? v->name : "supervisor", err);
+        return 2;
+    }
+    RequestMessage *m = malloc(sizeof *m);
+    if (!m) {
+        sup_core_destroy(c);
+        return 2;
+    }
+    int rc = 0;
+    for (;;) {
+        int64_t deadline = INT64_MAX;
+        sup_core_next_deadline(c, &deadline);
+        int got = engine_wait(m, deadline);
+        int64_t now = GetTime();
+        if (got < 0) continue; /* EINTR or a reported receive error */
+        if (got == 0) {
+            sup_core_advance(c, now);
+            continue;
+        }
+        switch (m->Type) {
+        case REQ_START: handle_start(c, v, m, now); break;
+        case REQ_STOP: {
+            char fn[CONTRACT_FUNCTION_MAX] = "";
+            engine_data_string(m, fn, sizeof fn);
+            int ok = 1;
+            if (fn[0]) ok = sup_core_stop_function(c, now, fn) == 0;
+            else stop_all(c, v, now);
+            SendAck(m->Param.Stop.ModAck[0] ? m->Param.Stop.ModAck : m->Sender, m->Param.Stop.WantedAck,
+                    ok ? ACK_STOPPED : ACK_NOTDONE, m->Param.Stop.AckID);
+            break;
+        }
+        case REQ_KILL:
+            stop_all(c, v, now);
+            SendAck(m->Param.Kil.ModAck[0] ? m->Param.Kil.ModAck : m->Sender, m->Param.Kil.WantedAck,
+                    ACK_KILLED, m->Param.Kil.AckID);
+            goto out;
+        case REQ_EVENT:
+            if (strcmp(m->Param.Event.sourceModule, "ORD") == 0) {
+                char name[CONTRACT_STRING_SIZE] = "";
+                engine_data_string(m, name, sizeof name);
+                sup_core_ord_event(c, now, m->Param.Event.sourcePort, name);
+            } else {
+                sup_core_module_event(c, now, m->Param.Event.sourceModule, m->Param.Event.sourcePort,
+                                      m->Param.Event.targetPort, m->Data, m->DataSize);
+            }
+            break;
+        case REQ_SUB_EVENT:
+            SubscribeUserToEvent(m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
+                                 m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
+            break;
+        case REQ_UNSUB_EVENT:
+            UnsubscribeUserToEvent(m->Param.UnsubscribeEvent.targetModule,
+                                   m->Param.UnsubscribeEvent.targetPort,
+                                   m->Param.UnsubscribeEvent.sourcePort);
+            break;
+        default: /* acks from ORD/modules, data requests: nothing to do */
+            break;
+        }
+    }
+out:
+    free(m);
+    sup_core_destroy(c);
+    return rc;
+}
