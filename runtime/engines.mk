@@ -1,7 +1,8 @@
 # engines.mk — build, test and benchmark the ORD and supervisor engines (included by
 # runtime/Makefile; also usable alone: make -f engines.mk test-engines). Paths are relative
 # to runtime/.
-#   make test-engines    core tests (virtual clock) plain and under ASan+UBSan
+#   make test-engines    core tests (virtual clock) plain and under ASan+UBSan, then the
+#                        integration test with real processes (plain and ASan+UBSan)
 #   make bench-engines   writes ../bench/parts/engines.json
 ENG_CC      ?= gcc
 ENG_WARN    := -std=c11 -Wall -Wextra -Werror
@@ -28,3 +29,36 @@ test-engines: $(ENG_OUT)/engine-tests $(ENG_OUT)/engine-tests-san
 	@$(ENG_OUT)/engine-tests
 	@echo "== engine core tests (ASan+UBSan)"
 	@$(ENG_OUT)/engine-tests-san
+	@$(MAKE) --no-print-directory test-engines-integration
+
+# ---- integration test: real processes through libmodule (needs the runtime Makefile's
+# build/libmodule.a, build/san/libmodule.a and build/contract-launch) ----
+ENG_IT_SRC  := tests/engines/integration
+ENG_IT_DEPS := $(wildcard $(ENG_IT_SRC)/*.h) $(wildcard include/*/*.h)
+
+# $(1) = output dir, $(2) = libmodule.a, $(3) = extra flags
+define ENG_IT_SET
+$(1)/IMA $(1)/IMB $(1)/IMC: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"$$(notdir $$@)"' $$< $(2) -o $$@
+$(1)/ORD: $(ENG_IT_SRC)/iord.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/ISU: $(ENG_IT_SRC)/isup.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/itest: $(ENG_IT_SRC)/itest.c
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $$< -o $$@
+endef
+$(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
+$(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
+ENG_IT_BINS := IMA IMB IMC ORD ISU itest
+
+.PHONY: test-engines-integration
+test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \
+                          $(addprefix $(ENG_OUT)/it-san/,$(ENG_IT_BINS)) build/contract-launch
+	@echo "== engine integration test (real processes)"
+	@$(ENG_OUT)/it/itest $(ENG_OUT)/it build/contract-launch
+	@echo "== engine integration test (real processes, ASan+UBSan)"
+	@$(ENG_OUT)/it-san/itest $(ENG_OUT)/it-san build/contract-launch

@@ -41,6 +41,7 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
 
 static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     (void)ctx;
+    if (ModuleState("ORD") != CONTRACT_OK) return; /* ORD ended first (architecture stopping) */
     int rc = engine_send_stop("ORD", s->name, (int)id);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot ask ORD to deactivate %s: %s\n", ContractSelfName(), s->name,

@@ -1,0 +1,93 @@
+/*
+ * imod.c — a synchronous module for the engines' integration test, built three times
+ * (-DIMOD_NAME='"IMA"' ...). Request loop in the style of the report's skeleton: each START
+ * is one activation: it drains its input data port, works 300 us (clock_nanosleep), posts
+ * an activation counter on its output data port and acks ACK_FINISHED. It writes what it
+ * observes to $ITEST_OUT/<name>.trace: "start <ns>", "got <value>", "end <ns>", "param <v>".
+ */
+#define _GNU_SOURCE
+#include <libmodule/libmodule.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#ifndef IMOD_NAME
+#define IMOD_NAME "IMA"
+#endif
+
+MODULE_DESCRIPTION("engines integration test module");
+MODULE_AUTHOR("engines tests");
+
+static long in_value, out_value, param_gain;
+char MODULE_NAME[] = IMOD_NAME;
+int MODULE_PRIORITY = 50;
+ModuleUse IUSE[] = {{&in_value, 0, sizeof(long), "---", 0, 1}, IUSE_TERM};
+ModuleProduce IPRODUCE[] = {{&out_value, 0, sizeof(long)}, IPRODUCE_TERM};
+ModuleReact IREACT[] = {IREACT_TERM};
+ModuleDetect IDETECT[] = {IDETECT_TERM};
+size_t PARAM_SIZE_IN[] = {sizeof(long), PARAM_SIZE_TERM};
+size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+
+static FILE *open_trace(void) {
+    const char *dir = getenv("ITEST_OUT");
+    if (!dir || !*dir) return NULL;
+    char path[512];
+    snprintf(path, sizeof path, "%s/%s.trace", dir, MODULE_NAME);
+    FILE *f = fopen(path, "w");
+    if (f) setvbuf(f, NULL, _IOLBF, 0);
+    return f;
+}
+
+int ModuleMain(int argc, const char *argv[]) {
+    (void)argc;
+    (void)argv;
+    FILE *trace = open_trace();
+    RequestMessage *m = malloc(sizeof *m);
+    if (!m) return 1;
+    RTIME pt, rt;
+    long activations = 0;
+    for (;;) {
+        if (!WaitForRequest(m)) break;
+        switch (m->Type) {
+        case REQ_START: {
+            if (trace) fprintf(trace, "start %lld\n", (long long)GetTime());
+            while (GetData(&in_value, &pt, &rt) == 1)
+                if (trace) fprintf(trace, "got %ld\n", in_value);
+            struct timespec work = {0, 300000};
+            clock_nanosleep(CLOCK_MONOTONIC, 0, &work, NULL);
+            out_value = ++activations;
+            PostData(&out_value);
+            if (trace) fprintf(trace, "end %lld\n", (long long)GetTime());
+            SendAck(m->Param.Start.ModAck, m->Param.Start.WantedAck, ACK_FINISHED, m->Param.Start.AckID);
+            break;
+        }
+        case REQ_SUBSCRIBE:
+            SubscribeUser(m->Param.Subscribe.SourcePort, m->Param.Subscribe.TargetModule,
+                          m->Param.Subscribe.TargetPort, m->Param.Subscribe.Periodicity,
+                          m->Param.Subscribe.isContextual);
+            break;
+        case REQ_UNSUBSCRIBE:
+            UnsubscribeUser(m->Param.Unsubscribe.SourcePort, m->Param.Unsubscribe.TargetModule,
+                            m->Param.Unsubscribe.TargetPort);
+            break;
+        case REQ_SETPARAM:
+            if (GetDataFromSetParamRequest(m, &param_gain, sizeof param_gain, &pt, &rt) == 0 && trace)
+                fprintf(trace, "param %ld\n", param_gain);
+            break;
+        case REQ_STOP:
+            SendAck(m->Param.Stop.ModAck, m->Param.Stop.WantedAck, ACK_NOTDONE, m->Param.Stop.AckID);
+            break;
+        case REQ_KILL:
+            SendAck(m->Param.Kil.ModAck, m->Param.Kil.WantedAck, ACK_KILLED, m->Param.Kil.AckID);
+            if (trace) fclose(trace);
+            free(m);
+            return 0;
+        default:
+            break;
+        }
+    }
+    if (trace) fclose(trace);
+    free(m);
+    return 0;
+}

@@ -1,0 +1,29 @@
+/*
+ * iord.c — the scheduler executable of the integration test, written as the generator writes
+ * ORD_mod (module.c binding + vocabulary.c tables): schema ISC (period 20 ms, critical delay
+ * 15 ms): IMA (gain :0) -> IMB, IMA -> IMC; IMA:0 -> IMB:0 * 1, IMA:0 -> IMC:0 * 2; schema ICF
+ * uses IMB too (conflict). Supervisor to notify: ISU.
+ */
+#include <contract/vocabulary.h>
+#include <libmodule/libmodule.h>
+
+MODULE_DESCRIPTION("engines integration test scheduler");
+MODULE_AUTHOR("engines tests");
+char MODULE_NAME[] = "ORD";
+int MODULE_PRIORITY = 80;
+ModuleUse IUSE[] = {IUSE_TERM};
+ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
+ModuleReact IREACT[] = {IREACT_TERM};
+ModuleDetect IDETECT[] = {IDETECT_TERM};
+size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
+size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+
+#include "itables.h"
+
+static const ContractOrdModule modules[] = {{"IMA", 50, 300000}, {"IMB", 50, 300000}, {"IMC", 50, 300000}};
+static const ContractSchema *const schemas[] = {&ITEST_ISC, &ITEST_ICF};
+static const char *const supervisors[] = {"ISU"};
+static const ContractOrdVocabulary ORD_VOCABULARY = {CONTRACT_VOCABULARY_VERSION, 3, modules, 2,
+                                                     schemas, 1, supervisors};
+
+int ModuleMain(int argc, const char *argv[]) { return contract_ord_main(&ORD_VOCABULARY, argc, argv); }

@@ -1,0 +1,22 @@
+/* itables.h — the integration test's schemas, included by iord.c and isup.c (one TU each). */
+#ifndef ITEST_TABLES_H
+#define ITEST_TABLES_H
+#include <contract/vocabulary.h>
+
+#define ITEST_MS 1000000LL
+static const long itest_gain_default = 3;
+static const ContractVar isc_params[] = {{"gain", &contract_type_long, 0, &itest_gain_default}};
+static const ContractAssign isc_ima_p0[] = {
+    {0, 0, &contract_type_long, {CONTRACT_REF_PARAM, 0, 0, &contract_type_long, NULL}}};
+static const ContractParamSetting isc_ima_settings[] = {{0, &contract_type_long, 1, isc_ima_p0}};
+static const ContractSchemaModule isc_modules[] = {
+    {"IMA", 1, isc_ima_settings}, {"IMB", 0, NULL}, {"IMC", 0, NULL}};
+static const ContractPrecedence isc_prec[] = {{0, 1}, {0, 2}};
+static const ContractDataFlow isc_flows[] = {{"IMA", 0, "IMB", 0, 1}, {"IMA", 0, "IMC", 0, 2}};
+static const ContractSchema ITEST_ISC = {"ISC", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
+                                         1, isc_params, sizeof(long), 3, isc_modules, 2, isc_prec,
+                                         2, isc_flows, 0, NULL};
+static const ContractSchemaModule icf_modules[] = {{"IMB", 0, NULL}};
+static const ContractSchema ITEST_ICF = {"ICF", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 20 * ITEST_MS,
+                                         0, NULL, 0, 1, icf_modules, 0, NULL, 0, NULL, 0, NULL};
+#endif

@@ -1,0 +1,132 @@
+/*
+ * itest.c — integration test of the engines with real processes through libmodule: runs
+ * contract-launch with ORD (iord.c), the supervisor ISU (isup.c) and three synchronous
+ * modules IMA/IMB/IMC (imod.c), starts ISU.go, and checks what the modules recorded:
+ * parameterisation from the supervisor's local, precedence in every cycle, absolute-time
+ * releases, `* 1` / `* 2` deliveries, deactivation, ORD:1 reaching the supervisor.
+ * Usage: itest <dir with ORD ISU IMA IMB IMC> <contract-launch>. Prints "N passed, N failed".
+ */
+#define _GNU_SOURCE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static int passed, failed;
+
+static void check(int ok, const char *what) {
+    printf("%s %s\n", ok ? "ok  " : "FAIL", what);
+    if (ok) passed++;
+    else failed++;
+}
+
+typedef struct Trace {
+    long long start[64], end[64];
+    long got[64], param;
+    int nstart, nend, ngot;
+} Trace;
+
+static int read_trace(const char *dir, const char *name, Trace *t) {
+    memset(t, 0, sizeof *t);
+    t->param = -1;
+    char path[600], line[128];
+    snprintf(path, sizeof path, "%s/%s.trace", dir, name);
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    while (fgets(line, sizeof line, f)) {
+        long long v;
+        if (sscanf(line, "start %lld", &v) == 1 && t->nstart < 64) t->start[t->nstart++] = v;
+        else if (sscanf(line, "end %lld", &v) == 1 && t->nend < 64) t->end[t->nend++] = v;
+        else if (sscanf(line, "got %lld", &v) == 1 && t->ngot < 64) t->got[t->ngot++] = (long)v;
+        else if (sscanf(line, "param %lld", &v) == 1) t->param = (long)v;
+    }
+    fclose(f);
+    return 0;
+}
+
+static char *slurp(const char *path) {
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    static char buf[1 << 16];
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+int main(int argc, char **argv) {
+    if (argc < 3) {
+        fprintf(stderr, "usage: itest <bin dir> <contract-launch>\n");
+        return 2;
+    }
+    char tmpl[] = "/tmp/contract-engines-itest-XXXXXX";
+    char *root = mkdtemp(tmpl);
+    if (!root) { perror("mkdtemp"); return 2; }
+    char out[128], run[128], logs[128], launch_out[128], stats[160];
+    snprintf(out, sizeof out, "%s/out", root);
+    snprintf(run, sizeof run, "%s/run", root);
+    snprintf(logs, sizeof logs, "%s/logs", root);
+    snprintf(launch_out, sizeof launch_out, "%s/launch.txt", root);
+    snprintf(stats, sizeof stats, "%s/ord.json", out);
+    if (mkdir(out, 0700) != 0) { perror(out); return 2; }
+    setenv("ITEST_OUT", out, 1);
+    setenv("CONTRACT_ORD_STATS", stats, 1);
+    char exe[5][512];
+    const char *names[5] = {"ORD", "ISU", "IMA", "IMB", "IMC"};
+    for (int i = 0; i < 5; i++) snprintf(exe[i], sizeof exe[i], "%s/%s", argv[1], names[i]);
+    pid_t pid = fork();
+    if (pid == 0) {
+        FILE *o = freopen(launch_out, "w", stdout);
+        if (!o || dup2(fileno(stdout), 2) < 0) _exit(127);
+        execl(argv[2], argv[2], "--run-dir", run, "--log-dir", logs, "--start", "ISU.go()",
+              "--duration", "0.6", exe[0], exe[1], exe[2], exe[3], exe[4], (char *)NULL);
+        _exit(127);
+    }
+    int st = 0;
+    waitpid(pid, &st, 0);
+    check(WIFEXITED(st) && WEXITSTATUS(st) == 0, "contract-launch ran the architecture and stopped it cleanly");
+
+    Trace a, b, c;
+    int ra = read_trace(out, "IMA", &a), rb = read_trace(out, "IMB", &b), rc = read_trace(out, "IMC", &c);
+    check(ra == 0 && rb == 0 && rc == 0, "the three modules wrote their traces");
+    check(a.param == 7, "IMA parameterised with gain = 7 (the supervisor's local through ORD)");
+    /* R1 active from 10 ms to 310 ms, period 20 ms: 15 cycles (14..16 with start-up slack) */
+    check(a.nstart >= 14 && a.nstart <= 16, "IMA released once per period while ISC was active, none after");
+    check(b.nstart == a.nstart && c.nstart == a.nstart, "IMB and IMC released in every cycle");
+    int prec = a.nstart > 0 && a.nend == a.nstart;
+    for (int k = 0; k < a.nstart && k < b.nstart && k < c.nstart; k++)
+        if (b.start[k] < a.end[k] || c.start[k] < a.end[k]) prec = 0;
+    check(prec, "precedence IMA -> IMB, IMA -> IMC respected in every cycle");
+    int periodic = a.nstart > 1;
+    for (int k = 1; k < a.nstart; k++) {
+        long long ideal = a.start[0] + (long long)k * 20000000LL, dev = a.start[k] - ideal;
+        if (dev < -2000000 || dev > 2000000) periodic = 0;
+    }
+    check(periodic, "releases at absolute ticks start + k * 20 ms (within 2 ms, no drift)");
+    int ones = b.ngot == a.nstart;
+    for (int k = 0; k < b.ngot; k++) if (b.got[k] != k + 1) ones = 0;
+    check(ones, "IMA:0 -> IMB:0 * 1 delivers every activation's value");
+    int twos = c.ngot == a.nstart / 2;
+    for (int k = 0; k < c.ngot; k++) if (c.got[k] != 2 * (k + 1)) twos = 0;
+    check(twos, "IMA:0 -> IMC:0 * 2 delivers every second activation's value");
+    char *txt = slurp(launch_out);
+    check(txt && strstr(txt, "[ORD] conflict: ICF shares a module with active ISC (ORD:1)"),
+          "ORD refuses ICF (shares IMB with ISC)");
+    check(txt && strstr(txt, "[ISU] rule go.R3 active"), "ORD:1 with ord_schema == \"ICF\" reached the supervisor");
+    check(txt && strstr(txt, "[ORD] deactivate ISC"), "R1's postcondition deactivates ISC");
+    char *js = slurp(stats);
+    check(js && strstr(js, "\"deadline_misses\": 0") && strstr(js, "\"overruns\": 0"),
+          "no deadline miss, no overrun");
+    if (failed) {
+        fprintf(stderr, "launcher output:\n%s\n", txt ? txt : "(none)");
+        fprintf(stderr, "kept %s for inspection\n", root);
+    } else {
+        char cmd[300];
+        snprintf(cmd, sizeof cmd, "rm -rf '%s'", root);
+        if (system(cmd) != 0) fprintf(stderr, "could not remove %s\n", root);
+    }
+    printf("%d passed, %d failed\n", passed, failed);
+    return failed ? 1 : 0;
+}
