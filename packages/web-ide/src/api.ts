@@ -1,0 +1,68 @@
+/** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
+export interface TreeEntry {
+  name: string;
+  path: string;
+  type: 'file' | 'dir';
+  children?: TreeEntry[];
+}
+
+export interface GenerateReport {
+  created: string[];
+  updated: string[];
+  unchanged: string[];
+  orphaned: string[];
+  errors: unknown[];
+  warnings: unknown[];
+  srcGen: string;
+  ms: number;
+}
+
+export class ApiError extends Error {
+  constructor(
+    readonly status: number,
+    message: string,
+  ) {
+    super(message);
+  }
+}
+
+async function call<T>(method: string, url: string, body?: unknown, raw = false): Promise<T> {
+  let res: Response;
+  try {
+    res = await fetch(url, {
+      method,
+      headers: body === undefined ? {} : { 'content-type': raw ? 'text/plain; charset=utf-8' : 'application/json' },
+      body: body === undefined ? undefined : raw ? (body as string) : JSON.stringify(body),
+    });
+  } catch {
+    throw new ApiError(0, 'server unreachable');
+  }
+  const text = await res.text();
+  let data: unknown;
+  try {
+    data = text ? JSON.parse(text) : {};
+  } catch {
+    data = { error: text };
+  }
+  if (!res.ok) throw new ApiError(res.status, (data as { error?: string }).error ?? `HTTP ${res.status}`);
+  return data as T;
+}
+
+const q = (p: string) => encodeURIComponent(p);
+
+export const api = {
+  info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
+  tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
+  read: (path: string) => call<{ path: string; content: string; mtimeMs: number }>('GET', `/api/file?path=${q(path)}`),
+  write: (path: string, content: string) => call<{ path: string; mtimeMs: number }>('PUT', `/api/file?path=${q(path)}`, content, true),
+  create: (path: string, type: 'file' | 'dir', content = '') => call<{ path: string }>('POST', '/api/create', { path, type, content }),
+  rename: (from: string, to: string) => call<{ from: string; to: string }>('POST', '/api/rename', { from, to }),
+  remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),
+  newProject: (folder: string) => call<{ folder: string; files: string[] }>('POST', '/api/new-project', { folder }),
+  generate: (project: string) => call<GenerateReport>('POST', '/api/generate', { project }),
+  renameEntity: (project: string, from: string, to: string) =>
+    call<{ movedPaths: Array<{ from: string; to: string }>; regionIds: Array<{ file: string; from: string; to: string }> }>(
+      'POST', '/api/rename-entity', { project, from, to }),
+  submitJob: (body: unknown) => call<{ id: string; status: string; sandbox?: string; warnings?: string[] }>('POST', '/api/jobs', body),
+  cancelJob: (id: string) => call<{ id: string; status: string }>('DELETE', `/api/jobs/${q(id)}`),
+};

@@ -1,0 +1,93 @@
+import { h } from '../util/dom.js';
+
+/** The static frame of the IDE: top bar, sidebar (explorer + outline), editor, bottom panel, status bar. */
+export function createLayout(root: HTMLElement) {
+  const btn = (id: string, icon: string, label: string, title: string, cls = '') =>
+    h('button', { class: `btn toolbar-btn ${cls}`, id, title }, h('span', { class: 'btn-icon' }, icon), h('span', {}, label));
+  const toolbar = {
+    newFile: btn('btn-new-file', '＋', 'File', 'New file in the selected folder'),
+    newFolder: btn('btn-new-folder', '▣', 'Folder', 'New folder in the selected folder'),
+    newProject: btn('btn-new-project', '✦', 'New Project', 'Create a project from the report templates'),
+    generate: btn('btn-generate', '⚙', 'Generate All', 'Generate the C tree (Ctrl+Shift+G)', 'accent'),
+    run: btn('btn-run', '▶', 'Build & Run', 'Build in the sandbox and run the architecture (Ctrl+Shift+B)', 'run'),
+    stop: btn('btn-stop', '■', 'Stop', 'Stop the running job', 'stop'),
+    arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas'),
+    timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs'),
+  };
+  toolbar.stop.disabled = true;
+  const workspaceName = h('span', { class: 'workspace-name' });
+  const topbar = h('header', { class: 'topbar' },
+    h('div', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
+    workspaceName, h('div', { class: 'toolbar-group' }, toolbar.newFile, toolbar.newFolder, toolbar.newProject),
+    h('div', { class: 'toolbar-group' }, toolbar.generate, toolbar.run, toolbar.stop),
+    h('span', { class: 'grow' }), h('div', { class: 'toolbar-group' }, toolbar.arch, toolbar.timeline));
+
+  const explorerBody = h('div', { class: 'section-body explorer-body' });
+  const outlineBody = h('div', { class: 'section-body outline-body' });
+  const sidebar = h('aside', { class: 'sidebar' },
+    h('section', { class: 'side-section explorer-section' }, h('div', { class: 'section-title' }, 'Explorer'), explorerBody),
+    h('section', { class: 'side-section outline-section' }, h('div', { class: 'section-title' }, 'Outline'), outlineBody));
+
+  const editorRoot = h('main', { class: 'editor-area' });
+  const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist' });
+  const panelBodies = h('div', { class: 'panel-bodies' });
+  const panel = h('section', { class: 'bottom-panel' }, panelTabs, panelBodies);
+
+  const status = {
+    problems: h('span', { class: 'status-item status-problems', id: 'status-problems', title: 'Problems' }),
+    save: h('span', { class: 'status-item', id: 'status-save' }, '✓ All saved'),
+    lsp: h('span', { class: 'status-item', id: 'status-lsp' }, '◌ Language server starting'),
+    job: h('span', { class: 'status-item', id: 'status-job' }),
+    cursor: h('span', { class: 'status-item', id: 'status-cursor' }),
+    lang: h('span', { class: 'status-item', id: 'status-lang' }),
+  };
+  const statusbar = h('footer', { class: 'statusbar' }, status.problems, status.save, status.job, h('span', { class: 'grow' }), status.cursor, status.lang, status.lsp);
+
+  const resizerV = h('div', { class: 'resizer vertical' });
+  const resizerH = h('div', { class: 'resizer horizontal' });
+  const shell = h('div', { class: 'shell' }, topbar, h('div', { class: 'workbench' }, sidebar, resizerV, h('div', { class: 'center' }, editorRoot, resizerH, panel)), statusbar);
+  root.append(shell);
+  dragResize(resizerV, (dx) => {
+    const w = Math.max(160, Math.min(600, sidebar.getBoundingClientRect().width + dx));
+    sidebar.style.width = `${w}px`;
+  });
+  dragResize(resizerH, (_dx, dy) => {
+    const hgt = Math.max(80, Math.min(window.innerHeight - 200, panel.getBoundingClientRect().height - dy));
+    panel.style.height = `${hgt}px`;
+  });
+
+  const panels = new Map<string, { tab: HTMLElement; body: HTMLElement }>();
+  const showPanel = (id: string) => {
+    for (const [k, p] of panels) {
+      p.tab.classList.toggle('active', k === id);
+      p.body.classList.toggle('hidden', k !== id);
+    }
+  };
+  const addPanel = (id: string, title: string, body: HTMLElement) => {
+    const tab = h('div', { class: 'panel-tab', role: 'tab', 'data-panel': id, onclick: () => showPanel(id) }, title);
+    const wrapper = h('div', { class: 'panel-body hidden', 'data-panel': id }, body);
+    panelTabs.append(tab);
+    panelBodies.append(wrapper);
+    panels.set(id, { tab, body: wrapper });
+    return tab;
+  };
+  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel };
+}
+
+function dragResize(handle: HTMLElement, move: (dx: number, dy: number) => void): void {
+  handle.addEventListener('mousedown', (e) => {
+    let x = e.clientX;
+    let y = e.clientY;
+    const onMove = (ev: MouseEvent) => {
+      move(ev.clientX - x, ev.clientY - y);
+      x = ev.clientX;
+      y = ev.clientY;
+    };
+    const onUp = () => {
+      window.removeEventListener('mousemove', onMove);
+      window.removeEventListener('mouseup', onUp);
+    };
+    window.addEventListener('mousemove', onMove);
+    window.addEventListener('mouseup', onUp);
+  });
+}

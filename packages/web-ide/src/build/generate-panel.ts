@@ -1,0 +1,55 @@
+import { h } from '../util/dom.js';
+import type { GenerateReport } from '../api.js';
+
+interface Problem {
+  file: string;
+  line?: number;
+  message: string;
+}
+
+/**
+ * Shows what Generate All did: counts, the generated tree (click opens the file), orphaned user
+ * code and malformed files (click opens them at the line).
+ */
+export class GeneratePanel {
+  readonly element: HTMLElement;
+
+  constructor(private readonly open: (path: string, line?: number) => void) {
+    this.element = h('div', { class: 'generate-panel' }, h('div', { class: 'muted pad' }, 'Run Generate All (Ctrl+Shift+G) to produce the C tree under src-gen/.'));
+  }
+
+  showRunning(): void {
+    this.element.replaceChildren(h('div', { class: 'pad' }, h('span', { class: 'spinner' }), ' Generating…'));
+  }
+
+  showError(message: string): void {
+    this.element.replaceChildren(h('div', { class: 'pad gen-error' }, `✖ Generate All failed: ${message}`));
+  }
+
+  show(r: GenerateReport): void {
+    const base = r.srcGen ? `${r.srcGen}/` : '';
+    const fileLink = (rel: string, cls = '', line?: number) =>
+      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, onclick: () => this.open(base + rel, line) }, h('span', { class: 'file-glyph' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), rel);
+    const problems = (title: string, list: Problem[], cls: string) =>
+      list.length
+        ? h('div', { class: `gen-section ${cls}` }, h('div', { class: 'gen-title' }, `${title} (${list.length})`),
+            ...list.map((p) => h('div', { class: 'gen-problem', 'data-path': base + p.file, onclick: () => this.open(base + p.file, p.line) },
+              h('span', { class: 'sev' }, cls === 'errors' ? '✖' : '⚠'), h('span', { class: 'mono' }, `${p.file}${p.line ? `:${p.line}` : ''}`), ' ', p.message)))
+        : null;
+    const generated = [...r.created.map((f) => [f, 'created']), ...r.updated.map((f) => [f, 'updated']), ...r.unchanged.map((f) => [f, 'unchanged'])]
+      .filter(([f]) => !f!.startsWith('.'))
+      .sort((a, b) => a[0]!.localeCompare(b[0]!));
+    this.element.replaceChildren(
+      h('div', { class: 'gen-summary' },
+        h('span', { class: r.errors.length ? 'pill error' : 'pill ok' }, r.errors.length ? '✖ with errors' : '✓ generated'),
+        h('span', { class: 'pill' }, `${r.created.length} created`), h('span', { class: 'pill' }, `${r.updated.length} updated`),
+        h('span', { class: 'pill' }, `${r.unchanged.length} unchanged`),
+        h('span', { class: r.orphaned.length ? 'pill warning' : 'pill' }, `${r.orphaned.length} orphaned`), h('span', { class: 'muted' }, `${r.ms} ms`)),
+      problems('Errors — files left untouched', r.errors as Problem[], 'errors') ?? '',
+      r.orphaned.length ? h('div', { class: 'gen-section warnings' }, h('div', { class: 'gen-title' }, `Orphaned user code (${r.orphaned.length}) — moved, never deleted`), ...r.orphaned.map((f) => fileLink(f, 'orphan'))) : '',
+      problems('Warnings', r.warnings as Problem[], 'warnings') ?? '',
+      h('div', { class: 'gen-section' }, h('div', { class: 'gen-title' }, `Generated tree: ${base || './'}`),
+        h('div', { class: 'gen-tree' }, ...generated.map(([f, state]) => fileLink(f!, state!)))),
+    );
+  }
+}

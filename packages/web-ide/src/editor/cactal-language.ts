@@ -1,0 +1,98 @@
+import { monaco } from './monaco.js';
+
+export const CACTAL_LANGUAGE_ID = 'cactal';
+
+/** Monarch tokenizer for Cactal (syntax colours while the language server starts). */
+export const cactalMonarch: monaco.languages.IMonarchLanguage = {
+  defaultToken: '',
+  keywords: [
+    'import', 'datatype', 'function', 'synchronous', 'asynchronous', 'module', 'parameters', 'scheduling',
+    'data', 'event', 'flows', 'in', 'out', 'periodic', 'schema', 'realtime', 'modules', 'graph',
+    'communications', 'scheduler', 'configuration', 'schemas', 'supervisor', 'local', 'rules', 'activate',
+    'parameterize', 'resttime', 'critical', 'compute', 'subscribe', 'notify', 'started', 'endof', 'duration',
+    'elapsed', 'infinite', 'and', 'or',
+  ],
+  typeKeywords: ['int', 'float', 'string', 'bool', 'void'],
+  constants: ['PERIOD', 'CRITICAL_DELAY', 'C', 'ORD'],
+  operators: ['->', '=*', '=>', '==*', '==>', '==', '!=', '<=', '>=', '=', '&', '|', '*'],
+  symbols: /[=><!&|*+-]+/,
+  tokenizer: {
+    root: [
+      [/\b[A-Z]{3}\b(?=\s*[:.(;{]|\s*->|\s*$)/, 'type.identifier.module'],
+      [/[a-zA-Z_]\w*/, { cases: { '@keywords': 'keyword', '@typeKeywords': 'type', '@constants': 'constant', '@default': 'identifier' } }],
+      { include: '@whitespace' },
+      [/\d+(\.\d*)?([eE][-+]?\d+)?(ns|us|ms|s)\b/, 'number.time'],
+      [/-?\d*\.\d+([eE][-+]?\d+)?|-?\d+\.\d*([eE][-+]?\d+)?|-?\d+[eE][-+]?\d+/, 'number.float'],
+      [/-?\d+/, 'number'],
+      [/:\s*\d+/, 'number.port'],
+      [/[{}()[\]]/, '@brackets'],
+      [/@symbols/, { cases: { '@operators': 'operator', '@default': '' } }],
+      [/[;,.:]/, 'delimiter'],
+      [/"([^"\\]|\\.)*$/, 'string.invalid'],
+      [/"/, 'string', '@string'],
+    ],
+    string: [
+      [/[^\\"]+/, 'string'],
+      [/\\./, 'string.escape'],
+      [/"/, 'string', '@pop'],
+    ],
+    whitespace: [
+      [/[ \t\r\n]+/, ''],
+      [/\/\*/, 'comment', '@comment'],
+      [/\/\/.*$/, 'comment'],
+    ],
+    comment: [
+      [/[^/*]+/, 'comment'],
+      [/\*\//, 'comment', '@pop'],
+      [/[/*]/, 'comment'],
+    ],
+  },
+};
+
+export function registerCactalLanguage(): void {
+  monaco.languages.register({ id: CACTAL_LANGUAGE_ID, extensions: ['.contract'], aliases: ['Cactal', 'cactal'] });
+  monaco.languages.setMonarchTokensProvider(CACTAL_LANGUAGE_ID, cactalMonarch);
+  monaco.languages.setLanguageConfiguration(CACTAL_LANGUAGE_ID, {
+    comments: { lineComment: '//', blockComment: ['/*', '*/'] },
+    brackets: [['{', '}'], ['(', ')'], ['[', ']']],
+    autoClosingPairs: [
+      { open: '{', close: '}' },
+      { open: '(', close: ')' },
+      { open: '[', close: ']' },
+      { open: '"', close: '"', notIn: ['string', 'comment'] },
+    ],
+    surroundingPairs: [{ open: '{', close: '}' }, { open: '(', close: ')' }, { open: '"', close: '"' }],
+    indentationRules: { increaseIndentPattern: /\{[^}]*$/, decreaseIndentPattern: /^\s*\}/ },
+    wordPattern: /[A-Za-z_][A-Za-z0-9_]*|-?\d+(\.\d*)?(ns|us|ms|s)?/,
+  });
+}
+
+/** The IDE's dark theme. */
+export function defineStudioTheme(): void {
+  monaco.editor.defineTheme('contract-dark', {
+    base: 'vs-dark',
+    inherit: true,
+    rules: [
+      { token: 'keyword', foreground: 'c586c0' },
+      { token: 'type', foreground: '4ec9b0' },
+      { token: 'type.identifier.module', foreground: 'e5c07b', fontStyle: 'bold' },
+      { token: 'constant', foreground: '4fc1ff' },
+      { token: 'number.time', foreground: 'd7ba7d' },
+      { token: 'number', foreground: 'b5cea8' },
+      { token: 'comment', foreground: '6a9955', fontStyle: 'italic' },
+      { token: 'string', foreground: 'ce9178' },
+      { token: 'operator', foreground: '89ddff' },
+    ],
+    colors: {
+      'editor.background': '#15181e',
+      'editor.lineHighlightBackground': '#1d222b',
+      'editorGutter.background': '#15181e',
+      'editorLineNumber.foreground': '#4b5263',
+      'editorLineNumber.activeForeground': '#abb2bf',
+      'editor.selectionBackground': '#2f3d58',
+      'editorWidget.background': '#1b1f27',
+      'editorSuggestWidget.background': '#1b1f27',
+      'editorHoverWidget.background': '#1b1f27',
+    },
+  });
+}

@@ -1,0 +1,202 @@
+import { monaco } from './monaco.js';
+import { h } from '../util/dom.js';
+import { Emitter } from '../util/emitter.js';
+import type { Workspace, FileState } from '../workspace/workspace.js';
+import { isGeneratedC } from '../workspace/file-kinds.js';
+import { GeneratedGuard } from './generated-guard.js';
+import { toast } from '../util/toast.js';
+
+/** A non-file tab (architecture, timeline) rendered by its owner into `element`. */
+export interface ViewTab {
+  id: string;
+  title: string;
+  icon: string;
+  element: HTMLElement;
+  onShow?(): void;
+}
+
+/**
+ * Tabs + the single Monaco editor. File tabs swap models in and out of the editor (keeping each
+ * tab's view state); view tabs show their own element instead. Generated C gets a GeneratedGuard.
+ */
+export class EditorArea {
+  readonly editor: monaco.editor.IStandaloneCodeEditor;
+  readonly onActiveChanged = new Emitter<string | undefined>();
+  private readonly tabsEl: HTMLElement;
+  private readonly editorHost: HTMLElement;
+  private readonly viewHost: HTMLElement;
+  private readonly emptyEl: HTMLElement;
+  private readonly tabs: string[] = [];
+  private readonly views = new Map<string, ViewTab>();
+  private readonly viewStates = new Map<string, monaco.editor.ICodeEditorViewState | null>();
+  private readonly guards = new Map<string, GeneratedGuard>();
+  active: string | undefined;
+
+  constructor(
+    readonly root: HTMLElement,
+    private readonly workspace: Workspace,
+  ) {
+    this.tabsEl = h('div', { class: 'tabs', role: 'tablist' });
+    this.editorHost = h('div', { class: 'editor-host' });
+    this.viewHost = h('div', { class: 'view-host hidden' });
+    this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer'),
+      h('div', { class: 'muted' }, 'Ctrl+S saves now · F12 go to definition · F2 rename · Shift+Alt+F format'));
+    root.append(this.tabsEl, h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl));
+    this.editor = monaco.editor.create(this.editorHost, {
+      theme: 'contract-dark',
+      automaticLayout: true,
+      fontSize: 13,
+      fontFamily: "'JetBrains Mono', 'Fira Code', 'DejaVu Sans Mono', monospace",
+      minimap: { enabled: false },
+      scrollBeyondLastLine: false,
+      renderLineHighlight: 'all',
+      smoothScrolling: true,
+      fixedOverflowWidgets: true,
+      model: null,
+      tabSize: 4,
+      readOnlyMessage: { value: 'Generated code: only the content of PROTECTED REGIONs can be edited.' },
+    });
+    this.editor.onDidChangeCursorSelection(() => this.updateReadOnly());
+    this.editor.addCommand(monaco.KeyMod.CtrlCmd | monaco.KeyCode.KeyS, () => {
+      if (this.active && !this.views.has(this.active)) void this.workspace.save(this.active);
+    });
+    workspace.onFileState.on((fs) => this.renderTabState(fs));
+    monaco.editor.registerEditorOpener({
+      openCodeEditor: (_source, resource, selectionOrPosition) => {
+        const path = this.workspace.pathOf(resource);
+        if (!path) return false;
+        void this.open(path, selectionOrPosition);
+        return true;
+      },
+    });
+    this.render();
+  }
+
+  isOpen(id: string): boolean {
+    return this.tabs.includes(id);
+  }
+
+  /** Opens (or focuses) a file tab, optionally revealing a position or range. */
+  async open(path: string, where?: monaco.IRange | monaco.IPosition): Promise<void> {
+    let fs: FileState;
+    try {
+      fs = await this.workspace.ensureModel(path);
+    } catch (e) {
+      toast('error', `Cannot open ${path}: ${(e as Error).message}`);
+      return;
+    }
+    if (isGeneratedC(path) && !this.guards.has(path)) {
+      this.guards.set(path, new GeneratedGuard(fs.model, (msg) => toast('warning', msg)));
+      fs.model.onDidChangeContent(() => this.active === path && this.guards.get(path)?.decorate(this.editor));
+    }
+    if (!this.tabs.includes(path)) this.tabs.push(path);
+    this.activate(path);
+    if (where) {
+      const range = 'startLineNumber' in where ? where : new monaco.Range(where.lineNumber, where.column, where.lineNumber, where.column);
+      this.editor.setSelection(range);
+      this.editor.revealRangeInCenterIfOutsideViewport(range);
+    }
+    this.editor.focus();
+  }
+
+  /** Opens (or focuses) a view tab. */
+  openView(view: ViewTab): void {
+    this.views.set(view.id, view);
+    if (!this.tabs.includes(view.id)) this.tabs.push(view.id);
+    this.activate(view.id);
+  }
+
+  guardOf(path: string): GeneratedGuard | undefined {
+    return this.guards.get(path);
+  }
+
+  private activate(id: string): void {
+    if (this.active && !this.views.has(this.active) && this.editor.getModel()) this.viewStates.set(this.active, this.editor.saveViewState());
+    this.active = id;
+    const view = this.views.get(id);
+    if (view) {
+      this.viewHost.replaceChildren(view.element);
+      view.onShow?.();
+    } else {
+      const fs = this.workspace.files.get(id);
+      if (fs && this.editor.getModel() !== fs.model) {
+        this.editor.setModel(fs.model);
+        const vs = this.viewStates.get(id);
+        if (vs) this.editor.restoreViewState(vs);
+      }
+      this.guards.get(id)?.decorate(this.editor);
+      this.updateReadOnly();
+      const guard = this.guards.get(id);
+      if (guard?.malformed.length) toast('error', `${id} has malformed protected regions: ${guard.malformed.join('; ')}`);
+    }
+    this.render();
+    this.onActiveChanged.fire(id);
+  }
+
+  close(id: string): void {
+    const i = this.tabs.indexOf(id);
+    if (i < 0) return;
+    this.tabs.splice(i, 1);
+    this.viewStates.delete(id);
+    if (this.active === id) {
+      const next = this.tabs[Math.min(i, this.tabs.length - 1)];
+      this.active = undefined;
+      if (next) this.activate(next);
+      else {
+        this.editor.setModel(null);
+        this.render();
+        this.onActiveChanged.fire(undefined);
+      }
+    } else this.render();
+  }
+
+  /** Keeps tabs pointing at the right files after a rename/move in the explorer. */
+  renamePath(from: string, to: string): void {
+    for (let i = 0; i < this.tabs.length; i++) {
+      const t = this.tabs[i]!;
+      if (t === from || t.startsWith(from + '/')) this.tabs[i] = to + t.slice(from.length);
+    }
+    if (this.active && (this.active === from || this.active.startsWith(from + '/'))) this.active = to + this.active.slice(from.length);
+    this.render();
+  }
+
+  closeMissing(exists: (p: string) => boolean): void {
+    for (const t of [...this.tabs]) if (!this.views.has(t) && !exists(t)) this.close(t);
+  }
+
+  private updateReadOnly(): void {
+    const guard = this.active ? this.guards.get(this.active) : undefined;
+    const selections = this.editor.getSelections();
+    const readOnly = !!guard && !!selections && !guard.selectionsEditable(selections);
+    this.editor.updateOptions({ readOnly });
+  }
+
+  private renderTabState(fs: FileState): void {
+    const tab = this.tabsEl.querySelector(`[data-path="${CSS.escape(fs.path)}"]`);
+    if (tab) tab.setAttribute('data-state', fs.state);
+  }
+
+  private render(): void {
+    this.tabsEl.replaceChildren(
+      ...this.tabs.map((id) => {
+        const view = this.views.get(id);
+        const fs = this.workspace.files.get(id);
+        const name = view ? view.title : id.split('/').pop()!;
+        const icon = view ? view.icon : id.endsWith('.contract') ? '◈' : /\.(c|h)$/.test(id) ? 'C' : '≡';
+        return h('div', {
+          class: `tab${id === this.active ? ' active' : ''}${isGeneratedC(id) ? ' generated' : ''}`,
+          role: 'tab', title: id, 'data-path': id, 'data-state': fs?.state ?? 'saved',
+          onclick: () => this.activate(id),
+          onmousedown: (e: Event) => (e as MouseEvent).button === 1 && this.close(id),
+        },
+          h('span', { class: 'tab-icon' }, icon), h('span', { class: 'tab-name' }, name),
+          h('span', { class: 'tab-dirty', title: 'unsaved' }, '●'),
+          h('span', { class: 'tab-close', title: 'Close', onclick: (e: Event) => { e.stopPropagation(); this.close(id); } }, '×'));
+      }),
+    );
+    const isView = !!this.active && this.views.has(this.active);
+    this.editorHost.classList.toggle('hidden', !this.active || isView);
+    this.viewHost.classList.toggle('hidden', !isView);
+    this.emptyEl.classList.toggle('hidden', !!this.active);
+  }
+}

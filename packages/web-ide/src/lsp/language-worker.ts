@@ -1,0 +1,28 @@
+/// <reference lib="webworker" />
+/**
+ * Web Worker entry: the Cactal Langium language server over postMessage. The main thread opens
+ * every workspace .contract file (didOpen), so cross-file references resolve for files that have
+ * no tab. Extra request `cactal/architecture` returns the schemas for the architecture view.
+ */
+import { DocumentState, EmptyFileSystem } from 'langium';
+import { startLanguageServer } from 'langium/lsp';
+import { BrowserMessageReader, BrowserMessageWriter, createConnection } from 'vscode-languageserver/browser.js';
+import { createCactalServices } from '@contract-studio/language';
+import { schemasOf, type ArchSchema } from './architecture-model.js';
+
+declare const self: DedicatedWorkerGlobalScope;
+
+const reader = new BrowserMessageReader(self);
+const writer = new BrowserMessageWriter(self);
+const connection = createConnection(reader, writer);
+const { shared } = createCactalServices({ connection, ...EmptyFileSystem });
+startLanguageServer(shared);
+
+connection.onRequest('cactal/architecture', async (): Promise<ArchSchema[]> => {
+  await shared.workspace.DocumentBuilder.waitUntil(DocumentState.Linked).catch(() => undefined);
+  const out: ArchSchema[] = [];
+  for (const doc of shared.workspace.LangiumDocuments.all) {
+    out.push(...schemasOf(doc.parseResult.value as never, doc.uri.toString()));
+  }
+  return out;
+});

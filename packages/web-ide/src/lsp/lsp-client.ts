@@ -1,0 +1,234 @@
+/**
+ * A small LSP client between Monaco and the Langium server in a Web Worker (JSON-RPC over
+ * postMessage, vscode-jsonrpc). It mirrors every Cactal model into the server (didOpen/didChange/
+ * didClose), turns published diagnostics into Monaco markers, and registers Monaco providers for
+ * completion, hover, definition, references, rename, formatting, code actions and document symbols.
+ */
+import { monaco } from '../editor/monaco.js';
+import { BrowserMessageReader, BrowserMessageWriter, createMessageConnection, type MessageConnection } from 'vscode-jsonrpc/browser.js';
+import type * as lsp from 'vscode-languageserver-protocol';
+import { Emitter } from '../util/emitter.js';
+import { CACTAL_LANGUAGE_ID } from '../editor/cactal-language.js';
+import * as conv from './lsp-convert.js';
+import type { ArchSchema } from './architecture-model.js';
+import LanguageWorker from './language-worker.ts?worker';
+
+export const MARKER_OWNER = 'cactal';
+
+export class LspClient {
+  private connection!: MessageConnection;
+  private worker!: Worker;
+  private readonly versions = new Map<string, number>();
+  readonly onDiagnostics = new Emitter<{ uri: string; diagnostics: lsp.Diagnostic[] }>();
+  readonly ready: Promise<void>;
+  private resolveReady!: () => void;
+  /** Opened documents whose first diagnostics have not arrived yet (= not fully built). */
+  private readonly unbuilt = new Set<string>();
+  private builtWaiters: Array<() => void> = [];
+
+  constructor() {
+    this.ready = new Promise((r) => (this.resolveReady = r));
+  }
+
+  async start(): Promise<void> {
+    this.worker = new LanguageWorker();
+    this.worker.onerror = (e) => console.error('language worker error', e.message);
+    this.connection = createMessageConnection(new BrowserMessageReader(this.worker), new BrowserMessageWriter(this.worker));
+    this.connection.onNotification('textDocument/publishDiagnostics', (p: lsp.PublishDiagnosticsParams) => {
+      this.markBuilt(p.uri);
+      const model = monaco.editor.getModel(monaco.Uri.parse(p.uri));
+      if (model) monaco.editor.setModelMarkers(model, MARKER_OWNER, p.diagnostics.map(conv.toMarker));
+      this.onDiagnostics.fire({ uri: p.uri, diagnostics: p.diagnostics });
+    });
+    this.connection.onRequest('workspace/configuration', (p: lsp.ConfigurationParams) => p.items.map(() => null));
+    this.connection.onRequest('client/registerCapability', () => null);
+    this.connection.onRequest('window/workDoneProgress/create', () => null);
+    this.connection.onNotification('window/logMessage', () => undefined);
+    this.connection.listen();
+    await this.connection.sendRequest('initialize', {
+      processId: null,
+      rootUri: 'file:///workspace',
+      workspaceFolders: [{ uri: 'file:///workspace', name: 'workspace' }],
+      capabilities: {
+        textDocument: {
+          synchronization: { didSave: false },
+          publishDiagnostics: { relatedInformation: true },
+          completion: { completionItem: { snippetSupport: true } },
+          hover: { contentFormat: ['markdown', 'plaintext'] },
+          documentSymbol: { hierarchicalDocumentSymbolSupport: true },
+          rename: { prepareSupport: true },
+          codeAction: { codeActionLiteralSupport: { codeActionKind: { valueSet: ['quickfix', 'refactor', 'source'] } } },
+        },
+        workspace: { workspaceFolders: true, configuration: true, workspaceEdit: { documentChanges: true } },
+      },
+    } satisfies lsp.InitializeParams);
+    this.connection.sendNotification('initialized', {});
+    this.trackModels();
+    this.registerProviders();
+    this.resolveReady();
+  }
+
+  private isCactal(model: monaco.editor.ITextModel): boolean {
+    return model.getLanguageId() === CACTAL_LANGUAGE_ID && model.uri.scheme === 'file';
+  }
+
+  private trackModels(): void {
+    const open = (model: monaco.editor.ITextModel) => {
+      if (!this.isCactal(model)) return;
+      const uri = model.uri.toString();
+      this.versions.set(uri, 1);
+      this.unbuilt.add(uri);
+      void this.connection.sendNotification('textDocument/didOpen', {
+        textDocument: { uri, languageId: CACTAL_LANGUAGE_ID, version: 1, text: model.getValue() },
+      } satisfies lsp.DidOpenTextDocumentParams);
+      model.onDidChangeContent(() => {
+        const version = (this.versions.get(uri) ?? 1) + 1;
+        this.versions.set(uri, version);
+        void this.connection.sendNotification('textDocument/didChange', {
+          textDocument: { uri, version },
+          contentChanges: [{ text: model.getValue() }],
+        } satisfies lsp.DidChangeTextDocumentParams);
+      });
+    };
+    monaco.editor.getModels().forEach(open);
+    monaco.editor.onDidCreateModel(open);
+    monaco.editor.onWillDisposeModel((model) => {
+      if (!this.isCactal(model)) return;
+      const uri = model.uri.toString();
+      this.versions.delete(uri);
+      this.markBuilt(uri);
+      void this.connection.sendNotification('textDocument/didClose', { textDocument: { uri } });
+      this.onDiagnostics.fire({ uri, diagnostics: [] });
+    });
+  }
+
+  private markBuilt(uri: string): void {
+    if (!this.unbuilt.delete(uri) || this.unbuilt.size) return;
+    const waiters = this.builtWaiters;
+    this.builtWaiters = [];
+    waiters.forEach((w) => w());
+  }
+
+  /**
+   * Resolves once every opened document has been built and validated at least once (its first
+   * diagnostics arrived), so cross-file requests (rename, references) see the whole workspace.
+   */
+  workspaceBuilt(): Promise<void> {
+    if (!this.unbuilt.size) return Promise.resolve();
+    return new Promise((r) => this.builtWaiters.push(r));
+  }
+
+  request<R>(method: string, params: unknown): Promise<R> {
+    return this.connection.sendRequest(method, params) as Promise<R>;
+  }
+
+  documentSymbols(uri: string): Promise<lsp.DocumentSymbol[] | null> {
+    return this.request('textDocument/documentSymbol', { textDocument: { uri } });
+  }
+
+  architecture(): Promise<ArchSchema[]> {
+    return this.request('cactal/architecture', {});
+  }
+
+  private registerProviders(): void {
+    const id = CACTAL_LANGUAGE_ID;
+    const doc = (model: monaco.editor.ITextModel) => ({ textDocument: { uri: model.uri.toString() } });
+    const at = (model: monaco.editor.ITextModel, position: monaco.Position) => ({ ...doc(model), position: conv.toPosition(position) });
+
+    monaco.languages.registerCompletionItemProvider(id, {
+      triggerCharacters: [':', '.', ' '],
+      provideCompletionItems: async (model, position) => {
+        const r = await this.request<lsp.CompletionList | lsp.CompletionItem[] | null>('textDocument/completion', at(model, position));
+        const word = model.getWordUntilPosition(position);
+        const fallback = new monaco.Range(position.lineNumber, word.startColumn, position.lineNumber, word.endColumn);
+        const items = Array.isArray(r) ? r : (r?.items ?? []);
+        return { suggestions: items.map((i) => conv.toCompletion(i, fallback)), incomplete: !Array.isArray(r) && !!r?.isIncomplete };
+      },
+    });
+    monaco.languages.registerHoverProvider(id, {
+      provideHover: async (model, position) => {
+        const r = await this.request<lsp.Hover | null>('textDocument/hover', at(model, position));
+        return r ? { contents: conv.toMarkdown(r.contents), range: r.range ? conv.toRange(r.range) : undefined } : null;
+      },
+    });
+    monaco.languages.registerDefinitionProvider(id, {
+      provideDefinition: async (model, position) => conv.toLocations(await this.request('textDocument/definition', at(model, position))),
+    });
+    monaco.languages.registerReferenceProvider(id, {
+      provideReferences: async (model, position, context) => {
+        await this.workspaceBuilt();
+        return conv.toLocations(await this.request('textDocument/references', { ...at(model, position), context }));
+      },
+    });
+    monaco.languages.registerRenameProvider(id, {
+      provideRenameEdits: async (model, position, newName) => {
+        await this.workspaceBuilt();
+        const oldName = model.getWordAtPosition(position)?.word ?? '';
+        // Before the edits apply: is this a top-level entity (module, supervisor, datatype, function)?
+        const defs = await this.request<lsp.Definition | lsp.LocationLink[] | null>('textDocument/definition', at(model, position)).catch(() => null);
+        const targetUri = conv.toLocations(defs)[0]?.uri.toString() ?? model.uri.toString();
+        const symbols = (await this.documentSymbols(targetUri).catch(() => null)) ?? [];
+        const topLevel = symbols.some((s) => s.name === oldName);
+        const r = await this.request<lsp.WorkspaceEdit | null>('textDocument/rename', { ...at(model, position), newName });
+        const edit = conv.toWorkspaceEdit(r);
+        if (edit.edits.length) this.onRename.fire({ oldName, newName, topLevel });
+        return edit;
+      },
+      resolveRenameLocation: async (model, position) => {
+        const word = model.getWordAtPosition(position);
+        if (!word) return { rejectReason: 'Nothing to rename here', range: new monaco.Range(1, 1, 1, 1), text: '' };
+        const r = await this.request<lsp.PrepareRenameResult | null>('textDocument/prepareRename', at(model, position)).catch(() => undefined);
+        if (r === null) return { rejectReason: 'This element cannot be renamed', range: new monaco.Range(1, 1, 1, 1), text: '' };
+        const range = new monaco.Range(position.lineNumber, word.startColumn, position.lineNumber, word.endColumn);
+        if (r && 'range' in r) return { range: conv.toRange(r.range), text: r.placeholder };
+        if (r && 'start' in r) return { range: conv.toRange(r), text: model.getValueInRange(conv.toRange(r)) };
+        return { range, text: word.word };
+      },
+    });
+    monaco.languages.registerDocumentFormattingEditProvider(id, {
+      provideDocumentFormattingEdits: async (model, options) => {
+        const r = await this.request<lsp.TextEdit[] | null>('textDocument/formatting', { ...doc(model), options });
+        return (r ?? []).map((e) => ({ range: conv.toRange(e.range), text: e.newText }));
+      },
+    });
+    monaco.languages.registerCodeActionProvider(id, {
+      provideCodeActions: async (model, range, context) => {
+        const diagnostics = context.markers.filter((m) => m.owner === MARKER_OWNER).map(conv.toDiagnostic);
+        const r = await this.request<Array<lsp.CodeAction | lsp.Command> | null>('textDocument/codeAction', {
+          ...doc(model),
+          range: { start: conv.toPosition(range.getStartPosition()), end: conv.toPosition(range.getEndPosition()) },
+          context: { diagnostics, only: undefined },
+        });
+        const actions = (r ?? []).filter((a): a is lsp.CodeAction => 'title' in a && !('command' in a && typeof a.command === 'string'));
+        return {
+          actions: actions.map((a) => ({
+            title: a.title,
+            kind: a.kind,
+            isPreferred: a.isPreferred,
+            diagnostics: a.diagnostics?.map(conv.toMarker),
+            edit: a.edit ? conv.toWorkspaceEdit(a.edit) : undefined,
+          })),
+          dispose: () => undefined,
+        };
+      },
+    });
+    monaco.languages.registerDocumentSymbolProvider(id, {
+      provideDocumentSymbols: async (model) => {
+        const r = (await this.documentSymbols(model.uri.toString())) ?? [];
+        const map = (s: lsp.DocumentSymbol): monaco.languages.DocumentSymbol => ({
+          name: s.name,
+          detail: s.detail ?? '',
+          kind: (s.kind - 1) as monaco.languages.SymbolKind,
+          tags: [],
+          range: conv.toRange(s.range),
+          selectionRange: conv.toRange(s.selectionRange),
+          children: s.children?.map(map),
+        });
+        return r.map(map);
+      },
+    });
+  }
+
+  /** Fired when a rename was computed (the IDE carries generated files over). */
+  readonly onRename = new Emitter<{ oldName: string; newName: string; topLevel: boolean }>();
+}

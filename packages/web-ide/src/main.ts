@@ -1,0 +1,313 @@
+import './styles.css';
+import { monaco } from './editor/monaco.js';
+import { registerCactalLanguage, defineStudioTheme } from './editor/cactal-language.js';
+import { createLayout } from './app/layout.js';
+import { Workspace } from './workspace/workspace.js';
+import { Explorer } from './panels/explorer.js';
+import { EditorArea } from './editor/editor-area.js';
+import { OutlinePanel } from './panels/outline.js';
+import { ProblemsPanel, type Severity } from './panels/problems.js';
+import { LspClient } from './lsp/lsp-client.js';
+import { BuildPanel } from './build/build-panel.js';
+import { GeneratePanel } from './build/generate-panel.js';
+import { api, ApiError } from './api.js';
+import { askText, confirmAction } from './util/dialog.js';
+import { toast } from './util/toast.js';
+import { debounce } from './util/dom.js';
+import { isContract, projectOf } from './workspace/file-kinds.js';
+import { toRange } from './lsp/lsp-convert.js';
+import type { ArchitectureView } from './views/architecture-view.js';
+import type { TimelineView } from './views/timeline-view.js';
+
+async function main(): Promise<void> {
+  registerCactalLanguage();
+  defineStudioTheme();
+  const ui = createLayout(document.getElementById('app')!);
+  const workspace = new Workspace();
+  const explorer = new Explorer(ui.explorerBody);
+  const editors = new EditorArea(ui.editorRoot, workspace);
+  const lsp = new LspClient();
+  const problems = new ProblemsPanel(document.createElement('div'));
+  const build = new BuildPanel();
+  const generatePanel = new GeneratePanel((path, line) => void editors.open(path, line ? { lineNumber: line, column: 1 } : undefined));
+  ui.addPanel('problems', 'Problems', problems.root);
+  ui.addPanel('output', 'Build & Run', build.element);
+  ui.addPanel('generate', 'Generate', generatePanel.element);
+  ui.showPanel('problems');
+  const outline = new OutlinePanel(ui.outlineBody, (uri) => lsp.documentSymbols(uri), (range) => {
+    editors.editor.setSelection(toRange(range));
+    editors.editor.revealRangeInCenter(toRange(range));
+    editors.editor.focus();
+  });
+  outline.show(undefined);
+
+  workspace.onNotice.on((n) => toast(n.level, n.text));
+  workspace.onTree.on((entries) => {
+    explorer.setEntries(entries);
+    editors.closeMissing((p) => workspace.hasFile(p));
+  });
+  const updateSaveStatus = () => {
+    const states = [...workspace.files.values()];
+    const failed = states.filter((f) => f.state === 'error');
+    const pending = states.filter((f) => f.state === 'dirty' || f.state === 'saving');
+    ui.status.save.textContent = failed.length ? `✖ Save failed (${failed.length}) — kept locally` : pending.length ? `● Saving ${pending.length}…` : '✓ All saved';
+    ui.status.save.className = `status-item ${failed.length ? 'error' : pending.length ? 'pending' : ''}`;
+  };
+  workspace.onFileState.on(updateSaveStatus);
+
+  const rootHasContracts = () => workspace.entries.some((e) => e.type === 'file' && isContract(e.path));
+  const currentProject = () => projectOf(editors.active && !editors.active.startsWith('view:') ? editors.active : explorer.selected?.path ?? '', rootHasContracts());
+
+  // ---- problems: language server + gcc
+  const sevOf = (s: number | undefined): Severity => (s === 1 ? 'error' : s === 2 ? 'warning' : s === 3 ? 'info' : 'hint');
+  lsp.onDiagnostics.on(({ uri, diagnostics }) => {
+    const path = workspace.pathOf(uri);
+    if (!path) return;
+    problems.set(`cactal:${path}`, diagnostics.map((d) => ({
+      path, line: d.range.start.line + 1, column: d.range.start.character + 1, severity: sevOf(d.severity), message: d.message, source: 'cactal',
+    })));
+  });
+  problems.onCounts.on(({ errors, warnings }) => {
+    ui.status.problems.innerHTML = '';
+    ui.status.problems.append(`✖ ${errors}  ⚠ ${warnings}`);
+    ui.status.problems.dataset.errors = String(errors);
+    ui.status.problems.dataset.warnings = String(warnings);
+  });
+  ui.status.problems.addEventListener('click', () => ui.showPanel('problems'));
+  problems.onOpen.on((p) => void editors.open(p.path, { lineNumber: p.line, column: p.column }));
+  build.onDiagnostics.on((diags) => {
+    const srcGen = `${currentBuildProject ? `${currentBuildProject}/` : ''}src-gen/`;
+    problems.set('gcc', diags.map((d) => ({
+      path: srcGen + d.file, line: d.line, column: d.column || 1,
+      severity: d.severity === 'note' ? 'info' : d.severity, message: d.message + (d.protectedRegion ? ` (in region ${d.protectedRegion.id})` : ''), source: 'gcc',
+    })));
+    if (diags.some((d) => d.severity === 'error')) ui.showPanel('problems');
+  });
+
+  // ---- explorer and file operations
+  explorer.onOpen.on((path) => void editors.open(path));
+  editors.onActiveChanged.on((id) => {
+    const isFile = id && !id.startsWith('view:');
+    explorer.setActive(isFile ? id : undefined);
+    const fs = isFile ? workspace.files.get(id) : undefined;
+    outline.show(fs && isContract(id!) ? fs.model.uri.toString() : undefined);
+    ui.status.lang.textContent = fs ? (fs.model.getLanguageId() === 'c' ? 'C (generated)' : 'Cactal') : '';
+  });
+  editors.editor.onDidChangeModelContent(() => outline.refresh());
+  editors.editor.onDidChangeCursorPosition((e) => (ui.status.cursor.textContent = `Ln ${e.position.lineNumber}, Col ${e.position.column}`));
+
+  const report = (e: unknown) => toast('error', e instanceof ApiError ? e.message : String(e));
+  const join = (dir: string, name: string) => (dir ? `${dir}/${name}` : name);
+  const newEntry = async (type: 'file' | 'dir', folder = explorer.targetFolder()) => {
+    const name = await askText(type === 'file' ? 'New file' : 'New folder', type === 'file' ? 'new.contract' : 'folder', `in ${folder || 'the workspace root'}`);
+    if (!name) return;
+    try {
+      const { path } = await api.create(join(folder, name), type);
+      await workspace.refreshTree();
+      if (type === 'file') await editors.open(path);
+      else explorer.expand(path);
+    } catch (e) {
+      report(e);
+    }
+  };
+  ui.toolbar.newFile.addEventListener('click', () => void newEntry('file'));
+  ui.toolbar.newFolder.addEventListener('click', () => void newEntry('dir'));
+  ui.toolbar.newProject.addEventListener('click', async () => {
+    const folder = await askText('New project from the report templates', rootHasContracts() ? 'my-robot' : '', 'Folder to create (empty = the workspace root). Creates datatype, module1, module2, schema, sched and supervisor .contract files.');
+    if (folder === null && rootHasContracts()) return;
+    try {
+      const r = await api.newProject(folder ?? '');
+      await workspace.refreshTree();
+      await Promise.all(r.files.map((f) => workspace.ensureModel(f)));
+      await editors.open(r.files.find((f) => f.endsWith('supervisor.contract')) ?? r.files[0]!);
+      toast('info', `Project created in ${r.folder || 'the workspace root'}`);
+    } catch (e) {
+      report(e);
+    }
+  });
+  explorer.onContextAction.on(async ({ action, entry }) => {
+    try {
+      if (action === 'new-file') return void newEntry('file', entry.path);
+      if (action === 'new-folder') return void newEntry('dir', entry.path);
+      if (action === 'delete') {
+        if (!(await confirmAction(`Delete ${entry.path}?`, entry.type === 'dir' ? 'The folder and everything in it will be deleted from disk.' : 'The file will be deleted from disk.'))) return;
+        await api.remove(entry.path);
+        for (const p of [...workspace.files.keys()]) if (p === entry.path || p.startsWith(entry.path + '/')) workspace.dropFile(p);
+        await workspace.refreshTree();
+      }
+      if (action === 'rename') {
+        const name = await askText(`Rename ${entry.path}`, entry.name);
+        if (!name || name === entry.name) return;
+        const dir = entry.path.includes('/') ? entry.path.slice(0, entry.path.lastIndexOf('/')) : '';
+        const to = join(dir, name);
+        await workspace.saveAll();
+        await api.rename(entry.path, to);
+        const moved = [...workspace.files.keys()].filter((p) => p === entry.path || p.startsWith(entry.path + '/'));
+        for (const p of moved) workspace.dropFile(p);
+        editors.renamePath(entry.path, to);
+        await workspace.refreshTree();
+        for (const p of moved) {
+          const np = to + p.slice(entry.path.length);
+          if (isContract(np)) await workspace.ensureModel(np);
+        }
+        if (editors.active && workspace.hasFile(editors.active)) await editors.open(editors.active);
+      }
+    } catch (e) {
+      report(e);
+    }
+  });
+
+  // ---- external changes
+  const refreshTree = debounce(() => void workspace.refreshTree().then(async () => {
+    for (const p of workspace.allFiles().filter(isContract)) if (!workspace.files.has(p)) await workspace.ensureModel(p).catch(() => undefined);
+    for (const p of [...workspace.files.keys()]) if (!workspace.hasFile(p) && workspace.files.get(p)!.state === 'saved') workspace.dropFile(p);
+  }), 150);
+  const events = new EventSource('/api/events');
+  events.addEventListener('change', (e) => {
+    const { paths } = JSON.parse((e as MessageEvent).data) as { paths: string[] };
+    refreshTree();
+    for (const p of paths) void workspace.externalChange(p);
+  });
+  let wasDisconnected = false;
+  events.onerror = () => {
+    if (!wasDisconnected) toast('warning', 'Lost the connection to the IDE server: edits are kept in this browser until it is back');
+    wasDisconnected = true;
+  };
+  events.addEventListener('hello', () => {
+    if (wasDisconnected) {
+      wasDisconnected = false;
+      toast('info', 'Reconnected to the IDE server: saving pending edits');
+      void workspace.saveAll();
+      refreshTree();
+    }
+  });
+
+  // ---- Generate All
+  const generate = async (): Promise<boolean> => {
+    ui.showPanel('generate');
+    generatePanel.showRunning();
+    ui.toolbar.generate.disabled = true;
+    try {
+      await workspace.saveAll();
+      const project = currentProject();
+      const r = await api.generate(project);
+      generatePanel.show(r);
+      await workspace.refreshTree();
+      explorer.expand(`${r.srcGen}/generated/architecture/modules`);
+      for (const p of [...workspace.files.keys()]) if (p.startsWith(`${r.srcGen}/`)) void workspace.externalChange(p);
+      if (r.errors.length) toast('error', `Generate All: ${r.errors.length} error(s) — see the Generate panel`);
+      else if (r.orphaned.length) toast('warning', `Generate All: ${r.orphaned.length} orphaned region(s) moved to ${r.srcGen}/orphans`);
+      return r.errors.length === 0;
+    } catch (e) {
+      generatePanel.showError(e instanceof ApiError ? e.message : String(e));
+      return false;
+    } finally {
+      ui.toolbar.generate.disabled = false;
+    }
+  };
+  ui.toolbar.generate.addEventListener('click', () => void generate());
+
+  // ---- Build & Run / Stop
+  let currentBuildProject = '';
+  const run = async () => {
+    ui.showPanel('output');
+    try {
+      await workspace.saveAll();
+      currentBuildProject = currentProject();
+      await build.start(currentBuildProject ? `${workspace.root}/${currentBuildProject}` : workspace.root, 'run');
+    } catch (e) {
+      report(e);
+      build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });
+    }
+  };
+  build.onStatus.on(({ status, message, running }) => {
+    ui.toolbar.run.disabled = running;
+    ui.toolbar.stop.disabled = !running;
+    ui.status.job.textContent = `${running ? '⟳' : status === 'succeeded' ? '✓' : '■'} ${status}${message ? `: ${message}` : ''}`;
+    ui.status.job.dataset.status = status;
+  });
+  ui.toolbar.run.addEventListener('click', () => void run());
+  ui.toolbar.stop.addEventListener('click', () => void build.stop());
+
+  // ---- views (lazy: elkjs and the timeline load on first use)
+  let arch: ArchitectureView | undefined;
+  const archRefresh = debounce(() => {
+    if (arch && editors.active === 'view:architecture') void arch.update();
+  }, 400);
+  ui.toolbar.arch.addEventListener('click', async () => {
+    if (!arch) {
+      const { ArchitectureView } = await import('./views/architecture-view.js');
+      arch = new ArchitectureView(() => lsp.architecture());
+    }
+    editors.openView({ id: 'view:architecture', title: 'Architecture', icon: '⬡', element: arch.element, onShow: () => void arch!.update() });
+  });
+  monaco.editor.onDidCreateModel((m) => m.onDidChangeContent(() => archRefresh()));
+  for (const m of monaco.editor.getModels()) m.onDidChangeContent(() => archRefresh());
+  let timeline: TimelineView | undefined;
+  ui.toolbar.timeline.addEventListener('click', async () => {
+    if (!timeline) {
+      const { TimelineView } = await import('./views/timeline-view.js');
+      timeline = new TimelineView(() => currentProject(), workspace);
+    }
+    editors.openView({ id: 'view:timeline', title: 'Timeline', icon: '▤', element: timeline.element, onShow: () => void timeline!.update() });
+  });
+
+  // ---- rename refactoring carries generated files and region IDs over
+  lsp.onRename.on(({ oldName: old, newName, topLevel }) => {
+    if (!old || old === newName || !topLevel) return; // ports, variables, labels: nothing generated is named after them
+    void (async () => {
+      await new Promise((r) => setTimeout(r, 50));
+      await workspace.saveAll();
+      const project = currentProject();
+      const r = await api.renameEntity(project, old, newName);
+      if (r.movedPaths.length || r.regionIds.length) {
+        toast('info', `Renamed ${old} → ${newName}: ${r.movedPaths.length} generated path(s) and ${r.regionIds.length} protected region(s) carried over`);
+        await workspace.refreshTree();
+        for (const m of r.movedPaths) {
+          const base = `${project ? `${project}/` : ''}src-gen/`;
+          const from = base + m.from;
+          if (workspace.files.has(from) || [...workspace.files.keys()].some((p) => p.startsWith(from + '/'))) {
+            for (const p of [...workspace.files.keys()]) if (p === from || p.startsWith(from + '/')) workspace.dropFile(p);
+            editors.renamePath(from, base + m.to);
+          }
+        }
+        if (editors.active?.includes('/src-gen/') || editors.active?.startsWith('src-gen/')) await editors.open(editors.active);
+        await generate();
+      }
+    })().catch(report);
+  });
+
+  // ---- shortcuts
+  window.addEventListener('keydown', (e) => {
+    if ((e.ctrlKey || e.metaKey) && e.shiftKey && e.key.toLowerCase() === 'g') {
+      e.preventDefault();
+      void generate();
+    }
+    if ((e.ctrlKey || e.metaKey) && e.shiftKey && e.key.toLowerCase() === 'b') {
+      e.preventDefault();
+      void run();
+    }
+  });
+  window.addEventListener('beforeunload', () => void workspace.saveAll());
+
+  // ---- start
+  try {
+    await workspace.load();
+  } catch (e) {
+    toast('error', `Cannot load the workspace: ${(e as Error).message}`);
+    return;
+  }
+  ui.workspaceName.textContent = workspace.name;
+  document.title = `${workspace.name} — ContrACT Studio`;
+  explorer.setEntries(workspace.entries);
+  await lsp.start();
+  ui.status.lsp.textContent = '● Cactal language server';
+  ui.status.lsp.classList.add('ok');
+  const first = workspace.allFiles().find((p) => p.endsWith('supervisor.contract')) ?? workspace.allFiles().find(isContract);
+  if (first) await editors.open(first);
+  await lsp.workspaceBuilt();
+  document.body.dataset.ready = 'true';
+  (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco };
+}
+
+void main();

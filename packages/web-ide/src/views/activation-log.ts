@@ -1,0 +1,73 @@
+/**
+ * Parses the runtime's per-module CSV logs (docs/runtime-api.md: columns
+ * `mono_ns,wall_time,module,event,peer,port,size,detail`) into activations: each `run_started`
+ * paired with the module's next `run_finished`. Pure: used by the timeline view and tests.
+ */
+export interface Activation {
+  module: string;
+  /** Monotonic start/end in ns; end undefined if the log stops while running. */
+  start: number;
+  end?: number;
+  detail: string;
+}
+
+export function parseCsvLine(line: string): string[] {
+  const out: string[] = [];
+  let cur = '';
+  let quoted = false;
+  for (let i = 0; i < line.length; i++) {
+    const c = line[i]!;
+    if (quoted) {
+      if (c === '"' && line[i + 1] === '"') {
+        cur += '"';
+        i++;
+      } else if (c === '"') quoted = false;
+      else cur += c;
+    } else if (c === '"') quoted = true;
+    else if (c === ',') {
+      out.push(cur);
+      cur = '';
+    } else cur += c;
+  }
+  out.push(cur);
+  return out;
+}
+
+export function activationsFromCsv(text: string): Activation[] {
+  const lines = text.split(/\r?\n/).filter((l) => l.length > 0);
+  if (!lines.length) return [];
+  const header = parseCsvLine(lines[0]!);
+  const col = (name: string) => header.indexOf(name);
+  const [iMono, iModule, iEvent, iDetail] = [col('mono_ns'), col('module'), col('event'), col('detail')];
+  if (iMono < 0 || iModule < 0 || iEvent < 0) throw new Error('not a ContrACT CSV log (missing mono_ns/module/event columns)');
+  const open = new Map<string, Activation>();
+  const out: Activation[] = [];
+  for (const l of lines.slice(1)) {
+    const f = parseCsvLine(l);
+    const t = Number(f[iMono]);
+    const module = f[iModule] ?? '?';
+    if (!Number.isFinite(t)) continue;
+    if (f[iEvent] === 'run_started') {
+      const a: Activation = { module, start: t, detail: f[iDetail] ?? '' };
+      const prev = open.get(module);
+      if (prev && prev.end === undefined) prev.end = t;
+      open.set(module, a);
+      out.push(a);
+    } else if (f[iEvent] === 'run_finished') {
+      const a = open.get(module);
+      if (a && a.end === undefined) a.end = t;
+    }
+  }
+  return out.sort((a, b) => a.start - b.start);
+}
+
+/** Median gap between consecutive activations of the most active module (the period guess), ns. */
+export function inferPeriod(acts: Activation[]): number | undefined {
+  const byModule = new Map<string, number[]>();
+  for (const a of acts) (byModule.get(a.module) ?? byModule.set(a.module, []).get(a.module)!).push(a.start);
+  let best: number[] = [];
+  for (const starts of byModule.values()) if (starts.length > best.length) best = starts;
+  if (best.length < 3) return undefined;
+  const gaps = best.slice(1).map((s, i) => s - best[i]!).sort((a, b) => a - b);
+  return gaps[Math.floor(gaps.length / 2)];
+}

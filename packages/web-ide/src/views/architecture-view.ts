@@ -1,0 +1,180 @@
+/**
+ * Architecture diagram of a schema: modules as boxes with their ports (inputs left, outputs
+ * right, parameters on top), data flows (solid, `* k` periodicity), event flows (dashed,
+ * `=*` continuous / `=>` one shot) and precedence edges (dotted), laid out by elkjs in a Web
+ * Worker. Loaded lazily (dynamic import) so elkjs costs nothing until the view is opened.
+ */
+import ELK, { type ElkNode, type ElkExtendedEdge, type ElkPort } from 'elkjs/lib/elk-api.js';
+import elkWorkerUrl from 'elkjs/lib/elk-worker.min.js?url';
+import { h } from '../util/dom.js';
+import type { ArchSchema, ArchModule } from '../lsp/architecture-model.js';
+
+const SVG = 'http://www.w3.org/2000/svg';
+const elk = new ELK({ workerFactory: () => new Worker(elkWorkerUrl) });
+
+function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string, string | number>, text?: string): SVGElementTagNameMap[K] {
+  const el = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, String(v));
+  if (text !== undefined) el.textContent = text;
+  return el;
+}
+
+const portId = (m: string, kind: string, dir: string, index: number) => `${m}.${kind}.${dir}.${index}`;
+
+function toSeconds(t: string | undefined): number | undefined {
+  const m = t?.match(/^(-?[\d.]+)(ns|us|ms|s)$/);
+  if (!m) return undefined;
+  return Number(m[1]) * { ns: 1e-9, us: 1e-6, ms: 1e-3, s: 1 }[m[2] as 'ns']!;
+}
+
+function nodeOf(m: ArchModule): ElkNode {
+  const ins = m.ports.filter((p) => p.direction === 'in' && p.kind !== 'param');
+  const outs = m.ports.filter((p) => p.direction === 'out');
+  const params = m.ports.filter((p) => p.kind === 'param');
+  const ports: ElkPort[] = [
+    ...ins.map((p) => ({ id: portId(m.name, p.kind, 'in', p.index), width: 10, height: 10, layoutOptions: { 'port.side': 'WEST' } })),
+    ...outs.map((p) => ({ id: portId(m.name, p.kind, 'out', p.index), width: 10, height: 10, layoutOptions: { 'port.side': 'EAST' } })),
+    ...params.map((p) => ({ id: portId(m.name, 'param', 'in', p.index), width: 10, height: 10, layoutOptions: { 'port.side': 'NORTH' } })),
+  ];
+  return {
+    id: m.name,
+    width: 190,
+    height: 52 + 18 * Math.max(ins.length, outs.length, 1),
+    ports,
+    layoutOptions: { 'portConstraints': 'FIXED_ORDER', 'portLabels.placement': 'INSIDE' },
+  };
+}
+
+export async function layoutSchema(schema: ArchSchema): Promise<ElkNode> {
+  const known = new Set(schema.modules.map((m) => m.name));
+  const edges: ElkExtendedEdge[] = [];
+  schema.flows.forEach((f, i) => {
+    if (!known.has(f.from) || !known.has(f.to)) return;
+    edges.push({ id: `f${i}`, sources: [portId(f.from, f.kind, 'out', f.fromPort)], targets: [portId(f.to, f.kind, 'in', f.toPort)], labels: [{ text: f.label, width: 30, height: 14 }] });
+  });
+  schema.precedences.forEach((p, i) => {
+    if (known.has(p.from) && known.has(p.to)) edges.push({ id: `p${i}`, sources: [p.from], targets: [p.to] });
+  });
+  // Ports referenced by flows but missing on a module (errors in the model) are dropped by ELK; keep only valid ones.
+  const portIds = new Set(schema.modules.flatMap((m) => nodeOf(m).ports!.map((p) => p.id)));
+  const valid = edges.filter((e) => [...e.sources, ...e.targets].every((s) => portIds.has(s) || known.has(s)));
+  return elk.layout({
+    id: 'root',
+    layoutOptions: {
+      'elk.algorithm': 'layered',
+      'elk.direction': 'RIGHT',
+      'elk.spacing.nodeNode': '50',
+      'elk.layered.spacing.nodeNodeBetweenLayers': '90',
+      'elk.edgeRouting': 'ORTHOGONAL',
+      'elk.edgeLabels.inline': 'true',
+    },
+    children: schema.modules.map(nodeOf),
+    edges: valid,
+  });
+}
+
+export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement {
+  const w = (graph.width ?? 400) + 40;
+  const hgt = (graph.height ?? 200) + 40;
+  const root = svg('svg', { viewBox: `-20 -20 ${w} ${hgt}`, width: w, height: hgt, class: 'arch-svg', 'data-schema': schema.name });
+  const defs = svg('defs', {});
+  for (const [id, color] of [['arrow-data', '#61afef'], ['arrow-event', '#e5c07b'], ['arrow-prec', '#7f8796']] as const) {
+    const marker = svg('marker', { id, viewBox: '0 0 10 10', refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: 'auto-start-reverse' });
+    marker.append(svg('path', { d: 'M0,0 L10,5 L0,10 z', fill: color }));
+    defs.append(marker);
+  }
+  root.append(defs);
+  const byName = new Map(schema.modules.map((m) => [m.name, m]));
+  for (const e of graph.edges ?? []) {
+    const flow = e.id.startsWith('f') ? schema.flows[Number(e.id.slice(1))] : undefined;
+    const cls = flow ? `edge ${flow.kind}` : 'edge precedence';
+    for (const s of e.sections ?? []) {
+      const pts = [s.startPoint, ...(s.bendPoints ?? []), s.endPoint];
+      root.append(svg('polyline', { points: pts.map((p) => `${p.x},${p.y}`).join(' '), class: cls, 'marker-end': `url(#arrow-${flow ? flow.kind : 'prec'})` }));
+    }
+    for (const l of e.labels ?? []) {
+      if (l.x === undefined) continue;
+      root.append(svg('text', { x: l.x, y: (l.y ?? 0) + 11, class: `edge-label ${flow?.kind ?? ''}` }, l.text));
+    }
+  }
+  for (const n of graph.children ?? []) {
+    const m = byName.get(n.id)!;
+    const g = svg('g', { transform: `translate(${n.x},${n.y})`, class: `arch-node ${m.kind}`, 'data-module': m.name });
+    g.append(svg('rect', { width: n.width!, height: n.height!, rx: 6, class: 'node-box' }));
+    g.append(svg('rect', { width: n.width!, height: 24, rx: 6, class: 'node-head' }));
+    g.append(svg('text', { x: 10, y: 17, class: 'node-title' }, m.name));
+    g.append(svg('text', { x: n.width! - 10, y: 17, class: 'node-kind', 'text-anchor': 'end' }, `${m.kind === 'synchronous' ? 'sync' : m.kind === 'asynchronous' ? 'async' : m.kind}${m.wcet ? ` · C=${m.wcet}` : ''}`));
+    for (const p of n.ports ?? []) {
+      const [, kind, dir, idx] = p.id.split('.');
+      const port = m.ports.find((q) => q.kind === kind && q.direction === dir && q.index === Number(idx));
+      g.append(svg('rect', { x: p.x!, y: p.y!, width: 10, height: 10, class: `port ${kind}` }));
+      if (!port) continue;
+      const label = `:${port.index} ${port.name}`;
+      if (kind === 'param') g.append(svg('text', { x: p.x! + 5, y: p.y! + 22, class: 'port-label param', 'text-anchor': 'middle' }, `⚙${port.index}`));
+      else if (dir === 'in') g.append(svg('text', { x: p.x! + 14, y: p.y! + 9, class: `port-label ${kind}` }, label));
+      else g.append(svg('text', { x: p.x! - 4, y: p.y! + 9, class: `port-label ${kind}`, 'text-anchor': 'end' }, label));
+    }
+    root.append(g);
+  }
+  return root;
+}
+
+/** The view: a schema picker, figures, the diagram and a legend; `update` re-layouts. */
+export class ArchitectureView {
+  readonly element: HTMLElement;
+  private readonly select: HTMLSelectElement;
+  private readonly canvas: HTMLElement;
+  private readonly info: HTMLElement;
+  private schemas: ArchSchema[] = [];
+  private chosen: string | undefined;
+  private seq = 0;
+
+  constructor(private readonly fetchSchemas: () => Promise<ArchSchema[]>) {
+    this.select = h('select', { class: 'arch-select' });
+    this.select.addEventListener('change', () => {
+      this.chosen = this.select.value;
+      void this.draw();
+    });
+    this.info = h('span', { class: 'arch-info muted' });
+    this.canvas = h('div', { class: 'arch-canvas' });
+    this.element = h('div', { class: 'arch-view' },
+      h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Schema'), this.select, this.info, h('span', { class: 'grow' }),
+        h('span', { class: 'legend data' }, '━ data flow'), h('span', { class: 'legend event' }, '┅ event flow'), h('span', { class: 'legend prec' }, '┈ precedence')),
+      this.canvas);
+  }
+
+  async update(): Promise<void> {
+    try {
+      this.schemas = await this.fetchSchemas();
+    } catch (e) {
+      this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Cannot read the model: ${(e as Error).message}`));
+      return;
+    }
+    const names = this.schemas.map((s) => s.name);
+    if (!this.chosen || !names.includes(this.chosen)) this.chosen = names[0];
+    this.select.replaceChildren(...this.schemas.map((s) => h('option', { value: s.name, selected: s.name === this.chosen }, `${s.name} (${s.kind})`)));
+    await this.draw();
+  }
+
+  private async draw(): Promise<void> {
+    const schema = this.schemas.find((s) => s.name === this.chosen);
+    if (!schema) {
+      this.canvas.replaceChildren(h('div', { class: 'muted pad' }, 'No schema in the workspace'));
+      this.info.textContent = '';
+      return;
+    }
+    const seq = ++this.seq;
+    const period = toSeconds(schema.period);
+    const sumC = schema.modules.reduce((a, m) => a + (toSeconds(m.wcet) ?? 0), 0);
+    this.info.textContent = schema.kind === 'periodic'
+      ? `PERIOD ${schema.period ?? '?'} · CRITICAL_DELAY ${schema.criticalDelay ?? '?'} · ΣC ${(sumC * 1000).toFixed(2)} ms${period ? ` · utilisation ${((sumC / period) * 100).toFixed(1)} %` : ''}`
+      : 'event schema (asynchronous modules)';
+    try {
+      const graph = await layoutSchema(schema);
+      if (seq !== this.seq) return;
+      this.canvas.replaceChildren(renderSchema(schema, graph));
+    } catch (e) {
+      this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Layout failed: ${(e as Error).message}`));
+    }
+  }
+}

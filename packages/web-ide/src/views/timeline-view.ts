@@ -1,0 +1,96 @@
+import { h } from '../util/dom.js';
+import { api } from '../api.js';
+import type { Workspace } from '../workspace/workspace.js';
+import { activationsFromCsv, inferPeriod, type Activation } from './activation-log.js';
+
+const SVG = 'http://www.w3.org/2000/svg';
+
+function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string, string | number>, text?: string): SVGElementTagNameMap[K] {
+  const el = document.createElementNS(SVG, tag);
+  for (const [k, v] of Object.entries(attrs)) el.setAttribute(k, String(v));
+  if (text !== undefined) el.textContent = text;
+  return el;
+}
+
+/**
+ * Timeline of module activations (one lane per module, one bar per activation) over the run's
+ * CSV logs found under `<project>/src-gen/generated/architecture/logs/`, with period gridlines.
+ */
+export class TimelineView {
+  readonly element: HTMLElement;
+  private readonly canvas: HTMLElement;
+  private readonly info: HTMLElement;
+
+  constructor(
+    private readonly project: () => string,
+    private readonly workspace: Workspace,
+  ) {
+    this.info = h('span', { class: 'muted' });
+    this.canvas = h('div', { class: 'timeline-canvas' });
+    this.element = h('div', { class: 'timeline-view' },
+      h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Activations per period'), this.info, h('span', { class: 'grow' }),
+        h('button', { class: 'btn small', onclick: () => void this.update() }, '⟳ Reload logs')),
+      this.canvas);
+  }
+
+  async update(): Promise<void> {
+    const p = this.project();
+    const logDir = `${p ? `${p}/` : ''}src-gen/generated/architecture/logs`;
+    await this.workspace.refreshTree();
+    const csvs = this.workspace.allFiles().filter((f) => f.startsWith(logDir + '/') && f.endsWith('.csv'));
+    if (!csvs.length) {
+      this.info.textContent = '';
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Run the architecture (Build & Run, or \`make -C src-gen/generated/architecture run\`) to record them.`));
+      return;
+    }
+    const acts: Activation[] = [];
+    const errors: string[] = [];
+    for (const f of csvs) {
+      try {
+        acts.push(...activationsFromCsv((await api.read(f)).content));
+      } catch (e) {
+        errors.push(`${f}: ${(e as Error).message}`);
+      }
+    }
+    this.draw(acts.sort((a, b) => a.start - b.start), csvs.length, errors);
+  }
+
+  private draw(acts: Activation[], files: number, errors: string[]): void {
+    if (!acts.length) {
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No activations in ${files} log file(s). ${errors.join(' ')}`));
+      return;
+    }
+    const t0 = acts[0]!.start;
+    const tEnd = Math.max(...acts.map((a) => a.end ?? a.start));
+    const span = Math.max(1, tEnd - t0);
+    const modules = [...new Set(acts.map((a) => a.module))].sort();
+    const period = inferPeriod(acts);
+    const lane = 26;
+    const left = 70;
+    const width = Math.max(900, Math.min(6000, Math.round(span / 1e6) * 4));
+    const height = modules.length * lane + 30;
+    const x = (t: number) => left + ((t - t0) / span) * (width - left - 10);
+    const root = svg('svg', { width, height, class: 'timeline-svg' });
+    if (period) {
+      let k = 0;
+      for (let t = t0; t <= tEnd && k < 2000; t += period, k++) {
+        root.append(svg('line', { x1: x(t), x2: x(t), y1: 0, y2: height - 20, class: 'period-line' }));
+        if (k % Math.max(1, Math.ceil(2000 / 40 / 50)) === 0) root.append(svg('text', { x: x(t) + 2, y: height - 6, class: 'period-label' }, `#${k}`));
+      }
+    }
+    modules.forEach((m, i) => {
+      root.append(svg('text', { x: 6, y: i * lane + 17, class: 'lane-label' }, m));
+      root.append(svg('line', { x1: left, x2: width, y1: (i + 1) * lane, y2: (i + 1) * lane, class: 'lane-sep' }));
+    });
+    for (const a of acts) {
+      const i = modules.indexOf(a.module);
+      const x1 = x(a.start);
+      const x2 = Math.max(x1 + 2, x(a.end ?? tEnd));
+      const bar = svg('rect', { x: x1, y: i * lane + 5, width: x2 - x1, height: lane - 10, rx: 2, class: `act-bar${a.end === undefined ? ' open' : ''}` });
+      bar.append(svg('title', {}, `${a.module} ${((a.start - t0) / 1e6).toFixed(3)} ms → ${a.end ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}`));
+      root.append(bar);
+    }
+    this.info.textContent = `${acts.length} activations · ${modules.length} modules · ${(span / 1e6).toFixed(1)} ms${period ? ` · period ≈ ${(period / 1e6).toFixed(2)} ms` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
+    this.canvas.replaceChildren(root);
+  }
+}

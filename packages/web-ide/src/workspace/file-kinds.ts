@@ -1,0 +1,19 @@
+/** What kind of editor a workspace path gets. */
+export function languageOf(path: string): string {
+  if (path.endsWith('.contract')) return 'cactal';
+  if (/\.(c|h)$/.test(path)) return 'c';
+  if (/(^|\/)(Makefile|makecontrol\w*)$/.test(path)) return 'plaintext';
+  return 'plaintext';
+}
+
+export const isContract = (path: string) => path.endsWith('.contract');
+
+/** Generated C under a src-gen/ folder: protected regions editable, the rest read-only. */
+export const isGeneratedC = (path: string) => /(^|\/)src-gen\//.test(path) && /\.(c|h)$/.test(path);
+
+/** The project folder of a path: the first segment when the workspace root holds no .contract file. */
+export function projectOf(path: string, rootHasContracts: boolean): string {
+  if (rootHasContracts) return '';
+  const i = path.indexOf('/');
+  return i < 0 ? '' : path.slice(0, i);
+}

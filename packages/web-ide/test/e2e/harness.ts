@@ -1,0 +1,102 @@
+import { chromium, type Browser, type Page } from 'playwright-core';
+import { cpSync, mkdtempSync, rmSync, mkdirSync, realpathSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { startIdeServer, type IdeServer } from '../../server/ide-server.js';
+
+export const PKG = fileURLToPath(new URL('../..', import.meta.url));
+export const TUTORIAL = join(PKG, '../../examples/tutorial');
+export const SHOTS = join(PKG, 'test-output');
+
+export const CHROMIUM_ARGS = [
+  '--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking',
+  '--disable-component-update', '--no-first-run', '--disable-sync',
+];
+
+export interface Session {
+  workspace: string;
+  server: IdeServer;
+  browser: Browser;
+  page: Page;
+  userDataDir: string;
+  close(): Promise<void>;
+}
+
+/** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
+export async function startSession(opts: { buildService?: boolean } = {}): Promise<Session> {
+  const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
+  const workspace = join(base, 'tutorial');
+  cpSync(TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
+  const server = await startIdeServer({ workspace, port: 0, buildService: opts.buildService ?? true });
+  const userDataDir = join(base, 'chromium-profile');
+  mkdirSync(userDataDir);
+  mkdirSync(SHOTS, { recursive: true });
+  const context = await chromium.launchPersistentContext(userDataDir, {
+    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: { width: 1440, height: 900 },
+  });
+  const browser = context.browser() as Browser;
+  const page = context.pages()[0] ?? (await context.newPage());
+  page.on('pageerror', (e) => console.error('[page error]', e.message));
+  return {
+    workspace, server, browser, page, userDataDir,
+    async close() {
+      await context.close().catch(() => undefined);
+      await server.close();
+      rmSync(base, { recursive: true, force: true });
+    },
+  };
+}
+
+export async function openIde(s: Session): Promise<number> {
+  const t0 = Date.now();
+  await s.page.goto(s.server.url + '/');
+  await s.page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+  return Date.now() - t0;
+}
+
+export async function shot(page: Page, name: string): Promise<void> {
+  await page.screenshot({ path: join(SHOTS, `${name}.png`) });
+}
+
+/** Puts the cursor of the active editor on the first occurrence of `text` (offset chars into it). */
+export async function placeCursor(page: Page, text: string, offset = 0, occurrence = 0): Promise<void> {
+  const ok = await page.evaluate(({ text, offset, occurrence }) => {
+    const ide = (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string; getPositionAt(o: number): unknown }; setPosition(p: unknown): void; focus(): void; revealPositionInCenter(p: unknown): void } } } }).__ide;
+    const model = ide.editors.editor.getModel();
+    const value = model.getValue();
+    let at = -1;
+    for (let i = 0; i <= occurrence; i++) at = value.indexOf(text, at + 1);
+    if (at < 0) return false;
+    const pos = model.getPositionAt(at + offset);
+    ide.editors.editor.setPosition(pos);
+    ide.editors.editor.revealPositionInCenter(pos);
+    ide.editors.editor.focus();
+    return true;
+  }, { text, offset, occurrence });
+  if (!ok) throw new Error(`text not found in the active editor: ${text}`);
+}
+
+export async function activeValue(page: Page): Promise<string> {
+  return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string } } } } }).__ide.editors.editor.getModel().getValue());
+}
+
+export async function activeTab(page: Page): Promise<string | null> {
+  return page.locator('.tab.active').getAttribute('data-path');
+}
+
+export async function openFile(page: Page, path: string): Promise<void> {
+  const parts = path.split('/');
+  for (let i = 1; i < parts.length; i++) {
+    const dir = parts.slice(0, i).join('/');
+    const row = page.locator(`.tree-row[data-path="${dir}"]`);
+    if ((await row.locator('.twisty').textContent()) === '▸') await row.click();
+  }
+  await page.locator(`.tree-row[data-path="${path}"]`).click();
+  await page.waitForFunction((p) => document.querySelector('.tab.active')?.getAttribute('data-path') === p, path);
+}
+
+/** Waits until every file is saved (status bar). */
+export async function waitSaved(page: Page): Promise<void> {
+  await page.waitForFunction(() => document.getElementById('status-save')?.textContent?.includes('All saved'), undefined, { timeout: 10_000 });
+}
