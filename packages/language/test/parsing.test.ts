@@ -192,6 +192,18 @@ describe('parsing: supervisors, conditions and actions (§2.6)', () => {
         expect(isFunctionTest(isModuleEvent(me) ? me.tests[0]!.tests[1] : undefined)).toBe(true);
     });
 
+    it('accepts keywords of other contexts as variable and field names', async () => {
+        const model = parseOk(`datatype Traj {float duration, int data, string event, float in};
+            supervisor SUP { event flows { in :0 Traj started; } f(Traj elapsed) {
+                local { Traj local = elapsed; float out = 1.0; }
+                rules { R: [MAA:0<(started.duration > 2.5)>(local = started, out = started.in)] [elapsed=1s] }
+            } }`);
+        const dt = model.elements[0] as DataType;
+        expect(dt.fields.map((f) => f.name)).toEqual(['duration', 'data', 'event', 'in']);
+        const sup = model.elements[1] as Supervisor;
+        expect(sup.functions[0]!.locals[0]!.variables.map((v) => v.name)).toEqual(['local', 'out']);
+    });
+
     it('reports a syntax error (not a crash) for malformed input and keeps the rest', () => {
         const r = parse('datatype T {int a = };\ndatatype U {int b};');
         expect(r.errors.length).toBeGreaterThan(0);

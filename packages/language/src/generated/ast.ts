@@ -460,7 +460,7 @@ export function isExtraction(item: unknown): item is Extraction {
 export interface Field extends langium.AstNode {
     readonly $container: DataType;
     readonly $type: 'Field';
-    name: string;
+    name: Name;
     type: TypeRef;
     value?: Value;
 }
@@ -494,7 +494,7 @@ export function isFieldSegment(item: unknown): item is FieldSegment {
 export interface FunctionArgument extends langium.AstNode {
     readonly $container: FunctionPrototype;
     readonly $type: 'FunctionArgument';
-    name: string;
+    name: Name;
     type: TypeRef;
 }
 
@@ -528,7 +528,7 @@ export function isFunctionArgumentAssignment(item: unknown): item is FunctionArg
 export interface FunctionParameter extends langium.AstNode {
     readonly $container: SupervisionFunction;
     readonly $type: 'FunctionParameter';
-    name: string;
+    name: Name;
     type: TypeRef;
     value?: Value;
 }
@@ -628,7 +628,7 @@ export function isLocalBlock(item: unknown): item is LocalBlock {
 export interface LocalVariable extends langium.AstNode {
     readonly $container: LocalBlock;
     readonly $type: 'LocalVariable';
-    name: string;
+    name: Name;
     type: TypeRef;
     value?: Value;
 }
@@ -762,6 +762,16 @@ export function isModulesBlock(item: unknown): item is ModulesBlock {
     return reflection.isInstance(item, ModulesBlock.$type);
 }
 
+/**
+ * Variable, field, parameter and local names may be words that are keywords elsewhere
+ * (`float duration`, `TypeA data`, `string event`): they only appear after a type or a `.`.
+ */
+export type Name = 'activate' | 'asynchronous' | 'communications' | 'compute' | 'configuration' | 'critical' | 'data' | 'datatype' | 'duration' | 'elapsed' | 'endof' | 'event' | 'flows' | 'function' | 'graph' | 'import' | 'in' | 'infinite' | 'local' | 'module' | 'modules' | 'notify' | 'out' | 'parameterize' | 'parameters' | 'periodic' | 'realtime' | 'resttime' | 'rules' | 'scheduler' | 'scheduling' | 'schema' | 'schemas' | 'started' | 'subscribe' | 'supervisor' | 'synchronous' | string;
+
+export function isName(item: unknown): item is Name {
+    return item === 'data' || item === 'flows' || item === 'graph' || item === 'realtime' || item === 'modules' || item === 'schemas' || item === 'communications' || item === 'configuration' || item === 'local' || item === 'rules' || item === 'started' || item === 'endof' || item === 'duration' || item === 'elapsed' || item === 'infinite' || item === 'resttime' || item === 'critical' || item === 'periodic' || item === 'event' || item === 'scheduling' || item === 'parameters' || item === 'in' || item === 'out' || item === 'module' || item === 'schema' || item === 'compute' || item === 'notify' || item === 'subscribe' || item === 'parameterize' || item === 'activate' || item === 'supervisor' || item === 'scheduler' || item === 'synchronous' || item === 'asynchronous' || item === 'function' || item === 'datatype' || item === 'import' || (typeof item === 'string' && (/[A-Za-z_][A-Za-z0-9_]*/.test(item)));
+}
+
 /** `notify :1 (failure_message_type = temp_mess_type)` on an out event port of the supervisor. */
 export interface Notify extends langium.AstNode {
     readonly $container: Rule;
@@ -784,7 +794,7 @@ export interface Parameter extends langium.AstNode {
     readonly $container: ParametersBlock;
     readonly $type: 'Parameter';
     index: number;
-    name: string;
+    name: Name;
     type: TypeRef;
     value?: Value;
 }
@@ -874,7 +884,7 @@ export interface Port extends langium.AstNode {
     readonly $type: 'Port';
     direction: Direction;
     index: number;
-    name: string;
+    name: Name;
     type: TypeRef;
     value?: Value;
 }
@@ -1146,7 +1156,7 @@ export function isSchemaKind(item: unknown): item is SchemaKind {
 export interface SchemaParameter extends langium.AstNode {
     readonly $container: Schema;
     readonly $type: 'SchemaParameter';
-    name: string;
+    name: Name;
     type: TypeRef;
     value?: Value;
 }

@@ -1,0 +1,263 @@
+/**
+ * Formatter (SPEC §2.7): canonical spacing and indentation, idempotent, AST-preserving.
+ *
+ * It re-lays out the token stream instead of editing whitespace node by node: every gap between
+ * two tokens becomes nothing, one space, a newline or a blank line, decided by the two tokens and
+ * their place in the AST (block braces open an indented block, `;` ends a line, a rule's actions
+ * sit one level deeper than its label, values and conditions stay on one line). Comments are kept
+ * where they were: a comment that followed a token on the same line stays there, others get their
+ * own line. At most one blank line written by the user is kept between lines; top-level elements
+ * are separated by one. `==*` / `==>` are written `=*` / `=>`.
+ *
+ * Safety: a document with syntax errors is not formatted, and the result is re-lexed and compared
+ * with the input's tokens; any difference (other than the event-mode spelling) cancels formatting.
+ */
+import { CstUtils, type CstNode, type LangiumDocument } from 'langium';
+import type { Formatter } from 'langium/lsp';
+import type { IToken } from 'chevrotain';
+import type { DocumentOnTypeFormattingOptions, TextEdit } from 'vscode-languageserver-types';
+import { isRule, isModel, type Model } from '../generated/ast.js';
+import type { CactalServices } from '../cactal-module.js';
+
+const INDENT = '    ';
+
+/** AST types whose `{ ... }` is an indented block (the others — values, datatypes, persistence — stay inline). */
+const BLOCK_TYPES = new Set([
+    'Module', 'ParametersBlock', 'SchedulingBlock', 'DataFlowsBlock', 'EventFlowsBlock', 'Schema', 'RealtimeBlock',
+    'ModulesBlock', 'SchedulingGraphBlock', 'CommunicationsBlock', 'SchedulerConfiguration', 'SchedulerModules',
+    'SchedulerSchemas', 'Supervisor', 'SupervisionFunction', 'LocalBlock', 'RulesBlock'
+]);
+
+/** Tokens after which `(` is preceded by a space (operators); after names it is not (`MSA()`, `started(`). */
+const SPACE_BEFORE_PAREN = new Set(['=', '==', '!=', '<', '>', '<=', '>=', '|', '&', 'and', 'or', '->', '=*', '=>', '==*', '==>', '*']);
+
+/** Containers in which `X:N` is written without spaces (a module's port, an `ORD:n` event, a rule label). */
+const TIGHT_COLON = new Set(['DataCommunication', 'EventCommunication', 'ModuleEvent', 'Rule']);
+
+type Layout = 'none' | 'space' | 'newline' | 'blank';
+
+interface Item {
+    token: IToken;
+    comment: boolean;
+    /** The CST leaf of a real token (context), undefined for comments. */
+    leaf?: CstNode;
+    text: string;
+}
+
+export class CactalFormatter implements Formatter {
+    private readonly services: CactalServices;
+
+    constructor(services: CactalServices) {
+        this.services = services;
+    }
+
+    formatDocument(document: LangiumDocument): TextEdit[] {
+        const text = document.textDocument.getText();
+        const formatted = this.formatText(document);
+        return formatted === undefined ? [] : minimalEdit(document, text, formatted);
+    }
+
+    /** Range formatting formats the whole document (the layout of a block depends on its context). */
+    formatDocumentRange(document: LangiumDocument): TextEdit[] {
+        return this.formatDocument(document);
+    }
+
+    formatDocumentOnType(): TextEdit[] {
+        return [];
+    }
+
+    get formatOnTypeOptions(): DocumentOnTypeFormattingOptions | undefined {
+        return undefined;
+    }
+
+    /** The formatted text of a parsed document, or undefined when it cannot be formatted safely. */
+    formatText(document: LangiumDocument): string | undefined {
+        const { parseResult } = document;
+        if (parseResult.lexerErrors.length || parseResult.parserErrors.length) return undefined;
+        const root = (parseResult.value as Model).$cstNode;
+        if (!root || !isModel(parseResult.value)) return undefined;
+        const text = document.textDocument.getText();
+        const lexed = this.services.parser.Lexer.tokenize(text);
+        if (lexed.errors.length) return undefined;
+
+        const leaves = new Map<number, CstNode>();
+        for (const node of CstUtils.streamCst(root)) {
+            if (CstUtils.isLeafCstNode(node) && !node.hidden) leaves.set(node.offset, node);
+        }
+        const items: Item[] = [
+            ...lexed.tokens.map((token) => ({ token, comment: false, leaf: leaves.get(token.startOffset), text: token.image })),
+            ...lexed.hidden.filter((t) => /COMMENT/.test(t.tokenType.name)).map((token) => ({ token, comment: true, text: token.image }))
+        ].sort((a, b) => a.token.startOffset - b.token.startOffset);
+        if (items.some((i) => !i.comment && !i.leaf)) return undefined;
+        for (const item of items) {
+            if (!item.comment && item.leaf?.astNode.$type === 'EventCommunication' || item.leaf?.astNode.$type === 'Subscribe') {
+                if (item.text === '==*' || item.text === '==>') item.text = item.text.slice(1);
+            }
+        }
+        const out = layout(items, text, (parseResult.value as Model));
+        return sameTokens(this.services, text, out) ? out : undefined;
+    }
+}
+
+/** The formatted text of the items. */
+function layout(items: Item[], source: string, model: Model): string {
+    const firstOfElement = new Set<number>();
+    const lastOfStatement = new Set<number>();
+    for (const node of [...model.imports, ...model.elements]) {
+        const cst = node.$cstNode;
+        if (!cst) continue;
+        if (node.$type !== 'Import') firstOfElement.add(cst.offset);
+        lastOfStatement.add(lastLeafOffset(cst));
+    }
+
+    let out = '';
+    let depth = 0;
+    let prevReal: Item | undefined;
+    let prev: Item | undefined;
+    let newlineRequired = false;
+    for (let i = 0; i < items.length; i++) {
+        const item = items[i]!;
+        const gapText = prev ? source.slice(prev.token.endOffset! + 1, item.token.startOffset) : '';
+        const newlines = (gapText.match(/\n/g) ?? []).length;
+        if (item.comment) {
+            if (prev && newlines === 0) {
+                out += ' ' + item.text;
+            } else if (prev) {
+                // own-line comment: a top-level element's blank line goes before its leading comments
+                const nextReal = items.slice(i + 1).find((x) => !x.comment);
+                const blank = newlines >= 2 || (!prev.comment && nextReal !== undefined && firstOfElement.has(nextReal.token.startOffset) && prevReal !== undefined);
+                out += (blank ? '\n\n' : '\n') + INDENT.repeat(Math.max(0, depth - (nextReal && isBlockClose(nextReal) && prev.comment === false && false ? 1 : 0))) + item.text;
+            } else {
+                out += item.text;
+            }
+            newlineRequired = item.token.tokenType.name === 'SL_COMMENT' ? true : newlineRequired;
+            if (item.token.tokenType.name !== 'SL_COMMENT') {
+                const nextStart = items[i + 1]?.token.startOffset ?? source.length;
+                if (/\n/.test(source.slice(item.token.endOffset! + 1, nextStart))) newlineRequired = true;
+            }
+            prev = item;
+            continue;
+        }
+
+        let kind: Layout = prevReal ? decide(prevReal, item, firstOfElement, lastOfStatement) : 'none';
+        if (isBlockClose(item)) depth = Math.max(0, depth - 1);
+        if (prev?.comment) {
+            if (newlineRequired || kind === 'newline' || kind === 'blank') kind = newlines >= 2 ? 'blank' : 'newline';
+            else kind = 'space';
+        } else if (kind === 'newline' && newlines >= 2) {
+            kind = 'blank';
+        }
+        newlineRequired = false;
+        if (prev) {
+            if (kind === 'space') out += ' ';
+            else if (kind === 'newline') out += '\n' + INDENT.repeat(depth);
+            else if (kind === 'blank') out += '\n\n' + INDENT.repeat(depth);
+        }
+        out += item.text;
+        if (isBlockOpen(item)) depth++;
+        const bracket = ruleBracket(item);
+        if (bracket === 'pre-close') depth++;
+        if (bracket === 'post-close') depth = Math.max(0, depth - 1);
+        prevReal = item;
+        prev = item;
+    }
+    return out.length ? out.replace(/[ \t]+$/gm, '') + '\n' : '';
+}
+
+function lastLeafOffset(cst: CstNode): number {
+    let last = cst.offset;
+    for (const node of CstUtils.streamCst(cst)) {
+        if (CstUtils.isLeafCstNode(node) && !node.hidden) last = node.offset;
+    }
+    return last;
+}
+
+/** The layout between two consecutive real tokens. */
+function decide(a: Item, b: Item, firstOfElement: Set<number>, lastOfStatement: Set<number>): Layout {
+    if (firstOfElement.has(b.token.startOffset)) return 'blank';
+    if (b.leaf?.astNode.$type === 'Import' && b.text === 'import') return 'newline';
+    if (lastOfStatement.has(a.token.startOffset)) return 'newline';
+    if (a.text === ';') return 'newline';
+    if (isBlockOpen(a) || isBlockClose(b)) return 'newline';
+    if (isBlockClose(a)) return b.text === ';' ? 'none' : 'newline';
+    const ra = ruleBracket(a);
+    const rb = ruleBracket(b);
+    if (ra === 'pre-close' || ra === 'post-close' || rb === 'post-open') return 'newline';
+    if (b.leaf?.astNode.$type === 'Rule' && b.leaf === firstLeaf(b.leaf.astNode.$cstNode)) return 'newline';
+    return spacing(a, b);
+}
+
+function spacing(a: Item, b: Item): Layout {
+    const at = a.leaf?.astNode.$type;
+    const bt = b.leaf?.astNode.$type;
+    if ([';', ',', ')', ']', '.'].includes(b.text)) return 'none';
+    if (['(', '[', '.'].includes(a.text)) return 'none';
+    if (a.text === '{' && !isBlockOpen(a)) return 'none';
+    if (b.text === '}' && !isBlockClose(b)) return 'none';
+    if (b.text === '{' && bt === 'Persistence') return 'none';
+    if (bt === 'ModuleEvent' && (b.text === '<' || b.text === '>')) return 'none';
+    if (at === 'ModuleEvent' && a.text === '<') return 'none';
+    if (b.text === ':') {
+        if (bt && TIGHT_COLON.has(bt)) return 'none';
+        if (bt === 'Subscribe' && a.leaf && !a.leaf.grammarSource?.$type.includes('Keyword')) return 'none';
+        return 'space';
+    }
+    if (a.text === ':') return 'none';
+    if (b.text === '(') {
+        if (at === 'ModuleEvent' && a.text === '>') return 'none';
+        return SPACE_BEFORE_PAREN.has(a.text) ? 'space' : 'none';
+    }
+    return 'space';
+}
+
+function isBlockOpen(item: Item): boolean {
+    return item.text === '{' && !item.comment && BLOCK_TYPES.has(item.leaf?.astNode.$type ?? '');
+}
+
+function isBlockClose(item: Item): boolean {
+    return item.text === '}' && !item.comment && BLOCK_TYPES.has(item.leaf?.astNode.$type ?? '');
+}
+
+/** Which of a rule's brackets a token is: `[pre]` or `[post]`. */
+function ruleBracket(item: Item): 'pre-open' | 'pre-close' | 'post-open' | 'post-close' | undefined {
+    const node = item.leaf?.astNode;
+    if (!isRule(node) || (item.text !== '[' && item.text !== ']')) return undefined;
+    const postStart = node.postcondition?.$cstNode?.offset ?? Number.POSITIVE_INFINITY;
+    const pre = item.token.startOffset < postStart - 1 && (node.precondition?.$cstNode?.end ?? 0) >= item.token.startOffset - 1 ? true : item.token.startOffset < postStart - 1;
+    if (item.text === '[') return pre ? 'pre-open' : 'post-open';
+    return item.token.startOffset > postStart ? 'post-close' : 'pre-close';
+}
+
+function firstLeaf(cst: CstNode | undefined): CstNode | undefined {
+    if (!cst) return undefined;
+    for (const node of CstUtils.streamCst(cst)) {
+        if (CstUtils.isLeafCstNode(node) && !node.hidden) return node;
+    }
+    return undefined;
+}
+
+/** True when `after` lexes to the same tokens as `before` (event modes compared in their short form). */
+function sameTokens(services: CactalServices, before: string, after: string): boolean {
+    const norm = (text: string): string[] => {
+        const lexed = services.parser.Lexer.tokenize(text);
+        if (lexed.errors.length) return ['<error>'];
+        return [...lexed.tokens, ...lexed.hidden.filter((t) => /COMMENT/.test(t.tokenType.name))]
+            .sort((x, y) => x.startOffset - y.startOffset)
+            .map((t) => (t.image === '==*' || t.image === '==>' ? t.image.slice(1) : t.image));
+    };
+    const a = norm(before);
+    const b = norm(after);
+    return a.length === b.length && a.every((t, i) => t === b[i]);
+}
+
+/** One edit replacing only the part of the text that changed (keeps the editor's cursor and undo tidy). */
+function minimalEdit(document: LangiumDocument, before: string, after: string): TextEdit[] {
+    if (before === after) return [];
+    let start = 0;
+    while (start < before.length && start < after.length && before[start] === after[start]) start++;
+    let endBefore = before.length;
+    let endAfter = after.length;
+    while (endBefore > start && endAfter > start && before[endBefore - 1] === after[endAfter - 1]) { endBefore--; endAfter--; }
+    const doc = document.textDocument;
+    return [{ range: { start: doc.positionAt(start), end: doc.positionAt(endBefore) }, newText: after.slice(start, endAfter) }];
+}
