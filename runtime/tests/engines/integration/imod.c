@@ -1,7 +1,7 @@
 /*
  * imod.c — a synchronous module for the engines' integration test, built three times
  * (-DIMOD_NAME='"IMA"' ...). Request loop in the style of the report's skeleton: each START
- * is one activation: it drains its input data port, works 300 us (clock_nanosleep), posts
+ * is one activation: it drains its input data port, works IMOD_WORK_NS (clock_nanosleep), posts
  * an activation counter on its output data port and acks ACK_FINISHED. It writes what it
  * observes to $ITEST_OUT/<name>.trace: "start <ns>", "got <value>", "end <ns>", "param <v>".
  */
@@ -14,6 +14,9 @@
 
 #ifndef IMOD_NAME
 #define IMOD_NAME "IMA"
+#endif
+#ifndef IMOD_WORK_NS
+#define IMOD_WORK_NS 300000 /* simulated work per activation */
 #endif
 
 MODULE_DESCRIPTION("engines integration test module");
@@ -54,7 +57,7 @@ int ModuleMain(int argc, const char *argv[]) {
             if (trace) fprintf(trace, "start %lld\n", (long long)GetTime());
             while (GetData(&in_value, &pt, &rt) == 1)
                 if (trace) fprintf(trace, "got %ld\n", in_value);
-            struct timespec work = {0, 300000};
+            struct timespec work = {0, IMOD_WORK_NS};
             clock_nanosleep(CLOCK_MONOTONIC, 0, &work, NULL);
             out_value = ++activations;
             PostData(&out_value);
