@@ -1,0 +1,502 @@
+/*
+ * contract-launch -- starts the module executables of one architecture in one run directory,
+ * tags their output lines with the module name, reports any module that dies, optionally sends
+ * the supervisor start request, and stops everything cleanly (no process or socket left).
+ *
+ *   contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']
+ *                   [--duration SECONDS] [--ready-timeout SECONDS] EXECUTABLE...
+ *   contract-launch --kill RUN_DIR
+ *
+ * Exit status: 0 all modules ran and stopped cleanly; 1 a module crashed (named on stderr);
+ * 2 usage / set-up error. See docs/runtime-api.md.
+ */
+#define _GNU_SOURCE
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <limits.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdarg.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/signalfd.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+#include "libmodule/libmodule.h"
+
+#define MAX_MODULES 128
+#define LINE_MAX_LEN 4096
+
+typedef struct {
+    const char *exe;
+    char name[CONTRACT_NAME_MAX];
+    pid_t pid;
+    int out_fd;           /* read end of its stdout+stderr pipe, -1 at EOF */
+    char line[LINE_MAX_LEN];
+    size_t line_len;
+    int alive;
+    int ready;            /* its <NAME>.pid file exists */
+    int failed;           /* died on its own with a signal or a non-zero status */
+} Child;
+
+static Child children[MAX_MODULES];
+static int n_children;
+static char run_dir[PATH_MAX];
+static int stopping;
+
+static void say(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static void say(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "contract-launch: ");
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+static void usage(void)
+{
+    fprintf(stderr,
+            "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
+            "                       [--duration SECONDS] [--ready-timeout SECONDS] EXECUTABLE...\n"
+            "       contract-launch --kill RUN_DIR\n");
+}
+
+static RTIME now_ns(void) { return GetTime(); }
+
+static int mkdir_p(const char *path)
+{
+    char tmp[PATH_MAX];
+    snprintf(tmp, sizeof tmp, "%s", path);
+    for (char *p = tmp + 1; *p; p++) {
+        if (*p != '/') continue;
+        *p = '\0';
+        if (mkdir(tmp, 0755) != 0 && errno != EEXIST) return -1;
+        *p = '/';
+    }
+    return mkdir(tmp, 0755) != 0 && errno != EEXIST ? -1 : 0;
+}
+
+static long read_pid_file(const char *path)
+{
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    long pid = -1;
+    if (fscanf(f, "%ld", &pid) != 1) pid = -1;
+    fclose(f);
+    return pid;
+}
+
+/* Remove the files a module leaves in the run directory: NAME.mbx, NAME.<port>.in, NAME.pid. */
+static void remove_module_files(const char *dir, const char *name)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    size_t n = strlen(name);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        if (strncmp(e->d_name, name, n) != 0 || e->d_name[n] != '.') continue;
+        const char *rest = e->d_name + n;
+        size_t rl = strlen(rest);
+        if (strcmp(rest, ".mbx") == 0 || strcmp(rest, ".pid") == 0 || (rl > 3 && strcmp(rest + rl - 3, ".in") == 0))
+            unlinkat(dirfd(d), e->d_name, 0);
+    }
+    closedir(d);
+}
+
+/* Remove every runtime file (*.mbx, *.in, *.pid, launcher.pid) and the directory if empty. */
+static void clean_run_dir(const char *dir)
+{
+    DIR *d = opendir(dir);
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        size_t l = strlen(e->d_name);
+        if ((l > 4 && (strcmp(e->d_name + l - 4, ".mbx") == 0 || strcmp(e->d_name + l - 4, ".pid") == 0)) ||
+            (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0))
+            unlinkat(dirfd(d), e->d_name, 0);
+    }
+    closedir(d);
+    rmdir(dir);
+}
+
+/* ------------------------------------------------------------------ --kill */
+
+/* Alive and not a zombie (a launcher started by a test or a shell may wait to be reaped). */
+static int process_running(long pid)
+{
+    char path[64], buf[256];
+    snprintf(path, sizeof path, "/proc/%ld/stat", pid);
+    FILE *f = fopen(path, "r");
+    if (!f) return kill((pid_t)pid, 0) == 0;
+    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    fclose(f);
+    buf[n] = '\0';
+    const char *close = strrchr(buf, ')');
+    return !(close && close[1] == ' ' && (close[2] == 'Z' || close[2] == 'X'));
+}
+
+static int kill_mode(const char *dir)
+{
+    struct stat st;
+    if (stat(dir, &st) != 0 || !S_ISDIR(st.st_mode)) {
+        say("no run directory %s", dir);
+        return 2;
+    }
+    char path[PATH_MAX + 32];
+    snprintf(path, sizeof path, "%s/launcher.pid", dir);
+    long lp = read_pid_file(path);
+    if (lp > 0 && kill((pid_t)lp, 0) == 0) {
+        kill((pid_t)lp, SIGTERM);
+        for (int i = 0; i < 300 && process_running(lp); i++) usleep(50000);
+        if (process_running(lp)) { say("launcher %ld did not stop within 15 s", lp); return 1; }
+        say("stopped the architecture of %s", dir);
+        return 0;
+    }
+    /* No launcher: modules started by hand. Ask each one to end, then terminate stragglers. */
+    setenv("CONTRACT_RUN_DIR", dir, 1);
+    DIR *d = opendir(dir);
+    long pids[MAX_MODULES];
+    int n = 0;
+    struct dirent *e;
+    while (d && (e = readdir(d)) != NULL && n < MAX_MODULES) {
+        size_t l = strlen(e->d_name);
+        if (l <= 4 || strcmp(e->d_name + l - 4, ".pid") != 0 || strcmp(e->d_name, "launcher.pid") == 0) continue;
+        char name[CONTRACT_NAME_MAX];
+        snprintf(name, sizeof name, "%.*s", (int)(l - 4), e->d_name);
+        snprintf(path, sizeof path, "%s/%s", dir, e->d_name);
+        pids[n++] = read_pid_file(path);
+        if (ModuleState(name) == CONTRACT_OK) SendKill(name, ACK_NOTHING, -1);
+    }
+    if (d) closedir(d);
+    for (int t = 0; t < 40; t++) {
+        int alive = 0;
+        for (int i = 0; i < n; i++) if (pids[i] > 0 && process_running(pids[i])) alive++;
+        if (!alive) break;
+        usleep(50000);
+    }
+    for (int i = 0; i < n; i++) if (pids[i] > 0 && process_running(pids[i])) kill((pid_t)pids[i], SIGKILL);
+    clean_run_dir(dir);
+    say("stopped %d module(s) of %s", n, dir);
+    return 0;
+}
+
+/* ------------------------------------------------------------------ output */
+
+static void emit_line(Child *c, const char *text, size_t len)
+{
+    /* one write per line so that lines of different modules never interleave */
+    char buf[LINE_MAX_LEN + CONTRACT_NAME_MAX + 8];
+    int n = snprintf(buf, sizeof buf, "[%s] %.*s\n", c->name, (int)len, text);
+    if (n > (int)sizeof buf) n = (int)sizeof buf;
+    ssize_t w = write(STDOUT_FILENO, buf, (size_t)n);
+    (void)w;
+}
+
+static void pump(Child *c)
+{
+    char buf[4096];
+    ssize_t n = read(c->out_fd, buf, sizeof buf);
+    if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
+    if (n <= 0) {
+        if (c->line_len) { emit_line(c, c->line, c->line_len); c->line_len = 0; }
+        close(c->out_fd);
+        c->out_fd = -1;
+        return;
+    }
+    for (ssize_t i = 0; i < n; i++) {
+        if (buf[i] == '\n' || c->line_len == LINE_MAX_LEN) {
+            emit_line(c, c->line, c->line_len);
+            c->line_len = 0;
+            if (buf[i] == '\n') continue;
+        }
+        c->line[c->line_len++] = buf[i];
+    }
+}
+
+/* ------------------------------------------------------------------ children */
+
+static void derive_name(Child *c)
+{
+    const char *base = strrchr(c->exe, '/');
+    base = base ? base + 1 : c->exe;
+    snprintf(c->name, sizeof c->name, "%s", base);
+}
+
+static int spawn(Child *c, const sigset_t *oldmask)
+{
+    int fds[2];
+    if (pipe2(fds, O_CLOEXEC) != 0) { say("pipe: %s", strerror(errno)); return -1; }
+    pid_t pid = fork();
+    if (pid < 0) { say("fork: %s", strerror(errno)); return -1; }
+    if (pid == 0) {
+        setpgid(0, 0); /* terminal Ctrl-C reaches the launcher only; it stops the modules itself */
+        sigprocmask(SIG_SETMASK, oldmask, NULL);
+        signal(SIGPIPE, SIG_DFL);
+        int devnull = open("/dev/null", O_RDONLY);
+        if (devnull >= 0) { dup2(devnull, STDIN_FILENO); close(devnull); }
+        dup2(fds[1], STDOUT_FILENO);
+        dup2(fds[1], STDERR_FILENO);
+        execl(c->exe, c->exe, (char *)NULL);
+        fprintf(stderr, "cannot execute %s: %s\n", c->exe, strerror(errno));
+        _exit(127);
+    }
+    close(fds[1]);
+    fcntl(fds[0], F_SETFL, O_NONBLOCK);
+    c->pid = pid;
+    c->out_fd = fds[0];
+    c->alive = 1;
+    return 0;
+}
+
+/* Learn module names from the <NAME>.pid files the library writes once a module is ready. */
+static void scan_ready(void)
+{
+    DIR *d = opendir(run_dir);
+    if (!d) return;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        size_t l = strlen(e->d_name);
+        if (l <= 4 || l - 4 >= CONTRACT_NAME_MAX || strcmp(e->d_name + l - 4, ".pid") != 0) continue;
+        if (strcmp(e->d_name, "launcher.pid") == 0) continue;
+        char path[PATH_MAX + 300];
+        snprintf(path, sizeof path, "%s/%s", run_dir, e->d_name);
+        long pid = read_pid_file(path);
+        for (int i = 0; i < n_children; i++) {
+            if (children[i].pid == pid && !children[i].ready) {
+                children[i].ready = 1;
+                snprintf(children[i].name, sizeof children[i].name, "%.*s", (int)(l - 4), e->d_name);
+            }
+        }
+    }
+    closedir(d);
+}
+
+static void reap(void)
+{
+    int status;
+    pid_t pid;
+    while ((pid = waitpid(-1, &status, WNOHANG)) > 0) {
+        for (int i = 0; i < n_children; i++) {
+            Child *c = &children[i];
+            if (c->pid != pid) continue;
+            c->alive = 0;
+            if (WIFSIGNALED(status)) {
+                int sig = WTERMSIG(status);
+                if (!stopping) c->failed = 1;
+                say("module %s (pid %ld) %s by signal %d (%s)", c->name, (long)pid, stopping ? "terminated" : "died",
+                    sig, strsignal(sig));
+            } else {
+                int code = WEXITSTATUS(status);
+                if (code != 0 && !stopping) c->failed = 1;
+                say("module %s (pid %ld) exited with status %d", c->name, (long)pid, code);
+            }
+            remove_module_files(run_dir, c->name);
+        }
+    }
+}
+
+static int alive_count(void)
+{
+    int n = 0;
+    for (int i = 0; i < n_children; i++) n += children[i].alive;
+    return n;
+}
+
+/* Poll outputs and signals until `deadline` or until stop is asked. Returns 1 if a stop signal came. */
+static int run_loop(int sfd, RTIME deadline, int until_all_dead, int until_ready)
+{
+    for (;;) {
+        if (until_all_dead && alive_count() == 0) return 0;
+        if (until_ready) {
+            scan_ready();
+            int waiting = 0;
+            for (int i = 0; i < n_children; i++) waiting += children[i].alive && !children[i].ready;
+            if (!waiting) return 0;
+        }
+        RTIME now = now_ns();
+        if (deadline != INT64_MAX && now >= deadline) return 0;
+        struct pollfd pfd[MAX_MODULES + 1];
+        int idx[MAX_MODULES + 1];
+        int n = 0;
+        pfd[n].fd = sfd; pfd[n].events = POLLIN; idx[n++] = -1;
+        for (int i = 0; i < n_children; i++)
+            if (children[i].out_fd >= 0) { pfd[n].fd = children[i].out_fd; pfd[n].events = POLLIN; idx[n++] = i; }
+        int timeout = 100;
+        if (deadline != INT64_MAX && (deadline - now) / 1000000 < timeout) timeout = (int)((deadline - now) / 1000000) + 1;
+        int r = poll(pfd, (nfds_t)n, timeout);
+        if (r < 0 && errno != EINTR) { say("poll: %s", strerror(errno)); return 1; }
+        int stop = 0;
+        for (int k = 0; r > 0 && k < n; k++) {
+            if (!pfd[k].revents) continue;
+            if (idx[k] >= 0) { pump(&children[idx[k]]); continue; }
+            struct signalfd_siginfo si;
+            while (read(sfd, &si, sizeof si) == (ssize_t)sizeof si) {
+                if (si.ssi_signo == SIGCHLD) reap();
+                else stop = 1;
+            }
+        }
+        reap();
+        if (stop) return 1;
+    }
+}
+
+static void stop_all(int sfd)
+{
+    stopping = 1;
+    for (int i = 0; i < n_children; i++)
+        if (children[i].alive && children[i].ready && ModuleState(children[i].name) == CONTRACT_OK)
+            SendKill(children[i].name, ACK_NOTHING, -1);
+    run_loop(sfd, now_ns() + 2000000000LL, 1, 0);
+    for (int i = 0; i < n_children; i++)
+        if (children[i].alive) { say("module %s did not end on KILL: terminating it", children[i].name); kill(-children[i].pid, SIGTERM); }
+    run_loop(sfd, now_ns() + 1000000000LL, 1, 0);
+    for (int i = 0; i < n_children; i++)
+        if (children[i].alive) kill(-children[i].pid, SIGKILL);
+    run_loop(sfd, now_ns() + 1000000000LL, 1, 0);
+    for (int i = 0; i < n_children; i++) if (children[i].alive) kill(-children[i].pid, SIGKILL);
+    /* leftover children of modules (same process group) */
+    for (int i = 0; i < n_children; i++) kill(-children[i].pid, SIGKILL);
+    for (int i = 0; i < n_children; i++) while (children[i].out_fd >= 0) pump(&children[i]);
+}
+
+/* --start 'SUP.function(p=v,...)' */
+static int send_start(const char *spec)
+{
+    char sup[CONTRACT_NAME_MAX], fn[CONTRACT_FUNCTION_MAX];
+    const char *dot = strchr(spec, '.');
+    const char *open = strchr(spec, '(');
+    if (!dot || (open && open < dot) || (size_t)(dot - spec) >= sizeof sup) {
+        say("--start '%s': expected SUP.function(p=v,...)", spec);
+        return -1;
+    }
+    snprintf(sup, sizeof sup, "%.*s", (int)(dot - spec), spec);
+    const char *fn_end = open ? open : spec + strlen(spec);
+    if ((size_t)(fn_end - dot - 1) >= sizeof fn || fn_end == dot + 1) { say("--start '%s': bad function name", spec); return -1; }
+    snprintf(fn, sizeof fn, "%.*s", (int)(fn_end - dot - 1), dot + 1);
+    char args[CONTRACT_REQUEST_DATA_MAX];
+    args[0] = '\0';
+    if (open) {
+        const char *close = strrchr(spec, ')');
+        if (!close || close < open) { say("--start '%s': missing ')'", spec); return -1; }
+        snprintf(args, sizeof args, "%.*s", (int)(close - open - 1), open + 1);
+    }
+    int rc = SendStartFunction(sup, fn, args, ACK_START | ACK_NOTDONE, 1);
+    if (rc != CONTRACT_OK) { say("cannot start %s.%s: %s", sup, fn, ContractStrError(rc)); return -1; }
+    RequestMessage *ack = malloc(sizeof *ack);
+    if (!ack) return -1;
+    int r = WaitForAck(sup, 1, ACK_START | ACK_NOTDONE, GetTime() + 2000000000LL, ack);
+    if (r == 1 && ack->Param.Ack.Ack == ACK_NOTDONE) say("%s refused to start %s(%s)", sup, fn, args);
+    else if (r == 1) say("started %s.%s(%s)", sup, fn, args);
+    else say("sent the start request to %s.%s(%s) (no acknowledgement within 2 s)", sup, fn, args);
+    free(ack);
+    return 0;
+}
+
+int main(int argc, char *argv[])
+{
+    const char *dir_opt = NULL, *log_dir = NULL, *start = NULL;
+    double duration = -1, ready_timeout = 10;
+    int i = 1;
+    for (; i < argc; i++) {
+        const char *a = argv[i];
+        if (strcmp(a, "--kill") == 0) {
+            if (i + 1 >= argc) { usage(); return 2; }
+            return kill_mode(argv[i + 1]);
+        }
+        if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(); return 0; }
+        if (a[0] != '-' || strcmp(a, "--") == 0) { if (strcmp(a, "--") == 0) i++; break; }
+        if (i + 1 >= argc) { say("option %s needs a value", a); usage(); return 2; }
+        const char *v = argv[++i];
+        char *end;
+        if (strcmp(a, "--run-dir") == 0) dir_opt = v;
+        else if (strcmp(a, "--log-dir") == 0) log_dir = v;
+        else if (strcmp(a, "--start") == 0) start = v;
+        else if (strcmp(a, "--duration") == 0) {
+            duration = strtod(v, &end);
+            if (*end || duration < 0) { say("--duration '%s': expected a number of seconds", v); return 2; }
+        } else if (strcmp(a, "--ready-timeout") == 0) {
+            ready_timeout = strtod(v, &end);
+            if (*end || ready_timeout <= 0) { say("--ready-timeout '%s': expected a number of seconds", v); return 2; }
+        } else { say("unknown option %s", a); usage(); return 2; }
+    }
+    if (i >= argc) { say("no module executable given"); usage(); return 2; }
+    if (argc - i > MAX_MODULES) { say("too many modules (max %d)", MAX_MODULES); return 2; }
+    for (int k = i; k < argc; k++) {
+        if (access(argv[k], X_OK) != 0) { say("%s: %s", argv[k], strerror(errno)); return 2; }
+    }
+
+    if (dir_opt && *dir_opt) {
+        if (mkdir_p(dir_opt) != 0 || realpath(dir_opt, run_dir) == NULL) { say("run directory %s: %s", dir_opt, strerror(errno)); return 2; }
+    } else {
+        const char *tmp = getenv("TMPDIR");
+        snprintf(run_dir, sizeof run_dir, "%s/contract-run-XXXXXX", tmp && *tmp ? tmp : "/tmp");
+        if (!mkdtemp(run_dir)) { say("cannot create a run directory: %s", strerror(errno)); return 2; }
+    }
+    char lp_path[PATH_MAX + 32];
+    snprintf(lp_path, sizeof lp_path, "%s/launcher.pid", run_dir);
+    long other = read_pid_file(lp_path);
+    if (other > 0 && other != getpid() && kill((pid_t)other, 0) == 0) {
+        say("an architecture already runs in %s (launcher pid %ld); stop it with contract-launch --kill %s", run_dir, other, run_dir);
+        return 2;
+    }
+    FILE *lp = fopen(lp_path, "w");
+    if (!lp) { say("cannot write %s: %s", lp_path, strerror(errno)); return 2; }
+    fprintf(lp, "%ld\n", (long)getpid());
+    fclose(lp);
+    setenv("CONTRACT_RUN_DIR", run_dir, 1);
+    if (log_dir && *log_dir) {
+        if (mkdir_p(log_dir) != 0) { say("log directory %s: %s", log_dir, strerror(errno)); unlink(lp_path); return 2; }
+        setenv("CONTRACT_LOG_DIR", log_dir, 1);
+    }
+    setvbuf(stdout, NULL, _IOLBF, 0);
+    say("run directory %s", run_dir);
+
+    sigset_t mask, oldmask;
+    sigemptyset(&mask);
+    sigaddset(&mask, SIGINT);
+    sigaddset(&mask, SIGTERM);
+    sigaddset(&mask, SIGHUP);
+    sigaddset(&mask, SIGCHLD);
+    sigprocmask(SIG_BLOCK, &mask, &oldmask);
+    signal(SIGPIPE, SIG_IGN);
+    int sfd = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
+    if (sfd < 0) { say("signalfd: %s", strerror(errno)); return 2; }
+    if (ContractClientInit("contract-launch") != 0) { unlink(lp_path); return 2; }
+
+    for (int k = i; k < argc; k++) {
+        Child *c = &children[n_children++];
+        memset(c, 0, sizeof *c);
+        c->exe = argv[k];
+        c->out_fd = -1;
+        derive_name(c);
+        if (spawn(c, &oldmask) != 0) { n_children--; stop_all(sfd); clean_run_dir(run_dir); return 2; }
+    }
+    int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), 0, 1);
+    int not_ready = 0;
+    for (int k = 0; k < n_children; k++)
+        if (children[k].alive && !children[k].ready) { not_ready++; say("module %s is not ready after %.0f s", children[k].name, ready_timeout); }
+    if (!stop) say("%d module(s) running", alive_count());
+    if (!stop && start && *start && !not_ready) send_start(start);
+    if (!stop) {
+        RTIME deadline = duration >= 0 ? now_ns() + (RTIME)(duration * 1e9) : INT64_MAX;
+        run_loop(sfd, deadline, 1, 0);
+    }
+    say("stopping");
+    stop_all(sfd);
+    ContractShutdown();
+    int failed = 0;
+    for (int k = 0; k < n_children; k++) {
+        if (!children[k].failed) continue;
+        failed++;
+        say("FAILED: module %s crashed", children[k].name);
+    }
+    say("all modules stopped%s", failed ? "" : " cleanly");
+    clean_run_dir(run_dir); /* removes launcher.pid last: `--kill` waits for that */
+    return failed ? 1 : 0;
+}

@@ -1,0 +1,196 @@
+/* Test module built several times under different names (-DTMOD_NAME='"P"'): it uses the
+ * report's request-loop skeleton and reports what it observes to the test driver ("tester"
+ * or $TMOD_REPORT) as events:
+ *   port 1: the values it drained from its input data port at the start of a run (long[])
+ *   port 2: an event it received (long), sourcePort = the input event port
+ *   port 3: the parameter it accepted (TestParam); port 4: a refused setparam (no data)
+ * Behaviour flags in TestParam.flags: 1 post an event each run, 2 abort() at the next run,
+ * 4 report inputs each run, 8 read inputs with GetLatestData. TestParam.run_ms: how long a run lasts (interruptible by STOP).
+ * $TMOD_CRASH_NAME equal to the module name: abort() 200 ms after start-up. */
+#define _GNU_SOURCE
+#include <libmodule/libmodule.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include "tmod.h"
+
+#ifndef TMOD_NAME
+#define TMOD_NAME "TMOD"
+#endif
+#ifndef TMOD_PRIORITY
+#define TMOD_PRIORITY 30
+#endif
+
+MODULE_DESCRIPTION("libmodule test module");
+MODULE_AUTHOR("runtime tests");
+
+long in_value = 0, out_value = 0, ev_in = 0, ev_out = 0;
+TestParam param = { { 0.0, 0.0, 0.0 }, 0, 0, "" };
+
+char MODULE_NAME[] = TMOD_NAME;
+int MODULE_PRIORITY = TMOD_PRIORITY;
+ModuleUse IUSE[] = { { &in_value, 0, sizeof(long), "---", 0, 1 }, IUSE_TERM };
+ModuleProduce IPRODUCE[] = { { &out_value, 0, sizeof(long) }, IPRODUCE_TERM };
+ModuleReact IREACT[] = { { &ev_in, 0, sizeof(long), "---", 0, 0 }, IREACT_TERM };
+ModuleDetect IDETECT[] = { { &ev_out, 0, sizeof(long) }, IDETECT_TERM };
+size_t PARAM_SIZE_IN[] = { sizeof(TestParam), PARAM_SIZE_TERM };
+size_t PARAM_SIZE_OUT[] = { PARAM_SIZE_TERM };
+
+static RTIME run_start;
+static RTIME productionTime, receptionTime;
+
+static const char *tester(void)
+{
+    const char *t = getenv("TMOD_REPORT");
+    return t && *t ? t : "tester";
+}
+
+static void exec_state(int *state)
+{
+    if (*state == 0) {
+        if (param.flags & 2) abort();
+        long vals[64];
+        int n = 0;
+        if (param.flags & 8) { /* newest only */
+            if (GetLatestData(&in_value, &productionTime, &receptionTime) == 1) vals[n++] = in_value;
+        } else {
+            while (n < 64 && GetData(&in_value, &productionTime, &receptionTime) == 1) vals[n++] = in_value;
+        }
+        if (param.flags & 4) SendEvent(tester(), 1, 0, vals, (size_t)n * sizeof(long));
+        out_value = ContractActivations();
+        PostData(&out_value);
+        if (param.flags & 1) { ev_out = out_value; PostEvent(&ev_out); }
+        run_start = GetTime();
+        *state = 1;
+    } else if (GetTime() - run_start >= param.run_ms * 1000000L) {
+        *state = -1;
+    }
+}
+
+int ModuleMain(int argc, const char *argv[])
+{
+    (void)argc; (void)argv;
+    const char *crash = getenv("TMOD_CRASH_NAME");
+    if (crash && strcmp(crash, MODULE_NAME) == 0) { usleep(200000); abort(); }
+    printf("%s ready\n", MODULE_NAME);
+    RequestMessage receivedMessage, registered;
+    int end = 0, state = 0, interact, cycleRunning = 0;
+    memset(&registered, 0, sizeof registered);
+    receivedMessage.Type = REQ_UNKNOWN;
+    while (!end) {
+        switch (receivedMessage.Type) {
+        case REQ_UNKNOWN:
+            if (cycleRunning) {
+                if (state != -1) {
+                    receivedMessage.Type = REQ_START;
+                    if ((registered.Param.Start.WantedAck & ACK_NOTHING) == 0)
+                        strcpy(receivedMessage.Param.Start.ModAck, registered.Param.Start.ModAck);
+                    receivedMessage.Param.Start.WantedAck = registered.Param.Start.WantedAck;
+                    receivedMessage.Param.Start.AckID = registered.Param.Start.AckID;
+                } else {
+                    state = 0;
+                    cycleRunning = 0; /* (the report's skeleton forgets this) */
+                    if ((registered.Param.Start.WantedAck & ACK_STOPPED) != 0)
+                        SendAck(registered.Param.Start.ModAck, registered.Param.Start.WantedAck, ACK_STOPPED, registered.Param.Start.AckID);
+                    registered.Param.Start.WantedAck = ACK_NOTHING;
+                    WaitForRequest(&receivedMessage);
+                    break;
+                }
+            } else {
+                WaitForRequest(&receivedMessage);
+                break;
+            }
+            __attribute__((fallthrough));
+        case REQ_START:
+            if (cycleRunning == 0 && (receivedMessage.Param.Start.WantedAck & ACK_START) != 0)
+                SendAck(receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_START, receivedMessage.Param.Start.AckID);
+            interact = 0;
+            cycleRunning = 1;
+            while (!interact) {
+                exec_state(&state);
+                if (state == -1) {
+                    state = 0;
+                    cycleRunning = 0;
+                    interact = 1;
+                    receivedMessage.Type = REQ_UNKNOWN;
+                    if ((receivedMessage.Param.Start.WantedAck & ACK_FINISHED) != 0)
+                        SendAck(receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_FINISHED, receivedMessage.Param.Start.AckID);
+                }
+                if (cycleRunning) {
+                    registered.Type = receivedMessage.Type;
+                    registered.Param.Start.WantedAck = receivedMessage.Param.Start.WantedAck;
+                    registered.Param.Start.AckID = receivedMessage.Param.Start.AckID;
+                    if ((registered.Param.Start.WantedAck & ACK_NOTHING) == 0)
+                        strcpy(registered.Param.Start.ModAck, receivedMessage.Param.Start.ModAck);
+                    if (LookForRequest(&receivedMessage) != NULL) interact = 1;
+                }
+            }
+            break;
+        case REQ_STOP:
+            if (cycleRunning) {
+                state = -1;
+                if ((receivedMessage.Param.Stop.WantedAck & ACK_STOPPED) != 0)
+                    SendAck(receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_STOPPED, receivedMessage.Param.Stop.AckID);
+            } else if ((receivedMessage.Param.Stop.WantedAck & ACK_STOPPED) != 0) {
+                SendAck(receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_NOTDONE, receivedMessage.Param.Stop.AckID);
+            }
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_KILL:
+            end = 1;
+            if ((receivedMessage.Param.Kil.WantedAck & ACK_KILLED) != 0)
+                SendAck(receivedMessage.Param.Kil.ModAck, receivedMessage.Param.Kil.WantedAck, ACK_KILLED, receivedMessage.Param.Kil.AckID);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_EVENT: {
+            int id = GetEventId(&productionTime, &receptionTime);
+            if (id >= 0) SendEvent(tester(), 2, id, &ev_in, sizeof ev_in);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        }
+        case REQ_SETPARAM:
+            if (receivedMessage.Param.SetParam.Port == 0 &&
+                GetDataFromSetParamRequest(&receivedMessage, &param, sizeof param, &productionTime, &receptionTime) == 0)
+                SendEvent(tester(), 3, 0, &param, sizeof param);
+            else
+                SendEvent(tester(), 4, 0, NULL, 0);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_SUBSCRIBE:
+            SubscribeUser(receivedMessage.Param.Subscribe.SourcePort, receivedMessage.Param.Subscribe.TargetModule,
+                          receivedMessage.Param.Subscribe.TargetPort, receivedMessage.Param.Subscribe.Periodicity,
+                          receivedMessage.Param.Subscribe.isContextual);
+            /* tell the driver the subscription is in place (it cannot see it otherwise) */
+            SendAck(receivedMessage.Sender, 0, ACK_FINISHED, 900 + receivedMessage.Param.Subscribe.TargetPort);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_UNSUBSCRIBE:
+            UnsubscribeUser(receivedMessage.Param.Unsubscribe.SourcePort, receivedMessage.Param.Unsubscribe.TargetModule,
+                            receivedMessage.Param.Unsubscribe.TargetPort);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_SUB_EVENT:
+            SubscribeUserToEvent(receivedMessage.Param.SubscribeEvent.targetModule, receivedMessage.Param.SubscribeEvent.targetPort,
+                                 receivedMessage.Param.SubscribeEvent.sourcePort, receivedMessage.Param.SubscribeEvent.mode);
+            SendAck(receivedMessage.Sender, 0, ACK_FINISHED, 800 + receivedMessage.Param.SubscribeEvent.targetPort);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_UNSUB_EVENT:
+            UnsubscribeUserToEvent(receivedMessage.Param.UnsubscribeEvent.targetModule,
+                                   receivedMessage.Param.UnsubscribeEvent.targetPort,
+                                   receivedMessage.Param.UnsubscribeEvent.sourcePort);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        case REQ_PURGE_MBX:
+            PurgeData(NULL);
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        default:
+            receivedMessage.Type = REQ_UNKNOWN;
+            break;
+        }
+    }
+    return 0;
+}

@@ -1,0 +1,289 @@
+/* The report's generated MSC module.c (RR-10026 section 8.2), transcribed unchanged except for
+ * the PDF's obvious typos: out_coordinates_commmmand -> out_coordinates_command, and the line
+ * breaks of the extraction. ACK_NOHING / ACK_NOthing are kept: libmodule.h aliases them. */
+#include <libmodule/libmodule.h>
+#include <stdio.h>
+#include <time.h>
+#include <string.h>
+#include "tools.h"
+#include "SharedTypeA.h"
+#include "SharedTypeB.h"
+#include "SharedTypeD.h"
+
+//from here you can make new imports or definitions
+/*PROTECTED REGION ID(protect_additionnal_import_MSC) ENABLED START*/
+//TODO
+/*PROTECTED REGION END*/
+
+MODULE_DESCRIPTION(/*PROTECTED REGION ID(protect_description_MSC) ENABLED START*/"test synchronous module C for Cactal generation testing"/*PROTECTED REGION END*/);
+MODULE_AUTHOR(/*PROTECTED REGION ID(protect_author_MSC) ENABLED START*/"Robin Passama"/*PROTECTED REGION END*/);
+
+//Exchanges Management Variables
+TypeA in_coordinates = { 0.0, 0.0, 0.0 };
+TypeB out_coordinates_command = { {1.0, 1.0, 1.0}, 1 };
+TypeD failing_data = { "\0", 0 };
+TypeA param = {2.1, 6.98, 5.34};
+
+// module name
+char MODULE_NAME[] = "MSC";
+//module priority
+int MODULE_PRIORITY = 40;
+// input data flows : example = { &Variable, PortReception, Taille, Periodicity (important if module name is set), "Name of emitter module"(can be unused by setting value to "---"), PortModuleEmetteur} ou { &Variable, PortReception, Taille, Periodicite, "---", 0}
+ModuleUse IUSE[] = { { &in_coordinates, 0, sizeof(TypeA), "---", 0, 0}, IUSE_TERM };
+
+// output data flows : example = { &Variable, PortEmission, Size}
+ModuleProduce IPRODUCE[] = { { &out_coordinates_command, 1, sizeof(TypeB)}, IPRODUCE_TERM };
+
+//input event flows : example = { &Variable, PortReception, size, "module name" (can be unused by setting value to "---"), PortEmission, oneshot}
+ModuleReact IREACT [] = { IREACT_TERM };
+
+//output event flows : example = { &variable, PortEmission, size }
+ModuleDetect IDETECT [] = { { &failing_data, 1, sizeof(TypeD)}, IDETECT_TERM };
+
+// size of parameters that can be received in the request mailbox:
+size_t PARAM_SIZE_IN[] = { sizeof(TypeA), PARAM_SIZE_TERM };
+
+// size of parameters or events that can be sent in request mailboxes of other modules (user has to add sizes of sent param requests, if any):
+
+size_t PARAM_SIZE_OUT[] = { /*PROTECTED REGION ID(protect_param_out_MSC) ENABLED START*/ /*PROTECTED REGION END*/PARAM_SIZE_TERM };
+
+//global variables
+FILE* logFile;
+RTIME productionTime, receptionTime;
+
+//from here you can define new internal variables
+/*PROTECTED REGION ID(protect_internal_vars_MSC) ENABLED START*/
+//TODO
+/*PROTECTED REGION END*/
+
+// Generic Prototypes (to be implemented by the user)
+int _init_module(void); //==0 false, != 0 true
+void _exit_module(void);
+void _exec_module_state(int * stateindex); //state from 0 to x with x > 0, if stateindex is -1 at end of execution then run is finished
+
+//Specific prototypes (from here you can declare new internal functions)
+/*PROTECTED REGION ID(protect_internal_functions_decl_MSC) ENABLED START*/
+//TODO
+/*PROTECTED REGION END*/
+
+int ModuleMain(int argc, const char * argv[])
+{
+	RequestMessage receivedMessage, registered;
+	int subscription = 0;
+	int end=0;
+	int state=0;
+	int interact,cycleRunning=0;
+	//log file initialization
+	time_t log_date; time(&log_date); char* date = ctime(&log_date) ;
+	char date_jj[5], date_mm[5]; int date_j,date_h,date_m,date_s,date_a;
+	sscanf(date, "%s %s %d %d:%d:%d %d", date_jj, date_mm, &date_j, &date_h, &date_m, &date_s,&date_a);
+	char filePath[100];
+	sprintf(filePath, "./%s_%d-%s-%d-%dh%d %ds.csv", MODULE_NAME,date_j, date_mm, date_a, date_h,date_m,date_s);
+	logFile = fopen(filePath,"at");
+	if(logFile == NULL) {printf("ERR:%s opening log file(%s)\n",MODULE_NAME, filePath);}
+
+	if( _init_module() == 0 ) return(-1);
+	receivedMessage.Type=REQ_UNKNOWN;
+	while(!end)
+	{
+		switch(receivedMessage.Type)
+		{
+			case REQ_UNKNOWN :
+				if (cycleRunning){
+					if (state != -1){ //the execution has not been interrupted
+						//filling the received message with old START request information
+						receivedMessage.Type=REQ_START;
+						if ((registered.Param.Start.WantedAck&ACK_NOHING) == 0)//do not try to copy module names if an ACK is not required
+							strcpy( receivedMessage.Param.Start.ModAck, registered.Param.Start.ModAck);
+						receivedMessage.Param.Start.WantedAck= registered.Param.Start.WantedAck;
+						receivedMessage.Param.Start.AckID = registered.Param.Start.AckID;
+					}
+					else { //the execution has been interrupted, waiting again
+						state = 0;
+						//sending an acknowledge to the module that has started this module
+						if ((registered.Param.Start.WantedAck &ACK_STOPPED) != 0){
+							SendAck( registered.Param.Start.ModAck, registered.Param.Start.WantedAck, ACK_STOPPED, registered.Param.Start.AckID);
+						}
+						//reinitializing registered
+						registered.Type=REQ_UNKNOWN;
+						registered.Param.Start.WantedAck = ACK_NOHING;
+						registered.Param.Start.AckID = -1;
+						//waiting a new request
+						WaitForRequest (&receivedMessage);
+						break;
+					}
+				}
+				else {
+					WaitForRequest (&receivedMessage);
+					break;
+				}
+
+			case REQ_START:
+				if (cycleRunning == 0){//if execution cycle does not run
+					if ((receivedMessage.Param.Start.WantedAck&ACK_START) != 0) //if an ACK is required by the caller
+						SendAck( receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_START, receivedMessage.Param.Start.AckID);
+				}
+				if (subscription == 0){
+					SubscribeVariables();
+					SubscribeEvent();
+					subscription = 1;
+				}
+				interact = 0;
+				cycleRunning = 1;
+				while(!interact){
+					_exec_module_state(&state);
+					if(state==-1){//termination of the run
+						state = 0;
+						cycleRunning = 0;
+						interact = 1;
+						receivedMessage.Type=REQ_UNKNOWN;
+						if((receivedMessage.Param.Start.WantedAck &ACK_FINISHED) != 0) //if an ACK is required by the caller
+							SendAck( receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_FINISHED, receivedMessage.Param.Start.AckID);
+					}
+					if(cycleRunning){
+						//registering the previous request
+						registered.Type=receivedMessage.Type;
+						registered.Param.Start.WantedAck= receivedMessage.Param.Start.WantedAck;
+						registered.Param.Start.AckID = receivedMessage.Param.Start.AckID;
+						if ((registered.Param.Start.WantedAck&ACK_NOthing) == 0)//do not try to copy module names if an ACK is not required
+							strcpy(registered.Param.Start.ModAck, receivedMessage.Param.Start.ModAck);
+
+						// polling on message to be reactive
+						if (LookForRequest (&receivedMessage) != NULL)
+							interact=1;
+					}
+				}
+				break;
+
+			case REQ_STOP:
+				if (cycleRunning) {
+					state = -1;
+					//sending an acknowledge
+					if ((receivedMessage.Param.Stop.WantedAck&ACK_STOPPED) != 0)//if an ACK is required
+						SendAck( receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_STOPPED, receivedMessage.Param.Stop.AckID);
+				}
+				else {
+					state = 0;
+					if ((receivedMessage.Param.Stop.WantedAck&ACK_STOPPED) != 0) {//if an ACK is required
+						SendAck( receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_NOTDONE, receivedMessage.Param.Stop.AckID);
+					}
+				}
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			case REQ_KILL:
+				end = 1;
+				if ((receivedMessage.Param.Kil.WantedAck&ACK_KILLED) != 0) {//if an ACK is required
+					SendAck( receivedMessage.Param.Kil.ModAck, receivedMessage.Param.Kil.WantedAck, ACK_KILLED, receivedMessage.Param.Kil.AckID);
+					receivedMessage.Type=REQ_UNKNOWN;
+				}
+				break;
+
+			case REQ_EVENT:
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			case REQ_SETPARAM:
+				switch(receivedMessage.Param.SetParam.Port) {
+					case 0 :
+						GetDataFromSetParamRequest(&receivedMessage, &param, sizeof(TypeA), &productionTime, &receptionTime);
+						break;
+
+					default:
+						printf("Unknown param port:%d\n", receivedMessage.Param.SetParam.Port);
+						break;
+				}
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			case REQ_SUBSCRIBE:
+				SubscribeUser(receivedMessage.Param.Subscribe.SourcePort, receivedMessage.Param.Subscribe.TargetModule, receivedMessage.Param.Subscribe.TargetPort, receivedMessage.Param.Subscribe.Periodicity, receivedMessage.Param.Subscribe.isContextual);
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			case REQ_UNSUBSCRIBE:
+				UnsubscribeUser (receivedMessage.Param.Unsubscribe.SourcePort, receivedMessage.Param.Unsubscribe.TargetModule, receivedMessage.Param.Unsubscribe.TargetPort);
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+			case REQ_SUB_EVENT:
+				SubscribeUserToEvent (receivedMessage.Param.SubscribeEvent.targetModule, receivedMessage.Param.SubscribeEvent.targetPort, receivedMessage.Param.SubscribeEvent.sourcePort, receivedMessage.Param.SubscribeEvent.mode);
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			case REQ_UNSUB_EVENT:
+				UnsubscribeUserToEvent (receivedMessage.Param.UnsubscribeEvent.targetModule, receivedMessage.Param.UnsubscribeEvent.targetPort, receivedMessage.Param.UnsubscribeEvent.sourcePort);
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			case REQ_PURGE_MBX:
+				PurgeData (NULL);
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+
+			default:
+				receivedMessage.Type=REQ_UNKNOWN;
+				break;
+		}
+	}
+	UnsubscribeVariables ();
+	UnsubscribeEvent ();
+	_exit_module ();
+	fclose (logFile);
+	return 0;
+}
+
+int _init_module(void){//==0 false, != 0 true
+	/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/
+	printf("initialization of MSC\n");
+	return 1;
+	/*PROTECTED REGION END*/
+}
+
+void _exit_module(void) {
+	/*PROTECTED REGION ID(protect_exit_MSC) ENABLED START*/
+	printf("termination of MSC\n");
+	/*PROTECTED REGION END*/
+}
+
+void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if stateindex is -1 at end of execution then run is finished
+	/*PROTECTED REGION ID(protect_exec_MSC) ENABLED START*/
+	switch (*stateindex) {
+		case 0:
+			GetLatestData (&in_coordinates, &productionTime, &receptionTime);
+			printf("MSC : state 0 => getting coordinates : ");print_TypeA(&in_coordinates);printf("\n");
+			*stateindex = 1;
+			break;
+		case 1:
+
+			//computing
+			out_coordinates_command.coord.i = param.i-in_coordinates.i;
+			out_coordinates_command.coord.j = param.j-in_coordinates.j;
+			out_coordinates_command.coord.k = param.k - in_coordinates.k;
+			printf("MSC : state1 => computed out coordinates: ");print_TypeA(&out_coordinates_command.coord);printf("\n");
+			printf("MSC : state1 => param coordinates: ");print_TypeA(&param);printf("\n");
+			printf("MSC : state1 => in coordinates: ");print_TypeA(&in_coordinates);printf("\n");
+			//testing the event
+			if ((out_coordinates_command.coord.i+out_coordinates_command.coord.j+out_coordinates_command.coord.k)>30.0) {
+				strcpy(&failing_data.dataname[0], "problem");
+				failing_data.datavalue = (int) (30.0-(out_coordinates_command.coord.i+out_coordinates_command.coord.j+out_coordinates_command.coord.k));
+				PostEvent(&failing_data);
+				printf("MSC : posting event %s - %d\n", &failing_data.dataname[0], failing_data.datavalue);
+			}
+			*stateindex = 2;
+			break;
+		case 2:
+			out_coordinates_command.frfrrrf = 666;
+			PostData(&out_coordinates_command.coord);
+			*stateindex = -1;
+			break;
+
+		default:
+			break;
+	}
+
+	/*PROTECTED REGION END*/
+}
+//Specific functions (from here you have to implement new internal functions declared before main)
+/*PROTECTED REGION ID(protect_internal_functions_impl_MSC) ENABLED START*/
+//TODO
+/*PROTECTED REGION END*/

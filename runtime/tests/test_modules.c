@@ -1,0 +1,312 @@
+/* Modules driven through their mailboxes: the report's MSC and the test module (tmod.c). */
+#define _GNU_SOURCE
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/socket.h>
+#include <sys/un.h>
+#include <unistd.h>
+#include "harness.h"
+#include "internal.h"
+#include "modules/tmod.h"
+
+/* Same layouts as the report's TypeA / TypeD (SharedType*.h define functions: one TU only). */
+typedef struct { double i, j, k; } TypeA;
+typedef struct { char dataname[256]; long datavalue; } TypeD;
+
+static int set_param(const char *module, long flags, long run_ms)
+{
+    TestParam p;
+    memset(&p, 0, sizeof p);
+    p.flags = flags;
+    p.run_ms = run_ms;
+    if (SendSetParam(module, 0, &p, sizeof p, ACK_NOTHING, -1) != 0) return 0;
+    return h_wait_event(module, 3, 2000, h_msg());
+}
+
+static int run_once(const char *module, int id)
+{
+    if (SendStart(module, ACK_FINISHED, id) != 0) return 0;
+    return h_wait_ack(module, id, ACK_FINISHED, 3000, NULL);
+}
+
+static int subscribe_data(const char *producer, const char *consumer, int k)
+{
+    if (SendSubscribe(producer, 0, consumer, 0, k, 1) != 0) return 0;
+    return h_wait_ack(producer, 900, ACK_FINISHED, 2000, NULL);
+}
+
+void test_msc_request_loop(void)
+{
+    REQUIRE(h_setup("loop") == 0);
+    RequestMessage *m = h_msg();
+    pid_t pid = h_spawn_module("MSC", "MSC");
+    REQUIRE(pid > 0);
+    CHECK(SendStart("MSC", ACK_START | ACK_FINISHED, 11) == CONTRACT_OK);
+    CHECK(h_wait_ack("MSC", 11, ACK_START | ACK_FINISHED, 2000, m) && m->Param.Ack.Ack == ACK_START);
+    CHECK(h_wait_ack("MSC", 11, ACK_START | ACK_FINISHED, 2000, m) && m->Param.Ack.Ack == ACK_FINISHED);
+    CHECK(SendStop("MSC", ACK_STOPPED, 12) == CONTRACT_OK);
+    CHECK(h_wait_ack("MSC", 12, ACK_STOPPED | ACK_NOTDONE, 2000, m) && m->Param.Ack.Ack == ACK_NOTDONE);
+    CHECK(strcmp(m->Param.Ack.Module, "MSC") == 0);
+    /* no ack wanted: nothing comes back */
+    CHECK(SendStart("MSC", ACK_NOTHING, 14) == CONTRACT_OK);
+    CHECK(!h_wait_ack("MSC", 14, 0xff, 300, m));
+    CHECK(SendKill("MSC", ACK_KILLED, 13) == CONTRACT_OK);
+    CHECK(h_wait_ack("MSC", 13, ACK_KILLED, 2000, m) && m->Param.Ack.Ack == ACK_KILLED);
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *log = h_read_logs("MSC_");
+    CHECK(log && strncmp(log, "mono_ns,wall_time,module,event,peer,port,size,detail\n", 52) == 0);
+    CHECK(log && strstr(log, ",MSC,run_started,tester,,0,activation=1"));
+    CHECK(log && strstr(log, ",MSC,run_finished,,,0,activation=1 ACK_FINISHED"));
+    CHECK(log && strstr(log, ",MSC,request_received,tester,,0,KILL"));
+    CHECK(log && strstr(log, ",MSC,ack_sent,tester,,0,ACK_NOTDONE id=12"));
+    CHECK(log && strstr(log, ",MSC,module_exit,"));
+    free(log);
+    h_teardown();
+}
+
+void test_msc_setparam_event(void)
+{
+    REQUIRE(h_setup("mscev") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("MSC", "MSC") > 0);
+    CHECK(SendSubscribeEvent("MSC", 1, "tester", 5, EVENT_CONTINUOUS) == CONTRACT_OK);
+    TypeA p = { 20.0, 20.0, 20.0 };
+    CHECK(SendSetParam("MSC", 0, &p, sizeof p, ACK_NOTHING, -1) == CONTRACT_OK);
+    CHECK(SendStart("MSC", ACK_FINISHED, 1) == CONTRACT_OK);
+    CHECK(h_wait_event("MSC", 5, 2000, m));
+    if (m->Type == REQ_EVENT) {
+        TypeD d;
+        CHECK(m->DataSize == sizeof d);
+        memcpy(&d, m->Data, sizeof d);
+        CHECK(strcmp(d.dataname, "problem") == 0);
+        CHECK_MSG(d.datavalue == -30, "datavalue %ld", d.datavalue);
+        CHECK(m->Param.Event.sourcePort == 1 && strcmp(m->Param.Event.sourceModule, "MSC") == 0);
+        CHECK(m->ReceptionTime >= m->ProductionTime && m->ProductionTime > 0);
+    }
+    CHECK(h_wait_ack("MSC", 1, ACK_FINISHED, 2000, NULL));
+    /* a parameter of the wrong size is refused, the module keeps running */
+    CHECK(SendSetParam("MSC", 0, &p, sizeof p - 1, ACK_NOTHING, -1) == CONTRACT_OK);
+    CHECK(run_once("MSC", 2));
+    CHECK(SendKill("MSC", ACK_NOTHING, -1) == CONTRACT_OK);
+    usleep(100000);
+    ContractLogFlush();
+    char *log = h_read_logs("MSC_");
+    CHECK(log && strstr(log, ",MSC,setparam,tester,0,24,"));
+    CHECK(log && strstr(log, ",MSC,event_posted,tester,1,"));
+    CHECK(log && strstr(log, "refused: 23 bytes received, the parameter holds 24 bytes"));
+    free(log);
+    h_teardown();
+}
+
+void test_stop_running_cycle(void)
+{
+    REQUIRE(h_setup("stop") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    REQUIRE(set_param("C1", 0, 3000));
+    CHECK(SendStart("C1", ACK_START | ACK_STOPPED | ACK_FINISHED, 1) == CONTRACT_OK);
+    CHECK(h_wait_ack("C1", 1, ACK_START, 2000, m));
+    CHECK(SendStop("C1", ACK_STOPPED, 2) == CONTRACT_OK);
+    CHECK(h_wait_ack("C1", 2, ACK_STOPPED, 1000, m)); /* to the one who stopped it */
+    CHECK(h_wait_ack("C1", 1, ACK_STOPPED | ACK_FINISHED, 1000, m) && m->Param.Ack.Ack == ACK_STOPPED); /* to the starter */
+    CHECK(!h_wait_ack("C1", 1, ACK_FINISHED, 300, m));
+    /* a second START runs again (activation 2) */
+    CHECK(set_param("C1", 0, 0));
+    CHECK(run_once("C1", 3));
+    CHECK(ContractActivations() == 0); /* the tester itself was never started */
+    h_teardown();
+}
+
+static int report_values(const char *module, long *vals, int max)
+{
+    /* a START that arrives during a run joins that run (report skeleton): wait for the end */
+    static int id = 500;
+    RequestMessage *m = h_msg();
+    if (SendStart(module, ACK_FINISHED, ++id) != 0) return -1;
+    if (!h_wait_event(module, 1, 2000, m)) return -1;
+    int n = (int)(m->DataSize / sizeof(long));
+    if (n > max) n = max;
+    memcpy(vals, m->Data, (size_t)n * sizeof(long));
+    if (!h_wait_ack(module, id, ACK_FINISHED, 2000, NULL)) return -2;
+    return n;
+}
+
+void test_data_periodicity(void)
+{
+    REQUIRE(h_setup("period") == 0);
+    REQUIRE(h_spawn_module("P", "P") > 0);
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    REQUIRE(h_spawn_module("C2", "C2") > 0);
+    CHECK(set_param("C1", 4, 0) && set_param("C2", 4, 0));
+    CHECK(subscribe_data("P", "C1", 1));
+    CHECK(subscribe_data("P", "C2", 3));
+    for (int i = 1; i <= 6; i++) CHECK(run_once("P", i));
+    long v[16];
+    int n = report_values("C1", v, 16);
+    CHECK_MSG(n == 6, "C1 got %d values", n);
+    for (int i = 0; i < n && i < 6; i++) CHECK(v[i] == i + 1);
+    n = report_values("C2", v, 16);
+    CHECK_MSG(n == 2 && v[0] == 3 && v[1] == 6, "C2 got %d values (%ld, %ld)", n, n > 0 ? v[0] : 0, n > 1 ? v[1] : 0);
+    /* GetLatestData keeps the newest only */
+    CHECK(set_param("C1", 4 | 8, 0));
+    for (int i = 7; i <= 9; i++) CHECK(run_once("P", i));
+    n = report_values("C1", v, 16);
+    CHECK_MSG(n == 1 && v[0] == 9, "C1 latest: %d values, first %ld", n, n > 0 ? v[0] : 0);
+    n = report_values("C1", v, 16); /* consumed: nothing left */
+    CHECK_MSG(n == 0, "C1 again: %d values, first %ld", n, n > 0 ? v[0] : 0);
+    /* unsubscribe: no more data */
+    CHECK(SendUnsubscribe("P", 0, "C1", 0) == 0);
+    CHECK(run_once("P", 10));
+    n = report_values("C1", v, 16);
+    CHECK(n == 0);
+    n = report_values("C2", v, 16); /* 7..10: only 9 is a multiple of 3 */
+    CHECK_MSG(n == 1 && v[0] == 9, "C2 got %d values", n);
+    /* purge */
+    CHECK(subscribe_data("P", "C1", 1));
+    CHECK(run_once("P", 11) && run_once("P", 12));
+    CHECK(SendPurge("C1") == 0);
+    n = report_values("C1", v, 16);
+    CHECK(n == 0);
+    usleep(150000); /* P flushes its CSV log within 50 ms once idle */
+    char *log = h_read_logs("P_");
+    CHECK(log && strstr(log, ",P,data_posted,C2,0,8,to_port=0"));
+    free(log);
+    h_teardown();
+}
+
+void test_event_oneshot_continuous(void)
+{
+    REQUIRE(h_setup("events") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("P", "P") > 0);
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    REQUIRE(h_spawn_module("C2", "C2") > 0);
+    CHECK(set_param("P", 1, 0));
+    CHECK(SendSubscribeEvent("P", 0, "C1", 0, EVENT_CONTINUOUS) == 0 && h_wait_ack("P", 800, ACK_FINISHED, 2000, NULL));
+    CHECK(SendSubscribeEvent("P", 0, "C2", 0, EVENT_ONESHOT) == 0 && h_wait_ack("P", 800, ACK_FINISHED, 2000, NULL));
+    CHECK(run_once("P", 1) && run_once("P", 2) && run_once("P", 3));
+    int from_c1 = 0, from_c2 = 0;
+    long sum_c1 = 0;
+    RTIME deadline = GetTime() + 700000000LL;
+    while (WaitForRequestUntil(m, deadline) == 1) {
+        if (m->Type != REQ_EVENT || m->Param.Event.targetPort != 2) continue;
+        long v;
+        memcpy(&v, m->Data, sizeof v);
+        if (!strcmp(m->Sender, "C1")) { from_c1++; sum_c1 += v; }
+        if (!strcmp(m->Sender, "C2")) { from_c2++; CHECK(v == 1); }
+    }
+    CHECK_MSG(from_c1 == 3 && sum_c1 == 6, "continuous subscriber got %d events", from_c1);
+    CHECK_MSG(from_c2 == 1, "one-shot subscriber got %d events", from_c2);
+    /* unsubscribe the continuous one */
+    CHECK(SendUnsubscribeEvent("P", 0, "C1", 0) == 0);
+    CHECK(run_once("P", 4));
+    CHECK(!h_wait_event("C1", 2, 300, m));
+    h_teardown();
+}
+
+void test_setparam_sizes(void)
+{
+    REQUIRE(h_setup("param") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    TestParam p;
+    memset(&p, 0, sizeof p);
+    p.x[0] = 1.5; p.x[1] = -2; p.x[2] = 1e-9; p.flags = 0; p.run_ms = 7;
+    snprintf(p.label, sizeof p.label, "hello, struct");
+    CHECK(SendSetParam("C1", 0, &p, sizeof p, ACK_NOTHING, -1) == 0);
+    CHECK(h_wait_event("C1", 3, 2000, m) && m->DataSize == sizeof p && memcmp(m->Data, &p, sizeof p) == 0);
+    CHECK(SendSetParam("C1", 0, &p, sizeof p - 8, ACK_NOTHING, -1) == 0);
+    CHECK(h_wait_event("C1", 4, 2000, m));
+    CHECK(SendSetParam("C1", 1, &p, sizeof p, ACK_NOTHING, -1) == 0); /* unknown port */
+    CHECK(h_wait_event("C1", 4, 2000, m));
+    static unsigned char big[CONTRACT_REQUEST_DATA_MAX + 1];
+    CHECK(SendSetParam("C1", 0, big, sizeof big, ACK_NOTHING, -1) == CONTRACT_ETOOBIG);
+    CHECK(SetModuleParam("C1", 0, big, sizeof big) == -1);
+    CHECK(SendEvent("C1", 0, 0, big, sizeof big) == CONTRACT_ETOOBIG);
+    CHECK(SendSetParam("C1", 0, big, CONTRACT_REQUEST_DATA_MAX, ACK_NOTHING, -1) == 0); /* fits, wrong size */
+    CHECK(h_wait_event("C1", 4, 2000, m));
+    h_teardown();
+}
+
+static int send_raw(const char *file, const void *a, size_t na, const void *b, size_t nb)
+{
+    struct sockaddr_un sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sun_family = AF_UNIX;
+    if (snprintf(sa.sun_path, sizeof sa.sun_path, "%s/%s", h_run_dir, file) >= (int)sizeof sa.sun_path) return 0;
+    int fd = socket(AF_UNIX, SOCK_DGRAM, 0);
+    unsigned char buf[40000];
+    memcpy(buf, a, na);
+    if (nb) memcpy(buf + na, b, nb);
+    ssize_t r = sendto(fd, buf, na + nb, 0, (struct sockaddr *)&sa, sizeof sa);
+    close(fd);
+    return r == (ssize_t)(na + nb);
+}
+
+void test_malformed_datagrams(void)
+{
+    REQUIRE(h_setup("malformed") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    CHECK(set_param("C1", 4, 0));
+    static unsigned char junk[20000];
+    memset(junk, 0x41, sizeof junk);
+    CHECK(send_raw("C1.mbx", junk, sizeof junk, NULL, 0));      /* garbage in the mailbox */
+    WirePrefix pre = { WIRE_MAGIC, WIRE_REQUEST };
+    RequestMessage *lie = h_msg();
+    lie->Type = REQ_SETPARAM;
+    lie->DataSize = 10; /* header says 10, datagram carries 100 */
+    CHECK(send_raw("C1.mbx", &pre, sizeof pre, lie, REQUEST_HEADER_SIZE + 100));
+    WirePrefix dpre = { WIRE_MAGIC, WIRE_DATA };
+    struct { DataHeader h; long v[4]; } d;
+    memset(&d, 0, sizeof d);
+    snprintf(d.h.producer, sizeof d.h.producer, "X");
+    d.h.size = sizeof d.v;
+    CHECK(send_raw("C1.0.in", &dpre, sizeof dpre, &d, sizeof d));  /* 32 bytes for an 8-byte port */
+    char status[512];
+    CHECK(QueryStatus("C1", status, sizeof status, GetTime() + 2000000000LL) == 0);
+    CHECK(strstr(status, "module=C1") != NULL);
+    long v[4];
+    CHECK(report_values("C1", v, 4) == 0);
+    CHECK(SendKill("C1", ACK_KILLED, 1) == 0 && h_wait_ack("C1", 1, ACK_KILLED, 2000, m));
+    usleep(100000);
+    char *log = h_read_logs("C1_");
+    CHECK(log && strstr(log, "dropped a malformed datagram of 20000 bytes"));
+    CHECK(log && strstr(log, "does not match its header"));
+    CHECK(log && strstr(log, "input data port 0: refused 32 bytes from X"));
+    free(log);
+    h_teardown();
+}
+
+void test_unknown_and_stale(void)
+{
+    REQUIRE(h_setup("stale") == 0);
+    CHECK(ModuleState("NOPE") == CONTRACT_EUNKNOWN);
+    CHECK(SendStart("NOPE", ACK_NOTHING, 0) == CONTRACT_EUNKNOWN);
+    CHECK(SendStart("bad/name", ACK_NOTHING, 0) == CONTRACT_EINVAL);
+    /* a mailbox whose process is gone */
+    struct sockaddr_un sa;
+    memset(&sa, 0, sizeof sa);
+    sa.sun_family = AF_UNIX;
+    REQUIRE(snprintf(sa.sun_path, sizeof sa.sun_path, "%s/GHOST.mbx", h_run_dir) < (int)sizeof sa.sun_path);
+    int fd = socket(AF_UNIX, SOCK_DGRAM, 0);
+    CHECK(bind(fd, (struct sockaddr *)&sa, sizeof sa) == 0);
+    close(fd);
+    CHECK(ModuleState("GHOST") == CONTRACT_ENOTRUNNING);
+    CHECK(SendKill("GHOST", ACK_NOTHING, 0) == CONTRACT_ENOTRUNNING);
+    unlink(sa.sun_path);
+    /* the same module twice in one run directory: the second one refuses to start */
+    pid_t p1 = h_spawn_module("P", "P");
+    CHECK(p1 > 0);
+    char *argv[] = { "P", NULL };
+    char out[600];
+    snprintf(out, sizeof out, "%s/second.out", h_work_dir);
+    CHECK(h_run(argv, out, 3000) == 2);
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "already exists and is in use"));
+    free(text);
+    CHECK(ModuleState("P") == CONTRACT_OK); /* the first one is untouched */
+    h_teardown();
+}

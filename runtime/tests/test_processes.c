@@ -1,0 +1,265 @@
+/* Whole-process behaviour: contract-launch, clean shutdown, side-by-side run directories,
+ * the control tool, priorities. */
+#define _GNU_SOURCE
+#include <errno.h>
+#include <fcntl.h>
+#include <sched.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+#include "harness.h"
+
+static pid_t start_launcher(char *const argv[], const char *out_file)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/contract-launch", h_bin_dir);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(out_file, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        execv(path, argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+static int wait_for_text(const char *file, const char *text, int timeout_ms)
+{
+    for (int t = 0; t < timeout_ms; t += 20) {
+        char *s = h_read_file(file);
+        int found = s && strstr(s, text);
+        free(s);
+        if (found) return 1;
+        usleep(20000);
+    }
+    return 0;
+}
+
+static long pid_of(const char *dir, const char *name)
+{
+    char p[1024];
+    snprintf(p, sizeof p, "%s/%s.pid", dir, name);
+    char *s = h_read_file(p);
+    long pid = s ? atol(s) : -1;
+    free(s);
+    return pid;
+}
+
+static int process_exists(long pid) { return pid > 0 && (kill((pid_t)pid, 0) == 0 || errno == EPERM); }
+
+void test_launcher_crash_cleanup(void)
+{
+    REQUIRE(h_setup("launch") == 0);
+    ContractShutdown(); /* the tester needs no mailbox here: it must not sit in the launcher's run dir */
+    char exe_p[600], exe_c1[600], exe_c2[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
+    snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    setenv("TMOD_CRASH_NAME", "C2", 1);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c1, exe_c2, NULL };
+    pid_t launcher = start_launcher(argv, out);
+    unsetenv("TMOD_CRASH_NAME");
+    REQUIRE(launcher > 0);
+    CHECK(wait_for_text(out, "module C2 (pid", 5000));
+    CHECK(wait_for_text(out, "[P] P ready", 2000));
+    long pp = pid_of(h_run_dir, "P"), pc1 = pid_of(h_run_dir, "C1");
+    CHECK(process_exists(pp) && process_exists(pc1));
+    CHECK(ModuleState("P") == CONTRACT_OK && ModuleState("C1") == CONTRACT_OK);
+    CHECK(ModuleState("C2") == CONTRACT_EUNKNOWN); /* its files were removed when it died */
+    char *kill_argv[] = { "contract-launch", "--kill", h_run_dir, NULL };
+    char kout[600];
+    snprintf(kout, sizeof kout, "%s/kill.out", h_work_dir);
+    CHECK(h_run(kill_argv, kout, 10000) == 0);
+    CHECK(h_wait_exit(launcher, 5000) == 1); /* non-zero: a module crashed */
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "module C2 (pid") && strstr(text, "died by signal 6"));
+    CHECK(text && strstr(text, "FAILED: module C2 crashed"));
+    CHECK(text && strstr(text, "module P (pid") && strstr(text, "exited with status 0"));
+    free(text);
+    CHECK(!process_exists(pp) && !process_exists(pc1));
+    CHECK(h_count_entries(h_run_dir) == -1); /* run directory removed: nothing left in it */
+    CHECK(!h_unix_socket_listed(h_run_dir));
+    char *logs = h_read_logs("P_");
+    CHECK(logs && strstr(logs, ",P,module_exit,"));
+    free(logs);
+    h_teardown();
+}
+
+void test_launcher_start_duration(void)
+{
+    REQUIRE(h_setup("duration") == 0);
+    ContractShutdown();
+    char exe_p[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1",
+                     "--start", "P.mission(consigne={1.0,2.0,3.0})", exe_p, NULL };
+    pid_t launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(h_wait_exit(launcher, 8000) == 0);
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "[P] P ready\n"));
+    CHECK(text && strstr(text, "started P.mission(consigne={1.0,2.0,3.0})"));
+    CHECK(text && strstr(text, "all modules stopped cleanly"));
+    free(text);
+    char *logs = h_read_logs("P_");
+    CHECK(logs && strstr(logs, ",P,request_received,contract-launch,,23,START mission"));
+    free(logs);
+    CHECK(h_count_entries(h_run_dir) == -1);
+    /* bad usage is reported, not a crash */
+    char *bad[] = { "contract-launch", "--duration", "soon", exe_p, NULL };
+    CHECK(h_run(bad, out, 3000) == 2);
+    char *missing[] = { "contract-launch", "/nonexistent/module", NULL };
+    CHECK(h_run(missing, out, 3000) == 2);
+    h_teardown();
+}
+
+void test_two_run_dirs(void)
+{
+    REQUIRE(h_setup("twodirs") == 0);
+    ContractShutdown();
+    char dir_a[600], dir_b[600], exe_p[600], out_a[600], out_b[600];
+    snprintf(dir_a, sizeof dir_a, "%s/a", h_work_dir);
+    snprintf(dir_b, sizeof dir_b, "%s/b", h_work_dir);
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(out_a, sizeof out_a, "%s/a.out", h_work_dir);
+    snprintf(out_b, sizeof out_b, "%s/b.out", h_work_dir);
+    char *argv_a[] = { "contract-launch", "--run-dir", dir_a, "--log-dir", h_log_dir, "--duration", "3", exe_p, NULL };
+    char *argv_b[] = { "contract-launch", "--run-dir", dir_b, "--log-dir", h_log_dir, "--duration", "3", exe_p, NULL };
+    pid_t la = start_launcher(argv_a, out_a), lb = start_launcher(argv_b, out_b);
+    REQUIRE(la > 0 && lb > 0);
+    CHECK(wait_for_text(out_a, "1 module(s) running", 5000) && wait_for_text(out_b, "1 module(s) running", 5000));
+    const char *dirs[2] = { dir_a, dir_b };
+    long pids[2];
+    for (int i = 0; i < 2; i++) {
+        setenv("CONTRACT_RUN_DIR", dirs[i], 1);
+        ContractShutdown();
+        CHECK(ContractClientInit("tester") == 0);
+        char status[512] = "";
+        CHECK(QueryStatus("P", status, sizeof status, GetTime() + 2000000000LL) == 0);
+        char want[700];
+        snprintf(want, sizeof want, "run_dir=%s ", dirs[i]);
+        CHECK_MSG(strstr(status, want) != NULL, "status '%s'", status);
+        pids[i] = pid_of(dirs[i], "P");
+        ContractShutdown();
+    }
+    CHECK(pids[0] > 0 && pids[1] > 0 && pids[0] != pids[1]);
+    CHECK(h_wait_exit(la, 8000) == 0 && h_wait_exit(lb, 8000) == 0);
+    CHECK(h_count_entries(dir_a) == -1 && h_count_entries(dir_b) == -1);
+    setenv("CONTRACT_RUN_DIR", h_run_dir, 1);
+    h_teardown();
+}
+
+static int control(const char *out, char *a1, char *a2, char *a3)
+{
+    char *argv[] = { "controlMSC", a1, a2, a3, NULL };
+    return h_run(argv, out, 5000);
+}
+
+void test_control_tool(void)
+{
+    REQUIRE(h_setup("control") == 0);
+    char out[600];
+    snprintf(out, sizeof out, "%s/control.out", h_work_dir);
+    CHECK(control(out, "status", NULL, NULL) == 2); /* not started yet */
+    pid_t pid = h_spawn_module("MSC", "MSC");
+    REQUIRE(pid > 0);
+    CHECK(control(out, "status", NULL, NULL) == 0);
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "module=MSC") && strstr(text, "test synchronous module C"));
+    free(text);
+    CHECK(control(out, "setparam", "0", "{20,20,20}") == 0);
+    CHECK(control(out, "setparam", "0", "{1.0,2.0}") == 4);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "bad value '{1.0,2.0}' for parameter port 0 of type TypeA"));
+    free(text);
+    CHECK(control(out, "setparam", "0", "{1,2,3} trailing") == 4);
+    CHECK(control(out, "setparam", "3", "{1,2,3}") == 4);
+    CHECK(control(out, "setparam", "x", "1") == 4);
+    CHECK(control(out, "frobnicate", NULL, NULL) == 1);
+    CHECK(control(out, "stop", "now", NULL) == 1);
+    CHECK(control(out, "start", NULL, NULL) == 0);
+    CHECK(control(out, "stop", NULL, NULL) == 5); /* MSC's run is over: nothing to stop */
+    CHECK(control(out, "kill", NULL, NULL) == 0);
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    CHECK(control(out, "status", NULL, NULL) == 2);
+    char *log = h_read_logs("MSC_");
+    CHECK(log && strstr(log, ",MSC,setparam,controlMSC-"));
+    free(log);
+    /* a crashed module: its mailbox is stale */
+    pid = h_spawn_module("MSC", "MSC");
+    REQUIRE(pid > 0);
+    kill(pid, SIGKILL);
+    h_wait_exit(pid, 2000);
+    CHECK(control(out, "start", NULL, NULL) == 3);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "not running"));
+    free(text);
+    char f[700];
+    const char *left[] = { "MSC.mbx", "MSC.0.in", "MSC.pid" };
+    for (int i = 0; i < 3; i++) { snprintf(f, sizeof f, "%s/%s", h_run_dir, left[i]); unlink(f); }
+    unsetenv("CONTRACT_RUN_DIR");
+    CHECK(control(out, "status", NULL, NULL) == 2);
+    setenv("CONTRACT_RUN_DIR", h_run_dir, 1);
+    h_teardown();
+}
+
+void test_priority(void)
+{
+    REQUIRE(h_setup("prio") == 0);
+    chmod(h_work_dir, 0777);
+    chmod(h_run_dir, 0777);
+    chmod(h_log_dir, 0777);
+    unsetenv("CONTRACT_SCHED");
+    char err[600], path[600];
+    snprintf(err, sizeof err, "%s/prio.err", h_work_dir);
+    snprintf(path, sizeof path, "%s/MSC", h_bin_dir);
+    int am_root = geteuid() == 0;
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(err, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        if (fd >= 0) { dup2(fd, 2); close(fd); }
+        if (am_root && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(125);
+        if (chdir(h_work_dir) != 0) _exit(126);
+        execl(path, path, (char *)NULL);
+        _exit(127);
+    }
+    REQUIRE(pid > 0);
+    for (int t = 0; t < 300 && ModuleState("MSC") != CONTRACT_OK; t++) usleep(10000);
+    CHECK(ModuleState("MSC") == CONTRACT_OK);
+    char mbx[700];
+    snprintf(mbx, sizeof mbx, "%s/tester.mbx", h_run_dir);
+    chmod(mbx, 0666); /* connecting to a socket needs write permission: let "nobody" answer us */
+    int policy = sched_getscheduler(pid) & ~SCHED_RESET_ON_FORK;
+    CHECK(SendKill("MSC", ACK_KILLED, 1) == 0 && h_wait_ack("MSC", 1, ACK_KILLED, 2000, NULL));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *text = h_read_file(err);
+    int warnings = 0;
+    for (char *s = text; s && (s = strstr(s, "SCHED_FIFO not permitted")) != NULL; s++) warnings++;
+    if (policy == SCHED_FIFO) {
+        CHECK(warnings == 0);
+    } else {
+        CHECK_MSG(warnings == 1, "%d SCHED_FIFO warnings in: %s", warnings, text ? text : "");
+        CHECK(text && strstr(text, "priority 40 runs as nice 11"));
+    }
+    free(text);
+    if (am_root) {
+        /* as root SCHED_FIFO is normally permitted: check that it is used */
+        pid = h_spawn_module("MSC", "MSC");
+        REQUIRE(pid > 0);
+        struct sched_param sp;
+        int pol = sched_getscheduler(pid) & ~SCHED_RESET_ON_FORK;
+        sched_getparam(pid, &sp);
+        if (pol == SCHED_FIFO) CHECK(sp.sched_priority == 40);
+        else fprintf(stderr, "    note: SCHED_FIFO refused even to root here (policy %d)\n", pol);
+        CHECK(SendKill("MSC", ACK_NOTHING, 0) == 0);
+        CHECK(h_wait_exit(pid, 2000) == 0);
+    }
+    setenv("CONTRACT_SCHED", "other", 1);
+    h_teardown();
+}

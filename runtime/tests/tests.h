@@ -1,0 +1,39 @@
+/* The list of C tests (included by runner.c only). */
+#ifndef TESTS_H
+#define TESTS_H
+#include "harness.h"
+void test_tools_parse(void);
+void test_tools_serialize(void);
+void test_msc_request_loop(void);
+void test_msc_setparam_event(void);
+void test_stop_running_cycle(void);
+void test_data_periodicity(void);
+void test_event_oneshot_continuous(void);
+void test_setparam_sizes(void);
+void test_malformed_datagrams(void);
+void test_unknown_and_stale(void);
+void test_launcher_crash_cleanup(void);
+void test_launcher_start_duration(void);
+void test_two_run_dirs(void);
+void test_control_tool(void);
+void test_priority(void);
+
+static const TestCase ALL_TESTS[] = {
+    { "tools_parse", test_tools_parse },
+    { "tools_serialize", test_tools_serialize },
+    { "msc_request_loop", test_msc_request_loop },
+    { "msc_setparam_event", test_msc_setparam_event },
+    { "stop_running_cycle", test_stop_running_cycle },
+    { "data_periodicity", test_data_periodicity },
+    { "event_oneshot_continuous", test_event_oneshot_continuous },
+    { "setparam_sizes", test_setparam_sizes },
+    { "malformed_datagrams", test_malformed_datagrams },
+    { "unknown_and_stale", test_unknown_and_stale },
+    { "launcher_crash_cleanup", test_launcher_crash_cleanup },
+    { "launcher_start_duration", test_launcher_start_duration },
+    { "two_run_dirs", test_two_run_dirs },
+    { "control_tool", test_control_tool },
+    { "priority", test_priority },
+    { NULL, NULL },
+};
+#endif
