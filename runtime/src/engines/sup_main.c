@@ -25,10 +25,58 @@
 #include "libmodule/libmodule.h"
 #include "sup_core.h"
 
+/* subscribers of the supervisor's out event ports (kept here: the generated module.c of a
+   supervisor has no IDETECT table, the vocabulary describes the ports) */
+typedef struct Subscriber {
+    char module[CONTRACT_NAME_MAX];
+    int target_port, source_port, mode;
+} Subscriber;
+
 typedef struct SupBinding {
     const ContractSupervisorVocabulary *v;
     int warned_priority;
+    Subscriber subs[64];
+    int nsubs;
 } SupBinding;
+
+static void add_subscriber(SupBinding *b, const char *module, int target_port, int source_port, int mode) {
+    int known = 0;
+    for (int i = 0; i < b->v->nout_ports; i++)
+        if (b->v->out_ports[i].port == source_port) known = 1;
+    if (!known) {
+        fprintf(stderr, "%s: subscription of %s:%d refused: no out event port :%d\n", b->v->name, module,
+                target_port, source_port);
+        return;
+    }
+    for (int i = 0; i < b->nsubs; i++)
+        if (strcmp(b->subs[i].module, module) == 0 && b->subs[i].target_port == target_port &&
+            b->subs[i].source_port == source_port) {
+            b->subs[i].mode = mode;
+            return;
+        }
+    if (b->nsubs == 64) {
+        fprintf(stderr, "%s: too many event subscribers (64)\n", b->v->name);
+        return;
+    }
+    Subscriber *s = &b->subs[b->nsubs++];
+    snprintf(s->module, sizeof s->module, "%s", module);
+    s->target_port = target_port;
+    s->source_port = source_port;
+    s->mode = mode;
+    ContractLog("event_subscribed", module, source_port, 0, mode == EVENT_ONESHOT ? "oneshot" : "continuous");
+}
+
+static void remove_subscriber(SupBinding *b, const char *module, int target_port, int source_port) {
+    for (int i = 0; i < b->nsubs; i++)
+        if (strcmp(b->subs[i].module, module) == 0 && b->subs[i].target_port == target_port &&
+            b->subs[i].source_port == source_port) {
+            b->subs[i] = b->subs[--b->nsubs];
+            return;
+        }
+}
+
+/* undo requests go to modules that may already have ended (architecture stopping): skip those */
+static int alive(const char *module) { return ModuleState(module) == CONTRACT_OK; }
 
 static void b_ord_activate(void *ctx, const ContractSchema *s, const void *params, size_t size,
                            uint32_t id) {
@@ -41,7 +89,7 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
 
 static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     (void)ctx;
-    if (ModuleState("ORD") != CONTRACT_OK) return; /* ORD ended first (architecture stopping) */
+    if (!alive("ORD")) return;
     int rc = engine_send_stop("ORD", s->name, (int)id);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot ask ORD to deactivate %s: %s\n", ContractSelfName(), s->name,
@@ -63,6 +111,7 @@ static void b_start_module(void *ctx, const char *m, int prio) {
 
 static void b_stop_module(void *ctx, const char *m) {
     (void)ctx;
+    if (!alive(m)) return;
     int rc = SendStop(m, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
@@ -93,6 +142,7 @@ static void b_connect(void *ctx, const ContractEventFlow *f) {
 
 static void b_disconnect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
+    if (!alive(f->src_module)) return;
     SendUnsubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port);
 }
 
@@ -103,19 +153,24 @@ static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventM
 
 static void b_unsubscribe(void *ctx, const char *m, int sp, int ip) {
     (void)ctx;
+    if (!alive(m)) return;
     SendUnsubscribeEvent(m, sp, ContractSelfName(), ip);
 }
 
 static void b_notify(void *ctx, int port, const ContractType *t, const void *v, size_t size) {
-    (void)ctx;
+    SupBinding *b = ctx;
     (void)t;
-    for (int i = 0; IDETECT[i].Variable != NULL; i++) {
-        if (IDETECT[i].Port != port) continue;
-        memcpy(IDETECT[i].Variable, v, size < IDETECT[i].Size ? size : IDETECT[i].Size);
-        PostEvent(IDETECT[i].Variable);
-        return;
+    for (int i = 0; i < b->nsubs;) {
+        Subscriber *s = &b->subs[i];
+        if (s->source_port != port) {
+            i++;
+            continue;
+        }
+        int rc = SendEvent(s->module, s->target_port, port, v, size);
+        ContractLog("event_posted", s->module, port, size, rc == CONTRACT_OK ? "" : "failed");
+        if (rc == CONTRACT_OK && s->mode == EVENT_ONESHOT) b->subs[i] = b->subs[--b->nsubs];
+        else i++;
     }
-    fprintf(stderr, "%s: notify :%d: the module has no such IDETECT port\n", ContractSelfName(), port);
 }
 
 static int b_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size) {
@@ -130,6 +185,7 @@ static int b_start_function(void *ctx, const char *sup, const char *fn, const vo
 
 static void b_stop_function(void *ctx, const char *sup, const char *fn) {
     (void)ctx;
+    if (!alive(sup)) return;
     engine_send_stop(sup, fn, 0);
 }
 
@@ -171,7 +227,9 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
 int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, const char *argv[]) {
     (void)argc;
     (void)argv;
-    SupBinding b = {v, 0};
+    SupBinding b;
+    memset(&b, 0, sizeof b);
+    b.v = v;
     SupIo io = {&b, b_ord_activate, b_ord_deactivate, NULL, b_start_module, b_stop_module,
                 b_set_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
                 b_notify, b_start_function, b_stop_function, b_trace};
@@ -225,13 +283,12 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
             }
             break;
         case REQ_SUB_EVENT:
-            SubscribeUserToEvent(m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
-                                 m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
+            add_subscriber(&b, m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
+                           m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
             break;
         case REQ_UNSUB_EVENT:
-            UnsubscribeUserToEvent(m->Param.UnsubscribeEvent.targetModule,
-                                   m->Param.UnsubscribeEvent.targetPort,
-                                   m->Param.UnsubscribeEvent.sourcePort);
+            remove_subscriber(&b, m->Param.UnsubscribeEvent.targetModule,
+                              m->Param.UnsubscribeEvent.targetPort, m->Param.UnsubscribeEvent.sourcePort);
             break;
         default: /* acks from ORD/modules, data requests: nothing to do */
             break;
