@@ -3,6 +3,7 @@
  * generate src-gen/ -> sync into work/ (the sandbox's folder) -> index the protected regions of
  * the tree, so gcc diagnostics can say when they fall in user code.
  */
+import { createHash } from 'node:crypto';
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import type { CactalProblem } from './cactal-adapter.js';
@@ -39,15 +40,18 @@ export interface PrepareOutcome {
 function acceptProjectPath(kind: ProjectKind) {
   return (rel: string, isDir: boolean): boolean => {
     const base = rel.split('/').pop() ?? rel;
-    if (base.startsWith('.') || base === 'node_modules') return false;
+    const inTree = rel.startsWith('src-gen/');
+    if (base === 'node_modules' || base === '.git') return false;
+    if (base.startsWith('.') && !inTree) return false;
     if (isDir) return !/(^|\/)(logs|run)$/.test(rel);
     if (/\.(o|a|so|out|csv|log)$/.test(base)) return false;
-    if (kind === 'cactal') return rel.endsWith('.contract') || rel.startsWith('src-gen/');
+    if (kind === 'cactal') return rel.endsWith('.contract') || inTree;
     return true;
   };
 }
 
-async function stageProject(source: ProjectSource, kind: ProjectKind, stageProjectDir: string): Promise<void> {
+/** Reads the project's files (never through links); returns them and a digest of paths + contents. */
+async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ wanted: Map<string, Buffer>; digest: string }> {
   const wanted = new Map<string, Buffer>();
   let total = 0;
   const add = (rel: string, data: Buffer): void => {
@@ -61,10 +65,18 @@ async function stageProject(source: ProjectSource, kind: ProjectKind, stageProje
   } else {
     const files = await listFilesNoFollow(source.dir, acceptProjectPath(kind));
     for (const rel of files) {
+      // build products of an earlier local build (executables) are not sources: skip them
+      if (kind === 'cactal' && rel.startsWith('src-gen/') && ((await fsp.lstat(join(source.dir, rel))).mode & 0o111) !== 0) continue;
       const data = await readFileNoFollow(source.dir, rel, MAX_FILE_BYTES);
       if (data) add(rel, data);
     }
   }
+  const hash = createHash('sha256').update(kind);
+  for (const rel of [...wanted.keys()].sort()) hash.update('\0').update(rel).update('\0').update(wanted.get(rel)!);
+  return { wanted, digest: hash.digest('hex') };
+}
+
+async function stageProject(wanted: Map<string, Buffer>, kind: ProjectKind, stageProjectDir: string): Promise<void> {
   // drop staged sources that the project no longer has (stale .contract files would still load)
   for (const rel of await listFilesNoFollow(stageProjectDir)) {
     if (!wanted.has(rel) && (kind === 'make' || rel.endsWith('.contract'))) await removeTreeNoFollow(join(stageProjectDir, rel));
@@ -82,9 +94,16 @@ export async function prepareWorkspace(
 ): Promise<PrepareOutcome> {
   const stageProjectDir = join(ws.stageDir, 'project');
   await fsp.mkdir(stageProjectDir, { recursive: true, mode: 0o700 });
-  await stageProject(source, kind, stageProjectDir);
+  const { wanted, digest } = await readProject(source, kind);
+  const digestFile = join(ws.stageDir, 'inputs.sha256');
+  const previous = await fsp.readFile(digestFile, 'utf8').catch(() => '');
   let problems: CactalProblem[] = [];
-  if (kind === 'cactal') {
+  if (previous === digest) {
+    // same inputs as the last successful prepare of this workspace: the staged tree is current
+    log('project unchanged since the last build: generation skipped');
+  } else if (kind === 'cactal') {
+    await fsp.rm(digestFile, { force: true });
+    await stageProject(wanted, kind, stageProjectDir);
     const t0 = Date.now();
     const outcome = await generateProject(stageProjectDir, join(stageProjectDir, 'src-gen'));
     problems = outcome.problems;
@@ -94,6 +113,9 @@ export async function prepareWorkspace(
       return { ok: false, problems, regions: new Map(), synced: 0 };
     }
     log(`generated src-gen/ (${outcome.written} file(s) written, ${outcome.unchanged} unchanged) in ${Date.now() - t0} ms`);
+  } else {
+    await fsp.rm(digestFile, { force: true });
+    await stageProject(wanted, kind, stageProjectDir);
   }
   const root = treeRoot(kind);
   const stageTree = root ? join(stageProjectDir, root) : stageProjectDir;
@@ -112,6 +134,7 @@ export async function prepareWorkspace(
       if (found.length) regions.set(rel, found);
     }
   }
+  await fsp.writeFile(digestFile, digest);
   log(`work tree ready: ${files.length} file(s), ${synced} updated${ws.reused ? ' (incremental)' : ''}`);
   return { ok: true, problems, regions, synced };
 }

@@ -1,0 +1,100 @@
+/**
+ * End to end on the report's tutorial (examples/tutorial): load + check + generate (language and
+ * codegen packages), build with gcc/make against the runtime, run with the launcher, in bwrap and
+ * in Docker; no-op rebuild; gcc diagnostics inside a protected region; adversarial code placed in
+ * a module's protected region while an honest run completes.
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import type { LineEvent } from './pipeline/job-events.js';
+import { createBuildServer, type BuildServer } from './server.js';
+import { getJob, postJob, readEvents } from './test-support/client.js';
+import { dockerUp } from './test-support/docker-env.js';
+import { MAA_MODULE, snapshotRuntime, TUTORIAL_DIR, tutorialFiles, withRegion } from './test-support/tutorial.js';
+
+let server: BuildServer;
+let url: string;
+let cacheDir: string;
+let runtimeSource: string;
+const docker = dockerUp();
+
+beforeAll(async () => {
+  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
+  runtimeSource = snapshotRuntime();
+  server = createBuildServer({ port: 0, concurrency: 3, cacheDir, runtimeSource, projectRoots: [join(TUTORIAL_DIR, '..')] });
+  url = (await server.listen()).url;
+}, 240_000);
+
+afterAll(async () => {
+  await server?.close();
+  rmSync(cacheDir, { recursive: true, force: true });
+  rmSync(runtimeSource, { recursive: true, force: true });
+  docker.stop();
+});
+
+async function runJob(body: Record<string, unknown>): Promise<{ job: Record<string, any>; lines: LineEvent[] }> {
+  const r = await postJob(url, body);
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const events = await readEvents(url, r.json.id as string);
+  return { job: await getJob(url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
+}
+
+function expectTutorialRan(job: Record<string, any>, lines: LineEvent[]): void {
+  expect(job.status, `${job.result?.message}\n${lines.slice(-30).map((l) => `${l.source}: ${l.line}`).join('\n')}`).toBe('succeeded');
+  const run = lines.filter((l) => l.step === 'run');
+  expect(run.some((l) => l.source === 'MAA' && l.line === 'initialization of MAA')).toBe(true);
+  expect(run.some((l) => l.source === 'GLB' && /function mission started/.test(l.line))).toBe(true);
+  expect(run.some((l) => l.source === 'MSC')).toBe(true);
+  expect(lines.filter((l) => l.step === 'build' && /^cc .* -o MAA /.test(l.line))).toHaveLength(1);
+}
+
+describe.each(['bwrap', ...(docker.available ? ['docker'] : [])])('the tutorial in %s', (sandbox) => {
+  test('generates, builds and runs; a second build is a no-op', async () => {
+    const first = await runJob({ action: 'run', sandbox, duration: 2, project: { dir: TUTORIAL_DIR } });
+    expectTutorialRan(first.job, first.lines);
+    const again = await runJob({ action: 'build', sandbox, project: { dir: TUTORIAL_DIR } });
+    expect(again.job.status).toBe('succeeded');
+    expect(again.lines.some((l) => l.line === 'project unchanged since the last build: generation skipped')).toBe(true);
+    expect(again.lines.filter((l) => l.step === 'build' && /^cc /.test(l.line))).toEqual([]);
+  });
+});
+
+if (!docker.available) {
+  test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});
+}
+
+describe('user code in protected regions (bwrap)', () => {
+  test('a compile error in MAA init is reported on module.c, inside protect_init_MAA', async () => {
+    const files = withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', '    return undeclared_in_region;');
+    const { job } = await runJob({ action: 'build', sandbox: 'bwrap', project: { files } });
+    expect(job.status).toBe('failed');
+    const err = job.diagnostics.find((d: any) => d.severity === 'error');
+    expect(err).toMatchObject({ file: 'generated/architecture/modules/MAA_mod/module.c', protectedRegion: { id: 'protect_init_MAA' } });
+    expect(err.message).toMatch(/undeclared_in_region/);
+    expect(err.line).toBeGreaterThan(err.protectedRegion.startLine);
+    expect(err.line).toBeLessThan(err.protectedRegion.endLine);
+  });
+
+  test('a fork bomb and a 4 GiB allocation in MAA init are stopped while an honest run completes', async () => {
+    const base = await tutorialFiles();
+    const bomb = withRegion(base, MAA_MODULE, 'protect_init_MAA', '    for (;;) { if (fork() < 0) { perror("fork"); sleep(1); } }');
+    const alloc = withRegion(
+      base,
+      MAA_MODULE,
+      'protect_init_MAA',
+      '    for (size_t got = 0; got < ((size_t)4 << 30); got += (size_t)64 << 20) { char *p = malloc((size_t)64 << 20); if (!p) return 0; memset(p, 1, (size_t)64 << 20); }\n    return 1;',
+    );
+    const withHeaders = (f: Record<string, string>) =>
+      withRegion(f, MAA_MODULE, 'protect_additional_import_MAA', '#include <unistd.h>\n#include <stdlib.h>\n#include <string.h>\n#include <stdio.h>');
+    const [b, a, honest] = await Promise.all([
+      runJob({ action: 'run', sandbox: 'bwrap', duration: 10, project: { files: withHeaders(bomb) } }),
+      runJob({ action: 'run', sandbox: 'bwrap', duration: 10, project: { files: withHeaders(alloc) } }),
+      runJob({ action: 'run', sandbox: 'bwrap', duration: 3, project: { files: base } }),
+    ]);
+    expect(b.job.result.message).toBe('killed: process limit 256');
+    expect(a.job.result.message).toBe('killed: memory limit 512 MiB');
+    expectTutorialRan(honest.job, honest.lines);
+  });
+});
