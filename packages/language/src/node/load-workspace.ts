@@ -3,9 +3,9 @@
  * system) and returns the documents with their diagnostics in a tool-friendly form (1-based lines
  * and columns, paths relative to `dir`). Used by `contract check`, code generation and the build service.
  */
-import { readFileSync } from 'node:fs';
+import { readFileSync, statSync } from 'node:fs';
 import { readdir, stat } from 'node:fs/promises';
-import { join, relative, resolve, sep } from 'node:path';
+import { dirname, join, relative, resolve, sep } from 'node:path';
 import { URI, type LangiumDocument } from 'langium';
 import { NodeFileSystem } from 'langium/node';
 import type { Diagnostic } from 'vscode-languageserver-types';
@@ -31,7 +31,7 @@ export interface WorkspaceDiagnostic {
 }
 
 export interface WorkspaceDocument {
-    /** Path relative to the workspace directory, with `/` separators. */
+    /** Path relative to the workspace directory, with `/` separators (`../lib/x.contract` for a file imported from outside it). */
     file: string;
     /** Absolute path. */
     path: string;
@@ -77,6 +77,14 @@ export async function findContractFiles(dir: string, skipDirs: string[] = DEFAUL
     return found.sort();
 }
 
+function isFile(path: string): boolean {
+    try {
+        return statSync(path).isFile();
+    } catch {
+        return false;
+    }
+}
+
 /** Converts an LSP diagnostic of a file into the 1-based tool form. */
 export function toWorkspaceDiagnostic(file: string, d: Diagnostic): WorkspaceDiagnostic {
     const code = d.code ?? (d.data as { code?: string } | undefined)?.code ?? 'unknown';
@@ -102,14 +110,27 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     const shared = services.shared;
     const files = await findContractFiles(root, options.skipDirs);
     const documents: WorkspaceDocument[] = [];
-    for (const path of files) {
+    const loaded = new Set<string>();
+    const langiumDocs = shared.workspace.LangiumDocuments;
+    const load = (path: string) => {
+        loaded.add(path);
         const text = readFileSync(path, 'utf8');
         const uri = URI.file(path);
-        const langiumDocs = shared.workspace.LangiumDocuments;
         if (langiumDocs.hasDocument(uri)) langiumDocs.deleteDocument(uri);
         const document = shared.workspace.LangiumDocumentFactory.fromString<Model>(text, uri);
         langiumDocs.addDocument(document);
         documents.push({ file: relative(root, path).split(sep).join('/'), path, document, model: document.parseResult.value });
+    };
+    for (const path of files) load(path);
+    // files imported from outside DIR (shared libraries: import "../lib/types.contract") are part of the build too
+    for (let i = 0; i < documents.length; i++) {
+        const { path, model } = documents[i]!;
+        for (const imp of model?.imports ?? []) {
+            if (!imp.path?.endsWith('.contract')) continue;
+            const target = resolve(dirname(path), imp.path);
+            if (loaded.has(target) || !isFile(target)) continue;
+            load(target);
+        }
     }
     await shared.workspace.DocumentBuilder.build(documents.map((d) => d.document), { validation: true });
     const diagnostics = documents.flatMap((d) => (d.document.diagnostics ?? []).map((diag) => toWorkspaceDiagnostic(d.file, diag)));
