@@ -1,4 +1,4 @@
-import { expandToNode, joinToNode, toString, type Generated } from 'langium/generate';
+import { expandToNode, joinToNode, NL, toString, type Generated } from 'langium/generate';
 import type { Module, PortDecl } from '../model/architecture.js';
 import type { ArchitectureIndex } from '../model/lookup.js';
 import { cDeclaration, cInitializer, cSizeof } from './c/c-syntax.js';
@@ -58,6 +58,188 @@ switch(*stateindex){
         break;
 }
 `;
+}
+
+/** The static parts of the report's request loop (ModuleMain), rendered once: the skeleton is the same for every module. */
+const LOOP_HEAD = toString(expandToNode`
+    int ModuleMain(int argc, const char * argv[])
+    {
+        RequestMessage receivedMessage, registered;
+        int subscription = 0;
+        int end=0;
+        int state=0;
+        int interact,cycleRunning=0;
+        (void)argc; (void)argv;
+        memset(&receivedMessage, 0, sizeof(receivedMessage));
+        memset(&registered, 0, sizeof(registered));
+
+        if( _init_module() == 0 ) return(-1);
+        receivedMessage.Type=REQ_UNKNOWN;
+        while(!end)
+        {
+            switch(receivedMessage.Type)
+            {
+                case REQ_UNKNOWN :
+                    if (cycleRunning){
+                        if (state != -1){ //the execution has not been interrupted
+                            //filling the received message with old START request information
+                            receivedMessage.Type=REQ_START;
+                            if ((registered.Param.Start.WantedAck&ACK_NOTHING) == 0)//do not try to copy module names if an ACK is not required
+                                strcpy( receivedMessage.Param.Start.ModAck, registered.Param.Start.ModAck);
+                            receivedMessage.Param.Start.WantedAck= registered.Param.Start.WantedAck;
+                            receivedMessage.Param.Start.AckID = registered.Param.Start.AckID;
+                        }
+                        else { //the execution has been interrupted, waiting again
+                            state = 0;
+                            cycleRunning = 0;
+                            //sending an acknowledge to the module that has started this module
+                            if ((registered.Param.Start.WantedAck &ACK_STOPPED) != 0){
+                                SendAck( registered.Param.Start.ModAck, registered.Param.Start.WantedAck, ACK_STOPPED, registered.Param.Start.AckID);
+                            }
+                            //reinitializing registered
+                            registered.Type=REQ_UNKNOWN;
+                            registered.Param.Start.WantedAck = ACK_NOTHING;
+                            registered.Param.Start.AckID = -1;
+                            //waiting a new request
+                            if (WaitForRequest(&receivedMessage) == NULL) end = 1;
+                            break;
+                        }
+                    }
+                    else {
+                        if (WaitForRequest(&receivedMessage) == NULL) end = 1;
+                        break;
+                    }
+                    __attribute__((fallthrough)); //a START is resumed after a request was handled
+
+                case REQ_START:
+                    if (cycleRunning == 0){//if execution cycle does not run
+                        if ((receivedMessage.Param.Start.WantedAck&ACK_START) != 0) //if an ACK is required by the caller
+                            SendAck( receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_START, receivedMessage.Param.Start.AckID);
+                    }
+                    if (subscription == 0){
+                        SubscribeVariables();
+                        SubscribeEvent();
+                        subscription = 1;
+                    }
+                    interact = 0;
+                    cycleRunning = 1;
+                    while(!interact){
+                        _exec_module_state(&state);
+                        if(state==-1){//termination of the run
+                            state = 0;
+                            cycleRunning = 0;
+                            interact = 1;
+                            receivedMessage.Type=REQ_UNKNOWN;
+                            if((receivedMessage.Param.Start.WantedAck&ACK_FINISHED) != 0) //if an ACK is required by the caller
+                                SendAck( receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_FINISHED, receivedMessage.Param.Start.AckID);
+                        }
+                        if(cycleRunning){
+                            //registering the previous request
+                            registered.Type=receivedMessage.Type;
+                            registered.Param.Start.WantedAck= receivedMessage.Param.Start.WantedAck;
+                            registered.Param.Start.AckID = receivedMessage.Param.Start.AckID;
+                            if ((registered.Param.Start.WantedAck&ACK_NOTHING) == 0)//do not try to copy module names if an ACK is not required
+                                strcpy(registered.Param.Start.ModAck, receivedMessage.Param.Start.ModAck);
+
+                            // polling on message to be reactive
+                            if (LookForRequest(&receivedMessage) != NULL)
+                                interact=1;
+                        }
+                    }
+                    break;
+
+                case REQ_STOP:
+                    if (cycleRunning) {
+                        state = -1;
+                        //sending an acknowledge
+                        if ((receivedMessage.Param.Stop.WantedAck&ACK_STOPPED) != 0)//if an ACK is required
+                            SendAck( receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_STOPPED, receivedMessage.Param.Stop.AckID);
+                        registered.Param.Start.WantedAck = ACK_NOTHING; //the STOP request has been acknowledged
+                    }
+                    else {
+                        state = 0;
+                        if ((receivedMessage.Param.Stop.WantedAck&ACK_STOPPED) != 0){//if an ACK is required
+                            SendAck( receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_NOTDONE, receivedMessage.Param.Stop.AckID);
+                        }
+                    }
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_KILL:
+                    end = 1;
+                    if ((receivedMessage.Param.Kil.WantedAck&ACK_KILLED) != 0){//if an ACK is required
+                        SendAck( receivedMessage.Param.Kil.ModAck, receivedMessage.Param.Kil.WantedAck, ACK_KILLED, receivedMessage.Param.Kil.AckID);
+                    }
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_EVENT:
+`);
+const LOOP_MID = [
+    '',
+    '            case REQ_SETPARAM:',
+    '                switch(receivedMessage.Param.SetParam.Port) {',
+].join('\n');
+const LOOP_TAIL = toString(expandToNode`
+                        default:
+                            printf("Unknown param port:%d\\n", receivedMessage.Param.SetParam.Port);
+                            break;
+                    }
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_SUBSCRIBE:
+                    SubscribeUser(receivedMessage.Param.Subscribe.SourcePort, receivedMessage.Param.Subscribe.TargetModule, receivedMessage.Param.Subscribe.TargetPort, receivedMessage.Param.Subscribe.Periodicity, receivedMessage.Param.Subscribe.isContextual);
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_UNSUBSCRIBE:
+                    UnsubscribeUser(receivedMessage.Param.Unsubscribe.SourcePort, receivedMessage.Param.Unsubscribe.TargetModule, receivedMessage.Param.Unsubscribe.TargetPort);
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_SUB_EVENT:
+                    SubscribeUserToEvent(receivedMessage.Param.SubscribeEvent.targetModule, receivedMessage.Param.SubscribeEvent.targetPort, receivedMessage.Param.SubscribeEvent.sourcePort, receivedMessage.Param.SubscribeEvent.mode);
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_UNSUB_EVENT:
+                    UnsubscribeUserToEvent(receivedMessage.Param.UnsubscribeEvent.targetModule, receivedMessage.Param.UnsubscribeEvent.targetPort, receivedMessage.Param.UnsubscribeEvent.sourcePort);
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                case REQ_PURGE_MBX:
+                    PurgeData(NULL);
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+
+                default:
+                    receivedMessage.Type=REQ_UNKNOWN;
+                    break;
+            }
+        }
+        UnsubscribeVariables();
+        UnsubscribeEvent();
+        _exit_module();
+        return 0;
+    }
+`);
+
+/** ModuleMain: the static skeleton around the module's REQ_EVENT and REQ_SETPARAM handling. */
+function requestLoop(eventCase: Generated, setParamCases: Generated): Generated {
+    const parts = [trimNewlines(LOOP_HEAD), indentBy(16, eventCase), LOOP_MID, indentBy(20, setParamCases), trimNewlines(LOOP_TAIL)];
+    return joinToNode(parts.filter((part) => part !== ''), (part) => part, { separator: NL });
+}
+
+function trimNewlines(text: string): string {
+    return text.replace(/^\n+|\n+$/g, '');
+}
+
+/** A generator node rendered and shifted right by `columns` spaces (every non-empty line). */
+function indentBy(columns: number, node: Generated): string {
+    if (node === undefined) return '';
+    const pad = ' '.repeat(columns);
+    return trimNewlines(toString(node)).split('\n').map((l) => (l ? pad + l : l)).join('\n');
 }
 
 export function generateModuleSource(m: Module, priority: number, index: ArchitectureIndex): string {
@@ -144,165 +326,7 @@ export function generateModuleSource(m: Module, priority: number, index: Archite
         //Specific prototypes (from here you can declare new internal functions)
         ${blockRegion(`protect_internal_functions_decl_${M}`, '//TODO')}
 
-        int ModuleMain(int argc, const char * argv[])
-        {
-            RequestMessage receivedMessage, registered;
-            int subscription = 0;
-            int end=0;
-            int state=0;
-            int interact,cycleRunning=0;
-            (void)argc; (void)argv;
-            memset(&receivedMessage, 0, sizeof(receivedMessage));
-            memset(&registered, 0, sizeof(registered));
-
-            if( _init_module() == 0 ) return(-1);
-            receivedMessage.Type=REQ_UNKNOWN;
-            while(!end)
-            {
-                switch(receivedMessage.Type)
-                {
-                    case REQ_UNKNOWN :
-                        if (cycleRunning){
-                            if (state != -1){ //the execution has not been interrupted
-                                //filling the received message with old START request information
-                                receivedMessage.Type=REQ_START;
-                                if ((registered.Param.Start.WantedAck&ACK_NOTHING) == 0)//do not try to copy module names if an ACK is not required
-                                    strcpy( receivedMessage.Param.Start.ModAck, registered.Param.Start.ModAck);
-                                receivedMessage.Param.Start.WantedAck= registered.Param.Start.WantedAck;
-                                receivedMessage.Param.Start.AckID = registered.Param.Start.AckID;
-                            }
-                            else { //the execution has been interrupted, waiting again
-                                state = 0;
-                                cycleRunning = 0;
-                                //sending an acknowledge to the module that has started this module
-                                if ((registered.Param.Start.WantedAck &ACK_STOPPED) != 0){
-                                    SendAck( registered.Param.Start.ModAck, registered.Param.Start.WantedAck, ACK_STOPPED, registered.Param.Start.AckID);
-                                }
-                                //reinitializing registered
-                                registered.Type=REQ_UNKNOWN;
-                                registered.Param.Start.WantedAck = ACK_NOTHING;
-                                registered.Param.Start.AckID = -1;
-                                //waiting a new request
-                                if (WaitForRequest(&receivedMessage) == NULL) end = 1;
-                                break;
-                            }
-                        }
-                        else {
-                            if (WaitForRequest(&receivedMessage) == NULL) end = 1;
-                            break;
-                        }
-                        __attribute__((fallthrough)); //a START is resumed after a request was handled
-
-                    case REQ_START:
-                        if (cycleRunning == 0){//if execution cycle does not run
-                            if ((receivedMessage.Param.Start.WantedAck&ACK_START) != 0) //if an ACK is required by the caller
-                                SendAck( receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_START, receivedMessage.Param.Start.AckID);
-                        }
-                        if (subscription == 0){
-                            SubscribeVariables();
-                            SubscribeEvent();
-                            subscription = 1;
-                        }
-                        interact = 0;
-                        cycleRunning = 1;
-                        while(!interact){
-                            _exec_module_state(&state);
-                            if(state==-1){//termination of the run
-                                state = 0;
-                                cycleRunning = 0;
-                                interact = 1;
-                                receivedMessage.Type=REQ_UNKNOWN;
-                                if((receivedMessage.Param.Start.WantedAck&ACK_FINISHED) != 0) //if an ACK is required by the caller
-                                    SendAck( receivedMessage.Param.Start.ModAck, receivedMessage.Param.Start.WantedAck, ACK_FINISHED, receivedMessage.Param.Start.AckID);
-                            }
-                            if(cycleRunning){
-                                //registering the previous request
-                                registered.Type=receivedMessage.Type;
-                                registered.Param.Start.WantedAck= receivedMessage.Param.Start.WantedAck;
-                                registered.Param.Start.AckID = receivedMessage.Param.Start.AckID;
-                                if ((registered.Param.Start.WantedAck&ACK_NOTHING) == 0)//do not try to copy module names if an ACK is not required
-                                    strcpy(registered.Param.Start.ModAck, receivedMessage.Param.Start.ModAck);
-
-                                // polling on message to be reactive
-                                if (LookForRequest(&receivedMessage) != NULL)
-                                    interact=1;
-                            }
-                        }
-                        break;
-
-                    case REQ_STOP:
-                        if (cycleRunning) {
-                            state = -1;
-                            //sending an acknowledge
-                            if ((receivedMessage.Param.Stop.WantedAck&ACK_STOPPED) != 0)//if an ACK is required
-                                SendAck( receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_STOPPED, receivedMessage.Param.Stop.AckID);
-                            registered.Param.Start.WantedAck = ACK_NOTHING; //the STOP request has been acknowledged
-                        }
-                        else {
-                            state = 0;
-                            if ((receivedMessage.Param.Stop.WantedAck&ACK_STOPPED) != 0){//if an ACK is required
-                                SendAck( receivedMessage.Param.Stop.ModAck, receivedMessage.Param.Stop.WantedAck, ACK_NOTDONE, receivedMessage.Param.Stop.AckID);
-                            }
-                        }
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_KILL:
-                        end = 1;
-                        if ((receivedMessage.Param.Kil.WantedAck&ACK_KILLED) != 0){//if an ACK is required
-                            SendAck( receivedMessage.Param.Kil.ModAck, receivedMessage.Param.Kil.WantedAck, ACK_KILLED, receivedMessage.Param.Kil.AckID);
-                        }
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_EVENT:
-                        ${eventCase}
-
-                    case REQ_SETPARAM:
-                        switch(receivedMessage.Param.SetParam.Port) {
-                            ${setParamCases}
-                            default:
-                                printf("Unknown param port:%d\\n", receivedMessage.Param.SetParam.Port);
-                                break;
-                        }
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_SUBSCRIBE:
-                        SubscribeUser(receivedMessage.Param.Subscribe.SourcePort, receivedMessage.Param.Subscribe.TargetModule, receivedMessage.Param.Subscribe.TargetPort, receivedMessage.Param.Subscribe.Periodicity, receivedMessage.Param.Subscribe.isContextual);
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_UNSUBSCRIBE:
-                        UnsubscribeUser(receivedMessage.Param.Unsubscribe.SourcePort, receivedMessage.Param.Unsubscribe.TargetModule, receivedMessage.Param.Unsubscribe.TargetPort);
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_SUB_EVENT:
-                        SubscribeUserToEvent(receivedMessage.Param.SubscribeEvent.targetModule, receivedMessage.Param.SubscribeEvent.targetPort, receivedMessage.Param.SubscribeEvent.sourcePort, receivedMessage.Param.SubscribeEvent.mode);
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_UNSUB_EVENT:
-                        UnsubscribeUserToEvent(receivedMessage.Param.UnsubscribeEvent.targetModule, receivedMessage.Param.UnsubscribeEvent.targetPort, receivedMessage.Param.UnsubscribeEvent.sourcePort);
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    case REQ_PURGE_MBX:
-                        PurgeData(NULL);
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-
-                    default:
-                        receivedMessage.Type=REQ_UNKNOWN;
-                        break;
-                }
-            }
-            UnsubscribeVariables();
-            UnsubscribeEvent();
-            _exit_module();
-            return 0;
-        }
+        ${requestLoop(eventCase, setParamCases)}
 
         int _init_module(void){//==0 false, != 0 true
             ${blockRegion(`protect_init_${M}`, '//TODO\nreturn 1;')}

@@ -129,7 +129,7 @@ describe('protected regions under random user edits and model edits (property)',
                     cleanup();
                 }
             }),
-            { numRuns: 120 },
+            { numRuns: 80 },
         );
-    });
+    }, 120_000);
 });

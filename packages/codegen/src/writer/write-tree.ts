@@ -78,18 +78,19 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
 
+    const knownDirs = new Set<string>();
     for (const file of sorted) {
         const generated = toByteString(file.content);
         newManifest.set(file.path, regionDefaults(generated, file.path));
         const abs = join(outDir, file.path);
         try {
-            if (!existsSync(abs)) {
-                writeFileAtomic(abs, bytesOf(generated));
+            const existing = readIfPresent(abs);
+            if (existing === undefined) {
+                writeFileAtomic(abs, bytesOf(generated), knownDirs);
                 report.created.push(file.path);
                 report.filesWritten++;
                 continue;
             }
-            const existing = readFileSync(abs, 'latin1');
             const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)));
             if (merged.orphans.length > 0) {
                 const orphan = writeOrphan(outDir, file.path, regionOrphanText(file.path, existing, merged.orphans));
@@ -104,7 +105,7 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
             if (merged.text === existing) {
                 report.unchanged.push(file.path);
             } else {
-                writeFileAtomic(abs, bytesOf(merged.text));
+                writeFileAtomic(abs, bytesOf(merged.text), knownDirs);
                 report.updated.push(file.path);
                 report.filesWritten++;
             }
@@ -153,6 +154,16 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
         report.filesWritten++;
     }
     return report;
+}
+
+/** The file's bytes as a byte string, or undefined when it does not exist. */
+function readIfPresent(abs: string): string | undefined {
+    try {
+        return readFileSync(abs, 'latin1');
+    } catch (e) {
+        if ((e as NodeJS.ErrnoException).code === 'ENOENT') return undefined;
+        throw e;
+    }
 }
 
 function recordFailure(report: GenerationReport, path: string, e: unknown, consequence: string): void {
