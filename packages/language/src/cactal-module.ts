@@ -1,9 +1,11 @@
 import { inject, type Module } from 'langium';
 import {
     createDefaultModule, createDefaultSharedModule,
-    type DefaultSharedModuleContext, type LangiumServices, type LangiumSharedServices, type PartialLangiumServices
+    type DefaultSharedModuleContext, type LangiumServices, type LangiumSharedServices, type PartialLangiumServices,
+    type PartialLangiumSharedServices
 } from 'langium/lsp';
 import { CactalGeneratedModule, CactalGeneratedSharedModule } from './generated/module.js';
+import { CactalDocumentFactory } from './parser/nesting-guard.js';
 import { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
 import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
 import { ImportResolver } from './scoping/import-resolver.js';
@@ -34,6 +36,13 @@ export const CactalModule: Module<CactalServices, PartialLangiumServices & Cacta
     }
 };
 
+/** Shared-service overrides: the document factory guards the parser against pathological nesting. */
+export const CactalSharedModule: Module<LangiumSharedServices, PartialLangiumSharedServices> = {
+    workspace: {
+        LangiumDocumentFactory: (services) => new CactalDocumentFactory(services)
+    }
+};
+
 /**
  * Creates the shared services and the Cactal services. `context` gives the file system
  * (`NodeFileSystem` from 'langium/node' in Node, `EmptyFileSystem` in a browser worker) and,
@@ -44,7 +53,7 @@ export function createCactalServices(
     context: DefaultSharedModuleContext,
     ...extra: Array<Module<CactalServices, PartialLangiumServices & Partial<CactalAddedServices>>>
 ): { shared: LangiumSharedServices; Cactal: CactalServices } {
-    const shared = inject(createDefaultSharedModule(context), CactalGeneratedSharedModule);
+    const shared = inject(createDefaultSharedModule(context), CactalGeneratedSharedModule, CactalSharedModule);
     const Cactal = (inject as (...modules: unknown[]) => CactalServices)(
         createDefaultModule({ shared }),
         CactalGeneratedModule,

@@ -76,3 +76,20 @@ describe('fuzz: mutated tutorial files', () => {
         }
     }, 120_000);
 });
+
+describe('pathological input', () => {
+    it('refuses brackets nested thousands deep with a clear error instead of overflowing the stack', async () => {
+        const services = createCactalServices(EmptyFileSystem).Cactal;
+        const deep = `datatype T {int a = ${'{'.repeat(5000)}1${'}'.repeat(5000)}};`;
+        const built = await build({ 'deep.contract': deep, 'ok.contract': 'datatype U {int b = 1};' }, services);
+        expect(built.diagnostics.map((d) => `${d.file} ${d.code}`)).toEqual(['deep.contract lexing-error']);
+        expect(built.diagnostics[0]!.message).toContain('nested 65 levels deep');
+        const again = await build({ 'ok.contract': 'datatype U {int b = {1}};' }, services);
+        expect(again.diagnostics.map((d) => d.code)).toEqual(['value-type-mismatch']);
+    });
+
+    it('still parses realistic nesting (a few levels) normally', async () => {
+        const built = await build({ 'a.contract': 'datatype A {int x};\ndatatype B {A a};\ndatatype C {B b = {{1}}};' });
+        expect(built.lines).toEqual([]);
+    });
+});
