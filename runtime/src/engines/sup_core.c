@@ -43,6 +43,7 @@ typedef struct RuleState {
 typedef struct FnState {
     int running;
     uint32_t gen;
+    uint64_t start_seq;     /* c->seq when started: it does not see the event that started it */
     int64_t started_at;
     unsigned char *params, *locals;
     RuleState *rules;
@@ -689,7 +690,7 @@ static void process(SupCore *c, int only_fn, const CurEv *cur) {
     c->processed++;
     for (int f = 0; f < c->v->nfunctions; f++) {
         if (only_fn >= 0 && f != only_fn) continue;
-        if (c->fns[f].running) process_for_function(c, f, cur);
+        if (c->fns[f].running && c->fns[f].start_seq != c->seq) process_for_function(c, f, cur);
     }
 }
 
@@ -824,6 +825,7 @@ static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t 
     }
     engine_init_block(fs->locals, fn->locals, fn->nlocals);
     fs->running = 1;
+    fs->start_seq = c->seq;
     fs->started_at = c->now;
     EngineScope s = fn_scope(c, f);
     for (int i = 0; i < fn->nlocal_inits; i++)
