@@ -253,7 +253,12 @@ export function generateModuleSource(m: Module, priority: number, index: Archite
     const iproduce = byIndex(m.dataOut).map((p) => `{ &${p.name}, ${p.index}, ${cSizeof(p.type)}}, `).join('');
     const ireact = byIndex(m.eventIn).map((p) => `{ &${p.name}, ${p.index}, ${cSizeof(p.type)}, "---", 0, 0}, `).join('');
     const idetect = byIndex(m.eventOut).map((p) => `{ &${p.name}, ${p.index}, ${cSizeof(p.type)}}, `).join('');
-    const paramSizes = byIndex(m.parameters).map((p) => `${cSizeof(p.type)}, `).join('');
+    // PARAM_SIZE_IN is indexed by port number: a gap gets a placeholder size (never 0, the terminator)
+    const lastParam = Math.max(-1, ...m.parameters.map((p) => p.index));
+    const paramSizes = Array.from({ length: lastParam + 1 }, (_, i) => {
+        const p = m.parameters.find((q) => q.index === i);
+        return p ? `${cSizeof(p.type)}, ` : `sizeof(char) /* no parameter port ${i} */, `;
+    }).join('');
     const setParamCases: Generated = joinToNode(byIndex(m.parameters), (p) => expandToNode`
         case ${p.index} :
             GetDataFromSetParamRequest(&receivedMessage, &${p.name}, ${cSizeof(p.type)}, &productionTime, &receptionTime);
