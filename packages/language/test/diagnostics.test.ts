@@ -21,6 +21,10 @@ export const CASES: Record<string, Case> = {
     'lexing-error': { raise: { 'a.contract': 'datatype T {int a = 1 $};' }, clean: { 'a.contract': 'datatype T {int a = 1 };' } },
     'parsing-error': { raise: { 'a.contract': 'datatype T {int a = };' }, clean: { 'a.contract': 'datatype T {int a = 1};' } },
     'linking-error': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; }'), 's.contract': 'import "a.contract";\nperiodic schema s() { modules { MSA (); MSZ (); } }' },
+        clean: { 'a.contract': sync('scheduling { C=1ms; }'), 's.contract': 'import "a.contract";\nperiodic schema s() { modules { MSA (); } }' }
+    },
+    'type-unknown': {
         raise: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 TypeZ x; }') },
         clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int x; }') }
     },

@@ -13,6 +13,8 @@ import type { CactalServices } from '../cactal-module.js';
 import { describeUnresolved } from './unresolved-messages.js';
 import { ImportCodes } from './codes/imports.js';
 import { SyntaxCodes } from './codes/syntax.js';
+import { TypeCodes } from './codes/types.js';
+import { isTypeRef } from '../generated/ast.js';
 
 export class CactalDocumentValidator extends DefaultDocumentValidator {
     private readonly services: CactalServices;
@@ -64,6 +66,12 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                 }
             }
             const message = describeUnresolved(info, refText, linkingError.message);
+            if (isTypeRef(info.container)) {
+                diagnostics.push(this.toDiagnostic(TypeCodes['type-unknown'].severity, message, {
+                    ...base, code: 'type-unknown', data: { code: 'type-unknown', refText }
+                }));
+                continue;
+            }
             diagnostics.push(this.toDiagnostic(SyntaxCodes['linking-error'].severity, message, {
                 ...base,
                 code: DocumentValidator.LinkingError,

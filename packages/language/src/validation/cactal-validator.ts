@@ -10,11 +10,18 @@ import { importChecks } from './import-checks.js';
 import { typeChecks } from './type-checks.js';
 import { moduleChecks } from './module-checks.js';
 import { identifierChecks } from './identifier-checks.js';
+import { schemaChecks } from './schema-checks.js';
+import { parameterisationChecks } from './parameterisation-checks.js';
+import { schedulerChecks } from './scheduler-checks.js';
+import { supervisorChecks } from './supervisor-checks.js';
+import { supervisorRuleChecks } from './supervisor-rule-checks.js';
+import { supervisorActionChecks } from './supervisor-action-checks.js';
 
 export type CheckFactory = (services: CactalServices) => ValidationChecks<CactalAstType>;
 
 /** The check sets, one per area. */
-export const CHECK_FACTORIES: CheckFactory[] = [importChecks, typeChecks, moduleChecks, identifierChecks];
+export const CHECK_FACTORIES: CheckFactory[] = [importChecks, typeChecks, moduleChecks, identifierChecks,
+    schemaChecks, parameterisationChecks, schedulerChecks, supervisorChecks, supervisorRuleChecks, supervisorActionChecks];
 
 export function registerValidationChecks(services: CactalServices): void {
     const registry = services.validation.ValidationRegistry;

@@ -7,14 +7,20 @@ import { syntaxArea } from './syntax.js';
 import { importsArea } from './imports.js';
 import { typesArea } from './types.js';
 import { modulesArea } from './modules.js';
+import { schemasArea } from './schemas.js';
+import { schedulerArea } from './scheduler.js';
+import { supervisorsArea } from './supervisors.js';
 
 export * from './code-table.js';
 export { SyntaxCodes } from './syntax.js';
 export { ImportCodes } from './imports.js';
 export { TypeCodes } from './types.js';
 export { ModuleCodes } from './modules.js';
+export { SchemaCodes } from './schemas.js';
+export { SchedulerCodes } from './scheduler.js';
+export { SupervisorCodes } from './supervisors.js';
 
-export const CODE_AREAS: CodeArea[] = [syntaxArea, importsArea, typesArea, modulesArea];
+export const CODE_AREAS: CodeArea[] = [syntaxArea, importsArea, typesArea, modulesArea, schemasArea, schedulerArea, supervisorsArea];
 
 export function allCodes(): DiagnosticCode[] {
     return CODE_AREAS.flatMap((a) => a.codes);

@@ -15,6 +15,6 @@ export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and 
     'linking-error': {
         severity: 'error',
         description: 'A name or port index that does not resolve in its context: unknown type, module, schema, rule label, variable or field, or a port index that the module does not have with that kind and direction. The message lists what would be valid.',
-        example: 'synchronous module MSA { scheduling { C=1ms; } data flows { out :0 TypeZ x; } }'
+        example: 'periodic schema s() { modules { MZZ (); } }   // no module MZZ'
     }
 });

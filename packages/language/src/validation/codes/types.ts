@@ -12,6 +12,11 @@ export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, va
         description: 'Two fields of a datatype, or two arguments of a function prototype, have the same name.',
         example: 'datatype T {int a, float a};'
     },
+    'type-unknown': {
+        severity: 'error',
+        description: 'A type that is neither a primitive (`int`, `float`, `string`) nor a datatype defined in this file or in a file it imports. (A datatype defined in a file that is not imported gives `import-not-imported` instead.)',
+        example: 'datatype T {TypeZ z};'
+    },
     'type-recursive': {
         severity: 'error',
         description: 'A datatype contains itself, directly or through other datatypes; the message shows the cycle. A C struct cannot contain itself.',

@@ -1,0 +1,17 @@
+#!/usr/bin/env node
+/**
+ * `contract-language-server`: the Cactal language server over stdio (or any transport
+ * vscode-languageserver reads from the command line: --stdio, --node-ipc, --socket=N), for any
+ * LSP editor. Files are read from disk (imports resolve relative to the importing file).
+ */
+import { startLanguageServer } from 'langium/lsp';
+import { NodeFileSystem } from 'langium/node';
+import { createConnection, ProposedFeatures } from 'vscode-languageserver/node.js';
+import { createCactalServices } from '../cactal-module.js';
+
+if (!process.argv.some((a) => a === '--stdio' || a === '--node-ipc' || a.startsWith('--socket') || a.startsWith('--pipe'))) {
+    process.argv.push('--stdio');
+}
+const connection = createConnection(ProposedFeatures.all);
+const { shared } = createCactalServices({ connection, ...NodeFileSystem });
+startLanguageServer(shared);
