@@ -13,11 +13,15 @@
  *    AckID = activation id; deactivation: REQ_STOP to ORD with Data = schema name, same AckID;
  *  - ORD events arrive as REQ_EVENT from module "ORD", source port 0/1, Data = schema name.
  */
-#define _POSIX_C_SOURCE 200809L
+#define _GNU_SOURCE
+#include <sched.h>
+#include <errno.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
+#include <sys/types.h>
 
 #include "contract/vocabulary.h"
 #include "engine_wait.h"
@@ -34,7 +38,6 @@ typedef struct Subscriber {
 
 typedef struct SupBinding {
     const ContractSupervisorVocabulary *v;
-    int warned_priority;
     Subscriber subs[64];
     int nsubs;
 } SupBinding;
@@ -96,17 +99,63 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
                 ContractStrError(rc));
 }
 
-static void b_start_module(void *ctx, const char *m, int prio) {
-    SupBinding *b = ctx;
-    if (!b->warned_priority) {
-        fprintf(stderr, "%s: note: modules started by a supervisor keep their own priority "
-                        "(libmodule cannot set another process's priority; wanted %d for %s)\n",
-                ContractSelfName(), prio, m);
-        b->warned_priority = 1;
+/* Priorities of other modules: libmodule has no call for it, so the engine finds the module's
+   pid in the run directory (<module>.pid, written by libmodule when the module is ready) and
+   applies SCHED_FIFO, or a nice level like ContractSetPriority, when it may. */
+static pid_t module_pid(const char *m) {
+    char path[1024];
+    snprintf(path, sizeof path, "%s/%s.pid", ContractRunDir(), m);
+    FILE *f = fopen(path, "r");
+    long pid = -1;
+    if (f) {
+        if (fscanf(f, "%ld", &pid) != 1) pid = -1;
+        fclose(f);
     }
+    return (pid_t)pid;
+}
+
+static int priority_of(pid_t pid) {
+    int pol = sched_getscheduler(pid);
+    if (pol == SCHED_FIFO || pol == SCHED_RR) {
+        struct sched_param sp;
+        if (sched_getparam(pid, &sp) == 0) return sp.sched_priority;
+        return -1;
+    }
+    errno = 0;
+    int nice_level = getpriority(PRIO_PROCESS, (id_t)pid);
+    if (errno != 0) return -1;
+    return 99 - nice_level * 98 / 19;
+}
+
+static int apply_priority(const char *m, int prio) {
+    pid_t pid = module_pid(m);
+    if (pid <= 0) return -1;
+    int old = priority_of(pid);
+    struct sched_param sp;
+    memset(&sp, 0, sizeof sp);
+    sp.sched_priority = prio < 1 ? 1 : prio > 99 ? 99 : prio;
+    char detail[96];
+    if (sched_setscheduler(pid, SCHED_FIFO, &sp) == 0) {
+        snprintf(detail, sizeof detail, "SCHED_FIFO %d (was %d)", sp.sched_priority, old);
+    } else if (setpriority(PRIO_PROCESS, (id_t)pid, (99 - sp.sched_priority) * 19 / 98) == 0) {
+        snprintf(detail, sizeof detail, "nice for priority %d (was %d)", sp.sched_priority, old);
+    } else {
+        snprintf(detail, sizeof detail, "priority %d not applied: %s", prio, strerror(errno));
+        ContractLog("module_priority", m, -1, 0, detail);
+        return -1;
+    }
+    ContractLog("module_priority", m, -1, 0, detail);
+    return old;
+}
+
+static void b_start_module(void *ctx, const char *m, int prio) {
+    (void)ctx;
     int rc = SendStart(m, ACK_NOTHING, 0);
-    if (rc != CONTRACT_OK)
+    if (rc != CONTRACT_OK) {
         fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+        return;
+    }
+    apply_priority(m, prio);
 }
 
 static void b_stop_module(void *ctx, const char *m) {
@@ -118,11 +167,8 @@ static void b_stop_module(void *ctx, const char *m) {
 }
 
 static int b_set_priority(void *ctx, const char *m, int prio) {
-    char detail[96];
     (void)ctx;
-    snprintf(detail, sizeof detail, "priority %d requested (not applied: other process)", prio);
-    ContractLog("priority", m, -1, 0, detail);
-    return -1;
+    return apply_priority(m, prio);
 }
 
 static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
