@@ -27,6 +27,10 @@ periodic schema s1(TypeA consigne = {0.0, 0.0, 0.0}) {
     scheduling graph { MSC -> MSD; }
     communications { MSC:1 -> MSD :2 * 2; }
 }`,
+    'sched.contract': `import "modules/msc.contract";
+import "modules/msd.contract";
+import "schemas/s1.contract";
+scheduler configuration { modules { MSC; MSD; } schemas { s1; } }`,
     'sup.contract': `import "common/types.contract";
 import "modules/msc.contract";
 import "modules/maa.contract";
