@@ -119,6 +119,10 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   };
 
   const server = createServer((req, res) => void handle(req, res));
+  // The build service's WebSocket event stream (GET /api/jobs/:id/ws) needs the upgrade too.
+  server.on('upgrade', (req, socket, head) => {
+    if (!build?.handleUpgrade?.(req, socket, head)) socket.destroy();
+  });
   const host = options.host ?? '127.0.0.1';
   await new Promise<void>((resolve, reject) => {
     server.once('error', reject);

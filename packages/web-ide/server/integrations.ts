@@ -16,6 +16,7 @@ export interface GenerateReport {
 
 export interface BuildServerLike {
   handle(req: import('node:http').IncomingMessage, res: import('node:http').ServerResponse): boolean | Promise<boolean>;
+  handleUpgrade?(req: import('node:http').IncomingMessage, socket: import('node:stream').Duplex, head: Buffer): boolean;
   close(): Promise<void>;
 }
 

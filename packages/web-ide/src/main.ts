@@ -290,7 +290,8 @@ async function main(): Promise<void> {
   });
   window.addEventListener('beforeunload', () => void workspace.saveAll());
 
-  // ---- start
+  // ---- start: the language worker boots while the workspace files load
+  const lspStarted = lsp.start();
   try {
     await workspace.load();
   } catch (e) {
@@ -300,7 +301,7 @@ async function main(): Promise<void> {
   ui.workspaceName.textContent = workspace.name;
   document.title = `${workspace.name} — ContrACT Studio`;
   explorer.setEntries(workspace.entries);
-  await lsp.start();
+  await lspStarted;
   ui.status.lsp.textContent = '● Cactal language server';
   ui.status.lsp.classList.add('ok');
   const first = workspace.allFiles().find((p) => p.endsWith('supervisor.contract')) ?? workspace.allFiles().find(isContract);

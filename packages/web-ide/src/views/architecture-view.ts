@@ -27,21 +27,27 @@ function toSeconds(t: string | undefined): number | undefined {
   return Number(m[1]) * { ns: 1e-9, us: 1e-6, ms: 1e-3, s: 1 }[m[2] as 'ns']!;
 }
 
+const NODE_W = 210;
+const HEAD = 26;
+const ROW = 20;
+
+/** A module box with fixed port positions: inputs on the left, outputs on the right, parameters on top. */
 function nodeOf(m: ArchModule): ElkNode {
   const ins = m.ports.filter((p) => p.direction === 'in' && p.kind !== 'param');
   const outs = m.ports.filter((p) => p.direction === 'out');
   const params = m.ports.filter((p) => p.kind === 'param');
+  const rowY = (i: number) => HEAD + 8 + i * ROW;
   const ports: ElkPort[] = [
-    ...ins.map((p) => ({ id: portId(m.name, p.kind, 'in', p.index), width: 10, height: 10, layoutOptions: { 'port.side': 'WEST' } })),
-    ...outs.map((p) => ({ id: portId(m.name, p.kind, 'out', p.index), width: 10, height: 10, layoutOptions: { 'port.side': 'EAST' } })),
-    ...params.map((p) => ({ id: portId(m.name, 'param', 'in', p.index), width: 10, height: 10, layoutOptions: { 'port.side': 'NORTH' } })),
+    ...ins.map((p, i) => ({ id: portId(m.name, p.kind, 'in', p.index), x: -5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'WEST' } })),
+    ...outs.map((p, i) => ({ id: portId(m.name, p.kind, 'out', p.index), x: NODE_W - 5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'EAST' } })),
+    ...params.map((p, i) => ({ id: portId(m.name, 'param', 'in', p.index), x: NODE_W / 2 - 5 + i * 16, y: -5, width: 10, height: 10, layoutOptions: { 'port.side': 'NORTH' } })),
   ];
   return {
     id: m.name,
-    width: 190,
-    height: 52 + 18 * Math.max(ins.length, outs.length, 1),
+    width: NODE_W,
+    height: HEAD + 14 + ROW * Math.max(ins.length, outs.length, 1),
     ports,
-    layoutOptions: { 'portConstraints': 'FIXED_ORDER', 'portLabels.placement': 'INSIDE' },
+    layoutOptions: { portConstraints: 'FIXED_POS' },
   };
 }
 
@@ -101,7 +107,7 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
     const m = byName.get(n.id)!;
     const g = svg('g', { transform: `translate(${n.x},${n.y})`, class: `arch-node ${m.kind}`, 'data-module': m.name });
     g.append(svg('rect', { width: n.width!, height: n.height!, rx: 6, class: 'node-box' }));
-    g.append(svg('rect', { width: n.width!, height: 24, rx: 6, class: 'node-head' }));
+    g.append(svg('path', { d: `M0,6 a6,6 0 0 1 6,-6 h${n.width! - 12} a6,6 0 0 1 6,6 v${HEAD - 6} h${-n.width!} z`, class: 'node-head' }));
     g.append(svg('text', { x: 10, y: 17, class: 'node-title' }, m.name));
     g.append(svg('text', { x: n.width! - 10, y: 17, class: 'node-kind', 'text-anchor': 'end' }, `${m.kind === 'synchronous' ? 'sync' : m.kind === 'asynchronous' ? 'async' : m.kind}${m.wcet ? ` · C=${m.wcet}` : ''}`));
     for (const p of n.ports ?? []) {
@@ -110,7 +116,7 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
       g.append(svg('rect', { x: p.x!, y: p.y!, width: 10, height: 10, class: `port ${kind}` }));
       if (!port) continue;
       const label = `:${port.index} ${port.name}`;
-      if (kind === 'param') g.append(svg('text', { x: p.x! + 5, y: p.y! + 22, class: 'port-label param', 'text-anchor': 'middle' }, `⚙${port.index}`));
+      if (kind === 'param') g.append(svg('text', { x: p.x! + 5, y: p.y! - 4, class: 'port-label param', 'text-anchor': 'middle' }, `param :${port.index}`));
       else if (dir === 'in') g.append(svg('text', { x: p.x! + 14, y: p.y! + 9, class: `port-label ${kind}` }, label));
       else g.append(svg('text', { x: p.x! - 4, y: p.y! + 9, class: `port-label ${kind}`, 'text-anchor': 'end' }, label));
     }

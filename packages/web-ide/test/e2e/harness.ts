@@ -24,10 +24,11 @@ export interface Session {
 }
 
 /** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
-export async function startSession(opts: { buildService?: boolean } = {}): Promise<Session> {
+export async function startSession(opts: { buildService?: boolean; empty?: boolean } = {}): Promise<Session> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
   const workspace = join(base, 'tutorial');
-  cpSync(TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
+  if (opts.empty) mkdirSync(workspace);
+  else cpSync(TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
   const server = await startIdeServer({ workspace, port: 0, buildService: opts.buildService ?? true });
   const userDataDir = join(base, 'chromium-profile');
   mkdirSync(userDataDir);

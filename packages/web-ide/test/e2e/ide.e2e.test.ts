@@ -12,17 +12,18 @@ let s: Session;
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const canBuild = await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false);
 
-beforeAll(async () => {
-  s = await startSession();
-  await openIde(s);
-}, 60_000);
-afterAll(async () => {
-  await s?.close();
-});
 
 const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
 
 describe('IDE in headless Chromium', () => {
+  beforeAll(async () => {
+    s = await startSession();
+    await openIde(s);
+  }, 60_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
   it('shows the outline of supervisor.contract, click reveals the symbol', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
@@ -191,18 +192,12 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => disk('datatype.contract'), { timeout: 5000 }).toContain('// typed right before reload');
   });
 
-  it('creates a project from the templates, and creates, renames and deletes files', async () => {
+  it('creates, renames and deletes files and folders from the explorer', async () => {
     const { page } = s;
-    await page.locator('#btn-new-project').click();
+    await page.locator('#btn-new-folder').click();
     await page.locator('.dialog-input').fill('robot2');
     await page.keyboard.press('Enter');
-    await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('robot2/supervisor.contract');
-    for (const f of ['datatype', 'module1', 'module2', 'sched', 'schema', 'supervisor']) expect(existsSync(join(s.workspace, 'robot2', `${f}.contract`))).toBe(true);
-    await page.waitForTimeout(1500);
-    const robotProblems = await page.locator('.problem-row.error[data-path^="robot2/"]').allTextContents();
-    expect(robotProblems).toEqual([]);
-    await shot(page, '07-new-project');
-
+    await expect.poll(() => existsSync(join(s.workspace, 'robot2'))).toBe(true);
     await page.locator('.tree-row[data-path="robot2"]').click();
     await page.locator('#btn-new-file').click();
     await page.locator('.dialog-input').fill('extra.contract');
@@ -222,5 +217,30 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.dialog .btn.danger').click();
     await expect.poll(() => existsSync(join(s.workspace, 'robot2/renamed.contract'))).toBe(false);
     await expect.poll(() => page.locator('.tree-row[data-path="robot2/renamed.contract"]').count()).toBe(0);
+  });
+});
+
+describe('New Project in an empty workspace', () => {
+  let e: Session;
+  beforeAll(async () => {
+    e = await startSession({ empty: true, buildService: false });
+    await openIde(e);
+  }, 60_000);
+  afterAll(async () => {
+    await e?.close();
+  });
+
+  it('creates the six report templates, valid Cactal with no problem', async () => {
+    const { page } = e;
+    await page.locator('#btn-new-project').click();
+    await page.locator('.dialog-input').waitFor();
+    await page.keyboard.press('Enter');
+    await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('supervisor.contract');
+    for (const f of ['datatype', 'module1', 'module2', 'sched', 'schema', 'supervisor']) expect(existsSync(join(e.workspace, `${f}.contract`))).toBe(true);
+    await page.waitForFunction(() => (window as any).__ide.lsp.workspaceBuilt().then(() => true));
+    await page.waitForTimeout(500);
+    expect(await page.locator('.problem-row').allTextContents()).toEqual([]);
+    expect(await page.locator('.outline-row .sym-name').allTextContents()).toContain('MIS');
+    await shot(page, '07-new-project');
   });
 });
