@@ -12,7 +12,7 @@
 #include <unistd.h>
 #include "internal.h"
 
-ContractRuntime g_rt = { .run_dir_fd = -1, .mbx_fd = -1, .tx_fd = -1, .data_tx_fd = -1 };
+ContractRuntime g_rt = { .run_dir_fd = -1, .mbx_fd = -1 };
 
 RTIME GetTime(void)
 {
@@ -153,23 +153,23 @@ int rt_bind_dgram(const char *file, int *fd_out)
     return 0;
 }
 
-int rt_open_tx(void)
+int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock)
 {
-    if (g_rt.tx_fd < 0) {
-        g_rt.tx_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
-        if (g_rt.tx_fd < 0) { rt_error("socket: %s", strerror(errno)); return -1; }
+    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | (nonblock ? SOCK_NONBLOCK : 0), 0);
+    if (fd < 0) return -1;
+    if (!nonblock) {
         struct timeval tv = { SEND_TIMEOUT_MS / 1000, (SEND_TIMEOUT_MS % 1000) * 1000 };
-        setsockopt(g_rt.tx_fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
-        int buf = 4 * 1024 * 1024;
-        setsockopt(g_rt.tx_fd, SOL_SOCKET, SO_SNDBUF, &buf, sizeof buf);
+        setsockopt(fd, SOL_SOCKET, SO_SNDTIMEO, &tv, sizeof tv);
     }
-    if (g_rt.data_tx_fd < 0) {
-        g_rt.data_tx_fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | SOCK_NONBLOCK, 0);
-        if (g_rt.data_tx_fd < 0) { rt_error("socket: %s", strerror(errno)); return -1; }
-        int buf = 4 * 1024 * 1024;
-        setsockopt(g_rt.data_tx_fd, SOL_SOCKET, SO_SNDBUF, &buf, sizeof buf);
+    int buf = 4 * 1024 * 1024;
+    setsockopt(fd, SOL_SOCKET, SO_SNDBUF, &buf, sizeof buf);
+    if (connect(fd, (const struct sockaddr *)sa, len) != 0) {
+        int e = errno;
+        close(fd);
+        errno = e;
+        return -1;
     }
-    return 0;
+    return fd;
 }
 
 int rt_errno_to_code(int err)
@@ -272,8 +272,7 @@ void ContractShutdown(void)
     rt_dataflow_teardown();
     rt_eventflow_teardown();
     if (g_rt.mbx_fd >= 0) { close(g_rt.mbx_fd); g_rt.mbx_fd = -1; }
-    if (g_rt.tx_fd >= 0) { close(g_rt.tx_fd); g_rt.tx_fd = -1; }
-    if (g_rt.data_tx_fd >= 0) { close(g_rt.data_tx_fd); g_rt.data_tx_fd = -1; }
+    rt_close_peers();
     remove_created_files();
     while (g_rt.pending_head) {
         Pending *p = g_rt.pending_head;
@@ -301,7 +300,6 @@ int ContractClientInit(const char *name)
     char file[CONTRACT_NAME_MAX + 8];
     snprintf(file, sizeof file, "%s.mbx", name);
     if (rt_bind_dgram(file, &g_rt.mbx_fd) != 0) return -1;
-    if (rt_open_tx() != 0) return -1;
     static int registered = 0;
     if (!registered) { atexit(shutdown_at_exit); registered = 1; }
     return 0;

@@ -48,7 +48,7 @@ int rt_dataflow_setup(void)
 
 static void free_list(Subscriber *s)
 {
-    while (s) { Subscriber *n = s->next; free(s); s = n; }
+    while (s) { Subscriber *n = s->next; if (s->fd >= 0) close(s->fd); free(s); s = n; }
 }
 
 void rt_dataflow_teardown(void)
@@ -141,7 +141,6 @@ int PostData(void *var)
     int p = find_produce_var(var);
     if (p < 0) { rt_error("PostData: this address is not the variable of an output data port (IPRODUCE)"); return -1; }
     const ModuleProduce *o = &g_rt.iproduce[p];
-    if (rt_open_tx() != 0) return -1;
     DataHeader h;
     memset(&h, 0, sizeof h);
     snprintf(h.producer, sizeof h.producer, "%s", g_rt.name);
@@ -156,12 +155,16 @@ int PostData(void *var)
         struct iovec iov[3] = { { &pre, sizeof pre }, { &h, sizeof h }, { var, o->Size } };
         struct msghdr mh;
         memset(&mh, 0, sizeof mh);
-        mh.msg_name = &s->addr;
-        mh.msg_namelen = s->addrlen;
         mh.msg_iov = iov;
         mh.msg_iovlen = 3;
-        ssize_t r;
-        do r = sendmsg(g_rt.data_tx_fd, &mh, MSG_DONTWAIT | MSG_NOSIGNAL); while (r < 0 && errno == EINTR);
+        ssize_t r = -1;
+        for (int attempt = 0; attempt < 2; attempt++) {
+            if (s->fd < 0 && (s->fd = rt_connect_peer(&s->addr, s->addrlen, 1)) < 0) break;
+            do r = sendmsg(s->fd, &mh, MSG_DONTWAIT | MSG_NOSIGNAL); while (r < 0 && errno == EINTR);
+            if (r >= 0 || (errno != ECONNREFUSED && errno != ENOTCONN && errno != ECONNRESET)) break;
+            close(s->fd); /* the consumer restarted or died: reconnect once */
+            s->fd = -1;
+        }
         char detail[96];
         if (r < 0) {
             snprintf(detail, sizeof detail, "to_port=%d %s", s->port,
@@ -189,6 +192,7 @@ int SubscribeUser(int sourcePort, const char *targetModule, int targetPort, int 
     if (!s) {
         s = calloc(1, sizeof *s);
         if (!s) { rt_error("out of memory"); return -1; }
+        s->fd = -1;
         if (rt_module_addr(targetModule, suffix, &s->addr, &s->addrlen) != 0) {
             rt_error("subscribe: invalid consumer name '%s'", targetModule);
             free(s);
@@ -218,6 +222,7 @@ int UnsubscribeUser(int sourcePort, const char *targetModule, int targetPort)
         if (strcmp((*it)->module, targetModule) == 0 && (*it)->port == targetPort) {
             Subscriber *gone = *it;
             *it = gone->next;
+            if (gone->fd >= 0) close(gone->fd);
             free(gone);
             char detail[32];
             snprintf(detail, sizeof detail, "to_port=%d", targetPort);

@@ -29,6 +29,7 @@ typedef struct Subscriber {
     long base;         /* producer's activations when subscribed */
     struct sockaddr_un addr;
     socklen_t addrlen;
+    int fd;            /* connected sender socket, -1 until first use */
 } Subscriber;
 
 typedef struct Pending { struct Pending *next; RequestMessage msg; } Pending;
@@ -39,8 +40,6 @@ typedef struct {
     int run_dir_fd;         /* O_PATH fd, for socket paths longer than sun_path */
     int run_dir_created;    /* we created it (fresh dir under /tmp) */
     int mbx_fd;
-    int tx_fd;              /* requests: blocking with SO_SNDTIMEO */
-    int data_tx_fd;         /* data: non-blocking */
     int is_module;          /* interface tables bound */
     ModuleUse *iuse; ModuleProduce *iproduce; ModuleReact *ireact; ModuleDetect *idetect;
     size_t *param_in; size_t *param_out;
@@ -56,8 +55,8 @@ typedef struct {
     int running;
     char created[8][PATH_MAX]; /* files to remove at exit */
     int n_created;
-    FILE *log;
     RTIME log_dirty_since;  /* 0 = nothing unflushed */
+    RTIME mbx_rcvtimeo;     /* SO_RCVTIMEO currently set on the mailbox (0 = none) */
 } ContractRuntime;
 
 extern ContractRuntime g_rt;
@@ -68,7 +67,9 @@ int rt_init_run_dir(void);
 int rt_addr(const char *file, struct sockaddr_un *sa, socklen_t *len);
 int rt_module_addr(const char *module, const char *suffix, struct sockaddr_un *sa, socklen_t *len);
 int rt_bind_dgram(const char *file, int *fd_out);
-int rt_open_tx(void);
+/* A datagram socket connected to sa (the path is resolved once, not at every send). */
+int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock);
+void rt_close_peers(void);
 void rt_register_file(const char *file);
 int rt_errno_to_code(int err);
 void rt_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
@@ -82,6 +83,7 @@ int rt_send_request_to(const char *module, RequestMessage *msg);
 
 /* csvlog.c */
 int rt_log_open(void);
+int rt_log_enabled(void);
 void rt_log_close(void);
 void rt_log_maybe_flush(RTIME now);
 

@@ -62,7 +62,7 @@ int main(int argc, char *argv[])
     char file[CONTRACT_NAME_MAX + 8];
     snprintf(file, sizeof file, "%s.mbx", g_rt.name);
     if (rt_bind_dgram(file, &g_rt.mbx_fd) != 0) return 2;
-    if (rt_open_tx() != 0 || rt_dataflow_setup() != 0 || rt_eventflow_setup() != 0) return 2;
+    if (rt_dataflow_setup() != 0 || rt_eventflow_setup() != 0) return 2;
     rt_log_open();
     char detail[64];
     snprintf(detail, sizeof detail, "pid=%ld priority=%d", (long)getpid(), MODULE_PRIORITY);

@@ -196,3 +196,12 @@ void test_ord_cyclic_graph_refused(void) {
     CHECK(ord_core_create(&v, NULL, err, sizeof err) == NULL);
     CHECK(strstr(err, "CYC") && strstr(err, "cycle"));
 }
+
+void test_ord_schema_module_not_in_configuration_refused(void) {
+    static const ContractSchema *const s[] = {&DIA};
+    static const ContractOrdModule only_a[] = {{"A", 50, 0}};
+    ContractOrdVocabulary v = {CONTRACT_VOCABULARY_VERSION, 1, only_a, 1, s, 0, NULL};
+    char err[256] = "";
+    CHECK(ord_core_create(&v, NULL, err, sizeof err) == NULL);
+    CHECK(strstr(err, "schema DIA uses module B, which the scheduler configuration does not list") != NULL);
+}
