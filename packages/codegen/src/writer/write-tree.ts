@@ -91,6 +91,11 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
                 report.filesWritten++;
                 continue;
             }
+            if (existing === generated) {
+                // identical to the fresh output: nothing to merge (every region holds the default)
+                report.unchanged.push(file.path);
+                continue;
+            }
             const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)));
             if (merged.orphans.length > 0) {
                 const orphan = writeOrphan(outDir, file.path, regionOrphanText(file.path, existing, merged.orphans));
