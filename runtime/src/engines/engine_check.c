@@ -8,6 +8,9 @@
 
 #include "contract/vocabulary.h"
 
+/* a parameter block travels in one request (libmodule: 16384 bytes, minus the binary-args tag) */
+#define CONTRACT_MAX_ARGS_SIZE (16384 - 5)
+
 typedef struct Ctx {
     char *err;
     size_t errlen;
@@ -157,9 +160,17 @@ int contract_check_ord_vocabulary(const ContractOrdVocabulary *v, char *err, siz
     for (int i = 0; i < v->nmodules; i++)
         if (!v->modules[i].name) return fail(&x, "module %d has no name", i);
     for (int i = 0; i < v->nschemas; i++) {
-        if (check_schema(&x, v->schemas[i])) return -1;
-        if (v->schemas[i]->kind != CONTRACT_SCHEMA_PERIODIC)
-            return fail(&x, "schema %s is not periodic", v->schemas[i]->name);
+        const ContractSchema *s = v->schemas[i];
+        if (check_schema(&x, s)) return -1;
+        if (s->kind != CONTRACT_SCHEMA_PERIODIC) return fail(&x, "schema %s is not periodic", s->name);
+        for (int m = 0; m < s->nmodules && v->nmodules > 0; m++) {
+            int listed = 0;
+            for (int k = 0; k < v->nmodules; k++)
+                if (strcmp(v->modules[k].name, s->modules[m].module) == 0) listed = 1;
+            if (!listed)
+                return fail(&x, "schema %s uses module %s, which the scheduler configuration does not list",
+                            s->name, s->modules[m].module);
+        }
     }
     for (int i = 0; i < v->nsupervisors; i++)
         if (!v->supervisors[i]) return fail(&x, "supervisor %d has no name", i);
@@ -240,6 +251,9 @@ static int check_action(Ctx *x, const ContractSupervisorVocabulary *v, const Con
     case CONTRACT_ACT_SCHEMA:
         if (!a->schema) return fail(x, "activate schema without a schema");
         if (check_schema(x, a->schema)) return -1;
+        if (a->schema->params_size > CONTRACT_MAX_ARGS_SIZE)
+            return fail(x, "the parameters of %s take %zu bytes, more than a request carries (%d)",
+                        a->schema->name, a->schema->params_size, CONTRACT_MAX_ARGS_SIZE);
         return check_assigns(x, a->assigns, a->nassigns, a->schema->nparams, &l, "schema parameter");
     case CONTRACT_ACT_PARAMETERIZE:
         if (!a->module) return fail(x, "parameterize without a module");
@@ -250,6 +264,10 @@ static int check_action(Ctx *x, const ContractSupervisorVocabulary *v, const Con
         if (check_vars(x, a->callee->params, a->callee->nparams, a->callee->params_size,
                        "callee parameter"))
             return -1;
+        if (a->callee->params_size > CONTRACT_MAX_ARGS_SIZE)
+            return fail(x, "the parameters of %s.%s take %zu bytes, more than a request carries (%d)",
+                        a->callee->supervisor, a->callee->function, a->callee->params_size,
+                        CONTRACT_MAX_ARGS_SIZE);
         return check_assigns(x, a->assigns, a->nassigns, a->callee->nparams, &l, "callee parameter");
     case CONTRACT_ACT_RESTTIME_MODULE:
     case CONTRACT_ACT_CRITICAL_MODULE:

@@ -181,6 +181,10 @@ int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *param
     }
     const ContractSchema *s = ss->s;
     engine_init_block(ss->params, s->params, s->nparams);
+    if (params && size != s->params_size)
+        trace(c, "warning: %s activated with %zu parameter bytes, its tables say %zu (tables of ORD "
+                 "and %s from different generations?)", name, size, s->params_size,
+              requester ? requester : "the requester");
     if (params) memcpy(ss->params, params, size < s->params_size ? size : s->params_size);
     EngineScope scope;
     memset(&scope, 0, sizeof scope);
