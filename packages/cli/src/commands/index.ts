@@ -2,5 +2,6 @@
 import type { Command } from '../command.js';
 import { checkCommand } from './check.js';
 import { generateCommand } from './generate.js';
+import { serveCommand } from './serve.js';
 
-export const COMMANDS: Command[] = [checkCommand, generateCommand];
+export const COMMANDS: Command[] = [checkCommand, generateCommand, serveCommand];

@@ -1,0 +1,40 @@
+/**
+ * `contract serve [DIR] [--port N] [--host ADDR]`: the web IDE and the build service on one
+ * localhost port, opening the workspace folder DIR (default: the repository's tutorial example).
+ * The server lives in @contract-studio/web-ide (loaded at run time, so `contract check` etc. do
+ * not pay for it). Runs until Ctrl+C; exit 1 when it cannot start (port in use, no folder), 2 on bad usage.
+ */
+import { existsSync } from 'node:fs';
+import { resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { EXIT_FAILURE, type CliIO, type Command } from '../command.js';
+
+const TUTORIAL = fileURLToPath(new URL('../../../../examples/tutorial', import.meta.url));
+
+interface WebIde {
+    runServe(argv: string[], defaultDir: string): Promise<number>;
+}
+
+export const serveCommand: Command = {
+    name: 'serve',
+    summary: 'serve the web IDE + build service on a workspace folder (localhost)',
+    usage: [
+        'usage: contract serve [DIR] [--port N] [--host ADDR]',
+        '  DIR: workspace folder (default: the tutorial example)',
+        '  --port: TCP port (default 7400; 0 = any free port); the URL is printed on start',
+        '  --host: address to bind (default 127.0.0.1; anything else is reachable from other machines)',
+    ].join('\n'),
+    async run(args: string[], io: CliIO): Promise<number> {
+        let ide: WebIde;
+        try {
+            const name = '@contract-studio/web-ide';
+            ide = (await import(name)) as WebIde;
+        } catch (err) {
+            io.err(`contract serve: the web IDE is not built (${err instanceof Error ? err.message.split('\n')[0] : String(err)}); run \`npm run build\` at the repository root\n`);
+            return EXIT_FAILURE;
+        }
+        const argv = args.map((a, i) => (!a.startsWith('-') && !['--port', '-p', '--host'].includes(args[i - 1] ?? '') ? resolve(io.cwd, a) : a));
+        const fallback = existsSync(TUTORIAL) ? TUTORIAL : io.cwd;
+        return ide.runServe(argv, fallback);
+    },
+};
