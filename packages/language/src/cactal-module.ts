@@ -11,6 +11,7 @@ import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
 import { ImportResolver } from './scoping/import-resolver.js';
 import { CactalDocumentValidator } from './validation/cactal-document-validator.js';
 import { registerValidationChecks } from './validation/cactal-validator.js';
+import { CactalLspModule } from './lsp/cactal-lsp-module.js';
 
 /** Services added by the Cactal language on top of Langium's. */
 export type CactalAddedServices = {
@@ -58,6 +59,7 @@ export function createCactalServices(
         createDefaultModule({ shared }),
         CactalGeneratedModule,
         CactalModule,
+        CactalLspModule,
         ...extra
     );
     shared.ServiceRegistry.register(Cactal);

@@ -12,10 +12,10 @@
  * Safety: a document with syntax errors is not formatted, and the result is re-lexed and compared
  * with the input's tokens; any difference (other than the event-mode spelling) cancels formatting.
  */
-import { CstUtils, type CstNode, type LangiumDocument } from 'langium';
+import { CstUtils, isLeafCstNode, type CstNode, type LangiumDocument } from 'langium';
 import type { Formatter } from 'langium/lsp';
 import type { IToken } from 'chevrotain';
-import type { DocumentOnTypeFormattingOptions, TextEdit } from 'vscode-languageserver-types';
+import type { DocumentOnTypeFormattingOptions, TextEdit } from 'vscode-languageserver-protocol';
 import { isRule, isModel, type Model } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 
@@ -32,6 +32,8 @@ const BLOCK_TYPES = new Set([
 const SPACE_BEFORE_PAREN = new Set(['=', '==', '!=', '<', '>', '<=', '>=', '|', '&', 'and', 'or', '->', '=*', '=>', '==*', '==>', '*']);
 
 /** Containers in which `X:N` is written without spaces (a module's port, an `ORD:n` event, a rule label). */
+const EVENT_MODES = new Set(['=*', '=>', '==*', '==>']);
+
 const TIGHT_COLON = new Set(['DataCommunication', 'EventCommunication', 'ModuleEvent', 'Rule']);
 
 type Layout = 'none' | 'space' | 'newline' | 'blank';
@@ -82,7 +84,7 @@ export class CactalFormatter implements Formatter {
 
         const leaves = new Map<number, CstNode>();
         for (const node of CstUtils.streamCst(root)) {
-            if (CstUtils.isLeafCstNode(node) && !node.hidden) leaves.set(node.offset, node);
+            if (isLeafCstNode(node) && !node.hidden) leaves.set(node.offset, node);
         }
         const items: Item[] = [
             ...lexed.tokens.map((token) => ({ token, comment: false, leaf: leaves.get(token.startOffset), text: token.image })),
@@ -90,9 +92,7 @@ export class CactalFormatter implements Formatter {
         ].sort((a, b) => a.token.startOffset - b.token.startOffset);
         if (items.some((i) => !i.comment && !i.leaf)) return undefined;
         for (const item of items) {
-            if (!item.comment && item.leaf?.astNode.$type === 'EventCommunication' || item.leaf?.astNode.$type === 'Subscribe') {
-                if (item.text === '==*' || item.text === '==>') item.text = item.text.slice(1);
-            }
+            if (!item.comment && (item.text === '==*' || item.text === '==>')) item.text = item.text.slice(1);
         }
         const out = layout(items, text, (parseResult.value as Model));
         return sameTokens(this.services, text, out) ? out : undefined;
@@ -125,8 +125,8 @@ function layout(items: Item[], source: string, model: Model): string {
             } else if (prev) {
                 // own-line comment: a top-level element's blank line goes before its leading comments
                 const nextReal = items.slice(i + 1).find((x) => !x.comment);
-                const blank = newlines >= 2 || (!prev.comment && nextReal !== undefined && firstOfElement.has(nextReal.token.startOffset) && prevReal !== undefined);
-                out += (blank ? '\n\n' : '\n') + INDENT.repeat(Math.max(0, depth - (nextReal && isBlockClose(nextReal) && prev.comment === false && false ? 1 : 0))) + item.text;
+                const blank = (newlines >= 2 && !(prev === prevReal && isBlockOpen(prev))) || (!prev.comment && nextReal !== undefined && firstOfElement.has(nextReal.token.startOffset) && prevReal !== undefined);
+                out += (blank ? '\n\n' : '\n') + INDENT.repeat(depth) + item.text;
             } else {
                 out += item.text;
             }
@@ -142,9 +142,9 @@ function layout(items: Item[], source: string, model: Model): string {
         let kind: Layout = prevReal ? decide(prevReal, item, firstOfElement, lastOfStatement) : 'none';
         if (isBlockClose(item)) depth = Math.max(0, depth - 1);
         if (prev?.comment) {
-            if (newlineRequired || kind === 'newline' || kind === 'blank') kind = newlines >= 2 ? 'blank' : 'newline';
+            if (newlineRequired || kind === 'newline' || kind === 'blank') kind = newlines >= 2 && !isBlockClose(item) ? 'blank' : 'newline';
             else kind = 'space';
-        } else if (kind === 'newline' && newlines >= 2) {
+        } else if (kind === 'newline' && newlines >= 2 && !isBlockOpen(prevReal!) && !isBlockClose(item)) {
             kind = 'blank';
         }
         newlineRequired = false;
@@ -167,7 +167,7 @@ function layout(items: Item[], source: string, model: Model): string {
 function lastLeafOffset(cst: CstNode): number {
     let last = cst.offset;
     for (const node of CstUtils.streamCst(cst)) {
-        if (CstUtils.isLeafCstNode(node) && !node.hidden) last = node.offset;
+        if (isLeafCstNode(node) && !node.hidden) last = node.offset;
     }
     return last;
 }
@@ -199,7 +199,7 @@ function spacing(a: Item, b: Item): Layout {
     if (at === 'ModuleEvent' && a.text === '<') return 'none';
     if (b.text === ':') {
         if (bt && TIGHT_COLON.has(bt)) return 'none';
-        if (bt === 'Subscribe' && a.leaf && !a.leaf.grammarSource?.$type.includes('Keyword')) return 'none';
+        if (bt === 'Subscribe' && !EVENT_MODES.has(a.text)) return 'none';
         return 'space';
     }
     if (a.text === ':') return 'none';
@@ -222,16 +222,15 @@ function isBlockClose(item: Item): boolean {
 function ruleBracket(item: Item): 'pre-open' | 'pre-close' | 'post-open' | 'post-close' | undefined {
     const node = item.leaf?.astNode;
     if (!isRule(node) || (item.text !== '[' && item.text !== ']')) return undefined;
-    const postStart = node.postcondition?.$cstNode?.offset ?? Number.POSITIVE_INFINITY;
-    const pre = item.token.startOffset < postStart - 1 && (node.precondition?.$cstNode?.end ?? 0) >= item.token.startOffset - 1 ? true : item.token.startOffset < postStart - 1;
-    if (item.text === '[') return pre ? 'pre-open' : 'post-open';
-    return item.token.startOffset > postStart ? 'post-close' : 'pre-close';
+    const offset = item.token.startOffset;
+    if (item.text === '[') return offset < (node.precondition?.$cstNode?.offset ?? Number.POSITIVE_INFINITY) ? 'pre-open' : 'post-open';
+    return offset < (node.postcondition?.$cstNode?.offset ?? Number.POSITIVE_INFINITY) ? 'pre-close' : 'post-close';
 }
 
 function firstLeaf(cst: CstNode | undefined): CstNode | undefined {
     if (!cst) return undefined;
     for (const node of CstUtils.streamCst(cst)) {
-        if (CstUtils.isLeafCstNode(node) && !node.hidden) return node;
+        if (isLeafCstNode(node) && !node.hidden) return node;
     }
     return undefined;
 }

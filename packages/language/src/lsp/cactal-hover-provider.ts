@@ -11,12 +11,12 @@ import {
     isParameter, isPort, isRule, isSchema, isSchemaParameter, isSupervisionFunction, isSupervisor,
     type Module, type Port, type Schema, type Supervisor, type TypeRef, type Value
 } from '../generated/ast.js';
-import { computeTimeNs, criticalDelayNs, parametersOf } from '../model/blocks.js';
+import { computeTimeNs, parametersOf } from '../model/blocks.js';
 import { portKind, portsOf } from '../model/ports.js';
 import { formatNanoseconds } from '../model/time.js';
 import { typeRefText } from '../model/types.js';
 import { defaultValue, effectiveValue, formatConstant } from '../model/values.js';
-import { schemaTiming } from './schema-timing.js';
+import { schemaModules, schemaTiming } from '../validation/timing-analysis.js';
 
 export class CactalHoverProvider extends AstNodeHoverProvider {
     protected override getAstNodeHoverContent(node: AstNode): MaybePromise<string | undefined> {
@@ -107,16 +107,18 @@ function schemaHover(schema: Schema): string[] {
     const parts = [code(`${schema.kind} schema ${schema.name}(${schema.parameters.map((p) => `${typeRefText(p.type)} ${p.name}`).join(', ')})`)];
     if (schema.kind !== 'periodic') return parts;
     const timing = schemaTiming(schema);
-    const delay = criticalDelayNs(schema);
+    const delay = timing.criticalDelayNs;
+    const path = timing.criticalPath;
     const figures = [
         `PERIOD = ${timing.periodNs !== undefined ? formatNanoseconds(timing.periodNs) : 'not given'}` +
             (delay !== undefined ? `, CRITICAL_DELAY = ${formatNanoseconds(delay)}` : ''),
         `utilisation: ${timing.utilisation !== undefined ? `${formatPercent(timing.utilisation)} (sum C = ${formatNanoseconds(timing.totalComputeNs)})` : 'unknown (no PERIOD)'}`,
-        timing.criticalPathNs !== undefined
-            ? `critical path: ${formatNanoseconds(timing.criticalPathNs)} (${timing.criticalPath.join(' -> ') || 'no module'})`
-            : 'critical path: unknown (the scheduling graph has a cycle)'
+        path
+            ? `critical path: ${formatNanoseconds(path.ns)} (${path.modules.map((m) => m.name).join(' -> ')})`
+            : 'critical path: none (no module, or the scheduling graph has a cycle)'
     ];
-    if (timing.missingC.length) figures.push(`without C: ${timing.missingC.join(', ')}`);
+    const missingC = schemaModules(schema).filter((m) => computeTimeNs(m) === undefined).map((m) => m.name);
+    if (missingC.length) figures.push(`without C: ${missingC.join(', ')}`);
     parts.push(figures.map((f) => `- ${f}`).join('\n'));
     return parts;
 }

@@ -1,0 +1,44 @@
+/**
+ * Rename across files (SPEC §2.7): modules, supervisors, datatypes, fields, functions, schemas and
+ * their parameters, supervision functions, rule labels, ports' and parameters' variables, locals.
+ * The new name is checked first (identifier, keywords, `[A-Z]{3}` for modules and supervisors,
+ * clashes); a refused name answers the request with an error message the editor shows.
+ */
+import { CstUtils, type AstNode, type Grammar, type IndexManager, type LangiumDocument, type LangiumDocuments } from 'langium';
+import { DefaultRenameProvider } from 'langium/lsp';
+import { LSPErrorCodes, ResponseError, type RenameParams, type WorkspaceEdit } from 'vscode-languageserver-protocol';
+import type { CactalServices } from '../cactal-module.js';
+import { renameProblem } from './name-rules.js';
+import { renameEdits } from './rename-edits.js';
+
+export class CactalRenameProvider extends DefaultRenameProvider {
+    private readonly documents: LangiumDocuments;
+    private readonly index: IndexManager;
+    private readonly grammar: Grammar;
+
+    constructor(services: CactalServices) {
+        super(services);
+        this.documents = services.shared.workspace.LangiumDocuments;
+        this.index = services.shared.workspace.IndexManager;
+        this.grammar = services.Grammar;
+    }
+
+    override async rename(document: LangiumDocument, params: RenameParams): Promise<WorkspaceEdit | undefined> {
+        const target = this.targetAt(document, document.textDocument.offsetAt(params.position));
+        if (!target) return undefined;
+        if (target.name === params.newName) return { changes: {} };
+        const problem = renameProblem(target, params.newName, this.grammar, this.index);
+        if (problem) throw new ResponseError(LSPErrorCodes.RequestFailed, problem);
+        return renameEdits(this.references, this.documents, target, params.newName);
+    }
+
+    /** The named element a position designates (its name, or a reference to it). */
+    targetAt(document: LangiumDocument, offset: number): (AstNode & { name?: string }) | undefined {
+        const root = document.parseResult.value.$cstNode;
+        if (!root) return undefined;
+        const leaf = CstUtils.findDeclarationNodeAtOffset(root, offset, this.grammarConfig.nameRegexp);
+        if (!leaf) return undefined;
+        const target = this.references.findDeclarations(leaf)[0] as (AstNode & { name?: string }) | undefined;
+        return target && typeof target.name === 'string' ? target : undefined;
+    }
+}

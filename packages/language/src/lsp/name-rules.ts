@@ -1,0 +1,101 @@
+/**
+ * Which new names a rename may give (SPEC §2.3 naming rules): a Cactal identifier that is not a
+ * keyword of Cactal or C; modules and supervisors exactly three upper-case letters (not `ORD`);
+ * no clash with a sibling member or with another top-level element of the same family.
+ */
+import { AstUtils, GrammarAST, type AstNode, type Grammar, type IndexManager } from 'langium';
+import {
+    isDataType, isField, isFunctionPrototype, isLocalVariable, isModel, isModule, isParameter, isPort, isRule, isSchema,
+    isSupervisionFunction, isSupervisor, isFunctionParameter, isSchemaParameter, isFunctionArgument
+} from '../generated/ast.js';
+import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
+import { portsOf } from '../model/ports.js';
+import { C_KEYWORDS } from '../validation/identifier-checks.js';
+
+const IDENTIFIER = /^[A-Za-z][A-Za-z0-9_]*$/;
+const MODULE_NAME = /^[A-Z]{3}$/;
+
+/** The word Cactal uses for a kind of named element in messages. */
+export function kindWord(node: AstNode): string {
+    const words: Record<string, string> = {
+        DataType: 'datatype', Field: 'field', FunctionPrototype: 'function', FunctionArgument: 'argument',
+        Module: 'module', Parameter: 'parameter', Port: 'port', Schema: 'schema', SchemaParameter: 'schema parameter',
+        Supervisor: 'supervisor', SupervisionFunction: 'supervision function', FunctionParameter: 'parameter',
+        LocalVariable: 'local', Rule: 'rule label'
+    };
+    return words[node.$type] ?? 'element';
+}
+
+const keywordCache = new WeakMap<Grammar, Set<string>>();
+
+/** Alphabetic keywords of the grammar (they cannot be identifiers, except where a rule allows them). */
+export function grammarKeywords(grammar: Grammar): Set<string> {
+    let words = keywordCache.get(grammar);
+    if (!words) {
+        words = alphabeticKeywords(grammar);
+        keywordCache.set(grammar, words);
+    }
+    return words;
+}
+
+function alphabeticKeywords(node: AstNode): Set<string> {
+    return new Set(AstUtils.streamAllContents(node).filter(GrammarAST.isKeyword).map((k) => k.value).filter((v) => /^[A-Za-z_]\w*$/.test(v)));
+}
+
+/** Keywords the grammar accepts as the name of a node of `type` (its `name=` calls a data type rule such as `Name`). */
+function keywordsAllowedAsName(grammar: Grammar, type: string): Set<string> {
+    const rule = grammar.rules.find((r) => GrammarAST.isParserRule(r) && r.name === type);
+    if (!rule) return new Set();
+    const assignment = AstUtils.streamAllContents(rule).filter(GrammarAST.isAssignment).find((a) => a.feature === 'name');
+    const terminal = assignment?.terminal;
+    const called = GrammarAST.isRuleCall(terminal) ? terminal.rule.ref : undefined;
+    return GrammarAST.isParserRule(called) ? alphabeticKeywords(called) : new Set();
+}
+
+/** Names of the members that share a namespace with `node` (itself excluded). */
+function siblingNames(node: AstNode): string[] {
+    const owner = node.$container;
+    let members: Array<{ name?: string }> = [];
+    if (isField(node) && isDataType(owner)) members = owner.fields;
+    else if (isFunctionArgument(node) && isFunctionPrototype(owner)) members = owner.args;
+    else if (isParameter(node) || isPort(node)) {
+        const holder = AstUtils.getContainerOfType(node, (n) => isModule(n) || isSupervisor(n));
+        if (isModule(holder)) members = [...parametersOf(holder), ...portsOf(holder).map((p) => p.port)];
+        else if (isSupervisor(holder)) members = portsOf(holder).map((p) => p.port);
+    } else if (isSchemaParameter(node) && isSchema(owner)) members = owner.parameters;
+    else if (isSupervisionFunction(node) && isSupervisor(owner)) members = owner.functions;
+    else if (isFunctionParameter(node) || isLocalVariable(node)) {
+        const fn = AstUtils.getContainerOfType(node, isSupervisionFunction);
+        if (fn) members = [...fn.parameters, ...localsOf(fn)];
+    } else if (isRule(node)) {
+        const fn = AstUtils.getContainerOfType(node, isSupervisionFunction);
+        if (fn) members = rulesOf(fn);
+    }
+    return members.filter((m) => m !== node).flatMap((m) => (m.name ? [m.name] : []));
+}
+
+/** Why `newName` cannot name `node`, or undefined when it can. */
+export function renameProblem(node: AstNode & { name?: string }, newName: string, grammar: Grammar, index: IndexManager): string | undefined {
+    const what = kindWord(node);
+    if (!IDENTIFIER.test(newName)) {
+        return `'${newName}' is not a valid name: a ${what} name starts with a letter and has only letters, digits and '_'.`;
+    }
+    if (grammarKeywords(grammar).has(newName) && !keywordsAllowedAsName(grammar, node.$type).has(newName)) {
+        return `'${newName}' is a Cactal keyword and cannot name a ${what}.`;
+    }
+    if (C_KEYWORDS.has(newName)) return `'${newName}' is a C keyword and the generated C uses Cactal names as they are.`;
+    if (isModule(node) || isSupervisor(node)) {
+        if (newName === 'ORD') return `'ORD' is the scheduler's name and cannot name a ${what}.`;
+        if (!MODULE_NAME.test(newName)) return `'${newName}' is not a valid ${what} name: module and supervisor names are exactly three upper-case letters (A-Z).`;
+        const clash = [...index.allElements('Module'), ...index.allElements('Supervisor')].find((d) => d.name === newName && d.node !== node);
+        if (clash) return `'${newName}' already names a module or supervisor (in ${clash.documentUri.path.split('/').pop()}); names are unique across the project.`;
+        return undefined;
+    }
+    if (isModel(node.$container)) {
+        const clash = index.allElements(node.$type).find((d) => d.name === newName && d.node !== node);
+        if (clash) return `'${newName}' already names a ${what} (in ${clash.documentUri.path.split('/').pop()}).`;
+        return undefined;
+    }
+    if (siblingNames(node).includes(newName)) return `'${newName}' is already used by another member next to this ${what}.`;
+    return undefined;
+}

@@ -1,0 +1,25 @@
+/**
+ * The text edits that rename a named element everywhere (its declaration and every reference in
+ * every file). Port and parameter references written as their index (`MSC:1`, `(v :0)`) designate
+ * the port by number, not by name: only the segments whose text is the old name are replaced.
+ */
+import type { AstNode, LangiumDocuments, References } from 'langium';
+import type { TextEdit, WorkspaceEdit } from 'vscode-languageserver-types';
+
+export function renameEdits(references: References, documents: LangiumDocuments, target: AstNode & { name?: string }, newName: string): WorkspaceEdit {
+    const changes: Record<string, TextEdit[]> = {};
+    const oldName = target.name;
+    if (!oldName) return { changes };
+    const seen = new Set<string>();
+    for (const ref of references.findReferences(target, { includeDeclaration: true })) {
+        const uri = ref.sourceUri.toString();
+        const key = `${uri}#${ref.segment.offset}`;
+        if (seen.has(key)) continue;
+        seen.add(key);
+        const doc = documents.hasDocument(ref.sourceUri) ? documents.getDocument(ref.sourceUri) : undefined;
+        const text = doc?.textDocument.getText().slice(ref.segment.offset, ref.segment.end);
+        if (text !== oldName) continue; // a reference by index
+        (changes[uri] ??= []).push({ range: ref.segment.range, newText: newName });
+    }
+    return { changes };
+}
