@@ -1,0 +1,173 @@
+/**
+ * SPEC §2.6, rules and conditions: rules never use the function's parameters; ORD events and
+ * `ord_schema`; test operands of the same type; extraction targets are locals and values fit them;
+ * the report's rule hygiene warnings (§4.7): endof(L) in L's postcondition, started/duration(L) in
+ * L's precondition, clauses with more than one transient event, module events never subscribed.
+ */
+import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import {
+    isDurationEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
+    isNotify, isRule, isStartedEvent, isStructValue, isSubscribe, isSupervisionFunction, isVariableRef,
+    isIntLiteral, isRealLiteral, isStringLiteral,
+    type CactalAstType, type Clause, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
+    type Rule, type TestOperand, type VariableRef
+} from '../generated/ast.js';
+import type { CactalServices } from '../cactal-module.js';
+import { rulesOf } from '../model/blocks.js';
+import { isNumeric, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
+import { SupervisorCodes } from './codes/supervisors.js';
+import { report } from './report.js';
+import { checkValue } from './value-checker.js';
+
+/** The ORD event ports (SPEC §4.2): 0 = critical delay missed, 1 = activation refused. */
+export const ORD_EVENT_PORTS: Readonly<Record<number, string>> = { 0: 'critical delay missed', 1: 'schema activation refused' };
+
+export function supervisorRuleChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
+    return {
+        VariableRef: [checkNoParameterInRule, checkOrdSchemaUse],
+        ModuleEvent: [checkOrdPort, checkEventSubscribed],
+        EqualityTest: checkTestOperands,
+        RelationalTest: checkTestOperands,
+        Extraction: checkExtraction,
+        Rule: checkOwnRuleEvents,
+        Clause: checkTransientEvents
+    };
+}
+
+function checkNoParameterInRule(ref: VariableRef, accept: ValidationAcceptor): void {
+    const variable = ref.variable?.ref;
+    if (!isFunctionParameter(variable) || !AstUtils.getContainerOfType(ref, isRule)) return;
+    const fn = AstUtils.getContainerOfType(ref, isSupervisionFunction);
+    const local = fn?.locals.flatMap((b) => b.variables).find((l) => isVariableRef(l.value) && l.value.variable?.ref === variable && l.value.path.length === 0);
+    report(accept, SupervisorCodes['supervisor-rule-uses-parameter'],
+        `Rules cannot use the parameter '${variable.name}' of ${fn?.name ?? 'the function'}: they use locals, event-port variables and constants. ${local ? `Use the local '${local.name}', initialised from it.` : `Copy it into a local (local { ${variable.type?.primitive ?? variable.type?.datatype?.$refText ?? 'T'} ${variable.name}_ = ${variable.name}; }) and use that.`}`,
+        { node: ref, property: 'variable' });
+}
+
+function checkOrdSchemaUse(ref: VariableRef, accept: ValidationAcceptor): void {
+    if (!ref.ordSchema) return;
+    // Declarations (defaults) report value-not-constant; here: rules, locals and schema parameterisations.
+    if (!AstUtils.getContainerOfType(ref, (n) => isRule(n) || isLocalVariable(n) || isModuleInstance(n))) return;
+    const event = AstUtils.getContainerOfType(ref, isModuleEvent);
+    const extraction = AstUtils.getContainerOfType(ref, isExtraction);
+    const isTarget = extraction !== undefined && extraction.target === ref;
+    if (event?.ord && !isTarget) return;
+    report(accept, SupervisorCodes['supervisor-ord-schema-misuse'],
+        isTarget
+            ? `'ord_schema' is read-only: it holds the schema name of an ORD event; extract it into a local (local = ord_schema).`
+            : `'ord_schema' holds the schema name of an ORD event: it is only usable in the tests and extractions of an ORD:0/ORD:1 event (e.g. ORD:0<ord_schema == "schemaCommande1">).`,
+        { node: ref });
+}
+
+function checkOrdPort(event: ModuleEvent, accept: ValidationAcceptor): void {
+    if (!event.ord || event.ordPort === undefined) return;
+    if (!(event.ordPort in ORD_EVENT_PORTS)) {
+        report(accept, SupervisorCodes['supervisor-ord-port'],
+            `ORD has no event port ${event.ordPort}: its events are ORD:0 (${ORD_EVENT_PORTS[0]}) and ORD:1 (${ORD_EVENT_PORTS[1]}).`,
+            { node: event, property: 'ordPort' });
+    }
+}
+
+function checkEventSubscribed(event: ModuleEvent, accept: ValidationAcceptor): void {
+    if (event.ord) return;
+    const source = event.source?.ref;
+    const port = event.port?.ref;
+    const fn = AstUtils.getContainerOfType(event, isSupervisionFunction);
+    if (!source || !port || !fn) return;
+    const subscribed = rulesOf(fn).some((r) => r.actions.some((a) => isSubscribe(a) && a.source?.ref === source && a.sourcePort?.ref === port));
+    if (subscribed) return;
+    report(accept, SupervisorCodes['supervisor-event-not-subscribed'],
+        `Function ${fn.name} never subscribes to ${source.name}:${port.index}, so this event never occurs and its clause stays false: add 'subscribe ${source.name}:${port.index} =* :<input port>' to a rule that is active before.`,
+        { node: event, property: 'port' });
+}
+
+/** The type of a test operand, or undefined for a structured value (its type comes from the other side). */
+function operandType(op: TestOperand): CactalType | undefined {
+    if (isIntLiteral(op)) return { kind: 'primitive', name: 'int' };
+    if (isRealLiteral(op)) return { kind: 'primitive', name: 'float' };
+    if (isStringLiteral(op)) return { kind: 'primitive', name: 'string' };
+    if (isVariableRef(op)) return typeOfVariableRef(op);
+    return undefined;
+}
+
+function operandText(op: TestOperand): string {
+    if (isVariableRef(op)) return `'${variableRefText(op)}'`;
+    if (isStringLiteral(op)) return `the string ${JSON.stringify(op.value)}`;
+    return `the ${isIntLiteral(op) ? 'integer' : 'real'} ${op.$cstNode?.text ?? (op as { value?: unknown }).value}`;
+}
+
+function checkTestOperands(test: EqualityTest | RelationalTest, accept: ValidationAcceptor): void {
+    if (!test.left || !test.right) return;
+    const left = operandType(test.left);
+    const right = operandType(test.right);
+    if (!left || !right) {
+        // a structured value takes the type of the other operand
+        const [value, other] = !left ? [test.left, right] : [test.right, left];
+        if (other && isStructValue(value)) checkValue(value, other, accept, { allowVariables: true, what: 'this comparison' });
+        return;
+    }
+    if (sameType(left, right) || (isNumeric(left) && isNumeric(right))) return;
+    report(accept, SupervisorCodes['supervisor-test-type'],
+        `Cannot compare ${operandText(test.left)} (${typeName(left)}) with ${operandText(test.right)} (${typeName(right)}): both operands of a test have the same type (int and float mix).`,
+        { node: test, property: 'operator' });
+}
+
+function checkExtraction(extraction: Extraction, accept: ValidationAcceptor): void {
+    const target = extraction.target;
+    if (!target) return;
+    if (isModuleEvent(extraction.$container)) {
+        const variable = target.variable?.ref;
+        // a parameter is reported by supervisor-rule-uses-parameter
+        if (variable && !isLocalVariable(variable) && !isFunctionParameter(variable)) {
+            report(accept, SupervisorCodes['supervisor-extraction-target'],
+                `An extraction assigns a local of the function (or one of its fields): '${variableRefText(target)}' is an event-port variable, written by events. Extract into a local instead.`,
+                { node: target });
+            return;
+        }
+    }
+    if (isNotify(extraction.$container)) {
+        const port = extraction.$container.port?.ref;
+        const variable = target.variable?.ref;
+        if (port && variable && variable !== port && !isFunctionParameter(variable)) {
+            report(accept, SupervisorCodes['supervisor-notify-target'],
+                `notify :${port.index} assigns the variable of that port, '${port.name}' (or its fields), not '${variableRefText(target)}'.`,
+                { node: target });
+            return;
+        }
+    }
+    if (target.ordSchema || !extraction.value) return;
+    const type = typeOfVariableRef(target);
+    checkValue(extraction.value, type, accept, { allowVariables: true, what: `'${variableRefText(target)}'` });
+}
+
+function checkOwnRuleEvents(rule: Rule, accept: ValidationAcceptor): void {
+    for (const event of eventsOf(rule.postcondition?.clauses ?? [])) {
+        if (isEndofEvent(event) && event.rule?.ref === rule) {
+            report(accept, SupervisorCodes['supervisor-endof-own-postcondition'],
+                `endof(${rule.name}) in the postcondition of ${rule.name} can never be true: the postcondition defines when ${rule.name} becomes inactive, it cannot wait for an event that follows that deactivation (report §4.7).`,
+                { node: event });
+        }
+    }
+    for (const event of eventsOf(rule.precondition?.clauses ?? [])) {
+        if ((isStartedEvent(event) || isDurationEvent(event)) && event.rule?.ref === rule) {
+            const word = isStartedEvent(event) ? 'started' : 'duration';
+            report(accept, SupervisorCodes['supervisor-started-own-precondition'],
+                `${word}(${rule.name}) in the precondition of ${rule.name} can never be true: the precondition defines when ${rule.name} becomes active, it cannot wait for an event that follows that activation (report §4.7).`,
+                { node: event });
+        }
+    }
+}
+
+function eventsOf(clauses: Clause[]): Event[] {
+    return clauses.flatMap((c) => c.events);
+}
+
+function checkTransientEvents(clause: Clause, accept: ValidationAcceptor): void {
+    if (clause.events.length < 2) return;
+    const transient = clause.events.filter((e) => !e.persistence);
+    if (transient.length < 2) return;
+    report(accept, SupervisorCodes['supervisor-clause-transient'],
+        `${transient.length} events of this clause have no persistence: events are never simultaneous, so the clause can never be true. Give all of them but one a persistence ({1s} or {infinite}); the transient one must be the last notified (report §4.7).`,
+        { node: transient[1]! });
+}
+
