@@ -47,13 +47,22 @@ $(1)/ORD: $(ENG_IT_SRC)/iord.c $(2) $(ENG_IT_DEPS)
 $(1)/ISU: $(ENG_IT_SRC)/isup.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/AMX: $(ENG_IT_SRC)/amod.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/GLT: $(ENG_IT_SRC)/inest.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DINEST_TOP $$< $(2) -o $$@
+$(1)/SLV: $(ENG_IT_SRC)/inest.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
 $(1)/itest: $(ENG_IT_SRC)/itest.c
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $$< -o $$@
 endef
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
-ENG_IT_BINS := IMA IMB IMC ORD ISU itest
+ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \

@@ -4,7 +4,9 @@
  * modules IMA/IMB/IMC (imod.c), starts ISU.go, and checks what the modules recorded:
  * parameterisation from the supervisor's local, precedence in every cycle, absolute-time
  * releases, `* 1` / `* 2` deliveries, deactivation, ORD:1 reaching the supervisor.
- * Usage: itest <dir with ORD ISU IMA IMB IMC> <contract-launch>. Prints "N passed, N failed".
+ * Second scenario (inest.c, amod.c): GLT activates SLV.work, which runs an event schema with
+ * the asynchronous AMX, ends on its third event, notifies GLT, which stops SLV.work.
+ * Usage: itest <dir with ORD ISU IMA IMB IMC GLT SLV AMX> <contract-launch>. Prints "N passed, N failed".
  */
 #define _GNU_SOURCE
 #include <stdio.h>
@@ -49,8 +51,12 @@ static int read_trace(const char *dir, const char *name, Trace *t) {
 static char *slurp(const char *path) {
     FILE *f = fopen(path, "r");
     if (!f) return NULL;
-    static char buf[1 << 16];
-    size_t n = fread(buf, 1, sizeof buf - 1, f);
+    char *buf = malloc(1 << 16);
+    if (!buf) {
+        fclose(f);
+        return NULL;
+    }
+    size_t n = fread(buf, 1, (1 << 16) - 1, f);
     buf[n] = '\0';
     fclose(f);
     return buf;
@@ -119,8 +125,45 @@ int main(int argc, char **argv) {
     char *js = slurp(stats);
     check(js && strstr(js, "\"deadline_misses\": 0") && strstr(js, "\"overruns\": 0"),
           "no deadline miss, no overrun");
+    if (failed) fprintf(stderr, "launcher output (scheduler scenario):\n%s\n", txt ? txt : "(none)");
+
+    /* scenario 2: nested supervisors, event schema, asynchronous module, notify */
+    char run2[160], out2[160];
+    snprintf(run2, sizeof run2, "%s/run2", root);
+    snprintf(out2, sizeof out2, "%s/launch2.txt", root);
+    char exe2[3][512];
+    const char *names2[3] = {"GLT", "SLV", "AMX"};
+    for (int i = 0; i < 3; i++) snprintf(exe2[i], sizeof exe2[i], "%s/%s", argv[1], names2[i]);
+    pid = fork();
+    if (pid == 0) {
+        FILE *o = freopen(out2, "w", stdout);
+        if (!o || dup2(fileno(stdout), 2) < 0) _exit(127);
+        execl(argv[2], argv[2], "--run-dir", run2, "--log-dir", logs, "--start", "GLT.top()",
+              "--duration", "0.5", exe2[0], exe2[1], exe2[2], (char *)NULL);
+        _exit(127);
+    }
+    waitpid(pid, &st, 0);
+    check(WIFEXITED(st) && WEXITSTATUS(st) == 0, "nested supervisors: architecture ran and stopped cleanly");
+    char amx_path[200];
+    snprintf(amx_path, sizeof amx_path, "%s/AMX.trace", out);
+    char *amx = slurp(amx_path);
+    check(amx && strcmp(amx, "param 2\nstart\npost 2\npost 4\npost 6\nstop\n") == 0,
+          "event schema: AMX parameterised (GLT's value through SLV's local), started, stopped after W1");
+    char *txt2 = slurp(out2);
+    const char *order[] = {"[GLT] rule top.T1 active", "[SLV] function work started", "[SLV] rule work.W1 active",
+                           "[SLV] rule work.W1 inactive", "[SLV] rule work.W2 active",
+                           "[SLV] function work stopped", NULL};
+    int in_order = txt2 != NULL;
+    const char *at = txt2;
+    for (int i = 0; order[i] && in_order; i++) {
+        const char *p = strstr(at, order[i]);
+        if (!p) in_order = 0;
+        else at = p;
+    }
+    check(in_order, "SLV.work started by GLT, W1 -> W2 on endof, stopped by GLT");
+    check(txt2 && strstr(txt2, "[GLT] rule top.T1 inactive"), "SLV's notify reached GLT (T1 ended)");
+    if (failed) fprintf(stderr, "launcher output (nested scenario):\n%s\n", txt2 ? txt2 : "(none)");
     if (failed) {
-        fprintf(stderr, "launcher output:\n%s\n", txt ? txt : "(none)");
         fprintf(stderr, "kept %s for inspection\n", root);
     } else {
         char cmd[300];

@@ -1,0 +1,83 @@
+/*
+ * amod.c — an asynchronous module for the engines' integration test (AMX): once started it
+ * posts a counter 1, 2, 3, ... on its output event port 0 every 10 ms until it is stopped.
+ * Waiting uses WaitForRequestUntil on absolute deadlines. It writes "param <v>", "start",
+ * "post <v>" and "stop" lines to $ITEST_OUT/AMX.trace.
+ */
+#define _GNU_SOURCE
+#include <libmodule/libmodule.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+MODULE_DESCRIPTION("engines integration test asynchronous module");
+MODULE_AUTHOR("engines tests");
+
+static long counter, param_step = 1;
+char MODULE_NAME[] = "AMX";
+int MODULE_PRIORITY = 40;
+ModuleUse IUSE[] = {IUSE_TERM};
+ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
+ModuleReact IREACT[] = {IREACT_TERM};
+ModuleDetect IDETECT[] = {{&counter, 0, sizeof(long)}, IDETECT_TERM};
+size_t PARAM_SIZE_IN[] = {sizeof(long), PARAM_SIZE_TERM};
+size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+
+int ModuleMain(int argc, const char *argv[]) {
+    (void)argc;
+    (void)argv;
+    FILE *trace = NULL;
+    const char *dir = getenv("ITEST_OUT");
+    if (dir && *dir) {
+        char path[512];
+        snprintf(path, sizeof path, "%s/AMX.trace", dir);
+        trace = fopen(path, "w");
+        if (trace) setvbuf(trace, NULL, _IOLBF, 0);
+    }
+    RequestMessage *m = malloc(sizeof *m);
+    if (!m) return 1;
+    int running = 0;
+    RTIME next = INT64_MAX, pt, rt;
+    for (;;) {
+        int got = WaitForRequestUntil(m, running ? next : INT64_MAX);
+        if (got < 0) continue;
+        if (got == 0) { /* period elapsed: post the next value */
+            counter += param_step;
+            if (trace) fprintf(trace, "post %ld\n", counter);
+            PostEvent(&counter);
+            next += 10000000LL;
+            continue;
+        }
+        switch (m->Type) {
+        case REQ_START:
+            if (trace) fprintf(trace, "start\n");
+            running = 1;
+            counter = 0;
+            next = GetTime() + 10000000LL;
+            break;
+        case REQ_STOP:
+            if (trace) fprintf(trace, "stop\n");
+            SendAck(m->Param.Stop.ModAck, m->Param.Stop.WantedAck, running ? ACK_STOPPED : ACK_NOTDONE,
+                    m->Param.Stop.AckID);
+            running = 0;
+            break;
+        case REQ_SETPARAM:
+            if (GetDataFromSetParamRequest(m, &param_step, sizeof param_step, &pt, &rt) == 0 && trace)
+                fprintf(trace, "param %ld\n", param_step);
+            break;
+        case REQ_SUB_EVENT:
+            SubscribeUserToEvent(m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
+                                 m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
+            break;
+        case REQ_UNSUB_EVENT:
+            UnsubscribeUserToEvent(m->Param.UnsubscribeEvent.targetModule, m->Param.UnsubscribeEvent.targetPort,
+                                   m->Param.UnsubscribeEvent.sourcePort);
+            break;
+        case REQ_KILL:
+            if (trace) fclose(trace);
+            free(m);
+            return 0;
+        default:
+            break;
+        }
+    }
+}
