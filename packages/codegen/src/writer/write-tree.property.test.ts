@@ -129,7 +129,7 @@ describe('protected regions under random user edits and model edits (property)',
                     cleanup();
                 }
             }),
-            { numRuns: 80 },
+            { numRuns: 50 },
         );
     }, 120_000);
 });
