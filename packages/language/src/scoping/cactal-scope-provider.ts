@@ -8,7 +8,7 @@
  */
 import {
     AstUtils, DefaultScopeProvider, EMPTY_SCOPE, MultiMapScope, WorkspaceCache, stream,
-    type AstNode, type AstNodeDescription, type ReferenceInfo, type Scope
+    type AstNode, type AstNodeDescription, type ReferenceInfo, type Scope, type Stream
 } from 'langium';
 import {
     isActivateSchema, isActivateSupervisor, isDataCommunication, isEventCommunication, isFieldSegment,
@@ -22,6 +22,30 @@ import { portsOfKind, type PortDirection, type PortKind } from '../model/ports.j
 import { typeOfPathPrefix } from '../model/types.js';
 import type { CactalServices } from '../cactal-module.js';
 import type { ImportResolver } from './import-resolver.js';
+
+/**
+ * Scope of ports (or parameters) named by their index. Descriptions are created only for what is
+ * asked: linking needs one element, completion all of them.
+ */
+class IndexScope implements Scope {
+    constructor(
+        private readonly nodes: Array<AstNode & { index: number }>,
+        private readonly describe: (node: AstNode, name: string) => AstNodeDescription
+    ) {}
+
+    getElement(name: string): AstNodeDescription | undefined {
+        const node = this.nodes.find((n) => typeof n.index === 'number' && String(n.index) === name);
+        return node ? this.describe(node, name) : undefined;
+    }
+
+    getElements(name: string): Stream<AstNodeDescription> {
+        return stream(this.nodes.filter((n) => typeof n.index === 'number' && String(n.index) === name)).map((n) => this.describe(n, name));
+    }
+
+    getAllElements(): Stream<AstNodeDescription> {
+        return stream(this.nodes.filter((n) => typeof n.index === 'number')).map((n) => this.describe(n, String(n.index)));
+    }
+}
 
 export class CactalScopeProvider extends DefaultScopeProvider {
     private readonly imports: ImportResolver;
@@ -114,10 +138,7 @@ export class CactalScopeProvider extends DefaultScopeProvider {
     }
 
     private indexScope(nodes: Array<Port | { index: number } & AstNode>): Scope {
-        const descriptions: AstNodeDescription[] = nodes
-            .filter((n) => typeof n.index === 'number')
-            .map((n) => this.descriptions.createDescription(n, String(n.index)));
-        return this.createScope(stream(descriptions));
+        return new IndexScope(nodes, (node, name) => this.descriptions.createDescription(node, name));
     }
 
     private variableScope(ref: AstNode): Scope {

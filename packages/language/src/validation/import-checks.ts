@@ -24,11 +24,13 @@ class ImportChecker {
     private readonly imports: ImportResolver;
     private readonly graphCache: WorkspaceCache<string, ImportGraph>;
     private readonly outgoingCache: WorkspaceCache<string, Set<string>>;
+    private readonly byUriCache: WorkspaceCache<string, Map<string, LangiumDocument>>;
 
     constructor(private readonly services: CactalServices) {
         this.imports = services.imports.ImportResolver;
         this.graphCache = new WorkspaceCache(services.shared);
         this.outgoingCache = new WorkspaceCache(services.shared);
+        this.byUriCache = new WorkspaceCache(services.shared);
     }
 
     checkModel(model: Model, accept: ValidationAcceptor): void {
@@ -36,7 +38,8 @@ class ImportChecker {
         const docs = this.services.shared.workspace.LangiumDocuments;
         const seen = new Map<string, Import>();
         const firstElementOffset = model.elements[0]?.$cstNode?.offset ?? Number.POSITIVE_INFINITY;
-        const used = this.usedUris(model, document);
+        const importUris = model.imports.filter((i) => i.path !== undefined).map((i) => this.imports.resolveImport(i).toString());
+        const used = this.usedUris(model, document, importUris);
 
         for (const imp of model.imports) {
             if (imp.path === undefined) continue;
@@ -136,32 +139,30 @@ class ImportChecker {
      * elements themselves refer to (a schema's modules, a module's types), and the scheduler
      * configuration's file when this file activates a periodic schema.
      */
-    private usedUris(model: Model, document: LangiumDocument): Set<string> {
-        const used = new Set<string>();
+    private usedUris(model: Model, document: LangiumDocument, importUris: string[]): Set<string> {
         const own = document.uri.toString();
-        const docs = this.services.shared.workspace.LangiumDocuments;
-        let activatesPeriodic = false;
-        for (const node of AstUtils.streamAst(model)) {
-            if (isActivateSchema(node) && node.schema?.ref?.kind === 'periodic') { activatesPeriodic = true; break; }
-        }
-        for (const uri of this.outgoing(document)) {
-            if (uri === own || used.has(uri)) continue;
-            used.add(uri);
-        }
+        const direct = this.outgoing(document);
+        const used = new Set<string>([...direct].filter((u) => u !== own));
+        const candidates = importUris.filter((u) => !used.has(u));
+        if (candidates.length === 0) return used;
+        // second level: what the referred elements' files refer to
+        const byUri = this.documentsByUri();
         for (const uri of [...used]) {
-            const doc = docs.getDocument(URI.parse(uri));
+            const doc = byUri.get(uri);
             if (doc) for (const second of this.outgoing(doc)) used.add(second);
         }
-        if (activatesPeriodic) {
-            for (const imp of model.imports) {
-                if (imp.path === undefined) continue;
-                const uri = this.imports.resolvePath(document.uri, imp.path);
-                const doc = docs.hasDocument(uri) ? docs.getDocument(uri) : undefined;
-                const m = doc?.parseResult.value;
-                if (isModel(m) && m.elements.some(isSchedulerConfiguration)) used.add(uri.toString());
+        if (candidates.some((u) => !used.has(u)) && AstUtils.streamAst(model).some((n) => isActivateSchema(n) && n.schema?.ref?.kind === 'periodic')) {
+            for (const uri of candidates) {
+                const m = byUri.get(uri)?.parseResult.value;
+                if (isModel(m) && m.elements.some(isSchedulerConfiguration)) used.add(uri);
             }
         }
         return used;
+    }
+
+    /** The workspace's documents by URI string (cached per build). */
+    private documentsByUri(): Map<string, LangiumDocument> {
+        return this.byUriCache.get('all', () => new Map(this.services.shared.workspace.LangiumDocuments.all.map((d) => [d.uri.toString(), d] as const).toArray()));
     }
 
     /** Types file (datatypes + functions) or exactly one module/schema/scheduler configuration/supervisor. */
