@@ -15,6 +15,9 @@
  *         return contract_supervisor_main(&SUP_VOCABULARY, argc, argv);
  *     }
  *
+ * The module.c of ORD and of a supervisor may keep empty port tables (IUSE/IPRODUCE/IREACT/
+ * IDETECT/PARAM_SIZE_* = their *_TERM only): the engines read the event ports from these tables
+ * and keep their own subscriber lists.
  * The engines (runtime/src/engines/) are generic: no generated control flow, only data and
  * small generated adapter functions (type operations, user test/compute functions).
  * Semantics: SPEC.md §4.2–4.4 and docs/engines.md.
