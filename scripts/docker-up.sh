@@ -50,9 +50,16 @@ if ! docker info >/dev/null 2>&1; then
   echo "dockerd-started $pid"
 fi
 
+# fingerprint of the runtime sources: an image bootstrapped here from older sources is rebuilt
+runtime_hash=$(cd runtime && find . -path ./build -prune -o -type f \( -name '*.c' -o -name '*.h' -o -name '*.mk' -o -name Makefile -o -name '*.def' \) -print \
+  | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -c1-16)
 if [ $rebuild = 0 ] && docker image inspect "$IMAGE" >/dev/null 2>&1; then
-  log "image $IMAGE present"
-  exit 0
+  label=$(docker image inspect -f '{{ index .Config.Labels "contract.runtime-sources" }}' "$IMAGE" 2>/dev/null || true)
+  if [ -z "$label" ] || [ "$label" = "<no value>" ] || [ "$label" = "$runtime_hash" ]; then
+    log "image $IMAGE present"
+    exit 0
+  fi
+  log "image $IMAGE was bootstrapped from other runtime sources ($label, now $runtime_hash): rebuilding"
 fi
 
 if [ -x runtime/docker/build-image-offline.sh ]; then
@@ -79,7 +86,7 @@ printf 'root:x:0:0:root:/root:/bin/sh\ncontract:x:1000:1000:contract:/work:/bin/
 printf 'root:x:0:\ncontract:x:1000:\n' >"$root/etc/group"
 log "building the runtime for /opt/contract/runtime"
 mkdir -p "$root/opt/contract/runtime"
-tar -C runtime --exclude=./build -cf - . | tar -C "$root/opt/contract/runtime" -xf -
+tar -C runtime --exclude=./build --exclude='*.csv' --exclude='*.o' -cf - . | tar -C "$root/opt/contract/runtime" -xf -
 make -s -C "$root/opt/contract/runtime" >&2
 # usr-merged hosts: /lib, /bin, /sbin, /lib64 are links into /usr, dpkg still lists the old paths
 while read -r f; do
@@ -103,6 +110,7 @@ for b in cc c89 c99 cpp awk; do [ -L "/usr/bin/$b" ] && printf 'usr/bin/%s\n' "$
 chown 1000:1000 "$root/work"
 tar -C "$root" --numeric-owner -cf - . | docker import \
   --change 'USER 1000:1000' --change 'WORKDIR /work' --change 'ENV PATH=/usr/local/bin:/usr/bin:/bin' \
-  --change 'ENV CONTRACT_RUNTIME=/opt/contract/runtime' - "$IMAGE" >&2
+  --change 'ENV CONTRACT_RUNTIME=/opt/contract/runtime' \
+  --change "LABEL contract.runtime-sources=$runtime_hash" - "$IMAGE" >&2
 docker run --rm --network none "$IMAGE" sh -c 'gcc --version | head -1 && make --version | head -1 && ls /opt/contract/runtime/build' >&2
 log "image $IMAGE ready"

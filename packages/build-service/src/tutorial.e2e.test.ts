@@ -87,7 +87,7 @@ describe('user code in protected regions (bwrap)', () => {
       '    for (size_t got = 0; got < ((size_t)4 << 30); got += (size_t)64 << 20) { char *p = malloc((size_t)64 << 20); if (!p) return 0; memset(p, 1, (size_t)64 << 20); }\n    return 1;',
     );
     const withHeaders = (f: Record<string, string>) =>
-      withRegion(f, MAA_MODULE, 'protect_additional_import_MAA', '#include <unistd.h>\n#include <stdlib.h>\n#include <string.h>\n#include <stdio.h>');
+      withRegion(f, MAA_MODULE, 'protect_additional_import_MAA', '#include <unistd.h>\n#include <stdlib.h>\n#include <string.h>\n#include <stdio.h>', true);
     const [b, a, honest] = await Promise.all([
       runJob({ action: 'run', sandbox: 'bwrap', duration: 10, project: { files: withHeaders(bomb) } }),
       runJob({ action: 'run', sandbox: 'bwrap', duration: 10, project: { files: withHeaders(alloc) } }),

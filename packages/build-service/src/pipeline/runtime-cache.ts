@@ -10,7 +10,9 @@ import { existsSync, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 
-const SKIP = /^(build|logs|run)(\/|$)|(^|\/)\.git(\/|$)|\.(o|a|so)$/;
+/** The runtime's sources: what make needs (test outputs, CSV logs, objects are left out). */
+const SOURCE = /(\.(c|h|mk|def|S|sh)|(^|\/)Makefile)$/;
+const SKIP_DIRS = /^(build|logs|run)$|(^|\/)\.git$/;
 
 export class RuntimeCache {
   private readonly builds = new Map<string, Promise<string>>();
@@ -30,7 +32,7 @@ export class RuntimeCache {
       if (!existsSync(join(this.sourceDir, 'Makefile'))) {
         throw new Error(`no runtime at ${this.sourceDir} (expected a Makefile producing build/libmodule.a and build/contract-launch)`);
       }
-      const files = await listFilesNoFollow(this.sourceDir, (rel) => !SKIP.test(rel));
+      const files = await listFilesNoFollow(this.sourceDir, (rel, isDir) => (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel)));
       const hash = createHash('sha256');
       const contents = new Map<string, Buffer>();
       for (const f of files) {

@@ -21,13 +21,13 @@ export async function tutorialFiles(): Promise<Record<string, string>> {
   return files;
 }
 
-/** Replaces the body of a protected region of a file with `code`. */
-export function withRegion(files: Record<string, string>, file: string, regionId: string, code: string): Record<string, string> {
+/** Replaces the body of a protected region of a file with `code` (or puts `code` before it with `keep`). */
+export function withRegion(files: Record<string, string>, file: string, regionId: string, code: string, keep = false): Record<string, string> {
   const text = files[file];
   if (text === undefined) throw new Error(`no ${file} in the project`);
   const re = new RegExp(`(/\\*PROTECTED REGION ID\\(${regionId}\\) ENABLED START\\*/)([\\s\\S]*?)(/\\*PROTECTED REGION END\\*/)`);
   if (!re.test(text)) throw new Error(`no region ${regionId} in ${file}`);
-  return { ...files, [file]: text.replace(re, (_m, a: string, _b: string, c: string) => `${a}\n${code}\n    ${c}`) };
+  return { ...files, [file]: text.replace(re, (_m, a: string, b: string, c: string) => `${a}\n${code}\n${keep ? b : '    '}${c}`) };
 }
 
 /**
