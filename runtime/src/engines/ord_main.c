@@ -131,6 +131,7 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
         return;
     }
     long cycles = 0, completed = 0, misses = 0, overruns = 0, missed = 0;
+    int64_t max_response = 0;
     for (int i = 0; i < b->v->nschemas; i++) {
         OrdSchemaStats st;
         if (ord_core_stats(c, b->v->schemas[i]->name, &st) != 0) continue;
@@ -139,6 +140,7 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
         misses += st.deadline_misses;
         overruns += st.overruns;
         missed += st.missed_ticks;
+        if (st.max_response_ns > max_response) max_response = st.max_response_ns;
     }
     double p50 = 0, p99 = 0, max = 0;
     if (b->nlate) {
@@ -150,8 +152,9 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
     fprintf(f,
             "{\"cycles\": %ld, \"completed\": %ld, \"deadline_misses\": %ld, \"overruns\": %ld, "
             "\"missed_ticks\": %ld, \"release_late_us_p50\": %.3f, \"release_late_us_p99\": %.3f, "
-            "\"release_late_us_max\": %.3f, \"samples\": %zu}\n",
-            cycles, completed, misses, overruns, missed, p50, p99, max, b->nlate);
+            "\"release_late_us_max\": %.3f, \"cycle_response_us_max\": %.3f, \"samples\": %zu}\n",
+            cycles, completed, misses, overruns, missed, p50, p99, max, (double)max_response / 1000.0,
+            b->nlate);
     fclose(f);
 }
 

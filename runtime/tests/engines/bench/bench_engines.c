@@ -4,7 +4,8 @@
  *  supervisor.events_per_s   module events per second through the supervisor core, for a
  *                            function of 20 rules (19 rules whose pre- and postconditions test
  *                            every X:0 event, with an extraction and a notify, + 1 subscribe
- *                            rule); each event ends one rule and starts another.
+ *                            rule); each event ends one rule and starts another. Best of 3
+ *                            runs of 200000 events.
  *  sched.*                   a 1 kHz periodic schema of 3 chained modules (BMA -> BMB -> BMC,
  *                            data flows between them) run for 10 s by the real ORD process
  *                            through libmodule and contract-launch:
@@ -13,6 +14,7 @@
  *    sched.missed_periods                 overrun skips + ticks missed by ORD itself
  *    sched.deadline_misses                cycles not finished 1 ms after their tick (ORD:0)
  *    sched.cycles                         cycles released
+ *    sched.cycle_response_us_max          longest tick -> last module finished
  *
  * Usage: bench_engines <bin dir with ORD BSU BMA BMB BMC> <contract-launch> <out.json> [seconds]
  */
@@ -92,17 +94,21 @@ static double bench_supervisor(void) {
     }
     sup_core_start_function(c, 0, "f", NULL, 0);
     sup_core_advance(c, 1000);
-    const long n = 400000;
+    const long n = 200000;
     int64_t t = 2000;
-    double t0 = now_s();
-    for (long i = 0; i < n; i++) {
-        long a = i % NRULES;
-        sup_core_module_event(c, t, "X", 0, -1, &a, sizeof a);
-        t += 1000;
+    double best = 0;
+    for (int run = 0; run < 3; run++) { /* best of 3: the machine is shared */
+        double t0 = now_s();
+        for (long i = 0; i < n; i++) {
+            long a = i % NRULES;
+            sup_core_module_event(c, t, "X", 0, -1, &a, sizeof a);
+            t += 1000;
+        }
+        double rate = (double)n / (now_s() - t0);
+        if (rate > best) best = rate;
     }
-    double dt = now_s() - t0;
     sup_core_destroy(c);
-    return (double)n / dt;
+    return best;
 }
 
 /* ---- scheduler jitter with real processes ------------------------------------------- */
@@ -171,10 +177,10 @@ int main(int argc, char **argv) {
             "{\n  \"sched.period_jitter_us_p50\": %.3f,\n  \"sched.period_jitter_us_p99\": %.3f,\n"
             "  \"sched.period_jitter_us_max\": %.3f,\n  \"sched.missed_periods\": %.0f,\n"
             "  \"sched.deadline_misses\": %.0f,\n  \"sched.cycles\": %.0f,\n"
-            "  \"supervisor.events_per_s\": %.0f\n}\n",
+            "  \"sched.cycle_response_us_max\": %.3f,\n  \"supervisor.events_per_s\": %.0f\n}\n",
             json_num(js, "release_late_us_p50"), json_num(js, "release_late_us_p99"),
             json_num(js, "release_late_us_max"), json_num(js, "overruns") + json_num(js, "missed_ticks"),
-            json_num(js, "deadline_misses"), json_num(js, "cycles"), eps);
+            json_num(js, "deadline_misses"), json_num(js, "cycles"), json_num(js, "cycle_response_us_max"), eps);
     fclose(o);
     return 0;
 }
