@@ -88,7 +88,7 @@ export class CactalFormatter implements Formatter {
         }
         const items: Item[] = [
             ...lexed.tokens.map((token) => ({ token, comment: false, leaf: leaves.get(token.startOffset), text: token.image })),
-            ...lexed.hidden.filter((t) => /COMMENT/.test(t.tokenType.name)).map((token) => ({ token, comment: true, text: token.image }))
+            ...lexed.hidden.filter((t) => /COMMENT/.test(t.tokenType.name)).map((token) => ({ token, comment: true, text: commentText(token) }))
         ].sort((a, b) => a.token.startOffset - b.token.startOffset);
         if (items.some((i) => !i.comment && !i.leaf)) return undefined;
         for (const item of items) {
@@ -161,7 +161,7 @@ function layout(items: Item[], source: string, model: Model): string {
         prevReal = item;
         prev = item;
     }
-    return out.length ? out.replace(/[ \t]+$/gm, '') + '\n' : '';
+    return out.length ? out + '\n' : '';
 }
 
 function lastLeafOffset(cst: CstNode): number {
@@ -235,6 +235,11 @@ function firstLeaf(cst: CstNode | undefined): CstNode | undefined {
     return undefined;
 }
 
+/** A comment as written out: a line comment loses its trailing blanks. */
+function commentText(token: IToken): string {
+    return token.tokenType.name === 'SL_COMMENT' ? token.image.trimEnd() : token.image;
+}
+
 /** True when `after` lexes to the same tokens as `before` (event modes compared in their short form). */
 function sameTokens(services: CactalServices, before: string, after: string): boolean {
     const norm = (text: string): string[] => {
@@ -242,7 +247,7 @@ function sameTokens(services: CactalServices, before: string, after: string): bo
         if (lexed.errors.length) return ['<error>'];
         return [...lexed.tokens, ...lexed.hidden.filter((t) => /COMMENT/.test(t.tokenType.name))]
             .sort((x, y) => x.startOffset - y.startOffset)
-            .map((t) => (t.image === '==*' || t.image === '==>' ? t.image.slice(1) : t.image));
+            .map((t) => (t.image === '==*' || t.image === '==>' ? t.image.slice(1) : commentText(t)));
     };
     const a = norm(before);
     const b = norm(after);
