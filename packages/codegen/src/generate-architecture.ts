@@ -39,7 +39,13 @@ export function generateFromArchitecture(arch: Architecture, outDir: string, opt
         report.errors.push({ file: '(model)', message: `cannot generate: ${(e as Error).message}` });
         return report;
     }
-    return writeTree(resolve(outDir), files);
+    try {
+        return writeTree(resolve(outDir), files);
+    } catch (e) {
+        const report = emptyReport();
+        report.errors.push({ file: '(output)', message: `cannot write ${outDir}: ${(e as Error).message}` });
+        return report;
+    }
 }
 
 /**

@@ -18,10 +18,10 @@ function list(io: CliIO, label: string, paths: string[], show = true): void {
     if (show) for (const p of paths) io.out(`  ${p}\n`);
 }
 
-function printReport(io: CliIO, report: GenerationReport, outLabel: string): void {
+function printReport(io: CliIO, report: GenerationReport, outLabel: string, verbose: boolean): void {
     list(io, 'created', report.created);
     list(io, 'updated', report.updated);
-    list(io, 'kept (unchanged)', report.unchanged, false);
+    list(io, 'kept (unchanged)', report.unchanged, verbose);
     list(io, 'orphaned (user code moved aside)', report.orphaned);
     list(io, 'removed (no user code)', report.removed);
     for (const w of report.warnings) io.err(`warning: ${join(outLabel, formatProblem(w))}\n`);
@@ -32,14 +32,15 @@ export const generateCommand: Command = {
     name: 'generate',
     summary: 'generate the C source tree (src-gen) of a Cactal project',
     usage: [
-        'usage: contract generate DIR [-o OUT] [--runtime PATH]',
+        'usage: contract generate DIR [-o OUT] [--runtime PATH] [--verbose]',
         '  OUT: output folder (default DIR/src-gen); the tree goes to OUT/generated/architecture',
         '  --runtime: runtime folder written as the Makefiles\' default CONTRACT_RUNTIME',
+        '  --verbose: also list the files kept unchanged (otherwise only counted)',
         'User code in protected regions is kept; code whose region or entity disappeared goes to OUT/orphans/.',
         'exit status: 1 when the model has errors (nothing generated) or a file could not be merged, 0 otherwise, 2 on bad usage',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const { positionals, options } = parseArgs(args, ['o', 'output', 'runtime']);
+        const { positionals, options } = parseArgs(args, ['o', 'output', 'runtime'], ['verbose']);
         if (positionals.length !== 1) throw new UsageError(positionals.length ? 'expected exactly one DIR' : 'missing DIR');
         const dirArg = positionals[0]!;
         const dir = resolve(io.cwd, dirArg);
@@ -58,7 +59,7 @@ export const generateCommand: Command = {
         }
         const report = generateArchitecture(workspace.documents, out, typeof runtime === 'string' ? { runtime: resolve(io.cwd, runtime) } : {});
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, 'src-gen');
-        printReport(io, report, outLabel);
+        printReport(io, report, outLabel, options.get('verbose') === true);
         io.err(`generated ${outLabel}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
     },

@@ -154,9 +154,13 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
 
     const manifestText = serialiseManifest(newManifest);
     const manifestFile = join(outDir, MANIFEST_NAME);
-    if (!existsSync(manifestFile) || readFileSync(manifestFile, 'utf8') !== manifestText) {
-        writeFileAtomic(manifestFile, Buffer.from(manifestText, 'utf8'));
-        report.filesWritten++;
+    try {
+        if (readIfPresent(manifestFile) !== manifestText) {
+            writeFileAtomic(manifestFile, Buffer.from(manifestText, 'utf8'));
+            report.filesWritten++;
+        }
+    } catch (e) {
+        report.errors.push({ file: MANIFEST_NAME, message: `cannot write the manifest: ${(e as Error).message}` });
     }
     return report;
 }
