@@ -86,6 +86,26 @@ static int check_ref(Ctx *x, const ContractRef *r, const RefLimits *l, const cha
     return fail(x, "%s: unknown reference kind %d", what, (int)r->kind);
 }
 
+static int numeric(const ContractType *t) {
+    return t->kind == CONTRACT_KIND_LONG || t->kind == CONTRACT_KIND_DOUBLE;
+}
+
+/* same type, or int/float mix; structs are compared by name and size */
+static int compatible(const ContractType *a, const ContractType *b) {
+    if (a == b) return 1;
+    if (numeric(a) && numeric(b)) return 1;
+    if (a->kind != b->kind) return 0;
+    if (a->kind == CONTRACT_KIND_STRUCT)
+        return a->size == b->size && a->name && b->name && strcmp(a->name, b->name) == 0;
+    return a->size == b->size;
+}
+
+static int check_compatible(Ctx *x, const ContractType *target, const ContractType *src, const char *what) {
+    if (compatible(target, src)) return 0;
+    return fail(x, "%s: a %s cannot take a %s", what, target->name ? target->name : "?",
+                src->name ? src->name : "?");
+}
+
 static int check_assigns(Ctx *x, const ContractAssign *as, int n, int ntargets,
                          const RefLimits *l, const char *what) {
     if (n < 0 || (n > 0 && !as)) return fail(x, "%s table missing", what);
@@ -94,6 +114,7 @@ static int check_assigns(Ctx *x, const ContractAssign *as, int n, int ntargets,
             return fail(x, "%s %d: target %d out of range (%d)", what, i, as[i].index, ntargets);
         if (check_type(x, as[i].type, what)) return -1;
         if (check_ref(x, &as[i].src, l, what)) return -1;
+        if (check_compatible(x, as[i].type, as[i].src.type, what)) return -1;
     }
     return 0;
 }
@@ -210,11 +231,16 @@ static int check_condition(Ctx *x, const ContractSupervisorVocabulary *v, const 
                             if (ts->nargs != ts->fn->nargs)
                                 return fail(x, "%s: %s takes %d arguments, %d given", what,
                                             ts->fn->name, ts->fn->nargs, ts->nargs);
-                            for (int a = 0; a < ts->nargs; a++)
+                            for (int a = 0; a < ts->nargs; a++) {
                                 if (check_ref(x, &ts->args[a], &tl, what)) return -1;
+                                if (ts->fn->arg_types &&
+                                    check_compatible(x, ts->fn->arg_types[a], ts->args[a].type, what))
+                                    return -1;
+                            }
                         } else if (ts->op >= CONTRACT_TEST_EQ && ts->op <= CONTRACT_TEST_GE) {
                             if (check_ref(x, &ts->lhs, &tl, what) || check_ref(x, &ts->rhs, &tl, what))
                                 return -1;
+                            if (check_compatible(x, ts->lhs.type, ts->rhs.type, what)) return -1;
                         } else {
                             return fail(x, "%s: unknown test operator %d", what, (int)ts->op);
                         }
@@ -277,8 +303,11 @@ static int check_action(Ctx *x, const ContractSupervisorVocabulary *v, const Con
         if (!a->fn || !a->fn->call) return fail(x, "compute without a function");
         if (a->nargs != a->fn->nargs || a->nargs > 64)
             return fail(x, "compute %s: %d arguments for %d", a->fn->name, a->nargs, a->fn->nargs);
-        for (int i = 0; i < a->nargs; i++)
+        for (int i = 0; i < a->nargs; i++) {
             if (check_ref(x, &a->args[i], &l, "compute argument")) return -1;
+            if (a->fn->arg_types && check_compatible(x, a->fn->arg_types[i], a->args[i].type, "compute argument"))
+                return -1;
+        }
         return 0;
     case CONTRACT_ACT_SUBSCRIBE:
         if (!a->module) return fail(x, "subscribe without a module");

@@ -275,4 +275,15 @@ void test_invalid_tables_are_refused_with_a_message(void) {
     v.version = 99;
     CHECK(sup_core_create(&v, NULL, err, sizeof err) == NULL);
     CHECK(strstr(err, "version 99") != NULL);
+
+    /* a string local initialised from a float constant */
+    static const double k1 = 1.0;
+    static const ContractVar loc[] = {{"s", &contract_type_string, 0, NULL}};
+    static const ContractAssign init[] = {
+        {0, 0, &contract_type_string, {CONTRACT_REF_CONST, 0, 0, &contract_type_double, &k1}}};
+    static const ContractFunction fn2[] = {{"g", 0, NULL, 0, 1, loc, 256, 1, init, 0, NULL}};
+    ContractSupervisorVocabulary v2 = {CONTRACT_VOCABULARY_VERSION, "BAD", 1, 1, 1, 1, 0, NULL, 0,
+                                       NULL, 1, fn2};
+    CHECK(sup_core_create(&v2, NULL, err, sizeof err) == NULL);
+    CHECK(strstr(err, "BAD.g") && strstr(err, "a string cannot take a float"));
 }
