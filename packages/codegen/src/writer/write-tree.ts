@@ -1,5 +1,5 @@
 import { existsSync, readFileSync, readdirSync, rmdirSync, statSync, unlinkSync } from 'node:fs';
-import { join, posix } from 'node:path';
+import { basename, dirname, join, posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
@@ -79,12 +79,28 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
     const produced = new Set(sorted.map((f) => f.path));
 
     const knownDirs = new Set<string>();
+    const listings = new Map<string, Set<string>>();
+    /** Whether `abs` may exist: one directory listing per folder instead of one failed open per new file. */
+    const mayExist = (abs: string): boolean => {
+        const dir = dirname(abs);
+        let names = listings.get(dir);
+        if (!names) {
+            try {
+                names = new Set(readdirSync(dir));
+                knownDirs.add(dir);
+            } catch {
+                names = new Set();
+            }
+            listings.set(dir, names);
+        }
+        return names.has(basename(abs));
+    };
     for (const file of sorted) {
         const generated = toByteString(file.content);
         newManifest.set(file.path, regionDefaults(generated, file.path));
         const abs = join(outDir, file.path);
         try {
-            const existing = readIfPresent(abs);
+            const existing = mayExist(abs) ? readIfPresent(abs) : undefined;
             if (existing === undefined) {
                 writeFileAtomic(abs, bytesOf(generated), knownDirs);
                 report.created.push(file.path);
