@@ -6,6 +6,7 @@ import {
 } from 'langium/lsp';
 import { CactalGeneratedModule, CactalGeneratedSharedModule } from './generated/module.js';
 import { CactalDocumentFactory } from './parser/nesting-guard.js';
+import { CactalParserErrorMessageProvider } from './parser/error-messages.js';
 import { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
 import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
 import { ImportResolver } from './scoping/import-resolver.js';
@@ -27,6 +28,9 @@ export type CactalServices = LangiumServices & CactalAddedServices;
 export const CactalModule: Module<CactalServices, PartialLangiumServices & CactalAddedServices> = {
     imports: {
         ImportResolver: (services) => new ImportResolver(services)
+    },
+    parser: {
+        ParserErrorMessageProvider: () => new CactalParserErrorMessageProvider()
     },
     references: {
         ScopeProvider: (services) => new CactalScopeProvider(services),
