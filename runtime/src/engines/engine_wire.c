@@ -54,3 +54,20 @@ void engine_data_string(const RequestMessage *m, char *out, size_t n) {
     memcpy(out, m->Data, k);
     out[k] = '\0';
 }
+
+void engine_terminate_names(RequestMessage *m) {
+    m->Sender[CONTRACT_NAME_MAX - 1] = '\0';
+    switch (m->Type) {
+    case REQ_START:
+        m->Param.Start.ModAck[CONTRACT_NAME_MAX - 1] = '\0';
+        m->Param.Start.Function[CONTRACT_FUNCTION_MAX - 1] = '\0';
+        break;
+    case REQ_STOP: m->Param.Stop.ModAck[CONTRACT_NAME_MAX - 1] = '\0'; break;
+    case REQ_KILL: m->Param.Kil.ModAck[CONTRACT_NAME_MAX - 1] = '\0'; break;
+    case REQ_EVENT: m->Param.Event.sourceModule[CONTRACT_NAME_MAX - 1] = '\0'; break;
+    case REQ_ACK: m->Param.Ack.Module[CONTRACT_NAME_MAX - 1] = '\0'; break;
+    case REQ_SUB_EVENT: m->Param.SubscribeEvent.targetModule[CONTRACT_NAME_MAX - 1] = '\0'; break;
+    case REQ_UNSUB_EVENT: m->Param.UnsubscribeEvent.targetModule[CONTRACT_NAME_MAX - 1] = '\0'; break;
+    default: break;
+    }
+}

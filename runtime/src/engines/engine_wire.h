@@ -23,6 +23,9 @@ int engine_send_start(const char *module, const char *function, const void *bloc
 int engine_send_stop(const char *module, const char *function, int ackId);
 /** 1 and the block when the request's Data is a binary argument block, else 0. */
 int engine_binary_args(const RequestMessage *m, const unsigned char **block, size_t *size);
+/** NUL-terminates every fixed-size name field of a received request (a malformed sender must
+ *  not make the engines read past them). */
+void engine_terminate_names(RequestMessage *m);
 /** Copies the request's Data as a NUL-terminated string (truncated to n-1). */
 void engine_data_string(const RequestMessage *m, char *out, size_t n);
 

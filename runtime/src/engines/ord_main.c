@@ -189,6 +189,7 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
             ord_core_advance(c, now);
             continue;
         }
+        engine_terminate_names(m);
         b.reply_to = NULL;
         switch (m->Type) {
         case REQ_START: {

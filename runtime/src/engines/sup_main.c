@@ -301,6 +301,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
             sup_core_advance(c, now);
             continue;
         }
+        engine_terminate_names(m);
         switch (m->Type) {
         case REQ_START: handle_start(c, v, m, now); break;
         case REQ_STOP: {
