@@ -35,6 +35,10 @@ typedef struct OrdBinding {
     const char *reply_to;
     int reply_wanted;
     int next_release_id;
+    /* the id of each module's latest release: a late ack of an earlier one is ignored */
+    const char *rel_module[128];
+    int rel_id[128];
+    int nrel;
     /* release lateness samples (first release of each cycle), for CONTRACT_ORD_STATS */
     int record;
     int64_t *late;
@@ -81,10 +85,22 @@ static void record_lateness(OrdBinding *b, const char *schema, int64_t tick) {
     b->late[b->nlate++] = GetTime() - tick;
 }
 
+/* `create`: m is a name of the tables (static storage), never a received buffer */
+static int *release_slot(OrdBinding *b, const char *m, int create) {
+    for (int i = 0; i < b->nrel; i++)
+        if (strcmp(b->rel_module[i], m) == 0) return &b->rel_id[i];
+    if (!create || b->nrel == 128) return NULL;
+    b->rel_module[b->nrel] = m;
+    b->rel_id[b->nrel] = 0;
+    return &b->rel_id[b->nrel++];
+}
+
 static void b_release(void *ctx, const char *m, const char *schema, int64_t tick) {
     OrdBinding *b = ctx;
     if (b->record) record_lateness(b, schema, tick);
     int id = ++b->next_release_id;
+    int *slot = release_slot(b, m, 1);
+    if (slot) *slot = id;
     int rc = SendStart(m, ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE, id);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "ORD: cannot release %s (%s): %s\n", m, schema, ContractStrError(rc));
@@ -217,10 +233,13 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
                     ok ? ACK_STOPPED : ACK_NOTDONE, m->Param.Stop.AckID);
             break;
         }
-        case REQ_ACK:
-            if (m->Param.Ack.Ack & (ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE))
+        case REQ_ACK: {
+            int *slot = release_slot(&b, m->Param.Ack.Module, 0);
+            if ((m->Param.Ack.Ack & (ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE)) && slot &&
+                *slot == m->Param.Ack.AckID)
                 ord_core_module_finished(c, m->ReceptionTime ? m->ReceptionTime : now, m->Param.Ack.Module);
             break;
+        }
         case REQ_KILL:
             SendAck(m->Param.Kil.ModAck[0] ? m->Param.Kil.ModAck : m->Sender, m->Param.Kil.WantedAck,
                     ACK_KILLED, m->Param.Kil.AckID);
