@@ -36,26 +36,27 @@ const BASE: Record<string, string> = {
 
 export const BASE_FILES = Object.keys(BASE);
 
-/** Import tiers: a base file imports the base files of lower tiers; other files import every base file. */
+/**
+ * Import tiers: a file imports the files of lower tiers present in the architecture (types <
+ * modules < schemas < scheduler configuration < anything else, such as supervisors).
+ */
 const TIER: Record<string, number> = {
     't.contract': 0, 'msa.contract': 1, 'msb.contract': 1, 'msc.contract': 1, 'msd.contract': 1, 'maa.contract': 1,
-    'mab.contract': 1, 'sc1.contract': 2, 'ev.contract': 2, 'sched.contract': 3
+    'mab.contract': 1, 'sc1.contract': 2, 'sc2.contract': 2, 'ev.contract': 2, 'ev2.contract': 2, 'sched.contract': 3, 'sched2.contract': 3
 };
+const tierOf = (file: string) => TIER[file] ?? 99;
 
-/** Imports for `self`: the base files below it (all base files for a file outside the base), minus `skip`. */
-export function header(self: string, skip: string[] = []): string {
-    const tier = TIER[self] ?? 99;
-    return BASE_FILES.filter((f) => f !== self && !skip.includes(f) && TIER[f]! < tier).map((f) => `import "${f}";`).join('\n') + '\n';
+/** Imports for `self`: the files of `present` below its tier. */
+export function header(self: string, present: string[] = BASE_FILES): string {
+    return present.filter((f) => f !== self && tierOf(f) < tierOf(self)).map((f) => `import "${f}";`).join('\n') + '\n';
 }
 
 /** The base architecture with files replaced/added (`undefined` removes a file); every file gets its imports. */
 export function architecture(changes: Record<string, string | undefined> = {}): Record<string, string> {
+    const all = { ...BASE, ...changes };
+    const present = Object.keys(all).filter((f) => all[f] !== undefined);
     const files: Record<string, string> = {};
-    const removed = Object.entries(changes).filter(([, v]) => v === undefined).map(([k]) => k);
-    for (const [name, text] of Object.entries({ ...BASE, ...changes })) {
-        if (text === undefined) continue;
-        files[name] = header(name, removed) + text;
-    }
+    for (const name of present) files[name] = header(name, present) + all[name];
     return files;
 }
 

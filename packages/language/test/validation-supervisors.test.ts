@@ -1,0 +1,184 @@
+/** SPEC §2.6: every supervisor diagnostic code, raised and not raised by a near-identical case. */
+import { describe, expect, it } from 'vitest';
+import { architecture, supervisor, type SupervisorOptions } from './architecture-fixture.js';
+import { describeCodeCases, type CodeCase } from './code-cases.js';
+import { build } from './helpers.js';
+
+const sup = (rules: string, options: SupervisorOptions = {}) => architecture({ 'sup.contract': supervisor(rules, options) });
+/** A rule subscribing to MAA:2 on :2, so that MAA:2 events are legitimate. */
+const SUBSCRIBE = 'S0: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=1s]';
+const withSub = (rule: string) => sup(`${SUBSCRIBE}\n${rule}`);
+
+const CASES: Record<string, CodeCase> = {
+    'supervisor-function-duplicate': {
+        raise: sup('', { more: 'action() { }' }),
+        clean: sup('', { more: 'other() { }' })
+    },
+    'supervisor-parameter-duplicate': {
+        raise: sup('', { params: 'TypeA consigne, int consigne' }),
+        clean: sup('', { params: 'TypeA consigne, int mode' })
+    },
+    'supervisor-local-name-conflict': {
+        raise: sup('', { locals: 'string connection_status;' }),
+        clean: sup('', { locals: 'string connection_state;' }),
+        message: "Local 'connection_status' has the name of the variable of input event port :2 of SUP"
+    },
+    'supervisor-rule-uses-parameter': {
+        raise: sup('R: [elapsed=1ms] activate schema sc1(consigne = consigne) [elapsed=2ms]'),
+        clean: sup('R: [elapsed=1ms] activate schema sc1(consigne = temp_consigne) [elapsed=2ms]'),
+        message: "Rules cannot use the parameter 'consigne' of action: they use locals, event-port variables and constants. Use the local 'temp_consigne', initialised from it."
+    },
+    'supervisor-label-duplicate': {
+        raise: sup('R: [elapsed=1ms] [elapsed=2ms]\nR: [elapsed=3ms] [elapsed=4ms]'),
+        clean: sup('R: [elapsed=1ms] [elapsed=2ms]\nQ: [elapsed=3ms] [elapsed=4ms]')
+    },
+    'supervisor-ord-port': {
+        raise: sup('R: [ORD:2] compute doit("late", 1.0) [elapsed=2ms]'),
+        clean: sup('R: [ORD:1] compute doit("late", 1.0) [elapsed=2ms]')
+    },
+    'supervisor-ord-schema-misuse': {
+        raise: withSub('R: [MAA:2<ord_schema == "sc1">] compute doit("late", 1.0) [elapsed=2ms]'),
+        clean: withSub('R: [ORD:0<ord_schema == "sc1">] compute doit("late", 1.0) [elapsed=2ms]')
+    },
+    'supervisor-test-type': {
+        raise: withSub('R: [MAA:2<connection_status == 3>] compute doit("x", 1.0) [elapsed=2ms]'),
+        clean: withSub('R: [MAA:2<connection_status == "3">] compute doit("x", 1.0) [elapsed=2ms]'),
+        message: "Cannot compare 'connection_status' (string) with the integer 3"
+    },
+    'supervisor-extraction-target': {
+        raise: sup('R: [elapsed=1ms] subscribe MSC:1 => :3 [MSC:1(failure = failure_data)]'),
+        clean: sup('R: [elapsed=1ms] subscribe MSC:1 => :3 [MSC:1(failure_data = failure)]')
+    },
+    'supervisor-notify-target': {
+        raise: sup('R: [elapsed=1ms] notify :1 (temp_mess_type = "lost") [elapsed=2ms]'),
+        clean: sup('R: [elapsed=1ms] notify :1 (failure_message_type = "lost") [elapsed=2ms]'),
+        message: "notify :1 assigns the variable of that port, 'failure_message_type'"
+    },
+    'supervisor-argument-duplicate': {
+        raise: sup('R: [elapsed=1ms] activate schema sc1(consigne = temp_consigne, consigne = temp_consigne) [elapsed=2ms]'),
+        clean: sup('R: [elapsed=1ms] activate schema sc1(consigne = temp_consigne) [elapsed=2ms]')
+    },
+    'supervisor-module-not-async': {
+        raise: sup('R: [elapsed=1ms] activate resttime module MSA [elapsed=2ms]'),
+        clean: sup('R: [elapsed=1ms] activate resttime module MAA [elapsed=2ms]')
+    },
+    'supervisor-subscribe-type': {
+        raise: sup('R: [elapsed=1ms] subscribe MAA:2 =* :3 [elapsed=2ms]'),
+        clean: sup('R: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]'),
+        message: 'Port MAA:2 is an output event port of type string; input event port :3 (failure) expects TypeD'
+    },
+    'supervisor-subscribe-conflict': {
+        raise: sup('A: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nB: [elapsed=3ms] subscribe MAB:1 =* :2 [elapsed=4ms]'),
+        clean: sup('A: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nB: [elapsed=3ms] subscribe MAA:2 =* :2 [elapsed=4ms]'),
+        message: 'Input event port :2 (connection_status) is also subscribed to MAA:2 (rule A)'
+    },
+    'supervisor-endof-own-postcondition': {
+        raise: sup('A: [elapsed=1ms] compute doit("x", 1.0) [endof(A)]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]'),
+        clean: sup('A: [elapsed=1ms] compute doit("x", 1.0) [endof(B)]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]')
+    },
+    'supervisor-started-own-precondition': {
+        raise: sup('A: [started(A)] compute doit("x", 1.0) [elapsed=2ms]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]'),
+        clean: sup('A: [started(B)] compute doit("x", 1.0) [elapsed=2ms]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]')
+    },
+    'supervisor-clause-transient': {
+        raise: withSub('R: [(MAA:2 and elapsed=1ms)] compute doit("x", 1.0) [elapsed=2ms]'),
+        clean: withSub('R: [(MAA:2 and elapsed=1ms{infinite})] compute doit("x", 1.0) [elapsed=2ms]')
+    },
+    'supervisor-event-not-subscribed': {
+        raise: sup('R: [MAA:2] compute doit("x", 1.0) [elapsed=2ms]'),
+        clean: withSub('R: [MAA:2] compute doit("x", 1.0) [elapsed=2ms]'),
+        message: 'Function action never subscribes to MAA:2'
+    },
+    'supervisor-activation-cycle': {
+        raise: architecture({
+            'sup.contract': 'import "glb.contract";\n' + supervisor('R: [elapsed=1ms] activate supervisor GLB.mission() [elapsed=2ms]'),
+            'glb.contract': 'import "sup.contract";\nsupervisor GLB { mission() { rules { R: [elapsed=1ms] activate supervisor SUP.action() [elapsed=2ms] } } }'
+        }),
+        clean: architecture({
+            'sup.contract': supervisor('R: [elapsed=1ms] compute doit("x", 1.0) [elapsed=2ms]'),
+            'glb.contract': 'import "sup.contract";\nsupervisor GLB { mission() { rules { R: [elapsed=1ms] activate supervisor SUP.action() [elapsed=2ms] } } }'
+        }),
+        message: 'Supervisors activate each other: SUP -> GLB -> SUP.'
+    }
+};
+
+describeCodeCases('supervisor diagnostics (SPEC §2.6): raised and not raised', 'Supervisors', CASES);
+
+describe('supervisors: more behaviour', () => {
+    const errorsAndWarnings = async (files: Record<string, string>) =>
+        (await build(files)).diagnostics.filter((d) => d.severity === 'error' || d.severity === 'warning').map((d) => `${d.code}: ${d.message}`);
+
+    it('accepts the report-style SUP with GLB above it', async () => {
+        const rules = `FIRST: [elapsed=1ms]
+                subscribe MAA:2 ==* :2; subscribe MAA:0 ==* :1; activate schema ev()
+                [MAA:2<connection_status == "disconnected">]
+            SECOND: [(MAA:2<(connection_status == "disconnected" & testit("dedede", temp_consigne))> and started(FIRST){infinite})]
+                subscribe MSC:1=>:3; activate schema sc1(consigne = temp_consigne)
+                [MSC:1(failure_data = failure, temp_mess_type = "commutation")]
+            THIRD: [endof(SECOND)] notify :1(failure_message_type=temp_mess_type) [started(THIRD)]
+            FOURTH: [endof(SECOND)] compute doit("1.24",temp_consigne.k) [endof(FIRST)]
+            RECEPTION: [MAA:0(temp_message=message_received)]
+                parameterize MSC(temp_message.value :0); activate resttime module MAA
+                [started(RECEPTION)]
+            LATE: [ORD:0<ord_schema == "sc1">(temp_mess_type = ord_schema)] notify :1(failure_message_type = temp_mess_type) [elapsed=1s]`;
+        expect(await errorsAndWarnings(architecture({
+            'sup.contract': supervisor(rules),
+            'glb.contract': `import "sup.contract";\nsupervisor GLB { event flows { in :0 string s; } mission(TypeA consigne) { local { TypeA c = consigne; } rules {
+                SINGLE: [elapsed=1ms] subscribe SUP:1 => :0; activate supervisor SUP.action(consigne = c) [SUP:1<s == "commutation">]
+            } } }`
+        }))).toEqual([]);
+    });
+
+    it('a label referenced but not defined is a linking error listing the labels', async () => {
+        const built = await build(sup('A: [endof(NOPE)] compute doit("x", 1.0) [elapsed=2ms]'));
+        const found = built.diagnostics.filter((d) => d.code === 'linking-error');
+        expect(found.map((d) => [d.severity, d.message])).toEqual([['error', "No rule labelled 'NOPE' in function action; its labels: A."]]);
+    });
+
+    it('ORD events need no subscribe', async () => {
+        const built = await build(sup('R: [ORD:0] compute doit("late", 1.0) [elapsed=2ms]'));
+        expect(built.diagnostics.filter((d) => d.code === 'supervisor-event-not-subscribed')).toEqual([]);
+    });
+
+    it('type-checks activation arguments, parameterize, extraction values and notify values', async () => {
+        const rules = `R: [elapsed=1ms]
+                subscribe MSC:1 => :3;
+                activate schema sc1(consigne = temp_mess_type);
+                parameterize MSC(failure_data :0);
+                notify :1 (failure_message_type = 2)
+                [MSC:1(temp_mess_type = failure)]`;
+        const messages = (await build(sup(rules))).diagnostics.filter((d) => d.code === 'value-type-mismatch').map((d) => d.message).sort();
+        expect(messages).toEqual([
+            "Expected a TypeA value {i, j, k} for parameter 'consigne' of schema sc1, found 'temp_mess_type' of type string.",
+            "Expected a TypeA value {i, j, k} for parameter port :0 'param' of MSC, found 'failure_data' of type TypeD.",
+            "Expected a string (\"...\") for 'failure_message_type', found the integer 2.",
+            "Expected a string (\"...\") for 'temp_mess_type', found 'failure' of type TypeD."
+        ]);
+    });
+
+    it('a test mixing int and float is fine; a struct literal takes the type of the other operand', async () => {
+        const ok = await errorsAndWarnings(sup('R: [elapsed=1ms] subscribe MSC:1 => :3 [MSC:1<(failure.datavalue > 2.5) | failure == {"x", 1}>]'));
+        expect(ok).toEqual([]);
+        const bad = await errorsAndWarnings(sup('R: [elapsed=1ms] subscribe MSC:1 => :3 [MSC:1<failure == {"x"}>]'));
+        expect(bad).toEqual(['value-struct-arity: TypeD has 2 fields (dataname, datavalue); this value has 1 element for this comparison.']);
+    });
+
+    it('a supervisor activating itself is a cycle', async () => {
+        const built = await build(sup('R: [elapsed=1ms] activate supervisor SUP.action() [elapsed=2ms]'));
+        expect(built.diagnostics.filter((d) => d.code === 'supervisor-activation-cycle').map((d) => d.message))
+            .toEqual(['Supervisors activate each other: SUP -> SUP. The supervisor hierarchy must be a tree or a DAG (a supervisor activates only supervisors below it).']);
+    });
+
+    it('does not crash on unresolved names in rules', async () => {
+        const rules = `R: [(MZZ:4<((nothing.x > 1) & nofn(2))>(ghost = what) and started(GHOST){infinite})]
+                subscribe MZZ:1 =* :9; activate schema nosuch(p = q); activate supervisor NOP.fn(a = b);
+                activate critical module MZZ; parameterize MZZ(x :0); compute nofn(1); notify :7 (z = 1)
+                [ORD:9<ord_schema == 1>]`;
+        const built = await build(sup(rules));
+        expect(built.diagnostics.filter((d) => d.code === 'parsing-error')).toEqual([]);
+        expect(built.diagnostics.filter((d) => d.code === 'linking-error').length).toBeGreaterThan(10);
+        expect(built.diagnostics.filter((d) => d.code === 'supervisor-ord-port').length).toBe(1);
+        expect(built.diagnostics.filter((d) => d.code === 'supervisor-test-type').map((d) => d.message))
+            .toEqual(["Cannot compare 'ord_schema' (string) with the integer 1 (int): both operands of a test have the same type (int and float mix)."]);
+    });
+});
