@@ -7,6 +7,7 @@ import {
 import { CactalGeneratedModule, CactalGeneratedSharedModule } from './generated/module.js';
 import { CactalDocumentFactory } from './parser/nesting-guard.js';
 import { CactalParserErrorMessageProvider } from './parser/error-messages.js';
+import { CactalDocumentBuilder } from './scoping/cactal-document-builder.js';
 import { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
 import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
 import { ImportResolver } from './scoping/import-resolver.js';
@@ -41,10 +42,14 @@ export const CactalModule: Module<CactalServices, PartialLangiumServices & Cacta
     }
 };
 
-/** Shared-service overrides: the document factory guards the parser against pathological nesting. */
+/**
+ * Shared-service overrides: the document factory guards the parser against pathological nesting;
+ * the document builder revalidates a file when a file it imports changes.
+ */
 export const CactalSharedModule: Module<LangiumSharedServices, PartialLangiumSharedServices> = {
     workspace: {
-        LangiumDocumentFactory: (services) => new CactalDocumentFactory(services)
+        LangiumDocumentFactory: (services) => new CactalDocumentFactory(services),
+        DocumentBuilder: (services) => new CactalDocumentBuilder(services)
     }
 };
 

@@ -2,6 +2,7 @@
 import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { URI } from 'langium';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { findContractFiles, loadWorkspace } from '../src/node/load-workspace.js';
 
@@ -31,5 +32,27 @@ describe('loadWorkspace', () => {
         expect(ws.diagnostics.map((d) => [d.file, d.line, d.column, d.severity, d.code])).toEqual([
             ['bad.contract', 1, 21, 'error', 'value-type-mismatch']
         ]);
+    });
+});
+
+describe('incremental rebuilds', () => {
+    it('revalidates a file when a file it imports is created or deleted', async () => {
+        const dir = mkdtempSync(join(tmpdir(), 'cactal-incr-'));
+        try {
+            writeFileSync(join(dir, 'a.contract'), 'import "b.contract";\ndatatype A {int x};\n');
+            const ws = await loadWorkspace(dir);
+            const codesOfA = () => (ws.services.shared.workspace.LangiumDocuments.getDocument(URI.file(join(dir, 'a.contract')))!.diagnostics ?? [])
+                .map((d) => d.code);
+            expect(codesOfA()).toEqual(['import-missing-file']);
+            const b = join(dir, 'b.contract');
+            writeFileSync(b, 'datatype B {int y};\n');
+            await ws.services.shared.workspace.DocumentBuilder.update([URI.file(b)], []);
+            expect(codesOfA()).toEqual(['import-unused']);
+            rmSync(b);
+            await ws.services.shared.workspace.DocumentBuilder.update([], [URI.file(b)]);
+            expect(codesOfA()).toEqual(['import-missing-file']);
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
     });
 });
