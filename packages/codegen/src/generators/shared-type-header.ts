@@ -156,7 +156,7 @@ export function generateSharedTypeHeader(type: Datatype): string {
 
         static inline void print_${T}(${T} * arg){
             printf("(object type %s : ", "${T}");
-            ${joinToNode(type.fields, printField, { appendNewLineIfNotEmpty: true })}
+            ${type.fields.length === 0 ? '(void)arg;' : joinToNode(type.fields, printField, { appendNewLineIfNotEmpty: true })}
             printf(")");
         }
 
