@@ -4,10 +4,13 @@
  * The start marker may lack `ENABLED` (the user asks for the default to be regenerated).
  */
 
-/** Matches a start marker; group 1 = the ID, group 2 = `ENABLED` when present. Tolerates extra blanks. */
-export const START_MARKER = /\/\*[ \t]*PROTECTED[ \t]+REGION[ \t]+ID[ \t]*\(([^()\r\n]*)\)[ \t]*(ENABLED[ \t]+)?START[ \t]*\*\//g;
+/**
+ * Matches a start marker; group 1 = the ID, group 2 = `ENABLED` when present. Tolerates extra
+ * blanks and line breaks between the words (code pasted from the report's PDF has them).
+ */
+export const START_MARKER = /\/\*\s*PROTECTED\s+REGION\s+ID\s*\(([^()\r\n]*)\)\s*(ENABLED\s+)?START\s*\*\//g;
 /** Matches an end marker. */
-export const END_MARKER = /\/\*[ \t]*PROTECTED[ \t]+REGION[ \t]+END[ \t]*\*\//g;
+export const END_MARKER = /\/\*\s*PROTECTED\s+REGION\s+END\s*\*\//g;
 
 /** The start marker the generators write (always ENABLED: a fresh region keeps what the user types). */
 export function startMarker(id: string): string {

@@ -25,6 +25,12 @@ describe('parseRegions', () => {
         expect(text.slice(regions[1]!.start, regions[1]!.end)).toBe(`${S('two', false)}"inline"${E}`);
     });
 
+    it('accepts markers broken over lines, as pasted from the report', () => {
+        const text = '/*PROTECTED REGION ID(protect_description_MAA) ENABLED\nSTART*/"text"/*PROTECTED\nREGION END*/';
+        const { regions } = parseRegions(text, 'f.c');
+        expect(regions.map((r) => [r.id, r.enabled, r.content])).toEqual([['protect_description_MAA', true, '"text"']]);
+    });
+
     it('reads the legacy additionnal spelling as additional', () => {
         const { regions } = parseRegions(`${S('protect_additionnal_import_MAA')}x${E}`, 'f.c');
         expect(regions[0]!.id).toBe('protect_additional_import_MAA');
