@@ -35,11 +35,18 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
             its.it_value.tv_sec = (time_t)(deadline / 1000000000LL);
             its.it_value.tv_nsec = (long)(deadline % 1000000000LL);
         }
-        if (timerfd_settime(timer_fd, TFD_TIMER_ABSTIME, &its, NULL) != 0) return -1;
+        if (timerfd_settime(timer_fd, TFD_TIMER_ABSTIME, &its, NULL) != 0) {
+            fprintf(stderr, "%s: timerfd_settime: %s\n", ContractSelfName(), strerror(errno));
+            return -1;
+        }
         struct pollfd p[2] = {{MailboxFd(), POLLIN, 0}, {timer_fd, POLLIN, 0}};
         int r = poll(p, 2, -1);
         if (r < 0) {
             if (errno == EINTR) continue;
+            return -1;
+        }
+        if (p[0].revents & (POLLERR | POLLNVAL)) {
+            fprintf(stderr, "%s: the mailbox is no longer readable\n", ContractSelfName());
             return -1;
         }
         if (p[1].revents & POLLIN) {

@@ -10,7 +10,8 @@
 
 #include "libmodule/libmodule.h"
 
-/** Returns 1 (a request is in *m), 0 (the deadline passed; INT64_MAX = none), -1 (error). */
+/** Returns 1 (a request is in *m), 0 (the deadline passed; INT64_MAX = none), -1 (a fatal
+ *  error, reported on stderr: the engine should end). Interruptions by signals are retried. */
 int engine_wait(RequestMessage *m, int64_t deadline);
 
 #endif

@@ -190,6 +190,7 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
         return 2;
     }
     ord_core_set_skip_late_ticks(c, 1);
+    int rc = 0;
     RequestMessage *m = malloc(sizeof *m);
     if (!m) {
         ord_core_destroy(c);
@@ -200,7 +201,10 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
         ord_core_next_deadline(c, &deadline);
         int got = engine_wait(m, deadline);
         int64_t now = GetTime();
-        if (got < 0) continue;
+        if (got < 0) {
+            rc = 1;
+            break;
+        }
         if (got == 0) {
             ord_core_advance(c, now);
             continue;
@@ -253,5 +257,5 @@ out:
     free(b.late);
     free(m);
     ord_core_destroy(c);
-    return 0;
+    return rc;
 }

@@ -296,7 +296,10 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
         sup_core_next_deadline(c, &deadline);
         int got = engine_wait(m, deadline);
         int64_t now = GetTime();
-        if (got < 0) continue; /* EINTR or a reported receive error */
+        if (got < 0) {
+            rc = 1;
+            break;
+        }
         if (got == 0) {
             sup_core_advance(c, now);
             continue;
