@@ -43,19 +43,21 @@ function collectMarkers(text: string): Marker[] {
     return markers.sort((a, b) => a.index - b.index);
 }
 
-/** Returns a function mapping an offset to its 1-based line number. */
+/**
+ * Maps offsets to 1-based line numbers. Queries come in increasing order (markers are sorted), so
+ * newlines are counted incrementally: no per-character pass over files that have few markers.
+ */
 function lineLocator(text: string): (offset: number) => number {
-    const starts: number[] = [0];
-    for (let i = 0; i < text.length; i++) if (text.charCodeAt(i) === 10) starts.push(i + 1);
+    let line = 1;
+    let scanned = 0;
     return (offset) => {
-        let lo = 0;
-        let hi = starts.length - 1;
-        while (lo < hi) {
-            const mid = (lo + hi + 1) >> 1;
-            if (starts[mid]! <= offset) lo = mid;
-            else hi = mid - 1;
+        if (offset < scanned) {
+            line = 1;
+            scanned = 0;
         }
-        return lo + 1;
+        for (let nl = text.indexOf('\n', scanned); nl !== -1 && nl < offset; nl = text.indexOf('\n', nl + 1)) line++;
+        scanned = offset;
+        return line;
     };
 }
 
