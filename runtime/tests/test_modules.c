@@ -310,3 +310,23 @@ void test_unknown_and_stale(void)
     CHECK(ModuleState("P") == CONTRACT_OK); /* the first one is untouched */
     h_teardown();
 }
+
+void test_long_run_dir(void)
+{
+    REQUIRE(h_setup("longdir") == 0);
+    ContractShutdown();
+    char deep[600];
+    memset(deep, 'd', 120);
+    deep[120] = '\0';
+    REQUIRE(snprintf(h_run_dir, sizeof h_run_dir, "%s/%s/run", h_work_dir, deep) < (int)sizeof h_run_dir);
+    REQUIRE(strlen(h_run_dir) > 108); /* longer than sun_path */
+    setenv("CONTRACT_RUN_DIR", h_run_dir, 1);
+    REQUIRE(ContractClientInit("tester") == 0);
+    RequestMessage *m = h_msg();
+    pid_t pid = h_spawn_module("MSC", "MSC");
+    REQUIRE(pid > 0);
+    CHECK(SendStart("MSC", ACK_FINISHED, 1) == 0 && h_wait_ack("MSC", 1, ACK_FINISHED, 2000, m));
+    CHECK(SendKill("MSC", ACK_KILLED, 2) == 0 && h_wait_ack("MSC", 2, ACK_KILLED, 2000, m));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    h_teardown();
+}

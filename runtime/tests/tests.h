@@ -12,6 +12,7 @@ void test_event_oneshot_continuous(void);
 void test_setparam_sizes(void);
 void test_malformed_datagrams(void);
 void test_unknown_and_stale(void);
+void test_long_run_dir(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_two_run_dirs(void);
@@ -29,6 +30,7 @@ static const TestCase ALL_TESTS[] = {
     { "setparam_sizes", test_setparam_sizes },
     { "malformed_datagrams", test_malformed_datagrams },
     { "unknown_and_stale", test_unknown_and_stale },
+    { "long_run_dir", test_long_run_dir },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
     { "two_run_dirs", test_two_run_dirs },
