@@ -4,7 +4,7 @@
  * references by index; rule labels (`label`, a token type added to the standard legend);
  * functions; variables and fields; time literals (number).
  */
-import { GrammarAST, type AstNode, type CstNode } from 'langium';
+import { AstUtils, GrammarAST, type AstNode, type CstNode } from 'langium';
 import { AbstractSemanticTokenProvider, AllSemanticTokenTypes, type SemanticTokenAcceptor } from 'langium/lsp';
 import { SemanticTokenModifiers, SemanticTokenTypes } from 'vscode-languageserver-protocol';
 import {
@@ -80,13 +80,25 @@ export class CactalSemanticTokenProvider extends AbstractSemanticTokenProvider {
         else if (isSchedulerSchemas(node)) node.schemas.forEach((_, index) => acceptor({ node, property: 'schemas', index, type: T.namespace }));
     }
 
-    /** Alphabetic keywords written directly by this node's rule (`module`, `data`, `flows`, `activate`...). */
+    /** Alphabetic keywords written by this node's own rule (`module`, `data`, `flows`, `activate`...), not by its children. */
     private highlightKeywords(node: AstNode, acceptor: SemanticTokenAcceptor): void {
-        const cst = node.$cstNode as (CstNode & { content?: CstNode[] }) | undefined;
-        for (const child of cst?.content ?? []) {
-            if (child.astNode !== node) continue;
-            const source = child.grammarSource;
-            if (GrammarAST.isKeyword(source) && /^[A-Za-z]/.test(source.value) && source.value !== 'ORD') acceptor({ cst: child, type: SemanticTokenTypes.keyword });
-        }
+        const visit = (cst: CstNode & { content?: CstNode[] }): void => {
+            for (const child of cst.content ?? []) {
+                if (child.astNode !== node) continue;
+                const source = child.grammarSource;
+                if (GrammarAST.isKeyword(source)) {
+                    if (/^[A-Za-z]/.test(source.value) && source.value !== 'ORD') acceptor({ cst: child, type: SemanticTokenTypes.keyword });
+                } else if (!GrammarAST.isCrossReference(source) && !isNameOrValue(child)) {
+                    visit(child as CstNode & { content?: CstNode[] });
+                }
+            }
+        };
+        if (node.$cstNode) visit(node.$cstNode as CstNode & { content?: CstNode[] });
     }
+}
+
+/** A child written through `name=` (a Name may be a keyword word) or `primitive=` (highlighted as a type): not a keyword token. */
+function isNameOrValue(cst: CstNode): boolean {
+    const assignment = AstUtils.getContainerOfType(cst.grammarSource, GrammarAST.isAssignment);
+    return assignment?.feature === 'name' || assignment?.feature === 'primitive';
 }

@@ -1,0 +1,83 @@
+/** Quick fixes (SPEC §2.7): add a missing import, upper-case a module name, renumber a duplicate port index. */
+import { describe, expect, it } from 'vitest';
+import type { CodeAction, WorkspaceEdit } from 'vscode-languageserver-protocol';
+import { build, type Built } from './helpers.js';
+import { ARCHITECTURE } from './lsp-workspace.js';
+
+/** The quick fixes offered for the diagnostics of `file` with the given code. */
+async function fixes(ws: Built, file: string, code: string): Promise<CodeAction[]> {
+    const doc = ws.docs.get(file)!;
+    const diagnostics = (doc.diagnostics ?? []).filter((d) => d.code === code);
+    expect(diagnostics.length, `a ${code} diagnostic in ${file}`).toBeGreaterThan(0);
+    const actions = await ws.services.lsp.CodeActionProvider!.getCodeActions(doc, {
+        textDocument: { uri: doc.uri.toString() },
+        range: diagnostics[0]!.range,
+        context: { diagnostics }
+    });
+    return (actions ?? []) as CodeAction[];
+}
+
+/** New texts of the files after a workspace edit. */
+function apply(ws: Built, edit: WorkspaceEdit): Record<string, string> {
+    const out: Record<string, string> = {};
+    for (const [file, doc] of ws.docs) {
+        const edits = [...(edit.changes?.[doc.uri.toString()] ?? [])]
+            .sort((a, b) => doc.textDocument.offsetAt(b.range.start) - doc.textDocument.offsetAt(a.range.start));
+        let text = doc.textDocument.getText();
+        for (const e of edits) text = text.slice(0, doc.textDocument.offsetAt(e.range.start)) + e.newText + text.slice(doc.textDocument.offsetAt(e.range.end));
+        out[file] = text;
+    }
+    return out;
+}
+
+describe('quick fixes', () => {
+    it('adds the missing import after the existing ones, and the file then checks clean of that error', async () => {
+        const files = { ...ARCHITECTURE, 'nested/s5.contract': 'import "../msa.contract";\nperiodic schema s5() { realtime { PERIOD=1s; } modules { MSA(); MSD(); } }\n' };
+        const ws = await build(files);
+        const [action, ...rest] = await fixes(ws, 'nested/s5.contract', 'import-not-imported');
+        expect(rest).toEqual([]);
+        expect(action!.title).toBe('Add import "../msd.contract"');
+        const fixed = apply(ws, action!.edit!)['nested/s5.contract']!;
+        expect(fixed).toBe('import "../msa.contract";\nimport "../msd.contract";\nperiodic schema s5() { realtime { PERIOD=1s; } modules { MSA(); MSD(); } }\n');
+        const again = await build({ ...files, 'nested/s5.contract': fixed });
+        expect(again.diagnostics.filter((d) => d.file === 'nested/s5.contract' && d.code === 'import-not-imported')).toEqual([]);
+    });
+
+    it('adds an import at the top of a file without imports', async () => {
+        const ws = await build({ ...ARCHITECTURE, 'm.contract': 'synchronous module MXX { scheduling { C=1ms; } data flows { out :0 TypeA a; } }' });
+        const [action] = await fixes(ws, 'm.contract', 'import-not-imported');
+        expect(apply(ws, action!.edit!)['m.contract']).toMatch(/^import "types\.contract";\nsynchronous module MXX/);
+    });
+
+    it('upper-cases a module name in its file and in the files that refer to it', async () => {
+        const ws = await build({
+            ...ARCHITECTURE,
+            'msa.contract': ARCHITECTURE['msa.contract']!.replace('module MSA', 'module msa'),
+            'schema.contract': ARCHITECTURE['schema.contract']!.replace(/MSA/g, 'msa')
+        });
+        const [action] = await fixes(ws, 'msa.contract', 'module-name-format');
+        expect(action!.title).toBe("Rename 'msa' to 'MSA'");
+        const texts = apply(ws, action!.edit!);
+        expect(texts['msa.contract']).toContain('synchronous module MSA {');
+        expect(texts['schema.contract']).toContain('MSA -> MSC;');
+        expect(texts['schema.contract']).toContain('MSA:0 -> MSC:0 * 1;');
+        expect(texts["schema.contract"]).not.toMatch(/\bmsa\b(?!\.contract)/);
+    });
+
+    it('renumbers a duplicate port index to the free index', async () => {
+        const ws = await build({ 'types.contract': ARCHITECTURE['types.contract']!, 'm.contract': `import "types.contract";
+synchronous module MXX { scheduling { C=1ms; } data flows { out :0 int a; out :0 int b; out :1 int c; } }` });
+        const [action] = await fixes(ws, 'm.contract', 'port-index-duplicate');
+        expect(action!.title).toBe('Renumber to :2');
+        expect(apply(ws, action!.edit!)['m.contract']).toContain('out :0 int a; out :2 int b; out :1 int c;');
+    });
+
+    it('offers nothing for diagnostics without a fix', async () => {
+        const ws = await build({ 'a.contract': 'import "nosuch.contract";\ndatatype T {int a};' });
+        const doc = ws.docs.get('a.contract')!;
+        const actions = await ws.services.lsp.CodeActionProvider!.getCodeActions(doc, {
+            textDocument: { uri: doc.uri.toString() }, range: doc.diagnostics![0]!.range, context: { diagnostics: doc.diagnostics! }
+        });
+        expect(actions).toEqual([]);
+    });
+});
