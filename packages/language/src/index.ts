@@ -10,6 +10,7 @@ export { CactalLanguageMetaData } from './generated/module.js';
 export * from './model/index.js';
 export * from './validation/codes/index.js';
 export { report } from './validation/report.js';
+export * from './validation/timing-analysis.js';
 export { CHECK_FACTORIES, type CheckFactory } from './validation/cactal-validator.js';
 export { ImportResolver } from './scoping/import-resolver.js';
 export { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
