@@ -80,19 +80,12 @@ class ImportChecker {
     /** The import graph of the workspace with its strongly connected components (cached per build). */
     private graph(): ImportGraph {
         return this.graphCache.get('graph', () => {
-            const docs = this.services.shared.workspace.LangiumDocuments;
+            const byUri = this.documentsByUri();
             const edges = new Map<string, string[]>();
-            for (const doc of docs.all) {
+            for (const [uri, doc] of byUri) {
                 const model = doc.parseResult.value;
-                const targets: string[] = [];
-                if (isModel(model)) {
-                    for (const imp of model.imports) {
-                        if (imp.path === undefined) continue;
-                        const uri = this.imports.resolvePath(doc.uri, imp.path);
-                        if (docs.hasDocument(uri)) targets.push(uri.toString());
-                    }
-                }
-                edges.set(doc.uri.toString(), targets);
+                const targets = isModel(model) ? [...this.imports.visibleUris(model)].filter((u) => u !== uri && byUri.has(u)) : [];
+                edges.set(uri, targets);
             }
             return { edges, component: stronglyConnectedComponents(edges) };
         });
