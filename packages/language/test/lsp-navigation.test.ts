@@ -205,3 +205,19 @@ describe('rename: keywords', () => {
         await expect(async () => rename.rename(types, { ...params(types, offsetOf(types, 'TypeA', 1)), newName: 'module' })).rejects.toThrow(/Cactal keyword/);
     });
 });
+
+describe('prepare rename', () => {
+    it('offers the name on a declaration, the port name as placeholder on an index reference, nothing on ORD', async () => {
+        const ws = await build({ ...FILES, 'o.contract': 'supervisor SUO { go() { rules { R: [ORD:0] [elapsed=1ms] } } }' });
+        const rename = ws.services.lsp.RenameProvider!;
+        const msc = ws.docs.get('msc.contract')!;
+        const onName = await rename.prepareRename(msc, params(msc, offsetOf(msc, 'MSC', 1)));
+        expect(onName && msc.textDocument.getText(onName)).toBe('MSC');
+        const sup = ws.docs.get('sup.contract')!;
+        const onIndex = await rename.prepareRename(sup, params(sup, offsetOf(sup, 'MSC:1 =*', 4))) as unknown as { range: Location['range']; placeholder: string };
+        expect(onIndex.placeholder).toBe('failing');
+        expect(sup.textDocument.getText(onIndex.range)).toBe('1');
+        const ord = ws.docs.get('o.contract')!;
+        expect(await rename.prepareRename(ord, params(ord, offsetOf(ord, 'ORD', 1)))).toBeUndefined();
+    });
+});

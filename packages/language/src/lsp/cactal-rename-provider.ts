@@ -6,7 +6,7 @@
  */
 import { CstUtils, type AstNode, type Grammar, type IndexManager, type LangiumDocument, type LangiumDocuments } from 'langium';
 import { DefaultRenameProvider } from 'langium/lsp';
-import { LSPErrorCodes, ResponseError, type RenameParams, type WorkspaceEdit } from 'vscode-languageserver-protocol';
+import { LSPErrorCodes, ResponseError, type Range, type RenameParams, type TextDocumentPositionParams, type WorkspaceEdit } from 'vscode-languageserver-protocol';
 import type { CactalServices } from '../cactal-module.js';
 import { renameProblem } from './name-rules.js';
 import { renameEdits } from './rename-edits.js';
@@ -30,6 +30,19 @@ export class CactalRenameProvider extends DefaultRenameProvider {
         const problem = renameProblem(target, params.newName, this.grammar, this.index);
         if (problem) throw new ResponseError(LSPErrorCodes.RequestFailed, problem);
         return renameEdits(this.references, this.documents, target, params.newName);
+    }
+
+    /**
+     * The range to rename and the current name. On a port reference written as its index (`MSC:1`)
+     * the placeholder is the port's name: renaming there renames the port's variable, not the index.
+     */
+    override prepareRename(document: LangiumDocument, params: TextDocumentPositionParams): Range | undefined {
+        const range = super.prepareRename(document, params) as Range | undefined;
+        if (!range) return undefined;
+        const target = this.targetAt(document, document.textDocument.offsetAt(params.position));
+        if (!target?.name) return undefined;
+        if (document.textDocument.getText(range) === target.name) return range;
+        return { range, placeholder: target.name } as unknown as Range;
     }
 
     /** The named element a position designates (its name, or a reference to it). */
