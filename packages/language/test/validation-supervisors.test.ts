@@ -89,6 +89,11 @@ const CASES: Record<string, CodeCase> = {
         clean: withSub('R: [MAA:2] compute doit("x", 1.0) [elapsed=2ms]'),
         message: 'Function action never subscribes to MAA:2'
     },
+    'supervisor-event-variable': {
+        raise: sup('R: [elapsed=1ms] subscribe MAA:2 =* :2 [MAA:2<failure.dataname == "x">]'),
+        clean: sup('R: [elapsed=1ms] subscribe MAA:2 =* :2 [MAA:2<connection_status == "x">]'),
+        message: "MAA:2 is delivered to :2 connection_status; 'failure.dataname' is the variable of input port :3, which this event does not write"
+    },
     'supervisor-activation-cycle': {
         raise: architecture({
             'sup.contract': 'import "glb.contract";\n' + supervisor('R: [elapsed=1ms] activate supervisor GLB.mission() [elapsed=2ms]'),
@@ -133,6 +138,14 @@ describe('supervisors: more behaviour', () => {
         const built = await build(sup('A: [endof(NOPE)] compute doit("x", 1.0) [elapsed=2ms]'));
         const found = built.diagnostics.filter((d) => d.code === 'linking-error');
         expect(found.map((d) => [d.severity, d.message])).toEqual([['error', "No rule labelled 'NOPE' in function action; its labels: A."]]);
+    });
+
+    it('an extraction may read the port of any module event of its clause, not others', async () => {
+        const rule = (extract: string) => `A: [elapsed=1ms] subscribe MAA:2 =* :2; subscribe MSC:1 => :3 [elapsed=1s]
+            B: [(MAA:2{infinite} and MSC:1(${extract}))] compute doit("x", 1.0) [elapsed=2s]`;
+        const codesOf = async (extract: string) => (await build(sup(rule(extract)))).diagnostics.filter((d) => d.severity !== 'hint').map((d) => d.code);
+        expect(await codesOf('temp_mess_type = connection_status, failure_data = failure')).toEqual([]);
+        expect(await codesOf('temp_message = message_received')).toEqual(['supervisor-event-variable']);
     });
 
     it('ORD events need no subscribe', async () => {

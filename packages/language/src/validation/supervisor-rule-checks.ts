@@ -8,9 +8,9 @@ import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langiu
 import {
     isDurationEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
     isNotify, isRule, isStartedEvent, isStructValue, isSubscribe, isSupervisionFunction, isVariableRef,
-    isIntLiteral, isRealLiteral, isStringLiteral,
+    isIntLiteral, isRealLiteral, isStringLiteral, isPort, isSupervisor, isClause,
     type CactalAstType, type Clause, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
-    type Rule, type TestOperand, type VariableRef
+    type Port, type Rule, type TestOperand, type VariableRef
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { rulesOf } from '../model/blocks.js';
@@ -25,7 +25,7 @@ export const ORD_EVENT_PORTS: Readonly<Record<number, string>> = { 0: 'critical 
 export function supervisorRuleChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
     return {
         VariableRef: [checkNoParameterInRule, checkOrdSchemaUse],
-        ModuleEvent: [checkOrdPort, checkEventSubscribed],
+        ModuleEvent: [checkOrdPort, checkEventSubscribed, checkEventVariables],
         EqualityTest: checkTestOperands,
         RelationalTest: checkTestOperands,
         Extraction: checkExtraction,
@@ -79,6 +79,60 @@ function checkEventSubscribed(event: ModuleEvent, accept: ValidationAcceptor): v
     report(accept, SupervisorCodes['supervisor-event-not-subscribed'],
         `Function ${fn.name} never subscribes to ${source.name}:${port.index}, so this event never occurs and its clause stays false: add 'subscribe ${source.name}:${port.index} =* :<input port>' to a rule that is active before.`,
         { node: event, property: 'port' });
+}
+
+/** The supervisor input ports that the function's subscribes connect this event's source port to. */
+function deliveredPorts(event: ModuleEvent): Set<Port> {
+    const ports = new Set<Port>();
+    const source = event.source?.ref;
+    const port = event.port?.ref;
+    const fn = AstUtils.getContainerOfType(event, isSupervisionFunction);
+    if (event.ord || !source || !port || !fn) return ports;
+    for (const rule of rulesOf(fn)) {
+        for (const a of rule.actions) {
+            const target = isSubscribe(a) && a.source?.ref === source && a.sourcePort?.ref === port ? a.targetPort?.ref : undefined;
+            if (target) ports.add(target);
+        }
+    }
+    return ports;
+}
+
+/** The supervisor input port a variable reference reads, if it reads one. */
+function inputPortRead(ref: VariableRef): Port | undefined {
+    const variable = ref.variable?.ref;
+    return isPort(variable) && variable.direction === 'in' && isSupervisor(variable.$container?.$container) ? variable : undefined;
+}
+
+function checkEventVariables(event: ModuleEvent, accept: ValidationAcceptor): void {
+    if (event.ord || !event.source?.ref || !event.port?.ref) return;
+    const own = deliveredPorts(event);
+    if (own.size === 0) return; // never subscribed: reported by supervisor-event-not-subscribed
+    const name = `${event.source.ref.name}:${event.port.ref.index}`;
+    const list = (ports: Set<Port>) => [...ports].map((p) => `:${p.index} ${p.name}`).join(', ');
+    for (const clause of event.tests) {
+        for (const node of AstUtils.streamAllContents(clause)) {
+            const port = isVariableRef(node) ? inputPortRead(node) : undefined;
+            if (port && !own.has(port)) {
+                report(accept, SupervisorCodes['supervisor-event-variable'],
+                    `${name} is delivered to ${list(own)}; '${variableRefText(node as VariableRef)}' is the variable of input port :${port.index}, which this event does not write: the test would read an older value.`,
+                    { node });
+            }
+        }
+    }
+    if (event.extractions.length === 0) return;
+    const clauseEvents = isClause(event.$container) ? event.$container.events.filter(isModuleEvent) : [event];
+    const written = new Set(clauseEvents.flatMap((e) => [...deliveredPorts(e)]));
+    for (const extraction of event.extractions) {
+        if (!extraction.value) continue;
+        for (const node of [extraction.value, ...AstUtils.streamAllContents(extraction.value)]) {
+            const port = isVariableRef(node) ? inputPortRead(node) : undefined;
+            if (port && !written.has(port)) {
+                report(accept, SupervisorCodes['supervisor-event-variable'],
+                    `No module event of this clause writes input port :${port.index} ('${port.name}'); ${name} is delivered to ${list(own)}: the extraction would read an older value.`,
+                    { node });
+            }
+        }
+    }
 }
 
 /** The type of a test operand, or undefined for a structured value (its type comes from the other side). */

@@ -92,6 +92,11 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
         description: 'A condition uses an event of a module or supervisor output port that the function never subscribes to (`subscribe M:o =* :i`): until it subscribes, every clause with this event is false (report §4.7). `ORD` events need no subscribe.',
         example: 'R: [MAA:2] compute doit("a", 1.0) [elapsed=1ms]   // no subscribe MAA:2 in this function'
     },
+    'supervisor-event-variable': {
+        severity: 'warning',
+        description: 'A module event delivers its data into the supervisor input ports its subscribes connect it to (`subscribe MAA:2 =* :2` writes `:2`). A test of the event reads another input port\'s variable, or an extraction reads an input port that no module event of its clause writes: it would see that port\'s older value, not this event\'s data.',
+        example: 'R: [elapsed=1ms] subscribe MAA:2 =* :2 [MAA:2<failure.datavalue == 3>]   // failure is the variable of :3'
+    },
     'supervisor-activation-cycle': {
         severity: 'error',
         description: 'Supervisors that activate each other (`activate supervisor`) form a cycle; the supervisor hierarchy must be a tree or a DAG (it also fixes their priorities). The message lists the cycle.',
