@@ -72,7 +72,7 @@ describe('formatter', () => {
 
     it('keeps comments: trailing ones on their line, others on their own line', () => {
         const out = format('/* header */\ndatatype T {int a, // first\n int b};\n// tail\n');
-        expect(out).toBe('/* header */\ndatatype T {int a, // first\nint b};\n// tail\n');
+        expect(out).toBe('/* header */\ndatatype T {int a, // first\n    int b};\n// tail\n');
         expect(format(out)).toBe(out);
     });
 

@@ -31,9 +31,10 @@ const BLOCK_TYPES = new Set([
 /** Tokens after which `(` is preceded by a space (operators); after names it is not (`MSA()`, `started(`). */
 const SPACE_BEFORE_PAREN = new Set(['=', '==', '!=', '<', '>', '<=', '>=', '|', '&', 'and', 'or', '->', '=*', '=>', '==*', '==>', '*']);
 
-/** Containers in which `X:N` is written without spaces (a module's port, an `ORD:n` event, a rule label). */
+/** Event modes: in `subscribe MAA:2 =* :2` the colon after a mode is spaced. */
 const EVENT_MODES = new Set(['=*', '=>', '==*', '==>']);
 
+/** Containers in which `X:N` is written without spaces (a module's port, an `ORD:n` event, a rule label). */
 const TIGHT_COLON = new Set(['DataCommunication', 'EventCommunication', 'ModuleEvent', 'Rule']);
 
 type Layout = 'none' | 'space' | 'newline' | 'blank';
@@ -115,6 +116,8 @@ function layout(items: Item[], source: string, model: Model): string {
     let prevReal: Item | undefined;
     let prev: Item | undefined;
     let newlineRequired = false;
+    /** Open inline brackets (values, argument lists, conditions): a line broken inside them (after a comment) is indented once more. */
+    let inline = 0;
     for (let i = 0; i < items.length; i++) {
         const item = items[i]!;
         const gapText = prev ? source.slice(prev.token.endOffset! + 1, item.token.startOffset) : '';
@@ -126,7 +129,7 @@ function layout(items: Item[], source: string, model: Model): string {
                 // own-line comment: a top-level element's blank line goes before its leading comments
                 const nextReal = items.slice(i + 1).find((x) => !x.comment);
                 const blank = (newlines >= 2 && !(prev === prevReal && isBlockOpen(prev))) || (!prev.comment && nextReal !== undefined && firstOfElement.has(nextReal.token.startOffset) && prevReal !== undefined);
-                out += (blank ? '\n\n' : '\n') + INDENT.repeat(depth) + item.text;
+                out += (blank ? '\n\n' : '\n') + INDENT.repeat(depth + (inline > 0 ? 1 : 0)) + item.text;
             } else {
                 out += item.text;
             }
@@ -150,11 +153,13 @@ function layout(items: Item[], source: string, model: Model): string {
         newlineRequired = false;
         if (prev) {
             if (kind === 'space') out += ' ';
-            else if (kind === 'newline') out += '\n' + INDENT.repeat(depth);
-            else if (kind === 'blank') out += '\n\n' + INDENT.repeat(depth);
+            else if (kind === 'newline') out += '\n' + INDENT.repeat(depth + (inline > 0 && !isInlineClose(item) ? 1 : 0));
+            else if (kind === 'blank') out += '\n\n' + INDENT.repeat(depth + (inline > 0 && !isInlineClose(item) ? 1 : 0));
         }
         out += item.text;
         if (isBlockOpen(item)) depth++;
+        if (isInlineOpen(item)) inline++;
+        if (isInlineClose(item)) inline = Math.max(0, inline - 1);
         const bracket = ruleBracket(item);
         if (bracket === 'pre-close') depth++;
         if (bracket === 'post-close') depth = Math.max(0, depth - 1);
@@ -208,6 +213,14 @@ function spacing(a: Item, b: Item): Layout {
         return SPACE_BEFORE_PAREN.has(a.text) ? 'space' : 'none';
     }
     return 'space';
+}
+
+function isInlineOpen(item: Item): boolean {
+    return !item.comment && (item.text === '(' || item.text === '[' || (item.text === '{' && !isBlockOpen(item)));
+}
+
+function isInlineClose(item: Item): boolean {
+    return !item.comment && (item.text === ')' || item.text === ']' || (item.text === '}' && !isBlockClose(item)));
 }
 
 function isBlockOpen(item: Item): boolean {
