@@ -126,6 +126,7 @@ export class BwrapSandbox implements Sandbox {
       '--unshare-ipc',
       '--unshare-uts',
       '--unshare-cgroup-try',
+      '--disable-userns', // no nested user namespaces: no way to regain capabilities inside
       '--as-pid-1', // the command is the namespace's init: no bwrap init left to PID 1 when bwrap exits
       '--uid', String(SANDBOX_UID),
       '--gid', String(SANDBOX_UID),

@@ -17,6 +17,7 @@ import {
   honestProgram,
   infiniteLoop,
   makeProject,
+  nestedUserNamespace,
   outputFlood,
   writeOutsideProgram,
 } from './c-projects.js';
@@ -56,7 +57,7 @@ beforeAll(async () => {
   });
   await new Promise<void>((r) => listener.listen(0, '127.0.0.1', r));
   const port = (listener.address() as { port: number }).port;
-  server = createBuildServer({ port: 0, concurrency: 7, queueSize: 0, cacheDir });
+  server = createBuildServer({ port: 0, concurrency: 8, queueSize: 0, cacheDir });
   url = (await server.listen()).url;
   await Promise.all([
     runToEnd('honest', makeProject(honestProgram(200))),
@@ -69,6 +70,7 @@ beforeAll(async () => {
       makeProject(writeOutsideProgram([join(hostDir, 'pwned.txt'), join(hostDir, 'secret.txt'), '/usr/pwned', '/etc/pwned', '/pwned', '/tmp/private-ok'])),
     ),
     runToEnd('flood', makeProject(outputFlood)),
+    runToEnd('userns', makeProject(nestedUserNamespace)),
   ]);
 }, 180_000);
 
@@ -143,6 +145,26 @@ describe(`${sandbox} sandbox, adversarial jobs running together`, () => {
     expect(kept).toBeGreaterThan(1000 * 1024);
     expect(lines.filter((l) => l.stream === 'system' && l.line === '[output truncated: stdout limit 1 MiB reached]')).toHaveLength(1);
     expect(lines.some((l) => l.line === 'flood done')).toBe(false);
+  });
+
+  test('no nested user namespace can be created', () => {
+    const { job, lines } = outcomes.userns!;
+    expect(job.status).toBe('succeeded');
+    expect(lines.some((l) => /^unshare refused: /.test(l.line))).toBe(true);
+    expect(lines.some((l) => l.line === 'USERNS CREATED')).toBe(false);
+  });
+
+  test('cancel mid-run stops the job within 2 s', async () => {
+    const r = await postJob(url, { action: 'run', kind: 'make', sandbox, project: { files: makeProject(infiniteLoop) } });
+    let t0 = 0;
+    await readEvents(url, r.json.id as string, (e) => {
+      if (!t0 && e.type === 'line' && e.line === 'looping') {
+        t0 = Date.now();
+        void fetch(`${url}/api/jobs/${r.json.id}`, { method: 'DELETE' });
+      }
+    });
+    expect(Date.now() - t0).toBeLessThan(2000);
+    expect((await getJob(url, r.json.id as string)).status).toBe('cancelled');
   });
 
   test('nothing outlives the jobs: no process of a job uid, no job cgroup, no fresh work dir', async () => {

@@ -122,3 +122,14 @@ int main(void) {
   return undeclared_thing;
 }
 `;
+
+/** Tries to create a user namespace (a way to regain capabilities inside the sandbox). */
+export const nestedUserNamespace = `${HEAD}
+#include <errno.h>
+#include <sched.h>
+int main(void) {
+  if (unshare(CLONE_NEWUSER) == 0) puts("USERNS CREATED");
+  else printf("unshare refused: %s\\n", strerror(errno));
+  return 0;
+}
+`;
