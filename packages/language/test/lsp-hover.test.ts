@@ -67,4 +67,10 @@ describe('hover', () => {
         expect(await hover(ws, 'sup.contract', 'endof(FIRST)', 6)).toContain('rule of supervision function `go` (2 actions)');
         expect(await hover(ws, 'sup.contract', '= failure)', 3)).toContain('in event port :3 of `SUP`, type `TypeD`');
     });
+
+    it('on the scheduler events ORD:0 and ORD:1: their meaning', async () => {
+        const ws = await build({ ...ARCHITECTURE, 'o.contract': 'supervisor SUO { go() { rules { R: [ORD:0] [ORD:1] } } }' });
+        expect(await hover(ws, 'o.contract', 'ORD:0', 1)).toContain('critical lateness');
+        expect(await hover(ws, 'o.contract', 'ORD:1', 1)).toContain('activation was refused');
+    });
 });

@@ -4,10 +4,11 @@
  * utilisation (sum C / PERIOD) and critical path (longest chain of C through the precedence graph).
  * Works on declarations and on every cross-reference, including port references by index.
  */
-import { AstUtils, type AstNode, type MaybePromise } from 'langium';
+import { AstUtils, CstUtils, type AstNode, type LangiumDocument, type MaybePromise } from 'langium';
+import type { Hover, HoverParams } from 'vscode-languageserver-protocol';
 import { AstNodeHoverProvider } from 'langium/lsp';
 import {
-    isDataType, isField, isFunctionArgument, isFunctionParameter, isFunctionPrototype, isLocalVariable, isModule,
+    isDataType, isField, isModuleEvent, isFunctionArgument, isFunctionParameter, isFunctionPrototype, isLocalVariable, isModule,
     isParameter, isPort, isRule, isSchema, isSchemaParameter, isSupervisionFunction, isSupervisor,
     type Module, type Port, type Schema, type Supervisor, type TypeRef, type Value
 } from '../generated/ast.js';
@@ -19,9 +20,29 @@ import { defaultValue, effectiveValue, formatConstant } from '../model/values.js
 import { schemaModules, schemaTiming } from '../validation/timing-analysis.js';
 
 export class CactalHoverProvider extends AstNodeHoverProvider {
+    override async getHoverContent(document: LangiumDocument, params: HoverParams): Promise<Hover | undefined> {
+        const root = document.parseResult.value.$cstNode;
+        const leaf = root ? CstUtils.findLeafNodeAtOffset(root, document.textDocument.offsetAt(params.position)) : undefined;
+        const node = leaf?.astNode;
+        if (isModuleEvent(node) && node.ord && leaf && leaf.text === 'ORD') {
+            return { contents: { kind: 'markdown', value: ordEventHover(node.ordPort) } };
+        }
+        return super.getHoverContent(document, params);
+    }
+
     protected override getAstNodeHoverContent(node: AstNode): MaybePromise<string | undefined> {
         return hoverMarkdown(node);
     }
+}
+
+/** The scheduler's events (SPEC §4.2). */
+export function ordEventHover(port: number | undefined): string {
+    const meaning = port === 0
+        ? 'a periodic schema\'s cycle has not finished at tick + CRITICAL_DELAY (critical lateness); data: the schema name'
+        : port === 1
+            ? 'an activation was refused because the schema shares a module with an active schema; data: the refused schema\'s name'
+            : 'not an event of the scheduler (ORD emits :0 and :1)';
+    return `${code(`ORD:${port ?? '?'}`)}\n\nscheduler event: ${meaning}`;
 }
 
 const code = (text: string): string => '```cactal\n' + text + '\n```';
