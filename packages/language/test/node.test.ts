@@ -55,4 +55,26 @@ describe('incremental rebuilds', () => {
             rmSync(dir, { recursive: true, force: true });
         }
     });
+
+    it('revalidates the other file of a duplicated name when the duplicate appears or disappears', async () => {
+        const dir = mkdtempSync(join(tmpdir(), 'cactal-dup-'));
+        try {
+            const module = (name: string) => `synchronous module ${name} { scheduling { C=1ms; } }\n`;
+            writeFileSync(join(dir, 'a.contract'), module('MSA'));
+            const b = join(dir, 'b.contract');
+            writeFileSync(b, module('MSB'));
+            const ws = await loadWorkspace(dir);
+            const codesOfA = () => (ws.services.shared.workspace.LangiumDocuments.getDocument(URI.file(join(dir, 'a.contract')))!.diagnostics ?? [])
+                .map((d) => d.code);
+            expect(codesOfA()).toEqual([]);
+            writeFileSync(b, module('MSA'));
+            await ws.services.shared.workspace.DocumentBuilder.update([URI.file(b)], []);
+            expect(codesOfA()).toEqual(['module-name-duplicate']);
+            writeFileSync(b, module('MSB'));
+            await ws.services.shared.workspace.DocumentBuilder.update([URI.file(b)], []);
+            expect(codesOfA()).toEqual([]);
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
+    });
 });
