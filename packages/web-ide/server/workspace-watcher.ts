@@ -1,36 +1,61 @@
-import { watch, type FSWatcher } from 'node:fs';
-import { basename } from 'node:path';
+import { watch, readdirSync, type FSWatcher } from 'node:fs';
+import { basename, join } from 'node:path';
 import type { ServerResponse } from 'node:http';
 import { isAtomicTempFile } from './atomic-write.js';
 
+const SKIPPED = new Set(['node_modules', '.git', '.vite']);
+
 /**
- * Watches the workspace folder recursively and pushes changed paths to every connected client as
+ * Watches the workspace folder and pushes changed paths to every connected client as
  * Server-Sent Events (`event: change`, data `{"paths":[...]}`), batched over 60 ms.
+ * One non-recursive watcher per folder: a folder watch keeps reporting a file that is replaced
+ * by rename (atomic writes), which Node's recursive mode on Linux (one watch per file inode) loses.
  */
 export class WorkspaceWatcher {
   private readonly clients = new Set<ServerResponse>();
-  private watcher: FSWatcher | undefined;
+  private readonly watchers = new Map<string, FSWatcher>();
   private pending = new Set<string>();
   private timer: NodeJS.Timeout | undefined;
   private readonly heartbeat: NodeJS.Timeout;
+  private closed = false;
 
-  constructor(root: string) {
-    try {
-      this.watcher = watch(root, { recursive: true }, (_event, name) => {
-        if (!name) return;
-        const rel = name.toString().split('\\').join('/');
-        if (isAtomicTempFile(basename(rel)) || rel.split('/').some((p) => p === 'node_modules' || p === '.git')) return;
-        this.pending.add(rel);
-        this.timer ??= setTimeout(() => this.flush(), 60);
-      });
-      this.watcher.on('error', () => undefined);
-    } catch {
-      this.watcher = undefined; // watching unsupported: the IDE still works, without live updates
-    }
+  constructor(private readonly root: string) {
+    this.watchTree('');
     this.heartbeat = setInterval(() => {
       for (const c of this.clients) c.write(': ping\n\n');
     }, 15000);
     this.heartbeat.unref();
+  }
+
+  private watchTree(rel: string): void {
+    if (this.closed || this.watchers.has(rel)) return;
+    const abs = rel ? join(this.root, rel) : this.root;
+    let entries;
+    try {
+      entries = readdirSync(abs, { withFileTypes: true });
+      const w = watch(abs, (_event, name) => this.onEvent(rel, name?.toString()));
+      w.on('error', () => this.unwatch(rel));
+      this.watchers.set(rel, w);
+    } catch {
+      return; // folder gone or unreadable: nothing to watch
+    }
+    for (const e of entries) if (e.isDirectory() && !SKIPPED.has(e.name)) this.watchTree(rel ? `${rel}/${e.name}` : e.name);
+  }
+
+  private unwatch(rel: string): void {
+    for (const [k, w] of this.watchers) {
+      if (k === rel || k.startsWith(rel + '/')) {
+        w.close();
+        this.watchers.delete(k);
+      }
+    }
+  }
+
+  private onEvent(dirRel: string, name: string | undefined): void {
+    if (!name || isAtomicTempFile(basename(name)) || SKIPPED.has(name)) return;
+    const rel = dirRel ? `${dirRel}/${name}` : name;
+    this.pending.add(rel);
+    this.timer ??= setTimeout(() => this.flush(), 60);
   }
 
   /** Registers an SSE client on a GET /api/events response. */
@@ -49,13 +74,29 @@ export class WorkspaceWatcher {
 
   private flush(): void {
     this.timer = undefined;
+    // new folders get a watcher, removed ones lose theirs
+    for (const rel of this.pending) {
+      this.unwatchIfGone(rel);
+      this.watchTree(rel);
+    }
     const paths = [...this.pending];
     this.pending.clear();
     if (paths.length) this.broadcast('change', { paths });
   }
 
+  private unwatchIfGone(rel: string): void {
+    if (!this.watchers.has(rel)) return;
+    try {
+      readdirSync(join(this.root, rel));
+    } catch {
+      this.unwatch(rel);
+    }
+  }
+
   close(): void {
-    this.watcher?.close();
+    this.closed = true;
+    for (const w of this.watchers.values()) w.close();
+    this.watchers.clear();
     clearInterval(this.heartbeat);
     if (this.timer) clearTimeout(this.timer);
     for (const c of this.clients) c.end();

@@ -119,6 +119,7 @@ async function main(): Promise<void> {
       const r = await api.newProject(folder ?? '');
       await workspace.refreshTree();
       await Promise.all(r.files.map((f) => workspace.ensureModel(f)));
+      lsp.revalidateAll();
       await editors.open(r.files.find((f) => f.endsWith('supervisor.contract')) ?? r.files[0]!);
       toast('info', `Project created in ${r.folder || 'the workspace root'}`);
     } catch (e) {
@@ -134,6 +135,7 @@ async function main(): Promise<void> {
         await api.remove(entry.path);
         for (const p of [...workspace.files.keys()]) if (p === entry.path || p.startsWith(entry.path + '/')) workspace.dropFile(p);
         await workspace.refreshTree();
+        lsp.revalidateAll();
       }
       if (action === 'rename') {
         const name = await askText(`Rename ${entry.path}`, entry.name);
@@ -150,6 +152,7 @@ async function main(): Promise<void> {
           const np = to + p.slice(entry.path.length);
           if (isContract(np)) await workspace.ensureModel(np);
         }
+        lsp.revalidateAll();
         if (editors.active && workspace.hasFile(editors.active)) await editors.open(editors.active);
       }
     } catch (e) {
@@ -159,8 +162,20 @@ async function main(): Promise<void> {
 
   // ---- external changes
   const refreshTree = debounce(() => void workspace.refreshTree().then(async () => {
-    for (const p of workspace.allFiles().filter(isContract)) if (!workspace.files.has(p)) await workspace.ensureModel(p).catch(() => undefined);
-    for (const p of [...workspace.files.keys()]) if (!workspace.hasFile(p) && workspace.files.get(p)!.state === 'saved') workspace.dropFile(p);
+    let changed = false;
+    for (const p of workspace.allFiles().filter(isContract)) {
+      if (!workspace.files.has(p)) {
+        await workspace.ensureModel(p).catch(() => undefined);
+        changed = true;
+      }
+    }
+    for (const p of [...workspace.files.keys()]) {
+      if (!workspace.hasFile(p) && workspace.files.get(p)!.state === 'saved') {
+        workspace.dropFile(p);
+        changed = true;
+      }
+    }
+    if (changed) lsp.revalidateAll();
   }), 150);
   const events = new EventSource('/api/events');
   events.addEventListener('change', (e) => {

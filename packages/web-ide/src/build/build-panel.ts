@@ -98,6 +98,7 @@ export class BuildPanel {
 
   async start(projectDir: string, action: 'build' | 'run', duration = 8): Promise<void> {
     if (this.jobId) await this.stop();
+    this.source?.close();
     this.store.clear();
     this.chipSources = '';
     this.renderChips();

@@ -40,7 +40,7 @@ export class EditorArea {
     this.editorHost = h('div', { class: 'editor-host' });
     this.viewHost = h('div', { class: 'view-host hidden' });
     this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer'),
-      h('div', { class: 'muted' }, 'Ctrl+S saves now · F12 go to definition · F2 rename · Shift+Alt+F format'));
+      h('div', { class: 'muted' }, 'Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
     root.append(this.tabsEl, h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl));
     this.editor = monaco.editor.create(this.editorHost, {
       theme: 'contract-dark',
@@ -86,7 +86,7 @@ export class EditorArea {
       return;
     }
     if (isGeneratedC(path) && !this.guards.has(path)) {
-      this.guards.set(path, new GeneratedGuard(fs.model, (msg) => toast('warning', msg)));
+      this.guards.set(path, new GeneratedGuard(fs.model, (msg) => toast('warning', msg), () => this.workspace.applyingExternal));
       fs.model.onDidChangeContent(() => this.active === path && this.guards.get(path)?.decorate(this.editor));
     }
     if (!this.tabs.includes(path)) this.tabs.push(path);

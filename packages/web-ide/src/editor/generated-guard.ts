@@ -16,10 +16,13 @@ export class GeneratedGuard {
   constructor(
     readonly model: monaco.editor.ITextModel,
     private readonly onRejected: (msg: string) => void,
+    /** True while the change is not the user's (reload from disk after Generate All or an external edit). */
+    private readonly isExternal: () => boolean,
   ) {
     this.rescan();
     model.onDidChangeContent((e) => {
       if (this.reverting) return;
+      if (this.isExternal()) return this.rescan();
       const ranges = e.changes.map((c) => ({ start: c.rangeOffset, end: c.rangeOffset + c.rangeLength }));
       if (!e.isUndoing && !e.isRedoing && !editsAllowed(this.regions, ranges)) {
         this.reverting = true;

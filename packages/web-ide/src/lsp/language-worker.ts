@@ -18,6 +18,13 @@ const connection = createConnection(reader, writer);
 const { shared } = createCactalServices({ connection, ...EmptyFileSystem });
 startLanguageServer(shared);
 
+// Project-wide checks (one scheduler configuration, names unique across files) depend on files a
+// document does not reference: after files are added or removed, rebuild every document.
+connection.onNotification('cactal/revalidateAll', () => {
+  const uris = shared.workspace.LangiumDocuments.all.map((d) => d.uri).toArray();
+  void shared.workspace.DocumentBuilder.update(uris, []);
+});
+
 connection.onRequest('cactal/architecture', async (): Promise<ArchSchema[]> => {
   await shared.workspace.DocumentBuilder.waitUntil(DocumentState.Linked).catch(() => undefined);
   const out: ArchSchema[] = [];

@@ -19,6 +19,8 @@ export class LspClient {
   private connection!: MessageConnection;
   private worker!: Worker;
   private readonly versions = new Map<string, number>();
+  /** Last published diagnostics per URI, as sent (their `data` carries what quick fixes need). */
+  private readonly diagnostics = new Map<string, lsp.Diagnostic[]>();
   readonly onDiagnostics = new Emitter<{ uri: string; diagnostics: lsp.Diagnostic[] }>();
   readonly ready: Promise<void>;
   private resolveReady!: () => void;
@@ -36,6 +38,7 @@ export class LspClient {
     this.connection = createMessageConnection(new BrowserMessageReader(this.worker), new BrowserMessageWriter(this.worker));
     this.connection.onNotification('textDocument/publishDiagnostics', (p: lsp.PublishDiagnosticsParams) => {
       this.markBuilt(p.uri);
+      this.diagnostics.set(p.uri, p.diagnostics);
       const model = monaco.editor.getModel(monaco.Uri.parse(p.uri));
       if (model) monaco.editor.setModelMarkers(model, MARKER_OWNER, p.diagnostics.map(conv.toMarker));
       this.onDiagnostics.fire({ uri: p.uri, diagnostics: p.diagnostics });
@@ -96,6 +99,7 @@ export class LspClient {
       if (!this.isCactal(model)) return;
       const uri = model.uri.toString();
       this.versions.delete(uri);
+      this.diagnostics.delete(uri);
       this.markBuilt(uri);
       void this.connection.sendNotification('textDocument/didClose', { textDocument: { uri } });
       this.onDiagnostics.fire({ uri, diagnostics: [] });
@@ -124,6 +128,11 @@ export class LspClient {
 
   documentSymbols(uri: string): Promise<lsp.DocumentSymbol[] | null> {
     return this.request('textDocument/documentSymbol', { textDocument: { uri } });
+  }
+
+  /** Re-validates every document (after files were added or removed). */
+  revalidateAll(): void {
+    void this.connection.sendNotification('cactal/revalidateAll', {});
   }
 
   architecture(): Promise<ArchSchema[]> {
@@ -193,7 +202,11 @@ export class LspClient {
     });
     monaco.languages.registerCodeActionProvider(id, {
       provideCodeActions: async (model, range, context) => {
-        const diagnostics = context.markers.filter((m) => m.owner === MARKER_OWNER).map(conv.toDiagnostic);
+        const touches = (d: lsp.Diagnostic) => {
+          const r = conv.toRange(d.range);
+          return monaco.Range.areIntersectingOrTouching(r, range);
+        };
+        const diagnostics = (this.diagnostics.get(model.uri.toString()) ?? []).filter(touches);
         const r = await this.request<Array<lsp.CodeAction | lsp.Command> | null>('textDocument/codeAction', {
           ...doc(model),
           range: { start: conv.toPosition(range.getStartPosition()), end: conv.toPosition(range.getEndPosition()) },

@@ -30,17 +30,6 @@ export function toMarker(d: lsp.Diagnostic): monaco.editor.IMarkerData {
   };
 }
 
-export function toDiagnostic(m: monaco.editor.IMarkerData): lsp.Diagnostic {
-  const sev = m.severity === monaco.MarkerSeverity.Error ? 1 : m.severity === monaco.MarkerSeverity.Warning ? 2 : m.severity === monaco.MarkerSeverity.Info ? 3 : 4;
-  return {
-    range: { start: { line: m.startLineNumber - 1, character: m.startColumn - 1 }, end: { line: m.endLineNumber - 1, character: m.endColumn - 1 } },
-    severity: sev as lsp.DiagnosticSeverity,
-    message: m.message,
-    code: m.code as string | undefined,
-    source: m.source,
-  };
-}
-
 const K = monaco.languages.CompletionItemKind;
 const COMPLETION_KINDS: Record<number, monaco.languages.CompletionItemKind> = {
   1: K.Text, 2: K.Method, 3: K.Function, 4: K.Constructor, 5: K.Field, 6: K.Variable, 7: K.Class, 8: K.Interface,

@@ -33,7 +33,8 @@ export class Workspace {
   readonly onNotice = new Emitter<{ level: 'info' | 'warning' | 'error'; text: string }>();
   private readonly timers = new Map<string, ReturnType<typeof setTimeout>>();
   private readonly retryDelay = new Map<string, number>();
-  private applyingExternal = false;
+  /** True while a change read from disk is being applied to a model (not a user edit). */
+  applyingExternal = false;
 
   uriOf(path: string): monaco.Uri {
     return monaco.Uri.from({ scheme: 'file', path: `/workspace/${path}` });

@@ -16,6 +16,7 @@ export const CHROMIUM_ARGS = [
 
 export interface Session {
   workspace: string;
+  /** Replaceable: a test may restart the server on the same port. */
   server: IdeServer;
   browser: Browser;
   page: Page;
@@ -43,7 +44,7 @@ export async function startSession(opts: { buildService?: boolean; empty?: boole
     workspace, server, browser, page, userDataDir,
     async close() {
       await context.close().catch(() => undefined);
-      await server.close();
+      await this.server.close().catch(() => undefined);
       rmSync(base, { recursive: true, force: true });
     },
   };

@@ -4,7 +4,8 @@
  * Screenshots of the main states go to test-output/.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { readFileSync, writeFileSync, existsSync, readdirSync } from 'node:fs';
+import { readFileSync, writeFileSync, existsSync, readdirSync, mkdirSync } from 'node:fs';
+import { startIdeServer } from '../../server/ide-server.js';
 import { join } from 'node:path';
 import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, type Session } from './harness.js';
 
@@ -68,9 +69,55 @@ describe('IDE in headless Chromium', () => {
     expect((await activeValue(page)).split('\n')[pos.lineNumber - 1]).toContain('MSC');
   });
 
+  it('offers hover, completion, formatting and quick fixes from the worker', async () => {
+    const { page } = s;
+    await openFile(page, 'sschema1.contract');
+    // hover on a module reference
+    await placeCursor(page, 'MSC (consigne', 1);
+    await page.keyboard.press('Control+k');
+    await page.keyboard.press('Control+i');
+    await page.locator('.monaco-hover-content').first().waitFor({ timeout: 5000 });
+    expect(await page.locator('.monaco-hover-content').first().textContent()).toMatch(/MSC/);
+    await page.keyboard.press('Escape');
+    // completion of module names in the scheduling graph
+    await placeCursor(page, 'MSC -> MSD;');
+    await page.keyboard.press('Control+Space');
+    await page.locator('.suggest-widget .monaco-list-row').first().waitFor({ timeout: 5000 });
+    const labels = await page.locator('.suggest-widget .monaco-list-row .label-name').allTextContents();
+    expect(labels).toEqual(expect.arrayContaining(['MSC']));
+    await page.keyboard.press('Escape');
+    // formatting (canonical spacing) changes the report's free spacing
+    const before = await activeValue(page);
+    await page.keyboard.press('Control+Shift+i');
+    await expect.poll(() => activeValue(page), { timeout: 5000 }).not.toBe(before);
+    expect(await activeValue(page)).toContain('MSC');
+    await page.keyboard.press('Control+z');
+    await expect.poll(() => activeValue(page)).toBe(before);
+    // quick fix: a lower-case module name gets "upper-case" offered
+    await openFile(page, 'amodule2.contract');
+    await placeCursor(page, 'module MAB', 'module '.length);
+    const line = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    await page.evaluate((line) => {
+      const ed = (window as any).__ide.editors.editor;
+      const model = ed.getModel();
+      const text = model.getLineContent(line);
+      const col = text.indexOf('MAB') + 1;
+      ed.executeEdits('test', [{ range: { startLineNumber: line, startColumn: col, endLineNumber: line, endColumn: col + 3 }, text: 'mab' }]);
+      ed.setPosition({ lineNumber: line, column: col + 1 });
+    }, line);
+    await page.locator('.problem-row[data-path="amodule2.contract"]').first().waitFor({ timeout: 3000 });
+    await page.keyboard.press('Control+.');
+    await page.locator('.action-widget .action-label, .action-widget .monaco-list-row').first().waitFor({ timeout: 5000 });
+    await shot(page, '02b-quick-fix');
+    await page.keyboard.press('Enter');
+    await expect.poll(() => activeValue(page), { timeout: 5000 }).toMatch(/module MAB\b/);
+    await expect.poll(() => page.locator('.problem-row[data-path="amodule2.contract"]').count(), { timeout: 3000 }).toBe(0);
+  });
+
   it('reflects a change made on disk by another program', async () => {
     const { page } = s;
     await openFile(page, 'amodule2.contract');
+    await waitSaved(page);
     const text = disk('amodule2.contract').replace('asynchronous module MAB', '// edited outside\nasynchronous module MAB');
     writeFileSync(join(s.workspace, 'amodule2.contract'), text);
     await expect.poll(() => activeValue(page), { timeout: 5000 }).toContain('// edited outside');
@@ -123,11 +170,15 @@ describe('IDE in headless Chromium', () => {
     const saved = disk(path);
     expect(saved).toContain('/* user code kept */');
     expect(saved.replace(/\n[ \t]*\/\* user code kept \*\//, '')).toBe(before);
-    // regeneration keeps it
+    // a model change regenerates module.c: the open tab reloads it, user code kept, nothing reverted
+    writeFileSync(join(s.workspace, 'smodule3.contract'), disk('smodule3.contract').replace('{2.1,6.98,5.34}', '{2.5,6.98,5.34}'));
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.workspace.files.get('smodule3.contract').model.getValue()), { timeout: 5000 }).toContain('2.5,6.98');
     await page.locator('#btn-generate').click();
-    await page.locator('.gen-summary').waitFor();
-    await page.waitForTimeout(300);
-    expect(disk(path)).toContain('/* user code kept */');
+    await expect.poll(() => activeValue(page), { timeout: 15_000 }).toMatch(/2\.5/);
+    await page.waitForTimeout(800);
+    const regenerated = await activeValue(page);
+    expect(regenerated).toContain('/* user code kept */');
+    expect(disk(path)).toBe(regenerated);
   });
 
   it.skipIf(!canGenerate)('renames a module across files and carries its generated files and regions over', async () => {
@@ -149,7 +200,7 @@ describe('IDE in headless Chromium', () => {
     const newFile = 'src-gen/generated/architecture/modules/MSX_mod/module.c';
     await expect.poll(() => existsSync(join(s.workspace, newFile)), { timeout: 10_000 }).toBe(true);
     await expect.poll(() => disk(newFile), { timeout: 10_000 }).toContain('/* MSA init by hand */');
-    expect(disk(newFile)).toContain('protect_init_MSX');
+    await expect.poll(() => disk(newFile), { timeout: 10_000 }).toContain('protect_init_MSX');
     expect(existsSync(join(s.workspace, oldFile))).toBe(false);
     const orphans = join(s.workspace, 'src-gen/orphans');
     expect(existsSync(orphans) ? readdirSync(orphans, { recursive: true }).filter((f) => String(f).includes('MSA')) : []).toEqual([]);
@@ -168,7 +219,7 @@ describe('IDE in headless Chromium', () => {
     await shot(page, '05-architecture');
   });
 
-  it.skipIf(!canBuild || !canGenerate)('Build & Run streams MSC lines into the log panel; Stop cancels', async () => {
+  it.skipIf(!canBuild || !canGenerate)('Build & Run streams MSC lines into the log panel, filters them, and Stop cancels', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
     await page.locator('#btn-run').click();
@@ -177,6 +228,53 @@ describe('IDE in headless Chromium', () => {
     await page.locator('#btn-stop').click();
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
     await expect.poll(() => page.locator('#btn-run').isEnabled()).toBe(true);
+    // per-module filter: hide MSC, then show it again
+    await page.locator('#follow-tail').uncheck();
+    await page.locator('.log-viewport').evaluate((el) => (el.scrollTop = 0));
+    await page.locator('.chip[data-source="MSC"]').click();
+    await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBe(0);
+    expect(await page.locator('.log-row').count()).toBeGreaterThan(0);
+    await page.locator('.chip[data-source="MSC"]').click();
+    await page.locator('.log-search').fill('MSC');
+    await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBeGreaterThan(0);
+    await page.locator('.log-search').fill('');
+  });
+
+  it.skipIf(!canBuild || !canGenerate)('shows gcc errors in the problems panel and opens the generated file at the line', async () => {
+    const { page } = s;
+    const path = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
+    const good = disk(path);
+    const bad = good.replace(/(PROTECTED REGION ID\(protect_internal_vars_MSC\) ENABLED START\*\/)/, '$1\nint broken_by_test = ;');
+    expect(bad).not.toBe(good);
+    writeFileSync(join(s.workspace, path), bad);
+    const badLine = bad.split('\n').findIndex((l) => l.includes('broken_by_test')) + 1;
+    await page.locator('#btn-run').click();
+    const row = page.locator(`.problem-row.error[data-path="${path}"]`);
+    await row.first().waitFor({ timeout: 90_000 });
+    expect(Number(await row.first().getAttribute('data-line'))).toBe(badLine);
+    await row.first().click();
+    await expect.poll(() => activeTab(page)).toBe(path);
+    expect(await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber)).toBe(badLine);
+    await shot(page, '06b-gcc-error');
+    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 30_000 }).toMatch(/failed/);
+    writeFileSync(join(s.workspace, path), good);
+    await expect.poll(() => activeValue(page), { timeout: 5000 }).not.toContain('broken_by_test');
+  });
+
+  it('tells the user when a write fails (server down) and saves once the server is back', async () => {
+    const { page } = s;
+    await openFile(page, 'smodule4.contract');
+    const port = Number(new URL(s.server.url).port);
+    await s.server.close();
+    await placeCursor(page, 'synchronous module MSD');
+    await page.keyboard.type('// written while the server was down\n');
+    await page.locator('#status-save.error').waitFor({ timeout: 10_000 });
+    expect(await page.locator('.toast.error').first().textContent()).toMatch(/Could not save smodule4.contract/);
+    await shot(page, '08-save-failed');
+    expect(disk('smodule4.contract')).not.toContain('written while the server was down');
+    s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false });
+    await expect.poll(() => disk('smodule4.contract'), { timeout: 20_000 }).toContain('// written while the server was down');
+    await waitSaved(page);
   });
 
   it('keeps an edit made just before a reload (localStorage backup, then saved)', async () => {
@@ -190,6 +288,26 @@ describe('IDE in headless Chromium', () => {
     expect(await activeValue(page)).toContain('// typed right before reload');
     await waitSaved(page);
     await expect.poll(() => disk('datatype.contract'), { timeout: 5000 }).toContain('// typed right before reload');
+  });
+
+  it('draws a timeline of activations from the run CSV logs', async () => {
+    const { page } = s;
+    const logs = join(s.workspace, 'src-gen/generated/architecture/logs');
+    mkdirSync(logs, { recursive: true });
+    for (const [m, offset, c] of [['MSA', 0, 400_000], ['MSC', 500_000, 900_000], ['MSD', 1_500_000, 800_000]] as const) {
+      const rows = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
+      for (let k = 0; k < 10; k++) {
+        const t = 1_000_000_000 + k * 10_000_000 + offset;
+        rows.push(`${t},2026-01-01T00:00:00.000000Z,${m},run_started,ORD,,0,`, `${t + c},2026-01-01T00:00:00.000000Z,${m},run_finished,,,0,`);
+      }
+      writeFileSync(join(logs, `${m}_1-Jan-2026-00h00m00s.csv`), rows.join('\n') + '\n');
+    }
+    await page.locator('#btn-timeline').click();
+    await page.locator('.timeline-svg').waitFor({ timeout: 10_000 });
+    expect(await page.locator('.act-bar').count()).toBe(30);
+    expect(await page.locator('.lane-label').allTextContents()).toEqual(['MSA', 'MSC', 'MSD']);
+    expect(await page.locator('.timeline-view .muted').first().textContent()).toMatch(/period ≈ 10\.00 ms/);
+    await shot(page, '09-timeline');
   });
 
   it('creates, renames and deletes files and folders from the explorer', async () => {
