@@ -92,7 +92,8 @@ async function main(): Promise<void> {
       await readEvents(url, r.json.id as string, (e) => {
         if (e.type === 'line' && e.source === 'MAA') {
           const m = /^LATENCY (\d+)$/.exec(e.line);
-          if (m) lat.push(Date.now() - Number(m[1]) / 1000);
+          // sub-millisecond wall clock (Date.now() truncates to whole ms)
+          if (m) lat.push(performance.timeOrigin + performance.now() - Number(m[1]) / 1000);
         }
       });
       if (lat.length < 100) throw new Error(`latency: only ${lat.length} stamped lines arrived`);
