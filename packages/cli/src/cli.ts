@@ -21,7 +21,8 @@ export function helpText(commands: Command[] = COMMANDS): string {
         ...commands.map((c) => `  ${c.name.padEnd(width)}  ${c.summary}`),
         '',
         'contract <command> --help shows the usage of a command.',
-        'exit status: 0 success, 1 failure (e.g. errors found), 2 bad usage.'
+        'exit status: 0 success, 1 failure (e.g. errors found, build failed, a module crashed), 2 bad usage,',
+        '3 environment (no usable sandbox, project busy), 130 interrupted.'
     ].join('\n') + '\n';
 }
 

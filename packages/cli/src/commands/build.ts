@@ -1,0 +1,275 @@
+/**
+ * `contract build DIR [--sandbox auto|bwrap|docker|none] [--format text|json]`: generates and
+ * compiles a Cactal project in a sandbox through the build service's in-process pipeline
+ * (@contract-studio/build-service JobService, not HTTP). Also holds what `run` shares with it:
+ * option parsing, the job runner, output and exit codes.
+ */
+import { createHash } from 'node:crypto';
+import { chmodSync, existsSync, mkdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { stat } from 'node:fs/promises';
+import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
+import { parseArgs, type ParsedArgs } from '../args.js';
+import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+
+/** The environment cannot do what was asked (no sandbox, another run on the same project). */
+export const EXIT_ENVIRONMENT = 3;
+/** Interrupted by Ctrl+C (the job was cancelled, everything stopped). */
+export const EXIT_INTERRUPTED = 130;
+
+export const SANDBOXES: readonly SandboxChoice[] = ['auto', 'bwrap', 'docker', 'none'];
+const FORMATS = ['text', 'json'] as const;
+type Format = (typeof FORMATS)[number];
+
+export interface JobOptions {
+    dir: string;
+    dirArg: string;
+    sandbox: SandboxChoice;
+    format: Format;
+    verbose: boolean;
+    /** Progress lines (steps, generation counts) on stderr: only on a TTY and in text format. */
+    progress: boolean;
+    runtime: string | undefined;
+}
+
+export const COMMON_VALUED = ['sandbox', 'format', 'runtime'];
+export const COMMON_FLAGS = ['verbose'];
+export const COMMON_USAGE = [
+    '  --sandbox: auto (default: bwrap when it works, else docker), bwrap, docker, none (no isolation)',
+    '  --format: text (default) or json (one JSON object on stdout at the end, no progress)',
+    '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the repository\'s runtime/)',
+    '  --verbose: print every build line (otherwise only gcc diagnostics and the summary)',
+];
+export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or project busy, 130 interrupted';
+
+/** Parses DIR and the options build and run share. */
+export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: boolean): Promise<JobOptions> {
+    const { positionals, options } = parsed;
+    if (positionals.length !== 1) throw new UsageError(positionals.length ? 'expected exactly one DIR' : 'missing DIR (the folder of the .contract files)');
+    const dirArg = positionals[0]!;
+    const dir = resolve(io.cwd, dirArg);
+    const info = await stat(dir).catch(() => undefined);
+    if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+    const sandbox = (options.get('sandbox') ?? 'auto') as SandboxChoice;
+    if (!SANDBOXES.includes(sandbox)) throw new UsageError(`unknown sandbox '${String(sandbox)}' (expected auto, bwrap, docker or none)`);
+    const format = (options.get('format') ?? 'text') as Format;
+    if (!FORMATS.includes(format)) throw new UsageError(`unknown format '${String(format)}' (expected text or json)`);
+    const runtimeOption = options.get('runtime');
+    const runtime = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || undefined;
+    if (runtime && !existsSync(join(runtime, 'Makefile'))) throw new UsageError(`${runtime} is not a runtime folder (no Makefile); pass --runtime PATH to the ContrACT runtime/`);
+    return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime };
+}
+
+/** Per-project cache (built runtime + workspace) with a lock, so two commands never share a workspace. */
+export interface ProjectCache {
+    dir: string;
+    release(): void;
+}
+
+function pidAlive(pid: number): boolean {
+    try {
+        process.kill(pid, 0);
+        return true;
+    } catch (e) {
+        return (e as NodeJS.ErrnoException).code === 'EPERM';
+    }
+}
+
+export function acquireProjectCache(projectDir: string): ProjectCache | string {
+    // under the temp dir by default: sandboxed job uids must traverse it (a home folder is often 0700)
+    const base = process.env.CONTRACT_CACHE_DIR || join(tmpdir(), `contract-studio-${process.getuid?.() ?? 'user'}`);
+    mkdirSync(base, { recursive: true, mode: 0o711 });
+    const info = statSync(base);
+    if (process.getuid && info.uid !== process.getuid()) return `the cache folder ${base} belongs to another user; set CONTRACT_CACHE_DIR to a folder of yours`;
+    chmodSync(base, 0o711);
+    const dir = join(base, createHash('sha256').update(projectDir).digest('hex').slice(0, 16));
+    mkdirSync(dir, { recursive: true, mode: 0o711 });
+    const lock = join(dir, 'lock');
+    try {
+        writeFileSync(lock, String(process.pid), { flag: 'wx' });
+    } catch {
+        const owner = Number(readFileSync(lock, 'utf8').trim());
+        if (Number.isInteger(owner) && owner > 0 && owner !== process.pid && pidAlive(owner)) {
+            return `another contract build/run (pid ${owner}) is using ${projectDir}; wait for it or stop it`;
+        }
+        writeFileSync(lock, String(process.pid)); // stale lock of a process that is gone
+    }
+    return { dir, release: () => rmSync(lock, { force: true }) };
+}
+
+export function formatGccDiagnostic(d: GccDiagnostic): string {
+    const where = d.file ? `src-gen/${d.file}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+    const region = d.protectedRegion ? ` [in protected region ${d.protectedRegion.id}]` : '';
+    return `${where}${d.severity}: ${d.message}${d.option ? ` [${d.option}]` : ''}${region}\n`;
+}
+
+export interface JobOutcome {
+    job: Job;
+    result: JobResult;
+    /** Lines of the run step: [source, line] (module tag or 'launcher'/'run'). */
+    runLines: { source: string; stream: string; line: string }[];
+}
+
+export interface RunRequest {
+    action: 'build' | 'run';
+    start?: string;
+    duration?: number;
+}
+
+/**
+ * Runs one job on the in-process service and streams its events to io. `whileOpen` is called
+ * after the job ended but before the service removes the workspace (to copy the CSV logs out).
+ */
+export async function runJob(
+    opts: JobOptions,
+    request: RunRequest,
+    io: CliIO,
+    whileOpen?: (service: JobServiceType, cacheDir: string, outcome: JobOutcome) => Promise<void>,
+): Promise<JobOutcome | { error: string; exitCode: number }> {
+    const { JobService, ServiceError } = await import('@contract-studio/build-service');
+    const cache = acquireProjectCache(opts.dir);
+    if (typeof cache === 'string') return { error: cache, exitCode: EXIT_ENVIRONMENT };
+    const runSeconds = Math.ceil((request.duration ?? 10) + 60);
+    const service = new JobService({
+        sandbox: opts.sandbox,
+        concurrency: 1,
+        queueSize: 0,
+        projectRoots: [opts.dir],
+        cacheDir: cache.dir,
+        limits: { runSeconds, buildSeconds: 600 },
+        ...(opts.runtime ? { runtimeSource: opts.runtime } : {}),
+    });
+    let job: Job | undefined;
+    const onSigint = (): void => {
+        if (job) void service.cancel(job.id);
+    };
+    process.on('SIGINT', onSigint);
+    process.on('SIGTERM', onSigint);
+    try {
+        try {
+            job = await service.submit({
+                action: request.action,
+                project: { dir: opts.dir },
+                sandbox: opts.sandbox,
+                ...(request.start !== undefined ? { start: request.start } : {}),
+                ...(request.duration !== undefined ? { duration: request.duration } : {}),
+            });
+        } catch (e) {
+            if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };
+            throw e;
+        }
+        const runLines: JobOutcome['runLines'] = [];
+        const print = makePrinter(opts, io, runLines);
+        const unsubscribe = job.events.subscribe(0, print);
+        await job.finished;
+        unsubscribe();
+        const outcome: JobOutcome = { job, result: job.result!, runLines };
+        if (whileOpen) await whileOpen(service, cache.dir, outcome);
+        return outcome;
+    } finally {
+        process.off('SIGINT', onSigint);
+        process.off('SIGTERM', onSigint);
+        await service.close();
+        cache.release();
+    }
+}
+
+/** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
+function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines']): (e: JobEvent) => void {
+    return (e) => {
+        if (e.type === 'diagnostic') {
+            if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic));
+            return;
+        }
+        if (e.type === 'status') {
+            if (opts.progress && e.step) io.err(`[${e.status}]\n`);
+            return;
+        }
+        if (e.type !== 'line') return;
+        if (e.step === 'run' && e.source !== 'service') {
+            runLines.push({ source: e.source, stream: e.stream, line: e.line });
+            if (opts.format !== 'text') return;
+            if (e.source === 'run') {
+                // make's own lines (directories, recipes) only with --verbose; its errors always
+                if (opts.verbose || /\*\*\*|error/i.test(e.line)) io.err(`${e.line}\n`);
+            } else {
+                io.out(e.source === 'launcher' ? `contract-launch: ${e.line}\n` : `[${e.source}] ${e.line}\n`);
+            }
+            return;
+        }
+        if (opts.format !== 'text') return;
+        if (e.step === 'prepare' && e.source === 'service' && /error/.test(e.line)) {
+            io.err(`${e.line}\n`);
+        } else if (opts.verbose) {
+            io.err(`${e.line}\n`);
+        } else if (opts.progress && (e.source === 'service' || e.source === 'runtime')) {
+            io.err(`${e.line}\n`);
+        }
+    };
+}
+
+export function prepareErrors(job: Job, dirArg: string): string {
+    return job.prepareDiagnostics
+        .map((p) => `${join(dirArg, p.file)}:${p.line}:${p.column}: ${p.severity}: ${p.message}\n`)
+        .join('');
+}
+
+/** The JSON view printed with --format json. */
+export function jobJson(outcome: JobOutcome, extra: Record<string, unknown> = {}): string {
+    const { job, result } = outcome;
+    return JSON.stringify({
+        ok: result.ok,
+        status: job.status,
+        sandbox: job.sandboxName,
+        sandboxNote: job.sandboxNote,
+        warnings: job.warnings,
+        result,
+        prepareDiagnostics: job.prepareDiagnostics,
+        diagnostics: job.diagnostics,
+        ...extra,
+    }, null, 2) + '\n';
+}
+
+export function exitCodeOf(result: JobResult, job: Job): number {
+    if (result.ok) return EXIT_OK;
+    if (job.status === 'cancelled') return EXIT_INTERRUPTED;
+    return EXIT_FAILURE;
+}
+
+export const buildCommand: Command = {
+    name: 'build',
+    summary: 'generate and compile a Cactal project in a sandbox (gcc + make)',
+    usage: [
+        'usage: contract build DIR [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
+        '  generates DIR/src-gen (user code in protected regions kept) in a private copy and compiles it;',
+        '  gcc diagnostics are printed against src-gen/ paths, naming the protected region they are in.',
+        ...COMMON_USAGE,
+        EXIT_TABLE,
+    ].join('\n'),
+    async run(args: string[], io: CliIO): Promise<number> {
+        const opts = await parseJobOptions(parseArgs(args, COMMON_VALUED, COMMON_FLAGS), io, process.stderr.isTTY === true);
+        const outcome = await runJob(opts, { action: 'build' }, io);
+        if ('error' in outcome) {
+            io.err(`contract build: ${outcome.error}\n`);
+            return outcome.exitCode;
+        }
+        return reportBuild(opts, outcome, io);
+    },
+};
+
+export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, extra: Record<string, unknown> = {}): number {
+    const { job, result } = outcome;
+    if (opts.format === 'json') {
+        io.out(jobJson(outcome, extra));
+        return exitCodeOf(result, job);
+    }
+    io.err(prepareErrors(job, opts.dirArg));
+    for (const w of job.warnings) io.err(`warning: ${w}\n`);
+    const seconds = (ms: number | undefined) => (ms === undefined ? '-' : (ms / 1000).toFixed(1));
+    const d = result.durations_ms;
+    io.err(`${result.ok ? 'ok' : 'FAILED'}: ${result.message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
+    if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) io.err(`fix the errors above (\`contract check ${opts.dirArg}\` lists them), then build again\n`);
+    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${join(opts.dirArg, 'src-gen')}), then build again; --verbose shows every build line\n`);
+    return exitCodeOf(result, job);
+}

@@ -1,0 +1,57 @@
+/**
+ * `contract new DIR`: creates a small complete Cactal project (data types, two modules, a periodic
+ * schema, the scheduler configuration, a supervisor) in DIR. The templates are the web IDE's "New
+ * project" ones (one place: @contract-studio/web-ide PROJECT_TEMPLATES). Never overwrites a file.
+ */
+import { existsSync, mkdirSync, readdirSync, statSync, writeFileSync } from 'node:fs';
+import { join, relative, resolve } from 'node:path';
+import { parseArgs } from '../args.js';
+import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+
+async function loadTemplates(): Promise<Record<string, string>> {
+    const name = '@contract-studio/web-ide';
+    const ide = (await import(name)) as { PROJECT_TEMPLATES?: Record<string, string> };
+    if (!ide.PROJECT_TEMPLATES) throw new Error('the installed @contract-studio/web-ide has no project templates');
+    return ide.PROJECT_TEMPLATES;
+}
+
+export const newCommand: Command = {
+    name: 'new',
+    summary: 'create a new Cactal project from the template (types, modules, schema, scheduler, supervisor)',
+    usage: [
+        'usage: contract new DIR',
+        '  DIR must not exist or be empty; it gets 6 .contract files that check without errors.',
+        '  next: contract check DIR && contract build DIR && contract run DIR --duration 5s',
+        'exit status: 0 created, 1 DIR is not empty or cannot be written, 2 bad usage',
+    ].join('\n'),
+    async run(args: string[], io: CliIO): Promise<number> {
+        const { positionals } = parseArgs(args, []);
+        if (positionals.length !== 1) throw new UsageError(positionals.length ? 'expected exactly one DIR' : 'missing DIR (the folder to create)');
+        const dirArg = positionals[0]!;
+        const dir = resolve(io.cwd, dirArg);
+        if (existsSync(dir)) {
+            if (!statSync(dir).isDirectory()) {
+                io.err(`contract new: ${dirArg} exists and is not a directory; pick another name\n`);
+                return EXIT_FAILURE;
+            }
+            if (readdirSync(dir).length > 0) {
+                io.err(`contract new: ${dirArg} is not empty; nothing was written (pick a new or empty folder)\n`);
+                return EXIT_FAILURE;
+            }
+        }
+        let templates: Record<string, string>;
+        try {
+            templates = await loadTemplates();
+        } catch (err) {
+            io.err(`contract new: cannot load the project templates (${err instanceof Error ? err.message.split('\n')[0] : String(err)}); install @contract-studio/web-ide or run \`npm run build\` at the repository root\n`);
+            return EXIT_FAILURE;
+        }
+        mkdirSync(dir, { recursive: true });
+        for (const [file, text] of Object.entries(templates)) {
+            writeFileSync(join(dir, file), text, { flag: 'wx' });
+            io.out(`created ${join(relative(io.cwd, dir) || '.', file)}\n`);
+        }
+        io.err(`next: contract check ${dirArg} && contract run ${dirArg} --duration 5s\n`);
+        return EXIT_OK;
+    },
+};
