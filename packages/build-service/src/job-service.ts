@@ -102,8 +102,9 @@ export class JobService {
     if (kind !== 'cactal' && kind !== 'make') throw new ServiceError(400, 'bad_request', 'kind must be "cactal" or "make"');
     const sandbox = (b.sandbox ?? this.defaultSandbox) as SandboxChoice;
     if (!SANDBOX_CHOICES.includes(sandbox)) throw new ServiceError(400, 'bad_request', `sandbox must be one of ${SANDBOX_CHOICES.join(', ')}`);
-    if (b.start !== undefined && (typeof b.start !== 'string' || b.start.length > 4096 || /[\n\0]/.test(b.start))) {
-      throw new ServiceError(400, 'bad_request', 'start must be a one-line string');
+    // START ends up inside a shell-quoted make recipe ('$(START)'): no quotes, $, backslash or backtick
+    if (b.start !== undefined && (typeof b.start !== 'string' || b.start.length > 4096 || !/^[\w .,:;=+\-(){}[\]"]*$/.test(b.start))) {
+      throw new ServiceError(400, 'bad_request', 'start must be one line like GLB.mission(consigne={1.0,2.0,3.0}) (letters, digits, spaces, . , : ; = + - ( ) { } [ ] " only)');
     }
     if (b.duration !== undefined && (typeof b.duration !== 'number' || !(b.duration > 0) || !Number.isFinite(b.duration))) {
       throw new ServiceError(400, 'bad_request', 'duration must be a positive number of seconds');
