@@ -15,6 +15,8 @@ export interface CodeCase {
     clean: Files;
     /** Text the raised message must contain. */
     message?: string;
+    /** Fields the raised diagnostic's data must hold. */
+    data?: Record<string, unknown>;
 }
 
 export function describeCodeCases(title: string, areaTitle: string, cases: Record<string, CodeCase>): void {
@@ -36,6 +38,7 @@ export function describeCodeCases(title: string, areaTitle: string, cases: Recor
                 const declared = CODE_AREAS.flatMap((a) => a.codes).find((d) => d.code === code)!;
                 expect(found[0]!.severity).toBe(declared.severity);
                 if (c.message) expect(found.map((d) => d.message).join('\n')).toContain(c.message);
+                if (c.data) expect(found[0]!.data).toMatchObject(c.data);
             });
             it(`${code}: not raised by the near-identical case`, async () => {
                 const built = await build(c.clean, services);

@@ -28,7 +28,7 @@ const SCHEMA = `periodic schema sc1(TypeA consigne = {0.0, 0.0, 0.0}) {
 
 const SCHED = 'scheduler configuration { modules { MSA; MSC; MAA; MSA; } schemas { sc1; ev; sc1; } }';
 
-const CUTS = 24;
+const CUTS = 12;
 
 /** The text cut at `CUTS` evenly spread positions, plus with a middle slice removed at each. */
 function variants(text: string): string[] {
@@ -53,6 +53,6 @@ describe('validators on incomplete input', () => {
                 diagnostics += built.diagnostics.filter((d) => d.severity === 'error').length;
             }
             expect(diagnostics).toBeGreaterThan(2 * CUTS); // every variant is broken somewhere
-        });
+        }, 30_000);
     }
 });

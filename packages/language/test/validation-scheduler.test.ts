@@ -36,12 +36,14 @@ const CASES: Record<string, CodeCase> = {
     'scheduler-module-unlisted': {
         raise: sched('modules { MSA; MSB; MSC; } schemas { sc1; }'),
         clean: sched('modules { MSA; MSB; MSC; MSD; } schemas { sc1; }'),
-        message: "Schema sc1 uses MSD, which is not listed in the 'modules' block"
+        message: "Schema sc1 uses MSD, which is not listed in the 'modules' block",
+        data: { modules: ['MSD'] }
     },
     'scheduler-schema-unlisted': {
         raise: architecture({ 'sc2.contract': sc2(), 'sup.contract': activating('sc2') }),
         clean: architecture({ 'sc2.contract': sc2(), 'sup.contract': activating('sc1') }),
-        message: 'Periodic schema sc2 is activated here but not listed in the scheduler configuration'
+        message: 'Periodic schema sc2 is activated here but not listed in the scheduler configuration',
+        data: { schema: 'sc2' }
     },
     'scheduler-entry-duplicate': {
         raise: sched('modules { MSA; MSB; MSC; MSD; MSA; } schemas { sc1; }'),

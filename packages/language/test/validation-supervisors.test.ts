@@ -26,7 +26,8 @@ const CASES: Record<string, CodeCase> = {
     'supervisor-rule-uses-parameter': {
         raise: sup('R: [elapsed=1ms] activate schema sc1(consigne = consigne) [elapsed=2ms]'),
         clean: sup('R: [elapsed=1ms] activate schema sc1(consigne = temp_consigne) [elapsed=2ms]'),
-        message: "Rules cannot use the parameter 'consigne' of action: they use locals, event-port variables and constants. Use the local 'temp_consigne', initialised from it."
+        message: "Rules cannot use the parameter 'consigne' of action: they use locals, event-port variables and constants. Use the local 'temp_consigne', initialised from it.",
+        data: { local: 'temp_consigne' }
     },
     'supervisor-label-duplicate': {
         raise: sup('R: [elapsed=1ms] [elapsed=2ms]\nR: [elapsed=3ms] [elapsed=4ms]'),

@@ -86,7 +86,7 @@ function checkListedSchemas(config: SchedulerConfiguration, accept: ValidationAc
             if (missing.length) {
                 report(accept, SchedulerCodes['scheduler-module-unlisted'],
                     `Schema ${schema.name} uses ${missing.map((m) => m.name).join(', ')}, which ${missing.length === 1 ? 'is' : 'are'} not listed in the 'modules' block of the scheduler configuration: list every module of a listed schema.`,
-                    { node: block, property: 'schemas', index });
+                    { node: block, property: 'schemas', index, data: { modules: missing.map((m) => m.name) } });
             }
         });
     }
@@ -116,5 +116,5 @@ function checkActivatedSchemaListed(action: ActivateSchema, elements: ProjectEle
         configs.length === 0
             ? `Periodic schema ${schema.name} is activated here, but the project has no scheduler configuration: add 'scheduler configuration { modules { ... } schemas { ${schema.name}; } }'.`
             : `Periodic schema ${schema.name} is activated here but not listed in the scheduler configuration: add it to its 'schemas' block (ORD only schedules listed schemas).`,
-        { node: action, property: 'schema' });
+        { node: action, property: 'schema', data: { schema: schema.name } });
 }

@@ -41,7 +41,7 @@ function checkNoParameterInRule(ref: VariableRef, accept: ValidationAcceptor): v
     const local = fn?.locals.flatMap((b) => b.variables).find((l) => isVariableRef(l.value) && l.value.variable?.ref === variable && l.value.path.length === 0);
     report(accept, SupervisorCodes['supervisor-rule-uses-parameter'],
         `Rules cannot use the parameter '${variable.name}' of ${fn?.name ?? 'the function'}: they use locals, event-port variables and constants. ${local ? `Use the local '${local.name}', initialised from it.` : `Copy it into a local (local { ${variable.type?.primitive ?? variable.type?.datatype?.$refText ?? 'T'} ${variable.name}_ = ${variable.name}; }) and use that.`}`,
-        { node: ref, property: 'variable' });
+        { node: ref, property: 'variable', data: local ? { local: local.name } : {} });
 }
 
 function checkOrdSchemaUse(ref: VariableRef, accept: ValidationAcceptor): void {

@@ -24,12 +24,12 @@ export const { area: schedulerArea, codes: SchedulerCodes } = defineCodes('Sched
     },
     'scheduler-module-unlisted': {
         severity: 'error',
-        description: 'Every module used by a listed schema must be listed in the `modules` block of the configuration; the message names the missing modules.',
+        description: 'Every module used by a listed schema must be listed in the `modules` block of the configuration; the message names the missing modules and the diagnostic data holds them (`modules`, for a quick fix).',
         example: 'scheduler configuration { modules { MSA; } schemas { schemaCommande1; } }   // uses MSA, MSC, MSD'
     },
     'scheduler-schema-unlisted': {
         severity: 'error',
-        description: 'A periodic schema that a supervisor activates must be listed in the scheduler configuration (ORD only knows the listed schemas). Reported on the `activate schema` action.',
+        description: 'A periodic schema that a supervisor activates must be listed in the scheduler configuration (ORD only knows the listed schemas). Reported on the `activate schema` action; the diagnostic data holds `schema` (for a quick fix).',
         example: 'activate schema schemaCommande2(consigne = c)   // schemaCommande2 missing from the scheduler configuration'
     },
     'scheduler-entry-duplicate': {

@@ -19,7 +19,7 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
     },
     'supervisor-rule-uses-parameter': {
         severity: 'error',
-        description: 'Rules use the function\'s locals, the supervisor\'s event-port variables and constants, never the function\'s parameters: copy the parameter into a local (`local { TypeA c = consigne; }`) and use the local.',
+        description: 'Rules use the function\'s locals, the supervisor\'s event-port variables and constants, never the function\'s parameters: copy the parameter into a local (`local { TypeA c = consigne; }`) and use the local. When a local is initialised from exactly that parameter, the message names it and the diagnostic data holds it (`local`).',
         example: 'f(TypeA consigne) { rules { R: [elapsed=1ms] activate schema s(consigne = consigne) [elapsed=2ms] } }'
     },
     'supervisor-label-duplicate': {
