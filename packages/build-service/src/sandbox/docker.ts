@@ -47,6 +47,7 @@ export class DockerSandbox implements Sandbox {
   private readonly docker: Docker;
   private readonly image: string;
   private readonly volumes = new Map<string, string>();
+  private readonly createdVolumes = new Set<string>();
 
   constructor(options: DockerOptions = {}) {
     this.docker = new Docker(options.connection);
@@ -93,7 +94,10 @@ export class DockerSandbox implements Sandbox {
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
     const volume = this.volumeFor(cmd.workDir);
-    await this.docker.createVolume({ Name: volume, Labels: { 'contract-studio': 'workspace' } });
+    if (!this.createdVolumes.has(volume)) {
+      await this.docker.createVolume({ Name: volume, Labels: { 'contract-studio': 'workspace' } });
+      this.createdVolumes.add(volume);
+    }
     const bytes = memoryBytes(cmd.limits);
     const container = await this.docker.createContainer({
       name: `contract-${cmd.name}`,
@@ -131,10 +135,10 @@ export class DockerSandbox implements Sandbox {
       const stdout = new PassThrough();
       const stderr = new PassThrough();
       this.docker.modem.demuxStream(stream, stdout, stderr);
-      stream.on('end', () => {
-        stdout.end();
-        stderr.end();
-      });
+      let markEnded!: () => void;
+      const streamEnded = new Promise<void>((r) => (markEnded = r));
+      stream.on('end', markEnded);
+      stream.on('close', markEnded);
       await container.start();
       const mechanisms: Mechanisms = {
         memory: 'docker',
@@ -155,7 +159,8 @@ export class DockerSandbox implements Sandbox {
         const waited = (await container.wait().catch(() => ({ StatusCode: null }))) as { StatusCode: number | null };
         const info = await container.inspect().catch(() => null);
         if (info?.State?.OOMKilled && !limitHit) limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
-        await new Promise((r) => setTimeout(r, 50));
+        // the attach stream delivers the last bytes after the container ended: drain it first
+        await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
         stdout.end();
         stderr.end();
         await removeContainer();
@@ -180,6 +185,7 @@ export class DockerSandbox implements Sandbox {
     const v = this.volumes.get(workDir);
     if (!v) return;
     this.volumes.delete(workDir);
+    this.createdVolumes.delete(v);
     await this.docker.getVolume(v).remove({ force: true }).catch(() => {});
   }
 }
