@@ -66,6 +66,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                 }
             }
             const message = describeUnresolved(info, refText, linkingError.message);
+            if (message === undefined) continue; // follows from another unresolved reference, reported there
             if (isTypeRef(info.container)) {
                 diagnostics.push(this.toDiagnostic(TypeCodes['type-unknown'].severity, message, {
                     ...base, code: 'type-unknown', data: { code: 'type-unknown', refText }

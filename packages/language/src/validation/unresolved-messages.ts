@@ -20,14 +20,19 @@ function list(items: string[]): string {
     return items.length ? items.join(', ') : 'none';
 }
 
-function portMessage(owner: Module | Supervisor | undefined, index: string, kind: PortKind, direction: PortDirection): string {
+function portMessage(owner: Module | Supervisor | undefined, index: string, kind: PortKind, direction: PortDirection): string | undefined {
     const what = `${direction === 'in' ? 'input' : 'output'} ${kind} port`;
-    if (!owner) return `No ${what} ${index}: its module is unresolved.`;
+    if (!owner) return undefined;
     const available = portsOfKind(owner, kind, direction).map((p) => `:${p.index} ${p.name}`);
     return `${owner.name} has no ${what} ${index}; its ${what}s: ${list(available)}.`;
 }
 
-export function describeUnresolved(info: ReferenceInfo, refText: string, fallback: string): string {
+/**
+ * The message for an unresolved reference, or undefined when it only fails because what it
+ * depends on is unresolved (a port of an unknown module, a field of an unknown variable): that
+ * cause is reported already.
+ */
+export function describeUnresolved(info: ReferenceInfo, refText: string, fallback: string): string | undefined {
     const c = info.container;
     const p = info.property;
     if (isTypeRef(c)) {
@@ -36,7 +41,7 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
     if (isParameterSetting(c)) {
         const owner = c.$container;
         const module = isModuleInstance(owner) || isParameterize(owner) ? owner.module?.ref : undefined;
-        if (!isModule(module)) return `No parameter port ${refText}: its module is unresolved.`;
+        if (!isModule(module)) return undefined;
         return `${module.name} has no parameter port ${refText}; its parameters: ${list(parametersOf(module).map((q) => `:${q.index} ${q.name}`))}.`;
     }
     if (isDataCommunication(c) && (p === 'sourcePort' || p === 'targetPort')) {
@@ -53,19 +58,19 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
         const schema = isActivateSchema(c.$container) ? c.$container.schema?.ref : undefined;
         return schema
             ? `Schema ${schema.name} has no parameter '${refText}'; its parameters: ${list(schema.parameters.map((q) => q.name))}.`
-            : `No schema parameter '${refText}': the schema is unresolved.`;
+            : undefined;
     }
     if (isActivateSupervisor(c) && p === 'function') {
         const sup = c.supervisor?.ref;
         return sup
             ? `Supervisor ${sup.name} has no function '${refText}'; its functions: ${list(sup.functions.map((f) => f.name))}.`
-            : `No supervision function '${refText}': the supervisor is unresolved.`;
+            : undefined;
     }
     if (isFunctionArgumentAssignment(c)) {
         const fn = isActivateSupervisor(c.$container) ? c.$container.function?.ref : undefined;
         return fn
             ? `Function ${fn.name} has no parameter '${refText}'; its parameters: ${list(fn.parameters.map((q) => q.name))}.`
-            : `No function parameter '${refText}': the function is unresolved.`;
+            : undefined;
     }
     if (isStartedEvent(c) || isEndofEvent(c) || isDurationEvent(c)) {
         const fn = AstUtils.getContainerOfType(c, isSupervisionFunction);
@@ -80,7 +85,7 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
             }
             if (type.kind === 'primitive') return `'${refText}': a value of type ${typeName(type)} has no fields.`;
         }
-        return `Unknown field '${refText}'.`;
+        return undefined; // the variable or an earlier field is unresolved
     }
     if (isVariableRef(c)) {
         const fn = AstUtils.getContainerOfType(c, isSupervisionFunction);
