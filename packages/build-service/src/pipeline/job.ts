@@ -131,16 +131,13 @@ export class Job {
         prepareWorkspace(ws, this.request.project, this.request.kind, (l) => this.system('prepare', l)),
       );
       this.prepareDiagnostics = prep.problems;
+      // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
+      // the image for docker. Plain Makefile projects get the image's path and no bind.
       let runtimePath = '/opt/contract/runtime';
       let runtimeDir: string | undefined;
-      if (prep.ok && ctx.sandbox.needsHostRuntime && ctx.runtime && this.request.kind === 'cactal') {
-        runtimeDir = await this.orCancel(
-          ctx.runtime.ensure((l, s) => this.line('prepare', 'runtime', s, l)),
-        );
+      if (prep.ok && this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
+        runtimeDir = await this.orCancel(ctx.runtime.ensure((l, s) => this.line('prepare', 'runtime', s, l)));
         runtimePath = ctx.sandbox.runtimePath(runtimeDir);
-      } else if (ctx.sandbox.needsHostRuntime && ctx.runtime) {
-        runtimeDir = undefined;
-        runtimePath = ctx.sandbox.runtimePath(ctx.runtime.source);
       }
       this.durations.prepare = Date.now() - t0;
       if (!prep.ok) {
