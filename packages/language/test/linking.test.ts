@@ -155,4 +155,15 @@ describe('cross-file linking', () => {
         const b = await build(files, services);
         expect(b.lines.some((l) => l.includes('linking-error MSC has no output data port 0; its output data ports: :1 out_cmd.'))).toBe(true);
     });
+
+    it('reports an unknown module once, not again for its port indexes', async () => {
+        const b = await build({
+            't.contract': TYPES,
+            's.contract': 'import "t.contract";\nsupervisor SUX { event flows { in :0 TypeD a; } f() { local { TypeD l; } rules { R: [elapsed=1ms] subscribe MZZ:0 =* :0 [MZZ:0(l = a)] } } }'
+        }, services);
+        expect(b.diagnostics.map((d) => `${d.code} ${d.message}`)).toEqual([
+            "linking-error Unknown module or supervisor 'MZZ': no module or supervisor of this name is defined in this file or in a file it imports.",
+            "linking-error Unknown module or supervisor 'MZZ': no module or supervisor of this name is defined in this file or in a file it imports."
+        ]);
+    });
 });
