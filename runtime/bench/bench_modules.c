@@ -24,7 +24,7 @@ char MODULE_NAME[] = "SINK";
 ModuleUse IUSE[] = { { &value, 0, sizeof(KiB), "---", 0, 1 }, IUSE_TERM };
 ModuleProduce IPRODUCE[] = { IPRODUCE_TERM };
 #endif
-int MODULE_PRIORITY = 50;
+int MODULE_PRIORITY = 99; /* nice 0 when SCHED_FIFO is not used: same footing as the raw ping-pong */
 ModuleReact IREACT[] = { IREACT_TERM };
 ModuleDetect IDETECT[] = { IDETECT_TERM };
 size_t PARAM_SIZE_IN[] = { PARAM_SIZE_TERM };

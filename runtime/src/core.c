@@ -272,6 +272,7 @@ void ContractShutdown(void)
     rt_dataflow_teardown();
     rt_eventflow_teardown();
     if (g_rt.mbx_fd >= 0) { close(g_rt.mbx_fd); g_rt.mbx_fd = -1; }
+    g_rt.mbx_rcvtimeo = 0; /* a new mailbox socket starts without receive timeout */
     rt_close_peers();
     remove_created_files();
     while (g_rt.pending_head) {

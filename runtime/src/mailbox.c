@@ -14,6 +14,8 @@
 
 extern const char ContractModuleDescription[] __attribute__((weak));
 
+#define COARSE_WAIT_NS 100000000LL /* deadlines further than this are checked every 100 ms */
+
 static RequestMessage rx_buffer; /* every datagram lands here first: user messages stay intact */
 
 /* ---------------------------------------------------------------- sending */
@@ -400,10 +402,11 @@ static int receive_until(RTIME deadline)
             if (wait < 0 || flush_in < wait) wait = flush_in;
         }
         int r;
-        if (deadline == INT64_MAX) {
-            /* Plain blocking receive (one system call); while log records wait to be written,
-             * it times out after LOG_FLUSH_NS so that they reach the file even when idle. */
-            RTIME timeo = g_rt.log_dirty_since ? LOG_FLUSH_NS : 0;
+        if (deadline == INT64_MAX || deadline - now >= COARSE_WAIT_NS) {
+            /* Plain blocking receive (one system call). It times out after LOG_FLUSH_NS while log
+             * records wait to be written, so that they reach the file even when idle, and after
+             * COARSE_WAIT_NS when a far deadline must be checked; near deadlines use ppoll. */
+            RTIME timeo = g_rt.log_dirty_since ? LOG_FLUSH_NS : (deadline == INT64_MAX ? 0 : COARSE_WAIT_NS);
             if (timeo != g_rt.mbx_rcvtimeo) {
                 struct timeval tv = { (time_t)(timeo / 1000000000LL), (long)(timeo % 1000000000LL) / 1000 };
                 setsockopt(g_rt.mbx_fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);

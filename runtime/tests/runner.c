@@ -5,11 +5,28 @@
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <signal.h>
+#include <unistd.h>
 #include "harness.h"
 #include "tests.h"
 
+static const char *current = "";
+
+static void on_timeout(int sig)
+{
+    (void)sig;
+    /* a test must never hang the suite: report it and stop */
+    static const char msg[] = "FAIL timeout (60 s) in test ";
+    ssize_t w = write(2, msg, sizeof msg - 1);
+    w = write(2, current, strlen(current));
+    w = write(2, "\n", 1);
+    (void)w;
+    _exit(3);
+}
+
 int main(int argc, char *argv[])
 {
+    signal(SIGALRM, on_timeout);
     if (argc < 2) { fprintf(stderr, "usage: %s BIN_DIR [TEST...]\n", argv[0]); return 2; }
     static char bin[4096];
     if (!realpath(argv[1], bin)) { perror(argv[1]); return 2; }
@@ -24,7 +41,10 @@ int main(int argc, char *argv[])
         h_failures = 0;
         struct timespec a, b;
         clock_gettime(CLOCK_MONOTONIC, &a);
+        current = t->name;
+        alarm(60);
         t->fn();
+        alarm(0);
         if (h_active) h_teardown();
         clock_gettime(CLOCK_MONOTONIC, &b);
         double ms = (double)(b.tv_sec - a.tv_sec) * 1e3 + (double)(b.tv_nsec - a.tv_nsec) / 1e6;
