@@ -29,7 +29,8 @@ export const CASES: Record<string, Case> = {
         clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int x; }') }
     },
     'import-missing-file': {
-        raise: { 'a.contract': 'import "nosuch.contract";\ndatatype A {int x};' },
+        raise: { 'sub/a.contract': 'import "b.contract";\ndatatype A {B x};', 'b.contract': 'datatype B {int y};' },
+        data: { suggestion: '../b.contract' },
         clean: { 'a.contract': 'import "b.contract";\ndatatype A {B x};', 'b.contract': 'datatype B {int y};' }
     },
     'import-cycle': {

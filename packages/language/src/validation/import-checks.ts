@@ -58,9 +58,10 @@ class ImportChecker {
             }
             seen.set(key, imp);
             if (!docs.hasDocument(uri)) {
+                const suggestion = this.similarFile(document, uri);
                 report(accept, ImportCodes['import-missing-file'],
-                    `Imported file "${imp.path}" does not exist (resolved relative to this file: ${UriUtils.relative(UriUtils.dirname(document.uri), uri)}).`,
-                    { node: imp, property: 'path' });
+                    `Imported file "${imp.path}" does not exist; paths are relative to the importing file's folder${suggestion ? `. Did you mean "${suggestion}"?` : '.'}`,
+                    { node: imp, property: 'path', data: suggestion ? { suggestion } : {} });
                 continue;
             }
             const cycle = this.findCycle(document.uri.toString(), key);
@@ -151,6 +152,15 @@ class ImportChecker {
             }
         }
         return used;
+    }
+
+    /** A project file with the same name as a missing import, as a path relative to the importer. */
+    private similarFile(document: LangiumDocument, missing: URI): string | undefined {
+        const name = UriUtils.basename(missing);
+        for (const [, doc] of this.documentsByUri()) {
+            if (doc !== document && UriUtils.basename(doc.uri) === name) return this.imports.relativeImportPath(document.uri, doc.uri);
+        }
+        return undefined;
     }
 
     /** The workspace's documents by URI string (cached per build). */

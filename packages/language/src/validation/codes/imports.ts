@@ -4,7 +4,7 @@ import { defineCodes } from './code-table.js';
 export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and imports', '§2.1', {
     'import-missing-file': {
         severity: 'error',
-        description: 'The imported file does not exist in the project. Paths resolve relative to the importing file.',
+        description: 'The imported file does not exist in the project. Paths resolve relative to the importing file. When a project file has that name elsewhere, the message suggests its relative path (diagnostic data `suggestion`).',
         example: 'import "nosuchfile.contract";'
     },
     'import-cycle': {
