@@ -4,8 +4,9 @@
 #   + the runtime sources copied to ROOT/opt/contract/runtime, built and installed there (chroot)
 #   + its C tests run inside the chroot (skip with --no-test)
 #   | tar | docker import - contract-gcc
-# Same content as runtime/docker/Dockerfile. Idempotent: does nothing when the image exists,
-# unless --force. Needs root (debootstrap, chroot) and a running Docker engine.
+# Same content as runtime/docker/Dockerfile. Idempotent: does nothing when the image exists
+# (and, if it carries the label contract.runtime-sources, was built from the current runtime
+# sources), unless --force. Needs root (debootstrap, chroot) and a running Docker engine.
 # Options: --force  --no-test  --image NAME (default $CONTRACT_IMAGE or contract-gcc)
 #          --mirror URL (default: the first Debian URI of /etc/apt/sources.list[.d])
 set -euo pipefail
@@ -30,9 +31,17 @@ done
 
 command -v docker >/dev/null || die "the docker CLI is missing"
 docker info >/dev/null 2>&1 || die "no Docker engine answers (start dockerd first)"
+# fingerprint of the runtime sources (same recipe as scripts/docker-up.sh, which compares it)
+runtime_hash=$(cd "$runtime_dir" && find . -path ./build -prune -o -type f \( -name '*.c' -o -name '*.h' -o -name '*.mk' -o -name Makefile -o -name '*.def' \) -print \
+  | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -c1-16)
+
 if [ $force = 0 ] && docker image inspect "$IMAGE" >/dev/null 2>&1; then
-  log "image $IMAGE already exists: nothing to do (use --force to rebuild it)"
-  exit 0
+  label=$(docker image inspect -f '{{ index .Config.Labels "contract.runtime-sources" }}' "$IMAGE" 2>/dev/null || true)
+  if [ -z "$label" ] || [ "$label" = "<no value>" ] || [ "$label" = "$runtime_hash" ]; then
+    log "image $IMAGE already exists: nothing to do (use --force to rebuild it)"
+    exit 0
+  fi
+  log "image $IMAGE was built from other runtime sources ($label, now $runtime_hash): rebuilding"
 fi
 [ "$(id -u)" = 0 ] || die "debootstrap and chroot need root"
 command -v debootstrap >/dev/null || die "debootstrap is missing (apt-get install debootstrap)"
@@ -42,10 +51,6 @@ if [ -z "$mirror" ]; then
   [ -n "$mirror" ] || mirror=$(awk '$1 == "deb" && $0 !~ /security/ {print $2; exit}' /etc/apt/sources.list 2>/dev/null || true)
   [ -n "$mirror" ] || mirror=http://deb.debian.org/debian
 fi
-
-# fingerprint of the runtime sources (same recipe as scripts/docker-up.sh, which compares it)
-runtime_hash=$(cd "$runtime_dir" && find . -path ./build -prune -o -type f \( -name '*.c' -o -name '*.h' -o -name '*.mk' -o -name Makefile -o -name '*.def' \) -print \
-  | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -c1-16)
 
 work=$(mktemp -d /tmp/contract-rootfs-XXXXXX)
 root="$work/root"
@@ -74,7 +79,8 @@ if [ $run_tests = 1 ]; then
   tail -1 "$work/tests.log" >&2
 fi
 umount "$root/proc"
-rm -rf "$root/opt/contract/runtime/build/obj" "$root/opt/contract/runtime/build/tests" \
+# build/obj stays (generated Makefiles ask make for build/libmodule.a: it must be up to date)
+rm -rf "$root/opt/contract/runtime/build/tests" \
        "$root/opt/contract/runtime/build/san" "$root/opt/contract/runtime/build/bench" \
        "$root/var/cache/apt/archives/"*.deb "$root/var/lib/apt/lists/"* 2>/dev/null || true
 mkdir -p "$root/work"
