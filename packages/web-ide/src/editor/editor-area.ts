@@ -94,7 +94,9 @@ export class EditorArea {
     if (where) {
       const range = 'startLineNumber' in where ? where : new monaco.Range(where.lineNumber, where.column, where.lineNumber, where.column);
       this.editor.setSelection(range);
-      this.editor.revealRangeInCenterIfOutsideViewport(range);
+      this.editor.revealRangeInCenter(range);
+      // a restored view state may scroll after us: reveal again once laid out
+      requestAnimationFrame(() => this.editor.getModel() === this.workspace.files.get(path)?.model && this.editor.revealRangeInCenterIfOutsideViewport(range));
     }
     this.editor.focus();
   }

@@ -117,9 +117,15 @@ export class LspClient {
    * Resolves once every opened document has been built and validated at least once (its first
    * diagnostics arrived), so cross-file requests (rename, references) see the whole workspace.
    */
-  workspaceBuilt(): Promise<void> {
+  workspaceBuilt(maxWaitMs = 15_000): Promise<void> {
     if (!this.unbuilt.size) return Promise.resolve();
-    return new Promise((r) => this.builtWaiters.push(r));
+    return new Promise((r) => {
+      this.builtWaiters.push(r);
+      setTimeout(() => {
+        if (this.unbuilt.size) console.warn(`language server: no diagnostics yet for ${[...this.unbuilt].join(', ')}`);
+        r();
+      }, maxWaitMs);
+    });
   }
 
   request<R>(method: string, params: unknown): Promise<R> {

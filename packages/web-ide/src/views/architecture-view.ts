@@ -37,14 +37,16 @@ function nodeOf(m: ArchModule): ElkNode {
   const outs = m.ports.filter((p) => p.direction === 'out');
   const params = m.ports.filter((p) => p.kind === 'param');
   const rowY = (i: number) => HEAD + 8 + i * ROW;
+  const longest = (ps: typeof ins) => Math.max(0, ...ps.map((p) => `:${p.index} ${p.name}`.length));
+  const width = Math.max(NODE_W, 40 + 7 * (longest(ins) + longest(outs)));
   const ports: ElkPort[] = [
     ...ins.map((p, i) => ({ id: portId(m.name, p.kind, 'in', p.index), x: -5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'WEST' } })),
-    ...outs.map((p, i) => ({ id: portId(m.name, p.kind, 'out', p.index), x: NODE_W - 5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'EAST' } })),
-    ...params.map((p, i) => ({ id: portId(m.name, 'param', 'in', p.index), x: NODE_W / 2 - 5 + i * 16, y: -5, width: 10, height: 10, layoutOptions: { 'port.side': 'NORTH' } })),
+    ...outs.map((p, i) => ({ id: portId(m.name, p.kind, 'out', p.index), x: width - 5, y: rowY(i), width: 10, height: 10, layoutOptions: { 'port.side': 'EAST' } })),
+    ...params.map((p, i) => ({ id: portId(m.name, 'param', 'in', p.index), x: width / 2 - 5 + i * 60, y: -5, width: 10, height: 10, layoutOptions: { 'port.side': 'NORTH' } })),
   ];
   return {
     id: m.name,
-    width: NODE_W,
+    width,
     height: HEAD + 14 + ROW * Math.max(ins.length, outs.length, 1),
     ports,
     layoutOptions: { portConstraints: 'FIXED_POS' },

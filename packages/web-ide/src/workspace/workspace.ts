@@ -175,7 +175,8 @@ export class Workspace {
         this.applyingExternal = false;
       }
       fs.diskText = content;
-      this.onNotice.fire({ level: 'info', text: `${path} changed on disk: reloaded` });
+      // Regenerated C is expected to change: only user files get a notice.
+      if (!/(^|\/)src-gen\//.test(path)) this.onNotice.fire({ level: 'info', text: `${path} changed on disk: reloaded` });
     } else {
       fs.diskText = content;
       this.onNotice.fire({ level: 'warning', text: `${path} changed on disk while you were editing: your version is kept and will be saved` });

@@ -238,7 +238,7 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.log-search').fill('MSC');
     await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBeGreaterThan(0);
     await page.locator('.log-search').fill('');
-  });
+  }, 150_000);
 
   it.skipIf(!canBuild || !canGenerate)('shows gcc errors in the problems panel and opens the generated file at the line', async () => {
     const { page } = s;
@@ -256,10 +256,11 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => activeTab(page)).toBe(path);
     expect(await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber)).toBe(badLine);
     await shot(page, '06b-gcc-error');
+    await expect.poll(() => page.locator('.view-line', { hasText: 'broken_by_test' }).count(), { timeout: 5000 }).toBe(1); // revealed on screen
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 30_000 }).toMatch(/failed/);
     writeFileSync(join(s.workspace, path), good);
     await expect.poll(() => activeValue(page), { timeout: 5000 }).not.toContain('broken_by_test');
-  });
+  }, 150_000);
 
   it('tells the user when a write fails (server down) and saves once the server is back', async () => {
     const { page } = s;
@@ -288,7 +289,7 @@ describe('IDE in headless Chromium', () => {
     expect(await activeValue(page)).toContain('// typed right before reload');
     await waitSaved(page);
     await expect.poll(() => disk('datatype.contract'), { timeout: 5000 }).toContain('// typed right before reload');
-  });
+  }, 90_000);
 
   it('draws a timeline of activations from the run CSV logs', async () => {
     const { page } = s;
