@@ -30,8 +30,9 @@ int rt_dataflow_setup(void)
 {
     if (g_rt.n_iuse) {
         g_rt.in_fds = calloc((size_t)g_rt.n_iuse, sizeof(int));
+        g_rt.in_producer = calloc((size_t)g_rt.n_iuse, sizeof *g_rt.in_producer);
         g_rt.scratch = malloc(CONTRACT_DATA_PORT_MAX + 1);
-        if (!g_rt.in_fds || !g_rt.scratch) { rt_error("out of memory"); return -1; }
+        if (!g_rt.in_fds || !g_rt.in_producer || !g_rt.scratch) { rt_error("out of memory"); return -1; }
     }
     for (int i = 0; i < g_rt.n_iuse; i++) g_rt.in_fds[i] = -1;
     for (int i = 0; i < g_rt.n_iuse; i++) {
@@ -56,6 +57,8 @@ void rt_dataflow_teardown(void)
     for (int i = 0; g_rt.in_fds && i < g_rt.n_iuse; i++) if (g_rt.in_fds[i] >= 0) close(g_rt.in_fds[i]);
     free(g_rt.in_fds);
     g_rt.in_fds = NULL;
+    free(g_rt.in_producer);
+    g_rt.in_producer = NULL;
     free(g_rt.scratch);
     g_rt.scratch = NULL;
     for (int i = 0; g_rt.data_subs && i < g_rt.n_iproduce; i++) free_list(g_rt.data_subs[i]);
@@ -97,6 +100,16 @@ static int read_port(int i, void *var, RTIME *prod, RTIME *recv, int latest, int
             continue;
         }
         got++;
+        if (strcmp(g_rt.in_producer[i], h.producer) != 0) {
+            if (g_rt.in_producer[i][0]) {
+                /* an input port has one producer: a second one means a wiring error (or a new schema) */
+                char detail[CONTRACT_NAME_MAX + 64];
+                snprintf(detail, sizeof detail, "was %s: an input data port has one producer", g_rt.in_producer[i]);
+                fprintf(stderr, "%s: warning: input data port %d now fed by %s (%s)\n", g_rt.name, u->Port, h.producer, detail);
+                ContractLog("producer_changed", h.producer, u->Port, payload, detail);
+            }
+            memcpy(g_rt.in_producer[i], h.producer, CONTRACT_NAME_MAX);
+        }
         if (purge) { ContractLog("data_purged", h.producer, u->Port, payload, ""); continue; }
         memcpy(var, g_rt.scratch, u->Size);
         if (prod) *prod = h.production;

@@ -45,6 +45,7 @@ typedef struct {
     size_t *param_in; size_t *param_out;
     int n_iuse, n_iproduce, n_ireact, n_idetect;
     int *in_fds;            /* one per IUSE entry */
+    char (*in_producer)[CONTRACT_NAME_MAX]; /* last producer seen on each input port */
     unsigned char *scratch; /* receive buffer for data, CONTRACT_DATA_PORT_MAX + 1 */
     Subscriber **data_subs; /* per IPRODUCE entry */
     Subscriber **event_subs;/* per IDETECT entry */

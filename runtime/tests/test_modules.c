@@ -270,12 +270,24 @@ void test_malformed_datagrams(void)
     CHECK(strstr(status, "module=C1") != NULL);
     long v[4];
     CHECK(report_values("C1", v, 4) == 0);
+    /* two well-formed values from two different producers: used, the change is reported */
+    struct { DataHeader h; long v; } ok;
+    memset(&ok, 0, sizeof ok);
+    ok.h.size = sizeof ok.v;
+    snprintf(ok.h.producer, sizeof ok.h.producer, "X");
+    ok.v = 41;
+    CHECK(send_raw("C1.0.in", &dpre, sizeof dpre, &ok, sizeof ok));
+    snprintf(ok.h.producer, sizeof ok.h.producer, "Y");
+    ok.v = 42;
+    CHECK(send_raw("C1.0.in", &dpre, sizeof dpre, &ok, sizeof ok));
+    CHECK(report_values("C1", v, 4) == 2 && v[0] == 41 && v[1] == 42);
     CHECK(SendKill("C1", ACK_KILLED, 1) == 0 && h_wait_ack("C1", 1, ACK_KILLED, 2000, m));
     usleep(100000);
     char *log = h_read_logs("C1_");
     CHECK(log && strstr(log, "dropped a malformed datagram of 20000 bytes"));
     CHECK(log && strstr(log, "does not match its header"));
     CHECK(log && strstr(log, "input data port 0: refused 32 bytes from X"));
+    CHECK(log && strstr(log, ",C1,producer_changed,Y,0,8,was X: an input data port has one producer"));
     free(log);
     h_teardown();
 }

@@ -263,3 +263,27 @@ void test_priority(void)
     setenv("CONTRACT_SCHED", "other", 1);
     h_teardown();
 }
+
+void test_launcher_sigint(void)
+{
+    REQUIRE(h_setup("sigint") == 0);
+    ContractShutdown();
+    char exe_p[600], exe_c1[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c1, NULL };
+    pid_t launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(wait_for_text(out, "2 module(s) running", 5000));
+    long pp = pid_of(h_run_dir, "P"), pc1 = pid_of(h_run_dir, "C1");
+    kill(launcher, SIGINT); /* what Ctrl-C in a terminal does */
+    CHECK(h_wait_exit(launcher, 6000) == 0);
+    CHECK(!process_exists(pp) && !process_exists(pc1));
+    CHECK(h_count_entries(h_run_dir) == -1);
+    CHECK(!h_unix_socket_listed(h_run_dir));
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "all modules stopped cleanly"));
+    free(text);
+    h_teardown();
+}

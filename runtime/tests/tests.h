@@ -15,6 +15,7 @@ void test_unknown_and_stale(void);
 void test_long_run_dir(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
+void test_launcher_sigint(void);
 void test_two_run_dirs(void);
 void test_control_tool(void);
 void test_priority(void);
@@ -33,6 +34,7 @@ static const TestCase ALL_TESTS[] = {
     { "long_run_dir", test_long_run_dir },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
+    { "launcher_sigint", test_launcher_sigint },
     { "two_run_dirs", test_two_run_dirs },
     { "control_tool", test_control_tool },
     { "priority", test_priority },
