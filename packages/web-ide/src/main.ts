@@ -246,15 +246,29 @@ async function main(): Promise<void> {
 
   // ---- views (lazy: elkjs and the timeline load on first use)
   let arch: ArchitectureView | undefined;
+  let archDocked = false;
+  const archTab = () => ({ id: 'view:architecture', title: 'Architecture', icon: '⬡', element: arch!.element, onShow: () => void arch!.update() });
   const archRefresh = debounce(() => {
-    if (arch && editors.active === 'view:architecture') void arch.update();
+    if (arch && (archDocked || editors.active === 'view:architecture')) void arch.update();
   }, 400);
+  const toggleDock = () => {
+    archDocked = !archDocked;
+    if (archDocked) {
+      editors.close('view:architecture');
+      editors.dock(arch!.element);
+      void arch!.update();
+    } else {
+      editors.dock(undefined);
+      editors.openView(archTab());
+    }
+  };
   ui.toolbar.arch.addEventListener('click', async () => {
     if (!arch) {
       const { ArchitectureView } = await import('./views/architecture-view.js');
-      arch = new ArchitectureView(() => lsp.architecture());
+      arch = new ArchitectureView(() => lsp.architecture(), toggleDock);
     }
-    editors.openView({ id: 'view:architecture', title: 'Architecture', icon: '⬡', element: arch.element, onShow: () => void arch!.update() });
+    if (archDocked) void arch.update();
+    else editors.openView(archTab());
   });
   monaco.editor.onDidCreateModel((m) => m.onDidChangeContent(() => archRefresh()));
   for (const m of monaco.editor.getModels()) m.onDidChangeContent(() => archRefresh());

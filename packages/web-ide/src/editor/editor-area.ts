@@ -26,6 +26,8 @@ export class EditorArea {
   private readonly editorHost: HTMLElement;
   private readonly viewHost: HTMLElement;
   private readonly emptyEl: HTMLElement;
+  private readonly stack: HTMLElement;
+  private readonly sidePane: HTMLElement;
   private readonly tabs: string[] = [];
   private readonly views = new Map<string, ViewTab>();
   private readonly viewStates = new Map<string, monaco.editor.ICodeEditorViewState | null>();
@@ -41,7 +43,9 @@ export class EditorArea {
     this.viewHost = h('div', { class: 'view-host hidden' });
     this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer'),
       h('div', { class: 'muted' }, 'Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
-    root.append(this.tabsEl, h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl));
+    this.sidePane = h('div', { class: 'side-pane hidden' });
+    this.stack = h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl, this.sidePane);
+    root.append(this.tabsEl, this.stack);
     this.editor = monaco.editor.create(this.editorHost, {
       theme: 'contract-dark',
       automaticLayout: true,
@@ -106,6 +110,14 @@ export class EditorArea {
     this.views.set(view.id, view);
     if (!this.tabs.includes(view.id)) this.tabs.push(view.id);
     this.activate(view.id);
+  }
+
+  /** Shows `element` in a pane at the right of the editor (side by side), or removes the pane. */
+  dock(element: HTMLElement | undefined): void {
+    if (element) this.sidePane.replaceChildren(element);
+    else this.sidePane.replaceChildren();
+    this.sidePane.classList.toggle('hidden', !element);
+    this.stack.classList.toggle('docked', !!element);
   }
 
   guardOf(path: string): GeneratedGuard | undefined {

@@ -137,7 +137,10 @@ export class ArchitectureView {
   private chosen: string | undefined;
   private seq = 0;
 
-  constructor(private readonly fetchSchemas: () => Promise<ArchSchema[]>) {
+  constructor(
+    private readonly fetchSchemas: () => Promise<ArchSchema[]>,
+    onToggleDock: () => void,
+  ) {
     this.select = h('select', { class: 'arch-select' });
     this.select.addEventListener('change', () => {
       this.chosen = this.select.value;
@@ -147,6 +150,7 @@ export class ArchitectureView {
     this.canvas = h('div', { class: 'arch-canvas' });
     this.element = h('div', { class: 'arch-view' },
       h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Schema'), this.select, this.info, h('span', { class: 'grow' }),
+        h('button', { class: 'btn small', id: 'arch-dock', title: 'Show the diagram beside the editor (or back in a tab)', onclick: onToggleDock }, '⇆ Side by side'),
         h('span', { class: 'legend data' }, '━ data flow'), h('span', { class: 'legend event' }, '┅ event flow'), h('span', { class: 'legend prec' }, '┈ precedence')),
       this.canvas);
   }

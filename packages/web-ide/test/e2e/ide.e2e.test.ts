@@ -181,6 +181,23 @@ describe('IDE in headless Chromium', () => {
     expect(disk(path)).toBe(regenerated);
   });
 
+  it.skipIf(!canGenerate)('Generate All reports a malformed generated file and leaves it untouched', async () => {
+    const { page } = s;
+    const path = 'src-gen/generated/architecture/modules/MSD_mod/module.c';
+    const broken = disk(path).replace(/\/\*PROTECTED REGION END\*\//, '/* END marker removed by hand */');
+    writeFileSync(join(s.workspace, path), broken);
+    await page.locator('#btn-generate').click();
+    const problem = page.locator(`.gen-section.errors .gen-problem[data-path="${path}"]`);
+    await problem.waitFor({ timeout: 30_000 });
+    expect(await problem.textContent()).toMatch(/module\.c:\d+/);
+    expect(disk(path)).toBe(broken);
+    await shot(page, '03b-generate-malformed');
+    await problem.click();
+    await expect.poll(() => activeTab(page)).toBe(path);
+    await page.locator('.tab.active .tab-close').click();
+    writeFileSync(join(s.workspace, path), broken.replace('/* END marker removed by hand */', '/*PROTECTED REGION END*/'));
+  });
+
   it.skipIf(!canGenerate)('renames a module across files and carries its generated files and regions over', async () => {
     const { page } = s;
     const oldFile = 'src-gen/generated/architecture/modules/MSA_mod/module.c';
@@ -217,6 +234,18 @@ describe('IDE in headless Chromium', () => {
     expect(await page.locator('.edge.data').count()).toBeGreaterThanOrEqual(2);
     expect(await page.locator('.edge.precedence').count()).toBe(2);
     await shot(page, '05-architecture');
+    // side by side: the diagram follows the edits as you type
+    await page.locator('#arch-dock').click();
+    await openFile(page, 'sschema1.contract');
+    await placeCursor(page, 'MSD ();');
+    await page.keyboard.press('Control+Shift+k');
+    await expect.poll(() => page.locator('.side-pane .arch-node').count(), { timeout: 5000 }).toBe(2);
+    await shot(page, '05b-architecture-side-by-side');
+    await page.keyboard.press('Control+z');
+    await expect.poll(() => page.locator('.side-pane .arch-node').count(), { timeout: 5000 }).toBe(3);
+    await waitSaved(page);
+    await page.locator('#arch-dock').click();
+    await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
   });
 
   it.skipIf(!canBuild || !canGenerate)('Build & Run streams MSC lines into the log panel, filters them, and Stop cancels', async () => {
