@@ -342,3 +342,34 @@ void test_long_run_dir(void)
     CHECK(h_wait_exit(pid, 2000) == 0);
     h_teardown();
 }
+
+void test_maa_events_params(void)
+{
+    REQUIRE(h_setup("maa") == 0);
+    RequestMessage *m = h_msg();
+    pid_t pid = h_spawn_module("MAA", "MAA");
+    REQUIRE(pid > 0);
+    char text[256];
+    memset(text, 0, sizeof text);
+    snprintf(text, sizeof text, "connect");
+    CHECK(SendEvent("MAA", 0, 7, text, sizeof text) == CONTRACT_OK);
+    CHECK(SendEvent("MAA", 0, 7, text, 10) == CONTRACT_OK);     /* wrong size: refused by GetEventId */
+    TypeA p = { 1.0, 2.0, 3.0 };
+    CHECK(SendSetParam("MAA", 0, &p, sizeof p, ACK_NOTHING, -1) == CONTRACT_OK);
+    CHECK(SendSubscribeEvent("MAA", 2, "tester", 4, EVENT_ONESHOT) == CONTRACT_OK);
+    char status[512];
+    CHECK(QueryStatus("MAA", status, sizeof status, GetTime() + 2000000000LL) == 0);
+    CHECK(strstr(status, "test asynchronous module A") != NULL);
+    CHECK(SendKill("MAA", ACK_KILLED, 3) == 0 && h_wait_ack("MAA", 3, ACK_KILLED, 2000, m));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *log = h_read_logs("MAA_");
+    CHECK(log && strstr(log, ",MAA,event_received,tester,0,256,from_port=7"));
+    CHECK(log && strstr(log, "event from tester:7 refused: 10 bytes for input event port 0 of 256 bytes"));
+    CHECK(log && strstr(log, ",MAA,setparam,tester,0,24,"));
+    CHECK(log && strstr(log, ",MAA,event_subscribed,tester,2,0,to_port=4 oneshot"));
+    free(log);
+    char *out = h_read_file(strcat(strcpy(status, h_work_dir), "/MAA.out"));
+    CHECK(out && strstr(out, "initialization of MAA") && strstr(out, "termination of MAA"));
+    free(out);
+    h_teardown();
+}

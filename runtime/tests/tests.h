@@ -13,6 +13,7 @@ void test_setparam_sizes(void);
 void test_malformed_datagrams(void);
 void test_unknown_and_stale(void);
 void test_long_run_dir(void);
+void test_maa_events_params(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_launcher_sigint(void);
@@ -32,6 +33,7 @@ static const TestCase ALL_TESTS[] = {
     { "malformed_datagrams", test_malformed_datagrams },
     { "unknown_and_stale", test_unknown_and_stale },
     { "long_run_dir", test_long_run_dir },
+    { "maa_events_params", test_maa_events_params },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
     { "launcher_sigint", test_launcher_sigint },
