@@ -287,3 +287,23 @@ void test_launcher_sigint(void)
     free(text);
     h_teardown();
 }
+
+void test_kill_without_launcher(void)
+{
+    REQUIRE(h_setup("killnl") == 0);
+    pid_t p = h_spawn_module("P", "P"), c = h_spawn_module("MSC", "MSC");
+    REQUIRE(p > 0 && c > 0);
+    ContractShutdown(); /* leave only the modules in the run directory */
+    char *argv[] = { "contract-launch", "--kill", h_run_dir, NULL };
+    char out[600];
+    snprintf(out, sizeof out, "%s/kill.out", h_work_dir);
+    CHECK(h_run(argv, out, 10000) == 0);
+    CHECK(h_wait_exit(p, 2000) == 0 && h_wait_exit(c, 2000) == 0); /* ended on the KILL request */
+    CHECK(h_count_entries(h_run_dir) == -1);
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "stopped 2 module(s)"));
+    free(text);
+    char *missing[] = { "contract-launch", "--kill", "/nonexistent/run", NULL };
+    CHECK(h_run(missing, out, 3000) == 2);
+    h_teardown();
+}
