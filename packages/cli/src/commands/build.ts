@@ -7,7 +7,7 @@
 import { createHash } from 'node:crypto';
 import { chmodSync, existsSync, mkdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join, resolve } from 'node:path';
+import { dirname, join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { parseArgs, type ParsedArgs } from '../args.js';
@@ -83,6 +83,11 @@ export function acquireProjectCache(projectDir: string): ProjectCache | string {
     const info = statSync(base);
     if (process.getuid && info.uid !== process.getuid()) return `the cache folder ${base} belongs to another user; set CONTRACT_CACHE_DIR to a folder of yours`;
     chmodSync(base, 0o711);
+    // the sandboxed build runs as another uid: every folder above the cache must let it through
+    for (let up = dirname(base); ; up = dirname(up)) {
+        if ((statSync(up).mode & 0o001) === 0) return `the sandbox's user cannot reach the cache folder ${base} (${up} is not searchable by others); set CONTRACT_CACHE_DIR to a folder under /tmp or /var/tmp`;
+        if (up === dirname(up)) break;
+    }
     const dir = join(base, createHash('sha256').update(projectDir).digest('hex').slice(0, 16));
     mkdirSync(dir, { recursive: true, mode: 0o711 });
     const lock = join(dir, 'lock');

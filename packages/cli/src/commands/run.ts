@@ -110,7 +110,7 @@ export const runCommand: Command = {
             return outcome.exitCode;
         }
         const failures = moduleFailures(outcome.runLines);
-        const extra = { logsDir: logs.length ? logsDir : null, logs, moduleFailures: failures, runDirLeftovers: leftovers };
+        const extra = { logsDir: logs.length ? logsDir : null, logs, moduleFailures: failures, runDirLeftovers: leftovers, output: outcome.runLines };
         const code = reportBuild(opts, outcome, io, extra);
         if (opts.format === 'text') {
             for (const f of failures) io.err(`module ${f.module} crashed (${f.how})\n`);

@@ -1,0 +1,153 @@
+/**
+ * Reading the runtime's CSV logs (docs/runtime-api.md "CSV log") for end-to-end assertions:
+ * releases in precedence order, delivery periodicities, supervisor rule sequences.
+ */
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+
+export interface LogRecord {
+    mono: bigint;
+    module: string;
+    event: string;
+    peer: string;
+    port: string;
+    detail: string;
+}
+
+/** One CSV line -> fields (RFC 4180 quoting: the detail column may be quoted). */
+export function splitCsvLine(line: string): string[] {
+    const fields: string[] = [];
+    let i = 0;
+    while (i <= line.length) {
+        if (line[i] === '"') {
+            let value = '';
+            i++;
+            while (i < line.length) {
+                if (line[i] === '"' && line[i + 1] === '"') { value += '"'; i += 2; }
+                else if (line[i] === '"') { i++; break; }
+                else value += line[i++];
+            }
+            fields.push(value);
+            i++; // the comma
+        } else {
+            const end = line.indexOf(',', i);
+            fields.push(end < 0 ? line.slice(i) : line.slice(i, end));
+            i = end < 0 ? line.length + 1 : end + 1;
+        }
+    }
+    return fields;
+}
+
+/** Every record of every `<MODULE>_*.csv` in dir, sorted by CLOCK_MONOTONIC time. */
+export function readLogs(dir: string): LogRecord[] {
+    const records: LogRecord[] = [];
+    for (const file of readdirSync(dir).filter((f) => /^[A-Z]{3}_.*\.csv$/.test(f))) {
+        const lines = readFileSync(join(dir, file), 'utf8').split('\n').filter((l) => l.length > 0);
+        for (const line of lines.slice(1)) {
+            const [mono, , module, event, peer, port, , detail] = splitCsvLine(line);
+            if (!mono || !/^\d+$/.test(mono)) continue;
+            records.push({ mono: BigInt(mono), module: module!, event: event!, peer: peer ?? '', port: port ?? '', detail: detail ?? '' });
+        }
+    }
+    return records.sort((a, b) => (a.mono < b.mono ? -1 : a.mono > b.mono ? 1 : 0));
+}
+
+export interface ChainReport {
+    /** Cycles where every module of the chain ran, each after its predecessor had finished. */
+    completeCycles: number;
+    /** Releases that broke the order (a module started before its predecessor finished in the cycle). */
+    violations: string[];
+    /** Median time between two releases of the chain's first module, in ms. */
+    medianPeriodMs: number;
+}
+
+/**
+ * Checks that a periodic chain A -> B -> C ... is released in precedence order: in the merged
+ * timeline of run_started/run_finished of the chain's modules, each module starts only after the
+ * previous module of the chain finished in the same cycle. A cycle may be cut short when its schema
+ * is deactivated; the next cycle then starts again at the chain's head.
+ */
+export function checkChain(records: LogRecord[], chain: string[]): ChainReport {
+    const timeline = records.filter((r) => chain.includes(r.module) && (r.event === 'run_started' || r.event === 'run_finished'));
+    const violations: string[] = [];
+    let position = -1; // index in chain of the module whose run finished last in this cycle
+    let running: string | null = null;
+    let completeCycles = 0;
+    const heads: bigint[] = [];
+    for (const r of timeline) {
+        const index = chain.indexOf(r.module);
+        if (r.event === 'run_started') {
+            if (index === 0) {
+                heads.push(r.mono);
+                position = -1;
+            } else if (index !== position + 1 || running !== null) {
+                violations.push(`${r.module} started at ${r.mono} after ${position >= 0 ? chain[position] : 'nothing'} (running: ${running ?? 'none'})`);
+            }
+            running = r.module;
+        } else if (r.module === running) {
+            running = null;
+            position = index;
+            if (index === chain.length - 1) completeCycles++;
+        }
+    }
+    const gaps = heads.slice(1).map((t, i) => Number(t - heads[i]!) / 1e6).sort((a, b) => a - b);
+    return { completeCycles, violations, medianPeriodMs: gaps.length ? gaps[Math.floor(gaps.length / 2)]! : NaN };
+}
+
+/** How many values `consumer` received on its input `port` from `producer`. */
+export function received(records: LogRecord[], consumer: string, port: number, producer: string): number {
+    return records.filter((r) => r.module === consumer && r.event === 'data_received' && r.peer === producer && r.port === String(port)).length;
+}
+
+export function runs(records: LogRecord[], module: string): number {
+    return records.filter((r) => r.module === module && r.event === 'run_started').length;
+}
+
+/** The `supervisor` records of a supervisor (rule active/inactive, function started/stopped), in order. */
+export function supervisorTrace(records: LogRecord[], supervisor: string): string[] {
+    return records.filter((r) => r.module === supervisor && r.event === 'supervisor').map((r) => r.detail);
+}
+
+/** True when `expected` appears in `trace` in this order (other entries may come between). */
+export function isSubsequence(trace: string[], expected: string[]): boolean {
+    let i = 0;
+    for (const entry of trace) if (i < expected.length && entry === expected[i]) i++;
+    return i === expected.length;
+}
+
+export interface DeliveryWindow {
+    /** Activations of the producer while the subscription held. */
+    activations: number;
+    /** Values it posted to the consumer's port in that time. */
+    posted: number;
+}
+
+/**
+ * For each subscription of `consumer` to the producer's output `port` (one per schema activation,
+ * from `subscribed` to `unsubscribed` in the producer's log): how many times the producer ran and
+ * how many values it posted to that consumer. With periodicity k, posted = floor(activations / k).
+ */
+export function deliveryWindows(records: LogRecord[], producer: string, port: number, consumer: string): DeliveryWindow[] {
+    const windows: DeliveryWindow[] = [];
+    let open: DeliveryWindow | null = null;
+    for (const r of records) {
+        if (r.module !== producer) continue;
+        const ours = r.peer === consumer && r.port === String(port);
+        if (r.event === 'subscribed' && ours) {
+            open = { activations: 0, posted: 0 };
+            windows.push(open);
+        } else if (r.event === 'unsubscribed' && ours) {
+            open = null;
+        } else if (open && r.event === 'run_started') {
+            open.activations++;
+        } else if (open && r.event === 'data_posted' && ours) {
+            open.posted++;
+        }
+    }
+    return windows;
+}
+
+/** The scheduler's own trace lines (activate/deactivate, deadline misses, overruns). */
+export function schedulerTrace(records: LogRecord[]): string[] {
+    return records.filter((r) => r.module === 'ORD' && r.event === 'scheduler').map((r) => r.detail);
+}

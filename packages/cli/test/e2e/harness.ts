@@ -1,0 +1,119 @@
+/**
+ * End-to-end harness: runs the real `contract` binary (packages/cli/bin/contract.js) on a copy of
+ * an example, with its own cache folder (CONTRACT_CACHE_DIR) so the test can prove that nothing of
+ * the run is left behind (no process, no workspace). Docker: scripts/docker-up.sh, else SKIPPED loudly.
+ */
+import { spawnSync } from 'node:child_process';
+import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+export const REPO = fileURLToPath(new URL('../../../../', import.meta.url));
+export const BIN = join(REPO, 'packages/cli/bin/contract.js');
+
+export interface Scratch {
+    root: string;
+    project: string;
+    cache: string;
+    logs: string;
+    dispose(): void;
+}
+
+/** A temp folder with a copy of examples/<name> (without logs) and an empty cache folder. */
+export function scratchCopy(example: string): Scratch {
+    const root = mkdtempSync(join(tmpdir(), `contract-e2e-${example}-`));
+    chmodSync(root, 0o711); // the sandbox's own uid must reach the cache folder inside
+    const project = join(root, example);
+    cpSync(join(REPO, 'examples', example), project, { recursive: true, filter: (src) => !/\/logs$/.test(src) });
+    return {
+        root,
+        project,
+        cache: join(root, 'cache'),
+        logs: join(root, 'logs'),
+        dispose: () => rmSync(root, { recursive: true, force: true }),
+    };
+}
+
+export interface CliRun {
+    code: number | null;
+    stdout: string;
+    stderr: string;
+}
+
+export function contract(args: string[], scratch: Scratch, timeoutMs = 240_000): CliRun {
+    const r = spawnSync(process.execPath, [BIN, ...args], {
+        cwd: scratch.root,
+        encoding: 'utf8',
+        timeout: timeoutMs,
+        maxBuffer: 64 * 1024 * 1024,
+        env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
+    });
+    return { code: r.status, stdout: r.stdout ?? '', stderr: r.stderr ?? '' };
+}
+
+/** Processes whose command line mentions `marker` (e.g. the scratch folder). */
+export function processesMentioning(marker: string): string[] {
+    const found: string[] = [];
+    for (const pid of readdirSync('/proc').filter((p) => /^\d+$/.test(p))) {
+        if (Number(pid) === process.pid) continue;
+        let cmdline = '';
+        try {
+            cmdline = readFileSync(`/proc/${pid}/cmdline`, 'utf8').replace(/\0/g, ' ');
+        } catch {
+            continue;
+        }
+        if (cmdline.includes(marker)) found.push(`${pid}: ${cmdline.trim()}`);
+    }
+    return found;
+}
+
+/** Files left in the cache's workspaces folder (the service removes it on close). */
+export function leftoverWorkspaces(scratch: Scratch): string[] {
+    const out: string[] = [];
+    for (const entry of readdirSync(scratch.cache, { withFileTypes: true })) {
+        if (!entry.isDirectory()) continue;
+        try {
+            out.push(...readdirSync(join(scratch.cache, entry.name, 'ws')).map((n) => join(entry.name, 'ws', n)));
+        } catch {
+            // no ws folder: removed
+        }
+    }
+    return out;
+}
+
+export interface DockerEnv {
+    available: boolean;
+    reason: string;
+    stop(): void;
+}
+
+/** scripts/docker-up.sh: starts dockerd and makes the contract-gcc image when missing. */
+export function dockerUp(): DockerEnv {
+    const script = join(REPO, 'scripts/docker-up.sh');
+    const r = spawnSync('bash', [script], { encoding: 'utf8', timeout: 300_000 });
+    const started = /dockerd-started (\d+)/.exec(r.stdout ?? '')?.[1];
+    const stop = (): void => {
+        if (started) spawnSync('bash', [script, '--stop', started], { stdio: 'inherit' });
+    };
+    if (r.status !== 0) {
+        const reason = `scripts/docker-up.sh failed (exit ${r.status}): ${(r.stderr ?? '').trim().split('\n').slice(-3).join(' | ')}`;
+        console.warn(`\n${'!'.repeat(70)}\n!! DOCKER E2E SKIPPED: ${reason}\n${'!'.repeat(70)}\n`);
+        return { available: false, reason, stop };
+    }
+    return { available: true, reason: '', stop };
+}
+
+export interface RunJson {
+    ok: boolean;
+    status: string;
+    sandbox: string;
+    result: { ok: boolean; step: string; message: string };
+    diagnostics: { severity: string; message: string }[];
+    prepareDiagnostics: unknown[];
+    logsDir: string | null;
+    logs: string[];
+    moduleFailures: { module: string; how: string }[];
+    runDirLeftovers: string[];
+    output: { source: string; stream: string; line: string }[];
+}
