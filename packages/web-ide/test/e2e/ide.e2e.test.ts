@@ -198,6 +198,29 @@ describe('IDE in headless Chromium', () => {
     writeFileSync(join(s.workspace, path), broken.replace('/* END marker removed by hand */', '/*PROTECTED REGION END*/'));
   });
 
+  it.skipIf(!canGenerate)('Generate All moves user code of a deleted datatype to an orphan file and shows it', async () => {
+    const { page } = s;
+    const header = 'src-gen/generated/architecture/common/SharedTypeF.h';
+    writeFileSync(join(s.workspace, header), disk(header).replace(/(PROTECTED REGION ID\(protect_additional_decl_TypeF\) ENABLED START\*\/)/, '$1\n/* TypeF helper by hand */'));
+    await openFile(page, 'datatype.contract');
+    await waitSaved(page);
+    await placeCursor(page, 'datatype TypeF');
+    await page.keyboard.press('Control+Shift+k');
+    await waitSaved(page);
+    expect(disk('datatype.contract')).not.toContain('TypeF');
+    await page.locator('#btn-generate').click();
+    const orphan = page.locator('.gen-file.orphan');
+    await orphan.first().waitFor({ timeout: 30_000 });
+    const orphanPath = (await orphan.first().getAttribute('data-path'))!;
+    expect(orphanPath).toMatch(/^src-gen\/orphans\/.*TypeF/);
+    expect(disk(orphanPath)).toContain('/* TypeF helper by hand */');
+    await shot(page, '03c-generate-orphans');
+    await openFile(page, 'datatype.contract');
+    await page.keyboard.press('Control+z');
+    await waitSaved(page);
+    expect(disk('datatype.contract')).toContain('datatype TypeF');
+  });
+
   it.skipIf(!canGenerate)('renames a module across files and carries its generated files and regions over', async () => {
     const { page } = s;
     const oldFile = 'src-gen/generated/architecture/modules/MSA_mod/module.c';
