@@ -2,33 +2,49 @@
  * Some diagnostics of a file depend on files it does not link to:
  * - import diagnostics (missing file, cycles, unused imports) depend on the files it imports;
  * - project-wide uniqueness (modules, supervisors, datatypes, functions, schemas) depends on every
- *   file exporting the same name.
+ *   file exporting the same name;
+ * - the scheduler-configuration checks and the cycle checks depend on the project's facts
+ *   (`project-facts.ts`).
  * Langium relinks and revalidates a document only when a file it refers to changes; this builder
- * also revalidates the importers of a changed file, and the files that export a name a changed
- * file exported before or exports now.
+ * also revalidates the importers of a changed file, the files that export a name a changed file
+ * exported before or exports now, and the files whose project-wide diagnostics depend on a fact a
+ * changed file contributed before or contributes now.
  */
 import {
     Cancellation, DefaultDocumentBuilder, DocumentState, UriUtils,
     type LangiumDocument, type URI
 } from 'langium';
 import { isModel } from '../generated/ast.js';
+import { documentFacts, factsOf, projectDependents } from './project-facts.js';
 
 export class CactalDocumentBuilder extends DefaultDocumentBuilder {
     /** Top-level names exported by the changed and deleted files before the current update. */
     private namesBeforeUpdate = new Set<string>();
 
     override async update(changed: URI[], deleted: URI[], cancelToken = Cancellation.CancellationToken.None): Promise<void> {
-        const touched = new Set([...changed, ...deleted].map((u) => u.toString()));
+        const touchedUris = [...changed, ...deleted];
+        const before = this.touchedDocuments(touchedUris);
+        const touched = new Set([...touchedUris.map((u) => u.toString()), ...before.keys()]);
         this.namesBeforeUpdate = this.exportedNames(touched);
+        const factsBefore = factsOf(before);
         await super.update(changed, deleted, cancelToken);
+        const after = this.touchedDocuments(touchedUris);
+        for (const uri of after.keys()) {
+            touched.add(uri);
+            if (!factsBefore.has(uri)) factsBefore.set(uri, documentFacts(undefined));
+        }
+        for (const uri of factsBefore.keys()) if (!after.has(uri)) after.set(uri, undefined);
+        const all = this.langiumDocuments.all.toArray();
+        const settled = (doc: LangiumDocument) => !touched.has(doc.uri.toString()) && doc.state === DocumentState.Validated;
         // names the changed files export now: files that export them too must show (or drop) the duplicate
         const namesNow = this.exportedNames(touched);
-        const stale = this.langiumDocuments.all
-            .filter((doc) => !touched.has(doc.uri.toString()) && doc.state === DocumentState.Validated && this.exportsAny(doc, namesNow))
-            .toArray();
-        if (stale.length > 0) {
-            for (const doc of stale) this.resetToState(doc, DocumentState.ComputedScopes);
-            await this.buildDocuments(stale, this.updateBuildOptions, cancelToken);
+        const relink = all.filter((doc) => settled(doc) && this.exportsAny(doc, namesNow));
+        // files whose project-wide diagnostics depend on a fact the changed files contribute: validation only
+        const revalidate = [...projectDependents(factsBefore, factsOf(after), all)].filter((doc) => settled(doc) && !relink.includes(doc));
+        if (relink.length + revalidate.length > 0) {
+            for (const doc of relink) this.resetToState(doc, DocumentState.ComputedScopes);
+            for (const doc of revalidate) this.resetToState(doc, DocumentState.IndexedReferences);
+            await this.buildDocuments([...relink, ...revalidate], this.updateBuildOptions, cancelToken);
         }
     }
 
@@ -39,6 +55,17 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
         const dir = UriUtils.dirname(document.uri);
         if (model.imports.some((imp) => imp.path !== undefined && changedUris.has(UriUtils.resolvePath(dir, imp.path).toString()))) return true;
         return this.exportsAny(document, this.namesBeforeUpdate);
+    }
+
+    /** The workspace's documents at or under the given URIs (a changed URI may be a folder), by URI string. */
+    private touchedDocuments(uris: URI[]): Map<string, LangiumDocument | undefined> {
+        const found = new Map<string, LangiumDocument | undefined>();
+        const prefixes = uris.map((u) => u.toString());
+        for (const doc of this.langiumDocuments.all) {
+            const uri = doc.uri.toString();
+            if (prefixes.some((p) => uri === p || uri.startsWith(p.endsWith('/') ? p : `${p}/`))) found.set(uri, doc);
+        }
+        return found;
     }
 
     private exportedNames(uris: Set<string>): Set<string> {

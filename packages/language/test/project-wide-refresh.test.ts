@@ -1,0 +1,160 @@
+/**
+ * Incremental rebuilds keep project-wide diagnostics fresh: a change in one file refreshes the
+ * diagnostics of other files that depend on it without referring to it (scheduler configuration,
+ * duplicate names, cycles through several files).
+ */
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { URI } from 'langium';
+import { afterEach, describe, expect, it } from 'vitest';
+import { loadWorkspace } from '../src/node/load-workspace.js';
+
+interface LiveWorkspace {
+    codesOf(file: string): string[];
+    write(file: string, text: string): Promise<void>;
+    remove(file: string): Promise<void>;
+}
+
+const dirs: string[] = [];
+afterEach(() => {
+    for (const dir of dirs.splice(0)) rmSync(dir, { recursive: true, force: true });
+});
+
+async function liveWorkspace(files: Record<string, string>): Promise<LiveWorkspace> {
+    const dir = mkdtempSync(join(tmpdir(), 'cactal-refresh-'));
+    dirs.push(dir);
+    for (const [file, text] of Object.entries(files)) writeFileSync(join(dir, file), text);
+    const ws = await loadWorkspace(dir);
+    const workspace = ws.services.shared.workspace;
+    return {
+        codesOf: (file) => (workspace.LangiumDocuments.getDocument(URI.file(join(dir, file)))?.diagnostics ?? []).map((d) => String(d.code)).sort(),
+        write: async (file, text) => {
+            writeFileSync(join(dir, file), text);
+            await workspace.DocumentBuilder.update([URI.file(join(dir, file))], []);
+        },
+        remove: async (file) => {
+            rmSync(join(dir, file));
+            await workspace.DocumentBuilder.update([], [URI.file(join(dir, file))]);
+        }
+    };
+}
+
+const syncModule = (name: string, c = '1ms') => `synchronous module ${name} { scheduling { C=${c}; } }\n`;
+const periodicSchema = (name: string, module = 'MSA', period = '10ms') =>
+    `import "msa.contract";\nperiodic schema ${name}() { realtime { PERIOD=${period}; CRITICAL_DELAY=${period}; } modules { ${module} (); } }\n`;
+const scheduler = (schemas: string[]) =>
+    `import "msa.contract";\n${schemas.map((s) => `import "${s}.contract";`).join('\n')}\n` +
+    `scheduler configuration { modules { MSA; } schemas { ${schemas.map((s) => `${s};`).join(' ')} } }\n`;
+const supervisor = (name: string, body: string, imports: string[] = []) =>
+    `${imports.map((i) => `import "${i}";`).join('\n')}\nsupervisor ${name} {\n    f() {\n        rules {\n            R:[elapsed=1ms] ${body} [elapsed=1ms]\n        }\n    }\n}\n`;
+
+describe('project-wide diagnostics refresh on changes of other files', () => {
+    it('scheduler-missing on a schema clears when the scheduler configuration is added, and comes back when it is deleted', async () => {
+        const ws = await liveWorkspace({ 'msa.contract': syncModule('MSA'), 'sch.contract': periodicSchema('sch') });
+        expect(ws.codesOf('sch.contract')).toEqual(['scheduler-missing']);
+        await ws.write('sched.contract', scheduler(['sch']));
+        expect(ws.codesOf('sch.contract')).toEqual([]);
+        await ws.remove('sched.contract');
+        expect(ws.codesOf('sch.contract')).toEqual(['scheduler-missing']);
+    });
+
+    it('scheduler-duplicate appears on the first configuration when a second one is added, and goes away with it', async () => {
+        const ws = await liveWorkspace({ 'msa.contract': syncModule('MSA'), 'sch.contract': periodicSchema('sch'), 'sched.contract': scheduler(['sch']) });
+        expect(ws.codesOf('sched.contract')).toEqual([]);
+        await ws.write('sched2.contract', scheduler(['sch']));
+        expect(ws.codesOf('sched.contract')).toEqual(['scheduler-duplicate']);
+        await ws.remove('sched2.contract');
+        expect(ws.codesOf('sched.contract')).toEqual([]);
+    });
+
+    it('scheduler-schema-unlisted on a supervisor follows the schemas the configuration lists', async () => {
+        const ws = await liveWorkspace({
+            'msa.contract': syncModule('MSA'),
+            'one.contract': periodicSchema('one'),
+            'two.contract': periodicSchema('two'),
+            'sched.contract': scheduler(['one']),
+            'sup.contract': supervisor('SUP', 'activate schema two()', ['two.contract'])
+        });
+        expect(ws.codesOf('sup.contract')).toEqual(['scheduler-schema-unlisted']);
+        await ws.write('sched.contract', scheduler(['one', 'two']));
+        expect(ws.codesOf('sup.contract')).toEqual([]);
+        await ws.write('sched.contract', scheduler(['one']));
+        expect(ws.codesOf('sup.contract')).toEqual(['scheduler-schema-unlisted']);
+    });
+
+    it('scheduler-utilisation on the configuration follows the compute time of a module it lists', async () => {
+        const ws = await liveWorkspace({ 'msa.contract': syncModule('MSA', '1ms'), 'sch.contract': periodicSchema('sch'), 'sched.contract': scheduler(['sch']) });
+        expect(ws.codesOf('sched.contract')).toEqual([]);
+        // C = 12ms > PERIOD = 10ms: the schema's own timing warnings and the configuration's utilisation
+        await ws.write('msa.contract', syncModule('MSA', '12ms'));
+        expect(ws.codesOf('sched.contract')).toEqual(['scheduler-utilisation']);
+        await ws.write('msa.contract', syncModule('MSA', '1ms'));
+        expect(ws.codesOf('sched.contract')).toEqual([]);
+    });
+
+    it('schema-name-duplicate appears in the other file when a schema of the same name is added or renamed to it', async () => {
+        const ws = await liveWorkspace({
+            'msa.contract': syncModule('MSA'),
+            'one.contract': periodicSchema('one'),
+            'two.contract': periodicSchema('two'),
+            'sched.contract': scheduler(['one', 'two'])
+        });
+        expect(ws.codesOf('one.contract')).toEqual([]);
+        await ws.write('two.contract', periodicSchema('one'));
+        expect(ws.codesOf('one.contract')).toContain('schema-name-duplicate');
+        await ws.write('two.contract', periodicSchema('two'));
+        expect(ws.codesOf('one.contract')).not.toContain('schema-name-duplicate');
+    });
+
+    it('module-name-duplicate appears when a new file defines the same module, and goes away when it is deleted', async () => {
+        const ws = await liveWorkspace({ 'msa.contract': syncModule('MSA') });
+        await ws.write('copy.contract', syncModule('MSA'));
+        expect(ws.codesOf('msa.contract')).toEqual(['module-name-duplicate']);
+        await ws.remove('copy.contract');
+        expect(ws.codesOf('msa.contract')).toEqual([]);
+    });
+
+    it('import-cycle is reported on every file of a cycle closed or opened by an edit of one file', async () => {
+        const ws = await liveWorkspace({
+            'a.contract': 'import "b.contract";\ndatatype A {B b};\n',
+            'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
+            'c.contract': 'datatype C {int x};\n'
+        });
+        expect(ws.codesOf('a.contract')).toEqual([]);
+        await ws.write('c.contract', 'import "a.contract";\ndatatype C {int x};\n');
+        expect(ws.codesOf('a.contract')).toContain('import-cycle');
+        expect(ws.codesOf('b.contract')).toContain('import-cycle');
+        await ws.write('c.contract', 'datatype C {int x};\n');
+        expect(ws.codesOf('a.contract')).toEqual([]);
+        expect(ws.codesOf('b.contract')).toEqual([]);
+    });
+
+    it('type-recursive is reported on every datatype of a cycle closed by an edit of one file whose imports do not change', async () => {
+        const ws = await liveWorkspace({
+            'a.contract': 'import "b.contract";\ndatatype A {B b};\n',
+            'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
+            'c.contract': 'import "a.contract";\ndatatype C {int x};\n'
+        });
+        expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
+        await ws.write('c.contract', 'import "a.contract";\ndatatype C {A a};\n');
+        expect(ws.codesOf('a.contract')).toEqual(['import-cycle', 'type-recursive']);
+        await ws.write('c.contract', 'import "a.contract";\ndatatype C {int x};\n');
+        expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
+    });
+
+    it('supervisor-activation-cycle is reported on every supervisor of a cycle closed or opened by an edit of one file', async () => {
+        const ws = await liveWorkspace({
+            'saa.contract': supervisor('SAA', 'activate supervisor SAB.f()', ['sab.contract']),
+            'sab.contract': supervisor('SAB', 'activate supervisor SAC.f()', ['sac.contract']),
+            'sac.contract': supervisor('SAC', 'activate supervisor SAD.f()', ['sad.contract']),
+            'sad.contract': supervisor('SAD', 'compute nothing()', ['fns.contract']),
+            'fns.contract': 'function void nothing();\n'
+        });
+        expect(ws.codesOf('saa.contract')).toEqual([]);
+        await ws.write('sac.contract', supervisor('SAC', 'activate supervisor SAA.f()', ['saa.contract']));
+        expect(ws.codesOf('saa.contract')).toContain('supervisor-activation-cycle');
+        await ws.write('sac.contract', supervisor('SAC', 'activate supervisor SAD.f()', ['sad.contract']));
+        expect(ws.codesOf('saa.contract')).toEqual([]);
+    });
+});
