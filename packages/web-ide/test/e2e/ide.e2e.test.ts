@@ -319,13 +319,16 @@ describe('IDE in headless Chromium', () => {
     await openFile(page, 'smodule4.contract');
     const port = Number(new URL(s.server.url).port);
     await s.server.close();
-    await placeCursor(page, 'synchronous module MSD');
-    await page.keyboard.type('// written while the server was down\n');
-    await page.locator('#status-save.error').waitFor({ timeout: 10_000 });
-    expect(await page.locator('.toast.error').first().textContent()).toMatch(/Could not save smodule4.contract/);
-    await shot(page, '08-save-failed');
-    expect(disk('smodule4.contract')).not.toContain('written while the server was down');
-    s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false });
+    try {
+      await placeCursor(page, 'synchronous module MSD');
+      await page.keyboard.type('// written while the server was down\n');
+      await page.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await page.locator('.toast.error', { hasText: 'Could not save smodule4.contract' }).waitFor({ timeout: 5000 });
+      await shot(page, '08-save-failed');
+      expect(disk('smodule4.contract')).not.toContain('written while the server was down');
+    } finally {
+      s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false });
+    }
     await expect.poll(() => disk('smodule4.contract'), { timeout: 20_000 }).toContain('// written while the server was down');
     await waitSaved(page);
   });
