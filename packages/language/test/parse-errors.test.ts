@@ -21,6 +21,14 @@ describe('syntax error messages', () => {
     it('says that a relational test needs parentheses', () => {
         expect(first('supervisor SUP { f() { rules { R: [MAA:1<x > 3>] [elapsed=1ms] } } }')).toContain('A relational test goes in parentheses');
     });
+    it('says that ORD events need no subscribe', () => {
+        const rule = (actions: string) => `supervisor SUP { event flows { in :1 int x; } f() { rules { R: [elapsed=1ms] ${actions} [elapsed=1ms] } } }`;
+        const message = "ORD events need no subscribe: every supervisor receives them. Remove this subscribe and test 'ORD:n' directly in a rule's condition.";
+        expect(parse(rule('subscribe ORD:0 => :1;')).errors).toEqual([message]);
+        expect(parse(rule('subscribe MAA:0 => :1; subscribe ORD:1 =* :1;')).errors).toEqual([message]);
+        // a name expected elsewhere keeps the generic message
+        expect(parse(rule('compute ORD();')).errors).toEqual(["Expected a name but found 'ORD'."]);
+    });
     it('names the end of the file', () => {
         expect(first('datatype T {int a')).toBe("Expected '}' but found the end of the file.");
     });

@@ -47,9 +47,17 @@ function tokenMatches(token: IToken, type: TokenType): boolean {
     return token.tokenType === type || token.tokenType?.name === type.name;
 }
 
+const ORD_SUBSCRIBE = "ORD events need no subscribe: every supervisor receives them. Remove this subscribe and test 'ORD:n' directly in a rule's condition.";
+
+/** `subscribe ORD:n ...`: the source of a subscribe is a module or supervisor, never the scheduler. */
+function isSubscribeToOrd(options: { expected: TokenType; actual: IToken; previous: IToken }): boolean {
+    return options.expected.name === 'ID' && options.actual?.image === 'ORD' && options.previous?.image === 'subscribe';
+}
+
 export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageProvider {
     override buildMismatchTokenMessage(options: { expected: TokenType; actual: IToken; previous: IToken; ruleName: string }): string {
         if (options.expected.name === 'EOF') return `Unexpected ${found(options.actual)}: expected ${TOP_LEVEL}.`;
+        if (isSubscribeToOrd(options)) return ORD_SUBSCRIBE;
         return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.`;
     }
 
