@@ -1,6 +1,8 @@
 #!/usr/bin/env node
-// Language benchmark: full workspace build (parse + link + validate) of the synthetic architecture
-// and the incremental rebuild after a one-character change in one module file.
+// Language benchmark: full workspace build (parse + link + validate) of the synthetic architecture,
+// the incremental rebuild after a one-character change in one module file, and three editor requests
+// on the built workspace: format every file, hover on a periodic schema (timing analysis), rename a
+// module referenced by its schema and the scheduler configuration.
 // Writes bench/parts/language.json (repository root). Needs `npm run build -w packages/language`.
 import { mkdtempSync, readFileSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -12,7 +14,61 @@ import { writeSyntheticArchitecture } from './synthetic-architecture.js';
 
 const FULL_RUNS = 3;
 const EDIT_RUNS = 7;
+const FORMAT_RUNS = 3;
+const HOVER_RUNS = 21;
+const RENAME_RUNS = 5;
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
+
+/**
+ * Median wall time (ms) of `runs` calls of `request`, each one the first request after a workspace
+ * update (an empty `DocumentBuilder.update`, untimed, clears the per-build caches as an edit does);
+ * `check` validates the first answer.
+ */
+async function timeRequest(builder, runs, request, check) {
+    const times = [];
+    for (let i = 0; i < runs; i++) {
+        await builder.update([], []);
+        const t0 = performance.now();
+        const answer = await request();
+        times.push(performance.now() - t0);
+        if (i === 0) check(answer);
+    }
+    return Math.round(median(times) * 100) / 100;
+}
+
+function fail(message) {
+    throw new Error(`language bench: ${message}`);
+}
+
+/** Format all files, hover on a periodic schema's name, rename a synchronous module (median ms, after an update each). */
+async function measureEditorRequests(workspace) {
+    const documents = workspace.services.shared.workspace.LangiumDocuments;
+    const lsp = workspace.services.lsp;
+    const builder = workspace.services.shared.workspace.DocumentBuilder;
+    const docOf = (file) => documents.getDocument(URI.file(workspace.documents.find((d) => d.file === file).path));
+    const all = workspace.documents.map((d) => documents.getDocument(URI.file(d.path)));
+    const at = (doc, needle, delta) => {
+        const offset = doc.textDocument.getText().indexOf(needle);
+        if (offset < 0) fail(`'${needle}' not in ${doc.uri.path}`);
+        return { textDocument: { uri: doc.uri.toString() }, position: doc.textDocument.positionAt(offset + delta) };
+    };
+    const formatOptions = { tabSize: 4, insertSpaces: true };
+    const format_all = await timeRequest(builder, FORMAT_RUNS,
+        () => all.map((doc) => lsp.Formatter.formatDocument(doc, { textDocument: { uri: doc.uri.toString() }, options: formatOptions })),
+        (answers) => { if (answers.length !== all.length || !answers.every(Array.isArray)) fail('formatting did not answer for every file'); });
+    const schema = docOf('schemas/periodic0.contract');
+    const hover = await timeRequest(builder, HOVER_RUNS,
+        () => lsp.HoverProvider.getHoverContent(schema, at(schema, 'periodic schema periodic0', 'periodic schema '.length + 2)),
+        (answer) => { if (!JSON.stringify(answer ?? '').includes('utilisation')) fail(`hover on periodic0 shows no timing: ${JSON.stringify(answer)}`); });
+    const module = docOf('modules/AAA.contract');
+    const rename = await timeRequest(builder, RENAME_RUNS,
+        () => lsp.RenameProvider.rename(module, { ...at(module, 'module AAA', 'module '.length + 1), newName: 'ZZZ' }),
+        (answer) => {
+            const files = Object.keys(answer?.changes ?? {}).length + (answer?.documentChanges?.length ?? 0);
+            if (files < 3) fail(`renaming AAA changed ${files} files (expected its module, schema and scheduler files)`);
+        });
+    return { 'lsp.format_all_ms': format_all, 'lsp.hover_ms': hover, 'lsp.rename_ms': rename };
+}
 
 const dir = mkdtempSync(join(tmpdir(), 'cactal-bench-'));
 try {
@@ -34,6 +90,8 @@ try {
         process.exit(1);
     }
     const warnings = workspace.diagnostics.filter((d) => d.severity === 'warning').length;
+
+    const lsp = await measureEditorRequests(workspace);
 
     // incremental: one character of one module file (C=10us <-> C=20us), rebuilt through the DocumentBuilder
     const target = workspace.documents.find((d) => d.file.startsWith('modules/'));
@@ -60,6 +118,7 @@ try {
         // CPU time of the process (user + system, all threads): tells contention apart from cost on a shared machine
         'lsp.workspace_build_cpu_ms': Math.round(median(fullCpu)),
         'lsp.incremental_edit_cpu_ms': Math.round(median(editCpu) * 10) / 10,
+        ...lsp,
         'lsp.workspace_files': files,
         'lsp.workspace_errors': errors.length + editErrors,
         'lsp.workspace_warnings': warnings
