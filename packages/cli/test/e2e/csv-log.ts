@@ -116,6 +116,8 @@ export function isSubsequence(trace: string[], expected: string[]): boolean {
 }
 
 export interface DeliveryWindow {
+    /** k of the subscription (`periodicity=k` of the `subscribed` record). */
+    periodicity: number;
     /** Activations of the producer while the subscription held. */
     activations: number;
     /** Values it posted to the consumer's port in that time. */
@@ -124,8 +126,8 @@ export interface DeliveryWindow {
 
 /**
  * For each subscription of `consumer` to the producer's output `port` (one per schema activation,
- * from `subscribed` to `unsubscribed` in the producer's log): how many times the producer ran and
- * how many values it posted to that consumer. With periodicity k, posted = floor(activations / k).
+ * from `subscribed` to `unsubscribed` in the producer's log): its periodicity k, how many times the
+ * producer ran and how many values it posted to that consumer; expected posted = floor(activations / k).
  */
 export function deliveryWindows(records: LogRecord[], producer: string, port: number, consumer: string): DeliveryWindow[] {
     const windows: DeliveryWindow[] = [];
@@ -134,7 +136,7 @@ export function deliveryWindows(records: LogRecord[], producer: string, port: nu
         if (r.module !== producer) continue;
         const ours = r.peer === consumer && r.port === String(port);
         if (r.event === 'subscribed' && ours) {
-            open = { activations: 0, posted: 0 };
+            open = { periodicity: Number(/periodicity=(\d+)/.exec(r.detail)?.[1] ?? NaN), activations: 0, posted: 0 };
             windows.push(open);
         } else if (r.event === 'unsubscribed' && ours) {
             open = null;
@@ -150,4 +152,18 @@ export function deliveryWindows(records: LogRecord[], producer: string, port: nu
 /** The scheduler's own trace lines (activate/deactivate, deadline misses, overruns). */
 export function schedulerTrace(records: LogRecord[]): string[] {
     return records.filter((r) => r.module === 'ORD' && r.event === 'scheduler').map((r) => r.detail);
+}
+
+/** The records logged while `schema` was active (from ORD's `activate S` to its `deactivate S`). */
+export function whileActive(records: LogRecord[], schema: string): LogRecord[] {
+    const out: LogRecord[] = [];
+    let active = false;
+    for (const r of records) {
+        if (r.module === 'ORD' && r.event === 'scheduler') {
+            if (r.detail === `activate ${schema}`) active = true;
+            else if (r.detail === `deactivate ${schema}`) active = false;
+        }
+        if (active) out.push(r);
+    }
+    return out;
 }

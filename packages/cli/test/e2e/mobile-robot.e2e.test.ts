@@ -79,8 +79,8 @@ describe('examples/mobile-robot end to end', () => {
             const telemetry = deliveryWindows(logs, 'ODO', 1, 'MOT');
             expect(everyCycle.length).toBeGreaterThanOrEqual(3); // teleop, autonomous, safe stop, autonomous
             expect(telemetry.length).toBe(everyCycle.length);
-            for (const w of everyCycle) expect(w.posted).toBe(w.activations);
-            for (const w of telemetry) expect(w.posted).toBe(Math.floor(w.activations / 50));
+            for (const w of everyCycle) expect([w.periodicity, w.posted]).toEqual([1, w.activations]);
+            for (const w of telemetry) expect([w.periodicity, w.posted]).toEqual([50, Math.floor(w.activations / 50)]);
             expect(telemetry.reduce((n, w) => n + w.posted, 0)).toBeGreaterThan(3);
             for (const w of deliveryWindows(logs, 'MOT', 0, 'WHL')) expect(w.posted).toBe(w.activations); // the feedback flow
             // what was posted arrived

@@ -1,0 +1,107 @@
+/**
+ * The report's tutorial (section 8.1) end to end, through the real `contract` binary: check ->
+ * generate -> build in bwrap (and docker when an engine can run here) -> run 5 s -> assertions
+ * from the output and the CSV logs.
+ */
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { checkChain, deliveryWindows, isSubsequence, readLogs, schedulerTrace, supervisorTrace, whileActive, type LogRecord } from './csv-log.js';
+import { contract, dockerUp, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
+
+let scratch: Scratch;
+beforeAll(() => { scratch = scratchCopy('tutorial'); });
+afterAll(() => scratch?.dispose());
+
+describe('examples/tutorial end to end', () => {
+    it('checks with 0 errors', () => {
+        const r = contract(['check', 'tutorial'], scratch);
+        expect(r.stderr).toMatch(/^0 errors, /);
+        expect(r.code).toBe(0);
+    }, 60_000);
+
+    it('generates without touching user code', () => {
+        const r = contract(['generate', 'tutorial'], scratch);
+        expect(r.code).toBe(0);
+        expect(r.stderr).toMatch(/: 0 created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+    }, 60_000);
+
+    it('builds in bwrap', () => {
+        const r = contract(['build', 'tutorial', '--sandbox', 'bwrap', '--format', 'json'], scratch);
+        const json = JSON.parse(r.stdout) as RunJson;
+        expect(json.result.message).toMatch(/build succeeded/);
+        expect(json.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
+        expect(r.code).toBe(0);
+    }, 240_000);
+
+    describe('run in bwrap for 5 s', () => {
+        let json: RunJson;
+        let logs: LogRecord[];
+        let code: number | null;
+        beforeAll(() => {
+            const r = contract(['run', 'tutorial', '--sandbox', 'bwrap', '--duration', '5s', '--logs', scratch.logs, '--format', 'json'], scratch);
+            code = r.code;
+            json = JSON.parse(r.stdout) as RunJson;
+            logs = readLogs(scratch.logs);
+        }, 240_000);
+
+        it('runs to the end, every module stops cleanly, nothing left running', () => {
+            expect(json.result.message).toBe('run finished (exit 0)');
+            expect(code).toBe(0);
+            expect(json.moduleFailures).toEqual([]);
+            expect(json.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
+            expect(json.runDirLeftovers).toEqual([]);
+            expect(processesMentioning(scratch.root)).toEqual([]);
+            expect(leftoverWorkspaces(scratch)).toEqual([]);
+            expect(json.logs.length).toBe(9);
+        });
+
+        it('fires the supervisor rules in the report\'s order and activates schemaCommande1', () => {
+            expect(isSubsequence(supervisorTrace(logs, 'GLB'), ['function mission started', 'rule mission.SINGLE active'])).toBe(true);
+            const sup = supervisorTrace(logs, 'SUP');
+            expect(isSubsequence(sup, [
+                'function action started', 'rule action.FIRST active',
+                'rule action.RECEPTION active', 'rule action.RECEPTION inactive',
+                'rule action.FIRST inactive', 'rule action.SECOND active',
+            ])).toBe(true);
+            expect(sup.filter((l) => l === 'rule action.RECEPTION active').length).toBeGreaterThanOrEqual(2); // one per MAA message
+            expect(schedulerTrace(logs)).toContain('activate schemaCommande1');
+        });
+
+        it('releases MSA -> MSC -> MSD in precedence order every second', () => {
+            // the rules may switch to schemaCommande2 (MSB -> MSC -> MSD) when MSC reports a failure
+            const chain = checkChain(whileActive(logs, 'schemaCommande1'), ['MSA', 'MSC', 'MSD']);
+            expect(chain.violations).toEqual([]);
+            expect(chain.completeCycles).toBeGreaterThanOrEqual(2);
+            expect(chain.medianPeriodMs).toBeGreaterThan(900);
+            expect(chain.medianPeriodMs).toBeLessThan(1100);
+        });
+
+        it('delivers MSA:0 -> MSC:0 * 1 every cycle and MSC:1 -> MSD:2 * 2 every second cycle', () => {
+            const every = deliveryWindows(logs, 'MSA', 0, 'MSC');
+            const second = deliveryWindows(logs, 'MSC', 1, 'MSD');
+            expect(every.length).toBeGreaterThanOrEqual(1);
+            expect(second.length).toBeGreaterThanOrEqual(1);
+            for (const w of every) expect(w.posted).toBe(w.activations);
+            for (const w of every) expect(w.periodicity).toBe(1);
+            expect(second[0]!.periodicity).toBe(2); // schemaCommande1 first (schemaCommande2 has * 1)
+            for (const w of second) expect(w.posted).toBe(Math.floor(w.activations / w.periodicity));
+            expect(second[0]!.activations).toBeGreaterThanOrEqual(2);
+        });
+    });
+
+    it('builds in docker when an engine can run here (else SKIPPED loudly)', (ctx) => {
+        const docker = dockerUp();
+        try {
+            if (!docker.available) {
+                ctx.skip();
+                return;
+            }
+            const r = contract(['build', 'tutorial', '--sandbox', 'docker', '--format', 'json'], scratch);
+            const json = JSON.parse(r.stdout) as RunJson;
+            expect(json.sandbox).toBe('docker');
+            expect(json.result.message).toMatch(/build succeeded/);
+            expect(r.code).toBe(0);
+        } finally {
+            docker.stop();
+        }
+    }, 600_000);
+});
