@@ -48,6 +48,8 @@ export class DockerSandbox implements Sandbox {
   private readonly image: string;
   private readonly volumes = new Map<string, string>();
   private readonly createdVolumes = new Set<string>();
+  /** Digest of the last work-dir archive copied into each volume. */
+  private readonly syncedTar = new Map<string, string>();
 
   constructor(options: DockerOptions = {}) {
     this.docker = new Docker(options.connection);
@@ -98,6 +100,15 @@ export class DockerSandbox implements Sandbox {
       await this.docker.createVolume({ Name: volume, Labels: { 'contract-studio': 'workspace' } });
       this.createdVolumes.add(volume);
     }
+    // the job's files, with their mtimes (make sees unchanged sources as unchanged); skipped
+    // when the work dir is byte-for-byte what the volume last received (no-op rebuilds)
+    const tar = await tarOf(cmd.workDir);
+    const digest = createHash('sha256').update(tar).digest('hex');
+    if (this.syncedTar.get(volume) !== digest) {
+      this.syncedTar.delete(volume);
+      await this.fillVolume(volume, tar, cmd.name);
+      this.syncedTar.set(volume, digest);
+    }
     const bytes = memoryBytes(cmd.limits);
     const container = await this.docker.createContainer({
       name: `contract-${cmd.name}`,
@@ -129,8 +140,6 @@ export class DockerSandbox implements Sandbox {
       await container.remove({ force: true }).catch(() => {});
     };
     try {
-      // the job's files, with their mtimes (make sees unchanged sources as unchanged)
-      await container.putArchive(await tarOf(cmd.workDir), { path: DOCKER_WORK });
       const stream = await container.attach({ stream: true, stdout: true, stderr: true });
       const stdout = new PassThrough();
       const stderr = new PassThrough();
@@ -180,12 +189,45 @@ export class DockerSandbox implements Sandbox {
     }
   }
 
+  /**
+   * Copies the work dir into the volume. The engine extracts archives as root, so a service-run
+   * container (no user code, no network, only CAP_CHOWN) then hands the tree to the job user:
+   * `chown -R` does not follow symlinks, and it only sees the volume.
+   */
+  private async fillVolume(volume: string, tar: Buffer, name: string): Promise<void> {
+    const c = await this.docker.createContainer({
+      name: `contract-${name}-sync`,
+      Image: this.image,
+      Cmd: ['chown', '-R', DOCKER_USER, DOCKER_WORK],
+      User: '0:0',
+      NetworkDisabled: true,
+      Labels: { 'contract-studio': 'job' },
+      HostConfig: {
+        NetworkMode: 'none',
+        ReadonlyRootfs: true,
+        Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK }],
+        SecurityOpt: ['no-new-privileges'],
+        CapDrop: ['ALL'],
+        CapAdd: ['CHOWN'],
+      },
+    });
+    try {
+      await c.putArchive(tar, { path: DOCKER_WORK });
+      await c.start();
+      const r = (await c.wait()) as { StatusCode: number };
+      if (r.StatusCode !== 0) throw new Error(`cannot give the work volume to user ${DOCKER_USER} (chown exit ${r.StatusCode})`);
+    } finally {
+      await c.remove({ force: true }).catch(() => {});
+    }
+  }
+
   /** Removes the volume of a workspace that is being deleted. */
   async release(workDir: string): Promise<void> {
     const v = this.volumes.get(workDir);
     if (!v) return;
     this.volumes.delete(workDir);
     this.createdVolumes.delete(v);
+    this.syncedTar.delete(v);
     await this.docker.getVolume(v).remove({ force: true }).catch(() => {});
   }
 }
