@@ -4,7 +4,8 @@
  *
  * | fact | diagnostics of other files that depend on it |
  * |---|---|
- * | `scheduler` (the lists of a scheduler configuration) | `scheduler-missing` (periodic schemas), `scheduler-duplicate` (configurations), `scheduler-schema-unlisted` (supervisors) |
+ * | `schedulers` (how many scheduler configurations) | `scheduler-missing` (periodic schemas), `scheduler-duplicate` (configurations) |
+ * | `scheduledSchemas` (the schemas a configuration lists) | `scheduler-schema-unlisted` (supervisors) |
  * | `activations` (supervisor -> activated supervisors) | `supervisor-activation-cycle` |
  * | `datatypeEdges` (datatype -> field datatypes) | `type-recursive` |
  * | `imports` (import paths) | `import-cycle`, and the file-name suggestion of `import-missing-file` |
@@ -18,11 +19,12 @@ import {
     isActivateSupervisor, isDataType, isModel, isSchedulerConfiguration, isSchema, isSupervisor,
     type Model
 } from '../generated/ast.js';
-import { scheduledModulesOf, scheduledSchemasOf } from '../model/blocks.js';
+import { scheduledSchemasOf } from '../model/blocks.js';
 
 /** What one file contributes to project-wide checks (undefined: nothing of that kind). */
 export interface DocumentFacts {
-    scheduler?: string;
+    schedulers?: number;
+    scheduledSchemas?: string;
     activations?: string;
     datatypeEdges?: string;
     imports: string;
@@ -35,19 +37,18 @@ export function documentFacts(document: LangiumDocument | undefined): DocumentFa
     const model = document?.parseResult?.value;
     if (!isModel(model)) return NO_FACTS;
     return {
-        scheduler: schedulerFact(model),
+        schedulers: model.elements.filter(isSchedulerConfiguration).length || undefined,
+        scheduledSchemas: scheduledSchemasFact(model),
         activations: activationsFact(model),
         datatypeEdges: datatypeEdgesFact(model),
         imports: model.imports.map((i) => i.path ?? '').join('\n')
     };
 }
 
-function schedulerFact(model: Model): string | undefined {
+function scheduledSchemasFact(model: Model): string | undefined {
     const configs = model.elements.filter(isSchedulerConfiguration);
     if (configs.length === 0) return undefined;
-    return configs.map((c) =>
-        `${configs.length}|${scheduledModulesOf(c).map((r) => r.$refText).join(',')}|${scheduledSchemasOf(c).map((r) => r.$refText).join(',')}`
-    ).join(';');
+    return configs.map((c) => scheduledSchemasOf(c).map((r) => r.$refText).join(',')).join(';');
 }
 
 function activationsFact(model: Model): string | undefined {
@@ -88,9 +89,8 @@ export function projectDependents(
             if (isModel(model) && predicate(model, doc)) result.add(doc);
         }
     };
-    if (changed('scheduler')) {
-        addWhere((m) => m.elements.some((e) => isSchedulerConfiguration(e) || isSupervisor(e) || (isSchema(e) && e.kind === 'periodic')));
-    }
+    if (changed('schedulers')) addWhere((m) => m.elements.some((e) => isSchedulerConfiguration(e) || (isSchema(e) && e.kind === 'periodic')));
+    if (changed('scheduledSchemas')) addWhere((m) => m.elements.some(isSupervisor));
     if (changed('activations')) addWhere((m) => m.elements.some(isSupervisor));
     if (changed('datatypeEdges')) addWhere((m) => m.elements.some(isDataType));
     const filesAddedOrDeleted = [...before.keys()].some((uri) => (before.get(uri) === NO_FACTS) !== (after.get(uri) === NO_FACTS));
