@@ -6,7 +6,7 @@
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { URI } from 'langium';
+import { DocumentState, URI } from 'langium';
 import { afterEach, describe, expect, it } from 'vitest';
 import { loadWorkspace } from '../src/node/load-workspace.js';
 
@@ -14,6 +14,8 @@ interface LiveWorkspace {
     codesOf(file: string): string[];
     write(file: string, text: string): Promise<void>;
     remove(file: string): Promise<void>;
+    /** The files validated while `action` runs, sorted. */
+    validatedDuring(action: () => Promise<void>): Promise<string[]>;
 }
 
 const dirs: string[] = [];
@@ -27,6 +29,10 @@ async function liveWorkspace(files: Record<string, string>): Promise<LiveWorkspa
     for (const [file, text] of Object.entries(files)) writeFileSync(join(dir, file), text);
     const ws = await loadWorkspace(dir);
     const workspace = ws.services.shared.workspace;
+    let validated: string[] | undefined;
+    workspace.DocumentBuilder.onBuildPhase(DocumentState.Validated, (docs) => {
+        validated?.push(...docs.map((d) => d.uri.path.slice(d.uri.path.lastIndexOf('/') + 1)));
+    });
     return {
         codesOf: (file) => (workspace.LangiumDocuments.getDocument(URI.file(join(dir, file)))?.diagnostics ?? []).map((d) => String(d.code)).sort(),
         write: async (file, text) => {
@@ -36,6 +42,13 @@ async function liveWorkspace(files: Record<string, string>): Promise<LiveWorkspa
         remove: async (file) => {
             rmSync(join(dir, file));
             await workspace.DocumentBuilder.update([], [URI.file(join(dir, file))]);
+        },
+        validatedDuring: async (action) => {
+            validated = [];
+            await action();
+            const files = [...new Set(validated)].sort();
+            validated = undefined;
+            return files;
         }
     };
 }
@@ -156,5 +169,19 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         expect(ws.codesOf('saa.contract')).toContain('supervisor-activation-cycle');
         await ws.write('sac.contract', supervisor('SAC', 'activate supervisor SAD.f()', ['sad.contract']));
         expect(ws.codesOf('saa.contract')).toEqual([]);
+    });
+
+    it('an edit that changes no project-wide fact revalidates only the edited file and the files that refer to it', async () => {
+        const ws = await liveWorkspace({
+            'msa.contract': syncModule('MSA'),
+            'msb.contract': syncModule('MSB'),
+            'one.contract': periodicSchema('one'),
+            'two.contract': periodicSchema('two'),
+            'sched.contract': scheduler(['one', 'two']),
+            'sup.contract': supervisor('SUP', 'activate schema two()', ['two.contract'])
+        });
+        expect(await ws.validatedDuring(() => ws.write('msb.contract', syncModule('MSB', '2ms')))).toEqual(['msb.contract']);
+        expect(await ws.validatedDuring(() => ws.write('sched.contract', scheduler(['one', 'two']) + '\n'))).toEqual(['sched.contract']);
+        expect(await ws.validatedDuring(() => ws.write('sched.contract', scheduler(['two', 'one'])))).toEqual(['sched.contract', 'sup.contract']);
     });
 });
