@@ -132,7 +132,14 @@ export async function runJob(
     io: CliIO,
     whileOpen?: (service: JobServiceType, cacheDir: string, outcome: JobOutcome) => Promise<void>,
 ): Promise<JobOutcome | { error: string; exitCode: number }> {
-    const { JobService, ServiceError } = await import('@contract-studio/build-service');
+    const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE } = await import('@contract-studio/build-service');
+    const runtime = opts.runtime ?? DEFAULT_RUNTIME_SOURCE;
+    if (opts.sandbox !== 'docker' && !existsSync(join(runtime, 'Makefile'))) {
+        return {
+            error: `no ContrACT runtime at ${runtime}: pass --runtime PATH (or set CONTRACT_RUNTIME) to the runtime/ folder of ContrACT Studio, or use --sandbox docker (the contract-gcc image carries it)`,
+            exitCode: EXIT_ENVIRONMENT,
+        };
+    }
     const cache = acquireProjectCache(opts.dir);
     if (typeof cache === 'string') return { error: cache, exitCode: EXIT_ENVIRONMENT };
     const runSeconds = Math.ceil((request.duration ?? 10) + 60);
@@ -143,7 +150,7 @@ export async function runJob(
         projectRoots: [opts.dir],
         cacheDir: cache.dir,
         limits: { runSeconds, buildSeconds: 600 },
-        ...(opts.runtime ? { runtimeSource: opts.runtime } : {}),
+        runtimeSource: runtime,
     });
     let job: Job | undefined;
     const onSigint = (): void => {
@@ -204,7 +211,7 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             return;
         }
         if (opts.format !== 'text') return;
-        if (e.step === 'prepare' && e.source === 'service' && /error/.test(e.line)) {
+        if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {
             io.err(`${e.line}\n`);

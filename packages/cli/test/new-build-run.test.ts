@@ -1,0 +1,144 @@
+/** `contract new`, `build`, `run`: usage errors, messages, exit codes, text output — real commands on real files. */
+import { chmodSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { runCli } from '../src/cli.js';
+import type { CliIO } from '../src/command.js';
+import { checkStart, moduleFailures, parseDuration } from '../src/commands/run.js';
+
+function capture(cwd: string): CliIO & { stdout: string; stderr: string } {
+    const io = {
+        stdout: '',
+        stderr: '',
+        cwd,
+        out(text: string) { io.stdout += text; },
+        err(text: string) { io.stderr += text; },
+    };
+    return io;
+}
+
+let root: string;
+beforeAll(() => {
+    root = mkdtempSync(join(tmpdir(), 'contract-nbr-'));
+    chmodSync(root, 0o711);
+    process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
+});
+afterAll(() => {
+    delete process.env.CONTRACT_CACHE_DIR;
+    rmSync(root, { recursive: true, force: true });
+});
+
+describe('contract new', () => {
+    it('creates the template project, which checks without errors', async () => {
+        const io = capture(root);
+        expect(await runCli(['new', 'robot'], io)).toBe(0);
+        expect(readdirSync(join(root, 'robot')).sort()).toEqual(['datatype.contract', 'module1.contract', 'module2.contract', 'sched.contract', 'schema.contract', 'supervisor.contract']);
+        expect(io.stdout).toContain('created robot/supervisor.contract');
+        const check = capture(root);
+        expect(await runCli(['check', 'robot'], check)).toBe(0);
+        expect(check.stderr).toMatch(/^0 errors, 0 warnings/);
+    }, 60_000);
+
+    it('refuses a non-empty folder and leaves its files alone', async () => {
+        mkdirSync(join(root, 'busy'));
+        writeFileSync(join(root, 'busy', 'notes.txt'), 'mine');
+        const io = capture(root);
+        expect(await runCli(['new', 'busy'], io)).toBe(1);
+        expect(io.stderr).toContain('busy is not empty; nothing was written');
+        expect(readdirSync(join(root, 'busy'))).toEqual(['notes.txt']);
+        expect(readFileSync(join(root, 'busy', 'notes.txt'), 'utf8')).toBe('mine');
+    });
+
+    it('needs a DIR', async () => {
+        const io = capture(root);
+        expect(await runCli(['new'], io)).toBe(2);
+        expect(io.stderr).toContain('missing DIR');
+    });
+});
+
+describe('contract build / run usage', () => {
+    it('documents the options and exit codes in --help', async () => {
+        for (const name of ['build', 'run']) {
+            const io = capture(root);
+            expect(await runCli([name, '--help'], io)).toBe(0);
+            expect(io.stdout).toContain('--sandbox');
+            expect(io.stdout).toContain('3 no usable sandbox');
+        }
+        const io = capture(root);
+        await runCli(['run', '--help'], io);
+        expect(io.stdout).toContain('--duration');
+        expect(io.stdout).toContain('--start');
+    });
+
+    it('rejects an unknown sandbox, a bad duration, a bad start request and a missing folder with exit 2', async () => {
+        const cases: [string[], string][] = [
+            [['build', 'robot', '--sandbox', 'vm'], "unknown sandbox 'vm' (expected auto, bwrap, docker or none)"],
+            [['run', 'robot', '--duration', 'soon'], "bad duration 'soon' (expected e.g. 10s, 500ms, 2m)"],
+            [['run', 'robot', '--start', 'not a call'], "bad --start 'not a call'"],
+            [['build', 'nowhere'], 'nowhere is not a directory'],
+            [['build'], 'missing DIR'],
+            [['run', 'robot', '--format', 'xml'], "unknown format 'xml'"],
+        ];
+        for (const [args, message] of cases) {
+            const io = capture(root);
+            expect(await runCli(args, io), args.join(' ')).toBe(2);
+            expect(io.stderr).toContain(message);
+        }
+    });
+
+    it('parses durations and start requests', () => {
+        expect(parseDuration('10s')).toBe(10);
+        expect(parseDuration('500ms')).toBe(0.5);
+        expect(parseDuration('2m')).toBe(120);
+        expect(parseDuration('1.5')).toBe(1.5);
+        expect(() => parseDuration('0s')).toThrow(/positive/);
+        expect(() => parseDuration('-1s')).toThrow(/bad duration/);
+        expect(checkStart('GLB.mission(consigne={1.0,2.0,3.0})')).toBe('GLB.mission(consigne={1.0,2.0,3.0})');
+        expect(checkStart('MIS.mission')).toBe('MIS.mission');
+        expect(checkStart('')).toBe('');
+        expect(() => checkStart('mission()')).toThrow(/SUPERVISOR\.function/);
+    });
+
+    it('names the crashed module from the launcher lines', () => {
+        const lines = [
+            { source: 'launcher', stream: 'stderr', line: 'module MSC (pid 12) died by signal 11 (Segmentation fault)' },
+            { source: 'MSA', stream: 'stdout', line: 'FAILED: module MSA crashed' },
+            { source: 'launcher', stream: 'stderr', line: 'module MSA (pid 13) exited with status 0' },
+            { source: 'launcher', stream: 'stderr', line: 'FAILED: module MSC crashed' },
+        ];
+        expect(moduleFailures(lines)).toEqual([{ module: 'MSC', how: 'died by signal 11 (Segmentation fault)' }]);
+    });
+});
+
+describe('contract build / run on a project (bwrap)', () => {
+    it('reports model errors without building (exit 1) and says what to do', async () => {
+        mkdirSync(join(root, 'broken'));
+        writeFileSync(join(root, 'broken', 'types.contract'), 'datatype T {int a = 1.5};\n');
+        const io = capture(root);
+        expect(await runCli(['build', 'broken', '--sandbox', 'bwrap'], io)).toBe(1);
+        expect(io.stderr).toMatch(/broken\/types\.contract:1:\d+: error: /);
+        expect(io.stderr).toContain('FAILED: project has 1 error(s)');
+        expect(io.stderr).toContain('contract check broken');
+    }, 120_000);
+
+    it('exits 1 and names the module when user code crashes during the run', async () => {
+        const dir = join(root, 'crash');
+        expect(await runCli(['new', 'crash'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'crash'], capture(root))).toBe(0);
+        const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const crashing = source.replace(
+            /(PROTECTED REGION ID\(protect_exec_CTL\) ENABLED START\*\/)/,
+            '$1\n    { static int calls = 0; if (++calls == 3) { volatile int *p = 0; *p = 1; } }',
+        );
+        expect(crashing).not.toBe(source);
+        writeFileSync(file, crashing);
+        const io = capture(root);
+        const code = await runCli(['run', 'crash', '--sandbox', 'bwrap', '--duration', '2s'], io);
+        expect(io.stderr).toContain('module CTL crashed (died by signal 11');
+        expect(io.stdout).toContain('contract-launch: FAILED: module CTL crashed');
+        expect(code).toBe(1);
+        expect(readdirSync(join(dir, 'logs')).some((f) => f.startsWith('CTL_'))).toBe(true);
+    }, 240_000);
+});
