@@ -56,13 +56,19 @@ $(1)/GLT: $(ENG_IT_SRC)/inest.c $(2) $(ENG_IT_DEPS)
 $(1)/SLV: $(ENG_IT_SRC)/inest.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/SHA: $(ENG_IT_SRC)/ishare.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DISHARE_TOP $$< $(2) -o $$@
+$(1)/SHB: $(ENG_IT_SRC)/ishare.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
 $(1)/itest: $(ENG_IT_SRC)/itest.c
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $$< -o $$@
 endef
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
-ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV itest
+ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \

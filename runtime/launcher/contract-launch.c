@@ -92,7 +92,8 @@ static long read_pid_file(const char *path)
     return pid;
 }
 
-/* Remove the files a module leaves in the run directory: NAME.mbx, NAME.<port>.in, NAME.pid. */
+/* Remove the files a module leaves in the run directory: NAME.mbx, NAME.<port>.in, NAME.pid,
+ * and the module holds of the supervisor engines: NAME.<module>.hold, NAME.started.hold. */
 static void remove_module_files(const char *dir, const char *name)
 {
     DIR *d = opendir(dir);
@@ -103,13 +104,14 @@ static void remove_module_files(const char *dir, const char *name)
         if (strncmp(e->d_name, name, n) != 0 || e->d_name[n] != '.') continue;
         const char *rest = e->d_name + n;
         size_t rl = strlen(rest);
-        if (strcmp(rest, ".mbx") == 0 || strcmp(rest, ".pid") == 0 || (rl > 3 && strcmp(rest + rl - 3, ".in") == 0))
+        if (strcmp(rest, ".mbx") == 0 || strcmp(rest, ".pid") == 0 || (rl > 3 && strcmp(rest + rl - 3, ".in") == 0) ||
+            (rl > 5 && strcmp(rest + rl - 5, ".hold") == 0))
             unlinkat(dirfd(d), e->d_name, 0);
     }
     closedir(d);
 }
 
-/* Remove every runtime file (*.mbx, *.in, *.pid, launcher.pid) and the directory if empty. */
+/* Remove every runtime file (*.mbx, *.in, *.pid, *.hold, launcher.pid) and the directory if empty. */
 static void clean_run_dir(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -118,7 +120,7 @@ static void clean_run_dir(const char *dir)
     while ((e = readdir(d)) != NULL) {
         size_t l = strlen(e->d_name);
         if ((l > 4 && (strcmp(e->d_name + l - 4, ".mbx") == 0 || strcmp(e->d_name + l - 4, ".pid") == 0)) ||
-            (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0))
+            (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0) || (l > 5 && strcmp(e->d_name + l - 5, ".hold") == 0))
             unlinkat(dirfd(d), e->d_name, 0);
     }
     closedir(d);

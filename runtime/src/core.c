@@ -193,6 +193,7 @@ const char *ContractStrError(int code)
     case CONTRACT_ETOOBIG: return "message too large";
     case CONTRACT_EBUSY: return "mailbox full: the module did not read its requests in time";
     case CONTRACT_EINVAL: return "invalid argument";
+    case CONTRACT_EPERM: return "not permitted";
     default: return "system error";
     }
 }
@@ -201,7 +202,7 @@ const char *rt_request_name(int type)
 {
     static const char *names[] = { "UNKNOWN", "START", "STOP", "KILL", "EVENT", "SETPARAM", "SUBSCRIBE",
                                    "UNSUBSCRIBE", "SUB_EVENT", "UNSUB_EVENT", "PURGE_MBX", "ACK",
-                                   "STATUS", "STATUS_REPLY" };
+                                   "STATUS", "STATUS_REPLY", "PRIORITY", "PRIORITY_REPLY" };
     if (type < 0 || type >= (int)(sizeof names / sizeof names[0])) return "INVALID";
     return names[type];
 }

@@ -1,9 +1,13 @@
 /* Event flows: events travel as REQ_EVENT requests in the subscriber's mailbox; the producer
- * keeps the subscribers of each output event port (continuous or one-shot). */
+ * keeps the subscribers of each output event port (continuous or one-shot). A one-shot
+ * subscriber stays listed as spent after its notification, so that the undo of its
+ * subscription (REQ_UNSUB_EVENT) is recognised and accepted quietly. */
 #define _GNU_SOURCE
 #include <stdlib.h>
 #include <string.h>
 #include "internal.h"
+
+#define EVENT_SPENT (-1) /* Subscriber.periodicity of a one-shot subscription already notified */
 
 static int find_detect_var(const void *var)
 {
@@ -45,6 +49,13 @@ void rt_remember_event(const RequestMessage *msg)
     memcpy(g_rt.last_event, msg, REQUEST_HEADER_SIZE + msg->DataSize);
 }
 
+static int has_live_subscriber(int d)
+{
+    for (const Subscriber *s = g_rt.event_subs[d]; s; s = s->next)
+        if (s->periodicity != EVENT_SPENT) return 1;
+    return 0;
+}
+
 int PostEvent(void *var)
 {
     int d = find_detect_var(var);
@@ -54,16 +65,17 @@ int PostEvent(void *var)
     Subscriber **it = &g_rt.event_subs[d];
     while (*it) {
         Subscriber *s = *it;
+        if (s->periodicity == EVENT_SPENT) { it = &s->next; continue; }
         int rc = SendEvent(s->module, s->port, o->Port, var, o->Size);
         char detail[64];
         snprintf(detail, sizeof detail, "to_port=%d%s%s", s->port, s->periodicity == EVENT_ONESHOT ? " oneshot" : "",
                  rc == CONTRACT_OK ? "" : " failed");
         ContractLog("event_posted", s->module, o->Port, o->Size, detail);
         if (rc == CONTRACT_OK) reached++;
-        if (rc == CONTRACT_OK && s->periodicity == EVENT_ONESHOT) { *it = s->next; free(s); continue; }
+        if (rc == CONTRACT_OK && s->periodicity == EVENT_ONESHOT) s->periodicity = EVENT_SPENT;
         it = &s->next;
     }
-    if (!g_rt.event_subs[d] && reached == 0) ContractLog("event_posted", "", o->Port, o->Size, "no subscriber");
+    if (reached == 0 && !has_live_subscriber(d)) ContractLog("event_posted", "", o->Port, o->Size, "no subscriber");
     return reached;
 }
 
@@ -129,11 +141,14 @@ int UnsubscribeUserToEvent(const char *targetModule, int targetPort, int sourceP
         if (strcmp((*it)->module, targetModule) == 0 && (*it)->port == targetPort) {
             Subscriber *gone = *it;
             *it = gone->next;
+            ContractLog("event_unsubscribed", targetModule, sourcePort, 0,
+                        gone->periodicity == EVENT_SPENT ? "one-shot already spent" : "");
             free(gone);
-            ContractLog("event_unsubscribed", targetModule, sourcePort, 0, "");
             return 0;
         }
     }
+    /* not subscribed (never, or already removed): nothing to undo, not an error */
+    ContractLog("event_unsubscribed", targetModule, sourcePort, 0, "was not subscribed");
     return 0;
 }
 

@@ -58,6 +58,7 @@ typedef struct {
     int n_created;
     RTIME log_dirty_since;  /* 0 = nothing unflushed */
     RTIME mbx_rcvtimeo;     /* SO_RCVTIMEO currently set on the mailbox (0 = none) */
+    int priority;           /* current priority 1..99 (0: never set) */
 } ContractRuntime;
 
 extern ContractRuntime g_rt;
@@ -81,6 +82,10 @@ void rt_install_signal_cleanup(void);
 
 /* mailbox.c */
 int rt_send_request_to(const char *module, RequestMessage *msg);
+
+/* priority.c: apply `priority` to this process without a stderr warning (requests from a
+ * supervisor). Returns 1 SCHED_FIFO, 0 nice, CONTRACT_EPERM (errno set) when not permitted. */
+int rt_apply_priority(int priority, const char *requester);
 
 /* csvlog.c */
 int rt_log_open(void);

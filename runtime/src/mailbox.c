@@ -266,15 +266,30 @@ static void reply_status(const RequestMessage *req)
     rt_send_request_to(req->Sender, m);
 }
 
+/* REQ_PRIORITY: the module applies the priority to itself and answers with the outcome. */
+static void reply_priority(const RequestMessage *req)
+{
+    int before = g_rt.priority;
+    int result = rt_apply_priority(req->Param.Priority.Priority, req->Sender);
+    int err = result == CONTRACT_EPERM ? errno : 0;
+    RequestMessage *m = blank(REQ_PRIORITY_REPLY);
+    m->Param.Priority.Priority = before;
+    m->Param.Priority.Result = result;
+    m->Param.Priority.Errno = err;
+    rt_send_request_to(req->Sender, m);
+}
+
 /* Bookkeeping at reception. Returns 0 if the request was handled inside the library. */
 static int accept_request(RequestMessage *m)
 {
     char detail[160];
     int port = -1;
+    if (m->Type == REQ_PRIORITY) { reply_priority(m); return 0; }
     if (!rt_log_enabled()) { /* bookkeeping only */
         if (m->Type == REQ_STATUS) { reply_status(m); return 0; }
         if (m->Type == REQ_ACK) return 1;
         if (m->Type == REQ_START) { g_rt.activations++; g_rt.running = 1; }
+        if (m->Type == REQ_STOP || m->Type == REQ_KILL) g_rt.running = 0; /* the run ends on it */
         g_rt.requests++;
         return 1;
     }
@@ -313,6 +328,12 @@ static int accept_request(RequestMessage *m)
         g_rt.running = 1;
         snprintf(detail, sizeof detail, "activation=%ld", g_rt.activations);
         ContractLog("run_started", m->Sender, -1, 0, detail);
+    } else if ((m->Type == REQ_STOP || m->Type == REQ_KILL) && g_rt.running) {
+        /* a stopped module is not running any more, whether or not it acknowledges the stop
+         * (status queries: "is it running?" across supervisors) */
+        g_rt.running = 0;
+        snprintf(detail, sizeof detail, "activation=%ld %s", g_rt.activations, rt_request_name(m->Type));
+        ContractLog("run_finished", m->Sender, -1, 0, detail);
     }
     return 1;
 }
@@ -507,6 +528,41 @@ int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline)
     }
     free(reply);
     return r == 1 ? CONTRACT_OK : (r == 0 ? CONTRACT_EBUSY : CONTRACT_ESYS);
+}
+
+typedef struct { const char *module; RequestType type; } ReplyWanted;
+
+static int match_reply(const RequestMessage *m, const void *ctx)
+{
+    const ReplyWanted *w = ctx;
+    return m->Type == w->type && strcmp(m->Sender, w->module) == 0;
+}
+
+int ContractSetModulePriority(const char *module, int priority, int *previous)
+{
+    if (priority < 1 || priority > 99) return CONTRACT_EINVAL;
+    if (module && strcmp(module, g_rt.name) == 0) { /* myself */
+        if (previous) *previous = g_rt.priority;
+        return rt_apply_priority(priority, g_rt.name);
+    }
+    if (check_mailbox() != 0) return CONTRACT_EINVAL;
+    RequestMessage *m = blank(REQ_PRIORITY);
+    m->Param.Priority.Priority = priority;
+    int rc = rt_send_request_to(module, m);
+    if (rc != CONTRACT_OK) return rc;
+    RequestMessage *reply = malloc(sizeof *reply);
+    if (!reply) return CONTRACT_ESYS;
+    ReplyWanted w = { module, REQ_PRIORITY_REPLY };
+    int r = wait_for_match(match_reply, &w, GetTime() + 1000000000LL, reply);
+    if (r == 1) {
+        if (previous) *previous = reply->Param.Priority.Priority;
+        rc = reply->Param.Priority.Result;
+        if (rc == CONTRACT_EPERM) errno = reply->Param.Priority.Errno;
+    } else {
+        rc = r == 0 ? CONTRACT_EBUSY : CONTRACT_ESYS;
+    }
+    free(reply);
+    return rc;
 }
 
 int ModuleState(const char *module)

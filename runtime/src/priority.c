@@ -1,4 +1,7 @@
-/* Fixed priorities: SCHED_FIFO when permitted, otherwise one warning and a nice level. */
+/* Fixed priorities: SCHED_FIFO when permitted, otherwise a nice level. At start-up
+ * (ContractSetPriority) a refused SCHED_FIFO is said once on stderr; later changes asked by a
+ * supervisor (REQ_PRIORITY, ContractSetModulePriority) are applied by the module to itself and
+ * answered, the requester decides what to say. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <sched.h>
@@ -8,32 +11,84 @@
 #include <sys/resource.h>
 #include "internal.h"
 
+static int clamp(int priority) { return priority < 1 ? 1 : priority > 99 ? 99 : priority; }
+
+/* higher priority = lower nice value; 99 -> 0, 1 -> 19 */
+static int nice_of(int priority) { return (99 - priority) * 19 / 98; }
+
+static int fifo_wanted(void)
+{
+    const char *mode = getenv("CONTRACT_SCHED");
+    return !(mode && strcmp(mode, "other") == 0);
+}
+
+static int try_fifo(int priority)
+{
+    struct sched_param sp;
+    memset(&sp, 0, sizeof sp);
+    sp.sched_priority = priority;
+    return sched_setscheduler(0, SCHED_FIFO | SCHED_RESET_ON_FORK, &sp) == 0;
+}
+
+
+int ContractPriority(void) { return g_rt.priority; }
+
 int ContractSetPriority(int priority)
 {
-    if (priority < 1) priority = 1;
-    if (priority > 99) priority = 99;
-    const char *mode = getenv("CONTRACT_SCHED");
-    int want_fifo = !(mode && strcmp(mode, "other") == 0);
+    priority = clamp(priority);
+    int want_fifo = fifo_wanted();
     char detail[96];
-    if (want_fifo) {
-        struct sched_param sp;
-        memset(&sp, 0, sizeof sp);
-        sp.sched_priority = priority;
-        if (sched_setscheduler(0, SCHED_FIFO | SCHED_RESET_ON_FORK, &sp) == 0) {
-            snprintf(detail, sizeof detail, "SCHED_FIFO %d", priority);
-            ContractLog("priority", "", -1, 0, detail);
-            return 1;
-        }
+    if (want_fifo && try_fifo(priority)) {
+        g_rt.priority = priority;
+        snprintf(detail, sizeof detail, "SCHED_FIFO %d", priority);
+        ContractLog("priority", "", -1, 0, detail);
+        return 1;
     }
     int err = errno;
-    /* higher priority = lower nice value; 99 -> 0, 1 -> 19 (unprivileged processes may only raise nice) */
-    int nice_level = (99 - priority) * 19 / 98;
+    int nice_level = nice_of(priority);
     int ok = setpriority(PRIO_PROCESS, 0, nice_level) == 0;
+    g_rt.priority = priority;
     if (want_fifo)
         fprintf(stderr, "%s: warning: SCHED_FIFO not permitted (%s): priority %d runs as nice %d%s\n",
                 g_rt.name[0] ? g_rt.name : "libmodule", strerror(err), priority, nice_level,
                 ok ? "" : " (could not set it either)");
     snprintf(detail, sizeof detail, "nice %d (priority %d)", nice_level, priority);
     ContractLog("priority", "", -1, 0, detail);
+    return 0;
+}
+
+int rt_apply_priority(int priority, const char *requester)
+{
+    priority = clamp(priority);
+    char detail[128];
+    int before = g_rt.priority;
+    if (fifo_wanted() && try_fifo(priority)) {
+        g_rt.priority = priority;
+        snprintf(detail, sizeof detail, "SCHED_FIFO %d (was %d)", priority, before);
+        ContractLog("priority_changed", requester, -1, 0, detail);
+        return 1;
+    }
+    /* A process under SCHED_FIFO that may not use it any more is not expected; under
+     * SCHED_OTHER the nice level carries the priority. Raising it (a lower nice) needs
+     * CAP_SYS_NICE or RLIMIT_NICE: refused, the process keeps its priority. */
+    int nice_level = nice_of(priority);
+    if (sched_getscheduler(0) == SCHED_OTHER && setpriority(PRIO_PROCESS, 0, nice_level) != 0) {
+        int err = errno;
+        snprintf(detail, sizeof detail, "priority %d (nice %d) refused: %s; stays %d", priority, nice_level,
+                 strerror(err), before);
+        ContractLog("priority_changed", requester, -1, 0, detail);
+        errno = err;
+        return CONTRACT_EPERM;
+    }
+    if (sched_getscheduler(0) != SCHED_OTHER) {
+        errno = EPERM;
+        snprintf(detail, sizeof detail, "priority %d refused: SCHED_FIFO not permitted any more; stays %d",
+                 priority, before);
+        ContractLog("priority_changed", requester, -1, 0, detail);
+        return CONTRACT_EPERM;
+    }
+    g_rt.priority = priority;
+    snprintf(detail, sizeof detail, "nice %d (priority %d, was %d)", nice_level, priority, before);
+    ContractLog("priority_changed", requester, -1, 0, detail);
     return 0;
 }

@@ -373,3 +373,39 @@ void test_maa_events_params(void)
     free(out);
     h_teardown();
 }
+
+/* The undo of a one-shot subscription that already fired (supervisor rule deactivated after
+ * the event): the producer accepts the REQ_UNSUB_EVENT quietly, and a later subscription of the
+ * same consumer works again. */
+void test_unsub_spent_oneshot(void)
+{
+    REQUIRE(h_setup("spent") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("P", "P") > 0);
+    REQUIRE(h_spawn_module("C2", "C2") > 0);
+    CHECK(set_param("P", 1, 0));
+    CHECK(SendSubscribeEvent("P", 0, "C2", 0, EVENT_ONESHOT) == 0 && h_wait_ack("P", 800, ACK_FINISHED, 2000, NULL));
+    CHECK(run_once("P", 1));
+    CHECK(h_wait_event("C2", 2, 2000, m));
+    CHECK(SendUnsubscribeEvent("P", 0, "C2", 0) == 0);      /* the one-shot is spent */
+    CHECK(SendUnsubscribeEvent("P", 0, "C2", 0) == 0);      /* and now not subscribed at all */
+    CHECK(run_once("P", 2));
+    CHECK(!h_wait_event("C2", 2, 300, m));
+    CHECK(SendSubscribeEvent("P", 0, "C2", 0, EVENT_ONESHOT) == 0 && h_wait_ack("P", 800, ACK_FINISHED, 2000, NULL));
+    CHECK(run_once("P", 3));
+    CHECK(h_wait_event("C2", 2, 2000, m));
+    long v = 0;
+    memcpy(&v, m->Data, sizeof v);
+    CHECK(v == 3);
+    CHECK(SendKill("P", ACK_KILLED, 7) == 0 && h_wait_ack("P", 7, ACK_KILLED, 2000, NULL));
+    char out[700];
+    snprintf(out, sizeof out, "%s/P.out", h_work_dir);
+    for (int t = 0; t < 100 && ModuleState("P") == CONTRACT_OK; t++) usleep(10000);
+    char *text = h_read_file(out);
+    CHECK_MSG(text && !strstr(text, "error") && !strstr(text, "warning"), "P said: %s", text ? text : "(nothing)");
+    free(text);
+    char *log = h_read_logs("P_");
+    CHECK(log && strstr(log, "one-shot already spent") && strstr(log, "was not subscribed"));
+    free(log);
+    h_teardown();
+}

@@ -8,6 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -305,5 +306,72 @@ void test_kill_without_launcher(void)
     free(text);
     char *missing[] = { "contract-launch", "--kill", "/nonexistent/run", NULL };
     CHECK(h_run(missing, out, 3000) == 2);
+    h_teardown();
+}
+
+/* ContractSetModulePriority: the target module applies the priority to itself. An unprivileged
+ * module (nice levels) may lower its priority but not raise it: CONTRACT_EPERM, unchanged, and
+ * the previous priority is reported for the undo. With SCHED_FIFO permitted (root here) it
+ * switches to SCHED_FIFO at that priority. */
+void test_set_module_priority(void)
+{
+    REQUIRE(h_setup("setprio") == 0);
+    chmod(h_work_dir, 0777);
+    chmod(h_run_dir, 0777);
+    chmod(h_log_dir, 0777);
+    char mbx[700], path[600], out[600];
+    snprintf(mbx, sizeof mbx, "%s/tester.mbx", h_run_dir);
+    chmod(mbx, 0666);
+    snprintf(path, sizeof path, "%s/P", h_bin_dir);
+    snprintf(out, sizeof out, "%s/P.out", h_work_dir);
+    int am_root = geteuid() == 0;
+    pid_t pid = fork();
+    if (pid == 0) { /* P (priority 30) as an unprivileged process, under nice levels */
+        int fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0666);
+        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        if (am_root && (setgid(65534) != 0 || setuid(65534) != 0)) _exit(125);
+        execl(path, path, (char *)NULL);
+        _exit(127);
+    }
+    REQUIRE(pid > 0);
+    for (int t = 0; t < 300 && ModuleState("P") != CONTRACT_OK; t++) usleep(10000);
+    REQUIRE(ModuleState("P") == CONTRACT_OK);
+    errno = 0;
+    CHECK(getpriority(PRIO_PROCESS, (id_t)pid) == (99 - 30) * 19 / 98);
+    int prev = -1;
+    CHECK(ContractSetModulePriority("P", 10, &prev) == 0); /* lower: permitted */
+    CHECK(prev == 30);
+    CHECK(getpriority(PRIO_PROCESS, (id_t)pid) == (99 - 10) * 19 / 98);
+    struct rlimit rl;
+    if (getrlimit(RLIMIT_NICE, &rl) == 0 && rl.rlim_cur == 0) {
+        prev = -1;
+        CHECK(ContractSetModulePriority("P", 60, &prev) == CONTRACT_EPERM); /* raise: refused */
+        CHECK(prev == 10);
+        CHECK(getpriority(PRIO_PROCESS, (id_t)pid) == (99 - 10) * 19 / 98);
+    }
+    CHECK(ContractSetModulePriority("P", 0, &prev) == CONTRACT_EINVAL);
+    CHECK(ContractSetModulePriority("NOPE", 10, &prev) == CONTRACT_EUNKNOWN);
+    CHECK(SendKill("P", ACK_KILLED, 1) == 0 && h_wait_ack("P", 1, ACK_KILLED, 2000, NULL));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *text = h_read_file(out);
+    CHECK_MSG(text && !strstr(text, "warning") && !strstr(text, "error"), "P said: %s", text ? text : "");
+    free(text);
+    char *log = h_read_logs("P_");
+    CHECK(log && strstr(log, "priority_changed") && strstr(log, "nice 17 (priority 10, was 30)"));
+    free(log);
+    if (am_root) { /* SCHED_FIFO permitted: the module switches to it */
+        unsetenv("CONTRACT_SCHED");
+        pid = h_spawn_module("C1", "C1");
+        setenv("CONTRACT_SCHED", "other", 1);
+        REQUIRE(pid > 0);
+        if ((sched_getscheduler(pid) & ~SCHED_RESET_ON_FORK) == SCHED_FIFO) {
+            CHECK(ContractSetModulePriority("C1", 12, &prev) == 1);
+            CHECK(prev == 30);
+            struct sched_param sp;
+            CHECK(sched_getparam(pid, &sp) == 0 && sp.sched_priority == 12);
+        } else {
+            fprintf(stderr, "    note: SCHED_FIFO refused even to root here\n");
+        }
+    }
     h_teardown();
 }

@@ -14,6 +14,7 @@ void test_malformed_datagrams(void);
 void test_unknown_and_stale(void);
 void test_long_run_dir(void);
 void test_maa_events_params(void);
+void test_unsub_spent_oneshot(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_launcher_sigint(void);
@@ -21,6 +22,7 @@ void test_kill_without_launcher(void);
 void test_two_run_dirs(void);
 void test_control_tool(void);
 void test_priority(void);
+void test_set_module_priority(void);
 
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
@@ -35,6 +37,7 @@ static const TestCase ALL_TESTS[] = {
     { "unknown_and_stale", test_unknown_and_stale },
     { "long_run_dir", test_long_run_dir },
     { "maa_events_params", test_maa_events_params },
+    { "unsub_spent_oneshot", test_unsub_spent_oneshot },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
     { "launcher_sigint", test_launcher_sigint },
@@ -42,6 +45,7 @@ static const TestCase ALL_TESTS[] = {
     { "two_run_dirs", test_two_run_dirs },
     { "control_tool", test_control_tool },
     { "priority", test_priority },
+    { "set_module_priority", test_set_module_priority },
     { NULL, NULL },
 };
 #endif

@@ -64,7 +64,10 @@ typedef enum {
     REQ_PURGE_MBX,     /* drop every pending value of my input data ports */
     REQ_ACK,           /* [ENGINE] an acknowledgement (Param.Ack) delivered to the requester */
     REQ_STATUS,        /* [ENGINE] status query; answered inside the library, never returned */
-    REQ_STATUS_REPLY   /* [ENGINE] answer to REQ_STATUS; Data holds a text line */
+    REQ_STATUS_REPLY,  /* [ENGINE] answer to REQ_STATUS; Data holds a text line */
+    REQ_PRIORITY,      /* [ENGINE] apply priority Param.Priority.Priority to yourself; answered
+                          inside the library (ContractSetModulePriority), never returned */
+    REQ_PRIORITY_REPLY /* [ENGINE] answer to REQ_PRIORITY: Param.Priority, Data = text detail */
 } RequestType;
 
 /* Acknowledgement kinds: a bit mask. A requester puts the acks it wants in WantedAck;
@@ -95,6 +98,10 @@ typedef struct { int SourcePort; char TargetModule[CONTRACT_NAME_MAX]; int Targe
 typedef struct { int SourcePort; char TargetModule[CONTRACT_NAME_MAX]; int TargetPort; } UnsubscribeParam;
 typedef struct { char targetModule[CONTRACT_NAME_MAX]; int targetPort; int sourcePort; int mode; } SubscribeEventParam;
 typedef struct { char targetModule[CONTRACT_NAME_MAX]; int targetPort; int sourcePort; } UnsubscribeEventParam;
+/** REQ_PRIORITY: Priority = the wanted priority 1..99. REQ_PRIORITY_REPLY: Priority = the
+ *  priority before the request, Result = 1 (SCHED_FIFO), 0 (nice level), or CONTRACT_EPERM
+ *  (not permitted: unchanged), Errno = the system's reason. */
+typedef struct { int Priority; int Result; int Errno; } PriorityParam;
 /** REQ_ACK: `Module` acknowledges with `Ack` (one ACK_* bit) the request tagged `AckID`. */
 typedef struct { char Module[CONTRACT_NAME_MAX]; int Ack; int AckID; int RequestType; } AckParam;
 
@@ -119,6 +126,7 @@ typedef struct {
         SubscribeEventParam SubscribeEvent;
         UnsubscribeEventParam UnsubscribeEvent;
         AckParam Ack;
+        PriorityParam Priority;       /* REQ_PRIORITY / REQ_PRIORITY_REPLY */
     } Param;
     size_t DataSize;
     unsigned char Data[CONTRACT_REQUEST_DATA_MAX];
@@ -246,6 +254,7 @@ int GetDataFromSetParamRequest(RequestMessage *msg, void *dst, size_t size,
 #define CONTRACT_EBUSY        -5   /* its mailbox stayed full past the send timeout (2 s) */
 #define CONTRACT_EINVAL       -6   /* bad argument */
 #define CONTRACT_ESYS         -7   /* other system error (errno kept) */
+#define CONTRACT_EPERM        -8   /* not permitted (e.g. raising another module's priority unprivileged) */
 /** Text for a CONTRACT_E* code. */
 const char *ContractStrError(int code);
 
@@ -307,6 +316,17 @@ void ContractLogFlush(void);
 /** Apply a priority 1..99: SCHED_FIFO if permitted, else one warning on stderr and a nice level.
  *  CONTRACT_SCHED=other skips SCHED_FIFO. Returns 1 if SCHED_FIFO, 0 if nice fallback. */
 int ContractSetPriority(int priority);
+/** [ENGINE] Ask `module` to apply priority 1..99 to itself (supervisors: `activate critical|
+ *  resttime module`, event schemas, undo). The module does it inside the library the next time
+ *  it reads its mailbox: SCHED_FIFO where permitted, else the nice level of that priority --
+ *  which an unprivileged process may lower but not raise. Waits up to 1 s for the answer.
+ *  *previous (may be NULL) gets the module's priority before the request (the one to restore).
+ *  Returns 1 (SCHED_FIFO), 0 (nice level), CONTRACT_EPERM (not permitted: nothing changed), or
+ *  another CONTRACT_E* code (unknown / not running module, no answer: CONTRACT_EBUSY).
+ *  No message on stderr: the caller decides what to say. */
+int ContractSetModulePriority(const char *module, int priority, int *previous);
+/** This process's current priority 1..99 (MODULE_PRIORITY, or the last one applied). */
+int ContractPriority(void);
 
 #ifdef __cplusplus
 }

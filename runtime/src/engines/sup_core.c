@@ -65,6 +65,7 @@ typedef struct Hold {       /* modules this supervisor started */
     const char *module;
     int holders;
     int owned;
+    int shared;             /* held while started by someone else (io.share_module told) */
 } Hold;
 
 typedef struct Timer {
@@ -255,6 +256,7 @@ static Hold *find_hold(SupCore *c, const char *module, int create) {
     h->module = module;
     h->holders = 0;
     h->owned = 0;
+    h->shared = 0;
     return h;
 }
 
@@ -271,9 +273,14 @@ static void hold_acquire(SupCore *c, const char *module, int priority) {
         trace(c, "error: out of memory holding module %s", module);
         return;
     }
-    if (h->holders == 0 && !h->owned && !module_is_running(c, module)) {
-        if (c->io.start_module) c->io.start_module(c->io.ctx, module, priority);
-        h->owned = 1;
+    if (h->holders == 0 && !h->owned) {
+        if (!module_is_running(c, module)) {
+            if (c->io.start_module) c->io.start_module(c->io.ctx, module, priority);
+            h->owned = 1;
+        } else if (c->io.share_module) { /* running, started elsewhere: say we use it too */
+            c->io.share_module(c->io.ctx, module, 1);
+            h->shared = 1;
+        }
     }
     h->holders++;
 }
@@ -284,6 +291,9 @@ static void hold_release(SupCore *c, const char *module) {
     if (--h->holders == 0 && h->owned) {
         if (c->io.stop_module) c->io.stop_module(c->io.ctx, module);
         h->owned = 0;
+    } else if (h->holders == 0 && h->shared) {
+        if (c->io.share_module) c->io.share_module(c->io.ctx, module, 0);
+        h->shared = 0;
     }
 }
 

@@ -29,7 +29,7 @@ typedef struct SupIo {
     /* modules (event schemas, activate resttime/critical module, parameterize) */
     int (*module_running)(void *ctx, const char *module);               /* 1 running, 0 not  */
     void (*start_module)(void *ctx, const char *module, int priority);
-    void (*stop_module)(void *ctx, const char *module);
+    void (*stop_module)(void *ctx, const char *module);   /* only modules it started itself */
     int (*set_priority)(void *ctx, const char *module, int priority);   /* returns previous  */
     void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size);
     void (*connect_events)(void *ctx, const ContractEventFlow *flow);
@@ -47,6 +47,10 @@ typedef struct SupIo {
     void (*stop_function)(void *ctx, const char *supervisor, const char *function);
     /* one line per rule transition, function start/stop, refusal, ignored input */
     void (*trace)(void *ctx, int64_t t, const char *line);
+    /* an event schema of this supervisor uses (`hold` 1) or stops using (0) a module that was
+       already running when it was activated (started by someone else): lets the binding keep
+       it running until its last user across supervisors is done (SPEC §4.3) */
+    void (*share_module)(void *ctx, const char *module, int hold);
 } SupIo;
 
 typedef struct SupCore SupCore;

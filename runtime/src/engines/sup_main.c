@@ -27,6 +27,7 @@
 #include "engine_wait.h"
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
+#include "module_holds.h"
 #include "sup_core.h"
 
 /* subscribers of the supervisor's out event ports (kept here: the generated module.c of a
@@ -99,71 +100,85 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
                 ContractStrError(rc));
 }
 
-/* Priorities of other modules: libmodule has no call for it, so the engine finds the module's
-   pid in the run directory (<module>.pid, written by libmodule when the module is ready) and
-   applies SCHED_FIFO, or a nice level like ContractSetPriority, when it may. */
-static pid_t module_pid(const char *m) {
-    char path[1024];
-    snprintf(path, sizeof path, "%s/%s.pid", ContractRunDir(), m);
-    FILE *f = fopen(path, "r");
-    long pid = -1;
-    if (f) {
-        if (fscanf(f, "%ld", &pid) != 1) pid = -1;
-        fclose(f);
-    }
-    return (pid_t)pid;
-}
-
-static int priority_of(pid_t pid) {
-    int pol = sched_getscheduler(pid);
-    if (pol == SCHED_FIFO || pol == SCHED_RR) {
-        struct sched_param sp;
-        if (sched_getparam(pid, &sp) == 0) return sp.sched_priority;
-        return -1;
-    }
-    errno = 0;
-    int nice_level = getpriority(PRIO_PROCESS, (id_t)pid);
-    if (errno != 0) return -1;
-    return 99 - nice_level * 98 / 19;
-}
-
+/* Priorities of other modules: the module applies them to itself (ContractSetModulePriority:
+   SCHED_FIFO where permitted, else a nice level, which an unprivileged module may lower but not
+   raise). Returns the previous priority (for the undo), or -1 when it was not applied. One line
+   on stderr only when the change is impossible; every outcome is in the CSV log. */
 static int apply_priority(const char *m, int prio) {
-    pid_t pid = module_pid(m);
-    if (pid <= 0) return -1;
-    int old = priority_of(pid);
-    struct sched_param sp;
-    memset(&sp, 0, sizeof sp);
-    sp.sched_priority = prio < 1 ? 1 : prio > 99 ? 99 : prio;
-    char detail[96];
-    if (sched_setscheduler(pid, SCHED_FIFO, &sp) == 0) {
-        snprintf(detail, sizeof detail, "SCHED_FIFO %d (was %d)", sp.sched_priority, old);
-    } else if (setpriority(PRIO_PROCESS, (id_t)pid, (99 - sp.sched_priority) * 19 / 98) == 0) {
-        snprintf(detail, sizeof detail, "nice for priority %d (was %d)", sp.sched_priority, old);
-    } else {
-        snprintf(detail, sizeof detail, "priority %d not applied: %s", prio, strerror(errno));
+    int old = -1;
+    int rc = ContractSetModulePriority(m, prio, &old);
+    char detail[160];
+    if (rc == 1 || rc == 0) {
+        snprintf(detail, sizeof detail, "%s %d (was %d)", rc == 1 ? "SCHED_FIFO" : "nice level for priority", prio,
+                 old);
         ContractLog("module_priority", m, -1, 0, detail);
-        return -1;
+        return old;
+    }
+    if (rc == CONTRACT_EPERM) {
+        fprintf(stderr, "%s: cannot raise %s to priority %d: not permitted for an unprivileged process "
+                        "(needs CAP_SYS_NICE or RLIMIT_RTPRIO/RLIMIT_NICE); it keeps priority %d\n",
+                ContractSelfName(), m, prio, old);
+        snprintf(detail, sizeof detail, "priority %d not permitted; keeps %d", prio, old);
+    } else {
+        snprintf(detail, sizeof detail, "priority %d not applied: %s", prio, ContractStrError(rc));
     }
     ContractLog("module_priority", m, -1, 0, detail);
-    return old;
+    return -1;
+}
+
+/* Is module `m` running (a run started and not finished or stopped)? Asked to the module
+   itself, so that a module started by another supervisor is not started twice. No answer
+   within 0.5 s: it is busy in its own code, hence running. */
+static int b_module_running(void *ctx, const char *m) {
+    (void)ctx;
+    char status[1024] = "";
+    int rc = QueryStatus(m, status, sizeof status, GetTime() + 500000000LL);
+    if (rc == CONTRACT_EBUSY) return 1;
+    return rc == CONTRACT_OK && strstr(status, " running=yes") != NULL;
 }
 
 static void b_start_module(void *ctx, const char *m, int prio) {
     (void)ctx;
+    int state = ModuleState(m);
+    if (state != CONTRACT_OK) {
+        fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(state));
+        return;
+    }
+    apply_priority(m, prio); /* before the start: its run begins at that priority */
     int rc = SendStart(m, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK) {
         fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
         return;
     }
-    apply_priority(m, prio);
+    holds_take(m, 1);
 }
 
-static void b_stop_module(void *ctx, const char *m) {
-    (void)ctx;
+/* the last holder across supervisors stops a module that a supervisor started */
+static void stop_if_last(const char *m, int started_here) {
+    int others = holds_drop(m);
+    if (others > 0) {
+        char detail[96];
+        snprintf(detail, sizeof detail, "kept running: still used by %d other supervisor(s)", others);
+        ContractLog("module_hold", m, -1, 0, detail);
+        return;
+    }
+    int started = holds_started(m, 1);
+    if (!started && !started_here) return; /* started by the user or the launcher: leave it */
     if (!alive(m)) return;
     int rc = SendStop(m, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+}
+
+static void b_stop_module(void *ctx, const char *m) {
+    (void)ctx;
+    stop_if_last(m, 1);
+}
+
+static void b_share_module(void *ctx, const char *m, int hold) {
+    (void)ctx;
+    if (hold) holds_take(m, 0);
+    else stop_if_last(m, 0);
 }
 
 static int b_set_priority(void *ctx, const char *m, int prio) {
@@ -276,9 +291,9 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
     SupBinding b;
     memset(&b, 0, sizeof b);
     b.v = v;
-    SupIo io = {&b, b_ord_activate, b_ord_deactivate, NULL, b_start_module, b_stop_module,
+    SupIo io = {&b, b_ord_activate, b_ord_deactivate, b_module_running, b_start_module, b_stop_module,
                 b_set_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
-                b_notify, b_start_function, b_stop_function, b_trace};
+                b_notify, b_start_function, b_stop_function, b_trace, b_share_module};
     char err[512] = "";
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {

@@ -268,11 +268,14 @@ static void s_trace(void *ctx, int64_t t, const char *line) {
     (void)t;
     wlog(ctx, line);
 }
+static void s_share_module(void *ctx, const char *m, int hold) {
+    WLOG((FakeWorld *)ctx, "%s %s", hold ? "share" : "unshare", m);
+}
 
 SupIo fake_sup_io(FakeWorld *w) {
     SupIo io = {w, s_ord_activate, s_ord_deactivate, s_module_running, s_start_module,
                 s_stop_module, s_set_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
-                s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace};
+                s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module};
     return io;
 }
 

@@ -115,11 +115,12 @@ void test_actions_event_schemas_share_modules_and_module_activation(void) {
               /* 2 ms: postconditions first, then B's precondition */
               "rule schemas.C inactive", "stop MCR",
               "rule schemas.D inactive", "priority MRT 33 (was 5)",
-              "rule schemas.B active", "connect MEX:1 => MAA:1",
+              "rule schemas.B active", "connect MEX:1 => MAA:1", "share MEX",
               /* 3 ms: MAA still used by E2 */
               "rule schemas.A inactive", "disconnect MAA:0 =* MAB:0", "stop MAB",
-              /* 4 ms: the last user of MAA; MEX was not started here */
-              "rule schemas.B inactive", "disconnect MEX:1 => MAA:1", "stop MAA");
+              /* 4 ms: the last user of MAA; MEX was not started here: only
+                 released (the binding stops it if a supervisor started it and no one holds it) */
+              "rule schemas.B inactive", "disconnect MEX:1 => MAA:1", "stop MAA", "unshare MEX");
     CHECK(fake_is_running(&w, "MEX") && fake_is_running(&w, "MRT"));
     CHECK(!fake_is_running(&w, "MAA") && !fake_is_running(&w, "MCR"));
     sup_core_destroy(c);

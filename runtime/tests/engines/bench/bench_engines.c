@@ -130,6 +130,7 @@ static int bench_sched(const char *bindir, const char *launcher, const char *sec
     snprintf(stats, sizeof stats, "%s/ord.json", root);
     snprintf(out, sizeof out, "%s/launch.txt", root);
     setenv("CONTRACT_ORD_STATS", stats, 1);
+    setenv("CONTRACT_LOG_DIR", logs, 1); /* CSV logs in the temp dir, never in the current folder */
     const char *names[5] = {"ORD", "BSU", "BMA", "BMB", "BMC"};
     char exe[5][512];
     for (int i = 0; i < 5; i++) snprintf(exe[i], sizeof exe[i], "%s/%s", bindir, names[i]);

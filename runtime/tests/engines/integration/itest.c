@@ -6,7 +6,9 @@
  * releases, `* 1` / `* 2` deliveries, deactivation, ORD:1 reaching the supervisor.
  * Second scenario (inest.c, amod.c): GLT activates SLV.work, which runs an event schema with
  * the asynchronous AMX, ends on its third event, notifies GLT, which stops SLV.work.
- * Usage: itest <dir with ORD ISU IMA IMB IMC GLT SLV AMX> <contract-launch>. Prints "N passed, N failed".
+ * Third scenario (ishare.c, amod.c): two supervisors SHA and SHB use AMX through event schemas:
+ * AMX is started once, survives the end of SHA's schema and is stopped at the end of SHB's.
+ * Usage: itest <dir with ORD ISU IMA IMB IMC GLT SLV AMX SHA SHB> <contract-launch>. Prints "N passed, N failed".
  */
 #define _GNU_SOURCE
 #include <stdio.h>
@@ -163,6 +165,46 @@ int main(int argc, char **argv) {
     check(in_order, "SLV.work started by GLT, W1 -> W2 on endof, stopped by GLT");
     check(txt2 && strstr(txt2, "[GLT] rule top.T1 inactive"), "SLV's notify reached GLT (T1 ended)");
     if (failed) fprintf(stderr, "launcher output (nested scenario):\n%s\n", txt2 ? txt2 : "(none)");
+
+    /* scenario 3: a module shared by two supervisors' event schemas */
+    char run3[160], out3[160], trace3[160];
+    snprintf(run3, sizeof run3, "%s/run3", root);
+    snprintf(out3, sizeof out3, "%s/launch3.txt", root);
+    snprintf(trace3, sizeof trace3, "%s/out3", root);
+    if (mkdir(trace3, 0700) != 0) { perror(trace3); return 2; }
+    setenv("ITEST_OUT", trace3, 1);
+    char exe3[3][512];
+    const char *names3[3] = {"SHA", "SHB", "AMX"};
+    for (int i = 0; i < 3; i++) snprintf(exe3[i], sizeof exe3[i], "%s/%s", argv[1], names3[i]);
+    pid = fork();
+    if (pid == 0) {
+        FILE *o = freopen(out3, "w", stdout);
+        if (!o || dup2(fileno(stdout), 2) < 0) _exit(127);
+        execl(argv[2], argv[2], "--run-dir", run3, "--log-dir", logs, "--start", "SHA.top()",
+              "--duration", "0.5", exe3[0], exe3[1], exe3[2], (char *)NULL);
+        _exit(127);
+    }
+    waitpid(pid, &st, 0);
+    check(WIFEXITED(st) && WEXITSTATUS(st) == 0, "shared module: architecture ran and stopped cleanly");
+    snprintf(amx_path, sizeof amx_path, "%s/AMX.trace", trace3);
+    char *amx3 = slurp(amx_path);
+    int starts = 0, stops = 0, posts = 0;
+    for (const char *p = amx3; p && *p; p = strchr(p, '\n') ? strchr(p, '\n') + 1 : "") {
+        if (strncmp(p, "start\n", 6) == 0) starts++;
+        else if (strncmp(p, "stop\n", 5) == 0) stops++;
+        else if (strncmp(p, "post ", 5) == 0) posts++;
+    }
+    check(starts == 1, "AMX started once: SHB found it running (started by SHA) and did not start it again");
+    /* SHA's schema ends at 150 ms (~14 posts), SHB's at ~320 ms (~31 posts) */
+    check(stops == 1 && posts >= 22 && posts <= 45,
+          "AMX kept running after SHA's schema ended, stopped once when SHB's (its last user) ended");
+    char *txt3 = slurp(out3);
+    check(txt3 && strstr(txt3, "[SHA] rule top.A1 inactive") && strstr(txt3, "[SHB] rule use.B1 inactive"),
+          "both schemas were activated and deactivated");
+    struct stat rst;
+    check(stat(run3, &rst) != 0, "no hold file (or other runtime file) left in the run directory");
+    if (failed) fprintf(stderr, "launcher output (shared module scenario):\n%s\nAMX trace:\n%s\n", txt3 ? txt3 : "(none)",
+                        amx3 ? amx3 : "(none)");
     if (failed) {
         fprintf(stderr, "kept %s for inspection\n", root);
     } else {

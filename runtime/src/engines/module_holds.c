@@ -1,0 +1,63 @@
+/* module_holds.c — see module_holds.h. */
+#define _GNU_SOURCE
+#include "module_holds.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <stdio.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "libmodule/libmodule.h"
+
+static int path_of(char *buf, size_t size, const char *holder, const char *module) {
+    int n = snprintf(buf, size, "%s/%s.%s.hold", ContractRunDir(), holder, module);
+    return n > 0 && (size_t)n < size ? 0 : -1;
+}
+
+static int touch(const char *path) {
+    int fd = open(path, O_WRONLY | O_CREAT | O_CLOEXEC, 0644);
+    if (fd < 0) return -1;
+    close(fd);
+    return 0;
+}
+
+int holds_take(const char *module, int started) {
+    char path[4200];
+    if (path_of(path, sizeof path, ContractSelfName(), module) != 0 || touch(path) != 0) {
+        ContractLog("module_hold", module, -1, 0, "cannot record the hold in the run directory");
+        return -1;
+    }
+    if (started && (path_of(path, sizeof path, module, "started") != 0 || touch(path) != 0)) {
+        ContractLog("module_hold", module, -1, 0, "cannot record the start in the run directory");
+        return -1;
+    }
+    return 0;
+}
+
+int holds_drop(const char *module) {
+    char path[4200];
+    if (path_of(path, sizeof path, ContractSelfName(), module) == 0) unlink(path);
+    char suffix[CONTRACT_NAME_MAX + 8];
+    snprintf(suffix, sizeof suffix, ".%s.hold", module);
+    size_t sl = strlen(suffix);
+    DIR *d = opendir(ContractRunDir());
+    if (!d) return 0;
+    int others = 0;
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        size_t l = strlen(e->d_name);
+        if (l > sl && strcmp(e->d_name + l - sl, suffix) == 0) others++;
+    }
+    closedir(d);
+    return others;
+}
+
+int holds_started(const char *module, int clear) {
+    char path[4200];
+    if (path_of(path, sizeof path, module, "started") != 0) return 0;
+    int marked = access(path, F_OK) == 0;
+    if (marked && clear) unlink(path);
+    return marked;
+}
