@@ -2,7 +2,9 @@
 // IDE benchmark -> /work/main/bench/parts/ide.json (flat metric -> number).
 //   ide.bundle_bytes            JS+CSS of the production build (all chunks and workers)
 //   ide.initial_bundle_bytes    what the first load fetches (entry JS+CSS, Monaco editor worker, language worker)
-//   ide.first_load_ms           navigation -> editor ready with the tutorial (median of 3 cold loads, headless Chromium)
+//   ide.first_load_ms           navigation start -> editor ready (performance mark 'ide:ready': files open, all 13
+//                               tutorial files built and diagnosed in the worker), median of 3 cold loads, headless Chromium
+//   ide.first_load_wall_ms      the same seen from the test driver (page.goto -> ready selector, includes polling)
 //   ide.diagnostics_latency_ms  keystroke -> error marker in the editor (median of 7)
 //   ide.log_10k_lines_max_frame_ms  longest frame while 10k log lines/s stream into the log panel for 3 s
 import { execFileSync } from 'node:child_process';
@@ -36,6 +38,7 @@ const args = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-backgrou
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 
 const loads = [];
+const marks = [];
 let page;
 let context;
 try {
@@ -48,6 +51,7 @@ try {
     await page.goto(server.url + '/');
     await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
     loads.push(Date.now() - t0);
+    marks.push(await page.evaluate(() => Object.fromEntries(performance.getEntriesByType('mark').filter((m) => m.name.startsWith('ide:')).map((m) => [m.name.slice(4), Math.round(m.startTime)]))));
     if (i < 2) await context.close();
   }
 
@@ -114,7 +118,8 @@ try {
   const result = {
     'ide.bundle_bytes': bundleBytes,
     'ide.initial_bundle_bytes': initialBytes,
-    'ide.first_load_ms': median(loads),
+    'ide.first_load_ms': median(marks.map((m) => m.ready)),
+    'ide.first_load_wall_ms': median(loads),
     'ide.diagnostics_latency_ms': Math.round(median(latencies) * 10) / 10,
     'ide.log_10k_lines_max_frame_ms': Math.round(maxFrame * 10) / 10,
   };
@@ -122,6 +127,7 @@ try {
   mkdirSync(out, { recursive: true });
   writeFileSync(join(out, 'ide.json'), JSON.stringify(result, null, 2) + '\n');
   console.log(JSON.stringify({ ...result, loads, latencies: latencies.map((l) => Math.round(l)) }));
+  console.log('load phases (ms since navigation start):', JSON.stringify(marks));
 } finally {
   await context?.close().catch(() => undefined);
   await server.close();

@@ -1,5 +1,6 @@
 import { createServer, type IncomingMessage, type ServerResponse, type Server } from 'node:http';
-import { lstat, mkdir, writeFile } from 'node:fs/promises';
+import { lstat, mkdir, writeFile, readFile } from 'node:fs/promises';
+import { listTree, flattenFiles } from './file-tree.js';
 import { join, basename } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WorkspacePaths } from './workspace-paths.js';
@@ -75,6 +76,19 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
 
   const handleProjectApi = async (req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> => {
     const route = `${req.method} ${url.pathname}`;
+    if (route === 'GET /api/snapshot') {
+      // Everything the first paint needs in one response: tree + every .contract text (<= 4 MiB).
+      const entries = await listTree(paths.root);
+      const files: Record<string, string> = {};
+      let budget = 4 * 1024 * 1024;
+      for (const p of flattenFiles(entries).filter((f) => f.endsWith('.contract'))) {
+        const text = await readFile(join(paths.root, ...p.split('/')), 'utf8').catch(() => undefined);
+        if (text === undefined || (budget -= text.length) < 0) continue;
+        files[p] = text;
+      }
+      sendJson(res, 200, { workspace: paths.root, name: basename(paths.root), root: paths.root, entries, files });
+      return true;
+    }
     if (route === 'GET /api/info') {
       sendJson(res, 200, { workspace: paths.root, name: basename(paths.root), buildService: buildServiceNote, buildAvailable: !!build });
       return true;

@@ -50,7 +50,15 @@ async function call<T>(method: string, url: string, body?: unknown, raw = false)
 
 const q = (p: string) => encodeURIComponent(p);
 
+export interface Snapshot {
+  name: string;
+  root: string;
+  entries: TreeEntry[];
+  files: Record<string, string>;
+}
+
 export const api = {
+  snapshot: () => call<Snapshot>('GET', '/api/snapshot'),
   info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
   tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
   read: (path: string) => call<{ path: string; content: string; mtimeMs: number }>('GET', `/api/file?path=${q(path)}`),

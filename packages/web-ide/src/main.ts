@@ -20,6 +20,7 @@ import type { ArchitectureView } from './views/architecture-view.js';
 import type { TimelineView } from './views/timeline-view.js';
 
 async function main(): Promise<void> {
+  performance.mark('ide:main');
   registerCactalLanguage();
   defineStudioTheme();
   const ui = createLayout(document.getElementById('app')!);
@@ -27,6 +28,8 @@ async function main(): Promise<void> {
   const explorer = new Explorer(ui.explorerBody);
   const editors = new EditorArea(ui.editorRoot, workspace);
   const lsp = new LspClient();
+  // the language worker boots (its own thread) while the UI and the workspace load
+  const lspStarted = lsp.start().then(() => performance.mark('ide:lsp-initialized'));
   const problems = new ProblemsPanel(document.createElement('div'));
   const build = new BuildPanel();
   const generatePanel = new GeneratePanel((path, line) => void editors.open(path, line ? { lineNumber: line, column: 1 } : undefined));
@@ -207,6 +210,7 @@ async function main(): Promise<void> {
       const project = currentProject();
       const r = await api.generate(project);
       generatePanel.show(r);
+      problems.set('gcc', []); // the generated files changed: the last build's diagnostics are stale
       await workspace.refreshTree();
       explorer.expand(`${r.srcGen}/generated/architecture/modules`);
       for (const p of [...workspace.files.keys()]) if (p.startsWith(`${r.srcGen}/`)) void workspace.externalChange(p);
@@ -319,10 +323,10 @@ async function main(): Promise<void> {
   });
   window.addEventListener('beforeunload', () => void workspace.saveAll());
 
-  // ---- start: the language worker boots while the workspace files load
-  const lspStarted = lsp.start();
+  // ---- start
   try {
     await workspace.load();
+    performance.mark('ide:workspace-loaded');
   } catch (e) {
     toast('error', `Cannot load the workspace: ${(e as Error).message}`);
     return;
@@ -335,7 +339,9 @@ async function main(): Promise<void> {
   ui.status.lsp.classList.add('ok');
   const first = workspace.allFiles().find((p) => p.endsWith('supervisor.contract')) ?? workspace.allFiles().find(isContract);
   if (first) await editors.open(first);
+  performance.mark('ide:editor-open');
   await lsp.workspaceBuilt();
+  performance.mark('ide:ready');
   document.body.dataset.ready = 'true';
   (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco };
 }

@@ -2,13 +2,14 @@ import { h } from './dom.js';
 
 let host: HTMLElement | undefined;
 
-/** Shows a transient notification at the bottom right; errors stay until clicked. */
+/** Shows a notification at the bottom right (click to dismiss); errors stay 15 s, others 5 s. */
 export function toast(level: 'info' | 'warning' | 'error', text: string): void {
   host ??= document.body.appendChild(h('div', { class: 'toasts' }));
   const icon = level === 'error' ? '✖' : level === 'warning' ? '⚠' : 'ℹ';
+  for (const old of Array.from(host.children)) if (old.textContent?.endsWith(text)) old.remove();
   const el = h('div', { class: `toast ${level}`, role: 'status' }, h('span', { class: 'toast-icon' }, icon), h('span', {}, text));
   el.addEventListener('click', () => el.remove());
   host.append(el);
   while (host.childElementCount > 4) host.firstElementChild?.remove();
-  if (level !== 'error') setTimeout(() => el.remove(), 5000);
+  setTimeout(() => el.remove(), level === 'error' ? 15_000 : 5000);
 }

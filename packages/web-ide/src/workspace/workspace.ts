@@ -1,5 +1,5 @@
 import { monaco } from '../editor/monaco.js';
-import { api, ApiError, type TreeEntry } from '../api.js';
+import { api, ApiError, type TreeEntry, type Snapshot } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { languageOf, isContract } from './file-kinds.js';
 
@@ -46,12 +46,14 @@ export class Workspace {
   }
 
   async load(): Promise<void> {
-    const info = await api.info();
-    this.name = info.name;
-    await this.refreshTree();
-    this.root = (await api.tree()).root;
-    const contracts = this.allFiles().filter(isContract);
-    await Promise.all(contracts.map((p) => this.ensureModel(p)));
+    const prefetched = (window as unknown as { __snapshot?: Promise<Snapshot | null> }).__snapshot;
+    const snap = (prefetched && (await prefetched)) || (await api.snapshot());
+    this.name = snap.name;
+    this.root = snap.root;
+    this.entries = snap.entries;
+    this.onTree.fire(this.entries);
+    for (const [path, content] of Object.entries(snap.files)) this.adopt(path, content);
+    await Promise.all(this.allFiles().filter(isContract).map((p) => this.ensureModel(p)));
     this.restoreBackups();
   }
 
@@ -79,6 +81,11 @@ export class Workspace {
     const existing = this.files.get(path);
     if (existing) return existing;
     const { content } = await api.read(path);
+    return this.adopt(path, content);
+  }
+
+  /** Creates the model of a file whose disk content is known (once). */
+  private adopt(path: string, content: string): FileState {
     const again = this.files.get(path);
     if (again) return again;
     const model = monaco.editor.getModel(this.uriOf(path)) ?? monaco.editor.createModel(content, languageOf(path), this.uriOf(path));

@@ -275,7 +275,10 @@ describe('IDE in headless Chromium', () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
     await page.locator('#btn-run').click();
-    await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 90_000 });
+    await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 140_000 }).catch(async (e) => {
+      await shot(page, '06-build-and-run-FAILED');
+      throw e;
+    });
     await shot(page, '06-build-and-run');
     await page.locator('#btn-stop').click();
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
@@ -290,7 +293,7 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.log-search').fill('MSC');
     await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBeGreaterThan(0);
     await page.locator('.log-search').fill('');
-  }, 150_000);
+  }, 180_000);
 
   it.skipIf(!canBuild || !canGenerate)('shows gcc errors in the problems panel and opens the generated file at the line', async () => {
     const { page } = s;
@@ -302,7 +305,7 @@ describe('IDE in headless Chromium', () => {
     const badLine = bad.split('\n').findIndex((l) => l.includes('broken_by_test')) + 1;
     await page.locator('#btn-run').click();
     const row = page.locator(`.problem-row.error[data-path="${path}"]`);
-    await row.first().waitFor({ timeout: 90_000 });
+    await row.first().waitFor({ timeout: 140_000 });
     expect(Number(await row.first().getAttribute('data-line'))).toBe(badLine);
     await row.first().click();
     await expect.poll(() => activeTab(page)).toBe(path);
@@ -312,7 +315,7 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 30_000 }).toMatch(/failed/);
     writeFileSync(join(s.workspace, path), good);
     await expect.poll(() => activeValue(page), { timeout: 5000 }).not.toContain('broken_by_test');
-  }, 150_000);
+  }, 180_000);
 
   it('tells the user when a write fails (server down) and saves once the server is back', async () => {
     const { page } = s;
