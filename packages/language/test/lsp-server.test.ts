@@ -130,4 +130,24 @@ describe('contract-language-server (stdio)', () => {
         }
         expect(codes).toContain('module-name-format');
     }, 30_000);
+
+    it('refreshes the diagnostics of a file that does not refer to a newly opened one (scheduler-missing)', async () => {
+        const latestCodes = (file: string) => {
+            const published = client.notifications.filter((n) => n.method === 'textDocument/publishDiagnostics' && (n.params as { uri: string }).uri === uri(file));
+            const last = published[published.length - 1]?.params as { diagnostics: Array<{ code?: string }> } | undefined;
+            return last?.diagnostics.map((d) => String(d.code));
+        };
+        const waitFor = async (condition: () => boolean) => {
+            const deadline = Date.now() + 20_000;
+            while (Date.now() < deadline && !condition()) await new Promise((r) => setTimeout(r, 100));
+        };
+        await waitFor(() => latestCodes('schema.contract')?.includes('scheduler-missing') ?? false);
+        expect(latestCodes('schema.contract')).toContain('scheduler-missing');
+        const sched = 'import "msa.contract";\nimport "msc.contract";\nimport "msd.contract";\nimport "schema.contract";\n' +
+            'scheduler configuration { modules { MSA; MSC; MSD; } schemas { cmd; } }\n';
+        client.notify('textDocument/didOpen', { textDocument: { uri: uri('sched.contract'), languageId: 'cactal', version: 1, text: sched } });
+        await waitFor(() => latestCodes('sched.contract') !== undefined && !(latestCodes('schema.contract') ?? []).includes('scheduler-missing'));
+        expect(latestCodes('sched.contract')).toEqual([]);
+        expect(latestCodes('schema.contract')).not.toContain('scheduler-missing');
+    }, 45_000);
 });
