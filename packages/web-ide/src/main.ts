@@ -16,6 +16,7 @@ import { toast } from './util/toast.js';
 import { debounce } from './util/dom.js';
 import { isContract, projectOf } from './workspace/file-kinds.js';
 import { toRange } from './lsp/lsp-convert.js';
+import { scanProtectedRegions } from './editor/protected-regions.js';
 import type { ArchitectureView } from './views/architecture-view.js';
 import type { TimelineView } from './views/timeline-view.js';
 
@@ -93,10 +94,26 @@ async function main(): Promise<void> {
     const isFile = id && !id.startsWith('view:');
     explorer.setActive(isFile ? id : undefined);
     const fs = isFile ? workspace.files.get(id) : undefined;
-    outline.show(fs && isContract(id!) ? fs.model.uri.toString() : undefined);
+    const guard = isFile ? editors.guardOf(id) : undefined;
+    if (fs && guard) showRegionOutline(fs.model);
+    else outline.show(fs && isContract(id!) ? fs.model.uri.toString() : undefined);
     ui.status.lang.textContent = fs ? (fs.model.getLanguageId() === 'c' ? 'C (generated)' : 'Cactal') : '';
   });
-  editors.editor.onDidChangeModelContent(() => outline.refresh());
+  const showRegionOutline = (model: monaco.editor.ITextModel) =>
+    outline.showRegions(
+      scanProtectedRegions(model.getValue()).regions.map((r) => ({ id: r.id, line: model.getPositionAt(r.start).lineNumber, offset: r.start })),
+      (region) => {
+        const pos = model.getPositionAt(region.offset);
+        editors.editor.setPosition(pos);
+        editors.editor.revealPositionInCenter(pos);
+        editors.editor.focus();
+      },
+    );
+  editors.editor.onDidChangeModelContent(() => {
+    const model = editors.editor.getModel();
+    if (model && editors.active && editors.guardOf(editors.active)) showRegionOutline(model);
+    else outline.refresh();
+  });
   editors.editor.onDidChangeCursorPosition((e) => (ui.status.cursor.textContent = `Ln ${e.position.lineNumber}, Col ${e.position.column}`));
 
   const report = (e: unknown) => toast('error', e instanceof ApiError ? e.message : String(e));

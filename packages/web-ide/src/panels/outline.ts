@@ -18,6 +18,16 @@ export class OutlinePanel {
     this.refresh = debounce(() => void this.load(), 250);
   }
 
+  /** For generated C: the protected regions (editable parts) of the file, click to reveal. */
+  showRegions<R extends { id: string; line: number }>(regions: R[], reveal: (region: R) => void): void {
+    this.uri = undefined;
+    this.list.replaceChildren(
+      h('div', { class: 'muted pad small' }, 'Protected regions (editable)'),
+      ...regions.map((r) => h('div', { class: 'outline-row', role: 'treeitem', 'data-name': r.id, style: 'padding-left:8px', onclick: () => reveal(r) },
+        h('span', { class: 'sym-icon region' }, '▍'), h('span', { class: 'sym-name' }, r.id), h('span', { class: 'sym-detail' }, `line ${r.line}`))),
+    );
+  }
+
   show(uri: string | undefined): void {
     this.uri = uri;
     if (!uri) this.list.replaceChildren(h('div', { class: 'muted pad' }, 'No Cactal file active'));

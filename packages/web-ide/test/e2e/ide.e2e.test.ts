@@ -149,6 +149,10 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => activeTab(page)).toBe(path);
     expect(await page.evaluate(() => (window as any).__ide.editors.editor.getModel().getLanguageId())).toBe('c');
     expect(await page.locator('.gen-readonly').count()).toBeGreaterThan(0);
+    // the outline lists the protected regions; clicking one puts the cursor inside it
+    await page.locator('.outline-row[data-name="protect_init_MSC"]').click();
+    const initLine = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    expect((await activeValue(page)).split('\n')[initLine - 1]).toContain('protect_init_MSC');
     await shot(page, '03-generated-module-c');
 
     const before = await activeValue(page);
