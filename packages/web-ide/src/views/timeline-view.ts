@@ -40,7 +40,7 @@ export class TimelineView {
     const csvs = this.workspace.allFiles().filter((f) => f.startsWith(logDir + '/') && f.endsWith('.csv'));
     if (!csvs.length) {
       this.info.textContent = '';
-      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Run the architecture (Build & Run, or \`make -C src-gen/generated/architecture run\`) to record them.`));
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Runs of \`make -C src-gen/generated/architecture run\` (or \`contract run\`) write them there; sandboxed Build & Run jobs do not copy their logs back yet.`));
       return;
     }
     const acts: Activation[] = [];
