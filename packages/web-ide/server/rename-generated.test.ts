@@ -37,3 +37,25 @@ describe('renameInGeneratedTree', () => {
     await expect(renameInGeneratedTree(root, 'MSC', 'MSK')).rejects.toThrow(/already exists/);
   });
 });
+
+describe('renameInGeneratedTree for datatypes and functions', () => {
+  it('renames Shared<T>.h / SharedFunction<f>.h and their region IDs, leaving other entities alone', async () => {
+    const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+    const common = join(root, 'generated', 'architecture', 'common');
+    mkdirSync(common, { recursive: true });
+    const region = (id: string, body: string) => `/*PROTECTED REGION ID(${id}) ENABLED START*/\n${body}\n/*PROTECTED REGION END*/\n`;
+    writeFileSync(join(common, 'SharedTypeF.h'), region('protect_eq_TypeF', 'return a->fufu == b->fufu;'));
+    writeFileSync(join(common, 'SharedTypeA.h'), region('protect_eq_TypeA', 'keep'));
+    writeFileSync(join(common, 'SharedFunctiondoit.h'), region('protect_function_impl_doit', 'do_it_by_hand();'));
+    await renameInGeneratedTree(root, 'TypeF', 'Pose');
+    await renameInGeneratedTree(root, 'doit', 'execute');
+    expect(readFileSync(join(common, 'SharedPose.h'), 'utf8')).toBe(region('protect_eq_Pose', 'return a->fufu == b->fufu;'));
+    expect(readFileSync(join(common, 'SharedFunctionexecute.h'), 'utf8')).toBe(region('protect_function_impl_execute', 'do_it_by_hand();'));
+    expect(readFileSync(join(common, 'SharedTypeA.h'), 'utf8')).toBe(region('protect_eq_TypeA', 'keep'));
+    expect(existsSync(join(common, 'SharedTypeF.h'))).toBe(false);
+  });
+
+  it('refuses names that are not identifiers', async () => {
+    await expect(renameInGeneratedTree(tmpdir(), '../x', 'y')).rejects.toThrow(/invalid entity name/);
+  });
+});

@@ -1,0 +1,82 @@
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, symlinkSync, existsSync, rmSync, realpathSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { startIdeServer, type IdeServer } from './ide-server.js';
+
+let base: string;
+let ws: string;
+let ide: IdeServer;
+
+beforeAll(async () => {
+  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-api-')));
+  ws = join(base, 'ws');
+  mkdirSync(join(ws, 'sub'), { recursive: true });
+  mkdirSync(join(base, 'outside'));
+  writeFileSync(join(base, 'outside', 'secret.txt'), 'secret');
+  writeFileSync(join(ws, 'a.contract'), 'datatype T {int x};');
+  symlinkSync(join(base, 'outside'), join(ws, 'out-link'));
+  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+});
+afterAll(async () => {
+  await ide.close();
+  rmSync(base, { recursive: true, force: true });
+});
+
+const call = async (method: string, path: string, body?: unknown) => {
+  const res = await fetch(ide.url + path, {
+    method,
+    body: body === undefined ? undefined : typeof body === 'string' ? body : JSON.stringify(body),
+  });
+  return { status: res.status, body: (await res.json()) as Record<string, unknown> };
+};
+
+describe('file API over HTTP', () => {
+  it('binds to 127.0.0.1 by default', () => {
+    expect(ide.url).toMatch(/^http:\/\/127\.0\.0\.1:\d+$/);
+  });
+
+  it('lists, reads and atomically writes files', async () => {
+    const tree = await call('GET', '/api/tree');
+    expect((tree.body.entries as Array<{ path: string }>).map((e) => e.path)).toEqual(['sub', 'a.contract']); // symlinks are not listed
+    expect((await call('GET', '/api/file?path=a.contract')).body.content).toBe('datatype T {int x};');
+    const put = await call('PUT', '/api/file?path=sub/new.contract', 'datatype U {int y};');
+    expect(put.status).toBe(200);
+    expect(readFileSync(join(ws, 'sub', 'new.contract'), 'utf8')).toBe('datatype U {int y};');
+  });
+
+  it('creates, renames and deletes, with 409 on conflicts', async () => {
+    expect((await call('POST', '/api/create', { path: 'sub/b.contract', type: 'file' })).status).toBe(201);
+    expect((await call('POST', '/api/create', { path: 'sub/b.contract', type: 'file' })).status).toBe(409);
+    expect((await call('POST', '/api/create', { path: 'dir2', type: 'dir' })).status).toBe(201);
+    expect((await call('POST', '/api/rename', { from: 'sub/b.contract', to: 'a.contract' })).status).toBe(409);
+    expect((await call('POST', '/api/rename', { from: 'sub/b.contract', to: 'dir2/c.contract' })).status).toBe(200);
+    expect(existsSync(join(ws, 'dir2', 'c.contract'))).toBe(true);
+    expect((await call('POST', '/api/rename', { from: 'dir2', to: 'dir2/inner' })).status).toBe(400);
+    expect((await call('DELETE', '/api/file?path=dir2')).status).toBe(200);
+    expect(existsSync(join(ws, 'dir2'))).toBe(false);
+    expect((await call('DELETE', '/api/file?path=dir2')).status).toBe(404);
+  });
+
+  it('refuses paths outside the workspace with clear 4xx errors', async () => {
+    const dotdot = await call('GET', '/api/file?path=../outside/secret.txt');
+    expect(dotdot.status).toBe(403);
+    expect(dotdot.body.error).toMatch(/'\.\.'/);
+    expect((await call('GET', `/api/file?path=${encodeURIComponent(join(base, 'outside', 'secret.txt'))}`)).status).toBe(403);
+    const link = await call('GET', '/api/file?path=out-link/secret.txt');
+    expect(link.status).toBe(403);
+    expect(link.body.error).toMatch(/leaves the workspace/);
+    expect((await call('PUT', '/api/file?path=out-link/evil.txt', 'x')).status).toBe(403);
+    expect(existsSync(join(base, 'outside', 'evil.txt'))).toBe(false);
+    expect((await call('POST', '/api/rename', { from: 'a.contract', to: '../a.contract' })).status).toBe(403);
+    expect((await call('DELETE', '/api/file?path=')).status).toBe(403);
+    expect((await call('POST', '/api/create', 'not json')).status).toBe(400);
+  });
+
+  it('answers unknown routes and missing front end builds with clear messages', async () => {
+    expect((await call('GET', '/api/nope')).status).toBe(404);
+    const page = await fetch(ide.url + '/');
+    expect(page.status).toBe(500);
+    expect(await page.text()).toMatch(/npm run build/);
+  });
+});
