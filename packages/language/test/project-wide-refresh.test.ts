@@ -3,10 +3,10 @@
  * diagnostics of other files that depend on it without referring to it (scheduler configuration,
  * duplicate names, cycles through several files).
  */
-import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { DocumentState, URI } from 'langium';
+import { Cancellation, DocumentState, OperationCancelled, URI } from 'langium';
 import { afterEach, describe, expect, it } from 'vitest';
 import { loadWorkspace } from '../src/node/load-workspace.js';
 
@@ -14,6 +14,8 @@ interface LiveWorkspace {
     codesOf(file: string): string[];
     write(file: string, text: string): Promise<void>;
     remove(file: string): Promise<void>;
+    /** Writes `file` and starts its update, cancelled (as by the next keystroke) once the changed files are parsed. */
+    writeCancelledAfterParsing(file: string, text: string): Promise<void>;
     /** The files validated while `action` runs, sorted. */
     validatedDuring(action: () => Promise<void>): Promise<string[]>;
 }
@@ -26,7 +28,10 @@ afterEach(() => {
 async function liveWorkspace(files: Record<string, string>): Promise<LiveWorkspace> {
     const dir = mkdtempSync(join(tmpdir(), 'cactal-refresh-'));
     dirs.push(dir);
-    for (const [file, text] of Object.entries(files)) writeFileSync(join(dir, file), text);
+    for (const [file, text] of Object.entries(files)) {
+        mkdirSync(join(dir, file, '..'), { recursive: true });
+        writeFileSync(join(dir, file), text);
+    }
     const ws = await loadWorkspace(dir);
     const workspace = ws.services.shared.workspace;
     let validated: string[] | undefined;
@@ -40,8 +45,18 @@ async function liveWorkspace(files: Record<string, string>): Promise<LiveWorkspa
             await workspace.DocumentBuilder.update([URI.file(join(dir, file))], []);
         },
         remove: async (file) => {
-            rmSync(join(dir, file));
+            rmSync(join(dir, file), { recursive: true });
             await workspace.DocumentBuilder.update([], [URI.file(join(dir, file))]);
+        },
+        writeCancelledAfterParsing: async (file, text) => {
+            writeFileSync(join(dir, file), text);
+            const source = new Cancellation.CancellationTokenSource();
+            const listener = workspace.DocumentBuilder.onBuildPhase(DocumentState.IndexedContent, () => source.cancel());
+            try {
+                await expect(workspace.DocumentBuilder.update([URI.file(join(dir, file))], [], source.token)).rejects.toBe(OperationCancelled);
+            } finally {
+                listener.dispose();
+            }
         },
         validatedDuring: async (action) => {
             validated = [];
@@ -183,5 +198,22 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         expect(await ws.validatedDuring(() => ws.write('msb.contract', syncModule('MSB', '2ms')))).toEqual(['msb.contract']);
         expect(await ws.validatedDuring(() => ws.write('sched.contract', scheduler(['one', 'two']) + '\n'))).toEqual(['sched.contract']);
         expect(await ws.validatedDuring(() => ws.write('sched.contract', scheduler(['two', 'one'])))).toEqual(['sched.contract', 'sup.contract']);
+    });
+
+    it('a change whose update was cancelled after parsing still refreshes the other files at the next update', async () => {
+        const ws = await liveWorkspace({ 'msa.contract': syncModule('MSA'), 'sch.contract': periodicSchema('sch'), 'sched.contract': '// scheduler to come\n' });
+        expect(ws.codesOf('sch.contract')).toEqual(['scheduler-missing']);
+        await ws.writeCancelledAfterParsing('sched.contract', scheduler(['sch']));
+        // the next keystroke changes no project-wide fact
+        await ws.write('sched.contract', scheduler(['sch']) + ' ');
+        expect(ws.codesOf('sch.contract')).toEqual([]);
+    });
+
+    it('deleting a folder refreshes the files that depended on the files in it', async () => {
+        const ws = await liveWorkspace({ 'msa.contract': syncModule('MSA'), 'sch.contract': periodicSchema('sch'), 'config/sched.contract': scheduler(['sch']).replace(/import "/g, 'import "../') });
+        expect(ws.codesOf('config/sched.contract')).toEqual([]);
+        expect(ws.codesOf('sch.contract')).toEqual([]);
+        await ws.remove('config');
+        expect(ws.codesOf('sch.contract')).toEqual(['scheduler-missing']);
     });
 });

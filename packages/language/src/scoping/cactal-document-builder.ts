@@ -15,25 +15,28 @@ import {
     type LangiumDocument, type URI
 } from 'langium';
 import { isModel } from '../generated/ast.js';
-import { documentFacts, factsOf, projectDependents } from './project-facts.js';
+import { documentFacts, factsOf, projectDependents, type DocumentFacts } from './project-facts.js';
 
 export class CactalDocumentBuilder extends DefaultDocumentBuilder {
     /** Top-level names exported by the changed and deleted files before the current update. */
     private namesBeforeUpdate = new Set<string>();
+    /**
+     * Facts of the files changed since the last completed update, as they were before the first of
+     * those changes: an update cancelled by the next keystroke must not lose what changed.
+     */
+    private readonly pendingFacts = new Map<string, DocumentFacts>();
 
     override async update(changed: URI[], deleted: URI[], cancelToken = Cancellation.CancellationToken.None): Promise<void> {
-        const touchedUris = [...changed, ...deleted];
-        const before = this.touchedDocuments(touchedUris);
-        const touched = new Set([...touchedUris.map((u) => u.toString()), ...before.keys()]);
-        this.namesBeforeUpdate = this.exportedNames(touched);
-        const factsBefore = factsOf(before);
+        const touchedUris = [...changed, ...deleted].map((u) => u.toString());
+        const before = this.documentsAt(touchedUris);
+        for (const [uri, doc] of before) if (!this.pendingFacts.has(uri)) this.pendingFacts.set(uri, documentFacts(doc));
+        this.namesBeforeUpdate = this.exportedNames(new Set(before.keys()));
         await super.update(changed, deleted, cancelToken);
-        const after = this.touchedDocuments(touchedUris);
-        for (const uri of after.keys()) {
-            touched.add(uri);
-            if (!factsBefore.has(uri)) factsBefore.set(uri, documentFacts(undefined));
-        }
-        for (const uri of factsBefore.keys()) if (!after.has(uri)) after.set(uri, undefined);
+
+        const after = this.documentsAt([...touchedUris, ...this.pendingFacts.keys()]);
+        const factsBefore = new Map(this.pendingFacts);
+        for (const uri of after.keys()) if (!factsBefore.has(uri)) factsBefore.set(uri, documentFacts(undefined));
+        const touched = new Set(after.keys());
         const all = this.langiumDocuments.all.toArray();
         const settled = (doc: LangiumDocument) => !touched.has(doc.uri.toString()) && doc.state === DocumentState.Validated;
         // names the changed files export now: files that export them too must show (or drop) the duplicate
@@ -41,9 +44,11 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
         const relink = all.filter((doc) => settled(doc) && this.exportsAny(doc, namesNow));
         // files whose project-wide diagnostics depend on a fact the changed files contribute: validation only
         const revalidate = [...projectDependents(factsBefore, factsOf(after), all)].filter((doc) => settled(doc) && !relink.includes(doc));
+        for (const doc of relink) this.resetToState(doc, DocumentState.ComputedScopes);
+        for (const doc of revalidate) this.resetToState(doc, DocumentState.IndexedReferences);
+        // from here a cancelled build is resumed by the next update (it rebuilds every document not validated)
+        this.pendingFacts.clear();
         if (relink.length + revalidate.length > 0) {
-            for (const doc of relink) this.resetToState(doc, DocumentState.ComputedScopes);
-            for (const doc of revalidate) this.resetToState(doc, DocumentState.IndexedReferences);
             await this.buildDocuments([...relink, ...revalidate], this.updateBuildOptions, cancelToken);
         }
     }
@@ -57,13 +62,16 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
         return this.exportsAny(document, this.namesBeforeUpdate);
     }
 
-    /** The workspace's documents at or under the given URIs (a changed URI may be a folder), by URI string. */
-    private touchedDocuments(uris: URI[]): Map<string, LangiumDocument | undefined> {
-        const found = new Map<string, LangiumDocument | undefined>();
-        const prefixes = uris.map((u) => u.toString());
+    /**
+     * The given URIs (with their document, if the workspace has one) and the workspace's documents
+     * under them (a changed or deleted URI may be a folder), by URI string.
+     */
+    private documentsAt(uris: string[]): Map<string, LangiumDocument | undefined> {
+        const found = new Map<string, LangiumDocument | undefined>(uris.map((u) => [u, undefined]));
+        const folders = uris.map((u) => (u.endsWith('/') ? u : `${u}/`));
         for (const doc of this.langiumDocuments.all) {
             const uri = doc.uri.toString();
-            if (prefixes.some((p) => uri === p || uri.startsWith(p.endsWith('/') ? p : `${p}/`))) found.set(uri, doc);
+            if (found.has(uri) || folders.some((f) => uri.startsWith(f))) found.set(uri, doc);
         }
         return found;
     }
