@@ -138,6 +138,11 @@ void ContractLogFlush(void)
     g_rt.log_dirty_since = 0;
 }
 
+void ContractLogFlushIfOlder(RTIME ageNs)
+{
+    if (g_rt.log_dirty_since && GetTime() - g_rt.log_dirty_since >= ageNs) ContractLogFlush();
+}
+
 void rt_log_maybe_flush(RTIME now)
 {
     if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= LOG_FLUSH_NS) ContractLogFlush();

@@ -86,6 +86,9 @@ int rt_send_request_to(const char *module, RequestMessage *msg);
 /* priority.c: apply `priority` to this process without a stderr warning (requests from a
  * supervisor). Returns 1 SCHED_FIFO, 0 nice, CONTRACT_EPERM (errno set) when not permitted. */
 int rt_apply_priority(int priority, const char *requester);
+/* Real-time processes (SCHED_FIFO granted): lock the memory (mlockall current + future) and
+ * prefault the stack, unless CONTRACT_MLOCK=0 or under ASan. 1 locked, 0 not (CSV record). */
+int rt_lock_memory(void);
 
 /* csvlog.c */
 int rt_log_open(void);

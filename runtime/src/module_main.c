@@ -67,7 +67,7 @@ int main(int argc, char *argv[])
     char detail[64];
     snprintf(detail, sizeof detail, "pid=%ld priority=%d", (long)getpid(), MODULE_PRIORITY);
     ContractLog("module_started", "", -1, 0, detail);
-    ContractSetPriority(MODULE_PRIORITY);
+    if (ContractSetPriority(MODULE_PRIORITY) == 1) rt_lock_memory(); /* real time: no page faults */
     if (rt_write_pid_file() != 0) return 2; /* last: the launcher treats it as "module ready" */
     int rc = ModuleMain(argc, (const char **)argv);
     snprintf(detail, sizeof detail, "status=%d", rc);

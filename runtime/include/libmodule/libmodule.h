@@ -312,6 +312,10 @@ long ContractActivations(void);
 void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail);
 /** Flush the CSV log now. */
 void ContractLogFlush(void);
+/** [ENGINE] Flush the CSV log if its oldest unwritten record waited at least `ageNs`. For
+ *  time-critical loops (ORD): call it when about to wait with time to spare, so that the write
+ *  never happens at the next mailbox read (the library writes records 50 ms old there). */
+void ContractLogFlushIfOlder(RTIME ageNs);
 
 /** Apply a priority 1..99: SCHED_FIFO if permitted, else one warning on stderr and a nice level.
  *  CONTRACT_SCHED=other skips SCHED_FIFO. Returns 1 if SCHED_FIFO, 0 if nice fallback. */
