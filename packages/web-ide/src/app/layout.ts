@@ -5,7 +5,7 @@ export function createLayout(root: HTMLElement) {
   const btn = (id: string, icon: string, label: string, title: string, cls = '') =>
     h('button', { class: `btn toolbar-btn ${cls}`, id, title }, h('span', { class: 'btn-icon' }, icon), h('span', {}, label));
   const toolbar = {
-    newFile: btn('btn-new-file', '＋', 'File', 'New file in the selected folder'),
+    newFile: btn('btn-new-file', '+', 'File', 'New file in the selected folder'),
     newFolder: btn('btn-new-folder', '▣', 'Folder', 'New folder in the selected folder'),
     newProject: btn('btn-new-project', '✦', 'New Project', 'Create a project from the report templates'),
     generate: btn('btn-generate', '⚙', 'Generate All', 'Generate the C tree (Ctrl+Shift+G)', 'accent'),
