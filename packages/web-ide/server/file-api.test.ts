@@ -23,9 +23,10 @@ afterAll(async () => {
   rmSync(base, { recursive: true, force: true });
 });
 
-const call = async (method: string, path: string, body?: unknown) => {
+const call = async (method: string, path: string, body?: unknown, headers: Record<string, string> = {}) => {
   const res = await fetch(ide.url + path, {
     method,
+    headers: { ...(typeof body === 'object' ? { 'content-type': 'application/json' } : {}), ...headers },
     body: body === undefined ? undefined : typeof body === 'string' ? body : JSON.stringify(body),
   });
   return { status: res.status, body: (await res.json()) as Record<string, unknown> };
@@ -70,7 +71,27 @@ describe('file API over HTTP', () => {
     expect(existsSync(join(base, 'outside', 'evil.txt'))).toBe(false);
     expect((await call('POST', '/api/rename', { from: 'a.contract', to: '../a.contract' })).status).toBe(403);
     expect((await call('DELETE', '/api/file?path=')).status).toBe(403);
-    expect((await call('POST', '/api/create', 'not json')).status).toBe(400);
+    expect((await call('POST', '/api/create', '{', { 'content-type': 'application/json' })).status).toBe(400);
+  });
+
+  it('refuses DNS-rebinding hosts and cross-site writes', async () => {
+    const { request } = await import('node:http');
+    const raw = (headers: Record<string, string>, method = 'GET', path = '/api/tree', body = '') =>
+      new Promise<number>((resolve, reject) => {
+        const r = request(ide.url + path, { method, headers }, (res) => {
+          res.resume();
+          resolve(res.statusCode ?? 0);
+        });
+        r.on('error', reject);
+        r.end(body);
+      });
+    expect(await raw({ host: 'evil.example:80' })).toBe(403);
+    expect(await raw({ host: `localhost:${new URL(ide.url).port}` })).toBe(200);
+    const create = JSON.stringify({ path: 'pwned.contract', type: 'file' });
+    expect(await raw({ origin: 'http://evil.example', 'content-type': 'application/json' }, 'POST', '/api/create', create)).toBe(403);
+    expect(await raw({ 'content-type': 'text/plain' }, 'POST', '/api/create', create)).toBe(415);
+    expect(existsSync(join(ws, 'pwned.contract'))).toBe(false);
+    expect(await raw({ origin: ide.url, 'content-type': 'application/json' }, 'POST', '/api/create', create)).toBe(201);
   });
 
   it('answers unknown routes and missing front end builds with clear messages', async () => {

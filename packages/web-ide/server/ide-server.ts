@@ -8,6 +8,7 @@ import { handleFileApi } from './file-api.js';
 import { WorkspaceWatcher } from './workspace-watcher.js';
 import { serveStatic } from './static-files.js';
 import { HttpError } from './http-error.js';
+import { guardRequest } from './request-guard.js';
 import { readJson, sendError, sendJson } from './http-util.js';
 import { PROJECT_TEMPLATES } from './project-templates.js';
 import { renameInGeneratedTree } from './rename-generated.js';
@@ -39,6 +40,7 @@ export const DEFAULT_PORT = 7400;
 /** Starts the IDE server: static front end + file API + watcher + generate + build service. */
 export async function startIdeServer(options: IdeServerOptions): Promise<IdeServer> {
   const paths = new WorkspacePaths(options.workspace);
+  const host = options.host ?? '127.0.0.1';
   const distDir = options.distDir ?? fileURLToPath(new URL('../dist', import.meta.url));
   const watcher = new WorkspaceWatcher(paths.root);
   let build: BuildServerLike | undefined;
@@ -55,6 +57,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   const handle = async (req: IncomingMessage, res: ServerResponse): Promise<void> => {
     const url = new URL(req.url ?? '/', 'http://localhost');
     try {
+      guardRequest(req, host);
       if (url.pathname.startsWith('/api/')) {
         if (BUILD_ROUTES.test(url.pathname)) {
           if (!build) throw new HttpError(503, buildServiceNote);
@@ -135,9 +138,14 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   const server = createServer((req, res) => void handle(req, res));
   // The build service's WebSocket event stream (GET /api/jobs/:id/ws) needs the upgrade too.
   server.on('upgrade', (req, socket, head) => {
+    try {
+      guardRequest(req, host);
+    } catch {
+      socket.destroy();
+      return;
+    }
     if (!build?.handleUpgrade?.(req, socket, head)) socket.destroy();
   });
-  const host = options.host ?? '127.0.0.1';
   await new Promise<void>((resolve, reject) => {
     server.once('error', reject);
     server.listen(options.port ?? DEFAULT_PORT, host, () => resolve());
