@@ -11,8 +11,8 @@
  * changed file contributed before or contributes now.
  */
 import {
-    Cancellation, DefaultDocumentBuilder, DocumentState, UriUtils,
-    type LangiumDocument, type URI
+    Cancellation, DefaultDocumentBuilder, DocumentState, URI, UriUtils,
+    type LangiumDocument
 } from 'langium';
 import { isModel } from '../generated/ast.js';
 import { documentFacts, factsOf, projectDependents, type DocumentFacts } from './project-facts.js';
@@ -67,8 +67,18 @@ export class CactalDocumentBuilder extends DefaultDocumentBuilder {
      * under them (a changed or deleted URI may be a folder), by URI string.
      */
     private documentsAt(uris: string[]): Map<string, LangiumDocument | undefined> {
-        const found = new Map<string, LangiumDocument | undefined>(uris.map((u) => [u, undefined]));
-        const folders = uris.map((u) => (u.endsWith('/') ? u : `${u}/`));
+        const found = new Map<string, LangiumDocument | undefined>();
+        const others: string[] = [];
+        for (const u of uris) {
+            const uri = URI.parse(u);
+            if (this.langiumDocuments.hasDocument(uri)) found.set(u, this.langiumDocuments.getDocument(uri));
+            else {
+                found.set(u, undefined);
+                others.push(u);
+            }
+        }
+        if (others.length === 0) return found;
+        const folders = others.map((u) => (u.endsWith('/') ? u : `${u}/`));
         for (const doc of this.langiumDocuments.all) {
             const uri = doc.uri.toString();
             if (found.has(uri) || folders.some((f) => uri.startsWith(f))) found.set(uri, doc);
