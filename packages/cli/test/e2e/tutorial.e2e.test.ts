@@ -83,7 +83,10 @@ describe('examples/tutorial end to end', () => {
             for (const w of every) expect(w.posted).toBe(w.activations);
             for (const w of every) expect(w.periodicity).toBe(1);
             expect(second[0]!.periodicity).toBe(2); // schemaCommande1 first (schemaCommande2 has * 1)
-            for (const w of second) expect(w.posted).toBe(Math.floor(w.activations / w.periodicity));
+            // schemaCommande1's flow: exactly every second activation
+            for (const w of second.filter((x) => x.periodicity === 2)) expect(w.posted).toBe(Math.floor(w.activations / 2));
+            // a later schemaCommande2 flow (* 1) may start in the middle of an MSC run: never more than declared
+            for (const w of second) expect(w.posted).toBeLessThanOrEqual(Math.floor(w.activations / w.periodicity));
             expect(second[0]!.activations).toBeGreaterThanOrEqual(2);
         });
     });
