@@ -15,13 +15,20 @@
  *    sched.deadline_misses                cycles not finished 1 ms after their tick (ORD:0)
  *    sched.cycles                         cycles released
  *    sched.cycle_response_us_max          longest tick -> last module finished
+ *  platform.timer_late_us_p50/p99/max, platform.timer_late_over_100us
+ *                            the machine's own floor, measured just before: a child process
+ *                            (SCHED_FIFO 80 if permitted, mlockall) sleeping to absolute 1 ms
+ *                            ticks with clock_nanosleep for 3 s, no IPC: how late it wakes up
+ *                            (the engines' release lateness cannot be better than this)
  *
  * Usage: bench_engines <bin dir with ORD BSU BMA BMB BMC> <contract-launch> <out.json> [seconds]
  */
 #define _GNU_SOURCE
+#include <sched.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -111,6 +118,54 @@ static double bench_supervisor(void) {
     return best;
 }
 
+/* ---- the platform's own timer wake-up lateness --------------------------------------- */
+
+static int cmp_ll(const void *a, const void *b) {
+    long long x = *(const long long *)a, y = *(const long long *)b;
+    return (x > y) - (x < y);
+}
+
+static long long mono_ns(void) {
+    struct timespec t;
+    clock_gettime(CLOCK_MONOTONIC, &t);
+    return (long long)t.tv_sec * 1000000000LL + t.tv_nsec;
+}
+
+/* In a child (its scheduling class must not leak into the launcher): 3000 absolute 1 ms ticks.
+   Writes p50, p99, max (us) and the count of wake-ups > 100 us late into out[4]. */
+static int bench_platform(double out[4]) {
+    int fds[2];
+    if (pipe(fds) != 0) return -1;
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        struct sched_param sp = {.sched_priority = 80};
+        sched_setscheduler(0, SCHED_FIFO, &sp); /* best effort, like the modules */
+        mlockall(MCL_CURRENT | MCL_FUTURE);
+        enum { N = 3000 };
+        static long long late[N];
+        long long t = mono_ns() + 1000000LL;
+        double r[4] = {0, 0, 0, 0};
+        for (int i = 0; i < N; i++, t += 1000000LL) {
+            struct timespec ts = {(time_t)(t / 1000000000LL), (long)(t % 1000000000LL)};
+            clock_nanosleep(CLOCK_MONOTONIC, TIMER_ABSTIME, &ts, NULL);
+            late[i] = mono_ns() - t;
+            if (late[i] > 100000) r[3]++;
+        }
+        qsort(late, N, sizeof late[0], cmp_ll);
+        r[0] = (double)late[N / 2] / 1e3;
+        r[1] = (double)late[(N - 1) * 99 / 100] / 1e3;
+        r[2] = (double)late[N - 1] / 1e3;
+        ssize_t w = write(fds[1], r, sizeof r);
+        _exit(w == (ssize_t)sizeof r ? 0 : 1);
+    }
+    close(fds[1]);
+    ssize_t n = pid > 0 ? read(fds[0], out, 4 * sizeof(double)) : -1;
+    close(fds[0]);
+    if (pid > 0) waitpid(pid, NULL, 0);
+    return n == (ssize_t)(4 * sizeof(double)) ? 0 : -1;
+}
+
 /* ---- scheduler jitter with real processes ------------------------------------------- */
 
 static double json_num(const char *js, const char *key) {
@@ -166,6 +221,10 @@ int main(int argc, char **argv) {
     const char *seconds = argc > 4 ? argv[4] : "10.2";
     double eps = bench_supervisor();
     fprintf(stderr, "bench: supervisor core: %.0f events/s (20-rule function)\n", eps);
+    double plat[4] = {-1, -1, -1, -1};
+    if (bench_platform(plat) != 0) fprintf(stderr, "bench: the platform timer measurement failed\n");
+    fprintf(stderr, "bench: platform: timer wake-up late p50 %.1f p99 %.1f max %.1f us, %.0f of 3000 > 100 us\n",
+            plat[0], plat[1], plat[2], plat[3]);
     char js[2048];
     if (bench_sched(argv[1], argv[2], seconds, js, sizeof js) != 0) return 1;
     fprintf(stderr, "bench: ORD: %s", js);
@@ -178,10 +237,13 @@ int main(int argc, char **argv) {
             "{\n  \"sched.period_jitter_us_p50\": %.3f,\n  \"sched.period_jitter_us_p99\": %.3f,\n"
             "  \"sched.period_jitter_us_max\": %.3f,\n  \"sched.missed_periods\": %.0f,\n"
             "  \"sched.deadline_misses\": %.0f,\n  \"sched.cycles\": %.0f,\n"
-            "  \"sched.cycle_response_us_max\": %.3f,\n  \"supervisor.events_per_s\": %.0f\n}\n",
+            "  \"sched.cycle_response_us_max\": %.3f,\n  \"supervisor.events_per_s\": %.0f,\n"
+            "  \"platform.timer_late_us_p50\": %.3f,\n  \"platform.timer_late_us_p99\": %.3f,\n"
+            "  \"platform.timer_late_us_max\": %.3f,\n  \"platform.timer_late_over_100us\": %.0f\n}\n",
             json_num(js, "release_late_us_p50"), json_num(js, "release_late_us_p99"),
             json_num(js, "release_late_us_max"), json_num(js, "overruns") + json_num(js, "missed_ticks"),
-            json_num(js, "deadline_misses"), json_num(js, "cycles"), json_num(js, "cycle_response_us_max"), eps);
+            json_num(js, "deadline_misses"), json_num(js, "cycles"), json_num(js, "cycle_response_us_max"), eps,
+            plat[0], plat[1], plat[2], plat[3]);
     fclose(o);
     return 0;
 }
