@@ -112,6 +112,32 @@ describe('contract build / run usage', () => {
 });
 
 describe('contract build / run on a project (bwrap)', () => {
+    it('builds the new project quietly when not on a terminal: one summary line', async () => {
+        const io = capture(root);
+        expect(await runCli(['build', 'robot', '--sandbox', 'bwrap'], io)).toBe(0);
+        expect(io.stdout).toBe('');
+        expect(io.stderr).toMatch(/^ok: build succeeded \[bwrap; prepare \d+\.\d s, build \d+\.\d s\]\n$/);
+    }, 240_000);
+
+    it('runs with a given start request and duration, and collects the CSV logs', async () => {
+        const io = capture(root);
+        const code = await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1500ms', '--start', 'MIS.mission(goal={2.0,0.0,0.0})', '--logs', 'robot-logs'], io);
+        expect(io.stdout).toContain('contract-launch: started MIS.mission(goal={2.0,0.0,0.0})');
+        expect(io.stdout).toContain('[ORD] activate goTo');
+        expect(io.stdout).toContain('contract-launch: all modules stopped cleanly');
+        expect(io.stderr).toContain(`CSV logs: 4 file(s) in ${join(root, 'robot-logs')}`);
+        expect(code).toBe(0);
+        const mis = readdirSync(join(root, 'robot-logs')).find((f) => f.startsWith('MIS_'))!;
+        expect(readFileSync(join(root, 'robot-logs', mis), 'utf8')).toContain('function mission started');
+    }, 240_000);
+
+    it("starts nothing with --start ''", async () => {
+        const io = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s', '--start', '', '--logs', 'idle-logs'], io)).toBe(0);
+        expect(io.stdout).not.toContain('started MIS');
+        expect(io.stdout).not.toContain('activate goTo');
+    }, 240_000);
+
     it('reports model errors without building (exit 1) and says what to do', async () => {
         mkdirSync(join(root, 'broken'));
         writeFileSync(join(root, 'broken', 'types.contract'), 'datatype T {int a = 1.5};\n');
