@@ -409,3 +409,32 @@ void test_unsub_spent_oneshot(void)
     free(log);
     h_teardown();
 }
+
+/* "Is this module running?" (supervisors ask before starting a module of an event schema):
+ * QueryStatus says running=yes from a START until the run ends or a STOP arrives, even when
+ * nobody wants the STOP's ack. */
+void test_status_running(void)
+{
+    REQUIRE(h_setup("status") == 0);
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    char text[1024];
+    RTIME soon = GetTime() + 2000000000LL;
+    CHECK(QueryStatus("C1", text, sizeof text, soon) == CONTRACT_OK && strstr(text, " running=no"));
+    CHECK(set_param("C1", 0, 5000));                 /* runs last 5 s unless stopped */
+    CHECK(SendStart("C1", ACK_NOTHING, 0) == 0);
+    CHECK(QueryStatus("C1", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=yes"));
+    CHECK(SendStop("C1", ACK_NOTHING, 0) == 0);
+    CHECK(QueryStatus("C1", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=no"));
+    CHECK(set_param("C1", 0, 0));                    /* a run that finishes by itself */
+    CHECK(run_once("C1", 5));
+    CHECK(QueryStatus("C1", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=no"));
+    CHECK(QueryStatus("NOPE", text, sizeof text, GetTime() + 100000000LL) == CONTRACT_EUNKNOWN);
+    /* a loop that never goes back to WaitForRequest nor acks (WaitForRequestUntil / polling,
+     * like an asynchronous module): here the tester itself, asking its own mailbox */
+    RequestMessage *m = h_msg();
+    CHECK(SendStart("tester", ACK_NOTHING, 0) == 0 && LookForRequest(m) && m->Type == REQ_START);
+    CHECK(QueryStatus("tester", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=yes"));
+    CHECK(SendStop("tester", ACK_NOTHING, 0) == 0 && LookForRequest(m) && m->Type == REQ_STOP);
+    CHECK(QueryStatus("tester", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=no"));
+    h_teardown();
+}
