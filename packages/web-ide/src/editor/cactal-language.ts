@@ -82,6 +82,15 @@ export function defineStudioTheme(): void {
       { token: 'comment', foreground: '6a9955', fontStyle: 'italic' },
       { token: 'string', foreground: 'ce9178' },
       { token: 'operator', foreground: '89ddff' },
+      // semantic tokens (language server)
+      { token: 'class', foreground: 'e5c07b', fontStyle: 'bold' },
+      { token: 'namespace', foreground: '61afef' },
+      { token: 'property', foreground: '9cdcfe' },
+      { token: 'parameter', foreground: 'd19a66' },
+      { token: 'variable', foreground: 'e06c75' },
+      { token: 'function', foreground: 'dcdcaa' },
+      { token: 'method', foreground: 'dcdcaa' },
+      { token: 'label', foreground: '56b6c2', fontStyle: 'bold' },
     ],
     colors: {
       'editor.background': '#15181e',

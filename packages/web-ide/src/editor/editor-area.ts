@@ -58,6 +58,7 @@ export class EditorArea {
       fixedOverflowWidgets: true,
       model: null,
       tabSize: 4,
+      'semanticHighlighting.enabled': true,
       readOnlyMessage: { value: 'Generated code: only the content of PROTECTED REGIONs can be edited.' },
     });
     this.editor.onDidChangeCursorSelection(() => this.updateReadOnly());

@@ -48,7 +48,7 @@ export class LspClient {
     this.connection.onRequest('window/workDoneProgress/create', () => null);
     this.connection.onNotification('window/logMessage', () => undefined);
     this.connection.listen();
-    await this.connection.sendRequest('initialize', {
+    const init = await this.connection.sendRequest<lsp.InitializeResult>('initialize', {
       processId: null,
       rootUri: 'file:///workspace',
       workspaceFolders: [{ uri: 'file:///workspace', name: 'workspace' }],
@@ -61,6 +61,7 @@ export class LspClient {
           documentSymbol: { hierarchicalDocumentSymbolSupport: true },
           rename: { prepareSupport: true },
           codeAction: { codeActionLiteralSupport: { codeActionKind: { valueSet: ['quickfix', 'refactor', 'source'] } } },
+          semanticTokens: { requests: { full: true }, tokenTypes: [], tokenModifiers: [], formats: ['relative'] },
         },
         workspace: { workspaceFolders: true, configuration: true, workspaceEdit: { documentChanges: true } },
       },
@@ -68,6 +69,8 @@ export class LspClient {
     this.connection.sendNotification('initialized', {});
     this.trackModels();
     this.registerProviders();
+    const legend = init.capabilities.semanticTokensProvider?.legend;
+    if (legend) this.registerSemanticTokens(legend);
     this.resolveReady();
   }
 
@@ -245,6 +248,18 @@ export class LspClient {
         });
         return r.map(map);
       },
+    });
+  }
+
+  /** Semantic highlighting from the server (modules, ports, labels... coloured by meaning). */
+  private registerSemanticTokens(legend: lsp.SemanticTokensLegend): void {
+    monaco.languages.registerDocumentSemanticTokensProvider(CACTAL_LANGUAGE_ID, {
+      getLegend: () => legend,
+      provideDocumentSemanticTokens: async (model) => {
+        const r = await this.request<lsp.SemanticTokens | null>('textDocument/semanticTokens/full', { textDocument: { uri: model.uri.toString() } });
+        return r ? { data: new Uint32Array(r.data), resultId: r.resultId } : null;
+      },
+      releaseDocumentSemanticTokens: () => undefined,
     });
   }
 
