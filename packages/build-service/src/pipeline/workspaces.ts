@@ -37,7 +37,8 @@ const UID_SPAN = 60_000;
 export class WorkspaceManager {
   private readonly keyed = new Map<string, Keyed>();
   private readonly fresh = new Set<string>();
-  private uidCounter = 0;
+  /** Random start: two services on one machine rarely hand out the same uids. */
+  private uidCounter = Math.floor(Math.random() * UID_SPAN);
 
   constructor(
     private readonly baseDir: string,
