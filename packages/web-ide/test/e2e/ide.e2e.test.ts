@@ -15,6 +15,8 @@ const canBuild = await import('@contract-studio/build-service').then((m) => type
 
 
 const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
+const call = (page: Session['page'], method: string, path: string) =>
+  page.evaluate(async ({ method, path }) => (await fetch(`/api/file?path=${encodeURIComponent(path)}`, { method })).status, { method, path });
 
 describe('IDE in headless Chromium', () => {
   beforeAll(async () => {
@@ -121,6 +123,25 @@ describe('IDE in headless Chromium', () => {
     const text = disk('amodule2.contract').replace('asynchronous module MAB', '// edited outside\nasynchronous module MAB');
     writeFileSync(join(s.workspace, 'amodule2.contract'), text);
     await expect.poll(() => activeValue(page), { timeout: 5000 }).toContain('// edited outside');
+  });
+
+  it('picks up a file created on disk: explorer row, worker knows it, cross-file reference resolves', async () => {
+    const { page } = s;
+    writeFileSync(join(s.workspace, 'extra_types.contract'), 'datatype Pose {float x = 0.0, float y = 0.0};\n');
+    await page.locator('.tree-row[data-path="extra_types.contract"]').waitFor({ timeout: 5000 });
+    writeFileSync(join(s.workspace, 'uses_pose.contract'), 'import "extra_types.contract";\nfunction void usePose(Pose p);\n');
+    await page.locator('.tree-row[data-path="uses_pose.contract"]').waitFor({ timeout: 5000 });
+    await page.waitForTimeout(1000);
+    expect(await page.locator('.problem-row[data-path="uses_pose.contract"]').count()).toBe(0);
+    await openFile(page, 'uses_pose.contract');
+    await placeCursor(page, 'Pose p');
+    await page.keyboard.press('F12');
+    await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('extra_types.contract');
+    await page.evaluate(() => (window as any).__ide.editors.close('extra_types.contract'));
+    await page.evaluate(() => (window as any).__ide.editors.close('uses_pose.contract'));
+    await call(page, 'DELETE', 'uses_pose.contract');
+    await call(page, 'DELETE', 'extra_types.contract');
+    await expect.poll(() => page.locator('.tree-row[data-path="extra_types.contract"]').count(), { timeout: 5000 }).toBe(0);
   });
 
   it('refuses file API paths outside the workspace with clear 4xx errors', async () => {
