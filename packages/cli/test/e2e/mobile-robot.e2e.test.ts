@@ -119,7 +119,7 @@ describe('examples/mobile-robot end to end', () => {
         });
     });
 
-    it('builds in docker when an engine can run here (else SKIPPED loudly)', (ctx) => {
+    it('builds and runs in docker when an engine can run here (else SKIPPED loudly)', (ctx) => {
         const docker = dockerUp();
         try {
             if (!docker.available) {
@@ -132,6 +132,19 @@ describe('examples/mobile-robot end to end', () => {
             expect(json.result.message).toMatch(/build succeeded/);
             expect(json.diagnostics).toEqual([]);
             expect(r.code).toBe(0);
+            // the run: same sequence from the output (the CSV logs stay in the container volume)
+            const run = contract(['run', 'mobile-robot', '--sandbox', 'docker', '--duration', '7s', '--format', 'json'], scratch);
+            const ran = JSON.parse(run.stdout) as RunJson;
+            expect(ran.result.message).toBe('run finished (exit 0)');
+            expect(ran.moduleFailures).toEqual([]);
+            const mis = ran.output.filter((l) => l.source === 'MIS').map((l) => l.line);
+            expect(isSubsequence(mis, [
+                'rule mission.TELEOP active', 'rule mission.TELEOP inactive', 'rule mission.AUTO active',
+                'rule mission.AUTO inactive', 'rule mission.STOP active', 'rule mission.STOP inactive', 'rule mission.AUTO active',
+            ])).toBe(true);
+            expect(ran.output.some((l) => l.source === 'OBS' && l.line === 'OBS: obstacle ahead (nearest 0.35 m)')).toBe(true);
+            expect(ran.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
+            expect(run.code).toBe(0);
         } finally {
             docker.stop();
         }
