@@ -4,7 +4,7 @@
  * every workspace .contract file (didOpen), so cross-file references resolve for files that have
  * no tab. Extra request `cactal/architecture` returns the schemas for the architecture view.
  */
-import { DocumentState, EmptyFileSystem } from 'langium';
+import { DocumentState, EmptyFileSystem, URI } from 'langium';
 import { startLanguageServer } from 'langium/lsp';
 import { BrowserMessageReader, BrowserMessageWriter, createConnection } from 'vscode-languageserver/browser.js';
 import { createCactalServices } from '@contract-studio/language';
@@ -21,7 +21,8 @@ startLanguageServer(shared);
 // Project-wide checks (one scheduler configuration, names unique across files) depend on files a
 // document does not reference: after files are added or removed, rebuild every document.
 connection.onNotification('cactal/revalidateAll', () => {
-  const uris = shared.workspace.LangiumDocuments.all.map((d) => d.uri).toArray();
+  const docs = shared.workspace.LangiumDocuments;
+  const uris = shared.workspace.TextDocuments.all().map((d) => URI.parse(d.uri)).filter((u) => docs.hasDocument(u));
   void shared.workspace.DocumentBuilder.update(uris, []);
 });
 

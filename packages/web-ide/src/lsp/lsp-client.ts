@@ -105,6 +105,9 @@ export class LspClient {
       this.diagnostics.delete(uri);
       this.markBuilt(uri);
       void this.connection.sendNotification('textDocument/didClose', { textDocument: { uri } });
+      // Models are disposed when their file is deleted or moved: the server must forget the document
+      // (Langium keeps closed documents otherwise, and would rebuild them from a file system it has not).
+      void this.connection.sendNotification('workspace/didChangeWatchedFiles', { changes: [{ uri, type: 3 }] } satisfies lsp.DidChangeWatchedFilesParams);
       this.onDiagnostics.fire({ uri, diagnostics: [] });
     });
   }
