@@ -18,6 +18,11 @@ export const EXIT_ENVIRONMENT = 3;
 /** Interrupted by Ctrl+C (the job was cancelled, everything stopped). */
 export const EXIT_INTERRUPTED = 130;
 
+/** Progress is for people: only when both output streams are a terminal (never in CI logs or pipes). */
+export function onTerminal(): boolean {
+    return process.stdout.isTTY === true && process.stderr.isTTY === true;
+}
+
 export const SANDBOXES: readonly SandboxChoice[] = ['auto', 'bwrap', 'docker', 'none'];
 const FORMATS = ['text', 'json'] as const;
 type Format = (typeof FORMATS)[number];
@@ -189,6 +194,7 @@ export async function runJob(
 
 /** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
 function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines']): (e: JobEvent) => void {
+    const madeParts = new Set<string>();
     return (e) => {
         if (e.type === 'diagnostic') {
             if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic));
@@ -217,6 +223,14 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             io.err(`${e.line}\n`);
         } else if (opts.progress && (e.source === 'service' || e.source === 'runtime')) {
             io.err(`${e.line}\n`);
+        } else if (opts.progress && e.step === 'build') {
+            // one line per part of the tree make works on (modules, control tools)
+            const part = /Entering directory '.*\/(?:modules\/(\w+)_mod|(tools))'/.exec(e.line);
+            const name = part ? (part[1] ?? part[2])! : null;
+            if (name && !madeParts.has(name)) {
+                madeParts.add(name);
+                io.err(`  make: ${name}\n`);
+            }
         }
     };
 }
@@ -260,7 +274,7 @@ export const buildCommand: Command = {
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const opts = await parseJobOptions(parseArgs(args, COMMON_VALUED, COMMON_FLAGS), io, process.stderr.isTTY === true);
+        const opts = await parseJobOptions(parseArgs(args, COMMON_VALUED, COMMON_FLAGS), io, onTerminal());
         const outcome = await runJob(opts, { action: 'build' }, io);
         if ('error' in outcome) {
             io.err(`contract build: ${outcome.error}\n`);

@@ -8,7 +8,7 @@ import { constants, promises as fsp } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, UsageError, type CliIO, type Command } from '../command.js';
-import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, parseJobOptions, reportBuild, runJob, type JobOutcome } from './build.js';
+import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from './build.js';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
 export function parseDuration(text: string): number {
@@ -88,7 +88,7 @@ export const runCommand: Command = {
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs'], COMMON_FLAGS);
-        const opts = await parseJobOptions(parsed, io, process.stderr.isTTY === true);
+        const opts = await parseJobOptions(parsed, io, onTerminal());
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
         const startOption = parsed.options.get('start');
