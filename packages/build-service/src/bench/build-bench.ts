@@ -2,7 +2,7 @@
  * Build service benchmark -> bench/parts/build.json (flat metric -> number):
  *   build.cold_s.<sandbox>        tutorial: submit -> built, fresh workspace (generation + full make)
  *   build.noop_s.<sandbox>        the same build again (nothing changed): target < 1 s
- *   build.sandbox_overhead_ratio  make step of the same clean tutorial build, bwrap / none (median of 3)
+ *   build.sandbox_overhead_ratio  make step of the same clean tutorial build, bwrap / none (median of 5, alternated)
  *   stream.latency_ms_p50         a module's printf (its CLOCK_REALTIME stamp) -> SSE client, median
  * The runtime is built once beforehand (it is a per-machine cache, not a per-build cost) from a
  * snapshot of runtime/, so concurrent edits of the runtime do not disturb the figures.
@@ -69,7 +69,7 @@ async function main(): Promise<void> {
 
     const makeMs: Record<string, number[]> = { none: [], bwrap: [] };
     await withServer(cacheDir, runtimeSource, async (url) => {
-      for (let i = 0; i < 3; i++) {
+      for (let i = 0; i < 5; i++) {
         for (const sandbox of ['none', 'bwrap'] as const) {
           const { job } = await timedJob(url, { action: 'build', sandbox, project: { files } });
           makeMs[sandbox]!.push(job.result.durations_ms.build as number);
