@@ -1,4 +1,5 @@
 /** `contract new`, `build`, `run`: usage errors, messages, exit codes, text output — real commands on real files. */
+import { spawnSync } from 'node:child_process';
 import { chmodSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -6,6 +7,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import type { CliIO } from '../src/command.js';
 import { checkStart, moduleFailures, parseDuration } from '../src/commands/run.js';
+import { REPO } from './e2e/harness.js';
 
 function capture(cwd: string): CliIO & { stdout: string; stderr: string } {
     const io = {
@@ -117,6 +119,19 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(await runCli(['build', 'robot', '--sandbox', 'bwrap'], io)).toBe(0);
         expect(io.stdout).toBe('');
         expect(io.stderr).toMatch(/^ok: build succeeded \[bwrap; prepare \d+\.\d s, build \d+\.\d s\]\n$/);
+    }, 240_000);
+
+    it('shows progress on a terminal, none with --format json (under a pseudo-terminal from script(1))', () => {
+        const bin = join(REPO, 'packages/cli/bin/contract.js');
+        const onTty = (args: string) => spawnSync('script', ['-qec', `${process.execPath} ${bin} ${args}`, '/dev/null'], { cwd: root, encoding: 'utf8', timeout: 240_000 });
+        const text = onTty('build robot --sandbox bwrap');
+        expect(text.stdout).toContain('[building]');
+        expect(text.stdout).toMatch(/generated src-gen\/ \(\d+ file\(s\) written|project unchanged since the last build/);
+        expect(text.stdout).toContain('ok: build succeeded');
+        expect(text.status).toBe(0);
+        const json = onTty('build robot --sandbox bwrap --format json');
+        expect(json.stdout).not.toContain('[building]');
+        expect(JSON.parse(json.stdout.replace(/\r/g, '')).ok).toBe(true);
     }, 240_000);
 
     it('runs with a given start request and duration, and collects the CSV logs', async () => {
