@@ -349,6 +349,12 @@ async function main(): Promise<void> {
     return;
   }
   ui.workspaceName.textContent = workspace.name;
+  void api.info().then((info) => {
+    if (info.buildAvailable) return;
+    ui.toolbar.run.disabled = true;
+    ui.toolbar.run.title = `Build & Run unavailable: ${info.buildService}`;
+    ui.status.job.textContent = '■ build service unavailable';
+  }).catch(() => undefined);
   document.title = `${workspace.name} — ContrACT Studio`;
   explorer.setEntries(workspace.entries);
   await lspStarted;
