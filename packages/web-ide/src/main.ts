@@ -133,7 +133,10 @@ async function main(): Promise<void> {
   ui.toolbar.newFile.addEventListener('click', () => void newEntry('file'));
   ui.toolbar.newFolder.addEventListener('click', () => void newEntry('dir'));
   ui.toolbar.newProject.addEventListener('click', async () => {
-    const folder = await askText('New project from the report templates', rootHasContracts() ? 'my-robot' : '', 'Folder to create (empty = the workspace root). Creates datatype, module1, module2, schema, sched and supervisor .contract files.');
+    const hint = rootHasContracts()
+      ? 'Folder to create. This workspace already holds a project and the language server checks all files together: to work on the new project alone, open its folder with `contract serve <folder>`.'
+      : 'Folder to create (empty = the workspace root). Creates datatype, module1, module2, schema, sched and supervisor .contract files.';
+    const folder = await askText('New project from the report templates', rootHasContracts() ? 'my-robot' : '', hint);
     if (folder === null && rootHasContracts()) return;
     try {
       const r = await api.newProject(folder ?? '');
