@@ -66,6 +66,7 @@ describe('sandbox none', () => {
     expect(job.warnings[0]).toMatch(/^sandbox none: not enforced: network isolation, read-only root .*memory limit, process limit/);
     expect(job.events.some((e: any) => e.type === 'line' && e.stream === 'system' && e.line.startsWith('warning: sandbox none'))).toBe(true);
     expect(job.result.mechanisms.memory).toBe('none');
+    expect(job.result.mechanisms.user).toMatch(/^host uid \d+ \(setpriv, no new privileges\)$/);
   });
 });
 

@@ -1,19 +1,21 @@
 /**
  * No sandbox: plain host processes in the work dir, only when asked for explicitly. Time and output
- * limits still hold (the service enforces them); nothing else does, and every job says so.
+ * limits still hold (the service enforces them); when the service runs as root the processes also
+ * drop to the workspace's own uid with no new privileges. Nothing else holds, and every job says so.
  */
 import { startHostProcess } from './host-process.js';
 import type { Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
 import { join } from 'node:path';
 
-export const NONE_UNENFORCED = [
+const AS_ROOT = process.getuid?.() === 0;
+
+export const NONE_UNENFORCED: readonly string[] = [
   'network isolation',
-  'read-only root (the build can write anywhere the service user can)',
-  'non-root user',
-  'no new privileges',
+  'read-only root (the build can write anywhere its user can)',
+  ...(AS_ROOT ? [] : ['non-root user', 'no new privileges']),
   'memory limit',
   'process limit',
-] as const;
+];
 
 export class NoSandbox implements Sandbox {
   readonly name = 'none' as const;
@@ -33,8 +35,11 @@ export class NoSandbox implements Sandbox {
   }
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
+    const drop = AS_ROOT && cmd.owner
+      ? ['setpriv', `--reuid=${cmd.owner.uid}`, `--regid=${cmd.owner.gid}`, '--clear-groups', '--no-new-privs', '--']
+      : [];
     return startHostProcess({
-      argv: cmd.argv,
+      argv: [...drop, ...cmd.argv],
       cwd: join(cmd.workDir, cmd.cwd),
       env: {
         PATH: process.env.PATH ?? '/usr/local/bin:/usr/bin:/bin',
@@ -49,7 +54,7 @@ export class NoSandbox implements Sandbox {
         processes: 'none',
         network: 'none',
         filesystem: 'none',
-        user: `none (service uid ${process.getuid?.()})`,
+        user: drop.length ? `host uid ${cmd.owner!.uid} (setpriv, no new privileges)` : `none (service uid ${process.getuid?.()})`,
         time: 'service-timer',
         output: 'service-counter',
       },
