@@ -61,7 +61,7 @@ describe('examples/mobile-robot end to end', () => {
         it('releases the 100 Hz loop WHL -> ODO -> VEL -> MOT in precedence order every 10 ms', () => {
             const chain = checkChain(logs, ['WHL', 'ODO', 'VEL', 'MOT']);
             expect(chain.violations).toEqual([]);
-            expect(chain.completeCycles).toBeGreaterThan(350); // ~650 when the machine is idle
+            expect(chain.completeCycles).toBeGreaterThan(300); // ~650 when the machine is idle
             expect(chain.medianPeriodMs).toBeGreaterThan(9);
             expect(chain.medianPeriodMs).toBeLessThan(11);
         });
@@ -69,7 +69,8 @@ describe('examples/mobile-robot end to end', () => {
         it('releases the 10 Hz loop LOC -> NAV in order every 100 ms', () => {
             const chain = checkChain(logs, ['LOC', 'NAV']);
             expect(chain.violations).toEqual([]);
-            expect(chain.completeCycles).toBeGreaterThan(20);
+            // active only in autonomous mode (~1.5-3.0 s and 4.5-7.0 s: ~40 cycles on an idle machine)
+            expect(chain.completeCycles).toBeGreaterThanOrEqual(10);
             expect(chain.medianPeriodMs).toBeGreaterThan(90);
             expect(chain.medianPeriodMs).toBeLessThan(110);
         });
