@@ -27,3 +27,18 @@ describe('activation log', () => {
     expect(() => activationsFromCsv('a,b,c\n1,2,3')).toThrow(/not a ContrACT CSV log/);
   });
 });
+
+describe('activation log from a real tutorial run (runtime CSV excerpt)', () => {
+  const csv = [
+    HEADER,
+    '5518146784649,2026-11-21T23:48:48.685592Z,MSC,module_started,,,0,pid=6981 priority=84',
+    '5518147186959,2026-11-21T23:48:48.685995Z,MSC,memory_lock,,,0,"mlockall(MCL_CURRENT|MCL_FUTURE), 256 KiB of stack prefaulted"',
+    '5518900442459,2026-11-21T23:48:49.439250Z,MSC,request_received,SUP,0,24,SETPARAM',
+    '5520151929160,2026-11-21T23:48:50.690737Z,MSC,run_started,ORD,,0,activation=1',
+    '5520151960477,2026-11-21T23:48:50.690768Z,MSC,run_finished,,,0,activation=1 ACK_FINISHED',
+  ].join('\n');
+  it('keeps quoted details with commas and pairs the activation', () => {
+    const acts = activationsFromCsv(csv);
+    expect(acts).toEqual([{ module: 'MSC', start: 5520151929160, end: 5520151960477, detail: 'activation=1' }]);
+  });
+});

@@ -67,9 +67,11 @@ export class TimelineView {
     const period = inferPeriod(acts);
     const lane = 26;
     const left = 70;
-    const width = Math.max(900, Math.min(6000, Math.round(span / 1e6) * 4));
+    // fit the visible width (hover a bar for exact times)
+    const width = Math.max(600, (this.canvas.clientWidth || 1000) - 40);
     const height = modules.length * lane + 30;
     const x = (t: number) => left + ((t - t0) / span) * (width - left - 10);
+    const axis = svg('text', { x: width - 10, y: height - 6, class: 'period-label', 'text-anchor': 'end' }, `${(span / 1e6).toFixed(1)} ms`);
     const root = svg('svg', { width, height, class: 'timeline-svg' });
     if (period) {
       let k = 0;
@@ -90,6 +92,7 @@ export class TimelineView {
       bar.append(svg('title', {}, `${a.module} ${((a.start - t0) / 1e6).toFixed(3)} ms → ${a.end ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}`));
       root.append(bar);
     }
+    root.append(axis);
     this.info.textContent = `${acts.length} activations · ${modules.length} modules · ${(span / 1e6).toFixed(1)} ms${period ? ` · period ≈ ${(period / 1e6).toFixed(2)} ms` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
     this.canvas.replaceChildren(root);
   }
