@@ -20,15 +20,20 @@ export class TimelineView {
   readonly element: HTMLElement;
   private readonly canvas: HTMLElement;
   private readonly info: HTMLElement;
+  private readonly zoom: HTMLInputElement;
+  private last: { acts: Activation[]; files: number; errors: string[] } | undefined;
 
   constructor(
     private readonly project: () => string,
     private readonly workspace: Workspace,
   ) {
     this.info = h('span', { class: 'muted' });
+    this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)' });
+    this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors));
     this.canvas = h('div', { class: 'timeline-canvas' });
     this.element = h('div', { class: 'timeline-view' },
       h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Activations per period'), this.info, h('span', { class: 'grow' }),
+        h('label', { class: 'toggle' }, 'Zoom ', this.zoom),
         h('button', { class: 'btn small', onclick: () => void this.update() }, '⟳ Reload logs')),
       this.canvas);
   }
@@ -56,6 +61,7 @@ export class TimelineView {
   }
 
   private draw(acts: Activation[], files: number, errors: string[]): void {
+    this.last = { acts, files, errors };
     if (!acts.length) {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No activations in ${files} log file(s). ${errors.join(' ')}`));
       return;
@@ -68,7 +74,7 @@ export class TimelineView {
     const lane = 26;
     const left = 70;
     // fit the visible width (hover a bar for exact times)
-    const width = Math.max(600, (this.canvas.clientWidth || 1000) - 40);
+    const width = Math.max(600, (this.canvas.clientWidth || 1000) - 40) * 2 ** Number(this.zoom.value);
     const height = modules.length * lane + 30;
     const x = (t: number) => left + ((t - t0) / span) * (width - left - 10);
     const axis = svg('text', { x: width - 10, y: height - 6, class: 'period-label', 'text-anchor': 'end' }, `${(span / 1e6).toFixed(1)} ms`);

@@ -392,6 +392,9 @@ describe('IDE in headless Chromium', () => {
     expect(await page.locator('.lane-label').allTextContents()).toEqual(['MSA', 'MSC', 'MSD']);
     expect(await page.locator('.timeline-view .muted').first().textContent()).toMatch(/period ≈ 10\.00 ms/);
     await shot(page, '09-timeline');
+    const w0 = Number(await page.locator('.timeline-svg').getAttribute('width'));
+    await page.locator('.timeline-view input.zoom').fill('2');
+    await expect.poll(async () => Number(await page.locator('.timeline-svg').getAttribute('width'))).toBe(w0 * 4);
   });
 
   it('creates, renames and deletes files and folders from the explorer', async () => {
