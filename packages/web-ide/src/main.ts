@@ -11,7 +11,7 @@ import { LspClient } from './lsp/lsp-client.js';
 import { BuildPanel } from './build/build-panel.js';
 import { GeneratePanel } from './build/generate-panel.js';
 import { api, ApiError } from './api.js';
-import { askText, confirmAction } from './util/dialog.js';
+import { askText, askFields, confirmAction } from './util/dialog.js';
 import { toast } from './util/toast.js';
 import { debounce } from './util/dom.js';
 import { isContract, projectOf } from './workspace/file-kinds.js';
@@ -248,12 +248,34 @@ async function main(): Promise<void> {
 
   // ---- Build & Run / Stop
   let currentBuildProject = '';
+  const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
+  const runSettings = (): { duration: number; start?: string } => {
+    try {
+      const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as { duration?: number; start?: string };
+      return { duration: v.duration ?? 10, start: v.start || undefined };
+    } catch {
+      return { duration: 10 };
+    }
+  };
+  ui.toolbar.runSettings.addEventListener('click', async () => {
+    const cur = runSettings();
+    const r = await askFields('Run settings', [
+      { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
+      { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'GLB.mission(consigne={1.0,2.0,3.0})' },
+    ]);
+    if (!r) return;
+    const duration = Number(r.duration);
+    if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
+    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start }));
+    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}`);
+  });
   const run = async () => {
     ui.showPanel('output');
     try {
       await workspace.saveAll();
       currentBuildProject = currentProject();
-      await build.start(currentBuildProject ? `${workspace.root}/${currentBuildProject}` : workspace.root, 'run');
+      const settings = runSettings();
+      await build.start(currentBuildProject ? `${workspace.root}/${currentBuildProject}` : workspace.root, 'run', settings.duration, settings.start);
     } catch (e) {
       report(e);
       build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });

@@ -11,6 +11,7 @@ export function createLayout(root: HTMLElement) {
     generate: btn('btn-generate', '⚙', 'Generate All', 'Generate the C tree (Ctrl+Shift+G)', 'accent'),
     run: btn('btn-run', '▶', 'Build & Run', 'Build in the sandbox and run the architecture (Ctrl+Shift+B)', 'run'),
     stop: btn('btn-stop', '■', 'Stop', 'Stop the running job', 'stop'),
+    runSettings: btn('btn-run-settings', '⚙', '', 'Run settings: duration and start request'),
     arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas'),
     timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs'),
   };
@@ -19,7 +20,7 @@ export function createLayout(root: HTMLElement) {
   const topbar = h('header', { class: 'topbar' },
     h('div', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
     workspaceName, h('div', { class: 'toolbar-group' }, toolbar.newFile, toolbar.newFolder, toolbar.newProject),
-    h('div', { class: 'toolbar-group' }, toolbar.generate, toolbar.run, toolbar.stop),
+    h('div', { class: 'toolbar-group' }, toolbar.generate, toolbar.run, toolbar.runSettings, toolbar.stop),
     h('span', { class: 'grow' }), h('div', { class: 'toolbar-group' }, toolbar.arch, toolbar.timeline));
 
   const explorerBody = h('div', { class: 'section-body explorer-body' });

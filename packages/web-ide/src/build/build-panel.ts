@@ -96,7 +96,7 @@ export class BuildPanel {
     }));
   }
 
-  async start(projectDir: string, action: 'build' | 'run', duration = 8): Promise<void> {
+  async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string): Promise<void> {
     if (this.jobId) await this.stop();
     this.source?.close();
     this.store.clear();
@@ -105,7 +105,7 @@ export class BuildPanel {
     this.diagnostics = [];
     this.onDiagnostics.fire([]);
     this.setStatus('submitting', undefined, true);
-    const job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration });
+    const job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}) });
     this.jobId = job.id;
     for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);

@@ -38,3 +38,21 @@ export function confirmAction(title: string, detail: string, okLabel = 'Delete')
     ok.focus();
   });
 }
+
+/** A small form of labelled text fields; resolves the values, or null when cancelled. */
+export function askFields(title: string, fields: Array<{ key: string; label: string; value: string; hint?: string }>): Promise<Record<string, string> | null> {
+  return new Promise((resolve) => {
+    const inputs = fields.map((f) => h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '' }));
+    const done = (ok: boolean) => {
+      overlay.remove();
+      resolve(ok ? Object.fromEntries(inputs.map((i, n) => [fields[n]!.key, i.value.trim()])) : null);
+    };
+    for (const i of inputs) i.addEventListener('keydown', (e) => (e.key === 'Enter' ? done(true) : e.key === 'Escape' ? done(false) : undefined));
+    const overlay = h('div', { class: 'dialog-overlay' },
+      h('div', { class: 'dialog', role: 'dialog' }, h('div', { class: 'dialog-title' }, title),
+        ...fields.flatMap((f, n) => [h('label', { class: 'dialog-hint' }, f.label), inputs[n]!]),
+        h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save'))));
+    document.body.append(overlay);
+    inputs[0]?.focus();
+  });
+}

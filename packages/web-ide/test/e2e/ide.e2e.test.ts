@@ -299,6 +299,11 @@ describe('IDE in headless Chromium', () => {
   it.skipIf(!canBuild || !canGenerate)('Build & Run streams MSC lines into the log panel, filters them, and Stop cancels', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
+    await page.locator('#btn-run-settings').click();
+    await page.locator('.dialog-input[data-key=duration]').fill('6');
+    await page.locator('.dialog-input[data-key=start]').fill('GLB.mission(consigne={1.0,2.0,3.0})');
+    await page.locator('.dialog .btn.primary').click();
+    expect(await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!))).toEqual({ duration: 6, start: 'GLB.mission(consigne={1.0,2.0,3.0})' });
     await page.locator('#btn-run').click();
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 140_000 }).catch(async (e) => {
       await shot(page, '06-build-and-run-FAILED');
