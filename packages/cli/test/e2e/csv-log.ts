@@ -55,22 +55,27 @@ export function readLogs(dir: string): LogRecord[] {
 export interface ChainReport {
     /** Cycles where every module of the chain ran, each after its predecessor had finished. */
     completeCycles: number;
-    /** Releases that broke the order (a module started before its predecessor finished in the cycle). */
+    /** Releases that broke the order: a module started before its predecessor finished in the cycle. */
     violations: string[];
+    /** A module started a second time in one cycle (order kept; reported, not a precedence violation). */
+    repeats: string[];
     /** Median time between two releases of the chain's first module, in ms. */
     medianPeriodMs: number;
 }
 
 /**
  * Checks that a periodic chain A -> B -> C ... is released in precedence order: in the merged
- * timeline of run_started/run_finished of the chain's modules, each module starts only after the
- * previous module of the chain finished in the same cycle. A cycle may be cut short when its schema
- * is deactivated; the next cycle then starts again at the chain's head.
+ * timeline of run_started/run_finished of the chain's modules, a module starts only after its
+ * predecessor in the chain finished in the same cycle (a cycle begins when the head starts), and
+ * never while another module of the chain runs. A cycle may be cut short when its schema is
+ * deactivated; the next cycle starts again at the head.
  */
 export function checkChain(records: LogRecord[], chain: string[]): ChainReport {
     const timeline = records.filter((r) => chain.includes(r.module) && (r.event === 'run_started' || r.event === 'run_finished'));
     const violations: string[] = [];
-    let position = -1; // index in chain of the module whose run finished last in this cycle
+    const repeats: string[] = [];
+    let finished = new Set<string>(); // modules of the chain that finished in this cycle
+    let started = new Set<string>();
     let running: string | null = null;
     let completeCycles = 0;
     const heads: bigint[] = [];
@@ -79,19 +84,23 @@ export function checkChain(records: LogRecord[], chain: string[]): ChainReport {
         if (r.event === 'run_started') {
             if (index === 0) {
                 heads.push(r.mono);
-                position = -1;
-            } else if (index !== position + 1 || running !== null) {
-                violations.push(`${r.module} started at ${r.mono} after ${position >= 0 ? chain[position] : 'nothing'} (running: ${running ?? 'none'})`);
+                finished = new Set();
+                started = new Set();
+                running = null;
+            } else if (!finished.has(chain[index - 1]!) || running !== null) {
+                violations.push(`${r.module} started at ${r.mono} before ${chain[index - 1]} finished in its cycle (running: ${running ?? 'none'})`);
             }
+            if (started.has(r.module)) repeats.push(`${r.module} started twice in the cycle at ${r.mono}`);
+            started.add(r.module);
             running = r.module;
         } else if (r.module === running) {
             running = null;
-            position = index;
-            if (index === chain.length - 1) completeCycles++;
+            if (index === chain.length - 1 && !finished.has(r.module)) completeCycles++;
+            finished.add(r.module);
         }
     }
     const gaps = heads.slice(1).map((t, i) => Number(t - heads[i]!) / 1e6).sort((a, b) => a - b);
-    return { completeCycles, violations, medianPeriodMs: gaps.length ? gaps[Math.floor(gaps.length / 2)]! : NaN };
+    return { completeCycles, violations, repeats, medianPeriodMs: gaps.length ? gaps[Math.floor(gaps.length / 2)]! : NaN };
 }
 
 /** How many values `consumer` received on its input `port` from `producer`. */

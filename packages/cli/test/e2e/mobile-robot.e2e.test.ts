@@ -1,11 +1,11 @@
 /**
  * The mobile robot end to end, through the real `contract` binary: check (0 errors, 0 warnings)
- * -> generate (the committed src-gen is current) -> build in bwrap with no gcc warning (and in
- * docker when an engine can run here) -> run 7 s -> assertions from the output and the CSV logs.
+ * -> generate (the committed src-gen is current) -> build in bwrap with no gcc warning -> run 7 s
+ * -> assertions from the output and the CSV logs. Docker: docker.e2e.test.ts.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { checkChain, deliveryWindows, isSubsequence, readLogs, received, schedulerTrace, supervisorTrace, type LogRecord } from './csv-log.js';
-import { contract, dockerUp, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
+import { contract, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
 
 let scratch: Scratch;
 beforeAll(() => { scratch = scratchCopy('mobile-robot'); });
@@ -61,6 +61,8 @@ describe('examples/mobile-robot end to end', () => {
         it('releases the 100 Hz loop WHL -> ODO -> VEL -> MOT in precedence order every 10 ms', () => {
             const chain = checkChain(logs, ['WHL', 'ODO', 'VEL', 'MOT']);
             expect(chain.violations).toEqual([]);
+            if (chain.repeats.length) console.warn(`velocityLoop: ${chain.repeats.length} module(s) started twice in a cycle: ${chain.repeats.slice(0, 3).join(' | ')}`);
+            expect(chain.repeats.length).toBeLessThanOrEqual(chain.completeCycles / 100); // seen under heavy load only
             expect(chain.completeCycles).toBeGreaterThan(300); // ~650 when the machine is idle
             expect(chain.medianPeriodMs).toBeGreaterThan(9);
             expect(chain.medianPeriodMs).toBeLessThan(11);
@@ -119,35 +121,4 @@ describe('examples/mobile-robot end to end', () => {
             expect(text.some((l) => l.startsWith('[MOT] MOT: odometry x='))).toBe(true);
         });
     });
-
-    it('builds and runs in docker when an engine can run here (else SKIPPED loudly)', (ctx) => {
-        const docker = dockerUp();
-        try {
-            if (!docker.available) {
-                ctx.skip();
-                return;
-            }
-            const r = contract(['build', 'mobile-robot', '--sandbox', 'docker', '--format', 'json'], scratch);
-            const json = JSON.parse(r.stdout) as RunJson;
-            expect(json.sandbox).toBe('docker');
-            expect(json.result.message).toMatch(/build succeeded/);
-            expect(json.diagnostics).toEqual([]);
-            expect(r.code).toBe(0);
-            // the run: same sequence from the output (the CSV logs stay in the container volume)
-            const run = contract(['run', 'mobile-robot', '--sandbox', 'docker', '--duration', '7s', '--format', 'json'], scratch);
-            const ran = JSON.parse(run.stdout) as RunJson;
-            expect(ran.result.message).toBe('run finished (exit 0)');
-            expect(ran.moduleFailures).toEqual([]);
-            const mis = ran.output.filter((l) => l.source === 'MIS').map((l) => l.line);
-            expect(isSubsequence(mis, [
-                'rule mission.TELEOP active', 'rule mission.TELEOP inactive', 'rule mission.AUTO active',
-                'rule mission.AUTO inactive', 'rule mission.STOP active', 'rule mission.STOP inactive', 'rule mission.AUTO active',
-            ])).toBe(true);
-            expect(ran.output.some((l) => l.source === 'OBS' && l.line === 'OBS: obstacle ahead (nearest 0.35 m)')).toBe(true);
-            expect(ran.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
-            expect(run.code).toBe(0);
-        } finally {
-            docker.stop();
-        }
-    }, 600_000);
 });

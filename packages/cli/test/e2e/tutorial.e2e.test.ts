@@ -1,11 +1,11 @@
 /**
  * The report's tutorial (section 8.1) end to end, through the real `contract` binary: check ->
- * generate -> build in bwrap (and docker when an engine can run here) -> run 5 s -> assertions
- * from the output and the CSV logs.
+ * generate -> build in bwrap -> run 5 s -> assertions from the output and the CSV logs.
+ * Docker: docker.e2e.test.ts.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { checkChain, deliveryWindows, isSubsequence, readLogs, schedulerTrace, supervisorTrace, whileActive, type LogRecord } from './csv-log.js';
-import { contract, dockerUp, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
+import { contract, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
 
 let scratch: Scratch;
 beforeAll(() => { scratch = scratchCopy('tutorial'); });
@@ -90,21 +90,4 @@ describe('examples/tutorial end to end', () => {
             expect(second[0]!.activations).toBeGreaterThanOrEqual(2);
         });
     });
-
-    it('builds in docker when an engine can run here (else SKIPPED loudly)', (ctx) => {
-        const docker = dockerUp();
-        try {
-            if (!docker.available) {
-                ctx.skip();
-                return;
-            }
-            const r = contract(['build', 'tutorial', '--sandbox', 'docker', '--format', 'json'], scratch);
-            const json = JSON.parse(r.stdout) as RunJson;
-            expect(json.sandbox).toBe('docker');
-            expect(json.result.message).toMatch(/build succeeded/);
-            expect(r.code).toBe(0);
-        } finally {
-            docker.stop();
-        }
-    }, 600_000);
 });
