@@ -101,6 +101,10 @@ export class Workspace {
   private markDirty(fs: FileState): void {
     const text = fs.model.getValue();
     if (text === fs.diskText && fs.state !== 'error') {
+      // back to what is on disk: nothing to write (a pending write could overwrite a newer disk version)
+      const pending = this.timers.get(fs.path);
+      if (pending) clearTimeout(pending);
+      this.timers.delete(fs.path);
       this.clearBackup(fs.path);
       this.setState(fs, 'saved');
       return;
@@ -124,6 +128,11 @@ export class Workspace {
     if (t) clearTimeout(t);
     this.timers.delete(path);
     const text = fs.model.getValue();
+    if (text === fs.diskText && fs.state !== 'error') {
+      this.clearBackup(path);
+      this.setState(fs, 'saved');
+      return true;
+    }
     this.setState(fs, 'saving');
     try {
       await api.write(path, text);
