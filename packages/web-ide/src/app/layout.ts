@@ -3,7 +3,7 @@ import { h } from '../util/dom.js';
 /** The static frame of the IDE: top bar, sidebar (explorer + outline), editor, bottom panel, status bar. */
 export function createLayout(root: HTMLElement) {
   const btn = (id: string, icon: string, label: string, title: string, cls = '') =>
-    h('button', { class: `btn toolbar-btn ${cls}`, id, title }, h('span', { class: 'btn-icon' }, icon), h('span', {}, label));
+    h('button', { class: `btn toolbar-btn ${cls}`, id, title, 'aria-label': label || title }, h('span', { class: 'btn-icon' }, icon), label ? h('span', {}, label) : null);
   const toolbar = {
     newFile: btn('btn-new-file', '+', 'File', 'New file in the selected folder'),
     newFolder: btn('btn-new-folder', '▣', 'Folder', 'New folder in the selected folder'),

@@ -452,5 +452,12 @@ describe('New Project in an empty workspace', () => {
     expect(await page.locator('.problem-row').allTextContents()).toEqual([]);
     expect(await page.locator('.outline-row .sym-name').allTextContents()).toContain('MIS');
     await shot(page, '07-new-project');
+    if (canGenerate) {
+      await page.locator('#btn-generate').click();
+      await page.locator('.gen-summary').waitFor({ timeout: 30_000 });
+      expect(await page.locator('.gen-summary .pill').first().textContent()).toContain('generated');
+      expect(existsSync(join(e.workspace, 'src-gen/generated/architecture/modules/CTL_mod/module.c'))).toBe(true);
+      expect(existsSync(join(e.workspace, 'src-gen/generated/architecture/modules/MIS_mod/module.c'))).toBe(true);
+    }
   });
 });
