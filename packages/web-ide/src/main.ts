@@ -79,6 +79,23 @@ async function main(): Promise<void> {
   });
   ui.status.problems.addEventListener('click', () => ui.showPanel('problems'));
   problems.onOpen.on((p) => void editors.open(p.path, { lineNumber: p.line, column: p.column }));
+  // gcc diagnostics also become squiggles in the generated files (owner 'gcc'), when they are open
+  let gccMarked = new Set<string>();
+  const applyGccMarkers = () => {
+    const byPath = new Map<string, monaco.editor.IMarkerData[]>();
+    for (const p of problems.all().filter((q) => q.source === 'gcc')) {
+      const list = byPath.get(p.path) ?? byPath.set(p.path, []).get(p.path)!;
+      const sev = p.severity === 'error' ? monaco.MarkerSeverity.Error : p.severity === 'warning' ? monaco.MarkerSeverity.Warning : monaco.MarkerSeverity.Info;
+      list.push({ severity: sev, message: p.message, source: 'gcc', startLineNumber: p.line, startColumn: p.column, endLineNumber: p.line, endColumn: p.column + 1 });
+    }
+    for (const path of new Set([...gccMarked, ...byPath.keys()])) {
+      const model = workspace.files.get(path)?.model;
+      if (model && !model.isDisposed()) monaco.editor.setModelMarkers(model, 'gcc', byPath.get(path) ?? []);
+    }
+    gccMarked = new Set(byPath.keys());
+  };
+  problems.onCounts.on(() => applyGccMarkers());
+  editors.onActiveChanged.on(() => applyGccMarkers());
   build.onDiagnostics.on((diags) => {
     const srcGen = `${currentBuildProject ? `${currentBuildProject}/` : ''}src-gen/`;
     problems.set('gcc', diags.map((d) => ({

@@ -341,6 +341,10 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => activeTab(page)).toBe(path);
     expect(await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber)).toBe(badLine);
     await shot(page, '06b-gcc-error');
+    await expect.poll(() => page.evaluate((line) => {
+      const ide = (window as any).__ide;
+      return ide.monaco.editor.getModelMarkers({ owner: 'gcc', resource: ide.editors.editor.getModel().uri }).some((m: any) => m.startLineNumber === line && m.severity === 8);
+    }, badLine)).toBe(true);
     await expect.poll(() => page.locator('.view-line', { hasText: 'broken_by_test' }).count(), { timeout: 5000 }).toBe(1); // revealed on screen
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 30_000 }).toMatch(/failed/);
     writeFileSync(join(s.workspace, path), good);
