@@ -25,6 +25,8 @@ export function makeSettings(runtime: string, extraIncludes: string[]): string {
     return [
         `CONTRACT_RUNTIME ?= ${runtime}`,
         'CFLAGS ?= -std=c11 -Wall -Wextra -O2 -g',
+        '# extra flags from the caller (the build service adds -fdiagnostics-format=json)',
+        'CFLAGS += $(EXTRA_CFLAGS)',
         `CPPFLAGS += -D_POSIX_C_SOURCE=200809L -I$(CONTRACT_RUNTIME)/include ${extraIncludes.map((i) => `-I${i}`).join(' ')}`,
         'CONTRACT_LIB = $(CONTRACT_RUNTIME)/build/libmodule.a',
         'LDLIBS += $(CONTRACT_LIB) -lpthread -lrt -lm',
