@@ -7,11 +7,15 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync, writeFileSync, existsSync, readdirSync, mkdirSync } from 'node:fs';
 import { startIdeServer } from '../../server/ide-server.js';
 import { join } from 'node:path';
+import { spawnSync } from 'node:child_process';
 import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, type Session } from './harness.js';
 
 let s: Session;
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
-const canBuild = await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false);
+// Build & Run needs the build service and a sandbox it can pick with `auto` (bubblewrap here).
+const canBuild =
+  (await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false)) &&
+  spawnSync('bwrap', ['--version']).status === 0;
 
 
 const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
