@@ -106,6 +106,24 @@ export function createRouter(service: JobService, basePath: string) {
           const text = logText(job.events.all.filter((e): e is LineEvent => e.type === 'line'));
           res.writeHead(200, { 'Content-Type': 'text/plain; charset=utf-8' });
           res.end(text);
+        } else if (sub === 'artifacts' && parts.length === 3 && method === 'GET') {
+          send(res, 200, { id: job.id, status: job.status, artifacts: job.artifactsJSON() ?? { files: [], skipped: [], runDirLeftovers: [] } });
+        } else if (sub === 'artifacts' && parts.length === 4 && method === 'GET') {
+          let name: string;
+          try {
+            name = decodeURIComponent(parts[3]!);
+          } catch {
+            throw new ServiceError(400, 'bad_request', `bad artifact name "${parts[3]}"`);
+          }
+          const file = job.artifact(name);
+          if (!file) throw new ServiceError(404, 'not_found', `job ${job.id} has no artifact "${name}"${job.isDone ? '' : ' (yet: the job has not finished)'}`);
+          res.writeHead(200, {
+            'Content-Type': name.endsWith('.csv') ? 'text/csv; charset=utf-8' : 'application/octet-stream',
+            'Content-Length': file.data.length,
+            'Content-Disposition': `attachment; filename="${file.name}"`,
+            'X-Content-Type-Options': 'nosniff',
+          });
+          res.end(file.data);
         } else throw new ServiceError(404, 'not_found', `no route ${method} ${url.pathname}`);
       } else {
         throw new ServiceError(404, 'not_found', `no route ${method} ${url.pathname}`);

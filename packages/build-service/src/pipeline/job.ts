@@ -8,6 +8,7 @@ import type { LimitHit, Limits } from '../limits.js';
 import { describeLimitHit, formatBytes } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
+import { collectRunArtifacts, hostWorkDirReader, type Artifact, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
@@ -62,6 +63,8 @@ export class Job {
   readonly warnings: string[] = [];
   /** What sandbox was picked and why ("sandbox auto: picked bwrap (...)"). */
   sandboxNote = '';
+  /** The run's CSV logs (and what was left out), collected from the sandbox once the run step ended. */
+  artifacts: RunArtifacts | null = null;
 
   private current: SandboxProcess | null = null;
   private cancelRequested = false;
@@ -181,6 +184,7 @@ export class Job {
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
       const run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => [routeRunLine(line)]);
+      if (!this.cancelRequested) await this.collectArtifacts(ctx.sandbox, ws.workDir);
       if (!run.ok) {
         const message = run.message ?? `run failed (exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);
@@ -209,6 +213,31 @@ export class Job {
       this.emitEnd();
       this.finishedSignal();
     }
+  }
+
+  /** Copies the run's logs out of the sandbox (its processes are gone); a failure is a warning line. */
+  private async collectArtifacts(sandbox: Sandbox, workDir: string): Promise<void> {
+    const t0 = Date.now();
+    try {
+      const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
+      this.artifacts = await collectRunArtifacts(reader, workDir);
+      const a = this.artifacts;
+      this.system('run', `collected ${a.files.length} artifact(s) in ${Date.now() - t0} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${s.name} (${s.reason})`).join(', ')}` : ''}`);
+    } catch (e) {
+      this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);
+    }
+  }
+
+  /** One collected artifact by name (GET /api/jobs/:id/artifacts/<name>). */
+  artifact(name: string): Artifact | undefined {
+    return this.artifacts?.files.find((f) => f.name === name);
+  }
+
+  /** The JSON listing of the artifacts (no bytes), null when the job has not run. */
+  artifactsJSON(): { files: { name: string; path: string; size: number }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[] } | null {
+    const a = this.artifacts;
+    if (!a) return null;
+    return { files: a.files.map(({ name, path, size }) => ({ name, path, size })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers };
   }
 
   private orCancel<T>(p: Promise<T>): Promise<T> {
@@ -344,6 +373,7 @@ export class Job {
       result: this.result,
       diagnostics: this.diagnostics,
       prepareDiagnostics: this.prepareDiagnostics,
+      artifacts: this.artifactsJSON(),
     };
   }
 }

@@ -8,11 +8,14 @@
  * A memory kill is read from State.OOMKilled; a refused fork from the program's own messages.
  */
 import { spawn } from 'node:child_process';
-import { createHash } from 'node:crypto';
+import { createHash, randomBytes } from 'node:crypto';
+import type { Readable } from 'node:stream';
 import { PassThrough } from 'node:stream';
 import Docker from 'dockerode';
 import type { LimitHit } from '../limits.js';
 import { memoryBytes } from '../limits.js';
+import type { DirListing } from '../pipeline/artifacts.js';
+import { readTar } from '../util/tar-reader.js';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 
 export const DOCKER_IMAGE = 'contract-gcc';
@@ -221,6 +224,68 @@ export class DockerSandbox implements Sandbox {
     }
   }
 
+  /**
+   * Lists work-dir folders out of the volume through the archive API of a never-started
+   * container (volume mounted read-only): the engine resolves paths inside the container and
+   * its tar reports links as links, so nothing the job planted is followed on the host. Each
+   * archive is read up to maxBytes + 1 MiB; entries cut by that bound come without data.
+   */
+  async readWorkDirs(workDir: string, rels: string[], maxBytes: number): Promise<Map<string, DirListing>> {
+    const out = new Map<string, DirListing>();
+    const volume = this.volumes.get(workDir);
+    if (!volume || !this.createdVolumes.has(volume)) {
+      for (const rel of rels) out.set(rel, null);
+      return out;
+    }
+    const c = await this.docker.createContainer({
+      name: `contract-collect-${randomBytes(6).toString('hex')}`,
+      Image: this.image,
+      Cmd: ['true'],
+      User: DOCKER_USER,
+      NetworkDisabled: true,
+      Labels: { 'contract-studio': 'job' },
+      HostConfig: {
+        NetworkMode: 'none',
+        ReadonlyRootfs: true,
+        Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK, ReadOnly: true }],
+        SecurityOpt: ['no-new-privileges'],
+        CapDrop: ['ALL'],
+      },
+    });
+    try {
+      for (const rel of rels) {
+        let stream: Readable;
+        try {
+          stream = (await c.getArchive({ path: `${DOCKER_WORK}/${rel}` })) as unknown as Readable;
+        } catch (e) {
+          if ((e as { statusCode?: number }).statusCode === 404) {
+            out.set(rel, null);
+            continue;
+          }
+          throw e;
+        }
+        const entries = readTar(await readBounded(stream, maxBytes + 1024 * 1024));
+        const top = entries.find((e) => e.name === rel);
+        if (top && top.kind !== 'dir') {
+          out.set(rel, { notDirectory: top.kind });
+          continue;
+        }
+        const children = entries.filter((e) => e.name.startsWith(`${rel}/`) && !e.name.slice(rel.length + 1).includes('/'));
+        out.set(rel, {
+          entries: children.map((e) => ({
+            name: e.name.slice(rel.length + 1),
+            kind: e.kind,
+            size: e.size,
+            read: async (max: number) => (e.kind === 'file' && e.data && e.data.length === e.size && e.size <= max ? e.data : null),
+          })),
+        });
+      }
+    } finally {
+      await c.remove({ force: true }).catch(() => {});
+    }
+    return out;
+  }
+
   /** Removes the volume of a workspace that is being deleted. */
   async release(workDir: string): Promise<void> {
     const v = this.volumes.get(workDir);
@@ -230,4 +295,23 @@ export class DockerSandbox implements Sandbox {
     this.syncedTar.delete(v);
     await this.docker.getVolume(v).remove({ force: true }).catch(() => {});
   }
+}
+
+/** Reads a stream up to `limit` bytes (then stops reading it). */
+function readBounded(stream: Readable, limit: number): Promise<Buffer> {
+  return new Promise((resolve, reject) => {
+    const chunks: Buffer[] = [];
+    let size = 0;
+    const finish = (): void => resolve(Buffer.concat(chunks).subarray(0, limit));
+    stream.on('data', (c: Buffer) => {
+      chunks.push(c);
+      size += c.length;
+      if (size >= limit) {
+        stream.destroy();
+        finish();
+      }
+    });
+    stream.on('end', finish);
+    stream.on('error', (e) => (size >= limit ? finish() : reject(e)));
+  });
 }

@@ -1,5 +1,6 @@
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits, Mechanism } from '../limits.js';
+import type { DirListing } from '../pipeline/artifacts.js';
 
 export type SandboxName = 'bwrap' | 'docker' | 'none';
 export type SandboxChoice = SandboxName | 'auto';
@@ -68,4 +69,9 @@ export interface Sandbox {
   start(cmd: SandboxCommand): Promise<SandboxProcess>;
   /** Called when a job's work dir is no longer needed (docker: removes the volume). */
   release?(workDir: string): Promise<void>;
+  /**
+   * Lists folders of the work dir (relative paths) without following links, for collecting a
+   * run's artifacts; absent = the work dir is on the host (bwrap, none) and is read there.
+   */
+  readWorkDirs?(workDir: string, rels: string[], maxBytes: number): Promise<Map<string, DirListing>>;
 }
