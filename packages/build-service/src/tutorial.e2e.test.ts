@@ -50,14 +50,67 @@ function expectTutorialRan(job: Record<string, any>, lines: LineEvent[]): void {
   expect(lines.filter((l) => l.step === 'build' && /^cc .* -o MAA /.test(l.line))).toHaveLength(1);
 }
 
+interface ArtifactListing {
+  files: { name: string; path: string; size: number }[];
+  skipped: { name: string; reason: string }[];
+  runDirLeftovers: string[];
+}
+
+async function artifacts(id: string): Promise<ArtifactListing> {
+  const res = await fetch(`${url}/api/jobs/${id}/artifacts`);
+  expect(res.status).toBe(200);
+  return ((await res.json()) as { artifacts: ArtifactListing }).artifacts;
+}
+
+async function artifactText(id: string, name: string): Promise<{ status: number; text: string }> {
+  const res = await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(name)}`);
+  return { status: res.status, text: await res.text() };
+}
+
+/** The tutorial's 9 module processes each write one CSV log (docs/runtime-api.md naming). */
+async function expectTutorialLogs(id: string): Promise<ArtifactListing> {
+  const list = await artifacts(id);
+  const modules = list.files.map((f) => /^([A-Z]+)_.*\.csv$/.exec(f.name)?.[1]).sort();
+  expect(modules).toEqual(['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP']);
+  expect(list.runDirLeftovers).toEqual([]);
+  const glb = list.files.find((f) => f.name.startsWith('GLB_'))!;
+  const body = await artifactText(id, glb.name);
+  expect(body.status).toBe(200);
+  expect(Buffer.byteLength(body.text)).toBe(glb.size);
+  expect(body.text).toMatch(/function mission started/);
+  return list;
+}
+
 describe.each(['bwrap', ...(docker.available ? ['docker'] : [])])('the tutorial in %s', (sandbox) => {
   test('generates, builds and runs; a second build is a no-op', async () => {
     const first = await runJob({ action: 'run', sandbox, duration: 2, project: { dir: TUTORIAL_DIR } });
     expectTutorialRan(first.job, first.lines);
+    await expectTutorialLogs(first.job.id);
+    expect(first.job.artifacts.files.length).toBe(9);
     const again = await runJob({ action: 'build', sandbox, project: { dir: TUTORIAL_DIR } });
     expect(again.job.status).toBe('succeeded');
     expect(again.lines.some((l) => l.line === 'project unchanged since the last build: generation skipped')).toBe(true);
     expect(again.lines.filter((l) => l.step === 'build' && /^cc /.test(l.line))).toEqual([]);
+  });
+
+  test('the CSV logs come out through the API; a link planted in logs/ is not followed', async () => {
+    const plant = [
+      '    { const char *d = getenv("CONTRACT_LOG_DIR"); char p[4096];',
+      '      if (d) { snprintf(p, sizeof p, "%s/planted.csv", d); if (symlink("/etc/passwd", p) != 0) perror("symlink"); } }',
+    ].join('\n');
+    const files = withRegion(
+      withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', plant, true),
+      MAA_MODULE,
+      'protect_additional_import_MAA',
+      '#include <unistd.h>\n#include <stdlib.h>\n#include <stdio.h>',
+      true,
+    );
+    const { job, lines } = await runJob({ action: 'run', sandbox, duration: 2, project: { files } });
+    expectTutorialRan(job, lines);
+    const list = await expectTutorialLogs(job.id);
+    expect(list.skipped).toEqual([{ name: 'planted.csv', reason: 'not a regular file (symlink): not followed' }]);
+    expect((await artifactText(job.id, 'planted.csv')).status).toBe(404);
+    for (const f of list.files) expect((await artifactText(job.id, f.name)).text).not.toMatch(/^root:/m);
   });
 });
 

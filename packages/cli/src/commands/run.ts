@@ -2,12 +2,13 @@
  * `contract run DIR [--duration 10s] [--start 'SUP.function(p={...})'] [--logs OUT] [--sandbox ...]`:
  * builds the project like `contract build`, runs the architecture for the duration (Seam 5: the
  * generated `make run` and the runtime's launcher), prints every module's output tagged with its
- * name, copies the CSV logs to OUT (default DIR/logs) and exits non-zero when a module crashed.
+ * name, writes the CSV logs the build service collected from the sandbox (any sandbox, docker included) to OUT (default DIR/logs) and exits non-zero when a module crashed.
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, UsageError, type CliIO, type Command } from '../command.js';
+import type { RunArtifacts } from '@contract-studio/build-service';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from './build.js';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
@@ -47,31 +48,24 @@ export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
     return failed;
 }
 
-/** Copies the regular files of `from` (never following links: the sandbox wrote them) into `to`. */
-async function copyLogs(from: string, to: string): Promise<string[]> {
-    const entries = await fsp.readdir(from, { withFileTypes: true }).catch(() => []);
-    const copied: string[] = [];
-    for (const entry of entries) {
-        if (!entry.isFile() || !/^[\w.-]+\.csv$/.test(entry.name)) continue;
-        const handle = await fsp.open(join(from, entry.name), constants.O_RDONLY | constants.O_NOFOLLOW).catch(() => undefined);
-        if (!handle) continue;
+/**
+ * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
+ * `job.artifacts`), into `to`; never writes through a link found there.
+ */
+async function saveLogs(artifacts: RunArtifacts | null, to: string): Promise<string[]> {
+    const saved: string[] = [];
+    for (const file of artifacts?.files ?? []) {
+        if (!/^[\w.-]+\.csv$/.test(file.name)) continue;
+        await fsp.mkdir(to, { recursive: true });
+        const handle = await fsp.open(join(to, file.name), constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
         try {
-            const data = await handle.readFile();
-            await fsp.mkdir(to, { recursive: true });
-            await fsp.writeFile(join(to, entry.name), data);
-            copied.push(entry.name);
+            await handle.writeFile(file.data);
         } finally {
             await handle.close();
         }
+        saved.push(file.name);
     }
-    return copied.sort();
-}
-
-/** The work folders of the service's workspaces (docs/sandbox.md: `<cache>/ws/<workspace>/work`). */
-async function workDirs(cacheDir: string): Promise<string[]> {
-    const ws = join(cacheDir, 'ws');
-    const names = await fsp.readdir(ws).catch(() => [] as string[]);
-    return names.map((n) => join(ws, n, 'work'));
+    return saved.sort();
 }
 
 export const runCommand: Command = {
@@ -81,7 +75,7 @@ export const runCommand: Command = {
         'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing)',
-        '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs; not available with --sandbox docker)',
+        '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs; collected from every sandbox, docker included)',
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
         EXIT_TABLE,
@@ -96,27 +90,29 @@ export const runCommand: Command = {
         const logsOption = parsed.options.get('logs');
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
 
-        let logs: string[] = [];
-        const leftovers: string[] = [];
-        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}) }, io, async (_service, cacheDir, o) => {
-            if (o.result.step !== 'run') return;
-            for (const work of await workDirs(cacheDir)) {
-                logs = logs.concat(await copyLogs(join(work, 'logs'), logsDir));
-                for (const f of await fsp.readdir(join(work, 'run')).catch(() => [] as string[])) leftovers.push(f);
-            }
-        });
+        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}) }, io);
         if ('error' in outcome) {
             io.err(`contract run: ${outcome.error}\n`);
             return outcome.exitCode;
         }
+        const artifacts = outcome.job.artifacts;
+        let logs: string[];
+        try {
+            logs = await saveLogs(artifacts, logsDir);
+        } catch (e) {
+            io.err(`contract run: cannot write the CSV logs to ${logsDir}: ${(e as Error).message}\n`);
+            return EXIT_FAILURE;
+        }
+        const leftovers = artifacts?.runDirLeftovers ?? [];
+        const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines);
-        const extra = { logsDir: logs.length ? logsDir : null, logs, moduleFailures: failures, runDirLeftovers: leftovers, output: outcome.runLines };
+        const extra = { logsDir: logs.length ? logsDir : null, logs, logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, output: outcome.runLines };
         const code = reportBuild(opts, outcome, io, extra);
         if (opts.format === 'text') {
             for (const f of failures) io.err(`module ${f.module} crashed (${f.how})\n`);
             if (leftovers.length) io.err(`warning: the run left files in its run directory: ${leftovers.join(', ')}\n`);
+            for (const s of leftOut) io.err(`warning: log ${s.name} not collected: ${s.reason}\n`);
             if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${logsDir}\n`);
-            else if (outcome.result.step === 'run' && outcome.job.sandboxName === 'docker') io.err('CSV logs stay in the container volume with --sandbox docker (use bwrap or none to collect them)\n');
         }
         return failures.length && code === 0 ? EXIT_FAILURE : code;
     },

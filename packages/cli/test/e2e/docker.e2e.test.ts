@@ -3,6 +3,8 @@
  * (scripts/docker-up.sh: starts dockerd, makes the contract-gcc image) and stopped only after every
  * docker step (when this file started it). Without a usable engine: DOCKER E2E SKIPPED, loudly.
  */
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { isSubsequence } from './csv-log.js';
 import { contract, dockerUp, scratchCopy, type DockerEnv, type RunJson, type Scratch } from './harness.js';
@@ -39,7 +41,7 @@ describe('the examples in the docker sandbox', () => {
         expect(built.diagnostics).toEqual([]);
         expect(build.code).toBe(0);
 
-        const run = contract(['run', 'mobile-robot', '--sandbox', 'docker', '--duration', '7s', '--format', 'json'], robot);
+        const run = contract(['run', 'mobile-robot', '--sandbox', 'docker', '--duration', '7s', '--logs', robot.logs, '--format', 'json'], robot);
         const ran = JSON.parse(run.stdout) as RunJson;
         expect(ran.result.message).toBe('run finished (exit 0)');
         expect(ran.moduleFailures).toEqual([]);
@@ -51,5 +53,11 @@ describe('the examples in the docker sandbox', () => {
         expect(ran.output.some((l) => l.source === 'OBS' && l.line === 'OBS: obstacle ahead (nearest 0.35 m)')).toBe(true);
         expect(ran.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
         expect(run.code).toBe(0);
+        // the CSV logs come out of the container volume (build service artifacts), one per module
+        expect(ran.logsDir).toBe(robot.logs);
+        expect(ran.runDirLeftovers).toEqual([]);
+        expect(readdirSync(robot.logs).sort()).toEqual([...ran.logs].sort());
+        const misLog = ran.logs.find((f) => f.startsWith('MIS_'))!;
+        expect(readFileSync(join(robot.logs, misLog), 'utf8')).toContain('function mission started');
     }, 300_000);
 });
