@@ -24,6 +24,10 @@ typedef struct SchemaState {
     int *npreds;           /* per module: number of predecessors (static) */
     int *waiting;          /* per module: predecessors not yet finished this cycle */
     char *released, *finished;
+    uint32_t *cycle_rel;   /* per module: id of its release in the current cycle (0: none)   */
+    uint32_t *outstanding; /* per module: id of a release not acked yet, whatever the cycle or
+                              activation (kept across deactivation: the module may still run it) */
+    int held;              /* cycle started, releases wait until no module of it is outstanding */
     OrdSchemaStats stats;
 } SchemaState;
 
@@ -32,6 +36,7 @@ struct OrdCore {
     OrdIo io;
     int64_t now;
     int skip_late;         /* real time: ticks overtaken by a later due tick are missed */
+    uint32_t next_release_id;
     SchemaState *st;
 };
 
@@ -60,9 +65,43 @@ static int shares_module(const ContractSchema *a, const ContractSchema *b) {
 }
 
 static void release(OrdCore *c, SchemaState *ss, int m) {
+    uint32_t id = ++c->next_release_id;
+    if (id == 0) id = ++c->next_release_id; /* 0 never names a release */
     ss->released[m] = 1;
+    ss->cycle_rel[m] = id;
+    ss->outstanding[m] = id;
     trace(c, "release %s (%s)", ss->s->modules[m].module, ss->s->name);
-    if (c->io.release) c->io.release(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->cycle_tick);
+    if (c->io.release)
+        c->io.release(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->cycle_tick, id);
+}
+
+/* The name of a module of ss that still runs a release not acked yet (of any schema, any
+   activation), or NULL. Releasing it again now would run it twice in this cycle. */
+static const char *busy_module(const OrdCore *c, const SchemaState *ss) {
+    for (int m = 0; m < ss->s->nmodules; m++)
+        for (int i = 0; i < c->v->nschemas; i++) {
+            const SchemaState *o = &c->st[i];
+            for (int k = 0; k < o->s->nmodules; k++)
+                if (o->outstanding[k] && strcmp(o->s->modules[k].module, ss->s->modules[m].module) == 0)
+                    return ss->s->modules[m].module;
+        }
+    return NULL;
+}
+
+static void release_heads(OrdCore *c, SchemaState *ss) {
+    for (int m = 0; m < ss->s->nmodules && ss->running; m++)
+        if (ss->waiting[m] == 0 && !ss->released[m]) release(c, ss, m);
+}
+
+/* a module was freed: held cycles whose modules are all free release their heads */
+static void resume_held(OrdCore *c) {
+    for (int i = 0; i < c->v->nschemas; i++) {
+        SchemaState *ss = &c->st[i];
+        if (!ss->active || !ss->running || !ss->held || busy_module(c, ss)) continue;
+        ss->held = 0;
+        trace(c, "cycle of %s resumed", ss->s->name);
+        release_heads(c, ss);
+    }
 }
 
 static void finish_cycle(OrdCore *c, SchemaState *ss) {
@@ -83,13 +122,20 @@ static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
         ss->waiting[m] = ss->npreds[m];
         ss->released[m] = 0;
         ss->finished[m] = 0;
+        ss->cycle_rel[m] = 0;
     }
     if (s->nmodules == 0) {
         finish_cycle(c, ss);
         return;
     }
-    for (int m = 0; m < s->nmodules && ss->running; m++)
-        if (ss->waiting[m] == 0) release(c, ss, m);
+    const char *busy = busy_module(c, ss);
+    ss->held = busy != NULL;
+    if (busy) {
+        ss->stats.held_cycles++;
+        trace(c, "cycle of %s held: %s still runs a release of an earlier activation", s->name, busy);
+        return;
+    }
+    release_heads(c, ss);
 }
 
 static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
@@ -225,6 +271,7 @@ int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *req
     }
     ss->active = 0;
     ss->running = 0;
+    ss->held = 0; /* modules released and not acked stay outstanding: they may still run */
     for (int k = 0; k < ss->s->ndata_flows; k++)
         if (c->io.disconnect_data) c->io.disconnect_data(c->io.ctx, &ss->s->data_flows[k]);
     trace(c, "deactivate %s", name);
@@ -232,30 +279,62 @@ int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *req
     return 0;
 }
 
-void ord_core_module_finished(OrdCore *c, int64_t t, const char *module) {
-    run_until(c, t, 0); /* a check due exactly at t comes after this completion */
-    if (t > c->now) c->now = t;
+/* the outstanding release that `id` names (0: the release of `module` in its schema's current
+   cycle); 1 when found */
+static int find_release(OrdCore *c, const char *module, uint32_t id, SchemaState **out, int *mout) {
     for (int i = 0; i < c->v->nschemas; i++) {
         SchemaState *ss = &c->st[i];
-        if (!ss->active || !ss->running) continue;
-        const ContractSchema *s = ss->s;
-        for (int m = 0; m < s->nmodules; m++) {
-            if (strcmp(s->modules[m].module, module) != 0 || !ss->released[m] || ss->finished[m])
+        for (int m = 0; m < ss->s->nmodules; m++) {
+            if (!ss->outstanding[m] || strcmp(ss->s->modules[m].module, module) != 0) continue;
+            if (id ? ss->outstanding[m] != id
+                   : !(ss->active && ss->running && ss->cycle_rel[m] == ss->outstanding[m]))
                 continue;
-            ss->finished[m] = 1;
-            ss->pending--;
-            for (int e = 0; e < s->nprecedences; e++)
-                if (s->precedences[e].before == m) {
-                    int n = s->precedences[e].after;
-                    if (--ss->waiting[n] == 0 && !ss->released[n]) release(c, ss, n);
-                }
-            if (ss->pending == 0) finish_cycle(c, ss);
-            goto done;
+            *out = ss;
+            *mout = m;
+            return 1;
         }
     }
-    trace(c, "ignored: %s finished outside a cycle", module);
-done:
+    return 0;
+}
+
+static void complete_module(OrdCore *c, SchemaState *ss, int m) {
+    const ContractSchema *s = ss->s;
+    ss->finished[m] = 1;
+    ss->pending--;
+    for (int e = 0; e < s->nprecedences; e++)
+        if (s->precedences[e].before == m) {
+            int n = s->precedences[e].after;
+            if (--ss->waiting[n] == 0 && !ss->released[n]) release(c, ss, n);
+        }
+    if (ss->pending == 0) finish_cycle(c, ss);
+}
+
+void ord_core_release_finished(OrdCore *c, int64_t t, const char *module, uint32_t release_id) {
+    run_until(c, t, 0); /* a check due exactly at t comes after this completion */
+    if (t > c->now) c->now = t;
+    SchemaState *ss = NULL;
+    int m = -1;
+    if (!find_release(c, module, release_id, &ss, &m)) {
+        trace(c, "ignored: %s finished outside a cycle (release #%u is not outstanding)", module,
+              release_id);
+    } else {
+        uint32_t id = ss->outstanding[m];
+        ss->outstanding[m] = 0;
+        if (ss->active && ss->running && !ss->held && ss->released[m] && !ss->finished[m] &&
+            ss->cycle_rel[m] == id) {
+            complete_module(c, ss, m);
+        } else {
+            ss->stats.late_acks++;
+            trace(c, "late ack: %s finished release #%u of an earlier cycle of %s (not counted)",
+                  module, id, ss->s->name);
+        }
+        resume_held(c);
+    }
     run_until(c, t, 1);
+}
+
+void ord_core_module_finished(OrdCore *c, int64_t t, const char *module) {
+    ord_core_release_finished(c, t, module, 0);
 }
 
 void ord_core_set_skip_late_ticks(OrdCore *c, int on) { c->skip_late = on; }
@@ -291,7 +370,9 @@ OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *
         ss->waiting = calloc(n, sizeof(int));
         ss->released = calloc(n, 1);
         ss->finished = calloc(n, 1);
-        if (!ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
+        ss->cycle_rel = calloc(n, sizeof(uint32_t));
+        ss->outstanding = calloc(n, sizeof(uint32_t));
+        if (!ss->cycle_rel || !ss->outstanding || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
         for (int e = 0; e < s->nprecedences; e++) ss->npreds[s->precedences[e].after]++;
         /* the precedence graph must be acyclic: Kahn's algorithm */
         int *w = ss->waiting, done = 0;
@@ -331,6 +412,8 @@ void ord_core_destroy(OrdCore *c) {
             free(c->st[i].waiting);
             free(c->st[i].released);
             free(c->st[i].finished);
+            free(c->st[i].cycle_rel);
+            free(c->st[i].outstanding);
         }
     free(c->st);
     free(c);

@@ -19,9 +19,11 @@ typedef struct OrdIo {
     void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size);
     void (*connect_data)(void *ctx, const ContractDataFlow *flow);
     void (*disconnect_data)(void *ctx, const ContractDataFlow *flow);
-    /* start one activation (one cycle) of a synchronous module; the caller reports its end
-       with ord_core_module_finished() */
-    void (*release)(void *ctx, const char *module, const char *schema, int64_t tick);
+    /* start one activation (one cycle) of a synchronous module; release_id (never 0) names
+       this release: the caller sends it as the AckID and reports the module's ack with
+       ord_core_release_finished(..., release_id) */
+    void (*release)(void *ctx, const char *module, const char *schema, int64_t tick,
+                    uint32_t release_id);
     /* ORD:0 / ORD:1 with the schema name, to every supervisor of the tables */
     void (*emit)(void *ctx, int port, const char *schema);
     /* answer to an activation / deactivation request: ok = 1 done, 0 refused */
@@ -37,6 +39,9 @@ typedef struct OrdSchemaStats {
     long overruns;          /* ticks skipped because the previous cycle still ran      */
     long missed_ticks;      /* ticks that passed while ORD could not run at all         */
     int64_t max_response_ns;/* longest tick -> last module finished                    */
+    long held_cycles;       /* cycles whose releases waited for a module still running a
+                               release of an earlier activation                          */
+    long late_acks;         /* acks of releases of earlier cycles/activations (ignored)  */
 } OrdSchemaStats;
 
 typedef struct OrdCore OrdCore;
@@ -54,7 +59,12 @@ int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *param
  *  deactivate someone else's). Returns 0, or -1 if not active / not that activation. */
 int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *requester,
                         uint32_t activation_id);
-/** A released module finished its activation at time t. */
+/** A released module finished the activation `release_id` (the AckID of its ack) at time t.
+ *  Acks are matched to the release that asked for them: the ack of a release of an earlier
+ *  cycle or of a deactivated activation never completes the current cycle (it only frees the
+ *  module), and an ack that matches no outstanding release is ignored. */
+void ord_core_release_finished(OrdCore *c, int64_t t, const char *module, uint32_t release_id);
+/** Same for the release of `module` in its schema's current cycle (tests, simple callers). */
 void ord_core_module_finished(OrdCore *c, int64_t t, const char *module);
 /** Fires every tick and critical-delay check due at or before t, in time order. */
 void ord_core_advance(OrdCore *c, int64_t t);

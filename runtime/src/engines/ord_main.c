@@ -34,11 +34,6 @@ typedef struct OrdBinding {
     /* reply address of the request being handled (acks) */
     const char *reply_to;
     int reply_wanted;
-    int next_release_id;
-    /* the id of each module's latest release: a late ack of an earlier one is ignored */
-    const char *rel_module[128];
-    int rel_id[128];
-    int nrel;
     /* release lateness samples (first release of each cycle), for CONTRACT_ORD_STATS */
     int record;
     int64_t *late;
@@ -85,23 +80,11 @@ static void record_lateness(OrdBinding *b, const char *schema, int64_t tick) {
     b->late[b->nlate++] = GetTime() - tick;
 }
 
-/* `create`: m is a name of the tables (static storage), never a received buffer */
-static int *release_slot(OrdBinding *b, const char *m, int create) {
-    for (int i = 0; i < b->nrel; i++)
-        if (strcmp(b->rel_module[i], m) == 0) return &b->rel_id[i];
-    if (!create || b->nrel == 128) return NULL;
-    b->rel_module[b->nrel] = m;
-    b->rel_id[b->nrel] = 0;
-    return &b->rel_id[b->nrel++];
-}
-
-static void b_release(void *ctx, const char *m, const char *schema, int64_t tick) {
+/* the core names every release: that id is the AckID, so each ack is matched to its release */
+static void b_release(void *ctx, const char *m, const char *schema, int64_t tick, uint32_t id) {
     OrdBinding *b = ctx;
     if (b->record) record_lateness(b, schema, tick);
-    int id = ++b->next_release_id;
-    int *slot = release_slot(b, m, 1);
-    if (slot) *slot = id;
-    int rc = SendStart(m, ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE, id);
+    int rc = SendStart(m, ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE, (int)id);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "ORD: cannot release %s (%s): %s\n", m, schema, ContractStrError(rc));
 }
@@ -129,10 +112,12 @@ static void b_trace(void *ctx, int64_t t, const char *line) {
     (void)ctx;
     (void)t;
     /* releases are too frequent for stdout and the CSV log already records every request;
-       late completions of a deactivated schema are expected: CSV only */
+       late completions of a deactivated schema (and the cycles they hold) are expected: CSV only */
     if (strncmp(line, "release ", 8) == 0) return;
     ContractLog("scheduler", "", -1, 0, line);
-    if (!strstr(line, "finished outside a cycle")) printf("%s\n", line);
+    if (!strstr(line, "finished outside a cycle") && strncmp(line, "late ack: ", 10) != 0 &&
+        !strstr(line, " held: ") && !strstr(line, " resumed"))
+        printf("%s\n", line);
 }
 
 static int cmp64(const void *a, const void *b) {
@@ -238,10 +223,11 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
             break;
         }
         case REQ_ACK: {
-            int *slot = release_slot(&b, m->Param.Ack.Module, 0);
-            if ((m->Param.Ack.Ack & (ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE)) && slot &&
-                *slot == m->Param.Ack.AckID)
-                ord_core_module_finished(c, m->ReceptionTime ? m->ReceptionTime : now, m->Param.Ack.Module);
+            /* AckID 0 never names a release (ord_core_release_finished would take it as "the
+               current cycle's"): such an ack is not an answer to ORD */
+            if ((m->Param.Ack.Ack & (ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE)) && m->Param.Ack.AckID > 0)
+                ord_core_release_finished(c, m->ReceptionTime ? m->ReceptionTime : now,
+                                          m->Param.Ack.Module, (uint32_t)m->Param.Ack.AckID);
             break;
         }
         case REQ_KILL:

@@ -292,7 +292,12 @@ static void o_disconnect(void *ctx, const ContractDataFlow *f) {
     WLOG((FakeWorld *)ctx, "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module,
          f->dst_port);
 }
-static void o_release(void *ctx, const char *m, const char *schema, int64_t tick) {
+static void o_release(void *ctx, const char *m, const char *schema, int64_t tick, uint32_t id) {
+    FakeWorld *w = ctx;
+    if (w->nrel < (int)(sizeof w->rel_id / sizeof w->rel_id[0])) {
+        snprintf(w->rel_module[w->nrel], sizeof w->rel_module[0], "%s", m);
+        w->rel_id[w->nrel++] = id;
+    }
     (void)schema;
     (void)tick;
     (void)ctx;
@@ -307,6 +312,12 @@ static void o_ack(void *ctx, const char *req, uint32_t id, int ok) {
 
 static void o_trace(void *ctx, int64_t t, const char *line) {
     WLOG((FakeWorld *)ctx, "%lldus %s", (long long)(t / 1000), line);
+}
+
+uint32_t fake_last_release(const FakeWorld *w, const char *module) {
+    for (int i = w->nrel - 1; i >= 0; i--)
+        if (strcmp(w->rel_module[i], module) == 0) return w->rel_id[i];
+    return 0;
 }
 
 OrdIo fake_ord_io(FakeWorld *w) {

@@ -23,6 +23,10 @@ typedef struct FakeWorld {
     int nrunning;
     char running[FW_MAX][16];
     int prio[FW_MAX];
+    /* ORD releases in order: module and release id (the AckID a real module answers with) */
+    int nrel;
+    char rel_module[256][16];
+    uint32_t rel_id[256];
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);
@@ -30,6 +34,8 @@ OrdIo fake_ord_io(FakeWorld *w);
 /** Marks a module as already running (started by someone else) at a priority. */
 void fake_set_running(FakeWorld *w, const char *module, int priority);
 int fake_is_running(const FakeWorld *w, const char *module);
+/** The id of the latest ORD release of `module` (0: never released). */
+uint32_t fake_last_release(const FakeWorld *w, const char *module);
 /** Formats a value for log lines: ints, floats (%g), strings, TypeA {i,j,k}, TypeD {name,v}. */
 void fake_format(char *out, size_t n, const ContractType *t, const void *v);
 

@@ -205,3 +205,89 @@ void test_ord_schema_module_not_in_configuration_refused(void) {
     CHECK(ord_core_create(&v, NULL, err, sizeof err) == NULL);
     CHECK(strstr(err, "schema DIA uses module B, which the scheduler configuration does not list") != NULL);
 }
+
+/* Issue 4 (seen in the mobile robot under load): the schema is deactivated while B and C of
+   its cycle still run, and activated again 1 ms later. The new activation's first cycle must
+   not release any module while a release of the old one is outstanding (the module would run
+   the old START and then the new one: twice in the new cycle), and the old releases' acks
+   must not complete the new cycle: acks are matched to their release by id. */
+void test_ord_late_ack_of_deactivated_cycle_does_not_complete_new_one(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1);
+    uint32_t a0 = fake_last_release(&w, "A");
+    ord_core_release_finished(c, 1 * MS, "A", a0);
+    uint32_t b0 = fake_last_release(&w, "B"), c0 = fake_last_release(&w, "C");
+    CHECK(a0 && b0 && c0 && b0 != c0);
+    CHECK(ord_core_deactivate(c, 2 * MS, "DIA", "SUP", 1) == 0);
+    CHECK(ord_core_activate(c, 3 * MS, "DIA", NULL, 0, "SUP", 2) == 0); /* cycle held: B, C run */
+    ord_core_release_finished(c, 4 * MS, "B", b0);   /* old B: frees B, C still runs */
+    ord_core_release_finished(c, 4 * MS, "B", b0);   /* duplicate: matches nothing */
+    ord_core_release_finished(c, 5 * MS, "C", c0);   /* old C: the held cycle releases A */
+    uint32_t a1 = fake_last_release(&w, "A");
+    CHECK(a1 != a0);
+    ord_core_release_finished(c, 6 * MS, "A", a0);   /* a stale id of A: ignored */
+    ord_core_release_finished(c, 7 * MS, "A", a1);
+    uint32_t b1 = fake_last_release(&w, "B"), c1 = fake_last_release(&w, "C");
+    CHECK(b1 != b0 && c1 != c0);
+    ord_core_release_finished(c, 8 * MS, "C", c0);   /* the old C again: must not finish C now */
+    ord_core_release_finished(c, 8 * MS, "B", b1);
+    ord_core_advance(c, 8 * MS + 500000);
+    CHECK(log_find(&LOG, "8000us release D (DIA)", 0) < 0); /* D waits for the new C */
+    ord_core_release_finished(c, 9 * MS, "C", c1);
+    ord_core_release_finished(c, 10 * MS, "D", fake_last_release(&w, "D"));
+    ord_core_advance(c, 12 * MS); /* the next tick is 13 ms (activation 3 ms + 10 ms) */
+    check_log_filtered(&LOG, (const char *const[]){"release", "held", "resumed", "late ack", "ignored", NULL},
+                       (const char *const[]){
+                           "0us release A (DIA)", "1000us release B (DIA)", "1000us release C (DIA)",
+                           "3000us cycle of DIA held: B still runs a release of an earlier activation",
+                           "4000us late ack: B finished release #2 of an earlier cycle of DIA (not counted)",
+                           "4000us ignored: B finished outside a cycle (release #2 is not outstanding)",
+                           "5000us late ack: C finished release #3 of an earlier cycle of DIA (not counted)",
+                           "5000us cycle of DIA resumed", "5000us release A (DIA)",
+                           "6000us ignored: A finished outside a cycle (release #1 is not outstanding)",
+                           "7000us release B (DIA)", "7000us release C (DIA)",
+                           "8000us ignored: C finished outside a cycle (release #3 is not outstanding)",
+                           "9000us release D (DIA)", NULL},
+                       __FILE__, __LINE__);
+    /* every module exactly once in the new activation's first cycle */
+    for (int i = 0; i < LOG.n; i++) CHECK(strstr(LOG.lines[i], "overrun") == NULL);
+    OrdSchemaStats st;
+    ord_core_stats(c, "DIA", &st);
+    CHECK(st.cycles == 2 && st.completed == 1 && st.held_cycles == 1 && st.late_acks == 2);
+    CHECK(st.max_response_ns == 7 * MS); /* tick 3 ms -> D finished at 10 ms */
+    ord_core_destroy(c);
+}
+
+/* Within one activation: a duplicate ack of the previous cycle's release of E must not
+   complete the next cycle's E (the cycle stays open: overrun at the next tick). */
+void test_ord_ack_matched_to_its_cycle_by_release_id(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "FST", NULL, 0, "SUP", 1);
+    uint32_t e0 = fake_last_release(&w, "E");
+    ord_core_release_finished(c, 1 * MS, "E", e0);
+    ord_core_advance(c, 3 * MS);
+    uint32_t e1 = fake_last_release(&w, "E");
+    CHECK(e1 != e0);
+    ord_core_release_finished(c, 4 * MS, "E", e0); /* late duplicate of cycle 0 */
+    ord_core_release_finished(c, 4 * MS, "F", 99); /* unknown module and id */
+    ord_core_advance(c, 6 * MS);
+    ord_core_release_finished(c, 7 * MS, "E", e1);
+    ord_core_advance(c, 9 * MS);
+    check_log_filtered(&LOG, (const char *const[]){"release", "overrun", "ignored", "deadline", NULL},
+                       (const char *const[]){
+                           "0us release E (FST)", "3000us release E (FST)",
+                           "4000us ignored: E finished outside a cycle (release #1 is not outstanding)",
+                           "4000us ignored: F finished outside a cycle (release #99 is not outstanding)",
+                           "6000us deadline miss: FST (ORD:0)",
+                           "6000us overrun: FST cycle still running, release skipped",
+                           "9000us release E (FST)", NULL},
+                       __FILE__, __LINE__);
+    OrdSchemaStats st;
+    ord_core_stats(c, "FST", &st);
+    CHECK(st.cycles == 3 && st.completed == 2 && st.overruns == 1 && st.late_acks == 0);
+    ord_core_destroy(c);
+}
