@@ -7,7 +7,9 @@
  *  - REQ_STOP, Data = schema name (empty: every active schema), AckID = the activation id
  *    (0: any) -> deactivate (ack ACK_STOPPED / ACK_NOTDONE);
  *  - REQ_ACK from a released module (ACK_FINISHED, or ACK_STOPPED/ACK_NOTDONE: the module
- *    did not run) -> the module finished its activation;
+ *    did not run), AckID = the release id the core gave that release -> the module finished
+ *    that activation (an ack of an earlier cycle's or activation's release never completes
+ *    the current cycle: ord_core_release_finished);
  *  - REQ_KILL -> ORD ends.
  * Releases are REQ_START requests to the modules with ACK_FINISHED wanted, sent at absolute
  * CLOCK_MONOTONIC ticks (engine_wait: timerfd, TFD_TIMER_ABSTIME). ORD:0 / ORD:1 go to every
@@ -131,7 +133,7 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
         perror(path);
         return;
     }
-    long cycles = 0, completed = 0, misses = 0, overruns = 0, missed = 0;
+    long cycles = 0, completed = 0, misses = 0, overruns = 0, missed = 0, held = 0, late = 0;
     int64_t max_response = 0;
     for (int i = 0; i < b->v->nschemas; i++) {
         OrdSchemaStats st;
@@ -141,6 +143,8 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
         misses += st.deadline_misses;
         overruns += st.overruns;
         missed += st.missed_ticks;
+        held += st.held_cycles;
+        late += st.late_acks;
         if (st.max_response_ns > max_response) max_response = st.max_response_ns;
     }
     double p50 = 0, p99 = 0, max = 0;
@@ -152,9 +156,9 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
     }
     fprintf(f,
             "{\"cycles\": %ld, \"completed\": %ld, \"deadline_misses\": %ld, \"overruns\": %ld, "
-            "\"missed_ticks\": %ld, \"release_late_us_p50\": %.3f, \"release_late_us_p99\": %.3f, "
+            "\"missed_ticks\": %ld, \"held_cycles\": %ld, \"late_acks\": %ld, \"release_late_us_p50\": %.3f, \"release_late_us_p99\": %.3f, "
             "\"release_late_us_max\": %.3f, \"cycle_response_us_max\": %.3f, \"samples\": %zu}\n",
-            cycles, completed, misses, overruns, missed, p50, p99, max, (double)max_response / 1000.0,
+            cycles, completed, misses, overruns, missed, held, late, p50, p99, max, (double)max_response / 1000.0,
             b->nlate);
     fclose(f);
 }
