@@ -138,6 +138,22 @@ static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
     release_heads(c, ss);
 }
 
+/* A held cycle waits at most one period: a module stopped by someone else (its STOP answered
+   to that requester, never to ORD) or crashed would otherwise hold the schema for ever. The
+   releases it waits for are forgotten (their acks, if any come, are then ignored). */
+static void give_up_waiting(OrdCore *c, SchemaState *ss) {
+    for (int m = 0; m < ss->s->nmodules; m++)
+        for (int i = 0; i < c->v->nschemas; i++) {
+            SchemaState *o = &c->st[i];
+            for (int k = 0; k < o->s->nmodules; k++)
+                if (o->outstanding[k] && strcmp(o->s->modules[k].module, ss->s->modules[m].module) == 0) {
+                    trace(c, "gave up waiting for %s release #%u (no ack within a period of %s)",
+                          o->s->modules[k].module, o->outstanding[k], ss->s->name);
+                    o->outstanding[k] = 0;
+                }
+        }
+}
+
 static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     int64_t tick = ss->next_tick;
     ss->next_tick += ss->s->period_ns;
@@ -145,6 +161,13 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
         ss->stats.missed_ticks++;
         trace(c, "missed tick of %s", ss->s->name);
         return;
+    }
+    if (ss->running && ss->held) { /* the held cycle never ran: this tick starts afresh */
+        ss->stats.overruns++;
+        trace(c, "overrun: %s cycle still held, restarted", ss->s->name);
+        give_up_waiting(c, ss);
+        ss->running = 0;
+        ss->held = 0;
     }
     if (ss->running) {
         ss->stats.overruns++;
