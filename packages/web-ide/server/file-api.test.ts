@@ -94,6 +94,11 @@ describe('file API over HTTP', () => {
     expect(await raw({ origin: ide.url, 'content-type': 'application/json' }, 'POST', '/api/create', create)).toBe(201);
   });
 
+  it('reports a port in use (EADDRINUSE) instead of hanging', async () => {
+    const port = Number(new URL(ide.url).port);
+    await expect(startIdeServer({ workspace: ws, port, buildService: false })).rejects.toMatchObject({ code: 'EADDRINUSE' });
+  });
+
   it('answers unknown routes and missing front end builds with clear messages', async () => {
     expect((await call('GET', '/api/nope')).status).toBe(404);
     const page = await fetch(ide.url + '/');

@@ -146,10 +146,17 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     }
     if (!build?.handleUpgrade?.(req, socket, head)) socket.destroy();
   });
-  await new Promise<void>((resolve, reject) => {
-    server.once('error', reject);
-    server.listen(options.port ?? DEFAULT_PORT, host, () => resolve());
-  });
+  try {
+    await new Promise<void>((resolve, reject) => {
+      server.once('error', reject);
+      server.listen(options.port ?? DEFAULT_PORT, host, () => resolve());
+    });
+  } catch (e) {
+    // port in use, bad address: release what was started so the process can exit
+    watcher.close();
+    await build?.close().catch(() => undefined);
+    throw e;
+  }
   const addr = server.address();
   const port = typeof addr === 'object' && addr ? addr.port : options.port;
   return {
