@@ -4,6 +4,8 @@
  *   build.noop_s.<sandbox>        the same build again (nothing changed): target < 1 s
  *   build.sandbox_overhead_ratio  make step of the same clean tutorial build, bwrap / none (best of 5 each,
  *                                 alternated: the least disturbed run on a shared machine)
+ *   artifacts.collect_ms.<sandbox>  tutorial run of 1 s: copying its 9 CSV logs out of the sandbox
+ *                                 (host no-follow reads; docker: archive API of the volume)
  *   stream.latency_ms_p50         a module's printf (its CLOCK_REALTIME stamp) -> SSE client, median
  * The runtime is built once beforehand (it is a per-machine cache, not a per-build cost) from a
  * snapshot of runtime/, so concurrent edits of the runtime do not disturb the figures.
@@ -65,6 +67,11 @@ async function main(): Promise<void> {
         out[`build.cold_s.${sandbox}`] = round(cold.seconds);
         out[`build.noop_s.${sandbox}`] = round(noop.seconds);
         say(`${sandbox}: cold ${cold.seconds.toFixed(2)} s (make ${cold.job.result.durations_ms.build} ms), no-op ${noop.seconds.toFixed(2)} s`);
+        const run = await timedJob(url, { action: 'run', sandbox, duration: 1, project: { dir: TUTORIAL_DIR } });
+        const files = run.job.artifacts?.files?.length ?? 0;
+        if (files < 9) throw new Error(`${sandbox}: the run's logs were not collected (${files} file(s))`);
+        out[`artifacts.collect_ms.${sandbox}`] = run.job.artifacts.collect_ms as number;
+        say(`${sandbox}: ${files} CSV logs collected in ${run.job.artifacts.collect_ms} ms`);
       });
     }
 

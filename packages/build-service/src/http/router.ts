@@ -107,7 +107,7 @@ export function createRouter(service: JobService, basePath: string) {
           res.writeHead(200, { 'Content-Type': 'text/plain; charset=utf-8' });
           res.end(text);
         } else if (sub === 'artifacts' && parts.length === 3 && method === 'GET') {
-          send(res, 200, { id: job.id, status: job.status, artifacts: job.artifactsJSON() ?? { files: [], skipped: [], runDirLeftovers: [] } });
+          send(res, 200, { id: job.id, status: job.status, artifacts: job.artifactsJSON() ?? { files: [], skipped: [], runDirLeftovers: [], collect_ms: null } });
         } else if (sub === 'artifacts' && parts.length === 4 && method === 'GET') {
           let name: string;
           try {

@@ -65,6 +65,8 @@ export class Job {
   sandboxNote = '';
   /** The run's CSV logs (and what was left out), collected from the sandbox once the run step ended. */
   artifacts: RunArtifacts | null = null;
+  /** How long collecting them took (ms). */
+  artifactsCollectMs: number | null = null;
 
   private current: SandboxProcess | null = null;
   private cancelRequested = false;
@@ -221,8 +223,9 @@ export class Job {
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
       this.artifacts = await collectRunArtifacts(reader, workDir);
+      this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
-      this.system('run', `collected ${a.files.length} artifact(s) in ${Date.now() - t0} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${s.name} (${s.reason})`).join(', ')}` : ''}`);
+      this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${s.name} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);
     }
@@ -234,10 +237,10 @@ export class Job {
   }
 
   /** The JSON listing of the artifacts (no bytes), null when the job has not run. */
-  artifactsJSON(): { files: { name: string; path: string; size: number }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[] } | null {
+  artifactsJSON(): { files: { name: string; path: string; size: number }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[]; collect_ms: number | null } | null {
     const a = this.artifacts;
     if (!a) return null;
-    return { files: a.files.map(({ name, path, size }) => ({ name, path, size })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers };
+    return { files: a.files.map(({ name, path, size }) => ({ name, path, size })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers, collect_ms: this.artifactsCollectMs };
   }
 
   private orCancel<T>(p: Promise<T>): Promise<T> {
