@@ -14,3 +14,4 @@ export * from './validation/timing-analysis.js';
 export { CHECK_FACTORIES, type CheckFactory } from './validation/cactal-validator.js';
 export { ImportResolver } from './scoping/import-resolver.js';
 export { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
+export { PROJECT_TEMPLATES } from './templates/project-templates.js';

@@ -1,19 +1,13 @@
 /**
  * `contract new DIR`: creates a small complete Cactal project (data types, two modules, a periodic
  * schema, the scheduler configuration, a supervisor) in DIR. The templates are the web IDE's "New
- * project" ones (one place: @contract-studio/web-ide PROJECT_TEMPLATES). Never overwrites a file.
+ * project" ones (one place: @contract-studio/language PROJECT_TEMPLATES). Never overwrites a file.
  */
 import { existsSync, mkdirSync, readdirSync, statSync, writeFileSync } from 'node:fs';
 import { join, relative, resolve } from 'node:path';
+import { PROJECT_TEMPLATES } from '@contract-studio/language';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
-
-async function loadTemplates(): Promise<Record<string, string>> {
-    const name = '@contract-studio/web-ide';
-    const ide = (await import(name)) as { PROJECT_TEMPLATES?: Record<string, string> };
-    if (!ide.PROJECT_TEMPLATES) throw new Error('the installed @contract-studio/web-ide has no project templates');
-    return ide.PROJECT_TEMPLATES;
-}
 
 export const newCommand: Command = {
     name: 'new',
@@ -39,13 +33,7 @@ export const newCommand: Command = {
                 return EXIT_FAILURE;
             }
         }
-        let templates: Record<string, string>;
-        try {
-            templates = await loadTemplates();
-        } catch (err) {
-            io.err(`contract new: cannot load the project templates (${err instanceof Error ? err.message.split('\n')[0] : String(err)}); install @contract-studio/web-ide or run \`npm run build\` at the repository root\n`);
-            return EXIT_FAILURE;
-        }
+        const templates = PROJECT_TEMPLATES;
         mkdirSync(dir, { recursive: true });
         for (const [file, text] of Object.entries(templates)) {
             writeFileSync(join(dir, file), text, { flag: 'wx' });

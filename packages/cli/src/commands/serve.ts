@@ -30,7 +30,7 @@ export const serveCommand: Command = {
             const name = '@contract-studio/web-ide';
             ide = (await import(name)) as WebIde;
         } catch (err) {
-            io.err(`contract serve: the web IDE is not built (${err instanceof Error ? err.message.split('\n')[0] : String(err)}); run \`npm run build\` at the repository root\n`);
+            io.err(`contract serve: the web IDE is not available (${err instanceof Error ? err.message.split('\n')[0] : String(err)}); install @contract-studio/web-ide next to the CLI, or run \`npm run build\` at the repository root\n`);
             return EXIT_FAILURE;
         }
         const argv = args.map((a, i) => (!a.startsWith('-') && !['--port', '-p', '--host'].includes(args[i - 1] ?? '') ? resolve(io.cwd, a) : a));
