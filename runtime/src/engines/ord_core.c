@@ -138,16 +138,21 @@ static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
     release_heads(c, ss);
 }
 
-/* A held cycle waits at most one period: a module stopped by someone else (its STOP answered
-   to that requester, never to ORD) or crashed would otherwise hold the schema for ever. The
-   releases it waits for are forgotten (their acks, if any come, are then ignored). */
+/* A held cycle waits at most ORD_HOLD_LIMIT_NS (or one period if longer): a module stopped by
+   someone else (its STOP is answered to that requester, never to ORD) or crashed would
+   otherwise hold the schema for ever. Not shorter: under load a module may sit for tens of ms
+   before reading the START it still has to run, and forgetting that release early would make
+   it run twice in the new cycle. The releases it waits for are forgotten (their acks, if any
+   come, are then ignored). */
+#define ORD_HOLD_LIMIT_NS 1000000000LL
+
 static void give_up_waiting(OrdCore *c, SchemaState *ss) {
     for (int m = 0; m < ss->s->nmodules; m++)
         for (int i = 0; i < c->v->nschemas; i++) {
             SchemaState *o = &c->st[i];
             for (int k = 0; k < o->s->nmodules; k++)
                 if (o->outstanding[k] && strcmp(o->s->modules[k].module, ss->s->modules[m].module) == 0) {
-                    trace(c, "gave up waiting for %s release #%u (no ack within a period of %s)",
+                    trace(c, "gave up waiting for %s release #%u (no ack within 1 s, %s)",
                           o->s->modules[k].module, o->outstanding[k], ss->s->name);
                     o->outstanding[k] = 0;
                 }
@@ -162,7 +167,9 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
         trace(c, "missed tick of %s", ss->s->name);
         return;
     }
-    if (ss->running && ss->held) { /* the held cycle never ran: this tick starts afresh */
+    if (ss->running && ss->held &&
+        tick - ss->cycle_tick >= (ss->s->period_ns > ORD_HOLD_LIMIT_NS ? ss->s->period_ns : ORD_HOLD_LIMIT_NS)) {
+        /* the held cycle never ran: this tick starts afresh */
         ss->stats.overruns++;
         trace(c, "overrun: %s cycle still held, restarted", ss->s->name);
         give_up_waiting(c, ss);

@@ -292,10 +292,11 @@ void test_ord_ack_matched_to_its_cycle_by_release_id(void) {
     ord_core_destroy(c);
 }
 
-/* A held cycle waits at most one period: E, released before the deactivation, never answers
-   (stopped by someone else, or crashed); at the next tick ORD forgets that release and the
-   cycle starts afresh; the old ack, if it comes at last, completes nothing. */
-void test_ord_held_cycle_gives_up_after_a_period(void) {
+/* A held cycle waits at most 1 s: E, released before the deactivation, never answers
+   (stopped by someone else, or crashed). Until then every tick is an overrun; at the first tick
+   1 s after the held cycle's, ORD forgets that release and the cycle starts afresh; the old ack,
+   if it comes at last, completes nothing. */
+void test_ord_held_cycle_gives_up_after_1s(void) {
     FakeWorld w;
     OrdCore *c = make(&w);
     if (!c) { CHECK(0); return; }
@@ -303,24 +304,27 @@ void test_ord_held_cycle_gives_up_after_a_period(void) {
     uint32_t e0 = fake_last_release(&w, "E");
     CHECK(ord_core_deactivate(c, 1 * MS, "FST", "SUP", 1) == 0);
     CHECK(ord_core_activate(c, 2 * MS, "FST", NULL, 0, "SUP", 2) == 0);
-    ord_core_advance(c, 5 * MS);
+    ord_core_advance(c, 1001 * MS);                /* ticks 5, 8, ..., 1001 ms: still held */
+    CHECK(fake_last_release(&w, "E") == e0);
+    ord_core_advance(c, 1002 * MS);                /* tick 1004 ms >= 2 ms + 1 s: not yet */
+    ord_core_advance(c, 1004 * MS);
     uint32_t e1 = fake_last_release(&w, "E");
     CHECK(e1 != e0);
-    ord_core_release_finished(c, 6 * MS, "E", e0);
-    ord_core_release_finished(c, 6 * MS, "E", e1);
-    ord_core_advance(c, 8 * MS);
-    check_log_filtered(&LOG, (const char *const[]){"release", "held", "overrun", "gave up", "ignored", "late", NULL},
+    ord_core_release_finished(c, 1005 * MS, "E", e0);
+    ord_core_release_finished(c, 1005 * MS, "E", e1);
+    ord_core_advance(c, 1007 * MS);
+    check_log_filtered(&LOG, (const char *const[]){"release E", "held", "gave up", "ignored", "late", NULL},
                        (const char *const[]){
                            "0us release E (FST)",
                            "2000us cycle of FST held: E still runs a release of an earlier activation",
-                           "5000us overrun: FST cycle still held, restarted",
-                           "5000us gave up waiting for E release #1 (no ack within a period of FST)",
-                           "5000us release E (FST)",
-                           "6000us ignored: E finished outside a cycle (release #1 is not outstanding)",
-                           "8000us release E (FST)", NULL},
+                           "1004000us overrun: FST cycle still held, restarted",
+                           "1004000us gave up waiting for E release #1 (no ack within 1 s, FST)",
+                           "1004000us release E (FST)",
+                           "1005000us ignored: E finished outside a cycle (release #1 is not outstanding)",
+                           "1007000us release E (FST)", NULL},
                        __FILE__, __LINE__);
     OrdSchemaStats st;
     ord_core_stats(c, "FST", &st);
-    CHECK(st.overruns == 1 && st.held_cycles == 1 && st.completed == 1);
+    CHECK(st.overruns == 334 && st.held_cycles == 1 && st.completed == 1); /* 5..1001 ms: 333 */
     ord_core_destroy(c);
 }
