@@ -19,6 +19,7 @@ import { toRange } from './lsp/lsp-convert.js';
 import { scanProtectedRegions } from './editor/protected-regions.js';
 import type { ArchitectureView } from './views/architecture-view.js';
 import type { TimelineView } from './views/timeline-view.js';
+import type { RunLogs } from './views/run-logs.js';
 
 async function main(): Promise<void> {
   performance.mark('ide:main');
@@ -304,6 +305,23 @@ async function main(): Promise<void> {
     ui.status.job.textContent = `${running ? '⟳' : status === 'succeeded' ? '✓' : '■'} ${status}${message ? `: ${message}` : ''}`;
     ui.status.job.dataset.status = status;
   });
+  // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
+  build.onFinished.on(({ jobId, action }) => {
+    if (action !== 'run') return;
+    void (async () => {
+      try {
+        const { fetchJobLogs } = await import('./views/run-logs.js');
+        const logs = await fetchJobLogs(jobId);
+        for (const p of logs.problems) build.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `timeline: ${p}` });
+        if (!logs.files.length) return;
+        lastRunLogs = logs;
+        timeline?.showRun(logs);
+        toast('info', `Run logs of ${logs.files.length} module(s) ready: ▤ Timeline shows the run's activations`);
+      } catch (e) {
+        build.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `timeline: could not fetch the run's logs: ${(e as Error).message}` });
+      }
+    })();
+  });
   ui.toolbar.run.addEventListener('click', () => void run());
   ui.toolbar.stop.addEventListener('click', () => void build.stop());
 
@@ -336,10 +354,12 @@ async function main(): Promise<void> {
   monaco.editor.onDidCreateModel((m) => m.onDidChangeContent(() => archRefresh()));
   for (const m of monaco.editor.getModels()) m.onDidChangeContent(() => archRefresh());
   let timeline: TimelineView | undefined;
+  let lastRunLogs: RunLogs | undefined;
   ui.toolbar.timeline.addEventListener('click', async () => {
     if (!timeline) {
       const { TimelineView } = await import('./views/timeline-view.js');
       timeline = new TimelineView(() => currentProject(), workspace);
+      if (lastRunLogs) timeline.showRun(lastRunLogs);
     }
     editors.openView({ id: 'view:timeline', title: 'Timeline', icon: '▤', element: timeline.element, onShow: () => void timeline!.update() });
   });

@@ -23,6 +23,8 @@ export class BuildPanel {
   readonly view = new LogView(this.store);
   readonly onDiagnostics = new Emitter<GccDiagnostic[]>();
   readonly onStatus = new Emitter<{ status: string; message?: string; running: boolean }>();
+  /** A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET /api/jobs/:id/artifacts. */
+  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean }>();
   readonly element: HTMLElement;
   private readonly chips: HTMLElement;
   private readonly statusEl: HTMLElement;
@@ -130,6 +132,7 @@ export class BuildPanel {
       this.source = undefined;
       this.jobId = undefined;
       this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
+      this.onFinished.fire({ jobId: job.id, action, ok: !!d.result?.ok });
     });
     es.onerror = () => {
       if (es.readyState === EventSource.CLOSED && this.jobId) {

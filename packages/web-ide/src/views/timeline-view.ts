@@ -1,7 +1,8 @@
 import { h } from '../util/dom.js';
 import { api } from '../api.js';
 import type { Workspace } from '../workspace/workspace.js';
-import { activationsFromCsv, inferPeriod, type Activation } from './activation-log.js';
+import { inferPeriod, type Activation } from './activation-log.js';
+import { activationsFromLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 
@@ -13,15 +14,19 @@ function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string,
 }
 
 /**
- * Timeline of module activations (one lane per module, one bar per activation) over the run's
- * CSV logs found under `<project>/src-gen/generated/architecture/logs/`, with period gridlines.
+ * Timeline of module activations (one lane per module, one bar per activation), with period
+ * gridlines, over one of two sources of the runtime's CSV logs: the run that just finished in
+ * Build & Run (logs collected by the build service, given through `showRun`) or the local logs
+ * under `<project>/src-gen/generated/architecture/logs/` (`make run` / `contract run`).
  */
 export class TimelineView {
   readonly element: HTMLElement;
   private readonly canvas: HTMLElement;
   private readonly info: HTMLElement;
   private readonly zoom: HTMLInputElement;
+  private readonly source: HTMLSelectElement;
   private last: { acts: Activation[]; files: number; errors: string[] } | undefined;
+  private run: RunLogs | undefined;
 
   constructor(
     private readonly project: () => string,
@@ -31,33 +36,62 @@ export class TimelineView {
     this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)' });
     this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors));
     this.canvas = h('div', { class: 'timeline-canvas' });
+    this.source = h('select', { class: 'timeline-source', title: 'Which run to show' });
+    this.source.addEventListener('change', () => void this.update());
+    this.renderSources('local');
     this.element = h('div', { class: 'timeline-view' },
-      h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Activations per period'), this.info, h('span', { class: 'grow' }),
+      h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Activations per period'), this.source, this.info, h('span', { class: 'grow' }),
         h('label', { class: 'toggle' }, 'Zoom ', this.zoom),
         h('button', { class: 'btn small', onclick: () => void this.update() }, '⟳ Reload logs')),
       this.canvas);
   }
 
+  /** The logs of the run that just finished in Build & Run: selected, and drawn if the view is shown. */
+  showRun(logs: RunLogs): void {
+    this.run = logs;
+    this.renderSources('run');
+    if (this.element.isConnected) void this.update();
+  }
+
+  private renderSources(selected: 'run' | 'local'): void {
+    const options = [h('option', { value: 'local', selected: selected === 'local' }, 'Local logs (make run / contract run)')];
+    if (this.run) options.unshift(h('option', { value: 'run', selected: selected === 'run' }, `Last Build & Run (${this.run.label.replace(/^Build & Run /, '')})`));
+    this.source.replaceChildren(...options);
+    this.source.value = selected === 'run' && this.run ? 'run' : 'local';
+  }
+
   async update(): Promise<void> {
+    if (this.source.value === 'run' && this.run) return this.drawLogs(this.run.files, this.run.problems, `${this.run.label} left no CSV logs.`);
     const p = this.project();
     const logDir = `${p ? `${p}/` : ''}src-gen/generated/architecture/logs`;
     await this.workspace.refreshTree();
     const csvs = this.workspace.allFiles().filter((f) => f.startsWith(logDir + '/') && f.endsWith('.csv'));
     if (!csvs.length) {
       this.info.textContent = '';
-      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Runs of \`make -C src-gen/generated/architecture run\` (or \`contract run\`) write them there; sandboxed Build & Run jobs do not copy their logs back yet.`));
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Runs of \`make -C src-gen/generated/architecture run\` (or \`contract run\`) write them there; a Build & Run shows its own run here when it ends.`));
       return;
     }
-    const acts: Activation[] = [];
-    const errors: string[] = [];
+    const files: LogFile[] = [];
+    const problems: string[] = [];
     for (const f of csvs) {
       try {
-        acts.push(...activationsFromCsv((await api.read(f)).content));
+        files.push({ name: f, text: (await api.read(f)).content });
       } catch (e) {
-        errors.push(`${f}: ${(e as Error).message}`);
+        problems.push(`${f}: ${(e as Error).message}`);
       }
     }
-    this.draw(acts.sort((a, b) => a.start - b.start), csvs.length, errors);
+    this.drawLogs(files, problems, '');
+  }
+
+  private drawLogs(files: LogFile[], problems: string[], emptyText: string): void {
+    if (!files.length && emptyText) {
+      this.info.textContent = '';
+      this.last = undefined;
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `${emptyText} ${problems.join(' ')}`.trim()));
+      return;
+    }
+    const { acts, errors } = activationsFromLogs(files);
+    this.draw(acts, files.length + problems.length, [...problems, ...errors]);
   }
 
   private draw(acts: Activation[], files: number, errors: string[]): void {

@@ -1,0 +1,64 @@
+import { describe, it, expect, afterEach } from 'vitest';
+import { createServer, type Server } from 'node:http';
+import type { AddressInfo } from 'node:net';
+import { activationsFromLogs, fetchJobLogs } from './run-logs.js';
+
+const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+const log = (m: string, starts: number[]) =>
+  [HEADER, ...starts.flatMap((t) => [`${t},w,${m},run_started,ORD,,0,`, `${t + 5},w,${m},run_finished,,,0,`])].join('\n') + '\n';
+
+describe('run logs', () => {
+  it('merges the activations of several module logs in start order, and names an unreadable file', () => {
+    const { acts, errors } = activationsFromLogs([
+      { name: 'MSC_x.csv', text: log('MSC', [30, 10]) },
+      { name: 'MSA_x.csv', text: log('MSA', [20]) },
+      { name: 'junk.csv', text: 'a,b\n1,2\n' },
+    ]);
+    expect(acts.map((a) => `${a.module}@${a.start}-${a.end}`)).toEqual(['MSC@10-15', 'MSA@20-25', 'MSC@30-35']);
+    expect(errors).toHaveLength(1);
+    expect(errors[0]).toMatch(/^junk\.csv: not a ContrACT CSV log/);
+  });
+
+  describe('fetchJobLogs over HTTP (the artifacts API of docs/build-service-api.md)', () => {
+    let server: Server | undefined;
+    afterEach(() => new Promise<void>((r) => (server ? server.close(() => r()) : r())));
+
+    async function serve(routes: Record<string, [number, string]>): Promise<typeof fetch> {
+      server = createServer((req, res) => {
+        const [status, body] = routes[req.url ?? ''] ?? [404, JSON.stringify({ code: 'not_found', message: `no route ${req.url}` })];
+        res.writeHead(status, { 'content-type': body.startsWith('{') ? 'application/json' : 'text/csv' });
+        res.end(body);
+      });
+      await new Promise<void>((r) => server!.listen(0, '127.0.0.1', () => r()));
+      const base = `http://127.0.0.1:${(server!.address() as AddressInfo).port}`;
+      return ((url: string) => fetch(base + url)) as typeof fetch;
+    }
+
+    it('downloads every CSV of the listing and reports skipped or missing files as problems', async () => {
+      const listing = {
+        id: 'j 1', status: 'succeeded',
+        artifacts: {
+          files: [{ name: 'MSC_1.csv', size: 1 }, { name: 'MSA_1.csv', size: 1 }, { name: 'gone.csv', size: 1 }, { name: 'core.bin', size: 1 }],
+          skipped: [{ name: 'planted.csv', reason: 'not a regular file (symlink): not followed' }], runDirLeftovers: [], collect_ms: 1,
+        },
+      };
+      const f = await serve({
+        '/api/jobs/j%201/artifacts': [200, JSON.stringify(listing)],
+        '/api/jobs/j%201/artifacts/MSC_1.csv': [200, log('MSC', [1, 11])],
+        '/api/jobs/j%201/artifacts/MSA_1.csv': [200, log('MSA', [2])],
+      });
+      const logs = await fetchJobLogs('j 1', f);
+      expect(logs.label).toBe('Build & Run job j 1');
+      expect(logs.files.map((x) => x.name)).toEqual(['MSC_1.csv', 'MSA_1.csv']);
+      expect(activationsFromLogs(logs.files).acts).toHaveLength(3);
+      expect(logs.problems).toHaveLength(2);
+      expect(logs.problems[0]).toMatch(/planted\.csv: not a regular file/);
+      expect(logs.problems[1]).toMatch(/gone\.csv: HTTP 404 no route/);
+    });
+
+    it('fails with a clear message when the job is unknown', async () => {
+      const f = await serve({});
+      await expect(fetchJobLogs('nope', f)).rejects.toThrow(/artifacts: HTTP 404 no route/);
+    });
+  });
+});

@@ -1,0 +1,76 @@
+/**
+ * The CSV logs a timeline draws: either the files of a local run (`make run` / `contract run` in the
+ * project's `src-gen/generated/architecture/logs/`) or those the build service collected from a
+ * sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`, docs/build-service-api.md).
+ */
+import { activationsFromCsv, type Activation } from './activation-log.js';
+
+export interface LogFile {
+  name: string;
+  text: string;
+}
+
+export interface RunLogs {
+  /** Where the files come from, shown to the user (e.g. `Build & Run job 12`). */
+  label: string;
+  files: LogFile[];
+  /** Files that could not be had, with why (left out by the service, download failed). */
+  problems: string[];
+}
+
+/** Every activation of the given logs, sorted by start; a file that is not a runtime log is a problem, not a crash. */
+export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; errors: string[] } {
+  const acts: Activation[] = [];
+  const errors: string[] = [];
+  for (const f of files) {
+    try {
+      acts.push(...activationsFromCsv(f.text));
+    } catch (e) {
+      errors.push(`${f.name}: ${(e as Error).message}`);
+    }
+  }
+  return { acts: acts.sort((a, b) => a.start - b.start), errors };
+}
+
+interface ArtifactListing {
+  status: string;
+  artifacts: { files: Array<{ name: string; size: number }>; skipped: Array<{ name: string; reason: string }> };
+}
+
+async function getOk(fetchFn: typeof fetch, url: string): Promise<Response> {
+  let res: Response;
+  try {
+    res = await fetchFn(url);
+  } catch {
+    throw new Error(`${url}: server unreachable`);
+  }
+  if (!res.ok) {
+    const body = await res.text().catch(() => '');
+    let msg = body;
+    try {
+      const j = JSON.parse(body) as { error?: string; message?: string };
+      msg = j.message ?? j.error ?? body;
+    } catch {
+      /* plain text */
+    }
+    throw new Error(`${url}: HTTP ${res.status}${msg ? ` ${msg}` : ''}`);
+  }
+  return res;
+}
+
+/** Downloads the CSV logs the build service collected from job `id` (only `.csv` files). */
+export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch): Promise<RunLogs> {
+  const base = `/api/jobs/${encodeURIComponent(id)}/artifacts`;
+  const listing = (await (await getOk(fetchFn, base)).json()) as ArtifactListing;
+  const problems = (listing.artifacts?.skipped ?? []).map((s) => `${s.name}: ${s.reason}`);
+  const files: LogFile[] = [];
+  for (const f of listing.artifacts?.files ?? []) {
+    if (!f.name.endsWith('.csv')) continue;
+    try {
+      files.push({ name: f.name, text: await (await getOk(fetchFn, `${base}/${encodeURIComponent(f.name)}`)).text() });
+    } catch (e) {
+      problems.push((e as Error).message);
+    }
+  }
+  return { label: `Build & Run job ${id}`, files, problems };
+}
