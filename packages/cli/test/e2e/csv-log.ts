@@ -59,7 +59,7 @@ export interface ChainReport {
     violations: string[];
     /** A module started a second time in one cycle (order kept; reported, not a precedence violation). */
     repeats: string[];
-    /** Median time between two releases of the chain's first module, in ms. */
+    /** Median time between two releases of the chain's first module within one activation, in ms. */
     medianPeriodMs: number;
 }
 
@@ -71,19 +71,25 @@ export interface ChainReport {
  * deactivated; the next cycle starts again at the head.
  */
 export function checkChain(records: LogRecord[], chain: string[]): ChainReport {
-    const timeline = records.filter((r) => chain.includes(r.module) && (r.event === 'run_started' || r.event === 'run_finished'));
+    // ORD's `activate` records split the timeline into activation windows: the time between two
+    // windows (the schema was inactive) is not a period.
+    const isActivation = (r: LogRecord) => r.module === 'ORD' && r.event === 'scheduler' && r.detail.startsWith('activate ');
+    const timeline = records.filter((r) => isActivation(r) || (chain.includes(r.module) && (r.event === 'run_started' || r.event === 'run_finished')));
     const violations: string[] = [];
     const repeats: string[] = [];
     let finished = new Set<string>(); // modules of the chain that finished in this cycle
     let started = new Set<string>();
     let running: string | null = null;
     let completeCycles = 0;
-    const heads: bigint[] = [];
+    const gaps: number[] = [];
+    let lastHead: bigint | null = null;
     for (const r of timeline) {
+        if (isActivation(r)) { lastHead = null; continue; }
         const index = chain.indexOf(r.module);
         if (r.event === 'run_started') {
             if (index === 0) {
-                heads.push(r.mono);
+                if (lastHead !== null) gaps.push(Number(r.mono - lastHead) / 1e6);
+                lastHead = r.mono;
                 finished = new Set();
                 started = new Set();
                 running = null;
@@ -99,7 +105,7 @@ export function checkChain(records: LogRecord[], chain: string[]): ChainReport {
             finished.add(r.module);
         }
     }
-    const gaps = heads.slice(1).map((t, i) => Number(t - heads[i]!) / 1e6).sort((a, b) => a - b);
+    gaps.sort((a, b) => a - b);
     return { completeCycles, violations, repeats, medianPeriodMs: gaps.length ? gaps[Math.floor(gaps.length / 2)]! : NaN };
 }
 
