@@ -300,24 +300,37 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
   });
 
-  it.skipIf(!canBuild || !canGenerate)('Build & Run streams MSC lines into the log panel, filters them, and Stop cancels', async () => {
+  it.skipIf(!canBuild || !canGenerate)('Build & Run streams MSC lines into the log panel, filters them, the timeline shows the finished run, and Stop cancels', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
     await page.locator('#btn-run-settings').click();
-    await page.locator('.dialog-input[data-key=duration]').fill('6');
+    await page.locator('.dialog-input[data-key=duration]').fill('4');
     await page.locator('.dialog-input[data-key=start]').fill('GLB.mission(consigne={1.0,2.0,3.0})');
     await page.locator('.dialog .btn.primary').click();
-    expect(await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!))).toEqual({ duration: 6, start: 'GLB.mission(consigne={1.0,2.0,3.0})' });
+    expect(await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!))).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})' });
     await page.locator('#btn-run').click();
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 140_000 }).catch(async (e) => {
       await shot(page, '06-build-and-run-FAILED');
       throw e;
     });
     await shot(page, '06-build-and-run');
-    await page.locator('#btn-stop').click();
-    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
-    await expect.poll(() => page.locator('#btn-run').isEnabled()).toBe(true);
-    // per-module filter: hide MSC, then show it again
+    // the run ends by itself after DURATION; the service collected its CSV logs from the sandbox
+    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 60_000 }).toBe('succeeded');
+    await page.locator('.toast', { hasText: 'Run logs of' }).click({ timeout: 15_000 }); // seen, and dismissed
+    await page.locator('#btn-timeline').click();
+    await page.locator('.timeline-svg').waitFor({ timeout: 10_000 });
+    expect(await page.locator('.timeline-source').inputValue()).toBe('run');
+    const lanes = await page.locator('.lane-label').allTextContents();
+    expect(lanes).toContain('MSC');
+    expect(lanes.filter((m) => m !== 'MSC').length).toBeGreaterThan(0);
+    const bars = await page.locator('.act-bar title').allTextContents();
+    const mscBars = bars.filter((t) => t.startsWith('MSC ')).length;
+    expect(mscBars).toBeGreaterThan(0);
+    expect(bars.length - mscBars).toBeGreaterThan(0);
+    expect(await page.locator('.timeline-view .muted').first().textContent()).toMatch(/^\d+ activations · \d+ modules/);
+    await shot(page, '06c-timeline-after-build-and-run');
+    // per-module filter on the finished job's log: hide MSC, then show it again
+    await openFile(page, 'supervisor.contract');
     await page.locator('#follow-tail').uncheck();
     await page.locator('.log-viewport').evaluate((el) => (el.scrollTop = 0));
     await page.locator('.chip[data-source="MSC"]').click();
@@ -327,7 +340,15 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.log-search').fill('MSC');
     await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBeGreaterThan(0);
     await page.locator('.log-search').fill('');
-  }, 180_000);
+    await page.locator('#follow-tail').check();
+    // Stop cancels a running job (a cancelled run brings no logs: the timeline keeps the finished one)
+    await page.locator('#btn-run').click();
+    await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run'); // the old log is cleared
+    await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 30_000 });
+    await page.locator('#btn-stop').click();
+    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
+    await expect.poll(() => page.locator('#btn-run').isEnabled()).toBe(true);
+  }, 240_000);
 
   it.skipIf(!canBuild || !canGenerate)('shows gcc errors in the problems panel and opens the generated file at the line', async () => {
     const { page } = s;
@@ -400,8 +421,8 @@ describe('IDE in headless Chromium', () => {
       writeFileSync(join(logs, `${m}_1-Jan-2026-00h00m00s.csv`), rows.join('\n') + '\n');
     }
     await page.locator('#btn-timeline').click();
-    await page.locator('.timeline-svg').waitFor({ timeout: 10_000 });
-    expect(await page.locator('.act-bar').count()).toBe(30);
+    await page.locator('.timeline-source').selectOption('local'); // after a Build & Run, the timeline shows that run first
+    await expect.poll(() => page.locator('.act-bar').count(), { timeout: 10_000 }).toBe(30);
     expect(await page.locator('.lane-label').allTextContents()).toEqual(['MSA', 'MSC', 'MSD']);
     expect(await page.locator('.timeline-view .muted').first().textContent()).toMatch(/period ≈ 10\.00 ms/);
     await shot(page, '09-timeline');
