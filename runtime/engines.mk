@@ -34,7 +34,8 @@ test-engines: $(ENG_OUT)/engine-tests $(ENG_OUT)/engine-tests-san
 # ---- integration test: real processes through libmodule (needs the runtime Makefile's
 # build/libmodule.a, build/san/libmodule.a and build/contract-launch) ----
 ENG_IT_SRC  := tests/engines/integration
-ENG_IT_DEPS := $(wildcard $(ENG_IT_SRC)/*.h) $(wildcard include/*/*.h)
+ENG_IT_DEPS := $(wildcard $(ENG_IT_SRC)/*.h) $(wildcard include/*/*.h) tests/engines/engine_executable.h
+ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c)
 
 # $(1) = output dir, $(2) = libmodule.a, $(3) = extra flags
 define ENG_IT_SET
@@ -62,13 +63,22 @@ $(1)/SHA: $(ENG_IT_SRC)/ishare.c $(2) $(ENG_IT_DEPS)
 $(1)/SHB: $(ENG_IT_SRC)/ishare.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/itest: $(ENG_IT_SRC)/itest.c
+$(1)/RMA $(1)/RMC: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $$< -o $$@
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"$$(notdir $$@)"' $$< $(2) -o $$@
+$(1)/RMB: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"RMB"' -DIMOD_SLOW_AT=4 $$< $(2) -o $$@
+$(1)/RSU: $(ENG_IT_SRC)/ireactivate.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(ENG_IT_MAIN) -o $$@
 endef
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
-ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB itest
+ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB RMA RMB RMC RSU itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \

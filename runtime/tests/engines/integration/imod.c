@@ -2,8 +2,10 @@
  * imod.c — a synchronous module for the engines' integration test, built three times
  * (-DIMOD_NAME='"IMA"' ...). Request loop in the style of the report's skeleton: each START
  * is one activation: it drains its input data port, works IMOD_WORK_NS (clock_nanosleep), posts
- * an activation counter on its output data port and acks ACK_FINISHED. It writes what it
- * observes to $ITEST_OUT/<name>.trace: "start <ns>", "got <value>", "end <ns>", "param <v>".
+ * an activation counter on its output data port and acks ACK_FINISHED with the START's AckID.
+ * With -DIMOD_SLOW_AT=n, its n-th activation first posts n on its output event port 0 ("I am
+ * in my slow run") and then works IMOD_SLOW_NS instead. It writes what it observes to
+ * $ITEST_OUT/<name>.trace: "start <ns> <AckID>", "slow", "got <value>", "end <ns>", "param <v>".
  */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
@@ -18,17 +20,23 @@
 #ifndef IMOD_WORK_NS
 #define IMOD_WORK_NS 300000 /* simulated work per activation */
 #endif
+#ifndef IMOD_SLOW_AT
+#define IMOD_SLOW_AT 0 /* 0: no slow activation */
+#endif
+#ifndef IMOD_SLOW_NS
+#define IMOD_SLOW_NS 300000000L /* work of the slow activation: many periods of the tests */
+#endif
 
 MODULE_DESCRIPTION("engines integration test module");
 MODULE_AUTHOR("engines tests");
 
-static long in_value, out_value, param_gain;
+static long in_value, out_value, param_gain, slow_event;
 char MODULE_NAME[] = IMOD_NAME;
 int MODULE_PRIORITY = 50;
 ModuleUse IUSE[] = {{&in_value, 0, sizeof(long), "---", 0, 1}, IUSE_TERM};
 ModuleProduce IPRODUCE[] = {{&out_value, 0, sizeof(long)}, IPRODUCE_TERM};
 ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
+ModuleDetect IDETECT[] = {{&slow_event, 0, sizeof(long)}, IDETECT_TERM};
 size_t PARAM_SIZE_IN[] = {sizeof(long), PARAM_SIZE_TERM};
 size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
 
@@ -54,12 +62,19 @@ int ModuleMain(int argc, const char *argv[]) {
         if (!WaitForRequest(m)) break;
         switch (m->Type) {
         case REQ_START: {
-            if (trace) fprintf(trace, "start %lld\n", (long long)GetTime());
+            if (trace) fprintf(trace, "start %lld %d\n", (long long)GetTime(), m->Param.Start.AckID);
             while (GetData(&in_value, &pt, &rt) == 1)
                 if (trace) fprintf(trace, "got %ld\n", in_value);
-            struct timespec work = {0, IMOD_WORK_NS};
+            long work_ns = IMOD_WORK_NS;
+            if (++activations == IMOD_SLOW_AT) {
+                if (trace) fprintf(trace, "slow\n");
+                slow_event = activations;
+                PostEvent(&slow_event);
+                work_ns = IMOD_SLOW_NS;
+            }
+            struct timespec work = {work_ns / 1000000000L, work_ns % 1000000000L};
             clock_nanosleep(CLOCK_MONOTONIC, 0, &work, NULL);
-            out_value = ++activations;
+            out_value = activations;
             PostData(&out_value);
             if (trace) fprintf(trace, "end %lld\n", (long long)GetTime());
             SendAck(m->Param.Start.ModAck, m->Param.Start.WantedAck, ACK_FINISHED, m->Param.Start.AckID);
@@ -73,6 +88,14 @@ int ModuleMain(int argc, const char *argv[]) {
         case REQ_UNSUBSCRIBE:
             UnsubscribeUser(m->Param.Unsubscribe.SourcePort, m->Param.Unsubscribe.TargetModule,
                             m->Param.Unsubscribe.TargetPort);
+            break;
+        case REQ_SUB_EVENT:
+            SubscribeUserToEvent(m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
+                                 m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
+            break;
+        case REQ_UNSUB_EVENT:
+            UnsubscribeUserToEvent(m->Param.UnsubscribeEvent.targetModule, m->Param.UnsubscribeEvent.targetPort,
+                                   m->Param.UnsubscribeEvent.sourcePort);
             break;
         case REQ_SETPARAM:
             if (GetDataFromSetParamRequest(m, &param_gain, sizeof param_gain, &pt, &rt) == 0 && trace)

@@ -1,4 +1,8 @@
-/* itables.h — the integration test's schemas, included by iord.c and isup.c (one TU each). */
+/* itables.h — the integration test's periodic schemas, included by iord.c and the supervisors
+ * that activate them (isup.c, ireactivate.c; one TU each).
+ *   ISC (20 ms, critical delay 15 ms): IMA (gain :0) -> IMB, IMA -> IMC; IMA:0 -> IMB:0 * 1,
+ *       IMA:0 -> IMC:0 * 2.          ICF: IMB alone (conflicts with ISC).
+ *   RSC (20 ms, critical delay 15 ms): RMA -> RMB -> RMC (RMB is slow in its 4th activation). */
 #ifndef ITEST_TABLES_H
 #define ITEST_TABLES_H
 #include <contract/vocabulary.h>
@@ -19,4 +23,8 @@ static const ContractSchema ITEST_ISC = {"ISC", CONTRACT_SCHEMA_PERIODIC, 20 * I
 static const ContractSchemaModule icf_modules[] = {{"IMB", 0, NULL}};
 static const ContractSchema ITEST_ICF = {"ICF", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 20 * ITEST_MS,
                                          0, NULL, 0, 1, icf_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchemaModule rsc_modules[] = {{"RMA", 0, NULL}, {"RMB", 0, NULL}, {"RMC", 0, NULL}};
+static const ContractPrecedence rsc_prec[] = {{0, 1}, {1, 2}};
+static const ContractSchema ITEST_RSC = {"RSC", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
+                                         0, NULL, 0, 3, rsc_modules, 2, rsc_prec, 0, NULL, 0, NULL};
 #endif

@@ -1,0 +1,44 @@
+/*
+ * itest_nested.c — scenario 2 (inest.c, amod.c): GLT activates SLV.work, which runs an event
+ * schema with the asynchronous AMX, ends on its third event, notifies GLT, which stops SLV.work.
+ */
+#define _GNU_SOURCE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "itest_scenarios.h"
+#include "itest_support.h"
+
+void scenario_nested(const char *root, const char *bin, const char *launcher) {
+    Scenario s;
+    if (scenario_init(&s, root, "nested") != 0) {
+        check(0, "nested scenario set up");
+        return;
+    }
+    int before = itest_failed();
+    const char *const names[] = {"GLT", "SLV", "AMX", NULL};
+    check(scenario_launch(&s, bin, launcher, "GLT.top()", "0.5", names),
+          "nested supervisors: architecture ran and stopped cleanly");
+    char path[600];
+    snprintf(path, sizeof path, "%s/AMX.trace", s.out);
+    char *amx = slurp(path);
+    check(amx && strcmp(amx, "param 2\nstart\npost 2\npost 4\npost 6\nstop\n") == 0,
+          "event schema: AMX parameterised (GLT's value through SLV's local), started, stopped after W1");
+    char *txt = slurp(s.launch);
+    const char *order[] = {"[GLT] rule top.T1 active", "[SLV] function work started", "[SLV] rule work.W1 active",
+                           "[SLV] rule work.W1 inactive", "[SLV] rule work.W2 active",
+                           "[SLV] function work stopped", NULL};
+    int in_order = txt != NULL;
+    const char *at = txt;
+    for (int i = 0; order[i] && in_order; i++) {
+        const char *p = strstr(at, order[i]);
+        if (!p) in_order = 0;
+        else at = p;
+    }
+    check(in_order, "SLV.work started by GLT, W1 -> W2 on endof, stopped by GLT");
+    check(txt && strstr(txt, "[GLT] rule top.T1 inactive"), "SLV's notify reached GLT (T1 ended)");
+    if (itest_failed() > before) fprintf(stderr, "launcher output (nested scenario):\n%s\n", txt ? txt : "(none)");
+    free(amx);
+    free(txt);
+}

@@ -1,0 +1,20 @@
+/*
+ * itest_scenarios.h — the integration test's scenarios (one file each), run in this order by
+ * itest.c. Each runs one architecture with contract-launch in root/<its name>/ and records its
+ * checks (itest_support.h). `bin` holds the executables, `launcher` is contract-launch.
+ */
+#ifndef ITEST_SCENARIOS_H
+#define ITEST_SCENARIOS_H
+
+/** ORD + ISU + IMA/IMB/IMC: parameters, precedence, absolute ticks, `* 1`/`* 2`, ORD:1. */
+void scenario_scheduler(const char *root, const char *bin, const char *launcher);
+/** GLT activates SLV.work: event schema of the asynchronous AMX, notify between supervisors. */
+void scenario_nested(const char *root, const char *bin, const char *launcher);
+/** SHA and SHB share AMX through event schemas: started once, stopped by the last user. */
+void scenario_shared_module(const char *root, const char *bin, const char *launcher);
+/** RSU deactivates and at once reactivates RSC while RMB still runs a slow release. */
+void scenario_reactivation(const char *root, const char *bin, const char *launcher);
+/** HTA and HTB toggle event schemas sharing AMX hundreds of times, concurrently. */
+void scenario_hold_toggles(const char *root, const char *bin, const char *launcher);
+
+#endif

@@ -1,0 +1,154 @@
+/* itest_support.c — see itest_support.h. */
+#define _GNU_SOURCE
+#include "itest_support.h"
+
+#include <dirent.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+static int passed, failed;
+
+int check(int ok, const char *what) {
+    printf("%s %s\n", ok ? "ok  " : "FAIL", what);
+    if (ok) passed++;
+    else failed++;
+    return ok;
+}
+
+int itest_failed(void) { return failed; }
+int itest_passed(void) { return passed; }
+
+static int make_dir(const char *path) {
+    if (mkdir(path, 0700) == 0) return 0;
+    perror(path);
+    return -1;
+}
+
+int scenario_init(Scenario *s, const char *root, const char *name) {
+    char base[400];
+    snprintf(base, sizeof base, "%s/%s", root, name);
+    snprintf(s->run, sizeof s->run, "%s/run", base);
+    snprintf(s->logs, sizeof s->logs, "%s/logs", base);
+    snprintf(s->out, sizeof s->out, "%s/out", base);
+    snprintf(s->launch, sizeof s->launch, "%s/launch.txt", base);
+    if (make_dir(base) != 0 || make_dir(s->logs) != 0 || make_dir(s->out) != 0) return -1;
+    setenv("ITEST_OUT", s->out, 1);
+    return 0;
+}
+
+int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
+                    const char *duration, const char *const *names) {
+    enum { MAX_EXE = 16 };
+    static char exe[MAX_EXE][512];
+    const char *argv[MAX_EXE + 12];
+    int n = 0;
+    argv[n++] = launcher;
+    argv[n++] = "--run-dir";
+    argv[n++] = s->run;
+    argv[n++] = "--log-dir";
+    argv[n++] = s->logs;
+    argv[n++] = "--start";
+    argv[n++] = start;
+    argv[n++] = "--duration";
+    argv[n++] = duration;
+    for (int i = 0; names[i] && i < MAX_EXE; i++) {
+        snprintf(exe[i], sizeof exe[i], "%s/%s", bin_dir, names[i]);
+        argv[n++] = exe[i];
+    }
+    argv[n] = NULL;
+    pid_t pid = fork();
+    if (pid < 0) {
+        perror("fork");
+        return 0;
+    }
+    if (pid == 0) {
+        FILE *o = freopen(s->launch, "w", stdout);
+        if (!o || dup2(fileno(stdout), 2) < 0) _exit(127);
+        execv(launcher, (char *const *)argv);
+        _exit(127);
+    }
+    int st = 0;
+    if (waitpid(pid, &st, 0) != pid) return 0;
+    return WIFEXITED(st) && WEXITSTATUS(st) == 0;
+}
+
+char *slurp(const char *path) {
+    FILE *f = fopen(path, "r");
+    if (!f) return NULL;
+    enum { LIMIT = 1 << 20 };
+    char *buf = malloc(LIMIT);
+    if (!buf) {
+        fclose(f);
+        return NULL;
+    }
+    size_t n = fread(buf, 1, LIMIT - 1, f);
+    buf[n] = '\0';
+    fclose(f);
+    return buf;
+}
+
+char *read_csv_log(const Scenario *s, const char *module) {
+    DIR *d = opendir(s->logs);
+    if (!d) return NULL;
+    size_t n = strlen(module);
+    char path[1024] = "";
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL) {
+        size_t l = strlen(e->d_name);
+        if (strncmp(e->d_name, module, n) == 0 && e->d_name[n] == '_' && l > 4 &&
+            strcmp(e->d_name + l - 4, ".csv") == 0) {
+            snprintf(path, sizeof path, "%s/%s", s->logs, e->d_name);
+            break;
+        }
+    }
+    closedir(d);
+    return path[0] ? slurp(path) : NULL;
+}
+
+long long csv_time_of(const char *csv, const char *from, const char *text, const char **at) {
+    if (!csv) return -1;
+    const char *p = from ? from : csv;
+    const char *hit = strstr(p, text);
+    if (!hit) return -1;
+    const char *line = hit;
+    while (line > csv && line[-1] != '\n') line--;
+    long long t = -1;
+    if (sscanf(line, "%lld,", &t) != 1) return -1;
+    if (at) {
+        const char *nl = strchr(hit, '\n');
+        *at = nl ? nl + 1 : hit + strlen(hit);
+    }
+    return t;
+}
+
+int read_trace(const char *dir, const char *name, Trace *t) {
+    memset(t, 0, sizeof *t);
+    t->param = -1;
+    t->slow = -1;
+    char path[600], line[128];
+    snprintf(path, sizeof path, "%s/%s.trace", dir, name);
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    while (fgets(line, sizeof line, f)) {
+        long long v, id;
+        int k = sscanf(line, "start %lld %lld", &v, &id);
+        if (k >= 1 && t->nstart < TRACE_MAX) {
+            t->id[t->nstart] = k == 2 ? (long)id : 0;
+            t->start[t->nstart++] = v;
+        } else if (sscanf(line, "end %lld", &v) == 1 && t->nend < TRACE_MAX) {
+            t->end[t->nend++] = v;
+        } else if (sscanf(line, "got %lld", &v) == 1 && t->ngot < TRACE_MAX) {
+            t->got[t->ngot++] = (long)v;
+        } else if (sscanf(line, "param %lld", &v) == 1) {
+            t->param = (long)v;
+        } else if (strncmp(line, "slow", 4) == 0) {
+            t->slow = t->nstart - 1;
+        }
+    }
+    fclose(f);
+    return 0;
+}

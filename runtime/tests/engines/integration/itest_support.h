@@ -1,0 +1,52 @@
+/*
+ * itest_support.h — what the integration scenarios share: the pass/fail counters, running
+ * contract-launch on a set of executables, and reading what the processes left behind
+ * (module traces written by imod.c/amod.c, launcher output, CSV logs of libmodule).
+ */
+#ifndef ITEST_SUPPORT_H
+#define ITEST_SUPPORT_H
+
+#include <stddef.h>
+
+/** Records one check ("ok  " / "FAIL" line on stdout). Returns ok. */
+int check(int ok, const char *what);
+/** Number of failed checks so far. */
+int itest_failed(void);
+/** Number of passed checks so far. */
+int itest_passed(void);
+
+/** One scenario's paths, all under the test's root directory. */
+typedef struct Scenario {
+    char run[512];     /* run directory given to the launcher                    */
+    char logs[512];    /* CSV log directory (one per scenario: names hold the second) */
+    char out[512];     /* ITEST_OUT: the modules' traces                         */
+    char launch[512];  /* the launcher's stdout + stderr                         */
+} Scenario;
+
+/** Makes root/<name>/{out,logs} and sets ITEST_OUT; -1 on error (printed). */
+int scenario_init(Scenario *s, const char *root, const char *name);
+/** Runs contract-launch with `start` for `duration` seconds on the executables `names` (NULL
+ *  terminated) of `bin_dir`. Returns 1 if the launcher exited 0. */
+int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
+                    const char *duration, const char *const *names);
+
+/** A file's contents (up to 1 MiB, NUL-terminated) or NULL; free() it. */
+char *slurp(const char *path);
+/** The contents of `module`'s CSV log in s->logs (the first file named <module>_*.csv), or NULL. */
+char *read_csv_log(const Scenario *s, const char *module);
+/** mono_ns of the first CSV record at or after `from` (a position in csv) whose line contains
+ *  `text`; -1 if none. *at (may be NULL) receives the position after that line. */
+long long csv_time_of(const char *csv, const char *from, const char *text, const char **at);
+
+/** What imod.c writes to <out>/<name>.trace. */
+#define TRACE_MAX 256
+typedef struct Trace {
+    long long start[TRACE_MAX], end[TRACE_MAX];
+    long id[TRACE_MAX];   /* the AckID (release id) of each START */
+    long got[TRACE_MAX], param;
+    int nstart, nend, ngot;
+    int slow;             /* index of the slow activation (IMOD_SLOW_AT), or -1 */
+} Trace;
+int read_trace(const char *dir, const char *name, Trace *t);
+
+#endif
