@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Produces the `contract-gcc` Docker image without pulling anything from a Docker registry:
+# Produces the `contract-gcc` Docker image without pulling anything from a Docker registry
+# (the one way to make it: scripts/docker-up.sh calls this script):
 #   debootstrap --variant=minbase --include=gcc,make,libc6-dev bookworm ROOT <mirror of this host>
 #   + the runtime sources copied to ROOT/opt/contract/runtime, built and installed there (chroot)
 #   + its C tests run inside the chroot (skip with --no-test)
@@ -23,7 +24,7 @@ while [ $# -gt 0 ]; do
     --no-test) run_tests=0 ;;
     --image) IMAGE=${2:?--image needs a name}; shift ;;
     --mirror) mirror=${2:?--mirror needs a URL}; shift ;;
-    -h|--help) sed -n '2,11p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,12p' "$0"; exit 0 ;;
     *) die "unknown option $1 (see --help)" ;;
   esac
   shift
@@ -31,7 +32,7 @@ done
 
 command -v docker >/dev/null || die "the docker CLI is missing"
 docker info >/dev/null 2>&1 || die "no Docker engine answers (start dockerd first)"
-# fingerprint of the runtime sources (same recipe as scripts/docker-up.sh, which compares it)
+# fingerprint of the runtime sources, kept as the image's label: an image built from other sources is rebuilt
 runtime_hash=$(cd "$runtime_dir" && find . -path ./build -prune -o -type f \( -name '*.c' -o -name '*.h' -o -name '*.mk' -o -name Makefile -o -name '*.def' \) -print \
   | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -c1-16)
 
