@@ -1,7 +1,7 @@
 /**
  * Runs raise/clean cases for diagnostic codes: each case raises its code (with the severity of the
- * code table) and a near-identical case does not. Also checks that every code of the given areas
- * has a case.
+ * code table) and a near-identical case does not. Also checks that every code of the given code
+ * areas (titles of CODE_AREAS) has a case.
  */
 import { EmptyFileSystem } from 'langium';
 import { beforeAll, describe, expect, it } from 'vitest';
@@ -19,15 +19,18 @@ export interface CodeCase {
     data?: Record<string, unknown>;
 }
 
-export function describeCodeCases(title: string, areaTitle: string, cases: Record<string, CodeCase>): void {
+export function describeCodeCases(title: string, areaTitles: string | readonly string[], cases: Record<string, CodeCase>): void {
+    const titles = typeof areaTitles === 'string' ? [areaTitles] : areaTitles;
     describe(title, () => {
         let services: CactalServices;
         beforeAll(() => { services = createCactalServices(EmptyFileSystem).Cactal; });
 
-        it('has a case for every code of its area', () => {
-            const area = CODE_AREAS.find((a) => a.title === areaTitle);
-            expect(area, `no code area titled ${areaTitle}`).toBeDefined();
-            expect(area!.codes.map((c) => c.code).filter((c) => !(c in cases))).toEqual([]);
+        it(`has a case for every code of its area${titles.length > 1 ? 's' : ''}`, () => {
+            for (const areaTitle of titles) {
+                const area = CODE_AREAS.find((a) => a.title === areaTitle);
+                expect(area, `no code area titled ${areaTitle}`).toBeDefined();
+                expect(area!.codes.map((c) => c.code).filter((c) => !(c in cases)), areaTitle).toEqual([]);
+            }
         });
 
         for (const [code, c] of Object.entries(cases)) {

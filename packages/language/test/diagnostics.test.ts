@@ -2,14 +2,9 @@
  * Every diagnostic code of SPEC §2.1–2.3 (and the syntax/linking codes): a case that raises it and
  * a near-identical case that does not.
  */
-import { EmptyFileSystem } from 'langium';
-import { beforeAll, describe, expect, it } from 'vitest';
-import { createCactalServices, type CactalServices } from '../src/cactal-module.js';
-import { CODE_AREAS } from '../src/validation/codes/index.js';
-import { build, codes, TYPES } from './helpers.js';
-
-type Files = Record<string, string>;
-interface Case { raise: Files; clean: Files; data?: Record<string, unknown> }
+import { describe, expect, it } from 'vitest';
+import { describeCodeCases, type CodeCase } from './code-cases.js';
+import { build, TYPES } from './helpers.js';
 
 const sync = (body: string, name = 'MSA') => `synchronous module ${name} { ${body} }`;
 const sup = (rule: string) => ({
@@ -17,7 +12,7 @@ const sup = (rule: string) => ({
     's.contract': `import "t.contract";\nsupervisor SUP { f() { local { TypeA t; } rules { R: [elapsed=1ms] ${rule} [elapsed=2ms] } } }`
 });
 
-export const CASES: Record<string, Case> = {
+export const CASES: Record<string, CodeCase> = {
     'lexing-error': { raise: { 'a.contract': 'datatype T {int a = 1 $};' }, clean: { 'a.contract': 'datatype T {int a = 1 };' } },
     'parsing-error': { raise: { 'a.contract': 'datatype T {int a = };' }, clean: { 'a.contract': 'datatype T {int a = 1};' } },
     'linking-error': {
@@ -168,30 +163,7 @@ export const CASES: Record<string, Case> = {
 
 const MY_AREAS = ['Syntax and references', 'Files and imports', 'Data types, values and functions', 'Modules and identifiers'];
 
-describe('diagnostic codes of §2.1–2.3: raised and not raised', () => {
-    let services: CactalServices;
-    beforeAll(() => { services = createCactalServices(EmptyFileSystem).Cactal; });
-
-    it('has a case for every code of its areas', () => {
-        const declared = CODE_AREAS.filter((a) => MY_AREAS.includes(a.title)).flatMap((a) => a.codes.map((c) => c.code));
-        expect(declared.filter((c) => !(c in CASES))).toEqual([]);
-    });
-
-    for (const [code, c] of Object.entries(CASES)) {
-        it(`${code}: raised`, async () => {
-            const built = await build(c.raise, services);
-            const found = built.diagnostics.filter((d) => d.code === code);
-            expect(found.length, built.lines.join('\n')).toBeGreaterThan(0);
-            const declared = CODE_AREAS.flatMap((a) => a.codes).find((d) => d.code === code)!;
-            expect(found[0]!.severity).toBe(declared.severity);
-            if (c.data) expect(found[0]!.data).toMatchObject(c.data);
-        });
-        it(`${code}: not raised by the near-identical case`, async () => {
-            const built = await build(c.clean, services);
-            expect(codes(built), built.lines.join('\n')).not.toContain(code);
-        });
-    }
-});
+describeCodeCases('diagnostic codes of §2.1–2.3: raised and not raised', MY_AREAS, CASES);
 
 describe('messages say what is wrong and what would be right', () => {
     it('names the expected block order', async () => {

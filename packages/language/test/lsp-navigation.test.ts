@@ -1,61 +1,8 @@
 /** Go to definition, find references and rename across files (SPEC §2.7), ports by index included. */
-import type { LangiumDocument } from 'langium';
 import { describe, expect, it } from 'vitest';
 import type { Location, LocationLink, WorkspaceEdit } from 'vscode-languageserver-protocol';
-import { build, TYPES, uriOf, type Built } from './helpers.js';
-
-const FILES: Record<string, string> = {
-    'types.contract': TYPES,
-    'msa.contract': `import "types.contract";
-synchronous module MSA {
-    scheduling { C=500us; }
-    data flows { out :0 TypeA coordinates; }
-}`,
-    'msc.contract': `import "types.contract";
-synchronous module MSC {
-    parameters { TypeA consigne = {2.1, 6.98, 5.34} :0; }
-    scheduling { C=1ms; }
-    data flows { in :0 TypeA in_coordinates; out :1 TypeB command; }
-    event flows { out :1 TypeD failing; }
-}`,
-    'schema.contract': `import "types.contract";
-import "msa.contract";
-import "msc.contract";
-periodic schema cmd(TypeA consigne = {0.0, 0.0, 0.0}) {
-    realtime { PERIOD=1s; CRITICAL_DELAY=1s; }
-    modules { MSA(); MSC(consigne :0); }
-    scheduling graph { MSA -> MSC; }
-    communications { MSA:0 -> MSC:0 * 1; }
-}`,
-    'sup.contract': `import "types.contract";
-import "msc.contract";
-import "schema.contract";
-supervisor SUP {
-    event flows { in :3 TypeD failure; }
-    go(TypeA consigne) {
-        local { TypeD failure_data; TypeA target = consigne; }
-        rules {
-            FIRST: [elapsed=1ms] subscribe MSC:1 =* :3; activate schema cmd(consigne = target) [MSC:1(failure_data = failure)]
-            SECOND: [endof(FIRST)] compute doit("x", target.k) [started(SECOND)]
-        }
-    }
-}`
-};
-
-/** Offset of the `n`-th occurrence of `needle` in a document, plus `delta`. */
-function offsetOf(doc: LangiumDocument, needle: string, delta = 0, n = 1): number {
-    const text = doc.textDocument.getText();
-    let at = -1;
-    for (let i = 0; i < n; i++) {
-        at = text.indexOf(needle, at + 1);
-        if (at < 0) throw new Error(`'${needle}' #${n} not in ${doc.uri.path}`);
-    }
-    return at + delta;
-}
-
-function params(doc: LangiumDocument, offset: number) {
-    return { textDocument: { uri: doc.uri.toString() }, position: doc.textDocument.positionAt(offset) };
-}
+import { build, uriOf, type Built } from './helpers.js';
+import { ARCHITECTURE, offsetOf, positionParams } from './lsp-workspace.js';
 
 /** `file:text` of each location (the text under the range). */
 function describeLocations(ws: Built, locations: Array<{ uri: string; range: Location['range'] }>): string[] {
@@ -84,78 +31,78 @@ function applyEdit(ws: Built, edit: WorkspaceEdit): Record<string, string> {
 
 describe('go to definition', () => {
     it('jumps from a module reference to the module in another file', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const schema = ws.docs.get('schema.contract')!;
-        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(schema, params(schema, offsetOf(schema, 'MSC(consigne', 1))) as LocationLink[];
+        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(schema, positionParams(schema, offsetOf(schema, 'MSC(consigne', 1))) as LocationLink[];
         expect(links).toHaveLength(1);
         expect(links[0]!.targetUri).toBe(uriOf('msc.contract').toString());
         expect(describeLocations(ws, [{ uri: links[0]!.targetUri, range: links[0]!.targetSelectionRange }])).toEqual(['msc.contract:2:MSC']);
     });
 
     it('jumps from a port index (MSC:1 in a supervisor) to the port declaration of that kind and direction', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const sup = ws.docs.get('sup.contract')!;
-        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(sup, params(sup, offsetOf(sup, 'MSC:1 =*', 4))) as LocationLink[];
+        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(sup, positionParams(sup, offsetOf(sup, 'MSC:1 =*', 4))) as LocationLink[];
         // MSC has data out :1 (command) and event out :1 (failing): a subscription names the event port
         expect(describeLocations(ws, links.map((l) => ({ uri: l.targetUri, range: l.targetSelectionRange })))).toEqual(['msc.contract:6:failing']);
     });
 
     it('jumps from a parameter setting `(consigne :0)` to parameter port 0', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const schema = ws.docs.get('schema.contract')!;
-        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(schema, params(schema, offsetOf(schema, 'consigne :0', 10))) as LocationLink[];
+        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(schema, positionParams(schema, offsetOf(schema, 'consigne :0', 10))) as LocationLink[];
         expect(describeLocations(ws, links.map((l) => ({ uri: l.targetUri, range: l.targetSelectionRange })))).toEqual(['msc.contract:3:consigne']);
     });
 
     it('opens the imported file from an import path', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const schema = ws.docs.get('schema.contract')!;
-        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(schema, params(schema, offsetOf(schema, 'msa.contract', 2))) as LocationLink[];
+        const links = await ws.services.lsp.DefinitionProvider!.getDefinition(schema, positionParams(schema, offsetOf(schema, 'msa.contract', 2))) as LocationLink[];
         expect(links.map((l) => l.targetUri)).toEqual([uriOf('msa.contract').toString()]);
     });
 });
 
 describe('find references', () => {
     it('finds a module in every file that names it', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const msc = ws.docs.get('msc.contract')!;
-        const refs = await ws.services.lsp.ReferencesProvider!.findReferences(msc, { ...params(msc, offsetOf(msc, 'MSC', 1)), context: { includeDeclaration: true } });
+        const refs = await ws.services.lsp.ReferencesProvider!.findReferences(msc, { ...positionParams(msc, offsetOf(msc, 'MSC', 1)), context: { includeDeclaration: true } });
         expect(describeLocations(ws, refs)).toEqual([
-            'msc.contract:2:MSC', 'schema.contract:6:MSC', 'schema.contract:7:MSC', 'schema.contract:8:MSC',
+            'msc.contract:2:MSC', 'schema.contract:7:MSC', 'schema.contract:8:MSC', 'schema.contract:9:MSC', 'schema.contract:9:MSC',
             'sup.contract:9:MSC', 'sup.contract:9:MSC'
         ]);
     });
 
     it('finds a port both by index (MSC:1) and by its variable name', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const sup = ws.docs.get('sup.contract')!;
-        const refs = await ws.services.lsp.ReferencesProvider!.findReferences(sup, { ...params(sup, offsetOf(sup, 'failure;', 1)), context: { includeDeclaration: false } });
+        const refs = await ws.services.lsp.ReferencesProvider!.findReferences(sup, { ...positionParams(sup, offsetOf(sup, 'failure;', 1)), context: { includeDeclaration: false } });
         // `:3` in the subscription (index) and `failure` in the extraction (name)
         expect(describeLocations(ws, refs)).toEqual(['sup.contract:9:3', 'sup.contract:9:failure']);
         const msc = ws.docs.get('msc.contract')!;
-        const portRefs = await ws.services.lsp.ReferencesProvider!.findReferences(msc, { ...params(msc, offsetOf(msc, 'failing', 1)), context: { includeDeclaration: false } });
+        const portRefs = await ws.services.lsp.ReferencesProvider!.findReferences(msc, { ...positionParams(msc, offsetOf(msc, 'failing', 1)), context: { includeDeclaration: false } });
         expect(describeLocations(ws, portRefs)).toEqual(['sup.contract:9:1', 'sup.contract:9:1']);
     });
 });
 
 describe('rename', () => {
     it('renames a module in its file and every file referring to it', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const msc = ws.docs.get('msc.contract')!;
-        const edit = await ws.services.lsp.RenameProvider!.rename(msc, { ...params(msc, offsetOf(msc, 'MSC', 1)), newName: 'MSK' });
+        const edit = await ws.services.lsp.RenameProvider!.rename(msc, { ...positionParams(msc, offsetOf(msc, 'MSC', 1)), newName: 'MSK' });
         const texts = applyEdit(ws, edit!);
         expect(texts['msc.contract']).toContain('synchronous module MSK {');
-        expect(texts['schema.contract']).toContain('modules { MSA(); MSK(consigne :0); }');
-        expect(texts['schema.contract']).toContain('MSA:0 -> MSK:0 * 1;');
+        expect(texts['schema.contract']).toContain('modules { MSA(); MSK(consigne :0); MSD(); }');
+        expect(texts['schema.contract']).toContain('MSA:0 -> MSK:0 * 1; MSK:1 -> MSD:2 * 2;');
         expect(texts['sup.contract']).toContain('subscribe MSK:1 =* :3;');
         expect(texts['sup.contract']).toContain('[MSK:1(failure_data = failure)]');
         expect(Object.values(texts).join('\n')).not.toMatch(/\bMSC\b/);
     });
 
     it('renames a port variable without touching the references that use its index', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const sup = ws.docs.get('sup.contract')!;
-        const edit = await ws.services.lsp.RenameProvider!.rename(sup, { ...params(sup, offsetOf(sup, 'failure)]', 1)), newName: 'fault' });
+        const edit = await ws.services.lsp.RenameProvider!.rename(sup, { ...positionParams(sup, offsetOf(sup, 'failure)]', 1)), newName: 'fault' });
         const texts = applyEdit(ws, edit!);
         expect(texts['sup.contract']).toContain('in :3 TypeD fault;');
         expect(texts['sup.contract']).toContain('subscribe MSC:1 =* :3;');
@@ -163,61 +110,61 @@ describe('rename', () => {
     });
 
     it('renames a datatype field through its path uses and a rule label through started/endof', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const types = ws.docs.get('types.contract')!;
-        const edit = await ws.services.lsp.RenameProvider!.rename(types, { ...params(types, offsetOf(types, 'float k', 6)), newName: 'z' });
+        const edit = await ws.services.lsp.RenameProvider!.rename(types, { ...positionParams(types, offsetOf(types, 'float k', 6)), newName: 'z' });
         const texts = applyEdit(ws, edit!);
         expect(texts['types.contract']).toContain('float z=0.0');
         expect(texts['sup.contract']).toContain('compute doit("x", target.z)');
 
         const sup = ws.docs.get('sup.contract')!;
-        const edit2 = await ws.services.lsp.RenameProvider!.rename(sup, { ...params(sup, offsetOf(sup, 'FIRST:', 1)), newName: 'START' });
+        const edit2 = await ws.services.lsp.RenameProvider!.rename(sup, { ...positionParams(sup, offsetOf(sup, 'FIRST:', 1)), newName: 'START' });
         expect(applyEdit(ws, edit2!)['sup.contract']).toContain('[endof(START)]');
     });
 
     it('refuses names that break the naming rules, with a message', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const msc = ws.docs.get('msc.contract')!;
-        const at = params(msc, offsetOf(msc, 'MSC', 1));
+        const at = positionParams(msc, offsetOf(msc, 'MSC', 1));
         const rename = ws.services.lsp.RenameProvider!;
         await expect(async () => rename.rename(msc, { ...at, newName: 'Msk' })).rejects.toThrow(/exactly three upper-case letters/);
         await expect(async () => rename.rename(msc, { ...at, newName: 'ORD' })).rejects.toThrow(/scheduler/);
         await expect(async () => rename.rename(msc, { ...at, newName: 'MSA' })).rejects.toThrow(/already names a module or supervisor/);
         const types = ws.docs.get('types.contract')!;
-        const typeAt = params(types, offsetOf(types, 'TypeA', 1));
+        const typeAt = positionParams(types, offsetOf(types, 'TypeA', 1));
         await expect(async () => rename.rename(types, { ...typeAt, newName: 'double' })).rejects.toThrow(/C keyword/);
         await expect(async () => rename.rename(types, { ...typeAt, newName: '2x' })).rejects.toThrow(/not a valid name/);
         await expect(async () => rename.rename(types, { ...typeAt, newName: 'TypeB' })).rejects.toThrow(/already names a datatype/);
-        const fieldAt = params(types, offsetOf(types, 'float j', 6));
+        const fieldAt = positionParams(types, offsetOf(types, 'float j', 6));
         await expect(async () => rename.rename(types, { ...fieldAt, newName: 'i' })).rejects.toThrow(/already used/);
     });
 });
 
 describe('rename: keywords', () => {
     it('accepts a word that is a keyword elsewhere where the grammar allows it as a name, refuses it elsewhere', async () => {
-        const ws = await build(FILES);
+        const ws = await build(ARCHITECTURE);
         const rename = ws.services.lsp.RenameProvider!;
         const types = ws.docs.get('types.contract')!;
         // fields are `Name`s: `data` is allowed there
-        const edit = await rename.rename(types, { ...params(types, offsetOf(types, 'float j', 6)), newName: 'data' });
+        const edit = await rename.rename(types, { ...positionParams(types, offsetOf(types, 'float j', 6)), newName: 'data' });
         expect(applyEdit(ws, edit!)['types.contract']).toContain('float data =0.0');
         // a datatype name is an ID: `module` is not
-        await expect(async () => rename.rename(types, { ...params(types, offsetOf(types, 'TypeA', 1)), newName: 'module' })).rejects.toThrow(/Cactal keyword/);
+        await expect(async () => rename.rename(types, { ...positionParams(types, offsetOf(types, 'TypeA', 1)), newName: 'module' })).rejects.toThrow(/Cactal keyword/);
     });
 });
 
 describe('prepare rename', () => {
     it('offers the name on a declaration, the port name as placeholder on an index reference, nothing on ORD', async () => {
-        const ws = await build({ ...FILES, 'o.contract': 'supervisor SUO { go() { rules { R: [ORD:0] [elapsed=1ms] } } }' });
+        const ws = await build({ ...ARCHITECTURE, 'o.contract': 'supervisor SUO { go() { rules { R: [ORD:0] [elapsed=1ms] } } }' });
         const rename = ws.services.lsp.RenameProvider!;
         const msc = ws.docs.get('msc.contract')!;
-        const onName = await rename.prepareRename(msc, params(msc, offsetOf(msc, 'MSC', 1)));
+        const onName = await rename.prepareRename(msc, positionParams(msc, offsetOf(msc, 'MSC', 1)));
         expect(onName && msc.textDocument.getText(onName)).toBe('MSC');
         const sup = ws.docs.get('sup.contract')!;
-        const onIndex = await rename.prepareRename(sup, params(sup, offsetOf(sup, 'MSC:1 =*', 4))) as unknown as { range: Location['range']; placeholder: string };
+        const onIndex = await rename.prepareRename(sup, positionParams(sup, offsetOf(sup, 'MSC:1 =*', 4))) as unknown as { range: Location['range']; placeholder: string };
         expect(onIndex.placeholder).toBe('failing');
         expect(sup.textDocument.getText(onIndex.range)).toBe('1');
         const ord = ws.docs.get('o.contract')!;
-        expect(await rename.prepareRename(ord, params(ord, offsetOf(ord, 'ORD', 1)))).toBeUndefined();
+        expect(await rename.prepareRename(ord, positionParams(ord, offsetOf(ord, 'ORD', 1)))).toBeUndefined();
     });
 });
