@@ -4,7 +4,8 @@
  * the supervisor start request, and stops everything cleanly (no process or socket left).
  *
  *   contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']
- *                   [--duration SECONDS] [--ready-timeout SECONDS] EXECUTABLE...
+ *                   [--duration SECONDS] [--ready-timeout SECONDS]
+ *                   [--cpus LIST] [--pm-qos-us N] EXECUTABLE...
  *   contract-launch --kill RUN_DIR
  *
  * Exit status: 0 all modules ran and stopped cleanly; 1 a module crashed (named on stderr);
@@ -27,6 +28,7 @@
 #include <time.h>
 #include <unistd.h>
 #include "libmodule/libmodule.h"
+#include "rt_placement.h"
 
 #define MAX_MODULES 128
 #define LINE_MAX_LEN 4096
@@ -47,6 +49,8 @@ static Child children[MAX_MODULES];
 static int n_children;
 static char run_dir[PATH_MAX];
 static int stopping;
+static cpu_set_t module_cpus;  /* --cpus: every module's affinity */
+static int pin_modules;
 
 static void say(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static void say(const char *fmt, ...)
@@ -63,7 +67,8 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
-            "                       [--duration SECONDS] [--ready-timeout SECONDS] EXECUTABLE...\n"
+            "                       [--duration SECONDS] [--ready-timeout SECONDS]\n"
+            "                       [--cpus LIST] [--pm-qos-us N] EXECUTABLE...\n"
             "       contract-launch --kill RUN_DIR\n");
 }
 
@@ -240,6 +245,10 @@ static int spawn(Child *c, const sigset_t *oldmask)
         setpgid(0, 0); /* terminal Ctrl-C reaches the launcher only; it stops the modules itself */
         sigprocmask(SIG_SETMASK, oldmask, NULL);
         signal(SIGPIPE, SIG_DFL);
+        if (pin_modules && sched_setaffinity(0, sizeof module_cpus, &module_cpus) != 0) {
+            fprintf(stderr, "cannot set the CPU affinity of %s: %s\n", c->exe, strerror(errno));
+            _exit(127);
+        }
         int devnull = open("/dev/null", O_RDONLY);
         if (devnull >= 0) { dup2(devnull, STDIN_FILENO); close(devnull); }
         dup2(fds[1], STDOUT_FILENO);
@@ -403,6 +412,7 @@ static int send_start(const char *spec)
 int main(int argc, char *argv[])
 {
     const char *dir_opt = NULL, *log_dir = NULL, *start = NULL;
+    const char *cpus = getenv("CONTRACT_CPUS"), *pm_qos = getenv("CONTRACT_PM_QOS_US");
     double duration = -1, ready_timeout = 10;
     int i = 1;
     for (; i < argc; i++) {
@@ -425,8 +435,17 @@ int main(int argc, char *argv[])
         } else if (strcmp(a, "--ready-timeout") == 0) {
             ready_timeout = strtod(v, &end);
             if (*end || ready_timeout <= 0) { say("--ready-timeout '%s': expected a number of seconds", v); return 2; }
-        } else { say("unknown option %s", a); usage(); return 2; }
+        } else if (strcmp(a, "--cpus") == 0) cpus = v;
+        else if (strcmp(a, "--pm-qos-us") == 0) pm_qos = v;
+        else { say("unknown option %s", a); usage(); return 2; }
     }
+    char rt_err[256];
+    int pm_qos_us = -1;
+    if (cpus && *cpus) {
+        if (rt_parse_cpus(cpus, &module_cpus, rt_err, sizeof rt_err) != 0) { say("%s", rt_err); return 2; }
+        pin_modules = 1;
+    }
+    if (pm_qos && *pm_qos && rt_parse_pm_qos_us(pm_qos, &pm_qos_us, rt_err, sizeof rt_err) != 0) { say("%s", rt_err); return 2; }
     if (i >= argc) { say("no module executable given"); usage(); return 2; }
     if (argc - i > MAX_MODULES) { say("too many modules (max %d)", MAX_MODULES); return 2; }
     for (int k = i; k < argc; k++) {
@@ -458,6 +477,13 @@ int main(int argc, char *argv[])
     }
     setvbuf(stdout, NULL, _IOLBF, 0);
     say("run directory %s", run_dir);
+    if (pin_modules) say("modules pinned to CPUs %s", cpus);
+    int pm_qos_fd = -1; /* held open until the launcher exits */
+    if (pm_qos_us >= 0) {
+        pm_qos_fd = rt_hold_pm_qos(pm_qos_us, rt_err, sizeof rt_err);
+        if (pm_qos_fd < 0) say("%s", rt_err);
+        else say("CPU wake-up latency held at %d us (PM QoS) while the architecture runs", pm_qos_us);
+    }
 
     sigset_t mask, oldmask;
     sigemptyset(&mask);
@@ -499,6 +525,7 @@ int main(int argc, char *argv[])
         say("FAILED: module %s crashed", children[k].name);
     }
     say("all modules stopped%s", failed ? "" : " cleanly");
+    if (pm_qos_fd >= 0) close(pm_qos_fd);
     clean_run_dir(run_dir); /* removes launcher.pid last: `--kill` waits for that */
     return failed ? 1 : 0;
 }

@@ -20,6 +20,7 @@ void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_launcher_sigint(void);
 void test_kill_without_launcher(void);
+void test_launcher_placement(void);
 void test_two_run_dirs(void);
 void test_control_tool(void);
 void test_priority(void);
@@ -44,6 +45,7 @@ static const TestCase ALL_TESTS[] = {
     { "launcher_start_duration", test_launcher_start_duration },
     { "launcher_sigint", test_launcher_sigint },
     { "kill_without_launcher", test_kill_without_launcher },
+    { "launcher_placement", test_launcher_placement },
     { "two_run_dirs", test_two_run_dirs },
     { "control_tool", test_control_tool },
     { "priority", test_priority },

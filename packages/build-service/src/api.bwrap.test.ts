@@ -148,6 +148,8 @@ describe('requests', () => {
     [{ project: { files: {} }, limits: { memoryMiB: 4096 } }, 400, /above the server's 512/],
     [{ project: { files: {} }, limits: { cpu: 1 } }, 400, /unknown limit "cpu"/],
     [{ project: { files: {} }, action: 'deploy' }, 400, /action must be/],
+    [{ project: { files: {} }, cpus: '0; reboot' }, 400, /cpus must be a CPU list/],
+    [{ project: { files: {} }, cpus: 1 }, 400, /cpus must be a CPU list/],
     [{ project: { files: {} }, start: "GLB.mission()'; rm -rf /work; '" }, 400, /start must be one line/],
   ])('%j -> %i', async (body, status, message) => {
     const r = await postJob(url, body);

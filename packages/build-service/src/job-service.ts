@@ -94,7 +94,7 @@ export class JobService {
   parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
     if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', 'the body must be a JSON object');
     const b = body as Record<string, unknown>;
-    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'limits']);
+    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'cpus', 'limits']);
     for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);
     const action = b.action ?? 'build';
     if (action !== 'build' && action !== 'run') throw new ServiceError(400, 'bad_request', 'action must be "build" or "run"');
@@ -109,6 +109,10 @@ export class JobService {
     if (b.duration !== undefined && (typeof b.duration !== 'number' || !(b.duration > 0) || !Number.isFinite(b.duration))) {
       throw new ServiceError(400, 'bad_request', 'duration must be a positive number of seconds');
     }
+    // CPUS ends up in the make command line: digits, commas and dashes only
+    if (b.cpus !== undefined && (typeof b.cpus !== 'string' || b.cpus.length > 256 || !/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(b.cpus))) {
+      throw new ServiceError(400, 'bad_request', 'cpus must be a CPU list such as "1", "0-1" or "0,2"');
+    }
     let limits: Limits;
     try {
       limits = mergeLimits(this.limits, b.limits, true);
@@ -119,7 +123,7 @@ export class JobService {
     const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, limits.runSeconds);
     const { project, projectKey } = this.parseProject(b.project);
     return {
-      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, limits },
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), limits },
       sandbox,
     };
   }

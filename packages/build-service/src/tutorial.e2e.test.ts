@@ -85,6 +85,7 @@ describe.each(['bwrap', ...(docker.available ? ['docker'] : [])])('the tutorial 
   test('generates, builds and runs; a second build is a no-op', async () => {
     const first = await runJob({ action: 'run', sandbox, duration: 2, project: { dir: TUTORIAL_DIR } });
     expectTutorialRan(first.job, first.lines);
+    expect(first.lines.some((l) => /modules pinned to CPUs/.test(l.line))).toBe(false); // no CPUS: the system places them
     await expectTutorialLogs(first.job.id);
     expect(first.job.artifacts.files.length).toBe(9);
     const again = await runJob({ action: 'build', sandbox, project: { dir: TUTORIAL_DIR } });
@@ -105,8 +106,10 @@ describe.each(['bwrap', ...(docker.available ? ['docker'] : [])])('the tutorial 
       '#include <unistd.h>\n#include <stdlib.h>\n#include <stdio.h>',
       true,
     );
-    const { job, lines } = await runJob({ action: 'run', sandbox, duration: 2, project: { files } });
+    // pinned to CPU 0 (contract-launch --cpus through `make run CPUS=0`)
+    const { job, lines } = await runJob({ action: 'run', sandbox, duration: 2, cpus: '0', project: { files } });
     expectTutorialRan(job, lines);
+    expect(lines.some((l) => /modules pinned to CPUs 0$/.test(l.line))).toBe(true);
     const list = await expectTutorialLogs(job.id);
     expect(list.skipped).toEqual([{ name: 'planted.csv', reason: 'not a regular file (symlink): not followed' }]);
     expect((await artifactText(job.id, 'planted.csv')).status).toBe(404);

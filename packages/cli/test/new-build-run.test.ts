@@ -6,7 +6,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import type { CliIO } from '../src/command.js';
-import { checkStart, moduleFailures, parseDuration } from '../src/commands/run.js';
+import { checkCpus, checkStart, moduleFailures, parseDuration } from '../src/commands/run.js';
 import { REPO } from './e2e/harness.js';
 
 function capture(cwd: string): CliIO & { stdout: string; stderr: string } {
@@ -81,6 +81,7 @@ describe('contract build / run usage', () => {
             [['build', 'nowhere'], 'nowhere is not a directory'],
             [['build'], 'missing DIR'],
             [['run', 'robot', '--format', 'xml'], "unknown format 'xml'"],
+            [['run', 'robot', '--cpus', '0;reboot'], "bad --cpus '0;reboot' (expected a CPU list such as 1, 0-1 or 0,2)"],
         ];
         for (const [args, message] of cases) {
             const io = capture(root);
@@ -100,6 +101,8 @@ describe('contract build / run usage', () => {
         expect(checkStart('MIS.mission')).toBe('MIS.mission');
         expect(checkStart('')).toBe('');
         expect(() => checkStart('mission()')).toThrow(/SUPERVISOR\.function/);
+        expect(checkCpus('0-1,3')).toBe('0-1,3');
+        expect(() => checkCpus('1-')).toThrow(/CPU list/);
     });
 
     it('names the crashed module from the launcher lines', () => {
@@ -136,8 +139,9 @@ describe('contract build / run on a project (bwrap)', () => {
 
     it('runs with a given start request and duration, and collects the CSV logs', async () => {
         const io = capture(root);
-        const code = await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1500ms', '--start', 'MIS.mission(goal={2.0,0.0,0.0})', '--logs', 'robot-logs'], io);
+        const code = await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1500ms', '--start', 'MIS.mission(goal={2.0,0.0,0.0})', '--logs', 'robot-logs', '--cpus', '1'], io);
         expect(io.stdout).toContain('contract-launch: started MIS.mission(goal={2.0,0.0,0.0})');
+        expect(io.stdout).toContain('contract-launch: modules pinned to CPUs 1');
         expect(io.stdout).toContain('[ORD] activate goTo');
         expect(io.stdout).toContain('contract-launch: all modules stopped cleanly');
         expect(io.stderr).toContain(`CSV logs: 4 file(s) in ${join(root, 'robot-logs')}`);

@@ -25,6 +25,8 @@ export interface JobRequest {
   kind: ProjectKind;
   start?: string;
   duration?: number;
+  /** CPU list every module is pinned to (`make run CPUS=…`, contract-launch --cpus). */
+  cpus?: string;
   limits: Limits;
 }
 
@@ -185,6 +187,7 @@ export class Job {
       const runVars = [...vars, `RUN_DIR=${posix.join(work, 'run')}`, `LOG_DIR=${posix.join(work, 'logs')}`];
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
+      if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       const run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => [routeRunLine(line)]);
       if (!this.cancelRequested) await this.collectArtifacts(ctx.sandbox, ws.workDir);
       if (!run.ok) {

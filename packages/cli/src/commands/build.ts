@@ -125,6 +125,7 @@ export interface RunRequest {
     action: 'build' | 'run';
     start?: string;
     duration?: number;
+    cpus?: string;
 }
 
 /**
@@ -171,6 +172,7 @@ export async function runJob(
                 sandbox: opts.sandbox,
                 ...(request.start !== undefined ? { start: request.start } : {}),
                 ...(request.duration !== undefined ? { duration: request.duration } : {}),
+                ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
             });
         } catch (e) {
             if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };

@@ -20,6 +20,12 @@ export function parseDuration(text: string): number {
     return value;
 }
 
+/** `--cpus` list: `1`, `0-1`, `0,2` (contract-launch checks the CPUs exist on the machine that runs). */
+export function checkCpus(text: string): string {
+    if (!/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(text)) throw new UsageError(`bad --cpus '${text}' (expected a CPU list such as 1, 0-1 or 0,2)`);
+    return text;
+}
+
 /** `SUP.function(...)` or empty (start nothing). */
 export function checkStart(text: string): string {
     if (text === '') return text;
@@ -72,25 +78,28 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--cpus LIST] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing)',
+        '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs; collected from every sandbox, docker included)',
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs'], COMMON_FLAGS);
+        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus'], COMMON_FLAGS);
         const opts = await parseJobOptions(parsed, io, onTerminal());
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
         const startOption = parsed.options.get('start');
         const start = typeof startOption === 'string' ? checkStart(startOption) : undefined;
+        const cpusOption = parsed.options.get('cpus');
+        const cpus = typeof cpusOption === 'string' ? checkCpus(cpusOption) : undefined;
         const logsOption = parsed.options.get('logs');
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
 
-        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}) }, io);
+        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}) }, io);
         if ('error' in outcome) {
             io.err(`contract run: ${outcome.error}\n`);
             return outcome.exitCode;
