@@ -13,16 +13,18 @@ ENG_CORE    := src/engines/engine_values.c src/engines/engine_check.c src/engine
                src/engines/ord_core.c
 ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def)
 ENG_TESTS   := $(wildcard tests/engines/*.c)
+# libmodule-free parts of the bindings, tested with the cores
+ENG_UNITS   := src/engines/hold_lock.c
 
 .PHONY: test-engines bench-engines
 
-$(ENG_OUT)/engine-tests: $(ENG_CORE) $(ENG_TESTS) $(ENG_HDRS)
+$(ENG_OUT)/engine-tests: $(ENG_CORE) $(ENG_UNITS) $(ENG_TESTS) $(ENG_HDRS)
 	@mkdir -p $(ENG_OUT)
-	$(ENG_CC) $(ENG_WARN) -O2 -g $(ENG_INC) $(ENG_CORE) $(ENG_TESTS) -o $@
+	$(ENG_CC) $(ENG_WARN) -O2 -g $(ENG_INC) $(ENG_CORE) $(ENG_UNITS) $(ENG_TESTS) -o $@
 
-$(ENG_OUT)/engine-tests-san: $(ENG_CORE) $(ENG_TESTS) $(ENG_HDRS)
+$(ENG_OUT)/engine-tests-san: $(ENG_CORE) $(ENG_UNITS) $(ENG_TESTS) $(ENG_HDRS)
 	@mkdir -p $(ENG_OUT)
-	$(ENG_CC) $(ENG_WARN) -O1 -g $(ENG_SAN) $(ENG_INC) $(ENG_CORE) $(ENG_TESTS) -o $@
+	$(ENG_CC) $(ENG_WARN) -O1 -g $(ENG_SAN) $(ENG_INC) $(ENG_CORE) $(ENG_UNITS) $(ENG_TESTS) -o $@
 
 test-engines: $(ENG_OUT)/engine-tests $(ENG_OUT)/engine-tests-san
 	@echo "== engine core tests"
@@ -72,13 +74,19 @@ $(1)/RMB: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
 $(1)/RSU: $(ENG_IT_SRC)/ireactivate.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
+$(1)/HTA: $(ENG_IT_SRC)/itoggle.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DITOGGLE_TOP $$< $(2) -o $$@
+$(1)/HTB: $(ENG_IT_SRC)/itoggle.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
 $(1)/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(ENG_IT_MAIN) -o $$@
 endef
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
-ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB RMA RMB RMC RSU itest
+ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB RMA RMB RMC RSU HTA HTB itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \

@@ -9,7 +9,49 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "hold_lock.h"
 #include "libmodule/libmodule.h"
+
+/* the locks this process holds: module, descriptor, nesting depth */
+#define MAX_LOCKED 16
+static struct {
+    char module[CONTRACT_NAME_MAX];
+    int fd, depth;
+} locked[MAX_LOCKED];
+
+static int locked_slot(const char *module) {
+    for (int i = 0; i < MAX_LOCKED; i++)
+        if (locked[i].depth > 0 && strcmp(locked[i].module, module) == 0) return i;
+    return -1;
+}
+
+int holds_lock(const char *module) {
+    int i = locked_slot(module);
+    if (i >= 0) {
+        locked[i].depth++;
+        return 0;
+    }
+    for (i = 0; i < MAX_LOCKED && locked[i].depth > 0; i++) {
+    }
+    int fd = i < MAX_LOCKED ? hold_lock_acquire(ContractRunDir(), module) : -1;
+    if (fd < 0) {
+        char detail[160];
+        snprintf(detail, sizeof detail, "cannot lock its holds: %s", i < MAX_LOCKED ? strerror(errno) : "too many locks");
+        ContractLog("module_hold", module, -1, 0, detail);
+        return -1;
+    }
+    snprintf(locked[i].module, sizeof locked[i].module, "%s", module);
+    locked[i].fd = fd;
+    locked[i].depth = 1;
+    return 0;
+}
+
+void holds_unlock(const char *module) {
+    int i = locked_slot(module);
+    if (i < 0 || --locked[i].depth > 0) return;
+    hold_lock_release(locked[i].fd);
+    locked[i].fd = -1;
+}
 
 static int path_of(char *buf, size_t size, const char *holder, const char *module) {
     int n = snprintf(buf, size, "%s/%s.%s.hold", ContractRunDir(), holder, module);
@@ -33,6 +75,7 @@ int holds_take(const char *module, int started) {
         ContractLog("module_hold", module, -1, 0, "cannot record the start in the run directory");
         return -1;
     }
+    ContractLog("module_hold", module, -1, 0, started ? "hold taken (started it)" : "hold taken (it was running)");
     return 0;
 }
 

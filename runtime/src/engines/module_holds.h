@@ -7,12 +7,26 @@
  * Files (empty, in the run directory):
  *   <SUP>.<M>.hold     supervisor SUP holds module M (one file per supervisor and module)
  *   <M>.started.hold   M was started by a supervisor's event schema (so the last holder stops it)
+ *   holds-<M>.hold     the lock of M's holds (hold_lock.h)
  * The launcher removes a crashed supervisor's <SUP>.*.hold (and a crashed module's
  * <M>.started.hold) with its other files, and every *.hold at the end of a run.
+ *
+ * Atomicity across supervisors: the decide-and-act sequences on a module run under
+ * holds_lock(M) — "is M running? then take a hold (share it), else start it and take a hold"
+ * and "drop my hold, count the others, stop M if none" — so that a supervisor dropping its
+ * last hold cannot stop M between another one's "it runs" decision and its hold (the module
+ * would then be stopped under that supervisor's active schema). The lock is a flock(2), freed
+ * by the kernel if its holder dies.
  */
 #ifndef CONTRACT_MODULE_HOLDS_H
 #define CONTRACT_MODULE_HOLDS_H
 
+/** Takes the lock of `module`'s holds, waiting for other supervisors to release it. Nested
+ *  calls in one process only count (the lock is released by the outermost holds_unlock).
+ *  0, or -1 (logged: the caller goes on unlocked, as before the lock existed). */
+int holds_lock(const char *module);
+/** Releases one holds_lock of `module`. */
+void holds_unlock(const char *module);
 /** This supervisor holds `module`; `started`: it has just started it. 0, or -1 (logged). */
 int holds_take(const char *module, int started);
 /** This supervisor stops holding `module`. Returns the number of other supervisors that

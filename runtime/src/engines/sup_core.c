@@ -260,6 +260,10 @@ static Hold *find_hold(SupCore *c, const char *module, int create) {
     return h;
 }
 
+static void lock_module(SupCore *c, const char *module, int lock) {
+    if (c->io.lock_module) c->io.lock_module(c->io.ctx, module, lock);
+}
+
 static int module_is_running(SupCore *c, const char *module) {
     Hold *h = find_hold(c, module, 0);
     if (h && h->owned) return 1;
@@ -274,6 +278,7 @@ static void hold_acquire(SupCore *c, const char *module, int priority) {
         return;
     }
     if (h->holders == 0 && !h->owned) {
+        lock_module(c, module, 1);
         if (!module_is_running(c, module)) {
             if (c->io.start_module) c->io.start_module(c->io.ctx, module, priority);
             h->owned = 1;
@@ -281,20 +286,23 @@ static void hold_acquire(SupCore *c, const char *module, int priority) {
             c->io.share_module(c->io.ctx, module, 1);
             h->shared = 1;
         }
+        lock_module(c, module, 0);
     }
     h->holders++;
 }
 
 static void hold_release(SupCore *c, const char *module) {
     Hold *h = find_hold(c, module, 0);
-    if (!h || h->holders == 0) return;
-    if (--h->holders == 0 && h->owned) {
+    if (!h || h->holders == 0 || --h->holders > 0 || (!h->owned && !h->shared)) return;
+    lock_module(c, module, 1);
+    if (h->owned) {
         if (c->io.stop_module) c->io.stop_module(c->io.ctx, module);
-        h->owned = 0;
-    } else if (h->holders == 0 && h->shared) {
-        if (c->io.share_module) c->io.share_module(c->io.ctx, module, 0);
-        h->shared = 0;
+    } else if (c->io.share_module) {
+        c->io.share_module(c->io.ctx, module, 0);
     }
+    h->owned = 0;
+    h->shared = 0;
+    lock_module(c, module, 0);
 }
 
 /* ---- actions -------------------------------------------------------------------------- */

@@ -51,6 +51,10 @@ typedef struct SupIo {
        already running when it was activated (started by someone else): lets the binding keep
        it running until its last user across supervisors is done (SPEC §4.3) */
     void (*share_module)(void *ctx, const char *module, int hold);
+    /* makes each decide-and-act sequence on a module atomic across supervisors: `lock` 1
+       before "is it running? then share it, else start it" and before "stop it / stop sharing
+       it", 0 right after (the binding: a flock, module_holds.h) */
+    void (*lock_module)(void *ctx, const char *module, int lock);
 } SupIo;
 
 typedef struct SupCore SupCore;

@@ -153,21 +153,37 @@ static void b_start_module(void *ctx, const char *m, int prio) {
     holds_take(m, 1);
 }
 
-/* the last holder across supervisors stops a module that a supervisor started */
+/* the last holder across supervisors stops a module that a supervisor started (the core calls
+   this under b_lock_module: no other supervisor decides on m meanwhile) */
 static void stop_if_last(const char *m, int started_here) {
     int others = holds_drop(m);
     if (others > 0) {
         char detail[96];
-        snprintf(detail, sizeof detail, "kept running: still used by %d other supervisor(s)", others);
+        snprintf(detail, sizeof detail, "hold dropped (kept running: still used by %d other supervisor(s))", others);
         ContractLog("module_hold", m, -1, 0, detail);
         return;
     }
     int started = holds_started(m, 1);
-    if (!started && !started_here) return; /* started by the user or the launcher: leave it */
-    if (!alive(m)) return;
+    if (!started && !started_here) { /* started by the user or the launcher: leave it */
+        ContractLog("module_hold", m, -1, 0, "last hold dropped (left running: not started by an engine)");
+        return;
+    }
+    if (!alive(m)) {
+        ContractLog("module_hold", m, -1, 0, "last hold dropped (it had ended)");
+        return;
+    }
     int rc = SendStop(m, ACK_NOTHING, 0);
+    ContractLog("module_hold", m, -1, 0, rc == CONTRACT_OK ? "last hold dropped (stopped)" : "last hold dropped (stop failed)");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+}
+
+/* "is it running? share it or start it" and "drop, count, stop" on one module: one
+   supervisor at a time (module_holds.h) */
+static void b_lock_module(void *ctx, const char *m, int lock) {
+    (void)ctx;
+    if (lock) holds_lock(m);
+    else holds_unlock(m);
 }
 
 static void b_stop_module(void *ctx, const char *m) {
@@ -293,7 +309,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
     b.v = v;
     SupIo io = {&b, b_ord_activate, b_ord_deactivate, b_module_running, b_start_module, b_stop_module,
                 b_set_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
-                b_notify, b_start_function, b_stop_function, b_trace, b_share_module};
+                b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module};
     char err[512] = "";
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {

@@ -152,13 +152,29 @@ static void s_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     WLOG((FakeWorld *)ctx, "ORD deactivate %s", s->name);
 }
 static int s_module_running(void *ctx, const char *m) { return fake_is_running(ctx, m); }
+static void require_locked(FakeWorld *w, const char *m) {
+    if (strcmp(w->locked, m) != 0) w->unlocked_effects++;
+}
+static void s_lock_module(void *ctx, const char *m, int lock) {
+    FakeWorld *w = ctx;
+    if (lock) {
+        if (w->locked[0]) w->unlocked_effects++; /* the core never nests two locks */
+        snprintf(w->locked, sizeof w->locked, "%s", m);
+        w->nlocks++;
+    } else {
+        if (strcmp(w->locked, m) != 0) w->unlocked_effects++;
+        w->locked[0] = '\0';
+    }
+}
 static void s_start_module(void *ctx, const char *m, int prio) {
     FakeWorld *w = ctx;
+    require_locked(w, m);
     fake_set_running(w, m, prio);
     WLOG(w, "start %s prio %d", m, prio);
 }
 static void s_stop_module(void *ctx, const char *m) {
     FakeWorld *w = ctx;
+    require_locked(w, m);
     int i = find_running(w, m);
     if (i >= 0) {
         w->nrunning--;
@@ -269,13 +285,15 @@ static void s_trace(void *ctx, int64_t t, const char *line) {
     wlog(ctx, line);
 }
 static void s_share_module(void *ctx, const char *m, int hold) {
+    require_locked(ctx, m);
     WLOG((FakeWorld *)ctx, "%s %s", hold ? "share" : "unshare", m);
 }
 
 SupIo fake_sup_io(FakeWorld *w) {
     SupIo io = {w, s_ord_activate, s_ord_deactivate, s_module_running, s_start_module,
                 s_stop_module, s_set_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
-                s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module};
+                s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module,
+                s_lock_module};
     return io;
 }
 

@@ -27,6 +27,10 @@ typedef struct FakeWorld {
     int nrel;
     char rel_module[256][16];
     uint32_t rel_id[256];
+    /* SupIo.lock_module: the module locked now ("" none), locks taken, and starts, stops and
+       shares of a module done while it was not locked (the binding needs them locked) */
+    char locked[16];
+    int nlocks, unlocked_effects;
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);

@@ -1,0 +1,135 @@
+/*
+ * itest_toggles.c — scenario 5 (itoggle.c, amod.c): HTA and HTB toggle event schemas that
+ * share AMX every few ms, concurrently, for 1 s (hundreds of toggles). Every decision on AMX
+ * is a `module_hold` record in the supervisors' CSV logs, written while the decision's lock is
+ * held, so their times order the decisions. Replaying them in that order must give: "started
+ * it" only when nobody held AMX, "it was running" only when the other one held it, "stopped"
+ * only by the last holder, "kept running" only while the other one holds it — i.e. AMX runs
+ * exactly when at least one supervisor's schema is active after every step — and AMX itself
+ * received exactly those STARTs and STOPs, in that order.
+ */
+#define _GNU_SOURCE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "itest_scenarios.h"
+#include "itest_support.h"
+
+enum Kind { TAKE_STARTED, TAKE_SHARED, DROP_KEPT, DROP_STOPPED, DROP_ENDED, DROP_OTHER, AMX_START, AMX_STOP };
+
+typedef struct Step {
+    long long t;
+    int who; /* 0 HTA, 1 HTB, 2 AMX */
+    enum Kind kind;
+} Step;
+
+#define MAX_STEPS 20000
+
+static const char *field(const char *line, int n) {
+    for (int i = 0; i < n && line; i++) {
+        line = strchr(line, ',');
+        if (line) line++;
+    }
+    return line;
+}
+
+/* appends the module_hold records of one supervisor's log (who 0/1) or AMX's START/STOP (2) */
+static int collect(const char *csv, int who, Step *steps, int n) {
+    for (const char *line = csv; line && *line && n < MAX_STEPS;) {
+        const char *nl = strchr(line, '\n');
+        const char *event = field(line, 3), *detail = field(line, 7);
+        long long t;
+        if (event && detail && sscanf(line, "%lld,", &t) == 1) {
+            int kind = -1;
+            if (who < 2 && strncmp(event, "module_hold,AMX,", 16) == 0) {
+                if (strncmp(detail, "hold taken (started it)", 23) == 0) kind = TAKE_STARTED;
+                else if (strncmp(detail, "hold taken (it was running)", 27) == 0) kind = TAKE_SHARED;
+                else if (strncmp(detail, "hold dropped (kept running", 26) == 0) kind = DROP_KEPT;
+                else if (strncmp(detail, "last hold dropped (stopped)", 27) == 0) kind = DROP_STOPPED;
+                else if (strncmp(detail, "last hold dropped (it had ended)", 32) == 0) kind = DROP_ENDED;
+                else kind = DROP_OTHER;
+            } else if (who == 2 && strncmp(event, "request_received,HT", 19) == 0) {
+                if (strncmp(detail, "START", 5) == 0) kind = AMX_START;
+                else if (strncmp(detail, "STOP", 4) == 0) kind = AMX_STOP;
+            }
+            if (kind >= 0) steps[n++] = (Step){t, who, (enum Kind)kind};
+        }
+        line = nl ? nl + 1 : NULL;
+    }
+    return n;
+}
+
+static int by_time(const void *a, const void *b) {
+    const Step *x = a, *y = b;
+    return (x->t > y->t) - (x->t < y->t);
+}
+
+/* replays the decisions in time order; returns the number of steps that break the rules and
+   prints the first one */
+static int replay(const Step *s, int n, int *takes) {
+    int held[2] = {0, 0}, bad = 0;
+    takes[0] = takes[1] = 0;
+    for (int i = 0; i < n; i++) {
+        int w = s[i].who, o = 1 - w, ok = 1;
+        switch (s[i].kind) {
+        case TAKE_STARTED: ok = !held[0] && !held[1]; held[w] = 1; takes[w]++; break;
+        case TAKE_SHARED: ok = !held[w] && held[o]; held[w] = 1; takes[w]++; break;
+        case DROP_KEPT: ok = held[w] && held[o]; held[w] = 0; break;
+        case DROP_STOPPED: ok = held[w] && !held[o]; held[w] = 0; break;
+        case DROP_ENDED: ok = held[w] && !held[o]; held[w] = 0; break; /* AMX killed at the end */
+        default: ok = s[i].kind == AMX_START || s[i].kind == AMX_STOP; break;
+        }
+        if (!ok && bad++ == 0)
+            fprintf(stderr, "  step %d at %lld: %s decision %d breaks the rules (held: HTA %d, HTB %d)\n", i, s[i].t,
+                    w == 0 ? "HTA" : "HTB", (int)s[i].kind, held[0], held[1]);
+    }
+    return bad;
+}
+
+/* the supervisors' start/stop decisions, in time order, are exactly what AMX received */
+static int amx_followed(const Step *s, int n) {
+    int decided[MAX_STEPS], got[MAX_STEPS], nd = 0, ng = 0;
+    for (int i = 0; i < n; i++) {
+        if (s[i].kind == TAKE_STARTED) decided[nd++] = AMX_START;
+        else if (s[i].kind == DROP_STOPPED) decided[nd++] = AMX_STOP;
+        else if (s[i].kind == AMX_START || s[i].kind == AMX_STOP) got[ng++] = s[i].kind;
+    }
+    if (nd != ng || nd == 0) return 0;
+    for (int i = 0; i < nd; i++)
+        if (decided[i] != got[i] || got[i] != (i % 2 == 0 ? AMX_START : AMX_STOP)) return 0;
+    return 1;
+}
+
+void scenario_hold_toggles(const char *root, const char *bin, const char *launcher) {
+    Scenario sc;
+    if (scenario_init(&sc, root, "toggles") != 0) {
+        check(0, "hold toggles scenario set up");
+        return;
+    }
+    const char *const names[] = {"HTA", "HTB", "AMX", NULL};
+    check(scenario_launch(&sc, bin, launcher, "HTA.flip()", "1.0", names),
+          "hold toggles: architecture ran and stopped cleanly");
+    char *logs[3] = {read_csv_log(&sc, "HTA"), read_csv_log(&sc, "HTB"), read_csv_log(&sc, "AMX")};
+    Step *steps = malloc(MAX_STEPS * sizeof *steps);
+    int n = 0;
+    for (int w = 0; w < 3 && steps; w++) n = collect(logs[w], w, steps, n);
+    if (steps) qsort(steps, (size_t)n, sizeof *steps, by_time);
+    int takes[2] = {0, 0};
+    int bad = steps ? replay(steps, n, takes) : -1;
+    char what[200];
+    snprintf(what, sizeof what, "%d + %d schema activations sharing AMX (at least 40 each)", takes[0], takes[1]);
+    check(takes[0] >= 40 && takes[1] >= 40, what);
+    check(bad == 0, "every decision on AMX agrees with the holds before it: started only when nobody held it, "
+                    "shared only while the other held it, stopped only by its last holder");
+    check(steps && amx_followed(steps, n), "AMX received exactly the decided STARTs and STOPs, in that order");
+    int lock_errors = 0;
+    for (int w = 0; w < 2; w++)
+        if (!logs[w] || strstr(logs[w], "cannot lock its holds")) lock_errors++;
+    check(lock_errors == 0, "both supervisors logged and took every lock");
+    struct stat st;
+    check(stat(sc.run, &st) != 0, "no hold or lock file left in the run directory");
+    for (int w = 0; w < 3; w++) free(logs[w]);
+    free(steps);
+}
