@@ -1,14 +1,7 @@
 import { readdir } from 'node:fs/promises';
 import { join } from 'node:path';
+import type { TreeEntry } from './api-types.js';
 import { isAtomicTempFile } from './atomic-write.js';
-
-export interface TreeEntry {
-  name: string;
-  /** Workspace-relative path with '/' separators. */
-  path: string;
-  type: 'file' | 'dir';
-  children?: TreeEntry[];
-}
 
 const SKIPPED = new Set(['node_modules', '.git', '.vite']);
 

@@ -13,6 +13,7 @@ import { readJson, sendError, sendJson } from './http-util.js';
 import { PROJECT_TEMPLATES } from './project-templates.js';
 import { renameInGeneratedTree } from './rename-generated.js';
 import { createEmbeddedBuildServer, loadWorkspaceDocuments, runCodegen, type BuildServerLike } from './integrations.js';
+import type { GenerateResponse } from './api-types.js';
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -103,7 +104,8 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const { documents } = await loadWorkspaceDocuments(projectDir);
       const report = await runCodegen(documents, join(projectDir, 'src-gen'), {});
       const srcGen = paths.toRelative(join(projectDir, 'src-gen'));
-      sendJson(res, 200, { ...report, srcGen, ms: Date.now() - t0 });
+      const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
+      sendJson(res, 200, answer);
       watcher.broadcast('generated', { srcGen });
       return true;
     }

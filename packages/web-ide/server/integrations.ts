@@ -3,16 +3,8 @@
  * on first use so the file API and the editor keep working when one of them is not built; the
  * user then gets a clear error naming the missing package instead of a crash.
  */
+import type { GenerateReport } from './api-types.js';
 import { HttpError } from './http-error.js';
-
-export interface GenerateReport {
-  created: string[];
-  updated: string[];
-  unchanged: string[];
-  orphaned: string[];
-  errors: unknown[];
-  warnings: unknown[];
-}
 
 export interface BuildServerLike {
   handle(req: import('node:http').IncomingMessage, res: import('node:http').ServerResponse): boolean | Promise<boolean>;

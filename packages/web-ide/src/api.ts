@@ -1,21 +1,9 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-export interface TreeEntry {
-  name: string;
-  path: string;
-  type: 'file' | 'dir';
-  children?: TreeEntry[];
-}
+import type { GenerateResponse, TreeEntry } from '../server/api-types.js';
 
-export interface GenerateReport {
-  created: string[];
-  updated: string[];
-  unchanged: string[];
-  orphaned: string[];
-  errors: unknown[];
-  warnings: unknown[];
-  srcGen: string;
-  ms: number;
-}
+export type { TreeEntry };
+/** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
+export type GenerateReport = GenerateResponse;
 
 export class ApiError extends Error {
   constructor(
