@@ -61,8 +61,7 @@ describe('examples/mobile-robot end to end', () => {
         it('releases the 100 Hz loop WHL -> ODO -> VEL -> MOT in precedence order every 10 ms', () => {
             const chain = checkChain(logs, ['WHL', 'ODO', 'VEL', 'MOT']);
             expect(chain.violations).toEqual([]);
-            if (chain.repeats.length) console.warn(`velocityLoop: ${chain.repeats.length} module(s) started twice in a cycle: ${chain.repeats.slice(0, 3).join(' | ')}`);
-            expect(chain.repeats.length).toBeLessThanOrEqual(chain.completeCycles / 100); // seen under heavy load only
+            expect(chain.repeats).toEqual([]); // no module released twice in one cycle (ORD matches acks to releases by id)
             expect(chain.completeCycles).toBeGreaterThan(300); // ~650 when the machine is idle
             expect(chain.medianPeriodMs).toBeGreaterThan(9);
             expect(chain.medianPeriodMs).toBeLessThan(11);
