@@ -11,6 +11,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { parametersOf, schedulingPropertiesOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import { parseTime } from '../model/time.js';
+import { checkBlockOrder, type BlockOrder } from './block-order.js';
 import { ModuleCodes } from './codes/modules.js';
 import { otherLocations } from './locations.js';
 import { ProjectNames } from './project-index.js';
@@ -18,8 +19,9 @@ import { report } from './report.js';
 
 const NAME_PATTERN = /^[A-Z]{3}$/;
 const BLOCK_ORDER = ['parameters', 'scheduling', 'data flows', 'event flows'] as const;
+type BlockName = (typeof BLOCK_ORDER)[number];
 
-function blockName(block: ModuleBlock): (typeof BLOCK_ORDER)[number] {
+function blockName(block: ModuleBlock): BlockName {
     if (isParametersBlock(block)) return 'parameters';
     if (isSchedulingBlock(block)) return 'scheduling';
     if (isDataFlowsBlock(block)) return 'data flows';
@@ -29,6 +31,11 @@ function blockName(block: ModuleBlock): (typeof BLOCK_ORDER)[number] {
 function blockKeyword(block: ModuleBlock): string {
     return isDataFlowsBlock(block) ? 'data' : isEventFlowsBlock(block) ? 'event' : blockName(block);
 }
+
+const MODULE_BLOCKS: BlockOrder<ModuleBlock, BlockName> = {
+    order: BLOCK_ORDER, nameOf: blockName, keywordOf: blockKeyword,
+    duplicate: ModuleCodes['module-block-duplicate'], outOfOrder: ModuleCodes['module-block-order']
+};
 
 export function moduleChecks(services: CactalServices): ValidationChecks<CactalAstType> {
     const names = new ProjectNames(services);
@@ -65,22 +72,7 @@ function checkModuleName(node: Module | Supervisor, names: ProjectNames, accept:
 }
 
 function checkBlocks(module: Module, accept: ValidationAcceptor): void {
-    const seen: Array<(typeof BLOCK_ORDER)[number]> = [];
-    for (const block of module.blocks) {
-        const name = blockName(block);
-        const rank = BLOCK_ORDER.indexOf(name);
-        if (seen.includes(name)) {
-            report(accept, ModuleCodes['module-block-duplicate'], `Module ${module.name} already has a '${name}' block: merge them into one.`, { node: block, keyword: blockKeyword(block) });
-            continue;
-        }
-        const later = seen.find((s) => BLOCK_ORDER.indexOf(s) > rank);
-        if (later) {
-            report(accept, ModuleCodes['module-block-order'],
-                `Block '${name}' must come before '${later}': the order is ${BLOCK_ORDER.join(', ')}.`,
-                { node: block, keyword: blockKeyword(block) });
-        }
-        seen.push(name);
-    }
+    checkBlockOrder(`Module ${module.name}`, module.blocks, MODULE_BLOCKS, accept);
     const scheduling = module.blocks.filter(isSchedulingBlock);
     if (module.kind === 'asynchronous') {
         for (const block of module.blocks) {

@@ -12,6 +12,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { communicationsOf, criticalDelayNs, moduleInstancesOf, periodNs, precedencesOf, realtimePropertiesOf } from '../model/blocks.js';
 import { formatNanoseconds } from '../model/time.js';
 import { sameType, typeName, typeOf } from '../model/types.js';
+import { checkBlockOrder, type BlockOrder } from './block-order.js';
 import { SchemaCodes } from './codes/schemas.js';
 import { SchedulerCodes } from './codes/scheduler.js';
 import { otherLocations } from './locations.js';
@@ -34,6 +35,11 @@ function blockName(block: SchemaBlock): BlockName {
 function blockKeyword(block: SchemaBlock): string {
     return isSchedulingGraphBlock(block) ? 'scheduling' : blockName(block);
 }
+
+const SCHEMA_BLOCKS: BlockOrder<SchemaBlock, BlockName> = {
+    order: BLOCK_ORDER, nameOf: blockName, keywordOf: blockKeyword,
+    duplicate: SchemaCodes['schema-block-duplicate'], outOfOrder: SchemaCodes['schema-block-order']
+};
 
 export function schemaChecks(services: CactalServices): ValidationChecks<CactalAstType> {
     const names = new ProjectNames(services);
@@ -76,7 +82,6 @@ function checkSchemaParameters(schema: Schema, accept: ValidationAcceptor): void
 }
 
 function checkSchemaBlocks(schema: Schema, accept: ValidationAcceptor): void {
-    const seen: BlockName[] = [];
     for (const block of schema.blocks) {
         const name = blockName(block);
         if (schema.kind === 'event' && (name === 'realtime' || name === 'scheduling graph')) {
@@ -84,20 +89,8 @@ function checkSchemaBlocks(schema: Schema, accept: ValidationAcceptor): void {
                 `Event schema ${schema.name} is not scheduled: remove the '${name}' block, or declare it 'periodic schema' (with synchronous modules).`,
                 { node: block, keyword: blockKeyword(block) });
         }
-        if (seen.includes(name)) {
-            report(accept, SchemaCodes['schema-block-duplicate'], `Schema ${schema.name} already has a '${name}' block: merge them into one.`,
-                { node: block, keyword: blockKeyword(block) });
-            continue;
-        }
-        const rank = BLOCK_ORDER.indexOf(name);
-        const later = seen.find((s) => BLOCK_ORDER.indexOf(s) > rank);
-        if (later) {
-            report(accept, SchemaCodes['schema-block-order'],
-                `Block '${name}' must come before '${later}': the order is ${BLOCK_ORDER.join(', ')}.`,
-                { node: block, keyword: blockKeyword(block) });
-        }
-        seen.push(name);
     }
+    checkBlockOrder(`Schema ${schema.name}`, schema.blocks, SCHEMA_BLOCKS, accept);
     if (schema.kind !== 'periodic') return;
 
     const realtime = schema.blocks.filter(isRealtimeBlock);
