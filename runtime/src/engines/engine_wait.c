@@ -1,6 +1,7 @@
 /* engine_wait.c — see engine_wait.h. */
 #define _GNU_SOURCE
 #include "engine_wait.h"
+#include "engine_wire.h"
 
 #include <errno.h>
 #include <poll.h>
@@ -61,5 +62,21 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
             uint64_t expirations;
             if (read(timer_fd, &expirations, sizeof expirations) < 0 && errno != EAGAIN) return -1;
         }
+    }
+}
+
+int engine_next_request(RequestMessage *m, const EngineClock *clock, int64_t *now) {
+    for (;;) {
+        int64_t deadline = INT64_MAX;
+        clock->next_deadline(clock->core, &deadline);
+        int got = engine_wait(m, deadline);
+        *now = GetTime();
+        if (got < 0) return -1;
+        if (got == 0) {
+            clock->advance(clock->core, *now);
+            continue;
+        }
+        engine_terminate_names(m);
+        return 1;
     }
 }

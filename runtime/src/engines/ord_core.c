@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine_trace.h"
 #include "engine_values.h"
 
 typedef struct SchemaState {
@@ -40,16 +41,7 @@ struct OrdCore {
     SchemaState *st;
 };
 
-static void trace(OrdCore *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void trace(OrdCore *c, const char *fmt, ...) {
-    if (!c->io.trace) return;
-    char line[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    c->io.trace(c->io.ctx, c->now, line);
-}
+ENGINE_DEFINE_TRACE(OrdCore)
 
 static int schema_index(const OrdCore *c, const char *name) {
     for (int i = 0; i < c->v->nschemas; i++)

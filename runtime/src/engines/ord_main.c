@@ -44,6 +44,10 @@ typedef struct OrdBinding {
     int64_t last_tick[64];
 } OrdBinding;
 
+/* the core's deadlines, for engine_next_request */
+static int ord_next_deadline(const void *core, int64_t *deadline) { return ord_core_next_deadline(core, deadline); }
+static void ord_advance(void *core, int64_t t) { ord_core_advance(core, t); }
+
 static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
     (void)ctx;
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
@@ -185,20 +189,13 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
         ord_core_destroy(c);
         return 2;
     }
+    const EngineClock clock = {c, ord_next_deadline, ord_advance};
+    int64_t now = 0;
     for (;;) {
-        int64_t deadline = INT64_MAX;
-        ord_core_next_deadline(c, &deadline);
-        int got = engine_wait(m, deadline);
-        int64_t now = GetTime();
-        if (got < 0) {
+        if (engine_next_request(m, &clock, &now) < 0) {
             rc = 1;
             break;
         }
-        if (got == 0) {
-            ord_core_advance(c, now);
-            continue;
-        }
-        engine_terminate_names(m);
         b.reply_to = NULL;
         switch (m->Type) {
         case REQ_START: {

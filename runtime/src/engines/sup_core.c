@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "engine_trace.h"
 #include "engine_values.h"
 
 /* ---- state -------------------------------------------------------------------------- */
@@ -125,16 +126,7 @@ struct SupCore {
 
 /* ---- small helpers ------------------------------------------------------------------- */
 
-static void trace(SupCore *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
-static void trace(SupCore *c, const char *fmt, ...) {
-    if (!c->io.trace) return;
-    char line[512];
-    va_list ap;
-    va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
-    va_end(ap);
-    c->io.trace(c->io.ctx, c->now, line);
-}
+ENGINE_DEFINE_TRACE(SupCore)
 
 static void *scratch_alloc(SupCore *c, size_t n) {
     size_t a = (c->scratch_used + 15u) & ~(size_t)15u;

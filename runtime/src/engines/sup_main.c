@@ -43,6 +43,10 @@ typedef struct SupBinding {
     int nsubs;
 } SupBinding;
 
+/* the core's deadlines, for engine_next_request */
+static int sup_next_deadline(const void *core, int64_t *deadline) { return sup_core_next_deadline(core, deadline); }
+static void sup_advance(void *core, int64_t t) { sup_core_advance(core, t); }
+
 static void add_subscriber(SupBinding *b, const char *module, int target_port, int source_port, int mode) {
     int known = 0;
     for (int i = 0; i < b->v->nout_ports; i++)
@@ -322,20 +326,13 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
         return 2;
     }
     int rc = 0;
+    const EngineClock clock = {c, sup_next_deadline, sup_advance};
+    int64_t now = 0;
     for (;;) {
-        int64_t deadline = INT64_MAX;
-        sup_core_next_deadline(c, &deadline);
-        int got = engine_wait(m, deadline);
-        int64_t now = GetTime();
-        if (got < 0) {
+        if (engine_next_request(m, &clock, &now) < 0) {
             rc = 1;
             break;
         }
-        if (got == 0) {
-            sup_core_advance(c, now);
-            continue;
-        }
-        engine_terminate_names(m);
         switch (m->Type) {
         case REQ_START: handle_start(c, v, m, now); break;
         case REQ_STOP: {

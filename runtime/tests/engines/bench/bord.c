@@ -1,17 +1,7 @@
 /* bord.c — the benchmark's scheduler executable (generated-style ORD module.c + tables). */
-#include <contract/vocabulary.h>
-#include <libmodule/libmodule.h>
+#include "../engine_executable.h"
 
-MODULE_DESCRIPTION("engines benchmark scheduler");
-MODULE_AUTHOR("engines bench");
-char MODULE_NAME[] = "ORD";
-int MODULE_PRIORITY = 80;
-ModuleUse IUSE[] = {IUSE_TERM};
-ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
-size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
-size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+ENGINE_EXECUTABLE("ORD", 80, "engines benchmark scheduler")
 
 #include "btables.h"
 

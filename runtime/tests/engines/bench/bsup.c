@@ -1,17 +1,7 @@
 /* bsup.c — the benchmark's supervisor: BSU.run: R: [elapsed=1ms] activate schema BEN() [ ]. */
-#include <contract/vocabulary.h>
-#include <libmodule/libmodule.h>
+#include "../engine_executable.h"
 
-MODULE_DESCRIPTION("engines benchmark supervisor");
-MODULE_AUTHOR("engines bench");
-char MODULE_NAME[] = "BSU";
-int MODULE_PRIORITY = 90;
-ModuleUse IUSE[] = {IUSE_TERM};
-ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
-size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
-size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+ENGINE_EXECUTABLE("BSU", 90, "engines benchmark supervisor")
 
 #include "btables.h"
 

@@ -9,6 +9,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "imodule.h"
+
 MODULE_DESCRIPTION("engines integration test asynchronous module");
 MODULE_AUTHOR("engines tests");
 
@@ -25,14 +27,7 @@ size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
 int ModuleMain(int argc, const char *argv[]) {
     (void)argc;
     (void)argv;
-    FILE *trace = NULL;
-    const char *dir = getenv("ITEST_OUT");
-    if (dir && *dir) {
-        char path[512];
-        snprintf(path, sizeof path, "%s/AMX.trace", dir);
-        trace = fopen(path, "w");
-        if (trace) setvbuf(trace, NULL, _IOLBF, 0);
-    }
+    FILE *trace = imodule_open_trace(MODULE_NAME);
     RequestMessage *m = malloc(sizeof *m);
     if (!m) return 1;
     int running = 0;
@@ -47,6 +42,7 @@ int ModuleMain(int argc, const char *argv[]) {
             next += 10000000LL;
             continue;
         }
+        if (imodule_connect(m)) continue;
         switch (m->Type) {
         case REQ_START:
             if (trace) fprintf(trace, "start\n");
@@ -63,14 +59,6 @@ int ModuleMain(int argc, const char *argv[]) {
         case REQ_SETPARAM:
             if (GetDataFromSetParamRequest(m, &param_step, sizeof param_step, &pt, &rt) == 0 && trace)
                 fprintf(trace, "param %ld\n", param_step);
-            break;
-        case REQ_SUB_EVENT:
-            SubscribeUserToEvent(m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
-                                 m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
-            break;
-        case REQ_UNSUB_EVENT:
-            UnsubscribeUserToEvent(m->Param.UnsubscribeEvent.targetModule, m->Param.UnsubscribeEvent.targetPort,
-                                   m->Param.UnsubscribeEvent.sourcePort);
             break;
         case REQ_KILL:
             if (trace) fclose(trace);

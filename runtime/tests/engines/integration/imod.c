@@ -14,6 +14,8 @@
 #include <string.h>
 #include <time.h>
 
+#include "imodule.h"
+
 #ifndef IMOD_NAME
 #define IMOD_NAME "IMA"
 #endif
@@ -40,26 +42,17 @@ ModuleDetect IDETECT[] = {{&slow_event, 0, sizeof(long)}, IDETECT_TERM};
 size_t PARAM_SIZE_IN[] = {sizeof(long), PARAM_SIZE_TERM};
 size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
 
-static FILE *open_trace(void) {
-    const char *dir = getenv("ITEST_OUT");
-    if (!dir || !*dir) return NULL;
-    char path[512];
-    snprintf(path, sizeof path, "%s/%s.trace", dir, MODULE_NAME);
-    FILE *f = fopen(path, "w");
-    if (f) setvbuf(f, NULL, _IOLBF, 0);
-    return f;
-}
-
 int ModuleMain(int argc, const char *argv[]) {
     (void)argc;
     (void)argv;
-    FILE *trace = open_trace();
+    FILE *trace = imodule_open_trace(MODULE_NAME);
     RequestMessage *m = malloc(sizeof *m);
     if (!m) return 1;
     RTIME pt, rt;
     long activations = 0;
     for (;;) {
         if (!WaitForRequest(m)) break;
+        if (imodule_connect(m)) continue;
         switch (m->Type) {
         case REQ_START: {
             if (trace) fprintf(trace, "start %lld %d\n", (long long)GetTime(), m->Param.Start.AckID);
@@ -80,23 +73,6 @@ int ModuleMain(int argc, const char *argv[]) {
             SendAck(m->Param.Start.ModAck, m->Param.Start.WantedAck, ACK_FINISHED, m->Param.Start.AckID);
             break;
         }
-        case REQ_SUBSCRIBE:
-            SubscribeUser(m->Param.Subscribe.SourcePort, m->Param.Subscribe.TargetModule,
-                          m->Param.Subscribe.TargetPort, m->Param.Subscribe.Periodicity,
-                          m->Param.Subscribe.isContextual);
-            break;
-        case REQ_UNSUBSCRIBE:
-            UnsubscribeUser(m->Param.Unsubscribe.SourcePort, m->Param.Unsubscribe.TargetModule,
-                            m->Param.Unsubscribe.TargetPort);
-            break;
-        case REQ_SUB_EVENT:
-            SubscribeUserToEvent(m->Param.SubscribeEvent.targetModule, m->Param.SubscribeEvent.targetPort,
-                                 m->Param.SubscribeEvent.sourcePort, m->Param.SubscribeEvent.mode);
-            break;
-        case REQ_UNSUB_EVENT:
-            UnsubscribeUserToEvent(m->Param.UnsubscribeEvent.targetModule, m->Param.UnsubscribeEvent.targetPort,
-                                   m->Param.UnsubscribeEvent.sourcePort);
-            break;
         case REQ_SETPARAM:
             if (GetDataFromSetParamRequest(m, &param_gain, sizeof param_gain, &pt, &rt) == 0 && trace)
                 fprintf(trace, "param %ld\n", param_gain);

@@ -10,25 +10,15 @@
  * AMX posts step, 2*step, ... every 10 ms: with step 2, W1 ends on 6, EVS is undone (AMX
  * stopped), W2 notifies GLT, whose T1 ends and stops SLV.work.
  */
-#include <contract/vocabulary.h>
-#include <libmodule/libmodule.h>
 #include <stddef.h>
 
-MODULE_DESCRIPTION("engines integration test supervisor");
-MODULE_AUTHOR("engines tests");
+#include "../engine_executable.h"
+
 #ifdef INEST_TOP
-char MODULE_NAME[] = "GLT";
-int MODULE_PRIORITY = 95;
+ENGINE_EXECUTABLE("GLT", 95, "engines integration test supervisor")
 #else
-char MODULE_NAME[] = "SLV";
-int MODULE_PRIORITY = 92;
+ENGINE_EXECUTABLE("SLV", 92, "engines integration test supervisor")
 #endif
-ModuleUse IUSE[] = {IUSE_TERM};
-ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
-size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
-size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
 
 #define MS 1000000LL
 static const char k_finished[256] = "finished";

@@ -5,19 +5,9 @@
  * uses IMB too (conflict); schema RSC: RMA -> RMB -> RMC (tables: itables.h). Supervisors to
  * notify: ISU, RSU (each scenario runs one of them: ORD:0/ORD:1 to the other is not delivered).
  */
-#include <contract/vocabulary.h>
-#include <libmodule/libmodule.h>
+#include "../engine_executable.h"
 
-MODULE_DESCRIPTION("engines integration test scheduler");
-MODULE_AUTHOR("engines tests");
-char MODULE_NAME[] = "ORD";
-int MODULE_PRIORITY = 80;
-ModuleUse IUSE[] = {IUSE_TERM};
-ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
-size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
-size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+ENGINE_EXECUTABLE("ORD", 80, "engines integration test scheduler")
 
 #include "itables.h"
 

@@ -9,25 +9,15 @@
  * again; SHA's A1 ends at 150 ms but AMX keeps running (SHB still uses it); SHB's B1 ends at
  * ~320 ms and, as the last user of a module a supervisor started, stops AMX.
  */
-#include <contract/vocabulary.h>
-#include <libmodule/libmodule.h>
 #include <stddef.h>
 
-MODULE_DESCRIPTION("engines integration test supervisor (shared module)");
-MODULE_AUTHOR("engines tests");
+#include "../engine_executable.h"
+
 #ifdef ISHARE_TOP
-char MODULE_NAME[] = "SHA";
-int MODULE_PRIORITY = 95;
+ENGINE_EXECUTABLE("SHA", 95, "engines integration test supervisor (shared module)")
 #else
-char MODULE_NAME[] = "SHB";
-int MODULE_PRIORITY = 92;
+ENGINE_EXECUTABLE("SHB", 92, "engines integration test supervisor (shared module)")
 #endif
-ModuleUse IUSE[] = {IUSE_TERM};
-ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
-size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
-size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
 
 #define MS 1000000LL
 static const ContractSchemaModule amx_only[] = {{"AMX", 0, NULL}};

@@ -6,19 +6,9 @@
  *   R2: [elapsed=50ms] activate schema ICF() [ ]              (conflicts with ISC: ORD:1)
  *   R3: [ORD:1<(ord_schema == "ICF")>] [ ]
  */
-#include <contract/vocabulary.h>
-#include <libmodule/libmodule.h>
+#include "../engine_executable.h"
 
-MODULE_DESCRIPTION("engines integration test supervisor");
-MODULE_AUTHOR("engines tests");
-char MODULE_NAME[] = "ISU";
-int MODULE_PRIORITY = 90;
-ModuleUse IUSE[] = {IUSE_TERM};
-ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
-ModuleDetect IDETECT[] = {IDETECT_TERM};
-size_t PARAM_SIZE_IN[] = {PARAM_SIZE_TERM};
-size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
+ENGINE_EXECUTABLE("ISU", 90, "engines integration test supervisor")
 
 #include "itables.h"
 

@@ -12,11 +12,7 @@
 
 void scenario_nested(const char *root, const char *bin, const char *launcher) {
     Scenario s;
-    if (scenario_init(&s, root, "nested") != 0) {
-        check(0, "nested scenario set up");
-        return;
-    }
-    int before = itest_failed();
+    if (!scenario_begin(&s, root, "nested")) return;
     const char *const names[] = {"GLT", "SLV", "AMX", NULL};
     check(scenario_launch(&s, bin, launcher, "GLT.top()", "0.5", names),
           "nested supervisors: architecture ran and stopped cleanly");
@@ -38,7 +34,7 @@ void scenario_nested(const char *root, const char *bin, const char *launcher) {
     }
     check(in_order, "SLV.work started by GLT, W1 -> W2 on endof, stopped by GLT");
     check(txt && strstr(txt, "[GLT] rule top.T1 inactive"), "SLV's notify reached GLT (T1 ended)");
-    if (itest_failed() > before) fprintf(stderr, "launcher output (nested scenario):\n%s\n", txt ? txt : "(none)");
+    if (scenario_failed(&s)) fprintf(stderr, "launcher output (nested scenario):\n%s\n", txt ? txt : "(none)");
     free(amx);
     free(txt);
 }

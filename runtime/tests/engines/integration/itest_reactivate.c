@@ -79,18 +79,10 @@ static int cycles_respect_precedence(const Trace *a, const Trace *b, const Trace
 
 void scenario_reactivation(const char *root, const char *bin, const char *launcher) {
     Scenario s;
-    if (scenario_init(&s, root, "reactivation") != 0) {
-        check(0, "reactivation scenario set up");
-        return;
-    }
-    int before = itest_failed();
-    char stats[600];
-    snprintf(stats, sizeof stats, "%s/ord.json", s.out);
-    setenv("CONTRACT_ORD_STATS", stats, 1);
+    if (!scenario_begin(&s, root, "reactivation")) return;
     const char *const names[] = {"ORD", "RSU", "RMA", "RMB", "RMC", NULL};
     check(scenario_launch(&s, bin, launcher, "RSU.go()", "0.9", names),
           "reactivation: architecture ran and stopped cleanly");
-    unsetenv("CONTRACT_ORD_STATS");
 
     Trace a, b, c;
     int rt = read_trace(s.out, "RMA", &a) | read_trace(s.out, "RMB", &b) | read_trace(s.out, "RMC", &c);
@@ -130,12 +122,12 @@ void scenario_reactivation(const char *root, const char *bin, const char *launch
     const Trace *all[3] = {&a, &b, &c};
     check(ids_distinct_and_increasing(all, 3), "every START carries its own release id (AckID), increasing");
 
-    char *js = slurp(stats);
+    char *js = slurp(s.stats);
     check(stat_of(js, "held_cycles") >= 1 && stat_of(js, "late_acks") >= 1,
           "ORD stats count the held cycle and the late ack");
     struct stat st;
     check(stat(s.run, &st) != 0, "clean shutdown: no runtime file left in the run directory");
-    if (itest_failed() > before) {
+    if (scenario_failed(&s)) {
         char *txt = slurp(s.launch);
         fprintf(stderr, "launcher output (reactivation scenario):\n%s\nORD stats: %s\n", txt ? txt : "(none)",
                 js ? js : "(none)");

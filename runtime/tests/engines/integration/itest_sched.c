@@ -14,18 +14,10 @@
 
 void scenario_scheduler(const char *root, const char *bin, const char *launcher) {
     Scenario s;
-    if (scenario_init(&s, root, "scheduler") != 0) {
-        check(0, "scheduler scenario set up");
-        return;
-    }
-    int before = itest_failed();
-    char stats[600];
-    snprintf(stats, sizeof stats, "%s/ord.json", s.out);
-    setenv("CONTRACT_ORD_STATS", stats, 1);
+    if (!scenario_begin(&s, root, "scheduler")) return;
     const char *const names[] = {"ORD", "ISU", "IMA", "IMB", "IMC", NULL};
     check(scenario_launch(&s, bin, launcher, "ISU.go()", "0.6", names),
           "contract-launch ran the architecture and stopped it cleanly");
-    unsetenv("CONTRACT_ORD_STATS");
 
     Trace a, b, c;
     int ra = read_trace(s.out, "IMA", &a), rb = read_trace(s.out, "IMB", &b), rc = read_trace(s.out, "IMC", &c);
@@ -57,9 +49,9 @@ void scenario_scheduler(const char *root, const char *bin, const char *launcher)
           "ORD refuses ICF (shares IMB with ISC)");
     check(txt && strstr(txt, "[ISU] rule go.R3 active"), "ORD:1 with ord_schema == \"ICF\" reached the supervisor");
     check(txt && strstr(txt, "[ORD] deactivate ISC"), "R1's postcondition deactivates ISC");
-    char *js = slurp(stats);
+    char *js = slurp(s.stats);
     check(js && strstr(js, "\"deadline_misses\": 0") && strstr(js, "\"overruns\": 0"), "no deadline miss, no overrun");
-    if (itest_failed() > before) fprintf(stderr, "launcher output (scheduler scenario):\n%s\n", txt ? txt : "(none)");
+    if (scenario_failed(&s)) fprintf(stderr, "launcher output (scheduler scenario):\n%s\n", txt ? txt : "(none)");
     free(txt);
     free(js);
 }

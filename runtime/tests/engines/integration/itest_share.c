@@ -14,11 +14,7 @@
 
 void scenario_shared_module(const char *root, const char *bin, const char *launcher) {
     Scenario s;
-    if (scenario_init(&s, root, "shared") != 0) {
-        check(0, "shared module scenario set up");
-        return;
-    }
-    int before = itest_failed();
+    if (!scenario_begin(&s, root, "shared")) return;
     const char *const names[] = {"SHA", "SHB", "AMX", NULL};
     check(scenario_launch(&s, bin, launcher, "SHA.top()", "0.5", names),
           "shared module: architecture ran and stopped cleanly");
@@ -40,7 +36,7 @@ void scenario_shared_module(const char *root, const char *bin, const char *launc
           "both schemas were activated and deactivated");
     struct stat st;
     check(stat(s.run, &st) != 0, "no hold file (or other runtime file) left in the run directory");
-    if (itest_failed() > before)
+    if (scenario_failed(&s))
         fprintf(stderr, "launcher output (shared module scenario):\n%s\nAMX trace:\n%s\n", txt ? txt : "(none)",
                 amx ? amx : "(none)");
     free(amx);

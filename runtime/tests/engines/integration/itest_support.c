@@ -28,17 +28,26 @@ static int make_dir(const char *path) {
     return -1;
 }
 
-int scenario_init(Scenario *s, const char *root, const char *name) {
+int scenario_begin(Scenario *s, const char *root, const char *name) {
     char base[400];
     snprintf(base, sizeof base, "%s/%s", root, name);
     snprintf(s->run, sizeof s->run, "%s/run", base);
     snprintf(s->logs, sizeof s->logs, "%s/logs", base);
     snprintf(s->out, sizeof s->out, "%s/out", base);
     snprintf(s->launch, sizeof s->launch, "%s/launch.txt", base);
-    if (make_dir(base) != 0 || make_dir(s->logs) != 0 || make_dir(s->out) != 0) return -1;
+    snprintf(s->stats, sizeof s->stats, "%s/ord.json", s->out);
+    s->failed_before = failed;
+    if (make_dir(base) != 0 || make_dir(s->logs) != 0 || make_dir(s->out) != 0) {
+        char what[500];
+        snprintf(what, sizeof what, "scenario %s set up in %s", name, base);
+        return check(0, what);
+    }
     setenv("ITEST_OUT", s->out, 1);
-    return 0;
+    setenv("CONTRACT_ORD_STATS", s->stats, 1);
+    return 1;
 }
+
+int scenario_failed(const Scenario *s) { return failed > s->failed_before; }
 
 int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
                     const char *duration, const char *const *names) {

@@ -21,10 +21,15 @@ typedef struct Scenario {
     char logs[512];    /* CSV log directory (one per scenario: names hold the second) */
     char out[512];     /* ITEST_OUT: the modules' traces                         */
     char launch[512];  /* the launcher's stdout + stderr                         */
+    char stats[600];   /* CONTRACT_ORD_STATS: ORD's figures (out/ord.json)        */
+    int failed_before; /* itest_failed() when the scenario began                  */
 } Scenario;
 
-/** Makes root/<name>/{out,logs} and sets ITEST_OUT; -1 on error (printed). */
-int scenario_init(Scenario *s, const char *root, const char *name);
+/** Makes root/<name>/{out,logs}, sets ITEST_OUT and CONTRACT_ORD_STATS for the processes to
+ *  come. Returns 1, or 0 after a failed check naming the scenario. */
+int scenario_begin(Scenario *s, const char *root, const char *name);
+/** 1 if a check of this scenario failed (then print what helps to understand it). */
+int scenario_failed(const Scenario *s);
 /** Runs contract-launch with `start` for `duration` seconds on the executables `names` (NULL
  *  terminated) of `bin_dir`. Returns 1 if the launcher exited 0. */
 int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,

@@ -104,10 +104,7 @@ static int amx_followed(const Step *s, int n) {
 
 void scenario_hold_toggles(const char *root, const char *bin, const char *launcher) {
     Scenario sc;
-    if (scenario_init(&sc, root, "toggles") != 0) {
-        check(0, "hold toggles scenario set up");
-        return;
-    }
+    if (!scenario_begin(&sc, root, "toggles")) return;
     const char *const names[] = {"HTA", "HTB", "AMX", NULL};
     check(scenario_launch(&sc, bin, launcher, "HTA.flip()", "1.0", names),
           "hold toggles: architecture ran and stopped cleanly");
