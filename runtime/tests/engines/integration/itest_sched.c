@@ -12,6 +12,37 @@
 #include "itest_scenarios.h"
 #include "itest_support.h"
 
+static int cmp_ll(const void *x, const void *y) {
+    long long a = *(const long long *)x, b = *(const long long *)y;
+    return (a > b) - (a < b);
+}
+
+/* The releases follow start + k * period: the period fitted by the median of the pairwise
+   slopes (Theil-Sen: one release delayed by the machine does not move it) is within 25 us of
+   `period` (a release scheduled from the previous one would drift by its lateness every cycle),
+   and all but at most 2 releases are within 2 ms of the fitted line. */
+static int absolute_ticks(const Trace *t, long long period) {
+    int n = t->nstart;
+    if (n < 3) return 0;
+    long long *v = malloc(sizeof *v * (size_t)(n * (n - 1) / 2 > n ? n * (n - 1) / 2 : n));
+    if (!v) return 0;
+    int nv = 0;
+    for (int i = 0; i < n; i++)
+        for (int j = i + 1; j < n; j++) v[nv++] = (t->start[j] - t->start[i]) / (j - i);
+    qsort(v, (size_t)nv, sizeof *v, cmp_ll);
+    long long slope = v[nv / 2];
+    for (int k = 0; k < n; k++) v[k] = t->start[k] - k * slope;
+    qsort(v, (size_t)n, sizeof *v, cmp_ll);
+    long long origin = v[n / 2];
+    int off = 0;
+    for (int k = 0; k < n; k++) {
+        long long dev = t->start[k] - (origin + k * slope);
+        if (dev < -2000000 || dev > 2000000) off++;
+    }
+    free(v);
+    return llabs(slope - period) <= 25000 && off <= 2;
+}
+
 void scenario_scheduler(const char *root, const char *bin, const char *launcher) {
     Scenario s;
     if (!scenario_begin(&s, root, "scheduler")) return;
@@ -30,12 +61,9 @@ void scenario_scheduler(const char *root, const char *bin, const char *launcher)
     for (int k = 0; k < a.nstart && k < b.nstart && k < c.nstart; k++)
         if (b.start[k] < a.end[k] || c.start[k] < a.end[k]) prec = 0;
     check(prec, "precedence IMA -> IMB, IMA -> IMC respected in every cycle");
-    int periodic = a.nstart > 1;
-    for (int k = 1; k < a.nstart; k++) {
-        long long ideal = a.start[0] + (long long)k * 20000000LL, dev = a.start[k] - ideal;
-        if (dev < -2000000 || dev > 2000000) periodic = 0;
-    }
-    check(periodic, "releases at absolute ticks start + k * 20 ms (within 2 ms, no drift)");
+    check(absolute_ticks(&a, 20000000LL),
+          "releases at absolute ticks start + k * 20 ms (fitted period within 25 us: no drift; "
+          "at most 2 releases more than 2 ms off it, for a loaded machine)");
     int ones = b.ngot == a.nstart;
     for (int k = 0; k < b.ngot; k++)
         if (b.got[k] != k + 1) ones = 0;
