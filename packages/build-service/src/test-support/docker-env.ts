@@ -1,7 +1,9 @@
 /**
- * Docker for the tests: runs scripts/docker-up.sh (starts dockerd and bootstraps the contract-gcc
- * image offline when missing) and stops the daemon afterwards when it started it. When Docker
- * cannot be made to work here, `reason` says why and the docker tests are skipped LOUDLY.
+ * Docker for the tests (this package's and the cli's e2e, through the package export
+ * `@contract-studio/build-service/test-support/docker-env`): runs scripts/docker-up.sh (starts
+ * dockerd, builds the contract-gcc image when missing or stale) and stops the daemon afterwards
+ * when it started it. When Docker cannot be made to work here, `reason` says why and the docker
+ * tests are skipped LOUDLY.
  */
 import { spawnSync } from 'node:child_process';
 import { dirname, join } from 'node:path';
@@ -17,7 +19,8 @@ export interface DockerEnv {
 }
 
 export function dockerUp(): DockerEnv {
-  const r = spawnSync('bash', [script], { encoding: 'utf8', timeout: 240_000 });
+  // an image rebuild (debootstrap, runtime built and tested inside) takes minutes
+  const r = spawnSync('bash', [script], { encoding: 'utf8', timeout: 300_000 });
   const started = /dockerd-started (\d+)/.exec(r.stdout ?? '')?.[1];
   const stop = (): void => {
     if (started) spawnSync('bash', [script, '--stop', started], { stdio: 'inherit' });

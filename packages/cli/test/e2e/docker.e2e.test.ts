@@ -1,13 +1,14 @@
 /**
  * Both examples in the docker sandbox, in one file so the Docker engine is brought up once
  * (scripts/docker-up.sh: starts dockerd, makes the contract-gcc image) and stopped only after every
- * docker step (when this file started it). Without a usable engine: DOCKER E2E SKIPPED, loudly.
+ * docker step (when this file started it). Without a usable engine: DOCKER TESTS SKIPPED, loudly.
  */
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { isSubsequence } from './csv-log.js';
-import { contract, dockerUp, scratchCopy, type DockerEnv, type RunJson, type Scratch } from './harness.js';
+import { dockerUp, type DockerEnv } from '@contract-studio/build-service/test-support/docker-env';
+import { contract, scratchCopy, type RunJson, type Scratch } from './harness.js';
 
 let docker: DockerEnv;
 let tutorial: Scratch;

@@ -1,7 +1,7 @@
 /**
  * End-to-end harness: runs the real `contract` binary (packages/cli/bin/contract.js) on a copy of
  * an example, with its own cache folder (CONTRACT_CACHE_DIR) so the test can prove that nothing of
- * the run is left behind (no process, no workspace). Docker: scripts/docker-up.sh, else SKIPPED loudly.
+ * the run is left behind (no process, no workspace).
  */
 import { spawnSync } from 'node:child_process';
 import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
@@ -80,28 +80,6 @@ export function leftoverWorkspaces(scratch: Scratch): string[] {
         }
     }
     return out;
-}
-
-export interface DockerEnv {
-    available: boolean;
-    reason: string;
-    stop(): void;
-}
-
-/** scripts/docker-up.sh: starts dockerd and makes the contract-gcc image when missing. */
-export function dockerUp(): DockerEnv {
-    const script = join(REPO, 'scripts/docker-up.sh');
-    const r = spawnSync('bash', [script], { encoding: 'utf8', timeout: 300_000 });
-    const started = /dockerd-started (\d+)/.exec(r.stdout ?? '')?.[1];
-    const stop = (): void => {
-        if (started) spawnSync('bash', [script, '--stop', started], { stdio: 'inherit' });
-    };
-    if (r.status !== 0) {
-        const reason = `scripts/docker-up.sh failed (exit ${r.status}): ${(r.stderr ?? '').trim().split('\n').slice(-3).join(' | ')}`;
-        console.warn(`\n${'!'.repeat(70)}\n!! DOCKER E2E SKIPPED: ${reason}\n${'!'.repeat(70)}\n`);
-        return { available: false, reason, stop };
-    }
-    return { available: true, reason: '', stop };
 }
 
 export interface RunJson {
