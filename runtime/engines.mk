@@ -71,6 +71,9 @@ $(1)/RMA $(1)/RMC: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
 $(1)/RMB: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"RMB"' -DIMOD_SLOW_AT=4 $$< $(2) -o $$@
+$(1)/rsc/ORD: $(ENG_IT_SRC)/iord.c $(2) $(ENG_IT_DEPS)
+	@mkdir -p $(1)/rsc
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIORD_RSC $$< $(2) -o $$@
 $(1)/RSU: $(ENG_IT_SRC)/ireactivate.c $(2) $(ENG_IT_DEPS)
 	@mkdir -p $(1)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
@@ -86,7 +89,7 @@ $(1)/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
 endef
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
 $(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
-ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB RMA RMB RMC RSU HTA HTB itest
+ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \

@@ -1,7 +1,7 @@
 /*
  * itest_reactivate.c — scenario 4: deactivation and immediate reactivation of a periodic schema
  * while one of its modules still runs a release of the old activation, with real processes
- * (ORD iord.c, RSU ireactivate.c, RMA/RMB/RMC imod.c; RMB is slow in its 4th activation).
+ * (ORD iord.c -DIORD_RSC, RSU ireactivate.c, RMA/RMB/RMC imod.c; RMB is slow in its 4th activation).
  * RMB announces its slow run (RMB:0), RSU deactivates RSC and activates it again at once.
  * Asserted from the modules' traces (each START's release id and times), ORD's CSV log and its
  * stats, never from tight timings: the new activation's first cycle is held until RMB's late
@@ -80,7 +80,7 @@ static int cycles_respect_precedence(const Trace *a, const Trace *b, const Trace
 void scenario_reactivation(const char *root, const char *bin, const char *launcher) {
     Scenario s;
     if (!scenario_begin(&s, root, "reactivation")) return;
-    const char *const names[] = {"ORD", "RSU", "RMA", "RMB", "RMC", NULL};
+    const char *const names[] = {"rsc/ORD", "RSU", "RMA", "RMB", "RMC", NULL};
     check(scenario_launch(&s, bin, launcher, "RSU.go()", "0.9", names),
           "reactivation: architecture ran and stopped cleanly");
 
