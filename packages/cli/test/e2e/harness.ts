@@ -8,6 +8,8 @@ import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync, rmSync } fro
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
+import { expect } from 'vitest';
+import { readLogs, type LogRecord } from './csv-log.js';
 
 export const REPO = fileURLToPath(new URL('../../../../', import.meta.url));
 export const BIN = join(REPO, 'packages/cli/bin/contract.js');
@@ -94,4 +96,32 @@ export interface RunJson {
     moduleFailures: { module: string; how: string }[];
     runDirLeftovers: string[];
     output: { source: string; stream: string; line: string }[];
+}
+
+export interface ExampleRun {
+    json: RunJson;
+    code: number | null;
+    /** The CSV logs written to scratch.logs. */
+    logs: LogRecord[];
+}
+
+/** `contract run <example> --sandbox <sandbox> --duration <duration>` with its CSV logs in scratch.logs. */
+export function runExample(example: string, sandbox: string, duration: string, scratch: Scratch): ExampleRun {
+    const r = contract(['run', example, '--sandbox', sandbox, '--duration', duration, '--logs', scratch.logs, '--format', 'json'], scratch);
+    return { json: JSON.parse(r.stdout) as RunJson, code: r.code, logs: readLogs(scratch.logs) };
+}
+
+/**
+ * A run that went to its end: exit 0, no module failure, every module stopped cleanly, nothing left
+ * behind (no socket or pid file in the run directory, no process, no workspace), `csvLogs` logs back.
+ */
+export function expectCleanRun(run: ExampleRun, scratch: Scratch, csvLogs: number): void {
+    expect(run.json.result.message).toBe('run finished (exit 0)');
+    expect(run.code).toBe(0);
+    expect(run.json.moduleFailures).toEqual([]);
+    expect(run.json.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
+    expect(run.json.runDirLeftovers).toEqual([]);
+    expect(processesMentioning(scratch.root)).toEqual([]);
+    expect(leftoverWorkspaces(scratch)).toEqual([]);
+    expect(run.json.logs.length).toBe(csvLogs);
 }

@@ -4,8 +4,8 @@
  * -> assertions from the output and the CSV logs. Docker: docker.e2e.test.ts.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { checkChain, deliveryWindows, isSubsequence, readLogs, received, schedulerTrace, supervisorTrace, type LogRecord } from './csv-log.js';
-import { contract, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
+import { checkChain, deliveryWindows, isSubsequence, received, schedulerTrace, supervisorTrace, type LogRecord } from './csv-log.js';
+import { contract, expectCleanRun, runExample, scratchCopy, type ExampleRun, type RunJson, type Scratch } from './harness.js';
 
 let scratch: Scratch;
 beforeAll(() => { scratch = scratchCopy('mobile-robot'); });
@@ -37,25 +37,16 @@ describe('examples/mobile-robot end to end', () => {
     }, 240_000);
 
     describe('run in bwrap for 7 s', () => {
+        let run: ExampleRun;
         let json: RunJson;
         let logs: LogRecord[];
-        let code: number | null;
         beforeAll(() => {
-            const r = contract(['run', 'mobile-robot', '--sandbox', 'bwrap', '--duration', '7s', '--logs', scratch.logs, '--format', 'json'], scratch);
-            code = r.code;
-            json = JSON.parse(r.stdout) as RunJson;
-            logs = readLogs(scratch.logs);
+            run = runExample('mobile-robot', 'bwrap', '7s', scratch);
+            ({ json, logs } = run);
         }, 240_000);
 
         it('runs to the end and every module stops cleanly, nothing left running', () => {
-            expect(json.result.message).toBe('run finished (exit 0)');
-            expect(code).toBe(0);
-            expect(json.moduleFailures).toEqual([]);
-            expect(json.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
-            expect(json.runDirLeftovers).toEqual([]); // no socket, no pid file in the run directory
-            expect(processesMentioning(scratch.root)).toEqual([]);
-            expect(leftoverWorkspaces(scratch)).toEqual([]);
-            expect(json.logs.length).toBe(11); // one CSV per module: 9 + TEL + ORD
+            expectCleanRun(run, scratch, 11); // one CSV per module: 9 + TEL + ORD
         });
 
         it('releases the 100 Hz loop WHL -> ODO -> VEL -> MOT in precedence order every 10 ms', () => {

@@ -4,8 +4,8 @@
  * Docker: docker.e2e.test.ts.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { checkChain, deliveryWindows, isSubsequence, readLogs, schedulerTrace, supervisorTrace, whileActive, type LogRecord } from './csv-log.js';
-import { contract, leftoverWorkspaces, processesMentioning, scratchCopy, type RunJson, type Scratch } from './harness.js';
+import { checkChain, deliveryWindows, isSubsequence, schedulerTrace, supervisorTrace, whileActive, type LogRecord } from './csv-log.js';
+import { contract, expectCleanRun, runExample, scratchCopy, type ExampleRun, type RunJson, type Scratch } from './harness.js';
 
 let scratch: Scratch;
 beforeAll(() => { scratch = scratchCopy('tutorial'); });
@@ -33,25 +33,15 @@ describe('examples/tutorial end to end', () => {
     }, 240_000);
 
     describe('run in bwrap for 5 s', () => {
-        let json: RunJson;
+        let run: ExampleRun;
         let logs: LogRecord[];
-        let code: number | null;
         beforeAll(() => {
-            const r = contract(['run', 'tutorial', '--sandbox', 'bwrap', '--duration', '5s', '--logs', scratch.logs, '--format', 'json'], scratch);
-            code = r.code;
-            json = JSON.parse(r.stdout) as RunJson;
-            logs = readLogs(scratch.logs);
+            run = runExample('tutorial', 'bwrap', '5s', scratch);
+            logs = run.logs;
         }, 240_000);
 
         it('runs to the end, every module stops cleanly, nothing left running', () => {
-            expect(json.result.message).toBe('run finished (exit 0)');
-            expect(code).toBe(0);
-            expect(json.moduleFailures).toEqual([]);
-            expect(json.output.some((l) => l.source === 'launcher' && l.line === 'all modules stopped cleanly')).toBe(true);
-            expect(json.runDirLeftovers).toEqual([]);
-            expect(processesMentioning(scratch.root)).toEqual([]);
-            expect(leftoverWorkspaces(scratch)).toEqual([]);
-            expect(json.logs.length).toBe(9);
+            expectCleanRun(run, scratch, 9);
         });
 
         it('fires the supervisor rules in the report\'s order and activates schemaCommande1', () => {
