@@ -39,57 +39,39 @@ ENG_IT_SRC  := tests/engines/integration
 ENG_IT_DEPS := $(wildcard $(ENG_IT_SRC)/*.h) $(wildcard include/*/*.h) tests/engines/engine_executable.h
 ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c)
 
-# $(1) = output dir, $(2) = libmodule.a, $(3) = extra flags
-define ENG_IT_SET
-$(1)/IMA $(1)/IMB $(1)/IMC: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"$$(notdir $$@)"' $$< $(2) -o $$@
-$(1)/ORD: $(ENG_IT_SRC)/iord.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/ISU: $(ENG_IT_SRC)/isup.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/AMX: $(ENG_IT_SRC)/amod.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/GLT: $(ENG_IT_SRC)/inest.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DINEST_TOP $$< $(2) -o $$@
-$(1)/SLV: $(ENG_IT_SRC)/inest.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/SHA: $(ENG_IT_SRC)/ishare.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DISHARE_TOP $$< $(2) -o $$@
-$(1)/SHB: $(ENG_IT_SRC)/ishare.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/RMA $(1)/RMC: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"$$(notdir $$@)"' $$< $(2) -o $$@
-$(1)/RMB: $(ENG_IT_SRC)/imod.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIMOD_NAME='"RMB"' -DIMOD_SLOW_AT=4 $$< $(2) -o $$@
-$(1)/rsc/ORD: $(ENG_IT_SRC)/iord.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)/rsc
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DIORD_RSC $$< $(2) -o $$@
-$(1)/RSU: $(ENG_IT_SRC)/ireactivate.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/HTA: $(ENG_IT_SRC)/itoggle.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude -DITOGGLE_TOP $$< $(2) -o $$@
-$(1)/HTB: $(ENG_IT_SRC)/itoggle.c $(2) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $$< $(2) -o $$@
-$(1)/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
-	@mkdir -p $(1)
-	$$(ENG_CC) $(ENG_WARN) -O2 $(ENG_IT_MAIN) -o $$@
+# The test's executables: ENG_IT_FROM_<exe> = its source in $(ENG_IT_SRC), ENG_IT_FLAGS_<exe> =
+# its -D flags. Each is built twice: $(ENG_OUT)/it (plain) and $(ENG_OUT)/it-san (ASan+UBSan).
+ENG_IT_EXES := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB
+$(foreach m,IMA IMB IMC RMA RMB RMC,$(eval ENG_IT_FROM_$(m) := imod.c)$(eval ENG_IT_FLAGS_$(m) := -DIMOD_NAME='"$(m)"'))
+ENG_IT_FLAGS_RMB += -DIMOD_SLOW_AT=4
+ENG_IT_FROM_ORD := iord.c
+ENG_IT_FROM_rsc/ORD := iord.c
+ENG_IT_FLAGS_rsc/ORD := -DIORD_RSC
+ENG_IT_FROM_ISU := isup.c
+ENG_IT_FROM_AMX := amod.c
+ENG_IT_FROM_GLT := inest.c
+ENG_IT_FLAGS_GLT := -DINEST_TOP
+ENG_IT_FROM_SLV := inest.c
+ENG_IT_FROM_SHA := ishare.c
+ENG_IT_FLAGS_SHA := -DISHARE_TOP
+ENG_IT_FROM_SHB := ishare.c
+ENG_IT_FROM_RSU := ireactivate.c
+ENG_IT_FROM_HTA := itoggle.c
+ENG_IT_FLAGS_HTA := -DITOGGLE_TOP
+ENG_IT_FROM_HTB := itoggle.c
+
+# $(1) = output dir, $(2) = libmodule.a, $(3) = extra flags, $(4) = executable
+define ENG_IT_EXE
+$(1)/$(4): $(ENG_IT_SRC)/$(ENG_IT_FROM_$(4)) $(2) $(ENG_IT_DEPS)
+	@mkdir -p $$(@D)
+	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $(ENG_IT_FLAGS_$(4)) $$< $(2) -o $$@
 endef
-$(eval $(call ENG_IT_SET,$(ENG_OUT)/it,build/libmodule.a,))
-$(eval $(call ENG_IT_SET,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN)))
-ENG_IT_BINS := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB itest
+$(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it,build/libmodule.a,,$(e))))
+$(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN),$(e))))
+$(ENG_OUT)/it/itest $(ENG_OUT)/it-san/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
+	@mkdir -p $(@D)
+	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_IT_MAIN) -o $@
+ENG_IT_BINS := $(ENG_IT_EXES) itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \

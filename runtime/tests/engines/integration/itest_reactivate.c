@@ -48,13 +48,6 @@ static int ids_distinct_and_increasing(const Trace *const *t, int n) {
     return 1;
 }
 
-static long stat_of(const char *json, const char *key) {
-    char pat[64];
-    snprintf(pat, sizeof pat, "\"%s\": ", key);
-    const char *p = json ? strstr(json, pat) : NULL;
-    return p ? strtol(p + strlen(pat), NULL, 10) : -1;
-}
-
 /* cycles are the windows between RMA's starts: in each, RMB and RMC at most once, RMB after
    RMA ended, RMC after RMB ended; *full counts the windows after `after` (all but the last) in
    which both ran exactly once, *windows how many such windows there are */
@@ -123,7 +116,7 @@ void scenario_reactivation(const char *root, const char *bin, const char *launch
     check(ids_distinct_and_increasing(all, 3), "every START carries its own release id (AckID), increasing");
 
     char *js = slurp(s.stats);
-    check(stat_of(js, "held_cycles") >= 1 && stat_of(js, "late_acks") >= 1,
+    check(json_number(js, "held_cycles") >= 1 && json_number(js, "late_acks") >= 1,
           "ORD stats count the held cycle and the late ack");
     struct stat st;
     check(stat(s.run, &st) != 0, "clean shutdown: no runtime file left in the run directory");

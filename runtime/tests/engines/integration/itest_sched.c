@@ -61,13 +61,6 @@ static int cycles_delayed(const Trace *const *t, int nt, const Fit *f) {
     return delayed;
 }
 
-static long stat_of(const char *json, const char *key) {
-    char pat[64];
-    snprintf(pat, sizeof pat, "\"%s\": ", key);
-    const char *p = json ? strstr(json, pat) : NULL;
-    return p ? strtol(p + strlen(pat), NULL, 10) : -1;
-}
-
 void scenario_scheduler(const char *root, const char *bin, const char *launcher) {
     Scenario s;
     if (!scenario_begin(&s, root, "scheduler")) return;
@@ -80,8 +73,8 @@ void scenario_scheduler(const char *root, const char *bin, const char *launcher)
     check(ra == 0 && rb == 0 && rc == 0, "the three modules wrote their traces");
     check(a.param == 7, "IMA parameterised with gain = 7 (the supervisor's local through ORD)");
     char *js = slurp(s.stats);
-    long misses = stat_of(js, "deadline_misses"), overruns = stat_of(js, "overruns"),
-         missed = stat_of(js, "missed_ticks");
+    long misses = json_number(js, "deadline_misses"), overruns = json_number(js, "overruns"),
+         missed = json_number(js, "missed_ticks");
     /* R1 active from 10 ms to 310 ms, period 20 ms: 15 ticks (14..16 with start-up slack), each
        a release unless ORD skipped it (overrun, or a tick ORD itself woke up too late for) */
     long ticks = a.nstart + overruns + missed;

@@ -118,6 +118,13 @@ char *read_csv_log(const Scenario *s, const char *module) {
     return path[0] ? slurp(path) : NULL;
 }
 
+long json_number(const char *json, const char *key) {
+    char pat[64];
+    snprintf(pat, sizeof pat, "\"%s\": ", key);
+    const char *p = json ? strstr(json, pat) : NULL;
+    return p ? strtol(p + strlen(pat), NULL, 10) : -1;
+}
+
 long long csv_time_of(const char *csv, const char *from, const char *text, const char **at) {
     if (!csv) return -1;
     const char *p = from ? from : csv;

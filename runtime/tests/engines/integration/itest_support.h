@@ -39,6 +39,8 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
 char *slurp(const char *path);
 /** The contents of `module`'s CSV log in s->logs (the first file named <module>_*.csv), or NULL. */
 char *read_csv_log(const Scenario *s, const char *module);
+/** The integer value of "key" in a flat JSON object (ORD's stats), or -1. */
+long json_number(const char *json, const char *key);
 /** mono_ns of the first CSV record at or after `from` (a position in csv) whose line contains
  *  `text`; -1 if none. *at (may be NULL) receives the position after that line. */
 long long csv_time_of(const char *csv, const char *from, const char *text, const char **at);
