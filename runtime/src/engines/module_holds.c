@@ -19,9 +19,10 @@ static struct {
     int fd, depth;
 } locked[MAX_LOCKED];
 
+/* the slot holding `module`'s lock (module NULL: a free slot), or -1 */
 static int locked_slot(const char *module) {
     for (int i = 0; i < MAX_LOCKED; i++)
-        if (locked[i].depth > 0 && strcmp(locked[i].module, module) == 0) return i;
+        if (module ? locked[i].depth > 0 && strcmp(locked[i].module, module) == 0 : locked[i].depth == 0) return i;
     return -1;
 }
 
@@ -31,13 +32,13 @@ int holds_lock(const char *module) {
         locked[i].depth++;
         return 0;
     }
-    for (i = 0; i < MAX_LOCKED && locked[i].depth > 0; i++) {
-    }
-    int fd = i < MAX_LOCKED ? hold_lock_acquire(ContractRunDir(), module) : -1;
+    i = locked_slot(NULL);
+    int fd = i >= 0 ? hold_lock_acquire(ContractRunDir(), module) : -1;
     if (fd < 0) {
         char detail[160];
-        snprintf(detail, sizeof detail, "cannot lock its holds: %s", i < MAX_LOCKED ? strerror(errno) : "too many locks");
+        snprintf(detail, sizeof detail, "cannot lock its holds: %s", i >= 0 ? strerror(errno) : "too many locks");
         ContractLog("module_hold", module, -1, 0, detail);
+        fprintf(stderr, "%s: %s: %s (deciding on it without the lock)\n", ContractSelfName(), module, detail);
         return -1;
     }
     snprintf(locked[i].module, sizeof locked[i].module, "%s", module);
