@@ -4,7 +4,8 @@
 // failed or ran no test.
 //
 // Suites: the C runtime (its runner prints `N passed, N failed`), then each npm workspace's
-// vitest run (read through vitest's JSON reporter).
+// vitest run (read through vitest's JSON reporter), then the type check of every workspace's
+// sources and tests (`npm run typecheck`: one check per workspace; vitest does not type-check).
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -57,6 +58,21 @@ const suites = [
       return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0) };
     },
   })),
+  {
+    name: 'typecheck (tsc --noEmit of sources and tests, per workspace)',
+    exec: async () => {
+      let passed = 0, failed = 0, out = '';
+      for (const ws of rootPkg.workspaces) {
+        const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
+        if (!pkg.scripts?.typecheck) continue;
+        const r = await run('npm', ['run', '-s', 'typecheck'], { cwd: join(root, ws) });
+        out += r.out;
+        if (r.code === 0) { passed++; console.log(`typecheck ${ws}: ok`); } else { failed++; console.log(`typecheck ${ws}: FAILED`); }
+      }
+      return { code: failed ? 1 : 0, out, counts: { passed, failed, skipped: 0 } };
+    },
+    count: (r) => r.counts,
+  },
 ];
 
 const totals = { passed: 0, failed: 0, skipped: 0 };

@@ -93,7 +93,7 @@ describe('cross-file linking', () => {
         const dst = r.find((x) => x.property === 'targetPort')!.target;
         expect(isPort(src) && `${src.direction}:${src.index}:${src.name}`).toBe('out:1:out_cmd');
         expect(isPort(dst) && `${dst.direction}:${dst.index}:${dst.name}`).toBe('in:2:in_cmd');
-        const param = r.find((x) => x.container === 'ParameterSetting')!.target as { name: string };
+        const param = r.find((x) => x.container === 'ParameterSetting')!.target as unknown as { name: string };
         expect(param.name).toBe('param');
         const variable = r.find((x) => x.container === 'VariableRef')!.target as { $type: string; name: string };
         expect(`${variable.$type}:${variable.name}`).toBe('SchemaParameter:consigne');

@@ -79,15 +79,15 @@ describe('formatter', () => {
     it('does not format a file with syntax errors (no edit, no lost text)', () => {
         const doc = parse('synchronous module MSA { data flows { out :0 TypeA ; } ');
         expect(formatter.formatText(doc)).toBeUndefined();
-        expect(formatter.formatDocument(doc, { textDocument: { uri: doc.uri.toString() }, options: { tabSize: 4, insertSpaces: true } })).toEqual([]);
+        expect(formatter.formatDocument(doc)).toEqual([]);
     });
 
     it('returns one minimal edit, none for a formatted file', () => {
         const formatted = format('datatype T {int a};');
         const doc = parse(formatted);
-        expect(formatter.formatDocument(doc, { textDocument: { uri: doc.uri.toString() }, options: { tabSize: 4, insertSpaces: true } })).toEqual([]);
+        expect(formatter.formatDocument(doc)).toEqual([]);
         const messy = parse('datatype T {int   a};\n');
-        const edits = formatter.formatDocument(messy, { textDocument: { uri: messy.uri.toString() }, options: { tabSize: 4, insertSpaces: true } });
+        const edits = formatter.formatDocument(messy);
         expect(edits).toEqual([{ range: { start: { line: 0, character: 16 }, end: { line: 0, character: 18 } }, newText: '' }]);
     });
 
