@@ -87,6 +87,7 @@ rm -rf "$root/opt/contract/runtime/build/tests" \
 mkdir -p "$root/work"
 
 log "importing $IMAGE"
+old_id=$(docker image inspect -f '{{.Id}}' "$IMAGE" 2>/dev/null || true)
 tar -C "$root" -c . | docker import \
   --change 'ENV PATH=/usr/local/sbin:/usr/local/bin:/usr/sbin:/usr/bin:/sbin:/bin' \
   --change 'ENV CONTRACT_RUNTIME=/opt/contract/runtime' \
@@ -94,4 +95,9 @@ tar -C "$root" -c . | docker import \
   --change "LABEL contract.runtime-sources=$runtime_hash" \
   --change 'CMD ["/bin/bash"]' \
   - "$IMAGE" >/dev/null
+# the image it replaces (now untagged) would stay behind, ~330 MB each time the runtime changes
+if [ -n "$old_id" ] && [ "$old_id" != "$(docker image inspect -f '{{.Id}}' "$IMAGE")" ]; then
+  docker image rm "$old_id" >/dev/null 2>&1 && log "removed the image it replaces (${old_id#sha256:})" \
+    || log "the image it replaces (${old_id#sha256:}) is still in use: left in place"
+fi
 log "image $IMAGE ready ($(docker image inspect -f '{{.Size}}' "$IMAGE" | awk '{printf "%.0f MB", $1/1e6}'))"
