@@ -61,6 +61,8 @@ export interface ChainReport {
     repeats: string[];
     /** Median time between two releases of the chain's first module within one activation, in ms. */
     medianPeriodMs: number;
+    /** Every time between two releases of the chain's first module within one activation, in ms, in order. */
+    gapsMs: number[];
 }
 
 /**
@@ -105,8 +107,8 @@ export function checkChain(records: LogRecord[], chain: string[]): ChainReport {
             finished.add(r.module);
         }
     }
-    gaps.sort((a, b) => a - b);
-    return { completeCycles, violations, repeats, medianPeriodMs: gaps.length ? gaps[Math.floor(gaps.length / 2)]! : NaN };
+    const sorted = [...gaps].sort((a, b) => a - b);
+    return { completeCycles, violations, repeats, medianPeriodMs: sorted.length ? sorted[Math.floor(sorted.length / 2)]! : NaN, gapsMs: gaps };
 }
 
 /** How many values `consumer` received on its input `port` from `producer`. */
