@@ -86,18 +86,19 @@ ENG_BENCH_SRC := tests/engines/bench
 ENG_BENCH_OUT := $(ENG_OUT)/bench
 ENG_BENCH_SECONDS ?= 10.2
 
-$(ENG_BENCH_OUT)/BMA $(ENG_BENCH_OUT)/BMB $(ENG_BENCH_OUT)/BMC: $(ENG_IT_SRC)/imod.c build/libmodule.a
+$(ENG_BENCH_OUT)/BMA $(ENG_BENCH_OUT)/BMB $(ENG_BENCH_OUT)/BMC: $(ENG_IT_SRC)/imod.c $(ENG_IT_SRC)/imodule.h build/libmodule.a
 	@mkdir -p $(ENG_BENCH_OUT)
 	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude -DIMOD_NAME='"$(notdir $@)"' -DIMOD_WORK_NS=20000 $< build/libmodule.a -o $@
-$(ENG_BENCH_OUT)/ORD: $(ENG_BENCH_SRC)/bord.c $(ENG_BENCH_SRC)/btables.h build/libmodule.a
+$(ENG_BENCH_OUT)/ORD: $(ENG_BENCH_SRC)/bord.c $(ENG_BENCH_SRC)/btables.h tests/engines/engine_executable.h build/libmodule.a
 	@mkdir -p $(ENG_BENCH_OUT)
 	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< build/libmodule.a -o $@
-$(ENG_BENCH_OUT)/BSU: $(ENG_BENCH_SRC)/bsup.c $(ENG_BENCH_SRC)/btables.h build/libmodule.a
+$(ENG_BENCH_OUT)/BSU: $(ENG_BENCH_SRC)/bsup.c $(ENG_BENCH_SRC)/btables.h tests/engines/engine_executable.h build/libmodule.a
 	@mkdir -p $(ENG_BENCH_OUT)
 	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< build/libmodule.a -o $@
-$(ENG_BENCH_OUT)/bench_engines: $(ENG_BENCH_SRC)/bench_engines.c $(ENG_CORE) $(ENG_HDRS)
+$(ENG_BENCH_OUT)/bench_engines: $(ENG_BENCH_SRC)/bench_engines.c $(ENG_BENCH_SRC)/platform_probe.c \
+                                 $(ENG_BENCH_SRC)/platform_probe.h $(ENG_CORE) $(ENG_HDRS)
 	@mkdir -p $(ENG_BENCH_OUT)
-	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_INC) $< $(ENG_CORE) -o $@
+	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_INC) $< $(ENG_BENCH_SRC)/platform_probe.c $(ENG_CORE) -o $@
 
 bench-engines: $(addprefix $(ENG_BENCH_OUT)/,BMA BMB BMC ORD BSU bench_engines) build/contract-launch
 	@mkdir -p ../bench/parts
