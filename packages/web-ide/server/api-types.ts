@@ -27,3 +27,17 @@ export interface GenerateResponse extends GenerateReport {
   srcGen: string;
   ms: number;
 }
+
+/** The answer of PUT /api/file. */
+export interface FileWriteResponse {
+  path: string;
+  mtimeMs: number;
+  /**
+   * Set when the file is generated and its generated code (outside the protected regions) differed
+   * from the file on disk: the server kept the disk's code, wrote the incoming regions into it, and
+   * `content` is the text now on disk — the client reloads the tab from it.
+   */
+  merged?: true;
+  reason?: string;
+  content?: string;
+}

@@ -2,22 +2,29 @@ import type { IncomingMessage, ServerResponse } from 'node:http';
 import { readFile, stat, mkdir, rename, rm, writeFile, lstat } from 'node:fs/promises';
 import { dirname } from 'node:path';
 import { WorkspacePaths } from './workspace-paths.js';
-import { writeFileAtomic } from './atomic-write.js';
 import { listTree } from './file-tree.js';
 import { HttpError } from './http-error.js';
-import { readBody, readJson, sendJson } from './http-util.js';
+import { readBodyBytes, readJson, sendJson } from './http-util.js';
+import { saveWorkspaceFile } from './guarded-write.js';
+import { GeneratedTreeLock } from './generated-tree-lock.js';
 
 /**
  * The workspace file API (all paths workspace-relative, '/' separators):
  *   GET    /api/tree                      -> {root, entries}
  *   GET    /api/file?path=P               -> {path, content, mtimeMs}
  *   PUT    /api/file?path=P   body=text   -> {path, mtimeMs}   (atomic write; creates parents)
+ *          a generated file (src-gen/generated/**, listed in the generator's manifest) is guarded:
+ *          -> {path, mtimeMs, merged: true, reason, content} when its generated code differed from
+ *          the disk's (the incoming regions were written into the disk text), 409 when it cannot be
+ *          merged (unknown region, malformed text, a region-less file changed); see guarded-write.ts
  *   POST   /api/create  {path, type}      -> 201 {path}        (409 if it exists)
  *   POST   /api/rename  {from, to}        -> {from, to}        (409 if `to` exists)
  *   DELETE /api/file?path=P               -> {path}            (files and folders)
  * Returns false when the request is not for this API.
  */
-export async function handleFileApi(paths: WorkspacePaths, req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
+export async function handleFileApi(
+  paths: WorkspacePaths, req: IncomingMessage, res: ServerResponse, url: URL, treeLock = new GeneratedTreeLock(),
+): Promise<boolean> {
   const route = `${req.method} ${url.pathname}`;
   switch (route) {
     case 'GET /api/tree':
@@ -33,12 +40,10 @@ export async function handleFileApi(paths: WorkspacePaths, req: IncomingMessage,
     }
     case 'PUT /api/file': {
       const abs = paths.resolveEntry(url.searchParams.get('path'));
-      const body = await readBody(req);
+      const body = await readBodyBytes(req);
       const existing = await lstat(abs).catch(() => undefined);
       if (existing?.isDirectory()) throw new HttpError(409, 'a folder has that name');
-      await writeFileAtomic(abs, body);
-      const st = await stat(abs);
-      sendJson(res, 200, { path: paths.toRelative(abs), mtimeMs: st.mtimeMs });
+      sendJson(res, 200, await saveWorkspaceFile(paths, abs, body, treeLock));
       return true;
     }
     case 'POST /api/create': {

@@ -3,7 +3,8 @@ import { HttpError } from './http-error.js';
 
 const MAX_BODY = 16 * 1024 * 1024;
 
-export async function readBody(req: IncomingMessage): Promise<string> {
+/** The request body as raw bytes (at most 16 MiB). */
+export async function readBodyBytes(req: IncomingMessage): Promise<Buffer> {
   const chunks: Buffer[] = [];
   let size = 0;
   for await (const chunk of req) {
@@ -11,7 +12,11 @@ export async function readBody(req: IncomingMessage): Promise<string> {
     if (size > MAX_BODY) throw new HttpError(413, 'request body larger than 16 MiB');
     chunks.push(chunk as Buffer);
   }
-  return Buffer.concat(chunks).toString('utf8');
+  return Buffer.concat(chunks);
+}
+
+export async function readBody(req: IncomingMessage): Promise<string> {
+  return (await readBodyBytes(req)).toString('utf8');
 }
 
 export async function readJson(req: IncomingMessage): Promise<Record<string, unknown>> {
@@ -32,7 +37,7 @@ export function sendJson(res: ServerResponse, status: number, body: unknown): vo
 }
 
 export function sendError(res: ServerResponse, e: unknown): void {
-  if (e instanceof HttpError) return sendJson(res, e.status, { error: e.message });
+  if (e instanceof HttpError) return sendJson(res, e.status, { ...e.details, error: e.message });
   const err = e as NodeJS.ErrnoException;
   const byCode: Record<string, [number, string]> = {
     ENOENT: [404, 'not found'],

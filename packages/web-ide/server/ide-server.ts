@@ -14,6 +14,7 @@ import { PROJECT_TEMPLATES } from './project-templates.js';
 import { renameInGeneratedTree } from './rename-generated.js';
 import { createEmbeddedBuildServer, loadWorkspaceDocuments, runCodegen, type BuildServerLike } from './integrations.js';
 import type { GenerateResponse } from './api-types.js';
+import { GeneratedTreeLock } from './generated-tree-lock.js';
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -44,6 +45,8 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   const host = options.host ?? '127.0.0.1';
   const distDir = options.distDir ?? fileURLToPath(new URL('../dist', import.meta.url));
   const watcher = new WorkspaceWatcher(paths.root);
+  // Generate All, the rename carry-over and guarded saves of generated files run one at a time.
+  const treeLock = new GeneratedTreeLock();
   let build: BuildServerLike | undefined;
   let buildServiceNote = 'build service disabled';
   if (options.buildService !== false) {
@@ -66,7 +69,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
           throw new HttpError(404, `no such build service route: ${url.pathname}`);
         }
         if (req.method === 'GET' && url.pathname === '/api/events') return watcher.attach(res);
-        if (await handleFileApi(paths, req, res, url)) return;
+        if (await handleFileApi(paths, req, res, url, treeLock)) return;
         if (await handleProjectApi(req, res, url)) return;
         throw new HttpError(404, `no such API route: ${req.method} ${url.pathname}`);
       }
@@ -101,8 +104,10 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const body = await readJson(req);
       const projectDir = paths.resolve(body.project ?? '');
       const t0 = Date.now();
-      const { documents } = await loadWorkspaceDocuments(projectDir);
-      const report = await runCodegen(documents, join(projectDir, 'src-gen'), {});
+      const report = await treeLock.run(async () => {
+        const { documents } = await loadWorkspaceDocuments(projectDir);
+        return runCodegen(documents, join(projectDir, 'src-gen'), {});
+      });
       const srcGen = paths.toRelative(join(projectDir, 'src-gen'));
       const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
       sendJson(res, 200, answer);
@@ -126,8 +131,9 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const body = await readJson(req);
       const projectDir = paths.resolve(body.project ?? '');
       if (typeof body.from !== 'string' || typeof body.to !== 'string') throw new HttpError(400, 'from and to are required');
+      const { from, to } = body;
       try {
-        const report = await renameInGeneratedTree(join(projectDir, 'src-gen'), body.from, body.to);
+        const report = await treeLock.run(() => renameInGeneratedTree(join(projectDir, 'src-gen'), from, to));
         sendJson(res, 200, report);
       } catch (e) {
         throw new HttpError(409, (e as Error).message);

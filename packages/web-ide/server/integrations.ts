@@ -4,6 +4,7 @@
  * user then gets a clear error naming the missing package instead of a crash.
  */
 import type { GenerateReport } from './api-types.js';
+import type { RegionParser } from './region-guard.js';
 import { HttpError } from './http-error.js';
 
 export interface BuildServerLike {
@@ -32,6 +33,15 @@ export async function runCodegen(documents: unknown[], outDir: string, options: 
     generateArchitecture(documents: unknown[], outDir: string, options: Record<string, unknown>): Promise<GenerateReport> | GenerateReport;
   }>('@contract-studio/codegen');
   return codegen.generateArchitecture(documents, outDir, options);
+}
+
+/** codegen's protected-region parser (parseRegions + RegionSyntaxError), for the guard of generated files. */
+export async function loadRegionParser(): Promise<RegionParser> {
+  const codegen = await importPackage<Partial<RegionParser>>('@contract-studio/codegen');
+  if (typeof codegen.parseRegions !== 'function' || typeof codegen.RegionSyntaxError !== 'function') {
+    throw new HttpError(503, '@contract-studio/codegen does not export parseRegions/RegionSyntaxError; run `npm run build` at the repository root');
+  }
+  return { parseRegions: codegen.parseRegions, RegionSyntaxError: codegen.RegionSyntaxError };
 }
 
 export async function createEmbeddedBuildServer(workspaceRoot: string): Promise<BuildServerLike | string> {
