@@ -15,6 +15,7 @@ import { RuntimeCache } from './pipeline/runtime-cache.js';
 import { WorkspaceManager } from './pipeline/workspaces.js';
 import type { BwrapOptions } from './sandbox/bwrap.js';
 import type { DockerOptions } from './sandbox/docker.js';
+import type { SweepReport } from './sandbox/docker-sweep.js';
 import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
 import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
@@ -39,6 +40,11 @@ export interface BuildServiceOptions {
   keepJobs?: number;
   bwrap?: BwrapOptions;
   docker?: DockerOptions;
+  /**
+   * The service's own log lines (what the Docker sweep removed or left, shutdown clean-up).
+   * Default: stderr, prefixed "[build-service] ".
+   */
+  log?: (line: string) => void;
 }
 
 const here = dirname(fileURLToPath(import.meta.url));
@@ -60,6 +66,8 @@ export class JobService {
   private readonly runtime: RuntimeCache;
   private readonly keepJobs: number;
   private closed = false;
+  /** The start-up sweep of the Docker engine (when docker is the default or auto picks it). */
+  private readonly startupSweep: Promise<unknown>;
 
   constructor(options: BuildServiceOptions = {}) {
     this.limits = mergeLimits(DEFAULT_LIMITS, options.limits, false);
@@ -67,7 +75,8 @@ export class JobService {
     this.queueSize = Math.max(0, options.queueSize ?? 2 * this.concurrency);
     this.defaultSandbox = options.sandbox ?? 'auto';
     this.keepJobs = options.keepJobs ?? 50;
-    this.sandboxes = new SandboxRegistry({ bwrap: options.bwrap, docker: options.docker });
+    const log = options.docker?.log ?? options.log;
+    this.sandboxes = new SandboxRegistry({ bwrap: options.bwrap, docker: { ...options.docker, ...(log ? { log } : {}) } });
     this.projectRoots = (options.projectRoots ?? []).map((r) => realpathSync(r));
     this.ownsCacheDir = !options.cacheDir;
     this.cacheDir = options.cacheDir ?? mkdtempSync(join(tmpdir(), 'contract-build-'));
@@ -76,6 +85,30 @@ export class JobService {
       await this.sandboxes.sandboxes.docker.release?.(workDir);
     });
     this.runtime = new RuntimeCache(options.runtimeSource ?? DEFAULT_RUNTIME_SOURCE, join(this.cacheDir, 'runtime'));
+    this.startupSweep = this.sweepAtStart();
+  }
+
+  /**
+   * In the background (start-up stays fast and never fails for want of Docker): when the default
+   * sandbox is docker, or auto and it picks docker, sweeps what dead services left in the engine.
+   */
+  private async sweepAtStart(): Promise<void> {
+    try {
+      const choice = this.defaultSandbox;
+      if (choice !== 'docker' && choice !== 'auto') return;
+      const picked = choice === 'auto' ? (await this.sandboxes.resolve('auto')).sandbox.name : (await this.sandboxes.probe('docker')).available ? 'docker' : null;
+      if (picked === 'docker' && !this.closed) await this.sandboxes.docker.sweep();
+    } catch {
+      // no sandbox at all: the jobs will say so
+    }
+  }
+
+  /**
+   * Sweeps the Docker engine for containers and volumes of dead services (once per service; the
+   * first job in docker and the start-up sweep share it). Resolves with what was removed and left.
+   */
+  sweepDocker(): Promise<SweepReport> {
+    return this.sandboxes.docker.sweep();
   }
 
   get stats(): { running: number; queued: number; concurrency: number; queueSize: number } {
@@ -236,6 +269,8 @@ export class JobService {
     await Promise.all(running.map((j) => j.cancel()));
     await Promise.all(running.map((j) => j.finished));
     await this.workspaces.removeAll();
+    await this.startupSweep;
+    for (const sandbox of Object.values(this.sandboxes.sandboxes)) await sandbox.close?.();
     if (this.ownsCacheDir) await removeTreeNoFollow(this.cacheDir);
     else await removeTreeNoFollow(join(this.cacheDir, 'ws'));
   }

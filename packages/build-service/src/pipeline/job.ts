@@ -271,6 +271,7 @@ export class Job {
     this.system(step, `$ ${argv.join(' ')}`);
     const proc = await sandbox.start({
       name: `${this.id}-${step}`,
+      jobId: this.id,
       workDir: ws.workDir,
       cwd: '',
       argv,

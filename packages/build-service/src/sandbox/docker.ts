@@ -6,6 +6,9 @@
  * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec, user 1000,
  * no-new-privileges, all capabilities dropped, Memory (= MemorySwap) and PidsLimit.
  * A memory kill is read from State.OOMKilled; a refused fork from the program's own messages.
+ * Every container and volume is labelled with its owner (this service process) and job
+ * (docker-owner.ts); the first use sweeps what dead services left (docker-sweep.ts), close()
+ * removes this service's own leftovers.
  */
 import { spawn } from 'node:child_process';
 import { createHash, randomBytes } from 'node:crypto';
@@ -16,6 +19,8 @@ import type { LimitHit } from '../limits.js';
 import { memoryBytes } from '../limits.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 import { readTar } from '../util/tar-reader.js';
+import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
+import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 
 export const DOCKER_IMAGE = 'contract-gcc';
@@ -27,6 +32,27 @@ export interface DockerOptions {
   image?: string;
   /** dockerode options; default: from DOCKER_HOST (or the local socket). */
   connection?: Docker.DockerOptions;
+  /** Where the sweep and shutdown lines go. Default: stderr, prefixed "[build-service] ". */
+  log?: (line: string) => void;
+  /** When containers and volumes without an owner label are removed (docker-sweep.ts). */
+  sweepPolicy?: Partial<SweepPolicy>;
+}
+
+/** The service's own log lines when nobody gave a log function. */
+export function stderrLog(line: string): void {
+  process.stderr.write(`[build-service] ${line}\n`);
+}
+
+const EMPTY_SWEEP: SweepReport = { removedContainers: [], removedVolumes: [], left: [], lines: [] };
+/** An unresponsive engine must not hold a job or the service's close() for ever. */
+const ENGINE_DEADLINE_MS = 15_000;
+
+function withDeadline<T>(p: Promise<T>, ms: number, what: string): Promise<T> {
+  let timer: NodeJS.Timeout | undefined;
+  const late = new Promise<never>((_, reject) => {
+    timer = setTimeout(() => reject(new Error(`${what}: no answer from the engine within ${ms / 1000} s`)), ms);
+  });
+  return Promise.race([p, late]).finally(() => clearTimeout(timer));
 }
 
 function tarOf(dir: string): Promise<Buffer> {
@@ -53,10 +79,51 @@ export class DockerSandbox implements Sandbox {
   private readonly createdVolumes = new Set<string>();
   /** Digest of the last work-dir archive copied into each volume. */
   private readonly syncedTar = new Map<string, string>();
+  /** The job that last used each work dir (labels of the containers that read it). */
+  private readonly jobOfWorkDir = new Map<string, string>();
+  /** This service process, written on everything it creates. */
+  readonly owner: ServiceOwner;
+  private readonly log: (line: string) => void;
+  private readonly sweepPolicy: SweepPolicy;
+  private sweeping: Promise<SweepReport> | null = null;
+  /** Set once this service created something in the engine (close() then looks for leftovers). */
+  private used = false;
 
   constructor(options: DockerOptions = {}) {
     this.docker = new Docker(options.connection);
     this.image = options.image ?? DOCKER_IMAGE;
+    this.owner = currentOwner();
+    this.log = options.log ?? stderrLog;
+    this.sweepPolicy = { ...DEFAULT_SWEEP_POLICY, ...options.sweepPolicy };
+  }
+
+  /**
+   * Removes the containers and volumes of dead services on this host (docker-sweep.ts), once per
+   * service: the first call sweeps, later ones return its report. Never throws: a failure is a log
+   * line (and the next call tries again).
+   */
+  sweep(): Promise<SweepReport> {
+    this.sweeping ??= withDeadline(sweepOrphans(this.docker, this.owner, this.log, this.sweepPolicy), ENGINE_DEADLINE_MS, 'sweep').catch((e: unknown) => {
+      this.log(`docker: the sweep of orphaned containers failed: ${(e as Error).message.split('\n')[0]}`);
+      this.sweeping = null;
+      return EMPTY_SWEEP;
+    });
+    return this.sweeping;
+  }
+
+  /**
+   * At shutdown, after the jobs ended: removes any container or volume still labelled with this
+   * service as owner (a removal that failed during a cancel, a step started while closing).
+   */
+  async close(): Promise<SweepReport> {
+    if (this.sweeping) await this.sweeping;
+    if (!this.used) return EMPTY_SWEEP;
+    try {
+      return await withDeadline(removeOwnLeftovers(this.docker, this.owner, this.log), ENGINE_DEADLINE_MS, 'shutdown clean-up');
+    } catch (e) {
+      this.log(`docker: could not remove this service's containers at shutdown: ${(e as Error).message.split('\n')[0]}`);
+      return EMPTY_SWEEP;
+    }
   }
 
   workPath(): string {
@@ -91,16 +158,21 @@ export class DockerSandbox implements Sandbox {
   private volumeFor(workDir: string): string {
     let v = this.volumes.get(workDir);
     if (!v) {
-      v = `contract-ws-${createHash('sha256').update(workDir).digest('hex').slice(0, 16)}`;
+      // the owner is in the name: a volume is never shared with (or inherited from) another service
+      v = `contract-ws-${createHash('sha256').update(`${ownerLabelValue(this.owner)}\0${workDir}`).digest('hex').slice(0, 16)}`;
       this.volumes.set(workDir, v);
     }
     return v;
   }
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
+    await this.sweep();
+    const jobId = cmd.jobId ?? cmd.name;
+    this.jobOfWorkDir.set(cmd.workDir, jobId);
     const volume = this.volumeFor(cmd.workDir);
+    this.used = true;
     if (!this.createdVolumes.has(volume)) {
-      await this.docker.createVolume({ Name: volume, Labels: { 'contract-studio': 'workspace' } });
+      await this.docker.createVolume({ Name: volume, Labels: ownerLabels(this.owner, 'workspace', jobId) });
       this.createdVolumes.add(volume);
     }
     // the job's files, with their mtimes (make sees unchanged sources as unchanged); skipped
@@ -109,7 +181,7 @@ export class DockerSandbox implements Sandbox {
     const digest = createHash('sha256').update(tar).digest('hex');
     if (this.syncedTar.get(volume) !== digest) {
       this.syncedTar.delete(volume);
-      await this.fillVolume(volume, tar, cmd.name);
+      await this.fillVolume(volume, tar, cmd.name, jobId);
       this.syncedTar.set(volume, digest);
     }
     const bytes = memoryBytes(cmd.limits);
@@ -123,7 +195,7 @@ export class DockerSandbox implements Sandbox {
         ([k, v]) => `${k}=${v}`,
       ),
       NetworkDisabled: true,
-      Labels: { 'contract-studio': 'job' },
+      Labels: ownerLabels(this.owner, 'job', jobId),
       AttachStdout: true,
       AttachStderr: true,
       HostConfig: {
@@ -197,14 +269,14 @@ export class DockerSandbox implements Sandbox {
    * container (no user code, no network, only CAP_CHOWN) then hands the tree to the job user:
    * `chown -R` does not follow symlinks, and it only sees the volume.
    */
-  private async fillVolume(volume: string, tar: Buffer, name: string): Promise<void> {
+  private async fillVolume(volume: string, tar: Buffer, name: string, jobId: string): Promise<void> {
     const c = await this.docker.createContainer({
       name: `contract-${name}-sync`,
       Image: this.image,
       Cmd: ['chown', '-R', DOCKER_USER, DOCKER_WORK],
       User: '0:0',
       NetworkDisabled: true,
-      Labels: { 'contract-studio': 'job' },
+      Labels: ownerLabels(this.owner, 'job', jobId),
       HostConfig: {
         NetworkMode: 'none',
         ReadonlyRootfs: true,
@@ -243,7 +315,7 @@ export class DockerSandbox implements Sandbox {
       Cmd: ['true'],
       User: DOCKER_USER,
       NetworkDisabled: true,
-      Labels: { 'contract-studio': 'job' },
+      Labels: ownerLabels(this.owner, 'job', this.jobOfWorkDir.get(workDir) ?? 'collect'),
       HostConfig: {
         NetworkMode: 'none',
         ReadonlyRootfs: true,
@@ -291,6 +363,7 @@ export class DockerSandbox implements Sandbox {
     const v = this.volumes.get(workDir);
     if (!v) return;
     this.volumes.delete(workDir);
+    this.jobOfWorkDir.delete(workDir);
     this.createdVolumes.delete(v);
     this.syncedTar.delete(v);
     await this.docker.getVolume(v).remove({ force: true }).catch(() => {});

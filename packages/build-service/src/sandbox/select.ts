@@ -18,12 +18,15 @@ export interface SandboxRegistryOptions {
 
 export class SandboxRegistry {
   readonly sandboxes: Record<SandboxName, Sandbox>;
+  /** The Docker sandbox itself (its sweep of orphaned containers, its owner). */
+  readonly docker: DockerSandbox;
   private readonly probes = new Map<SandboxName, Promise<SandboxProbe>>();
 
   constructor(options: SandboxRegistryOptions = {}) {
+    this.docker = new DockerSandbox(options.docker);
     this.sandboxes = {
       bwrap: new BwrapSandbox(options.bwrap),
-      docker: new DockerSandbox(options.docker),
+      docker: this.docker,
       none: new NoSandbox(),
     };
   }

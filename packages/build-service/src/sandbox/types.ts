@@ -20,6 +20,8 @@ export interface Mechanisms {
 export interface SandboxCommand {
   /** Unique per job step (names the cgroup / container). */
   name: string;
+  /** The job's id (docker: the contract-studio.job label). Default: name. */
+  jobId?: string;
   /** Host path of the job's work dir: the only writable place besides a private /tmp. */
   workDir: string;
   /** Working directory, relative to the work dir. */
@@ -69,6 +71,11 @@ export interface Sandbox {
   start(cmd: SandboxCommand): Promise<SandboxProcess>;
   /** Called when a job's work dir is no longer needed (docker: removes the volume). */
   release?(workDir: string): Promise<void>;
+  /**
+   * Called once when the service closes, after its jobs ended (docker: removes any container or
+   * volume it still owns). Never throws.
+   */
+  close?(): Promise<unknown>;
   /**
    * Lists folders of the work dir (relative paths) without following links, for collecting a
    * run's artifacts; absent = the work dir is on the host (bwrap, none) and is read there.

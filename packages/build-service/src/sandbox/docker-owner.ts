@@ -1,0 +1,112 @@
+/**
+ * Who owns a Docker container or volume of the build service, and whether that owner still lives.
+ *
+ * Every container and volume the service creates carries:
+ *   contract-studio.owner       = <hostname>:<pid>:<start time>  (start time: /proc/<pid>/stat field 22,
+ *                                 clock ticks since boot, so a recycled pid is not taken for the owner)
+ *   contract-studio.owner-boot  = /proc/sys/kernel/random/boot_id (a reboot kills every owner)
+ *   contract-studio.owner-pidns = the owner's pid namespace (readlink /proc/self/ns/pid): pids of
+ *                                 another namespace cannot be checked from here
+ *   contract-studio.job         = the job id (for the log lines)
+ */
+import { readFileSync, readlinkSync } from 'node:fs';
+import { hostname } from 'node:os';
+
+export const LABEL_KIND = 'contract-studio';
+export const LABEL_OWNER = 'contract-studio.owner';
+export const LABEL_OWNER_BOOT = 'contract-studio.owner-boot';
+export const LABEL_OWNER_PIDNS = 'contract-studio.owner-pidns';
+export const LABEL_JOB = 'contract-studio.job';
+
+export interface ServiceOwner {
+  host: string;
+  pid: number;
+  /** /proc/<pid>/stat field 22 (clock ticks after boot), as text. */
+  startTime: string;
+  boot: string;
+  pidns: string;
+}
+
+/** Field 22 (starttime) of /proc/<pid>/stat, or null when there is no such process. */
+export function processStartTime(pid: number): string | null {
+  let stat: string;
+  try {
+    stat = readFileSync(`/proc/${pid}/stat`, 'utf8');
+  } catch {
+    return null;
+  }
+  // field 2 (comm) is in parentheses and may hold spaces and ')': fields 3.. follow the last ')'
+  const rest = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+  const field22 = rest[22 - 3];
+  return field22 && /^\d+$/.test(field22) ? field22 : null;
+}
+
+function readOr(read: () => string, fallback: string): string {
+  try {
+    return read().trim();
+  } catch {
+    return fallback;
+  }
+}
+
+/** This process as an owner. */
+export function currentOwner(): ServiceOwner {
+  return {
+    host: hostname(),
+    pid: process.pid,
+    startTime: processStartTime(process.pid) ?? '0',
+    boot: readOr(() => readFileSync('/proc/sys/kernel/random/boot_id', 'utf8'), 'unknown'),
+    pidns: readOr(() => readlinkSync('/proc/self/ns/pid'), 'unknown'),
+  };
+}
+
+export function ownerLabelValue(owner: ServiceOwner): string {
+  return `${owner.host}:${owner.pid}:${owner.startTime}`;
+}
+
+/** The labels of a container (kind 'job') or volume (kind 'workspace') made for `jobId`. */
+export function ownerLabels(owner: ServiceOwner, kind: 'job' | 'workspace', jobId: string): Record<string, string> {
+  return {
+    [LABEL_KIND]: kind,
+    [LABEL_OWNER]: ownerLabelValue(owner),
+    [LABEL_OWNER_BOOT]: owner.boot,
+    [LABEL_OWNER_PIDNS]: owner.pidns,
+    [LABEL_JOB]: jobId,
+  };
+}
+
+export type OwnerVerdict =
+  /** the owning service runs: leave it alone */
+  | { state: 'alive' }
+  /** the owning service is gone: `why` ends the log line, e.g. "its service pid 4242 is gone" */
+  | { state: 'dead'; why: string }
+  /** owned by a service this process cannot check (another host or pid namespace, unreadable label) */
+  | { state: 'elsewhere'; why: string }
+  /** made before owner labels existed */
+  | { state: 'unowned' };
+
+/**
+ * Judges the owner written in `labels` from the point of view of `self` (same host, boot and pid
+ * namespace are needed to say "dead"); `startTimeOf` reads a pid's start time (null: no process).
+ */
+export function judgeOwner(
+  labels: Record<string, string> | null | undefined,
+  self: ServiceOwner,
+  startTimeOf: (pid: number) => string | null = processStartTime,
+): OwnerVerdict {
+  const value = labels?.[LABEL_OWNER];
+  if (value === undefined) return { state: 'unowned' };
+  const m = /^(.+):(\d+):(\d+)$/.exec(value);
+  if (!m) return { state: 'elsewhere', why: `its owner label "${value}" is not host:pid:start` };
+  const [, host, pidText, startTime] = m as unknown as [string, string, string, string];
+  const pid = Number(pidText);
+  if (host !== self.host) return { state: 'elsewhere', why: `owned by a service on host ${host}` };
+  const boot = labels?.[LABEL_OWNER_BOOT];
+  if (boot !== undefined && boot !== self.boot) return { state: 'dead', why: `its service pid ${pid} ran before this machine rebooted` };
+  const pidns = labels?.[LABEL_OWNER_PIDNS];
+  if (pidns !== undefined && pidns !== self.pidns) return { state: 'elsewhere', why: `its service pid ${pid} is in another pid namespace (${pidns})` };
+  const now = startTimeOf(pid);
+  if (now === null) return { state: 'dead', why: `its service pid ${pid} is gone` };
+  if (now !== startTime) return { state: 'dead', why: `its service pid ${pid} is gone (the pid now belongs to a newer process)` };
+  return { state: 'alive' };
+}
