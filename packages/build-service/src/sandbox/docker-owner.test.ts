@@ -28,11 +28,14 @@ describe('owner of a container or volume', () => {
     expect(self.startTime).toBe(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[19]);
     expect(self.boot).toBe(readFileSync('/proc/sys/kernel/random/boot_id', 'utf8').trim());
     expect(self.pidns).toMatch(/^pid:\[\d+\]$/);
+    expect(self.instance).toMatch(/^[0-9a-f]{12}$/);
+    expect(currentOwner().instance).not.toBe(self.instance);
     expect(ownerLabels(self, 'job', 'j-1')).toEqual({
       'contract-studio': 'job',
       'contract-studio.owner': `${self.host}:${self.pid}:${self.startTime}`,
       'contract-studio.owner-boot': self.boot,
       'contract-studio.owner-pidns': self.pidns,
+      'contract-studio.owner-instance': self.instance,
       'contract-studio.job': 'j-1',
     });
   });

@@ -7,8 +7,11 @@
  *   contract-studio.owner-boot  = /proc/sys/kernel/random/boot_id (a reboot kills every owner)
  *   contract-studio.owner-pidns = the owner's pid namespace (readlink /proc/self/ns/pid): pids of
  *                                 another namespace cannot be checked from here
+ *   contract-studio.owner-instance = a random id per service instance (one process may hold
+ *                                 several services, e.g. tests: each closes only its own)
  *   contract-studio.job         = the job id (for the log lines)
  */
+import { randomBytes } from 'node:crypto';
 import { readFileSync, readlinkSync } from 'node:fs';
 import { hostname } from 'node:os';
 
@@ -16,6 +19,7 @@ export const LABEL_KIND = 'contract-studio';
 export const LABEL_OWNER = 'contract-studio.owner';
 export const LABEL_OWNER_BOOT = 'contract-studio.owner-boot';
 export const LABEL_OWNER_PIDNS = 'contract-studio.owner-pidns';
+export const LABEL_OWNER_INSTANCE = 'contract-studio.owner-instance';
 export const LABEL_JOB = 'contract-studio.job';
 
 export interface ServiceOwner {
@@ -25,6 +29,8 @@ export interface ServiceOwner {
   startTime: string;
   boot: string;
   pidns: string;
+  /** Random per service instance (not part of liveness). */
+  instance: string;
 }
 
 /** Field 22 (starttime) of /proc/<pid>/stat, or null when there is no such process. */
@@ -49,7 +55,7 @@ function readOr(read: () => string, fallback: string): string {
   }
 }
 
-/** This process as an owner. */
+/** This process as an owner (a new instance id per call: one per service). */
 export function currentOwner(): ServiceOwner {
   return {
     host: hostname(),
@@ -57,6 +63,7 @@ export function currentOwner(): ServiceOwner {
     startTime: processStartTime(process.pid) ?? '0',
     boot: readOr(() => readFileSync('/proc/sys/kernel/random/boot_id', 'utf8'), 'unknown'),
     pidns: readOr(() => readlinkSync('/proc/self/ns/pid'), 'unknown'),
+    instance: randomBytes(6).toString('hex'),
   };
 }
 
@@ -71,6 +78,7 @@ export function ownerLabels(owner: ServiceOwner, kind: 'job' | 'workspace', jobI
     [LABEL_OWNER]: ownerLabelValue(owner),
     [LABEL_OWNER_BOOT]: owner.boot,
     [LABEL_OWNER_PIDNS]: owner.pidns,
+    [LABEL_OWNER_INSTANCE]: owner.instance,
     [LABEL_JOB]: jobId,
   };
 }

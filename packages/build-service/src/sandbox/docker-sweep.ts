@@ -14,7 +14,7 @@
  * planSweep decides (pure: tested without an engine), sweepOrphans acts and logs one line per item.
  */
 import type Docker from 'dockerode';
-import { judgeOwner, LABEL_JOB, LABEL_KIND, LABEL_OWNER, ownerLabelValue, processStartTime, type ServiceOwner } from './docker-owner.js';
+import { judgeOwner, LABEL_JOB, LABEL_KIND, LABEL_OWNER, LABEL_OWNER_INSTANCE, ownerLabelValue, processStartTime, type ServiceOwner } from './docker-owner.js';
 
 export interface SweepPolicy {
   /** An unowned container that is not running is removed once it is this old. Default 600 (10 min). */
@@ -130,11 +130,12 @@ export function planSweep(
 
 /**
  * What the engine holds: containers (all states; every one of them, so that volumes mounted by
- * containers without our labels count as in use) and workspace volumes; with `ownerValue`, only
- * those labelled with that owner.
+ * containers without our labels count as in use) and workspace volumes; with `only`, just those
+ * labelled with that service instance.
  */
-export async function listSeen(docker: Docker, ownerValue?: string): Promise<{ containers: SeenContainer[]; volumes: SeenVolume[] }> {
-  const owned = ownerValue ? { filters: { label: [`${LABEL_OWNER}=${ownerValue}`] } } : {};
+export async function listSeen(docker: Docker, only?: ServiceOwner): Promise<{ containers: SeenContainer[]; volumes: SeenVolume[] }> {
+  const mine = only ? [`${LABEL_OWNER}=${ownerLabelValue(only)}`, `${LABEL_OWNER_INSTANCE}=${only.instance}`] : null;
+  const owned = mine ? { filters: { label: mine } } : {};
   const list = await docker.listContainers({ all: true, ...owned });
   const containers = list.map((c) => ({
     id: c.Id,
@@ -144,7 +145,7 @@ export async function listSeen(docker: Docker, ownerValue?: string): Promise<{ c
     labels: c.Labels ?? {},
     volumes: (c.Mounts ?? []).filter((m) => m.Type === 'volume' && m.Name).map((m) => m.Name as string),
   }));
-  const { Volumes } = await docker.listVolumes({ filters: { label: [ownerValue ? `${LABEL_OWNER}=${ownerValue}` : `${LABEL_KIND}=workspace`] } });
+  const { Volumes } = await docker.listVolumes({ filters: { label: mine ?? [`${LABEL_KIND}=workspace`] } });
   const volumes = (Volumes ?? []).map((v) => ({
     name: v.Name,
     created: Date.parse((v as { CreatedAt?: string }).CreatedAt ?? '') / 1000,
@@ -196,9 +197,9 @@ export async function sweepOrphans(
   return applySweep(docker, planSweep(containers, volumes, self, Date.now() / 1000, policy), log);
 }
 
-/** At shutdown: removes every container and volume still labelled with this service as owner. */
+/** At shutdown: removes every container and volume still labelled with this service instance. */
 export async function removeOwnLeftovers(docker: Docker, self: ServiceOwner, log: (line: string) => void): Promise<SweepReport> {
-  const { containers, volumes } = await listSeen(docker, ownerLabelValue(self));
+  const { containers, volumes } = await listSeen(docker, self);
   const steps: SweepStep[] = [
     ...containers.map((c) => ({ kind: 'container' as const, id: c.id, what: describe('container', c.id, c.name, c.labels), action: 'remove' as const, why: `left by this service at shutdown, ${c.state}` })),
     ...volumes.map((v) => ({ kind: 'volume' as const, id: v.name, what: describe('volume', v.name, '', v.labels), action: 'remove' as const, why: 'left by this service at shutdown' })),

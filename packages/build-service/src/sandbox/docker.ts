@@ -86,8 +86,8 @@ export class DockerSandbox implements Sandbox {
   private readonly log: (line: string) => void;
   private readonly sweepPolicy: SweepPolicy;
   private sweeping: Promise<SweepReport> | null = null;
-  /** Set once this service created something in the engine (close() then looks for leftovers). */
-  private used = false;
+  /** Set once the engine answered this service (close() then looks for leftovers). */
+  private engineSeen = false;
 
   constructor(options: DockerOptions = {}) {
     this.docker = new Docker(options.connection);
@@ -103,7 +103,10 @@ export class DockerSandbox implements Sandbox {
    * line (and the next call tries again).
    */
   sweep(): Promise<SweepReport> {
-    this.sweeping ??= withDeadline(sweepOrphans(this.docker, this.owner, this.log, this.sweepPolicy), ENGINE_DEADLINE_MS, 'sweep').catch((e: unknown) => {
+    this.sweeping ??= withDeadline(sweepOrphans(this.docker, this.owner, this.log, this.sweepPolicy), ENGINE_DEADLINE_MS, 'sweep').then((report) => {
+      this.engineSeen = true;
+      return report;
+    }, (e: unknown) => {
       this.log(`docker: the sweep of orphaned containers failed: ${(e as Error).message.split('\n')[0]}`);
       this.sweeping = null;
       return EMPTY_SWEEP;
@@ -113,11 +116,11 @@ export class DockerSandbox implements Sandbox {
 
   /**
    * At shutdown, after the jobs ended: removes any container or volume still labelled with this
-   * service as owner (a removal that failed during a cancel, a step started while closing).
+   * service instance (a removal that failed during a cancel, a step started while closing).
    */
   async close(): Promise<SweepReport> {
     if (this.sweeping) await this.sweeping;
-    if (!this.used) return EMPTY_SWEEP;
+    if (!this.engineSeen) return EMPTY_SWEEP;
     try {
       return await withDeadline(removeOwnLeftovers(this.docker, this.owner, this.log), ENGINE_DEADLINE_MS, 'shutdown clean-up');
     } catch (e) {
@@ -159,7 +162,7 @@ export class DockerSandbox implements Sandbox {
     let v = this.volumes.get(workDir);
     if (!v) {
       // the owner is in the name: a volume is never shared with (or inherited from) another service
-      v = `contract-ws-${createHash('sha256').update(`${ownerLabelValue(this.owner)}\0${workDir}`).digest('hex').slice(0, 16)}`;
+      v = `contract-ws-${createHash('sha256').update(`${ownerLabelValue(this.owner)}:${this.owner.instance}\0${workDir}`).digest('hex').slice(0, 16)}`;
       this.volumes.set(workDir, v);
     }
     return v;
@@ -170,7 +173,7 @@ export class DockerSandbox implements Sandbox {
     const jobId = cmd.jobId ?? cmd.name;
     this.jobOfWorkDir.set(cmd.workDir, jobId);
     const volume = this.volumeFor(cmd.workDir);
-    this.used = true;
+    this.engineSeen = true;
     if (!this.createdVolumes.has(volume)) {
       await this.docker.createVolume({ Name: volume, Labels: ownerLabels(this.owner, 'workspace', jobId) });
       this.createdVolumes.add(volume);
