@@ -16,7 +16,7 @@ import { JobService } from './job-service.js';
 import { DOCKER_IMAGE } from './sandbox/docker.js';
 import { currentOwner, LABEL_JOB, ownerLabels, processStartTime, type ServiceOwner } from './sandbox/docker-owner.js';
 import type { SweepReport } from './sandbox/docker-sweep.js';
-import { honestProgram, makeProject } from './test-support/c-projects.js';
+import { honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
 import { dockerUp } from './test-support/docker-env.js';
 
 const env = dockerUp();
@@ -167,6 +167,30 @@ if (!env.available) {
       expect(lines).toContain(`docker: removed volume ${leftover.volume} of job j-test-own (left by this service at shutdown)`);
       expect(await isRunning(live.container)).toBe(true);
     });
+  });
+
+  describe('clean shutdown mid-run', () => {
+    test('close() while a docker job loops removes its container and volume', async () => {
+      const { service } = collectingService({ sandbox: 'docker' });
+      const job = await service.submit({ action: 'run', kind: 'make', project: { files: makeProject(infiniteLoop) } });
+      childJobs.push(job.id); // cleaned up after the tests should this one fail
+      await new Promise<void>((resolve, reject) => {
+        const timer = setTimeout(() => reject(new Error('the job did not loop within 40 s')), 40_000);
+        job.events.subscribe(0, (e) => {
+          if (e.type === 'line' && e.line === 'looping') {
+            clearTimeout(timer);
+            resolve();
+          }
+        });
+      });
+      const [running] = await docker.listContainers({ filters: { label: [`${LABEL_JOB}=${job.id}`] } });
+      expect(running?.Names[0]).toBe(`/contract-${job.id}-run`);
+      await service.close();
+      expect(job.status).toBe('cancelled');
+      expect(await exists('container', running!.Id)).toBe(false);
+      const { Volumes } = await docker.listVolumes({ filters: { label: [`${LABEL_JOB}=${job.id}`] } });
+      expect(Volumes ?? []).toEqual([]);
+    }, 60_000);
   });
 
   describe('a service killed with -9 mid-run', () => {
