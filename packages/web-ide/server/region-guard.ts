@@ -106,7 +106,7 @@ export function guardGeneratedWrite(incoming: string, disk: string, file: string
       region: gone.id,
       line: gone.line,
       message: `${file}:${gone.line}: protected region '${gone.id}' no longer exists in the file on disk (Generate All removed it: ` +
-        'its port or entity is gone from the model) — nothing was written; copy your code from it, then reload the file',
+        'its port or entity left the model; code it held on disk went to src-gen/orphans/) — nothing was written',
     };
   }
   return { kind: 'merge', text: mergeInto(disk, theirs, incoming, mine), reason: MERGE_REASON };

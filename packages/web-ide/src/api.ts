@@ -1,7 +1,7 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-import type { GenerateResponse, TreeEntry } from '../server/api-types.js';
+import type { FileWriteResponse, GenerateResponse, TreeEntry } from '../server/api-types.js';
 
-export type { TreeEntry };
+export type { TreeEntry, FileWriteResponse };
 /** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
 export type GenerateReport = GenerateResponse;
 
@@ -9,6 +9,8 @@ export class ApiError extends Error {
   constructor(
     readonly status: number,
     message: string,
+    /** The other fields of the JSON error answer (e.g. `region`, `line` of a refused save). */
+    readonly details: Record<string, unknown> = {},
   ) {
     super(message);
   }
@@ -32,7 +34,7 @@ async function call<T>(method: string, url: string, body?: unknown, raw = false)
   } catch {
     data = { error: text };
   }
-  if (!res.ok) throw new ApiError(res.status, (data as { error?: string }).error ?? `HTTP ${res.status}`);
+  if (!res.ok) throw new ApiError(res.status, (data as { error?: string }).error ?? `HTTP ${res.status}`, data as Record<string, unknown>);
   return data as T;
 }
 
@@ -50,7 +52,8 @@ export const api = {
   info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
   tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
   read: (path: string) => call<{ path: string; content: string; mtimeMs: number }>('GET', `/api/file?path=${q(path)}`),
-  write: (path: string, content: string) => call<{ path: string; mtimeMs: number }>('PUT', `/api/file?path=${q(path)}`, content, true),
+  /** Saves a file; for a generated file the answer may be `merged` (the text now on disk is in `content`). */
+  write: (path: string, content: string) => call<FileWriteResponse>('PUT', `/api/file?path=${q(path)}`, content, true),
   create: (path: string, type: 'file' | 'dir', content = '') => call<{ path: string }>('POST', '/api/create', { path, type, content }),
   rename: (from: string, to: string) => call<{ from: string; to: string }>('POST', '/api/rename', { from, to }),
   remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),

@@ -12,7 +12,7 @@ import { BuildPanel } from './build/build-panel.js';
 import { GeneratePanel } from './build/generate-panel.js';
 import { api, ApiError } from './api.js';
 import { askText, askFields, confirmAction } from './util/dialog.js';
-import { toast } from './util/toast.js';
+import { toast, dismissToasts } from './util/toast.js';
 import { debounce } from './util/dom.js';
 import { isContract, projectOf } from './workspace/file-kinds.js';
 import { toRange } from './lsp/lsp-convert.js';
@@ -59,6 +59,8 @@ async function main(): Promise<void> {
     ui.status.save.className = `status-item ${failed.length ? 'error' : pending.length ? 'pending' : ''}`;
   };
   workspace.onFileState.on(updateSaveStatus);
+  // a failed save that went through since: its error notification is out of date
+  workspace.onFileState.on((fs) => fs.state === 'saved' && dismissToasts(`Could not save ${fs.path}:`));
 
   const rootHasContracts = () => workspace.entries.some((e) => e.type === 'file' && isContract(e.path));
   const currentProject = () => projectOf(editors.active && !editors.active.startsWith('view:') ? editors.active : explorer.selected?.path ?? '', rootHasContracts());

@@ -5,6 +5,7 @@ import type { Workspace, FileState } from '../workspace/workspace.js';
 import { isGeneratedC } from '../workspace/file-kinds.js';
 import { GeneratedGuard } from './generated-guard.js';
 import { toast } from '../util/toast.js';
+import { confirmAction } from '../util/dialog.js';
 
 /** A non-file tab (architecture, timeline) rendered by its owner into `element`. */
 export interface ViewTab {
@@ -64,6 +65,18 @@ export class EditorArea {
     this.editor.onDidChangeCursorSelection(() => this.updateReadOnly());
     this.editor.addCommand(monaco.KeyMod.CtrlCmd | monaco.KeyCode.KeyS, () => {
       if (this.active && !this.views.has(this.active)) void this.workspace.save(this.active);
+    });
+    this.editor.addAction({
+      id: 'contract.reloadFromDisk',
+      label: 'Reload from disk (discard unsaved edits)',
+      contextMenuGroupId: '9_reload',
+      run: async () => {
+        const path = this.active && !this.views.has(this.active) ? this.active : undefined;
+        const fs = path ? this.workspace.files.get(path) : undefined;
+        if (!path || !fs) return;
+        if (fs.state !== 'saved' && !(await confirmAction(`Reload ${path} from disk?`, 'Your unsaved edits of this file (also the copy kept in this browser) are dropped.', 'Reload'))) return;
+        await this.workspace.revertToDisk(path).catch((e: Error) => toast('error', `Cannot reload ${path}: ${e.message}`));
+      },
     });
     workspace.onFileState.on((fs) => this.renderTabState(fs));
     monaco.editor.registerEditorOpener({

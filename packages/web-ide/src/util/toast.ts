@@ -13,3 +13,8 @@ export function toast(level: 'info' | 'warning' | 'error', text: string): void {
   while (host.childElementCount > 4) host.firstElementChild?.remove();
   setTimeout(() => el.remove(), level === 'error' ? 15_000 : 5000);
 }
+
+/** Removes the notifications whose text contains `part` (e.g. a failed save that has since succeeded). */
+export function dismissToasts(part: string): void {
+  for (const el of Array.from(host?.children ?? [])) if (el.textContent?.includes(part)) el.remove();
+}

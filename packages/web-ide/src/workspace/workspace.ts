@@ -1,7 +1,8 @@
 import { monaco } from '../editor/monaco.js';
 import { api, ApiError, type TreeEntry, type Snapshot } from '../api.js';
 import { Emitter } from '../util/emitter.js';
-import { languageOf, isContract } from './file-kinds.js';
+import { languageOf, isContract, isGeneratedC } from './file-kinds.js';
+import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
 
 export type SaveState = 'saved' | 'dirty' | 'saving' | 'error';
 
@@ -21,7 +22,10 @@ const BACKUP_PREFIX = 'contract-studio:unsaved:';
  * The open workspace: its file tree, one Monaco model per loaded file, and autosave.
  * Every edit is first kept in localStorage (so a reload or a server crash loses nothing), then
  * written atomically by the server; the backup is dropped only once the server confirms.
- * A failed write is reported and retried with backoff; the text stays in the browser.
+ * A failed write is reported and retried with backoff; the text stays in the browser. A write the
+ * server refuses (4xx: e.g. a generated file whose protected regions no longer match) is reported
+ * and not retried until the text changes. When the server merged a save of a generated file into
+ * a newer skeleton on disk, the tab is reloaded from the server's answer.
  */
 export class Workspace {
   root = '';
@@ -135,18 +139,33 @@ export class Workspace {
     }
     this.setState(fs, 'saving');
     try {
-      await api.write(path, text);
-      fs.diskText = text;
+      const answer = await api.write(path, text);
       this.retryDelay.delete(path);
+      if (answer.merged && answer.content !== undefined) {
+        this.adoptMerged(fs, text, answer.content, answer.reason ?? 'merged into the file on disk');
+        return true;
+      }
+      fs.diskText = text;
       if (fs.model.getValue() === text) {
         this.clearBackup(path);
         this.setState(fs, 'saved');
       } else this.markDirty(fs);
       return true;
     } catch (e) {
+      fs.error = e instanceof ApiError ? e.message : String(e);
+      if (e instanceof ApiError && e.status >= 400 && e.status < 500) {
+        // refused (not a network or server failure): retrying the same text cannot succeed
+        this.retryDelay.delete(path);
+        this.setState(fs, 'error');
+        this.onNotice.fire({
+          level: 'error',
+          text: `Not saved: ${fs.error}. Your text stays in this browser and is not retried until you change it; ` +
+            'copy what you need, then right-click › "Reload from disk" to drop it.',
+        });
+        return false;
+      }
       const delay = Math.min(30_000, (this.retryDelay.get(path) ?? 1000) * 2);
       this.retryDelay.set(path, delay);
-      fs.error = e instanceof ApiError ? e.message : String(e);
       this.setState(fs, 'error');
       this.onNotice.fire({
         level: 'error',
@@ -155,6 +174,48 @@ export class Workspace {
       this.scheduleSave(fs, delay);
       return false;
     }
+  }
+
+  /**
+   * The server wrote our protected regions into a newer generated file (Generate All changed the
+   * code around them): show what is on disk now, unless the user typed since the save was sent
+   * (then that text is saved, and merged, again).
+   */
+  private adoptMerged(fs: FileState, sent: string, onDisk: string, reason: string): void {
+    fs.diskText = onDisk;
+    if (fs.model.getValue() === sent) {
+      this.applyingExternal = true;
+      try {
+        replaceKeepingCursor(fs.model, onDisk);
+      } finally {
+        this.applyingExternal = false;
+      }
+      this.clearBackup(fs.path);
+      this.setState(fs, 'saved');
+    } else this.markDirty(fs);
+    this.onNotice.fire({ level: 'info', text: `${fs.path}: ${reason}` });
+  }
+
+  /** Drops the unsaved text of a file (browser copy included) and shows what is on disk. */
+  async revertToDisk(path: string): Promise<void> {
+    const fs = this.files.get(path);
+    if (!fs) return;
+    const { content } = await api.read(path);
+    const t = this.timers.get(path);
+    if (t) clearTimeout(t);
+    this.timers.delete(path);
+    this.retryDelay.delete(path);
+    if (fs.model.getValue() !== content) {
+      this.applyingExternal = true;
+      try {
+        replaceKeepingCursor(fs.model, content);
+      } finally {
+        this.applyingExternal = false;
+      }
+    }
+    fs.diskText = content;
+    this.clearBackup(path);
+    this.setState(fs, 'saved');
   }
 
   async saveAll(): Promise<void> {
@@ -185,8 +246,7 @@ export class Workspace {
     if (fs.state === 'saved') {
       this.applyingExternal = true;
       try {
-        fs.model.pushEditOperations([], [{ range: fs.model.getFullModelRange(), text: content }], () => null);
-        fs.model.pushStackElement();
+        replaceKeepingCursor(fs.model, content);
       } finally {
         this.applyingExternal = false;
       }
@@ -195,7 +255,12 @@ export class Workspace {
       if (!/(^|\/)src-gen\//.test(path)) this.onNotice.fire({ level: 'info', text: `${path} changed on disk: reloaded` });
     } else {
       fs.diskText = content;
-      this.onNotice.fire({ level: 'warning', text: `${path} changed on disk while you were editing: your version is kept and will be saved` });
+      this.onNotice.fire({
+        level: 'warning',
+        text: isGeneratedC(path)
+          ? `${path} was regenerated while you were editing: your protected regions will be saved into the new file`
+          : `${path} changed on disk while you were editing: your version is kept and will be saved`,
+      });
     }
   }
 
