@@ -60,6 +60,24 @@ describe('owner of a container or volume', () => {
     }
   });
 
+  test('a process that ended but is not reaped yet (zombie) has no start time: its services are dead', async () => {
+    // `sleep 0` ends at once; its parent exec'd into `sleep 30`, which never reaps it
+    const parent = spawn('sh', ['-c', 'sleep 0 & exec sleep 30'], { stdio: 'ignore' });
+    try {
+      let zombie = 0;
+      for (let i = 0; i < 100 && !zombie; i++) {
+        await new Promise((r) => setTimeout(r, 20));
+        const kids = readFileSync(`/proc/${parent.pid}/task/${parent.pid}/children`, 'utf8').trim().split(' ').filter(Boolean).map(Number);
+        zombie = kids.find((k) => / Z /.test(readFileSync(`/proc/${k}/stat`, 'utf8'))) ?? 0;
+      }
+      expect(zombie).toBeGreaterThan(0);
+      expect(processStartTime(zombie)).toBeNull();
+      expect(processStartTime(parent.pid!)).toMatch(/^\d+$/);
+    } finally {
+      parent.kill('SIGKILL');
+    }
+  });
+
   test('the live owner is alive; a dead pid is dead; a recycled pid (other start time) is dead', async () => {
     expect(judgeOwner(ownerLabels(self, 'job', 'j'), self)).toEqual({ state: 'alive' });
     const gone = await deadProcess();

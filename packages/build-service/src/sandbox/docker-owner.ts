@@ -33,7 +33,10 @@ export interface ServiceOwner {
   instance: string;
 }
 
-/** Field 22 (starttime) of /proc/<pid>/stat, or null when there is no such process. */
+/**
+ * Field 22 (starttime) of /proc/<pid>/stat, or null when there is no such process or it has
+ * ended and waits to be reaped (state Z/X: a zombie service owns nothing any more).
+ */
 export function processStartTime(pid: number): string | null {
   let stat: string;
   try {
@@ -43,6 +46,7 @@ export function processStartTime(pid: number): string | null {
   }
   // field 2 (comm) is in parentheses and may hold spaces and ')': fields 3.. follow the last ')'
   const rest = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+  if (rest[0] === 'Z' || rest[0] === 'X') return null;
   const field22 = rest[22 - 3];
   return field22 && /^\d+$/.test(field22) ? field22 : null;
 }
