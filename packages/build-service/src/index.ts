@@ -13,3 +13,4 @@ export type { ProtectedRegion } from './pipeline/protected-regions.js';
 export type { Sandbox, SandboxChoice, SandboxName, Mechanisms } from './sandbox/types.js';
 export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
 export { ARTIFACT_BOUNDS, type Artifact, type ArtifactBounds, type RunArtifacts, type SkippedArtifact } from './pipeline/artifacts.js';
+export type { SweepPolicy, SweepReport } from './sandbox/docker-sweep.js';
