@@ -13,7 +13,7 @@ import { fileURLToPath } from 'node:url';
 import Docker from 'dockerode';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { JobService } from './job-service.js';
-import { DOCKER_IMAGE } from './sandbox/docker.js';
+import { DOCKER_IMAGE, DockerSandbox } from './sandbox/docker.js';
 import { currentOwner, LABEL_JOB, ownerLabels, processStartTime, type ServiceOwner } from './sandbox/docker-owner.js';
 import type { SweepReport } from './sandbox/docker-sweep.js';
 import { honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
@@ -84,9 +84,17 @@ function collectingService(options: ConstructorParameters<typeof JobService>[0])
 
 afterAll(async () => {
   try {
-    for (const c of children) if (c.exitCode === null && c.signalCode === null) c.kill('SIGKILL');
+    for (const c of children) {
+      if (c.exitCode === null && c.signalCode === null) {
+        const exited = new Promise((r) => c.once('exit', r));
+        c.kill('SIGKILL');
+        await exited;
+      }
+    }
     for (const s of services) await s.close().catch(() => {});
     if (env.available) {
+      // a child killed before it said its job id: its leftovers are those of a dead service
+      if (children.length) await new DockerSandbox({ log: () => {} }).sweep();
       for (const job of childJobs) {
         for (const c of await docker.listContainers({ all: true, filters: { label: [`${LABEL_JOB}=${job}`] } })) planted.containers.add(c.Id);
         const { Volumes } = await docker.listVolumes({ filters: { label: [`${LABEL_JOB}=${job}`] } });
