@@ -183,6 +183,7 @@ export class Workspace {
    */
   private adoptMerged(fs: FileState, sent: string, onDisk: string, reason: string): void {
     fs.diskText = onDisk;
+    if (fs.model.isDisposed()) return; // the file was closed or deleted meanwhile
     if (fs.model.getValue() === sent) {
       this.applyingExternal = true;
       try {

@@ -7,7 +7,7 @@
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startSession, openIde, shot, placeCursor, activeValue, openFile, waitSaved, type Session } from './harness.js';
+import { startSession, openIde, shot, placeCursor, activeValue, waitSaved, type Session } from './harness.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
@@ -39,7 +39,9 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await openIde(s);
     await s.page.locator('#btn-generate').click();
     await s.page.locator('.gen-summary').waitFor({ timeout: 30_000 });
-    await openFile(s.page, MAA);
+    // open it from the Generate panel (the explorer is still expanding the new tree at this point)
+    await s.page.locator(`.gen-file[data-path="${MAA}"]`).click();
+    await s.page.waitForFunction((p) => document.querySelector('.tab.active')?.getAttribute('data-path') === p, MAA);
     await waitSaved(s.page);
   }, 90_000);
   afterAll(async () => {
