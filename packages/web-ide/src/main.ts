@@ -59,8 +59,8 @@ async function main(): Promise<void> {
     ui.status.save.className = `status-item ${failed.length ? 'error' : pending.length ? 'pending' : ''}`;
   };
   workspace.onFileState.on(updateSaveStatus);
-  // a failed save that went through since: its error notification is out of date
-  workspace.onFileState.on((fs) => fs.state === 'saved' && dismissToasts(`Could not save ${fs.path}:`));
+  // a new save attempt (or one that went through) makes the last "could not save, retrying" notice out of date
+  workspace.onFileState.on((fs) => (fs.state === 'saved' || fs.state === 'saving') && dismissToasts(`Could not save ${fs.path}:`));
 
   const rootHasContracts = () => workspace.entries.some((e) => e.type === 'file' && isContract(e.path));
   const currentProject = () => projectOf(editors.active && !editors.active.startsWith('view:') ? editors.active : explorer.selected?.path ?? '', rootHasContracts());
