@@ -306,13 +306,18 @@ describe('IDE in headless Chromium', () => {
     await page.locator('#btn-run-settings').click();
     await page.locator('.dialog-input[data-key=duration]').fill('4');
     await page.locator('.dialog-input[data-key=start]').fill('GLB.mission(consigne={1.0,2.0,3.0})');
+    await page.locator('.dialog-input[data-key=cpus]').fill('0');
     await page.locator('.dialog .btn.primary').click();
-    expect(await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!))).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})' });
+    expect(await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!))).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' });
     await page.locator('#btn-run').click();
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 140_000 }).catch(async (e) => {
       await shot(page, '06-build-and-run-FAILED');
       throw e;
     });
+    // the CPUs setting reached the launcher (contract-launch --cpus through make run CPUS=0)
+    await page.locator('.log-search').fill('modules pinned to CPUs 0');
+    await expect.poll(() => page.locator('.log-row', { hasText: 'modules pinned to CPUs 0' }).count(), { timeout: 10_000 }).toBeGreaterThan(0);
+    await page.locator('.log-search').fill('');
     await shot(page, '06-build-and-run');
     // the run ends by itself after DURATION; the service collected its CSV logs from the sandbox
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 60_000 }).toBe('succeeded');
