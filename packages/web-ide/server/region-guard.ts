@@ -6,18 +6,10 @@
  * Texts are byte strings (each char = one byte, 'latin1'), so that a merge keeps the bytes of the
  * file on disk and of the incoming regions exactly, whatever their encoding.
  */
+import type { Region } from '@contract-studio/codegen';
 
-/** The part of codegen's Region the guard uses. */
-export interface GuardRegion {
-  id: string;
-  enabled: boolean;
-  content: string;
-  start: number;
-  contentStart: number;
-  contentEnd: number;
-  end: number;
-  line: number;
-}
+/** A protected region as codegen's parser returns it (type only: codegen is loaded lazily). */
+export type GuardRegion = Region;
 
 /** codegen's parseRegions and RegionSyntaxError (see integrations.ts: loadRegionParser). */
 export interface RegionParser {
