@@ -165,6 +165,25 @@ describe('requests', () => {
     expect(missing.status).toBe(404);
   });
 
+  test('a client lists only its own jobs (X-Contract-Client); job ids are 128-bit handles', async () => {
+    const alice = { 'X-Contract-Client': 'alice-0123456789abcdef' };
+    const bob = { 'X-Contract-Client': 'bob-0123456789abcdef' };
+    const list = async (headers: Record<string, string>) => (await (await fetch(`${url}/api/jobs`, { headers })).json()) as { jobs: Array<{ id: string }>; note?: string };
+    const a = await postJob(url, { kind: 'make', project: { files: makeProject(honestProgram()) } }, alice);
+    const b = await postJob(url, { kind: 'make', project: { files: makeProject(honestProgram()) } }, bob);
+    expect([a.status, b.status]).toEqual([201, 201]);
+    expect(a.json.id).toMatch(/^j-[0-9a-f]{32}$/);
+    expect((await list(alice)).jobs.map((j) => j.id)).toEqual([a.json.id]);
+    expect((await list(bob)).jobs.map((j) => j.id)).toEqual([b.json.id]);
+    const anonymous = await list({});
+    expect(anonymous.jobs).toEqual([]); // no key: nobody's jobs, and says how to list yours
+    expect(anonymous.note).toMatch(/X-Contract-Client/);
+    const short = await fetch(`${url}/api/jobs`, { headers: { 'X-Contract-Client': 'short' } });
+    expect(short.status).toBe(400);
+    await readEvents(url, a.json.id as string);
+    await readEvents(url, b.json.id as string);
+  });
+
   test('GET /api/sandboxes says what auto picks and the limits', async () => {
     const info = (await (await fetch(`${url}/api/sandboxes`)).json()) as Record<string, any>;
     expect(info.auto).toBe('bwrap');

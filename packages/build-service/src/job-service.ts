@@ -119,8 +119,10 @@ export class JobService {
     return this.jobs.get(id);
   }
 
-  list(): Job[] {
-    return [...this.jobs.values()].reverse();
+  /** The jobs kept, newest first; with `owner`, only the jobs submitted with that owner. */
+  list(owner?: string): Job[] {
+    const all = [...this.jobs.values()].reverse();
+    return owner === undefined ? all : all.filter((j) => j.owner === owner);
   }
 
   /** Validates a request body (the JSON of POST /api/jobs); throws ServiceError 400/403. */
@@ -192,7 +194,11 @@ export class JobService {
   }
 
   /** Submits a job: 400/403 bad request, 429 queue full, 503 sandbox unavailable. */
-  async submit(body: unknown): Promise<Job> {
+  /**
+   * Queues a job. `owner`: who may list it (GET /api/jobs): a digest of the client's
+   * X-Contract-Client key, or undefined (listed to nobody; its id is its only handle).
+   */
+  async submit(body: unknown, owner?: string): Promise<Job> {
     if (this.closed) throw new ServiceError(503, 'closing', 'the build service is shutting down');
     const { request, sandbox: choice } = this.parseRequest(body);
     if (this.running.size + this.waiting.length >= this.concurrency + this.queueSize) {
@@ -209,8 +215,10 @@ export class JobService {
     if (this.running.size + this.waiting.length >= this.concurrency + this.queueSize) {
       throw new ServiceError(429, 'queue_full', `queue full: ${this.running.size} running, ${this.waiting.length} waiting; retry later`);
     }
-    const id = `j-${randomBytes(6).toString('hex')}`;
+    // the id is the job's capability (status, log, events, artifacts, cancel): 128 random bits
+    const id = `j-${randomBytes(16).toString('hex')}`;
     const job = new Job(id, request, resolved.sandbox.name);
+    job.owner = owner;
     job.warnings.push(...resolved.warnings);
     job.sandboxNote = resolved.note;
     this.jobs.set(id, job);

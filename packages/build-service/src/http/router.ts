@@ -2,6 +2,7 @@
  * The HTTP API of docs/build-service-api.md on top of a JobService.
  * `handle(req, res)` returns false for paths outside basePath, so it can share a server.
  */
+import { createHash } from 'node:crypto';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { JobService } from '../job-service.js';
 import type { LineEvent } from '../pipeline/job-events.js';
@@ -58,6 +59,18 @@ function logText(lines: LineEvent[]): string {
   return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${l.line}\n`).join('');
 }
 
+/** The header a client sends to list its own jobs: any secret of its own, 16 to 200 characters. */
+export const CLIENT_HEADER = 'X-Contract-Client';
+
+/** Digest of the request's client key, or undefined when it sent none (or an unusable one: 400). */
+function clientOwner(req: IncomingMessage): string | undefined {
+  const raw = req.headers[CLIENT_HEADER.toLowerCase()];
+  if (raw === undefined) return undefined;
+  const key = Array.isArray(raw) ? raw[0] ?? '' : raw;
+  if (key.length < 16 || key.length > 200) throw new ServiceError(400, 'bad_request', `${CLIENT_HEADER} must be 16 to 200 characters`);
+  return createHash('sha256').update(key).digest('hex');
+}
+
 export function createRouter(service: JobService, basePath: string) {
   return async function handle(req: IncomingMessage, res: ServerResponse): Promise<boolean> {
     const url = new URL(req.url ?? '/', 'http://localhost');
@@ -79,7 +92,7 @@ export function createRouter(service: JobService, basePath: string) {
         }
         send(res, 200, { default: service.defaultSandbox, auto, sandboxes, limits: service.limits });
       } else if (parts[0] === 'jobs' && parts.length === 1 && method === 'POST') {
-        const job = await service.submit(await readJson(req));
+        const job = await service.submit(await readJson(req), clientOwner(req));
         send(
           res,
           201,
@@ -87,8 +100,11 @@ export function createRouter(service: JobService, basePath: string) {
           { Location: `${basePath}/jobs/${job.id}` },
         );
       } else if (parts[0] === 'jobs' && parts.length === 1 && method === 'GET') {
+        // one client never sees another's jobs (SPEC §5): only those submitted with the same key
+        const owner = clientOwner(req);
         send(res, 200, {
-          jobs: service.list().map((j) => ({ id: j.id, status: j.status, action: j.request.action, sandbox: j.sandboxName, createdAt: j.createdAt, finishedAt: j.finishedAt, message: j.result?.message ?? null })),
+          jobs: owner === undefined ? [] : service.list(owner).map((j) => ({ id: j.id, status: j.status, action: j.request.action, sandbox: j.sandboxName, createdAt: j.createdAt, finishedAt: j.finishedAt, message: j.result?.message ?? null })),
+          ...(owner === undefined ? { note: `send the header ${CLIENT_HEADER} (16 to 200 characters of your own) with POST /api/jobs and here to list your jobs; a job id is the only handle on its job` } : {}),
         });
       } else if (parts[0] === 'jobs' && parts.length >= 2) {
         const job = service.get(parts[1]!);

@@ -82,6 +82,9 @@ export class Job {
   /** Resolves when the job has ended and released everything it held. */
   readonly finished = new Promise<void>((r) => (this.finishedSignal = r));
 
+  /** Digest of the submitting client's key (X-Contract-Client): who may list this job. */
+  owner: string | undefined;
+
   constructor(
     readonly id: string,
     readonly request: JobRequest,
