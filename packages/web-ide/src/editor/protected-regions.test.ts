@@ -19,6 +19,14 @@ describe('scanProtectedRegions', () => {
     expect(FILE.slice(regions[0]!.start, regions[0]!.end)).toBe('\n  user();\n');
   });
 
+  it('reads markers written with extra spaces, as the generator and the server do', () => {
+    const spaced = 'a\n/* PROTECTED REGION ID( protect_x )  ENABLED   START */\nmine\n/*  PROTECTED  REGION END */\nb';
+    const { regions, errors } = scanProtectedRegions(spaced);
+    expect(errors).toEqual([]);
+    expect(regions.map((r) => [r.id, r.enabled])).toEqual([['protect_x', true]]);
+    expect(spaced.slice(regions[0]!.start, regions[0]!.end)).toBe('\nmine\n');
+  });
+
   it('reports START without END, nested START, stray END and duplicate IDs', () => {
     const bad = '/*PROTECTED REGION ID(x) ENABLED START*/\n/*PROTECTED REGION ID(x) ENABLED START*/\n/*PROTECTED REGION END*/\n/*PROTECTED REGION END*/\n/*PROTECTED REGION ID(y) ENABLED START*/';
     const msgs = scanProtectedRegions(bad).errors.map((e) => e.message);

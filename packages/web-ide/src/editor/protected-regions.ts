@@ -18,7 +18,9 @@ export interface RegionScan {
   errors: Array<{ offset: number; message: string }>;
 }
 
-const MARKERS = /\/\*PROTECTED REGION ID\(([^)]*)\)( ENABLED)? START\*\/|\/\*PROTECTED REGION END\*\//g;
+// The same marker syntax as codegen's parser (packages/codegen/src/regions/markers.ts), which the
+// server's guard uses: spaces inside the markers are tolerated there, so they must be here too.
+const MARKERS = /\/\*\s*PROTECTED\s+REGION\s+ID\s*\(([^()\r\n]*)\)\s*(ENABLED\s+)?START\s*\*\/|\/\*\s*PROTECTED\s+REGION\s+END\s*\*\//g;
 
 export function scanProtectedRegions(text: string): RegionScan {
   const regions: ProtectedRegion[] = [];
@@ -27,7 +29,7 @@ export function scanProtectedRegions(text: string): RegionScan {
   let open: { id: string; enabled: boolean; start: number; at: number } | undefined;
   for (const m of text.matchAll(MARKERS)) {
     const at = m.index;
-    if (m[0].endsWith('END*/') && m[1] === undefined) {
+    if (m[1] === undefined) {
       if (!open) {
         errors.push({ offset: at, message: 'PROTECTED REGION END without a START' });
         continue;
@@ -36,7 +38,7 @@ export function scanProtectedRegions(text: string): RegionScan {
       open = undefined;
       continue;
     }
-    const id = m[1] ?? '';
+    const id = (m[1] ?? '').trim().replace(/additionnal/g, 'additional'); // as codegen's normaliseRegionId
     if (open) errors.push({ offset: at, message: `region ${id} starts inside region ${open.id} (nested START)` });
     if (seen.has(id)) errors.push({ offset: at, message: `duplicate region ID ${id}` });
     seen.add(id);
