@@ -106,9 +106,7 @@ export class Workspace {
     const text = fs.model.getValue();
     if (text === fs.diskText && fs.state !== 'error') {
       // back to what is on disk: nothing to write (a pending write could overwrite a newer disk version)
-      const pending = this.timers.get(fs.path);
-      if (pending) clearTimeout(pending);
-      this.timers.delete(fs.path);
+      this.cancelPendingSave(fs.path);
       this.clearBackup(fs.path);
       this.setState(fs, 'saved');
       return;
@@ -118,9 +116,14 @@ export class Workspace {
     this.scheduleSave(fs, SAVE_DELAY_MS);
   }
 
+  private cancelPendingSave(path: string): void {
+    const pending = this.timers.get(path);
+    if (pending) clearTimeout(pending);
+    this.timers.delete(path);
+  }
+
   private scheduleSave(fs: FileState, delay: number): void {
-    const old = this.timers.get(fs.path);
-    if (old) clearTimeout(old);
+    this.cancelPendingSave(fs.path);
     this.timers.set(fs.path, setTimeout(() => void this.save(fs.path), delay));
   }
 
@@ -128,9 +131,7 @@ export class Workspace {
   async save(path: string): Promise<boolean> {
     const fs = this.files.get(path);
     if (!fs || fs.model.isDisposed()) return false;
-    const t = this.timers.get(path);
-    if (t) clearTimeout(t);
-    this.timers.delete(path);
+    this.cancelPendingSave(path);
     const text = fs.model.getValue();
     if (text === fs.diskText && fs.state !== 'error') {
       this.clearBackup(path);
@@ -185,16 +186,21 @@ export class Workspace {
     fs.diskText = onDisk;
     if (fs.model.isDisposed()) return; // the file was closed or deleted meanwhile
     if (fs.model.getValue() === sent) {
-      this.applyingExternal = true;
-      try {
-        replaceKeepingCursor(fs.model, onDisk);
-      } finally {
-        this.applyingExternal = false;
-      }
+      this.showText(fs, onDisk);
       this.clearBackup(fs.path);
       this.setState(fs, 'saved');
     } else this.markDirty(fs);
     this.onNotice.fire({ level: 'info', text: `${fs.path}: ${reason}` });
+  }
+
+  /** Puts `text` in the file's editor model (cursor kept) without taking it for a user edit. */
+  private showText(fs: FileState, text: string): void {
+    this.applyingExternal = true;
+    try {
+      replaceKeepingCursor(fs.model, text);
+    } finally {
+      this.applyingExternal = false;
+    }
   }
 
   /** Drops the unsaved text of a file (browser copy included) and shows what is on disk. */
@@ -202,17 +208,10 @@ export class Workspace {
     const fs = this.files.get(path);
     if (!fs) return;
     const { content } = await api.read(path);
-    const t = this.timers.get(path);
-    if (t) clearTimeout(t);
-    this.timers.delete(path);
+    this.cancelPendingSave(path);
     this.retryDelay.delete(path);
     if (fs.model.getValue() !== content) {
-      this.applyingExternal = true;
-      try {
-        replaceKeepingCursor(fs.model, content);
-      } finally {
-        this.applyingExternal = false;
-      }
+      this.showText(fs, content);
     }
     fs.diskText = content;
     this.clearBackup(path);
@@ -245,12 +244,7 @@ export class Workspace {
     }
     if (content === fs.diskText) return; // our own earlier write echoing back
     if (fs.state === 'saved') {
-      this.applyingExternal = true;
-      try {
-        replaceKeepingCursor(fs.model, content);
-      } finally {
-        this.applyingExternal = false;
-      }
+      this.showText(fs, content);
       fs.diskText = content;
       // Regenerated C is expected to change: only user files get a notice.
       if (!/(^|\/)src-gen\//.test(path)) this.onNotice.fire({ level: 'info', text: `${path} changed on disk: reloaded` });
@@ -271,8 +265,7 @@ export class Workspace {
     if (!fs) return;
     this.files.delete(path);
     this.clearBackup(path);
-    const t = this.timers.get(path);
-    if (t) clearTimeout(t);
+    this.cancelPendingSave(path);
     fs.model.dispose();
   }
 
