@@ -96,9 +96,11 @@ $(ENG_BENCH_OUT)/BSU: $(ENG_BENCH_SRC)/bsup.c $(ENG_BENCH_SRC)/btables.h tests/e
 	@mkdir -p $(ENG_BENCH_OUT)
 	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< build/libmodule.a -o $@
 $(ENG_BENCH_OUT)/bench_engines: $(ENG_BENCH_SRC)/bench_engines.c $(ENG_BENCH_SRC)/platform_probe.c \
-                                 $(ENG_BENCH_SRC)/platform_probe.h $(ENG_CORE) $(ENG_HDRS)
+                                 $(ENG_BENCH_SRC)/platform_probe.h launcher/rt_placement.c launcher/rt_placement.h \
+                                 $(ENG_CORE) $(ENG_HDRS)
 	@mkdir -p $(ENG_BENCH_OUT)
-	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_INC) $< $(ENG_BENCH_SRC)/platform_probe.c $(ENG_CORE) -o $@
+	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_INC) -Ilauncher $< $(ENG_BENCH_SRC)/platform_probe.c launcher/rt_placement.c \
+	  $(ENG_CORE) -o $@
 
 bench-engines: $(addprefix $(ENG_BENCH_OUT)/,BMA BMB BMC ORD BSU bench_engines) build/contract-launch
 	@mkdir -p ../bench/parts

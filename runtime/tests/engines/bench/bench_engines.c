@@ -42,14 +42,10 @@
  */
 #define _GNU_SOURCE
 #include <dirent.h>
-#include <fcntl.h>
 #include <sched.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/mman.h>
-#include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
 #include <unistd.h>
@@ -170,8 +166,8 @@ static int read_misses(const char *logs, long long *misses, int cap) {
     return n;
 }
 
-/* One ORD run; `cpus` NULL = no placement options. Fills js with ORD's stats JSON and misses[]
-   with the times of its missed periods. */
+/* One ORD run; `cpus` NULL = no placement options. Fills js with ORD's stats JSON and, unless
+   `misses` is NULL, misses[] with the times of its missed periods. */
 static int bench_sched(const char *bindir, const char *launcher, const char *seconds, const char *cpus, char *js,
                        size_t jslen, long long *misses, int *nmisses) {
     char tmpl[] = "/tmp/contract-engines-bench-XXXXXX";
@@ -220,7 +216,7 @@ static int bench_sched(const char *bindir, const char *launcher, const char *sec
     js[got] = '\0';
     if (f) fclose(f);
     int ok = WIFEXITED(st) && WEXITSTATUS(st) == 0 && got > 0;
-    *nmisses = ok ? read_misses(logs, misses, MAX_MISSES) : 0;
+    if (misses) *nmisses = ok ? read_misses(logs, misses, MAX_MISSES) : 0;
     if (!ok) fprintf(stderr, "bench: the scheduler run failed; see %s\n", out);
     else {
         char cmd[200];
@@ -253,7 +249,7 @@ int main(int argc, char **argv) {
     snprintf(cpus, sizeof cpus, "%d", cpu);
     snprintf(probe_path, sizeof probe_path, "/tmp/contract-engines-probe-%ld.bin", (long)getpid());
     static long long misses[MAX_MISSES];
-    int nmisses = 0, nmisses_u = 0;
+    int nmisses = 0;
     char js[2048], ju[2048];
     /* the probe runs alongside the whole placed run (start-up + duration + stop), above ORD (90) */
     int probe_ticks = (int)((atof(seconds) + 2.5) * 1e9 / (double)PROBE_TICK_NS);
@@ -283,7 +279,7 @@ int main(int argc, char **argv) {
     fprintf(stderr, "bench: platform (CPU %d, during that run): wake-up late p50 %.1f p99 %.1f max %.1f us, %d stalls >= 1 ms;"
                     " %d of %d missed periods fell in a stall (a random instant would: %.1f %%)\n", cpu, plat[0], plat[1], plat[2],
             stalls, in_stalls, nmisses, stall_share * 100);
-    if (bench_sched(argv[1], argv[2], seconds, NULL, ju, sizeof ju, misses, &nmisses_u) != 0) return 1;
+    if (bench_sched(argv[1], argv[2], seconds, NULL, ju, sizeof ju, NULL, NULL) != 0) return 1;
     fprintf(stderr, "bench: ORD (unplaced): %s", ju);
     FILE *o = fopen(argv[3], "w");
     if (!o) {

@@ -1,10 +1,9 @@
 /* platform_probe.c — see platform_probe.h. */
 #define _GNU_SOURCE
 #include "platform_probe.h"
+#include "rt_placement.h"
 
-#include <fcntl.h>
 #include <sched.h>
-#include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -24,12 +23,8 @@ static void probe_run(int cpu, int prio, int ticks, const char *path) {
     CPU_ZERO(&set);
     CPU_SET(cpu, &set);
     sched_setaffinity(0, sizeof set, &set);
-    int qos = open("/dev/cpu_dma_latency", O_WRONLY | O_CLOEXEC);
-    int32_t zero = 0;
-    if (qos >= 0 && write(qos, &zero, sizeof zero) != (ssize_t)sizeof zero) {
-        close(qos);
-        qos = -1;
-    }
+    char err[256];
+    int qos = rt_hold_pm_qos(0, err, sizeof err); /* as contract-launch --pm-qos-us 0; -1 if not root */
     struct sched_param sp = {.sched_priority = prio};
     sched_setscheduler(0, SCHED_FIFO, &sp);
     long long *rec = calloc((size_t)ticks * 2, sizeof *rec);
