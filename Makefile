@@ -2,7 +2,8 @@
 #   make start   install what is missing, build, and serve the IDE + build service on the tutorial
 #   make test    install what is missing, build, and run every test (TypeScript, C, browser, sandboxes)
 #   make bench   run every benchmark, write bench/results.json
-.PHONY: setup start test test-ts test-c bench clean
+#   make test-node-versions   CLI smoke + language/codegen tests on Node 22 and 24 (several minutes: not in make test)
+.PHONY: setup start test test-ts test-c test-node-versions bench clean
 
 setup:
 	bash scripts/setup.sh
@@ -12,6 +13,9 @@ start: setup
 
 test: setup
 	node scripts/run-tests.mjs
+
+test-node-versions: setup
+	bash scripts/test-node-versions.sh
 
 bench: setup
 	npm run bench

@@ -4,6 +4,8 @@
 // Convention: each benchmark is a command that writes one flat JSON object
 // (metric name -> number) to bench/parts/<part>.json. This script runs them in order,
 // merges the parts, writes bench/results.json and prints a readable table.
+// `node bench/run-all.mjs PART...` runs only those parts and merges their figures into the
+// existing bench/results.json (the other figures are kept as they were).
 import { spawnSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync, existsSync, rmSync } from 'node:fs';
 import { dirname, join } from 'node:path';
@@ -20,11 +22,26 @@ const benches = [
   { part: 'codegen', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/codegen'] },
   { part: 'build', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/build-service'] },
   { part: 'ide', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/web-ide'] },
+  // a 1 kHz schema with and without an SSE client on the live trace channel (about 40 s)
+  { part: 'monitor', cmd: ['npm', 'run', '-s', 'bench:monitor', '-w', 'packages/build-service'] },
+  // the supervisor simulator: events/s in virtual time, a changed .contract -> first simulated step
+  { part: 'simulate', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/simulator'] },
+  // the edit-build-run loop from the command line: no-op build vs check, one-module edit, cold folder, run overhead
+  { part: 'cli', cmd: ['node', 'bench/cli-build-bench.mjs'] },
+  // the Monitor panel fed a 1 kHz schema's trace at the real rate for 40 s (MONITOR_BENCH_SECONDS)
+  { part: 'monitor-panel', cmd: ['npm', 'run', '-s', 'bench:monitor-panel', '-w', 'packages/web-ide'] },
+  // a real Build & Run of a 1 kHz schema watched live in the Monitor: record written -> drawn (about 45 s)
+  { part: 'monitor-live', cmd: ['npm', 'run', '-s', 'bench:monitor-live', '-w', 'packages/web-ide'] },
+  // the Simulate panel's server side: POST /api/simulate of a growing session, cold then per step (about 15 s)
+  { part: 'simulate-panel', cmd: ['npm', 'run', '-s', 'bench:simulate-panel', '-w', 'packages/web-ide'] },
+  // 10 minutes of the mobile-robot example, every CSV record counted (SOAK_SECONDS to change it)
+  { part: 'soak', cmd: ['npm', 'run', '-s', 'bench:soak', '-w', 'packages/build-service'] },
 ];
 
 const only = process.argv.slice(2);
 mkdirSync(partsDir, { recursive: true });
-const results = {};
+const resultsFile = join(root, 'bench', 'results.json');
+const results = only.length && existsSync(resultsFile) ? JSON.parse(readFileSync(resultsFile, 'utf8')) : {};
 const failures = [];
 for (const b of benches) {
   if (only.length && !only.includes(b.part)) continue;
@@ -41,7 +58,7 @@ for (const b of benches) {
   Object.assign(results, JSON.parse(readFileSync(file, 'utf8')));
   process.stderr.write(`[bench] ${b.part}: done in ${secs} s\n`);
 }
-writeFileSync(join(root, 'bench', 'results.json'), JSON.stringify(results, null, 2) + '\n');
+writeFileSync(resultsFile, JSON.stringify(results, null, 2) + '\n');
 const width = Math.max(10, ...Object.keys(results).map((k) => k.length));
 console.log(`${'metric'.padEnd(width)}  value`);
 for (const [k, v] of Object.entries(results)) console.log(`${k.padEnd(width)}  ${v}`);

@@ -6,15 +6,17 @@
 #   make bench-engines   writes ../bench/parts/engines.json
 ENG_CC      ?= gcc
 ENG_WARN    := -std=c11 -Wall -Wextra -Werror
-ENG_INC     := -Iinclude -Isrc/engines -Itests/engines
+ENG_INC     := -Iinclude -Isrc/engines -Itests/engines -Isim
 ENG_SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 ENG_OUT     := build/engines
-ENG_CORE    := src/engines/engine_values.c src/engines/engine_check.c src/engines/sup_core.c \
+ENG_CORE    := src/engines/engine_values.c src/engines/engine_check.c src/engines/sup_core.c src/engines/sup_claims.c \
                src/engines/ord_core.c
-ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def)
+ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def sim/*.h)
 ENG_TESTS   := $(wildcard tests/engines/*.c)
 # libmodule-free parts of the bindings, tested with the cores
 ENG_UNITS   := src/engines/hold_lock.c
+# the simulator's harness (sim/sim.mk), tested with the cores (tests/engines/test_sim.c)
+ENG_UNITS   += sim/sim_world.c sim/sim_protocol.c
 
 .PHONY: test-engines bench-engines
 
@@ -41,8 +43,9 @@ ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c)
 
 # The test's executables: ENG_IT_FROM_<exe> = its source in $(ENG_IT_SRC), ENG_IT_FLAGS_<exe> =
 # its -D flags. Each is built twice: $(ENG_OUT)/it (plain) and $(ENG_OUT)/it-san (ASan+UBSan).
-ENG_IT_EXES := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB
-$(foreach m,IMA IMB IMC RMA RMB RMC,$(eval ENG_IT_FROM_$(m) := imod.c)$(eval ENG_IT_FLAGS_$(m) := -DIMOD_NAME='"$(m)"'))
+ENG_IT_EXES := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB \
+               undo/ORD UMA AMY UPA USM
+$(foreach m,IMA IMB IMC RMA RMB RMC UMA,$(eval ENG_IT_FROM_$(m) := imod.c)$(eval ENG_IT_FLAGS_$(m) := -DIMOD_NAME='"$(m)"'))
 ENG_IT_FLAGS_RMB += -DIMOD_SLOW_AT=4
 ENG_IT_FROM_ORD := iord.c
 ENG_IT_FROM_rsc/ORD := iord.c
@@ -59,6 +62,13 @@ ENG_IT_FROM_RSU := ireactivate.c
 ENG_IT_FROM_HTA := itoggle.c
 ENG_IT_FLAGS_HTA := -DITOGGLE_TOP
 ENG_IT_FROM_HTB := itoggle.c
+ENG_IT_FROM_undo/ORD := iord.c
+ENG_IT_FLAGS_undo/ORD := -DIORD_UNDO
+ENG_IT_FROM_AMY := amod.c
+ENG_IT_FLAGS_AMY := -DAMOD_NAME='"AMY"'
+ENG_IT_FROM_UPA := iundo.c
+ENG_IT_FLAGS_UPA := -DIUNDO_TOP
+ENG_IT_FROM_USM := iundo.c
 
 # $(1) = output dir, $(2) = libmodule.a, $(3) = extra flags, $(4) = executable
 define ENG_IT_EXE

@@ -1,7 +1,13 @@
 /* The per-module CSV log: <LOG_DIR>/<MODULE>_<d>-<Mon>-<Y>-<H>h<M>m<S>s.csv (report section 8.2
  * naming, without the space). Columns: see docs/runtime-api.md. Records are formatted by hand
  * into a 64 KiB buffer (no stdio on the hot path) and written when the module waits and the
- * oldest unwritten record is older than LOG_FLUSH_NS, when the buffer fills, and at exit. */
+ * oldest unwritten record is older than LOG_FLUSH_NS, when the buffer fills, and at exit.
+ *
+ * The file is bounded (CONTRACT_LOG_MAX_BYTES, default LOG_MAX_DEFAULT): a module that loops
+ * (an exec region that never sets *stateindex = -1) must not fill the disk nor make the whole
+ * log too big to collect. At the bound the log keeps its whole records, then one `log-capped`
+ * record; later records are only counted, and a last `log-capped` record at exit says how many
+ * were not written (docs/runtime-api.md "CSV log"). The file never exceeds the bound. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -16,10 +22,35 @@
 #define CSV_HEADER "mono_ns,wall_time,module,event,peer,port,size,detail\n"
 #define LOG_BUF 65536
 #define RECORD_MAX 1024
+#define LOG_MAX_DEFAULT (256ULL * 1024 * 1024)
 
 static int log_fd = -1;
 static char log_buf[LOG_BUF];
 static size_t log_len;
+static char log_path[PATH_MAX];
+static unsigned long long log_max;      /* bound of the file, bytes                         */
+static unsigned long long log_written;  /* bytes in the file                                */
+static int log_capped;                  /* the bound was reached: records are only counted */
+static unsigned long long log_dropped;  /* records not written since                        */
+static unsigned long long log_records;  /* records logged (written or not) since the open   */
+
+unsigned long long rt_log_records(void) { return log_records; }
+
+/* CONTRACT_LOG_MAX_BYTES: a byte count (at least 4 records' room); otherwise the default. */
+static unsigned long long log_bound(void)
+{
+    const char *v = getenv("CONTRACT_LOG_MAX_BYTES");
+    if (!v || !*v) return LOG_MAX_DEFAULT;
+    char *end;
+    errno = 0;
+    unsigned long long n = strtoull(v, &end, 10);
+    if (errno || *end || n < 4 * RECORD_MAX) {
+        fprintf(stderr, "%s: warning: CONTRACT_LOG_MAX_BYTES='%s' is not a byte count >= %d: using %llu\n", g_rt.name, v,
+                4 * RECORD_MAX, LOG_MAX_DEFAULT);
+        return LOG_MAX_DEFAULT;
+    }
+    return n;
+}
 
 int rt_log_enabled(void) { return log_fd >= 0; }
 
@@ -37,17 +68,27 @@ int rt_log_open(void)
     time_t t = time(NULL);
     struct tm tm;
     localtime_r(&t, &tm);
-    char path[PATH_MAX];
-    snprintf(path, sizeof path, "%s/%s_%d-%s-%d-%02dh%02dm%02ds.csv", dir, g_rt.name, tm.tm_mday, months[tm.tm_mon],
-             tm.tm_year + 1900, tm.tm_hour, tm.tm_min, tm.tm_sec);
+    char *path = log_path;
+    snprintf(log_path, sizeof log_path, "%s/%s_%d-%s-%d-%02dh%02dm%02ds.csv", dir, g_rt.name, tm.tm_mday,
+             months[tm.tm_mon], tm.tm_year + 1900, tm.tm_hour, tm.tm_min, tm.tm_sec);
     log_fd = open(path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
     if (log_fd < 0) {
         fprintf(stderr, "%s: warning: cannot open log %s: %s (no CSV log)\n", g_rt.name, path, strerror(errno));
         return -1;
     }
+    log_max = log_bound();
+    log_capped = 0;
+    log_dropped = 0;
+    log_records = 0;
+    log_written = 0;
     struct stat st;
-    if (fstat(log_fd, &st) == 0 && st.st_size == 0 && write(log_fd, CSV_HEADER, sizeof CSV_HEADER - 1) < 0)
-        fprintf(stderr, "%s: warning: cannot write log %s: %s\n", g_rt.name, path, strerror(errno));
+    if (fstat(log_fd, &st) == 0) log_written = (unsigned long long)st.st_size;
+    if (log_written == 0) {
+        if (write(log_fd, CSV_HEADER, sizeof CSV_HEADER - 1) < 0)
+            fprintf(stderr, "%s: warning: cannot write log %s: %s\n", g_rt.name, path, strerror(errno));
+        else
+            log_written = sizeof CSV_HEADER - 1;
+    }
     log_len = 0;
     return 0;
 }
@@ -85,11 +126,10 @@ static char *put_field(char *p, const char *s, size_t max)
     return p;
 }
 
-void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail)
+/* Formats one record at p (at most RECORD_MAX bytes); returns its end. */
+static char *put_record(char *p, RTIME mono, const char *event, const char *peer, int port, size_t size,
+                        const char *detail)
 {
-    if (log_fd < 0) return;
-    if (log_len + RECORD_MAX > LOG_BUF) ContractLogFlush();
-    RTIME mono = GetTime();
     struct timespec wall;
     clock_gettime(CLOCK_REALTIME, &wall);
     static time_t cached_sec = -1;
@@ -101,7 +141,6 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
                  tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec);
         cached_sec = wall.tv_sec;
     }
-    char *p = log_buf + log_len;
     p = put_u64(p, (unsigned long long)mono);
     *p++ = ',';
     p = put_str(p, cached_text);
@@ -121,18 +160,77 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
     *p++ = ',';
     p = put_field(p, detail, 400);
     *p++ = '\n';
+    return p;
+}
+
+void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail)
+{
+    if (log_fd < 0) return;
+    log_records++;
+    if (log_capped) {
+        log_dropped++;
+        return;
+    }
+    if (log_len + RECORD_MAX > LOG_BUF) ContractLogFlush();
+    if (log_capped) { /* this flush reached the bound */
+        log_dropped++;
+        return;
+    }
+    RTIME mono = GetTime();
+    char *p = put_record(log_buf + log_len, mono, event, peer, port, size, detail);
     log_len = (size_t)(p - log_buf);
     if (!g_rt.log_dirty_since) g_rt.log_dirty_since = mono;
 }
 
-void ContractLogFlush(void)
+static void write_all(const char *buf, size_t len)
 {
     size_t off = 0;
-    while (log_fd >= 0 && off < log_len) {
-        ssize_t n = write(log_fd, log_buf + off, log_len - off);
+    while (log_fd >= 0 && off < len) {
+        ssize_t n = write(log_fd, buf + off, len - off);
         if (n < 0 && errno == EINTR) continue;
         if (n <= 0) break; /* disk full: the records are lost, the module goes on */
         off += (size_t)n;
+    }
+    log_written += off;
+}
+
+/* Writes one `log-capped` record (room for two is kept below the bound). */
+static void write_cap_record(const char *detail)
+{
+    char rec[RECORD_MAX];
+    char *end = put_record(rec, GetTime(), "log-capped", "", -1, (size_t)log_max, detail);
+    write_all(rec, (size_t)(end - rec));
+}
+
+/* Counts the records (lines) of buf[0..len). */
+static unsigned long long count_records(const char *buf, size_t len)
+{
+    unsigned long long n = 0;
+    for (const char *p = buf, *e = buf + len; (p = memchr(p, '\n', (size_t)(e - p))) != NULL; p++) n++;
+    return n;
+}
+
+void ContractLogFlush(void)
+{
+    if (log_fd >= 0 && log_len > 0) {
+        /* the room left before the bound, keeping two records' room for the markers */
+        unsigned long long room = log_written + 2 * RECORD_MAX < log_max ? log_max - 2 * RECORD_MAX - log_written : 0;
+        if (log_len <= room) {
+            write_all(log_buf, log_len);
+        } else {
+            size_t keep = 0; /* whole records only */
+            for (size_t i = 0; i < (size_t)room; i++)
+                if (log_buf[i] == '\n') keep = i + 1;
+            write_all(log_buf, keep);
+            log_dropped += count_records(log_buf + keep, log_len - keep);
+            log_capped = 1;
+            char detail[200];
+            snprintf(detail, sizeof detail, "log reached its %llu-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written",
+                     log_max);
+            write_cap_record(detail);
+            fprintf(stderr, "%s: warning: CSV log %s capped at %llu bytes (CONTRACT_LOG_MAX_BYTES); later records are not written\n",
+                    g_rt.name, log_path, log_max);
+        }
     }
     log_len = 0;
     g_rt.log_dirty_since = 0;
@@ -143,6 +241,8 @@ void ContractLogFlushIfOlder(RTIME ageNs)
     if (g_rt.log_dirty_since && GetTime() - g_rt.log_dirty_since >= ageNs) ContractLogFlush();
 }
 
+RTIME ContractLogPendingSince(void) { return log_fd >= 0 ? g_rt.log_dirty_since : 0; }
+
 void rt_log_maybe_flush(RTIME now)
 {
     if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= LOG_FLUSH_NS) ContractLogFlush();
@@ -152,6 +252,12 @@ void rt_log_close(void)
 {
     if (log_fd < 0) return;
     ContractLogFlush();
+    if (log_capped) {
+        char detail[200];
+        snprintf(detail, sizeof detail, "%llu records not written after the log reached its %llu-byte bound", log_dropped,
+                 log_max);
+        write_cap_record(detail);
+    }
     close(log_fd);
     log_fd = -1;
 }

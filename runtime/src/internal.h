@@ -94,6 +94,8 @@ int rt_lock_memory(void);
 int rt_log_open(void);
 int rt_log_enabled(void);
 void rt_log_close(void);
+/* Records logged since the log was opened (written or not: see CONTRACT_LOG_MAX_BYTES). */
+unsigned long long rt_log_records(void);
 void rt_log_maybe_flush(RTIME now);
 
 /* dataflow.c / eventflow.c */

@@ -70,7 +70,8 @@ int main(int argc, char *argv[])
     if (ContractSetPriority(MODULE_PRIORITY) == 1) rt_lock_memory(); /* real time: no page faults */
     if (rt_write_pid_file() != 0) return 2; /* last: the launcher treats it as "module ready" */
     int rc = ModuleMain(argc, (const char **)argv);
-    snprintf(detail, sizeof detail, "status=%d", rc);
+    /* records=N counts this record too: a reader of the log can tell none is missing */
+    snprintf(detail, sizeof detail, "status=%d records=%llu", rc, rt_log_records() + 1);
     ContractLog("module_exit", "", -1, 0, detail);
     ContractShutdown();
     return rc;

@@ -62,6 +62,15 @@ void test_msc_request_loop(void)
     CHECK(log && strstr(log, ",MSC,request_received,tester,,0,KILL"));
     CHECK(log && strstr(log, ",MSC,ack_sent,tester,,0,ACK_NOTDONE id=12"));
     CHECK(log && strstr(log, ",MSC,module_exit,"));
+    /* module_exit says how many records the module logged: every one of them is in the file */
+    const char *exit_rec = log ? strstr(log, ",MSC,module_exit,,,0,status=0 records=") : NULL;
+    CHECK(exit_rec != NULL);
+    if (exit_rec && log) {
+        unsigned long long n = strtoull(strstr(exit_rec, "records=") + 8, NULL, 10);
+        unsigned long long lines = 0;
+        for (const char *p = log; (p = strchr(p, '\n')) != NULL; p++) lines++;
+        CHECK_MSG(n == lines - 1, "module_exit says %llu records, the log holds %llu", n, lines - 1);
+    }
     free(log);
     h_teardown();
 }
@@ -436,5 +445,48 @@ void test_status_running(void)
     CHECK(QueryStatus("tester", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=yes"));
     CHECK(SendStop("tester", ACK_NOTHING, 0) == 0 && LookForRequest(m) && m->Type == REQ_STOP);
     CHECK(QueryStatus("tester", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=no"));
+    h_teardown();
+}
+
+/* A module whose log reaches CONTRACT_LOG_MAX_BYTES keeps its whole records up to the bound, then
+   a `log-capped` record, and at exit a last one saying how many records were not written: the
+   file stays a readable CSV, never larger than the bound (docs/runtime-api.md "CSV log"). */
+void test_csv_log_cap(void)
+{
+    REQUIRE(h_setup("logcap") == 0);
+    setenv("CONTRACT_LOG_MAX_BYTES", "8192", 1);
+    RequestMessage *m = h_msg();
+    pid_t pid = h_spawn_module("MSC", "MSC");
+    unsetenv("CONTRACT_LOG_MAX_BYTES");
+    REQUIRE(pid > 0);
+    for (int i = 0; i < 150; i++) {
+        CHECK(SendStart("MSC", ACK_FINISHED, 100 + i) == CONTRACT_OK);
+        CHECK(h_wait_ack("MSC", 100 + i, ACK_FINISHED, 2000, m));
+    }
+    CHECK(SendKill("MSC", ACK_KILLED, 13) == CONTRACT_OK);
+    CHECK(h_wait_ack("MSC", 13, ACK_KILLED, 2000, m));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *log = h_read_logs("MSC_");
+    REQUIRE(log);
+    size_t len = strlen(log);
+    CHECK_MSG(len <= 8192, "the log holds %zu bytes, above its 8192-byte bound", len);
+    CHECK(strncmp(log, "mono_ns,wall_time,module,event,peer,port,size,detail\n", 52) == 0);
+    CHECK(strstr(log, ",MSC,run_started,tester,,0,activation=1\n") && strstr(log, ",MSC,ack_sent,tester,,0,ACK_FINISHED id=100\n"));
+    CHECK(len > 0 && log[len - 1] == '\n');
+    int caps = 0, lines = 0;
+    const char *last = log;
+    for (char *line = log, *nl; (nl = strchr(line, '\n')) != NULL; line = nl + 1) {
+        *nl = '\0';
+        int commas = 0;
+        for (const char *c = line; *c; c++) commas += *c == ',';
+        CHECK_MSG(commas >= 7, "line %d is not a whole record: '%s'", lines, line);
+        if (strstr(line, ",MSC,log-capped,,,8192,")) caps++;
+        last = line;
+        lines++;
+    }
+    CHECK_MSG(caps == 2, "%d log-capped records, expected 2", caps);
+    CHECK_MSG(strstr(last, ",MSC,log-capped,") && strstr(last, " records not written after the log reached its 8192-byte bound"),
+              "last record: '%s'", last);
+    free(log);
     h_teardown();
 }

@@ -335,7 +335,12 @@ void test_set_module_priority(void)
         _exit(127);
     }
     REQUIRE(pid > 0);
-    for (int t = 0; t < 300 && ModuleState("P") != CONTRACT_OK; t++) usleep(10000);
+    /* Ready is the pid file, written after the priority is set (as the launcher waits for it);
+     * the mailbox (ModuleState) exists earlier, so under load the priority may still be unset then. */
+    char pidfile[700];
+    snprintf(pidfile, sizeof pidfile, "%s/P.pid", h_run_dir);
+    for (int t = 0; t < 500 && access(pidfile, F_OK) != 0; t++) usleep(10000);
+    REQUIRE(access(pidfile, F_OK) == 0);
     REQUIRE(ModuleState("P") == CONTRACT_OK);
     errno = 0;
     CHECK(getpriority(PRIO_PROCESS, (id_t)pid) == (99 - 30) * 19 / 98);

@@ -25,6 +25,7 @@ void test_two_run_dirs(void);
 void test_control_tool(void);
 void test_priority(void);
 void test_set_module_priority(void);
+void test_csv_log_cap(void);
 
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
@@ -50,6 +51,7 @@ static const TestCase ALL_TESTS[] = {
     { "control_tool", test_control_tool },
     { "priority", test_priority },
     { "set_module_priority", test_set_module_priority },
+    { "csv_log_cap", test_csv_log_cap },
     { NULL, NULL },
 };
 #endif

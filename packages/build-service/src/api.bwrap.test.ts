@@ -20,7 +20,7 @@ let cacheDir: string;
 
 beforeAll(async () => {
   cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  server = createBuildServer({ port: 0, concurrency: 2, queueSize: 1, cacheDir, sandbox: 'bwrap' });
+  server = createBuildServer({ token: false, port: 0, concurrency: 2, queueSize: 1, cacheDir, sandbox: 'bwrap' });
   url = (await server.listen()).url;
 });
 
@@ -158,7 +158,7 @@ describe('requests', () => {
   });
 
   test('invalid JSON and unknown ids get clear errors', async () => {
-    const bad = await fetch(`${url}/api/jobs`, { method: 'POST', body: '{nope' });
+    const bad = await fetch(`${url}/api/jobs`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: '{nope' });
     expect(bad.status).toBe(400);
     expect(((await bad.json()) as { error: string }).error).toMatch(/invalid JSON/);
     const missing = await fetch(`${url}/api/jobs/j-nothere`);

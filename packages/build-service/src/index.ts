@@ -5,6 +5,8 @@
 export { createBuildServer, DEFAULT_PORT, type BuildServer, type BuildServerOptions } from './server.js';
 export { JobService, DEFAULT_RUNTIME_SOURCE, type BuildServiceOptions } from './job-service.js';
 export { ServiceError } from './service-errors.js';
+export { clearCache } from './cache/clear-cache.js';
+export { CACHE_DIR_ENV, CacheRefusedError, prepareCacheDir, resolveCacheDir, type CacheDirChoice } from './cache/cache-dir.js';
 export { DEFAULT_LIMITS, CANCEL_DEADLINE_MS, describeLimitHit, mergeLimits, type Limits, type LimitHit, type Mechanism } from './limits.js';
 export type { Job, JobRequest, JobResult } from './pipeline/job.js';
 export type { JobEvent, JobStatus, JobStep, LineEvent } from './pipeline/job-events.js';
@@ -12,5 +14,6 @@ export type { GccDiagnostic } from './pipeline/gcc-diagnostics.js';
 export type { ProtectedRegion } from './pipeline/protected-regions.js';
 export type { Sandbox, SandboxChoice, SandboxName, Mechanisms } from './sandbox/types.js';
 export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
-export { ARTIFACT_BOUNDS, type Artifact, type ArtifactBounds, type RunArtifacts, type SkippedArtifact } from './pipeline/artifacts.js';
+export { ARTIFACT_BOUNDS, artifactBytes, type Artifact, type ArtifactBounds, type RunArtifacts, type SkippedArtifact } from './pipeline/artifacts.js';
+export { describeIssues, type RunIssue, type RunIssueKind } from './pipeline/run-issues.js';
 export type { SweepPolicy, SweepReport } from './sandbox/docker-sweep.js';

@@ -4,14 +4,15 @@
  * full event log and result) up to `keepJobs`, and cleans everything up on close.
  */
 import { randomBytes } from 'node:crypto';
-import { chmodSync, mkdtempSync, realpathSync } from 'node:fs';
+import { chmodSync, mkdirSync, mkdtempSync, realpathSync } from 'node:fs';
 import { availableParallelism, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_LIMITS, LimitsError, mergeLimits, type Limits } from './limits.js';
+import { DEFAULT_LIMITS, LimitsError, mergeLimits, workDiskBytes, type Limits } from './limits.js';
 import { Job, type JobRequest } from './pipeline/job.js';
 import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
+import { GenerationCache } from './cache/generation-cache.js';
 import { WorkspaceManager } from './pipeline/workspaces.js';
 import type { BwrapOptions } from './sandbox/bwrap.js';
 import type { DockerOptions } from './sandbox/docker.js';
@@ -34,6 +35,13 @@ export interface BuildServiceOptions {
   projectRoots?: string[];
   /** Where workspaces and the runtime cache live. Default: a fresh temp dir, removed on close. */
   cacheDir?: string;
+  /**
+   * Project workspaces (`project.dir` jobs) outlive the service in `<cacheDir>/projects/`, so the
+   * next service on the same cache folder (the next `contract build`, the IDE) finds its work tree
+   * as the last build left it (docs/getting-started.md "The build cache"). Default false: every
+   * workspace is removed on close. Needs `cacheDir`.
+   */
+  persistentWorkspaces?: boolean;
   /** The runtime source folder (Seam 3). Default: the repository's runtime/. */
   runtimeSource?: string;
   /** Finished jobs kept for GET. Default 50. */
@@ -64,8 +72,10 @@ export class JobService {
   private readonly ownsCacheDir: boolean;
   private readonly workspaces: WorkspaceManager;
   private readonly runtime: RuntimeCache;
+  private readonly generated: GenerationCache | null;
   private readonly keepJobs: number;
   private closed = false;
+  private readonly log: (line: string) => void;
   /** The start-up sweep of the Docker engine (when docker is the default or auto picks it). */
   private readonly startupSweep: Promise<unknown>;
 
@@ -75,15 +85,22 @@ export class JobService {
     this.queueSize = Math.max(0, options.queueSize ?? 2 * this.concurrency);
     this.defaultSandbox = options.sandbox ?? 'auto';
     this.keepJobs = options.keepJobs ?? 50;
+    this.log = options.log ?? ((line) => process.stderr.write(`[build-service] ${line}\n`));
     const log = options.docker?.log ?? options.log;
     this.sandboxes = new SandboxRegistry({ bwrap: options.bwrap, docker: { ...options.docker, ...(log ? { log } : {}) } });
     this.projectRoots = (options.projectRoots ?? []).map((r) => realpathSync(r));
     this.ownsCacheDir = !options.cacheDir;
     this.cacheDir = options.cacheDir ?? mkdtempSync(join(tmpdir(), 'contract-build-'));
+    mkdirSync(this.cacheDir, { recursive: true, mode: 0o711 });
     chmodSync(this.cacheDir, 0o711); // job uids must traverse it to reach their own work dir
-    this.workspaces = new WorkspaceManager(join(this.cacheDir, 'ws'), async (workDir) => {
-      await this.sandboxes.sandboxes.docker.release?.(workDir);
-    });
+    this.workspaces = new WorkspaceManager(
+      join(this.cacheDir, 'ws'),
+      async (workDir) => {
+        await this.sandboxes.sandboxes.docker.release?.(workDir);
+      },
+      options.persistentWorkspaces && options.cacheDir ? join(this.cacheDir, 'projects') : undefined,
+    );
+    this.generated = options.persistentWorkspaces && options.cacheDir ? new GenerationCache(join(this.cacheDir, 'generated')) : null;
     this.runtime = new RuntimeCache(options.runtimeSource ?? DEFAULT_RUNTIME_SOURCE, join(this.cacheDir, 'runtime'));
     this.startupSweep = this.sweepAtStart();
   }
@@ -193,20 +210,31 @@ export class JobService {
     return { project: { dir: real }, projectKey: real };
   }
 
+  /**
+   * Throws 503 `closing` or 429 `queue_full` when a job could not be taken now: the HTTP API asks
+   * this before it reads a request body (docs/build-service-api.md), submit() asks it again.
+   */
+  checkCapacity(): void {
+    if (this.closed) throw new ServiceError(503, 'closing', 'the build service is shutting down');
+    if (this.running.size + this.waiting.length >= this.concurrency + this.queueSize) {
+      throw new ServiceError(429, 'queue_full', `queue full: ${this.running.size} running, ${this.waiting.length} waiting (max ${this.concurrency} + ${this.queueSize}); retry later`);
+    }
+  }
+
   /** Submits a job: 400/403 bad request, 429 queue full, 503 sandbox unavailable. */
   /**
    * Queues a job. `owner`: who may list it (GET /api/jobs): a digest of the client's
    * X-Contract-Client key, or undefined (listed to nobody; its id is its only handle).
    */
   async submit(body: unknown, owner?: string): Promise<Job> {
-    if (this.closed) throw new ServiceError(503, 'closing', 'the build service is shutting down');
+    this.checkCapacity();
     const { request, sandbox: choice } = this.parseRequest(body);
-    if (this.running.size + this.waiting.length >= this.concurrency + this.queueSize) {
-      throw new ServiceError(429, 'queue_full', `queue full: ${this.running.size} running, ${this.waiting.length} waiting (max ${this.concurrency} + ${this.queueSize}); retry later`);
-    }
     let resolved;
+    let probeMs = 0;
     try {
+      const tp = Date.now();
       resolved = await this.sandboxes.resolve(choice);
+      probeMs = Date.now() - tp;
     } catch (e) {
       if (e instanceof SandboxUnavailableError) throw new ServiceError(503, 'sandbox_unavailable', e.message);
       throw e;
@@ -221,6 +249,7 @@ export class JobService {
     job.owner = owner;
     job.warnings.push(...resolved.warnings);
     job.sandboxNote = resolved.note;
+    job.sandboxProbeMs = probeMs;
     this.jobs.set(id, job);
     this.evictOld();
     const start = (): void => {
@@ -230,10 +259,20 @@ export class JobService {
           sandbox: resolved.sandbox,
           sandboxNote: resolved.note,
           runtime: this.runtime,
-          acquireWorkspace: (j) =>
-            j.request.projectKey
-              ? this.workspaces.acquireForProject(j.request.projectKey, resolved.sandbox.name as SandboxName)
-              : this.workspaces.acquireFresh(j.id),
+          generated: this.generated,
+          acquireWorkspace: (j, hooks) => {
+            // the host sandboxes' disk bound is a tmpfs work dir; docker bounds its own volume
+            const disk = resolved.sandbox.name === 'docker' ? undefined : workDiskBytes(j.request.limits);
+            return j.request.projectKey
+              ? this.workspaces.acquireForProject(j.request.projectKey, resolved.sandbox.name as SandboxName, disk, hooks)
+              : this.workspaces.acquireFresh(j.id, disk);
+          },
+        })
+        // last resort (execute() handles its own faults): one job's exception never reaches the
+        // process (an unhandled rejection would end the service and every other job)
+        .catch((e: unknown) => {
+          this.log(`internal error in job ${job.id}: ${e instanceof Error ? e.message : String(e)}`);
+          job.finishUnstarted(`internal error: ${e instanceof Error ? e.message : String(e)}`, 'failed');
         })
         .finally(() => {
           this.running.delete(job);
@@ -265,7 +304,7 @@ export class JobService {
       job.finishUnstarted('cancelled', 'cancelled');
       return job;
     }
-    await job.cancel();
+    await job.cancel().catch(() => {});
     return job;
   }
 

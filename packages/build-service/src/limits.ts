@@ -20,6 +20,14 @@ export interface Limits {
   runSeconds: number;
   /** Bytes kept per output stream (stdout, stderr) of each step; then a truncation notice. */
   outputBytesPerStream: number;
+  /** Size of the job's writable /work (sources, generated tree, build products, logs), MiB. */
+  workDiskMiB: number;
+  /** Wall time of the host-side prepare step (Cactal load + validate + generate), seconds. */
+  prepareSeconds: number;
+  /** Bytes of Cactal model (`.contract` files) one job may hand to the generator. */
+  modelBytes: number;
+  /** Files the generator may write for one job. */
+  generatedFiles: number;
 }
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
@@ -28,6 +36,69 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   buildSeconds: 120,
   runSeconds: 60,
   outputBytesPerStream: 1024 * 1024,
+  workDiskMiB: 256,
+  prepareSeconds: 30,
+  modelBytes: 1024 * 1024,
+  generatedFiles: 5000,
+});
+
+/**
+ * Host-side bounds on what comes back from a sandbox and on what clients send (not per job).
+ * Output of a sandboxed process is untrusted text: these bound the work and memory the service
+ * spends on it (docs/sandbox.md, "Limits"; docs/build-service-api.md, POST /api/jobs).
+ */
+export interface ServiceBounds {
+  /** Characters of one output line looked at by the diagnostic/tag parsers (the rest is cut with a marker). */
+  parsedLineChars: number;
+  /** Characters kept of a diagnostic's message, file or option (the rest is cut with a marker). */
+  diagnosticTextChars: number;
+  /** Diagnostics in one gcc JSON line (one compilation); more: the line stays plain text. */
+  diagnosticsPerJsonLine: number;
+  /** Nesting of `children` in a gcc JSON diagnostic; deeper: the line stays plain text. */
+  diagnosticDepth: number;
+  /** `children` (and `locations`) of one gcc JSON diagnostic; more: the line stays plain text. */
+  diagnosticChildren: number;
+  /** Entries of a run's logs/ and run/ looked at when collecting artifacts; the rest are not listed. */
+  listedEntries: number;
+  /** Bytes of a POST /api/jobs body; a larger Content-Length is refused (413) before any byte is read. */
+  requestBodyBytes: number;
+  /** Request bodies read at once; beyond, 503 before reading (memory stays below this x requestBodyBytes). */
+  requestBodiesAtOnce: number;
+  /** Seconds a request body may take to arrive (a slow client must not hold a reading slot for ever): then 408. */
+  requestBodySeconds: number;
+  /** Bytes of one WebSocket message from a client (only {"type":"cancel"} is understood). */
+  wsMessageBytes: number;
+  /** Milliseconds between two reads of a running job's CSV logs for the live trace channel (pipeline/trace-tail.ts). */
+  tracePollMs: number;
+  /** Bytes of the CSV logs read per poll, over all the files (the rest is read at the next polls). */
+  traceReadBytesPerPoll: number;
+  /** Milliseconds a record is held back at most to put the logs in mono_ns order (docs/build-service-api.md "Trace channel"). */
+  traceOrderWindowMs: number;
+  /** Log files tailed per job (the artifact collector's file bound); more are left to the collected logs. */
+  traceFiles: number;
+  /** Record lines of one trace event. */
+  traceLinesPerEvent: number;
+  /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
+  traceLinesKept: number;
+}
+
+export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
+  parsedLineChars: 8192,
+  diagnosticTextChars: 4096,
+  diagnosticsPerJsonLine: 1000,
+  diagnosticDepth: 8,
+  diagnosticChildren: 256,
+  listedEntries: 1024,
+  requestBodyBytes: 80 * 1024 * 1024,
+  requestBodiesAtOnce: 2,
+  requestBodySeconds: 30,
+  wsMessageBytes: 4096,
+  tracePollMs: 50,
+  traceReadBytesPerPoll: 1024 * 1024,
+  traceOrderWindowMs: 150,
+  traceFiles: 256,
+  traceLinesPerEvent: 1000,
+  traceLinesKept: 50_000,
 });
 
 /** Time a cancel may take, end to end (documented guarantee, checked by the tests). */
@@ -41,11 +112,16 @@ export const LIMIT_NAMES: readonly LimitName[] = [
   'buildSeconds',
   'runSeconds',
   'outputBytesPerStream',
+  'workDiskMiB',
+  'prepareSeconds',
+  'modelBytes',
+  'generatedFiles',
 ];
 
 /** How a limit was enforced for a job, reported in its result. */
 export type Mechanism =
   | 'cgroup-v1'
+  | 'cgroup-v2'
   | 'rlimit-as'
   | 'rlimit-nproc'
   | 'docker'
@@ -55,10 +131,14 @@ export type Mechanism =
   | 'docker-readonly-rootfs'
   | 'service-timer'
   | 'service-counter'
+  | 'service-check'
+  | 'worker-heap'
+  | 'tmpfs-size'
+  | 'docker-tmpfs-volume'
   | 'none';
 
 export interface LimitHit {
-  name: 'memory' | 'processes' | 'buildSeconds' | 'runSeconds' | 'outputBytesPerStream';
+  name: 'memory' | 'processes' | 'buildSeconds' | 'runSeconds' | 'outputBytesPerStream' | 'workDiskMiB' | 'prepareSeconds' | 'modelBytes' | 'generatedFiles';
   value: number;
   unit: 'bytes' | 'count' | 's';
   mechanism: Mechanism;
@@ -93,7 +173,21 @@ export function memoryBytes(limits: Limits): number {
   return Math.floor(limits.memoryMiB * 1024 * 1024);
 }
 
-/** "memory limit 512 MiB", "process limit 256", "run time limit 60 s", "output limit 1 MiB per stream". */
+export function workDiskBytes(limits: Limits): number {
+  return Math.floor(limits.workDiskMiB * 1024 * 1024);
+}
+
+/** The error a step throws when one of its limits is hit outside a sandboxed process (prepare). */
+export class LimitHitError extends Error {
+  constructor(readonly hit: LimitHit) {
+    super(describeLimitHit(hit));
+  }
+}
+
+/**
+ * "memory limit 512 MiB", "process limit 256", "run time limit 60 s", "output limit 1 MiB per stream",
+ * "disk limit 256 MiB (work dir)", "prepare time limit 30 s", "model size limit 1 MiB", "generated file limit 5000".
+ */
 export function describeLimitHit(hit: LimitHit): string {
   switch (hit.name) {
     case 'memory':
@@ -106,6 +200,14 @@ export function describeLimitHit(hit: LimitHit): string {
       return `run time limit ${hit.value} s`;
     case 'outputBytesPerStream':
       return `output limit ${formatBytes(hit.value)} per stream`;
+    case 'workDiskMiB':
+      return `disk limit ${formatBytes(hit.value)} (work dir)`;
+    case 'prepareSeconds':
+      return `prepare time limit ${hit.value} s`;
+    case 'modelBytes':
+      return `model size limit ${formatBytes(hit.value)}`;
+    case 'generatedFiles':
+      return `generated file limit ${hit.value}`;
   }
 }
 

@@ -1,12 +1,18 @@
 /**
  * createBuildServer(options): the build service's HTTP server (127.0.0.1 by default), usable on
- * its own (`listen()`) or mounted into another server (`handle()` + `handleUpgrade()`).
+ * its own (`listen()`) or mounted into another server (`handle()` + `handleUpgrade()`). `listen()`
+ * refuses foreign Hosts and cross-site Origins (http/local-guard.ts), requires the service token
+ * on every request and upgrade (http/service-token.ts) and refuses `sandbox: "none"` jobs unless
+ * `allowNoneSandbox`; a server that mounts the service applies its own checks before calling
+ * `handle()` / `handleUpgrade()` (docs/build-service-api.md, "Token").
  */
 import { createServer, type IncomingMessage, type Server, type ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import type { Duplex } from 'node:stream';
 import { afterSeq, createRouter } from './http/router.js';
 import { JobWebSockets } from './http/ws.js';
+import { foreignRequest } from './http/local-guard.js';
+import { ServiceToken, unauthorizedBody } from './http/service-token.js';
 import { JobService, type BuildServiceOptions } from './job-service.js';
 
 export interface BuildServerOptions extends BuildServiceOptions {
@@ -16,6 +22,19 @@ export interface BuildServerOptions extends BuildServiceOptions {
   port?: number;
   /** Default '/api'. */
   basePath?: string;
+  /**
+   * `listen()` only: the token every request and WebSocket upgrade must send in X-Contract-Token
+   * (at least 16 characters). Default: a random one per start, returned by `listen()`.
+   * `false` turns the check off (tests, or a front that guards the service itself).
+   */
+  token?: string | false;
+  /** `listen()` only: a file to write the token to, mode 0600 (e.g. in $XDG_RUNTIME_DIR). */
+  tokenFile?: string;
+  /**
+   * `listen()` only: accept `sandbox: "none"` jobs (no isolation: they run as the service's user).
+   * Default false: such jobs are refused with 403. Mounted (`handle()`), the caller decides.
+   */
+  allowNoneSandbox?: boolean;
 }
 
 export interface BuildServer {
@@ -24,7 +43,8 @@ export interface BuildServer {
   handle(req: IncomingMessage, res: ServerResponse): Promise<boolean>;
   /** Handles a WebSocket upgrade for `${basePath}/jobs/:id/ws`; false when not ours. */
   handleUpgrade(req: IncomingMessage, socket: Duplex, head: Buffer): boolean;
-  listen(): Promise<{ url: string; host: string; port: number }>;
+  /** Resolves the URL and the token clients must send (null when started with `token: false`). */
+  listen(): Promise<{ url: string; host: string; port: number; token: string | null }>;
   close(): Promise<void>;
 }
 
@@ -36,32 +56,56 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
   const route = createRouter(service, basePath);
   const sockets = new JobWebSockets(service);
   let server: Server | null = null;
+  const token = options.token === false ? null : new ServiceToken(options.token);
+  const standalone = { allowNoneSandbox: options.allowNoneSandbox === true };
 
   const handleUpgrade = (req: IncomingMessage, socket: Duplex, head: Buffer): boolean => {
     const url = new URL(req.url ?? '/', 'http://localhost');
     const m = new RegExp(`^${basePath.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}/jobs/([^/]+)/ws$`).exec(url.pathname);
     if (!m) return false;
     if (!sockets.upgrade(m[1]!, afterSeq(req, url), req, socket, head)) {
-      socket.end('HTTP/1.1 404 Not Found\r\nContent-Length: 0\r\n\r\n');
+      socket.end('HTTP/1.1 404 Not Found\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
     }
     return true;
   };
 
   return {
     service,
-    handle: route,
+    handle: (req, res) => route(req, res),
     handleUpgrade,
     async listen() {
       const host = options.host ?? '127.0.0.1';
       server = createServer((req, res) => {
-        void route(req, res).then((handled) => {
-          if (!handled) {
-            res.writeHead(404, { 'Content-Type': 'application/json' });
-            res.end(JSON.stringify({ error: `no route ${req.method} ${req.url}`, code: 'not_found' }));
-          }
-        });
+        const refused = foreignRequest(req, host);
+        if (refused) {
+          res.writeHead(403, { 'Content-Type': 'application/json' });
+          res.end(JSON.stringify({ error: refused, code: 'forbidden' }));
+          return;
+        }
+        if (token && !token.presented(req)) {
+          res.writeHead(401, { 'Content-Type': 'application/json', Connection: 'close' });
+          res.end(JSON.stringify(unauthorizedBody(req)));
+          return;
+        }
+        route(req, res, standalone)
+          .then((handled) => {
+            if (!handled) {
+              res.writeHead(404, { 'Content-Type': 'application/json' });
+              res.end(JSON.stringify({ error: `no route ${req.method} ${req.url}`, code: 'not_found' }));
+            }
+          })
+          // a request's failure ends that request only, never the service
+          .catch(() => res.destroy());
       });
       server.on('upgrade', (req, socket, head) => {
+        if (foreignRequest(req, host)) {
+          socket.end('HTTP/1.1 403 Forbidden\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
+          return;
+        }
+        if (token && !token.presented(req)) {
+          socket.end('HTTP/1.1 401 Unauthorized\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
+          return;
+        }
         if (!handleUpgrade(req, socket, head)) socket.destroy();
       });
       await new Promise<void>((resolve, reject) => {
@@ -70,7 +114,8 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
       });
       const addr = server.address() as AddressInfo;
       const shown = addr.family === 'IPv6' ? `[${addr.address}]` : addr.address;
-      return { url: `http://${shown}:${addr.port}`, host: addr.address, port: addr.port };
+      if (token && options.tokenFile) token.writeTo(options.tokenFile);
+      return { url: `http://${shown}:${addr.port}`, host: addr.address, port: addr.port, token: token?.value ?? null };
     },
     async close() {
       sockets.close();

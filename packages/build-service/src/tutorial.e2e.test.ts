@@ -23,7 +23,7 @@ const docker = dockerUp();
 beforeAll(async () => {
   cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
   runtimeSource = snapshotRuntime();
-  server = createBuildServer({ port: 0, concurrency: 3, cacheDir, runtimeSource, projectRoots: [join(TUTORIAL_DIR, '..')] });
+  server = createBuildServer({ token: false, port: 0, concurrency: 3, cacheDir, runtimeSource, projectRoots: [join(TUTORIAL_DIR, '..')] });
   url = (await server.listen()).url;
 }, 240_000);
 

@@ -2,6 +2,7 @@
 import { readFileSync } from 'node:fs';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from './command.js';
 import { COMMANDS } from './commands/index.js';
+import { terminalSafeIO } from './terminal-text.js';
 
 function version(): string {
     try {
@@ -22,7 +23,7 @@ export function helpText(commands: Command[] = COMMANDS): string {
         '',
         'contract <command> --help shows the usage of a command.',
         'exit status: 0 success, 1 failure (e.g. errors found, build failed, a module crashed), 2 bad usage,',
-        '3 environment (no usable sandbox, project busy), 130 interrupted.'
+        '3 environment (no usable sandbox, a build cache folder that cannot be trusted), 130 interrupted.'
     ].join('\n') + '\n';
 }
 
@@ -33,7 +34,9 @@ export const processIO: CliIO = {
 };
 
 /** Runs `contract` with the given arguments; resolves to the exit code. Never throws. */
-export async function runCli(argv: string[], io: CliIO = processIO, commands: Command[] = COMMANDS): Promise<number> {
+export async function runCli(argv: string[], rawIO: CliIO = processIO, commands: Command[] = COMMANDS): Promise<number> {
+    // sandbox output, gcc messages and project file names are printed: no control character passes
+    const io = terminalSafeIO(rawIO);
     const [name, ...rest] = argv;
     if (!name || name === '--help' || name === '-h' || name === 'help') {
         (name ? io.out : io.err)(helpText(commands));

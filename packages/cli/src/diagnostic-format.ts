@@ -1,7 +1,7 @@
 /** Output formats of diagnostics: gcc-like text, the JSON of the CLI contract, SARIF 2.1.0. */
 import { pathToFileURL } from 'node:url';
 import type { WorkspaceDiagnostic } from '@contract-studio/language/node';
-import { findCode } from '@contract-studio/language';
+import type { findCode } from '@contract-studio/language';
 
 /** `file:line:col severity code message`, one per line (newlines in messages are flattened). */
 export function formatText(diagnostics: WorkspaceDiagnostic[], displayPath: (file: string) => string = (f) => f): string {
@@ -17,7 +17,8 @@ export function formatJson(diagnostics: WorkspaceDiagnostic[]): string {
 
 const SARIF_LEVEL: Record<string, string> = { error: 'error', warning: 'warning', info: 'note', hint: 'note' };
 
-export function formatSarif(diagnostics: WorkspaceDiagnostic[], dir: string): string {
+/** `describe`: the language's findCode (passed in: importing the language here would load it for every command). */
+export function formatSarif(diagnostics: WorkspaceDiagnostic[], dir: string, describe: typeof findCode): string {
     const ruleIds = [...new Set(diagnostics.map((d) => d.code))].sort();
     const log = {
         version: '2.1.0',
@@ -27,7 +28,7 @@ export function formatSarif(diagnostics: WorkspaceDiagnostic[], dir: string): st
                 driver: {
                     name: 'contract check',
                     informationUri: 'https://github.com/contract-studio',
-                    rules: ruleIds.map((id) => ({ id, shortDescription: { text: findCode(id)?.description ?? id } }))
+                    rules: ruleIds.map((id) => ({ id, shortDescription: { text: describe(id)?.description ?? id } }))
                 }
             },
             originalUriBaseIds: { SRCROOT: { uri: pathToFileURL(dir.endsWith('/') ? dir : dir + '/').href } },

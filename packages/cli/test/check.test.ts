@@ -6,21 +6,12 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
-import type { CliIO } from '../src/command.js';
+import { capture as captureIn, type CapturedIO } from './capture-io.js';
 
 const REPO = fileURLToPath(new URL('../../../', import.meta.url));
 const TUTORIAL = join(REPO, 'examples/tutorial');
 
-function capture(cwd = REPO): CliIO & { stdout: string; stderr: string } {
-    const io = {
-        stdout: '',
-        stderr: '',
-        cwd,
-        out(text: string) { io.stdout += text; },
-        err(text: string) { io.stderr += text; }
-    };
-    return io;
-}
+const capture = (cwd = REPO): CapturedIO => captureIn(cwd);
 
 let bad: string;
 beforeAll(() => {

@@ -1,24 +1,17 @@
 /** `contract new`, `build`, `run`: usage errors, messages, exit codes, text output — real commands on real files. */
 import { spawnSync } from 'node:child_process';
-import { chmodSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
-import type { CliIO } from '../src/command.js';
 import { checkCpus, checkStart, moduleFailures, parseDuration } from '../src/commands/run.js';
+import { exitCodeOf } from '../src/commands/build.js';
+import type { Job, JobResult } from '@contract-studio/build-service';
 import { REPO } from './e2e/harness.js';
+import { capture } from './capture-io.js';
+import { removeScratch } from './scratch.js';
 
-function capture(cwd: string): CliIO & { stdout: string; stderr: string } {
-    const io = {
-        stdout: '',
-        stderr: '',
-        cwd,
-        out(text: string) { io.stdout += text; },
-        err(text: string) { io.stderr += text; },
-    };
-    return io;
-}
 
 let root: string;
 beforeAll(() => {
@@ -28,7 +21,7 @@ beforeAll(() => {
 });
 afterAll(() => {
     delete process.env.CONTRACT_CACHE_DIR;
-    rmSync(root, { recursive: true, force: true });
+    removeScratch(root);
 });
 
 describe('contract new', () => {
@@ -114,6 +107,18 @@ describe('contract build / run usage', () => {
         ];
         expect(moduleFailures(lines)).toEqual([{ module: 'MSC', how: 'died by signal 11 (Segmentation fault)' }]);
     });
+
+    it('exits 4 for a run that hit a limit or has run issues, 1 for other failures, 130 when cancelled', () => {
+        const base = { ok: false, step: 'run', exitCode: 0, signal: null, message: '', limitHit: null, issues: [], truncated: { stdout: false, stderr: false }, durations_ms: {}, mechanisms: null } as unknown as JobResult;
+        const failed = { status: 'failed' } as Job;
+        const limit = { name: 'runSeconds', value: 60, unit: 's', mechanism: 'service-timer' } as const;
+        expect(exitCodeOf({ ...base, limitHit: limit }, failed)).toBe(4);
+        expect(exitCodeOf({ ...base, issues: [{ kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #2 after 10 periods' }] }, failed)).toBe(4);
+        expect(exitCodeOf({ ...base, exitCode: 1 }, failed)).toBe(1);
+        expect(exitCodeOf({ ...base, step: 'build', issues: [] }, failed)).toBe(1);
+        expect(exitCodeOf({ ...base, limitHit: limit }, { status: 'cancelled' } as Job)).toBe(130);
+        expect(exitCodeOf({ ...base, ok: true }, { status: 'succeeded' } as Job)).toBe(0);
+    });
 });
 
 describe('contract build / run on a project (bwrap)', () => {
@@ -123,6 +128,49 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stdout).toBe('');
         expect(io.stderr).toMatch(/^ok: build succeeded \[bwrap; prepare \d+\.\d s, build \d+\.\d s\]\n$/);
     }, 240_000);
+
+    it('uses CONTRACT_CACHE_DIR, and --cache-dir over it; a second build writes and compiles nothing', async () => {
+        const env = capture(root);
+        expect(await runCli(['build', 'robot', '--sandbox', 'bwrap', '--verbose'], env)).toBe(0);
+        expect(env.stderr).toContain(`build cache: ${join(root, 'cache')} (env)\n`);
+        const opt = join(root, 'cache-opt');
+        const first = capture(root);
+        expect(await runCli(['build', 'robot', '--sandbox', 'bwrap', '--verbose', '--cache-dir', 'cache-opt'], first)).toBe(0);
+        expect(first.stderr).toContain(`build cache: ${opt} (option)\n`);
+        expect(readdirSync(join(opt, 'projects')).length).toBe(1);
+        expect(readdirSync(join(opt, 'runtime')).filter((n) => n.startsWith('runtime-')).length).toBe(1);
+        const again = capture(root);
+        expect(await runCli(['build', 'robot', '--sandbox', 'bwrap', '--verbose', '--cache-dir', 'cache-opt'], again)).toBe(0);
+        expect(again.stderr).toMatch(/work tree ready: \d+ file\(s\), 0 updated \(incremental\)/);
+        expect(again.stderr).not.toMatch(/^cc /m);
+        // --verbose times every step
+        for (const step of ['loading the build service', 'sandbox choice', 'workspace (lock, checks)', 'work tree check (digest)', 'generation + copy', 'runtime', 'sandbox start', 'work tree digest']) {
+            expect(again.stderr).toMatch(new RegExp(`^time: ${step.replace(/[()+]/g, '\\$&')}.* \\d+ ms$`, 'm'));
+        }
+    }, 240_000);
+
+    it('contract cache shows the cache folder; contract cache clear removes it (mounted work trees too)', async () => {
+        const show = capture(root);
+        expect(await runCli(['cache', '--cache-dir', 'cache-opt'], show)).toBe(0);
+        expect(show.stdout).toBe(`${join(root, 'cache-opt')}\n`);
+        expect(show.stderr).toContain('1 runtime build(s), 1 project work tree(s)');
+        const clear = capture(root);
+        expect(await runCli(['cache', 'clear', '--cache-dir', 'cache-opt'], clear)).toBe(0);
+        expect(clear.stderr).toBe(`cleared ${join(root, 'cache-opt')}\n`);
+        expect(existsSync(join(root, 'cache-opt'))).toBe(false);
+    });
+
+    it('refuses a cache folder that is a link, or writable by others, with exit 3 and what to do', async () => {
+        mkdirSync(join(root, 'open-cache'), { mode: 0o777 });
+        chmodSync(join(root, 'open-cache'), 0o777);
+        symlinkSync(join(root, 'cache'), join(root, 'linked-cache'));
+        const open = capture(root);
+        expect(await runCli(['build', 'robot', '--cache-dir', 'open-cache'], open)).toBe(3);
+        expect(open.stderr).toContain(`contract build: the cache folder ${join(root, 'open-cache')} is writable by every user (mode 777)`);
+        const linked = capture(root);
+        expect(await runCli(['build', 'robot', '--cache-dir', 'linked-cache'], linked)).toBe(3);
+        expect(linked.stderr).toContain(`the cache folder ${join(root, 'linked-cache')} is a symbolic link`);
+    });
 
     it('shows progress on a terminal, none with --format json (under a pseudo-terminal from script(1))', () => {
         const bin = join(REPO, 'packages/cli/bin/contract.js');
@@ -144,6 +192,8 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stdout).toContain('contract-launch: modules pinned to CPUs 1');
         expect(io.stdout).toContain('[ORD] activate goTo');
         expect(io.stdout).toContain('contract-launch: all modules stopped cleanly');
+        // the live trace channel's records are not output lines (docs/build-service-api.md "Trace channel")
+        expect(io.stdout + io.stderr).not.toMatch(/^\d+,\d{4}-\d\d-\d\dT[^,]*,[A-Z]+,/m);
         expect(io.stderr).toContain(`CSV logs: 4 file(s) in ${join(root, 'robot-logs')}`);
         expect(code).toBe(0);
         const mis = readdirSync(join(root, 'robot-logs')).find((f) => f.startsWith('MIS_'))!;
@@ -185,5 +235,30 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stdout).toContain('contract-launch: FAILED: module CTL crashed');
         expect(code).toBe(1);
         expect(readdirSync(join(dir, 'logs')).some((f) => f.startsWith('CTL_'))).toBe(true);
+    }, 240_000);
+
+    it('exits 4 and names the module when an exec region never sets *stateindex = -1 (issue 18)', async () => {
+        const dir = join(root, 'stuck');
+        expect(await runCli(['new', 'stuck'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'stuck'], capture(root))).toBe(0);
+        const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const looping = source.replace('*stateindex = -1; //the run is finished', '/* the end of the run forgotten */');
+        expect(looping).not.toBe(source);
+        writeFileSync(file, looping);
+        const io = capture(root);
+        const code = await runCli(['run', 'stuck', '--sandbox', 'bwrap', '--duration', '3s'], io);
+        expect(io.stdout).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: does its exec region set \*stateindex = -1\?$/m);
+        expect(io.stdout.match(/\[ORD\] overrun/g) ?? []).toHaveLength(1); // one line, not one per tick
+        expect(io.stderr).toMatch(/^FAILED: run finished with 1 problem\(s\): CTL has not finished release #\d+ after \d+ periods/m);
+        expect(io.stderr).toMatch(/^problem: CTL has not finished release/m);
+        expect(io.stderr).not.toMatch(/^ok:/m);
+        expect(code).toBe(4);
+        const json = capture(root);
+        expect(await runCli(['run', 'stuck', '--sandbox', 'bwrap', '--duration', '3s', '--format', 'json'], json)).toBe(4);
+        const out = JSON.parse(json.stdout) as { ok: boolean; status: string; result: { issues: { kind: string; module?: string }[] } };
+        expect(out.ok).toBe(false);
+        expect(out.status).toBe('failed');
+        expect(out.result.issues.map((i) => [i.kind, i.module])).toEqual([['module-stuck', 'CTL']]);
     }, 240_000);
 });

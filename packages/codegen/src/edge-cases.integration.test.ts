@@ -33,14 +33,14 @@ describe('edge-case models', () => {
     it('generate a tree that builds with -Werror', () => {
         const { dir, cleanup } = tempDir('codegen-edge-');
         try {
-            const report = generateFromArchitecture(edgy, dir, { runtime: RUNTIME_DIR });
+            const report = generateFromArchitecture(edgy, dir);
             expect(report.errors).toEqual([]);
             const tree = readTree(dir);
             expect(tree.get('generated/architecture/common/SharedDeep.h')).toContain('char s[256];');
             expect(tree.get('generated/architecture/modules/MAX_mod/module.c')).toContain('char label[256] = "\\?\\?=";');
             expect(tree.get('generated/architecture/Makefile')).toMatch(/^START \?= $/m); // no supervisor function to start
             ensureRuntimeLibrary();
-            const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
+            const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
             expect(out).not.toMatch(/warning:/);
         } finally {
             cleanup();

@@ -1,18 +1,11 @@
-import { join, resolve } from 'node:path';
+import { resolve } from 'node:path';
 import type { LangiumDocument } from 'langium';
 import type { Model } from '@contract-studio/language';
 import { generateFiles } from './generators/generate-files.js';
-import { ARCH_DIR } from './generators/build-settings.js';
 import { architectureFromModels } from './model/from-langium.js';
 import type { Architecture } from './model/architecture.js';
-import { runtimeFromArchitecture } from './runtime-location.js';
 import { emptyReport, type GenerationReport } from './writer/report.js';
 import { writeTree } from './writer/write-tree.js';
-
-export interface GenerateOptions {
-    /** The runtime folder the Makefiles point at by default (CONTRACT_RUNTIME); see runtime-location.ts. */
-    runtime?: string;
-}
 
 /** Anything that carries a Cactal model: a Langium document, a loadWorkspace() document, or a model. */
 export type ModelSource = LangiumDocument<Model> | { document: LangiumDocument<Model> } | Model;
@@ -28,12 +21,15 @@ function modelOf(s: ModelSource): Model {
     return d ? d.parseResult.value : (s as Model);
 }
 
-/** Writes the architecture's C tree (SPEC §3) into `outDir` (the project's src-gen), merging protected regions. */
-export function generateFromArchitecture(arch: Architecture, outDir: string, options: GenerateOptions = {}): GenerationReport {
-    const settings = { runtimeFromArchitecture: runtimeFromArchitecture(join(resolve(outDir), ARCH_DIR), options.runtime) };
+/**
+ * Writes the architecture's C tree (docs/codegen.md, "The tree") into `outDir` (the project's
+ * src-gen), merging protected regions. The tree depends only on the model and the generator, never on `outDir` or the machine:
+ * the runtime is chosen at build time (docs/architecture.md, Seam 3).
+ */
+export function generateFromArchitecture(arch: Architecture, outDir: string): GenerationReport {
     let files;
     try {
-        files = generateFiles(arch, settings);
+        files = generateFiles(arch);
     } catch (e) {
         const report = emptyReport();
         report.errors.push({ file: '(model)', message: `cannot generate: ${(e as Error).message}` });
@@ -52,7 +48,7 @@ export function generateFromArchitecture(arch: Architecture, outDir: string, opt
  * Seam 4: generates the C tree of a checked Cactal workspace into `outDir`. Refuses (report with
  * errors, nothing written) when a document has parse, link or validation errors.
  */
-export function generateArchitecture(documents: ModelSource[], outDir: string, options: GenerateOptions = {}): GenerationReport {
+export function generateArchitecture(documents: ModelSource[], outDir: string): GenerationReport {
     const report = emptyReport();
     const sorted = [...documents].sort((a, b) => {
         const ua = documentOf(a)?.uri.toString() ?? '';
@@ -73,5 +69,5 @@ export function generateArchitecture(documents: ModelSource[], outDir: string, o
         report.errors.unshift({ file: '(model)', message: 'the model has errors: nothing was generated (run `contract check` for details)' });
         return report;
     }
-    return generateFromArchitecture(architectureFromModels(sorted.map(modelOf)), outDir, options);
+    return generateFromArchitecture(architectureFromModels(sorted.map(modelOf)), outDir);
 }

@@ -1,13 +1,13 @@
 /**
- * @contract-studio/codegen — Cactal model -> C source tree (SPEC §3, report §5), with protected
+ * @contract-studio/codegen — Cactal model -> C source tree (docs/codegen.md, report §5), with protected
  * regions merged on every regeneration. Entry points: generateArchitecture (Seam 4) and the parts
  * it is made of (plain architecture model, generators, region merge, tree writer).
  */
-export { generateArchitecture, generateFromArchitecture, type GenerateOptions, type ModelSource } from './generate-architecture.js';
+export { generateArchitecture, generateFromArchitecture, type ModelSource } from './generate-architecture.js';
 export { architectureFromModels } from './model/from-langium.js';
 export type * from './model/architecture.js';
 export { computePriorities, PRIORITY, type Priorities } from './model/priorities.js';
 export { generateFiles } from './generators/generate-files.js';
-export { runtimeFromArchitecture, INSTALLED_RUNTIME } from './runtime-location.js';
+export { DEFAULT_RUNTIME } from './generators/build-settings.js';
 export * from './regions/index.js';
 export * from './writer/index.js';

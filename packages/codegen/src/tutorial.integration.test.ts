@@ -34,7 +34,7 @@ describe('the tutorial project (examples/tutorial)', () => {
         const ws = await loadWorkspace(dir);
         expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
         const before = readTree(join(dir, 'src-gen'));
-        const report = generateArchitecture(ws.documents, join(dir, 'src-gen'), { runtime: '../../../../../runtime' });
+        const report = generateArchitecture(ws.documents, join(dir, 'src-gen'));
         expect(report.errors).toEqual([]);
         expect(report.filesWritten).toBe(0);
         expect(readTree(join(dir, 'src-gen'))).toEqual(before);

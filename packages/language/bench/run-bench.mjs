@@ -2,17 +2,21 @@
 // Language benchmark: full workspace build (parse + link + validate) of the synthetic architecture,
 // the incremental rebuild after a one-character change in one module file, and three editor requests
 // on the built workspace: format every file, hover on a periodic schema (timing analysis), rename a
-// module referenced by its schema and the scheduler configuration.
+// module referenced by its schema and the scheduler configuration; and the check of a `.scenario`
+// naming every module, schema and rule against that workspace.
 // Writes bench/parts/language.json (repository root). Needs `npm run build -w packages/language`.
 import { mkdtempSync, readFileSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { URI } from 'langium';
+import { isModule, isSchema, isSupervisor, rulesOf } from '../dist/index.js';
 import { loadWorkspace } from '../dist/node/index.js';
+import { scenarioDiagnostics } from '../dist/lsp/scenario/scenario-diagnostics.js';
 import { writeSyntheticArchitecture } from './synthetic-architecture.js';
 
 const FULL_RUNS = 3;
+const SCENARIO_RUNS = 21;
 const EDIT_RUNS = 7;
 const FORMAT_RUNS = 3;
 const HOVER_RUNS = 21;
@@ -70,6 +74,32 @@ async function measureEditorRequests(workspace) {
     return { 'lsp.format_all_ms': format_all, 'lsp.hover_ms': hover, 'lsp.rename_ms': rename };
 }
 
+/**
+ * A `.scenario` that names every module, schema and rule of the workspace checked against it, as
+ * the language server does on each keystroke in a scenario (docs/simulation.md "Editing scenarios"):
+ * parse + model checks + LSP conversion, median ms.
+ */
+function measureScenarioCheck(workspace) {
+    const models = workspace.documents.map((d) => d.model);
+    const lines = [];
+    for (const m of models) {
+        for (const e of m.elements) {
+            if (isModule(e)) lines.push(`expect module ${e.name} running`);
+            else if (isSchema(e)) lines.push(`expect schema ${e.name} active`);
+            else if (isSupervisor(e)) for (const f of e.functions) for (const r of rulesOf(f)) lines.push(`expect rule ${e.name}.${f.name}.${r.name} active`);
+        }
+    }
+    const text = lines.join('\n');
+    const times = [];
+    for (let i = 0; i < SCENARIO_RUNS; i++) {
+        const t0 = performance.now();
+        const diagnostics = scenarioDiagnostics(text, { models });
+        times.push(performance.now() - t0);
+        if (diagnostics.length) fail(`the generated scenario has ${diagnostics.length} diagnostics, first: ${diagnostics[0].message}`);
+    }
+    return { 'lsp.scenario_check_ms': Math.round(median(times) * 100) / 100, 'lsp.scenario_lines': lines.length };
+}
+
 const dir = mkdtempSync(join(tmpdir(), 'cactal-bench-'));
 try {
     const files = writeSyntheticArchitecture(dir);
@@ -92,6 +122,7 @@ try {
     const warnings = workspace.diagnostics.filter((d) => d.severity === 'warning').length;
 
     const lsp = await measureEditorRequests(workspace);
+    const scenario = measureScenarioCheck(workspace);
 
     // incremental: one character of one module file (C=10us <-> C=20us), rebuilt through the DocumentBuilder
     const target = workspace.documents.find((d) => d.file.startsWith('modules/'));
@@ -119,6 +150,7 @@ try {
         'lsp.workspace_build_cpu_ms': Math.round(median(fullCpu)),
         'lsp.incremental_edit_cpu_ms': Math.round(median(editCpu) * 10) / 10,
         ...lsp,
+        ...scenario,
         'lsp.workspace_files': files,
         'lsp.workspace_errors': errors.length + editErrors,
         'lsp.workspace_warnings': warnings

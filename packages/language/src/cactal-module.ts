@@ -14,6 +14,7 @@ import { ImportResolver } from './scoping/import-resolver.js';
 import { CactalDocumentValidator } from './validation/cactal-document-validator.js';
 import { registerValidationChecks } from './validation/cactal-validator.js';
 import { CactalLspModule } from './lsp/cactal-lsp-module.js';
+import { CactalDocumentUpdateHandler } from './lsp/scenario/scenario-document-update-handler.js';
 
 /** Services added by the Cactal language on top of Langium's. */
 export type CactalAddedServices = {
@@ -44,12 +45,16 @@ export const CactalModule: Module<CactalServices, PartialLangiumServices & Cacta
 
 /**
  * Shared-service overrides: the document factory guards the parser against pathological nesting;
- * the document builder revalidates a file when a file it imports changes.
+ * the document builder revalidates a file when a file it imports changes; `.scenario` files are
+ * kept out of the builder (the scenario support checks them: src/lsp/scenario/).
  */
 export const CactalSharedModule: Module<LangiumSharedServices, PartialLangiumSharedServices> = {
     workspace: {
         LangiumDocumentFactory: (services) => new CactalDocumentFactory(services),
         DocumentBuilder: (services) => new CactalDocumentBuilder(services)
+    },
+    lsp: {
+        DocumentUpdateHandler: (services) => new CactalDocumentUpdateHandler(services)
     }
 };
 

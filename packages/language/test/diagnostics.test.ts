@@ -1,5 +1,5 @@
 /**
- * Every diagnostic code of SPEC §2.1–2.3 (and the syntax/linking codes): a case that raises it and
+ * Every diagnostic code of docs/language-reference.md §1–3 (and the syntax/linking codes): a case that raises it and
  * a near-identical case that does not.
  */
 import { describe, expect, it } from 'vitest';
@@ -113,6 +113,18 @@ export const CASES: Record<string, CodeCase> = {
     'identifier-c-keyword': {
         raise: { 'a.contract': 'datatype T {int double};' },
         clean: { 'a.contract': 'datatype T {int double_};' }
+    },
+    'identifier-c-reserved': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int time; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } data flows { out :0 int time_; }') },
+        message: "'time' cannot name a port in the generated C",
+        data: { suggestion: 'time_' }
+    },
+    'identifier-generated-clash': {
+        raise: { 'a.contract': 'datatype Pose {float x};\ndatatype POSE {int y};' },
+        clean: { 'a.contract': 'datatype Pose {float x};\ndatatype Pose2 {int y};' },
+        message: "datatype 'POSE' and datatype 'Pose' would share the generated include guard SHARED_POSE_H",
+        data: { suggestion: 'Pose_' }
     },
     'identifier-reserved-prefix': {
         raise: { 'a.contract': 'datatype T {int _a};' },

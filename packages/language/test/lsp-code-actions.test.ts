@@ -1,4 +1,4 @@
-/** Quick fixes (SPEC §2.7): add a missing import, upper-case a module name, renumber a duplicate port index. */
+/** Quick fixes (docs/ide.md "Editor services"): add a missing import, upper-case a module name, renumber a duplicate port index. */
 import { describe, expect, it } from 'vitest';
 import type { CodeAction, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import { build, type Built } from './helpers.js';

@@ -1,7 +1,7 @@
-/** Completion (SPEC §2.7): keywords, names in scope through imports, port indexes of the referenced module. */
+/** Completion (docs/ide.md "Editor services"): keywords, names in scope through imports, port indexes of the referenced module. */
 import type { LangiumDocument } from 'langium';
 import { describe, expect, it } from 'vitest';
-import type { CompletionItem } from 'vscode-languageserver-protocol';
+import { CompletionItemKind, InsertTextFormat, type CompletionItem } from 'vscode-languageserver-protocol';
 import { build, type Built } from './helpers.js';
 import { ARCHITECTURE } from './lsp-workspace.js';
 
@@ -82,5 +82,40 @@ synchronous module MXX { data flows { out :0 <|> } }`);
         for (const k of ['import', 'datatype', 'function', 'synchronous', 'asynchronous', 'periodic', 'event', 'scheduler', 'supervisor']) {
             expect(labels).toContain(k);
         }
+    });
+});
+
+describe('completion on an empty line of a rule body', () => {
+    const sup = (body: string) => `import "types.contract";
+import "msc.contract";
+supervisor SUQ { event flows { out :1 TypeD f; } go() { rules {
+    R: [elapsed=1ms]
+        ${body}
+} } }`;
+
+    it('offers whole actions (activate schema / supervisor / module, subscribe, notify, ...) and conditions as snippets', async () => {
+        const { items } = await completeAt(ARCHITECTURE, 'q.contract', sup('<|>\n        [endof(R)]'));
+        const snippets = items.filter((i) => i.kind === CompletionItemKind.Snippet);
+        const labels = snippets.map((i) => i.label);
+        for (const l of ['activate schema', 'activate supervisor', 'activate critical module', 'subscribe', 'notify', 'parameterize', 'compute', '[endof(rule)]', '[elapsed=time]', '[ORD:0]']) {
+            expect(labels).toContain(l);
+        }
+        const activate = snippets.find((i) => i.label === 'activate supervisor')!;
+        expect(activate.insertTextFormat).toBe(InsertTextFormat.Snippet);
+        expect(activate.textEdit?.newText ?? activate.insertText).toBe('activate supervisor ${1:SUP}.${2:function}(${3})');
+        // the snippets come first, the bare keywords stay
+        expect(items.findIndex((i) => i.kind === CompletionItemKind.Snippet)).toBeLessThan(items.findIndex((i) => i.label === 'activate'));
+    });
+
+    it('after an action, the next line offers actions and the closing condition again', async () => {
+        const { items } = await completeAt(ARCHITECTURE, 'q.contract', sup('notify :1;\n        <|>'));
+        const labels = items.map((i) => i.label);
+        expect(labels).toContain('activate schema');
+        expect(labels).toContain('[endof(rule)]');
+    });
+
+    it('outside rules (a module body) no rule snippet is offered', async () => {
+        const { items } = await completeAt(ARCHITECTURE, 'm.contract', 'synchronous module MZ {\n    <|>\n}');
+        expect(items.some((i) => i.kind === CompletionItemKind.Snippet)).toBe(false);
     });
 });

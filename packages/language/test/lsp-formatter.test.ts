@@ -1,4 +1,4 @@
-/** Formatter (SPEC §2.7): canonical layout, idempotent, never changes the AST, keeps comments. */
+/** Formatter (docs/ide.md "Editor services"): canonical layout, idempotent, never changes the AST, keeps comments. */
 import { readdirSync, readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { EmptyFileSystem, isReference, URI, type AstNode, type LangiumDocument } from 'langium';
@@ -122,5 +122,23 @@ describe('formatter', () => {
             const comments = text.match(/\/\/[^\n]*|\/\*[\s\S]*?\*\//g) ?? [];
             for (const c of comments) expect(once).toContain(c.trimEnd());
         });
+    });
+});
+
+describe('formatting a file it cannot parse', () => {
+    it('declines with the reason: the first syntax error, with its line and column', () => {
+        const doc = parse('synchronous module MSZ {\n    scheduling { C=1ms }\n}');
+        const result = formatter.tryFormat(doc);
+        expect('reason' in result && result.reason).toMatch(/^Not formatted: line 2, column \d+: .+\. Fix the syntax error first/);
+        expect(formatter.formatDocument(doc)).toEqual([]); // no connection here: nothing to tell, nothing changed
+    });
+
+    it('a lexer error (a character Cactal does not know) is named too', () => {
+        const result = formatter.tryFormat(parse('datatype T {int x};\n§'));
+        expect('reason' in result && result.reason).toMatch(/^Not formatted: line 2, column 1: /);
+    });
+
+    it('a well-formed file still formats', () => {
+        expect(formatter.tryFormat(parse('datatype T {int x};'))).toHaveProperty('text');
     });
 });

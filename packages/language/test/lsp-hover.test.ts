@@ -1,4 +1,4 @@
-/** Hover (SPEC §2.7): types, ports by index, resolved values with defaults, module C, schema timing. */
+/** Hover (docs/ide.md "Editor services"): types, ports by index, resolved values with defaults, module C, schema timing. */
 import { describe, expect, it } from 'vitest';
 import type { MarkupContent } from 'vscode-languageserver-protocol';
 import { build, type Built } from './helpers.js';
@@ -72,5 +72,28 @@ describe('hover', () => {
         const ws = await build({ ...ARCHITECTURE, 'o.contract': 'supervisor SUO { go() { rules { R: [ORD:0] [ORD:1] } } }' });
         expect(await hover(ws, 'o.contract', 'ORD:0', 1)).toContain('critical lateness');
         expect(await hover(ws, 'o.contract', 'ORD:1', 1)).toContain('activation was refused');
+    });
+});
+
+describe('hover on timing properties', () => {
+    it('`C=500us` in a module: the value in µs and its meaning', async () => {
+        const ws = await build(ARCHITECTURE);
+        const text = await hover(ws, 'msa.contract', 'C=500us', 0);
+        expect(text).toContain('= 500 µs');
+        expect(text).toContain('computation time');
+        expect(await hover(ws, 'msa.contract', 'C=500us', 4)).toContain('= 500 µs'); // on the value too
+    });
+
+    it('`PERIOD=` and `CRITICAL_DELAY=` in a schema: µs, utilisation and critical path', async () => {
+        const ws = await build(ARCHITECTURE);
+        const period = await hover(ws, 'schema.contract', 'PERIOD=', 0);
+        expect(period).toContain('= 10,000 µs');
+        // C: MSA 500us + MSC 1ms + MSD 2ms = 3.5ms over 10ms; MSD alone (2ms) is the critical path
+        expect(period).toContain('utilisation of `cmd`: 35% (sum C = 3,500 µs)');
+        expect(period).toContain('critical path: 2,000 µs (MSD)');
+        const delay = await hover(ws, 'schema.contract', 'CRITICAL_DELAY=', 2);
+        expect(delay).toContain('= 8,000 µs');
+        expect(delay).toContain('ORD:0');
+        expect(delay).toContain('utilisation of `cmd`: 35%');
     });
 });

@@ -1,4 +1,4 @@
-/** Go to definition, find references and rename across files (SPEC §2.7), ports by index included. */
+/** Go to definition, find references and rename across files (docs/ide.md "Editor services"), ports by index included. */
 import { describe, expect, it } from 'vitest';
 import type { Location, LocationLink, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import { build, uriOf, type Built } from './helpers.js';

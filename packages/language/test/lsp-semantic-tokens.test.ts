@@ -1,4 +1,4 @@
-/** Semantic highlighting (SPEC §2.7): keywords, types, modules, schemas, ports (by index too), labels. */
+/** Semantic highlighting (docs/ide.md "Editor services"): keywords, types, modules, schemas, ports (by index too), labels. */
 import { SemanticTokensDecoder, type AbstractSemanticTokenProvider } from 'langium/lsp';
 import { describe, expect, it } from 'vitest';
 import { build } from './helpers.js';

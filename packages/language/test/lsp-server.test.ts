@@ -10,57 +10,10 @@ import { join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { ARCHITECTURE } from './lsp-workspace.js';
+import { Client } from './lsp-stdio-client.js';
+
 
 const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
-
-/** Minimal LSP client over the server's stdio (Content-Length framing). */
-class Client {
-    private buffer = Buffer.alloc(0);
-    private nextId = 1;
-    private readonly pending = new Map<number, (msg: { result?: unknown; error?: { message: string } }) => void>();
-    readonly notifications: Array<{ method: string; params: unknown }> = [];
-
-    constructor(private readonly child: ChildProcessWithoutNullStreams) {
-        child.stdout.on('data', (chunk: Buffer) => this.receive(chunk));
-    }
-
-    private receive(chunk: Buffer): void {
-        this.buffer = Buffer.concat([this.buffer, chunk]);
-        for (;;) {
-            const headerEnd = this.buffer.indexOf('\r\n\r\n');
-            if (headerEnd < 0) return;
-            const length = Number(/Content-Length: (\d+)/i.exec(this.buffer.subarray(0, headerEnd).toString())?.[1]);
-            if (this.buffer.length < headerEnd + 4 + length) return;
-            const msg = JSON.parse(this.buffer.subarray(headerEnd + 4, headerEnd + 4 + length).toString());
-            this.buffer = this.buffer.subarray(headerEnd + 4 + length);
-            if (msg.id !== undefined && msg.method === undefined) this.pending.get(msg.id)?.(msg);
-            else if (msg.id !== undefined) this.send({ jsonrpc: '2.0', id: msg.id, result: null }); // server -> client requests
-            else this.notifications.push(msg);
-        }
-    }
-
-    private send(msg: unknown): void {
-        const body = Buffer.from(JSON.stringify(msg));
-        this.child.stdin.write(`Content-Length: ${body.length}\r\n\r\n`);
-        this.child.stdin.write(body);
-    }
-
-    request<T>(method: string, params: unknown): Promise<T> {
-        const id = this.nextId++;
-        return new Promise((resolve, reject) => {
-            const timer = setTimeout(() => reject(new Error(`${method}: no answer in 20 s`)), 20_000);
-            this.pending.set(id, (msg) => {
-                clearTimeout(timer);
-                if (msg.error) reject(new Error(msg.error.message)); else resolve(msg.result as T);
-            });
-            this.send({ jsonrpc: '2.0', id, method, params });
-        });
-    }
-
-    notify(method: string, params: unknown): void {
-        this.send({ jsonrpc: '2.0', method, params });
-    }
-}
 
 describe('contract-language-server (stdio)', () => {
     let dir: string;
@@ -89,13 +42,7 @@ describe('contract-language-server (stdio)', () => {
     }, 30_000);
 
     afterAll(async () => {
-        if (client) {
-            await client.request('shutdown', null).catch(() => undefined);
-            client.notify('exit', null);
-        }
-        if (child && child.exitCode === null) {
-            await new Promise((resolve) => { const t = setTimeout(() => { child.kill(); resolve(undefined); }, 3000); child.on('exit', () => { clearTimeout(t); resolve(undefined); }); });
-        }
+        await client?.stop();
         if (dir) rmSync(dir, { recursive: true, force: true });
     });
 
@@ -116,6 +63,21 @@ describe('contract-language-server (stdio)', () => {
         const edits = await client.request<Array<{ newText: string }>>('textDocument/formatting', { textDocument: { uri: uri('msc.contract') }, options: { tabSize: 4, insertSpaces: true } });
         expect(edits.length).toBe(1);
         expect(edits[0]!.newText).toContain('scheduling {\n        C = 1ms;\n    }');
+    }, 30_000);
+
+    it('formatting a file with a syntax error changes nothing and says why (window/showMessage)', async () => {
+        client.notify('textDocument/didOpen', { textDocument: { uri: uri('broken.contract'), languageId: 'cactal', version: 1, text: 'synchronous module MSZ {\n    scheduling { C=1ms }\n}' } });
+        const edits = await client.request<unknown[]>('textDocument/formatting', { textDocument: { uri: uri('broken.contract') }, options: { tabSize: 4, insertSpaces: true } });
+        expect(edits).toEqual([]);
+        const deadline = Date.now() + 5000;
+        let shown: Array<{ type: number; message: string }> = [];
+        while (Date.now() < deadline && !shown.length) {
+            await new Promise((r) => setTimeout(r, 50));
+            shown = client.notifications.filter((n) => n.method === 'window/showMessage').map((n) => n.params as { type: number; message: string });
+        }
+        expect(shown).toHaveLength(1);
+        expect(shown[0]!.type).toBe(2); // warning
+        expect(shown[0]!.message).toMatch(/^Not formatted: line 2, column \d+: .+Fix the syntax error first/);
     }, 30_000);
 
     it('publishes diagnostics with codes for an opened file with a problem', async () => {

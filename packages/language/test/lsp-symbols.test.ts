@@ -1,4 +1,4 @@
-/** Outline (SPEC §2.7): document symbols of every kind of element. */
+/** Outline (docs/ide.md "Editor services"): document symbols of every kind of element. */
 import { readFileSync } from 'node:fs';
 import { fileURLToPath } from 'node:url';
 import { EmptyFileSystem } from 'langium';

@@ -1,4 +1,4 @@
-/** SPEC §2.5: every scheduler-configuration diagnostic code, raised and not raised by a near-identical case. */
+/** docs/language-reference.md §5: every scheduler-configuration diagnostic code, raised and not raised by a near-identical case. */
 import { describe, expect, it } from 'vitest';
 import { architecture, supervisor } from './architecture-fixture.js';
 import { describeCodeCases, type CodeCase } from './code-cases.js';
@@ -65,7 +65,7 @@ const CASES: Record<string, CodeCase> = {
     }
 };
 
-describeCodeCases('scheduler configuration diagnostics (SPEC §2.5): raised and not raised', 'Scheduler configuration', CASES);
+describeCodeCases('scheduler configuration diagnostics: each code raised by its case, not by a near-identical one', 'Scheduler configuration', CASES);
 
 describe('scheduler configuration: more behaviour', () => {
     it('an activated periodic schema without any scheduler configuration is an error on the action', async () => {

@@ -1,4 +1,4 @@
-/** SPEC §2.4: every schema diagnostic code, raised and not raised by a near-identical case. */
+/** docs/language-reference.md §4: every schema diagnostic code, raised and not raised by a near-identical case. */
 import { describe, expect, it } from 'vitest';
 import { architecture } from './architecture-fixture.js';
 import { describeCodeCases, type CodeCase } from './code-cases.js';
@@ -95,7 +95,7 @@ const CASES: Record<string, CodeCase> = {
     }
 };
 
-describeCodeCases('schema diagnostics (SPEC §2.4): raised and not raised', 'Schemas', CASES);
+describeCodeCases('schema diagnostics: each code raised by its case, not by a near-identical one', 'Schemas', CASES);
 
 describe('schemas: more behaviour', () => {
     it('the base fixture architecture has no error and no warning', async () => {

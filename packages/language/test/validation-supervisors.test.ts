@@ -1,4 +1,4 @@
-/** SPEC §2.6: every supervisor diagnostic code, raised and not raised by a near-identical case. */
+/** docs/language-reference.md §6: every supervisor diagnostic code, raised and not raised by a near-identical case. */
 import { describe, expect, it } from 'vitest';
 import { architecture, supervisor, type SupervisorOptions } from './architecture-fixture.js';
 import { describeCodeCases, type CodeCase } from './code-cases.js';
@@ -8,6 +8,11 @@ const sup = (rules: string, options: SupervisorOptions = {}) => architecture({ '
 /** A rule subscribing to MAA:2 on :2, so that MAA:2 events are legitimate. */
 const SUBSCRIBE = 'S0: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=1s]';
 const withSub = (rule: string) => sup(`${SUBSCRIBE}\n${rule}`);
+/** A second periodic schema sharing MSC with sc1. */
+const SC2 = {
+    'sc2.contract': 'periodic schema sc2() { realtime { PERIOD=10ms; CRITICAL_DELAY=10ms; } modules { MSB (); MSC (); } scheduling graph { MSB -> MSC; } }',
+    'sched.contract': 'scheduler configuration { modules { MSA; MSB; MSC; MSD; } schemas { sc1; sc2; } }'
+};
 
 const CASES: Record<string, CodeCase> = {
     'supervisor-function-duplicate': {
@@ -105,10 +110,16 @@ const CASES: Record<string, CodeCase> = {
             'glb.contract': 'import "sup.contract";\nsupervisor GLB { mission() { rules { R: [elapsed=1ms] activate supervisor SUP.action() [elapsed=2ms] } } }'
         }),
         message: 'Supervisors activate each other: SUP -> GLB -> SUP.'
+    },
+    'supervisor-schema-conflict': {
+        raise: architecture({ ...SC2, 'sup.contract': supervisor('R: [elapsed=1ms] activate schema sc1(); activate schema sc2() [elapsed=2ms]') }),
+        clean: architecture({ ...SC2, 'sup.contract': supervisor('R: [elapsed=1ms] activate schema sc1() [elapsed=2ms]\nQ: [elapsed=3ms] activate schema sc2() [elapsed=4ms]') }),
+        message: 'Rule R activates periodic schemas sc1 and sc2, which share module MSC',
+        data: { conflictsWith: 'sc1', modules: ['MSC'] }
     }
 };
 
-describeCodeCases('supervisor diagnostics (SPEC §2.6): raised and not raised', 'Supervisors', CASES);
+describeCodeCases('supervisor diagnostics: each code raised by its case, not by a near-identical one', 'Supervisors', CASES);
 
 describe('supervisors: more behaviour', () => {
     const errorsAndWarnings = async (files: Record<string, string>) =>

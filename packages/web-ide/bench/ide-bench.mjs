@@ -49,7 +49,7 @@ try {
     context = await chromium.launchPersistentContext(dir, { executablePath: '/usr/bin/chromium', args, viewport: { width: 1440, height: 900 } });
     page = context.pages()[0] ?? (await context.newPage());
     const t0 = Date.now();
-    await page.goto(server.url + '/');
+    await page.goto(server.openUrl);
     await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
     loads.push(Date.now() - t0);
     marks.push(await page.evaluate(() => Object.fromEntries(performance.getEntriesByType('mark').filter((m) => m.name.startsWith('ide:')).map((m) => [m.name.slice(4), Math.round(m.startTime)]))));

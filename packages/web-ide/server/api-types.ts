@@ -28,10 +28,28 @@ export interface GenerateResponse extends GenerateReport {
   ms: number;
 }
 
+/** The answer of GET /api/file. */
+export interface FileReadResponse {
+  path: string;
+  content: string;
+  mtimeMs: number;
+  /** SHA-256 (hex) of the file's bytes: the base a save of this text names (`If-Match`). */
+  version: string;
+}
+
+/** The details of a 409 answer to a save made on a stale base (the file on disk now). */
+export interface StaleSaveDetails {
+  stale: true;
+  content: string;
+  version: string;
+}
+
 /** The answer of PUT /api/file. */
 export interface FileWriteResponse {
   path: string;
   mtimeMs: number;
+  /** The version of the text now on disk (the next save's base). */
+  version: string;
   /**
    * Set when the file is generated and its generated code (outside the protected regions) differed
    * from the file on disk: the server kept the disk's code, wrote the incoming regions into it, and
@@ -40,4 +58,61 @@ export interface FileWriteResponse {
   merged?: true;
   reason?: string;
   content?: string;
+}
+
+/** A problem of a scenario or of the model, with its place (1-based). */
+export interface SimulateDiagnostic {
+  /** Workspace-relative file for model errors; absent for the scenario itself. */
+  file?: string;
+  line: number;
+  column: number;
+  endLine?: number;
+  endColumn?: number;
+  severity: 'error' | 'warning' | 'info';
+  message: string;
+  code?: string;
+}
+
+/** One rule change of a simulated step, as the `sup_rule` records of a real run (docs/simulation.md §4). */
+export interface SimulateRuleChange {
+  timeNs: number;
+  supervisor: string;
+  function: string;
+  rule: string;
+  active: boolean;
+  cause: string;
+}
+
+/** One step of POST /api/simulate: the scenario line, its record's time, what it changed and the state after it. */
+export interface SimulateStep {
+  line: number;
+  source: string;
+  timeNs: number;
+  kind: string;
+  ok: boolean;
+  message?: string;
+  rules: SimulateRuleChange[];
+  actions: Array<{ timeNs: number; who: string; what: string }>;
+  schemas: string[];
+  locals: Array<{ supervisor: string; function: string; name: string; type: string; value: string }>;
+  output?: string;
+  error?: string;
+  /** Entries left out of this step by the server's bounds. */
+  dropped?: number;
+}
+
+/** The answer of POST /api/simulate (200: the scenario ran; 422: diagnostics, nothing ran). */
+export interface SimulateResponse {
+  title?: string;
+  passed: boolean;
+  endNs: number;
+  steps: SimulateStep[];
+  failures: Array<{ line: number; message: string }>;
+  /** A problem of the run itself (harness crashed, timed out). */
+  error?: string;
+  warnings: string[];
+  eventsProcessed: number;
+  /** Wall time of the request on the server, and of the harness run alone. */
+  ms: number;
+  runMs: number;
 }

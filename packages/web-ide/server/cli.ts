@@ -41,7 +41,8 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
   }
   try {
     const ide = await startIdeServer(args);
-    console.log(`ContrACT Studio IDE: ${ide.url}/  (workspace ${ide.workspace})`);
+    // the URL carries the session token (session-token.ts): only whoever reads this output may drive the IDE
+    console.log(`ContrACT Studio IDE: ${ide.openUrl}  (workspace ${JSON.stringify(ide.workspace)})`);
     console.log(`  ${ide.buildServiceNote}`);
     if (args.host !== '127.0.0.1' && args.host !== 'localhost') console.warn(`  warning: listening on ${args.host}, reachable from other machines`);
     const stop = () => {

@@ -26,7 +26,7 @@ afterAll(async () => {
 const call = async (method: string, path: string, body?: unknown, headers: Record<string, string> = {}) => {
   const res = await fetch(ide.url + path, {
     method,
-    headers: { ...(typeof body === 'object' ? { 'content-type': 'application/json' } : {}), ...headers },
+    headers: { 'x-contract-token': ide.token, ...(typeof body === 'object' ? { 'content-type': 'application/json' } : {}), ...headers },
     body: body === undefined ? undefined : typeof body === 'string' ? body : JSON.stringify(body),
   });
   return { status: res.status, body: (await res.json()) as Record<string, unknown> };
@@ -70,6 +70,13 @@ describe('file API over HTTP', () => {
     expect((await call('PUT', '/api/file?path=out-link/evil.txt', 'x')).status).toBe(403);
     expect(existsSync(join(base, 'outside', 'evil.txt'))).toBe(false);
     expect((await call('POST', '/api/rename', { from: 'a.contract', to: '../a.contract' })).status).toBe(403);
+    // a link that stays inside is not followed either (the tree does not list links)
+    symlinkSync(join(ws, 'sub'), join(ws, 'in-link'));
+    const inside = await call('PUT', '/api/file?path=in-link/x.contract', 'x');
+    expect(inside.status).toBe(403);
+    expect(inside.body.error).toMatch(/symbolic links are not followed: in-link\/x\.contract/);
+    expect(existsSync(join(ws, 'sub', 'x.contract'))).toBe(false);
+    expect((await call('GET', '/api/file?path=in-link/new.contract')).status).toBe(403);
     expect((await call('DELETE', '/api/file?path=')).status).toBe(403);
     expect((await call('POST', '/api/create', '{', { 'content-type': 'application/json' })).status).toBe(400);
   });
@@ -78,7 +85,7 @@ describe('file API over HTTP', () => {
     const { request } = await import('node:http');
     const raw = (headers: Record<string, string>, method = 'GET', path = '/api/tree', body = '') =>
       new Promise<number>((resolve, reject) => {
-        const r = request(ide.url + path, { method, headers }, (res) => {
+        const r = request(ide.url + path, { method, headers: { 'x-contract-token': ide.token, ...headers } }, (res) => {
           res.resume();
           resolve(res.statusCode ?? 0);
         });
@@ -101,7 +108,7 @@ describe('file API over HTTP', () => {
 
   it('answers unknown routes and missing front end builds with clear messages', async () => {
     expect((await call('GET', '/api/nope')).status).toBe(404);
-    const page = await fetch(ide.url + '/');
+    const page = await fetch(ide.url + '/', { headers: { 'x-contract-token': ide.token } });
     expect(page.status).toBe(500);
     expect(await page.text()).toMatch(/npm run build/);
   });

@@ -1,18 +1,26 @@
 import type { IncomingMessage, ServerResponse } from 'node:http';
-import { readFile, stat, mkdir, rename, rm, writeFile, lstat } from 'node:fs/promises';
-import { dirname } from 'node:path';
+import { constants } from 'node:fs';
+import { mkdir, open, rename } from 'node:fs/promises';
 import { WorkspacePaths } from './workspace-paths.js';
 import { listTree } from './file-tree.js';
 import { HttpError } from './http-error.js';
 import { readBodyBytes, readJson, sendJson } from './http-util.js';
 import { saveWorkspaceFile } from './guarded-write.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
+import { WorkspaceFs } from './workspace-fs.js';
+import { FileLocks } from './file-locks.js';
+import { baseVersionOf, fileVersion } from './file-version.js';
+
+const { O_WRONLY, O_CREAT, O_EXCL, O_NOFOLLOW } = constants;
 
 /**
  * The workspace file API (all paths workspace-relative, '/' separators):
  *   GET    /api/tree                      -> {root, entries}
- *   GET    /api/file?path=P               -> {path, content, mtimeMs}
- *   PUT    /api/file?path=P   body=text   -> {path, mtimeMs}   (atomic write; creates parents)
+ *   GET    /api/file?path=P               -> {path, content, mtimeMs, version}   (version: file-version.ts)
+ *   PUT    /api/file?path=P   body=text   -> {path, mtimeMs, version}   (atomic write; creates parents)
+ *          header If-Match: "<version>" = the version the text was edited from: when the disk no
+ *          longer has it -> 409 {stale: true, content, version} of the disk, nothing written
+ *          (compare and write run in the file's queue, FileLocks); without the header: blind write
  *          a generated file (src-gen/generated/**, listed in the generator's manifest) is guarded:
  *          -> {path, mtimeMs, merged: true, reason, content} when its generated code differed from
  *          the disk's (the incoming regions were written into the disk text), 409 when it cannot be
@@ -24,57 +32,81 @@ import { GeneratedTreeLock } from './generated-tree-lock.js';
  */
 export async function handleFileApi(
   paths: WorkspacePaths, req: IncomingMessage, res: ServerResponse, url: URL, treeLock = new GeneratedTreeLock(),
+  fileLocks = new FileLocks(),
 ): Promise<boolean> {
   const route = `${req.method} ${url.pathname}`;
+  // paths.entry gives the clear 400/403 answers ('..', absolute, a symlink leaving); every access
+  // then goes through WorkspaceFs, folder by folder from the root, never following a symlink.
+  const fs = paths.fs;
   switch (route) {
     case 'GET /api/tree':
-      sendJson(res, 200, { root: paths.root, entries: await listTree(paths.root) });
+      sendJson(res, 200, { root: paths.root, entries: await listTree(fs) });
       return true;
     case 'GET /api/file': {
-      const abs = paths.resolveEntry(url.searchParams.get('path'));
-      const st = await stat(abs);
-      if (st.isDirectory()) throw new HttpError(400, 'is a folder');
-      if (st.size > 8 * 1024 * 1024) throw new HttpError(413, 'file larger than 8 MiB');
-      sendJson(res, 200, { path: paths.toRelative(abs), content: await readFile(abs, 'utf8'), mtimeMs: st.mtimeMs });
+      const rel = paths.entry(url.searchParams.get('path'));
+      const answer = await fs.withParent(rel, false, async (dir, name) => {
+        const handle = await WorkspaceFs.openFile(dir, name, rel);
+        try {
+          const st = await handle.stat();
+          if (st.isDirectory()) throw new HttpError(400, 'is a folder');
+          if (st.size > 8 * 1024 * 1024) throw new HttpError(413, 'file larger than 8 MiB');
+          const bytes = await handle.readFile();
+          return { path: rel, content: bytes.toString('utf8'), mtimeMs: st.mtimeMs, version: fileVersion(bytes) };
+        } finally {
+          await handle.close();
+        }
+      });
+      sendJson(res, 200, answer);
       return true;
     }
     case 'PUT /api/file': {
-      const abs = paths.resolveEntry(url.searchParams.get('path'));
+      const rel = paths.entry(url.searchParams.get('path'));
+      const base = baseVersionOf(req.headers['if-match']);
+      if (base === 'invalid') throw new HttpError(400, 'If-Match must be one quoted SHA-256 version, as GET /api/file gives it');
       const body = await readBodyBytes(req);
-      const existing = await lstat(abs).catch(() => undefined);
-      if (existing?.isDirectory()) throw new HttpError(409, 'a folder has that name');
-      sendJson(res, 200, await saveWorkspaceFile(paths, abs, body, treeLock));
+      sendJson(res, 200, await saveWorkspaceFile(paths, rel, body, treeLock, { base, fileLocks }));
       return true;
     }
     case 'POST /api/create': {
       const body = await readJson(req);
-      const abs = paths.resolveEntry(body.path);
-      if (await lstat(abs).catch(() => undefined)) throw new HttpError(409, `already exists: ${paths.toRelative(abs)}`);
-      if (body.type === 'dir') await mkdir(abs, { recursive: true });
-      else {
-        await mkdir(dirname(abs), { recursive: true });
-        await writeFile(abs, typeof body.content === 'string' ? body.content : '', { flag: 'wx' });
-      }
-      sendJson(res, 201, { path: paths.toRelative(abs) });
+      const rel = paths.entry(body.path);
+      await fs.withParent(rel, true, async (dir, name) => {
+        if (await WorkspaceFs.entry(dir, name)) throw new HttpError(409, `already exists: ${rel}`);
+        if (body.type === 'dir') return mkdir(dir.at(name));
+        // O_EXCL: never opens an existing entry, nor a symlink planted since the check
+        const handle = await open(dir.at(name), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0o644);
+        try {
+          await handle.writeFile(typeof body.content === 'string' ? body.content : '');
+        } finally {
+          await handle.close();
+        }
+      });
+      sendJson(res, 201, { path: rel });
       return true;
     }
     case 'POST /api/rename': {
       const body = await readJson(req);
-      const from = paths.resolveEntry(body.from);
-      const to = paths.resolveEntry(body.to);
-      await lstat(from);
-      if (await lstat(to).catch(() => undefined)) throw new HttpError(409, `already exists: ${paths.toRelative(to)}`);
+      const from = paths.entry(body.from);
+      const to = paths.entry(body.to);
       if (to.startsWith(from + '/')) throw new HttpError(400, 'cannot move a folder into itself');
-      await mkdir(dirname(to), { recursive: true });
-      await rename(from, to);
-      sendJson(res, 200, { from: paths.toRelative(from), to: paths.toRelative(to) });
+      await fs.withParent(from, false, (fromDir, fromName) =>
+        fs.withParent(to, true, async (toDir, toName) => {
+          if (!(await WorkspaceFs.entry(fromDir, fromName))) throw new HttpError(404, `not found: ${from}`);
+          if (await WorkspaceFs.entry(toDir, toName)) throw new HttpError(409, `already exists: ${to}`);
+          // rename(2) moves the entry itself: a symlink is moved as a link, never followed
+          await rename(fromDir.at(fromName), toDir.at(toName));
+        }),
+      );
+      sendJson(res, 200, { from, to });
       return true;
     }
     case 'DELETE /api/file': {
-      const abs = paths.resolveEntry(url.searchParams.get('path'));
-      await lstat(abs);
-      await rm(abs, { recursive: true });
-      sendJson(res, 200, { path: paths.toRelative(abs) });
+      const rel = paths.entry(url.searchParams.get('path'));
+      await fs.withParent(rel, false, async (dir, name) => {
+        if (!(await WorkspaceFs.entry(dir, name))) throw new HttpError(404, `not found: ${rel}`);
+        await WorkspaceFs.remove(dir, name);
+      });
+      sendJson(res, 200, { path: rel });
       return true;
     }
     default:

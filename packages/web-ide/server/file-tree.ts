@@ -1,19 +1,32 @@
-import { readdir } from 'node:fs/promises';
-import { join } from 'node:path';
 import type { TreeEntry } from './api-types.js';
 import { isAtomicTempFile } from './atomic-write.js';
+import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 
 const SKIPPED = new Set(['node_modules', '.git', '.vite']);
 
-/** Lists a folder recursively: folders first, then files, both sorted by name. */
-export async function listTree(absDir: string, relDir = ''): Promise<TreeEntry[]> {
-  const dirents = await readdir(absDir, { withFileTypes: true });
+/**
+ * Lists the workspace recursively: folders first, then files, both sorted by name. Symlinks are
+ * not listed, and each sub-folder is opened from its parent without following links
+ * (workspace-fs.ts), so a folder swapped for a link during the walk is skipped, not followed.
+ */
+export async function listTree(fs: WorkspaceFs): Promise<TreeEntry[]> {
+  return fs.withDir([], false, (root) => listDir(root, ''));
+}
+
+async function listDir(dir: DirAt, relDir: string): Promise<TreeEntry[]> {
+  const dirents = await WorkspaceFs.list(dir);
   const entries: TreeEntry[] = [];
   for (const d of dirents) {
     if (SKIPPED.has(d.name) || isAtomicTempFile(d.name)) continue;
     const path = relDir ? `${relDir}/${d.name}` : d.name;
     if (d.isDirectory()) {
-      entries.push({ name: d.name, path, type: 'dir', children: await listTree(join(absDir, d.name), path) });
+      const sub = await WorkspaceFs.openSubdir(dir, d.name);
+      if (!sub) continue;
+      try {
+        entries.push({ name: d.name, path, type: 'dir', children: await listDir(sub, path) });
+      } finally {
+        await sub.close();
+      }
     } else if (d.isFile()) {
       entries.push({ name: d.name, path, type: 'file' });
     }

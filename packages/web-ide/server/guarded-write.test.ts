@@ -19,7 +19,7 @@ let ws: string;
 let ide: IdeServer;
 const disk = (p: string) => readFileSync(join(ws, p), 'utf8');
 const put = async (path: string, text: string) => {
-  const res = await fetch(`${ide.url}/api/file?path=${encodeURIComponent(path)}`, { method: 'PUT', body: text });
+  const res = await fetch(`${ide.url}/api/file?path=${encodeURIComponent(path)}`, { method: 'PUT', body: text, headers: { 'x-contract-token': ide.token } });
   return { status: res.status, body: (await res.json()) as Record<string, unknown> };
 };
 
@@ -48,7 +48,7 @@ describe('PUT /api/file on generated files', () => {
     const stale = disk(MAA).replace(EXEC, `${EXEC}\n    /* stale tab: é kept */`);
     writeFileSync(join(ws, 'amodule1.contract'), readFileSync(join(ws, 'amodule1.contract'), 'utf8').replace(
       'out :2 string connection_status;', 'out :2 string connection_status;\n        out :3 string added_status;'));
-    const gen = await fetch(`${ide.url}/api/generate`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: '{"project":""}' });
+    const gen = await fetch(`${ide.url}/api/generate`, { method: 'POST', headers: { 'content-type': 'application/json', 'x-contract-token': ide.token }, body: '{"project":""}' });
     expect(gen.status).toBe(200);
     expect(((await gen.json()) as { updated: string[] }).updated).toContain('generated/architecture/modules/MAA_mod/module.c');
     const regenerated = disk(MAA);

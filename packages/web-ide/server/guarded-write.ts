@@ -1,5 +1,6 @@
-import { readFile, stat } from 'node:fs/promises';
+import { lstat } from 'node:fs/promises';
 import type { WorkspacePaths } from './workspace-paths.js';
+import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import { writeFileAtomic } from './atomic-write.js';
 import { HttpError } from './http-error.js';
 import { isGeneratedFile, splitGeneratedPath } from './generated-files.js';
@@ -7,46 +8,97 @@ import { guardGeneratedWrite } from './region-guard.js';
 import { loadRegionParser } from './integrations.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import type { FileWriteResponse } from './api-types.js';
+import { fileVersion } from './file-version.js';
+import { FileLocks } from './file-locks.js';
 
-async function readIfPresent(abs: string): Promise<Buffer | undefined> {
+const MAX_COMPARED_BYTES = 8 * 1024 * 1024;
+
+async function readIfPresent(dir: DirAt, name: string, rel: string): Promise<Buffer | undefined> {
+  let handle;
   try {
-    return await readFile(abs);
+    handle = await WorkspaceFs.openFile(dir, name, rel);
   } catch (e) {
     if ((e as NodeJS.ErrnoException).code === 'ENOENT') return undefined;
     throw e;
   }
+  try {
+    const st = await handle.stat();
+    if (!st.isFile()) throw new HttpError(409, 'a folder has that name');
+    // a tab never loaded more (GET /api/file refuses it): it cannot be the base of a save
+    if (st.size > MAX_COMPARED_BYTES) throw new HttpError(409, `${rel} on disk is larger than 8 MiB: not overwritten`);
+    return await handle.readFile();
+  } finally {
+    await handle.close();
+  }
 }
 
-async function written(paths: WorkspacePaths, abs: string, extra: Partial<FileWriteResponse> = {}): Promise<FileWriteResponse> {
-  return { path: paths.toRelative(abs), mtimeMs: (await stat(abs)).mtimeMs, ...extra };
+async function written(rel: string, file: string, bytes: Buffer, extra: Partial<FileWriteResponse> = {}): Promise<FileWriteResponse> {
+  return { path: rel, mtimeMs: (await lstat(file)).mtimeMs, version: fileVersion(bytes), ...extra };
+}
+
+/**
+ * A save made on a base that is not the file on disk is never written blindly: 409 with the disk's
+ * text and version, from which the client merges (src/workspace/three-way-merge.ts). A file that
+ * no longer exists is written (nothing on disk to lose: the tab recreates it).
+ */
+function checkBase(rel: string, base: string | undefined, disk: Buffer | undefined): void {
+  if (base === undefined || disk === undefined) return;
+  const version = fileVersion(disk);
+  if (version === base) return;
+  throw new HttpError(409, `${rel} changed on disk since this text was loaded`, { stale: true, version, content: disk.toString('utf8') });
+}
+
+export interface SaveOptions {
+  /** The version (fileVersion) of the text the save was made on: `If-Match`. Undefined: a blind write. */
+  base?: string;
+  /** The per-file queue of the server (one per IDE server, shared by every request). */
+  fileLocks?: FileLocks;
 }
 
 /**
  * The save of PUT /api/file. A file the generator owns (generated-files.ts) is guarded
  * (region-guard.ts): only its protected regions are taken from `body`; the generated code around
  * them stays the disk's (answer `merged`), and a write that cannot be merged is refused with 409.
- * Every other file is written as given. Writes are atomic; guarded ones run under the tree lock,
- * so that Generate All cannot rewrite the file between the read and the write.
+ * Every other file is written as given. Before either, a save naming its base version (`If-Match`)
+ * is compared with the disk: a stale base is refused with 409 and the disk's text (checkBase).
+ * Writes are atomic; every save of a file runs in that file's queue (FileLocks), guarded ones also
+ * under the tree lock, so that Generate All cannot rewrite the file between the read and the write.
  */
-export async function saveWorkspaceFile(paths: WorkspacePaths, abs: string, body: Buffer, lock: GeneratedTreeLock): Promise<FileWriteResponse> {
-  const rel = paths.toRelative(abs);
-  if (!splitGeneratedPath(rel)) {
-    await writeFileAtomic(abs, body);
-    return written(paths, abs);
-  }
-  return lock.run(async () => {
-    const disk = (await readIfPresent(abs))?.toString('latin1');
-    if (disk === undefined || !(await isGeneratedFile(paths.root, rel, disk))) {
-      await writeFileAtomic(abs, body);
-      return written(paths, abs);
+export async function saveWorkspaceFile(
+  paths: WorkspacePaths, rel: string, body: Buffer, lock: GeneratedTreeLock, options: SaveOptions = {},
+): Promise<FileWriteResponse> {
+  // the parent folder is opened from the workspace root without following links (workspace-fs.ts);
+  // the temp file is created O_EXCL in it and renamed over the entry, never through a link
+  const save = (): Promise<FileWriteResponse> => paths.fs.withParent(rel, true, async (dir, name) => {
+    const file = dir.at(name);
+    if ((await WorkspaceFs.entry(dir, name))?.isDirectory()) throw new HttpError(409, 'a folder has that name');
+    // the version check comes first, for every file; a generated file's save that passes it then
+    // goes through the region guard (docs/ide.md, "Saves, versions and merges")
+    const diskBytes = options.base !== undefined || splitGeneratedPath(rel) ? await readIfPresent(dir, name, rel) : undefined;
+    checkBase(rel, options.base, diskBytes);
+    if (!splitGeneratedPath(rel)) {
+      await writeFileAtomic(file, body);
+      return written(rel, file, body);
     }
-    const decision = guardGeneratedWrite(body.toString('latin1'), disk, rel, await loadRegionParser());
-    if (decision.kind === 'refuse') {
-      throw new HttpError(409, decision.message, { region: decision.region, line: decision.line, generated: true });
-    }
-    const bytes = Buffer.from(decision.text, 'latin1');
-    if (decision.text !== disk) await writeFileAtomic(abs, bytes);
-    if (decision.kind === 'write') return written(paths, abs);
-    return written(paths, abs, { merged: true, reason: decision.reason, content: bytes.toString('utf8') });
+    return guardedSave(paths, rel, file, diskBytes, body);
   });
+  // the whole read-compare-write of one file runs in its queue; generated files also in the tree lock
+  const locked = () => (splitGeneratedPath(rel) ? lock.run(save) : save());
+  return (options.fileLocks ?? new FileLocks()).run(rel, locked);
+}
+
+async function guardedSave(paths: WorkspacePaths, rel: string, file: string, diskBytes: Buffer | undefined, body: Buffer): Promise<FileWriteResponse> {
+  const disk = diskBytes?.toString('latin1');
+  if (disk === undefined || !(await isGeneratedFile(paths.root, rel, disk))) {
+    await writeFileAtomic(file, body);
+    return written(rel, file, body);
+  }
+  const decision = guardGeneratedWrite(body.toString('latin1'), disk, rel, await loadRegionParser());
+  if (decision.kind === 'refuse') {
+    throw new HttpError(409, decision.message, { region: decision.region, line: decision.line, generated: true });
+  }
+  const bytes = Buffer.from(decision.text, 'latin1');
+  if (decision.text !== disk) await writeFileAtomic(file, bytes);
+  if (decision.kind === 'write') return written(rel, file, bytes);
+  return written(rel, file, bytes, { merged: true, reason: decision.reason, content: bytes.toString('utf8') });
 }

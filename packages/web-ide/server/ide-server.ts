@@ -1,20 +1,25 @@
 import { createServer, type IncomingMessage, type ServerResponse, type Server } from 'node:http';
-import { lstat, mkdir, writeFile, readFile } from 'node:fs/promises';
+import { constants } from 'node:fs';
+import { open } from 'node:fs/promises';
 import { listTree, flattenFiles } from './file-tree.js';
 import { join, basename } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WorkspacePaths } from './workspace-paths.js';
+import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import { handleFileApi } from './file-api.js';
 import { WorkspaceWatcher } from './workspace-watcher.js';
 import { serveStatic } from './static-files.js';
 import { HttpError } from './http-error.js';
 import { guardRequest } from './request-guard.js';
+import { SessionToken } from './session-token.js';
 import { readJson, sendError, sendJson } from './http-util.js';
 import { PROJECT_TEMPLATES } from './project-templates.js';
-import { renameInGeneratedTree } from './rename-generated.js';
-import { createEmbeddedBuildServer, loadWorkspaceDocuments, runCodegen, type BuildServerLike } from './integrations.js';
+import { createEmbeddedBuildServer, loadWorkspaceDocuments, renameGeneratedEntity, runCodegen, type BuildServerLike } from './integrations.js';
 import type { GenerateResponse } from './api-types.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
+import { FileLocks } from './file-locks.js';
+import { fileVersion } from './file-version.js';
+import { SimulateApi } from './simulate-api.js';
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -26,14 +31,56 @@ export interface IdeServerOptions {
   distDir?: string;
   /** Mount the build service API (default true). */
   buildService?: boolean;
+  /** The session token (default: 32 random bytes, base64url); see session-token.ts. */
+  token?: string;
 }
 
 export interface IdeServer {
   url: string;
+  /** The URL to open in a browser: `url` + `/?token=...` (the page load sets the session cookie). */
+  openUrl: string;
+  /** The session token every /api request and WebSocket upgrade must present. */
+  token: string;
   workspace: string;
   server: Server;
   buildServiceNote: string;
   close(): Promise<void>;
+}
+
+/** A workspace text file and its version, opened without following links (workspace-fs.ts). */
+async function readWorkspaceText(fs: WorkspaceFs, rel: string): Promise<{ text: string; version: string }> {
+  return fs.withParent(rel, false, async (dir, name) => {
+    const handle = await WorkspaceFs.openFile(dir, name, rel);
+    try {
+      const bytes = await handle.readFile();
+      return { text: bytes.toString('utf8'), version: fileVersion(bytes) };
+    } finally {
+      await handle.close();
+    }
+  });
+}
+
+/** The new-project templates, each created O_EXCL|O_NOFOLLOW in the opened folder (409 when one exists). */
+async function createTemplateFiles(dir: DirAt, shown: (name: string) => string): Promise<void> {
+  for (const name of Object.keys(PROJECT_TEMPLATES)) {
+    if (await WorkspaceFs.entry(dir, name)) throw new HttpError(409, `${shown(name)} already exists: choose an empty folder`);
+  }
+  for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) {
+    const { O_WRONLY, O_CREAT, O_EXCL, O_NOFOLLOW } = constants;
+    const handle = await open(dir.at(name), O_WRONLY | O_CREAT | O_EXCL | O_NOFOLLOW, 0o644);
+    try {
+      await handle.writeFile(text);
+    } finally {
+      await handle.close();
+    }
+  }
+}
+
+const NO_SESSION = 'this IDE server needs its session token: open the URL `contract serve` printed (.../?token=...), or send the X-Contract-Token header';
+
+function sendText(res: ServerResponse, status: number, text: string): void {
+  res.writeHead(status, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store' });
+  res.end(text);
 }
 
 const BUILD_ROUTES = /^\/api\/(jobs|sandboxes|health)(\/|$)/;
@@ -47,6 +94,8 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   const watcher = new WorkspaceWatcher(paths.root);
   // Generate All, the rename carry-over and guarded saves of generated files run one at a time.
   const treeLock = new GeneratedTreeLock();
+  // the saves of one file run one at a time (version compare + write: docs/ide.md)
+  const fileLocks = new FileLocks();
   let build: BuildServerLike | undefined;
   let buildServiceNote = 'build service disabled';
   if (options.buildService !== false) {
@@ -58,22 +107,32 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     }
   }
 
+  const token = new SessionToken(options.token);
+  const simulate = new SimulateApi(paths);
+
   const handle = async (req: IncomingMessage, res: ServerResponse): Promise<void> => {
     const url = new URL(req.url ?? '/', 'http://localhost');
     try {
       guardRequest(req, host);
       if (url.pathname.startsWith('/api/')) {
+        if (!token.presented(req)) throw new HttpError(401, NO_SESSION);
         if (BUILD_ROUTES.test(url.pathname)) {
           if (!build) throw new HttpError(503, buildServiceNote);
           if (await build.handle(req, res)) return;
           throw new HttpError(404, `no such build service route: ${url.pathname}`);
         }
         if (req.method === 'GET' && url.pathname === '/api/events') return watcher.attach(res);
-        if (await handleFileApi(paths, req, res, url, treeLock)) return;
+        if (await handleFileApi(paths, req, res, url, treeLock, fileLocks)) return;
         if (await handleProjectApi(req, res, url)) return;
+        if (await simulate.handle(req, res, url)) return;
         throw new HttpError(404, `no such API route: ${req.method} ${url.pathname}`);
       }
       if (req.method !== 'GET' && req.method !== 'HEAD') throw new HttpError(405, 'method not allowed');
+      if (url.searchParams.has('token')) return openSession(req, res, url);
+      // the page itself only with the session (the built assets hold no workspace data)
+      if (!/\.\w+$/.test(url.pathname) || url.pathname.endsWith('.html')) {
+        if (!token.presented(req)) return sendText(res, 401, `${NO_SESSION}\n`);
+      }
       await serveStatic(distDir, req, res, url);
     } catch (e) {
       if (!res.headersSent) sendError(res, e);
@@ -81,19 +140,29 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     }
   };
 
+  /** `/?token=T`: a right token becomes the session cookie, and the address bar loses the token. */
+  const openSession = (req: IncomingMessage, res: ServerResponse, url: URL): void => {
+    if (!token.matches(url.searchParams.get('token'))) return sendText(res, 401, `wrong session token. ${NO_SESSION}\n`);
+    url.searchParams.delete('token');
+    res.writeHead(303, { location: url.pathname + url.search, 'set-cookie': token.setCookie(), 'cache-control': 'no-store', 'referrer-policy': 'no-referrer' });
+    res.end();
+  };
+
   const handleProjectApi = async (req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> => {
     const route = `${req.method} ${url.pathname}`;
     if (route === 'GET /api/snapshot') {
       // Everything the first paint needs in one response: tree + every .contract text (<= 4 MiB).
-      const entries = await listTree(paths.root);
+      const entries = await listTree(paths.fs);
       const files: Record<string, string> = {};
+      const versions: Record<string, string> = {};
       let budget = 4 * 1024 * 1024;
       for (const p of flattenFiles(entries).filter((f) => f.endsWith('.contract'))) {
-        const text = await readFile(join(paths.root, ...p.split('/')), 'utf8').catch(() => undefined);
-        if (text === undefined || (budget -= text.length) < 0) continue;
-        files[p] = text;
+        const read = await readWorkspaceText(paths.fs, p).catch(() => undefined);
+        if (read === undefined || (budget -= read.text.length) < 0) continue;
+        files[p] = read.text;
+        versions[p] = read.version;
       }
-      sendJson(res, 200, { workspace: paths.root, name: basename(paths.root), root: paths.root, entries, files });
+      sendJson(res, 200, { workspace: paths.root, name: basename(paths.root), root: paths.root, entries, files, versions });
       return true;
     }
     if (route === 'GET /api/info') {
@@ -116,15 +185,10 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     }
     if (route === 'POST /api/new-project') {
       const body = await readJson(req);
-      const dir = paths.resolve(body.folder ?? '');
-      for (const name of Object.keys(PROJECT_TEMPLATES)) {
-        if (await lstat(join(dir, name)).catch(() => undefined)) {
-          throw new HttpError(409, `${paths.toRelative(join(dir, name))} already exists: choose an empty folder`);
-        }
-      }
-      await mkdir(dir, { recursive: true });
-      for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) await writeFile(join(dir, name), text, { flag: 'wx' });
-      sendJson(res, 201, { folder: paths.toRelative(dir), files: Object.keys(PROJECT_TEMPLATES).map((n) => paths.toRelative(join(dir, n))) });
+      const folder = paths.toRelative(paths.resolve(body.folder ?? ''));
+      const inFolder = (name: string) => (folder ? `${folder}/${name}` : name);
+      await paths.fs.withDir(folder.split('/').filter(Boolean), true, (dir) => createTemplateFiles(dir, inFolder));
+      sendJson(res, 201, { folder, files: Object.keys(PROJECT_TEMPLATES).map(inFolder) });
       return true;
     }
     if (route === 'POST /api/rename-entity') {
@@ -133,9 +197,10 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       if (typeof body.from !== 'string' || typeof body.to !== 'string') throw new HttpError(400, 'from and to are required');
       const { from, to } = body;
       try {
-        const report = await treeLock.run(() => renameInGeneratedTree(join(projectDir, 'src-gen'), from, to));
+        const report = await treeLock.run(() => renameGeneratedEntity(join(projectDir, 'src-gen'), from, to));
         sendJson(res, 200, report);
       } catch (e) {
+        if (e instanceof HttpError) throw e; // codegen not built: 503
         throw new HttpError(409, (e as Error).message);
       }
       return true;
@@ -146,10 +211,13 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   const server = createServer((req, res) => void handle(req, res));
   // The build service's WebSocket event stream (GET /api/jobs/:id/ws) needs the upgrade too.
   server.on('upgrade', (req, socket, head) => {
+    // same Host/Origin checks and session token as the HTTP API: a socket is read cross-origin
     try {
       guardRequest(req, host);
-    } catch {
-      socket.destroy();
+      if (!token.presented(req)) throw new HttpError(401, NO_SESSION);
+    } catch (e) {
+      const status = e instanceof HttpError ? e.status : 400;
+      socket.end(`HTTP/1.1 ${status} ${status === 401 ? 'Unauthorized' : 'Forbidden'}\r\nConnection: close\r\nContent-Length: 0\r\n\r\n`);
       return;
     }
     if (!build?.handleUpgrade?.(req, socket, head)) socket.destroy();
@@ -167,8 +235,12 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   }
   const addr = server.address();
   const port = typeof addr === 'object' && addr ? addr.port : options.port;
+  token.bindPort(port ?? DEFAULT_PORT);
+  const url = `http://${host.includes(':') ? `[${host}]` : host}:${port}`;
   return {
-    url: `http://${host.includes(':') ? `[${host}]` : host}:${port}`,
+    url,
+    openUrl: `${url}/?token=${token.value}`,
+    token: token.value,
     workspace: paths.root,
     server,
     buildServiceNote,

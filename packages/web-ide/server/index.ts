@@ -2,5 +2,4 @@ export { startIdeServer, DEFAULT_PORT, type IdeServer, type IdeServerOptions } f
 export { runServe, parseServeArgs } from './cli.js';
 export { WorkspacePaths } from './workspace-paths.js';
 export { writeFileAtomic } from './atomic-write.js';
-export { renameInGeneratedTree, renameRegionId } from './rename-generated.js';
 export { PROJECT_TEMPLATES } from './project-templates.js';

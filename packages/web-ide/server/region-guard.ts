@@ -1,5 +1,5 @@
 /**
- * The server-side guard of generated C (SPEC §3.1, §6): a save of a generated file may change the
+ * The server-side guard of generated C (docs/codegen.md "Protected regions", docs/ide.md "Using it"): a save of a generated file may change the
  * content of its protected regions, never the generated code around them. Pure decision on texts;
  * the region parser is codegen's `parseRegions` (passed in, see integrations.ts).
  *

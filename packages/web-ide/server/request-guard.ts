@@ -12,9 +12,12 @@ function hostnameOf(hostHeader: string): string {
 /**
  * Protects a localhost server from other web sites open in the same browser:
  * - DNS rebinding: the Host header must name the loopback address (or the address we bind);
- * - cross-site requests: a state-changing request that carries an Origin must come from our own
- *   host, and JSON bodies must be sent as application/json (which a foreign page cannot do
- *   without a CORS preflight, and we answer no preflight).
+ * - cross-site requests: a state-changing request or a WebSocket upgrade (which browsers do not
+ *   hold to the same-origin policy: a foreign page may open a socket to us and read it) that
+ *   carries an Origin must come from our own host; an opaque `null` origin is refused; JSON bodies
+ *   must be sent as application/json (which a foreign page cannot do without a CORS preflight,
+ *   and we answer no preflight).
+ * Another local user or program is kept out by the session token (session-token.ts), not here.
  */
 export function guardRequest(req: IncomingMessage, boundHost: string): void {
   const host = req.headers.host ?? '';
@@ -22,7 +25,8 @@ export function guardRequest(req: IncomingMessage, boundHost: string): void {
   if (!LOOPBACK.has(name) && name !== boundHost.toLowerCase() && name !== `[${boundHost.toLowerCase()}]`) {
     throw new HttpError(403, `Host ${host || '(none)'} not allowed: open the IDE through its own address`);
   }
-  if (req.method === 'GET' || req.method === 'HEAD') return;
+  const upgrade = req.headers.upgrade !== undefined;
+  if ((req.method === 'GET' || req.method === 'HEAD') && !upgrade) return;
   const origin = req.headers.origin;
   if (origin && origin !== 'null') {
     let originHost = '';

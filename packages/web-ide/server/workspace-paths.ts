@@ -1,16 +1,21 @@
 import { realpathSync, lstatSync } from 'node:fs';
 import { isAbsolute, join, relative, sep, dirname, basename } from 'node:path';
 import { HttpError } from './http-error.js';
+import { WorkspaceFs } from './workspace-fs.js';
 
 /**
  * Resolves user-supplied workspace-relative paths to absolute paths, refusing anything that
  * would leave the workspace: absolute paths, `..` segments, NUL bytes, and symlinks (anywhere on
  * the path) whose target lies outside the workspace. Checks use realpath on the longest existing
  * prefix, so a path to a file that does not exist yet is accepted only if its existing parent
- * folders are inside the workspace.
+ * folders are inside the workspace. These checks are check-then-use (a folder swapped for a
+ * symlink afterwards is not seen): they give clear errors, and the file API then opens every path
+ * through `fs` (workspace-fs.ts), which does not follow symlinks at all.
  */
 export class WorkspacePaths {
   readonly root: string;
+  /** The no-follow, fd-anchored file operations every file API request goes through. */
+  readonly fs: WorkspaceFs;
 
   constructor(root: string) {
     try {
@@ -19,6 +24,7 @@ export class WorkspacePaths {
       throw new Error(`workspace folder not found: ${root}`);
     }
     if (!lstatSync(this.root).isDirectory()) throw new Error(`workspace is not a folder: ${root}`);
+    this.fs = new WorkspaceFs(this.root);
   }
 
   /** Normalised relative path ('' = the workspace root), or an HttpError(400/403). */
@@ -46,6 +52,14 @@ export class WorkspacePaths {
     const abs = this.resolve(userPath);
     if (abs === this.root) throw new HttpError(403, 'the workspace root itself cannot be changed');
     return abs;
+  }
+
+  /**
+   * The normalised relative path of an entry (not the root) after the checks of resolveEntry, for
+   * WorkspaceFs: those checks only give clear errors; the access itself never follows a symlink.
+   */
+  entry(userPath: unknown): string {
+    return this.toRelative(this.resolveEntry(userPath));
   }
 
   /** Workspace-relative path (with '/') of an absolute path known to be inside. */

@@ -1,7 +1,7 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-import type { FileWriteResponse, GenerateResponse, TreeEntry } from '../server/api-types.js';
+import type { FileReadResponse, FileWriteResponse, GenerateResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
 
-export type { TreeEntry, FileWriteResponse };
+export type { TreeEntry, FileWriteResponse, FileReadResponse, StaleSaveDetails };
 /** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
 export type GenerateReport = GenerateResponse;
 
@@ -16,12 +16,12 @@ export class ApiError extends Error {
   }
 }
 
-async function call<T>(method: string, url: string, body?: unknown, raw = false): Promise<T> {
+async function call<T>(method: string, url: string, body?: unknown, raw = false, extraHeaders: Record<string, string> = {}): Promise<T> {
   let res: Response;
   try {
     res = await fetch(url, {
       method,
-      headers: body === undefined ? {} : { 'content-type': raw ? 'text/plain; charset=utf-8' : 'application/json' },
+      headers: { ...(body === undefined ? {} : { 'content-type': raw ? 'text/plain; charset=utf-8' : 'application/json' }), ...extraHeaders },
       body: body === undefined ? undefined : raw ? (body as string) : JSON.stringify(body),
     });
   } catch {
@@ -45,15 +45,28 @@ export interface Snapshot {
   root: string;
   entries: TreeEntry[];
   files: Record<string, string>;
+  /** The version of each file in `files` (the base of the tab's saves). */
+  versions?: Record<string, string>;
+}
+
+/** The disk's text and version when a save was refused because its base is stale (409). */
+export function staleDetails(e: unknown): StaleSaveDetails | undefined {
+  if (!(e instanceof ApiError) || e.status !== 409 || e.details.stale !== true) return undefined;
+  const { content, version } = e.details;
+  return typeof content === 'string' && typeof version === 'string' ? { stale: true, content, version } : undefined;
 }
 
 export const api = {
   snapshot: () => call<Snapshot>('GET', '/api/snapshot'),
   info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
   tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
-  read: (path: string) => call<{ path: string; content: string; mtimeMs: number }>('GET', `/api/file?path=${q(path)}`),
-  /** Saves a file; for a generated file the answer may be `merged` (the text now on disk is in `content`). */
-  write: (path: string, content: string) => call<FileWriteResponse>('PUT', `/api/file?path=${q(path)}`, content, true),
+  read: (path: string) => call<FileReadResponse>('GET', `/api/file?path=${q(path)}`),
+  /**
+   * Saves a file edited from version `base` (If-Match; 409 + staleDetails when the disk moved on;
+   * no base = a blind write). For a generated file the answer may be `merged` (the text now on disk is in `content`).
+   */
+  write: (path: string, content: string, base?: string) =>
+    call<FileWriteResponse>('PUT', `/api/file?path=${q(path)}`, content, true, base ? { 'if-match': `"${base}"` } : {}),
   create: (path: string, type: 'file' | 'dir', content = '') => call<{ path: string }>('POST', '/api/create', { path, type, content }),
   rename: (from: string, to: string) => call<{ from: string; to: string }>('POST', '/api/rename', { from, to }),
   remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),
@@ -63,5 +76,7 @@ export const api = {
     call<{ movedPaths: Array<{ from: string; to: string }>; regionIds: Array<{ file: string; from: string; to: string }> }>(
       'POST', '/api/rename-entity', { project, from, to }),
   submitJob: (body: unknown) => call<{ id: string; status: string; sandbox?: string; warnings?: string[] }>('POST', '/api/jobs', body),
+  /** Runs a scenario text on a project in virtual time (422 with `diagnostics` when it has errors). */
+  simulate: (project: string, scenario: string) => call<SimulateResponse>('POST', '/api/simulate', { project, scenario }),
   cancelJob: (id: string) => call<{ id: string; status: string }>('DELETE', `/api/jobs/${q(id)}`),
 };

@@ -17,9 +17,14 @@ import { debounce } from './util/dom.js';
 import { isContract, projectOf } from './workspace/file-kinds.js';
 import { toRange } from './lsp/lsp-convert.js';
 import { scanProtectedRegions } from './editor/protected-regions.js';
+import { ConflictView } from './editor/conflict-view.js';
+import { LayoutPersistence, layoutKey } from './app/layout-state.js';
 import type { ArchitectureView } from './views/architecture-view.js';
 import type { TimelineView } from './views/timeline-view.js';
 import type { RunLogs } from './views/run-logs.js';
+import { MonitorController } from './monitor/monitor-controller.js';
+import { SimulateController } from './simulate/simulate-controller.js';
+import { STEP_INPUT_FILE } from './simulate/step-input.js';
 
 async function main(): Promise<void> {
   performance.mark('ide:main');
@@ -47,6 +52,8 @@ async function main(): Promise<void> {
   outline.show(undefined);
 
   workspace.onNotice.on((n) => toast(n.level, n.text));
+  new ConflictView(workspace); // overlapping edits of a file: side by side until the user chose
+  lsp.onMessage.on((m) => toast(m.type === 1 ? 'error' : m.type === 2 ? 'warning' : 'info', String(m.message).slice(0, 500)));
   workspace.onTree.on((entries) => {
     explorer.setEntries(entries);
     editors.closeMissing((p) => workspace.hasFile(p));
@@ -55,8 +62,11 @@ async function main(): Promise<void> {
     const states = [...workspace.files.values()];
     const failed = states.filter((f) => f.state === 'error');
     const pending = states.filter((f) => f.state === 'dirty' || f.state === 'saving');
-    ui.status.save.textContent = failed.length ? `✖ Save failed (${failed.length}) — kept locally` : pending.length ? `● Saving ${pending.length}…` : '✓ All saved';
-    ui.status.save.className = `status-item ${failed.length ? 'error' : pending.length ? 'pending' : ''}`;
+    const conflicts = states.filter((f) => f.state === 'conflict');
+    ui.status.save.textContent = failed.length ? `✖ Save failed (${failed.length}) — kept locally`
+      : conflicts.length ? `⚠ Overlapping edits (${conflicts.length}) — choose in the side-by-side view`
+      : pending.length ? `● Saving ${pending.length}…` : '✓ All saved';
+    ui.status.save.className = `status-item ${failed.length ? 'error' : conflicts.length || pending.length ? 'pending' : ''}`;
   };
   workspace.onFileState.on(updateSaveStatus);
   // a new save attempt (or one that went through) makes the last "could not save, retrying" notice out of date
@@ -69,7 +79,7 @@ async function main(): Promise<void> {
   const sevOf = (s: number | undefined): Severity => (s === 1 ? 'error' : s === 2 ? 'warning' : s === 3 ? 'info' : 'hint');
   lsp.onDiagnostics.on(({ uri, diagnostics }) => {
     const path = workspace.pathOf(uri);
-    if (!path) return;
+    if (!path || path.endsWith(STEP_INPUT_FILE)) return; // the Simulate panel's step field: checked in place
     problems.set(`cactal:${path}`, diagnostics.map((d) => ({
       path, line: d.range.start.line + 1, column: d.range.start.character + 1, severity: sevOf(d.severity), message: d.message, source: 'cactal',
     })));
@@ -219,7 +229,7 @@ async function main(): Promise<void> {
       }
     }
     if (changed) lsp.revalidateAll();
-  }), 150);
+  }).catch(() => undefined), 150); // server unreachable: the reconnect ('hello') refreshes again
   const events = new EventSource('/api/events');
   events.addEventListener('change', (e) => {
     const { paths } = JSON.parse((e as MessageEvent).data) as { paths: string[] };
@@ -311,6 +321,11 @@ async function main(): Promise<void> {
     ui.status.job.textContent = `${running ? '⟳' : status === 'succeeded' ? '✓' : '■'} ${status}${message ? `: ${message}` : ''}`;
     ui.status.job.dataset.status = status;
   });
+  // the Monitor: live during a run (trace events), then the job's CSV logs as a recorded run
+  const monitor = new MonitorController({ editors, lsp, workspace, build, button: ui.toolbar.monitor, project: () => currentProject() });
+  // Simulate: supervisors in virtual time, shown in its panel and in the Monitor (docs/simulation.md "In the IDE")
+  const simulate = new SimulateController({ lsp, workspace, monitor, project: () => currentProject(), reveal: () => ui.showPanel('simulate') });
+  ui.addPanel('simulate', 'Simulate', simulate.panel.element).addEventListener('click', () => void simulate.refreshFunctions());
   // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
   build.onFinished.on(({ jobId, action }) => {
     if (action !== 'run') return;
@@ -320,6 +335,7 @@ async function main(): Promise<void> {
         const logs = await fetchJobLogs(jobId);
         for (const p of logs.problems) build.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `timeline: ${p}` });
         if (!logs.files.length) return;
+        void monitor.showRecorded(jobId, logs);
         lastRunLogs = logs;
         timeline?.showRun(logs);
         toast('info', `Run logs of ${logs.files.length} module(s) ready: ▤ Timeline shows the run's activations`);
@@ -354,7 +370,10 @@ async function main(): Promise<void> {
       const { ArchitectureView } = await import('./views/architecture-view.js');
       arch = new ArchitectureView(() => lsp.architecture(), toggleDock);
     }
-    if (archDocked) void arch.update();
+    if (archDocked) {
+      editors.dock(arch.element); // the Monitor may have taken the side pane since
+      void arch.update();
+    }
     else editors.openView(archTab());
   });
   monaco.editor.onDidCreateModel((m) => m.onDidChangeContent(() => archRefresh()));
@@ -428,13 +447,24 @@ async function main(): Promise<void> {
   await lspStarted;
   ui.status.lsp.textContent = '● Cactal language server';
   ui.status.lsp.classList.add('ok');
+  // tabs, cursors, sizes and views of the last session of this workspace (app/layout-state.ts)
+  const viewButtons: Record<string, HTMLButtonElement> = { 'view:architecture': ui.toolbar.arch, 'view:timeline': ui.toolbar.timeline };
+  const layout = new LayoutPersistence({
+    key: layoutKey(workspace.root), editors, hasFile: (p) => workspace.hasFile(p), showPanel: ui.showPanel,
+    openView: async (id) => {
+      viewButtons[id]?.click();
+      for (let i = 0; viewButtons[id] && i < 200 && !editors.isOpen(id); i++) await new Promise((r) => setTimeout(r, 50));
+      return editors.isOpen(id);
+    },
+  });
   const first = workspace.allFiles().find((p) => p.endsWith('supervisor.contract')) ?? workspace.allFiles().find(isContract);
-  if (first) await editors.open(first);
+  if (!(await layout.restore()) && first) await editors.open(first);
+  layout.start();
   performance.mark('ide:editor-open');
   await lsp.workspaceBuilt();
   performance.mark('ide:ready');
   document.body.dataset.ready = 'true';
-  (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco };
+  (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco, monitor, simulate };
 }
 
 void main();

@@ -20,7 +20,7 @@
  * and keep their own subscriber lists.
  * The engines (runtime/src/engines/) are generic: no generated control flow, only data and
  * small generated adapter functions (type operations, user test/compute functions).
- * Semantics: SPEC.md §4.2–4.4 and docs/engines.md.
+ * Semantics: docs/semantics.md (the rules) and docs/engines.md (how the engines carry them out).
  *
  * Conventions used throughout:
  *  - Counts are `int` and go with the pointer they describe (`x`, `nx`). A count of 0 allows
@@ -128,7 +128,8 @@ extern const ContractType contract_type_string;
  * ====================================================================================== */
 
 /**
- * A bool (test) or void (compute) function. Every argument is passed by pointer (SPEC §3).
+ * A bool (test) or void (compute) function. Every argument is passed by pointer, so that compute
+ * functions can assign the supervisor's locals (docs/codegen.md "The tree").
  * The generator emits one adapter per function:
  *     static int call_testit(void **args) { return testit((char *)args[0], (TypeA *)args[1]); }
  *     static int call_doit(void **args) { doit((char *)args[0], (double *)args[1]); return 0; }

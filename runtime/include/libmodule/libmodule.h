@@ -317,6 +317,10 @@ void ContractLogFlush(void);
  *  never happens at the next mailbox read (the library writes records 50 ms old there). */
 void ContractLogFlushIfOlder(RTIME ageNs);
 
+/** [ENGINE] When the oldest record not yet written to the CSV log was logged (GetTime), 0 when
+ *  none waits: an engine that goes idle wakes to write it (readers tail the log while it runs). */
+RTIME ContractLogPendingSince(void);
+
 /** Apply a priority 1..99: SCHED_FIFO if permitted, else one warning on stderr and a nice level.
  *  CONTRACT_SCHED=other skips SCHED_FIFO. Returns 1 if SCHED_FIFO, 0 if nice fallback. */
 int ContractSetPriority(int priority);

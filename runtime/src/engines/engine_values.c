@@ -216,3 +216,48 @@ int engine_build_setting(const EngineScope *s, const ContractParamSetting *setti
         if (engine_apply_assign(s, &setting->parts[i], (unsigned char *)dst, NULL) != 0) return -1;
     return 0;
 }
+
+void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type) {
+    if (len == 0) return;
+    if (!value || !type) {
+        snprintf(buf, len, "?");
+        return;
+    }
+    switch (type->kind) {
+    case CONTRACT_KIND_LONG: {
+        long v;
+        memcpy(&v, value, sizeof v);
+        snprintf(buf, len, "%ld", v);
+        return;
+    }
+    case CONTRACT_KIND_DOUBLE: {
+        double v;
+        memcpy(&v, value, sizeof v);
+        snprintf(buf, len, "%g", v);
+        return;
+    }
+    case CONTRACT_KIND_STRING: {
+        const char *s = value;
+        size_t n = 0, i = 0;
+        if (len < 8) { /* room for at least `"..."` */
+            snprintf(buf, len, "?");
+            return;
+        }
+        buf[n++] = '"';
+        for (; i < CONTRACT_STRING_SIZE && s[i] && i < 64 && n + 6 < len; i++) {
+            unsigned char ch = (unsigned char)s[i];
+            if (ch == '"' || ch == '\\') buf[n++] = '\\';
+            buf[n++] = ch < 0x20 || ch == 0x7f ? '?' : (char)ch;
+        }
+        if (i < CONTRACT_STRING_SIZE && s[i]) {
+            buf[n++] = '.';
+            buf[n++] = '.';
+            buf[n++] = '.';
+        }
+        buf[n++] = '"';
+        buf[n] = 0;
+        return;
+    }
+    default: snprintf(buf, len, "{%zu bytes}", type->size); return;
+    }
+}

@@ -51,6 +51,12 @@ void engine_init_block(unsigned char *block, const ContractVar *vars, int nvars)
 /** Builds the value of a module parameter port into dst (size setting->type->size). */
 int engine_build_setting(const EngineScope *s, const ContractParamSetting *setting, void *dst);
 
+/** Writes a short readable form of a value into buf (trace records, docs/runtime-api.md "Trace
+ *  records"): int `12`, float `%g`, string `"text"` (quotes and backslashes escaped, control
+ *  characters as `?`, cut at 64 characters with `...`), datatype `{N bytes}`; no value or type:
+ *  `?`. Never longer than len - 1. */
+void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type);
+
 /** Copies a NUL-terminated string into a string value (char[256]), truncating. */
 void engine_set_string(char *dst, const char *src);
 

@@ -38,11 +38,20 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
         if (deadline == INT64_MAX || deadline - GetTime() >= IDLE_FLUSH_SLACK_NS) {
             ContractLogFlushIfOlder(IDLE_FLUSH_AGE_NS);
         }
+        /* Records still buffered (younger than 20 ms) must not wait for the next request, which
+           may come seconds later: wake when they are old enough (unless that is too close to the
+           deadline), so that the log on disk — the live trace — lags at most about 20 ms. */
+        int64_t wake = deadline;
+        RTIME pending = ContractLogPendingSince();
+        if (pending) {
+            int64_t due = (int64_t)pending + IDLE_FLUSH_AGE_NS;
+            if (due < wake && (deadline == INT64_MAX || deadline - due >= IDLE_FLUSH_SLACK_NS)) wake = due;
+        }
         struct itimerspec its;
         memset(&its, 0, sizeof its);
-        if (deadline != INT64_MAX) {
-            its.it_value.tv_sec = (time_t)(deadline / 1000000000LL);
-            its.it_value.tv_nsec = (long)(deadline % 1000000000LL);
+        if (wake != INT64_MAX) {
+            its.it_value.tv_sec = (time_t)(wake / 1000000000LL);
+            its.it_value.tv_nsec = (long)(wake % 1000000000LL);
         }
         if (timerfd_settime(timer_fd, TFD_TIMER_ABSTIME, &its, NULL) != 0) {
             fprintf(stderr, "%s: timerfd_settime: %s\n", ContractSelfName(), strerror(errno));

@@ -6,13 +6,13 @@
 #include <string.h>
 
 int engine_send_start(const char *module, const char *function, const void *block, size_t size,
-                      int ackId) {
+                      int ackId, int wantedAck) {
     if (size + CONTRACT_BINARY_ARGS_MAGIC_LEN > CONTRACT_REQUEST_DATA_MAX) return CONTRACT_ETOOBIG;
     RequestMessage *m = calloc(1, sizeof *m);
     if (!m) return CONTRACT_ESYS;
     m->Type = REQ_START;
     strncpy(m->Param.Start.ModAck, ContractSelfName(), CONTRACT_NAME_MAX - 1);
-    m->Param.Start.WantedAck = ACK_NOTHING;
+    m->Param.Start.WantedAck = wantedAck;
     m->Param.Start.AckID = ackId;
     strncpy(m->Param.Start.Function, function, CONTRACT_FUNCTION_MAX - 1);
     memcpy(m->Data, CONTRACT_BINARY_ARGS_MAGIC, CONTRACT_BINARY_ARGS_MAGIC_LEN);

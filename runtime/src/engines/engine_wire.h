@@ -16,10 +16,13 @@
 #define CONTRACT_BINARY_ARGS_MAGIC_LEN 5
 
 /** REQ_START to `module` for `function` (a supervision function or, to ORD, a schema) with a
- *  binary parameter block; no ack wanted; tagged ackId. Returns a CONTRACT_* code. */
+ *  binary parameter block, tagged ackId (the activation id); `wantedAck`: ACK_NOTHING (ORD:
+ *  a refusal is the ORD:1 event) or ACK_START | ACK_NOTDONE (a supervisor answers whether it
+ *  started the function). Returns a CONTRACT_* code. */
 int engine_send_start(const char *module, const char *function, const void *block, size_t size,
-                      int ackId);
-/** REQ_STOP to `module` naming `function` (or schema) in Data; tagged ackId. */
+                      int ackId, int wantedAck);
+/** REQ_STOP to `module` naming `function` (or schema) in Data; tagged ackId (the activation
+ *  id to undo; 0: whichever activation runs). */
 int engine_send_stop(const char *module, const char *function, int ackId);
 /** 1 and the block when the request's Data is a binary argument block, else 0. */
 int engine_binary_args(const RequestMessage *m, const unsigned char **block, size_t *size);

@@ -105,3 +105,25 @@ int holds_started(const char *module, int clear) {
     if (marked && clear) unlink(path);
     return marked;
 }
+
+void holds_flow_name(char *out, size_t n, const char *src, int src_port, const char *dst, int dst_port) {
+    char full[3 * CONTRACT_NAME_MAX];
+    snprintf(full, sizeof full, "flow-%s-%d-%s-%d", src, src_port, dst, dst_port);
+    if (strlen(full) < CONTRACT_NAME_MAX) {
+        snprintf(out, n, "%s", full);
+        return;
+    }
+    unsigned long long h = 1469598103934665603ULL; /* FNV-1a: a stable name per flow */
+    for (const char *p = full; *p; p++) h = (h ^ (unsigned char)*p) * 1099511628211ULL;
+    snprintf(out, n, "flow-%016llx", h);
+}
+
+int holds_take_flow(const char *name) {
+    char path[4200];
+    if (path_of(path, sizeof path, ContractSelfName(), name) != 0 || touch(path) != 0) {
+        ContractLog("flow_hold", name, -1, 0, "cannot record the hold in the run directory");
+        return -1;
+    }
+    ContractLog("flow_hold", name, -1, 0, "hold taken");
+    return 0;
+}

@@ -1,13 +1,15 @@
 /*
  * module_holds.h — which supervisors use which asynchronous modules, shared through the run
- * directory so that SPEC §4.3 holds across supervisors: an event schema starts a module only
- * if it is not already running, and a module used by several active schemas (of one or more
+ * directory so that docs/semantics.md "Event schemas: undo and shared modules" holds across
+ * supervisors: an event schema starts a module only if it is not already running, and a module used by several active schemas (of one or more
  * supervisors) runs until the last one is deactivated.
  *
  * Files (empty, in the run directory):
  *   <SUP>.<M>.hold     supervisor SUP holds module M (one file per supervisor and module)
  *   <M>.started.hold   M was started by a supervisor's event schema (so the last holder stops it)
  *   holds-<M>.hold     the lock of M's holds (hold_lock.h)
+ *   <SUP>.<F>.hold     supervisor SUP's active event schemas use event flow F, named
+ *                      flow-<SRC>-<o>-<DST>-<i> (holds_flow_name): the last user disconnects it
  * The launcher removes a crashed supervisor's <SUP>.*.hold (and a crashed module's
  * <M>.started.hold) with its other files, and every *.hold at the end of a run.
  *
@@ -20,6 +22,8 @@
  */
 #ifndef CONTRACT_MODULE_HOLDS_H
 #define CONTRACT_MODULE_HOLDS_H
+
+#include <stddef.h>
 
 /** Takes the lock of `module`'s holds, waiting for other supervisors to release it. Nested
  *  calls in one process only count (the lock is released by the outermost holds_unlock).
@@ -34,5 +38,13 @@ int holds_take(const char *module, int started);
 int holds_drop(const char *module);
 /** 1 if `module` was started by a supervisor and is not stopped yet; `clear` removes the mark. */
 int holds_started(const char *module, int clear);
+
+/** Event flows are held like modules (same files and lock, under the flow's own name): an
+ *  event flow `SRC:o =* DST:i` is one subscription at SRC whichever schemas ask for it, so a
+ *  supervisor's undo must not disconnect it while another supervisor's active schema uses it.
+ *  The name: `flow-SRC-o-DST-i` (`flow-<hash>` when longer than a module name). */
+void holds_flow_name(char *out, size_t n, const char *src, int src_port, const char *dst, int dst_port);
+/** This supervisor uses flow `name`. 0, or -1 (logged). Drop it with holds_drop(name). */
+int holds_take_flow(const char *name);
 
 #endif

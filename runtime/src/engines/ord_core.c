@@ -1,4 +1,4 @@
-/* ord_core.c — see ord_core.h. Semantics: SPEC §4.2, decisions in docs/engines.md. */
+/* ord_core.c — see ord_core.h. Semantics: docs/semantics.md "Scheduler: ...", decisions in docs/engines.md. */
 #define _POSIX_C_SOURCE 200809L
 #include "ord_core.h"
 
@@ -17,6 +17,7 @@ typedef struct SchemaState {
     char requester[64];
     unsigned char *params;
     int64_t next_tick;
+    int64_t act_t;         /* tick 0 of this activation: cycle k ticks at act_t + k * period */
     /* the current cycle */
     int running;
     int64_t cycle_tick;
@@ -29,6 +30,9 @@ typedef struct SchemaState {
     uint32_t *outstanding; /* per module: id of a release not acked yet, whatever the cycle or
                               activation (kept across deactivation: the module may still run it) */
     int held;              /* cycle started, releases wait until no module of it is outstanding */
+    long cycle_overruns;   /* ticks skipped by the current cycle (only the first is traced)  */
+    long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)     */
+    char *stuck;           /* per module: its release of the current cycle was reported stuck */
     OrdSchemaStats stats;
 } SchemaState;
 
@@ -42,6 +46,15 @@ struct OrdCore {
 };
 
 ENGINE_DEFINE_TRACE(OrdCore)
+
+/* one typed trace fact of ss's current cycle (docs/runtime-api.md "Trace records") */
+static void fact(OrdCore *c, const SchemaState *ss, OrdFactKind kind, int m, uint32_t id) {
+    if (!c->io.fact) return;
+    OrdFact f = {kind, ss->s->name, m >= 0 ? ss->s->modules[m].module : NULL,
+                 (long)((ss->cycle_tick - ss->act_t) / ss->s->period_ns), ss->cycle_tick, id,
+                 c->now - ss->cycle_tick};
+    c->io.fact(c->io.ctx, c->now, &f);
+}
 
 static int schema_index(const OrdCore *c, const char *name) {
     for (int i = 0; i < c->v->nschemas; i++)
@@ -63,6 +76,7 @@ static void release(OrdCore *c, SchemaState *ss, int m) {
     ss->cycle_rel[m] = id;
     ss->outstanding[m] = id;
     trace(c, "release %s (%s)", ss->s->modules[m].module, ss->s->name);
+    fact(c, ss, ORD_FACT_RELEASE, m, id);
     if (c->io.release)
         c->io.release(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->cycle_tick, id);
 }
@@ -99,6 +113,9 @@ static void resume_held(OrdCore *c) {
 static void finish_cycle(OrdCore *c, SchemaState *ss) {
     ss->running = 0;
     ss->stats.completed++;
+    if (ss->cycle_overruns > 1)
+        trace(c, "overrun: %s cycle ended after %ld skipped releases", ss->s->name, ss->cycle_overruns);
+    fact(c, ss, ORD_FACT_COMPLETE, -1, 0);
     int64_t rt = c->now - ss->cycle_tick;
     if (rt > ss->stats.max_response_ns) ss->stats.max_response_ns = rt;
 }
@@ -108,6 +125,8 @@ static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
     ss->running = 1;
     ss->cycle_tick = tick;
     ss->reported = 0;
+    ss->cycle_overruns = 0;
+    ss->cycle_missed = 0;
     ss->pending = s->nmodules;
     ss->stats.cycles++;
     for (int m = 0; m < s->nmodules; m++) {
@@ -115,6 +134,7 @@ static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
         ss->released[m] = 0;
         ss->finished[m] = 0;
         ss->cycle_rel[m] = 0;
+        ss->stuck[m] = 0;
     }
     if (s->nmodules == 0) {
         finish_cycle(c, ss);
@@ -151,12 +171,40 @@ static void give_up_waiting(OrdCore *c, SchemaState *ss) {
         }
 }
 
+/* The cycle started at ss->cycle_tick still runs at `tick`: each module released and not
+   finished for ORD_STUCK_PERIODS periods (at least ORD_STUCK_MIN_NS) is reported once, by name,
+   with the likely cause (a synchronous module's exec region that never sets *stateindex = -1
+   runs for ever: docs/engines.md §4), instead of an overrun at every tick. */
+static void check_stuck(OrdCore *c, SchemaState *ss, int64_t tick) {
+    int64_t period = ss->s->period_ns, elapsed = tick - ss->cycle_tick;
+    int64_t limit = ORD_STUCK_PERIODS * period;
+    if (limit < ORD_STUCK_MIN_NS) limit = ORD_STUCK_MIN_NS;
+    if (period <= 0 || elapsed < limit) return;
+    long periods = (long)(elapsed / period);
+    for (int m = 0; m < ss->s->nmodules; m++) {
+        if (!ss->released[m] || ss->finished[m] || ss->stuck[m]) continue;
+        ss->stuck[m] = 1;
+        ss->stats.stuck_releases++;
+        char msg[320];
+        snprintf(msg, sizeof msg,
+                 "%s has not finished release #%u after %ld periods: does its exec region set "
+                 "*stateindex = -1?",
+                 ss->s->modules[m].module, ss->cycle_rel[m], periods);
+        trace(c, "stuck: %s (%s)", msg, ss->s->name);
+        if (c->io.stuck)
+            c->io.stuck(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->cycle_rel[m], periods, msg);
+    }
+}
+
 static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     int64_t tick = ss->next_tick;
     ss->next_tick += ss->s->period_ns;
     if (c->skip_late && until >= ss->next_tick) { /* a later tick is already due: this one is obsolete */
         ss->stats.missed_ticks++;
-        trace(c, "missed tick of %s", ss->s->name);
+        /* a module hogging the CPU makes ORD late at every tick: one line per cycle, and the
+           stuck check still runs (it may never see an overrun) */
+        if (!ss->running || ++ss->cycle_missed == 1) trace(c, "missed tick of %s", ss->s->name);
+        if (ss->running && !ss->held) check_stuck(c, ss, tick);
         return;
     }
     if (ss->running && ss->held &&
@@ -170,7 +218,9 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     }
     if (ss->running) {
         ss->stats.overruns++;
-        trace(c, "overrun: %s cycle still running, release skipped", ss->s->name);
+        /* one line per cycle, not per tick: a module that never ends would flood the output */
+        if (++ss->cycle_overruns == 1) trace(c, "overrun: %s cycle still running, release skipped", ss->s->name);
+        if (!ss->held) check_stuck(c, ss, tick);
         return;
     }
     start_cycle(c, ss, tick);
@@ -180,6 +230,7 @@ static void do_check(OrdCore *c, SchemaState *ss) {
     ss->reported = 1;
     ss->stats.deadline_misses++;
     trace(c, "deadline miss: %s (ORD:0)", ss->s->name);
+    fact(c, ss, ORD_FACT_DEADLINE_MISS, -1, 0);
     if (c->io.emit) c->io.emit(c->io.ctx, CONTRACT_ORD_EVENT_DEADLINE_MISS, ss->s->name);
 }
 
@@ -275,6 +326,7 @@ int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *param
     snprintf(ss->requester, sizeof ss->requester, "%s", requester ? requester : "");
     ss->running = 0;
     ss->next_tick = c->now;
+    ss->act_t = c->now;
     trace(c, "activate %s", name);
     if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 1);
     ord_core_advance(c, c->now);
@@ -286,7 +338,11 @@ int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *req
     ord_core_advance(c, t);
     int i = schema_index(c, name);
     SchemaState *ss = i < 0 ? NULL : &c->st[i];
-    if (!ss || !ss->active || (activation_id != 0 && activation_id != ss->act_id)) {
+    /* ids are numbered by each supervisor on its own: an activation is its id *and* its
+       requester (another supervisor's refused activation may carry the same number) */
+    if (!ss || !ss->active ||
+        (activation_id != 0 && (activation_id != ss->act_id ||
+                                strcmp(requester ? requester : "", ss->requester) != 0))) {
         trace(c, "ignored: deactivate %s (not this activation)", name);
         if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 0);
         return -1;
@@ -321,6 +377,9 @@ static int find_release(OrdCore *c, const char *module, uint32_t id, SchemaState
 
 static void complete_module(OrdCore *c, SchemaState *ss, int m) {
     const ContractSchema *s = ss->s;
+    if (ss->stuck[m])
+        trace(c, "%s finished release #%u at last (reported stuck, %s)", s->modules[m].module,
+              ss->cycle_rel[m], s->name);
     ss->finished[m] = 1;
     ss->pending--;
     for (int e = 0; e < s->nprecedences; e++)
@@ -344,6 +403,7 @@ void ord_core_release_finished(OrdCore *c, int64_t t, const char *module, uint32
         ss->outstanding[m] = 0;
         if (ss->active && ss->running && !ss->held && ss->released[m] && !ss->finished[m] &&
             ss->cycle_rel[m] == id) {
+            fact(c, ss, ORD_FACT_FINISHED, m, id);
             complete_module(c, ss, m);
         } else {
             ss->stats.late_acks++;
@@ -394,7 +454,8 @@ OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *
         ss->finished = calloc(n, 1);
         ss->cycle_rel = calloc(n, sizeof(uint32_t));
         ss->outstanding = calloc(n, sizeof(uint32_t));
-        if (!ss->cycle_rel || !ss->outstanding || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
+        ss->stuck = calloc(n, 1);
+        if (!ss->stuck || !ss->cycle_rel || !ss->outstanding || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
         for (int e = 0; e < s->nprecedences; e++) ss->npreds[s->precedences[e].after]++;
         /* the precedence graph must be acyclic: Kahn's algorithm */
         int *w = ss->waiting, done = 0;
@@ -436,6 +497,7 @@ void ord_core_destroy(OrdCore *c) {
             free(c->st[i].finished);
             free(c->st[i].cycle_rel);
             free(c->st[i].outstanding);
+            free(c->st[i].stuck);
         }
     free(c->st);
     free(c);

@@ -1,5 +1,5 @@
 /*
- * ord_core.h — the scheduler's deterministic core (SPEC §4.2).
+ * ord_core.h — the scheduler's deterministic core (docs/semantics.md "Scheduler: ...").
  *
  * Like sup_core, it has no I/O and no clock: the caller passes times (virtual in tests,
  * CLOCK_MONOTONIC in ord_main.c), reports module completions, and fires the core's deadlines
@@ -13,6 +13,25 @@
 #include <stdint.h>
 
 #include "contract/vocabulary.h"
+
+/** A fact of the periodic timeline, for the run-time trace (docs/runtime-api.md "Trace
+ *  records"): times are the core's clock, `cycle` is k of tick_k = activation + k * PERIOD. */
+typedef enum OrdFactKind {
+    ORD_FACT_RELEASE = 1,   /* a module of the cycle released (module, release_id)             */
+    ORD_FACT_FINISHED,      /* a released module acked its release (module, response_ns)       */
+    ORD_FACT_COMPLETE,      /* every module of the cycle finished (response_ns)                 */
+    ORD_FACT_DEADLINE_MISS  /* the cycle was not finished at tick + CRITICAL_DELAY (ORD:0)      */
+} OrdFactKind;
+
+typedef struct OrdFact {
+    OrdFactKind kind;
+    const char *schema;
+    const char *module;     /* RELEASE / FINISHED; NULL otherwise                              */
+    long cycle;
+    int64_t tick;           /* the cycle's tick                                                */
+    uint32_t release_id;    /* RELEASE / FINISHED                                              */
+    int64_t response_ns;    /* FINISHED / COMPLETE: time since the tick                        */
+} OrdFact;
 
 typedef struct OrdIo {
     void *ctx;
@@ -29,7 +48,21 @@ typedef struct OrdIo {
     /* answer to an activation / deactivation request: ok = 1 done, 0 refused */
     void (*ack)(void *ctx, const char *requester, uint32_t activation_id, int ok);
     void (*trace)(void *ctx, int64_t t, const char *line);
+    /* a released module has not finished its release `release_id` after `periods` periods of
+       its schema (ORD_STUCK_PERIODS, at least ORD_STUCK_MIN_NS): called once per release, with
+       the sentence to show ("MSC has not finished release #2 after 10 periods: does its exec
+       region set *stateindex = -1?"). Optional (NULL: the trace line only). */
+    void (*stuck)(void *ctx, const char *module, const char *schema, uint32_t release_id,
+                  long periods, const char *message);
+    /* typed facts of the timeline at time t (NULL: none); the readable lines stay in trace */
+    void (*fact)(void *ctx, int64_t t, const OrdFact *f);
 } OrdIo;
+
+/* A release not finished after this many periods of its schema, and at least ORD_STUCK_MIN_NS
+   (short periods: a loaded machine may stall a module for a few periods without it being
+   stuck), is reported once as stuck (docs/engines.md §4). */
+#define ORD_STUCK_PERIODS 10
+#define ORD_STUCK_MIN_NS 1000000000LL
 
 /** Figures of one schema since the core was created. */
 typedef struct OrdSchemaStats {
@@ -42,6 +75,7 @@ typedef struct OrdSchemaStats {
     long held_cycles;       /* cycles whose releases waited for a module still running a
                                release of an earlier activation                          */
     long late_acks;         /* acks of releases of earlier cycles/activations (ignored)  */
+    long stuck_releases;    /* releases reported stuck (OrdIo.stuck)                      */
 } OrdSchemaStats;
 
 typedef struct OrdCore OrdCore;
@@ -55,8 +89,9 @@ void ord_core_destroy(OrdCore *c);
 int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *params, size_t size,
                       const char *requester, uint32_t activation_id);
 /** Deactivates it (no further release, flows disconnected). activation_id 0 matches any;
- *  otherwise it must be the id of the activation (a refused activation's undo does not
- *  deactivate someone else's). Returns 0, or -1 if not active / not that activation. */
+ *  otherwise requester and id must be those of the activation (a refused activation's undo
+ *  does not deactivate someone else's, even one of another supervisor with the same id).
+ *  Returns 0, or -1 if not active / not that activation. */
 int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *requester,
                         uint32_t activation_id);
 /** A released module finished the activation `release_id` (the AckID of its ack) at time t.

@@ -117,13 +117,55 @@ static void b_ack(void *ctx, const char *requester, uint32_t id, int ok) {
 static void b_trace(void *ctx, int64_t t, const char *line) {
     (void)ctx;
     (void)t;
-    /* releases are too frequent for stdout and the CSV log already records every request;
+    /* releases are too frequent for stdout and b_fact records them in the CSV log;
        late completions of a deactivated schema (and the cycles they hold) are expected: CSV only */
     if (strncmp(line, "release ", 8) == 0) return;
     ContractLog("scheduler", "", -1, 0, line);
     if (!strstr(line, "finished outside a cycle") && strncmp(line, "late ack: ", 10) != 0 &&
+        strncmp(line, "stuck: ", 7) != 0 && /* said once on stderr by b_stuck */
         !strstr(line, " held: ") && !strstr(line, " resumed"))
         printf("%s\n", line);
+}
+
+/* A module that never finishes its release (ord_core check_stuck): one line on stderr, prefixed
+   `STUCK: ` so the launcher's caller (contract run, the build service) can tell the run did not
+   go as designed (docs/engines.md §4, docs/ci.md). */
+static void b_stuck(void *ctx, const char *module, const char *schema, uint32_t id, long periods,
+                    const char *message) {
+    (void)ctx;
+    (void)module;
+    (void)schema;
+    (void)id;
+    (void)periods;
+    fprintf(stderr, "STUCK: %s\n", message);
+    fflush(stderr);
+}
+
+/* the typed records of the periodic timeline (docs/runtime-api.md "Trace records"): CSV only */
+static void b_fact(void *ctx, int64_t t, const OrdFact *f) {
+    (void)ctx;
+    char detail[384];
+    switch (f->kind) {
+    case ORD_FACT_RELEASE:
+        snprintf(detail, sizeof detail, "schema=%s cycle=%ld tick_ns=%lld release_ns=%lld release=%u", f->schema,
+                 f->cycle, (long long)f->tick, (long long)t, f->release_id);
+        ContractLog("ord_release", f->module, -1, 0, detail);
+        break;
+    case ORD_FACT_FINISHED:
+        snprintf(detail, sizeof detail, "schema=%s cycle=%ld release=%u response_ns=%lld", f->schema, f->cycle,
+                 f->release_id, (long long)f->response_ns);
+        ContractLog("ord_finished", f->module, -1, 0, detail);
+        break;
+    case ORD_FACT_COMPLETE:
+        snprintf(detail, sizeof detail, "schema=%s cycle=%ld tick_ns=%lld response_ns=%lld", f->schema, f->cycle,
+                 (long long)f->tick, (long long)f->response_ns);
+        ContractLog("ord_complete", "", -1, 0, detail);
+        break;
+    case ORD_FACT_DEADLINE_MISS:
+        snprintf(detail, sizeof detail, "schema=%s cycle=%ld tick_ns=%lld", f->schema, f->cycle, (long long)f->tick);
+        ContractLog("ord_deadline_miss", "", -1, 0, detail);
+        break;
+    }
 }
 
 static int cmp64(const void *a, const void *b) {
@@ -137,7 +179,7 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
         perror(path);
         return;
     }
-    long cycles = 0, completed = 0, misses = 0, overruns = 0, missed = 0, held = 0, late = 0;
+    long cycles = 0, completed = 0, misses = 0, overruns = 0, missed = 0, held = 0, late = 0, stuck = 0;
     int64_t max_response = 0;
     for (int i = 0; i < b->v->nschemas; i++) {
         OrdSchemaStats st;
@@ -149,6 +191,7 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
         missed += st.missed_ticks;
         held += st.held_cycles;
         late += st.late_acks;
+        stuck += st.stuck_releases;
         if (st.max_response_ns > max_response) max_response = st.max_response_ns;
     }
     double p50 = 0, p99 = 0, max = 0;
@@ -160,9 +203,9 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
     }
     fprintf(f,
             "{\"cycles\": %ld, \"completed\": %ld, \"deadline_misses\": %ld, \"overruns\": %ld, "
-            "\"missed_ticks\": %ld, \"held_cycles\": %ld, \"late_acks\": %ld, \"release_late_us_p50\": %.3f, \"release_late_us_p99\": %.3f, "
+            "\"missed_ticks\": %ld, \"held_cycles\": %ld, \"late_acks\": %ld, \"stuck_releases\": %ld, \"release_late_us_p50\": %.3f, \"release_late_us_p99\": %.3f, "
             "\"release_late_us_max\": %.3f, \"cycle_response_us_max\": %.3f, \"samples\": %zu}\n",
-            cycles, completed, misses, overruns, missed, held, late, p50, p99, max, (double)max_response / 1000.0,
+            cycles, completed, misses, overruns, missed, held, late, stuck, p50, p99, max, (double)max_response / 1000.0,
             b->nlate);
     fclose(f);
 }
@@ -175,7 +218,7 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
     b.v = v;
     const char *stats_path = getenv("CONTRACT_ORD_STATS");
     b.record = stats_path && *stats_path;
-    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace};
+    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace, b_stuck, b_fact};
     char err[512] = "";
     OrdCore *c = ord_core_create(v, &io, err, sizeof err);
     if (!c) {

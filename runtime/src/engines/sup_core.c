@@ -1,6 +1,7 @@
-/* sup_core.c — see sup_core.h. Semantics: SPEC §4.3–4.4, decisions in docs/engines.md. */
+/* sup_core.c — see sup_core.h. Semantics: docs/semantics.md "Event schemas: ...", "Supervisors: ...", decisions in docs/engines.md. */
 #define _POSIX_C_SOURCE 200809L
 #include "sup_core.h"
+#include "engine_array.h"
 
 #include <stdarg.h>
 #include <stdio.h>
@@ -9,6 +10,7 @@
 
 #include "engine_trace.h"
 #include "engine_values.h"
+#include "sup_claims.h"
 
 /* ---- state -------------------------------------------------------------------------- */
 
@@ -26,11 +28,11 @@ typedef struct Slot {       /* one event descriptor of one condition clause */
 
 typedef struct UndoRec {    /* what one action did, so that its undo does exactly the inverse */
     int done;
-    uint32_t act_id;        /* periodic schema activation / subscription token */
+    uint32_t act_id;        /* this action's activation id: periodic schema, subscription,
+                               priority claim, function activation (unique in the core) */
     int started_module;     /* resttime/critical: we took a hold (started it) */
-    int changed_priority;
-    int saved_priority;
-    int started_function;
+    int changed_priority;   /* resttime/critical: a priority claim (SupIo.claim_priority) */
+    int started_function;   /* activation sent and not refused: its undo stops it */
 } UndoRec;
 
 typedef struct RuleState {
@@ -52,6 +54,10 @@ typedef struct FnState {
     int nslots;
     Occ *occ;
     char *hit;              /* per slot: recorded by the event being processed */
+    /* the activation it runs: `activate supervisor` of caller/owner_id; "" and 0 for a
+       control tool. Only the undo of that activation stops it (docs/engines.md §4). */
+    char owner[64];
+    uint32_t owner_id;
 } FnState;
 
 typedef struct Sub {        /* active subscription of one in port */
@@ -117,7 +123,9 @@ struct SupCore {
     uint64_t timer_order;
     QEv *queue;
     int qhead, qlen, qcap;
+    const CurEv *cur;       /* the event being processed (NULL: none): a rule change's cause */
     uint32_t next_token;
+    SupClaims claims;       /* event-flow users of the active schemas */
     unsigned char *scratch;
     size_t scratch_used;
 };
@@ -175,16 +183,7 @@ static EngineScope fn_scope(SupCore *c, int f) {
     return s;
 }
 
-static int grow(void **p, int *cap, int need, size_t elem) {
-    if (need <= *cap) return 0;
-    int n = *cap ? *cap * 2 : 16;
-    while (n < need) n *= 2;
-    void *q = realloc(*p, (size_t)n * elem);
-    if (!q) return -1;
-    *p = q;
-    *cap = n;
-    return 0;
-}
+static int grow(void **p, int *cap, int need, size_t elem) { return engine_grow(p, cap, need, elem, 16); }
 
 /* ---- timers and queue ----------------------------------------------------------------- */
 
@@ -326,20 +325,33 @@ static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
                                 sm->settings[k].type->size);
         }
     }
-    for (int i = 0; i < sc->nevent_flows; i++)
+    /* connected at every activation (the same subscription again: a spent one-shot flow is
+       armed again), disconnected by the last active schema using it */
+    for (int i = 0; i < sc->nevent_flows; i++) {
+        sup_claims_flow_use(&c->claims, &sc->event_flows[i], +1);
         if (c->io.connect_events) c->io.connect_events(c->io.ctx, &sc->event_flows[i]);
+    }
     for (int m = 0; m < sc->nmodules; m++)
         hold_acquire(c, sc->modules[m].module, c->v->priority_interaction);
 }
 
 static void deactivate_event_schema(SupCore *c, const ContractSchema *sc) {
-    for (int i = 0; i < sc->nevent_flows; i++)
-        if (c->io.disconnect_events) c->io.disconnect_events(c->io.ctx, &sc->event_flows[i]);
+    for (int i = 0; i < sc->nevent_flows; i++) {
+        const ContractEventFlow *fl = &sc->event_flows[i];
+        int left = sup_claims_flow_use(&c->claims, fl, -1);
+        if (left > 0)
+            trace(c, "kept: event flow %s:%d -> %s:%d (used by %d other active schema(s))",
+                  fl->src_module, fl->src_port, fl->dst_module, fl->dst_port, left);
+        else if (c->io.disconnect_events)
+            c->io.disconnect_events(c->io.ctx, fl);
+    }
     for (int m = 0; m < sc->nmodules; m++) hold_release(c, sc->modules[m].module);
 }
 
-static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t size);
+static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t size,
+                       const char *caller, uint32_t activation_id);
 static void local_stop(SupCore *c, int f);
+static int owned_stop(SupCore *c, int f, const char *caller, uint32_t activation_id);
 
 static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
     memset(u, 0, sizeof *u);
@@ -380,12 +392,15 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
                                        a->assigns, a->nassigns);
         if (!p) break;
         int r;
+        u->act_id = ++c->next_token;
         if (strcmp(sig->supervisor, c->v->name) == 0) {
             int g = function_index(c->v, sig->function);
-            r = g < 0 ? -1 : local_start(c, c->now, g, p, sig->params_size);
+            r = g < 0 ? -1
+                      : local_start(c, c->now, g, p, sig->params_size, c->v->name, u->act_id);
         } else {
             r = c->io.start_function ? c->io.start_function(c->io.ctx, sig->supervisor,
-                                                            sig->function, p, sig->params_size)
+                                                            sig->function, p, sig->params_size,
+                                                            u->act_id)
                                      : -1;
         }
         free(p);
@@ -398,9 +413,10 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
         int prio = a->kind == CONTRACT_ACT_RESTTIME_MODULE ? c->v->priority_resttime
                                                            : c->v->priority_critical;
         if (module_is_running(c, a->module)) {
-            u->changed_priority = 1;
-            u->saved_priority = c->io.set_priority
-                                    ? c->io.set_priority(c->io.ctx, a->module, prio) : -1;
+            u->act_id = ++c->next_token;
+            u->changed_priority =
+                c->io.claim_priority &&
+                c->io.claim_priority(c->io.ctx, a->module, u->act_id, prio) == 0;
         } else {
             hold_acquire(c, a->module, prio);
             u->started_module = 1;
@@ -474,23 +490,36 @@ static void undo_action(SupCore *c, const ContractAction *a, UndoRec *u) {
         }
         break;
     case CONTRACT_ACT_SUPERVISOR:
+        /* refused (answered or local): someone else's run of that function is not ours */
         if (!u->started_function) break;
         if (strcmp(a->callee->supervisor, c->v->name) == 0) {
             int g = function_index(c->v, a->callee->function);
-            if (g >= 0) local_stop(c, g);
+            if (g >= 0) owned_stop(c, g, c->v->name, u->act_id);
         } else if (c->io.stop_function) {
-            c->io.stop_function(c->io.ctx, a->callee->supervisor, a->callee->function);
+            c->io.stop_function(c->io.ctx, a->callee->supervisor, a->callee->function, u->act_id);
         }
         break;
     case CONTRACT_ACT_RESTTIME_MODULE:
     case CONTRACT_ACT_CRITICAL_MODULE:
-        if (u->started_module) hold_release(c, a->module);
-        else if (u->changed_priority && u->saved_priority >= 0 && c->io.set_priority)
-            c->io.set_priority(c->io.ctx, a->module, u->saved_priority);
+        if (u->started_module) {
+            hold_release(c, a->module);
+        } else if (u->changed_priority && c->io.release_priority) {
+            c->io.release_priority(c->io.ctx, a->module, u->act_id);
+        }
         break;
     case CONTRACT_ACT_SUBSCRIBE: {
         int pi = in_port_index(c->v, a->in_port);
-        if (pi >= 0 && c->subs[pi].active && c->subs[pi].token == u->act_id) c->subs[pi].active = 0;
+        const Sub *sub = pi >= 0 ? &c->subs[pi] : NULL;
+        if (sub && sub->active && sub->token == u->act_id) {
+            c->subs[pi].active = 0;
+        } else if (sub && sub->active && sub->src_port == a->src_port &&
+                   strcmp(sub->module, a->module) == 0) {
+            /* ours was a spent one-shot, and another rule subscribed the same producer port to
+               this in port since: that is one subscription at the producer, now the other's */
+            trace(c, "kept: subscription %s:%d to :%d (made again since by another rule)",
+                  a->module, a->src_port, a->in_port);
+            break;
+        }
         if (c->io.unsubscribe) c->io.unsubscribe(c->io.ctx, a->module, a->src_port, a->in_port);
         break;
     }
@@ -521,6 +550,45 @@ static void run_extractions(SupCore *c, int f, const ContractClause *cl, int fir
     }
 }
 
+/* The cause of a rule change, for io.rule (grammar in sup_core.h): the event being processed,
+   or `stop` when there is none (the function stopped). */
+static void format_cause(const SupCore *c, int f, char *buf, size_t len) {
+    const CurEv *cur = c->cur;
+    const ContractFunction *fn = &c->v->functions[f];
+    if (!cur) {
+        snprintf(buf, len, "stop");
+        return;
+    }
+    const char *label = cur->rule >= 0 && cur->rule < fn->nrules ? fn->rules[cur->rule].label : "?";
+    switch (cur->kind) {
+    case CONTRACT_EV_MODULE: {
+        char value[160];
+        const ContractType *type = NULL;
+        int pi = cur->ord_schema ? -1 : in_port_index(c->v, cur->in_port);
+        if (cur->ord_schema) type = &contract_type_string;
+        else if (pi >= 0) type = c->v->in_ports[pi].type;
+        engine_format_value(value, sizeof value, cur->data, type);
+        snprintf(buf, len, "%s:%d value=%s", cur->module, cur->port, value);
+        return;
+    }
+    case CONTRACT_EV_STARTED: snprintf(buf, len, "started(%s)", label); return;
+    case CONTRACT_EV_ENDOF: snprintf(buf, len, "endof(%s)", label); return;
+    case CONTRACT_EV_DURATION:
+        snprintf(buf, len, "duration(%s)=%lldns", label, (long long)cur->time_ns);
+        return;
+    case CONTRACT_EV_ELAPSED: snprintf(buf, len, "elapsed=%lldns", (long long)cur->time_ns); return;
+    }
+    snprintf(buf, len, "?");
+}
+
+static void report_rule(SupCore *c, int f, int r, int active) {
+    if (!c->io.rule) return;
+    char cause[256];
+    format_cause(c, f, cause, sizeof cause);
+    const ContractFunction *fn = &c->v->functions[f];
+    c->io.rule(c->io.ctx, c->now, fn->name, fn->rules[r].label, active, cause);
+}
+
 static void activate_rule(SupCore *c, int f, int r, const ContractClause *cl, int first_slot) {
     FnState *fs = &c->fns[f];
     const ContractFunction *fn = &c->v->functions[f];
@@ -531,6 +599,7 @@ static void activate_rule(SupCore *c, int f, int r, const ContractClause *cl, in
     rs->since = c->now;
     rs->gen++;
     trace(c, "rule %s.%s active", fn->name, rule->label);
+    report_rule(c, f, r, 1);
     uint32_t gen = fs->gen;
     for (int i = 0; i < rule->nactions; i++) {
         do_action(c, f, &rule->actions[i], &rs->undo[i]);
@@ -559,6 +628,7 @@ static void deactivate_rule(SupCore *c, int f, int r, const ContractClause *cl, 
     if (cl) run_extractions(c, f, cl, first_slot);
     rs->active = 0;
     trace(c, "rule %s.%s inactive", fn->name, rule->label);
+    report_rule(c, f, r, 0);
     for (int i = 0; i < rule->nactions; i++) undo_action(c, &rule->actions[i], &rs->undo[i]);
     if (emit_endof && fs->running) queue_push(c, f, CONTRACT_EV_ENDOF, r);
 }
@@ -698,10 +768,13 @@ static void process_for_function(SupCore *c, int f, const CurEv *cur) {
 static void process(SupCore *c, int only_fn, const CurEv *cur) {
     c->seq++;
     c->processed++;
+    const CurEv *outer = c->cur;
+    c->cur = cur;
     for (int f = 0; f < c->v->nfunctions; f++) {
         if (only_fn >= 0 && f != only_fn) continue;
         if (c->fns[f].running && c->fns[f].start_seq != c->seq) process_for_function(c, f, cur);
     }
+    c->cur = outer;
 }
 
 static void drain_queue(SupCore *c) {
@@ -817,7 +890,8 @@ void sup_core_ord_event(SupCore *c, int64_t t, int port, const char *schema) {
 
 /* ---- functions ------------------------------------------------------------------------ */
 
-static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t size) {
+static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t size,
+                       const char *caller, uint32_t activation_id) {
     FnState *fs = &c->fns[f];
     const ContractFunction *fn = &c->v->functions[f];
     if (fs->running) {
@@ -825,6 +899,8 @@ static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t 
         return -1;
     }
     (void)t;
+    snprintf(fs->owner, sizeof fs->owner, "%s", caller ? caller : "");
+    fs->owner_id = activation_id;
     fs->gen++;
     engine_init_block(fs->params, fn->params, fn->nparams);
     if (params) {
@@ -861,14 +937,41 @@ static void local_stop(SupCore *c, int f) {
     const ContractFunction *fn = &c->v->functions[f];
     if (!fs->running) return;
     uint32_t gen = fs->gen;
+    const CurEv *outer = c->cur;
+    c->cur = NULL; /* the rules end because the function stops, whatever event led to it */
     for (int r = 0; r < fn->nrules; r++)
         if (fs->rules[r].active) {
             deactivate_rule(c, f, r, NULL, 0, 0);
-            if (fs->gen != gen) return;
+            if (fs->gen != gen) {
+                c->cur = outer;
+                return;
+            }
         }
+    c->cur = outer;
     fs->running = 0;
     fs->gen++;
     trace(c, "function %s stopped", fn->name);
+}
+
+/* the undo of one activation stops the function only if it runs that activation: a refused
+   activation's undo must not end the run another caller started (docs/engines.md, "Undo and
+   refusals": a function ends when *its* caller undoes its activation) */
+static int owned_stop(SupCore *c, int f, const char *caller, uint32_t activation_id) {
+    FnState *fs = &c->fns[f];
+    const char *name = c->v->functions[f].name;
+    if (!fs->running) return -1;
+    if (activation_id != 0 &&
+        (fs->owner_id != activation_id || strcmp(fs->owner, caller ? caller : "") != 0)) {
+        if (fs->owner[0])
+            trace(c, "ignored: stop of %s for activation #%u of %s (it runs activation #%u of %s)",
+                  name, activation_id, caller ? caller : "?", fs->owner_id, fs->owner);
+        else
+            trace(c, "ignored: stop of %s for activation #%u of %s (started by a control tool)",
+                  name, activation_id, caller ? caller : "?");
+        return -1;
+    }
+    local_stop(c, f);
+    return 0;
 }
 
 int sup_core_start_function(SupCore *c, int64_t t, const char *name, const void *params,
@@ -879,7 +982,20 @@ int sup_core_start_function(SupCore *c, int64_t t, const char *name, const void 
         trace(c, "refused: no function %s", name);
         return -1;
     }
-    return local_start(c, t, f, params, size);
+    return local_start(c, t, f, params, size, NULL, 0);
+}
+
+int sup_core_start_function_for(SupCore *c, int64_t t, const char *name, const void *params,
+                                size_t size, const char *caller, uint32_t activation_id) {
+    sup_core_advance(c, t);
+    int f = function_index(c->v, name);
+    if (f < 0) {
+        trace(c, "refused: no function %s", name);
+        return -1;
+    }
+    int rc = local_start(c, t, f, params, size, caller, activation_id);
+    drain_queue(c);
+    return rc;
 }
 
 int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const char *args,
@@ -948,6 +1064,37 @@ int sup_core_stop_function(SupCore *c, int64_t t, const char *name) {
     local_stop(c, f);
     drain_queue(c);
     return 0;
+}
+
+int sup_core_stop_function_for(SupCore *c, int64_t t, const char *name, const char *caller,
+                               uint32_t activation_id) {
+    sup_core_advance(c, t);
+    int f = function_index(c->v, name);
+    if (f < 0) return -1;
+    int rc = owned_stop(c, f, caller, activation_id);
+    drain_queue(c);
+    return rc;
+}
+
+void sup_core_function_answer(SupCore *c, int64_t t, const char *supervisor,
+                              uint32_t activation_id, int accepted) {
+    sup_core_advance(c, t);
+    if (accepted || activation_id == 0) return;
+    for (int f = 0; f < c->v->nfunctions; f++) {
+        const ContractFunction *fn = &c->v->functions[f];
+        for (int r = 0; r < fn->nrules; r++)
+            for (int i = 0; i < fn->rules[r].nactions; i++) {
+                const ContractAction *a = &fn->rules[r].actions[i];
+                UndoRec *u = &c->fns[f].rules[r].undo[i];
+                if (a->kind != CONTRACT_ACT_SUPERVISOR || u->act_id != activation_id ||
+                    !u->done || strcmp(a->callee->supervisor, supervisor) != 0)
+                    continue;
+                u->started_function = 0;
+                trace(c, "activation #%u of %s.%s refused: its undo stops nothing", activation_id,
+                      supervisor, a->callee->function);
+                return;
+            }
+    }
 }
 
 int sup_core_function_running(const SupCore *c, const char *name) {
@@ -1090,6 +1237,7 @@ void sup_core_destroy(SupCore *c) {
     free(c->out_vals);
     free(c->subs);
     free(c->holds);
+    sup_claims_free(&c->claims);
     free(c->timers);
     free(c->queue);
     free(c->scratch);

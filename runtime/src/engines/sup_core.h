@@ -1,5 +1,5 @@
 /*
- * sup_core.h — the supervisor rule engine's deterministic core (SPEC §4.3–4.4).
+ * sup_core.h — the supervisor rule engine's deterministic core (docs/semantics.md "Event schemas: ...", "Supervisors: ...").
  *
  * No I/O and no clock of its own: the caller passes the time of every input (virtual clock in
  * tests, CLOCK_MONOTONIC in sup_main.c) and the core acts on the world only through SupIo.
@@ -30,7 +30,11 @@ typedef struct SupIo {
     int (*module_running)(void *ctx, const char *module);               /* 1 running, 0 not  */
     void (*start_module)(void *ctx, const char *module, int priority);
     void (*stop_module)(void *ctx, const char *module);   /* only modules it started itself */
-    int (*set_priority)(void *ctx, const char *module, int priority);   /* returns previous  */
+    /* priority of a running module (`activate resttime|critical module`): claim `id` sets it
+       (0 applied, -1 not: nothing to release); its release restores the priority before it
+       only if no later claim on that module, of any supervisor, still stands (sup_claims.h) */
+    int (*claim_priority)(void *ctx, const char *module, uint32_t id, int priority);
+    void (*release_priority)(void *ctx, const char *module, uint32_t id);
     void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size);
     void (*connect_events)(void *ctx, const ContractEventFlow *flow);
     void (*disconnect_events)(void *ctx, const ContractEventFlow *flow);
@@ -40,21 +44,33 @@ typedef struct SupIo {
     void (*unsubscribe)(void *ctx, const char *module, int src_port, int in_port);
     void (*notify)(void *ctx, int out_port, const ContractType *type, const void *value,
                    size_t size);
-    /* other supervisors' functions (own functions are handled inside the core);
-       start returns 0 when started, -1 when refused */
+    /* other supervisors' functions (own functions are handled inside the core).
+       `activation_id` (> 0, unique in this supervisor) names this activation: the callee
+       answers it (sup_core_function_answer) and the undo's stop carries it, so that the callee
+       stops the function only if it runs this very activation, never one that another caller
+       started (docs/engines.md §4). start returns 0 when sent, -1 when it could not be sent
+       (taken as refused: its undo stops nothing) */
     int (*start_function)(void *ctx, const char *supervisor, const char *function,
-                          const void *params, size_t size);
-    void (*stop_function)(void *ctx, const char *supervisor, const char *function);
+                          const void *params, size_t size, uint32_t activation_id);
+    void (*stop_function)(void *ctx, const char *supervisor, const char *function,
+                          uint32_t activation_id);
     /* one line per rule transition, function start/stop, refusal, ignored input */
     void (*trace)(void *ctx, int64_t t, const char *line);
     /* an event schema of this supervisor uses (`hold` 1) or stops using (0) a module that was
        already running when it was activated (started by someone else): lets the binding keep
-       it running until its last user across supervisors is done (SPEC §4.3) */
+       it running until its last user across supervisors is done
+       (docs/semantics.md "Event schemas: undo and shared modules") */
     void (*share_module)(void *ctx, const char *module, int hold);
     /* makes each decide-and-act sequence on a module atomic across supervisors: `lock` 1
        before "is it running? then share it, else start it" and before "stop it / stop sharing
        it", 0 right after (the binding: a flock, module_holds.h) */
     void (*lock_module)(void *ctx, const char *module, int lock);
+    /* a rule became active (1) or inactive (0) at t, with the event that caused it, in the
+       grammar of docs/runtime-api.md "Trace records": `MAA:2 value="disconnected"`,
+       `ORD:1 value="S"`, `started(L)`, `endof(L)`, `duration(L)=Nns`, `elapsed=Nns`, `stop`
+       (the function stopped). NULL: none; the readable line stays in trace */
+    void (*rule)(void *ctx, int64_t t, const char *function, const char *rule, int active,
+                 const char *cause);
 } SupIo;
 
 typedef struct SupCore SupCore;
@@ -66,15 +82,30 @@ SupCore *sup_core_create(const ContractSupervisorVocabulary *v, const SupIo *io,
 void sup_core_destroy(SupCore *c);
 
 /** Starts function `name` at time t with a parameter block laid out as its params (NULL:
- *  defaults). Returns 0, or -1 if unknown or already running (refused, traced). */
+ *  defaults), for a control tool (any stop ends it). Returns 0, or -1 if unknown or already
+ *  running (refused, traced). */
 int sup_core_start_function(SupCore *c, int64_t t, const char *name, const void *params,
                             size_t size);
+/** Same, for activation `activation_id` of supervisor `caller` (`activate supervisor`): the
+ *  function then belongs to that activation, and only a stop naming it (or a stop with id 0)
+ *  ends it. */
+int sup_core_start_function_for(SupCore *c, int64_t t, const char *name, const void *params,
+                                size_t size, const char *caller, uint32_t activation_id);
 /** Same, with parameters in text form `p1={1.0,2.0,3.0} p2="x"` (control tools). -1 on a
  *  parse error, with a message in err. */
 int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const char *args,
                                  char *err, size_t errlen);
 /** Stops a running function: its active rules are deactivated (undos run). 0 or -1. */
 int sup_core_stop_function(SupCore *c, int64_t t, const char *name);
+/** The undo of activation `activation_id` of `caller`: stops `name` only if it runs that
+ *  activation (id 0: whichever runs). 0, or -1 (not running, or another activation: traced
+ *  `ignored: ...`, the function goes on). */
+int sup_core_stop_function_for(SupCore *c, int64_t t, const char *name, const char *caller,
+                               uint32_t activation_id);
+/** The answer of `supervisor` to this core's activation `activation_id` (accepted 1 /
+ *  refused 0). A refused activation's undo stops nothing. Unknown ids are ignored. */
+void sup_core_function_answer(SupCore *c, int64_t t, const char *supervisor,
+                              uint32_t activation_id, int accepted);
 int sup_core_function_running(const SupCore *c, const char *name);
 
 /** An event from `module`'s out port `src_port` with its data. in_port >= 0 names the

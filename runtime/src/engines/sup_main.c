@@ -8,7 +8,12 @@
  *  - start a supervision function: REQ_START, Param.Start.Function = name ("" = the first
  *    function), Data = text arguments "p={1.0,2.0,3.0},q=3" (control tools) or
  *    CONTRACT_BINARY_ARGS_MAGIC followed by the parameter block (engines);
- *  - stop one: REQ_STOP with Data = the function name (empty: every running function);
+ *  - `activate supervisor`: the same REQ_START with AckID = the caller's activation id and
+ *    ACK_START | ACK_NOTDONE wanted: the callee answers whether it started the function
+ *    (sup_core_function_answer); its undo is REQ_STOP with Data = the function name and the
+ *    same AckID, which stops the function only if it runs that activation of that sender;
+ *  - stop one: REQ_STOP with Data = the function name (empty: every running function), AckID
+ *    0 = whichever activation runs (control tools);
  *  - periodic schemas: REQ_START to ORD with Function = schema name, Data = parameter block,
  *    AckID = activation id; deactivation: REQ_STOP to ORD with Data = schema name, same AckID;
  *  - ORD events arrive as REQ_EVENT from module "ORD", source port 0/1, Data = schema name.
@@ -28,6 +33,7 @@
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
 #include "module_holds.h"
+#include "prio_claims.h"
 #include "sup_core.h"
 
 /* subscribers of the supervisor's out event ports (kept here: the generated module.c of a
@@ -89,7 +95,7 @@ static int alive(const char *module) { return ModuleState(module) == CONTRACT_OK
 static void b_ord_activate(void *ctx, const ContractSchema *s, const void *params, size_t size,
                            uint32_t id) {
     (void)ctx;
-    int rc = engine_send_start("ORD", s->name, params, size, (int)id);
+    int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot ask ORD to activate %s: %s\n", ContractSelfName(), s->name,
                 ContractStrError(rc));
@@ -201,9 +207,32 @@ static void b_share_module(void *ctx, const char *m, int hold) {
     else stop_if_last(m, 0);
 }
 
-static int b_set_priority(void *ctx, const char *m, int prio) {
+/* `activate resttime|critical module` on a running module: a claim shared with the other
+   supervisors of the run (prio_claims.h), made and dropped under the module's lock so that
+   "apply, record" and "drop, decide, apply" of two supervisors never interleave */
+static int b_claim_priority(void *ctx, const char *m, uint32_t id, int prio) {
     (void)ctx;
-    return apply_priority(m, prio);
+    holds_lock(m);
+    int before = apply_priority(m, prio);
+    int rc = before >= 0 && prio_claims_record(m, id, prio, before) == 0 ? 0 : -1;
+    holds_unlock(m);
+    return rc;
+}
+
+static void b_release_priority(void *ctx, const char *m, uint32_t id) {
+    (void)ctx;
+    holds_lock(m);
+    int restore = -1;
+    char later[CONTRACT_NAME_MAX] = "";
+    int r = prio_claims_release(m, id, &restore, later, sizeof later);
+    if (r == 1) {
+        apply_priority(m, restore);
+    } else if (r == 0) {
+        char detail[160];
+        snprintf(detail, sizeof detail, "kept: a later change by %s stands", later);
+        ContractLog("priority_kept", m, -1, 0, detail);
+    }
+    holds_unlock(m);
 }
 
 static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
@@ -216,15 +245,35 @@ static void b_set_param(void *ctx, const char *m, int port, const void *v, size_
 
 static int mode_of(ContractEventMode m) { return m == CONTRACT_ONESHOT ? EVENT_ONESHOT : EVENT_CONTINUOUS; }
 
+/* Event flows of event schemas. The core connects a flow at each activation and disconnects
+   it when its last active schema *in this supervisor* ends; across supervisors the flow is one
+   subscription at its producer, so this supervisor holds it (module_holds.h) and unsubscribes
+   only when no other supervisor holds it, under the flow's lock. */
 static void b_connect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
+    char name[CONTRACT_NAME_MAX];
+    holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
+    holds_lock(name);
+    holds_take_flow(name);
     SendSubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port, mode_of(f->mode));
+    holds_unlock(name);
 }
 
 static void b_disconnect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
-    if (!alive(f->src_module)) return;
-    SendUnsubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port);
+    char name[CONTRACT_NAME_MAX];
+    holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
+    holds_lock(name);
+    int others = holds_drop(name);
+    if (others > 0) {
+        char detail[96];
+        snprintf(detail, sizeof detail, "hold dropped (kept connected: used by %d other supervisor(s))", others);
+        ContractLog("flow_hold", name, -1, 0, detail);
+    } else {
+        ContractLog("flow_hold", name, -1, 0, "last hold dropped (disconnected)");
+        if (alive(f->src_module)) SendUnsubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port);
+    }
+    holds_unlock(name);
 }
 
 static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode) {
@@ -254,9 +303,10 @@ static void b_notify(void *ctx, int port, const ContractType *t, const void *v, 
     }
 }
 
-static int b_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size) {
+static int b_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size,
+                            uint32_t id) {
     (void)ctx;
-    int rc = engine_send_start(sup, fn, p, size, 0);
+    int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
     if (rc != CONTRACT_OK) {
         fprintf(stderr, "%s: cannot start %s.%s: %s\n", ContractSelfName(), sup, fn, ContractStrError(rc));
         return -1;
@@ -264,10 +314,10 @@ static int b_start_function(void *ctx, const char *sup, const char *fn, const vo
     return 0;
 }
 
-static void b_stop_function(void *ctx, const char *sup, const char *fn) {
+static void b_stop_function(void *ctx, const char *sup, const char *fn, uint32_t id) {
     (void)ctx;
     if (!alive(sup)) return;
-    engine_send_stop(sup, fn, 0);
+    engine_send_stop(sup, fn, (int)id);
 }
 
 static void b_trace(void *ctx, int64_t t, const char *line) {
@@ -275,6 +325,17 @@ static void b_trace(void *ctx, int64_t t, const char *line) {
     (void)t;
     printf("%s\n", line);
     ContractLog("supervisor", "", -1, 0, line);
+}
+
+/* a rule change with its cause (docs/runtime-api.md "Trace records"): CSV only, the readable
+   `rule F.R active` line is b_trace's */
+static void b_rule(void *ctx, int64_t t, const char *function, const char *rule, int active,
+                   const char *cause) {
+    (void)ctx;
+    (void)t;
+    char detail[400];
+    snprintf(detail, sizeof detail, "%s.%s %s cause=%s", function, rule, active ? "active" : "inactive", cause);
+    ContractLog("sup_rule", "", -1, 0, detail);
 }
 
 static void stop_all(SupCore *c, const ContractSupervisorVocabulary *v, int64_t t) {
@@ -290,8 +351,8 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
     int rc;
     const unsigned char *block;
     size_t size;
-    if (engine_binary_args(m, &block, &size)) {
-        rc = sup_core_start_function(c, t, fn, block, size);
+    if (engine_binary_args(m, &block, &size)) { /* `activate supervisor` of another supervisor */
+        rc = sup_core_start_function_for(c, t, fn, block, size, m->Sender, (uint32_t)m->Param.Start.AckID);
         if (rc != 0) snprintf(err, sizeof err, "%s.%s refused (unknown or already running)", v->name, fn);
     } else {
         char args[CONTRACT_REQUEST_DATA_MAX + 1];
@@ -312,8 +373,9 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
     memset(&b, 0, sizeof b);
     b.v = v;
     SupIo io = {&b, b_ord_activate, b_ord_deactivate, b_module_running, b_start_module, b_stop_module,
-                b_set_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
-                b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module};
+                b_claim_priority, b_release_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
+                b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
+                b_rule};
     char err[512] = "";
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {
@@ -339,7 +401,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
             char fn[CONTRACT_FUNCTION_MAX] = "";
             engine_data_string(m, fn, sizeof fn);
             int ok = 1;
-            if (fn[0]) ok = sup_core_stop_function(c, now, fn) == 0;
+            if (fn[0]) ok = sup_core_stop_function_for(c, now, fn, m->Sender, (uint32_t)m->Param.Stop.AckID) == 0;
             else stop_all(c, v, now);
             SendAck(m->Param.Stop.ModAck[0] ? m->Param.Stop.ModAck : m->Sender, m->Param.Stop.WantedAck,
                     ok ? ACK_STOPPED : ACK_NOTDONE, m->Param.Stop.AckID);
@@ -368,7 +430,12 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
             remove_subscriber(&b, m->Param.UnsubscribeEvent.targetModule,
                               m->Param.UnsubscribeEvent.targetPort, m->Param.UnsubscribeEvent.sourcePort);
             break;
-        default: /* acks from ORD/modules, data requests: nothing to do */
+        case REQ_ACK: /* another supervisor's answer to an `activate supervisor` of ours */
+            if (m->Param.Ack.AckID > 0 && (m->Param.Ack.Ack & (ACK_START | ACK_NOTDONE)))
+                sup_core_function_answer(c, now, m->Param.Ack.Module, (uint32_t)m->Param.Ack.AckID,
+                                         m->Param.Ack.Ack == ACK_START);
+            break;
+        default: /* data requests: nothing to do */
             break;
         }
     }

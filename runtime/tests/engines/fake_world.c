@@ -82,8 +82,10 @@ static void format_block(char *out, size_t n, const ContractVar *vars, int nvars
 /* ---- bus ------------------------------------------------------------------------------- */
 
 typedef struct BusMsg {
-    int kind;               /* 0 start function, 1 stop function, 2 event */
+    int kind;               /* 0 start function, 1 stop function, 2 event, 3 answer to a start */
     char to[16], function[64], from[16];
+    uint32_t act_id;        /* start/stop/answer: the caller's activation id */
+    int accepted;           /* answer */
     int src_port, in_port;
     unsigned char data[1024];
     size_t size;
@@ -130,9 +132,23 @@ int fake_bus_deliver(FakeBus *b, int64_t t) {
             if (strcmp(b->names[i], m.to) == 0) dst = b->cores[i];
         if (!dst) continue;
         n++;
-        if (m.kind == 0) sup_core_start_function(dst, t, m.function, m.data, m.size);
-        else if (m.kind == 1) sup_core_stop_function(dst, t, m.function);
-        else sup_core_module_event(dst, t, m.from, m.src_port, m.in_port, m.data, m.size);
+        if (m.kind == 0) { /* the callee answers, as sup_main.c does with ACK_START/ACK_NOTDONE */
+            int rc = sup_core_start_function_for(dst, t, m.function, m.data, m.size, m.from, m.act_id);
+            BusMsg *a = bus_push(b);
+            if (a) {
+                a->kind = 3;
+                scopy(a->to, sizeof a->to, m.from);
+                scopy(a->from, sizeof a->from, m.to);
+                a->act_id = m.act_id;
+                a->accepted = rc == 0;
+            }
+        } else if (m.kind == 1) {
+            sup_core_stop_function_for(dst, t, m.function, m.from, m.act_id);
+        } else if (m.kind == 3) {
+            sup_core_function_answer(dst, t, m.from, m.act_id, m.accepted);
+        } else {
+            sup_core_module_event(dst, t, m.from, m.src_port, m.in_port, m.data, m.size);
+        }
     }
     return n;
 }
@@ -151,7 +167,10 @@ static void s_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     (void)id;
     WLOG((FakeWorld *)ctx, "ORD deactivate %s", s->name);
 }
-static int s_module_running(void *ctx, const char *m) { return fake_is_running(ctx, m); }
+static int s_module_running(void *ctx, const char *m) {
+    const FakeWorld *w = ctx;
+    return fake_is_running(w->modules ? w->modules : w, m);
+}
 static void require_locked(FakeWorld *w, const char *m) {
     if (strcmp(w->locked, m) != 0) w->unlocked_effects++;
 }
@@ -183,13 +202,28 @@ static void s_stop_module(void *ctx, const char *m) {
     }
     WLOG(w, "stop %s", m);
 }
-static int s_set_priority(void *ctx, const char *m, int prio) {
-    FakeWorld *w = ctx;
-    int i = find_running(w, m);
-    int old = i >= 0 ? w->prio[i] : -1;
-    if (i >= 0) w->prio[i] = prio;
+static int set_priority(FakeWorld *w, const char *m, int prio) {
+    FakeWorld *mw = w->modules ? w->modules : w;
+    int i = find_running(mw, m);
+    int old = i >= 0 ? mw->prio[i] : -1;
+    if (i >= 0) mw->prio[i] = prio;
     WLOG(w, "priority %s %d (was %d)", m, prio, old);
     return old;
+}
+static int s_claim_priority(void *ctx, const char *m, uint32_t id, int prio) {
+    FakeWorld *w = ctx, *mw = w->modules ? w->modules : w;
+    int before = set_priority(w, m, prio);
+    if (before < 0) return -1;
+    return sup_claims_push_priority(&mw->prio_claims, w->name ? w->name : "", m, id, prio, before);
+}
+static void s_release_priority(void *ctx, const char *m, uint32_t id) {
+    FakeWorld *w = ctx, *mw = w->modules ? w->modules : w;
+    int restore = -1, later = -1;
+    int r = sup_claims_drop_priority(&mw->prio_claims, w->name ? w->name : "", m, id, &restore, &later);
+    if (r == 1) set_priority(w, m, restore);
+    else if (r == 0) WLOG(w, "kept: priority of %s (a later change by %s stands)", m,
+                          mw->prio_claims.prio[later].owner[0] ? mw->prio_claims.prio[later].owner : "this supervisor");
+    if (mw->prio_claims.nprio == 0) sup_claims_free(&mw->prio_claims); /* nothing left to free */
 }
 static void s_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
     char buf[300];
@@ -251,15 +285,19 @@ static void s_notify(void *ctx, int port, const ContractType *t, const void *v, 
         if (s->mode == CONTRACT_ONESHOT) s->active = 0;
     }
 }
-static int s_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size) {
+static int s_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size,
+                            uint32_t id) {
     FakeWorld *w = ctx;
-    char buf[300];
-    fake_format(buf, sizeof buf, &(ContractType){.name = "TypeA", .kind = CONTRACT_KIND_STRUCT}, p);
-    WLOG(w, "start %s.%s %s", sup, fn, size == sizeof(TypeA) ? buf : "");
+    char buf[300] = "";
+    if (size == sizeof(TypeA)) /* the report's parameter blocks; others are not shown */
+        fake_format(buf, sizeof buf, &(ContractType){.name = "TypeA", .kind = CONTRACT_KIND_STRUCT}, p);
+    WLOG(w, "start %s.%s %s", sup, fn, buf);
     if (w->bus) {
         BusMsg *m = bus_push(w->bus);
         if (m) {
             m->kind = 0;
+            m->act_id = id;
+            scopy(m->from, sizeof m->from, w->name ? w->name : "");
             snprintf(m->to, sizeof m->to, "%s", sup);
             snprintf(m->function, sizeof m->function, "%s", fn);
             m->size = size < sizeof m->data ? size : sizeof m->data;
@@ -268,13 +306,15 @@ static int s_start_function(void *ctx, const char *sup, const char *fn, const vo
     }
     return 0;
 }
-static void s_stop_function(void *ctx, const char *sup, const char *fn) {
+static void s_stop_function(void *ctx, const char *sup, const char *fn, uint32_t id) {
     FakeWorld *w = ctx;
     WLOG(w, "stop %s.%s", sup, fn);
     if (w->bus) {
         BusMsg *m = bus_push(w->bus);
         if (m) {
             m->kind = 1;
+            m->act_id = id;
+            scopy(m->from, sizeof m->from, w->name ? w->name : "");
             snprintf(m->to, sizeof m->to, "%s", sup);
             snprintf(m->function, sizeof m->function, "%s", fn);
         }
@@ -289,11 +329,22 @@ static void s_share_module(void *ctx, const char *m, int hold) {
     WLOG((FakeWorld *)ctx, "%s %s", hold ? "share" : "unshare", m);
 }
 
+SupCore *fake_make_sup(FakeWorld *w, TestLog *log, const ContractSupervisorVocabulary *v, const char *name) {
+    memset(w, 0, sizeof *w);
+    w->log = log;
+    w->name = name;
+    SupIo io = fake_sup_io(w);
+    char err[256] = "";
+    SupCore *c = sup_core_create(v, &io, err, sizeof err);
+    if (!c) fprintf(stderr, "  %s\n", err);
+    return c;
+}
+
 SupIo fake_sup_io(FakeWorld *w) {
     SupIo io = {w, s_ord_activate, s_ord_deactivate, s_module_running, s_start_module,
-                s_stop_module, s_set_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
+                s_stop_module, s_claim_priority, s_release_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
                 s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module,
-                s_lock_module};
+                s_lock_module, NULL};
     return io;
 }
 
@@ -332,6 +383,12 @@ static void o_trace(void *ctx, int64_t t, const char *line) {
     WLOG((FakeWorld *)ctx, "%lldus %s", (long long)(t / 1000), line);
 }
 
+static void o_stuck(void *ctx, const char *m, const char *schema, uint32_t id, long periods,
+                    const char *message) {
+    (void)message;
+    WLOG((FakeWorld *)ctx, "stuck %s #%u (%s) after %ld periods", m, id, schema, periods);
+}
+
 uint32_t fake_last_release(const FakeWorld *w, const char *module) {
     for (int i = w->nrel - 1; i >= 0; i--)
         if (strcmp(w->rel_module[i], module) == 0) return w->rel_id[i];
@@ -339,6 +396,6 @@ uint32_t fake_last_release(const FakeWorld *w, const char *module) {
 }
 
 OrdIo fake_ord_io(FakeWorld *w) {
-    OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace};
+    OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace, o_stuck, NULL};
     return io;
 }

@@ -10,6 +10,7 @@
 
 #include "harness.h"
 #include "ord_core.h"
+#include "sup_claims.h"
 #include "sup_core.h"
 
 #define FW_MAX 32
@@ -31,9 +32,16 @@ typedef struct FakeWorld {
        shares of a module done while it was not locked (the binding needs them locked) */
     char locked[16];
     int nlocks, unlocked_effects;
+    /* priority claims (SupIo.claim_priority), decided by sup_claims.c as the binding does;
+       `modules` (NULL: itself) is the world whose modules and claims they act on, so that
+       several supervisors can share them */
+    struct FakeWorld *modules;
+    SupClaims prio_claims;
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);
+/** A supervisor core on a cleared world that records into `log`; NULL (error on stderr) if refused. */
+SupCore *fake_make_sup(FakeWorld *w, TestLog *log, const ContractSupervisorVocabulary *v, const char *name);
 OrdIo fake_ord_io(FakeWorld *w);
 /** Marks a module as already running (started by someone else) at a priority. */
 void fake_set_running(FakeWorld *w, const char *module, int priority);

@@ -31,11 +31,14 @@ static const ContractSchema OTH = {"OTH", CONTRACT_SCHEMA_PERIODIC, 10 * MS, 10 
 static const ContractSchemaModule fst_modules[] = {{"E", 0, NULL}};
 static const ContractSchema FST = {"FST", CONTRACT_SCHEMA_PERIODIC, 3 * MS, 3 * MS,
                                    0, NULL, 0, 1, fst_modules, 0, NULL, 0, NULL, 0, NULL};
-static const ContractSchema *const schemas[] = {&DIA, &OTH, &FST};
-static const ContractOrdModule modules[] = {{"A", 50, 0}, {"B", 50, 0}, {"C", 50, 0},
-                                            {"D", 50, 0}, {"E", 60, 0}, {"F", 50, 0}};
+static const ContractSchemaModule slw_modules[] = {{"G", 0, NULL}};
+static const ContractSchema SLW = {"SLW", CONTRACT_SCHEMA_PERIODIC, 200 * MS, 200 * MS,
+                                   0, NULL, 0, 1, slw_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchema *const schemas[] = {&DIA, &OTH, &FST, &SLW};
+static const ContractOrdModule modules[] = {{"A", 50, 0}, {"B", 50, 0}, {"C", 50, 0}, {"D", 50, 0},
+                                            {"E", 60, 0}, {"F", 50, 0}, {"G", 50, 0}};
 static const char *const sups[] = {"SUP"};
-static const ContractOrdVocabulary VOC = {CONTRACT_VOCABULARY_VERSION, 6, modules, 3, schemas, 1, sups};
+static const ContractOrdVocabulary VOC = {CONTRACT_VOCABULARY_VERSION, 7, modules, 4, schemas, 1, sups};
 
 static OrdCore *make(FakeWorld *w) {
     log_clear(&LOG);
@@ -326,5 +329,138 @@ void test_ord_held_cycle_gives_up_after_1s(void) {
     OrdSchemaStats st;
     ord_core_stats(c, "FST", &st);
     CHECK(st.overruns == 334 && st.held_cycles == 1 && st.completed == 1); /* 5..1001 ms: 333 */
+    ord_core_destroy(c);
+}
+
+/* activation ids are numbered by each supervisor: SUP's #1 and GLB's refused #1 are two
+   activations, and GLB's undo must not deactivate SUP's schema */
+void test_ord_undo_of_another_supervisors_activation_with_the_same_id(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    CHECK(ord_core_activate(c, 0, "DIA", NULL, 0, "SUP", 1) == 0);
+    CHECK(ord_core_activate(c, 1 * MS, "DIA", NULL, 0, "GLB", 1) == -1); /* refused: ORD:1 */
+    CHECK(ord_core_deactivate(c, 2 * MS, "DIA", "GLB", 1) == -1);        /* its undo */
+    CHECK(ord_core_schema_active(c, "DIA"));
+    CHECK(ord_core_deactivate(c, 3 * MS, "DIA", "SUP", 1) == 0);
+    CHECK(!ord_core_schema_active(c, "DIA"));
+    ord_core_destroy(c);
+}
+
+/* A synchronous module whose exec region never sets *stateindex = -1 never finishes its
+   release (issue 18): after ORD_STUCK_PERIODS periods ORD names it once, with the likely cause,
+   instead of an overrun line at every tick; the cycle's skipped ticks are still counted, and if
+   the module ends at last, the schema goes on. */
+void test_ord_module_that_never_finishes_is_reported_once(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    uint32_t g = fake_last_release(&w, "G");
+    ord_core_advance(c, 5000 * MS);
+    ord_core_release_finished(c, 5100 * MS, "G", g);
+    ord_core_advance(c, 5200 * MS);
+    char stuck[LOG_LINE], called[LOG_LINE], last[LOG_LINE];
+    snprintf(stuck, sizeof stuck, "2000000us stuck: G has not finished release #%u after 10 periods: "
+             "does its exec region set *stateindex = -1? (SLW)", g);
+    snprintf(called, sizeof called, "stuck G #%u (SLW) after 10 periods", g);
+    snprintf(last, sizeof last, "5100000us G finished release #%u at last (reported stuck, SLW)", g);
+    check_log_filtered(&LOG, (const char *const[]){"release G", "overrun", "stuck", NULL},
+                       (const char *const[]){
+                           "0us release G (SLW)",
+                           "200000us overrun: SLW cycle still running, release skipped",
+                           stuck, called, last,
+                           "5100000us overrun: SLW cycle ended after 25 skipped releases",
+                           "5200000us release G (SLW)", NULL},
+                       __FILE__, __LINE__);
+    OrdSchemaStats st;
+    ord_core_stats(c, "SLW", &st);
+    CHECK(st.overruns == 25 && st.stuck_releases == 1 && st.completed == 1 && st.cycles == 2);
+    ord_core_destroy(c);
+}
+
+/* Short periods: a loaded machine may hold a module for a few periods; it is declared stuck only
+   after ORD_STUCK_MIN_NS (1 s), i.e. 334 periods of 3 ms. */
+void test_ord_stuck_needs_at_least_1s_on_short_periods(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "FST", NULL, 0, "SUP", 1);
+    uint32_t e = fake_last_release(&w, "E");
+    ord_core_advance(c, 999 * MS);
+    OrdSchemaStats st;
+    ord_core_stats(c, "FST", &st);
+    CHECK(st.stuck_releases == 0 && st.overruns == 333);
+    ord_core_advance(c, 3000 * MS);
+    char called[LOG_LINE];
+    snprintf(called, sizeof called, "stuck E #%u (FST) after 334 periods", e);
+    check_log_filtered(&LOG, (const char *const[]){"stuck E", NULL}, (const char *const[]){called, NULL},
+                       __FILE__, __LINE__);
+    ord_core_stats(c, "FST", &st);
+    CHECK(st.stuck_releases == 1 && st.overruns == 1000);
+    ord_core_destroy(c);
+}
+
+/* Real-time mode: a module hogging the CPU makes ORD wake late, so every tick is overtaken by the
+   next (missed, not an overrun). The stuck module is still reported, and the missed ticks of its
+   cycle are one line, not one per tick. */
+void test_ord_stuck_reported_when_every_tick_is_missed(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_set_skip_late_ticks(c, 1);
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    uint32_t g = fake_last_release(&w, "G");
+    for (int64_t t = 450 * MS; t <= 4500 * MS; t += 450 * MS) ord_core_advance(c, t);
+    /* advancing to 2250 ms overtakes the 2000 ms tick: the report comes from a missed tick */
+    char stuck[LOG_LINE], called[LOG_LINE];
+    snprintf(stuck, sizeof stuck, "2000000us stuck: G has not finished release #%u after 10 periods: "
+             "does its exec region set *stateindex = -1? (SLW)", g);
+    snprintf(called, sizeof called, "stuck G #%u (SLW) after 10 periods", g);
+    check_log_filtered(&LOG, (const char *const[]){"missed", "overrun", "stuck", NULL},
+                       (const char *const[]){"200000us missed tick of SLW",
+                                             "400000us overrun: SLW cycle still running, release skipped",
+                                             stuck, called, NULL},
+                       __FILE__, __LINE__);
+    OrdSchemaStats st;
+    ord_core_stats(c, "SLW", &st);
+    CHECK(st.stuck_releases == 1 && st.missed_ticks > 5);
+    ord_core_destroy(c);
+}
+
+/* OrdIo.fact: the typed timeline of docs/runtime-api.md "Trace records" */
+static void fact_to_log(void *ctx, int64_t t, const OrdFact *f) {
+    FakeWorld *w = ctx;
+    static const char *const kinds[] = {"", "release", "finished", "complete", "deadline_miss"};
+    log_add(w->log, "%lldus fact %s %s %s cycle=%ld tick=%lldus response=%lldus", (long long)(t / 1000),
+            kinds[f->kind], f->schema, f->module ? f->module : "-", f->cycle, (long long)(f->tick / 1000),
+            f->kind == ORD_FACT_FINISHED || f->kind == ORD_FACT_COMPLETE ? (long long)(f->response_ns / 1000) : 0LL);
+}
+
+void test_ord_facts_release_finished_complete_miss_with_cycle(void) {
+    FakeWorld w;
+    log_clear(&LOG);
+    memset(&w, 0, sizeof w);
+    w.log = &LOG;
+    OrdIo io = fake_ord_io(&w);
+    io.fact = fact_to_log;
+    char err[256] = "";
+    OrdCore *c = ord_core_create(&VOC, &io, err, sizeof err);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 5 * MS, "FST", NULL, 0, "SUP", 1); /* E every 3 ms, critical 3 ms */
+    ord_core_module_finished(c, 6 * MS, "E");               /* cycle 0: 1 ms */
+    ord_core_advance(c, 8 * MS);                            /* cycle 1 released at 8 ms */
+    ord_core_module_finished(c, 11 * MS + 500000, "E");     /* 3.5 ms: missed at 11 ms; the 11 ms tick overruns */
+    const char *const facts[] = {"fact", NULL};
+    check_log_filtered(&LOG, facts,
+                       (const char *const[]){"5000us fact release FST E cycle=0 tick=5000us response=0us",
+                                             "6000us fact finished FST E cycle=0 tick=5000us response=1000us",
+                                             "6000us fact complete FST - cycle=0 tick=5000us response=1000us",
+                                             "8000us fact release FST E cycle=1 tick=8000us response=0us",
+                                             "11000us fact deadline_miss FST - cycle=1 tick=8000us response=0us",
+                                             "11500us fact finished FST E cycle=1 tick=8000us response=3500us",
+                                             "11500us fact complete FST - cycle=1 tick=8000us response=3500us",
+                                             NULL},
+                       __FILE__, __LINE__);
     ord_core_destroy(c);
 }

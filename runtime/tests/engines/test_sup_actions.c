@@ -90,13 +90,7 @@ static const ContractSupervisorVocabulary ACT = {
 
 static SupCore *make(FakeWorld *w) {
     log_clear(&LOG);
-    memset(w, 0, sizeof *w);
-    w->log = &LOG;
-    SupIo io = fake_sup_io(w);
-    char err[256] = "";
-    SupCore *c = sup_core_create(&ACT, &io, err, sizeof err);
-    if (!c) fprintf(stderr, "  %s\n", err);
-    return c;
+    return fake_make_sup(w, &LOG, &ACT, NULL);
 }
 
 void test_actions_event_schemas_share_modules_and_module_activation(void) {

@@ -15,14 +15,7 @@
 static TestLog LOG;
 
 static SupCore *make_sup(FakeWorld *w, const ContractSupervisorVocabulary *v, const char *name) {
-    memset(w, 0, sizeof *w);
-    w->log = &LOG;
-    w->name = name;
-    SupIo io = fake_sup_io(w);
-    char err[256] = "";
-    SupCore *c = sup_core_create(v, &io, err, sizeof err);
-    if (!c) fprintf(stderr, "  %s\n", err);
-    return c;
+    return fake_make_sup(w, &LOG, v, name);
 }
 
 static void send_string(SupCore *c, int64_t t, const char *m, int port, const char *s) {
@@ -209,7 +202,7 @@ void test_report_nested_glb_stops_sup_on_commutation(void) {
     TypeA consigne = {7.0, 8.0, 9.0};
     CHECK(sup_core_start_function(glb, 0, "mission", &consigne, sizeof consigne) == 0);
     sup_core_advance(glb, 1 * MS);
-    CHECK(fake_bus_deliver(bus, 1 * MS) == 1);
+    CHECK(fake_bus_deliver(bus, 1 * MS) == 2); /* the start to SUP, SUP's answer to GLB */
     CHECK(sup_core_function_running(sup, "action"));
     const TypeA *tc = sup_core_local(sup, "action", "temp_consigne");
     CHECK(tc && tc->i == 7.0 && tc->k == 9.0);
@@ -243,7 +236,7 @@ void test_report_nested_glb_stops_sup_on_commutation(void) {
     fake_bus_destroy(bus);
 }
 
-/* Runs are deterministic (SPEC §4.4): the same inputs at the same times give the same effects. */
+/* Runs are deterministic (docs/semantics.md "Supervisors: event order"): the same inputs at the same times give the same effects. */
 static void scripted_run(TestLog *out) {
     FakeWorld w;
     memset(&w, 0, sizeof w);
@@ -283,4 +276,55 @@ void test_report_sup_runs_are_deterministic(void) {
     CHECK(a.n > 20 && a.n == b.n);
     for (int i = 0; i < a.n && i < b.n; i++) CHECK(strcmp(a.lines[i], b.lines[i]) == 0);
     CHECK(log_find(&a, "rule action.SECOND active", 0) >= 0);
+}
+
+/* SupIo.rule: every rule change of the report's sequence with the event that caused it
+   (docs/runtime-api.md "Trace records") */
+static TestLog CAUSES;
+static void rule_to_log(void *ctx, int64_t t, const char *function, const char *rule, int active,
+                        const char *cause) {
+    (void)ctx;
+    log_add(&CAUSES, "%lldus %s.%s %s cause=%s", (long long)(t / 1000), function, rule,
+            active ? "active" : "inactive", cause);
+}
+
+void test_report_sup_rule_changes_carry_their_cause(void) {
+    log_clear(&LOG);
+    log_clear(&CAUSES);
+    report_log = &LOG;
+    testit_result = 1;
+    FakeWorld w;
+    memset(&w, 0, sizeof w);
+    w.log = &LOG;
+    SupIo io = fake_sup_io(&w);
+    io.rule = rule_to_log;
+    char err[256] = "";
+    SupCore *c = sup_core_create(&SUP_VOCAB, &io, err, sizeof err);
+    CHECK(c != NULL);
+    if (!c) return;
+    TypeA consigne = {1.0, 2.0, 3.0};
+    CHECK(sup_core_start_function(c, 0, "action", &consigne, sizeof consigne) == 0);
+    sup_core_advance(c, 1 * MS);
+    TypeC msg = {"hello", 7, {4.0, 5.0, 6.0}};
+    sup_core_module_event(c, 2 * MS, "MAA", 0, -1, &msg, sizeof msg);
+    send_string(c, 3 * MS, "MAA", 2, "disconnected");
+    TypeD fail = {"overheat", 42};
+    sup_core_module_event(c, 4 * MS, "MSC", 1, -1, &fail, sizeof fail);
+    CHECK(sup_core_stop_function(c, 6 * MS, "action") == 0);
+    char typec[64], typed[64];
+    snprintf(typec, sizeof typec, "2000us action.RECEPTION active cause=MAA:0 value={%zu bytes}", sizeof(TypeC));
+    snprintf(typed, sizeof typed, "4000us action.SECOND inactive cause=MSC:1 value={%zu bytes}", sizeof(TypeD));
+    CHECK_LOG(&CAUSES,
+              "1000us action.FIRST active cause=elapsed=1000000ns",
+              typec,
+              "2000us action.RECEPTION inactive cause=started(RECEPTION)",
+              "3000us action.FIRST inactive cause=MAA:2 value=\"disconnected\"",
+              "3000us action.SECOND active cause=MAA:2 value=\"disconnected\"",
+              typed,
+              "4000us action.THIRD active cause=endof(SECOND)",
+              "4000us action.FOURTH active cause=endof(SECOND)",
+              "4000us action.THIRD inactive cause=started(THIRD)",
+              "6000us action.FOURTH inactive cause=stop");
+    report_log = NULL;
+    sup_core_destroy(c);
 }

@@ -6,10 +6,10 @@ import { createHash } from 'node:crypto';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { JobService } from '../job-service.js';
 import type { LineEvent } from '../pipeline/job-events.js';
+import { artifactBytes } from '../pipeline/artifacts.js';
 import { ServiceError } from '../service-errors.js';
+import { BodyReader } from './body-reader.js';
 import { streamSse } from './sse.js';
-
-const MAX_BODY_BYTES = 80 * 1024 * 1024;
 
 function send(res: ServerResponse, status: number, body: unknown, headers: Record<string, string> = {}): void {
   const text = JSON.stringify(body);
@@ -17,36 +17,12 @@ function send(res: ServerResponse, status: number, body: unknown, headers: Recor
   res.end(text);
 }
 
-function sendError(res: ServerResponse, e: unknown): void {
+function sendError(res: ServerResponse, e: unknown, headers: Record<string, string> = {}): void {
   if (e instanceof ServiceError) {
-    send(res, e.status, { error: e.message, code: e.code }, e.status === 429 ? { 'Retry-After': '2' } : {});
+    send(res, e.status, { error: e.message, code: e.code }, { ...(e.status === 429 || e.code === 'busy' ? { 'Retry-After': '2' } : {}), ...headers });
   } else {
     send(res, 500, { error: `internal error: ${(e as Error).message}`, code: 'internal' });
   }
-}
-
-function readJson(req: IncomingMessage): Promise<unknown> {
-  return new Promise((resolve, reject) => {
-    const chunks: Buffer[] = [];
-    let size = 0;
-    req.on('data', (c: Buffer) => {
-      size += c.length;
-      if (size > MAX_BODY_BYTES) {
-        reject(new ServiceError(413, 'too_large', `request body above ${MAX_BODY_BYTES} bytes`));
-        req.destroy();
-        return;
-      }
-      chunks.push(c);
-    });
-    req.on('end', () => {
-      try {
-        resolve(JSON.parse(Buffer.concat(chunks).toString('utf8') || 'null'));
-      } catch (e) {
-        reject(new ServiceError(400, 'bad_request', `invalid JSON: ${(e as Error).message}`));
-      }
-    });
-    req.on('error', reject);
-  });
 }
 
 export function afterSeq(req: IncomingMessage, url: URL): number {
@@ -71,13 +47,31 @@ function clientOwner(req: IncomingMessage): string | undefined {
   return createHash('sha256').update(key).digest('hex');
 }
 
+/** What the caller of `handle()` allows; a mounting server (the IDE) keeps the default. */
+export interface RoutePolicy {
+  /** Accept `sandbox: "none"` jobs (no isolation). The standalone server sets it from its option. */
+  allowNoneSandbox: boolean;
+}
+
+/** 403 for a `sandbox: "none"` job (named, or the service's default) the policy does not allow. */
+function checkSandboxPolicy(service: JobService, body: unknown, policy: RoutePolicy): void {
+  if (policy.allowNoneSandbox) return;
+  const named = body && typeof body === 'object' ? (body as { sandbox?: unknown }).sandbox : undefined;
+  if ((named ?? service.defaultSandbox) === 'none') {
+    throw new ServiceError(403, 'forbidden', 'sandbox "none" jobs (no isolation: they run as the service\'s user) are refused: this service was not started with allowNoneSandbox: true; use "bwrap", "docker" or "auto"');
+  }
+}
+
 export function createRouter(service: JobService, basePath: string) {
-  return async function handle(req: IncomingMessage, res: ServerResponse): Promise<boolean> {
+  const bodies = new BodyReader();
+  return async function handle(req: IncomingMessage, res: ServerResponse, policy: RoutePolicy = { allowNoneSandbox: true }): Promise<boolean> {
     const url = new URL(req.url ?? '/', 'http://localhost');
     if (url.pathname !== basePath && !url.pathname.startsWith(`${basePath}/`)) return false;
     const path = url.pathname.slice(basePath.length) || '/';
     const parts = path.split('/').filter(Boolean);
     const method = req.method ?? 'GET';
+    /** A body left unread is not drained: the answer closes the connection instead. */
+    let bodyUnread = method === 'POST' || method === 'PUT' || method === 'PATCH';
     try {
       if (parts[0] === 'health' && parts.length === 1 && method === 'GET') {
         send(res, 200, { ok: true, ...service.stats });
@@ -92,7 +86,13 @@ export function createRouter(service: JobService, basePath: string) {
         }
         send(res, 200, { default: service.defaultSandbox, auto, sandboxes, limits: service.limits });
       } else if (parts[0] === 'jobs' && parts.length === 1 && method === 'POST') {
-        const job = await service.submit(await readJson(req), clientOwner(req));
+        // every refusal that needs no body comes before reading it (docs/build-service-api.md)
+        const owner = clientOwner(req);
+        service.checkCapacity();
+        const body = await bodies.admit(req).read();
+        bodyUnread = false;
+        checkSandboxPolicy(service, body, policy);
+        const job = await service.submit(body, owner);
         send(
           res,
           201,
@@ -100,7 +100,7 @@ export function createRouter(service: JobService, basePath: string) {
           { Location: `${basePath}/jobs/${job.id}` },
         );
       } else if (parts[0] === 'jobs' && parts.length === 1 && method === 'GET') {
-        // one client never sees another's jobs (SPEC §5): only those submitted with the same key
+        // one client never sees another's jobs (docs/build-service-api.md "GET /api/jobs"): only those submitted with the same key
         const owner = clientOwner(req);
         send(res, 200, {
           jobs: owner === undefined ? [] : service.list(owner).map((j) => ({ id: j.id, status: j.status, action: j.request.action, sandbox: j.sandboxName, createdAt: j.createdAt, finishedAt: j.finishedAt, message: j.result?.message ?? null })),
@@ -114,7 +114,7 @@ export function createRouter(service: JobService, basePath: string) {
         else if (parts.length === 2 && method === 'DELETE') {
           if (job.isDone) send(res, 200, { id: job.id, status: job.status });
           else {
-            void service.cancel(job.id);
+            service.cancel(job.id).catch(() => {});
             send(res, 202, { id: job.id, status: 'cancelling' });
           }
         } else if (sub === 'events' && parts.length === 3 && method === 'GET') streamSse(job, req, res, afterSeq(req, url));
@@ -133,19 +133,24 @@ export function createRouter(service: JobService, basePath: string) {
           }
           const file = job.artifact(name);
           if (!file) throw new ServiceError(404, 'not_found', `job ${job.id} has no artifact "${name}"${job.isDone ? '' : ' (yet: the job has not finished)'}`);
+          // kept gzip-compressed (artifacts.ts): sent as is to a client that takes gzip
+          const gz = /\bgzip\b/.test(String(req.headers['accept-encoding'] ?? ''));
+          const body = gz ? file.gzip : artifactBytes(file);
           res.writeHead(200, {
             'Content-Type': name.endsWith('.csv') ? 'text/csv; charset=utf-8' : 'application/octet-stream',
-            'Content-Length': file.data.length,
+            'Content-Length': body.length,
+            ...(gz ? { 'Content-Encoding': 'gzip' } : {}),
+            Vary: 'Accept-Encoding',
             'Content-Disposition': `attachment; filename="${file.name}"`,
             'X-Content-Type-Options': 'nosniff',
           });
-          res.end(file.data);
+          res.end(body);
         } else throw new ServiceError(404, 'not_found', `no route ${method} ${url.pathname}`);
       } else {
         throw new ServiceError(404, 'not_found', `no route ${method} ${url.pathname}`);
       }
     } catch (e) {
-      if (!res.headersSent) sendError(res, e);
+      if (!res.headersSent) sendError(res, e, bodyUnread ? { Connection: 'close' } : {});
       else res.end();
     }
     return true;

@@ -21,18 +21,33 @@ export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, a
   });
   res.write(': contract build service\n\n');
   let closed = false;
-  const ping = setInterval(() => res.write(': ping\n\n'), 15_000);
+  // a client that goes away mid-write must end this stream only, never the service
+  const write = (text: string): void => {
+    if (closed) return;
+    try {
+      res.write(text);
+    } catch {
+      setImmediate(stop);
+    }
+  };
+  const ping = setInterval(() => write(': ping\n\n'), 15_000);
   ping.unref();
+  let unsubscribe: () => void = () => {};
   const stop = (): void => {
     if (closed) return;
     closed = true;
     clearInterval(ping);
     unsubscribe();
-    res.end();
+    try {
+      res.end();
+    } catch {
+      res.destroy();
+    }
   };
-  const unsubscribe = job.events.subscribe(after, (e) => {
-    if (closed) return;
-    res.write(`id: ${e.seq}\nevent: ${e.type}\ndata: ${JSON.stringify(eventPayload(e))}\n\n`);
+  res.on('error', stop);
+  req.on('error', stop);
+  unsubscribe = job.events.subscribe(after, (e) => {
+    write(`id: ${e.seq}\nevent: ${e.type}\ndata: ${JSON.stringify(eventPayload(e))}\n\n`);
     if (e.type === 'end') setImmediate(stop);
   });
   req.on('close', stop);

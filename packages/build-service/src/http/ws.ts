@@ -6,9 +6,11 @@ import type { IncomingMessage } from 'node:http';
 import type { Duplex } from 'node:stream';
 import { WebSocketServer } from 'ws';
 import type { JobService } from '../job-service.js';
+import { SERVICE_BOUNDS } from '../limits.js';
 
 export class JobWebSockets {
-  private readonly wss = new WebSocketServer({ noServer: true });
+  // clients only send {"type":"cancel"}: a bounded frame size (SERVICE_BOUNDS.wsMessageBytes)
+  private readonly wss = new WebSocketServer({ noServer: true, maxPayload: SERVICE_BOUNDS.wsMessageBytes });
 
   constructor(private readonly service: JobService) {}
 
@@ -17,19 +19,26 @@ export class JobWebSockets {
     const job = this.service.get(id);
     if (!job) return false;
     this.wss.handleUpgrade(req, socket, head, (ws) => {
-      const unsubscribe = job.events.subscribe(after, (e) => {
-        ws.send(JSON.stringify(e));
+      // a protocol error of the client (bad frame, frame above maxPayload) is emitted as 'error':
+      // without a listener it would be thrown and end the whole service
+      let unsubscribe: () => void = () => {};
+      ws.on('error', () => {
+        unsubscribe();
+        ws.terminate();
+      });
+      unsubscribe = job.events.subscribe(after, (e) => {
+        ws.send(JSON.stringify(e), () => {}); // a send on a closing socket reports here, not thrown
         if (e.type === 'end') setImmediate(() => ws.close(1000, 'job ended'));
       });
       ws.on('message', (data) => {
         try {
           const msg = JSON.parse(String(data)) as { type?: string };
-          if (msg.type === 'cancel') void this.service.cancel(id);
+          if (msg?.type === 'cancel') this.service.cancel(id).catch(() => {});
         } catch {
           /* ignore malformed client frames */
         }
       });
-      ws.on('close', unsubscribe);
+      ws.on('close', () => unsubscribe());
       if (job.events.isEnded) setImmediate(() => ws.close(1000, 'job ended'));
     });
     return true;

@@ -2,7 +2,8 @@ import { mkdirSync, mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
-import { collectRunArtifacts, hostWorkDirReader } from './artifacts.js';
+import { SERVICE_BOUNDS } from '../limits.js';
+import { artifactBytes, collectRunArtifacts, hostWorkDirReader, listHostDir } from './artifacts.js';
 
 let work: string;
 let outside: string;
@@ -28,7 +29,7 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     writeFileSync(join(work, 'logs', '.hidden'), 'h');
     writeFileSync(join(work, 'run', 'MAA.sock'), '');
     const a = await collectRunArtifacts(hostWorkDirReader, work);
-    expect(a.files.map((f) => [f.name, f.path, f.size, f.data.toString()])).toEqual([
+    expect(a.files.map((f) => [f.name, f.path, f.size, artifactBytes(f).toString()])).toEqual([
       ['MAA_21-Nov-2026-22h57m07s.csv', 'logs/MAA_21-Nov-2026-22h57m07s.csv', 8, 'a;b\n1;2\n'],
       ['ORD_x.csv', 'logs/ORD_x.csv', 2, 'c\n'],
     ]);
@@ -39,7 +40,7 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
       sub: 'not a regular file (dir): not followed',
     });
     expect(a.runDirLeftovers).toEqual(['MAA.sock']);
-    expect(a.files.some((f) => f.data.toString().includes('host secret'))).toBe(false);
+    expect(a.files.some((f) => artifactBytes(f).toString().includes('host secret'))).toBe(false);
   });
 
   test('a logs/ that is a link is not entered', async () => {
@@ -53,19 +54,69 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     expect(await collectRunArtifacts(hostWorkDirReader, work)).toEqual({ files: [], skipped: [], runDirLeftovers: [] });
   });
 
-  test('file count, file size and total size are bounded', async () => {
+  test('a log above the file or total bound is kept up to it, cut after a whole record, with a log-capped record', async () => {
     mkdirSync(join(work, 'logs'));
-    for (const [name, size] of [['a.csv', 10], ['b.csv', 60], ['c.csv', 30], ['d.csv', 30], ['e.csv', 1]] as const) {
-      writeFileSync(join(work, 'logs', name), Buffer.alloc(size, 65));
-    }
-    const a = await collectRunArtifacts(hostWorkDirReader, work, { files: 3, fileBytes: 50, totalBytes: 45 });
-    expect(a.files.map((f) => f.name)).toEqual(['a.csv', 'c.csv', 'e.csv']);
-    expect(a.skipped).toEqual([
-      { name: 'b.csv', reason: '60 bytes, above the 50-byte file bound' },
-      { name: 'd.csv', reason: 'the 45-byte total bound is reached' },
+    const record = (k: number): string => `${1000 + k},2026-11-24T18:00:00.000000Z,MOT,ev,,,0,d\n`; // 46 bytes
+    const csv = (n: number): string => Array.from({ length: n }, (_, k) => record(k)).join('');
+    writeFileSync(join(work, 'logs', 'MOT_1.csv'), csv(60)); // 2760 bytes
+    writeFileSync(join(work, 'logs', 'MOT_2.csv'), csv(200)); // 9200 bytes > the 4096-byte file bound
+    writeFileSync(join(work, 'logs', 'MOT_3.csv'), csv(60));
+    writeFileSync(join(work, 'logs', 'MOT_4.csv'), csv(60)); // the total bound is all but spent
+    const a = await collectRunArtifacts(hostWorkDirReader, work, { entries: 100, files: 10, fileBytes: 4096, totalBytes: 9400 });
+    expect(a.files.map((f) => [f.name, f.capped])).toEqual([
+      ['MOT_1.csv', null],
+      ['MOT_2.csv', '9200 bytes: the first 3542 kept (the 4096-byte file bound of the build service)'],
+      ['MOT_3.csv', null],
     ]);
-    const few = await collectRunArtifacts(hostWorkDirReader, work, { files: 2, fileBytes: 100, totalBytes: 1000 });
+    const cut = artifactBytes(a.files[1]!).toString().split('\n');
+    expect(cut.slice(0, 77)).toEqual(csv(77).split('\n').slice(0, 77)); // whole records, in order
+    expect(cut[77]).toMatch(/^,\d{4}-.*Z,MOT,log-capped,build-service,,9200,collected the first 3542 of 9200 bytes \(the 4096-byte bound of the build service\)$/);
+    expect(cut[78]).toBe('');
+    expect(artifactBytes(a.files[2]!).toString()).toBe(csv(60));
+    expect(a.skipped).toEqual([{ name: 'MOT_4.csv', reason: 'the 9400-byte total bound is reached', bound: true }]);
+    expect(a.files[1]!.gzip.length).toBeLessThan(a.files[1]!.size);
+  });
+
+  test("a log the runtime capped itself (its log-capped records at the end) is flagged, not cut", async () => {
+    mkdirSync(join(work, 'logs'));
+    const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,MSC,run_started,,,0,a\n2,t,MSC,log-capped,,,8192,log reached its 8192-byte bound\n3,t,MSC,log-capped,,,8192,5 records not written\n';
+    writeFileSync(join(work, 'logs', 'MSC_1.csv'), text);
+    const a = await collectRunArtifacts(hostWorkDirReader, work);
+    expect(a.files.map((f) => [f.name, f.capped])).toEqual([['MSC_1.csv', 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written']]);
+    expect(artifactBytes(a.files[0]!).toString()).toBe(text);
+  });
+
+  test('only the file count leaves whole logs out, and says so', async () => {
+    mkdirSync(join(work, 'logs'));
+    for (const name of ['a.csv', 'b.csv', 'c.csv']) writeFileSync(join(work, 'logs', name), 'x\n');
+    const few = await collectRunArtifacts(hostWorkDirReader, work, { entries: 100, files: 2, fileBytes: 100, totalBytes: 1000 });
     expect(few.files.map((f) => f.name)).toEqual(['a.csv', 'b.csv']);
-    expect(few.skipped.map((s) => s.reason)).toEqual(['more than 2 files', 'more than 2 files', 'more than 2 files']);
+    expect(few.skipped).toEqual([{ name: 'c.csv', reason: 'more than 2 files', bound: true }]);
+  });
+
+  test('a logs/ and run/ of thousands of entries: a bounded number is looked at and listed', async () => {
+    mkdirSync(join(work, 'logs'));
+    mkdirSync(join(work, 'run'));
+    const n = SERVICE_BOUNDS.listedEntries * 2;
+    for (let i = 0; i < n; i++) {
+      writeFileSync(join(work, 'logs', `m${String(i).padStart(5, '0')}.csv`), 'x\n');
+      writeFileSync(join(work, 'run', `s${i}`), '');
+    }
+    const a = await collectRunArtifacts(hostWorkDirReader, work);
+    expect(a.files).toHaveLength(256); // the file bound
+    expect(a.skipped.length).toBeLessThanOrEqual(SERVICE_BOUNDS.listedEntries - 256 + 1);
+    expect(a.skipped.at(-1)).toEqual({ name: 'logs/', reason: `more than ${SERVICE_BOUNDS.listedEntries} entries: the others were not looked at` });
+    expect(a.runDirLeftovers.length).toBeLessThanOrEqual(SERVICE_BOUNDS.listedEntries);
+  });
+
+  test('a logs/ with 3,000 entries is looked at only up to the entry bound', async () => {
+    mkdirSync(join(work, 'logs'));
+    for (let i = 0; i < 3000; i++) writeFileSync(join(work, 'logs', `f${i}.csv`), '');
+    const listing = await listHostDir(work, 'logs', 50);
+    expect(listing && 'entries' in listing && listing.entries.length).toBe(50);
+    const a = await collectRunArtifacts(hostWorkDirReader, work, { entries: 50, files: 10, fileBytes: 100, totalBytes: 1000 });
+    expect(a.files).toHaveLength(10);
+    expect(a.skipped.at(-1)).toEqual({ name: 'logs/', reason: 'more than 50 entries: the others were not looked at' });
+    expect(a.skipped).toHaveLength(41);
   });
 });

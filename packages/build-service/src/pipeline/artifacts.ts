@@ -4,20 +4,39 @@
  * Host side rules (docs/sandbox.md): the sandbox is stopped first; only regular files are taken,
  * never through a link the sandboxed code planted (no-follow host reads; Docker's archive API,
  * whose tar reports links as links); names are plain (`[A-Za-z0-9_.-]`, no leading dot); the
- * number of files, each file's size and the total are bounded. What is left out is listed with why.
+ * number of entries looked at, of files, each file's size and the total are bounded. What is left out is listed with why.
+ *
+ * A log is never dropped for its size (docs/build-service-api.md "Artifacts"): one above the file
+ * bound, or past the total bound, is kept up to the bound, cut after its last whole record, with a
+ * `log-capped` record saying so. The bounds are large enough for the logs of an hour of the
+ * mobile-robot example (the soak benchmark: 141 MiB of CSV in 10 min, 28 MiB for its biggest module): the
+ * runtime bounds each module's file itself at the same 256 MiB (CONTRACT_LOG_MAX_BYTES,
+ * docs/runtime-api.md), and the service keeps every collected file gzip-compressed in memory.
  */
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { readFileNoFollow } from '../util/safe-fs.js';
+import { promisify } from 'node:util';
+import { gunzipSync, gzip as gzipCb } from 'node:zlib';
+import { SERVICE_BOUNDS } from '../limits.js';
+import { readFileHeadNoFollow } from '../util/safe-fs.js';
 import type { TarEntryKind } from '../util/tar-reader.js';
 
+const gzip = promisify(gzipCb);
+
 export interface ArtifactBounds {
+  /** Entries of a folder looked at (a run may leave millions): the rest is not listed. */
+  entries: number;
   files: number;
+  /** Bytes kept of one file (the runtime's own per-module bound, CONTRACT_LOG_MAX_BYTES' default). */
   fileBytes: number;
+  /** Bytes kept over all the files (uncompressed). */
   totalBytes: number;
 }
 
-export const ARTIFACT_BOUNDS: ArtifactBounds = { files: 256, fileBytes: 16 * 1024 * 1024, totalBytes: 64 * 1024 * 1024 };
+export const ARTIFACT_BOUNDS: ArtifactBounds = { entries: SERVICE_BOUNDS.listedEntries, files: 256, fileBytes: 256 * 1024 * 1024, totalBytes: 2 * 1024 * 1024 * 1024 };
+
+/** The runtime's marker event (runtime/src/csvlog.c) and the one the service appends to a cut file. */
+export const LOG_CAPPED_EVENT = 'log-capped';
 
 /** The folders of the work dir a run leaves things in: `logs/` (collected) and `run/` (names only). */
 export const LOG_DIR = 'logs';
@@ -28,25 +47,39 @@ export interface DirEntryInfo {
   name: string;
   kind: TarEntryKind;
   size: number;
-  /** The bytes of a regular file (null when it is gone, grew past maxBytes, or is not regular). */
+  /** The first maxBytes bytes of a regular file, all of it when smaller (null when it is gone or not regular). */
   read(maxBytes: number): Promise<Buffer | null>;
 }
 
-/** A folder listing: null when the folder does not exist; `notDirectory` when something else sits there. */
-export type DirListing = { entries: DirEntryInfo[] } | { notDirectory: TarEntryKind } | null;
+/**
+ * A folder listing: null when the folder does not exist; `notDirectory` when something else sits
+ * there; `more` when the folder has more than the bound of entries looked at (not listed).
+ */
+export type DirListing = { entries: DirEntryInfo[]; more?: boolean } | { notDirectory: TarEntryKind } | null;
 
 export interface Artifact {
   /** File name (unique; the URL segment of GET /api/jobs/:id/artifacts/<name>). */
   name: string;
   /** Path in the work dir, e.g. `logs/MSC_21-Nov-2026-22h57m07s.csv`. */
   path: string;
+  /** Bytes of the collected file (uncompressed; after the cut, if it was cut). */
   size: number;
-  data: Buffer;
+  /** Those bytes, gzip-compressed (artifactBytes() gives them back). */
+  gzip: Buffer;
+  /** Why the log is not whole (a `log-capped` record marks where), or null when it is. */
+  capped: string | null;
+}
+
+/** The collected bytes of an artifact. */
+export function artifactBytes(a: Artifact): Buffer {
+  return gunzipSync(a.gzip);
 }
 
 export interface SkippedArtifact {
   name: string;
   reason: string;
+  /** Left out because a bound (file count, total bytes) was reached: records were lost. */
+  bound?: true;
 }
 
 export interface RunArtifacts {
@@ -56,32 +89,70 @@ export interface RunArtifacts {
   runDirLeftovers: string[];
 }
 
-const SAFE_NAME = /^[A-Za-z0-9_-][A-Za-z0-9_.-]{0,199}$/;
+/** The names of files the collector takes (and the live trace tails). */
+export const SAFE_NAME = /^[A-Za-z0-9_-][A-Za-z0-9_.-]{0,199}$/;
+
+/** Room kept under a bound for the service's `log-capped` record. */
+const MARKER_ROOM = 512;
+
+/** Bytes of the tail searched for the runtime's `log-capped` records (it writes them last). */
+const TAIL_BYTES = 4096;
+
+/** A CSV record (docs/runtime-api.md columns) saying the service cut the file. */
+function cutRecord(name: string, kept: number, size: number, bound: number): string {
+  const module = /^([A-Za-z0-9_]+?)_\d/.exec(name)?.[1] ?? '';
+  return `,${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${kept} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
+}
+
+/** Sees the bytes of each collected file before they are compressed (run-issues.ts). */
+export type ArtifactInspector = (name: string, data: Buffer) => void;
 
 /** Picks the artifacts of a `logs/` listing under the bounds. */
-export async function selectArtifacts(listing: DirListing, bounds: ArtifactBounds = ARTIFACT_BOUNDS): Promise<Pick<RunArtifacts, 'files' | 'skipped'>> {
+export async function selectArtifacts(
+  listing: DirListing,
+  bounds: ArtifactBounds = ARTIFACT_BOUNDS,
+  inspect?: ArtifactInspector,
+): Promise<Pick<RunArtifacts, 'files' | 'skipped'>> {
   const files: Artifact[] = [];
   const skipped: SkippedArtifact[] = [];
   if (listing === null) return { files, skipped };
   if ('notDirectory' in listing) return { files, skipped: [{ name: LOG_DIR, reason: `${LOG_DIR}/ is a ${listing.notDirectory}, not a directory: not followed` }] };
   let total = 0;
-  const sorted = [...listing.entries].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+  // the sandbox decides how many entries there are: only a bounded number is looked at
+  const all = [...listing.entries].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+  const sorted = all.slice(0, bounds.entries);
   for (const e of sorted) {
-    const skip = (reason: string): void => void skipped.push({ name: e.name, reason });
+    const skip = (reason: string, bound?: true): void => void skipped.push({ name: e.name, reason, ...(bound ? { bound } : {}) });
+    const room = Math.min(bounds.fileBytes, bounds.totalBytes - total);
     if (e.kind !== 'file') skip(`not a regular file (${e.kind}): not followed`);
     else if (!SAFE_NAME.test(e.name)) skip('name not allowed (letters, digits, _ . - only)');
-    else if (files.length >= bounds.files) skip(`more than ${bounds.files} files`);
-    else if (e.size > bounds.fileBytes) skip(`${e.size} bytes, above the ${bounds.fileBytes}-byte file bound`);
-    else if (total + e.size > bounds.totalBytes) skip(`the ${bounds.totalBytes}-byte total bound is reached`);
+    else if (files.length >= bounds.files) skip(`more than ${bounds.files} files`, true);
+    else if (e.size > room && room <= MARKER_ROOM)
+      skip(room < bounds.fileBytes ? `the ${bounds.totalBytes}-byte total bound is reached` : `${e.size} bytes, above the ${bounds.fileBytes}-byte file bound`, true);
     else {
-      const data = await e.read(bounds.fileBytes);
-      if (!data) skip('not readable as a regular file');
-      else if (total + data.length > bounds.totalBytes) skip(`the ${bounds.totalBytes}-byte total bound is reached`);
-      else {
-        total += data.length;
-        files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: data.length, data });
+      const cut = e.size > room;
+      const data = await e.read(cut ? room - MARKER_ROOM : room);
+      if (!data) {
+        skip('not readable as a regular file');
+        continue;
       }
+      let kept = data;
+      let capped: string | null = null;
+      if (cut) {
+        const end = data.lastIndexOf(10) + 1; // whole records only
+        const bound = room === bounds.fileBytes ? bounds.fileBytes : bounds.totalBytes;
+        kept = Buffer.concat([data.subarray(0, end), Buffer.from(cutRecord(e.name, end, e.size, bound))]);
+        capped = `${e.size} bytes: the first ${end} kept (the ${bound}-byte ${bound === bounds.fileBytes ? 'file' : 'total'} bound of the build service)`;
+      } else if (data.subarray(Math.max(0, data.length - TAIL_BYTES)).includes(`,${LOG_CAPPED_EVENT},`)) {
+        capped = 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written';
+      }
+      inspect?.(e.name, kept);
+      total += kept.length;
+      files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: kept.length, gzip: await gzip(kept), capped });
     }
+  }
+  if (listing.more || all.length > sorted.length) {
+    skipped.push({ name: `${LOG_DIR}/`, reason: `more than ${bounds.entries} entries: the others were not looked at` });
   }
   return { files, skipped };
 }
@@ -90,8 +161,11 @@ function kindOfStats(st: { isFile(): boolean; isDirectory(): boolean; isSymbolic
   return st.isFile() ? 'file' : st.isDirectory() ? 'dir' : st.isSymbolicLink() ? 'symlink' : 'other';
 }
 
-/** Lists workDir/rel on the host (bwrap, none) with lstat only; reads with O_NOFOLLOW. */
-export async function listHostDir(workDir: string, rel: string): Promise<DirListing> {
+/**
+ * Lists workDir/rel on the host (bwrap, none) with lstat only, at most `maxEntries` entries (the
+ * folder is read as a stream, never whole); reads with O_NOFOLLOW.
+ */
+export async function listHostDir(workDir: string, rel: string, maxEntries = ARTIFACT_BOUNDS.entries): Promise<DirListing> {
   const dir = join(workDir, rel);
   let st;
   try {
@@ -101,33 +175,54 @@ export async function listHostDir(workDir: string, rel: string): Promise<DirList
   }
   if (!st.isDirectory()) return { notDirectory: kindOfStats(st) };
   const entries: DirEntryInfo[] = [];
-  for (const name of await fsp.readdir(dir)) {
+  let more = false;
+  // the folder is the sandbox's: read a bounded number of its entries, not all of them at once
+  const handle = await fsp.opendir(dir, { bufferSize: 64 }).catch(() => null);
+  if (!handle) return null;
+  const names: string[] = [];
+  try {
+    for await (const d of handle) {
+      if (names.length >= maxEntries) {
+        more = true;
+        break; // leaving the loop closes the handle
+      }
+      names.push(d.name);
+    }
+  } catch {
+    /* the folder changed or went away while it was read: what was read is listed */
+  }
+  for (const name of names) {
     const est = await fsp.lstat(join(dir, name)).catch(() => null);
     if (!est) continue;
     entries.push({
       name,
       kind: kindOfStats(est),
       size: est.size,
-      read: (maxBytes) => readFileNoFollow(workDir, `${rel}/${name}`, maxBytes).catch(() => null),
+      read: (maxBytes) => readFileHeadNoFollow(workDir, `${rel}/${name}`, maxBytes).catch(() => null),
     });
   }
-  return { entries };
+  return { entries, ...(more ? { more } : {}) };
 }
 
 /** How a sandbox lists work-dir folders (docker: through the archive API of its volume). */
-export type WorkDirReader = (workDir: string, rels: string[], maxBytes: number) => Promise<Map<string, DirListing>>;
+export type WorkDirReader = (workDir: string, rels: string[], maxBytes: number, maxEntries: number) => Promise<Map<string, DirListing>>;
 
-export const hostWorkDirReader: WorkDirReader = async (workDir, rels) => {
+export const hostWorkDirReader: WorkDirReader = async (workDir, rels, _maxBytes, maxEntries) => {
   const out = new Map<string, DirListing>();
-  for (const rel of rels) out.set(rel, await listHostDir(workDir, rel));
+  for (const rel of rels) out.set(rel, await listHostDir(workDir, rel, maxEntries));
   return out;
 };
 
 /** Collects the run's artifacts; call only once every process of the run is gone. */
-export async function collectRunArtifacts(read: WorkDirReader, workDir: string, bounds: ArtifactBounds = ARTIFACT_BOUNDS): Promise<RunArtifacts> {
-  const listings = await read(workDir, [LOG_DIR, RUN_DIR], bounds.totalBytes);
-  const { files, skipped } = await selectArtifacts(listings.get(LOG_DIR) ?? null, bounds);
+export async function collectRunArtifacts(
+  read: WorkDirReader,
+  workDir: string,
+  bounds: ArtifactBounds = ARTIFACT_BOUNDS,
+  inspect?: ArtifactInspector,
+): Promise<RunArtifacts> {
+  const listings = await read(workDir, [LOG_DIR, RUN_DIR], bounds.totalBytes, bounds.entries);
+  const { files, skipped } = await selectArtifacts(listings.get(LOG_DIR) ?? null, bounds, inspect);
   const run = listings.get(RUN_DIR) ?? null;
-  const runDirLeftovers = run && 'entries' in run ? run.entries.map((e) => e.name).sort() : [];
+  const runDirLeftovers = run && 'entries' in run ? run.entries.map((e) => e.name).sort().slice(0, bounds.entries) : [];
   return { files, skipped, runDirLeftovers };
 }

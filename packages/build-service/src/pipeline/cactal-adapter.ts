@@ -1,8 +1,9 @@
 /**
  * The "prepare" step's link to the language and code generator packages (architecture.md Seam 4),
- * loaded lazily so the service still builds plain Makefile projects when they are absent:
+ * loaded lazily (in the bounded worker of generate-worker.ts) so the service still builds plain
+ * Makefile projects when they are absent:
  *   loadWorkspace(dir)                            -> documents + diagnostics
- *   generateArchitecture(documents, outDir, opts) -> {created, updated, unchanged, orphaned, errors, warnings}
+ *   generateArchitecture(documents, outDir) -> {created, updated, unchanged, orphaned, errors, warnings}
  */
 export interface CactalProblem {
   file: string;
@@ -19,14 +20,6 @@ export interface GenerateOutcome {
 }
 
 type Loose = Record<string, unknown>;
-
-async function importOptional(spec: string): Promise<Loose> {
-  try {
-    return (await import(spec)) as Loose;
-  } catch (e) {
-    throw new Error(`cannot load ${spec} (${(e as Error).message.split('\n')[0]}); build the workspace packages first ("npm run build")`);
-  }
-}
 
 function severityOf(raw: unknown): CactalProblem['severity'] {
   if (raw === 1 || raw === 'error') return 'error';
@@ -66,23 +59,11 @@ export function normaliseProblems(raw: unknown, baseDir: string): CactalProblem[
   return out;
 }
 
-/** Loads, validates and generates the project in `projectDir` into `outDir`. */
-export async function generateProject(projectDir: string, outDir: string): Promise<GenerateOutcome> {
-  const language = await importOptional('@contract-studio/language/node');
-  const codegen = await importOptional('@contract-studio/codegen');
-  const loadWorkspace = language.loadWorkspace as ((dir: string) => Promise<Loose>) | undefined;
-  const generateArchitecture = codegen.generateArchitecture as
-    | ((documents: unknown, outDir: string, options?: unknown) => Promise<Loose> | Loose)
-    | undefined;
-  if (typeof loadWorkspace !== 'function') throw new Error('@contract-studio/language/node has no loadWorkspace(dir)');
-  if (typeof generateArchitecture !== 'function') throw new Error('@contract-studio/codegen has no generateArchitecture()');
-  const ws = await loadWorkspace(projectDir);
-  const problems = normaliseProblems(ws.diagnostics, projectDir);
-  if (problems.some((p) => p.severity === 'error')) return { problems, written: 0, unchanged: 0 };
-  const res = await generateArchitecture(ws.documents, outDir, {});
-  const count = (k: string): number => (Array.isArray(res[k]) ? (res[k] as unknown[]).length : 0);
-  for (const [key, severity] of [['errors', 'error'], ['warnings', 'warning']] as const) {
-    for (const e of (Array.isArray(res[key]) ? res[key] : []) as unknown[]) {
+/** The generator's errors and warnings (plain objects or strings) as CactalProblems. */
+export function generationProblems(res: { errors?: unknown; warnings?: unknown }): CactalProblem[] {
+  const problems: CactalProblem[] = [];
+  for (const [list, severity] of [[res.errors, 'error'], [res.warnings, 'warning']] as const) {
+    for (const e of (Array.isArray(list) ? list : []) as unknown[]) {
       const o = (typeof e === 'object' && e ? e : { message: String(e) }) as Loose;
       problems.push({
         file: String(o.file ?? o.path ?? ''),
@@ -93,5 +74,5 @@ export async function generateProject(projectDir: string, outDir: string): Promi
       });
     }
   }
-  return { problems, written: count('created') + count('updated'), unchanged: count('unchanged') };
+  return problems;
 }

@@ -3,7 +3,9 @@ import { mkdtempSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import { looksLikeGccJson, makeEnteringDirectory, parseGccJsonLine, parseGccTextLine, renderDiagnostic } from './gcc-diagnostics.js';
+import { makeEnteringDirectory, renderDiagnostic } from './gcc-diagnostics.js';
+import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
+import { parseGccTextLine } from './gcc-text.js';
 import { findProtectedRegions, regionAt } from './protected-regions.js';
 import { BuildOutputRouter, routeRunLine } from './output-router.js';
 
@@ -86,5 +88,7 @@ describe('gcc diagnostics', () => {
     expect(routeRunLine('[MAA] hello world')).toEqual({ source: 'MAA', line: 'hello world' });
     expect(routeRunLine('contract-launch: module MSC exited')).toEqual({ source: 'launcher', line: 'module MSC exited' });
     expect(routeRunLine('make: Entering directory')).toEqual({ source: 'run', line: 'make: Entering directory' });
+    // a bare CR (or U+2028) inside a module's line keeps it that module's, not make's
+    expect(routeRunLine('[CTL] 50%\rOVER\u2028x')).toEqual({ source: 'CTL', line: '50%\rOVER\u2028x' });
   });
 });

@@ -1,3 +1,7 @@
+/**
+ * The diagnostics of a job's build, as the API reports them, and where they point to. The parsers
+ * of gcc's output are gcc-json.ts (JSON lines) and gcc-text.ts (text lines).
+ */
 import { posix } from 'node:path';
 import { regionAt, type ProtectedRegion } from './protected-regions.js';
 
@@ -37,13 +41,14 @@ export function relativeToRoot(file: string, ctx: DiagnosticContext): string | n
   return rel;
 }
 
-function severityOf(kind: unknown): GccDiagnostic['severity'] {
+export function severityOf(kind: unknown): GccDiagnostic['severity'] {
   if (kind === 'error' || kind === 'fatal error' || kind === 'fatal') return 'error';
   if (kind === 'warning') return 'warning';
   return 'note';
 }
 
-function located(
+/** Places a diagnostic in the tree: root-relative file (when inside it) and its protected region. */
+export function located(
   base: Omit<GccDiagnostic, 'file' | 'protectedRegion'>,
   rawFile: string | null,
   ctx: DiagnosticContext,
@@ -52,76 +57,6 @@ function located(
   const regions = file ? ctx.regions.get(file) : undefined;
   const protectedRegion = regions && base.line !== null ? regionAt(regions, base.line) : null;
   return { ...base, file, protectedRegion };
-}
-
-interface GccJsonLocation {
-  caret?: { file?: string; line?: number; column?: number };
-  finish?: { file?: string; line?: number; column?: number };
-}
-interface GccJsonDiagnostic {
-  kind?: string;
-  message?: string;
-  option?: string;
-  locations?: GccJsonLocation[];
-  children?: GccJsonDiagnostic[];
-}
-
-function fromJson(d: GccJsonDiagnostic, ctx: DiagnosticContext): GccDiagnostic {
-  const loc = d.locations?.[0];
-  const caret = loc?.caret;
-  return located(
-    {
-      severity: severityOf(d.kind),
-      message: String(d.message ?? ''),
-      ...(d.option ? { option: d.option } : {}),
-      line: caret?.line ?? null,
-      column: caret?.column ?? null,
-      ...(loc?.finish?.line ? { endLine: loc.finish.line } : {}),
-      ...(loc?.finish?.column ? { endColumn: loc.finish.column } : {}),
-      children: (d.children ?? []).map((c) => fromJson(c, ctx)),
-    },
-    caret?.file ?? null,
-    ctx,
-  );
-}
-
-/** True when a stderr line is gcc's `-fdiagnostics-format=json` output (one JSON array per compilation). */
-export function looksLikeGccJson(line: string): boolean {
-  return /^\[\s*(\]|\{\s*"kind")/.test(line);
-}
-
-/** Parses one line of gcc JSON diagnostics; null when it is not valid JSON of that shape. */
-export function parseGccJsonLine(line: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
-  let data: unknown;
-  try {
-    data = JSON.parse(line);
-  } catch {
-    return null;
-  }
-  if (!Array.isArray(data)) return null;
-  return (data as GccJsonDiagnostic[]).map((d) => fromJson(d, ctx));
-}
-
-const TEXT = /^(.+?):(\d+):(?:(\d+):)?\s+(fatal error|error|warning|note):\s+(.*?)(?:\s+\[(-W[^\]]+)\])?$/;
-
-/** Parses gcc's text format `file:line[:col]: severity: message [-Woption]` (fallback). */
-export function parseGccTextLine(line: string, ctx: DiagnosticContext): GccDiagnostic | null {
-  const m = TEXT.exec(line);
-  if (!m) return null;
-  const [, file, lineNo, col, kind, message, option] = m;
-  if (!file || file.includes(' ') && !file.includes('/')) return null;
-  return located(
-    {
-      severity: severityOf(kind),
-      message: message ?? '',
-      ...(option ? { option } : {}),
-      line: Number(lineNo),
-      column: col ? Number(col) : null,
-      children: [],
-    },
-    file,
-    ctx,
-  );
 }
 
 /** gcc-like one-line rendering, for the text log. */

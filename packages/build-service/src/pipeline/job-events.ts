@@ -40,7 +40,27 @@ export interface EndEvent {
   t: number;
   result: unknown;
 }
-export type JobEvent = LineEvent | StatusEvent | DiagnosticEvent | LimitEvent | EndEvent;
+/** One whole record line of a module's CSV log (docs/runtime-api.md "Trace records"), as the run wrote it. */
+export interface TraceLine {
+  /** The log file's name (`<MODULE>_<date>.csv`). */
+  file: string;
+  /** 1-based line number in that file (the header is line 1). */
+  line: number;
+  /** The CSV line without its newline; readers parse it with the trace reader's parseRecordLine. */
+  text: string;
+}
+/**
+ * The run-time trace, live (docs/build-service-api.md "Trace channel"): the records the run's
+ * modules wrote since the previous trace event, in mono_ns order across files; none lost, none
+ * doubled, replayable from the start like the log lines.
+ */
+export interface TraceEvent {
+  type: 'trace';
+  seq: number;
+  t: number;
+  records: TraceLine[];
+}
+export type JobEvent = LineEvent | StatusEvent | DiagnosticEvent | LimitEvent | TraceEvent | EndEvent;
 type Payload<E> = E extends JobEvent ? Omit<E, 'seq' | 't'> : never;
 
 export type Subscriber = (event: JobEvent) => void;
@@ -79,11 +99,33 @@ export class JobEvents {
   }
 
   /**
+   * Delivers an event to the subscribers attached now without keeping it (the live trace beyond
+   * the service's traceLinesKept bound, docs/build-service-api.md "Trace channel"): it carries the
+   * seq of the last kept event, so a client resuming from it gets the kept events only.
+   */
+  broadcast(payload: Payload<JobEvent>): void {
+    if (this.ended || this.subscribers.size === 0) return;
+    const event = { ...payload, seq: this.events.length, t: Date.now() } as JobEvent;
+    for (const s of [...this.subscribers]) {
+      try {
+        s(event);
+      } catch {
+        this.subscribers.delete(s);
+      }
+    }
+  }
+
+  /**
    * Replays every event with seq > afterSeq, then delivers live ones. Returns an unsubscribe
    * function. Replay and live delivery are synchronous, so no event is missed or doubled.
    */
   subscribe(afterSeq: number, subscriber: Subscriber): () => void {
-    for (const e of this.events.slice(Math.max(0, afterSeq))) subscriber(e);
+    // a subscriber that throws (a client stream gone bad) is dropped, in replay as when live
+    try {
+      for (const e of this.events.slice(Math.max(0, afterSeq))) subscriber(e);
+    } catch {
+      return () => {};
+    }
     if (this.ended) return () => {};
     this.subscribers.add(subscriber);
     return () => this.subscribers.delete(subscriber);

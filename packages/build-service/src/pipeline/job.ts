@@ -5,17 +5,23 @@
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { describeLimitHit, formatBytes } from '../limits.js';
+import { describeLimitHit, formatBytes, LimitHitError } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
+import { removeTreeNoFollow } from '../util/safe-fs.js';
+import { hostWorkTreeDigest } from './work-tree-digest.js';
+import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
 import { collectRunArtifacts, hostWorkDirReader, type Artifact, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, routeRunLine } from './output-router.js';
 import { makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
+import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
+import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache } from './runtime-cache.js';
-import type { Workspace } from './workspaces.js';
+import type { GenerationCache } from '../cache/generation-cache.js';
+import type { AcquireHooks, Workspace } from './workspaces.js';
 
 export interface JobRequest {
   action: 'build' | 'run';
@@ -37,6 +43,8 @@ export interface JobResult {
   signal: string | null;
   message: string;
   limitHit: LimitHit | null;
+  /** What went wrong in the run step without a crash (run-issues.ts): any makes ok false. */
+  issues: RunIssue[];
   truncated: { stdout: boolean; stderr: boolean };
   durations_ms: Partial<Record<JobStep, number>>;
   mechanisms: Mechanisms | null;
@@ -45,13 +53,22 @@ export interface JobResult {
 export interface JobContext {
   sandbox: Sandbox;
   sandboxNote: string;
-  acquireWorkspace(job: Job): Promise<Workspace>;
+  acquireWorkspace(job: Job, hooks: AcquireHooks): Promise<Workspace>;
   runtime: RuntimeCache | null;
+  /** Generated trees by inputs (the persistent build cache only). */
+  generated?: GenerationCache | null;
 }
 
 const MAX_DIAGNOSTICS = 1000;
 
 class Cancelled extends Error {}
+
+/**
+ * A fault of the service itself while it handled a job (a parser or callback that threw on the
+ * sandbox's output): the job is stopped and fails with "internal error: ...", its clean-up still
+ * runs, and the service goes on (docs/build-service-api.md, "internal error").
+ */
+class InternalFault extends Error {}
 
 export class Job {
   readonly events = new JobEvents();
@@ -69,14 +86,19 @@ export class Job {
   artifacts: RunArtifacts | null = null;
   /** How long collecting them took (ms). */
   artifactsCollectMs: number | null = null;
+  /** How long resolving the sandbox (probing it, the first time in a service) took (ms). */
+  sandboxProbeMs: number | null = null;
 
   private current: SandboxProcess | null = null;
   private cancelRequested = false;
   private cancelSignal!: () => void;
   private readonly cancelled = new Promise<void>((r) => (this.cancelSignal = r));
+  /** The first internal fault of this job (see InternalFault), null while there is none. */
+  private fault: InternalFault | null = null;
   private readonly durations: Partial<Record<JobStep, number>> = {};
   private readonly truncated = { stdout: false, stderr: false };
   private mechanisms: Mechanisms | null = null;
+  private readonly runIssues = new RunIssues();
   private finalStatus: 'succeeded' | 'failed' | 'cancelled' | null = null;
   private finishedSignal!: () => void;
   /** Resolves when the job has ended and released everything it held. */
@@ -103,11 +125,48 @@ export class Job {
   }
 
   private line(step: JobStep, source: string, stream: StreamName, line: string): void {
+    // a sandbox stream may still deliver bytes after the job ended (its pumps are waited for a
+    // bounded time only): they belong to no event log any more
+    if (this.events.isEnded) return;
     this.events.append({ type: 'line', step, source, stream, line });
+  }
+
+  /**
+   * Contains an exception thrown while handling the job's output or events (outside the
+   * pipeline's own try): records it once, logs it, and stops the job's sandbox; execute() then
+   * ends the job as failed, after its clean-up. Never throws.
+   */
+  private contain(e: unknown, where: string): void {
+    if (this.fault || this.isDone) return;
+    const msg = e instanceof Error ? e.message : String(e);
+    this.fault = new InternalFault(`internal error: ${where}: ${msg.split('\n')[0]}`);
+    try {
+      this.system(this.status === 'running' ? 'run' : 'build', `error: ${this.fault.message}`);
+    } catch {
+      /* the log itself failed: the result still says it */
+    }
+    this.cancelSignal();
+    this.current?.kill().catch(() => {});
+  }
+
+  /** Runs a callback of a stream or timer of this job; an exception is contained (see contain). */
+  private guarded<A extends unknown[]>(where: string, fn: (...args: A) => void): (...args: A) => void {
+    return (...args: A) => {
+      try {
+        fn(...args);
+      } catch (e) {
+        this.contain(e, where);
+      }
+    };
   }
 
   private system(step: JobStep, line: string): void {
     this.line(step, 'service', 'system', line);
+  }
+
+  /** One `time: what N ms` line per piece of a step (the CLI's --verbose; docs/getting-started.md "The build cache"). */
+  private timed(step: JobStep, what: string, since: number): void {
+    this.system(step, `time: ${what} ${Date.now() - since} ms`);
   }
 
   /** Ends a job that never started (cancelled while queued, or refused). */
@@ -130,24 +189,40 @@ export class Job {
   async execute(ctx: JobContext): Promise<void> {
     this.startedAt = Date.now();
     this.system('prepare', ctx.sandboxNote);
+    if (this.sandboxProbeMs !== null) this.system('prepare', `time: sandbox choice (probe) ${this.sandboxProbeMs} ms`);
     for (const w of this.warnings) this.line('prepare', 'service', 'system', `warning: ${w}`);
     let ws: Workspace | null = null;
     let step: JobStep = 'prepare';
     try {
       this.setStatus('preparing', 'prepare');
       const t0 = Date.now();
-      ws = await this.orCancel(ctx.acquireWorkspace(this));
+      ws = await this.orCancel(
+        ctx.acquireWorkspace(this, {
+          onWait: (holder) => this.system('prepare', `waiting for the other command using this project (${holder}) to finish ...`),
+          cancelled: this.cancelled,
+        }),
+      );
+      this.timed('prepare', 'workspace (lock, checks)', t0);
+      let t = Date.now();
+      if (ws.reused) {
+        await this.orCancel(this.checkBuildOutputs(ctx.sandbox, ws));
+        this.timed('prepare', 'work tree check (digest)', t);
+      }
+      t = Date.now();
       const prep = await this.orCancel(
-        prepareWorkspace(ws, this.request.project, this.request.kind, (l) => this.system('prepare', l)),
+        prepareWorkspace(ws, this.request.project, this.request.kind, this.request.limits, (l) => this.system('prepare', l), this.cancelled, ctx.generated ?? undefined),
       );
       this.prepareDiagnostics = prep.problems;
+      this.timed('prepare', 'generation + copy into the work tree', t);
       // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
       // the image for docker. Plain Makefile projects get the image's path and no bind.
       let runtimePath = '/opt/contract/runtime';
       let runtimeDir: string | undefined;
       if (prep.ok && this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
+        t = Date.now();
         runtimeDir = await this.orCancel(ctx.runtime.ensure((l, s) => this.line('prepare', 'runtime', s, l)));
         runtimePath = ctx.sandbox.runtimePath(runtimeDir);
+        this.timed('prepare', 'runtime (sources hash, cache)', t);
       }
       this.durations.prepare = Date.now() - t0;
       if (!prep.ok) {
@@ -167,11 +242,18 @@ export class Job {
         root: posix.join(work, treeRoot(this.request.kind)),
         regions: prep.regions,
       });
+      ws.acceptedOutputs = null;
       const build = await this.runStep(ctx.sandbox, ws, runtimeDir, 'build', ['make', '-C', dir, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'], this.request.limits.buildSeconds, (line, stream) => {
         const routed = router.route(line, stream);
         for (const d of routed.diagnostics) this.addDiagnostic(d);
         return routed.lines;
       });
+      // what this build step left (it ended by itself) is what the next job may build on
+      if (!this.cancelRequested && !build.limitHit && build.exitCode !== null) {
+        const td = Date.now();
+        ws.acceptedOutputs = await this.workTreeDigest(ctx.sandbox, ws);
+        this.timed('build', 'work tree digest', td);
+      }
       if (!build.ok) {
         const errors = this.diagnostics.filter((d) => d.severity === 'error').length;
         const message = build.message ?? (errors ? `build failed: ${errors} error(s) (make exit ${build.exitCode})` : `build failed (make exit ${build.exitCode})`);
@@ -187,24 +269,65 @@ export class Job {
 
       step = 'run';
       this.setStatus('running', 'run');
+      if (!ctx.sandbox.readWorkDirs) {
+        // a kept work tree still holds the logs of earlier runs: this run's logs only are collected.
+        // No job process lives now; rm -rf --one-file-system never follows what the job left there.
+        const tl = Date.now();
+        await removeTreeNoFollow(posix.join(ws.workDir, 'logs'));
+        await removeTreeNoFollow(posix.join(ws.workDir, 'run'));
+        this.timed('run', 'earlier run logs removed', tl);
+      }
       const runVars = [...vars, `RUN_DIR=${posix.join(work, 'run')}`, `LOG_DIR=${posix.join(work, 'logs')}`];
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
-      const run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => [routeRunLine(line)]);
+      // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
+      const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
+      let run: Awaited<ReturnType<Job['runStep']>>;
+      try {
+        run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
+          const routed = routeRunLine(line);
+          this.runIssues.line(routed.line);
+          return [routed];
+        });
+      } catch (e) {
+        await tail?.stop();
+        throw e;
+      }
+      if (this.cancelRequested) await tail?.stop();
+      else await tail?.finish();
+      if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
       if (!this.cancelRequested) await this.collectArtifacts(ctx.sandbox, ws.workDir);
+      const issues = this.runIssues.all;
       if (!run.ok) {
+        // the failure is the message; the issues (a limit, cut output...) stay in result.issues
         const message = run.message ?? `run failed (exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;
       }
+      if (issues.length) {
+        // the processes ended well, but the run did not go as designed or its record is not whole
+        for (const i of issues) this.system('run', `problem: ${i.message}`);
+        this.result = this.makeResult('run', false, 0, null, `run finished with ${describeIssues(issues)}`, null);
+        this.finish('failed');
+        return;
+      }
       this.result = this.makeResult('run', true, 0, null, 'run finished (exit 0)', null);
       this.finish('succeeded');
     } catch (e) {
-      if (e instanceof Cancelled || this.cancelRequested) {
+      if (this.fault) {
+        this.result = this.makeResult(step, false, null, null, this.fault.message, null);
+        this.finish('failed');
+      } else if (e instanceof Cancelled || this.cancelRequested) {
         this.result = this.makeResult(step, false, null, null, 'cancelled', null);
         this.finish('cancelled');
+      } else if (e instanceof LimitHitError) {
+        // a limit of the host-side prepare step (model size, prepare time, generated files, heap)
+        this.events.append({ type: 'limit', limitHit: e.hit });
+        this.system(step, `${step}: stopped: ${e.message}`);
+        this.result = this.makeResult(step, false, null, null, `${step} stopped: ${e.message}`, e.hit);
+        this.finish('failed');
       } else {
         const msg = (e as Error).message;
         this.system(step, `error: ${msg}`);
@@ -213,7 +336,11 @@ export class Job {
       }
     } finally {
       // the job's processes are all gone here (runStep awaits them), so the work dir is safe to touch
-      if (ws) await ws.release().catch(() => {});
+      if (ws) {
+        const tr = Date.now();
+        await ws.release().catch(() => {});
+        this.timed(step, 'workspace release', tr);
+      }
       if (!this.finalStatus) {
         this.result ??= this.makeResult(step, false, null, null, 'internal error: job ended without a result', null);
         this.finish('failed');
@@ -223,14 +350,53 @@ export class Job {
     }
   }
 
+  private workTreeDigest(sandbox: Sandbox, ws: Workspace): Promise<string | null> {
+    return (sandbox.workTreeDigest ? sandbox.workTreeDigest(ws.workDir) : hostWorkTreeDigest(ws.workDir)).catch(() => null);
+  }
+
+  /**
+   * A reused work dir is built on only as the last build step left it (docs/sandbox.md, "Build
+   * products between jobs"): a run (or anything after that build) that rewrote, re-dated or added
+   * a file outside logs/ and run/ makes the whole work dir untrusted, and it is emptied.
+   */
+  private async checkBuildOutputs(sandbox: Sandbox, ws: Workspace): Promise<void> {
+    const accepted = ws.acceptedOutputs;
+    const now = accepted === null ? null : await this.workTreeDigest(sandbox, ws);
+    if (accepted !== null && now === accepted) return;
+    this.system('prepare', accepted === null
+      ? 'no build ended in this workspace since it was emptied: building from scratch'
+      : 'the work dir changed after the last build ended: its build products are not trusted, building from scratch');
+    await ws.reset();
+  }
+
+  /**
+   * Starts the live trace channel (pipeline/trace-tail.ts) on a work dir that is a host folder
+   * (bwrap, none). A sandbox that reads its work dirs itself (docker: a volume) has none: see
+   * docs/build-service-api.md "Trace channel". Never throws.
+   */
+  private async startTraceTail(sandbox: Sandbox, workDir: string): Promise<TraceTail | null> {
+    if (sandbox.readWorkDirs) {
+      this.system('run', `trace: no live trace channel in the ${this.sandboxName} sandbox (its work dir is not a host folder); the records are in the collected logs`);
+      return null;
+    }
+    return TraceTail.start(workDir, {
+      trace: (records) => {
+        if (!this.events.isEnded) this.events.append({ type: 'trace', records });
+      },
+      live: (records) => this.events.broadcast({ type: 'trace', records }),
+      system: (line) => this.system('run', line),
+    });
+  }
+
   /** Copies the run's logs out of the sandbox (its processes are gone); a failure is a warning line. */
   private async collectArtifacts(sandbox: Sandbox, workDir: string): Promise<void> {
     const t0 = Date.now();
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
-      this.artifacts = await collectRunArtifacts(reader, workDir);
+      this.artifacts = await collectRunArtifacts(reader, workDir, undefined, (_name, data) => this.runIssues.log(data));
       this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
+      this.runIssues.artifacts(a);
       this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${s.name} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);
@@ -243,15 +409,15 @@ export class Job {
   }
 
   /** The JSON listing of the artifacts (no bytes), null when the job has not run. */
-  artifactsJSON(): { files: { name: string; path: string; size: number }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[]; collect_ms: number | null } | null {
+  artifactsJSON(): { files: { name: string; path: string; size: number; gzipSize: number; capped: string | null }[]; skipped: RunArtifacts['skipped']; runDirLeftovers: string[]; collect_ms: number | null } | null {
     const a = this.artifacts;
     if (!a) return null;
-    return { files: a.files.map(({ name, path, size }) => ({ name, path, size })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers, collect_ms: this.artifactsCollectMs };
+    return { files: a.files.map(({ name, path, size, gzip, capped }) => ({ name, path, size, gzipSize: gzip.length, capped })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers, collect_ms: this.artifactsCollectMs };
   }
 
   private orCancel<T>(p: Promise<T>): Promise<T> {
-    if (this.cancelRequested) return Promise.reject(new Cancelled());
-    return Promise.race([p, this.cancelled.then(() => Promise.reject(new Cancelled()))]);
+    if (this.cancelRequested || this.fault) return Promise.reject(this.fault ?? new Cancelled());
+    return Promise.race([p, this.cancelled.then(() => Promise.reject(this.fault ?? new Cancelled()))]);
   }
 
   private addDiagnostic(d: GccDiagnostic): void {
@@ -269,6 +435,7 @@ export class Job {
     seconds: number,
     route: (line: string, stream: 'stdout' | 'stderr') => { source: string; line: string }[],
   ): Promise<{ ok: boolean; exitCode: number | null; signal: string | null; limitHit: LimitHit | null; message: string | null }> {
+    if (this.fault) throw this.fault;
     if (this.cancelRequested) throw new Cancelled();
     const t0 = Date.now();
     this.system(step, `$ ${argv.join(' ')}`);
@@ -285,9 +452,10 @@ export class Job {
     });
     this.current = proc;
     this.mechanisms = proc.mechanisms;
+    this.timed(step, `sandbox start (limits set-up: memory ${proc.mechanisms.memory}, processes ${proc.mechanisms.processes}, disk ${proc.mechanisms.disk})`, t0);
     const note = (proc as { noteLine?: (l: string) => void }).noteLine;
     let timeHit: LimitHit | null = null;
-    const timer = setTimeout(() => {
+    const timer = setTimeout(this.guarded('time limit', () => {
       timeHit = {
         name: step === 'build' ? 'buildSeconds' : 'runSeconds',
         value: seconds,
@@ -295,40 +463,52 @@ export class Job {
         mechanism: 'service-timer',
       };
       this.events.append({ type: 'limit', limitHit: timeHit });
-      void proc.kill();
-    }, seconds * 1000);
-    if (this.cancelRequested) void proc.kill();
+      proc.kill().catch(() => {});
+    }), seconds * 1000);
+    if (this.cancelRequested || this.fault) proc.kill().catch(() => {});
     const pump = (stream: Readable, name: 'stdout' | 'stderr'): Promise<void> =>
       new Promise((resolve) => {
         const splitter = new LineSplitter({
           maxBytes: this.request.limits.outputBytesPerStream,
           onLine: (line) => {
+            if (this.fault) return; // the job is being stopped: its output is only drained
             note?.(line);
             for (const r of route(line, name)) this.line(step, r.source, name, r.line);
           },
           onTruncated: () => {
             this.truncated[name] = true;
+            if (step === 'run') this.runIssues.outputTruncated(name, this.request.limits.outputBytesPerStream);
             this.system(step, `[output truncated: ${name} limit ${formatBytes(this.request.limits.outputBytesPerStream)} reached]`);
           },
         });
-        stream.on('data', (chunk: Buffer) => splitter.push(chunk));
+        // the sandbox's output is untrusted: whatever its handling throws stops this job, never the service
+        stream.on('data', this.guarded(`${step} ${name}`, (chunk: Buffer) => splitter.push(chunk)));
         stream.on('error', () => {});
         stream.on('close', () => {
-          splitter.end();
+          this.guarded(`${step} ${name}`, () => splitter.end())();
           resolve();
         });
       });
     const pumps = Promise.all([pump(proc.stdout, 'stdout'), pump(proc.stderr, 'stderr')]);
     const exit = await proc.done;
-    await Promise.race([pumps, new Promise((r) => setTimeout(r, 1500))]);
+    // the pumps get 1.5 s at most after the exit; the timer must not keep a CLI process alive
+    let pumpTimer: NodeJS.Timeout | undefined;
+    await Promise.race([pumps, new Promise((r) => (pumpTimer = setTimeout(r, 1500)))]);
+    clearTimeout(pumpTimer);
     clearTimeout(timer);
     this.current = null;
     this.durations[step] = Date.now() - t0;
     const limitHit: LimitHit | null = exit.limitHit ?? timeHit;
     if (exit.limitHit) this.events.append({ type: 'limit', limitHit: exit.limitHit });
+    if (this.fault) throw this.fault;
     let message: string | null = null;
     if (this.cancelRequested) message = 'cancelled';
     else if (limitHit) message = `killed: ${describeLimitHit(limitHit)}`;
+    if (limitHit?.name === 'workDiskMiB' && !this.cancelRequested) {
+      // say which files (which module's logs, which build products) took the space
+      const usage = await (sandbox.workUsage ? sandbox.workUsage(ws.workDir) : hostWorkUsage(ws.workDir)).catch(() => null);
+      if (usage) message = `${message}: filled by ${describeWorkUsage(usage)}`;
+    }
     const ok = !this.cancelRequested && !limitHit && exit.exitCode === 0;
     this.system(step, ok ? `${step} finished in ${this.durations[step]} ms` : `${step}: ${message ?? `exit ${exit.exitCode}${exit.signal ? ` (${exit.signal})` : ''}`}`);
     return { ok, exitCode: exit.exitCode, signal: exit.signal, limitHit, message };
@@ -349,6 +529,7 @@ export class Job {
       signal,
       message,
       limitHit,
+      issues: [...this.runIssues.all],
       truncated: { ...this.truncated },
       durations_ms: { ...this.durations },
       mechanisms: this.mechanisms,

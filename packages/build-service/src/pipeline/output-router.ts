@@ -5,15 +5,10 @@
  *   run:   attributes each line to the module named by the launcher's tag ("[MAA] text").
  */
 import { posix } from 'node:path';
-import {
-  looksLikeGccJson,
-  makeEnteringDirectory,
-  makeLeavingDirectory,
-  parseGccJsonLine,
-  parseGccTextLine,
-  renderDiagnostic,
-  type GccDiagnostic,
-} from './gcc-diagnostics.js';
+import { SERVICE_BOUNDS } from '../limits.js';
+import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic } from './gcc-diagnostics.js';
+import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
+import { parseGccTextLine } from './gcc-text.js';
 import type { ProtectedRegion } from './protected-regions.js';
 
 export interface RoutedLine {
@@ -42,9 +37,11 @@ export class BuildOutputRouter {
 
   /** Returns the lines to log and the diagnostics found in one output line. */
   route(line: string, stream: 'stdout' | 'stderr'): { lines: RoutedLine[]; diagnostics: GccDiagnostic[] } {
-    const entering = makeEnteringDirectory(line);
+    // untrusted text: no regular expression sees more than the parsed-line bound (docs/sandbox.md)
+    const head = line.length > SERVICE_BOUNDS.parsedLineChars ? line.slice(0, SERVICE_BOUNDS.parsedLineChars) : line;
+    const entering = makeEnteringDirectory(head);
     if (entering) this.dirs.push(posix.resolve(this.cwd, entering));
-    else if (makeLeavingDirectory(line) && this.dirs.length > 1) this.dirs.pop();
+    else if (makeLeavingDirectory(head) && this.dirs.length > 1) this.dirs.pop();
     const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions };
     if (stream === 'stderr' && looksLikeGccJson(line)) {
       const diags = parseGccJsonLine(line, ctx);
@@ -58,15 +55,19 @@ export class BuildOutputRouter {
   }
 }
 
-const MODULE_TAG = /^\[([A-Za-z_][A-Za-z0-9_.-]{0,63})\]\s?(.*)$/;
+// only a bounded prefix is matched; the rest is sliced off, so a module line holding a bare CR
+// (or U+2028) is still that module's line, not make's
+const MODULE_TAG = /^\[([A-Za-z_][A-Za-z0-9_.-]{0,63})\]\s?/;
+/** The longest prefix MODULE_TAG can match ("[" + 64 + "]" + one space). */
+const MODULE_TAG_CHARS = 67;
 
 /**
  * "[MAA] hello" -> {source: 'MAA', line: 'hello'} (the launcher's module tags);
  * "contract-launch: ..." -> source 'launcher'; other untagged lines (make) -> source 'run'.
  */
 export function routeRunLine(line: string): RoutedLine {
-  const m = MODULE_TAG.exec(line);
-  if (m) return { source: m[1]!, line: m[2] ?? '' };
+  const m = MODULE_TAG.exec(line.slice(0, MODULE_TAG_CHARS));
+  if (m) return { source: m[1]!, line: line.slice(m[0].length) };
   if (line.startsWith('contract-launch: ')) return { source: 'launcher', line: line.slice('contract-launch: '.length) };
   return { source: 'run', line };
 }

@@ -6,10 +6,13 @@
 import { createHash } from 'node:crypto';
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
+import type { Limits } from '../limits.js';
+import { LimitHitError } from '../limits.js';
 import type { CactalProblem } from './cactal-adapter.js';
-import { generateProject } from './cactal-adapter.js';
+import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
 import type { Workspace } from './workspaces.js';
+import type { GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 
 export type ProjectKind = 'cactal' | 'make';
@@ -90,11 +93,23 @@ export async function prepareWorkspace(
   ws: Workspace,
   source: ProjectSource,
   kind: ProjectKind,
+  limits: Limits,
   log: (line: string) => void,
+  cancelled?: Promise<void>,
+  generated?: GenerationCache,
 ): Promise<PrepareOutcome> {
   const stageProjectDir = join(ws.stageDir, 'project');
   await fsp.mkdir(stageProjectDir, { recursive: true, mode: 0o700 });
   const { wanted, digest } = await readProject(source, kind);
+  if (kind === 'cactal') {
+    // the generator's time and memory grow with the model: a model above the bound never reaches it
+    let modelBytes = 0;
+    for (const [rel, data] of wanted) if (rel.endsWith('.contract')) modelBytes += data.length;
+    if (modelBytes > limits.modelBytes) {
+      log(`the model has ${modelBytes} bytes of .contract files, above the ${limits.modelBytes}-byte limit (modelBytes)`);
+      throw new LimitHitError({ name: 'modelBytes', value: limits.modelBytes, unit: 'bytes', mechanism: 'service-check' });
+    }
+  }
   const digestFile = join(ws.stageDir, 'inputs.sha256');
   const previous = await fsp.readFile(digestFile, 'utf8').catch(() => '');
   let problems: CactalProblem[] = [];
@@ -103,9 +118,33 @@ export async function prepareWorkspace(
     log('project unchanged since the last build: generation skipped');
   } else if (kind === 'cactal') {
     await fsp.rm(digestFile, { force: true });
+    const stageGen = join(stageProjectDir, 'src-gen');
+    const freshStage = !(await fsp.lstat(stageGen).catch(() => null));
     await stageProject(wanted, kind, stageProjectDir);
     const t0 = Date.now();
-    const outcome = await generateProject(stageProjectDir, join(stageProjectDir, 'src-gen'));
+    const hit = await generated?.get(digest);
+    let outcome;
+    if (hit && hit.written + hit.unchanged > limits.generatedFiles) {
+      throw new LimitHitError({ name: 'generatedFiles', value: limits.generatedFiles, unit: 'count', mechanism: 'service-check' });
+    }
+    if (hit) {
+      // the same inputs were generated before (another folder, another command): that tree, not a new load
+      await removeTreeNoFollow(stageGen);
+      await fsp.mkdir(stageGen, { mode: 0o700 });
+      for (const [rel, f] of hit.files) await syncFileNoFollow(stageGen, rel, f.data, undefined, f.executable ? 0o755 : 0o644);
+      outcome = hit;
+      log(`generated tree taken from the build cache (same inputs and generator) in ${Date.now() - t0} ms`);
+    } else {
+      outcome = await generateProjectBounded(stageProjectDir, stageGen, limits, cancelled);
+      if (generated && freshStage && !outcome.problems.some((p) => p.severity === 'error')) {
+        const files = new Map<string, { data: Buffer; executable: boolean }>();
+        for (const rel of await listFilesNoFollow(stageGen)) {
+          const data = await readFileNoFollow(stageGen, rel, MAX_FILE_BYTES);
+          if (data) files.set(rel, { data, executable: ((await fsp.lstat(join(stageGen, rel))).mode & 0o111) !== 0 });
+        }
+        await generated.put(digest, { ...outcome, files }).catch((e: Error) => log(`warning: the generated tree was not stored in the build cache: ${e.message}`));
+      }
+    }
     problems = outcome.problems;
     for (const p of problems) log(`${p.file}:${p.line}:${p.column}: ${p.severity}: ${p.message}`);
     if (problems.some((p) => p.severity === 'error')) {
@@ -121,6 +160,7 @@ export async function prepareWorkspace(
   const stageTree = root ? join(stageProjectDir, root) : stageProjectDir;
   const regions = new Map<string, ProtectedRegion[]>();
   let synced = 0;
+  const tCopy = Date.now();
   const files = await listFilesNoFollow(stageTree, (rel) => !/(^|\/)(logs|run)(\/|$)/.test(rel));
   for (const rel of files) {
     const data = await readFileNoFollow(stageTree, rel, MAX_FILE_BYTES);
@@ -135,6 +175,6 @@ export async function prepareWorkspace(
     }
   }
   await fsp.writeFile(digestFile, digest);
-  log(`work tree ready: ${files.length} file(s), ${synced} updated${ws.reused ? ' (incremental)' : ''}`);
+  log(`work tree ready: ${files.length} file(s), ${synced} updated${ws.reused ? ' (incremental)' : ''} in ${Date.now() - tCopy} ms`);
   return { ok: true, problems, regions, synced };
 }

@@ -1,14 +1,40 @@
 /**
  * The C runtime, built once on the host for the bwrap and none sandboxes (the docker image carries
  * its own at /opt/contract/runtime). The runtime sources are copied to
- * `<cacheDir>/runtime-<hash of the sources>/` and `make` is run there; jobs bind that folder
- * read-only and pass it as CONTRACT_RUNTIME. A change of the sources gives a new hash, a new build.
+ * `<cacheDir>/runtime-<key>/` and `make` is run there; jobs bind that folder read-only and pass it
+ * as CONTRACT_RUNTIME. The key hashes the sources and the toolchain (`gcc -dumpfullversion`, the
+ * machine, `uname -m`): a change of either gives a new key, a new build. With a persistent cache
+ * folder (docs/getting-started.md "The build cache") the build is shared by every project, the CLI
+ * and the IDE server: it is made in a private temporary folder and renamed into place only once
+ * complete, so two processes never see half a runtime, and a killed build leaves only a temporary
+ * folder that no key names.
  */
-import { spawn } from 'node:child_process';
-import { createHash } from 'node:crypto';
+import { execFileSync, spawn } from 'node:child_process';
+import { createHash, randomBytes } from 'node:crypto';
 import { existsSync, promises as fsp } from 'node:fs';
+import { machine } from 'node:os';
 import { join } from 'node:path';
+import { assertCacheEntry } from '../cache/cache-dir.js';
 import { listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
+
+let toolchainCache: string | undefined;
+
+/** What the runtime's build products depend on besides its sources. */
+export function toolchainIdentity(): string {
+  if (toolchainCache === undefined) {
+    let gcc = 'no gcc';
+    for (const cc of ['gcc', 'cc']) {
+      try {
+        gcc = `${cc} ${execFileSync(cc, ['-dumpfullversion', '-dumpversion'], { encoding: 'utf8', timeout: 5000 }).trim()}`;
+        break;
+      } catch {
+        /* next */
+      }
+    }
+    toolchainCache = `${gcc}; ${machine()}`;
+  }
+  return toolchainCache;
+}
 
 /** The runtime's sources: what make needs (test outputs, CSV logs, objects are left out). */
 const SOURCE = /(\.(c|h|mk|def|S|sh)|(^|\/)Makefile)$/;
@@ -33,7 +59,7 @@ export class RuntimeCache {
         throw new Error(`no runtime at ${this.sourceDir} (expected a Makefile producing build/libmodule.a and build/contract-launch)`);
       }
       const files = await listFilesNoFollow(this.sourceDir, (rel, isDir) => (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel)));
-      const hash = createHash('sha256');
+      const hash = createHash('sha256').update(toolchainIdentity()).update('\0');
       const contents = new Map<string, Buffer>();
       for (const f of files) {
         const data = await readFileNoFollow(this.sourceDir, f);
@@ -55,13 +81,41 @@ export class RuntimeCache {
   }
 
   private async build(key: string, contents: Map<string, Buffer>, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
-    const dir = join(this.cacheDir, `runtime-${key}`);
-    const stamp = join(dir, '.contract-built');
-    if (existsSync(stamp)) return dir;
-    await removeTreeNoFollow(dir);
-    await fsp.mkdir(dir, { recursive: true, mode: 0o755 });
+    await fsp.mkdir(this.cacheDir, { recursive: true, mode: 0o711 });
+    assertCacheEntry(this.cacheDir);
+    const final = join(this.cacheDir, `runtime-${key}`);
+    assertCacheEntry(final);
+    if (existsSync(join(final, '.contract-built'))) {
+      onLine(`runtime ${key} (${toolchainIdentity()}) already built in ${final}`, 'stdout');
+      return final;
+    }
+    // a folder without its stamp is a build that did not finish (older layout): not trusted
+    await removeTreeNoFollow(final);
+    const dir = join(this.cacheDir, `.building-${key}-${process.pid}-${randomBytes(4).toString('hex')}`);
+    await fsp.mkdir(dir, { mode: 0o700 });
     for (const [rel, data] of contents) await syncFileNoFollow(dir, rel, data, undefined, /\.(sh)$/.test(rel) ? 0o755 : 0o644);
-    onLine(`building the runtime (make -C ${this.sourceDir} copy) ...`, 'stdout');
+    onLine(`building the runtime (make -C ${this.sourceDir} copy, ${toolchainIdentity()}) ...`, 'stdout');
+    try {
+      await this.make(dir, onLine);
+    } catch (e) {
+      await removeTreeNoFollow(dir);
+      throw e;
+    }
+    await fsp.writeFile(join(dir, '.contract-built'), new Date().toISOString());
+    // readable by every job uid, writable by none
+    await fsp.chmod(dir, 0o755);
+    try {
+      await fsp.rename(dir, final);
+    } catch {
+      // another process put the same key in place first: use theirs
+      await removeTreeNoFollow(dir);
+      assertCacheEntry(final);
+      if (!existsSync(join(final, '.contract-built'))) throw new Error(`the runtime cache ${final} is incomplete`);
+    }
+    return final;
+  }
+
+  private async make(dir: string, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<void> {
     await new Promise<void>((resolve, reject) => {
       const child = spawn('make', ['-s', '-C', dir], { stdio: ['ignore', 'pipe', 'pipe'] });
       const forward = (stream: 'stdout' | 'stderr') => (chunk: Buffer) => {
@@ -75,9 +129,5 @@ export class RuntimeCache {
     for (const needed of ['build/libmodule.a', 'build/contract-launch']) {
       if (!existsSync(join(dir, needed))) onLine(`warning: the runtime build did not produce ${needed}`, 'stderr');
     }
-    await fsp.writeFile(stamp, new Date().toISOString());
-    // readable by every job uid, writable by none
-    await fsp.chmod(dir, 0o755);
-    return dir;
   }
 }

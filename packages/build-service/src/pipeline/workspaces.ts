@@ -4,15 +4,27 @@
  *            a sandbox, so reading it (Cactal loading, protected-region scan) cannot be tricked;
  *   work/  — the sandbox's only writable folder, owned by the workspace's own non-root uid, filled
  *            from stage/ with no-follow writes that keep unchanged files (and their mtimes) as they are.
+ *            For the host sandboxes (bwrap, none) work/ is a tmpfs of `workDiskMiB` when the service
+ *            is root (sandbox/work-disk.ts): the job's disk bound.
  * Jobs naming a project folder reuse that project's workspace (so a second build is a no-op make),
- * one job at a time; inline-file jobs get a fresh workspace, removed when the job ends.
- * Every workspace is removed, without following links, when the service closes.
+ * one job at a time; inline-file jobs get a fresh workspace, removed when the job ends. A reused
+ * work/ is only trusted as the last build left it (`acceptedOutputs`, docs/sandbox.md "Build
+ * products between jobs"); `reset()` empties it otherwise.
+ * Every workspace is removed, without following links, when the service closes — except the
+ * persistent ones (`persistentDir`, the shared build cache of docs/getting-started.md "The build
+ * cache"): those keep their stage/ and work/ across processes, with their uid and accepted digest
+ * in state.json (cache/workspace-state.ts), and one command at a time per project across
+ * processes (cache/project-lock.ts).
  */
 import { createHash } from 'node:crypto';
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
+import { canMountWorkDisk, mountWorkDisk, resizeWorkDisk, unmountWorkDisk, workDiskState } from '../sandbox/work-disk.js';
 import type { Owner } from '../util/safe-fs.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
+import { assertCacheEntry, CacheRefusedError } from '../cache/cache-dir.js';
+import { acquireProjectLock } from '../cache/project-lock.js';
+import { readWorkspaceState, writeWorkspaceState, type WorkspaceState } from '../cache/workspace-state.js';
 
 export interface Workspace {
   readonly root: string;
@@ -21,13 +33,31 @@ export interface Workspace {
   readonly owner: Owner;
   /** True when an earlier job already used it (incremental build). */
   readonly reused: boolean;
+  /**
+   * Digest of work/ as the last build step that ended by itself left it (work-tree-digest.ts);
+   * null when no build ended since work/ was last emptied. Set by the job.
+   */
+  acceptedOutputs: string | null;
+  /** Empties work/ (and drops the sandbox's copy of it): the next build starts from scratch. */
+  reset(): Promise<void>;
   release(): Promise<void>;
 }
+
+/** What a job waiting for its project's workspace is told, and how it stops waiting. */
+export interface AcquireHooks {
+  /** Another command (maybe another process) holds the project: called once, with who. */
+  onWait?: (holder: string) => void;
+  cancelled?: Promise<void>;
+}
+
+/** Size of the work tmpfs per acquire (bwrap, none); undefined: no tmpfs (docker bounds its volume). */
+export type WorkDiskBytes = number | undefined;
 
 interface Keyed {
   root: string;
   owner: Owner;
   used: boolean;
+  acceptedOutputs: string | null;
   lock: Promise<void>;
 }
 
@@ -44,6 +74,8 @@ export class WorkspaceManager {
     private readonly baseDir: string,
     /** Called before a workspace folder is deleted (docker removes the workspace's volume). */
     private readonly onRemove: (workDir: string) => Promise<void> = async () => {},
+    /** Project workspaces live here and outlive the service (the shared build cache); undefined: removed at close. */
+    private readonly persistentDir?: string,
   ) {}
 
   private nextOwner(): Owner {
@@ -53,24 +85,55 @@ export class WorkspaceManager {
     return { uid, gid: uid };
   }
 
-  private async create(root: string, owner: Owner): Promise<void> {
+  /** A persistent workspace's uid: the same whichever process creates it (root: one of the job uids). */
+  private ownerFor(id: string): Owner {
+    if (process.getuid?.() !== 0) return this.nextOwner();
+    const uid = UID_BASE + (parseInt(id.slice(0, 8), 16) % UID_SPAN);
+    return { uid, gid: uid };
+  }
+
+  private async create(root: string, owner: Owner, disk: WorkDiskBytes): Promise<void> {
     await fsp.mkdir(this.baseDir, { recursive: true, mode: 0o711 });
     await fsp.mkdir(root, { mode: 0o711 });
     await fsp.mkdir(join(root, 'stage'), { mode: 0o700 });
-    await fsp.mkdir(join(root, 'work'), { mode: 0o755 });
-    await fsp.lchown(join(root, 'work'), owner.uid, owner.gid);
+    await this.createWork(root, owner, disk);
   }
 
-  /** A workspace for a project folder (`key` = its real path), waiting for the previous job on it. */
-  async acquireForProject(key: string, sandbox: string): Promise<Workspace> {
+  private async createWork(root: string, owner: Owner, disk: WorkDiskBytes): Promise<void> {
+    const work = join(root, 'work');
+    await fsp.mkdir(work, { mode: 0o755 });
+    await fsp.lchown(work, owner.uid, owner.gid);
+    if (disk !== undefined && canMountWorkDisk()) await mountWorkDisk(work, disk, owner);
+  }
+
+  /** Unmounts work/ (the kernel drops its tree) and removes the rest without following links. */
+  private async removeRoot(root: string): Promise<void> {
+    await unmountWorkDisk(join(root, 'work'));
+    await removeTreeNoFollow(root);
+  }
+
+  private async resetWork(root: string, owner: Owner, disk: WorkDiskBytes): Promise<void> {
+    const work = join(root, 'work');
+    await this.onRemove(work).catch(() => {});
+    await unmountWorkDisk(work);
+    await removeTreeNoFollow(work);
+    await this.createWork(root, owner, disk);
+  }
+
+  /**
+   * A workspace for a project folder (`key` = its real path), waiting for the previous job on it;
+   * its work tmpfs takes this job's size (a refused resize, below what is used, empties it).
+   */
+  async acquireForProject(key: string, sandbox: string, disk?: WorkDiskBytes, hooks: AcquireHooks = {}): Promise<Workspace> {
     const id = createHash('sha256').update(`${sandbox}\0${key}`).digest('hex').slice(0, 16);
+    if (this.persistentDir) return this.acquirePersistent(id, disk, hooks);
     let entry = this.keyed.get(id);
     if (!entry) {
       const root = join(this.baseDir, `ws-${id}`);
       const owner = this.nextOwner();
-      await removeTreeNoFollow(root);
-      await this.create(root, owner);
-      entry = { root, owner, used: false, lock: Promise.resolve() };
+      await this.removeRoot(root);
+      await this.create(root, owner, disk);
+      entry = { root, owner, used: false, acceptedOutputs: null, lock: Promise.resolve() };
       this.keyed.set(id, entry);
     }
     const e = entry;
@@ -78,35 +141,161 @@ export class WorkspaceManager {
     let unlock!: () => void;
     e.lock = new Promise<void>((r) => (unlock = r));
     await previous;
-    const reused = e.used;
+    let reused = e.used;
     e.used = true;
+    const work = join(e.root, 'work');
+    if (disk !== undefined && canMountWorkDisk()) {
+      const state = await workDiskState(work);
+      if (!state || (state.sizeBytes !== disk && !(await resizeWorkDisk(work, disk, e.owner)))) {
+        await this.resetWork(e.root, e.owner, disk);
+        e.acceptedOutputs = null;
+        reused = false;
+      }
+    }
     return {
       root: e.root,
       stageDir: join(e.root, 'stage'),
-      workDir: join(e.root, 'work'),
+      workDir: work,
       owner: e.owner,
       reused,
+      get acceptedOutputs() {
+        return e.acceptedOutputs;
+      },
+      set acceptedOutputs(v: string | null) {
+        e.acceptedOutputs = v;
+      },
+      reset: async () => {
+        e.acceptedOutputs = null;
+        await this.resetWork(e.root, e.owner, disk);
+      },
       release: async () => unlock(),
     };
   }
 
+  /**
+   * A persistent project workspace (see the header): waits for this process's previous job on it,
+   * then for any other process's (flock), then trusts only what state.json and the checks allow.
+   */
+  private async acquirePersistent(id: string, disk: WorkDiskBytes, hooks: AcquireHooks): Promise<Workspace> {
+    const base = this.persistentDir!;
+    await fsp.mkdir(base, { recursive: true, mode: 0o711 });
+    assertCacheEntry(base);
+    const root = join(base, id);
+    await fsp.mkdir(root, { recursive: true, mode: 0o711 });
+    assertCacheEntry(root);
+    let entry = this.keyed.get(id);
+    if (!entry) {
+      entry = { root, owner: { uid: 0, gid: 0 }, used: true, acceptedOutputs: null, lock: Promise.resolve() };
+      this.keyed.set(id, entry);
+    }
+    const e = entry;
+    const previous = e.lock;
+    let unlock!: () => void;
+    e.lock = new Promise<void>((r) => (unlock = r));
+    let fileLock;
+    try {
+      await previous;
+      fileLock = await acquireProjectLock(join(root, 'lock'), hooks.onWait ?? (() => {}), hooks.cancelled);
+    } catch (err) {
+      unlock();
+      throw err;
+    }
+    try {
+      const work = join(root, 'work');
+      const stage = join(root, 'stage');
+      for (const p of [stage, work]) {
+        const st = await fsp.lstat(p).catch(() => null);
+        if (st && (st.isSymbolicLink() || !st.isDirectory())) throw new CacheRefusedError(`refusing the build cache: ${p} is ${st.isSymbolicLink() ? 'a symbolic link (planted?)' : 'not a folder'}; remove ${root} or choose another cache folder`);
+      }
+      let state: WorkspaceState | null = readWorkspaceState(root);
+      let reused = state !== null;
+      if (state) {
+        await fsp.mkdir(stage, { mode: 0o700 }).catch(() => {});
+        assertCacheEntry(stage);
+        if (!(await fsp.lstat(work).catch(() => null))) {
+          await this.createWork(root, state.owner, disk);
+          state = { ...state, acceptedOutputs: null };
+        }
+      } else {
+        // new, or its state was lost or unreadable: nothing in it is trusted
+        state = { owner: this.ownerFor(id), acceptedOutputs: null };
+        await unmountWorkDisk(work);
+        await removeTreeNoFollow(work);
+        await removeTreeNoFollow(stage);
+        await fsp.mkdir(stage, { mode: 0o700 });
+        await this.createWork(root, state.owner, disk);
+      }
+      const owner = state.owner;
+      if (disk !== undefined && canMountWorkDisk()) {
+        // not mounted any more (a reboot, a manual umount) or another size: start from an empty tmpfs
+        const ds = await workDiskState(work);
+        if (!ds || (ds.sizeBytes !== disk && !(await resizeWorkDisk(work, disk, owner)))) {
+          await this.resetWork(root, owner, disk);
+          state = { ...state, acceptedOutputs: null };
+          reused = false;
+        }
+      }
+      let accepted = state.acceptedOutputs;
+      writeWorkspaceState(root, { owner, acceptedOutputs: accepted });
+      const lock = fileLock;
+      return {
+        root,
+        stageDir: stage,
+        workDir: work,
+        owner,
+        reused,
+        get acceptedOutputs() {
+          return accepted;
+        },
+        set acceptedOutputs(v: string | null) {
+          accepted = v;
+          writeWorkspaceState(root, { owner, acceptedOutputs: v });
+        },
+        reset: async () => {
+          accepted = null;
+          writeWorkspaceState(root, { owner, acceptedOutputs: null });
+          await this.resetWork(root, owner, disk);
+        },
+        release: async () => {
+          lock.release();
+          unlock();
+        },
+      };
+    } catch (err) {
+      fileLock.release();
+      unlock();
+      throw err;
+    }
+  }
+
   /** A fresh workspace, removed on release. */
-  async acquireFresh(jobId: string): Promise<Workspace> {
+  async acquireFresh(jobId: string, disk?: WorkDiskBytes): Promise<Workspace> {
     const root = join(this.baseDir, `job-${jobId}`);
     const owner = this.nextOwner();
-    await removeTreeNoFollow(root);
-    await this.create(root, owner);
+    await this.removeRoot(root);
+    await this.create(root, owner, disk);
     this.fresh.add(root);
+    let accepted: string | null = null;
     return {
       root,
       stageDir: join(root, 'stage'),
       workDir: join(root, 'work'),
       owner,
       reused: false,
+      get acceptedOutputs() {
+        return accepted;
+      },
+      set acceptedOutputs(v: string | null) {
+        accepted = v;
+      },
+      reset: async () => {
+        accepted = null;
+        await this.resetWork(root, owner, disk);
+      },
       release: async () => {
         this.fresh.delete(root);
         await this.onRemove(join(root, 'work')).catch(() => {});
-        await removeTreeNoFollow(root);
+        await this.removeRoot(root);
       },
     };
   }
@@ -115,13 +304,14 @@ export class WorkspaceManager {
   async removeAll(): Promise<void> {
     for (const root of this.fresh) {
       await this.onRemove(join(root, 'work')).catch(() => {});
-      await removeTreeNoFollow(root);
+      await this.removeRoot(root);
     }
     this.fresh.clear();
     for (const e of this.keyed.values()) {
       await e.lock;
+      if (this.persistentDir) continue; // the build cache outlives the service
       await this.onRemove(join(e.root, 'work')).catch(() => {});
-      await removeTreeNoFollow(e.root);
+      await this.removeRoot(e.root);
     }
     this.keyed.clear();
   }

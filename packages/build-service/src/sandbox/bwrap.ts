@@ -3,16 +3,20 @@
  * the work dir read-write at /work, a private /tmp, the prebuilt runtime read-only at
  * /opt/contract/runtime, --die-with-parent, --new-session, a non-root uid (a distinct host uid per
  * job when the service runs as root; uid 1000 inside), no new privileges.
- * Memory and process limits: a per-job cgroup v1 when the service may create one, otherwise
- * RLIMIT_AS / RLIMIT_NPROC set with prlimit under the job's own non-root host uid.
+ * Memory and process limits: a per-job cgroup v1 when the service may create one, else a cgroup
+ * v2 in a delegated subtree (cgroup-choice.ts), otherwise RLIMIT_AS / RLIMIT_NPROC set with
+ * prlimit under the job's own non-root host uid.
+ * Disk: the work dir is the workspace's tmpfs of workDiskMiB (work-disk.ts), watched for a full disk.
  */
 import { execFile } from 'node:child_process';
 import { existsSync, lstatSync, readlinkSync } from 'node:fs';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { memoryBytes } from '../limits.js';
-import { JobCgroup } from './cgroup.js';
+import type { LimitCgroup } from './cgroup.js';
+import { cgroupChoice, createJobCgroup } from './cgroup-choice.js';
 import { startHostProcess } from './host-process.js';
+import { workDiskState } from './work-disk.js';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
 
 const run = promisify(execFile);
@@ -72,8 +76,8 @@ export class BwrapSandbox implements Sandbox {
   async probe(): Promise<SandboxProbe> {
     try {
       const { stdout } = await run(this.bwrap, ['--version']);
-      const cg = JobCgroup.unavailableReason();
-      const limits = this.limitMechanism === 'rlimit' || cg ? `rlimits (${cg ?? 'forced'})` : 'cgroup-v1';
+      const cg = cgroupChoice();
+      const limits = this.limitMechanism === 'rlimit' ? 'rlimits (forced)' : cg.kind === 'none' ? `rlimits (${cg.reason})` : cg.kind;
       // user namespaces must work for the unprivileged job uid
       await run(this.bwrap, ['--unshare-all', ...toolchainArgs(), '--', '/bin/true']);
       return { available: true, detail: `${stdout.trim()}; memory/process limits via ${limits}` };
@@ -87,29 +91,31 @@ export class BwrapSandbox implements Sandbox {
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
     const isRoot = process.getuid?.() === 0;
-    let cgroup: JobCgroup | null = null;
+    let cgroup: LimitCgroup | null = null;
     let cgroupError = '';
     if (this.limitMechanism !== 'rlimit') {
-      const reason = JobCgroup.unavailableReason();
-      if (reason === null) {
+      const choice = cgroupChoice();
+      if (choice.kind !== 'none') {
         try {
-          cgroup = await JobCgroup.create(`contract-${cmd.name}`, memoryBytes(cmd.limits), cmd.limits.processes);
+          cgroup = await createJobCgroup(choice, `contract-${cmd.name}`, memoryBytes(cmd.limits), cmd.limits.processes);
         } catch (e) {
           cgroupError = (e as Error).message;
         }
-      } else cgroupError = reason;
+      } else cgroupError = choice.reason;
       if (!cgroup && this.limitMechanism === 'cgroup') throw new Error(`cgroups required but unavailable: ${cgroupError}`);
     }
     const owner = cmd.owner;
+    const disk = await workDiskState(cmd.workDir);
     const hostUser = isRoot && owner ? `host uid ${owner.uid}` : `host uid ${process.getuid?.()}`;
     const mechanisms: Mechanisms = {
-      memory: cgroup ? 'cgroup-v1' : 'rlimit-as',
-      processes: cgroup ? 'cgroup-v1' : 'rlimit-nproc',
+      memory: cgroup ? cgroup.mechanism : 'rlimit-as',
+      processes: cgroup ? cgroup.mechanism : 'rlimit-nproc',
       network: 'netns',
       filesystem: 'bwrap-ro-binds',
       user: `uid ${SANDBOX_UID} in a user namespace (${hostUser})`,
       time: 'service-timer',
       output: 'service-counter',
+      disk: disk ? 'tmpfs-size' : 'none',
     };
 
     const env: Record<string, string> = {
@@ -162,6 +168,7 @@ export class BwrapSandbox implements Sandbox {
       cgroup,
       guessLimitsFromOutput: !cgroup,
       cleanup: cgroup ? () => cgroup.destroy() : undefined,
+      ...(disk ? { workDisk: { dir: cmd.workDir, bytes: disk.sizeBytes } } : {}),
     });
   }
 }

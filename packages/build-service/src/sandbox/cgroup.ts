@@ -5,6 +5,7 @@
  */
 import { promises as fsp, readFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { cgroupPids, killUntilEmpty, removeCgroupDir } from './cgroup-procs.js';
 
 const CGROUP_ROOT = '/sys/fs/cgroup';
 const CONTROLLERS = ['memory', 'pids'] as const;
@@ -27,7 +28,21 @@ function ownCgroupPaths(): Map<string, string> {
   return out;
 }
 
-export class JobCgroup {
+/** What the host process runner needs of a job's cgroup, v1 (this file) or v2 (cgroup-v2.ts). */
+export interface LimitCgroup {
+  readonly mechanism: 'cgroup-v1' | 'cgroup-v2';
+  /** The cgroup.procs files a process writes its pid into to join the job (before exec). */
+  readonly procsFiles: string[];
+  oomKills(): Promise<number>;
+  pidsLimitHits(): Promise<number>;
+  pids(): Promise<number[]>;
+  killAll(deadlineMs?: number): Promise<boolean>;
+  destroy(): Promise<void>;
+}
+
+export class JobCgroup implements LimitCgroup {
+  readonly mechanism = 'cgroup-v1' as const;
+
   private constructor(
     readonly dirs: Record<Controller, string>,
     private readonly baseline: { oomKills: number },
@@ -85,47 +100,18 @@ export class JobCgroup {
   }
 
   async pids(): Promise<number[]> {
-    const text = await fsp.readFile(join(this.dirs.pids, 'cgroup.procs'), 'utf8').catch(() => '');
-    return text
-      .split('\n')
-      .filter(Boolean)
-      .map(Number)
-      .filter((n) => Number.isInteger(n) && n > 0);
+    return cgroupPids(this.dirs.pids);
   }
 
   /** SIGKILLs every process of the job until none is left (or the deadline passes). */
-  async killAll(deadlineMs = 1500): Promise<boolean> {
-    const end = Date.now() + deadlineMs;
-    for (;;) {
-      const pids = await this.pids();
-      if (pids.length === 0) return true;
-      for (const pid of pids) {
-        try {
-          process.kill(pid, 'SIGKILL');
-        } catch {
-          /* already gone */
-        }
-      }
-      if (Date.now() > end) return false;
-      await new Promise((r) => setTimeout(r, 20));
-    }
+  killAll(deadlineMs = 1500): Promise<boolean> {
+    return killUntilEmpty(() => this.pids(), deadlineMs);
   }
 
   /** Kills what is left and removes the cgroup directories. */
   async destroy(): Promise<void> {
     await this.killAll();
-    for (const c of CONTROLLERS) {
-      // rmdir may fail for a short while until the killed processes are reaped
-      for (let i = 0; i < 50; i++) {
-        try {
-          await fsp.rmdir(this.dirs[c]);
-          break;
-        } catch (e) {
-          if ((e as NodeJS.ErrnoException).code === 'ENOENT') break;
-          await new Promise((r) => setTimeout(r, 20));
-        }
-      }
-    }
+    for (const c of CONTROLLERS) await removeCgroupDir(this.dirs[c]);
   }
 }
 

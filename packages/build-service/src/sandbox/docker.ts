@@ -6,6 +6,10 @@
  * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec, user 1000,
  * no-new-privileges, all capabilities dropped, Memory (= MemorySwap) and PidsLimit.
  * A memory kill is read from State.OOMKilled; a refused fork from the program's own messages.
+ * Disk: the work volume is a tmpfs of workDiskMiB (local driver options); a tmpfs volume is only
+ * kept while some container mounts it, so each workspace volume has a holder container (`sleep`,
+ * volume read-only, no network, no capabilities) for its lifetime, which also answers the statfs
+ * polls that name a full disk and the work-tree digests (find, no file read).
  * Every container and volume is labelled with its owner (this service process) and job
  * (docker-owner.ts); the first use sweeps what dead services left (docker-sweep.ts), close()
  * removes this service's own leftovers.
@@ -14,19 +18,26 @@ import { spawn } from 'node:child_process';
 import { createHash, randomBytes } from 'node:crypto';
 import type { Readable } from 'node:stream';
 import { PassThrough } from 'node:stream';
-import Docker from 'dockerode';
+import { createRequire } from 'node:module';
+import type Docker from 'dockerode';
+import type { ContainerCreateOptions } from 'dockerode';
 import type { LimitHit } from '../limits.js';
-import { memoryBytes } from '../limits.js';
+import { memoryBytes, workDiskBytes } from '../limits.js';
+import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
+import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 import { readTar } from '../util/tar-reader.js';
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 
 export const DOCKER_IMAGE = 'contract-gcc';
 export const DOCKER_WORK = '/work';
 export const DOCKER_RUNTIME = '/opt/contract/runtime';
 const DOCKER_USER = '1000:1000';
+/** statfs of the work volume while a step runs: a job refused a write is stopped within this time. */
+const DISK_WATCH_INTERVAL_MS = 1000;
 
 export interface DockerOptions {
   image?: string;
@@ -73,12 +84,16 @@ export class DockerSandbox implements Sandbox {
   readonly name = 'docker' as const;
   readonly needsHostRuntime = false;
   readonly unenforced: readonly string[] = [];
-  private readonly docker: Docker;
+  private engine: Docker | null = null;
+  private readonly connection: Docker.DockerOptions | undefined;
   private readonly image: string;
   private readonly volumes = new Map<string, string>();
   private readonly createdVolumes = new Set<string>();
   /** Digest of the last work-dir archive copied into each volume. */
   private readonly syncedTar = new Map<string, string>();
+  /** The holder container of each tmpfs work volume, and the volume's size. */
+  private readonly holders = new Map<string, Docker.Container>();
+  private readonly volumeBytes = new Map<string, number>();
   /** The job that last used each work dir (labels of the containers that read it). */
   private readonly jobOfWorkDir = new Map<string, string>();
   /** This service process, written on everything it creates. */
@@ -89,8 +104,20 @@ export class DockerSandbox implements Sandbox {
   /** Set once the engine answered this service (close() then looks for leftovers). */
   private engineSeen = false;
 
+  /**
+   * The engine client, loaded on first use: dockerode takes about 0.3 s to load, which a
+   * `contract build` in bwrap should not pay (docs/getting-started.md "The build cache").
+   */
+  private get docker(): Docker {
+    if (!this.engine) {
+      const Dockerode = createRequire(import.meta.url)('dockerode') as typeof Docker;
+      this.engine = new Dockerode(this.connection);
+    }
+    return this.engine;
+  }
+
   constructor(options: DockerOptions = {}) {
-    this.docker = new Docker(options.connection);
+    this.connection = options.connection;
     this.image = options.image ?? DOCKER_IMAGE;
     this.owner = currentOwner();
     this.log = options.log ?? stderrLog;
@@ -171,12 +198,23 @@ export class DockerSandbox implements Sandbox {
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
     await this.sweep();
     const jobId = cmd.jobId ?? cmd.name;
+    const diskBytes = workDiskBytes(cmd.limits);
+    // a job with another workDiskMiB than the volume's gets a new volume (and a full build)
+    const existing = this.volumes.get(cmd.workDir);
+    if (existing && this.createdVolumes.has(existing) && this.volumeBytes.get(existing) !== diskBytes) await this.release(cmd.workDir);
     this.jobOfWorkDir.set(cmd.workDir, jobId);
     const volume = this.volumeFor(cmd.workDir);
     this.engineSeen = true;
     if (!this.createdVolumes.has(volume)) {
-      await this.docker.createVolume({ Name: volume, Labels: ownerLabels(this.owner, 'workspace', jobId) });
+      await this.docker.createVolume({
+        Name: volume,
+        Labels: ownerLabels(this.owner, 'workspace', jobId),
+        DriverOpts: { type: 'tmpfs', device: 'tmpfs', o: `size=${diskBytes},nr_inodes=${workDiskInodes(diskBytes)},uid=1000,gid=1000,mode=0755,nosuid,nodev` },
+      });
       this.createdVolumes.add(volume);
+      this.volumeBytes.set(volume, diskBytes);
+      this.syncedTar.delete(volume);
+      await this.startHolder(volume, cmd.name, jobId);
     }
     // the job's files, with their mtimes (make sees unchanged sources as unchanged); skipped
     // when the work dir is byte-for-byte what the volume last received (no-op rebuilds)
@@ -235,8 +273,21 @@ export class DockerSandbox implements Sandbox {
         user: `docker user ${DOCKER_USER}`,
         time: 'service-timer',
         output: 'service-counter',
+        disk: 'docker-tmpfs-volume',
       };
       let limitHit: LimitHit | null = null;
+      const diskHit = async (): Promise<LimitHit | null> => {
+        const state = await this.volumeState(volume);
+        return state && isWorkDiskFull(state) ? { name: 'workDiskMiB', value: diskBytes, unit: 'bytes', mechanism: 'docker-tmpfs-volume' } : null;
+      };
+      const diskWatch = setInterval(() => {
+        void diskHit().then((h) => {
+          if (h && !limitHit) {
+            limitHit = h;
+            void kill();
+          }
+        }, () => {});
+      }, DISK_WATCH_INTERVAL_MS);
       let killing: Promise<void> | null = null;
       const kill = (): Promise<void> => {
         killing ??= container.kill().catch(() => {}).then(() => undefined);
@@ -244,8 +295,11 @@ export class DockerSandbox implements Sandbox {
       };
       const done: Promise<SandboxExit> = (async () => {
         const waited = (await container.wait().catch(() => ({ StatusCode: null }))) as { StatusCode: number | null };
+        clearInterval(diskWatch);
         const info = await container.inspect().catch(() => null);
         if (info?.State?.OOMKilled && !limitHit) limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
+        // a job that was refused a write and gave up is reported too
+        if (!limitHit) limitHit = await diskHit().catch(() => null);
         // the attach stream delivers the last bytes after the container ended: drain it first
         await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
         stdout.end();
@@ -305,28 +359,16 @@ export class DockerSandbox implements Sandbox {
    * its tar reports links as links, so nothing the job planted is followed on the host. Each
    * archive is read up to maxBytes + 1 MiB; entries cut by that bound come without data.
    */
-  async readWorkDirs(workDir: string, rels: string[], maxBytes: number): Promise<Map<string, DirListing>> {
+  async readWorkDirs(workDir: string, rels: string[], maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>> {
     const out = new Map<string, DirListing>();
     const volume = this.volumes.get(workDir);
     if (!volume || !this.createdVolumes.has(volume)) {
       for (const rel of rels) out.set(rel, null);
       return out;
     }
-    const c = await this.docker.createContainer({
-      name: `contract-collect-${randomBytes(6).toString('hex')}`,
-      Image: this.image,
-      Cmd: ['true'],
-      User: DOCKER_USER,
-      NetworkDisabled: true,
-      Labels: ownerLabels(this.owner, 'job', this.jobOfWorkDir.get(workDir) ?? 'collect'),
-      HostConfig: {
-        NetworkMode: 'none',
-        ReadonlyRootfs: true,
-        Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK, ReadOnly: true }],
-        SecurityOpt: ['no-new-privileges'],
-        CapDrop: ['ALL'],
-      },
-    });
+    const c = await this.docker.createContainer(
+      this.volumeReader(`contract-collect-${randomBytes(6).toString('hex')}`, ['true'], volume, this.jobOfWorkDir.get(workDir) ?? 'collect'),
+    );
     try {
       for (const rel of rels) {
         let stream: Readable;
@@ -345,13 +387,15 @@ export class DockerSandbox implements Sandbox {
           out.set(rel, { notDirectory: top.kind });
           continue;
         }
-        const children = entries.filter((e) => e.name.startsWith(`${rel}/`) && !e.name.slice(rel.length + 1).includes('/'));
+        const all = entries.filter((e) => e.name.startsWith(`${rel}/`) && !e.name.slice(rel.length + 1).includes('/'));
+        const children = all.slice(0, maxEntries);
         out.set(rel, {
+          ...(all.length > maxEntries ? { more: true } : {}),
           entries: children.map((e) => ({
             name: e.name.slice(rel.length + 1),
             kind: e.kind,
             size: e.size,
-            read: async (max: number) => (e.kind === 'file' && e.data && e.data.length === e.size && e.size <= max ? e.data : null),
+            read: async (max: number) => (e.kind === 'file' && e.data && e.data.length === e.size ? e.data.subarray(0, max) : null),
           })),
         });
       }
@@ -361,7 +405,7 @@ export class DockerSandbox implements Sandbox {
     return out;
   }
 
-  /** Removes the volume of a workspace that is being deleted. */
+  /** Removes the volume of a workspace that is being deleted (its holder first). */
   async release(workDir: string): Promise<void> {
     const v = this.volumes.get(workDir);
     if (!v) return;
@@ -369,7 +413,98 @@ export class DockerSandbox implements Sandbox {
     this.jobOfWorkDir.delete(workDir);
     this.createdVolumes.delete(v);
     this.syncedTar.delete(v);
+    this.volumeBytes.delete(v);
+    const holder = this.holders.get(v);
+    this.holders.delete(v);
+    await holder?.remove({ force: true }).catch(() => {});
     await this.docker.getVolume(v).remove({ force: true }).catch(() => {});
+  }
+
+  /**
+   * A service-side container that only reads a work volume (artifact collection, the volume's
+   * holder): the volume read-only, no network, read-only root, no capabilities, no new privileges,
+   * owner-labelled like the job's own containers so that the sweep finds it.
+   */
+  private volumeReader(name: string, cmd: string[], volume: string, jobId: string): ContainerCreateOptions {
+    return {
+      name,
+      Image: this.image,
+      Cmd: cmd,
+      User: DOCKER_USER,
+      NetworkDisabled: true,
+      Labels: ownerLabels(this.owner, 'job', jobId),
+      HostConfig: {
+        NetworkMode: 'none',
+        ReadonlyRootfs: true,
+        Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK, ReadOnly: true }],
+        SecurityOpt: ['no-new-privileges'],
+        CapDrop: ['ALL'],
+      },
+    };
+  }
+
+  /**
+   * Starts the container that keeps a tmpfs work volume mounted between a workspace's steps and
+   * jobs (the local driver unmounts it, contents gone, when no container uses it).
+   */
+  private async startHolder(volume: string, name: string, jobId: string): Promise<void> {
+    const spec = this.volumeReader(`contract-${name}-hold`, ['sleep', 'infinity'], volume, jobId);
+    const c = await this.docker.createContainer({ ...spec, HostConfig: { ...spec.HostConfig, Memory: 64 * 1024 * 1024, PidsLimit: 16, Init: true } });
+    this.holders.set(volume, c);
+    await c.start();
+  }
+
+  /** Runs a command in a volume's holder; stdout to `out`, resolves with the exit code. */
+  private async execInHolder(volume: string, cmd: string[], out: PassThrough): Promise<number | null> {
+    const holder = this.holders.get(volume);
+    if (!holder) {
+      out.end();
+      return null;
+    }
+    const exec = await holder.exec({ Cmd: cmd, AttachStdout: true, AttachStderr: true, User: DOCKER_USER });
+    const stream = (await exec.start({ hijack: true, stdin: false })) as unknown as Readable;
+    const err = new PassThrough();
+    err.resume();
+    this.docker.modem.demuxStream(stream, out, err);
+    await new Promise<void>((resolve) => {
+      stream.on('end', resolve);
+      stream.on('close', resolve);
+      stream.on('error', () => resolve());
+    });
+    out.end();
+    const info = await exec.inspect();
+    return info.ExitCode ?? null;
+  }
+
+  /** statfs of a work volume (through its holder), null when it cannot be read. */
+  private async volumeState(volume: string): Promise<WorkDiskState | null> {
+    const out = new PassThrough();
+    let text = '';
+    out.on('data', (c: Buffer) => (text += c.toString()));
+    const code = await this.execInHolder(volume, ['stat', '-f', '-c', '%b %a %f %S', DOCKER_WORK], out);
+    const m = /^(\d+) (\d+) (\d+) (\d+)/.exec(text.trim());
+    if (code !== 0 || !m) return null;
+    const [blocks, avail, freeInodes, bsize] = m.slice(1).map(Number) as [number, number, number, number];
+    return { sizeBytes: blocks * bsize, freeBytes: avail * bsize, freeInodes };
+  }
+
+  /** The biggest files of a workspace's volume (pipeline/work-usage.ts), found by its holder. */
+  async workUsage(workDir: string): Promise<WorkUsage | null> {
+    const volume = this.volumes.get(workDir);
+    if (!volume || !this.holders.has(volume)) return null;
+    const out = new PassThrough();
+    const exited = this.execInHolder(volume, ['find', ...workUsageFindArgs(DOCKER_WORK)], out);
+    const usage = await readWorkUsage(out, () => out.destroy());
+    return (await exited) === 0 || usage.partial ? usage : null;
+  }
+
+  /** The work-tree digest of a workspace's volume (pipeline/work-tree-digest.ts), found by its holder. */
+  async workTreeDigest(workDir: string): Promise<string | null> {
+    const volume = this.volumes.get(workDir);
+    if (!volume || !this.holders.has(volume)) return null;
+    const out = new PassThrough();
+    const exited = this.execInHolder(volume, ['find', ...workTreeFindArgs(DOCKER_WORK)], out);
+    return digestFindOutput(out, exited);
   }
 }
 

@@ -7,7 +7,8 @@ import { spawn } from 'node:child_process';
 import { readdirSync, readFileSync } from 'node:fs';
 import type { LimitHit, Limits } from '../limits.js';
 import { memoryBytes } from '../limits.js';
-import type { JobCgroup } from './cgroup.js';
+import type { LimitCgroup } from './cgroup.js';
+import { isWorkDiskFull, workDiskState } from './work-disk.js';
 import type { Mechanisms, SandboxExit, SandboxProcess } from './types.js';
 
 export interface HostProcessOptions {
@@ -16,14 +17,18 @@ export interface HostProcessOptions {
   env: Record<string, string>;
   limits: Limits;
   mechanisms: Mechanisms;
-  cgroup: JobCgroup | null;
+  cgroup: LimitCgroup | null;
   /** rlimit mode: guess limit hits from the messages of refused forks/allocations. */
   guessLimitsFromOutput: boolean;
   /** Called once every process is gone (removes the cgroup). */
   cleanup?: () => Promise<void>;
+  /** The work tmpfs to watch (work-disk.ts): filling it is the workDiskMiB limit hit. */
+  workDisk?: { dir: string; bytes: number };
 }
 
 const WATCH_INTERVAL_MS = 100;
+/** statfs of the work tmpfs: a job refused a write (ENOSPC) is stopped within this time. */
+const DISK_WATCH_INTERVAL_MS = 250;
 
 /** Shell prologue: write our pid into each cgroup.procs given before "--", then exec the rest. */
 const JOIN_CGROUP = 'for f; do [ "$f" = -- ] && break; echo $$ > "$f" || exit 125; shift; done; shift; exec "$@"';
@@ -84,12 +89,23 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
         void (async () => {
           const cg = opts.cgroup!;
           if ((await cg.oomKills()) > 0) {
-            hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: 'cgroup-v1' });
+            hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: cg.mechanism });
           } else if ((await cg.pidsLimitHits()) > 0) {
-            hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: 'cgroup-v1' });
+            hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism });
           }
         })().catch(() => {});
       }, WATCH_INTERVAL_MS)
+    : null;
+
+  const diskHit = async (): Promise<LimitHit | null> => {
+    if (!opts.workDisk) return null;
+    const state = await workDiskState(opts.workDisk.dir);
+    return state && isWorkDiskFull(state) ? { name: 'workDiskMiB', value: opts.workDisk.bytes, unit: 'bytes', mechanism: 'tmpfs-size' } : null;
+  };
+  const diskWatcher = opts.workDisk
+    ? setInterval(() => {
+        void diskHit().then((h) => h && hit(h), () => {});
+      }, DISK_WATCH_INTERVAL_MS)
     : null;
 
   const done = new Promise<SandboxExit>((resolveDone) => {
@@ -97,14 +113,17 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
     let closed = false;
     const finish = async (): Promise<void> => {
       if (watcher) clearInterval(watcher);
+      if (diskWatcher) clearInterval(diskWatcher);
       // final look at the counters: the kernel may have killed the process just before it exited
       if (opts.cgroup && !limitHit) {
         if ((await opts.cgroup.oomKills()) > 0) {
-          limitHit = { name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: 'cgroup-v1' };
+          limitHit = { name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: opts.cgroup.mechanism };
         } else if ((await opts.cgroup.pidsLimitHits()) > 0) {
-          limitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: 'cgroup-v1' };
+          limitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: opts.cgroup.mechanism };
         }
       }
+      // a job that was refused a write and gave up is reported too
+      if (!limitHit) limitHit = await diskHit().catch(() => null);
       await killTree(); // nothing of the job outlives it
       await opts.cleanup?.().catch(() => {});
       resolveDone({ exitCode: exit?.code ?? null, signal: exit?.signal ?? null, limitHit });
@@ -139,9 +158,19 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
     });
   });
 
+  /**
+   * "fork: ... EAGAIN" / "fork(): ... try again" in linear time: lines are the sandbox's, and
+   * /fork(?:\(\))?: .*(?:EAGAIN|again)/ backtracks over the rest of the line at every "fork: "
+   * of it (seconds on a 64 KiB line of them, with the service's event loop stalled meanwhile).
+   */
+  const forkAgain = (line: string): boolean => {
+    const m = /fork(?:\(\))?: /i.exec(line);
+    return m !== null && /EAGAIN|again/i.test(line.slice(m.index + m[0].length));
+  };
+
   const noteLine = (line: string): void => {
     if (!opts.guessLimitsFromOutput || limitHit || exited) return;
-    if (/Resource temporarily unavailable|fork(?:\(\))?: .*(?:EAGAIN|again)|cannot fork|fork failed/i.test(line)) {
+    if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line) || forkAgain(line)) {
       hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: 'rlimit-nproc' });
     } else if (/Cannot allocate memory|out of memory|std::bad_alloc|virtual memory exhausted/i.test(line)) {
       hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: 'rlimit-as' });

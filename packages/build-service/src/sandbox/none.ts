@@ -4,6 +4,7 @@
  * drop to the workspace's own uid with no new privileges. Nothing else holds, and every job says so.
  */
 import { startHostProcess } from './host-process.js';
+import { workDiskState } from './work-disk.js';
 import type { Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
 import { join } from 'node:path';
 
@@ -15,6 +16,7 @@ export const NONE_UNENFORCED: readonly string[] = [
   ...(AS_ROOT ? [] : ['non-root user', 'no new privileges']),
   'memory limit',
   'process limit',
+  AS_ROOT ? 'disk limit outside the work dir' : 'disk limit',
 ];
 
 export class NoSandbox implements Sandbox {
@@ -35,6 +37,7 @@ export class NoSandbox implements Sandbox {
   }
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
+    const disk = await workDiskState(cmd.workDir);
     const drop = AS_ROOT && cmd.owner
       ? ['setpriv', `--reuid=${cmd.owner.uid}`, `--regid=${cmd.owner.gid}`, '--clear-groups', '--no-new-privs', '--']
       : [];
@@ -57,9 +60,11 @@ export class NoSandbox implements Sandbox {
         user: drop.length ? `host uid ${cmd.owner!.uid} (setpriv, no new privileges)` : `none (service uid ${process.getuid?.()})`,
         time: 'service-timer',
         output: 'service-counter',
+        disk: disk ? 'tmpfs-size' : 'none',
       },
       cgroup: null,
       guessLimitsFromOutput: false,
+      ...(disk ? { workDisk: { dir: cmd.workDir, bytes: disk.sizeBytes } } : {}),
     });
   }
 }

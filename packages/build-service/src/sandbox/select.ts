@@ -1,5 +1,5 @@
 /**
- * Sandbox selection (SPEC §5): `auto` = bwrap when it works here, else docker when an engine
+ * Sandbox selection (docs/sandbox.md "Choosing a sandbox"): `auto` = bwrap when it works here, else docker when an engine
  * answers, else an error saying how to install bubblewrap. `none` only when asked for by name.
  */
 import { BwrapSandbox, type BwrapOptions } from './bwrap.js';

@@ -1,3 +1,4 @@
+import type { WorkUsage } from '../pipeline/work-usage.js';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits, Mechanism } from '../limits.js';
 import type { DirListing } from '../pipeline/artifacts.js';
@@ -14,6 +15,8 @@ export interface Mechanisms {
   user: string;
   time: Mechanism;
   output: Mechanism;
+  /** The bound of the writable /work (workDiskMiB). */
+  disk: Mechanism;
 }
 
 /** One command to run in the sandbox. */
@@ -80,5 +83,15 @@ export interface Sandbox {
    * Lists folders of the work dir (relative paths) without following links, for collecting a
    * run's artifacts; absent = the work dir is on the host (bwrap, none) and is read there.
    */
-  readWorkDirs?(workDir: string, rels: string[], maxBytes: number): Promise<Map<string, DirListing>>;
+  /**
+   * Digest of the work dir as the sandbox sees it (pipeline/work-tree-digest.ts), null when it
+   * cannot be taken; absent = the work dir is on the host and is digested there.
+   */
+  workTreeDigest?(workDir: string): Promise<string | null>;
+  /**
+   * The biggest files of the work dir as the sandbox sees it (pipeline/work-usage.ts), for a disk
+   * limit hit; absent = the work dir is on the host and is measured there.
+   */
+  workUsage?(workDir: string): Promise<WorkUsage | null>;
+  readWorkDirs?(workDir: string, rels: string[], maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>>;
 }

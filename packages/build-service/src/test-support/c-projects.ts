@@ -133,3 +133,35 @@ int main(void) {
   return 0;
 }
 `;
+
+/**
+ * Fills its working directory (/work) with 1 MiB files and keeps trying after the first refused
+ * write (so only a kill ends it before the run time limit).
+ */
+export const diskFiller = `${HEAD}
+#include <errno.h>
+int main(void) {
+  static char chunk[1 << 20];
+  memset(chunk, 'd', sizeof chunk);
+  int reported = 0;
+  for (unsigned long i = 0;; i++) {
+    char name[64];
+    snprintf(name, sizeof name, "fill-%lu.bin", i % 100000);
+    FILE *f = fopen(name, "w");
+    size_t put = f ? fwrite(chunk, 1, sizeof chunk, f) : 0;
+    int failed = !f || put != sizeof chunk || fclose(f) != 0;
+    if (failed && !reported) { printf("write failed after %lu MiB: %s\\n", i, strerror(errno)); fflush(stdout); reported = 1; }
+  }
+}
+`;
+
+/**
+ * A run that replaces its own executable with a script dated 2100, so that a later job on the
+ * same workspace would see it as newer than any source (the stale-build-product attack).
+ */
+export const poisoner = `${HEAD}
+int main(void) {
+  puts("poisoning ./prog"); fflush(stdout);
+  return system("rm -f prog && printf '#!/bin/sh\\\\necho POISONED\\\\n' > prog && chmod +x prog && touch -d 2100-01-01 prog");
+}
+`;

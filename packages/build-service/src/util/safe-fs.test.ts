@@ -1,7 +1,9 @@
 import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, symlinkSync, writeFileSync, lstatSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
+import { hostileTreeScript } from '../test-support/hostile-tree.js';
 import { checkRelativePath, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow, UnsafePathError } from './safe-fs.js';
 
 let root: string;
@@ -46,6 +48,15 @@ describe('safe fs (planted links never followed)', () => {
     writeFileSync(join(root, 'd/e/f'), 'x');
     const { chmodSync } = await import('node:fs');
     chmodSync(join(root, 'd/e'), 0o500);
+    await removeTreeNoFollow(root);
+    expect(existsSync(root)).toBe(false);
+    expect(readFileSync(join(outside, 'secret'), 'utf8')).toBe('host');
+  });
+
+  test('removes a 1,500-level tree (path > PATH_MAX) with chmod 000 folders, fifos and links out', async () => {
+    // the shape a sandboxed program can leave (docs/sandbox.md, "Host clean-up"); a path-based
+    // walk fails here with ENAMETOOLONG and leaves the tree on the host
+    execFileSync('/bin/sh', ['-c', hostileTreeScript(1500, outside)], { cwd: root });
     await removeTreeNoFollow(root);
     expect(existsSync(root)).toBe(false);
     expect(readFileSync(join(outside, 'secret'), 'utf8')).toBe('host');

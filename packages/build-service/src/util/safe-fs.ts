@@ -6,10 +6,12 @@
  *   - checks each path component below the trusted root with lstat (a symlink or a non-directory
  *     component is refused),
  *   - opens files with O_NOFOLLOW and changes owners with fchown on the opened descriptor or lchown,
- *   - removes trees without following symlinks (a link is unlinked, never traversed).
+ *   - removes trees without following symlinks (a link is unlinked, never traversed), with
+ *     descriptor-relative walks that work at any depth.
  * They are only called while no process of the job is alive (the sandbox is stopped first), so the
  * checks cannot race with the sandboxed code.
  */
+import { spawn } from 'node:child_process';
 import { constants, promises as fsp } from 'node:fs';
 import { dirname, join, relative, resolve, sep } from 'node:path';
 
@@ -126,8 +128,41 @@ export async function readFileNoFollow(root: string, rel: string, maxBytes = 16 
 }
 
 /**
- * Removes a tree without ever following a symlink: links are unlinked, directories are emptied
- * entry by entry (made writable first when the sandbox removed their write bit).
+ * The first `maxBytes` bytes of root/rel (all of it when smaller), read like readFileNoFollow
+ * (no symlink in any component, O_NOFOLLOW); null if absent or not a regular file.
+ */
+export async function readFileHeadNoFollow(root: string, rel: string, maxBytes: number): Promise<Buffer | null> {
+  const clean = checkRelativePath(rel);
+  let current = root;
+  const parts = clean.split('/');
+  for (let i = 0; i < parts.length; i++) {
+    current = join(current, parts[i]!);
+    const st = await fsp.lstat(current).catch(() => null);
+    if (!st || (i === parts.length - 1 ? !st.isFile() : !st.isDirectory())) return null;
+  }
+  const fh = await fsp.open(current, constants.O_RDONLY | constants.O_NOFOLLOW);
+  try {
+    const size = Math.min((await fh.stat()).size, maxBytes);
+    const buf = Buffer.allocUnsafe(size);
+    let off = 0;
+    while (off < size) {
+      const { bytesRead } = await fh.read(buf, off, size - off, off);
+      if (bytesRead === 0) break;
+      off += bytesRead;
+    }
+    return off === size ? buf : buf.subarray(0, off);
+  } finally {
+    await fh.close();
+  }
+}
+
+/**
+ * Removes a tree without ever following a symlink, whatever shape the sandbox gave it: GNU `rm -rf`
+ * walks with openat/unlinkat relative to directory descriptors (no path length limit, so 1,000s of
+ * nested folders are fine), unlinks links and fifos without opening them, and with
+ * `--one-file-system` never descends into a mount it meets (docs/sandbox.md, "Host clean-up").
+ * Folders the sandbox made unreadable (chmod 000) stop a non-root service: then `chmod -R u+rwx`
+ * (which never follows links met in its walk) opens them and rm runs again.
  */
 export async function removeTreeNoFollow(path: string): Promise<void> {
   let st;
@@ -143,12 +178,23 @@ export async function removeTreeNoFollow(path: string): Promise<void> {
     });
     return;
   }
-  // a real directory (lstat said so): make it listable/writable for us, then empty it
-  if ((st.mode & 0o700) !== 0o700) await fsp.chmod(path, (st.mode & 0o7777) | 0o700).catch(() => {});
-  const entries = await fsp.readdir(path);
-  for (const name of entries) await removeTreeNoFollow(join(path, name));
-  await fsp.rmdir(path).catch((e: NodeJS.ErrnoException) => {
-    if (e.code !== 'ENOENT') throw e;
+  const first = await runTool('rm', ['-rf', '--one-file-system', '--', path]);
+  if (first.code === 0) return;
+  await runTool('chmod', ['-R', 'u+rwx', '--', path]);
+  const again = await runTool('rm', ['-rf', '--one-file-system', '--', path]);
+  if (again.code !== 0) throw new Error(`cannot remove ${path}: ${again.stderr.split('\n')[0] || `rm exit ${again.code}`}`);
+}
+
+/** Runs a coreutils tool; keeps the first 4 KiB of its stderr for the error message. */
+function runTool(cmd: string, args: string[]): Promise<{ code: number | null; stderr: string }> {
+  return new Promise((resolvePromise) => {
+    const child = spawn(cmd, args, { stdio: ['ignore', 'ignore', 'pipe'] });
+    let stderr = '';
+    child.stderr.on('data', (c: Buffer) => {
+      if (stderr.length < 4096) stderr += c.toString();
+    });
+    child.on('error', (e) => resolvePromise({ code: null, stderr: `cannot start ${cmd}: ${e.message}` }));
+    child.on('close', (code) => resolvePromise({ code, stderr: stderr.trim() }));
   });
 }
 

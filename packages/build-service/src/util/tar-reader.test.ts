@@ -46,4 +46,13 @@ describe('readTar on archives made by GNU tar', () => {
       ['logs/big.bin', true],
     ]);
   });
+
+  test('a header it cannot read ends the listing (the entries before it stay), never a throw', () => {
+    const tar = Buffer.from(tarOf(['--format=ustar', 'logs/MSC_1.csv', 'logs/big.bin']));
+    // the second header starts after the first's 512-byte header and one 512-byte data block
+    tar.write('9z9z9z9z9z9\0', 1024 + 124, 'latin1');
+    let entries: ReturnType<typeof readTar> = [];
+    expect(() => (entries = readTar(tar))).not.toThrow();
+    expect(entries.map((e) => e.name)).toEqual(['logs/MSC_1.csv']);
+  });
 });

@@ -22,16 +22,16 @@ function text(buf: Buffer, start: number, length: number): string {
   return raw.subarray(0, nul < 0 ? raw.length : nul).toString('utf8');
 }
 
-function octal(buf: Buffer, start: number, length: number): number {
+function octal(buf: Buffer, start: number, length: number): number | null {
   if (buf[start]! & 0x80) {
     // base-256 (GNU) for sizes above 8 GiB: far above any bound, report as huge
     return Number.MAX_SAFE_INTEGER;
   }
   const s = text(buf, start, length).trim();
   if (s === '') return 0;
-  const n = parseInt(s, 8);
-  if (!Number.isFinite(n)) throw new Error(`bad tar header number "${s}"`);
-  return n;
+  // a header field that is not octal: the archive is not one this reader trusts past this point
+  if (!/^[0-7]+$/.test(s)) return null;
+  return parseInt(s, 8);
 }
 
 function paxPath(records: Buffer): string | null {
@@ -57,7 +57,10 @@ function kindOf(flag: string): TarEntryKind {
   return 'other';
 }
 
-/** Lists the entries of a (possibly truncated) tar archive. */
+/**
+ * Lists the entries of a (possibly truncated) tar archive. Never throws: the archive holds what
+ * the sandbox left in its work dir, so a header it cannot read ends the listing like a cut archive.
+ */
 export function readTar(archive: Buffer): TarEntry[] {
   const entries: TarEntry[] = [];
   let pos = 0;
@@ -66,6 +69,7 @@ export function readTar(archive: Buffer): TarEntry[] {
     const header = archive.subarray(pos, pos + BLOCK);
     if (header.every((b) => b === 0)) break;
     const size = octal(header, 124, 12);
+    if (size === null) break;
     const flag = String.fromCharCode(header[156]!).replace('\0', '');
     const dataStart = pos + BLOCK;
     const complete = size <= archive.length - dataStart;

@@ -4,17 +4,18 @@
  * (@contract-studio/build-service JobService, not HTTP). Also holds what `run` shares with it:
  * option parsing, the job runner, output and exit codes.
  */
-import { createHash } from 'node:crypto';
-import { chmodSync, existsSync, mkdirSync, readFileSync, rmSync, statSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { dirname, join, resolve } from 'node:path';
+import { existsSync } from 'node:fs';
+import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { parseArgs, type ParsedArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 
-/** The environment cannot do what was asked (no sandbox, another run on the same project). */
+/** The environment cannot do what was asked (no sandbox, no runtime, a build cache folder that cannot be trusted). */
 export const EXIT_ENVIRONMENT = 3;
+/** The run ended but did not go as designed: a sandbox limit was hit, ORD declared a module stuck,
+ *  or output / CSV logs were cut or left out (the job result's `issues`, docs/ci.md). */
+export const EXIT_RUN_INCOMPLETE = 4;
 /** Interrupted by Ctrl+C (the job was cancelled, everything stopped). */
 export const EXIT_INTERRUPTED = 130;
 
@@ -36,17 +37,21 @@ export interface JobOptions {
     /** Progress lines (steps, generation counts) on stderr: only on a TTY and in text format. */
     progress: boolean;
     runtime: string | undefined;
+    /** --cache-dir (resolved), else undefined: $CONTRACT_CACHE_DIR, else the XDG cache folder. */
+    cacheDir: string | undefined;
 }
 
-export const COMMON_VALUED = ['sandbox', 'format', 'runtime'];
+export const COMMON_VALUED = ['sandbox', 'format', 'runtime', 'cache-dir'];
 export const COMMON_FLAGS = ['verbose'];
 export const COMMON_USAGE = [
     '  --sandbox: auto (default: bwrap when it works, else docker), bwrap, docker, none (no isolation)',
     '  --format: text (default) or json (one JSON object on stdout at the end, no progress)',
     '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the repository\'s runtime/)',
-    '  --verbose: print every build line (otherwise only gcc diagnostics and the summary)',
+    '  --cache-dir: the build cache (built runtime, one work tree per project; default: $CONTRACT_CACHE_DIR,',
+    '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
+    '  --verbose: print every build line and the time of every step (otherwise only gcc diagnostics and the summary)',
 ];
-export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or project busy, 130 interrupted';
+export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or a build cache folder that cannot be trusted, 4 run incomplete (a limit hit, a module stuck, output or logs cut), 130 interrupted';
 
 /** Parses DIR and the options build and run share. */
 export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: boolean): Promise<JobOptions> {
@@ -63,49 +68,9 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
     const runtimeOption = options.get('runtime');
     const runtime = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || undefined;
     if (runtime && !existsSync(join(runtime, 'Makefile'))) throw new UsageError(`${runtime} is not a runtime folder (no Makefile); pass --runtime PATH to the ContrACT runtime/`);
-    return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime };
-}
-
-/** Per-project cache (built runtime + workspace) with a lock, so two commands never share a workspace. */
-export interface ProjectCache {
-    dir: string;
-    release(): void;
-}
-
-function pidAlive(pid: number): boolean {
-    try {
-        process.kill(pid, 0);
-        return true;
-    } catch (e) {
-        return (e as NodeJS.ErrnoException).code === 'EPERM';
-    }
-}
-
-export function acquireProjectCache(projectDir: string): ProjectCache | string {
-    // under the temp dir by default: sandboxed job uids must traverse it (a home folder is often 0700)
-    const base = process.env.CONTRACT_CACHE_DIR || join(tmpdir(), `contract-studio-${process.getuid?.() ?? 'user'}`);
-    mkdirSync(base, { recursive: true, mode: 0o711 });
-    const info = statSync(base);
-    if (process.getuid && info.uid !== process.getuid()) return `the cache folder ${base} belongs to another user; set CONTRACT_CACHE_DIR to a folder of yours`;
-    chmodSync(base, 0o711);
-    // the sandboxed build runs as another uid: every folder above the cache must let it through
-    for (let up = dirname(base); ; up = dirname(up)) {
-        if ((statSync(up).mode & 0o001) === 0) return `the sandbox's user cannot reach the cache folder ${base} (${up} is not searchable by others); set CONTRACT_CACHE_DIR to a folder under /tmp or /var/tmp`;
-        if (up === dirname(up)) break;
-    }
-    const dir = join(base, createHash('sha256').update(projectDir).digest('hex').slice(0, 16));
-    mkdirSync(dir, { recursive: true, mode: 0o711 });
-    const lock = join(dir, 'lock');
-    try {
-        writeFileSync(lock, String(process.pid), { flag: 'wx' });
-    } catch {
-        const owner = Number(readFileSync(lock, 'utf8').trim());
-        if (Number.isInteger(owner) && owner > 0 && owner !== process.pid && pidAlive(owner)) {
-            return `another contract build/run (pid ${owner}) is using ${projectDir}; wait for it or stop it`;
-        }
-        writeFileSync(lock, String(process.pid)); // stale lock of a process that is gone
-    }
-    return { dir, release: () => rmSync(lock, { force: true }) };
+    const cacheOption = options.get('cache-dir');
+    const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
+    return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime, cacheDir };
 }
 
 export function formatGccDiagnostic(d: GccDiagnostic): string {
@@ -130,15 +95,22 @@ export interface RunRequest {
 
 /**
  * Runs one job on the in-process service and streams its events to io. `whileOpen` is called
- * after the job ended but before the service removes the workspace (to copy the CSV logs out).
+ * after the job ended but before the service removes the workspace (to copy the CSV logs out);
+ * `onEvent` sees every event as it comes (the live trace of `contract run --trace`).
  */
 export async function runJob(
     opts: JobOptions,
     request: RunRequest,
     io: CliIO,
     whileOpen?: (service: JobServiceType, cacheDir: string, outcome: JobOutcome) => Promise<void>,
+    onEvent?: (e: JobEvent) => void,
 ): Promise<JobOutcome | { error: string; exitCode: number }> {
-    const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE } = await import('@contract-studio/build-service');
+    const t0 = Date.now();
+    const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE, resolveCacheDir, prepareCacheDir } = await import('@contract-studio/build-service');
+    const timing = (what: string, since: number): void => {
+        if (opts.verbose && opts.format === 'text') io.err(`time: ${what} ${Date.now() - since} ms\n`);
+    };
+    timing('loading the build service', t0);
     const runtime = opts.runtime ?? DEFAULT_RUNTIME_SOURCE;
     if (opts.sandbox !== 'docker' && !existsSync(join(runtime, 'Makefile'))) {
         return {
@@ -146,8 +118,11 @@ export async function runJob(
             exitCode: EXIT_ENVIRONMENT,
         };
     }
-    const cache = acquireProjectCache(opts.dir);
-    if (typeof cache === 'string') return { error: cache, exitCode: EXIT_ENVIRONMENT };
+    // the persistent cache shared with other commands and the IDE (docs/getting-started.md "The build cache")
+    const cache = resolveCacheDir(opts.cacheDir, process.env, process.getuid?.(), undefined, io.cwd);
+    const refused = prepareCacheDir(cache.dir, process.getuid?.() === 0 && opts.sandbox !== 'docker');
+    if (refused) return { error: refused, exitCode: EXIT_ENVIRONMENT };
+    if (opts.verbose && opts.format === 'text') io.err(`build cache: ${cache.dir} (${cache.source})\n`);
     const runSeconds = Math.ceil((request.duration ?? 10) + 60);
     const service = new JobService({
         sandbox: opts.sandbox,
@@ -155,6 +130,7 @@ export async function runJob(
         queueSize: 0,
         projectRoots: [opts.dir],
         cacheDir: cache.dir,
+        persistentWorkspaces: true,
         limits: { runSeconds, buildSeconds: 600 },
         runtimeSource: runtime,
     });
@@ -180,7 +156,14 @@ export async function runJob(
         }
         const runLines: JobOutcome['runLines'] = [];
         const print = makePrinter(opts, io, runLines);
-        const unsubscribe = job.events.subscribe(0, print);
+        const unsubscribe = job.events.subscribe(0, (e) => {
+            print(e);
+            try {
+                onEvent?.(e);
+            } catch {
+                /* the caller's handler must not stop the printing */
+            }
+        });
         await job.finished;
         unsubscribe();
         const outcome: JobOutcome = { job, result: job.result!, runLines };
@@ -189,8 +172,9 @@ export async function runJob(
     } finally {
         process.off('SIGINT', onSigint);
         process.off('SIGTERM', onSigint);
+        const tc = Date.now();
         await service.close();
-        cache.release();
+        timing('closing the build service', tc);
     }
 }
 
@@ -262,6 +246,7 @@ export function jobJson(outcome: JobOutcome, extra: Record<string, unknown> = {}
 export function exitCodeOf(result: JobResult, job: Job): number {
     if (result.ok) return EXIT_OK;
     if (job.status === 'cancelled') return EXIT_INTERRUPTED;
+    if (result.step === 'run' && (result.limitHit || result.issues.length)) return EXIT_RUN_INCOMPLETE;
     return EXIT_FAILURE;
 }
 

@@ -4,7 +4,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { join, resolve } from 'node:path';
-import { loadWorkspace, type WorkspaceDiagnostic } from '@contract-studio/language/node';
+import type { WorkspaceDiagnostic } from '@contract-studio/language/node';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatJson, formatSarif, formatText, summarize } from '../diagnostic-format.js';
@@ -32,10 +32,12 @@ export const checkCommand: Command = {
         const info = await stat(dir).catch(() => undefined);
         if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
 
+        // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
+        const { loadWorkspace } = await import('@contract-studio/language/node');
         const workspace = await loadWorkspace(dir);
         const diagnostics: WorkspaceDiagnostic[] = workspace.diagnostics;
         if (format === 'json') io.out(formatJson(diagnostics));
-        else if (format === 'sarif') io.out(formatSarif(diagnostics, dir));
+        else if (format === 'sarif') io.out(formatSarif(diagnostics, dir, (await import('@contract-studio/language')).findCode));
         else {
             const text = formatText(diagnostics, (file) => join(dirArg, file));
             if (text) io.out(text);

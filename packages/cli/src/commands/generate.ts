@@ -1,13 +1,13 @@
 /**
- * `contract generate DIR [-o OUT] [--runtime PATH]`: generates the C tree of a Cactal project
- * (default OUT = DIR/src-gen), merging protected regions with what is there. Prints what was
+ * `contract generate DIR [-o OUT]`: generates the C tree of a Cactal project (default OUT =
+ * DIR/src-gen), merging protected regions with what is there. The tree is the same bytes from any
+ * folder on any machine: the runtime is given at build time (docs/architecture.md, Seam 3). Prints what was
  * created, updated, kept, orphaned and removed; errors go to stderr. Exit 1 when the model has
  * errors (nothing is generated) or a file could not be merged (left untouched), 2 on bad usage.
  */
 import { stat } from 'node:fs/promises';
 import { join, resolve } from 'node:path';
-import { loadWorkspace } from '@contract-studio/language/node';
-import { formatProblem, generateArchitecture, type GenerationReport } from '@contract-studio/codegen';
+import type { GenerationProblem, GenerationReport } from '@contract-studio/codegen';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
@@ -18,29 +18,36 @@ function list(io: CliIO, label: string, paths: string[], show = true): void {
     if (show) for (const p of paths) io.out(`  ${p}\n`);
 }
 
-function printReport(io: CliIO, report: GenerationReport, outLabel: string, verbose: boolean): void {
+/** Prints what a generation did (also after `contract rename`). */
+export async function printReport(io: CliIO, report: GenerationReport, outLabel: string, verbose: boolean): Promise<void> {
+    const { formatProblem } = await import('@contract-studio/codegen');
     list(io, 'created', report.created);
     list(io, 'updated', report.updated);
     list(io, 'kept (unchanged)', report.unchanged, verbose);
     list(io, 'orphaned (user code moved aside)', report.orphaned);
     list(io, 'removed (no user code)', report.removed);
-    for (const w of report.warnings) io.err(`warning: ${join(outLabel, formatProblem(w))}\n`);
-    for (const e of report.errors) io.err(`error: ${e.file.startsWith('(') || e.file.startsWith('/') ? formatProblem(e) : join(outLabel, formatProblem(e))}\n`);
+    // plain concatenation, not path.join: join would normalise the message too (a refused
+    // manifest entry such as "../../x" must be shown as it is)
+    const inOut = (p: GenerationProblem) => `${outLabel.replace(/\/+$/, '')}/${formatProblem(p)}`;
+    for (const w of report.warnings) io.err(`warning: ${inOut(w)}\n`);
+    for (const e of report.errors) io.err(`error: ${e.file.startsWith('(') || e.file.startsWith('/') ? formatProblem(e) : inOut(e)}\n`);
 }
 
 export const generateCommand: Command = {
     name: 'generate',
     summary: 'generate the C source tree (src-gen) of a Cactal project',
     usage: [
-        'usage: contract generate DIR [-o OUT] [--runtime PATH] [--verbose]',
+        'usage: contract generate DIR [-o OUT] [--verbose]',
         '  OUT: output folder (default DIR/src-gen); the tree goes to OUT/generated/architecture',
-        '  --runtime: runtime folder written as the Makefiles\' default CONTRACT_RUNTIME',
         '  --verbose: also list the files kept unchanged (otherwise only counted)',
         'User code in protected regions is kept; code whose region or entity disappeared goes to OUT/orphans/.',
+        'The runtime is not part of the tree: give it when building (contract build --runtime PATH, or make CONTRACT_RUNTIME=PATH).',
         'exit status: 1 when the model has errors (nothing generated) or a file could not be merged, 0 otherwise, 2 on bad usage',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['o', 'output', 'runtime'], ['verbose']);
+        // the generated Makefiles take the runtime at build time (docs/architecture.md, Seam 3)
+        if (options.has('runtime')) throw new UsageError('generate takes no --runtime: the runtime is given when building (contract build --runtime PATH, or make CONTRACT_RUNTIME=PATH)');
         if (positionals.length !== 1) throw new UsageError(positionals.length ? 'expected exactly one DIR' : 'missing DIR');
         const dirArg = positionals[0]!;
         const dir = resolve(io.cwd, dirArg);
@@ -48,8 +55,10 @@ export const generateCommand: Command = {
         if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
         const outOption = options.get('o') ?? options.get('output');
         const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, 'src-gen');
-        const runtime = options.get('runtime');
 
+        // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
+        const { loadWorkspace } = await import('@contract-studio/language/node');
+        const { generateArchitecture } = await import('@contract-studio/codegen');
         const workspace = await loadWorkspace(dir);
         const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
         if (errors.length > 0) {
@@ -57,9 +66,9 @@ export const generateCommand: Command = {
             io.err(`${summarize(workspace.diagnostics)}: the model has errors, nothing was generated\n`);
             return EXIT_FAILURE;
         }
-        const report = generateArchitecture(workspace.documents, out, typeof runtime === 'string' ? { runtime: resolve(io.cwd, runtime) } : {});
+        const report = generateArchitecture(workspace.documents, out);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, 'src-gen');
-        printReport(io, report, outLabel, options.get('verbose') === true);
+        await printReport(io, report, outLabel, options.get('verbose') === true);
         io.err(`generated ${outLabel}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
     },

@@ -6,5 +6,9 @@ import { serveCommand } from './serve.js';
 import { newCommand } from './new.js';
 import { buildCommand } from './build.js';
 import { runCommand } from './run.js';
+import { renameCommand } from './rename.js';
+import { traceCommand } from './trace.js';
+import { simulateCommand } from './simulate.js';
+import { cacheCommand } from './cache.js';
 
-export const COMMANDS: Command[] = [newCommand, checkCommand, generateCommand, buildCommand, runCommand, serveCommand];
+export const COMMANDS: Command[] = [newCommand, checkCommand, generateCommand, renameCommand, buildCommand, runCommand, traceCommand, simulateCommand, serveCommand, cacheCommand];

@@ -5,7 +5,6 @@
  */
 import { existsSync, mkdirSync, readdirSync, statSync, writeFileSync } from 'node:fs';
 import { join, relative, resolve } from 'node:path';
-import { PROJECT_TEMPLATES } from '@contract-studio/language';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 
@@ -33,7 +32,8 @@ export const newCommand: Command = {
                 return EXIT_FAILURE;
             }
         }
-        const templates = PROJECT_TEMPLATES;
+        // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
+        const { PROJECT_TEMPLATES: templates } = await import('@contract-studio/language');
         mkdirSync(dir, { recursive: true });
         for (const [file, text] of Object.entries(templates)) {
             writeFileSync(join(dir, file), text, { flag: 'wx' });

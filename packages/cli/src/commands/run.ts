@@ -2,13 +2,23 @@
  * `contract run DIR [--duration 10s] [--start 'SUP.function(p={...})'] [--logs OUT] [--sandbox ...]`:
  * builds the project like `contract build`, runs the architecture for the duration (Seam 5: the
  * generated `make run` and the runtime's launcher), prints every module's output tagged with its
- * name, writes the CSV logs the build service collected from the sandbox (any sandbox, docker included) to OUT (default DIR/logs) and exits non-zero when a module crashed.
+ * name, writes the CSV logs the build service collected from the sandbox (any sandbox, docker included) to OUT (default DIR/logs),
+ * with `--trace FILE` their records as JSON lines as they arrive (docs/build-service-api.md "Trace channel";
+ * docs/runtime-api.md "Trace records"), and exits non-zero when a module crashed
+ * (1) or when the run did not go as designed (4: a limit hit, a module stuck, output or logs cut; docs/ci.md).
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join, resolve } from 'node:path';
+import { Readable } from 'node:stream';
+import { pipeline } from 'node:stream/promises';
+import { createGunzip, gunzipSync } from 'node:zlib';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, UsageError, type CliIO, type Command } from '../command.js';
 import type { RunArtifacts } from '@contract-studio/build-service';
+import type { JobEvent } from '@contract-studio/build-service';
+import { parseTrace } from '@contract-studio/build-service/trace';
+import { toJsonLines, writeNoFollow } from '../trace-files.js';
+import { LiveTrace } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from './build.js';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
@@ -64,11 +74,8 @@ async function saveLogs(artifacts: RunArtifacts | null, to: string): Promise<str
         if (!/^[\w.-]+\.csv$/.test(file.name)) continue;
         await fsp.mkdir(to, { recursive: true });
         const handle = await fsp.open(join(to, file.name), constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
-        try {
-            await handle.writeFile(file.data);
-        } finally {
-            await handle.close();
-        }
+        // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
+        await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
         saved.push(file.name);
     }
     return saved.sort();
@@ -78,17 +85,18 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--cpus LIST] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs; collected from every sandbox, docker included)',
+        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel; as `contract trace --format json`)',
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus'], COMMON_FLAGS);
+        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus', 'trace'], COMMON_FLAGS);
         const opts = await parseJobOptions(parsed, io, onTerminal());
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
@@ -98,9 +106,22 @@ export const runCommand: Command = {
         const cpus = typeof cpusOption === 'string' ? checkCpus(cpusOption) : undefined;
         const logsOption = parsed.options.get('logs');
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
+        const traceOption = parsed.options.get('trace');
+        const traceFile = typeof traceOption === 'string' ? resolve(io.cwd, traceOption) : null;
 
-        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}) }, io);
+        let live: LiveTrace | null = null;
+        if (traceFile) {
+            try {
+                live = await LiveTrace.open(traceFile);
+            } catch (e) {
+                io.err(`contract run: cannot write the trace to ${traceFile}: ${(e as Error).message}\n`);
+                return EXIT_FAILURE;
+            }
+        }
+        const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
+        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
+            await live?.close().catch(() => {});
             io.err(`contract run: ${outcome.error}\n`);
             return outcome.exitCode;
         }
@@ -112,17 +133,35 @@ export const runCommand: Command = {
             io.err(`contract run: cannot write the CSV logs to ${logsDir}: ${(e as Error).message}\n`);
             return EXIT_FAILURE;
         }
+        let trace: { file: string; records: number } | null = null;
+        if (traceFile && live) {
+            const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name)).map((f) => ({ name: f.name, text: gunzipSync(f.gzip).toString('utf8') }));
+            const records = parseTrace(files);
+            try {
+                // written live; rewritten from the collected logs when the live channel was not
+                // the whole story in order (docker, its kept-lines bound, records sent late)
+                const whole = toJsonLines(records);
+                if (!(await live.close(whole))) await writeNoFollow(traceFile, whole);
+            } catch (e) {
+                io.err(`contract run: cannot write the trace to ${traceFile}: ${(e as Error).message}\n`);
+                return EXIT_FAILURE;
+            }
+            trace = { file: traceFile, records: records.length };
+        }
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines);
-        const extra = { logsDir: logs.length ? logsDir : null, logs, logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, output: outcome.runLines };
+        const extra = { logsDir: logs.length ? logsDir : null, logs, logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, output: outcome.runLines };
         const code = reportBuild(opts, outcome, io, extra);
         if (opts.format === 'text') {
             for (const f of failures) io.err(`module ${f.module} crashed (${f.how})\n`);
             if (leftovers.length) io.err(`warning: the run left files in its run directory: ${leftovers.join(', ')}\n`);
-            for (const s of leftOut) io.err(`warning: log ${s.name} not collected: ${s.reason}\n`);
+            for (const s of leftOut) if (!s.bound) io.err(`warning: log ${s.name} not collected: ${s.reason}\n`);
+            for (const i of outcome.result.issues ?? []) io.err(`problem: ${i.message}\n`);
             if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${logsDir}\n`);
+            if (trace) io.err(`trace: ${trace.records} record(s) in ${trace.file}\n`);
         }
-        return failures.length && code === 0 ? EXIT_FAILURE : code;
+        if (outcome.result.limitHit) return code;
+        return failures.length ? EXIT_FAILURE : code;
     },
 };

@@ -4,6 +4,7 @@
  */
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
+import { splitCsvLine } from '@contract-studio/build-service/trace';
 
 export interface LogRecord {
     mono: bigint;
@@ -14,29 +15,8 @@ export interface LogRecord {
     detail: string;
 }
 
-/** One CSV line -> fields (RFC 4180 quoting: the detail column may be quoted). */
-export function splitCsvLine(line: string): string[] {
-    const fields: string[] = [];
-    let i = 0;
-    while (i <= line.length) {
-        if (line[i] === '"') {
-            let value = '';
-            i++;
-            while (i < line.length) {
-                if (line[i] === '"' && line[i + 1] === '"') { value += '"'; i += 2; }
-                else if (line[i] === '"') { i++; break; }
-                else value += line[i++];
-            }
-            fields.push(value);
-            i++; // the comma
-        } else {
-            const end = line.indexOf(',', i);
-            fields.push(end < 0 ? line.slice(i) : line.slice(i, end));
-            i = end < 0 ? line.length + 1 : end + 1;
-        }
-    }
-    return fields;
-}
+/** One CSV line -> fields: the trace reader's own splitter (RFC 4180 quoting). */
+export { splitCsvLine };
 
 /** Every record of every `<MODULE>_*.csv` in dir, sorted by CLOCK_MONOTONIC time. */
 export function readLogs(dir: string): LogRecord[] {

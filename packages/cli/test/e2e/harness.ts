@@ -4,12 +4,13 @@
  * the run is left behind (no process, no workspace).
  */
 import { spawnSync } from 'node:child_process';
-import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect } from 'vitest';
 import { readLogs, type LogRecord } from './csv-log.js';
+import { removeScratch } from '../scratch.js';
 
 export const REPO = fileURLToPath(new URL('../../../../', import.meta.url));
 export const BIN = join(REPO, 'packages/cli/bin/contract.js');
@@ -33,7 +34,7 @@ export function scratchCopy(example: string): Scratch {
         project,
         cache: join(root, 'cache'),
         logs: join(root, 'logs'),
-        dispose: () => rmSync(root, { recursive: true, force: true }),
+        dispose: () => removeScratch(root),
     };
 }
 
@@ -70,18 +71,16 @@ export function processesMentioning(marker: string): string[] {
     return found;
 }
 
-/** Files left in the cache's workspaces folder (the service removes it on close). */
+/**
+ * Per-job workspaces left in the cache (`<cache>/ws/`, removed when the service closes). A
+ * project's own work tree (`<cache>/projects/`) is kept on purpose: the build cache.
+ */
 export function leftoverWorkspaces(scratch: Scratch): string[] {
-    const out: string[] = [];
-    for (const entry of readdirSync(scratch.cache, { withFileTypes: true })) {
-        if (!entry.isDirectory()) continue;
-        try {
-            out.push(...readdirSync(join(scratch.cache, entry.name, 'ws')).map((n) => join(entry.name, 'ws', n)));
-        } catch {
-            // no ws folder: removed
-        }
+    try {
+        return readdirSync(join(scratch.cache, 'ws')).map((n) => join('ws', n));
+    } catch {
+        return []; // no ws folder: removed
     }
-    return out;
 }
 
 export interface RunJson {

@@ -1,7 +1,11 @@
-/** Ctrl+C on `contract run`: the job is cancelled, every process stopped, exit 130, no workspace left. */
+/**
+ * Ctrl+C on `contract run`: the job is cancelled, every process stopped, exit 130, no workspace left.
+ * `kill -9` of `contract build` mid-make: the project's kept work tree is not trusted by the next
+ * build (docs/getting-started.md "The build cache"), which is not blocked by the dead one's lock.
+ */
 import { spawn } from 'node:child_process';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { BIN, leftoverWorkspaces, processesMentioning, scratchCopy, type Scratch } from './harness.js';
+import { BIN, contract, leftoverWorkspaces, processesMentioning, scratchCopy, type Scratch } from './harness.js';
 
 let scratch: Scratch;
 beforeAll(() => { scratch = scratchCopy('tutorial'); });
@@ -33,5 +37,36 @@ describe('contract run interrupted', () => {
         expect(stderr).toContain('FAILED: cancelled');
         expect(processesMentioning(scratch.root)).toEqual([]);
         expect(leftoverWorkspaces(scratch)).toEqual([]);
+    }, 240_000);
+});
+
+describe('contract build killed with -9', () => {
+    it('leaves a work tree the next build empties and rebuilds, without waiting for a lock', async () => {
+        // an empty cache: the killed build must be compiling (the run above left a built tree)
+        expect(contract(['cache', 'clear'], scratch).code).toBe(0);
+        const child = spawn(process.execPath, [BIN, 'build', 'tutorial', '--sandbox', 'bwrap', '--verbose'], {
+            cwd: scratch.root,
+            env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
+            stdio: ['ignore', 'ignore', 'pipe'],
+        });
+        let stderr = '';
+        const compiling = new Promise<void>((resolve) => {
+            child.stderr.on('data', (d: Buffer) => {
+                stderr += d.toString();
+                if (/^cc .* -o MAA /m.test(stderr)) resolve();
+            });
+        });
+        const exited = new Promise<void>((resolve) => child.on('exit', () => resolve()));
+        await Promise.race([compiling, exited]);
+        expect(stderr).toMatch(/^cc .* -o MAA /m);
+        child.kill('SIGKILL');
+        await exited;
+        const t0 = Date.now();
+        const again = contract(['build', 'tutorial', '--sandbox', 'bwrap', '--verbose'], scratch);
+        expect(again.code, again.stderr).toBe(0);
+        expect(again.stderr).not.toContain('waiting for the other command');
+        expect(again.stderr).toContain('no build ended in this workspace since it was emptied: building from scratch');
+        expect(again.stderr).toMatch(/^cc .* -o ORD /m);
+        expect(Date.now() - t0).toBeLessThan(120_000);
     }, 240_000);
 });

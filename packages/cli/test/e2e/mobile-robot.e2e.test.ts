@@ -22,10 +22,9 @@ describe('examples/mobile-robot end to end', () => {
     it('generates: the committed src-gen with its user code is current', () => {
         const r = contract(['generate', 'mobile-robot'], scratch);
         expect(r.code).toBe(0);
-        // a copy outside the repository only changes the runtime default of the Makefiles (Seam 3)
-        const updated = (/updated: \d+\n((?: {2}.*\n)*)/.exec(r.stdout)?.[1] ?? '').trim().split('\n').filter(Boolean);
-        for (const f of updated) expect(f).toMatch(/Makefile$|makecontrol\w+$/);
-        expect(r.stderr).toMatch(/: 0 created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+        // a copy outside the repository generates the same bytes: the runtime is a build-time input (Seam 3)
+        expect(r.stdout).not.toMatch(/updated:/);
+        expect(r.stderr).toMatch(/: 0 created, 0 updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
     }, 60_000);
 
     it('builds in bwrap with no gcc warning', () => {

@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { REPO } from './harness.js';
 
-const WORKSPACES = ['language', 'codegen', 'build-service', 'cli'];
+const WORKSPACES = ['language', 'codegen', 'build-service', 'simulator', 'cli'];
 let root: string;
 
 function npm(args: string[], cwd: string, timeout = 120_000) {

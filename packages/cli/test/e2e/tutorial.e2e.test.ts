@@ -18,10 +18,10 @@ describe('examples/tutorial end to end', () => {
         expect(r.code).toBe(0);
     }, 60_000);
 
-    it('generates without touching user code', () => {
+    it('generates without touching user code: the committed src-gen is current, also in a copy outside the repository', () => {
         const r = contract(['generate', 'tutorial'], scratch);
         expect(r.code).toBe(0);
-        expect(r.stderr).toMatch(/: 0 created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+        expect(r.stderr).toMatch(/: 0 created, 0 updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
     }, 60_000);
 
     it('builds in bwrap', () => {

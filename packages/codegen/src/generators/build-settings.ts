@@ -1,29 +1,31 @@
-import { posix } from 'node:path';
-
-/** Folder of the architecture inside the output folder. */
-export const ARCH_DIR = 'generated/architecture';
 
 /**
- * How generated Makefiles find the runtime (docs/architecture.md Seam 3): `CONTRACT_RUNTIME`,
- * a path relative to the architecture folder or absolute, written as the Makefiles' default.
+ * The `CONTRACT_RUNTIME` default of every generated Makefile: where the `contract-gcc` image installs
+ * the runtime (docs/architecture.md, Seam 3). It is a fixed path, never the generator's own
+ * location, so that one model generates the same bytes from any folder on any machine (src-gen is
+ * committed: docs/ci.md); the runtime is a build-time input (`make CONTRACT_RUNTIME=...`).
  */
-export interface BuildSettings {
-    /** CONTRACT_RUNTIME as seen from the architecture folder. */
-    runtimeFromArchitecture: string;
-}
+export const DEFAULT_RUNTIME = '/opt/contract/runtime';
 
-/** CONTRACT_RUNTIME default for a Makefile at `dirFromArchitecture` (e.g. `modules/MSC_mod`). */
-export function runtimeFrom(settings: BuildSettings, dirFromArchitecture: string): string {
-    const r = settings.runtimeFromArchitecture;
-    if (posix.isAbsolute(r)) return r;
-    const up = dirFromArchitecture.split('/').filter(Boolean).map(() => '..');
-    return posix.normalize(posix.join(...up, r));
-}
-
-/** Compiler settings shared by every generated Makefile (the runtime library holds libmodule and the engines). */
-export function makeSettings(runtime: string, extraIncludes: string[]): string {
+/**
+ * The `CONTRACT_RUNTIME` lines of a generated Makefile: the default, then a stop with a message
+ * saying how to set it when that folder holds no runtime (except for `make clean`, which needs none).
+ */
+export function runtimeSettings(): string {
     return [
-        `CONTRACT_RUNTIME ?= ${runtime}`,
+        `CONTRACT_RUNTIME ?= ${DEFAULT_RUNTIME}`,
+        'ifeq ($(wildcard $(CONTRACT_RUNTIME)/include/libmodule/libmodule.h),)',
+        'ifneq ($(MAKECMDGOALS),clean)',
+        '$(error no ContrACT runtime at CONTRACT_RUNTIME=$(CONTRACT_RUNTIME): set CONTRACT_RUNTIME to the runtime/ folder of ContrACT Studio, e.g. make CONTRACT_RUNTIME=/path/to/contract-studio/runtime)',
+        'endif',
+        'endif',
+    ].join('\n');
+}
+
+/** Compiler settings shared by the Makefiles of executables and tools (the runtime library holds libmodule and the engines). */
+export function makeSettings(extraIncludes: string[]): string {
+    return [
+        runtimeSettings(),
         'CFLAGS ?= -std=c11 -Wall -Wextra -O2 -g',
         '# extra flags from the caller (the build service adds -fdiagnostics-format=json)',
         'CFLAGS += $(EXTRA_CFLAGS)',

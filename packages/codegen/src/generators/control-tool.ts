@@ -1,7 +1,7 @@
 import { expandToNode, joinToNode, toString } from 'langium/generate';
 import type { PortDecl, TypeRef } from '../model/architecture.js';
 import { cSizeof, cType } from './c/c-syntax.js';
-import { makeSettings, runtimeFrom, type BuildSettings } from './build-settings.js';
+import { makeSettings } from './build-settings.js';
 
 /** `tools/control<M>.c` and `tools/makecontrol<M>`: the shell control command of a module or supervisor. */
 export function controlSourcePath(name: string): string {
@@ -37,10 +37,10 @@ export function generateControlSource(name: string, kind: string, parameters: Po
     return toString(node) + '\n';
 }
 
-export function generateControlMakefile(name: string, settings: BuildSettings): string {
+export function generateControlMakefile(name: string): string {
     const node = expandToNode`
         # makecontrol${name}: builds the control tool control${name} (make -f makecontrol${name})
-        ${makeSettings(runtimeFrom(settings, 'tools'), ['.', '../common'])}
+        ${makeSettings(['.', '../common'])}
 
         .PHONY: all clean
         all: control${name}

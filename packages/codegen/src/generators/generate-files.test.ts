@@ -4,8 +4,7 @@ import { tutorialModel } from '../test-support/tutorial-model.js';
 import { computePriorities } from '../model/priorities.js';
 import { generateFiles } from './generate-files.js';
 
-const settings = { runtimeFromArchitecture: '../../../../../runtime' };
-const byPath = () => new Map(generateFiles(tutorialModel(), settings).map((f) => [f.path, f.content]));
+const byPath = () => new Map(generateFiles(tutorialModel()).map((f) => [f.path, f.content]));
 const regionIds = (text: string) => parseRegions(text, 'f').regions.map((r) => r.id);
 
 describe('generateFiles on the report example', () => {
@@ -13,7 +12,7 @@ describe('generateFiles on the report example', () => {
         expect([...byPath().entries()]).toEqual([...byPath().entries()]);
     });
 
-    it('produces every file of the SPEC §3 tree', () => {
+    it('produces every file of the generated tree: common headers, ORD, modules, supervisors, tools, Makefiles', () => {
         const paths = [...byPath().keys()].sort();
         const arch = 'generated/architecture';
         for (const p of ['Makefile', 'common/SharedTypeA.h', 'common/SharedTypeE.h', 'common/SharedFunctiontestit.h',
@@ -61,7 +60,7 @@ describe('generateFiles on the report example', () => {
         expect(msc).not.toContain('_react_to_event(');
     });
 
-    it('computes priorities per SPEC §4.1 and writes them in module.c and the tables', () => {
+    it('computes fixed priorities (supervisors by level, ORD, rate-monotonic modules, interaction) and writes them in module.c and the tables', () => {
         const p = computePriorities(tutorialModel());
         expect(p.of.get('GLB')).toBe(99); // top supervisor
         expect(p.of.get('SUP')).toBe(98); // activated by GLB

@@ -3,7 +3,6 @@ import { ArchitectureIndex } from '../model/lookup.js';
 import { computePriorities } from '../model/priorities.js';
 import type { GeneratedFile } from '../writer/write-tree.js';
 import { ARCHITECTURE_MAKEFILE, generateArchitectureMakefile } from './architecture-makefile.js';
-import type { BuildSettings } from './build-settings.js';
 import { controlMakefilePath, controlSourcePath, generateControlMakefile, generateControlSource, generateToolsMakefile } from './control-tool.js';
 import { generateModuleMakefile, moduleMakefilePath } from './module-makefile.js';
 import { generateModuleSource, moduleSourcePath } from './module-source.js';
@@ -14,8 +13,8 @@ import { supTypesHeader } from './supervisor-module.js';
 import { generateOrdVocabulary } from './vocabulary/ord-vocabulary.js';
 import { generateSupervisorVocabulary } from './vocabulary/supervisor-vocabulary.js';
 
-/** Every file of the SPEC §3 tree for an architecture (paths relative to the output folder). */
-export function generateFiles(arch: Architecture, settings: BuildSettings): GeneratedFile[] {
+/** Every file of the generated tree (docs/codegen.md "The tree") for an architecture (paths relative to the output folder). */
+export function generateFiles(arch: Architecture): GeneratedFile[] {
     const index = new ArchitectureIndex(arch);
     const priorities = computePriorities(arch);
     const files: GeneratedFile[] = [];
@@ -26,7 +25,7 @@ export function generateFiles(arch: Architecture, settings: BuildSettings): Gene
 
     for (const m of arch.modules) {
         add(moduleSourcePath(m.name), generateModuleSource(m, priorities.of.get(m.name)!, index));
-        add(moduleMakefilePath(m.name), generateModuleMakefile(m.name, ['module.c'], settings));
+        add(moduleMakefilePath(m.name), generateModuleMakefile(m.name, ['module.c']));
     }
 
     add(`${ORD_DIR}/module.c`, engineBindingSource('ORD', priorities.ord, 'scheduler', 'schedtypes.h'));
@@ -34,24 +33,24 @@ export function generateFiles(arch: Architecture, settings: BuildSettings): Gene
     add(`${ORD_DIR}/schedmessages.h`, schedMessagesHeader());
     add(`${ORD_DIR}/tools.h`, toolsHeader());
     add(`${ORD_DIR}/vocabulary.c`, generateOrdVocabulary(arch, index, priorities));
-    add(moduleMakefilePath('ORD'), generateModuleMakefile('ORD', ['module.c', 'vocabulary.c'], settings));
+    add(moduleMakefilePath('ORD'), generateModuleMakefile('ORD', ['module.c', 'vocabulary.c']));
 
     for (const s of arch.supervisors) {
         const dir = `generated/architecture/modules/${s.name}_mod`;
         add(`${dir}/module.c`, engineBindingSource(s.name, priorities.of.get(s.name)!, 'supervisor', 'suptypes.h'));
         add(`${dir}/suptypes.h`, supTypesHeader(s.name));
         add(`${dir}/vocabulary.c`, generateSupervisorVocabulary(s, priorities.of.get(s.name)!, index));
-        add(moduleMakefilePath(s.name), generateModuleMakefile(s.name, ['module.c', 'vocabulary.c'], settings));
+        add(moduleMakefilePath(s.name), generateModuleMakefile(s.name, ['module.c', 'vocabulary.c']));
     }
 
     const controlled = [...arch.modules.map((m) => ({ name: m.name, kind: `${m.kind} module`, params: m.parameters })), ...arch.supervisors.map((s) => ({ name: s.name, kind: 'supervisor', params: [] }))];
     for (const c of controlled) {
         add(controlSourcePath(c.name), generateControlSource(c.name, c.kind, c.params));
-        add(controlMakefilePath(c.name), generateControlMakefile(c.name, settings));
+        add(controlMakefilePath(c.name), generateControlMakefile(c.name));
     }
     add('generated/architecture/tools/Makefile', generateToolsMakefile(controlled.map((c) => c.name)));
 
     const executables = ['ORD', ...arch.modules.map((m) => m.name), ...arch.supervisors.map((s) => s.name)];
-    add(ARCHITECTURE_MAKEFILE, generateArchitectureMakefile(arch, executables, settings));
+    add(ARCHITECTURE_MAKEFILE, generateArchitectureMakefile(arch, executables));
     return files;
 }

@@ -10,7 +10,6 @@ import { readTree, tempDir } from '../test-support/temp-dir.js';
 import { tutorialModel } from '../test-support/tutorial-model.js';
 import { generateFiles } from './generate-files.js';
 
-const settings = { runtimeFromArchitecture: '../../../../../runtime' };
 const types: TypeRef[] = [{ primitive: 'int' }, { primitive: 'float' }, { primitive: 'string' }, { datatype: 'TypeA' }, { datatype: 'TypeF' }];
 const moduleNames = ['MAA', 'MAB', 'MSA', 'MSC', 'MXA', 'MXB', 'MXC'];
 const portLists = ['parameters', 'eventIn', 'eventOut', 'dataIn', 'dataOut'] as const;
@@ -126,7 +125,7 @@ describe('regenerating the C tree after random user edits and model edits (prope
                 const { dir, cleanup } = tempDir('codegen-regen-');
                 try {
                     const arch = tutorialModel();
-                    expect(writeTree(dir, generateFiles(arch, settings)).errors).toEqual([]);
+                    expect(writeTree(dir, generateFiles(arch)).errors).toEqual([]);
                     const live = new Map<string, string>();
                     let tag = 0;
                     for (const [userEdits, modelEdits] of rounds) {
@@ -140,7 +139,7 @@ describe('regenerating the C tree after random user edits and model edits (prope
                             live.set(`${path}#${r.id}`, content);
                         }
                         for (const e of modelEdits) applyEdit(arch, e);
-                        const report = writeTree(dir, generateFiles(arch, settings));
+                        const report = writeTree(dir, generateFiles(arch));
                         expect(report.errors).toEqual([]);
                         const tree = readTree(dir);
                         const orphans = [...tree.entries()].filter(([p]) => p.startsWith('orphans/')).map(([, t]) => t);
@@ -151,7 +150,7 @@ describe('regenerating the C tree after random user edits and model edits (prope
                             expect(inPlace || orphans.some((o) => o.includes(content)), `user code of ${key} lost`).toBe(true);
                             if (!inPlace) live.delete(key);
                         }
-                        const again = writeTree(dir, generateFiles(arch, settings));
+                        const again = writeTree(dir, generateFiles(arch));
                         expect(again.filesWritten).toBe(0);
                         expect(readFileSync(join(dir, '.contract-manifest.json'), 'utf8')).toBe(tree.get('.contract-manifest.json'));
                     }

@@ -8,7 +8,7 @@ export function sharedFunctionPath(name: string): string {
     return `generated/architecture/common/SharedFunction${name}.h`;
 }
 
-/** `char *`, `long *`, `double *`, `TypeA *`: every argument by pointer (SPEC §3). */
+/** `char *`, `long *`, `double *`, `TypeA *`: every argument by pointer (docs/codegen.md "The tree": so that compute functions can assign the locals). */
 export function cPointerType(t: TypeRef): string {
     return `${cType(t)} *`;
 }

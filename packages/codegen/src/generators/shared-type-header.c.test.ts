@@ -59,7 +59,7 @@ describe('generated Shared<Type>.h functions (compiled C, ASan/UBSan)', () => {
     beforeAll(() => {
         ({ dir, cleanup } = tempDir('codegen-ctypes-'));
         lib = ensureRuntimeLibrary();
-        writeTree(dir, generateFiles(tutorialModel(), { runtimeFromArchitecture: RUNTIME_DIR }));
+        writeTree(dir, generateFiles(tutorialModel()));
     }, 120_000);
     afterAll(() => cleanup());
 

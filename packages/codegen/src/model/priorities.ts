@@ -1,7 +1,7 @@
 import type { Architecture } from './architecture.js';
 
 /**
- * Fixed priorities (1..99, higher = more urgent), SPEC §4.1 / report §2:
+ * Fixed priorities (1..99, higher = more urgent), docs/codegen.md "Priorities" / report §2:
  *   supervisors          99 - depth in the `activate supervisor` hierarchy (top = 99), never below 91
  *   ORD                  90
  *   critical async       85   (a module some supervisor activates with `activate critical module`)

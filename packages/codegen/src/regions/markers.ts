@@ -1,5 +1,5 @@
 /**
- * The protected-region markers of report section 5 / SPEC section 3.1:
+ * The protected-region markers of report section 5 / docs/codegen.md "Protected regions":
  *   /*PROTECTED REGION ID(<id>) ENABLED START*\/ ... /*PROTECTED REGION END*\/
  * The start marker may lack `ENABLED` (the user asks for the default to be regenerated).
  */

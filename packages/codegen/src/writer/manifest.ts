@@ -1,7 +1,8 @@
 import { createHash } from 'node:crypto';
-import { existsSync, readFileSync } from 'node:fs';
-import { join } from 'node:path';
 import { parseRegions } from '../regions/parse-regions.js';
+import { ORPHANS_DIR } from './orphans.js';
+import type { OutputTree } from './output-tree.js';
+import { treePathProblem } from './safe-paths.js';
 
 /**
  * The manifest `<out>/.contract-manifest.json` lists the files the generator wrote last time and,
@@ -10,10 +11,17 @@ import { parseRegions } from '../regions/parse-regions.js';
  */
 export const MANIFEST_NAME = '.contract-manifest.json';
 
+/** The file's format, as serialiseManifest writes it. */
 export interface Manifest {
     version: 1;
     /** path -> region ID -> hash of the generated default content */
     files: Record<string, Record<string, string>>;
+}
+
+/** A loaded manifest: only entries whose path passed the checks (safe-paths.ts). */
+export interface LoadedManifest {
+    /** path -> region ID -> hash of the generated default content */
+    files: Map<string, Record<string, string>>;
 }
 
 export function hashContent(content: string): string {
@@ -27,20 +35,58 @@ export function regionDefaults(generated: string, file: string): Record<string, 
     return defaults;
 }
 
-export type ManifestLoad = { manifest: Manifest } | { manifest: undefined; problem?: string };
+export interface ManifestLoad {
+    manifest?: LoadedManifest;
+    /** Why the manifest, or some of its entries, were ignored (one warning each). */
+    problems: string[];
+}
 
-export function loadManifest(outDir: string): ManifestLoad {
-    const file = join(outDir, MANIFEST_NAME);
-    if (!existsSync(file)) return { manifest: undefined };
+/**
+ * Why a manifest entry is not a file the generator may act on, or undefined. The manifest is read
+ * from the project folder (untrusted): an entry is a plain relative path inside the output tree,
+ * and never the manifest itself or an orphan (user code the generator only ever adds to).
+ */
+export function manifestEntryProblem(path: string): string | undefined {
+    const problem = treePathProblem(path);
+    if (problem) return problem;
+    if (path === MANIFEST_NAME) return 'the manifest itself';
+    if (path === ORPHANS_DIR || path.startsWith(`${ORPHANS_DIR}/`)) return `under ${ORPHANS_DIR}/ (user code, never a generated file)`;
+    return undefined;
+}
+
+/** Region ID -> hash when `value` is such a table of strings, else {} (no default known). */
+function defaultsOf(value: unknown): Record<string, string> {
+    const out: Record<string, string> = {};
+    if (typeof value !== 'object' || value === null || Array.isArray(value)) return out;
+    for (const [id, hash] of Object.entries(value)) if (typeof hash === 'string') out[id] = hash;
+    return out;
+}
+
+/**
+ * Reads `<out>/.contract-manifest.json` through `tree` (never through a link: a link is an
+ * UnsafePathError for the caller). Entries with a bad path are dropped with a problem naming
+ * them, never acted on; an unreadable or unknown manifest is ignored with a problem.
+ */
+export function loadManifest(tree: OutputTree): ManifestLoad {
+    const text = tree.read(MANIFEST_NAME);
+    if (text === undefined) return { problems: [] };
+    let data: { version?: unknown; files?: unknown };
     try {
-        const data = JSON.parse(readFileSync(file, 'utf8')) as Manifest;
-        if (data?.version !== 1 || typeof data.files !== 'object' || data.files === null) {
-            return { manifest: undefined, problem: 'unknown manifest format, ignored' };
-        }
-        return { manifest: data };
+        data = JSON.parse(Buffer.from(text, 'latin1').toString('utf8')) as typeof data;
     } catch (e) {
-        return { manifest: undefined, problem: `unreadable manifest, ignored (${(e as Error).message})` };
+        return { problems: [`unreadable manifest, ignored (${(e as Error).message})`] };
     }
+    if (data?.version !== 1 || typeof data.files !== 'object' || data.files === null || Array.isArray(data.files)) {
+        return { problems: ['unknown manifest format, ignored'] };
+    }
+    const files = new Map<string, Record<string, string>>();
+    const problems: string[] = [];
+    for (const [path, value] of Object.entries(data.files)) {
+        const problem = manifestEntryProblem(path);
+        if (problem) problems.push(`entry ${JSON.stringify(path)} dropped (${problem}): nothing read, written or deleted for it`);
+        else files.set(path, defaultsOf(value));
+    }
+    return { manifest: { files }, problems };
 }
 
 /** Deterministic JSON text of a manifest (sorted paths). */

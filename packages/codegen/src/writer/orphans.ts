@@ -1,8 +1,7 @@
-import { existsSync, readFileSync } from 'node:fs';
 import { posix } from 'node:path';
 import type { Region } from '../regions/parse-regions.js';
 import { bytesOf } from './byte-string.js';
-import { writeFileAtomic } from './atomic-write.js';
+import type { OutputTree } from './output-tree.js';
 
 /** Folder (relative to the output folder) where orphaned user code goes. */
 export const ORPHANS_DIR = 'orphans';
@@ -24,25 +23,57 @@ function candidate(path: string, n: number): string {
 /**
  * Writes orphaned content (a byte string) for `path` without ever overwriting an earlier orphan:
  * the first free numbered name is used; an existing orphan with the very same content is reused.
- * Returns the orphan's path relative to the output folder and whether a file was written.
+ * Returns the orphan's path relative to the output folder and whether a file was written. Goes
+ * through `tree`: an orphan path met as a link is refused (UnsafePathError), never read or written.
  */
-export function writeOrphan(outDir: string, path: string, content: string): { path: string; written: boolean } {
+export function writeOrphan(tree: OutputTree, path: string, content: string): { path: string; written: boolean } {
     for (let n = 1; ; n++) {
         const rel = candidate(path, n);
-        const abs = posix.join(outDir, rel);
-        if (!existsSync(abs)) {
-            writeFileAtomic(abs, bytesOf(content));
+        const existing = tree.read(rel);
+        if (existing === undefined) {
+            tree.write(rel, bytesOf(content));
             return { path: rel, written: true };
         }
-        if (readFileSync(abs, 'latin1') === content) return { path: rel, written: false };
+        // the same orphaned code again (its header's date aside): reuse it
+        if (withoutHeader(existing) === withoutHeader(content)) return { path: rel, written: false };
     }
 }
 
+const HEADER_START = '/* Orphaned user code';
+
+function withoutHeader(text: string): string {
+    return text.startsWith(HEADER_START) ? text.slice(text.indexOf('*/\n') + 3) : text;
+}
+
+/** The entity a generated path is named after (docs/codegen.md, generated tree). */
+export function orphanEntity(path: string): string {
+    const module = /\/modules\/([A-Za-z0-9_]+)_mod\//.exec(path)?.[1] ?? /\/tools\/(?:make)?control([A-Za-z0-9_]+?)(?:\.c)?$/.exec(path)?.[1];
+    if (module) return module === 'ORD' ? 'the scheduler ORD' : `module or supervisor ${module}`;
+    const fn = /\/common\/SharedFunction([A-Za-z0-9_]+)\.h$/.exec(path)?.[1];
+    if (fn) return `function ${fn}`;
+    const type = /\/common\/Shared([A-Za-z0-9_]+)\.h$/.exec(path)?.[1];
+    return type ? `datatype ${type}` : 'the entity it was generated for';
+}
+
+/**
+ * The comment an orphan file starts with: which entity and file the code came from, when it was
+ * moved, and how to bring it back (docs/codegen.md, "Renames").
+ */
+function orphanHeader(path: string, ids: string[], when: Date, wholeFile: boolean): string {
+    return `${HEADER_START} of ${path} (${orphanEntity(path)}), moved here on ${when.toISOString()}.\n` +
+        ` * ${wholeFile ? 'The entity no longer exists' : 'These protected regions no longer exist'} in the generated code (renamed or deleted entity, removed port...): ${ids.join(', ')}.\n` +
+        ` * To bring the code back: if the entity was renamed, paste each region's content into the region of the same\n` +
+        ` * role in the new entity's file (protect_exec_OLD -> protect_exec_NEW); if it was deleted by mistake, restore it\n` +
+        ` * in the .contract files${wholeFile ? ` and copy this file, without this comment, back to ${path}` : ''}, then generate.\n` +
+        ` * Then delete this file. Renaming with \`contract rename DIR OLD NEW\` or the IDE's rename carries regions over. */\n`;
+}
+
 /** The text of an orphan file holding the regions that vanished from `path`. */
-export function regionOrphanText(path: string, source: string, regions: Region[]): string {
-    const header =
-        `/* Orphaned protected regions of ${path}\n` +
-        ` * Their IDs no longer exist in the generated code (renamed or deleted entity, removed port...).\n` +
-        ` * Copy what you still need back into the generated tree, then delete this file. */\n`;
-    return header + regions.map((r) => `\n${source.slice(r.start, r.end)}\n`).join('');
+export function regionOrphanText(path: string, source: string, regions: Region[], when = new Date()): string {
+    return orphanHeader(path, regions.map((r) => r.id), when, false) + regions.map((r) => `\n${source.slice(r.start, r.end)}\n`).join('');
+}
+
+/** The text of the orphan of a whole file whose entity disappeared: the header, then the file as it was. */
+export function fileOrphanText(path: string, source: string, ids: string[], when = new Date()): string {
+    return orphanHeader(path, ids, when, true) + source;
 }

@@ -1,12 +1,12 @@
-import { existsSync, readFileSync, readdirSync, rmdirSync, statSync, unlinkSync } from 'node:fs';
-import { basename, dirname, join, posix } from 'node:path';
+import { posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
-import { writeFileAtomic } from './atomic-write.js';
-import { MANIFEST_NAME, hashContent, loadManifest, looksLikeDefault, regionDefaults, serialiseManifest } from './manifest.js';
-import { ORPHANS_DIR, regionOrphanText, writeOrphan } from './orphans.js';
+import { MANIFEST_NAME, hashContent, loadManifest, looksLikeDefault, regionDefaults, serialiseManifest, type ManifestLoad } from './manifest.js';
+import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
+import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
+import { UnsafePathError } from './safe-paths.js';
 
 /** One file the generators produced: path relative to the output folder ('/'-separated) and its text. */
 export interface GeneratedFile {
@@ -28,17 +28,22 @@ function defaultCheck(defaults: Record<string, string> | undefined) {
     };
 }
 
-/** Files under `root` holding protected-region markers (the generator's files when no manifest says so). */
-function scanGeneratedFiles(outDir: string, root: string): string[] {
+/** Files under `root` holding protected-region markers (the generator's files when no manifest says so); links are skipped. */
+function scanGeneratedFiles(tree: OutputTree, root: string): string[] {
     const found: string[] = [];
     const walk = (rel: string) => {
-        const abs = join(outDir, rel);
-        if (!existsSync(abs)) return;
-        for (const entry of readdirSync(abs, { withFileTypes: true })) {
+        for (const entry of tree.list(rel) ?? []) {
             const child = posix.join(rel, entry.name);
             if (entry.isDirectory()) walk(child);
-            else if (entry.isFile() && statSync(join(outDir, child)).size < 4_000_000) {
-                if (readFileSync(join(outDir, child), 'latin1').includes('PROTECTED REGION')) found.push(child);
+            else if (entry.isFile()) {
+                let text: string | undefined;
+                try {
+                    text = tree.read(child, 4_000_000);
+                } catch (e) {
+                    if (e instanceof UnsafePathError) continue; // too large, or swapped for something else: not ours
+                    throw e;
+                }
+                if (text?.includes('PROTECTED REGION')) found.push(child);
             }
         }
     };
@@ -46,18 +51,28 @@ function scanGeneratedFiles(outDir: string, root: string): string[] {
     return found.sort();
 }
 
-/** Removes now-empty folders from `dir` up to (excluding) the output folder. */
-function pruneEmptyDirs(outDir: string, rel: string): void {
-    let dir = posix.dirname(rel);
-    while (dir !== '.' && dir !== '' && dir !== ORPHANS_DIR) {
-        const abs = join(outDir, dir);
-        try {
-            if (readdirSync(abs).length > 0) return;
-            rmdirSync(abs);
-        } catch {
-            return;
+/**
+ * Symlinks met in the output tree, each with the files refused because of it: reported as one
+ * error per link (a linked folder would otherwise give one error per generated file under it).
+ */
+class Refusals {
+    private readonly byLink = new Map<string, { error: UnsafePathError; files: string[] }>();
+
+    add(path: string, error: UnsafePathError): void {
+        const key = error.link ?? path;
+        const entry = this.byLink.get(key) ?? { error, files: [] };
+        entry.files.push(path);
+        this.byLink.set(key, entry);
+    }
+
+    report(report: GenerationReport): void {
+        for (const [link, { error, files }] of [...this.byLink.entries()].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0))) {
+            const under = files.filter((f) => f !== link);
+            const what = under.length === 0
+                ? 'left untouched'
+                : `${under.length} file(s) not read, written or deleted: ${under.slice(0, 3).join(', ')}${under.length > 3 ? ', ...' : ''}`;
+            report.errors.push({ file: link, message: `${error.message}; ${what}` });
         }
-        dir = posix.dirname(dir);
     }
 }
 
@@ -66,43 +81,59 @@ function pruneEmptyDirs(outDir: string, rel: string): void {
  * ENABLED regions keep their content byte for byte, vanished user code goes to `orphans/`,
  * malformed files are left untouched (error with file and line), unchanged files are not
  * rewritten, every write is atomic. Returns what happened.
+ *
+ * Everything read from `outDir` is untrusted (docs/codegen.md, "What generate refuses"): every
+ * access goes through OutputTree (no `..`, no absolute path, no link on the way), manifest
+ * entries with a bad path are dropped with a warning, and a symlink met in the tree is an error
+ * naming it, with nothing read, written or deleted through it. Throws UnsafePathError when
+ * `outDir` itself is a link or not a folder.
  */
 export function writeTree(outDir: string, files: GeneratedFile[], options: WriteTreeOptions = {}): GenerationReport {
-    const report = emptyReport();
-    const loaded = loadManifest(outDir);
-    if (!loaded.manifest && 'problem' in loaded && loaded.problem) {
-        report.warnings.push({ file: MANIFEST_NAME, message: loaded.problem });
+    const tree = new OutputTree(outDir);
+    try {
+        tree.prepare();
+        return writeInto(tree, files, options);
+    } finally {
+        tree.close();
     }
-    const oldDefaults: DefaultsOf = (p) => loaded.manifest?.files[p];
+}
+
+function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeOptions): GenerationReport {
+    const report = emptyReport();
+    const refusals = new Refusals();
+    let loaded: ManifestLoad = { problems: [] };
+    let manifestRefused = false;
+    try {
+        loaded = loadManifest(tree);
+    } catch (e) {
+        if (!(e instanceof UnsafePathError)) throw e;
+        refusals.add(MANIFEST_NAME, e);
+        manifestRefused = true;
+    }
+    for (const problem of loaded.problems) report.warnings.push({ file: MANIFEST_NAME, message: problem });
+    const oldDefaults: DefaultsOf = (p) => loaded.manifest?.files.get(p);
     const newManifest = new Map<string, Record<string, string>>();
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
 
-    const knownDirs = new Set<string>();
     const listings = new Map<string, Set<string>>();
-    /** Whether `abs` may exist: one directory listing per folder instead of one failed open per new file. */
-    const mayExist = (abs: string): boolean => {
-        const dir = dirname(abs);
+    /** Whether `rel` may exist: one directory listing per folder instead of one failed open per new file. */
+    const mayExist = (rel: string): boolean => {
+        const dir = posix.dirname(rel) === '.' ? '' : posix.dirname(rel);
         let names = listings.get(dir);
         if (!names) {
-            try {
-                names = new Set(readdirSync(dir));
-                knownDirs.add(dir);
-            } catch {
-                names = new Set();
-            }
+            names = new Set((tree.list(dir) ?? []).map((e) => e.name));
             listings.set(dir, names);
         }
-        return names.has(basename(abs));
+        return names.has(posix.basename(rel));
     };
     for (const file of sorted) {
         const generated = toByteString(file.content);
         newManifest.set(file.path, regionDefaults(generated, file.path));
-        const abs = join(outDir, file.path);
         try {
-            const existing = mayExist(abs) ? readIfPresent(abs) : undefined;
+            const existing = mayExist(file.path) ? tree.read(file.path) : undefined;
             if (existing === undefined) {
-                writeFileAtomic(abs, bytesOf(generated), knownDirs);
+                tree.write(file.path, bytesOf(generated));
                 report.created.push(file.path);
                 report.filesWritten++;
                 continue;
@@ -114,7 +145,7 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
             }
             const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)));
             if (merged.orphans.length > 0) {
-                const orphan = writeOrphan(outDir, file.path, regionOrphanText(file.path, existing, merged.orphans));
+                const orphan = writeOrphan(tree, file.path, regionOrphanText(file.path, existing, merged.orphans));
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
                 report.warnings.push({
@@ -126,30 +157,37 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
             if (merged.text === existing) {
                 report.unchanged.push(file.path);
             } else {
-                writeFileAtomic(abs, bytesOf(merged.text), knownDirs);
+                tree.write(file.path, bytesOf(merged.text));
                 report.updated.push(file.path);
                 report.filesWritten++;
             }
         } catch (e) {
-            recordFailure(report, file.path, e, 'left untouched');
+            recordFailure(report, refusals, file.path, e, 'left untouched');
             // keep what we knew of the untouched file so that its defaults stay recognisable
             const previous = oldDefaults(file.path);
             if (previous) newManifest.set(file.path, previous);
         }
     }
 
-    const previousFiles = loaded.manifest
-        ? Object.keys(loaded.manifest.files).sort()
-        : scanGeneratedFiles(outDir, options.managedRoot ?? 'generated');
+    let previousFiles: string[] = [];
+    if (loaded.manifest) {
+        previousFiles = [...loaded.manifest.files.keys()].sort();
+    } else {
+        const root = options.managedRoot ?? 'generated';
+        try {
+            previousFiles = scanGeneratedFiles(tree, root);
+        } catch (e) {
+            recordFailure(report, refusals, root, e, 'not scanned for files of deleted entities');
+        }
+    }
     for (const path of previousFiles) {
         if (produced.has(path)) continue;
-        const abs = join(outDir, path);
-        if (!existsSync(abs)) continue;
         try {
-            const existing = readFileSync(abs, 'latin1');
+            const existing = tree.read(path);
+            if (existing === undefined) continue;
             const owned = userRegions(existing, path, defaultCheck(oldDefaults(path)));
             if (owned.length > 0) {
-                const orphan = writeOrphan(outDir, path, existing);
+                const orphan = writeOrphan(tree, path, fileOrphanText(path, existing, owned.map((r) => r.id)));
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
                 report.warnings.push({
@@ -159,40 +197,35 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
             } else {
                 report.removed.push(path);
             }
-            unlinkSync(abs);
-            pruneEmptyDirs(outDir, path);
+            tree.remove(path);
+            tree.pruneEmptyDirs(path, (dir) => dir === ORPHANS_DIR);
         } catch (e) {
-            recordFailure(report, path, e, 'its entity no longer exists, but the file was left untouched');
+            recordFailure(report, refusals, path, e, 'its entity no longer exists, but the file was left untouched');
             const previous = oldDefaults(path);
             if (previous) newManifest.set(path, previous);
         }
     }
 
-    const manifestText = serialiseManifest(newManifest);
-    const manifestFile = join(outDir, MANIFEST_NAME);
-    try {
-        if (readIfPresent(manifestFile) !== manifestText) {
-            writeFileAtomic(manifestFile, Buffer.from(manifestText, 'utf8'));
-            report.filesWritten++;
+    if (!manifestRefused) {
+        const manifestText = serialiseManifest(newManifest);
+        try {
+            if (tree.read(MANIFEST_NAME) !== manifestText) {
+                tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));
+                report.filesWritten++;
+            }
+        } catch (e) {
+            if (e instanceof UnsafePathError) refusals.add(MANIFEST_NAME, e);
+            else report.errors.push({ file: MANIFEST_NAME, message: `cannot write the manifest: ${(e as Error).message}` });
         }
-    } catch (e) {
-        report.errors.push({ file: MANIFEST_NAME, message: `cannot write the manifest: ${(e as Error).message}` });
     }
+    refusals.report(report);
     return report;
 }
 
-/** The file's bytes as a byte string, or undefined when it does not exist. */
-function readIfPresent(abs: string): string | undefined {
-    try {
-        return readFileSync(abs, 'latin1');
-    } catch (e) {
-        if ((e as NodeJS.ErrnoException).code === 'ENOENT') return undefined;
-        throw e;
-    }
-}
-
-function recordFailure(report: GenerationReport, path: string, e: unknown, consequence: string): void {
-    if (e instanceof RegionSyntaxError && !e.file.endsWith('(generated output)')) {
+function recordFailure(report: GenerationReport, refusals: Refusals, path: string, e: unknown, consequence: string): void {
+    if (e instanceof UnsafePathError && e.link !== undefined) {
+        refusals.add(path, e);
+    } else if (e instanceof RegionSyntaxError && !e.file.endsWith('(generated output)')) {
         report.errors.push({ file: path, line: e.line, message: `${e.detail}; ${consequence}` });
     } else if (e instanceof RegionSyntaxError) {
         throw e; // a generator bug, not a user problem

@@ -1,15 +1,19 @@
 /**
- * Quick fixes (SPEC §2.7) for the diagnostics that carry what the fix needs in their data:
+ * Quick fixes (docs/ide.md "Editor services") for the diagnostics that carry what the fix needs in their data:
  * - `import-not-imported` (data.importPath): add the import after the file's imports;
  * - `module-name-format` (data.suggestion): rename the module/supervisor to its upper-case form,
  *   in every file that refers to it;
- * - `port-index-duplicate` (data.suggestedIndex): renumber the port to a free index.
+ * - `port-index-duplicate` (data.suggestedIndex): renumber the port to a free index;
+ * - `identifier-c-reserved`, `identifier-generated-clash` (data.suggestion): rename the element everywhere to a name the
+ *   generated C does not take (the suggestion, or the next free `<name>_N` if the rename rules refuse it).
  */
-import { CstUtils, type AstNode, type LangiumDocument, type LangiumDocuments, type References } from 'langium';
+import { CstUtils, type AstNode, type Grammar, type IndexManager, type LangiumDocument, type LangiumDocuments, type References } from 'langium';
 import type { CodeActionProvider } from 'langium/lsp';
 import { CodeActionKind, type CodeAction, type CodeActionParams, type Diagnostic } from 'vscode-languageserver-protocol';
 import { isModule, isSupervisor, type Model } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
+import { suggestName } from '../validation/c-names/reserved-names.js';
+import { renameProblem } from './name-rules.js';
 import { renameEdits } from './rename-edits.js';
 
 type DiagnosticData = { code?: string; importPath?: string; suggestion?: string; suggestedIndex?: number };
@@ -17,10 +21,14 @@ type DiagnosticData = { code?: string; importPath?: string; suggestion?: string;
 export class CactalCodeActionProvider implements CodeActionProvider {
     private readonly references: References;
     private readonly documents: LangiumDocuments;
+    private readonly grammar: Grammar;
+    private readonly index: IndexManager;
 
     constructor(services: CactalServices) {
         this.references = services.references.References;
         this.documents = services.shared.workspace.LangiumDocuments;
+        this.grammar = services.Grammar;
+        this.index = services.shared.workspace.IndexManager;
     }
 
     getCodeActions(document: LangiumDocument, params: CodeActionParams): CodeAction[] {
@@ -35,6 +43,9 @@ export class CactalCodeActionProvider implements CodeActionProvider {
                 if (action) actions.push(action);
             } else if (code === 'module-name-format' && data.suggestion) {
                 const action = this.upperCaseName(document, diagnostic, data.suggestion);
+                if (action) actions.push(action);
+            } else if ((code === 'identifier-c-reserved' || code === 'identifier-generated-clash') && data.suggestion) {
+                const action = this.renameReserved(document, diagnostic, data.suggestion);
                 if (action) actions.push(action);
             } else if (code === 'port-index-duplicate' && typeof data.suggestedIndex === 'number') {
                 actions.push({
@@ -70,6 +81,30 @@ export class CactalCodeActionProvider implements CodeActionProvider {
                 }
             }
         };
+    }
+
+    private renameReserved(document: LangiumDocument, diagnostic: Diagnostic, suggestion: string): CodeAction | undefined {
+        const node = this.namedNodeAt(document, diagnostic);
+        if (!node?.name) return undefined;
+        const free = (candidate: string) => renameProblem(node, candidate, this.grammar, this.index) === undefined;
+        const newName = free(suggestion) ? suggestion : suggestName(node.name, free);
+        if (!free(newName)) return undefined;
+        return {
+            title: `Rename '${node.name}' to '${newName}'`,
+            kind: CodeActionKind.QuickFix,
+            diagnostics: [diagnostic],
+            isPreferred: true,
+            edit: renameEdits(this.references, this.documents, node, newName)
+        };
+    }
+
+    /** The named element whose name the diagnostic covers. */
+    private namedNodeAt(document: LangiumDocument, diagnostic: Diagnostic): (AstNode & { name?: string }) | undefined {
+        const root = document.parseResult.value.$cstNode;
+        if (!root) return undefined;
+        const leaf = CstUtils.findLeafNodeAtOffset(root, document.textDocument.offsetAt(diagnostic.range.start));
+        const node = leaf?.astNode as (AstNode & { name?: string }) | undefined;
+        return node && typeof node.name === 'string' ? node : undefined;
     }
 
     private upperCaseName(document: LangiumDocument, diagnostic: Diagnostic, suggestion: string): CodeAction | undefined {

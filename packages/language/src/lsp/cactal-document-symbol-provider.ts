@@ -1,5 +1,5 @@
 /**
- * Outline (SPEC §2.7): datatypes with their fields, function prototypes, modules with their
+ * Outline (docs/ide.md "Editor services"): datatypes with their fields, function prototypes, modules with their
  * parameters and ports (detail: direction, kind, index, type), schemas with their modules and
  * communications, the scheduler configuration, supervisors with their ports, functions and rules.
  */

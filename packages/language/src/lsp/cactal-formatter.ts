@@ -1,5 +1,5 @@
 /**
- * Formatter (SPEC §2.7): canonical spacing and indentation, idempotent, AST-preserving.
+ * Formatter (docs/ide.md "Editor services"): canonical spacing and indentation, idempotent, AST-preserving.
  *
  * It re-lays out the token stream instead of editing whitespace node by node: every gap between
  * two tokens becomes nothing, one space, a newline or a blank line, decided by the two tokens and
@@ -15,11 +15,24 @@
 import { CstUtils, isLeafCstNode, type CstNode, type LangiumDocument } from 'langium';
 import type { Formatter } from 'langium/lsp';
 import type { IToken } from 'chevrotain';
-import type { DocumentOnTypeFormattingOptions, TextEdit } from 'vscode-languageserver-protocol';
+import { MessageType, ShowMessageNotification, type DocumentOnTypeFormattingOptions, type TextEdit } from 'vscode-languageserver-protocol';
 import { isRule, isModel, type Model } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 
 const INDENT = '    ';
+
+const UNSAFE = 'Not formatted: the new layout would not keep the same tokens, so the file was left as it is (a formatter limitation: please report the file).';
+
+/** The first lexer or parser error of a parse, as `line L, column C: message`. */
+function syntaxErrorOf(parseResult: LangiumDocument['parseResult']): string | undefined {
+    const lex = parseResult.lexerErrors[0];
+    if (lex) return `line ${lex.line ?? '?'}, column ${lex.column ?? '?'}: ${lex.message}`;
+    const parse = parseResult.parserErrors[0];
+    if (!parse) return undefined;
+    const t = parse.token;
+    const at = Number.isFinite(t.startLine) ? `line ${t.startLine}, column ${t.startColumn}` : 'end of file';
+    return `${at}: ${parse.message}`;
+}
 
 /** AST types whose `{ ... }` is an indented block (the others — values, datatypes, persistence — stay inline). */
 const BLOCK_TYPES = new Set([
@@ -56,8 +69,13 @@ export class CactalFormatter implements Formatter {
 
     formatDocument(document: LangiumDocument): TextEdit[] {
         const text = document.textDocument.getText();
-        const formatted = this.formatText(document);
-        return formatted === undefined ? [] : minimalEdit(document, text, formatted);
+        const result = this.tryFormat(document);
+        if ('reason' in result) {
+            // an editor shows nothing for an empty edit list: say why the file stayed as it was
+            void this.services.shared.lsp.Connection?.sendNotification(ShowMessageNotification.type, { type: MessageType.Warning, message: result.reason });
+            return [];
+        }
+        return minimalEdit(document, text, result.text);
     }
 
     /** Range formatting formats the whole document (the layout of a block depends on its context). */
@@ -75,13 +93,21 @@ export class CactalFormatter implements Formatter {
 
     /** The formatted text of a parsed document, or undefined when it cannot be formatted safely. */
     formatText(document: LangiumDocument): string | undefined {
+        const result = this.tryFormat(document);
+        return 'text' in result ? result.text : undefined;
+    }
+
+    /** The formatted text, or why the document is left as it is (shown to the user by formatDocument). */
+    tryFormat(document: LangiumDocument): { text: string } | { reason: string } {
         const { parseResult } = document;
-        if (parseResult.lexerErrors.length || parseResult.parserErrors.length) return undefined;
+        const syntax = syntaxErrorOf(parseResult);
+        if (syntax) return { reason: `Not formatted: ${syntax}. Fix the syntax error first: the formatter only lays out a file it can parse.` };
         const root = (parseResult.value as Model).$cstNode;
-        if (!root || !isModel(parseResult.value)) return undefined;
+        if (!root || !isModel(parseResult.value)) return { reason: 'Not formatted: the file holds no Cactal model.' };
         const text = document.textDocument.getText();
         const lexed = this.services.parser.Lexer.tokenize(text);
-        if (lexed.errors.length) return undefined;
+        const lexError = lexed.errors[0];
+        if (lexError) return { reason: `Not formatted: line ${lexError.line ?? '?'}, column ${lexError.column ?? '?'}: ${lexError.message}.` };
 
         const leaves = new Map<number, CstNode>();
         for (const node of CstUtils.streamCst(root)) {
@@ -91,12 +117,12 @@ export class CactalFormatter implements Formatter {
             ...lexed.tokens.map((token) => ({ token, comment: false, leaf: leaves.get(token.startOffset), text: token.image })),
             ...lexed.hidden.filter((t) => /COMMENT/.test(t.tokenType.name)).map((token) => ({ token, comment: true, text: commentText(token) }))
         ].sort((a, b) => a.token.startOffset - b.token.startOffset);
-        if (items.some((i) => !i.comment && !i.leaf)) return undefined;
+        if (items.some((i) => !i.comment && !i.leaf)) return { reason: UNSAFE };
         for (const item of items) {
             if (!item.comment && (item.text === '==*' || item.text === '==>')) item.text = item.text.slice(1);
         }
         const out = layout(items, text, (parseResult.value as Model));
-        return sameTokens(this.services, text, out) ? out : undefined;
+        return sameTokens(this.services, text, out) ? { text: out } : { reason: UNSAFE };
     }
 }
 

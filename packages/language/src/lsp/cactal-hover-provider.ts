@@ -1,25 +1,35 @@
 /**
- * Hover (SPEC §2.7): what a name designates — its type, a port's direction/kind/index and type,
+ * Hover (docs/ide.md "Editor services"): what a name designates — its type, a port's direction/kind/index and type,
  * the value a declaration starts with (written or default), a module's C, and on a schema its
- * utilisation (sum C / PERIOD) and critical path (longest chain of C through the precedence graph).
+ * utilisation (sum C / PERIOD) and critical path (longest chain of C through the precedence graph),
+ * and the periodic schemas it conflicts with (they share a module: ORD refuses one while the other
+ * is active, docs/engines.md).
  * Works on declarations and on every cross-reference, including port references by index.
  */
 import { AstUtils, CstUtils, type AstNode, type LangiumDocument, type MaybePromise } from 'langium';
 import type { Hover, HoverParams } from 'vscode-languageserver-protocol';
-import { AstNodeHoverProvider } from 'langium/lsp';
+import { AstNodeHoverProvider, type LangiumServices } from 'langium/lsp';
 import {
     isDataType, isField, isModuleEvent, isFunctionArgument, isFunctionParameter, isFunctionPrototype, isLocalVariable, isModule,
-    isParameter, isPort, isRule, isSchema, isSchemaParameter, isSupervisionFunction, isSupervisor,
-    type Module, type Port, type Schema, type Supervisor, type TypeRef, type Value
+    isModel, isParameter, isPort, isRule, isSchema, isSchemaParameter, isSupervisionFunction, isSupervisor, isTimeProperty,
+    type Module, type Port, type Schema, type Supervisor, type TimeProperty, type TypeRef, type Value
 } from '../generated/ast.js';
 import { computeTimeNs, parametersOf } from '../model/blocks.js';
+import { sharedModules } from '../model/schema-conflicts.js';
 import { portKind, portsOf } from '../model/ports.js';
-import { formatNanoseconds } from '../model/time.js';
+import { formatNanoseconds, timeToNanoseconds } from '../model/time.js';
 import { typeRefText } from '../model/types.js';
 import { defaultValue, effectiveValue, formatConstant } from '../model/values.js';
 import { schemaModules, schemaTiming } from '../validation/timing-analysis.js';
 
 export class CactalHoverProvider extends AstNodeHoverProvider {
+    private readonly documents: LangiumServices['shared']['workspace']['LangiumDocuments'];
+
+    constructor(services: LangiumServices) {
+        super(services);
+        this.documents = services.shared.workspace.LangiumDocuments;
+    }
+
     override async getHoverContent(document: LangiumDocument, params: HoverParams): Promise<Hover | undefined> {
         const root = document.parseResult.value.$cstNode;
         const leaf = root ? CstUtils.findLeafNodeAtOffset(root, document.textDocument.offsetAt(params.position)) : undefined;
@@ -27,15 +37,61 @@ export class CactalHoverProvider extends AstNodeHoverProvider {
         if (isModuleEvent(node) && node.ord && leaf && leaf.text === 'ORD') {
             return { contents: { kind: 'markdown', value: ordEventHover(node.ordPort) } };
         }
+        // `C=1ms;`, `PERIOD=1s;`: the name and the value are not references, Langium has no hover there
+        const property = node && AstUtils.getContainerOfType(node, isTimeProperty);
+        if (property) return { contents: { kind: 'markdown', value: timePropertyHover(property) } };
         return super.getHoverContent(document, params);
     }
 
     protected override getAstNodeHoverContent(node: AstNode): MaybePromise<string | undefined> {
-        return hoverMarkdown(node);
+        return hoverMarkdown(node, isSchema(node) ? this.workspaceSchemas() : []);
+    }
+
+    /** Every schema of the loaded documents (schemas of other projects share no module node). */
+    private workspaceSchemas(): Schema[] {
+        return this.documents.all
+            .flatMap((doc) => {
+                const root = doc.parseResult?.value;
+                return isModel(root) ? root.elements.filter(isSchema) : [];
+            })
+            .toArray();
     }
 }
 
-/** The scheduler's events (SPEC §4.2). */
+/** `1ms` -> `1,000 µs`: one unit for every figure of a timing hover (times: docs/language-reference.md §3, §4). */
+export function formatMicroseconds(ns: number): string {
+    return `${(ns / 1000).toLocaleString('en-US', { maximumFractionDigits: 3 })} µs`;
+}
+
+const PROPERTY_MEANING: Record<string, string> = {
+    C: 'computation time (worst case) of one activation',
+    PERIOD: 'period of the schema: its modules are activated once per period',
+    CRITICAL_DELAY: 'deadline of a cycle after its tick: past it the scheduler emits ORD:0 (critical lateness)'
+};
+
+/**
+ * Hover on a timing property: its value in µs and what it means; in a schema's realtime block also
+ * the schema's utilisation and critical path (validation/timing-analysis.ts).
+ */
+export function timePropertyHover(property: TimeProperty): string {
+    const ns = timeToNanoseconds(property.value?.text ?? '');
+    const parts = [code(`${property.name}=${property.value?.text ?? '?'}`)];
+    parts.push(Number.isNaN(ns) ? 'value: not a time literal (`500us`, `1ms`, `1s`)' : `= ${formatMicroseconds(ns)}`);
+    const meaning = PROPERTY_MEANING[property.name];
+    const owner = AstUtils.getContainerOfType(property, (n): n is Module | Schema => isModule(n) || isSchema(n));
+    if (meaning) parts.push(`${property.name}: ${meaning}${owner ? ` (\`${owner.name}\`)` : ''}`);
+    if (isSchema(owner) && owner.kind === 'periodic') {
+        const timing = schemaTiming(owner);
+        const path = timing.criticalPath;
+        parts.push([
+            `utilisation of \`${owner.name}\`: ${timing.utilisation !== undefined ? `${formatPercent(timing.utilisation)} (sum C = ${formatMicroseconds(timing.totalComputeNs)})` : 'unknown (no PERIOD)'}`,
+            path ? `critical path: ${formatMicroseconds(path.ns)} (${path.modules.map((m) => m.name).join(' -> ')})` : 'critical path: none (no module, or the scheduling graph has a cycle)',
+        ].map((f) => `- ${f}`).join('\n'));
+    }
+    return parts.join('\n\n');
+}
+
+/** The scheduler's events (docs/semantics.md "Scheduler: critical delay (ORD:0)", "Scheduler: conflict (ORD:1)"). */
 export function ordEventHover(port: number | undefined): string {
     const meaning = port === 0
         ? 'a periodic schema\'s cycle has not finished at tick + CRITICAL_DELAY (critical lateness); data: the schema name'
@@ -59,8 +115,11 @@ function ownerName(node: AstNode): string {
     return owner?.name ?? '?';
 }
 
-/** Markdown describing a declaration (undefined for nodes without a hover). */
-export function hoverMarkdown(node: AstNode): string | undefined {
+/**
+ * Markdown describing a declaration (undefined for nodes without a hover). `schemas`: the
+ * project's schemas, to list those a hovered schema conflicts with.
+ */
+export function hoverMarkdown(node: AstNode, schemas: readonly Schema[] = []): string | undefined {
     const parts: string[] = [];
     if (isDataType(node)) {
         parts.push(code(`datatype ${node.name} {${node.fields.map((f) => `${typeRefText(f.type)} ${f.name}`).join(', ')}}`));
@@ -79,7 +138,7 @@ export function hoverMarkdown(node: AstNode): string | undefined {
     } else if (isPort(node)) {
         parts.push(...portHover(node));
     } else if (isSchema(node)) {
-        parts.push(...schemaHover(node));
+        parts.push(...schemaHover(node, schemas));
     } else if (isSchemaParameter(node)) {
         parts.push(code(`${typeRefText(node.type)} ${node.name}`), `parameter of schema \`${node.$container.name}\``, valueLine(node));
     } else if (isSupervisor(node)) {
@@ -124,7 +183,7 @@ function portHover(port: Port): string[] {
     ];
 }
 
-function schemaHover(schema: Schema): string[] {
+function schemaHover(schema: Schema, schemas: readonly Schema[]): string[] {
     const parts = [code(`${schema.kind} schema ${schema.name}(${schema.parameters.map((p) => `${typeRefText(p.type)} ${p.name}`).join(', ')})`)];
     if (schema.kind !== 'periodic') return parts;
     const timing = schemaTiming(schema);
@@ -141,6 +200,11 @@ function schemaHover(schema: Schema): string[] {
     const missingC = schemaModules(schema).filter((m) => computeTimeNs(m) === undefined).map((m) => m.name);
     if (missingC.length) figures.push(`without C: ${missingC.join(', ')}`);
     parts.push(figures.map((f) => `- ${f}`).join('\n'));
+    const conflicts = schemas.filter((s) => s !== schema).map((s) => ({ s, modules: sharedModules(schema, s) })).filter((c) => c.modules.length > 0);
+    if (conflicts.length) {
+        parts.push(`conflicts with (shared modules: ORD refuses one while the other is active, ORD:1): ${conflicts
+            .map((c) => `\`${c.s.name}\` (${c.modules.map((m) => m.name).join(', ')})`).join(', ')}`);
+    }
     return parts;
 }
 

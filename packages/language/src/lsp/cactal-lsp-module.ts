@@ -1,5 +1,5 @@
 /**
- * The Cactal editor services (SPEC §2.7), bound over Langium's LSP defaults. Browser-safe: the
+ * The Cactal editor services (docs/ide.md "Editor services"), bound over Langium's LSP defaults. Browser-safe: the
  * web IDE runs them in a Web Worker, `src/node/main.ts` over stdio. Find references and document
  * highlights are Langium's defaults: they already follow every cross-reference, ports by index too.
  */

@@ -1,5 +1,5 @@
 /**
- * Rename across files (SPEC §2.7): modules, supervisors, datatypes, fields, functions, schemas and
+ * Rename across files (docs/ide.md "Editor services"): modules, supervisors, datatypes, fields, functions, schemas and
  * their parameters, supervision functions, rule labels, ports' and parameters' variables, locals.
  * The new name is checked first (identifier, keywords, `[A-Z]{3}` for modules and supervisors,
  * clashes); a refused name answers the request with an error message the editor shows.

@@ -1,5 +1,5 @@
 /**
- * Semantic highlighting (SPEC §2.7): keywords; types (datatypes, primitive types); modules and
+ * Semantic highlighting (docs/ide.md "Editor services"): keywords; types (datatypes, primitive types); modules and
  * supervisors (class); schemas (namespace); ports and parameters (property), including port
  * references by index; rule labels (`label`, a token type added to the standard legend);
  * functions; variables and fields; time literals (number).

@@ -1,6 +1,6 @@
 /**
- * Which new names a rename may give (SPEC §2.3 naming rules): a Cactal identifier that is not a
- * keyword of Cactal or C; modules and supervisors exactly three upper-case letters (not `ORD`);
+ * Which new names a rename may give (docs/language-reference.md §3 naming rules): a Cactal identifier that is not a
+ * keyword of Cactal or C nor a name the generated C already takes (validation/c-names/); modules and supervisors exactly three upper-case letters (not `ORD`);
  * no clash with a sibling member or with another top-level element of the same family.
  */
 import { AstUtils, GrammarAST, type AstNode, type Grammar, type IndexManager } from 'langium';
@@ -10,7 +10,9 @@ import {
 } from '../generated/ast.js';
 import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
-import { C_KEYWORDS } from '../validation/identifier-checks.js';
+import { CommonHeaderIndex } from '../validation/c-names/common-headers.js';
+import { cNameConflict } from '../validation/c-names/reserved-names.js';
+import { C_KEYWORDS, cNameRole } from '../validation/identifier-checks.js';
 
 const IDENTIFIER = /^[A-Za-z][A-Za-z0-9_]*$/;
 const MODULE_NAME = /^[A-Z]{3}$/;
@@ -84,6 +86,12 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
         return `'${newName}' is a Cactal keyword and cannot name a ${what}.`;
     }
     if (C_KEYWORDS.has(newName)) return `'${newName}' is a C keyword and the generated C uses Cactal names as they are.`;
+    const role = cNameRole(node);
+    if (role && !newName.startsWith('_')) {
+        const datatypes = new Set(index.allElements('DataType').map((d) => d.name).filter((n) => n !== node.name || role !== 'datatype'));
+        const why = cNameConflict(newName, role, { datatypes });
+        if (why) return `'${newName}' cannot name a ${what} in the generated C: ${why}.`;
+    }
     if (isModule(node) || isSupervisor(node)) {
         if (newName === 'ORD') return `'ORD' is the scheduler's name and cannot name a ${what}.`;
         if (!MODULE_NAME.test(newName)) return `'${newName}' is not a valid ${what} name: module and supervisor names are exactly three upper-case letters (A-Z).`;
@@ -94,6 +102,13 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
     if (isModel(node.$container)) {
         const clash = index.allElements(node.$type).find((d) => d.name === newName && d.node !== node);
         if (clash) return `'${newName}' already names a ${what} (in ${clash.documentUri.path.split('/').pop()}).`;
+        if (isDataType(node) || isFunctionPrototype(node)) {
+            const others = [...index.allElements('DataType'), ...index.allElements('FunctionPrototype')]
+                .filter((d) => d.node !== node && (d.type === 'DataType' || d.type === 'FunctionPrototype'))
+                .map((d) => ({ kind: d.type === 'DataType' ? 'datatype' as const : 'function' as const, name: d.name }));
+            const header = new CommonHeaderIndex(others).clash({ kind: isDataType(node) ? 'datatype' : 'function', name: newName });
+            if (header) return `'${newName}' would share the generated ${header.shared} with ${header.other.kind} '${header.other.name}'.`;
+        }
         return undefined;
     }
     if (siblingNames(node).includes(newName)) return `'${newName}' is already used by another member next to this ${what}.`;

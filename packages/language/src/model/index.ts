@@ -3,3 +3,4 @@ export * from './blocks.js';
 export * from './ports.js';
 export * from './types.js';
 export * from './values.js';
+export * from './schema-conflicts.js';

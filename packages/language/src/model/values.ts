@@ -1,6 +1,6 @@
 /**
  * Constant values: what a written value means once its type is known, and the defaults
- * (0, 0.0, "", or a datatype's own field defaults) when no value is written (SPEC §2.2).
+ * (0, 0.0, "", or a datatype's own field defaults) when no value is written (docs/language-reference.md §2).
  * Code generation prints these; validation checks written values against types separately.
  */
 import {

@@ -5,12 +5,13 @@
  */
 import { readFileSync, statSync } from 'node:fs';
 import { readdir, stat } from 'node:fs/promises';
-import { dirname, join, relative, resolve, sep } from 'node:path';
-import { URI, type LangiumDocument } from 'langium';
+import { dirname, isAbsolute, join, relative, resolve, sep } from 'node:path';
+import { GrammarUtils, URI, type LangiumDocument } from 'langium';
 import { NodeFileSystem } from 'langium/node';
 import type { Diagnostic } from 'vscode-languageserver-types';
 import { createCactalServices, type CactalServices } from '../cactal-module.js';
-import type { Model } from '../generated/ast.js';
+import type { Import, Model } from '../generated/ast.js';
+import { lexicalRefusal, resolveConfinedImport } from './confined-import.js';
 
 export type SeverityName = 'error' | 'warning' | 'info' | 'hint';
 
@@ -54,7 +55,20 @@ export interface LoadWorkspaceOptions {
     services?: CactalServices;
     /** Directory names not to descend into (default: node_modules, .git, src-gen). */
     skipDirs?: string[];
+    /**
+     * When set, imports are loaded only from inside this folder (no `..` escape, no absolute path,
+     * no symbolic link on the way, regular files of at most `maxImportBytes`); any other import gets
+     * an `import-refused` error naming it and why, and the file is never read (confined-import.ts).
+     * The build service sets it to the staged project (docs/sandbox.md "Imports stay in the project");
+     * unset (the CLI and the IDE), files imported from outside DIR are loaded too.
+     */
+    confineImportsTo?: string;
+    /** Bound of one imported file under `confineImportsTo` (default 8 MiB). */
+    maxImportBytes?: number;
 }
+
+/** Code of the loader's diagnostic for an import that `confineImportsTo` does not allow. */
+export const IMPORT_REFUSED_CODE = 'import-refused';
 
 const SEVERITIES: Record<number, SeverityName> = { 1: 'error', 2: 'warning', 3: 'info', 4: 'hint' };
 const DEFAULT_SKIP = ['node_modules', '.git', 'src-gen'];
@@ -102,6 +116,17 @@ export function toWorkspaceDiagnostic(file: string, d: Diagnostic): WorkspaceDia
     return out;
 }
 
+/** Replaces the validator's "does not exist" on a refused import by the reason it was not loaded. */
+function reportRefusedImport(document: LangiumDocument<Model>, imp: Import, reason: string): void {
+    const node = (imp.$cstNode && GrammarUtils.findNodeForProperty(imp.$cstNode, 'path')) ?? imp.$cstNode;
+    if (!node) return;
+    const range = node.range;
+    const same = (d: Diagnostic) => d.range.start.line === range.start.line && d.range.start.character === range.start.character;
+    const kept = (document.diagnostics ?? []).filter((d) => !(d.code === 'import-missing-file' && same(d)));
+    kept.push({ range, severity: 1, code: IMPORT_REFUSED_CODE, source: 'cactal', message: `import "${imp.path}" is refused: ${reason} (imports must stay inside the project folder)` });
+    document.diagnostics = kept;
+}
+
 export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions = {}): Promise<LoadedWorkspace> {
     const root = resolve(dir);
     const info = await stat(root).catch(() => undefined);
@@ -112,9 +137,10 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     const documents: WorkspaceDocument[] = [];
     const loaded = new Set<string>();
     const langiumDocs = shared.workspace.LangiumDocuments;
-    const load = (path: string) => {
+    const confine = options.confineImportsTo === undefined ? undefined : resolve(options.confineImportsTo);
+    const refused: { document: LangiumDocument<Model>; imp: Import; reason: string }[] = [];
+    const load = (path: string, text = readFileSync(path, 'utf8')) => {
         loaded.add(path);
-        const text = readFileSync(path, 'utf8');
         const uri = URI.file(path);
         if (langiumDocs.hasDocument(uri)) langiumDocs.deleteDocument(uri);
         const document = shared.workspace.LangiumDocumentFactory.fromString<Model>(text, uri);
@@ -126,13 +152,28 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     for (let i = 0; i < documents.length; i++) {
         const { path, model } = documents[i]!;
         for (const imp of model?.imports ?? []) {
-            if (!imp.path?.endsWith('.contract')) continue;
+            if (imp.path === undefined) continue;
+            if (confine !== undefined && !imp.path.endsWith('.contract')) {
+                // never loaded, but still named as refused rather than "does not exist" when it points out
+                const reason = lexicalRefusal(confine, path, imp.path);
+                if (reason) refused.push({ document: documents[i]!.document, imp, reason });
+                continue;
+            }
+            if (!imp.path.endsWith('.contract')) continue;
+            if (confine !== undefined) {
+                if (!isAbsolute(imp.path) && loaded.has(resolve(dirname(path), imp.path))) continue;
+                const found = resolveConfinedImport(confine, path, imp.path, options.maxImportBytes);
+                if (found.kind === 'refused') refused.push({ document: documents[i]!.document, imp, reason: found.reason });
+                else if (found.kind === 'ok' && !loaded.has(found.path)) load(found.path, found.text);
+                continue;
+            }
             const target = resolve(dirname(path), imp.path);
             if (loaded.has(target) || !isFile(target)) continue;
             load(target);
         }
     }
     await shared.workspace.DocumentBuilder.build(documents.map((d) => d.document), { validation: true });
+    for (const r of refused) reportRefusedImport(r.document, r.imp, r.reason);
     const diagnostics = documents.flatMap((d) => (d.document.diagnostics ?? []).map((diag) => toWorkspaceDiagnostic(d.file, diag)));
     diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
     return { dir: root, documents, diagnostics, services };

@@ -3,15 +3,19 @@
  * `contract-language-server`: the Cactal language server over stdio (or any transport
  * vscode-languageserver reads from the command line: --stdio, --node-ipc, --socket=N), for any
  * LSP editor. Files are read from disk (imports resolve relative to the importing file).
+ * `.scenario` files (language id `cactal-scenario`) get diagnostics, completion and hover
+ * (docs/simulation.md "Editing scenarios").
  */
 import { startLanguageServer } from 'langium/lsp';
 import { NodeFileSystem } from 'langium/node';
 import { createConnection, ProposedFeatures } from 'vscode-languageserver/node.js';
 import { createCactalServices } from '../cactal-module.js';
+import { addScenarioSupport } from '../lsp/scenario/scenario-server.js';
 
 if (!process.argv.some((a) => a === '--stdio' || a === '--node-ipc' || a.startsWith('--socket') || a.startsWith('--pipe'))) {
     process.argv.push('--stdio');
 }
 const connection = createConnection(ProposedFeatures.all);
 const { shared } = createCactalServices({ connection, ...NodeFileSystem });
+addScenarioSupport(shared);
 startLanguageServer(shared);

@@ -1,5 +1,5 @@
 /**
- * Scoping of every Cactal cross-reference (SPEC §2.1–2.6):
+ * Scoping of every Cactal cross-reference (docs/language-reference.md §1–6):
  * - top-level names (types, functions, modules, supervisors, schemas): the file and its direct imports;
  * - ports by index in the context of their owner, kind and direction (`MSC:1 -> MSD:2`);
  * - members: schema parameters, supervision functions and their parameters, rule labels;

@@ -1,6 +1,6 @@
 /**
  * Project-wide facts: what one file contributes to the diagnostics of files that do not refer to
- * it (SPEC §2.1–2.6 checks that look at the whole project or follow cycles through several files).
+ * it (docs/language-reference.md §1–6 checks that look at the whole project or follow cycles through several files).
  *
  * | fact | diagnostics of other files that depend on it |
  * |---|---|

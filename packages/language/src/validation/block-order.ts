@@ -1,5 +1,5 @@
 /**
- * The blocks of a module or schema body come in a fixed order, each at most once (SPEC §2.3, §2.4).
+ * The blocks of a module or schema body come in a fixed order, each at most once (docs/language-reference.md §3, §4).
  * module-checks.ts and schema-checks.ts give the order, the block names and their codes.
  */
 import type { AstNode, ValidationAcceptor } from 'langium';

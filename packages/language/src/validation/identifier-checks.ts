@@ -1,19 +1,29 @@
 /**
- * Identifiers become C names as they are (report §5.3): no C keyword, no leading `_`.
+ * Identifiers become C names as they are (report §5.3): no C keyword, no leading `_`, and no name
+ * that the generated C or the headers it includes already take (c-names/reserved-names.ts;
+ * docs/language-reference.md, "Reserved names").
  */
-import type { AstNode, ValidationAcceptor, ValidationChecks } from 'langium';
-import type { CactalAstType } from '../generated/ast.js';
+import { AstUtils, type AstNode, type MultiMap, type AstNodeDescription, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { isDataType, isModule, type CactalAstType, type DataType, type FunctionPrototype } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
+import { CommonHeaderIndex } from './c-names/common-headers.js';
+import { cNameConflict, suggestName, type CNameRole, type ProjectCNames } from './c-names/reserved-names.js';
 import { ModuleCodes } from './codes/modules.js';
+import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
 
-/** C11 keywords, plus bool/true/false (C23 keywords, stdbool.h macros). */
+/**
+ * C11 keywords, the C23 ones (bool, true, false, alignas, ...: keywords when the generated tree is
+ * built with a newer -std, stdbool.h/stdalign.h macros before) and GNU C's `asm` and `typeof`
+ * (keywords when CFLAGS drops -std=c11 for gcc's default gnu dialect).
+ */
 export const C_KEYWORDS = new Set([
     'auto', 'break', 'case', 'char', 'const', 'continue', 'default', 'do', 'double', 'else', 'enum', 'extern',
     'float', 'for', 'goto', 'if', 'inline', 'int', 'long', 'register', 'restrict', 'return', 'short', 'signed',
     'sizeof', 'static', 'struct', 'switch', 'typedef', 'union', 'unsigned', 'void', 'volatile', 'while',
     '_Alignas', '_Alignof', '_Atomic', '_Bool', '_Complex', '_Generic', '_Imaginary', '_Noreturn', '_Static_assert',
-    '_Thread_local', 'bool', 'true', 'false'
+    '_Thread_local', 'bool', 'true', 'false', 'alignas', 'alignof', 'constexpr', 'nullptr', 'static_assert',
+    'thread_local', 'typeof', 'typeof_unqual', 'asm'
 ]);
 
 const NAMED_TYPES = [
@@ -21,18 +31,98 @@ const NAMED_TYPES = [
     'SchemaParameter', 'Supervisor', 'SupervisionFunction', 'FunctionParameter', 'LocalVariable', 'Rule'
 ] as const;
 
-function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAcceptor): void {
+/** What a named node becomes in the generated C (see c-names/reserved-names.ts), or undefined for names only used in strings. */
+export function cNameRole(node: AstNode): CNameRole | undefined {
+    switch (node.$type) {
+        case 'DataType': return 'datatype';
+        case 'FunctionPrototype': return 'function';
+        case 'Port': case 'Parameter': return AstUtils.getContainerOfType(node, isModule) ? 'module-variable' : undefined;
+        case 'Field': case 'SchemaParameter': case 'FunctionParameter': case 'LocalVariable': return 'member';
+        case 'FunctionArgument': return 'argument';
+        default: return undefined;
+    }
+}
+
+const datatypeSets = new WeakMap<MultiMap<string, AstNodeDescription>, ProjectCNames>();
+
+/** The project's names that the reserved-name rules depend on (cached per workspace build). */
+export function projectCNames(names: ProjectNames): ProjectCNames {
+    const byName = names.byName(['DataType']);
+    let project = datatypeSets.get(byName);
+    if (!project) {
+        project = { datatypes: new Set(byName.keys()) };
+        datatypeSets.set(byName, project);
+    }
+    return project;
+}
+
+function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAcceptor, names: ProjectNames): void {
     const name = node.name;
     if (!name) return;
     if (C_KEYWORDS.has(name)) {
         report(accept, ModuleCodes['identifier-c-keyword'], `'${name}' is a C keyword and the generated C uses Cactal names as they are: choose another name (e.g. '${name}_').`, { node, property: 'name' as never });
-    } else if (name.startsWith('_')) {
-        report(accept, ModuleCodes['identifier-reserved-prefix'], `'${name}' starts with '_', which is reserved for generated code: choose a name starting with a letter.`, { node, property: 'name' as never });
+        return;
     }
+    if (name.startsWith('_')) {
+        report(accept, ModuleCodes['identifier-reserved-prefix'], `'${name}' starts with '_', which is reserved for generated code: choose a name starting with a letter.`, { node, property: 'name' as never });
+        return;
+    }
+    const role = cNameRole(node);
+    if (!role) return;
+    const project = projectCNames(names);
+    const why = cNameConflict(name, role, project);
+    if (!why) return;
+    const suggestion = suggestName(name, (candidate) => cNameConflict(candidate, role, project) === undefined);
+    report(accept, ModuleCodes['identifier-c-reserved'],
+        `'${name}' cannot name a ${kindWord(node)} in the generated C: ${why}. Choose another name (e.g. '${suggestion}').`,
+        { node, property: 'name' as never, data: { suggestion } });
 }
 
-export function identifierChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
-    const checks: Record<string, typeof checkIdentifier> = {};
-    for (const type of NAMED_TYPES) checks[type] = checkIdentifier;
+const KIND_WORDS: Record<string, string> = {
+    DataType: 'datatype', FunctionPrototype: 'function', Port: 'port', Parameter: 'parameter', Field: 'field',
+    SchemaParameter: 'schema parameter', FunctionParameter: 'parameter', LocalVariable: 'local', FunctionArgument: 'argument'
+};
+function kindWord(node: AstNode): string {
+    return KIND_WORDS[node.$type] ?? 'element';
+}
+
+const headerIndexes = new WeakMap<MultiMap<string, AstNodeDescription>, CommonHeaderIndex>();
+
+/** The common/ headers of the project's datatypes and functions (cached per workspace build). */
+export function commonHeaders(names: ProjectNames): CommonHeaderIndex {
+    const datatypes = names.byName(['DataType']);
+    let index = headerIndexes.get(datatypes);
+    if (!index) {
+        const functions = names.byName(['FunctionPrototype']);
+        index = new CommonHeaderIndex([
+            ...[...datatypes.keys()].map((name) => ({ kind: 'datatype' as const, name })),
+            ...[...functions.keys()].map((name) => ({ kind: 'function' as const, name }))
+        ]);
+        headerIndexes.set(datatypes, index);
+    }
+    return index;
+}
+
+/** A datatype or function whose generated `common/` header would share a file or an include guard with another's. */
+function checkCommonHeader(node: DataType | FunctionPrototype, accept: ValidationAcceptor, names: ProjectNames): void {
+    if (!node.name) return;
+    const owner = { kind: isDataType(node) ? 'datatype' as const : 'function' as const, name: node.name };
+    const index = commonHeaders(names);
+    const clash = index.clash(owner);
+    if (!clash) return;
+    const suggestion = suggestName(node.name, (candidate) => index.clash({ kind: owner.kind, name: candidate }) === undefined);
+    report(accept, ModuleCodes['identifier-generated-clash'],
+        `${owner.kind} '${node.name}' and ${clash.other.kind} '${clash.other.name}' would share the generated ${clash.shared}: rename one of them (e.g. '${suggestion}').`,
+        { node, property: 'name', data: { suggestion } });
+}
+
+export function identifierChecks(services: CactalServices): ValidationChecks<CactalAstType> {
+    const names = new ProjectNames(services);
+    const check = (node: AstNode & { name?: string }, accept: ValidationAcceptor) => checkIdentifier(node, accept, names);
+    const checks: Record<string, (node: never, accept: ValidationAcceptor) => void> = {};
+    for (const type of NAMED_TYPES) checks[type] = check;
+    const header = (node: DataType | FunctionPrototype, accept: ValidationAcceptor) => checkCommonHeader(node, accept, names);
+    checks['DataType'] = (node: DataType, accept) => { check(node, accept); header(node, accept); };
+    checks['FunctionPrototype'] = (node: FunctionPrototype, accept) => { check(node, accept); header(node, accept); };
     return checks as ValidationChecks<CactalAstType>;
 }

@@ -1,4 +1,4 @@
-/** SPEC §2.1: imports (missing file, cycles, unused, duplicates, position) and file content. */
+/** docs/language-reference.md §1: imports (missing file, cycles, unused, duplicates, position) and file content. */
 import { AstUtils, URI, UriUtils, WorkspaceCache, type AstNode, type LangiumDocument, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isActivateSchema, isDataType, isFunctionPrototype, isModel, isSchedulerConfiguration,

@@ -1,5 +1,5 @@
 /**
- * SPEC §2.3: module and supervisor names, project-wide uniqueness, block order, synchronous and
+ * docs/language-reference.md §3: module and supervisor names, project-wide uniqueness, block order, synchronous and
  * asynchronous restrictions, port indexes per kind and direction, member names, time literals.
  */
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';

@@ -1,5 +1,5 @@
 /**
- * SPEC §2.4 and §2.6: module parameterisations `(value :N, ...)`, in a schema's `modules` block
+ * docs/language-reference.md §4 and §6: module parameterisations `(value :N, ...)`, in a schema's `modules` block
  * and in a supervisor's `parameterize M(...)`: the port exists (linking), each port is set once,
  * and the value fits the parameter's type (constants, or schema parameters / supervisor locals and
  * event-port variables with field paths).

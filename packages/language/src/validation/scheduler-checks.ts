@@ -1,5 +1,5 @@
 /**
- * SPEC §2.5: the scheduler configuration — one per project, synchronous modules and periodic
+ * docs/language-reference.md §5: the scheduler configuration — one per project, synchronous modules and periodic
  * schemas only, every module of a listed schema listed, every periodic schema a supervisor
  * activates listed, and the combined utilisation of the listed schemas.
  */

@@ -1,5 +1,5 @@
 /**
- * SPEC §2.4: schemas — unique names and parameters, block order and blocks forbidden in event
+ * docs/language-reference.md §4: schemas — unique names and parameters, block order and blocks forbidden in event
  * schemas, module kinds, the scheduling graph (only the schema's modules, acyclic), communications
  * (kinds, types, periodicity, one producer per input port) and the timing analysis warnings.
  */

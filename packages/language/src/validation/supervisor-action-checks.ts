@@ -1,5 +1,5 @@
 /**
- * SPEC §2.6, actions: every reference resolved (linking) and type-checked — `activate schema`
+ * docs/language-reference.md §6, actions: every reference resolved (linking) and type-checked — `activate schema`
  * and `activate supervisor` arguments, `activate resttime|critical module` on asynchronous
  * modules, `subscribe` port types, `notify` assignments set once. (`parameterize` is checked with
  * schema parameterisations; `compute` and test functions with the function prototypes.)

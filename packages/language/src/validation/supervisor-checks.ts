@@ -1,5 +1,5 @@
 /**
- * SPEC §2.6, structure of supervisors: unique function, parameter, local and label names; one
+ * docs/language-reference.md §6, structure of supervisors: unique function, parameter, local and label names; one
  * producer per input event port across the supervisor's subscribes; no cycle of
  * `activate supervisor` between supervisors. Conditions are checked in supervisor-rule-checks.ts,
  * actions in supervisor-action-checks.ts.

@@ -1,5 +1,5 @@
 /**
- * SPEC §2.6, rules and conditions: rules never use the function's parameters; ORD events and
+ * docs/language-reference.md §6, rules and conditions: rules never use the function's parameters; ORD events and
  * `ord_schema`; test operands of the same type; extraction targets are locals and values fit them;
  * the report's rule hygiene warnings (§4.7): endof(L) in L's postcondition, started/duration(L) in
  * L's precondition, clauses with more than one transient event, module events never subscribed.
@@ -19,7 +19,7 @@ import { SupervisorCodes } from './codes/supervisors.js';
 import { report } from './report.js';
 import { checkValue } from './value-checker.js';
 
-/** The ORD event ports (SPEC §4.2): 0 = critical delay missed, 1 = activation refused. */
+/** The ORD event ports (docs/semantics.md "Scheduler: critical delay (ORD:0)", "Scheduler: conflict (ORD:1)"): 0 = critical delay missed, 1 = activation refused. */
 export const ORD_EVENT_PORTS: Readonly<Record<number, string>> = { 0: 'critical delay missed', 1: 'schema activation refused' };
 
 export function supervisorRuleChecks(_services: CactalServices): ValidationChecks<CactalAstType> {

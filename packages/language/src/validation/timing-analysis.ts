@@ -1,5 +1,5 @@
 /**
- * Timing analysis of periodic schemas (SPEC §2.4, beyond the report): utilisation (sum of C /
+ * Timing analysis of periodic schemas (docs/language-reference.md §4, beyond the report): utilisation (sum of C /
  * PERIOD), the critical path (longest path of summed C through the precedence graph) and
  * precedence cycles. Pure functions over the AST, shared by validation and hover.
  */

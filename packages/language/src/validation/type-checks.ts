@@ -1,4 +1,4 @@
-/** SPEC §2.2: datatypes, function prototypes, values in declarations, test/compute function use. */
+/** docs/language-reference.md §2: datatypes, function prototypes, values in declarations, test/compute function use. */
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isFunctionPrototype, isLocalVariable,

@@ -1,5 +1,5 @@
 /**
- * Type checking of written values (SPEC §2.2), reusable wherever a value is written: defaults,
+ * Type checking of written values (docs/language-reference.md §2), reusable wherever a value is written: defaults,
  * parameters, locals, parameterisations, extractions, notify, function arguments.
  * - an int literal fits int and float; a real fits float only (a real for an int is an error);
  * - a string literal fits string and is at most 255 bytes (UTF-8);

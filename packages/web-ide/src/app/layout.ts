@@ -14,6 +14,7 @@ export function createLayout(root: HTMLElement) {
     runSettings: btn('btn-run-settings', '⚙', '', 'Run settings: duration and start request'),
     arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas'),
     timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs'),
+    monitor: btn('btn-monitor', '◉', 'Monitor', 'Watch the run: rules, schemas, deadlines (live during Build & Run, replay after)'),
   };
   toolbar.stop.disabled = true;
   const workspaceName = h('span', { class: 'workspace-name' });
@@ -21,7 +22,7 @@ export function createLayout(root: HTMLElement) {
     h('div', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
     workspaceName, h('div', { class: 'toolbar-group' }, toolbar.newFile, toolbar.newFolder, toolbar.newProject),
     h('div', { class: 'toolbar-group' }, toolbar.generate, toolbar.run, toolbar.runSettings, toolbar.stop),
-    h('span', { class: 'grow' }), h('div', { class: 'toolbar-group' }, toolbar.arch, toolbar.timeline));
+    h('span', { class: 'grow' }), h('div', { class: 'toolbar-group' }, toolbar.arch, toolbar.timeline, toolbar.monitor));
 
   const explorerBody = h('div', { class: 'section-body explorer-body' });
   const outlineBody = h('div', { class: 'section-body outline-body' });

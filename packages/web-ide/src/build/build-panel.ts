@@ -25,6 +25,10 @@ export class BuildPanel {
   readonly onStatus = new Emitter<{ status: string; message?: string; running: boolean }>();
   /** A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET /api/jobs/:id/artifacts. */
   readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean }>();
+  /** A job was submitted (its events follow). */
+  readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
+  /** The run's trace, live: whole CSV record lines (docs/build-service-api.md "Trace channel"; build-service job-events.ts TraceEvent). */
+  readonly onTrace = new Emitter<{ jobId: string; records: Array<{ file: string; line: number; text: string }> }>();
   readonly element: HTMLElement;
   private readonly chips: HTMLElement;
   private readonly statusEl: HTMLElement;
@@ -113,6 +117,11 @@ export class BuildPanel {
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);
     const es = new EventSource(`/api/jobs/${encodeURIComponent(job.id)}/events`);
     this.source = es;
+    this.onStarted.fire({ jobId: job.id, action });
+    es.addEventListener('trace', (e) => {
+      const d = JSON.parse((e as MessageEvent).data) as { records?: unknown };
+      if (Array.isArray(d.records)) this.onTrace.fire({ jobId: job.id, records: d.records as Array<{ file: string; line: number; text: string }> });
+    });
     es.addEventListener('line', (e) => this.append(JSON.parse((e as MessageEvent).data) as LogLine));
     es.addEventListener('status', (e) => {
       const d = JSON.parse((e as MessageEvent).data) as { status: string; step?: string };

@@ -1,4 +1,5 @@
 import { monaco } from './monaco.js';
+import { registerScenarioLanguage } from './scenario-language.js';
 
 export const CACTAL_LANGUAGE_ID = 'cactal';
 
@@ -50,6 +51,7 @@ export const cactalMonarch: monaco.languages.IMonarchLanguage = {
 };
 
 export function registerCactalLanguage(): void {
+  registerScenarioLanguage(); // .scenario files (docs/simulation.md "Editing scenarios")
   monaco.languages.register({ id: CACTAL_LANGUAGE_ID, extensions: ['.contract'], aliases: ['Cactal', 'cactal'] });
   monaco.languages.setMonarchTokensProvider(CACTAL_LANGUAGE_ID, cactalMonarch);
   monaco.languages.setLanguageConfiguration(CACTAL_LANGUAGE_ID, {

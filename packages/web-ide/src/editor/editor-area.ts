@@ -23,6 +23,8 @@ export interface ViewTab {
 export class EditorArea {
   readonly editor: monaco.editor.IStandaloneCodeEditor;
   readonly onActiveChanged = new Emitter<string | undefined>();
+  /** Tabs opened, closed, renamed or reordered (the layout store saves them: app/layout-state.ts). */
+  readonly onTabsChanged = new Emitter<void>();
   private readonly tabsEl: HTMLElement;
   private readonly editorHost: HTMLElement;
   private readonly viewHost: HTMLElement;
@@ -94,6 +96,21 @@ export class EditorArea {
     return this.tabs.includes(id);
   }
 
+  /** The open tabs in order, the active one, and each file tab's cursor and scroll (Monaco view state). */
+  tabsState(): { tabs: string[]; active?: string; viewStates: Record<string, monaco.editor.ICodeEditorViewState> } {
+    const viewStates: Record<string, monaco.editor.ICodeEditorViewState> = {};
+    for (const id of this.tabs) {
+      const vs = id === this.active && !this.views.has(id) && this.editor.getModel() ? this.editor.saveViewState() : this.viewStates.get(id);
+      if (vs) viewStates[id] = vs;
+    }
+    return { tabs: [...this.tabs], active: this.active, viewStates };
+  }
+
+  /** The cursor and scroll a file tab gets when it is next shown (a restored layout). */
+  presetViewState(id: string, state: monaco.editor.ICodeEditorViewState): void {
+    this.viewStates.set(id, state);
+  }
+
   /** Opens (or focuses) a file tab, optionally revealing a position or range. */
   async open(path: string, where?: monaco.IRange | monaco.IPosition): Promise<void> {
     let fs: FileState;
@@ -126,6 +143,11 @@ export class EditorArea {
     this.activate(view.id);
   }
 
+  /** What the side pane shows (the docked architecture diagram, the Monitor), if anything. */
+  get docked(): HTMLElement | undefined {
+    return (this.sidePane.firstElementChild as HTMLElement | null) ?? undefined;
+  }
+
   /** Shows `element` in a pane at the right of the editor (side by side), or removes the pane. */
   dock(element: HTMLElement | undefined): void {
     if (element) this.sidePane.replaceChildren(element);
@@ -150,7 +172,11 @@ export class EditorArea {
       if (fs && this.editor.getModel() !== fs.model) {
         this.editor.setModel(fs.model);
         const vs = this.viewStates.get(id);
-        if (vs) this.editor.restoreViewState(vs);
+        try {
+          if (vs) this.editor.restoreViewState(vs);
+        } catch {
+          // a stored view state from an older layout that Monaco cannot read: the top of the file
+        }
       }
       this.guards.get(id)?.decorate(this.editor);
       this.updateReadOnly();
@@ -205,6 +231,7 @@ export class EditorArea {
   }
 
   private render(): void {
+    this.onTabsChanged.fire();
     this.tabsEl.replaceChildren(
       ...this.tabs.map((id) => {
         const view = this.views.get(id);

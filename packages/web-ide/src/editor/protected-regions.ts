@@ -1,5 +1,5 @@
 /**
- * Protected regions of generated C (SPEC §3.1): `/*PROTECTED REGION ID(<id>) ENABLED START*\/`
+ * Protected regions of generated C (docs/codegen.md "Protected regions"): `/*PROTECTED REGION ID(<id>) ENABLED START*\/`
  * ... `/*PROTECTED REGION END*\/`. The editable span of a region is the text strictly between the
  * end of its START marker and the beginning of its END marker (offsets into the file).
  */

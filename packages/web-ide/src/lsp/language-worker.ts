@@ -7,7 +7,7 @@
 import { DocumentState, EmptyFileSystem, URI } from 'langium';
 import { startLanguageServer } from 'langium/lsp';
 import { BrowserMessageReader, BrowserMessageWriter, createConnection } from 'vscode-languageserver/browser.js';
-import { createCactalServices } from '@contract-studio/language';
+import { addScenarioSupport, createCactalServices } from '@contract-studio/language';
 import { schemasOf, type ArchSchema } from './architecture-model.js';
 
 declare const self: DedicatedWorkerGlobalScope;
@@ -16,6 +16,7 @@ const reader = new BrowserMessageReader(self);
 const writer = new BrowserMessageWriter(self);
 const connection = createConnection(reader, writer);
 const { shared } = createCactalServices({ connection, ...EmptyFileSystem });
+addScenarioSupport(shared); // .scenario files: diagnostics, completion, hover (docs/simulation.md "Editing scenarios")
 startLanguageServer(shared);
 
 // Project-wide checks (one scheduler configuration, names unique across files) depend on files a

@@ -9,9 +9,17 @@ import { BrowserMessageReader, BrowserMessageWriter, createMessageConnection, ty
 import type * as lsp from 'vscode-languageserver-protocol';
 import { Emitter } from '../util/emitter.js';
 import { CACTAL_LANGUAGE_ID } from '../editor/cactal-language.js';
+import { SCENARIO_LANGUAGE_ID } from '../editor/scenario-language.js';
 import * as conv from './lsp-convert.js';
 import type { ArchSchema } from './architecture-model.js';
 import LanguageWorker from './language-worker.ts?worker';
+
+/**
+ * Symbol kinds of the top-level entities that name generated files and region IDs (docs/codegen.md):
+ * modules and supervisors (Class), datatypes (Struct), functions (Function). A schema (Namespace)
+ * names none, so its rename carries nothing over — as `contract rename` does.
+ */
+const NAMES_GENERATED_FILES: readonly number[] = [5, 23, 12];
 
 export const MARKER_OWNER = 'cactal';
 
@@ -22,6 +30,8 @@ export class LspClient {
   /** Last published diagnostics per URI, as sent (their `data` carries what quick fixes need). */
   private readonly diagnostics = new Map<string, lsp.Diagnostic[]>();
   readonly onDiagnostics = new Emitter<{ uri: string; diagnostics: lsp.Diagnostic[] }>();
+  /** window/showMessage from the language server. */
+  readonly onMessage = new Emitter<lsp.ShowMessageParams>();
   readonly ready: Promise<void>;
   private resolveReady!: () => void;
   /** Opened documents whose first diagnostics have not arrived yet (= not fully built). */
@@ -47,6 +57,8 @@ export class LspClient {
     this.connection.onRequest('client/registerCapability', () => null);
     this.connection.onRequest('window/workDoneProgress/create', () => null);
     this.connection.onNotification('window/logMessage', () => undefined);
+    // e.g. why Format did nothing (a syntax error): the server's words, shown as a notice
+    this.connection.onNotification('window/showMessage', (p: lsp.ShowMessageParams) => this.onMessage.fire(p));
     this.connection.listen();
     const init = await this.connection.sendRequest<lsp.InitializeResult>('initialize', {
       processId: null,
@@ -74,8 +86,10 @@ export class LspClient {
     this.resolveReady();
   }
 
+  /** Models the server sees: Cactal files, and scenario files (opened as tabs only). */
   private isCactal(model: monaco.editor.ITextModel): boolean {
-    return model.getLanguageId() === CACTAL_LANGUAGE_ID && model.uri.scheme === 'file';
+    const id = model.getLanguageId();
+    return (id === CACTAL_LANGUAGE_ID || id === SCENARIO_LANGUAGE_ID) && model.uri.scheme === 'file';
   }
 
   private trackModels(): void {
@@ -85,7 +99,7 @@ export class LspClient {
       this.versions.set(uri, 1);
       this.unbuilt.add(uri);
       void this.connection.sendNotification('textDocument/didOpen', {
-        textDocument: { uri, languageId: CACTAL_LANGUAGE_ID, version: 1, text: model.getValue() },
+        textDocument: { uri, languageId: model.getLanguageId(), version: 1, text: model.getValue() },
       } satisfies lsp.DidOpenTextDocumentParams);
       model.onDidChangeContent(() => {
         const version = (this.versions.get(uri) ?? 1) + 1;
@@ -135,6 +149,9 @@ export class LspClient {
   }
 
   request<R>(method: string, params: unknown): Promise<R> {
+    // models that are not workspace files (the conflict view's side-by-side copies) are not in the worker
+    const uri = (params as { textDocument?: { uri?: unknown } } | undefined)?.textDocument?.uri;
+    if (typeof uri === 'string' && !uri.startsWith('file:')) return Promise.resolve(null as R);
     return this.connection.sendRequest(method, params) as Promise<R>;
   }
 
@@ -156,22 +173,7 @@ export class LspClient {
     const doc = (model: monaco.editor.ITextModel) => ({ textDocument: { uri: model.uri.toString() } });
     const at = (model: monaco.editor.ITextModel, position: monaco.Position) => ({ ...doc(model), position: conv.toPosition(position) });
 
-    monaco.languages.registerCompletionItemProvider(id, {
-      triggerCharacters: [':', '.', ' '],
-      provideCompletionItems: async (model, position) => {
-        const r = await this.request<lsp.CompletionList | lsp.CompletionItem[] | null>('textDocument/completion', at(model, position));
-        const word = model.getWordUntilPosition(position);
-        const fallback = new monaco.Range(position.lineNumber, word.startColumn, position.lineNumber, word.endColumn);
-        const items = Array.isArray(r) ? r : (r?.items ?? []);
-        return { suggestions: items.map((i) => conv.toCompletion(i, fallback)), incomplete: !Array.isArray(r) && !!r?.isIncomplete };
-      },
-    });
-    monaco.languages.registerHoverProvider(id, {
-      provideHover: async (model, position) => {
-        const r = await this.request<lsp.Hover | null>('textDocument/hover', at(model, position));
-        return r ? { contents: conv.toMarkdown(r.contents), range: r.range ? conv.toRange(r.range) : undefined } : null;
-      },
-    });
+    for (const languageId of [id, SCENARIO_LANGUAGE_ID]) this.registerCompletionAndHover(languageId);
     monaco.languages.registerDefinitionProvider(id, {
       provideDefinition: async (model, position) => conv.toLocations(await this.request('textDocument/definition', at(model, position))),
     });
@@ -189,7 +191,7 @@ export class LspClient {
         const defs = await this.request<lsp.Definition | lsp.LocationLink[] | null>('textDocument/definition', at(model, position)).catch(() => null);
         const targetUri = conv.toLocations(defs)[0]?.uri.toString() ?? model.uri.toString();
         const symbols = (await this.documentSymbols(targetUri).catch(() => null)) ?? [];
-        const topLevel = symbols.some((s) => s.name === oldName);
+        const topLevel = symbols.some((s) => s.name === oldName && NAMES_GENERATED_FILES.includes(s.kind));
         const r = await this.request<lsp.WorkspaceEdit | null>('textDocument/rename', { ...at(model, position), newName });
         const edit = conv.toWorkspaceEdit(r);
         if (edit.edits.length) this.onRename.fire({ oldName, newName, topLevel });
@@ -250,6 +252,28 @@ export class LspClient {
           children: s.children?.map(map),
         });
         return r.map(map);
+      },
+    });
+  }
+
+  /** Completion and hover: the only editor services of scenario files besides diagnostics. */
+  private registerCompletionAndHover(id: string): void {
+    const doc = (model: monaco.editor.ITextModel) => ({ textDocument: { uri: model.uri.toString() } });
+    const at = (model: monaco.editor.ITextModel, position: monaco.Position) => ({ ...doc(model), position: conv.toPosition(position) });
+    monaco.languages.registerCompletionItemProvider(id, {
+      triggerCharacters: [':', '.', ' '],
+      provideCompletionItems: async (model, position) => {
+        const r = await this.request<lsp.CompletionList | lsp.CompletionItem[] | null>('textDocument/completion', at(model, position));
+        const word = model.getWordUntilPosition(position);
+        const fallback = new monaco.Range(position.lineNumber, word.startColumn, position.lineNumber, word.endColumn);
+        const items = Array.isArray(r) ? r : (r?.items ?? []);
+        return { suggestions: items.map((i) => conv.toCompletion(i, fallback)), incomplete: !Array.isArray(r) && !!r?.isIncomplete };
+      },
+    });
+    monaco.languages.registerHoverProvider(id, {
+      provideHover: async (model, position) => {
+        const r = await this.request<lsp.Hover | null>('textDocument/hover', at(model, position));
+        return r ? { contents: conv.toMarkdown(r.contents), range: r.range ? conv.toRange(r.range) : undefined } : null;
       },
     });
   }

@@ -98,7 +98,9 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
     const cls = flow ? `edge ${flow.kind}` : 'edge precedence';
     for (const s of e.sections ?? []) {
       const pts = [s.startPoint, ...(s.bendPoints ?? []), s.endPoint];
-      root.append(svg('polyline', { points: pts.map((p) => `${p.x},${p.y}`).join(' '), class: cls, 'marker-end': `url(#arrow-${flow ? flow.kind : 'prec'})` }));
+      // data-flow names the flow as the trace does (monitor: `MAA:0->MAB:0`)
+      root.append(svg('polyline', { points: pts.map((p) => `${p.x},${p.y}`).join(' '), class: cls, 'marker-end': `url(#arrow-${flow ? flow.kind : 'prec'})`,
+        ...(flow ? { 'data-flow': `${flow.from}:${flow.fromPort}->${flow.to}:${flow.toPort}` } : {}) }));
     }
     for (const l of e.labels ?? []) {
       if (l.x === undefined) continue;
@@ -115,7 +117,8 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
     for (const p of n.ports ?? []) {
       const [, kind, dir, idx] = p.id.split('.');
       const port = m.ports.find((q) => q.kind === kind && q.direction === dir && q.index === Number(idx));
-      g.append(svg('rect', { x: p.x!, y: p.y!, width: 10, height: 10, class: `port ${kind}` }));
+      // data-port names the port as scenarios and the trace do (`MAA:2`): the Simulate panel injects on a click
+      g.append(svg('rect', { x: p.x!, y: p.y!, width: 10, height: 10, class: `port ${kind}`, 'data-dir': dir ?? '', ...(port ? { 'data-port': `${m.name}:${port.index}` } : {}) }));
       if (!port) continue;
       const label = `:${port.index} ${port.name}`;
       if (kind === 'param') g.append(svg('text', { x: p.x! + 5, y: p.y! - 4, class: 'port-label param', 'text-anchor': 'middle' }, `param :${port.index}`));
@@ -127,6 +130,18 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
   return root;
 }
 
+/** What the monitor (src/monitor/) highlights on the diagram: the run's state at its cursor. */
+export interface LiveHighlight {
+  /** Modules of an active schema. */
+  active: ReadonlySet<string>;
+  /** Modules running a release or an activation right now. */
+  running: ReadonlySet<string>;
+  /** Flows (`data-flow`) that delivered recently: they pulse. */
+  pulsing: ReadonlySet<string>;
+  /** Flows that delivered at least once. */
+  used: ReadonlySet<string>;
+}
+
 /** The view: a schema picker, figures, the diagram and a legend; `update` re-layouts. */
 export class ArchitectureView {
   readonly element: HTMLElement;
@@ -136,10 +151,11 @@ export class ArchitectureView {
   private schemas: ArchSchema[] = [];
   private chosen: string | undefined;
   private seq = 0;
+  private live: LiveHighlight | undefined;
 
   constructor(
     private readonly fetchSchemas: () => Promise<ArchSchema[]>,
-    onToggleDock: () => void,
+    onToggleDock?: () => void,
   ) {
     this.select = h('select', { class: 'arch-select' });
     this.select.addEventListener('change', () => {
@@ -150,9 +166,44 @@ export class ArchitectureView {
     this.canvas = h('div', { class: 'arch-canvas' });
     this.element = h('div', { class: 'arch-view' },
       h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Schema'), this.select, this.info, h('span', { class: 'grow' }),
-        h('button', { class: 'btn small', id: 'arch-dock', title: 'Show the diagram beside the editor (or back in a tab)', onclick: onToggleDock }, '⇆ Side by side'),
+        onToggleDock ? h('button', { class: 'btn small', id: 'arch-dock', title: 'Show the diagram beside the editor (or back in a tab)', onclick: onToggleDock }, '⇆ Side by side') : null,
         h('span', { class: 'legend data' }, '━ data flow'), h('span', { class: 'legend event' }, '┅ event flow'), h('span', { class: 'legend prec' }, '┈ precedence')),
       this.canvas);
+  }
+
+  /** The schema shown, when one is. */
+  get schema(): string | undefined {
+    return this.chosen;
+  }
+
+  /** Shows schema `name` (no-op when it is shown or unknown). */
+  async choose(name: string): Promise<void> {
+    if (name === this.chosen || !this.schemas.some((s) => s.name === name)) return;
+    this.chosen = name;
+    this.select.value = name;
+    await this.draw();
+  }
+
+  /** Marks the run's state on the diagram (classes only: no re-layout), or clears it. */
+  highlight(live: LiveHighlight | undefined): void {
+    this.live = live;
+    const svgEl = this.canvas.querySelector('svg');
+    if (!svgEl) return;
+    // called every frame while a run is watched: touch the DOM only when something changed
+    const key = live ? [live.active, live.running, live.pulsing, live.used].map((s) => [...s].sort().join(',')).join('|') : '';
+    if (svgEl.dataset.live === key) return;
+    svgEl.dataset.live = key;
+    svgEl.classList.toggle('live', !!live);
+    for (const g of svgEl.querySelectorAll<SVGGElement>('.arch-node')) {
+      const m = g.dataset.module ?? '';
+      g.classList.toggle('live-active', !!live?.active.has(m));
+      g.classList.toggle('live-running', !!live?.running.has(m));
+    }
+    for (const e of svgEl.querySelectorAll<SVGPolylineElement>('polyline[data-flow]')) {
+      const f = e.dataset.flow ?? '';
+      e.classList.toggle('pulse', !!live?.pulsing.has(f));
+      e.classList.toggle('used', !!live?.used.has(f));
+    }
   }
 
   async update(): Promise<void> {
@@ -185,6 +236,7 @@ export class ArchitectureView {
       const graph = await layoutSchema(schema);
       if (seq !== this.seq) return;
       this.canvas.replaceChildren(renderSchema(schema, graph));
+      if (this.live) this.highlight(this.live);
     } catch (e) {
       this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Layout failed: ${(e as Error).message}`));
     }

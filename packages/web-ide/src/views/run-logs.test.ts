@@ -38,7 +38,7 @@ describe('run logs', () => {
       const listing = {
         id: 'j 1', status: 'succeeded',
         artifacts: {
-          files: [{ name: 'MSC_1.csv', size: 1 }, { name: 'MSA_1.csv', size: 1 }, { name: 'gone.csv', size: 1 }, { name: 'core.bin', size: 1 }],
+          files: [{ name: 'MSC_1.csv', size: 1 }, { name: 'MSA_1.csv', size: 1, capped: 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written' }, { name: 'gone.csv', size: 1 }, { name: 'core.bin', size: 1 }],
           skipped: [{ name: 'planted.csv', reason: 'not a regular file (symlink): not followed' }], runDirLeftovers: [], collect_ms: 1,
         },
       };
@@ -51,9 +51,10 @@ describe('run logs', () => {
       expect(logs.label).toBe('Build & Run job j 1');
       expect(logs.files.map((x) => x.name)).toEqual(['MSC_1.csv', 'MSA_1.csv']);
       expect(activationsFromLogs(logs.files).acts).toHaveLength(3);
-      expect(logs.problems).toHaveLength(2);
+      expect(logs.problems).toHaveLength(3);
       expect(logs.problems[0]).toMatch(/planted\.csv: not a regular file/);
-      expect(logs.problems[1]).toMatch(/gone\.csv: HTTP 404 no route/);
+      expect(logs.problems[1]).toBe('MSA_1.csv: not whole: the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written');
+      expect(logs.problems[2]).toMatch(/gone\.csv: HTTP 404 no route/);
     });
 
     it('fails with a clear message when the job is unknown', async () => {

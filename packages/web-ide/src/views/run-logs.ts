@@ -34,7 +34,7 @@ export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; err
 
 interface ArtifactListing {
   status: string;
-  artifacts: { files: Array<{ name: string; size: number }>; skipped: Array<{ name: string; reason: string }> };
+  artifacts: { files: Array<{ name: string; size: number; capped?: string | null }>; skipped: Array<{ name: string; reason: string }> };
 }
 
 async function getOk(fetchFn: typeof fetch, url: string): Promise<Response> {
@@ -66,6 +66,7 @@ export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch): P
   const files: LogFile[] = [];
   for (const f of listing.artifacts?.files ?? []) {
     if (!f.name.endsWith('.csv')) continue;
+    if (f.capped) problems.push(`${f.name}: not whole: ${f.capped}`); // a log-capped record ends it (docs/build-service-api.md, GET /api/jobs/:id/artifacts)
     try {
       files.push({ name: f.name, text: await (await getOk(fetchFn, `${base}/${encodeURIComponent(f.name)}`)).text() });
     } catch (e) {

@@ -1,6 +1,7 @@
 /** What kind of editor a workspace path gets. */
 export function languageOf(path: string): string {
   if (path.endsWith('.contract')) return 'cactal';
+  if (path.endsWith('.scenario')) return 'cactal-scenario';
   if (/\.(c|h)$/.test(path)) return 'c';
   if (/(^|\/)(Makefile|makecontrol\w*)$/.test(path)) return 'plaintext';
   return 'plaintext';

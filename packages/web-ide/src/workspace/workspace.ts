@@ -1,18 +1,50 @@
 import { monaco } from '../editor/monaco.js';
-import { api, ApiError, type TreeEntry, type Snapshot } from '../api.js';
+import { api, ApiError, staleDetails, type TreeEntry, type Snapshot } from '../api.js';
 import { Emitter } from '../util/emitter.js';
-import { languageOf, isContract, isGeneratedC } from './file-kinds.js';
+import { languageOf, isContract } from './file-kinds.js';
 import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
+import { replaceByDiff } from '../editor/replace-by-diff.js';
+import { threeWayMerge } from './three-way-merge.js';
 
-export type SaveState = 'saved' | 'dirty' | 'saving' | 'error';
+/** `conflict`: the tab's edits and a change made elsewhere overlap; nothing is saved until the user chose. */
+export type SaveState = 'saved' | 'dirty' | 'saving' | 'error' | 'conflict';
+
+/** Overlapping edits waiting for the user's choice (shown side by side: src/editor/conflict-view.ts). */
+export interface Conflict {
+  path: string;
+  /** The text both sides were edited from. */
+  base: string;
+  /** The tab's text when the conflict was found. */
+  mine: string;
+  /** The disk's text and version. */
+  theirs: string;
+  theirsVersion: string;
+  /** Both sides of each conflicting block between markers (a start for "edit the merge"). */
+  marked: string;
+}
 
 export interface FileState {
   path: string;
   model: monaco.editor.ITextModel;
-  /** Text last confirmed on disk by the server. */
+  /** Text last confirmed on disk by the server: the base the tab's edits are made on. */
   diskText: string;
+  /** The version of `diskText` (the server's SHA-256): every save names it (If-Match). */
+  diskVersion?: string;
   state: SaveState;
   error?: string;
+  conflict?: Conflict;
+  /** The text of a save sent and not answered yet (a reload before the answer must know it may have landed). */
+  sending?: string;
+}
+
+/** What localStorage keeps of a file with unsaved edits: the text and the base it was edited from. */
+interface Backup {
+  v: 1;
+  text: string;
+  baseText: string;
+  baseVersion?: string;
+  /** A save in flight when the copy was made: if the disk holds it after a reload, it landed and is the base. */
+  sentText?: string;
 }
 
 const SAVE_DELAY_MS = 300;
@@ -26,6 +58,10 @@ const BACKUP_PREFIX = 'contract-studio:unsaved:';
  * server refuses (4xx: e.g. a generated file whose protected regions no longer match) is reported
  * and not retried until the text changes. When the server merged a save of a generated file into
  * a newer skeleton on disk, the tab is reloaded from the server's answer.
+ * Every save names the version it was edited from; when the disk moved on (another tab, another
+ * program) the server refuses it (409 + the disk's text) and the tab merges three-way: disjoint
+ * edits are merged and saved, overlapping ones become a `conflict` the user resolves side by side.
+ * A watcher change under unsaved edits is merged the same way (docs/ide.md, "Saves, versions and merges").
  */
 export class Workspace {
   root = '';
@@ -35,6 +71,10 @@ export class Workspace {
   readonly onTree = new Emitter<TreeEntry[]>();
   readonly onFileState = new Emitter<FileState>();
   readonly onNotice = new Emitter<{ level: 'info' | 'warning' | 'error'; text: string }>();
+  /** Overlapping edits found: the UI shows both versions and calls resolveConflict. */
+  readonly onConflict = new Emitter<Conflict>();
+  /** Files whose watcher change arrived while a save was in flight: looked at again after it. */
+  private readonly recheck = new Set<string>();
   private readonly timers = new Map<string, ReturnType<typeof setTimeout>>();
   private readonly retryDelay = new Map<string, number>();
   /** True while a change read from disk is being applied to a model (not a user edit). */
@@ -56,7 +96,7 @@ export class Workspace {
     this.root = snap.root;
     this.entries = snap.entries;
     this.onTree.fire(this.entries);
-    for (const [path, content] of Object.entries(snap.files)) this.adopt(path, content);
+    for (const [path, content] of Object.entries(snap.files)) this.adopt(path, content, snap.versions?.[path]);
     await Promise.all(this.allFiles().filter(isContract).map((p) => this.ensureModel(p)));
     this.restoreBackups();
   }
@@ -84,16 +124,16 @@ export class Workspace {
   async ensureModel(path: string): Promise<FileState> {
     const existing = this.files.get(path);
     if (existing) return existing;
-    const { content } = await api.read(path);
-    return this.adopt(path, content);
+    const { content, version } = await api.read(path);
+    return this.adopt(path, content, version);
   }
 
   /** Creates the model of a file whose disk content is known (once). */
-  private adopt(path: string, content: string): FileState {
+  private adopt(path: string, content: string, version: string | undefined): FileState {
     const again = this.files.get(path);
     if (again) return again;
     const model = monaco.editor.getModel(this.uriOf(path)) ?? monaco.editor.createModel(content, languageOf(path), this.uriOf(path));
-    const fs: FileState = { path, model, diskText: content, state: 'saved' };
+    const fs: FileState = { path, model, diskText: content, diskVersion: version, state: 'saved' };
     this.files.set(path, fs);
     model.onDidChangeContent(() => {
       if (this.applyingExternal) return;
@@ -104,6 +144,11 @@ export class Workspace {
 
   private markDirty(fs: FileState): void {
     const text = fs.model.getValue();
+    if (fs.state === 'conflict') {
+      // kept (with its base) until the user chose in the conflict view; nothing is written meanwhile
+      this.backup(fs, text);
+      return;
+    }
     if (text === fs.diskText && fs.state !== 'error') {
       // back to what is on disk: nothing to write (a pending write could overwrite a newer disk version)
       this.cancelPendingSave(fs.path);
@@ -111,7 +156,7 @@ export class Workspace {
       this.setState(fs, 'saved');
       return;
     }
-    this.backup(fs.path, text);
+    this.backup(fs, text);
     this.setState(fs, 'dirty');
     this.scheduleSave(fs, SAVE_DELAY_MS);
   }
@@ -132,6 +177,7 @@ export class Workspace {
     const fs = this.files.get(path);
     if (!fs || fs.model.isDisposed()) return false;
     this.cancelPendingSave(path);
+    if (fs.state === 'conflict') return false; // the conflict view decides what is written
     const text = fs.model.getValue();
     if (text === fs.diskText && fs.state !== 'error') {
       this.clearBackup(path);
@@ -139,20 +185,33 @@ export class Workspace {
       return true;
     }
     this.setState(fs, 'saving');
+    fs.sending = text;
+    this.backup(fs, text);
     try {
-      const answer = await api.write(path, text);
+      const answer = await api.write(path, text, fs.diskVersion);
+      fs.sending = undefined;
       this.retryDelay.delete(path);
       if (answer.merged && answer.content !== undefined) {
-        this.adoptMerged(fs, text, answer.content, answer.reason ?? 'merged into the file on disk');
+        this.adoptMerged(fs, text, answer.content, answer.version, answer.reason ?? 'merged into the file on disk');
         return true;
       }
       fs.diskText = text;
+      fs.diskVersion = answer.version;
       if (fs.model.getValue() === text) {
         this.clearBackup(path);
         this.setState(fs, 'saved');
       } else this.markDirty(fs);
       return true;
     } catch (e) {
+      fs.sending = undefined;
+      const stale = staleDetails(e);
+      if (stale) {
+        // the disk moved on since this tab's base (another tab, a program): merge, never overwrite
+        this.retryDelay.delete(path);
+        this.setState(fs, 'dirty');
+        this.reconcile(fs, stale.content, stale.version);
+        return (fs.state as SaveState) !== 'conflict';
+      }
       fs.error = e instanceof ApiError ? e.message : String(e);
       if (e instanceof ApiError && e.status >= 400 && e.status < 500) {
         // refused (not a network or server failure): retrying the same text cannot succeed
@@ -174,7 +233,49 @@ export class Workspace {
       });
       this.scheduleSave(fs, delay);
       return false;
+    } finally {
+      if (this.recheck.delete(path)) void this.externalChange(path);
     }
+  }
+
+  /**
+   * The disk holds `theirs` (version `theirsVersion`), not the tab's base: merges the tab's text
+   * with it on that base (three-way-merge.ts). Disjoint edits: the tab shows the merge (cursor
+   * kept), whose base is now `theirs`, and saves it. Overlapping edits: state `conflict`, the
+   * tab's text stays (and its browser copy, with the base), onConflict asks the user.
+   */
+  private reconcile(fs: FileState, theirs: string, theirsVersion: string): void {
+    if (fs.model.isDisposed()) return;
+    const mine = fs.model.getValue();
+    const result = threeWayMerge(fs.diskText, mine, theirs);
+    if (!result.clean) {
+      const conflict: Conflict = { path: fs.path, base: fs.diskText, mine, theirs, theirsVersion, marked: result.marked };
+      fs.conflict = conflict;
+      this.cancelPendingSave(fs.path);
+      this.backup(fs, mine);
+      this.setState(fs, 'conflict');
+      this.onNotice.fire({ level: 'warning', text: `${fs.path}: your edits and a change made elsewhere overlap — choose in the side-by-side view (your text is kept)` });
+      this.onConflict.fire(conflict);
+      return;
+    }
+    fs.diskText = theirs;
+    fs.diskVersion = theirsVersion;
+    if (result.text !== mine) this.showText(fs, result.text);
+    if (result.text !== theirs) this.onNotice.fire({ level: 'info', text: `${fs.path}: merged with a change made elsewhere` });
+    this.markDirty(fs); // saves the merge on its new base (or nothing: it is the disk's text)
+  }
+
+  /** The user's choice for a conflict: `text` is written on the disk's version the conflict showed. */
+  resolveConflict(path: string, text: string): void {
+    const fs = this.files.get(path);
+    if (!fs?.conflict || fs.model.isDisposed()) return;
+    fs.diskText = fs.conflict.theirs;
+    fs.diskVersion = fs.conflict.theirsVersion;
+    fs.conflict = undefined;
+    this.setState(fs, 'dirty');
+    if (fs.model.getValue() !== text) this.showText(fs, text);
+    this.markDirty(fs);
+    if (fs.state === 'dirty') void this.save(path);
   }
 
   /**
@@ -182,22 +283,28 @@ export class Workspace {
    * code around them): show what is on disk now, unless the user typed since the save was sent
    * (then that text is saved, and merged, again).
    */
-  private adoptMerged(fs: FileState, sent: string, onDisk: string, reason: string): void {
+  private adoptMerged(fs: FileState, sent: string, onDisk: string, version: string, reason: string): void {
     fs.diskText = onDisk;
+    fs.diskVersion = version;
     if (fs.model.isDisposed()) return; // the file was closed or deleted meanwhile
     if (fs.model.getValue() === sent) {
-      this.showText(fs, onDisk);
+      this.showText(fs, onDisk, true);
       this.clearBackup(fs.path);
       this.setState(fs, 'saved');
     } else this.markDirty(fs);
     this.onNotice.fire({ level: 'info', text: `${fs.path}: ${reason}` });
   }
 
-  /** Puts `text` in the file's editor model (cursor kept) without taking it for a user edit. */
-  private showText(fs: FileState, text: string): void {
+  /**
+   * Puts `text` in the file's editor model without taking it for a user edit: line by line
+   * (replace-by-diff.ts: the cursor moves with its text), or, for a generated file the server
+   * merged, whole with the cursor kept in its protected region (replace-keeping-cursor.ts).
+   */
+  private showText(fs: FileState, text: string, byRegion = false): void {
     this.applyingExternal = true;
     try {
-      replaceKeepingCursor(fs.model, text);
+      if (byRegion) replaceKeepingCursor(fs.model, text);
+      else replaceByDiff(fs.model, text);
     } finally {
       this.applyingExternal = false;
     }
@@ -207,13 +314,15 @@ export class Workspace {
   async revertToDisk(path: string): Promise<void> {
     const fs = this.files.get(path);
     if (!fs) return;
-    const { content } = await api.read(path);
+    const { content, version } = await api.read(path);
     this.cancelPendingSave(path);
     this.retryDelay.delete(path);
+    fs.conflict = undefined;
     if (fs.model.getValue() !== content) {
       this.showText(fs, content);
     }
     fs.diskText = content;
+    fs.diskVersion = version;
     this.clearBackup(path);
     this.setState(fs, 'saved');
   }
@@ -226,37 +335,53 @@ export class Workspace {
     return [...this.files.values()].some((f) => f.state !== 'saved');
   }
 
-  /** Applies a change made on disk by someone else (watcher event). */
+  /**
+   * Applies a change made on disk by someone else (watcher event). A tab without unsaved edits
+   * shows the new text; one with unsaved edits merges it (reconcile) instead of moving its base to
+   * the new text and then overwriting it. While a save is in flight the change is looked at again
+   * after the save (its answer may already be the newer version, or a 409 that merges it).
+   */
   async externalChange(path: string): Promise<void> {
     const fs = this.files.get(path);
     if (!fs) return;
-    let content: string;
-    try {
-      content = (await api.read(path)).content;
-    } catch (e) {
-      if (e instanceof ApiError && e.status === 404) return; // deleted: the tree refresh handles it
+    if (fs.state === 'saving') {
+      this.recheck.add(path);
       return;
+    }
+    let content: string;
+    let version: string;
+    try {
+      ({ content, version } = await api.read(path));
+    } catch {
+      return; // deleted (the tree refresh handles it) or unreachable (the reconnect re-saves)
+    }
+    if (fs.model.isDisposed() || version === fs.diskVersion) return; // nothing new (our own write echoing back)
+    if ((fs.state as SaveState) === 'saving') {
+      this.recheck.add(path);
+      return;
+    }
+    if (fs.state === 'conflict') {
+      // the conflict view showed an older disk text: compare the user's text with the newest one
+      fs.conflict = undefined;
+      this.setState(fs, 'dirty');
     }
     if (content === fs.model.getValue()) {
       fs.diskText = content;
-      if (fs.state !== 'saving') this.setState(fs, 'saved');
+      fs.diskVersion = version;
+      this.clearBackup(path);
+      this.setState(fs, 'saved');
       return;
     }
-    if (content === fs.diskText) return; // our own earlier write echoing back
     if (fs.state === 'saved') {
       this.showText(fs, content);
       fs.diskText = content;
+      fs.diskVersion = version;
       // Regenerated C is expected to change: only user files get a notice.
       if (!/(^|\/)src-gen\//.test(path)) this.onNotice.fire({ level: 'info', text: `${path} changed on disk: reloaded` });
-    } else {
-      fs.diskText = content;
-      this.onNotice.fire({
-        level: 'warning',
-        text: isGeneratedC(path)
-          ? `${path} was regenerated while you were editing: your protected regions will be saved into the new file`
-          : `${path} changed on disk while you were editing: your version is kept and will be saved`,
-      });
+      return;
     }
+    this.cancelPendingSave(path);
+    this.reconcile(fs, content, version);
   }
 
   /** Forgets a model after its file was deleted or renamed. */
@@ -279,9 +404,11 @@ export class Workspace {
     return `${BACKUP_PREFIX}${this.root}:${path}`;
   }
 
-  private backup(path: string, text: string): void {
+  /** Keeps the tab's text and the base it was edited from (a reload can then still merge). */
+  private backup(fs: FileState, text: string): void {
+    const entry: Backup = { v: 1, text, baseText: fs.diskText, baseVersion: fs.diskVersion, ...(fs.sending !== undefined ? { sentText: fs.sending } : {}) };
     try {
-      localStorage.setItem(this.backupKey(path), text);
+      localStorage.setItem(this.backupKey(fs.path), JSON.stringify(entry));
     } catch {
       this.onNotice.fire({ level: 'warning', text: 'Browser storage full: unsaved text is only in memory until the server confirms' });
     }
@@ -291,23 +418,57 @@ export class Workspace {
     localStorage.removeItem(this.backupKey(path));
   }
 
-  /** Re-applies text that was edited but not confirmed by the server before the last reload. */
+  /** A stored copy: the current JSON form, or a bare text (copies made before versions existed). */
+  private static parseBackup(raw: string): { text: string; baseText?: string; baseVersion?: string; sentText?: string } {
+    try {
+      const v = JSON.parse(raw) as Partial<Backup>;
+      if (v && v.v === 1 && typeof v.text === 'string' && typeof v.baseText === 'string') {
+        return {
+          text: v.text, baseText: v.baseText, baseVersion: typeof v.baseVersion === 'string' ? v.baseVersion : undefined,
+          sentText: typeof v.sentText === 'string' ? v.sentText : undefined,
+        };
+      }
+    } catch {
+      // not JSON: an old bare copy
+    }
+    return { text: raw };
+  }
+
+  /**
+   * Re-applies text that was edited but not confirmed by the server before the last reload. When
+   * the disk moved on since the copy's base, the copy is merged with it (or becomes a conflict)
+   * rather than written over it.
+   */
   private restoreBackups(): void {
     const prefix = `${BACKUP_PREFIX}${this.root}:`;
+    const keys: string[] = [];
     for (let i = 0; i < localStorage.length; i++) {
       const key = localStorage.key(i);
-      if (!key?.startsWith(prefix)) continue;
+      if (key?.startsWith(prefix)) keys.push(key);
+    }
+    for (const key of keys) {
       const path = key.slice(prefix.length);
-      const text = localStorage.getItem(key) ?? '';
+      const copy = Workspace.parseBackup(localStorage.getItem(key) ?? '');
       void this.ensureModel(path)
         .then((fs) => {
-          if (fs.model.getValue() === text) return this.clearBackup(path);
-          fs.model.setValue(text); // triggers markDirty -> save
+          if (fs.model.getValue() === copy.text) return this.clearBackup(path);
           this.onNotice.fire({ level: 'info', text: `Restored unsaved edits of ${path}` });
+          // the disk still holds the copy's base, or the save in flight at the reload landed (then it is the base)
+          if (copy.baseText === undefined || copy.baseVersion === fs.diskVersion || copy.baseText === fs.diskText || copy.sentText === fs.diskText) {
+            fs.model.setValue(copy.text); // triggers markDirty -> save on the disk's version
+            return;
+          }
+          // edited from an older text: merge with the disk's (whose text the model shows now)
+          const disk = { text: fs.diskText, version: fs.diskVersion ?? '' };
+          fs.diskText = copy.baseText;
+          fs.diskVersion = copy.baseVersion;
+          this.showText(fs, copy.text);
+          this.setState(fs, 'dirty');
+          this.reconcile(fs, disk.text, disk.version);
         })
         .catch(() => {
           // The file is gone on disk: recreate it rather than lose the text.
-          void api.write(path, text).then(() => this.refreshTree()).then(() => this.clearBackup(path));
+          void api.write(path, copy.text).then(() => this.refreshTree()).then(() => this.clearBackup(path));
           this.onNotice.fire({ level: 'warning', text: `${path} no longer existed on disk: recreated from your unsaved edits` });
         });
     }

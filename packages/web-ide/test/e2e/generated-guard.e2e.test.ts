@@ -2,7 +2,10 @@
  * End-to-end: the server guards generated C against a stale tab. A tab of MAA_mod/module.c edits a
  * protected region while the browser is offline (its save fails), the model changes and the tree
  * is regenerated meanwhile (by another client: the HTTP API, like the CLI or a second tab); when
- * the browser is back, the stale save must not bring the old skeleton back.
+ * the browser is back, the stale save must not bring the old skeleton back. The save names its
+ * base version, so the server answers 409 with the regenerated file; the tab merges three-way
+ * (its region edit + the new skeleton) and saves that, which the region guard then accepts
+ * (docs/ide.md, "Saves, versions and merges": which mechanism applies where).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync, writeFileSync } from 'node:fs';
@@ -21,7 +24,7 @@ const editModel = (from: string, to: string) => {
 };
 /** Generate All by another client (not this browser, which is offline). */
 const generateElsewhere = async () => {
-  const res = await fetch(`${s.server.url}/api/generate`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: '{"project":""}' });
+  const res = await fetch(`${s.server.url}/api/generate`, { method: 'POST', headers: { 'content-type': 'application/json', 'x-contract-token': s.server.token }, body: '{"project":""}' });
   expect(res.status).toBe(200);
   return (await res.json()) as { updated: string[]; orphaned: string[] };
 };
@@ -68,7 +71,7 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     expect(merged).toContain('added_status'); // the new skeleton stayed
     expect(merged.match(/added_status/g)!.length).toBeGreaterThan(1); // variable + interface table
     await expect.poll(() => activeValue(page), { timeout: 10_000 }).toBe(merged);
-    await page.locator('.toast.info', { hasText: 'your regions were kept and the file reloaded' }).first().waitFor({ timeout: 5000 });
+    await page.locator('.toast.info', { hasText: 'merged with a change made elsewhere' }).first().waitFor({ timeout: 5000 });
     await waitSaved(page);
     await expect.poll(() => page.locator('.toast.error', { hasText: `Could not save ${MAA}` }).count()).toBe(0); // out of date once saved
     // the cursor stayed in the region it was typing in
@@ -77,7 +80,7 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await shot(page, '10-stale-tab-merged');
   });
 
-  it('a stale save holding a region the regenerated file no longer has is refused, told, kept in the browser and not retried', async () => {
+  it('a stale edit of a region the regenerated file no longer has: side-by-side view; "keep mine" is refused by the guard, told, kept in the browser and not retried', async () => {
     const { page } = s;
     await page.context().setOffline(true);
     try {
@@ -93,6 +96,10 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     const puts: string[] = [];
     page.on('request', (r) => r.method() === 'PUT' && puts.push(r.url()));
     await page.keyboard.press('Control+s');
+    // the edit sits in a block the regeneration removed: an overlap, nothing written yet
+    await page.locator('.conflict-overlay').waitFor({ timeout: 10_000 });
+    expect(disk(MAA)).toBe(onDisk);
+    await page.locator('#conflict-keep-mine').click();
     const refused = page.locator('.toast.error', { hasText: 'Not saved:' }).first();
     await refused.waitFor({ timeout: 10_000 });
     expect(await refused.textContent()).toMatch(/'protect_event_MAA' no longer exists/);

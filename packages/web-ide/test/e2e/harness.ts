@@ -7,6 +7,7 @@ import { startIdeServer, type IdeServer } from '../../server/ide-server.js';
 
 export const PKG = fileURLToPath(new URL('../..', import.meta.url));
 export const TUTORIAL = join(PKG, '../../examples/tutorial');
+export const MOBILE_ROBOT = join(PKG, '../../examples/mobile-robot');
 export const SHOTS = join(PKG, 'test-output');
 
 export const CHROMIUM_ARGS = [
@@ -25,11 +26,11 @@ export interface Session {
 }
 
 /** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
-export async function startSession(opts: { buildService?: boolean; empty?: boolean } = {}): Promise<Session> {
+export async function startSession(opts: { buildService?: boolean; empty?: boolean; example?: string } = {}): Promise<Session> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
   const workspace = join(base, 'tutorial');
   if (opts.empty) mkdirSync(workspace);
-  else cpSync(TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
+  else cpSync(opts.example ?? TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
   const server = await startIdeServer({ workspace, port: 0, buildService: opts.buildService ?? true });
   const userDataDir = join(base, 'chromium-profile');
   mkdirSync(userDataDir);
@@ -52,7 +53,7 @@ export async function startSession(opts: { buildService?: boolean; empty?: boole
 
 export async function openIde(s: Session): Promise<number> {
   const t0 = Date.now();
-  await s.page.goto(s.server.url + '/');
+  await s.page.goto(s.server.openUrl); // the token becomes the session cookie
   await s.page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
   return Date.now() - t0;
 }
@@ -101,4 +102,18 @@ export async function openFile(page: Page, path: string): Promise<void> {
 /** Waits until every file is saved (status bar). */
 export async function waitSaved(page: Page): Promise<void> {
   await page.waitForFunction(() => document.getElementById('status-save')?.textContent?.includes('All saved'), undefined, { timeout: 10_000 });
+}
+
+/** A second browser on the same server (its own profile, so its own localStorage), the IDE ready in it. */
+export async function openAnotherBrowser(s: Session, name: string): Promise<{ page: Page; close(): Promise<void> }> {
+  const dir = join(s.userDataDir, '..', `chromium-${name}`);
+  mkdirSync(dir, { recursive: true });
+  const context = await chromium.launchPersistentContext(dir, {
+    executablePath: '/usr/bin/chromium', args: CHROMIUM_ARGS, viewport: { width: 1440, height: 900 },
+  });
+  const page = context.pages()[0] ?? (await context.newPage());
+  page.on('pageerror', (e) => console.error(`[page error ${name}]`, e.message));
+  await page.goto(s.server.openUrl);
+  await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+  return { page, close: () => context.close().catch(() => undefined) };
 }

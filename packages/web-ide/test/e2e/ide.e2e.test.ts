@@ -385,6 +385,7 @@ describe('IDE in headless Chromium', () => {
     const { page } = s;
     await openFile(page, 'smodule4.contract');
     const port = Number(new URL(s.server.url).port);
+    const token = s.server.token; // the restarted server keeps the session the page holds
     await s.server.close();
     try {
       await placeCursor(page, 'synchronous module MSD');
@@ -394,7 +395,7 @@ describe('IDE in headless Chromium', () => {
       await shot(page, '08-save-failed');
       expect(disk('smodule4.contract')).not.toContain('written while the server was down');
     } finally {
-      s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false });
+      s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false, token });
     }
     await expect.poll(() => disk('smodule4.contract'), { timeout: 20_000 }).toContain('// written while the server was down');
     await waitSaved(page);

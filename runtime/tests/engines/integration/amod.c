@@ -1,8 +1,9 @@
 /*
- * amod.c — an asynchronous module for the engines' integration test (AMX): once started it
- * posts a counter 1, 2, 3, ... on its output event port 0 every 10 ms until it is stopped.
+ * amod.c — an asynchronous module for the engines' integration test (AMX; built again as AMY
+ * with -DAMOD_NAME='"AMY"'): once started it posts a counter 1, 2, 3, ... on its output event
+ * port 0 every 10 ms until it is stopped; events on its input event port 0 are recorded.
  * Waiting uses WaitForRequestUntil on absolute deadlines. It writes "param <v>", "start",
- * "post <v>" and "stop" lines to $ITEST_OUT/AMX.trace.
+ * "post <v>", "got <v>" and "stop" lines to $ITEST_OUT/<name>.trace.
  */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
@@ -14,12 +15,16 @@
 MODULE_DESCRIPTION("engines integration test asynchronous module");
 MODULE_AUTHOR("engines tests");
 
-static long counter, param_step = 1;
-char MODULE_NAME[] = "AMX";
+#ifndef AMOD_NAME
+#define AMOD_NAME "AMX"
+#endif
+
+static long counter, received, param_step = 1;
+char MODULE_NAME[] = AMOD_NAME;
 int MODULE_PRIORITY = 40;
 ModuleUse IUSE[] = {IUSE_TERM};
 ModuleProduce IPRODUCE[] = {IPRODUCE_TERM};
-ModuleReact IREACT[] = {IREACT_TERM};
+ModuleReact IREACT[] = {{&received, 0, sizeof(long), "---", -1, 0}, IREACT_TERM};
 ModuleDetect IDETECT[] = {{&counter, 0, sizeof(long)}, IDETECT_TERM};
 size_t PARAM_SIZE_IN[] = {sizeof(long), PARAM_SIZE_TERM};
 size_t PARAM_SIZE_OUT[] = {PARAM_SIZE_TERM};
@@ -59,6 +64,9 @@ int ModuleMain(int argc, const char *argv[]) {
         case REQ_SETPARAM:
             if (GetDataFromSetParamRequest(m, &param_step, sizeof param_step, &pt, &rt) == 0 && trace)
                 fprintf(trace, "param %ld\n", param_step);
+            break;
+        case REQ_EVENT:
+            if (GetEventId(NULL, NULL) == 0 && trace) fprintf(trace, "got %ld\n", received);
             break;
         case REQ_KILL:
             if (trace) fclose(trace);

@@ -4,6 +4,8 @@
  * 15 ms): IMA (gain :0) -> IMB, IMA -> IMC; IMA:0 -> IMB:0 * 1, IMA:0 -> IMC:0 * 2; schema ICF
  * uses IMB too (conflict); supervisor to notify: ISU. Built with -DIORD_RSC (as rsc/ORD) for
  * the reactivation scenario: schema RSC: RMA -> RMB -> RMC, supervisor RSU (tables: itables.h).
+ * Built with -DIORD_UNDO (as undo/ORD) for the undo scenario: schema PSC: UMA, supervisors UPA
+ * and USM.
  */
 #include "../engine_executable.h"
 
@@ -11,7 +13,11 @@ ENGINE_EXECUTABLE("ORD", 80, "engines integration test scheduler")
 
 #include "itables.h"
 
-#ifdef IORD_RSC
+#if defined(IORD_UNDO)
+static const ContractOrdModule modules[] = {{"UMA", 50, 300000}};
+static const ContractSchema *const schemas[] = {&ITEST_PSC};
+static const char *const supervisors[] = {"UPA", "USM"};
+#elif defined(IORD_RSC)
 static const ContractOrdModule modules[] = {{"RMA", 50, 300000}, {"RMB", 50, 300000}, {"RMC", 50, 300000}};
 static const ContractSchema *const schemas[] = {&ITEST_RSC};
 static const char *const supervisors[] = {"RSU"};

@@ -1,6 +1,6 @@
 /*
- * ishare.c — two supervisors sharing the asynchronous AMX through event schemas (SPEC §4.3
- * across supervisors), built twice (-DISHARE_TOP for SHA):
+ * ishare.c — two supervisors sharing the asynchronous AMX through event schemas (docs/semantics.md
+ * "Event schemas: undo and shared modules", across supervisors), built twice (-DISHARE_TOP for SHA):
  *   SHA.top:  A1: [elapsed=5ms]  activate schema EVA   [elapsed=150ms]
  *             A2: [elapsed=20ms] activate supervisor SHB.use() [ ]
  *   SHB.use:  B1: [elapsed=10ms] activate schema EVB   [elapsed=300ms]

@@ -2,7 +2,8 @@
  * that activate them (isup.c, ireactivate.c; one TU each).
  *   ISC (20 ms, critical delay 15 ms): IMA (gain :0) -> IMB, IMA -> IMC; IMA:0 -> IMB:0 * 1,
  *       IMA:0 -> IMC:0 * 2.          ICF: IMB alone (conflicts with ISC).
- *   RSC (20 ms, critical delay 15 ms): RMA -> RMB -> RMC (RMB is slow in its 4th activation). */
+ *   RSC (20 ms, critical delay 15 ms): RMA -> RMB -> RMC (RMB is slow in its 4th activation).
+ *   PSC (20 ms, critical delay 15 ms): UMA alone (activated by UPA and USM: undo scenario). */
 #ifndef ITEST_TABLES_H
 #define ITEST_TABLES_H
 #include <contract/vocabulary.h>
@@ -27,4 +28,7 @@ static const ContractSchemaModule rsc_modules[] = {{"RMA", 0, NULL}, {"RMB", 0, 
 static const ContractPrecedence rsc_prec[] = {{0, 1}, {1, 2}};
 static const ContractSchema ITEST_RSC = {"RSC", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
                                          0, NULL, 0, 3, rsc_modules, 2, rsc_prec, 0, NULL, 0, NULL};
+static const ContractSchemaModule psc_modules[] = {{"UMA", 0, NULL}};
+static const ContractSchema ITEST_PSC = {"PSC", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
+                                         0, NULL, 0, 1, psc_modules, 0, NULL, 0, NULL, 0, NULL};
 #endif

@@ -28,6 +28,7 @@ int main(int argc, char **argv) {
     scenario_shared_module(root, argv[1], argv[2]);
     scenario_reactivation(root, argv[1], argv[2]);
     scenario_hold_toggles(root, argv[1], argv[2]);
+    scenario_undo_own(root, argv[1], argv[2]);
     if (itest_failed()) {
         fprintf(stderr, "kept %s for inspection\n", root);
     } else {

@@ -61,6 +61,35 @@ static int cycles_delayed(const Trace *const *t, int nt, const Fit *f) {
     return delayed;
 }
 
+/* lines of csv that contain text */
+static int count_lines(const char *csv, const char *text) {
+    int n = 0;
+    for (const char *p = csv ? strstr(csv, text) : NULL; p; p = strstr(p + 1, text)) n++;
+    return n;
+}
+
+/* ORD's ord_release records of `module` (docs/runtime-api.md "Trace records"): cycles 0, 1, 2...
+   in order (none skipped unless ORD skipped the tick), each tick exactly tick_0 + cycle * period,
+   released at or after its tick. Returns the number of records, -1 when one breaks that. */
+static int check_releases(const char *csv, const char *module, long long period, long skipped) {
+    char key[64];
+    snprintf(key, sizeof key, ",ord_release,%s,", module);
+    long prev = -1;
+    long long tick0 = -1;
+    int n = 0;
+    for (const char *p = csv ? strstr(csv, key) : NULL; p; p = strstr(p + 1, key)) {
+        long cycle = -1;
+        long long tick = -1, rel = -1;
+        const char *d = strstr(p, "cycle=");
+        if (!d || sscanf(d, "cycle=%ld tick_ns=%lld release_ns=%lld", &cycle, &tick, &rel) != 3) return -1;
+        if (tick0 < 0) tick0 = tick - cycle * period;
+        if (cycle <= prev || cycle - prev - 1 > skipped || tick != tick0 + cycle * period || rel < tick) return -1;
+        prev = cycle;
+        n++;
+    }
+    return n;
+}
+
 void scenario_scheduler(const char *root, const char *bin, const char *launcher) {
     Scenario s;
     if (!scenario_begin(&s, root, "scheduler")) return;
@@ -99,6 +128,26 @@ void scenario_scheduler(const char *root, const char *bin, const char *launcher)
     for (int k = 0; k < c.ngot; k++)
         if (c.got[k] != 2 * (k + 1)) twos = 0;
     check(twos, "IMA:0 -> IMC:0 * 2 delivers every second activation's value");
+    /* the run-time trace (docs/runtime-api.md "Trace records"): one ord_release per release the
+       module ran, cycle numbers in order; one ord_finished per completion; one ord_complete per
+       completed cycle (ORD's own count); the causes of ISU's rule changes */
+    char *ord = read_csv_log(&s, "ORD"), *isu = read_csv_log(&s, "ISU");
+    check(ord && check_releases(ord, "IMA", 20000000LL, overruns + missed) == a.nstart &&
+              check_releases(ord, "IMB", 20000000LL, overruns + missed) == b.nstart,
+          "ORD's log has an ord_release record per release IMA and IMB ran, cycles in order, ticks at "
+          "tick_0 + cycle * 20 ms, released at or after the tick");
+    check(ord && count_lines(ord, ",ord_finished,IMA,") == a.nend && count_lines(ord, ",ord_finished,IMC,") == c.nend,
+          "ORD's log has an ord_finished record per run IMA and IMC finished");
+    check(ord && count_lines(ord, ",ord_complete,") == json_number(js, "completed") &&
+              count_lines(ord, ",ord_deadline_miss,") == misses,
+          "ORD's log has an ord_complete record per completed cycle and an ord_deadline_miss per miss");
+    check(isu && strstr(isu, ",sup_rule,,,0,go.R1 active cause=elapsed=10000000ns\n") &&
+              strstr(isu, ",sup_rule,,,0,\"go.R3 active cause=ORD:1 value=\"\"ICF\"\"\"\n") &&
+              strstr(isu, ",sup_rule,,,0,go.R1 inactive cause=elapsed=300000000ns\n"),
+          "ISU's log has its rule changes with their causes (elapsed=10ms, ORD:1 \"ICF\", elapsed=300ms)");
+    if (scenario_failed(&s)) fprintf(stderr, "ORD's log:\n%s\nISU's log:\n%s\n", ord ? ord : "(none)", isu ? isu : "(none)");
+    free(ord);
+    free(isu);
     char *txt = slurp(s.launch);
     check(txt && strstr(txt, "[ORD] conflict: ICF shares a module with active ISC (ORD:1)"),
           "ORD refuses ICF (shares IMB with ISC)");

@@ -12,10 +12,13 @@ export class TableBuilder {
     private readonly usedTypes = new Set<string>();
     private readonly usedHeaders = new Set<string>();
     private readonly constants = new Map<string, string>();
-    private readonly functions = new Set<string>();
+    private readonly functions = new Map<string, string>();
     private readonly names = new Set<string>();
 
-    constructor(readonly index: ArchitectureIndex) {}
+    constructor(readonly index: ArchitectureIndex) {
+        // the common/ headers a vocabulary.c includes declare these: table names keep clear of them
+        for (const n of userFileScopeNames(index)) this.names.add(n);
+    }
 
     /** Appends a definition (a complete C declaration). */
     define(text: string): void {
@@ -54,18 +57,21 @@ export class TableBuilder {
 
     /** `&fn_<f>`: the ContractUserFunction adapter of a user function. */
     userFunction(f: FunctionPrototype): string {
-        if (!this.functions.has(f.name)) {
-            this.functions.add(f.name);
+        let adapter = this.functions.get(f.name);
+        if (!adapter) {
             this.usedHeaders.add(`Function${f.name}`);
             const types = f.args.map((a) => this.typeRef(a.type));
-            const argTypes = types.length ? `fnargs_${f.name}` : 'NULL';
-            if (types.length) this.define(`static const ContractType *const fnargs_${f.name}[] = {${types.join(', ')}};`);
+            const argTypes = types.length ? this.unique(`fnargs_${f.name}`) : 'NULL';
+            if (types.length) this.define(`static const ContractType *const ${argTypes}[] = {${types.join(', ')}};`);
             const call = `${f.name}(${f.args.map((a, i) => `(${cPointerType(a.type)})a[${i}]`).join(', ')})`;
             const body = f.returns === 'bool' ? `return ${call};` : `${call}; return 0;`;
-            this.define(`static int call_${f.name}(void **a) { ${f.args.length ? '' : '(void)a; '}${body} }`);
-            this.define(`static const ContractUserFunction fn_${f.name} = {"${f.name}", ${f.returns === 'bool' ? 1 : 0}, ${f.args.length}, ${argTypes}, call_${f.name}};`);
+            const caller = this.unique(`call_${f.name}`);
+            this.define(`static int ${caller}(void **a) { ${f.args.length ? '' : '(void)a; '}${body} }`);
+            adapter = this.unique(`fn_${f.name}`);
+            this.define(`static const ContractUserFunction ${adapter} = {"${f.name}", ${f.returns === 'bool' ? 1 : 0}, ${f.args.length}, ${argTypes}, ${caller}};`);
+            this.functions.set(f.name, adapter);
         }
-        return `&fn_${f.name}`;
+        return `&${adapter}`;
     }
 
     /** Defines `static const <ctype> <name>[] = {...};` and returns the name, or NULL for no items. */
@@ -86,4 +92,21 @@ export class TableBuilder {
             .map((d) => `static const ${d.name} contract_default_${d.name} = ${cInitializer(this.index, { datatype: d.name })};\nCONTRACT_DEFINE_TYPE(${d.name}, &contract_default_${d.name})`);
         return [...header, ...headers, '', ...descriptors, '', ...this.definitions, ''].join('\n');
     }
+}
+
+/** Functions of common/Shared<T>.h (shared-type-header.ts) and of CONTRACT_DEFINE_TYPE (contract/vocabulary.h). */
+const TYPE_FUNCTIONS = ['serialize', 'deserialize', 'diff', 'eq', 'inf', 'sup', 'infeq', 'supeq', 'set', 'get', 'print'];
+
+/**
+ * File-scope names of the user's datatypes and functions and of what their headers declare:
+ * `check` keeps them from the C library's (docs/language-reference.md, "Reserved names"), the
+ * tables of vocabulary.c keep clear of them here (a supervision function `get` next to a datatype
+ * `params` would otherwise define a table `get_params`, the datatype's parser).
+ */
+function userFileScopeNames(index: ArchitectureIndex): string[] {
+    const { datatypes, functions } = index.architecture;
+    return [
+        ...datatypes.flatMap((d) => [d.name, ...TYPE_FUNCTIONS.map((f) => `${f}_${d.name}`)]),
+        ...functions.map((f) => f.name)
+    ];
 }

@@ -19,22 +19,22 @@ export interface DiagnosticCode {
 export interface CodeArea {
     /** Section title in docs/diagnostics.md. */
     readonly title: string;
-    /** SPEC section the area implements. */
-    readonly spec: string;
+    /** The docs/ page and section that states the rules the area checks (`language-reference.md §1`). */
+    readonly reference: string;
     readonly codes: readonly DiagnosticCode[];
 }
 
 type Entry = Omit<DiagnosticCode, 'code'>;
 
 /**
- * Declares an area's codes: `defineCodes('Imports', '§2.1', { 'import-cycle': {...} })` returns
+ * Declares an area's codes: `defineCodes('Imports', 'language-reference.md §1', { 'import-cycle': {...} })` returns
  * the area (for the doc) and a map code -> DiagnosticCode (for the validators).
  */
-export function defineCodes<K extends string>(title: string, spec: string, entries: Record<K, Entry>):
+export function defineCodes<K extends string>(title: string, reference: string, entries: Record<K, Entry>):
     { area: CodeArea; codes: Record<K, DiagnosticCode> } {
     const codes = {} as Record<K, DiagnosticCode>;
     for (const key of Object.keys(entries) as K[]) {
         codes[key] = { code: key, ...entries[key] };
     }
-    return { area: { title, spec, codes: Object.values(codes) }, codes };
+    return { area: { title, reference, codes: Object.values(codes) }, codes };
 }

@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
-/** SPEC §2.1: files and imports. */
-export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and imports', '§2.1', {
+/** docs/language-reference.md §1: files and imports. */
+export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and imports', 'language-reference.md §1', {
     'import-missing-file': {
         severity: 'error',
         description: 'The imported file does not exist in the project. Paths resolve relative to the importing file. When a project file has that name elsewhere, the message suggests its relative path (diagnostic data `suggestion`).',

@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
-/** SPEC §2.3: modules (and the naming rules shared with supervisors and all identifiers). */
-export const { area: modulesArea, codes: ModuleCodes } = defineCodes('Modules and identifiers', '§2.3', {
+/** docs/language-reference.md §3: modules (and the naming rules shared with supervisors and all identifiers). */
+export const { area: modulesArea, codes: ModuleCodes } = defineCodes('Modules and identifiers', 'language-reference.md §3', {
     'module-name-format': {
         severity: 'error',
         description: 'Module and supervisor names are exactly three upper-case letters (`[A-Z]{3}`). The quick fix upper-cases the name when that makes it valid; the diagnostic data holds `suggestion`.',
@@ -19,13 +19,23 @@ export const { area: modulesArea, codes: ModuleCodes } = defineCodes('Modules an
     },
     'identifier-c-keyword': {
         severity: 'error',
-        description: 'The generated C uses Cactal names as they are, so a name cannot be a C keyword (`int`, `double`, `struct`, `switch`, ...).',
+        description: 'The generated C uses Cactal names as they are, so a name cannot be a C keyword (`int`, `double`, `struct`, `switch`, ...), including those of C23 (`typeof`, `nullptr`, `bool`, ...) and GNU C\'s `asm`, which a build with another `-std` would meet.',
         example: 'datatype T {int double};'
+    },
+    'identifier-generated-clash': {
+        severity: 'error',
+        description: 'Two datatypes or functions would share a generated `common/` header: the same file name (compared without case, as on case-insensitive file systems: datatype `FunctionStep` and function `Step` both write `SharedFunctionStep.h`) or the same include guard (`Pose` and `POSE` share `SHARED_POSE_H`), so one header would replace or hide the other. The quick fix renames the element to the free name in the diagnostic data (`suggestion`).',
+        example: 'datatype Pose {float x};\ndatatype POSE {int y};'
     },
     'identifier-reserved-prefix': {
         severity: 'error',
         description: 'Names starting with `_` are reserved for generated code.',
         example: 'datatype T {int _a};'
+    },
+    'identifier-c-reserved': {
+        severity: 'error',
+        description: 'The generated C uses Cactal names as they are, so a name cannot be one the generated C or the headers it includes already take: a macro of the C library or runtime headers (`EOF`, `NULL`), and for datatypes, functions and module ports and parameters a C library, POSIX or libmodule name (`time`, `printf`, `exit`, `GetData`), a variable of the generated module.c (`productionTime`, `MODULE_NAME`, `IUSE`, `stateindex`), a function generated for a datatype (`get_Pose`) or a datatype name. docs/language-reference.md lists the rules. The quick fix renames the element everywhere to the free name in the diagnostic data (`suggestion`).',
+        example: 'synchronous module MSA { scheduling { C=1ms; } data flows { out :0 int time; } }'
     },
     'module-block-order': {
         severity: 'error',

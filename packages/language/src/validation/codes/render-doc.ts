@@ -15,11 +15,11 @@ export function renderDiagnosticsDoc(areas: CodeArea[]): string {
         '',
         '| code | severity | area |',
         '|---|---|---|',
-        ...areas.flatMap((a) => a.codes.map((c) => `| [\`${c.code}\`](#${c.code}) | ${c.severity} | ${a.title} (SPEC ${a.spec}) |`)),
+        ...areas.flatMap((a) => a.codes.map((c) => `| [\`${c.code}\`](#${c.code}) | ${c.severity} | ${a.title} (${a.reference}) |`)),
         ''
     ];
     for (const area of areas) {
-        lines.push(`## ${area.title} (SPEC ${area.spec})`, '');
+        lines.push(`## ${area.title} (${area.reference})`, '');
         for (const c of area.codes) {
             lines.push(`### ${c.code}`, '', `**${c.severity}** — ${c.description}`, '', '```cactal', c.example, '```', '');
         }

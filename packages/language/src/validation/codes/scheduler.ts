@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
-/** SPEC §2.5: the scheduler configuration (ORD). */
-export const { area: schedulerArea, codes: SchedulerCodes } = defineCodes('Scheduler configuration', '§2.5', {
+/** docs/language-reference.md §5: the scheduler configuration (ORD). */
+export const { area: schedulerArea, codes: SchedulerCodes } = defineCodes('Scheduler configuration', 'language-reference.md §5', {
     'scheduler-duplicate': {
         severity: 'error',
         description: 'A project has one scheduler configuration (it configures the one ORD module); the message names the other files.',

@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
-/** SPEC §2.4: periodic and event schemas, their communications and timing analysis. */
-export const { area: schemasArea, codes: SchemaCodes } = defineCodes('Schemas', '§2.4', {
+/** docs/language-reference.md §4: periodic and event schemas, their communications and timing analysis. */
+export const { area: schemasArea, codes: SchemaCodes } = defineCodes('Schemas', 'language-reference.md §4', {
     'schema-name-duplicate': {
         severity: 'error',
         description: 'Schema names are unique among all schemas of the project, periodic and event schemas together.',

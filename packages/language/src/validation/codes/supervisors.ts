@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
-/** SPEC §2.6: supervisors, supervision functions, rules, conditions and actions (report §4.7). */
-export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Supervisors', '§2.6', {
+/** docs/language-reference.md §6: supervisors, supervision functions, rules, conditions and actions (report §4.7). */
+export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Supervisors', 'language-reference.md §6', {
     'supervisor-function-duplicate': {
         severity: 'error',
         description: 'Supervision function names are unique within a supervisor (`activate supervisor SUP.fn` names them).',
@@ -69,7 +69,7 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
     },
     'supervisor-subscribe-conflict': {
         severity: 'warning',
-        description: 'An input event port has at most one producer at a time (SPEC §2.4). Two `subscribe` actions of the supervisor (in any of its functions: they share the ports) connect different producers to the same input port; whether their rules can be active at once is not decidable statically, so this is a warning: make sure they never are, or use one input port per producer.',
+        description: 'An input event port has at most one producer at a time (language-reference.md §4). Two `subscribe` actions of the supervisor (in any of its functions: they share the ports) connect different producers to the same input port; whether their rules can be active at once is not decidable statically, so this is a warning: make sure they never are, or use one input port per producer.',
         example: 'A: [elapsed=1ms] subscribe MAA:2 =* :2 [...]  B: [elapsed=2ms] subscribe MAB:1 =* :2 [...]'
     },
     'supervisor-endof-own-postcondition': {
@@ -101,5 +101,10 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
         severity: 'error',
         description: 'Supervisors that activate each other (`activate supervisor`) form a cycle; the supervisor hierarchy must be a tree or a DAG (it also fixes their priorities). The message lists the cycle.',
         example: '// SUP activates GLB.mission and GLB activates SUP.action'
+    },
+    'supervisor-schema-conflict': {
+        severity: 'warning',
+        description: 'ORD refuses to activate a periodic schema that shares a module with an active one and emits `ORD:1` (data: the refused schema). One rule, or two rules that become active together (one\'s precondition has `started` of the other, without persistence, or both start on the same event), activate periodic schemas that share a module (or the same schema twice): the second activation is refused every time. `endof(L)` does not count: L\'s schemas are deactivated before `endof(L)` occurs. The diagnostic data holds the other schema (`conflictsWith`) and the shared modules (`modules`).',
+        example: 'R: [elapsed=1ms] activate schema track(); activate schema hold() [elapsed=1s]   // both use EST and CTL'
     }
 });

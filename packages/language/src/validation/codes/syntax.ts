@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
 /** Codes Langium gives to syntax and linking problems (kept as Langium names them). */
-export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and references', '§2', {
+export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and references', 'language-reference.md', {
     'lexing-error': {
         severity: 'error',
         description: 'A character sequence that is not a Cactal token (for example a stray `$` or an unterminated string).',

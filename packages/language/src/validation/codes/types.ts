@@ -1,7 +1,7 @@
 import { defineCodes } from './code-table.js';
 
-/** SPEC §2.2: datatypes, values and function prototypes. */
-export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, values and functions', '§2.2', {
+/** docs/language-reference.md §2: datatypes, values and function prototypes. */
+export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, values and functions', 'language-reference.md §2', {
     'type-duplicate-name': {
         severity: 'error',
         description: 'Two datatypes, or two function prototypes, have the same name in the project (they all share the generated `common/` folder).',

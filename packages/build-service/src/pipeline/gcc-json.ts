@@ -1,0 +1,77 @@
+/**
+ * gcc's `-fdiagnostics-format=json` lines (one JSON array per compilation), read from a sandbox's
+ * stderr. That stderr is untrusted text: user code can print any JSON-looking line (an `__asm__`
+ * `.warning`, a `#warning`, a program run by make). Every field is checked against ONE declared
+ * schema, bounded in depth, count and length (SERVICE_BOUNDS, docs/sandbox.md "Limits"); a line
+ * that does not match is not a diagnostic line, it stays a plain text line. Nothing here throws.
+ */
+import { z } from 'zod';
+import { SERVICE_BOUNDS } from '../limits.js';
+import { located, severityOf, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
+
+const text = z.string().max(SERVICE_BOUNDS.diagnosticTextChars);
+/** Line and column numbers: non-negative integers of a plausible size. */
+const count = z.number().int().min(0).max(2 ** 31 - 1);
+
+const position = z.object({ file: text.optional(), line: count.optional(), column: count.optional() });
+const location = z.object({ caret: position.optional(), finish: position.optional() });
+
+type JsonDiagnostic = {
+  kind?: string | undefined;
+  message?: string | undefined;
+  option?: string | undefined;
+  locations?: z.infer<typeof location>[] | undefined;
+  children?: JsonDiagnostic[] | undefined;
+};
+
+/** The schema of one diagnostic whose children may nest `depth` more levels (none at 0). */
+function diagnosticSchema(depth: number): z.ZodType<JsonDiagnostic> {
+  const children = depth > 0 ? z.array(diagnosticSchema(depth - 1)) : z.array(z.never());
+  return z.object({
+    kind: z.string().max(64).optional(),
+    message: text.optional(),
+    option: text.optional(),
+    locations: z.array(location).max(SERVICE_BOUNDS.diagnosticChildren).optional(),
+    children: children.max(SERVICE_BOUNDS.diagnosticChildren).optional(),
+  });
+}
+
+/** One line of gcc JSON output: the declared shape every parsed field is checked against. */
+export const GCC_JSON_LINE = z.array(diagnosticSchema(SERVICE_BOUNDS.diagnosticDepth)).max(SERVICE_BOUNDS.diagnosticsPerJsonLine);
+
+function fromJson(d: JsonDiagnostic, ctx: DiagnosticContext): GccDiagnostic {
+  const loc = d.locations?.[0];
+  const caret = loc?.caret;
+  return located(
+    {
+      severity: severityOf(d.kind),
+      message: d.message ?? '',
+      ...(d.option ? { option: d.option } : {}),
+      line: caret?.line ?? null,
+      column: caret?.column ?? null,
+      ...(loc?.finish?.line ? { endLine: loc.finish.line } : {}),
+      ...(loc?.finish?.column ? { endColumn: loc.finish.column } : {}),
+      children: (d.children ?? []).map((c) => fromJson(c, ctx)),
+    },
+    caret?.file ?? null,
+    ctx,
+  );
+}
+
+/** True when a stderr line is gcc's `-fdiagnostics-format=json` output (one JSON array per compilation). */
+export function looksLikeGccJson(line: string): boolean {
+  return /^\[\s*(\]|\{\s*"kind")/.test(line.slice(0, 64));
+}
+
+/** Parses one line of gcc JSON diagnostics; null when it is not valid JSON of the declared shape. */
+export function parseGccJsonLine(line: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
+  let data: unknown;
+  try {
+    data = JSON.parse(line);
+  } catch {
+    return null;
+  }
+  const parsed = GCC_JSON_LINE.safeParse(data);
+  if (!parsed.success) return null;
+  return parsed.data.map((d) => fromJson(d, ctx));
+}

@@ -1,0 +1,38 @@
+import { describe, expect, test } from 'vitest';
+import { JobEvents, type JobEvent } from './job-events.js';
+
+describe('JobEvents: a subscriber that throws (a client stream gone bad) affects no one else', () => {
+  test('in replay and live, it is dropped; the log and the other subscribers go on', () => {
+    const log = new JobEvents();
+    log.append({ type: 'status', status: 'queued' });
+    let calls = 0;
+    const bad = (): void => {
+      calls++;
+      throw new Error('write after end');
+    };
+    expect(() => log.subscribe(0, bad)).not.toThrow(); // throws during replay
+    const seen: JobEvent[] = [];
+    log.subscribe(0, (e) => seen.push(e));
+    log.subscribe(1, bad); // nothing to replay: throws on the first live event
+    log.append({ type: 'line', step: 'build', source: 'build', stream: 'stdout', line: 'a' });
+    log.append({ type: 'line', step: 'build', source: 'build', stream: 'stdout', line: 'b' });
+    expect(calls).toBe(2);
+    expect(seen.map((e) => e.seq)).toEqual([1, 2, 3]);
+  });
+});
+
+describe('JobEvents.broadcast: live-only events (the trace past its kept bound)', () => {
+  test('reach the subscribers attached now, are not kept, and carry the last kept seq', () => {
+    const log = new JobEvents();
+    const early: JobEvent[] = [];
+    log.subscribe(0, (e) => early.push(e));
+    log.append({ type: 'status', status: 'running', step: 'run' });
+    log.broadcast({ type: 'trace', records: [{ file: 'M_1.csv', line: 2, text: 'x' }] });
+    log.append({ type: 'line', step: 'run', source: 'run', stream: 'system', line: 'after' });
+    expect(early.map((e) => `${e.type}:${e.seq}`)).toEqual(['status:1', 'trace:1', 'line:2']);
+    expect(log.all.map((e) => e.type)).toEqual(['status', 'line']);
+    const late: JobEvent[] = [];
+    log.subscribe(0, (e) => late.push(e));
+    expect(late.map((e) => `${e.type}:${e.seq}`)).toEqual(['status:1', 'line:2']);
+  });
+});

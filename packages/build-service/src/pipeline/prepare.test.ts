@@ -1,0 +1,66 @@
+/**
+ * The host-side prepare step on a hostile inline project (POST /api/jobs with files): the manifest
+ * of src-gen names host files. Generation runs on the host in stage/ (docs/codegen.md, "What
+ * generate refuses"), so the entries must be dropped, never acted on. Real language + codegen.
+ */
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { DEFAULT_LIMITS } from '../limits.js';
+import { prepareWorkspace } from './prepare.js';
+import type { Workspace } from './workspaces.js';
+
+const TUTORIAL = fileURLToPath(new URL('../../../../examples/tutorial', import.meta.url));
+
+let base: string;
+let victimDir: string;
+let victim: string;
+const VICTIM_TEXT = 'x\n/*PROTECTED REGION ID(stolen) ENABLED START*/host_secret/*PROTECTED REGION END*/\n';
+
+beforeAll(() => {
+  base = mkdtempSync(join(tmpdir(), 'bs-prepare-hostile-'));
+  victimDir = join(base, 'victim');
+  mkdirSync(victimDir);
+  victim = join(victimDir, 'important.txt');
+  writeFileSync(victim, VICTIM_TEXT);
+});
+afterAll(() => rmSync(base, { recursive: true, force: true }));
+
+function workspace(): Workspace {
+  const root = mkdtempSync(join(base, 'ws-'));
+  mkdirSync(join(root, 'stage'));
+  mkdirSync(join(root, 'work'));
+  return {
+    root,
+    stageDir: join(root, 'stage'),
+    workDir: join(root, 'work'),
+    owner: { uid: process.getuid!(), gid: process.getgid!() },
+    reused: false,
+    acceptedOutputs: null,
+    reset: async () => {},
+    release: async () => {},
+  };
+}
+
+describe('prepareWorkspace with an inline manifest naming host files', () => {
+  it('drops the entries with a warning; the host file and its folder stay', async () => {
+    const files: Record<string, string> = {};
+    for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) files[f] = readFileSync(join(TUTORIAL, f), 'utf8');
+    const entries = ['../'.repeat(24) + victim.slice(1), victim, 'generated/../../../../../victim/important.txt'];
+    files['src-gen/.contract-manifest.json'] = JSON.stringify({ version: 1, files: Object.fromEntries(entries.map((e) => [e, {}])) });
+    const log: string[] = [];
+    const out = await prepareWorkspace(workspace(), { files }, 'cactal', { ...DEFAULT_LIMITS }, (l: string) => log.push(l));
+    expect(out.ok, log.join('\n')).toBe(true);
+    expect(readFileSync(victim, 'utf8')).toBe(VICTIM_TEXT);
+    for (const e of entries) {
+      expect(out.problems).toContainEqual(expect.objectContaining({
+        file: '.contract-manifest.json',
+        severity: 'warning',
+        message: expect.stringContaining(`entry ${JSON.stringify(e)} dropped (`),
+      }));
+    }
+    expect(out.problems.filter((p) => p.severity === 'error')).toEqual([]);
+  }, 120_000);
+});

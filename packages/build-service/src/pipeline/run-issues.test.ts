@@ -1,0 +1,40 @@
+import { describe, expect, test } from 'vitest';
+import { RunIssues } from './run-issues.js';
+
+describe('RunIssues', () => {
+  test("a stuck module is one issue, whether seen in ORD's output, in its CSV log, or both", () => {
+    const r = new RunIssues();
+    r.line('STUCK: CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?');
+    r.line('STUCK: CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?');
+    r.log(Buffer.from(
+      'mono_ns,wall_time,module,event,peer,port,size,detail\n' +
+      '5,t,ORD,scheduler,,,0,stuck: CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1? (goTo)\n' +
+      '6,t,ORD,scheduler,,,0,stuck: LOC has not finished release #9 after 10 periods: does its exec region set *stateindex = -1? (goTo)\n',
+    ));
+    r.line('overrun: goTo cycle still running, release skipped');
+    expect(r.all).toEqual([
+      { kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?' },
+      { kind: 'module-stuck', module: 'LOC', message: 'LOC has not finished release #9 after 10 periods: does its exec region set *stateindex = -1?' },
+    ]);
+  });
+
+  test('capped and lost logs, limits and cut output are issues; a whole log is not', () => {
+    const r = new RunIssues();
+    r.artifacts({
+      files: [
+        { name: 'A_1.csv', path: 'logs/A_1.csv', size: 3, gzip: Buffer.alloc(0), capped: null },
+        { name: 'B_1.csv', path: 'logs/B_1.csv', size: 3, gzip: Buffer.alloc(0), capped: 'the module reached its CSV log bound' },
+      ],
+      skipped: [{ name: 'link.csv', reason: 'not a regular file (symlink): not followed' }, { name: 'C_1.csv', reason: 'more than 256 files', bound: true }],
+      runDirLeftovers: [],
+    });
+    r.limit({ name: 'runSeconds', value: 60, unit: 's', mechanism: 'service-timer' });
+    r.outputTruncated('stdout', 1024 * 1024);
+    expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
+      ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],
+      ['log-lost', 'C_1.csv', 'log C_1.csv was not collected: more than 256 files'],
+      ['limit', null, 'the run was stopped by the run time limit 60 s'],
+      ['output-truncated', null, "the run's stdout went past the output limit (1 MiB per stream): later lines were not kept"],
+    ]);
+  });
+});

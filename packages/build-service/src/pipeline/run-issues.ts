@@ -1,0 +1,74 @@
+/**
+ * What went wrong in a run that did not crash (docs/build-service-api.md "Run issues"): a module
+ * ORD declared stuck, a sandbox limit hit, output or CSV logs cut or left out. A run with any of
+ * them does not end `succeeded`: its result says `ok: false` and lists them in `issues`, so a
+ * 4 s run of a module that never ends is never reported as a success.
+ */
+import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
+import type { RunArtifacts } from './artifacts.js';
+
+export type RunIssueKind = 'module-stuck' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
+
+export interface RunIssue {
+  kind: RunIssueKind;
+  /** One sentence for people. */
+  message: string;
+  /** The module it is about (module-stuck), or the log file (log-capped, log-lost). */
+  module?: string;
+  file?: string;
+}
+
+/** ORD's line on stderr (runtime/src/engines/ord_main.c b_stuck). */
+const STUCK_LINE = /^STUCK: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods.*)$/;
+/** The same report in ORD's CSV log (its `scheduler` records, docs/runtime-api.md). */
+const STUCK_RECORD = /,scheduler,,,0,stuck: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods[^\n]*?)(?: \([A-Za-z_]\w*\))?\n/g;
+
+export class RunIssues {
+  private readonly list: RunIssue[] = [];
+  private readonly stuckSeen = new Set<string>();
+
+  get all(): readonly RunIssue[] {
+    return this.list;
+  }
+
+  /** A line of the run's output (any source: ORD's module tag is the scheduler's name). */
+  line(text: string): void {
+    const m = STUCK_LINE.exec(text);
+    if (m) this.stuck(m[2]!, m[3]!, m[1]!);
+  }
+
+  /** The bytes of a collected CSV log: stuck reports the output may have lost (truncated). */
+  log(data: Buffer): void {
+    if (!data.includes(',scheduler,,,0,stuck: ')) return;
+    for (const m of data.toString('utf8').matchAll(STUCK_RECORD)) this.stuck(m[2]!, m[3]!, m[1]!);
+  }
+
+  limit(hit: LimitHit): void {
+    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}` });
+  }
+
+  outputTruncated(stream: 'stdout' | 'stderr', bytes: number): void {
+    this.list.push({ kind: 'output-truncated', message: `the run's ${stream} went past the output limit (${formatBytes(bytes)} per stream): later lines were not kept` });
+  }
+
+  artifacts(a: RunArtifacts): void {
+    for (const f of a.files) {
+      if (f.capped) this.list.push({ kind: 'log-capped', file: f.name, message: `log ${f.name} is not whole: ${f.capped}` });
+    }
+    for (const s of a.skipped) {
+      if (s.bound) this.list.push({ kind: 'log-lost', file: s.name, message: `log ${s.name} was not collected: ${s.reason}` });
+    }
+  }
+
+  private stuck(module: string, release: string, message: string): void {
+    const key = `${module}#${release}`;
+    if (this.stuckSeen.has(key)) return;
+    this.stuckSeen.add(key);
+    this.list.push({ kind: 'module-stuck', module, message });
+  }
+}
+
+/** "run finished with 2 problem(s): CTL has not finished …; log X is not whole: …". */
+export function describeIssues(issues: readonly RunIssue[]): string {
+  return `${issues.length} problem(s): ${issues.map((i) => i.message).join('; ')}`;
+}

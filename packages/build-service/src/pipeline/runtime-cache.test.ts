@@ -1,0 +1,86 @@
+/**
+ * The runtime cache (runtime-cache.ts) with a small runtime source folder built by the real make
+ * and gcc: one build per key, shared by two caches on the same folder (two processes), a new key
+ * when a source changes, a half-finished build folder never used, a planted link refused.
+ */
+import { chmodSync, mkdirSync, mkdtempSync, readdirSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { basename, join } from 'node:path';
+import { afterAll, describe, expect, test } from 'vitest';
+import { RuntimeCache, toolchainIdentity } from './runtime-cache.js';
+
+const scratch = mkdtempSync(join(tmpdir(), 'runtime-cache-test-'));
+chmodSync(scratch, 0o711);
+afterAll(() => rmSync(scratch, { recursive: true, force: true }));
+
+/** A runtime source folder: its Makefile builds build/libmodule.a and build/contract-launch. */
+function runtimeSources(dir: string, value: number): void {
+  mkdirSync(join(dir, 'src'), { recursive: true });
+  writeFileSync(join(dir, 'src', 'lib.c'), `int contract_value(void) { return ${value}; }\n`);
+  writeFileSync(join(dir, 'src', 'launch.c'), 'int contract_value(void);\nint main(void) { return contract_value() == 0; }\n');
+  writeFileSync(
+    join(dir, 'Makefile'),
+    'all: build/libmodule.a build/contract-launch\n' +
+      'build/libmodule.a: src/lib.c\n\tmkdir -p build && cc -c -o build/lib.o src/lib.c && ar rcs $@ build/lib.o\n' +
+      'build/contract-launch: src/launch.c build/libmodule.a\n\tcc -o $@ src/launch.c build/libmodule.a\n',
+  );
+}
+
+const lines: string[] = [];
+const log = (l: string): void => void lines.push(l);
+
+describe('RuntimeCache', () => {
+  const source = join(scratch, 'runtime');
+  const cacheDir = join(scratch, 'cache', 'runtime');
+  runtimeSources(source, 1);
+
+  test('builds once; a second cache on the same folder (another process) reuses the build', async () => {
+    const first = await new RuntimeCache(source, cacheDir).ensure(log);
+    expect(basename(first)).toMatch(/^runtime-[0-9a-f]{16}$/);
+    expect(statSync(join(first, 'build', 'contract-launch')).isFile()).toBe(true);
+    const built = statSync(join(first, 'build', 'libmodule.a')).mtimeMs;
+    lines.length = 0;
+    const second = await new RuntimeCache(source, cacheDir).ensure(log);
+    expect(second).toBe(first);
+    expect(statSync(join(second, 'build', 'libmodule.a')).mtimeMs).toBe(built);
+    expect(lines.join('\n')).toContain(`already built in ${first}`);
+    expect(lines.join('\n')).toContain(toolchainIdentity());
+    expect(lines.join('\n')).not.toContain('building the runtime');
+  });
+
+  test('two caches building the same key at once both get one complete build', async () => {
+    const other = join(scratch, 'cache2', 'runtime');
+    const [a, b] = await Promise.all([new RuntimeCache(source, other).ensure(log), new RuntimeCache(source, other).ensure(log)]);
+    expect(a).toBe(b);
+    expect(statSync(join(a, '.contract-built')).isFile()).toBe(true);
+    // no temporary build folder is left behind
+    expect(readdirSync(other).filter((n) => n.startsWith('.building-'))).toEqual([]);
+  });
+
+  test('the key changes when a runtime source changes', async () => {
+    const before = await new RuntimeCache(source, cacheDir).ensure(log);
+    writeFileSync(join(source, 'src', 'lib.c'), 'int contract_value(void) { return 2; }\n');
+    const after = await new RuntimeCache(source, cacheDir).ensure(log);
+    expect(after).not.toBe(before);
+    runtimeSources(source, 1);
+    expect(await new RuntimeCache(source, cacheDir).ensure(log)).toBe(before);
+  });
+
+  test('a build folder without its completion stamp (a killed build) is rebuilt, not trusted', async () => {
+    const dir = await new RuntimeCache(source, cacheDir).ensure(log);
+    rmSync(join(dir, '.contract-built'));
+    rmSync(join(dir, 'build', 'contract-launch'));
+    lines.length = 0;
+    expect(await new RuntimeCache(source, cacheDir).ensure(log)).toBe(dir);
+    expect(lines.join('\n')).toContain('building the runtime');
+    expect(statSync(join(dir, 'build', 'contract-launch')).isFile()).toBe(true);
+  });
+
+  test('a link planted in place of the runtime folder is refused with a clear message', async () => {
+    const dir = await new RuntimeCache(source, cacheDir).ensure(log);
+    rmSync(dir, { recursive: true });
+    mkdirSync(join(scratch, 'evil', 'build'), { recursive: true });
+    symlinkSync(join(scratch, 'evil'), dir);
+    await expect(new RuntimeCache(source, cacheDir).ensure(log)).rejects.toThrow(/is a symbolic link \(planted\?\)/);
+  });
+});

@@ -1,0 +1,94 @@
+/**
+ * The bytes of one growing CSV log -> its whole record lines, numbered as in the file, for the
+ * live trace channel (docs/build-service-api.md "Trace channel"). The bytes come from a sandbox:
+ * memory stays bounded whatever they are (a partial last line is kept only up to MAX_LINE_CHARS
+ * bytes; a longer line is sent cut, with a marker, once, and the rest of it is skipped up to its
+ * newline), and nothing here throws on them.
+ *
+ * The same lines as the trace reader's parseLogFile (trace/parse.ts) reads from the whole file:
+ * the header (line 1) and empty lines are counted, not sent; a trailing `\r` is dropped.
+ */
+import { CSV_HEADER, MAX_LINE_CHARS } from '../trace/parse.js';
+import type { TraceLine } from './job-events.js';
+
+/** Appended to a line cut at MAX_LINE_CHARS bytes (the reader then sees more than MAX_LINE_CHARS characters). */
+export const CUT_MARK = `…[line cut by the build service: longer than ${MAX_LINE_CHARS} bytes]`;
+
+export class TraceLineSplitter {
+  /** Number of the line being read (1-based). */
+  private lineNo = 1;
+  private partial: Buffer[] = [];
+  private partialBytes = 0;
+  /** The current line was already sent cut: its bytes are skipped up to its newline. */
+  private skipping = false;
+
+  /**
+   * @param file     the log's name, carried by every line
+   * @param quietUntil byte offset of the file up to which lines are counted but not sent (what
+   *                 the file held before this run started)
+   */
+  constructor(
+    readonly file: string,
+    private quietUntil = 0,
+  ) {}
+
+  /** Bytes consumed so far (the file offset of the next byte). */
+  offset = 0;
+
+  /** Feeds the next bytes of the file; returns the lines they complete (and a cut one, if any). */
+  push(chunk: Buffer): TraceLine[] {
+    const out: TraceLine[] = [];
+    let start = 0;
+    while (start < chunk.length) {
+      const nl = chunk.indexOf(10, start);
+      const end = nl < 0 ? chunk.length : nl;
+      const piece = chunk.subarray(start, end);
+      if (!this.skipping) {
+        if (this.partialBytes + piece.length > MAX_LINE_CHARS) {
+          // over-long: sent now, cut (a line of 10 MB, or one that never ends, is never held whole)
+          const head = Buffer.concat([...this.partial, piece.subarray(0, MAX_LINE_CHARS - this.partialBytes)]);
+          this.emit(out, head.toString('utf8') + CUT_MARK, this.offset + (end - start));
+          this.partial = [];
+          this.partialBytes = 0;
+          this.skipping = true;
+        } else if (piece.length) {
+          this.partial.push(Buffer.from(piece)); // a copy: the caller reuses its read buffer
+          this.partialBytes += piece.length;
+        }
+      }
+      this.offset += end - start;
+      if (nl < 0) break;
+      this.offset += 1;
+      if (!this.skipping) {
+        const raw = Buffer.concat(this.partial).toString('utf8');
+        const text = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
+        if (text !== '' && !(this.lineNo === 1 && text === CSV_HEADER)) this.emit(out, text, this.offset);
+      }
+      this.partial = [];
+      this.partialBytes = 0;
+      this.skipping = false;
+      this.lineNo++;
+      start = nl + 1;
+    }
+    return out;
+  }
+
+  /** The file ended (the run is over): a last line without its newline is a line too (as parseLogFile reads it). */
+  end(): TraceLine[] {
+    const out: TraceLine[] = [];
+    if (!this.skipping && this.partialBytes > 0) {
+      const raw = Buffer.concat(this.partial).toString('utf8');
+      const text = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
+      if (text !== '' && !(this.lineNo === 1 && text === CSV_HEADER)) this.emit(out, text, this.offset);
+    }
+    this.partial = [];
+    this.partialBytes = 0;
+    this.skipping = true;
+    return out;
+  }
+
+  private emit(out: TraceLine[], text: string, endOffset: number): void {
+    if (endOffset <= this.quietUntil) return;
+    out.push({ file: this.file, line: this.lineNo, text });
+  }
+}

@@ -1,0 +1,160 @@
+/**
+ * Puts the record lines read from several growing CSV logs in mono_ns order across the files
+ * (docs/build-service-api.md "Trace channel", "Ordering").
+ *
+ * Why a hold-back: a module writes its records in bursts (runtime/src/csvlog.c buffers them and
+ * writes them when the module waits and the oldest is older than LOG_FLUSH_NS = 50 ms, or its
+ * 64 KiB buffer fills), so when the service reads a record of module A at time t, module B may
+ * still hold records older than t in its buffer. A record is therefore released only when
+ *   - every other log has been read past its time (the watermark: the smallest "last time read"
+ *     over the logs still written; a log whose module wrote `module_exit` no longer counts; never
+ *     past the time the folder was listed, for the logs of modules started since), or
+ *   - it is `windowMs` old (now - its mono_ns, on the host's CLOCK_MONOTONIC, which the modules
+ *     of bwrap and none share), or has been held that long since it was read (a clock that would
+ *     not be shared); BEHIND_FACTOR times that while some log has bytes the service has not read
+ *     yet: a quiet module (one that logs
+ *     nothing for seconds) must not stop the channel. With a window of LOG_FLUSH_NS plus the poll
+ *     interval and a margin, an idle module's buffered records reach the service before newer
+ *     records of other modules are released.
+ * A module that computes longer than the window without waiting flushes late: its records then
+ * come after newer ones (never lost, never doubled; `late` counts them). The live order is the
+ * order of their keys: a record's key is its mono_ns, or the key of the line before it in its
+ * file when it has no readable time (garbage stays right after the record it followed, as in
+ * the trace reader's parseTrace), and never less than that key (a file's lines keep their order).
+ */
+import type { TraceLine } from './job-events.js';
+
+interface Held {
+  key: bigint;
+  readAt: number;
+  line: TraceLine;
+}
+
+interface Source {
+  queue: Held[];
+  /** Key of the last line read (-1 while none). */
+  lastKey: bigint;
+  /** Its module wrote module_exit, or the log is no longer read: it does not hold the watermark. */
+  closed: boolean;
+}
+
+/**
+ * While some log has bytes the service has not read yet (its per-poll read bound), records wait up
+ * to this many windows: the unread bytes may hold older records (a 10 MB line takes ten polls).
+ */
+export const BEHIND_FACTOR = 10;
+
+/** When TraceOrder.release may let lines go. */
+export interface ReleaseWhen {
+  /** Everything (the run has ended and every log was read to its end). */
+  all?: boolean;
+  /** Some log has bytes not read yet (the per-poll read bound): the window is BEHIND_FACTOR times longer. */
+  behind?: boolean;
+  /** The run has ended and the logs are read to their end (a log at its end is closed): the watermark only. */
+  drain?: boolean;
+  /** CLOCK_MONOTONIC (ns, the modules' mono_ns clock under bwrap and none) when logs/ was last listed. */
+  listedAt?: bigint;
+  /** CLOCK_MONOTONIC now (ns): a record whose mono_ns is the window old goes (also when held the window). */
+  nowMono?: bigint;
+}
+
+const MONO = /^(\d{1,20}),/;
+
+export class TraceOrder {
+  private readonly sources = new Map<string, Source>();
+  private lastReleased = -1n;
+  /** Lines released with a key below one already released (they came later than the window). */
+  late = 0;
+  /** Lines held now. */
+  held = 0;
+
+  constructor(private readonly windowMs: number) {}
+
+  /** A log the service reads (before its first line, so that it holds the watermark). */
+  track(file: string): void {
+    if (!this.sources.has(file)) this.sources.set(file, { queue: [], lastKey: -1n, closed: false });
+  }
+
+  /** A log no longer read (gone, truncated, left out): it stops holding the watermark. */
+  close(file: string): void {
+    const s = this.sources.get(file);
+    if (s) s.closed = true;
+  }
+
+  /** Lines of one file, in file order, read at host time `now` (ms). */
+  add(file: string, lines: TraceLine[], now: number): void {
+    this.track(file);
+    const s = this.sources.get(file)!;
+    for (const line of lines) {
+      const m = MONO.exec(line.text);
+      const mono = m ? BigInt(m[1]!) : -1n;
+      if (mono > s.lastKey) s.lastKey = mono;
+      s.queue.push({ key: s.lastKey, readAt: now, line });
+      this.held++;
+      if (line.text.includes(',module_exit,')) s.closed = true;
+    }
+  }
+
+  /**
+   * The lines that may go now, in key order (ties: file name order, then file order).
+   * `now`: host time (ms) for the held time.
+   */
+  release(now: number, when: ReleaseWhen = {}): TraceLine[] {
+    const factor = when.behind ? BEHIND_FACTOR : 1;
+    const windowMs = factor * this.windowMs;
+    const windowNs = BigInt(windowMs) * 1_000_000n;
+    let threshold: bigint;
+    if (when.all) threshold = BigInt('0x7fffffffffffffff') * 4n;
+    else {
+      let watermark: bigint | null = null;
+      for (const s of this.sources.values()) if (!s.closed && (watermark === null || s.lastKey < watermark)) watermark = s.lastKey;
+      threshold = watermark ?? -1n;
+      // a log not listed yet was created after the listing: its records are younger than it
+      if (when.listedAt !== undefined && !when.drain && threshold > when.listedAt) threshold = when.listedAt;
+      // what is old enough goes, and with it what is older (the order is kept)
+      for (const s of when.drain ? [] : this.sources.values()) {
+        for (const h of s.queue) {
+          // a queue is in read order and in key order: the first one too young ends the scan
+          const aged = when.nowMono !== undefined && h.key >= 0n && when.nowMono - h.key >= windowNs;
+          if (!aged && now - h.readAt < windowMs) break;
+          if (h.key > threshold) threshold = h.key;
+        }
+      }
+      if (this.sources.size > 0 && [...this.sources.values()].every((s) => s.closed)) threshold = BigInt('0x7fffffffffffffff') * 4n;
+    }
+    const names = [...this.sources.keys()].sort();
+    const heads = new Map(names.map((n) => [n, 0]));
+    const out: TraceLine[] = [];
+    for (;;) {
+      let best: string | null = null;
+      let bestKey = 0n;
+      for (const n of names) {
+        const q = this.sources.get(n)!.queue;
+        const i = heads.get(n)!;
+        if (i >= q.length) continue;
+        const k = q[i]!.key;
+        if (k > threshold) continue;
+        if (best === null || k < bestKey) {
+          best = n;
+          bestKey = k;
+        }
+      }
+      if (best === null) break;
+      const i = heads.get(best)!;
+      const h = this.sources.get(best)!.queue[i]!;
+      heads.set(best, i + 1);
+      if (h.key < this.lastReleased) {
+        if (h.key >= 0n) this.late++;
+      }
+      else this.lastReleased = h.key;
+      out.push(h.line);
+    }
+    for (const n of names) {
+      const s = this.sources.get(n)!;
+      const i = heads.get(n)!;
+      if (i) s.queue.splice(0, i);
+    }
+    this.held -= out.length;
+    return out;
+  }
+}

@@ -1,0 +1,227 @@
+import { appendFileSync, mkdirSync, mkdtempSync, readFileSync, rmSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterEach, beforeEach, describe, expect, test } from 'vitest';
+import { CSV_HEADER, MAX_LINE_CHARS, parseLogFile, parseRecordLine } from '../trace/parse.js';
+import type { TraceLine } from './job-events.js';
+import { CUT_MARK, TraceLineSplitter } from './trace-lines.js';
+import { TraceOrder } from './trace-order.js';
+import { TRACE_TAIL_BOUNDS, TraceTail, type TraceTailBounds } from './trace-tail.js';
+
+const rec = (mono: number | bigint, module = 'MAA', event = 'module_started', detail = 'pid=1 priority=40'): string =>
+  `${mono},2026-11-24T18:30:15.123456Z,${module},${event},,,0,${detail}`;
+
+describe('TraceLineSplitter', () => {
+  test('partial lines wait for their newline; header and empty lines are counted, not sent; \\r dropped', () => {
+    const s = new TraceLineSplitter('M_1.csv');
+    const text = `${CSV_HEADER}\n${rec(1)}\n\n${rec(2)}\r\n${rec(3)}\n`;
+    const out: TraceLine[] = [];
+    for (let i = 0; i < text.length; i += 7) out.push(...s.push(Buffer.from(text.slice(i, i + 7))));
+    expect(out).toEqual([
+      { file: 'M_1.csv', line: 2, text: rec(1) },
+      { file: 'M_1.csv', line: 4, text: rec(2) },
+      { file: 'M_1.csv', line: 5, text: rec(3) },
+    ]);
+    expect(parseLogFile({ name: 'M_1.csv', text }).map((r) => r.kind)).toEqual(['module_started', 'module_started', 'module_started']);
+    expect(s.offset).toBe(Buffer.byteLength(text));
+  });
+
+  test('a line over MAX_LINE_CHARS is sent once, cut and flagged, and never held whole', () => {
+    const s = new TraceLineSplitter('M_1.csv');
+    const out: TraceLine[] = [];
+    out.push(...s.push(Buffer.from(`${CSV_HEADER}\n`)));
+    const big = Buffer.alloc(1024 * 1024, 'x');
+    for (let i = 0; i < 10; i++) out.push(...s.push(big)); // 10 MB without a newline
+    expect(out).toHaveLength(1);
+    expect(out[0]!.line).toBe(2);
+    expect(out[0]!.text).toBe('x'.repeat(MAX_LINE_CHARS) + CUT_MARK);
+    expect(parseRecordLine('M_1.csv', 2, out[0]!.text)).toMatchObject({ kind: 'unknown', reason: `line longer than ${MAX_LINE_CHARS} characters` });
+    out.push(...s.push(Buffer.from(`tail of it\n${rec(5)}\n`)));
+    expect(out.slice(1)).toEqual([{ file: 'M_1.csv', line: 3, text: rec(5) }]);
+  });
+
+  test('lines ending before quietUntil (an earlier run) are counted only; end() gives a last unterminated line', () => {
+    const old = `${CSV_HEADER}\n${rec(1)}\n`;
+    const s = new TraceLineSplitter('M_1.csv', Buffer.byteLength(old));
+    const out = s.push(Buffer.from(`${old}${rec(2)}\n${rec(3)}`));
+    expect(out).toEqual([{ file: 'M_1.csv', line: 3, text: rec(2) }]);
+    expect(s.end()).toEqual([{ file: 'M_1.csv', line: 4, text: rec(3) }]);
+  });
+});
+
+describe('TraceOrder', () => {
+  const line = (file: string, mono: number): TraceLine => ({ file, line: 0, text: rec(mono) });
+  test('a record waits until every other log is read past its time, or the window', () => {
+    const o = new TraceOrder(100);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.add('A.csv', [line('A.csv', 10), line('A.csv', 30)], 0);
+    expect(o.release(0)).toEqual([]); // B has not been read past 10
+    o.add('B.csv', [line('B.csv', 20)], 10);
+    expect(o.release(10).map((l) => l.text)).toEqual([rec(10), rec(20)]); // watermark 20
+    expect(o.release(99)).toEqual([]);
+    expect(o.release(100).map((l) => l.text)).toEqual([rec(30)]); // held 100 ms
+    o.add('B.csv', [line('B.csv', 25)], 150); // later than the window: sent, counted late
+    expect(o.release(150).map((l) => l.text)).toEqual([rec(25)]);
+    expect(o.late).toBe(1);
+  });
+
+  test('with the modules\' clock, a record the window old goes without waiting to be held that long', () => {
+    const o = new TraceOrder(100);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.add('A.csv', [line('A.csv', 10), line('A.csv', 200_000_000)], 0);
+    expect(o.release(1, { nowMono: 50_000_000n })).toEqual([]); // B not read past 10, read 1 ms ago, 50 ms old
+    expect(o.release(2, { nowMono: 200_000_000n }).map((l) => l.text)).toEqual([rec(10)]); // 200 ms old, held 2 ms
+    expect(o.release(3, { nowMono: 200_000_000n, behind: true })).toEqual([]);
+    expect(o.release(4, { nowMono: 1_300_000_000n, behind: true }).map((l) => l.text)).toEqual([rec(200_000_000)]);
+  });
+
+  test('garbage keeps its place after the record before it; module_exit frees the watermark', () => {
+    const o = new TraceOrder(1000);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.add('A.csv', [line('A.csv', 10), { file: 'A.csv', line: 0, text: 'garbage' }, line('A.csv', 40)], 0);
+    o.add('B.csv', [line('B.csv', 20), { file: 'B.csv', line: 0, text: rec(50, 'MAB', 'module_exit', 'status=0') }], 0);
+    expect(o.release(1).map((l) => l.text)).toEqual([rec(10), 'garbage', rec(20), rec(40)]);
+    expect(o.release(2, { all: true }).map((l) => l.text)).toEqual([rec(50, 'MAB', 'module_exit', 'status=0')]);
+    expect(o.held).toBe(0);
+  });
+});
+
+describe('TraceTail on a folder written while it is read', () => {
+  let work: string;
+  let logs: string;
+  let traced: TraceLine[];
+  let liveOnly: TraceLine[] = [];
+  let events: number;
+  let system: string[];
+  const sink = {
+    trace: (l: TraceLine[]) => {
+      events++;
+      traced.push(...l);
+    },
+    live: (l: TraceLine[]) => void liveOnly.push(...l),
+    system: (l: string) => void system.push(l),
+  };
+  const fast: TraceTailBounds = { ...TRACE_TAIL_BOUNDS, pollMs: 5, orderWindowMs: 20 };
+  const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+  beforeEach(() => {
+    work = mkdtempSync(join(tmpdir(), 'trace-tail-'));
+    logs = join(work, 'logs');
+    traced = [];
+    events = 0;
+    system = [];
+  });
+  afterEach(() => rmSync(work, { recursive: true, force: true }));
+
+  test('partial lines, garbage, a 10 MB line, a link named X.csv, a FIFO: no throw, bounded, the files\' lines exactly once, in order', async () => {
+    // a window longer than this test's pauses on a loaded machine (a 2 ms sleep may take 50): the
+    // order comes from the watermark here (A and B both progress)
+    const tail = await TraceTail.start(work, sink, { ...fast, orderWindowMs: 1000 }); // logs/ does not exist yet
+    await sleep(20);
+    mkdirSync(logs);
+    symlinkSync('/etc/passwd', join(logs, 'X.csv'));
+    execFileSync('mkfifo', [join(logs, 'F.csv')]);
+    const a = join(logs, 'A_1.csv');
+    const b = join(logs, 'B_1.csv');
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    writeFileSync(b, `${CSV_HEADER}\n`);
+    // mono_ns as the modules write them: the host's CLOCK_MONOTONIC at the record
+    const mono = (): bigint => process.hrtime.bigint();
+    for (let i = 0; i < 30; i++) {
+      const r = rec(mono(), 'A');
+      appendFileSync(a, r.slice(0, 10));
+      await sleep(2);
+      appendFileSync(a, r.slice(10) + '\n');
+      appendFileSync(b, rec(mono(), 'B') + '\n');
+      if (i === 10) appendFileSync(b, 'garbage,,"\n');
+      if (i === 20) appendFileSync(a, 'y'.repeat(10 * 1024 * 1024) + '\n');
+    }
+    appendFileSync(b, rec(mono(), 'B')); // no newline: the run ended mid-record
+    await tail.finish();
+    expect(system).toEqual([]);
+    for (const [name, path] of [['A_1.csv', a], ['B_1.csv', b]] as const) {
+      const text = readFileSync(path, 'utf8');
+      const want = parseLogFile({ name, text });
+      const got = traced.filter((l) => l.file === name);
+      expect(got.map((l) => parseRecordLine(name, l.line, l.text))).toEqual(want);
+    }
+    expect(traced.some((l) => l.file === 'X.csv' || l.file === 'F.csv')).toBe(false);
+    const monos = traced.map((l) => /^(\d+),/.exec(l.text)?.[1]).filter(Boolean).map(Number);
+    expect(monos).toEqual([...monos].sort((x, y) => x - y));
+    expect(traced.find((l) => l.text.endsWith(CUT_MARK))?.text.length).toBe(MAX_LINE_CHARS + CUT_MARK.length);
+    expect(events).toBeGreaterThan(1); // live: several events, not one at the end
+  });
+
+  test('a file truncated mid-run stops its own trace with one line; the others go on', async () => {
+    mkdirSync(logs);
+    const a = join(logs, 'A_1.csv');
+    const b = join(logs, 'B_1.csv');
+    writeFileSync(a, `${CSV_HEADER}\n${rec(1, 'A')}\n`);
+    writeFileSync(b, `${CSV_HEADER}\n`);
+    const tail = await TraceTail.start(work, sink, fast);
+    appendFileSync(a, `${rec(2, 'A')}\n`);
+    await sleep(40);
+    truncateSync(a, 0);
+    appendFileSync(a, `${rec(3, 'A')}\n`);
+    appendFileSync(b, `${rec(4, 'B')}\n`);
+    await sleep(40);
+    await tail.finish();
+    expect(traced.map((l) => l.text)).toEqual([rec(2, 'A'), rec(4, 'B')]); // rec 1 was there before the run
+    expect(system).toHaveLength(1);
+    expect(system[0]).toMatch(/A_1\.csv shrank while it was read/);
+  });
+
+  test('an earlier run\'s logs (a reused workspace) are not read and do not hold the order back', async () => {
+    mkdirSync(logs);
+    const old = join(logs, 'OLD_1.csv');
+    writeFileSync(old, `${CSV_HEADER}\n` + `${rec(1, 'OLD')}\n`.repeat(100_000)); // ~6 MB, never grows
+    const a = join(logs, 'A_2.csv');
+    const tail = await TraceTail.start(work, sink, { ...fast, orderWindowMs: 60_000 });
+    writeFileSync(a, `${CSV_HEADER}\n${rec(process.hrtime.bigint(), 'A')}\n`);
+    // with OLD not holding the watermark, A's record goes at the next poll, not after the (here 60 s) window
+    for (let i = 0; i < 200 && traced.length === 0; i++) await sleep(10);
+    expect(traced.map((l) => l.file)).toEqual(['A_2.csv']);
+    await tail.finish();
+    expect(traced.map((l) => l.file)).toEqual(['A_2.csv']);
+    expect(system).toEqual([]);
+  });
+
+  test('thousands of files and the kept-lines bound: bounded, one system line, never a throw', async () => {
+    mkdirSync(logs);
+    for (let i = 0; i < 2000; i++) writeFileSync(join(logs, `M${i}_1.csv`), `${CSV_HEADER}\n${rec(i)}\n${rec(i + 10_000)}\n`);
+    const tail = await TraceTail.start(work, sink, { ...fast, files: 50, linesKept: 70, linesPerEvent: 8 });
+    for (let i = 0; i < 2000; i++) appendFileSync(join(logs, `M${i}_1.csv`), `${rec(20_000 + i)}\n`);
+    await sleep(50);
+    await tail.finish();
+    expect(traced).toHaveLength(50); // one new record in each of the 50 files tailed
+    expect(system.some((l) => /more than 50 logs/.test(l))).toBe(true);
+
+    traced = [];
+    liveOnly = [];
+    system = [];
+    const tail2 = await TraceTail.start(work, sink, { ...fast, files: 300, linesKept: 70, linesPerEvent: 8 });
+    for (let i = 0; i < 2000; i++) appendFileSync(join(logs, `M${i}_1.csv`), `${rec(30_000 + i)}\n`);
+    await tail2.finish();
+    // 70 kept for replay, the other 230 of the 300 tailed files' new records sent live only, none twice
+    expect(traced).toHaveLength(70);
+    expect(liveOnly).toHaveLength(230);
+    expect(new Set([...traced, ...liveOnly].map((l) => `${l.file}:${l.line}`)).size).toBe(300);
+    expect(system.filter((l) => /70 records kept for replay/.test(l))).toHaveLength(1);
+  });
+
+  test('logs/ planted as a link: not followed, one line', async () => {
+    const outside = mkdtempSync(join(tmpdir(), 'trace-outside-'));
+    writeFileSync(join(outside, 'S_1.csv'), `${CSV_HEADER}\n${rec(1)}\n`);
+    symlinkSync(outside, logs);
+    const tail = await TraceTail.start(work, sink, fast);
+    appendFileSync(join(outside, 'S_1.csv'), `${rec(2)}\n`);
+    await sleep(30);
+    await tail.finish();
+    rmSync(outside, { recursive: true, force: true });
+    expect(traced).toEqual([]);
+    expect(system).toEqual([expect.stringMatching(/logs\/ is not a directory \((ELOOP|ENOTDIR)\)/)]);
+  });
+});

@@ -1,0 +1,357 @@
+/**
+ * The live trace channel's reader (docs/build-service-api.md "Trace channel"): while the run step
+ * runs, polls the run's log folder (LOG_DIR = <work>/logs, a host folder for bwrap and none: the
+ * work dir is bound into the sandbox) every `pollMs`, reads only the new bytes of each `*.csv`,
+ * and hands their record lines, in mono_ns order across the files (trace-order.ts), to the job.
+ *
+ * The folder is the running sandbox's, so it can change under every call (docs/sandbox.md,
+ * "Workspaces and host safety"): the logs folder is opened once as a directory without following
+ * a link (O_DIRECTORY | O_NOFOLLOW) and every file is opened through that descriptor
+ * (/proc/self/fd/N/<name>, so a logs/ renamed or replaced by a link later is never walked through),
+ * with O_NOFOLLOW (a link is refused) and O_NONBLOCK (a FIFO does not block the open), then kept
+ * only when fstat says it is a regular file. Reads are bounded per poll (`readBytesPerPoll`), names
+ * and file counts are bounded, lines are bounded (trace-lines.ts). Nothing here throws into the
+ * job: a fault stops the channel with one system line; the collected logs stay the record.
+ */
+import { constants, promises as fsp } from 'node:fs';
+import type { FileHandle } from 'node:fs/promises';
+import { join } from 'node:path';
+import { SERVICE_BOUNDS } from '../limits.js';
+import { LOG_DIR, SAFE_NAME } from './artifacts.js';
+import type { TraceLine } from './job-events.js';
+import { TraceLineSplitter } from './trace-lines.js';
+import { TraceOrder } from './trace-order.js';
+
+export interface TraceTailBounds {
+  pollMs: number;
+  readBytesPerPoll: number;
+  orderWindowMs: number;
+  files: number;
+  /** Entries of logs/ looked at per listing. */
+  entries: number;
+  linesPerEvent: number;
+  linesKept: number;
+}
+
+export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
+  pollMs: SERVICE_BOUNDS.tracePollMs,
+  readBytesPerPoll: SERVICE_BOUNDS.traceReadBytesPerPoll,
+  orderWindowMs: SERVICE_BOUNDS.traceOrderWindowMs,
+  files: SERVICE_BOUNDS.traceFiles,
+  entries: SERVICE_BOUNDS.listedEntries,
+  linesPerEvent: SERVICE_BOUNDS.traceLinesPerEvent,
+  linesKept: SERVICE_BOUNDS.traceLinesKept,
+});
+
+/** Where the tail's output goes (the job: trace events and system lines). */
+export interface TraceSink {
+  /** Lines kept in the job's event log (replayable from seq 0). */
+  trace(lines: TraceLine[]): void;
+  /** Lines beyond the kept-lines bound: sent to the clients attached now, not kept. */
+  live(lines: TraceLine[]): void;
+  system(line: string): void;
+}
+
+interface Tailed {
+  name: string;
+  fh: FileHandle;
+  splitter: TraceLineSplitter;
+  done: boolean;
+  /**
+   * A log an earlier run left (a reused workspace) that has not grown since this run started: not
+   * read (its old bytes are read, counted and not sent, only once it grows) and not holding the
+   * ordering watermark.
+   */
+  dormantUntil: number;
+}
+
+const CHUNK = 64 * 1024;
+
+export class TraceTail {
+  private dir: FileHandle | null = null;
+  private readonly files = new Map<string, Tailed>();
+  /** Names not tailed (not a regular file, a link, over the file bound): looked at once. */
+  private readonly ignored = new Set<string>();
+  /** Sizes of the logs that were there before the run: their old lines are counted, not sent. */
+  private readonly before = new Map<string, number>();
+  private readonly order: TraceOrder;
+  private timer: NodeJS.Timeout | null = null;
+  private polling: Promise<void> = Promise.resolve();
+  private stopped = false;
+  /** finish() or stop() was called: no poll is scheduled any more. */
+  private ending = false;
+  /** Some log had bytes left unread by the last poll (the per-poll read bound). */
+  private behind = false;
+  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns for bwrap and none) at the last listing. */
+  private listedAt: bigint | null = null;
+  private sent = 0;
+  /** Past the kept-lines bound: lines go to the attached clients only. */
+  private liveOnly = false;
+  private liveSent = 0;
+  private rotate = 0;
+  private readonly buf: Buffer;
+  private noted = new Set<string>();
+
+  private constructor(
+    private readonly logsDir: string,
+    private readonly sink: TraceSink,
+    private readonly bounds: TraceTailBounds,
+  ) {
+    this.order = new TraceOrder(bounds.orderWindowMs);
+    this.buf = Buffer.allocUnsafe(Math.max(1, Math.min(CHUNK, bounds.readBytesPerPoll)));
+  }
+
+  /** Records sent so far. */
+  get sentLines(): number {
+    return this.sent;
+  }
+
+  /**
+   * Starts tailing `<workDir>/logs` (what its logs hold now is not this run's: only bytes added
+   * from now on are sent). Call before the run starts; never throws.
+   */
+  static async start(workDir: string, sink: TraceSink, bounds: TraceTailBounds = TRACE_TAIL_BOUNDS): Promise<TraceTail> {
+    const tail = new TraceTail(join(workDir, LOG_DIR), sink, bounds);
+    await tail.guard(async () => {
+      if (!(await tail.openDir())) return;
+      for (const name of await tail.list()) {
+        const st = await fsp.lstat(join(tail.dirPath(), name)).catch(() => null);
+        if (st?.isFile()) tail.before.set(name, st.size);
+      }
+    });
+    tail.schedule();
+    return tail;
+  }
+
+  /**
+   * The run has ended (every process of it is gone): reads every log to its end, sends every
+   * record held, closes the files. Never throws.
+   */
+  async finish(): Promise<void> {
+    this.ending = true;
+    this.clearTimer();
+    await this.polling;
+    if (!this.stopped) {
+      await this.guard(async () => {
+        // a bounded read per round, as many rounds as it takes: every file ends (the run is over)
+        // (a file read to its end is closed: it no longer holds the watermark, so what is held
+        // is sent round by round and memory stays bounded by the rounds' reads)
+        while (!this.stopped) {
+          const more = await this.readRound(Date.now(), true);
+          if (!this.stopped) this.emit(this.order.release(Date.now(), { all: !more, drain: true }));
+          if (!more) break;
+        }
+        if (!this.stopped && this.order.late > 0) {
+          this.sink.system(`trace: ${this.order.late} record(s) reached the service more than ${this.bounds.orderWindowMs} ms after newer records of other modules were sent: they were sent late, out of mono_ns order (the collected logs are in order)`);
+        }
+      });
+    }
+    await this.close();
+  }
+
+  /** Stops without reading further (a cancelled or failed job). Never throws. */
+  async stop(): Promise<void> {
+    this.ending = true;
+    this.clearTimer();
+    this.stopped = true;
+    await this.polling;
+    await this.close();
+  }
+
+  private dirPath(): string {
+    return `/proc/self/fd/${this.dir!.fd}`;
+  }
+
+  private schedule(): void {
+    if (this.stopped || this.ending) return;
+    this.timer = setTimeout(() => {
+      this.timer = null;
+      this.polling = this.guard(() => this.poll()).then(() => this.schedule());
+    }, this.bounds.pollMs);
+    this.timer.unref();
+  }
+
+  private clearTimer(): void {
+    if (this.timer) clearTimeout(this.timer);
+    this.timer = null;
+  }
+
+  /** Runs a step; an exception stops the channel with one system line (never the job). */
+  private async guard(fn: () => Promise<void>): Promise<void> {
+    try {
+      await fn();
+    } catch (e) {
+      if (this.stopped) return;
+      this.stopped = true;
+      this.clearTimer();
+      this.safeSystem(`trace: the live trace channel stopped (${(e as Error)?.message?.split('\n')[0] ?? String(e)}); the whole trace is in the run's collected logs`);
+    }
+  }
+
+  private safeSystem(line: string): void {
+    try {
+      this.sink.system(line);
+    } catch {
+      /* the job's log is closed */
+    }
+  }
+
+  private noteOnce(key: string, line: string): void {
+    if (this.noted.has(key)) return;
+    this.noted.add(key);
+    this.safeSystem(line);
+  }
+
+  /** Opens logs/ once it exists; false while it does not (or when it is not a directory). */
+  private async openDir(): Promise<boolean> {
+    if (this.dir) return true;
+    try {
+      this.dir = await fsp.open(this.logsDir, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+      return true;
+    } catch (e) {
+      const code = (e as NodeJS.ErrnoException).code;
+      if (code === 'ENOENT') return false;
+      // a link or a file where the folder should be: the collector leaves it out too
+      this.noteOnce('dir', `trace: ${LOG_DIR}/ is not a directory (${code ?? 'error'}): no live trace`);
+      this.stopped = true;
+      return false;
+    }
+  }
+
+  /** The names in logs/ (at most `entries` of them), read through the folder's descriptor. */
+  private async list(): Promise<string[]> {
+    const names: string[] = [];
+    const handle = await fsp.opendir(this.dirPath(), { bufferSize: 64 }).catch(() => null);
+    if (!handle) return names;
+    try {
+      for await (const d of handle) {
+        if (names.length >= this.bounds.entries) break; // leaving the loop closes the handle
+        names.push(d.name);
+      }
+    } catch {
+      /* the folder changed while it was read: what was read is listed */
+    }
+    return names;
+  }
+
+  private async poll(): Promise<void> {
+    if (this.stopped) return;
+    this.behind = await this.readRound(Date.now(), false);
+    if (!this.stopped) this.emit(this.order.release(Date.now(), { behind: this.behind, nowMono: process.hrtime.bigint(), ...(this.listedAt !== null ? { listedAt: this.listedAt } : {}) }));
+  }
+
+  /** Looks for new logs, reads up to the per-poll bound; true when some file has more bytes. */
+  private async readRound(now: number, final: boolean): Promise<boolean> {
+    if (!(await this.openDir())) return false;
+    const listedAt = process.hrtime.bigint();
+    // a run that keeps making new names must not grow this set without end (a name forgotten is
+    // only looked at again: the listing is bounded per poll)
+    if (this.ignored.size > 4 * this.bounds.entries) this.ignored.clear();
+    for (const name of await this.list()) {
+      if (this.files.has(name) || this.ignored.has(name)) continue;
+      if (!name.endsWith('.csv') || !SAFE_NAME.test(name)) {
+        this.ignored.add(name);
+        continue;
+      }
+      await this.open(name);
+    }
+    const all = [...this.files.values()].filter((f) => !f.done);
+    let budget = this.bounds.readBytesPerPoll;
+    let more = false;
+    const start = all.length ? this.rotate++ % all.length : 0;
+    for (let i = 0; i < all.length; i++) {
+      const f = all[(start + i) % all.length]!;
+      const left = await this.readFile(f, budget, now);
+      budget -= left.read;
+      if (left.more) more = true;
+      if (this.stopped) return false;
+      if (final && !left.more && !f.done) {
+        // the run is over: this file is whole; its last line may lack its newline
+        this.order.add(f.name, f.splitter.end(), now);
+        f.done = true;
+        this.order.close(f.name);
+      }
+    }
+    this.listedAt = listedAt;
+    return more;
+  }
+
+  private async open(name: string): Promise<void> {
+    if (this.files.size >= this.bounds.files) {
+      this.ignored.add(name);
+      this.noteOnce('files', `trace: more than ${this.bounds.files} logs: the others are only in the collected logs`);
+      return;
+    }
+    let fh: FileHandle;
+    try {
+      fh = await fsp.open(join(this.dirPath(), name), constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
+    } catch {
+      this.ignored.add(name); // a link (ELOOP), gone, not readable
+      return;
+    }
+    const st = await fh.stat().catch(() => null);
+    if (!st?.isFile()) {
+      this.ignored.add(name); // a FIFO, a socket, a device, a folder
+      await fh.close().catch(() => {});
+      return;
+    }
+    const before = this.before.get(name) ?? 0;
+    this.files.set(name, { name, fh, splitter: new TraceLineSplitter(name, before), done: false, dormantUntil: before });
+    if (before === 0) this.order.track(name);
+  }
+
+  /** Reads at most `budget` new bytes of one log. */
+  private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
+    const size = (await f.fh.stat()).size;
+    if (f.dormantUntil > 0) {
+      if (size <= f.dormantUntil) return { read: 0, more: false };
+      f.dormantUntil = 0; // it grew: this run writes to it too (a module restarted within the same second)
+      this.order.track(f.name);
+    }
+    if (size < f.splitter.offset) {
+      // the runtime only appends (O_APPEND): a log that shrank was rewritten by the sandboxed code
+      f.done = true;
+      this.order.close(f.name);
+      this.safeSystem(`trace: ${f.name} shrank while it was read (${f.splitter.offset} -> ${size} bytes): its live trace stops there; the collected log is what the run left`);
+      return { read: 0, more: false };
+    }
+    let read = 0;
+    while (read < budget && f.splitter.offset < size) {
+      const want = Math.min(this.buf.length, budget - read, size - f.splitter.offset);
+      const { bytesRead } = await f.fh.read(this.buf, 0, want, f.splitter.offset);
+      if (bytesRead === 0) break;
+      read += bytesRead;
+      this.order.add(f.name, f.splitter.push(this.buf.subarray(0, bytesRead)), now);
+    }
+    return { read, more: f.splitter.offset < size };
+  }
+
+  /**
+   * Sends lines as trace events, kept for replay up to the kept-lines bound; past it they still go
+   * to the clients attached now (a 1 kHz schema passes the bound in seconds, and a live monitor
+   * must follow the whole run), but are not kept: a later client replays them from the collected logs.
+   */
+  private emit(lines: TraceLine[]): void {
+    if (this.stopped || lines.length === 0) return;
+    const room = Math.max(0, this.bounds.linesKept - this.sent);
+    const take = lines.length > room ? lines.slice(0, room) : lines;
+    for (let i = 0; i < take.length; i += this.bounds.linesPerEvent) this.sink.trace(take.slice(i, i + this.bounds.linesPerEvent));
+    this.sent += take.length;
+    if (lines.length > room) {
+      if (!this.liveOnly) {
+        this.liveOnly = true;
+        this.safeSystem(`trace: ${this.bounds.linesKept} records kept for replay (the build service's traceLinesKept bound); later records go live to the clients attached now only, and the whole trace is in the run's collected logs`);
+      }
+      const rest = lines.slice(take.length);
+      for (let i = 0; i < rest.length; i += this.bounds.linesPerEvent) this.sink.live(rest.slice(i, i + this.bounds.linesPerEvent));
+      this.liveSent += rest.length;
+    }
+  }
+
+  private async close(): Promise<void> {
+    for (const f of this.files.values()) await f.fh.close().catch(() => {});
+    this.files.clear();
+    await this.dir?.close().catch(() => {});
+    this.dir = null;
+  }
+}

@@ -1,0 +1,110 @@
+/**
+ * The live trace channel (docs/build-service-api.md "Trace channel") on a real bwrap run of the
+ * report's tutorial through the HTTP service: the trace events carry exactly the record lines of
+ * the CSV logs collected after the run (per file, count and order), in non-decreasing mono_ns
+ * across the stream, the supervisor's rule story among them, and a client subscribing from seq 0
+ * after the run gets the identical trace (SSE and WebSocket).
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, expect, test } from 'vitest';
+import WebSocket from 'ws';
+import type { JobEvent, TraceEvent, TraceLine } from './pipeline/job-events.js';
+import { createBuildServer, type BuildServer } from './server.js';
+import { getJob, postJob, readEvents } from './test-support/client.js';
+import { MAA_MODULE, snapshotRuntime, tutorialFiles } from './test-support/tutorial.js';
+import { parseLogFile, parseRecordLine } from './trace/parse.js';
+import type { RuleRecord } from './trace/records.js';
+
+let server: BuildServer;
+let url: string;
+let cacheDir: string;
+let runtimeSource: string;
+
+beforeAll(async () => {
+  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
+  runtimeSource = snapshotRuntime();
+  server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir, runtimeSource });
+  url = (await server.listen()).url;
+}, 240_000);
+
+afterAll(async () => {
+  await server?.close();
+  rmSync(cacheDir, { recursive: true, force: true });
+  rmSync(runtimeSource, { recursive: true, force: true });
+});
+
+const traceLines = (events: JobEvent[]): TraceLine[] => events.filter((e): e is TraceEvent => e.type === 'trace').flatMap((e) => e.records);
+
+function wsEvents(id: string): Promise<JobEvent[]> {
+  return new Promise((resolve, reject) => {
+    const out: JobEvent[] = [];
+    const ws = new WebSocket(`${url.replace('http', 'ws')}/api/jobs/${id}/ws`);
+    ws.on('message', (d) => out.push(JSON.parse(String(d)) as JobEvent));
+    ws.on('close', () => resolve(out));
+    ws.on('error', reject);
+  });
+}
+
+test('the tutorial in bwrap: the live trace is the collected logs, in mono_ns order, replayable from seq 0', async () => {
+  const files = await tutorialFiles();
+  // MAA's user code sleeps 500 ms at a time inside its callbacks (nanosleep in a protected
+  // region): the runtime writes a module's log when the module waits for requests, so records MAA
+  // logged before such a sleep would reach the file 500 ms late, after newer records of other
+  // modules were sent (counted and reported as late: docs/build-service-api.md "Trace channel").
+  // User code that blocks writes its log first, as here.
+  const maa = files[MAA_MODULE]!;
+  expect(maa).toContain('nanosleep(&step, NULL);');
+  files[MAA_MODULE] = maa.replace('nanosleep(&step, NULL);', 'ContractLogFlush();\n    nanosleep(&step, NULL);');
+  const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: 3, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  const arrivals: number[] = [];
+  const live = await readEvents(url, id, (e) => {
+    if (e.type === 'trace') arrivals.push(Date.now());
+  });
+  const job = await getJob(url, id);
+  const lines = live.filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  expect(job.status, `${job.result?.message}\n${lines.slice(-20).join('\n')}`).toBe('succeeded');
+
+  // the trace came while the run ran (several events), and before the artifacts and the end
+  const kinds = live.map((e) => e.type);
+  const firstTrace = kinds.indexOf('trace');
+  const lastTrace = kinds.lastIndexOf('trace');
+  expect(arrivals.length).toBeGreaterThan(3);
+  expect(lastTrace).toBeLessThan(live.findIndex((e) => e.type === 'line' && /^collected \d+ artifact/.test((e as { line: string }).line)));
+  expect(firstTrace).toBeLessThan(live.findIndex((e) => e.type === 'line' && /^run finished in/.test((e as { line: string }).line)));
+  expect(lines.filter((l) => l.startsWith('trace:'))).toEqual([]);
+
+  // per file: exactly the record lines of the collected log, in file order
+  const trace = traceLines(live);
+  const listing = job.artifacts as { files: { name: string }[] };
+  expect(listing.files).toHaveLength(9);
+  let total = 0;
+  for (const f of listing.files) {
+    const text = await (await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
+    const want = parseLogFile({ name: f.name, text });
+    const got = trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text));
+    expect(got, f.name).toEqual(want);
+    total += want.length;
+  }
+  expect(trace).toHaveLength(total);
+  expect(total).toBeGreaterThan(100);
+
+  // mono_ns never goes back across the stream
+  const monos = trace.map((l) => BigInt(/^(\d+),/.exec(l.text)![1]!));
+  for (let i = 1; i < monos.length; i++) expect(monos[i]! >= monos[i - 1]!, `record ${i}: ${trace[i]!.text} after ${trace[i - 1]!.text}`).toBe(true);
+
+  // the supervisor's story: FIRST active, then SECOND active caused by MAA:2
+  const rules = trace.map((l) => parseRecordLine(l.file, l.line, l.text)).filter((x): x is RuleRecord => x.kind === 'sup_rule' && (x as RuleRecord).active);
+  const first = rules.findIndex((x) => x.rule === 'FIRST');
+  const second = rules.findIndex((x) => x.rule === 'SECOND');
+  expect(first).toBeGreaterThanOrEqual(0);
+  expect(second).toBeGreaterThan(first);
+  expect(rules[second]!.cause).toMatch(/^MAA:2 /);
+
+  // a late client from seq 0 gets the same trace, over SSE and over WebSocket
+  expect(traceLines(await readEvents(url, id))).toEqual(trace);
+  expect(traceLines(await wsEvents(id))).toEqual(trace);
+}, 240_000);

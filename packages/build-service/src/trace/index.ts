@@ -1,0 +1,11 @@
+/**
+ * The run-time trace model (docs/runtime-api.md "Trace records"): the record kinds, the
+ * browser-safe reader of a run's CSV logs, and the readable story. Imported by the CLI
+ * (`contract trace`, `contract run --trace`) as `@contract-studio/build-service/trace`.
+ */
+export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
+export { parseTrace, parseLogFile, parseRecordLine, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
+export { splitCsvLine } from './csv-line.js';
+export { renderStory } from './story.js';
+export { renderTraceTable, withTraceTable } from './render-doc.js';
+export { isRule, isUnknown, type TraceRecord, type TraceRecordBase, type RuleRecord, type RuleCause, type KnownRecord, type UnknownRecord } from './records.js';

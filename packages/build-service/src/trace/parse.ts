@@ -1,0 +1,114 @@
+/**
+ * Reads a run's CSV logs into typed, time-ordered trace records (docs/runtime-api.md "Trace
+ * records"). Browser-safe (no Node API): the caller hands the files' text. The logs come out of
+ * a sandbox, so the input is hostile: lines are bounded, nothing throws, and every line that is
+ * not a record of the table is kept as an `unknown` record saying why.
+ */
+import { splitCsvLine } from './csv-line.js';
+import { traceKind } from './record-kinds.js';
+import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
+import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, TraceRecordBase, UnknownRecord } from './records.js';
+
+export const CSV_HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+/** Longer lines are not records (csvlog.c writes at most about 1 KiB per record). */
+export const MAX_LINE_CHARS = 4096;
+
+export interface LogFile {
+    name: string;
+    text: string;
+}
+
+function unknown(file: string, line: number, reason: string, text: string): UnknownRecord {
+    return { kind: 'unknown', file, line, reason, text: text.slice(0, 200) };
+}
+
+/** `key=value` words of a detail, values as numbers when they are plain digits. */
+function detailFields(detail: string, keys: readonly string[]): Record<string, string | number> {
+    const out: Record<string, string | number> = {};
+    for (const word of detail.split(' ')) {
+        const eq = word.indexOf('=');
+        if (eq <= 0) continue;
+        const key = word.slice(0, eq);
+        if (!keys.includes(key) || key in out) continue;
+        const value = word.slice(eq + 1);
+        out[key] = /^-?\d{1,15}$/.test(value) ? Number(value) : value;
+    }
+    return out;
+}
+
+const CAUSE_EVENT = /^([A-Za-z_]\w*):(\d{1,9}) value=(.*)$/s;
+const CAUSE_RULE = /^(started|endof)\(([A-Za-z_]\w*)\)$/;
+const CAUSE_DURATION = /^duration\(([A-Za-z_]\w*)\)=(\d{1,19})ns$/;
+const CAUSE_ELAPSED = /^elapsed=(\d{1,19})ns$/;
+
+export function parseCause(text: string): RuleCause {
+    let m = CAUSE_EVENT.exec(text);
+    if (m) return { kind: 'event', module: m[1]!, port: Number(m[2]), value: m[3]! };
+    m = CAUSE_RULE.exec(text);
+    if (m) return { kind: m[1] as 'started' | 'endof', rule: m[2]! };
+    m = CAUSE_DURATION.exec(text);
+    if (m) return { kind: 'duration', rule: m[1]!, ns: Number(m[2]) };
+    m = CAUSE_ELAPSED.exec(text);
+    if (m) return { kind: 'elapsed', ns: Number(m[1]) };
+    if (text === 'stop') return { kind: 'stop' };
+    return { kind: 'other', text };
+}
+
+const RULE_DETAIL = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*) (active|inactive) cause=(.*)$/s;
+
+/** One CSV line (not the header) -> a record, or an unknown record saying what is wrong. */
+export function parseRecordLine(file: string, lineNo: number, line: string): TraceRecord {
+    if (line.length > MAX_LINE_CHARS) return unknown(file, lineNo, `line longer than ${MAX_LINE_CHARS} characters`, line);
+    const f = splitCsvLine(line);
+    if (f.length !== 8) return unknown(file, lineNo, `${f.length} fields, expected 8`, line);
+    const [mono, wall, module, event, peer, port, size, detail] = f as [string, string, string, string, string, string, string, string];
+    if (!/^\d{1,20}$/.test(mono)) return unknown(file, lineNo, 'mono_ns is not a number', line);
+    if (!/^[\w.-]{1,64}$/.test(module)) return unknown(file, lineNo, 'bad module name', line);
+    if (!/^$|^\d{1,9}$/.test(port) || !/^\d{1,15}$/.test(size)) return unknown(file, lineNo, 'bad port or size', line);
+    const kind = traceKind(event);
+    if (!kind) return unknown(file, lineNo, `unknown event '${event.slice(0, 64)}'`, line);
+    const base: TraceRecordBase = { monoNs: mono, wallTime: wall, module, peer, port: port === '' ? null : Number(port), size: Number(size), detail };
+    if (event === 'sup_rule') {
+        const m = RULE_DETAIL.exec(detail);
+        if (!m) return unknown(file, lineNo, 'sup_rule detail is not `F.R active|inactive cause=C`', line);
+        const rule: RuleRecord = { kind: 'sup_rule', ...base, function: m[1]!, rule: m[2]!, active: m[3] === 'active', cause: m[4]!, causeEvent: parseCause(m[4]!) };
+        return rule;
+    }
+    const fields = event === 'scheduler' ? classifyLine(SCHEDULER_LINES, detail)
+        : event === 'supervisor' ? classifyLine(SUPERVISOR_LINES, detail)
+            : detailFields(detail, kind.detailKeys ?? []);
+    const known: KnownRecord = { kind: event, ...base, fields };
+    return known;
+}
+
+/** The records of one log file, in file order (header and empty lines are not records). */
+export function parseLogFile(file: LogFile): TraceRecord[] {
+    const out: TraceRecord[] = [];
+    const lines = file.text.split('\n');
+    if (lines.length && lines[lines.length - 1] === '') lines.pop();
+    lines.forEach((raw, i) => {
+        const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
+        if (line === '' || (i === 0 && line === CSV_HEADER)) return;
+        out.push(parseRecordLine(file.name, i + 1, line));
+    });
+    return out;
+}
+
+/**
+ * Every record of every file, ordered by mono_ns (CLOCK_MONOTONIC, comparable across the
+ * modules of one host); records of equal time keep their file order, files in name order. An
+ * unknown record stays right after the record that preceded it in its file.
+ */
+export function parseTrace(files: LogFile[]): TraceRecord[] {
+    const keyed: { key: bigint; file: number; index: number; record: TraceRecord }[] = [];
+    const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+    sorted.forEach((file, fi) => {
+        let last = 0n;
+        parseLogFile(file).forEach((record, index) => {
+            if (record.kind !== 'unknown') last = BigInt((record as KnownRecord).monoNs);
+            keyed.push({ key: last, file: fi, index, record });
+        });
+    });
+    keyed.sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.file - b.file || a.index - b.index));
+    return keyed.map((k) => k.record);
+}

@@ -1,0 +1,91 @@
+import { readdirSync, readFileSync } from 'node:fs';
+import fc from 'fast-check';
+import { describe, expect, it } from 'vitest';
+import { CSV_HEADER, MAX_LINE_CHARS, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
+
+const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
+
+describe('trace record kinds', () => {
+    it('docs/runtime-api.md holds the table generated from record-kinds.ts (npm run docs:trace -w packages/build-service)', () => {
+        expect(readFileSync(DOC, 'utf8')).toContain(renderTraceTable());
+    });
+
+    it('lists every event the runtime writes, and only those (ContractLog calls of runtime/src)', () => {
+        const src = new URL('../../../../runtime/src/', import.meta.url);
+        const written = new Set<string>();
+        for (const entry of readdirSync(src, { recursive: true, encoding: 'utf8' }).filter((f) => f.endsWith('.c'))) {
+            const text = readFileSync(new URL(entry, src), 'utf8');
+            for (const call of text.matchAll(/ContractLog\(([^;]*?),/g)) for (const name of call[1]!.matchAll(/"([a-z_]+)"/g)) written.add(name[1]!);
+        }
+        expect([...written].sort()).toEqual(TRACE_KINDS.map((k) => k.kind).sort());
+    });
+
+    it('every example line of the table is read as its kind, with its detail keys', () => {
+        for (const k of TRACE_KINDS) {
+            const r = parseRecordLine('X.csv', 2, k.example);
+            expect(r.kind, k.example).toBe(k.kind);
+            for (const key of k.detailKeys ?? []) expect((r as KnownRecord).fields[key], `${k.kind} ${key}`).toBeDefined();
+        }
+    });
+});
+
+describe('reading a log', () => {
+    it('reads a rule change with its cause, event values included', () => {
+        const r = parseRecordLine('SUP.csv', 2, '3000,2026-11-24T18:30:15.123456Z,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""') as RuleRecord;
+        expect(isRule(r)).toBe(true);
+        expect(r).toMatchObject({ function: 'action', rule: 'SECOND', active: true, cause: 'MAA:2 value="disconnected"', causeEvent: { kind: 'event', module: 'MAA', port: 2, value: '"disconnected"' } });
+        const causes = ['elapsed=1000000ns', 'duration(FIRST)=5ns', 'started(A)', 'endof(B)', 'stop', 'ORD:0 value="S"', 'what?'];
+        expect(causes.map((c) => (parseRecordLine('S', 2, `1,w,SUP,sup_rule,,,0,f.R inactive cause=${c}`) as RuleRecord).causeEvent.kind))
+            .toEqual(['elapsed', 'duration', 'started', 'endof', 'stop', 'event', 'other']);
+    });
+
+    it('reads ORD releases with cycle, tick and release times as numbers', () => {
+        const r = parseRecordLine('ORD.csv', 5, '1201,w,ORD,ord_release,MSC,,0,schema=S cycle=3 tick_ns=1200 release_ns=1201 release=9') as KnownRecord;
+        expect(r).toMatchObject({ kind: 'ord_release', peer: 'MSC', port: null, fields: { schema: 'S', cycle: 3, tick_ns: 1200, release_ns: 1201, release: 9 } });
+    });
+
+    it('types the engines\' readable lines: what they are and the names they hold', () => {
+        const fields = (event: string, detail: string) => (parseRecordLine('L', 2, `1,w,X,${event},,,0,"${detail}"`) as KnownRecord).fields;
+        expect(fields('scheduler', 'activate schemaCommande1')).toEqual({ what: 'activate', schema: 'schemaCommande1' });
+        expect(fields('scheduler', 'conflict: ICF shares a module with active ISC (ORD:1)')).toEqual({ what: 'conflict', schema: 'ICF', active: 'ISC' });
+        expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' });
+        expect(fields('scheduler', 'late ack: B finished release #12 of an earlier cycle of DIA (not counted)')).toEqual({ what: 'late_ack', module: 'B', release: 12, schema: 'DIA' });
+        expect(fields('scheduler', 'something new')).toEqual({ what: 'other' });
+        expect(fields('supervisor', 'function action started')).toEqual({ what: 'function_started', function: 'action' });
+        expect(fields('supervisor', 'refused: function action already running')).toEqual({ what: 'function_refused', function: 'action' });
+        expect(fields('supervisor', 'refused: no function nope')).toEqual({ what: 'function_refused', function: 'nope' });
+        expect(fields('supervisor', 'rule action.FIRST inactive')).toEqual({ what: 'rule', function: 'action', rule: 'FIRST', state: 'inactive' });
+        expect(fields('supervisor', 'subscribe MAA:2 =* :2')).toEqual({ what: 'action' });
+    });
+
+    it('keeps what it cannot read as unknown records saying why, and never throws', () => {
+        const text = [CSV_HEADER, 'garbage', `1,w,MSC,${'x'.repeat(10)},,,0,`, `1,w,MSC,error,,,0,${'y'.repeat(MAX_LINE_CHARS)}`, 'a,w,MSC,error,,,0,', '1,w,M/S,error,,,0,', '\u0000\u00ff,",,', ''].join('\n');
+        const records = parseLogFile({ name: 'MSC_1.csv', text });
+        expect(records.map((r) => r.kind)).toEqual(['unknown', 'unknown', 'unknown', 'unknown', 'unknown', 'unknown']);
+        expect(records.map((r) => (isUnknown(r) ? r.reason : ''))).toEqual([
+            '1 fields, expected 8', "unknown event 'xxxxxxxxxx'", `line longer than ${MAX_LINE_CHARS} characters`, 'mono_ns is not a number', 'bad module name', '2 fields, expected 8',
+        ]);
+        fc.assert(fc.property(fc.string({ maxLength: 300 }), (s) => {
+            const lines = s.split('\n').map((l) => (l.endsWith('\r') ? l.slice(0, -1) : l)).filter((l, i) => l !== '' && !(i === 0 && l === CSV_HEADER));
+            expect(parseLogFile({ name: 'F', text: s }).length).toBe(lines.length);
+        }));
+    });
+
+    it('orders the records of several files by mono_ns, equal times in file order, unknown lines after their predecessor', () => {
+        const a = { name: 'B_1.csv', text: `${CSV_HEADER}\n5,w,B,error,,,0,b5\nbad\n9,w,B,error,,,0,b9\n` };
+        const b = { name: 'A_1.csv', text: `${CSV_HEADER}\n5,w,A,error,,,0,a5\n7,w,A,error,,,0,a7\n` };
+        const order = parseTrace([a, b]).map((r) => (r.kind === 'unknown' ? 'bad' : (r as KnownRecord).detail));
+        expect(order).toEqual(['a5', 'b5', 'bad', 'a7', 'b9']);
+    });
+
+    it('tells the run: rule changes with causes, deadline misses with their cycle, counts', () => {
+        const text = [CSV_HEADER, '1000000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns',
+            '1500000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=4 tick_ns=1', '2000000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""', 'junk'].join('\n');
+        expect(renderStory(parseTrace([{ name: 'X_1.csv', text }]))).toEqual([
+            '+0.000000s SUP  rule action.FIRST active   <- elapsed=1ms',
+            '+0.500000s ORD  deadline miss (ORD:0): S cycle 4',
+            '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
+            '4 records: 0 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
+        ]);
+    });
+});

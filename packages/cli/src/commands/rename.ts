@@ -1,0 +1,93 @@
+/**
+ * `contract rename DIR OLD NEW [-o OUT]`: renames a module, supervisor, schema, datatype, function,
+ * port or parameter (`MODULE:port`) or supervision function (`SUP.function`) in the `.contract`
+ * files with the language server's rename, carries the generated tree over for entities that name
+ * generated files (codegen's renameInGeneratedTree, as the IDE's rename does: paths and region IDs
+ * move, user code is kept byte for byte), then generates. docs/getting-started.md, "Renaming".
+ * Exit 1 with a message when the entity is unknown, the name invalid or taken, or the model has
+ * errors (a rename needs every reference resolved); nothing is changed then.
+ */
+import { stat } from 'node:fs/promises';
+import { basename, dirname, join, resolve } from 'node:path';
+import { parseArgs } from '../args.js';
+import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+import { formatText, summarize } from '../diagnostic-format.js';
+import { printReport } from './generate.js';
+
+export const renameCommand: Command = {
+    name: 'rename',
+    summary: 'rename an entity in the .contract files and carry its generated code over, then generate',
+    usage: [
+        'usage: contract rename DIR OLD NEW [-o OUT] [--verbose]',
+        '  OLD: a module, supervisor, schema, datatype or function name; MODULE:port (a port or parameter,',
+        '       by name, or by index when only one has it); SUPERVISOR.function (a supervision function)',
+        '  NEW: the new name (same rules as the editor\'s rename: modules and supervisors are three upper-case letters)',
+        '  OUT: the generated tree (default DIR/src-gen): files and protected-region IDs named after OLD move to NEW',
+        'User code in protected regions is kept byte for byte; the tree is then regenerated.',
+        'exit status: 1 unknown entity, invalid or taken name, model errors or generation errors (nothing renamed), 0 otherwise, 2 on bad usage',
+    ].join('\n'),
+    async run(args: string[], io: CliIO): Promise<number> {
+        const { positionals, options } = parseArgs(args, ['o', 'output'], ['verbose']);
+        if (positionals.length !== 3) throw new UsageError(`expected DIR OLD NEW, got ${positionals.length} argument(s)`);
+        const [dirArg, oldSpec, newName] = positionals as [string, string, string];
+        const dir = resolve(io.cwd, dirArg);
+        if (!(await stat(dir).catch(() => undefined))?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+        const outOption = options.get('o') ?? options.get('output');
+        const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, 'src-gen');
+        const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, 'src-gen');
+
+        // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
+        const { loadWorkspace, planRename, RenameError } = await import('@contract-studio/language/node');
+        const { generateArchitecture, renameInGeneratedTree, writeFileAtomic } = await import('@contract-studio/codegen');
+        const workspace = await loadWorkspace(dir);
+        // a rename needs the text parsed and every reference resolved; other errors (a reserved
+        // name, a bad value...) do not stop it: renaming is often how they are fixed
+        const unresolved = workspace.documents.some((d) => d.document.references.some((r) => r.error !== undefined));
+        const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
+        if (unresolved || errors.some((d) => blocksRename(d.code))) {
+            io.err(formatText(errors, (file) => join(dirArg, file)));
+            io.err(`${summarize(errors)}: fix these first (a rename needs the files parsed and every reference resolved); nothing was renamed\n`);
+            return EXIT_FAILURE;
+        }
+        let plan;
+        try {
+            plan = planRename(workspace, oldSpec, newName);
+        } catch (e) {
+            if (!(e instanceof RenameError)) throw e;
+            io.err(`contract rename: ${e.message}; nothing was renamed\n`);
+            return EXIT_FAILURE;
+        }
+        // the generated tree first: if a target path is taken there, the .contract files stay as they were
+        if (plan.generatedNames) {
+            try {
+                const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName);
+                io.out(`${outLabel}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
+                for (const m of carried.movedPaths) io.out(`  ${m.from} -> ${m.to}\n`);
+            } catch (e) {
+                io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
+                return EXIT_FAILURE;
+            }
+        }
+        for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
+        const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
+        io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
+        for (const f of plan.files) io.out(`  ${join(dirArg, f.file)} (${f.occurrences})\n`);
+
+        const renamed = await loadWorkspace(dir);
+        const after = renamed.diagnostics.filter((d) => d.severity === 'error');
+        if (after.length > 0) {
+            io.err(formatText(after, (file) => join(dirArg, file)));
+            io.err(`${summarize(renamed.diagnostics)} after the rename: nothing was generated\n`);
+            return EXIT_FAILURE;
+        }
+        const report = generateArchitecture(renamed.documents, out);
+        await printReport(io, report, outLabel, options.get('verbose') === true);
+        io.err(`generated ${outLabel}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
+        return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
+    },
+};
+
+/** Errors that leave the text or the imports unknown (unresolved references are checked on the documents). */
+function blocksRename(code: string): boolean {
+    return code === 'lexing-error' || code === 'parsing-error' || code === 'linking-error' || code.startsWith('import-');
+}

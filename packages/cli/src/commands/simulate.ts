@@ -1,0 +1,83 @@
+/**
+ * `contract simulate DIR SCENARIO... [--format text|json|junit]`: steps each scenario's events
+ * through the project's supervisors and ORD in virtual time — the real engine cores, linked with
+ * the project's generated tables into a native harness (docs/simulation.md) — and reports each
+ * step and each failed expectation like a test runner.
+ */
+import { existsSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import type { LoadedScenario, ScenarioResult } from '@contract-studio/simulator';
+import { parseArgs } from '../args.js';
+import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
+
+const FORMATS = ['text', 'json', 'junit'] as const;
+
+export const simulateCommand: Command = {
+    name: 'simulate',
+    summary: 'run .scenario files through the supervisors and ORD in virtual time (no robot, no module code)',
+    usage: [
+        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--verbose] [--runtime PATH] [--cache DIR]',
+        '  DIR: the project (its .contract files); SCENARIO: .scenario files (format: docs/simulation.md)',
+        '  --format: text (default: each step, its rule changes, each failed expectation), json (every step\'s record), junit (JUnit XML)',
+        '  --verbose: text also shows each step\'s actions and the engines\' trace lines',
+        '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the repository\'s runtime/)',
+        '  --cache: where built simulators are kept (default: $CONTRACT_CACHE_DIR or /tmp/contract-studio-<uid>, then sim/)',
+        'exit status: 0 every expectation passed, 1 one failed (or a scenario could not run), 2 usage, model or scenario errors',
+    ].join('\n'),
+    async run(args: string[], io: CliIO): Promise<number> {
+        const parsed = parseArgs(args, ['format', 'runtime', 'cache'], ['verbose']);
+        // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
+        const {
+            DEFAULT_RUNTIME_DIR, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, textReport,
+        } = await import('@contract-studio/simulator');
+        if (parsed.positionals.length < 2) throw new UsageError('expected DIR and at least one SCENARIO file');
+        const format = parsed.options.get('format') ?? 'text';
+        if (!FORMATS.includes(format as never)) throw new UsageError(`unknown format '${String(format)}' (expected text, json or junit)`);
+        const runtimeOption = parsed.options.get('runtime');
+        const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || DEFAULT_RUNTIME_DIR;
+        if (!existsSync(join(runtimeDir, 'include', 'contract', 'vocabulary.h'))) throw new UsageError(`${runtimeDir} is not a ContrACT runtime folder; pass --runtime PATH`);
+        const cacheOption = parsed.options.get('cache');
+        const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
+        const dir = resolve(io.cwd, parsed.positionals[0]!);
+        if (!existsSync(dir)) throw new UsageError(`${parsed.positionals[0]} does not exist`);
+
+        const project = await prepareProject(dir, { runtimeDir, cacheDir });
+        if (!('build' in project)) {
+            for (const d of project.modelErrors) io.err(`${displayPath(io.cwd, join(dir, d.file))}:${d.line}:${d.column}: error: ${d.message} [${d.code}]\n`);
+            if (project.modelErrors.length) {
+                io.err(`contract simulate: the model has ${project.modelErrors.length} error(s): fix them first (contract check)\n`);
+                return EXIT_USAGE;
+            }
+            io.err(`contract simulate: ${project.buildError}\n`);
+            return EXIT_FAILURE;
+        }
+        for (const w of project.warnings) io.err(`warning: ${w}\n`);
+
+        const scenarios: LoadedScenario[] = [];
+        let bad = 0;
+        for (const arg of parsed.positionals.slice(1)) {
+            const file = resolve(io.cwd, arg);
+            const display = displayPath(io.cwd, file);
+            const text = readScenarioFile(file);
+            if (typeof text !== 'string') {
+                io.err(`${display}: error: cannot read this scenario: ${text.error}\n`);
+                bad++;
+                continue;
+            }
+            const s = loadScenario(file, display, text, project.index);
+            for (const d of s.diagnostics) io.err(`${display}:${d.line}:${d.column}: ${d.severity}: ${d.message} [${d.code}]\n`);
+            if (s.diagnostics.some((d) => d.severity === 'error')) bad++;
+            else scenarios.push(s);
+        }
+        if (bad) {
+            io.err(`contract simulate: ${bad} scenario file(s) with errors: nothing was simulated\n`);
+            return EXIT_USAGE;
+        }
+        const results: ScenarioResult[] = [];
+        for (const s of scenarios) results.push(await runLoadedScenario(project, s));
+        if (format === 'json') io.out(jsonReport(results));
+        else if (format === 'junit') io.out(junitReport(results));
+        else io.out(textReport(results, { verbose: parsed.options.get('verbose') === true }));
+        return results.every((r) => r.passed) ? EXIT_OK : EXIT_FAILURE;
+    },
+};

@@ -1,0 +1,61 @@
+/**
+ * `contract generate`: the tree it writes depends only on the model (teams commit src-gen,
+ * docs/ci.md), and the runtime is a build-time input (docs/architecture.md, Seam 3).
+ */
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, relative } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { runCli } from '../src/cli.js';
+import { capture } from './capture-io.js';
+
+const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
+
+
+/** Every file under `root` with its bytes, by relative path. */
+function tree(root: string): Map<string, string> {
+    const out = new Map<string, string>();
+    const walk = (dir: string) => {
+        for (const e of readdirSync(dir, { withFileTypes: true })) {
+            const p = join(dir, e.name);
+            if (e.isDirectory()) walk(p);
+            else out.set(relative(root, p), readFileSync(p, 'latin1'));
+        }
+    };
+    walk(root);
+    return new Map([...out].sort(([a], [b]) => (a < b ? -1 : 1)));
+}
+
+/** The tutorial's .contract files (no src-gen) in `dir`. */
+function sources(dir: string): void {
+    mkdirSync(dir, { recursive: true });
+    for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) cpSync(join(TUTORIAL, f), join(dir, f));
+}
+
+let scratch: string;
+beforeAll(() => { scratch = mkdtempSync(join(tmpdir(), 'contract-generate-')); });
+afterAll(() => rmSync(scratch, { recursive: true, force: true }));
+
+describe('contract generate', () => {
+    it('writes byte-identical trees from two folders and two working directories', async () => {
+        sources(join(scratch, 'one'));
+        sources(join(scratch, 'a', 'b', 'c', 'two'));
+        const first = capture(scratch);
+        expect(await runCli(['generate', 'one'], first)).toBe(0);
+        const second = capture(join(scratch, 'a', 'b'));
+        expect(await runCli(['generate', 'c/two', '-o', join(scratch, 'a', 'b', 'c', 'two', 'src-gen')], second)).toBe(0);
+        const a = tree(join(scratch, 'one', 'src-gen'));
+        expect(a.size).toBeGreaterThan(40);
+        expect(tree(join(scratch, 'a', 'b', 'c', 'two', 'src-gen'))).toEqual(a);
+        for (const [path, text] of a) expect(text, path).not.toContain(scratch);
+    }, 60_000);
+
+    it('refuses --runtime (exit 2, nothing written) and says where the runtime is given', async () => {
+        sources(join(scratch, 'three'));
+        const io = capture(scratch);
+        expect(await runCli(['generate', 'three', '--runtime', '/somewhere/runtime'], io)).toBe(2);
+        expect(io.stderr).toContain('generate takes no --runtime: the runtime is given when building (contract build --runtime PATH, or make CONTRACT_RUNTIME=PATH)');
+        expect(existsSync(join(scratch, 'three', 'src-gen'))).toBe(false);
+    }, 60_000);
+});

@@ -1,0 +1,180 @@
+/**
+ * `contract rename` on a copy of the tutorial with user code in its regions: the .contract files,
+ * the generated paths and the region IDs move together, user code is kept byte for byte and the
+ * project still generates and builds; clear errors change nothing. A rename by hand (sed) instead
+ * orphans the code, with a header saying how to bring it back.
+ */
+import { execFileSync } from 'node:child_process';
+import { cpSync, existsSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { parseRegions } from '@contract-studio/codegen';
+import { runCli } from '../src/cli.js';
+import { scratchCopy, type Scratch } from './e2e/harness.js';
+import { capture } from './capture-io.js';
+
+
+const MODULES = 'src-gen/generated/architecture/modules';
+/** Region ID -> content (bytes as latin1) of a generated file. */
+function regions(file: string): Map<string, string> {
+    const text = readFileSync(file, 'latin1');
+    return new Map(parseRegions(text, file).regions.map((r) => [r.id, r.content]));
+}
+/** Every file of a project but src-gen, path -> text. */
+function contractFiles(dir: string): Record<string, string> {
+    return Object.fromEntries(readdirSync(dir).filter((f) => f.endsWith('.contract')).map((f) => [f, readFileSync(join(dir, f), 'utf8')]));
+}
+
+let scratch: Scratch;
+let dir: string;
+beforeAll(() => {
+    scratch = scratchCopy('tutorial');
+    dir = scratch.project;
+    process.env.CONTRACT_CACHE_DIR = scratch.cache;
+    // user code in MSC's regions, with bytes that are not UTF-8, beside the tutorial's own code
+    const file = join(dir, MODULES, 'MSC_mod/module.c');
+    const text = readFileSync(file, 'latin1');
+    writeFileSync(file, Buffer.from(text.replace('/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/',
+        '/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/\n    /* calibr\xe9 \xff by hand */ int rename_marker = 42; (void)rename_marker;'), 'latin1'));
+});
+afterAll(() => {
+    delete process.env.CONTRACT_CACHE_DIR;
+    scratch.dispose();
+});
+
+describe('contract rename', () => {
+    it('renames module MSC to MSK: .contract files, generated paths and region IDs, user code byte for byte', async () => {
+        const before = regions(join(dir, MODULES, 'MSC_mod/module.c'));
+        expect(before.get('protect_init_MSC')).toContain('rename_marker = 42');
+        const tool = readFileSync(join(dir, 'src-gen/generated/architecture/tools/controlMSC.c'), 'latin1');
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'MSC', 'MSK'], io), io.stderr).toBe(0);
+        expect(io.stdout).toContain('renamed module MSC -> MSK: 15 occurrence(s) in 5 file(s)');
+        expect(io.stdout).toContain('  generated/architecture/modules/MSC_mod -> generated/architecture/modules/MSK_mod');
+        expect(io.stderr).toMatch(/generated tutorial\/src-gen: \d+ created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+
+        const files = contractFiles(dir);
+        expect(Object.values(files).join('\n')).not.toMatch(/\bMSC\b/);
+        expect(files['smodule3.contract']).toContain('synchronous module MSK{');
+        expect(existsSync(join(dir, MODULES, 'MSC_mod'))).toBe(false);
+        expect(existsSync(join(dir, 'src-gen/orphans'))).toBe(false);
+        const after = regions(join(dir, MODULES, 'MSK_mod/module.c'));
+        expect([...after.keys()].sort()).toEqual([...before.keys()].map((id) => id.replace(/_MSC$/, '_MSK')).sort());
+        for (const [id, content] of before) expect(after.get(id.replace(/_MSC$/, '_MSK')), id).toBe(content);
+        // the control tool follows too (its generated code names the new module)
+        expect(existsSync(join(dir, 'src-gen/generated/architecture/tools/controlMSC.c'))).toBe(false);
+        expect(readFileSync(join(dir, 'src-gen/generated/architecture/tools/controlMSK.c'), 'latin1')).not.toBe(tool);
+
+        const check = capture(scratch.root);
+        expect(await runCli(['check', 'tutorial'], check)).toBe(0);
+        const again = capture(scratch.root);
+        expect(await runCli(['generate', 'tutorial'], again)).toBe(0);
+        expect(again.stderr).toMatch(/: 0 created, 0 updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+    }, 120_000);
+
+    it('the renamed project builds with gcc (bwrap sandbox)', async () => {
+        const io = capture(scratch.root);
+        expect(await runCli(['build', 'tutorial', '--sandbox', 'bwrap'], io), io.stderr).toBe(0);
+    }, 300_000);
+
+    it('renames a port by MODULE:port; a port names no generated file', async () => {
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'MSK:in_coordinates', 'position'], io), io.stderr).toBe(0);
+        expect(io.stdout).toContain('renamed port in_coordinates -> position: ');
+        expect(io.stdout).not.toContain('path(s) moved');
+        expect(contractFiles(dir)['smodule3.contract']).toContain('in :0 TypeA position;');
+        expect(regions(join(dir, MODULES, 'MSK_mod/module.c')).get('protect_init_MSK')).toContain('rename_marker = 42');
+    }, 120_000);
+
+    it('renames a datatype and a function: Shared<T>.h and SharedFunction<f>.h follow with their regions', async () => {
+        const COMMON = join(dir, 'src-gen/generated/architecture/common');
+        for (const [from, to, file] of [['TypeA', 'Vec3', 'Shared'], ['doit', 'execute', 'SharedFunction']] as const) {
+            const path = join(COMMON, `${file}${from}.h`);
+            writeFileSync(path, readFileSync(path, 'latin1').replace(new RegExp(`(ID\\(protect_additional_impl_${from}\\) ENABLED START\\*/|ID\\(protect_function_impl_${from}\\) ENABLED START\\*/)`), `$1\n/* ${from} by hand */`), 'latin1');
+            const before = regions(path);
+            expect([...before.values()].join('')).toContain(`/* ${from} by hand */`);
+            const io = capture(scratch.root);
+            expect(await runCli(['rename', 'tutorial', from, to], io), io.stderr).toBe(0);
+            expect(io.stderr).toMatch(/, 0 orphaned, 0 error\(s\)/);
+            expect(existsSync(path)).toBe(false);
+            const after = regions(join(COMMON, `${file}${to}.h`));
+            for (const [id, content] of before) expect(after.get(id.replace(new RegExp(`_${from}$`), `_${to}`)), id).toBe(content);
+        }
+    }, 120_000);
+
+    it('renames a schema without touching the generated tree, even when its name is a region role (init)', async () => {
+        const before = readFileSync(join(dir, MODULES, 'MSK_mod/module.c'));
+        for (const [from, to] of [['schemaCommande1', 'init'], ['init', 'command1']]) {
+            const io = capture(scratch.root);
+            expect(await runCli(['rename', 'tutorial', from!, to!], io), io.stderr).toBe(0);
+            expect(io.stdout).toContain(`renamed schema ${from} -> ${to}: `);
+            expect(io.stderr).toMatch(/, 0 orphaned, 0 error\(s\)/);
+        }
+        // protect_init_MSK was not taken for the schema's name: the module's file is as it was
+        expect(readFileSync(join(dir, MODULES, 'MSK_mod/module.c'))).toEqual(before);
+        expect(contractFiles(dir)['supervisor.contract']).toContain('activate schema command1(');
+    }, 120_000);
+
+    it('clear errors, exit 1, nothing changed: unknown entity, name taken, invalid name', async () => {
+        const snapshot = contractFiles(dir);
+        const tree = readFileSync(join(dir, MODULES, 'MSK_mod/module.c'));
+        for (const [args, message] of [
+            [['MSC', 'MSZ'], "no module, supervisor, schema, datatype or function named 'MSC'"],
+            [['MSK', 'MSD'], "'MSD' already names a module or supervisor (in smodule4.contract)"],
+            [['MSK', 'msk'], "'msk' is not a valid module name: module and supervisor names are exactly three upper-case letters (A-Z)"],
+            [['Vec3', 'int'], "'int' is a Cactal keyword and cannot name a datatype"],
+        ] as Array<[string[], string]>) {
+            const io = capture(scratch.root);
+            expect(await runCli(['rename', 'tutorial', ...args], io)).toBe(1);
+            expect(io.stderr).toMatch(/^contract rename: .*; nothing was renamed\n$/);
+            expect(io.stderr).toContain(message);
+        }
+        const usage = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'MSK'], usage)).toBe(2);
+        expect(usage.stderr).toContain('expected DIR OLD NEW, got 2 argument(s)');
+        expect(contractFiles(dir)).toEqual(snapshot);
+        expect(readFileSync(join(dir, MODULES, 'MSK_mod/module.c'))).toEqual(tree);
+    }, 120_000);
+
+    it('refuses when the generated tree already has the new name, before touching the .contract files', async () => {
+        const snapshot = contractFiles(dir);
+        cpSync(join(dir, MODULES, 'MSD_mod'), join(dir, MODULES, 'MSE_mod'), { recursive: true });
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'MSD', 'MSE'], io)).toBe(1);
+        expect(io.stderr).toContain('cannot carry generated/architecture/modules/MSD_mod over: MSE_mod already exists; the .contract files were not changed');
+        expect(contractFiles(dir)).toEqual(snapshot);
+    }, 120_000);
+
+    it('a rename by hand (sed) orphans the code instead, with a header saying where it came from and how to bring it back', async () => {
+        execFileSync('sed', ['-i', 's/\\bMSB\\b/MSX/g', ...Object.keys(contractFiles(dir)).map((f) => join(dir, f))]);
+        const io = capture(scratch.root);
+        expect(await runCli(['generate', 'tutorial'], io)).toBe(0);
+        expect(io.stdout).toContain('orphaned (user code moved aside): ');
+        const orphan = readFileSync(join(dir, 'src-gen/orphans/generated/architecture/modules/MSB_mod/module.c'), 'latin1');
+        expect(orphan).toMatch(/^\/\* Orphaned user code of generated\/architecture\/modules\/MSB_mod\/module\.c \(module or supervisor MSB\), moved here on \d{4}-\d\d-\d\dT/);
+        expect(orphan).toContain('`contract rename DIR OLD NEW`');
+    }, 120_000);
+
+    it('a model error that the rename fixes does not stop it (a port named time); a reference error does', async () => {
+        const file = join(dir, 'smodule3.contract');
+        const before = readFileSync(file, 'utf8');
+        const [, type, port] = /in :0 (\w+) (\w+);/.exec(before)!; // TypeA, or its name after the renames above
+        const module = /module ([A-Z]{3})/.exec(before)![1]!; // MSC, or MSK after the rename above
+        writeFileSync(file, before.replace(`in :0 ${type} ${port};`, `in :0 ${type} time;`));
+        const check = capture(scratch.root);
+        expect(await runCli(['check', 'tutorial'], check)).toBe(1);
+        expect(check.stdout + check.stderr).toContain('identifier-c-reserved');
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', `${module}:time`, 'position'], io), io.stderr).toBe(0);
+        expect(contractFiles(dir)['smodule3.contract']).toContain(`in :0 ${type} position;`);
+
+        writeFileSync(file, readFileSync(file, 'utf8').replace(`in :0 ${type} position;`, 'in :0 NoSuchType position;'));
+        const snapshot = contractFiles(dir);
+        const refused = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', `${module}:position`, 'pos'], refused)).toBe(1);
+        expect(refused.stderr).toContain("Unknown type 'NoSuchType'");
+        expect(refused.stderr).toMatch(/fix these first \(a rename needs the files parsed and every reference resolved\); nothing was renamed\n$/);
+        expect(contractFiles(dir)).toEqual(snapshot);
+        writeFileSync(file, readFileSync(file, 'utf8').replace('in :0 NoSuchType position;', `in :0 ${type} position;`));
+    }, 120_000);
+});

@@ -1,0 +1,54 @@
+/**
+ * `contract serve` prints the URL to open with the server's session token; the API refuses a
+ * client without it (another local user or program) and serves the one that opened the URL.
+ */
+import { spawn, type ChildProcess } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, describe, expect, it } from 'vitest';
+import { BIN } from './e2e/harness.js';
+
+let child: ChildProcess | undefined;
+const dir = mkdtempSync(join(tmpdir(), 'contract-serve-'));
+afterAll(async () => {
+    if (child && child.exitCode === null) {
+        const exited = new Promise((r) => child!.once('exit', r));
+        child.kill('SIGTERM');
+        await exited;
+    }
+    rmSync(dir, { recursive: true, force: true });
+});
+
+function firstLine(c: ChildProcess): Promise<string> {
+    return new Promise((resolve, reject) => {
+        let out = '';
+        c.stdout!.on('data', (d: Buffer) => {
+            out += d.toString('utf8');
+            const nl = out.indexOf('\n');
+            if (nl >= 0) resolve(out.slice(0, nl));
+        });
+        c.once('exit', (code) => reject(new Error(`contract serve exited ${code} before printing its URL`)));
+    });
+}
+
+describe('contract serve', () => {
+    it('prints a URL with the session token; the API needs it', async () => {
+        writeFileSync(join(dir, 'a.contract'), 'datatype T {int x};\n');
+        child = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0'], { stdio: ['ignore', 'pipe', 'inherit'] });
+        const line = await firstLine(child);
+        const m = /^ContrACT Studio IDE: (http:\/\/127\.0\.0\.1:\d+)\/\?token=([A-Za-z0-9_-]{43}) /.exec(line);
+        expect(m, line).not.toBeNull();
+        const [, base, token] = m!;
+        expect((await fetch(`${base}/api/tree`)).status).toBe(401);
+        const put = await fetch(`${base}/api/file?path=b.contract`, { method: 'PUT', body: 'x' });
+        expect(put.status).toBe(401);
+        // the browser's way: the printed URL sets the cookie, which then opens the API
+        const open = await fetch(`${base}/?token=${token}`, { redirect: 'manual' });
+        expect(open.status).toBe(303);
+        const cookie = open.headers.get('set-cookie')!.split(';')[0]!;
+        const file = await fetch(`${base}/api/file?path=a.contract`, { headers: { cookie } });
+        expect(file.status).toBe(200);
+        expect(((await file.json()) as { content: string }).content).toBe(readFileSync(join(dir, 'a.contract'), 'utf8'));
+    }, 60_000);
+});

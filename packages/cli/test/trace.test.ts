@@ -1,0 +1,66 @@
+/** `contract trace`: story and JSON lines of a log folder, hostile lines, links, usage errors. */
+import { mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { runCli } from '../src/cli.js';
+import { capture } from './capture-io.js';
+
+
+const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+let dir: string;
+beforeAll(() => {
+    dir = mkdtempSync(join(tmpdir(), 'contract-trace-'));
+    writeFileSync(join(dir, 'SUP_24-Nov-2026-18h30m15s.csv'), [HEADER,
+        '2000000000,w,SUP,supervisor,,,0,function action started',
+        '2001000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns',
+        '\u001b]0;pwned\u0007 garbage',
+        '2500000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""dis\u001b[2Jconnected"""', ''].join('\n'));
+    writeFileSync(join(dir, 'ORD_24-Nov-2026-18h30m15s.csv'), [HEADER,
+        '2000500000,w,ORD,scheduler,,,0,activate S',
+        '2000500001,w,ORD,ord_release,MSA,,0,schema=S cycle=0 tick_ns=2000500000 release_ns=2000500001 release=1',
+        '2300000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=0 tick_ns=2000500000', ''].join('\n'));
+    writeFileSync(join(dir, 'notes.txt'), 'not a log');
+    symlinkSync('/etc/passwd', join(dir, 'EVL_1.csv'));
+});
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+describe('contract trace', () => {
+    it('tells the run in time order, control characters made visible, links refused', async () => {
+        const io = capture(dir);
+        expect(await runCli(['trace', '.'], io)).toBe(1);
+        expect(io.stderr).toMatch(/^contract trace: cannot open .*EVL_1\.csv: ELOOP/);
+        rmSync(join(dir, 'EVL_1.csv'));
+        const ok = capture(dir);
+        expect(await runCli(['trace', '.'], ok)).toBe(0);
+        expect(ok.stdout).toBe([
+            '+0.000000s SUP  function action started',
+            '+0.000500s ORD  activate S',
+            '+0.001000s SUP  rule action.FIRST active   <- elapsed=1ms',
+            '+0.300000s ORD  deadline miss (ORD:0): S cycle 0',
+            '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
+            '7 records: 1 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
+            '',
+        ].join('\n'));
+    });
+
+    it('--format json: one record per line, unknown lines kept with the reason', async () => {
+        const io = capture(dir);
+        expect(await runCli(['trace', dir, '--format', 'json'], io)).toBe(0);
+        const records = io.stdout.trim().split('\n').map((l) => JSON.parse(l) as { kind: string; reason?: string; fields?: Record<string, unknown> });
+        expect(records.map((r) => r.kind)).toEqual(['supervisor', 'scheduler', 'ord_release', 'sup_rule', 'unknown', 'ord_deadline_miss', 'sup_rule']);
+        expect(records[4]!.reason).toBe('1 fields, expected 8');
+        expect(records[2]!.fields).toEqual({ schema: 'S', cycle: 0, tick_ns: 2000500000, release_ns: 2000500001, release: 1 });
+    });
+
+    it('usage errors exit 2; a folder without logs exits 1', async () => {
+        const none = capture(dir);
+        expect(await runCli(['trace'], none)).toBe(2);
+        expect(await runCli(['trace', dir, '--format', 'xml'], capture(dir))).toBe(2);
+        const empty = mkdtempSync(join(tmpdir(), 'contract-trace-empty-'));
+        const io = capture(dir);
+        expect(await runCli(['trace', empty], io)).toBe(1);
+        expect(io.stderr).toBe(`contract trace: no CSV log (<MODULE>_*.csv) in ${empty}\n`);
+        rmSync(empty, { recursive: true });
+    });
+});

@@ -1,0 +1,74 @@
+/** Orphan files say where their code came from, when, and how to bring it back (docs/codegen.md, "Renames"). */
+import { readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { afterEach, describe, expect, it } from 'vitest';
+import { region } from '../regions/markers.js';
+import { tempDir } from '../test-support/temp-dir.js';
+import { fileOrphanText, orphanEntity, writeOrphan } from './orphans.js';
+import { OutputTree } from './output-tree.js';
+import { writeTree } from './write-tree.js';
+
+let cleanups: Array<() => void> = [];
+afterEach(() => {
+    cleanups.forEach((c) => c());
+    cleanups = [];
+});
+function out(): string {
+    const t = tempDir();
+    cleanups.push(t.cleanup);
+    return t.dir;
+}
+
+const MSC = 'generated/architecture/modules/MSC_mod/module.c';
+const module = (path: string, ...ids: string[]) => ({ path, content: `// ${path}\n` + ids.map((id) => `${region(id, '\n//TODO\n')}\n`).join('') });
+
+describe('orphan files', () => {
+    it('a whole file whose entity vanished: header with entity, file, date, regions and the way back, then the file byte for byte', () => {
+        const dir = out();
+        writeTree(dir, [module(MSC, 'protect_exec_MSC')]);
+        const edited = readFileSync(join(dir, MSC), 'latin1').replace('\n//TODO\n', '\nmy_step(); /* caf\xe9 */\n');
+        writeFileSync(join(dir, MSC), Buffer.from(edited, 'latin1'));
+        const before = Date.now();
+        const r = writeTree(dir, []);
+        expect(r.orphaned).toEqual([`orphans/${MSC}`]);
+        const text = readFileSync(join(dir, 'orphans', MSC), 'latin1');
+        const header = text.slice(0, text.indexOf('*/\n') + 3);
+        expect(header).toContain(`/* Orphaned user code of ${MSC} (module or supervisor MSC), moved here on `);
+        const when = Date.parse(/moved here on (\S+)\./.exec(header)![1]!);
+        expect(when).toBeGreaterThanOrEqual(before - 1000);
+        expect(header).toContain('The entity no longer exists in the generated code (renamed or deleted entity, removed port...): protect_exec_MSC.');
+        expect(header).toContain('(protect_exec_OLD -> protect_exec_NEW)');
+        expect(header).toContain(`copy this file, without this comment, back to ${MSC}`);
+        expect(header).toContain('`contract rename DIR OLD NEW`');
+        expect(text.slice(header.length)).toBe(edited);
+    });
+
+    it('vanished regions of a file that remains: header naming the regions', () => {
+        const dir = out();
+        writeTree(dir, [module(MSC, 'protect_exec_MSC', 'protect_event_MSC')]);
+        const edited = readFileSync(join(dir, MSC), 'latin1').replace('\n//TODO\n', '\nkeep_me();\n');
+        writeFileSync(join(dir, MSC), edited);
+        const r = writeTree(dir, [module(MSC, 'protect_event_MSC')]);
+        const text = readFileSync(join(dir, r.orphaned[0]!), 'latin1');
+        expect(text).toMatch(/^\/\* Orphaned user code of generated\/architecture\/modules\/MSC_mod\/module\.c \(module or supervisor MSC\), moved here on /);
+        expect(text).toContain('These protected regions no longer exist in the generated code (renamed or deleted entity, removed port...): protect_exec_MSC.');
+        expect(text).toContain(region('protect_exec_MSC', '\nkeep_me();\n'));
+    });
+
+    it('the same orphaned code written again at another time reuses the first orphan', () => {
+        const dir = new OutputTree(out());
+        const first = writeOrphan(dir, MSC, fileOrphanText(MSC, 'x();\n', ['a'], new Date('2026-01-01T00:00:00Z')));
+        const again = writeOrphan(dir, MSC, fileOrphanText(MSC, 'x();\n', ['a'], new Date('2026-02-01T00:00:00Z')));
+        expect(again).toEqual({ path: first.path, written: false });
+        expect(writeOrphan(dir, MSC, fileOrphanText(MSC, 'y();\n', ['a'])).path).toBe(`orphans/${MSC}`.replace('.c', '.2.c'));
+    });
+
+    it('names the entity of each generated path', () => {
+        expect(orphanEntity('generated/architecture/common/SharedTypeA.h')).toBe('datatype TypeA');
+        expect(orphanEntity('generated/architecture/common/SharedFunctiondoit.h')).toBe('function doit');
+        expect(orphanEntity('generated/architecture/tools/controlSUP.c')).toBe('module or supervisor SUP');
+        expect(orphanEntity('generated/architecture/tools/makecontrolMSA')).toBe('module or supervisor MSA');
+        expect(orphanEntity('generated/architecture/modules/ORD_mod/module.c')).toBe('the scheduler ORD');
+        expect(orphanEntity('generated/other.c')).toBe('the entity it was generated for');
+    });
+});

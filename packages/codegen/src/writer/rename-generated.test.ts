@@ -1,0 +1,100 @@
+/** Carry-over of a renamed entity in a generated tree (shared by the IDE and `contract rename`). */
+import { describe, it, expect } from 'vitest';
+import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, existsSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { renameInGeneratedTree, renameRegionId } from './rename-generated.js';
+import { writeTree } from './write-tree.js';
+import { MANIFEST_NAME } from './manifest.js';
+
+describe('renameRegionId', () => {
+    it('renames only whole name parts', () => {
+        expect(renameRegionId('protect_init_MAA', 'MAA', 'MAB')).toBe('protect_init_MAB');
+        expect(renameRegionId('protect_eq_TypeA', 'TypeA', 'Pose')).toBe('protect_eq_Pose');
+        expect(renameRegionId('protect_eq_TypeAB', 'TypeA', 'Pose')).toBe('protect_eq_TypeAB');
+        expect(renameRegionId('MAA.init', 'MAA', 'XYZ')).toBe('XYZ.init');
+    });
+});
+
+describe('renameInGeneratedTree', () => {
+    it('moves the module folder and rewrites its region IDs, keeping user code', async () => {
+        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const mod = join(root, 'generated', 'architecture', 'modules', 'MSC_mod');
+        mkdirSync(mod, { recursive: true });
+        const body = '/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/\nmy_code();\n/*PROTECTED REGION END*/\n' +
+            '/*PROTECTED REGION ID(protect_exec_MSCX) ENABLED START*/\nother();\n/*PROTECTED REGION END*/\n';
+        writeFileSync(join(mod, 'module.c'), body);
+        const report = await renameInGeneratedTree(root, 'MSC', 'MSK');
+        const moved = join(root, 'generated', 'architecture', 'modules', 'MSK_mod', 'module.c');
+        expect(existsSync(mod)).toBe(false);
+        const text = readFileSync(moved, 'utf8');
+        expect(text).toContain('ID(protect_init_MSK) ENABLED START*/\nmy_code();');
+        expect(text).toContain('ID(protect_exec_MSCX)');
+        expect(report.regionIds).toEqual([{ file: 'generated/architecture/modules/MSK_mod/module.c', from: 'protect_init_MSC', to: 'protect_init_MSK' }]);
+    });
+
+    it('refuses to overwrite an existing target', async () => {
+        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        mkdirSync(join(root, 'MSC_mod'));
+        mkdirSync(join(root, 'MSK_mod'));
+        await expect(renameInGeneratedTree(root, 'MSC', 'MSK')).rejects.toThrow(/already exists/);
+    });
+});
+
+describe('renameInGeneratedTree for datatypes and functions', () => {
+    it('renames Shared<T>.h / SharedFunction<f>.h and their region IDs, leaving other entities alone', async () => {
+        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const common = join(root, 'generated', 'architecture', 'common');
+        mkdirSync(common, { recursive: true });
+        const region = (id: string, body: string) => `/*PROTECTED REGION ID(${id}) ENABLED START*/\n${body}\n/*PROTECTED REGION END*/\n`;
+        writeFileSync(join(common, 'SharedTypeF.h'), region('protect_eq_TypeF', 'return a->fufu == b->fufu;'));
+        writeFileSync(join(common, 'SharedTypeA.h'), region('protect_eq_TypeA', 'keep'));
+        writeFileSync(join(common, 'SharedFunctiondoit.h'), region('protect_function_impl_doit', 'do_it_by_hand();'));
+        await renameInGeneratedTree(root, 'TypeF', 'Pose');
+        await renameInGeneratedTree(root, 'doit', 'execute');
+        expect(readFileSync(join(common, 'SharedPose.h'), 'utf8')).toBe(region('protect_eq_Pose', 'return a->fufu == b->fufu;'));
+        expect(readFileSync(join(common, 'SharedFunctionexecute.h'), 'utf8')).toBe(region('protect_function_impl_execute', 'do_it_by_hand();'));
+        expect(readFileSync(join(common, 'SharedTypeA.h'), 'utf8')).toBe(region('protect_eq_TypeA', 'keep'));
+        expect(existsSync(join(common, 'SharedTypeF.h'))).toBe(false);
+    });
+
+    it('refuses names that are not identifiers', async () => {
+        await expect(renameInGeneratedTree(tmpdir(), '../x', 'y')).rejects.toThrow(/invalid entity name/);
+    });
+});
+
+describe('renameInGeneratedTree keeps user code byte for byte', () => {
+    it('in any encoding, and in markers written with extra blanks', async () => {
+        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const mod = join(root, 'generated', 'architecture', 'modules', 'MSC_mod');
+        mkdirSync(mod, { recursive: true });
+        // latin1 bytes that are not valid UTF-8, and a marker pasted with blanks and a line break
+        const before = Buffer.concat([
+            Buffer.from('/*PROTECTED REGION ID( protect_init_MSC ) ENABLED\n START*/\n/* caf', 'latin1'),
+            Buffer.from([0xe9, 0xff]),
+            Buffer.from(' */\n/*PROTECTED REGION END*/\n', 'latin1'),
+        ]);
+        writeFileSync(join(mod, 'module.c'), before);
+        const report = await renameInGeneratedTree(root, 'MSC', 'MSK');
+        const after = readFileSync(join(root, 'generated', 'architecture', 'modules', 'MSK_mod', 'module.c'));
+        expect(after).toEqual(Buffer.from(before.toString('latin1').replace('protect_init_MSC', 'protect_init_MSK'), 'latin1'));
+        expect(report.regionIds).toEqual([{ file: 'generated/architecture/modules/MSK_mod/module.c', from: 'protect_init_MSC', to: 'protect_init_MSK' }]);
+    });
+
+    it('moves the manifest entries with the files, so that a default region is still recognised as one', async () => {
+        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const path = (m: string) => `generated/architecture/modules/${m}_mod/module.c`;
+        // protect_init holds a generated default that is not a //TODO: only the manifest knows it is no user code
+        const init = (m: string) => `/*PROTECTED REGION ID(protect_init_${m}) ENABLED START*/\nreturn 0;\n/*PROTECTED REGION END*/\n`;
+        const exec = (m: string) => `/*PROTECTED REGION ID(protect_exec_${m}) ENABLED START*/\nstep();\n/*PROTECTED REGION END*/\n`;
+        writeTree(root, [{ path: path('MSC'), content: init('MSC') + exec('MSC') }]);
+        await renameInGeneratedTree(root, 'MSC', 'MSK');
+        const manifest = JSON.parse(readFileSync(join(root, MANIFEST_NAME), 'utf8')) as { files: Record<string, Record<string, string>> };
+        expect(Object.keys(manifest.files)).toEqual([path('MSK')]);
+        expect(Object.keys(manifest.files[path('MSK')]!).sort()).toEqual(['protect_exec_MSK', 'protect_init_MSK']);
+        // the next generation no longer has protect_init: its default content is dropped, not orphaned
+        const r = writeTree(root, [{ path: path('MSK'), content: exec('MSK') }]);
+        expect(r.orphaned).toEqual([]);
+        expect(r.warnings).toEqual([]);
+    });
+});

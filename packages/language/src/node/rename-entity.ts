@@ -1,0 +1,128 @@
+/**
+ * Renaming an entity of a loaded workspace outside an editor (`contract rename`): the entity is
+ * found by name (`MSC`, `TypeA`, `SUP.mission`, `MSC:in_coordinates`), the new name is checked by
+ * the same rules as the editor's rename and the edits are the editor's rename edits
+ * (`lsp/name-rules.ts`, `lsp/rename-edits.ts`), so that both rename the same references.
+ * Pure over the workspace: the caller writes the new texts (docs/getting-started.md, "Renaming").
+ */
+import { AstUtils, type AstNode } from 'langium';
+import { TextDocument } from 'vscode-languageserver-textdocument';
+import { isDataType, isFunctionPrototype, isModel, isModule, isSchema, isSupervisor, type Module, type Supervisor } from '../generated/ast.js';
+import { parametersOf } from '../model/blocks.js';
+import { portsOf } from '../model/ports.js';
+import { kindWord, renameProblem } from '../lsp/name-rules.js';
+import { renameEdits } from '../lsp/rename-edits.js';
+import type { LoadedWorkspace } from './load-workspace.js';
+
+type Named = AstNode & { name: string };
+
+/** A rename that cannot be done: unknown or ambiguous entity, invalid or taken name. */
+export class RenameError extends Error {}
+
+export interface PlannedFileEdit {
+    /** Path relative to the workspace directory. */
+    file: string;
+    /** Absolute path. */
+    path: string;
+    /** The file's text after the rename. */
+    text: string;
+    /** How many occurrences of the name change in this file. */
+    occurrences: number;
+}
+
+export interface RenamePlan {
+    /** `module`, `datatype`, `port`, ... (the words of the editor's messages). */
+    kind: string;
+    oldName: string;
+    newName: string;
+    /**
+     * Whether generated files and region IDs are named after the entity (modules, supervisors,
+     * datatypes, functions): their generated tree is carried over (codegen's renameInGeneratedTree).
+     */
+    generatedNames: boolean;
+    files: PlannedFileEdit[];
+}
+
+/** Top-level elements whose names the generated tree carries (paths and region IDs, docs/codegen.md). */
+function namesGeneratedFiles(node: AstNode): boolean {
+    return isModule(node) || isSupervisor(node) || isDataType(node) || isFunctionPrototype(node);
+}
+
+function topLevelElements(ws: LoadedWorkspace): Named[] {
+    return ws.documents.flatMap((d) => (isModel(d.model) ? d.model.elements : []))
+        .filter((e): e is typeof e & Named => typeof (e as { name?: unknown }).name === 'string');
+}
+
+function located(node: Named, ws: LoadedWorkspace): string {
+    const root = AstUtils.findRootNode(node);
+    const doc = ws.documents.find((d) => d.model === root);
+    return `${kindWord(node)} ${node.name}${doc ? ` (${doc.file})` : ''}`;
+}
+
+function owner(ws: LoadedWorkspace, name: string, spec: string): Module | Supervisor {
+    const found = topLevelElements(ws).filter((e): e is Module | Supervisor => (isModule(e) || isSupervisor(e)) && e.name === name);
+    if (found.length === 0) throw new RenameError(`no module or supervisor named '${name}' (in '${spec}')`);
+    return found[0]!;
+}
+
+/**
+ * The entity `spec` designates: a top-level name (module, supervisor, schema, datatype, function),
+ * `OWNER:port` (a port or parameter of a module or supervisor, by name or by index when only one
+ * port has it), or `SUP.function` (a supervision function).
+ */
+export function findEntity(ws: LoadedWorkspace, spec: string): Named {
+    const port = /^([^:.]+):([^:.]+)$/.exec(spec);
+    if (port) {
+        const holder = owner(ws, port[1]!, spec);
+        const members = [
+            ...(isModule(holder) ? parametersOf(holder).map((p) => ({ node: p as Named, index: p.index, what: `parameter :${p.index}` })) : []),
+            ...portsOf(holder).map((p) => ({ node: p.port as Named, index: p.index, what: `${p.direction} ${p.kind} port :${p.index}` }))
+        ];
+        const byName = members.filter((m) => m.node.name === port[2]);
+        const byIndex = /^[0-9]+$/.test(port[2]!) ? members.filter((m) => m.index === Number(port[2])) : [];
+        const matches = byName.length > 0 ? byName : byIndex;
+        const list = members.map((m) => `${m.node.name} (${m.what})`).join(', ') || 'none';
+        if (matches.length === 0) throw new RenameError(`${holder.name} has no port or parameter '${port[2]}'; its ports and parameters: ${list}`);
+        if (matches.length > 1) throw new RenameError(`'${spec}' is ambiguous: ${matches.map((m) => `${m.node.name} (${m.what})`).join(', ')}; name the port instead of its index`);
+        return matches[0]!.node;
+    }
+    const fn = /^([^:.]+)\.([^:.]+)$/.exec(spec);
+    if (fn) {
+        const sup = owner(ws, fn[1]!, spec);
+        if (!isSupervisor(sup)) throw new RenameError(`${sup.name} is a module; 'NAME.function' names a supervision function of a supervisor`);
+        const found = sup.functions.find((f) => f.name === fn[2]);
+        if (!found) throw new RenameError(`supervisor ${sup.name} has no function '${fn[2]}'; its functions: ${sup.functions.map((f) => f.name).join(', ') || 'none'}`);
+        return found as Named;
+    }
+    const found = topLevelElements(ws).filter((e) => e.name === spec && (isModule(e) || isSupervisor(e) || isSchema(e) || isDataType(e) || isFunctionPrototype(e)));
+    if (found.length === 0) {
+        throw new RenameError(`no module, supervisor, schema, datatype or function named '${spec}' (a port is 'MODULE:port', a supervision function 'SUPERVISOR.function')`);
+    }
+    if (found.length > 1) throw new RenameError(`'${spec}' names several elements: ${found.map((e) => located(e, ws)).join(', ')}; rename one by hand first`);
+    return found[0]!;
+}
+
+/**
+ * Plans renaming `spec` to `newName` in the workspace: checks the name with the editor's rules
+ * (identifier, keywords, three upper-case letters for modules and supervisors, no clash) and
+ * computes each changed file's new text. Throws RenameError with a message for the user.
+ */
+export function planRename(ws: LoadedWorkspace, spec: string, newName: string): RenamePlan {
+    const target = findEntity(ws, spec);
+    const services = ws.services;
+    const kind = kindWord(target);
+    if (target.name === newName) throw new RenameError(`${kind} ${target.name} already has that name`);
+    const problem = renameProblem(target, newName, services.Grammar, services.shared.workspace.IndexManager);
+    if (problem) throw new RenameError(problem);
+    const edit = renameEdits(services.references.References, services.shared.workspace.LangiumDocuments, target, newName);
+    const files: PlannedFileEdit[] = [];
+    for (const [uri, edits] of Object.entries(edit.changes ?? {})) {
+        const doc = ws.documents.find((d) => d.document.uri.toString() === uri);
+        if (!doc) throw new RenameError(`a reference to ${target.name} is in ${uri}, which is not a file of this workspace`);
+        const text = doc.document.textDocument.getText();
+        const copy = TextDocument.create(uri, 'cactal', 0, text);
+        files.push({ file: doc.file, path: doc.path, text: TextDocument.applyEdits(copy, edits), occurrences: edits.length });
+    }
+    files.sort((a, b) => a.file.localeCompare(b.file));
+    return { kind, oldName: target.name, newName, generatedNames: namesGeneratedFiles(target), files };
+}

@@ -1,0 +1,462 @@
+/**
+ * The `.scenario` parser (docs/simulation.md "Scenario files"): text -> typed steps with source
+ * positions, and diagnostics. Browser-safe (no Node import) and total: it never throws, whatever
+ * the text; every problem is a diagnostic naming the line and column, what is wrong and what was
+ * expected. Names are not checked here (no model): `checkScenario` (model-check.ts) does that.
+ *
+ * One line = one directive, optionally timed: `[t=TIME] DIRECTIVE`; `expect at TIME ...` is the
+ * same as `t=TIME expect ...`. A line without a time takes the previous line's time (0 at first).
+ */
+
+/** 1-based line and columns; `endColumn` is exclusive. */
+export interface SourceSpan {
+    line: number;
+    column: number;
+    endColumn: number;
+}
+
+export interface ScenarioDiagnostic extends SourceSpan {
+    severity: 'error' | 'warning';
+    /** Stable code, e.g. `scenario-syntax`, `scenario-time-order`, `scenario-unknown-rule`. */
+    code: string;
+    message: string;
+}
+
+/** A value written in Cactal's value syntax (docs/language-reference.md). */
+export type ScenarioValue =
+    | { kind: 'int'; value: number; text: string; span: SourceSpan }
+    | { kind: 'real'; value: number; text: string; span: SourceSpan }
+    | { kind: 'string'; value: string; text: string; span: SourceSpan }
+    | { kind: 'struct'; elements: ScenarioValue[]; text: string; span: SourceSpan };
+
+/** A named thing of the project, with where it is written. */
+export interface Name {
+    text: string;
+    span: SourceSpan;
+}
+
+export interface Argument {
+    name: Name;
+    value: ScenarioValue;
+}
+
+export type Expectation =
+    | { kind: 'rule'; supervisor: Name; function: Name; rule: Name; active: boolean }
+    | { kind: 'schema'; schema: Name; active: boolean }
+    | { kind: 'function'; supervisor: Name; function: Name; running: boolean }
+    | { kind: 'module'; module: Name; running: boolean }
+    /** `local [SUP.fn.]name == value`: supervisor/function undefined when not written. */
+    | { kind: 'local'; supervisor?: Name; function?: Name; local: Name; value: ScenarioValue };
+
+export type StepBody =
+    /** An event of a module's (or a supervisor's, or ORD's) out event port. */
+    | { kind: 'event'; module: Name; port: number; portSpan: SourceSpan; portName?: Name; value?: ScenarioValue }
+    | { kind: 'start'; supervisor: Name; function: Name; args: Argument[] }
+    | { kind: 'stop'; supervisor: Name; function: Name }
+    /** The module crashes: it stops running, never acks a release again. */
+    | { kind: 'crash'; module: Name }
+    /** From now on (or for its next release only) each release of the module takes `execNs`. */
+    | { kind: 'exec'; module: Name; execNs: number; once: boolean }
+    | { kind: 'expect'; expectation: Expectation };
+
+export type Step = StepBody & {
+    /** Virtual time of the step, in nanoseconds since the scenario started. */
+    atNs: number;
+    /** Whole line span (`column` 1, `endColumn` after the last character). */
+    span: SourceSpan;
+    /** The line's text without its comment, trimmed. */
+    source: string;
+};
+
+export interface ParsedScenario {
+    title?: string;
+    /** `until TIME`: the virtual end of the scenario; undefined = the last step's time. */
+    untilNs?: number;
+    steps: Step[];
+    diagnostics: ScenarioDiagnostic[];
+}
+
+/** Bounds: a scenario is hand-written or generated; anything above these is refused. */
+export const MAX_SCENARIO_BYTES = 8 * 1024 * 1024;
+export const MAX_STEPS = 1_000_000;
+const MAX_VALUE_DEPTH = 32;
+const MAX_DIAGNOSTICS = 200;
+/** Virtual times above one day are refused (int64 ns holds far more; this catches typos). */
+export const MAX_TIME_NS = 86_400_000_000_000;
+
+const UNIT_NS: Record<string, number> = { ns: 1, us: 1_000, ms: 1_000_000, s: 1_000_000_000 };
+
+/** Parses a time literal (`300ms`, `1.5s`, `0`) to nanoseconds; undefined when it is not one. */
+export function parseTimeLiteral(text: string): number | undefined {
+    if (text === '0') return 0;
+    const m = /^([0-9]+(?:\.[0-9]+)?)(ns|us|ms|s)$/.exec(text);
+    if (!m) return undefined;
+    const ns = Math.round(Number(m[1]) * UNIT_NS[m[2]!]!);
+    return Number.isFinite(ns) ? ns : undefined;
+}
+
+/** Readable time: the largest unit that keeps it exact (`1s`, `300ms`, `1500us`, `7ns`). */
+export function formatTime(ns: number): string {
+    if (ns === 0) return '0';
+    if (ns % 1_000_000_000 === 0) return `${ns / 1_000_000_000}s`;
+    if (ns % 1_000_000 === 0) return `${ns / 1_000_000}ms`;
+    if (ns % 1_000 === 0) return `${ns / 1_000}us`;
+    return `${ns}ns`;
+}
+
+class Failure {
+    constructor(readonly column: number, readonly endColumn: number, readonly message: string, readonly code = 'scenario-syntax') {}
+}
+
+/** A cursor over one line (0-based offsets; spans are reported 1-based). */
+class LineCursor {
+    pos = 0;
+    constructor(readonly text: string, readonly line: number) {}
+
+    skipSpaces(): void {
+        while (this.pos < this.text.length && (this.text[this.pos] === ' ' || this.text[this.pos] === '\t')) this.pos++;
+    }
+    atEnd(): boolean {
+        this.skipSpaces();
+        return this.pos >= this.text.length;
+    }
+    span(from: number, to: number): SourceSpan {
+        return { line: this.line, column: from + 1, endColumn: Math.max(to, from + 1) + 1 };
+    }
+    fail(message: string, from = this.pos, to = this.tokenEnd(from)): never {
+        throw new Failure(from + 1, Math.max(to, from + 1) + 1, message);
+    }
+    /** End of the whitespace-delimited token starting at `from`. */
+    tokenEnd(from: number): number {
+        let i = from;
+        while (i < this.text.length && !/[\s]/.test(this.text[i]!)) i++;
+        return i;
+    }
+    peekWord(): string {
+        this.skipSpaces();
+        const m = /^[A-Za-z_][A-Za-z0-9_]*/.exec(this.text.slice(this.pos));
+        return m ? m[0] : '';
+    }
+    /** An identifier, or a failure that says what was expected. */
+    ident(what: string): Name {
+        this.skipSpaces();
+        const m = /^[A-Za-z_][A-Za-z0-9_]*/.exec(this.text.slice(this.pos));
+        if (!m) this.fail(this.pos >= this.text.length ? `expected ${what} at the end of the line` : `expected ${what}, found '${this.text.slice(this.pos, this.tokenEnd(this.pos))}'`);
+        const from = this.pos;
+        this.pos += m[0].length;
+        return { text: m[0], span: this.span(from, this.pos) };
+    }
+    keyword(word: string): boolean {
+        this.skipSpaces();
+        const rest = this.text.slice(this.pos);
+        if (rest.startsWith(word) && !/[A-Za-z0-9_]/.test(rest[word.length] ?? '')) {
+            this.pos += word.length;
+            return true;
+        }
+        return false;
+    }
+    char(c: string): boolean {
+        this.skipSpaces();
+        if (this.text[this.pos] === c) {
+            this.pos++;
+            return true;
+        }
+        return false;
+    }
+    expectChar(c: string, what: string): void {
+        if (!this.char(c)) this.fail(this.pos >= this.text.length ? `expected '${c}' ${what} at the end of the line` : `expected '${c}' ${what}, found '${this.text[this.pos]}'`, this.pos, this.pos + 1);
+    }
+    time(what: string): { ns: number; span: SourceSpan } {
+        this.skipSpaces();
+        const from = this.pos;
+        const m = /^[0-9A-Za-z.]+/.exec(this.text.slice(this.pos));
+        const text = m ? m[0] : '';
+        const ns = parseTimeLiteral(text);
+        if (ns === undefined) this.fail(`expected ${what} (a time such as 300ms, 1.5s, 250us, 0), found '${text || this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`, from, from + Math.max(text.length, 1));
+        if (ns > MAX_TIME_NS) this.fail(`${text} is beyond the longest scenario (1 day)`, from, from + text.length);
+        this.pos += text.length;
+        return { ns, span: this.span(from, this.pos) };
+    }
+    value(depth = 0): ScenarioValue {
+        this.skipSpaces();
+        const from = this.pos;
+        if (depth > MAX_VALUE_DEPTH) this.fail(`value nested deeper than ${MAX_VALUE_DEPTH} levels`);
+        const rest = this.text.slice(this.pos);
+        if (rest.startsWith('{')) {
+            this.pos++;
+            const elements: ScenarioValue[] = [];
+            if (!this.char('}')) {
+                for (;;) {
+                    elements.push(this.value(depth + 1));
+                    if (this.char('}')) break;
+                    this.expectChar(',', 'or \'}\' in a structured value');
+                }
+            }
+            return { kind: 'struct', elements, text: this.text.slice(from, this.pos), span: this.span(from, this.pos) };
+        }
+        const str = /^"((?:\\.|[^"\\\r\n])*)"/.exec(rest);
+        if (str) {
+            this.pos += str[0].length;
+            const value = str[1]!.replace(/\\(.)/g, (_, c: string) => (c === 'n' ? '\n' : c === 't' ? '\t' : c));
+            return { kind: 'string', value, text: str[0], span: this.span(from, this.pos) };
+        }
+        if (rest.startsWith('"')) this.fail('unterminated string (a string ends with " on the same line)', from, this.text.length);
+        const real = /^-?([0-9]+\.[0-9]*([eE][-+]?[0-9]+)?|\.[0-9]+([eE][-+]?[0-9]+)?|[0-9]+[eE][-+]?[0-9]+)/.exec(rest);
+        if (real) {
+            this.pos += real[0].length;
+            return { kind: 'real', value: Number(real[0]), text: real[0], span: this.span(from, this.pos) };
+        }
+        const int = /^-?[0-9]+/.exec(rest);
+        if (int) {
+            this.pos += int[0].length;
+            const value = Number(int[0]);
+            if (!Number.isSafeInteger(value)) this.fail(`integer ${int[0]} is too large`, from, this.pos);
+            return { kind: 'int', value, text: int[0], span: this.span(from, this.pos) };
+        }
+        this.fail(`expected a value (integer, real, "string" or {structured, value}), found '${this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`);
+    }
+    endOfLine(after: string): void {
+        if (!this.atEnd()) this.fail(`unexpected '${this.text.slice(this.pos, this.tokenEnd(this.pos))}' after ${after}`, this.pos, this.text.length);
+    }
+}
+
+/** Removes a `#` comment that is not inside a string. */
+function stripComment(line: string): string {
+    let inString = false;
+    for (let i = 0; i < line.length; i++) {
+        const c = line[i];
+        if (inString) {
+            if (c === '\\') i++;
+            else if (c === '"') inString = false;
+        } else if (c === '"') inString = true;
+        else if (c === '#') return line.slice(0, i);
+    }
+    return line;
+}
+
+function qualified(cur: LineCursor, what: string): { supervisor: Name; function: Name } {
+    const supervisor = cur.ident(`a supervisor name (${what})`);
+    cur.expectChar('.', `between the supervisor and the function (${what})`);
+    const fn = cur.ident(`a function name (${what})`);
+    return { supervisor, function: fn };
+}
+
+function activeWord(cur: LineCursor, yes: string, no: string): boolean {
+    if (cur.keyword(yes)) return true;
+    if (cur.keyword(no)) return false;
+    return cur.fail(`expected '${yes}' or '${no}'`);
+}
+
+function parseExpectation(cur: LineCursor): Expectation {
+    const what = cur.peekWord();
+    switch (what) {
+        case 'rule': {
+            cur.keyword('rule');
+            const q = qualified(cur, 'SUP.function.RULE');
+            cur.expectChar('.', 'between the function and the rule (SUP.function.RULE)');
+            const rule = cur.ident('a rule label (SUP.function.RULE)');
+            return { kind: 'rule', ...q, rule, active: activeWord(cur, 'active', 'inactive') };
+        }
+        case 'schema': {
+            cur.keyword('schema');
+            const schema = cur.ident('a schema name');
+            return { kind: 'schema', schema, active: activeWord(cur, 'active', 'inactive') };
+        }
+        case 'function': {
+            cur.keyword('function');
+            const q = qualified(cur, 'SUP.function');
+            return { kind: 'function', ...q, running: activeWord(cur, 'running', 'stopped') };
+        }
+        case 'module': {
+            cur.keyword('module');
+            const module = cur.ident('a module name');
+            return { kind: 'module', module, running: activeWord(cur, 'running', 'stopped') };
+        }
+        case 'local': {
+            cur.keyword('local');
+            const parts = [cur.ident('a local variable')];
+            while (parts.length < 3 && cur.char('.')) parts.push(cur.ident('a name after \'.\''));
+            if (parts.length === 2) cur.fail('expected SUP.function.local or a bare local name', parts[0]!.span.column - 1, parts[1]!.span.endColumn - 1);
+            cur.skipSpaces();
+            if (!cur.text.startsWith('==', cur.pos)) cur.fail(`expected '==' after the local's name`);
+            cur.pos += 2;
+            const value = cur.value();
+            return parts.length === 3
+                ? { kind: 'local', supervisor: parts[0], function: parts[1], local: parts[2]!, value }
+                : { kind: 'local', local: parts[0]!, value };
+        }
+        default:
+            return cur.fail(`expected what to expect: rule, schema, function, module or local`);
+    }
+}
+
+function parseArgs(cur: LineCursor): Argument[] {
+    const args: Argument[] = [];
+    if (!cur.char('(')) return args;
+    if (cur.char(')')) return args;
+    for (;;) {
+        const name = cur.ident('a parameter name');
+        cur.expectChar('=', `after the parameter name '${name.text}'`);
+        args.push({ name, value: cur.value() });
+        if (cur.char(')')) return args;
+        cur.expectChar(',', 'or \')\' between parameters');
+    }
+}
+
+/** The directive after the optional time: returns the step body, or a header effect. */
+function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): StepBody | undefined {
+    const word = cur.peekWord();
+    const wordSpan = cur.span(cur.pos, cur.pos + word.length);
+    const headerOnly = (name: string) => {
+        if (timed) throw new Failure(wordSpan.column, wordSpan.endColumn, `'${name}' takes no time (t=...): it is about the whole scenario`);
+    };
+    if (word === 'scenario') {
+        headerOnly('scenario');
+        cur.keyword('scenario');
+        cur.skipSpaces();
+        out.title = cur.text.slice(cur.pos).trim();
+        return undefined;
+    }
+    if (word === 'until') {
+        headerOnly('until');
+        cur.keyword('until');
+        out.untilNs = cur.time('the end of the scenario').ns;
+        cur.endOfLine('the end time');
+        return undefined;
+    }
+    if (word === 'start' && !/^start\s*:/.test(cur.text.slice(cur.pos))) {
+        cur.keyword('start');
+        const q = qualified(cur, 'SUP.function(param = value, ...)');
+        const args = parseArgs(cur);
+        cur.endOfLine('the function\'s parameters');
+        return { kind: 'start', ...q, args };
+    }
+    if (word === 'stop') {
+        cur.keyword('stop');
+        const q = qualified(cur, 'SUP.function');
+        cur.endOfLine('the function');
+        return { kind: 'stop', ...q };
+    }
+    if (word === 'crash') {
+        cur.keyword('crash');
+        const module = cur.ident('the module that crashes');
+        cur.endOfLine('the module');
+        return { kind: 'crash', module };
+    }
+    if (word === 'exec') {
+        cur.keyword('exec');
+        const module = cur.ident('a synchronous module');
+        const time = cur.time('its execution time per release');
+        const once = cur.keyword('once');
+        cur.endOfLine(once ? "'once'" : "the execution time (or 'once')");
+        return { kind: 'exec', module, execNs: time.ns, once };
+    }
+    if (word === 'expect') {
+        cur.keyword('expect');
+        if (cur.keyword('at')) {
+            if (timed) cur.fail("the time is already given by 't=' on this line");
+            const time = cur.time('the time of the expectation');
+            (cur as LineCursor & { expectAt?: number }).expectAt = time.ns;
+        }
+        const expectation = parseExpectation(cur);
+        cur.endOfLine('the expectation');
+        return { kind: 'expect', expectation };
+    }
+    if (word !== '') {
+        // MODULE:PORT [name=]value
+        const module = cur.ident('a module');
+        if (!cur.char(':')) {
+            cur.fail(`unknown directive '${word}': expected start, stop, crash, exec, expect, scenario, until or an event MODULE:PORT value`, wordSpan.column - 1, wordSpan.endColumn - 1);
+        }
+        cur.skipSpaces();
+        const pm = /^[0-9]+/.exec(cur.text.slice(cur.pos));
+        if (!pm) cur.fail(`expected an event port number after '${module.text}:'`);
+        const portSpan = cur.span(cur.pos, cur.pos + pm[0].length);
+        const port = Number(pm[0]);
+        cur.pos += pm[0].length;
+        if (port > 65535) throw new Failure(portSpan.column, portSpan.endColumn, `port ${pm[0]} is out of range`);
+        if (cur.atEnd()) return { kind: 'event', module, port, portSpan };
+        let portName: Name | undefined;
+        const save = cur.pos;
+        if (/^[A-Za-z_]/.test(cur.text.slice(cur.pos))) {
+            portName = cur.ident('the port variable');
+            if (!cur.char('=')) {
+                cur.pos = save;
+                portName = undefined;
+            }
+        }
+        const value = cur.value();
+        cur.endOfLine('the event\'s value');
+        return { kind: 'event', module, port, portSpan, portName, value };
+    }
+    return cur.fail('expected a directive: start, stop, crash, exec, expect, an event MODULE:PORT value, scenario or until');
+}
+
+/** Parses a whole scenario text. Never throws. */
+export function parseScenario(text: string): ParsedScenario {
+    const out: ParsedScenario = { steps: [], diagnostics: [] };
+    const diag = (d: Omit<ScenarioDiagnostic, 'severity'> & { severity?: 'error' | 'warning' }) => {
+        if (out.diagnostics.length < MAX_DIAGNOSTICS) out.diagnostics.push({ severity: 'error', ...d });
+    };
+    if (typeof text !== 'string') {
+        diag({ line: 1, column: 1, endColumn: 2, code: 'scenario-syntax', message: 'a scenario is text' });
+        return out;
+    }
+    if (text.length > MAX_SCENARIO_BYTES) {
+        diag({ line: 1, column: 1, endColumn: 2, code: 'scenario-too-large', message: `the scenario is ${text.length} characters long; at most ${MAX_SCENARIO_BYTES} are read` });
+        return out;
+    }
+    const lines = text.split(/\r?\n/);
+    let now = 0;
+    let sawStep = false;
+    for (let i = 0; i < lines.length; i++) {
+        const raw = lines[i]!;
+        const body = stripComment(raw).replace(/\s+$/, '');
+        if (body.trim() === '') continue;
+        const cur = new LineCursor(body, i + 1);
+        try {
+            let timed = false;
+            let atNs = now;
+            let timeSpan: SourceSpan | undefined;
+            cur.skipSpaces();
+            if (cur.text.startsWith('t=', cur.pos) || cur.text.startsWith('t =', cur.pos)) {
+                cur.pos = cur.text.indexOf('=', cur.pos) + 1;
+                const time = cur.time('the step\'s time after t=');
+                atNs = time.ns;
+                timeSpan = time.span;
+                timed = true;
+            }
+            const stepBody = parseDirective(cur, out, timed);
+            if (!stepBody) {
+                if (sawStep) diag({ line: i + 1, column: 1, endColumn: body.length + 1, code: 'scenario-header-late', severity: 'warning', message: 'scenario and until are header lines: put them before the first step' });
+                continue;
+            }
+            const expectAt = (cur as LineCursor & { expectAt?: number }).expectAt;
+            if (expectAt !== undefined) {
+                atNs = expectAt;
+                timeSpan = undefined;
+            }
+            if (atNs < now) {
+                const span = timeSpan ?? { line: i + 1, column: 1, endColumn: body.length + 1 };
+                diag({ ...span, code: 'scenario-time-order', message: `steps go forward in time: ${formatTime(atNs)} is before the previous step's ${formatTime(now)}` });
+                continue;
+            }
+            now = atNs;
+            if (out.steps.length >= MAX_STEPS) {
+                diag({ line: i + 1, column: 1, endColumn: body.length + 1, code: 'scenario-too-large', message: `more than ${MAX_STEPS} steps; the rest is ignored` });
+                break;
+            }
+            sawStep = true;
+            const leading = body.length - body.trimStart().length;
+            out.steps.push({ ...stepBody, atNs, span: { line: i + 1, column: leading + 1, endColumn: body.length + 1 }, source: body.trim() } as Step);
+        } catch (e) {
+            if (e instanceof Failure) diag({ line: i + 1, column: e.column, endColumn: e.endColumn, code: e.code, message: e.message });
+            else diag({ line: i + 1, column: 1, endColumn: body.length + 1, code: 'scenario-syntax', message: `cannot read this line (${e instanceof Error ? e.message : String(e)})` });
+        }
+    }
+    if (out.untilNs !== undefined && out.steps.length > 0 && out.untilNs < now) {
+        const last = out.steps[out.steps.length - 1]!;
+        diag({ ...last.span, code: 'scenario-time-order', message: `this step at ${formatTime(now)} is after the scenario's end (until ${formatTime(out.untilNs)})` });
+    }
+    return out;
+}

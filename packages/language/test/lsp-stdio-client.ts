@@ -1,0 +1,82 @@
+/**
+ * Minimal LSP client over a language server's stdio (Content-Length framing), for the tests that
+ * drive the built `contract-language-server` (lsp-server.test.ts, lsp-scenario-server.test.ts).
+ */
+import type { ChildProcessWithoutNullStreams } from 'node:child_process';
+
+/** Minimal LSP client over the server's stdio (Content-Length framing). */
+export class Client {
+    private buffer = Buffer.alloc(0);
+    private nextId = 1;
+    private readonly pending = new Map<number, (msg: { result?: unknown; error?: { message: string } }) => void>();
+    readonly notifications: Array<{ method: string; params: unknown }> = [];
+
+    constructor(private readonly child: ChildProcessWithoutNullStreams) {
+        child.stdout.on('data', (chunk: Buffer) => this.receive(chunk));
+    }
+
+    private receive(chunk: Buffer): void {
+        this.buffer = Buffer.concat([this.buffer, chunk]);
+        for (;;) {
+            const headerEnd = this.buffer.indexOf('\r\n\r\n');
+            if (headerEnd < 0) return;
+            const length = Number(/Content-Length: (\d+)/i.exec(this.buffer.subarray(0, headerEnd).toString())?.[1]);
+            if (this.buffer.length < headerEnd + 4 + length) return;
+            const msg = JSON.parse(this.buffer.subarray(headerEnd + 4, headerEnd + 4 + length).toString());
+            this.buffer = this.buffer.subarray(headerEnd + 4 + length);
+            if (msg.id !== undefined && msg.method === undefined) this.pending.get(msg.id)?.(msg);
+            else if (msg.id !== undefined) this.send({ jsonrpc: '2.0', id: msg.id, result: null }); // server -> client requests
+            else this.notifications.push(msg);
+        }
+    }
+
+    private send(msg: unknown): void {
+        const body = Buffer.from(JSON.stringify(msg));
+        this.child.stdin.write(`Content-Length: ${body.length}\r\n\r\n`);
+        this.child.stdin.write(body);
+    }
+
+    request<T>(method: string, params: unknown): Promise<T> {
+        const id = this.nextId++;
+        return new Promise((resolve, reject) => {
+            const timer = setTimeout(() => reject(new Error(`${method}: no answer in 20 s`)), 20_000);
+            this.pending.set(id, (msg) => {
+                clearTimeout(timer);
+                if (msg.error) reject(new Error(msg.error.message)); else resolve(msg.result as T);
+            });
+            this.send({ jsonrpc: '2.0', id, method, params });
+        });
+    }
+
+    /** LSP shutdown then exit; the server is killed when it has not exited 3 s later. */
+    async stop(): Promise<void> {
+        await this.request('shutdown', null).catch(() => undefined);
+        this.notify('exit', null);
+        if (this.child.exitCode !== null) return;
+        await new Promise<void>((resolve) => {
+            const t = setTimeout(() => { this.child.kill(); resolve(); }, 3000);
+            this.child.on('exit', () => { clearTimeout(t); resolve(); });
+        });
+    }
+
+    notify(method: string, params: unknown): void {
+        this.send({ jsonrpc: '2.0', method, params });
+    }
+
+    /** The diagnostics last published for `uri`, or undefined before the first. */
+    latestDiagnostics<D = { code?: string; message: string }>(uri: string): D[] | undefined {
+        const published = this.notifications.filter((n) => n.method === 'textDocument/publishDiagnostics' && (n.params as { uri: string }).uri === uri);
+        return (published[published.length - 1]?.params as { diagnostics: D[] } | undefined)?.diagnostics;
+    }
+
+    /** How many diagnostics notifications arrived for `uri` so far. */
+    publishedCount(uri: string): number {
+        return this.notifications.filter((n) => n.method === 'textDocument/publishDiagnostics' && (n.params as { uri: string }).uri === uri).length;
+    }
+}
+
+/** Polls `condition` every 50 ms for up to `ms`. */
+export async function waitFor(condition: () => boolean, ms = 20_000): Promise<void> {
+    const deadline = Date.now() + ms;
+    while (Date.now() < deadline && !condition()) await new Promise((r) => setTimeout(r, 50));
+}

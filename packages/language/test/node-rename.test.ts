@@ -1,0 +1,42 @@
+/** `planRename` (contract rename): the editor's rename rules and edits on a workspace loaded from disk. */
+import { fileURLToPath } from 'node:url';
+import { beforeAll, describe, expect, it } from 'vitest';
+import { loadWorkspace, type LoadedWorkspace } from '../src/node/load-workspace.js';
+import { planRename } from '../src/node/rename-entity.js';
+
+const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
+let ws: LoadedWorkspace;
+beforeAll(async () => { ws = await loadWorkspace(TUTORIAL); });
+
+describe('planRename', () => {
+    it('a module: every reference in every file, nothing else', () => {
+        const plan = planRename(ws, 'MSC', 'MSK');
+        expect(plan).toMatchObject({ kind: 'module', oldName: 'MSC', newName: 'MSK', generatedNames: true });
+        expect(plan.files.map((f) => f.file)).toEqual(['sched.contract', 'smodule3.contract', 'sschema1.contract', 'sschema2.contract', 'supervisor.contract']);
+        for (const f of plan.files) {
+            const before = ws.documents.find((d) => d.file === f.file)!.document.textDocument.getText();
+            expect(f.text).toBe(before.replace(/\bMSC\b/g, 'MSK'));
+            expect(f.occurrences).toBe(before.match(/\bMSC\b/g)!.length);
+        }
+    });
+
+    it('a port by MODULE:name or by an index only one port has; a supervision function by SUP.function', () => {
+        const port = planRename(ws, 'MSC:in_coordinates', 'position');
+        expect(port).toMatchObject({ kind: 'port', oldName: 'in_coordinates', generatedNames: false });
+        expect(port.files.map((f) => f.file)).toEqual(['smodule3.contract']);
+        expect(planRename(ws, 'SUP:2', 'link').oldName).toBe('connection_status');
+        expect(planRename(ws, 'SUP.action', 'act')).toMatchObject({ kind: 'supervision function', generatedNames: false });
+        expect(planRename(ws, 'TypeA', 'Vec3')).toMatchObject({ kind: 'datatype', generatedNames: true });
+        expect(planRename(ws, 'schemaCommande1', 'command1')).toMatchObject({ kind: 'schema', generatedNames: false });
+    });
+
+    it('clear errors: unknown entity, ambiguous index, invalid name, name taken', () => {
+        expect(() => planRename(ws, 'MSX', 'MSK')).toThrow("no module, supervisor, schema, datatype or function named 'MSX'");
+        expect(() => planRename(ws, 'MSC:9', 'x')).toThrow('MSC has no port or parameter \'9\'; its ports and parameters: param (parameter :0), in_coordinates (in data port :0)');
+        expect(() => planRename(ws, 'MSC:1', 'x')).toThrow("'MSC:1' is ambiguous: out_coordinates_commmmand (out data port :1), failing_data (out event port :1)");
+        expect(() => planRename(ws, 'MSC', 'msk')).toThrow("'msk' is not a valid module name: module and supervisor names are exactly three upper-case letters");
+        expect(() => planRename(ws, 'MSC', 'MSD')).toThrow("'MSD' already names a module or supervisor (in smodule4.contract)");
+        expect(() => planRename(ws, 'TypeA', 'struct')).toThrow("'struct' is a C keyword");
+        expect(() => planRename(ws, 'SUP.nope', 'x')).toThrow('supervisor SUP has no function \'nope\'; its functions: action');
+    });
+});

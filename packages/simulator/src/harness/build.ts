@@ -1,0 +1,131 @@
+/**
+ * Builds (or finds) a project's simulator executable with the host's gcc (docs/simulation.md §3,
+ * docs/architecture.md "The simulator"): the engine cores and the harness are compiled once in the
+ * runtime build (`make -C runtime sim`: build/sim/libcontractsim.a, build/sim/sim_main.o); per
+ * project only the generated tables are compiled (-O0, in parallel) and linked. The result is
+ * cached under `<cache>/sim-<hash>/contract-sim`, the hash covering every source, the harness
+ * objects and the compiler: the same project twice builds nothing.
+ */
+import { spawn } from 'node:child_process';
+import { createHash } from 'node:crypto';
+import { existsSync, mkdirSync, readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { dirname, join } from 'node:path';
+import type { SimSources } from './tables.js';
+
+export interface HarnessBuild {
+    exe: string;
+    /** True when the executable was already in the cache. */
+    cached: boolean;
+    ms: number;
+}
+
+export interface BuildOptions {
+    /** The runtime source folder (has Makefile, include/, sim/). */
+    runtimeDir: string;
+    /** Cache folder (default: $CONTRACT_CACHE_DIR or <tmp>/contract-studio-<uid>, then `sim/`). */
+    cacheDir?: string;
+    cc?: string;
+}
+
+export function defaultCacheDir(): string {
+    const base = process.env.CONTRACT_CACHE_DIR || join(tmpdir(), `contract-studio-${process.getuid?.() ?? 'user'}`);
+    return join(base, 'sim');
+}
+
+const MAX_COMPILER_OUTPUT = 64 * 1024;
+
+function run(cmd: string, args: string[], cwd: string): Promise<{ code: number; output: string }> {
+    return new Promise((resolvePromise) => {
+        let output = '';
+        let child;
+        try {
+            child = spawn(cmd, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+        } catch (e) {
+            resolvePromise({ code: -1, output: e instanceof Error ? e.message : String(e) });
+            return;
+        }
+        const add = (d: Buffer) => {
+            if (output.length < MAX_COMPILER_OUTPUT) output += d.toString('utf8');
+        };
+        child.stdout.on('data', add);
+        child.stderr.on('data', add);
+        child.on('error', (e) => resolvePromise({ code: -1, output: output + e.message }));
+        child.on('close', (code) => resolvePromise({ code: code ?? -1, output }));
+    });
+}
+
+/** The harness objects of the runtime build, made when missing or out of date. */
+async function harnessObjects(runtimeDir: string, cc: string): Promise<{ lib: string; main: string } | string> {
+    const lib = join(runtimeDir, 'build', 'sim', 'libcontractsim.a');
+    const main = join(runtimeDir, 'build', 'sim', 'sim_main.o');
+    if (existsSync(join(runtimeDir, 'sim', 'sim.mk'))) {
+        // up to date in a few ms; an installed runtime without sources keeps what it has
+        const made = await run('make', ['-s', '-C', runtimeDir, 'sim', `CC=${cc}`], runtimeDir);
+        if (made.code !== 0 && !(existsSync(lib) && existsSync(main))) return `cannot build the simulator's harness in ${runtimeDir}:\n${made.output}`;
+    }
+    if (!existsSync(lib) || !existsSync(main)) return `no simulator harness in ${runtimeDir}/build/sim (run make -C ${runtimeDir} sim)`;
+    return { lib, main };
+}
+
+let compilerId: string | undefined;
+async function compilerIdentity(cc: string): Promise<string> {
+    if (compilerId === undefined) compilerId = (await run(cc, ['--version'], tmpdir())).output.split('\n')[0] ?? cc;
+    return compilerId;
+}
+
+export async function buildHarness(src: SimSources, options: BuildOptions): Promise<HarnessBuild | { error: string }> {
+    const t0 = performance.now();
+    const cc = options.cc ?? process.env.CC ?? 'gcc';
+    const objects = await harnessObjects(options.runtimeDir, cc);
+    if (typeof objects === 'string') return { error: objects };
+    const hash = createHash('sha256');
+    hash.update(await compilerIdentity(cc)).update('\0');
+    for (const f of [objects.lib, objects.main]) {
+        const st = statSync(f);
+        hash.update(f).update(`\0${st.size}\0${st.mtimeMs}\0`);
+    }
+    hash.update(options.runtimeDir).update('\0');
+    for (const f of src.files) hash.update(f.path).update('\0').update(f.content).update('\0');
+    const key = hash.digest('hex').slice(0, 20);
+    const cache = options.cacheDir ?? defaultCacheDir();
+    const dir = join(cache, `sim-${key}`);
+    const exe = join(dir, 'contract-sim');
+    if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
+
+    const work = `${dir}.tmp-${process.pid}-${Math.random().toString(36).slice(2)}`;
+    mkdirSync(work, { recursive: true, mode: 0o700 });
+    try {
+        for (const f of src.files) {
+            const p = join(work, f.path);
+            mkdirSync(dirname(p), { recursive: true });
+            writeFileSync(p, f.content, 'latin1');
+        }
+        const include = join(options.runtimeDir, 'include');
+        const compiles = src.units.map((unit, i) => run(cc, [
+            '-std=c11', '-O0', '-w', '-D_POSIX_C_SOURCE=200809L', `-I${include}`,
+            ...(src.includes.get(unit) ?? []).map((d) => `-I${join(work, d)}`),
+            '-c', join(work, unit), '-o', join(work, `unit${i}.o`),
+        ], work));
+        const results = await Promise.all(compiles);
+        const failed = results.findIndex((r) => r.code !== 0);
+        if (failed >= 0) return { error: `cannot compile ${src.units[failed]} for the simulator:\n${results[failed]!.output}` };
+        const link = await run(cc, ['-o', join(work, 'contract-sim'), ...src.units.map((_, i) => join(work, `unit${i}.o`)), objects.main, objects.lib, '-lm'], work);
+        if (link.code !== 0) return { error: `cannot link the simulator:\n${link.output}` };
+        writeFileSync(join(work, 'key'), key);
+        try {
+            renameSync(work, dir);
+        } catch {
+            // another process built the same key first: use theirs
+            if (!existsSync(exe)) return { error: `cannot store the simulator in ${dir}` };
+        }
+        return { exe, cached: false, ms: performance.now() - t0 };
+    } finally {
+        rmSync(work, { recursive: true, force: true });
+    }
+}
+
+/** The key file of a built harness (tests). */
+export function harnessKey(exe: string): string {
+    return readFileSync(join(dirname(exe), 'key'), 'utf8');
+}

@@ -1,0 +1,111 @@
+/**
+ * Steps -> the harness's input lines, and its output records (runtime/sim/sim_protocol.h).
+ * The records' shape is the JSON output of `contract simulate --format json` per step, meant for
+ * reuse by the IDE's Simulate panel.
+ */
+import type { ScenarioValue, Step } from '../scenario/index.js';
+import type { ResolvedLocal } from '../scenario/index.js';
+
+export interface RuleChange {
+    timeNs: number;
+    supervisor: string;
+    function: string;
+    rule: string;
+    active: boolean;
+    /** As in the `sup_rule` records of a real run: `MAA:2 value="disconnected"`, `elapsed=1000000ns`, `endof(SECOND)`... */
+    cause: string;
+}
+
+export interface ActionRecord {
+    timeNs: number;
+    /** The engine (supervisor name, `ORD`) or the module that acted. */
+    who: string;
+    what: string;
+}
+
+export interface LogLine {
+    timeNs: number;
+    who: string;
+    line: string;
+}
+
+export interface LocalValue {
+    supervisor: string;
+    function: string;
+    name: string;
+    type: string;
+    /** Numbers and strings as Cactal values; datatypes as their type's print_ writes them. */
+    value: string;
+}
+
+/** One record of the harness: what happened up to and at one step. */
+export interface StepRecord {
+    line: number;
+    timeNs: number;
+    verb: string;
+    ok: boolean;
+    /** Events: how many supervisors received it. */
+    delivered?: number;
+    error?: string;
+    expected?: string;
+    actual?: string;
+    rules: RuleChange[];
+    actions: ActionRecord[];
+    log: LogLine[];
+    schemas?: string[];
+    locals?: LocalValue[];
+    /** What user functions (tests, computes) printed. */
+    output?: string;
+    dropped?: number;
+    end?: boolean;
+    eventsProcessed?: number;
+    /** End record: the harness's own wall time from its start to the end (reading its input included). */
+    wallNs?: number;
+}
+
+/** A value in the text form the types' get_ functions read (tools.h): no raw tab or newline. */
+export function valueText(v: ScenarioValue): string {
+    switch (v.kind) {
+        case 'int':
+        case 'real':
+            return v.text;
+        case 'string':
+            return `"${v.value.replace(/[\\"\n\t\r]/g, (c) => (c === '\n' ? '\\n' : c === '\t' ? '\\t' : c === '\r' ? ' ' : `\\${c}`))}"`;
+        case 'struct':
+            return `{${v.elements.map(valueText).join(',')}}`;
+    }
+}
+
+function clean(s: string): string {
+    return s.replace(/[\t\r\n]/g, ' ');
+}
+
+/** The input line of one step, or undefined for a step the harness does not need. */
+export function stepLine(step: Step, index: number, locals: Map<number, ResolvedLocal>): string {
+    const head = `${step.atNs}\t${step.span.line}\t`;
+    switch (step.kind) {
+        case 'start':
+            return head + ['start', step.supervisor.text, step.function.text, step.args.map((a) => `${a.name.text}=${valueText(a.value)}`).join(',')].join('\t');
+        case 'stop':
+            return head + ['stop', step.supervisor.text, step.function.text].join('\t');
+        case 'event':
+            return head + ['event', step.module.text, String(step.port), step.value ? valueText(step.value) : ''].join('\t');
+        case 'crash':
+            return head + ['crash', step.module.text].join('\t');
+        case 'exec':
+            return head + ['exec', step.module.text, String(step.execNs), step.once ? 'once' : 'always'].join('\t');
+        case 'expect': {
+            const e = step.expectation;
+            switch (e.kind) {
+                case 'rule': return head + ['expect-rule', e.supervisor.text, e.function.text, e.rule.text, e.active ? '1' : '0'].join('\t');
+                case 'function': return head + ['expect-function', e.supervisor.text, e.function.text, e.running ? '1' : '0'].join('\t');
+                case 'schema': return head + ['expect-schema', e.schema.text, e.active ? '1' : '0'].join('\t');
+                case 'module': return head + ['expect-module', e.module.text, e.running ? '1' : '0'].join('\t');
+                case 'local': {
+                    const owner = locals.get(index) ?? { supervisor: e.supervisor?.text ?? '', function: e.function?.text ?? '' };
+                    return head + ['expect-local', owner.supervisor, owner.function, e.local.text, clean(valueText(e.value))].join('\t');
+                }
+            }
+        }
+    }
+}

@@ -1,0 +1,75 @@
+/**
+ * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
+ * JSON (every step's record, for the IDE), JUnit XML (CI reports).
+ */
+import { formatTime } from '../scenario/index.js';
+import type { ScenarioResult } from './run-scenario.js';
+
+/** A terminal-safe line: control characters of simulated output shown as `?`. */
+function safe(s: string): string {
+    return s.replace(/[\u0000-\u0008\u000b-\u001f\u007f-\u009f]/g, '?');
+}
+
+export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
+    const out: string[] = [];
+    for (const r of results) {
+        out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
+        for (const s of r.steps) {
+            const time = formatTime(s.timeNs).padStart(8);
+            const mark = s.ok ? (s.kind === 'expect' ? 'ok  ' : '    ') : 'FAIL';
+            out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
+            for (const c of s.record.rules) {
+                out.push(`              ${formatTime(c.timeNs).padStart(8)}  ${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(c.cause)}`);
+            }
+            if (options.verbose) {
+                for (const a of s.record.actions) out.push(`              ${formatTime(a.timeNs).padStart(8)}    ${a.who}: ${safe(a.what)}`);
+                for (const l of s.record.log) out.push(`              ${formatTime(l.timeNs).padStart(8)}    ${l.who}| ${safe(l.line)}`);
+            }
+            if (s.kind === 'event' && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
+            if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
+        }
+        if (r.error) out.push(`  ERROR ${safe(r.error)}`);
+        const expectations = r.steps.filter((s) => s.kind === 'expect').length;
+        out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
+        out.push('');
+    }
+    const failed = results.filter((r) => !r.passed).length;
+    out.push(`${results.length - failed} passed, ${failed} failed`);
+    return out.join('\n') + '\n';
+}
+
+export function jsonReport(results: ScenarioResult[]): string {
+    return JSON.stringify({
+        scenarios: results.map((r) => ({
+            file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
+            failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),
+            steps: r.steps.map((s) => ({ ...s.record, source: s.source, kind: s.kind })),
+        })),
+    }) + '\n';
+}
+
+function xml(s: string): string {
+    // XML 1.0 forbids most control characters even escaped
+    return s.replace(/[\u0000-\u0008\u000b\u000c\u000e-\u001f]/g, '?').replace(/&/g, '&amp;').replace(/</g, '&lt;').replace(/>/g, '&gt;').replace(/"/g, '&quot;');
+}
+
+export function junitReport(results: ScenarioResult[]): string {
+    const out = ['<?xml version="1.0" encoding="UTF-8"?>'];
+    const total = results.reduce((n, r) => n + r.steps.filter((s) => s.kind === 'expect').length + (r.error ? 1 : 0), 0);
+    const failures = results.reduce((n, r) => n + r.failures.length + (r.error ? 1 : 0), 0);
+    out.push(`<testsuites name="contract simulate" tests="${total}" failures="${failures}">`);
+    for (const r of results) {
+        const cases = r.steps.filter((s) => s.kind === 'expect' || !s.ok);
+        out.push(`  <testsuite name="${xml(r.file)}" tests="${cases.length + (r.error ? 1 : 0)}" failures="${r.failures.length + (r.error ? 1 : 0)}" time="${(r.ms / 1000).toFixed(3)}">`);
+        for (const s of cases) {
+            const name = `line ${s.line}: ${s.source}`;
+            out.push(`    <testcase classname="${xml(r.title ?? r.file)}" name="${xml(name)}" time="0">`);
+            if (!s.ok) out.push(`      <failure message="${xml(s.message ?? 'failed')}">${xml(`expected: ${s.record.expected ?? ''}\nactual: ${s.record.actual ?? s.record.error ?? ''}`)}</failure>`);
+            out.push('    </testcase>');
+        }
+        if (r.error) out.push(`    <testcase classname="${xml(r.title ?? r.file)}" name="run"><error message="${xml(r.error)}"/></testcase>`);
+        out.push('  </testsuite>');
+    }
+    out.push('</testsuites>');
+    return out.join('\n') + '\n';
+}

@@ -1,0 +1,91 @@
+/**
+ * `contract simulate DIR SCENARIO...` without the printing (docs/simulation.md §3): loads and
+ * checks the project, reads and checks each scenario against it, generates the tables in memory,
+ * builds (or reuses) the harness and runs every scenario. Used by the CLI, the tests and the
+ * benchmark.
+ */
+import { readRegularFile } from './read-regular-file.js';
+import { dirname, join, relative, resolve } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { loadWorkspace, type LoadedWorkspace, type WorkspaceDiagnostic } from '@contract-studio/language/node';
+import { MAX_SCENARIO_BYTES, parseScenario, type ParsedScenario, type ScenarioDiagnostic } from './scenario/index.js';
+import { checkScenario, indexModels, type ModelIndex, type ResolvedLocal } from './scenario/index.js';
+import { simulationSources } from './harness/tables.js';
+import { buildHarness, type HarnessBuild } from './harness/build.js';
+import { runScenario, type RunOptions, type ScenarioResult } from './runner/run-scenario.js';
+
+/** The repository's runtime/ (from dist/ or src/ of this package). */
+export const DEFAULT_RUNTIME_DIR = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..', '..', 'runtime');
+
+export interface PreparedProject {
+    workspace: LoadedWorkspace;
+    index: ModelIndex;
+    build: HarnessBuild;
+    warnings: string[];
+}
+
+export interface ProjectProblems {
+    /** Errors of the model (as `contract check` prints them). */
+    modelErrors: WorkspaceDiagnostic[];
+    /** Harness generation/build problem. */
+    buildError?: string;
+}
+
+export interface SimulateOptions extends RunOptions {
+    runtimeDir: string;
+    cacheDir?: string;
+}
+
+/** Loads the project and builds its simulator; problems when the model has errors or the build fails. */
+export async function prepareProject(dir: string, options: SimulateOptions): Promise<PreparedProject | ProjectProblems> {
+    const workspace = await loadWorkspace(dir, { confineImportsTo: dir });
+    const modelErrors = workspace.diagnostics.filter((d) => d.severity === 'error');
+    if (modelErrors.length) return { modelErrors };
+    const docs = [...workspace.documents].sort((a, b) => {
+        const ua = a.document.uri.toString();
+        const ub = b.document.uri.toString();
+        return ua < ub ? -1 : ua > ub ? 1 : 0;
+    });
+    let sources;
+    try {
+        sources = simulationSources(docs.map((d) => d.model), join(dir, 'src-gen'));
+    } catch (e) {
+        return { modelErrors: [], buildError: `cannot generate the engines' tables: ${e instanceof Error ? e.message : String(e)}` };
+    }
+    const build = await buildHarness(sources, { runtimeDir: options.runtimeDir, cacheDir: options.cacheDir });
+    if ('error' in build) return { modelErrors: [], buildError: build.error };
+    return { workspace, index: indexModels(docs.map((d) => d.model)), build, warnings: sources.warnings };
+}
+
+export interface LoadedScenario {
+    file: string;
+    /** Path as given (for messages). */
+    display: string;
+    parsed: ParsedScenario;
+    locals: Map<number, ResolvedLocal>;
+    diagnostics: ScenarioDiagnostic[];
+}
+
+/** Reads a scenario file: a regular file (no link followed), at most MAX_SCENARIO_BYTES. */
+export function readScenarioFile(path: string): string | { error: string } {
+    const data = readRegularFile(path, MAX_SCENARIO_BYTES);
+    return Buffer.isBuffer(data) ? data.toString('utf8') : data;
+}
+
+/** Parses and checks a scenario text against the project's model. */
+export function loadScenario(file: string, display: string, text: string, index: ModelIndex): LoadedScenario {
+    const parsed = parseScenario(text);
+    const check = parsed.diagnostics.some((d) => d.severity === 'error') ? { diagnostics: [], locals: new Map() } : checkScenario(parsed.steps, index);
+    const diagnostics = [...parsed.diagnostics, ...check.diagnostics].sort((a, b) => a.line - b.line || a.column - b.column);
+    return { file, display, parsed, locals: check.locals, diagnostics };
+}
+
+export async function runLoadedScenario(project: PreparedProject, s: LoadedScenario, options: RunOptions = {}): Promise<ScenarioResult> {
+    return runScenario(project.build.exe, s.display, s.parsed, s.locals, options);
+}
+
+/** Display path of a file for messages: relative to cwd when inside it. */
+export function displayPath(cwd: string, file: string): string {
+    const rel = relative(cwd, file);
+    return rel && !rel.startsWith('..') ? rel : file;
+}

@@ -1,0 +1,39 @@
+/** Scenario names and values are checked against the project, with file:line:col diagnostics. */
+import { describe, expect, it } from 'vitest';
+import { loadScenario } from '../src/index.js';
+import { prepared, TUTORIAL } from './support.js';
+
+describe('checkScenario on the tutorial', () => {
+    it('names what is wrong, where, and what was expected', async () => {
+        const project = await prepared(TUTORIAL);
+        const text = [
+            'start SUP.action(consigne = "far", speed = 3)',  // 1: string for TypeA; unknown parameter
+            'start SUP.nope()',                                // 2
+            't=1ms MAA:7 "x"',                                 // 3: no out event port 7
+            't=2ms MAA:2 status = 3',                          // 4: port name and type
+            'expect rule SUP.action.FIFTH active',             // 5
+            'expect local temp_consigne == {1.0, 2.0}',        // 6: TypeA has 3 fields
+            'expect local nothing == 1',                       // 7
+            'exec MAA 2ms',                                    // 8: asynchronous
+            't=3ms ORD:0 "noSchema"',                          // 9
+            'expect schema schemaCommande1 active',            // 10: fine
+            'expect module ZZZ running',                       // 11
+        ].join('\n');
+        const s = loadScenario('x.scenario', 'x.scenario', text, project.index);
+        const d = s.diagnostics.map((x) => `${x.line}:${x.column} ${x.code} ${x.message}`);
+        expect(d).toEqual([
+            "1:29 scenario-value-type Expected a TypeA value {i, j, k} for parameter 'consigne', found a string.",
+            "1:36 scenario-unknown-parameter SUP.action has no parameter 'speed' (parameters: consigne)",
+            "2:11 scenario-unknown-function supervisor SUP has no function 'nope' (functions: action)",
+            '3:11 scenario-unknown-port MAA has no out event port 7 (out event ports: :0 message_type_notification, :1 received_message, :2 connection_status)',
+            "4:13 scenario-port-name MAA:2 is 'connection_status', not 'status'",
+            "4:22 scenario-value-type Expected a string (\"...\") for MAA:2 (string connection_status), found the integer 3.",
+            "5:24 scenario-unknown-rule SUP.action has no rule 'FIFTH' (rules: FIRST, SECOND, THIRD, FOURTH, RECEPTION)",
+            "6:31 scenario-value-type TypeA has 3 fields (i, j, k); this value has 2 elements for local 'temp_consigne'.",
+            "7:14 scenario-unknown-local no function of the project has a local 'nothing'",
+            '8:6 scenario-not-synchronous MAA is an asynchronous module: only synchronous modules are released by ORD (exec sets the time of a release)',
+            "9:13 scenario-unknown-schema no schema 'noSchema' in the project (schemas: schemaReceptionMessage, schemaCommande1, schemaCommande2)",
+            "11:15 scenario-unknown-module no module 'ZZZ' in the project (modules: MAA, MAB, MSA, MSB, MSC, MSD)",
+        ]);
+    });
+});

@@ -1,0 +1,69 @@
+import { describe, expect, it } from 'vitest';
+import fc from 'fast-check';
+import { parseScenario } from '../src/scenario/index.js';
+
+describe('parseScenario', () => {
+    it('reads every directive with its time and position', () => {
+        const p = parseScenario([
+            'scenario the story',
+            'until 5s',
+            'start SUP.action(consigne = {1.0, 2, 3e1})',
+            'expect at 1ms rule SUP.action.FIRST active  # comment',
+            't=300ms MAA:2 connection_status = "disc#onnected"',
+            't=1s ORD:0 "schemaCommande1"',
+            'exec MSC 1.5s once',
+            't=2s crash MSC',
+            'expect local SUP.action.temp_consigne == {1.0, 2.0, 3.0}',
+            'expect local failure_data == {"x", -3}',
+            'expect schema schemaCommande1 inactive',
+            'expect function SUP.action stopped',
+            'expect module MAA running',
+            't=3s stop SUP.action',
+        ].join('\n'));
+        expect(p.diagnostics).toEqual([]);
+        expect(p.title).toBe('the story');
+        expect(p.untilNs).toBe(5e9);
+        expect(p.steps.map((s) => [s.kind, s.atNs, s.span.line])).toEqual([
+            ['start', 0, 3], ['expect', 1e6, 4], ['event', 3e8, 5], ['event', 1e9, 6], ['exec', 1e9, 7], ['crash', 2e9, 8],
+            ['expect', 2e9, 9], ['expect', 2e9, 10], ['expect', 2e9, 11], ['expect', 2e9, 12], ['expect', 2e9, 13], ['stop', 3e9, 14],
+        ]);
+        const ev = p.steps[2]!;
+        expect(ev.kind === 'event' && ev.portName?.text).toBe('connection_status');
+        expect(ev.kind === 'event' && ev.value).toMatchObject({ kind: 'string', value: 'disc#onnected', span: { line: 5, column: 35 } });
+        const start = p.steps[0]!;
+        expect(start.kind === 'start' && start.args[0]!.value).toMatchObject({ kind: 'struct', elements: [{ kind: 'real' }, { kind: 'int' }, { kind: 'real', value: 30 }] });
+        expect(p.steps[4]).toMatchObject({ kind: 'exec', execNs: 1.5e9, once: true });
+        expect(p.steps[7]).toMatchObject({ kind: 'expect', expectation: { kind: 'local', local: { text: 'failure_data' } } });
+        expect(p.steps[7]!.kind === 'expect' && p.steps[7]!.expectation.kind === 'local' && p.steps[7]!.expectation.supervisor).toBeUndefined();
+    });
+
+    it('reports what is wrong, where, and what was expected', () => {
+        const p = parseScenario([
+            't=1s start SUP.action(',
+            't=1s stop SUP.action',
+            't=500ms MAA:2 "x"',
+            'expect at 2x rule A.b.C active',
+            'expect rule A.b.C maybe',
+            'frobnicate',
+            't=3s MAA:2 "unterminated',
+        ].join('\n'));
+        expect(p.diagnostics.map((d) => [d.line, d.column, d.code])).toEqual([
+            [1, 23, 'scenario-syntax'], [3, 3, 'scenario-time-order'], [4, 11, 'scenario-syntax'], [5, 19, 'scenario-syntax'], [6, 1, 'scenario-syntax'], [7, 12, 'scenario-syntax'],
+        ]);
+        expect(p.diagnostics[1]!.message).toContain("500ms is before the previous step's 1s");
+        expect(p.diagnostics[2]!.message).toContain('a time such as 300ms');
+        expect(p.diagnostics[3]!.message).toContain("expected 'active' or 'inactive'");
+        expect(p.diagnostics[4]!.message).toContain('unknown directive');
+    });
+
+    it('never throws, whatever the text', () => {
+        fc.assert(fc.property(fc.string({ unit: 'binary', maxLength: 300 }), (text) => {
+            const p = parseScenario(text);
+            for (const d of p.diagnostics) expect(d.line).toBeGreaterThanOrEqual(1);
+        }), { numRuns: 500 });
+        const alphabet = fc.constantFrom('t=', '1s', 'expect', ' ', 'rule', 'A.b.C', ':', '{', '}', '"', ',', 'MAA:2', '\n', 'start', '(', ')', '=', '#', '.');
+        fc.assert(fc.property(fc.array(alphabet, { maxLength: 60 }), (parts) => {
+            parseScenario(parts.join(''));
+        }), { numRuns: 1000 });
+    });
+});

@@ -1,0 +1,106 @@
+#!/usr/bin/env node
+// Monitor live benchmark -> bench/parts/monitor-live.json (flat metric -> number).
+// A real Build & Run in the IDE (production build, real server with the build service, bwrap) of
+// the "New project" template at 1 kHz (PERIOD = CRITICAL_DELAY = 1 ms), the Monitor following it:
+// the run's CSV records reach the page as trace events (docs/build-service-api.md "Trace
+// channel") and are drawn by the panel.
+//   monitor.trace_latency_ms_p99 / _p50  a record written by a module (its wall_time column) ->
+//                                        drawn in the Monitor (the first frame whose model holds it), same host clock
+//   monitor.live_max_frame_ms / live_frame_ms_p99   animation-frame gaps while the run streams
+//   monitor.live_trace_records           records drawn live
+// RUN_SECONDS (default 5) sets the run's duration; the part takes about 40 s (the build is most of it).
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, writeFileSync, mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
+import { join } from 'node:path';
+import { tmpdir } from 'node:os';
+import { fileURLToPath } from 'node:url';
+
+const pkg = fileURLToPath(new URL('..', import.meta.url));
+const root = join(pkg, '../..');
+const node = process.execPath;
+const runSeconds = Number(process.env.RUN_SECONDS ?? 5);
+execFileSync(node, [join(root, 'node_modules/typescript/bin/tsc'), '-p', join(pkg, 'tsconfig.server.json')], { stdio: 'inherit' });
+execFileSync(node, [join(root, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
+
+const { PROJECT_TEMPLATES } = await import('@contract-studio/language');
+const { startIdeServer } = await import(join(pkg, 'dist-server/index.js'));
+const { chromium } = await import('playwright-core');
+const base = realpathSync(mkdtempSync(join(tmpdir(), 'monitor-live-bench-')));
+chmodSync(base, 0o755); // the sandboxed job's uid walks through it
+const workspace = join(base, 'khz');
+mkdirSync(workspace);
+for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) {
+  writeFileSync(join(workspace, name), text.replace('PERIOD=10ms; CRITICAL_DELAY=10ms;', 'PERIOD=1ms; CRITICAL_DELAY=1ms;').replace('C=500us;', 'C=100us;').replace('C=1ms;', 'C=200us;'));
+}
+const server = await startIdeServer({ workspace, port: 0, buildService: true });
+const args = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync'];
+let context;
+try {
+  mkdirSync(join(base, 'profile'));
+  context = await chromium.launchPersistentContext(join(base, 'profile'), { executablePath: '/usr/bin/chromium', args, viewport: { width: 1440, height: 900 } });
+  const page = context.pages()[0] ?? (await context.newPage());
+  await page.goto(server.openUrl);
+  await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
+  await page.evaluate((duration) => {
+    localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration }));
+    const ide = window.__ide;
+    // wall_time of each record (µs precision) by the cumulative count the live model will reach
+    const wall = (text) => {
+      const w = text.split(',', 2)[1] ?? '';
+      const ms = Date.parse(`${w.slice(0, 23)}Z`);
+      return Number.isFinite(ms) ? ms + Number(`0.${w.slice(23, 26) || '0'}`) : NaN;
+    };
+    const m = { pending: [], latencies: [], gaps: [], received: 0, streaming: false };
+    window.__liveBench = m;
+    ide.build.onStarted.on(() => {
+      m.received = 0;
+      m.streaming = true;
+    });
+    ide.build.onTrace.on(({ records }) => {
+      for (const r of records) m.pending.push({ version: ++m.received, wall: wall(r.text) });
+    });
+    ide.build.onFinished.on(() => (m.streaming = false));
+    let last = performance.now();
+    const tick = (t) => {
+      if (m.streaming) m.gaps.push(t - last);
+      last = t;
+      const panel = ide.monitor.panel;
+      const live = ide.monitor.lastLive;
+      if (panel && live && panel.drawn.model === live) {
+        const now = Date.now();
+        let i = 0;
+        for (; i < m.pending.length && m.pending[i].version <= panel.drawn.version; i++) if (Number.isFinite(m.pending[i].wall)) m.latencies.push(now - m.pending[i].wall);
+        if (i) m.pending.splice(0, i);
+      }
+      requestAnimationFrame(tick);
+    };
+    requestAnimationFrame(tick);
+  }, runSeconds);
+  await page.locator('#btn-run').click();
+  await page.waitForFunction(() => document.getElementById('status-job')?.dataset.status === 'succeeded' || document.getElementById('status-job')?.dataset.status === 'failed', undefined, { timeout: 150_000 });
+  await page.waitForTimeout(500);
+  const r = await page.evaluate(() => {
+    const m = window.__liveBench;
+    const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor((xs.length * p) / 100))];
+    const g = m.gaps.slice(2);
+    return { status: document.getElementById('status-job').dataset.status, p99: pct(m.latencies, 99), p50: pct(m.latencies, 50), n: m.latencies.length,
+      received: m.received, maxFrame: Math.max(...g), p99Frame: pct(g, 99), frames: g.length };
+  });
+  if (r.status !== 'succeeded' || !r.n) throw new Error(`the run did not stream: ${JSON.stringify(r)}`);
+  const round = (x, d = 1) => Math.round(x * 10 ** d) / 10 ** d;
+  const result = {
+    'monitor.trace_latency_ms_p99': round(r.p99),
+    'monitor.trace_latency_ms_p50': round(r.p50),
+    'monitor.live_max_frame_ms': round(r.maxFrame),
+    'monitor.live_frame_ms_p99': round(r.p99Frame),
+    'monitor.live_trace_records': r.n,
+  };
+  const out = join(root, 'bench/parts');
+  mkdirSync(out, { recursive: true });
+  writeFileSync(join(out, 'monitor-live.json'), JSON.stringify(result, null, 2) + '\n');
+  console.log(JSON.stringify({ ...result, received: r.received, frames: r.frames, runSeconds }));
+} finally {
+  await context?.close().catch(() => undefined);
+  await server.close();
+  rmSync(base, { recursive: true, force: true });
+}

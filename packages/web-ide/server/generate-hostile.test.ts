@@ -1,0 +1,115 @@
+/**
+ * Generate All, the rename carry-over and the guard's manifest read on hostile project folders
+ * (docs/codegen.md, "What generate refuses"): the real IDE server, real files and symlinks.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { cpSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, mkdirSync, rmSync, realpathSync, symlinkSync, lstatSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { startIdeServer, type IdeServer } from './ide-server.js';
+import { isGeneratedFile } from './generated-files.js';
+
+const TUTORIAL = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/tutorial');
+
+let base: string;
+let ws: string;
+let outside: string;
+let victim: string;
+let ide: IdeServer;
+const VICTIM_TEXT = 'precious\n';
+
+/** ws/<name> holding the tutorial's Cactal sources (no src-gen). */
+function project(name: string): string {
+  const dir = join(ws, name);
+  mkdirSync(dir);
+  for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) cpSync(join(TUTORIAL, f), join(dir, f));
+  return dir;
+}
+
+async function post(route: string, body: unknown): Promise<{ status: number; body: Record<string, unknown> }> {
+  const res = await fetch(`${ide.url}${route}`, { method: 'POST', headers: { 'content-type': 'application/json', 'x-contract-token': ide.token }, body: JSON.stringify(body) });
+  return { status: res.status, body: (await res.json()) as Record<string, unknown> };
+}
+
+beforeAll(async () => {
+  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-hostile-')));
+  ws = join(base, 'ws');
+  outside = join(base, 'outside');
+  mkdirSync(ws);
+  mkdirSync(outside);
+  mkdirSync(join(base, 'victim'));
+  victim = join(base, 'victim', 'important.txt');
+  writeFileSync(victim, VICTIM_TEXT);
+  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+});
+afterAll(async () => {
+  await ide.close();
+  rmSync(base, { recursive: true, force: true });
+});
+
+describe('Generate All on a hostile project folder', () => {
+  it('refuses a src-gen symlinked out of the workspace, writing nothing there', async () => {
+    const p = project('p2');
+    symlinkSync(outside, join(p, 'src-gen'));
+    const r = await post('/api/generate', { project: 'p2' });
+    expect(r.status).toBe(200);
+    expect(r.body.created).toEqual([]);
+    expect(r.body.errors).toEqual([{ file: '(output)', message: expect.stringMatching(/p2\/src-gen is a symbolic link \(-> .*outside\): refused/) }]);
+    expect(readdirSync(outside)).toEqual([]);
+  });
+
+  it('refuses a folder inside src-gen symlinked elsewhere (src-gen/generated -> outside)', async () => {
+    const p = project('p3');
+    mkdirSync(join(p, 'src-gen'));
+    symlinkSync(outside, join(p, 'src-gen', 'generated'));
+    const r = await post('/api/generate', { project: 'p3' });
+    expect(r.body.errors).toEqual([{ file: 'generated', message: expect.stringMatching(/^generated is a symbolic link .*; 52 file\(s\) not read, written or deleted/) }]);
+    expect(readdirSync(outside)).toEqual([]);
+  });
+
+  it('drops manifest entries naming host files (never deleted), with a warning', async () => {
+    const p = project('p4');
+    expect((await post('/api/generate', { project: 'p4' })).body.errors).toEqual([]);
+    const manifestFile = join(p, 'src-gen', '.contract-manifest.json');
+    const manifest = JSON.parse(readFileSync(manifestFile, 'utf8')) as { files: Record<string, unknown> };
+    const entry = '../'.repeat(16) + victim.slice(1);
+    manifest.files[entry] = {};
+    writeFileSync(manifestFile, JSON.stringify(manifest));
+    const r = await post('/api/generate', { project: 'p4' });
+    expect(r.body.removed).toEqual([]);
+    expect(r.body.warnings).toEqual([{ file: '.contract-manifest.json', message: expect.stringContaining(`entry ${JSON.stringify(entry)} dropped`) }]);
+    expect(readFileSync(victim, 'utf8')).toBe(VICTIM_TEXT);
+  });
+});
+
+describe('rename carry-over and the guard on hostile src-gen folders', () => {
+  it('refuses to carry a rename over in a symlinked src-gen, or one holding a link, changing nothing', async () => {
+    const p = project('p5');
+    mkdirSync(join(outside, 'MAA_mod'));
+    symlinkSync(outside, join(p, 'src-gen'));
+    const r = await post('/api/rename-entity', { project: 'p5', from: 'MAA', to: 'MAZ' });
+    expect(r.status).toBe(409);
+    expect(r.body.error).toMatch(/cannot carry MAA -> MAZ over: .*p5\/src-gen is a symbolic link/);
+    expect(readdirSync(outside)).toEqual(['MAA_mod']);
+
+    const q = project('p6');
+    mkdirSync(join(q, 'src-gen', 'generated', 'MAA_mod'), { recursive: true });
+    symlinkSync(outside, join(q, 'src-gen', 'generated', 'link'));
+    const s = await post('/api/rename-entity', { project: 'p6', from: 'MAA', to: 'MAZ' });
+    expect(s.status).toBe(409);
+    expect(s.body.error).toMatch(/src-gen\/generated\/link is a symbolic link/);
+    expect(lstatSync(join(q, 'src-gen', 'generated', 'MAA_mod')).isDirectory()).toBe(true);
+    expect(readdirSync(outside)).toEqual(['MAA_mod']);
+  });
+
+  it('does not read a symlinked manifest to decide whether a file is generated', async () => {
+    const p = project('p7');
+    mkdirSync(join(p, 'src-gen', 'generated'), { recursive: true });
+    const elsewhere = join(base, 'elsewhere.json');
+    writeFileSync(elsewhere, JSON.stringify({ version: 1, files: { 'generated/x.c': {} } }));
+    symlinkSync(elsewhere, join(p, 'src-gen', '.contract-manifest.json'));
+    // through the link, the manifest would list x.c (generated); refused, x.c has no markers: not generated
+    expect(await isGeneratedFile(ws, 'p7/src-gen/generated/x.c', 'int x;\n')).toBe(false);
+  });
+});

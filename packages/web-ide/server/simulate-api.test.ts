@@ -1,0 +1,109 @@
+/**
+ * POST /api/simulate over HTTP on a copy of examples/tutorial: the real server, the real
+ * simulator (native harness built with gcc on the real engine cores). The §4.7 story step by step,
+ * a scenario file of the workspace, diagnostics instead of a run, the session token, and hostile
+ * bodies answered with 4xx, never a crash.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { cpSync, mkdtempSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join, resolve } from 'node:path';
+import { startIdeServer, type IdeServer } from './ide-server.js';
+import type { SimulateResponse } from './api-types.js';
+
+const TUTORIAL = resolve(__dirname, '../../../examples/tutorial');
+let base: string;
+let ide: IdeServer;
+
+beforeAll(async () => {
+  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-simulate-')));
+  cpSync(TUTORIAL, join(base, 'tutorial'), { recursive: true });
+  symlinkSync('/etc/passwd', join(base, 'tutorial', 'scenarios', 'evil.scenario'));
+  ide = await startIdeServer({ workspace: join(base, 'tutorial'), port: 0, buildService: false, distDir: join(base, 'no-dist') });
+}, 60_000);
+afterAll(async () => {
+  await ide?.close();
+  rmSync(base, { recursive: true, force: true });
+});
+
+async function post(body: unknown, token = ide.token): Promise<{ status: number; json: any }> {
+  const res = await fetch(`${ide.url}/api/simulate`, {
+    method: 'POST',
+    headers: { 'content-type': 'application/json', 'x-contract-token': token },
+    body: typeof body === 'string' ? body : JSON.stringify(body),
+  });
+  return { status: res.status, json: await res.json() };
+}
+
+// a step's record holds what happened up to it (the 1 ms timer too): its last change of the rule
+const rule = (s: SimulateResponse['steps'][number] | undefined, name: string) => s?.rules.findLast((r) => r.rule === name);
+
+describe('POST /api/simulate', () => {
+  it('runs a session scenario: start SUP.action, FIRST at 1 ms, MAA:2 "disconnected" makes SECOND active with its cause', async () => {
+    const scenario = ['until 1ms', 'start SUP.action(consigne = {1.0, 2.0, 3.0})', 't=1ms MAA:2 connection_status = "disconnected"'].join('\n');
+    const first = await post({ scenario: 'until 1ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\n' });
+    expect(first.status, JSON.stringify(first.json)).toBe(200);
+    const r1 = first.json as SimulateResponse;
+    expect(r1.passed).toBe(true);
+    const all1 = r1.steps.flatMap((s) => s.rules);
+    expect(all1.find((r) => r.rule === 'FIRST' && r.active)).toBeTruthy();
+    expect(r1.steps.at(-1)!.kind).toBe('end');
+    expect(r1.steps.at(-1)!.timeNs).toBe(1_000_000);
+
+    const second = await post({ scenario });
+    expect(second.status).toBe(200);
+    const r2 = second.json as SimulateResponse;
+    const ev = r2.steps.find((s) => s.kind === 'event')!;
+    expect(ev.line).toBe(3);
+    expect(ev.timeNs).toBe(1_000_000);
+    expect(rule(ev, 'SECOND')).toMatchObject({ active: true, supervisor: 'SUP', function: 'action', cause: 'MAA:2 value="disconnected"' });
+    expect(rule(ev, 'FIRST')?.active).toBe(false);
+    expect(ev.schemas).toContain('schemaCommande1');
+    expect(ev.locals.some((l) => l.supervisor === 'SUP' && l.function === 'action')).toBe(true);
+    expect(ev.actions.length).toBeGreaterThan(0);
+    expect(r2.ms).toBeGreaterThan(0);
+  }, 120_000);
+
+  it('runs a scenario file of the workspace and reports its expectations', async () => {
+    const { status, json } = await post({ path: 'scenarios/commutation.scenario' });
+    expect(status).toBe(200);
+    expect((json as SimulateResponse).passed).toBe(true);
+    expect((json as SimulateResponse).failures).toEqual([]);
+  }, 60_000);
+
+  it('a failed expectation is reported with its line and message, not as an HTTP error', async () => {
+    const { status, json } = await post({ scenario: 'start SUP.action\nexpect at 1ms rule SUP.action.SECOND active\n' });
+    expect(status).toBe(200);
+    expect(json.passed).toBe(false);
+    expect(json.failures[0].line).toBe(2);
+    expect(json.failures[0].message).toMatch(/expected rule SUP.action.SECOND active, but it is inactive/);
+  }, 60_000);
+
+  it('scenario errors: 422 with diagnostics (line, column, code, did-you-mean), nothing ran', async () => {
+    const { status, json } = await post({ scenario: 'start SUP.action\nexpect rule SUP.action.SECNOD active\nt=1ms MAA:2 3\n' });
+    expect(status).toBe(422);
+    expect(json.error).toMatch(/error\(s\)/);
+    const d = json.diagnostics as Array<{ line: number; column: number; code: string; message: string }>;
+    expect(d.find((x) => x.line === 2)?.message).toMatch(/Did you mean 'SECOND'/);
+    expect(d.find((x) => x.line === 3)?.code).toBe('scenario-value-type');
+  }, 60_000);
+
+  it('needs the session token; hostile bodies get 4xx', async () => {
+    expect((await post({ scenario: '' }, 'wrong')).status).toBe(401);
+    expect((await post('[1,2]')).status).toBe(400);
+    expect((await post({})).status).toBe(400);
+    expect((await post({ scenario: 3 })).status).toBe(400);
+    expect((await post({ project: '../..', scenario: 'until 1ms' })).status).toBe(403);
+    expect((await post({ path: '../../etc/x.scenario' })).status).toBeGreaterThanOrEqual(400);
+    expect((await post({ path: 'scenarios/evil.scenario' })).status).toBe(403);
+    expect((await post({ scenario: 'x'.repeat(300_000) })).status).toBe(413);
+    const junk = await post({ scenario: '\u0000\u0001 t=-5 start start ((((\n'.repeat(50) });
+    expect(junk.status).toBe(422);
+    // a burst: at most 8 wait behind the one running, the others get 429; every answer is JSON
+    const burst = await Promise.all(Array.from({ length: 16 }, () => post({ scenario: 'until 10ms\nstart SUP.action\n' })));
+    const codes = burst.map((b) => b.status);
+    expect(codes.filter((c) => c === 200).length).toBeGreaterThanOrEqual(8);
+    expect(codes.every((c) => c === 200 || c === 429)).toBe(true);
+    expect(codes.filter((c) => c === 429).length).toBeGreaterThan(0);
+  }, 60_000);
+});

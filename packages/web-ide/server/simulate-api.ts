@@ -1,0 +1,120 @@
+/**
+ * POST /api/simulate: runs one scenario on the workspace's project in virtual time through
+ * `@contract-studio/simulator`'s programmatic API (prepareProject, loadScenario,
+ * runLoadedScenario: the code of `contract simulate`, docs/simulation.md §3), for the Simulate
+ * panel (docs/simulation.md "In the IDE").
+ *
+ * Body: `{ project?: "folder", scenario: "text" }` or `{ project?, path: "x.scenario" }` (a
+ * workspace file, read without following links). Answers 200 with the steps (SimulateResponse),
+ * 422 with diagnostics when the model or the scenario has errors (nothing ran), 503 when the
+ * simulator is not built. Everything in the request is hostile: sizes are bounded, one
+ * simulation runs at a time (at most 8 wait, then 429), each is bounded in wall time, and the
+ * answer in size.
+ */
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import { join } from 'node:path';
+import { HttpError } from './http-error.js';
+import { readJson, sendJson } from './http-util.js';
+import type { WorkspacePaths } from './workspace-paths.js';
+import { WorkspaceFs } from './workspace-fs.js';
+import { loadSimulator, type SimulatorApi } from './integrations.js';
+import type { SimulateDiagnostic, SimulateResponse, SimulateStep } from './api-types.js';
+
+/** A session's scenario is small; this bounds what one request may make the harness do. */
+export const MAX_SCENARIO_CHARS = 256 * 1024;
+const RUN_TIMEOUT_MS = 10_000;
+/** Per step: rule changes, actions and locals kept in the answer. */
+const MAX_PER_STEP = 500;
+const MAX_STEPS = 5_000;
+const MAX_OUTPUT = 2_048;
+const MAX_WAITING = 8;
+
+export class SimulateApi {
+  /** One simulation at a time: each is a native process, the machine's cores are shared. */
+  private queue: Promise<unknown> = Promise.resolve();
+  private waiting = 0;
+
+  constructor(private readonly paths: WorkspacePaths) {}
+
+  async handle(req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
+    if (url.pathname !== '/api/simulate') return false;
+    if (req.method !== 'POST') throw new HttpError(405, 'POST /api/simulate');
+    const body = await readJson(req);
+    const project = body.project ?? '';
+    if (typeof project !== 'string') throw new HttpError(400, 'project must be a workspace folder');
+    const projectDir = this.paths.resolve(project);
+    let text: string;
+    let display = 'scenario';
+    if (typeof body.scenario === 'string') text = body.scenario;
+    else if (typeof body.path === 'string' && body.path.endsWith('.scenario')) {
+      display = this.paths.toRelative(this.paths.resolve(body.path));
+      text = await readText(this.paths.fs, display);
+    } else throw new HttpError(400, 'give the scenario text (scenario) or a workspace .scenario file (path)');
+    if (text.length > MAX_SCENARIO_CHARS) throw new HttpError(413, `scenario longer than ${MAX_SCENARIO_CHARS} characters`);
+    const sim = await loadSimulator();
+    // a client sending faster than the simulations run is told so instead of queueing without end
+    if (this.waiting >= MAX_WAITING) throw new HttpError(429, `${MAX_WAITING} simulations already waiting: try again when they are done`);
+    this.waiting++;
+    const run = this.queue.then(() => this.simulate(sim, projectDir, display, text)).finally(() => this.waiting--);
+    this.queue = run.catch(() => undefined);
+    sendJson(res, 200, await run);
+    return true;
+  }
+
+  private async simulate(sim: SimulatorApi, projectDir: string, display: string, text: string): Promise<SimulateResponse> {
+    const t0 = performance.now();
+    const prepared = await sim.prepareProject(projectDir, { runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR });
+    if (!('build' in prepared)) {
+      if (prepared.modelErrors.length) {
+        const diagnostics: SimulateDiagnostic[] = prepared.modelErrors.slice(0, 200).map((d) => ({
+          file: this.paths.toRelative(join(projectDir, d.file)), line: d.line, column: d.column, severity: 'error', message: d.message, code: d.code,
+        }));
+        throw new HttpError(422, `the model has ${prepared.modelErrors.length} error(s): fix them first`, { diagnostics });
+      }
+      throw new HttpError(500, prepared.buildError ?? 'the simulator could not be built');
+    }
+    const loaded = sim.loadScenario(join(projectDir, display), display, text, prepared.index);
+    const errors = loaded.diagnostics.filter((d) => d.severity === 'error');
+    if (errors.length) {
+      const diagnostics: SimulateDiagnostic[] = loaded.diagnostics.slice(0, 200).map((d) => ({
+        line: d.line, column: d.column, endColumn: d.endColumn, severity: d.severity, message: d.message, code: d.code,
+      }));
+      throw new HttpError(422, `the scenario has ${errors.length} error(s): nothing was simulated`, { diagnostics });
+    }
+    const r = await sim.runLoadedScenario(prepared, loaded, { timeoutMs: RUN_TIMEOUT_MS });
+    const steps: SimulateStep[] = r.steps.slice(0, MAX_STEPS).map((s) => stepOf(s));
+    return {
+      title: r.title, passed: r.passed, endNs: r.endNs, steps,
+      failures: r.failures.slice(0, 200).map((f) => ({ line: f.line, message: f.message ?? '' })),
+      error: r.error, warnings: prepared.warnings.slice(0, 50), eventsProcessed: r.eventsProcessed,
+      ms: Math.round(performance.now() - t0), runMs: Math.round(r.ms),
+    };
+  }
+}
+
+type StepResult = Awaited<ReturnType<SimulatorApi['runLoadedScenario']>>['steps'][number];
+
+function stepOf(s: StepResult): SimulateStep {
+  const rec = s.record;
+  const cut = <T>(xs: T[] | undefined): T[] => (xs ?? []).slice(0, MAX_PER_STEP);
+  const dropped = Math.max(0, (rec.rules?.length ?? 0) - MAX_PER_STEP) + Math.max(0, (rec.actions?.length ?? 0) - MAX_PER_STEP)
+    + Math.max(0, (rec.locals?.length ?? 0) - MAX_PER_STEP) + (rec.dropped ?? 0);
+  return {
+    line: s.line, source: s.source.slice(0, 1000), timeNs: s.timeNs, kind: s.kind, ok: s.ok, message: s.message,
+    rules: cut(rec.rules), actions: cut(rec.actions), schemas: cut(rec.schemas), locals: cut(rec.locals),
+    output: rec.output?.slice(0, MAX_OUTPUT), error: rec.error, ...(dropped ? { dropped } : {}),
+  };
+}
+
+async function readText(fs: WorkspaceFs, rel: string): Promise<string> {
+  return fs.withParent(rel, false, async (dir, name) => {
+    const handle = await WorkspaceFs.openFile(dir, name, rel);
+    try {
+      if ((await handle.stat()).size > MAX_SCENARIO_CHARS * 4) throw new HttpError(413, `${rel} is too large for a scenario`);
+      return await handle.readFile('utf8');
+    } finally {
+      await handle.close();
+    }
+  });
+}
+

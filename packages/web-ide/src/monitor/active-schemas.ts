@@ -1,0 +1,46 @@
+/**
+ * Which schemas are active in a monitor state. Periodic schemas are ORD's: its `activate` /
+ * `deactivate` lines. Event schemas are run by the supervisor itself (docs/engines.md: an
+ * `activate schema` of an event schema starts its modules and connects its event flows, each a
+ * hold logged as `module_hold`): one is active while a supervisor holds every module of it.
+ */
+import type { MonitorState } from './monitor-state.js';
+
+export interface SchemaInfo {
+  name: string;
+  kind: string;
+  modules: string[];
+}
+
+export interface ActiveSchema {
+  name: string;
+  kind: string;
+  /** `SUP.F.R` that activated it, when the trace tells. */
+  by?: string;
+}
+
+export function activeSchemas(s: MonitorState, catalogue: readonly SchemaInfo[]): ActiveSchema[] {
+  const out: ActiveSchema[] = [];
+  const known = new Set(catalogue.map((c) => c.name));
+  const holder = (module: string): string | undefined => {
+    for (const [name, sv] of Object.entries(s.supervisors)) {
+      const rule = sv.heldModules[module];
+      if (rule !== undefined) return rule ? `${name}.${rule}` : name;
+    }
+    return undefined;
+  };
+  for (const c of catalogue) {
+    if (c.kind === 'periodic') {
+      const a = s.schemas[c.name];
+      if (a?.active) out.push(a.by ? { name: c.name, kind: c.kind, by: a.by } : { name: c.name, kind: c.kind });
+    } else if (c.modules.length && c.modules.every((m) => holder(m) !== undefined)) {
+      const by = holder(c.modules[0]!);
+      out.push(by ? { name: c.name, kind: c.kind, by } : { name: c.name, kind: c.kind });
+    }
+  }
+  // schemas ORD activated that the model does not list (a stale model): still shown
+  for (const [name, a] of Object.entries(s.schemas)) {
+    if (!known.has(name) && a.active) out.push(a.by ? { name, kind: 'periodic', by: a.by } : { name, kind: 'periodic' });
+  }
+  return out;
+}

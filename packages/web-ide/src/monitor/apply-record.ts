@@ -1,0 +1,204 @@
+/**
+ * Folds one trace record into a MonitorState (docs/runtime-api.md "Trace records": which module
+ * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
+ * changes only the record count; nothing read from the trace can make it throw.
+ */
+import { isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import {
+  HIST_BUCKETS, histogramBucket, RECENT_MARKS, RECENT_PULSES,
+  type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FlowCount,
+} from './monitor-state.js';
+
+const MAX_STARTED = 16;
+
+function sup(s: MonitorState, name: string): SupervisorState {
+  return (s.supervisors[name] ??= { functions: {}, rules: {}, actionsDone: 0, actionsUndone: 0, heldModules: {}, heldFlows: {} });
+}
+
+function periodic(s: MonitorState, schema: string): PeriodicState {
+  return (s.periodic[schema] ??= {
+    releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
+    histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, missedTicks: 0, recentMisses: [], recentOverruns: [],
+  });
+}
+
+function pushBounded<T>(list: T[], item: T, max: number): void {
+  list.push(item);
+  if (list.length > max) list.shift();
+}
+
+function count(map: Record<string, FlowCount>, key: string, t: Ns): void {
+  const f = (map[key] ??= { count: 0, last: t });
+  f.count++;
+  f.last = t;
+}
+
+const num = (v: unknown): number | undefined => (typeof v === 'number' && Number.isFinite(v) ? v : undefined);
+const str = (v: unknown): string | undefined => (typeof v === 'string' && v ? v : undefined);
+
+/** The rule (`SUP.F.R`) behind a request of supervisor `name`: the last one that became active. */
+function ruleOf(s: MonitorState, name: string): string | undefined {
+  const r = s.supervisors[name]?.lastRule;
+  return r ? `${name}.${r}` : undefined;
+}
+
+function noteStarted(s: MonitorState, supName: string, what: string): void {
+  const sv = s.supervisors[supName];
+  const rule = sv?.lastRule ? sv.rules[sv.lastRule] : undefined;
+  if (rule && !rule.started.includes(what) && rule.started.length < MAX_STARTED) rule.started.push(what);
+}
+
+/** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
+export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number): void {
+  s.records++;
+  if (r.kind === 'unknown') {
+    s.unknownLines++;
+    return;
+  }
+  s.t = t;
+  if (isRule(r)) {
+    const sv = sup(s, r.module);
+    const key = `${r.function}.${r.rule}`;
+    const rule = (sv.rules[key] ??= { function: r.function, rule: r.rule, active: false, since: t, cause: '', activations: 0, started: [] });
+    rule.active = r.active;
+    rule.since = t;
+    rule.cause = r.cause.slice(0, 200);
+    if (r.active) {
+      rule.activations++;
+      rule.started = [];
+      sv.lastRule = key;
+    }
+    return;
+  }
+  const k = r as KnownRecord;
+  const f = k.fields ?? {};
+  switch (k.kind) {
+    case 'supervisor': {
+      const sv = sup(s, k.module);
+      const what = f['what'];
+      const fn = str(f['function']);
+      if (what === 'function_started' && fn) sv.functions[fn] = { state: 'running', since: t };
+      else if (what === 'function_stopped' && fn) sv.functions[fn] = { state: 'stopped', since: t };
+      else if (what === 'function_refused' && fn) sv.functions[fn] = { state: sv.functions[fn]?.state === 'running' ? 'running' : 'refused', since: t };
+      else if (what === 'action') {
+        if (/^undo\b|^un/.test(k.detail)) sv.actionsUndone++;
+        else sv.actionsDone++;
+      }
+      return;
+    }
+    case 'module_hold':
+    case 'flow_hold': {
+      const sv = sup(s, k.module);
+      const held = k.kind === 'module_hold' ? sv.heldModules : sv.heldFlows;
+      if (k.detail.startsWith('hold taken')) {
+        held[k.peer] = sv.lastRule ?? '';
+        sv.actionsDone++;
+        if (k.kind === 'module_hold') noteStarted(s, k.module, k.peer);
+      } else if (k.detail.startsWith('last hold dropped')) {
+        delete held[k.peer];
+        sv.actionsUndone++;
+      }
+      return;
+    }
+    case 'module_priority':
+      sup(s, k.module).actionsDone++;
+      return;
+    case 'request_received': {
+      // ORD receives `START schema` from the supervisor whose rule activates it
+      if (k.module !== 'ORD') return;
+      const m = /^START ([A-Za-z_]\w*)$/.exec(k.detail);
+      if (m) {
+        const sc = (s.schemas[m[1]!] ??= { active: false, since: t, activations: 0, conflicts: 0 });
+        sc.by = ruleOf(s, k.peer) ?? k.peer;
+        if (s.supervisors[k.peer]) noteStarted(s, k.peer, m[1]!);
+      }
+      return;
+    }
+    case 'scheduler': {
+      const schema = str(f['schema']);
+      if (!schema) return;
+      const what = f['what'];
+      if (what === 'activate' || what === 'deactivate' || what === 'conflict') {
+        const sc = (s.schemas[schema] ??= { active: false, since: t, activations: 0, conflicts: 0 });
+        if (what === 'activate') {
+          sc.active = true;
+          sc.since = t;
+          sc.activations++;
+        } else if (what === 'deactivate') {
+          sc.active = false;
+          sc.since = t;
+        } else sc.conflicts++;
+      } else if (what === 'overrun') {
+        const p = periodic(s, schema);
+        p.overruns++;
+        pushBounded(p.recentOverruns, { t, cycle: p.lastCycle }, RECENT_MARKS);
+      } else if (what === 'missed_tick') periodic(s, schema).missedTicks++;
+      return;
+    }
+    case 'ord_release': {
+      const schema = str(f['schema']);
+      if (!schema) return;
+      const p = periodic(s, schema);
+      p.releases++;
+      const cycle = num(f['cycle']);
+      if (cycle !== undefined) p.lastCycle = cycle;
+      const rel = num(f['release_ns']);
+      p.lastRelease = rel !== undefined ? rel - t0 : t;
+      return;
+    }
+    case 'ord_complete': {
+      const schema = str(f['schema']);
+      const resp = num(f['response_ns']);
+      if (!schema || resp === undefined) return;
+      const p = periodic(s, schema);
+      p.completions++;
+      p.lastResponseNs = resp;
+      p.sumResponseNs += resp;
+      if (resp > p.maxResponseNs) p.maxResponseNs = resp;
+      p.histogram[histogramBucket(resp)]!++;
+      return;
+    }
+    case 'ord_deadline_miss': {
+      const schema = str(f['schema']);
+      if (!schema) return;
+      const p = periodic(s, schema);
+      p.deadlineMisses++;
+      pushBounded(p.recentMisses, { t, cycle: num(f['cycle']) ?? -1 }, RECENT_MARKS);
+      return;
+    }
+    case 'run_started':
+    case 'run_finished': {
+      const m = (s.modules[k.module] ??= { running: false, alive: true, runs: 0, since: t });
+      m.running = k.kind === 'run_started';
+      if (m.running) m.runs++;
+      m.since = t;
+      return;
+    }
+    case 'module_started':
+    case 'module_exit': {
+      const m = (s.modules[k.module] ??= { running: false, alive: true, runs: 0, since: t });
+      m.alive = k.kind === 'module_started';
+      if (!m.alive) m.running = false;
+      m.since = t;
+      return;
+    }
+    case 'data_posted': {
+      const to = num(f['to_port']);
+      if (!k.peer || k.port === null || to === undefined) return;
+      const flow = `${k.module}:${k.port}->${k.peer}:${to}`;
+      count(s.dataFlows, flow, t);
+      pushBounded(s.recentPulses, { t, flow, kind: 'data' }, RECENT_PULSES);
+      return;
+    }
+    case 'event_received': {
+      const from = num(f['from_port']);
+      if (!k.peer || k.port === null || from === undefined) return;
+      const flow = `${k.peer}:${from}->${k.module}:${k.port}`;
+      count(s.eventFlows, flow, t);
+      pushBounded(s.recentPulses, { t, flow, kind: 'event' }, RECENT_PULSES);
+      return;
+    }
+    default:
+      return;
+  }
+}

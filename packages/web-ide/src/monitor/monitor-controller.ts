@@ -1,0 +1,234 @@
+/**
+ * Wires the Monitor (docs/watching-a-run.md) into the IDE, so main.ts only creates it:
+ * - Build & Run of a run job opens the panel beside the editor on a fresh live model, fed by the
+ *   job's `trace` events (whole CSV lines, build-service job-events.ts TraceEvent);
+ * - when the job ends, its CSV logs (GET /api/jobs/:id/artifacts, run-logs.ts) become a recorded
+ *   run: the same view fed from the same records, from the start;
+ * - `*.csv` logs of the workspace (a folder of them: `make run` / `contract run` logs) replay the same way;
+ * - a click on a rule opens its definition (document symbols, supervisor-symbols.ts).
+ * Everything read from the stream or a log file is hostile: bounded and validated here or by the
+ * trace reader (parseRecordLine never throws).
+ */
+import { parseTrace, type LogFile } from '@contract-studio/build-service/trace';
+import { api } from '../api.js';
+import type { EditorArea } from '../editor/editor-area.js';
+import type { LspClient } from '../lsp/lsp-client.js';
+import type { BuildPanel } from '../build/build-panel.js';
+import type { Workspace } from '../workspace/workspace.js';
+import { isContract } from '../workspace/file-kinds.js';
+import type { RunLogs } from '../views/run-logs.js';
+import { MonitorModel } from './monitor-model.js';
+import { MonitorPanel, type SourceOption } from './monitor-panel.js';
+import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
+
+/** Bounds on what one trace event may bring (the producer sends far less per event). */
+const MAX_LINES_PER_EVENT = 100_000;
+const MAX_LINE = 4096;
+/** Longest stretch of folding trace lines without yielding to rendering and input. */
+const INGEST_SLICE_MS = 8;
+/** CSV files read from the workspace for one replay, and bytes per file. */
+const MAX_FILES = 256;
+
+interface Run {
+  id: string;
+  label: string;
+  model: MonitorModel;
+  live: boolean;
+}
+
+export class MonitorController {
+  private panel: MonitorPanel | undefined;
+  private readonly runs = new Map<string, Run>();
+  private shown: string | undefined;
+  private symbols: SupervisorSymbols | undefined;
+  private previous: HTMLElement | undefined;
+  /** The model of the last Build & Run's live trace (tests compare it with the job's logs). */
+  lastLive: MonitorModel | undefined;
+
+  constructor(
+    private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
+  ) {
+    deps.button.addEventListener('click', () => (this.panel && deps.editors.docked === this.panel.element ? this.hide() : void this.show()));
+    deps.build.onStarted.on(({ jobId, action }) => {
+      if (action !== 'run') return;
+      this.runs.delete(`job:${jobId}`);
+      const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model: new MonitorModel(), live: true };
+      this.lastLive = run.model;
+      this.runs.set(run.id, run);
+      void this.show(run.id);
+    });
+    deps.build.onTrace.on(({ jobId, records }) => {
+      const run = this.runs.get(`live:${jobId}`);
+      if (!run) return;
+      this.queue.push({ run, records: records.slice(0, MAX_LINES_PER_EVENT), next: 0 });
+      this.drainSoon();
+    });
+  }
+
+  /** Trace events not yet folded into their model: folded in slices of INGEST_SLICE_MS, so a burst never holds a frame. */
+  private readonly queue: Array<{ run: Run; records: Array<{ file: string; line: number; text: string }>; next: number }> = [];
+  private draining = false;
+
+  private drainSoon(): void {
+    if (this.draining) return;
+    this.draining = true;
+    setTimeout(() => this.drain(), 0);
+  }
+
+  /** Trace events received and not folded in yet. */
+  get pendingEvents(): number {
+    return this.queue.length;
+  }
+
+  /** Main-thread time spent folding live trace lines (ms), for the benchmark. */
+  ingestMs = 0;
+
+  private drain(): void {
+    const start = performance.now();
+    const until = start + INGEST_SLICE_MS;
+    while (this.queue.length && performance.now() < until) {
+      const job = this.queue[0]!;
+      const end = Math.min(job.records.length, job.next + 256);
+      for (; job.next < end; job.next++) {
+        const r = job.records[job.next];
+        if (!r || typeof r.text !== 'string' || typeof r.file !== 'string') continue;
+        job.run.model.pushLine(r.file.slice(0, 200), Number.isInteger(r.line) ? r.line : 0, r.text.slice(0, MAX_LINE + 1));
+      }
+      if (job.next >= job.records.length) this.queue.shift();
+      if (this.shown === job.run.id) this.panel?.schedule();
+    }
+    this.draining = false;
+    this.ingestMs += performance.now() - start;
+    if (this.queue.length) this.drainSoon();
+  }
+
+  /** The panel (created on first use). */
+  async ensurePanel(): Promise<MonitorPanel> {
+    if (this.panel) return this.panel;
+    const { lsp } = this.deps;
+    this.panel = new MonitorPanel({
+      schemas: () => lsp.architecture(),
+      supervisors: async () => (await this.readSymbols()).catalogue,
+      openRule: (sup, fn, rule) => void this.openRule(sup, fn, rule),
+      createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture()),
+      onSource: (id) => void this.select(id),
+    });
+    return this.panel;
+  }
+
+  /** Docks the panel beside the editor, showing run `id` (default: the last one). */
+  async show(id?: string): Promise<void> {
+    const panel = await this.ensurePanel();
+    const before = this.deps.editors.docked;
+    if (before !== panel.element) this.previous = before; // the docked diagram comes back when the Monitor is hidden
+    this.deps.editors.dock(panel.element);
+    this.deps.button.setAttribute('aria-pressed', 'true');
+    await this.refreshSources();
+    const pick = id ?? this.shown ?? [...this.runs.keys()].pop();
+    if (pick) await this.select(pick);
+  }
+
+  hide(): void {
+    this.deps.editors.dock(this.previous);
+    this.previous = undefined;
+    this.deps.button.setAttribute('aria-pressed', 'false');
+  }
+
+  /** A finished run job's CSV logs: the recorded run, replayed from its start. */
+  async showRecorded(jobId: string, logs: RunLogs): Promise<void> {
+    const live = this.runs.get(`live:${jobId}`);
+    if (live) {
+      live.live = false;
+      live.label = `Build & Run job ${jobId} · as streamed`;
+      if (!live.model.recordCount) this.runs.delete(live.id); // no live trace (an older build service): the logs tell it all
+    }
+    const run: Run = { id: `job:${jobId}`, label: `Build & Run job ${jobId} · CSV logs`, model: modelOf(logs.files), live: false };
+    this.runs.set(run.id, run);
+    // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
+    // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
+    const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
+    if (cut) live!.label = `Build & Run job ${jobId} · as streamed (first ${live!.model.recordCount} records)`;
+    if (this.shown === live?.id && live?.model.recordCount && !cut) {
+      this.panel?.endLive(live.label);
+      await this.refreshSources();
+    } else if (this.isShown || !live) await this.show(run.id);
+    else await this.refreshSources();
+  }
+
+  /** A simulation's state (simulate/sim-to-trace.ts): the same view as runs, replacing the previous simulation. */
+  async showSimulation(model: MonitorModel, label: string): Promise<void> {
+    this.runs.set('sim', { id: 'sim', label, model, live: false });
+    await this.show('sim');
+  }
+
+  /** Replays the `*.csv` logs of a workspace folder. */
+  async openFolder(folder: string): Promise<void> {
+    const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
+    const files: LogFile[] = [];
+    for (const p of paths) {
+      try {
+        files.push({ name: p.slice(p.lastIndexOf('/') + 1), text: (await api.read(p)).content });
+      } catch {
+        /* unreadable: left out */
+      }
+    }
+    const run: Run = { id: `dir:${folder}`, label: `${files.length} CSV log(s) in ${folder || 'the workspace root'}`, model: modelOf(files), live: false };
+    this.runs.set(run.id, run);
+    await this.show(run.id);
+  }
+
+  private get isShown(): boolean {
+    return !!this.panel && this.deps.editors.docked === this.panel.element;
+  }
+
+  /** The run shown (tests and benchmarks read its model). */
+  get current(): MonitorModel | undefined {
+    return this.shown ? this.runs.get(this.shown)?.model : undefined;
+  }
+
+  private async select(id: string): Promise<void> {
+    if (id.startsWith('dir:') && !this.runs.has(id)) return this.openFolder(id.slice(4));
+    const run = this.runs.get(id);
+    const panel = await this.ensurePanel();
+    if (!run) return;
+    this.shown = id;
+    this.symbols = undefined; // the model may have changed since
+    panel.setModel(run.model, run.label, run.live);
+    await this.refreshSources();
+  }
+
+  private async refreshSources(): Promise<void> {
+    const panel = await this.ensurePanel();
+    const options: SourceOption[] = [...this.runs.values()].map((r) => ({ id: r.id, label: r.label }));
+    const folders = [...new Set(this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv')).map(dirOf))].sort();
+    for (const f of folders) if (!this.runs.has(`dir:${f}`)) options.push({ id: `dir:${f}`, label: `Workspace logs: ${f || '(root)'}` });
+    panel.setSources(options, this.shown);
+  }
+
+  private async readSymbols(): Promise<SupervisorSymbols> {
+    if (this.symbols) return this.symbols;
+    const { workspace, lsp } = this.deps;
+    const project = this.deps.project();
+    const files = workspace.allFiles().filter((p) => isContract(p) && (!project || p.startsWith(`${project}/`)));
+    this.symbols = await readSupervisorSymbols(files.map((p) => workspace.uriOf(p).toString()), (uri) => lsp.documentSymbols(uri));
+    return this.symbols;
+  }
+
+  private async openRule(sup: string, fn: string, rule: string): Promise<void> {
+    const loc = (await this.readSymbols()).locations.get(`${sup}.${fn}.${rule}`) ?? this.symbols?.locations.get(`${sup}.${fn}`);
+    const path = loc && this.deps.workspace.pathOf(loc.uri);
+    if (!loc || !path) return;
+    await this.deps.editors.open(path, { lineNumber: loc.range.start.line + 1, column: loc.range.start.character + 1 });
+  }
+}
+
+function modelOf(files: LogFile[]): MonitorModel {
+  const model = new MonitorModel();
+  model.pushAll(parseTrace(files));
+  return model;
+}
+
+function dirOf(path: string): string {
+  const i = path.lastIndexOf('/');
+  return i < 0 ? '' : path.slice(0, i);
+}

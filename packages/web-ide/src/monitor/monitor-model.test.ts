@@ -1,0 +1,163 @@
+import { describe, it, expect } from 'vitest';
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { parseTrace, parseRecordLine, type TraceRecord } from '@contract-studio/build-service/trace';
+import { MonitorModel } from './monitor-model.js';
+import { applyRecord } from './apply-record.js';
+import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
+import { activeSchemas } from './active-schemas.js';
+
+// a real run of examples/tutorial (`contract run --duration 4s --start 'GLB.mission(...)'`, bwrap)
+const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
+const tutorial = parseTrace(readdirSync(dir).map((name) => ({ name, text: readFileSync(join(dir, name), 'utf8') })));
+
+const W = '2026-11-26T12:00:00.000000Z';
+const line = (ns: number, module: string, event: string, peer: string, port: string, detail: string) =>
+  parseRecordLine('x.csv', 2, `${ns},${W},${module},${event},${peer},${port},0,${detail.includes(',') || detail.includes('"') ? `"${detail.replace(/"/g, '""')}"` : detail}`);
+
+/** The state the records up to t give, folded from scratch (the reference for stateAt). */
+function naive(records: TraceRecord[], t: number): MonitorState {
+  const m = new MonitorModel({ checkpointEvery: 1 << 30 });
+  for (const r of records) {
+    if (r.kind !== 'unknown' && m.t0 !== undefined && Number((r as { monoNs: string }).monoNs) - m.t0 > t) break;
+    m.push(r);
+  }
+  return m.live;
+}
+
+describe('monitor model on a recorded tutorial run', () => {
+  const model = new MonitorModel({ checkpointEvery: 16 });
+  model.pushAll(tutorial);
+  const s = model.live;
+
+  it('has SUP.action with FIRST then SECOND, each with its cause and time', () => {
+    const sup = s.supervisors['SUP']!;
+    expect(sup.functions['action']!.state).toBe('stopped');
+    const first = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.FIRST active'))!;
+    const second = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.SECOND active'))!;
+    expect(first.label).toContain('elapsed=1000000ns');
+    expect(second.label).toContain('MAA:2 value="disconnected"');
+    expect(second.t).toBeGreaterThan(first.t);
+    const firstOff = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.FIRST inactive'))!;
+    expect(firstOff.label).toContain('MAA:2 value="disconnected"');
+    const mid = model.stateAt(second.t + 5e6);
+    expect(mid.supervisors['SUP']!.rules['action.SECOND']).toMatchObject({ active: true, cause: 'MAA:2 value="disconnected"', since: second.t });
+    expect(mid.supervisors['SUP']!.rules['action.FIRST']!.active).toBe(false);
+    expect(mid.supervisors['SUP']!.rules['action.SECOND']!.started).toContain('schemaCommande1');
+    const before = model.stateAt(firstOff.t - 1);
+    expect(before.supervisors['SUP']!.rules['action.FIRST']).toMatchObject({ active: true, cause: 'elapsed=1000000ns' });
+    expect(before.supervisors['SUP']!.rules['action.FIRST']!.started).toEqual(['MAA', 'MAB']);
+    expect(before.supervisors['SUP']!.heldModules).toEqual({ MAA: 'action.FIRST', MAB: 'action.FIRST' });
+  });
+
+  it('knows which schemas were active, who activated them, and the periodic releases', () => {
+    const catalogue = [
+      { name: 'schemaReceptionMessage', kind: 'event', modules: ['MAA', 'MAB'] },
+      { name: 'schemaCommande1', kind: 'periodic', modules: ['MSA', 'MSC', 'MSD'] },
+    ];
+    const second = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.SECOND active'))!;
+    const firstOff = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.FIRST inactive'))!;
+    expect(activeSchemas(model.stateAt(firstOff.t - 1), catalogue)).toEqual([{ name: 'schemaReceptionMessage', kind: 'event', by: 'SUP.action.FIRST' }]);
+    const after = model.stateAt(second.t + 5e6);
+    expect(activeSchemas(after, catalogue)).toEqual([{ name: 'schemaCommande1', kind: 'periodic', by: 'SUP.action.SECOND' }]);
+    const p = s.periodic['schemaCommande1']!;
+    expect(p.releases).toBe(6); // 2 cycles x 3 modules
+    expect(p.lastCycle).toBe(1);
+    expect(p.completions).toBe(2);
+    expect(p.histogram.reduce((a, b) => a + b, 0)).toBe(2);
+    expect(p.maxResponseNs).toBe(844314);
+    expect(p.deadlineMisses).toBe(0);
+    expect(s.eventFlows['MAA:0->MAB:0']!.count).toBe(4);
+    expect(s.modules['MSC']!.runs).toBe(2);
+  });
+
+  it('gives the same states when fed the live channel\'s lines (kept as packed text) as when fed the records', () => {
+    const lines = readdirSync(dir).flatMap((file) => readFileSync(join(dir, file), 'utf8').split('\n').map((text, i) => ({ file, line: i + 1, text })))
+      .filter((l) => /^\d+,/.test(l.text)).sort((a, b) => Number(BigInt(a.text.split(',')[0]!) - BigInt(b.text.split(',')[0]!)));
+    const fed = new MonitorModel({ checkpointEvery: 16 });
+    for (const l of lines) fed.pushLine(l.file, l.line, l.text);
+    expect(fed.marks).toEqual(model.marks);
+    for (const m of model.marks) {
+      expect(fed.stateAt(m.t)).toEqual(model.stateAt(m.t));
+      expect(fed.stateAt(m.t - 1)).toEqual(model.stateAt(m.t - 1));
+    }
+  });
+
+  it('gives at every time the same state as folding the records up to it', () => {
+    const times = tutorial.filter((r) => r.kind !== 'unknown').map((r) => Number((r as { monoNs: string }).monoNs) - model.t0!);
+    for (const t of [0, ...times.filter((_, i) => i % 7 === 0), times[times.length - 1]! - 1]) {
+      expect(model.stateAt(t)).toEqual(naive(tutorial, t));
+    }
+  });
+});
+
+describe('monitor model, long and hostile runs', () => {
+  const schemaRun = (cycles: number, periodNs: number) => {
+    const out: TraceRecord[] = [line(1000, 'SUP', 'sup_rule', '', '', 'f.R active cause=elapsed=1000000ns')];
+    for (let c = 0; c < cycles; c++) {
+      const tick = 10_000 + c * periodNs;
+      out.push(line(tick, 'ORD', 'ord_release', 'M', '', `schema=S cycle=${c} tick_ns=${tick} release_ns=${tick} release=${c + 1}`));
+      out.push(line(tick + 1, 'M', 'run_started', 'ORD', '', `activation=${c + 1}`));
+      out.push(line(tick + 300, 'M', 'run_finished', 'ORD', '', `activation=${c + 1} ACK_FINISHED`));
+      out.push(line(tick + 400, 'ORD', 'ord_complete', '', '', `schema=S cycle=${c} tick_ns=${tick} response_ns=${400 + (c % 50) * 1000}`));
+      if (c % 1000 === 999) out.push(line(tick + 500, 'ORD', 'ord_deadline_miss', '', '', `schema=S cycle=${c} tick_ns=${tick}`));
+      if (c === cycles / 2) out.push(line(tick + 600, 'SUP', 'sup_rule', '', '', 'f.R inactive cause=ORD:0 value="S"'));
+    }
+    return out;
+  };
+
+  it('keeps memory bounded (raw records dropped, notable kept) and rule states exact far back', () => {
+    const recs = schemaRun(60_000, 1_000_000); // a 1 kHz schema for 60 s
+    const model = new MonitorModel({ checkpointEvery: 1024, keepRecords: 50_000 });
+    model.pushAll(recs);
+    expect(model.recordCount).toBe(recs.length);
+    expect((model as unknown as { kept: number }).kept).toBeLessThanOrEqual(50_000 + 1024);
+    expect(model.live.periodic['S']).toMatchObject({ releases: 60_000, completions: 60_000, deadlineMisses: 60 });
+    expect(model.marks.filter((m) => m.kind === 'miss').length).toBe(60);
+    // far back (raw records gone): rules exact, counters at most one checkpoint behind
+    const early = model.stateAt(20e9);
+    expect(model.exactAt(20e9)).toBe(false);
+    expect(early.supervisors['SUP']!.rules['f.R']!.active).toBe(true);
+    const lateRule = model.stateAt(40e9).supervisors['SUP']!.rules['f.R']!;
+    expect(lateRule).toMatchObject({ active: false, cause: 'ORD:0 value="S"' });
+    expect(Math.abs(early.periodic['S']!.releases - 20_000)).toBeLessThanOrEqual(1024);
+    // recent: exact
+    expect(model.exactAt(59.5e9)).toBe(true);
+    expect(model.stateAt(59.5e9)).toEqual(naive(recs, 59.5e9));
+  });
+
+  it('scrubs back quickly on a long run', () => {
+    const model = new MonitorModel();
+    model.pushAll(schemaRun(20_000, 1_000_000));
+    const t0 = performance.now();
+    for (let i = 0; i < 200; i++) model.stateAt(Math.random() * 20e9);
+    expect((performance.now() - t0) / 200).toBeLessThan(20); // generous: a functional bound, the figure is in the bench
+  });
+
+  it('never throws on hostile lines and holds time monotonic', () => {
+    const model = new MonitorModel({ checkpointEvery: 16 });
+    const junk = ['', 'x', ',,,,,,,', '99999999999999999999,w,M,sup_rule,,,0,"bad', '5,w,M,ord_complete,,,0,schema= response_ns=abc',
+      '5,w,ORD,scheduler,,,0,activate', '1,w,SUP,sup_rule,,,0,f.R active cause=' + 'x'.repeat(5000), '3,w,M,event_received,,,0,from_port=1',
+      '2,w,M,data_posted,P,,0,to_port=1', '7,w,SUP,module_hold,,,0,hold taken', '4,w,ORD,request_received,SUP,,0,START ' + 'y'.repeat(300)];
+    for (let i = 0; i < 500; i++) model.pushLine('h.csv', i, junk[i % junk.length]!);
+    let last = 0;
+    for (let t = 0; t < 10; t += 0.5) {
+      const s = model.stateAt(t);
+      expect(s.t).toBeGreaterThanOrEqual(last);
+      last = s.t;
+    }
+    expect(model.live.unknownLines).toBeGreaterThan(0);
+  });
+
+  it('buckets response times on a log scale', () => {
+    expect(histogramBucket(0)).toBe(0);
+    expect(histogramBucket(999)).toBe(0);
+    expect(histogramBucket(1000)).toBe(1);
+    expect(bucketStartNs(histogramBucket(1e6))).toBeLessThanOrEqual(1e6);
+    expect(bucketStartNs(histogramBucket(1e6) + 1)).toBeGreaterThan(1e6);
+    const s = emptyState();
+    applyRecord(s, line(1, 'ORD', 'ord_complete', '', '', 'schema=S cycle=0 tick_ns=1 response_ns=1e99'), 0, 0);
+    expect(s.periodic['S']).toBeUndefined(); // not a number: ignored
+  });
+});

@@ -1,0 +1,398 @@
+/**
+ * The Monitor panel (docs/watching-a-run.md): a run's state at the time cursor — each
+ * supervisor's functions and rules (active rules lit, with their last cause and time; a click
+ * opens the rule in its .contract file), the active schemas, per periodic schema its releases,
+ * response-time histogram against CRITICAL_DELAY and PERIOD, deadline misses and overruns, the
+ * architecture diagram with active modules and pulsing flows, and the timeline strip.
+ *
+ * Live and replay are the same view over a MonitorModel; the cursor follows the end (live) or
+ * stays where it was put (paused, scrubbed, or played back). Feeding records only marks the view
+ * dirty: it redraws at most once per animation frame, and only what changed.
+ */
+import './monitor.css';
+import { h } from '../util/dom.js';
+import type { ArchSchema } from '../lsp/architecture-model.js';
+import type { ArchitectureView } from '../views/architecture-view.js';
+import type { MonitorModel } from './monitor-model.js';
+import type { MonitorState } from './monitor-state.js';
+import { activeSchemas, type SchemaInfo } from './active-schemas.js';
+import { MarksStrip } from './marks-strip.js';
+import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
+
+/** Supervisor -> function -> its rule labels, from the model (document symbols). */
+export type SupervisorCatalogue = Record<string, Record<string, string[]>>;
+
+export interface MonitorPanelDeps {
+  schemas: () => Promise<ArchSchema[]>;
+  supervisors: () => Promise<SupervisorCatalogue>;
+  openRule: (supervisor: string, fn: string, rule: string) => void;
+  /** Creates the (lazily loaded) diagram that the panel animates. */
+  createDiagram: () => Promise<ArchitectureView>;
+  /** The user picked another run to show (an id of setSources). */
+  onSource: (id: string) => void;
+}
+
+export interface SourceOption {
+  id: string;
+  label: string;
+}
+
+const PULSE_NS = 300e6;
+const fmtT = (ns: number) => `+${(ns / 1e9).toFixed(6)} s`;
+
+export class MonitorPanel {
+  readonly element: HTMLElement;
+  private model: MonitorModel | undefined;
+  private live = false;
+  private follow = true;
+  private cursor = 0;
+  private playing = false;
+  private lastPlayWall = 0;
+  private dirty = false;
+  private drawn = { version: -1, cursor: -1, model: undefined as MonitorModel | undefined };
+  private schemas: ArchSchema[] = [];
+  private catalogue: SchemaInfo[] = [];
+  private sups: SupervisorCatalogue = {};
+  private diagram: ArchitectureView | undefined;
+  private userChoseSchema = false;
+  private redrawTimer: ReturnType<typeof setTimeout> | undefined;
+  /** Last frame's render time (ms), for the benchmark. */
+  frameMs: number[] = [];
+
+  private readonly label = h('span', { class: 'monitor-source muted' }, 'No run yet');
+  private readonly sourceSelect = h('select', { class: 'monitor-sources', 'aria-label': 'Run to show', title: 'Run to show: the live run, a finished job\'s CSV logs, or CSV logs of the workspace' });
+  private readonly timeText = h('span', { class: 'monitor-time', 'aria-live': 'off' }, '');
+  private readonly slider = h('input', { type: 'range', min: 0, max: 1000, step: 1, value: 1000, class: 'monitor-slider', 'aria-label': 'Time cursor' });
+  private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', 'aria-pressed': 'true', title: 'Follow the run (Space pauses)' }, '❚❚ Pause');
+  private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time' }, '▷ Play');
+  private readonly strip: MarksStrip;
+  private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
+  private readonly schemasEl = h('div', { class: 'monitor-schemas', 'aria-label': 'Active schemas' });
+  private readonly periodicEl = h('div', { class: 'monitor-periodic' });
+  private readonly diagramEl = h('div', { class: 'monitor-diagram' });
+  private readonly modulesEl = h('div', { class: 'monitor-modules' });
+  private readonly flowsEl = h('div', { class: 'monitor-flows', 'aria-label': 'Deliveries' });
+  private readonly rows = new Map<string, HTMLElement>();
+  private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; key: string; drawnAt: number }>();
+
+  constructor(private readonly deps: MonitorPanelDeps) {
+    this.strip = new MarksStrip((f) => this.seek(f * (this.model?.end ?? 0)));
+    this.followBtn.addEventListener('click', () => this.setFollow(!this.follow));
+    this.sourceSelect.addEventListener('change', () => this.deps.onSource(this.sourceSelect.value));
+    this.playBtn.addEventListener('click', () => this.setPlaying(!this.playing));
+    this.slider.addEventListener('input', () => this.seek((Number(this.slider.value) / 1000) * (this.model?.end ?? 0)));
+    const step = (dir: -1 | 1) => this.jumpMark(dir);
+    this.element = h('div', { class: 'monitor-view', tabindex: -1, 'aria-label': 'Run monitor' },
+      h('div', { class: 'monitor-toolbar', role: 'toolbar', 'aria-label': 'Time cursor controls' },
+        h('strong', {}, '◉ Monitor'), this.sourceSelect, this.label, h('span', { class: 'grow' }),
+        h('button', { class: 'btn small', id: 'monitor-prev', title: 'Previous mark ([)', 'aria-label': 'Previous mark', onclick: () => step(-1) }, '◀'),
+        this.followBtn, this.playBtn,
+        h('button', { class: 'btn small', id: 'monitor-next', title: 'Next mark (])', 'aria-label': 'Next mark', onclick: () => step(1) }, '▶')),
+      h('div', { class: 'monitor-cursor' }, this.slider, this.timeText),
+      this.strip.canvas,
+      h('div', { class: 'monitor-body' },
+        h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
+        h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schemasEl, this.periodicEl),
+        h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
+    this.element.addEventListener('keydown', (e) => {
+      if (e.target instanceof HTMLInputElement && e.key !== ' ') return; // the slider handles its arrows
+      if (e.key === ' ') this.setFollow(!this.follow);
+      else if (e.key === '[') step(-1);
+      else if (e.key === ']') step(1);
+      else if (e.key === 'End') this.setFollow(true);
+      else if (e.key === 'Home') this.seek(0);
+      else return;
+      e.preventDefault();
+    });
+  }
+
+  /** Shows `model` (live: follows its end as records come). */
+  setModel(model: MonitorModel, label: string, live: boolean): void {
+    this.model = model;
+    this.live = live;
+    this.label.textContent = label;
+    this.element.dataset.mode = live ? 'live' : 'replay';
+    this.setPlaying(false);
+    this.setFollow(true);
+    void this.refreshModel();
+  }
+
+  /** The runs the user can pick (`selected` shown). */
+  setSources(options: SourceOption[], selected: string | undefined): void {
+    this.sourceSelect.replaceChildren(h('option', { value: '', disabled: true, selected: !selected }, options.length ? 'Choose a run…' : 'No run yet'),
+      ...options.map((o) => h('option', { value: o.id, selected: o.id === selected }, o.label)));
+  }
+
+  get current(): MonitorModel | undefined {
+    return this.model;
+  }
+
+  /** The live source ended (the model stays, as a recorded run). */
+  endLive(label: string): void {
+    this.live = false;
+    this.label.textContent = label;
+    this.element.dataset.mode = 'replay';
+    this.schedule();
+  }
+
+  /** Re-reads the schemas and supervisors of the workspace model (after an edit, or on open). */
+  async refreshModel(): Promise<void> {
+    try {
+      const [schemas, sups] = await Promise.all([this.deps.schemas(), this.deps.supervisors()]);
+      this.schemas = schemas;
+      this.catalogue = schemas.map((s) => ({ name: s.name, kind: s.kind, modules: s.modules.map((m) => m.name) }));
+      this.sups = sups;
+    } catch {
+      /* the model does not parse: keep the last one */
+    }
+    if (!this.diagram) {
+      this.diagram = await this.deps.createDiagram();
+      this.diagramEl.replaceChildren(this.diagram.element);
+      this.diagram.element.querySelector('select')?.addEventListener('change', () => (this.userChoseSchema = true));
+    }
+    await this.diagram.update();
+    this.drawn.version = -1;
+    this.schedule();
+  }
+
+  setFollow(on: boolean): void {
+    this.follow = on;
+    if (on) this.setPlaying(false);
+    else this.cursor = this.model?.end ?? 0; // paused where the run is now
+    this.followBtn.textContent = on ? '❚❚ Pause' : '⇥ Follow';
+    this.followBtn.setAttribute('aria-pressed', String(on));
+    this.schedule();
+  }
+
+  setPlaying(on: boolean): void {
+    this.playing = on && !!this.model;
+    if (this.playing) {
+      this.follow = false;
+      this.followBtn.textContent = '⇥ Follow';
+      this.followBtn.setAttribute('aria-pressed', 'false');
+      if (this.model && this.cursor >= this.model.end) this.cursor = 0;
+      this.lastPlayWall = performance.now();
+    }
+    this.playBtn.textContent = this.playing ? '❚❚ Stop' : '▷ Play';
+    this.playBtn.setAttribute('aria-pressed', String(this.playing));
+    this.schedule();
+  }
+
+  /** Moves the cursor to t (ns since the start) and stops following. */
+  seek(t: number): void {
+    this.follow = false;
+    this.followBtn.textContent = '⇥ Follow';
+    this.followBtn.setAttribute('aria-pressed', 'false');
+    this.cursor = Math.max(0, Math.min(t, this.model?.end ?? 0));
+    this.schedule();
+  }
+
+  /** The cursor's time (ns since the run's first record). */
+  get time(): number {
+    return this.follow ? (this.model?.end ?? 0) : this.cursor;
+  }
+
+  private jumpMark(dir: -1 | 1): void {
+    const m = this.model;
+    if (!m) return;
+    const t = this.time;
+    const marks = dir > 0 ? m.marksBetween(t + 1, m.end) : m.marksBetween(0, t - 1);
+    const next = dir > 0 ? marks[0] : marks[marks.length - 1];
+    this.seek(next ? next.t : dir > 0 ? m.end : 0);
+  }
+
+  /** Marks the view dirty; it redraws on the next animation frame (coalesced). */
+  schedule(): void {
+    if (this.dirty) return;
+    this.dirty = true;
+    requestAnimationFrame(() => this.frame());
+  }
+
+  private frame(): void {
+    this.dirty = false;
+    const m = this.model;
+    if (!m) return;
+    if (this.playing) {
+      const now = performance.now();
+      this.cursor += (now - this.lastPlayWall) * 1e6;
+      this.lastPlayWall = now;
+      if (this.cursor >= m.end) {
+        this.cursor = m.end;
+        this.setPlaying(false);
+      } else this.schedule();
+    }
+    const t = this.time;
+    if (this.drawn.model === m && this.drawn.version === m.version && this.drawn.cursor === t) return;
+    if (!this.element.isConnected) return;
+    const t0 = performance.now();
+    this.render(m, t);
+    this.drawn = { model: m, version: m.version, cursor: t };
+    this.frameMs.push(performance.now() - t0);
+    if (this.frameMs.length > 5000) this.frameMs.splice(0, 1000);
+  }
+
+  private render(m: MonitorModel, t: number): void {
+    const s = m.stateAt(t);
+    this.element.dataset.t = String(Math.round(t));
+    this.timeText.textContent = `${fmtT(t)} / ${fmtT(m.end)}${this.live && this.follow ? ' · live' : ''}${m.exactAt(t) ? '' : ' · counters approximate this far back'}`;
+    this.slider.value = String(m.end > 0 ? Math.round((t / m.end) * 1000) : 1000);
+    this.slider.setAttribute('aria-valuetext', fmtT(t));
+    this.strip.draw(m.marks, m.end, t);
+    this.renderSupervisors(s);
+    const active = activeSchemas(s, this.catalogue);
+    this.renderSchemas(s, active);
+    this.renderDiagram(s, t, active.map((a) => a.name));
+  }
+
+  private row(key: string, make: () => HTMLElement): HTMLElement {
+    let el = this.rows.get(key);
+    if (!el) this.rows.set(key, (el = make()));
+    return el;
+  }
+
+  private renderSupervisors(s: MonitorState): void {
+    const names = [...new Set([...Object.keys(this.sups), ...Object.keys(s.supervisors)])].sort();
+    const blocks: HTMLElement[] = [];
+    for (const sup of names) {
+      const st = s.supervisors[sup];
+      const fns = { ...(this.sups[sup] ?? {}) };
+      for (const k of Object.keys(st?.rules ?? {})) {
+        const [fn, rule] = k.split('.') as [string, string];
+        fns[fn] = fns[fn]?.includes(rule) ? fns[fn]! : [...(fns[fn] ?? []), rule];
+      }
+      for (const fn of Object.keys(st?.functions ?? {})) fns[fn] ??= [];
+      const block = this.row(`sup:${sup}`, () => h('div', { class: 'monitor-sup', role: 'listitem', 'data-supervisor': sup }));
+      const header = this.row(`suph:${sup}`, () => h('div', { class: 'monitor-sup-name' }));
+      setText(header, `${sup}${st ? ` · ${st.actionsDone} action(s) done, ${st.actionsUndone} undone` : ''}`);
+      const children: HTMLElement[] = [header];
+      for (const [fn, rules] of Object.entries(fns)) {
+        const fs = st?.functions[fn];
+        const fnEl = this.row(`fn:${sup}.${fn}`, () => h('div', { class: 'monitor-fn', 'data-function': `${sup}.${fn}` }));
+        setText(fnEl, `${fn}() — ${fs ? `${fs.state} since ${fmtT(fs.since)}` : 'not started'}`);
+        setAttr(fnEl, 'data-state', fs?.state ?? 'idle');
+        children.push(fnEl);
+        for (const rule of rules) {
+          const rs = st?.rules[`${fn}.${rule}`];
+          const el = this.row(`rule:${sup}.${fn}.${rule}`, () => {
+            const b = h('button', { class: 'monitor-rule', 'data-rule': `${sup}.${fn}.${rule}`, title: `Open ${fn}.${rule} in its .contract file` },
+              h('span', { class: 'rule-dot', 'aria-hidden': 'true' }), h('span', { class: 'rule-name' }, rule), h('span', { class: 'rule-cause' }), h('span', { class: 'rule-time' }));
+            b.addEventListener('click', () => this.deps.openRule(sup, fn, rule));
+            return b;
+          });
+          setAttr(el, 'data-active', String(!!rs?.active));
+          setAttr(el, 'aria-pressed', String(!!rs?.active));
+          setText(el.children[2] as HTMLElement, rs ? `${rs.active ? '' : 'off '}← ${rs.cause}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '');
+          setText(el.children[3] as HTMLElement, rs ? fmtT(rs.since) : '');
+          setAttr(el, 'data-cause', rs?.cause ?? '');
+          setAttr(el, 'data-since', rs ? String(rs.since) : '');
+          children.push(el);
+        }
+      }
+      replaceIfChanged(block, children);
+      blocks.push(block);
+    }
+    if (!blocks.length) blocks.push(this.row('sup:none', () => h('div', { class: 'muted' }, 'No supervisor in the trace yet')));
+    replaceIfChanged(this.supEl, blocks);
+  }
+
+  private renderSchemas(s: MonitorState, active: ReturnType<typeof activeSchemas>): void {
+    const items = active.map((a) => {
+      const el = this.row(`schema:${a.name}`, () => h('div', { class: 'monitor-schema', 'data-schema': a.name }));
+      setText(el, `● ${a.name} (${a.kind})${a.by ? ` ← ${a.by}` : ''}`);
+      return el;
+    });
+    if (!items.length) items.push(this.row('schema:none', () => h('div', { class: 'muted' }, 'none')));
+    replaceIfChanged(this.schemasEl, items);
+    const periodic = [...new Set([...this.catalogue.filter((c) => c.kind === 'periodic').map((c) => c.name), ...Object.keys(s.periodic)])];
+    const blocks = periodic.map((name) => {
+      const p = s.periodic[name];
+      const def = this.schemas.find((x) => x.name === name);
+      const cd = timeNs(def?.criticalDelay);
+      const period = timeNs(def?.period);
+      let hist = this.hists.get(name);
+      if (!hist) {
+        const canvas = h('canvas', { class: 'monitor-hist', width: 320, height: 70, role: 'img', 'aria-label': `Response times of ${name} against CRITICAL_DELAY and PERIOD` });
+        const text = h('div', { class: 'monitor-pstats' });
+        const misses = h('div', { class: 'monitor-misses' });
+        const title = h('div', { class: 'monitor-pname' });
+        hist = { root: h('div', { class: 'monitor-pschema', 'data-periodic': name }, title, text, canvas, misses), title, canvas, text, misses, key: '', drawnAt: 0 };
+        this.hists.set(name, hist);
+      }
+      // counts change every cycle of a fast schema: redrawn at most 5 times a second, at once on a miss or overrun
+      const key = p ? `${p.releases}|${p.completions}|${p.deadlineMisses}|${p.overruns}|${cd}|${period}` : 'none';
+      const urgent = !hist.key.endsWith(`|${p?.deadlineMisses}|${p?.overruns}|${cd}|${period}`);
+      const now = performance.now();
+      const throttled = this.live && this.follow && !urgent && now - hist.drawnAt < 200;
+      if (key !== hist.key && throttled) this.redrawSoon();
+      if (key !== hist.key && !throttled) {
+        hist.drawnAt = now;
+        hist.key = key;
+        setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
+        setText(hist.text, p
+          ? `${p.releases} releases · cycle ${p.lastCycle} · ${p.completions} complete · response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.completions ? p.sumResponseNs / p.completions : 0)}, max ${fmtNs(p.maxResponseNs)} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`
+          : 'not released yet');
+        setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
+        setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));
+        setAttr(hist.root, 'data-overruns', String(p?.overruns ?? 0));
+        drawHistogram(hist.canvas, p?.histogram ?? [], cd, period);
+        hist.misses.replaceChildren(...(p?.recentMisses ?? []).slice(-5).map((x) => h('span', { class: 'miss', 'data-cycle': x.cycle }, `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`)),
+          ...(p?.recentOverruns ?? []).slice(-3).map((x) => h('span', { class: 'overrun' }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
+      }
+      return hist.root;
+    });
+    replaceIfChanged(this.periodicEl, blocks);
+  }
+
+  /** A frame again in 200 ms even when nothing new comes (a throttled part is then drawn). */
+  private redrawSoon(): void {
+    if (this.redrawTimer) return;
+    this.redrawTimer = setTimeout(() => {
+      this.redrawTimer = undefined;
+      this.drawn.version = -1;
+      this.schedule();
+    }, 200);
+  }
+
+  private renderDiagram(s: MonitorState, t: number, active: string[]): void {
+    const d = this.diagram;
+    if (!d) return;
+    if (!this.userChoseSchema && active.length && d.schema !== active[active.length - 1] && !active.includes(d.schema ?? '')) void d.choose(active[active.length - 1]!);
+    const modules = new Set<string>();
+    for (const name of active) for (const m of this.catalogue.find((c) => c.name === name)?.modules ?? []) modules.add(m);
+    const running = new Set(Object.entries(s.modules).filter(([, m]) => m.running).map(([k]) => k));
+    const pulsing = new Set<string>();
+    const used = new Set<string>();
+    for (const flows of [s.dataFlows, s.eventFlows]) {
+      for (const [k, f] of Object.entries(flows)) {
+        used.add(k);
+        if (t - f.last < PULSE_NS) pulsing.add(k);
+      }
+    }
+    d.highlight({ active: modules, running, pulsing, used });
+    setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
+    // deliveries: the busiest flows, with their count and last delivery
+    const flows = [...Object.entries(s.dataFlows).map(([k, f]) => ({ k, f, kind: 'data' })), ...Object.entries(s.eventFlows).map(([k, f]) => ({ k, f, kind: 'event' }))]
+      .sort((a, b) => b.f.count - a.f.count).slice(0, 12);
+    const rows = flows.map(({ k, f, kind }) => {
+      const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
+      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count} · last ${fmtT(f.last)}`);
+      setAttr(el, 'data-pulse', String(pulsing.has(k)));
+      return el;
+    });
+    replaceIfChanged(this.flowsEl, rows);
+  }
+}
+
+function setText(el: HTMLElement, text: string): void {
+  if (el.textContent !== text) el.textContent = text;
+}
+
+function setAttr(el: HTMLElement, name: string, value: string): void {
+  if (el.getAttribute(name) !== value) el.setAttribute(name, value);
+}
+
+function replaceIfChanged(parent: HTMLElement, children: HTMLElement[]): void {
+  const cur = parent.children;
+  if (cur.length === children.length && children.every((c, i) => cur[i] === c)) return;
+  parent.replaceChildren(...children);
+}

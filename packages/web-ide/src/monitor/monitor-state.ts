@@ -1,0 +1,140 @@
+/**
+ * The state of a running architecture at one instant, as the monitor folds it out of the
+ * run-time trace (docs/runtime-api.md "Trace records"). Plain data (maps of small objects,
+ * fixed-size histograms) so that a checkpoint is a cheap deep copy and its size does not grow
+ * with the number of records: counters and histograms aggregate, only the last few items are
+ * kept in lists.
+ */
+
+/** Times are ns since the first record of the run (its mono_ns), so live and replay agree. */
+export type Ns = number;
+
+export interface RuleState {
+  function: string;
+  rule: string;
+  active: boolean;
+  /** When it last changed. */
+  since: Ns;
+  /** The cause of the last change, as logged (`MAA:2 value="disconnected"`, `elapsed=1000000ns`, `ORD:0 ...`). */
+  cause: string;
+  /** How many times it became active. */
+  activations: number;
+  /** Schemas and modules its last activation started (ORD activations and supervisor holds). */
+  started: string[];
+}
+
+export interface FunctionState {
+  state: 'running' | 'stopped' | 'refused';
+  since: Ns;
+}
+
+export interface SupervisorState {
+  functions: Record<string, FunctionState>;
+  /** Keyed `F.R`. */
+  rules: Record<string, RuleState>;
+  /** Actions done (holds taken, priorities set) and undone (holds dropped) — counts. */
+  actionsDone: number;
+  actionsUndone: number;
+  /** The rule (`F.R`) that became active last: holds and START requests that follow belong to it. */
+  lastRule?: string;
+  /** Modules and event flows this supervisor holds (an event schema it activated), with the rule. */
+  heldModules: Record<string, string>;
+  heldFlows: Record<string, string>;
+}
+
+export interface SchemaActivation {
+  active: boolean;
+  since: Ns;
+  /** `SUP.F.R` that asked for it, when known. */
+  by?: string;
+  activations: number;
+  conflicts: number;
+}
+
+/** Response-time histogram buckets: 8 per decade from 1 µs to 10 s, plus under/overflow. */
+export const HIST_BUCKETS = 58;
+export const HIST_MIN_NS = 1e3;
+export const HIST_PER_DECADE = 8;
+
+export interface MissMark {
+  t: Ns;
+  cycle: number;
+}
+
+export interface PeriodicState {
+  releases: number;
+  lastCycle: number;
+  /** Release time of the last release, ns since the start. */
+  lastRelease: Ns;
+  completions: number;
+  lastResponseNs: number;
+  maxResponseNs: number;
+  sumResponseNs: number;
+  histogram: number[];
+  deadlineMisses: number;
+  overruns: number;
+  missedTicks: number;
+  /** The last misses and overruns (bounded), for the timeline marks. */
+  recentMisses: MissMark[];
+  recentOverruns: MissMark[];
+}
+
+export interface ModuleState {
+  /** Between run_started and run_finished (a release or a START). */
+  running: boolean;
+  /** The process is up (module_started seen, no module_exit). */
+  alive: boolean;
+  runs: number;
+  since: Ns;
+}
+
+export interface FlowCount {
+  count: number;
+  last: Ns;
+}
+
+export interface Pulse {
+  t: Ns;
+  /** `MAA:2->SUP:2` */
+  flow: string;
+  kind: 'data' | 'event';
+}
+
+export interface MonitorState {
+  /** Time of the last record folded in. */
+  t: Ns;
+  records: number;
+  supervisors: Record<string, SupervisorState>;
+  schemas: Record<string, SchemaActivation>;
+  periodic: Record<string, PeriodicState>;
+  modules: Record<string, ModuleState>;
+  /** Keyed `PRODUCER:port->CONSUMER:port`. */
+  dataFlows: Record<string, FlowCount>;
+  eventFlows: Record<string, FlowCount>;
+  /** The last deliveries (bounded ring, newest last). */
+  recentPulses: Pulse[];
+  unknownLines: number;
+}
+
+export const RECENT_PULSES = 32;
+export const RECENT_MARKS = 64;
+
+export function emptyState(): MonitorState {
+  return { t: 0, records: 0, supervisors: {}, schemas: {}, periodic: {}, modules: {}, dataFlows: {}, eventFlows: {}, recentPulses: [], unknownLines: 0 };
+}
+
+/** A deep copy (the state is plain JSON-like data). */
+export function cloneState(s: MonitorState): MonitorState {
+  return structuredClone(s);
+}
+
+export function histogramBucket(ns: number): number {
+  if (!(ns > 0) || ns < HIST_MIN_NS) return 0;
+  const b = 1 + Math.floor(Math.log10(ns / HIST_MIN_NS) * HIST_PER_DECADE);
+  return Math.min(HIST_BUCKETS - 1, b);
+}
+
+/** Lower bound (ns) of a bucket (bucket 0: below 1 µs). */
+export function bucketStartNs(b: number): number {
+  return b <= 0 ? 0 : HIST_MIN_NS * 10 ** ((b - 1) / HIST_PER_DECADE);
+}

@@ -1,0 +1,61 @@
+/**
+ * Draws a periodic schema's response-time histogram (the model's log buckets, monitor-state.ts)
+ * on a canvas, against its CRITICAL_DELAY (red line: beyond it ORD sends ORD:0) and PERIOD
+ * (grey line), over four decades around CRITICAL_DELAY.
+ */
+import { bucketStartNs, HIST_BUCKETS, HIST_PER_DECADE, histogramBucket } from './monitor-state.js';
+
+export function drawHistogram(canvas: HTMLCanvasElement, histogram: readonly number[], criticalNs?: number, periodNs?: number): void {
+  const ctx = canvas.getContext('2d');
+  if (!ctx) return;
+  const w = canvas.width;
+  const hgt = canvas.height;
+  ctx.clearRect(0, 0, w, hgt);
+  const ref = criticalNs ?? periodNs ?? 1e6;
+  // buckets shown: 3 decades below the reference to 1 above it; the rest clamps to the edges
+  const lo = Math.max(0, histogramBucket(ref / 1000));
+  const hi = Math.min(HIST_BUCKETS - 1, Math.max(lo, histogramBucket(ref * 10)));
+  const n = hi - lo + 1;
+  const counts = new Array<number>(n).fill(0);
+  histogram.forEach((c, b) => (counts[Math.min(n - 1, Math.max(0, b - lo))]! += c));
+  const max = Math.max(1, ...counts);
+  const bw = (w - 4) / n;
+  const base = hgt - 14;
+  ctx.fillStyle = '#61afef';
+  counts.forEach((c, i) => {
+    if (!c) return;
+    const bh = Math.max(1, (Math.log1p(c) / Math.log1p(max)) * (base - 4));
+    ctx.fillRect(2 + i * bw, base - bh, Math.max(1, bw - 1), bh);
+  });
+  const xOf = (ns: number) => 2 + ((Math.log10(ns / bucketStartNs(lo || 1)) * HIST_PER_DECADE) / n) * (w - 4);
+  ctx.font = '10px sans-serif';
+  const line = (ns: number | undefined, color: string, label: string, dy: number) => {
+    if (!ns) return;
+    const x = Math.min(w - 1, Math.max(1, xOf(ns)));
+    ctx.fillStyle = color;
+    ctx.fillRect(x, 0, 1.5, base);
+    ctx.fillText(label, Math.min(x + 3, w - 90), 10 + dy);
+  };
+  line(periodNs, '#9aa3b2', 'PERIOD', 12);
+  line(criticalNs, '#e06c75', 'CRITICAL_DELAY', 0);
+  ctx.fillStyle = '#7f8796';
+  ctx.fillText(fmtNs(bucketStartNs(lo || 1)), 2, hgt - 2);
+  ctx.textAlign = 'right';
+  ctx.fillText(fmtNs(bucketStartNs(hi + 1)), w - 2, hgt - 2);
+  ctx.textAlign = 'left';
+}
+
+export function fmtNs(ns: number): string {
+  if (ns >= 1e9) return `${+(ns / 1e9).toFixed(3)} s`;
+  if (ns >= 1e6) return `${+(ns / 1e6).toFixed(3)} ms`;
+  if (ns >= 1e3) return `${+(ns / 1e3).toFixed(1)} µs`;
+  return `${Math.round(ns)} ns`;
+}
+
+/** `1s`, `10ms`, `500us`, `3ns` (the model's time literals) -> ns. */
+export function timeNs(t: string | undefined): number | undefined {
+  const m = t?.match(/^([\d.]+)\s*(ns|us|µs|ms|s)$/);
+  if (!m) return undefined;
+  const v = Number(m[1]) * ({ ns: 1, us: 1e3, 'µs': 1e3, ms: 1e6, s: 1e9 } as Record<string, number>)[m[2]!]!;
+  return Number.isFinite(v) && v > 0 ? v : undefined;
+}

@@ -1,0 +1,100 @@
+/**
+ * The Simulate panel's pure parts: the session grown into a scenario text (times never go back,
+ * hostile input refused, the text parses with the simulator's own parser, the saved text carries
+ * the shown state as expectations) and the steps turned into the Monitor's trace records.
+ */
+import { describe, it, expect } from 'vitest';
+import { parseScenario } from '@contract-studio/language/scenario';
+import type { SimulateStep } from '../../server/api-types.js';
+import { MonitorModel } from '../monitor/monitor-model.js';
+import { ScenarioSession } from './scenario-session.js';
+import { stepsToTrace } from './sim-to-trace.js';
+
+const step = (over: Partial<SimulateStep>): SimulateStep => ({ line: 0, source: '', timeNs: 0, kind: 'event', ok: true, rules: [], actions: [], schemas: [], locals: [], ...over });
+
+describe('ScenarioSession', () => {
+  it('grows a scenario text that the simulator parses: start at 0, steps at the session time, until now', () => {
+    const s = new ScenarioSession();
+    expect(s.inject('MAA:2 "x"')).toMatch(/start/);
+    expect(s.begin({ supervisor: 'SUP', fn: 'action', params: 'consigne = {1.0, 2.0, 3.0}' })).toBeUndefined();
+    expect(s.advance('+1ms')).toBeUndefined();
+    expect(s.inject('MAA:2 connection_status = "disconnected"')).toBeUndefined();
+    expect(s.advance('1.5s')).toBeUndefined();
+    expect(s.inject('crash MSC')).toBeUndefined();
+    expect(s.text('t')).toBe('scenario t\nuntil 1500ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\nt=1ms MAA:2 connection_status = "disconnected"\nt=1500ms crash MSC\n');
+    const parsed = parseScenario(s.text());
+    expect(parsed.diagnostics).toEqual([]);
+    expect(parsed.steps.map((x) => [x.kind, x.atNs, x.span.line])).toEqual([['start', 0, 3], ['event', 1_000_000, 4], ['crash', 1_500_000_000, 5]]);
+    s.undo();
+    expect(s.lines).toHaveLength(1);
+  });
+
+  it('refuses times going back, non-times, several lines, comments and unknown directives', () => {
+    const s = new ScenarioSession();
+    expect(s.begin({ supervisor: 'SUP', fn: 'a b', params: '' })).toBeTruthy();
+    expect(s.begin({ supervisor: 'SUP', fn: 'action', params: 'x = 1\nstop SUP.action' })).toBeTruthy();
+    s.begin({ supervisor: 'SUP', fn: 'action', params: '' });
+    s.advance('2ms');
+    expect(s.advance('1ms')).toMatch(/backwards/);
+    expect(s.advance('soon')).toMatch(/not a time/);
+    expect(s.advance('+100000000s')).toMatch(/one day/);
+    expect(s.inject('MAA:2 "a"\nstart SUP.action')).toMatch(/one line/);
+    expect(s.inject('t=0 MAA:2 "a"')).toBeTruthy();
+    expect(s.inject('until 5s')).toBeTruthy();
+    expect(s.inject('')).toBeTruthy();
+    expect(s.lines).toEqual([]);
+    expect(s.nowNs).toBe(2_000_000);
+    expect(s.text()).toBe('scenario simulation session\nuntil 2ms\nstart SUP.action\n');
+  });
+
+  it('saves the shown state as expectations at the session time', () => {
+    const s = new ScenarioSession();
+    s.begin({ supervisor: 'SUP', fn: 'action', params: '' });
+    s.advance('1ms');
+    const steps = [step({ rules: [{ timeNs: 1e6, supervisor: 'SUP', function: 'action', rule: 'FIRST', active: true, cause: 'elapsed=1000000ns' }] }),
+      step({ kind: 'end', rules: [{ timeNs: 1e6, supervisor: 'SUP', function: 'action', rule: 'FIRST', active: false, cause: 'x' }], schemas: ['S1'] })];
+    const text = s.withExpectations(steps);
+    expect(text).toContain('expect at 1ms rule SUP.action.FIRST inactive\nexpect at 1ms schema S1 active\n');
+    expect(parseScenario(text).diagnostics).toEqual([]);
+  });
+});
+
+describe('ScenarioSession.nextChange', () => {
+  it('finds the first rule change or action after now, in any step of a look-ahead run', () => {
+    const steps = [step({ rules: [{ timeNs: 0, supervisor: 'S', function: 'f', rule: 'A', active: true, cause: 'started' }] }),
+      step({ kind: 'end', actions: [{ timeNs: 5e6, who: 'ORD', what: 'x' }], rules: [{ timeNs: 1e6, supervisor: 'S', function: 'f', rule: 'B', active: true, cause: 'elapsed=1000000ns' }] })];
+    expect(ScenarioSession.nextChange(steps, 0)).toBe(1e6);
+    expect(ScenarioSession.nextChange(steps, 1e6)).toBe(5e6);
+    expect(ScenarioSession.nextChange(steps, 5e6)).toBeUndefined();
+  });
+
+  it('a look-ahead text runs later than now without moving the session', () => {
+    const s = new ScenarioSession();
+    s.begin({ supervisor: 'SUP', fn: 'action', params: '' });
+    expect(s.text('x', 10e9)).toBe('scenario x\nuntil 10s\nstart SUP.action\n');
+    expect(s.nowNs).toBe(0);
+  });
+});
+
+describe('stepsToTrace', () => {
+  it('gives the Monitor the rules with their causes, the functions and the schemas at the virtual times', () => {
+    const steps = [
+      step({ kind: 'start', source: 'start SUP.action', timeNs: 0 }),
+      step({ timeNs: 1_000_000, schemas: ['schemaReceptionMessage'], rules: [{ timeNs: 1_000_000, supervisor: 'SUP', function: 'action', rule: 'FIRST', active: true, cause: 'elapsed=1000000ns' }] }),
+      step({ timeNs: 2_000_000, schemas: ['schemaCommande1'], rules: [
+        { timeNs: 2_000_000, supervisor: 'SUP', function: 'action', rule: 'FIRST', active: false, cause: 'MAA:2 value="disconnected"' },
+        { timeNs: 2_000_000, supervisor: 'SUP', function: 'action', rule: 'SECOND', active: true, cause: 'MAA:2 value="disconnected"' }] }),
+    ];
+    const model = new MonitorModel();
+    model.pushAll(stepsToTrace(steps));
+    const sup = model.live.supervisors['SUP']!;
+    expect(sup.functions['action']?.state).toBe('running');
+    expect(sup.rules['action.SECOND']).toMatchObject({ active: true, cause: 'MAA:2 value="disconnected"', since: 2_000_000 });
+    expect(sup.rules['action.FIRST']?.active).toBe(false);
+    expect(model.live.schemas['schemaCommande1']?.active).toBe(true);
+    expect(model.live.schemas['schemaReceptionMessage']?.active).toBe(false);
+    const at1 = model.stateAt(1_500_000);
+    expect(at1.supervisors['SUP']!.rules['action.FIRST']?.active).toBe(true);
+    expect(at1.schemas['schemaReceptionMessage']?.active).toBe(true);
+  });
+});

@@ -1,0 +1,66 @@
+/**
+ * The Simulate panel's step field: a one-line Monaco editor on a scenario-language model, so that
+ * typing a step gets the scenario language's completion, hover and checks (docs/simulation.md
+ * "Editing scenarios": `MAA:` -> its out event ports, `MAA:2 ` -> the values the rules compare it
+ * with). The model is a file URI in the project's folder (never saved: the scenario's project is
+ * found from its folder), holding just the line being typed. Enter injects it unless a suggestion
+ * is being chosen.
+ */
+import { monaco } from '../editor/monaco.js';
+import { SCENARIO_LANGUAGE_ID } from '../editor/scenario-language.js';
+import { h } from '../util/dom.js';
+
+/** The model's file name: main.ts keeps its diagnostics out of the Problems panel. */
+export const STEP_INPUT_FILE = '.simulate-step.scenario';
+
+export class StepInput {
+  readonly element = h('div', { class: 'sim-step', role: 'textbox', 'aria-label': 'step to inject' });
+  private editor: monaco.editor.IStandaloneCodeEditor | undefined;
+  private model: monaco.editor.ITextModel | undefined;
+
+  constructor(private readonly onEnter: (text: string) => void, private readonly placeholder: string) {}
+
+  /** Creates (or moves) the editor's model in `folderUri` (the project's folder). */
+  attach(uri: monaco.Uri): void {
+    if (this.model?.uri.toString() === uri.toString()) return;
+    const text = this.value;
+    this.model?.dispose();
+    this.model = monaco.editor.getModel(uri) ?? monaco.editor.createModel(text, SCENARIO_LANGUAGE_ID, uri);
+    if (!this.editor) {
+      this.editor = monaco.editor.create(this.element, {
+        model: this.model, lineNumbers: 'off', minimap: { enabled: false }, scrollBeyondLastLine: false, wordWrap: 'off',
+        glyphMargin: false, folding: false, renderLineHighlight: 'none', overviewRulerLanes: 0, lineDecorationsWidth: 4,
+        scrollbar: { vertical: 'hidden', horizontal: 'hidden', handleMouseWheel: false }, fontSize: 12, automaticLayout: true,
+        fixedOverflowWidgets: true, placeholder: this.placeholder,
+      });
+      // Enter injects; with the suggestions open it accepts one (Monaco's own binding)
+      this.editor.addCommand(monaco.KeyCode.Enter, () => this.onEnter(this.value), '!suggestWidgetVisible');
+      // one line: a pasted text keeps its first line only
+      this.editor.onDidChangeModelContent(() => {
+        const m = this.model;
+        if (m && m.getLineCount() > 1) m.setValue(m.getLineContent(1));
+      });
+    } else this.editor.setModel(this.model);
+  }
+
+  get value(): string {
+    return this.model?.getValue() ?? '';
+  }
+
+  set value(text: string) {
+    this.model?.setValue(text);
+  }
+
+  /** Puts `text` in the field, the cursor at its end, and opens the completion (the port's values). */
+  prefill(text: string): void {
+    if (!this.editor || !this.model) return;
+    this.model.setValue(text);
+    this.editor.setPosition({ lineNumber: 1, column: text.length + 1 });
+    this.editor.focus();
+    this.editor.trigger('simulate', 'editor.action.triggerSuggest', {});
+  }
+
+  focus(): void {
+    this.editor?.focus();
+  }
+}

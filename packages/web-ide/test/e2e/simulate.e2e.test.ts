@@ -1,0 +1,113 @@
+/**
+ * End-to-end: the Simulate panel (docs/simulation.md "In the IDE") in headless Chromium on the
+ * real IDE server and a copy of examples/tutorial; the steps run in the real simulator (native
+ * harness on the engine cores, POST /api/simulate). The §4.7 story step by step: start
+ * SUP.action, step to 1 ms (FIRST active), inject MAA:2 "disconnected" (SECOND active, its cause
+ * shown, in the panel and in the Monitor), a wrong step refused with its diagnostic, then Save as
+ * scenario and `contract simulate` of the saved file passes.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { spawnSync } from 'node:child_process';
+import { startSession, openIde, shot, PKG, type Session } from './harness.js';
+
+let s: Session;
+beforeAll(async () => {
+  s = await startSession({ buildService: false });
+  await openIde(s);
+}, 120_000);
+afterAll(async () => {
+  await s?.close();
+});
+
+type Page = Session['page'];
+const simRule = (page: Page, id: string) => page.locator(`.sim-rule[data-rule="${id}"]`);
+const monitorRule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="${id}"]`);
+/** Waits for the session's re-simulation after a click: the panel's virtual time says `t`. */
+const now = (page: Page) => page.locator('.sim-now').textContent();
+const stepValue = (page: Page) => page.evaluate(() => (window as any).__ide.simulate.panel.stepInput.value as string);
+/**
+ * Types a step into the step field (a one-line Monaco editor) and clicks Inject (not Enter: under
+ * load a completion list can open late and take the Enter).
+ */
+async function injectStep(page: Page, text: string): Promise<void> {
+  await page.locator('.sim-step .view-lines').click();
+  await page.keyboard.press('ControlOrMeta+A');
+  await page.keyboard.press('Backspace');
+  await page.keyboard.type(text, { delay: 5 });
+  await page.keyboard.press('Escape'); // a suggestion list the typing opened
+  await page.click('.sim-inject');
+}
+
+describe('Simulate panel', () => {
+  it('steps the tutorial story, shows rules with causes in the panel and the Monitor, saves a scenario that contract simulate passes', async () => {
+    const { page } = s;
+    await page.locator('.panel-tab[data-panel="simulate"]').click();
+    await page.waitForSelector('.sim-fn option[value="SUP.action"]', { state: 'attached', timeout: 30_000 });
+    await page.selectOption('.sim-fn', 'SUP.action');
+    // the function's parameters, from the outline's symbols, are the parameters' hint
+    expect(await page.locator('.sim-fn option[value="SUP.action"]').textContent()).toBe('SUP.action(TypeA consigne)');
+    expect(await page.locator('.sim-params').getAttribute('placeholder')).toBe('consigne = value   (empty: the defaults)');
+    await page.fill('.sim-params', 'consigne = {1.0, 2.0, 3.0}');
+    await page.click('.sim-start');
+    await expect.poll(() => now(page), { timeout: 30_000 }).toBe('0');
+
+    // Next: to the engines' next change, FIRST's elapsed=1ms timer
+    await page.click('.sim-next');
+    await expect.poll(() => now(page), { timeout: 30_000 }).toBe('1ms');
+    await expect.poll(() => simRule(page, 'SUP.action.FIRST').getAttribute('class')).toContain('active');
+    expect(await simRule(page, 'SUP.action.FIRST').textContent()).toContain('elapsed=1000000ns');
+    await expect.poll(() => page.locator('.sim-schema').allTextContents()).toEqual(['schemaReceptionMessage']);
+    await expect.poll(() => monitorRule(page, 'SUP.action.FIRST').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
+
+    // a wrong step: refused with the checker's diagnostic, the session unchanged
+    // the step field completes with the scenario language: MAA's out event ports after `MAA:`
+    await page.locator('.sim-step .view-lines').click();
+    await page.keyboard.type('MAA:');
+    await page.keyboard.press('Control+Space');
+    await expect.poll(() => page.locator('.suggest-widget .monaco-list-row').allTextContents(), { timeout: 15_000 }).toEqual(expect.arrayContaining([expect.stringMatching(/^2/)]));
+    await page.keyboard.press('Escape');
+    await injectStep(page, 'MAA:2 3');
+    await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 30_000 }).toMatch(/error\(s\).*line 4:\d+: .*MAA:2 3/s);
+    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.length)).toBe(0);
+
+    // a click on MAA's out event port :2 in the Monitor's diagram starts that step, with its values offered
+    await expect.poll(() => page.locator('.monitor-view .arch-svg').getAttribute('data-schema'), { timeout: 15_000 }).toBe('schemaReceptionMessage');
+    await page.locator('.monitor-diagram rect.port[data-port="MAA:2"]').click();
+    await expect.poll(() => stepValue(page)).toBe('MAA:2 ');
+    await expect.poll(() => page.locator('.suggest-widget .monaco-list-row').allTextContents(), { timeout: 15_000 }).toEqual(expect.arrayContaining([expect.stringContaining('"disconnected"')]));
+    await page.keyboard.press('Escape');
+
+    // inject the disconnection: SECOND active, caused by it; FIRST inactive
+    await injectStep(page, 'MAA:2 connection_status = "disconnected"');
+    await expect.poll(() => simRule(page, 'SUP.action.SECOND').getAttribute('class'), { timeout: 30_000 }).toBe('sim-rule active');
+    expect(await simRule(page, 'SUP.action.SECOND').textContent()).toContain('← MAA:2 value="disconnected" at 1ms');
+    expect(await simRule(page, 'SUP.action.FIRST').getAttribute('class')).toBe('sim-rule inactive');
+    expect(await page.locator('.sim-schema').allTextContents()).toContain('schemaCommande1');
+    expect(await page.locator('.sim-local').count()).toBeGreaterThan(0);
+    expect(await page.locator('.sim-step-row').filter({ hasText: 'MAA:2 connection_status' }).locator('.sim-action').count()).toBeGreaterThan(0);
+    await expect.poll(() => monitorRule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
+    expect(await monitorRule(page, 'SUP.action.SECOND').getAttribute('data-cause')).toBe('MAA:2 value="disconnected"');
+    expect(await stepValue(page)).toBe('');
+    await shot(page, 'simulate-panel');
+
+    // save as scenario: a workspace file that contract simulate runs and passes
+    await page.fill('.sim-save-path', 'scenarios/session.scenario');
+    await page.click('.sim-save');
+    await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 10_000 }).toContain('saved scenarios/session.scenario');
+    const saved = readFileSync(join(s.workspace, 'scenarios/session.scenario'), 'utf8');
+    expect(saved).toContain('start SUP.action(consigne = {1.0, 2.0, 3.0})');
+    expect(saved).toContain('t=1ms MAA:2 connection_status = "disconnected"');
+    expect(saved).toContain('expect at 1ms rule SUP.action.SECOND active');
+    expect(saved).toContain('expect at 1ms rule SUP.action.FIRST inactive');
+    // stepping on by a time: the session runs on, the saved file is unchanged
+    await page.fill('.sim-time', '+5ms');
+    await page.click('.sim-advance');
+    await expect.poll(() => now(page), { timeout: 30_000 }).toBe('6ms');
+    expect(await simRule(page, 'SUP.action.SECOND').getAttribute('class')).toBe('sim-rule active');
+    const cli = spawnSync(process.execPath, [join(PKG, '../cli/bin/contract.js'), 'simulate', s.workspace, join(s.workspace, 'scenarios/session.scenario')], { encoding: 'utf8', timeout: 60_000 });
+    expect(cli.status, cli.stdout + cli.stderr).toBe(0);
+    expect(cli.stdout).toMatch(/1 passed, 0 failed/);
+  }, 180_000);
+});

@@ -1,0 +1,232 @@
+/**
+ * End-to-end: two IDE tabs (two browsers, each with its own storage) and other programs editing
+ * one file. Nothing typed may be lost: disjoint edits are merged and written, overlapping ones
+ * open the side-by-side view and nothing is written before the user chose (docs/ide.md, "Saves,
+ * versions and merges"). Real server, real Chromium.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { readFileSync, writeFileSync, renameSync } from 'node:fs';
+import { createHash } from 'node:crypto';
+import { join } from 'node:path';
+import type { Page } from 'playwright-core';
+import { startSession, openIde, shot, placeCursor, activeValue, openFile, waitSaved, openAnotherBrowser, type Session } from './harness.js';
+
+let s: Session;
+let other: { page: Page; close(): Promise<void> };
+const SCHED = 'sched.contract';
+const disk = () => readFileSync(join(s.workspace, SCHED), 'utf8');
+/** Another program writing the file the usual careful way (temp file + rename). */
+const writeByScript = (text: string) => {
+  writeFileSync(join(s.workspace, '.script.tmp'), text);
+  renameSync(join(s.workspace, '.script.tmp'), join(s.workspace, SCHED));
+};
+const backups = (page: Page) => page.evaluate((p) => Object.keys(localStorage).filter((k) => k.endsWith(`:${p}`)).map((k) => localStorage.getItem(k) ?? ''), SCHED);
+
+describe('one file edited in two IDE tabs and by a script', () => {
+  beforeAll(async () => {
+    s = await startSession({ buildService: false });
+    await openIde(s);
+    other = await openAnotherBrowser(s, 'second');
+    await openFile(s.page, SCHED);
+    await openFile(other.page, SCHED);
+  }, 90_000);
+  afterAll(async () => {
+    await other?.close();
+    await s?.close();
+  });
+
+  it('two tabs typing on neighbouring lines at once: disk and both tabs end with both edits', async () => {
+    const a = s.page;
+    const b = other.page;
+    const before = disk();
+    await placeCursor(a, 'MSD;', 4);
+    await placeCursor(b, 'MSC;', 4);
+    await Promise.all([a.keyboard.type(' // A'), b.keyboard.type(' // B')]);
+    const expected = before.replace('MSD;', 'MSD; // A').replace('MSC;', 'MSC; // B');
+    await expect.poll(disk, { timeout: 10_000 }).toBe(expected);
+    await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(expected);
+    await expect.poll(() => activeValue(b), { timeout: 10_000 }).toBe(expected);
+    await waitSaved(a);
+    await waitSaved(b);
+    expect(await backups(a)).toEqual([]);
+    expect(await backups(b)).toEqual([]);
+    await shot(b, '20-two-tabs-merged');
+  });
+
+  it('a tab whose save was refused as stale merges and tells the user ("merged with a change made elsewhere")', async () => {
+    const a = s.page;
+    const b = other.page;
+    const before = disk();
+    await b.context().setOffline(true); // b keeps its base while a saves a newer text
+    try {
+      await placeCursor(b, 'MSB;', 4);
+      await b.keyboard.type(' // offline edit');
+      await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await placeCursor(a, 'MSA;', 4);
+      await a.keyboard.type(' // online edit');
+      await expect.poll(disk, { timeout: 10_000 }).toContain('// online edit');
+    } finally {
+      await b.context().setOffline(false);
+    }
+    await b.keyboard.press('Control+s');
+    const expected = before.replace('MSB;', 'MSB; // offline edit').replace('MSA;', 'MSA; // online edit');
+    await expect.poll(disk, { timeout: 15_000 }).toBe(expected);
+    await expect.poll(() => activeValue(b), { timeout: 10_000 }).toBe(expected);
+    await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(expected);
+    await b.locator('.toast.info', { hasText: 'merged with a change made elsewhere' }).first().waitFor({ timeout: 5000 });
+    // the cursor stayed where b was typing
+    const line = await b.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    expect(expected.split('\n')[line - 1]).toContain('offline edit');
+    await waitSaved(b);
+  });
+
+  it('overlapping edits: nothing is written blindly, the side-by-side view appears, the chosen merge keeps both', async () => {
+    const a = s.page;
+    const b = other.page;
+    const before = disk();
+    const puts: string[] = [];
+    b.on('request', (r) => r.method() === 'PUT' && puts.push(r.url()));
+    await b.context().setOffline(true);
+    try {
+      await placeCursor(b, 'schemaCommande1;', 'schemaCommande1;'.length);
+      await b.keyboard.type(' // from tab B');
+      await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await placeCursor(a, 'schemaCommande1;', 'schemaCommande1;'.length);
+      await a.keyboard.type(' // from tab A');
+      await expect.poll(disk, { timeout: 10_000 }).toContain('// from tab A');
+    } finally {
+      await b.context().setOffline(false);
+    }
+    await b.keyboard.press('Control+s');
+    const view = b.locator('.conflict-overlay');
+    await view.waitFor({ timeout: 15_000 });
+    await b.locator('.conflict-overlay .monaco-diff-editor').waitFor({ timeout: 5000 });
+    await shot(b, '21-overlapping-edits-side-by-side');
+    // nothing written over A's edit; B's text is in B's tab and in its browser copy
+    const withA = before.replace('schemaCommande1;', 'schemaCommande1; // from tab A');
+    expect(disk()).toBe(withA);
+    expect(await activeValue(b)).toContain('// from tab B');
+    const copy = await backups(b);
+    expect(copy).toHaveLength(1);
+    expect(JSON.parse(copy[0]!).text).toContain('// from tab B');
+    expect(await b.locator('#status-save').textContent()).toMatch(/Overlapping edits/);
+    // no save is retried while the user has not chosen
+    const sent = puts.length;
+    await b.waitForTimeout(1500);
+    expect(puts.length).toBe(sent);
+    expect(disk()).toBe(withA);
+    // edit the merge: both versions between markers on the right, saved as they are
+    await b.locator('#conflict-edit-merge').click();
+    await b.locator('#conflict-save-right').click();
+    await expect.poll(() => view.count()).toBe(0);
+    await expect.poll(disk, { timeout: 10_000 }).toContain('// from tab B');
+    const merged = disk();
+    expect(merged).toContain('// from tab A');
+    expect(merged).toContain('<<<<<<< yours');
+    await expect.poll(() => activeValue(b), { timeout: 5000 }).toBe(merged);
+    await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(merged);
+    await waitSaved(b);
+    expect(await backups(b)).toEqual([]);
+    // restore a clean file for the next scenario (from tab A: a plain edit)
+    await a.evaluate(({ from, to }) => {
+      const m = (window as any).__ide.editors.editor.getModel();
+      m.setValue(from.replace(/<<<<<<< yours\n[^]*?>>>>>>> on disk\n/, to));
+    }, { from: merged, to: '        schemaCommande1; // from tab A // from tab B\n' });
+    await expect.poll(disk, { timeout: 10_000 }).not.toContain('<<<<<<<');
+    await expect.poll(() => activeValue(b), { timeout: 10_000 }).toBe(disk());
+  });
+
+  it('keep mine after overlapping edits writes the tab text on the disk version it was shown', async () => {
+    const a = s.page;
+    const b = other.page;
+    await b.context().setOffline(true);
+    try {
+      await placeCursor(b, 'MSD; // A', 'MSD; // A'.length);
+      await b.keyboard.type(' mine');
+      await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await placeCursor(a, 'MSD; // A', 'MSD; // A'.length);
+      await a.keyboard.type(' theirs');
+      await expect.poll(disk, { timeout: 10_000 }).toContain('// A theirs');
+    } finally {
+      await b.context().setOffline(false);
+    }
+    await b.keyboard.press('Control+s');
+    await b.locator('.conflict-overlay').waitFor({ timeout: 15_000 });
+    const mine = await activeValue(b);
+    await b.locator('#conflict-keep-mine').click();
+    await expect.poll(disk, { timeout: 10_000 }).toBe(mine);
+    await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(mine);
+    await waitSaved(b);
+  });
+
+  it('take theirs after overlapping edits: the tab shows the disk text, nothing of it overwritten', async () => {
+    const a = s.page;
+    const b = other.page;
+    await b.context().setOffline(true);
+    try {
+      await placeCursor(b, 'MSC; // B', 'MSC; // B'.length);
+      await b.keyboard.type(' dropped by choice');
+      await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await placeCursor(a, 'MSC; // B', 'MSC; // B'.length);
+      await a.keyboard.type(' kept on disk');
+      await expect.poll(disk, { timeout: 10_000 }).toContain('// B kept on disk');
+    } finally {
+      await b.context().setOffline(false);
+    }
+    const onDisk = disk();
+    await b.keyboard.press('Control+s');
+    await b.locator('.conflict-overlay').waitFor({ timeout: 15_000 });
+    await b.locator('#conflict-take-theirs').click();
+    await expect.poll(() => activeValue(b), { timeout: 5000 }).toBe(onDisk);
+    await waitSaved(b);
+    expect(disk()).toBe(onDisk);
+    expect(await backups(b)).toEqual([]);
+  });
+
+    it('a browser copy made on an older base is merged with the disk after a reload, not written over it', async () => {
+    const b = other.page;
+    await waitSaved(b);
+    const base = disk();
+    const root = await b.evaluate(() => (window as any).__ide.workspace.root);
+    // the copy a tab kept before a reload: its text and the base it was edited from
+    const copy = { v: 1, text: base.replace('MSB;', 'MSB; // kept in the browser'), baseText: base, baseVersion: createHash('sha256').update(base).digest('hex') };
+    // meanwhile another program changed another line
+    writeByScript(base.replace('MSD;', 'MSD; // changed on disk'));
+    await b.addInitScript(({ key, value }) => {
+      if (!sessionStorage.getItem('copy-seeded')) {
+        sessionStorage.setItem('copy-seeded', '1');
+        localStorage.setItem(key, value);
+      }
+    }, { key: `contract-studio:unsaved:${root}:${SCHED}`, value: JSON.stringify(copy) });
+    await b.reload();
+    await b.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    const expected = base.replace('MSB;', 'MSB; // kept in the browser').replace('MSD;', 'MSD; // changed on disk');
+    await expect.poll(disk, { timeout: 10_000 }).toBe(expected);
+    await waitSaved(b);
+    await openFile(b, SCHED);
+    expect(await activeValue(b)).toBe(expected);
+    await expect.poll(() => activeValue(s.page), { timeout: 10_000 }).toBe(expected);
+  });
+
+  it('a script writing the file while the user types: both changes kept', async () => {
+    const a = s.page;
+    await b_idle();
+    const before = disk();
+    await placeCursor(a, 'schemaCommande2;', 'schemaCommande2;'.length);
+    const typing = a.keyboard.type(' // typed slowly while a script writes', { delay: 40 });
+    await a.waitForTimeout(500);
+    writeByScript(before.replace('scheduler configuration {', '// header added by a script\nscheduler configuration {'));
+    await typing;
+    const expected = before.replace('scheduler configuration {', '// header added by a script\nscheduler configuration {')
+      .replace('schemaCommande2;', 'schemaCommande2; // typed slowly while a script writes');
+    await expect.poll(disk, { timeout: 15_000 }).toBe(expected);
+    await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(expected);
+    await expect.poll(() => activeValue(other.page), { timeout: 10_000 }).toBe(expected);
+    await waitSaved(a);
+  });
+});
+
+/** The second tab has nothing unsaved. */
+async function b_idle(): Promise<void> {
+  await waitSaved(other.page);
+}

@@ -1,0 +1,87 @@
+/*
+ * itest_undo.c — scenario 6 (iundo.c, iord.c -DIORD_UNDO, imod.c as UMA, amod.c as AMX and
+ * AMY): every undo undoes only what its own action did, with real processes. UPA activates
+ * USM.aux twice (the second is refused), USM activates the periodic schema PSC that UPA runs
+ * (refused by ORD; both activations carry the number 1), both supervisors use the event flow
+ * AMX:0 =* AMY:0, and UPA (twice) and USM (once, in between) change AMX's priority. From the
+ * launcher's output, the CSV logs and the modules' traces: nobody's undo ends what someone else
+ * still uses.
+ */
+#define _GNU_SOURCE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "itest_scenarios.h"
+#include "itest_support.h"
+
+#define MS 1000000LL
+
+/* mono_ns of the last CSV record whose line contains text, or -1 */
+static long long csv_last_time(const char *csv, const char *text) {
+    long long last = -1, t;
+    const char *at = csv;
+    while ((t = csv_time_of(csv, at, text, &at)) >= 0) last = t;
+    return last;
+}
+
+static int count_of(const char *s, const char *text) {
+    int n = 0;
+    for (const char *p = s ? strstr(s, text) : NULL; p; p = strstr(p + 1, text)) n++;
+    return n;
+}
+
+void scenario_undo_own(const char *root, const char *bin, const char *launcher) {
+    Scenario s;
+    if (!scenario_begin(&s, root, "undo")) return;
+    const char *const names[] = {"undo/ORD", "UPA", "USM", "UMA", "AMX", "AMY", NULL};
+    check(scenario_launch(&s, bin, launcher, "UPA.top()", "0.6", names),
+          "undo: architecture ran and stopped cleanly");
+    char *txt = slurp(s.launch);
+    char *upa = read_csv_log(&s, "UPA"), *usm = read_csv_log(&s, "USM"), *amy = read_csv_log(&s, "AMY");
+
+    /* activate supervisor: K2's activation refused, and its undo leaves K1's run */
+    check(txt && strstr(txt, "[USM] refused: function aux already running") &&
+              strstr(txt, "of USM.aux refused: its undo stops nothing"),
+          "activate supervisor: USM refused K2's activation of aux and UPA learned it");
+    long long k1_end = csv_time_of(upa, NULL, "rule top.K1 inactive", NULL);
+    long long k2_end = csv_time_of(upa, NULL, "rule top.K2 inactive", NULL);
+    long long aux_end = csv_time_of(usm, NULL, "function aux stopped", NULL);
+    check(k1_end > 0 && k2_end > 0 && aux_end >= k1_end && count_of(usm, "function aux stopped") == 1,
+          "activate supervisor: aux ran until K1's undo (the caller whose activation it runs), not K2's");
+
+    /* periodic schema: USM's refused PSC (its #1) undone on ORD:1 leaves UPA's PSC (#1 too) */
+    Trace uma;
+    int have_uma = read_trace(s.out, "UMA", &uma) == 0;
+    check(txt && strstr(txt, "[ORD] ignored: deactivate PSC (not this activation)") && have_uma &&
+              uma.nstart >= 10,
+          "periodic schema: ORD ignored USM's undo of its refused PSC; UPA's PSC kept running (>= 10 releases)");
+
+    /* event flow: USM's EVG undone while UPA's EVF uses AMX:0 =* AMY:0 */
+    long long a3_end = csv_time_of(usm, NULL, "rule aux.A3 inactive", NULL);
+    long long amy_last = csv_last_time(amy, ",event_received,AMX,");
+    check(usm && strstr(usm, "hold dropped (kept connected: used by 1 other supervisor(s))") && a3_end > 0 &&
+              amy_last >= a3_end + 40 * MS,
+          "event flow: USM's undo left AMX:0 =* AMY:0 connected for UPA's EVF (AMY kept receiving)");
+    check(upa && strstr(upa, "last hold dropped (disconnected)"), "event flow: UPA, its last user, disconnected it");
+
+    /* priority: P1 (UPA), A4 (USM), P2 (UPA) on AMX; P1 and A4 undone while a later change
+       stands: no request; P2's undo restores the priority from before P1 */
+    check(upa && strstr(upa, ",priority_kept,AMX,") && count_of(upa, ",module_priority,AMX,") == 3,
+          "priority: UPA changed AMX 3 times (critical, resttime, back to the one before P1), none at P1's undo");
+    check(usm && strstr(usm, ",priority_kept,AMX,") && count_of(usm, ",module_priority,AMX,") == 2,
+          "priority: USM's undo of A4 changed nothing (UPA's later change stood): start + A4 only");
+
+    /* subscription: B1's one-shot, spent, undone after B2 subscribed AMX:0 to :0 again */
+    long long b1_end = csv_time_of(usm, NULL, "rule aux.B1 inactive", NULL);
+    long long usm_last = csv_last_time(usm, "EVENT from_port=0");
+    check(usm && strstr(usm, "kept: subscription AMX:0 to :0 (made again since by another rule)") && b1_end > 0 &&
+              usm_last >= b1_end + 40 * MS,
+          "subscription: B1's undo left B2's subscription of AMX:0 (USM kept receiving AMX's events)");
+
+    if (scenario_failed(&s)) fprintf(stderr, "launcher output (undo scenario):\n%s\n", txt ? txt : "(none)");
+    free(txt);
+    free(upa);
+    free(usm);
+    free(amy);
+}

@@ -1,0 +1,111 @@
+/*
+ * iundo.c — two supervisors of the undo scenario, built twice (-DIUNDO_TOP for UPA): each
+ * undo must undo only what its own action did (docs/engines.md §4, "Undo and refusals").
+ *   UPA.top:  S1: [elapsed=10ms]  activate schema PSC()          [elapsed=450ms]
+ *             K1: [elapsed=20ms]  activate supervisor USM.aux()  [elapsed=400ms]
+ *             F1: [elapsed=40ms]  activate schema EVF()          [elapsed=250ms]
+ *             K2: [elapsed=60ms]  activate supervisor USM.aux()  [elapsed=120ms]  (refused)
+ *             P1: [elapsed=140ms] activate critical module AMX   [elapsed=220ms]
+ *             P2: [elapsed=260ms] activate resttime module AMX   [elapsed=340ms]
+ *   USM.aux:  A1: [elapsed=5ms]   activate schema EVA()          [ ]  (starts AMX)
+ *             A2: [elapsed=5ms]   activate schema PSC()          [ORD:1]  (refused by ORD)
+ *             A3: [elapsed=60ms]  activate schema EVG()          [elapsed=150ms]
+ *             A4: [elapsed=160ms] activate resttime module AMX   [elapsed=280ms]
+ *             B1: [elapsed=5ms]   subscribe AMX:0 => :0           [elapsed=100ms]  (spent at once)
+ *             B2: [elapsed=50ms]  subscribe AMX:0 =* :0           [elapsed=200ms]
+ *   (aux starts ~20 ms after top: AMX's claims are P1 140, A4 ~180, P2 260; undone P1 220,
+ *   A4 ~300, P2 340, 40 ms apart)
+ *   event schemas EVA { AMX }, EVF and EVG { AMX, AMY; AMX:0 =* AMY:0 }; periodic PSC { UMA }
+ *   (itables.h). Expected: K2's undo leaves K1's run of aux; USM's undo of its refused PSC
+ *   (same activation number as UPA's) leaves UPA's; EVG's undo leaves the flow that UPA's EVF
+ *   still uses; P1's and A4's undos, each with a later change standing, change no priority;
+ *   B1's undo leaves B2's subscription of the same port.
+ */
+#include <stddef.h>
+
+#include "../engine_executable.h"
+#include "itables.h"
+
+#ifdef IUNDO_TOP
+ENGINE_EXECUTABLE("UPA", 95, "engines integration test supervisor")
+#else
+ENGINE_EXECUTABLE("USM", 92, "engines integration test supervisor")
+#endif
+
+#define MS ITEST_MS
+#define ELAPSED(name, t)                                                                   \
+    static const ContractEvent name##_ev[] = {{.kind = CONTRACT_EV_ELAPSED, .time_ns = (t)}}; \
+    static const ContractClause name[] = {{1, name##_ev}};
+
+static const ContractSchemaModule evf_modules[] = {{"AMX", 0, NULL}, {"AMY", 0, NULL}};
+static const ContractEventFlow evf_flows[] = {{"AMX", 0, "AMY", 0, CONTRACT_CONTINUOUS}};
+
+#ifdef IUNDO_TOP
+ELAPSED(at10, 10 * MS)
+ELAPSED(at20, 20 * MS)
+ELAPSED(at40, 40 * MS)
+ELAPSED(at60, 60 * MS)
+ELAPSED(at120, 120 * MS)
+ELAPSED(at140, 140 * MS)
+ELAPSED(at220, 220 * MS)
+ELAPSED(at250, 250 * MS)
+ELAPSED(at260, 260 * MS)
+ELAPSED(at340, 340 * MS)
+ELAPSED(at400, 400 * MS)
+ELAPSED(at450, 450 * MS)
+static const ContractSchema EVF = {"EVF", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 2, evf_modules,
+                                   0, NULL, 0, NULL, 1, evf_flows};
+static const ContractFunctionSignature sig_aux = {"USM", "aux", 0, NULL, 0};
+static const ContractAction s1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_PSC}};
+static const ContractAction k_actions[] = {{.kind = CONTRACT_ACT_SUPERVISOR, .callee = &sig_aux}};
+static const ContractAction f1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &EVF}};
+static const ContractAction p1_actions[] = {{.kind = CONTRACT_ACT_CRITICAL_MODULE, .module = "AMX"}};
+static const ContractAction p2_actions[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AMX"}};
+static const ContractRule rules[] = {
+    {"S1", {1, at10}, 1, s1_actions, {1, at450}},
+    {"K1", {1, at20}, 1, k_actions, {1, at400}},
+    {"F1", {1, at40}, 1, f1_actions, {1, at250}},
+    {"K2", {1, at60}, 1, k_actions, {1, at120}},
+    {"P1", {1, at140}, 1, p1_actions, {1, at220}},
+    {"P2", {1, at260}, 1, p2_actions, {1, at340}}};
+static const ContractFunction functions[] = {{"top", 0, NULL, 0, 0, NULL, 0, 0, NULL, 6, rules}};
+static const ContractSupervisorVocabulary VOCABULARY = {
+    CONTRACT_VOCABULARY_VERSION, "UPA", 95, 40, 5, 70, 0, NULL, 0, NULL, 1, functions};
+#else
+ELAPSED(at5, 5 * MS)
+ELAPSED(at50, 50 * MS)
+ELAPSED(at60, 60 * MS)
+ELAPSED(at100, 100 * MS)
+ELAPSED(at200, 200 * MS)
+ELAPSED(at150, 150 * MS)
+ELAPSED(at160, 160 * MS)
+ELAPSED(at280, 280 * MS)
+static const ContractSchemaModule eva_modules[] = {{"AMX", 0, NULL}};
+static const ContractSchema EVA = {"EVA", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 1, eva_modules,
+                                   0, NULL, 0, NULL, 0, NULL};
+static const ContractSchema EVG = {"EVG", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 2, evf_modules,
+                                   0, NULL, 0, NULL, 1, evf_flows};
+static const ContractEvent ord1_ev[] = {{.kind = CONTRACT_EV_MODULE, .module = "ORD", .port = 1, .in_port = -1}};
+static const ContractClause ord1[] = {{1, ord1_ev}};
+static const ContractAction a1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &EVA}};
+static const ContractAction a2_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_PSC}};
+static const ContractAction a3_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &EVG}};
+static const ContractAction a4_actions[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AMX"}};
+static const ContractAction b1_actions[] = {
+    {.kind = CONTRACT_ACT_SUBSCRIBE, .module = "AMX", .src_port = 0, .in_port = 0, .mode = CONTRACT_ONESHOT}};
+static const ContractAction b2_actions[] = {
+    {.kind = CONTRACT_ACT_SUBSCRIBE, .module = "AMX", .src_port = 0, .in_port = 0, .mode = CONTRACT_CONTINUOUS}};
+static const ContractEventPort in_ports[] = {{0, "v", &contract_type_long, NULL}};
+static const ContractRule rules[] = {
+    {"A1", {1, at5}, 1, a1_actions, {0, NULL}},
+    {"A2", {1, at5}, 1, a2_actions, {1, ord1}},
+    {"A3", {1, at60}, 1, a3_actions, {1, at150}},
+    {"A4", {1, at160}, 1, a4_actions, {1, at280}},
+    {"B1", {1, at5}, 1, b1_actions, {1, at100}},
+    {"B2", {1, at50}, 1, b2_actions, {1, at200}}};
+static const ContractFunction functions[] = {{"aux", 0, NULL, 0, 0, NULL, 0, 0, NULL, 6, rules}};
+static const ContractSupervisorVocabulary VOCABULARY = {
+    CONTRACT_VOCABULARY_VERSION, "USM", 92, 40, 5, 70, 1, in_ports, 0, NULL, 1, functions};
+#endif
+
+int ModuleMain(int argc, const char *argv[]) { return contract_supervisor_main(&VOCABULARY, argc, argv); }

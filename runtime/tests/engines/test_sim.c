@@ -1,0 +1,165 @@
+/*
+ * test_sim.c — the simulator's harness (runtime/sim/, docs/simulation.md) driven through its
+ * line protocol with the report's hand-written tables: the §4.7 story as JSON records, a failed
+ * expectation with its expected and actual state, determinism (the same lines twice give the
+ * same bytes), an overrun that makes ORD emit ORD:0, and hostile lines answered by error records.
+ */
+#define _POSIX_C_SOURCE 200809L
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "harness.h"
+#include "report_tables.h"
+#include "sim_protocol.h"
+
+static const ContractSupervisorVocabulary *const SUPS[] = {&SUP_VOCAB, &GLB_VOCAB};
+
+/** Runs `lines` (one step per string, NULL-terminated) and returns the records (malloc'd). */
+static char *run_lines(const char *const *lines) {
+    char *buf = NULL;
+    size_t len = 0;
+    FILE *out = open_memstream(&buf, &len);
+    if (!out) return NULL;
+    char err[256] = "";
+    SimSession *s = sim_session_create(SUPS, 2, &REPORT_ORD_VOCAB, out, -1, err, sizeof err);
+    CHECK(s != NULL);
+    if (s) {
+        for (int i = 0; lines[i]; i++) {
+            char *copy = strdup(lines[i]);
+            if (!copy) break;
+            int end = sim_session_line(s, copy);
+            free(copy);
+            if (end) break;
+        }
+        sim_session_destroy(s);
+    }
+    fclose(out);
+    return buf;
+}
+
+/** The n-th record (0-based) of the output, in a static buffer ("" when absent). */
+static const char *record(const char *out, int n) {
+    static char line[65536];
+    line[0] = '\0';
+    const char *p = out;
+    for (int i = 0; p && i < n; i++) {
+        p = strchr(p, '\n');
+        if (p) p++;
+    }
+    if (!p || !*p) return line;
+    const char *e = strchr(p, '\n');
+    size_t l = e ? (size_t)(e - p) : strlen(p);
+    if (l >= sizeof line) l = sizeof line - 1;
+    memcpy(line, p, l);
+    line[l] = '\0';
+    return line;
+}
+
+#define HAS(rec, s) CHECK(strstr((rec), (s)) != NULL)
+
+static const char *const STORY[] = {
+    "0\t1\tstart\tSUP\taction\tconsigne={1.0,2.0,3.0}",
+    "1000000\t2\texpect-rule\tSUP\taction\tFIRST\t1",
+    "300000000\t3\tevent\tMAA\t2\t\"disconnected\"",
+    "300000000\t4\texpect-rule\tSUP\taction\tSECOND\t1",
+    "300000000\t5\texpect-schema\tschemaCommande1\t1",
+    "1000000000\t6\tevent\tMSC\t1\t",
+    "1000000000\t7\texpect-rule\tSUP\taction\tFOURTH\t1",
+    "1000000000\t8\texpect-rule\tSUP\taction\tSECOND\t1",
+    "5000000000\t0\tend",
+    NULL};
+
+void test_sim_report_story_records(void) {
+    report_log = NULL;
+    testit_result = 1;
+    char *out = run_lines(STORY);
+    CHECK(out != NULL);
+    if (!out) return;
+    HAS(record(out, 0), "\"line\":1,\"timeNs\":0,\"verb\":\"start\",\"ok\":true");
+    HAS(record(out, 1), "\"rule\":\"FIRST\",\"active\":true,\"cause\":\"elapsed=1000000ns\"");
+    HAS(record(out, 1), "\"schemas\":[\"schemaReceptionMessage\"]");
+    HAS(record(out, 2), "\"delivered\":1");
+    HAS(record(out, 2), "\"rule\":\"SECOND\",\"active\":true,\"cause\":\"MAA:2 value=\\\"disconnected\\\"\"");
+    HAS(record(out, 2), "activate schema schemaCommande1");
+    HAS(record(out, 4), "\"ok\":true");
+    HAS(record(out, 4), "\"schemas\":[\"schemaCommande1\"]");
+    HAS(record(out, 5), "\"rule\":\"FOURTH\",\"active\":true,\"cause\":\"endof(SECOND)\"");
+    HAS(record(out, 6), "\"ok\":true");
+    /* a wrong expectation: SECOND ended at 1 s */
+    HAS(record(out, 7), "\"line\":8,\"timeNs\":1000000000,\"verb\":\"expect-rule\",\"ok\":false");
+    HAS(record(out, 7), "\"expected\":\"rule SUP.action.SECOND active\",\"actual\":\"inactive\"");
+    /* schemaCommande2's cycles of 1 s run to the end: releases in the end record's log */
+    HAS(record(out, 8), "\"end\":true");
+    HAS(record(out, 8), "release MSB (schemaCommande2)");
+    free(out);
+}
+
+/** Removes the end record's `,"wallNs":N` (the only figure of the host's clock). */
+static void strip_wall(char *s) {
+    char *w = s ? strstr(s, ",\"wallNs\":") : NULL;
+    if (!w) return;
+    char *e = w + 10;
+    while (*e >= '0' && *e <= '9') e++;
+    memmove(w, e, strlen(e) + 1);
+}
+
+void test_sim_same_lines_same_bytes(void) {
+    report_log = NULL;
+    testit_result = 1;
+    char *a = run_lines(STORY);
+    char *b = run_lines(STORY);
+    strip_wall(a);
+    strip_wall(b);
+    CHECK(a && b && strcmp(a, b) == 0);
+    CHECK(a && strstr(a, "\"end\":true,\"eventsProcessed\":") != NULL);
+    free(a);
+    free(b);
+}
+
+void test_sim_overrun_makes_ord_emit_deadline_miss(void) {
+    report_log = NULL;
+    testit_result = 1;
+    static const char *const lines[] = {
+        "0\t1\tstart\tSUP\taction\tconsigne={1.0,2.0,3.0}",
+        "0\t2\texec\tMSC\t1500000000\tonce",
+        "300000000\t3\tevent\tMAA\t2\t\"disconnected\"",
+        "2000000000\t0\tend",
+        NULL};
+    char *out = run_lines(lines);
+    CHECK(out != NULL);
+    if (!out) return;
+    /* schemaCommande1 (period and critical delay 1 s) released at 300 ms; MSC takes 1.5 s */
+    HAS(record(out, 3), "ORD:0 \\\"schemaCommande1\\\" (deadline miss)");
+    HAS(record(out, 3), "\"timeNs\":1300000000,\"who\":\"ORD\",\"what\":\"ORD:0");
+    free(out);
+}
+
+void test_sim_hostile_lines_get_error_records(void) {
+    report_log = NULL;
+    static const char *const lines[] = {
+        "garbage",
+        "10\t1\tfrobnicate\tx",
+        "20\t2\tstart\tNOPE\tf\t",
+        "30\t3\tstart\tSUP\taction\tconsigne={1.0,",
+        "40\t4\tevent\tMAA\t99999999999\tx",
+        "50\t5\texpect-rule\tSUP\taction",
+        "5\t6\texpect-schema\tS\t1",
+        "60\t7\texpect-local\tSUP\taction\ttemp_consigne\t{1.0,2.0,3.0}",
+        "70\t0\tend",
+        NULL};
+    char *out = run_lines(lines);
+    CHECK(out != NULL);
+    if (!out) return;
+    HAS(record(out, 0), "\"ok\":false,\"error\":\"expected TIME_NS<TAB>LINE<TAB>VERB...\"");
+    HAS(record(out, 1), "unknown verb 'frobnicate'");
+    HAS(record(out, 2), "no supervisor NOPE");
+    HAS(record(out, 3), "\"line\":3,");
+    HAS(record(out, 3), "cannot read a TypeA for parameter 'consigne'");
+    HAS(record(out, 4), "bad port");
+    HAS(record(out, 5), "expect-rule takes 4 arguments");
+    HAS(record(out, 6), "is before the simulation's");
+    HAS(record(out, 7), "\"actual\":\"SUP.action is not running (no local temp_consigne)\"");
+    HAS(record(out, 8), "\"end\":true");
+    free(out);
+}

@@ -1,0 +1,103 @@
+#!/usr/bin/env bash
+# Runs the CLI smoke test and the language and codegen tests on other Node versions than the one
+# that builds the project (README.md "Requirements": Node 20, 22 and 24 are supported).
+#   bash scripts/test-node-versions.sh            # Node 22 and 24
+#   NODE_VERSIONS="24" bash scripts/test-node-versions.sh
+# Each Node is installed once from the npm registry (the `node-linux-<arch>` package, a plain
+# binary; nothing is added to package.json) into $NODE_VERSIONS_DIR (default
+# ~/.cache/contract-studio/node). Needs a set-up checkout (scripts/setup.sh: dist/ built).
+# Not part of `make test` (several minutes): `make test-node-versions`.
+set -euo pipefail
+
+ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
+VERSIONS="${NODE_VERSIONS:-22 24}"
+CACHE="${NODE_VERSIONS_DIR:-$HOME/.cache/contract-studio/node}"
+case "$(uname -m)" in
+    x86_64) ARCH=x64 ;;
+    aarch64 | arm64) ARCH=arm64 ;;
+    *) echo "test-node-versions: no node-linux package for $(uname -m)" >&2; exit 2 ;;
+esac
+CLI="$ROOT/packages/cli/bin/contract.js"
+for dist in language codegen cli; do
+    if [ ! -d "$ROOT/packages/$dist/dist" ]; then
+        echo "test-node-versions: packages/$dist/dist is missing: run scripts/setup.sh (or npm run build) first" >&2
+        exit 2
+    fi
+done
+
+SCRATCH="$(mktemp -d "${TMPDIR:-/tmp}/contract-node-versions-XXXXXX")"
+trap 'rm -rf "$SCRATCH"' EXIT
+FAILED=()
+SUMMARY=()
+
+now() { date +%s.%N; }
+elapsed() { awk -v a="$1" -v b="$(now)" 'BEGIN { printf "%.1f", b - a }'; }
+
+# step NAME COMMAND...: runs a step, records its time and result.
+step() {
+    local name="$1"; shift
+    local start; start="$(now)"
+    echo "== $name"
+    if "$@"; then
+        SUMMARY+=("ok    $(elapsed "$start") s  $name")
+    else
+        SUMMARY+=("FAIL  $(elapsed "$start") s  $name")
+        FAILED+=("$name")
+    fi
+}
+
+install_node() {
+    local v="$1" dir="$CACHE/node$1"
+    local bin="$dir/node_modules/node-linux-$ARCH/bin/node"
+    if [ ! -x "$bin" ]; then
+        mkdir -p "$dir"
+        npm install --no-save --no-audit --no-fund --loglevel=error --prefix "$dir" "node-linux-$ARCH@$v" >&2
+    fi
+    echo "$bin"
+}
+
+# The CLI on both examples: check (0 errors), then generate into copies outside the repository:
+# regenerating the committed src-gen writes nothing, and a fresh generate gives the same bytes
+# (docs/ci.md: src-gen is committed and must not depend on the machine).
+cli_smoke() {
+    local node="$1" work="$SCRATCH/$2"
+    for example in tutorial mobile-robot; do
+        "$node" "$CLI" check "$ROOT/examples/$example" 2>&1 | tail -n 1 | tee "$work.check"
+        grep -q '^0 errors' "$work.check" || return 1
+        rm -rf "$work/$example" "$work/fresh-$example"
+        mkdir -p "$work/fresh-$example"
+        cp -r "$ROOT/examples/$example" "$work/$example"
+        "$node" "$CLI" generate "$work/$example" 2>&1 | tail -n 1 | tee "$work.gen"
+        grep -q ': 0 created, 0 updated, [0-9]* kept, 0 orphaned, 0 error(s)' "$work.gen" || return 1
+        cp "$ROOT/examples/$example"/*.contract "$work/fresh-$example/"
+        "$node" "$CLI" generate "$work/fresh-$example" > /dev/null 2>&1 || return 1
+        # user code lives in the committed tree only: compare the Makefiles, which hold none
+        (cd "$work/fresh-$example/src-gen" && find . -name Makefile -o -name 'makecontrol*') | sort | while read -r f; do
+            cmp "$work/fresh-$example/src-gen/$f" "$ROOT/examples/$example/src-gen/$f" || exit 1
+        done || return 1
+    done
+}
+
+vitest_in() {
+    local node="$1" pkg="$2"
+    (cd "$ROOT/packages/$pkg" && "$node" "$ROOT/node_modules/vitest/vitest.mjs" run --reporter=dot)
+}
+
+TOTAL_START="$(now)"
+for v in $VERSIONS; do
+    start="$(now)"
+    NODE_BIN="$(install_node "$v")"
+    SUMMARY+=("ok    $(elapsed "$start") s  node $v: install (cached after the first time)")
+    echo "== node $v: $("$NODE_BIN" --version) ($NODE_BIN)"
+    step "node $v: CLI check + generate (tutorial, mobile-robot)" cli_smoke "$NODE_BIN" "node$v"
+    step "node $v: language tests" vitest_in "$NODE_BIN" language
+    step "node $v: codegen tests" vitest_in "$NODE_BIN" codegen
+done
+
+echo
+printf '%s\n' "${SUMMARY[@]}"
+echo "total $(elapsed "$TOTAL_START") s"
+if [ "${#FAILED[@]}" -gt 0 ]; then
+    echo "test-node-versions: ${#FAILED[@]} step(s) failed" >&2
+    exit 1
+fi
