@@ -22,14 +22,15 @@ import { createRequire } from 'node:module';
 import type Docker from 'dockerode';
 import type { ContainerCreateOptions } from 'dockerode';
 import type { LimitHit } from '../limits.js';
-import { memoryBytes, workDiskBytes } from '../limits.js';
+import { memoryBytes, REALTIME_BOUNDS, workDiskBytes } from '../limits.js';
+import { dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 import { readTar } from '../util/tar-reader.js';
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
-import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 
 export const DOCKER_IMAGE = 'contract-gcc';
@@ -195,6 +196,11 @@ export class DockerSandbox implements Sandbox {
     return v;
   }
 
+  async realtimeSupport(): Promise<RealtimeSupport> {
+    return dockerRealtimeSupport(this.docker, REALTIME_BOUNDS);
+  }
+
+
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
     await this.sweep();
     const jobId = cmd.jobId ?? cmd.name;
@@ -226,6 +232,8 @@ export class DockerSandbox implements Sandbox {
       this.syncedTar.set(volume, digest);
     }
     const bytes = memoryBytes(cmd.limits);
+    const realtime = cmd.realtime ? await dockerRealtimeSupport(this.docker, REALTIME_BOUNDS) : null;
+    if (realtime && !realtime.ok) throw new Error(`real-time mode refused: ${realtime.reason}`);
     const container = await this.docker.createContainer({
       name: `contract-${cmd.name}`,
       Image: this.image,
@@ -250,6 +258,7 @@ export class DockerSandbox implements Sandbox {
         MemorySwap: bytes,
         PidsLimit: cmd.limits.processes,
         Init: true,
+        ...(realtime?.ok ? dockerRealtimeHostConfig(REALTIME_BOUNDS, realtime.cgroupBudget) : {}),
       },
     });
     const removeContainer = async (): Promise<void> => {
@@ -274,6 +283,7 @@ export class DockerSandbox implements Sandbox {
         time: 'service-timer',
         output: 'service-counter',
         disk: 'docker-tmpfs-volume',
+        ...(realtime?.ok ? { realtime: realtime.detail } : {}),
       };
       let limitHit: LimitHit | null = null;
       const diskHit = async (): Promise<LimitHit | null> => {

@@ -91,6 +91,7 @@ export interface RunRequest {
     start?: string;
     duration?: number;
     cpus?: string;
+    realtime?: boolean;
 }
 
 /**
@@ -149,6 +150,7 @@ export async function runJob(
                 ...(request.start !== undefined ? { start: request.start } : {}),
                 ...(request.duration !== undefined ? { duration: request.duration } : {}),
                 ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
+                ...(request.realtime ? { realtime: true } : {}),
             });
         } catch (e) {
             if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };
