@@ -47,7 +47,7 @@ export async function dockerRealtimeSupport(docker: Docker, bounds: RealtimeBoun
         ok: false,
         reason:
           'the Docker daemon gives its containers no real-time budget (its cgroup\'s cpu.rt_runtime_us is 0): ' +
-          'start dockerd with --cpu-rt-runtime=950000 (scripts/docker-up.sh does)',
+          `start dockerd with --cpu-rt-runtime=<µs per second> (at least ${bounds.cpuRuntimeUs * (1_000_000 / bounds.cpuPeriodUs)}: the budget all its containers share)`,
       };
     }
   }
