@@ -23,7 +23,7 @@ import type Docker from 'dockerode';
 import type { ContainerCreateOptions } from 'dockerode';
 import type { LimitHit } from '../limits.js';
 import { memoryBytes, REALTIME_BOUNDS, workDiskBytes } from '../limits.js';
-import { dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
+import { dockerRealtimeError, dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
 import type { DirListing } from '../pipeline/artifacts.js';
@@ -260,6 +260,8 @@ export class DockerSandbox implements Sandbox {
         Init: true,
         ...(realtime?.ok ? dockerRealtimeHostConfig(REALTIME_BOUNDS, realtime.cgroupBudget) : {}),
       },
+    }).catch((e: Error) => {
+      throw realtime ? dockerRealtimeError(e, REALTIME_BOUNDS) : e;
     });
     const removeContainer = async (): Promise<void> => {
       await container.remove({ force: true }).catch(() => {});
@@ -327,7 +329,7 @@ export class DockerSandbox implements Sandbox {
       return { stdout, stderr, mechanisms, done, kill, noteLine } as SandboxProcess;
     } catch (e) {
       await removeContainer();
-      throw e;
+      throw realtime ? dockerRealtimeError(e as Error, REALTIME_BOUNDS) : e;
     }
   }
 

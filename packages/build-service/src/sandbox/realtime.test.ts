@@ -2,7 +2,11 @@
 import { describe, expect, test } from 'vitest';
 import { REALTIME_BOUNDS } from '../limits.js';
 import { describeRealtime, planRealtime, readRealtimeFacts, realtimePrefix, type RealtimeFacts } from './realtime.js';
-import { dockerRealtimeHostConfig } from './docker-realtime.js';
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import type Docker from 'dockerode';
+import { dockerRealtimeError, dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 
 /** A root service on a cgroup v1 host with CONFIG_RT_GROUP_SCHED (what most root services see). */
 const rootV1: RealtimeFacts = {
@@ -81,6 +85,36 @@ describe('what the sandbox runs', () => {
       CpuRtRuntime: 40000,
     });
     expect(dockerRealtimeHostConfig(REALTIME_BOUNDS, false)).not.toHaveProperty('CpuRtRuntime');
+  });
+
+  test('docker: what the engine can grant, read from its cgroup version and its containers\' parent budget', async () => {
+    const dir = mkdtempSync(join(tmpdir(), 'contract-rt-docker-'));
+    const engine = (version: string) => ({ info: async () => ({ CgroupVersion: version }) }) as unknown as Docker;
+    const saved = process.env.DOCKER_HOST;
+    delete process.env.DOCKER_HOST;
+    try {
+      const parent = join(dir, 'cpu.rt_runtime_us');
+      writeFileSync(parent, '0\n');
+      expect(await dockerRealtimeSupport(engine('1'), REALTIME_BOUNDS, parent)).toEqual({
+        ok: false,
+        reason: expect.stringMatching(/no real-time budget \(its cgroup's cpu\.rt_runtime_us is 0\): start dockerd with --cpu-rt-runtime=<µs per second> \(at least 400000/),
+      });
+      writeFileSync(parent, '400000\n');
+      expect(await dockerRealtimeSupport(engine('1'), REALTIME_BOUNDS, parent)).toMatchObject({ ok: true, cgroupBudget: true });
+      expect(await dockerRealtimeSupport(engine('1'), REALTIME_BOUNDS, join(dir, 'absent'))).toMatchObject({ ok: true, cgroupBudget: true });
+      expect(await dockerRealtimeSupport(engine('2'), REALTIME_BOUNDS, parent)).toMatchObject({ ok: true, cgroupBudget: false, detail: expect.stringMatching(/global-rt-throttling/) });
+    } finally {
+      if (saved !== undefined) process.env.DOCKER_HOST = saved;
+      rmSync(dir, { recursive: true, force: true });
+    }
+  });
+
+  test('docker: an engine error of a real-time container says what the engine needs', () => {
+    const e = dockerRealtimeError(new Error('(HTTP code 500) server error - failed to write 40000 to cpu.rt_runtime_us: invalid argument\nmore'), REALTIME_BOUNDS);
+    expect(e.message).toBe(
+      'real-time mode refused by the Docker engine: failed to write 40000 to cpu.rt_runtime_us: invalid argument — it needs a real-time budget for its containers ' +
+        '(dockerd --cpu-rt-runtime=400000 or more) and may have to raise RLIMIT_RTPRIO (CAP_SYS_RESOURCE); docs/sandbox.md "Real-time mode"',
+    );
   });
 
   test('the bounds leave room: two real-time jobs fit under the kernel default budget (95 %)', () => {
