@@ -56,7 +56,7 @@ export async function dockerRealtimeSupport(docker: Docker, bounds: RealtimeBoun
 
 /** An engine error while creating or starting a real-time container, with what the engine needs. */
 export function dockerRealtimeError(e: Error, bounds: RealtimeBounds): Error {
-  const cause = e.message.split('\n')[0]!.replace(/^\(HTTP code \d+\)[^-]*-\s*/, '');
+  const cause = e.message.split('\n')[0]!.replace(/^\(HTTP code \d+\)[^-]*-\s*/, '').trim();
   return new Error(
     `real-time mode refused by the Docker engine: ${cause} — it needs a real-time budget for its containers ` +
       `(dockerd --cpu-rt-runtime=${bounds.cpuRuntimeUs * (1_000_000 / bounds.cpuPeriodUs)} or more) and may have to raise RLIMIT_RTPRIO (CAP_SYS_RESOURCE); docs/sandbox.md "Real-time mode"`,
