@@ -49,10 +49,12 @@ async function hostRun(cpu: number): Promise<OrdStats> {
     const stats = join(work, 'ord.json');
     const child = spawn(join(RUNTIME, 'build', 'contract-launch'), launchArgs(BENCH_BIN, work, cpu), {
       env: { ...process.env, CONTRACT_ORD_STATS: stats, CONTRACT_LOG_DIR: join(work, 'logs') },
-      stdio: ['ignore', 'ignore', 'inherit'],
+      stdio: ['ignore', 'ignore', 'pipe'],
     });
+    let err = '';
+    child.stderr!.on('data', (d: Buffer) => (err += String(d)));
     const code = await new Promise<number | null>((r) => child.on('exit', r));
-    if (code !== 0) throw new Error(`host run: contract-launch exit ${code}`);
+    if (code !== 0) throw new Error(`host run: contract-launch exit ${code}\n${err.slice(-2000)}`);
     return readStats(stats);
   } finally {
     rmSync(work, { recursive: true, force: true });
