@@ -17,6 +17,7 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -524,6 +525,13 @@ int main(int argc, char *argv[])
         c->out_fd = -1;
         derive_name(c);
         if (spawn(c, &oldmask) != 0) { n_children--; stop_all(sfd); clean_run_dir(run_dir); return 2; }
+    }
+    /* A run may start at SCHED_FIFO (the build service's real-time mode, docs/sandbox.md "Real-time
+     * mode"): the modules have it from us now; the launcher only forwards their output, and runs
+     * SCHED_OTHER as it does on the host, never above the architecture. */
+    if ((sched_getscheduler(0) & ~SCHED_RESET_ON_FORK) == SCHED_FIFO) {
+        struct sched_param other = {0};
+        if (sched_setscheduler(0, SCHED_OTHER, &other) != 0) say("could not leave SCHED_FIFO: %s", strerror(errno));
     }
     int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), 0, 1);
     int not_ready = 0;
