@@ -43,7 +43,7 @@ async function runJob(body: Record<string, unknown>, onEvent?: (e: JobEvent) => 
 }
 
 const withIncludes = (files: Record<string, string>) =>
-  withRegion(files, MAA_MODULE, 'protect_additional_import_MAA', '#include <sched.h>\n#include <stdio.h>', true);
+  withRegion(files, MAA_MODULE, 'protect_additional_import_MAA', '#include <sched.h>\n#include <stdio.h>\n#include <stdlib.h>\n#include <string.h>', true);
 
 /**
  * A host process pinned to `cpu` that sleeps 10 ms again and again and says when it woke more than
@@ -78,7 +78,9 @@ describe.skipIf(!support.ok)('real-time mode (bwrap)', () => {
       withIncludes(await tutorialFiles()),
       MAA_MODULE,
       'protect_init_MAA',
-      '    { struct sched_param sp; sched_getparam(0, &sp); printf("policy=%s priority=%d\\n", (sched_getscheduler(0) & ~0x40000000 /* SCHED_RESET_ON_FORK */) == SCHED_FIFO ? "SCHED_FIFO" : "other", sp.sched_priority); fflush(stdout); }',
+      '    { struct sched_param sp; sched_getparam(0, &sp); printf("policy=%s priority=%d\\n", (sched_getscheduler(0) & ~0x40000000 /* SCHED_RESET_ON_FORK */) == SCHED_FIFO ? "SCHED_FIFO" : "other", sp.sched_priority); fflush(stdout); }\n' +
+        // locked memory (mlockall) must not make later allocations fail under the sandbox's RLIMIT_MEMLOCK
+        '    { char *big = malloc((size_t)64 << 20); if (big) memset(big, 1, (size_t)64 << 20); printf("64 MiB %s\\n", big ? "allocated" : "refused"); fflush(stdout); free(big); }',
       true,
     );
     const { job, lines } = await runJob({ action: 'run', duration: 2, realtime: true, project: { files } });
@@ -87,6 +89,7 @@ describe.skipIf(!support.ok)('real-time mode (bwrap)', () => {
     // the tutorial gives MAA priority 30
     expect(run.filter((l) => l.source === 'MAA' && l.line.startsWith('policy='))).toMatchObject([{ line: 'policy=SCHED_FIFO priority=30' }]);
     expect(run.filter((l) => /SCHED_FIFO not permitted/.test(l.line))).toEqual([]);
+    expect(run.filter((l) => l.source === 'MAA' && l.line.startsWith('64 MiB'))).toMatchObject([{ line: '64 MiB allocated' }]);
     expect(job.result.mechanisms.realtime).toMatch(/^SCHED_FIFO up to 99 \(/);
     expect(lines.some((l) => l.step === 'prepare' && /^real-time mode: SCHED_FIFO up to 99/.test(l.line))).toBe(true);
   });
