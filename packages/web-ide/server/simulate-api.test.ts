@@ -2,10 +2,11 @@
  * POST /api/simulate over HTTP on a copy of examples/tutorial: the real server, the real
  * simulator (native harness built with gcc on the real engine cores). The §4.7 story step by step,
  * a scenario file of the workspace, diagnostics instead of a run, the session token, and hostile
- * bodies answered with 4xx, never a crash.
+ * bodies answered with 4xx, never a crash. The simulators go in `sim/` of the build cache
+ * (`$CONTRACT_CACHE_DIR` here: a folder of the test).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdtempSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
+import { cpSync, mkdtempSync, readdirSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
@@ -14,14 +15,18 @@ import type { SimulateResponse } from './api-types.js';
 const TUTORIAL = resolve(__dirname, '../../../examples/tutorial');
 let base: string;
 let ide: IdeServer;
+const savedCacheDir = process.env.CONTRACT_CACHE_DIR;
 
 beforeAll(async () => {
   base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-simulate-')));
+  process.env.CONTRACT_CACHE_DIR = join(base, 'cache');
   cpSync(TUTORIAL, join(base, 'tutorial'), { recursive: true });
   symlinkSync('/etc/passwd', join(base, 'tutorial', 'scenarios', 'evil.scenario'));
   ide = await startIdeServer({ workspace: join(base, 'tutorial'), port: 0, buildService: false, distDir: join(base, 'no-dist') });
 }, 60_000);
 afterAll(async () => {
+  if (savedCacheDir === undefined) delete process.env.CONTRACT_CACHE_DIR;
+  else process.env.CONTRACT_CACHE_DIR = savedCacheDir;
   await ide?.close();
   rmSync(base, { recursive: true, force: true });
 });
@@ -63,6 +68,10 @@ describe('POST /api/simulate', () => {
     expect(ev.actions.length).toBeGreaterThan(0);
     expect(r2.ms).toBeGreaterThan(0);
   }, 120_000);
+
+  it('keeps the simulator in sim/ of the build cache ($CONTRACT_CACHE_DIR), as contract simulate does', () => {
+    expect(readdirSync(join(base, 'cache', 'sim')).filter((n) => n.startsWith('sim-'))).toHaveLength(1);
+  });
 
   it('runs a scenario file of the workspace and reports its expectations', async () => {
     const { status, json } = await post({ path: 'scenarios/commutation.scenario' });
