@@ -82,6 +82,9 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             // the option
             expect(await runCli([...args, '--cache-dir', join(base, 'option')], capture(REPO))).toBe(0);
             expect(harnesses(join(base, 'option'))).toHaveLength(1);
+            const shown = capture(REPO);
+            expect(await runCli(['cache', '--cache-dir', join(base, 'option')], shown)).toBe(0);
+            expect(shown.stderr).toContain('0 project work tree(s), 1 simulator(s)');
             // the environment variable of contract build
             process.env.CONTRACT_CACHE_DIR = join(base, 'env');
             expect(await runCli(args, capture(REPO))).toBe(0);
