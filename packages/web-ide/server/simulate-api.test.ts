@@ -6,7 +6,7 @@
  * (`$CONTRACT_CACHE_DIR` here: a folder of the test).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdtempSync, readdirSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
@@ -115,4 +115,29 @@ describe('POST /api/simulate', () => {
     expect(codes.every((c) => c === 200 || c === 429)).toBe(true);
     expect(codes.filter((c) => c === 429).length).toBeGreaterThan(0);
   }, 60_000);
+});
+
+describe('POST /api/simulate with a build cache it cannot trust', () => {
+  it('simulates in a private temporary cache, never in the refused folder', async () => {
+    const open = join(base, 'open-cache');
+    mkdirSync(open);
+    chmodSync(open, 0o777);
+    const saved = process.env.CONTRACT_CACHE_DIR;
+    process.env.CONTRACT_CACHE_DIR = open;
+    const other = await startIdeServer({ workspace: join(base, 'tutorial'), port: 0, buildService: false, distDir: join(base, 'no-dist') });
+    try {
+      const res = await fetch(`${other.url}/api/simulate`, {
+        method: 'POST',
+        headers: { 'content-type': 'application/json', 'x-contract-token': other.token },
+        body: JSON.stringify({ scenario: 'until 1ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\n' }),
+      });
+      const json = (await res.json()) as SimulateResponse;
+      expect(res.status, JSON.stringify(json)).toBe(200);
+      expect(json.passed).toBe(true);
+      expect(existsSync(join(open, 'sim'))).toBe(false);
+    } finally {
+      process.env.CONTRACT_CACHE_DIR = saved;
+      await other.close();
+    }
+  }, 120_000);
 });

@@ -14,7 +14,7 @@
  * simulation runs at a time (at most 8 wait, then 429), each is bounded in wall time, and the
  * answer in size.
  */
-import { mkdtempSync } from 'node:fs';
+import { mkdtempSync, rmSync } from 'node:fs';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -40,6 +40,8 @@ export class SimulateApi {
   private waiting = 0;
   /** The build cache root the simulators go under (chosen on the first simulation). */
   private cacheRoot: string | undefined;
+  /** The private temporary cache used instead of a refused one: removed by close(). */
+  private privateCache: string | undefined;
 
   constructor(private readonly paths: WorkspacePaths, private readonly log: (line: string) => void = (l) => process.stderr.write(`${l}\n`)) {}
 
@@ -48,10 +50,16 @@ export class SimulateApi {
       const cache = sim.simulatorCacheDir(undefined);
       if ('error' in cache) {
         this.log(`simulator cache: ${cache.error}; using a private temporary cache instead`);
-        this.cacheRoot = mkdtempSync(join(tmpdir(), 'contract-ide-sim-'));
+        this.cacheRoot = this.privateCache = mkdtempSync(join(tmpdir(), 'contract-ide-sim-'));
       } else this.cacheRoot = cache.root.dir;
     }
     return this.cacheRoot;
+  }
+
+  /** Removes the private temporary cache, if one was made (the server is closing). */
+  close(): void {
+    if (this.privateCache) rmSync(this.privateCache, { recursive: true, force: true });
+    this.privateCache = undefined;
   }
 
   async handle(req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
