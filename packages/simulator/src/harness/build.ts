@@ -67,32 +67,31 @@ function run(cmd: string, args: string[], cwd: string): Promise<{ code: number; 
 }
 
 /** The harness objects of the runtime build, made when missing or out of date. */
-async function harnessObjects(runtimeDir: string, cc: string, onWait: (what: string) => void): Promise<{ lib: string; main: string } | string> {
+async function harnessObjects(runtimeDir: string, cc: string): Promise<{ lib: string; main: string } | string> {
     const lib = join(runtimeDir, 'build', 'sim', 'libcontractsim.a');
     const main = join(runtimeDir, 'build', 'sim', 'sim_main.o');
     if (existsSync(join(runtimeDir, 'sim', 'sim.mk'))) {
         // up to date in a few ms; an installed runtime without sources keeps what it has
-        const lock = await makeLock(runtimeDir, onWait);
-        try {
-            const made = await run('make', ['-s', '-C', runtimeDir, 'sim', `CC=${cc}`], runtimeDir);
-            if (made.code !== 0 && !(existsSync(lib) && existsSync(main))) return `cannot build the simulator's harness in ${runtimeDir}:\n${made.output}`;
-        } finally {
-            lock?.release();
-        }
+        const make = ['make', '-s', '-C', runtimeDir, 'sim', `CC=${cc}`];
+        const lock = makeLockFile(runtimeDir);
+        // flock(1) runs make with the lock held: no process more than make itself on the warm path
+        let made = lock ? await run('flock', ['-x', lock, ...make], runtimeDir) : undefined;
+        if (!made || made.code === -1) made = await run(make[0]!, make.slice(1), runtimeDir); // no flock(1): make alone
+        if (made.code !== 0 && !(existsSync(lib) && existsSync(main))) return `cannot build the simulator's harness in ${runtimeDir}:\n${made.output}`;
     }
     if (!existsSync(lib) || !existsSync(main)) return `no simulator harness in ${runtimeDir}/build/sim (run make -C ${runtimeDir} sim)`;
     return { lib, main };
 }
 
 /**
- * The lock of `make -C runtime sim` (`<runtime>/build/sim.lock`); none when the runtime folder is
- * not writable (an installed runtime: make builds nothing there either).
+ * The lock file of `make -C runtime sim` (`<runtime>/build/sim.lock`); none when the runtime folder
+ * is not writable (an installed runtime: make builds nothing there either).
  */
-async function makeLock(runtimeDir: string, onWait: (what: string) => void): Promise<ProjectLock | undefined> {
+function makeLockFile(runtimeDir: string): string | undefined {
     const dir = join(runtimeDir, 'build');
     try {
         mkdirSync(dir, { recursive: true });
-        return await acquireProjectLock(join(dir, 'sim.lock'), (holder) => onWait(`make -C ${runtimeDir} sim (${holder})`));
+        return join(dir, 'sim.lock');
     } catch {
         return undefined;
     }
@@ -110,7 +109,7 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     const onWait = options.onWait ?? (() => undefined);
     const cache = simulatorCacheDir(options.cacheDir);
     if ('error' in cache) return { error: cache.error };
-    const objects = await harnessObjects(options.runtimeDir, cc, onWait);
+    const objects = await harnessObjects(options.runtimeDir, cc);
     if (typeof objects === 'string') return { error: objects };
     const hash = createHash('sha256');
     hash.update(await compilerIdentity(cc)).update('\0');
