@@ -12,7 +12,7 @@
 #define WIRE_REQUEST 1u
 #define WIRE_DATA 2u
 #define SEND_TIMEOUT_MS 2000
-#define LOG_FLUSH_NS 50000000LL /* flush the CSV log at most 50 ms after a record, when idle */
+#define LOG_FLUSH_NS 10000000LL /* flush the CSV log at most 10 ms after a record, when idle */
 
 typedef struct { unsigned int magic; unsigned int kind; } WirePrefix;
 typedef struct { char producer[CONTRACT_NAME_MAX]; RTIME production; int port; unsigned int size; } DataHeader;

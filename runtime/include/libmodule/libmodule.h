@@ -314,7 +314,7 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
 void ContractLogFlush(void);
 /** [ENGINE] Flush the CSV log if its oldest unwritten record waited at least `ageNs`. For
  *  time-critical loops (ORD): call it when about to wait with time to spare, so that the write
- *  never happens at the next mailbox read (the library writes records 50 ms old there). */
+ *  never happens at the next mailbox read (the library writes records 10 ms old there). */
 void ContractLogFlushIfOlder(RTIME ageNs);
 
 /** [ENGINE] When the oldest record not yet written to the CSV log was logged (GetTime), 0 when

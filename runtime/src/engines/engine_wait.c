@@ -15,7 +15,7 @@
 static int timer_fd = -1;
 
 #define IDLE_FLUSH_SLACK_NS 200000LL  /* flush the CSV log only with this much time to spare */
-#define IDLE_FLUSH_AGE_NS 20000000LL  /* ... and records that waited 20 ms (library: 50 ms)  */
+#define IDLE_FLUSH_AGE_NS 10000000LL  /* ... and records that waited 10 ms (as the library) */
 
 static int ensure_timer(void) {
     if (timer_fd >= 0) return 0;
@@ -38,9 +38,9 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
         if (deadline == INT64_MAX || deadline - GetTime() >= IDLE_FLUSH_SLACK_NS) {
             ContractLogFlushIfOlder(IDLE_FLUSH_AGE_NS);
         }
-        /* Records still buffered (younger than 20 ms) must not wait for the next request, which
+        /* Records still buffered (younger than 10 ms) must not wait for the next request, which
            may come seconds later: wake when they are old enough (unless that is too close to the
-           deadline), so that the log on disk — the live trace — lags at most about 20 ms. */
+           deadline), so that the log on disk — the live trace — lags at most about 10 ms. */
         int64_t wake = deadline;
         RTIME pending = ContractLogPendingSince();
         if (pending) {
