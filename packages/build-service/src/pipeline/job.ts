@@ -285,11 +285,13 @@ export class Job {
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
       let run: Awaited<ReturnType<Job['runStep']>>;
       try {
+        // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
+        const runEnv: Record<string, string> = tail ? { CONTRACT_LOG_MARK: '1' } : {};
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
           this.runIssues.line(routed.line);
           return [routed];
-        });
+        }, runEnv);
       } catch (e) {
         await tail?.stop();
         throw e;
@@ -434,6 +436,7 @@ export class Job {
     argv: string[],
     seconds: number,
     route: (line: string, stream: 'stdout' | 'stderr') => { source: string; line: string }[],
+    env: Record<string, string> = {},
   ): Promise<{ ok: boolean; exitCode: number | null; signal: string | null; limitHit: LimitHit | null; message: string | null }> {
     if (this.fault) throw this.fault;
     if (this.cancelRequested) throw new Cancelled();
@@ -445,7 +448,7 @@ export class Job {
       workDir: ws.workDir,
       cwd: '',
       argv,
-      env: {},
+      env,
       limits: this.request.limits,
       runtimeDir,
       owner: ws.owner,
