@@ -130,9 +130,15 @@ export class TraceOrder {
     if (when.all) threshold = BigInt('0x7fffffffffffffff') * 4n;
     else {
       let watermark: bigint | null = null;
+      // a log whose mark has said for markedWindowMs (BEHIND_FACTOR times that while some log has
+      // bytes not read yet) that its module holds the same old record
+      // (a module blocked that long, or killed holding records: they are lost with it) stops
+      // holding the others back, until its mark moves again
+      const stuckBefore = when.nowMono !== undefined ? when.nowMono - BigInt(factor * this.markedWindowMs) * 1_000_000n : null;
       for (const s of this.sources.values()) {
         if (s.closed) continue;
         const known = s.whole > s.lastKey ? s.whole : s.lastKey;
+        if (stuckBefore !== null && s.whole >= 0n && known < stuckBefore) continue;
         if (watermark === null || known < watermark) watermark = known;
       }
       threshold = watermark ?? -1n;

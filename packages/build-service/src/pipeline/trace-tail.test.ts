@@ -102,6 +102,30 @@ describe('TraceOrder', () => {
     expect(o.release(401, { nowMono: 400_000_001n }).map((l) => l.text)).toEqual([rec(400_000_000)]);
   });
 
+  test('a log whose mark is stuck on an old record (its module blocked or killed) holds the others back once, not every record', () => {
+    const ms = 1_000_000;
+    const o = new TraceOrder(100, 1000);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.mark('B.csv', 5 * ms); // B holds a record of 5 ms + 1 ns, and never writes it
+    o.add('A.csv', [line('A.csv', 10 * ms)], 10);
+    o.mark('A.csv', 11 * ms);
+    expect(o.release(11, { nowMono: 11n * BigInt(ms) })).toEqual([]);
+    expect(o.release(900, { nowMono: 900n * BigInt(ms) })).toEqual([]);
+    // B's mark has not moved for the hold: A's records no longer wait for B
+    expect(o.release(1006, { nowMono: 1006n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(10 * ms)]);
+    o.add('A.csv', [line('A.csv', 1010 * ms)], 1010);
+    o.mark('A.csv', 1011 * ms);
+    expect(o.release(1011, { nowMono: 1011n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(1010 * ms)]);
+    // B's mark moves again (it was only blocked): it holds the watermark again
+    o.add('B.csv', [line('B.csv', 5 * ms + 1)], 1020);
+    o.mark('B.csv', 1015 * ms);
+    o.add('A.csv', [line('A.csv', 1018 * ms)], 1020);
+    o.mark('A.csv', 1020 * ms);
+    expect(o.release(1020, { nowMono: 1020n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(5 * ms + 1)]);
+    expect(o.late).toBe(1); // B's blocked record came after newer ones
+  });
+
   test('garbage keeps its place after the record before it; module_exit frees the watermark', () => {
     const o = new TraceOrder(1000);
     o.track('A.csv');
