@@ -5,7 +5,7 @@
 // the run's CSV records reach the page as trace events (docs/build-service-api.md "Trace
 // channel") and are drawn by the panel.
 //   monitor.trace_latency_ms_p99 / _p50  a record written by a module (its wall_time column) ->
-//                                        drawn in the Monitor (the first frame whose model holds it), same host clock
+//                                        drawn in the Monitor (the end of the first frame whose model holds it), same host clock
 //   monitor.live_max_frame_ms / live_frame_ms_p99   animation-frame gaps while the run streams
 //   monitor.live_trace_records           records drawn live
 // RUN_SECONDS (default 5) sets the run's duration; the part takes about 40 s (the build is most of it).
@@ -61,9 +61,9 @@ try {
     });
     ide.build.onFinished.on(() => (m.streaming = false));
     let last = performance.now();
-    const tick = (t) => {
-      if (m.streaming) m.gaps.push(t - last);
-      last = t;
+    // what this frame drew, looked at once the frame is done (a task queued from a frame callback
+    // runs after the frame's other callbacks, the panel's among them, and after its paint)
+    const drawn = () => {
       const panel = ide.monitor.panel;
       const live = ide.monitor.lastLive;
       if (panel && live && panel.drawn.model === live) {
@@ -72,6 +72,11 @@ try {
         for (; i < m.pending.length && m.pending[i].version <= panel.drawn.version; i++) if (Number.isFinite(m.pending[i].wall)) m.latencies.push(now - m.pending[i].wall);
         if (i) m.pending.splice(0, i);
       }
+    };
+    const tick = (t) => {
+      if (m.streaming) m.gaps.push(t - last);
+      last = t;
+      setTimeout(drawn, 0);
       requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
