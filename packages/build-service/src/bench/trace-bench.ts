@@ -13,7 +13,7 @@
  *   monitor.release_lateness_us_p99_without / _with   the pooled p99s
  *   monitor.service_trace_latency_ms_p99  from a record's write (its wall_time column) to its
  *                                         arrival at the SSE client (Date.now()), p99; _p50 too
- *   monitor.trace_records                 records the SSE client received
+ *   monitor.trace_records                 records the SSE client received; _events_per_s: trace events a second
  *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process (and the
  *                                         in-process client) per second of phase
  * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 50 s in all.
@@ -132,6 +132,7 @@ async function main(): Promise<void> {
     const phases: Phase[] = [];
     const latency: number[] = [];
     let records = 0;
+    let events = 0;
     const phaseMs = PHASE_SECONDS * 1000;
     const seconds = Math.ceil(2 * PAIRS * PHASE_SECONDS + 3);
     say(`one run of ${seconds} s: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
@@ -147,6 +148,7 @@ async function main(): Promise<void> {
             const after = job.events.all.at(-1)?.seq ?? 0;
             const reading = attach(url, jobId, after, abort.signal, (e) => {
               const now = Date.now();
+              events++;
               for (const l of e.records) {
                 records++;
                 const wall = Date.parse(l.text.split(',', 2)[1] ?? '');
@@ -185,6 +187,7 @@ async function main(): Promise<void> {
       'monitor.service_trace_latency_ms_p99': round(pct(latency, 99), 1),
       'monitor.service_trace_latency_ms_p50': round(pct(latency, 50), 1),
       'monitor.trace_records': records,
+      'monitor.trace_events_per_s': round(events / phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0), 0),
       'monitor.service_cpu_ms_per_s_without': round(cpuPerS(false), 1),
       'monitor.service_cpu_ms_per_s_with': round(cpuPerS(true), 1),
       'monitor.releases': pooled(true).length + pooled(false).length,
