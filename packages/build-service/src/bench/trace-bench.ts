@@ -3,7 +3,7 @@
  * A 1 kHz periodic schema (the "New project" template with PERIOD=1ms) run in bwrap through the
  * HTTP service. In ONE run, phases of PHASE_SECONDS (default 3) alternate: no client attached, an
  * SSE client attached to the job's stream (from the current seq: it follows the live trace), in
- * ABBA order over PAIRS (default 4) pairs, so that load drifts weigh on both sides alike. The
+ * ABBA order over PAIRS (default 6) pairs, so that load drifts weigh on both sides alike. The
  * releases (ORD's ord_release records of the collected log, tick_ns on the host's CLOCK_MONOTONIC,
  * the clock of the phase boundaries) are split by phase; the first 200 ms of each phase are left
  * out (the attach / detach itself).
@@ -16,7 +16,7 @@
  *   monitor.trace_records                 records the SSE client received; _events_per_s: trace events a second
  *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process (and the
  *                                         in-process client) per second of phase
- * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 50 s in all.
+ * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 70 s in all.
  */
 import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -30,7 +30,7 @@ import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 import { parseRecordLine } from '../trace/parse.js';
 
 const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
-const PAIRS = Number(process.env.PAIRS ?? 4);
+const PAIRS = Number(process.env.PAIRS ?? 6);
 /** Left out at the start of each phase (the attach or detach itself). */
 const SETTLE_NS = 200_000_000n;
 const say = (s: string): void => void process.stderr.write(`[bench monitor] ${s}\n`);
