@@ -16,7 +16,10 @@
  * (after taking CLOCK_MONOTONIC) and then the file knows the module's log is whole up to that
  * time, so it can put several modules' logs in time order without guessing how long a module
  * holds its records (docs/build-service-api.md "Trace channel"). Cost: two stores when the
- * buffer goes from empty to dirty and one at each flush. Removed at close. */
+ * buffer goes from empty to dirty and one at each flush. Removed at close. Its second word is
+ * the reader's: while a client watches the live trace the build service writes there the flush
+ * delay it wants (10 ms), and the module writes its records that much sooner than LOG_FLUSH_NS
+ * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -301,9 +304,18 @@ void ContractLogFlushIfOlder(RTIME ageNs)
 
 RTIME ContractLogPendingSince(void) { return log_fd >= 0 ? g_rt.log_dirty_since : 0; }
 
+RTIME rt_log_flush_ns(void)
+{
+    if (!log_mark) return LOG_FLUSH_NS;
+    unsigned long long asked = __atomic_load_n(&log_mark[1], __ATOMIC_RELAXED);
+    return asked >= LOG_FLUSH_WATCHED_MIN_NS && asked < LOG_FLUSH_NS ? (RTIME)asked : LOG_FLUSH_NS;
+}
+
+RTIME ContractLogFlushDelay(void) { return rt_log_flush_ns(); }
+
 void rt_log_maybe_flush(RTIME now)
 {
-    if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= LOG_FLUSH_NS) ContractLogFlush();
+    if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= rt_log_flush_ns()) ContractLogFlush();
 }
 
 void rt_log_close(void)

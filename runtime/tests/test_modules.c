@@ -576,3 +576,42 @@ void test_csv_log_mark(void)
     close(fd);
     h_teardown();
 }
+
+/* The flush mark's second word is the reader's: a flush delay of 1 ms..50 ms the module then uses
+   instead of LOG_FLUSH_NS (anything else: LOG_FLUSH_NS); in process, on the tester's own log. */
+void test_csv_log_mark_delay(void)
+{
+    REQUIRE(h_setup("logmarkdelay") == 0);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS); /* no log, no mark */
+    setenv("CONTRACT_LOG_MARK", "1", 1);
+    REQUIRE(rt_log_open() == 0);
+    unsetenv("CONTRACT_LOG_MARK");
+    char mark[1024];
+    REQUIRE(find_log_file("tester_", ".csv.mark", mark, sizeof mark));
+    int fd = open(mark, O_RDWR | O_CLOEXEC);
+    REQUIRE(fd >= 0);
+    unsigned long long asked, word = 7;
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    asked = 10000000ULL;
+    CHECK(pwrite(fd, &asked, sizeof asked, 8) == (ssize_t)sizeof asked);
+    CHECK(ContractLogFlushDelay() == 10000000LL);
+    asked = 500000ULL; /* below 1 ms: not believed */
+    CHECK(pwrite(fd, &asked, sizeof asked, 8) == (ssize_t)sizeof asked);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    asked = 100000000000ULL; /* 100 s: not longer than LOG_FLUSH_NS */
+    CHECK(pwrite(fd, &asked, sizeof asked, 8) == (ssize_t)sizeof asked);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    /* the first word: the oldest record not written, then 0 once written */
+    RTIME before = GetTime();
+    ContractLog("test_record", "", -1, 0, "x");
+    CHECK(pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+    CHECK_MSG(word >= (unsigned long long)before && word <= (unsigned long long)GetTime(), "mark %llu, logged after %lld", word, (long long)before);
+    ContractLogFlush();
+    CHECK(pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+    CHECK(word == 0);
+    rt_log_close();
+    CHECK_MSG(access(mark, F_OK) != 0, "%s left after close", mark);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    close(fd);
+    h_teardown();
+}

@@ -27,6 +27,7 @@ void test_priority(void);
 void test_set_module_priority(void);
 void test_csv_log_cap(void);
 void test_csv_log_mark(void);
+void test_csv_log_mark_delay(void);
 
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
@@ -54,6 +55,7 @@ static const TestCase ALL_TESTS[] = {
     { "set_module_priority", test_set_module_priority },
     { "csv_log_cap", test_csv_log_cap },
     { "csv_log_mark", test_csv_log_mark },
+    { "csv_log_mark_delay", test_csv_log_mark_delay },
     { NULL, NULL },
 };
 #endif
