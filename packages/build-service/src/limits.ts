@@ -78,6 +78,8 @@ export interface ServiceBounds {
   traceMarkHoldMs: number;
   /** Milliseconds from a change of the logs folder (inotify) to the read it wakes (changes in that time are read together). */
   traceWakeMs: number;
+  /** Flush delay (ms) asked of the modules through their flush marks while a client follows the job (else their own, 50 ms). */
+  traceWatchedFlushMs: number;
   /** Log files tailed per job (the artifact collector's file bound); more are left to the collected logs. */
   traceFiles: number;
   /** Record lines of one trace event. */
@@ -102,6 +104,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceOrderWindowMs: 150,
   traceMarkHoldMs: 1000,
   traceWakeMs: 3,
+  traceWatchedFlushMs: 10,
   traceFiles: 256,
   traceLinesPerEvent: 1000,
   traceLinesKept: 50_000,

@@ -293,9 +293,11 @@ export class Job {
           return [routed];
         }, runEnv);
       } catch (e) {
+        this.events.onSubscribers = null;
         await tail?.stop();
         throw e;
       }
+      this.events.onSubscribers = null;
       if (this.cancelRequested) await tail?.stop();
       else await tail?.finish();
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
@@ -381,13 +383,17 @@ export class Job {
       this.system('run', `trace: no live trace channel in the ${this.sandboxName} sandbox (its work dir is not a host folder); the records are in the collected logs`);
       return null;
     }
-    return TraceTail.start(workDir, {
+    const tail = await TraceTail.start(workDir, {
       trace: (records) => {
         if (!this.events.isEnded) this.events.append({ type: 'trace', records });
       },
       live: (records) => this.events.broadcast({ type: 'trace', records }),
       system: (line) => this.system('run', line),
     });
+    // the modules write their logs sooner only while a client follows the job
+    tail.setWatched(this.events.subscriberCount > 0);
+    this.events.onSubscribers = (count) => tail.setWatched(count > 0);
+    return tail;
   }
 
   /** Copies the run's logs out of the sandbox (its processes are gone); a failure is a warning line. */

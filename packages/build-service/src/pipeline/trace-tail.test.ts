@@ -83,16 +83,16 @@ describe('TraceOrder', () => {
     o.track('A.csv');
     o.track('B.csv');
     o.add('A.csv', [line('A.csv', 10), line('A.csv', 30)], 0);
-    o.mark('A.csv', 35);
-    o.mark('B.csv', 40); // B holds nothing: whole up to 40 without a record of its own
+    o.mark('A.csv', 35n);
+    o.mark('B.csv', 40n); // B holds nothing: whole up to 40 without a record of its own
     expect(o.release(1, { nowMono: 41n }).map((l) => l.text)).toEqual([rec(10), rec(30)]);
     o.add('A.csv', [line('A.csv', 50)], 2);
-    o.mark('A.csv', 55);
-    o.mark('B.csv', 44); // B's oldest held record is at 45
+    o.mark('A.csv', 55n);
+    o.mark('B.csv', 44n); // B's oldest held record is at 45
     // 200 ms later: the (unmarked) window would have let 50 go; B's mark still holds it
     expect(o.release(200, { nowMono: 200_000_000n })).toEqual([]);
     o.add('B.csv', [line('B.csv', 45)], 300);
-    o.mark('B.csv', 300_000_000);
+    o.mark('B.csv', 300_000_000n);
     expect(o.release(300, { nowMono: 300_000_000n }).map((l) => l.text)).toEqual([rec(45), rec(50)]);
     expect(o.late).toBe(0);
     // a log without a mark brings the (short) window back for everyone
@@ -107,21 +107,21 @@ describe('TraceOrder', () => {
     const o = new TraceOrder(100, 1000);
     o.track('A.csv');
     o.track('B.csv');
-    o.mark('B.csv', 5 * ms); // B holds a record of 5 ms + 1 ns, and never writes it
+    o.mark('B.csv', BigInt(5 * ms)); // B holds a record of 5 ms + 1 ns, and never writes it
     o.add('A.csv', [line('A.csv', 10 * ms)], 10);
-    o.mark('A.csv', 11 * ms);
+    o.mark('A.csv', BigInt(11 * ms));
     expect(o.release(11, { nowMono: 11n * BigInt(ms) })).toEqual([]);
     expect(o.release(900, { nowMono: 900n * BigInt(ms) })).toEqual([]);
     // B's mark has not moved for the hold: A's records no longer wait for B
     expect(o.release(1006, { nowMono: 1006n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(10 * ms)]);
     o.add('A.csv', [line('A.csv', 1010 * ms)], 1010);
-    o.mark('A.csv', 1011 * ms);
+    o.mark('A.csv', BigInt(1011 * ms));
     expect(o.release(1011, { nowMono: 1011n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(1010 * ms)]);
     // B's mark moves again (it was only blocked): it holds the watermark again
     o.add('B.csv', [line('B.csv', 5 * ms + 1)], 1020);
-    o.mark('B.csv', 1015 * ms);
+    o.mark('B.csv', BigInt(1015 * ms));
     o.add('A.csv', [line('A.csv', 1018 * ms)], 1020);
-    o.mark('A.csv', 1020 * ms);
+    o.mark('A.csv', BigInt(1020 * ms));
     expect(o.release(1020, { nowMono: 1020n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(5 * ms + 1)]);
     expect(o.late).toBe(1); // B's blocked record came after newer ones
   });
@@ -264,6 +264,33 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(traced).toHaveLength(2);
     await tail.finish();
     expect(readdirSync(logs)).toEqual(['A_1.csv']);
+    expect(system).toEqual([]);
+  });
+
+  test('while a client watches, every module is asked (its mark\'s second word) to write its log after 10 ms; 0 when none does', async () => {
+    mkdirSync(logs);
+    const tail = await TraceTail.start(work, sink, { ...fast, watchedFlushMs: 10 });
+    const a = join(logs, 'A_1.csv');
+    markFile(a)(0n);
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    const asked = (log: string): bigint => readFileSync(`${log}.mark`).readBigUInt64LE(8);
+    for (let i = 0; i < 500 && !traced.length; i++) {
+      if (i === 0) appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
+      await sleep(10);
+    }
+    expect(traced).toHaveLength(1); // A's log (and its mark) are open
+    expect(asked(a)).toBe(0n);
+    tail.setWatched(true);
+    expect(asked(a)).toBe(10_000_000n);
+    // a module started while watched is asked as soon as its mark is opened
+    const b = join(logs, 'B_1.csv');
+    markFile(b)(0n);
+    writeFileSync(b, `${CSV_HEADER}\n${rec(process.hrtime.bigint(), 'B')}\n`);
+    for (let i = 0; i < 500 && traced.length < 2; i++) await sleep(10);
+    expect(asked(b)).toBe(10_000_000n);
+    tail.setWatched(false);
+    expect([asked(a), asked(b)]).toEqual([0n, 0n]);
+    await tail.finish();
     expect(system).toEqual([]);
   });
 

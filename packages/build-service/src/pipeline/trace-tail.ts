@@ -15,7 +15,7 @@
  * and file counts are bounded, lines are bounded (trace-lines.ts). Nothing here throws into the
  * job: a fault stops the channel with one system line; the collected logs stay the record.
  */
-import { constants, promises as fsp, readSync, watch, type FSWatcher } from 'node:fs';
+import { constants, promises as fsp, readSync, watch, writeSync, type FSWatcher } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import { endianness } from 'node:os';
 import { join } from 'node:path';
@@ -33,6 +33,8 @@ export interface TraceTailBounds {
   orderWindowMs: number;
   /** The order window when every log has its flush mark. */
   markHoldMs: number;
+  /** Flush delay asked of the modules (their marks' second word) while a client watches. */
+  watchedFlushMs: number;
   files: number;
   /** Entries of logs/ looked at per listing. */
   entries: number;
@@ -46,6 +48,7 @@ export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
   readBytesPerPoll: SERVICE_BOUNDS.traceReadBytesPerPoll,
   orderWindowMs: SERVICE_BOUNDS.traceOrderWindowMs,
   markHoldMs: SERVICE_BOUNDS.traceMarkHoldMs,
+  watchedFlushMs: SERVICE_BOUNDS.traceWatchedFlushMs,
   files: SERVICE_BOUNDS.traceFiles,
   entries: SERVICE_BOUNDS.listedEntries,
   linesPerEvent: SERVICE_BOUNDS.traceLinesPerEvent,
@@ -76,6 +79,8 @@ interface Tailed {
   mark: FileHandle | null;
   /** Rounds left in which a missing mark is looked for again. */
   markTries: number;
+  /** The mark was opened for writing too (its second word: the flush delay asked). */
+  markWritable: boolean;
 }
 
 const CHUNK = 64 * 1024;
@@ -102,6 +107,8 @@ export class TraceTail {
   /** logs/ changed while a read ran: the next read comes after wakeMs, not pollMs. */
   private changedMeanwhile = false;
   private readonly word = Buffer.alloc(8);
+  /** A client follows the job: the modules are asked to write their logs sooner. */
+  private watched = false;
   private polling: Promise<void> = Promise.resolve();
   private stopped = false;
   /** finish() or stop() was called: no poll is scheduled any more. */
@@ -173,6 +180,29 @@ export class TraceTail {
       });
     }
     await this.close();
+  }
+
+  /**
+   * A client follows the job's events (or none does any more): asks every module, through its flush
+   * mark's second word, to write its log after watchedFlushMs instead of its own 50 ms (0: its own).
+   */
+  setWatched(watched: boolean): void {
+    if (watched === this.watched) return;
+    this.watched = watched;
+    for (const f of this.files.values()) this.askFlush(f);
+  }
+
+  private askFlush(f: Tailed): void {
+    if (!f.mark || !f.markWritable || this.stopped) return;
+    const b = Buffer.alloc(8);
+    const ns = this.watched ? BigInt(this.bounds.watchedFlushMs) * 1_000_000n : 0n;
+    if (endianness() === 'LE') b.writeBigUInt64LE(ns);
+    else b.writeBigUInt64BE(ns);
+    try {
+      writeSync(f.mark.fd, b, 0, 8, 8);
+    } catch {
+      f.markWritable = false; // the module's own delay stands
+    }
   }
 
   /** Stops without reading further (a cancelled or failed job). Never throws. */
@@ -359,7 +389,7 @@ export class TraceTail {
       return;
     }
     const before = this.before.get(name) ?? 0;
-    const f: Tailed = { name, fh, splitter: new TraceLineSplitter(name, before), done: false, dormantUntil: before, mark: null, markTries: MARK_TRIES };
+    const f: Tailed = { name, fh, splitter: new TraceLineSplitter(name, before), done: false, dormantUntil: before, mark: null, markTries: MARK_TRIES, markWritable: false };
     this.files.set(name, f);
     if (before === 0) this.order.track(name);
     await this.openMark(f);
@@ -370,18 +400,28 @@ export class TraceTail {
     if (f.mark || f.markTries <= 0) return;
     f.markTries--;
     let fh: FileHandle;
+    const path = join(this.dirPath(), f.name + MARK_SUFFIX);
+    const flags = constants.O_NOFOLLOW | constants.O_NONBLOCK;
     try {
-      fh = await fsp.open(join(this.dirPath(), f.name + MARK_SUFFIX), constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
-    } catch {
-      return; // none (a runtime without marks, CONTRACT_LOG_MARK unset): the order window applies
+      fh = await fsp.open(path, constants.O_RDWR | flags);
+      f.markWritable = true;
+    } catch (e) {
+      if ((e as NodeJS.ErrnoException).code !== 'EACCES') return; // none (a runtime without marks, CONTRACT_LOG_MARK unset): the order window applies
+      try {
+        fh = await fsp.open(path, constants.O_RDONLY | flags); // read only: the order, not the sooner flush
+      } catch {
+        return;
+      }
     }
     const st = await fh.stat().catch(() => null);
-    if (!st?.isFile() || st.size < 8) {
+    if (!st?.isFile() || st.size < 16) {
       f.markTries = 0;
+      f.markWritable = false;
       await fh.close().catch(() => {});
       return;
     }
     f.mark = fh;
+    if (this.watched) this.askFlush(f);
   }
 
   /**
