@@ -27,6 +27,7 @@ import { GenerateController } from './app/generate-controller.js';
 import { RunController } from './app/run-controller.js';
 import { ViewsController } from './app/views-controller.js';
 import { carryRenamesToGenerated } from './app/rename-carryover.js';
+import { registerIdeCommands } from './app/ide-commands.js';
 
 /** Builds the IDE: the parts (src/panels, src/editor, ...), the feature controllers (src/app) and the start-up sequence. */
 async function main(): Promise<void> {
@@ -88,17 +89,12 @@ async function main(): Promise<void> {
   });
   carryRenamesToGenerated({ lsp, workspace, editors, project: currentProject, generate: () => generator.generate() });
 
-  // ---- shortcuts
-  window.addEventListener('keydown', (e) => {
-    if ((e.ctrlKey || e.metaKey) && e.shiftKey && e.key.toLowerCase() === 'g') {
-      e.preventDefault();
-      void generator.generate();
-    }
-    if ((e.ctrlKey || e.metaKey) && e.shiftKey && e.key.toLowerCase() === 'b') {
-      e.preventDefault();
-      void runs.run();
-    }
+  // shortcuts, quick open and the command palette (docs/ide.md "Keyboard")
+  const commands = registerIdeCommands({
+    workspace, editors, explorer, outline, problems, files, generator, runs, views, monitorButton: ui.toolbar.monitor,
+    showPanel: ui.showPanel, focusPanelTabs: ui.focusPanelTabs,
   });
+  ui.onPanelEscape(() => editors.focusActive());
   window.addEventListener('beforeunload', () => void workspace.saveAll());
 
   // ---- start
@@ -135,7 +131,7 @@ async function main(): Promise<void> {
   await lsp.workspaceBuilt();
   performance.mark('ide:ready');
   document.body.dataset.ready = 'true';
-  (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco, monitor, simulate };
+  (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco, monitor, simulate, commands, views };
 }
 
 void main();

@@ -30,6 +30,9 @@ export function followActiveFile(d: { editors: EditorArea; workspace: Workspace;
     if (fs && guard) showRegionOutline(fs.model);
     else outline.show(fs && isContract(id!) ? fs.model.uri.toString() : undefined);
     d.langEl.textContent = fs ? (fs.model.getLanguageId() === 'c' ? 'C (generated)' : 'Cactal') : '';
+    // the cursor shown is the active editor's (a view tab has none)
+    const pos = fs && editors.editor.getModel() === fs.model ? editors.editor.getPosition() : null;
+    d.cursorEl.textContent = pos ? `Ln ${pos.lineNumber}, Col ${pos.column}` : '';
   });
   editors.editor.onDidChangeModelContent(() => {
     const model = editors.editor.getModel();

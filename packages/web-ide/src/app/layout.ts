@@ -1,4 +1,5 @@
 import { h } from '../util/dom.js';
+import { RovingFocus } from '../util/roving-focus.js';
 
 /** The static frame of the IDE: top bar, sidebar (explorer + outline), editor, bottom panel, status bar. */
 export function createLayout(root: HTMLElement) {
@@ -27,11 +28,11 @@ export function createLayout(root: HTMLElement) {
   const explorerBody = h('div', { class: 'section-body explorer-body' });
   const outlineBody = h('div', { class: 'section-body outline-body' });
   const sidebar = h('aside', { class: 'sidebar' },
-    h('section', { class: 'side-section explorer-section' }, h('div', { class: 'section-title' }, 'Explorer'), explorerBody),
-    h('section', { class: 'side-section outline-section' }, h('div', { class: 'section-title' }, 'Outline'), outlineBody));
+    h('section', { class: 'side-section explorer-section', 'aria-labelledby': 'title-explorer' }, h('h2', { class: 'section-title', id: 'title-explorer' }, 'Explorer'), explorerBody),
+    h('section', { class: 'side-section outline-section', 'aria-labelledby': 'title-outline' }, h('h2', { class: 'section-title', id: 'title-outline' }, 'Outline'), outlineBody));
 
   const editorRoot = h('main', { class: 'editor-area' });
-  const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist' });
+  const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist', 'aria-label': 'Panels' });
   const panelBodies = h('div', { class: 'panel-bodies' });
   const panel = h('section', { class: 'bottom-panel' }, panelTabs, panelBodies);
 
@@ -62,18 +63,38 @@ export function createLayout(root: HTMLElement) {
   const showPanel = (id: string) => {
     for (const [k, p] of panels) {
       p.tab.classList.toggle('active', k === id);
+      p.tab.setAttribute('aria-selected', String(k === id));
       p.body.classList.toggle('hidden', k !== id);
     }
+    panelFocus.refresh();
   };
+  // the panel tabs: a WAI-ARIA tablist (←/→ show the next panel, Tab enters it, Escape back to the editor)
+  let escape = () => undefined as unknown;
+  const panelFocus = new RovingFocus(panelTabs, {
+    orientation: 'horizontal', followFocus: true,
+    items: () => [...panels.values()].map((p) => p.tab),
+    keyOf: (tab) => tab.dataset.panel ?? '',
+    current: () => panelTabs.querySelector<HTMLElement>('.panel-tab.active') ?? undefined,
+    onActivate: (tab) => tab.click(),
+    onEscape: () => escape(),
+  });
   const addPanel = (id: string, title: string, body: HTMLElement) => {
-    const tab = h('div', { class: 'panel-tab', role: 'tab', 'data-panel': id, onclick: () => showPanel(id) }, title);
-    const wrapper = h('div', { class: 'panel-body hidden', 'data-panel': id }, body);
+    const tab = h('div', {
+      class: 'panel-tab', role: 'tab', id: `panel-tab-${id}`, 'aria-controls': `panel-${id}`, 'aria-selected': 'false', tabindex: -1, 'data-panel': id,
+      onclick: () => showPanel(id),
+    }, title);
+    const wrapper = h('div', { class: 'panel-body hidden', role: 'tabpanel', id: `panel-${id}`, 'aria-labelledby': `panel-tab-${id}`, 'data-panel': id }, body);
     panelTabs.append(tab);
     panelBodies.append(wrapper);
     panels.set(id, { tab, body: wrapper });
+    panelFocus.refresh();
     return tab;
   };
-  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel };
+  /** Focuses the tab of the panel shown. */
+  const focusPanelTabs = () => panelFocus.focus();
+  /** What Escape in the panel tabs does (focus the editor). */
+  const onPanelEscape = (fn: () => void) => (escape = fn);
+  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel, focusPanelTabs, onPanelEscape };
 }
 
 function dragResize(handle: HTMLElement, move: (dx: number, dy: number) => void): void {
