@@ -2,7 +2,8 @@ import { monaco } from '../editor/monaco.js';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { Workspace } from '../workspace/workspace.js';
-import type { ArchitectureView } from '../views/architecture-view.js';
+import type { ArchitectureView, CursorAt } from '../views/architecture-view.js';
+import type { ArchLocation } from '../lsp/architecture-model.js';
 import type { TimelineView } from '../views/timeline-view.js';
 import type { RunLogs } from '../views/run-logs.js';
 import { debounce } from '../util/dom.js';
@@ -28,6 +29,26 @@ export class ViewsController {
     }, 400);
     monaco.editor.onDidCreateModel((m) => m.onDidChangeContent(() => archRefresh()));
     for (const m of monaco.editor.getModels()) m.onDidChangeContent(() => archRefresh());
+    // the diagram shows the schema the editor's cursor is in
+    const follow = debounce(() => this.arch?.follow(this.cursor()), 150);
+    d.editors.editor.onDidChangeCursorPosition(follow);
+    d.editors.onActiveChanged.on(follow);
+  }
+
+  /** The active editor's cursor (0-based), when a file tab is active. */
+  private cursor(): CursorAt | undefined {
+    const { editors } = this.d;
+    const model = editors.editor.getModel();
+    const pos = editors.editor.getPosition();
+    if (!model || !pos || !editors.active || editors.active.startsWith('view:')) return undefined;
+    return { uri: model.uri.toString(), line: pos.lineNumber - 1, character: pos.column - 1 };
+  }
+
+  /** A click on the diagram: the definition in its file, beside the docked diagram or in place of the diagram's tab. */
+  private async goTo(where: ArchLocation): Promise<void> {
+    const path = this.d.workspace.pathOf(where.uri);
+    if (!path) return;
+    await this.d.editors.open(path, { lineNumber: where.line + 1, column: where.character + 1 });
   }
 
   private archTab() {
@@ -51,7 +72,8 @@ export class ViewsController {
     const { editors } = this.d;
     if (!this.arch) {
       const { ArchitectureView } = await import('../views/architecture-view.js');
-      this.arch = new ArchitectureView(() => this.d.lsp.architecture(), () => this.toggleDock());
+      this.arch = new ArchitectureView(() => this.d.lsp.architecture(), () => this.toggleDock(), (where) => void this.goTo(where));
+      this.arch.follow(this.cursor());
     }
     if (this.archDocked) {
       editors.dock(this.arch.element); // the Monitor may have taken the side pane since
