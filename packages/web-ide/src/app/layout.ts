@@ -20,7 +20,7 @@ export function createLayout(root: HTMLElement) {
   toolbar.stop.disabled = true;
   const workspaceName = h('span', { class: 'workspace-name' });
   const topbar = h('header', { class: 'topbar' },
-    h('div', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
+    h('h1', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
     workspaceName, h('div', { class: 'toolbar-group' }, toolbar.newFile, toolbar.newFolder, toolbar.newProject),
     h('div', { class: 'toolbar-group' }, toolbar.generate, toolbar.run, toolbar.runSettings, toolbar.stop),
     h('span', { class: 'grow' }), h('div', { class: 'toolbar-group' }, toolbar.arch, toolbar.timeline, toolbar.monitor));
@@ -34,7 +34,7 @@ export function createLayout(root: HTMLElement) {
   const editorRoot = h('main', { class: 'editor-area' });
   const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist', 'aria-label': 'Panels' });
   const panelBodies = h('div', { class: 'panel-bodies' });
-  const panel = h('section', { class: 'bottom-panel' }, panelTabs, panelBodies);
+  const panel = h('section', { class: 'bottom-panel', 'aria-label': 'Panels' }, panelTabs, panelBodies);
 
   const status = {
     problems: h('span', { class: 'status-item status-problems', id: 'status-problems', title: 'Problems' }),
@@ -44,7 +44,7 @@ export function createLayout(root: HTMLElement) {
     cursor: h('span', { class: 'status-item', id: 'status-cursor' }),
     lang: h('span', { class: 'status-item', id: 'status-lang' }),
   };
-  const statusbar = h('footer', { class: 'statusbar' }, status.problems, status.save, status.job, h('span', { class: 'grow' }), status.cursor, status.lang, status.lsp);
+  const statusbar = h('footer', { class: 'statusbar', 'aria-label': 'Status' }, status.problems, status.save, status.job, h('span', { class: 'grow' }), status.cursor, status.lang, status.lsp);
 
   const resizerV = h('div', { class: 'resizer vertical' });
   const resizerH = h('div', { class: 'resizer horizontal' });

@@ -4,6 +4,14 @@ import type { Workspace } from '../workspace/workspace.js';
 import { quickPick, type PickItem } from '../palette/quick-pick.js';
 import type { CommandRegistry } from './commands.js';
 
+/** Editor commands Monaco registers outside `getSupportedActions()` (its "action2" kind): listed too. */
+const MORE_EDITOR_COMMANDS: Array<{ id: string; label: string }> = [
+  { id: 'editor.action.revealDefinition', label: 'Go to Definition' },
+  { id: 'editor.action.peekDefinition', label: 'Peek Definition' },
+  { id: 'editor.action.goToReferences', label: 'Go to References' },
+  { id: 'editor.action.referenceSearch.trigger', label: 'Peek References' },
+];
+
 type Keybindings = { lookupKeybinding(id: string): { getLabel(): string | null } | undefined };
 
 /** Monaco's label of an editor action's shortcut (its keybinding service is internal: none when unreachable). */
@@ -33,6 +41,13 @@ export async function openCommandPalette(commands: CommandRegistry, editors: Edi
       items.push({ label: a.label, keybinding: editorKeybinding(editors.editor, a.id), detail: 'Editor', run: () => {
         editors.editor.focus();
         return a.run();
+      } });
+    }
+    for (const c of MORE_EDITOR_COMMANDS) {
+      if (seen.has(c.label)) continue;
+      items.push({ label: c.label, keybinding: editorKeybinding(editors.editor, c.id), detail: 'Editor', run: () => {
+        editors.editor.focus();
+        editors.editor.trigger('command-palette', c.id, null);
       } });
     }
   }

@@ -20,11 +20,14 @@ export class Explorer {
   private active: string | undefined;
   private readonly list: HTMLElement;
   private readonly byPath = new Map<string, TreeEntry>();
+  /** Shown instead of the tree when it is empty (outside it: a tree holds tree items only). */
+  private readonly empty: HTMLElement;
   private readonly roving: RovingFocus;
 
   constructor(readonly root: HTMLElement) {
     this.list = h('div', { class: 'tree', role: 'tree', 'aria-label': 'Files of the workspace' });
-    root.append(this.list);
+    this.empty = h('div', { class: 'muted pad hidden' }, 'Empty workspace: use New Project');
+    root.append(this.list, this.empty);
     const rows = () => [...this.list.querySelectorAll<HTMLElement>('.tree-row')];
     const rowOf = (path: string | undefined) => rows().find((r) => r.dataset.path === path);
     this.roving = new RovingFocus(this.list, {
@@ -139,7 +142,8 @@ export class Explorer {
       }
     };
     walk(this.entries, 0);
-    this.list.replaceChildren(...(rows.length ? rows : [h('div', { class: 'muted pad', role: 'none' }, 'Empty workspace: use New Project')]));
+    this.list.replaceChildren(...rows);
+    this.empty.classList.toggle('hidden', rows.length > 0);
     this.roving.refresh();
   }
 }

@@ -11,6 +11,8 @@ import { Emitter } from '../util/emitter.js';
 export class OutlinePanel {
   private readonly list: HTMLElement;
   private readonly caption: HTMLElement;
+  /** Shown instead of the tree when it is empty (outside it: a tree holds tree items only). */
+  private readonly empty: HTMLElement;
   private uri: string | undefined;
   readonly refresh: () => void;
   /** Escape in the outline: the owner focuses the editor. */
@@ -24,7 +26,8 @@ export class OutlinePanel {
   ) {
     this.list = h('div', { class: 'outline', role: 'tree', 'aria-label': 'Outline of the active file' });
     this.caption = h('div', { class: 'muted pad small hidden' }, 'Protected regions (editable)');
-    root.append(this.caption, this.list);
+    this.empty = h('div', { class: 'muted pad hidden' });
+    root.append(this.caption, this.list, this.empty);
     this.refresh = debounce(() => void this.load(), 250);
     this.roving = new RovingFocus(this.list, {
       orientation: 'vertical',
@@ -47,7 +50,9 @@ export class OutlinePanel {
       r.dataset.index = String(i);
       r.tabIndex = -1;
     });
-    this.list.replaceChildren(...(rows.length ? rows : [h('div', { class: 'muted pad', role: 'none' }, empty)]));
+    this.list.replaceChildren(...rows);
+    this.empty.textContent = empty;
+    this.empty.classList.toggle('hidden', rows.length > 0);
     this.roving.refresh();
   }
 

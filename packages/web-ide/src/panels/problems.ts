@@ -31,10 +31,13 @@ export class ProblemsPanel {
   readonly onEscape = new Emitter<void>();
   private readonly roving: RovingFocus;
   private shown: Problem[] = [];
+  /** Shown instead of the list when it is empty (outside it: a listbox holds options only). */
+  private readonly empty: HTMLElement;
 
   constructor(readonly root: HTMLElement) {
     this.list = h('div', { class: 'problems', role: 'listbox', 'aria-label': 'Problems of the workspace' });
-    root.append(this.list);
+    this.empty = h('div', { class: 'muted pad hidden' }, '✓ No problems in the workspace');
+    root.append(this.list, this.empty);
     this.roving = new RovingFocus(this.list, {
       orientation: 'vertical',
       items: () => [...this.list.querySelectorAll<HTMLElement>('.problem-row')],
@@ -92,7 +95,8 @@ export class ProblemsPanel {
         h('div', { class: 'problem-file', 'aria-hidden': 'true' }, h('span', { class: 'file-glyph' }, path.endsWith('.contract') ? '◈' : 'C'), path, h('span', { class: 'badge' }, String(ps.length))),
         ...options));
     }
-    this.list.replaceChildren(...(rows.length ? rows : [h('div', { class: 'muted pad', role: 'none' }, '✓ No problems in the workspace')]));
+    this.list.replaceChildren(...rows);
+    this.empty.classList.toggle('hidden', rows.length > 0);
     this.roving.refresh();
     this.onCounts.fire({ errors: all.filter((p) => p.severity === 'error').length, warnings: all.filter((p) => p.severity === 'warning').length });
   }

@@ -215,7 +215,7 @@ export class ArchitectureView {
     });
     this.info = h('span', { class: 'arch-info muted' });
     this.canvas = h('div', {
-      class: 'arch-canvas', tabindex: 0, role: 'region', 'data-autofocus': true,
+      class: 'arch-canvas', tabindex: 0, role: 'group', 'data-autofocus': true,
       'aria-label': 'Architecture diagram: wheel or + and − zoom, drag or arrows pan, F fits; click a module, port or flow to go to its definition',
     });
     this.panZoom = new PanZoom(this.canvas, (v) => {
