@@ -61,7 +61,7 @@ export const definitionOf = new WeakMap<Element, ArchLocation>();
 const SMALLEST_FONT_PX = 11;
 const MIN_FONT_PX = 9;
 
-/** Lays the schema out; with the pane's size, long chains wrap into rows so the drawing has the pane's proportions. */
+/** Lays the schema out for the pane it is shown in: left to right in a wide pane, top to bottom in a narrow one. */
 export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<ElkNode> {
   const known = new Set(schema.modules.map((m) => m.name));
   const edges: ElkExtendedEdge[] = [];
@@ -75,16 +75,17 @@ export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<Elk
   // Ports referenced by flows but missing on a module (errors in the model) are dropped by ELK; keep only valid ones.
   const portIds = new Set(schema.modules.flatMap((m) => nodeOf(m).ports!.map((p) => p.id)));
   const valid = edges.filter((e) => [...e.sources, ...e.targets].every((s) => portIds.has(s) || known.has(s)));
+  const down = !!pane && pane.width / Math.max(1, pane.height) < 1.3;
   return elk.layout({
     id: 'root',
     layoutOptions: {
       'elk.algorithm': 'layered',
-      'elk.direction': 'RIGHT',
+      // a narrow pane (docked beside the editor) gets the modules top to bottom, a wide one left to right
+      'elk.direction': down ? 'DOWN' : 'RIGHT',
       'elk.spacing.nodeNode': '50',
-      'elk.layered.spacing.nodeNodeBetweenLayers': '90',
+      'elk.layered.spacing.nodeNodeBetweenLayers': down ? '50' : '90',
       'elk.edgeRouting': 'ORTHOGONAL',
       'elk.edgeLabels.inline': 'true',
-      ...(pane ? { 'elk.aspectRatio': String(Math.max(0.3, Math.min(4, pane.width / Math.max(1, pane.height)))), 'elk.layered.wrapping.strategy': 'MULTI_EDGE' } : {}),
     },
     children: schema.modules.map(nodeOf),
     edges: valid,
