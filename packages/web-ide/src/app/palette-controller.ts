@@ -5,11 +5,10 @@ import { quickPick, type PickItem } from '../palette/quick-pick.js';
 import type { CommandRegistry } from './commands.js';
 
 /** Editor commands Monaco registers outside `getSupportedActions()` (its "action2" kind): listed too. */
-const MORE_EDITOR_COMMANDS: Array<{ id: string; label: string }> = [
-  { id: 'editor.action.revealDefinition', label: 'Go to Definition' },
-  { id: 'editor.action.peekDefinition', label: 'Peek Definition' },
-  { id: 'editor.action.goToReferences', label: 'Go to References' },
-  { id: 'editor.action.referenceSearch.trigger', label: 'Peek References' },
+const MORE_EDITOR_COMMANDS: Array<{ id: string; label: string; key: string }> = [
+  { id: 'editor.action.revealDefinition', label: 'Go to Definition', key: 'F12' },
+  { id: 'editor.action.peekDefinition', label: 'Peek Definition', key: 'Ctrl+Shift+F10' },
+  { id: 'editor.action.goToReferences', label: 'Go to References', key: 'Shift+F12' },
 ];
 
 type Keybindings = { lookupKeybinding(id: string): { getLabel(): string | null } | undefined };
@@ -45,7 +44,7 @@ export async function openCommandPalette(commands: CommandRegistry, editors: Edi
     }
     for (const c of MORE_EDITOR_COMMANDS) {
       if (seen.has(c.label)) continue;
-      items.push({ label: c.label, keybinding: editorKeybinding(editors.editor, c.id), detail: 'Editor', run: () => {
+      items.push({ label: c.label, keybinding: editorKeybinding(editors.editor, c.id) ?? c.key, detail: 'Editor', run: () => {
         editors.editor.focus();
         editors.editor.trigger('command-palette', c.id, null);
       } });

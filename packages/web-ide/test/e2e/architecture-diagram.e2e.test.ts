@@ -4,7 +4,7 @@
  * fits, and a click on a module, port or flow goes to its definition.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, shot, placeCursor, activeTab, openFile, type Session } from './harness.js';
+import { startSession, openIde, shot, placeCursor, activeTab, openFile, cursorLine, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
 
 let s: Session;
@@ -15,7 +15,6 @@ const viewOf = (page: Session['page']) => page.locator(`${pane} .arch-scene`).ev
   const m = g.getAttribute('transform')!.match(/translate\(([-\d.]+),([-\d.]+)\) scale\(([-\d.]+)\)/)!;
   return { x: Number(m[1]), y: Number(m[2]), scale: Number(m[3]) };
 });
-const cursorLine = (page: Session['page']) => page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getPosition(): { lineNumber: number } } } } }).__ide.editors.editor.getPosition().lineNumber);
 
 describe('architecture diagram docked', () => {
   beforeAll(async () => {
