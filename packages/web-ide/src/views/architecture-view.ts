@@ -269,12 +269,16 @@ export class ArchitectureView {
     await this.draw();
   }
 
-  /** The editor's cursor moved: when it is inside a schema, that schema is shown. */
+  /**
+   * The editor's cursor moved: when it went into a schema, that schema is shown (moving inside the
+   * same schema keeps a schema picked in the list meanwhile).
+   */
   follow(cursor: CursorAt | undefined): void {
     this.cursor = cursor;
     const at = cursor && this.schemas.find((s) => inRange(cursor, s));
+    const entered = at && at.name !== this.followed;
     this.followed = at?.name;
-    if (at) void this.choose(at.name);
+    if (entered) void this.choose(at.name);
   }
   /** Marks the run's state on the diagram (classes only: no re-layout), or clears it. */
   highlight(live: LiveHighlight | undefined): void {

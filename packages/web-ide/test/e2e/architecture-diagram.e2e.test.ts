@@ -37,6 +37,14 @@ describe('architecture diagram docked', () => {
     await openFile(page, 'sschema1.contract');
     await placeCursor(page, 'MSD ();');
     await expect.poll(() => page.locator(`${pane} .arch-svg`).getAttribute('data-schema'), { timeout: 5000 }).toBe('schemaCommande1');
+    // a schema picked in the list stays while the cursor moves inside the same schema
+    await page.locator('.side-pane .arch-select').selectOption('schemaReceptionMessage');
+    await placeCursor(page, 'MSC (consigne');
+    await page.keyboard.press('ArrowDown');
+    await page.waitForTimeout(500); // past the follow debounce
+    expect(await page.locator(`${pane} .arch-svg`).getAttribute('data-schema')).toBe('schemaReceptionMessage');
+    await page.locator('.side-pane .arch-select').selectOption('schemaCommande1');
+    await expect.poll(() => page.locator(`${pane} .arch-svg`).getAttribute('data-schema')).toBe('schemaCommande1');
     await page.waitForTimeout(400); // the relayout for the pane's size settles
     // every label is drawn at 9 px or more at the docked size
     const smallest = await page.locator(`${pane} .arch-svg text`).evaluateAll((els) => Math.min(...els.map((e) => e.getBoundingClientRect().height)));
