@@ -6,16 +6,16 @@ export function createLayout(root: HTMLElement) {
   const btn = (id: string, icon: string, label: string, title: string, cls = '') =>
     h('button', { class: `btn toolbar-btn ${cls}`, id, title, 'aria-label': label || title }, h('span', { class: 'btn-icon' }, icon), label ? h('span', {}, label) : null);
   const toolbar = {
-    newFile: btn('btn-new-file', '+', 'File', 'New file in the selected folder'),
+    newFile: btn('btn-new-file', '+', 'File', 'New file in the selected folder (Alt+Shift+N)'),
     newFolder: btn('btn-new-folder', '▣', 'Folder', 'New folder in the selected folder'),
     newProject: btn('btn-new-project', '✦', 'New Project', 'Create a project from the report templates'),
     generate: btn('btn-generate', '⚙', 'Generate All', 'Generate the C tree (Ctrl+Shift+G)', 'accent'),
     run: btn('btn-run', '▶', 'Build & Run', 'Build in the sandbox and run the architecture (Ctrl+Shift+B)', 'run'),
-    stop: btn('btn-stop', '■', 'Stop', 'Stop the running job', 'stop'),
+    stop: btn('btn-stop', '■', 'Stop', 'Stop the running job (Alt+Shift+S)', 'stop'),
     runSettings: btn('btn-run-settings', '⚙', '', 'Run settings: duration and start request'),
-    arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas'),
-    timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs'),
-    monitor: btn('btn-monitor', '◉', 'Monitor', 'Watch the run: rules, schemas, deadlines (live during Build & Run, replay after)'),
+    arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas (Alt+Shift+D)'),
+    timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs (Alt+Shift+T)'),
+    monitor: btn('btn-monitor', '◉', 'Monitor', 'Watch the run: rules, schemas, deadlines (live during Build & Run, replay after) (Alt+Shift+M)'),
   };
   toolbar.stop.disabled = true;
   const workspaceName = h('span', { class: 'workspace-name' });

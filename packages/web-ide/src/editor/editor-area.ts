@@ -61,8 +61,8 @@ export class EditorArea {
     });
     this.editorHost = h('div', { class: 'editor-host' });
     this.viewHost = h('div', { class: 'view-host hidden' });
-    this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer'),
-      h('div', { class: 'muted' }, 'Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
+    this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer, or Ctrl+P'),
+      h('div', { class: 'muted' }, 'F1 all commands · Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
     this.sidePane = h('div', { class: 'side-pane hidden' });
     this.stack = h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl, this.sidePane);
     root.append(this.tabsEl, this.stack);
