@@ -58,13 +58,13 @@ async function main(): Promise<void> {
   workspace.onNotice.on((n) => toast(n.level, n.text));
   new ConflictView(workspace); // overlapping edits of a file: side by side until the user chose
   lsp.onMessage.on((m) => toast(m.type === 1 ? 'error' : m.type === 2 ? 'warning' : 'info', String(m.message).slice(0, 500)));
+  const files = new FileOperations({ workspace, editors, explorer, lsp });
   workspace.onTree.on((entries) => {
     explorer.setEntries(entries);
-    editors.closeMissing((p) => workspace.hasFile(p));
+    editors.closeMissing((p) => workspace.hasFile(p) || files.isRenaming(p));
   });
   showSaveStatus(workspace, ui.status.save);
 
-  const files = new FileOperations({ workspace, editors, explorer, lsp });
   ui.toolbar.newFile.addEventListener('click', () => void files.newEntry('file'));
   ui.toolbar.newFolder.addEventListener('click', () => void files.newEntry('dir'));
   ui.toolbar.newProject.addEventListener('click', () => void files.newProject());

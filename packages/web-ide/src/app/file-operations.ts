@@ -22,6 +22,13 @@ export class FileOperations {
     });
   }
 
+  /** Paths being renamed on the server: a tree refresh meanwhile (the watcher saw the old path go) does not close their tabs. */
+  private readonly renaming = new Set<string>();
+
+  isRenaming(path: string): boolean {
+    return [...this.renaming].some((from) => path === from || path.startsWith(from + '/'));
+  }
+
   rootHasContracts(): boolean {
     return this.d.workspace.entries.some((e) => e.type === 'file' && isContract(e.path));
   }
@@ -80,14 +87,22 @@ export class FileOperations {
       const dir = entry.path.includes('/') ? entry.path.slice(0, entry.path.lastIndexOf('/')) : '';
       const to = join(dir, name);
       await workspace.saveAll();
-      await api.rename(entry.path, to);
-      const moved = [...workspace.files.keys()].filter((p) => p === entry.path || p.startsWith(entry.path + '/'));
-      for (const p of moved) workspace.dropFile(p);
-      editors.renamePath(entry.path, to);
-      await workspace.refreshTree();
-      for (const p of moved) {
-        const np = to + p.slice(entry.path.length);
-        if (isContract(np)) await workspace.ensureModel(np);
+      // until the tabs point at the new path and the tree has it, a tree fetched by the watcher
+      // meanwhile (old path gone, or new path not there yet) must not close their tabs
+      this.renaming.add(entry.path).add(to);
+      try {
+        await api.rename(entry.path, to);
+        const moved = [...workspace.files.keys()].filter((p) => p === entry.path || p.startsWith(entry.path + '/'));
+        for (const p of moved) workspace.dropFile(p);
+        editors.renamePath(entry.path, to);
+        await workspace.refreshTree();
+        for (const p of moved) {
+          const np = to + p.slice(entry.path.length);
+          if (isContract(np)) await workspace.ensureModel(np);
+        }
+      } finally {
+        this.renaming.delete(entry.path);
+        this.renaming.delete(to);
       }
       lsp.revalidateAll();
       if (editors.active && workspace.hasFile(editors.active)) await editors.open(editors.active);

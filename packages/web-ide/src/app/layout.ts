@@ -66,6 +66,7 @@ export function createLayout(root: HTMLElement) {
       p.tab.setAttribute('aria-selected', String(k === id));
       p.body.classList.toggle('hidden', k !== id);
     }
+    panelFocus.forget(); // the tab stop is the shown panel's tab
     panelFocus.refresh();
   };
   // the panel tabs: a WAI-ARIA tablist (←/→ show the next panel, Tab enters it, Escape back to the editor)

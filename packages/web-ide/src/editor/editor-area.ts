@@ -287,6 +287,7 @@ export class EditorArea {
           h('span', { class: 'tab-close', title: 'Close (Delete)', 'aria-hidden': 'true', onclick: (e: Event) => { e.stopPropagation(); this.close(id); } }, '×'));
       }),
     );
+    this.tabFocus.forget(); // the tab stop is the active tab
     this.tabFocus.refresh();
     // the active tab is always visible in the strip (many tabs scroll)
     this.tabsEl.querySelector('.tab.active')?.scrollIntoView({ block: 'nearest', inline: 'nearest' });

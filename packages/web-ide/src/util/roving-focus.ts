@@ -50,6 +50,11 @@ export class RovingFocus {
     if (this.hasFocus && target && !this.container.contains(document.activeElement)) target.focus();
   }
 
+  /** The tab stop goes back to the selected item (`current`) at the next refresh: a tab list after its active tab changed. */
+  forget(): void {
+    this.key = undefined;
+  }
+
   /** Focuses the current item (the last focused one, else the selected one, else the first). */
   focus(): boolean {
     this.key = this.key && this.opts.items().some((i) => this.opts.keyOf(i) === this.key) ? this.key : undefined;
