@@ -3,7 +3,7 @@ import { h } from './dom.js';
 /** An in-page prompt (no native dialogs): resolves the entered text, or null when cancelled. */
 export function askText(title: string, initial = '', hint = ''): Promise<string | null> {
   return new Promise((resolve) => {
-    const input = h('input', { class: 'dialog-input', value: initial, spellcheck: 'false' });
+    const input = h('input', { class: 'dialog-input', value: initial, spellcheck: 'false', 'aria-label': title });
     const done = (v: string | null) => {
       overlay.remove();
       resolve(v);
@@ -47,8 +47,8 @@ export function askFields(title: string, fields: Array<{ key: string; label: str
   return new Promise((resolve) => {
     const inputs = fields.map((f) =>
       f.checkbox
-        ? h('input', { class: 'dialog-check', type: 'checkbox', checked: f.value === 'yes', 'data-key': f.key })
-        : h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '' }),
+        ? h('input', { class: 'dialog-check', type: 'checkbox', checked: f.value === 'yes', 'data-key': f.key, 'aria-label': f.label })
+        : h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '', 'aria-label': f.label }),
     );
     const valueOf = (i: HTMLInputElement) => (i.type === 'checkbox' ? (i.checked ? 'yes' : '') : i.value.trim());
     const done = (ok: boolean) => {
