@@ -557,8 +557,10 @@ typedef struct ContractSupervisorVocabulary {
  *  the descriptor's functions when present, otherwise the generic ones described above.
  *  compare: op EQ..GE, returns 1/0 (int and float mix numerically). get: parses the textual
  *  form at `text`, returns characters read or -1 (dst unchanged). print: on stdout.
- *  format: a short readable form into buf (at most len - 1 characters, cut with `...`), as in
- *  the trace records (docs/runtime-api.md "Trace records"). */
+ *  format: a short readable form into buf (at most len - 1 characters; arrays show their first
+ *  CONTRACT_FORMAT_MAX_ITEMS elements, then `...`; cut with `...` when longer), as in the trace
+ *  records (docs/runtime-api.md "Trace records"); print shows every element. */
+#define CONTRACT_FORMAT_MAX_ITEMS 10
 int contract_value_compare(ContractTestOp op, const ContractType *t, const void *a, const void *b);
 int contract_value_get(const ContractType *t, void *dst, char *text);
 void contract_value_print(const ContractType *t, const void *value);

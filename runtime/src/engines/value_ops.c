@@ -241,25 +241,13 @@ int contract_value_get(const ContractType *t, void *dst, char *text) {
     }
 }
 
-/* ---- printing (stdout) ------------------------------------------------------------------ */
-
-void contract_value_print(const ContractType *t, const void *value) {
-    if (!t || !value) return;
-    if (t->print) {
-        t->print((void *)(uintptr_t)value);
-        return;
-    }
-    char buf[4096];
-    contract_value_format(buf, sizeof buf, t, value);
-    fputs(buf, stdout);
-}
-
 /* ---- short readable form ---------------------------------------------------------------- */
 
 /* A bounded writer: text goes into buf[0 .. cap), buf[n] stays the end of the text. */
 typedef struct Writer {
     char *buf;
     size_t n, cap;
+    int max_items; /* array elements shown before `...` (so that later fields keep room) */
 } Writer;
 
 static int put(Writer *w, const char *s) {
@@ -302,6 +290,11 @@ static int format_list(Writer *w, const ContractType *t, const unsigned char *v,
     w->cap -= CUT_ROOM;
     for (int i = 0; i < count; i++) {
         size_t mark = w->n;
+        if (is_array && i >= w->max_items) {
+            w->cap += CUT_ROOM;
+            put(w, ",...]");
+            return 1;
+        }
         const ContractType *et = is_array ? t->element : t->fields[i].type;
         const unsigned char *ev = is_array ? v + (size_t)i * t->element->size : v + t->fields[i].offset;
         int ok = (i == 0 || put(w, ",")) && (is_array || (put(w, t->fields[i].name) && put(w, "="))) &&
@@ -365,10 +358,26 @@ void contract_value_format(char *buf, size_t len, const ContractType *t, const v
         snprintf(buf, len, "?");
         return;
     }
-    Writer w = {buf, 0, len - 1};
+    Writer w = {buf, 0, len - 1, CONTRACT_FORMAT_MAX_ITEMS};
     if (!format_into(&w, t, value, 0)) snprintf(buf, len, "?");
 }
 
 void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type) {
     contract_value_format(buf, len, type, value);
+}
+
+/* ---- printing (stdout) ------------------------------------------------------------------ */
+
+
+void contract_value_print(const ContractType *t, const void *value) {
+    if (!t || !value) return;
+    if (t->print) {
+        t->print((void *)(uintptr_t)value);
+        return;
+    }
+    char buf[16384];
+    Writer w = {buf, 0, sizeof buf - 1, 1 << 30};
+    buf[0] = 0;
+    if (!format_into(&w, t, value, 0)) snprintf(buf, sizeof buf, "?");
+    fputs(buf, stdout);
 }
