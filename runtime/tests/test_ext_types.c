@@ -8,28 +8,8 @@
 #include <stdlib.h>
 #include <string.h>
 #include "harness.h"
-#include "contract/vocabulary.h"
-#include "modules/ext_types.h"
+#include "modules/ext_types_vocabulary.h"
 
-static const ContractEnumMember mode_members[] = { { "IDLE", XMode_IDLE }, { "TELEOP", XMode_TELEOP }, { "AUTO", XMode_AUTO } };
-static const ContractType t_mode = CONTRACT_ENUM_TYPE(XMode, mode_members, 3, NULL);
-static const ContractType t_row = CONTRACT_ARRAY_TYPE("float[3]", double[3], contract_type_double, 3, NULL);
-static const ContractType t_mat = CONTRACT_ARRAY_TYPE("float[3][3]", double[3][3], t_row, 3, NULL);
-static const ContractType t_ranges = CONTRACT_ARRAY_TYPE("float[180]", double[180], contract_type_double, 180, NULL);
-static const ContractField cell_fields[] = { { "id", offsetof(XCell, id), &contract_type_long },
-                                             { "w", offsetof(XCell, w), &contract_type_double },
-                                             { "tag", offsetof(XCell, tag), &contract_type_string } };
-static const ContractType t_cell = { .name = "XCell", .kind = CONTRACT_KIND_STRUCT, .size = sizeof(XCell),
-                                     .nfields = 3, .fields = cell_fields };
-static const ContractType t_cells4 = CONTRACT_ARRAY_TYPE("XCell[4]", XCell[4], t_cell, 4, NULL);
-static const ContractType t_cells2 = CONTRACT_ARRAY_TYPE("XCell[2]", XCell[2], t_cell, 2, NULL);
-static const ContractField scan_fields[] = { { "ranges", offsetof(XScan, ranges), &t_ranges },
-                                             { "mode", offsetof(XScan, mode), &t_mode },
-                                             { "ok", offsetof(XScan, ok), &contract_type_bool },
-                                             { "cells", offsetof(XScan, cells), &t_cells2 },
-                                             { "m", offsetof(XScan, m), &t_mat } };
-static const ContractType t_scan = { .name = "XScan", .kind = CONTRACT_KIND_STRUCT, .size = sizeof(XScan),
-                                     .nfields = 5, .fields = scan_fields };
 static const ContractType *const port_types[EXT_NPORTS] = { &contract_type_bool, &t_mode, &t_mat, &t_cells4, &t_scan };
 
 /* Sends `value` to ECHO's input event port `port` and returns what came back on the tester's
@@ -112,5 +92,36 @@ void test_ext_types_round_trip(void)
         got = h_wait_event("ECHO", 4, 250, m);
     }
     CHECK(got && m->DataSize == sizeof other && memcmp(m->Data, &other, sizeof other) == 0);
+
+    /* the typed control tool: reads the Cactal value syntax, prints what it read readably */
+    char out[600];
+    snprintf(out, sizeof out, "%s/control.out", h_work_dir);
+    char value[4096];
+    int n = snprintf(value, sizeof value, "{{");
+    for (int i = 0; i < 180; i++) n += snprintf(value + n, sizeof value - (size_t)n, "%s%g", i ? ", " : "", i == 90 ? 0.2 : 1.0);
+    snprintf(value + n, sizeof value - (size_t)n, "}, XMode.TELEOP, true, {{1, 0.5, \"l\"}, {2, 0.5, \"r\"}}, "
+                                                  "{{1,0,0},{0,1,0},{0,0,1}}}");
+    char *argv[] = { "controlECHO", "setparam", "0", value, NULL };
+    CHECK(h_run(argv, out, 5000) == 0);
+    char *text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "ECHO: parameter 0 set to {ranges=[1,1,1,1,1,1,1,1,1,1,...],mode=TELEOP,ok=true,"
+                                   "cells=[{id=1,w=0.5,tag=\"l\"},{id=2,w=0.5,tag=\"r\"}],m=[[1,0,0],[0,1,0],[0,0,1]]}"),
+              "control tool printed: %s", text ? text : "(nothing)");
+    free(text);
+    got = 0;
+    for (int attempt = 0; attempt < 20 && !got; attempt++) {
+        CHECK(SendStart("ECHO", ACK_NOTHING, 40 + attempt) == CONTRACT_OK);
+        got = h_wait_event("ECHO", 4, 250, m);
+    }
+    XScan sent;
+    memcpy(&sent, m->Data, sizeof sent);
+    CHECK(got && sent.ranges[90] == 0.2 && sent.ranges[179] == 1.0 && sent.mode == XMode_TELEOP && sent.ok &&
+          sent.cells[1].id == 2 && sent.m[2][2] == 1.0);
+    char bad[] = "{{1, 2}, AUTO, true, {{1, 0.5, \"l\"}, {2, 0.5, \"r\"}}, {{1,0,0},{0,1,0},{0,0,1}}}";
+    char *argv_bad[] = { "controlECHO", "setparam", "0", bad, NULL };
+    CHECK(h_run(argv_bad, out, 5000) == 4); /* 2 ranges instead of 180 */
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "of type XScan"));
+    free(text);
     h_teardown();
 }

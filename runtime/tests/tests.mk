@@ -17,6 +17,9 @@ $(1)/P $(1)/C1 $(1)/C2: tests/modules/tmod.c $(2) $(HDRS) $(TEST_HDRS)
 $(1)/ECHO: tests/modules/emod.c $(2) $(HDRS) $(TEST_HDRS)
 	@mkdir -p $(1)
 	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) $$< $(2) -o $$@
+$(1)/controlECHO: tests/modules/control_echo.c $(2) $(HDRS) $(TEST_HDRS)
+	@mkdir -p $(1)
+	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) -Itests/modules $$< $(2) -o $$@
 $(1)/MSC: tests/report_msc/module.c $(2) $(HDRS) $(TEST_HDRS)
 	@mkdir -p $(1)
 	$$(CC) $$(ALLFLAGS) $(3) $(REPORT_ALLOW) $(TEST_INC) $$< $(2) -o $$@
@@ -34,7 +37,7 @@ $(1)/runner: $(TEST_SRCS) $(2) $(HDRS) $(TEST_HDRS)
 	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) $(TEST_SRCS) $(2) -lm -o $$@
 endef
 
-TEST_BINS = P C1 C2 ECHO MSC MAA controlMSC contract-launch runner
+TEST_BINS = P C1 C2 ECHO controlECHO MSC MAA controlMSC contract-launch runner
 $(eval $(call TEST_SET,$(BUILD)/tests,$(BUILD)/libmodule.a,,$(BUILD)/contract-launch))
 $(eval $(call TEST_SET,$(BUILD)/san/tests,$(BUILD)/san/libmodule.a,$(SANFLAGS),$(BUILD)/san/contract-launch))
 

@@ -122,7 +122,8 @@ typedef struct ContractField {
  *    An element access with a constant index (`scan.ranges[90]`) is a field path like any
  *    other: offset offsetof(Scan, ranges) + 90 * sizeof(double), type contract_type_double.
  *  - datatypes may list their fields (`fields`, `nfields`; CONTRACT_DEFINE_TYPE_FIELDS) so that
- *    logs show `{x=1,q=[0.1,0.2],mode=AUTO}` instead of `{N bytes}`.
+ *    logs show `{x=1,q=[0.1,0.2],mode=AUTO}` instead of `{N bytes}` (and, without a `get`,
+ *    are parsed from `{v1, v2, ...}` in field order).
  * The engines check these descriptors when they start (element/count/size agree, members
  * present, enum size 1/2/4/8, fields inside the struct).
  */

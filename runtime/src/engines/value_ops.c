@@ -202,19 +202,24 @@ void engine_default_value(void *dst, const ContractType *t, const void *explicit
 
 /* ---- parsing ---------------------------------------------------------------------------- */
 
-/* `{e1, e2, ...}` or `[e1, e2, ...]` with exactly count elements, parsed into tmp. */
-static int array_get(const ContractType *t, unsigned char *tmp, const char *text) {
+/* An array `{e1, e2, ...}` or `[e1, e2, ...]` with exactly count elements, or a datatype without
+   its own get (its field table) `{f1, f2, ...}` in field order, parsed into tmp. */
+static int list_get(const ContractType *t, unsigned char *tmp, const char *text) {
+    int is_array = t->kind == CONTRACT_KIND_ARRAY;
+    int count = is_array ? t->count : t->nfields;
     const char *p = skip_blanks(text);
-    char close = *p == '{' ? '}' : *p == '[' ? ']' : 0;
-    if (!close || !t->element) return -1;
+    char close = *p == '{' ? '}' : (*p == '[' && is_array) ? ']' : 0;
+    if (!close || (is_array && !t->element)) return -1;
     p++;
-    for (int i = 0; i < t->count; i++) {
+    for (int i = 0; i < count; i++) {
         if (i > 0) {
             p = skip_blanks(p);
             if (*p != ',') return -1;
             p++;
         }
-        int n = contract_value_get(t->element, tmp + (size_t)i * t->element->size, (char *)p);
+        const ContractType *et = is_array ? t->element : t->fields[i].type;
+        unsigned char *at = is_array ? tmp + (size_t)i * t->element->size : tmp + t->fields[i].offset;
+        int n = contract_value_get(et, at, (char *)p);
         if (n < 0) return -1;
         p += n;
     }
@@ -228,11 +233,14 @@ int contract_value_get(const ContractType *t, void *dst, char *text) {
     if (t->get) return t->get(dst, text);
     switch (t->kind) {
     case CONTRACT_KIND_ENUM: return enum_get(t, dst, text);
+    case CONTRACT_KIND_STRUCT:
+        if (t->nfields <= 0 || !t->fields) return -1;
+        __attribute__((fallthrough));
     case CONTRACT_KIND_ARRAY: {
         unsigned char *tmp = malloc(t->size);
         if (!tmp) return -1;
-        memcpy(tmp, dst, t->size); /* elements keep their bytes (e.g. string padding) */
-        int n = array_get(t, tmp, text);
+        memcpy(tmp, dst, t->size); /* bytes no element covers (padding) are kept */
+        int n = list_get(t, tmp, text);
         if (n >= 0) memcpy(dst, tmp, t->size);
         free(tmp);
         return n;

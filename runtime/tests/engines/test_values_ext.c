@@ -160,6 +160,11 @@ void test_ext_array_of_structs_defaults_and_fields(void) {
     CHECK(cells[0].id == 0 && cells[0].w == 0.5 && cells[2].w == 0.5);
     cells[1].id = 7;
     CHECK(strcmp(fmt(&type_Cell_3, cells, 128), "[{id=0,w=0.5},{id=7,w=0.5},{id=0,w=0.5}]") == 0);
+    /* a datatype without its own get is read through its field table, in field order */
+    char tc[] = "[{1, 0.25}, {2, -1}, {3, 1e3}]", tbad[] = "[{1, 0.25}, {2}, {3, 1}]";
+    CHECK(contract_value_get(&type_Cell_3, cells, tc) == (int)strlen(tc));
+    CHECK(cells[0].id == 1 && cells[0].w == 0.25 && cells[1].w == -1 && cells[2].w == 1000);
+    CHECK(contract_value_get(&type_Cell_3, cells, tbad) == -1 && cells[1].w == -1);
     /* a datatype without a field table keeps its short form */
     ContractType plain = type_Cell;
     plain.nfields = 0;
