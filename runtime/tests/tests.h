@@ -4,6 +4,8 @@
 #include "harness.h"
 void test_tools_parse(void);
 void test_tools_serialize(void);
+void test_tools_bool_enum(void);
+void test_ext_types_round_trip(void);
 void test_msc_request_loop(void);
 void test_msc_setparam_event(void);
 void test_stop_running_cycle(void);
@@ -30,6 +32,7 @@ void test_csv_log_cap(void);
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
     { "tools_serialize", test_tools_serialize },
+    { "tools_bool_enum", test_tools_bool_enum },
     { "msc_request_loop", test_msc_request_loop },
     { "msc_setparam_event", test_msc_setparam_event },
     { "stop_running_cycle", test_stop_running_cycle },
@@ -52,6 +55,7 @@ static const TestCase ALL_TESTS[] = {
     { "priority", test_priority },
     { "set_module_priority", test_set_module_priority },
     { "csv_log_cap", test_csv_log_cap },
+    { "ext_types_round_trip", test_ext_types_round_trip },
     { NULL, NULL },
 };
 #endif

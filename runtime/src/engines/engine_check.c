@@ -28,14 +28,58 @@ static int fail(Ctx *x, const char *fmt, ...) {
     return -1;
 }
 
-static int check_type(Ctx *x, const ContractType *t, const char *what) {
+static int check_type_at(Ctx *x, const ContractType *t, const char *what, int depth);
+
+/* bool, enumerations, arrays and field tables (the extension parts of a descriptor). */
+static int check_extension(Ctx *x, const ContractType *t, const char *what, int depth) {
+    const char *name = t->name ? t->name : "?";
+    switch (t->kind) {
+    case CONTRACT_KIND_BOOL:
+        if (t->size != 1) return fail(x, "%s: bool type %s of size %zu (C bool is 1 byte)", what, name, t->size);
+        return 0;
+    case CONTRACT_KIND_ENUM:
+        if (t->size != 1 && t->size != 2 && t->size != 4 && t->size != 8)
+            return fail(x, "%s: enum type %s of size %zu (1, 2, 4 or 8)", what, name, t->size);
+        if (t->nmembers <= 0 || !t->members) return fail(x, "%s: enum type %s has no members", what, name);
+        for (int i = 0; i < t->nmembers; i++)
+            if (!t->members[i].name) return fail(x, "%s: enum type %s: member %d has no name", what, name, i);
+        return 0;
+    case CONTRACT_KIND_ARRAY:
+        if (!t->element || t->count <= 0)
+            return fail(x, "%s: array type %s needs an element type and a count >= 1", what, name);
+        if (check_type_at(x, t->element, what, depth + 1)) return -1;
+        if (t->size != (size_t)t->count * t->element->size)
+            return fail(x, "%s: array type %s of size %zu is not %d x %zu bytes", what, name, t->size, t->count,
+                        t->element->size);
+        return 0;
+    case CONTRACT_KIND_STRUCT:
+        if (t->nfields < 0 || (t->nfields > 0 && !t->fields)) return fail(x, "%s: type %s: field table missing", what, name);
+        for (int i = 0; i < t->nfields; i++) {
+            const ContractField *f = &t->fields[i];
+            if (!f->name) return fail(x, "%s: type %s: field %d has no name", what, name, i);
+            if (check_type_at(x, f->type, what, depth + 1)) return -1;
+            if (f->offset + f->type->size > t->size)
+                return fail(x, "%s: type %s: field %s at %zu (+%zu) exceeds its %zu bytes", what, name, f->name, f->offset,
+                            f->type->size, t->size);
+        }
+        return 0;
+    default: return 0;
+    }
+}
+
+static int check_type_at(Ctx *x, const ContractType *t, const char *what, int depth) {
     if (!t) return fail(x, "%s has no type", what);
+    if (depth > 16) return fail(x, "%s: type %s nests more than 16 levels (a cycle?)", what, t->name ? t->name : "?");
     if (t->size == 0 || t->size > CONTRACT_MAX_VALUE_SIZE)
         return fail(x, "%s: type %s has size %zu", what, t->name ? t->name : "?", t->size);
     if (t->kind == CONTRACT_KIND_STRING && t->size != CONTRACT_STRING_SIZE)
         return fail(x, "%s: string type of size %zu", what, t->size);
-    return 0;
+    if (t->kind < CONTRACT_KIND_LONG || t->kind > CONTRACT_KIND_ARRAY)
+        return fail(x, "%s: type %s of unknown kind %d", what, t->name ? t->name : "?", (int)t->kind);
+    return check_extension(x, t, what, depth);
 }
+
+static int check_type(Ctx *x, const ContractType *t, const char *what) { return check_type_at(x, t, what, 0); }
 
 static int check_vars(Ctx *x, const ContractVar *vars, int n, size_t size, const char *what) {
     if (n < 0 || (n > 0 && !vars)) return fail(x, "%s table missing", what);
@@ -90,14 +134,22 @@ static int numeric(const ContractType *t) {
     return t->kind == CONTRACT_KIND_LONG || t->kind == CONTRACT_KIND_DOUBLE;
 }
 
-/* same type, or int/float mix; structs are compared by name and size */
-static int compatible(const ContractType *a, const ContractType *b) {
+/* the same type: structs and enums by name and size, arrays by count and element type */
+static int same_type(const ContractType *a, const ContractType *b) {
     if (a == b) return 1;
+    if (a->kind != b->kind || a->size != b->size) return 0;
+    switch (a->kind) {
+    case CONTRACT_KIND_STRUCT:
+    case CONTRACT_KIND_ENUM: return a->name && b->name && strcmp(a->name, b->name) == 0;
+    case CONTRACT_KIND_ARRAY: return a->count == b->count && a->element && b->element && same_type(a->element, b->element);
+    default: return 1;
+    }
+}
+
+/* same type, or int/float mix (not inside arrays: they are copied as they are) */
+static int compatible(const ContractType *a, const ContractType *b) {
     if (numeric(a) && numeric(b)) return 1;
-    if (a->kind != b->kind) return 0;
-    if (a->kind == CONTRACT_KIND_STRUCT)
-        return a->size == b->size && a->name && b->name && strcmp(a->name, b->name) == 0;
-    return a->size == b->size;
+    return same_type(a, b);
 }
 
 static int check_compatible(Ctx *x, const ContractType *target, const ContractType *src, const char *what) {
