@@ -50,7 +50,7 @@ export function generateSharedEnumHeader(e: EnumDecl): string {
             static const char *const names[${e.members.length}] = { ${names} };
             int i = 0;
             if (arg == NULL || description == NULL) return -1;
-            while (description[i] == ' ' || description[i] == '\t' || description[i] == '\n' || description[i] == '\r') i++;
+            while (description[i] == ' ' || description[i] == '\\t' || description[i] == '\\n' || description[i] == '\\r') i++;
             if (strncmp(&description[i], "${E}.", ${E.length + 1}) == 0) i += ${E.length + 1};
             for (unsigned int m = 0; m < ${e.members.length}; m++) {
                 size_t n = strlen(names[m]);
