@@ -99,7 +99,15 @@ typedef struct RefLimits {
     int nparams;
     const ContractSupervisorVocabulary *sup; /* IN_PORT allowed when non-NULL */
     int allow_ord;
+    const ContractVar *locals, *params;      /* their types bound field paths (NULL: not checked) */
 } RefLimits;
+
+/* A field path (an element `ranges[90]` included) must stay inside the variable it starts from. */
+static int check_path(Ctx *x, const ContractRef *r, const ContractType *var, const char *what) {
+    if (!var || r->offset + r->type->size <= var->size) return 0;
+    return fail(x, "%s: field path at offset %zu (+%zu bytes) exceeds its %s of %zu bytes", what, r->offset,
+                r->type->size, var->name ? var->name : "?", var->size);
+}
 
 static int check_ref(Ctx *x, const ContractRef *r, const RefLimits *l, const char *what) {
     if (check_type(x, r->type, what)) return -1;
@@ -110,16 +118,16 @@ static int check_ref(Ctx *x, const ContractRef *r, const RefLimits *l, const cha
     case CONTRACT_REF_LOCAL:
         if (r->index < 0 || r->index >= l->nlocals)
             return fail(x, "%s: local %d out of range (%d locals)", what, r->index, l->nlocals);
-        return 0;
+        return check_path(x, r, l->locals ? l->locals[r->index].type : NULL, what);
     case CONTRACT_REF_PARAM:
         if (r->index < 0 || r->index >= l->nparams)
             return fail(x, "%s: parameter %d out of range (%d parameters)", what, r->index,
                         l->nparams);
-        return 0;
+        return check_path(x, r, l->params ? l->params[r->index].type : NULL, what);
     case CONTRACT_REF_IN_PORT:
         if (l->sup) {
             for (int i = 0; i < l->sup->nin_ports; i++)
-                if (l->sup->in_ports[i].port == r->index) return 0;
+                if (l->sup->in_ports[i].port == r->index) return check_path(x, r, l->sup->in_ports[i].type, what);
         }
         return fail(x, "%s: no in event port :%d here", what, r->index);
     case CONTRACT_REF_ORD_SCHEMA:
@@ -193,7 +201,7 @@ static int check_schema(Ctx *x, const ContractSchema *s) {
         return fail(x, "unknown kind %d", (int)s->kind);
     if (check_vars(x, s->params, s->nparams, s->params_size, "parameter")) return -1;
     if (s->nmodules < 0 || (s->nmodules > 0 && !s->modules)) return fail(x, "modules missing");
-    RefLimits l = {0, s->nparams, NULL, 0};
+    RefLimits l = {0, s->nparams, NULL, 0, NULL, s->params};
     for (int m = 0; m < s->nmodules; m++) {
         if (!s->modules[m].module) return fail(x, "module %d has no name", m);
         if (check_settings(x, s->modules[m].settings, s->modules[m].nsettings, &l,
@@ -253,7 +261,7 @@ int contract_check_ord_vocabulary(const ContractOrdVocabulary *v, char *err, siz
 static int check_condition(Ctx *x, const ContractSupervisorVocabulary *v, const ContractFunction *fn,
                            const ContractCondition *c, const char *which) {
     if (c->nclauses < 0 || (c->nclauses > 0 && !c->clauses)) return fail(x, "%s missing", which);
-    RefLimits tl = {fn->nlocals, 0, v, 0};
+    RefLimits tl = {fn->nlocals, 0, v, 0, fn->locals, NULL};
     for (int k = 0; k < c->nclauses; k++) {
         const ContractClause *cl = &c->clauses[k];
         if (cl->nevents <= 0 || !cl->events) return fail(x, "%s clause %d is empty", which, k);
@@ -324,7 +332,7 @@ static int check_condition(Ctx *x, const ContractSupervisorVocabulary *v, const 
 
 static int check_action(Ctx *x, const ContractSupervisorVocabulary *v, const ContractFunction *fn,
                         const ContractAction *a) {
-    RefLimits l = {fn->nlocals, 0, v, 0};
+    RefLimits l = {fn->nlocals, 0, v, 0, fn->locals, NULL};
     switch (a->kind) {
     case CONTRACT_ACT_SCHEMA:
         if (!a->schema) return fail(x, "activate schema without a schema");
@@ -399,7 +407,7 @@ int contract_check_supervisor_vocabulary(const ContractSupervisorVocabulary *v, 
         snprintf(x.where, sizeof x.where, "%s.%s", v->name, fn->name);
         if (check_vars(&x, fn->params, fn->nparams, fn->params_size, "parameter")) return -1;
         if (check_vars(&x, fn->locals, fn->nlocals, fn->locals_size, "local")) return -1;
-        RefLimits il = {fn->nlocals, fn->nparams, NULL, 0};
+        RefLimits il = {fn->nlocals, fn->nparams, NULL, 0, fn->locals, fn->params};
         if (check_assigns(&x, fn->local_inits, fn->nlocal_inits, fn->nlocals, &il, "local initialiser"))
             return -1;
         if (fn->nrules < 0 || (fn->nrules > 0 && !fn->rules)) return fail(&x, "rules missing");

@@ -213,6 +213,23 @@ void test_ext_invalid_descriptors_are_refused(void) {
     CHECK(check_port_type(&bad_array_size, err, sizeof err) == -1 && strstr(err, "is not 3 x 8 bytes"));
     CHECK(check_port_type(&bad_enum, err, sizeof err) == -1 && strstr(err, "enum type E has no members"));
     CHECK(check_port_type(&bad_bool, err, sizeof err) == -1 && strstr(err, "bool type bool of size 4"));
+
+    /* an element past the end of an array (ranges[3] of a float[3]) is refused, ranges[2] is not */
+    static const double one = 1.0;
+    for (int index = 2; index <= 3; index++) {
+        ContractEventPort in[] = {{0, "r", &type_float_3, NULL}};
+        ContractTest t[] = {{CONTRACT_TEST_LT, {CONTRACT_REF_IN_PORT, 0, (size_t)index * sizeof(double), &contract_type_double, NULL},
+                             {CONTRACT_REF_CONST, 0, 0, &contract_type_double, &one}, NULL, 0, NULL}};
+        ContractTestClause tc[] = {{1, t}};
+        ContractEvent ev[] = {{.kind = CONTRACT_EV_MODULE, .module = "X", .port = 0, .in_port = 0, .ntest_clauses = 1, .test_clauses = tc}};
+        ContractClause cl[] = {{1, ev}};
+        ContractRule rules[] = {{"R", {1, cl}, 0, NULL, {0, NULL}}};
+        ContractFunction fn[] = {{"f", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, rules}};
+        ContractSupervisorVocabulary v = {CONTRACT_VOCABULARY_VERSION, "CHK", 90, 40, 5, 70, 1, in, 0, NULL, 1, fn};
+        int rc = contract_check_supervisor_vocabulary(&v, err, sizeof err);
+        if (index == 2) CHECK(rc == 0);
+        else CHECK(rc == -1 && strstr(err, "field path at offset 24 (+8 bytes) exceeds its float[3] of 24 bytes"));
+    }
 }
 
 /* ---- a supervisor on these types ----------------------------------------------------------
