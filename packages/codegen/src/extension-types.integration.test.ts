@@ -107,6 +107,11 @@ describe('extension types (bool, arrays, enumerations, constants)', () => {
             expect(vocabulary).toContain('offsetof(Scan, ranges[90])');
             expect(vocabulary).toContain('2 * sizeof(double)');
             expect(vocabulary).toContain('offsetof(Alarm, level), &contract_type_Level');
+            // datatypes holding extension fields list them for readable traces, each field type defined before
+            expect(vocabulary).toContain('{"ranges", offsetof(Scan, ranges), &contract_array_float_180}');
+            expect(vocabulary).toContain('CONTRACT_DEFINE_TYPE_FIELDS(Scan, &contract_default_Scan, 3, contract_fields_Scan)');
+            expect(vocabulary.indexOf('static const ContractType contract_array_float_180 ')).toBeLessThan(vocabulary.indexOf('contract_fields_Scan[]'));
+            expect(vocabulary.indexOf('CONTRACT_DEFINE_TYPE_FIELDS(Arm,')).toBeGreaterThan(vocabulary.indexOf('CONTRACT_DEFINE_TYPE(Pose,'));
             ensureRuntimeLibrary();
             const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
             expect(out).not.toMatch(/warning:/);

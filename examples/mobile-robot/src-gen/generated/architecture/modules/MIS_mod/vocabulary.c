@@ -2,13 +2,18 @@
 #include <stddef.h>
 #include <contract/vocabulary.h>
 #include "suptypes.h"
+#include <stdbool.h>
 #include "SharedLaserScan.h"
 #include "SharedPose.h"
 
 static const Pose contract_default_Pose = { 0.0, 0.0, 0.0 };
 CONTRACT_DEFINE_TYPE(Pose, &contract_default_Pose)
+static const ContractType contract_array_float_180 = CONTRACT_ARRAY_TYPE("float[180]", double[180], contract_type_double, 180, NULL);
 static const LaserScan contract_default_LaserScan = { { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }, false };
-CONTRACT_DEFINE_TYPE(LaserScan, &contract_default_LaserScan)
+static const ContractField contract_fields_LaserScan[] = {
+    {"ranges", offsetof(LaserScan, ranges), &contract_array_float_180},
+    {"blocked", offsetof(LaserScan, blocked), &contract_type_bool}};
+CONTRACT_DEFINE_TYPE_FIELDS(LaserScan, &contract_default_LaserScan, 2, contract_fields_LaserScan)
 
 static const ContractEventPort in_ports[] = {
     {0, "request", &contract_type_string, NULL},
