@@ -117,6 +117,11 @@ export const CASES: Record<string, CodeCase> = {
         clean: { 'a.contract': 'const float[2] L = {1.0, 2.0};\ndatatype T {float a = L[1]};' },
         message: 'Index 2 is out of range'
     },
+    'type-too-large': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } event flows { out :0 float[4096] samples; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } event flows { out :0 float[2048] samples; }') },
+        message: "'samples' takes 32768 bytes"
+    },
     'const-cycle': {
         raise: { 'a.contract': 'const int A = B;\nconst int B = A;' },
         clean: { 'a.contract': 'const int A = 1;\nconst int B = A;' },
