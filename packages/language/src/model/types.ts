@@ -40,8 +40,9 @@ export function segmentIndex(segment: IndexSegment): number | undefined {
 export function typeOf(ref: TypeRef | undefined): CactalType {
     if (!ref) return UNKNOWN_TYPE;
     let type = baseTypeOf(ref);
-    for (let i = ref.dimensions.length - 1; i >= 0; i--) {
-        const size = dimensionSize(ref.dimensions[i]!);
+    const dimensions = ref.dimensions ?? [];
+    for (let i = dimensions.length - 1; i >= 0; i--) {
+        const size = dimensionSize(dimensions[i]!);
         if (size === undefined || type.kind === 'unknown') return UNKNOWN_TYPE;
         type = { kind: 'array', element: type, size };
     }
@@ -80,7 +81,7 @@ export function typeName(type: CactalType): string {
 export function typeRefText(ref: TypeRef | undefined): string {
     if (!ref) return '?';
     const base = ref.primitive ?? ref.datatype?.$refText ?? '?';
-    return base + ref.dimensions.map((d) => `[${d.constant ? d.constant.$refText : d.size}]`).join('');
+    return base + (ref.dimensions ?? []).map((d) => `[${d.constant ? d.constant.$refText : d.size}]`).join('');
 }
 
 export function isUnknown(type: CactalType): boolean {

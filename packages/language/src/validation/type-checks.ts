@@ -1,13 +1,15 @@
 /** docs/language-reference.md §2: datatypes, function prototypes, values in declarations, test/compute function use. */
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
-    isDataType, isFunctionPrototype, isLocalVariable, isVariableRef,
+    isDataType, isFunctionPrototype, isLocalVariable, isParameter, isPort, isVariableRef,
+    type FunctionParameter, type LocalVariable, type Parameter, type Port, type SchemaParameter,
     type ArrayDimension, type Constant, type EnumType, type IndexSegment, type VariableRef,
     type CactalAstType, type Compute, type DataType, type FunctionPrototype, type FunctionTest,
     type TypeRef, type Value
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
-import { segmentIndex, typeName, typeOf, typeOfPathPrefix, typeRefText, variableRefText } from '../model/types.js';
+import { portKind } from '../model/ports.js';
+import { cLayout, segmentIndex, typeName, typeOf, typeOfPathPrefix, typeRefText, variableRefText } from '../model/types.js';
 import { constantChain, constantInt } from '../model/constants.js';
 import { TypeCodes } from './codes/types.js';
 import { ProjectNames } from './project-index.js';
@@ -54,11 +56,11 @@ export function typeChecks(services: CactalServices): ValidationChecks<CactalAst
         IndexSegment: checkIndexSegment,
         TypeRef: checkTypeRef,
         Field: checkDeclaration,
-        Parameter: checkDeclaration,
-        Port: checkDeclaration,
-        SchemaParameter: checkDeclaration,
-        FunctionParameter: checkDeclaration,
-        LocalVariable: checkDeclaration,
+        Parameter: [checkDeclaration, checkValueSize],
+        Port: [checkDeclaration, checkValueSize],
+        SchemaParameter: [checkDeclaration, checkValueSize],
+        FunctionParameter: [checkDeclaration, checkValueSize],
+        LocalVariable: [checkDeclaration, checkValueSize],
         FunctionTest: (test, accept) => checkFunctionUse(test, 'bool', accept),
         Compute: (compute, accept) => checkFunctionUse(compute, 'void', accept)
     };
@@ -72,6 +74,22 @@ function checkUniqueTopLevel(names: ProjectNames, node: DataType | FunctionProto
     report(accept, TypeCodes['type-duplicate-name'],
         `${word === 'datatype' ? 'Datatype' : 'Function'} '${node.name}' is defined more than once in the project (also in ${where}); ${word} names are unique across the project.`,
         { node, property: 'name' });
+}
+
+/** At most one request (16384 bytes) for events and parameters, 65536 bytes for any other value (runtime limits, docs/runtime-api.md). */
+export const MAX_REQUEST_BYTES = 16384;
+export const MAX_VALUE_BYTES = 65536;
+
+function checkValueSize(decl: Parameter | Port | SchemaParameter | FunctionParameter | LocalVariable, accept: ValidationAcceptor): void {
+    const layout = cLayout(typeOf(decl.type));
+    if (!layout) return;
+    const small = isParameter(decl) || (isPort(decl) && portKind(decl) === 'event');
+    const limit = small ? MAX_REQUEST_BYTES : MAX_VALUE_BYTES;
+    if (layout.size <= limit) return;
+    const what = isParameter(decl) ? 'a module parameter' : isPort(decl) ? `${portKind(decl) === 'event' ? 'an event' : 'a data'} port` : 'a variable';
+    report(accept, TypeCodes['type-too-large'],
+        `'${decl.name}' takes ${layout.size} bytes (${typeRefText(decl.type)}); ${what} holds at most ${limit} bytes: use smaller arrays.`,
+        { node: decl, property: 'type' });
 }
 
 /** Datatypes, enumerations and constants share one namespace (Cactal types and values, C file-scope names). */

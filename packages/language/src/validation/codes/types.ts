@@ -77,6 +77,11 @@ export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, va
         description: 'An index `[i]` in a path applies to an array and is within its size (from 0 to size - 1); it is an integer literal or an `int` constant.',
         example: 'datatype Scan {float[180] ranges};\n... <(scan.ranges[180] < 0.3)>'
     },
+    'type-too-large': {
+        severity: 'error',
+        description: 'A value too large for the runtime to carry: an event port or a module parameter holds at most 16384 bytes (one request), a data port, a local or a schema/function parameter at most 65536 bytes (sizes of the generated C; large arrays count).',
+        example: 'event flows { out :0 float[4096] samples; }   // 32768 bytes'
+    },
     'const-cycle': {
         severity: 'error',
         description: 'A constant defined (directly or through other constants) by itself; the message shows the cycle.',
