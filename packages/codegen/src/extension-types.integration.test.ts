@@ -4,6 +4,7 @@
  * with -Werror (make all), and the generated C has the expected shapes (C arrays, C enums,
  * descriptors and paths in the vocabulary tables, port sizes).
  */
+import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { EmptyFileSystem } from 'langium';
 import { createCactalServices } from '@contract-studio/language';
@@ -12,7 +13,7 @@ import { generateFromArchitecture } from './generate-architecture.js';
 import { architectureFromModels } from './model/from-langium.js';
 import { loadProject } from './test-support/load-project.js';
 import { readTree, tempDir } from './test-support/temp-dir.js';
-import { RUNTIME_DIR, ensureRuntimeLibrary, run } from './test-support/c-toolchain.js';
+import { RUNTIME_DIR, STRICT_CFLAGS, ensureRuntimeLibrary, run } from './test-support/c-toolchain.js';
 
 export const ROBOT_FILES: Record<string, string> = {
     'types.contract': `
@@ -115,6 +116,30 @@ describe('extension types (bool, arrays, enumerations, constants)', () => {
             ensureRuntimeLibrary();
             const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
             expect(out).not.toMatch(/warning:/);
+            // the engines accept the tables (types of both sides of assignments and tests, paths inside their variables, descriptors)
+            const arch = join(dir, 'generated', 'architecture');
+            const check = join(dir, 'check_tables.c');
+            writeFileSync(check, [
+                '#include <stdio.h>',
+                '#include <contract/vocabulary.h>',
+                'extern const ContractSupervisorVocabulary SUP_VOCABULARY;',
+                'extern const ContractOrdVocabulary ORD_VOCABULARY;',
+                'int main(void) {',
+                '    char err[512];',
+                '    if (contract_check_supervisor_vocabulary(&SUP_VOCABULARY, err, sizeof err) != 0) { printf("SUP: %s\\n", err); return 1; }',
+                '    if (contract_check_ord_vocabulary(&ORD_VOCABULARY, err, sizeof err) != 0) { printf("ORD: %s\\n", err); return 1; }',
+                '    printf("TABLES OK\\n");',
+                '    return 0;',
+                '}',
+            ].join('\n'));
+            const objects = ['SUP', 'ORD'].map((m) => {
+                const obj = join(dir, `${m}_vocabulary.o`);
+                run('gcc', ['-c', ...STRICT_CFLAGS, `-I${RUNTIME_DIR}/include`, `-I${join(arch, 'modules', `${m}_mod`)}`, `-I${join(arch, 'common')}`, join(arch, 'modules', `${m}_mod`, 'vocabulary.c'), '-o', obj]);
+                return obj;
+            });
+            const exe = join(dir, 'check_tables');
+            run('gcc', [...STRICT_CFLAGS, `-I${RUNTIME_DIR}/include`, check, ...objects, join(RUNTIME_DIR, 'build', 'libmodule.a'), '-lpthread', '-lrt', '-lm', '-o', exe]);
+            expect(run(exe, [])).toContain('TABLES OK');
         } finally {
             cleanup();
         }
