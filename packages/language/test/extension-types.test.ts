@@ -128,6 +128,13 @@ describe('extension types', () => {
         expect(list?.items.map((i) => `${i.label}: ${i.detail}`)).toEqual(['IDLE: Mode.IDLE (member 0 of Mode)', 'TELEOP: Mode.TELEOP (member 1 of Mode)', 'AUTO: Mode.AUTO (member 2 of Mode)']);
     });
 
+    it('lists enumerations with their members and constants in the outline', async () => {
+        const ws = await build({ 'types.contract': TYPES });
+        const symbols = await ws.services.lsp.DocumentSymbolProvider!.getSymbols(ws.docs.get('types.contract')!, { textDocument: { uri: 'file:///ws/types.contract' } });
+        const outline = symbols.map((s) => `${s.name} ${s.detail}${s.children?.length ? ` [${s.children.map((c) => c.name).join(',')}]` : ''}`);
+        expect(outline.slice(0, 4)).toEqual(['NJOINTS const int', 'SAFE const float', 'Mode enum [IDLE,TELEOP,AUTO]', 'Level enum [OK,WARN,STOP]']);
+    });
+
     it('formats array sizes and indexes tight, and keeps the AST', () => {
         const services = createCactalServices(EmptyFileSystem).Cactal;
         const doc = services.shared.workspace.LangiumDocumentFactory.fromString(
