@@ -11,6 +11,7 @@ import { isConstant, isDataType, type Model } from '../src/generated/ast.js';
 import type { CactalFormatter } from '../src/lsp/cactal-formatter.js';
 import { cLayout, typeName, typeOf } from '../src/model/types.js';
 import { constantValue, defaultValue, formatConstant } from '../src/model/values.js';
+import { SemanticTokensDecoder, type AbstractSemanticTokenProvider } from 'langium/lsp';
 import { build } from './helpers.js';
 
 const TYPES = `const int NJOINTS = 6;
@@ -126,6 +127,16 @@ describe('extension types', () => {
         expect(await hoverAt('ranges', 0)).toContain('offset 0 in `Scan`, 1,440 bytes (float[180])');
         const list = await ws.services.lsp.CompletionProvider!.getCompletion(doc, { textDocument: { uri: doc.uri.toString() }, position: doc.textDocument.positionAt(text.indexOf('Mode.}') + 5) });
         expect(list?.items.map((i) => `${i.label}: ${i.detail}`)).toEqual(['IDLE: Mode.IDLE (member 0 of Mode)', 'TELEOP: Mode.TELEOP (member 1 of Mode)', 'AUTO: Mode.AUTO (member 2 of Mode)']);
+    });
+
+    it('highlights enumerations, their members, constants and array sizes', async () => {
+        const ws = await build({ 'types.contract': TYPES });
+        const doc = ws.docs.get('types.contract')!;
+        const provider = ws.services.lsp.SemanticTokenProvider as AbstractSemanticTokenProvider;
+        const result = await provider.semanticHighlight(doc, { textDocument: { uri: doc.uri.toString() } });
+        const list = SemanticTokensDecoder.decode(result, provider.tokenTypes, doc).map((t) => `${t.text}:${t.tokenType}`);
+        expect(list).toEqual(expect.arrayContaining(['const:keyword', 'enum:keyword', 'Mode:enum', 'IDLE:enumMember', 'NJOINTS:variable', 'AUTO:enumMember', 'bool:type']));
+        expect(list.filter((t) => t.startsWith('Mode:'))).toEqual(['Mode:enum', 'Mode:type', 'Mode:enum']);
     });
 
     it('lists enumerations with their members and constants in the outline', async () => {
