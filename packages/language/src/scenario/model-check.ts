@@ -52,6 +52,7 @@ function asAst(v: ScenarioValue): Lit {
         case 'int': return { $type: 'IntLiteral', value: v.value, span: v.span };
         case 'real': return { $type: 'RealLiteral', value: v.value, $cstNode: { text: v.text }, span: v.span };
         case 'string': return { $type: 'StringLiteral', value: v.value, span: v.span };
+        case 'bool': return { $type: 'BoolLiteral', value: v.value, span: v.span };
         case 'struct': return { $type: 'StructValue', elements: v.elements.map(asAst), span: v.span };
     }
 }

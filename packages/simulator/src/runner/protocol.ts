@@ -68,6 +68,7 @@ export function valueText(v: ScenarioValue): string {
     switch (v.kind) {
         case 'int':
         case 'real':
+        case 'bool':
             return v.text;
         case 'string':
             return `"${v.value.replace(/[\\"\n\t\r]/g, (c) => (c === '\n' ? '\\n' : c === '\t' ? '\\t' : c === '\r' ? ' ' : `\\${c}`))}"`;
