@@ -13,6 +13,7 @@ import { cLayout, typeName, typeOf } from '../src/model/types.js';
 import { constantValue, defaultValue, formatConstant } from '../src/model/values.js';
 import { SemanticTokensDecoder, type AbstractSemanticTokenProvider } from 'langium/lsp';
 import { build } from './helpers.js';
+import { checkScenario, indexModels, parseScenario } from '../src/scenario/index.js';
 
 const TYPES = `const int NJOINTS = 6;
 const float SAFE = 0.3;
@@ -137,6 +138,19 @@ describe('extension types', () => {
         const list = SemanticTokensDecoder.decode(result, provider.tokenTypes, doc).map((t) => `${t.text}:${t.tokenType}`);
         expect(list).toEqual(expect.arrayContaining(['const:keyword', 'enum:keyword', 'Mode:enum', 'IDLE:enumMember', 'NJOINTS:variable', 'AUTO:enumMember', 'bool:type']));
         expect(list.filter((t) => t.startsWith('Mode:'))).toEqual(['Mode:enum', 'Mode:type', 'Mode:enum']);
+    });
+
+    it('scenarios (simulator) read bools and enumeration members, checked against the port types', async () => {
+        const built = await build({ 'types.contract': TYPES, 'msa.contract': MSA });
+        const index = indexModels([...built.docs.values()].map((d) => d.parseResult.value as Model));
+        const parsed = parseScenario('t=1ms MSA:3 Mode.AUTO\nt=2ms MSA:3 Mode.FAST\nt=3ms MSA:3 Level.STOP\nt=4ms MSA:2 {{' + Array(180).fill('0.5').join(',') + '}, Mode.IDLE, false}\nt=5ms MSA:3 Gear.LOW');
+        expect(parsed.diagnostics).toEqual([]);
+        const check = checkScenario(parsed.steps, index);
+        expect(check.diagnostics.map((d) => `${d.line} ${d.code} ${d.message}`)).toEqual([
+            "2 scenario-value-type 'FAST' is not a member of enumeration Mode; its members: IDLE, TELEOP, AUTO",
+            "3 scenario-value-type Expected a Mode value (Mode.IDLE, Mode.TELEOP, Mode.AUTO) for MSA:3 (Mode mode), found 'Level.STOP' of type Level.",
+            "5 scenario-value-type no enumeration 'Gear' in the project (enumerations: Mode, Level)",
+        ]);
     });
 
     it('lists enumerations with their members and constants in the outline', async () => {

@@ -45,7 +45,7 @@ describe('parseScenario', () => {
         const flag = p.steps[1]!;
         expect(flag.kind === 'event' && flag.value).toMatchObject({ kind: 'bool', value: false });
         const bad = parseScenario('t=1ms X:0 truer');
-        expect(bad.diagnostics.map((d) => d.message)).toEqual([expect.stringContaining("expected a value (integer, real, \"string\", true, false or {structured, value}), found 'truer'")]);
+        expect(bad.diagnostics.map((d) => d.message)).toEqual([expect.stringContaining("expected a value (integer, real, \"string\", true, false, Enum.MEMBER or {structured, value}), found 'truer'")]);
     });
 
     it('reports what is wrong, where, and what was expected', () => {
