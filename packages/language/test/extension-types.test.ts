@@ -153,6 +153,35 @@ describe('extension types', () => {
         ]);
     });
 
+    it('renames enumerations, members and constants everywhere they are written, refusing clashes', async () => {
+        const files = { 'types.contract': TYPES, 'msa.contract': MSA, 'sup.contract': sup('A: [MSA:1<alarm.level == Level.STOP>(d = SAFE)] [elapsed=1s]') };
+        const ws = await build(files);
+        const rename = ws.services.lsp.RenameProvider!;
+        const types = ws.docs.get('types.contract')!;
+        const at = (needle: string, delta = 0) => ({ textDocument: { uri: types.uri.toString() }, position: types.textDocument.positionAt(types.textDocument.getText().indexOf(needle) + delta) });
+        const apply = (edit: { changes?: Record<string, Array<{ range: { start: { line: number; character: number }; end: { line: number; character: number } }; newText: string }>> }) => {
+            const out: Record<string, string> = {};
+            for (const [file, doc] of ws.docs) {
+                let text = doc.textDocument.getText();
+                for (const e of [...(edit.changes?.[doc.uri.toString()] ?? [])].sort((a, b) => doc.textDocument.offsetAt(b.range.start) - doc.textDocument.offsetAt(a.range.start))) {
+                    text = text.slice(0, doc.textDocument.offsetAt(e.range.start)) + e.newText + text.slice(doc.textDocument.offsetAt(e.range.end));
+                }
+                out[file] = text;
+            }
+            return out;
+        };
+        const level = apply((await rename.rename(types, { ...at('Level {', 1), newName: 'Severity' }))!);
+        expect(level['types.contract']).toContain('enum Severity { OK, WARN, STOP };');
+        expect(level['types.contract']).toContain('datatype Alarm {Severity level');
+        expect(level['sup.contract']).toContain('alarm.level == Severity.STOP');
+        const stop = apply((await rename.rename(types, { ...at('STOP }', 1), newName: 'HALT' }))!);
+        expect(stop['sup.contract']).toContain('alarm.level == Level.HALT');
+        const safe = apply((await rename.rename(types, { ...at('SAFE =', 1), newName: 'MARGIN' }))!);
+        expect(safe['sup.contract']).toContain('d = MARGIN');
+        await expect(async () => rename.rename(types, { ...at('Level {', 1), newName: 'Scan' })).rejects.toThrow(/'Scan' already names a datatype/);
+        await expect(async () => rename.rename(types, { ...at('STOP }', 1), newName: 'WARN' })).rejects.toThrow(/already used/);
+    });
+
     it('lists enumerations with their members and constants in the outline', async () => {
         const ws = await build({ 'types.contract': TYPES });
         const symbols = await ws.services.lsp.DocumentSymbolProvider!.getSymbols(ws.docs.get('types.contract')!, { textDocument: { uri: 'file:///ws/types.contract' } });
