@@ -19,7 +19,11 @@
  *   (< 0.5) nor ends one (> 1.0), whatever the mode (the real one was 5 in AUTO or 0.35 in STOP:
  *   changing nothing either); joystick and navigation commands are `Twist` datatypes, logged as
  *   `{16 bytes}` and replayed as {0.0, 0.0}: the rules test only `v > 100.0` (false for both) and
- *   store them.
+ *   store them;
+ * - OBS:1 laser scans (180 beams) are logged abridged (`{ranges=[5,5,...],blocked=true}`): a scan
+ *   that changed a rule is rebuilt as OBS sends it (beams 80 to 100 at 0.35 m when blocked, every
+ *   other beam at 5 m), so the simulator's cause prints as the real one; a scan that changed none is
+ *   replayed with the beam ahead at 0.75 m, neither starting AHEAD (< 0.5) nor ending it (> 1.0).
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { RuleRecord } from '@contract-studio/build-service/trace';
@@ -28,6 +32,9 @@ import { prepared, ROBOT } from './support.js';
 import { realDecisions, runForReal, scenarioOfRun, simulatedDecisions, type RealRun } from './differential/replay-run.js';
 
 const SUPERVISORS = new Set(['MIS', 'DRV']);
+/** A LaserScan value in scenario syntax: 180 beams, then `blocked`. */
+const scan = (range: (beam: number) => number, blocked: boolean): string =>
+    `{{${Array.from({ length: 180 }, (_, i) => range(i).toFixed(2)).join(', ')}}, ${blocked}}`;
 let run: RealRun;
 
 beforeAll(() => {
@@ -46,7 +53,12 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
         ({ text, real, counts } = scenarioOfRun(run.records, {
             supervisors: SUPERVISORS,
             start: 'MIS.mission()',
-            fallback: (module, port) => (module === 'OBS' && port === 0 ? '0.75' : undefined),
+            fallback: (module, port) => (module === 'OBS' && port === 0 ? '0.75' : module === 'OBS' && port === 1 ? scan((i) => (i === 90 ? 0.75 : 5), false) : undefined),
+            causeValue: (module, port, logged) => {
+                if (module !== 'OBS' || port !== 1) return undefined;
+                const blocked = /blocked=true/.test(logged);
+                return scan((i) => (blocked && i >= 80 && i <= 100 ? 0.35 : 5), blocked);
+            },
         }));
         const project = await prepared(ROBOT);
         const s = loadScenario('run.scenario', 'run.scenario', text, project.index);

@@ -63,6 +63,12 @@ export interface ReplayPlan {
     start: string;
     /** The value of an event whose value the logs do not give (undefined: the port type's default). */
     fallback?: (module: string, port: number) => string | undefined;
+    /**
+     * The scenario value of a cause the logs print abridged (an array shows its first elements:
+     * `{ranges=[5,5,...],blocked=true}`), rebuilt from what the module is known to send; undefined:
+     * the logged text is the value.
+     */
+    causeValue?: (module: string, port: number, logged: string) => string | undefined;
 }
 
 export interface RunScenario {
@@ -127,7 +133,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
             if (p.t > mono(r) + POST_LOGGED_LATE) break;
             if (p.source === source) post = p;
         }
-        if (post && post.value === undefined) post.value = c.value;
+        if (post && post.value === undefined) post.value = plan.causeValue?.(c.module, c.port, c.value) ?? c.value;
     }
 
     const counts = new Map<string, number>();
