@@ -93,7 +93,10 @@ function vitestFailures(report, ws) {
       out.push(`${rel} > ${a.fullName}\n${msg}`);
     }
     // a file that failed to load or whose hooks failed has no failed assertion of its own
-    if (failed.length === 0 && file.status === 'failed') out.push(`${rel}: ${String(file.message ?? 'failed').split('\n').slice(0, 6).join('\n      ')}`);
+    if (failed.length === 0 && file.status === 'failed') {
+      const why = String(file.message || 'failed outside its tests (a beforeAll/afterAll hook, or loading the file): see the suite output above');
+      out.push(`${rel}: ${why.split('\n').slice(0, 6).join('\n      ')}`);
+    }
   }
   return out;
 }

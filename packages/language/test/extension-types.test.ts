@@ -77,6 +77,18 @@ describe('extension types', () => {
         expect(errors).toEqual([]);
     });
 
+    it('accepts one equality or call test in parentheses (a group of one, beyond the report), and still type-checks it', async () => {
+        const ok = await errorsOf({
+            'types.contract': TYPES,
+            'sup.contract': sup(`FIRST: [MSA:1<(alarm.level == Level.STOP) | (alarm.code != NJOINTS & alarm.level != Level.OK)>(last = alarm.level)]
+                notify :4 (target = q)
+                [MSA:2<(scan.valid == true) | (scan.ranges[90] < SAFE)>]`)
+        });
+        expect(ok).toEqual([]);
+        const bad = await errorsOf({ 'types.contract': TYPES, 'sup.contract': sup('FIRST: [MSA:1<(alarm.level == Mode.AUTO)>] notify :4 (target = q) [elapsed=1s]') });
+        expect(bad).toEqual(["supervisor-test-type Cannot compare 'alarm.level' (Level) with 'Mode.AUTO' (Mode): both operands of a test have the same type (int and float mix)."]);
+    });
+
     it('type-checks tests: enumerations against their own members, no ordering of bools or whole arrays', async () => {
         const errors = await errorsOf({
             'types.contract': TYPES,
