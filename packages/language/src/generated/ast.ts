@@ -1432,6 +1432,11 @@ export function isTest(item: unknown): item is Test {
     return reflection.isInstance(item, Test.$type);
 }
 
+/**
+ * A test, or tests joined by `&` in parentheses. The report requires at least two tests in a group;
+ * one equality or call test in parentheses, `(mode == Mode.AUTO)`, is accepted too (beyond the report:
+ * docs/language-reference.md, "Conditions").
+ */
 export interface TestClause extends langium.AstNode {
     readonly $container: ModuleEvent;
     readonly $type: 'TestClause';
