@@ -22,6 +22,7 @@ import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
+import { SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
 
 export interface JobRequest {
   action: 'build' | 'run';
@@ -216,7 +217,7 @@ export class Job {
       this.timed('prepare', 'generation + copy into the work tree', t);
       // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
       // the image for docker. Plain Makefile projects get the image's path and no bind.
-      let runtimePath = '/opt/contract/runtime';
+      let runtimePath = SANDBOX_RUNTIME_DIR;
       let runtimeDir: string | undefined;
       if (prep.ok && this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
         t = Date.now();

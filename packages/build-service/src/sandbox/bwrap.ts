@@ -18,12 +18,12 @@ import { cgroupChoice, createJobCgroup } from './cgroup-choice.js';
 import { startHostProcess } from './host-process.js';
 import { workDiskState } from './work-disk.js';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
+import { SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
 const run = promisify(execFile);
 
 export const SANDBOX_WORK = '/work';
-export const SANDBOX_RUNTIME = '/opt/contract/runtime';
-const SANDBOX_UID = 1000;
+export const SANDBOX_RUNTIME = SANDBOX_RUNTIME_DIR;
 
 export type LimitMechanismChoice = 'auto' | 'cgroup' | 'rlimit';
 

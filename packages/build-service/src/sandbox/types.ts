@@ -3,8 +3,8 @@ import type { Readable } from 'node:stream';
 import type { LimitHit, Limits, Mechanism } from '../limits.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 
-export type SandboxName = 'bwrap' | 'docker' | 'none';
-export type SandboxChoice = SandboxName | 'auto';
+export type { SandboxName, SandboxChoice } from '@contract-studio/conventions';
+import type { SandboxName } from '@contract-studio/conventions';
 
 /** Which mechanism enforced each guarantee/limit for one sandboxed process (reported in job results). */
 export interface Mechanisms {

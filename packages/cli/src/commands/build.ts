@@ -10,6 +10,7 @@ import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { parseArgs, type ParsedArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+import { SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
 
 /** The environment cannot do what was asked (no sandbox, no runtime, a build cache folder that cannot be trusted). */
 export const EXIT_ENVIRONMENT = 3;
@@ -24,7 +25,7 @@ export function onTerminal(): boolean {
     return process.stdout.isTTY === true && process.stderr.isTTY === true;
 }
 
-export const SANDBOXES: readonly SandboxChoice[] = ['auto', 'bwrap', 'docker', 'none'];
+export const SANDBOXES: readonly SandboxChoice[] = SANDBOX_CHOICES;
 const FORMATS = ['text', 'json'] as const;
 type Format = (typeof FORMATS)[number];
 
@@ -283,6 +284,6 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
     const d = result.durations_ms;
     io.err(`${result.ok ? 'ok' : 'FAILED'}: ${result.message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
     if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) io.err(`fix the errors above (\`contract check ${opts.dirArg}\` lists them), then build again\n`);
-    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${join(opts.dirArg, 'src-gen')}), then build again; --verbose shows every build line\n`);
+    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${join(opts.dirArg, SRC_GEN_DIR)}), then build again; --verbose shows every build line\n`);
     return exitCodeOf(result, job);
 }

@@ -2,13 +2,14 @@ import { expandToNode, joinToNode, toString } from 'langium/generate';
 import type { PortDecl, TypeRef } from '../model/architecture.js';
 import { cSizeof, cType } from './c/c-syntax.js';
 import { makeSettings } from './build-settings.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `tools/control<M>.c` and `tools/makecontrol<M>`: the shell control command of a module or supervisor. */
 export function controlSourcePath(name: string): string {
-    return `generated/architecture/tools/control${name}.c`;
+    return architecturePath(`tools/control${name}.c`);
 }
 export function controlMakefilePath(name: string): string {
-    return `generated/architecture/tools/makecontrol${name}`;
+    return architecturePath(`tools/makecontrol${name}`);
 }
 
 function getter(t: TypeRef): { fn: string; ctype: string } {

@@ -2,10 +2,11 @@ import { expandToNode, joinToNode, toString } from 'langium/generate';
 import type { FunctionPrototype, TypeRef } from '../model/architecture.js';
 import { cType } from './c/c-syntax.js';
 import { blockRegion } from './c/regions.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `common/SharedFunction<f>.h`: a user test/compute function (report §5.2), arguments by pointer. */
 export function sharedFunctionPath(name: string): string {
-    return `generated/architecture/common/SharedFunction${name}.h`;
+    return architecturePath(`common/SharedFunction${name}.h`);
 }
 
 /** `char *`, `long *`, `double *`, `TypeA *`: every argument by pointer (docs/codegen.md "The tree": so that compute functions can assign the locals). */

@@ -2,10 +2,11 @@ import { expandToNode, joinToNode, toString } from 'langium/generate';
 import type { Datatype, Field } from '../model/architecture.js';
 import { cDeclaration } from './c/c-syntax.js';
 import { blockRegion } from './c/regions.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `common/Shared<Type>.h`: the struct and its functions (report §5.1, §8.2), all `static inline`. */
 export function sharedTypePath(name: string): string {
-    return `generated/architecture/common/Shared${name}.h`;
+    return architecturePath(`common/Shared${name}.h`);
 }
 
 function kindOf(f: Field): 'long' | 'double' | 'string' | 'struct' {
