@@ -176,7 +176,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const t0 = Date.now();
       const report = await treeLock.run(async () => {
         const { documents } = await loadWorkspaceDocuments(projectDir);
-        return runCodegen(documents, join(projectDir, SRC_GEN_DIR), {});
+        return runCodegen(documents, join(projectDir, SRC_GEN_DIR));
       });
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));
       const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
