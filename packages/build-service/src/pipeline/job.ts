@@ -454,7 +454,7 @@ export class Job {
     this.current = proc;
     this.mechanisms = proc.mechanisms;
     this.timed(step, `sandbox start (limits set-up: memory ${proc.mechanisms.memory}, processes ${proc.mechanisms.processes}, disk ${proc.mechanisms.disk})`, t0);
-    const note = (proc as { noteLine?: (l: string) => void }).noteLine;
+    const note = (line: string): void => proc.noteLine(line);
     let timeHit: LimitHit | null = null;
     const timer = setTimeout(this.guarded('time limit', () => {
       timeHit = {
@@ -473,7 +473,7 @@ export class Job {
           maxBytes: this.request.limits.outputBytesPerStream,
           onLine: (line) => {
             if (this.fault) return; // the job is being stopped: its output is only drained
-            note?.(line);
+            note(line);
             for (const r of route(line, name)) this.line(step, r.source, name, r.line);
           },
           onTruncated: () => {

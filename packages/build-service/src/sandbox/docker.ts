@@ -22,7 +22,7 @@ import { createRequire } from 'node:module';
 import type Docker from 'dockerode';
 import type { ContainerCreateOptions } from 'dockerode';
 import type { LimitHit } from '../limits.js';
-import { memoryBytes, workDiskBytes } from '../limits.js';
+import { memoryBytes, tmpBytes, workDiskBytes } from '../limits.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
 import type { DirListing } from '../pipeline/artifacts.js';
@@ -244,7 +244,7 @@ export class DockerSandbox implements Sandbox {
         NetworkMode: 'none',
         ReadonlyRootfs: true,
         Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK }],
-        Tmpfs: { '/tmp': 'rw,exec,nosuid,nodev,size=268435456' },
+        Tmpfs: { '/tmp': `rw,exec,nosuid,nodev,size=${tmpBytes(cmd.limits)}` },
         SecurityOpt: ['no-new-privileges'],
         CapDrop: ['ALL'],
         Memory: bytes,
@@ -315,7 +315,8 @@ export class DockerSandbox implements Sandbox {
           void kill();
         }
       };
-      return { stdout, stderr, mechanisms, done, kill, noteLine } as SandboxProcess;
+      const proc: SandboxProcess = { stdout, stderr, mechanisms, done, kill, noteLine };
+      return proc;
     } catch (e) {
       await removeContainer();
       throw e;

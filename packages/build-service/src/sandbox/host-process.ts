@@ -33,7 +33,7 @@ const DISK_WATCH_INTERVAL_MS = 250;
 /** Shell prologue: write our pid into each cgroup.procs given before "--", then exec the rest. */
 const JOIN_CGROUP = 'for f; do [ "$f" = -- ] && break; echo $$ > "$f" || exit 125; shift; done; shift; exec "$@"';
 
-export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { noteLine(line: string): void } {
+export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
   const argv = opts.cgroup ? ['/bin/sh', '-c', JOIN_CGROUP, 'contract-join', ...opts.cgroup.procsFiles, '--', ...opts.argv] : opts.argv;
   const child = spawn(argv[0]!, argv.slice(1), {
     cwd: opts.cwd,

@@ -53,6 +53,12 @@ export interface SandboxProcess {
   readonly done: Promise<SandboxExit>;
   /** Stops every process of the command (idempotent); resolves when they are gone. */
   kill(): Promise<void>;
+  /**
+   * Every output line the job reads from the process: the sandbox may recognise a limit hit that
+   * only shows in the output (a refused fork under RLIMIT_NPROC or in Docker, an allocation refused
+   * under RLIMIT_AS) and report it in `done`.
+   */
+  noteLine(line: string): void;
 }
 
 export interface SandboxProbe {
