@@ -19,7 +19,7 @@ import type { JobEvent } from '@contract-studio/build-service';
 import { parseTrace } from '@contract-studio/build-service/trace';
 import { toJsonLines, writeNoFollow } from '../trace-files.js';
 import { LiveTrace } from '../live-trace.js';
-import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from './build.js';
+import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from '../job-runner.js';
 import { isCpuList } from '@contract-studio/conventions';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
