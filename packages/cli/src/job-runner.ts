@@ -11,6 +11,7 @@ import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceT
 import type { ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO } from './command.js';
 import { SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { defaultRuntimeSource } from './runtime-source.js';
 
 /** The environment cannot do what was asked (no sandbox, no runtime, a build cache folder that cannot be trusted). */
 export const EXIT_ENVIRONMENT = 3;
@@ -47,7 +48,7 @@ export const COMMON_FLAGS = ['verbose'];
 export const COMMON_USAGE = [
     '  --sandbox: auto (default: bwrap when it works, else docker), bwrap, docker, none (no isolation)',
     '  --format: text (default) or json (one JSON object on stdout at the end, no progress)',
-    '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the repository\'s runtime/)',
+    '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
     '  --cache-dir: the build cache (built runtime, one work tree per project; default: $CONTRACT_CACHE_DIR,',
     '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
     '  --verbose: print every build line and the time of every step (otherwise only gcc diagnostics and the summary)',
@@ -112,7 +113,7 @@ export async function runJob(
         if (opts.verbose && opts.format === 'text') io.err(`time: ${what} ${Date.now() - since} ms\n`);
     };
     timing('loading the build service', t0);
-    const runtime = opts.runtime ?? DEFAULT_RUNTIME_SOURCE;
+    const runtime = opts.runtime ?? defaultRuntimeSource(DEFAULT_RUNTIME_SOURCE);
     if (opts.sandbox !== 'docker' && !existsSync(join(runtime, 'Makefile'))) {
         return {
             error: `no ContrACT runtime at ${runtime}: pass --runtime PATH (or set CONTRACT_RUNTIME) to the runtime/ folder of ContrACT Studio, or use --sandbox docker (the contract-gcc image carries it)`,

@@ -9,6 +9,7 @@ import { join, resolve } from 'node:path';
 import type { LoadedScenario, ScenarioResult } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
+import { defaultRuntimeSource } from '../runtime-source.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 
@@ -20,7 +21,7 @@ export const simulateCommand: Command = {
         '  DIR: the project (its .contract files); SCENARIO: .scenario files (format: docs/simulation.md)',
         '  --format: text (default: each step, its rule changes, each failed expectation), json (every step\'s record), junit (JUnit XML)',
         '  --verbose: text also shows each step\'s actions and the engines\' trace lines',
-        '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the repository\'s runtime/)',
+        '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
         '  --cache: where built simulators are kept (default: $CONTRACT_CACHE_DIR or /tmp/contract-studio-<uid>, then sim/)',
         'exit status: 0 every expectation passed, 1 one failed (or a scenario could not run), 2 usage, model or scenario errors',
     ].join('\n'),
@@ -34,7 +35,7 @@ export const simulateCommand: Command = {
         const format = parsed.options.get('format') ?? 'text';
         if (!FORMATS.includes(format as never)) throw new UsageError(`unknown format '${String(format)}' (expected text, json or junit)`);
         const runtimeOption = parsed.options.get('runtime');
-        const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || DEFAULT_RUNTIME_DIR;
+        const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || defaultRuntimeSource(DEFAULT_RUNTIME_DIR);
         if (!existsSync(join(runtimeDir, 'include', 'contract', 'vocabulary.h'))) throw new UsageError(`${runtimeDir} is not a ContrACT runtime folder; pass --runtime PATH`);
         const cacheOption = parsed.options.get('cache');
         const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
