@@ -54,7 +54,9 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
             published.set(p.uri, p);
             for (const w of waiters.splice(0)) w();
         });
-        connection.onRequest(() => null); // workspace/configuration, client/registerCapability...
+        // what the server may ask a client
+        connection.onRequest('workspace/configuration', (p: { items: unknown[] }) => p.items.map(() => null));
+        for (const method of ['client/registerCapability', 'window/workDoneProgress/create', 'workspace/semanticTokens/refresh']) connection.onRequest(method, () => null);
         connection.listen();
         const init = await connection.sendRequest(InitializeRequest.type, {
             processId: process.pid, rootUri: pathToFileURL(dir).toString(), capabilities: {},
