@@ -3,7 +3,7 @@
  * one tarball, `npm install -g --offline` puts it in a temp prefix (offline: every dependency is in
  * the tarball), and `contract new`, `check`, `build` and `run --duration 2s` work from a temp folder
  * outside the repository with no CONTRACT_RUNTIME: the runtime sources inside the package are built
- * into the (empty) build cache on first use.
+ * into the (empty) build cache on first use; `contract-language-server` answers an LSP initialize.
  */
 import { spawnSync } from 'node:child_process';
 import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync } from 'node:fs';
@@ -55,5 +55,11 @@ describe('the packed CLI installed with npm install -g', () => {
         expect(readdirSync(join(root, 'cache')).some((n) => n === 'runtime')).toBe(true); // built into the cache, not in place
         const ran = contract(['run', 'robot', '--sandbox', 'bwrap', '--duration', '2s']);
         expect(ran.status, ran.out).toBe(0);
+
+        // the language server for desktop editors comes with it (docs/editors.md)
+        const frame = (msg: unknown) => { const body = JSON.stringify(msg); return `Content-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`; };
+        const input = frame({ jsonrpc: '2.0', id: 1, method: 'initialize', params: { processId: null, rootUri: null, capabilities: {} } }) + frame({ jsonrpc: '2.0', method: 'exit' });
+        const server = spawnSync('contract-language-server', ['--stdio'], { cwd: work, env, input, encoding: 'utf8', timeout: 60_000 });
+        expect(server.stdout, server.stderr).toMatch(/"renameProvider":true/);
     }, 900_000);
 });
