@@ -187,8 +187,8 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
   };
 }
 
-/** Every process below `root` (from /proc/<pid>/stat parent links), deepest last. */
-export function descendantsOf(root: number): number[] {
+/** pid -> parent pid of every process of the machine (from /proc/<pid>/stat). */
+export function processParents(): Map<number, number> {
   const parent = new Map<number, number>();
   for (const name of readdirSync('/proc')) {
     if (!/^\d+$/.test(name)) continue;
@@ -200,6 +200,12 @@ export function descendantsOf(root: number): number[] {
       /* exited meanwhile */
     }
   }
+  return parent;
+}
+
+/** Every process below `root` (from /proc/<pid>/stat parent links), deepest last. */
+export function descendantsOf(root: number): number[] {
+  const parent = processParents();
   const out: number[] = [];
   const frontier = [root];
   while (frontier.length) {
