@@ -40,7 +40,7 @@ test('a job filling /tmp stops at tmpMiB with ENOSPC', async () => {
   const events = await readEvents(url, posted.json.id as string);
   const job = await getJob(url, posted.json.id as string);
   expect(job.status).toBe('succeeded');
-  const text = events.map((e: { line?: string }) => e.line ?? '').join('\n');
+  const text = events.map((e) => (e.type === 'line' ? e.line : '')).join('\n');
   const m = /wrote (\d+) MiB: (.*)/.exec(text);
   expect(m, text).not.toBeNull();
   expect(Number(m![1])).toBeLessThanOrEqual(8);
