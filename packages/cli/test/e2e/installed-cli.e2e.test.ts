@@ -5,7 +5,7 @@
  * outside the repository with no CONTRACT_RUNTIME: the runtime sources inside the package are built
  * into the (empty) build cache on first use; `contract-language-server` answers an LSP initialize.
  */
-import { spawnSync } from 'node:child_process';
+import { spawn, spawnSync } from 'node:child_process';
 import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -14,6 +14,20 @@ import { REPO } from './harness.js';
 import { removeScratch } from '../scratch.js';
 
 let root: string;
+
+/** What an LSP server started as `command --stdio` answers to `initialize` (its stdout until then). */
+function initializeAnswer(command: string, cwd: string, env: NodeJS.ProcessEnv): Promise<string> {
+    const body = JSON.stringify({ jsonrpc: '2.0', id: 1, method: 'initialize', params: { processId: null, rootUri: null, capabilities: {} } });
+    const child = spawn(command, ['--stdio'], { cwd, env, stdio: 'pipe' });
+    let out = '';
+    return new Promise<string>((resolve) => {
+        const done = () => { clearTimeout(timer); child.kill(); resolve(out); };
+        const timer = setTimeout(done, 60_000);
+        child.stdout.on('data', (d: Buffer) => { out += d.toString(); if (out.includes('"capabilities"') && out.trimEnd().endsWith('}')) done(); });
+        child.on('error', done);
+        child.stdin.write(`Content-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
+    });
+}
 beforeAll(() => {
     root = mkdtempSync(join(tmpdir(), 'contract-installed-'));
     chmodSync(root, 0o711); // the sandbox's own uid must reach the cache folder inside
@@ -21,7 +35,7 @@ beforeAll(() => {
 afterAll(() => removeScratch(root), 120_000);
 
 describe('the packed CLI installed with npm install -g', () => {
-    it('packs, installs offline, and runs new, check, build and run outside the repository', () => {
+    it('packs, installs offline, and runs new, check, build and run outside the repository', async () => {
         const packs = join(root, 'packs');
         const pack = spawnSync(process.execPath, [join(REPO, 'packages/cli/scripts/pack.mjs'), packs], { encoding: 'utf8', timeout: 300_000 });
         expect(pack.status, pack.stderr).toBe(0);
@@ -57,9 +71,6 @@ describe('the packed CLI installed with npm install -g', () => {
         expect(ran.status, ran.out).toBe(0);
 
         // the language server for desktop editors comes with it (docs/editors.md)
-        const frame = (msg: unknown) => { const body = JSON.stringify(msg); return `Content-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`; };
-        const input = frame({ jsonrpc: '2.0', id: 1, method: 'initialize', params: { processId: null, rootUri: null, capabilities: {} } }) + frame({ jsonrpc: '2.0', method: 'exit' });
-        const server = spawnSync('contract-language-server', ['--stdio'], { cwd: work, env, input, encoding: 'utf8', timeout: 60_000 });
-        expect(server.stdout, server.stderr).toMatch(/"renameProvider":true/);
+        expect(await initializeAnswer('contract-language-server', work, env)).toMatch(/"renameProvider":true/);
     }, 900_000);
 });
