@@ -81,6 +81,12 @@ export interface ServiceBounds {
   traceFiles: number;
   /** Record lines of one trace event. */
   traceLinesPerEvent: number;
+  /** Bytes of one file of a project a job is given (inline or read from its folder). */
+  projectFileBytes: number;
+  /** Bytes of all the files of a project a job is given. */
+  projectBytes: number;
+  /** gcc diagnostics kept per job (the rest stay in the log as text). */
+  diagnosticsPerJob: number;
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
   traceLinesKept: number;
 }
@@ -102,6 +108,9 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceFiles: 256,
   traceLinesPerEvent: 1000,
   traceLinesKept: 50_000,
+  projectFileBytes: 8 * 1024 * 1024,
+  projectBytes: 64 * 1024 * 1024,
+  diagnosticsPerJob: 1000,
 });
 
 /** Time a cancel may take, end to end (documented guarantee, checked by the tests). */

@@ -5,7 +5,7 @@
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { describeLimitHit, formatBytes, LimitHitError } from '../limits.js';
+import { describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -60,7 +60,7 @@ export interface JobContext {
   generated?: GenerationCache | null;
 }
 
-const MAX_DIAGNOSTICS = 1000;
+const MAX_DIAGNOSTICS = SERVICE_BOUNDS.diagnosticsPerJob;
 
 class Cancelled extends Error {}
 

@@ -7,7 +7,7 @@ import { createHash } from 'node:crypto';
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import type { Limits } from '../limits.js';
-import { LimitHitError } from '../limits.js';
+import { LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
@@ -20,8 +20,8 @@ export type ProjectKind = 'cactal' | 'make';
 
 export type ProjectSource = { dir: string } | { files: Record<string, string> };
 
-export const MAX_FILE_BYTES = 8 * 1024 * 1024;
-export const MAX_PROJECT_BYTES = 64 * 1024 * 1024;
+export const MAX_FILE_BYTES = SERVICE_BOUNDS.projectFileBytes;
+export const MAX_PROJECT_BYTES = SERVICE_BOUNDS.projectBytes;
 
 /** Folder (relative to work/) the build reports diagnostics against and runs make in. */
 export function treeRoot(kind: ProjectKind): string {
