@@ -37,7 +37,7 @@ function createExclusive(path: string): number {
 }
 
 /** fsync of a folder, so a rename in it survives a crash; some filesystems refuse it (the rename is still atomic). */
-function syncFolder(dir: string): void {
+export function syncFolder(dir: string): void {
     let fd: number | undefined;
     try {
         fd = openSync(dir, constants.O_RDONLY | constants.O_DIRECTORY);
@@ -53,8 +53,10 @@ function syncFolder(dir: string): void {
  * Writes `data` to `dir/name` atomically and durably (see above). `dir` must already be checked
  * (OutputTree.write does it; the IDE passes a folder it opened without following links as
  * /proc/self/fd/N). On failure the old file is untouched and the temporary file removed.
+ * `syncDir: false` leaves the folder's fsync to the caller, which writes many files into it and
+ * syncs it once (OutputTree, before it closes the folder).
  */
-export function writeFileAtomic(dir: string, name: string, data: Uint8Array): void {
+export function writeFileAtomic(dir: string, name: string, data: Uint8Array, { syncDir = true }: { syncDir?: boolean } = {}): void {
     const tmp = join(dir, tempName(name));
     const fd = createExclusive(tmp);
     try {
@@ -73,5 +75,5 @@ export function writeFileAtomic(dir: string, name: string, data: Uint8Array): vo
         }
         throw e;
     }
-    syncFolder(dir);
+    if (syncDir) syncFolder(dir);
 }
