@@ -9,7 +9,7 @@
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join, dirname } from 'node:path';
+import { join, dirname, relative } from 'node:path';
 import { fileURLToPath } from 'node:url';
 
 const root = join(dirname(fileURLToPath(import.meta.url)), '..');
@@ -34,7 +34,9 @@ function countCRunner(out) {
   for (const m of out.matchAll(/^\s*(?:\w+:\s*)?(\d+) passed, (\d+) failed/gm)) {
     passed += Number(m[1]); failed += Number(m[2]); seen = true;
   }
-  return seen ? { passed, failed, skipped: 0 } : null;
+  // the runners' own failure lines (`FAIL name`, `FAILED file:line: …`, `CHECK failed: …`)
+  const failures = out.split('\n').filter((l) => /^(FAIL |\s+FAILED |\s+.*CHECK failed)/.test(l)).slice(0, 40).map((l) => l.trim());
+  return seen ? { passed, failed, skipped: 0, failures } : null;
 }
 
 const suites = [
@@ -55,28 +57,50 @@ const suites = [
     count: (r) => {
       if (!r.json || !existsSync(r.json)) return null;
       const j = JSON.parse(readFileSync(r.json, 'utf8'));
-      return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0) };
+      return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0), failures: vitestFailures(j, ws) };
     },
   })),
   {
     name: 'typecheck (tsc --noEmit of sources and tests, per workspace)',
     exec: async () => {
       let passed = 0, failed = 0, out = '';
+      const failures = [];
       for (const ws of rootPkg.workspaces) {
         const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
         if (!pkg.scripts?.typecheck) continue;
         const r = await run('npm', ['run', '-s', 'typecheck'], { cwd: join(root, ws) });
         out += r.out;
         if (r.code === 0) { passed++; console.log(`typecheck ${ws}: ok`); } else { failed++; console.log(`typecheck ${ws}: FAILED`); }
+        if (r.code !== 0) failures.push(...r.out.split('\n').filter((l) => /error TS\d+/.test(l)).slice(0, 20).map((l) => `${ws}/${l.trim()}`));
       }
-      return { code: failed ? 1 : 0, out, counts: { passed, failed, skipped: 0 } };
+      return { code: failed ? 1 : 0, out, counts: { passed, failed, skipped: 0, failures } };
     },
     count: (r) => r.counts,
   },
 ];
 
+/**
+ * The failed tests of a vitest JSON report, each with the first lines of its message: repeated in
+ * the closing summary, because a CI log is often read from its tail only.
+ */
+function vitestFailures(report, ws) {
+  const out = [];
+  for (const file of report.testResults ?? []) {
+    const rel = relative(join(root, ws), file.name);
+    const failed = (file.assertionResults ?? []).filter((a) => a.status === 'failed');
+    for (const a of failed) {
+      const msg = (a.failureMessages ?? []).join('\n').split('\n').slice(0, 6).map((l) => `      ${l.slice(0, 300)}`).join('\n');
+      out.push(`${rel} > ${a.fullName}\n${msg}`);
+    }
+    // a file that failed to load or whose hooks failed has no failed assertion of its own
+    if (failed.length === 0 && file.status === 'failed') out.push(`${rel}: ${String(file.message ?? 'failed').split('\n').slice(0, 6).join('\n      ')}`);
+  }
+  return out;
+}
+
 const totals = { passed: 0, failed: 0, skipped: 0 };
 const problems = [];
+const failureDetails = [];
 for (const s of suites) {
   if (only.length && !only.some((o) => s.name.includes(o))) continue;
   console.log(`\n=== ${s.name} ===`);
@@ -86,10 +110,12 @@ for (const s of suites) {
   if (!c) { problems.push(`${s.name}: exit ${r.code}, no test count found`); continue; }
   totals.passed += c.passed; totals.failed += c.failed; totals.skipped += c.skipped;
   if (r.code !== 0 || c.failed > 0) problems.push(`${s.name}: exit ${r.code}, ${c.failed} failed`);
+  for (const f of c.failures ?? []) failureDetails.push(`${s.name}: ${f}`);
   if (c.passed + c.failed === 0) problems.push(`${s.name}: ran no test`);
   console.log(`=== ${s.name}: ${c.passed} passed, ${c.failed} failed, ${c.skipped} skipped ===`);
 }
 rmSync(scratch, { recursive: true, force: true });
+if (failureDetails.length) console.log(`\nFAILED tests:\n  ${failureDetails.join('\n  ')}`);
 if (problems.length) console.log(`\nFAILED suites:\n  ${problems.join('\n  ')}`);
 console.log(`\n${totals.passed} passed, ${totals.failed} failed, ${totals.skipped} skipped`);
 process.exit(problems.length ? 1 : 0);

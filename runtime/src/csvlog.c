@@ -7,13 +7,26 @@
  * (an exec region that never sets *stateindex = -1) must not fill the disk nor make the whole
  * log too big to collect. At the bound the log keeps its whole records, then one `log-capped`
  * record; later records are only counted, and a last `log-capped` record at exit says how many
- * were not written (docs/runtime-api.md "CSV log"). The file never exceeds the bound. */
+ * were not written (docs/runtime-api.md "CSV log"). The file never exceeds the bound.
+ *
+ * The flush mark (CONTRACT_LOG_MARK=1, set by the build service for its live trace channel):
+ * <log>.mark, one page mapped shared, whose first 64-bit word says what the log file lacks —
+ * 0: nothing (every record logged so far is in the file), 1: a record is being logged,
+ * otherwise the mono_ns of the oldest record not written yet. A reader that reads the word
+ * (after taking CLOCK_MONOTONIC) and then the file knows the module's log is whole up to that
+ * time, so it can put several modules' logs in time order without guessing how long a module
+ * holds its records (docs/build-service-api.md "Trace channel"). Cost: two stores when the
+ * buffer goes from empty to dirty and one at each flush. Removed at close. Its second word is
+ * the reader's: while a client watches the live trace the build service writes there the flush
+ * delay it wants (10 ms), and the module writes its records that much sooner than LOG_FLUSH_NS
+ * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -33,6 +46,45 @@ static unsigned long long log_written;  /* bytes in the file                    
 static int log_capped;                  /* the bound was reached: records are only counted */
 static unsigned long long log_dropped;  /* records not written since                        */
 static unsigned long long log_records;  /* records logged (written or not) since the open   */
+static unsigned long long *log_mark;    /* the flush mark's word, NULL when there is none   */
+static char mark_path[PATH_MAX + 8];
+
+#define MARK_BYTES 4096
+
+static void mark_set(unsigned long long v)
+{
+    if (log_mark) __atomic_store_n(log_mark, v, __ATOMIC_SEQ_CST);
+}
+
+/* Creates <log>.mark when CONTRACT_LOG_MARK=1 (no mark, silently, when it cannot). */
+static void mark_open(void)
+{
+    const char *on = getenv("CONTRACT_LOG_MARK");
+    if (!on || strcmp(on, "1") != 0) return;
+    snprintf(mark_path, sizeof mark_path, "%s.mark", log_path);
+    int fd = open(mark_path, O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd < 0) return;
+    struct stat st;
+    void *p = MAP_FAILED;
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (st.st_size >= MARK_BYTES || ftruncate(fd, MARK_BYTES) == 0))
+        p = mmap(NULL, MARK_BYTES, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    close(fd);
+    if (p == MAP_FAILED) {
+        unlink(mark_path);
+        return;
+    }
+    log_mark = p;
+    mark_set(0);
+}
+
+static void mark_close(void)
+{
+    if (!log_mark) return;
+    mark_set(0);
+    munmap(log_mark, MARK_BYTES);
+    log_mark = NULL;
+    unlink(mark_path);
+}
 
 unsigned long long rt_log_records(void) { return log_records; }
 
@@ -71,8 +123,10 @@ int rt_log_open(void)
     char *path = log_path;
     snprintf(log_path, sizeof log_path, "%s/%s_%d-%s-%d-%02dh%02dm%02ds.csv", dir, g_rt.name, tm.tm_mday,
              months[tm.tm_mon], tm.tm_year + 1900, tm.tm_hour, tm.tm_min, tm.tm_sec);
+    mark_open(); /* before the log: a reader that sees the log finds its mark */
     log_fd = open(path, O_WRONLY | O_CREAT | O_APPEND | O_CLOEXEC, 0644);
     if (log_fd < 0) {
+        mark_close();
         fprintf(stderr, "%s: warning: cannot open log %s: %s (no CSV log)\n", g_rt.name, path, strerror(errno));
         return -1;
     }
@@ -176,10 +230,16 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
         log_dropped++;
         return;
     }
+    /* the mark says "being logged" before the record's time is taken: a reader that saw it clean
+     * took its time before that, so this record is younger than what the reader concluded */
+    if (!g_rt.log_dirty_since) mark_set(1);
     RTIME mono = GetTime();
     char *p = put_record(log_buf + log_len, mono, event, peer, port, size, detail);
     log_len = (size_t)(p - log_buf);
-    if (!g_rt.log_dirty_since) g_rt.log_dirty_since = mono;
+    if (!g_rt.log_dirty_since) {
+        g_rt.log_dirty_since = mono;
+        mark_set((unsigned long long)mono);
+    }
 }
 
 static void write_all(const char *buf, size_t len)
@@ -234,6 +294,7 @@ void ContractLogFlush(void)
     }
     log_len = 0;
     g_rt.log_dirty_since = 0;
+    mark_set(0); /* after the write: the file holds every record logged so far */
 }
 
 void ContractLogFlushIfOlder(RTIME ageNs)
@@ -243,9 +304,18 @@ void ContractLogFlushIfOlder(RTIME ageNs)
 
 RTIME ContractLogPendingSince(void) { return log_fd >= 0 ? g_rt.log_dirty_since : 0; }
 
+RTIME rt_log_flush_ns(void)
+{
+    if (!log_mark) return LOG_FLUSH_NS;
+    unsigned long long asked = __atomic_load_n(&log_mark[1], __ATOMIC_RELAXED);
+    return asked >= LOG_FLUSH_WATCHED_MIN_NS && asked < LOG_FLUSH_NS ? (RTIME)asked : LOG_FLUSH_NS;
+}
+
+RTIME ContractLogFlushDelay(void) { return rt_log_flush_ns(); }
+
 void rt_log_maybe_flush(RTIME now)
 {
-    if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= LOG_FLUSH_NS) ContractLogFlush();
+    if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= rt_log_flush_ns()) ContractLogFlush();
 }
 
 void rt_log_close(void)
@@ -260,4 +330,5 @@ void rt_log_close(void)
     }
     close(log_fd);
     log_fd = -1;
+    mark_close();
 }

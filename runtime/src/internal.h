@@ -12,7 +12,8 @@
 #define WIRE_REQUEST 1u
 #define WIRE_DATA 2u
 #define SEND_TIMEOUT_MS 2000
-#define LOG_FLUSH_NS 50000000LL /* flush the CSV log at most 50 ms after a record, when idle */
+#define LOG_FLUSH_NS 50000000LL /* flush the CSV log at most 50 ms after a record, when idle ...       */
+#define LOG_FLUSH_WATCHED_MIN_NS 1000000LL /* ... or as the flush mark asks while watched, 1 ms..50 ms */
 
 typedef struct { unsigned int magic; unsigned int kind; } WirePrefix;
 typedef struct { char producer[CONTRACT_NAME_MAX]; RTIME production; int port; unsigned int size; } DataHeader;
@@ -97,6 +98,8 @@ void rt_log_close(void);
 /* Records logged since the log was opened (written or not: see CONTRACT_LOG_MAX_BYTES). */
 unsigned long long rt_log_records(void);
 void rt_log_maybe_flush(RTIME now);
+/* LOG_FLUSH_NS, or the shorter delay the flush mark asks for while a live monitor watches. */
+RTIME rt_log_flush_ns(void);
 
 /* dataflow.c / eventflow.c */
 int rt_dataflow_setup(void);

@@ -417,17 +417,18 @@ static int receive_until(RTIME deadline)
         rt_log_maybe_flush(now);
         if (deadline <= now) return receive_one(MSG_DONTWAIT);
         RTIME wait = deadline == INT64_MAX ? -1 : deadline - now;
+        RTIME flush_ns = rt_log_flush_ns();
         if (g_rt.log_dirty_since) {
-            RTIME flush_in = g_rt.log_dirty_since + LOG_FLUSH_NS - now;
+            RTIME flush_in = g_rt.log_dirty_since + flush_ns - now;
             if (flush_in < 0) flush_in = 0;
             if (wait < 0 || flush_in < wait) wait = flush_in;
         }
         int r;
         if (deadline == INT64_MAX || deadline - now >= COARSE_WAIT_NS) {
-            /* Plain blocking receive (one system call). It times out after LOG_FLUSH_NS while log
+            /* Plain blocking receive (one system call). It times out after the flush delay while log
              * records wait to be written, so that they reach the file even when idle, and after
              * COARSE_WAIT_NS when a far deadline must be checked; near deadlines use ppoll. */
-            RTIME timeo = g_rt.log_dirty_since ? LOG_FLUSH_NS : (deadline == INT64_MAX ? 0 : COARSE_WAIT_NS);
+            RTIME timeo = g_rt.log_dirty_since ? flush_ns : (deadline == INT64_MAX ? 0 : COARSE_WAIT_NS);
             if (timeo != g_rt.mbx_rcvtimeo) {
                 struct timeval tv = { (time_t)(timeo / 1000000000LL), (long)(timeo % 1000000000LL) / 1000 };
                 setsockopt(g_rt.mbx_fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);

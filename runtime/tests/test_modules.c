@@ -1,5 +1,7 @@
 /* Modules driven through their mailboxes: the report's MSC and the test module (tmod.c). */
 #define _GNU_SOURCE
+#include <dirent.h>
+#include <fcntl.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -488,5 +490,128 @@ void test_csv_log_cap(void)
     CHECK_MSG(strstr(last, ",MSC,log-capped,") && strstr(last, " records not written after the log reached its 8192-byte bound"),
               "last record: '%s'", last);
     free(log);
+    h_teardown();
+}
+
+/* Path of the first file of the log dir whose name starts with `prefix` and ends with `suffix`. */
+static int find_log_file(const char *prefix, const char *suffix, char *out, size_t cap)
+{
+    DIR *d = opendir(h_log_dir);
+    if (!d) return 0;
+    struct dirent *e;
+    int found = 0;
+    while (!found && (e = readdir(d)) != NULL) {
+        size_t n = strlen(e->d_name), s = strlen(suffix);
+        if (strncmp(e->d_name, prefix, strlen(prefix)) == 0 && n > s && strcmp(e->d_name + n - s, suffix) == 0) {
+            snprintf(out, cap, "%s/%s", h_log_dir, e->d_name);
+            found = 1;
+        }
+    }
+    closedir(d);
+    return found;
+}
+
+/* The largest mono_ns of a log's records (0 when none). */
+static unsigned long long max_mono(const char *log)
+{
+    unsigned long long max = 0;
+    for (const char *line = log; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+        unsigned long long v = strtoull(line, NULL, 10);
+        if (v > max) max = v;
+    }
+    return max;
+}
+
+/* With CONTRACT_LOG_MARK=1 a module keeps <log>.mark: its first word is 0 when the file holds every
+   record logged, else the mono_ns of the oldest record not written yet (never a record of the file,
+   never in the future), and that record reaches the file; the mark is removed at exit
+   (docs/build-service-api.md "Trace channel"). */
+void test_csv_log_mark(void)
+{
+    REQUIRE(h_setup("logmark") == 0);
+    setenv("CONTRACT_LOG_MARK", "1", 1);
+    RequestMessage *m = h_msg();
+    pid_t pid = h_spawn_module("MSC", "MSC");
+    unsetenv("CONTRACT_LOG_MARK");
+    REQUIRE(pid > 0);
+    char csv[1024], mark[1024];
+    REQUIRE(find_log_file("MSC_", ".csv", csv, sizeof csv));
+    REQUIRE(find_log_file("MSC_", ".csv.mark", mark, sizeof mark));
+    int fd = open(mark, O_RDONLY | O_CLOEXEC);
+    REQUIRE(fd >= 0);
+    unsigned long long dirty = 0;
+    for (int i = 0; i < 50 && !dirty; i++) {
+        CHECK(SendStart("MSC", ACK_FINISHED, 200 + i) == CONTRACT_OK);
+        CHECK(h_wait_ack("MSC", 200 + i, ACK_FINISHED, 2000, m));
+        char *before = h_read_file(csv);
+        unsigned long long word = 0;
+        CHECK(pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+        if (word >= 2) {
+            dirty = word;
+            CHECK_MSG(word <= (unsigned long long)GetTime(), "mark %llu is in the future", word);
+            CHECK_MSG(max_mono(before) < word, "the file already held a record at %llu >= the mark %llu", max_mono(before), word);
+        } else {
+            CHECK_MSG(word == 0 || word == 1, "mark word %llu", word);
+        }
+        free(before);
+    }
+    CHECK_MSG(dirty != 0, "the mark never showed a record waiting to be written");
+    /* the module waits: its records are written within LOG_FLUSH_NS and the mark says so */
+    unsigned long long word = 1;
+    for (int i = 0; i < 200 && word != 0; i++) {
+        usleep(10000);
+        CHECK(pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+    }
+    CHECK_MSG(word == 0, "the mark still says %llu after 2 s of waiting", word);
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    char want[32];
+    snprintf(want, sizeof want, "\n%llu,", dirty);
+    CHECK_MSG(strstr(log, want) != NULL, "no record at the mark's time %llu in the log", dirty);
+    free(log);
+    CHECK(SendKill("MSC", ACK_KILLED, 14) == CONTRACT_OK);
+    CHECK(h_wait_ack("MSC", 14, ACK_KILLED, 2000, m));
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    CHECK_MSG(access(mark, F_OK) != 0, "%s left after exit", mark);
+    close(fd);
+    h_teardown();
+}
+
+/* The flush mark's second word is the reader's: a flush delay of 1 ms..50 ms the module then uses
+   instead of LOG_FLUSH_NS (anything else: LOG_FLUSH_NS); in process, on the tester's own log. */
+void test_csv_log_mark_delay(void)
+{
+    REQUIRE(h_setup("logmarkdelay") == 0);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS); /* no log, no mark */
+    setenv("CONTRACT_LOG_MARK", "1", 1);
+    REQUIRE(rt_log_open() == 0);
+    unsetenv("CONTRACT_LOG_MARK");
+    char mark[1024];
+    REQUIRE(find_log_file("tester_", ".csv.mark", mark, sizeof mark));
+    int fd = open(mark, O_RDWR | O_CLOEXEC);
+    REQUIRE(fd >= 0);
+    unsigned long long asked, word = 7;
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    asked = 10000000ULL;
+    CHECK(pwrite(fd, &asked, sizeof asked, 8) == (ssize_t)sizeof asked);
+    CHECK(ContractLogFlushDelay() == 10000000LL);
+    asked = 500000ULL; /* below 1 ms: not believed */
+    CHECK(pwrite(fd, &asked, sizeof asked, 8) == (ssize_t)sizeof asked);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    asked = 100000000000ULL; /* 100 s: not longer than LOG_FLUSH_NS */
+    CHECK(pwrite(fd, &asked, sizeof asked, 8) == (ssize_t)sizeof asked);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    /* the first word: the oldest record not written, then 0 once written */
+    RTIME before = GetTime();
+    ContractLog("test_record", "", -1, 0, "x");
+    CHECK(pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+    CHECK_MSG(word >= (unsigned long long)before && word <= (unsigned long long)GetTime(), "mark %llu, logged after %lld", word, (long long)before);
+    ContractLogFlush();
+    CHECK(pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+    CHECK(word == 0);
+    rt_log_close();
+    CHECK_MSG(access(mark, F_OK) != 0, "%s left after close", mark);
+    CHECK(ContractLogFlushDelay() == LOG_FLUSH_NS);
+    close(fd);
     h_teardown();
 }

@@ -26,6 +26,8 @@ void test_control_tool(void);
 void test_priority(void);
 void test_set_module_priority(void);
 void test_csv_log_cap(void);
+void test_csv_log_mark(void);
+void test_csv_log_mark_delay(void);
 
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
@@ -52,6 +54,8 @@ static const TestCase ALL_TESTS[] = {
     { "priority", test_priority },
     { "set_module_priority", test_set_module_priority },
     { "csv_log_cap", test_csv_log_cap },
+    { "csv_log_mark", test_csv_log_mark },
+    { "csv_log_mark_delay", test_csv_log_mark_delay },
     { NULL, NULL },
 };
 #endif

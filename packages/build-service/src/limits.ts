@@ -75,8 +75,14 @@ export interface ServiceBounds {
   tracePollMs: number;
   /** Bytes of the CSV logs read per poll, over all the files (the rest is read at the next polls). */
   traceReadBytesPerPoll: number;
-  /** Milliseconds a record is held back at most to put the logs in mono_ns order (docs/build-service-api.md "Trace channel"). */
+  /** Milliseconds a record is held back at most to put the logs in mono_ns order, while some log has no flush mark (docs/build-service-api.md "Trace channel"). */
   traceOrderWindowMs: number;
+  /** The same when every log has its flush mark (the order is then exact: this only bounds what a module that holds its records, or died holding them, costs the others). */
+  traceMarkHoldMs: number;
+  /** Milliseconds from a change of the logs folder (inotify) to the read it wakes (changes in that time are read together). */
+  traceWakeMs: number;
+  /** Flush delay (ms) asked of the modules through their flush marks while a client follows the job (else their own, 50 ms). */
+  traceWatchedFlushMs: number;
   /** Log files tailed per job (the artifact collector's file bound); more are left to the collected logs. */
   traceFiles: number;
   /** Record lines of one trace event. */
@@ -105,6 +111,9 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   tracePollMs: 50,
   traceReadBytesPerPoll: 1024 * 1024,
   traceOrderWindowMs: 150,
+  traceMarkHoldMs: 1000,
+  traceWakeMs: 3,
+  traceWatchedFlushMs: 10,
   traceFiles: 256,
   traceLinesPerEvent: 1000,
   traceLinesKept: 50_000,

@@ -1,13 +1,16 @@
 /**
  * `contract simulate`: the tutorial's scenarios pass (exit 0), a wrong expectation fails (exit 1)
  * with the step's line and the expected and actual state, scenario and usage errors exit 2,
- * `--format json` gives every step's record and `--format junit` a JUnit report.
+ * `--format json` gives every step's record and `--format junit` a JUnit report. The simulators
+ * are kept in the `sim/` folder of the build cache `contract build` uses (`--cache-dir`,
+ * `$CONTRACT_CACHE_DIR`, the XDG cache folder), under the same trust rules.
  */
-import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, describe, expect, it } from 'vitest';
+import { resolveCacheDir } from '@contract-studio/build-service';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
 
@@ -22,7 +25,7 @@ const scenario = (name: string) => join(TUTORIAL, 'scenarios', name);
 describe('contract simulate', { timeout: 60_000 }, () => {
     it('passes the tutorial scenarios (exit 0), each step and rule change printed', async () => {
         const io = capture(REPO);
-        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), scenario('mission.scenario'), '--cache', cache], io)).toBe(0);
+        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), scenario('mission.scenario'), '--cache-dir', cache], io)).toBe(0);
         expect(io.stdout).toContain('+ SUP.action.SECOND active  <- MAA:2 value="disconnected"');
         expect(io.stdout).toContain('- GLB.mission.SINGLE inactive  <- SUP:1 value="commutation"');
         expect(io.stdout).toMatch(/\n2 passed, 0 failed\n$/);
@@ -34,18 +37,18 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         writeFileSync(file, readFileSync(scenario('commutation.scenario'), 'utf8').replace('expect rule SUP.action.FOURTH active', 'expect rule SUP.action.FOURTH inactive'));
         const line = readFileSync(file, 'utf8').split('\n').findIndex((l) => l.includes('FOURTH inactive')) + 1;
         const io = capture(dir);
-        expect(await runCli(['simulate', TUTORIAL, 'wrong.scenario', '--cache', cache], io)).toBe(1);
+        expect(await runCli(['simulate', TUTORIAL, 'wrong.scenario', '--cache-dir', cache], io)).toBe(1);
         expect(io.stdout).toContain(`FAIL   1200ms  expect rule SUP.action.FOURTH inactive`);
         expect(io.stdout).toContain(`wrong.scenario:${line}: at 1200ms (expect rule SUP.action.FOURTH inactive): expected rule SUP.action.FOURTH inactive, but it is active`);
         expect(io.stdout).toMatch(/\n0 passed, 1 failed\n$/);
 
         const junit = capture(dir);
-        expect(await runCli(['simulate', TUTORIAL, 'wrong.scenario', '--cache', cache, '--format', 'junit'], junit)).toBe(1);
+        expect(await runCli(['simulate', TUTORIAL, 'wrong.scenario', '--cache-dir', cache, '--format', 'junit'], junit)).toBe(1);
         expect(junit.stdout).toMatch(/^<\?xml version="1.0" encoding="UTF-8"\?>\n<testsuites name="contract simulate" tests="19" failures="1">/);
         expect(junit.stdout).toContain(`<failure message="wrong.scenario:${line}: at 1200ms`);
 
         const json = capture(dir);
-        expect(await runCli(['simulate', TUTORIAL, 'wrong.scenario', '--cache', cache, '--format', 'json'], json)).toBe(1);
+        expect(await runCli(['simulate', TUTORIAL, 'wrong.scenario', '--cache-dir', cache, '--format', 'json'], json)).toBe(1);
         const out = JSON.parse(json.stdout) as { scenarios: Array<{ passed: boolean; failures: Array<{ line: number; expected: string; actual: string }>; steps: Array<{ timeNs: number; rules: unknown[]; schemas: string[]; locals: unknown[] }> }> };
         expect(out.scenarios[0]!.passed).toBe(false);
         expect(out.scenarios[0]!.failures).toMatchObject([{ line, expected: 'rule SUP.action.FOURTH inactive', actual: 'active' }]);
@@ -59,14 +62,63 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         const dir = mkdtempSync(join(tmpdir(), 'contract-simulate-bad-'));
         writeFileSync(join(dir, 'bad.scenario'), 'start SUP.action()\nexpect rule SUP.action.NOPE active\n');
         const io = capture(dir);
-        expect(await runCli(['simulate', TUTORIAL, 'bad.scenario', '--cache', cache], io)).toBe(2);
+        expect(await runCli(['simulate', TUTORIAL, 'bad.scenario', '--cache-dir', cache], io)).toBe(2);
         expect(io.stderr).toContain("bad.scenario:2:24: error: SUP.action has no rule 'NOPE' (rules: FIRST, SECOND, THIRD, FOURTH, RECEPTION) [scenario-unknown-rule]");
         expect(io.stdout).toBe('');
         expect(await runCli(['simulate', TUTORIAL], capture(dir))).toBe(2);
         expect(await runCli(['simulate', TUTORIAL, 'bad.scenario', '--format', 'xml'], capture(dir))).toBe(2);
         const missing = capture(dir);
-        expect(await runCli(['simulate', TUTORIAL, 'none.scenario', '--cache', cache], missing)).toBe(2);
+        expect(await runCli(['simulate', TUTORIAL, 'none.scenario', '--cache-dir', cache], missing)).toBe(2);
         expect(missing.stderr).toContain('none.scenario: error: cannot read this scenario');
         rmSync(dir, { recursive: true });
+    });
+
+    it('keeps its simulators in sim/ of the build cache: --cache-dir, else $CONTRACT_CACHE_DIR, else the XDG cache folder, as contract build', async () => {
+        const base = mkdtempSync(join(tmpdir(), 'contract-simulate-cache-'));
+        const saved = { CONTRACT_CACHE_DIR: process.env.CONTRACT_CACHE_DIR, XDG_CACHE_HOME: process.env.XDG_CACHE_HOME };
+        const harnesses = (root: string): string[] => (existsSync(join(root, 'sim')) ? readdirSync(join(root, 'sim')).filter((n) => n.startsWith('sim-')) : []);
+        try {
+            const args = ['simulate', TUTORIAL, scenario('commutation.scenario')];
+            // the option
+            expect(await runCli([...args, '--cache-dir', join(base, 'option')], capture(REPO))).toBe(0);
+            expect(harnesses(join(base, 'option'))).toHaveLength(1);
+            const shown = capture(REPO);
+            expect(await runCli(['cache', '--cache-dir', join(base, 'option')], shown)).toBe(0);
+            expect(shown.stderr).toContain('0 project work tree(s), 1 simulator(s)');
+            // the environment variable of contract build
+            process.env.CONTRACT_CACHE_DIR = join(base, 'env');
+            expect(await runCli(args, capture(REPO))).toBe(0);
+            expect(harnesses(join(base, 'env'))).toHaveLength(1);
+            // XDG: the very folder contract build resolves
+            delete process.env.CONTRACT_CACHE_DIR;
+            process.env.XDG_CACHE_HOME = join(base, 'xdg');
+            const buildCache = resolveCacheDir(undefined).dir;
+            expect(buildCache).toBe(join(base, 'xdg', 'contract-studio'));
+            expect(await runCli(args, capture(REPO))).toBe(0);
+            expect(harnesses(buildCache)).toHaveLength(1);
+            // the same project and runtime: the same harness whatever the cache
+            expect(harnesses(buildCache)).toEqual(harnesses(join(base, 'option')));
+        } finally {
+            for (const [k, v] of Object.entries(saved)) {
+                if (v === undefined) delete process.env[k];
+                else process.env[k] = v;
+            }
+            rmSync(base, { recursive: true, force: true });
+        }
+    });
+
+    it('refuses a cache it cannot trust (exit 3, the build cache\'s reason), and tells --cache users its new name (exit 2)', async () => {
+        const base = mkdtempSync(join(tmpdir(), 'contract-simulate-refused-'));
+        const open = join(base, 'open');
+        mkdirSync(open);
+        chmodSync(open, 0o777);
+        const io = capture(REPO);
+        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--cache-dir', open], io)).toBe(3);
+        expect(io.stderr).toMatch(/the cache folder .*open is writable by every user \(mode 777\).*--cache-dir DIR or CONTRACT_CACHE_DIR=DIR/);
+        expect(existsSync(join(open, 'sim'))).toBe(false);
+        const old = capture(REPO);
+        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--cache', base], old)).toBe(2);
+        expect(old.stderr).toContain('--cache is now --cache-dir');
+        rmSync(base, { recursive: true, force: true });
     });
 });

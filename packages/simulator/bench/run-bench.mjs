@@ -81,7 +81,7 @@ async function prepare(dir) {
     out['simulate.warm_ms'] = Math.round(Math.min(...warms));
     writeFileSync(file, original.replace('string temp_mess_type;', `string temp_mess_type = "cli${Date.now()}";`));
     const t2 = performance.now();
-    const cli = spawnSync(process.execPath, [join(repo, 'packages/cli/bin/contract.js'), 'simulate', dir, join(dir, 'scenarios', 'commutation.scenario'), '--cache', cache], { encoding: 'utf8' });
+    const cli = spawnSync(process.execPath, [join(repo, 'packages/cli/bin/contract.js'), 'simulate', dir, join(dir, 'scenarios', 'commutation.scenario'), '--cache-dir', cache], { encoding: 'utf8' });
     out['simulate.cli_cold_ms'] = Math.round(performance.now() - t2);
     if (cli.status !== 0) throw new Error(`contract simulate exited ${cli.status}: ${cli.stderr}`);
     rmSync(work, { recursive: true, force: true });

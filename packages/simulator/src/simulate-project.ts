@@ -34,7 +34,10 @@ export interface ProjectProblems {
 
 export interface SimulateOptions extends RunOptions {
     runtimeDir: string;
+    /** The build cache folder (`--cache-dir`; default `$CONTRACT_CACHE_DIR`, else XDG): simulators go in its `sim/`. */
     cacheDir?: string;
+    /** Told when the harness build waits for another build holding its lock. */
+    onWait?: (what: string) => void;
 }
 
 /** Loads the project and builds its simulator; problems when the model has errors or the build fails. */
@@ -53,7 +56,7 @@ export async function prepareProject(dir: string, options: SimulateOptions): Pro
     } catch (e) {
         return { modelErrors: [], buildError: `cannot generate the engines' tables: ${e instanceof Error ? e.message : String(e)}` };
     }
-    const build = await buildHarness(sources, { runtimeDir: options.runtimeDir, cacheDir: options.cacheDir });
+    const build = await buildHarness(sources, { runtimeDir: options.runtimeDir, cacheDir: options.cacheDir, onWait: options.onWait });
     if ('error' in build) return { modelErrors: [], buildError: build.error };
     return { workspace, index: indexModels(docs.map((d) => d.model)), build, warnings: sources.warnings };
 }

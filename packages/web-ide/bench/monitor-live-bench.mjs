@@ -5,9 +5,11 @@
 // the run's CSV records reach the page as trace events (docs/build-service-api.md "Trace
 // channel") and are drawn by the panel.
 //   monitor.trace_latency_ms_p99 / _p50  a record written by a module (its wall_time column) ->
-//                                        drawn in the Monitor (the first frame whose model holds it), same host clock
+//                                        drawn in the Monitor (the end of the first frame whose model holds it), same host clock
 //   monitor.live_max_frame_ms / live_frame_ms_p99   animation-frame gaps while the run streams
 //   monitor.live_trace_records           records drawn live
+//   monitor.arrival_latency_ms_p99 / _p50  the same record -> its trace event handed to the page (the rest is the page's)
+//   monitor.live_max_queued_events       most trace events waiting to be folded at a frame (the page keeping up)
 // RUN_SECONDS (default 5) sets the run's duration; the part takes about 40 s (the build is most of it).
 import { execFileSync } from 'node:child_process';
 import { mkdirSync, writeFileSync, mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
@@ -50,20 +52,25 @@ try {
       const ms = Date.parse(`${w.slice(0, 23)}Z`);
       return Number.isFinite(ms) ? ms + Number(`0.${w.slice(23, 26) || '0'}`) : NaN;
     };
-    const m = { pending: [], latencies: [], gaps: [], received: 0, streaming: false };
+    const m = { pending: [], latencies: [], arrivals: [], gaps: [], received: 0, streaming: false, maxQueued: 0 };
     window.__liveBench = m;
     ide.build.onStarted.on(() => {
       m.received = 0;
       m.streaming = true;
     });
     ide.build.onTrace.on(({ records }) => {
-      for (const r of records) m.pending.push({ version: ++m.received, wall: wall(r.text) });
+      const now = Date.now();
+      for (const r of records) {
+        const w = wall(r.text);
+        m.pending.push({ version: ++m.received, wall: w });
+        if (Number.isFinite(w)) m.arrivals.push(now - w);
+      }
     });
     ide.build.onFinished.on(() => (m.streaming = false));
     let last = performance.now();
-    const tick = (t) => {
-      if (m.streaming) m.gaps.push(t - last);
-      last = t;
+    // what this frame drew, looked at once the frame is done (a task queued from a frame callback
+    // runs after the frame's other callbacks, the panel's among them, and after its paint)
+    const drawn = () => {
       const panel = ide.monitor.panel;
       const live = ide.monitor.lastLive;
       if (panel && live && panel.drawn.model === live) {
@@ -72,6 +79,12 @@ try {
         for (; i < m.pending.length && m.pending[i].version <= panel.drawn.version; i++) if (Number.isFinite(m.pending[i].wall)) m.latencies.push(now - m.pending[i].wall);
         if (i) m.pending.splice(0, i);
       }
+    };
+    const tick = (t) => {
+      if (m.streaming) m.gaps.push(t - last);
+      m.maxQueued = Math.max(m.maxQueued, ide.monitor.pendingEvents);
+      last = t;
+      setTimeout(drawn, 0);
       requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
@@ -84,7 +97,8 @@ try {
     const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor((xs.length * p) / 100))];
     const g = m.gaps.slice(2);
     return { status: document.getElementById('status-job').dataset.status, p99: pct(m.latencies, 99), p50: pct(m.latencies, 50), n: m.latencies.length,
-      received: m.received, maxFrame: Math.max(...g), p99Frame: pct(g, 99), frames: g.length };
+      received: m.received, maxFrame: Math.max(...g), p99Frame: pct(g, 99), frames: g.length,
+      a99: pct(m.arrivals, 99), a50: pct(m.arrivals, 50), maxQueued: m.maxQueued };
   });
   if (r.status !== 'succeeded' || !r.n) throw new Error(`the run did not stream: ${JSON.stringify(r)}`);
   const round = (x, d = 1) => Math.round(x * 10 ** d) / 10 ** d;
@@ -94,6 +108,9 @@ try {
     'monitor.live_max_frame_ms': round(r.maxFrame),
     'monitor.live_frame_ms_p99': round(r.p99Frame),
     'monitor.live_trace_records': r.n,
+    'monitor.arrival_latency_ms_p99': round(r.a99),
+    'monitor.arrival_latency_ms_p50': round(r.a50),
+    'monitor.live_max_queued_events': r.maxQueued,
   };
   const out = join(root, 'bench/parts');
   mkdirSync(out, { recursive: true });

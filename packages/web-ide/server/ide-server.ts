@@ -250,6 +250,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       await build?.close().catch(() => undefined);
       server.closeAllConnections();
       await new Promise<void>((r) => server.close(() => r()));
+      simulate.close();
     },
   };
 }

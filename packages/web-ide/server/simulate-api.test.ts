@@ -2,10 +2,11 @@
  * POST /api/simulate over HTTP on a copy of examples/tutorial: the real server, the real
  * simulator (native harness built with gcc on the real engine cores). The §4.7 story step by step,
  * a scenario file of the workspace, diagnostics instead of a run, the session token, and hostile
- * bodies answered with 4xx, never a crash.
+ * bodies answered with 4xx, never a crash. The simulators go in `sim/` of the build cache
+ * (`$CONTRACT_CACHE_DIR` here: a folder of the test).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdtempSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
@@ -14,14 +15,18 @@ import type { SimulateResponse } from './api-types.js';
 const TUTORIAL = resolve(__dirname, '../../../examples/tutorial');
 let base: string;
 let ide: IdeServer;
+const savedCacheDir = process.env.CONTRACT_CACHE_DIR;
 
 beforeAll(async () => {
   base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-simulate-')));
+  process.env.CONTRACT_CACHE_DIR = join(base, 'cache');
   cpSync(TUTORIAL, join(base, 'tutorial'), { recursive: true });
   symlinkSync('/etc/passwd', join(base, 'tutorial', 'scenarios', 'evil.scenario'));
   ide = await startIdeServer({ workspace: join(base, 'tutorial'), port: 0, buildService: false, distDir: join(base, 'no-dist') });
 }, 60_000);
 afterAll(async () => {
+  if (savedCacheDir === undefined) delete process.env.CONTRACT_CACHE_DIR;
+  else process.env.CONTRACT_CACHE_DIR = savedCacheDir;
   await ide?.close();
   rmSync(base, { recursive: true, force: true });
 });
@@ -63,6 +68,10 @@ describe('POST /api/simulate', () => {
     expect(ev.actions.length).toBeGreaterThan(0);
     expect(r2.ms).toBeGreaterThan(0);
   }, 120_000);
+
+  it('keeps the simulator in sim/ of the build cache ($CONTRACT_CACHE_DIR), as contract simulate does', () => {
+    expect(readdirSync(join(base, 'cache', 'sim')).filter((n) => n.startsWith('sim-'))).toHaveLength(1);
+  });
 
   it('runs a scenario file of the workspace and reports its expectations', async () => {
     const { status, json } = await post({ path: 'scenarios/commutation.scenario' });
@@ -106,4 +115,29 @@ describe('POST /api/simulate', () => {
     expect(codes.every((c) => c === 200 || c === 429)).toBe(true);
     expect(codes.filter((c) => c === 429).length).toBeGreaterThan(0);
   }, 60_000);
+});
+
+describe('POST /api/simulate with a build cache it cannot trust', () => {
+  it('simulates in a private temporary cache, never in the refused folder', async () => {
+    const open = join(base, 'open-cache');
+    mkdirSync(open);
+    chmodSync(open, 0o777);
+    const saved = process.env.CONTRACT_CACHE_DIR;
+    process.env.CONTRACT_CACHE_DIR = open;
+    const other = await startIdeServer({ workspace: join(base, 'tutorial'), port: 0, buildService: false, distDir: join(base, 'no-dist') });
+    try {
+      const res = await fetch(`${other.url}/api/simulate`, {
+        method: 'POST',
+        headers: { 'content-type': 'application/json', 'x-contract-token': other.token },
+        body: JSON.stringify({ scenario: 'until 1ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\n' }),
+      });
+      const json = (await res.json()) as SimulateResponse;
+      expect(res.status, JSON.stringify(json)).toBe(200);
+      expect(json.passed).toBe(true);
+      expect(existsSync(join(open, 'sim'))).toBe(false);
+    } finally {
+      process.env.CONTRACT_CACHE_DIR = saved;
+      await other.close();
+    }
+  }, 120_000);
 });

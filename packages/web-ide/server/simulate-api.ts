@@ -7,11 +7,16 @@
  * Body: `{ project?: "folder", scenario: "text" }` or `{ project?, path: "x.scenario" }` (a
  * workspace file, read without following links). Answers 200 with the steps (SimulateResponse),
  * 422 with diagnostics when the model or the scenario has errors (nothing ran), 503 when the
- * simulator is not built. Everything in the request is hostile: sizes are bounded, one
+ * simulator is not built. The simulators are kept in `sim/` of the build cache the embedded build
+ * service uses (`$CONTRACT_CACHE_DIR`, else the XDG cache folder); when that folder is refused, the
+ * reason is logged once and a private temporary cache is used, as the build service does.
+ * Everything in the request is hostile: sizes are bounded, one
  * simulation runs at a time (at most 8 wait, then 429), each is bounded in wall time, and the
  * answer in size.
  */
+import { mkdtempSync, rmSync } from 'node:fs';
 import type { IncomingMessage, ServerResponse } from 'node:http';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { HttpError } from './http-error.js';
 import { readJson, sendJson } from './http-util.js';
@@ -33,8 +38,29 @@ export class SimulateApi {
   /** One simulation at a time: each is a native process, the machine's cores are shared. */
   private queue: Promise<unknown> = Promise.resolve();
   private waiting = 0;
+  /** The build cache root the simulators go under (chosen on the first simulation). */
+  private cacheRoot: string | undefined;
+  /** The private temporary cache used instead of a refused one: removed by close(). */
+  private privateCache: string | undefined;
 
-  constructor(private readonly paths: WorkspacePaths) {}
+  constructor(private readonly paths: WorkspacePaths, private readonly log: (line: string) => void = (l) => process.stderr.write(`${l}\n`)) {}
+
+  private cacheFor(sim: SimulatorApi): string {
+    if (this.cacheRoot === undefined) {
+      const cache = sim.simulatorCacheDir(undefined);
+      if ('error' in cache) {
+        this.log(`simulator cache: ${cache.error}; using a private temporary cache instead`);
+        this.cacheRoot = this.privateCache = mkdtempSync(join(tmpdir(), 'contract-ide-sim-'));
+      } else this.cacheRoot = cache.root.dir;
+    }
+    return this.cacheRoot;
+  }
+
+  /** Removes the private temporary cache, if one was made (the server is closing). */
+  close(): void {
+    if (this.privateCache) rmSync(this.privateCache, { recursive: true, force: true });
+    this.privateCache = undefined;
+  }
 
   async handle(req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
     if (url.pathname !== '/api/simulate') return false;
@@ -63,7 +89,7 @@ export class SimulateApi {
 
   private async simulate(sim: SimulatorApi, projectDir: string, display: string, text: string): Promise<SimulateResponse> {
     const t0 = performance.now();
-    const prepared = await sim.prepareProject(projectDir, { runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR });
+    const prepared = await sim.prepareProject(projectDir, { runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR, cacheDir: this.cacheFor(sim) });
     if (!('build' in prepared)) {
       if (prepared.modelErrors.length) {
         const diagnostics: SimulateDiagnostic[] = prepared.modelErrors.slice(0, 200).map((d) => ({

@@ -314,8 +314,12 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
 void ContractLogFlush(void);
 /** [ENGINE] Flush the CSV log if its oldest unwritten record waited at least `ageNs`. For
  *  time-critical loops (ORD): call it when about to wait with time to spare, so that the write
- *  never happens at the next mailbox read (the library writes records 50 ms old there). */
+ *  never happens at the next mailbox read (the library writes records ContractLogFlushDelay()
+ *  old there). */
 void ContractLogFlushIfOlder(RTIME ageNs);
+/** [ENGINE] How old a record may get in the buffer while the module waits: 50 ms, or the shorter
+ *  delay a live monitor asks for through the flush mark (docs/runtime-api.md "CSV log"). */
+RTIME ContractLogFlushDelay(void);
 
 /** [ENGINE] When the oldest record not yet written to the CSV log was logged (GetTime), 0 when
  *  none waits: an engine that goes idle wakes to write it (readers tail the log while it runs). */

@@ -1,19 +1,22 @@
 /**
  * Live trace benchmark -> bench/parts/monitor.json (docs/build-service-api.md "Trace channel").
  * A 1 kHz periodic schema (the "New project" template with PERIOD=1ms) run in bwrap through the
- * HTTP service, on the same workspace (later builds are no-ops): with no client, and with an SSE
- * client reading the live trace.
- *   monitor.jitter_ratio                  p99 of the release lateness (ord_release release_ns -
- *                                         tick_ns, from the collected ORD log) with the client /
- *                                         without (goal <= 1.1)
- *   monitor.release_lateness_us_p99_without / _with   those two p99s
+ * HTTP service. In ONE run, phases of PHASE_SECONDS (default 3) alternate: no client attached, an
+ * SSE client attached to the job's stream (from the current seq: it follows the live trace), in
+ * ABBA order over PAIRS (default 6) pairs, so that load drifts weigh on both sides alike. The
+ * releases (ORD's ord_release records of the collected log, tick_ns on the host's CLOCK_MONOTONIC,
+ * the clock of the phase boundaries) are split by phase; the first 200 ms of each phase are left
+ * out (the attach / detach itself).
+ *   monitor.jitter_ratio                  median over the pairs of p99 release lateness
+ *                                         (release_ns - tick_ns) with the client / without (goal <= 1.1)
+ *   monitor.jitter_ratio_pooled           the same over all phases pooled; _pairs: every pair's ratio
+ *   monitor.release_lateness_us_p99_without / _with   the pooled p99s
  *   monitor.service_trace_latency_ms_p99  from a record's write (its wall_time column) to its
  *                                         arrival at the SSE client (Date.now()), p99; _p50 too
- *   monitor.trace_records                 records the SSE client received
- *   monitor.service_cpu_ms_without / _with  CPU time of the service's process (and the in-process
- *                                         client) per job, from submit to collected logs
- * The runtime is built from a snapshot of runtime/. Runs RUN_SECONDS (default 3) each, two pairs
- * (without, with) alternated, figures pooled per condition; about 45 s in all.
+ *   monitor.trace_records                 records the SSE client received; _events_per_s: trace events a second
+ *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process (and the
+ *                                         in-process client) per second of phase
+ * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 70 s in all.
  */
 import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -22,18 +25,60 @@ import { PROJECT_TEMPLATES } from '@contract-studio/language';
 import { artifactBytes } from '../pipeline/artifacts.js';
 import type { TraceEvent } from '../pipeline/job-events.js';
 import { createBuildServer } from '../server.js';
-import { postJob, readEvents } from '../test-support/client.js';
+import { postJob } from '../test-support/client.js';
 import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 import { parseRecordLine } from '../trace/parse.js';
 
-const RUN_SECONDS = Number(process.env.RUN_SECONDS ?? 3);
-const PAIRS = 2;
+const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
+const PAIRS = Number(process.env.PAIRS ?? 6);
+/** Left out at the start of each phase (the attach or detach itself). */
+const SETTLE_NS = 200_000_000n;
 const say = (s: string): void => void process.stderr.write(`[bench monitor] ${s}\n`);
 const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
 const pct = (xs: number[], p: number): number => {
   const s = [...xs].sort((a, b) => a - b);
   return s.length ? s[Math.min(s.length - 1, Math.floor((p / 100) * s.length))]! : NaN;
 };
+const median = (xs: number[]): number => {
+  const s = [...xs].sort((a, b) => a - b);
+  return s.length % 2 ? s[(s.length - 1) / 2]! : (s[s.length / 2 - 1]! + s[s.length / 2]!) / 2;
+};
+const sleep = (ms: number): Promise<void> => new Promise((r) => setTimeout(r, ms));
+
+/** An SSE client of the job's stream from `after` on, until aborted; `onTrace` sees each trace event. */
+async function attach(base: string, id: string, after: number, signal: AbortSignal, onTrace: (e: TraceEvent) => void): Promise<void> {
+  const res = await fetch(`${base}/api/jobs/${id}/events?after=${after}`, { signal });
+  if (!res.ok || !res.body) throw new Error(`events: HTTP ${res.status}`);
+  const decoder = new TextDecoder();
+  let buf = '';
+  try {
+    for await (const chunk of res.body as unknown as AsyncIterable<Uint8Array>) {
+      buf += decoder.decode(chunk, { stream: true });
+      let i;
+      while ((i = buf.indexOf('\n\n')) >= 0) {
+        const block = buf.slice(0, i);
+        buf = buf.slice(i + 2);
+        let type = '';
+        let data = '';
+        for (const l of block.split('\n')) {
+          if (l.startsWith('event: ')) type = l.slice(7);
+          else if (l.startsWith('data: ')) data += l.slice(6);
+        }
+        if (type === 'trace') onTrace({ type, ...JSON.parse(data) } as TraceEvent);
+      }
+    }
+  } catch (e) {
+    if (!signal.aborted) throw e;
+  }
+}
+
+interface Phase {
+  withClient: boolean;
+  pair: number;
+  from: bigint;
+  to: bigint;
+  cpuMs: number;
+}
 
 /** The template at 1 kHz: PERIOD=1ms, module budgets well inside it. */
 function project(dir: string): void {
@@ -55,25 +100,14 @@ async function main(): Promise<void> {
   const { url } = await server.listen();
   /** Logs of earlier runs stay in the reused workspace's logs/ (and among the artifacts). */
   const seen = new Set<string>();
-  const run = async (withClient: boolean): Promise<{ lateness: number[]; latency: number[]; records: number; cpuMs: number }> => {
-    const cpu0 = process.cpuUsage();
-    const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: RUN_SECONDS, project: { dir } });
+  /** One run of `seconds`; `during` runs once the run streams its trace; returns ORD's releases (tick_ns, lateness in us). */
+  const run = async (seconds: number, during: (jobId: string) => Promise<void>): Promise<{ tick: bigint; lateUs: number }[]> => {
+    const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: seconds, project: { dir } });
     if (r.status !== 201) throw new Error(`submit: ${JSON.stringify(r.json)}`);
     const job = server.service.get(r.json.id as string)!;
-    const latency: number[] = [];
-    let records = 0;
-    if (withClient) {
-      await readEvents(url, job.id, (e) => {
-        if (e.type !== 'trace') return;
-        const now = Date.now();
-        for (const l of (e as TraceEvent).records) {
-          records++;
-          const wall = Date.parse(l.text.split(',', 2)[1] ?? '');
-          if (Number.isFinite(wall)) latency.push(now - wall);
-          if (process.env.TRACE_BENCH_DEBUG && now - wall > 400) say(`slow ${now - wall} ms (event seq ${e.seq}, ${(e as TraceEvent).records.length} lines): ${l.text.slice(0, 100)}`);
-        }
-      });
-    }
+    // the run streams (looked at in-process: no client attached)
+    while (!job.events.all.some((e) => e.type === 'trace') && !job.result) await sleep(20);
+    await during(job.id);
     await job.finished;
     if (!job.result?.ok) {
       const tail = job.events.all.flatMap((e) => (e.type === 'line' ? [`${e.source}: ${e.line}`] : [])).slice(-25);
@@ -82,47 +116,81 @@ async function main(): Promise<void> {
     const ord = job.artifacts?.files.find((f) => f.name.startsWith('ORD_') && !seen.has(f.name));
     for (const f of job.artifacts?.files ?? []) seen.add(f.name);
     if (!ord) throw new Error('no new ORD log');
-    const lateness: number[] = [];
+    const releases: { tick: bigint; lateUs: number }[] = [];
     artifactBytes(ord).toString('utf8').split('\n').forEach((line, i) => {
       if (!line.includes(',ord_release,')) return;
       const rec = parseRecordLine(ord.name, i + 1, line);
       if (rec.kind !== 'ord_release') return;
       const m = /tick_ns=(\d+) release_ns=(\d+)/.exec(rec.detail);
-      if (m) lateness.push(Number(BigInt(m[2]!) - BigInt(m[1]!)) / 1000);
+      if (m) releases.push({ tick: BigInt(m[1]!), lateUs: Number(BigInt(m[2]!) - BigInt(m[1]!)) / 1000 });
     });
-    const cpu = process.cpuUsage(cpu0);
-    return { lateness, latency, records, cpuMs: (cpu.user + cpu.system) / 1000 };
+    return releases;
   };
   try {
-    say(`build + warm-up run (${RUN_SECONDS} s)`);
-    await run(false);
-    // alternated, pooled: the machine's load drifts between runs
-    const without = { lateness: [] as number[], cpuMs: 0 };
-    const withC = { lateness: [] as number[], latency: [] as number[], records: 0, cpuMs: 0 };
+    say('build + warm-up run (3 s)');
+    await run(3, async () => {});
+    const phases: Phase[] = [];
+    const latency: number[] = [];
+    let records = 0;
+    let events = 0;
+    const phaseMs = PHASE_SECONDS * 1000;
+    const seconds = Math.ceil(2 * PAIRS * PHASE_SECONDS + 3);
+    say(`one run of ${seconds} s: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
+    const releases = await run(seconds, async (jobId) => {
+      const job = server.service.get(jobId)!;
+      for (let pair = 0; pair < PAIRS; pair++) {
+        const order = pair % 2 === 0 ? [false, true] : [true, false];
+        for (const withClient of order) {
+          const cpu0 = process.cpuUsage();
+          const from = process.hrtime.bigint();
+          if (withClient) {
+            const abort = new AbortController();
+            const after = job.events.all.at(-1)?.seq ?? 0;
+            const reading = attach(url, jobId, after, abort.signal, (e) => {
+              const now = Date.now();
+              events++;
+              for (const l of e.records) {
+                records++;
+                const wall = Date.parse(l.text.split(',', 2)[1] ?? '');
+                if (Number.isFinite(wall)) latency.push(now - wall);
+              }
+            });
+            await sleep(phaseMs);
+            abort.abort();
+            await reading;
+          } else await sleep(phaseMs);
+          const cpu = process.cpuUsage(cpu0);
+          phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000 });
+        }
+      }
+    });
+    const inPhase = (p: Phase): number[] => releases.filter((r) => r.tick >= p.from + SETTLE_NS && r.tick < p.to).map((r) => r.lateUs);
+    const ratios: number[] = [];
     for (let pair = 0; pair < PAIRS; pair++) {
-      say(`run ${pair + 1}/${PAIRS} without a client`);
-      const w = await run(false);
-      without.lateness.push(...w.lateness);
-      without.cpuMs += w.cpuMs;
-      say(`run ${pair + 1}/${PAIRS} with an SSE client on the live trace`);
-      const r = await run(true);
-      withC.lateness.push(...r.lateness);
-      withC.latency.push(...r.latency);
-      withC.records += r.records;
-      withC.cpuMs += r.cpuMs;
+      const w = phases.find((p) => p.pair === pair && p.withClient)!;
+      const wo = phases.find((p) => p.pair === pair && !p.withClient)!;
+      ratios.push(pct(inPhase(w), 99) / pct(inPhase(wo), 99));
     }
-    const p99Without = pct(without.lateness, 99);
-    const p99With = pct(withC.lateness, 99);
+    const pooled = (withClient: boolean): number[] => phases.filter((p) => p.withClient === withClient).flatMap(inPhase);
+    const cpuPerS = (withClient: boolean): number => {
+      const ps = phases.filter((p) => p.withClient === withClient);
+      return ps.reduce((a, p) => a + p.cpuMs, 0) / ps.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
+    };
+    const p99Without = pct(pooled(false), 99);
+    const p99With = pct(pooled(true), 99);
     const out = {
-      'monitor.jitter_ratio': round(p99With / p99Without),
+      'monitor.jitter_ratio': round(median(ratios)),
+      'monitor.jitter_ratio_pooled': round(p99With / p99Without),
+      'monitor.jitter_ratio_pairs': ratios.map((x) => round(x)),
       'monitor.release_lateness_us_p99_without': round(p99Without, 1),
       'monitor.release_lateness_us_p99_with': round(p99With, 1),
-      'monitor.service_trace_latency_ms_p99': round(pct(withC.latency, 99), 1),
-      'monitor.service_trace_latency_ms_p50': round(pct(withC.latency, 50), 1),
-      'monitor.trace_records': withC.records,
-      'monitor.service_cpu_ms_without': round(without.cpuMs / PAIRS, 0),
-      'monitor.service_cpu_ms_with': round(withC.cpuMs / PAIRS, 0),
-      'monitor.releases': withC.lateness.length,
+      'monitor.service_trace_latency_ms_p99': round(pct(latency, 99), 1),
+      'monitor.service_trace_latency_ms_p50': round(pct(latency, 50), 1),
+      'monitor.trace_records': records,
+      'monitor.trace_events_per_s': round(events / phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0), 0),
+      'monitor.service_cpu_ms_per_s_without': round(cpuPerS(false), 1),
+      'monitor.service_cpu_ms_per_s_with': round(cpuPerS(true), 1),
+      'monitor.releases': pooled(true).length + pooled(false).length,
     };
     say(JSON.stringify(out));
     mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });

@@ -60,8 +60,8 @@ describe('prepareCacheDir', () => {
     expect(prepareCacheDir(dir, false)).toMatch(/belongs to uid 4242, not to you/);
   });
 
-  test('refuses a link planted in place of runtime/ or projects/', () => {
-    for (const entry of ['runtime', 'projects']) {
+  test('refuses a link planted in place of runtime/, projects/ or sim/ (the simulator\'s harnesses)', () => {
+    for (const entry of ['runtime', 'projects', 'sim']) {
       const dir = fresh();
       mkdirSync(dir, { mode: 0o711 });
       symlinkSync('/etc', join(dir, entry));

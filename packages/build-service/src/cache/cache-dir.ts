@@ -16,8 +16,8 @@ import { dirname, isAbsolute, join, resolve } from 'node:path';
 
 export const CACHE_DIR_ENV = 'CONTRACT_CACHE_DIR';
 
-/** Entries of the cache folder the service itself makes (each checked: a real folder, ours). */
-export const CACHE_ENTRIES = ['runtime', 'projects', 'generated'] as const;
+/** Entries of the cache folder the service and the simulator (`sim/`) make (each checked: a real folder, ours). */
+export const CACHE_ENTRIES = ['runtime', 'projects', 'generated', 'sim'] as const;
 
 export interface CacheDirChoice {
   dir: string;

@@ -36,3 +36,28 @@ describe('JobEvents.broadcast: live-only events (the trace past its kept bound)'
     expect(late.map((e) => `${e.type}:${e.seq}`)).toEqual(['status:1', 'line:2']);
   });
 });
+
+describe('JobEvents.onSubscribers: who follows the job (the live trace asks the modules to write sooner then)', () => {
+  test('told the count on subscribe, unsubscribe, a dropped subscriber and the end; not for a subscriber that fails in replay', () => {
+    const log = new JobEvents();
+    const counts: number[] = [];
+    log.onSubscribers = (n) => counts.push(n);
+    log.append({ type: 'status', status: 'running', step: 'run' });
+    const off = log.subscribe(0, () => {});
+    expect(log.subscriberCount).toBe(1);
+    log.subscribe(0, () => {
+      throw new Error('gone'); // in replay: never added
+    });
+    let live = 0;
+    log.subscribe(1, () => {
+      if (++live === 1) throw new Error('gone'); // live: dropped
+    });
+    log.append({ type: 'line', step: 'run', source: 'run', stream: 'system', line: 'x' });
+    off();
+    off(); // twice: told once
+    log.subscribe(0, () => {});
+    log.append({ type: 'end', result: null } as never);
+    expect(counts).toEqual([1, 2, 1, 0, 1, 0]);
+    expect(log.subscriberCount).toBe(0);
+  });
+});

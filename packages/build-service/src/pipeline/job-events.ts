@@ -73,9 +73,24 @@ export class JobEvents {
   private readonly events: JobEvent[] = [];
   private readonly subscribers = new Set<Subscriber>();
   private ended = false;
+  /** Told the number of subscribers when it changes (the live trace's flush delay follows it). */
+  onSubscribers: ((count: number) => void) | null = null;
+
+  private changed(): void {
+    try {
+      this.onSubscribers?.(this.subscribers.size);
+    } catch {
+      /* a listener's fault is not the stream's */
+    }
+  }
 
   get isEnded(): boolean {
     return this.ended;
+  }
+
+  /** Clients attached now. */
+  get subscriberCount(): number {
+    return this.subscribers.size;
   }
 
   get all(): readonly JobEvent[] {
@@ -92,9 +107,13 @@ export class JobEvents {
         s(event);
       } catch {
         this.subscribers.delete(s);
+        this.changed();
       }
     }
-    if (this.ended) this.subscribers.clear();
+    if (this.ended && this.subscribers.size) {
+      this.subscribers.clear();
+      this.changed();
+    }
     return event;
   }
 
@@ -111,6 +130,7 @@ export class JobEvents {
         s(event);
       } catch {
         this.subscribers.delete(s);
+        this.changed();
       }
     }
   }
@@ -128,6 +148,9 @@ export class JobEvents {
     }
     if (this.ended) return () => {};
     this.subscribers.add(subscriber);
-    return () => this.subscribers.delete(subscriber);
+    this.changed();
+    return () => {
+      if (this.subscribers.delete(subscriber)) this.changed();
+    };
   }
 }

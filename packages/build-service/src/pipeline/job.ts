@@ -286,15 +286,19 @@ export class Job {
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
       let run: Awaited<ReturnType<Job['runStep']>>;
       try {
+        // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
+        const runEnv: Record<string, string> = tail ? { CONTRACT_LOG_MARK: '1' } : {};
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
           this.runIssues.line(routed.line);
           return [routed];
-        });
+        }, runEnv);
       } catch (e) {
+        this.events.onSubscribers = null;
         await tail?.stop();
         throw e;
       }
+      this.events.onSubscribers = null;
       if (this.cancelRequested) await tail?.stop();
       else await tail?.finish();
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
@@ -380,13 +384,17 @@ export class Job {
       this.system('run', `trace: no live trace channel in the ${this.sandboxName} sandbox (its work dir is not a host folder); the records are in the collected logs`);
       return null;
     }
-    return TraceTail.start(workDir, {
+    const tail = await TraceTail.start(workDir, {
       trace: (records) => {
         if (!this.events.isEnded) this.events.append({ type: 'trace', records });
       },
       live: (records) => this.events.broadcast({ type: 'trace', records }),
       system: (line) => this.system('run', line),
     });
+    // the modules write their logs sooner only while a client follows the job
+    tail.setWatched(this.events.subscriberCount > 0);
+    this.events.onSubscribers = (count) => tail.setWatched(count > 0);
+    return tail;
   }
 
   /** Copies the run's logs out of the sandbox (its processes are gone); a failure is a warning line. */
@@ -435,6 +443,7 @@ export class Job {
     argv: string[],
     seconds: number,
     route: (line: string, stream: 'stdout' | 'stderr') => { source: string; line: string }[],
+    env: Record<string, string> = {},
   ): Promise<{ ok: boolean; exitCode: number | null; signal: string | null; limitHit: LimitHit | null; message: string | null }> {
     if (this.fault) throw this.fault;
     if (this.cancelRequested) throw new Cancelled();
@@ -446,7 +455,7 @@ export class Job {
       workDir: ws.workDir,
       cwd: '',
       argv,
-      env: {},
+      env,
       limits: this.request.limits,
       runtimeDir,
       owner: ws.owner,

@@ -3,13 +3,19 @@
  * (docs/build-service-api.md "Trace channel", "Ordering").
  *
  * Why a hold-back: a module writes its records in bursts (runtime/src/csvlog.c buffers them and
- * writes them when the module waits and the oldest is older than LOG_FLUSH_NS = 50 ms, or its
+ * writes them when the module waits and the oldest is older than LOG_FLUSH_NS = 10 ms, or its
  * 64 KiB buffer fills), so when the service reads a record of module A at time t, module B may
  * still hold records older than t in its buffer. A record is therefore released only when
- *   - every other log has been read past its time (the watermark: the smallest "last time read"
- *     over the logs still written; a log whose module wrote `module_exit` no longer counts; never
- *     past the time the folder was listed, for the logs of modules started since), or
- *   - it is `windowMs` old (now - its mono_ns, on the host's CLOCK_MONOTONIC, which the modules
+ *   - every other log is known whole past its time (the watermark: the smallest, over the logs
+ *     still written, of the last time read and of the time up to which the log's flush mark said
+ *     it was whole — `mark()`: the module's own word, 0 = nothing buffered, else the mono_ns of
+ *     its oldest buffered record, read before the file, so exact: a module that holds its records
+ *     for long holds the others back, it is not overtaken; a log whose module wrote `module_exit`
+ *     no longer counts; never past the time the folder was listed, for the logs of modules started
+ *     since), or
+ *   - it is `windowMs` old — `markedWindowMs` when every log has its mark: then only a module
+ *     that holds its records that long (or died holding them) is overtaken — (now - its mono_ns,
+ *     on the host's CLOCK_MONOTONIC, which the modules
  *     of bwrap and none share), or has been held that long since it was read (a clock that would
  *     not be shared); BEHIND_FACTOR times that while some log has bytes the service has not read
  *     yet: a quiet module (one that logs
@@ -36,6 +42,8 @@ interface Source {
   lastKey: bigint;
   /** Its module wrote module_exit, or the log is no longer read: it does not hold the watermark. */
   closed: boolean;
+  /** Time up to which the log is known whole from its flush mark (-1 while none was read). */
+  whole: bigint;
 }
 
 /**
@@ -68,11 +76,24 @@ export class TraceOrder {
   /** Lines held now. */
   held = 0;
 
-  constructor(private readonly windowMs: number) {}
+  constructor(
+    private readonly windowMs: number,
+    private readonly markedWindowMs = windowMs,
+  ) {}
 
   /** A log the service reads (before its first line, so that it holds the watermark). */
   track(file: string): void {
-    if (!this.sources.has(file)) this.sources.set(file, { queue: [], lastKey: -1n, closed: false });
+    if (!this.sources.has(file)) this.sources.set(file, { queue: [], lastKey: -1n, closed: false, whole: -1n });
+  }
+
+  /**
+   * The log's flush mark said, and the file was then read to its end: every record of it with a
+   * mono_ns up to `upTo` has been added. Never moves back.
+   */
+  mark(file: string, upTo: bigint): void {
+    this.track(file);
+    const s = this.sources.get(file)!;
+    if (upTo > s.whole) s.whole = upTo;
   }
 
   /** A log no longer read (gone, truncated, left out): it stops holding the watermark. */
@@ -101,13 +122,25 @@ export class TraceOrder {
    */
   release(now: number, when: ReleaseWhen = {}): TraceLine[] {
     const factor = when.behind ? BEHIND_FACTOR : 1;
-    const windowMs = factor * this.windowMs;
+    let marked = true;
+    for (const s of this.sources.values()) if (!s.closed && s.whole < 0n) marked = false;
+    const windowMs = factor * (marked ? this.markedWindowMs : this.windowMs);
     const windowNs = BigInt(windowMs) * 1_000_000n;
     let threshold: bigint;
     if (when.all) threshold = BigInt('0x7fffffffffffffff') * 4n;
     else {
       let watermark: bigint | null = null;
-      for (const s of this.sources.values()) if (!s.closed && (watermark === null || s.lastKey < watermark)) watermark = s.lastKey;
+      // a log whose mark has said for markedWindowMs (BEHIND_FACTOR times that while some log has
+      // bytes not read yet) that its module holds the same old record
+      // (a module blocked that long, or killed holding records: they are lost with it) stops
+      // holding the others back, until its mark moves again
+      const stuckBefore = when.nowMono !== undefined ? when.nowMono - BigInt(factor * this.markedWindowMs) * 1_000_000n : null;
+      for (const s of this.sources.values()) {
+        if (s.closed) continue;
+        const known = s.whole > s.lastKey ? s.whole : s.lastKey;
+        if (stuckBefore !== null && s.whole >= 0n && known < stuckBefore) continue;
+        if (watermark === null || known < watermark) watermark = known;
+      }
       threshold = watermark ?? -1n;
       // a log not listed yet was created after the listing: its records are younger than it
       if (when.listedAt !== undefined && !when.drain && threshold > when.listedAt) threshold = when.listedAt;

@@ -1,4 +1,4 @@
-import { appendFileSync, mkdirSync, mkdtempSync, readFileSync, rmSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
+import { appendFileSync, mkdirSync, mkdtempSync, openSync, readFileSync, readdirSync, rmSync, symlinkSync, truncateSync, writeFileSync, writeSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -78,6 +78,54 @@ describe('TraceOrder', () => {
     expect(o.release(4, { nowMono: 1_300_000_000n, behind: true }).map((l) => l.text)).toEqual([rec(200_000_000)]);
   });
 
+  test('flush marks: a log known whole past a record lets it go at once; one whose module holds older records holds it, past the window', () => {
+    const o = new TraceOrder(100, 60_000);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.add('A.csv', [line('A.csv', 10), line('A.csv', 30)], 0);
+    o.mark('A.csv', 35n);
+    o.mark('B.csv', 40n); // B holds nothing: whole up to 40 without a record of its own
+    expect(o.release(1, { nowMono: 41n }).map((l) => l.text)).toEqual([rec(10), rec(30)]);
+    o.add('A.csv', [line('A.csv', 50)], 2);
+    o.mark('A.csv', 55n);
+    o.mark('B.csv', 44n); // B's oldest held record is at 45
+    // 200 ms later: the (unmarked) window would have let 50 go; B's mark still holds it
+    expect(o.release(200, { nowMono: 200_000_000n })).toEqual([]);
+    o.add('B.csv', [line('B.csv', 45)], 300);
+    o.mark('B.csv', 300_000_000n);
+    expect(o.release(300, { nowMono: 300_000_000n }).map((l) => l.text)).toEqual([rec(45), rec(50)]);
+    expect(o.late).toBe(0);
+    // a log without a mark brings the (short) window back for everyone
+    o.track('C.csv');
+    o.add('A.csv', [line('A.csv', 400_000_000)], 301);
+    expect(o.release(302, { nowMono: 400_000_001n })).toEqual([]);
+    expect(o.release(401, { nowMono: 400_000_001n }).map((l) => l.text)).toEqual([rec(400_000_000)]);
+  });
+
+  test('a log whose mark is stuck on an old record (its module blocked or killed) holds the others back once, not every record', () => {
+    const ms = 1_000_000;
+    const o = new TraceOrder(100, 1000);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.mark('B.csv', BigInt(5 * ms)); // B holds a record of 5 ms + 1 ns, and never writes it
+    o.add('A.csv', [line('A.csv', 10 * ms)], 10);
+    o.mark('A.csv', BigInt(11 * ms));
+    expect(o.release(11, { nowMono: 11n * BigInt(ms) })).toEqual([]);
+    expect(o.release(900, { nowMono: 900n * BigInt(ms) })).toEqual([]);
+    // B's mark has not moved for the hold: A's records no longer wait for B
+    expect(o.release(1006, { nowMono: 1006n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(10 * ms)]);
+    o.add('A.csv', [line('A.csv', 1010 * ms)], 1010);
+    o.mark('A.csv', BigInt(1011 * ms));
+    expect(o.release(1011, { nowMono: 1011n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(1010 * ms)]);
+    // B's mark moves again (it was only blocked): it holds the watermark again
+    o.add('B.csv', [line('B.csv', 5 * ms + 1)], 1020);
+    o.mark('B.csv', BigInt(1015 * ms));
+    o.add('A.csv', [line('A.csv', 1018 * ms)], 1020);
+    o.mark('A.csv', BigInt(1020 * ms));
+    expect(o.release(1020, { nowMono: 1020n * BigInt(ms) }).map((l) => l.text)).toEqual([rec(5 * ms + 1)]);
+    expect(o.late).toBe(1); // B's blocked record came after newer ones
+  });
+
   test('garbage keeps its place after the record before it; module_exit frees the watermark', () => {
     const o = new TraceOrder(1000);
     o.track('A.csv');
@@ -153,6 +201,97 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(monos).toEqual([...monos].sort((x, y) => x - y));
     expect(traced.find((l) => l.text.endsWith(CUT_MARK))?.text.length).toBe(MAX_LINE_CHARS + CUT_MARK.length);
     expect(events).toBeGreaterThan(1); // live: several events, not one at the end
+  });
+
+  /** A flush mark as the runtime keeps it (runtime/src/csvlog.c): one page, its first word. */
+  const markFile = (log: string): ((word: bigint) => void) => {
+    const path = `${log}.mark`;
+    writeFileSync(path, Buffer.alloc(4096));
+    const fd = openSync(path, 'r+');
+    const b = Buffer.alloc(8);
+    return (word: bigint) => {
+      b.writeBigUInt64LE(word);
+      writeSync(fd, b, 0, 8, 0);
+    };
+  };
+
+  test('a module that holds its records longer than the window is not overtaken: its mark holds the others', async () => {
+    mkdirSync(logs);
+    const a = join(logs, 'A_1.csv');
+    const b = join(logs, 'B_1.csv');
+    const tail = await TraceTail.start(work, sink, { ...fast, orderWindowMs: 20, markHoldMs: 60_000 });
+    // as a module starts: its mark, then its log
+    const markA = markFile(a);
+    const markB = markFile(b);
+    markA(0n);
+    markB(0n);
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    writeFileSync(b, `${CSV_HEADER}\n`);
+    const mono = (): bigint => process.hrtime.bigint();
+    // B logs a record and keeps it in its buffer (computing, sleeping) while A writes newer ones
+    const held = mono();
+    markB(held);
+    for (let i = 0; i < 10; i++) {
+      appendFileSync(a, rec(mono(), 'A') + '\n');
+      await sleep(15);
+    }
+    await sleep(100); // many windows: without B's mark A's records would have gone before B's
+    expect(traced).toEqual([]);
+    appendFileSync(b, rec(held, 'B') + '\n'); // B writes it: everything goes, in order
+    markB(0n);
+    for (let i = 0; i < 500 && traced.length < 11; i++) await sleep(10);
+    expect(traced.map((l) => l.file)).toEqual(['B_1.csv', ...Array(10).fill('A_1.csv')]);
+    // A goes on alone while B holds nothing: sent without waiting for B's next record
+    appendFileSync(a, rec(mono(), 'A') + '\n');
+    for (let i = 0; i < 500 && traced.length < 12; i++) await sleep(10);
+    expect(traced).toHaveLength(12);
+    await tail.finish();
+    expect(system).toEqual([]);
+  });
+
+  test('a change of logs/ wakes a read without waiting for the poll; a mark left by a killed module is removed at the end', async () => {
+    mkdirSync(logs);
+    const a = join(logs, 'A_1.csv');
+    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 2, orderWindowMs: 600_000, markHoldMs: 600_000 });
+    markFile(a)(0n);
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    await sleep(20);
+    appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
+    for (let i = 0; i < 500 && traced.length === 0; i++) await sleep(10);
+    expect(traced).toHaveLength(1); // no poll in 10 minutes, no window: the watch read it, the mark released it
+    appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
+    for (let i = 0; i < 500 && traced.length === 1; i++) await sleep(10);
+    expect(traced).toHaveLength(2);
+    await tail.finish();
+    expect(readdirSync(logs)).toEqual(['A_1.csv']);
+    expect(system).toEqual([]);
+  });
+
+  test('while a client watches, every module is asked (its mark\'s second word) to write its log after 10 ms; 0 when none does', async () => {
+    mkdirSync(logs);
+    const tail = await TraceTail.start(work, sink, { ...fast, watchedFlushMs: 10 });
+    const a = join(logs, 'A_1.csv');
+    markFile(a)(0n);
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    const asked = (log: string): bigint => readFileSync(`${log}.mark`).readBigUInt64LE(8);
+    for (let i = 0; i < 500 && !traced.length; i++) {
+      if (i === 0) appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
+      await sleep(10);
+    }
+    expect(traced).toHaveLength(1); // A's log (and its mark) are open
+    expect(asked(a)).toBe(0n);
+    tail.setWatched(true);
+    expect(asked(a)).toBe(10_000_000n);
+    // a module started while watched is asked as soon as its mark is opened
+    const b = join(logs, 'B_1.csv');
+    markFile(b)(0n);
+    writeFileSync(b, `${CSV_HEADER}\n${rec(process.hrtime.bigint(), 'B')}\n`);
+    for (let i = 0; i < 500 && traced.length < 2; i++) await sleep(10);
+    expect(asked(b)).toBe(10_000_000n);
+    tail.setWatched(false);
+    expect([asked(a), asked(b)]).toEqual([0n, 0n]);
+    await tail.finish();
+    expect(system).toEqual([]);
   });
 
   test('a file truncated mid-run stops its own trace with one line; the others go on', async () => {

@@ -1,8 +1,10 @@
 /**
  * The live trace channel's reader (docs/build-service-api.md "Trace channel"): while the run step
- * runs, polls the run's log folder (LOG_DIR = <work>/logs, a host folder for bwrap and none: the
- * work dir is bound into the sandbox) every `pollMs`, reads only the new bytes of each `*.csv`,
- * and hands their record lines, in mono_ns order across the files (trace-order.ts), to the job.
+ * runs, reads the run's log folder (LOG_DIR = <work>/logs, a host folder for bwrap and none: the
+ * work dir is bound into the sandbox) `wakeMs` after it changes (inotify, through fs.watch) and
+ * every `pollMs` in any case, reads only the new bytes of each `*.csv` and, before them, the
+ * word of its flush mark (`<log>.mark`, runtime/src/csvlog.c: up to when the log is whole), and
+ * hands their record lines, in mono_ns order across the files (trace-order.ts), to the job.
  *
  * The folder is the running sandbox's, so it can change under every call (docs/sandbox.md,
  * "Workspaces and host safety"): the logs folder is opened once as a directory without following
@@ -13,8 +15,9 @@
  * and file counts are bounded, lines are bounded (trace-lines.ts). Nothing here throws into the
  * job: a fault stops the channel with one system line; the collected logs stay the record.
  */
-import { constants, promises as fsp } from 'node:fs';
+import { constants, promises as fsp, readSync, watch, writeSync, type FSWatcher } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
+import { endianness } from 'node:os';
 import { join } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LOG_DIR, SAFE_NAME } from './artifacts.js';
@@ -24,8 +27,14 @@ import { TraceOrder } from './trace-order.js';
 
 export interface TraceTailBounds {
   pollMs: number;
+  /** Delay from a change of logs/ to the read it wakes; 0: no watch, polls only. */
+  wakeMs: number;
   readBytesPerPoll: number;
   orderWindowMs: number;
+  /** The order window when every log has its flush mark. */
+  markHoldMs: number;
+  /** Flush delay asked of the modules (their marks' second word) while a client watches. */
+  watchedFlushMs: number;
   files: number;
   /** Entries of logs/ looked at per listing. */
   entries: number;
@@ -35,8 +44,11 @@ export interface TraceTailBounds {
 
 export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
   pollMs: SERVICE_BOUNDS.tracePollMs,
+  wakeMs: SERVICE_BOUNDS.traceWakeMs,
   readBytesPerPoll: SERVICE_BOUNDS.traceReadBytesPerPoll,
   orderWindowMs: SERVICE_BOUNDS.traceOrderWindowMs,
+  markHoldMs: SERVICE_BOUNDS.traceMarkHoldMs,
+  watchedFlushMs: SERVICE_BOUNDS.traceWatchedFlushMs,
   files: SERVICE_BOUNDS.traceFiles,
   entries: SERVICE_BOUNDS.listedEntries,
   linesPerEvent: SERVICE_BOUNDS.traceLinesPerEvent,
@@ -63,9 +75,20 @@ interface Tailed {
    * ordering watermark.
    */
   dormantUntil: number;
+  /** The log's flush mark, opened read-only (null while none was found). */
+  mark: FileHandle | null;
+  /** Rounds left in which a missing mark is looked for again. */
+  markTries: number;
+  /** The mark was opened for writing too (its second word: the flush delay asked). */
+  markWritable: boolean;
 }
 
 const CHUNK = 64 * 1024;
+/** The flush mark's name for a log (runtime/src/csvlog.c). */
+export const MARK_SUFFIX = '.mark';
+/** Rounds after a log was opened in which its mark is looked for (the runtime creates it first). */
+const MARK_TRIES = 3;
+const readWord = endianness() === 'LE' ? (b: Buffer) => b.readBigUInt64LE(0) : (b: Buffer) => b.readBigUInt64BE(0);
 
 export class TraceTail {
   private dir: FileHandle | null = null;
@@ -76,6 +99,16 @@ export class TraceTail {
   private readonly before = new Map<string, number>();
   private readonly order: TraceOrder;
   private timer: NodeJS.Timeout | null = null;
+  /** Date.now() when the timer fires. */
+  private timerDue = 0;
+  private watcher: FSWatcher | null = null;
+  /** A read is running. */
+  private reading = false;
+  /** logs/ changed while a read ran: the next read comes after wakeMs, not pollMs. */
+  private changedMeanwhile = false;
+  private readonly word = Buffer.alloc(8);
+  /** A client follows the job: the modules are asked to write their logs sooner. */
+  private watched = false;
   private polling: Promise<void> = Promise.resolve();
   private stopped = false;
   /** finish() or stop() was called: no poll is scheduled any more. */
@@ -97,7 +130,7 @@ export class TraceTail {
     private readonly sink: TraceSink,
     private readonly bounds: TraceTailBounds,
   ) {
-    this.order = new TraceOrder(bounds.orderWindowMs);
+    this.order = new TraceOrder(bounds.orderWindowMs, bounds.markHoldMs);
     this.buf = Buffer.allocUnsafe(Math.max(1, Math.min(CHUNK, bounds.readBytesPerPoll)));
   }
 
@@ -149,6 +182,29 @@ export class TraceTail {
     await this.close();
   }
 
+  /**
+   * A client follows the job's events (or none does any more): asks every module, through its flush
+   * mark's second word, to write its log after watchedFlushMs instead of its own 50 ms (0: its own).
+   */
+  setWatched(watched: boolean): void {
+    if (watched === this.watched) return;
+    this.watched = watched;
+    for (const f of this.files.values()) this.askFlush(f);
+  }
+
+  private askFlush(f: Tailed): void {
+    if (!f.mark || !f.markWritable || this.stopped) return;
+    const b = Buffer.alloc(8);
+    const ns = this.watched ? BigInt(this.bounds.watchedFlushMs) * 1_000_000n : 0n;
+    if (endianness() === 'LE') b.writeBigUInt64LE(ns);
+    else b.writeBigUInt64BE(ns);
+    try {
+      writeSync(f.mark.fd, b, 0, 8, 8);
+    } catch {
+      f.markWritable = false; // the module's own delay stands
+    }
+  }
+
   /** Stops without reading further (a cancelled or failed job). Never throws. */
   async stop(): Promise<void> {
     this.ending = true;
@@ -162,13 +218,49 @@ export class TraceTail {
     return `/proc/self/fd/${this.dir!.fd}`;
   }
 
-  private schedule(): void {
+  /** The next read in `ms` (pollMs by default; wakeMs after a change of logs/). */
+  private schedule(ms = this.bounds.pollMs): void {
     if (this.stopped || this.ending) return;
+    this.clearTimer();
+    this.timerDue = Date.now() + ms;
     this.timer = setTimeout(() => {
       this.timer = null;
-      this.polling = this.guard(() => this.poll()).then(() => this.schedule());
-    }, this.bounds.pollMs);
+      this.reading = true;
+      this.polling = this.guard(() => this.poll()).then(() => {
+        this.reading = false;
+        const again = this.changedMeanwhile;
+        this.changedMeanwhile = false;
+        this.schedule(again ? this.bounds.wakeMs : this.bounds.pollMs);
+      });
+    }, ms);
     this.timer.unref();
+  }
+
+  /** logs/ changed (a log grew, a log was created): read soon. */
+  private changed(): void {
+    if (this.stopped || this.ending) return;
+    if (this.reading) this.changedMeanwhile = true;
+    else if (this.timerDue > Date.now() + this.bounds.wakeMs) this.schedule(this.bounds.wakeMs);
+  }
+
+  /** Watches logs/ (through its descriptor: the folder opened, never a name replaced later); polls only when it cannot. */
+  private watchDir(): void {
+    if (this.watcher || this.bounds.wakeMs <= 0 || !this.dir) return;
+    try {
+      this.watcher = watch(this.dirPath(), { persistent: false }, () => this.changed());
+      this.watcher.on('error', () => this.unwatch());
+    } catch {
+      this.watcher = null; // no inotify watch left (fs.inotify.max_user_watches): the poll reads on
+    }
+  }
+
+  private unwatch(): void {
+    try {
+      this.watcher?.close();
+    } catch {
+      /* closed already */
+    }
+    this.watcher = null;
   }
 
   private clearTimer(): void {
@@ -207,6 +299,7 @@ export class TraceTail {
     if (this.dir) return true;
     try {
       this.dir = await fsp.open(this.logsDir, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+      if (!this.ending) this.watchDir();
       return true;
     } catch (e) {
       const code = (e as NodeJS.ErrnoException).code;
@@ -296,12 +389,67 @@ export class TraceTail {
       return;
     }
     const before = this.before.get(name) ?? 0;
-    this.files.set(name, { name, fh, splitter: new TraceLineSplitter(name, before), done: false, dormantUntil: before });
+    const f: Tailed = { name, fh, splitter: new TraceLineSplitter(name, before), done: false, dormantUntil: before, mark: null, markTries: MARK_TRIES, markWritable: false };
+    this.files.set(name, f);
     if (before === 0) this.order.track(name);
+    await this.openMark(f);
+  }
+
+  /** Opens a log's flush mark, as the logs are opened (no link, no FIFO, a regular file of at least one word). */
+  private async openMark(f: Tailed): Promise<void> {
+    if (f.mark || f.markTries <= 0) return;
+    f.markTries--;
+    let fh: FileHandle;
+    const path = join(this.dirPath(), f.name + MARK_SUFFIX);
+    const flags = constants.O_NOFOLLOW | constants.O_NONBLOCK;
+    try {
+      fh = await fsp.open(path, constants.O_RDWR | flags);
+      f.markWritable = true;
+    } catch (e) {
+      if ((e as NodeJS.ErrnoException).code !== 'EACCES') return; // none (a runtime without marks, CONTRACT_LOG_MARK unset): the order window applies
+      try {
+        fh = await fsp.open(path, constants.O_RDONLY | flags); // read only: the order, not the sooner flush
+      } catch {
+        return;
+      }
+    }
+    const st = await fh.stat().catch(() => null);
+    if (!st?.isFile() || st.size < 16) {
+      f.markTries = 0;
+      f.markWritable = false;
+      await fh.close().catch(() => {});
+      return;
+    }
+    f.mark = fh;
+    if (this.watched) this.askFlush(f);
+  }
+
+  /**
+   * Up to when the log is whole, from its mark read now (before the file is read): the host's
+   * CLOCK_MONOTONIC before the read when the module holds nothing, just before its oldest held
+   * record otherwise; null when unknown (no mark, a record being logged, a read fault).
+   */
+  private wholeUpTo(f: Tailed): bigint | null {
+    if (!f.mark) return null;
+    const before = process.hrtime.bigint();
+    let word: bigint;
+    try {
+      // one 8-byte read of a regular file's page: synchronous, no thread-pool round trip per log
+      if (readSync(f.mark.fd, this.word, 0, 8, 0) !== 8) return null;
+      word = readWord(this.word);
+    } catch {
+      return null;
+    }
+    if (word === 0n) return before;
+    if (word === 1n) return null;
+    // the module's own word: a time in the future is not believed beyond now
+    return word - 1n < before ? word - 1n : before;
   }
 
   /** Reads at most `budget` new bytes of one log. */
   private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
+    if (!f.mark && f.markTries > 0) await this.openMark(f);
+    const whole = this.wholeUpTo(f);
     const size = (await f.fh.stat()).size;
     if (f.dormantUntil > 0) {
       if (size <= f.dormantUntil) return { read: 0, more: false };
@@ -323,7 +471,10 @@ export class TraceTail {
       read += bytesRead;
       this.order.add(f.name, f.splitter.push(this.buf.subarray(0, bytesRead)), now);
     }
-    return { read, more: f.splitter.offset < size };
+    const more = f.splitter.offset < size;
+    // read to the size seen after the mark: every record the mark said was written is added
+    if (!more && whole !== null && f.dormantUntil === 0) this.order.mark(f.name, whole);
+    return { read, more };
   }
 
   /**
@@ -349,8 +500,18 @@ export class TraceTail {
   }
 
   private async close(): Promise<void> {
-    for (const f of this.files.values()) await f.fh.close().catch(() => {});
+    this.unwatch();
+    for (const f of this.files.values()) {
+      await f.fh.close().catch(() => {});
+      await f.mark?.close().catch(() => {});
+    }
     this.files.clear();
+    // the run is over: a mark its module could not remove (it was killed) is no record of the run
+    if (this.dir) {
+      for (const name of await this.list().catch(() => [])) {
+        if (name.endsWith(`.csv${MARK_SUFFIX}`) && SAFE_NAME.test(name)) await fsp.unlink(join(this.dirPath(), name)).catch(() => {});
+      }
+    }
     await this.dir?.close().catch(() => {});
     this.dir = null;
   }

@@ -1,6 +1,6 @@
 /**
  * `contract cache [clear] [--cache-dir DIR]`: where the build cache is (the built runtime, one work
- * tree per project; shared by `build`, `run` and the IDE), and how to empty it. Clearing waits for
+ * tree per project, the simulators of `simulate`; shared by `build`, `run`, `simulate` and the IDE), and how to empty it. Clearing waits for
  * a build still using a project, and unmounts the work trees a root service keeps mounted
  * (docs/getting-started.md "The build cache").
  */
@@ -11,7 +11,7 @@ import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../
 
 export const cacheCommand: Command = {
     name: 'cache',
-    summary: 'show or clear the build cache (built runtime, one work tree per project)',
+    summary: 'show or clear the build cache (built runtime, one work tree per project, simulators)',
     usage: [
         'usage: contract cache [clear] [--cache-dir DIR]',
         '  prints the cache folder and what it holds; `clear` removes it (the next build starts cold)',
@@ -46,7 +46,7 @@ export const cacheCommand: Command = {
             }
         };
         io.out(`${cache.dir}\n`);
-        io.err(`build cache (${cache.source}; move it with --cache-dir or ${CACHE_DIR_ENV}): ${count('runtime', (n) => n.startsWith('runtime-'))} runtime build(s), ${count('projects')} project work tree(s); \`contract cache clear\` empties it\n`);
+        io.err(`build cache (${cache.source}; move it with --cache-dir or ${CACHE_DIR_ENV}): ${count('runtime', (n) => n.startsWith('runtime-'))} runtime build(s), ${count('projects')} project work tree(s), ${count('sim', (n) => n.startsWith('sim-'))} simulator(s); \`contract cache clear\` empties it\n`);
         return EXIT_OK;
     },
 };

@@ -10,6 +10,7 @@ import type { LoadedScenario, ScenarioResult } from '@contract-studio/simulator'
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import { defaultRuntimeSource } from '../runtime-source.js';
+import { EXIT_ENVIRONMENT } from '../job-runner.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 
@@ -17,19 +18,23 @@ export const simulateCommand: Command = {
     name: 'simulate',
     summary: 'run .scenario files through the supervisors and ORD in virtual time (no robot, no module code)',
     usage: [
-        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--verbose] [--runtime PATH] [--cache DIR]',
+        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--verbose] [--runtime PATH] [--cache-dir DIR]',
         '  DIR: the project (its .contract files); SCENARIO: .scenario files (format: docs/simulation.md)',
         '  --format: text (default: each step, its rule changes, each failed expectation), json (every step\'s record), junit (JUnit XML)',
         '  --verbose: text also shows each step\'s actions and the engines\' trace lines',
         '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
-        '  --cache: where built simulators are kept (default: $CONTRACT_CACHE_DIR or /tmp/contract-studio-<uid>, then sim/)',
-        'exit status: 0 every expectation passed, 1 one failed (or a scenario could not run), 2 usage, model or scenario errors',
+        '  --cache-dir: the build cache of `contract build`; built simulators are kept in its sim/ (default: $CONTRACT_CACHE_DIR,',
+        '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
+        'exit status: 0 every expectation passed, 1 one failed (or a scenario could not run), 2 usage, model or scenario errors,',
+        '             3 a build cache folder that cannot be trusted',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, ['format', 'runtime', 'cache'], ['verbose']);
+        // --cache (before it became --cache-dir) named the simulators' folder itself: told, not guessed
+        if (args.some((a) => a === '--cache' || a.startsWith('--cache='))) throw new UsageError('--cache is now --cache-dir: the build cache folder (as for contract build); simulators are kept in its sim/');
+        const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir'], ['verbose']);
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
-            DEFAULT_RUNTIME_DIR, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, textReport,
+            DEFAULT_RUNTIME_DIR, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
         } = await import('@contract-studio/simulator');
         if (parsed.positionals.length < 2) throw new UsageError('expected DIR and at least one SCENARIO file');
         const format = parsed.options.get('format') ?? 'text';
@@ -37,12 +42,17 @@ export const simulateCommand: Command = {
         const runtimeOption = parsed.options.get('runtime');
         const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || defaultRuntimeSource(DEFAULT_RUNTIME_DIR);
         if (!existsSync(join(runtimeDir, 'include', 'contract', 'vocabulary.h'))) throw new UsageError(`${runtimeDir} is not a ContrACT runtime folder; pass --runtime PATH`);
-        const cacheOption = parsed.options.get('cache');
+        const cacheOption = parsed.options.get('cache-dir');
         const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
         const dir = resolve(io.cwd, parsed.positionals[0]!);
         if (!existsSync(dir)) throw new UsageError(`${parsed.positionals[0]} does not exist`);
+        const cache = simulatorCacheDir(cacheDir, process.env, io.cwd);
+        if ('error' in cache) {
+            io.err(`contract simulate: ${cache.error}\n`);
+            return EXIT_ENVIRONMENT;
+        }
 
-        const project = await prepareProject(dir, { runtimeDir, cacheDir });
+        const project = await prepareProject(dir, { runtimeDir, cacheDir: cache.root.dir, onWait: (what) => io.err(`waiting for ${what} ...\n`) });
         if (!('build' in project)) {
             for (const d of project.modelErrors) io.err(`${displayPath(io.cwd, join(dir, d.file))}:${d.line}:${d.column}: error: ${d.message} [${d.code}]\n`);
             if (project.modelErrors.length) {

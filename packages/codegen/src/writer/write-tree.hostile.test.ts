@@ -105,13 +105,15 @@ describe('writeTree: manifest entries are plain relative paths inside the tree, 
                 expect(readdirSync(victimDir)).toEqual(['important.txt']);
                 expect(readdirSync(base).sort()).toEqual(['project', 'victim']);
                 expect(readdirSync(join(base, 'project'))).toEqual(['src-gen']);
-                // a listed folder ('generated') is refused as not a regular file: an error, nothing done
-                for (const e of r.errors) expect(e.message).toMatch(/is not a regular file: refused/);
+                // a listed folder ('generated') is refused as not a regular file, an entry through a file
+                // ('generated/a.c/x') as not a folder: an error, nothing done
+                for (const e of r.errors) expect(e.message).toMatch(/is not a regular file: refused|is not a folder \(on the way to .*\).*left untouched/);
             }),
-            { numRuns: 150 },
+            // the first example is a counterexample seen once (an entry through a generated file)
+            { numRuns: 150, examples: [[['generated/a.c/important.txt', '..']]] },
         );
         expectNothingCopied(out);
-    });
+    }, 30_000);
 
     it('drops an escaping entry whose target holds region markers (it would have been copied to orphans/, then unlinked)', () => {
         const { out, victim } = setup();

@@ -3,14 +3,25 @@
  * docs/architecture.md "The simulator"): the engine cores and the harness are compiled once in the
  * runtime build (`make -C runtime sim`: build/sim/libcontractsim.a, build/sim/sim_main.o); per
  * project only the generated tables are compiled (-O0, in parallel) and linked. The result is
- * cached under `<cache>/sim-<hash>/contract-sim`, the hash covering every source, the harness
- * objects and the compiler: the same project twice builds nothing.
+ * cached under `<build cache>/sim/sim-<hash>/contract-sim` (harness/cache.ts: the cache of
+ * `contract build`), the hash covering every source, the harness objects and the compiler: the
+ * same project twice builds nothing.
+ *
+ * Concurrent builds (two `contract simulate`, the IDE's POST /api/simulate, on one project and one
+ * cache) are safe: `make` runs under an flock(2) of `<runtime>/build/sim.lock` (two makes would
+ * remove and rewrite the same archive under each other's linker), the per-project compile and link
+ * under an flock of `<cache>/sim/lock` (the second waits, then finds the first one's executable),
+ * and each build is made in a private folder renamed into place, so a reader never sees half an
+ * executable. The locks are held by child processes and dropped by the kernel when they exit,
+ * even when this process is killed.
  */
 import { spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { existsSync, mkdirSync, readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
+import { acquireProjectLock, type ProjectLock } from '@contract-studio/build-service/cache';
+import { simulatorCacheDir } from './cache.js';
 import type { SimSources } from './tables.js';
 
 export interface HarnessBuild {
@@ -23,14 +34,14 @@ export interface HarnessBuild {
 export interface BuildOptions {
     /** The runtime source folder (has Makefile, include/, sim/). */
     runtimeDir: string;
-    /** Cache folder (default: $CONTRACT_CACHE_DIR or <tmp>/contract-studio-<uid>, then `sim/`). */
+    /**
+     * The build cache folder (as `contract build --cache-dir`); the simulators go in its `sim/`.
+     * Default: `$CONTRACT_CACHE_DIR`, else the XDG cache folder (harness/cache.ts).
+     */
     cacheDir?: string;
     cc?: string;
-}
-
-export function defaultCacheDir(): string {
-    const base = process.env.CONTRACT_CACHE_DIR || join(tmpdir(), `contract-studio-${process.getuid?.() ?? 'user'}`);
-    return join(base, 'sim');
+    /** Told once when another build holds a lock this one waits for. */
+    onWait?: (what: string) => void;
 }
 
 const MAX_COMPILER_OUTPUT = 64 * 1024;
@@ -61,11 +72,29 @@ async function harnessObjects(runtimeDir: string, cc: string): Promise<{ lib: st
     const main = join(runtimeDir, 'build', 'sim', 'sim_main.o');
     if (existsSync(join(runtimeDir, 'sim', 'sim.mk'))) {
         // up to date in a few ms; an installed runtime without sources keeps what it has
-        const made = await run('make', ['-s', '-C', runtimeDir, 'sim', `CC=${cc}`], runtimeDir);
+        const make = ['make', '-s', '-C', runtimeDir, 'sim', `CC=${cc}`];
+        const lock = makeLockFile(runtimeDir);
+        // flock(1) runs make with the lock held: no process more than make itself on the warm path
+        let made = lock ? await run('flock', ['-x', lock, ...make], runtimeDir) : undefined;
+        if (!made || made.code === -1) made = await run(make[0]!, make.slice(1), runtimeDir); // no flock(1): make alone
         if (made.code !== 0 && !(existsSync(lib) && existsSync(main))) return `cannot build the simulator's harness in ${runtimeDir}:\n${made.output}`;
     }
     if (!existsSync(lib) || !existsSync(main)) return `no simulator harness in ${runtimeDir}/build/sim (run make -C ${runtimeDir} sim)`;
     return { lib, main };
+}
+
+/**
+ * The lock file of `make -C runtime sim` (`<runtime>/build/sim.lock`); none when the runtime folder
+ * is not writable (an installed runtime: make builds nothing there either).
+ */
+function makeLockFile(runtimeDir: string): string | undefined {
+    const dir = join(runtimeDir, 'build');
+    try {
+        mkdirSync(dir, { recursive: true });
+        return join(dir, 'sim.lock');
+    } catch {
+        return undefined;
+    }
 }
 
 let compilerId: string | undefined;
@@ -77,6 +106,9 @@ async function compilerIdentity(cc: string): Promise<string> {
 export async function buildHarness(src: SimSources, options: BuildOptions): Promise<HarnessBuild | { error: string }> {
     const t0 = performance.now();
     const cc = options.cc ?? process.env.CC ?? 'gcc';
+    const onWait = options.onWait ?? (() => undefined);
+    const cache = simulatorCacheDir(options.cacheDir);
+    if ('error' in cache) return { error: cache.error };
     const objects = await harnessObjects(options.runtimeDir, cc);
     if (typeof objects === 'string') return { error: objects };
     const hash = createHash('sha256');
@@ -88,11 +120,37 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     hash.update(options.runtimeDir).update('\0');
     for (const f of src.files) hash.update(f.path).update('\0').update(f.content).update('\0');
     const key = hash.digest('hex').slice(0, 20);
-    const cache = options.cacheDir ?? defaultCacheDir();
-    const dir = join(cache, `sim-${key}`);
+    const dir = join(cache.dir, `sim-${key}`);
     const exe = join(dir, 'contract-sim');
     if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
 
+    let lock: ProjectLock;
+    try {
+        lock = await acquireProjectLock(join(cache.dir, 'lock'), (holder) => onWait(`another simulator build in ${cache.dir} (${holder})`));
+    } catch (e) {
+        return { error: (e as Error).message };
+    }
+    try {
+        // the build we waited for may have made this very executable
+        if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
+        return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0 });
+    } finally {
+        lock.release();
+    }
+}
+
+interface CompileJob {
+    cc: string;
+    runtimeDir: string;
+    objects: { lib: string; main: string };
+    key: string;
+    /** The cache entry `sim-<key>` and its executable. */
+    dir: string;
+    exe: string;
+    t0: number;
+}
+
+async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, dir, exe, t0 }: CompileJob): Promise<HarnessBuild | { error: string }> {
     const work = `${dir}.tmp-${process.pid}-${Math.random().toString(36).slice(2)}`;
     mkdirSync(work, { recursive: true, mode: 0o700 });
     try {
@@ -101,7 +159,7 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
             mkdirSync(dirname(p), { recursive: true });
             writeFileSync(p, f.content, 'latin1');
         }
-        const include = join(options.runtimeDir, 'include');
+        const include = join(runtimeDir, 'include');
         const compiles = src.units.map((unit, i) => run(cc, [
             '-std=c11', '-O0', '-w', '-D_POSIX_C_SOURCE=200809L', `-I${include}`,
             ...(src.includes.get(unit) ?? []).map((d) => `-I${join(work, d)}`),
@@ -116,7 +174,7 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
         try {
             renameSync(work, dir);
         } catch {
-            // another process built the same key first: use theirs
+            // a build that does not take the lock (an older version) stored the same key first: use theirs
             if (!existsSync(exe)) return { error: `cannot store the simulator in ${dir}` };
         }
         return { exe, cached: false, ms: performance.now() - t0 };

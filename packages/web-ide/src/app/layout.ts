@@ -1,25 +1,26 @@
 import { h } from '../util/dom.js';
+import { RovingFocus } from '../util/roving-focus.js';
 
 /** The static frame of the IDE: top bar, sidebar (explorer + outline), editor, bottom panel, status bar. */
 export function createLayout(root: HTMLElement) {
   const btn = (id: string, icon: string, label: string, title: string, cls = '') =>
     h('button', { class: `btn toolbar-btn ${cls}`, id, title, 'aria-label': label || title }, h('span', { class: 'btn-icon' }, icon), label ? h('span', {}, label) : null);
   const toolbar = {
-    newFile: btn('btn-new-file', '+', 'File', 'New file in the selected folder'),
+    newFile: btn('btn-new-file', '+', 'File', 'New file in the selected folder (Alt+Shift+N)'),
     newFolder: btn('btn-new-folder', '▣', 'Folder', 'New folder in the selected folder'),
     newProject: btn('btn-new-project', '✦', 'New Project', 'Create a project from the report templates'),
     generate: btn('btn-generate', '⚙', 'Generate All', 'Generate the C tree (Ctrl+Shift+G)', 'accent'),
     run: btn('btn-run', '▶', 'Build & Run', 'Build in the sandbox and run the architecture (Ctrl+Shift+B)', 'run'),
-    stop: btn('btn-stop', '■', 'Stop', 'Stop the running job', 'stop'),
+    stop: btn('btn-stop', '■', 'Stop', 'Stop the running job (Alt+Shift+S)', 'stop'),
     runSettings: btn('btn-run-settings', '⚙', '', 'Run settings: duration and start request'),
-    arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas'),
-    timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs'),
-    monitor: btn('btn-monitor', '◉', 'Monitor', 'Watch the run: rules, schemas, deadlines (live during Build & Run, replay after)'),
+    arch: btn('btn-arch', '⬡', 'Architecture', 'Architecture diagram of the schemas (Alt+Shift+D)'),
+    timeline: btn('btn-timeline', '▤', 'Timeline', 'Module activations per period from the run logs (Alt+Shift+T)'),
+    monitor: btn('btn-monitor', '◉', 'Monitor', 'Watch the run: rules, schemas, deadlines (live during Build & Run, replay after) (Alt+Shift+M)'),
   };
   toolbar.stop.disabled = true;
   const workspaceName = h('span', { class: 'workspace-name' });
   const topbar = h('header', { class: 'topbar' },
-    h('div', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
+    h('h1', { class: 'brand' }, h('span', { class: 'brand-mark' }, '◈'), h('span', { class: 'brand-name' }, 'ContrACT'), h('span', { class: 'brand-sub' }, 'Studio')),
     workspaceName, h('div', { class: 'toolbar-group' }, toolbar.newFile, toolbar.newFolder, toolbar.newProject),
     h('div', { class: 'toolbar-group' }, toolbar.generate, toolbar.run, toolbar.runSettings, toolbar.stop),
     h('span', { class: 'grow' }), h('div', { class: 'toolbar-group' }, toolbar.arch, toolbar.timeline, toolbar.monitor));
@@ -27,13 +28,13 @@ export function createLayout(root: HTMLElement) {
   const explorerBody = h('div', { class: 'section-body explorer-body' });
   const outlineBody = h('div', { class: 'section-body outline-body' });
   const sidebar = h('aside', { class: 'sidebar' },
-    h('section', { class: 'side-section explorer-section' }, h('div', { class: 'section-title' }, 'Explorer'), explorerBody),
-    h('section', { class: 'side-section outline-section' }, h('div', { class: 'section-title' }, 'Outline'), outlineBody));
+    h('section', { class: 'side-section explorer-section', 'aria-labelledby': 'title-explorer' }, h('h2', { class: 'section-title', id: 'title-explorer' }, 'Explorer'), explorerBody),
+    h('section', { class: 'side-section outline-section', 'aria-labelledby': 'title-outline' }, h('h2', { class: 'section-title', id: 'title-outline' }, 'Outline'), outlineBody));
 
   const editorRoot = h('main', { class: 'editor-area' });
-  const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist' });
+  const panelTabs = h('div', { class: 'panel-tabs', role: 'tablist', 'aria-label': 'Panels' });
   const panelBodies = h('div', { class: 'panel-bodies' });
-  const panel = h('section', { class: 'bottom-panel' }, panelTabs, panelBodies);
+  const panel = h('section', { class: 'bottom-panel', 'aria-label': 'Panels' }, panelTabs, panelBodies);
 
   const status = {
     problems: h('span', { class: 'status-item status-problems', id: 'status-problems', title: 'Problems' }),
@@ -43,7 +44,7 @@ export function createLayout(root: HTMLElement) {
     cursor: h('span', { class: 'status-item', id: 'status-cursor' }),
     lang: h('span', { class: 'status-item', id: 'status-lang' }),
   };
-  const statusbar = h('footer', { class: 'statusbar' }, status.problems, status.save, status.job, h('span', { class: 'grow' }), status.cursor, status.lang, status.lsp);
+  const statusbar = h('footer', { class: 'statusbar', 'aria-label': 'Status' }, status.problems, status.save, status.job, h('span', { class: 'grow' }), status.cursor, status.lang, status.lsp);
 
   const resizerV = h('div', { class: 'resizer vertical' });
   const resizerH = h('div', { class: 'resizer horizontal' });
@@ -62,18 +63,39 @@ export function createLayout(root: HTMLElement) {
   const showPanel = (id: string) => {
     for (const [k, p] of panels) {
       p.tab.classList.toggle('active', k === id);
+      p.tab.setAttribute('aria-selected', String(k === id));
       p.body.classList.toggle('hidden', k !== id);
     }
+    panelFocus.forget(); // the tab stop is the shown panel's tab
+    panelFocus.refresh();
   };
+  // the panel tabs: a WAI-ARIA tablist (←/→ show the next panel, Tab enters it, Escape back to the editor)
+  let escape = () => undefined as unknown;
+  const panelFocus = new RovingFocus(panelTabs, {
+    orientation: 'horizontal', followFocus: true,
+    items: () => [...panels.values()].map((p) => p.tab),
+    keyOf: (tab) => tab.dataset.panel ?? '',
+    current: () => panelTabs.querySelector<HTMLElement>('.panel-tab.active') ?? undefined,
+    onActivate: (tab) => tab.click(),
+    onEscape: () => escape(),
+  });
   const addPanel = (id: string, title: string, body: HTMLElement) => {
-    const tab = h('div', { class: 'panel-tab', role: 'tab', 'data-panel': id, onclick: () => showPanel(id) }, title);
-    const wrapper = h('div', { class: 'panel-body hidden', 'data-panel': id }, body);
+    const tab = h('div', {
+      class: 'panel-tab', role: 'tab', id: `panel-tab-${id}`, 'aria-controls': `panel-${id}`, 'aria-selected': 'false', tabindex: -1, 'data-panel': id,
+      onclick: () => showPanel(id),
+    }, title);
+    const wrapper = h('div', { class: 'panel-body hidden', role: 'tabpanel', id: `panel-${id}`, 'aria-labelledby': `panel-tab-${id}`, 'data-panel': id }, body);
     panelTabs.append(tab);
     panelBodies.append(wrapper);
     panels.set(id, { tab, body: wrapper });
+    panelFocus.refresh();
     return tab;
   };
-  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel };
+  /** Focuses the tab of the panel shown. */
+  const focusPanelTabs = () => panelFocus.focus();
+  /** What Escape in the panel tabs does (focus the editor). */
+  const onPanelEscape = (fn: () => void) => (escape = fn);
+  return { toolbar, workspaceName, explorerBody, outlineBody, editorRoot, status, addPanel, showPanel, focusPanelTabs, onPanelEscape };
 }
 
 function dragResize(handle: HTMLElement, move: (dx: number, dy: number) => void): void {

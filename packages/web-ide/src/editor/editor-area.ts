@@ -6,6 +6,7 @@ import { isGeneratedC } from '../workspace/file-kinds.js';
 import { GeneratedGuard } from './generated-guard.js';
 import { toast } from '../util/toast.js';
 import { confirmAction } from '../util/dialog.js';
+import { RovingFocus } from '../util/roving-focus.js';
 
 /** A non-file tab (architecture, timeline) rendered by its owner into `element`. */
 export interface ViewTab {
@@ -35,17 +36,33 @@ export class EditorArea {
   private readonly views = new Map<string, ViewTab>();
   private readonly viewStates = new Map<string, monaco.editor.ICodeEditorViewState | null>();
   private readonly guards = new Map<string, GeneratedGuard>();
+  private readonly tabFocus: RovingFocus;
   active: string | undefined;
 
   constructor(
     readonly root: HTMLElement,
     private readonly workspace: Workspace,
   ) {
-    this.tabsEl = h('div', { class: 'tabs', role: 'tablist' });
+    this.tabsEl = h('div', { class: 'tabs', role: 'tablist', 'aria-label': 'Open files and views' });
+    // the tabs: a WAI-ARIA tablist (←/→ move, Enter shows the tab and focuses its editor, Delete closes, Escape back to the editor)
+    this.tabFocus = new RovingFocus(this.tabsEl, {
+      orientation: 'horizontal',
+      items: () => [...this.tabsEl.querySelectorAll<HTMLElement>('.tab')],
+      keyOf: (tab) => tab.dataset.path ?? '',
+      current: () => this.tabsEl.querySelector<HTMLElement>('.tab.active') ?? undefined,
+      onActivate: (tab) => this.show(tab.dataset.path!),
+      onEscape: () => this.focusActive(),
+      onKey: (tab, e) => {
+        if (e.key !== 'Delete') return false;
+        this.close(tab.dataset.path!);
+        this.tabFocus.focus();
+        return true;
+      },
+    });
     this.editorHost = h('div', { class: 'editor-host' });
     this.viewHost = h('div', { class: 'view-host hidden' });
-    this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer'),
-      h('div', { class: 'muted' }, 'Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
+    this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer, or Ctrl+P'),
+      h('div', { class: 'muted' }, 'F1 all commands · Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
     this.sidePane = h('div', { class: 'side-pane hidden' });
     this.stack = h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl, this.sidePane);
     root.append(this.tabsEl, this.stack);
@@ -156,6 +173,27 @@ export class EditorArea {
     this.stack.classList.toggle('docked', !!element);
   }
 
+  /** Shows a tab (a click, Enter on it) and puts the keyboard focus in it: Ctrl+Z then undoes in that file. */
+  show(id: string): void {
+    this.activate(id);
+    this.focusActive();
+  }
+
+  /** Focuses the active tab's content: the editor for a file, the view's element otherwise. */
+  focusActive(): void {
+    if (!this.active) return;
+    const view = this.views.get(this.active);
+    if (!view) return this.editor.focus();
+    const target = view.element.querySelector<HTMLElement>('[data-autofocus]') ?? view.element;
+    if (target.tabIndex < 0 && !target.hasAttribute('tabindex')) target.tabIndex = -1;
+    target.focus();
+  }
+
+  /** Moves the keyboard focus to the tab strip (the active tab). */
+  focusTabs(): boolean {
+    return this.tabFocus.focus();
+  }
+
   guardOf(path: string): GeneratedGuard | undefined {
     return this.guards.get(path);
   }
@@ -240,15 +278,19 @@ export class EditorArea {
         const icon = view ? view.icon : id.endsWith('.contract') ? '◈' : /\.(c|h)$/.test(id) ? 'C' : '≡';
         return h('div', {
           class: `tab${id === this.active ? ' active' : ''}${isGeneratedC(id) ? ' generated' : ''}`,
-          role: 'tab', title: id, 'data-path': id, 'data-state': fs?.state ?? 'saved',
-          onclick: () => this.activate(id),
+          role: 'tab', title: id, 'data-path': id, 'data-state': fs?.state ?? 'saved', 'aria-selected': String(id === this.active), tabindex: -1,
+          onclick: () => this.show(id),
           onmousedown: (e: Event) => (e as MouseEvent).button === 1 && this.close(id),
         },
-          h('span', { class: 'tab-icon' }, icon), h('span', { class: 'tab-name' }, name),
-          h('span', { class: 'tab-dirty', title: 'unsaved' }, '●'),
-          h('span', { class: 'tab-close', title: 'Close', onclick: (e: Event) => { e.stopPropagation(); this.close(id); } }, '×'));
+          h('span', { class: 'tab-icon', 'aria-hidden': 'true' }, icon), h('span', { class: 'tab-name' }, name),
+          h('span', { class: 'tab-dirty', title: 'unsaved', 'aria-hidden': 'true' }, '●'),
+          h('span', { class: 'tab-close', title: 'Close (Delete)', 'aria-hidden': 'true', onclick: (e: Event) => { e.stopPropagation(); this.close(id); } }, '×'));
       }),
     );
+    this.tabFocus.forget(); // the tab stop is the active tab
+    this.tabFocus.refresh();
+    // the active tab is always visible in the strip (many tabs scroll)
+    this.tabsEl.querySelector('.tab.active')?.scrollIntoView({ block: 'nearest', inline: 'nearest' });
     const isView = !!this.active && this.views.has(this.active);
     this.editorHost.classList.toggle('hidden', !this.active || isView);
     this.viewHost.classList.toggle('hidden', !isView);

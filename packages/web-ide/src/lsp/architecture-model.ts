@@ -3,7 +3,21 @@
  * language worker, on the linked AST): for each schema its modules with their ports, the data and
  * event communications with periodicities, and the precedence edges of the scheduling graph.
  */
+/** Where something is defined (0-based line and character, as LSP positions). */
+export interface ArchLocation {
+  uri: string;
+  line: number;
+  character: number;
+}
+
+export interface ArchRange {
+  start: { line: number; character: number };
+  end: { line: number; character: number };
+}
+
 export interface ArchPort {
+  /** The port's declaration in its module. */
+  def?: ArchLocation;
   index: number;
   name: string;
   type: string;
@@ -12,6 +26,8 @@ export interface ArchPort {
 }
 
 export interface ArchModule {
+  /** The module's (or supervisor's) definition. */
+  def?: ArchLocation;
   name: string;
   kind: string;
   wcet?: string;
@@ -19,6 +35,8 @@ export interface ArchModule {
 }
 
 export interface ArchFlow {
+  /** The communication in the schema. */
+  def?: ArchLocation;
   from: string;
   fromPort: number;
   to: string;
@@ -31,6 +49,8 @@ export interface ArchSchema {
   name: string;
   kind: string;
   uri: string;
+  /** The schema's text in its file (the diagram follows the cursor into it). */
+  range?: ArchRange;
   period?: string;
   criticalDelay?: string;
   modules: ArchModule[];
@@ -46,6 +66,23 @@ const refName = (r: unknown): string => {
   const x = r as Ref | undefined;
   return (x?.ref?.name as string | undefined) ?? x?.$refText ?? '?';
 };
+
+type Located = { $cstNode?: { range?: ArchRange }; $container?: Located; $document?: { uri?: { toString(): string } } };
+
+/** Where an AST node starts, in its own document (a module referenced by a schema lives in another file). */
+function defOf(node: unknown): ArchLocation | undefined {
+  const n = node as Located | undefined;
+  const start = n?.$cstNode?.range?.start;
+  let root = n;
+  while (root?.$container) root = root.$container;
+  const uri = root?.$document?.uri?.toString();
+  return start && uri ? { uri, line: start.line, character: start.character } : undefined;
+}
+
+function rangeOf(node: unknown): ArchRange | undefined {
+  const r = (node as Located | undefined)?.$cstNode?.range;
+  return r ? { start: { line: r.start.line, character: r.start.character }, end: { line: r.end.line, character: r.end.character } } : undefined;
+}
 
 function typeName(t: unknown): string {
   const tr = t as { primitive?: string; datatype?: Ref } | undefined;
@@ -66,15 +103,16 @@ export function moduleOf(node: Node | undefined): ArchModule | undefined {
   const ports: ArchPort[] = [];
   for (const b of blocks) {
     if (b.$type === 'ParametersBlock') {
-      for (const p of arr(b.parameters)) ports.push({ index: Number(p.index), name: String(p.name), type: typeName(p.type), direction: 'in', kind: 'param' });
+      for (const p of arr(b.parameters)) ports.push({ def: defOf(p), index: Number(p.index), name: String(p.name), type: typeName(p.type), direction: 'in', kind: 'param' });
     } else if (b.$type === 'DataFlowsBlock' || b.$type === 'EventFlowsBlock') {
       const kind = b.$type === 'DataFlowsBlock' ? 'data' : 'event';
       for (const p of arr(b.ports)) {
-        ports.push({ index: Number(p.index), name: String(p.name), type: typeName(p.type), direction: p.direction === 'out' ? 'out' : 'in', kind });
+        ports.push({ def: defOf(p), index: Number(p.index), name: String(p.name), type: typeName(p.type), direction: p.direction === 'out' ? 'out' : 'in', kind });
       }
     }
   }
   return {
+    def: defOf(node),
     name: String(node.name),
     kind: node.$type === 'Supervisor' ? 'supervisor' : String(node.kind ?? 'module'),
     wcet: timeProp(arr(node.blocks), 'SchedulingBlock', 'C'),
@@ -91,6 +129,7 @@ export function schemasOf(root: Node, uri: string): ArchSchema[] {
       name: String(el.name),
       kind: String(el.kind),
       uri,
+      range: rangeOf(el),
       period: timeProp(blocks, 'RealtimeBlock', 'PERIOD'),
       criticalDelay: timeProp(blocks, 'RealtimeBlock', 'CRITICAL_DELAY'),
       modules: [],
@@ -110,6 +149,7 @@ export function schemasOf(root: Node, uri: string): ArchSchema[] {
           const data = c.$type === 'DataCommunication';
           const k = (c.periodicity as number | undefined) ?? 1;
           schema.flows.push({
+            def: defOf(c),
             from: refName(c.source),
             fromPort: Number((c.sourcePort as Ref).$refText),
             to: refName(c.target),

@@ -1,23 +1,89 @@
 import { h } from '../util/dom.js';
 import type { TreeEntry } from '../api.js';
 import { Emitter } from '../util/emitter.js';
+import { RovingFocus } from '../util/roving-focus.js';
 
 /**
  * The project explorer: a collapsible tree of the workspace. Emits open/select; the owner runs
- * file operations (create, rename, delete) through the server.
+ * file operations (create, rename, delete) through the server. Keyboard: a WAI-ARIA tree (↑/↓,
+ * → expands or enters a folder, ← collapses or goes to the parent, Enter opens, F2 renames,
+ * Delete deletes, Escape back to the editor).
  */
 export class Explorer {
   readonly onOpen = new Emitter<string>();
   readonly onContextAction = new Emitter<{ action: 'rename' | 'delete' | 'new-file' | 'new-folder'; entry: TreeEntry }>();
+  /** Escape in the tree: the owner focuses the editor. */
+  readonly onEscape = new Emitter<void>();
   selected: TreeEntry | undefined;
   private readonly expanded = new Set<string>();
   private entries: TreeEntry[] = [];
   private active: string | undefined;
   private readonly list: HTMLElement;
+  private readonly byPath = new Map<string, TreeEntry>();
+  /** Shown instead of the tree when it is empty (outside it: a tree holds tree items only). */
+  private readonly empty: HTMLElement;
+  private readonly roving: RovingFocus;
 
   constructor(readonly root: HTMLElement) {
-    this.list = h('div', { class: 'tree', role: 'tree' });
-    root.append(this.list);
+    this.list = h('div', { class: 'tree', role: 'tree', 'aria-label': 'Files of the workspace' });
+    this.empty = h('div', { class: 'muted pad hidden' }, 'Empty workspace: use New Project');
+    root.append(this.list, this.empty);
+    const rows = () => [...this.list.querySelectorAll<HTMLElement>('.tree-row')];
+    const rowOf = (path: string | undefined) => rows().find((r) => r.dataset.path === path);
+    this.roving = new RovingFocus(this.list, {
+      orientation: 'vertical',
+      items: rows,
+      keyOf: (row) => row.dataset.path ?? '',
+      current: () => rowOf(this.selected?.path) ?? rowOf(this.active),
+      onActivate: (row) => this.byPath.get(row.dataset.path!) && this.click(this.byPath.get(row.dataset.path!)!),
+      onEscape: () => this.onEscape.fire(),
+      onKey: (row, e) => {
+        const entry = this.byPath.get(row.dataset.path!);
+        if (!entry) return false;
+        const open = this.expanded.has(entry.path);
+        if (e.key === 'ArrowRight' && entry.type === 'dir') {
+          if (!open) this.toggle(entry);
+          else if (entry.children?.length) this.roving.moveTo(rowOf(entry.children[0]!.path)!);
+          return true;
+        }
+        if (e.key === 'ArrowLeft') {
+          if (entry.type === 'dir' && open) this.toggle(entry);
+          else if (entry.path.includes('/')) this.roving.moveTo(rowOf(entry.path.slice(0, entry.path.lastIndexOf('/')))!);
+          return true;
+        }
+        if (e.key === 'F2' || e.key === 'Delete') {
+          this.selected = entry;
+          this.onContextAction.fire({ action: e.key === 'F2' ? 'rename' : 'delete', entry });
+          return true;
+        }
+        return false;
+      },
+    });
+  }
+
+  /** Moves the keyboard focus into the tree (the selected or active file). */
+  focus(): boolean {
+    return this.roving.focus();
+  }
+
+  /** The entry of a path, when it is in the tree. */
+  entryOf(path: string): TreeEntry | undefined {
+    return this.byPath.get(path);
+  }
+
+  private toggle(e: TreeEntry): void {
+    if (this.expanded.has(e.path)) this.expanded.delete(e.path);
+    else this.expanded.add(e.path);
+    this.render();
+  }
+
+  private click(e: TreeEntry): void {
+    this.selected = e;
+    if (e.type === 'dir') this.toggle(e);
+    else {
+      this.render();
+      this.onOpen.fire(e.path);
+    }
   }
 
   setEntries(entries: TreeEntry[]): void {
@@ -51,8 +117,10 @@ export class Explorer {
 
   private render(): void {
     const rows: HTMLElement[] = [];
+    this.byPath.clear();
     const walk = (entries: TreeEntry[], depth: number) => {
       for (const e of entries) {
+        this.byPath.set(e.path, e);
         const isDir = e.type === 'dir';
         const open = this.expanded.has(e.path);
         const icon = isDir ? (open ? '▾' : '▸') : '';
@@ -60,20 +128,12 @@ export class Explorer {
         const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : '≡';
         const row = h('div', {
           class: `tree-row ${kind}${e.path === this.active ? ' active' : ''}${e === this.selected || e.path === this.selected?.path ? ' selected' : ''}`,
-          role: 'treeitem', 'data-path': e.path, title: e.path, style: `padding-left:${8 + depth * 14}px`,
-          onclick: () => {
-            this.selected = e;
-            if (isDir) {
-              if (open) this.expanded.delete(e.path);
-              else this.expanded.add(e.path);
-              this.render();
-            } else {
-              this.onOpen.fire(e.path);
-            }
-          },
+          role: 'treeitem', 'data-path': e.path, title: e.path, style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
+          'aria-level': depth + 1, 'aria-selected': e.path === this.active ? 'true' : 'false', 'aria-expanded': isDir ? String(open) : undefined,
+          onclick: () => this.click(e),
         },
-          h('span', { class: 'twisty' }, icon), h('span', { class: `file-glyph ${kind}` }, glyph), h('span', { class: 'tree-name' }, e.name),
-          h('span', { class: 'row-actions' },
+          h('span', { class: 'twisty', 'aria-hidden': 'true' }, icon), h('span', { class: `file-glyph ${kind}`, 'aria-hidden': 'true' }, glyph), h('span', { class: 'tree-name' }, e.name),
+          h('span', { class: 'row-actions', 'aria-hidden': 'true' },
             isDir ? h('span', { class: 'row-action', title: 'New file here', 'data-action': 'new-file', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'new-file', entry: e }); } }, '+') : null,
             h('span', { class: 'row-action', title: 'Rename', 'data-action': 'rename', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'rename', entry: e }); } }, '✎'),
             h('span', { class: 'row-action', title: 'Delete', 'data-action': 'delete', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'delete', entry: e }); } }, '✕')));
@@ -82,6 +142,8 @@ export class Explorer {
       }
     };
     walk(this.entries, 0);
-    this.list.replaceChildren(...(rows.length ? rows : [h('div', { class: 'muted pad' }, 'Empty workspace: use New Project')]));
+    this.list.replaceChildren(...rows);
+    this.empty.classList.toggle('hidden', rows.length > 0);
+    this.roving.refresh();
   }
 }

@@ -1,36 +1,72 @@
 import { h, debounce } from '../util/dom.js';
 import type * as lsp from 'vscode-languageserver-protocol';
 import { SYMBOL_ICONS } from '../lsp/lsp-convert.js';
+import { RovingFocus } from '../util/roving-focus.js';
+import { Emitter } from '../util/emitter.js';
 
-/** Outline of the active Cactal file (LSP document symbols); clicking reveals the symbol. */
+/**
+ * Outline of the active Cactal file (LSP document symbols); clicking reveals the symbol. Keyboard:
+ * a WAI-ARIA tree (↑/↓, Home/End, Enter reveals the symbol in the editor, Escape back to the editor).
+ */
 export class OutlinePanel {
   private readonly list: HTMLElement;
+  private readonly caption: HTMLElement;
+  /** Shown instead of the tree when it is empty (outside it: a tree holds tree items only). */
+  private readonly empty: HTMLElement;
   private uri: string | undefined;
   readonly refresh: () => void;
+  /** Escape in the outline: the owner focuses the editor. */
+  readonly onEscape = new Emitter<void>();
+  private readonly roving: RovingFocus;
 
   constructor(
     root: HTMLElement,
     private readonly fetchSymbols: (uri: string) => Promise<lsp.DocumentSymbol[] | null>,
     private readonly reveal: (range: lsp.Range) => void,
   ) {
-    this.list = h('div', { class: 'outline', role: 'tree' });
-    root.append(this.list);
+    this.list = h('div', { class: 'outline', role: 'tree', 'aria-label': 'Outline of the active file' });
+    this.caption = h('div', { class: 'muted pad small hidden' }, 'Protected regions (editable)');
+    this.empty = h('div', { class: 'muted pad hidden' });
+    root.append(this.caption, this.list, this.empty);
     this.refresh = debounce(() => void this.load(), 250);
+    this.roving = new RovingFocus(this.list, {
+      orientation: 'vertical',
+      items: () => [...this.list.querySelectorAll<HTMLElement>('.outline-row')],
+      keyOf: (row) => `${row.dataset.name}@${row.dataset.index}`,
+      onActivate: (row) => row.click(),
+      onEscape: () => this.onEscape.fire(),
+    });
+  }
+
+  /** Moves the keyboard focus into the outline; false when it has no entry. */
+  focus(): boolean {
+    return this.roving.focus();
+  }
+
+  private setRows(rows: HTMLElement[], empty: string, regions = false): void {
+    this.caption.classList.toggle('hidden', !regions);
+    this.list.setAttribute('aria-label', regions ? 'Protected regions (editable) of the generated file' : 'Outline of the active file');
+    rows.forEach((r, i) => {
+      r.dataset.index = String(i);
+      r.tabIndex = -1;
+    });
+    this.list.replaceChildren(...rows);
+    this.empty.textContent = empty;
+    this.empty.classList.toggle('hidden', rows.length > 0);
+    this.roving.refresh();
   }
 
   /** For generated C: the protected regions (editable parts) of the file, click to reveal. */
   showRegions<R extends { id: string; line: number }>(regions: R[], reveal: (region: R) => void): void {
     this.uri = undefined;
-    this.list.replaceChildren(
-      h('div', { class: 'muted pad small' }, 'Protected regions (editable)'),
-      ...regions.map((r) => h('div', { class: 'outline-row', role: 'treeitem', 'data-name': r.id, style: 'padding-left:8px', onclick: () => reveal(r) },
-        h('span', { class: 'sym-icon region' }, '▍'), h('span', { class: 'sym-name' }, r.id), h('span', { class: 'sym-detail' }, `line ${r.line}`))),
-    );
+    this.setRows(regions.map((r) => h('div', { class: 'outline-row', role: 'treeitem', 'aria-level': 1, 'aria-selected': 'false', 'data-name': r.id, style: 'padding-left:8px', onclick: () => reveal(r) },
+      h('span', { class: 'sym-icon region', 'aria-hidden': 'true' }, '▍'), h('span', { class: 'sym-name' }, r.id), h('span', { class: 'sym-detail' }, `line ${r.line}`))),
+    'No protected region', true);
   }
 
   show(uri: string | undefined): void {
     this.uri = uri;
-    if (!uri) this.list.replaceChildren(h('div', { class: 'muted pad' }, 'No Cactal file active'));
+    if (!uri) this.setRows([], 'No Cactal file active');
     else void this.load();
   }
 
@@ -48,14 +84,14 @@ export class OutlinePanel {
     const walk = (list: lsp.DocumentSymbol[], depth: number) => {
       for (const s of list) {
         rows.push(h('div', {
-          class: 'outline-row', role: 'treeitem', style: `padding-left:${8 + depth * 14}px`, 'data-name': s.name,
+          class: 'outline-row', role: 'treeitem', 'aria-level': depth + 1, 'aria-selected': 'false', style: `padding-left:${8 + depth * 14}px`, 'data-name': s.name,
           onclick: () => this.reveal(s.selectionRange),
-        }, h('span', { class: `sym-icon k${s.kind}` }, SYMBOL_ICONS[s.kind] ?? '•'), h('span', { class: 'sym-name' }, s.name),
+        }, h('span', { class: `sym-icon k${s.kind}`, 'aria-hidden': 'true' }, SYMBOL_ICONS[s.kind] ?? '•'), h('span', { class: 'sym-name' }, s.name),
           s.detail ? h('span', { class: 'sym-detail' }, s.detail) : null));
         if (s.children?.length) walk(s.children, depth + 1);
       }
     };
     walk(symbols ?? [], 0);
-    this.list.replaceChildren(...(rows.length ? rows : [h('div', { class: 'muted pad' }, 'No symbols')]));
+    this.setRows(rows, 'No symbols');
   }
 }

@@ -1,5 +1,6 @@
 import { h, debounce } from '../util/dom.js';
 import { Emitter } from '../util/emitter.js';
+import { RovingFocus } from '../util/roving-focus.js';
 
 export type Severity = 'error' | 'warning' | 'info' | 'hint';
 
@@ -17,7 +18,8 @@ const ICON: Record<Severity, string> = { error: '✖', warning: '⚠', info: '�
 
 /**
  * Problems of the whole workspace, from several producers (the language server per file, gcc per
- * build). Grouped by file; clicking opens the file at the position.
+ * build). Grouped by file; clicking opens the file at the position. Keyboard: a WAI-ARIA listbox
+ * (↑/↓, Home/End, Enter opens the problem's position, Escape back to the editor).
  */
 export class ProblemsPanel {
   readonly onCounts = new Emitter<{ errors: number; warnings: number }>();
@@ -25,11 +27,38 @@ export class ProblemsPanel {
   private readonly sets = new Map<string, Problem[]>();
   private readonly list: HTMLElement;
   private readonly scheduleRender = debounce(() => this.render(), 30);
+  /** Escape in the list: the owner focuses the editor. */
+  readonly onEscape = new Emitter<void>();
+  private readonly roving: RovingFocus;
+  private shown: Problem[] = [];
+  /** Shown instead of the list when it is empty (outside it: a listbox holds options only). */
+  private readonly empty: HTMLElement;
 
   constructor(readonly root: HTMLElement) {
-    this.list = h('div', { class: 'problems' });
-    root.append(this.list);
+    this.list = h('div', { class: 'problems', role: 'listbox', 'aria-label': 'Problems of the workspace' });
+    this.empty = h('div', { class: 'muted pad hidden' }, '✓ No problems in the workspace');
+    root.append(this.list, this.empty);
+    this.roving = new RovingFocus(this.list, {
+      orientation: 'vertical',
+      items: () => [...this.list.querySelectorAll<HTMLElement>('.problem-row')],
+      keyOf: (row) => row.dataset.key ?? '',
+      onActivate: (row) => this.open(row),
+      onEscape: () => this.onEscape.fire(),
+    });
+    this.list.addEventListener('focusin', (e) => {
+      for (const r of this.list.querySelectorAll('.problem-row')) r.setAttribute('aria-selected', String(r === e.target));
+    });
     this.render();
+  }
+
+  /** Moves the keyboard focus to the problems list (the last focused problem, else the first). */
+  focus(): boolean {
+    return this.roving.focus();
+  }
+
+  private open(row: HTMLElement): void {
+    const p = this.shown[Number(row.dataset.index)];
+    if (p) this.onOpen.fire(p);
   }
 
   /** Replaces the problems of one producer key (e.g. `cactal:file.contract` or `gcc`). */
@@ -48,16 +77,27 @@ export class ProblemsPanel {
     const byFile = new Map<string, Problem[]>();
     for (const p of all) (byFile.get(p.path) ?? byFile.set(p.path, []).get(p.path)!).push(p);
     const rows: HTMLElement[] = [];
+    this.shown = [];
     for (const path of [...byFile.keys()].sort()) {
       const ps = byFile.get(path)!.sort((a, b) => ORDER[a.severity] - ORDER[b.severity] || a.line - b.line || a.column - b.column);
-      rows.push(h('div', { class: 'problem-file' }, h('span', { class: 'file-glyph' }, path.endsWith('.contract') ? '◈' : 'C'), path, h('span', { class: 'badge' }, String(ps.length))));
+      const options: HTMLElement[] = [];
       for (const p of ps) {
-        rows.push(h('div', { class: `problem-row ${p.severity}`, 'data-path': p.path, 'data-line': p.line, onclick: () => this.onOpen.fire(p) },
-          h('span', { class: 'sev' }, ICON[p.severity]), h('span', { class: 'msg' }, p.message),
+        const index = this.shown.push(p) - 1;
+        options.push(h('div', {
+          class: `problem-row ${p.severity}`, role: 'option', 'aria-selected': 'false', tabindex: -1, 'data-path': p.path, 'data-line': p.line, 'data-index': index,
+          'data-key': `${p.path}:${p.line}:${p.column}:${p.message}`, onclick: () => this.onOpen.fire(p),
+        },
+          h('span', { class: 'sev', role: 'img', 'aria-label': p.severity }, ICON[p.severity]), h('span', { class: 'msg' }, p.message),
           h('span', { class: 'src' }, p.source), h('span', { class: 'pos' }, `[${p.line}:${p.column}]`)));
       }
+      const label = `${path}: ${ps.length} problem${ps.length > 1 ? 's' : ''}`;
+      rows.push(h('div', { role: 'group', 'aria-label': label },
+        h('div', { class: 'problem-file', 'aria-hidden': 'true' }, h('span', { class: 'file-glyph' }, path.endsWith('.contract') ? '◈' : 'C'), path, h('span', { class: 'badge' }, String(ps.length))),
+        ...options));
     }
-    this.list.replaceChildren(...(rows.length ? rows : [h('div', { class: 'muted pad' }, '✓ No problems in the workspace')]));
+    this.list.replaceChildren(...rows);
+    this.empty.classList.toggle('hidden', rows.length > 0);
+    this.roving.refresh();
     this.onCounts.fire({ errors: all.filter((p) => p.severity === 'error').length, warnings: all.filter((p) => p.severity === 'warning').length });
   }
 }

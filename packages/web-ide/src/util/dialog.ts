@@ -3,7 +3,7 @@ import { h } from './dom.js';
 /** An in-page prompt (no native dialogs): resolves the entered text, or null when cancelled. */
 export function askText(title: string, initial = '', hint = ''): Promise<string | null> {
   return new Promise((resolve) => {
-    const input = h('input', { class: 'dialog-input', value: initial, spellcheck: 'false' });
+    const input = h('input', { class: 'dialog-input', value: initial, spellcheck: 'false', 'aria-label': title });
     const done = (v: string | null) => {
       overlay.remove();
       resolve(v);
@@ -42,7 +42,7 @@ export function confirmAction(title: string, detail: string, okLabel = 'Delete')
 /** A small form of labelled text fields; resolves the values, or null when cancelled. */
 export function askFields(title: string, fields: Array<{ key: string; label: string; value: string; hint?: string }>): Promise<Record<string, string> | null> {
   return new Promise((resolve) => {
-    const inputs = fields.map((f) => h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '' }));
+    const inputs = fields.map((f) => h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '', 'aria-label': f.label }));
     const done = (ok: boolean) => {
       overlay.remove();
       resolve(ok ? Object.fromEntries(inputs.map((i, n) => [fields[n]!.key, i.value.trim()])) : null);

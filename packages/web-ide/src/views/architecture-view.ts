@@ -6,8 +6,9 @@
  */
 import ELK, { type ElkNode, type ElkExtendedEdge, type ElkPort } from 'elkjs/lib/elk-api.js';
 import elkWorkerUrl from 'elkjs/lib/elk-worker.min.js?url';
-import { h } from '../util/dom.js';
-import type { ArchSchema, ArchModule } from '../lsp/architecture-model.js';
+import { h, debounce } from '../util/dom.js';
+import type { ArchSchema, ArchModule, ArchLocation } from '../lsp/architecture-model.js';
+import { PanZoom, type Size } from './pan-zoom.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 const elk = new ELK({ workerFactory: () => new Worker(elkWorkerUrl) });
@@ -53,7 +54,15 @@ function nodeOf(m: ArchModule): ElkNode {
   };
 }
 
-export async function layoutSchema(schema: ArchSchema): Promise<ElkNode> {
+/** The definition a diagram element stands for (a module, a port, a flow): a click goes there. */
+export const definitionOf = new WeakMap<Element, ArchLocation>();
+
+/** The smallest text of the drawing (port and flow labels, CSS .port-label/.edge-label) and the smallest size it is shown at automatically. */
+const SMALLEST_FONT_PX = 11;
+const MIN_FONT_PX = 9;
+
+/** Lays the schema out for the pane it is shown in: left to right in a wide pane, top to bottom in a narrow one. */
+export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<ElkNode> {
   const known = new Set(schema.modules.map((m) => m.name));
   const edges: ElkExtendedEdge[] = [];
   schema.flows.forEach((f, i) => {
@@ -66,13 +75,15 @@ export async function layoutSchema(schema: ArchSchema): Promise<ElkNode> {
   // Ports referenced by flows but missing on a module (errors in the model) are dropped by ELK; keep only valid ones.
   const portIds = new Set(schema.modules.flatMap((m) => nodeOf(m).ports!.map((p) => p.id)));
   const valid = edges.filter((e) => [...e.sources, ...e.targets].every((s) => portIds.has(s) || known.has(s)));
+  const down = !!pane && pane.width / Math.max(1, pane.height) < 1.3;
   return elk.layout({
     id: 'root',
     layoutOptions: {
       'elk.algorithm': 'layered',
-      'elk.direction': 'RIGHT',
+      // a narrow pane (docked beside the editor) gets the modules top to bottom, a wide one left to right
+      'elk.direction': down ? 'DOWN' : 'RIGHT',
       'elk.spacing.nodeNode': '50',
-      'elk.layered.spacing.nodeNodeBetweenLayers': '90',
+      'elk.layered.spacing.nodeNodeBetweenLayers': down ? '50' : '90',
       'elk.edgeRouting': 'ORTHOGONAL',
       'elk.edgeLabels.inline': 'true',
     },
@@ -84,14 +95,18 @@ export async function layoutSchema(schema: ArchSchema): Promise<ElkNode> {
 export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement {
   const w = (graph.width ?? 400) + 40;
   const hgt = (graph.height ?? 200) + 40;
-  const root = svg('svg', { viewBox: `-20 -20 ${w} ${hgt}`, width: w, height: hgt, class: 'arch-svg', 'data-schema': schema.name });
+  // the drawing at its natural size in a scene the view zooms and pans (pan-zoom.ts)
+  const root = svg('svg', { class: 'arch-svg', 'data-schema': schema.name, 'data-width': w, 'data-height': hgt });
+  const scene = svg('g', { class: 'arch-scene' });
+  const drawing = svg('g', { transform: 'translate(20,20)' });
+  scene.append(drawing);
   const defs = svg('defs', {});
   for (const [id, color] of [['arrow-data', '#61afef'], ['arrow-event', '#e5c07b'], ['arrow-prec', '#7f8796']] as const) {
     const marker = svg('marker', { id, viewBox: '0 0 10 10', refX: 9, refY: 5, markerWidth: 7, markerHeight: 7, orient: 'auto-start-reverse' });
     marker.append(svg('path', { d: 'M0,0 L10,5 L0,10 z', fill: color }));
     defs.append(marker);
   }
-  root.append(defs);
+  root.append(defs, scene);
   const byName = new Map(schema.modules.map((m) => [m.name, m]));
   for (const e of graph.edges ?? []) {
     const flow = e.id.startsWith('f') ? schema.flows[Number(e.id.slice(1))] : undefined;
@@ -99,17 +114,27 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
     for (const s of e.sections ?? []) {
       const pts = [s.startPoint, ...(s.bendPoints ?? []), s.endPoint];
       // data-flow names the flow as the trace does (monitor: `MAA:0->MAB:0`)
-      root.append(svg('polyline', { points: pts.map((p) => `${p.x},${p.y}`).join(' '), class: cls, 'marker-end': `url(#arrow-${flow ? flow.kind : 'prec'})`,
+      const points = pts.map((p) => `${p.x},${p.y}`).join(' ');
+      drawing.append(svg('polyline', { points, class: cls, 'marker-end': `url(#arrow-${flow ? flow.kind : 'prec'})`,
         ...(flow ? { 'data-flow': `${flow.from}:${flow.fromPort}->${flow.to}:${flow.toPort}` } : {}) }));
+      if (flow?.def) {
+        // a wide invisible twin of the line takes the clicks (the line itself is 1.6 px)
+        const hit = svg('polyline', { points, class: 'edge-hit', 'data-flow-hit': `${flow.from}:${flow.fromPort}->${flow.to}:${flow.toPort}` });
+        hit.append(svg('title', {}, `${flow.from}:${flow.fromPort} → ${flow.to}:${flow.toPort} (click: go to the communication)`));
+        definitionOf.set(hit, flow.def);
+        drawing.append(hit);
+      }
     }
     for (const l of e.labels ?? []) {
       if (l.x === undefined) continue;
-      root.append(svg('text', { x: l.x, y: (l.y ?? 0) + 11, class: `edge-label ${flow?.kind ?? ''}` }, l.text));
+      drawing.append(svg('text', { x: l.x, y: (l.y ?? 0) + 11, class: `edge-label ${flow?.kind ?? ''}` }, l.text));
     }
   }
   for (const n of graph.children ?? []) {
     const m = byName.get(n.id)!;
-    const g = svg('g', { transform: `translate(${n.x},${n.y})`, class: `arch-node ${m.kind}`, 'data-module': m.name });
+    const g = svg('g', { transform: `translate(${n.x},${n.y})`, class: `arch-node ${m.kind}`, 'data-module': m.name,
+      ...(m.def ? { tabindex: 0, role: 'button', 'aria-label': `${m.kind} module ${m.name}: go to its definition` } : {}) });
+    if (m.def) definitionOf.set(g, m.def);
     g.append(svg('rect', { width: n.width!, height: n.height!, rx: 6, class: 'node-box' }));
     g.append(svg('path', { d: `M0,6 a6,6 0 0 1 6,-6 h${n.width! - 12} a6,6 0 0 1 6,6 v${HEAD - 6} h${-n.width!} z`, class: 'node-head' }));
     g.append(svg('text', { x: 10, y: 17, class: 'node-title' }, m.name));
@@ -118,14 +143,17 @@ export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement 
       const [, kind, dir, idx] = p.id.split('.');
       const port = m.ports.find((q) => q.kind === kind && q.direction === dir && q.index === Number(idx));
       // data-port names the port as scenarios and the trace do (`MAA:2`): the Simulate panel injects on a click
-      g.append(svg('rect', { x: p.x!, y: p.y!, width: 10, height: 10, class: `port ${kind}`, 'data-dir': dir ?? '', ...(port ? { 'data-port': `${m.name}:${port.index}` } : {}) }));
+      const box = svg('rect', { x: p.x!, y: p.y!, width: 10, height: 10, class: `port ${kind}`, 'data-dir': dir ?? '', ...(port ? { 'data-port': `${m.name}:${port.index}` } : {}) });
+      g.append(box);
       if (!port) continue;
       const label = `:${port.index} ${port.name}`;
-      if (kind === 'param') g.append(svg('text', { x: p.x! + 5, y: p.y! - 4, class: 'port-label param', 'text-anchor': 'middle' }, `param :${port.index}`));
-      else if (dir === 'in') g.append(svg('text', { x: p.x! + 14, y: p.y! + 9, class: `port-label ${kind}` }, label));
-      else g.append(svg('text', { x: p.x! - 4, y: p.y! + 9, class: `port-label ${kind}`, 'text-anchor': 'end' }, label));
+      const text = kind === 'param' ? svg('text', { x: p.x! + 5, y: p.y! - 4, class: 'port-label param', 'text-anchor': 'middle' }, `param :${port.index}`)
+        : dir === 'in' ? svg('text', { x: p.x! + 14, y: p.y! + 9, class: `port-label ${kind}` }, label)
+        : svg('text', { x: p.x! - 4, y: p.y! + 9, class: `port-label ${kind}`, 'text-anchor': 'end' }, label);
+      g.append(text);
+      if (port.def) for (const el of [box, text]) definitionOf.set(el, port.def);
     }
-    root.append(g);
+    drawing.append(g);
   }
   return root;
 }
@@ -142,38 +170,95 @@ export interface LiveHighlight {
   used: ReadonlySet<string>;
 }
 
-/** The view: a schema picker, figures, the diagram and a legend; `update` re-layouts. */
+/** A cursor in an editor (0-based, LSP style): the diagram shows the schema it is in. */
+export interface CursorAt {
+  uri: string;
+  line: number;
+  character: number;
+}
+
+const inRange = (c: CursorAt, s: ArchSchema) => {
+  const r = s.range;
+  if (!r || s.uri !== c.uri) return false;
+  const after = c.line > r.start.line || (c.line === r.start.line && c.character >= r.start.character);
+  const before = c.line < r.end.line || (c.line === r.end.line && c.character <= r.end.character);
+  return after && before;
+};
+
+/**
+ * The view: a schema picker, figures, zoom buttons, the diagram and a legend; `update` re-layouts.
+ * The diagram zooms (wheel at the pointer, +/−), pans (drag, arrows), fits (button, F); a click on a
+ * module, port or flow goes to its definition; it follows the schema at the editor's cursor.
+ */
 export class ArchitectureView {
   readonly element: HTMLElement;
   private readonly select: HTMLSelectElement;
   private readonly canvas: HTMLElement;
   private readonly info: HTMLElement;
+  private readonly panZoom: PanZoom;
   private schemas: ArchSchema[] = [];
   private chosen: string | undefined;
+  private drawn: { schema: string; pane: Size } | undefined;
   private seq = 0;
   private live: LiveHighlight | undefined;
+  private cursor: CursorAt | undefined;
+  private followed: string | undefined;
 
   constructor(
     private readonly fetchSchemas: () => Promise<ArchSchema[]>,
     onToggleDock?: () => void,
+    private readonly onGoTo?: (where: ArchLocation) => void,
   ) {
-    this.select = h('select', { class: 'arch-select' });
+    this.select = h('select', { class: 'arch-select', 'aria-label': 'Schema shown' });
     this.select.addEventListener('change', () => {
       this.chosen = this.select.value;
       void this.draw();
     });
     this.info = h('span', { class: 'arch-info muted' });
-    this.canvas = h('div', { class: 'arch-canvas' });
+    this.canvas = h('div', {
+      class: 'arch-canvas', tabindex: 0, role: 'group', 'data-autofocus': true,
+      'aria-label': 'Architecture diagram: wheel or + and − zoom, drag or arrows pan, F fits; click a module, port or flow to go to its definition',
+    });
+    this.panZoom = new PanZoom(this.canvas, (v) => {
+      this.canvas.querySelector('.arch-scene')?.setAttribute('transform', `translate(${v.x.toFixed(1)},${v.y.toFixed(1)}) scale(${v.scale.toFixed(4)})`);
+      this.canvas.dataset.scale = v.scale.toFixed(4);
+    }, { smallestFontPx: SMALLEST_FONT_PX, minFontPx: MIN_FONT_PX });
+    const goTo = (target: EventTarget | null) => {
+      for (let el = target as Element | null; el && el !== this.canvas; el = el.parentElement) {
+        const def = definitionOf.get(el);
+        if (def) return this.onGoTo?.(def), true;
+      }
+      return false;
+    };
+    this.canvas.addEventListener('click', (e) => goTo(e.target));
+    this.canvas.addEventListener('keydown', (e) => e.key === 'Enter' && e.target !== this.canvas && goTo(e.target) && e.preventDefault());
+    const zoomBtn = (id: string, label: string, title: string, run: () => void) => h('button', { class: 'btn small', id, title, 'aria-label': title, onclick: run }, label);
     this.element = h('div', { class: 'arch-view' },
       h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Schema'), this.select, this.info, h('span', { class: 'grow' }),
+        zoomBtn('arch-zoom-out', '−', 'Zoom out (−)', () => this.panZoom.zoom(0.8)),
+        zoomBtn('arch-zoom-in', '+', 'Zoom in (+)', () => this.panZoom.zoom(1.25)),
+        zoomBtn('arch-fit', 'Fit', 'Fit the diagram to the pane (F)', () => this.panZoom.fit()),
         onToggleDock ? h('button', { class: 'btn small', id: 'arch-dock', title: 'Show the diagram beside the editor (or back in a tab)', onclick: onToggleDock }, '⇆ Side by side') : null,
         h('span', { class: 'legend data' }, '━ data flow'), h('span', { class: 'legend event' }, '┅ event flow'), h('span', { class: 'legend prec' }, '┈ precedence')),
       this.canvas);
+    // the layout is made for the pane: a pane that changed shape (docked, resized) gets a new one
+    const relayout = debounce(() => {
+      const pane = this.paneSize();
+      if (!this.drawn || !pane) return;
+      const ratio = (a: Size) => a.width / Math.max(1, a.height);
+      if (Math.abs(Math.log(ratio(pane) / ratio(this.drawn.pane))) > 0.25) void this.draw();
+    }, 250);
+    new ResizeObserver(relayout).observe(this.canvas);
   }
 
   /** The schema shown, when one is. */
   get schema(): string | undefined {
     return this.chosen;
+  }
+
+  /** Zoom scale of the drawing (1 = natural size). */
+  get scale(): number {
+    return this.panZoom.view.scale;
   }
 
   /** Shows schema `name` (no-op when it is shown or unknown). */
@@ -184,6 +269,17 @@ export class ArchitectureView {
     await this.draw();
   }
 
+  /**
+   * The editor's cursor moved: when it went into a schema, that schema is shown (moving inside the
+   * same schema keeps a schema picked in the list meanwhile).
+   */
+  follow(cursor: CursorAt | undefined): void {
+    this.cursor = cursor;
+    const at = cursor && this.schemas.find((s) => inRange(cursor, s));
+    const entered = at && at.name !== this.followed;
+    this.followed = at?.name;
+    if (entered) void this.choose(at.name);
+  }
   /** Marks the run's state on the diagram (classes only: no re-layout), or clears it. */
   highlight(live: LiveHighlight | undefined): void {
     this.live = live;
@@ -214,6 +310,9 @@ export class ArchitectureView {
       return;
     }
     const names = this.schemas.map((s) => s.name);
+    const atCursor = this.cursor && this.schemas.find((s) => inRange(this.cursor!, s));
+    if (atCursor && atCursor.name !== this.followed) this.chosen = atCursor.name; // the cursor went into a schema since
+    this.followed = atCursor?.name;
     if (!this.chosen || !names.includes(this.chosen)) this.chosen = names[0];
     this.select.replaceChildren(...this.schemas.map((s) => h('option', { value: s.name, selected: s.name === this.chosen }, `${s.name} (${s.kind})`)));
     await this.draw();
@@ -233,12 +332,25 @@ export class ArchitectureView {
       ? `PERIOD ${schema.period ?? '?'} · CRITICAL_DELAY ${schema.criticalDelay ?? '?'} · ΣC ${(sumC * 1000).toFixed(2)} ms${period ? ` · utilisation ${((sumC / period) * 100).toFixed(1)} %` : ''}`
       : 'event schema (asynchronous modules)';
     try {
-      const graph = await layoutSchema(schema);
+      const pane = this.paneSize();
+      const graph = await layoutSchema(schema, pane);
       if (seq !== this.seq) return;
-      this.canvas.replaceChildren(renderSchema(schema, graph));
+      const drawing = renderSchema(schema, graph);
+      this.canvas.replaceChildren(drawing);
+      const size = { width: Number(drawing.dataset.width), height: Number(drawing.dataset.height) };
+      // the same schema re-drawn after an edit keeps the user's zoom and pan; a new one starts readable
+      const keepView = this.drawn?.schema === schema.name && pane && this.drawn.pane.width === pane.width && this.drawn.pane.height === pane.height;
+      this.panZoom.setContent(size, !keepView);
+      this.drawn = { schema: schema.name, pane: pane ?? { width: 0, height: 0 } };
       if (this.live) this.highlight(this.live);
     } catch (e) {
       this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Layout failed: ${(e as Error).message}`));
     }
+  }
+
+  /** The pane's size, when it is on screen. */
+  private paneSize(): Size | undefined {
+    const r = this.canvas.getBoundingClientRect();
+    return r.width > 0 && r.height > 0 ? { width: r.width, height: r.height } : undefined;
   }
 }

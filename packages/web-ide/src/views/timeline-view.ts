@@ -33,10 +33,10 @@ export class TimelineView {
     private readonly workspace: Workspace,
   ) {
     this.info = h('span', { class: 'muted' });
-    this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)' });
+    this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)', 'aria-label': 'Zoom (×2 per step)' });
     this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors));
     this.canvas = h('div', { class: 'timeline-canvas' });
-    this.source = h('select', { class: 'timeline-source', title: 'Which run to show' });
+    this.source = h('select', { class: 'timeline-source', title: 'Which run to show', 'aria-label': 'Which run to show' });
     this.source.addEventListener('change', () => void this.update());
     this.renderSources('local');
     this.element = h('div', { class: 'timeline-view' },

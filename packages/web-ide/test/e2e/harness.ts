@@ -117,3 +117,8 @@ export async function openAnotherBrowser(s: Session, name: string): Promise<{ pa
   await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
   return { page, close: () => context.close().catch(() => undefined) };
 }
+
+/** The line of the active editor's cursor (1-based). */
+export async function cursorLine(page: Page): Promise<number> {
+  return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getPosition(): { lineNumber: number } } } } }).__ide.editors.editor.getPosition().lineNumber);
+}

@@ -1,0 +1,47 @@
+import type { LspClient } from '../lsp/lsp-client.js';
+import type { Workspace } from '../workspace/workspace.js';
+import { debounce } from '../util/dom.js';
+import { toast } from '../util/toast.js';
+import { isContract } from '../workspace/file-kinds.js';
+
+/**
+ * Follows the server's file events (another program, another tab): refreshes the tree, loads new
+ * Cactal files into the language server, drops deleted ones, and saves pending edits on reconnect.
+ */
+export function watchExternalChanges(workspace: Workspace, lsp: LspClient): void {
+  const refreshTree = debounce(() => void workspace.refreshTree().then(async () => {
+    let changed = false;
+    for (const p of workspace.allFiles().filter(isContract)) {
+      if (!workspace.files.has(p)) {
+        await workspace.ensureModel(p).catch(() => undefined);
+        changed = true;
+      }
+    }
+    for (const p of [...workspace.files.keys()]) {
+      if (!workspace.hasFile(p) && workspace.files.get(p)!.state === 'saved') {
+        workspace.dropFile(p);
+        changed = true;
+      }
+    }
+    if (changed) lsp.revalidateAll();
+  }).catch(() => undefined), 150); // server unreachable: the reconnect ('hello') refreshes again
+  const events = new EventSource('/api/events');
+  events.addEventListener('change', (e) => {
+    const { paths } = JSON.parse((e as MessageEvent).data) as { paths: string[] };
+    refreshTree();
+    for (const p of paths) void workspace.externalChange(p);
+  });
+  let wasDisconnected = false;
+  events.onerror = () => {
+    if (!wasDisconnected) toast('warning', 'Lost the connection to the IDE server: edits are kept in this browser until it is back');
+    wasDisconnected = true;
+  };
+  events.addEventListener('hello', () => {
+    if (wasDisconnected) {
+      wasDisconnected = false;
+      toast('info', 'Reconnected to the IDE server: saving pending edits');
+      void workspace.saveAll();
+      refreshTree();
+    }
+  });
+}

@@ -1,0 +1,103 @@
+import type { BuildPanel } from '../build/build-panel.js';
+import type { Workspace } from '../workspace/workspace.js';
+import type { RunLogs } from '../views/run-logs.js';
+import { askFields } from '../util/dialog.js';
+import { toast } from '../util/toast.js';
+import { Emitter } from '../util/emitter.js';
+import { reportError } from './report-error.js';
+
+const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
+type RunSettings = { duration: number; start?: string; cpus?: string };
+
+function runSettings(): RunSettings {
+  try {
+    const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings>;
+    return { duration: v.duration ?? 10, start: v.start || undefined, cpus: v.cpus || undefined };
+  } catch {
+    return { duration: 10 };
+  }
+}
+
+/** Build & Run, Stop, the run settings dialog, the job's status, and the finished run's CSV logs. */
+export class RunController {
+  /** A finished run's logs, fetched from the build service (the Monitor and the Timeline show them). */
+  readonly onRunLogs = new Emitter<{ jobId: string; logs: RunLogs }>();
+  /** The project folder of the last Build & Run (gcc paths are relative to its src-gen/). */
+  project = '';
+
+  constructor(private readonly d: {
+    workspace: Workspace; build: BuildPanel;
+    toolbar: { run: HTMLButtonElement; stop: HTMLButtonElement; runSettings: HTMLButtonElement }; jobStatus: HTMLElement;
+    showPanel(id: string): void; project(): string;
+  }) {
+    const { build, toolbar } = d;
+    toolbar.runSettings.addEventListener('click', () => void this.editSettings());
+    toolbar.run.addEventListener('click', () => void this.run());
+    toolbar.stop.addEventListener('click', () => void this.stop());
+    build.onStatus.on(({ status, message, running }) => {
+      toolbar.run.disabled = running;
+      toolbar.stop.disabled = !running;
+      d.jobStatus.textContent = `${running ? '⟳' : status === 'succeeded' ? '✓' : '■'} ${status}${message ? `: ${message}` : ''}`;
+      d.jobStatus.dataset.status = status;
+    });
+    // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
+    build.onFinished.on(({ jobId, action }) => {
+      if (action === 'run') void this.fetchLogs(jobId);
+    });
+  }
+
+  async run(): Promise<void> {
+    const { workspace, build } = this.d;
+    this.d.showPanel('output');
+    try {
+      await workspace.saveAll();
+      this.project = this.d.project();
+      const settings = runSettings();
+      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus);
+    } catch (e) {
+      reportError(e);
+      build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });
+    }
+  }
+
+  stop(): Promise<void> {
+    return this.d.build.stop();
+  }
+
+  /** Marks Build & Run unavailable (no build service). */
+  disable(reason: string): void {
+    this.d.toolbar.run.disabled = true;
+    this.d.toolbar.run.title = `Build & Run unavailable: ${reason}`;
+    this.d.jobStatus.textContent = '■ build service unavailable';
+  }
+
+  private async editSettings(): Promise<void> {
+    const cur = runSettings();
+    const r = await askFields('Run settings', [
+      { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
+      { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'GLB.mission(consigne={1.0,2.0,3.0})' },
+      { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
+    ]);
+    if (!r) return;
+    const duration = Number(r.duration);
+    if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
+    const cpus = (r.cpus ?? '').trim();
+    if (cpus && !/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
+    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(cpus ? { cpus } : {}) }));
+    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}`);
+  }
+
+  private async fetchLogs(jobId: string): Promise<void> {
+    const { build } = this.d;
+    try {
+      const { fetchJobLogs } = await import('../views/run-logs.js');
+      const logs = await fetchJobLogs(jobId);
+      for (const p of logs.problems) build.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `timeline: ${p}` });
+      if (!logs.files.length) return;
+      this.onRunLogs.fire({ jobId, logs });
+      toast('info', `Run logs of ${logs.files.length} module(s) ready: ▤ Timeline shows the run's activations`);
+    } catch (e) {
+      build.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `timeline: could not fetch the run's logs: ${(e as Error).message}` });
+    }
+  }
+}
