@@ -17,6 +17,8 @@
 #ifndef CONTRACT_TOOLS_H
 #define CONTRACT_TOOLS_H
 
+#include <stdbool.h>
+
 #ifdef __cplusplus
 extern "C" {
 #endif
@@ -38,6 +40,22 @@ int get_int(long *value, char *description);
 /** Double-quoted string `"..."` with escapes \" \\ \n \t; at most 255 bytes; `value` gets
  *  CONTRACT_STRING_SIZE bytes. */
 int get_string(char *value, char *description);
+
+/* ---- extension types (docs/language-reference.md): Cactal bool -> C bool, enumerations ---- */
+
+/** A bool takes one byte (0 or 1). */
+unsigned int extract_bool(unsigned char *buffer, unsigned int offset, bool value);
+unsigned int fill_bool(bool *value, unsigned int offset, unsigned char *buffer);
+/** `true` or `false` (also `1` / `0`). */
+int get_bool(bool *value, char *description);
+/** A member of an enumeration of `n` members (`names[i]` has C value `values[i]`): its name
+ *  `AUTO`, the qualified `Mode.AUTO` (type_name "Mode"), or a number that is a member's value.
+ *  Generated get_Mode: `long v; int r = get_enum(&v, d, "Mode", NAMES, VALUES, 3);
+ *  if (r >= 0) *arg = (Mode)v; return r;` */
+int get_enum(long *value, char *description, const char *type_name, const char *const *names,
+             const long *values, int n);
+/** The name of an enumeration value, or NULL when it is no member. */
+const char *enum_member_name(long value, const char *const *names, const long *values, int n);
 
 /** Skip white space up to and including the character *symbol. Returns the number of characters
  *  consumed, or -1 if another character (or the end of the text) comes first. */

@@ -17,11 +17,13 @@
 #include <fcntl.h>
 #include <limits.h>
 #include <poll.h>
+#include <sched.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/signalfd.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -289,11 +291,28 @@ static void scan_ready(void)
     closedir(d);
 }
 
+/* Real-time mode bounds a process that runs under SCHED_FIFO without blocking with RLIMIT_RTTIME
+ * (SIGXCPU at the soft limit, SIGKILL at the hard one; docs/sandbox.md "Real-time mode"): a module
+ * stopped that way is named as such, not as a crash. Empty when the bound is not the reason. */
+static const char *rttime_note(int sig, const struct rusage *ru, char *buf, size_t size)
+{
+    struct rlimit rl;
+    buf[0] = '\0';
+    if (getrlimit(RLIMIT_RTTIME, &rl) != 0 || rl.rlim_cur == RLIM_INFINITY) return buf;
+    double cpu_us = (double)(ru->ru_utime.tv_sec + ru->ru_stime.tv_sec) * 1e6 + (double)(ru->ru_utime.tv_usec + ru->ru_stime.tv_usec);
+    int hard = sig == SIGKILL && rl.rlim_max != RLIM_INFINITY && cpu_us >= (double)rl.rlim_max;
+    if (sig == SIGXCPU || hard)
+        snprintf(buf, size, ": ran %.3g s under SCHED_FIFO without blocking (real-time mode's RLIMIT_RTTIME %s limit %.3g s)",
+                 cpu_us / 1e6, hard ? "hard" : "soft", (double)(hard ? rl.rlim_max : rl.rlim_cur) / 1e6);
+    return buf;
+}
+
 static void reap(void)
 {
     int status;
     pid_t pid;
-    while ((pid = waitpid(-1, &status, WNOHANG)) > 0) {
+    struct rusage ru;
+    while ((pid = wait4(-1, &status, WNOHANG, &ru)) > 0) {
         for (int i = 0; i < n_children; i++) {
             Child *c = &children[i];
             if (c->pid != pid) continue;
@@ -301,8 +320,9 @@ static void reap(void)
             if (WIFSIGNALED(status)) {
                 int sig = WTERMSIG(status);
                 if (!stopping) c->failed = 1;
-                say("module %s (pid %ld) %s by signal %d (%s)", c->name, (long)pid, stopping ? "terminated" : "died",
-                    sig, strsignal(sig));
+                char note[160];
+                say("module %s (pid %ld) %s by signal %d (%s)%s", c->name, (long)pid, stopping ? "terminated" : "died",
+                    sig, strsignal(sig), rttime_note(sig, &ru, note, sizeof note));
             } else {
                 int code = WEXITSTATUS(status);
                 if (code != 0 && !stopping) c->failed = 1;
@@ -505,6 +525,13 @@ int main(int argc, char *argv[])
         c->out_fd = -1;
         derive_name(c);
         if (spawn(c, &oldmask) != 0) { n_children--; stop_all(sfd); clean_run_dir(run_dir); return 2; }
+    }
+    /* A run may start at SCHED_FIFO (the build service's real-time mode, docs/sandbox.md "Real-time
+     * mode"): the modules have it from us now; the launcher only forwards their output, and runs
+     * SCHED_OTHER as it does on the host, never above the architecture. */
+    if ((sched_getscheduler(0) & ~SCHED_RESET_ON_FORK) == SCHED_FIFO) {
+        struct sched_param other = {0};
+        if (sched_setscheduler(0, SCHED_OTHER, &other) != 0) say("could not leave SCHED_FIFO: %s", strerror(errno));
     }
     int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), 0, 1);
     int not_ready = 0;

@@ -6,7 +6,7 @@
 # Its tests are part of the engine core tests (tests/engines/test_sim.c, `make test-engines`).
 SIM_DIR   := sim
 SIM_OUT   := $(BUILD)/sim
-SIM_SRCS  := src/engines/engine_values.c src/engines/engine_check.c src/engines/sup_core.c \
+SIM_SRCS  := src/engines/engine_values.c src/engines/value_ops.c src/engines/engine_check.c src/engines/sup_core.c \
              src/engines/sup_claims.c src/engines/ord_core.c src/tools.c \
              $(SIM_DIR)/sim_world.c $(SIM_DIR)/sim_protocol.c
 SIM_HDRS  := $(wildcard include/*.h include/*/*.h src/engines/*.h $(SIM_DIR)/*.h)

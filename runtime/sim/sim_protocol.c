@@ -152,6 +152,12 @@ static void format_value(SimSession *s, Buf *b, const ContractType *type, const 
         return;
     }
     case CONTRACT_KIND_STRUCT: break;
+    default: { /* bool, enums, arrays: their readable form (docs/runtime-api.md) */
+        char tmp[4096];
+        contract_value_format(tmp, sizeof tmp, type, v);
+        bstr(b, tmp);
+        return;
+    }
     }
     if (s->capture_fd < 0 || !type->print) { bfmt(b, "<%s>", type->name); return; }
     read_capture(s, NULL, 0); /* what was printed before is not part of the value */

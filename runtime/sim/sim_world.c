@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "ord_core.h"
+#include "engine_values.h"
 #include "sup_core.h"
 
 /* A livelock guard: messages delivered at one virtual instant (two supervisors notifying each
@@ -544,13 +545,12 @@ static const ContractType *event_type(const SimWorld *w, const char *src, int po
 /** Parses `text` (Cactal value syntax) as a value of `type` into buf (type->size bytes). */
 static int parse_value(const ContractType *type, const char *text, unsigned char *buf, char *err,
                        size_t errlen) {
-    if (type->default_value) memcpy(buf, type->default_value, type->size);
-    else memset(buf, 0, type->size);
+    engine_default_value(buf, type, NULL);
     while (*text == ' ' || *text == '\t') text++;
     if (!*text) return 0;
     char *copy = strdup(text);
     if (!copy) { snprintf(err, errlen, "out of memory"); return -1; }
-    int used = type->get ? type->get(buf, copy) : -1;
+    int used = contract_value_get(type, buf, copy);
     int ok = used >= 0;
     if (ok) for (const char *p = copy + used; *p; p++) if (*p != ' ' && *p != '\t') ok = 0;
     free(copy);

@@ -6,6 +6,7 @@
 #include <string.h>
 #include <sys/stat.h>
 #include <unistd.h>
+#include "contract/vocabulary.h"
 #include "libmodule/control.h"
 #include "tools.h"
 
@@ -35,6 +36,24 @@ static int wait_ack(const char *module, int id, int mask, RequestMessage *ack)
     return WaitForAck(module, id, mask, GetTime() + ACK_WAIT_NS, ack);
 }
 
+/* ControlMainTyped: the descriptors of the parameter ports (NULL for ControlMain). */
+static const ControlTypedParam *typed_params;
+
+static const ContractType *typed_param(long port)
+{
+    for (int i = 0; typed_params && typed_params[i].Type; i++)
+        if (typed_params[i].Port == port) return typed_params[i].Type;
+    return NULL;
+}
+
+/* the Parse of a typed port in the ControlParam list (do_setparam parses through the descriptor) */
+static int typed_placeholder(void *dst, char *text)
+{
+    (void)dst;
+    (void)text;
+    return -1;
+}
+
 static int do_setparam(const char *module, const ControlParam params[], const char *port_text, const char *value)
 {
     char *end;
@@ -55,7 +74,8 @@ static int do_setparam(const char *module, const ControlParam params[], const ch
     unsigned char *buf = calloc(1, p->Size + 1);
     char *text = strdup(value);
     if (!buf || !text) { free(buf); free(text); return CONTROL_EXIT_ERROR; }
-    int n = p->Parse(buf, text);
+    const ContractType *type = typed_param(port);
+    int n = type ? contract_value_get(type, buf, text) : p->Parse(buf, text);
     int ok = n >= 0 && only_blanks_remain(text + n);
     if (!ok) {
         fprintf(stderr, "control %s: bad value '%s' for parameter port %ld of type %s\n", module, value, port, p->TypeName);
@@ -63,11 +83,13 @@ static int do_setparam(const char *module, const ControlParam params[], const ch
         free(text);
         return CONTROL_EXIT_BADVALUE;
     }
+    char shown[1024];
+    if (type) contract_value_format(shown, sizeof shown, type, buf); /* the value as it was read */
     int rc = SendSetParam(module, (int)port, buf, p->Size, ACK_NOTHING, -1);
     free(buf);
     free(text);
     if (rc != CONTRACT_OK) return rc == CONTRACT_ETOOBIG ? CONTROL_EXIT_BADVALUE : CONTROL_EXIT_ERROR;
-    printf("%s: parameter %ld set to %s\n", module, port, value);
+    printf("%s: parameter %ld set to %s\n", module, port, type ? shown : value);
     return CONTROL_EXIT_OK;
 }
 
@@ -151,4 +173,20 @@ int ControlMain(const char *module, const ControlParam params[], int argc, char 
     }
     free(ack);
     return code;
+}
+
+int ControlMainTyped(const char *module, const ControlTypedParam params[], int argc, char *argv[])
+{
+    int n = 0;
+    while (params && params[n].Type) n++;
+    ControlParam *list = calloc((size_t)n + 1, sizeof *list);
+    if (!list) return CONTROL_EXIT_ERROR;
+    for (int i = 0; i < n; i++)
+        list[i] = (ControlParam){ params[i].Port, params[i].Type->size, typed_placeholder, params[i].Type->name };
+    list[n] = (ControlParam)CONTROL_PARAM_TERM;
+    typed_params = params;
+    int rc = ControlMain(module, list, argc, argv);
+    typed_params = NULL;
+    free(list);
+    return rc;
 }

@@ -10,6 +10,7 @@
 #include <string.h>
 #include <sys/mman.h>
 #include <sys/resource.h>
+#include <unistd.h>
 #include "internal.h"
 
 #if defined(__SANITIZE_ADDRESS__)
@@ -113,13 +114,20 @@ int rt_lock_memory(void)
 {
     const char *env = getenv("CONTRACT_MLOCK");
     if (RT_SANITIZED || (env && strcmp(env, "0") == 0)) return 0;
-    if (mlockall(MCL_CURRENT | MCL_FUTURE) != 0) {
+    /* An unprivileged module (SCHED_FIFO through RLIMIT_RTPRIO or an inherited start: the build
+     * service's real-time mode, docs/sandbox.md) has a finite RLIMIT_MEMLOCK: with MCL_FUTURE every
+     * later allocation past it would fail, so it locks what it has only. */
+    struct rlimit memlock;
+    int future = geteuid() == 0 || (getrlimit(RLIMIT_MEMLOCK, &memlock) == 0 && memlock.rlim_cur == RLIM_INFINITY);
+    if (mlockall(MCL_CURRENT | (future ? MCL_FUTURE : 0)) != 0) {
         char detail[96];
         snprintf(detail, sizeof detail, "mlockall not permitted (%s): memory may page-fault", strerror(errno));
         ContractLog("memory_lock", "", -1, 0, detail);
         return 0;
     }
     prefault_stack();
-    ContractLog("memory_lock", "", -1, 0, "mlockall(MCL_CURRENT|MCL_FUTURE), 256 KiB of stack prefaulted");
+    ContractLog("memory_lock", "", -1, 0,
+                future ? "mlockall(MCL_CURRENT|MCL_FUTURE), 256 KiB of stack prefaulted"
+                       : "mlockall(MCL_CURRENT) (RLIMIT_MEMLOCK finite: later allocations not locked), 256 KiB of stack prefaulted");
     return 1;
 }

@@ -154,3 +154,75 @@ int only_blanks_remain(const char *text)
 {
     return text && text[skip_blanks(text)] == '\0';
 }
+
+/* ---- extension types ------------------------------------------------------------------ */
+
+unsigned int extract_bool(unsigned char *buffer, unsigned int offset, bool value)
+{
+    buffer[offset] = value ? 1 : 0;
+    return 1;
+}
+
+unsigned int fill_bool(bool *value, unsigned int offset, unsigned char *buffer)
+{
+    *value = buffer[offset] != 0;
+    return 1;
+}
+
+static int ident_length(const char *s)
+{
+    int i = 0;
+    if (!(isalpha((unsigned char)s[0]) || s[0] == '_')) return 0;
+    while (isalnum((unsigned char)s[i]) || s[i] == '_') i++;
+    return i;
+}
+
+int get_bool(bool *value, char *description)
+{
+    if (!value || !description) return -1;
+    int start = skip_blanks(description);
+    const char *p = description + start;
+    int n = ident_length(p);
+    if (n == 4 && strncmp(p, "true", 4) == 0) *value = true;
+    else if (n == 5 && strncmp(p, "false", 5) == 0) *value = false;
+    else if ((p[0] == '0' || p[0] == '1') && !isalnum((unsigned char)p[1]) && p[1] != '_' && p[1] != '.') {
+        *value = p[0] == '1';
+        n = 1;
+    } else {
+        return -1;
+    }
+    return start + n;
+}
+
+const char *enum_member_name(long value, const char *const *names, const long *values, int n)
+{
+    for (int i = 0; i < n; i++)
+        if (values[i] == value) return names[i];
+    return NULL;
+}
+
+int get_enum(long *value, char *description, const char *type_name, const char *const *names,
+             const long *values, int n)
+{
+    if (!value || !description || !names || !values) return -1;
+    int start = skip_blanks(description);
+    const char *p = description + start;
+    int len = ident_length(p);
+    if (len > 0 && p[len] == '.' && type_name && (int)strlen(type_name) == len && strncmp(p, type_name, (size_t)len) == 0) {
+        p += len + 1;
+        len = ident_length(p);
+    }
+    if (len > 0) {
+        for (int i = 0; i < n; i++)
+            if ((int)strlen(names[i]) == len && strncmp(p, names[i], (size_t)len) == 0) {
+                *value = values[i];
+                return (int)(p + len - description);
+            }
+        return -1;
+    }
+    long v;
+    int used = get_int(&v, description);
+    if (used < 0 || !enum_member_name(v, names, values, n)) return -1;
+    *value = v;
+    return used;
+}

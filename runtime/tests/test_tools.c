@@ -88,3 +88,28 @@ void test_tools_serialize(void)
     long l = 0;
     CHECK(fill_int(&l, 3, buf) == sizeof(long) && l == -9);
 }
+
+void test_tools_bool_enum(void)
+{
+    unsigned char buf[4] = { 7, 7, 7, 7 };
+    bool b = false;
+    CHECK(extract_bool(buf, 1, true) == 1 && buf[1] == 1 && buf[0] == 7 && buf[2] == 7);
+    CHECK(fill_bool(&b, 1, buf) == 1 && b);
+    char t1[] = "  false }", t2[] = "1", t3[] = "truth", t4[] = "1.5";
+    CHECK(get_bool(&b, t1) == 7 && !b);
+    CHECK(get_bool(&b, t2) == 1 && b);
+    CHECK(get_bool(&b, t3) == -1 && get_bool(&b, t4) == -1);
+
+    static const char *const names[] = { "IDLE", "TELEOP", "AUTO" };
+    static const long values[] = { 0, 1, 5 };
+    long v = -1;
+    char e1[] = " AUTO,", e2[] = "Mode.TELEOP", e3[] = "5", e4[] = "Other.AUTO", e5[] = "2", e6[] = "AUTOX";
+    CHECK(get_enum(&v, e1, "Mode", names, values, 3) == 5 && v == 5);
+    CHECK(get_enum(&v, e2, "Mode", names, values, 3) == (int)strlen(e2) && v == 1);
+    CHECK(get_enum(&v, e3, "Mode", names, values, 3) == 1 && v == 5);
+    v = -1;
+    CHECK(get_enum(&v, e4, "Mode", names, values, 3) == -1 && v == -1);
+    CHECK(get_enum(&v, e5, "Mode", names, values, 3) == -1 && v == -1); /* 2 is no member */
+    CHECK(get_enum(&v, e6, "Mode", names, values, 3) == -1);
+    CHECK(strcmp(enum_member_name(5, names, values, 3), "AUTO") == 0 && enum_member_name(2, names, values, 3) == NULL);
+}

@@ -4,6 +4,8 @@
 #include "harness.h"
 void test_tools_parse(void);
 void test_tools_serialize(void);
+void test_tools_bool_enum(void);
+void test_ext_types_round_trip(void);
 void test_msc_request_loop(void);
 void test_msc_setparam_event(void);
 void test_stop_running_cycle(void);
@@ -32,6 +34,7 @@ void test_csv_log_mark_delay(void);
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
     { "tools_serialize", test_tools_serialize },
+    { "tools_bool_enum", test_tools_bool_enum },
     { "msc_request_loop", test_msc_request_loop },
     { "msc_setparam_event", test_msc_setparam_event },
     { "stop_running_cycle", test_stop_running_cycle },
@@ -56,6 +59,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_cap", test_csv_log_cap },
     { "csv_log_mark", test_csv_log_mark },
     { "csv_log_mark_delay", test_csv_log_mark_delay },
+    { "ext_types_round_trip", test_ext_types_round_trip },
     { NULL, NULL },
 };
 #endif

@@ -1,6 +1,7 @@
 # C tests: every test executable is built twice, normally (build/tests) and under
 # ASan+UBSan (build/san/tests); `make test` runs the runner on both sets.
-TEST_SRCS    := tests/runner.c tests/harness.c tests/test_tools.c tests/test_modules.c tests/test_processes.c
+TEST_SRCS    := tests/runner.c tests/harness.c tests/test_tools.c tests/test_modules.c tests/test_processes.c \
+                tests/test_ext_types.c
 TEST_HDRS    := $(wildcard tests/*.h tests/modules/*.h tests/report_msc/*.h tests/report_maa/*.h)
 TEST_INC     := -Itests -Itests/report_msc
 # The report's MSC and MAA module.c provoke these warnings by themselves (REQ_UNKNOWN fall-through,
@@ -13,6 +14,12 @@ define TEST_SET
 $(1)/P $(1)/C1 $(1)/C2: tests/modules/tmod.c $(2) $(HDRS) $(TEST_HDRS)
 	@mkdir -p $(1)
 	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) -DTMOD_NAME='"$$(notdir $$@)"' $$< $(2) -o $$@
+$(1)/ECHO: tests/modules/emod.c $(2) $(HDRS) $(TEST_HDRS)
+	@mkdir -p $(1)
+	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) $$< $(2) -o $$@
+$(1)/controlECHO: tests/modules/control_echo.c $(2) $(HDRS) $(TEST_HDRS)
+	@mkdir -p $(1)
+	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) -Itests/modules $$< $(2) -o $$@
 $(1)/MSC: tests/report_msc/module.c $(2) $(HDRS) $(TEST_HDRS)
 	@mkdir -p $(1)
 	$$(CC) $$(ALLFLAGS) $(3) $(REPORT_ALLOW) $(TEST_INC) $$< $(2) -o $$@
@@ -30,7 +37,7 @@ $(1)/runner: $(TEST_SRCS) $(2) $(HDRS) $(TEST_HDRS)
 	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) $(TEST_SRCS) $(2) -lm -o $$@
 endef
 
-TEST_BINS = P C1 C2 MSC MAA controlMSC contract-launch runner
+TEST_BINS = P C1 C2 ECHO controlECHO MSC MAA controlMSC contract-launch runner
 $(eval $(call TEST_SET,$(BUILD)/tests,$(BUILD)/libmodule.a,,$(BUILD)/contract-launch))
 $(eval $(call TEST_SET,$(BUILD)/san/tests,$(BUILD)/san/libmodule.a,$(SANFLAGS),$(BUILD)/san/contract-launch))
 

@@ -147,7 +147,7 @@ export class JobService {
   parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
     if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', 'the body must be a JSON object');
     const b = body as Record<string, unknown>;
-    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'cpus', 'limits']);
+    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'cpus', 'realtime', 'limits']);
     for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);
     const action = b.action ?? 'build';
     if (action !== 'build' && action !== 'run') throw new ServiceError(400, 'bad_request', 'action must be "build" or "run"');
@@ -166,6 +166,8 @@ export class JobService {
     if (b.cpus !== undefined && (typeof b.cpus !== 'string' || b.cpus.length > 256 || !isCpuList(b.cpus))) {
       throw new ServiceError(400, 'bad_request', 'cpus must be a CPU list such as "1", "0-1" or "0,2"');
     }
+    if (b.realtime !== undefined && typeof b.realtime !== 'boolean') throw new ServiceError(400, 'bad_request', 'realtime must be true or false');
+    if (b.realtime === true && action !== 'run') throw new ServiceError(400, 'bad_request', 'realtime applies to action "run" only');
     let limits: Limits;
     try {
       limits = mergeLimits(this.limits, b.limits, true);
@@ -176,7 +178,7 @@ export class JobService {
     const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, limits.runSeconds);
     const { project, projectKey } = this.parseProject(b.project);
     return {
-      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), limits },
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },
       sandbox,
     };
   }

@@ -122,6 +122,32 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   diagnosticsPerJob: 1000,
 });
 
+/**
+ * Bounds of the opt-in real-time mode (`realtime: true`, `contract run --realtime`): what lets the
+ * modules take their SCHED_FIFO priorities in the sandbox, and what stops a runaway FIFO loop from
+ * freezing the host (docs/sandbox.md, "Real-time mode").
+ */
+export interface RealtimeBounds {
+  /** Highest SCHED_FIFO priority a job's process may take (RLIMIT_RTPRIO, or the priority its run starts at). */
+  priorityCeiling: number;
+  /** Microseconds of CPU a job's real-time processes may use per period on each CPU (its cgroup's cpu.rt_runtime_us). */
+  cpuRuntimeUs: number;
+  /** Length of that period, microseconds (cpu.rt_period_us). */
+  cpuPeriodUs: number;
+  /** Microseconds one process may run under SCHED_FIFO without blocking before SIGXCPU (RLIMIT_RTTIME soft). */
+  cpuWithoutBlockingSoftUs: number;
+  /** ...and before SIGKILL (RLIMIT_RTTIME hard). */
+  cpuWithoutBlockingHardUs: number;
+}
+
+export const REALTIME_BOUNDS: Readonly<RealtimeBounds> = Object.freeze({
+  priorityCeiling: 99,
+  cpuRuntimeUs: 40_000,
+  cpuPeriodUs: 100_000,
+  cpuWithoutBlockingSoftUs: 500_000,
+  cpuWithoutBlockingHardUs: 1_000_000,
+});
+
 /** Time a cancel may take, end to end (documented guarantee, checked by the tests). */
 export const CANCEL_DEADLINE_MS = 2000;
 

@@ -93,6 +93,7 @@ export interface RunRequest {
     start?: string;
     duration?: number;
     cpus?: string;
+    realtime?: boolean;
 }
 
 /**
@@ -151,6 +152,7 @@ export async function runJob(
                 ...(request.start !== undefined ? { start: request.start } : {}),
                 ...(request.duration !== undefined ? { duration: request.duration } : {}),
                 ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
+                ...(request.realtime ? { realtime: true } : {}),
             });
         } catch (e) {
             if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };

@@ -64,6 +64,17 @@ describe('contract build / run usage', () => {
         await runCli(['run', '--help'], io);
         expect(io.stdout).toContain('--duration');
         expect(io.stdout).toContain('--start');
+        expect(io.stdout).toContain('--realtime: modules take their SCHED_FIFO priorities in the sandbox');
+    });
+
+    it('refuses --realtime where nothing would bound it, saying why, before any work', async () => {
+        const io = capture(root);
+        expect(await runCli(['run', 'robot', '--realtime', '--sandbox', 'none', '--duration', '1s'], io)).toBe(1);
+        expect(io.stderr + io.stdout).toContain('real-time mode refused: real-time mode needs the bwrap or docker sandbox');
+        expect(io.stderr + io.stdout).not.toMatch(/build finished/);
+        const build = capture(root);
+        expect(await runCli(['build', 'robot', '--realtime'], build)).toBe(2);
+        expect(build.stderr).toContain('unknown option --realtime');
     });
 
     it('rejects an unknown sandbox, a bad duration, a bad start request and a missing folder with exit 2', async () => {

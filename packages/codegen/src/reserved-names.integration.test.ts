@@ -38,12 +38,15 @@ const RISKY = [
     // common/ headers: the same include guard as datatype TypeT1, the same file as function vfn1
     'TYPET1', 'Functionvfn1', 'FUNCTION_VFN1', 'typeT2',
     'double', 'switch', 'struct', 'while', 'return', 'static', 'volatile', 'goto', 'unsigned',
+    // extension types: locals of enumeration headers and array parsers, an enumeration member's C name
+    // (`increment` + `until_markerfound` = tools.h's increment_until_markerfound), loop variables
+    'i', 'm', 'n', 'next', 'value', 'names', 'dst', 'i0', 'increment', 'until_markerfound', 'type_long',
 ];
 
 /** Every place a project below takes a name (plain names `v<slot>` unless a run overrides a few). */
 const SLOTS = [
     'T1', 'T2', 'f1a', 'f1b', 'f1c', 'f2a', 'f2b', 'fn1', 'fn2', 'a1', 'a2', 'b1', 'p0', 'p1', 'p2', 'q0', 'q1', 'q2',
-    'r0', 'r1', 'r2', 'r3', 'PS', 'ES', 'sp', 'ep', 's0', 's1', 'sf', 'fp', 'l0', 'l1', 'R'
+    'r0', 'r1', 'r2', 'r3', 'PS', 'ES', 'sp', 'ep', 's0', 's1', 'sf', 'fp', 'l0', 'l1', 'R', 'E1', 'em1', 'em2', 'f1d'
 ] as const;
 type Names = Record<(typeof SLOTS)[number], string>;
 
@@ -51,7 +54,8 @@ type Names = Record<(typeof SLOTS)[number], string>;
 function project(n: Names): Record<string, string> {
     const imp = (...files: string[]) => files.map((f) => `import "${f}.contract";\n`).join('');
     return {
-        'types.contract': `datatype ${n.T1} {float ${n.f1a} = 0.0, string ${n.f1b}, int ${n.f1c} = 1};\n` +
+        'types.contract': `enum ${n.E1} {${n.em1}, ${n.em2}};\n` +
+            `datatype ${n.T1} {float ${n.f1a} = 0.0, string ${n.f1b}, int ${n.f1c} = 1, ${n.E1}[2] ${n.f1d} = {${n.E1}.${n.em2}, ${n.E1}.${n.em1}}};\n` +
             `datatype ${n.T2} {${n.T1} ${n.f2a}, int ${n.f2b}};\n` +
             `function bool ${n.fn1}(${n.T1} ${n.a1}, int ${n.a2});\nfunction void ${n.fn2}(string ${n.b1});\n`,
         'msa.contract': `${imp('types')}synchronous module MSA {\n    scheduling { C=1ms; }\n` +
@@ -69,11 +73,11 @@ function project(n: Names): Record<string, string> {
             `    ${n.sf}(int ${n.fp} = 0) {\n        local { ${n.T1} ${n.l0}; int ${n.l1} = ${n.fp}; }\n        rules {\n` +
             `            ${n.R}: [elapsed=1ms]\n                subscribe MSA:0 =* :0; subscribe MAA:0 =* :1; activate schema ${n.PS}(${n.sp} = ${n.l1}); ` +
             `activate schema ${n.ES}(); compute ${n.fn2}("x")\n` +
-            `                [MSA:0<${n.s0} == "a" | ${n.fn1}(${n.l0}, ${n.l1})>]\n        }\n    }\n}\n`
+            `                [MSA:0<${n.s0} == "a" | ${n.fn1}(${n.l0}, ${n.l1}) | ${n.s1}.${n.f1d}[1] == ${n.E1}.${n.em2}>]\n        }\n    }\n}\n`
     };
 }
 
-const plainNames = (): Names => Object.fromEntries(SLOTS.map((s) => [s, s.startsWith('T') ? `Type${s}` : `v${s}`])) as Names;
+const plainNames = (): Names => Object.fromEntries(SLOTS.map((s) => [s, s.startsWith('T') ? `Type${s}` : s === 'E1' ? 'Mode' : `v${s}`])) as Names;
 
 async function check(services: CactalServices, files: Record<string, string>) {
     const shared = services.shared;
@@ -163,6 +167,18 @@ describe('names in the generated C', () => {
             compileGenerated(docs);
         }, 60_000);
     }
+
+    it('enumerations: a member whose C name <Enum>_<member> is taken, or an enumeration named like a local of its functions, is refused; other members compile', async () => {
+        for (const [over, code] of [[{ E1: 'increment', em1: 'until_markerfound' }, 'identifier-c-reserved'], [{ E1: 'm' }, 'identifier-c-reserved'], [{ E1: 'contract' }, 'identifier-c-reserved']] as const) {
+            const { errors } = await check(services, project({ ...plainNames(), ...over }));
+            expect(errors.map((e) => e.code), JSON.stringify(over)).toContain(code);
+            expect(errors.filter((e) => !COLLISION_CODES.includes(e.code))).toEqual([]);
+        }
+        // members are prefixed in C (Mode_double, Mode_time): C keywords and library names are fine as members
+        const { docs, errors } = await check(services, project({ ...plainNames(), em1: 'double', em2: 'time' }));
+        expect(errors.map((e) => e.message)).toEqual([]);
+        compileGenerated(docs);
+    }, 60_000);
 
     it("vocabulary tables keep clear of the user's datatypes, functions and their generated functions", async () => {
         // a supervision function `get` has a parameter table `get_params`: the parser of datatype `params`;

@@ -1,7 +1,7 @@
 // Monarch syntax highlighting for the cactal language.
 export default {
     keywords: [
-        'ORD','activate','and','asynchronous','bool','communications','compute','configuration','critical','data','datatype','duration','elapsed','endof','event','float','flows','function','graph','import','in','infinite','int','local','module','modules','notify','or','ord_schema','out','parameterize','parameters','periodic','realtime','resttime','rules','scheduler','scheduling','schema','schemas','started','string','subscribe','supervisor','synchronous','void'
+        'ORD','activate','and','asynchronous','bool','communications','compute','configuration','const','critical','data','datatype','duration','elapsed','endof','enum','event','false','float','flows','function','graph','import','in','infinite','int','local','module','modules','notify','or','ord_schema','out','parameterize','parameters','periodic','realtime','resttime','rules','scheduler','scheduling','schema','schemas','started','string','subscribe','supervisor','synchronous','true','void'
     ],
     operators: [
         '!=','&','*',',','->','.',':',';','<','<=','=','=*','==','==*','==>','=>','>','>=','|'

@@ -70,8 +70,8 @@ export const CASES: Record<string, CodeCase> = {
         clean: { 'a.contract': 'datatype A {B b};\ndatatype B {int a};' }
     },
     'type-primitive-misuse': {
-        raise: { 'a.contract': 'datatype T {bool flag};' },
-        clean: { 'a.contract': 'datatype T {int flag};' }
+        raise: { 'a.contract': 'datatype T {void flag};' },
+        clean: { 'a.contract': 'datatype T {bool flag};' }
     },
     'type-function-return': {
         raise: { 'a.contract': 'function int f(int a);' },
@@ -92,6 +92,40 @@ export const CASES: Record<string, CodeCase> = {
     'value-string-too-long': {
         raise: { 'a.contract': `datatype T {string s = "${'é'.repeat(128)}"};` },
         clean: { 'a.contract': `datatype T {string s = "${'x'.repeat(255)}"};` }
+    },
+    'value-array-length': {
+        raise: { 'a.contract': 'datatype T {float[3] v = {1.0, 2.0}};' },
+        clean: { 'a.contract': 'datatype T {float[3] v = {1.0, 2.0, 3}};' },
+        message: 'float[3] has 3 elements; this value has 2'
+    },
+    'enum-value-without-member': {
+        raise: { 'a.contract': 'enum Mode {IDLE, AUTO};\ndatatype T {Mode m = Mode};' },
+        clean: { 'a.contract': 'enum Mode {IDLE, AUTO};\ndatatype T {Mode m = Mode.AUTO};' },
+        message: 'write one of its members (Mode.IDLE, Mode.AUTO)'
+    },
+    'enum-empty': {
+        raise: { 'a.contract': 'enum Mode {};' },
+        clean: { 'a.contract': 'enum Mode {IDLE};' }
+    },
+    'array-size-invalid': {
+        raise: { 'a.contract': 'const int N = 0;\ndatatype T {float[N] v};' },
+        clean: { 'a.contract': 'const int N = 2;\ndatatype T {float[N] v};' },
+        message: "'N' is 0"
+    },
+    'array-index-invalid': {
+        raise: { 'a.contract': 'const float[2] L = {1.0, 2.0};\ndatatype T {float a = L[2]};' },
+        clean: { 'a.contract': 'const float[2] L = {1.0, 2.0};\ndatatype T {float a = L[1]};' },
+        message: 'Index 2 is out of range'
+    },
+    'type-too-large': {
+        raise: { 'a.contract': sync('scheduling { C=1ms; } event flows { out :0 float[4096] samples; }') },
+        clean: { 'a.contract': sync('scheduling { C=1ms; } event flows { out :0 float[2048] samples; }') },
+        message: "'samples' takes 32768 bytes"
+    },
+    'const-cycle': {
+        raise: { 'a.contract': 'const int A = B;\nconst int B = A;' },
+        clean: { 'a.contract': 'const int A = 1;\nconst int B = A;' },
+        message: 'A -> B -> A'
     },
     'value-not-constant': {
         raise: { 'a.contract': 'datatype T {string s = ord_schema};' },

@@ -9,7 +9,7 @@ describe('syntax error messages', () => {
         expect(first('synchronous module MSA { scheduling { C=5; } }')).toBe("Expected a duration (number + unit ns, us, ms or s, e.g. 500us) but found '5'.");
     });
     it('lists the alternatives once, without keyword noise', () => {
-        expect(first('datatype T {int a = };')).toBe(`Expected one of an integer, a real number, a string "...", '{', 'ord_schema' or a name but found '}'.`);
+        expect(first('datatype T {int a = };')).toBe(`Expected one of an integer, a real number, a string "...", 'true', 'false', '{', 'ord_schema' or a name but found '}'.`);
     });
     it('explains what may appear at top level', () => {
         expect(first('datatype T {int a = 1}\nmodul MSA {}')).toBe("Unexpected 'modul': expected a datatype, function, module, schema, scheduler configuration or supervisor.");

@@ -37,6 +37,17 @@ describe('parseScenario', () => {
         expect(p.steps[7]!.kind === 'expect' && p.steps[7]!.expectation.kind === 'local' && p.steps[7]!.expectation.supervisor).toBeUndefined();
     });
 
+    it('reads bool values (true, false) alone and inside structured values; truer is no value', () => {
+        const p = parseScenario(['t=1ms OBS:1 scan = {{0.3, 5.0}, true}', 't=2ms X:0 false'].join('\n'));
+        expect(p.diagnostics).toEqual([]);
+        const scan = p.steps[0]!;
+        expect(scan.kind === 'event' && scan.value).toMatchObject({ kind: 'struct', elements: [{ kind: 'struct' }, { kind: 'bool', value: true, text: 'true' }] });
+        const flag = p.steps[1]!;
+        expect(flag.kind === 'event' && flag.value).toMatchObject({ kind: 'bool', value: false });
+        const bad = parseScenario('t=1ms X:0 truer');
+        expect(bad.diagnostics.map((d) => d.message)).toEqual([expect.stringContaining("expected a value (integer, real, \"string\", true, false, Enum.MEMBER or {structured, value}), found 'truer'")]);
+    });
+
     it('reports what is wrong, where, and what was expected', () => {
         const p = parseScenario([
             't=1s start SUP.action(',

@@ -64,8 +64,29 @@ typedef enum ContractTypeKind {
     CONTRACT_KIND_LONG = 1,   /* Cactal int   -> long                                       */
     CONTRACT_KIND_DOUBLE = 2, /* Cactal float -> double                                     */
     CONTRACT_KIND_STRING = 3, /* Cactal string -> char[256]                                 */
-    CONTRACT_KIND_STRUCT = 4  /* a datatype (generated Shared<Type>.h)                       */
+    CONTRACT_KIND_STRUCT = 4, /* a datatype (generated Shared<Type>.h)                       */
+    /* Extensions of the report (docs/language-reference.md); see "Extension types" below.   */
+    CONTRACT_KIND_BOOL = 5,   /* Cactal bool  -> C bool (<stdbool.h>), sizeof(bool) == 1      */
+    CONTRACT_KIND_ENUM = 6,   /* an enumeration -> a C enum (read as a signed integer of
+                                 `size` bytes: 1, 2, 4 or 8)                                 */
+    CONTRACT_KIND_ARRAY = 7   /* T[n] -> C array of n T; T[n][m] -> an array of n T[m]       */
 } ContractTypeKind;
+
+struct ContractType;
+
+/** A member of an enumeration: its Cactal name (`AUTO`, printed in logs) and C value. */
+typedef struct ContractEnumMember {
+    const char *name;
+    long value;
+} ContractEnumMember;
+
+/** A field of a datatype, for readable logs (`{q=[0.1,0.2],mode=AUTO}`): Cactal name, offsetof
+ *  in the C struct, type. Optional (a datatype without fields is logged as `{N bytes}`). */
+typedef struct ContractField {
+    const char *name;
+    size_t offset;
+    const struct ContractType *type;
+} ContractField;
 
 /**
  * Type descriptor. One per datatype, emitted in vocabulary.c with CONTRACT_DEFINE_TYPE
@@ -73,8 +94,38 @@ typedef enum ContractTypeKind {
  *   int eq_TypeA(TypeA *, TypeA *) ... supeq_TypeA, void set_TypeA(TypeA *dst, TypeA *src),
  *   int get_TypeA(TypeA *, char *text)  (returns characters read, -1 on a parse error),
  *   void print_TypeA(TypeA *)           (prints to stdout).
- * Primitive types have built-in descriptors: contract_type_long / _double / _string.
+ * Primitive types have built-in descriptors: contract_type_long / _double / _string / _bool.
  * Comparison functions return 1 (true) or 0 (false).
+ *
+ * Extension types (bool, enumerations, fixed-size arrays) are described by data alone: their
+ * function pointers may be NULL (recommended), and the runtime then uses generic operations
+ * driven by the descriptor (contract_value_* below). Non-NULL pointers are used as given.
+ *  - bool: the built-in contract_type_bool (printed and parsed `true` / `false`; false < true).
+ *  - enumeration `enum Mode { IDLE, TELEOP, AUTO }`: kind ENUM, size sizeof(the C enum),
+ *    `members` in declaration order with their C values. Compared by value; printed and parsed
+ *    by member name (`AUTO`; parsing also takes `Mode.AUTO` and the number). default_value NULL
+ *    means all-zero bytes (value 0), so give one when 0 is not a member.
+ *        static const ContractEnumMember contract_members_Mode[] = {
+ *            {"IDLE", Mode_IDLE}, {"TELEOP", Mode_TELEOP}, {"AUTO", Mode_AUTO}};
+ *        static const ContractType contract_type_Mode = CONTRACT_ENUM_TYPE(Mode,
+ *            contract_members_Mode, 3, NULL);
+ *  - array `float[180]`: kind ARRAY, `element` the element's descriptor, `count` its length,
+ *    size == count * element->size (C layout, no padding). `float[3][3]` (C `double m[3][3]`)
+ *    is an array of 3 `float[3]`. Arrays of any type, datatypes included. default_value NULL
+ *    means every element takes the element type's default (recursively). Generic operations:
+ *    eq when every element is eq, diff = !eq; inf/sup when every element is inf/sup (as the
+ *    generated functions of datatypes do, field by field), infeq = inf or eq, supeq = sup or eq.
+ *    Printed `[0.1,0.2,0.3]`; parsed from `{0.1, 0.2, 0.3}` (Cactal value syntax) or
+ *    `[0.1, 0.2, 0.3]` with exactly `count` elements.
+ *        static const ContractType contract_type_float_180 = CONTRACT_ARRAY_TYPE("float[180]",
+ *            double[180], contract_type_double, 180, NULL);
+ *    An element access with a constant index (`scan.ranges[90]`) is a field path like any
+ *    other: offset offsetof(Scan, ranges) + 90 * sizeof(double), type contract_type_double.
+ *  - datatypes may list their fields (`fields`, `nfields`; CONTRACT_DEFINE_TYPE_FIELDS) so that
+ *    logs show `{x=1,q=[0.1,0.2],mode=AUTO}` instead of `{N bytes}` (and, without a `get`,
+ *    are parsed from `{v1, v2, ...}` in field order).
+ * The engines check these descriptors when they start (element/count/size agree, members
+ * present, enum size 1/2/4/8, fields inside the struct).
  */
 typedef struct ContractType {
     const char *name;          /* "TypeA", "int", "float", "string"                         */
@@ -91,12 +142,33 @@ typedef struct ContractType {
     void (*set)(void *dst, void *src);     /* copy; NULL means memcpy(size)                 */
     int (*get)(void *dst, char *text);     /* parse the textual form used by control tools  */
     void (*print)(void *value);            /* human-readable print on stdout (logs)         */
+    /* Extensions (zero/NULL for int, float, string and datatypes without a field table): */
+    const struct ContractType *element;    /* ARRAY: type of the elements                    */
+    int count;                             /* ARRAY: number of elements (>= 1)               */
+    int nmembers;                          /* ENUM: members, declaration order (>= 1)        */
+    const ContractEnumMember *members;
+    int nfields;                           /* STRUCT (optional): its fields, for logs        */
+    const ContractField *fields;
 } ContractType;
 
 /** Built-in descriptors of the primitive types (defined by the runtime). */
 extern const ContractType contract_type_long;
 extern const ContractType contract_type_double;
 extern const ContractType contract_type_string;
+extern const ContractType contract_type_bool;   /* extension: Cactal bool, C bool */
+
+/** Descriptor of an enumeration: CONTRACT_ENUM_TYPE(Mode, members, nmembers, default_ptr) with
+ *  `Mode` the C enum type (named "Mode" in messages). */
+#define CONTRACT_ENUM_TYPE(E, members_, nmembers_, default_ptr)                                \
+    {.name = #E, .kind = CONTRACT_KIND_ENUM, .size = sizeof(E), .default_value = (default_ptr), \
+     .nmembers = (nmembers_), .members = (members_)}
+
+/** Descriptor of an array: CONTRACT_ARRAY_TYPE("float[180]", double[180], contract_type_double,
+ *  180, default_ptr): Cactal name, C type (for its size), element descriptor (an lvalue),
+ *  element count, default (NULL: element defaults). */
+#define CONTRACT_ARRAY_TYPE(cactal_name, ctype, element_, count_, default_ptr)                 \
+    {.name = (cactal_name), .kind = CONTRACT_KIND_ARRAY, .size = sizeof(ctype),                \
+     .default_value = (default_ptr), .element = &(element_), .count = (count_)}
 
 /**
  * CONTRACT_DEFINE_TYPE(TypeA, default_ptr) defines `static const ContractType contract_type_TypeA`
@@ -107,7 +179,14 @@ extern const ContractType contract_type_string;
  *     static const TypeA contract_default_TypeA = {0.0, 0.0, 0.0};
  *     CONTRACT_DEFINE_TYPE(TypeA, &contract_default_TypeA)
  */
-#define CONTRACT_DEFINE_TYPE(T, default_ptr)                                                   \
+#define CONTRACT_DEFINE_TYPE(T, default_ptr) CONTRACT_DEFINE_TYPE_FIELDS(T, default_ptr, 0, NULL)
+
+/** As CONTRACT_DEFINE_TYPE, with the datatype's field table for readable logs (extension):
+ *     static const ContractField contract_fields_Scan[] = {
+ *         {"ranges", offsetof(Scan, ranges), &contract_type_float_180},
+ *         {"mode", offsetof(Scan, mode), &contract_type_Mode}};
+ *     CONTRACT_DEFINE_TYPE_FIELDS(Scan, &contract_default_Scan, 2, contract_fields_Scan)  */
+#define CONTRACT_DEFINE_TYPE_FIELDS(T, default_ptr, nfields_, fields_)                         \
     static int contract_eq_##T(void *a, void *b) { return eq_##T((T *)a, (T *)b); }            \
     static int contract_diff_##T(void *a, void *b) { return diff_##T((T *)a, (T *)b); }        \
     static int contract_inf_##T(void *a, void *b) { return inf_##T((T *)a, (T *)b); }          \
@@ -118,10 +197,11 @@ extern const ContractType contract_type_string;
     static int contract_get_##T(void *d, char *text) { return get_##T((T *)d, text); }         \
     static void contract_print_##T(void *v) { print_##T((T *)v); }                             \
     __attribute__((unused)) static const ContractType contract_type_##T = {                    \
-        #T, CONTRACT_KIND_STRUCT, sizeof(T), (default_ptr),                                    \
-        contract_eq_##T, contract_diff_##T, contract_inf_##T, contract_sup_##T,                \
-        contract_infeq_##T, contract_supeq_##T, contract_set_##T, contract_get_##T,            \
-        contract_print_##T};
+        .name = #T, .kind = CONTRACT_KIND_STRUCT, .size = sizeof(T),                           \
+        .default_value = (default_ptr), .eq = contract_eq_##T, .diff = contract_diff_##T,      \
+        .inf = contract_inf_##T, .sup = contract_sup_##T, .infeq = contract_infeq_##T,         \
+        .supeq = contract_supeq_##T, .set = contract_set_##T, .get = contract_get_##T,         \
+        .print = contract_print_##T, .nfields = (nfields_), .fields = (fields_)};
 
 /* ======================================================================================
  * 2. User functions (function prototypes of datatype files)
@@ -473,6 +553,19 @@ typedef struct ContractSupervisorVocabulary {
 /* ======================================================================================
  * 7. Entry points (called from the generated module.c's ModuleMain)
  * ====================================================================================== */
+
+/** Operations on any described value (the engines' own; also for tools and tests). They use
+ *  the descriptor's functions when present, otherwise the generic ones described above.
+ *  compare: op EQ..GE, returns 1/0 (int and float mix numerically). get: parses the textual
+ *  form at `text`, returns characters read or -1 (dst unchanged). print: on stdout.
+ *  format: a short readable form into buf (at most len - 1 characters; arrays show their first
+ *  CONTRACT_FORMAT_MAX_ITEMS elements, then `...`; cut with `...` when longer), as in the trace
+ *  records (docs/runtime-api.md "Trace records"); print shows every element. */
+#define CONTRACT_FORMAT_MAX_ITEMS 10
+int contract_value_compare(ContractTestOp op, const ContractType *t, const void *a, const void *b);
+int contract_value_get(const ContractType *t, void *dst, char *text);
+void contract_value_print(const ContractType *t, const void *value);
+void contract_value_format(char *buf, size_t len, const ContractType *t, const void *value);
 
 /** Runs the scheduler until stopped/killed. Returns 0 on a clean stop, non-zero on error
  *  (including invalid tables, with a message on stderr). */

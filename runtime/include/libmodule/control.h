@@ -47,6 +47,20 @@ typedef struct {
 #define CONTROL_DEFINE_PARSER(getter, ctype)                                   \
     static int control_##getter(void *dst, char *text) { return getter((ctype *)dst, text); }
 
+/** Extension (bool, enumerations, arrays; docs/runtime-api.md "Control tools"): a parameter port
+ *  described by its vocabulary descriptor (contract/vocabulary.h). ControlMainTyped parses the
+ *  VALUE of `setparam` with contract_value_get and prints the value read in its readable form
+ *  (`ARM: parameter 0 set to {q=[0.1,0.2,0.3],mode=AUTO}`):
+ *      static const ControlTypedParam PARAMS[] = { { 0, &contract_type_ArmGoal }, CONTROL_TYPED_PARAM_TERM };
+ *      int main(int argc, char *argv[]) { return ControlMainTyped("ARM", PARAMS, argc, argv); } */
+struct ContractType;
+typedef struct {
+    int Port;
+    const struct ContractType *Type;
+} ControlTypedParam;
+
+#define CONTROL_TYPED_PARAM_TERM { -1, NULL }
+
 #define CONTROL_EXIT_OK          0
 #define CONTROL_EXIT_USAGE       1   /* bad command line */
 #define CONTROL_EXIT_UNKNOWN     2   /* no such module in the run directory / no run directory */
@@ -57,6 +71,8 @@ typedef struct {
 
 /** Runs the control command line for `module`. `params` ends with CONTROL_PARAM_TERM (may be NULL). */
 int ControlMain(const char *module, const ControlParam params[], int argc, char *argv[]);
+/** Same, with typed parameter ports; `params` ends with CONTROL_TYPED_PARAM_TERM (may be NULL). */
+int ControlMainTyped(const char *module, const ControlTypedParam params[], int argc, char *argv[]);
 
 #ifdef __cplusplus
 }

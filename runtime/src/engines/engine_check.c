@@ -28,14 +28,58 @@ static int fail(Ctx *x, const char *fmt, ...) {
     return -1;
 }
 
-static int check_type(Ctx *x, const ContractType *t, const char *what) {
+static int check_type_at(Ctx *x, const ContractType *t, const char *what, int depth);
+
+/* bool, enumerations, arrays and field tables (the extension parts of a descriptor). */
+static int check_extension(Ctx *x, const ContractType *t, const char *what, int depth) {
+    const char *name = t->name ? t->name : "?";
+    switch (t->kind) {
+    case CONTRACT_KIND_BOOL:
+        if (t->size != 1) return fail(x, "%s: bool type %s of size %zu (C bool is 1 byte)", what, name, t->size);
+        return 0;
+    case CONTRACT_KIND_ENUM:
+        if (t->size != 1 && t->size != 2 && t->size != 4 && t->size != 8)
+            return fail(x, "%s: enum type %s of size %zu (1, 2, 4 or 8)", what, name, t->size);
+        if (t->nmembers <= 0 || !t->members) return fail(x, "%s: enum type %s has no members", what, name);
+        for (int i = 0; i < t->nmembers; i++)
+            if (!t->members[i].name) return fail(x, "%s: enum type %s: member %d has no name", what, name, i);
+        return 0;
+    case CONTRACT_KIND_ARRAY:
+        if (!t->element || t->count <= 0)
+            return fail(x, "%s: array type %s needs an element type and a count >= 1", what, name);
+        if (check_type_at(x, t->element, what, depth + 1)) return -1;
+        if (t->size != (size_t)t->count * t->element->size)
+            return fail(x, "%s: array type %s of size %zu is not %d x %zu bytes", what, name, t->size, t->count,
+                        t->element->size);
+        return 0;
+    case CONTRACT_KIND_STRUCT:
+        if (t->nfields < 0 || (t->nfields > 0 && !t->fields)) return fail(x, "%s: type %s: field table missing", what, name);
+        for (int i = 0; i < t->nfields; i++) {
+            const ContractField *f = &t->fields[i];
+            if (!f->name) return fail(x, "%s: type %s: field %d has no name", what, name, i);
+            if (check_type_at(x, f->type, what, depth + 1)) return -1;
+            if (f->offset + f->type->size > t->size)
+                return fail(x, "%s: type %s: field %s at %zu (+%zu) exceeds its %zu bytes", what, name, f->name, f->offset,
+                            f->type->size, t->size);
+        }
+        return 0;
+    default: return 0;
+    }
+}
+
+static int check_type_at(Ctx *x, const ContractType *t, const char *what, int depth) {
     if (!t) return fail(x, "%s has no type", what);
+    if (depth > 16) return fail(x, "%s: type %s nests more than 16 levels (a cycle?)", what, t->name ? t->name : "?");
     if (t->size == 0 || t->size > CONTRACT_MAX_VALUE_SIZE)
         return fail(x, "%s: type %s has size %zu", what, t->name ? t->name : "?", t->size);
     if (t->kind == CONTRACT_KIND_STRING && t->size != CONTRACT_STRING_SIZE)
         return fail(x, "%s: string type of size %zu", what, t->size);
-    return 0;
+    if (t->kind < CONTRACT_KIND_LONG || t->kind > CONTRACT_KIND_ARRAY)
+        return fail(x, "%s: type %s of unknown kind %d", what, t->name ? t->name : "?", (int)t->kind);
+    return check_extension(x, t, what, depth);
 }
+
+static int check_type(Ctx *x, const ContractType *t, const char *what) { return check_type_at(x, t, what, 0); }
 
 static int check_vars(Ctx *x, const ContractVar *vars, int n, size_t size, const char *what) {
     if (n < 0 || (n > 0 && !vars)) return fail(x, "%s table missing", what);
@@ -55,7 +99,15 @@ typedef struct RefLimits {
     int nparams;
     const ContractSupervisorVocabulary *sup; /* IN_PORT allowed when non-NULL */
     int allow_ord;
+    const ContractVar *locals, *params;      /* their types bound field paths (NULL: not checked) */
 } RefLimits;
+
+/* A field path (an element `ranges[90]` included) must stay inside the variable it starts from. */
+static int check_path(Ctx *x, const ContractRef *r, const ContractType *var, const char *what) {
+    if (!var || r->offset + r->type->size <= var->size) return 0;
+    return fail(x, "%s: field path at offset %zu (+%zu bytes) exceeds its %s of %zu bytes", what, r->offset,
+                r->type->size, var->name ? var->name : "?", var->size);
+}
 
 static int check_ref(Ctx *x, const ContractRef *r, const RefLimits *l, const char *what) {
     if (check_type(x, r->type, what)) return -1;
@@ -66,16 +118,16 @@ static int check_ref(Ctx *x, const ContractRef *r, const RefLimits *l, const cha
     case CONTRACT_REF_LOCAL:
         if (r->index < 0 || r->index >= l->nlocals)
             return fail(x, "%s: local %d out of range (%d locals)", what, r->index, l->nlocals);
-        return 0;
+        return check_path(x, r, l->locals ? l->locals[r->index].type : NULL, what);
     case CONTRACT_REF_PARAM:
         if (r->index < 0 || r->index >= l->nparams)
             return fail(x, "%s: parameter %d out of range (%d parameters)", what, r->index,
                         l->nparams);
-        return 0;
+        return check_path(x, r, l->params ? l->params[r->index].type : NULL, what);
     case CONTRACT_REF_IN_PORT:
         if (l->sup) {
             for (int i = 0; i < l->sup->nin_ports; i++)
-                if (l->sup->in_ports[i].port == r->index) return 0;
+                if (l->sup->in_ports[i].port == r->index) return check_path(x, r, l->sup->in_ports[i].type, what);
         }
         return fail(x, "%s: no in event port :%d here", what, r->index);
     case CONTRACT_REF_ORD_SCHEMA:
@@ -90,14 +142,22 @@ static int numeric(const ContractType *t) {
     return t->kind == CONTRACT_KIND_LONG || t->kind == CONTRACT_KIND_DOUBLE;
 }
 
-/* same type, or int/float mix; structs are compared by name and size */
-static int compatible(const ContractType *a, const ContractType *b) {
+/* the same type: structs and enums by name and size, arrays by count and element type */
+static int same_type(const ContractType *a, const ContractType *b) {
     if (a == b) return 1;
+    if (a->kind != b->kind || a->size != b->size) return 0;
+    switch (a->kind) {
+    case CONTRACT_KIND_STRUCT:
+    case CONTRACT_KIND_ENUM: return a->name && b->name && strcmp(a->name, b->name) == 0;
+    case CONTRACT_KIND_ARRAY: return a->count == b->count && a->element && b->element && same_type(a->element, b->element);
+    default: return 1;
+    }
+}
+
+/* same type, or int/float mix (not inside arrays: they are copied as they are) */
+static int compatible(const ContractType *a, const ContractType *b) {
     if (numeric(a) && numeric(b)) return 1;
-    if (a->kind != b->kind) return 0;
-    if (a->kind == CONTRACT_KIND_STRUCT)
-        return a->size == b->size && a->name && b->name && strcmp(a->name, b->name) == 0;
-    return a->size == b->size;
+    return same_type(a, b);
 }
 
 static int check_compatible(Ctx *x, const ContractType *target, const ContractType *src, const char *what) {
@@ -141,7 +201,7 @@ static int check_schema(Ctx *x, const ContractSchema *s) {
         return fail(x, "unknown kind %d", (int)s->kind);
     if (check_vars(x, s->params, s->nparams, s->params_size, "parameter")) return -1;
     if (s->nmodules < 0 || (s->nmodules > 0 && !s->modules)) return fail(x, "modules missing");
-    RefLimits l = {0, s->nparams, NULL, 0};
+    RefLimits l = {0, s->nparams, NULL, 0, NULL, s->params};
     for (int m = 0; m < s->nmodules; m++) {
         if (!s->modules[m].module) return fail(x, "module %d has no name", m);
         if (check_settings(x, s->modules[m].settings, s->modules[m].nsettings, &l,
@@ -201,7 +261,7 @@ int contract_check_ord_vocabulary(const ContractOrdVocabulary *v, char *err, siz
 static int check_condition(Ctx *x, const ContractSupervisorVocabulary *v, const ContractFunction *fn,
                            const ContractCondition *c, const char *which) {
     if (c->nclauses < 0 || (c->nclauses > 0 && !c->clauses)) return fail(x, "%s missing", which);
-    RefLimits tl = {fn->nlocals, 0, v, 0};
+    RefLimits tl = {fn->nlocals, 0, v, 0, fn->locals, NULL};
     for (int k = 0; k < c->nclauses; k++) {
         const ContractClause *cl = &c->clauses[k];
         if (cl->nevents <= 0 || !cl->events) return fail(x, "%s clause %d is empty", which, k);
@@ -272,7 +332,7 @@ static int check_condition(Ctx *x, const ContractSupervisorVocabulary *v, const 
 
 static int check_action(Ctx *x, const ContractSupervisorVocabulary *v, const ContractFunction *fn,
                         const ContractAction *a) {
-    RefLimits l = {fn->nlocals, 0, v, 0};
+    RefLimits l = {fn->nlocals, 0, v, 0, fn->locals, NULL};
     switch (a->kind) {
     case CONTRACT_ACT_SCHEMA:
         if (!a->schema) return fail(x, "activate schema without a schema");
@@ -347,7 +407,7 @@ int contract_check_supervisor_vocabulary(const ContractSupervisorVocabulary *v, 
         snprintf(x.where, sizeof x.where, "%s.%s", v->name, fn->name);
         if (check_vars(&x, fn->params, fn->nparams, fn->params_size, "parameter")) return -1;
         if (check_vars(&x, fn->locals, fn->nlocals, fn->locals_size, "local")) return -1;
-        RefLimits il = {fn->nlocals, fn->nparams, NULL, 0};
+        RefLimits il = {fn->nlocals, fn->nparams, NULL, 0, fn->locals, fn->params};
         if (check_assigns(&x, fn->local_inits, fn->nlocal_inits, fn->nlocals, &il, "local initialiser"))
             return -1;
         if (fn->nrules < 0 || (fn->nrules > 0 && !fn->rules)) return fail(&x, "rules missing");

@@ -1,4 +1,5 @@
-/* engine_values.c — see engine_values.h; also the built-in descriptors of int/float/string. */
+/* engine_values.c — see engine_values.h; also the built-in descriptors of int/float/string
+ * (bool and the generic operations of the extension kinds: value_ops.c). */
 #define _POSIX_C_SOURCE 200809L
 #include "engine_values.h"
 
@@ -55,7 +56,7 @@ static int prim_string_get(void *d, char *text) {
         if (*p != '"') return -1;
         p++;
     } else {
-        while (*p && *p != ',' && *p != '}') {
+        while (*p && *p != ',' && *p != '}' && *p != ']') {
             if (i < CONTRACT_STRING_SIZE - 1) out[i++] = *p;
             p++;
         }
@@ -66,17 +67,19 @@ static int prim_string_get(void *d, char *text) {
 static void prim_string_print(void *v) { printf("\"%.*s\"", CONTRACT_STRING_SIZE, (char *)v); }
 
 const ContractType contract_type_long = {
-    "int", CONTRACT_KIND_LONG, sizeof(long), NULL,
-    prim_long_eq, prim_long_diff, prim_long_inf, prim_long_sup, prim_long_infeq,
-    prim_long_supeq, prim_long_set, prim_long_get, prim_long_print};
+    .name = "int", .kind = CONTRACT_KIND_LONG, .size = sizeof(long), .eq = prim_long_eq,
+    .diff = prim_long_diff, .inf = prim_long_inf, .sup = prim_long_sup, .infeq = prim_long_infeq,
+    .supeq = prim_long_supeq, .set = prim_long_set, .get = prim_long_get, .print = prim_long_print};
 const ContractType contract_type_double = {
-    "float", CONTRACT_KIND_DOUBLE, sizeof(double), NULL,
-    prim_double_eq, prim_double_diff, prim_double_inf, prim_double_sup, prim_double_infeq,
-    prim_double_supeq, prim_double_set, prim_double_get, prim_double_print};
+    .name = "float", .kind = CONTRACT_KIND_DOUBLE, .size = sizeof(double), .eq = prim_double_eq,
+    .diff = prim_double_diff, .inf = prim_double_inf, .sup = prim_double_sup,
+    .infeq = prim_double_infeq, .supeq = prim_double_supeq, .set = prim_double_set,
+    .get = prim_double_get, .print = prim_double_print};
 const ContractType contract_type_string = {
-    "string", CONTRACT_KIND_STRING, CONTRACT_STRING_SIZE, NULL,
-    prim_string_eq, prim_string_diff, prim_string_inf, prim_string_sup, prim_string_infeq,
-    prim_string_supeq, prim_string_set, prim_string_get, prim_string_print};
+    .name = "string", .kind = CONTRACT_KIND_STRING, .size = CONTRACT_STRING_SIZE,
+    .eq = prim_string_eq, .diff = prim_string_diff, .inf = prim_string_inf, .sup = prim_string_sup,
+    .infeq = prim_string_infeq, .supeq = prim_string_supeq, .set = prim_string_set,
+    .get = prim_string_get, .print = prim_string_print};
 
 /* ---- helpers ------------------------------------------------------------------------ */
 
@@ -119,51 +122,6 @@ void engine_copy_value(void *dst, const ContractType *dt, const void *src, const
     }
     size_t n = dt->size < st->size ? dt->size : st->size;
     memmove(dst, src, n);
-}
-
-void engine_default_value(void *dst, const ContractType *t, const void *explicit_default) {
-    const void *d = explicit_default ? explicit_default : t->default_value;
-    if (d) memcpy(dst, d, t->size);
-    else memset(dst, 0, t->size);
-}
-
-int engine_compare(ContractTestOp op, const void *a, const ContractType *at, const void *b,
-                   const ContractType *bt) {
-    if (is_numeric(at) && is_numeric(bt) && at->kind != bt->kind) {
-        double x = as_double(a, at), y = as_double(b, bt);
-        switch (op) {
-        case CONTRACT_TEST_EQ: return x == y;
-        case CONTRACT_TEST_NE: return x != y;
-        case CONTRACT_TEST_LT: return x < y;
-        case CONTRACT_TEST_GT: return x > y;
-        case CONTRACT_TEST_LE: return x <= y;
-        case CONTRACT_TEST_GE: return x >= y;
-        default: return 0;
-        }
-    }
-    /* the type functions take non-const pointers but do not write through them */
-    void *pa = (void *)(uintptr_t)a, *pb = (void *)(uintptr_t)b;
-    int (*f)(void *, void *) = NULL;
-    switch (op) {
-    case CONTRACT_TEST_EQ: f = at->eq; break;
-    case CONTRACT_TEST_NE: f = at->diff; break;
-    case CONTRACT_TEST_LT: f = at->inf; break;
-    case CONTRACT_TEST_GT: f = at->sup; break;
-    case CONTRACT_TEST_LE: f = at->infeq; break;
-    case CONTRACT_TEST_GE: f = at->supeq; break;
-    default: break;
-    }
-    if (f) return f(pa, pb) ? 1 : 0;
-    int c = memcmp(a, b, at->size); /* a descriptor without functions: bytewise */
-    switch (op) {
-    case CONTRACT_TEST_EQ: return c == 0;
-    case CONTRACT_TEST_NE: return c != 0;
-    case CONTRACT_TEST_LT: return c < 0;
-    case CONTRACT_TEST_GT: return c > 0;
-    case CONTRACT_TEST_LE: return c <= 0;
-    case CONTRACT_TEST_GE: return c >= 0;
-    default: return 0;
-    }
 }
 
 const unsigned char *engine_ref_ptr(const EngineScope *s, const ContractRef *r) {
@@ -215,49 +173,4 @@ int engine_build_setting(const EngineScope *s, const ContractParamSetting *setti
     for (int i = 0; i < setting->nparts; i++)
         if (engine_apply_assign(s, &setting->parts[i], (unsigned char *)dst, NULL) != 0) return -1;
     return 0;
-}
-
-void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type) {
-    if (len == 0) return;
-    if (!value || !type) {
-        snprintf(buf, len, "?");
-        return;
-    }
-    switch (type->kind) {
-    case CONTRACT_KIND_LONG: {
-        long v;
-        memcpy(&v, value, sizeof v);
-        snprintf(buf, len, "%ld", v);
-        return;
-    }
-    case CONTRACT_KIND_DOUBLE: {
-        double v;
-        memcpy(&v, value, sizeof v);
-        snprintf(buf, len, "%g", v);
-        return;
-    }
-    case CONTRACT_KIND_STRING: {
-        const char *s = value;
-        size_t n = 0, i = 0;
-        if (len < 8) { /* room for at least `"..."` */
-            snprintf(buf, len, "?");
-            return;
-        }
-        buf[n++] = '"';
-        for (; i < CONTRACT_STRING_SIZE && s[i] && i < 64 && n + 6 < len; i++) {
-            unsigned char ch = (unsigned char)s[i];
-            if (ch == '"' || ch == '\\') buf[n++] = '\\';
-            buf[n++] = ch < 0x20 || ch == 0x7f ? '?' : (char)ch;
-        }
-        if (i < CONTRACT_STRING_SIZE && s[i]) {
-            buf[n++] = '.';
-            buf[n++] = '.';
-            buf[n++] = '.';
-        }
-        buf[n++] = '"';
-        buf[n] = 0;
-        return;
-    }
-    default: snprintf(buf, len, "{%zu bytes}", type->size); return;
-    }
 }

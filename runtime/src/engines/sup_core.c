@@ -562,7 +562,7 @@ static void format_cause(const SupCore *c, int f, char *buf, size_t len) {
     const char *label = cur->rule >= 0 && cur->rule < fn->nrules ? fn->rules[cur->rule].label : "?";
     switch (cur->kind) {
     case CONTRACT_EV_MODULE: {
-        char value[160];
+        char value[200]; /* with the module and port, fits the 400-byte CSV detail */
         const ContractType *type = NULL;
         int pi = cur->ord_schema ? -1 : in_port_index(c->v, cur->in_port);
         if (cur->ord_schema) type = &contract_type_string;
@@ -583,7 +583,7 @@ static void format_cause(const SupCore *c, int f, char *buf, size_t len) {
 
 static void report_rule(SupCore *c, int f, int r, int active) {
     if (!c->io.rule) return;
-    char cause[256];
+    char cause[300];
     format_cause(c, f, cause, sizeof cause);
     const ContractFunction *fn = &c->v->functions[f];
     c->io.rule(c->io.ctx, c->now, fn->name, fn->rules[r].label, active, cause);
@@ -1038,7 +1038,7 @@ int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const 
             break;
         }
         const ContractType *ty = fn->params[k].type;
-        int used = ty->get ? ty->get(block + fn->params[k].offset, eq + 1) : -1;
+        int used = contract_value_get(ty, block + fn->params[k].offset, eq + 1);
         if (used < 0) {
             snprintf(err, errlen, "cannot read a %s for parameter '%s' from '%s'", ty->name,
                      pname, eq + 1);

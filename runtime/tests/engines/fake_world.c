@@ -17,6 +17,7 @@ void fake_format(char *out, size_t n, const ContractType *t, const void *v) {
     case CONTRACT_KIND_DOUBLE: snprintf(out, n, "%g", *(const double *)v); return;
     case CONTRACT_KIND_STRING: snprintf(out, n, "%.*s", 255, (const char *)v); return;
     case CONTRACT_KIND_STRUCT: break;
+    default: contract_value_format(out, n, t, v); return; /* bool, enums, arrays */
     }
     if (strcmp(t->name, "TypeA") == 0) {
         const TypeA *a = v;

@@ -34,6 +34,8 @@ export interface JobRequest {
   duration?: number;
   /** CPU list every module is pinned to (`make run CPUS=…`, contract-launch --cpus). */
   cpus?: string;
+  /** Real-time mode (run only): modules take their SCHED_FIFO priorities, bounded (docs/sandbox.md "Real-time mode"). */
+  realtime?: boolean;
   limits: Limits;
 }
 
@@ -196,6 +198,18 @@ export class Job {
     let step: JobStep = 'prepare';
     try {
       this.setStatus('preparing', 'prepare');
+      if (this.request.realtime) {
+        // refused before any work: the user learns at once what the host lacks and what to do
+        const rt = await ctx.sandbox.realtimeSupport();
+        if (!rt.ok) {
+          const message = `real-time mode refused: ${rt.reason}`;
+          this.system('prepare', message);
+          this.result = this.makeResult('prepare', false, null, null, message, null);
+          this.finish('failed');
+          return;
+        }
+        this.system('prepare', `real-time mode: ${rt.detail}`);
+      }
       const t0 = Date.now();
       ws = await this.orCancel(
         ctx.acquireWorkspace(this, {
@@ -459,6 +473,7 @@ export class Job {
       limits: this.request.limits,
       runtimeDir,
       owner: ws.owner,
+      ...(step === 'run' && this.request.realtime ? { realtime: true } : {}),
     });
     this.current = proc;
     this.mechanisms = proc.mechanisms;

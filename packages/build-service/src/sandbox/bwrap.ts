@@ -7,17 +7,19 @@
  * v2 in a delegated subtree (cgroup-choice.ts), otherwise RLIMIT_AS / RLIMIT_NPROC set with
  * prlimit under the job's own non-root host uid.
  * Disk: the work dir is the workspace's tmpfs of workDiskMiB (work-disk.ts), watched for a full disk.
+ * Real-time mode (opt-in): SCHED_FIFO granted and bounded as realtime.ts decides.
  */
 import { execFile } from 'node:child_process';
 import { existsSync, lstatSync, readlinkSync } from 'node:fs';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
-import { memoryBytes, tmpBytes } from '../limits.js';
+import { memoryBytes, REALTIME_BOUNDS, tmpBytes } from '../limits.js';
 import type { LimitCgroup } from './cgroup.js';
 import { cgroupChoice, createJobCgroup } from './cgroup-choice.js';
 import { startHostProcess } from './host-process.js';
 import { workDiskState } from './work-disk.js';
-import type { Mechanisms, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
+import { describeRealtime, planRealtime, readRealtimeFacts, RealtimeCgroup, realtimePrefix } from './realtime.js';
+import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
 import { SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
 const run = promisify(execFile);
@@ -89,8 +91,18 @@ export class BwrapSandbox implements Sandbox {
     }
   }
 
+  async realtimeSupport(): Promise<RealtimeSupport> {
+    const facts = readRealtimeFacts();
+    const plan = planRealtime(facts, REALTIME_BOUNDS);
+    if (!plan.ok) return plan;
+    return { ok: true, detail: describeRealtime(plan.grant, plan.budget, REALTIME_BOUNDS, facts.globalRtRuntimeUs) };
+  }
+
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
     const isRoot = process.getuid?.() === 0;
+    const facts = cmd.realtime ? readRealtimeFacts() : null;
+    const plan = facts ? planRealtime(facts, REALTIME_BOUNDS) : null;
+    if (plan && !plan.ok) throw new Error(`real-time mode refused: ${plan.reason}`);
     let cgroup: LimitCgroup | null = null;
     let cgroupError = '';
     if (this.limitMechanism !== 'rlimit') {
@@ -104,6 +116,21 @@ export class BwrapSandbox implements Sandbox {
       } else cgroupError = choice.reason;
       if (!cgroup && this.limitMechanism === 'cgroup') throw new Error(`cgroups required but unavailable: ${cgroupError}`);
     }
+    let realtime: { chrt: string[]; prlimit: string[]; cgroup: RealtimeCgroup | null; detail: string } | null = null;
+    if (plan?.ok) {
+      let rtCgroup: RealtimeCgroup | null = null;
+      try {
+        if (plan.cpuCgroupDir) rtCgroup = await RealtimeCgroup.create(plan.cpuCgroupDir, `contract-rt-${cmd.name}`, REALTIME_BOUNDS);
+      } catch (e) {
+        await cgroup?.destroy();
+        throw new Error(`real-time mode refused: ${(e as Error).message}`);
+      }
+      realtime = {
+        ...realtimePrefix(plan.grant, REALTIME_BOUNDS),
+        cgroup: rtCgroup,
+        detail: describeRealtime(plan.grant, plan.budget, REALTIME_BOUNDS, facts!.globalRtRuntimeUs),
+      };
+    }
     const owner = cmd.owner;
     const disk = await workDiskState(cmd.workDir);
     const hostUser = isRoot && owner ? `host uid ${owner.uid}` : `host uid ${process.getuid?.()}`;
@@ -116,6 +143,7 @@ export class BwrapSandbox implements Sandbox {
       time: 'service-timer',
       output: 'service-counter',
       disk: disk ? 'tmpfs-size' : 'none',
+      ...(realtime ? { realtime: realtime.detail } : {}),
     };
 
     const env: Record<string, string> = {
@@ -152,10 +180,9 @@ export class BwrapSandbox implements Sandbox {
       '--',
       ...cmd.argv,
     ];
-    const prefix: string[] = [];
-    if (!cgroup) {
-      prefix.push('prlimit', `--as=${memoryBytes(cmd.limits)}`, `--nproc=${cmd.limits.processes}`, '--');
-    }
+    const prefix: string[] = [...(realtime?.chrt ?? [])];
+    const rlimits = [...(cgroup ? [] : [`--as=${memoryBytes(cmd.limits)}`, `--nproc=${cmd.limits.processes}`]), ...(realtime?.prlimit ?? [])];
+    if (rlimits.length) prefix.push('prlimit', ...rlimits, '--');
     if (isRoot && owner) {
       prefix.push('setpriv', `--reuid=${owner.uid}`, `--regid=${owner.gid}`, '--clear-groups', '--no-new-privs', '--');
     }
@@ -166,8 +193,12 @@ export class BwrapSandbox implements Sandbox {
       limits: cmd.limits,
       mechanisms,
       cgroup,
+      ...(realtime?.cgroup ? { joinProcsFiles: [realtime.cgroup.procsFile] } : {}),
       guessLimitsFromOutput: !cgroup,
-      cleanup: cgroup ? () => cgroup.destroy() : undefined,
+      cleanup: cgroup || realtime?.cgroup ? async () => {
+        await cgroup?.destroy();
+        await realtime?.cgroup?.destroy();
+      } : undefined,
       ...(disk ? { workDisk: { dir: cmd.workDir, bytes: disk.sizeBytes } } : {}),
     });
   }

@@ -22,14 +22,15 @@ import { createRequire } from 'node:module';
 import type Docker from 'dockerode';
 import type { ContainerCreateOptions } from 'dockerode';
 import type { LimitHit } from '../limits.js';
-import { memoryBytes, tmpBytes, workDiskBytes } from '../limits.js';
+import { memoryBytes, REALTIME_BOUNDS, tmpBytes, workDiskBytes } from '../limits.js';
+import { dockerRealtimeError, dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 import { readTar } from '../util/tar-reader.js';
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
-import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
@@ -196,6 +197,11 @@ export class DockerSandbox implements Sandbox {
     return v;
   }
 
+  async realtimeSupport(): Promise<RealtimeSupport> {
+    return dockerRealtimeSupport(this.docker, REALTIME_BOUNDS);
+  }
+
+
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {
     await this.sweep();
     const jobId = cmd.jobId ?? cmd.name;
@@ -227,6 +233,8 @@ export class DockerSandbox implements Sandbox {
       this.syncedTar.set(volume, digest);
     }
     const bytes = memoryBytes(cmd.limits);
+    const realtime = cmd.realtime ? await dockerRealtimeSupport(this.docker, REALTIME_BOUNDS) : null;
+    if (realtime && !realtime.ok) throw new Error(`real-time mode refused: ${realtime.reason}`);
     const container = await this.docker.createContainer({
       name: `contract-${cmd.name}`,
       Image: this.image,
@@ -251,7 +259,10 @@ export class DockerSandbox implements Sandbox {
         MemorySwap: bytes,
         PidsLimit: cmd.limits.processes,
         Init: true,
+        ...(realtime?.ok ? dockerRealtimeHostConfig(REALTIME_BOUNDS, realtime.cgroupBudget) : {}),
       },
+    }).catch((e: Error) => {
+      throw realtime ? dockerRealtimeError(e, REALTIME_BOUNDS) : e;
     });
     const removeContainer = async (): Promise<void> => {
       await container.remove({ force: true }).catch(() => {});
@@ -275,6 +286,7 @@ export class DockerSandbox implements Sandbox {
         time: 'service-timer',
         output: 'service-counter',
         disk: 'docker-tmpfs-volume',
+        ...(realtime?.ok ? { realtime: realtime.detail } : {}),
       };
       let limitHit: LimitHit | null = null;
       const diskHit = async (): Promise<LimitHit | null> => {
@@ -319,7 +331,7 @@ export class DockerSandbox implements Sandbox {
       return proc;
     } catch (e) {
       await removeContainer();
-      throw e;
+      throw realtime ? dockerRealtimeError(e as Error, REALTIME_BOUNDS) : e;
     }
   }
 

@@ -18,6 +18,8 @@ export interface HostProcessOptions {
   limits: Limits;
   mechanisms: Mechanisms;
   cgroup: LimitCgroup | null;
+  /** More cgroup.procs files to join before exec (the real-time budget's cpu cgroup, realtime.ts). */
+  joinProcsFiles?: string[];
   /** rlimit mode: guess limit hits from the messages of refused forks/allocations. */
   guessLimitsFromOutput: boolean;
   /** Called once every process is gone (removes the cgroup). */
@@ -34,7 +36,8 @@ const DISK_WATCH_INTERVAL_MS = 250;
 const JOIN_CGROUP = 'for f; do [ "$f" = -- ] && break; echo $$ > "$f" || exit 125; shift; done; shift; exec "$@"';
 
 export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
-  const argv = opts.cgroup ? ['/bin/sh', '-c', JOIN_CGROUP, 'contract-join', ...opts.cgroup.procsFiles, '--', ...opts.argv] : opts.argv;
+  const join = [...(opts.cgroup?.procsFiles ?? []), ...(opts.joinProcsFiles ?? [])];
+  const argv = join.length ? ['/bin/sh', '-c', JOIN_CGROUP, 'contract-join', ...join, '--', ...opts.argv] : opts.argv;
   const child = spawn(argv[0]!, argv.slice(1), {
     cwd: opts.cwd,
     env: opts.env,

@@ -5,7 +5,7 @@
  */
 import { startHostProcess } from './host-process.js';
 import { workDiskState } from './work-disk.js';
-import type { Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
+import type { RealtimeSupport, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
 import { join } from 'node:path';
 
 const AS_ROOT = process.getuid?.() === 0;
@@ -34,6 +34,14 @@ export class NoSandbox implements Sandbox {
 
   async probe(): Promise<SandboxProbe> {
     return { available: true, detail: `no isolation; not enforced: ${NONE_UNENFORCED.join(', ')}` };
+  }
+
+  /** Nothing would bound a runaway FIFO loop here: real-time mode is for the bwrap and docker sandboxes. */
+  async realtimeSupport(): Promise<RealtimeSupport> {
+    return {
+      ok: false,
+      reason: 'real-time mode needs the bwrap or docker sandbox, which bound a runaway SCHED_FIFO loop; the "none" sandbox bounds nothing (run without --realtime, or with --sandbox bwrap)',
+    };
   }
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {

@@ -17,7 +17,12 @@ export interface Mechanisms {
   output: Mechanism;
   /** The bound of the writable /work (workDiskMiB). */
   disk: Mechanism;
+  /** Real-time mode only: how SCHED_FIFO was granted and bounded (docs/sandbox.md "Real-time mode"). */
+  realtime?: string;
 }
+
+/** Whether the opt-in real-time mode can be granted: how, or why not, said to the user as is. */
+export type RealtimeSupport = { ok: true; detail: string } | { ok: false; reason: string };
 
 /** One command to run in the sandbox. */
 export interface SandboxCommand {
@@ -36,6 +41,8 @@ export interface SandboxCommand {
   runtimeDir?: string;
   /** Host identity owning the work dir; the sandboxed processes run as this uid (bwrap). */
   owner?: { uid: number; gid: number };
+  /** Real-time mode: the processes may take SCHED_FIFO priorities, within REALTIME_BOUNDS. */
+  realtime?: boolean;
 }
 
 export interface SandboxExit {
@@ -77,6 +84,8 @@ export interface Sandbox {
   /** Limits this sandbox cannot enforce (named in warnings). */
   readonly unenforced: readonly string[];
   probe(): Promise<SandboxProbe>;
+  /** Whether real-time mode can be granted here (asked before a realtime job's first step). */
+  realtimeSupport(): Promise<RealtimeSupport>;
   start(cmd: SandboxCommand): Promise<SandboxProcess>;
   /** Called when a job's work dir is no longer needed (docker: removes the volume). */
   release?(workDir: string): Promise<void>;

@@ -39,6 +39,15 @@ describe('reading a log', () => {
             .toEqual(['elapsed', 'duration', 'started', 'endof', 'stop', 'event', 'other']);
     });
 
+    it('reads causes whose value is a bool, an enum member, an array or a datatype with fields (extension types)', () => {
+        const line = '3000,w,MIS,sup_rule,,,0,"mission.AHEAD active cause=OBS:1 value={ranges=[5,5,5,5,5,5,5,5,5,5,...],mode=AUTO,ok=true,tag=""a, b""}"';
+        const r = parseRecordLine('MIS.csv', 2, line) as RuleRecord;
+        expect(r).toMatchObject({ function: 'mission', rule: 'AHEAD', active: true,
+            causeEvent: { kind: 'event', module: 'OBS', port: 1, value: '{ranges=[5,5,5,5,5,5,5,5,5,5,...],mode=AUTO,ok=true,tag="a, b"}' } });
+        for (const value of ['true', 'AUTO', '[[1,0],[0,1]]', '[{id=1,w=0.5},...]'])
+            expect((parseRecordLine('S', 2, `1,w,SUP,sup_rule,,,0,"f.R inactive cause=M:0 value=${value}"`) as RuleRecord).causeEvent).toEqual({ kind: 'event', module: 'M', port: 0, value });
+    });
+
     it('reads ORD releases with cycle, tick and release times as numbers', () => {
         const r = parseRecordLine('ORD.csv', 5, '1201,w,ORD,ord_release,MSC,,0,schema=S cycle=3 tick_ns=1200 release_ns=1201 release=9') as KnownRecord;
         expect(r).toMatchObject({ kind: 'ord_release', peer: 'MSC', port: null, fields: { schema: 'S', cycle: 3, tick_ns: 1200, release_ns: 1201, release: 9 } });

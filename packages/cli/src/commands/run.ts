@@ -86,10 +86,11 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
+        '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs; collected from every sandbox, docker included)',
         '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel; as `contract trace --format json`)',
         ...COMMON_USAGE,
@@ -97,7 +98,7 @@ export const runCommand: Command = {
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus', 'trace'], COMMON_FLAGS);
+        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus', 'trace'], [...COMMON_FLAGS, 'realtime']);
         const opts = await parseJobOptions(parsed, io, onTerminal());
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
@@ -105,6 +106,7 @@ export const runCommand: Command = {
         const start = typeof startOption === 'string' ? checkStart(startOption) : undefined;
         const cpusOption = parsed.options.get('cpus');
         const cpus = typeof cpusOption === 'string' ? checkCpus(cpusOption) : undefined;
+        const realtime = parsed.options.get('realtime') === true;
         const logsOption = parsed.options.get('logs');
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
         const traceOption = parsed.options.get('trace');
@@ -120,7 +122,7 @@ export const runCommand: Command = {
             }
         }
         const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
-        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}) }, io, undefined, onEvent);
+        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
             await live?.close().catch(() => {});
             io.err(`contract run: ${outcome.error}\n`);

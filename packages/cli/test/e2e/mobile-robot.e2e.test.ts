@@ -109,5 +109,27 @@ describe('examples/mobile-robot end to end', () => {
             expect(text.slice(obstacle).some((l) => l.startsWith('[VEL] VEL: new setpoint v=0.00 m/s w=0.00 rad/s (stop)'))).toBe(true);
             expect(text.some((l) => l.startsWith('[MOT] MOT: odometry x='))).toBe(true);
         });
+
+        it('carries the extension types: the laser scan (float[180]), the DriveMode enum, the wheel vectors', () => {
+            // MIS.AHEAD tests scan.ranges[AHEAD] of the OBS:1 events: active while the obstacle stands ahead
+            const first = logs.find((r) => r.module === 'OBS' && r.event === 'run_started')!.mono;
+            const seconds = (r: LogRecord) => Number(r.mono - first) / 1e9;
+            const ahead = logs.filter((r) => r.module === 'MIS' && r.event === 'sup_rule' && r.detail.startsWith('mission.AHEAD '));
+            const aheadOn = ahead.find((r) => r.detail.startsWith('mission.AHEAD active'))!;
+            expect(aheadOn, ahead.map((r) => r.detail).join('\n')).toBeTruthy();
+            expect(seconds(aheadOn)).toBeGreaterThan(2.9);
+            expect(seconds(aheadOn)).toBeLessThan(3.6);
+            // the cause is the scan, shown readably in the trace (docs/runtime-api.md "Trace records")
+            expect(aheadOn.detail).toMatch(/^mission\.AHEAD active cause=OBS:1 value=\{ranges=\[5,5,5,5,5,5,5,5,5,5,\.\.\.\],blocked=true\}$/);
+            const aheadOff = ahead.find((r) => r.detail.startsWith('mission.AHEAD inactive') && r.mono > aheadOn.mono)!;
+            expect(aheadOff.detail).toMatch(/cause=OBS:1 value=\{ranges=\[5,.*\],blocked=false\}$/);
+            expect(seconds(aheadOff)).toBeGreaterThan(4.4);
+            // DRV hands VEL its drive mode (an enum schema parameter -> VEL's parameter port 1); the
+            // wheel vectors float[2]/int[2] carry the loop (the robot moves: odometry above)
+            const modes = json.output.filter((l) => l.source === 'VEL' && l.line.startsWith('VEL: drive mode ')).map((l) => l.line.slice(16));
+            expect(isSubsequence(modes, ['TELEOP', 'AUTO', 'SAFESTOP', 'AUTO'])).toBe(true);
+            const moved = json.output.filter((l) => l.line.startsWith('MOT: odometry x=')).pop()!.line;
+            expect(Number(/x=(-?[\d.]+)/.exec(moved)![1])).toBeGreaterThan(0.2);
+        });
     });
 });

@@ -9,6 +9,7 @@ import { generateModuleSource, moduleSourcePath } from './module-source.js';
 import { engineBindingSource, ORD_DIR, schedMessagesHeader, schedTypesHeader, toolsHeader } from './ord-module.js';
 import { generateSharedFunctionHeader, sharedFunctionPath } from './shared-function-header.js';
 import { generateSharedTypeHeader, sharedTypePath } from './shared-type-header.js';
+import { generateSharedEnumHeader, sharedEnumPath } from './shared-enum-header.js';
 import { supTypesHeader } from './supervisor-module.js';
 import { generateOrdVocabulary } from './vocabulary/ord-vocabulary.js';
 import { generateSupervisorVocabulary } from './vocabulary/supervisor-vocabulary.js';
@@ -21,6 +22,7 @@ export function generateFiles(arch: Architecture): GeneratedFile[] {
     const files: GeneratedFile[] = [];
     const add = (path: string, content: string) => files.push({ path, content });
 
+    for (const e of arch.enums ?? []) add(sharedEnumPath(e.name), generateSharedEnumHeader(e));
     for (const t of arch.datatypes) add(sharedTypePath(t.name), generateSharedTypeHeader(t));
     for (const f of arch.functions) add(sharedFunctionPath(f.name), generateSharedFunctionHeader(f));
 

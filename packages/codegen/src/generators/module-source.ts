@@ -1,7 +1,7 @@
 import { expandToNode, joinToNode, NL, toString, type Generated } from 'langium/generate';
 import type { Module, PortDecl } from '../model/architecture.js';
-import type { ArchitectureIndex } from '../model/lookup.js';
-import { cDeclaration, cInitializer, cSizeof } from './c/c-syntax.js';
+import { namedTypeOf, type ArchitectureIndex } from '../model/lookup.js';
+import { cDeclaration, cInitializer, cSizeof, cType } from './c/c-syntax.js';
 import { blockRegion, inlineRegion } from './c/regions.js';
 import { architecturePath } from '@contract-studio/conventions';
 
@@ -14,7 +14,7 @@ const byIndex = (ports: PortDecl[]) => [...ports].sort((a, b) => a.index - b.ind
 
 function includedTypes(m: Module): string[] {
     const all = [...m.dataIn, ...m.dataOut, ...m.eventIn, ...m.eventOut, ...m.parameters];
-    return [...new Set(all.flatMap((p) => ('datatype' in p.type ? [p.type.datatype] : [])))];
+    return [...new Set(all.flatMap((p) => namedTypeOf(p.type) ?? []))];
 }
 
 const EVENT_DEFAULT = `(void)receiverport; (void)senderport; (void)sendermodule; (void)eventProductionTime; (void)eventReceptionTime;
@@ -283,6 +283,7 @@ export function generateModuleSource(m: Module, priority: number, index: Archite
         #include <stdio.h>
         #include <time.h>
         #include <string.h>
+        ${[...m.dataIn, ...m.dataOut, ...m.eventIn, ...m.eventOut, ...m.parameters].some((p) => cType(p.type) === 'bool') ? '#include <stdbool.h>' : undefined}
         #include "tools.h"
         ${joinToNode(includedTypes(m), (t) => `#include "Shared${t}.h"`, { appendNewLineIfNotEmpty: true })}
 

@@ -1,6 +1,7 @@
 import { expandToNode, joinToNode, toString } from 'langium/generate';
 import type { FunctionPrototype, TypeRef } from '../model/architecture.js';
-import { cType } from './c/c-syntax.js';
+import { cDeclaration, cType, isCArray } from './c/c-syntax.js';
+import { namedTypeOf } from '../model/lookup.js';
 import { blockRegion } from './c/regions.js';
 import { architecturePath } from '@contract-studio/conventions';
 
@@ -11,19 +12,29 @@ export function sharedFunctionPath(name: string): string {
 
 /** `char *`, `long *`, `double *`, `TypeA *`: every argument by pointer (docs/codegen.md "The tree": so that compute functions can assign the locals). */
 export function cPointerType(t: TypeRef): string {
+    // an array argument is a pointer to its first element: `double *` for float[6], `double (*)[3]` for float[3][3]
+    if ('array' in t && isCArray(t.array)) return cDeclaration(t.array, '(*)');
+    if ('array' in t) return `${cType(t.array)} *`;
     return `${cType(t)} *`;
+}
+
+/** The declaration of an argument `name` by pointer. */
+export function cPointerDeclaration(t: TypeRef, name: string): string {
+    if ('array' in t && isCArray(t.array)) return cDeclaration(t.array, `(* ${name})`);
+    return `${cPointerType(t)} ${name}`;
 }
 
 /** The C prototype text of a user function: `int testit(char * arg1, TypeA * arg2)`. */
 export function cFunctionSignature(f: FunctionPrototype): string {
     const ret = f.returns === 'bool' ? 'int' : 'void';
-    const args = f.args.length ? f.args.map((a) => `${cPointerType(a.type)} ${a.name}`).join(', ') : 'void';
+    const args = f.args.length ? f.args.map((a) => cPointerDeclaration(a.type, a.name)).join(', ') : 'void';
     return `${ret} ${f.name}(${args})`;
 }
 
 export function generateSharedFunctionHeader(f: FunctionPrototype): string {
     const guard = `SHARED_FUNCTION_${f.name.toUpperCase()}_H`;
-    const deps = [...new Set(f.args.flatMap((a) => ('datatype' in a.type ? [a.type.datatype] : [])))];
+    const deps = [...new Set(f.args.flatMap((a) => namedTypeOf(a.type) ?? []))];
+    const usesBool = f.args.some((a) => cType(a.type) === 'bool');
     const unused = f.args.map((a) => `(void)${a.name};`).join(' ');
     const body = (unused ? `${unused} //remove once the arguments are used\n` : '') + '//TODO\n' +
         (f.returns === 'bool' ? 'return 0;//return 0 when result is false otherwise must return 1\n' : '');
@@ -32,6 +43,7 @@ export function generateSharedFunctionHeader(f: FunctionPrototype): string {
         #define ${guard}
         #include <stdio.h>
         #include <string.h>
+        ${usesBool ? '#include <stdbool.h>' : undefined}
         #include "tools.h"
         ${joinToNode(deps, (d) => `#include "Shared${d}.h"`, { appendNewLineIfNotEmpty: true })}
 

@@ -1,7 +1,8 @@
 import { expandToNode, joinToNode, toString } from 'langium/generate';
-import type { Datatype, Field } from '../model/architecture.js';
-import { cDeclaration } from './c/c-syntax.js';
-import { blockRegion } from './c/regions.js';
+import type { Datatype, Field, TypeRef } from '../model/architecture.js';
+import { namedTypeOf } from '../model/lookup.js';
+import { cDeclaration, cType } from './c/c-syntax.js';
+import { blockRegion, lines } from './c/regions.js';
 import { architecturePath } from '@contract-studio/conventions';
 
 /** `common/Shared<Type>.h`: the struct and its functions (report §5.1, §8.2), all `static inline`. */
@@ -9,79 +10,157 @@ export function sharedTypePath(name: string): string {
     return architecturePath(`common/Shared${name}.h`);
 }
 
-function kindOf(f: Field): 'long' | 'double' | 'string' | 'struct' {
-    if ('datatype' in f.type) return 'struct';
-    return f.type.primitive === 'int' ? 'long' : f.type.primitive === 'float' ? 'double' : 'string';
+type Kind = 'long' | 'double' | 'string' | 'bool' | 'struct' | 'array';
+
+function kindOf(t: TypeRef): Kind {
+    if ('array' in t) return 'array';
+    if ('datatype' in t || 'enum' in t) return 'struct'; // enumerations have the same functions (shared-enum-header.ts)
+    return t.primitive === 'int' ? 'long' : t.primitive === 'float' ? 'double' : t.primitive;
 }
-const prim = { long: 'int', double: 'float', string: 'string' } as const;
+const prim = { long: 'int', double: 'float', string: 'string', bool: 'bool' } as const;
+
+/** Name of a datatype or enumeration (kind 'struct'). */
+function named(t: TypeRef): string {
+    return 'datatype' in t ? t.datatype : (t as { enum: string }).enum;
+}
+
+/** `for (...) {` over the elements of an array lvalue, and the element lvalue. */
+function loop(lv: string, t: { array: TypeRef; size: number }, depth: number): { open: string; element: string } {
+    const i = `i${depth}`;
+    return { open: `for (unsigned int ${i} = 0; ${i} < ${t.size}; ${i}++)`, element: `${lv}[${i}]` };
+}
+
+function serializeValue(lv: string, t: TypeRef, depth = 0): string {
+    const k = kindOf(t);
+    if (k === 'array') {
+        const l = loop(lv, t as { array: TypeRef; size: number }, depth);
+        return `${l.open} { ${serializeValue(l.element, (t as { array: TypeRef }).array, depth + 1)} }`;
+    }
+    if (k === 'struct') return `size += serialize_${named(t)}(&${lv}, &buffer[size]);`;
+    return `size += extract_${prim[k]}(buffer, size, ${lv});`;
+}
+
+function deserializeValue(lv: string, t: TypeRef, depth = 0): string {
+    const k = kindOf(t);
+    if (k === 'array') {
+        const l = loop(lv, t as { array: TypeRef; size: number }, depth);
+        return `${l.open} { ${deserializeValue(l.element, (t as { array: TypeRef }).array, depth + 1)} }`;
+    }
+    if (k === 'struct') return `size += deserialize_${named(t)}(&${lv}, &buffer[size]);`;
+    if (k === 'string') return `size += fill_string(${lv}, size, buffer);`;
+    return `size += fill_${prim[k]}(&${lv}, size, buffer);`;
+}
 
 function serializeField(f: Field): string {
-    const k = kindOf(f);
-    if (k === 'struct') return `size += serialize_${(f.type as { datatype: string }).datatype}(&arg->${f.name}, &buffer[size]);`;
-    return `size += extract_${prim[k]}(buffer, size, arg->${f.name});`;
+    return serializeValue(`arg->${f.name}`, f.type);
 }
 
 function deserializeField(f: Field): string {
-    const k = kindOf(f);
-    if (k === 'struct') return `size += deserialize_${(f.type as { datatype: string }).datatype}(&arg->${f.name}, &buffer[size]);`;
-    if (k === 'string') return `size += fill_string(arg->${f.name}, size, buffer);`;
-    return `size += fill_${prim[k]}(&arg->${f.name}, size, buffer);`;
+    return deserializeValue(`arg->${f.name}`, f.type);
 }
 
 function setField(f: Field): string {
-    const k = kindOf(f);
-    if (k === 'struct') return `set_${(f.type as { datatype: string }).datatype}(&arg1->${f.name}, &arg2->${f.name});`;
-    if (k === 'string') return `memmove(arg1->${f.name}, arg2->${f.name}, sizeof(arg1->${f.name}));`;
+    const k = kindOf(f.type);
+    if (k === 'struct') return `set_${named(f.type)}(&arg1->${f.name}, &arg2->${f.name});`;
+    if (k === 'string' || k === 'array') return `memmove(arg1->${f.name}, arg2->${f.name}, sizeof(arg1->${f.name}));`;
     return `arg1->${f.name}=arg2->${f.name};`;
 }
 
-function getField(f: Field): string {
-    const k = kindOf(f);
-    if (k === 'struct') return `get_${(f.type as { datatype: string }).datatype}(&tmp.${f.name}, &description[sizeread])`;
-    if (k === 'string') return `get_string(tmp.${f.name}, &description[sizeread])`;
-    return `get_${prim[k]}(&tmp.${f.name}, &description[sizeread])`;
+/** The call parsing one value into lvalue `lv` at `&description[sizeread]` (not for arrays). */
+function getCall(lv: string, t: TypeRef): string {
+    const k = kindOf(t);
+    if (k === 'struct') return `get_${named(t)}(&${lv}, &description[sizeread])`;
+    if (k === 'string') return `get_string(${lv}, &description[sizeread])`;
+    return `get_${prim[k as 'long' | 'double' | 'bool']}(&${lv}, &description[sizeread])`;
+}
+
+/** Statements parsing a value of type `t` into `lv` and advancing `sizeread`; arrays are written `{v1, v2, ...}`. */
+export function getValue(lv: string, t: TypeRef, depth = 0): string {
+    if (!('array' in t)) return `if ((res = ${getCall(lv, t)}) == -1) return -1;\nsizeread += res;`;
+    const l = loop(lv, t, depth);
+    const marker = (c: string) => `symbol = ${c};\nif ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;\nsizeread += res;`;
+    const inner = `${getValue(l.element, t.array, depth + 1)}\n${marker(`i${depth} + 1 < ${t.size} ? ',' : '}'`)}`;
+    return `${marker("'{'")}\n${l.open} {\n${indent(inner)}\n}`;
+}
+
+function indent(text: string): string {
+    return text.split('\n').map((line) => `    ${line}`).join('\n');
+}
+
+function printValue(lv: string, t: TypeRef, depth = 0): string {
+    switch (kindOf(t)) {
+        case 'array': {
+            const l = loop(lv, t as { array: TypeRef; size: number }, depth);
+            return `printf("["); ${l.open} { if (i${depth} > 0) printf(","); ${printValue(l.element, (t as { array: TypeRef }).array, depth + 1)} } printf("]");`;
+        }
+        case 'struct': return `print_${named(t)}(&${lv});`;
+        case 'string': return `printf("\\"%s\\"", ${lv});`;
+        case 'long': return `printf("%ld", ${lv});`;
+        case 'double': return `printf("%lf", ${lv});`;
+        case 'bool': return `printf("%s", ${lv} ? "true" : "false");`;
+    }
 }
 
 function printField(f: Field): string {
-    switch (kindOf(f)) {
+    switch (kindOf(f.type)) {
         case 'struct':
-            return `printf("%s : ", "${f.name}"); print_${(f.type as { datatype: string }).datatype}(&arg->${f.name}); printf(" ; ");`;
+            return `printf("%s : ", "${f.name}"); print_${named(f.type)}(&arg->${f.name}); printf(" ; ");`;
+        case 'array':
+            return `printf("%s : ", "${f.name}"); ${printValue(`arg->${f.name}`, f.type)} printf(" ; ");`;
         case 'string':
             return `printf("%s : %s ; ", "${f.name}", arg->${f.name});`;
         case 'long':
             return `printf("%s : %ld ; ", "${f.name}", arg->${f.name});`;
         case 'double':
             return `printf("%s : %lf ; ", "${f.name}", arg->${f.name});`;
+        case 'bool':
+            return `printf("%s : %s ; ", "${f.name}", arg->${f.name} ? "true" : "false");`;
     }
 }
 
-/** The C truth value of `arg1->x OP arg2->x` for every kind of field; OP one of == < >. */
-function compareField(f: Field, op: '==' | '<' | '>'): string {
+/** The C truth value of `a OP b` for values of type `t` (not arrays); OP one of == < >. */
+function compareValues(a: string, b: string, t: TypeRef, op: '==' | '<' | '>'): string {
     const fn = { '==': 'eq', '<': 'inf', '>': 'sup' }[op];
-    switch (kindOf(f)) {
+    switch (kindOf(t)) {
         case 'struct':
-            return `${fn}_${(f.type as { datatype: string }).datatype}(&arg1->${f.name}, &arg2->${f.name})`;
+            return `${fn}_${named(t)}(&${a}, &${b})`;
         case 'string':
-            return `strcmp(arg1->${f.name}, arg2->${f.name}) ${op} 0`;
+            return `strcmp(${a}, ${b}) ${op} 0`;
         default:
-            return `arg1->${f.name} ${op} arg2->${f.name}`;
+            return `${a} ${op} ${b}`;
     }
+}
+
+/** `if (!(a.x OP b.x)) return 0;` for a field; arrays: for every element (as the runtime compares arrays). */
+function compareField(f: Field, op: '==' | '<' | '>'): string {
+    let a = `arg1->${f.name}`;
+    let b = `arg2->${f.name}`;
+    let t = f.type;
+    const loops: string[] = [];
+    while ('array' in t) {
+        const i = `i${loops.length}`;
+        loops.push(`for (unsigned int ${i} = 0; ${i} < ${t.size}; ${i}++) `);
+        a += `[${i}]`;
+        b += `[${i}]`;
+        t = t.array;
+    }
+    return `${loops.join('')}if (!(${compareValues(a, b, t, op)})) return 0;\n`;
 }
 
 /** Default comparison: true when the relation holds for every field (report §8.2). */
 function comparisonBody(fields: Field[], op: '==' | '<' | '>'): string {
     if (fields.length === 0) return `(void)arg1; (void)arg2;\nreturn ${op === '==' ? 1 : 0};\n`;
-    return fields.map((f) => `if (!(${compareField(f, op)})) return 0;\n`).join('') + 'return 1;\n';
+    return fields.map((f) => compareField(f, op)).join('') + 'return 1;\n';
 }
 
 export function generateSharedTypeHeader(type: Datatype): string {
     const T = type.name;
     const guard = `SHARED_${T.toUpperCase()}_H`;
-    const deps = [...new Set(type.fields.flatMap((f) => ('datatype' in f.type ? [f.type.datatype] : [])))];
+    const deps = [...new Set(type.fields.flatMap((f) => namedTypeOf(f.type) ?? []))];
+    const usesBool = type.fields.some((f) => cType(f.type) === 'bool');
     const members = type.fields.length > 0 ? type.fields.map((f) => `${cDeclaration(f.type, f.name)};`) : ['char _empty; /* a C struct needs one member */'];
     const getFields = type.fields.map((f, i) => expandToNode`
-        if ((res = ${getField(f)}) == -1) return -1;
-        sizeread += res;
+        ${lines(getValue(`tmp.${f.name}`, f.type))}
         symbol = '${i === type.fields.length - 1 ? '}' : ','}';
         if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
         sizeread += res;
@@ -91,6 +170,7 @@ export function generateSharedTypeHeader(type: Datatype): string {
         #define ${guard}
         #include <stdio.h>
         #include <string.h>
+        ${usesBool ? '#include <stdbool.h>' : undefined}
         #include "tools.h"
         ${joinToNode(deps, (d) => `#include "Shared${d}.h"`, { appendNewLineIfNotEmpty: true })}
 

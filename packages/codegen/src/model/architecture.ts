@@ -3,18 +3,30 @@
  * Built from Langium documents by `from-langium.ts`; tests and benchmarks may build it directly.
  */
 
-export type PrimitiveName = 'int' | 'float' | 'string';
+export type PrimitiveName = 'int' | 'float' | 'string' | 'bool';
 
-/** A Cactal type: a primitive or a datatype (by name). */
-export type TypeRef = { primitive: PrimitiveName } | { datatype: string };
+/**
+ * A Cactal type: a primitive, a datatype or an enumeration (by name), or (extension) a fixed-size
+ * array `float[6]` = `{ array: float, size: 6 }`; `float[3][4]` is an array of 3 `float[4]`.
+ */
+export type TypeRef = { primitive: PrimitiveName } | { datatype: string } | { enum: string } | { array: TypeRef; size: number };
 
-/** A value as written in Cactal. `var` is a variable with a field path (`temp_message.value`, `ord_schema`). */
+/** A step of a path: a field name, or an array index (constants folded). */
+export type PathSegment = string | number;
+
+/**
+ * A value as written in Cactal. `var` is a variable with a path (`temp_message.value`,
+ * `scan.ranges[90]`, `ord_schema`). Named constants are replaced by their values; `{...}` is also
+ * the value of an array; `enum` is `Mode.AUTO`.
+ */
 export type Value =
     | { kind: 'int'; value: number }
     | { kind: 'real'; value: number }
     | { kind: 'string'; value: string }
+    | { kind: 'bool'; value: boolean }
+    | { kind: 'enum'; enum: string; member: string }
     | { kind: 'struct'; elements: Value[] }
-    | { kind: 'var'; name: string; path: string[] };
+    | { kind: 'var'; name: string; path: PathSegment[] };
 
 export interface Field {
     name: string;
@@ -25,6 +37,19 @@ export interface Field {
 export interface Datatype {
     name: string;
     fields: Field[];
+}
+
+/** `enum Mode { IDLE, TELEOP, AUTO }` (extension): members in order, values 0, 1, 2. */
+export interface EnumDecl {
+    name: string;
+    members: string[];
+}
+
+/** `const int NJOINTS = 6;` (extension), value folded. */
+export interface ConstantDecl {
+    name: string;
+    type: TypeRef;
+    value: Value;
 }
 
 export interface FunctionPrototype {
@@ -90,7 +115,7 @@ export type Test =
 /** `target.path = value` (extractions, notify assignments). */
 export interface Assignment {
     target: string;
-    path: string[];
+    path: PathSegment[];
     value: Value;
 }
 
@@ -135,6 +160,9 @@ export interface Supervisor {
 
 export interface Architecture {
     datatypes: Datatype[];
+    /** Extensions; absent means none. */
+    enums?: EnumDecl[];
+    constants?: ConstantDecl[];
     functions: FunctionPrototype[];
     modules: Module[];
     schemas: Schema[];

@@ -15,15 +15,46 @@ import {
     type Condition as AstCondition, type Event as AstEvent, type Action as AstAction, type Persistence as AstPersistence,
     type Extraction, type ParameterSetting, type TestOperand, type Test as AstTest, type Module as AstModule,
     type Supervisor as AstSupervisor, type Schema as AstSchema, type SupervisionFunction as AstFunction,
+    isBoolLiteral, isConstant, isEnumType, isFieldSegment, constantValue, segmentIndex, typeOf, typeOfVariableRef,
+    type CactalType, type ConstantValue, type PathSegment as AstPathSegment,
 } from '@contract-studio/language';
 import type {
-    Action, Architecture, Assignment, Condition, Datatype, Event, FunctionPrototype, Module, NamedValue, ParamSetting,
+    Action, Architecture, Assignment, Condition, Datatype, Event, PathSegment, FunctionPrototype, Module, NamedValue, ParamSetting,
     Persistence, PortDecl, Schema, Supervisor, SupervisionFunction, Test, TypeRef, Value,
 } from './architecture.js';
 
+/** A language type as the generators see it (unknown parts keep their written names). */
+function fromCactalType(t: CactalType): TypeRef | undefined {
+    switch (t.kind) {
+        case 'primitive': return t.name === 'void' ? undefined : { primitive: t.name };
+        case 'struct': return { datatype: t.datatype.name };
+        case 'enum': return { enum: t.enumType.name };
+        case 'array': {
+            const element = fromCactalType(t.element);
+            return element ? { array: element, size: t.size } : undefined;
+        }
+        default: return undefined;
+    }
+}
+
 function typeRef(t: AstTypeRef | undefined): TypeRef {
-    if (t?.primitive === 'int' || t?.primitive === 'float' || t?.primitive === 'string') return { primitive: t.primitive };
-    return { datatype: t?.datatype?.$refText ?? '?' };
+    if (t?.primitive === 'int' || t?.primitive === 'float' || t?.primitive === 'string' || t?.primitive === 'bool') {
+        if (t.dimensions.length === 0) return { primitive: t.primitive };
+    }
+    return fromCactalType(typeOf(t)) ?? { datatype: t?.datatype?.$refText ?? '?' };
+}
+
+/** A constant of the language's value model as a written value. */
+function fromConstant(c: ConstantValue): Value {
+    switch (c.kind) {
+        case 'int': return { kind: 'int', value: c.value };
+        case 'float': return { kind: 'real', value: c.value };
+        case 'string': return { kind: 'string', value: c.value };
+        case 'bool': return { kind: 'bool', value: c.value };
+        case 'enum': return { kind: 'enum', enum: c.enumType.name, member: c.member };
+        case 'array': return { kind: 'struct', elements: c.elements.map(fromConstant) };
+        case 'struct': return { kind: 'struct', elements: c.fields.map((f) => fromConstant(f.value)) };
+    }
 }
 
 function value(v: AstValue | TestOperand | undefined): Value | undefined {
@@ -31,9 +62,26 @@ function value(v: AstValue | TestOperand | undefined): Value | undefined {
     if (isIntLiteral(v)) return { kind: 'int', value: Number(v.value) };
     if (isRealLiteral(v)) return { kind: 'real', value: Number(v.value) };
     if (isStringLiteral(v)) return { kind: 'string', value: v.value };
+    if (isBoolLiteral(v)) return { kind: 'bool', value: v.value };
     if (isStructValue(v)) return { kind: 'struct', elements: v.elements.map((e) => value(e) ?? { kind: 'int', value: 0 }) };
-    if (isVariableRef(v)) return { kind: 'var', name: v.ordSchema ? 'ord_schema' : (v.variable?.$refText ?? '?'), path: v.path.map((s) => s.field?.$refText ?? '?') };
+    if (isVariableRef(v)) {
+        const head = v.variable?.ref;
+        if (isEnumType(head)) {
+            const first = v.path[0];
+            return { kind: 'enum', enum: head.name, member: isFieldSegment(first) ? (first.field?.$refText ?? '?') : '?' };
+        }
+        if (isConstant(head)) {
+            // named constants are folded: the generated C holds their values
+            const c = constantValue(v, typeOfVariableRef(v));
+            return c ? fromConstant(c) : { kind: 'int', value: 0 };
+        }
+        return { kind: 'var', name: v.ordSchema ? 'ord_schema' : (v.variable?.$refText ?? '?'), path: pathOf(v.path) };
+    }
     return undefined;
+}
+
+function pathOf(path: AstPathSegment[]): PathSegment[] {
+    return path.map((s) => isFieldSegment(s) ? (s.field?.$refText ?? '?') : (segmentIndex(s) ?? 0));
 }
 
 const indexOf = (ref: { $refText?: string } | undefined): number => Number(ref?.$refText ?? -1);
@@ -104,7 +152,7 @@ function persistence(p: AstPersistence | undefined): Persistence {
 function assignment(x: Extraction): Assignment {
     return {
         target: x.target.ordSchema ? 'ord_schema' : (x.target.variable?.$refText ?? '?'),
-        path: x.target.path.map((s) => s.field?.$refText ?? '?'),
+        path: pathOf(x.target.path),
         value: value(x.value) ?? { kind: 'int', value: 0 },
     };
 }
@@ -177,6 +225,11 @@ export function architectureFromModels(models: Model[]): Architecture {
     for (const model of models) {
         for (const e of model.elements as AstNode[]) {
             if (isDataType(e)) arch.datatypes.push({ name: e.name, fields: e.fields.map(named) } satisfies Datatype);
+            else if (isEnumType(e)) (arch.enums ??= []).push({ name: e.name, members: e.members.map((m) => m.name) });
+            else if (isConstant(e)) {
+                const c = constantValue(e.value, typeOf(e.type));
+                if (c) (arch.constants ??= []).push({ name: e.name, type: typeRef(e.type), value: fromConstant(c) });
+            }
             else if (isFunctionPrototype(e)) arch.functions.push({
                 name: e.name,
                 returns: e.returnType.primitive === 'bool' ? 'bool' : 'void',

@@ -50,13 +50,16 @@ export type CactalKeywordNames =
     | "communications"
     | "compute"
     | "configuration"
+    | "const"
     | "critical"
     | "data"
     | "datatype"
     | "duration"
     | "elapsed"
     | "endof"
+    | "enum"
     | "event"
+    | "false"
     | "float"
     | "flows"
     | "function"
@@ -87,6 +90,7 @@ export type CactalKeywordNames =
     | "subscribe"
     | "supervisor"
     | "synchronous"
+    | "true"
     | "void"
     | "{"
     | "|"
@@ -155,6 +159,39 @@ export const ActivateSupervisor = {
 
 export function isActivateSupervisor(item: unknown): item is ActivateSupervisor {
     return reflection.isInstance(item, ActivateSupervisor.$type);
+}
+
+/** `[6]` or `[NJOINTS]`: an array size, a positive int literal or an int constant. */
+export interface ArrayDimension extends langium.AstNode {
+    readonly $container: TypeRef;
+    readonly $type: 'ArrayDimension';
+    constant?: langium.Reference<Constant>;
+    size?: number;
+}
+
+export const ArrayDimension = {
+    $type: 'ArrayDimension',
+    constant: 'constant',
+    size: 'size'
+} as const;
+
+export function isArrayDimension(item: unknown): item is ArrayDimension {
+    return reflection.isInstance(item, ArrayDimension.$type);
+}
+
+export interface BoolLiteral extends langium.AstNode {
+    readonly $container: Compute | Constant | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
+    readonly $type: 'BoolLiteral';
+    value: boolean;
+}
+
+export const BoolLiteral = {
+    $type: 'BoolLiteral',
+    value: 'value'
+} as const;
+
+export function isBoolLiteral(item: unknown): item is BoolLiteral {
+    return reflection.isInstance(item, BoolLiteral.$type);
 }
 
 export interface Clause extends langium.AstNode {
@@ -227,6 +264,26 @@ export const Condition = {
 
 export function isCondition(item: unknown): item is Condition {
     return reflection.isInstance(item, Condition.$type);
+}
+
+/** Extension of the report: `const int NJOINTS = 6;` (array sizes, values, tests). */
+export interface Constant extends langium.AstNode {
+    readonly $container: Model;
+    readonly $type: 'Constant';
+    name: string;
+    type: TypeRef;
+    value: Value;
+}
+
+export const Constant = {
+    $type: 'Constant',
+    name: 'name',
+    type: 'type',
+    value: 'value'
+} as const;
+
+export function isConstant(item: unknown): item is Constant {
+    return reflection.isInstance(item, Constant.$type);
 }
 
 /** `MSA:0 -> MSC:0 * 1;` (periodicity defaults to 1 when `* k` is omitted). */
@@ -327,7 +384,7 @@ export function isElapsedEvent(item: unknown): item is ElapsedEvent {
     return reflection.isInstance(item, ElapsedEvent.$type);
 }
 
-export type Element = DataType | FunctionPrototype | Module | SchedulerConfiguration | Schema | Supervisor;
+export type Element = Constant | DataType | EnumType | FunctionPrototype | Module | SchedulerConfiguration | Schema | Supervisor;
 
 export const Element = {
     $type: 'Element'
@@ -352,6 +409,39 @@ export const EndofEvent = {
 
 export function isEndofEvent(item: unknown): item is EndofEvent {
     return reflection.isInstance(item, EndofEvent.$type);
+}
+
+export interface EnumMember extends langium.AstNode {
+    readonly $container: EnumType;
+    readonly $type: 'EnumMember';
+    name: string;
+}
+
+export const EnumMember = {
+    $type: 'EnumMember',
+    name: 'name'
+} as const;
+
+export function isEnumMember(item: unknown): item is EnumMember {
+    return reflection.isInstance(item, EnumMember.$type);
+}
+
+/** Extension of the report: `enum Mode { IDLE, TELEOP, AUTO }` (values 0, 1, 2; written `Mode.AUTO`). */
+export interface EnumType extends langium.AstNode {
+    readonly $container: Model;
+    readonly $type: 'EnumType';
+    members: Array<EnumMember>;
+    name: string;
+}
+
+export const EnumType = {
+    $type: 'EnumType',
+    members: 'members',
+    name: 'name'
+} as const;
+
+export function isEnumType(item: unknown): item is EnumType {
+    return reflection.isInstance(item, EnumType.$type);
 }
 
 export interface EqualityTest extends langium.AstNode {
@@ -476,10 +566,11 @@ export function isField(item: unknown): item is Field {
     return reflection.isInstance(item, Field.$type);
 }
 
+/** `.value` (a field of a datatype) or `.AUTO` (a member of an enumeration). */
 export interface FieldSegment extends langium.AstNode {
     readonly $container: VariableRef;
     readonly $type: 'FieldSegment';
-    field: langium.Reference<Field>;
+    field: langium.Reference<Member>;
 }
 
 export const FieldSegment = {
@@ -595,8 +686,26 @@ export function isImport(item: unknown): item is Import {
     return reflection.isInstance(item, Import.$type);
 }
 
+/** `[90]` or `[NJOINTS]`: an element of an array (a constant index, checked against the size). */
+export interface IndexSegment extends langium.AstNode {
+    readonly $container: VariableRef;
+    readonly $type: 'IndexSegment';
+    constant?: langium.Reference<Constant>;
+    index?: number;
+}
+
+export const IndexSegment = {
+    $type: 'IndexSegment',
+    constant: 'constant',
+    index: 'index'
+} as const;
+
+export function isIndexSegment(item: unknown): item is IndexSegment {
+    return reflection.isInstance(item, IndexSegment.$type);
+}
+
 export interface IntLiteral extends langium.AstNode {
-    readonly $container: Compute | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
+    readonly $container: Compute | Constant | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
     readonly $type: 'IntLiteral';
     value: number;
 }
@@ -642,6 +751,17 @@ export const LocalVariable = {
 
 export function isLocalVariable(item: unknown): item is LocalVariable {
     return reflection.isInstance(item, LocalVariable.$type);
+}
+
+/** What a `.name` segment may name. */
+export type Member = EnumMember | Field;
+
+export const Member = {
+    $type: 'Member'
+} as const;
+
+export function isMember(item: unknown): item is Member {
+    return reflection.isInstance(item, Member.$type);
 }
 
 export interface Model extends langium.AstNode {
@@ -772,6 +892,17 @@ export function isName(item: unknown): item is Name {
     return item === 'data' || item === 'flows' || item === 'graph' || item === 'realtime' || item === 'modules' || item === 'schemas' || item === 'communications' || item === 'configuration' || item === 'local' || item === 'rules' || item === 'started' || item === 'endof' || item === 'duration' || item === 'elapsed' || item === 'infinite' || item === 'resttime' || item === 'critical' || item === 'periodic' || item === 'event' || item === 'scheduling' || item === 'parameters' || item === 'in' || item === 'out' || item === 'module' || item === 'schema' || item === 'compute' || item === 'notify' || item === 'subscribe' || item === 'parameterize' || item === 'activate' || item === 'supervisor' || item === 'scheduler' || item === 'synchronous' || item === 'asynchronous' || item === 'function' || item === 'datatype' || item === 'import' || (typeof item === 'string' && (/[A-Za-z_][A-Za-z0-9_]*/.test(item)));
 }
 
+/** Types named by the user: datatypes (structs) and enumerations. */
+export type NamedType = DataType | EnumType;
+
+export const NamedType = {
+    $type: 'NamedType'
+} as const;
+
+export function isNamedType(item: unknown): item is NamedType {
+    return reflection.isInstance(item, NamedType.$type);
+}
+
 /** `notify :1 (failure_message_type = temp_mess_type)` on an out event port of the supervisor. */
 export interface Notify extends langium.AstNode {
     readonly $container: Rule;
@@ -861,6 +992,16 @@ export function isParameterSetting(item: unknown): item is ParameterSetting {
     return reflection.isInstance(item, ParameterSetting.$type);
 }
 
+export type PathSegment = FieldSegment | IndexSegment;
+
+export const PathSegment = {
+    $type: 'PathSegment'
+} as const;
+
+export function isPathSegment(item: unknown): item is PathSegment {
+    return reflection.isInstance(item, PathSegment.$type);
+}
+
 export interface Persistence extends langium.AstNode {
     readonly $container: DurationEvent | ElapsedEvent | EndofEvent | ModuleEvent | StartedEvent;
     readonly $type: 'Persistence';
@@ -930,7 +1071,7 @@ export function isPrimitiveType(item: unknown): item is PrimitiveType {
 }
 
 export interface RealLiteral extends langium.AstNode {
-    readonly $container: Compute | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
+    readonly $container: Compute | Constant | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
     readonly $type: 'RealLiteral';
     value: number;
 }
@@ -1190,7 +1331,7 @@ export function isStartedEvent(item: unknown): item is StartedEvent {
 }
 
 export interface StringLiteral extends langium.AstNode {
-    readonly $container: Compute | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
+    readonly $container: Compute | Constant | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
     readonly $type: 'StringLiteral';
     value: string;
 }
@@ -1205,7 +1346,7 @@ export function isStringLiteral(item: unknown): item is StringLiteral {
 }
 
 export interface StructValue extends langium.AstNode {
-    readonly $container: Compute | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
+    readonly $container: Compute | Constant | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
     readonly $type: 'StructValue';
     elements: Array<Value>;
 }
@@ -1306,7 +1447,7 @@ export function isTestClause(item: unknown): item is TestClause {
     return reflection.isInstance(item, TestClause.$type);
 }
 
-export type TestOperand = IntLiteral | RealLiteral | StringLiteral | StructValue | VariableRef;
+export type TestOperand = BoolLiteral | IntLiteral | RealLiteral | StringLiteral | StructValue | VariableRef;
 
 export const TestOperand = {
     $type: 'TestOperand'
@@ -1349,16 +1490,19 @@ export function isTimeValue(item: unknown): item is TimeValue {
     return reflection.isInstance(item, TimeValue.$type);
 }
 
+/** `int`, `TypeA`, `Mode`, and (extension) arrays `float[6]`, `float[3][3]`, `float[NJOINTS]` (outer size first, as in C). */
 export interface TypeRef extends langium.AstNode {
-    readonly $container: Field | FunctionArgument | FunctionParameter | FunctionPrototype | LocalVariable | Parameter | Port | SchemaParameter;
+    readonly $container: Constant | Field | FunctionArgument | FunctionParameter | FunctionPrototype | LocalVariable | Parameter | Port | SchemaParameter;
     readonly $type: 'TypeRef';
-    datatype?: langium.Reference<DataType>;
+    datatype?: langium.Reference<NamedType>;
+    dimensions: Array<ArrayDimension>;
     primitive?: PrimitiveType;
 }
 
 export const TypeRef = {
     $type: 'TypeRef',
     datatype: 'datatype',
+    dimensions: 'dimensions',
     primitive: 'primitive'
 } as const;
 
@@ -1366,7 +1510,8 @@ export function isTypeRef(item: unknown): item is TypeRef {
     return reflection.isInstance(item, TypeRef.$type);
 }
 
-export type Value = IntLiteral | RealLiteral | StringLiteral | StructValue | VariableRef;
+/** `{...}` is a structured value for a datatype and the elements of an array; `Mode.AUTO` and `NJOINTS` are VariableRefs. */
+export type Value = BoolLiteral | IntLiteral | RealLiteral | StringLiteral | StructValue | VariableRef;
 
 export const Value = {
     $type: 'Value'
@@ -1374,6 +1519,17 @@ export const Value = {
 
 export function isValue(item: unknown): item is Value {
     return reflection.isInstance(item, Value.$type);
+}
+
+/** What the head of a VariableRef may name: a variable, a constant or an enumeration. */
+export type ValueSymbol = Constant | EnumType | Variable;
+
+export const ValueSymbol = {
+    $type: 'ValueSymbol'
+} as const;
+
+export function isValueSymbol(item: unknown): item is ValueSymbol {
+    return reflection.isInstance(item, ValueSymbol.$type);
 }
 
 /** Everything a VariableRef may name. */
@@ -1387,13 +1543,17 @@ export function isVariable(item: unknown): item is Variable {
     return reflection.isInstance(item, Variable.$type);
 }
 
-/** A variable with an optional field path: `temp_message.value`, or the implicit `ord_schema`. */
+/**
+ * A variable with an optional path of fields and (extension) constant array indexes:
+ * `temp_message.value`, `scan.ranges[90]`, or the implicit `ord_schema`. The same form names
+ * constants (`NJOINTS`) and enumeration members (`Mode.AUTO`: the enumeration, then its member).
+ */
 export interface VariableRef extends langium.AstNode {
-    readonly $container: Compute | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
+    readonly $container: Compute | Constant | EqualityTest | Extraction | Field | FunctionArgumentAssignment | FunctionParameter | FunctionTest | LocalVariable | Parameter | ParameterSetting | Port | RelationalTest | SchemaArgument | SchemaParameter | StructValue;
     readonly $type: 'VariableRef';
     ordSchema: boolean;
-    path: Array<FieldSegment>;
-    variable?: langium.Reference<Variable>;
+    path: Array<PathSegment>;
+    variable?: langium.Reference<ValueSymbol>;
 }
 
 export const VariableRef = {
@@ -1412,11 +1572,14 @@ export type CactalAstType = {
     ActivateModule: ActivateModule
     ActivateSchema: ActivateSchema
     ActivateSupervisor: ActivateSupervisor
+    ArrayDimension: ArrayDimension
+    BoolLiteral: BoolLiteral
     Clause: Clause
     Communication: Communication
     CommunicationsBlock: CommunicationsBlock
     Compute: Compute
     Condition: Condition
+    Constant: Constant
     DataCommunication: DataCommunication
     DataFlowsBlock: DataFlowsBlock
     DataType: DataType
@@ -1424,6 +1587,8 @@ export type CactalAstType = {
     ElapsedEvent: ElapsedEvent
     Element: Element
     EndofEvent: EndofEvent
+    EnumMember: EnumMember
+    EnumType: EnumType
     EqualityTest: EqualityTest
     Event: Event
     EventCommunication: EventCommunication
@@ -1438,20 +1603,24 @@ export type CactalAstType = {
     FunctionPrototype: FunctionPrototype
     FunctionTest: FunctionTest
     Import: Import
+    IndexSegment: IndexSegment
     IntLiteral: IntLiteral
     LocalBlock: LocalBlock
     LocalVariable: LocalVariable
+    Member: Member
     Model: Model
     Module: Module
     ModuleBlock: ModuleBlock
     ModuleEvent: ModuleEvent
     ModuleInstance: ModuleInstance
     ModulesBlock: ModulesBlock
+    NamedType: NamedType
     Notify: Notify
     Parameter: Parameter
     ParameterSetting: ParameterSetting
     Parameterize: Parameterize
     ParametersBlock: ParametersBlock
+    PathSegment: PathSegment
     Persistence: Persistence
     Port: Port
     Precedence: Precedence
@@ -1483,6 +1652,7 @@ export type CactalAstType = {
     TimeValue: TimeValue
     TypeRef: TypeRef
     Value: Value
+    ValueSymbol: ValueSymbol
     Variable: Variable
     VariableRef: VariableRef
 }
@@ -1540,6 +1710,29 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
             },
             superTypes: [Action.$type]
         },
+        ArrayDimension: {
+            name: ArrayDimension.$type,
+            properties: {
+                constant: {
+                    name: ArrayDimension.constant,
+                    referenceType: Constant.$type
+                },
+                size: {
+                    name: ArrayDimension.size
+                }
+            },
+            superTypes: []
+        },
+        BoolLiteral: {
+            name: BoolLiteral.$type,
+            properties: {
+                value: {
+                    name: BoolLiteral.value,
+                    defaultValue: false
+                }
+            },
+            superTypes: [TestOperand.$type, Value.$type]
+        },
         Clause: {
             name: Clause.$type,
             properties: {
@@ -1590,6 +1783,21 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
             },
             superTypes: []
         },
+        Constant: {
+            name: Constant.$type,
+            properties: {
+                name: {
+                    name: Constant.name
+                },
+                type: {
+                    name: Constant.type
+                },
+                value: {
+                    name: Constant.value
+                }
+            },
+            superTypes: [Element.$type, ValueSymbol.$type]
+        },
         DataCommunication: {
             name: DataCommunication.$type,
             properties: {
@@ -1636,7 +1844,7 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
                     name: DataType.name
                 }
             },
-            superTypes: [Element.$type]
+            superTypes: [Element.$type, NamedType.$type]
         },
         DurationEvent: {
             name: DurationEvent.$type,
@@ -1684,6 +1892,28 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
                 }
             },
             superTypes: [Event.$type]
+        },
+        EnumMember: {
+            name: EnumMember.$type,
+            properties: {
+                name: {
+                    name: EnumMember.name
+                }
+            },
+            superTypes: [Member.$type]
+        },
+        EnumType: {
+            name: EnumType.$type,
+            properties: {
+                members: {
+                    name: EnumType.members,
+                    defaultValue: []
+                },
+                name: {
+                    name: EnumType.name
+                }
+            },
+            superTypes: [Element.$type, NamedType.$type, ValueSymbol.$type]
         },
         EqualityTest: {
             name: EqualityTest.$type,
@@ -1772,17 +2002,17 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
                     name: Field.value
                 }
             },
-            superTypes: []
+            superTypes: [Member.$type]
         },
         FieldSegment: {
             name: FieldSegment.$type,
             properties: {
                 field: {
                     name: FieldSegment.field,
-                    referenceType: Field.$type
+                    referenceType: Member.$type
                 }
             },
-            superTypes: []
+            superTypes: [PathSegment.$type]
         },
         FunctionArgument: {
             name: FunctionArgument.$type,
@@ -1863,6 +2093,19 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
             },
             superTypes: []
         },
+        IndexSegment: {
+            name: IndexSegment.$type,
+            properties: {
+                constant: {
+                    name: IndexSegment.constant,
+                    referenceType: Constant.$type
+                },
+                index: {
+                    name: IndexSegment.index
+                }
+            },
+            superTypes: [PathSegment.$type]
+        },
         IntLiteral: {
             name: IntLiteral.$type,
             properties: {
@@ -1896,6 +2139,12 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
                 }
             },
             superTypes: [Variable.$type]
+        },
+        Member: {
+            name: Member.$type,
+            properties: {
+            },
+            superTypes: []
         },
         Model: {
             name: Model.$type,
@@ -1989,6 +2238,12 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
             },
             superTypes: [SchemaBlock.$type]
         },
+        NamedType: {
+            name: NamedType.$type,
+            properties: {
+            },
+            superTypes: []
+        },
         Notify: {
             name: Notify.$type,
             properties: {
@@ -2057,6 +2312,12 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
                 }
             },
             superTypes: [ModuleBlock.$type]
+        },
+        PathSegment: {
+            name: PathSegment.$type,
+            properties: {
+            },
+            superTypes: []
         },
         Persistence: {
             name: Persistence.$type,
@@ -2420,7 +2681,11 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
             properties: {
                 datatype: {
                     name: TypeRef.datatype,
-                    referenceType: DataType.$type
+                    referenceType: NamedType.$type
+                },
+                dimensions: {
+                    name: TypeRef.dimensions,
+                    defaultValue: []
                 },
                 primitive: {
                     name: TypeRef.primitive
@@ -2434,11 +2699,17 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
             },
             superTypes: []
         },
+        ValueSymbol: {
+            name: ValueSymbol.$type,
+            properties: {
+            },
+            superTypes: []
+        },
         Variable: {
             name: Variable.$type,
             properties: {
             },
-            superTypes: []
+            superTypes: [ValueSymbol.$type]
         },
         VariableRef: {
             name: VariableRef.$type,
@@ -2453,7 +2724,7 @@ export class CactalAstReflection extends langium.AbstractAstReflection {
                 },
                 variable: {
                     name: VariableRef.variable,
-                    referenceType: Variable.$type
+                    referenceType: ValueSymbol.$type
                 }
             },
             superTypes: [TestOperand.$type, Value.$type]

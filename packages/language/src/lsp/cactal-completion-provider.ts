@@ -7,7 +7,7 @@
 import { AstUtils, GrammarAST, stream, type AstNode, type AstNodeDescription, type AstNodeDescriptionProvider, type MaybePromise, type ReferenceInfo, type Stream } from 'langium';
 import { DefaultCompletionProvider, type CompletionAcceptor, type CompletionContext, type CompletionValueItem } from 'langium/lsp';
 import { CompletionItemKind, InsertTextFormat } from 'vscode-languageserver-protocol';
-import { isModule, isParameter, isPort, isSupervisor } from '../generated/ast.js';
+import { isModule, isParameter, isEnumMember, isPort, isSupervisor } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { portKind, portsOfKind, type PortDirection, type PortKind } from '../model/ports.js';
 import { typeRefText } from '../model/types.js';
@@ -113,6 +113,16 @@ export class CactalCompletionProvider extends DefaultCompletionProvider {
                 kind: CompletionItemKind.Field,
                 detail: `parameter :${node.index} ${typeRefText(node.type)} ${node.name}`,
                 sortText: String(node.index).padStart(6, '0')
+            };
+        }
+        if (isEnumMember(node)) {
+            const owner = node.$container;
+            const index = owner.members.indexOf(node);
+            return {
+                nodeDescription: description,
+                kind: CompletionItemKind.EnumMember,
+                detail: `${owner.name}.${node.name} (member ${index} of ${owner.name})`,
+                sortText: String(index).padStart(6, '0')
             };
         }
         return super.createReferenceCompletionItem(description, refInfo, context);

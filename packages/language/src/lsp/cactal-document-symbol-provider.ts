@@ -7,7 +7,7 @@ import { GrammarUtils, type AstNode, type LangiumDocument } from 'langium';
 import type { DocumentSymbolProvider } from 'langium/lsp';
 import { SymbolKind, type DocumentSymbol } from 'vscode-languageserver-types';
 import {
-    isDataCommunication, isDataType, isFunctionPrototype, isModule, isSchedulerConfiguration, isSchema, isSupervisor,
+    isConstant, isDataCommunication, isDataType, isEnumType, isFunctionPrototype, isModule, isSchedulerConfiguration, isSchema, isSupervisor,
     type Communication, type DataType, type FunctionPrototype, type Model, type Module, type Port, type Schema,
     type SchedulerConfiguration, type Supervisor, type SupervisionFunction
 } from '../generated/ast.js';
@@ -21,6 +21,11 @@ export class CactalDocumentSymbolProvider implements DocumentSymbolProvider {
         const model = document.parseResult.value as Model;
         return model.elements.flatMap((element) => {
             if (isDataType(element)) return this.symbol(element, element.name, SymbolKind.Struct, 'datatype', this.fields(element));
+            if (isEnumType(element)) {
+                return this.symbol(element, element.name, SymbolKind.Enum, 'enum',
+                    element.members.flatMap((m, i) => this.symbol(m, m.name, SymbolKind.EnumMember, String(i))));
+            }
+            if (isConstant(element)) return this.symbol(element, element.name, SymbolKind.Constant, `const ${typeRefText(element.type)}`);
             if (isFunctionPrototype(element)) return this.symbol(element, element.name, SymbolKind.Function, this.signature(element));
             if (isModule(element)) return this.module(element);
             if (isSchema(element)) return this.schema(element);

@@ -226,6 +226,8 @@ function spacing(a: Item, b: Item): Layout {
     if (a.text === '{' && !isBlockOpen(a)) return 'none';
     if (b.text === '}' && !isBlockClose(b)) return 'none';
     if (b.text === '{' && bt === 'Persistence') return 'none';
+    // array sizes and element indexes hug what they follow: `float[6] q`, `scan.ranges[90]`
+    if (b.text === '[' && (bt === 'ArrayDimension' || bt === 'IndexSegment')) return 'none';
     if (bt === 'ModuleEvent' && (b.text === '<' || b.text === '>')) return 'none';
     if (at === 'ModuleEvent' && a.text === '<') return 'none';
     if (b.text === ':') {

@@ -10,15 +10,15 @@ import { AstUtils, CstUtils, type AstNode, type LangiumDocument, type MaybePromi
 import type { Hover, HoverParams } from 'vscode-languageserver-protocol';
 import { AstNodeHoverProvider, type LangiumServices } from 'langium/lsp';
 import {
-    isDataType, isField, isModuleEvent, isFunctionArgument, isFunctionParameter, isFunctionPrototype, isLocalVariable, isModule,
+    isConstant, isEnumMember, isEnumType, isDataType, isField, isModuleEvent, isFunctionArgument, isFunctionParameter, isFunctionPrototype, isLocalVariable, isModule,
     isModel, isParameter, isPort, isRule, isSchema, isSchemaParameter, isSupervisionFunction, isSupervisor, isTimeProperty,
-    type Module, type Port, type Schema, type Supervisor, type TimeProperty, type TypeRef, type Value
+    type DataType, type Field, type Module, type Port, type Schema, type Supervisor, type TimeProperty, type TypeRef, type Value
 } from '../generated/ast.js';
 import { computeTimeNs, parametersOf } from '../model/blocks.js';
 import { sharedModules } from '../model/schema-conflicts.js';
 import { portKind, portsOf } from '../model/ports.js';
 import { formatNanoseconds, timeToNanoseconds } from '../model/time.js';
-import { typeRefText } from '../model/types.js';
+import { cLayout, typeName, typeOf, typeRefText, type CactalType } from '../model/types.js';
 import { defaultValue, effectiveValue, formatConstant } from '../model/values.js';
 import { schemaModules, schemaTiming } from '../validation/timing-analysis.js';
 
@@ -110,6 +110,43 @@ function valueLine(node: { type: TypeRef; value?: Value }): string {
     return `value: \`${formatConstant(value)}\`${node.value ? '' : ' (default)'}`;
 }
 
+const bytes = (n: number) => `${n.toLocaleString('en-US')} byte${n === 1 ? '' : 's'}`;
+
+/** `size: 48 bytes (C double[6])`: the size of a value of the type in the generated C (LP64). */
+function sizeLine(type: CactalType): string {
+    const layout = cLayout(type);
+    return layout ? `size: ${bytes(layout.size)}${type.kind === 'array' ? ` (${type.size} × ${typeName(type.element)})` : ''}` : '';
+}
+
+/** The C layout of a datatype: its size and each field's offset and size (LP64, as gcc lays it out). */
+function datatypeLayout(dt: DataType): string {
+    const whole = cLayout({ kind: 'struct', datatype: dt });
+    if (!whole) return '';
+    let offset = 0;
+    const rows: string[] = [];
+    for (const f of dt.fields) {
+        const l = cLayout(typeOf(f.type));
+        if (!l) return `size: ${bytes(whole.size)}`;
+        offset = Math.ceil(offset / l.align) * l.align;
+        rows.push(`- \`${f.name}\`: offset ${offset}, ${bytes(l.size)}`);
+        offset += l.size;
+    }
+    return [`size: ${bytes(whole.size)}`, ...rows].join('\n');
+}
+
+function fieldLayout(field: Field): string {
+    const dt = field.$container;
+    let offset = 0;
+    for (const f of dt.fields) {
+        const l = cLayout(typeOf(f.type));
+        if (!l) return '';
+        offset = Math.ceil(offset / l.align) * l.align;
+        if (f === field) return `offset ${offset} in \`${dt.name}\`, ${bytes(l.size)}${l.size !== 0 && typeOf(f.type).kind === 'array' ? ` (${typeName(typeOf(f.type))})` : ''}`;
+        offset += l.size;
+    }
+    return '';
+}
+
 function ownerName(node: AstNode): string {
     const owner = AstUtils.getContainerOfType(node, (n): n is Module | Supervisor => isModule(n) || isSupervisor(n));
     return owner?.name ?? '?';
@@ -125,8 +162,17 @@ export function hoverMarkdown(node: AstNode, schemas: readonly Schema[] = []): s
         parts.push(code(`datatype ${node.name} {${node.fields.map((f) => `${typeRefText(f.type)} ${f.name}`).join(', ')}}`));
         const value = defaultValue({ kind: 'struct', datatype: node });
         if (value) parts.push(`default: \`${formatConstant(value)}\``);
+        parts.push(datatypeLayout(node));
     } else if (isField(node)) {
-        parts.push(code(`${typeRefText(node.type)} ${node.name}`), `field of \`${node.$container.name}\``, valueLine(node));
+        parts.push(code(`${typeRefText(node.type)} ${node.name}`), `field of \`${node.$container.name}\``, valueLine(node), fieldLayout(node));
+    } else if (isEnumType(node)) {
+        parts.push(code(`enum ${node.name} {${node.members.map((m) => m.name).join(', ')}}`),
+            `enumeration (extension): C \`${node.name}\` with members ${node.members.map((m, i) => `\`${node.name}_${m.name}\` = ${i}`).join(', ')}; 4 bytes; default \`${node.members[0] ? `${node.name}.${node.members[0].name}` : '?'}\``);
+    } else if (isEnumMember(node)) {
+        const owner = node.$container;
+        parts.push(code(`${owner.name}.${node.name}`), `member ${owner.members.indexOf(node)} of enumeration \`${owner.name}\` (C \`${owner.name}_${node.name}\`)`);
+    } else if (isConstant(node)) {
+        parts.push(code(`const ${typeRefText(node.type)} ${node.name}`), 'named constant (extension): its value is written in the generated C wherever it is used', valueLine(node), sizeLine(typeOf(node.type)));
     } else if (isFunctionPrototype(node)) {
         parts.push(code(`function ${typeRefText(node.returnType)} ${node.name}(${node.args.map((a) => `${typeRefText(a.type)} ${a.name}`).join(', ')})`));
     } else if (isFunctionArgument(node)) {
@@ -179,7 +225,8 @@ function portHover(port: Port): string[] {
     return [
         code(`${port.direction} :${port.index} ${typeRefText(port.type)} ${port.name}`),
         `${port.direction} ${kind} port :${port.index} of \`${ownerName(port)}\`, type \`${typeRefText(port.type)}\``,
-        valueLine(port)
+        valueLine(port),
+        sizeLine(typeOf(port.type))
     ];
 }
 

@@ -8,7 +8,7 @@ import { AstUtils, GrammarAST, type AstNode, type CstNode } from 'langium';
 import { AbstractSemanticTokenProvider, AllSemanticTokenTypes, type SemanticTokenAcceptor } from 'langium/lsp';
 import { SemanticTokenModifiers, SemanticTokenTypes } from 'vscode-languageserver-protocol';
 import {
-    isActivateModule, isActivateSchema, isActivateSupervisor, isCompute, isDataCommunication, isDataType, isDurationEvent,
+    isArrayDimension, isConstant, isEnumMember, isEnumType, isIndexSegment, isActivateModule, isActivateSchema, isActivateSupervisor, isCompute, isDataCommunication, isDataType, isDurationEvent,
     isEndofEvent, isEventCommunication, isField, isFieldSegment, isFunctionArgument, isFunctionParameter,
     isFunctionPrototype, isFunctionTest, isLocalVariable, isModule, isModuleEvent, isModuleInstance, isNotify, isParameter,
     isParameterSetting, isParameterize, isPort, isPrecedence, isRule, isSchedulerModules, isSchedulerSchemas, isSchema,
@@ -31,6 +31,12 @@ export class CactalSemanticTokenProvider extends AbstractSemanticTokenProvider {
         this.highlightKeywords(node, acceptor);
         const T = SemanticTokenTypes;
         if (isDataType(node)) acceptor({ node, property: 'name', type: T.type, modifier: DECL });
+        else if (isEnumType(node)) acceptor({ node, property: 'name', type: T.enum, modifier: DECL });
+        else if (isEnumMember(node)) acceptor({ node, property: 'name', type: T.enumMember, modifier: DECL });
+        else if (isConstant(node)) acceptor({ node, property: 'name', type: T.variable, modifier: [DECL, SemanticTokenModifiers.readonly] });
+        else if (isArrayDimension(node) || isIndexSegment(node)) {
+            if (node.constant) acceptor({ node, property: 'constant', type: T.variable, modifier: SemanticTokenModifiers.readonly });
+        }
         else if (isField(node)) acceptor({ node, property: 'name', type: T.property, modifier: DECL });
         else if (isTypeRef(node)) {
             if (node.primitive) acceptor({ node, property: 'primitive', type: T.type, modifier: SemanticTokenModifiers.defaultLibrary });
@@ -74,8 +80,12 @@ export class CactalSemanticTokenProvider extends AbstractSemanticTokenProvider {
             acceptor({ node, property: 'function', type: T.method });
         } else if (isSchemaArgument(node) || isFunctionArgumentAssignment(node)) acceptor({ node, property: 'parameter', type: T.parameter });
         else if (isCompute(node) || isFunctionTest(node)) acceptor({ node, property: 'function', type: T.function });
-        else if (isVariableRef(node) && node.variable) acceptor({ node, property: 'variable', type: T.variable });
-        else if (isFieldSegment(node)) acceptor({ node, property: 'field', type: T.property });
+        else if (isVariableRef(node) && node.variable) {
+            const head = node.variable.ref;
+            if (isEnumType(head)) acceptor({ node, property: 'variable', type: T.enum });
+            else if (isConstant(head)) acceptor({ node, property: 'variable', type: T.variable, modifier: SemanticTokenModifiers.readonly });
+            else acceptor({ node, property: 'variable', type: T.variable });
+        } else if (isFieldSegment(node)) acceptor({ node, property: 'field', type: isEnumMember(node.field?.ref) ? T.enumMember : T.property });
         else if (isSchedulerModules(node)) node.modules.forEach((_, index) => acceptor({ node, property: 'modules', index, type: T.class }));
         else if (isSchedulerSchemas(node)) node.schemas.forEach((_, index) => acceptor({ node, property: 'schemas', index, type: T.namespace }));
     }

@@ -5,7 +5,7 @@
  */
 import { AstUtils, GrammarAST, type AstNode, type Grammar, type IndexManager } from 'langium';
 import {
-    isDataType, isField, isFunctionPrototype, isLocalVariable, isModel, isModule, isParameter, isPort, isRule, isSchema,
+    isConstant, isEnumMember, isEnumType, isDataType, isField, isFunctionPrototype, isLocalVariable, isModel, isModule, isParameter, isPort, isRule, isSchema,
     isSupervisionFunction, isSupervisor, isFunctionParameter, isSchemaParameter, isFunctionArgument
 } from '../generated/ast.js';
 import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
@@ -23,7 +23,7 @@ export function kindWord(node: AstNode): string {
         DataType: 'datatype', Field: 'field', FunctionPrototype: 'function', FunctionArgument: 'argument',
         Module: 'module', Parameter: 'parameter', Port: 'port', Schema: 'schema', SchemaParameter: 'schema parameter',
         Supervisor: 'supervisor', SupervisionFunction: 'supervision function', FunctionParameter: 'parameter',
-        LocalVariable: 'local', Rule: 'rule label'
+        LocalVariable: 'local', Rule: 'rule label', EnumType: 'enumeration', EnumMember: 'enumeration member', Constant: 'constant'
     };
     return words[node.$type] ?? 'element';
 }
@@ -59,6 +59,7 @@ function siblingNames(node: AstNode): string[] {
     const owner = node.$container;
     let members: Array<{ name?: string }> = [];
     if (isField(node) && isDataType(owner)) members = owner.fields;
+    else if (isEnumMember(node) && isEnumType(owner)) members = owner.members;
     else if (isFunctionArgument(node) && isFunctionPrototype(owner)) members = owner.args;
     else if (isParameter(node) || isPort(node)) {
         const holder = AstUtils.getContainerOfType(node, (n) => isModule(n) || isSupervisor(n));
@@ -76,32 +77,39 @@ function siblingNames(node: AstNode): string[] {
     return members.filter((m) => m !== node).flatMap((m) => (m.name ? [m.name] : []));
 }
 
+/** `a datatype`, `an enumeration`. */
+function aWord(what: string): string {
+    return `${/^[aeiou]/.test(what) ? 'an' : 'a'} ${what}`;
+}
+
 /** Why `newName` cannot name `node`, or undefined when it can. */
 export function renameProblem(node: AstNode & { name?: string }, newName: string, grammar: Grammar, index: IndexManager): string | undefined {
     const what = kindWord(node);
     if (!IDENTIFIER.test(newName)) {
-        return `'${newName}' is not a valid name: a ${what} name starts with a letter and has only letters, digits and '_'.`;
+        return `'${newName}' is not a valid name: ${aWord(what)} name starts with a letter and has only letters, digits and '_'.`;
     }
     if (grammarKeywords(grammar).has(newName) && !keywordsAllowedAsName(grammar, node.$type).has(newName)) {
-        return `'${newName}' is a Cactal keyword and cannot name a ${what}.`;
+        return `'${newName}' is a Cactal keyword and cannot name ${aWord(what)}.`;
     }
     if (C_KEYWORDS.has(newName)) return `'${newName}' is a C keyword and the generated C uses Cactal names as they are.`;
     const role = cNameRole(node);
     if (role && !newName.startsWith('_')) {
         const datatypes = new Set(index.allElements('DataType').map((d) => d.name).filter((n) => n !== node.name || role !== 'datatype'));
         const why = cNameConflict(newName, role, { datatypes });
-        if (why) return `'${newName}' cannot name a ${what} in the generated C: ${why}.`;
+        if (why) return `'${newName}' cannot name ${aWord(what)} in the generated C: ${why}.`;
     }
     if (isModule(node) || isSupervisor(node)) {
-        if (newName === 'ORD') return `'ORD' is the scheduler's name and cannot name a ${what}.`;
+        if (newName === 'ORD') return `'ORD' is the scheduler's name and cannot name ${aWord(what)}.`;
         if (!MODULE_NAME.test(newName)) return `'${newName}' is not a valid ${what} name: module and supervisor names are exactly three upper-case letters (A-Z).`;
         const clash = [...index.allElements('Module'), ...index.allElements('Supervisor')].find((d) => d.name === newName && d.node !== node);
         if (clash) return `'${newName}' already names a module or supervisor (in ${clash.documentUri.path.split('/').pop()}); names are unique across the project.`;
         return undefined;
     }
     if (isModel(node.$container)) {
-        const clash = index.allElements(node.$type).find((d) => d.name === newName && d.node !== node);
-        if (clash) return `'${newName}' already names a ${what} (in ${clash.documentUri.path.split('/').pop()}).`;
+        // datatypes, enumerations and constants share one namespace (type-duplicate-name)
+        const family = isDataType(node) || isEnumType(node) || isConstant(node) ? ['DataType', 'EnumType', 'Constant'] : [node.$type];
+        const clash = family.flatMap((t) => index.allElements(t).toArray()).find((d) => d.name === newName && d.node !== node);
+        if (clash) return `'${newName}' already names ${aWord(kindWord({ $type: clash.type } as AstNode))} (in ${clash.documentUri.path.split('/').pop()}).`;
         if (isDataType(node) || isFunctionPrototype(node)) {
             const others = [...index.allElements('DataType'), ...index.allElements('FunctionPrototype')]
                 .filter((d) => d.node !== node && (d.type === 'DataType' || d.type === 'FunctionPrototype'))

@@ -4,3 +4,4 @@ export * from './ports.js';
 export * from './types.js';
 export * from './values.js';
 export * from './schema-conflicts.js';
+export * from './constants.js';

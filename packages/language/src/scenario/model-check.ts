@@ -6,7 +6,7 @@
  * literals built from the scenario's values. Returns diagnostics and, for `expect local NAME`,
  * the function that owns NAME. Never throws.
  */
-import { isModule, isSchema, isSupervisor, type Model, type Module, type Supervisor, type SupervisionFunction } from '../generated/ast.js';
+import { isEnumType, isModule, isSchema, isSupervisor, type EnumType, type Model, type Module, type Supervisor, type SupervisionFunction } from '../generated/ast.js';
 import { localsOf, rulesOf } from '../model/blocks.js';
 import { portsOfKind } from '../model/ports.js';
 import { typeName, typeOf, type CactalType } from '../model/types.js';
@@ -18,13 +18,16 @@ export interface ModelIndex {
     supervisors: Map<string, Supervisor>;
     modules: Map<string, Module>;
     schemas: Set<string>;
+    /** Enumerations (extension), for values `Mode.AUTO`; absent means none. */
+    enums?: Map<string, EnumType>;
 }
 
 export function indexModels(models: Model[]): ModelIndex {
-    const index: ModelIndex = { supervisors: new Map(), modules: new Map(), schemas: new Set() };
+    const index: ModelIndex = { supervisors: new Map(), modules: new Map(), schemas: new Set(), enums: new Map() };
     for (const m of models) {
         for (const e of m.elements) {
-            if (isSupervisor(e)) index.supervisors.set(e.name, e);
+            if (isEnumType(e)) index.enums!.set(e.name, e);
+            else if (isSupervisor(e)) index.supervisors.set(e.name, e);
             else if (isModule(e)) index.modules.set(e.name, e);
             else if (isSchema(e)) index.schemas.add(e.name);
         }
@@ -47,13 +50,32 @@ export interface ScenarioCheck {
 type Lit = { $type: string; value?: unknown; elements?: Lit[]; $cstNode?: { text: string }; span: SourceSpan };
 
 /** The scenario value as the literal nodes `checkValue` reads (the language's Value types). */
-function asAst(v: ScenarioValue): Lit {
+function asAst(v: ScenarioValue, index: ModelIndex): Lit {
     switch (v.kind) {
+        case 'enum': {
+            // read like the Cactal `Mode.AUTO` (a VariableRef naming the enumeration, then its member)
+            const enumType = index.enums?.get(v.enumName);
+            const member = enumType?.members.find((m) => m.name === v.member);
+            if (!enumType || !member) throw new Error(`unknown member ${v.text}`); // reported before (unknownMembers)
+            return {
+                $type: 'VariableRef', ordSchema: false, span: v.span,
+                variable: { ref: enumType, $refText: enumType.name },
+                path: [{ $type: 'FieldSegment', field: { ref: member, $refText: member.name } }]
+            } as unknown as Lit;
+        }
         case 'int': return { $type: 'IntLiteral', value: v.value, span: v.span };
         case 'real': return { $type: 'RealLiteral', value: v.value, $cstNode: { text: v.text }, span: v.span };
         case 'string': return { $type: 'StringLiteral', value: v.value, span: v.span };
-        case 'struct': return { $type: 'StructValue', elements: v.elements.map(asAst), span: v.span };
+        case 'bool': return { $type: 'BoolLiteral', value: v.value, span: v.span };
+        case 'struct': return { $type: 'StructValue', elements: v.elements.map((e) => asAst(e, index)), span: v.span };
     }
+}
+
+/** The `Enum.MEMBER` values of `v` whose enumeration or member does not exist. */
+function unknownMembers(v: ScenarioValue, index: ModelIndex): Array<Extract<ScenarioValue, { kind: 'enum' }>> {
+    if (v.kind === 'struct') return v.elements.flatMap((e) => unknownMembers(e, index));
+    if (v.kind !== 'enum') return [];
+    return index.enums?.get(v.enumName)?.members.some((m) => m.name === v.member) ? [] : [v];
 }
 
 function functionOf(sup: Supervisor, name: string): SupervisionFunction | undefined {
@@ -69,8 +91,16 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
         return all.length ? all.slice(0, 12).join(', ') + (all.length > 12 ? ', ...' : '') : 'none';
     };
     const value = (v: ScenarioValue, type: CactalType, what: string) => {
+        const unknown = unknownMembers(v, index);
+        for (const bad of unknown) {
+            const e = index.enums?.get(bad.enumName);
+            error(bad.span, 'scenario-value-type', e
+                ? `'${bad.member}' is not a member of enumeration ${e.name}; its members: ${list(e.members.map((m) => m.name))}`
+                : `no enumeration '${bad.enumName}' in the project (enumerations: ${list(index.enums?.keys() ?? [])})`);
+        }
+        if (unknown.length > 0) return;
         try {
-            checkValue(asAst(v) as never, type, ((_severity: string, message: string, info: { node: Lit }) => {
+            checkValue(asAst(v, index) as never, type, ((_severity: string, message: string, info: { node: Lit }) => {
                 error(info.node?.span ?? v.span, 'scenario-value-type', message);
             }) as never, { allowVariables: false, what });
         } catch (e) {

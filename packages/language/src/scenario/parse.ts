@@ -27,6 +27,9 @@ export type ScenarioValue =
     | { kind: 'int'; value: number; text: string; span: SourceSpan }
     | { kind: 'real'; value: number; text: string; span: SourceSpan }
     | { kind: 'string'; value: string; text: string; span: SourceSpan }
+    | { kind: 'bool'; value: boolean; text: string; span: SourceSpan }
+    /** `Mode.AUTO`: a member of an enumeration (extension, docs/language-reference.md §2.1). */
+    | { kind: 'enum'; enumName: string; member: string; text: string; span: SourceSpan }
     | { kind: 'struct'; elements: ScenarioValue[]; text: string; span: SourceSpan };
 
 /** A named thing of the project, with where it is written. */
@@ -200,6 +203,16 @@ class LineCursor {
             const value = str[1]!.replace(/\\(.)/g, (_, c: string) => (c === 'n' ? '\n' : c === 't' ? '\t' : c));
             return { kind: 'string', value, text: str[0], span: this.span(from, this.pos) };
         }
+        const bool = /^(true|false)(?![A-Za-z0-9_])/.exec(rest);
+        if (bool) {
+            this.pos += bool[0].length;
+            return { kind: 'bool', value: bool[1] === 'true', text: bool[0], span: this.span(from, this.pos) };
+        }
+        const member = /^([A-Za-z_][A-Za-z0-9_]*)\.([A-Za-z_][A-Za-z0-9_]*)/.exec(rest);
+        if (member) {
+            this.pos += member[0].length;
+            return { kind: 'enum', enumName: member[1]!, member: member[2]!, text: member[0], span: this.span(from, this.pos) };
+        }
         if (rest.startsWith('"')) this.fail('unterminated string (a string ends with " on the same line)', from, this.text.length);
         const real = /^-?([0-9]+\.[0-9]*([eE][-+]?[0-9]+)?|\.[0-9]+([eE][-+]?[0-9]+)?|[0-9]+[eE][-+]?[0-9]+)/.exec(rest);
         if (real) {
@@ -213,7 +226,7 @@ class LineCursor {
             if (!Number.isSafeInteger(value)) this.fail(`integer ${int[0]} is too large`, from, this.pos);
             return { kind: 'int', value, text: int[0], span: this.span(from, this.pos) };
         }
-        this.fail(`expected a value (integer, real, "string" or {structured, value}), found '${this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`);
+        this.fail(`expected a value (integer, real, "string", true, false, Enum.MEMBER or {structured, value}), found '${this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`);
     }
     endOfLine(after: string): void {
         if (!this.atEnd()) this.fail(`unexpected '${this.text.slice(this.pos, this.tokenEnd(this.pos))}' after ${after}`, this.pos, this.text.length);

@@ -14,7 +14,7 @@ import {
     isActivateSchema, isActivateSupervisor, isDataCommunication, isEventCommunication, isFieldSegment,
     isFunctionArgumentAssignment, isLocalBlock, isModule, isModuleEvent, isModuleInstance, isNotify,
     isParameterize, isParameterSetting, isSchema, isSchemaArgument, isSubscribe, isSupervisionFunction,
-    isSupervisor, isVariableRef, isDurationEvent, isEndofEvent, isStartedEvent, isFunctionParameter,
+    isSupervisor, isVariableRef, isEnumType, isDurationEvent, isEndofEvent, isStartedEvent, isFunctionParameter,
     type Module, type Port, type Supervisor
 } from '../generated/ast.js';
 import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
@@ -62,7 +62,7 @@ export class CactalScopeProvider extends DefaultScopeProvider {
         const { container, property } = context;
 
         if (isFieldSegment(container)) return this.fieldScope(container);
-        if (isVariableRef(container)) return this.variableScope(container);
+        if (isVariableRef(container)) return this.variableScope(container, this.visibleScope(context));
 
         // ports by index
         if (isParameterSetting(container)) {
@@ -141,26 +141,32 @@ export class CactalScopeProvider extends DefaultScopeProvider {
         return new IndexScope(nodes, (node, name) => this.descriptions.createDescription(node, name));
     }
 
-    private variableScope(ref: AstNode): Scope {
+    /**
+     * Variables of the context, then (outer scope) the constants and enumerations visible from
+     * the file (extension: `NJOINTS`, `Mode.AUTO` are written like variables).
+     */
+    private variableScope(ref: AstNode, globals: Scope): Scope {
         const fn = AstUtils.getContainerOfType(ref, isSupervisionFunction);
         if (fn) {
-            if (AstUtils.getContainerOfType(ref, isFunctionParameter)) return EMPTY_SCOPE; // defaults are constants
-            if (AstUtils.getContainerOfType(ref, isLocalBlock)) return this.createScopeForNodes(fn.parameters);
+            if (AstUtils.getContainerOfType(ref, isFunctionParameter)) return globals; // defaults are constants
+            if (AstUtils.getContainerOfType(ref, isLocalBlock)) return this.createScopeForNodes(fn.parameters, globals);
             const sup = fn.$container;
             const ports = isSupervisor(sup) ? sup.eventFlows.flatMap((b) => b.ports) : [];
             // locals first, then the supervisor's port variables, then parameters (rules may not use
             // them: validation reports it with a clear message rather than "unresolved").
-            return this.createScopeForNodes([...localsOf(fn), ...ports, ...fn.parameters]);
+            return this.createScopeForNodes([...localsOf(fn), ...ports, ...fn.parameters], globals);
         }
         const schema = AstUtils.getContainerOfType(ref, isSchema);
-        if (schema) return this.createScopeForNodes(schema.parameters);
-        return EMPTY_SCOPE;
+        if (schema) return this.createScopeForNodes(schema.parameters, globals);
+        return globals;
     }
 
     private fieldScope(segment: AstNode & { $containerIndex?: number; $container: AstNode }): Scope {
         const ref = segment.$container;
         if (!isVariableRef(ref)) return EMPTY_SCOPE;
         const index = segment.$containerIndex ?? ref.path.indexOf(segment as never);
+        const head = ref.variable?.ref;
+        if (index === 0 && isEnumType(head)) return this.createScopeForNodes(head.members);
         const type = typeOfPathPrefix(ref, index);
         return type.kind === 'struct' ? this.createScopeForNodes(type.datatype.fields) : EMPTY_SCOPE;
     }

@@ -53,7 +53,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             };
             let referenceType: string | undefined;
             try { referenceType = reflection.getReferenceType(info); } catch { referenceType = undefined; }
-            const topLevel = referenceType && ['DataType', 'FunctionPrototype', 'Module', 'Supervisor', 'Schema', 'EventSource'].includes(referenceType);
+            const topLevel = referenceType && ['DataType', 'NamedType', 'Constant', 'ValueSymbol', 'FunctionPrototype', 'Module', 'Supervisor', 'Schema', 'EventSource'].includes(referenceType);
             if (topLevel && refText) {
                 const visible = imports.visibleUris(info.container);
                 const candidate = index.allElements(referenceType).find((d) => d.name === refText && !visible.has(d.documentUri.toString()));

@@ -4,7 +4,7 @@
  * docs/language-reference.md, "Reserved names").
  */
 import { AstUtils, type AstNode, type MultiMap, type AstNodeDescription, type ValidationAcceptor, type ValidationChecks } from 'langium';
-import { isDataType, isModule, type CactalAstType, type DataType, type FunctionPrototype } from '../generated/ast.js';
+import { isFunctionPrototype, isModule, type CactalAstType, type DataType, type EnumMember, type EnumType, type FunctionPrototype } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { CommonHeaderIndex } from './c-names/common-headers.js';
 import { cNameConflict, suggestName, type CNameRole, type ProjectCNames } from './c-names/reserved-names.js';
@@ -27,14 +27,14 @@ export const C_KEYWORDS = new Set([
 ]);
 
 const NAMED_TYPES = [
-    'DataType', 'Field', 'FunctionPrototype', 'FunctionArgument', 'Module', 'Parameter', 'Port', 'Schema',
+    'DataType', 'EnumType', 'Field', 'FunctionPrototype', 'FunctionArgument', 'Module', 'Parameter', 'Port', 'Schema',
     'SchemaParameter', 'Supervisor', 'SupervisionFunction', 'FunctionParameter', 'LocalVariable', 'Rule'
 ] as const;
 
 /** What a named node becomes in the generated C (see c-names/reserved-names.ts), or undefined for names only used in strings. */
 export function cNameRole(node: AstNode): CNameRole | undefined {
     switch (node.$type) {
-        case 'DataType': return 'datatype';
+        case 'DataType': case 'EnumType': return 'datatype'; // an enumeration is a typedef and a tag too
         case 'FunctionPrototype': return 'function';
         case 'Port': case 'Parameter': return AstUtils.getContainerOfType(node, isModule) ? 'module-variable' : undefined;
         case 'Field': case 'SchemaParameter': case 'FunctionParameter': case 'LocalVariable': return 'member';
@@ -47,7 +47,7 @@ const datatypeSets = new WeakMap<MultiMap<string, AstNodeDescription>, ProjectCN
 
 /** The project's names that the reserved-name rules depend on (cached per workspace build). */
 export function projectCNames(names: ProjectNames): ProjectCNames {
-    const byName = names.byName(['DataType']);
+    const byName = names.byName(['DataType', 'EnumType']);
     let project = datatypeSets.get(byName);
     if (!project) {
         project = { datatypes: new Set(byName.keys()) };
@@ -79,7 +79,7 @@ function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAc
 }
 
 const KIND_WORDS: Record<string, string> = {
-    DataType: 'datatype', FunctionPrototype: 'function', Port: 'port', Parameter: 'parameter', Field: 'field',
+    DataType: 'datatype', EnumType: 'enumeration', FunctionPrototype: 'function', Port: 'port', Parameter: 'parameter', Field: 'field',
     SchemaParameter: 'schema parameter', FunctionParameter: 'parameter', LocalVariable: 'local', FunctionArgument: 'argument'
 };
 function kindWord(node: AstNode): string {
@@ -90,7 +90,7 @@ const headerIndexes = new WeakMap<MultiMap<string, AstNodeDescription>, CommonHe
 
 /** The common/ headers of the project's datatypes and functions (cached per workspace build). */
 export function commonHeaders(names: ProjectNames): CommonHeaderIndex {
-    const datatypes = names.byName(['DataType']);
+    const datatypes = names.byName(['DataType', 'EnumType']);
     let index = headerIndexes.get(datatypes);
     if (!index) {
         const functions = names.byName(['FunctionPrototype']);
@@ -103,10 +103,27 @@ export function commonHeaders(names: ProjectNames): CommonHeaderIndex {
     return index;
 }
 
-/** A datatype or function whose generated `common/` header would share a file or an include guard with another's. */
-function checkCommonHeader(node: DataType | FunctionPrototype, accept: ValidationAcceptor, names: ProjectNames): void {
+/**
+ * An enumeration member becomes the C enumeration constant `<Enum>_<member>` (`Mode_AUTO`), a
+ * file-scope name wherever `common/Shared<Enum>.h` is included: it must not collide like a datatype name.
+ */
+function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: ProjectNames): void {
+    const owner = member.$container;
+    if (!member.name || !owner?.name) return;
+    const cName = `${owner.name}_${member.name}`;
+    const project = projectCNames(names);
+    const why = cNameConflict(cName, 'datatype', project);
+    if (!why) return;
+    const suggestion = suggestName(member.name, (candidate) => cNameConflict(`${owner.name}_${candidate}`, 'datatype', project) === undefined);
+    report(accept, ModuleCodes['identifier-c-reserved'],
+        `Member '${member.name}' of enumeration ${owner.name} becomes the C name ${cName}, which cannot be used: ${why}. Choose another name (e.g. '${suggestion}').`,
+        { node: member, property: 'name', data: { suggestion } });
+}
+
+/** A datatype, enumeration or function whose generated `common/` header would share a file or an include guard with another's. */
+function checkCommonHeader(node: DataType | EnumType | FunctionPrototype, accept: ValidationAcceptor, names: ProjectNames): void {
     if (!node.name) return;
-    const owner = { kind: isDataType(node) ? 'datatype' as const : 'function' as const, name: node.name };
+    const owner = { kind: isFunctionPrototype(node) ? 'function' as const : 'datatype' as const, name: node.name };
     const index = commonHeaders(names);
     const clash = index.clash(owner);
     if (!clash) return;
@@ -121,8 +138,10 @@ export function identifierChecks(services: CactalServices): ValidationChecks<Cac
     const check = (node: AstNode & { name?: string }, accept: ValidationAcceptor) => checkIdentifier(node, accept, names);
     const checks: Record<string, (node: never, accept: ValidationAcceptor) => void> = {};
     for (const type of NAMED_TYPES) checks[type] = check;
-    const header = (node: DataType | FunctionPrototype, accept: ValidationAcceptor) => checkCommonHeader(node, accept, names);
+    const header = (node: DataType | EnumType | FunctionPrototype, accept: ValidationAcceptor) => checkCommonHeader(node, accept, names);
     checks['DataType'] = (node: DataType, accept) => { check(node, accept); header(node, accept); };
+    checks['EnumType'] = (node: EnumType, accept) => { check(node, accept); header(node, accept); };
+    checks['EnumMember'] = (node: EnumMember, accept) => checkEnumMember(node, accept, names);
     checks['FunctionPrototype'] = (node: FunctionPrototype, accept) => { check(node, accept); header(node, accept); };
     return checks as ValidationChecks<CactalAstType>;
 }

@@ -1,7 +1,7 @@
 /** docs/language-reference.md §1: imports (missing file, cycles, unused, duplicates, position) and file content. */
 import { AstUtils, URI, UriUtils, WorkspaceCache, type AstNode, type LangiumDocument, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
-    isActivateSchema, isDataType, isFunctionPrototype, isModel, isSchedulerConfiguration,
+    isActivateSchema, isConstant, isDataType, isEnumType, isFunctionPrototype, isModel, isSchedulerConfiguration,
     type CactalAstType, type Import, type Model
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
@@ -168,10 +168,11 @@ class ImportChecker {
         return this.byUriCache.get('all', () => new Map(this.services.shared.workspace.LangiumDocuments.all.map((d) => [d.uri.toString(), d] as const).toArray()));
     }
 
-    /** Types file (datatypes + functions) or exactly one module/schema/scheduler configuration/supervisor. */
+    /** Types file (datatypes, enumerations, constants, functions) or exactly one module/schema/scheduler configuration/supervisor. */
     private checkContent(model: Model, accept: ValidationAcceptor): void {
-        const typeDefs = model.elements.filter((e) => isDataType(e) || isFunctionPrototype(e));
-        const others = model.elements.filter((e) => !isDataType(e) && !isFunctionPrototype(e));
+        const isTypeDef = (e: AstNode) => isDataType(e) || isFunctionPrototype(e) || isEnumType(e) || isConstant(e);
+        const typeDefs = model.elements.filter(isTypeDef);
+        const others = model.elements.filter((e) => !isTypeDef(e));
         if (others.length === 0) return;
         const describe = (e: AstNode) => e.$type === 'SchedulerConfiguration' ? 'scheduler configuration' : e.$type.toLowerCase();
         if (typeDefs.length > 0) {
@@ -242,6 +243,8 @@ function firstKeyword(node: AstNode): string {
         case 'SchedulerConfiguration': return 'scheduler';
         case 'Supervisor': return 'supervisor';
         case 'DataType': return 'datatype';
+        case 'EnumType': return 'enum';
+        case 'Constant': return 'const';
         default: return 'function';
     }
 }

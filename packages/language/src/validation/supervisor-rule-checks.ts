@@ -8,13 +8,13 @@ import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langiu
 import {
     isDurationEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
     isNotify, isRule, isStartedEvent, isStructValue, isSubscribe, isSupervisionFunction, isVariableRef,
-    isIntLiteral, isRealLiteral, isStringLiteral, isPort, isSupervisor, isClause,
+    isIntLiteral, isRealLiteral, isStringLiteral, isBoolLiteral, isRelationalTest, isPort, isSupervisor, isClause,
     type CactalAstType, type Clause, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
     type Port, type Rule, type TestOperand, type VariableRef
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { rulesOf } from '../model/blocks.js';
-import { isNumeric, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
+import { isNumeric, isOrdered, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { SupervisorCodes } from './codes/supervisors.js';
 import { report } from './report.js';
 import { checkValue } from './value-checker.js';
@@ -140,6 +140,7 @@ function operandType(op: TestOperand): CactalType | undefined {
     if (isIntLiteral(op)) return { kind: 'primitive', name: 'int' };
     if (isRealLiteral(op)) return { kind: 'primitive', name: 'float' };
     if (isStringLiteral(op)) return { kind: 'primitive', name: 'string' };
+    if (isBoolLiteral(op)) return { kind: 'primitive', name: 'bool' };
     if (isVariableRef(op)) return typeOfVariableRef(op);
     return undefined;
 }
@@ -147,6 +148,7 @@ function operandType(op: TestOperand): CactalType | undefined {
 function operandText(op: TestOperand): string {
     if (isVariableRef(op)) return `'${variableRefText(op)}'`;
     if (isStringLiteral(op)) return `the string ${JSON.stringify(op.value)}`;
+    if (isBoolLiteral(op)) return `the bool ${op.value ? 'true' : 'false'}`;
     return `the ${isIntLiteral(op) ? 'integer' : 'real'} ${op.$cstNode?.text ?? (op as { value?: unknown }).value}`;
 }
 
@@ -158,6 +160,13 @@ function checkTestOperands(test: EqualityTest | RelationalTest, accept: Validati
         // a structured value takes the type of the other operand
         const [value, other] = !left ? [test.left, right] : [test.right, left];
         if (other && isStructValue(value)) checkValue(value, other, accept, { allowVariables: true, what: 'this comparison' });
+        return;
+    }
+    if (isRelationalTest(test) && (!isOrdered(left) || !isOrdered(right))) {
+        const unordered = !isOrdered(left) ? left : right;
+        report(accept, SupervisorCodes['supervisor-test-type'],
+            `Cannot order values of type ${typeName(unordered)} with ${test.operator}: ${unordered.kind === 'array' ? 'compare one element (ranges[90]) or test the whole array with == / !=' : 'a bool is tested with == or !='}.`,
+            { node: test, property: 'operator' });
         return;
     }
     if (sameType(left, right) || (isNumeric(left) && isNumeric(right))) return;

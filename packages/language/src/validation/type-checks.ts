@@ -1,12 +1,16 @@
 /** docs/language-reference.md §2: datatypes, function prototypes, values in declarations, test/compute function use. */
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
-    isFunctionPrototype, isLocalVariable,
+    isDataType, isFunctionPrototype, isLocalVariable, isParameter, isPort, isVariableRef,
+    type FunctionParameter, type LocalVariable, type Parameter, type Port, type SchemaParameter,
+    type ArrayDimension, type Constant, type EnumType, type IndexSegment, type VariableRef,
     type CactalAstType, type Compute, type DataType, type FunctionPrototype, type FunctionTest,
     type TypeRef, type Value
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
-import { typeOf, typeRefText } from '../model/types.js';
+import { portKind } from '../model/ports.js';
+import { cLayout, segmentIndex, typeName, typeOf, typeOfPathPrefix, typeRefText, variableRefText } from '../model/types.js';
+import { constantChain, constantInt } from '../model/constants.js';
 import { TypeCodes } from './codes/types.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
@@ -28,6 +32,7 @@ export function typeChecks(services: CactalServices): ValidationChecks<CactalAst
     return {
         DataType: [
             (dt, accept) => checkUniqueTopLevel(names, dt, 'DataType', 'datatype', accept),
+            (dt, accept) => checkUniqueTypeOrConstant(names, dt, accept),
             (dt, accept) => checkDuplicateMembers(dt.fields, 'field', dt.name, accept),
             checkRecursiveDatatype
         ],
@@ -35,13 +40,27 @@ export function typeChecks(services: CactalServices): ValidationChecks<CactalAst
             (fn, accept) => checkUniqueTopLevel(names, fn, 'FunctionPrototype', 'function', accept),
             (fn, accept) => checkDuplicateMembers(fn.args, 'argument', fn.name, accept)
         ],
+        EnumType: [
+            (e, accept) => checkUniqueTypeOrConstant(names, e, accept),
+            (e, accept) => checkDuplicateMembers(e.members, 'member', e.name, accept),
+            checkEnumNotEmpty
+        ],
+        Constant: [
+            (c, accept) => checkUniqueTypeOrConstant(names, c, accept),
+            checkConstantCycle,
+            (c, accept) => {
+                if (c.value && !constantChain(c).cycle) checkValue(c.value, typeOf(c.type), accept, { allowVariables: false, what: `constant '${c.name}'` });
+            }
+        ],
+        ArrayDimension: checkArrayDimension,
+        IndexSegment: checkIndexSegment,
         TypeRef: checkTypeRef,
         Field: checkDeclaration,
-        Parameter: checkDeclaration,
-        Port: checkDeclaration,
-        SchemaParameter: checkDeclaration,
-        FunctionParameter: checkDeclaration,
-        LocalVariable: checkDeclaration,
+        Parameter: [checkDeclaration, checkValueSize],
+        Port: [checkDeclaration, checkValueSize],
+        SchemaParameter: [checkDeclaration, checkValueSize],
+        FunctionParameter: [checkDeclaration, checkValueSize],
+        LocalVariable: [checkDeclaration, checkValueSize],
         FunctionTest: (test, accept) => checkFunctionUse(test, 'bool', accept),
         Compute: (compute, accept) => checkFunctionUse(compute, 'void', accept)
     };
@@ -55,6 +74,95 @@ function checkUniqueTopLevel(names: ProjectNames, node: DataType | FunctionProto
     report(accept, TypeCodes['type-duplicate-name'],
         `${word === 'datatype' ? 'Datatype' : 'Function'} '${node.name}' is defined more than once in the project (also in ${where}); ${word} names are unique across the project.`,
         { node, property: 'name' });
+}
+
+/** At most one request (16384 bytes) for events and parameters, 65536 bytes for any other value (runtime limits, docs/runtime-api.md). */
+export const MAX_REQUEST_BYTES = 16384;
+export const MAX_VALUE_BYTES = 65536;
+
+function checkValueSize(decl: Parameter | Port | SchemaParameter | FunctionParameter | LocalVariable, accept: ValidationAcceptor): void {
+    const layout = cLayout(typeOf(decl.type));
+    if (!layout) return;
+    const small = isParameter(decl) || (isPort(decl) && portKind(decl) === 'event');
+    const limit = small ? MAX_REQUEST_BYTES : MAX_VALUE_BYTES;
+    if (layout.size <= limit) return;
+    const what = isParameter(decl) ? 'a module parameter' : isPort(decl) ? `${portKind(decl) === 'event' ? 'an event' : 'a data'} port` : 'a variable';
+    report(accept, TypeCodes['type-too-large'],
+        `'${decl.name}' takes ${layout.size} bytes (${typeRefText(decl.type)}); ${what} holds at most ${limit} bytes: use smaller arrays.`,
+        { node: decl, property: 'type' });
+}
+
+/** Datatypes, enumerations and constants share one namespace (Cactal types and values, C file-scope names). */
+function checkUniqueTypeOrConstant(names: ProjectNames, node: DataType | EnumType | Constant, accept: ValidationAcceptor): void {
+    if (!node.name) return;
+    const same = names.byName(['DataType', 'EnumType', 'Constant']).get(node.name);
+    const others = same.filter((d) => d.type !== node.$type);
+    if (others.length === 0 && (isDataType(node) || same.length <= 1)) return;
+    const where = otherLocations(AstUtils.getDocument(node).uri.toString(), same.map((d) => d.documentUri));
+    const word = (t: string) => t === 'DataType' ? 'datatype' : t === 'EnumType' ? 'enumeration' : 'constant';
+    report(accept, TypeCodes['type-duplicate-name'],
+        `'${node.name}' is defined more than once in the project (${[...new Set(same.map((d) => word(d.type)))].join(' and ')}; also in ${where}); datatype, enumeration and constant names are unique across the project.`,
+        { node, property: 'name' });
+}
+
+function checkEnumNotEmpty(e: EnumType, accept: ValidationAcceptor): void {
+    if (e.members.length === 0) {
+        report(accept, TypeCodes['enum-empty'], `Enumeration '${e.name}' has no members: list at least one (the first is its default value), e.g. enum ${e.name} {IDLE, ACTIVE}.`, { node: e, property: 'name' });
+    }
+}
+
+function checkConstantCycle(c: Constant, accept: ValidationAcceptor): void {
+    const { chain, cycle } = constantChain(c);
+    if (cycle && chain[chain.length - 1] === c) {
+        report(accept, TypeCodes['const-cycle'],
+            `Constant '${c.name}' is defined by itself: ${chain.map((k) => k.name).join(' -> ')}. Give one of them a literal value.`,
+            { node: c, property: 'value' });
+    }
+}
+
+function checkArrayDimension(dim: ArrayDimension, accept: ValidationAcceptor): void {
+    if (dim.constant) {
+        const constant = dim.constant.ref;
+        if (!constant) return; // unresolved: reported by linking
+        if (constant.type?.primitive !== 'int' || constant.type.dimensions.length > 0) {
+            report(accept, TypeCodes['array-size-invalid'], `An array size is an int: '${constant.name}' is a constant of type ${typeRefText(constant.type)}.`, { node: dim });
+            return;
+        }
+        const n = constantInt(constant);
+        if (n !== undefined && n < 1) {
+            report(accept, TypeCodes['array-size-invalid'], `An array has at least one element: '${constant.name}' is ${n}.`, { node: dim });
+        }
+        return;
+    }
+    if (dim.size !== undefined && dim.size < 1) {
+        report(accept, TypeCodes['array-size-invalid'], `An array has at least one element: its size is a positive integer, found ${dim.size}.`, { node: dim });
+    }
+}
+
+function checkIndexSegment(segment: IndexSegment, accept: ValidationAcceptor): void {
+    const ref = segment.$container;
+    if (!isVariableRef(ref)) return;
+    const position = ref.path.indexOf(segment);
+    const type = typeOfPathPrefix(ref, position);
+    if (type.kind === 'unknown') return;
+    const prefix = variableRefText({ ...ref, path: ref.path.slice(0, position) } as VariableRef);
+    if (type.kind !== 'array') {
+        report(accept, TypeCodes['array-index-invalid'], `'${prefix}' is a ${typeName(type)}, not an array: only arrays have elements [i].`, { node: segment });
+        return;
+    }
+    if (segment.constant) {
+        const constant = segment.constant.ref;
+        if (!constant) return;
+        if (constant.type?.primitive !== 'int' || constant.type.dimensions.length > 0) {
+            report(accept, TypeCodes['array-index-invalid'], `An index is an int: '${constant.name}' is a constant of type ${typeRefText(constant.type)}.`, { node: segment });
+            return;
+        }
+    }
+    const i = segmentIndex(segment);
+    if (i !== undefined && (i < 0 || i >= type.size)) {
+        report(accept, TypeCodes['array-index-invalid'],
+            `Index ${i} is out of range: '${prefix}' is a ${typeName(type)}, its elements are [0] to [${type.size - 1}].`, { node: segment });
+    }
 }
 
 export function checkDuplicateMembers(members: Array<{ name: string; $type: string } & object>, word: string, owner: string, accept: ValidationAcceptor): void {
@@ -78,7 +186,8 @@ function checkRecursiveDatatype(dt: DataType, accept: ValidationAcceptor): void 
         visiting.add(current);
         path.push(current);
         for (const field of current.fields) {
-            const t = typeOf(field.type);
+            let t = typeOf(field.type);
+            while (t.kind === 'array') t = t.element;
             if (t.kind === 'struct') {
                 const found = dfs(t.datatype);
                 if (found) return found;
@@ -100,16 +209,16 @@ function checkRecursiveDatatype(dt: DataType, accept: ValidationAcceptor): void 
 function checkTypeRef(ref: TypeRef, accept: ValidationAcceptor): void {
     const container = ref.$container;
     if (isFunctionPrototype(container) && ref.$containerProperty === 'returnType') {
-        if (ref.primitive !== 'bool' && ref.primitive !== 'void') {
+        if ((ref.primitive !== 'bool' && ref.primitive !== 'void') || ref.dimensions.length > 0) {
             report(accept, TypeCodes['type-function-return'],
                 `Function '${container.name}' returns ${typeRefText(ref)}: a function returns bool (a test function, used in event tests) or void (a compute function, used by compute).`,
                 { node: ref });
         }
         return;
     }
-    if (ref.primitive === 'bool' || ref.primitive === 'void') {
+    if (ref.primitive === 'void') {
         report(accept, TypeCodes['type-primitive-misuse'],
-            `${ref.primitive} is only a function return type; use int, float, string or a datatype here.`, { node: ref });
+            `void is only a function return type; use int, float, string, bool, a datatype, an enumeration or an array of these here.`, { node: ref });
     }
 }
 

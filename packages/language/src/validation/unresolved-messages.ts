@@ -4,7 +4,7 @@ import {
     isActivateSchema, isActivateSupervisor, isDataCommunication, isDurationEvent, isEndofEvent,
     isEventCommunication, isFieldSegment, isFunctionArgumentAssignment, isFunctionParameter, isLocalBlock,
     isModule, isModuleEvent, isModuleInstance, isNotify, isParameterize, isParameterSetting, isSchema,
-    isSchemaArgument, isStartedEvent, isSubscribe, isSupervisionFunction, isSupervisor, isTypeRef, isVariableRef,
+    isSchemaArgument, isStartedEvent, isArrayDimension, isIndexSegment, isEnumType, isSubscribe, isSupervisionFunction, isSupervisor, isTypeRef, isVariableRef,
     type Module, type Supervisor
 } from '../generated/ast.js';
 import { parametersOf, rulesOf } from '../model/blocks.js';
@@ -36,7 +36,10 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
     const c = info.container;
     const p = info.property;
     if (isTypeRef(c)) {
-        return `Unknown type '${refText}': expected int, float, string or a datatype defined in this file or in a file it imports.`;
+        return `Unknown type '${refText}': expected int, float, string, bool or a datatype or enumeration defined in this file or in a file it imports.`;
+    }
+    if (isArrayDimension(c) || isIndexSegment(c)) {
+        return `Unknown constant '${refText}': ${isArrayDimension(c) ? 'an array size' : 'an index'} is an integer or an int constant (const int N = 6;) defined in this file or in a file it imports.`;
     }
     if (isParameterSetting(c)) {
         const owner = c.$container;
@@ -79,11 +82,17 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
     if (isFieldSegment(c)) {
         const ref = c.$container;
         if (isVariableRef(ref)) {
+            const head = ref.variable?.ref;
+            if (isEnumType(head) && (c.$containerIndex ?? 0) === 0) {
+                return `'${refText}' is not a member of enumeration ${head.name}; its members: ${list(head.members.map((m) => m.name))}.`;
+            }
             const type = typeOfPathPrefix(ref, c.$containerIndex ?? 0);
             if (type.kind === 'struct') {
                 return `'${refText}' is not a field of ${type.datatype.name}; its fields: ${list(type.datatype.fields.map((f) => f.name))}.`;
             }
-            if (type.kind === 'primitive') return `'${refText}': a value of type ${typeName(type)} has no fields.`;
+            if (type.kind === 'primitive' || type.kind === 'enum' || type.kind === 'array') {
+                return `'${refText}': a value of type ${typeName(type)} has no fields${type.kind === 'array' ? ' (an element is written [i])' : ''}.`;
+            }
         }
         return undefined; // the variable or an earlier field is unresolved
     }
@@ -102,7 +111,7 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
         if (schema) {
             return `Unknown variable '${refText}': a module parameterisation uses constants and the parameters of schema ${schema.name} (${list(schema.parameters.map((q) => q.name))}).`;
         }
-        return `'${refText}' is not a constant: only constant values (numbers, strings, {...}) are allowed here.`;
+        return `'${refText}' is not a constant: only constant values (numbers, strings, true/false, {...}, enumeration members, named constants) are allowed here.`;
     }
     const type = info.container && TOP_LEVEL_WORDS[refTypeOf(info)];
     if (type) return `Unknown ${type} '${refText}': no ${type} of this name is defined in this file or in a file it imports.`;

@@ -4,11 +4,14 @@
  * - an int literal fits int and float; a real fits float only (a real for an int is an error);
  * - a string literal fits string and is at most 255 bytes (UTF-8);
  * - a structured value needs exactly one element per field of the datatype, recursively;
+ * - (extensions) `true`/`false` fit bool; `{...}` for an array needs exactly its size in elements;
+ *   `Mode.AUTO` fits Mode; a constant's name fits wherever its value would, even where variables cannot appear;
  * - a variable (with field path) must have the same type (an int variable fits a float).
  */
 import type { ValidationAcceptor } from 'langium';
 import {
-    isIntLiteral, isRealLiteral, isStringLiteral, isStructValue, isVariableRef, type Value
+    isBoolLiteral, isConstant, isEnumType, isIntLiteral, isRealLiteral, isStringLiteral, isStructValue, isVariableRef,
+    type Value, type VariableRef
 } from '../generated/ast.js';
 import { sameType, typeName, typeOf, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { TypeCodes } from './codes/types.js';
@@ -29,24 +32,38 @@ function describeValue(value: Value): string {
     if (isIntLiteral(value)) return `the integer ${value.value}`;
     if (isRealLiteral(value)) return `the real ${value.$cstNode?.text ?? value.value}`;
     if (isStringLiteral(value)) return 'a string';
+    if (isBoolLiteral(value)) return `the bool ${value.value ? 'true' : 'false'}`;
     if (isStructValue(value)) return 'a structured value {...}';
     return `'${variableRefText(value)}'`;
 }
 
 function expectedText(expected: CactalType): string {
-    if (expected.kind === 'struct') {
-        const fields = expected.datatype.fields.map((f) => f.name).join(', ');
-        return `a ${expected.datatype.name} value {${fields}}`;
-    }
-    if (expected.kind === 'primitive') {
-        switch (expected.name) {
-            case 'int': return 'an int (integer literal)';
-            case 'float': return 'a float (real or integer literal)';
-            case 'string': return 'a string ("...")';
-            default: return `a ${expected.name}`;
+    switch (expected.kind) {
+        case 'struct': {
+            const fields = expected.datatype.fields.map((f) => f.name).join(', ');
+            return `a ${expected.datatype.name} value {${fields}}`;
         }
+        case 'enum':
+            return `a ${expected.enumType.name} value (${expected.enumType.members.slice(0, 3).map((m) => `${expected.enumType.name}.${m.name}`).join(', ')}${expected.enumType.members.length > 3 ? ', ...' : ''})`;
+        case 'array':
+            return `a ${typeName(expected)} value {${expected.size} element${expected.size === 1 ? '' : 's'}}`;
+        case 'primitive':
+            switch (expected.name) {
+                case 'int': return 'an int (integer literal)';
+                case 'float': return 'a float (real or integer literal)';
+                case 'string': return 'a string ("...")';
+                case 'bool': return 'a bool (true or false)';
+                default: return `a ${expected.name}`;
+            }
+        default:
+            return 'a value';
     }
-    return 'a value';
+}
+
+/** True when a reference names a constant or an enumeration member rather than a variable. */
+function isConstantRef(value: VariableRef): boolean {
+    const head = value.variable?.ref;
+    return isConstant(head) || isEnumType(head);
 }
 
 /** Checks `value` against `expected`; reports problems on the value nodes. */
@@ -63,8 +80,15 @@ export function checkValue(value: Value, expected: CactalType, accept: Validatio
         }
     }
     if (isVariableRef(value)) {
-        if (!options.allowVariables) {
-            if (value.variable?.ref || value.ordSchema) {
+        const head = value.variable?.ref;
+        if (isEnumType(head) && value.path.length === 0) {
+            report(accept, TypeCodes['enum-value-without-member'],
+                `'${head.name}' is an enumeration, not a value: write one of its members (${head.members.map((m) => `${head.name}.${m.name}`).join(', ') || 'it has none'}).`,
+                { node: value });
+            return;
+        }
+        if (!options.allowVariables && !isConstantRef(value)) {
+            if (head || value.ordSchema) {
                 report(accept, TypeCodes['value-not-constant'], `Expected a constant${where}, found the variable '${variableRefText(value)}'.`, { node: value });
             }
             return;
@@ -82,6 +106,18 @@ export function checkValue(value: Value, expected: CactalType, accept: Validatio
             for (const e of value.elements) checkValue(e, { kind: 'unknown' }, accept, options);
             return;
         }
+        if (expected.kind === 'array') {
+            if (expected.size !== value.elements.length) {
+                report(accept, TypeCodes['value-array-length'],
+                    `${typeName(expected)} has ${expected.size} element${expected.size === 1 ? '' : 's'}; this value has ${value.elements.length}${where}.`,
+                    { node: value });
+            }
+            const n = Math.min(expected.size, value.elements.length);
+            for (let i = 0; i < n; i++) {
+                checkValue(value.elements[i]!, expected.element, accept, { ...options, what: `element ${i}${options.what ? ` of ${options.what}` : ''}` });
+            }
+            return;
+        }
         if (expected.kind !== 'struct') return mismatch(describeValue(value));
         const fields = expected.datatype.fields;
         if (fields.length !== value.elements.length) {
@@ -96,7 +132,7 @@ export function checkValue(value: Value, expected: CactalType, accept: Validatio
         return;
     }
     if (expected.kind === 'unknown') return;
-    if (expected.kind === 'struct') return mismatch(describeValue(value));
+    if (expected.kind !== 'primitive') return mismatch(describeValue(value));
     switch (expected.name) {
         case 'int':
             if (!isIntLiteral(value)) mismatch(describeValue(value) + (isRealLiteral(value) ? ' (a real cannot be an int)' : ''));
@@ -106,6 +142,9 @@ export function checkValue(value: Value, expected: CactalType, accept: Validatio
             return;
         case 'string':
             if (!isStringLiteral(value)) mismatch(describeValue(value));
+            return;
+        case 'bool':
+            if (!isBoolLiteral(value)) mismatch(describeValue(value) + (isIntLiteral(value) ? ' (write true or false)' : ''));
             return;
         default:
             mismatch(describeValue(value));

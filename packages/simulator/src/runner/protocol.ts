@@ -68,6 +68,8 @@ export function valueText(v: ScenarioValue): string {
     switch (v.kind) {
         case 'int':
         case 'real':
+        case 'bool':
+        case 'enum': // `Mode.AUTO`: get_Mode (common/SharedMode.h) reads it
             return v.text;
         case 'string':
             return `"${v.value.replace(/[\\"\n\t\r]/g, (c) => (c === '\n' ? '\\n' : c === '\t' ? '\\t' : c === '\r' ? ' ' : `\\${c}`))}"`;

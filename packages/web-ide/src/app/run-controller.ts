@@ -8,12 +8,12 @@ import { reportError } from './report-error.js';
 import { isCpuList } from '@contract-studio/conventions';
 
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
-type RunSettings = { duration: number; start?: string; cpus?: string };
+type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
 
 function runSettings(): RunSettings {
   try {
     const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings>;
-    return { duration: v.duration ?? 10, start: v.start || undefined, cpus: v.cpus || undefined };
+    return { duration: v.duration ?? 10, start: v.start || undefined, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
   } catch {
     return { duration: 10 };
   }
@@ -54,7 +54,7 @@ export class RunController {
       await workspace.saveAll();
       this.project = this.d.project();
       const settings = runSettings();
-      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus);
+      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus, settings.realtime);
     } catch (e) {
       reportError(e);
       build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });
@@ -78,14 +78,16 @@ export class RunController {
       { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
       { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'GLB.mission(consigne={1.0,2.0,3.0})' },
       { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
+      { key: 'realtime', label: 'Real-time: modules take their SCHED_FIFO priorities in the sandbox, bounded (refused, saying why, where the host cannot grant it)', value: cur.realtime ? 'yes' : '', checkbox: true },
     ]);
     if (!r) return;
     const duration = Number(r.duration);
     if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
     const cpus = (r.cpus ?? '').trim();
     if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
-    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(cpus ? { cpus } : {}) }));
-    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}`);
+    const realtime = r.realtime === 'yes';
+    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
+    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${realtime ? ', real-time priorities' : ''}`);
   }
 
   private async fetchLogs(jobId: string): Promise<void> {

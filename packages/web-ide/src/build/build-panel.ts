@@ -102,7 +102,7 @@ export class BuildPanel {
     }));
   }
 
-  async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string): Promise<void> {
+  async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean): Promise<void> {
     if (this.jobId) await this.stop();
     this.source?.close();
     this.store.clear();
@@ -111,7 +111,7 @@ export class BuildPanel {
     this.diagnostics = [];
     this.onDiagnostics.fire([]);
     this.setStatus('submitting', undefined, true);
-    const job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(cpus ? { cpus } : {}) });
+    const job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
     this.jobId = job.id;
     for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);

@@ -92,6 +92,20 @@ describe('monitor model on a recorded tutorial run', () => {
   });
 });
 
+describe('monitor model, values of the extension types', () => {
+  it('shows a rule cause whose value is a scan (float[180] in a datatype), an enum member or a bool as the trace wrote it', () => {
+    const m = new MonitorModel({ checkpointEvery: 16 });
+    const scan = 'OBS:1 value={ranges=[5,5,5,5,5,5,5,5,5,5,...],mode=AUTO,blocked=true}';
+    m.pushAll([line(1000, 'MIS', 'sup_rule', '', '', `mission.AHEAD active cause=${scan}`),
+      line(2000, 'MIS', 'sup_rule', '', '', 'mission.MODE active cause=DRV:0 value=SAFESTOP'),
+      line(3000, 'MIS', 'sup_rule', '', '', 'mission.FLAG active cause=OBS:2 value=true')]);
+    const rules = m.live.supervisors['MIS']!.rules;
+    expect(rules['mission.AHEAD']).toMatchObject({ active: true, cause: scan });
+    expect(rules['mission.MODE']).toMatchObject({ active: true, cause: 'DRV:0 value=SAFESTOP' });
+    expect(rules['mission.FLAG']).toMatchObject({ active: true, cause: 'OBS:2 value=true' });
+  });
+});
+
 describe('monitor model, long and hostile runs', () => {
   const schemaRun = (cycles: number, periodNs: number) => {
     const out: TraceRecord[] = [line(1000, 'SUP', 'sup_rule', '', '', 'f.R active cause=elapsed=1000000ns')];

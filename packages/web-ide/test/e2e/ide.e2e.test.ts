@@ -355,6 +355,26 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('#btn-run').isEnabled()).toBe(true);
   }, 240_000);
 
+  it.skipIf(!canBuild || !canGenerate)('the real-time run setting reaches the build service, which says how it granted it or why not', async () => {
+    const { page } = s;
+    const settings = () => page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!));
+    await page.locator('#btn-run-settings').click();
+    await page.locator('.dialog-check[data-key=realtime]').check();
+    await page.locator('.dialog .btn.primary').click();
+    expect((await settings()).realtime).toBe(true);
+    await page.locator('#btn-run').click();
+    const row = page.locator('.log-row', { hasText: /real-time mode( refused)?: / });
+    await row.first().waitFor({ timeout: 140_000 });
+    expect(await row.first().textContent()).toMatch(/real-time mode: SCHED_FIFO up to 99 |real-time mode refused: ./);
+    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 140_000 }).toMatch(/succeeded|failed/);
+    // back to the default for the tests that follow
+    await page.locator('#btn-run-settings').click();
+    expect(await page.locator('.dialog-check[data-key=realtime]').isChecked()).toBe(true);
+    await page.locator('.dialog-check[data-key=realtime]').uncheck();
+    await page.locator('.dialog .btn.primary').click();
+    expect((await settings()).realtime).toBeUndefined();
+  }, 300_000);
+
   it.skipIf(!canBuild || !canGenerate)('shows gcc errors in the problems panel and opens the generated file at the line', async () => {
     const { page } = s;
     const path = 'src-gen/generated/architecture/modules/MSC_mod/module.c';

@@ -1,20 +1,51 @@
 import type { ArchitectureIndex } from '../../model/lookup.js';
 import type { TypeRef, Value } from '../../model/architecture.js';
 
-/** C type of a Cactal type: int -> long, float -> double, string -> char (array of 256), datatype -> its struct. */
+/**
+ * C type of a non-array Cactal type: int -> long, float -> double, string -> char (array of 256),
+ * bool -> bool (<stdbool.h>), datatype -> its struct, enumeration -> its C enum (same name).
+ * For an array, the type of its innermost elements.
+ */
 export function cType(t: TypeRef): string {
+    if ('array' in t) return cType(t.array);
     if ('datatype' in t) return t.datatype;
-    return t.primitive === 'int' ? 'long' : t.primitive === 'float' ? 'double' : 'char';
+    if ('enum' in t) return t.enum;
+    switch (t.primitive) {
+        case 'int': return 'long';
+        case 'float': return 'double';
+        case 'bool': return 'bool';
+        default: return 'char';
+    }
 }
 
-/** A C declaration of variable `name` of Cactal type `t` (`char name[256]` for strings). */
-export function cDeclaration(t: TypeRef, name: string): string {
-    return 'primitive' in t && t.primitive === 'string' ? `char ${name}[256]` : `${cType(t)} ${name}`;
+/** True when the C form of the type is a C array (a string or an array type). */
+export function isCArray(t: TypeRef): boolean {
+    return 'array' in t || ('primitive' in t && t.primitive === 'string');
 }
 
-/** `sizeof(...)` of a Cactal type, as the report writes it. */
+/**
+ * A C declaration of `declarator` (a variable name, or `(* p)`) of Cactal type `t`: `char name[256]`
+ * for strings, `double q[6]`, `double m[3][3]`, `char names[4][256]` for arrays (outer size first).
+ */
+export function cDeclaration(t: TypeRef, declarator: string): string {
+    if ('array' in t) return cDeclaration(t.array, `${declarator}[${t.size}]`);
+    return 'primitive' in t && t.primitive === 'string' ? `char ${declarator}[256]` : `${cType(t)} ${declarator}`;
+}
+
+/** The C type name of a Cactal type (for sizeof and casts): `long`, `double[6]`, `char[4][256]`. */
+export function cTypeName(t: TypeRef): string {
+    return cDeclaration(t, '').replace(' [', '[').trimEnd();
+}
+
+/** `sizeof(...)` of a Cactal type, as the report writes it (`sizeof(double[6])` for an array). */
 export function cSizeof(t: TypeRef): string {
+    if ('array' in t) return `sizeof(${cTypeName(t)})`;
     return 'primitive' in t && t.primitive === 'string' ? 'sizeof(char)*256' : `sizeof(${cType(t)})`;
+}
+
+/** The C name of an enumeration member: `Mode_AUTO` (prefixed by the enumeration: collision-safe across enumerations). */
+export function cEnumMember(enumName: string, member: string): string {
+    return `${enumName}_${member}`;
 }
 
 /** A C string literal for `s` (UTF-8 bytes kept, control characters, quotes and backslashes escaped). */
@@ -46,17 +77,29 @@ export function cLong(n: number): string {
 
 /**
  * The C initialiser of a value of type `t`: the given constant, or the type's default (0, 0.0,
- * "\0", or the datatype's field defaults), nested for datatypes (`{ "\0", 0, { 0.0, 0.0, 0.0 } }`).
+ * "\0", false, the first enumeration member, element defaults, or the datatype's field defaults),
+ * nested for datatypes and arrays (`{ "\0", 0, { 0.0, 0.0, 0.0 } }`).
  * Variables cannot appear in a static initialiser; they fall back to the default.
  */
 export function cInitializer(index: ArchitectureIndex, t: TypeRef, value?: Value): string {
     if (value?.kind === 'var') value = undefined;
+    if ('array' in t) {
+        const elements = value?.kind === 'struct' ? value.elements : undefined;
+        return `{ ${Array.from({ length: t.size }, (_, i) => cInitializer(index, t.array, elements?.[i])).join(', ')} }`;
+    }
+    if ('enum' in t) {
+        const members = index.enumDecl(t.enum).members;
+        const member = value?.kind === 'enum' && members.includes(value.member) ? value.member : members[0]!;
+        return cEnumMember(t.enum, member);
+    }
     if ('primitive' in t) {
         switch (t.primitive) {
             case 'int':
                 return value && (value.kind === 'int' || value.kind === 'real') ? cLong(value.value) : '0';
             case 'float':
                 return value && (value.kind === 'int' || value.kind === 'real') ? cDouble(value.value) : '0.0';
+            case 'bool':
+                return value?.kind === 'bool' && value.value ? 'true' : 'false';
             case 'string':
                 return value?.kind === 'string' && value.value !== '' ? cString(value.value) : '"\\0"';
         }

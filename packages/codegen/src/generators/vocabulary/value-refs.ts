@@ -1,4 +1,5 @@
-import type { TypeRef, Value } from '../../model/architecture.js';
+import type { PathSegment, TypeRef, Value } from '../../model/architecture.js';
+import { cTypeName } from '../c/c-syntax.js';
 import type { TableBuilder } from './table-builder.js';
 
 /** What a variable name designates in the context of a table (vocabulary.h ContractRefKind). */
@@ -11,16 +12,37 @@ export interface VariableBinding {
 
 export type Resolver = (name: string) => VariableBinding | undefined;
 
-/** A field path inside a variable of type `root`: C `offsetof` expression and the field's type. */
-export function fieldPath(b: TableBuilder, root: TypeRef, path: string[]): { offset: string; type: TypeRef } {
+/**
+ * A path of fields and constant indexes inside a variable of type `root`: the C byte-offset
+ * expression and the type at the end. `temp.value` -> `offsetof(TypeC, value)`,
+ * `scan.ranges[90]` -> `offsetof(Scan, ranges[90])`, local `q[2]` -> `2 * sizeof(double)`.
+ */
+export function fieldPath(b: TableBuilder, root: TypeRef, path: PathSegment[]): { offset: string; type: TypeRef } {
     let type = root;
+    const terms: string[] = [];
+    let struct: string | undefined;
+    let designator = '';
     for (const segment of path) {
-        if (!('datatype' in type)) throw new Error(`field '${segment}' of a primitive value`);
+        if (typeof segment === 'number') {
+            if (!('array' in type)) throw new Error(`index [${segment}] of a value that is not an array`);
+            if (segment < 0 || segment >= type.size) throw new Error(`index [${segment}] out of range (size ${type.size})`);
+            if (struct) designator += `[${segment}]`;
+            else terms.push(`${segment} * sizeof(${cTypeName(type.array)})`);
+            type = type.array;
+            continue;
+        }
+        if (!('datatype' in type)) throw new Error(`field '${segment}' of a value that is not a datatype`);
         const field = b.index.datatype(type.datatype).fields.find((f) => f.name === segment);
         if (!field) throw new Error(`unknown field '${segment}' of ${type.datatype}`);
+        if (struct) designator += `.${segment}`;
+        else {
+            struct = type.datatype;
+            designator = segment;
+        }
         type = field.type;
     }
-    return { offset: path.length && 'datatype' in root ? `offsetof(${root.datatype}, ${path.join('.')})` : '0', type };
+    if (struct) terms.push(`offsetof(${struct}, ${designator})`);
+    return { offset: terms.length ? terms.join(' + ') : '0', type };
 }
 
 /** Type of a value as written (constants: their literal type; variables: resolved), used for tests. */
@@ -32,6 +54,10 @@ export function valueType(b: TableBuilder, v: Value, resolve: Resolver, hint?: T
             return { primitive: 'float' };
         case 'string':
             return { primitive: 'string' };
+        case 'bool':
+            return { primitive: 'bool' };
+        case 'enum':
+            return { enum: v.enum };
         case 'struct':
             return hint;
         case 'var': {
@@ -65,8 +91,11 @@ function hasVariable(v: Value): boolean {
  * `rootType`: one whole assignment for a constant or a variable, one per field for a structured
  * value that mixes variables.
  */
-export function assignments(b: TableBuilder, target: number, rootType: TypeRef, path: string[], value: Value, resolve: Resolver): string[] {
+export function assignments(b: TableBuilder, target: number, rootType: TypeRef, path: PathSegment[], value: Value, resolve: Resolver): string[] {
     const here = fieldPath(b, rootType, path);
+    if (value.kind === 'struct' && hasVariable(value) && 'array' in here.type) {
+        return value.elements.flatMap((element, i) => assignments(b, target, rootType, [...path, i], element, resolve));
+    }
     if (value.kind === 'struct' && hasVariable(value) && 'datatype' in here.type) {
         const fields = b.index.datatype(here.type.datatype).fields;
         return fields.flatMap((f, i) => {

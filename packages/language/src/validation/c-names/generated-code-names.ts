@@ -26,7 +26,9 @@ export const MODULE_LOCALS: readonly string[] = [
  * of that name would be hidden by them inside its own functions (`eq_arg1(arg1 * arg1, arg1 * arg2)`).
  */
 export const TYPE_HEADER_LOCALS: readonly string[] = [
-    'arg', 'arg1', 'arg2', 'buffer', 'description', 'size', 'sizeread', 'res', 'symbol', 'tmp'
+    'arg', 'arg1', 'arg2', 'buffer', 'description', 'size', 'sizeread', 'res', 'symbol', 'tmp',
+    // enumeration headers (shared-enum-header.ts) and the control tools' array parsers (extension types)
+    'i', 'm', 'n', 'next', 'value', 'names', 'dst'
 ];
 
 /**

@@ -4,17 +4,17 @@ import { defineCodes } from './code-table.js';
 export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, values and functions', 'language-reference.md §2', {
     'type-duplicate-name': {
         severity: 'error',
-        description: 'Two datatypes, or two function prototypes, have the same name in the project (they all share the generated `common/` folder).',
+        description: 'Two datatypes, enumerations, constants or function prototypes have the same name in the project (they all share the generated `common/` folder).',
         example: 'datatype T {int a};\ndatatype T {float b};'
     },
     'type-duplicate-member': {
         severity: 'error',
-        description: 'Two fields of a datatype, or two arguments of a function prototype, have the same name.',
+        description: 'Two fields of a datatype, two members of an enumeration, or two arguments of a function prototype, have the same name.',
         example: 'datatype T {int a, float a};'
     },
     'type-unknown': {
         severity: 'error',
-        description: 'A type that is neither a primitive (`int`, `float`, `string`) nor a datatype defined in this file or in a file it imports. (A datatype defined in a file that is not imported gives `import-not-imported` instead.)',
+        description: 'A type that is neither a primitive (`int`, `float`, `string`, `bool`) nor a datatype or enumeration defined in this file or in a file it imports. (A datatype defined in a file that is not imported gives `import-not-imported` instead.)',
         example: 'datatype T {TypeZ z};'
     },
     'type-recursive': {
@@ -24,8 +24,8 @@ export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, va
     },
     'type-primitive-misuse': {
         severity: 'error',
-        description: '`bool` and `void` are only function return types; fields, parameters, ports and variables are `int`, `float`, `string` or a datatype.',
-        example: 'datatype T {bool flag};'
+        description: '`void` is only a function return type; fields, parameters, ports, constants and variables are `int`, `float`, `string`, `bool`, a datatype, an enumeration or an array of these.',
+        example: 'datatype T {void nothing};'
     },
     'type-function-return': {
         severity: 'error',
@@ -52,9 +52,44 @@ export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, va
         description: 'A string literal longer than 255 bytes (UTF-8) does not fit the generated `char[256]`.',
         example: 'datatype T {string s = "<256 characters or more>"};'
     },
+    'value-array-length': {
+        severity: 'error',
+        description: 'A value `{...}` for an array (an extension of the report) needs exactly as many elements as the array has, recursively for arrays of arrays.',
+        example: 'datatype T {float[3] v = {1.0, 2.0}};'
+    },
+    'enum-value-without-member': {
+        severity: 'error',
+        description: 'An enumeration name used as a value: a value of an enumeration is one of its members, written `Mode.AUTO`.',
+        example: 'enum Mode {IDLE, AUTO};\ndatatype T {Mode m = Mode};'
+    },
+    'enum-empty': {
+        severity: 'error',
+        description: 'An enumeration (an extension of the report) needs at least one member (its first member is the default value).',
+        example: 'enum Mode {};'
+    },
+    'array-size-invalid': {
+        severity: 'error',
+        description: 'An array size is a positive integer literal or the name of an `int` constant whose value is positive.',
+        example: 'datatype T {float[0] v};'
+    },
+    'array-index-invalid': {
+        severity: 'error',
+        description: 'An index `[i]` in a path applies to an array and is within its size (from 0 to size - 1); it is an integer literal or an `int` constant.',
+        example: 'datatype Scan {float[180] ranges};\n... <(scan.ranges[180] < 0.3)>'
+    },
+    'type-too-large': {
+        severity: 'error',
+        description: 'A value too large for the runtime to carry: an event port or a module parameter holds at most 16384 bytes (one request), a data port, a local or a schema/function parameter at most 65536 bytes (sizes of the generated C; large arrays count).',
+        example: 'event flows { out :0 float[4096] samples; }   // 32768 bytes'
+    },
+    'const-cycle': {
+        severity: 'error',
+        description: 'A constant defined (directly or through other constants) by itself; the message shows the cycle.',
+        example: 'const int A = B;\nconst int B = A;'
+    },
     'value-not-constant': {
         severity: 'error',
-        description: 'Only constants are allowed here (datatype field defaults, module parameters and ports, schema and function parameter defaults).',
+        description: 'Only constants are allowed here (datatype field defaults, module parameters and ports, schema and function parameter defaults, named constants): literals, `{...}`, enumeration members and names of constants.',
         example: 'datatype T {int a = b};'
     }
 });

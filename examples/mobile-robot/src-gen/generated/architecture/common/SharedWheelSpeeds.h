@@ -10,8 +10,7 @@
 /*PROTECTED REGION END*/
 
 typedef struct WheelSpeeds{
-    double left;
-    double right;
+    double speed[2];
 } WheelSpeeds;
 
 static inline unsigned int serialize_WheelSpeeds(WheelSpeeds * arg, unsigned char * buffer);
@@ -33,24 +32,21 @@ static inline void print_WheelSpeeds(WheelSpeeds * arg);
 
 static inline unsigned int serialize_WheelSpeeds(WheelSpeeds * arg, unsigned char * buffer){
     unsigned int size = 0;
-    size += extract_float(buffer, size, arg->left);
-    size += extract_float(buffer, size, arg->right);
+    for (unsigned int i0 = 0; i0 < 2; i0++) { size += extract_float(buffer, size, arg->speed[i0]); }
     (void)arg; (void)buffer;
     return size;
 }
 
 static inline unsigned int deserialize_WheelSpeeds(WheelSpeeds * arg, unsigned char* buffer){
     unsigned int size = 0;
-    size += fill_float(&arg->left, size, buffer);
-    size += fill_float(&arg->right, size, buffer);
+    for (unsigned int i0 = 0; i0 < 2; i0++) { size += fill_float(&arg->speed[i0], size, buffer); }
     (void)arg; (void)buffer;
     return size;
 }
 
 static inline void set_WheelSpeeds(WheelSpeeds * arg1, WheelSpeeds * arg2){
     if (arg1 == arg2) return;
-    arg1->left=arg2->left;
-    arg1->right=arg2->right;
+    memmove(arg1->speed, arg2->speed, sizeof(arg1->speed));
 }
 
 /* parses the textual form {v1, v2, ...} (nested structures, "strings"); returns the number of
@@ -63,13 +59,16 @@ static inline int get_WheelSpeeds(WheelSpeeds * arg, char* description){
     set_WheelSpeeds(&tmp, arg);
     if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
     sizeread += res;
-    if ((res = get_float(&tmp.left, &description[sizeread])) == -1) return -1;
-    sizeread += res;
-    symbol = ',';
+    symbol = '{';
     if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
     sizeread += res;
-    if ((res = get_float(&tmp.right, &description[sizeread])) == -1) return -1;
-    sizeread += res;
+    for (unsigned int i0 = 0; i0 < 2; i0++) {
+        if ((res = get_float(&tmp.speed[i0], &description[sizeread])) == -1) return -1;
+        sizeread += res;
+        symbol = i0 + 1 < 2 ? ',' : '}';
+        if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
+        sizeread += res;
+    }
     symbol = '}';
     if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
     sizeread += res;
@@ -79,8 +78,7 @@ static inline int get_WheelSpeeds(WheelSpeeds * arg, char* description){
 
 static inline void print_WheelSpeeds(WheelSpeeds * arg){
     printf("(object type %s : ", "WheelSpeeds");
-    printf("%s : %lf ; ", "left", arg->left);
-    printf("%s : %lf ; ", "right", arg->right);
+    printf("%s : ", "speed"); printf("["); for (unsigned int i0 = 0; i0 < 2; i0++) { if (i0 > 0) printf(","); printf("%lf", arg->speed[i0]); } printf("]"); printf(" ; ");
     printf(")");
 }
 
@@ -88,8 +86,7 @@ static inline void print_WheelSpeeds(WheelSpeeds * arg){
 
 static inline int eq_WheelSpeeds(WheelSpeeds * arg1, WheelSpeeds * arg2){
     /*PROTECTED REGION ID(protect_eq_WheelSpeeds) ENABLED START*/
-    if (!(arg1->left == arg2->left)) return 0;
-    if (!(arg1->right == arg2->right)) return 0;
+    for (unsigned int i0 = 0; i0 < 2; i0++) if (!(arg1->speed[i0] == arg2->speed[i0])) return 0;
     return 1;
     /*PROTECTED REGION END*/
 }
@@ -103,16 +100,14 @@ static inline int diff_WheelSpeeds(WheelSpeeds * arg1, WheelSpeeds * arg2){
 
 static inline int inf_WheelSpeeds(WheelSpeeds * arg1, WheelSpeeds * arg2){
     /*PROTECTED REGION ID(protect_inf_WheelSpeeds) ENABLED START*/
-    if (!(arg1->left < arg2->left)) return 0;
-    if (!(arg1->right < arg2->right)) return 0;
+    for (unsigned int i0 = 0; i0 < 2; i0++) if (!(arg1->speed[i0] < arg2->speed[i0])) return 0;
     return 1;
     /*PROTECTED REGION END*/
 }
 
 static inline int sup_WheelSpeeds(WheelSpeeds * arg1, WheelSpeeds * arg2){
     /*PROTECTED REGION ID(protect_sup_WheelSpeeds) ENABLED START*/
-    if (!(arg1->left > arg2->left)) return 0;
-    if (!(arg1->right > arg2->right)) return 0;
+    for (unsigned int i0 = 0; i0 < 2; i0++) if (!(arg1->speed[i0] > arg2->speed[i0])) return 0;
     return 1;
     /*PROTECTED REGION END*/
 }

@@ -10,8 +10,7 @@
 /*PROTECTED REGION END*/
 
 typedef struct WheelTicks{
-    long left;
-    long right;
+    long count[2];
     double dt;
 } WheelTicks;
 
@@ -34,8 +33,7 @@ static inline void print_WheelTicks(WheelTicks * arg);
 
 static inline unsigned int serialize_WheelTicks(WheelTicks * arg, unsigned char * buffer){
     unsigned int size = 0;
-    size += extract_int(buffer, size, arg->left);
-    size += extract_int(buffer, size, arg->right);
+    for (unsigned int i0 = 0; i0 < 2; i0++) { size += extract_int(buffer, size, arg->count[i0]); }
     size += extract_float(buffer, size, arg->dt);
     (void)arg; (void)buffer;
     return size;
@@ -43,8 +41,7 @@ static inline unsigned int serialize_WheelTicks(WheelTicks * arg, unsigned char 
 
 static inline unsigned int deserialize_WheelTicks(WheelTicks * arg, unsigned char* buffer){
     unsigned int size = 0;
-    size += fill_int(&arg->left, size, buffer);
-    size += fill_int(&arg->right, size, buffer);
+    for (unsigned int i0 = 0; i0 < 2; i0++) { size += fill_int(&arg->count[i0], size, buffer); }
     size += fill_float(&arg->dt, size, buffer);
     (void)arg; (void)buffer;
     return size;
@@ -52,8 +49,7 @@ static inline unsigned int deserialize_WheelTicks(WheelTicks * arg, unsigned cha
 
 static inline void set_WheelTicks(WheelTicks * arg1, WheelTicks * arg2){
     if (arg1 == arg2) return;
-    arg1->left=arg2->left;
-    arg1->right=arg2->right;
+    memmove(arg1->count, arg2->count, sizeof(arg1->count));
     arg1->dt=arg2->dt;
 }
 
@@ -67,13 +63,16 @@ static inline int get_WheelTicks(WheelTicks * arg, char* description){
     set_WheelTicks(&tmp, arg);
     if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
     sizeread += res;
-    if ((res = get_int(&tmp.left, &description[sizeread])) == -1) return -1;
-    sizeread += res;
-    symbol = ',';
+    symbol = '{';
     if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
     sizeread += res;
-    if ((res = get_int(&tmp.right, &description[sizeread])) == -1) return -1;
-    sizeread += res;
+    for (unsigned int i0 = 0; i0 < 2; i0++) {
+        if ((res = get_int(&tmp.count[i0], &description[sizeread])) == -1) return -1;
+        sizeread += res;
+        symbol = i0 + 1 < 2 ? ',' : '}';
+        if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
+        sizeread += res;
+    }
     symbol = ',';
     if ((res = increment_until_markerfound(&description[sizeread], &symbol)) == -1) return -1;
     sizeread += res;
@@ -88,8 +87,7 @@ static inline int get_WheelTicks(WheelTicks * arg, char* description){
 
 static inline void print_WheelTicks(WheelTicks * arg){
     printf("(object type %s : ", "WheelTicks");
-    printf("%s : %ld ; ", "left", arg->left);
-    printf("%s : %ld ; ", "right", arg->right);
+    printf("%s : ", "count"); printf("["); for (unsigned int i0 = 0; i0 < 2; i0++) { if (i0 > 0) printf(","); printf("%ld", arg->count[i0]); } printf("]"); printf(" ; ");
     printf("%s : %lf ; ", "dt", arg->dt);
     printf(")");
 }
@@ -98,8 +96,7 @@ static inline void print_WheelTicks(WheelTicks * arg){
 
 static inline int eq_WheelTicks(WheelTicks * arg1, WheelTicks * arg2){
     /*PROTECTED REGION ID(protect_eq_WheelTicks) ENABLED START*/
-    if (!(arg1->left == arg2->left)) return 0;
-    if (!(arg1->right == arg2->right)) return 0;
+    for (unsigned int i0 = 0; i0 < 2; i0++) if (!(arg1->count[i0] == arg2->count[i0])) return 0;
     if (!(arg1->dt == arg2->dt)) return 0;
     return 1;
     /*PROTECTED REGION END*/
@@ -114,8 +111,7 @@ static inline int diff_WheelTicks(WheelTicks * arg1, WheelTicks * arg2){
 
 static inline int inf_WheelTicks(WheelTicks * arg1, WheelTicks * arg2){
     /*PROTECTED REGION ID(protect_inf_WheelTicks) ENABLED START*/
-    if (!(arg1->left < arg2->left)) return 0;
-    if (!(arg1->right < arg2->right)) return 0;
+    for (unsigned int i0 = 0; i0 < 2; i0++) if (!(arg1->count[i0] < arg2->count[i0])) return 0;
     if (!(arg1->dt < arg2->dt)) return 0;
     return 1;
     /*PROTECTED REGION END*/
@@ -123,8 +119,7 @@ static inline int inf_WheelTicks(WheelTicks * arg1, WheelTicks * arg2){
 
 static inline int sup_WheelTicks(WheelTicks * arg1, WheelTicks * arg2){
     /*PROTECTED REGION ID(protect_sup_WheelTicks) ENABLED START*/
-    if (!(arg1->left > arg2->left)) return 0;
-    if (!(arg1->right > arg2->right)) return 0;
+    for (unsigned int i0 = 0; i0 < 2; i0++) if (!(arg1->count[i0] > arg2->count[i0])) return 0;
     if (!(arg1->dt > arg2->dt)) return 0;
     return 1;
     /*PROTECTED REGION END*/

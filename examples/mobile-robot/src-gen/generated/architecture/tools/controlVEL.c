@@ -3,10 +3,13 @@
 #include <libmodule/control.h>
 #include "tools.h"
 #include "SharedTwist.h"
+#include "SharedDriveMode.h"
 
 CONTROL_DEFINE_PARSER(get_Twist, Twist)
+CONTROL_DEFINE_PARSER(get_DriveMode, DriveMode)
 static const ControlParam PARAMS[] = {
     { 0, sizeof(Twist), control_get_Twist, "Twist" },
+    { 1, sizeof(DriveMode), control_get_DriveMode, "DriveMode" },
     CONTROL_PARAM_TERM };
 
 int main(int argc, char *argv[]) { return ControlMain("VEL", PARAMS, argc, argv); }

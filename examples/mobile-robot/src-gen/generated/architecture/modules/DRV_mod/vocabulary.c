@@ -2,9 +2,12 @@
 #include <stddef.h>
 #include <contract/vocabulary.h>
 #include "suptypes.h"
+#include "SharedDriveMode.h"
 #include "SharedPose.h"
 #include "SharedTwist.h"
 
+static const ContractEnumMember contract_members_DriveMode[] = {{"TELEOP", DriveMode_TELEOP}, {"AUTO", DriveMode_AUTO}, {"SAFESTOP", DriveMode_SAFESTOP}};
+static const ContractType contract_type_DriveMode = CONTRACT_ENUM_TYPE(DriveMode, contract_members_DriveMode, 3, NULL);
 static const Pose contract_default_Pose = { 0.0, 0.0, 0.0 };
 CONTRACT_DEFINE_TYPE(Pose, &contract_default_Pose)
 static const Twist contract_default_Twist = { 0.0, 0.0 };
@@ -24,18 +27,24 @@ static const ContractClause teleop_LOOP_pre_clauses[] = {
     {1, teleop_LOOP_pre_c0_events}};
 typedef struct schema_velocityLoop_params_t {
     Twist setpoint;
+    DriveMode mode;
 } schema_velocityLoop_params_t;
 static const Twist k_0 = { 0.0, 0.0 };
+static const DriveMode k_1 = DriveMode_TELEOP;
 static const ContractVar schema_velocityLoop_params[] = {
-    {"setpoint", &contract_type_Twist, offsetof(schema_velocityLoop_params_t, setpoint), &k_0}};
+    {"setpoint", &contract_type_Twist, offsetof(schema_velocityLoop_params_t, setpoint), &k_0},
+    {"mode", &contract_type_DriveMode, offsetof(schema_velocityLoop_params_t, mode), &k_1}};
 static const ContractAssign schema_velocityLoop_VEL_p0[] = {
     {0, 0, &contract_type_Twist, {CONTRACT_REF_PARAM, 0, 0, &contract_type_Twist, NULL}}};
+static const ContractAssign schema_velocityLoop_VEL_p1[] = {
+    {0, 0, &contract_type_DriveMode, {CONTRACT_REF_PARAM, 1, 0, &contract_type_DriveMode, NULL}}};
 static const ContractParamSetting schema_velocityLoop_VEL_settings[] = {
-    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0}};
+    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0},
+    {1, &contract_type_DriveMode, 1, schema_velocityLoop_VEL_p1}};
 static const ContractSchemaModule schema_velocityLoop_modules[] = {
     {"WHL", 0, NULL},
     {"ODO", 0, NULL},
-    {"VEL", 1, schema_velocityLoop_VEL_settings},
+    {"VEL", 2, schema_velocityLoop_VEL_settings},
     {"MOT", 0, NULL}};
 static const ContractPrecedence schema_velocityLoop_precedences[] = {
     {0, 1},
@@ -49,14 +58,16 @@ static const ContractDataFlow schema_velocityLoop_data_flows[] = {
     {"MOT", 0, "WHL", 0, 1}};
 static const ContractSchema schema_velocityLoop = {
     "velocityLoop", CONTRACT_SCHEMA_PERIODIC, 10000000, 10000000,
-    1, schema_velocityLoop_params, sizeof(schema_velocityLoop_params_t),
+    2, schema_velocityLoop_params, sizeof(schema_velocityLoop_params_t),
     4, schema_velocityLoop_modules, 3, schema_velocityLoop_precedences, 5, schema_velocityLoop_data_flows, 0, NULL};
+static const ContractAssign teleop_LOOP_a1_assigns[] = {
+    {1, 0, &contract_type_DriveMode, {CONTRACT_REF_CONST, 0, 0, &contract_type_DriveMode, &k_1}}};
 static const ContractAction teleop_LOOP_actions[] = {
     {.kind = CONTRACT_ACT_SUBSCRIBE, .module = "TEL", .src_port = 0, .in_port = 0, .mode = CONTRACT_CONTINUOUS},
-    {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_velocityLoop, .nassigns = 0, .assigns = NULL}};
-static const double k_1 = 100.0;
+    {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_velocityLoop, .nassigns = 1, .assigns = teleop_LOOP_a1_assigns}};
+static const double k_2 = 100.0;
 static const ContractTest teleop_LOOP_post_c0_e0_t0_tests[] = {
-    {CONTRACT_TEST_GT, {CONTRACT_REF_IN_PORT, 0, offsetof(Twist, v), &contract_type_double, NULL}, {CONTRACT_REF_CONST, 0, 0, &contract_type_double, &k_1}, NULL, 0, NULL}};
+    {CONTRACT_TEST_GT, {CONTRACT_REF_IN_PORT, 0, offsetof(Twist, v), &contract_type_double, NULL}, {CONTRACT_REF_CONST, 0, 0, &contract_type_double, &k_2}, NULL, 0, NULL}};
 static const ContractTestClause teleop_LOOP_post_c0_e0_tests[] = {
     {1, teleop_LOOP_post_c0_e0_t0_tests}};
 static const ContractEvent teleop_LOOP_post_c0_events[] = {
@@ -85,9 +96,9 @@ static const ContractRule teleop_rules[] = {
 typedef struct autonomous_params_t {
     Pose goal;
 } autonomous_params_t;
-static const Pose k_2 = { 4.0, 2.0, 0.0 };
+static const Pose k_3 = { 4.0, 2.0, 0.0 };
 static const ContractVar autonomous_params[] = {
-    {"goal", &contract_type_Pose, offsetof(autonomous_params_t, goal), &k_2}};
+    {"goal", &contract_type_Pose, offsetof(autonomous_params_t, goal), &k_3}};
 typedef struct autonomous_locals_t {
     Pose target;
     Twist cmd;
@@ -101,11 +112,14 @@ static const ContractEvent autonomous_LOOPS_pre_c0_events[] = {
     {.kind = CONTRACT_EV_ELAPSED, .time_ns = 1000000, .persist = CONTRACT_PERSIST_NONE}};
 static const ContractClause autonomous_LOOPS_pre_clauses[] = {
     {1, autonomous_LOOPS_pre_c0_events}};
+static const DriveMode k_4 = DriveMode_AUTO;
+static const ContractAssign autonomous_LOOPS_a1_assigns[] = {
+    {1, 0, &contract_type_DriveMode, {CONTRACT_REF_CONST, 0, 0, &contract_type_DriveMode, &k_4}}};
 typedef struct schema_localisationLoop_params_t {
     Pose goal;
 } schema_localisationLoop_params_t;
 static const ContractVar schema_localisationLoop_params[] = {
-    {"goal", &contract_type_Pose, offsetof(schema_localisationLoop_params_t, goal), &k_2}};
+    {"goal", &contract_type_Pose, offsetof(schema_localisationLoop_params_t, goal), &k_3}};
 static const ContractAssign schema_localisationLoop_NAV_p0[] = {
     {0, 0, &contract_type_Pose, {CONTRACT_REF_PARAM, 0, 0, &contract_type_Pose, NULL}}};
 static const ContractParamSetting schema_localisationLoop_NAV_settings[] = {
@@ -126,10 +140,10 @@ static const ContractAssign autonomous_LOOPS_a2_assigns[] = {
     {0, 0, &contract_type_Pose, {CONTRACT_REF_LOCAL, 0, 0, &contract_type_Pose, NULL}}};
 static const ContractAction autonomous_LOOPS_actions[] = {
     {.kind = CONTRACT_ACT_SUBSCRIBE, .module = "NAV", .src_port = 0, .in_port = 1, .mode = CONTRACT_CONTINUOUS},
-    {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_velocityLoop, .nassigns = 0, .assigns = NULL},
+    {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_velocityLoop, .nassigns = 1, .assigns = autonomous_LOOPS_a1_assigns},
     {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_localisationLoop, .nassigns = 1, .assigns = autonomous_LOOPS_a2_assigns}};
 static const ContractTest autonomous_LOOPS_post_c0_e0_t0_tests[] = {
-    {CONTRACT_TEST_GT, {CONTRACT_REF_IN_PORT, 1, offsetof(Twist, v), &contract_type_double, NULL}, {CONTRACT_REF_CONST, 0, 0, &contract_type_double, &k_1}, NULL, 0, NULL}};
+    {CONTRACT_TEST_GT, {CONTRACT_REF_IN_PORT, 1, offsetof(Twist, v), &contract_type_double, NULL}, {CONTRACT_REF_CONST, 0, 0, &contract_type_double, &k_2}, NULL, 0, NULL}};
 static const ContractTestClause autonomous_LOOPS_post_c0_e0_tests[] = {
     {1, autonomous_LOOPS_post_c0_e0_t0_tests}};
 static const ContractEvent autonomous_LOOPS_post_c0_events[] = {
@@ -164,10 +178,12 @@ static const ContractEvent safestop_HALT_pre_c0_events[] = {
     {.kind = CONTRACT_EV_ELAPSED, .time_ns = 1000000, .persist = CONTRACT_PERSIST_NONE}};
 static const ContractClause safestop_HALT_pre_clauses[] = {
     {1, safestop_HALT_pre_c0_events}};
+static const DriveMode k_5 = DriveMode_SAFESTOP;
 static const ContractAssign safestop_HALT_a0_assigns[] = {
-    {0, 0, &contract_type_Twist, {CONTRACT_REF_LOCAL, 0, 0, &contract_type_Twist, NULL}}};
+    {0, 0, &contract_type_Twist, {CONTRACT_REF_LOCAL, 0, 0, &contract_type_Twist, NULL}},
+    {1, 0, &contract_type_DriveMode, {CONTRACT_REF_CONST, 0, 0, &contract_type_DriveMode, &k_5}}};
 static const ContractAction safestop_HALT_actions[] = {
-    {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_velocityLoop, .nassigns = 1, .assigns = safestop_HALT_a0_assigns}};
+    {.kind = CONTRACT_ACT_SCHEMA, .schema = &schema_velocityLoop, .nassigns = 2, .assigns = safestop_HALT_a0_assigns}};
 static const ContractEvent safestop_HALT_post_c0_events[] = {
     {.kind = CONTRACT_EV_DURATION, .rule = 0, .time_ns = 3600000000000, .persist = CONTRACT_PERSIST_NONE}};
 static const ContractClause safestop_HALT_post_clauses[] = {

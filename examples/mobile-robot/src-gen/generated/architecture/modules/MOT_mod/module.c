@@ -21,9 +21,9 @@ MODULE_DESCRIPTION(/*PROTECTED REGION ID(protect_description_MOT) ENABLED START*
 MODULE_AUTHOR(/*PROTECTED REGION ID(protect_author_MOT) ENABLED START*/"ContrACT Studio examples"/*PROTECTED REGION END*/);
 
 //Exchanges Management Variables
-WheelSpeeds command = { 0.0, 0.0 };
+WheelSpeeds command = { { 0.0, 0.0 } };
 Odometry telemetry = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0 } };
-WheelSpeeds applied = { 0.0, 0.0 };
+WheelSpeeds applied = { { 0.0, 0.0 } };
 
 // module name
 char MODULE_NAME[] = "MOT";
@@ -242,8 +242,7 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
     switch(*stateindex){
         case 0:
             GetLatestData(&command, &productionTime, &receptionTime);
-            applied.left = _approach(applied.left, command.left);
-            applied.right = _approach(applied.right, command.right);
+            for (int i = 0; i < 2; i++) applied.speed[i] = _approach(applied.speed[i], command.speed[i]); /* left, right */
             PostData(&applied);
             if (GetData(&telemetry, &productionTime, &receptionTime) > 0) {
                 printf("MOT: odometry x=%.2f m y=%.2f m theta=%.2f rad | v=%.2f m/s w=%.2f rad/s\n",

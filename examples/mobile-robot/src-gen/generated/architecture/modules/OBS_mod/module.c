@@ -6,14 +6,18 @@
 #include <time.h>
 #include <string.h>
 #include "tools.h"
+#include "SharedLaserScan.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_OBS) ENABLED START*/
-/* Simulation: an obstacle stands 0.35 m ahead from 3.0 s to 4.5 s after the detector's first
-   cycle; otherwise the way is clear (5 m). An event is posted when the state changes and every
-   500 ms. */
+/* Simulation: a laser scanner whose 180 beams (one per degree, beam 90 straight ahead) see 5 m of
+   free space, except an obstacle 0.35 m ahead (beams 80..100) from 3.0 s to 4.5 s after the
+   detector's first cycle. The nearest range of the front sector (beams 60..119) is the distance.
+   Both events (distance, whole scan) are posted when the state changes and every 500 ms. */
 #define OBS_APPEAR_NS 3000000000LL
 #define OBS_CLEAR_NS 4500000000LL
+#define OBS_FREE_M 5.0
+#define OBS_OBSTACLE_M 0.35
 /*PROTECTED REGION END*/
 
 MODULE_DESCRIPTION(/*PROTECTED REGION ID(protect_description_OBS) ENABLED START*/"obstacle detector (simulated range sensor with scheduled obstacles)"/*PROTECTED REGION END*/);
@@ -21,6 +25,7 @@ MODULE_AUTHOR(/*PROTECTED REGION ID(protect_author_OBS) ENABLED START*/"ContrACT
 
 //Exchanges Management Variables
 double distance = 0.0;
+LaserScan scan = { { 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0 }, false };
 
 // module name
 char MODULE_NAME[] = "OBS";
@@ -36,7 +41,7 @@ ModuleProduce IPRODUCE[] = { IPRODUCE_TERM };
 ModuleReact IREACT[] = { IREACT_TERM };
 
 //output event flows : example = { &variable, PortEmission, size }
-ModuleDetect IDETECT[] = { { &distance, 0, sizeof(double)}, IDETECT_TERM };
+ModuleDetect IDETECT[] = { { &distance, 0, sizeof(double)}, { &scan, 1, sizeof(LaserScan)}, IDETECT_TERM };
 
 // size of parameters that can be received in the request mailbox:
 size_t PARAM_SIZE_IN[] = { PARAM_SIZE_TERM };
@@ -242,15 +247,21 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
         case 0: {
             RTIME now = GetTime();
             if (_first == 0) _first = now;
-            int blocked = (now - _first) >= OBS_APPEAR_NS && (now - _first) < OBS_CLEAR_NS;
-            distance = blocked ? 0.35 : 5.0;
+            int present = (now - _first) >= OBS_APPEAR_NS && (now - _first) < OBS_CLEAR_NS;
+            for (int i = 0; i < 180; i++) scan.ranges[i] = present && i >= 80 && i <= 100 ? OBS_OBSTACLE_M : OBS_FREE_M;
+            distance = OBS_FREE_M;
+            for (int i = 60; i < 120; i++) if (scan.ranges[i] < distance) distance = scan.ranges[i];
+            int blocked = distance < 1.0;
+            scan.blocked = blocked;
             if (blocked != _blocked) {
                 printf("OBS: %s (nearest %.2f m)\n", blocked ? "obstacle ahead" : "way clear", distance);
                 _blocked = blocked;
                 PostEvent(&distance);
+                PostEvent(&scan);
                 _cycle = 0;
             } else if (++_cycle % 5 == 0) {
                 PostEvent(&distance);
+                PostEvent(&scan);
             }
             *stateindex = -1;
             break;

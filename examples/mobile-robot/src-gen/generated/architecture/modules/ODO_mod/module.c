@@ -19,7 +19,7 @@ MODULE_DESCRIPTION(/*PROTECTED REGION ID(protect_description_ODO) ENABLED START*
 MODULE_AUTHOR(/*PROTECTED REGION ID(protect_author_ODO) ENABLED START*/"ContrACT Studio examples"/*PROTECTED REGION END*/);
 
 //Exchanges Management Variables
-WheelTicks ticks = { 0, 0, 0.01 };
+WheelTicks ticks = { { 0, 0 }, 0.01 };
 Odometry odom = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0 } };
 Odometry telemetry = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0 } };
 double wheel_base = 0.4;
@@ -248,11 +248,11 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
     switch(*stateindex){
         case 0: {
             if (GetData(&ticks, &productionTime, &receptionTime) <= 0) { /* no new ticks: nothing moved */
-                ticks.left = 0; ticks.right = 0;
+                ticks.count[0] = 0; ticks.count[1] = 0;
             }
             double dt = ticks.dt > 0.0 ? ticks.dt : 0.01;
-            double dl = (double)ticks.left / ODO_TICKS_PER_RAD * wheel_radius;
-            double dr = (double)ticks.right / ODO_TICKS_PER_RAD * wheel_radius;
+            double dl = (double)ticks.count[0] / ODO_TICKS_PER_RAD * wheel_radius;
+            double dr = (double)ticks.count[1] / ODO_TICKS_PER_RAD * wheel_radius;
             double ds = (dl + dr) / 2.0, dtheta = (dr - dl) / wheel_base;
             odom.pose.x += ds * cos(odom.pose.theta + dtheta / 2.0);
             odom.pose.y += ds * sin(odom.pose.theta + dtheta / 2.0);

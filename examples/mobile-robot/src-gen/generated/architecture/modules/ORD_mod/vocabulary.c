@@ -2,9 +2,12 @@
 #include <stddef.h>
 #include <contract/vocabulary.h>
 #include "schedtypes.h"
+#include "SharedDriveMode.h"
 #include "SharedPose.h"
 #include "SharedTwist.h"
 
+static const ContractEnumMember contract_members_DriveMode[] = {{"TELEOP", DriveMode_TELEOP}, {"AUTO", DriveMode_AUTO}, {"SAFESTOP", DriveMode_SAFESTOP}};
+static const ContractType contract_type_DriveMode = CONTRACT_ENUM_TYPE(DriveMode, contract_members_DriveMode, 3, NULL);
 static const Pose contract_default_Pose = { 0.0, 0.0, 0.0 };
 CONTRACT_DEFINE_TYPE(Pose, &contract_default_Pose)
 static const Twist contract_default_Twist = { 0.0, 0.0 };
@@ -12,18 +15,24 @@ CONTRACT_DEFINE_TYPE(Twist, &contract_default_Twist)
 
 typedef struct schema_velocityLoop_params_t {
     Twist setpoint;
+    DriveMode mode;
 } schema_velocityLoop_params_t;
 static const Twist k_0 = { 0.0, 0.0 };
+static const DriveMode k_1 = DriveMode_TELEOP;
 static const ContractVar schema_velocityLoop_params[] = {
-    {"setpoint", &contract_type_Twist, offsetof(schema_velocityLoop_params_t, setpoint), &k_0}};
+    {"setpoint", &contract_type_Twist, offsetof(schema_velocityLoop_params_t, setpoint), &k_0},
+    {"mode", &contract_type_DriveMode, offsetof(schema_velocityLoop_params_t, mode), &k_1}};
 static const ContractAssign schema_velocityLoop_VEL_p0[] = {
     {0, 0, &contract_type_Twist, {CONTRACT_REF_PARAM, 0, 0, &contract_type_Twist, NULL}}};
+static const ContractAssign schema_velocityLoop_VEL_p1[] = {
+    {0, 0, &contract_type_DriveMode, {CONTRACT_REF_PARAM, 1, 0, &contract_type_DriveMode, NULL}}};
 static const ContractParamSetting schema_velocityLoop_VEL_settings[] = {
-    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0}};
+    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0},
+    {1, &contract_type_DriveMode, 1, schema_velocityLoop_VEL_p1}};
 static const ContractSchemaModule schema_velocityLoop_modules[] = {
     {"WHL", 0, NULL},
     {"ODO", 0, NULL},
-    {"VEL", 1, schema_velocityLoop_VEL_settings},
+    {"VEL", 2, schema_velocityLoop_VEL_settings},
     {"MOT", 0, NULL}};
 static const ContractPrecedence schema_velocityLoop_precedences[] = {
     {0, 1},
@@ -37,14 +46,14 @@ static const ContractDataFlow schema_velocityLoop_data_flows[] = {
     {"MOT", 0, "WHL", 0, 1}};
 static const ContractSchema schema_velocityLoop = {
     "velocityLoop", CONTRACT_SCHEMA_PERIODIC, 10000000, 10000000,
-    1, schema_velocityLoop_params, sizeof(schema_velocityLoop_params_t),
+    2, schema_velocityLoop_params, sizeof(schema_velocityLoop_params_t),
     4, schema_velocityLoop_modules, 3, schema_velocityLoop_precedences, 5, schema_velocityLoop_data_flows, 0, NULL};
 typedef struct schema_localisationLoop_params_t {
     Pose goal;
 } schema_localisationLoop_params_t;
-static const Pose k_1 = { 4.0, 2.0, 0.0 };
+static const Pose k_2 = { 4.0, 2.0, 0.0 };
 static const ContractVar schema_localisationLoop_params[] = {
-    {"goal", &contract_type_Pose, offsetof(schema_localisationLoop_params_t, goal), &k_1}};
+    {"goal", &contract_type_Pose, offsetof(schema_localisationLoop_params_t, goal), &k_2}};
 static const ContractAssign schema_localisationLoop_NAV_p0[] = {
     {0, 0, &contract_type_Pose, {CONTRACT_REF_PARAM, 0, 0, &contract_type_Pose, NULL}}};
 static const ContractParamSetting schema_localisationLoop_NAV_settings[] = {

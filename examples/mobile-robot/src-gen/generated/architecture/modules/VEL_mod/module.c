@@ -9,6 +9,7 @@
 #include "SharedOdometry.h"
 #include "SharedWheelSpeeds.h"
 #include "SharedTwist.h"
+#include "SharedDriveMode.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_VEL) ENABLED START*/
@@ -25,8 +26,9 @@ MODULE_AUTHOR(/*PROTECTED REGION ID(protect_author_VEL) ENABLED START*/"ContrACT
 
 //Exchanges Management Variables
 Odometry odom = { { 0.0, 0.0, 0.0 }, { 0.0, 0.0 } };
-WheelSpeeds command = { 0.0, 0.0 };
+WheelSpeeds command = { { 0.0, 0.0 } };
 Twist setpoint = { 0.0, 0.0 };
+DriveMode mode = DriveMode_TELEOP;
 
 // module name
 char MODULE_NAME[] = "VEL";
@@ -45,7 +47,7 @@ ModuleReact IREACT[] = { IREACT_TERM };
 ModuleDetect IDETECT[] = { IDETECT_TERM };
 
 // size of parameters that can be received in the request mailbox:
-size_t PARAM_SIZE_IN[] = { sizeof(Twist), PARAM_SIZE_TERM };
+size_t PARAM_SIZE_IN[] = { sizeof(Twist), sizeof(DriveMode), PARAM_SIZE_TERM };
 
 // size of parameters or events that can be sent in request mailboxes of other modules (user has to add sizes of sent param requests, if any):
 size_t PARAM_SIZE_OUT[] = { /*PROTECTED REGION ID(protect_param_out_VEL) ENABLED START*/ /*PROTECTED REGION END*/PARAM_SIZE_TERM };
@@ -57,6 +59,7 @@ RTIME productionTime, receptionTime;
 /*PROTECTED REGION ID(protect_internal_vars_VEL) ENABLED START*/
 static double _int_v = 0.0, _int_w = 0.0;      /* integral terms */
 static Twist _last_setpoint = { -1.0, -1.0 };    /* to print setpoint changes only */
+static int _last_mode = -1;                      /* to print drive mode changes only */
 /*PROTECTED REGION END*/
 
 // Generic Prototypes (to be implemented by the user)
@@ -188,6 +191,9 @@ int ModuleMain(int argc, const char * argv[])
                     case 0 :
                         GetDataFromSetParamRequest(&receivedMessage, &setpoint, sizeof(Twist), &productionTime, &receptionTime);
                         break;
+                    case 1 :
+                        GetDataFromSetParamRequest(&receivedMessage, &mode, sizeof(DriveMode), &productionTime, &receptionTime);
+                        break;
                     default:
                         printf("Unknown param port:%d\n", receivedMessage.Param.SetParam.Port);
                         break;
@@ -249,6 +255,10 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
     switch(*stateindex){
         case 0: {
             GetLatestData(&odom, &productionTime, &receptionTime);
+            if ((int)mode != _last_mode) {
+                printf("VEL: drive mode "); print_DriveMode(&mode); printf("\n");
+                _last_mode = (int)mode;
+            }
             if (fabs(setpoint.v - _last_setpoint.v) > 0.05 || fabs(setpoint.w - _last_setpoint.w) > 0.05) {
                 printf("VEL: new setpoint v=%.2f m/s w=%.2f rad/s%s\n", setpoint.v, setpoint.w,
                        setpoint.v == 0.0 && setpoint.w == 0.0 ? " (stop)" : "");
@@ -261,8 +271,9 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
             double v = setpoint.v + VEL_KP * ev + VEL_KI * _int_v * 0.1;
             double w = setpoint.w + VEL_KP * ew + VEL_KI * _int_w * 0.1;
             if (setpoint.v == 0.0 && setpoint.w == 0.0) { v = 0.0; w = 0.0; } /* stop: brake, no integral kick */
-            command.left = (v - w * VEL_WHEEL_BASE / 2.0) / VEL_WHEEL_RADIUS;
-            command.right = (v + w * VEL_WHEEL_BASE / 2.0) / VEL_WHEEL_RADIUS;
+            if (mode == DriveMode_SAFESTOP) { v = 0.0; w = 0.0; }              /* safe stop: whatever the setpoint */
+            command.speed[0] = (v - w * VEL_WHEEL_BASE / 2.0) / VEL_WHEEL_RADIUS; /* left */
+            command.speed[1] = (v + w * VEL_WHEEL_BASE / 2.0) / VEL_WHEEL_RADIUS; /* right */
             PostData(&command);
             *stateindex = -1;
             break;

@@ -22,8 +22,8 @@ MODULE_DESCRIPTION(/*PROTECTED REGION ID(protect_description_WHL) ENABLED START*
 MODULE_AUTHOR(/*PROTECTED REGION ID(protect_author_WHL) ENABLED START*/"ContrACT Studio examples"/*PROTECTED REGION END*/);
 
 //Exchanges Management Variables
-WheelSpeeds applied = { 0.0, 0.0 };
-WheelTicks ticks = { 0, 0, 0.01 };
+WheelSpeeds applied = { { 0.0, 0.0 } };
+WheelTicks ticks = { { 0, 0 }, 0.01 };
 
 // module name
 char MODULE_NAME[] = "WHL";
@@ -52,7 +52,7 @@ RTIME productionTime, receptionTime;
 
 //from here you can define new internal variables
 /*PROTECTED REGION ID(protect_internal_vars_WHL) ENABLED START*/
-static double _carry_left = 0.0, _carry_right = 0.0; /* fractions of a tick not yet counted */
+static double _carry[2] = {0.0, 0.0}; /* fractions of a tick not yet counted (left, right) */
 /*PROTECTED REGION END*/
 
 // Generic Prototypes (to be implemented by the user)
@@ -242,12 +242,11 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
     switch(*stateindex){
         case 0: {
             GetLatestData(&applied, &productionTime, &receptionTime); /* keeps the last value when none came */
-            double left = applied.left * WHL_DT * WHL_TICKS_PER_RAD + _carry_left;
-            double right = applied.right * WHL_DT * WHL_TICKS_PER_RAD + _carry_right;
-            ticks.left = (long)floor(left);
-            ticks.right = (long)floor(right);
-            _carry_left = left - (double)ticks.left;
-            _carry_right = right - (double)ticks.right;
+            for (int i = 0; i < 2; i++) { /* left, right */
+                double turned = applied.speed[i] * WHL_DT * WHL_TICKS_PER_RAD + _carry[i];
+                ticks.count[i] = (long)floor(turned);
+                _carry[i] = turned - (double)ticks.count[i];
+            }
             ticks.dt = WHL_DT;
             PostData(&ticks);
             *stateindex = -1;
