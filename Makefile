@@ -3,7 +3,9 @@
 #   make test    install what is missing, build, and run every test (TypeScript, C, browser, sandboxes)
 #   make bench   run every benchmark, write bench/results.json
 #   make test-node-versions   CLI smoke + language/codegen tests on Node 22 and 24 (several minutes: not in make test)
-.PHONY: setup start test test-ts test-c test-node-versions bench clean
+#   make pack-cli             the CLI as one self-contained tarball in dist-packages/ (npm install -g it)
+#   make test-installed-cli   pack, install into a temp prefix, new/check/build/run outside the repository
+.PHONY: setup start test test-ts test-c test-node-versions pack-cli test-installed-cli bench clean
 
 setup:
 	bash scripts/setup.sh
@@ -16,6 +18,12 @@ test: setup
 
 test-node-versions: setup
 	bash scripts/test-node-versions.sh
+
+pack-cli: setup
+	npm run pack -w packages/cli
+
+test-installed-cli: setup
+	cd packages/cli && npx vitest run test/e2e/installed-cli.e2e.test.ts
 
 bench: setup
 	npm run bench

@@ -15,6 +15,7 @@ command -v dockerd   >/dev/null 2>&1 || need_pkgs+=(docker.io)
 command -v debootstrap >/dev/null 2>&1 || need_pkgs+=(debootstrap)
 command -v gcc       >/dev/null 2>&1 || need_pkgs+=(gcc)
 command -v make      >/dev/null 2>&1 || need_pkgs+=(make)
+command -v unzip     >/dev/null 2>&1 || need_pkgs+=(unzip)   # packages/vscode test reads the .vsix
 if [ ${#need_pkgs[@]} -gt 0 ]; then
   if [ "$(id -u)" = 0 ] && command -v apt-get >/dev/null 2>&1; then
     log "installing system packages: ${need_pkgs[*]}"

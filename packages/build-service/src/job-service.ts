@@ -21,6 +21,7 @@ import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './san
 import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
 import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
+import { isCpuList } from '@contract-studio/conventions';
 
 export interface BuildServiceOptions {
   /** Default sandbox of jobs that name none. Default 'auto'. */
@@ -162,7 +163,7 @@ export class JobService {
       throw new ServiceError(400, 'bad_request', 'duration must be a positive number of seconds');
     }
     // CPUS ends up in the make command line: digits, commas and dashes only
-    if (b.cpus !== undefined && (typeof b.cpus !== 'string' || b.cpus.length > 256 || !/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(b.cpus))) {
+    if (b.cpus !== undefined && (typeof b.cpus !== 'string' || b.cpus.length > 256 || !isCpuList(b.cpus))) {
       throw new ServiceError(400, 'bad_request', 'cpus must be a CPU list such as "1", "0-1" or "0,2"');
     }
     if (b.realtime !== undefined && typeof b.realtime !== 'boolean') throw new ServiceError(400, 'bad_request', 'realtime must be true or false');

@@ -22,6 +22,8 @@ export interface Limits {
   outputBytesPerStream: number;
   /** Size of the job's writable /work (sources, generated tree, build products, logs), MiB. */
   workDiskMiB: number;
+  /** Size of the job's private /tmp (a tmpfs in bwrap and Docker; counted in memoryMiB too), MiB. */
+  tmpMiB: number;
   /** Wall time of the host-side prepare step (Cactal load + validate + generate), seconds. */
   prepareSeconds: number;
   /** Bytes of Cactal model (`.contract` files) one job may hand to the generator. */
@@ -37,6 +39,7 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   runSeconds: 60,
   outputBytesPerStream: 1024 * 1024,
   workDiskMiB: 256,
+  tmpMiB: 256,
   prepareSeconds: 30,
   modelBytes: 1024 * 1024,
   generatedFiles: 5000,
@@ -84,6 +87,12 @@ export interface ServiceBounds {
   traceFiles: number;
   /** Record lines of one trace event. */
   traceLinesPerEvent: number;
+  /** Bytes of one file of a project a job is given (inline or read from its folder). */
+  projectFileBytes: number;
+  /** Bytes of all the files of a project a job is given. */
+  projectBytes: number;
+  /** gcc diagnostics kept per job (the rest stay in the log as text). */
+  diagnosticsPerJob: number;
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
   traceLinesKept: number;
 }
@@ -108,6 +117,9 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceFiles: 256,
   traceLinesPerEvent: 1000,
   traceLinesKept: 50_000,
+  projectFileBytes: 8 * 1024 * 1024,
+  projectBytes: 64 * 1024 * 1024,
+  diagnosticsPerJob: 1000,
 });
 
 /**
@@ -148,6 +160,7 @@ export const LIMIT_NAMES: readonly LimitName[] = [
   'runSeconds',
   'outputBytesPerStream',
   'workDiskMiB',
+  'tmpMiB',
   'prepareSeconds',
   'modelBytes',
   'generatedFiles',
@@ -210,6 +223,10 @@ export function memoryBytes(limits: Limits): number {
 
 export function workDiskBytes(limits: Limits): number {
   return Math.floor(limits.workDiskMiB * 1024 * 1024);
+}
+
+export function tmpBytes(limits: Limits): number {
+  return Math.floor(limits.tmpMiB * 1024 * 1024);
 }
 
 /** The error a step throws when one of its limits is hit outside a sandboxed process (prepare). */

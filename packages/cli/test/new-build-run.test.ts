@@ -6,7 +6,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { checkCpus, checkStart, moduleFailures, parseDuration } from '../src/commands/run.js';
-import { exitCodeOf } from '../src/commands/build.js';
+import { exitCodeOf } from '../src/job-runner.js';
 import type { Job, JobResult } from '@contract-studio/build-service';
 import { REPO } from './e2e/harness.js';
 import { capture } from './capture-io.js';

@@ -13,6 +13,7 @@ import { checkScenario, indexModels, type ModelIndex, type ResolvedLocal } from 
 import { simulationSources } from './harness/tables.js';
 import { buildHarness, type HarnessBuild } from './harness/build.js';
 import { runScenario, type RunOptions, type ScenarioResult } from './runner/run-scenario.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 /** The repository's runtime/ (from dist/ or src/ of this package). */
 export const DEFAULT_RUNTIME_DIR = resolve(dirname(fileURLToPath(import.meta.url)), '..', '..', '..', 'runtime');
@@ -51,7 +52,7 @@ export async function prepareProject(dir: string, options: SimulateOptions): Pro
     });
     let sources;
     try {
-        sources = simulationSources(docs.map((d) => d.model), join(dir, 'src-gen'));
+        sources = simulationSources(docs.map((d) => d.model), join(dir, SRC_GEN_DIR));
     } catch (e) {
         return { modelErrors: [], buildError: `cannot generate the engines' tables: ${e instanceof Error ? e.message : String(e)}` };
     }

@@ -1,7 +1,10 @@
 /**
  * JSON shapes that the IDE server sends and the browser client (src/api.ts) reads: one definition
- * for both sides. Types only — the browser imports this file, so it must not import Node modules.
+ * for both sides. Types only — the browser imports this file, so it imports nothing but types
+ * (the packages' own: codegen's report, the simulator's step records; docs/architecture.md "Seams").
  */
+import type { GenerationReport } from '@contract-studio/codegen';
+import type { RuleChange, StepRecord, StepResult } from '@contract-studio/simulator';
 
 /** One entry of the workspace tree (GET /api/tree, /api/snapshot). */
 export interface TreeEntry {
@@ -12,15 +15,8 @@ export interface TreeEntry {
   children?: TreeEntry[];
 }
 
-/** What Generate All did: the report of codegen's generateArchitecture (Seam 4), paths relative to src-gen. */
-export interface GenerateReport {
-  created: string[];
-  updated: string[];
-  unchanged: string[];
-  orphaned: string[];
-  errors: unknown[];
-  warnings: unknown[];
-}
+/** What Generate All did: codegen's report of generateArchitecture (Seam 4), paths relative to src-gen. */
+export type GenerateReport = GenerationReport;
 
 /** The answer of POST /api/generate: the report, the workspace-relative src-gen folder and the time taken. */
 export interface GenerateResponse extends GenerateReport {
@@ -74,32 +70,15 @@ export interface SimulateDiagnostic {
 }
 
 /** One rule change of a simulated step, as the `sup_rule` records of a real run (docs/simulation.md §4). */
-export interface SimulateRuleChange {
-  timeNs: number;
-  supervisor: string;
-  function: string;
-  rule: string;
-  active: boolean;
-  cause: string;
-}
+export type SimulateRuleChange = RuleChange;
 
-/** One step of POST /api/simulate: the scenario line, its record's time, what it changed and the state after it. */
-export interface SimulateStep {
-  line: number;
-  source: string;
-  timeNs: number;
-  kind: string;
-  ok: boolean;
-  message?: string;
-  rules: SimulateRuleChange[];
-  actions: Array<{ timeNs: number; who: string; what: string }>;
-  schemas: string[];
-  locals: Array<{ supervisor: string; function: string; name: string; type: string; value: string }>;
-  output?: string;
-  error?: string;
-  /** Entries left out of this step by the server's bounds. */
-  dropped?: number;
-}
+/**
+ * One step of POST /api/simulate: the simulator's step result (scenario line, its record's time, ok
+ * and message) with what its record changed and the state after it, bounded by the server.
+ */
+export type SimulateStep = Pick<StepResult, 'line' | 'source' | 'timeNs' | 'kind' | 'ok' | 'message'>
+  & Pick<StepRecord, 'rules' | 'actions' | 'output' | 'error' | 'dropped'>
+  & Required<Pick<StepRecord, 'schemas' | 'locals'>>;
 
 /** The answer of POST /api/simulate (200: the scenario ran; 422: diagnostics, nothing ran). */
 export interface SimulateResponse {

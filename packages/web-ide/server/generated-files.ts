@@ -1,11 +1,14 @@
 import { join } from 'node:path';
 import { loadTreeChecks } from './integrations.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
+
+const GENERATED_PATH = new RegExp(`^(?:(.*)/)?${SRC_GEN_DIR}/(generated/.+)$`);
 
 /** `<project>/src-gen/generated/<rest>` -> the src-gen folder and the path codegen uses (`generated/<rest>`). */
 export function splitGeneratedPath(relPath: string): { srcGen: string; inTree: string } | undefined {
-  const m = /^(?:(.*)\/)?src-gen\/(generated\/.+)$/.exec(relPath);
+  const m = GENERATED_PATH.exec(relPath);
   if (!m) return undefined;
-  return { srcGen: m[1] ? `${m[1]}/src-gen` : 'src-gen', inTree: m[2]! };
+  return { srcGen: m[1] ? `${m[1]}/${SRC_GEN_DIR}` : SRC_GEN_DIR, inTree: m[2]! };
 }
 
 /**

@@ -20,6 +20,7 @@ import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { FileLocks } from './file-locks.js';
 import { fileVersion } from './file-version.js';
 import { SimulateApi } from './simulate-api.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -175,9 +176,9 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const t0 = Date.now();
       const report = await treeLock.run(async () => {
         const { documents } = await loadWorkspaceDocuments(projectDir);
-        return runCodegen(documents, join(projectDir, 'src-gen'), {});
+        return runCodegen(documents, join(projectDir, SRC_GEN_DIR));
       });
-      const srcGen = paths.toRelative(join(projectDir, 'src-gen'));
+      const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));
       const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
       sendJson(res, 200, answer);
       watcher.broadcast('generated', { srcGen });
@@ -197,7 +198,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       if (typeof body.from !== 'string' || typeof body.to !== 'string') throw new HttpError(400, 'from and to are required');
       const { from, to } = body;
       try {
-        const report = await treeLock.run(() => renameGeneratedEntity(join(projectDir, 'src-gen'), from, to));
+        const report = await treeLock.run(() => renameGeneratedEntity(join(projectDir, SRC_GEN_DIR), from, to));
         sendJson(res, 200, report);
       } catch (e) {
         if (e instanceof HttpError) throw e; // codegen not built: 503

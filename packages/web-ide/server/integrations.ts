@@ -1,17 +1,19 @@
 /**
- * Lazy, typed access to the sibling packages (language, codegen, build service). They are loaded
- * on first use so the file API and the editor keep working when one of them is not built; the
- * user then gets a clear error naming the missing package instead of a crash.
+ * Lazy, typed access to the sibling packages (language, codegen, build service, simulator). They
+ * are loaded on first use so the file API and the editor keep working when one of them is not
+ * built; the user then gets a clear error naming the missing package instead of a crash. The
+ * types are the packages' own (type-only imports: nothing is loaded until a function runs).
  */
-import type { GenerateReport } from './api-types.js';
+import type { LoadedWorkspace, WorkspaceDocument } from '@contract-studio/language/node';
+import type { GenerationReport, RenameGeneratedReport } from '@contract-studio/codegen';
 import type { RegionParser } from './region-guard.js';
 import { HttpError } from './http-error.js';
 
-export interface BuildServerLike {
-  handle(req: import('node:http').IncomingMessage, res: import('node:http').ServerResponse): boolean | Promise<boolean>;
-  handleUpgrade?(req: import('node:http').IncomingMessage, socket: import('node:stream').Duplex, head: Buffer): boolean;
-  close(): Promise<void>;
-}
+type LanguageNodeApi = typeof import('@contract-studio/language/node');
+type CodegenApi = typeof import('@contract-studio/codegen');
+type BuildServiceApi = typeof import('@contract-studio/build-service');
+
+export type BuildServerLike = ReturnType<BuildServiceApi['createBuildServer']>;
 
 async function importPackage<T>(name: string): Promise<T> {
   try {
@@ -21,43 +23,36 @@ async function importPackage<T>(name: string): Promise<T> {
   }
 }
 
-export async function loadWorkspaceDocuments(dir: string): Promise<{ documents: unknown[]; diagnostics?: unknown }> {
-  const lang = await importPackage<{ loadWorkspace(dir: string): Promise<{ documents: unknown[]; diagnostics?: unknown }> }>(
-    '@contract-studio/language/node',
-  );
+/** The package, checked to export `names` as functions (a stale build of it may lack newer ones). */
+async function importWith<T, K extends keyof T>(name: string, names: readonly K[]): Promise<Pick<T, K>> {
+  const mod = await importPackage<Partial<T>>(name);
+  const missing = names.filter((n) => typeof mod[n] !== 'function');
+  if (missing.length) throw new HttpError(503, `${name} does not export ${missing.join('/')}; run \`npm run build\` at the repository root`);
+  return mod as Pick<T, K>;
+}
+
+export async function loadWorkspaceDocuments(dir: string): Promise<LoadedWorkspace> {
+  const lang = await importWith<LanguageNodeApi, 'loadWorkspace'>('@contract-studio/language/node', ['loadWorkspace']);
   return lang.loadWorkspace(dir);
 }
 
-export async function runCodegen(documents: unknown[], outDir: string, options: Record<string, unknown>): Promise<GenerateReport> {
-  const codegen = await importPackage<{
-    generateArchitecture(documents: unknown[], outDir: string, options: Record<string, unknown>): Promise<GenerateReport> | GenerateReport;
-  }>('@contract-studio/codegen');
-  return codegen.generateArchitecture(documents, outDir, options);
+export async function runCodegen(documents: WorkspaceDocument[], outDir: string): Promise<GenerationReport> {
+  const codegen = await importWith<CodegenApi, 'generateArchitecture'>('@contract-studio/codegen', ['generateArchitecture']);
+  return codegen.generateArchitecture(documents, outDir);
 }
 
 /**
  * codegen's carry-over of a renamed entity in a generated tree (paths and region IDs), the one
  * `contract rename` uses too (docs/codegen.md, "Renames").
  */
-export async function renameGeneratedEntity(srcGen: string, from: string, to: string): Promise<RenameEntityReport> {
-  const codegen = await importPackage<{
-    renameInGeneratedTree(srcGen: string, from: string, to: string): Promise<RenameEntityReport>;
-  }>('@contract-studio/codegen');
+export async function renameGeneratedEntity(srcGen: string, from: string, to: string): Promise<RenameGeneratedReport> {
+  const codegen = await importWith<CodegenApi, 'renameInGeneratedTree'>('@contract-studio/codegen', ['renameInGeneratedTree']);
   return codegen.renameInGeneratedTree(srcGen, from, to);
-}
-
-export interface RenameEntityReport {
-  movedPaths: Array<{ from: string; to: string }>;
-  rewrittenFiles: string[];
-  regionIds: Array<{ file: string; from: string; to: string }>;
 }
 
 /** codegen's protected-region parser (parseRegions + RegionSyntaxError), for the guard of generated files. */
 export async function loadRegionParser(): Promise<RegionParser> {
-  const codegen = await importPackage<Partial<RegionParser>>('@contract-studio/codegen');
-  if (typeof codegen.parseRegions !== 'function' || typeof codegen.RegionSyntaxError !== 'function') {
-    throw new HttpError(503, '@contract-studio/codegen does not export parseRegions/RegionSyntaxError; run `npm run build` at the repository root');
-  }
+  const codegen = await importWith<CodegenApi, 'parseRegions' | 'RegionSyntaxError'>('@contract-studio/codegen', ['parseRegions', 'RegionSyntaxError']);
   return { parseRegions: codegen.parseRegions, RegionSyntaxError: codegen.RegionSyntaxError };
 }
 
@@ -66,19 +61,10 @@ export async function loadRegionParser(): Promise<RegionParser> {
  * generator's manifest and carries renames over in src-gen with the same rules as Generate All
  * (plain relative paths, no symlink anywhere; docs/codegen.md, "What generate refuses").
  */
-export interface TreeChecks {
-  checkTreeRoot(root: string): boolean;
-  /** Holds opened folders until close(). */
-  OutputTree: new (root: string) => { close(): void };
-  loadManifest(tree: unknown): { manifest?: { files: Map<string, unknown> }; problems: string[] };
-}
+export type TreeChecks = Pick<CodegenApi, 'checkTreeRoot' | 'OutputTree' | 'loadManifest'>;
 
 export async function loadTreeChecks(): Promise<TreeChecks> {
-  const codegen = await importPackage<Partial<TreeChecks>>('@contract-studio/codegen');
-  if (typeof codegen.checkTreeRoot !== 'function' || typeof codegen.OutputTree !== 'function' || typeof codegen.loadManifest !== 'function') {
-    throw new HttpError(503, '@contract-studio/codegen does not export checkTreeRoot/OutputTree/loadManifest; run `npm run build` at the repository root');
-  }
-  return { checkTreeRoot: codegen.checkTreeRoot, OutputTree: codegen.OutputTree, loadManifest: codegen.loadManifest };
+  return importWith<CodegenApi, keyof TreeChecks>('@contract-studio/codegen', ['checkTreeRoot', 'OutputTree', 'loadManifest']);
 }
 
 /**
@@ -90,11 +76,7 @@ export async function loadTreeChecks(): Promise<TreeChecks> {
 export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`)): Promise<BuildServerLike | string> {
   try {
     const name = '@contract-studio/build-service';
-    const bs = (await import(name)) as {
-      createBuildServer(options: Record<string, unknown>): BuildServerLike;
-      resolveCacheDir(explicit: string | undefined): { dir: string };
-      prepareCacheDir(dir: string, jobUidsMustTraverse: boolean): string | null;
-    };
+    const bs = (await import(name)) as BuildServiceApi;
     const cache = bs.resolveCacheDir(undefined);
     const refused = bs.prepareCacheDir(cache.dir, process.getuid?.() === 0);
     if (refused) log(`build cache: ${refused}; using a private temporary cache instead`);
@@ -109,9 +91,6 @@ export async function createEmbeddedBuildServer(workspaceRoot: string, log: (lin
 export type SimulatorApi = typeof import('@contract-studio/simulator');
 
 export async function loadSimulator(): Promise<SimulatorApi> {
-  const sim = await importPackage<Partial<SimulatorApi>>('@contract-studio/simulator');
-  if (typeof sim.prepareProject !== 'function' || typeof sim.loadScenario !== 'function' || typeof sim.runLoadedScenario !== 'function') {
-    throw new HttpError(503, '@contract-studio/simulator does not export prepareProject/loadScenario/runLoadedScenario; run `npm run build` at the repository root');
-  }
+  const sim = await importWith<SimulatorApi, 'prepareProject' | 'loadScenario' | 'runLoadedScenario'>('@contract-studio/simulator', ['prepareProject', 'loadScenario', 'runLoadedScenario']);
   return sim as SimulatorApi;
 }

@@ -18,35 +18,21 @@
  * Modules are found as the descendants of this process (the sandbox's processes), by the names of
  * their output tags. The runtime is built from a snapshot of runtime/ (concurrent edits do not matter).
  */
-import { mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { JobService } from '../job-service.js';
 import { artifactBytes } from '../pipeline/artifacts.js';
 import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
+import { processParents } from '../sandbox/host-process.js';
 
 const say = (s: string): void => void process.stderr.write(`[bench soak] ${s}\n`);
 const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
 
-/** pid -> parent pid of every process of the machine. */
-function parents(): Map<number, number> {
-  const out = new Map<number, number>();
-  for (const name of readdirSync('/proc')) {
-    if (!/^\d+$/.test(name)) continue;
-    try {
-      const stat = readFileSync(`/proc/${name}/stat`, 'utf8');
-      const ppid = Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]);
-      out.set(Number(name), ppid);
-    } catch {
-      // gone meanwhile
-    }
-  }
-  return out;
-}
 
 /** VmRSS (KiB) of the descendants of this process whose name is a module's, by module name. */
 function moduleRss(modules: Set<string>): Map<string, number> {
-  const ppid = parents();
+  const ppid = processParents();
   const mine = new Set<number>([process.pid]);
   for (let grew = true; grew; ) {
     grew = false;

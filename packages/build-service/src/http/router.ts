@@ -10,6 +10,7 @@ import { artifactBytes } from '../pipeline/artifacts.js';
 import { ServiceError } from '../service-errors.js';
 import { BodyReader } from './body-reader.js';
 import { streamSse } from './sse.js';
+import { SANDBOX_NAMES } from '@contract-studio/conventions';
 
 function send(res: ServerResponse, status: number, body: unknown, headers: Record<string, string> = {}): void {
   const text = JSON.stringify(body);
@@ -77,7 +78,7 @@ export function createRouter(service: JobService, basePath: string) {
         send(res, 200, { ok: true, ...service.stats });
       } else if (parts[0] === 'sandboxes' && parts.length === 1 && method === 'GET') {
         const sandboxes = [];
-        for (const name of ['bwrap', 'docker', 'none'] as const) sandboxes.push({ name, ...(await service.sandboxes.probe(name)) });
+        for (const name of SANDBOX_NAMES) sandboxes.push({ name, ...(await service.sandboxes.probe(name)) });
         let auto: string | null = null;
         try {
           auto = (await service.sandboxes.resolve('auto')).sandbox.name;

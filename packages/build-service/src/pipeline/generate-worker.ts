@@ -10,7 +10,9 @@ import { pathToFileURL } from 'node:url';
 import { Worker } from 'node:worker_threads';
 import type { Limits } from '../limits.js';
 import { LimitHitError } from '../limits.js';
-import { generationProblems, normaliseProblems, type CactalProblem, type GenerateOutcome } from './cactal-adapter.js';
+import type { WorkspaceDiagnostic } from '@contract-studio/language/node';
+import type { GenerationProblem } from '@contract-studio/codegen';
+import { generationProblems, workspaceProblems, type CactalProblem, type GenerateOutcome } from './cactal-adapter.js';
 
 /** The worker's code (CommonJS, given as text: it also runs from the TypeScript sources in tests). */
 const WORKER_CODE = `
@@ -35,8 +37,8 @@ const plain = (v) => JSON.parse(JSON.stringify(v === undefined ? null : v));
 `;
 
 type WorkerMessage =
-  | { kind: 'loaded'; diagnostics: unknown }
-  | { kind: 'generated'; written: number; unchanged: number; errors: unknown; warnings: unknown }
+  | { kind: 'loaded'; diagnostics: WorkspaceDiagnostic[] }
+  | { kind: 'generated'; written: number; unchanged: number; errors: GenerationProblem[]; warnings: GenerationProblem[] }
   | { kind: 'error'; message: string };
 
 function resolvePackage(spec: string): string {
@@ -79,7 +81,7 @@ export function generateProjectBounded(projectDir: string, outDir: string, limit
     void cancelled?.then(() => settle(() => reject(new Error('cancelled'))));
     worker.on('message', (m: WorkerMessage) => {
       if (m.kind === 'loaded') {
-        problems = normaliseProblems(m.diagnostics, projectDir);
+        problems = workspaceProblems(m.diagnostics);
         const go = !problems.some((p) => p.severity === 'error');
         worker.postMessage(go);
         if (!go) settle(() => resolve({ problems, written: 0, unchanged: 0 }));

@@ -5,7 +5,7 @@
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { describeLimitHit, formatBytes, LimitHitError } from '../limits.js';
+import { describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -22,6 +22,7 @@ import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
+import { SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
 
 export interface JobRequest {
   action: 'build' | 'run';
@@ -61,7 +62,7 @@ export interface JobContext {
   generated?: GenerationCache | null;
 }
 
-const MAX_DIAGNOSTICS = 1000;
+const MAX_DIAGNOSTICS = SERVICE_BOUNDS.diagnosticsPerJob;
 
 class Cancelled extends Error {}
 
@@ -230,7 +231,7 @@ export class Job {
       this.timed('prepare', 'generation + copy into the work tree', t);
       // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
       // the image for docker. Plain Makefile projects get the image's path and no bind.
-      let runtimePath = '/opt/contract/runtime';
+      let runtimePath = SANDBOX_RUNTIME_DIR;
       let runtimeDir: string | undefined;
       if (prep.ok && this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
         t = Date.now();
@@ -477,7 +478,7 @@ export class Job {
     this.current = proc;
     this.mechanisms = proc.mechanisms;
     this.timed(step, `sandbox start (limits set-up: memory ${proc.mechanisms.memory}, processes ${proc.mechanisms.processes}, disk ${proc.mechanisms.disk})`, t0);
-    const note = (proc as { noteLine?: (l: string) => void }).noteLine;
+    const note = (line: string): void => proc.noteLine(line);
     let timeHit: LimitHit | null = null;
     const timer = setTimeout(this.guarded('time limit', () => {
       timeHit = {
@@ -496,7 +497,7 @@ export class Job {
           maxBytes: this.request.limits.outputBytesPerStream,
           onLine: (line) => {
             if (this.fault) return; // the job is being stopped: its output is only drained
-            note?.(line);
+            note(line);
             for (const r of route(line, name)) this.line(step, r.source, name, r.line);
           },
           onTruncated: () => {

@@ -7,28 +7,29 @@ import { createHash } from 'node:crypto';
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import type { Limits } from '../limits.js';
-import { LimitHitError } from '../limits.js';
+import { LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
 import type { Workspace } from './workspaces.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
+import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
 
 export type ProjectSource = { dir: string } | { files: Record<string, string> };
 
-export const MAX_FILE_BYTES = 8 * 1024 * 1024;
-export const MAX_PROJECT_BYTES = 64 * 1024 * 1024;
+export const MAX_FILE_BYTES = SERVICE_BOUNDS.projectFileBytes;
+export const MAX_PROJECT_BYTES = SERVICE_BOUNDS.projectBytes;
 
 /** Folder (relative to work/) the build reports diagnostics against and runs make in. */
 export function treeRoot(kind: ProjectKind): string {
-  return kind === 'cactal' ? 'src-gen' : '';
+  return kind === 'cactal' ? SRC_GEN_DIR : '';
 }
 
 export function makeDir(kind: ProjectKind): string {
-  return kind === 'cactal' ? 'src-gen/generated/architecture' : '';
+  return kind === 'cactal' ? SRC_GEN_ARCHITECTURE_DIR : '';
 }
 
 export interface PrepareOutcome {
@@ -43,7 +44,7 @@ export interface PrepareOutcome {
 function acceptProjectPath(kind: ProjectKind) {
   return (rel: string, isDir: boolean): boolean => {
     const base = rel.split('/').pop() ?? rel;
-    const inTree = rel.startsWith('src-gen/');
+    const inTree = rel.startsWith(`${SRC_GEN_DIR}/`);
     if (base === 'node_modules' || base === '.git') return false;
     if (base.startsWith('.') && !inTree) return false;
     if (isDir) return !/(^|\/)(logs|run)$/.test(rel);
@@ -69,7 +70,7 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
     const files = await listFilesNoFollow(source.dir, acceptProjectPath(kind));
     for (const rel of files) {
       // build products of an earlier local build (executables) are not sources: skip them
-      if (kind === 'cactal' && rel.startsWith('src-gen/') && ((await fsp.lstat(join(source.dir, rel))).mode & 0o111) !== 0) continue;
+      if (kind === 'cactal' && rel.startsWith(`${SRC_GEN_DIR}/`) && ((await fsp.lstat(join(source.dir, rel))).mode & 0o111) !== 0) continue;
       const data = await readFileNoFollow(source.dir, rel, MAX_FILE_BYTES);
       if (data) add(rel, data);
     }
@@ -118,7 +119,7 @@ export async function prepareWorkspace(
     log('project unchanged since the last build: generation skipped');
   } else if (kind === 'cactal') {
     await fsp.rm(digestFile, { force: true });
-    const stageGen = join(stageProjectDir, 'src-gen');
+    const stageGen = join(stageProjectDir, SRC_GEN_DIR);
     const freshStage = !(await fsp.lstat(stageGen).catch(() => null));
     await stageProject(wanted, kind, stageProjectDir);
     const t0 = Date.now();

@@ -13,19 +13,19 @@ import { execFile } from 'node:child_process';
 import { existsSync, lstatSync, readlinkSync } from 'node:fs';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
-import { memoryBytes, REALTIME_BOUNDS } from '../limits.js';
+import { memoryBytes, REALTIME_BOUNDS, tmpBytes } from '../limits.js';
 import type { LimitCgroup } from './cgroup.js';
 import { cgroupChoice, createJobCgroup } from './cgroup-choice.js';
 import { startHostProcess } from './host-process.js';
 import { workDiskState } from './work-disk.js';
 import { describeRealtime, planRealtime, readRealtimeFacts, RealtimeCgroup, realtimePrefix } from './realtime.js';
 import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
+import { SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
 const run = promisify(execFile);
 
 export const SANDBOX_WORK = '/work';
-export const SANDBOX_RUNTIME = '/opt/contract/runtime';
-const SANDBOX_UID = 1000;
+export const SANDBOX_RUNTIME = SANDBOX_RUNTIME_DIR;
 
 export type LimitMechanismChoice = 'auto' | 'cgroup' | 'rlimit';
 
@@ -163,12 +163,12 @@ export class BwrapSandbox implements Sandbox {
       '--disable-userns', // no nested user namespaces: no way to regain capabilities inside
       '--as-pid-1', // the command is the namespace's init: no bwrap init left to PID 1 when bwrap exits
       '--uid', String(SANDBOX_UID),
-      '--gid', String(SANDBOX_UID),
+      '--gid', String(SANDBOX_GID),
       '--hostname', 'contract-sandbox',
       ...toolchainArgs(),
       '--proc', '/proc',
       '--dev', '/dev',
-      '--tmpfs', '/tmp',
+      '--size', String(tmpBytes(cmd.limits)), '--tmpfs', '/tmp',
       '--bind', cmd.workDir, SANDBOX_WORK,
       ...(cmd.runtimeDir ? ['--ro-bind', cmd.runtimeDir, SANDBOX_RUNTIME] : []),
       '--remount-ro', '/',

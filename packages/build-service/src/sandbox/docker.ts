@@ -22,7 +22,7 @@ import { createRequire } from 'node:module';
 import type Docker from 'dockerode';
 import type { ContainerCreateOptions } from 'dockerode';
 import type { LimitHit } from '../limits.js';
-import { memoryBytes, REALTIME_BOUNDS, workDiskBytes } from '../limits.js';
+import { memoryBytes, REALTIME_BOUNDS, tmpBytes, workDiskBytes } from '../limits.js';
 import { dockerRealtimeError, dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
@@ -32,11 +32,12 @@ import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from '.
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
+import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
-export const DOCKER_IMAGE = 'contract-gcc';
+export { DOCKER_IMAGE };
 export const DOCKER_WORK = '/work';
-export const DOCKER_RUNTIME = '/opt/contract/runtime';
-const DOCKER_USER = '1000:1000';
+export const DOCKER_RUNTIME = SANDBOX_RUNTIME_DIR;
+const DOCKER_USER = `${SANDBOX_UID}:${SANDBOX_GID}`;
 /** statfs of the work volume while a step runs: a job refused a write is stopped within this time. */
 const DISK_WATCH_INTERVAL_MS = 1000;
 
@@ -69,7 +70,7 @@ function withDeadline<T>(p: Promise<T>, ms: number, what: string): Promise<T> {
 
 function tarOf(dir: string): Promise<Buffer> {
   return new Promise((resolve, reject) => {
-    const child = spawn('tar', ['-C', dir, '--owner=1000', '--group=1000', '--numeric-owner', '-cf', '-', '.'], {
+    const child = spawn('tar', ['-C', dir, `--owner=${SANDBOX_UID}`, `--group=${SANDBOX_GID}`, '--numeric-owner', '-cf', '-', '.'], {
       stdio: ['ignore', 'pipe', 'pipe'],
     });
     const chunks: Buffer[] = [];
@@ -215,7 +216,7 @@ export class DockerSandbox implements Sandbox {
       await this.docker.createVolume({
         Name: volume,
         Labels: ownerLabels(this.owner, 'workspace', jobId),
-        DriverOpts: { type: 'tmpfs', device: 'tmpfs', o: `size=${diskBytes},nr_inodes=${workDiskInodes(diskBytes)},uid=1000,gid=1000,mode=0755,nosuid,nodev` },
+        DriverOpts: { type: 'tmpfs', device: 'tmpfs', o: `size=${diskBytes},nr_inodes=${workDiskInodes(diskBytes)},uid=${SANDBOX_UID},gid=${SANDBOX_GID},mode=0755,nosuid,nodev` },
       });
       this.createdVolumes.add(volume);
       this.volumeBytes.set(volume, diskBytes);
@@ -251,7 +252,7 @@ export class DockerSandbox implements Sandbox {
         NetworkMode: 'none',
         ReadonlyRootfs: true,
         Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK }],
-        Tmpfs: { '/tmp': 'rw,exec,nosuid,nodev,size=268435456' },
+        Tmpfs: { '/tmp': `rw,exec,nosuid,nodev,size=${tmpBytes(cmd.limits)}` },
         SecurityOpt: ['no-new-privileges'],
         CapDrop: ['ALL'],
         Memory: bytes,
@@ -326,7 +327,8 @@ export class DockerSandbox implements Sandbox {
           void kill();
         }
       };
-      return { stdout, stderr, mechanisms, done, kill, noteLine } as SandboxProcess;
+      const proc: SandboxProcess = { stdout, stderr, mechanisms, done, kill, noteLine };
+      return proc;
     } catch (e) {
       await removeContainer();
       throw realtime ? dockerRealtimeError(e as Error, REALTIME_BOUNDS) : e;

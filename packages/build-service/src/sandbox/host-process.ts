@@ -35,7 +35,7 @@ const DISK_WATCH_INTERVAL_MS = 250;
 /** Shell prologue: write our pid into each cgroup.procs given before "--", then exec the rest. */
 const JOIN_CGROUP = 'for f; do [ "$f" = -- ] && break; echo $$ > "$f" || exit 125; shift; done; shift; exec "$@"';
 
-export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { noteLine(line: string): void } {
+export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
   const join = [...(opts.cgroup?.procsFiles ?? []), ...(opts.joinProcsFiles ?? [])];
   const argv = join.length ? ['/bin/sh', '-c', JOIN_CGROUP, 'contract-join', ...join, '--', ...opts.argv] : opts.argv;
   const child = spawn(argv[0]!, argv.slice(1), {
@@ -190,8 +190,8 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess & { n
   };
 }
 
-/** Every process below `root` (from /proc/<pid>/stat parent links), deepest last. */
-export function descendantsOf(root: number): number[] {
+/** pid -> parent pid of every process of the machine (from /proc/<pid>/stat). */
+export function processParents(): Map<number, number> {
   const parent = new Map<number, number>();
   for (const name of readdirSync('/proc')) {
     if (!/^\d+$/.test(name)) continue;
@@ -203,6 +203,12 @@ export function descendantsOf(root: number): number[] {
       /* exited meanwhile */
     }
   }
+  return parent;
+}
+
+/** Every process below `root` (from /proc/<pid>/stat parent links), deepest last. */
+export function descendantsOf(root: number): number[] {
+  const parent = processParents();
   const out: number[] = [];
   const frontier = [root];
   while (frontier.length) {

@@ -7,7 +7,7 @@ import { DockerSandbox, type DockerOptions } from './docker.js';
 import { NoSandbox } from './none.js';
 import type { Sandbox, SandboxChoice, SandboxName, SandboxProbe } from './types.js';
 
-export const SANDBOX_CHOICES: readonly SandboxChoice[] = ['auto', 'bwrap', 'docker', 'none'];
+export { SANDBOX_CHOICES } from '@contract-studio/conventions';
 
 export class SandboxUnavailableError extends Error {}
 

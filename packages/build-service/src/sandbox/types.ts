@@ -3,8 +3,8 @@ import type { Readable } from 'node:stream';
 import type { LimitHit, Limits, Mechanism } from '../limits.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 
-export type SandboxName = 'bwrap' | 'docker' | 'none';
-export type SandboxChoice = SandboxName | 'auto';
+export type { SandboxName, SandboxChoice } from '@contract-studio/conventions';
+import type { SandboxName } from '@contract-studio/conventions';
 
 /** Which mechanism enforced each guarantee/limit for one sandboxed process (reported in job results). */
 export interface Mechanisms {
@@ -60,6 +60,12 @@ export interface SandboxProcess {
   readonly done: Promise<SandboxExit>;
   /** Stops every process of the command (idempotent); resolves when they are gone. */
   kill(): Promise<void>;
+  /**
+   * Every output line the job reads from the process: the sandbox may recognise a limit hit that
+   * only shows in the output (a refused fork under RLIMIT_NPROC or in Docker, an allocation refused
+   * under RLIMIT_AS) and report it in `done`.
+   */
+  noteLine(line: string): void;
 }
 
 export interface SandboxProbe {

@@ -11,6 +11,7 @@ import type { GenerationProblem, GenerationReport } from '@contract-studio/codeg
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 function list(io: CliIO, label: string, paths: string[], show = true): void {
     if (paths.length === 0) return;
@@ -54,7 +55,7 @@ export const generateCommand: Command = {
         const info = await stat(dir).catch(() => undefined);
         if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
         const outOption = options.get('o') ?? options.get('output');
-        const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, 'src-gen');
+        const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, SRC_GEN_DIR);
 
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
         const { loadWorkspace } = await import('@contract-studio/language/node');
@@ -67,7 +68,7 @@ export const generateCommand: Command = {
             return EXIT_FAILURE;
         }
         const report = generateArchitecture(workspace.documents, out);
-        const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, 'src-gen');
+        const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
         await printReport(io, report, outLabel, options.get('verbose') === true);
         io.err(`generated ${outLabel}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;

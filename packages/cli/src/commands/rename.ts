@@ -13,6 +13,7 @@ import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
 import { printReport } from './generate.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export const renameCommand: Command = {
     name: 'rename',
@@ -33,8 +34,8 @@ export const renameCommand: Command = {
         const dir = resolve(io.cwd, dirArg);
         if (!(await stat(dir).catch(() => undefined))?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
         const outOption = options.get('o') ?? options.get('output');
-        const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, 'src-gen');
-        const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, 'src-gen');
+        const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, SRC_GEN_DIR);
+        const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
 
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
         const { loadWorkspace, planRename, RenameError } = await import('@contract-studio/language/node');

@@ -19,7 +19,8 @@ import type { JobEvent } from '@contract-studio/build-service';
 import { parseTrace } from '@contract-studio/build-service/trace';
 import { toJsonLines, writeNoFollow } from '../trace-files.js';
 import { LiveTrace } from '../live-trace.js';
-import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from './build.js';
+import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from '../job-runner.js';
+import { isCpuList } from '@contract-studio/conventions';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
 export function parseDuration(text: string): number {
@@ -32,7 +33,7 @@ export function parseDuration(text: string): number {
 
 /** `--cpus` list: `1`, `0-1`, `0,2` (contract-launch checks the CPUs exist on the machine that runs). */
 export function checkCpus(text: string): string {
-    if (!/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(text)) throw new UsageError(`bad --cpus '${text}' (expected a CPU list such as 1, 0-1 or 0,2)`);
+    if (!isCpuList(text)) throw new UsageError(`bad --cpus '${text}' (expected a CPU list such as 1, 0-1 or 0,2)`);
     return text;
 }
 

@@ -9,7 +9,8 @@ import { join, resolve } from 'node:path';
 import type { LoadedScenario, ScenarioResult } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
-import { EXIT_ENVIRONMENT } from './build.js';
+import { defaultRuntimeSource } from '../runtime-source.js';
+import { EXIT_ENVIRONMENT } from '../job-runner.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 
@@ -21,7 +22,7 @@ export const simulateCommand: Command = {
         '  DIR: the project (its .contract files); SCENARIO: .scenario files (format: docs/simulation.md)',
         '  --format: text (default: each step, its rule changes, each failed expectation), json (every step\'s record), junit (JUnit XML)',
         '  --verbose: text also shows each step\'s actions and the engines\' trace lines',
-        '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the repository\'s runtime/)',
+        '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
         '  --cache-dir: the build cache of `contract build`; built simulators are kept in its sim/ (default: $CONTRACT_CACHE_DIR,',
         '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
         'exit status: 0 every expectation passed, 1 one failed (or a scenario could not run), 2 usage, model or scenario errors,',
@@ -39,7 +40,7 @@ export const simulateCommand: Command = {
         const format = parsed.options.get('format') ?? 'text';
         if (!FORMATS.includes(format as never)) throw new UsageError(`unknown format '${String(format)}' (expected text, json or junit)`);
         const runtimeOption = parsed.options.get('runtime');
-        const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || DEFAULT_RUNTIME_DIR;
+        const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || defaultRuntimeSource(DEFAULT_RUNTIME_DIR);
         if (!existsSync(join(runtimeDir, 'include', 'contract', 'vocabulary.h'))) throw new UsageError(`${runtimeDir} is not a ContrACT runtime folder; pass --runtime PATH`);
         const cacheOption = parsed.options.get('cache-dir');
         const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;

@@ -1,8 +1,9 @@
 import { expandToNode, joinToNode, toString } from 'langium/generate';
 import type { Architecture } from '../model/architecture.js';
 import { runtimeSettings } from './build-settings.js';
+import { architecturePath } from '@contract-studio/conventions';
 
-export const ARCHITECTURE_MAKEFILE = 'generated/architecture/Makefile';
+export const ARCHITECTURE_MAKEFILE = architecturePath('Makefile');
 
 /** The default START of `make run`: first function of the first top-level supervisor, with its defaults. */
 export function defaultStart(arch: Architecture): string {

@@ -1,3 +1,4 @@
+import { SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
 
 /**
  * The `CONTRACT_RUNTIME` default of every generated Makefile: where the `contract-gcc` image installs
@@ -5,7 +6,7 @@
  * location, so that one model generates the same bytes from any folder on any machine (src-gen is
  * committed: docs/ci.md); the runtime is a build-time input (`make CONTRACT_RUNTIME=...`).
  */
-export const DEFAULT_RUNTIME = '/opt/contract/runtime';
+export const DEFAULT_RUNTIME = SANDBOX_RUNTIME_DIR;
 
 /**
  * The `CONTRACT_RUNTIME` lines of a generated Makefile: the default, then a stop with a message

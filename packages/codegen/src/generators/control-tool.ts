@@ -5,13 +5,14 @@ import { lines } from './c/regions.js';
 import { getValue } from './shared-type-header.js';
 import { namedTypeOf, typeName } from '../model/lookup.js';
 import { makeSettings } from './build-settings.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `tools/control<M>.c` and `tools/makecontrol<M>`: the shell control command of a module or supervisor. */
 export function controlSourcePath(name: string): string {
-    return `generated/architecture/tools/control${name}.c`;
+    return architecturePath(`tools/control${name}.c`);
 }
 export function controlMakefilePath(name: string): string {
-    return `generated/architecture/tools/makecontrol${name}`;
+    return architecturePath(`tools/makecontrol${name}`);
 }
 
 function getter(t: TypeRef): { fn: string; ctype: string } {

@@ -13,6 +13,7 @@ import { generateSharedEnumHeader, sharedEnumPath } from './shared-enum-header.j
 import { supTypesHeader } from './supervisor-module.js';
 import { generateOrdVocabulary } from './vocabulary/ord-vocabulary.js';
 import { generateSupervisorVocabulary } from './vocabulary/supervisor-vocabulary.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** Every file of the generated tree (docs/codegen.md "The tree") for an architecture (paths relative to the output folder). */
 export function generateFiles(arch: Architecture): GeneratedFile[] {
@@ -38,7 +39,7 @@ export function generateFiles(arch: Architecture): GeneratedFile[] {
     add(moduleMakefilePath('ORD'), generateModuleMakefile('ORD', ['module.c', 'vocabulary.c']));
 
     for (const s of arch.supervisors) {
-        const dir = `generated/architecture/modules/${s.name}_mod`;
+        const dir = architecturePath(`modules/${s.name}_mod`);
         add(`${dir}/module.c`, engineBindingSource(s.name, priorities.of.get(s.name)!, 'supervisor', 'suptypes.h'));
         add(`${dir}/suptypes.h`, supTypesHeader(s.name));
         add(`${dir}/vocabulary.c`, generateSupervisorVocabulary(s, priorities.of.get(s.name)!, index));
@@ -50,7 +51,7 @@ export function generateFiles(arch: Architecture): GeneratedFile[] {
         add(controlSourcePath(c.name), generateControlSource(c.name, c.kind, c.params));
         add(controlMakefilePath(c.name), generateControlMakefile(c.name));
     }
-    add('generated/architecture/tools/Makefile', generateToolsMakefile(controlled.map((c) => c.name)));
+    add(architecturePath('tools/Makefile'), generateToolsMakefile(controlled.map((c) => c.name)));
 
     const executables = ['ORD', ...arch.modules.map((m) => m.name), ...arch.supervisors.map((s) => s.name)];
     add(ARCHITECTURE_MAKEFILE, generateArchitectureMakefile(arch, executables));

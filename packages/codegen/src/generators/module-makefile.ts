@@ -1,9 +1,10 @@
 import { expandToNode, toString } from 'langium/generate';
 import { makeSettings } from './build-settings.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `modules/<M>_mod/Makefile`: builds the executable `<M>` of a module, a supervisor or ORD. */
 export function moduleMakefilePath(name: string): string {
-    return `generated/architecture/modules/${name}_mod/Makefile`;
+    return architecturePath(`modules/${name}_mod/Makefile`);
 }
 
 export function generateModuleMakefile(name: string, sources: string[]): string {

@@ -3,10 +3,11 @@ import type { Module, PortDecl } from '../model/architecture.js';
 import { namedTypeOf, type ArchitectureIndex } from '../model/lookup.js';
 import { cDeclaration, cInitializer, cSizeof, cType } from './c/c-syntax.js';
 import { blockRegion, inlineRegion } from './c/regions.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `modules/<M>_mod/module.c` of a synchronous or asynchronous module, in the shape of report §8.2. */
 export function moduleSourcePath(name: string): string {
-    return `generated/architecture/modules/${name}_mod/module.c`;
+    return architecturePath(`modules/${name}_mod/module.c`);
 }
 
 const byIndex = (ports: PortDecl[]) => [...ports].sort((a, b) => a.index - b.index);

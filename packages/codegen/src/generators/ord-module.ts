@@ -1,11 +1,12 @@
 import { expandToNode, toString } from 'langium/generate';
+import { architecturePath } from '@contract-studio/conventions';
 
 /**
  * `modules/ORD_mod/`: the scheduler. Its algorithm is the runtime's generic engine; module.c only
  * binds the generated tables (vocabulary.c) to it. schedtypes.h, schedmessages.h and tools.h keep the
  * report's file layout and point at the runtime's headers.
  */
-export const ORD_DIR = 'generated/architecture/modules/ORD_mod';
+export const ORD_DIR = architecturePath('modules/ORD_mod');
 
 /** module.c of ORD or of a supervisor: the libmodule interface tables and the engine call. */
 export function engineBindingSource(name: string, priority: number, role: 'scheduler' | 'supervisor', localHeader: string): string {

@@ -3,10 +3,11 @@ import type { FunctionPrototype, TypeRef } from '../model/architecture.js';
 import { cDeclaration, cType, isCArray } from './c/c-syntax.js';
 import { namedTypeOf } from '../model/lookup.js';
 import { blockRegion } from './c/regions.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `common/SharedFunction<f>.h`: a user test/compute function (report §5.2), arguments by pointer. */
 export function sharedFunctionPath(name: string): string {
-    return `generated/architecture/common/SharedFunction${name}.h`;
+    return architecturePath(`common/SharedFunction${name}.h`);
 }
 
 /** `char *`, `long *`, `double *`, `TypeA *`: every argument by pointer (docs/codegen.md "The tree": so that compute functions can assign the locals). */

@@ -3,10 +3,11 @@ import type { Datatype, Field, TypeRef } from '../model/architecture.js';
 import { namedTypeOf } from '../model/lookup.js';
 import { cDeclaration, cType } from './c/c-syntax.js';
 import { blockRegion, lines } from './c/regions.js';
+import { architecturePath } from '@contract-studio/conventions';
 
 /** `common/Shared<Type>.h`: the struct and its functions (report §5.1, §8.2), all `static inline`. */
 export function sharedTypePath(name: string): string {
-    return `generated/architecture/common/Shared${name}.h`;
+    return architecturePath(`common/Shared${name}.h`);
 }
 
 type Kind = 'long' | 'double' | 'string' | 'bool' | 'struct' | 'array';

@@ -3,7 +3,7 @@ export { emptyReport, formatProblem, type GenerationReport, type GenerationProbl
 export { ORPHANS_DIR } from './orphans.js';
 export { MANIFEST_NAME } from './manifest.js';
 export { renameInGeneratedTree, renameRegionId, renameGeneratedName, type RenameGeneratedReport } from './rename-generated.js';
-export { writeFileAtomic } from './atomic-write.js';
+export { writeFileAtomic, isAtomicTempFile } from './atomic-write.js';
 export { UnsafePathError, checkTreePath, checkTreeRoot, lstatInTree, treePathProblem } from './safe-paths.js';
 export { OutputTree } from './output-tree.js';
 export { PROC_FD, fdPath, openDirNoFollow, requireProcFd, closeQuietly, type DirOpen, type NotAFolder } from './dir-fd.js';

@@ -1,6 +1,6 @@
 import { constants, fstatSync, closeSync, lstatSync, mkdirSync, openSync, readdirSync, readSync, renameSync, rmdirSync, unlinkSync, type Dirent, type Stats } from 'node:fs';
 import { posix } from 'node:path';
-import { writeFileAtomic } from './atomic-write.js';
+import { syncFolder, writeFileAtomic } from './atomic-write.js';
 import { closeQuietly, fdPath, openDirNoFollow, requireProcFd } from './dir-fd.js';
 import { checkTreePath, checkTreeRoot, linkRefused, UnsafePathError } from './safe-paths.js';
 import { removeStaleTemps } from './stale-temp.js';
@@ -33,6 +33,8 @@ export class OutputTree {
     private readonly cleaned = new Set<string>();
     /** Listings made during this generation (reused to find stale temporary files). */
     private readonly listed = new Map<string, Dirent[]>();
+    /** Opened folders written into since their last fsync: synced once, before they are closed. */
+    private readonly unsynced = new Set<number>();
 
     constructor(readonly root: string) {
         requireProcFd();
@@ -45,10 +47,11 @@ export class OutputTree {
 
     /** Closes the opened folders; the tree can still be used after (folders are opened again). */
     close(): void {
-        for (const fd of this.dirs.values()) closeQuietly(fd);
+        for (const fd of this.dirs.values()) this.syncAndClose(fd);
         this.dirs.clear();
-        if (this.rootFd !== undefined) closeQuietly(this.rootFd);
+        if (this.rootFd !== undefined) this.syncAndClose(this.rootFd);
         this.rootFd = undefined;
+        this.unsynced.clear();
     }
 
     /** lstat of `rel` (undefined when absent); refuses a symlink anywhere on the way, `rel` included. */
@@ -111,7 +114,8 @@ export class OutputTree {
                 removeStaleTemps(dirPath, this.listed.get(at.dir));
                 this.cleaned.add(at.dir);
             }
-            writeFileAtomic(dirPath, at.name, data);
+            writeFileAtomic(dirPath, at.name, data, { syncDir: false });
+            this.unsynced.add(at.dirFd);
         } catch (e) {
             throw this.readable(e, at.dirFd, at.dir);
         }
@@ -235,7 +239,13 @@ export class OutputTree {
         if (this.dirs.size <= MAX_OPEN_DIRS) return;
         const [oldest, oldFd] = this.dirs.entries().next().value as [string, number];
         this.dirs.delete(oldest);
-        closeQuietly(oldFd);
+        this.syncAndClose(oldFd);
+    }
+
+    /** Closes an opened folder, first making the renames done in it durable when it was written into. */
+    private syncAndClose(fd: number): void {
+        if (this.unsynced.delete(fd)) syncFolder(fdPath(fd));
+        closeQuietly(fd);
     }
 
     /** Closes the cached folders `rel` and below (it is being removed). */
@@ -243,6 +253,7 @@ export class OutputTree {
         for (const [dir, fd] of [...this.dirs]) {
             if (dir === rel || dir.startsWith(`${rel}/`)) {
                 this.dirs.delete(dir);
+                this.unsynced.delete(fd);
                 closeQuietly(fd);
             }
         }

@@ -1,5 +1,6 @@
 import { lstatSync, readdirSync, unlinkSync, type Dirent } from 'node:fs';
 import { join } from 'node:path';
+import { TEMP_NAME as TEMP } from './atomic-write.js';
 
 /**
  * Temporary files (`.<name>.tmp-<pid>`, atomic-write.ts) left in an output folder by a generator
@@ -10,7 +11,6 @@ import { join } from 'node:path';
  */
 export const STALE_TEMP_AGE_MS = 10 * 60 * 1000;
 
-const TEMP = /^\..+\.tmp-(\d{1,10})$/;
 
 /** Whether process `pid` exists (EPERM: it exists but belongs to another user). */
 export function pidAlive(pid: number): boolean {

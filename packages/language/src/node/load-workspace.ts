@@ -12,6 +12,7 @@ import type { Diagnostic } from 'vscode-languageserver-types';
 import { createCactalServices, type CactalServices } from '../cactal-module.js';
 import type { Import, Model } from '../generated/ast.js';
 import { lexicalRefusal, resolveConfinedImport } from './confined-import.js';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export type SeverityName = 'error' | 'warning' | 'info' | 'hint';
 
@@ -71,7 +72,7 @@ export interface LoadWorkspaceOptions {
 export const IMPORT_REFUSED_CODE = 'import-refused';
 
 const SEVERITIES: Record<number, SeverityName> = { 1: 'error', 2: 'warning', 3: 'info', 4: 'hint' };
-const DEFAULT_SKIP = ['node_modules', '.git', 'src-gen'];
+const DEFAULT_SKIP = ['node_modules', '.git', SRC_GEN_DIR];
 
 /** Every `.contract` file under `dir`, sorted, as absolute paths. */
 export async function findContractFiles(dir: string, skipDirs: string[] = DEFAULT_SKIP): Promise<string[]> {

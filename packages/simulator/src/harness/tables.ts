@@ -12,6 +12,7 @@ import { readRegularFile } from '../read-regular-file.js';
 import { join, sep } from 'node:path';
 import { architectureFromModels, generateFiles, mergeRegions } from '@contract-studio/codegen';
 import type { Model } from '@contract-studio/language';
+import { ARCHITECTURE_DIR } from '@contract-studio/conventions';
 
 export interface SimSource {
     /** Relative to the harness's build folder, `/` separators. */
@@ -31,7 +32,7 @@ export interface SimSources {
     warnings: string[];
 }
 
-const ARCH = 'generated/architecture/';
+const ARCH = `${ARCHITECTURE_DIR}/`;
 const MAX_USER_HEADER_BYTES = 4 * 1024 * 1024;
 const C_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
 

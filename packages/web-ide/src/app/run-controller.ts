@@ -5,6 +5,7 @@ import { askFields } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
 import { reportError } from './report-error.js';
+import { isCpuList } from '@contract-studio/conventions';
 
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
@@ -83,7 +84,7 @@ export class RunController {
     const duration = Number(r.duration);
     if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
     const cpus = (r.cpus ?? '').trim();
-    if (cpus && !/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
+    if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
     const realtime = r.realtime === 'yes';
     localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
     toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${realtime ? ', real-time priorities' : ''}`);

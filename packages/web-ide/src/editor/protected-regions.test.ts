@@ -33,7 +33,7 @@ describe('scanProtectedRegions', () => {
     expect(msgs.some((m) => m.includes('nested'))).toBe(true);
     expect(msgs.some((m) => m.includes('duplicate'))).toBe(true);
     expect(msgs.some((m) => m.includes('END without'))).toBe(true);
-    expect(msgs.some((m) => m.includes('no PROTECTED REGION END'))).toBe(true);
+    expect(msgs.some((m) => m.includes('START without END'))).toBe(true);
   });
 });
 

@@ -1,8 +1,12 @@
 /**
  * Protected regions of generated C (docs/codegen.md "Protected regions"): `/*PROTECTED REGION ID(<id>) ENABLED START*\/`
  * ... `/*PROTECTED REGION END*\/`. The editable span of a region is the text strictly between the
- * end of its START marker and the beginning of its END marker (offsets into the file).
+ * end of its START marker and the beginning of its END marker (offsets into the file). The one
+ * reading of the markers is @contract-studio/conventions' scanRegions (codegen and the server's
+ * guard use it too), so a region the server accepts is never read-only here.
  */
+import { scanRegions } from '@contract-studio/conventions';
+
 export interface ProtectedRegion {
   id: string;
   enabled: boolean;
@@ -18,34 +22,13 @@ export interface RegionScan {
   errors: Array<{ offset: number; message: string }>;
 }
 
-// The same marker syntax as codegen's parser (packages/codegen/src/regions/markers.ts), which the
-// server's guard uses: spaces inside the markers are tolerated there, so they must be here too.
-const MARKERS = /\/\*\s*PROTECTED\s+REGION\s+ID\s*\(([^()\r\n]*)\)\s*(ENABLED\s+)?START\s*\*\/|\/\*\s*PROTECTED\s+REGION\s+END\s*\*\//g;
-
+/** The regions and structural errors of a generated file, read as codegen and the server's guard read them. */
 export function scanProtectedRegions(text: string): RegionScan {
-  const regions: ProtectedRegion[] = [];
-  const errors: RegionScan['errors'] = [];
-  const seen = new Set<string>();
-  let open: { id: string; enabled: boolean; start: number; at: number } | undefined;
-  for (const m of text.matchAll(MARKERS)) {
-    const at = m.index;
-    if (m[1] === undefined) {
-      if (!open) {
-        errors.push({ offset: at, message: 'PROTECTED REGION END without a START' });
-        continue;
-      }
-      regions.push({ id: open.id, enabled: open.enabled, start: open.start, end: at });
-      open = undefined;
-      continue;
-    }
-    const id = (m[1] ?? '').trim().replace(/additionnal/g, 'additional'); // as codegen's normaliseRegionId
-    if (open) errors.push({ offset: at, message: `region ${id} starts inside region ${open.id} (nested START)` });
-    if (seen.has(id)) errors.push({ offset: at, message: `duplicate region ID ${id}` });
-    seen.add(id);
-    open = { id, enabled: m[2] !== undefined, start: at + m[0].length, at };
-  }
-  if (open) errors.push({ offset: open.at, message: `region ${open.id} has no PROTECTED REGION END` });
-  return { regions, errors };
+  const scan = scanRegions(text);
+  return {
+    regions: scan.regions.map((r) => ({ id: r.id, enabled: r.enabled, start: r.contentStart, end: r.contentEnd })),
+    errors: scan.errors.map((e) => ({ offset: e.offset, message: e.message })),
+  };
 }
 
 /** True when every [start, end) offset range lies within one region's editable span. */

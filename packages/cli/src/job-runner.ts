@@ -1,0 +1,271 @@
+/**
+ * The CLI's job runner, shared by `contract build` and `contract run`: option parsing (sandbox,
+ * format, runtime, cache folder), one job through the build service's in-process pipeline
+ * (@contract-studio/build-service JobService, not HTTP) with its live output, the JSON and text
+ * reports, and the exit codes (docs/ci.md).
+ */
+import { existsSync } from 'node:fs';
+import { join, resolve } from 'node:path';
+import { stat } from 'node:fs/promises';
+import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
+import type { ParsedArgs } from './args.js';
+import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO } from './command.js';
+import { SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { defaultRuntimeSource } from './runtime-source.js';
+
+/** The environment cannot do what was asked (no sandbox, no runtime, a build cache folder that cannot be trusted). */
+export const EXIT_ENVIRONMENT = 3;
+/** The run ended but did not go as designed: a sandbox limit was hit, ORD declared a module stuck,
+ *  or output / CSV logs were cut or left out (the job result's `issues`, docs/ci.md). */
+export const EXIT_RUN_INCOMPLETE = 4;
+/** Interrupted by Ctrl+C (the job was cancelled, everything stopped). */
+export const EXIT_INTERRUPTED = 130;
+
+/** Progress is for people: only when both output streams are a terminal (never in CI logs or pipes). */
+export function onTerminal(): boolean {
+    return process.stdout.isTTY === true && process.stderr.isTTY === true;
+}
+
+export const SANDBOXES: readonly SandboxChoice[] = SANDBOX_CHOICES;
+const FORMATS = ['text', 'json'] as const;
+type Format = (typeof FORMATS)[number];
+
+export interface JobOptions {
+    dir: string;
+    dirArg: string;
+    sandbox: SandboxChoice;
+    format: Format;
+    verbose: boolean;
+    /** Progress lines (steps, generation counts) on stderr: only on a TTY and in text format. */
+    progress: boolean;
+    runtime: string | undefined;
+    /** --cache-dir (resolved), else undefined: $CONTRACT_CACHE_DIR, else the XDG cache folder. */
+    cacheDir: string | undefined;
+}
+
+export const COMMON_VALUED = ['sandbox', 'format', 'runtime', 'cache-dir'];
+export const COMMON_FLAGS = ['verbose'];
+export const COMMON_USAGE = [
+    '  --sandbox: auto (default: bwrap when it works, else docker), bwrap, docker, none (no isolation)',
+    '  --format: text (default) or json (one JSON object on stdout at the end, no progress)',
+    '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
+    '  --cache-dir: the build cache (built runtime, one work tree per project; default: $CONTRACT_CACHE_DIR,',
+    '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
+    '  --verbose: print every build line and the time of every step (otherwise only gcc diagnostics and the summary)',
+];
+export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or a build cache folder that cannot be trusted, 4 run incomplete (a limit hit, a module stuck, output or logs cut), 130 interrupted';
+
+/** Parses DIR and the options build and run share. */
+export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: boolean): Promise<JobOptions> {
+    const { positionals, options } = parsed;
+    if (positionals.length !== 1) throw new UsageError(positionals.length ? 'expected exactly one DIR' : 'missing DIR (the folder of the .contract files)');
+    const dirArg = positionals[0]!;
+    const dir = resolve(io.cwd, dirArg);
+    const info = await stat(dir).catch(() => undefined);
+    if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+    const sandbox = (options.get('sandbox') ?? 'auto') as SandboxChoice;
+    if (!SANDBOXES.includes(sandbox)) throw new UsageError(`unknown sandbox '${String(sandbox)}' (expected auto, bwrap, docker or none)`);
+    const format = (options.get('format') ?? 'text') as Format;
+    if (!FORMATS.includes(format)) throw new UsageError(`unknown format '${String(format)}' (expected text or json)`);
+    const runtimeOption = options.get('runtime');
+    const runtime = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || undefined;
+    if (runtime && !existsSync(join(runtime, 'Makefile'))) throw new UsageError(`${runtime} is not a runtime folder (no Makefile); pass --runtime PATH to the ContrACT runtime/`);
+    const cacheOption = options.get('cache-dir');
+    const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
+    return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime, cacheDir };
+}
+
+export function formatGccDiagnostic(d: GccDiagnostic): string {
+    const where = d.file ? `src-gen/${d.file}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+    const region = d.protectedRegion ? ` [in protected region ${d.protectedRegion.id}]` : '';
+    return `${where}${d.severity}: ${d.message}${d.option ? ` [${d.option}]` : ''}${region}\n`;
+}
+
+export interface JobOutcome {
+    job: Job;
+    result: JobResult;
+    /** Lines of the run step: [source, line] (module tag or 'launcher'/'run'). */
+    runLines: { source: string; stream: string; line: string }[];
+}
+
+export interface RunRequest {
+    action: 'build' | 'run';
+    start?: string;
+    duration?: number;
+    cpus?: string;
+    realtime?: boolean;
+}
+
+/**
+ * Runs one job on the in-process service and streams its events to io. `whileOpen` is called
+ * after the job ended but before the service removes the workspace (to copy the CSV logs out);
+ * `onEvent` sees every event as it comes (the live trace of `contract run --trace`).
+ */
+export async function runJob(
+    opts: JobOptions,
+    request: RunRequest,
+    io: CliIO,
+    whileOpen?: (service: JobServiceType, cacheDir: string, outcome: JobOutcome) => Promise<void>,
+    onEvent?: (e: JobEvent) => void,
+): Promise<JobOutcome | { error: string; exitCode: number }> {
+    const t0 = Date.now();
+    const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE, resolveCacheDir, prepareCacheDir } = await import('@contract-studio/build-service');
+    const timing = (what: string, since: number): void => {
+        if (opts.verbose && opts.format === 'text') io.err(`time: ${what} ${Date.now() - since} ms\n`);
+    };
+    timing('loading the build service', t0);
+    const runtime = opts.runtime ?? defaultRuntimeSource(DEFAULT_RUNTIME_SOURCE);
+    if (opts.sandbox !== 'docker' && !existsSync(join(runtime, 'Makefile'))) {
+        return {
+            error: `no ContrACT runtime at ${runtime}: pass --runtime PATH (or set CONTRACT_RUNTIME) to the runtime/ folder of ContrACT Studio, or use --sandbox docker (the contract-gcc image carries it)`,
+            exitCode: EXIT_ENVIRONMENT,
+        };
+    }
+    // the persistent cache shared with other commands and the IDE (docs/getting-started.md "The build cache")
+    const cache = resolveCacheDir(opts.cacheDir, process.env, process.getuid?.(), undefined, io.cwd);
+    const refused = prepareCacheDir(cache.dir, process.getuid?.() === 0 && opts.sandbox !== 'docker');
+    if (refused) return { error: refused, exitCode: EXIT_ENVIRONMENT };
+    if (opts.verbose && opts.format === 'text') io.err(`build cache: ${cache.dir} (${cache.source})\n`);
+    const runSeconds = Math.ceil((request.duration ?? 10) + 60);
+    const service = new JobService({
+        sandbox: opts.sandbox,
+        concurrency: 1,
+        queueSize: 0,
+        projectRoots: [opts.dir],
+        cacheDir: cache.dir,
+        persistentWorkspaces: true,
+        limits: { runSeconds, buildSeconds: 600 },
+        runtimeSource: runtime,
+    });
+    let job: Job | undefined;
+    const onSigint = (): void => {
+        if (job) void service.cancel(job.id);
+    };
+    process.on('SIGINT', onSigint);
+    process.on('SIGTERM', onSigint);
+    try {
+        try {
+            job = await service.submit({
+                action: request.action,
+                project: { dir: opts.dir },
+                sandbox: opts.sandbox,
+                ...(request.start !== undefined ? { start: request.start } : {}),
+                ...(request.duration !== undefined ? { duration: request.duration } : {}),
+                ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
+                ...(request.realtime ? { realtime: true } : {}),
+            });
+        } catch (e) {
+            if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };
+            throw e;
+        }
+        const runLines: JobOutcome['runLines'] = [];
+        const print = makePrinter(opts, io, runLines);
+        const unsubscribe = job.events.subscribe(0, (e) => {
+            print(e);
+            try {
+                onEvent?.(e);
+            } catch {
+                /* the caller's handler must not stop the printing */
+            }
+        });
+        await job.finished;
+        unsubscribe();
+        const outcome: JobOutcome = { job, result: job.result!, runLines };
+        if (whileOpen) await whileOpen(service, cache.dir, outcome);
+        return outcome;
+    } finally {
+        process.off('SIGINT', onSigint);
+        process.off('SIGTERM', onSigint);
+        const tc = Date.now();
+        await service.close();
+        timing('closing the build service', tc);
+    }
+}
+
+/** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
+function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines']): (e: JobEvent) => void {
+    const madeParts = new Set<string>();
+    return (e) => {
+        if (e.type === 'diagnostic') {
+            if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic));
+            return;
+        }
+        if (e.type === 'status') {
+            if (opts.progress && e.step) io.err(`[${e.status}]\n`);
+            return;
+        }
+        if (e.type !== 'line') return;
+        if (e.step === 'run' && e.source !== 'service') {
+            runLines.push({ source: e.source, stream: e.stream, line: e.line });
+            if (opts.format !== 'text') return;
+            if (e.source === 'run') {
+                // make's own lines (directories, recipes) only with --verbose; its errors always
+                if (opts.verbose || /\*\*\*|error/i.test(e.line)) io.err(`${e.line}\n`);
+            } else {
+                io.out(e.source === 'launcher' ? `contract-launch: ${e.line}\n` : `[${e.source}] ${e.line}\n`);
+            }
+            return;
+        }
+        if (opts.format !== 'text') return;
+        if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
+            io.err(`${e.line}\n`);
+        } else if (opts.verbose) {
+            io.err(`${e.line}\n`);
+        } else if (opts.progress && (e.source === 'service' || e.source === 'runtime')) {
+            io.err(`${e.line}\n`);
+        } else if (opts.progress && e.step === 'build') {
+            // one line per part of the tree make works on (modules, control tools)
+            const part = /Entering directory '.*\/(?:modules\/(\w+)_mod|(tools))'/.exec(e.line);
+            const name = part ? (part[1] ?? part[2])! : null;
+            if (name && !madeParts.has(name)) {
+                madeParts.add(name);
+                io.err(`  make: ${name}\n`);
+            }
+        }
+    };
+}
+
+export function prepareErrors(job: Job, dirArg: string): string {
+    return job.prepareDiagnostics
+        .map((p) => `${join(dirArg, p.file)}:${p.line}:${p.column}: ${p.severity}: ${p.message}\n`)
+        .join('');
+}
+
+/** The JSON view printed with --format json. */
+export function jobJson(outcome: JobOutcome, extra: Record<string, unknown> = {}): string {
+    const { job, result } = outcome;
+    return JSON.stringify({
+        ok: result.ok,
+        status: job.status,
+        sandbox: job.sandboxName,
+        sandboxNote: job.sandboxNote,
+        warnings: job.warnings,
+        result,
+        prepareDiagnostics: job.prepareDiagnostics,
+        diagnostics: job.diagnostics,
+        ...extra,
+    }, null, 2) + '\n';
+}
+
+export function exitCodeOf(result: JobResult, job: Job): number {
+    if (result.ok) return EXIT_OK;
+    if (job.status === 'cancelled') return EXIT_INTERRUPTED;
+    if (result.step === 'run' && (result.limitHit || result.issues.length)) return EXIT_RUN_INCOMPLETE;
+    return EXIT_FAILURE;
+}
+
+export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, extra: Record<string, unknown> = {}): number {
+    const { job, result } = outcome;
+    if (opts.format === 'json') {
+        io.out(jobJson(outcome, extra));
+        return exitCodeOf(result, job);
+    }
+    io.err(prepareErrors(job, opts.dirArg));
+    for (const w of job.warnings) io.err(`warning: ${w}\n`);
+    const seconds = (ms: number | undefined) => (ms === undefined ? '-' : (ms / 1000).toFixed(1));
+    const d = result.durations_ms;
+    io.err(`${result.ok ? 'ok' : 'FAILED'}: ${result.message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
+    if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) io.err(`fix the errors above (\`contract check ${opts.dirArg}\` lists them), then build again\n`);
+    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${join(opts.dirArg, SRC_GEN_DIR)}), then build again; --verbose shows every build line\n`);
+    return exitCodeOf(result, job);
+}

@@ -1,0 +1,8 @@
+/**
+ * @contract-studio/conventions — what the packages agree on (browser-safe, no dependencies): the
+ * generated tree's layout, the sandbox conventions and the protected-region markers with their
+ * one parser (docs/architecture.md "Shared conventions").
+ */
+export * from './layout.js';
+export * from './sandbox.js';
+export * from './regions.js';

@@ -1,0 +1,33 @@
+/**
+ * What the build sandboxes share with the generated Makefiles and the clients (docs/sandbox.md):
+ * the sandbox names, where the runtime is mounted inside a sandbox, the identity jobs run as, and
+ * the CPU-list syntax of `--cpus` / `make run CPUS=…`.
+ */
+
+/** The sandboxes a job can run in. */
+export const SANDBOX_NAMES = ['bwrap', 'docker', 'none'] as const;
+export type SandboxName = (typeof SANDBOX_NAMES)[number];
+
+/** What a client may ask for: a sandbox, or `auto` (bwrap, else Docker). */
+export const SANDBOX_CHOICES = ['auto', ...SANDBOX_NAMES] as const;
+export type SandboxChoice = (typeof SANDBOX_CHOICES)[number];
+
+/** Where the C runtime is mounted inside the bwrap and Docker sandboxes (and the generator's default). */
+export const SANDBOX_RUNTIME_DIR = '/opt/contract/runtime';
+
+/** The uid and gid the sandboxed build and run have inside the sandbox (bwrap's namespace, Docker's user). */
+export const SANDBOX_UID = 1000;
+export const SANDBOX_GID = 1000;
+
+/** The Docker image holding gcc, make and the runtime (built by scripts/docker-up.sh). */
+export const DOCKER_IMAGE = 'contract-gcc';
+
+const CPU_LIST = /^\d+(-\d+)?(,\d+(-\d+)?)*$/;
+
+/**
+ * True for a CPU list such as `1`, `0-1` or `0,2` (contract-launch checks that the CPUs exist on
+ * the machine that runs).
+ */
+export function isCpuList(text: string): boolean {
+    return CPU_LIST.test(text);
+}
