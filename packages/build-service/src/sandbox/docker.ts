@@ -68,9 +68,14 @@ function withDeadline<T>(p: Promise<T>, ms: number, what: string): Promise<T> {
   return Promise.race([p, late]).finally(() => clearTimeout(timer));
 }
 
-function tarOf(dir: string): Promise<Buffer> {
+/** The tar of a work dir that the Docker sandbox copies into the job's volume. */
+export function tarOf(dir: string): Promise<Buffer> {
   return new Promise((resolve, reject) => {
-    const child = spawn('tar', ['-C', dir, `--owner=${SANDBOX_UID}`, `--group=${SANDBOX_GID}`, '--numeric-owner', '-cf', '-', '.'], {
+    // pax format: mtimes to the nanosecond (GNU tar's default format keeps whole seconds, so a
+    // source saved in the same second as the last build ended looked older than its object and
+    // make did not rebuild it); atime/ctime left out and a fixed extended-header name, so the same tree gives the same
+    // bytes (the digest that skips a no-op sync)
+    const child = spawn('tar', ['-C', dir, '--format=posix', '--pax-option=exthdr.name=%d/PaxHeaders/%f,delete=atime,delete=ctime', `--owner=${SANDBOX_UID}`, `--group=${SANDBOX_GID}`, '--numeric-owner', '-cf', '-', '.'], {
       stdio: ['ignore', 'pipe', 'pipe'],
     });
     const chunks: Buffer[] = [];
