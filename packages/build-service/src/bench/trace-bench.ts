@@ -25,7 +25,7 @@ import { PROJECT_TEMPLATES } from '@contract-studio/language';
 import { artifactBytes } from '../pipeline/artifacts.js';
 import type { TraceEvent } from '../pipeline/job-events.js';
 import { createBuildServer } from '../server.js';
-import { postJob } from '../test-support/client.js';
+import { postJob, streamEvents } from '../test-support/client.js';
 import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 import { parseRecordLine } from '../trace/parse.js';
 
@@ -47,26 +47,10 @@ const sleep = (ms: number): Promise<void> => new Promise((r) => setTimeout(r, ms
 
 /** An SSE client of the job's stream from `after` on, until aborted; `onTrace` sees each trace event. */
 async function attach(base: string, id: string, after: number, signal: AbortSignal, onTrace: (e: TraceEvent) => void): Promise<void> {
-  const res = await fetch(`${base}/api/jobs/${id}/events?after=${after}`, { signal });
-  if (!res.ok || !res.body) throw new Error(`events: HTTP ${res.status}`);
-  const decoder = new TextDecoder();
-  let buf = '';
   try {
-    for await (const chunk of res.body as unknown as AsyncIterable<Uint8Array>) {
-      buf += decoder.decode(chunk, { stream: true });
-      let i;
-      while ((i = buf.indexOf('\n\n')) >= 0) {
-        const block = buf.slice(0, i);
-        buf = buf.slice(i + 2);
-        let type = '';
-        let data = '';
-        for (const l of block.split('\n')) {
-          if (l.startsWith('event: ')) type = l.slice(7);
-          else if (l.startsWith('data: ')) data += l.slice(6);
-        }
-        if (type === 'trace') onTrace({ type, ...JSON.parse(data) } as TraceEvent);
-      }
-    }
+    await streamEvents(base, id, (e) => {
+      if (e.type === 'trace') onTrace(e as TraceEvent);
+    }, after, signal);
   } catch (e) {
     if (!signal.aborted) throw e;
   }

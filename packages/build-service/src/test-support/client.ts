@@ -11,11 +11,13 @@ export async function getJob(base: string, id: string): Promise<Record<string, a
   return (await res.json()) as Record<string, any>;
 }
 
-/** Reads the SSE stream of a job until its end; `onEvent` sees each event as it arrives. */
-export async function readEvents(base: string, id: string, onEvent?: (e: JobEvent) => void, after = 0): Promise<JobEvent[]> {
-  const res = await fetch(`${base}/api/jobs/${id}/events${after ? `?after=${after}` : ''}`);
+/**
+ * Follows the SSE stream of a job from event `after` on until its end (or `signal` aborts it),
+ * handing each event to `onEvent` as it arrives; keeps nothing.
+ */
+export async function streamEvents(base: string, id: string, onEvent: (e: JobEvent) => void, after = 0, signal?: AbortSignal): Promise<void> {
+  const res = await fetch(`${base}/api/jobs/${id}/events${after ? `?after=${after}` : ''}`, { signal });
   if (!res.ok || !res.body) throw new Error(`events: HTTP ${res.status}`);
-  const events: JobEvent[] = [];
   const decoder = new TextDecoder();
   let buf = '';
   for await (const chunk of res.body as unknown as AsyncIterable<Uint8Array>) {
@@ -31,11 +33,18 @@ export async function readEvents(base: string, id: string, onEvent?: (e: JobEven
         else if (l.startsWith('data: ')) data += l.slice(6);
       }
       if (!type) continue;
-      const e = { type, ...JSON.parse(data) } as JobEvent;
-      events.push(e);
-      onEvent?.(e);
+      onEvent({ type, ...JSON.parse(data) } as JobEvent);
     }
   }
+}
+
+/** Reads the SSE stream of a job until its end; `onEvent` sees each event as it arrives. */
+export async function readEvents(base: string, id: string, onEvent?: (e: JobEvent) => void, after = 0): Promise<JobEvent[]> {
+  const events: JobEvent[] = [];
+  await streamEvents(base, id, (e) => {
+    events.push(e);
+    onEvent?.(e);
+  }, after);
   return events;
 }
 
