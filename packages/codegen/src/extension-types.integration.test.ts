@@ -113,6 +113,11 @@ describe('extension types (bool, arrays, enumerations, constants)', () => {
             expect(vocabulary).toContain('CONTRACT_DEFINE_TYPE_FIELDS(Scan, &contract_default_Scan, 3, contract_fields_Scan)');
             expect(vocabulary.indexOf('static const ContractType contract_array_float_180 ')).toBeLessThan(vocabulary.indexOf('contract_fields_Scan[]'));
             expect(vocabulary.indexOf('CONTRACT_DEFINE_TYPE_FIELDS(Arm,')).toBeGreaterThan(vocabulary.indexOf('CONTRACT_DEFINE_TYPE(Pose,'));
+            // a control tool whose parameter ports use the extension types parses and shows values by their descriptors
+            const tool = tree.get('generated/architecture/tools/controlLSR.c')!;
+            expect(tool).toContain('return ControlMainTyped("LSR", PARAMS, argc, argv);');
+            expect(tool).toMatch(/\{ 0, &contract_array_float_2 \},\s*\{ 1, &contract_type_Mode \},\s*\{ 2, &contract_type_bool \},\s*CONTROL_TYPED_PARAM_TERM/);
+            expect(tree.get('generated/architecture/tools/controlDRV.c')).toContain('return ControlMain("DRV", PARAMS, argc, argv);');
             ensureRuntimeLibrary();
             const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
             expect(out).not.toMatch(/warning:/);

@@ -48,7 +48,7 @@ export function generateFiles(arch: Architecture): GeneratedFile[] {
 
     const controlled = [...arch.modules.map((m) => ({ name: m.name, kind: `${m.kind} module`, params: m.parameters })), ...arch.supervisors.map((s) => ({ name: s.name, kind: 'supervisor', params: [] }))];
     for (const c of controlled) {
-        add(controlSourcePath(c.name), generateControlSource(c.name, c.kind, c.params));
+        add(controlSourcePath(c.name), generateControlSource(c.name, c.kind, c.params, index));
         add(controlMakefilePath(c.name), generateControlMakefile(c.name));
     }
     add(architecturePath('tools/Makefile'), generateToolsMakefile(controlled.map((c) => c.name)));

@@ -20,7 +20,12 @@ export class TableBuilder {
     private readonly arrayDescriptors: { name: string; text: string; element: TypeRef }[] = [];
     private usesBool = false;
 
-    constructor(readonly index: ArchitectureIndex) {
+    /**
+     * `allFieldTables`: every used datatype gets its field table, not only those holding an extension
+     * type (the control tools, which are new code, show every value field by field; vocabulary.c
+     * keeps the report's tables unchanged).
+     */
+    constructor(readonly index: ArchitectureIndex, private readonly options: { allFieldTables?: boolean } = {}) {
         // the common/ headers a vocabulary.c includes declare these: table names keep clear of them
         for (const n of userFileScopeNames(index)) this.names.add(n);
     }
@@ -119,7 +124,8 @@ export class TableBuilder {
         for (let added = true; added;) {
             added = false;
             for (const d of this.index.architecture.datatypes) {
-                if (!this.usedTypes.has(d.name) || tables.has(d.name) || !this.holdsExtension({ datatype: d.name })) continue;
+                if (!this.usedTypes.has(d.name) || tables.has(d.name)) continue;
+                if (!this.options.allFieldTables && !this.holdsExtension({ datatype: d.name })) continue;
                 const fields = d.fields.map((f) => `{"${f.name}", offsetof(${d.name}, ${f.name}), ${this.typeRef(f.type)}}`);
                 tables.set(d.name, `static const ContractField contract_fields_${d.name}[] = {\n    ${fields.join(',\n    ')}};`);
                 added = true;
