@@ -4,7 +4,7 @@
  * runtime/engines.mk) run by contract-launch on the host and in the bwrap sandbox with real-time
  * mode (BwrapSandbox.start, as a `contract run --realtime` job's run step), alternated in the same
  * benchmark run, same placement (`--cpus` = the last CPU, as the engines benchmark), RT_BENCH_RUNS
- * (3) runs of RT_BENCH_SECONDS each way; the median run counts, not one disturbed by a host stall.
+ * (6) runs of RT_BENCH_SECONDS each way; the median run counts, not one disturbed by a host stall.
  *   sched.host_rt.period_jitter_us_p99   median over the host runs of ORD's release lateness p99
  *   sched.host_rt.missed_periods         their overruns + missed ticks, summed
  *   sched.bwrap_rt.period_jitter_us_p99  the same in bwrap with real-time mode
@@ -21,7 +21,7 @@ import { REPO } from '../test-support/tutorial.js';
 
 const say = (s: string): void => void process.stderr.write(`[bench rt-sandbox] ${s}\n`);
 const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
-const RUNS = Number(process.env.RT_BENCH_RUNS ?? 3);
+const RUNS = Number(process.env.RT_BENCH_RUNS ?? 6);
 const SECONDS = process.env.RT_BENCH_SECONDS ?? '10.2';
 const MODULES = ['ORD', 'BSU', 'BMA', 'BMB', 'BMC'];
 const RUNTIME = join(REPO, 'runtime');
