@@ -8,17 +8,12 @@
 //   ide.first_load_wall_ms      the same seen from the test driver (page.goto -> ready selector, includes polling)
 //   ide.diagnostics_latency_ms  keystroke -> error marker in the editor (median of 7)
 //   ide.log_10k_lines_max_frame_ms  longest frame while 10k log lines/s stream into the log panel for 3 s
-import { execFileSync } from 'node:child_process';
-import { readdirSync, statSync, readFileSync, mkdirSync, writeFileSync, cpSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
+import { readdirSync, statSync, readFileSync, cpSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
-import { fileURLToPath } from 'node:url';
+import { buildProductionIde, launchChromium, pkg, root, writePart } from './bench-support.mjs';
 
-const pkg = fileURLToPath(new URL('..', import.meta.url));
-const root = join(pkg, '../..');
-const node = process.execPath;
-execFileSync(node, [join(root, 'node_modules/typescript/bin/tsc'), '-p', join(pkg, 'tsconfig.server.json')], { stdio: 'inherit' });
-execFileSync(node, [join(root, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
+const { startIdeServer } = await buildProductionIde();
 
 const assets = join(pkg, 'dist/assets');
 const files = readdirSync(assets).filter((f) => /\.(js|css)$/.test(f));
@@ -29,13 +24,10 @@ const entry = files.filter((f) => html.includes(f));
 const initial = [...entry, ...files.filter((f) => /^(editor\.worker|language-worker)-/.test(f))];
 const initialBytes = [...new Set(initial)].reduce((a, f) => a + size(f), 0);
 
-const { startIdeServer } = await import(join(pkg, 'dist-server/index.js'));
-const { chromium } = await import('playwright-core');
 const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-bench-')));
 const workspace = join(base, 'tutorial');
 cpSync(join(root, 'examples/tutorial'), workspace, { recursive: true });
 const server = await startIdeServer({ workspace, port: 0, buildService: false });
-const args = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync'];
 const median = (xs) => [...xs].sort((a, b) => a - b)[Math.floor(xs.length / 2)];
 
 const loads = [];
@@ -44,9 +36,7 @@ let page;
 let context;
 try {
   for (let i = 0; i < 3; i++) {
-    const dir = join(base, `profile-${i}`);
-    mkdirSync(dir);
-    context = await chromium.launchPersistentContext(dir, { executablePath: '/usr/bin/chromium', args, viewport: { width: 1440, height: 900 } });
+    context = await launchChromium(join(base, `profile-${i}`));
     page = context.pages()[0] ?? (await context.newPage());
     const t0 = Date.now();
     await page.goto(server.openUrl);
@@ -125,9 +115,7 @@ try {
     'ide.diagnostics_latency_ms': Math.round(median(latencies) * 10) / 10,
     'ide.log_10k_lines_max_frame_ms': Math.round(maxFrame * 10) / 10,
   };
-  const out = join(root, 'bench/parts');
-  mkdirSync(out, { recursive: true });
-  writeFileSync(join(out, 'ide.json'), JSON.stringify(result, null, 2) + '\n');
+  writePart('ide', result);
   console.log(JSON.stringify({ ...result, loads, latencies: latencies.map((l) => Math.round(l)) }));
   console.log('load phases (ms since navigation start):', JSON.stringify(marks));
 } finally {

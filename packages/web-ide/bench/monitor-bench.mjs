@@ -16,31 +16,21 @@
 //   monitor.records_per_s         records fed per second
 //   monitor.heap_mb_end           JS heap at the end, after a full GC (bounded: the model aggregates, keeps 200k raw records)
 // MONITOR_BENCH_SECONDS (default 40) sets how long it is fed, so that the part stays under 60 s.
-import { execFileSync } from 'node:child_process';
-import { mkdirSync, writeFileSync, cpSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
+import { cpSync, mkdirSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
-import { fileURLToPath } from 'node:url';
+import { buildProductionIde, launchChromium, pkg, root, writePart } from './bench-support.mjs';
 
-const pkg = fileURLToPath(new URL('..', import.meta.url));
-const root = join(pkg, '../..');
-const node = process.execPath;
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 40);
-execFileSync(node, [join(root, 'node_modules/typescript/bin/tsc'), '-p', join(pkg, 'tsconfig.server.json')], { stdio: 'inherit' });
-execFileSync(node, [join(root, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
-
-const { startIdeServer } = await import(join(pkg, 'dist-server/index.js'));
-const { chromium } = await import('playwright-core');
+const { startIdeServer } = await buildProductionIde();
 const base = realpathSync(mkdtempSync(join(tmpdir(), 'monitor-bench-')));
 const workspace = join(base, 'tutorial');
 cpSync(join(root, 'examples/tutorial'), workspace, { recursive: true });
 const server = await startIdeServer({ workspace, port: 0, buildService: false });
-// --expose-gc: the heap figure is taken after a full collection (what the model holds, not garbage)
-const args = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync', '--js-flags=--expose-gc'];
 let context;
 try {
-  mkdirSync(join(base, 'profile'));
-  context = await chromium.launchPersistentContext(join(base, 'profile'), { executablePath: '/usr/bin/chromium', args, viewport: { width: 1440, height: 900 } });
+  // --expose-gc: the heap figure is taken after a full collection (what the model holds, not garbage)
+  context = await launchChromium(join(base, 'profile'), ['--js-flags=--expose-gc']);
   const page = context.pages()[0] ?? (await context.newPage());
   await page.goto(server.openUrl);
   await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
@@ -168,9 +158,7 @@ try {
     'monitor.records_per_s': Math.round(r.perSecond),
     'monitor.heap_mb_end': round(r.heapMb),
   };
-  const out = join(root, 'bench/parts');
-  mkdirSync(out, { recursive: true });
-  writeFileSync(join(out, 'monitor-panel.json'), JSON.stringify(result, null, 2) + '\n');
+  writePart('monitor-panel', result);
   console.log(JSON.stringify({ ...result, seconds, frames: r.frames, records: r.records, renderMax: round(r.renderMax, 2), feedMax: round(r.feedMax), ingestShare: round(r.ingestShare, 3), longTasks: r.longTasks, longestTask: round(r.longestTask), misses: r.misses }));
 } finally {
   await context?.close().catch(() => undefined);

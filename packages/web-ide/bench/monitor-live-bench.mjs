@@ -11,22 +11,14 @@
 //   monitor.arrival_latency_ms_p99 / _p50  the same record -> its trace event handed to the page (the rest is the page's)
 //   monitor.live_max_queued_events       most trace events waiting to be folded at a frame (the page keeping up)
 // RUN_SECONDS (default 5) sets the run's duration; the part takes about 40 s (the build is most of it).
-import { execFileSync } from 'node:child_process';
 import { mkdirSync, writeFileSync, mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
-import { fileURLToPath } from 'node:url';
+import { buildProductionIde, launchChromium, writePart } from './bench-support.mjs';
 
-const pkg = fileURLToPath(new URL('..', import.meta.url));
-const root = join(pkg, '../..');
-const node = process.execPath;
 const runSeconds = Number(process.env.RUN_SECONDS ?? 5);
-execFileSync(node, [join(root, 'node_modules/typescript/bin/tsc'), '-p', join(pkg, 'tsconfig.server.json')], { stdio: 'inherit' });
-execFileSync(node, [join(root, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
-
+const { startIdeServer } = await buildProductionIde();
 const { PROJECT_TEMPLATES } = await import('@contract-studio/language');
-const { startIdeServer } = await import(join(pkg, 'dist-server/index.js'));
-const { chromium } = await import('playwright-core');
 const base = realpathSync(mkdtempSync(join(tmpdir(), 'monitor-live-bench-')));
 chmodSync(base, 0o755); // the sandboxed job's uid walks through it
 const workspace = join(base, 'khz');
@@ -35,11 +27,9 @@ for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) {
   writeFileSync(join(workspace, name), text.replace('PERIOD=10ms; CRITICAL_DELAY=10ms;', 'PERIOD=1ms; CRITICAL_DELAY=1ms;').replace('C=500us;', 'C=100us;').replace('C=1ms;', 'C=200us;'));
 }
 const server = await startIdeServer({ workspace, port: 0, buildService: true });
-const args = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync'];
 let context;
 try {
-  mkdirSync(join(base, 'profile'));
-  context = await chromium.launchPersistentContext(join(base, 'profile'), { executablePath: '/usr/bin/chromium', args, viewport: { width: 1440, height: 900 } });
+  context = await launchChromium(join(base, 'profile'));
   const page = context.pages()[0] ?? (await context.newPage());
   await page.goto(server.openUrl);
   await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
@@ -112,9 +102,7 @@ try {
     'monitor.arrival_latency_ms_p50': round(r.a50),
     'monitor.live_max_queued_events': r.maxQueued,
   };
-  const out = join(root, 'bench/parts');
-  mkdirSync(out, { recursive: true });
-  writeFileSync(join(out, 'monitor-live.json'), JSON.stringify(result, null, 2) + '\n');
+  writePart('monitor-live', result);
   console.log(JSON.stringify({ ...result, received: r.received, frames: r.frames, runSeconds }));
 } finally {
   await context?.close().catch(() => undefined);

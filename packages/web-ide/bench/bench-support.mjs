@@ -1,0 +1,34 @@
+// What the browser benchmarks of the IDE share (ide, monitor-panel, monitor-live): building the
+// production IDE, launching headless Chromium the way the machine allows, writing a part of
+// bench/results.json.
+import { execFileSync } from 'node:child_process';
+import { mkdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+
+export const pkg = fileURLToPath(new URL('..', import.meta.url));
+export const root = join(pkg, '../..');
+
+/** Builds the IDE server (tsc) and the production bundle (vite), then returns the server's module. */
+export async function buildProductionIde() {
+  const node = process.execPath;
+  execFileSync(node, [join(root, 'node_modules/typescript/bin/tsc'), '-p', join(pkg, 'tsconfig.server.json')], { stdio: 'inherit' });
+  execFileSync(node, [join(root, 'node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
+  return import(join(pkg, 'dist-server/index.js'));
+}
+
+const CHROMIUM_ARGS = ['--headless', '--no-sandbox', '--disable-gpu', '--disable-background-networking', '--disable-component-update', '--no-first-run', '--disable-sync'];
+
+/** A persistent Chromium context on the profile folder `dir` (created), 1440x900; `extraArgs` e.g. `--js-flags=--expose-gc`. */
+export async function launchChromium(dir, extraArgs = []) {
+  const { chromium } = await import('playwright-core');
+  mkdirSync(dir, { recursive: true });
+  return chromium.launchPersistentContext(dir, { executablePath: '/usr/bin/chromium', args: [...CHROMIUM_ARGS, ...extraArgs], viewport: { width: 1440, height: 900 } });
+}
+
+/** Writes bench/parts/<name>.json (flat metric -> number), which bench/run-all.mjs merges. */
+export function writePart(name, result) {
+  const out = join(root, 'bench/parts');
+  mkdirSync(out, { recursive: true });
+  writeFileSync(join(out, `${name}.json`), JSON.stringify(result, null, 2) + '\n');
+}
