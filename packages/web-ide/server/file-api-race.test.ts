@@ -5,7 +5,7 @@
  * Bounded: at most ROUNDS requests of each kind or DEADLINE_MS, whichever comes first.
  */
 import { describe, it, expect, beforeEach, afterEach } from 'vitest';
-import { spawn, type ChildProcess } from 'node:child_process';
+import { SymlinkRacer } from '@contract-studio/codegen/test-support/symlink-racer';
 import { mkdtempSync, mkdirSync, writeFileSync, readdirSync, readFileSync, rmSync, realpathSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -19,56 +19,18 @@ let base: string;
 let ws: string;
 let outside: string;
 let ide: IdeServer;
-let racer: ChildProcess | undefined;
+let racer: SymlinkRacer | undefined;
 
-/** Renames ws/proj away, puts a symlink to `outside` in its place, then restores it; until killed (or 60 s). */
-const RACER = `
-const fs = require('node:fs');
-const [proj, real, target, countFile] = process.argv.slice(1);
-const stopAt = Date.now() + 60000;
-let swaps = 0;
-let strays = 0;
-const attempt = (f) => { try { f(); return true; } catch { return false; } };
-const restore = () => {
-  attempt(() => fs.unlinkSync(proj));
-  if (attempt(() => fs.renameSync(real, proj)) || !fs.existsSync(real)) return;
-  // the server made a new folder in the gap (a save creates missing parents): set it aside, go on
-  attempt(() => fs.renameSync(proj, proj + '.stray' + strays++));
-  attempt(() => fs.renameSync(real, proj));
-};
-function swap() {
-  if (!attempt(() => fs.renameSync(proj, real))) return restore();
-  if (attempt(() => fs.symlinkSync(target, proj))) swaps++;
-  for (let i = 0; i < 50000; i++); // let requests meet the link
-  restore();
-}
-process.on('exit', () => fs.writeFileSync(countFile, String(swaps)));
-// batches, so that SIGTERM and the IPC message get their turn on the event loop
-function batch() {
-  for (let k = 0; k < 50; k++) swap();
-  if (Date.now() < stopAt) setImmediate(batch); else process.exit(0);
-}
-process.on('SIGTERM', () => { restore(); process.exit(0); });
-process.send('ready', () => setImmediate(batch));
-`;
-
-function startRacer(): Promise<void> {
-  racer = spawn(process.execPath, ['-e', RACER, join(ws, 'proj'), join(ws, 'proj.real'), outside, join(base, 'swaps')], { stdio: ['ignore', 'ignore', 'inherit', 'ipc'] });
-  return new Promise((resolve) => racer!.once('message', () => resolve()));
+/** Renames ws/proj away, puts a symlink to `outside` in its place, then restores it, until stopped. */
+async function startRacer(): Promise<void> {
+  racer = await SymlinkRacer.start({ folder: join(ws, 'proj'), target: outside, countFile: join(base, 'swaps'), linkSpin: 50_000, realSpin: 0, batch: 50 });
 }
 
 /** Stops the racer; resolves how many times it had swapped the folder for the symlink. */
 async function stopRacer(): Promise<number> {
-  if (racer && racer.exitCode === null) {
-    const exited = new Promise((r) => racer!.once('exit', r));
-    racer.kill('SIGTERM');
-    await exited;
-  }
-  try {
-    return Number(readFileSync(join(base, 'swaps'), 'utf8'));
-  } catch {
-    return 0; // no racer ran
-  }
+  const swaps = (await racer?.stop()) ?? 0;
+  racer = undefined;
+  return swaps;
 }
 
 function headers(): Record<string, string> {

@@ -6,12 +6,12 @@
  * (docs/codegen.md, "What generate refuses"). Bounded: ROUNDS generations or DEADLINE_MS.
  */
 import { describe, it, expect, beforeEach, afterEach } from 'vitest';
-import { spawn, type ChildProcess } from 'node:child_process';
 import { lstatSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { region } from '../regions/markers.js';
 import { writeTree, type GeneratedFile } from './write-tree.js';
+import { SymlinkRacer } from '../test-support/symlink-racer.js';
 
 const ROUNDS = 200;
 const DEADLINE_MS = 20_000;
@@ -21,61 +21,19 @@ const MARK = 'OUTSIDE-USER-CODE';
 let base: string;
 let srcGen: string;
 let outside: string;
-let racer: ChildProcess | undefined;
-
-/** Renames `folder` aside, puts a symlink to `target` in its place, then restores it; until killed (or 60 s). */
-const RACER = `
-const fs = require('node:fs');
-const [folder, aside, target, countFile, realSpin] = process.argv.slice(1);
-const stopAt = Date.now() + 60000;
-let swaps = 0;
-let strays = 0;
-const attempt = (f) => { try { f(); return true; } catch { return false; } };
-const restore = () => {
-  attempt(() => fs.unlinkSync(folder));
-  if (attempt(() => fs.renameSync(aside, folder)) || !fs.existsSync(aside)) return;
-  // the generator made a new folder in the gap (it creates missing folders): set it aside, go on
-  attempt(() => fs.renameSync(folder, folder + '.stray' + strays++));
-  attempt(() => fs.renameSync(aside, folder));
-};
-function swap() {
-  if (!attempt(() => fs.renameSync(folder, aside))) return restore();
-  if (attempt(() => fs.symlinkSync(target, folder))) swaps++;
-  for (let i = 0; i < 20000; i++); // let the generator meet the link
-  restore();
-  for (let i = 0; i < Number(realSpin); i++); // and the real folder
-}
-process.on('exit', () => fs.writeFileSync(countFile, String(swaps)));
-// batches, so that SIGTERM and the IPC message get their turn on the event loop
-function batch() {
-  for (let k = 0; k < 20; k++) swap();
-  if (Date.now() < stopAt) setImmediate(batch); else process.exit(0);
-}
-process.on('SIGTERM', () => { restore(); process.exit(0); });
-process.send('ready', () => setImmediate(batch));
-`;
+let racer: SymlinkRacer | undefined;
 
 /** `realSpin`: how long (loop turns) the real folder stays in place between two swaps. */
-function startRacer(folder: string, target: string, realSpin: number): Promise<void> {
-    racer = spawn(process.execPath, ['-e', RACER, folder, `${folder}.real`, target, join(base, 'swaps'), String(realSpin)], { stdio: ['ignore', 'ignore', 'inherit', 'ipc'] });
-    return new Promise((resolve) => racer!.once('message', () => resolve()));
+async function startRacer(folder: string, target: string, realSpin: number): Promise<void> {
+    racer = await SymlinkRacer.start({ folder, target, countFile: join(base, 'swaps'), linkSpin: 20_000, realSpin, batch: 20 });
 }
 
 /** Stops the racer (it restores the folder); resolves how many times it had put the symlink in place. */
 async function stopRacer(): Promise<number> {
-    if (racer && racer.exitCode === null) {
-        const exited = new Promise((r) => racer!.once('exit', r));
-        racer.kill('SIGTERM');
-        await exited;
-    }
+    const swaps = (await racer?.stop()) ?? 0;
     racer = undefined;
-    try {
-        return Number(readFileSync(join(base, 'swaps'), 'utf8'));
-    } catch {
-        return 0;
-    }
+    return swaps;
 }
-
 
 /** Round `round`'s files: every round changes them (so each is read, merged and rewritten); odd rounds drop half (deleted). */
 function filesOf(round: number): GeneratedFile[] {
