@@ -3,30 +3,19 @@
  * warning, and a project workspace reused after its sandboxed code planted symlinks (Judge0
  * CVE-2024-28185/28189): the service never writes, reads or deletes through them.
  */
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { existsSync, mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { createBuildServer, type BuildServer } from './server.js';
+import { beforeAll, describe, expect, test } from 'vitest';
+import { createBuildServer } from './server.js';
 import { bigAllocation, forkBomb, honestProgram, makeProject } from './test-support/c-projects.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
+import { useScratch } from './test-support/scratch.js';
 
-const servers: BuildServer[] = [];
-const dirs: string[] = [];
-afterAll(async () => {
-  for (const s of servers) await s.close();
-  for (const d of dirs) rmSync(d, { recursive: true, force: true });
-});
-
-function temp(prefix: string): string {
-  const d = mkdtempSync(join(tmpdir(), prefix));
-  dirs.push(d);
-  return d;
-}
+const { temp, serve } = useScratch();
 
 async function start(opts: Parameters<typeof createBuildServer>[0]): Promise<string> {
   const s = createBuildServer({ token: false, allowNoneSandbox: true, port: 0, cacheDir: temp('contract-cache-'), ...opts });
-  servers.push(s);
+  serve(s);
   return (await s.listen()).url;
 }
 

@@ -6,29 +6,19 @@
  * is left to its host's guard. Real servers, real jobs (`kind: "make"`, the Makefile only echoes).
  */
 import { createServer, request, type Server } from 'node:http';
-import { mkdtempSync, readFileSync, rmSync, statSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, statSync } from 'node:fs';
 import { join } from 'node:path';
 import type { AddressInfo } from 'node:net';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
-import { createBuildServer, type BuildServer } from '../server.js';
+import { createBuildServer } from '../server.js';
+import { useScratch } from '../test-support/scratch.js';
 
 const MAKE = { Makefile: 'all:\n\t@echo built\nrun:\n\t@echo ran\n.PHONY: all run\n' };
-const dirs: string[] = [];
-const servers: BuildServer[] = [];
-const temp = (prefix: string): string => {
-  const d = mkdtempSync(join(tmpdir(), prefix));
-  dirs.push(d);
-  return d;
-};
-afterAll(async () => {
-  for (const s of servers) await s.close();
-  for (const d of dirs) rmSync(d, { recursive: true, force: true });
-});
+const { temp, serve } = useScratch();
 
 async function start(options: Parameters<typeof createBuildServer>[0] = {}) {
   const server = createBuildServer({ port: 0, cacheDir: temp('contract-token-cache-'), concurrency: 2, log: () => {}, ...options });
-  servers.push(server);
+  serve(server);
   return server.listen();
 }
 
@@ -169,7 +159,7 @@ describe('a mounted service', () => {
 
   test('is left to its host: handle() needs no token and keeps sandbox "none"', async () => {
     const service = createBuildServer({ cacheDir: temp('contract-token-mounted-'), concurrency: 1, log: () => {} });
-    servers.push(service);
+    serve(service);
     host = createServer((req, res) => void service.handle(req, res));
     await new Promise<void>((resolve) => host.listen(0, '127.0.0.1', () => resolve()));
     const url = `http://127.0.0.1:${(host.address() as AddressInfo).port}`;

@@ -4,35 +4,25 @@
  * name; a 1,200-level tree with chmod 000 folders and links out is cleaned up; an executable a run
  * replaced (dated 2100) is never run by the next job, while a no-op rebuild stays a no-op.
  */
-import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { existsSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterAll, describe, expect, test } from 'vitest';
+import { describe, expect, test } from 'vitest';
 import { createBuildServer, type BuildServer } from '../server.js';
 import type { SandboxName } from '../sandbox/types.js';
 import { diskFiller, honestProgram, makeProject, poisoner } from './c-projects.js';
 import { getJob, postJob, readEvents } from './client.js';
 import { hostileTreeProgram } from './hostile-tree.js';
+import { useScratch } from './scratch.js';
 
 type AnyJob = Record<string, any>;
 
 export function hostTrustSuite(sandbox: SandboxName): void {
   describe(`host trust boundary (${sandbox})`, () => {
-    const dirs: string[] = [];
-    const servers: BuildServer[] = [];
-    const temp = (prefix: string): string => {
-      const d = mkdtempSync(join(tmpdir(), prefix));
-      dirs.push(d);
-      return d;
-    };
-    afterAll(async () => {
-      for (const s of servers) await s.close();
-      for (const d of dirs) rmSync(d, { recursive: true, force: true });
-    });
+    const { temp, serve } = useScratch();
     const projects = temp('contract-trust-projects-');
     const start = async (cacheDir = temp('contract-trust-cache-')): Promise<{ url: string; server: BuildServer; cacheDir: string }> => {
       const server = createBuildServer({ token: false, port: 0, cacheDir, projectRoots: [projects], concurrency: 2 });
-      servers.push(server);
+      serve(server);
       return { url: (await server.listen()).url, server, cacheDir };
     };
     const runJob = async (url: string, body: Record<string, unknown>): Promise<AnyJob> => {

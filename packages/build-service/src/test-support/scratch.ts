@@ -1,0 +1,36 @@
+/**
+ * The temp folders and build servers of a test file (or describe block): each is removed or
+ * closed after all its tests, servers first. Call it at file or describe level.
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll } from 'vitest';
+import type { BuildServer } from '../server.js';
+
+export interface Scratch {
+  /** A new temp folder `<tmpdir>/<prefix>XXXXXX`. */
+  temp(prefix: string): string;
+  /** Keeps `server` to be closed after all tests; returns it. */
+  serve(server: BuildServer): BuildServer;
+}
+
+export function useScratch(): Scratch {
+  const dirs: string[] = [];
+  const servers: BuildServer[] = [];
+  afterAll(async () => {
+    for (const s of servers) await s.close();
+    for (const d of dirs) rmSync(d, { recursive: true, force: true });
+  });
+  return {
+    temp(prefix) {
+      const d = mkdtempSync(join(tmpdir(), prefix));
+      dirs.push(d);
+      return d;
+    },
+    serve(server) {
+      servers.push(server);
+      return server;
+    },
+  };
+}
