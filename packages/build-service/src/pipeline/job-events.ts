@@ -102,6 +102,16 @@ export class JobEvents {
     const event = { ...payload, seq: this.events.length + 1, t: Date.now() } as JobEvent;
     this.events.push(event);
     if (event.type === 'end') this.ended = true;
+    this.deliver(event);
+    if (this.ended && this.subscribers.size) {
+      this.subscribers.clear();
+      this.changed();
+    }
+    return event;
+  }
+
+  /** Hands `event` to every subscriber; one that throws is dropped (a gone client). */
+  private deliver(event: JobEvent): void {
     for (const s of [...this.subscribers]) {
       try {
         s(event);
@@ -110,11 +120,6 @@ export class JobEvents {
         this.changed();
       }
     }
-    if (this.ended && this.subscribers.size) {
-      this.subscribers.clear();
-      this.changed();
-    }
-    return event;
   }
 
   /**
@@ -125,14 +130,7 @@ export class JobEvents {
   broadcast(payload: Payload<JobEvent>): void {
     if (this.ended || this.subscribers.size === 0) return;
     const event = { ...payload, seq: this.events.length, t: Date.now() } as JobEvent;
-    for (const s of [...this.subscribers]) {
-      try {
-        s(event);
-      } catch {
-        this.subscribers.delete(s);
-        this.changed();
-      }
-    }
+    this.deliver(event);
   }
 
   /**
