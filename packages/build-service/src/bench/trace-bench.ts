@@ -14,18 +14,23 @@
  *   monitor.service_trace_latency_ms_p99  from a record's write (its wall_time column) to its
  *                                         arrival at the SSE client (Date.now()), p99; _p50 too
  *   monitor.trace_records                 records the SSE client received; _events_per_s: trace events a second
- *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process (and the
- *                                         in-process client) per second of phase
+ *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process per second of
+ *                                         phase (the SSE client runs in a child process of its own,
+ *                                         trace-bench-client.ts, as the IDE's page and the CLI do)
+ *   monitor.service_cpu_us_per_record_without / _with  that CPU time over the records the run wrote
+ *                                         in those phases (counted in the collected logs by mono_ns)
+ *   monitor.client_cpu_ms_per_s           the SSE client's own CPU time per second of phase
  * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 70 s in all.
  */
+import { spawn } from 'node:child_process';
 import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
+import { fileURLToPath } from 'node:url';
 import { PROJECT_TEMPLATES } from '@contract-studio/language';
-import { artifactBytes } from '../pipeline/artifacts.js';
-import type { TraceEvent } from '../pipeline/job-events.js';
+import { artifactBytes, type Artifact } from '../pipeline/artifacts.js';
 import { createBuildServer } from '../server.js';
-import { postJob, streamEvents } from '../test-support/client.js';
+import { postJob } from '../test-support/client.js';
 import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 import { parseRecordLine } from '../trace/parse.js';
 
@@ -45,15 +50,28 @@ const median = (xs: number[]): number => {
 };
 const sleep = (ms: number): Promise<void> => new Promise((r) => setTimeout(r, ms));
 
-/** An SSE client of the job's stream from `after` on, until aborted; `onTrace` sees each trace event. */
-async function attach(base: string, id: string, after: number, signal: AbortSignal, onTrace: (e: TraceEvent) => void): Promise<void> {
-  try {
-    await streamEvents(base, id, (e) => {
-      if (e.type === 'trace') onTrace(e as TraceEvent);
-    }, after, signal);
-  } catch (e) {
-    if (!signal.aborted) throw e;
-  }
+interface ClientReport {
+  records: number;
+  events: number;
+  latencyMs: number[];
+  cpuMs: number;
+}
+
+/**
+ * An SSE client of the job's stream from `after` on, in a child process (trace-bench-client.ts),
+ * until `stop` resolves; its report.
+ */
+async function attach(base: string, id: string, after: number, stop: Promise<void>): Promise<ClientReport> {
+  const script = join(dirname(fileURLToPath(import.meta.url)), 'trace-bench-client.js');
+  const child = spawn(process.execPath, [script, base, id, String(after)], { stdio: ['ignore', 'pipe', 'inherit'] });
+  let out = '';
+  child.stdout.setEncoding('utf8').on('data', (d: string) => (out += d));
+  const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
+  await stop;
+  child.kill('SIGTERM');
+  const code = await exited;
+  if (code !== 0) throw new Error(`the SSE client exited with ${code}`);
+  return JSON.parse(out) as ClientReport;
 }
 
 interface Phase {
@@ -62,6 +80,8 @@ interface Phase {
   from: bigint;
   to: bigint;
   cpuMs: number;
+  /** Records the run wrote in the phase (by mono_ns, from the collected logs). */
+  records: number;
 }
 
 /** The template at 1 kHz: PERIOD=1ms, module budgets well inside it. */
@@ -84,8 +104,8 @@ async function main(): Promise<void> {
   const { url } = await server.listen();
   /** Logs of earlier runs stay in the reused workspace's logs/ (and among the artifacts). */
   const seen = new Set<string>();
-  /** One run of `seconds`; `during` runs once the run streams its trace; returns ORD's releases (tick_ns, lateness in us). */
-  const run = async (seconds: number, during: (jobId: string) => Promise<void>): Promise<{ tick: bigint; lateUs: number }[]> => {
+  /** One run of `seconds`; `during` runs once the run streams its trace; returns ORD's releases (tick_ns, lateness in us) and the run's logs. */
+  const run = async (seconds: number, during: (jobId: string) => Promise<void>): Promise<{ releases: { tick: bigint; lateUs: number }[]; logs: Artifact[] }> => {
     const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: seconds, project: { dir } });
     if (r.status !== 201) throw new Error(`submit: ${JSON.stringify(r.json)}`);
     const job = server.service.get(r.json.id as string)!;
@@ -97,8 +117,9 @@ async function main(): Promise<void> {
       const tail = job.events.all.flatMap((e) => (e.type === 'line' ? [`${e.source}: ${e.line}`] : [])).slice(-25);
       throw new Error(`run failed: ${job.result?.message}\n${tail.join('\n')}`);
     }
-    const ord = job.artifacts?.files.find((f) => f.name.startsWith('ORD_') && !seen.has(f.name));
-    for (const f of job.artifacts?.files ?? []) seen.add(f.name);
+    const logs = (job.artifacts?.files ?? []).filter((f) => !seen.has(f.name));
+    const ord = logs.find((f) => f.name.startsWith('ORD_'));
+    for (const f of logs) seen.add(f.name);
     if (!ord) throw new Error('no new ORD log');
     const releases: { tick: bigint; lateUs: number }[] = [];
     artifactBytes(ord).toString('utf8').split('\n').forEach((line, i) => {
@@ -108,7 +129,7 @@ async function main(): Promise<void> {
       const m = /tick_ns=(\d+) release_ns=(\d+)/.exec(rec.detail);
       if (m) releases.push({ tick: BigInt(m[1]!), lateUs: Number(BigInt(m[2]!) - BigInt(m[1]!)) / 1000 });
     });
-    return releases;
+    return { releases, logs };
   };
   try {
     say('build + warm-up run (3 s)');
@@ -117,10 +138,11 @@ async function main(): Promise<void> {
     const latency: number[] = [];
     let records = 0;
     let events = 0;
+    let clientCpuMs = 0;
     const phaseMs = PHASE_SECONDS * 1000;
     const seconds = Math.ceil(2 * PAIRS * PHASE_SECONDS + 3);
     say(`one run of ${seconds} s: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
-    const releases = await run(seconds, async (jobId) => {
+    const { releases, logs } = await run(seconds, async (jobId) => {
       const job = server.service.get(jobId)!;
       for (let pair = 0; pair < PAIRS; pair++) {
         const order = pair % 2 === 0 ? [false, true] : [true, false];
@@ -128,26 +150,29 @@ async function main(): Promise<void> {
           const cpu0 = process.cpuUsage();
           const from = process.hrtime.bigint();
           if (withClient) {
-            const abort = new AbortController();
             const after = job.events.all.at(-1)?.seq ?? 0;
-            const reading = attach(url, jobId, after, abort.signal, (e) => {
-              const now = Date.now();
-              events++;
-              for (const l of e.records) {
-                records++;
-                const wall = Date.parse(l.text.split(',', 2)[1] ?? '');
-                if (Number.isFinite(wall)) latency.push(now - wall);
-              }
-            });
-            await sleep(phaseMs);
-            abort.abort();
-            await reading;
+            const report = await attach(url, jobId, after, sleep(phaseMs));
+            events += report.events;
+            records += report.records;
+            clientCpuMs += report.cpuMs;
+            for (const x of report.latencyMs) latency.push(x);
           } else await sleep(phaseMs);
           const cpu = process.cpuUsage(cpu0);
-          phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000 });
+          phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, records: 0 });
         }
       }
     });
+    say(`phases on CLOCK_MONOTONIC (a --cpu-prof profile's clock, in us): ${phases[0]!.from / 1000n}..${phases.at(-1)!.to / 1000n}`);
+    // the records written in each phase, by their mono_ns (the clock of the phase boundaries)
+    for (const log of logs) {
+      for (const line of artifactBytes(log).toString('utf8').split('\n')) {
+        const m = /^(\d+),/.exec(line);
+        if (!m) continue;
+        const mono = BigInt(m[1]!);
+        const p = phases.find((q) => mono >= q.from && mono < q.to);
+        if (p) p.records++;
+      }
+    }
     const inPhase = (p: Phase): number[] => releases.filter((r) => r.tick >= p.from + SETTLE_NS && r.tick < p.to).map((r) => r.lateUs);
     const ratios: number[] = [];
     for (let pair = 0; pair < PAIRS; pair++) {
@@ -160,6 +185,11 @@ async function main(): Promise<void> {
       const ps = phases.filter((p) => p.withClient === withClient);
       return ps.reduce((a, p) => a + p.cpuMs, 0) / ps.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
     };
+    const usPerRecord = (withClient: boolean): number => {
+      const ps = phases.filter((p) => p.withClient === withClient);
+      return (1000 * ps.reduce((a, p) => a + p.cpuMs, 0)) / Math.max(1, ps.reduce((a, p) => a + p.records, 0));
+    };
+    const clientSeconds = phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
     const p99Without = pct(pooled(false), 99);
     const p99With = pct(pooled(true), 99);
     const out = {
@@ -171,9 +201,13 @@ async function main(): Promise<void> {
       'monitor.service_trace_latency_ms_p99': round(pct(latency, 99), 1),
       'monitor.service_trace_latency_ms_p50': round(pct(latency, 50), 1),
       'monitor.trace_records': records,
-      'monitor.trace_events_per_s': round(events / phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0), 0),
+      'monitor.trace_events_per_s': round(events / clientSeconds, 0),
+      'monitor.records_written_per_s': round(phases.reduce((a, p) => a + p.records, 0) / phases.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0), 0),
       'monitor.service_cpu_ms_per_s_without': round(cpuPerS(false), 1),
       'monitor.service_cpu_ms_per_s_with': round(cpuPerS(true), 1),
+      'monitor.service_cpu_us_per_record_without': round(usPerRecord(false), 2),
+      'monitor.service_cpu_us_per_record_with': round(usPerRecord(true), 2),
+      'monitor.client_cpu_ms_per_s': round(clientCpuMs / clientSeconds, 1),
       'monitor.releases': pooled(true).length + pooled(false).length,
     };
     say(JSON.stringify(out));
