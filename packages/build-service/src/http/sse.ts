@@ -12,6 +12,19 @@ export function eventPayload(e: JobEvent): Record<string, unknown> {
   return data;
 }
 
+/** The last event framed, and its frame: every client attached gets the same live event in turn. */
+let lastEvent: JobEvent | null = null;
+let lastFrame = '';
+
+/** The SSE frame of an event (serialized once for all the clients it is delivered to at once). */
+export function sseFrame(e: JobEvent): string {
+  if (e !== lastEvent) {
+    lastFrame = `id: ${e.seq}\nevent: ${e.type}\ndata: ${JSON.stringify(eventPayload(e))}\n\n`;
+    lastEvent = e;
+  }
+  return lastFrame;
+}
+
 export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, after: number): void {
   res.writeHead(200, {
     'Content-Type': 'text/event-stream; charset=utf-8',
@@ -47,7 +60,7 @@ export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, a
   res.on('error', stop);
   req.on('error', stop);
   unsubscribe = job.events.subscribe(after, (e) => {
-    write(`id: ${e.seq}\nevent: ${e.type}\ndata: ${JSON.stringify(eventPayload(e))}\n\n`);
+    write(sseFrame(e));
     if (e.type === 'end') setImmediate(stop);
   });
   req.on('close', stop);

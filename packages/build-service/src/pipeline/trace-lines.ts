@@ -32,6 +32,11 @@ export class TraceLineSplitter {
     private quietUntil = 0,
   ) {}
 
+  /** Number of the line being read (1-based). */
+  get nextLine(): number {
+    return this.lineNo;
+  }
+
   /** Bytes consumed so far (the file offset of the next byte). */
   offset = 0;
 
@@ -42,6 +47,14 @@ export class TraceLineSplitter {
     while (start < chunk.length) {
       const nl = chunk.indexOf(10, start);
       const end = nl < 0 ? chunk.length : nl;
+      if (nl >= 0 && !this.skipping && this.partialBytes === 0 && end - start <= MAX_LINE_CHARS) {
+        // the whole line is in this chunk (the common case): decoded from it, no copy
+        this.offset += end - start + 1;
+        this.line(out, chunk, start, end);
+        this.lineNo++;
+        start = nl + 1;
+        continue;
+      }
       const piece = chunk.subarray(start, end);
       if (!this.skipping) {
         if (this.partialBytes + piece.length > MAX_LINE_CHARS) {
@@ -59,11 +72,7 @@ export class TraceLineSplitter {
       this.offset += end - start;
       if (nl < 0) break;
       this.offset += 1;
-      if (!this.skipping) {
-        const raw = Buffer.concat(this.partial).toString('utf8');
-        const text = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
-        if (text !== '' && !(this.lineNo === 1 && text === CSV_HEADER)) this.emit(out, text, this.offset);
-      }
+      if (!this.skipping) this.line(out, this.partial.length === 1 ? this.partial[0]! : Buffer.concat(this.partial));
       this.partial = [];
       this.partialBytes = 0;
       this.skipping = false;
@@ -73,18 +82,52 @@ export class TraceLineSplitter {
     return out;
   }
 
+  /**
+   * Consumes the next bytes of the file without making lines of them (nobody would receive them:
+   * trace-tail.ts): counts their lines, so that the lines pushed later carry their numbers in the
+   * file. A line begun before or left unfinished here is not sent (the rest of it is skipped up to
+   * its newline). Returns the index in `chunk` where its last whole line starts, -1 when none.
+   */
+  count(chunk: Buffer): number {
+    if (this.partialBytes > 0) {
+      this.partial = [];
+      this.partialBytes = 0;
+      this.skipping = true;
+    }
+    let last = -1;
+    let start = 0;
+    for (;;) {
+      const nl = chunk.indexOf(10, start);
+      if (nl < 0) {
+        if (start < chunk.length) this.skipping = true;
+        this.offset += chunk.length - start;
+        return last;
+      }
+      if (!this.skipping) last = start;
+      this.offset += nl + 1 - start;
+      this.skipping = false;
+      this.lineNo++;
+      start = nl + 1;
+    }
+  }
+
   /** The file ended (the run is over): a last line without its newline is a line too (as parseLogFile reads it). */
   end(): TraceLine[] {
     const out: TraceLine[] = [];
-    if (!this.skipping && this.partialBytes > 0) {
-      const raw = Buffer.concat(this.partial).toString('utf8');
-      const text = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
-      if (text !== '' && !(this.lineNo === 1 && text === CSV_HEADER)) this.emit(out, text, this.offset);
-    }
+    if (!this.skipping && this.partialBytes > 0) this.line(out, Buffer.concat(this.partial));
     this.partial = [];
     this.partialBytes = 0;
     this.skipping = true;
     return out;
+  }
+
+  /** The line in bytes [from, to) of `bytes` ends at this.offset: sent unless empty or the header (a trailing \r dropped). */
+  private line(out: TraceLine[], bytes: Buffer, from = 0, to = bytes.length): void {
+    if (to > from && bytes[to - 1] === 13) to--;
+    if (to === from || this.offset <= this.quietUntil) return;
+    const text = bytes.toString('utf8', from, to);
+    if (this.lineNo === 1 && text === CSV_HEADER) return;
+    out.push({ file: this.file, line: this.lineNo, text });
   }
 
   private emit(out: TraceLine[], text: string, endOffset: number): void {

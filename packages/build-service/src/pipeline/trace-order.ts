@@ -66,7 +66,23 @@ export interface ReleaseWhen {
   nowMono?: bigint;
 }
 
-const MONO = /^(\d{1,20}),/;
+/**
+ * The line's mono_ns: its leading 1 to 20 digits, followed by a comma; -1 when it has none (what
+ * /^(\d{1,20}),/ reads, without a match object per record).
+ */
+export function monoOf(text: string): bigint {
+  let i = 0;
+  let n = 0;
+  for (; i < text.length && i <= 20; i++) {
+    const c = text.charCodeAt(i);
+    if (c === 44) break; // ','
+    if (c < 48 || c > 57) return -1n;
+    if (i < 15) n = n * 10 + (c - 48);
+  }
+  if (i === 0 || i > 20 || i === text.length) return -1n;
+  // up to 15 digits are exact in a double; more are read from the text
+  return i <= 15 ? BigInt(n) : BigInt(text.slice(0, i));
+}
 
 export class TraceOrder {
   private readonly sources = new Map<string, Source>();
@@ -107,13 +123,24 @@ export class TraceOrder {
     this.track(file);
     const s = this.sources.get(file)!;
     for (const line of lines) {
-      const m = MONO.exec(line.text);
-      const mono = m ? BigInt(m[1]!) : -1n;
+      const mono = monoOf(line.text);
       if (mono > s.lastKey) s.lastKey = mono;
       s.queue.push({ key: s.lastKey, readAt: now, line });
       this.held++;
       if (line.text.includes(',module_exit,')) s.closed = true;
     }
+  }
+
+  /**
+   * Lines of one file read and not added (nobody would receive them): the file is known read up to
+   * `lastMono` (the mono_ns of the last of them, -1 when unreadable); `exited`: its module wrote
+   * module_exit among them.
+   */
+  skipped(file: string, lastMono: bigint, exited: boolean): void {
+    this.track(file);
+    const s = this.sources.get(file)!;
+    if (lastMono > s.lastKey) s.lastKey = lastMono;
+    if (exited) s.closed = true;
   }
 
   /**
@@ -155,38 +182,34 @@ export class TraceOrder {
       }
       if (this.sources.size > 0 && [...this.sources.values()].every((s) => s.closed)) threshold = BigInt('0x7fffffffffffffff') * 4n;
     }
-    const names = [...this.sources.keys()].sort();
-    const heads = new Map(names.map((n) => [n, 0]));
+    // a merge of the queues (each in key order), ties in file name order, then file order
+    const queues = [...this.sources.keys()].sort().map((n) => this.sources.get(n)!.queue);
+    const heads = queues.map(() => 0);
     const out: TraceLine[] = [];
     for (;;) {
-      let best: string | null = null;
+      let best = -1;
       let bestKey = 0n;
-      for (const n of names) {
-        const q = this.sources.get(n)!.queue;
-        const i = heads.get(n)!;
-        if (i >= q.length) continue;
-        const k = q[i]!.key;
+      for (let q = 0; q < queues.length; q++) {
+        const queue = queues[q]!;
+        const i = heads[q]!;
+        if (i >= queue.length) continue;
+        const k = queue[i]!.key;
         if (k > threshold) continue;
-        if (best === null || k < bestKey) {
-          best = n;
+        if (best < 0 || k < bestKey) {
+          best = q;
           bestKey = k;
         }
       }
-      if (best === null) break;
-      const i = heads.get(best)!;
-      const h = this.sources.get(best)!.queue[i]!;
-      heads.set(best, i + 1);
+      if (best < 0) break;
+      const h = queues[best]![heads[best]!]!;
+      heads[best]!++;
       if (h.key < this.lastReleased) {
         if (h.key >= 0n) this.late++;
       }
       else this.lastReleased = h.key;
       out.push(h.line);
     }
-    for (const n of names) {
-      const s = this.sources.get(n)!;
-      const i = heads.get(n)!;
-      if (i) s.queue.splice(0, i);
-    }
+    for (let q = 0; q < queues.length; q++) if (heads[q]) queues[q]!.splice(0, heads[q]);
     this.held -= out.length;
     return out;
   }

@@ -2,11 +2,11 @@ import { appendFileSync, mkdirSync, mkdtempSync, openSync, readFileSync, readdir
 import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterEach, beforeEach, describe, expect, test } from 'vitest';
+import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
 import { CSV_HEADER, MAX_LINE_CHARS, parseLogFile, parseRecordLine } from '../trace/parse.js';
 import type { TraceLine } from './job-events.js';
 import { CUT_MARK, TraceLineSplitter } from './trace-lines.js';
-import { TraceOrder } from './trace-order.js';
+import { monoOf, TraceOrder } from './trace-order.js';
 import { TRACE_TAIL_BOUNDS, TraceTail, type TraceTailBounds } from './trace-tail.js';
 
 const rec = (mono: number | bigint, module = 'MAA', event = 'module_started', detail = 'pid=1 priority=40'): string =>
@@ -47,6 +47,73 @@ describe('TraceLineSplitter', () => {
     const out = s.push(Buffer.from(`${old}${rec(2)}\n${rec(3)}`));
     expect(out).toEqual([{ file: 'M_1.csv', line: 3, text: rec(2) }]);
     expect(s.end()).toEqual([{ file: 'M_1.csv', line: 4, text: rec(3) }]);
+  });
+});
+
+describe('TraceLineSplitter: any chunking, and counting', () => {
+  /** A small deterministic generator (the chunk sizes). */
+  const lcg = (seed: number) => () => (seed = (seed * 1103515245 + 12345) % 2 ** 31) / 2 ** 31;
+  const text = [
+    CSV_HEADER,
+    rec(1, 'MAA', 'user', 'é€😀 multi-byte'),
+    '',
+    `${rec(2)}\r`,
+    'garbage without a time',
+    'y'.repeat(MAX_LINE_CHARS), // the longest line sent whole
+    'z'.repeat(MAX_LINE_CHARS + 1), // one byte over: cut
+    `${'€'.repeat(2000)}`, // 6000 bytes of 3-byte characters: cut (at a byte, as the bound is)
+    rec(3),
+    rec(4), // no newline: end() gives it
+  ].join('\n');
+  const bytes = Buffer.from(text);
+  const all = (chunks: Buffer[]): TraceLine[] => {
+    const s = new TraceLineSplitter('M_1.csv');
+    const out = chunks.flatMap((c) => s.push(c));
+    expect(s.offset).toBe(bytes.length);
+    return [...out, ...s.end()];
+  };
+
+  test('the lines do not depend on where the reads cut the bytes (characters, \\r\\n and long lines split)', () => {
+    const whole = all([bytes]);
+    expect(whole.map((l) => l.line)).toEqual([2, 4, 5, 6, 7, 8, 9, 10]);
+    expect(whole[0]!.text).toBe(rec(1, 'MAA', 'user', 'é€😀 multi-byte'));
+    expect(whole[1]!.text).toBe(rec(2));
+    expect(whole[3]!.text).toBe('y'.repeat(MAX_LINE_CHARS));
+    expect(whole[4]!.text).toBe('z'.repeat(MAX_LINE_CHARS) + CUT_MARK);
+    expect(whole[5]!.text.endsWith(CUT_MARK)).toBe(true);
+    expect(whole.slice(6).map((l) => l.text)).toEqual([rec(3), rec(4)]);
+    for (let seed = 1; seed <= 40; seed++) {
+      const rnd = lcg(seed);
+      const chunks: Buffer[] = [];
+      for (let i = 0; i < bytes.length; ) {
+        const n = 1 + Math.floor(rnd() * (seed % 2 ? 40 : 9000));
+        chunks.push(Buffer.from(bytes.subarray(i, i + n))); // copies: the tail reuses its read buffer
+        i += n;
+      }
+      expect(all(chunks)).toEqual(whole);
+    }
+  });
+
+  test('count(): lines consumed without being made keep the numbering; a line the switch cuts is not sent', () => {
+    const s = new TraceLineSplitter('M_1.csv');
+    const head = Buffer.from(`${CSV_HEADER}\n${rec(1)}\n${rec(2)}\n${rec(3).slice(0, 10)}`);
+    expect(s.push(head)).toEqual([{ file: 'M_1.csv', line: 2, text: rec(1) }, { file: 'M_1.csv', line: 3, text: rec(2) }]);
+    // rec(3) begun while pushed, finished while counted; rec(5) begun while counted, finished while pushed
+    const counted = Buffer.from(`${rec(3).slice(10)}\n${rec(4)}\n${rec(5).slice(0, 7)}`);
+    const last = s.count(counted);
+    expect(counted.toString('utf8', last, counted.indexOf(10, last))).toBe(rec(4));
+    expect(s.nextLine).toBe(6);
+    expect(s.push(Buffer.from(`${rec(5).slice(7)}\n${rec(6)}\n`))).toEqual([{ file: 'M_1.csv', line: 7, text: rec(6) }]);
+    expect(s.count(Buffer.from('no newline at all'))).toBe(-1);
+    // line 8 begun while counted: skipped up to its newline
+    expect(s.push(Buffer.from(` still\n${rec(9)}\n`))).toEqual([{ file: 'M_1.csv', line: 9, text: rec(9) }]);
+  });
+
+  test('monoOf reads what /^(\\d{1,20}),/ reads', () => {
+    for (const t of ['0,x', '123,', '882454447912,2026', '9'.repeat(15) + ',', '9'.repeat(16) + ',', '1'.repeat(20) + ',', '1'.repeat(21) + ',', ',1', '12', '', '12a,', ' 1,', '18446744073709551615,a']) {
+      const m = /^(\d{1,20}),/.exec(t);
+      expect(monoOf(t), t).toBe(m ? BigInt(m[1]!) : -1n);
+    }
   });
 });
 
@@ -349,6 +416,78 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(liveOnly).toHaveLength(230);
     expect(new Set([...traced, ...liveOnly].map((l) => `${l.file}:${l.line}`)).size).toBe(300);
     expect(system.filter((l) => /70 records kept for replay/.test(l))).toHaveLength(1);
+  });
+
+  test('records read in one wake go in one trace event, in mono_ns order across the files, none lost', async () => {
+    mkdirSync(logs);
+    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 2, orderWindowMs: 600_000, markHoldMs: 600_000 });
+    // three modules' logs written at once (in one tick: the wake comes after), each ending with module_exit
+    const files = ['A_1.csv', 'B_1.csv', 'C_1.csv'];
+    files.forEach((name, k) => {
+      const lines = Array.from({ length: 300 }, (_, i) => rec(1_000_000 + 3 * i + k, name[0]));
+      writeFileSync(join(logs, name), `${CSV_HEADER}\n${lines.join('\n')}\n${rec(2_000_000 + k, name[0], 'module_exit', 'reason=ended')}\n`);
+    });
+    for (let i = 0; i < 500 && traced.length < 903; i++) await sleep(10);
+    expect(traced).toHaveLength(903);
+    expect(events).toBe(1);
+    const monos = traced.map((l) => monoOf(l.text));
+    expect(monos).toEqual([...monos].sort((a, b) => (a < b ? -1 : a > b ? 1 : 0)));
+    for (const name of files) expect(traced.filter((l) => l.file === name).map((l) => l.line)).toEqual(Array.from({ length: 301 }, (_, i) => i + 2));
+    await tail.finish();
+    expect(system).toEqual([]);
+  });
+
+  test('past the kept bound with no client attached, lines are counted, not made; a client then gets the later ones, numbered, none twice', async () => {
+    mkdirSync(logs);
+    const a = join(logs, 'A_1.csv');
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    liveOnly = [];
+    const tail = await TraceTail.start(work, sink, { ...fast, linesKept: 5 });
+    let mono = 1000;
+    const more = (n: number): void => appendFileSync(a, Array.from({ length: n }, () => rec(mono++, 'A') + '\n').join(''));
+    more(10); // lines 2..11: 5 kept, 5 live
+    for (let i = 0; i < 500 && liveOnly.length < 5; i++) await sleep(10);
+    expect(traced.map((l) => l.line)).toEqual([2, 3, 4, 5, 6]);
+    expect(liveOnly.map((l) => l.line)).toEqual([7, 8, 9, 10, 11]);
+    more(10); // lines 12..21: nobody watches
+    for (let i = 0; i < 500 && tail.countedLines < 10; i++) await sleep(10);
+    expect(tail.countedLines).toBe(10);
+    tail.setWatched(true);
+    more(3); // lines 22..24
+    for (let i = 0; i < 500 && liveOnly.length < 8; i++) await sleep(10);
+    await tail.finish();
+    expect(liveOnly.slice(5)).toEqual([22, 23, 24].map((line) => ({ file: 'A_1.csv', line, text: rec(1000 + line - 2, 'A') })));
+    expect(traced).toHaveLength(5);
+    expect(system.filter((l) => /5 records kept for replay/.test(l))).toHaveLength(1);
+  });
+
+  test('logs/ is listed when an entry was added (its ctime), not at every wake', async () => {
+    mkdirSync(logs);
+    const a = join(logs, 'A_1.csv');
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 2, listEveryMs: 600_000, orderWindowMs: 600_000, markHoldMs: 600_000 });
+    const list = vi.spyOn(tail as unknown as { list(): Promise<string[]> }, 'list');
+    await sleep(120); // logs/ settles (its ctime older than the kernel's clock tick)
+    const wakes = async (n: number): Promise<void> => {
+      for (let k = 0; k < n; k++) {
+        const had = traced.length;
+        appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
+        for (let i = 0; i < 500 && traced.length === had; i++) await sleep(5);
+      }
+    };
+    await wakes(1); // the first wake lists (A was there before the tail started: nothing new)
+    const listings = list.mock.calls.length;
+    await wakes(5);
+    expect(traced).toHaveLength(6);
+    expect(list.mock.calls.length).toBe(listings); // five wakes, no listing
+    // a module started now: logs/ changed, the next wake lists it (no poll, no periodic listing for 10 minutes)
+    writeFileSync(join(logs, 'B_1.csv'), `${CSV_HEADER}\n${rec(process.hrtime.bigint(), 'B', 'module_exit', 'reason=ended')}\n`);
+    await sleep(5);
+    await wakes(1);
+    for (let i = 0; i < 500 && !traced.some((l) => l.file === 'B_1.csv'); i++) await sleep(10);
+    expect(traced.filter((l) => l.file === 'B_1.csv').map((l) => l.line)).toEqual([2]);
+    await tail.finish();
+    expect(system).toEqual([]);
   });
 
   test('logs/ planted as a link: not followed, one line', async () => {

@@ -15,7 +15,7 @@
  * and file counts are bounded, lines are bounded (trace-lines.ts). Nothing here throws into the
  * job: a fault stops the channel with one system line; the collected logs stay the record.
  */
-import { constants, promises as fsp, readSync, watch, writeSync, type FSWatcher } from 'node:fs';
+import { constants, fstatSync, promises as fsp, readSync, watch, writeSync, type FSWatcher } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import { endianness } from 'node:os';
 import { join } from 'node:path';
@@ -23,12 +23,14 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { LOG_DIR, SAFE_NAME } from './artifacts.js';
 import type { TraceLine } from './job-events.js';
 import { TraceLineSplitter } from './trace-lines.js';
-import { TraceOrder } from './trace-order.js';
+import { monoOf, TraceOrder } from './trace-order.js';
 
 export interface TraceTailBounds {
   pollMs: number;
   /** Delay from a change of logs/ to the read it wakes; 0: no watch, polls only. */
   wakeMs: number;
+  /** logs/ is listed at least this often (ms), whatever its ctime says (listingStale). */
+  listEveryMs: number;
   readBytesPerPoll: number;
   orderWindowMs: number;
   /** The order window when every log has its flush mark. */
@@ -45,6 +47,7 @@ export interface TraceTailBounds {
 export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
   pollMs: SERVICE_BOUNDS.tracePollMs,
   wakeMs: SERVICE_BOUNDS.traceWakeMs,
+  listEveryMs: SERVICE_BOUNDS.traceListEveryMs,
   readBytesPerPoll: SERVICE_BOUNDS.traceReadBytesPerPoll,
   orderWindowMs: SERVICE_BOUNDS.traceOrderWindowMs,
   markHoldMs: SERVICE_BOUNDS.traceMarkHoldMs,
@@ -88,6 +91,11 @@ const CHUNK = 64 * 1024;
 export const MARK_SUFFIX = '.mark';
 /** Rounds after a log was opened in which its mark is looked for (the runtime creates it first). */
 const MARK_TRIES = 3;
+/**
+ * A folder's ctime is older than this (ms) before a listing is known to change with the next entry
+ * added: it is the kernel's coarse clock (one tick: 1 to 10 ms), and Date.now() may lead it.
+ */
+const CTIME_SETTLE_MS = 50;
 const readWord = endianness() === 'LE' ? (b: Buffer) => b.readBigUInt64LE(0) : (b: Buffer) => b.readBigUInt64BE(0);
 
 export class TraceTail {
@@ -117,10 +125,15 @@ export class TraceTail {
   private behind = false;
   /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns for bwrap and none) at the last listing. */
   private listedAt: bigint | null = null;
+  /** The ctime of logs/ before the last listing, when it was settled then (listingStale); null: list at the next wake. */
+  private listedCtime: bigint | null = null;
+  /** Date.now() before the last listing. */
+  private listedWallMs = 0;
   private sent = 0;
   /** Past the kept-lines bound: lines go to the attached clients only. */
   private liveOnly = false;
   private liveSent = 0;
+  private counted = 0;
   private rotate = 0;
   private readonly buf: Buffer;
   private noted = new Set<string>();
@@ -137,6 +150,11 @@ export class TraceTail {
   /** Records sent so far. */
   get sentLines(): number {
     return this.sent;
+  }
+
+  /** Records read past the kept bound while no client was attached: counted, not sent to anyone. */
+  get countedLines(): number {
+    return this.counted;
   }
 
   /**
@@ -327,6 +345,32 @@ export class TraceTail {
     return names;
   }
 
+  /**
+   * Whether logs/ must be listed again (a wake lists it only when it may hold a name not seen).
+   * Adding, removing or renaming an entry sets the folder's ctime (which no call of the sandboxed
+   * code can set back, unlike its mtime) to the kernel's coarse clock, so an unchanged ctime says
+   * that the last listing still holds, as of the fstat (taken after `listedAt`): provided the
+   * ctime was already older than the clock's tick when that listing began (a change within the
+   * same tick could leave it equal), else the folder is listed at every wake until it settles.
+   * Listed every `listEveryMs` in any case.
+   */
+  private listingStale(): boolean {
+    const now = Date.now();
+    let ctime: bigint;
+    try {
+      ctime = fstatSync(this.dir!.fd, { bigint: true }).ctimeNs;
+    } catch {
+      return true;
+    }
+    const stale = this.listedCtime === null || ctime !== this.listedCtime || now - this.listedWallMs >= this.bounds.listEveryMs;
+    if (stale) {
+      // the listing that follows sees every entry the folder had at this fstat
+      this.listedWallMs = now;
+      this.listedCtime = ctime <= BigInt(now - CTIME_SETTLE_MS) * 1_000_000n ? ctime : null;
+    }
+    return stale;
+  }
+
   private async poll(): Promise<void> {
     if (this.stopped) return;
     this.behind = await this.readRound(Date.now(), false);
@@ -337,16 +381,18 @@ export class TraceTail {
   private async readRound(now: number, final: boolean): Promise<boolean> {
     if (!(await this.openDir())) return false;
     const listedAt = process.hrtime.bigint();
-    // a run that keeps making new names must not grow this set without end (a name forgotten is
-    // only looked at again: the listing is bounded per poll)
-    if (this.ignored.size > 4 * this.bounds.entries) this.ignored.clear();
-    for (const name of await this.list()) {
-      if (this.files.has(name) || this.ignored.has(name)) continue;
-      if (!name.endsWith('.csv') || !SAFE_NAME.test(name)) {
-        this.ignored.add(name);
-        continue;
+    if (final || this.listingStale()) {
+      // a run that keeps making new names must not grow this set without end (a name forgotten is
+      // only looked at again: the listing is bounded per poll)
+      if (this.ignored.size > 4 * this.bounds.entries) this.ignored.clear();
+      for (const name of await this.list()) {
+        if (this.files.has(name) || this.ignored.has(name)) continue;
+        if (!name.endsWith('.csv') || !SAFE_NAME.test(name)) {
+          this.ignored.add(name);
+          continue;
+        }
+        await this.open(name);
       }
-      await this.open(name);
     }
     const all = [...this.files.values()].filter((f) => !f.done);
     let budget = this.bounds.readBytesPerPoll;
@@ -446,11 +492,17 @@ export class TraceTail {
     return word - 1n < before ? word - 1n : before;
   }
 
-  /** Reads at most `budget` new bytes of one log. */
+  /**
+   * Reads at most `budget` new bytes of one log. The fstat and the reads are synchronous: the file
+   * is a regular file (checked when opened; a descriptor does not change its kind) that its
+   * module is writing, so its new bytes are in the page cache, and a read is microseconds where
+   * an asynchronous one is a round trip through the thread pool (two thread wake-ups, on the cores
+   * the run uses) per call, several times per log per wake.
+   */
   private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
     if (!f.mark && f.markTries > 0) await this.openMark(f);
     const whole = this.wholeUpTo(f);
-    const size = (await f.fh.stat()).size;
+    const size = fstatSync(f.fh.fd).size;
     if (f.dormantUntil > 0) {
       if (size <= f.dormantUntil) return { read: 0, more: false };
       f.dormantUntil = 0; // it grew: this run writes to it too (a module restarted within the same second)
@@ -466,10 +518,18 @@ export class TraceTail {
     let read = 0;
     while (read < budget && f.splitter.offset < size) {
       const want = Math.min(this.buf.length, budget - read, size - f.splitter.offset);
-      const { bytesRead } = await f.fh.read(this.buf, 0, want, f.splitter.offset);
+      const bytesRead = readSync(f.fh.fd, this.buf, 0, want, f.splitter.offset);
       if (bytesRead === 0) break;
       read += bytesRead;
-      this.order.add(f.name, f.splitter.push(this.buf.subarray(0, bytesRead)), now);
+      const chunk = this.buf.subarray(0, bytesRead);
+      if (this.liveOnly && !this.watched) {
+        // past the kept bound with no client attached: no record would reach anyone; the lines
+        // are only counted (their numbers) and the order told how far the file was read
+        const lineNo = f.splitter.nextLine;
+        const last = f.splitter.count(chunk);
+        this.counted += f.splitter.nextLine - lineNo;
+        if (last >= 0) this.order.skipped(f.name, monoOf(chunk.toString('latin1', last, Math.min(chunk.length, last + 22))), chunk.includes(',module_exit,'));
+      } else this.order.add(f.name, f.splitter.push(chunk), now);
     }
     const more = f.splitter.offset < size;
     // read to the size seen after the mark: every record the mark said was written is added
