@@ -23,7 +23,7 @@
  * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 70 s in all.
  */
 import { spawn } from 'node:child_process';
-import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -49,6 +49,25 @@ const median = (xs: number[]): number => {
   return s.length % 2 ? s[(s.length - 1) / 2]! : (s[s.length / 2 - 1]! + s[s.length / 2]!) / 2;
 };
 const sleep = (ms: number): Promise<void> => new Promise((r) => setTimeout(r, ms));
+
+const TICK_MS = 1000 / 100; // USER_HZ: /proc's clock ticks (100 on Linux)
+
+/** CPU ms of this process's threads: the main thread, the others summed by thread name. */
+function threadCpuMs(): Map<string, number> {
+  const out = new Map<string, number>();
+  for (const t of readdirSync('/proc/self/task')) {
+    try {
+      const stat = readFileSync(`/proc/self/task/${t}/stat`, 'utf8');
+      const comm = stat.slice(stat.indexOf('(') + 1, stat.lastIndexOf(')')).replace(/\d+$/, 'N');
+      const name = t === String(process.pid) ? 'main' : `other ${comm}`;
+      const f = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+      out.set(name, (out.get(name) ?? 0) + (Number(f[11]) + Number(f[12])) * TICK_MS);
+    } catch {
+      /* the thread ended */
+    }
+  }
+  return out;
+}
 
 interface ClientReport {
   records: number;
@@ -80,6 +99,10 @@ interface Phase {
   from: bigint;
   to: bigint;
   cpuMs: number;
+  /** Of cpuMs, in the kernel (system calls). */
+  sysMs: number;
+  /** CPU ms of the service's threads in the phase, by thread name (/proc/self/task: main, libuv workers, GC helpers). */
+  threads: Map<string, number>;
   /** Records the run wrote in the phase (by mono_ns, from the collected logs). */
   records: number;
 }
@@ -148,6 +171,7 @@ async function main(): Promise<void> {
         const order = pair % 2 === 0 ? [false, true] : [true, false];
         for (const withClient of order) {
           const cpu0 = process.cpuUsage();
+          const threads0 = threadCpuMs();
           const from = process.hrtime.bigint();
           if (withClient) {
             const after = job.events.all.at(-1)?.seq ?? 0;
@@ -158,7 +182,9 @@ async function main(): Promise<void> {
             for (const x of report.latencyMs) latency.push(x);
           } else await sleep(phaseMs);
           const cpu = process.cpuUsage(cpu0);
-          phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, records: 0 });
+          const threads = threadCpuMs();
+          for (const [k, v] of threads0) threads.set(k, (threads.get(k) ?? 0) - v);
+          phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, sysMs: cpu.system / 1000, threads, records: 0 });
         }
       }
     });
@@ -189,6 +215,13 @@ async function main(): Promise<void> {
       const ps = phases.filter((p) => p.withClient === withClient);
       return (1000 * ps.reduce((a, p) => a + p.cpuMs, 0)) / Math.max(1, ps.reduce((a, p) => a + p.records, 0));
     };
+    const perS = (withClient: boolean, ms: (p: Phase) => number): number => {
+      const ps = phases.filter((p) => p.withClient === withClient);
+      return ps.reduce((a, p) => a + ms(p), 0) / ps.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
+    };
+    const threadNames = [...new Set(phases.flatMap((p) => [...p.threads.keys()]))];
+    const byThread = (withClient: boolean): Record<string, number> =>
+      Object.fromEntries(threadNames.map((n) => [n, round(perS(withClient, (p) => p.threads.get(n) ?? 0), 1)]).filter(([, v]) => (v as number) > 0));
     const clientSeconds = phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
     const p99Without = pct(pooled(false), 99);
     const p99With = pct(pooled(true), 99);
@@ -207,6 +240,10 @@ async function main(): Promise<void> {
       'monitor.service_cpu_ms_per_s_with': round(cpuPerS(true), 1),
       'monitor.service_cpu_us_per_record_without': round(usPerRecord(false), 2),
       'monitor.service_cpu_us_per_record_with': round(usPerRecord(true), 2),
+      'monitor.service_cpu_sys_ms_per_s_without': round(perS(false, (p) => p.sysMs), 1),
+      'monitor.service_cpu_sys_ms_per_s_with': round(perS(true, (p) => p.sysMs), 1),
+      'monitor.service_cpu_ms_per_s_by_thread_without': byThread(false),
+      'monitor.service_cpu_ms_per_s_by_thread_with': byThread(true),
       'monitor.client_cpu_ms_per_s': round(clientCpuMs / clientSeconds, 1),
       'monitor.releases': pooled(true).length + pooled(false).length,
     };
