@@ -71,6 +71,13 @@ export interface ServiceBounds {
   requestBodySeconds: number;
   /** Bytes of one WebSocket message from a client (only {"type":"cancel"} is understood). */
   wsMessageBytes: number;
+  /**
+   * Bytes of live events a client's event stream (SSE or WebSocket) may leave unread, beyond its
+   * replay: a client that falls further behind (stalled, too slow for a 1 kHz trace) is
+   * disconnected, so that it never holds the service's memory without end; it may resume from the
+   * last event id it got (http/sse.ts, http/ws.ts).
+   */
+  streamBufferedBytes: number;
   /** Milliseconds between two reads of a running job's CSV logs for the live trace channel (pipeline/trace-tail.ts). */
   tracePollMs: number;
   /** Bytes of the CSV logs read per poll, over all the files (the rest is read at the next polls). */
@@ -114,6 +121,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   requestBodiesAtOnce: 2,
   requestBodySeconds: 30,
   wsMessageBytes: 4096,
+  streamBufferedBytes: 64 * 1024 * 1024,
   tracePollMs: 50,
   traceReadBytesPerPoll: 1024 * 1024,
   traceOrderWindowMs: 150,

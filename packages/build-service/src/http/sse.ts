@@ -1,11 +1,15 @@
 /**
  * GET /api/jobs/:id/events as Server-Sent Events: replays the job's events after Last-Event-ID
- * (or ?after=), then streams live ones; closes after the `end` event. Respects back-pressure by
- * buffering in the socket (events are bounded by the output limits).
+ * (or ?after=), then streams live ones; closes after the `end` event. A slow client never holds
+ * the others back: its events wait in its socket's buffer, up to the replay plus
+ * SERVICE_BOUNDS.streamBufferedBytes of live events, beyond which it is disconnected (the live
+ * trace of a 1 kHz schema is megabytes a second; the client may resume from its last event id).
+ * An event is serialized once for all the clients it is delivered to (sseFrame).
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { Job } from '../pipeline/job.js';
 import type { JobEvent } from '../pipeline/job-events.js';
+import { SERVICE_BOUNDS } from '../limits.js';
 
 export function eventPayload(e: JobEvent): Record<string, unknown> {
   const { type: _type, ...data } = e;
@@ -25,7 +29,7 @@ export function sseFrame(e: JobEvent): string {
   return lastFrame;
 }
 
-export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, after: number): void {
+export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: ServerResponse, after: number, streamBufferedBytes = SERVICE_BOUNDS.streamBufferedBytes): void {
   res.writeHead(200, {
     'Content-Type': 'text/event-stream; charset=utf-8',
     'Cache-Control': 'no-cache, no-transform',
@@ -34,11 +38,24 @@ export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, a
   });
   res.write(': contract build service\n\n');
   let closed = false;
+  /** Bytes written while replaying (null while it runs): the buffer the live events may add to. */
+  let replayed: number | null = null;
+  let written = 0;
   // a client that goes away mid-write must end this stream only, never the service
   const write = (text: string): void => {
     if (closed) return;
     try {
       res.write(text);
+      if (replayed === null) written += Buffer.byteLength(text);
+      if (replayed !== null && res.writableLength > replayed + streamBufferedBytes) {
+        // too far behind: dropped at once (end() would wait for it to read what is buffered)
+        closed = true;
+        clearInterval(ping);
+        setImmediate(() => {
+          unsubscribe();
+          res.destroy();
+        });
+      }
     } catch {
       setImmediate(stop);
     }
@@ -63,6 +80,7 @@ export function streamSse(job: Job, req: IncomingMessage, res: ServerResponse, a
     write(sseFrame(e));
     if (e.type === 'end') setImmediate(stop);
   });
+  replayed = written;
   req.on('close', stop);
   if (job.events.isEnded) setImmediate(stop);
 }

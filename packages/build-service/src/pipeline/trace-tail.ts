@@ -126,7 +126,7 @@ export class TraceTail {
   /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns for bwrap and none) at the last listing. */
   private listedAt: bigint | null = null;
   /** The ctime of logs/ before the last listing, when it was settled then (listingStale); null: list at the next wake. */
-  private listedCtime: bigint | null = null;
+  private listedCtime: number | null = null;
   /** Date.now() before the last listing. */
   private listedWallMs = 0;
   private sent = 0;
@@ -356,9 +356,10 @@ export class TraceTail {
    */
   private listingStale(): boolean {
     const now = Date.now();
-    let ctime: bigint;
+    let ctime: number;
     try {
-      ctime = fstatSync(this.dir!.fd, { bigint: true }).ctimeNs;
+      // in ms, to the microsecond (a double): two ticks of the coarse clock differ in it
+      ctime = fstatSync(this.dir!.fd).ctimeMs;
     } catch {
       return true;
     }
@@ -366,7 +367,7 @@ export class TraceTail {
     if (stale) {
       // the listing that follows sees every entry the folder had at this fstat
       this.listedWallMs = now;
-      this.listedCtime = ctime <= BigInt(now - CTIME_SETTLE_MS) * 1_000_000n ? ctime : null;
+      this.listedCtime = ctime <= now - CTIME_SETTLE_MS ? ctime : null;
     }
     return stale;
   }
@@ -400,7 +401,8 @@ export class TraceTail {
     const start = all.length ? this.rotate++ % all.length : 0;
     for (let i = 0; i < all.length; i++) {
       const f = all[(start + i) % all.length]!;
-      const left = await this.readFile(f, budget, now);
+      if (!f.mark && f.markTries > 0) await this.openMark(f);
+      const left = this.readFile(f, budget, now);
       budget -= left.read;
       if (left.more) more = true;
       if (this.stopped) return false;
@@ -499,8 +501,7 @@ export class TraceTail {
    * an asynchronous one is a round trip through the thread pool (two thread wake-ups, on the cores
    * the run uses) per call, several times per log per wake.
    */
-  private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
-    if (!f.mark && f.markTries > 0) await this.openMark(f);
+  private readFile(f: Tailed, budget: number, now: number): { read: number; more: boolean } {
     const whole = this.wholeUpTo(f);
     const size = fstatSync(f.fh.fd).size;
     if (f.dormantUntil > 0) {

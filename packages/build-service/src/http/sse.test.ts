@@ -1,0 +1,85 @@
+/**
+ * The SSE stream (http/sse.ts) on a real HTTP server and sockets: trace events arrive whole and in
+ * order; a client that stops reading neither holds the others back nor the service's memory
+ * without end.
+ */
+import { createServer, type Server } from 'node:http';
+import { connect } from 'node:net';
+import type { AddressInfo } from 'node:net';
+import { afterEach, describe, expect, test } from 'vitest';
+import { JobEvents, type TraceEvent, type TraceLine } from '../pipeline/job-events.js';
+import { streamEvents } from '../test-support/client.js';
+import { sseFrame, streamSse } from './sse.js';
+
+const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
+
+describe('SSE stream of a job', () => {
+  let server: Server | null = null;
+  afterEach(async () => {
+    server?.closeAllConnections();
+    await new Promise((r) => server?.close(r));
+    server = null;
+  });
+
+  /** A server streaming `events` to every client, with a live-buffer bound of `bound` bytes. */
+  const serve = async (events: JobEvents, bound: number): Promise<string> => {
+    server = createServer((req, res) => streamSse({ events } as never, req, res, Number(new URL(req.url!, 'http://x').searchParams.get('after') ?? 0), bound));
+    await new Promise<void>((r) => server!.listen(0, '127.0.0.1', r));
+    return `http://127.0.0.1:${(server!.address() as AddressInfo).port}`;
+  };
+  const records = (from: number, n: number): TraceLine[] =>
+    Array.from({ length: n }, (_, i) => ({ file: 'M_1.csv', line: from + i, text: `${1000 + from + i},2026-11-26T12:00:00.000000Z,M,user,,,0,${'x'.repeat(200)}` }));
+
+  test('one frame per event for all its clients; a stalled client is dropped past the bound, the others get every record in order', async () => {
+    const events = new JobEvents();
+    const base = await serve(events, 8 * 1024 * 1024);
+    // a client that connects and never reads
+    const stalled = connect((new URL(base).port as unknown as number), '127.0.0.1');
+    stalled.write('GET /api/jobs/j/events HTTP/1.1\r\nHost: x\r\n\r\n');
+    stalled.pause();
+    stalled.on('error', () => {});
+    const got: TraceLine[] = [];
+    let traceEvents = 0;
+    const reading = streamEvents(base, 'j', (e) => {
+      if (e.type !== 'trace') return;
+      traceEvents++;
+      got.push(...(e as TraceEvent).records);
+    });
+    for (let i = 0; i < 200 && events.subscriberCount < 2; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(2);
+    const e = events.append({ type: 'trace', records: records(2, 3) });
+    expect(sseFrame(e)).toBe(sseFrame(e));
+    expect(sseFrame(e)).toMatch(/^id: 1\nevent: trace\ndata: \{"records":\[\{"file":"M_1.csv","line":2,.*\}\],"seq":1,"t":\d+\}\n\n$/);
+    // 30 MB of live trace, an event of 1000 records every 15 ms (the service wakes every 10 ms at most)
+    let line = 5;
+    for (let k = 0; k < 120; k++) {
+      events.append({ type: 'trace', records: records(line, 1000) });
+      line += 1000;
+      await sleep(15);
+    }
+    // the stalled one is unsubscribed (its socket destroyed): the service does not keep 30 MB for it
+    for (let i = 0; i < 200 && events.subscriberCount > 1; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(1);
+    events.append({ type: 'end', result: null });
+    await reading;
+    expect(traceEvents).toBe(121);
+    expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
+    stalled.destroy();
+  }, 30_000);
+
+  test('a replay larger than the bound is not a reason to drop the client', async () => {
+    const events = new JobEvents();
+    let line = 2;
+    for (let k = 0; k < 20; k++) {
+      events.append({ type: 'trace', records: records(line, 1000) });
+      line += 1000;
+    }
+    events.append({ type: 'end', result: null });
+    const base = await serve(events, 1024 * 1024); // the replay is about 4 MB
+    const got: TraceLine[] = [];
+    await streamEvents(base, 'j', (e) => {
+      if (e.type === 'trace') got.push(...(e as TraceEvent).records);
+    });
+    expect(got).toHaveLength(20_000);
+  });
+});
