@@ -1,6 +1,7 @@
 /**
  * GET /api/jobs/:id/ws: the same events as the SSE stream as WebSocket JSON text frames
- * ({type, seq, t, ...}), replay included; the client may send {"type":"cancel"}.
+ * ({type, seq, t, ...}), replay included; the client may send {"type":"cancel"}. A client that
+ * falls behind by more than SERVICE_BOUNDS.streamBufferedBytes of live events is dropped.
  */
 import type { IncomingMessage } from 'node:http';
 import type { Duplex } from 'node:stream';
@@ -12,7 +13,10 @@ export class JobWebSockets {
   // clients only send {"type":"cancel"}: a bounded frame size (SERVICE_BOUNDS.wsMessageBytes)
   private readonly wss = new WebSocketServer({ noServer: true, maxPayload: SERVICE_BOUNDS.wsMessageBytes });
 
-  constructor(private readonly service: JobService) {}
+  constructor(
+    private readonly service: Pick<JobService, 'get' | 'cancel'>,
+    private readonly streamBufferedBytes = SERVICE_BOUNDS.streamBufferedBytes,
+  ) {}
 
   /** Handles an upgrade for a job id; returns false when the job does not exist. */
   upgrade(id: string, after: number, req: IncomingMessage, socket: Duplex, head: Buffer): boolean {
@@ -26,10 +30,22 @@ export class JobWebSockets {
         unsubscribe();
         ws.terminate();
       });
+      // a client that leaves more than streamBufferedBytes of live events unread (beyond its
+      // replay) is dropped, as on SSE (http/sse.ts)
+      let replayed: number | null = null;
+      let written = 0;
       unsubscribe = job.events.subscribe(after, (e) => {
-        ws.send(JSON.stringify(e), () => {}); // a send on a closing socket reports here, not thrown
+        const text = JSON.stringify(e);
+        if (replayed === null) written += Buffer.byteLength(text);
+        ws.send(text, () => {}); // a send on a closing socket reports here, not thrown
+        if (replayed !== null && ws.bufferedAmount > replayed + this.streamBufferedBytes) {
+          unsubscribe();
+          ws.terminate();
+          return;
+        }
         if (e.type === 'end') setImmediate(() => ws.close(1000, 'job ended'));
       });
+      replayed = written;
       ws.on('message', (data) => {
         try {
           const msg = JSON.parse(String(data)) as { type?: string };

@@ -1,15 +1,17 @@
 /**
- * The SSE stream (http/sse.ts) on a real HTTP server and sockets: trace events arrive whole and in
- * order; a client that stops reading neither holds the others back nor the service's memory
- * without end.
+ * The event streams (http/sse.ts, http/ws.ts) on a real HTTP server and sockets: trace events
+ * arrive whole and in order; a client that stops reading neither holds the others back nor the
+ * service's memory without end.
  */
 import { createServer, type Server } from 'node:http';
 import { connect } from 'node:net';
 import type { AddressInfo } from 'node:net';
 import { afterEach, describe, expect, test } from 'vitest';
+import WebSocket from 'ws';
 import { JobEvents, type TraceEvent, type TraceLine } from '../pipeline/job-events.js';
 import { streamEvents } from '../test-support/client.js';
 import { sseFrame, streamSse } from './sse.js';
+import { JobWebSockets } from './ws.js';
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
@@ -82,4 +84,43 @@ describe('SSE stream of a job', () => {
     });
     expect(got).toHaveLength(20_000);
   });
+
+  test('WebSocket: a stalled client is dropped past the bound, a reading one gets every record', async () => {
+    const events = new JobEvents();
+    const sockets = new JobWebSockets({ get: () => ({ events }) as never, cancel: async () => {} }, 8 * 1024 * 1024);
+    server = createServer();
+    server.on('upgrade', (req, socket, head) => sockets.upgrade('j', 0, req, socket, head));
+    await new Promise<void>((r) => server!.listen(0, '127.0.0.1', r));
+    const url = `ws://127.0.0.1:${(server!.address() as AddressInfo).port}/api/jobs/j/ws`;
+    const stalled = new WebSocket(url);
+    stalled.on('error', () => {});
+    await new Promise((r) => stalled.on('open', r));
+    stalled.pause();
+    const reader = new WebSocket(url);
+    const got: TraceLine[] = [];
+    const ended = new Promise<void>((resolve) => {
+      reader.on('message', (data) => {
+        const e = JSON.parse(String(data)) as { type: string; records?: TraceLine[] };
+        if (e.type === 'trace') got.push(...e.records!);
+        if (e.type === 'end') resolve();
+      });
+    });
+    await new Promise((r) => reader.on('open', r));
+    for (let i = 0; i < 200 && events.subscriberCount < 2; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(2);
+    let line = 2;
+    for (let k = 0; k < 120; k++) {
+      events.append({ type: 'trace', records: records(line, 1000) });
+      line += 1000;
+      await sleep(15);
+    }
+    for (let i = 0; i < 200 && events.subscriberCount > 1; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(1);
+    events.append({ type: 'end', result: null });
+    await ended;
+    expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
+    reader.close();
+    stalled.terminate();
+    sockets.close();
+  }, 30_000);
 });
