@@ -17,7 +17,10 @@ const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
 describe('SSE stream of a job', () => {
   let server: Server | null = null;
+  let sockets: JobWebSockets | null = null;
   afterEach(async () => {
+    sockets?.close(); // upgraded sockets are not the HTTP server's to close
+    sockets = null;
     server?.closeAllConnections();
     await new Promise((r) => server?.close(r));
     server = null;
@@ -87,9 +90,9 @@ describe('SSE stream of a job', () => {
 
   test('WebSocket: a stalled client is dropped past the bound, a reading one gets every record', async () => {
     const events = new JobEvents();
-    const sockets = new JobWebSockets({ get: () => ({ events }) as never, cancel: async () => {} }, 8 * 1024 * 1024);
+    sockets = new JobWebSockets({ get: () => ({ events }) as never, cancel: async () => undefined }, 8 * 1024 * 1024);
     server = createServer();
-    server.on('upgrade', (req, socket, head) => sockets.upgrade('j', 0, req, socket, head));
+    server.on('upgrade', (req, socket, head) => sockets!.upgrade('j', 0, req, socket, head));
     await new Promise<void>((r) => server!.listen(0, '127.0.0.1', r));
     const url = `ws://127.0.0.1:${(server!.address() as AddressInfo).port}/api/jobs/j/ws`;
     const stalled = new WebSocket(url);
@@ -121,6 +124,5 @@ describe('SSE stream of a job', () => {
     expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
     reader.close();
     stalled.terminate();
-    sockets.close();
   }, 30_000);
 });
