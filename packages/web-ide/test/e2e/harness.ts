@@ -95,8 +95,27 @@ export async function openFile(page: Page, path: string): Promise<void> {
     const row = page.locator(`.tree-row[data-path="${dir}"]`);
     if ((await row.locator('.twisty').textContent()) === '▸') await row.click();
   }
-  await page.locator(`.tree-row[data-path="${path}"]`).click();
+  await clickOrExplain(page, `.tree-row[data-path="${path}"]`);
   await page.waitForFunction((p) => document.querySelector('.tab.active')?.getAttribute('data-path') === p, path);
+}
+
+/**
+ * Clicks; when the click times out, the error says whether the page still draws frames (a click
+ * waits for two animation frames to see the element stable: a page that draws none never gets one).
+ */
+export async function clickOrExplain(page: Page, selector: string): Promise<void> {
+  try {
+    await page.locator(selector).click();
+  } catch (e) {
+    const frame = await Promise.race([
+      page.evaluate(() => new Promise<string>((r) => requestAnimationFrame(() => r('the page draws frames')))).catch((err: Error) => `evaluate failed: ${err.message}`),
+      new Promise<string>((r) => setTimeout(() => r('no animation frame in 2 s: the page does not draw'), 2000)),
+    ]);
+    const ready = await page.evaluate(() => document.body.dataset.ready).catch(() => '?');
+    (e as Error).message = `[harness] ${selector}: ${frame}; ready=${ready}\n${(e as Error).message}`;
+    await shot(page, `click-failed-${Date.now()}`).catch(() => undefined);
+    throw e;
+  }
 }
 
 /** Waits until every file is saved (status bar). */
