@@ -10,6 +10,8 @@
  * kept while some container mounts it, so each workspace volume has a holder container (`sleep`,
  * volume read-only, no network, no capabilities) for its lifetime, which also answers the statfs
  * polls that name a full disk and the work-tree digests (find, no file read).
+ * On a local engine the volume's host folder (its Mountpoint), once proven to be the containers'
+ * /work (docker-live-root.ts), is where the live trace channel reads the run's logs.
  * Every container and volume is labelled with its owner (this service process) and job
  * (docker-owner.ts); the first use sweeps what dead services left (docker-sweep.ts), close()
  * removes this service's own leftovers.
