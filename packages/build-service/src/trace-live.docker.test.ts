@@ -145,7 +145,9 @@ describe.skipIf(!docker.available)('live trace in docker', () => {
       await step('live-root');
       const before = await sb.workTreeDigest(work);
       expect(before).not.toBeNull();
+      const t0 = process.hrtime.bigint();
       const live = await sb.liveWorkRoot(work);
+      console.info(`docker volume proof (first call for a volume): ${Number(process.hrtime.bigint() - t0) / 1e6} ms`);
       expect(live).toEqual({ ok: true, root: expect.stringMatching(/^\/.+/) });
       if (!live.ok) return;
       expect(readdirSync(live.root)).toEqual(['a.txt']);

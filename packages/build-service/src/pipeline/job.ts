@@ -402,9 +402,11 @@ export class Job {
   private async startTraceTail(sandbox: Sandbox, workDir: string): Promise<TraceTail | null> {
     let root = workDir;
     if (sandbox.readWorkDirs) {
+      const t0 = Date.now();
       const live = sandbox.liveWorkRoot
         ? await sandbox.liveWorkRoot(workDir).catch((e: unknown) => ({ ok: false as const, reason: (e as Error).message.split('\n')[0] ?? String(e) }))
         : { ok: false as const, reason: 'its work dir is not a host folder' };
+      this.timed('run', 'live trace folder (the work volume on this host, proven once per volume)', t0);
       if (!live.ok) {
         this.system('run', `trace: no live trace channel in the ${this.sandboxName} sandbox: ${live.reason}; the records are in the collected logs`);
         return null;
