@@ -115,7 +115,7 @@ export class TraceTail {
   private ending = false;
   /** Some log had bytes left unread by the last poll (the per-poll read bound). */
   private behind = false;
-  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns for bwrap and none) at the last listing. */
+  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns: bwrap, none, and Docker containers, which get no time namespace) at the last listing. */
   private listedAt: bigint | null = null;
   private sent = 0;
   /** Past the kept-lines bound: lines go to the attached clients only. */
