@@ -20,7 +20,7 @@ import type { FileHandle } from 'node:fs/promises';
 import { endianness } from 'node:os';
 import { join } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
-import { LOG_DIR, SAFE_NAME } from './artifacts.js';
+import { ARTIFACT_BOUNDS, LOG_DIR, SAFE_NAME } from './artifacts.js';
 import type { TraceLine } from './job-events.js';
 import { TraceLineSplitter } from './trace-lines.js';
 import { TraceOrder } from './trace-order.js';
@@ -115,7 +115,7 @@ export class TraceTail {
   private ending = false;
   /** Some log had bytes left unread by the last poll (the per-poll read bound). */
   private behind = false;
-  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns for bwrap and none) at the last listing. */
+  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns: bwrap, none, and Docker containers, which get no time namespace) at the last listing. */
   private listedAt: bigint | null = null;
   private sent = 0;
   /** Past the kept-lines bound: lines go to the attached clients only. */
@@ -450,7 +450,9 @@ export class TraceTail {
   private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
     if (!f.mark && f.markTries > 0) await this.openMark(f);
     const whole = this.wholeUpTo(f);
-    const size = (await f.fh.stat()).size;
+    // no further than the collector keeps of a log: a sparse file of terabytes (a truncate in the
+    // sandbox) must not keep finish() reading zeros after the run
+    const size = Math.min((await f.fh.stat()).size, ARTIFACT_BOUNDS.fileBytes);
     if (f.dormantUntil > 0) {
       if (size <= f.dormantUntil) return { read: 0, more: false };
       f.dormantUntil = 0; // it grew: this run writes to it too (a module restarted within the same second)
