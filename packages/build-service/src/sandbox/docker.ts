@@ -155,12 +155,17 @@ export class DockerSandbox implements Sandbox {
   }
 
   /**
-   * At shutdown, after the jobs ended: removes any container or volume still labelled with this
-   * service instance (a removal that failed during a cancel, a step started while closing).
+   * At shutdown, after the jobs ended: releases the work volumes kept between jobs (and their
+   * holders) as usual, without a line, then removes any container or volume still labelled with
+   * this service instance (a removal that failed during a cancel, a step started while closing),
+   * each named in a line.
    */
   async close(): Promise<SweepReport> {
     if (this.sweeping) await this.sweeping;
     if (!this.engineSeen) return EMPTY_SWEEP;
+    for (const workDir of [...this.volumes.keys()]) {
+      await withDeadline(this.release(workDir), ENGINE_DEADLINE_MS, 'work volume release').catch(() => undefined);
+    }
     try {
       return await withDeadline(removeOwnLeftovers(this.docker, this.owner, this.log), ENGINE_DEADLINE_MS, 'shutdown clean-up');
     } catch (e) {
