@@ -30,7 +30,7 @@ export const MODULE_SOURCE_WORDS: readonly string[] = [
     'Type', 'Param', 'Start', 'Stop', 'Kil', 'Event', 'SetParam', 'Subscribe', 'Unsubscribe', 'SubscribeEvent',
     'UnsubscribeEvent', 'SubscribeUser', 'UnsubscribeUser', 'SubscribeUserToEvent', 'UnsubscribeUserToEvent',
     'SubscribeVariables', 'UnsubscribeVariables', 'WantedAck', 'ModAck', 'AckID', 'Periodicity', 'Port', 'SourcePort',
-    'TargetModule', 'TargetPort', 'isContextual', 'sourceModule', 'sourcePort', 'targetModule', 'targetPort', 'fallthrough'
+    'TargetModule', 'TargetPort', 'isContextual', 'sourceModule', 'sourcePort', 'targetModule', 'targetPort', 'mode', 'fallthrough'
 ];
 
 /**
