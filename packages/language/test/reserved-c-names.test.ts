@@ -209,3 +209,18 @@ describe('named constants: macros of common/constants.h in every module.c', () =
         expect(messages.find((m) => m.startsWith('t.contract:8'))).toContain("Member 'AUTO' of enumeration Mode becomes the C name Mode_AUTO");
     });
 });
+
+describe('renames and named constants', () => {
+    it('a rename of a constant to a name of the request loop, or of a port to a constant, is refused; a constant keeps its own name', async () => {
+        const ws = await build({ 't.contract': 'const int NJOINTS = 6;\n', 'a.contract': `import "t.contract";\n${syncModule('stamp')}` });
+        const index = ws.services.shared.workspace.IndexManager;
+        const find = (file: string, name: string) => AstUtils.streamAllContents(ws.docs.get(file)!.parseResult.value).find((n) => (n as { name?: string }).name === name)!;
+        const constant = find('t.contract', 'NJOINTS');
+        expect(renameProblem(constant, 'Type', ws.services.Grammar, index)).toBe(
+            "'Type' cannot name a constant in the generated C: the generated module.c uses that name after the constants, which are macros there.");
+        expect(renameProblem(constant, 'NJOINTS', ws.services.Grammar, index)).toBeUndefined();
+        expect(renameProblem(constant, 'NAXES', ws.services.Grammar, index)).toBeUndefined();
+        expect(renameProblem(find('a.contract', 'stamp'), 'NJOINTS', ws.services.Grammar, index)).toContain(
+            "'NJOINTS' cannot name a port in the generated C: a named constant has that name, and constants are macros in the generated C");
+    });
+});
