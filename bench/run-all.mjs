@@ -26,6 +26,8 @@ const benches = [
   { part: 'ide', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/web-ide'] },
   // a 1 kHz schema with and without an SSE client on the live trace channel (about 40 s)
   { part: 'monitor', cmd: ['npm', 'run', '-s', 'bench:monitor', '-w', 'packages/build-service'] },
+  // record written -> SSE client, bwrap vs Docker (skipped without an engine), a 5 s run each (about 40 s)
+  { part: 'trace-latency', cmd: ['npm', 'run', '-s', 'bench:trace-latency', '-w', 'packages/build-service'] },
   // the supervisor simulator: events/s in virtual time, a changed .contract -> first simulated step
   { part: 'simulate', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/simulator'] },
   // the edit-build-run loop from the command line: no-op build vs check, one-module edit, cold folder, run overhead

@@ -6,7 +6,7 @@
  */
 import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
 import { randomBytes } from 'node:crypto';
-import { mkdtempSync, rmSync } from 'node:fs';
+import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -198,6 +198,28 @@ if (!env.available) {
       expect(await exists('container', running!.Id)).toBe(false);
       const { Volumes } = await docker.listVolumes({ filters: { label: [`${LABEL_JOB}=${job.id}`] } });
       expect(Volumes ?? []).toEqual([]);
+    }, 60_000);
+  });
+
+  describe('clean shutdown after a job', () => {
+    test('close() releases the kept work volume and its holder without naming them as leftovers', async () => {
+      // a project folder (not inline files): its workspace, and so its volume, is kept between jobs
+      const dir = mkdtempSync(join(tmpdir(), 'contract-sweep-project-'));
+      tempDirs.push(dir);
+      for (const [rel, text] of Object.entries(makeProject(honestProgram(3)))) writeFileSync(join(dir, rel), text);
+      const { service, lines } = collectingService({ sandbox: 'docker', projectRoots: [dir], persistentWorkspaces: true }); // as the CLI: the work tree outlives the service, the volume cannot
+      const job = await service.submit({ action: 'run', kind: 'make', project: { dir } });
+      childJobs.push(job.id);
+      await job.finished;
+      expect(job.status).toBe('succeeded');
+      // between jobs the work volume stays, with its holder, for the next (incremental) build
+      const kept = await docker.listVolumes({ filters: { label: [`${LABEL_JOB}=${job.id}`] } });
+      expect((kept.Volumes ?? []).length).toBe(1);
+      await service.close();
+      const { Volumes } = await docker.listVolumes({ filters: { label: [`${LABEL_JOB}=${job.id}`] } });
+      expect(Volumes ?? []).toEqual([]);
+      expect(await docker.listContainers({ all: true, filters: { label: [`${LABEL_JOB}=${job.id}`] } })).toEqual([]);
+      expect(lines.filter((l) => l.includes('left by this service'))).toEqual([]);
     }, 60_000);
   });
 

@@ -4,7 +4,8 @@
  * language's value model and the generated C: for every datatype, the C program (built with -Werror
  * and ASan/UBSan) parses the language's textual form of the datatype's default and of the value
  * with the generated get_, finds them eq_ to the generated static initialisers, round-trips the value
- * through serialize_/deserialize_ (eq_ again) and prints it exactly as the language model predicts.
+ * through serialize_/deserialize_ (eq_ again) and prints it exactly as the language model predicts;
+ * the constant's macro of common/constants.h (a compound literal) is eq_ to the value too.
  */
 import { writeFileSync } from 'node:fs';
 import { join } from 'node:path';
@@ -132,6 +133,8 @@ describe('extension types: language value model and generated C agree (property)
         CHECK(eq_${D}(&parsed, &init) == 1 && diff_${D}(&parsed, &init) == 0);
         CHECK(get_${D}(&parsed, ${cString(formatConstant(cv!))}) > 0);
         CHECK(eq_${D}(&parsed, &value) == 1);
+        ${D} named = ${valueDecl.name};
+        CHECK(eq_${D}(&named, &value) == 1);
         unsigned int n = serialize_${D}(&parsed, buffer);
         CHECK(n <= sizeof buffer && deserialize_${D}(&back, buffer) == n);
         CHECK(eq_${D}(&back, &value) == 1 && infeq_${D}(&back, &value) == 1 && supeq_${D}(&back, &value) == 1);
@@ -146,6 +149,10 @@ describe('extension types: language value model and generated C agree (property)
             const program = [
                 '#include <stdio.h>',
                 ...arch.datatypes.map((d) => `#include "Shared${d.name}.h"`),
+                '#include "constants.h"',
+                `#if N != ${/const int N = (\d+);/.exec(text)![1]}`,
+                '#error N is not the constant of the .contract',
+                '#endif',
                 '#define CHECK(c) do { if (!(c)) { printf("FAILED line %d: %s\\n", __LINE__, #c); return 1; } } while (0)',
                 'int main(void) {',
                 ...blocks,

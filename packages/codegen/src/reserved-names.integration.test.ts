@@ -41,12 +41,14 @@ const RISKY = [
     // extension types: locals of enumeration headers and array parsers, an enumeration member's C name
     // (`increment` + `until_markerfound` = tools.h's increment_until_markerfound), loop variables
     'i', 'm', 'n', 'next', 'value', 'names', 'dst', 'i0', 'increment', 'until_markerfound', 'type_long',
+    // named constants are macros in every module.c: members of the request loop's messages, gcc attributes
+    'Type', 'Param', 'WantedAck', 'fallthrough', 'x',
 ];
 
 /** Every place a project below takes a name (plain names `v<slot>` unless a run overrides a few). */
 const SLOTS = [
     'T1', 'T2', 'f1a', 'f1b', 'f1c', 'f2a', 'f2b', 'fn1', 'fn2', 'a1', 'a2', 'b1', 'p0', 'p1', 'p2', 'q0', 'q1', 'q2',
-    'r0', 'r1', 'r2', 'r3', 'PS', 'ES', 'sp', 'ep', 's0', 's1', 'sf', 'fp', 'l0', 'l1', 'R', 'E1', 'em1', 'em2', 'f1d'
+    'r0', 'r1', 'r2', 'r3', 'PS', 'ES', 'sp', 'ep', 's0', 's1', 'sf', 'fp', 'l0', 'l1', 'R', 'E1', 'em1', 'em2', 'f1d', 'K'
 ] as const;
 type Names = Record<(typeof SLOTS)[number], string>;
 
@@ -54,8 +56,8 @@ type Names = Record<(typeof SLOTS)[number], string>;
 function project(n: Names): Record<string, string> {
     const imp = (...files: string[]) => files.map((f) => `import "${f}.contract";\n`).join('');
     return {
-        'types.contract': `enum ${n.E1} {${n.em1}, ${n.em2}};\n` +
-            `datatype ${n.T1} {float ${n.f1a} = 0.0, string ${n.f1b}, int ${n.f1c} = 1, ${n.E1}[2] ${n.f1d} = {${n.E1}.${n.em2}, ${n.E1}.${n.em1}}};\n` +
+        'types.contract': `enum ${n.E1} {${n.em1}, ${n.em2}};\nconst int ${n.K} = 1;\n` +
+            `datatype ${n.T1} {float ${n.f1a} = 0.0, string ${n.f1b}, int ${n.f1c} = ${n.K}, ${n.E1}[2] ${n.f1d} = {${n.E1}.${n.em2}, ${n.E1}.${n.em1}}};\n` +
             `datatype ${n.T2} {${n.T1} ${n.f2a}, int ${n.f2b}};\n` +
             `function bool ${n.fn1}(${n.T1} ${n.a1}, int ${n.a2});\nfunction void ${n.fn2}(string ${n.b1});\n`,
         'msa.contract': `${imp('types')}synchronous module MSA {\n    scheduling { C=1ms; }\n` +
@@ -77,7 +79,7 @@ function project(n: Names): Record<string, string> {
     };
 }
 
-const plainNames = (): Names => Object.fromEntries(SLOTS.map((s) => [s, s.startsWith('T') ? `Type${s}` : s === 'E1' ? 'Mode' : `v${s}`])) as Names;
+const plainNames = (): Names => Object.fromEntries(SLOTS.map((s) => [s, s.startsWith('T') ? `Type${s}` : s === 'E1' ? 'Mode' : s === 'K' ? 'NK' : `v${s}`])) as Names;
 
 async function check(services: CactalServices, files: Record<string, string>) {
     const shared = services.shared;
@@ -178,6 +180,28 @@ describe('names in the generated C', () => {
         const { docs, errors } = await check(services, project({ ...plainNames(), em1: 'double', em2: 'time' }));
         expect(errors.map((e) => e.message)).toEqual([]);
         compileGenerated(docs);
+    }, 60_000);
+
+    it('a constant, a macro in every module.c, cannot take any name that a generated module.c writes after including it', async () => {
+        const plain = await check(services, project(plainNames()));
+        expect(plain.errors).toEqual([]);
+        const words = new Set<string>();
+        for (const f of generateFiles(architectureFromModels(plain.docs.map((d) => d.parseResult.value)))) {
+            if (!f.path.endsWith('/module.c') || !f.content.includes('#include "constants.h"')) continue;
+            const after = f.content.slice(f.content.indexOf('#include "constants.h"') + 22)
+                .replace(/\/\*[\s\S]*?\*\//g, ' ').replace(/\/\/[^\n]*/g, ' ').replace(/"(?:\\.|[^"\\])*"/g, ' ');
+            for (const m of after.matchAll(/\b[A-Za-z][A-Za-z0-9_]*\b/g)) words.add(m[0]);
+        }
+        expect(words.has('WantedAck') && words.has('stateindex') && words.has('vp0')).toBe(true);
+        const cKeywords = new Set(['break', 'case', 'char', 'const', 'default', 'else', 'extern', 'if', 'int', 'return', 'sizeof', 'switch', 'void', 'while', 'double', 'long', 'unsigned', 'for', 'static']);
+        const candidates = [...words].filter((w) => !cKeywords.has(w) && w !== plainNames().K).sort();
+        const files = project(plainNames());
+        files['types.contract'] += candidates.map((w) => `const int ${w} = 2;\n`).join('');
+        const { errors } = await check(services, files);
+        expect(errors.filter((e) => ![...COLLISION_CODES, 'type-duplicate-name'].includes(e.code)).map((e) => e.message)).toEqual([]);
+        // every candidate is refused, as the constant or as the element whose name it takes
+        const unrefused = candidates.filter((w) => !errors.some((e) => e.message.includes(`'${w}'`) || e.message.includes(`C name ${w},`)));
+        expect(unrefused).toEqual([]);
     }, 60_000);
 
     it("vocabulary tables keep clear of the user's datatypes, functions and their generated functions", async () => {

@@ -119,3 +119,17 @@ supervisor SUQ { event flows { out :1 TypeD f; } go() { rules {
         expect(items.some((i) => i.kind === CompletionItemKind.Snippet)).toBe(false);
     });
 });
+
+describe('completion inside comments and strings', () => {
+    it('offers nothing in a comment or a string being typed, and keywords again right after it', async () => {
+        const file = (at: string) => `import "types.contract";\n${at}\nsynchronous module MZ { }`;
+        for (const where of ['// written while the server was <|>', '/* a note <|> */', '/* still open <|>', 'import "types <|>']) {
+            const { items } = await completeAt(ARCHITECTURE, 'c.contract', file(where));
+            expect(items.map((i) => i.label), where).toEqual([]);
+        }
+        for (const where of ['// a comment\n<|>', '/* closed */ <|>', '/* a "quote" */ <|>']) {
+            const { items } = await completeAt(ARCHITECTURE, 'c.contract', file(where));
+            expect(items.map((i) => i.label), where).toContain('synchronous');
+        }
+    });
+});

@@ -179,3 +179,48 @@ function applyEdit(ws: Built, edit: WorkspaceEdit): Record<string, string> {
     }
     return out;
 }
+
+describe('named constants: macros of common/constants.h in every module.c', () => {
+    it('a constant may not take a name of the generated C, of the headers or of the request loop', async () => {
+        const names = ['time', 'EOF', 'stateindex', 'MODULE_NAME', 'Type', 'WantedAck', 'fallthrough', 'arg', 'main', 'tm', 'get_Pose', 'near', 'SHARED_X_H', 'contract_k'];
+        const built = await build({ 't.contract': TYPES + names.map((n) => `const int ${n} = 1;\n`).join('') });
+        const messages = reserved(built).filter((m) => m.includes('cannot name a constant in the generated C: '));
+        expect(messages.map((m) => m.split("'")[1])).toEqual(names);
+        expect(messages[4]).toContain("'Type' cannot name a constant in the generated C: the generated module.c uses that name after the constants, which are macros there");
+        expect(messages[11]).toContain("'near' cannot name a constant in the generated C: it names a function");
+        // the function is refused too (either may be renamed)
+        expect(reserved(built)).toContainEqual(expect.stringContaining("'near' cannot name a function in the generated C: a named constant has that name"));
+    });
+
+    it('a constant is a keyword-checked name; ordinary constant names are accepted', async () => {
+        const built = await build({ 't.contract': 'const int double = 1;\nconst int NJOINTS = 6;\nconst float gain = 0.5;\nconst string FRAME = "map";\n' });
+        expect(built.diagnostics.filter((d) => d.severity === 'error').map((d) => `${d.line} ${d.code}`)).toEqual(['1 identifier-c-keyword']);
+    });
+
+    it("a field, port, parameter, argument or enumeration member's C name that a constant takes is refused", async () => {
+        const built = await build({
+            't.contract': 'const int x = 1;\nconst int speed = 2;\nconst int gain = 3;\nconst int to = 4;\nconst int Mode_AUTO = 5;\n' +
+                'datatype P {float x};\nfunction void move(P to);\nenum Mode { IDLE, AUTO }\n',
+            'm.contract': 'import "t.contract";\nasynchronous module MAA {\n    parameters { int gain = 0 :0; }\n    event flows { in :0 int speed; }\n}\n'
+        });
+        const messages = reserved(built);
+        expect(messages.map((m) => m.split(' ')[0]).sort()).toEqual(['m.contract:3', 'm.contract:4', 't.contract:6', 't.contract:7', 't.contract:8']);
+        for (const m of messages) expect(m).toContain('a named constant has that name, and constants are macros in the generated C');
+        expect(messages.find((m) => m.startsWith('t.contract:8'))).toContain("Member 'AUTO' of enumeration Mode becomes the C name Mode_AUTO");
+    });
+});
+
+describe('renames and named constants', () => {
+    it('a rename of a constant to a name of the request loop, or of a port to a constant, is refused; a constant keeps its own name', async () => {
+        const ws = await build({ 't.contract': 'const int NJOINTS = 6;\n', 'a.contract': `import "t.contract";\n${syncModule('stamp')}` });
+        const index = ws.services.shared.workspace.IndexManager;
+        const find = (file: string, name: string) => AstUtils.streamAllContents(ws.docs.get(file)!.parseResult.value).find((n) => (n as { name?: string }).name === name)!;
+        const constant = find('t.contract', 'NJOINTS');
+        expect(renameProblem(constant, 'Type', ws.services.Grammar, index)).toBe(
+            "'Type' cannot name a constant in the generated C: the generated module.c uses that name after the constants, which are macros there.");
+        expect(renameProblem(constant, 'NJOINTS', ws.services.Grammar, index)).toBeUndefined();
+        expect(renameProblem(constant, 'NAXES', ws.services.Grammar, index)).toBeUndefined();
+        expect(renameProblem(find('a.contract', 'stamp'), 'NJOINTS', ws.services.Grammar, index)).toContain(
+            "'NJOINTS' cannot name a port in the generated C: a named constant has that name, and constants are macros in the generated C");
+    });
+});

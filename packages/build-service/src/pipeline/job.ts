@@ -389,16 +389,31 @@ export class Job {
   }
 
   /**
-   * Starts the live trace channel (pipeline/trace-tail.ts) on a work dir that is a host folder
-   * (bwrap, none). A sandbox that reads its work dirs itself (docker: a volume) has none: see
-   * docs/build-service-api.md "Trace channel". Never throws.
+   * Starts the live trace channel (pipeline/trace-tail.ts) on the work dir's host folder: the
+   * work dir itself for bwrap and none; for a sandbox that reads its work dirs itself (docker: a
+   * volume), the folder it proves to be that work dir on this host (liveWorkRoot), or no channel,
+   * with one line saying why (docs/build-service-api.md "Trace channel"). No job process runs now
+   * (the build step ended, the run has not started). Never throws.
+   *
+   * The tail orders records by their mono_ns against process.hrtime (CLOCK_MONOTONIC): a Docker
+   * container has the host's CLOCK_MONOTONIC (Docker gives it no time namespace; the proof
+   * refuses a holder whose time namespace differs), so the same comparison holds for it.
    */
   private async startTraceTail(sandbox: Sandbox, workDir: string): Promise<TraceTail | null> {
+    let root = workDir;
     if (sandbox.readWorkDirs) {
-      this.system('run', `trace: no live trace channel in the ${this.sandboxName} sandbox (its work dir is not a host folder); the records are in the collected logs`);
-      return null;
+      const t0 = Date.now();
+      const live = sandbox.liveWorkRoot
+        ? await sandbox.liveWorkRoot(workDir).catch((e: unknown) => ({ ok: false as const, reason: (e as Error).message.split('\n')[0] ?? String(e) }))
+        : { ok: false as const, reason: 'its work dir is not a host folder' };
+      this.timed('run', 'live trace folder (the work volume on this host, proven once per volume)', t0);
+      if (!live.ok) {
+        this.system('run', `trace: no live trace channel in the ${this.sandboxName} sandbox: ${live.reason}; the records are in the collected logs`);
+        return null;
+      }
+      root = live.root;
     }
-    const tail = await TraceTail.start(workDir, {
+    const tail = await TraceTail.start(root, {
       trace: (records) => {
         if (!this.events.isEnded) this.events.append({ type: 'trace', records });
       },

@@ -490,6 +490,17 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(system).toEqual([]);
   });
 
+  test('a sparse log of 1 TiB: read no further than the collector keeps of a log (finish() returns)', async () => {
+    mkdirSync(logs);
+    const tail = await TraceTail.start(work, sink, fast);
+    const h = join(logs, 'H_1.csv');
+    writeFileSync(h, `${CSV_HEADER}\n${rec(1, 'H')}\n`);
+    truncateSync(h, 2 ** 40); // zeros without a newline, nothing on the disk: a full read would take many minutes
+    await tail.finish();
+    expect(traced.filter((l) => l.file === 'H_1.csv').map((l) => l.text)).toEqual([rec(1, 'H'), expect.stringMatching(/^\0+/)]);
+    expect(system).toEqual([]);
+  });
+
   test('logs/ planted as a link: not followed, one line', async () => {
     const outside = mkdtempSync(join(tmpdir(), 'trace-outside-'));
     writeFileSync(join(outside, 'S_1.csv'), `${CSV_HEADER}\n${rec(1)}\n`);

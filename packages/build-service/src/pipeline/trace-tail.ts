@@ -20,7 +20,7 @@ import type { FileHandle } from 'node:fs/promises';
 import { endianness } from 'node:os';
 import { join } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
-import { LOG_DIR, SAFE_NAME } from './artifacts.js';
+import { ARTIFACT_BOUNDS, LOG_DIR, SAFE_NAME } from './artifacts.js';
 import type { TraceLine } from './job-events.js';
 import { TraceLineSplitter } from './trace-lines.js';
 import { monoOf, TraceOrder } from './trace-order.js';
@@ -123,7 +123,7 @@ export class TraceTail {
   private ending = false;
   /** Some log had bytes left unread by the last poll (the per-poll read bound). */
   private behind = false;
-  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns for bwrap and none) at the last listing. */
+  /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns: bwrap, none, and Docker containers, which get no time namespace) at the last listing. */
   private listedAt: bigint | null = null;
   /** The ctime of logs/ before the last listing, when it was settled then (listingStale); null: list at the next wake. */
   private listedCtime: number | null = null;
@@ -503,7 +503,9 @@ export class TraceTail {
    */
   private readFile(f: Tailed, budget: number, now: number): { read: number; more: boolean } {
     const whole = this.wholeUpTo(f);
-    const size = fstatSync(f.fh.fd).size;
+    // no further than the collector keeps of a log: a sparse file of terabytes (a truncate in the
+    // sandbox) must not keep finish() reading zeros after the run
+    const size = Math.min(fstatSync(f.fh.fd).size, ARTIFACT_BOUNDS.fileBytes);
     if (f.dormantUntil > 0) {
       if (size <= f.dormantUntil) return { read: 0, more: false };
       f.dormantUntil = 0; // it grew: this run writes to it too (a module restarted within the same second)

@@ -10,6 +10,8 @@
  * kept while some container mounts it, so each workspace volume has a holder container (`sleep`,
  * volume read-only, no network, no capabilities) for its lifetime, which also answers the statfs
  * polls that name a full disk and the work-tree digests (find, no file read).
+ * On a local engine the volume's host folder (its Mountpoint), once proven to be the containers'
+ * /work (docker-live-root.ts), is where the live trace channel reads the run's logs.
  * Every container and volume is labelled with its owner (this service process) and job
  * (docker-owner.ts); the first use sweeps what dead services left (docker-sweep.ts), close()
  * removes this service's own leftovers.
@@ -30,7 +32,8 @@ import type { DirListing } from '../pipeline/artifacts.js';
 import { readTar } from '../util/tar-reader.js';
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
-import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
+import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
@@ -101,6 +104,9 @@ export class DockerSandbox implements Sandbox {
   /** The holder container of each tmpfs work volume, and the volume's size. */
   private readonly holders = new Map<string, Docker.Container>();
   private readonly volumeBytes = new Map<string, number>();
+  /** Whether each work volume's Mountpoint is proven to be the containers' /work here (docker-live-root.ts). */
+  private readonly liveRoots = new Map<string, Promise<LiveWorkRoot>>();
+  private engineInfo: Promise<EngineInfo> | null = null;
   /** The job that last used each work dir (labels of the containers that read it). */
   private readonly jobOfWorkDir = new Map<string, string>();
   /** This service process, written on everything it creates. */
@@ -149,12 +155,17 @@ export class DockerSandbox implements Sandbox {
   }
 
   /**
-   * At shutdown, after the jobs ended: removes any container or volume still labelled with this
-   * service instance (a removal that failed during a cancel, a step started while closing).
+   * At shutdown, after the jobs ended: releases the work volumes kept between jobs (and their
+   * holders) as usual, without a line, then removes any container or volume still labelled with
+   * this service instance (a removal that failed during a cancel, a step started while closing),
+   * each named in a line.
    */
   async close(): Promise<SweepReport> {
     if (this.sweeping) await this.sweeping;
     if (!this.engineSeen) return EMPTY_SWEEP;
+    for (const workDir of [...this.volumes.keys()]) {
+      await withDeadline(this.release(workDir), ENGINE_DEADLINE_MS, 'work volume release').catch(() => undefined);
+    }
     try {
       return await withDeadline(removeOwnLeftovers(this.docker, this.owner, this.log), ENGINE_DEADLINE_MS, 'shutdown clean-up');
     } catch (e) {
@@ -172,6 +183,9 @@ export class DockerSandbox implements Sandbox {
   }
 
   private where(): string {
+    const c = this.connection;
+    if (c?.socketPath) return `unix://${c.socketPath}`;
+    if (c?.host) return `${c.protocol ?? 'http'}://${c.host}${c.port ? `:${c.port}` : ''}`;
     return process.env.DOCKER_HOST ?? 'unix:///var/run/docker.sock';
   }
 
@@ -224,6 +238,7 @@ export class DockerSandbox implements Sandbox {
         DriverOpts: { type: 'tmpfs', device: 'tmpfs', o: `size=${diskBytes},nr_inodes=${workDiskInodes(diskBytes)},uid=${SANDBOX_UID},gid=${SANDBOX_GID},mode=0755,nosuid,nodev` },
       });
       this.createdVolumes.add(volume);
+      this.liveRoots.delete(volume);
       this.volumeBytes.set(volume, diskBytes);
       this.syncedTar.delete(volume);
       await this.startHolder(volume, cmd.name, jobId);
@@ -424,6 +439,40 @@ export class DockerSandbox implements Sandbox {
     return out;
   }
 
+  /**
+   * The work volume's folder on this host, once proven to be the containers' /work (a local engine
+   * that mounts its volumes where this process sees them; docker-live-root.ts): the live trace
+   * channel reads the run's logs there. Proven once per volume; never throws.
+   */
+  async liveWorkRoot(workDir: string): Promise<LiveWorkRoot> {
+    const volume = this.volumes.get(workDir);
+    if (!volume || !this.createdVolumes.has(volume)) return { ok: false, reason: 'the job has no work volume yet' };
+    let answer = this.liveRoots.get(volume);
+    if (!answer) {
+      const jobId = this.jobOfWorkDir.get(workDir) ?? 'proof';
+      answer = proveLiveRoot({
+        docker: this.docker,
+        address: this.where(),
+        info: () => (this.engineInfo ??= (this.docker.info() as Promise<EngineInfo>).catch((e: unknown) => {
+          this.engineInfo = null;
+          throw e;
+        })),
+        volume,
+        holder: this.holders.get(volume),
+        writer: (name, cmd) => {
+          const spec = this.volumeReader(name, cmd, volume, jobId);
+          return { ...spec, HostConfig: { ...spec.HostConfig, Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK }] } };
+        },
+        uid: SANDBOX_UID,
+        gid: SANDBOX_GID,
+        mountedAt: DOCKER_WORK,
+        deadline: (p, what) => withDeadline(p, ENGINE_DEADLINE_MS, what),
+      });
+      this.liveRoots.set(volume, answer);
+    }
+    return answer;
+  }
+
   /** Removes the volume of a workspace that is being deleted (its holder first). */
   async release(workDir: string): Promise<void> {
     const v = this.volumes.get(workDir);
@@ -432,6 +481,7 @@ export class DockerSandbox implements Sandbox {
     this.jobOfWorkDir.delete(workDir);
     this.createdVolumes.delete(v);
     this.syncedTar.delete(v);
+    this.liveRoots.delete(v);
     this.volumeBytes.delete(v);
     const holder = this.holders.get(v);
     this.holders.delete(v);

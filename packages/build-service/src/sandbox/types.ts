@@ -68,6 +68,13 @@ export interface SandboxProcess {
   noteLine(line: string): void;
 }
 
+/**
+ * Where the live trace channel (pipeline/trace-tail.ts) may read a job's work dir on this host:
+ * `root` is a host folder that IS the work dir the sandboxed processes write (docs/sandbox.md,
+ * "What the host reads while a job runs"), or a one-line reason why there is none here.
+ */
+export type LiveWorkRoot = { ok: true; root: string } | { ok: false; reason: string };
+
 export interface SandboxProbe {
   available: boolean;
   detail: string;
@@ -95,10 +102,6 @@ export interface Sandbox {
    */
   close?(): Promise<unknown>;
   /**
-   * Lists folders of the work dir (relative paths) without following links, for collecting a
-   * run's artifacts; absent = the work dir is on the host (bwrap, none) and is read there.
-   */
-  /**
    * Digest of the work dir as the sandbox sees it (pipeline/work-tree-digest.ts), null when it
    * cannot be taken; absent = the work dir is on the host and is digested there.
    */
@@ -108,5 +111,16 @@ export interface Sandbox {
    * limit hit; absent = the work dir is on the host and is measured there.
    */
   workUsage?(workDir: string): Promise<WorkUsage | null>;
+  /**
+   * Lists folders of the work dir (relative paths) without following links, for collecting a
+   * run's artifacts; absent = the work dir is on the host (bwrap, none) and is read there.
+   */
   readWorkDirs?(workDir: string, rels: string[], maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>>;
+  /**
+   * For a sandbox whose work dir is not a host folder (readWorkDirs): a host folder that is proven
+   * to be the same work dir as the sandboxed processes see it (docker: the work volume's
+   * mountpoint on a local engine), for the live trace channel; called between two steps of a job
+   * (no job process runs), never throws. Absent = no live channel for such a sandbox.
+   */
+  liveWorkRoot?(workDir: string): Promise<LiveWorkRoot>;
 }

@@ -10,6 +10,7 @@ import { engineBindingSource, ORD_DIR, schedMessagesHeader, schedTypesHeader, to
 import { generateSharedFunctionHeader, sharedFunctionPath } from './shared-function-header.js';
 import { generateSharedTypeHeader, sharedTypePath } from './shared-type-header.js';
 import { generateSharedEnumHeader, sharedEnumPath } from './shared-enum-header.js';
+import { constantsHeaderPath, generateConstantsHeader } from './constants-header.js';
 import { supTypesHeader } from './supervisor-module.js';
 import { generateOrdVocabulary } from './vocabulary/ord-vocabulary.js';
 import { generateSupervisorVocabulary } from './vocabulary/supervisor-vocabulary.js';
@@ -25,6 +26,7 @@ export function generateFiles(arch: Architecture): GeneratedFile[] {
     for (const e of arch.enums ?? []) add(sharedEnumPath(e.name), generateSharedEnumHeader(e));
     for (const t of arch.datatypes) add(sharedTypePath(t.name), generateSharedTypeHeader(t));
     for (const f of arch.functions) add(sharedFunctionPath(f.name), generateSharedFunctionHeader(f));
+    if ((arch.constants ?? []).length > 0) add(constantsHeaderPath(), generateConstantsHeader(arch.constants!, index));
 
     for (const m of arch.modules) {
         add(moduleSourcePath(m.name), generateModuleSource(m, priorities.of.get(m.name)!, index));

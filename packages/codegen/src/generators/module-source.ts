@@ -3,6 +3,7 @@ import type { Module, PortDecl } from '../model/architecture.js';
 import { namedTypeOf, type ArchitectureIndex } from '../model/lookup.js';
 import { cDeclaration, cInitializer, cSizeof, cType } from './c/c-syntax.js';
 import { blockRegion, inlineRegion } from './c/regions.js';
+import { CONSTANTS_HEADER } from './constants-header.js';
 import { architecturePath } from '@contract-studio/conventions';
 
 /** `modules/<M>_mod/module.c` of a synchronous or asynchronous module, in the shape of report §8.2. */
@@ -286,6 +287,7 @@ export function generateModuleSource(m: Module, priority: number, index: Archite
         ${[...m.dataIn, ...m.dataOut, ...m.eventIn, ...m.eventOut, ...m.parameters].some((p) => cType(p.type) === 'bool') ? '#include <stdbool.h>' : undefined}
         #include "tools.h"
         ${joinToNode(includedTypes(m), (t) => `#include "Shared${t}.h"`, { appendNewLineIfNotEmpty: true })}
+        ${(index.architecture.constants ?? []).length > 0 ? `#include "${CONSTANTS_HEADER}"` : undefined}
 
         //from here you can make new imports or definitions
         ${blockRegion(`protect_additional_import_${M}`, '//TODO')}

@@ -2,15 +2,16 @@
  * Completion (docs/ide.md "Editor services"): keywords and names in scope come from Langium's default provider over
  * the Cactal scope provider (so only names the file's imports make visible are offered). Port
  * references complete with the indexes of the module being referenced, with the port's name and
- * type as detail.
+ * type as detail. Inside a comment or a string nothing is offered (comment-or-string.ts).
  */
-import { AstUtils, GrammarAST, stream, type AstNode, type AstNodeDescription, type AstNodeDescriptionProvider, type MaybePromise, type ReferenceInfo, type Stream } from 'langium';
+import { AstUtils, GrammarAST, stream, type AstNode, type AstNodeDescription, type AstNodeDescriptionProvider, type LangiumDocument, type MaybePromise, type ReferenceInfo, type Stream } from 'langium';
 import { DefaultCompletionProvider, type CompletionAcceptor, type CompletionContext, type CompletionValueItem } from 'langium/lsp';
-import { CompletionItemKind, InsertTextFormat } from 'vscode-languageserver-protocol';
+import { CompletionItemKind, InsertTextFormat, type CancellationToken, type CompletionList, type CompletionParams } from 'vscode-languageserver-protocol';
 import { isModule, isParameter, isEnumMember, isPort, isSupervisor } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { portKind, portsOfKind, type PortDirection, type PortKind } from '../model/ports.js';
 import { typeRefText } from '../model/types.js';
+import { textContextAt } from './comment-or-string.js';
 
 /** Port references whose owner is written just before (`MSC:`), with the kind and direction they name. */
 const OWNER_PORTS: Record<string, { owner: string; kind: PortKind; direction: PortDirection }> = {
@@ -59,6 +60,13 @@ export class CactalCompletionProvider extends DefaultCompletionProvider {
     constructor(services: CactalServices) {
         super(services);
         this.descriptions = services.workspace.AstNodeDescriptionProvider;
+    }
+
+    /** Nothing inside a comment or a string: a space there (a trigger character) must not bring up keywords. */
+    override async getCompletion(document: LangiumDocument, params: CompletionParams, cancelToken?: CancellationToken): Promise<CompletionList | undefined> {
+        const offset = document.textDocument.offsetAt(params.position);
+        if (textContextAt(document.textDocument.getText(), offset) !== 'code') return { isIncomplete: false, items: [] };
+        return super.getCompletion(document, params, cancelToken);
     }
 
     /**

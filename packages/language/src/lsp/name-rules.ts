@@ -95,7 +95,8 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
     const role = cNameRole(node);
     if (role && !newName.startsWith('_')) {
         const datatypes = new Set(index.allElements('DataType').map((d) => d.name).filter((n) => n !== node.name || role !== 'datatype'));
-        const why = cNameConflict(newName, role, { datatypes });
+        const others = (type: string) => new Set(index.allElements(type).filter((d) => d.node !== node).map((d) => d.name));
+        const why = cNameConflict(newName, role, { datatypes, constants: others('Constant'), functions: others('FunctionPrototype') });
         if (why) return `'${newName}' cannot name ${aWord(what)} in the generated C: ${why}.`;
     }
     if (isModule(node) || isSupervisor(node)) {

@@ -27,7 +27,7 @@ export const C_KEYWORDS = new Set([
 ]);
 
 const NAMED_TYPES = [
-    'DataType', 'EnumType', 'Field', 'FunctionPrototype', 'FunctionArgument', 'Module', 'Parameter', 'Port', 'Schema',
+    'Constant', 'DataType', 'EnumType', 'Field', 'FunctionPrototype', 'FunctionArgument', 'Module', 'Parameter', 'Port', 'Schema',
     'SchemaParameter', 'Supervisor', 'SupervisionFunction', 'FunctionParameter', 'LocalVariable', 'Rule'
 ] as const;
 
@@ -36,6 +36,7 @@ export function cNameRole(node: AstNode): CNameRole | undefined {
     switch (node.$type) {
         case 'DataType': case 'EnumType': return 'datatype'; // an enumeration is a typedef and a tag too
         case 'FunctionPrototype': return 'function';
+        case 'Constant': return 'constant'; // a macro of common/constants.h
         case 'Port': case 'Parameter': return AstUtils.getContainerOfType(node, isModule) ? 'module-variable' : undefined;
         case 'Field': case 'SchemaParameter': case 'FunctionParameter': case 'LocalVariable': return 'member';
         case 'FunctionArgument': return 'argument';
@@ -45,12 +46,19 @@ export function cNameRole(node: AstNode): CNameRole | undefined {
 
 const datatypeSets = new WeakMap<MultiMap<string, AstNodeDescription>, ProjectCNames>();
 
-/** The project's names that the reserved-name rules depend on (cached per workspace build). */
+/**
+ * The project's names that the reserved-name rules depend on (cached per workspace build: the
+ * tables of one build are all rebuilt together, so the datatype table keys the others too).
+ */
 export function projectCNames(names: ProjectNames): ProjectCNames {
     const byName = names.byName(['DataType', 'EnumType']);
     let project = datatypeSets.get(byName);
     if (!project) {
-        project = { datatypes: new Set(byName.keys()) };
+        project = {
+            datatypes: new Set(byName.keys()),
+            constants: new Set(names.byName(['Constant']).keys()),
+            functions: new Set(names.byName(['FunctionPrototype']).keys())
+        };
         datatypeSets.set(byName, project);
     }
     return project;
@@ -79,7 +87,7 @@ function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAc
 }
 
 const KIND_WORDS: Record<string, string> = {
-    DataType: 'datatype', EnumType: 'enumeration', FunctionPrototype: 'function', Port: 'port', Parameter: 'parameter', Field: 'field',
+    Constant: 'constant', DataType: 'datatype', EnumType: 'enumeration', FunctionPrototype: 'function', Port: 'port', Parameter: 'parameter', Field: 'field',
     SchemaParameter: 'schema parameter', FunctionParameter: 'parameter', LocalVariable: 'local', FunctionArgument: 'argument'
 };
 function kindWord(node: AstNode): string {
@@ -112,9 +120,12 @@ function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: 
     if (!member.name || !owner?.name) return;
     const cName = `${owner.name}_${member.name}`;
     const project = projectCNames(names);
-    const why = cNameConflict(cName, 'datatype', project);
+    // a datatype name never equals a constant's (type-checks.ts), but a member's C name may
+    const conflict = (c: string) => cNameConflict(c, 'datatype', project)
+        ?? (project.constants?.has(c) ? 'a named constant has that name, and constants are macros in the generated C (common/constants.h)' : undefined);
+    const why = conflict(cName);
     if (!why) return;
-    const suggestion = suggestName(member.name, (candidate) => cNameConflict(`${owner.name}_${candidate}`, 'datatype', project) === undefined);
+    const suggestion = suggestName(member.name, (candidate) => conflict(`${owner.name}_${candidate}`) === undefined);
     report(accept, ModuleCodes['identifier-c-reserved'],
         `Member '${member.name}' of enumeration ${owner.name} becomes the C name ${cName}, which cannot be used: ${why}. Choose another name (e.g. '${suggestion}').`,
         { node: member, property: 'name', data: { suggestion } });

@@ -14,10 +14,17 @@ function newestMtime(dir: string): number {
   return newest;
 }
 
-/** Builds the production front end when dist/ is missing or older than src/ (the e2e tests use it). */
+/** The built packages the front end bundles (the language worker, the shared conventions, the service's types). */
+const BUNDLED = ['language', 'conventions', 'build-service'].map((p) => join(pkg, '..', p, 'dist'));
+
+/**
+ * Builds the production front end when dist/ is missing or older than src/ or than the built
+ * packages it bundles (the e2e tests use it).
+ */
 export function ensureFrontendBuilt(): void {
   const index = join(pkg, 'dist', 'index.html');
-  const stale = !existsSync(index) || statSync(index).mtimeMs < Math.max(newestMtime(join(pkg, 'src')), statSync(join(pkg, 'index.html')).mtimeMs);
+  const inputs = [newestMtime(join(pkg, 'src')), statSync(join(pkg, 'index.html')).mtimeMs, ...BUNDLED.filter(existsSync).map(newestMtime)];
+  const stale = !existsSync(index) || statSync(index).mtimeMs < Math.max(...inputs);
   if (stale) execFileSync(process.execPath, [join(pkg, '../../node_modules/vite/bin/vite.js'), 'build', '--logLevel', 'warn'], { cwd: pkg, stdio: 'inherit' });
 }
 

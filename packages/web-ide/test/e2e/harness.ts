@@ -95,8 +95,36 @@ export async function openFile(page: Page, path: string): Promise<void> {
     const row = page.locator(`.tree-row[data-path="${dir}"]`);
     if ((await row.locator('.twisty').textContent()) === '▸') await row.click();
   }
-  await page.locator(`.tree-row[data-path="${path}"]`).click();
+  await clickOrExplain(page, `.tree-row[data-path="${path}"]`);
   await page.waitForFunction((p) => document.querySelector('.tab.active')?.getAttribute('data-path') === p, path);
+}
+
+/**
+ * Clicks. A click waits for two animation frames to see the element stable; when it times out, the
+ * page is asked for one frame: none in 2 s (a page Chromium stopped drawing, seen once on a loaded CI
+ * machine right after a reload) brings the page to the front and clicks once more, saying so on
+ * stderr; otherwise the error says what the page did, with a screenshot.
+ */
+export async function clickOrExplain(page: Page, selector: string): Promise<void> {
+  const drawsFrames = () => Promise.race([
+    page.evaluate(() => new Promise<string>((r) => requestAnimationFrame(() => r('the page draws frames')))).catch((err: Error) => `evaluate failed: ${err.message}`),
+    new Promise<string>((r) => setTimeout(() => r('no animation frame in 2 s: the page does not draw'), 2000)),
+  ]);
+  try {
+    await page.locator(selector).click({ timeout: 15_000 });
+  } catch (e) {
+    const frame = await drawsFrames();
+    const ready = await page.evaluate(() => document.body.dataset.ready).catch(() => '?');
+    await page.screenshot({ path: join(SHOTS, `click-failed-${Date.now()}.png`), timeout: 5000 }).catch(() => undefined);
+    if (frame.startsWith('no animation frame')) {
+      console.error(`[harness] ${selector}: ${frame} (ready=${ready}); bringing the page to the front and clicking again`);
+      await page.bringToFront();
+      await page.locator(selector).click({ timeout: 15_000 });
+      return;
+    }
+    (e as Error).message = `[harness] ${selector}: ${frame}; ready=${ready}\n${(e as Error).message}`;
+    throw e;
+  }
 }
 
 /** Waits until every file is saved (status bar). */

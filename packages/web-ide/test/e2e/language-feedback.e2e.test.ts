@@ -1,6 +1,7 @@
 /**
  * End-to-end: the language server's smaller helps reach the user in the IDE — hover on a timing
- * property gives µs and the schema's figures, completion in a rule body offers whole actions, and
+ * property gives µs and the schema's figures, completion in a rule body offers whole actions (and
+ * none inside a comment), and
  * Format on a file with a syntax error says why it did nothing (docs/ide.md, "Using it").
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
@@ -50,6 +51,23 @@ describe('language server feedback in the IDE', () => {
     const labels = await page.locator('.suggest-widget .monaco-list-row .label-name').allTextContents();
     expect(labels).toEqual(expect.arrayContaining(['activate schema', 'activate supervisor', 'notify'])); // the list renders only its visible rows
     await page.keyboard.press('Escape');
+    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
+    await waitSaved(page);
+  });
+
+  it('a comment typed word by word brings up no completion list, and Enter starts a new line', async () => {
+    const { page } = s;
+    await openFile(page, 'smodule4.contract');
+    const before = await activeValue(page);
+    await placeCursor(page, 'synchronous module MSD');
+    // a space is a trigger character: in code it asks the server, in a comment it must not list keywords
+    for (const word of ['// the', 'server', 'was', 'down', 'async']) {
+      await page.keyboard.type(`${word} `, { delay: 20 });
+      await page.waitForTimeout(300); // the time a list would take to come from the worker
+      expect(await page.locator('.suggest-widget.visible').count(), `after "${word} "`).toBe(0);
+    }
+    await page.keyboard.press('Enter');
+    expect(await activeValue(page)).toContain('// the server was down async \nsynchronous module MSD');
     await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
     await waitSaved(page);
   });

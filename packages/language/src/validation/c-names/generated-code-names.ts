@@ -22,6 +22,18 @@ export const MODULE_LOCALS: readonly string[] = [
 ];
 
 /**
+ * Other identifiers that every generated module.c writes after `#include "constants.h"`: the members
+ * of libmodule's `RequestMessage` that the request loop reads (module-source.ts) and gcc's
+ * `fallthrough` attribute. A named constant, a macro there, may not take them.
+ */
+export const MODULE_SOURCE_WORDS: readonly string[] = [
+    'Type', 'Param', 'Start', 'Stop', 'Kil', 'Event', 'SetParam', 'Subscribe', 'Unsubscribe', 'SubscribeEvent',
+    'UnsubscribeEvent', 'SubscribeUser', 'UnsubscribeUser', 'SubscribeUserToEvent', 'UnsubscribeUserToEvent',
+    'SubscribeVariables', 'UnsubscribeVariables', 'WantedAck', 'ModAck', 'AckID', 'Periodicity', 'Port', 'SourcePort',
+    'TargetModule', 'TargetPort', 'isContextual', 'sourceModule', 'sourcePort', 'targetModule', 'targetPort', 'mode', 'fallthrough'
+];
+
+/**
  * Parameters and locals of the functions of `common/Shared<T>.h` (shared-type-header.ts): a datatype
  * of that name would be hidden by them inside its own functions (`eq_arg1(arg1 * arg1, arg1 * arg2)`).
  */

@@ -8,21 +8,29 @@
  * - module-variable: a global variable of `modules/<M>_mod/module.c` (module ports and parameters);
  * - member: a struct member or a C parameter (fields, schema and supervision-function parameters,
  *   locals): only macros and keywords can break those;
- * - argument: a parameter of a function prototype, which must not hide a datatype of the prototype.
+ * - argument: a parameter of a function prototype, which must not hide a datatype of the prototype;
+ * - constant: a macro of `common/constants.h`, which every module.c includes after its other headers:
+ *   it replaces the name everywhere after it (the request loop, the protected regions, headers the
+ *   regions include), so it may be no name of the generated C and no other name of the project's C
+ *   (datatype, function, field, argument, module port or parameter, enumeration member's C name).
  * Module, supervisor, schema, rule, supervision-function and supervisor-port names only appear in
  * strings and inside longer generated names, which the generator keeps apart (table-builder.ts).
  */
 import { HEADER_DECLARATIONS, HEADER_MACROS, HEADER_TAGS, RUNTIME_LIBRARY_SYMBOLS } from './header-names.js';
 import {
-    MODULE_GLOBALS, MODULE_LOCALS, RUNTIME_PREFIXES, SHARED_GUARD, SUPERVISOR_DERIVED, TOOL_AND_VOCABULARY_NAMES,
+    MODULE_GLOBALS, MODULE_LOCALS, MODULE_SOURCE_WORDS, RUNTIME_PREFIXES, SHARED_GUARD, SUPERVISOR_DERIVED, TOOL_AND_VOCABULARY_NAMES,
     TYPE_FUNCTION_PREFIXES, TYPE_HEADER_LOCALS
 } from './generated-code-names.js';
 
-export type CNameRole = 'datatype' | 'function' | 'module-variable' | 'member' | 'argument';
+export type CNameRole = 'datatype' | 'function' | 'module-variable' | 'member' | 'argument' | 'constant';
 
 /** The project's names that become file-scope C names of their own. */
 export interface ProjectCNames {
     readonly datatypes: ReadonlySet<string>;
+    /** Named constants: macros of `common/constants.h` in every module.c. */
+    readonly constants?: ReadonlySet<string>;
+    /** Function prototypes (a constant of that name would replace the function's name). */
+    readonly functions?: ReadonlySet<string>;
 }
 
 const macros = new Set(HEADER_MACROS);
@@ -33,29 +41,37 @@ const moduleGlobals = new Set(MODULE_GLOBALS);
 const moduleLocals = new Set(MODULE_LOCALS);
 const typeHeaderLocals = new Set(TYPE_HEADER_LOCALS);
 const toolNames = new Set(TOOL_AND_VOCABULARY_NAMES);
+const moduleSourceWords = new Set(MODULE_SOURCE_WORDS);
 const typeFunction = new RegExp(`^(?:${TYPE_FUNCTION_PREFIXES.join('|')})_(\\w+)$`);
 
 /** Why `name` cannot take `role` in the generated C, or undefined when it can. */
 export function cNameConflict(name: string, role: CNameRole, project: ProjectCNames): string | undefined {
     if (macros.has(name)) return 'it is a macro of the C library or runtime headers that the generated C includes';
+    if (role !== 'constant' && role !== 'datatype' && project.constants?.has(name)) {
+        return 'a named constant has that name, and constants are macros in the generated C (common/constants.h, included by every module.c)';
+    }
     if (role === 'member') return undefined;
     if (role === 'argument') {
         return project.datatypes.has(name) ? 'it names a datatype, which the generated prototype may use for another argument' : undefined;
     }
     if (declarations.has(name)) return 'the C library, POSIX or runtime headers that the generated C includes already declare it';
     if (librarySymbols.has(name)) return 'the runtime library defines or calls a global of that name, which a generated global would replace';
-    if (role === 'datatype' && tags.has(name)) return 'it is already a struct tag of the C library headers that the generated C includes';
+    const fileScope = role === 'datatype' || role === 'constant';
+    if (fileScope && tags.has(name)) return 'it is already a struct tag of the C library headers that the generated C includes';
     const prefix = RUNTIME_PREFIXES.find((p) => name.startsWith(p));
     if (prefix) return `names starting with '${prefix}' belong to the runtime and the generated tables`;
     if (SUPERVISOR_DERIVED.test(name) || SHARED_GUARD.test(name)) return 'it has the form of a name the generated C builds (a supervisor\'s table or a header guard)';
     const typeFn = typeFunction.exec(name);
     if (typeFn && project.datatypes.has(typeFn[1]!)) return `it is the name of a function generated for datatype ${typeFn[1]} (common/Shared${typeFn[1]}.h)`;
-    if (role !== 'datatype' && project.datatypes.has(name)) return 'it names a datatype, a type name in the generated C';
-    if ((role === 'module-variable' || role === 'datatype') && moduleGlobals.has(name)) return 'every generated module.c declares a global of that name';
+    if (role !== 'datatype' && role !== 'constant' && project.datatypes.has(name)) return 'it names a datatype, a type name in the generated C';
+    if (role === 'constant' && project.functions?.has(name)) return 'it names a function, whose name a constant (a macro in the generated C) would replace';
+    if ((role === 'module-variable' || fileScope) && moduleGlobals.has(name)) return 'every generated module.c declares a global of that name';
     if (role === 'module-variable' && moduleLocals.has(name)) return 'the generated module.c functions declare a variable of that name, which would hide the port where the generated code and the regions read it';
     if (role === 'datatype' && moduleLocals.has(name)) return 'the generated module.c functions declare a variable of that name, which would hide the type where the generated code takes its size (sizeof)';
+    if (role === 'constant' && (moduleLocals.has(name) || moduleSourceWords.has(name))) return 'the generated module.c uses that name after the constants, which are macros there';
+    if (role === 'constant' && typeHeaderLocals.has(name)) return 'the functions generated for every datatype declare a variable of that name, which a constant (a macro) would replace in the headers included after it';
     if (role === 'datatype' && typeHeaderLocals.has(name)) return 'the functions generated for every datatype declare a variable of that name, which would hide the type';
-    if ((role === 'datatype' || role === 'function') && toolNames.has(name)) return 'the generated control tools or vocabulary tables declare it';
+    if ((fileScope || role === 'function') && toolNames.has(name)) return 'the generated control tools or vocabulary tables declare it';
     return undefined;
 }
 

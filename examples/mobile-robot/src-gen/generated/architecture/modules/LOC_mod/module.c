@@ -8,6 +8,7 @@
 #include "tools.h"
 #include "SharedTwist.h"
 #include "SharedPose.h"
+#include "constants.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_LOC) ENABLED START*/

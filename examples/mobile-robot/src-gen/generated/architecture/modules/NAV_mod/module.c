@@ -8,6 +8,7 @@
 #include "tools.h"
 #include "SharedPose.h"
 #include "SharedTwist.h"
+#include "constants.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_NAV) ENABLED START*/

@@ -7,6 +7,7 @@
 #include <string.h>
 #include "tools.h"
 #include "SharedLaserScan.h"
+#include "constants.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_OBS) ENABLED START*/
@@ -248,7 +249,7 @@ void _exec_module_state(int * stateindex){//state from 0 to x with x > 0, if sta
             RTIME now = GetTime();
             if (_first == 0) _first = now;
             int present = (now - _first) >= OBS_APPEAR_NS && (now - _first) < OBS_CLEAR_NS;
-            for (int i = 0; i < 180; i++) scan.ranges[i] = present && i >= 80 && i <= 100 ? OBS_OBSTACLE_M : OBS_FREE_M;
+            for (int i = 0; i < NBEAMS; i++) scan.ranges[i] = present && i >= AHEAD - 10 && i <= AHEAD + 10 ? OBS_OBSTACLE_M : OBS_FREE_M;
             distance = OBS_FREE_M;
             for (int i = 60; i < 120; i++) if (scan.ranges[i] < distance) distance = scan.ranges[i];
             int blocked = distance < 1.0;

@@ -7,6 +7,7 @@
 #include <string.h>
 #include "tools.h"
 #include "SharedTwist.h"
+#include "constants.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_TEL) ENABLED START*/

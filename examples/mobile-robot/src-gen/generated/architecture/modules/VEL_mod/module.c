@@ -10,6 +10,7 @@
 #include "SharedWheelSpeeds.h"
 #include "SharedTwist.h"
 #include "SharedDriveMode.h"
+#include "constants.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_VEL) ENABLED START*/

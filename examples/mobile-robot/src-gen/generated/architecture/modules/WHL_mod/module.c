@@ -8,6 +8,7 @@
 #include "tools.h"
 #include "SharedWheelSpeeds.h"
 #include "SharedWheelTicks.h"
+#include "constants.h"
 
 //from here you can make new imports or definitions
 /*PROTECTED REGION ID(protect_additional_import_WHL) ENABLED START*/
