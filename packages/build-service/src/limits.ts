@@ -88,12 +88,6 @@ export interface ServiceBounds {
   traceMarkHoldMs: number;
   /** Milliseconds from a change of the logs folder (inotify) to the read it wakes (changes in that time are read together). */
   traceWakeMs: number;
-  /**
-   * Milliseconds between two listings of the logs folder at most: a wake lists it only when its
-   * ctime says an entry was added or removed since the last listing (pipeline/trace-tail.ts), and
-   * this often in any case.
-   */
-  traceListEveryMs: number;
   /** Flush delay (ms) asked of the modules through their flush marks while a client follows the job (else their own, 50 ms). */
   traceWatchedFlushMs: number;
   /** Log files tailed per job (the artifact collector's file bound); more are left to the collected logs. */
@@ -127,7 +121,6 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceOrderWindowMs: 150,
   traceMarkHoldMs: 1000,
   traceWakeMs: 10,
-  traceListEveryMs: 1000,
   traceWatchedFlushMs: 25,
   traceFiles: 256,
   traceLinesPerEvent: 1000,

@@ -2,7 +2,7 @@ import { appendFileSync, mkdirSync, mkdtempSync, openSync, readFileSync, readdir
 import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
+import { afterEach, beforeEach, describe, expect, test } from 'vitest';
 import { CSV_HEADER, MAX_LINE_CHARS, parseLogFile, parseRecordLine } from '../trace/parse.js';
 import type { TraceLine } from './job-events.js';
 import { CUT_MARK, TraceLineSplitter } from './trace-lines.js';
@@ -459,35 +459,6 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(liveOnly.slice(5)).toEqual([22, 23, 24].map((line) => ({ file: 'A_1.csv', line, text: rec(1000 + line - 2, 'A') })));
     expect(traced).toHaveLength(5);
     expect(system.filter((l) => /5 records kept for replay/.test(l))).toHaveLength(1);
-  });
-
-  test('logs/ is listed when an entry was added (its ctime), not at every wake', async () => {
-    mkdirSync(logs);
-    const a = join(logs, 'A_1.csv');
-    writeFileSync(a, `${CSV_HEADER}\n`);
-    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 2, listEveryMs: 600_000, orderWindowMs: 600_000, markHoldMs: 600_000 });
-    const list = vi.spyOn(tail as unknown as { list(): Promise<string[]> }, 'list');
-    await sleep(120); // logs/ settles (its ctime older than the kernel's clock tick)
-    const wakes = async (n: number): Promise<void> => {
-      for (let k = 0; k < n; k++) {
-        const had = traced.length;
-        appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
-        for (let i = 0; i < 500 && traced.length === had; i++) await sleep(5);
-      }
-    };
-    await wakes(1); // the first wake lists (A was there before the tail started: nothing new)
-    const listings = list.mock.calls.length;
-    await wakes(5);
-    expect(traced).toHaveLength(6);
-    expect(list.mock.calls.length).toBe(listings); // five wakes, no listing
-    // a module started now: logs/ changed, the next wake lists it (no poll, no periodic listing for 10 minutes)
-    writeFileSync(join(logs, 'B_1.csv'), `${CSV_HEADER}\n${rec(process.hrtime.bigint(), 'B', 'module_exit', 'reason=ended')}\n`);
-    await sleep(5);
-    await wakes(1);
-    for (let i = 0; i < 500 && !traced.some((l) => l.file === 'B_1.csv'); i++) await sleep(10);
-    expect(traced.filter((l) => l.file === 'B_1.csv').map((l) => l.line)).toEqual([2]);
-    await tail.finish();
-    expect(system).toEqual([]);
   });
 
   test('a sparse log of 1 TiB: read no further than the collector keeps of a log (finish() returns)', async () => {

@@ -15,7 +15,7 @@
  * and file counts are bounded, lines are bounded (trace-lines.ts). Nothing here throws into the
  * job: a fault stops the channel with one system line; the collected logs stay the record.
  */
-import { constants, fstatSync, promises as fsp, readSync, watch, writeSync, type FSWatcher } from 'node:fs';
+import { constants, promises as fsp, readSync, watch, writeSync, type FSWatcher } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import { endianness } from 'node:os';
 import { join } from 'node:path';
@@ -29,8 +29,6 @@ export interface TraceTailBounds {
   pollMs: number;
   /** Delay from a change of logs/ to the read it wakes; 0: no watch, polls only. */
   wakeMs: number;
-  /** logs/ is listed at least this often (ms), whatever its ctime says (listingStale). */
-  listEveryMs: number;
   readBytesPerPoll: number;
   orderWindowMs: number;
   /** The order window when every log has its flush mark. */
@@ -47,7 +45,6 @@ export interface TraceTailBounds {
 export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
   pollMs: SERVICE_BOUNDS.tracePollMs,
   wakeMs: SERVICE_BOUNDS.traceWakeMs,
-  listEveryMs: SERVICE_BOUNDS.traceListEveryMs,
   readBytesPerPoll: SERVICE_BOUNDS.traceReadBytesPerPoll,
   orderWindowMs: SERVICE_BOUNDS.traceOrderWindowMs,
   markHoldMs: SERVICE_BOUNDS.traceMarkHoldMs,
@@ -91,11 +88,6 @@ const CHUNK = 64 * 1024;
 export const MARK_SUFFIX = '.mark';
 /** Rounds after a log was opened in which its mark is looked for (the runtime creates it first). */
 const MARK_TRIES = 3;
-/**
- * A folder's ctime is older than this (ms) before a listing is known to change with the next entry
- * added: it is the kernel's coarse clock (one tick: 1 to 10 ms), and Date.now() may lead it.
- */
-const CTIME_SETTLE_MS = 50;
 const readWord = endianness() === 'LE' ? (b: Buffer) => b.readBigUInt64LE(0) : (b: Buffer) => b.readBigUInt64BE(0);
 
 export class TraceTail {
@@ -125,10 +117,6 @@ export class TraceTail {
   private behind = false;
   /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns: bwrap, none, and Docker containers, which get no time namespace) at the last listing. */
   private listedAt: bigint | null = null;
-  /** The ctime of logs/ before the last listing, when it was settled then (listingStale); null: list at the next wake. */
-  private listedCtime: number | null = null;
-  /** Date.now() before the last listing. */
-  private listedWallMs = 0;
   private sent = 0;
   /** Past the kept-lines bound: lines go to the attached clients only. */
   private liveOnly = false;
@@ -345,33 +333,6 @@ export class TraceTail {
     return names;
   }
 
-  /**
-   * Whether logs/ must be listed again (a wake lists it only when it may hold a name not seen).
-   * Adding, removing or renaming an entry sets the folder's ctime (which no call of the sandboxed
-   * code can set back, unlike its mtime) to the kernel's coarse clock, so an unchanged ctime says
-   * that the last listing still holds, as of the fstat (taken after `listedAt`): provided the
-   * ctime was already older than the clock's tick when that listing began (a change within the
-   * same tick could leave it equal), else the folder is listed at every wake until it settles.
-   * Listed every `listEveryMs` in any case.
-   */
-  private listingStale(): boolean {
-    const now = Date.now();
-    let ctime: number;
-    try {
-      // in ms, to the microsecond (a double): two ticks of the coarse clock differ in it
-      ctime = fstatSync(this.dir!.fd).ctimeMs;
-    } catch {
-      return true;
-    }
-    const stale = this.listedCtime === null || ctime !== this.listedCtime || now - this.listedWallMs >= this.bounds.listEveryMs;
-    if (stale) {
-      // the listing that follows sees every entry the folder had at this fstat
-      this.listedWallMs = now;
-      this.listedCtime = ctime <= now - CTIME_SETTLE_MS ? ctime : null;
-    }
-    return stale;
-  }
-
   private async poll(): Promise<void> {
     if (this.stopped) return;
     this.behind = await this.readRound(Date.now(), false);
@@ -382,18 +343,16 @@ export class TraceTail {
   private async readRound(now: number, final: boolean): Promise<boolean> {
     if (!(await this.openDir())) return false;
     const listedAt = process.hrtime.bigint();
-    if (final || this.listingStale()) {
-      // a run that keeps making new names must not grow this set without end (a name forgotten is
-      // only looked at again: the listing is bounded per poll)
-      if (this.ignored.size > 4 * this.bounds.entries) this.ignored.clear();
-      for (const name of await this.list()) {
-        if (this.files.has(name) || this.ignored.has(name)) continue;
-        if (!name.endsWith('.csv') || !SAFE_NAME.test(name)) {
-          this.ignored.add(name);
-          continue;
-        }
-        await this.open(name);
+    // a run that keeps making new names must not grow this set without end (a name forgotten is
+    // only looked at again: the listing is bounded per poll)
+    if (this.ignored.size > 4 * this.bounds.entries) this.ignored.clear();
+    for (const name of await this.list()) {
+      if (this.files.has(name) || this.ignored.has(name)) continue;
+      if (!name.endsWith('.csv') || !SAFE_NAME.test(name)) {
+        this.ignored.add(name);
+        continue;
       }
+      await this.open(name);
     }
     const all = [...this.files.values()].filter((f) => !f.done);
     let budget = this.bounds.readBytesPerPoll;
@@ -401,8 +360,7 @@ export class TraceTail {
     const start = all.length ? this.rotate++ % all.length : 0;
     for (let i = 0; i < all.length; i++) {
       const f = all[(start + i) % all.length]!;
-      if (!f.mark && f.markTries > 0) await this.openMark(f);
-      const left = this.readFile(f, budget, now);
+      const left = await this.readFile(f, budget, now);
       budget -= left.read;
       if (left.more) more = true;
       if (this.stopped) return false;
@@ -495,17 +453,18 @@ export class TraceTail {
   }
 
   /**
-   * Reads at most `budget` new bytes of one log. The fstat and the reads are synchronous: the file
-   * is a regular file (checked when opened; a descriptor does not change its kind) that its
-   * module is writing, so its new bytes are in the page cache, and a read is microseconds where
-   * an asynchronous one is a round trip through the thread pool (two thread wake-ups, on the cores
-   * the run uses) per call, several times per log per wake.
+   * Reads at most `budget` new bytes of one log. The fstat and the reads stay asynchronous (thread
+   * pool round trips) on purpose: synchronous ones cost the service less CPU but raised the 1 kHz
+   * benchmark's release lateness p99 with a client attached from about 370 to 900 us on this
+   * machine's kernel (EEVDF scheduler): the main thread then ran each read in one longer burst
+   * (docs/watching-a-run.md, "What watching costs the run").
    */
-  private readFile(f: Tailed, budget: number, now: number): { read: number; more: boolean } {
+  private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
+    if (!f.mark && f.markTries > 0) await this.openMark(f);
     const whole = this.wholeUpTo(f);
     // no further than the collector keeps of a log: a sparse file of terabytes (a truncate in the
     // sandbox) must not keep finish() reading zeros after the run
-    const size = Math.min(fstatSync(f.fh.fd).size, ARTIFACT_BOUNDS.fileBytes);
+    const size = Math.min((await f.fh.stat()).size, ARTIFACT_BOUNDS.fileBytes);
     if (f.dormantUntil > 0) {
       if (size <= f.dormantUntil) return { read: 0, more: false };
       f.dormantUntil = 0; // it grew: this run writes to it too (a module restarted within the same second)
@@ -521,7 +480,7 @@ export class TraceTail {
     let read = 0;
     while (read < budget && f.splitter.offset < size) {
       const want = Math.min(this.buf.length, budget - read, size - f.splitter.offset);
-      const bytesRead = readSync(f.fh.fd, this.buf, 0, want, f.splitter.offset);
+      const { bytesRead } = await f.fh.read(this.buf, 0, want, f.splitter.offset);
       if (bytesRead === 0) break;
       read += bytesRead;
       const chunk = this.buf.subarray(0, bytesRead);
