@@ -455,9 +455,8 @@ export class TraceTail {
   /**
    * Reads at most `budget` new bytes of one log. The fstat and the reads stay asynchronous (thread
    * pool round trips) on purpose: synchronous ones cost the service less CPU but raised the 1 kHz
-   * benchmark's release lateness p99 with a client attached from about 370 to 900 us on this
-   * machine's kernel (EEVDF scheduler): the main thread then ran each read in one longer burst
-   * (docs/watching-a-run.md, "What watching costs the run").
+   * benchmark's release lateness p99 with a client attached from about 370 to 900 us on the dev
+   * machine (docs/watching-a-run.md, "What watching costs the run").
    */
   private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
     if (!f.mark && f.markTries > 0) await this.openMark(f);
