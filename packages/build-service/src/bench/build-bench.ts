@@ -11,21 +11,17 @@
  * snapshot of runtime/, so concurrent edits of the runtime do not disturb the figures.
  * Sandboxes that are unavailable here are left out (and said so on stderr).
  */
-import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { createBuildServer, type BuildServer } from '../server.js';
 import type { SandboxName } from '../sandbox/types.js';
 import { getJob, postJob, readEvents } from '../test-support/client.js';
+import { benchLog, median, round, writePart } from './bench-support.js';
 import { dockerUp } from '../test-support/docker-env.js';
-import { MAA_MODULE, REPO, snapshotRuntime, TUTORIAL_DIR, tutorialFiles, withRegion } from '../test-support/tutorial.js';
+import { MAA_MODULE, snapshotRuntime, TUTORIAL_DIR, tutorialFiles, withRegion } from '../test-support/tutorial.js';
 
-const say = (s: string): void => void process.stderr.write(`[bench build] ${s}\n`);
-const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
-const median = (xs: number[]): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length % 2 ? s[(s.length - 1) / 2]! : (s[s.length / 2 - 1]! + s[s.length / 2]!) / 2;
-};
+const say = benchLog('build');
 
 async function timedJob(url: string, body: Record<string, unknown>): Promise<{ seconds: number; job: Record<string, any> }> {
   const t0 = performance.now();
@@ -113,8 +109,7 @@ async function main(): Promise<void> {
     rmSync(runtimeSource, { recursive: true, force: true });
     docker.stop();
   }
-  mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });
-  writeFileSync(join(REPO, 'bench', 'parts', 'build.json'), JSON.stringify(out, null, 2) + '\n');
+  writePart('build', out);
   console.log(JSON.stringify(out, null, 2));
 }
 

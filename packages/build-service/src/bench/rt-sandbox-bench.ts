@@ -12,15 +12,15 @@
  *   sched.bwrap_rt_jitter_ratio          bwrap p99 / host p99 (goal <= 1.2)
  */
 import { spawn, spawnSync } from 'node:child_process';
-import { chownSync, copyFileSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { chownSync, copyFileSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
 import { cpus, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { DEFAULT_LIMITS, REALTIME_BOUNDS } from '../limits.js';
 import { BwrapSandbox } from '../sandbox/bwrap.js';
 import { REPO } from '../test-support/tutorial.js';
+import { benchLog, median, round, writePart } from './bench-support.js';
 
-const say = (s: string): void => void process.stderr.write(`[bench rt-sandbox] ${s}\n`);
-const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
+const say = benchLog('rt-sandbox');
 const RUNS = Number(process.env.RT_BENCH_RUNS ?? 6);
 const SECONDS = process.env.RT_BENCH_SECONDS ?? '10.2';
 const MODULES = ['ORD', 'BSU', 'BMA', 'BMB', 'BMC'];
@@ -107,20 +107,16 @@ async function main(): Promise<void> {
     bwrap.push(await bwrapRun(sandbox, cpu));
     say(`bwrap --realtime run ${i + 1}: p99 ${bwrap.at(-1)!.p99} us, ${bwrap.at(-1)!.missed} missed`);
   }
-  const median = (xs: OrdStats[]) => {
-    const v = xs.map((s) => s.p99).sort((a, b) => a - b);
-    return v.length % 2 ? v[(v.length - 1) / 2]! : (v[v.length / 2 - 1]! + v[v.length / 2]!) / 2;
-  };
+  const medianP99 = (xs: OrdStats[]) => median(xs.map((s) => s.p99));
   const sum = (xs: OrdStats[]) => xs.reduce((a, s) => a + s.missed, 0);
   const out = {
-    'sched.host_rt.period_jitter_us_p99': round(median(host)),
+    'sched.host_rt.period_jitter_us_p99': round(medianP99(host)),
     'sched.host_rt.missed_periods': sum(host),
-    'sched.bwrap_rt.period_jitter_us_p99': round(median(bwrap)),
+    'sched.bwrap_rt.period_jitter_us_p99': round(medianP99(bwrap)),
     'sched.bwrap_rt.missed_periods': sum(bwrap),
-    'sched.bwrap_rt_jitter_ratio': round(median(bwrap) / median(host)),
+    'sched.bwrap_rt_jitter_ratio': round(medianP99(bwrap) / medianP99(host)),
   };
-  mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });
-  writeFileSync(join(REPO, 'bench', 'parts', 'sched-sandbox.json'), JSON.stringify(out, null, 2) + '\n');
+  writePart('sched-sandbox', out);
   say(JSON.stringify(out));
 }
 

@@ -18,16 +18,16 @@
  * Modules are found as the descendants of this process (the sandbox's processes), by the names of
  * their output tags. The runtime is built from a snapshot of runtime/ (concurrent edits do not matter).
  */
-import { mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { JobService } from '../job-service.js';
 import { artifactBytes } from '../pipeline/artifacts.js';
 import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 import { processParents } from '../sandbox/host-process.js';
+import { benchLog, round, writePart } from './bench-support.js';
 
-const say = (s: string): void => void process.stderr.write(`[bench soak] ${s}\n`);
-const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
+const say = benchLog('soak');
 
 
 /** VmRSS (KiB) of the descendants of this process whose name is a module's, by module name. */
@@ -139,8 +139,7 @@ async function main(): Promise<void> {
     };
     for (const i of result.issues) say(`issue: ${i.message}`);
     say(`modules sampled: ${[...last.keys()].sort().join(' ') || 'none'}`);
-    mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });
-    writeFileSync(join(REPO, 'bench', 'parts', 'soak.json'), JSON.stringify(out, null, 2) + '\n');
+    writePart('soak', out);
     process.stdout.write(JSON.stringify(out, null, 2) + '\n');
   } finally {
     await service.close();

@@ -37,7 +37,8 @@ import { artifactBytes, type Artifact } from '../pipeline/artifacts.js';
 import { createBuildServer } from '../server.js';
 import { postJob } from '../test-support/client.js';
 import { followTrace, type ClientReport } from './trace-bench-client.js';
-import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
+import { snapshotRuntime } from '../test-support/tutorial.js';
+import { benchLog, median, pct, round, writePart } from './bench-support.js';
 import { parseRecordLine } from '../trace/parse.js';
 
 const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
@@ -50,16 +51,7 @@ const PAIRS = Number(process.env.PAIRS ?? 6);
 const CHILD_CLIENT = process.env.MONITOR_CLIENT === 'child';
 /** Left out at the start of each phase (the attach or detach itself). */
 const SETTLE_NS = 200_000_000n;
-const say = (s: string): void => void process.stderr.write(`[bench monitor] ${s}\n`);
-const round = (x: number, d = 3): number => Math.round(x * 10 ** d) / 10 ** d;
-const pct = (xs: number[], p: number): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length ? s[Math.min(s.length - 1, Math.floor((p / 100) * s.length))]! : NaN;
-};
-const median = (xs: number[]): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length % 2 ? s[(s.length - 1) / 2]! : (s[s.length / 2 - 1]! + s[s.length / 2]!) / 2;
-};
+const say = benchLog('monitor');
 const sleep = (ms: number): Promise<void> => new Promise((r) => setTimeout(r, ms));
 
 const TICK_MS = 1000 / 100; // USER_HZ: /proc's clock ticks (100 on Linux)
@@ -261,8 +253,7 @@ async function main(): Promise<void> {
       'monitor.releases': pooled(true).length + pooled(false).length,
     };
     say(JSON.stringify(out));
-    mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });
-    writeFileSync(join(REPO, 'bench', 'parts', 'monitor.json'), JSON.stringify(out, null, 2) + '\n');
+    writePart('monitor', out);
   } finally {
     await server.close();
     rmSync(root, { recursive: true, force: true });

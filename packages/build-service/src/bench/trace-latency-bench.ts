@@ -19,15 +19,12 @@ import type { JobStatus } from '../pipeline/job-events.js';
 import { createBuildServer } from '../server.js';
 import { DockerSandbox } from '../sandbox/docker.js';
 import { postJob, streamEvents } from '../test-support/client.js';
-import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
+import { snapshotRuntime } from '../test-support/tutorial.js';
+import { monoOf } from '../pipeline/trace-order.js';
+import { benchLog, pct, round, writePart } from './bench-support.js';
 
 const RUN_SECONDS = Number(process.env.RUN_SECONDS ?? 5);
-const say = (s: string): void => void process.stderr.write(`[bench trace-latency] ${s}\n`);
-const round = (x: number, d = 1): number => Math.round(x * 10 ** d) / 10 ** d;
-const pct = (xs: number[], p: number): number => {
-  const s = [...xs].sort((a, b) => a - b);
-  return s.length ? s[Math.min(s.length - 1, Math.floor((p / 100) * s.length))]! : NaN;
-};
+const say = benchLog('trace-latency');
 
 async function main(): Promise<void> {
   const root = mkdtempSync(join(tmpdir(), 'contract-trace-latency-'));
@@ -55,8 +52,8 @@ async function main(): Promise<void> {
       else if (e.type === 'end') result = e.result as typeof result;
       else if (e.type === 'trace' && status === 'running') {
         for (const l of e.records) {
-          const m = /^(\d+),/.exec(l.text);
-          if (m) latency.push(Number(at - BigInt(m[1]!)) / 1e6);
+          const mono = monoOf(l.text);
+          if (mono >= 0n) latency.push(Number(at - mono) / 1e6);
         }
       }
     });
@@ -78,14 +75,13 @@ async function main(): Promise<void> {
       await run(sandbox, 1);
       say(`${sandbox}: a ${RUN_SECONDS} s run, followed over SSE`);
       const latency = await run(sandbox, RUN_SECONDS);
-      out[`trace_latency.${sandbox}_ms_p50`] = round(pct(latency, 50));
-      out[`trace_latency.${sandbox}_ms_p99`] = round(pct(latency, 99));
-      out[`trace_latency.${sandbox}_ms_max`] = round(Math.max(...latency));
+      out[`trace_latency.${sandbox}_ms_p50`] = round(pct(latency, 50), 1);
+      out[`trace_latency.${sandbox}_ms_p99`] = round(pct(latency, 99), 1);
+      out[`trace_latency.${sandbox}_ms_max`] = round(Math.max(...latency), 1);
       out[`trace_latency.${sandbox}_records`] = latency.length;
     }
     say(JSON.stringify(out));
-    mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });
-    writeFileSync(join(REPO, 'bench', 'parts', 'trace-latency.json'), JSON.stringify(out, null, 2) + '\n');
+    writePart('trace-latency', out);
   } finally {
     await server.close();
     rmSync(root, { recursive: true, force: true });
