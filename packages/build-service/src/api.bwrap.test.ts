@@ -3,35 +3,19 @@
  * live and replayed), queue full -> 429, cancel mid-build and mid-run within 2 s, diagnostics,
  * request validation.
  */
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
 import WebSocket from 'ws';
-import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { describe, expect, test } from 'vitest';
 import { CANCEL_DEADLINE_MS } from './limits.js';
 import type { JobEvent, LineEvent } from './pipeline/job-events.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { brokenProgram, honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
 
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-
-beforeAll(async () => {
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  server = createBuildServer({ token: false, port: 0, concurrency: 2, queueSize: 1, cacheDir, sandbox: 'bwrap' });
-  url = (await server.listen()).url;
-});
-
-afterAll(async () => {
-  await server?.close();
-  rmSync(cacheDir, { recursive: true, force: true });
-});
+const served = useBuildServer({ concurrency: 2, queueSize: 1, sandbox: 'bwrap' }, { snapshotRuntime: false });
 
 function wsEvents(id: string): Promise<JobEvent[]> {
   return new Promise((resolve, reject) => {
-    const ws = new WebSocket(`${url.replace('http', 'ws')}/api/jobs/${id}/ws`);
+    const ws = new WebSocket(`${served.url.replace('http', 'ws')}/api/jobs/${id}/ws`);
     const events: JobEvent[] = [];
     ws.on('message', (d) => events.push(JSON.parse(String(d)) as JobEvent));
     ws.on('close', () => resolve(events));
@@ -47,11 +31,11 @@ function checkStream(lines: LineEvent[], stream: 'stdout' | 'stderr', prefix: st
 describe('streaming', () => {
   test('every line arrives once, in order per stream, live and on replay (SSE and WebSocket)', async () => {
     const n = 3000;
-    const r = await postJob(url, { action: 'run', kind: 'make', project: { files: makeProject(honestProgram(n)) } });
+    const r = await postJob(served.url, { action: 'run', kind: 'make', project: { files: makeProject(honestProgram(n)) } });
     expect(r.status).toBe(201);
     const id = r.json.id as string;
-    const [live, ws] = await Promise.all([readEvents(url, id), wsEvents(id)]);
-    const replay = await readEvents(url, id);
+    const [live, ws] = await Promise.all([readEvents(served.url, id), wsEvents(id)]);
+    const replay = await readEvents(served.url, id);
     for (const events of [live, ws, replay]) {
       expect(events.map((e) => e.seq)).toEqual(Array.from({ length: events.length }, (_, i) => i + 1));
       const lines = events.filter((e): e is LineEvent => e.type === 'line');
@@ -63,19 +47,19 @@ describe('streaming', () => {
     expect(JSON.stringify(ws)).toBe(JSON.stringify(live));
     expect(JSON.stringify(replay)).toBe(JSON.stringify(live));
     // resume after a given event
-    const tail = await readEvents(url, id, undefined, 10);
+    const tail = await readEvents(served.url, id, undefined, 10);
     expect(tail[0]!.seq).toBe(11);
     // the text log keeps every line
-    const log = await (await fetch(`${url}/api/jobs/${id}/log`)).text();
+    const log = await (await fetch(`${served.url}/api/jobs/${id}/log`)).text();
     expect(log.split('\n').filter((l) => / run run stdout \| out \d+$/.test(l))).toHaveLength(n);
   });
 });
 
 describe('diagnostics', () => {
   test('gcc problems come back structured, with file, line and column', async () => {
-    const r = await postJob(url, { action: 'build', kind: 'make', project: { files: makeProject(brokenProgram) } });
-    const events = await readEvents(url, r.json.id as string);
-    const job = await getJob(url, r.json.id as string);
+    const r = await postJob(served.url, { action: 'build', kind: 'make', project: { files: makeProject(brokenProgram) } });
+    const events = await readEvents(served.url, r.json.id as string);
+    const job = await getJob(served.url, r.json.id as string);
     expect(job.status).toBe('failed');
     expect(job.result.message).toMatch(/^build failed: 1 error\(s\)/);
     const err = job.diagnostics.find((d: any) => d.severity === 'error');
@@ -89,34 +73,34 @@ describe('diagnostics', () => {
 describe('queue and cancel', () => {
   test('a full queue answers 429; a queued job can be cancelled at once', async () => {
     const loop = { action: 'run', kind: 'make', project: { files: makeProject(infiniteLoop) }, limits: { runSeconds: 30 } };
-    const a = await postJob(url, loop);
-    const b = await postJob(url, loop);
-    const c = await postJob(url, loop); // queued (queueSize 1)
-    const d = await postJob(url, loop);
+    const a = await postJob(served.url, loop);
+    const b = await postJob(served.url, loop);
+    const c = await postJob(served.url, loop); // queued (queueSize 1)
+    const d = await postJob(served.url, loop);
     expect([a.status, b.status, c.status]).toEqual([201, 201, 201]);
     expect(d.status).toBe(429);
     expect(d.json.code).toBe('queue_full');
     expect(d.headers.get('retry-after')).toBe('2');
-    const cancelQueued = await fetch(`${url}/api/jobs/${c.json.id}`, { method: 'DELETE' });
+    const cancelQueued = await fetch(`${served.url}/api/jobs/${c.json.id}`, { method: 'DELETE' });
     expect(cancelQueued.status).toBe(202);
-    expect((await getJob(url, c.json.id as string)).status).toBe('cancelled');
-    for (const j of [a, b]) await fetch(`${url}/api/jobs/${j.json.id}`, { method: 'DELETE' });
-    for (const j of [a, b]) expect((await getJob(url, (await readEvents(url, j.json.id as string)) && (j.json.id as string))).status).toBe('cancelled');
+    expect((await getJob(served.url, c.json.id as string)).status).toBe('cancelled');
+    for (const j of [a, b]) await fetch(`${served.url}/api/jobs/${j.json.id}`, { method: 'DELETE' });
+    for (const j of [a, b]) expect((await getJob(served.url, (await readEvents(served.url, j.json.id as string)) && (j.json.id as string))).status).toBe('cancelled');
   });
 
   async function cancelWhen(body: unknown, ready: (e: JobEvent) => boolean): Promise<{ ms: number; job: Record<string, any> }> {
-    const r = await postJob(url, body);
+    const r = await postJob(served.url, body);
     const id = r.json.id as string;
     let t0 = 0;
     let sent = false;
-    await readEvents(url, id, (e) => {
+    await readEvents(served.url, id, (e) => {
       if (!sent && ready(e)) {
         sent = true;
         t0 = Date.now();
-        void fetch(`${url}/api/jobs/${id}`, { method: 'DELETE' });
+        void fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' });
       }
     });
-    return { ms: Date.now() - t0, job: await getJob(url, id) };
+    return { ms: Date.now() - t0, job: await getJob(served.url, id) };
   }
 
   test('cancel mid-run stops everything within 2 s', async () => {
@@ -152,25 +136,25 @@ describe('requests', () => {
     [{ project: { files: {} }, cpus: 1 }, 400, /cpus must be a CPU list/],
     [{ project: { files: {} }, start: "GLB.mission()'; rm -rf /work; '" }, 400, /start must be one line/],
   ])('%j -> %i', async (body, status, message) => {
-    const r = await postJob(url, body);
+    const r = await postJob(served.url, body);
     expect(r.status).toBe(status);
     expect(r.json.error).toMatch(message);
   });
 
   test('invalid JSON and unknown ids get clear errors', async () => {
-    const bad = await fetch(`${url}/api/jobs`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: '{nope' });
+    const bad = await fetch(`${served.url}/api/jobs`, { method: 'POST', headers: { 'content-type': 'application/json' }, body: '{nope' });
     expect(bad.status).toBe(400);
     expect(((await bad.json()) as { error: string }).error).toMatch(/invalid JSON/);
-    const missing = await fetch(`${url}/api/jobs/j-nothere`);
+    const missing = await fetch(`${served.url}/api/jobs/j-nothere`);
     expect(missing.status).toBe(404);
   });
 
   test('a client lists only its own jobs (X-Contract-Client); job ids are 128-bit handles', async () => {
     const alice = { 'X-Contract-Client': 'alice-0123456789abcdef' };
     const bob = { 'X-Contract-Client': 'bob-0123456789abcdef' };
-    const list = async (headers: Record<string, string>) => (await (await fetch(`${url}/api/jobs`, { headers })).json()) as { jobs: Array<{ id: string }>; note?: string };
-    const a = await postJob(url, { kind: 'make', project: { files: makeProject(honestProgram()) } }, alice);
-    const b = await postJob(url, { kind: 'make', project: { files: makeProject(honestProgram()) } }, bob);
+    const list = async (headers: Record<string, string>) => (await (await fetch(`${served.url}/api/jobs`, { headers })).json()) as { jobs: Array<{ id: string }>; note?: string };
+    const a = await postJob(served.url, { kind: 'make', project: { files: makeProject(honestProgram()) } }, alice);
+    const b = await postJob(served.url, { kind: 'make', project: { files: makeProject(honestProgram()) } }, bob);
     expect([a.status, b.status]).toEqual([201, 201]);
     expect(a.json.id).toMatch(/^j-[0-9a-f]{32}$/);
     expect((await list(alice)).jobs.map((j) => j.id)).toEqual([a.json.id]);
@@ -178,14 +162,14 @@ describe('requests', () => {
     const anonymous = await list({});
     expect(anonymous.jobs).toEqual([]); // no key: nobody's jobs, and says how to list yours
     expect(anonymous.note).toMatch(/X-Contract-Client/);
-    const short = await fetch(`${url}/api/jobs`, { headers: { 'X-Contract-Client': 'short' } });
+    const short = await fetch(`${served.url}/api/jobs`, { headers: { 'X-Contract-Client': 'short' } });
     expect(short.status).toBe(400);
-    await readEvents(url, a.json.id as string);
-    await readEvents(url, b.json.id as string);
+    await readEvents(served.url, a.json.id as string);
+    await readEvents(served.url, b.json.id as string);
   });
 
   test('GET /api/sandboxes says what auto picks and the limits', async () => {
-    const info = (await (await fetch(`${url}/api/sandboxes`)).json()) as Record<string, any>;
+    const info = (await (await fetch(`${served.url}/api/sandboxes`)).json()) as Record<string, any>;
     expect(info.auto).toBe('bwrap');
     expect(info.limits).toMatchObject({ memoryMiB: 512, processes: 256, buildSeconds: 120, runSeconds: 60, outputBytesPerStream: 1048576 });
     expect(info.sandboxes.find((s: any) => s.name === 'none').detail).toMatch(/not enforced: network isolation/);

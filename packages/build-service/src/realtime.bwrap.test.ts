@@ -5,41 +5,23 @@
  * cannot grant it refuses with the reason.
  */
 import { spawn, type ChildProcess } from 'node:child_process';
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { describe, expect, test } from 'vitest';
 import type { JobEvent, LineEvent } from './pipeline/job-events.js';
 import { REALTIME_BOUNDS } from './limits.js';
 import { BwrapSandbox } from './sandbox/bwrap.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
-import { MAA_MODULE, snapshotRuntime, tutorialFiles, withRegion } from './test-support/tutorial.js';
+import { MAA_MODULE, tutorialFiles, withRegion } from './test-support/tutorial.js';
 
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-let runtimeSource: string;
 const support = await new BwrapSandbox().realtimeSupport();
 
-beforeAll(async () => {
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  runtimeSource = snapshotRuntime();
-  server = createBuildServer({ token: false, port: 0, concurrency: 2, cacheDir, runtimeSource, sandbox: 'bwrap', allowNoneSandbox: true });
-  url = (await server.listen()).url;
-}, 240_000);
-
-afterAll(async () => {
-  await server?.close();
-  rmSync(cacheDir, { recursive: true, force: true });
-  rmSync(runtimeSource, { recursive: true, force: true });
-});
+const served = useBuildServer({ concurrency: 2, sandbox: 'bwrap', allowNoneSandbox: true }, { timeoutMs: 240_000 });
 
 async function runJob(body: Record<string, unknown>, onEvent?: (e: JobEvent) => void): Promise<{ job: Record<string, any>; lines: LineEvent[] }> {
-  const r = await postJob(url, body);
+  const r = await postJob(served.url, body);
   expect(r.status, JSON.stringify(r.json)).toBe(201);
-  const events = await readEvents(url, r.json.id as string, onEvent);
-  return { job: await getJob(url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
+  const events = await readEvents(served.url, r.json.id as string, onEvent);
+  return { job: await getJob(served.url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
 }
 
 const withIncludes = (files: Record<string, string>) =>
@@ -139,10 +121,10 @@ describe('real-time mode refused', () => {
 
   test('a bad realtime field, or realtime on a build, is a 400', async () => {
     const files = { 'Makefile': 'all:\n' };
-    const bad = await postJob(url, { action: 'run', realtime: 'yes', kind: 'make', project: { files } });
+    const bad = await postJob(served.url, { action: 'run', realtime: 'yes', kind: 'make', project: { files } });
     expect(bad.status).toBe(400);
     expect(bad.json.message ?? bad.json.error).toMatch(/realtime must be true or false/);
-    const onBuild = await postJob(url, { action: 'build', realtime: true, kind: 'make', project: { files } });
+    const onBuild = await postJob(served.url, { action: 'build', realtime: true, kind: 'make', project: { files } });
     expect(onBuild.status).toBe(400);
     expect(onBuild.json.message ?? onBuild.json.error).toMatch(/realtime applies to action "run" only/);
   });

@@ -5,37 +5,17 @@
  * the job fails with a message saying what the engine needs — never a module silently at a nice
  * level, never a bare engine error.
  */
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { afterAll, beforeAll, expect, test } from 'vitest';
+import { expect, test } from 'vitest';
 import type { LineEvent } from './pipeline/job-events.js';
 import { DockerSandbox } from './sandbox/docker.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
 import { dockerUp } from './test-support/docker-env.js';
-import { MAA_MODULE, snapshotRuntime, tutorialFiles, withRegion } from './test-support/tutorial.js';
+import { MAA_MODULE, tutorialFiles, withRegion } from './test-support/tutorial.js';
 
 const docker = dockerUp();
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-let runtimeSource: string;
 
-beforeAll(async () => {
-  if (!docker.available) return;
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  runtimeSource = snapshotRuntime();
-  server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir, runtimeSource, sandbox: 'docker' });
-  url = (await server.listen()).url;
-}, 300_000);
-
-afterAll(async () => {
-  await server?.close();
-  if (cacheDir) rmSync(cacheDir, { recursive: true, force: true });
-  if (runtimeSource) rmSync(runtimeSource, { recursive: true, force: true });
-  docker.stop();
-});
+const served = useBuildServer({ concurrency: 1, sandbox: 'docker' }, { skip: !docker.available, afterClose: () => docker.stop(), timeoutMs: 300_000 });
 
 if (!docker.available) test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});
 
@@ -48,10 +28,10 @@ test.skipIf(!docker.available)('a real-time run in docker: SCHED_FIFO at the mod
     true,
   );
   const support = await new DockerSandbox().realtimeSupport();
-  const r = await postJob(url, { action: 'run', duration: 2, realtime: true, project: { files } });
+  const r = await postJob(served.url, { action: 'run', duration: 2, realtime: true, project: { files } });
   expect(r.status, JSON.stringify(r.json)).toBe(201);
-  const lines = (await readEvents(url, r.json.id as string)).filter((e): e is LineEvent => e.type === 'line');
-  const job = await getJob(url, r.json.id as string);
+  const lines = (await readEvents(served.url, r.json.id as string)).filter((e): e is LineEvent => e.type === 'line');
+  const job = await getJob(served.url, r.json.id as string);
   const run = lines.filter((l) => l.step === 'run');
   console.info(`docker real-time mode here: ${support.ok ? support.detail : support.reason} -> ${job.status}: ${job.result?.message}`);
   if (!support.ok) {

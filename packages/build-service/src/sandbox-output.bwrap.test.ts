@@ -8,44 +8,30 @@ import { mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { connect, type Socket } from 'node:net';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, test, vi } from 'vitest';
+import { describe, expect, test, vi } from 'vitest';
 import type { LineEvent } from './pipeline/job-events.js';
 import { BuildOutputRouter } from './pipeline/output-router.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { createBuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
 import { startChildService } from './test-support/child-process-service.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
-import { MAA_MODULE, snapshotRuntime, tutorialFiles, withRegion } from './test-support/tutorial.js';
+import { MAA_MODULE, tutorialFiles, withRegion } from './test-support/tutorial.js';
 
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-let runtimeSource: string;
 const jobIds: string[] = [];
 
-beforeAll(async () => {
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  runtimeSource = snapshotRuntime();
-  server = createBuildServer({ token: false, port: 0, concurrency: 2, cacheDir, runtimeSource, sandbox: 'bwrap', log: () => {} });
-  url = (await server.listen()).url;
-}, 240_000);
-
-afterAll(async () => {
-  await server?.close();
-  rmSync(cacheDir, { recursive: true, force: true });
-  rmSync(runtimeSource, { recursive: true, force: true });
-});
+const served = useBuildServer({ concurrency: 2, sandbox: 'bwrap', log: () => {} }, { timeoutMs: 240_000 });
 
 async function runJob(body: Record<string, unknown>): Promise<{ job: Record<string, any>; lines: LineEvent[] }> {
-  const r = await postJob(url, body);
+  const r = await postJob(served.url, body);
   expect(r.status, JSON.stringify(r.json)).toBe(201);
   jobIds.push(r.json.id as string);
-  const events = await readEvents(url, r.json.id as string);
-  return { job: await getJob(url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
+  const events = await readEvents(served.url, r.json.id as string);
+  return { job: await getJob(served.url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
 }
 
 async function expectHealthy(): Promise<void> {
-  const res = await fetch(`${url}/api/health`);
+  const res = await fetch(`${served.url}/api/health`);
   expect(res.status).toBe(200);
   expect(((await res.json()) as { ok: boolean }).ok).toBe(true);
 }
@@ -132,7 +118,7 @@ describe('the service in its own process, as `contract serve` runs it', () => {
 describe('lines made for a backtracking parser (the event loop must keep answering)', () => {
   test('sixteen .print lines of "a:1:1: error: " + " [-Wx" x 13000: the event loop keeps answering', async () => {
     const line = 'a:1:1: error: ' + ' [-Wx'.repeat(13000);
-    const polled = await whilePolling(url, () => runJob({ action: 'build', kind: 'make', project: { files: makeProject(printing(line)) } }));
+    const polled = await whilePolling(served.url, () => runJob({ action: 'build', kind: 'make', project: { files: makeProject(printing(line)) } }));
     const { job, lines } = polled.value;
     const worst = polled.worst;
     expect(job.status, job.result?.message).toBe('succeeded');
@@ -181,14 +167,14 @@ function rawWebSocket(base: string, id: string): Promise<Socket> {
 
 describe('WebSocket clients that break the protocol', () => {
   test('an unmasked frame, or one above wsMessageBytes, ends that socket only', async () => {
-    const r = await postJob(url, { action: 'run', kind: 'make', project: { files: makeProject(infiniteLoop) } });
+    const r = await postJob(served.url, { action: 'run', kind: 'make', project: { files: makeProject(infiniteLoop) } });
     expect(r.status).toBe(201);
     const id = r.json.id as string;
     jobIds.push(id);
     try {
       // once it runs (a cancel while it prepares is another matter): its stream stays open
       await new Promise<void>((resolve) => {
-        const unsubscribe = server.service.get(id)!.events.subscribe(0, (e) => {
+        const unsubscribe = served.server.service.get(id)!.events.subscribe(0, (e) => {
           if (e.type === 'line' && e.line === 'looping') {
             setImmediate(() => unsubscribe());
             resolve();
@@ -199,17 +185,17 @@ describe('WebSocket clients that break the protocol', () => {
         Buffer.concat([Buffer.from([0x81, 5]), Buffer.from('hello')]), // a client frame must be masked
         Buffer.concat([Buffer.from([0x81, 0xfe, 0x27, 0x10]), Buffer.alloc(4), Buffer.alloc(10_000, 0x20)]), // masked, 10 000 bytes
       ]) {
-        const socket = await rawWebSocket(url, id);
+        const socket = await rawWebSocket(served.url, id);
         const closed = new Promise<void>((resolve) => socket.on('close', () => resolve()));
         socket.on('error', () => {});
         socket.write(frame);
         await closed;
         await expectHealthy();
       }
-      expect((await getJob(url, id)).status).toBe('running'); // the job goes on
+      expect((await getJob(served.url, id)).status).toBe('running'); // the job goes on
     } finally {
-      await fetch(`${url}/api/jobs/${id}`, { method: 'DELETE' });
-      await readEvents(url, id);
+      await fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' });
+      await readEvents(served.url, id);
     }
   });
 });
@@ -244,6 +230,6 @@ describe('an exception of the service while it reads a job output', () => {
     }
     expect(jobIds.length).toBeGreaterThanOrEqual(4);
     expect(cgroups).toEqual([]);
-    expect(readdirSync(join(cacheDir, 'ws'))).toEqual([]);
+    expect(readdirSync(join(served.cacheDir, 'ws'))).toEqual([]);
   });
 });

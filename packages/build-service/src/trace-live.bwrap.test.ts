@@ -5,42 +5,23 @@
  * across the stream, the supervisor's rule story among them, and a client subscribing from seq 0
  * after the run gets the identical trace (SSE and WebSocket).
  */
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
-import { join } from 'node:path';
-import { afterAll, beforeAll, expect, test } from 'vitest';
+import { expect, test } from 'vitest';
 import WebSocket from 'ws';
 import type { JobEvent, TraceEvent, TraceLine } from './pipeline/job-events.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
-import { MAA_MODULE, snapshotRuntime, tutorialFiles } from './test-support/tutorial.js';
+import { MAA_MODULE, tutorialFiles } from './test-support/tutorial.js';
 import { parseLogFile, parseRecordLine } from './trace/parse.js';
 import type { RuleRecord } from './trace/records.js';
 
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-let runtimeSource: string;
-
-beforeAll(async () => {
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  runtimeSource = snapshotRuntime();
-  server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir, runtimeSource });
-  url = (await server.listen()).url;
-}, 240_000);
-
-afterAll(async () => {
-  await server?.close();
-  rmSync(cacheDir, { recursive: true, force: true });
-  rmSync(runtimeSource, { recursive: true, force: true });
-});
+const served = useBuildServer({ concurrency: 1 }, { timeoutMs: 240_000 });
 
 const traceLines = (events: JobEvent[]): TraceLine[] => events.filter((e): e is TraceEvent => e.type === 'trace').flatMap((e) => e.records);
 
 function wsEvents(id: string): Promise<JobEvent[]> {
   return new Promise((resolve, reject) => {
     const out: JobEvent[] = [];
-    const ws = new WebSocket(`${url.replace('http', 'ws')}/api/jobs/${id}/ws`);
+    const ws = new WebSocket(`${served.url.replace('http', 'ws')}/api/jobs/${id}/ws`);
     ws.on('message', (d) => out.push(JSON.parse(String(d)) as JobEvent));
     ws.on('close', () => resolve(out));
     ws.on('error', reject);
@@ -54,14 +35,14 @@ test('the tutorial in bwrap: the live trace is the collected logs, in mono_ns or
   // waits for requests): its flush mark says so, and the other modules' newer records wait for
   // MAA's instead of overtaking them (docs/build-service-api.md "Trace channel").
   expect(files[MAA_MODULE]!).toContain('nanosleep(&step, NULL);');
-  const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: 3, project: { files } });
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 3, project: { files } });
   expect(r.status, JSON.stringify(r.json)).toBe(201);
   const id = r.json.id as string;
   const arrivals: number[] = [];
-  const live = await readEvents(url, id, (e) => {
+  const live = await readEvents(served.url, id, (e) => {
     if (e.type === 'trace') arrivals.push(Date.now());
   });
-  const job = await getJob(url, id);
+  const job = await getJob(served.url, id);
   const lines = live.filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
   expect(job.status, `${job.result?.message}\n${lines.slice(-20).join('\n')}`).toBe('succeeded');
 
@@ -80,7 +61,7 @@ test('the tutorial in bwrap: the live trace is the collected logs, in mono_ns or
   expect(listing.files).toHaveLength(9);
   let total = 0;
   for (const f of listing.files) {
-    const text = await (await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
+    const text = await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
     const want = parseLogFile({ name: f.name, text });
     const got = trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text));
     expect(got, f.name).toEqual(want);
@@ -102,6 +83,6 @@ test('the tutorial in bwrap: the live trace is the collected logs, in mono_ns or
   expect(rules[second]!.cause).toMatch(/^MAA:2 /);
 
   // a late client from seq 0 gets the same trace, over SSE and over WebSocket
-  expect(traceLines(await readEvents(url, id))).toEqual(trace);
+  expect(traceLines(await readEvents(served.url, id))).toEqual(trace);
   expect(traceLines(await wsEvents(id))).toEqual(trace);
 }, 240_000);

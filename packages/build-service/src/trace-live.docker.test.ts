@@ -13,38 +13,24 @@ import { createRequire } from 'node:module';
 import { closeSync, constants, mkdtempSync, openSync, readdirSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, test, vi } from 'vitest';
+import { afterAll, describe, expect, test, vi } from 'vitest';
 import { SANDBOX_UID } from '@contract-studio/conventions';
 import { DEFAULT_LIMITS } from './limits.js';
 import type { JobEvent, JobStatus, LineEvent, TraceEvent, TraceLine } from './pipeline/job-events.js';
 import { DockerSandbox } from './sandbox/docker.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { makeProject } from './test-support/c-projects.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
 import { dockerUp } from './test-support/docker-env.js';
-import { snapshotRuntime, tutorialFiles } from './test-support/tutorial.js';
+import { tutorialFiles } from './test-support/tutorial.js';
 import { CSV_HEADER, parseLogFile, parseRecordLine } from './trace/parse.js';
 
 const docker = dockerUp();
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-let runtimeSource: string;
 
-beforeAll(async () => {
-  if (!docker.available) return;
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  runtimeSource = snapshotRuntime();
-  server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir, runtimeSource, sandbox: 'docker', log: () => {} });
-  url = (await server.listen()).url;
-}, 300_000);
+const served = useBuildServer({ concurrency: 1, sandbox: 'docker', log: () => {} }, { skip: !docker.available, afterClose: () => docker.stop(), timeoutMs: 300_000 });
 
-afterAll(async () => {
+afterAll(() => {
   vi.restoreAllMocks();
-  await server?.close();
-  if (cacheDir) rmSync(cacheDir, { recursive: true, force: true });
-  if (runtimeSource) rmSync(runtimeSource, { recursive: true, force: true });
-  docker.stop();
 });
 
 const traceLines = (events: JobEvent[]): TraceLine[] => events.filter((e): e is TraceEvent => e.type === 'trace').flatMap((e) => e.records);
@@ -69,15 +55,15 @@ function mountpointElsewhere(): { dir: string; restore: () => void } {
 }
 
 async function runJob(body: Record<string, unknown>, onEvent?: (e: JobEvent) => void): Promise<{ job: Record<string, any>; events: JobEvent[]; lines: string[] }> {
-  const r = await postJob(url, body);
+  const r = await postJob(served.url, body);
   expect(r.status, JSON.stringify(r.json)).toBe(201);
-  const events = await readEvents(url, r.json.id as string, onEvent);
-  const job = await getJob(url, r.json.id as string);
+  const events = await readEvents(served.url, r.json.id as string, onEvent);
+  const job = await getJob(served.url, r.json.id as string);
   return { job, events, lines: events.filter((e): e is LineEvent => e.type === 'line').map((e) => e.line) };
 }
 
 async function artifactText(id: string, name: string): Promise<string> {
-  return (await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(name)}`)).text();
+  return (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(name)}`)).text();
 }
 
 if (!docker.available) test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});

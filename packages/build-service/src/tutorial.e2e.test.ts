@@ -4,41 +4,23 @@
  * in Docker; no-op rebuild; gcc diagnostics inside a protected region; adversarial code placed in
  * a module's protected region while an honest run completes.
  */
-import { mkdtempSync, rmSync } from 'node:fs';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { describe, expect, test } from 'vitest';
 import type { LineEvent } from './pipeline/job-events.js';
-import { createBuildServer, type BuildServer } from './server.js';
+import { useBuildServer } from './test-support/build-server.js';
 import { getJob, postJob, readEvents } from './test-support/client.js';
 import { dockerUp } from './test-support/docker-env.js';
-import { MAA_MODULE, snapshotRuntime, TUTORIAL_DIR, tutorialFiles, withRegion } from './test-support/tutorial.js';
+import { MAA_MODULE, TUTORIAL_DIR, tutorialFiles, withRegion } from './test-support/tutorial.js';
 
-let server: BuildServer;
-let url: string;
-let cacheDir: string;
-let runtimeSource: string;
 const docker = dockerUp();
 
-beforeAll(async () => {
-  cacheDir = mkdtempSync(join(tmpdir(), 'contract-cache-'));
-  runtimeSource = snapshotRuntime();
-  server = createBuildServer({ token: false, port: 0, concurrency: 3, cacheDir, runtimeSource, projectRoots: [join(TUTORIAL_DIR, '..')] });
-  url = (await server.listen()).url;
-}, 240_000);
-
-afterAll(async () => {
-  await server?.close();
-  rmSync(cacheDir, { recursive: true, force: true });
-  rmSync(runtimeSource, { recursive: true, force: true });
-  docker.stop();
-});
+const served = useBuildServer({ concurrency: 3, projectRoots: [join(TUTORIAL_DIR, '..')] }, { afterClose: () => docker.stop(), timeoutMs: 240_000 });
 
 async function runJob(body: Record<string, unknown>): Promise<{ job: Record<string, any>; lines: LineEvent[] }> {
-  const r = await postJob(url, body);
+  const r = await postJob(served.url, body);
   expect(r.status, JSON.stringify(r.json)).toBe(201);
-  const events = await readEvents(url, r.json.id as string);
-  return { job: await getJob(url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
+  const events = await readEvents(served.url, r.json.id as string);
+  return { job: await getJob(served.url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line') };
 }
 
 function expectTutorialRan(job: Record<string, any>, lines: LineEvent[]): void {
@@ -57,13 +39,13 @@ interface ArtifactListing {
 }
 
 async function artifacts(id: string): Promise<ArtifactListing> {
-  const res = await fetch(`${url}/api/jobs/${id}/artifacts`);
+  const res = await fetch(`${served.url}/api/jobs/${id}/artifacts`);
   expect(res.status).toBe(200);
   return ((await res.json()) as { artifacts: ArtifactListing }).artifacts;
 }
 
 async function artifactText(id: string, name: string): Promise<{ status: number; text: string }> {
-  const res = await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(name)}`);
+  const res = await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(name)}`);
   return { status: res.status, text: await res.text() };
 }
 
