@@ -35,6 +35,27 @@ describe('SSE stream of a job', () => {
   const records = (from: number, n: number): TraceLine[] =>
     Array.from({ length: n }, (_, i) => ({ file: 'M_1.csv', line: from + i, text: `${1000 + from + i},2026-11-26T12:00:00.000000Z,M,user,,,0,${'x'.repeat(200)}` }));
 
+  /**
+   * With two clients attached, one of them stalled: 30 MB of live trace (an event of 1000 records
+   * every 15 ms; the service wakes every 10 ms at most) from line `first`, then the end. The stalled
+   * client must have been unsubscribed (its socket destroyed: the service does not keep 30 MB for it)
+   * before the end. Returns the line after the last one sent.
+   */
+  const floodPastStalled = async (events: JobEvents, first: number): Promise<number> => {
+    for (let i = 0; i < 200 && events.subscriberCount < 2; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(2);
+    let line = first;
+    for (let k = 0; k < 120; k++) {
+      events.append({ type: 'trace', records: records(line, 1000) });
+      line += 1000;
+      await sleep(15);
+    }
+    for (let i = 0; i < 200 && events.subscriberCount > 1; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(1);
+    events.append({ type: 'end', result: null });
+    return line;
+  };
+
   test('one frame per event for all its clients; a stalled client is dropped past the bound, the others get every record in order', async () => {
     const events = new JobEvents();
     const base = await serve(events, 8 * 1024 * 1024);
@@ -51,21 +72,10 @@ describe('SSE stream of a job', () => {
       got.push(...(e as TraceEvent).records);
     });
     for (let i = 0; i < 200 && events.subscriberCount < 2; i++) await sleep(10);
-    expect(events.subscriberCount).toBe(2);
     const e = events.append({ type: 'trace', records: records(2, 3) });
     expect(sseFrame(e)).toBe(sseFrame(e));
     expect(sseFrame(e)).toMatch(/^id: 1\nevent: trace\ndata: \{"records":\[\{"file":"M_1.csv","line":2,.*\}\],"seq":1,"t":\d+\}\n\n$/);
-    // 30 MB of live trace, an event of 1000 records every 15 ms (the service wakes every 10 ms at most)
-    let line = 5;
-    for (let k = 0; k < 120; k++) {
-      events.append({ type: 'trace', records: records(line, 1000) });
-      line += 1000;
-      await sleep(15);
-    }
-    // the stalled one is unsubscribed (its socket destroyed): the service does not keep 30 MB for it
-    for (let i = 0; i < 200 && events.subscriberCount > 1; i++) await sleep(10);
-    expect(events.subscriberCount).toBe(1);
-    events.append({ type: 'end', result: null });
+    const line = await floodPastStalled(events, 5);
     await reading;
     expect(traceEvents).toBe(121);
     expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
@@ -109,17 +119,7 @@ describe('SSE stream of a job', () => {
       });
     });
     await new Promise((r) => reader.on('open', r));
-    for (let i = 0; i < 200 && events.subscriberCount < 2; i++) await sleep(10);
-    expect(events.subscriberCount).toBe(2);
-    let line = 2;
-    for (let k = 0; k < 120; k++) {
-      events.append({ type: 'trace', records: records(line, 1000) });
-      line += 1000;
-      await sleep(15);
-    }
-    for (let i = 0; i < 200 && events.subscriberCount > 1; i++) await sleep(10);
-    expect(events.subscriberCount).toBe(1);
-    events.append({ type: 'end', result: null });
+    const line = await floodPastStalled(events, 2);
     await ended;
     expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
     reader.close();
