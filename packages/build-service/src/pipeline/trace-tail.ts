@@ -24,6 +24,7 @@ import { ARTIFACT_BOUNDS, LOG_DIR, SAFE_NAME } from './artifacts.js';
 import type { TraceLine } from './job-events.js';
 import { TraceLineSplitter } from './trace-lines.js';
 import { monoOf, TraceOrder } from './trace-order.js';
+import { openDirNoFollow, openedDirPath, openRegularFileIn } from '../util/safe-fs.js';
 
 export interface TraceTailBounds {
   pollMs: number;
@@ -221,7 +222,7 @@ export class TraceTail {
   }
 
   private dirPath(): string {
-    return `/proc/self/fd/${this.dir!.fd}`;
+    return openedDirPath(this.dir!);
   }
 
   /** The next read in `ms` (pollMs by default; wakeMs after a change of logs/). */
@@ -304,7 +305,7 @@ export class TraceTail {
   private async openDir(): Promise<boolean> {
     if (this.dir) return true;
     try {
-      this.dir = await fsp.open(this.logsDir, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+      this.dir = await openDirNoFollow(this.logsDir);
       if (!this.ending) this.watchDir();
       return true;
     } catch (e) {
@@ -381,19 +382,18 @@ export class TraceTail {
       this.noteOnce('files', `trace: more than ${this.bounds.files} logs: the others are only in the collected logs`);
       return;
     }
-    let fh: FileHandle;
+    let opened: Awaited<ReturnType<typeof openRegularFileIn>>;
     try {
-      fh = await fsp.open(join(this.dirPath(), name), constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
+      opened = await openRegularFileIn(this.dir!, name, constants.O_RDONLY);
     } catch {
       this.ignored.add(name); // a link (ELOOP), gone, not readable
       return;
     }
-    const st = await fh.stat().catch(() => null);
-    if (!st?.isFile()) {
+    if (!opened) {
       this.ignored.add(name); // a FIFO, a socket, a device, a folder
-      await fh.close().catch(() => {});
       return;
     }
+    const fh = opened.fh;
     const before = this.before.get(name) ?? 0;
     const f: Tailed = { name, fh, splitter: new TraceLineSplitter(name, before), done: false, dormantUntil: before, mark: null, markTries: MARK_TRIES, markWritable: false };
     this.files.set(name, f);
@@ -405,28 +405,26 @@ export class TraceTail {
   private async openMark(f: Tailed): Promise<void> {
     if (f.mark || f.markTries <= 0) return;
     f.markTries--;
-    let fh: FileHandle;
-    const path = join(this.dirPath(), f.name + MARK_SUFFIX);
-    const flags = constants.O_NOFOLLOW | constants.O_NONBLOCK;
+    const name = f.name + MARK_SUFFIX;
+    let opened: Awaited<ReturnType<typeof openRegularFileIn>>;
     try {
-      fh = await fsp.open(path, constants.O_RDWR | flags);
+      opened = await openRegularFileIn(this.dir!, name, constants.O_RDWR);
       f.markWritable = true;
     } catch (e) {
       if ((e as NodeJS.ErrnoException).code !== 'EACCES') return; // none (a runtime without marks, CONTRACT_LOG_MARK unset): the order window applies
       try {
-        fh = await fsp.open(path, constants.O_RDONLY | flags); // read only: the order, not the sooner flush
+        opened = await openRegularFileIn(this.dir!, name, constants.O_RDONLY); // read only: the order, not the sooner flush
       } catch {
         return;
       }
     }
-    const st = await fh.stat().catch(() => null);
-    if (!st?.isFile() || st.size < 16) {
+    if (!opened || opened.size < 16) {
       f.markTries = 0;
       f.markWritable = false;
-      await fh.close().catch(() => {});
+      await opened?.fh.close().catch(() => {});
       return;
     }
-    f.mark = fh;
+    f.mark = opened.fh;
     if (this.watched) this.askFlush(f);
   }
 

@@ -15,6 +15,8 @@
 import { constants, promises as fsp, readlinkSync } from 'node:fs';
 import { randomBytes, timingSafeEqual } from 'node:crypto';
 import { isAbsolute } from 'node:path';
+import type { FileHandle } from 'node:fs/promises';
+import { entryPath, openDirNoFollow, openRegularFileIn } from '../util/safe-fs.js';
 import type Docker from 'dockerode';
 import type { ContainerCreateOptions } from 'dockerode';
 import type { LiveWorkRoot } from './types.js';
@@ -88,9 +90,9 @@ export function sharesTimeNamespace(pid: number): boolean | null {
  */
 export async function readNonceAt(mountpoint: string, name: string, nonce: Buffer): Promise<{ ok: true } | { ok: false; reason: string; removed: boolean }> {
   if (!isAbsolute(mountpoint)) return { ok: false, reason: `the engine gives the volume no host path (Mountpoint ${JSON.stringify(mountpoint)})`, removed: false };
-  let dir: fsp.FileHandle;
+  let dir: FileHandle;
   try {
-    dir = await fsp.open(mountpoint, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+    dir = await openDirNoFollow(mountpoint);
   } catch (e) {
     const code = (e as NodeJS.ErrnoException).code ?? 'error';
     const why = code === 'ENOENT'
@@ -100,21 +102,22 @@ export async function readNonceAt(mountpoint: string, name: string, nonce: Buffe
         : `cannot be opened as a folder (${code})`;
     return { ok: false, reason: `the volume's mountpoint ${mountpoint} ${why}`, removed: false };
   }
-  const path = `/proc/self/fd/${dir.fd}/${name}`;
+  const path = entryPath(dir, name);
   try {
     let got: Buffer | null = null;
     let code = 'not a regular file of the nonce\'s size';
     try {
-      const fh = await fsp.open(path, constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
-      try {
-        const st = await fh.stat();
-        if (st.isFile() && st.size === nonce.length) {
-          const buf = Buffer.alloc(nonce.length + 1);
-          const { bytesRead } = await fh.read(buf, 0, buf.length, 0);
-          got = buf.subarray(0, bytesRead);
+      const opened = await openRegularFileIn(dir, name, constants.O_RDONLY);
+      if (opened) {
+        try {
+          if (opened.size === nonce.length) {
+            const buf = Buffer.alloc(nonce.length + 1);
+            const { bytesRead } = await opened.fh.read(buf, 0, buf.length, 0);
+            got = buf.subarray(0, bytesRead);
+          }
+        } finally {
+          await opened.fh.close().catch(() => {});
         }
-      } finally {
-        await fh.close().catch(() => {});
       }
     } catch (e) {
       code = (e as NodeJS.ErrnoException).code ?? 'error';

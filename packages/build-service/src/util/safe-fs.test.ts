@@ -1,10 +1,10 @@
-import { existsSync, mkdirSync, mkdtempSync, readFileSync, rmSync, symlinkSync, writeFileSync, lstatSync } from 'node:fs';
+import { constants, existsSync, mkdirSync, mkdtempSync, readFileSync, renameSync, rmSync, symlinkSync, writeFileSync, lstatSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
 import { hostileTreeScript } from '../test-support/hostile-tree.js';
-import { checkRelativePath, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow, UnsafePathError } from './safe-fs.js';
+import { checkRelativePath, entryPath, openDirNoFollow, openRegularFileIn, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow, UnsafePathError } from './safe-fs.js';
 
 let root: string;
 let outside: string;
@@ -64,5 +64,29 @@ describe('safe fs (planted links never followed)', () => {
 
   test.each(['../x', '/abs', 'a//b', 'a/./b', '', 'a\\b'])('rejects path %j', (p) => {
     expect(() => checkRelativePath(p)).toThrow(UnsafePathError);
+  });
+
+  test('a folder opened without following: its entries by descriptor, regular files only, a link refused, a FIFO not blocking', async () => {
+    mkdirSync(join(root, 'logs'));
+    writeFileSync(join(root, 'logs', 'A.csv'), 'abc');
+    symlinkSync(join(outside, 'secret'), join(root, 'logs', 'link.csv'));
+    execFileSync('mkfifo', [join(root, 'logs', 'fifo.csv')]);
+    symlinkSync(outside, join(root, 'logs-link'));
+    await expect(openDirNoFollow(join(root, 'logs-link'))).rejects.toMatchObject({ code: 'ENOTDIR' }); // Linux: O_DIRECTORY meets the link itself
+    const dir = await openDirNoFollow(join(root, 'logs'));
+    try {
+      // the folder renamed and replaced by a link to the outside: the descriptor still names the folder
+      renameSync(join(root, 'logs'), join(root, 'logs.old'));
+      symlinkSync(outside, join(root, 'logs'));
+      const a = await openRegularFileIn(dir, 'A.csv', constants.O_RDONLY);
+      expect(a?.size).toBe(3);
+      await a?.fh.close();
+      expect(await openRegularFileIn(dir, 'fifo.csv', constants.O_RDONLY)).toBeNull();
+      await expect(openRegularFileIn(dir, 'link.csv', constants.O_RDONLY)).rejects.toMatchObject({ code: 'ELOOP' });
+      await expect(openRegularFileIn(dir, 'secret', constants.O_RDONLY)).rejects.toMatchObject({ code: 'ENOENT' });
+      expect(readFileSync(entryPath(dir, 'A.csv'), 'utf8')).toBe('abc');
+    } finally {
+      await dir.close();
+    }
   });
 });

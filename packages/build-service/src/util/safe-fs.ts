@@ -9,10 +9,13 @@
  *   - removes trees without following symlinks (a link is unlinked, never traversed), with
  *     descriptor-relative walks that work at any depth.
  * They are only called while no process of the job is alive (the sandbox is stopped first), so the
- * checks cannot race with the sandboxed code.
+ * checks cannot race with the sandboxed code. The exception, openDirNoFollow / openRegularFileIn,
+ * is made for folders a running job changes (the live trace): it holds the folder by descriptor and
+ * checks what it opened, not a path.
  */
 import { spawn } from 'node:child_process';
 import { constants, promises as fsp } from 'node:fs';
+import type { FileHandle } from 'node:fs/promises';
 import { dirname, join, relative, resolve, sep } from 'node:path';
 
 export class UnsafePathError extends Error {}
@@ -228,4 +231,40 @@ export async function listFilesNoFollow(
 export function isInside(parent: string, child: string): boolean {
   const rel = relative(resolve(parent), resolve(child));
   return rel === '' || (!rel.startsWith('..') && !rel.startsWith(sep) && rel !== '..');
+}
+
+/**
+ * A folder the sandbox may still be changing (a running job's logs/, a work volume), opened once
+ * without following a link (O_DIRECTORY | O_NOFOLLOW); its entries are then reached through the
+ * descriptor (`entryPath`), so a folder renamed or replaced by a link later is never walked
+ * through. Throws the open's error (ENOENT; ENOTDIR for a link or a file; EACCES).
+ */
+export function openDirNoFollow(path: string): Promise<FileHandle> {
+  return fsp.open(path, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+}
+
+/** The path of a folder opened by openDirNoFollow, through its descriptor (for listing and watching it). */
+export function openedDirPath(dir: FileHandle): string {
+  return `/proc/self/fd/${dir.fd}`;
+}
+
+/** The path of entry `name` of a folder opened by openDirNoFollow, through its descriptor. */
+export function entryPath(dir: FileHandle, name: string): string {
+  return `${openedDirPath(dir)}/${name}`;
+}
+
+/**
+ * Opens entry `name` of `dir` (openDirNoFollow) with `access` (O_RDONLY, O_RDWR) as a regular file:
+ * a link is refused (O_NOFOLLOW), a FIFO does not block the open (O_NONBLOCK); null, with nothing
+ * left open, when it is not a regular file (a FIFO, a socket, a device, a folder). Throws the open's
+ * error (ELOOP for a link, ENOENT, EACCES).
+ */
+export async function openRegularFileIn(dir: FileHandle, name: string, access: number): Promise<{ fh: FileHandle; size: number } | null> {
+  const fh = await fsp.open(entryPath(dir, name), access | constants.O_NOFOLLOW | constants.O_NONBLOCK);
+  const st = await fh.stat().catch(() => null);
+  if (!st?.isFile()) {
+    await fh.close().catch(() => {});
+    return null;
+  }
+  return { fh, size: st.size };
 }
