@@ -10,6 +10,7 @@ import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { Job } from '../pipeline/job.js';
 import type { JobEvent } from '../pipeline/job-events.js';
 import { SERVICE_BOUNDS } from '../limits.js';
+import { LiveBacklog } from './live-backlog.js';
 
 export function eventPayload(e: JobEvent): Record<string, unknown> {
   const { type: _type, ...data } = e;
@@ -38,16 +39,14 @@ export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: S
   });
   res.write(': contract build service\n\n');
   let closed = false;
-  /** Bytes written while replaying (null while it runs): the buffer the live events may add to. */
-  let replayed: number | null = null;
-  let written = 0;
+  const backlog = new LiveBacklog(streamBufferedBytes);
   // a client that goes away mid-write must end this stream only, never the service
   const write = (text: string): void => {
     if (closed) return;
     try {
       res.write(text);
-      if (replayed === null) written += Buffer.byteLength(text);
-      if (replayed !== null && res.writableLength > replayed + streamBufferedBytes) {
+      backlog.sent(Buffer.byteLength(text));
+      if (backlog.tooFarBehind(res.writableLength)) {
         // too far behind: dropped at once (end() would wait for it to read what is buffered)
         closed = true;
         clearInterval(ping);
@@ -80,7 +79,7 @@ export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: S
     write(sseFrame(e));
     if (e.type === 'end') setImmediate(stop);
   });
-  replayed = written;
+  backlog.replayDone();
   req.on('close', stop);
   if (job.events.isEnded) setImmediate(stop);
 }

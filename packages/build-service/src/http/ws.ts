@@ -8,6 +8,7 @@ import type { Duplex } from 'node:stream';
 import { WebSocketServer } from 'ws';
 import type { JobService } from '../job-service.js';
 import { SERVICE_BOUNDS } from '../limits.js';
+import { LiveBacklog } from './live-backlog.js';
 
 export class JobWebSockets {
   // clients only send {"type":"cancel"}: a bounded frame size (SERVICE_BOUNDS.wsMessageBytes)
@@ -32,20 +33,19 @@ export class JobWebSockets {
       });
       // a client that leaves more than streamBufferedBytes of live events unread (beyond its
       // replay) is dropped, as on SSE (http/sse.ts)
-      let replayed: number | null = null;
-      let written = 0;
+      const backlog = new LiveBacklog(this.streamBufferedBytes);
       unsubscribe = job.events.subscribe(after, (e) => {
         const text = JSON.stringify(e);
-        if (replayed === null) written += Buffer.byteLength(text);
+        backlog.sent(Buffer.byteLength(text));
         ws.send(text, () => {}); // a send on a closing socket reports here, not thrown
-        if (replayed !== null && ws.bufferedAmount > replayed + this.streamBufferedBytes) {
+        if (backlog.tooFarBehind(ws.bufferedAmount)) {
           unsubscribe();
           ws.terminate();
           return;
         }
         if (e.type === 'end') setImmediate(() => ws.close(1000, 'job ended'));
       });
-      replayed = written;
+      backlog.replayDone();
       ws.on('message', (data) => {
         try {
           const msg = JSON.parse(String(data)) as { type?: string };
