@@ -1,11 +1,15 @@
 /**
  * What every build-service benchmark shares: its progress line on stderr, rounding, percentiles,
- * and the part it writes (bench/parts/<name>.json, merged into bench/results.json by
- * bench/run-all.mjs).
+ * the part it writes (bench/parts/<name>.json, merged into bench/results.json by
+ * bench/run-all.mjs), its exit on failure, and (the trace benches) a build server over a temp root
+ * with the "New project" template.
  */
-import { mkdirSync, writeFileSync } from 'node:fs';
+import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { REPO } from '../test-support/tutorial.js';
+import { PROJECT_TEMPLATES } from '@contract-studio/language';
+import { createBuildServer, type BuildServer, type BuildServerOptions } from '../server.js';
+import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 
 /** A progress line, `[bench <tag>] ...`, on stderr (stdout stays free for the part). */
 export function benchLog(tag: string): (line: string) => void {
@@ -31,4 +35,50 @@ export function median(xs: number[]): number {
 export function writePart(name: string, out: Record<string, unknown>): void {
   mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });
   writeFileSync(join(REPO, 'bench', 'parts', `${name}.json`), JSON.stringify(out, null, 2) + '\n');
+}
+
+/** Runs a benchmark's main; a failure is one FAILED line and exit status 1. */
+export function runBench(say: (line: string) => void, main: () => Promise<void>): void {
+  main().catch((e) => {
+    say(`FAILED: ${(e as Error).stack ?? e}`);
+    process.exit(1);
+  });
+}
+
+/** The "New project" template (docs/getting-started.md) written to `dir`, each file through `edit`. */
+export function writeTemplateProject(dir: string, edit: (text: string) => string = (t) => t): void {
+  mkdirSync(dir, { recursive: true });
+  for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) writeFileSync(join(dir, name), edit(text));
+}
+
+export interface BenchServer {
+  url: string;
+  server: BuildServer;
+  /** The folder the server may build projects from (<root>/projects). */
+  projects: string;
+  /** Closes the server, removes the root and the runtime snapshot. */
+  close(): Promise<void>;
+}
+
+/**
+ * A build server (no token, one job at a time) over a fresh temp root (mode 755: the jobs' uids
+ * walk through it to their work dirs) holding its cache and projects folder, on a snapshot of the
+ * runtime.
+ */
+export async function startBenchServer(prefix: string, options: Pick<BuildServerOptions, 'log'> = {}): Promise<BenchServer> {
+  const root = mkdtempSync(join(tmpdir(), prefix));
+  chmodSync(root, 0o755);
+  const projects = join(root, 'projects');
+  mkdirSync(projects);
+  const runtimeSource = snapshotRuntime();
+  const server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir: join(root, 'cache'), runtimeSource, projectRoots: [projects], ...options });
+  const { url } = await server.listen();
+  return {
+    url, server, projects,
+    async close() {
+      await server.close();
+      rmSync(root, { recursive: true, force: true });
+      rmSync(runtimeSource, { recursive: true, force: true });
+    },
+  };
 }

@@ -17,7 +17,7 @@ import { join } from 'node:path';
 import { createBuildServer, type BuildServer } from '../server.js';
 import type { SandboxName } from '../sandbox/types.js';
 import { getJob, postJob, readEvents } from '../test-support/client.js';
-import { benchLog, median, round, writePart } from './bench-support.js';
+import { benchLog, median, round, writePart, runBench } from './bench-support.js';
 import { dockerUp } from '../test-support/docker-env.js';
 import { MAA_MODULE, snapshotRuntime, TUTORIAL_DIR, tutorialFiles, withRegion } from '../test-support/tutorial.js';
 
@@ -113,7 +113,4 @@ async function main(): Promise<void> {
   console.log(JSON.stringify(out, null, 2));
 }
 
-main().catch((e: unknown) => {
-  process.stderr.write(`[bench build] FAILED: ${(e as Error).stack ?? e}\n`);
-  process.exit(1);
-});
+runBench(say, main);

@@ -18,7 +18,7 @@ import { join } from 'node:path';
 import { DEFAULT_LIMITS, REALTIME_BOUNDS } from '../limits.js';
 import { BwrapSandbox } from '../sandbox/bwrap.js';
 import { REPO } from '../test-support/tutorial.js';
-import { benchLog, median, round, writePart } from './bench-support.js';
+import { benchLog, median, round, writePart, runBench } from './bench-support.js';
 
 const say = benchLog('rt-sandbox');
 const RUNS = Number(process.env.RT_BENCH_RUNS ?? 6);
@@ -120,7 +120,4 @@ async function main(): Promise<void> {
   say(JSON.stringify(out));
 }
 
-main().catch((e) => {
-  say(`FAILED: ${(e as Error).message}`);
-  process.exit(1);
-});
+runBench(say, main);

@@ -25,7 +25,7 @@ import { JobService } from '../job-service.js';
 import { artifactBytes } from '../pipeline/artifacts.js';
 import { REPO, snapshotRuntime } from '../test-support/tutorial.js';
 import { processParents } from '../sandbox/host-process.js';
-import { benchLog, round, writePart } from './bench-support.js';
+import { benchLog, round, writePart, runBench } from './bench-support.js';
 
 const say = benchLog('soak');
 
@@ -148,7 +148,4 @@ async function main(): Promise<void> {
   }
 }
 
-main().catch((e: unknown) => {
-  process.stderr.write(`[bench soak] ${(e as Error).stack ?? String(e)}\n`);
-  process.exit(1);
-});
+runBench(say, main);

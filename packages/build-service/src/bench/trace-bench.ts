@@ -28,17 +28,13 @@
  * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 70 s in all.
  */
 import { spawn } from 'node:child_process';
-import { chmodSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readdirSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { PROJECT_TEMPLATES } from '@contract-studio/language';
 import { artifactBytes, type Artifact } from '../pipeline/artifacts.js';
-import { createBuildServer } from '../server.js';
 import { postJob } from '../test-support/client.js';
 import { followTrace, type ClientReport } from './trace-bench-client.js';
-import { snapshotRuntime } from '../test-support/tutorial.js';
-import { benchLog, median, pct, round, writePart } from './bench-support.js';
+import { benchLog, median, pct, round, runBench, startBenchServer, writePart, writeTemplateProject } from './bench-support.js';
 import { parseRecordLine } from '../trace/parse.js';
 
 const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
@@ -112,23 +108,14 @@ interface Phase {
 }
 
 /** The template at 1 kHz: PERIOD=1ms, module budgets well inside it. */
-function project(dir: string): void {
-  mkdirSync(dir, { recursive: true });
-  for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) {
-    writeFileSync(join(dir, name), text.replace('PERIOD=10ms; CRITICAL_DELAY=10ms;', 'PERIOD=1ms; CRITICAL_DELAY=1ms;').replace('C=500us;', 'C=100us;').replace('C=1ms;', 'C=200us;'));
-  }
-}
+const atOneKhz = (text: string): string =>
+  text.replace('PERIOD=10ms; CRITICAL_DELAY=10ms;', 'PERIOD=1ms; CRITICAL_DELAY=1ms;').replace('C=500us;', 'C=100us;').replace('C=1ms;', 'C=200us;');
 
 async function main(): Promise<void> {
-  const root = mkdtempSync(join(tmpdir(), 'contract-monitor-bench-'));
-  chmodSync(root, 0o755); // the jobs' uids walk through it to their work dirs
-  const cacheDir = join(root, 'cache');
-  const dir = join(root, 'projects', 'khz');
-  project(dir);
-  mkdirSync(cacheDir, { recursive: true });
-  const runtimeSource = snapshotRuntime();
-  const server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir, runtimeSource, projectRoots: [join(root, 'projects')] });
-  const { url } = await server.listen();
+  const bench = await startBenchServer('contract-monitor-bench-');
+  const { url, server } = bench;
+  const dir = join(bench.projects, 'khz');
+  writeTemplateProject(dir, atOneKhz);
   /** Logs of earlier runs stay in the reused workspace's logs/ (and among the artifacts). */
   const seen = new Set<string>();
   /** One run of `seconds`; `during` runs once the run streams its trace; returns ORD's releases (tick_ns, lateness in us) and the run's logs. */
@@ -255,13 +242,8 @@ async function main(): Promise<void> {
     say(JSON.stringify(out));
     writePart('monitor', out);
   } finally {
-    await server.close();
-    rmSync(root, { recursive: true, force: true });
-    rmSync(runtimeSource, { recursive: true, force: true });
+    await bench.close();
   }
 }
 
-main().catch((e) => {
-  say(`FAILED: ${(e as Error).stack ?? e}`);
-  process.exit(1);
-});
+runBench(say, main);

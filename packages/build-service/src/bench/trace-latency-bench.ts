@@ -11,30 +11,21 @@
  *   trace_latency.<sandbox>_records                records measured
  * A build + 1 s warm-up run first in each sandbox; about 30 s in all.
  */
-import { chmodSync, mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { PROJECT_TEMPLATES } from '@contract-studio/language';
 import type { JobStatus } from '../pipeline/job-events.js';
-import { createBuildServer } from '../server.js';
 import { DockerSandbox } from '../sandbox/docker.js';
 import { postJob, streamEvents } from '../test-support/client.js';
-import { snapshotRuntime } from '../test-support/tutorial.js';
 import { monoOf } from '../pipeline/trace-order.js';
-import { benchLog, pct, round, writePart } from './bench-support.js';
+import { benchLog, pct, round, runBench, startBenchServer, writePart, writeTemplateProject } from './bench-support.js';
 
 const RUN_SECONDS = Number(process.env.RUN_SECONDS ?? 5);
 const say = benchLog('trace-latency');
 
 async function main(): Promise<void> {
-  const root = mkdtempSync(join(tmpdir(), 'contract-trace-latency-'));
-  const runtimeSource = snapshotRuntime();
-  chmodSync(root, 0o755); // the jobs' uids walk through it to their work dirs
-  const dir = join(root, 'projects', 'template');
-  mkdirSync(dir, { recursive: true });
-  for (const [name, text] of Object.entries(PROJECT_TEMPLATES)) writeFileSync(join(dir, name), text);
-  const server = createBuildServer({ token: false, port: 0, concurrency: 1, cacheDir: join(root, 'cache'), runtimeSource, projectRoots: [join(root, 'projects')], log: () => {} });
-  const { url } = await server.listen();
+  const bench = await startBenchServer('contract-trace-latency-', { log: () => {} });
+  const { url } = bench;
+  const dir = join(bench.projects, 'template');
+  writeTemplateProject(dir);
   const out: Record<string, number | string> = {};
   /** One run followed from its start; the latencies (ms) of the records that came while it was running. */
   const run = async (sandbox: string, seconds: number): Promise<number[]> => {
@@ -83,13 +74,8 @@ async function main(): Promise<void> {
     say(JSON.stringify(out));
     writePart('trace-latency', out);
   } finally {
-    await server.close();
-    rmSync(root, { recursive: true, force: true });
-    rmSync(runtimeSource, { recursive: true, force: true });
+    await bench.close();
   }
 }
 
-main().catch((e) => {
-  say(`FAILED: ${(e as Error).stack ?? e}`);
-  process.exit(1);
-});
+runBench(say, main);
