@@ -9,7 +9,7 @@ import { CANCEL_DEADLINE_MS } from './limits.js';
 import type { JobEvent, LineEvent } from './pipeline/job-events.js';
 import { useBuildServer } from './test-support/build-server.js';
 import { brokenProgram, honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
-import { getJob, postJob, readEvents } from './test-support/client.js';
+import { getJob, jobEventFromWire, postJob, readEvents } from './test-support/client.js';
 
 const served = useBuildServer({ concurrency: 2, queueSize: 1, sandbox: 'bwrap' }, { snapshotRuntime: false });
 
@@ -17,7 +17,7 @@ function wsEvents(id: string): Promise<JobEvent[]> {
   return new Promise((resolve, reject) => {
     const ws = new WebSocket(`${served.url.replace('http', 'ws')}/api/jobs/${id}/ws`);
     const events: JobEvent[] = [];
-    ws.on('message', (d) => events.push(JSON.parse(String(d)) as JobEvent));
+    ws.on('message', (d) => events.push(jobEventFromWire(JSON.parse(String(d)) as Record<string, unknown>)));
     ws.on('close', () => resolve(events));
     ws.on('error', reject);
   });

@@ -9,7 +9,7 @@ import { expect, test } from 'vitest';
 import WebSocket from 'ws';
 import type { JobEvent, TraceEvent, TraceLine } from './pipeline/job-events.js';
 import { useBuildServer } from './test-support/build-server.js';
-import { getJob, postJob, readEvents } from './test-support/client.js';
+import { getJob, jobEventFromWire, postJob, readEvents } from './test-support/client.js';
 import { MAA_MODULE, tutorialFiles } from './test-support/tutorial.js';
 import { parseLogFile, parseRecordLine } from './trace/parse.js';
 import type { RuleRecord } from './trace/records.js';
@@ -22,7 +22,7 @@ function wsEvents(id: string): Promise<JobEvent[]> {
   return new Promise((resolve, reject) => {
     const out: JobEvent[] = [];
     const ws = new WebSocket(`${served.url.replace('http', 'ws')}/api/jobs/${id}/ws`);
-    ws.on('message', (d) => out.push(JSON.parse(String(d)) as JobEvent));
+    ws.on('message', (d) => out.push(jobEventFromWire(JSON.parse(String(d)) as Record<string, unknown>)));
     ws.on('close', () => resolve(out));
     ws.on('error', reject);
   });

@@ -10,7 +10,9 @@ import { afterEach, describe, expect, test } from 'vitest';
 import WebSocket from 'ws';
 import { JobEvents, type TraceEvent, type TraceLine } from '../pipeline/job-events.js';
 import { streamEvents } from '../test-support/client.js';
-import { sseFrame, streamSse } from './sse.js';
+import { streamSse } from './sse.js';
+import { sseFrame, wsFrame } from './event-wire.js';
+import { decodeTraceRecords } from '../trace/wire.js';
 import { JobWebSockets } from './ws.js';
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
@@ -74,7 +76,9 @@ describe('SSE stream of a job', () => {
     for (let i = 0; i < 200 && events.subscriberCount < 2; i++) await sleep(10);
     const e = events.append({ type: 'trace', records: records(2, 3) });
     expect(sseFrame(e)).toBe(sseFrame(e));
-    expect(sseFrame(e)).toMatch(/^id: 1\nevent: trace\ndata: \{"records":\[\{"file":"M_1.csv","line":2,.*\}\],"seq":1,"t":\d+\}\n\n$/);
+    // the columnar wire form: the file once, one run of 3 lines from line 2, the texts joined
+    expect(sseFrame(e)).toMatch(/^id: 1\nevent: trace\ndata: \{"seq":1,"t":\d+,"files":\["M_1.csv"\],"runs":\[0,2,3\],"text":"1002,[^"]*\\n1003,[^"]*\\n1004,[^"]*"\}\n\n$/);
+    expect(JSON.parse(wsFrame(e))).toEqual({ type: 'trace', seq: 1, t: e.t, files: ['M_1.csv'], runs: [0, 2, 3], text: records(2, 3).map((l) => l.text).join('\n') });
     const line = await floodPastStalled(events, 5);
     await reading;
     expect(traceEvents).toBe(121);
@@ -113,8 +117,8 @@ describe('SSE stream of a job', () => {
     const got: TraceLine[] = [];
     const ended = new Promise<void>((resolve) => {
       reader.on('message', (data) => {
-        const e = JSON.parse(String(data)) as { type: string; records?: TraceLine[] };
-        if (e.type === 'trace') got.push(...e.records!);
+        const e = JSON.parse(String(data)) as { type: string };
+        if (e.type === 'trace') got.push(...decodeTraceRecords(e));
         if (e.type === 'end') resolve();
       });
     });

@@ -4,31 +4,13 @@
  * the others back: its events wait in its socket's buffer, up to the replay plus
  * SERVICE_BOUNDS.streamBufferedBytes of live events, beyond which it is disconnected (the live
  * trace of a 1 kHz schema is megabytes a second; the client may resume from its last event id).
- * An event is serialized once for all the clients it is delivered to (sseFrame).
+ * An event is serialized once for all the clients it is delivered to (event-wire.ts).
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { Job } from '../pipeline/job.js';
-import type { JobEvent } from '../pipeline/job-events.js';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LiveBacklog } from './live-backlog.js';
-
-export function eventPayload(e: JobEvent): Record<string, unknown> {
-  const { type: _type, ...data } = e;
-  return data;
-}
-
-/** The last event framed, and its frame: every client attached gets the same live event in turn. */
-let lastEvent: JobEvent | null = null;
-let lastFrame = '';
-
-/** The SSE frame of an event (serialized once for all the clients it is delivered to at once). */
-export function sseFrame(e: JobEvent): string {
-  if (e !== lastEvent) {
-    lastFrame = `id: ${e.seq}\nevent: ${e.type}\ndata: ${JSON.stringify(eventPayload(e))}\n\n`;
-    lastEvent = e;
-  }
-  return lastFrame;
-}
+import { sseFrame } from './event-wire.js';
 
 export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: ServerResponse, after: number, streamBufferedBytes = SERVICE_BOUNDS.streamBufferedBytes): void {
   res.writeHead(200, {

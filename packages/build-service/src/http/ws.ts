@@ -9,6 +9,7 @@ import { WebSocketServer } from 'ws';
 import type { JobService } from '../job-service.js';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LiveBacklog } from './live-backlog.js';
+import { wsFrame } from './event-wire.js';
 
 export class JobWebSockets {
   // clients only send {"type":"cancel"}: a bounded frame size (SERVICE_BOUNDS.wsMessageBytes)
@@ -35,7 +36,7 @@ export class JobWebSockets {
       // replay) is dropped, as on SSE (http/sse.ts)
       const backlog = new LiveBacklog(this.streamBufferedBytes);
       unsubscribe = job.events.subscribe(after, (e) => {
-        const text = JSON.stringify(e);
+        const text = wsFrame(e);
         backlog.sent(Buffer.byteLength(text));
         ws.send(text, () => {}); // a send on a closing socket reports here, not thrown
         if (backlog.tooFarBehind(ws.bufferedAmount)) {

@@ -1,5 +1,6 @@
 /** Test/bench helpers: a tiny HTTP + SSE client of the build service. */
 import type { JobEvent } from '../pipeline/job-events.js';
+import { decodeTraceRecords } from '../trace/wire.js';
 
 export async function postJob(base: string, body: unknown, headers: Record<string, string> = {}): Promise<{ status: number; json: Record<string, unknown>; headers: Headers }> {
   const res = await fetch(`${base}/api/jobs`, { method: 'POST', headers: { 'content-type': 'application/json', ...headers }, body: JSON.stringify(body) });
@@ -9,6 +10,15 @@ export async function postJob(base: string, body: unknown, headers: Record<strin
 export async function getJob(base: string, id: string): Promise<Record<string, any>> {
   const res = await fetch(`${base}/api/jobs/${id}`);
   return (await res.json()) as Record<string, any>;
+}
+
+/**
+ * A job event from its wire form (an SSE payload with its type, or a WebSocket frame): a trace
+ * event's records come in their columnar wire form (trace/wire.ts) and are decoded.
+ */
+export function jobEventFromWire(e: Record<string, unknown>): JobEvent {
+  if (e.type === 'trace') return { type: 'trace', seq: e.seq, t: e.t, records: decodeTraceRecords(e) } as JobEvent;
+  return e as unknown as JobEvent;
 }
 
 /**
@@ -33,7 +43,7 @@ export async function streamEvents(base: string, id: string, onEvent: (e: JobEve
         else if (l.startsWith('data: ')) data += l.slice(6);
       }
       if (!type) continue;
-      onEvent({ type, ...JSON.parse(data) } as JobEvent);
+      onEvent(jobEventFromWire({ type, ...(JSON.parse(data) as Record<string, unknown>) }));
     }
   }
 }

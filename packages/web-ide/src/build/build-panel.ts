@@ -3,6 +3,7 @@ import { api } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
+import { decodeTraceRecords, type WireTraceLine } from '@contract-studio/build-service/trace';
 
 export interface GccDiagnostic {
   severity: 'error' | 'warning' | 'note';
@@ -119,8 +120,15 @@ export class BuildPanel {
     this.source = es;
     this.onStarted.fire({ jobId: job.id, action });
     es.addEventListener('trace', (e) => {
-      const d = JSON.parse((e as MessageEvent).data) as { records?: unknown };
-      if (Array.isArray(d.records)) this.onTrace.fire({ jobId: job.id, records: d.records as Array<{ file: string; line: number; text: string }> });
+      // the records in their columnar wire form (docs/build-service-api.md "Trace channel")
+      let records: WireTraceLine[];
+      try {
+        records = decodeTraceRecords(JSON.parse((e as MessageEvent).data));
+      } catch (err) {
+        this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `trace: a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs` });
+        return;
+      }
+      if (records.length) this.onTrace.fire({ jobId: job.id, records });
     });
     es.addEventListener('line', (e) => this.append(JSON.parse((e as MessageEvent).data) as LogLine));
     es.addEventListener('status', (e) => {

@@ -1,0 +1,55 @@
+import { describe, expect, test } from 'vitest';
+import fc from 'fast-check';
+import { decodeTraceRecords, encodeTraceRecords, TraceWireError, type WireTraceLine } from './wire.js';
+
+/** Record lines as the tail hands them: any text without a newline, files interleaved, lines anywhere. */
+const lineArb: fc.Arbitrary<WireTraceLine> = fc.record({
+  file: fc.constantFrom('ORD_1.csv', 'MAA_1.csv', 'SUP_1.csv', 'a,b "c".csv'),
+  line: fc.integer({ min: 1, max: 1_000_000 }),
+  text: fc.string({ unit: 'grapheme', maxLength: 60 }).map((t) => t.replace(/\n/g, ' ')),
+});
+
+describe('trace wire form', () => {
+  test('decode(encode(records)) is the records, in order (any texts, files, line numbers)', () => {
+    fc.assert(
+      fc.property(fc.array(lineArb, { maxLength: 200 }), (records) => {
+        const wire = encodeTraceRecords(records);
+        expect(decodeTraceRecords(JSON.parse(JSON.stringify(wire)))).toEqual(records);
+      }),
+      { numRuns: 500 },
+    );
+  });
+
+  test('consecutive lines of one file are one run; each file is named once', () => {
+    const r = (file: string, line: number): WireTraceLine => ({ file, line, text: `${file}:${line}` });
+    const wire = encodeTraceRecords([r('A.csv', 2), r('A.csv', 3), r('A.csv', 4), r('B.csv', 7), r('A.csv', 5), r('A.csv', 9), r('', 1)]);
+    expect(wire.files).toEqual(['A.csv', 'B.csv', '']);
+    expect(wire.runs).toEqual([0, 2, 3, 1, 7, 1, 0, 5, 1, 0, 9, 1, 2, 1, 1]);
+    expect(wire.text.split('\n')).toHaveLength(7);
+    expect(encodeTraceRecords([])).toEqual({ files: [], runs: [], text: '' });
+    expect(decodeTraceRecords({ files: [], runs: [], text: '' })).toEqual([]);
+    // empty texts survive (the count, not the text, says how many lines)
+    const blanks = [r('A.csv', 2), { file: 'A.csv', line: 3, text: '' }, { file: 'A.csv', line: 4, text: '' }];
+    expect(decodeTraceRecords(encodeTraceRecords(blanks))).toEqual(blanks);
+  });
+
+  test.each([
+    ['not an object', null, /not an object/],
+    ['files not strings', { files: [1], runs: [], text: '' }, /"files"/],
+    ['runs not triples', { files: ['A'], runs: [0, 1], text: 'x' }, /triples/],
+    ['a file index out of the list', { files: ['A'], runs: [1, 1, 1], text: 'x' }, /names no listed file/],
+    ['a negative index', { files: ['A'], runs: [-1, 1, 1], text: 'x' }, /names no listed file/],
+    ['line 0', { files: ['A'], runs: [0, 0, 1], text: 'x' }, /starts at line 0/],
+    ['a zero count', { files: ['A'], runs: [0, 1, 0], text: '' }, /counts 0 records/],
+    ['a fractional count', { files: ['A'], runs: [0, 1, 1.5], text: 'x' }, /counts 1.5 records/],
+    ['more lines than counted', { files: ['A'], runs: [0, 1, 1], text: 'x\ny' }, /count 1 records, the text holds 2 lines/],
+    ['fewer lines than counted', { files: ['A'], runs: [0, 1, 3], text: 'x\ny' }, /count 3 records, the text holds 2 lines/],
+    ['text without records', { files: [], runs: [], text: 'x' }, /text without records/],
+    ['the old object form', { records: [{ file: 'A', line: 1, text: 'x' }] }, /"files"/],
+  ])('a malformed batch (%s) is refused with a clear error, nothing decoded', (_name, wire, message) => {
+    const got: unknown[] = [];
+    expect(() => got.push(...decodeTraceRecords(wire))).toThrow(TraceWireError);
+    expect(() => decodeTraceRecords(wire)).toThrow(message);
+    expect(got).toEqual([]);
+  });
+});

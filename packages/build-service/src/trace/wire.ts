@@ -1,0 +1,114 @@
+/**
+ * The trace event's wire form (docs/build-service-api.md "Trace channel"): how a batch of record
+ * lines travels on the job's SSE and WebSocket streams. A 1 kHz schema writes about 15,000 records
+ * a second; sent as one JSON object per record ({"file","line","text"}), the service's
+ * serializing, the socket traffic and above all the client's JSON.parse of that many objects cost
+ * the machine enough to be seen in the modules' release lateness (docs/watching-a-run.md, "What
+ * watching costs the run"). The wire form is therefore columnar:
+ *
+ *   files  the log files named in this batch, each once
+ *   runs   [fileIndex, firstLine, count, ...]: consecutive records of one file (lines firstLine,
+ *          firstLine + 1, ...), in the batch's order
+ *   text   the records' lines joined with "\n" (a record line holds no newline)
+ *
+ * so that a client parses one string and splits it. Browser-safe (no Node imports): the IDE's
+ * build panel decodes with it too.
+ */
+
+/** One record line of a module's CSV log, as the run wrote it (the job's TraceLine). */
+export interface WireTraceLine {
+  file: string;
+  line: number;
+  text: string;
+}
+
+/** A batch of record lines on the wire. */
+export interface TraceWire {
+  files: string[];
+  runs: number[];
+  text: string;
+}
+
+/** The wire form of a batch (its records' order is kept exactly). */
+export function encodeTraceRecords(records: readonly WireTraceLine[]): TraceWire {
+  const files: string[] = [];
+  const index = new Map<string, number>();
+  const runs: number[] = [];
+  const texts = new Array<string>(records.length);
+  let runFile = -1;
+  let nextLine = -1;
+  let countAt = -1;
+  for (let i = 0; i < records.length; i++) {
+    const r = records[i]!;
+    texts[i] = r.text;
+    let fi = index.get(r.file);
+    if (fi === undefined) {
+      fi = files.length;
+      files.push(r.file);
+      index.set(r.file, fi);
+    }
+    if (fi === runFile && r.line === nextLine) {
+      runs[countAt]!++;
+    } else {
+      runs.push(fi, r.line, 1);
+      countAt = runs.length - 1;
+      runFile = fi;
+    }
+    nextLine = r.line + 1;
+  }
+  return { files, runs, text: texts.join('\n') };
+}
+
+/** A trace event's payload that is not a well-formed wire batch. */
+export class TraceWireError extends Error {
+  constructor(message: string) {
+    super(`trace event: ${message}`);
+    this.name = 'TraceWireError';
+  }
+}
+
+/**
+ * Calls `fn` for each record of a wire batch, in order; returns how many there were. Checks the
+ * whole shape first (files are strings, runs are triples of whole numbers naming a listed file,
+ * the text holds exactly as many lines as the runs count) and throws TraceWireError otherwise,
+ * before any call.
+ */
+export function forEachTraceRecord(wire: unknown, fn: (file: string, line: number, text: string) => void): number {
+  const w = wire as Partial<TraceWire> | null;
+  if (!w || typeof w !== 'object') throw new TraceWireError('not an object');
+  const { files, runs, text } = w;
+  if (!Array.isArray(files) || !files.every((f) => typeof f === 'string')) throw new TraceWireError('"files" is not a list of file names');
+  if (!Array.isArray(runs) || runs.length % 3 !== 0) throw new TraceWireError('"runs" is not a list of [file, first line, count] triples');
+  if (typeof text !== 'string') throw new TraceWireError('"text" is not a string');
+  let total = 0;
+  for (let i = 0; i < runs.length; i += 3) {
+    const fi = runs[i];
+    const first = runs[i + 1];
+    const count = runs[i + 2];
+    if (!Number.isSafeInteger(fi) || fi! < 0 || fi! >= files.length) throw new TraceWireError(`run ${i / 3} names no listed file (${String(fi)})`);
+    if (!Number.isSafeInteger(first) || first! < 1) throw new TraceWireError(`run ${i / 3} starts at line ${String(first)}`);
+    if (!Number.isSafeInteger(count) || count! < 1) throw new TraceWireError(`run ${i / 3} counts ${String(count)} records`);
+    total += count!;
+  }
+  if (total === 0) {
+    if (text !== '') throw new TraceWireError('text without records');
+    return 0;
+  }
+  const lines = text.split('\n');
+  if (lines.length !== total) throw new TraceWireError(`the runs count ${total} records, the text holds ${lines.length} lines`);
+  let k = 0;
+  for (let i = 0; i < runs.length; i += 3) {
+    const file = files[runs[i]!]!;
+    const first = runs[i + 1]!;
+    const count = runs[i + 2]!;
+    for (let j = 0; j < count; j++) fn(file, first + j, lines[k++]!);
+  }
+  return total;
+}
+
+/** The records of a wire batch, in order (throws TraceWireError on a malformed batch). */
+export function decodeTraceRecords(wire: unknown): WireTraceLine[] {
+  const out: WireTraceLine[] = [];
+  forEachTraceRecord(wire, (file, line, text) => out.push({ file, line, text }));
+  return out;
+}
