@@ -427,6 +427,30 @@ void test_launcher_placement(void)
     CHECK(h_wait_exit(launcher, 6000) == 0);
     if (before > 0) CHECK(pm_qos_now() == before); /* released with the launcher */
     CHECK(h_count_entries(h_run_dir) == -1);
+    /* a CPU outside the mask the launcher inherits (a service started under `taskset -c 0`) is
+     * still one it may pin the modules to */
+    long online = sysconf(_SC_NPROCESSORS_ONLN);
+    cpu_set_t mine, only0;
+    if (online >= 2 && sched_getaffinity(0, sizeof mine, &mine) == 0 && CPU_ISSET(0, &mine) && CPU_ISSET((int)online - 1, &mine)) {
+        CPU_ZERO(&only0);
+        CPU_SET(0, &only0);
+        REQUIRE(sched_setaffinity(0, sizeof only0, &only0) == 0);
+        char last[24], want[48];
+        snprintf(last, sizeof last, "%ld", online - 1);
+        char *outside[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "30",
+                            "--cpus", last, exe_p, NULL };
+        pid_t l2 = start_launcher(outside, out);
+        sched_setaffinity(0, sizeof mine, &mine);
+        REQUIRE(l2 > 0);
+        CHECK(wait_for_text(out, "[P] P ready", 5000));
+        snprintf(status_path, sizeof status_path, "/proc/%ld/status", pid_of(h_run_dir, "P"));
+        char *st2 = h_read_file(status_path);
+        snprintf(want, sizeof want, "Cpus_allowed_list:\t%s\n", last);
+        CHECK_MSG(st2 && strstr(st2, want), "module P is not pinned to the CPU outside the launcher's inherited mask");
+        free(st2);
+        kill(l2, SIGTERM);
+        CHECK(h_wait_exit(l2, 6000) == 0);
+    }
     /* bad lists are refused before anything starts */
     char *bad_cpu[] = { "contract-launch", "--cpus", "4096", exe_p, NULL };
     CHECK(h_run(bad_cpu, out, 3000) == 2);
