@@ -1,6 +1,6 @@
 /**
  * The trace benchmark's SSE client (trace-bench.ts): follows a job's events and measures each
- * record's latency (its wall_time -> its arrival). In the bench's process (MONITOR_CLIENT=in-process,
+ * record's latency (its mono_ns -> its arrival, on CLOCK_MONOTONIC). In the bench's process (MONITOR_CLIENT=in-process,
  * the default) or as a child process of its own (MONITOR_CLIENT=child), so that the service's CPU
  * time (process.cpuUsage in the bench's process) is the service's only, as it is for the IDE's page
  * or `contract run --monitor`, which run in processes of their own:
@@ -14,7 +14,7 @@ import { streamEvents } from '../test-support/client.js';
 export interface ClientReport {
   records: number;
   events: number;
-  /** wall_time -> arrival, per record (ms). */
+  /** mono_ns -> arrival, per record (ms). */
   latencyMs: number[];
   /** The client's CPU time (ms): its process's when a child, NaN in-process. */
   cpuMs: number;
@@ -26,12 +26,15 @@ export async function followTrace(base: string, id: string, after: number, signa
   try {
     await streamEvents(base, id, (e) => {
       if (e.type !== 'trace') return;
-      const now = Date.now();
+      // the record's mono_ns (its first column: CLOCK_MONOTONIC, as process.hrtime in bwrap and
+      // none) -> its arrival: read without parsing its wall_time, so that the measuring costs the
+      // client little beside the decoding every client does
+      const now = Number(process.hrtime.bigint()) / 1e6;
       report.events++;
       for (const l of (e as TraceEvent).records) {
         report.records++;
-        const wall = Date.parse(l.text.split(',', 2)[1] ?? '');
-        if (Number.isFinite(wall)) report.latencyMs.push(now - wall);
+        const mono = Number(l.text.slice(0, l.text.indexOf(','))) / 1e6;
+        if (mono > 0) report.latencyMs.push(now - mono);
       }
     }, after, signal);
   } catch (e) {

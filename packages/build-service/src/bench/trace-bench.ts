@@ -3,7 +3,8 @@
  * A 1 kHz periodic schema (the "New project" template with PERIOD=1ms) run in bwrap through the
  * HTTP service. In ONE run, phases of PHASE_SECONDS (default 3) alternate: no client attached, an
  * SSE client attached to the job's stream (from the current seq: it follows the live trace), in
- * ABBA order over PAIRS (default 6) pairs, so that load drifts weigh on both sides alike. The
+ * ABBA order over PAIRS (default 9: 57 s, inside the run's 60 s bound) pairs, so that load drifts weigh
+ * on both sides alike. The
  * releases (ORD's ord_release records of the collected log, tick_ns on the host's CLOCK_MONOTONIC,
  * the clock of the phase boundaries) are split by phase; the first 200 ms of each phase are left
  * out (the attach / detach itself).
@@ -11,8 +12,8 @@
  *                                         (release_ns - tick_ns) with the client / without (goal <= 1.1)
  *   monitor.jitter_ratio_pooled           the same over all phases pooled; _pairs: every pair's ratio
  *   monitor.release_lateness_us_p99_without / _with   the pooled p99s
- *   monitor.service_trace_latency_ms_p99  from a record's write (its wall_time column) to its
- *                                         arrival at the SSE client (Date.now()), p99; _p50 too
+ *   monitor.service_trace_latency_ms_p99  from a record's write (its mono_ns column) to its
+ *                                         arrival at the SSE client (process.hrtime, the same clock), p99; _p50 too
  *   monitor.trace_records                 records the SSE client received; _events_per_s: trace events a second
  *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process per second of
  *                                         phase; _sys_: of it in the kernel; _by_thread_: main thread
@@ -25,9 +26,16 @@
  *   monitor.service_cpu_us_per_record_without / _with  that CPU time over the records the run wrote
  *                                         in those phases (counted in the collected logs by mono_ns)
  *   monitor.client_cpu_ms_per_s           (child client only) its own CPU time per second of phase
- * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 70 s in all.
+ *   monitor.partitioned.*                 the same jitter figures from a second run laid out as a
+ *                                         1 kHz robot would be (docs/watching-a-run.md "What watching
+ *                                         costs the run"): the modules pinned to the last CPU (the job's
+ *                                         `cpus`), the service and its client to the others (taskset
+ *                                         -a on this process while the run runs); skipped, with a
+ *                                         line saying why, on one CPU or without taskset
+ *                                         (MONITOR_PARTITIONED=0 skips it too)
+ * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 140 s in all.
  */
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import { readdirSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -38,7 +46,7 @@ import { benchLog, median, pct, round, runBench, startBenchServer, writePart, wr
 import { parseRecordLine } from '../trace/parse.js';
 
 const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
-const PAIRS = Number(process.env.PAIRS ?? 6);
+const PAIRS = Number(process.env.PAIRS ?? 9);
 /**
  * The SSE client in a child process of its own (MONITOR_CLIENT=child): the CPU figures are then
  * the service's only; in this process (the default, as the jitter goal was set) they include the
@@ -69,11 +77,39 @@ function threadCpuMs(): Map<string, number> {
   return out;
 }
 
+/** Pins every thread of this process (the service, and the in-process client) to `cpus` (taskset -a). */
+function pinThisProcess(cpus: string): void {
+  execFileSync('taskset', ['-a', '-p', '-c', cpus, String(process.pid)], { stdio: 'ignore' });
+}
+
+/** CPU ids of a list such as `0-2,5`. */
+function cpuIds(list: string): number[] {
+  return list.split(',').flatMap((part) => {
+    const [lo, hi] = part.split('-').map(Number);
+    return hi === undefined ? [lo!] : Array.from({ length: hi - lo! + 1 }, (_, i) => lo! + i);
+  });
+}
+
+/** The partitioned layout on this machine (from this process's CPU list), or why there is none. */
+function partitionLayout(): { modules: string; service: string; all: string } | { skip: string } {
+  if (process.env.MONITOR_PARTITIONED === '0') return { skip: 'MONITOR_PARTITIONED=0' };
+  let all: string;
+  try {
+    // "pid 123's current affinity list: 0-3"
+    all = execFileSync('taskset', ['-c', '-p', String(process.pid)], { encoding: 'utf8' }).trim().split(': ').at(-1)!;
+  } catch {
+    return { skip: 'no taskset (util-linux) on PATH' };
+  }
+  const ids = cpuIds(all);
+  if (ids.length < 2 || ids.some((i) => !Number.isInteger(i))) return { skip: `CPUs ${all}: nothing to partition` };
+  return { modules: String(ids.at(-1)), service: ids.slice(0, -1).join(','), all };
+}
+
 /**
  * An SSE client of the job's stream from `after` on until `stop` resolves: in this process, or
  * (MONITOR_CLIENT=child) in a child process (trace-bench-client.ts); its report.
  */
-async function attach(base: string, id: string, after: number, stop: Promise<void>): Promise<ClientReport> {
+async function attach(base: string, id: string, after: number, stop: Promise<void>, clientCpus?: string): Promise<ClientReport> {
   if (!CHILD_CLIENT) {
     const abort = new AbortController();
     const following = followTrace(base, id, after, abort.signal);
@@ -82,7 +118,10 @@ async function attach(base: string, id: string, after: number, stop: Promise<voi
     return following;
   }
   const script = join(dirname(fileURLToPath(import.meta.url)), 'trace-bench-client.js');
-  const child = spawn(process.execPath, [script, base, id, String(after)], { stdio: ['ignore', 'pipe', 'inherit'] });
+  const argv = [process.execPath, script, base, id, String(after)];
+  // the partitioned run: the client on the service's CPUs (inherited when in this process)
+  const [cmd, ...args] = clientCpus ? ['taskset', '-c', clientCpus, ...argv] : argv;
+  const child = spawn(cmd!, args, { stdio: ['ignore', 'pipe', 'inherit'] });
   let out = '';
   child.stdout.setEncoding('utf8').on('data', (d: string) => (out += d));
   const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
@@ -119,8 +158,8 @@ async function main(): Promise<void> {
   /** Logs of earlier runs stay in the reused workspace's logs/ (and among the artifacts). */
   const seen = new Set<string>();
   /** One run of `seconds`; `during` runs once the run streams its trace; returns ORD's releases (tick_ns, lateness in us) and the run's logs. */
-  const run = async (seconds: number, during: (jobId: string) => Promise<void>): Promise<{ releases: { tick: bigint; lateUs: number }[]; logs: Artifact[] }> => {
-    const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: seconds, project: { dir } });
+  const run = async (seconds: number, during: (jobId: string) => Promise<void>, cpus?: string): Promise<{ releases: { tick: bigint; lateUs: number }[]; logs: Artifact[] }> => {
+    const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: seconds, project: { dir }, ...(cpus ? { cpus } : {}) });
     if (r.status !== 201) throw new Error(`submit: ${JSON.stringify(r.json)}`);
     const job = server.service.get(r.json.id as string)!;
     // the run streams (looked at in-process: no client attached)
@@ -148,16 +187,24 @@ async function main(): Promise<void> {
   try {
     say('build + warm-up run (3 s)');
     await run(3, async () => {});
-    const phases: Phase[] = [];
-    const latency: number[] = [];
-    let records = 0;
-    let events = 0;
-    let clientCpuMs = 0;
     const phaseMs = PHASE_SECONDS * 1000;
     const seconds = Math.ceil(2 * PAIRS * PHASE_SECONDS + 3);
-    say(`one run of ${seconds} s: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
-    const { releases, logs } = await run(seconds, async (jobId) => {
+    /** The p99 release lateness of each pair's phases with / without the client, and pooled. */
+    const jitterOf = (phases: Phase[], releases: { tick: bigint; lateUs: number }[]) => {
+      const inPhase = (p: Phase): number[] => releases.filter((r) => r.tick >= p.from + SETTLE_NS && r.tick < p.to).map((r) => r.lateUs);
+      const ratios: number[] = [];
+      for (let pair = 0; pair < PAIRS; pair++) {
+        const w = phases.find((p) => p.pair === pair && p.withClient)!;
+        const wo = phases.find((p) => p.pair === pair && !p.withClient)!;
+        ratios.push(pct(inPhase(w), 99) / pct(inPhase(wo), 99));
+      }
+      const pooled = (withClient: boolean): number[] => phases.filter((p) => p.withClient === withClient).flatMap(inPhase);
+      return { ratios, pooled, p99Without: pct(pooled(false), 99), p99With: pct(pooled(true), 99) };
+    };
+    /** PAIRS pairs of phases without / with a client (ABBA) in the running job. */
+    const alternate = async (jobId: string, clientCpus?: string) => {
       const job = server.service.get(jobId)!;
+      const got = { phases: [] as Phase[], latency: [] as number[], records: 0, events: 0, clientCpuMs: 0 };
       for (let pair = 0; pair < PAIRS; pair++) {
         const order = pair % 2 === 0 ? [false, true] : [true, false];
         for (const withClient of order) {
@@ -166,19 +213,26 @@ async function main(): Promise<void> {
           const from = process.hrtime.bigint();
           if (withClient) {
             const after = job.events.all.at(-1)?.seq ?? 0;
-            const report = await attach(url, jobId, after, sleep(phaseMs));
-            events += report.events;
-            records += report.records;
-            clientCpuMs += report.cpuMs;
-            for (const x of report.latencyMs) latency.push(x);
+            const report = await attach(url, jobId, after, sleep(phaseMs), clientCpus);
+            got.events += report.events;
+            got.records += report.records;
+            got.clientCpuMs += report.cpuMs;
+            for (const x of report.latencyMs) got.latency.push(x);
           } else await sleep(phaseMs);
           const cpu = process.cpuUsage(cpu0);
           const threads = threadCpuMs();
           for (const [k, v] of threads0) threads.set(k, (threads.get(k) ?? 0) - v);
-          phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, sysMs: cpu.system / 1000, threads, records: 0 });
+          got.phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, sysMs: cpu.system / 1000, threads, records: 0 });
         }
       }
+      return got;
+    };
+    say(`one run of ${seconds} s: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
+    let shared: Awaited<ReturnType<typeof alternate>> | null = null;
+    const { releases, logs } = await run(seconds, async (jobId) => {
+      shared = await alternate(jobId);
     });
+    const { phases, latency, records, events, clientCpuMs } = shared!;
     say(`phases on CLOCK_MONOTONIC (a --cpu-prof profile's clock, in us): ${phases[0]!.from / 1000n}..${phases.at(-1)!.to / 1000n}`);
     // the records written in each phase, by their mono_ns (the clock of the phase boundaries)
     for (const log of logs) {
@@ -190,14 +244,7 @@ async function main(): Promise<void> {
         if (p) p.records++;
       }
     }
-    const inPhase = (p: Phase): number[] => releases.filter((r) => r.tick >= p.from + SETTLE_NS && r.tick < p.to).map((r) => r.lateUs);
-    const ratios: number[] = [];
-    for (let pair = 0; pair < PAIRS; pair++) {
-      const w = phases.find((p) => p.pair === pair && p.withClient)!;
-      const wo = phases.find((p) => p.pair === pair && !p.withClient)!;
-      ratios.push(pct(inPhase(w), 99) / pct(inPhase(wo), 99));
-    }
-    const pooled = (withClient: boolean): number[] => phases.filter((p) => p.withClient === withClient).flatMap(inPhase);
+    const { ratios, pooled, p99Without, p99With } = jitterOf(phases, releases);
     const cpuPerS = (withClient: boolean): number => {
       const ps = phases.filter((p) => p.withClient === withClient);
       return ps.reduce((a, p) => a + p.cpuMs, 0) / ps.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
@@ -214,9 +261,7 @@ async function main(): Promise<void> {
     const byThread = (withClient: boolean): Record<string, number> =>
       Object.fromEntries(threadNames.map((n) => [n, round(perS(withClient, (p) => p.threads.get(n) ?? 0), 1)]).filter(([, v]) => (v as number) > 0));
     const clientSeconds = phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
-    const p99Without = pct(pooled(false), 99);
-    const p99With = pct(pooled(true), 99);
-    const out = {
+    const out: Record<string, unknown> = {
       'monitor.jitter_ratio': round(median(ratios)),
       'monitor.jitter_ratio_pooled': round(p99With / p99Without),
       'monitor.jitter_ratio_pairs': ratios.map((x) => round(x)),
@@ -239,6 +284,32 @@ async function main(): Promise<void> {
       ...(CHILD_CLIENT ? { 'monitor.client_cpu_ms_per_s': round(clientCpuMs / clientSeconds, 1) } : {}),
       'monitor.releases': pooled(true).length + pooled(false).length,
     };
+    const layout = partitionLayout();
+    if ('skip' in layout) {
+      say(`partitioned run skipped: ${layout.skip}`);
+      out['monitor.partitioned.skipped'] = layout.skip;
+    } else {
+      say(`partitioned run of ${seconds} s: the modules on CPU ${layout.modules}, the service and its client on CPU ${layout.service}`);
+      let part: Awaited<ReturnType<typeof alternate>> | null = null;
+      const pinned = await run(seconds, async (jobId) => {
+        // pinned once the run's processes are started (the sandbox inherits the service's mask)
+        pinThisProcess(layout.service);
+        try {
+          part = await alternate(jobId, CHILD_CLIENT ? layout.service : undefined);
+        } finally {
+          pinThisProcess(layout.all);
+        }
+      }, layout.modules);
+      const j = jitterOf(part!.phases, pinned.releases);
+      Object.assign(out, {
+        'monitor.partitioned.jitter_ratio': round(median(j.ratios)),
+        'monitor.partitioned.jitter_ratio_pooled': round(j.p99With / j.p99Without),
+        'monitor.partitioned.jitter_ratio_pairs': j.ratios.map((x) => round(x)),
+        'monitor.partitioned.release_lateness_us_p99_without': round(j.p99Without, 1),
+        'monitor.partitioned.release_lateness_us_p99_with': round(j.p99With, 1),
+        'monitor.partitioned.layout': `modules on CPU ${layout.modules}; service and client on CPU ${layout.service}`,
+      });
+    }
     say(JSON.stringify(out));
     writePart('monitor', out);
   } finally {
