@@ -439,6 +439,7 @@ void test_launcher_placement(void)
         snprintf(last, sizeof last, "%ld", online - 1);
         char *outside[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "30",
                             "--cpus", last, exe_p, NULL };
+        unlink(out); /* the first launcher's "[P] P ready" must not be read as this one's */
         pid_t l2 = start_launcher(outside, out);
         sched_setaffinity(0, sizeof mine, &mine);
         REQUIRE(l2 > 0);
