@@ -292,7 +292,7 @@ async function main(): Promise<void> {
       say(`partitioned run of ${seconds} s: the modules on CPU ${layout.modules}, the service and its client on CPU ${layout.service}`);
       let part: Awaited<ReturnType<typeof alternate>> | null = null;
       const pinned = await run(seconds, async (jobId) => {
-        // pinned once the run's processes are started (the sandbox inherits the service's mask)
+        // pinned once the run streams: its build ran on every CPU
         pinThisProcess(layout.service);
         try {
           part = await alternate(jobId, CHILD_CLIENT ? layout.service : undefined);

@@ -1,5 +1,9 @@
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import type { LimitHit } from '../limits.js';
+import type { TraceLine } from '../trace/wire.js';
+
+/** One whole record line of a module's CSV log: defined with its wire form (trace/wire.ts, browser-safe). */
+export type { TraceLine };
 
 export type JobStep = 'prepare' | 'build' | 'run';
 export type JobStatus = 'queued' | 'preparing' | 'building' | 'running' | 'succeeded' | 'failed' | 'cancelled';
@@ -39,15 +43,6 @@ export interface EndEvent {
   seq: number;
   t: number;
   result: unknown;
-}
-/** One whole record line of a module's CSV log (docs/runtime-api.md "Trace records"), as the run wrote it. */
-export interface TraceLine {
-  /** The log file's name (`<MODULE>_<date>.csv`). */
-  file: string;
-  /** 1-based line number in that file (the header is line 1). */
-  line: number;
-  /** The CSV line without its newline; readers parse it with the trace reader's parseRecordLine. */
-  text: string;
 }
 /**
  * The run-time trace, live (docs/build-service-api.md "Trace channel"): the records the run's

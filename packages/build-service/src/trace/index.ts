@@ -9,4 +9,4 @@ export { splitCsvLine } from './csv-line.js';
 export { renderStory } from './story.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';
 export { isRule, isUnknown, type TraceRecord, type TraceRecordBase, type RuleRecord, type RuleCause, type KnownRecord, type UnknownRecord } from './records.js';
-export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, TraceWireError, type TraceWire, type WireTraceLine } from './wire.js';
+export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, TraceWireError, type TraceWire, type TraceLine } from './wire.js';

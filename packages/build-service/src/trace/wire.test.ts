@@ -1,9 +1,9 @@
 import { describe, expect, test } from 'vitest';
 import fc from 'fast-check';
-import { decodeTraceRecords, encodeTraceRecords, TraceWireError, type WireTraceLine } from './wire.js';
+import { decodeTraceRecords, encodeTraceRecords, TraceWireError, type TraceLine } from './wire.js';
 
 /** Record lines as the tail hands them: any text without a newline, files interleaved, lines anywhere. */
-const lineArb: fc.Arbitrary<WireTraceLine> = fc.record({
+const lineArb: fc.Arbitrary<TraceLine> = fc.record({
   file: fc.constantFrom('ORD_1.csv', 'MAA_1.csv', 'SUP_1.csv', 'a,b "c".csv'),
   line: fc.integer({ min: 1, max: 1_000_000 }),
   text: fc.string({ unit: 'grapheme', maxLength: 60 }).map((t) => t.replace(/\n/g, ' ')),
@@ -21,7 +21,7 @@ describe('trace wire form', () => {
   });
 
   test('consecutive lines of one file are one run; each file is named once', () => {
-    const r = (file: string, line: number): WireTraceLine => ({ file, line, text: `${file}:${line}` });
+    const r = (file: string, line: number): TraceLine => ({ file, line, text: `${file}:${line}` });
     const wire = encodeTraceRecords([r('A.csv', 2), r('A.csv', 3), r('A.csv', 4), r('B.csv', 7), r('A.csv', 5), r('A.csv', 9), r('', 1)]);
     expect(wire.files).toEqual(['A.csv', 'B.csv', '']);
     expect(wire.runs).toEqual([0, 2, 3, 1, 7, 1, 0, 5, 1, 0, 9, 1, 2, 1, 1]);

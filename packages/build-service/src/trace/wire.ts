@@ -15,10 +15,13 @@
  * build panel decodes with it too.
  */
 
-/** One record line of a module's CSV log, as the run wrote it (the job's TraceLine). */
-export interface WireTraceLine {
+/** One whole record line of a module's CSV log (docs/runtime-api.md "Trace records"), as the run wrote it. */
+export interface TraceLine {
+  /** The log file's name (`<MODULE>_<date>.csv`). */
   file: string;
+  /** 1-based line number in that file (the header is line 1). */
   line: number;
+  /** The CSV line without its newline; readers parse it with the trace reader's parseRecordLine. */
   text: string;
 }
 
@@ -30,7 +33,7 @@ export interface TraceWire {
 }
 
 /** The wire form of a batch (its records' order is kept exactly). */
-export function encodeTraceRecords(records: readonly WireTraceLine[]): TraceWire {
+export function encodeTraceRecords(records: readonly TraceLine[]): TraceWire {
   const files: string[] = [];
   const index = new Map<string, number>();
   const runs: number[] = [];
@@ -107,8 +110,8 @@ export function forEachTraceRecord(wire: unknown, fn: (file: string, line: numbe
 }
 
 /** The records of a wire batch, in order (throws TraceWireError on a malformed batch). */
-export function decodeTraceRecords(wire: unknown): WireTraceLine[] {
-  const out: WireTraceLine[] = [];
+export function decodeTraceRecords(wire: unknown): TraceLine[] {
+  const out: TraceLine[] = [];
   forEachTraceRecord(wire, (file, line, text) => out.push({ file, line, text }));
   return out;
 }

@@ -3,7 +3,7 @@ import { api } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
-import { decodeTraceRecords, type WireTraceLine } from '@contract-studio/build-service/trace';
+import { decodeTraceRecords, type TraceLine } from '@contract-studio/build-service/trace';
 
 export interface GccDiagnostic {
   severity: 'error' | 'warning' | 'note';
@@ -29,7 +29,7 @@ export class BuildPanel {
   /** A job was submitted (its events follow). */
   readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
   /** The run's trace, live: whole CSV record lines (docs/build-service-api.md "Trace channel"; build-service job-events.ts TraceEvent). */
-  readonly onTrace = new Emitter<{ jobId: string; records: Array<{ file: string; line: number; text: string }> }>();
+  readonly onTrace = new Emitter<{ jobId: string; records: TraceLine[] }>();
   readonly element: HTMLElement;
   private readonly chips: HTMLElement;
   private readonly statusEl: HTMLElement;
@@ -121,7 +121,7 @@ export class BuildPanel {
     this.onStarted.fire({ jobId: job.id, action });
     es.addEventListener('trace', (e) => {
       // the records in their columnar wire form (docs/build-service-api.md "Trace channel")
-      let records: WireTraceLine[];
+      let records: TraceLine[];
       try {
         records = decodeTraceRecords(JSON.parse((e as MessageEvent).data));
       } catch (err) {

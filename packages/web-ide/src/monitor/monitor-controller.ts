@@ -9,7 +9,7 @@
  * Everything read from the stream or a log file is hostile: bounded and validated here or by the
  * trace reader (parseRecordLine never throws).
  */
-import { parseTrace, type LogFile } from '@contract-studio/build-service/trace';
+import { parseTrace, type LogFile, type TraceLine } from '@contract-studio/build-service/trace';
 import { api } from '../api.js';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
@@ -66,7 +66,7 @@ export class MonitorController {
   }
 
   /** Trace events not yet folded into their model: folded in slices of INGEST_SLICE_MS, so a burst never holds a frame. */
-  private readonly queue: Array<{ run: Run; records: Array<{ file: string; line: number; text: string }>; next: number }> = [];
+  private readonly queue: Array<{ run: Run; records: TraceLine[]; next: number }> = [];
   private draining = false;
 
   private drainSoon(): void {
