@@ -13,7 +13,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { RuleRecord } from '@contract-studio/build-service/trace';
 import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
 import { prepared, TUTORIAL } from './support.js';
-import { realDecisions, runForReal, scenarioOfRun, simulatedDecisions, type RealRun } from './differential/replay-run.js';
+import { firstDifference, realDecisions, runForReal, scenarioOfRun, simulatedDecisions, type RealRun } from './differential/replay-run.js';
 
 const SUPERVISORS = new Set(['SUP', 'GLB']);
 let run: RealRun;
@@ -51,7 +51,9 @@ describe('simulator vs a real bwrap run of the tutorial', () => {
         expect(sim.error).toBeUndefined();
         const simulated = sim.steps.flatMap((s) => s.record.rules);
         for (const sup of SUPERVISORS) {
-            expect(simulatedDecisions(simulated, sup), `${sup}; scenario replayed:\n${text}`).toEqual(realDecisions(real, sup));
+            const got = simulatedDecisions(simulated, sup);
+            const want = realDecisions(real, sup);
+            expect(got, firstDifference(sup, got, want, text)).toEqual(want);
         }
     });
 });

@@ -1,12 +1,17 @@
 /**
- * The CLI as users install it (docs/getting-started.md "Installing the CLI"): scripts/pack.mjs makes
- * one tarball, `npm install -g --offline` puts it in a temp prefix (offline: every dependency is in
- * the tarball), and `contract new`, `check`, `build` and `run --duration 2s` work from a temp folder
- * outside the repository with no CONTRACT_RUNTIME: the runtime sources inside the package are built
- * into the (empty) build cache on first use; `contract-language-server` answers an LSP initialize.
+ * The CLI as users install it (docs/getting-started.md "Installing the CLI"), from the one tarball
+ * scripts/pack.mjs makes (packed once, for both tests):
+ * - `npm install -g --offline` puts it in a temp prefix (offline: every dependency is in the
+ *   tarball), and `contract new`, `check`, `build` and `run --duration 2s` work from a temp folder
+ *   outside the repository with no CONTRACT_RUNTIME: the runtime sources inside the package are
+ *   built into the (empty) build cache on first use; `contract-language-server` answers an LSP
+ *   initialize;
+ * - installed offline as a devDependency of a temp project next to a copy of examples/tutorial,
+ *   `npx contract check .` works there (docs/ci.md).
+ * Nothing is cached in the repository (all in a temp folder).
  */
 import { spawn, spawnSync } from 'node:child_process';
-import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -14,6 +19,10 @@ import { REPO } from './harness.js';
 import { removeScratch } from '../scratch.js';
 
 let root: string;
+/** The packed CLI tarball. */
+let tarball: string;
+/** `npm install --save-dev` of the tarball into a project beside a copy of the tutorial, started by beforeAll. */
+let devInstall: Promise<{ status: number | null; out: string }>;
 
 /** What an LSP server started as `command --stdio` answers to `initialize` (its stdout until then). */
 function initializeAnswer(command: string, cwd: string, env: NodeJS.ProcessEnv): Promise<string> {
@@ -28,23 +37,36 @@ function initializeAnswer(command: string, cwd: string, env: NodeJS.ProcessEnv):
         child.stdin.write(`Content-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
     });
 }
+const npmEnv = { ...process.env, npm_config_update_notifier: 'false', npm_config_audit: 'false', npm_config_fund: 'false' };
 beforeAll(() => {
     root = mkdtempSync(join(tmpdir(), 'contract-installed-'));
     chmodSync(root, 0o711); // the sandbox's own uid must reach the cache folder inside
-});
+    const packs = join(root, 'packs');
+    const pack = spawnSync(process.execPath, [join(REPO, 'packages/cli/scripts/pack.mjs'), packs], { encoding: 'utf8', timeout: 300_000 });
+    expect(pack.status, pack.stderr).toBe(0);
+    const tarballs = readdirSync(packs).filter((f) => f.endsWith('.tgz'));
+    expect(tarballs).toHaveLength(1);
+    expect(tarballs[0]).toMatch(/^contract-studio-cli-\d+\.\d+\.\d+\.tgz$/);
+    tarball = join(packs, tarballs[0]!);
+    // the devDependency install runs while the first test works (most of both is unpacking the tarball)
+    const project = join(root, 'robot-project');
+    cpSync(join(REPO, 'examples/tutorial'), join(project, 'tutorial'), { recursive: true });
+    writeFileSync(join(project, 'package.json'), JSON.stringify({ name: 'robot-project', private: true }));
+    devInstall = new Promise((resolve) => {
+        const child = spawn('npm', ['install', '--save-dev', '--offline', tarball], { cwd: project, env: npmEnv, stdio: ['ignore', 'pipe', 'pipe'] });
+        let out = '';
+        child.stdout.on('data', (d: Buffer) => (out += d.toString()));
+        child.stderr.on('data', (d: Buffer) => (out += d.toString()));
+        child.on('error', (e) => resolve({ status: null, out: `${out}${e.message}` }));
+        child.on('close', (status) => resolve({ status, out }));
+    });
+}, 300_000);
 afterAll(() => removeScratch(root), 120_000);
 
-describe('the packed CLI installed with npm install -g', () => {
-    it('packs, installs offline, and runs new, check, build and run outside the repository', async () => {
-        const packs = join(root, 'packs');
-        const pack = spawnSync(process.execPath, [join(REPO, 'packages/cli/scripts/pack.mjs'), packs], { encoding: 'utf8', timeout: 300_000 });
-        expect(pack.status, pack.stderr).toBe(0);
-        const tarballs = readdirSync(packs).filter((f) => /^contract-studio-cli-\d+\.\d+\.\d+\.tgz$/.test(f));
-        expect(tarballs).toHaveLength(1);
-
+describe('the packed CLI, installed as users install it', () => {
+    it('installs offline with -g, and runs new, check, build and run outside the repository', async () => {
         const prefix = join(root, 'prefix');
-        const npmEnv = { ...process.env, npm_config_update_notifier: 'false', npm_config_audit: 'false', npm_config_fund: 'false' };
-        const install = spawnSync('npm', ['install', '-g', '--offline', '--prefix', prefix, join(packs, tarballs[0]!)], { encoding: 'utf8', timeout: 300_000, env: npmEnv });
+        const install = spawnSync('npm', ['install', '-g', '--offline', '--prefix', prefix, tarball], { encoding: 'utf8', timeout: 300_000, env: npmEnv });
         expect(install.status, `${install.stdout}${install.stderr}`).toBe(0);
         const bin = join(prefix, 'bin', 'contract');
         expect(existsSync(bin)).toBe(true);
@@ -73,4 +95,18 @@ describe('the packed CLI installed with npm install -g', () => {
         // the language server for desktop editors comes with it (docs/editors.md)
         expect(await initializeAnswer('contract-language-server', work, env)).toMatch(/"renameProvider":/);
     }, 900_000);
+
+    it('installs offline as a devDependency: npx contract check . on a copy of the tutorial exits 0', async () => {
+        const project = join(root, 'robot-project');
+        const install = await devInstall;
+        expect(install.status, install.out).toBe(0);
+
+        const check = spawnSync('npx', ['contract', 'check', '.'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000 });
+        expect(check.stdout).toBe('');
+        expect(check.stderr).toContain('0 errors, 0 warnings, 0 hints in 13 files');
+        expect(check.status).toBe(0);
+
+        const json = spawnSync('npx', ['contract', 'check', '.', '--format', 'json'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000 });
+        expect(JSON.parse(json.stdout)).toEqual({ diagnostics: [] });
+    }, 600_000);
 });

@@ -1,25 +1,33 @@
 /**
  * The machinery of the differential tests (differential*.bwrap.test.ts): run an example for real
  * (`contract run --sandbox bwrap`: real processes, the real module code), turn its CSV trace into a
- * scenario (the events the supervisors got, at their times since the start function started), run
- * that scenario in the simulator, and put both sides' supervisor decisions (`sup_rule`) in one
- * comparable form.
+ * scenario (the events the supervisors got, at the times they got them since the start function
+ * started), run that scenario in the simulator, and put both sides' supervisor decisions
+ * (`sup_rule`) in one comparable form.
  *
- * What is replayed, and how its values are found:
- * - every `event_posted` record of a module to a supervisor (producer side: each event once, at the
- *   time it was posted, whatever the supervisor then did with it); a supervisor's own notifications
- *   are not replayed (the simulated supervisor makes them);
- * - every deadline miss of the real ORD (`ord_deadline_miss`, `ORD:0 "schema"`) and conflict
- *   (`scheduler` "conflict: S shares ... (ORD:1)", `ORD:1 "S"`): they depend on the machine's timing,
- *   so the simulated ORD (whose virtual modules are never late) cannot make them by itself;
- * - a value: the CSV has none for an event (only its size), but a rule change it caused names it
- *   (`cause=OBS:0 value=0.35`): each cause goes to the latest post of that port before it (within 5 ms: a
- *   post is logged once sent, its receiver may have logged first). Datatype
- *   values are logged as `{N bytes}` and events that changed no rule name no value: those take the
- *   example's `fallback` (a value the test explains), else the type's default.
+ * What is replayed, and when: every event a supervisor received from a module that is not a
+ * supervisor, from the supervisor's own log (`request_received`, `EVENT from_port=N`, peer = the
+ * producer), at the time it was received. The receiver's log, not the producer's `event_posted`:
+ * a supervisor decides in the order its mailbox gives it, and logs the receipt before it decides on
+ * it, in the same file; a producer logs a post once sent, and on a loaded machine it can be
+ * preempted in between, so the posts' log order is not the order of arrival. An event a producer
+ * sent to several supervisors (ORD's, to each subscriber) is one scenario event: the k-th receipt
+ * of that source at each supervisor, at the first of their times. A supervisor's own notifications
+ * are not replayed (the simulated supervisor makes them).
+ *
+ * Which ORD events there are (deadline misses `ORD:0`, conflicts `ORD:1`) depends on the machine's
+ * timing, so the simulated ORD (whose virtual modules are never late) cannot make them by itself:
+ * they are replayed like the others.
+ *
+ * Values: the CSV has none for an event (only its size), but a rule change it caused names it
+ * (`cause=OBS:0 value=0.35`), and it goes to the latest receipt of that source by the deciding
+ * supervisor before the decision (the same file: no guessing). An ORD event names its schema in
+ * ORD's own records: the k-th `ord_deadline_miss` for the k-th `ORD:0`, the k-th conflict for the
+ * k-th `ORD:1`. Datatype values are logged as `{N bytes}` and events that changed no rule name no
+ * value: those take the example's `fallback` (a value the test explains), else the type's default.
  */
 import { spawnSync } from 'node:child_process';
-import { cpSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { cpSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { isRule, parseTrace, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
@@ -82,13 +90,21 @@ export interface RunScenario {
 
 const mono = (r: KnownRecord | RuleRecord): bigint => BigInt(r.monoNs);
 const LOGGED_DATATYPE = /^\{\d+ bytes\}$/;
-/** How much later than its receiver a producer may log a post (measured: ~0.1 ms; far below the examples' event periods). */
-const POST_LOGGED_LATE = 5_000_000n;
+const EVENT_RECEIVED = /^EVENT from_port=(\d+)/;
 
-interface Post {
+/** One event as the scenario replays it: received by one supervisor or more. */
+interface Emission {
+    /** The first of its receipts. */
     t: bigint;
     source: string;
     value?: string;
+}
+
+/** An event received by one supervisor, in its log's order. */
+interface Receipt {
+    t: bigint;
+    source: string;
+    emission?: Emission;
 }
 
 /** The scenario of a real run (see the header for what is replayed). */
@@ -103,46 +119,67 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     const end = stop ? mono(stop) : BigInt(Number.MAX_SAFE_INTEGER);
     const real = known.filter(isRule).filter((r) => plan.supervisors.has(r.module) && mono(r) < end);
 
-    const posts: Post[] = [];
-    const seen = new Set<string>();
+    // every event each supervisor received from a module, over the whole run, in its log's order
+    const received = new Map<string, Receipt[]>(); // `${supervisor} ${source}` -> receipts
+    const receivers = new Map<string, string[]>(); // source -> its supervisors
     for (const r of known) {
-        const t = mono(r);
-        if (t < t0 || t >= end) continue;
-        if (r.kind === 'event_posted' && plan.supervisors.has(r.peer) && !plan.supervisors.has(r.module) && r.port !== null) {
-            const key = `${r.module}:${r.port}@${r.monoNs}`;
-            if (seen.has(key)) continue;
-            seen.add(key);
-            posts.push({ t, source: `${r.module}:${r.port}` });
-        } else if (r.module === 'ORD' && r.kind === 'ord_deadline_miss') {
-            posts.push({ t, source: 'ORD:0', value: JSON.stringify(String(r.fields.schema)) });
-        } else if (r.module === 'ORD' && r.kind === 'scheduler') {
-            const conflict = /^conflict: (\S+) shares .*\(ORD:1\)$/.exec(r.detail);
-            if (conflict) posts.push({ t, source: 'ORD:1', value: JSON.stringify(conflict[1]) });
+        if (r.kind !== 'request_received' || !plan.supervisors.has(r.module) || plan.supervisors.has(r.peer)) continue;
+        const port = EVENT_RECEIVED.exec(r.detail)?.[1];
+        if (port === undefined) continue;
+        const source = `${r.peer}:${port}`;
+        const key = `${r.module} ${source}`;
+        if (!received.has(key)) {
+            received.set(key, []);
+            receivers.set(source, [...(receivers.get(source) ?? []), r.module]);
+        }
+        received.get(key)!.push({ t: mono(r), source });
+    }
+    // one emission per event sent: the k-th receipt of a source at each of its supervisors
+    const emissions: Emission[] = [];
+    for (const [source, sups] of receivers) {
+        const lists = sups.map((sup) => received.get(`${sup} ${source}`)!);
+        if (new Set(lists.map((l) => l.length)).size > 1) {
+            throw new Error(`${source} reached its supervisors a different number of times (${sups.map((sup, i) => `${sup} ${lists[i]!.length}`).join(', ')}): which receipts are one event is not known`);
+        }
+        for (let k = 0; k < lists[0]!.length; k++) {
+            const t = lists.reduce((min, l) => (l[k]!.t < min ? l[k]!.t : min), lists[0]![k]!.t);
+            const emission: Emission = { t, source };
+            for (const l of lists) l[k]!.emission = emission;
+            emissions.push(emission);
         }
     }
-    posts.sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
-    // each rule change caused by an event names its value: the latest post of that port before it
-    // (give or take POST_LOGGED_LATE: the producer logs a post once sent, after its receiver may
-    // already have logged what it decided)
+    // ORD's events name their schema in ORD's own records, in the order it sent them
+    const ordValues = new Map<string, string[]>([
+        ['ORD:0', known.filter((r): r is KnownRecord => r.module === 'ORD' && r.kind === 'ord_deadline_miss').map((r) => JSON.stringify(String(r.fields.schema)))],
+        ['ORD:1', known.flatMap((r) => (r.module === 'ORD' && r.kind === 'scheduler' ? /^conflict: (\S+) shares .*\(ORD:1\)$/.exec(r.detail)?.slice(1, 2).map((s) => JSON.stringify(s)) ?? [] : []))],
+    ]);
+    for (const [source, values] of ordValues) {
+        const sent = emissions.filter((e) => e.source === source);
+        if (sent.length > values.length) throw new Error(`${source} was received ${sent.length} times but ORD logged ${values.length} such events`);
+        sent.forEach((e, k) => (e.value = values[k]));
+    }
+    // each rule change caused by an event names its value: the deciding supervisor's latest receipt
+    // of that source before the decision
     for (const r of real) {
         const c = r.causeEvent;
         if (c.kind !== 'event' || LOGGED_DATATYPE.test(c.value)) continue;
-        const source = `${c.module}:${c.port}`;
-        let post: Post | undefined;
-        for (const p of posts) {
-            if (p.t > mono(r) + POST_LOGGED_LATE) break;
-            if (p.source === source) post = p;
+        const list = received.get(`${r.module} ${c.module}:${c.port}`) ?? [];
+        let receipt: Receipt | undefined;
+        for (const x of list) {
+            if (x.t > mono(r)) break;
+            receipt = x;
         }
-        if (post && post.value === undefined) post.value = plan.causeValue?.(c.module, c.port, c.value) ?? c.value;
+        if (receipt?.emission && receipt.emission.value === undefined) receipt.emission.value = plan.causeValue?.(c.module, c.port, c.value) ?? c.value;
     }
 
+    const replayed = emissions.filter((e) => e.t >= t0 && e.t < end).sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
     const counts = new Map<string, number>();
     const lines = [`until ${formatTime(Number(end - t0))}`, `start ${plan.start}`];
-    for (const p of posts) {
-        counts.set(p.source, (counts.get(p.source) ?? 0) + 1);
-        const [module, port] = p.source.split(':');
-        const value = p.value ?? plan.fallback?.(module!, Number(port)) ?? '';
-        lines.push(`t=${formatTime(Number(p.t - t0))} ${p.source} ${value}`.trimEnd());
+    for (const e of replayed) {
+        counts.set(e.source, (counts.get(e.source) ?? 0) + 1);
+        const [module, port] = e.source.split(':');
+        const value = e.value ?? plan.fallback?.(module!, Number(port)) ?? '';
+        lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source} ${value}`.trimEnd());
     }
     return { text: lines.join('\n') + '\n', real, counts };
 }
@@ -155,3 +192,25 @@ export const realDecisions = (real: RuleRecord[], sup: string): string[] =>
 
 export const simulatedDecisions = (changes: RuleChange[], sup: string): string[] =>
     changes.filter((c) => c.supervisor === sup).map((c) => decision(sup, c.function, c.rule, c.active, c.cause));
+
+/**
+ * The assertion message of a decision comparison: where the two sides first part, with the
+ * decisions around it, the scenario lines around the real decision's time, and the whole scenario
+ * saved to a file (it is long: 180-beam scans). CI prints only the first lines of a failure: they
+ * must say what differs.
+ */
+export function firstDifference(sup: string, simulated: string[], real: string[], scenario: string): string {
+    let i = 0;
+    while (i < simulated.length && i < real.length && simulated[i] === real[i]) i++;
+    if (i === simulated.length && i === real.length) return `${sup}: the same ${i} decisions`;
+    const around = (list: string[]): string => list.slice(Math.max(0, i - 2), i + 3).map((d, k) => `${Math.max(0, i - 2) + k === i ? '>' : ' '} ${d}`).join('\n');
+    const file = join(mkdtempSync(join(tmpdir(), 'contract-sim-diff-scenario-')), 'run.scenario');
+    writeFileSync(file, scenario);
+    const short = scenario.split('\n').map((l) => (l.length > 160 ? `${l.slice(0, 160)}...` : l)).join('\n');
+    return [
+        `${sup}: decision ${i} differs (simulated ${simulated.length}, real ${real.length})`,
+        `simulated:\n${around(simulated)}`,
+        `real:\n${around(real)}`,
+        `scenario replayed (${file}):\n${short}`,
+    ].join('\n');
+}
