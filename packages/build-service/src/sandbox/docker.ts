@@ -28,8 +28,9 @@ import { memoryBytes, REALTIME_BOUNDS, tmpBytes, workDiskBytes } from '../limits
 import { dockerRealtimeError, dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
-import type { DirListing } from '../pipeline/artifacts.js';
-import { readTar } from '../util/tar-reader.js';
+import { ARTIFACT_BOUNDS, type DirListing } from '../pipeline/artifacts.js';
+import { firstTarEntry, readTar } from '../util/tar-reader.js';
+import { folderListFindArgs, readFolderList, type FoundFolder } from './docker-folder-list.js';
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
@@ -392,6 +393,11 @@ export class DockerSandbox implements Sandbox {
    * container (volume mounted read-only): the engine resolves paths inside the container and
    * its tar reports links as links, so nothing the job planted is followed on the host. Each
    * archive is read up to maxBytes + 1 MiB; entries cut by that bound come without data.
+   *
+   * The sizes come first, from `find` in the volume's holder: the archive API streams every byte
+   * of a file, so a folder whose files are bigger than the bounds (a sparse file of a terabyte
+   * planted in logs/) is not archived whole; each of its files is then read on its own, only as
+   * far as the collector asks (its first maxBytes), through the holder.
    */
   async readWorkDirs(workDir: string, rels: string[], maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>> {
     const out = new Map<string, DirListing>();
@@ -400,11 +406,24 @@ export class DockerSandbox implements Sandbox {
       for (const rel of rels) out.set(rel, null);
       return out;
     }
+    const archived: string[] = [];
+    for (const rel of rels) {
+      const found = await this.listFolder(volume, rel, maxEntries);
+      const files = found && 'entries' in found ? found.entries.filter((e) => e.kind === 'file') : [];
+      const bytes = files.reduce((sum, e) => sum + e.size, 0);
+      if (found && 'entries' in found && (bytes > maxBytes || files.some((e) => e.size > ARTIFACT_BOUNDS.fileBytes))) {
+        out.set(rel, {
+          ...(found.more ? { more: true } : {}),
+          entries: found.entries.map((e) => ({ ...e, read: async (max: number) => (e.kind === 'file' ? this.readFilePrefix(volume, `${DOCKER_WORK}/${rel}/${e.name}`, Math.min(max, e.size)) : null) })),
+        });
+      } else archived.push(rel); // within the bounds, or find could not tell: the folder's archive
+    }
+    if (archived.length === 0) return out;
     const c = await this.docker.createContainer(
       this.volumeReader(`contract-collect-${randomBytes(6).toString('hex')}`, ['true'], volume, this.jobOfWorkDir.get(workDir) ?? 'collect'),
     );
     try {
-      for (const rel of rels) {
+      for (const rel of archived) {
         let stream: Readable;
         try {
           stream = (await c.getArchive({ path: `${DOCKER_WORK}/${rel}` })) as unknown as Readable;
@@ -523,6 +542,29 @@ export class DockerSandbox implements Sandbox {
     await c.start();
   }
 
+  /** One folder of a work volume as `find` in its holder sees it; undefined without a holder or on a failure. */
+  private async listFolder(volume: string, rel: string, maxEntries: number): Promise<FoundFolder | undefined> {
+    if (!this.holders.has(volume)) return undefined;
+    const out = new PassThrough();
+    out.on('error', () => {});
+    const exited = this.execInHolder(volume, ['find', ...folderListFindArgs(`${DOCKER_WORK}/${rel}`)], out).catch(() => undefined);
+    const found = await readFolderList(out, maxEntries, () => out.destroy());
+    return (await exited) === undefined ? undefined : found;
+  }
+
+  /** The first `bytes` bytes of a regular file of a work volume (a bounded read of its archive, through the holder). */
+  private async readFilePrefix(volume: string, path: string, bytes: number): Promise<Buffer | null> {
+    const holder = this.holders.get(volume);
+    if (!holder) return null;
+    try {
+      const stream = (await holder.getArchive({ path })) as unknown as Readable;
+      const entry = firstTarEntry(await readBounded(stream, bytes + TAR_HEADER_ROOM));
+      return entry?.kind === 'file' && entry.data && entry.data.length >= bytes ? entry.data.subarray(0, bytes) : null;
+    } catch {
+      return null;
+    }
+  }
+
   /** Runs a command in a volume's holder; stdout to `out`, resolves with the exit code. */
   private async execInHolder(volume: string, cmd: string[], out: PassThrough): Promise<number | null> {
     const holder = this.holders.get(volume);
@@ -576,6 +618,9 @@ export class DockerSandbox implements Sandbox {
     return digestFindOutput(out, exited);
   }
 }
+
+/** Room for a one-file archive's headers before the file's bytes (a PAX header with a long name). */
+const TAR_HEADER_ROOM = 64 * 1024;
 
 /** Reads a stream up to `limit` bytes (then stops reading it). */
 function readBounded(stream: Readable, limit: number): Promise<Buffer> {

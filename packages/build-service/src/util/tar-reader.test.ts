@@ -3,7 +3,7 @@ import { mkdirSync, mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import { readTar } from './tar-reader.js';
+import { firstTarEntry, readTar } from './tar-reader.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'tar-reader-'));
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -54,5 +54,22 @@ describe('readTar on archives made by GNU tar', () => {
     let entries: ReturnType<typeof readTar> = [];
     expect(() => (entries = readTar(tar))).not.toThrow();
     expect(entries.map((e) => e.name)).toEqual(['logs/MSC_1.csv']);
+  });
+
+  test('firstTarEntry: the first file of a one-file archive read only partly, with the part of it held (a long PAX name too)', () => {
+    for (const [format, name] of [['gnu', 'logs/big.bin'], ['pax', `logs/${long}`]] as const) {
+      const full = tarOf([`--format=${format}`, name]);
+      const whole = firstTarEntry(full)!;
+      expect(whole).toMatchObject({ name, kind: 'file' });
+      expect(whole.data!.length).toBe(whole.size);
+      // cut a few bytes into the body: those bytes, the declared size kept
+      const headers = full.indexOf(whole.data!);
+      const held = Math.min(5, whole.size - 1);
+      const cut = firstTarEntry(full.subarray(0, headers + held))!;
+      expect(cut).toMatchObject({ name, kind: 'file', size: whole.size });
+      expect(cut.data!.equals(whole.data!.subarray(0, held))).toBe(true);
+    }
+    expect(firstTarEntry(Buffer.alloc(100))).toBeNull();
+    expect(firstTarEntry(tarOf(['--format=gnu', 'logs/planted.csv']))).toMatchObject({ kind: 'symlink', data: null });
   });
 });
