@@ -3,9 +3,12 @@
 // summary line `N passed, N failed` (plus skipped) over all suites. Exit code 1 if any suite
 // failed or ran no test.
 //
-// Suites: the C runtime (its runner prints `N passed, N failed`), then each npm workspace's
-// vitest run (read through vitest's JSON reporter), then the type check of every workspace's
-// sources and tests (`npm run typecheck`: one check per workspace; vitest does not type-check).
+// Suites: the C runtime (its runner prints `N passed, N failed`), each npm workspace's vitest run
+// (read through vitest's JSON reporter), and the type check of every workspace's sources and tests
+// (`npm run typecheck`: one check per workspace; vitest does not type-check). The suites that only
+// compute (conventions, language, codegen, vscode, the type check) run first, side by side, their
+// output printed whole when they are all done; then the others one at a time, streamed.
+// `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -17,13 +20,16 @@ const rootPkg = JSON.parse(readFileSync(join(root, 'package.json'), 'utf8'));
 const only = process.argv.slice(2);
 const scratch = mkdtempSync(join(tmpdir(), 'contract-tests-'));
 
-/** Runs a command, echoing its output live; resolves with its exit code and full output. */
-function run(cmd, args, opts = {}) {
+/**
+ * Runs a command, echoing its output live (or, for a suite run beside others, only keeping it:
+ * `echo` false); resolves with its exit code and full output.
+ */
+function run(cmd, args, opts = {}, echo = true) {
   return new Promise((resolve) => {
     const child = spawn(cmd, args, { cwd: root, stdio: ['ignore', 'pipe', 'pipe'], ...opts });
     let out = '';
-    child.stdout.on('data', (d) => { out += d; process.stdout.write(d); });
-    child.stderr.on('data', (d) => { out += d; process.stderr.write(d); });
+    child.stdout.on('data', (d) => { out += d; if (echo) process.stdout.write(d); });
+    child.stderr.on('data', (d) => { out += d; if (echo) process.stderr.write(d); });
     child.on('close', (code, signal) => resolve({ code: code ?? (signal ? 128 : 1), out }));
   });
 }
@@ -39,6 +45,9 @@ function countCRunner(out) {
   return seen ? { passed, failed, skipped: 0, failures } : null;
 }
 
+/** Workspaces whose tests only compute (no sandbox, no browser, no timing): run beside each other. */
+const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages/codegen', 'packages/vscode']);
+
 const suites = [
   {
     name: 'runtime (C, plain + ASan/UBSan, engines)',
@@ -47,12 +56,15 @@ const suites = [
   },
   ...rootPkg.workspaces.map((ws) => ({
     name: ws,
-    exec: () => {
+    // pure computation, no sandbox and no timing: run side by side (vitest gives each one worker
+    // on a two-core machine, so two of them use both cores)
+    beside: CPU_ONLY.has(ws),
+    exec: (echo) => {
       const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
       if (!pkg.scripts?.test) return Promise.resolve(null);
       const json = join(scratch, ws.replace(/\W/g, '_') + '.json');
       return run('npx', ['vitest', 'run', '--reporter=default', '--reporter=json', `--outputFile=${json}`],
-        { cwd: join(root, ws) }).then((r) => ({ ...r, json }));
+        { cwd: join(root, ws) }, echo).then((r) => ({ ...r, json }));
     },
     count: (r) => {
       if (!r.json || !existsSync(r.json)) return null;
@@ -62,15 +74,19 @@ const suites = [
   })),
   {
     name: 'typecheck (tsc --noEmit of sources and tests, per workspace)',
-    exec: async () => {
+    beside: true,
+    exec: async (echo) => {
       let passed = 0, failed = 0, out = '';
       const failures = [];
       for (const ws of rootPkg.workspaces) {
         const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
         if (!pkg.scripts?.typecheck) continue;
-        const r = await run('npm', ['run', '-s', 'typecheck'], { cwd: join(root, ws) });
+        const r = await run('npm', ['run', '-s', 'typecheck'], { cwd: join(root, ws) }, echo);
         out += r.out;
-        if (r.code === 0) { passed++; console.log(`typecheck ${ws}: ok`); } else { failed++; console.log(`typecheck ${ws}: FAILED`); }
+        const said = `typecheck ${ws}: ${r.code === 0 ? 'ok' : 'FAILED'}\n`;
+        out += said;
+        if (echo) process.stdout.write(said);
+        if (r.code === 0) passed++; else failed++;
         if (r.code !== 0) failures.push(...r.out.split('\n').filter((l) => /error TS\d+/.test(l)).slice(0, 20).map((l) => `${ws}/${l.trim()}`));
       }
       return { code: failed ? 1 : 0, out, counts: { passed, failed, skipped: 0, failures } };
@@ -104,18 +120,38 @@ function vitestFailures(report, ws) {
 const totals = { passed: 0, failed: 0, skipped: 0 };
 const problems = [];
 const failureDetails = [];
-for (const s of suites) {
-  if (only.length && !only.some((o) => s.name.includes(o))) continue;
-  console.log(`\n=== ${s.name} ===`);
-  const r = await s.exec();
-  if (r === null) { console.log('(no tests)'); continue; }
+
+/** Counts a finished suite into the totals and prints its closing line. */
+function record(s, r) {
+  if (r === null) { console.log('(no tests)'); return; }
   const c = s.count(r);
-  if (!c) { problems.push(`${s.name}: exit ${r.code}, no test count found`); continue; }
+  if (!c) { problems.push(`${s.name}: exit ${r.code}, no test count found`); return; }
   totals.passed += c.passed; totals.failed += c.failed; totals.skipped += c.skipped;
   if (r.code !== 0 || c.failed > 0) problems.push(`${s.name}: exit ${r.code}, ${c.failed} failed`);
   for (const f of c.failures ?? []) failureDetails.push(`${s.name}: ${f}`);
   if (c.passed + c.failed === 0) problems.push(`${s.name}: ran no test`);
   console.log(`=== ${s.name}: ${c.passed} passed, ${c.failed} failed, ${c.skipped} skipped ===`);
+}
+
+const chosen = suites.filter((s) => !only.length || only.some((o) => s.name.includes(o)));
+// the suites marked `beside` run together, first, their output printed whole one after the other;
+// then the others one at a time, streamed (sandboxes, browsers and timing tests get the machine)
+const together = chosen.filter((s) => s.beside);
+const alone = chosen.filter((s) => !s.beside);
+if (together.length) {
+  console.log(`\n=== running side by side: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
+  const t0 = Date.now();
+  const results = await Promise.all(together.map((s) => s.exec(false)));
+  together.forEach((s, i) => {
+    console.log(`\n=== ${s.name} ===`);
+    if (results[i]) process.stdout.write(results[i].out);
+    record(s, results[i]);
+  });
+  console.log(`=== side by side: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);
+}
+for (const s of alone) {
+  console.log(`\n=== ${s.name} ===`);
+  record(s, await s.exec(true));
 }
 rmSync(scratch, { recursive: true, force: true });
 if (failureDetails.length) console.log(`\nFAILED tests:\n  ${failureDetails.join('\n  ')}`);

@@ -12,7 +12,8 @@
  * it, in the same file; a producer logs a post once sent, and on a loaded machine it can be
  * preempted in between, so the posts' log order is not the order of arrival. An event a producer
  * sent to several supervisors (ORD's, to each subscriber) is one scenario event: the k-th receipt
- * of that source at each supervisor, at the first of their times. A supervisor's own notifications
+ * of that source at each supervisor (each mailbox is first in, first out), at the first of their
+ * times. A supervisor's own notifications
  * are not replayed (the simulated supervisor makes them).
  *
  * Which ORD events there are (deadline misses `ORD:0`, conflicts `ORD:1`) depends on the machine's
@@ -137,14 +138,13 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // one emission per event sent: the k-th receipt of a source at each of its supervisors
     const emissions: Emission[] = [];
     for (const [source, sups] of receivers) {
+        // (a supervisor that stopped first got fewer: the receipts past the shortest list are its own)
         const lists = sups.map((sup) => received.get(`${sup} ${source}`)!);
-        if (new Set(lists.map((l) => l.length)).size > 1) {
-            throw new Error(`${source} reached its supervisors a different number of times (${sups.map((sup, i) => `${sup} ${lists[i]!.length}`).join(', ')}): which receipts are one event is not known`);
-        }
-        for (let k = 0; k < lists[0]!.length; k++) {
-            const t = lists.reduce((min, l) => (l[k]!.t < min ? l[k]!.t : min), lists[0]![k]!.t);
-            const emission: Emission = { t, source };
-            for (const l of lists) l[k]!.emission = emission;
+        const longest = Math.max(...lists.map((l) => l.length));
+        for (let k = 0; k < longest; k++) {
+            const got = lists.filter((l) => k < l.length).map((l) => l[k]!);
+            const emission: Emission = { t: got.reduce((min, x) => (x.t < min ? x.t : min), got[0]!.t), source };
+            for (const x of got) x.emission = emission;
             emissions.push(emission);
         }
     }
