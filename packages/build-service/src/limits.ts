@@ -9,6 +9,7 @@
  *
  * Numeric limits (configurable per server, and per job downwards only):
  */
+import { availableParallelism } from 'node:os';
 export interface Limits {
   /** Memory of the whole job (all processes, tmpfs included), MiB. */
   memoryMiB: number;
@@ -224,6 +225,14 @@ export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean
 }
 
 export class LimitsError extends Error {}
+
+/**
+ * make jobs of a generated tree's build step: one per CPU of this machine, at most 4, and at most
+ * one per 128 MiB of the job's memory limit (each gcc of a module takes up to about 100 MiB).
+ */
+export function buildJobs(limits: Limits, cpus: number = availableParallelism()): number {
+  return Math.max(1, Math.min(cpus, 4, Math.floor(limits.memoryMiB / 128)));
+}
 
 export function memoryBytes(limits: Limits): number {
   return Math.floor(limits.memoryMiB * 1024 * 1024);

@@ -75,8 +75,9 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
     return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime, cacheDir };
 }
 
-export function formatGccDiagnostic(d: GccDiagnostic): string {
-    const where = d.file ? `src-gen/${d.file}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+/** A gcc diagnostic as gcc prints it, its path from where the command was typed (`dirArg`: the project folder as given). */
+export function formatGccDiagnostic(d: GccDiagnostic, dirArg = '.'): string {
+    const where = d.file ? `${join(dirArg, 'src-gen', d.file)}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
     const region = d.protectedRegion ? ` [in protected region ${d.protectedRegion.id}]` : '';
     return `${where}${d.severity}: ${d.message}${d.option ? ` [${d.option}]` : ''}${region}\n`;
 }
@@ -187,7 +188,7 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
     const madeParts = new Set<string>();
     return (e) => {
         if (e.type === 'diagnostic') {
-            if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic));
+            if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic, opts.dirArg));
             return;
         }
         if (e.type === 'status') {

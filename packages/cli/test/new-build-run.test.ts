@@ -228,6 +228,31 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stderr).toContain('contract check broken');
     }, 120_000);
 
+    it('reports the gcc errors of every module in one build, each at a path that opens from where the command was typed', async () => {
+        const dir = join(root, 'broken');
+        expect(await runCli(['new', 'broken'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'broken'], capture(root))).toBe(0);
+        const files: Record<string, string> = {};
+        for (const m of ['CTL', 'LOC']) {
+            const file = join(dir, `src-gen/generated/architecture/modules/${m}_mod/module.c`);
+            const source = readFileSync(file, 'utf8');
+            const broken = source.replace(new RegExp(`(PROTECTED REGION ID\\(protect_additional_import_${m}\\) ENABLED START\\*/)`), `$1\nstatic int broken_${m} = missing_${m};`);
+            expect(broken).not.toBe(source);
+            writeFileSync(file, broken);
+            files[m] = `broken/src-gen/generated/architecture/modules/${m}_mod/module.c`;
+        }
+        const io = capture(root);
+        expect(await runCli(['build', 'broken', '--sandbox', 'bwrap'], io)).toBe(1);
+        for (const m of ['CTL', 'LOC']) {
+            const at = new RegExp(`^(\\S+):(\\d+):\\d+: error: .missing_${m}. undeclared.* \\[in protected region protect_additional_import_${m}\\]$`, 'm').exec(io.stderr);
+            expect(at, io.stderr).not.toBeNull();
+            expect(at![1]).toBe(files[m]);
+            // the line named holds the error, read from where the command ran
+            expect(readFileSync(join(root, at![1]!), 'utf8').split('\n')[Number(at![2]) - 1]).toContain(`missing_${m}`);
+        }
+        expect(io.stderr).toContain('build failed: 2 error(s)');
+    }, 240_000);
+
     it('exits 1 and names the module when user code crashes during the run', async () => {
         const dir = join(root, 'crash');
         expect(await runCli(['new', 'crash'], capture(root))).toBe(0);

@@ -8,6 +8,7 @@ import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { findProtectedRegions, regionAt } from './protected-regions.js';
 import { BuildOutputRouter, routeRunLine } from './output-router.js';
+import { buildJobs, DEFAULT_LIMITS } from '../limits.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'gccdiag-'));
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -90,5 +91,38 @@ describe('gcc diagnostics', () => {
     expect(routeRunLine('make: Entering directory')).toEqual({ source: 'run', line: 'make: Entering directory' });
     // a bare CR (or U+2028) inside a module's line keeps it that module's, not make's
     expect(routeRunLine('[CTL] 50%\rOVER\u2028x')).toEqual({ source: 'CTL', line: '50%\rOVER\u2028x' });
+  });
+
+  test('a parallel build (make -j --output-sync, 2>&1): every module\'s diagnostics map to its own files', () => {
+    // a tree shaped like the generated one: a top Makefile making each module in its folder
+    const top = join(dir, 'parallel', 'architecture');
+    const modules = ['A', 'B', 'C', 'D'];
+    mkdirSync(top, { recursive: true });
+    const rule = (m: string) => `${m}:\n\t$(MAKE) -C modules/${m}_mod\n`;
+    writeFileSync(join(top, 'Makefile'), `.PHONY: all ${modules.join(' ')}\nall: ${modules.join(' ')}\n${modules.map(rule).join('')}`);
+    modules.forEach((m, i) => {
+      mkdirSync(join(top, 'modules', `${m}_mod`), { recursive: true });
+      writeFileSync(join(top, 'modules', `${m}_mod`, 'Makefile'), `${m}: module.c\n\tcc -std=c11 -c $(EXTRA_CFLAGS) -o ${m}.o module.c\n`);
+      // module i has its error on line i + 2
+      writeFileSync(join(top, 'modules', `${m}_mod`, 'module.c'), `${'\n'.repeat(i + 1)}int f(void) { return undeclared_${m}; }\n`);
+    });
+    const r = spawnSync('sh', ['-c', 'exec "$@" 2>&1', 'sh', 'make', '-k', '-j4', '--output-sync=recurse', '-C', top, 'all', 'EXTRA_CFLAGS=-fdiagnostics-format=json'], { encoding: 'utf8' });
+    expect(r.stderr).toBe('');
+    const route = (diagnosticsOnStdout: boolean) => {
+      const router = new BuildOutputRouter({ startDir: top, root: join(dir, 'parallel'), regions: new Map(), ...(diagnosticsOnStdout ? { diagnosticsOnStdout } : {}) });
+      return r.stdout.split('\n').flatMap((l) => router.route(l, 'stdout').diagnostics);
+    };
+    const found = route(true).filter((d) => d.severity === 'error').map((d) => [d.file, d.line, /undeclared_(\w)/.exec(d.message)?.[1]]);
+    expect(found.sort()).toEqual(modules.map((m, i) => [`architecture/modules/${m}_mod/module.c`, i + 2, m]));
+    // without the option, a JSON line on stdout is plain text (a plain Makefile's build keeps its streams apart)
+    expect(route(false)).toEqual([]);
+  });
+
+  test('build jobs: one per CPU, at most 4, at most one per 128 MiB of the memory limit', () => {
+    expect(buildJobs(DEFAULT_LIMITS, 2)).toBe(2);
+    expect(buildJobs(DEFAULT_LIMITS, 64)).toBe(4);
+    expect(buildJobs({ ...DEFAULT_LIMITS, memoryMiB: 256 }, 64)).toBe(2);
+    expect(buildJobs({ ...DEFAULT_LIMITS, memoryMiB: 64 }, 64)).toBe(1);
+    expect(buildJobs(DEFAULT_LIMITS, 1)).toBe(1);
   });
 });

@@ -5,7 +5,7 @@
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
+import { buildJobs, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -252,17 +252,27 @@ export class Job {
       const work = ctx.sandbox.workPath(ws.workDir);
       const dir = makeDir(this.request.kind) || '.';
       const vars = [`CONTRACT_RUNTIME=${runtimePath}`];
+      // a generated tree builds its modules in parallel (its Makefile is made for it), each module's
+      // output in one block (--output-sync) with stderr in the same order (2>&1): the router follows
+      // make's directories through them; -k: every module is compiled, so one build reports the
+      // errors of all (with -j, which modules a first error stops would be timing); a plain
+      // Makefile project builds as its author wrote it
+      const make = ['make', '-C', dir, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'];
+      const parallel = this.request.kind === 'cactal';
+      const jobs = buildJobs(this.request.limits);
+      const argv = parallel ? ['sh', '-c', 'exec "$@" 2>&1', 'sh', 'make', '-k', `-j${jobs}`, '--output-sync=recurse', ...make.slice(1)] : make;
       const router = new BuildOutputRouter({
         startDir: posix.join(work, makeDir(this.request.kind)),
         root: posix.join(work, treeRoot(this.request.kind)),
         regions: prep.regions,
+        ...(parallel ? { diagnosticsOnStdout: true } : {}),
       });
       ws.acceptedOutputs = null;
-      const build = await this.runStep(ctx.sandbox, ws, runtimeDir, 'build', ['make', '-C', dir, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'], this.request.limits.buildSeconds, (line, stream) => {
+      const build = await this.runStep(ctx.sandbox, ws, runtimeDir, 'build', argv, this.request.limits.buildSeconds, (line, stream) => {
         const routed = router.route(line, stream);
         for (const d of routed.diagnostics) this.addDiagnostic(d);
         return routed.lines;
-      });
+      }, {}, parallel ? `make -k -j${jobs} --output-sync=recurse ${make.slice(1).join(' ')} 2>&1` : undefined);
       // what this build step left (it ended by itself) is what the next job may build on
       if (!this.cancelRequested && !build.limitHit && build.exitCode !== null) {
         const td = Date.now();
@@ -473,11 +483,13 @@ export class Job {
     seconds: number,
     route: (line: string, stream: 'stdout' | 'stderr') => { source: string; line: string }[],
     env: Record<string, string> = {},
+    /** The command as the log shows it (default: argv joined). */
+    shown?: string,
   ): Promise<{ ok: boolean; exitCode: number | null; signal: string | null; limitHit: LimitHit | null; message: string | null }> {
     if (this.fault) throw this.fault;
     if (this.cancelRequested) throw new Cancelled();
     const t0 = Date.now();
-    this.system(step, `$ ${argv.join(' ')}`);
+    this.system(step, `$ ${shown ?? argv.join(' ')}`);
     const proc = await sandbox.start({
       name: `${this.id}-${step}`,
       jobId: this.id,

@@ -22,6 +22,8 @@ export interface BuildRouterOptions {
   /** Sandbox-side absolute tree root diagnostics are reported against. */
   root: string;
   regions: ReadonlyMap<string, readonly ProtectedRegion[]>;
+  /** gcc's JSON diagnostics come on stdout too (a build whose stderr is merged into its stdout, 2>&1). */
+  diagnosticsOnStdout?: boolean;
 }
 
 export class BuildOutputRouter {
@@ -43,7 +45,7 @@ export class BuildOutputRouter {
     if (entering) this.dirs.push(posix.resolve(this.cwd, entering));
     else if (makeLeavingDirectory(head) && this.dirs.length > 1) this.dirs.pop();
     const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions };
-    if (stream === 'stderr' && looksLikeGccJson(line)) {
+    if ((stream === 'stderr' || this.options.diagnosticsOnStdout) && looksLikeGccJson(line)) {
       const diags = parseGccJsonLine(line, ctx);
       if (diags) {
         const lines = diags.flatMap((d) => [d, ...d.children]).map((d) => ({ source: 'build', line: renderDiagnostic(d) }));
