@@ -229,9 +229,9 @@ describe('contract build / run on a project (bwrap)', () => {
     }, 120_000);
 
     it('reports the gcc errors of every module in one build, each at a path that opens from where the command was typed', async () => {
-        const dir = join(root, 'broken');
-        expect(await runCli(['new', 'broken'], capture(root))).toBe(0);
-        expect(await runCli(['generate', 'broken'], capture(root))).toBe(0);
+        const dir = join(root, 'gcc-errors');
+        expect(await runCli(['new', 'gcc-errors'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'gcc-errors'], capture(root))).toBe(0);
         const files: Record<string, string> = {};
         for (const m of ['CTL', 'LOC']) {
             const file = join(dir, `src-gen/generated/architecture/modules/${m}_mod/module.c`);
@@ -239,10 +239,10 @@ describe('contract build / run on a project (bwrap)', () => {
             const broken = source.replace(new RegExp(`(PROTECTED REGION ID\\(protect_additional_import_${m}\\) ENABLED START\\*/)`), `$1\nstatic int broken_${m} = missing_${m};`);
             expect(broken).not.toBe(source);
             writeFileSync(file, broken);
-            files[m] = `broken/src-gen/generated/architecture/modules/${m}_mod/module.c`;
+            files[m] = `gcc-errors/src-gen/generated/architecture/modules/${m}_mod/module.c`;
         }
         const io = capture(root);
-        expect(await runCli(['build', 'broken', '--sandbox', 'bwrap'], io)).toBe(1);
+        expect(await runCli(['build', 'gcc-errors', '--sandbox', 'bwrap'], io)).toBe(1);
         for (const m of ['CTL', 'LOC']) {
             const at = new RegExp(`^(\\S+):(\\d+):\\d+: error: .missing_${m}. undeclared.* \\[in protected region protect_additional_import_${m}\\]$`, 'm').exec(io.stderr);
             expect(at, io.stderr).not.toBeNull();
