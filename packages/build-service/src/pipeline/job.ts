@@ -17,6 +17,7 @@ import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, routeRunLine } from './output-router.js';
 import { makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
+import { SERVICE_AFFINITY } from './service-affinity.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
 import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache } from './runtime-cache.js';
@@ -308,6 +309,9 @@ export class Job {
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
+      // a run pinned to CPUs has them to itself: the service's threads (the channel's work) keep off them
+      const keptOff = this.request.cpus !== undefined ? await SERVICE_AFFINITY.keepOff(this.request.cpus) : null;
+      if (keptOff?.said) this.system('run', keptOff.said);
       let run: Awaited<ReturnType<Job['runStep']>>;
       try {
         // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
@@ -320,8 +324,10 @@ export class Job {
       } catch (e) {
         this.events.onSubscribers = null;
         await tail?.stop();
+        await keptOff?.release();
         throw e;
       }
+      await keptOff?.release();
       this.events.onSubscribers = null;
       if (this.cancelRequested) await tail?.stop();
       else await tail?.finish();
