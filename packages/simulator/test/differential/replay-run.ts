@@ -148,6 +148,13 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
             emissions.push(emission);
         }
     }
+    // a supervisor's request to another (START/STOP of a function) takes time in a real run and none
+    // in the simulator, which delivers it at the decision that sent it: an event the receiver got
+    // while such a request was on its way (after the event that started the sender's decision,
+    // before the request) is replayed just before that event, so that the receiver meets both in
+    // the order it really did
+    inFlight(known, plan.supervisors, received, receivers);
+
     // ORD's events name their schema in ORD's own records, in the order it sent them
     const ordValues = new Map<string, string[]>([
         ['ORD:0', known.filter((r): r is KnownRecord => r.module === 'ORD' && r.kind === 'ord_deadline_miss').map((r) => JSON.stringify(String(r.fields.schema)))],
@@ -182,6 +189,30 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
         lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source} ${value}`.trimEnd());
     }
     return { text: lines.join('\n') + '\n', real, counts };
+}
+
+/** How long before a decision the event that caused it may have been received (same file: microseconds). */
+const CAUSE_WINDOW = 5_000_000n;
+
+/** Moves the events a supervisor received while another's request was on its way (see scenarioOfRun). */
+function inFlight(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): void {
+    const decisions = new Map<string, bigint[]>();
+    for (const r of known) if (isRule(r) && supervisors.has(r.module)) (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
+    const receiptsOf = (sup: string): Receipt[] => [...received.entries()].filter(([k]) => k.startsWith(`${sup} `)).flatMap(([, l]) => l);
+    for (const q of known) {
+        if (q.kind !== 'request_received' || !supervisors.has(q.module) || !supervisors.has(q.peer) || !/^(START|STOP|KILL)\b/.test(q.detail)) continue;
+        const tq = mono(q);
+        // the sender's decision that sent it, and the event that started that decision (if one did)
+        const tp = (decisions.get(q.peer) ?? []).filter((t) => t <= tq).pop();
+        if (tp === undefined) continue;
+        const trigger = receiptsOf(q.peer).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).sort((a, b) => (a.t < b.t ? -1 : 1)).pop();
+        const start = trigger?.emission?.t ?? tp;
+        // the receiver's own events (not shared with another supervisor) that came in between
+        const between = receiptsOf(q.module)
+            .filter((x) => x.emission && x.t > start && x.t < tq && receivers.get(x.source)?.length === 1)
+            .sort((a, b) => (a.t < b.t ? -1 : 1));
+        between.forEach((x, i) => (x.emission!.t = start - BigInt(between.length - i)));
+    }
 }
 
 /** One decision, as both sides write it: `SUP action.SECOND active <- MAA:2 value="disconnected"`. */
