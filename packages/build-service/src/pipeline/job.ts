@@ -260,8 +260,8 @@ export class Job {
       // Makefile project builds as its author wrote it
       const make = ['make', '-C', dir, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'];
       const parallel = this.request.kind === 'cactal';
-      const jobs = buildJobs(this.request.limits);
-      const argv = parallel ? ['sh', '-c', 'exec "$@" 2>&1', 'sh', 'make', '-k', `-j${jobs}`, '--output-sync=recurse', ...make.slice(1)] : make;
+      const parallelMake = ['make', '-k', `-j${buildJobs(this.request.limits)}`, '--output-sync=recurse', ...make.slice(1)];
+      const argv = parallel ? ['sh', '-c', 'exec "$@" 2>&1', 'sh', ...parallelMake] : make;
       const router = new BuildOutputRouter({
         startDir: posix.join(work, makeDir(this.request.kind)),
         root: posix.join(work, treeRoot(this.request.kind)),
@@ -273,7 +273,7 @@ export class Job {
         const routed = router.route(line, stream);
         for (const d of routed.diagnostics) this.addDiagnostic(d);
         return routed.lines;
-      }, {}, parallel ? `make -k -j${jobs} --output-sync=recurse ${make.slice(1).join(' ')} 2>&1` : undefined);
+      }, {}, parallel ? `${parallelMake.join(' ')} 2>&1` : undefined);
       // what this build step left (it ended by itself) is what the next job may build on
       if (!this.cancelRequested && !build.limitHit && build.exitCode !== null) {
         const td = Date.now();

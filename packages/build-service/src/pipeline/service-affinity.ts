@@ -9,10 +9,11 @@
  */
 import { execFile } from 'node:child_process';
 import { readFileSync } from 'node:fs';
+import { isCpuList } from '@contract-studio/conventions';
 
 /** `0-2,5` -> [0, 1, 2, 5]; null for anything else. */
 export function parseCpuList(text: string): number[] | null {
-  if (!/^\d+(-\d+)?(,\d+(-\d+)?)*$/.test(text)) return null;
+  if (!isCpuList(text)) return null;
   const out = new Set<number>();
   for (const part of text.split(',')) {
     const [a, b] = part.split('-').map(Number) as [number, number | undefined];

@@ -198,19 +198,24 @@ const CAUSE_WINDOW = 5_000_000n;
 function inFlight(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): void {
     const decisions = new Map<string, bigint[]>();
     for (const r of known) if (isRule(r) && supervisors.has(r.module)) (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
-    const receiptsOf = (sup: string): Receipt[] => [...received.entries()].filter(([k]) => k.startsWith(`${sup} `)).flatMap(([, l]) => l);
+    // each supervisor's receipts of every source, in time order, gathered once
+    const bySupervisor = new Map<string, Receipt[]>();
+    for (const [key, list] of received) {
+        const sup = key.slice(0, key.indexOf(' '));
+        bySupervisor.set(sup, [...(bySupervisor.get(sup) ?? []), ...list]);
+    }
+    for (const list of bySupervisor.values()) list.sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
+    const receiptsOf = (sup: string): Receipt[] => bySupervisor.get(sup) ?? [];
     for (const q of known) {
         if (q.kind !== 'request_received' || !supervisors.has(q.module) || !supervisors.has(q.peer) || !/^(START|STOP|KILL)\b/.test(q.detail)) continue;
         const tq = mono(q);
         // the sender's decision that sent it, and the event that started that decision (if one did)
         const tp = (decisions.get(q.peer) ?? []).filter((t) => t <= tq).pop();
         if (tp === undefined) continue;
-        const trigger = receiptsOf(q.peer).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).sort((a, b) => (a.t < b.t ? -1 : 1)).pop();
+        const trigger = receiptsOf(q.peer).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).pop();
         const start = trigger?.emission?.t ?? tp;
         // the receiver's own events (not shared with another supervisor) that came in between
-        const between = receiptsOf(q.module)
-            .filter((x) => x.emission && x.t > start && x.t < tq && receivers.get(x.source)?.length === 1)
-            .sort((a, b) => (a.t < b.t ? -1 : 1));
+        const between = receiptsOf(q.module).filter((x) => x.emission && x.t > start && x.t < tq && receivers.get(x.source)?.length === 1);
         between.forEach((x, i) => (x.emission!.t = start - BigInt(between.length - i)));
     }
 }
