@@ -1,41 +1,42 @@
 /**
  * Live trace benchmark -> bench/parts/monitor.json (docs/build-service-api.md "Trace channel").
  * A 1 kHz periodic schema (the "New project" template with PERIOD=1ms) run in bwrap through the
- * HTTP service. In ONE run, phases of PHASE_SECONDS (default 3) alternate: no client attached, an
- * SSE client attached to the job's stream (from the current seq: it follows the live trace), in
- * ABBA order over PAIRS (default 9: 57 s, inside the run's 60 s bound) pairs, so that load drifts weigh
- * on both sides alike. The
- * releases (ORD's ord_release records of the collected log, tick_ns on the host's CLOCK_MONOTONIC,
- * the clock of the phase boundaries) are split by phase; the first 200 ms of each phase are left
- * out (the attach / detach itself).
- *   monitor.jitter_ratio                  median over the pairs of p99 release lateness
- *                                         (release_ns - tick_ns) with the client / without (goal <= 1.1)
- *   monitor.jitter_ratio_pooled           the same over all phases pooled; _pairs: every pair's ratio
- *   monitor.release_lateness_us_p99_without / _with   the pooled p99s
- *   monitor.service_trace_latency_ms_p99  from a record's write (its mono_ns column) to its
- *                                         arrival at the SSE client (process.hrtime, the same clock), p99; _p50 too
- *   monitor.trace_records                 records the SSE client received; _events_per_s: trace events a second
- *   monitor.service_cpu_ms_per_s_without / _with  CPU time of the service's process per second of
- *                                         phase; _sys_: of it in the kernel; _by_thread_: main thread
- *                                         and the others (GC, JIT, libuv's pool). The SSE client
- *                                         (trace-bench-client.ts) runs in the service's process by
- *                                         default (so the "with" figures include its work, as when the
- *                                         jitter goal was set); MONITOR_CLIENT=child runs it in a child
- *                                         process of its own, as the IDE's page and the CLI are: the
- *                                         figures are then the service's only (monitor.client says which)
- *   monitor.service_cpu_us_per_record_without / _with  that CPU time over the records the run wrote
- *                                         in those phases (counted in the collected logs by mono_ns)
- *   monitor.client_cpu_ms_per_s           (child client only) its own CPU time per second of phase
- *   monitor.partitioned.*                 the same jitter figures from a second run laid out as a
- *                                         1 kHz robot would be (docs/watching-a-run.md "What watching
- *                                         costs the run"): the modules pinned to the last CPU (the job's
- *                                         `cpus`), the service and its client to the others (taskset
- *                                         -a on this process while the run runs); skipped, with a
- *                                         line saying why, on one CPU or without taskset
- *                                         (MONITOR_PARTITIONED=0 skips it too)
- * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 140 s in all.
+ * HTTP service, once per layout (planLayouts). In ONE run, phases of PHASE_SECONDS (default 3)
+ * alternate: no client attached, an SSE client attached to the job's stream (from the current seq:
+ * it follows the live trace), in ABBA order over PAIRS (default 9: 57 s, inside the run's 60 s
+ * bound) pairs, so that load drifts weigh on both sides alike. The releases (ORD's ord_release
+ * records of the collected log, tick_ns on the host's CLOCK_MONOTONIC, the clock of the phase
+ * boundaries) are split by phase; the first 200 ms of each phase are left out (the attach / detach
+ * itself). Layouts (docs/watching-a-run.md "What watching costs the run"):
+ *   monitor.*                 the modules pinned to the last CPU (the job's `cpus`): the set-up in
+ *                             which sched.period_jitter_us_p99 is measured (docs/engines.md); the
+ *                             service keeps off that CPU by itself (service-affinity.ts; the bench
+ *                             checks it), the child client is started on the service's CPUs
+ *   monitor.shared.*          no placement: the modules, the service and its client share every CPU
+ *   monitor.shared_realtime.* the same with the job's real-time mode (the modules at SCHED_FIFO)
+ *   (MONITOR_LAYOUTS=pinned,shared,shared_realtime picks; one that the machine cannot have, as
+ *   pinned on one CPU, is <prefix>.skipped with why.) Each layout's figures:
+ *   jitter_ratio                  median over the pairs of p99 release lateness
+ *                                 (release_ns - tick_ns) with the client / without (goal <= 1.1)
+ *   jitter_ratio_pooled           the same over all phases pooled; _pairs: every pair's ratio
+ *   release_lateness_us_p99_without / _with   the pooled p99s; releases: how many were counted
+ *   service_trace_latency_ms_p99  from a record's write (its mono_ns column) to its arrival at the
+ *                                 SSE client (process.hrtime, the same clock), p99; _p50 too
+ *   trace_records                 records the SSE client received; trace_events_per_s: trace events a second
+ *   service_cpu_ms_per_s_without / _with  CPU time of the service's process per second of phase;
+ *                                 _sys_: of it in the kernel; _by_thread_: main thread and the
+ *                                 others (GC, JIT, libuv's pool). The SSE client
+ *                                 (trace-bench-client.ts) runs in the service's process by default
+ *                                 (so the "with" figures include its work, as when the jitter goal
+ *                                 was set); MONITOR_CLIENT=child runs it in a child process of its
+ *                                 own, as the IDE's page and the CLI are: the figures are then the
+ *                                 service's only (monitor.client says which)
+ *   service_cpu_us_per_record_without / _with  that CPU time over the records the run wrote in
+ *                                 those phases (counted in the collected logs by mono_ns)
+ *   client_cpu_ms_per_s           (child client only) its own CPU time per second of phase
+ * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 200 s in all.
  */
-import { execFileSync, spawn } from 'node:child_process';
+import { spawn } from 'node:child_process';
 import { readdirSync, readFileSync } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -44,6 +45,7 @@ import { postJob } from '../test-support/client.js';
 import { followTrace, type ClientReport } from './trace-bench-client.js';
 import { benchLog, median, pct, round, runBench, startBenchServer, writePart, writeTemplateProject } from './bench-support.js';
 import { parseRecordLine } from '../trace/parse.js';
+import { ownCpus } from '../pipeline/service-affinity.js';
 
 const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
 const PAIRS = Number(process.env.PAIRS ?? 9);
@@ -77,32 +79,12 @@ function threadCpuMs(): Map<string, number> {
   return out;
 }
 
-/** Pins every thread of this process (the service, and the in-process client) to `cpus` (taskset -a). */
-function pinThisProcess(cpus: string): void {
-  execFileSync('taskset', ['-a', '-p', '-c', cpus, String(process.pid)], { stdio: 'ignore' });
-}
-
 /** CPU ids of a list such as `0-2,5`. */
 function cpuIds(list: string): number[] {
   return list.split(',').flatMap((part) => {
     const [lo, hi] = part.split('-').map(Number);
     return hi === undefined ? [lo!] : Array.from({ length: hi - lo! + 1 }, (_, i) => lo! + i);
   });
-}
-
-/** The partitioned layout on this machine (from this process's CPU list), or why there is none. */
-function partitionLayout(): { modules: string; service: string; all: string } | { skip: string } {
-  if (process.env.MONITOR_PARTITIONED === '0') return { skip: 'MONITOR_PARTITIONED=0' };
-  let all: string;
-  try {
-    // "pid 123's current affinity list: 0-3"
-    all = execFileSync('taskset', ['-c', '-p', String(process.pid)], { encoding: 'utf8' }).trim().split(': ').at(-1)!;
-  } catch {
-    return { skip: 'no taskset (util-linux) on PATH' };
-  }
-  const ids = cpuIds(all);
-  if (ids.length < 2 || ids.some((i) => !Number.isInteger(i))) return { skip: `CPUs ${all}: nothing to partition` };
-  return { modules: String(ids.at(-1)), service: ids.slice(0, -1).join(','), all };
 }
 
 /**
@@ -132,6 +114,47 @@ async function attach(base: string, id: string, after: number, stop: Promise<voi
   return JSON.parse(out) as ClientReport;
 }
 
+/** One run's layout: where the modules run, in which mode, and the figures' prefix. */
+interface Layout {
+  prefix: string;
+  label: string;
+  /** The job's `cpus` (the modules pinned there); the service keeps off them by itself. */
+  cpus?: string;
+  /** The CPUs the service should be left on while the run runs (checked; the child client goes there). */
+  serviceCpus?: string;
+  realtime?: boolean;
+}
+
+/**
+ * The runs of the benchmark: the modules pinned to the last CPU (the set-up of
+ * sched.period_jitter_us_p99, docs/engines.md: `monitor.`), every CPU shared (`monitor.shared.`),
+ * and every CPU shared with real-time mode (`monitor.shared_realtime.`). A layout the machine
+ * cannot have is skipped with why (one CPU, no taskset); MONITOR_LAYOUTS=pinned,shared picks some.
+ */
+function planLayouts(): (Layout | { prefix: string; skip: string })[] {
+  const wanted = (process.env.MONITOR_LAYOUTS ?? 'pinned,shared,shared_realtime').split(',');
+  const out: (Layout | { prefix: string; skip: string })[] = [];
+  if (wanted.includes('pinned')) {
+    const own = ownCpus();
+    if (!own || own.length < 2) out.push({ prefix: 'monitor', skip: `CPUs ${own?.join(',') ?? 'unknown'}: no CPU to give the modules alone` });
+    else {
+      const modules = String(own.at(-1));
+      const service = own.slice(0, -1).join(',');
+      out.push({ prefix: 'monitor', label: `modules pinned to CPU ${modules} (cpus), the service and its client on CPU ${service}`, cpus: modules, serviceCpus: service });
+    }
+  }
+  if (wanted.includes('shared')) out.push({ prefix: 'monitor.shared', label: 'every CPU shared by the modules, the service and its client' });
+  if (wanted.includes('shared_realtime'))
+    out.push({ prefix: 'monitor.shared_realtime', label: 'every CPU shared, the modules in real-time mode (SCHED_FIFO)', realtime: true });
+  return out;
+}
+
+/** One of ORD's releases (ord_release): its tick on CLOCK_MONOTONIC, lateness in us. */
+interface Release {
+  tick: bigint;
+  lateUs: number;
+}
+
 interface Phase {
   withClient: boolean;
   pair: number;
@@ -158,8 +181,8 @@ async function main(): Promise<void> {
   /** Logs of earlier runs stay in the reused workspace's logs/ (and among the artifacts). */
   const seen = new Set<string>();
   /** One run of `seconds`; `during` runs once the run streams its trace; returns ORD's releases (tick_ns, lateness in us) and the run's logs. */
-  const run = async (seconds: number, during: (jobId: string) => Promise<void>, cpus?: string): Promise<{ releases: { tick: bigint; lateUs: number }[]; logs: Artifact[] }> => {
-    const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: seconds, project: { dir }, ...(cpus ? { cpus } : {}) });
+  const run = async (seconds: number, during: (jobId: string) => Promise<void>, placement: { cpus?: string; realtime?: boolean } = {}): Promise<{ releases: Release[]; logs: Artifact[] }> => {
+    const r = await postJob(url, { action: 'run', sandbox: 'bwrap', duration: seconds, project: { dir }, ...(placement.realtime ? { realtime: true } : {}), ...(placement.cpus ? { cpus: placement.cpus } : {}) });
     if (r.status !== 201) throw new Error(`submit: ${JSON.stringify(r.json)}`);
     const job = server.service.get(r.json.id as string)!;
     // the run streams (looked at in-process: no client attached)
@@ -174,7 +197,7 @@ async function main(): Promise<void> {
     const ord = logs.find((f) => f.name.startsWith('ORD_'));
     for (const f of logs) seen.add(f.name);
     if (!ord) throw new Error('no new ORD log');
-    const releases: { tick: bigint; lateUs: number }[] = [];
+    const releases: Release[] = [];
     artifactBytes(ord).toString('utf8').split('\n').forEach((line, i) => {
       if (!line.includes(',ord_release,')) return;
       const rec = parseRecordLine(ord.name, i + 1, line);
@@ -190,7 +213,7 @@ async function main(): Promise<void> {
     const phaseMs = PHASE_SECONDS * 1000;
     const seconds = Math.ceil(2 * PAIRS * PHASE_SECONDS + 3);
     /** The p99 release lateness of each pair's phases with / without the client, and pooled. */
-    const jitterOf = (phases: Phase[], releases: { tick: bigint; lateUs: number }[]) => {
+    const jitterOf = (phases: Phase[], releases: Release[]) => {
       const inPhase = (p: Phase): number[] => releases.filter((r) => r.tick >= p.from + SETTLE_NS && r.tick < p.to).map((r) => r.lateUs);
       const ratios: number[] = [];
       for (let pair = 0; pair < PAIRS; pair++) {
@@ -227,88 +250,73 @@ async function main(): Promise<void> {
       }
       return got;
     };
-    say(`one run of ${seconds} s: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
-    let shared: Awaited<ReturnType<typeof alternate>> | null = null;
-    const { releases, logs } = await run(seconds, async (jobId) => {
-      shared = await alternate(jobId);
-    });
-    const { phases, latency, records, events, clientCpuMs } = shared!;
-    say(`phases on CLOCK_MONOTONIC (a --cpu-prof profile's clock, in us): ${phases[0]!.from / 1000n}..${phases.at(-1)!.to / 1000n}`);
-    // the records written in each phase, by their mono_ns (the clock of the phase boundaries)
-    for (const log of logs) {
-      for (const line of artifactBytes(log).toString('utf8').split('\n')) {
-        const m = /^(\d+),/.exec(line);
-        if (!m) continue;
-        const mono = BigInt(m[1]!);
-        const p = phases.find((q) => mono >= q.from && mono < q.to);
-        if (p) p.records++;
-      }
-    }
-    const { ratios, pooled, p99Without, p99With } = jitterOf(phases, releases);
-    const cpuPerS = (withClient: boolean): number => {
-      const ps = phases.filter((p) => p.withClient === withClient);
-      return ps.reduce((a, p) => a + p.cpuMs, 0) / ps.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
-    };
-    const usPerRecord = (withClient: boolean): number => {
-      const ps = phases.filter((p) => p.withClient === withClient);
-      return (1000 * ps.reduce((a, p) => a + p.cpuMs, 0)) / Math.max(1, ps.reduce((a, p) => a + p.records, 0));
-    };
-    const perS = (withClient: boolean, ms: (p: Phase) => number): number => {
-      const ps = phases.filter((p) => p.withClient === withClient);
-      return ps.reduce((a, p) => a + ms(p), 0) / ps.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
-    };
-    const threadNames = [...new Set(phases.flatMap((p) => [...p.threads.keys()]))];
-    const byThread = (withClient: boolean): Record<string, number> =>
-      Object.fromEntries(threadNames.map((n) => [n, round(perS(withClient, (p) => p.threads.get(n) ?? 0), 1)]).filter(([, v]) => (v as number) > 0));
-    const clientSeconds = phases.filter((p) => p.withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
-    const out: Record<string, unknown> = {
-      'monitor.jitter_ratio': round(median(ratios)),
-      'monitor.jitter_ratio_pooled': round(p99With / p99Without),
-      'monitor.jitter_ratio_pairs': ratios.map((x) => round(x)),
-      'monitor.release_lateness_us_p99_without': round(p99Without, 1),
-      'monitor.release_lateness_us_p99_with': round(p99With, 1),
-      'monitor.service_trace_latency_ms_p99': round(pct(latency, 99), 1),
-      'monitor.service_trace_latency_ms_p50': round(pct(latency, 50), 1),
-      'monitor.trace_records': records,
-      'monitor.trace_events_per_s': round(events / clientSeconds, 0),
-      'monitor.records_written_per_s': round(phases.reduce((a, p) => a + p.records, 0) / phases.reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0), 0),
-      'monitor.service_cpu_ms_per_s_without': round(cpuPerS(false), 1),
-      'monitor.service_cpu_ms_per_s_with': round(cpuPerS(true), 1),
-      'monitor.service_cpu_us_per_record_without': round(usPerRecord(false), 2),
-      'monitor.service_cpu_us_per_record_with': round(usPerRecord(true), 2),
-      'monitor.service_cpu_sys_ms_per_s_without': round(perS(false, (p) => p.sysMs), 1),
-      'monitor.service_cpu_sys_ms_per_s_with': round(perS(true, (p) => p.sysMs), 1),
-      'monitor.service_cpu_ms_per_s_by_thread_without': byThread(false),
-      'monitor.service_cpu_ms_per_s_by_thread_with': byThread(true),
-      'monitor.client': CHILD_CLIENT ? 'child process' : 'in the service process',
-      ...(CHILD_CLIENT ? { 'monitor.client_cpu_ms_per_s': round(clientCpuMs / clientSeconds, 1) } : {}),
-      'monitor.releases': pooled(true).length + pooled(false).length,
-    };
-    const layout = partitionLayout();
-    if ('skip' in layout) {
-      say(`partitioned run skipped: ${layout.skip}`);
-      out['monitor.partitioned.skipped'] = layout.skip;
-    } else {
-      say(`partitioned run of ${seconds} s: the modules on CPU ${layout.modules}, the service and its client on CPU ${layout.service}`);
-      let part: Awaited<ReturnType<typeof alternate>> | null = null;
-      const pinned = await run(seconds, async (jobId) => {
-        // pinned once the run streams: its build ran on every CPU
-        pinThisProcess(layout.service);
-        try {
-          part = await alternate(jobId, CHILD_CLIENT ? layout.service : undefined);
-        } finally {
-          pinThisProcess(layout.all);
+    /** Every figure of one layout's run, named `<prefix>.<figure>`. */
+    const figuresOf = (prefix: string, got: Awaited<ReturnType<typeof alternate>>, releases: Release[], logs: Artifact[]): Record<string, unknown> => {
+      const { phases, latency, records, events, clientCpuMs } = got;
+      say(`phases on CLOCK_MONOTONIC (a --cpu-prof profile's clock, in us): ${phases[0]!.from / 1000n}..${phases.at(-1)!.to / 1000n}`);
+      // the records written in each phase, by their mono_ns (the clock of the phase boundaries)
+      for (const log of logs) {
+        for (const line of artifactBytes(log).toString('utf8').split('\n')) {
+          const m = /^(\d+),/.exec(line);
+          if (!m) continue;
+          const mono = BigInt(m[1]!);
+          const p = phases.find((q) => mono >= q.from && mono < q.to);
+          if (p) p.records++;
         }
-      }, layout.modules);
-      const j = jitterOf(part!.phases, pinned.releases);
-      Object.assign(out, {
-        'monitor.partitioned.jitter_ratio': round(median(j.ratios)),
-        'monitor.partitioned.jitter_ratio_pooled': round(j.p99With / j.p99Without),
-        'monitor.partitioned.jitter_ratio_pairs': j.ratios.map((x) => round(x)),
-        'monitor.partitioned.release_lateness_us_p99_without': round(j.p99Without, 1),
-        'monitor.partitioned.release_lateness_us_p99_with': round(j.p99With, 1),
-        'monitor.partitioned.layout': `modules on CPU ${layout.modules}; service and client on CPU ${layout.service}`,
-      });
+      }
+      const { ratios, pooled, p99Without, p99With } = jitterOf(phases, releases);
+      const seconds = (withClient: boolean): number => phases.filter((p) => p.withClient === withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
+      const perS = (withClient: boolean, ms: (p: Phase) => number): number =>
+        phases.filter((p) => p.withClient === withClient).reduce((a, p) => a + ms(p), 0) / seconds(withClient);
+      const usPerRecord = (withClient: boolean): number => {
+        const ps = phases.filter((p) => p.withClient === withClient);
+        return (1000 * ps.reduce((a, p) => a + p.cpuMs, 0)) / Math.max(1, ps.reduce((a, p) => a + p.records, 0));
+      };
+      const threadNames = [...new Set(phases.flatMap((p) => [...p.threads.keys()]))];
+      const byThread = (withClient: boolean): Record<string, number> =>
+        Object.fromEntries(threadNames.map((n) => [n, round(perS(withClient, (p) => p.threads.get(n) ?? 0), 1)]).filter(([, v]) => (v as number) > 0));
+      const figures: Record<string, unknown> = {
+        jitter_ratio: round(median(ratios)),
+        jitter_ratio_pooled: round(p99With / p99Without),
+        jitter_ratio_pairs: ratios.map((x) => round(x)),
+        release_lateness_us_p99_without: round(p99Without, 1),
+        release_lateness_us_p99_with: round(p99With, 1),
+        releases: pooled(true).length + pooled(false).length,
+        service_trace_latency_ms_p99: round(pct(latency, 99), 1),
+        service_trace_latency_ms_p50: round(pct(latency, 50), 1),
+        trace_records: records,
+        trace_events_per_s: round(events / seconds(true), 0),
+        records_written_per_s: round(phases.reduce((a, p) => a + p.records, 0) / (seconds(true) + seconds(false)), 0),
+        service_cpu_ms_per_s_without: round(perS(false, (p) => p.cpuMs), 1),
+        service_cpu_ms_per_s_with: round(perS(true, (p) => p.cpuMs), 1),
+        service_cpu_us_per_record_without: round(usPerRecord(false), 2),
+        service_cpu_us_per_record_with: round(usPerRecord(true), 2),
+        service_cpu_sys_ms_per_s_without: round(perS(false, (p) => p.sysMs), 1),
+        service_cpu_sys_ms_per_s_with: round(perS(true, (p) => p.sysMs), 1),
+        service_cpu_ms_per_s_by_thread_without: byThread(false),
+        service_cpu_ms_per_s_by_thread_with: byThread(true),
+        ...(CHILD_CLIENT ? { client_cpu_ms_per_s: round(clientCpuMs / seconds(true), 1) } : {}),
+      };
+      return Object.fromEntries(Object.entries(figures).map(([k, v]) => [`${prefix}.${k}`, v]));
+    };
+    const out: Record<string, unknown> = { 'monitor.client': CHILD_CLIENT ? 'child process' : 'in the service process' };
+    for (const layout of planLayouts()) {
+      if ('skip' in layout) {
+        say(`${layout.prefix} skipped: ${layout.skip}`);
+        out[`${layout.prefix}.skipped`] = layout.skip;
+        continue;
+      }
+      say(`${layout.prefix}: one run of ${seconds} s, ${layout.label}: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
+      let got: Awaited<ReturnType<typeof alternate>> | null = null;
+      const { releases, logs } = await run(seconds, async (jobId) => {
+        if (layout.serviceCpus) {
+          // the service keeps off the run's CPUs by itself (service-affinity.ts): checked, not done here
+          const own = ownCpus();
+          if (!own || own.join(',') !== cpuIds(layout.serviceCpus).join(',')) throw new Error(`the service runs on CPUs ${own?.join(',')}, not ${layout.serviceCpus}: it did not keep off the run's CPUs`);
+        }
+        got = await alternate(jobId, CHILD_CLIENT ? layout.serviceCpus : undefined);
+      }, { cpus: layout.cpus, realtime: layout.realtime });
+      Object.assign(out, figuresOf(layout.prefix, got!, releases, logs), { [`${layout.prefix}.layout`]: layout.label });
     }
     say(JSON.stringify(out));
     writePart('monitor', out);
