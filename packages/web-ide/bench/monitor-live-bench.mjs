@@ -37,10 +37,19 @@ try {
     localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration }));
     const ide = window.__ide;
     // wall_time of each record (µs precision) by the cumulative count the live model will reach
+    // (the second, parsed once per second of wall time, plus the fraction: the measuring must not
+    // load the page it measures with a date parse per record)
+    let second = '';
+    let secondMs = NaN;
     const wall = (text) => {
-      const w = text.split(',', 2)[1] ?? '';
-      const ms = Date.parse(`${w.slice(0, 23)}Z`);
-      return Number.isFinite(ms) ? ms + Number(`0.${w.slice(23, 26) || '0'}`) : NaN;
+      const c = text.indexOf(',');
+      const w = text.slice(c + 1, c + 27); // 2026-11-28T13:58:13.785123
+      const s = w.slice(0, 19);
+      if (s !== second) {
+        second = s;
+        secondMs = Date.parse(`${s}Z`);
+      }
+      return secondMs + Number(w.slice(20, 26)) / 1000;
     };
     const m = { pending: [], latencies: [], arrivals: [], gaps: [], received: 0, streaming: false, maxQueued: 0 };
     window.__liveBench = m;

@@ -4,6 +4,7 @@
  * Pure and total: any text gives fields, never an exception.
  */
 export function splitCsvLine(line: string): string[] {
+    if (!line.includes('"')) return line.split(','); // the common line: no quoted field
     const fields: string[] = [];
     let i = 0;
     while (i <= line.length) {

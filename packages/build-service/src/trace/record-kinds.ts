@@ -63,6 +63,8 @@ export const TRACE_KINDS: readonly TraceKind[] = [
     { kind: 'ord_deadline_miss', area: 'scheduler', fields: 'the cycle was not finished at tick + CRITICAL_DELAY (ORD:0 sent): detail `schema=S cycle=k tick_ns=T`', example: `6200,${W},ORD,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=3 tick_ns=1200`, detailKeys: ['schema', 'cycle', 'tick_ns'] },
 ];
 
+const BY_KIND = new Map(TRACE_KINDS.map((k) => [k.kind, k]));
+
 export function traceKind(kind: string): TraceKind | undefined {
-    return TRACE_KINDS.find((k) => k.kind === kind);
+    return BY_KIND.get(kind);
 }

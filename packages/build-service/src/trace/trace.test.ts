@@ -53,6 +53,14 @@ describe('reading a log', () => {
         expect(r).toMatchObject({ kind: 'ord_release', peer: 'MSC', port: null, fields: { schema: 'S', cycle: 3, tick_ns: 1200, release_ns: 1201, release: 9 } });
     });
 
+    it('takes a detail\'s key=value words: the first of each key, whole words only, plain integers as numbers', () => {
+        const fields = (detail: string) => (parseRecordLine('L', 2, `1,w,ORD,ord_release,MSC,,0,${detail}`) as KnownRecord).fields;
+        expect(fields('xschema=A schema=S cycle=-4 cycle=9 tick_ns=1234567890123456 release_ns=12a release=')).toEqual({ schema: 'S', cycle: -4, tick_ns: '1234567890123456', release_ns: '12a', release: '' });
+        expect(fields('schema==S  cycle=1 release_ns')).toEqual({ schema: '=S', cycle: 1 });
+        expect(fields('')).toEqual({});
+        expect(Object.getPrototypeOf(fields('__proto__=1 constructor=2 schema=S'))).toBe(Object.prototype);
+    });
+
     it('types the engines\' readable lines: what they are and the names they hold', () => {
         const fields = (event: string, detail: string) => (parseRecordLine('L', 2, `1,w,X,${event},,,0,"${detail}"`) as KnownRecord).fields;
         expect(fields('scheduler', 'activate schemaCommande1')).toEqual({ what: 'activate', schema: 'schemaCommande1' });

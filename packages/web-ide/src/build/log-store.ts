@@ -25,6 +25,9 @@ export class LogStore {
   readonly sources = new Map<string, number>();
   filter: LogFilter = { hiddenSources: new Set(), hiddenStreams: new Set(), text: '' };
   version = 0;
+  /** Changes when visible line n may no longer be the line it was (clear, filter, the oldest lines
+   *  dropped); between two changes the visible lines only grow at the end. */
+  renumbered = 0;
 
   constructor(readonly capacity = 200_000) {}
 
@@ -42,6 +45,7 @@ export class LogStore {
     this.visible = [];
     this.sources.clear();
     this.version++;
+    this.renumbered++;
   }
 
   private passes(l: LogLine): boolean {
@@ -67,6 +71,7 @@ export class LogStore {
     let i = 0;
     while (i < this.visible.length && this.visible[i]! < firstKept) i++;
     this.visible = this.visible.slice(i);
+    this.renumbered++;
   }
 
   setFilter(filter: Partial<LogFilter>): void {
@@ -74,6 +79,7 @@ export class LogStore {
     this.visible = [];
     for (let i = 0; i < this.lines.length; i++) if (this.passes(this.lines[i]!)) this.visible.push(this.offset + i);
     this.version++;
+    this.renumbered++;
   }
 
   /** The n-th visible line. */

@@ -1,12 +1,20 @@
 import { h } from '../util/dom.js';
-import type { LogStore } from './log-store.js';
+import type { LogLine, LogStore } from './log-store.js';
 
 const ROW = 18;
+/** Rows drawn above and below the viewport. */
+const MARGIN = 5;
 
 /**
  * Virtualised log view: a spacer as tall as all visible lines and only the rows in the viewport
  * rendered, redrawn at most once per animation frame. Follow-tail keeps the end in view and turns
  * itself off when the user scrolls up.
+ *
+ * A run that prints hundreds of lines a second (a 1 kHz schema missing its deadlines) redraws
+ * every frame, beside the Monitor, so a frame's draw stays small: the rows already shown are kept
+ * (only the lines scrolled in are built), and following the tail writes the scroll position
+ * from the known sizes instead of reading the layout (a read forces the page's layout in the
+ * middle of the frame).
  */
 export class LogView {
   readonly element: HTMLElement;
@@ -14,8 +22,13 @@ export class LogView {
   private readonly spacer: HTMLElement;
   private readonly rows: HTMLElement;
   follow = true;
-  private drawnVersion = -1;
-  private drawnTop = -1;
+  /** The rows shown: visible lines [first, first + rows.children.length) of store state `renumbered`. */
+  private shown = { renumbered: -1, first: 0 };
+  private spacerHeight = -1;
+  /** The viewport's height (kept by a ResizeObserver), 0 until known. */
+  private viewHeight = 0;
+  /** The scrollTop this view last wrote (its own scroll events are not the user's). */
+  private wroteTop = -1;
   private frame = 0;
   onFollowChange: (follow: boolean) => void = () => undefined;
 
@@ -25,17 +38,27 @@ export class LogView {
     this.viewport = h('div', { class: 'log-viewport', tabindex: 0 }, this.spacer, this.rows);
     this.element = this.viewport;
     this.viewport.addEventListener('scroll', () => {
-      const atEnd = this.viewport.scrollTop + this.viewport.clientHeight >= this.viewport.scrollHeight - ROW;
+      const top = this.viewport.scrollTop;
+      if (this.follow && top === this.wroteTop) return; // the tail followed: drawn already
+      const atEnd = top + this.viewport.clientHeight >= this.viewport.scrollHeight - ROW;
       if (this.follow !== atEnd) {
         this.follow = atEnd;
         this.onFollowChange(atEnd);
       }
       this.schedule();
     });
+    if (typeof ResizeObserver !== 'undefined') {
+      new ResizeObserver(() => {
+        this.viewHeight = this.viewport.clientHeight;
+        this.wroteTop = -1;
+        this.schedule();
+      }).observe(this.viewport);
+    }
   }
 
   setFollow(follow: boolean): void {
     this.follow = follow;
+    this.wroteTop = -1;
     this.schedule();
   }
 
@@ -46,21 +69,55 @@ export class LogView {
   private draw(): void {
     this.frame = 0;
     const n = this.store.visibleCount;
-    this.spacer.style.height = `${n * ROW}px`;
-    if (this.follow) this.viewport.scrollTop = this.viewport.scrollHeight;
-    const top = Math.max(0, Math.floor(this.viewport.scrollTop / ROW) - 5);
-    if (this.store.version === this.drawnVersion && top === this.drawnTop) return;
-    this.drawnVersion = this.store.version;
-    this.drawnTop = top;
-    const count = Math.ceil((this.viewport.clientHeight || 400) / ROW) + 10;
-    const frag = document.createDocumentFragment();
-    for (let i = top; i < Math.min(n, top + count); i++) {
-      const l = this.store.visibleAt(i)!;
-      const time = new Date(l.t).toISOString().slice(11, 23);
-      frag.append(h('div', { class: `log-row ${l.stream}`, 'data-source': l.source },
-        h('span', { class: 'log-time' }, time), h('span', { class: `log-src src-${l.source.replace(/\W/g, '')}` }, l.source), h('span', { class: 'log-text' }, l.line)));
+    const height = n * ROW;
+    if (height !== this.spacerHeight) {
+      this.spacer.style.height = `${height}px`;
+      this.spacerHeight = height;
     }
-    this.rows.style.transform = `translateY(${top * ROW}px)`;
-    this.rows.replaceChildren(frag);
+    const viewHeight = this.viewHeight || this.viewport.clientHeight || 400;
+    let scrollTop: number;
+    if (this.follow) {
+      scrollTop = Math.max(0, height - viewHeight);
+      if (scrollTop !== this.wroteTop) {
+        this.viewport.scrollTop = scrollTop;
+        this.wroteTop = scrollTop;
+      }
+    } else scrollTop = this.viewport.scrollTop;
+    const first = Math.max(0, Math.floor(scrollTop / ROW) - MARGIN);
+    const end = Math.min(n, first + Math.ceil(viewHeight / ROW) + 2 * MARGIN);
+    this.placeRows(first, end);
+  }
+
+  /** Shows visible lines [first, end): the rows still in that range are kept, the others built. */
+  private placeRows(first: number, end: number): void {
+    const rows = this.rows;
+    const shown = this.shown;
+    const shownEnd = shown.first + rows.children.length;
+    if (shown.renumbered !== this.store.renumbered || first >= shownEnd || end <= shown.first) {
+      const frag = document.createDocumentFragment();
+      for (let i = first; i < end; i++) frag.append(this.row(this.store.visibleAt(i)!));
+      rows.replaceChildren(frag);
+    } else {
+      for (let i = shown.first; i < first; i++) rows.firstElementChild!.remove();
+      for (let i = shownEnd; i > end; i--) rows.lastElementChild!.remove();
+      if (first < shown.first) {
+        const frag = document.createDocumentFragment();
+        for (let i = first; i < shown.first; i++) frag.append(this.row(this.store.visibleAt(i)!));
+        rows.prepend(frag);
+      }
+      if (end > shownEnd) {
+        const frag = document.createDocumentFragment();
+        for (let i = Math.max(shownEnd, first); i < end; i++) frag.append(this.row(this.store.visibleAt(i)!));
+        rows.append(frag);
+      }
+    }
+    if (first !== shown.first || shown.renumbered !== this.store.renumbered) rows.style.transform = `translateY(${first * ROW}px)`;
+    this.shown = { renumbered: this.store.renumbered, first };
+  }
+
+  private row(l: LogLine): HTMLElement {
+    const time = new Date(l.t).toISOString().slice(11, 23);
+    return h('div', { class: `log-row ${l.stream}`, 'data-source': l.source },
+      h('span', { class: 'log-time' }, time), h('span', { class: `log-src src-${l.source.replace(/\W/g, '')}` }, l.source), h('span', { class: 'log-text' }, l.line));
   }
 }

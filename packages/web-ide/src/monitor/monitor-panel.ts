@@ -38,6 +38,10 @@ export interface SourceOption {
 }
 
 const PULSE_NS = 300e6;
+/** Least time between two draws of a periodic schema's counts and histogram while following live, and
+ *  after a deadline miss or an overrun (wall ms). */
+const COUNTS_REDRAW_MS = 200;
+const URGENT_REDRAW_MS = 50;
 const fmtT = (ns: number) => `+${(ns / 1e9).toFixed(6)} s`;
 
 export class MonitorPanel {
@@ -56,6 +60,7 @@ export class MonitorPanel {
   private diagram: ArchitectureView | undefined;
   private userChoseSchema = false;
   private redrawTimer: ReturnType<typeof setTimeout> | undefined;
+  private redrawDue = 0;
   /** Last frame's render time (ms), for the benchmark. */
   frameMs: number[] = [];
 
@@ -318,12 +323,15 @@ export class MonitorPanel {
         hist = { root: h('div', { class: 'monitor-pschema', 'data-periodic': name }, title, text, canvas, misses), title, canvas, text, misses, key: '', drawnAt: 0 };
         this.hists.set(name, hist);
       }
-      // counts change every cycle of a fast schema: redrawn at most 5 times a second, at once on a miss or overrun
+      // counts change every cycle of a fast schema: redrawn at most 5 times a second; a miss or an
+      // overrun at once, or within 50 ms of the last one in a storm of them (a 1 kHz schema missing
+      // every cycle would otherwise rebuild this block every frame)
       const key = p ? `${p.releases}|${p.completions}|${p.deadlineMisses}|${p.overruns}|${cd}|${period}` : 'none';
       const urgent = !hist.key.endsWith(`|${p?.deadlineMisses}|${p?.overruns}|${cd}|${period}`);
       const now = performance.now();
-      const throttled = this.live && this.follow && !urgent && now - hist.drawnAt < 200;
-      if (key !== hist.key && throttled) this.redrawSoon();
+      const wait = (urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS) - (now - hist.drawnAt);
+      const throttled = this.live && this.follow && wait > 0;
+      if (key !== hist.key && throttled) this.redrawSoon(wait);
       if (key !== hist.key && !throttled) {
         hist.drawnAt = now;
         hist.key = key;
@@ -343,14 +351,17 @@ export class MonitorPanel {
     replaceIfChanged(this.periodicEl, blocks);
   }
 
-  /** A frame again in 200 ms even when nothing new comes (a throttled part is then drawn). */
-  private redrawSoon(): void {
-    if (this.redrawTimer) return;
+  /** A frame again in `ms` even when nothing new comes (a throttled part is then drawn). */
+  private redrawSoon(ms: number): void {
+    const due = performance.now() + ms;
+    if (this.redrawTimer && this.redrawDue <= due) return;
+    clearTimeout(this.redrawTimer);
+    this.redrawDue = due;
     this.redrawTimer = setTimeout(() => {
       this.redrawTimer = undefined;
       this.drawn.version = -1;
       this.schedule();
-    }, 200);
+    }, ms);
   }
 
   private renderDiagram(s: MonitorState, t: number, active: string[]): void {

@@ -276,6 +276,50 @@ describe('IDE in headless Chromium', () => {
     await shot(page, '04-renamed-module');
   });
 
+  it('log view: follows the tail as lines stream in, keeps its rows when scrolled up, and filters', async () => {
+    const { page } = s;
+    await page.locator('.panel-tab[data-panel=output]').click();
+    // the rows shown, as [visible index, text]: the view keeps the rows it has and builds only those scrolled in
+    const rows = () => page.evaluate(() => {
+      const vp = document.querySelector('.log-viewport') as HTMLElement;
+      const rowsEl = vp.querySelector('.log-rows') as HTMLElement;
+      const first = Math.round(new DOMMatrixReadOnly(getComputedStyle(rowsEl).transform).m42 / 18);
+      return { first, texts: [...rowsEl.querySelectorAll('.log-text')].map((e) => e.textContent), top: vp.scrollTop, bottom: vp.scrollTop + vp.clientHeight, height: vp.scrollHeight };
+    });
+    const feed = (from: number, to: number, chunk: number) => page.evaluate(async ({ from, to, chunk }) => {
+      const build = (window as any).__ide.build;
+      for (let i = from; i < to; i += chunk) {
+        for (let j = i; j < Math.min(to, i + chunk); j++) build.append({ t: 0, step: 'run', source: j % 3 ? 'LOG' : 'ODD', stream: 'stdout', line: `line ${j}` });
+        await new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0)));
+      }
+    }, { from, to, chunk });
+    await page.evaluate(() => (window as any).__ide.build.store.clear());
+    await page.locator('#follow-tail').check();
+    await feed(0, 3000, 37);
+    await page.evaluate(() => new Promise((r) => requestAnimationFrame(() => setTimeout(r, 0))));
+    let r = await rows();
+    expect(r.texts.at(-1)).toBe('line 2999');
+    expect(r.texts).toEqual(r.texts.map((_, i) => `line ${r.first + i}`)); // contiguous, in order, none twice
+    expect(r.bottom).toBeGreaterThanOrEqual(r.height - 1); // at the end
+    // scrolled up by the user: follow turns off, the rows are those of the new position, and new lines leave them be
+    await page.locator('.log-viewport').evaluate((el) => (el.scrollTop = 1000 * 18));
+    await expect.poll(() => page.locator('#follow-tail').isChecked()).toBe(false);
+    await expect.poll(async () => (await rows()).texts[5]).toBe('line 1000');
+    const before = await rows();
+    await feed(3000, 3400, 50);
+    r = await rows();
+    expect(r.texts).toEqual(before.texts);
+    // a filter renumbers the lines: the rows are rebuilt from the filtered lines
+    await page.locator('.log-search').fill('line 33');
+    await expect.poll(async () => (await rows()).texts.every((t) => t!.includes('line 33'))).toBe(true);
+    await page.locator('.log-search').fill('');
+    await page.locator('#follow-tail').check();
+    await expect.poll(async () => (await rows()).texts.at(-1)).toBe('line 3399');
+    r = await rows();
+    expect(r.texts).toEqual(r.texts.map((_, i) => `line ${r.first + i}`));
+    await page.evaluate(() => (window as any).__ide.build.store.clear());
+  });
+
   it('draws the architecture of a schema with elkjs', async () => {
     const { page } = s;
     await page.locator('#btn-arch').click();
