@@ -100,6 +100,21 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t')).toBe('0');
     expect(await page.locator('.monitor-rule[data-active=true]').count()).toBe(0);
     const marks = await marksOf(page);
+    // the timeline strip: every mark is a tick of its kind's colour in its row (binned by pixel column)
+    const strip = await page.evaluate(() => {
+      const c = document.querySelector('.monitor-strip') as HTMLCanvasElement;
+      const m = (window as any).__ide.monitor.current;
+      const d = c.getContext('2d')!.getImageData(0, 0, c.width, c.height).data;
+      const px = (x: number, y: number) => { const i = (y * c.width + x) * 4; return `#${[d[i]!, d[i + 1]!, d[i + 2]!].map((v) => v.toString(16).padStart(2, '0')).join('')}`; };
+      const row: Record<string, number> = { function: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
+      const col = (t: number) => Math.floor(1 + (t / Math.max(1, m.end)) * (c.width - 3));
+      const cursor = col(0);
+      return (m.marks as { t: number; kind: string; on?: boolean }[]).filter((k) => Math.abs(col(k.t) - cursor) > 2).map((k) => ({ kind: k.kind, on: k.on, colour: px(col(k.t), 3 + row[k.kind]! * 10 + 4) }));
+    });
+    expect(strip.length).toBeGreaterThan(3);
+    for (const k of strip) expect(k.colour, JSON.stringify(k)).not.toBe('#20242c');
+    expect(strip.filter((k) => k.kind === 'schema').map((k) => k.colour)).toContain('#61afef');
+    expect(strip.filter((k) => k.kind === 'rule' && k.on).map((k) => k.colour)).toContain('#98c379');
     await page.keyboard.press(']');
     await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(marks.find((m) => m.t > 0)!.t);
     // End follows the end again: every function stopped, no rule lit
