@@ -105,9 +105,17 @@ export class FileOperations {
         this.renaming.delete(to);
       }
       lsp.revalidateAll();
-      if (editors.active && workspace.hasFile(editors.active)) await editors.open(editors.active);
+      // the tab shows the file under its new name; the focus goes back to the editor unless the
+      // user has moved it meanwhile (Ctrl+P pressed while the tree was being fetched)
+      if (editors.active && workspace.hasFile(editors.active)) await editors.open(editors.active, undefined, { focus: focusIsFree() });
     } catch (e) {
       reportError(e);
     }
   }
+}
+
+/** Nobody holds the keyboard focus but the page itself or the editor (a closed dialog left it there). */
+function focusIsFree(): boolean {
+  const el = document.activeElement;
+  return !el || el === document.body || el.closest('.monaco-editor') !== null;
 }

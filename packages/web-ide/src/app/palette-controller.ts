@@ -51,7 +51,8 @@ export async function openCommandPalette(commands: CommandRegistry, editors: Edi
     }
   }
   const picked = await quickPick({ id: 'command-palette', label: 'Command palette', placeholder: 'Type a command (Generate All, Build & Run, Format…)', items });
-  await picked?.run();
+  if (!picked) return focusEditorIfNowhere(editors);
+  await picked.run();
 }
 
 /** Quick open (Ctrl+P): every file of the workspace, fuzzy matched on its path; Enter opens it. */
@@ -61,4 +62,13 @@ export async function openQuickOpen(workspace: Workspace, editors: EditorArea): 
   const items = files.map((path) => ({ label: path, detail: editors.isOpen(path) ? 'open' : undefined, path }));
   const picked = await quickPick({ id: 'quick-open', label: 'Go to file', placeholder: 'Go to a file of the workspace by name', items });
   if (picked) await editors.open(picked.path);
+  else focusEditorIfNowhere(editors);
+}
+
+/**
+ * Escape gives the focus back where it was; when that was nowhere (the page itself: a step that
+ * had closed a dialog was still loading), the active tab gets it, so the keyboard is never lost.
+ */
+function focusEditorIfNowhere(editors: EditorArea): void {
+  if (!document.activeElement || document.activeElement === document.body) editors.focusActive();
 }

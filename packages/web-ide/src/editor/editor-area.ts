@@ -128,8 +128,12 @@ export class EditorArea {
     this.viewStates.set(id, state);
   }
 
-  /** Opens (or focuses) a file tab, optionally revealing a position or range. */
-  async open(path: string, where?: monaco.IRange | monaco.IPosition): Promise<void> {
+  /**
+   * Opens (or focuses) a file tab, optionally revealing a position or range. With `focus: false`
+   * the keyboard focus stays where it is (a step that finishes late must not take it from a dialog
+   * or list the user opened meanwhile).
+   */
+  async open(path: string, where?: monaco.IRange | monaco.IPosition, opts: { focus?: boolean } = {}): Promise<void> {
     let fs: FileState;
     try {
       fs = await this.workspace.ensureModel(path);
@@ -150,7 +154,7 @@ export class EditorArea {
       // a restored view state may scroll after us: reveal again once laid out
       requestAnimationFrame(() => this.editor.getModel() === this.workspace.files.get(path)?.model && this.editor.revealRangeInCenterIfOutsideViewport(range));
     }
-    this.editor.focus();
+    if (opts.focus !== false) this.editor.focus();
   }
 
   /** Opens (or focuses) a view tab. */

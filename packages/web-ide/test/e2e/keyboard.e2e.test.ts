@@ -201,6 +201,15 @@ describe('keyboard-first IDE', () => {
     await page.keyboard.press('Enter');
     await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('kb_new.contract');
     expect(await focusOf(page)).toBe('editor');
+    // the rename's last step (loading the file under its new name) is held back 1 s: Ctrl+P
+    // pressed meanwhile keeps its focus when that step ends
+    let released!: () => void;
+    const lateStepDone = new Promise<void>((r) => (released = r));
+    await page.route('**/api/file?path=kb_renamed.contract', async (route) => {
+      await new Promise((r) => setTimeout(r, 1000));
+      await route.continue();
+      setTimeout(released, 300);
+    });
     await page.keyboard.press('Alt+Shift+R');
     await input.waitFor({ timeout: 5000 });
     await page.keyboard.press('Control+a');
@@ -209,6 +218,13 @@ describe('keyboard-first IDE', () => {
     await expect.poll(() => activeTab(page), { timeout: 5000 }).toBe('kb_renamed.contract');
     await page.locator('.tree-row[data-path="kb_renamed.contract"]').waitFor({ timeout: 5000 });
     expect(await page.locator('.tree-row[data-path="kb_new.contract"]').count()).toBe(0);
+    await page.keyboard.press('Control+p');
+    await page.locator('#quick-open input[role=combobox]').waitFor({ timeout: 5000 });
+    await lateStepDone;
+    await page.unroute('**/api/file?path=kb_renamed.contract');
+    expect(await focusOf(page)).toBe('combobox:Go to file');
+    await page.keyboard.press('Escape');
+    expect(await focusOf(page)).toBe('editor');
   });
 
   it('outline by keyboard: Enter reveals the symbol in the editor', async () => {
