@@ -18,8 +18,14 @@
  * holds its records (docs/build-service-api.md "Trace channel"). Cost: two stores when the
  * buffer goes from empty to dirty and one at each flush. Removed at close. Its second word is
  * the reader's: while a client watches the live trace the build service writes there the flush
- * delay it wants (10 ms), and the module writes its records that much sooner than LOG_FLUSH_NS
- * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS. */
+ * delay it wants (25 ms), and the module writes its records that much sooner than LOG_FLUSH_NS
+ * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS.
+ *
+ * Flush boundaries: a module that waits writes its records at the first multiple of the flush
+ * delay on CLOCK_MONOTONIC after its oldest unwritten record (ContractLogFlushDue), not a delay
+ * after it. Every module of a run counts from the same clock, so they write at the same instants:
+ * a reader that puts the logs in time order waits for the last of them once per delay, instead of
+ * for modules writing at phases of their own (up to one more delay). */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -313,9 +319,24 @@ RTIME rt_log_flush_ns(void)
 
 RTIME ContractLogFlushDelay(void) { return rt_log_flush_ns(); }
 
+RTIME ContractLogFlushDue(RTIME delayNs)
+{
+    RTIME since = g_rt.log_dirty_since;
+    if (!since || delayNs <= 0) return since;
+    return (since / delayNs + 1) * delayNs;
+}
+
+void ContractLogFlushIfDue(RTIME now, RTIME delayNs)
+{
+    RTIME due = ContractLogFlushDue(delayNs);
+    if (due && now >= due) ContractLogFlush();
+}
+
+RTIME rt_log_due(void) { return ContractLogFlushDue(rt_log_flush_ns()); }
+
 void rt_log_maybe_flush(RTIME now)
 {
-    if (g_rt.log_dirty_since && now - g_rt.log_dirty_since >= rt_log_flush_ns()) ContractLogFlush();
+    ContractLogFlushIfDue(now, rt_log_flush_ns());
 }
 
 void rt_log_close(void)

@@ -418,8 +418,9 @@ static int receive_until(RTIME deadline)
         if (deadline <= now) return receive_one(MSG_DONTWAIT);
         RTIME wait = deadline == INT64_MAX ? -1 : deadline - now;
         RTIME flush_ns = rt_log_flush_ns();
-        if (g_rt.log_dirty_since) {
-            RTIME flush_in = g_rt.log_dirty_since + flush_ns - now;
+        RTIME due = rt_log_due();
+        if (due) {
+            RTIME flush_in = due - now;
             if (flush_in < 0) flush_in = 0;
             if (wait < 0 || flush_in < wait) wait = flush_in;
         }

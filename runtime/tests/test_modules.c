@@ -615,3 +615,32 @@ void test_csv_log_mark_delay(void)
     close(fd);
     h_teardown();
 }
+
+/* Flush boundaries: buffered records are due at the first multiple of the flush delay on
+   CLOCK_MONOTONIC after the oldest of them (every module of a run writes at the same instants),
+   written at that instant and not before; in process, on the tester's own log. */
+void test_csv_log_flush_boundary(void)
+{
+    REQUIRE(h_setup("logboundary") == 0);
+    REQUIRE(rt_log_open() == 0);
+    const RTIME delay = 10000000LL;
+    CHECK(ContractLogFlushDue(delay) == 0); /* nothing buffered */
+    ContractLog("test_record", "", -1, 0, "x");
+    RTIME since = ContractLogPendingSince();
+    REQUIRE(since > 0);
+    RTIME due = ContractLogFlushDue(delay);
+    CHECK_MSG(due % delay == 0, "due %lld is not on a %lld ns boundary", (long long)due, (long long)delay);
+    CHECK_MSG(due > since && due - since <= delay, "due %lld for a record of %lld", (long long)due, (long long)since);
+    ContractLogFlushIfDue(due - 1, delay);
+    CHECK_MSG(ContractLogPendingSince() == since, "written before its boundary");
+    ContractLog("test_record", "", -1, 0, "y"); /* a younger record rides with the oldest */
+    CHECK(ContractLogFlushDue(delay) == due);
+    ContractLogFlushIfDue(due, delay);
+    CHECK_MSG(ContractLogPendingSince() == 0, "not written at its boundary");
+    CHECK(ContractLogFlushDue(delay) == 0);
+    /* the library's own wait uses the same boundaries with its delay */
+    ContractLog("test_record", "", -1, 0, "z");
+    CHECK(rt_log_due() == ContractLogFlushDue(ContractLogFlushDelay()));
+    rt_log_close();
+    h_teardown();
+}

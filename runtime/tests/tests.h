@@ -30,6 +30,7 @@ void test_set_module_priority(void);
 void test_csv_log_cap(void);
 void test_csv_log_mark(void);
 void test_csv_log_mark_delay(void);
+void test_csv_log_flush_boundary(void);
 
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
@@ -59,6 +60,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_cap", test_csv_log_cap },
     { "csv_log_mark", test_csv_log_mark },
     { "csv_log_mark_delay", test_csv_log_mark_delay },
+    { "csv_log_flush_boundary", test_csv_log_flush_boundary },
     { "ext_types_round_trip", test_ext_types_round_trip },
     { NULL, NULL },
 };

@@ -320,6 +320,14 @@ void ContractLogFlushIfOlder(RTIME ageNs);
 /** [ENGINE] How old a record may get in the buffer while the module waits: 50 ms, or the shorter
  *  delay a live monitor asks for through the flush mark (docs/runtime-api.md "CSV log"). */
 RTIME ContractLogFlushDelay(void);
+/** [ENGINE] When the buffered records are due to be written with flush delay `delayNs`: the first
+ *  multiple of `delayNs` on CLOCK_MONOTONIC (GetTime) after the oldest of them, so that every
+ *  module of a run writes at the same instants; 0 when nothing waits. */
+RTIME ContractLogFlushDue(RTIME delayNs);
+/** [ENGINE] Flush the CSV log if `now` has reached ContractLogFlushDue(delayNs). For time-critical
+ *  loops (ORD): call it when about to wait with time to spare, so that the write never happens at
+ *  the next mailbox read (the library writes its records there when they are due). */
+void ContractLogFlushIfDue(RTIME now, RTIME delayNs);
 
 /** [ENGINE] When the oldest record not yet written to the CSV log was logged (GetTime), 0 when
  *  none waits: an engine that goes idle wakes to write it (readers tail the log while it runs). */

@@ -15,7 +15,7 @@
 static int timer_fd = -1;
 
 #define IDLE_FLUSH_SLACK_NS 200000LL  /* flush the CSV log only with this much time to spare */
-#define IDLE_FLUSH_AGE_NS 20000000LL  /* ... and records that waited 20 ms (library: 50 ms), or less as the library when watched */
+#define IDLE_FLUSH_AGE_NS 25000000LL  /* ... at 25 ms boundaries (library: 50 ms), or the library's when watched (25 ms) */
 
 static int ensure_timer(void) {
     if (timer_fd >= 0) return 0;
@@ -35,20 +35,17 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
         if (deadline != INT64_MAX && GetTime() >= deadline) return 0;
         /* Write the CSV log while idle with time to spare (>= 200 us before the deadline), so
            that it is never written between a wake-up and the releases it is for. */
-        RTIME age = ContractLogFlushDelay();
-        if (age > IDLE_FLUSH_AGE_NS) age = IDLE_FLUSH_AGE_NS;
+        RTIME delay = ContractLogFlushDelay();
+        if (delay > IDLE_FLUSH_AGE_NS) delay = IDLE_FLUSH_AGE_NS;
         if (deadline == INT64_MAX || deadline - GetTime() >= IDLE_FLUSH_SLACK_NS) {
-            ContractLogFlushIfOlder(age);
+            ContractLogFlushIfDue(GetTime(), delay);
         }
-        /* Records still buffered (younger than `age`) must not wait for the next request, which
-           may come seconds later: wake when they are old enough (unless that is too close to the
-           deadline), so that the log on disk — the live trace — lags at most about `age`. */
+        /* Records still buffered (their flush boundary not reached) must not wait for the next
+           request, which may come seconds later: wake at the boundary (unless that is too close
+           to the deadline), so that the log on disk — the live trace — lags at most about `delay`. */
         int64_t wake = deadline;
-        RTIME pending = ContractLogPendingSince();
-        if (pending) {
-            int64_t due = (int64_t)pending + age;
-            if (due < wake && (deadline == INT64_MAX || deadline - due >= IDLE_FLUSH_SLACK_NS)) wake = due;
-        }
+        RTIME due = ContractLogFlushDue(delay);
+        if (due && (int64_t)due < wake && (deadline == INT64_MAX || deadline - (int64_t)due >= IDLE_FLUSH_SLACK_NS)) wake = (int64_t)due;
         struct itimerspec its;
         memset(&its, 0, sizeof its);
         if (wake != INT64_MAX) {
