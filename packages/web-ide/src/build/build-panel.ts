@@ -78,7 +78,7 @@ export class BuildPanel {
     const isNew = !this.store.sources.has(l.source);
     this.store.push(l);
     if (isNew) this.renderChips();
-    this.view.schedule();
+    this.view.scheduleAppend();
   }
 
   private renderChips(): void {

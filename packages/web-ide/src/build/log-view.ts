@@ -4,6 +4,13 @@ import type { LogLine, LogStore } from './log-store.js';
 const ROW = 18;
 /** Rows drawn above and below the viewport. */
 const MARGIN = 5;
+/**
+ * While lines stream in, the view redraws at most this often (ms); what the user does (scroll,
+ * resize, filter, follow) redraws at the next frame. Hundreds of lines a second cannot be read as
+ * they pass, and a redraw each frame scrolled and repainted the whole pane sixty times a second
+ * beside the Monitor.
+ */
+export const STREAM_REDRAW_MS = 100;
 
 /**
  * Virtualised log view: a spacer as tall as all visible lines and only the rows in the viewport
@@ -30,6 +37,9 @@ export class LogView {
   /** The scrollTop this view last wrote (its own scroll events are not the user's). */
   private wroteTop = -1;
   private frame = 0;
+  /** A redraw for streamed lines, due after STREAM_REDRAW_MS (0: none). */
+  private streamTimer: ReturnType<typeof setTimeout> | 0 = 0;
+  private lastDraw = -Infinity;
   onFollowChange: (follow: boolean) => void = () => undefined;
 
   constructor(private readonly store: LogStore) {
@@ -62,12 +72,29 @@ export class LogView {
     this.schedule();
   }
 
+  /** Redraws at the next frame (what the user did). */
   schedule(): void {
+    if (this.streamTimer) {
+      clearTimeout(this.streamTimer);
+      this.streamTimer = 0;
+    }
     if (!this.frame) this.frame = requestAnimationFrame(() => this.draw());
+  }
+
+  /** New lines in the store: redrawn at the next frame, or, while they stream, STREAM_REDRAW_MS after the last redraw. */
+  scheduleAppend(): void {
+    if (this.frame || this.streamTimer) return;
+    const wait = this.lastDraw + STREAM_REDRAW_MS - performance.now();
+    if (wait <= 0) this.frame = requestAnimationFrame(() => this.draw());
+    else this.streamTimer = setTimeout(() => {
+      this.streamTimer = 0;
+      this.schedule();
+    }, wait);
   }
 
   private draw(): void {
     this.frame = 0;
+    this.lastDraw = performance.now();
     const n = this.store.visibleCount;
     const height = n * ROW;
     if (height !== this.spacerHeight) {
