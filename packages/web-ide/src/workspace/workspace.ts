@@ -172,8 +172,28 @@ export class Workspace {
     this.timers.set(fs.path, setTimeout(() => void this.save(fs.path), delay));
   }
 
-  /** Writes the model's text now; resolves when the server confirmed (or the write failed). */
+  /** The write of each file in flight: a file has at most one (the next waits for it). */
+  private readonly writing = new Map<string, Promise<boolean>>();
+
+  /**
+   * Writes the model's text now; resolves when the server confirmed (or the write failed). While a
+   * write of the file is in flight, this one waits for it: two writes on the same base would make
+   * the second a conflict with the first, and a reload in between would keep in the browser copy
+   * only the second's text as the one sent, so the first, landed on disk, would look like a change
+   * made elsewhere (an overlap with the user's own edit).
+   */
   async save(path: string): Promise<boolean> {
+    for (let running = this.writing.get(path); running; running = this.writing.get(path)) await running.catch(() => false);
+    const write = this.saveNow(path);
+    this.writing.set(path, write);
+    try {
+      return await write;
+    } finally {
+      if (this.writing.get(path) === write) this.writing.delete(path);
+    }
+  }
+
+  private async saveNow(path: string): Promise<boolean> {
     const fs = this.files.get(path);
     if (!fs || fs.model.isDisposed()) return false;
     this.cancelPendingSave(path);

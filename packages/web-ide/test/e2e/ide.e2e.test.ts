@@ -482,6 +482,53 @@ describe('IDE in headless Chromium', () => {
     await waitSaved(page);
   });
 
+  it('writes a file once at a time: Ctrl+S during a write waits for it, and the browser copy keeps the text sent', async () => {
+    const { page } = s;
+    const path = 'amodule2.contract';
+    const original = disk(path);
+    await openFile(page, path);
+    await waitSaved(page);
+    // every write of the file is held 800 ms before it goes on to the server
+    let held = 0;
+    let most = 0;
+    let puts = 0;
+    const pattern = `**/api/file?path=${path}`;
+    await page.route(pattern, async (route) => {
+      if (route.request().method() !== 'PUT') return route.continue();
+      puts++;
+      most = Math.max(most, ++held);
+      await new Promise((r) => setTimeout(r, 800));
+      held--;
+      await route.continue();
+    });
+    const sentInCopy = () => page.evaluate((p) => {
+      const key = Object.keys(localStorage).find((k) => k.startsWith('contract-studio:unsaved:') && k.endsWith(`:${p}`));
+      return key ? (JSON.parse(localStorage.getItem(key)!) as { sentText?: string }).sentText ?? '' : '';
+    }, path);
+    try {
+      await placeCursor(page, 'asynchronous module MAB');
+      await page.keyboard.type('// first write\n');
+      await expect.poll(() => puts, { timeout: 5000 }).toBe(1); // the first write is held
+      await page.keyboard.type('// second write\n');
+      await page.keyboard.press('Control+s');
+      await page.waitForTimeout(300);
+      // the copy a reload would restore still names the text in flight: if it lands, it is the base
+      const sent = await sentInCopy();
+      expect(sent).toContain('// first write');
+      expect(sent).not.toContain('// second write');
+      await waitSaved(page);
+      expect(most).toBe(1);
+      expect(puts).toBe(2);
+      expect(disk(path)).toContain('// first write\n// second write\n');
+      expect(await page.locator('.conflict-overlay').count()).toBe(0);
+    } finally {
+      await page.unroute(pattern);
+    }
+    // put the file back as it was
+    await page.evaluate(({ p, text }) => (window as any).__ide.workspace.files.get(p).model.setValue(text), { p: path, text: original });
+    await expect.poll(() => disk(path), { timeout: 5000 }).toBe(original);
+  });
+
   it('keeps an edit made just before a reload (localStorage backup, then saved)', async () => {
     const { page } = s;
     await openFile(page, 'datatype.contract');
