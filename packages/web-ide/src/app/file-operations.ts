@@ -8,6 +8,7 @@ import { askText, confirmAction } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { reportError } from './report-error.js';
+import { focusIsNowhere } from '../util/dom.js';
 
 const join = (dir: string, name: string) => (dir ? `${dir}/${name}` : name);
 
@@ -114,8 +115,7 @@ export class FileOperations {
   }
 }
 
-/** Nobody holds the keyboard focus but the page itself or the editor (a closed dialog left it there). */
+/** Nobody holds the keyboard focus but the page itself or the editor. */
 function focusIsFree(): boolean {
-  const el = document.activeElement;
-  return !el || el === document.body || el.closest('.monaco-editor') !== null;
+  return focusIsNowhere() || document.activeElement!.closest('.monaco-editor') !== null;
 }

@@ -3,6 +3,7 @@ import type { EditorArea } from '../editor/editor-area.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { quickPick, type PickItem } from '../palette/quick-pick.js';
 import type { CommandRegistry } from './commands.js';
+import { focusIsNowhere } from '../util/dom.js';
 
 /** Editor commands Monaco registers outside `getSupportedActions()` (its "action2" kind): listed too. */
 const MORE_EDITOR_COMMANDS: Array<{ id: string; label: string; key: string }> = [
@@ -70,5 +71,5 @@ export async function openQuickOpen(workspace: Workspace, editors: EditorArea): 
  * had closed a dialog was still loading), the active tab gets it, so the keyboard is never lost.
  */
 function focusEditorIfNowhere(editors: EditorArea): void {
-  if (!document.activeElement || document.activeElement === document.body) editors.focusActive();
+  if (focusIsNowhere()) editors.focusActive();
 }

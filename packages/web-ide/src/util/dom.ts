@@ -22,3 +22,8 @@ export function debounce<A extends unknown[]>(fn: (...args: A) => void, ms: numb
     t = setTimeout(() => fn(...args), ms);
   };
 }
+
+/** No element holds the keyboard focus but the page itself (a closed dialog or list left it there). */
+export function focusIsNowhere(): boolean {
+  return !document.activeElement || document.activeElement === document.body;
+}
