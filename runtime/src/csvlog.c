@@ -332,8 +332,6 @@ void ContractLogFlushIfDue(RTIME now, RTIME delayNs)
     if (due && now >= due) ContractLogFlush();
 }
 
-RTIME rt_log_due(void) { return ContractLogFlushDue(rt_log_flush_ns()); }
-
 void rt_log_maybe_flush(RTIME now)
 {
     ContractLogFlushIfDue(now, rt_log_flush_ns());

@@ -100,8 +100,6 @@ unsigned long long rt_log_records(void);
 void rt_log_maybe_flush(RTIME now);
 /* LOG_FLUSH_NS, or the shorter delay the flush mark asks for while a live monitor watches. */
 RTIME rt_log_flush_ns(void);
-/* When the buffered records are due to be written (ContractLogFlushDue of rt_log_flush_ns()), 0 when none. */
-RTIME rt_log_due(void);
 
 /* dataflow.c / eventflow.c */
 int rt_dataflow_setup(void);

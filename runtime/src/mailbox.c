@@ -418,7 +418,7 @@ static int receive_until(RTIME deadline)
         if (deadline <= now) return receive_one(MSG_DONTWAIT);
         RTIME wait = deadline == INT64_MAX ? -1 : deadline - now;
         RTIME flush_ns = rt_log_flush_ns();
-        RTIME due = rt_log_due();
+        RTIME due = ContractLogFlushDue(flush_ns);
         if (due) {
             RTIME flush_in = due - now;
             if (flush_in < 0) flush_in = 0;

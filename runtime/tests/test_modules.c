@@ -640,7 +640,12 @@ void test_csv_log_flush_boundary(void)
     CHECK(ContractLogFlushDue(delay) == 0);
     /* the library's own wait uses the same boundaries with its delay */
     ContractLog("test_record", "", -1, 0, "z");
-    CHECK(rt_log_due() == ContractLogFlushDue(ContractLogFlushDelay()));
+    RTIME lib_due = ContractLogFlushDue(ContractLogFlushDelay());
+    CHECK_MSG(lib_due % ContractLogFlushDelay() == 0, "library due %lld off its boundary", (long long)lib_due);
+    rt_log_maybe_flush(lib_due - 1);
+    CHECK_MSG(ContractLogPendingSince() != 0, "the library wrote before its boundary");
+    rt_log_maybe_flush(lib_due);
+    CHECK_MSG(ContractLogPendingSince() == 0, "the library did not write at its boundary");
     rt_log_close();
     h_teardown();
 }
