@@ -87,7 +87,7 @@ export interface ServiceBounds {
   traceOrderWindowMs: number;
   /** The same when every log has its flush mark (the order is then exact: this only bounds what a module that holds its records, or died holding them, costs the others). */
   traceMarkHoldMs: number;
-  /** Milliseconds from a change of the logs folder (inotify) to the read it wakes (changes in that time are read together). */
+  /** Milliseconds from a change of the logs folder (inotify) to the read it wakes (changes in that time are read together), unless every module has written its log for the last flush boundary: then at once. */
   traceWakeMs: number;
   /** Flush delay (ms) asked of the modules through their flush marks while a client follows the job (else their own, 50 ms). */
   traceWatchedFlushMs: number;

@@ -1,8 +1,9 @@
 /**
  * The live trace channel's reader (docs/build-service-api.md "Trace channel"): while the run step
  * runs, reads the run's log folder (LOG_DIR = <work>/logs, a host folder for bwrap and none: the
- * work dir is bound into the sandbox) `wakeMs` after it changes (inotify, through fs.watch) and
- * every `pollMs` in any case, reads only the new bytes of each `*.csv` and, before them, the
+ * work dir is bound into the sandbox) when it changes (inotify, through fs.watch: at once when every
+ * log's mark says it was written for the last flush boundary, else `wakeMs` later) and every
+ * `pollMs` in any case, reads only the new bytes of each `*.csv` and, before them, the
  * word of its flush mark (`<log>.mark`, runtime/src/csvlog.c: up to when the log is whole), and
  * hands their record lines, in mono_ns order across the files (trace-order.ts), to the job.
  *
@@ -237,7 +238,7 @@ export class TraceTail {
         this.reading = false;
         const again = this.changedMeanwhile;
         this.changedMeanwhile = false;
-        this.schedule(again ? this.bounds.wakeMs : this.bounds.pollMs);
+        this.schedule(again ? this.wakeDelay() : this.bounds.pollMs);
       });
     }, ms);
     this.timer.unref();
@@ -246,8 +247,44 @@ export class TraceTail {
   /** logs/ changed (a log grew, a log was created): read soon. */
   private changed(): void {
     if (this.stopped || this.ending) return;
-    if (this.reading) this.changedMeanwhile = true;
-    else if (this.timerDue > Date.now() + this.bounds.wakeMs) this.schedule(this.bounds.wakeMs);
+    if (this.reading) {
+      this.changedMeanwhile = true;
+      return;
+    }
+    const ms = this.wakeDelay();
+    if (this.timerDue > Date.now() + ms) this.schedule(ms);
+  }
+
+  /**
+   * How long after a change of logs/ to read it: at once when every log has been written for the
+   * last flush boundary (nothing more will come before the next one), else wakeMs, so that the
+   * modules writing at the same boundary are read together.
+   */
+  private wakeDelay(): number {
+    return this.writtenForBoundary() ? 0 : this.bounds.wakeMs;
+  }
+
+  /**
+   * While a client watches, the modules write their logs at the boundaries of the delay asked
+   * (its multiples on the shared CLOCK_MONOTONIC: runtime/src/csvlog.c ContractLogFlushDue). A log
+   * is written for the last boundary when its mark says that its module holds nothing, or only
+   * records logged since that boundary. True when every log read is; false whenever it cannot be
+   * known (not watched, a log without a mark its module takes the delay from, a record being logged).
+   */
+  private writtenForBoundary(): boolean {
+    if (!this.watched || this.files.size === 0) return false;
+    const delay = BigInt(this.bounds.watchedFlushMs) * 1_000_000n;
+    if (delay <= 0n) return false;
+    const now = process.hrtime.bigint();
+    const boundary = (now / delay) * delay;
+    for (const f of this.files.values()) {
+      if (f.done || f.dormantUntil > 0) continue;
+      if (!f.mark || !f.markWritable) return false;
+      const word = this.markWord(f);
+      if (word === null || word === 1n) return false;
+      if (word !== 0n && word < boundary) return false;
+    }
+    return true;
   }
 
   /** Watches logs/ (through its descriptor: the folder opened, never a name replaced later); polls only when it cannot. */
@@ -436,18 +473,24 @@ export class TraceTail {
   private wholeUpTo(f: Tailed): bigint | null {
     if (!f.mark) return null;
     const before = process.hrtime.bigint();
-    let word: bigint;
-    try {
-      // one 8-byte read of a regular file's page: synchronous, no thread-pool round trip per log
-      if (readSync(f.mark.fd, this.word, 0, 8, 0) !== 8) return null;
-      word = readWord(this.word);
-    } catch {
-      return null;
-    }
+    const word = this.markWord(f);
+    if (word === null) return null;
     if (word === 0n) return before;
     if (word === 1n) return null;
     // the module's own word: a time in the future is not believed beyond now
     return word - 1n < before ? word - 1n : before;
+  }
+
+  /** The first word of a log's flush mark (0: nothing held, 1: a record being logged, else the mono_ns of the oldest record held); null when it cannot be read. */
+  private markWord(f: Tailed): bigint | null {
+    if (!f.mark) return null;
+    try {
+      // one 8-byte read of a regular file's page: synchronous, no thread-pool round trip per log
+      if (readSync(f.mark.fd, this.word, 0, 8, 0) !== 8) return null;
+      return readWord(this.word);
+    } catch {
+      return null;
+    }
   }
 
   /**
