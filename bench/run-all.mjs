@@ -5,7 +5,9 @@
 // (metric name -> number) to bench/parts/<part>.json. This script runs them in order,
 // merges the parts, writes bench/results.json and prints a readable table.
 // `node bench/run-all.mjs PART...` runs only those parts and merges their figures into the
-// existing bench/results.json (the other figures are kept as they were).
+// existing bench/results.json (the other figures are kept as they were). bench/result-parts.json
+// says which metrics each part wrote last time, so that a part run again replaces all of its
+// figures (a metric it no longer writes, as a `..._skipped` reason once the thing runs, is dropped).
 import { spawnSync } from 'node:child_process';
 import { mkdirSync, readFileSync, writeFileSync, existsSync, rmSync } from 'node:fs';
 import { dirname, join } from 'node:path';
@@ -45,7 +47,10 @@ const benches = [
 const only = process.argv.slice(2);
 mkdirSync(partsDir, { recursive: true });
 const resultsFile = join(root, 'bench', 'results.json');
+const partsFile = join(root, 'bench', 'result-parts.json');
 const results = only.length && existsSync(resultsFile) ? JSON.parse(readFileSync(resultsFile, 'utf8')) : {};
+/** part -> the metrics it wrote when it last ran. */
+const partKeys = only.length && existsSync(partsFile) ? JSON.parse(readFileSync(partsFile, 'utf8')) : {};
 const failures = [];
 for (const b of benches) {
   if (only.length && !only.includes(b.part)) continue;
@@ -59,10 +64,14 @@ for (const b of benches) {
     failures.push(`${b.part} (exit ${r.status}, ${secs} s${existsSync(file) ? '' : ', no ' + file})`);
     continue;
   }
-  Object.assign(results, JSON.parse(readFileSync(file, 'utf8')));
+  const figures = JSON.parse(readFileSync(file, 'utf8'));
+  for (const k of partKeys[b.part] ?? []) if (!(k in figures)) delete results[k];
+  partKeys[b.part] = Object.keys(figures);
+  Object.assign(results, figures);
   process.stderr.write(`[bench] ${b.part}: done in ${secs} s\n`);
 }
 writeFileSync(resultsFile, JSON.stringify(results, null, 2) + '\n');
+writeFileSync(partsFile, JSON.stringify(partKeys, null, 2) + '\n');
 const width = Math.max(10, ...Object.keys(results).map((k) => k.length));
 console.log(`${'metric'.padEnd(width)}  value`);
 for (const [k, v] of Object.entries(results)) console.log(`${k.padEnd(width)}  ${v}`);
