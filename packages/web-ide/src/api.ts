@@ -78,5 +78,7 @@ export const api = {
   submitJob: (body: unknown) => call<{ id: string; status: string; sandbox?: string; warnings?: string[] }>('POST', '/api/jobs', body),
   /** Runs a scenario text on a project in virtual time (422 with `diagnostics` when it has errors). */
   simulate: (project: string, scenario: string) => call<SimulateResponse>('POST', '/api/simulate', { project, scenario }),
+  /** A job's status (404 once the build service no longer knows it). */
+  getJob: (id: string) => call<{ id: string; status: string; action: string; finishedAt: number | null }>('GET', `/api/jobs/${q(id)}`),
   cancelJob: (id: string) => call<{ id: string; status: string }>('DELETE', `/api/jobs/${q(id)}`),
 };

@@ -106,8 +106,9 @@ async function main(): Promise<void> {
     return;
   }
   ui.workspaceName.textContent = workspace.name;
-  void api.info().then((info) => {
-    if (!info.buildAvailable) runs.disable(info.buildService);
+  const info = api.info().then((i) => {
+    if (!i.buildAvailable) runs.disable(i.buildService);
+    return i;
   }).catch(() => undefined);
   document.title = `${workspace.name} — ContrACT Studio`;
   explorer.setEntries(workspace.entries);
@@ -127,6 +128,8 @@ async function main(): Promise<void> {
   const first = workspace.allFiles().find((p) => p.endsWith('supervisor.contract')) ?? workspace.allFiles().find(isContract);
   if (!(await layout.restore()) && first) await editors.open(first);
   layout.start();
+  // a run this tab started before a reload goes on in the build service: follow it again
+  void info.then((i) => (i?.buildAvailable ? runs.resume() : undefined));
   performance.mark('ide:editor-open');
   await lsp.workspaceBuilt();
   performance.mark('ide:ready');

@@ -8,6 +8,9 @@ import { reportError } from './report-error.js';
 import { isCpuList } from '@contract-studio/conventions';
 
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
+/** The job this tab follows, kept for a reload (sessionStorage: one per tab): { jobId, project }. */
+const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
+const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
 
 function runSettings(): RunSettings {
@@ -43,8 +46,44 @@ export class RunController {
     });
     // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
     build.onFinished.on(({ jobId, action }) => {
+      if (this.followed()?.jobId === jobId) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
       if (action === 'run') void this.fetchLogs(jobId);
     });
+    build.onStarted.on(({ jobId }) => {
+      try {
+        sessionStorage.setItem(FOLLOWED_JOB_KEY, JSON.stringify({ jobId, project: this.project }));
+      } catch {
+        /* storage full or refused: a reload then loses the job's stream, not the job */
+      }
+    });
+  }
+
+  /** The job this tab followed before a reload, as kept (anything else there is ignored). */
+  private followed(): { jobId: string; project: string } | undefined {
+    try {
+      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown } | null;
+      if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '' };
+    } catch {
+      /* not JSON */
+    }
+    return undefined;
+  }
+
+  /**
+   * After a reload: follows again the job this tab had started if the build service still runs it
+   * (its log from the start, then live; the Monitor too; Stop cancels it). True when it does.
+   */
+  async resume(): Promise<boolean> {
+    const f = this.followed();
+    if (!f) {
+      sessionStorage.removeItem(FOLLOWED_JOB_KEY);
+      return false;
+    }
+    this.project = f.project;
+    const followed = await this.d.build.resume(f.jobId);
+    if (!followed) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
+    else this.d.showPanel('output');
+    return followed;
   }
 
   async run(): Promise<void> {

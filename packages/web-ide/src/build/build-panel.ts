@@ -116,6 +116,31 @@ export class BuildPanel {
     this.jobId = job.id;
     for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);
+    this.follow(job.id, action);
+  }
+
+  /**
+   * Follows a job this page submitted before it was reloaded, if the build service still runs it:
+   * its events again from the first (the log, the diagnostics and the kept trace: docs/build-service-api.md
+   * "Events"), then live, and Stop cancels it. False when it has finished or is unknown (a restarted service).
+   */
+  async resume(jobId: string): Promise<boolean> {
+    let job: { id: string; status: string; action: string; finishedAt: number | null };
+    try {
+      job = await api.getJob(jobId);
+    } catch {
+      return false;
+    }
+    if (job.finishedAt || this.jobId || (job.action !== 'build' && job.action !== 'run')) return false;
+    this.jobId = job.id;
+    this.setStatus(job.status, 'followed again after a reload', true);
+    this.follow(job.id, job.action);
+    return true;
+  }
+
+  /** Streams a job's events (SSE, from the first) into the log, the diagnostics, the trace and the status. */
+  private follow(jobId: string, action: 'build' | 'run'): void {
+    const job = { id: jobId };
     const es = new EventSource(`/api/jobs/${encodeURIComponent(job.id)}/events`);
     this.source = es;
     this.onStarted.fire({ jobId: job.id, action });

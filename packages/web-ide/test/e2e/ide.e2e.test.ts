@@ -407,10 +407,26 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBeGreaterThan(0);
     await page.locator('.log-search').fill('');
     await page.locator('#follow-tail').check();
-    // Stop cancels a running job (a cancelled run brings no logs: the timeline keeps the finished one)
+    // a reload during a run: the tab follows the job again (its log from the start, then live), and
+    // Stop cancels it (a cancelled run brings no logs: the timeline keeps the finished one)
+    await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 60, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' })));
     await page.locator('#btn-run').click();
     await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run'); // the old log is cleared
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 30_000 });
+    // the log's lines (the view builds only the rows it shows)
+    const lines = () => page.evaluate(() => {
+      const store = (window as any).__ide.build.store;
+      const out: string[] = [];
+      for (let i = 0; i < store.visibleCount; i++) out.push(`${store.visibleAt(i).source}: ${store.visibleAt(i).line}`);
+      return out;
+    });
+    const before = await lines();
+    await page.reload();
+    await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
+    await expect.poll(async () => (await lines()).length, { timeout: 10_000 }).toBeGreaterThan(before.length); // replayed, then live
+    expect((await lines()).slice(0, before.length)).toEqual(before);
+    expect(await page.locator('#btn-stop').isEnabled()).toBe(true);
     await page.locator('#btn-stop').click();
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
     await expect.poll(() => page.locator('#btn-run').isEnabled()).toBe(true);
