@@ -426,6 +426,9 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
     await expect.poll(async () => (await lines()).length, { timeout: 10_000 }).toBeGreaterThan(before.length); // replayed, then live
     expect((await lines()).slice(0, before.length)).toEqual(before);
+    // the Monitor follows the run's trace again
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.lastLive?.version ?? 0), { timeout: 10_000 }).toBeGreaterThan(0);
+    expect(await page.locator('.monitor-view').count()).toBe(1);
     expect(await page.locator('#btn-stop').isEnabled()).toBe(true);
     await page.locator('#btn-stop').click();
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
