@@ -363,7 +363,7 @@ describe('TraceTail on a folder written while it is read', () => {
 
   test('while watched, a change is read at once when every module has written its log for the last flush boundary, after wakeMs while one has not', async () => {
     mkdirSync(logs);
-    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 1500, watchedFlushMs: 20, orderWindowMs: 600_000, markHoldMs: 600_000 });
+    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 600, watchedFlushMs: 20, orderWindowMs: 600_000, markHoldMs: 600_000 });
     tail.setWatched(true);
     const a = join(logs, 'A_1.csv');
     const b = join(logs, 'B_1.csv');
@@ -379,9 +379,10 @@ describe('TraceTail on a folder written while it is read', () => {
       return Date.now() - t0;
     };
     await until(1); // both logs are open now
+    await sleep(1300); // (reads come at most one per wakeMs; asking the modules for the flush delay wrote their marks, a change too)
     // A writes while both marks say their modules hold nothing: nothing more is coming, read now
     appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
-    expect(await until(2)).toBeLessThan(700);
+    expect(await until(2)).toBeLessThan(300);
     expect(traced).toHaveLength(2);
     await sleep(50);
     // B holds a record logged before the last boundary (20 ms): it will write at any moment, so the
@@ -389,12 +390,35 @@ describe('TraceTail on a folder written while it is read', () => {
     const held = process.hrtime.bigint() - 30_000_000n;
     markB(held);
     appendFileSync(a, rec(held - 1_000_000n, 'A') + '\n');
-    await sleep(300);
+    await sleep(150);
     expect(traced).toHaveLength(2);
-    expect(await until(3)).toBeGreaterThan(500);
+    expect(await until(3)).toBeGreaterThan(250);
     expect(traced).toHaveLength(3);
     markB(0n);
     await tail.finish();
+    expect(system).toEqual([]);
+  });
+
+  test('a program that writes its log without end, its mark saying it holds nothing, gets one read per wakeMs at most', async () => {
+    mkdirSync(logs);
+    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 50, watchedFlushMs: 20, orderWindowMs: 600_000, markHoldMs: 600_000 });
+    tail.setWatched(true);
+    const a = join(logs, 'A_1.csv');
+    markFile(a)(0n);
+    writeFileSync(a, `${CSV_HEADER}\n`);
+    const t0 = Date.now();
+    let written = 0;
+    while (Date.now() - t0 < 500) {
+      appendFileSync(a, rec(process.hrtime.bigint(), 'A') + '\n');
+      written++;
+      await sleep(1);
+    }
+    const spent = Date.now() - t0;
+    await tail.finish();
+    expect(traced).toHaveLength(written);
+    // each read sends what it released in one event (and finish() one more)
+    expect(events).toBeLessThanOrEqual(Math.ceil(spent / 50) + 2);
+    expect(events).toBeGreaterThan(3); // read while it wrote, not only at the end
     expect(system).toEqual([]);
   });
 

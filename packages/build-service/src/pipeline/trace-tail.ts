@@ -103,6 +103,8 @@ export class TraceTail {
   private timer: NodeJS.Timeout | null = null;
   /** Date.now() when the timer fires. */
   private timerDue = 0;
+  /** Date.now() when the last read began. */
+  private readAt = 0;
   private watcher: FSWatcher | null = null;
   /** A read is running. */
   private reading = false;
@@ -234,6 +236,7 @@ export class TraceTail {
     this.timer = setTimeout(() => {
       this.timer = null;
       this.reading = true;
+      this.readAt = Date.now();
       this.polling = this.guard(() => this.poll()).then(() => {
         this.reading = false;
         const again = this.changedMeanwhile;
@@ -258,10 +261,13 @@ export class TraceTail {
   /**
    * How long after a change of logs/ to read it: at once when every log has been written for the
    * last flush boundary (nothing more will come before the next one), else wakeMs, so that the
-   * modules writing at the same boundary are read together.
+   * modules writing at the same boundary are read together. Never sooner than wakeMs after the
+   * last read began: a sandboxed program that writes without end, its mark saying it holds
+   * nothing, gets no more reads than before (one per wakeMs).
    */
   private wakeDelay(): number {
-    return this.writtenForBoundary() ? 0 : this.bounds.wakeMs;
+    if (!this.writtenForBoundary()) return this.bounds.wakeMs;
+    return Math.max(0, this.readAt + this.bounds.wakeMs - Date.now());
   }
 
   /**
