@@ -13,6 +13,26 @@ export interface ProjectLock {
   release(): void;
 }
 
+/** Takes the lock at `path` only if nobody holds it now: null when it is held (or flock fails). */
+export function tryProjectLock(path: string): Promise<ProjectLock | null> {
+  return new Promise<ProjectLock | null>((resolve) => {
+    const child = spawn('flock', ['-n', '-E', '75', '-x', path, '-c', 'echo locked; exec cat >/dev/null'], { stdio: ['pipe', 'pipe', 'ignore'] });
+    let out = '';
+    let locked = false;
+    child.stdout!.on('data', (c: Buffer) => {
+      out += c.toString('utf8');
+      if (!locked && out.includes('locked')) {
+        locked = true;
+        resolve({ release: () => void child.stdin!.end() });
+      }
+    });
+    child.on('error', () => resolve(null));
+    child.on('close', () => {
+      if (!locked) resolve(null);
+    });
+  });
+}
+
 /** Acquires the lock at `path` (created if missing); calls `onWait` once when another holder makes it wait. */
 export function acquireProjectLock(path: string, onWait: (holder: string) => void, cancelled?: Promise<void>): Promise<ProjectLock> {
   const holderFile = `${path}.holder`;

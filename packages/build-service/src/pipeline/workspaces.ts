@@ -14,16 +14,19 @@
  * persistent ones (`persistentDir`, the shared build cache of docs/getting-started.md "The build
  * cache"): those keep their stage/ and work/ across processes, with their uid and accepted digest
  * in state.json (cache/workspace-state.ts), and one command at a time per project across
- * processes (cache/project-lock.ts).
+ * processes (cache/project-lock.ts). Each also names its project folder (FOLDER_FILE): the first
+ * persistent workspace a process acquires first removes the entries whose folder is gone (a
+ * deleted or temporary project), so that their work trees — a tmpfs in memory when the service is
+ * root — do not stay until `contract cache clear`.
  */
 import { createHash } from 'node:crypto';
-import { promises as fsp } from 'node:fs';
+import { existsSync, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { canMountWorkDisk, mountWorkDisk, resizeWorkDisk, unmountWorkDisk, workDiskState } from '../sandbox/work-disk.js';
 import type { Owner } from '../util/safe-fs.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
-import { assertCacheEntry, CacheRefusedError } from '../cache/cache-dir.js';
-import { acquireProjectLock } from '../cache/project-lock.js';
+import { assertCacheEntry, CacheRefusedError, checkCacheEntry } from '../cache/cache-dir.js';
+import { acquireProjectLock, tryProjectLock } from '../cache/project-lock.js';
 import { readWorkspaceState, writeWorkspaceState, type WorkspaceState } from '../cache/workspace-state.js';
 
 export interface Workspace {
@@ -61,12 +64,16 @@ interface Keyed {
   lock: Promise<void>;
 }
 
+/** In a persistent workspace: the project folder it is for (its real path), to find entries whose folder is gone. */
+const FOLDER_FILE = 'folder';
 const UID_BASE = 100_000;
 const UID_SPAN = 60_000;
 
 export class WorkspaceManager {
   private readonly keyed = new Map<string, Keyed>();
   private readonly fresh = new Set<string>();
+  /** The sweep of persistent entries whose project folder is gone (once per process). */
+  private swept: Promise<void> | undefined;
   /** Random start: two services on one machine rarely hand out the same uids. */
   private uidCounter = Math.floor(Math.random() * UID_SPAN);
 
@@ -126,7 +133,7 @@ export class WorkspaceManager {
    */
   async acquireForProject(key: string, sandbox: string, disk?: WorkDiskBytes, hooks: AcquireHooks = {}): Promise<Workspace> {
     const id = createHash('sha256').update(`${sandbox}\0${key}`).digest('hex').slice(0, 16);
-    if (this.persistentDir) return this.acquirePersistent(id, disk, hooks);
+    if (this.persistentDir) return this.acquirePersistent(id, key, disk, hooks);
     let entry = this.keyed.get(id);
     if (!entry) {
       const root = join(this.baseDir, `ws-${id}`);
@@ -176,10 +183,12 @@ export class WorkspaceManager {
    * A persistent project workspace (see the header): waits for this process's previous job on it,
    * then for any other process's (flock), then trusts only what state.json and the checks allow.
    */
-  private async acquirePersistent(id: string, disk: WorkDiskBytes, hooks: AcquireHooks): Promise<Workspace> {
+  private async acquirePersistent(id: string, folder: string, disk: WorkDiskBytes, hooks: AcquireHooks): Promise<Workspace> {
     const base = this.persistentDir!;
     await fsp.mkdir(base, { recursive: true, mode: 0o711 });
     assertCacheEntry(base);
+    this.swept ??= this.sweepGone(base).catch(() => {});
+    await this.swept;
     const root = join(base, id);
     await fsp.mkdir(root, { recursive: true, mode: 0o711 });
     assertCacheEntry(root);
@@ -237,6 +246,7 @@ export class WorkspaceManager {
       }
       let accepted = state.acceptedOutputs;
       writeWorkspaceState(root, { owner, acceptedOutputs: accepted });
+      await fsp.writeFile(join(root, FOLDER_FILE), folder, { mode: 0o600 });
       const lock = fileLock;
       return {
         root,
@@ -265,6 +275,36 @@ export class WorkspaceManager {
       fileLock.release();
       unlock();
       throw err;
+    }
+  }
+
+  /**
+   * Removes the persistent entries whose project folder no longer exists, each under its lock taken
+   * without waiting (an entry in use by some command is left alone). An entry that names no folder
+   * (made by an earlier version) is kept. Never throws for one entry.
+   */
+  private async sweepGone(base: string): Promise<void> {
+    for (const id of await fsp.readdir(base).catch(() => [] as string[])) {
+      if (!/^[0-9a-f]{16}$/.test(id)) continue;
+      const root = join(base, id);
+      if (checkCacheEntry(root)) continue; // not one of ours (a link, another owner): never touched
+      let folder: string;
+      try {
+        folder = (await fsp.readFile(join(root, FOLDER_FILE), 'utf8')).slice(0, 8192);
+      } catch {
+        continue;
+      }
+      if (!folder.startsWith('/') || existsSync(folder)) continue;
+      const lock = await tryProjectLock(join(root, 'lock'));
+      if (!lock) continue;
+      try {
+        await this.onRemove(join(root, 'work')).catch(() => {});
+        await this.removeRoot(root);
+      } catch {
+        /* left for clear */
+      } finally {
+        lock.release();
+      }
     }
   }
 

@@ -1,0 +1,38 @@
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterEach, beforeEach, expect, test } from 'vitest';
+import { WorkspaceManager } from './workspaces.js';
+
+let tmp: string;
+beforeEach(() => {
+  tmp = realpathSync(mkdtempSync(join(tmpdir(), 'ws-sweep-')));
+});
+afterEach(() => rmSync(tmp, { recursive: true, force: true }));
+
+/** The project folders the kept workspaces of the cache name. */
+const kept = (cache: string): string[] => readdirSync(cache).map((id) => readFileSync(join(cache, id, 'folder'), 'utf8')).sort();
+
+test('the build cache drops the workspace of a project folder that is gone at the next process\'s first acquire, not one a command holds', async () => {
+  const cache = join(tmp, 'projects');
+  const [p1, p2, p3] = ['p1', 'p2', 'p3'].map((n) => join(tmp, n)) as [string, string, string];
+  for (const p of [p1, p2, p3]) mkdirSync(p);
+  const first = new WorkspaceManager(join(tmp, 'base1'), undefined, cache);
+  for (const p of [p1, p2, p3]) await (await first.acquireForProject(p, 'none')).release();
+  expect(kept(cache)).toEqual([p1, p2, p3]);
+  // p3's workspace is in use (a command holds it); p1 and p3 are deleted
+  const held = await first.acquireForProject(p3, 'none');
+  rmSync(p1, { recursive: true });
+  rmSync(p3, { recursive: true });
+  const second = new WorkspaceManager(join(tmp, 'base2'), undefined, cache); // another command
+  await (await second.acquireForProject(p2, 'none')).release();
+  expect(kept(cache)).toEqual([p2, p3]);
+  await held.release();
+  const third = new WorkspaceManager(join(tmp, 'base3'), undefined, cache);
+  await (await third.acquireForProject(p2, 'none')).release();
+  expect(kept(cache)).toEqual([p2]);
+  // the one left is the same workspace, reused
+  const again = await third.acquireForProject(p2, 'none');
+  expect(again.reused).toBe(true);
+  await again.release();
+});
