@@ -13,67 +13,65 @@ export interface ProjectLock {
   release(): void;
 }
 
+/**
+ * One `flock` child on `path` (blocking, or -n: exit 75, EX_TEMPFAIL, tells "busy" apart from a
+ * failure of flock itself). `held` gets the lock once it is held (and `<path>.holder` names us, for
+ * a command that waits); `ended` gets flock's exit code, or its spawn error, when it ended without it.
+ */
+function lockChild(path: string, blocking: boolean, held: (lock: ProjectLock) => void, ended: (code: number | null, error?: Error) => void): ChildProcess {
+  const child = spawn('flock', [...(blocking ? [] : ['-n', '-E', '75']), '-x', path, '-c', 'echo locked; exec cat >/dev/null'], {
+    stdio: ['pipe', 'pipe', 'ignore'],
+  });
+  let out = '';
+  let locked = false;
+  child.stdout!.on('data', (c: Buffer) => {
+    out += c.toString('utf8');
+    if (!locked && out.includes('locked')) {
+      locked = true;
+      try {
+        writeFileSync(`${path}.holder`, `pid ${process.pid}, started ${new Date().toISOString()}`, { mode: 0o600 });
+      } catch {
+        /* only for the message of a waiting command */
+      }
+      held({
+        release: () => {
+          child.stdin!.end();
+        },
+      });
+    }
+  });
+  child.on('error', (e) => {
+    if (!locked) ended(null, e);
+  });
+  child.on('close', (code) => {
+    if (!locked) ended(code);
+  });
+  return child;
+}
+
 /** Takes the lock at `path` only if nobody holds it now: null when it is held (or flock fails). */
 export function tryProjectLock(path: string): Promise<ProjectLock | null> {
-  return new Promise<ProjectLock | null>((resolve) => {
-    const child = spawn('flock', ['-n', '-E', '75', '-x', path, '-c', 'echo locked; exec cat >/dev/null'], { stdio: ['pipe', 'pipe', 'ignore'] });
-    let out = '';
-    let locked = false;
-    child.stdout!.on('data', (c: Buffer) => {
-      out += c.toString('utf8');
-      if (!locked && out.includes('locked')) {
-        locked = true;
-        resolve({ release: () => void child.stdin!.end() });
-      }
-    });
-    child.on('error', () => resolve(null));
-    child.on('close', () => {
-      if (!locked) resolve(null);
-    });
-  });
+  return new Promise<ProjectLock | null>((resolve) => void lockChild(path, false, resolve, () => resolve(null)));
 }
 
 /** Acquires the lock at `path` (created if missing); calls `onWait` once when another holder makes it wait. */
 export function acquireProjectLock(path: string, onWait: (holder: string) => void, cancelled?: Promise<void>): Promise<ProjectLock> {
-  const holderFile = `${path}.holder`;
   return new Promise<ProjectLock>((resolve, reject) => {
-    // -E 75 (EX_TEMPFAIL) with -n: tells "busy" apart from a failure of flock itself
     let child: ChildProcess;
     let waiting = false;
     let held = false;
     const start = (blocking: boolean): void => {
-      child = spawn('flock', [...(blocking ? [] : ['-n', '-E', '75']), '-x', path, '-c', 'echo locked; exec cat >/dev/null'], {
-        stdio: ['pipe', 'pipe', 'ignore'],
-      });
-      let out = '';
-      let locked = false;
-      const self = child;
-      child.stdout!.on('data', (c: Buffer) => {
-        out += c.toString('utf8');
-        if (!locked && out.includes('locked')) {
-          locked = true;
-          held = true;
-          try {
-            writeFileSync(holderFile, `pid ${process.pid}, started ${new Date().toISOString()}`, { mode: 0o600 });
-          } catch {
-            /* only for the message of a waiting command */
-          }
-          resolve({
-            release: () => {
-              self.stdin!.end();
-            },
-          });
-        }
-      });
-      child.on('error', (e) => reject(new Error(`cannot lock ${path}: ${e.message} (is util-linux "flock" installed?)`)));
-      child.on('close', (code) => {
-        if (locked) return;
-        if (!blocking && code === 75) {
+      child = lockChild(path, blocking, (lock) => {
+        held = true;
+        resolve(lock);
+      }, (code, error) => {
+        if (error) reject(new Error(`cannot lock ${path}: ${error.message} (is util-linux "flock" installed?)`));
+        else if (!blocking && code === 75) {
           if (!waiting) {
             waiting = true;
             let holder = 'another command';
             try {
-              holder = readFileSync(holderFile, 'utf8').slice(0, 200).replace(/[^\x20-\x7e]/g, '?');
+              holder = readFileSync(`${path}.holder`, 'utf8').slice(0, 200).replace(/[^\x20-\x7e]/g, '?');
             } catch {
               /* unknown holder */
             }

@@ -361,10 +361,16 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(system).toEqual([]);
   });
 
-  test('while watched, a change is read at once when every module has written its log for the last flush boundary, after wakeMs while one has not', async () => {
+  /** A tail followed by a client (modules asked for 20 ms flush boundaries) that reads only when logs/ changes. */
+  const startWatched = async (wakeMs: number): Promise<TraceTail> => {
     mkdirSync(logs);
-    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 600, watchedFlushMs: 20, orderWindowMs: 600_000, markHoldMs: 600_000 });
+    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs, watchedFlushMs: 20, orderWindowMs: 600_000, markHoldMs: 600_000 });
     tail.setWatched(true);
+    return tail;
+  };
+
+  test('while watched, a change is read at once when every module has written its log for the last flush boundary, after wakeMs while one has not', async () => {
+    const tail = await startWatched(600);
     const a = join(logs, 'A_1.csv');
     const b = join(logs, 'B_1.csv');
     const markA = markFile(a);
@@ -400,9 +406,7 @@ describe('TraceTail on a folder written while it is read', () => {
   });
 
   test('a program that writes its log without end, its mark saying it holds nothing, gets one read per wakeMs at most', async () => {
-    mkdirSync(logs);
-    const tail = await TraceTail.start(work, sink, { ...fast, pollMs: 600_000, wakeMs: 50, watchedFlushMs: 20, orderWindowMs: 600_000, markHoldMs: 600_000 });
-    tail.setWatched(true);
+    const tail = await startWatched(50);
     const a = join(logs, 'A_1.csv');
     markFile(a)(0n);
     writeFileSync(a, `${CSV_HEADER}\n`);

@@ -246,7 +246,10 @@ export class WorkspaceManager {
       }
       let accepted = state.acceptedOutputs;
       writeWorkspaceState(root, { owner, acceptedOutputs: accepted });
-      await fsp.writeFile(join(root, FOLDER_FILE), folder, { mode: 0o600 });
+      // the id is the folder's hash: once written, the file never changes
+      await fsp.writeFile(join(root, FOLDER_FILE), folder, { mode: 0o600, flag: 'wx' }).catch((e: NodeJS.ErrnoException) => {
+        if (e.code !== 'EEXIST') throw e;
+      });
       const lock = fileLock;
       return {
         root,

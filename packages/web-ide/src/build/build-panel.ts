@@ -140,10 +140,9 @@ export class BuildPanel {
 
   /** Streams a job's events (SSE, from the first) into the log, the diagnostics, the trace and the status. */
   private follow(jobId: string, action: 'build' | 'run'): void {
-    const job = { id: jobId };
-    const es = new EventSource(`/api/jobs/${encodeURIComponent(job.id)}/events`);
+    const es = new EventSource(`/api/jobs/${encodeURIComponent(jobId)}/events`);
     this.source = es;
-    this.onStarted.fire({ jobId: job.id, action });
+    this.onStarted.fire({ jobId, action });
     es.addEventListener('trace', (e) => {
       // the records in their columnar wire form (docs/build-service-api.md "Trace channel")
       let records: TraceLine[];
@@ -153,7 +152,7 @@ export class BuildPanel {
         this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `trace: a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs` });
         return;
       }
-      if (records.length) this.onTrace.fire({ jobId: job.id, records });
+      if (records.length) this.onTrace.fire({ jobId, records });
     });
     es.addEventListener('line', (e) => this.append(JSON.parse((e as MessageEvent).data) as LogLine));
     es.addEventListener('status', (e) => {
@@ -174,7 +173,7 @@ export class BuildPanel {
       this.source = undefined;
       this.jobId = undefined;
       this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
-      this.onFinished.fire({ jobId: job.id, action, ok: !!d.result?.ok });
+      this.onFinished.fire({ jobId, action, ok: !!d.result?.ok });
     });
     es.onerror = () => {
       if (es.readyState === EventSource.CLOSED && this.jobId) {
