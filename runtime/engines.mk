@@ -39,7 +39,7 @@ test-engines: $(ENG_OUT)/engine-tests $(ENG_OUT)/engine-tests-san
 # build/libmodule.a, build/san/libmodule.a and build/contract-launch) ----
 ENG_IT_SRC  := tests/engines/integration
 ENG_IT_DEPS := $(wildcard $(ENG_IT_SRC)/*.h) $(wildcard include/*/*.h) tests/engines/engine_executable.h
-ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c)
+ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c) $(ENG_IT_SRC)/stall_watch.c
 
 # The test's executables: ENG_IT_FROM_<exe> = its source in $(ENG_IT_SRC), ENG_IT_FLAGS_<exe> =
 # its -D flags. Each is built twice: $(ENG_OUT)/it (plain) and $(ENG_OUT)/it-san (ASan+UBSan).
@@ -80,7 +80,7 @@ $(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it,build/libmodul
 $(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN),$(e))))
 $(ENG_OUT)/it/itest $(ENG_OUT)/it-san/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
 	@mkdir -p $(@D)
-	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_IT_MAIN) -o $@
+	$(ENG_CC) $(ENG_WARN) -O2 -pthread $(ENG_IT_MAIN) -o $@
 ENG_IT_BINS := $(ENG_IT_EXES) itest
 
 .PHONY: test-engines-integration
