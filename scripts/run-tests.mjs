@@ -6,8 +6,10 @@
 // Suites: the C runtime (its runner prints `N passed, N failed`), each npm workspace's vitest run
 // (read through vitest's JSON reporter), and the type check of every workspace's sources and tests
 // (`npm run typecheck`: one check per workspace; vitest does not type-check). The suites that only
-// compute (conventions, language, codegen, vscode, the type check) run first, side by side, their
-// output printed whole when they are all done; then the others one at a time, streamed.
+// compute (conventions, language, codegen, vscode, the type check) run in the background at the
+// lowest CPU priority (nice 19), side by side, their output kept and printed whole at the end; the
+// others run one at a time meanwhile, streamed, and keep the CPUs whenever they want them (the
+// computing suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle).
 // `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
@@ -25,6 +27,7 @@ const scratch = mkdtempSync(join(tmpdir(), 'contract-tests-'));
  * `echo` false); resolves with its exit code and full output.
  */
 function run(cmd, args, opts = {}, echo = true) {
+  if (opts.niced) [cmd, args] = ['nice', ['-n', '19', cmd, ...args]];
   return new Promise((resolve) => {
     const child = spawn(cmd, args, { cwd: root, stdio: ['ignore', 'pipe', 'pipe'], ...opts });
     let out = '';
@@ -56,15 +59,15 @@ const suites = [
   },
   ...rootPkg.workspaces.map((ws) => ({
     name: ws,
-    // pure computation, no sandbox and no timing: run side by side (vitest gives each one worker
-    // on a two-core machine, so two of them use both cores)
+    // pure computation, no sandbox and no timing: run side by side in the background, niced
+    // (vitest gives each one worker on a two-core machine)
     beside: CPU_ONLY.has(ws),
     exec: (echo) => {
       const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
       if (!pkg.scripts?.test) return Promise.resolve(null);
       const json = join(scratch, ws.replace(/\W/g, '_') + '.json');
       return run('npx', ['vitest', 'run', '--reporter=default', '--reporter=json', `--outputFile=${json}`],
-        { cwd: join(root, ws) }, echo).then((r) => ({ ...r, json }));
+        { cwd: join(root, ws), niced: CPU_ONLY.has(ws) }, echo).then((r) => ({ ...r, json }));
     },
     count: (r) => {
       if (!r.json || !existsSync(r.json)) return null;
@@ -81,7 +84,7 @@ const suites = [
       for (const ws of rootPkg.workspaces) {
         const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
         if (!pkg.scripts?.typecheck) continue;
-        const r = await run('npm', ['run', '-s', 'typecheck'], { cwd: join(root, ws) }, echo);
+        const r = await run('npm', ['run', '-s', 'typecheck'], { cwd: join(root, ws), niced: true }, echo);
         out += r.out;
         const said = `typecheck ${ws}: ${r.code === 0 ? 'ok' : 'FAILED'}\n`;
         out += said;
@@ -134,25 +137,29 @@ function record(s, r) {
 }
 
 const chosen = suites.filter((s) => !only.length || only.some((o) => s.name.includes(o)));
-// the suites marked `beside` run together, first, their output printed whole one after the other;
-// then the others one at a time, streamed (sandboxes, browsers and timing tests get the machine)
+// the suites marked `beside` start together in the background (niced), their output printed whole
+// one after the other once the others are done; the others run one at a time meanwhile, streamed
+// (sandboxes, browsers and timed runs come first for the CPUs)
 const together = chosen.filter((s) => s.beside);
 const alone = chosen.filter((s) => !s.beside);
+const t0 = Date.now();
+const background = Promise.all(together.map((s) => s.exec(false)));
 if (together.length) {
-  console.log(`\n=== running side by side: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
-  const t0 = Date.now();
-  const results = await Promise.all(together.map((s) => s.exec(false)));
-  together.forEach((s, i) => {
-    console.log(`\n=== ${s.name} ===`);
-    if (results[i]) process.stdout.write(results[i].out);
-    record(s, results[i]);
-  });
-  console.log(`=== side by side: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);
+  console.log(`\n=== in the background, niced: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
 }
 for (const s of alone) {
   console.log(`\n=== ${s.name} ===`);
   record(s, await s.exec(true));
 }
+if (together.length) {
+  const results = await background;
+  together.forEach((s, i) => {
+    console.log(`\n=== ${s.name} (ran in the background) ===`);
+    if (results[i]) process.stdout.write(results[i].out);
+    record(s, results[i]);
+  });
+}
+console.log(`=== all suites: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);
 rmSync(scratch, { recursive: true, force: true });
 if (failureDetails.length) console.log(`\nFAILED tests:\n  ${failureDetails.join('\n  ')}`);
 if (problems.length) console.log(`\nFAILED suites:\n  ${problems.join('\n  ')}`);

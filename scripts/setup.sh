@@ -32,10 +32,16 @@ if [ ! -d node_modules ] || [ package-lock.json -nt node_modules/.package-lock.j
   if [ -f package-lock.json ]; then npm ci --no-audit --no-fund --loglevel=error; else npm install --no-audit --no-fund --loglevel=error; fi
 fi
 
-log "building TypeScript packages"
+# the C runtime builds while the TypeScript packages do (tsc is mostly one thread)
+log "building the TypeScript packages and the C runtime"
+mkdir -p runtime/build
+make -s -C runtime > runtime/build/setup.log 2>&1 &
+c_build=$!
 npm run build --silent
-
-log "building the C runtime"
-make -s -C runtime
+if ! wait "$c_build"; then
+  cat runtime/build/setup.log >&2
+  log "the C runtime did not build (its output is above, and in runtime/build/setup.log)"
+  exit 1
+fi
 
 log "done"
