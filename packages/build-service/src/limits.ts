@@ -103,6 +103,12 @@ export interface ServiceBounds {
   diagnosticsPerJob: number;
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
   traceLinesKept: number;
+  /**
+   * Project workspaces the persistent build cache keeps (each a work tree: a tmpfs in memory when
+   * the service is root). A process's first acquire removes the least recently used beyond this
+   * number, and those whose project folder is gone; one a command holds stays.
+   */
+  keptProjectWorkspaces: number;
 }
 
 export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
@@ -129,6 +135,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   projectFileBytes: 8 * 1024 * 1024,
   projectBytes: 64 * 1024 * 1024,
   diagnosticsPerJob: 1000,
+  keptProjectWorkspaces: 32,
 });
 
 /**

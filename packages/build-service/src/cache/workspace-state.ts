@@ -16,7 +16,9 @@ export interface WorkspaceState {
   acceptedOutputs: string | null;
 }
 
-const FILE = 'state.json';
+/** The file's name in the workspace (its modification time is the workspace's last use). */
+export const STATE_FILE = 'state.json';
+const FILE = STATE_FILE;
 const MAX_BYTES = 4096;
 
 function isId(v: unknown): v is number {

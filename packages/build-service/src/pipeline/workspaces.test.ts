@@ -1,4 +1,4 @@
-import { mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync, utimesSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, expect, test } from 'vitest';
@@ -35,4 +35,29 @@ test('the build cache drops the workspace of a project folder that is gone at th
   const again = await third.acquireForProject(p2, 'none');
   expect(again.reused).toBe(true);
   await again.release();
+});
+
+test('the build cache keeps the most recently used project workspaces up to its bound, the one acquired and the held ones besides', async () => {
+  const cache = join(tmp, 'projects');
+  const [p1, p2, p3, p4, p5] = ['p1', 'p2', 'p3', 'p4', 'p5'].map((n) => join(tmp, n)) as [string, string, string, string, string];
+  const first = new WorkspaceManager(join(tmp, 'base1'), undefined, cache, 3);
+  for (const p of [p1, p2, p3, p4, p5]) {
+    mkdirSync(p);
+    await (await first.acquireForProject(p, 'none')).release();
+  }
+  // the first process's sweep ran before any entry existed: all five are there
+  expect(kept(cache)).toEqual([p1, p2, p3, p4, p5]);
+  const held = await first.acquireForProject(p2, 'none'); // a command is using p2
+  // used in the order p1 (longest ago) ... p5 (last)
+  const now = Date.now() / 1000;
+  for (const id of readdirSync(cache)) {
+    const n = Number(readFileSync(join(cache, id, 'folder'), 'utf8').slice(-1));
+    utimesSync(join(cache, id, 'state.json'), now - 100 + n, now - 100 + n);
+  }
+  const second = new WorkspaceManager(join(tmp, 'base2'), undefined, cache, 3);
+  // the one acquired (p1, the least recently used) stays, with the two most recent (p5, p4);
+  // p3 goes; p2 is held, so it stays too
+  await (await second.acquireForProject(p1, 'none')).release();
+  expect(kept(cache)).toEqual([p1, p2, p4, p5]);
+  await held.release();
 });

@@ -14,10 +14,12 @@
  * persistent ones (`persistentDir`, the shared build cache of docs/getting-started.md "The build
  * cache"): those keep their stage/ and work/ across processes, with their uid and accepted digest
  * in state.json (cache/workspace-state.ts), and one command at a time per project across
- * processes (cache/project-lock.ts). Each also names its project folder (FOLDER_FILE): the first
- * persistent workspace a process acquires first removes the entries whose folder is gone (a
- * deleted or temporary project), so that their work trees — a tmpfs in memory when the service is
- * root — do not stay until `contract cache clear`.
+ * processes (cache/project-lock.ts). Each also names its project folder (FOLDER_FILE). The first
+ * persistent workspace a process acquires first sweeps the others: it removes the entries whose
+ * folder is gone (a deleted or temporary project) and the least recently used beyond
+ * `keptProjectWorkspaces` (limits.ts; last use = state.json's time), each under its lock taken
+ * without waiting, so that their work trees — a tmpfs in memory when the service is root — do not
+ * stay until `contract cache clear`.
  */
 import { createHash } from 'node:crypto';
 import { existsSync, promises as fsp } from 'node:fs';
@@ -27,7 +29,8 @@ import type { Owner } from '../util/safe-fs.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
 import { assertCacheEntry, CacheRefusedError, checkCacheEntry } from '../cache/cache-dir.js';
 import { acquireProjectLock, tryProjectLock } from '../cache/project-lock.js';
-import { readWorkspaceState, writeWorkspaceState, type WorkspaceState } from '../cache/workspace-state.js';
+import { readWorkspaceState, STATE_FILE, writeWorkspaceState, type WorkspaceState } from '../cache/workspace-state.js';
+import { SERVICE_BOUNDS } from '../limits.js';
 
 export interface Workspace {
   readonly root: string;
@@ -72,7 +75,7 @@ const UID_SPAN = 60_000;
 export class WorkspaceManager {
   private readonly keyed = new Map<string, Keyed>();
   private readonly fresh = new Set<string>();
-  /** The sweep of persistent entries whose project folder is gone (once per process). */
+  /** The sweep of persistent entries (folder gone, or beyond the kept number): once per process. */
   private swept: Promise<void> | undefined;
   /** Random start: two services on one machine rarely hand out the same uids. */
   private uidCounter = Math.floor(Math.random() * UID_SPAN);
@@ -83,6 +86,8 @@ export class WorkspaceManager {
     private readonly onRemove: (workDir: string) => Promise<void> = async () => {},
     /** Project workspaces live here and outlive the service (the shared build cache); undefined: removed at close. */
     private readonly persistentDir?: string,
+    /** How many of them the sweep keeps (the most recently used). */
+    private readonly keptProjects: number = SERVICE_BOUNDS.keptProjectWorkspaces,
   ) {}
 
   private nextOwner(): Owner {
@@ -187,7 +192,7 @@ export class WorkspaceManager {
     const base = this.persistentDir!;
     await fsp.mkdir(base, { recursive: true, mode: 0o711 });
     assertCacheEntry(base);
-    this.swept ??= this.sweepGone(base).catch(() => {});
+    this.swept ??= this.sweep(base, id).catch(() => {});
     await this.swept;
     const root = join(base, id);
     await fsp.mkdir(root, { recursive: true, mode: 0o711 });
@@ -286,28 +291,47 @@ export class WorkspaceManager {
    * without waiting (an entry in use by some command is left alone). An entry that names no folder
    * (made by an earlier version) is kept. Never throws for one entry.
    */
-  private async sweepGone(base: string): Promise<void> {
+  /**
+   * Removes the persistent entries whose project folder is gone, and the least recently used
+   * beyond `keptProjects` (`current`, the entry being acquired, counts as the newest and stays).
+   * Each under its lock taken without waiting: an entry a command holds stays (and counts). Entries
+   * that are not the cache's own (a link, another owner) are never touched.
+   */
+  private async sweep(base: string, current: string): Promise<void> {
+    const entries: Array<{ root: string; gone: boolean; usedAt: number }> = [];
     for (const id of await fsp.readdir(base).catch(() => [] as string[])) {
-      if (!/^[0-9a-f]{16}$/.test(id)) continue;
+      if (!/^[0-9a-f]{16}$/.test(id) || id === current) continue;
       const root = join(base, id);
-      if (checkCacheEntry(root)) continue; // not one of ours (a link, another owner): never touched
-      let folder: string;
-      try {
-        folder = (await fsp.readFile(join(root, FOLDER_FILE), 'utf8')).slice(0, 8192);
-      } catch {
+      if (checkCacheEntry(root)) continue;
+      // an entry of an earlier version names no folder: only the kept number bounds it
+      const folder = await fsp.readFile(join(root, FOLDER_FILE), 'utf8').then((t) => t.slice(0, 8192), () => null);
+      const gone = folder !== null && folder.startsWith('/') && !existsSync(folder);
+      const used = (await fsp.lstat(join(root, STATE_FILE)).catch(() => null)) ?? (await fsp.lstat(root).catch(() => null));
+      entries.push({ root, gone, usedAt: used?.mtimeMs ?? 0 });
+    }
+    entries.sort((a, b) => b.usedAt - a.usedAt);
+    let kept = 1; // the entry being acquired
+    for (const e of entries) {
+      if (!e.gone && kept < this.keptProjects) {
+        kept++;
         continue;
       }
-      if (!folder.startsWith('/') || existsSync(folder)) continue;
-      const lock = await tryProjectLock(join(root, 'lock'));
-      if (!lock) continue;
-      try {
-        await this.onRemove(join(root, 'work')).catch(() => {});
-        await this.removeRoot(root);
-      } catch {
-        /* left for clear */
-      } finally {
-        lock.release();
-      }
+      if (!(await this.removeUnheld(e.root))) kept++;
+    }
+  }
+
+  /** Removes a persistent entry unless a command holds its lock. True when removed. */
+  private async removeUnheld(root: string): Promise<boolean> {
+    const lock = await tryProjectLock(join(root, 'lock'));
+    if (!lock) return false;
+    try {
+      await this.onRemove(join(root, 'work')).catch(() => {});
+      await this.removeRoot(root);
+      return true;
+    } catch {
+      return false; /* left for clear */
+    } finally {
+      lock.release();
     }
   }
 
