@@ -77,6 +77,7 @@ export class JobService {
   private readonly keepJobs: number;
   private closed = false;
   private readonly log: (line: string) => void;
+  private readonly submittedListeners = new Set<(job: Job) => void>();
   /** The start-up sweep of the Docker engine (when docker is the default or auto picks it). */
   private readonly startupSweep: Promise<unknown>;
 
@@ -135,6 +136,16 @@ export class JobService {
 
   get(id: string): Job | undefined {
     return this.jobs.get(id);
+  }
+
+  /**
+   * Calls `listener` with every job accepted from now on, as soon as it has its id (before it
+   * starts). Returns the function that stops the calls. A listener that throws is logged and
+   * the job goes on.
+   */
+  onSubmitted(listener: (job: Job) => void): () => void {
+    this.submittedListeners.add(listener);
+    return () => this.submittedListeners.delete(listener);
   }
 
   /** The jobs kept, newest first; with `owner`, only the jobs submitted with that owner. */
@@ -255,6 +266,13 @@ export class JobService {
     job.sandboxProbeMs = probeMs;
     this.jobs.set(id, job);
     this.evictOld();
+    for (const listener of this.submittedListeners) {
+      try {
+        listener(job);
+      } catch (e) {
+        this.log(`a listener of submitted jobs failed on ${job.id}: ${e instanceof Error ? e.message : String(e)}`);
+      }
+    }
     const start = (): void => {
       this.running.add(job);
       void job

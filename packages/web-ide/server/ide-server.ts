@@ -20,6 +20,8 @@ import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { FileLocks } from './file-locks.js';
 import { fileVersion } from './file-version.js';
 import { SimulateApi } from './simulate-api.js';
+import { SharedRuns } from './shared-runs.js';
+import { WebSocketServer } from 'ws';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export interface IdeServerOptions {
@@ -107,6 +109,12 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       buildServiceNote = 'build service mounted at /api/jobs';
     }
   }
+  // every tab hears of the runs the others start (docs/ide.md "Several tabs")
+  const runs = build ? new SharedRuns(build.service, paths.root, (job) => watcher.broadcast('job', job)) : undefined;
+  /** What a client of /api/events is told first: the runs going on. */
+  const greeting = () => (runs ? [{ event: 'jobs', data: { jobs: runs.going() } }] : []);
+  // /api/events as a WebSocket (what the page uses): clients send nothing, so frames stay tiny
+  const eventSockets = new WebSocketServer({ noServer: true, maxPayload: 1024 });
 
   const token = new SessionToken(options.token);
   const simulate = new SimulateApi(paths);
@@ -122,7 +130,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
           if (await build.handle(req, res)) return;
           throw new HttpError(404, `no such build service route: ${url.pathname}`);
         }
-        if (req.method === 'GET' && url.pathname === '/api/events') return watcher.attach(res);
+        if (req.method === 'GET' && url.pathname === '/api/events') return watcher.attach(res, greeting());
         if (await handleFileApi(paths, req, res, url, treeLock, fileLocks)) return;
         if (await handleProjectApi(req, res, url)) return;
         if (await simulate.handle(req, res, url)) return;
@@ -210,7 +218,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   };
 
   const server = createServer((req, res) => void handle(req, res));
-  // The build service's WebSocket event stream (GET /api/jobs/:id/ws) needs the upgrade too.
+  // WebSockets: /api/events (the workspace's events) and the build service's job streams (GET /api/jobs/:id/ws).
   server.on('upgrade', (req, socket, head) => {
     // same Host/Origin checks and session token as the HTTP API: a socket is read cross-origin
     try {
@@ -219,6 +227,10 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     } catch (e) {
       const status = e instanceof HttpError ? e.status : 400;
       socket.end(`HTTP/1.1 ${status} ${status === 401 ? 'Unauthorized' : 'Forbidden'}\r\nConnection: close\r\nContent-Length: 0\r\n\r\n`);
+      return;
+    }
+    if (new URL(req.url ?? '/', 'http://localhost').pathname === '/api/events') {
+      eventSockets.handleUpgrade(req, socket, head, (ws) => watcher.attachSocket(ws, greeting()));
       return;
     }
     if (!build?.handleUpgrade?.(req, socket, head)) socket.destroy();
@@ -231,6 +243,8 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   } catch (e) {
     // port in use, bad address: release what was started so the process can exit
     watcher.close();
+    eventSockets.close();
+    runs?.close();
     await build?.close().catch(() => undefined);
     throw e;
   }
@@ -247,6 +261,8 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     buildServiceNote,
     async close() {
       watcher.close();
+      eventSockets.close();
+      runs?.close();
       await build?.close().catch(() => undefined);
       server.closeAllConnections();
       await new Promise<void>((r) => server.close(() => r()));

@@ -142,6 +142,22 @@ describe('job WebSocket through the IDE server', () => {
     expect((await raw('GET', path, { ...UPGRADE, cookie: `contract_session_${port}=${ide.token}`, origin: ide.url })).status).toBe(404);
   });
 
+  it('the workspace events socket (/api/events) has the same checks, and says hello to a page of this server', async () => {
+    const path = '/api/events';
+    expect((await raw('GET', path, UPGRADE)).status).toBe(401);
+    expect((await raw('GET', path, { ...withToken, origin: 'http://evil.example' })).status).toBe(403);
+    expect((await raw('GET', path, { ...withToken, host: 'evil.example' })).status).toBe(403);
+    const first = await new Promise<unknown>((resolve, reject) => {
+      const sock = new WebSocket(`${ide.url.replace('http', 'ws')}${path}`, { headers: { cookie: `contract_session_${port}=${ide.token}`, origin: ide.url } });
+      sock.on('message', (d) => {
+        resolve(JSON.parse(String(d)));
+        sock.close();
+      });
+      sock.on('error', reject);
+    });
+    expect(first).toEqual({ event: 'hello', data: {} });
+  });
+
   it('a page of another site cannot read nor cancel a running job, even holding the cookie', async () => {
     const post = await fetch(`${ide.url}/api/jobs`, {
       method: 'POST',

@@ -1,18 +1,22 @@
 import { watch, readdirSync, type FSWatcher } from 'node:fs';
 import { basename, join } from 'node:path';
 import type { ServerResponse } from 'node:http';
+import type { WebSocket } from 'ws';
 import { isAtomicTempFile } from './atomic-write.js';
 
 const SKIPPED = new Set(['node_modules', '.git', '.vite']);
 
 /**
- * Watches the workspace folder and pushes changed paths to every connected client as
- * Server-Sent Events (`event: change`, data `{"paths":[...]}`), batched over 60 ms.
+ * Watches the workspace folder and pushes changed paths to every connected client, batched over
+ * 60 ms: `change` with `{"paths":[...]}` (and the events others broadcast), as Server-Sent Events
+ * (GET /api/events: `event: change`) or WebSocket text frames (`{"event":"change","data":{...}}`,
+ * what the IDE page uses: docs/ide.md "Several tabs").
  * One non-recursive watcher per folder: a folder watch keeps reporting a file that is replaced
  * by rename (atomic writes), which Node's recursive mode on Linux (one watch per file inode) loses.
  */
 export class WorkspaceWatcher {
   private readonly clients = new Set<ServerResponse>();
+  private readonly sockets = new Set<WebSocket>();
   private readonly watchers = new Map<string, FSWatcher>();
   private pending = new Set<string>();
   private timer: NodeJS.Timeout | undefined;
@@ -23,6 +27,7 @@ export class WorkspaceWatcher {
     this.watchTree('');
     this.heartbeat = setInterval(() => {
       for (const c of this.clients) c.write(': ping\n\n');
+      for (const ws of this.sockets) ws.ping();
     }, 15000);
     this.heartbeat.unref();
   }
@@ -58,18 +63,31 @@ export class WorkspaceWatcher {
     this.timer ??= setTimeout(() => this.flush(), 60);
   }
 
-  /** Registers an SSE client on a GET /api/events response. */
-  attach(res: ServerResponse): void {
+  /** Registers an SSE client on a GET /api/events response; `greeting`: events it gets first, after `hello`. */
+  attach(res: ServerResponse, greeting: Array<{ event: string; data: unknown }> = []): void {
     res.writeHead(200, { 'content-type': 'text/event-stream', 'cache-control': 'no-store', connection: 'keep-alive' });
     res.write('event: hello\ndata: {}\n\n');
+    for (const g of greeting) res.write(`event: ${g.event}\ndata: ${JSON.stringify(g.data)}\n\n`);
     this.clients.add(res);
     res.on('close', () => this.clients.delete(res));
   }
 
+  /** Registers a WebSocket client (GET /api/events upgraded); `greeting` as for attach(). */
+  attachSocket(ws: WebSocket, greeting: Array<{ event: string; data: unknown }> = []): void {
+    // a client's protocol error is emitted as 'error': without a listener it would end the server
+    ws.on('error', () => ws.terminate());
+    ws.on('close', () => this.sockets.delete(ws));
+    for (const g of [{ event: 'hello', data: {} }, ...greeting]) ws.send(JSON.stringify(g));
+    this.sockets.add(ws);
+  }
+
   /** Sends a custom event to every client (e.g. after Generate All). */
   broadcast(event: string, data: unknown): void {
-    const msg = `event: ${event}\ndata: ${JSON.stringify(data)}\n\n`;
+    const json = JSON.stringify(data);
+    const msg = `event: ${event}\ndata: ${json}\n\n`;
     for (const c of this.clients) c.write(msg);
+    const frame = `{"event":${JSON.stringify(event)},"data":${json}}`;
+    for (const ws of this.sockets) ws.send(frame, () => {}); // a send on a closing socket reports here
   }
 
   private flush(): void {
@@ -98,6 +116,8 @@ export class WorkspaceWatcher {
     for (const w of this.watchers.values()) w.close();
     this.watchers.clear();
     clearInterval(this.heartbeat);
+    for (const ws of this.sockets) ws.terminate();
+    this.sockets.clear();
     if (this.timer) clearTimeout(this.timer);
     for (const c of this.clients) c.end();
     this.clients.clear();

@@ -23,6 +23,7 @@ import { connectProblems } from './app/problems-controller.js';
 import { followActiveFile } from './app/active-file-panels.js';
 import { FileOperations } from './app/file-operations.js';
 import { watchExternalChanges } from './app/external-changes.js';
+import { followSharedRuns } from './app/shared-runs.js';
 import { GenerateController } from './app/generate-controller.js';
 import { RunController } from './app/run-controller.js';
 import { ViewsController } from './app/views-controller.js';
@@ -74,7 +75,7 @@ async function main(): Promise<void> {
   connectProblems({ problems, workspace, editors, lsp, build, statusEl: ui.status.problems, showPanel: ui.showPanel, buildProject: () => runs.project });
   explorer.onOpen.on((path) => void editors.open(path));
   followActiveFile({ editors, workspace, explorer, outline, langEl: ui.status.lang, cursorEl: ui.status.cursor });
-  watchExternalChanges(workspace, lsp);
+  followSharedRuns(watchExternalChanges(workspace, lsp), runs);
   const generator = new GenerateController({ workspace, explorer, problems, panel: generatePanel, button: ui.toolbar.generate, showPanel: ui.showPanel, project: currentProject });
 
   // the Monitor: live during a run (trace events), then the job's CSV logs as a recorded run

@@ -3,12 +3,14 @@ import type { Workspace } from '../workspace/workspace.js';
 import { debounce } from '../util/dom.js';
 import { toast } from '../util/toast.js';
 import { isContract } from '../workspace/file-kinds.js';
+import { ServerEvents } from './server-events.js';
 
 /**
  * Follows the server's file events (another program, another tab): refreshes the tree, loads new
  * Cactal files into the language server, drops deleted ones, and saves pending edits on reconnect.
+ * Returns the server's events (/api/events), which carry the other tabs' runs too (shared-runs.ts).
  */
-export function watchExternalChanges(workspace: Workspace, lsp: LspClient): void {
+export function watchExternalChanges(workspace: Workspace, lsp: LspClient): ServerEvents {
   const refreshTree = debounce(() => void workspace.refreshTree().then(async () => {
     let changed = false;
     for (const p of workspace.allFiles().filter(isContract)) {
@@ -25,18 +27,19 @@ export function watchExternalChanges(workspace: Workspace, lsp: LspClient): void
     }
     if (changed) lsp.revalidateAll();
   }).catch(() => undefined), 150); // server unreachable: the reconnect ('hello') refreshes again
-  const events = new EventSource('/api/events');
-  events.addEventListener('change', (e) => {
-    const { paths } = JSON.parse((e as MessageEvent).data) as { paths: string[] };
+  const events = new ServerEvents();
+  events.on('change', (data) => {
+    const paths = (data as { paths?: unknown } | null)?.paths;
+    if (!Array.isArray(paths)) return;
     refreshTree();
-    for (const p of paths) void workspace.externalChange(p);
+    for (const p of paths) if (typeof p === 'string') void workspace.externalChange(p);
   });
   let wasDisconnected = false;
-  events.onerror = () => {
+  events.onLost(() => {
     if (!wasDisconnected) toast('warning', 'Lost the connection to the IDE server: edits are kept in this browser until it is back');
     wasDisconnected = true;
-  };
-  events.addEventListener('hello', () => {
+  });
+  events.on('hello', () => {
     if (wasDisconnected) {
       wasDisconnected = false;
       toast('info', 'Reconnected to the IDE server: saving pending edits');
@@ -44,4 +47,5 @@ export function watchExternalChanges(workspace: Workspace, lsp: LspClient): void
       refreshTree();
     }
   });
+  return events;
 }

@@ -86,6 +86,25 @@ export class RunController {
     return followed;
   }
 
+  /**
+   * A job another tab started (announced by the IDE server, docs/ide.md "Several tabs"): this tab
+   * follows it when it follows none of its own — its log, the Monitor, Stop. True when it does.
+   */
+  async followShared(job: { id: string; action: 'build' | 'run'; project: string }): Promise<boolean> {
+    // this tab's own job before a reload is resume()'s
+    if (this.d.build.busy || !JOB_ID.test(job.id) || this.followed()?.jobId === job.id) return false;
+    const project = this.project;
+    this.project = job.project;
+    const followed = await this.d.build.resume(job.id, `${job.action === 'run' ? 'Build & Run' : 'build'} of another tab`);
+    if (!followed) {
+      if (this.project === job.project) this.project = project;
+      return false;
+    }
+    this.d.showPanel('output');
+    toast('info', `Following the ${job.action === 'run' ? 'Build & Run' : 'build'} another tab started${job.project ? ` (${job.project})` : ''}: its log, the Monitor; Stop ends it for every tab`);
+    return true;
+  }
+
   async run(): Promise<void> {
     const { workspace, build } = this.d;
     this.d.showPanel('output');

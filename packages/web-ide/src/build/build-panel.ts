@@ -15,7 +15,7 @@ export interface GccDiagnostic {
 }
 
 /**
- * Build & Run: submits a job to the build service, streams its events (SSE) into the log store,
+ * Build & Run: submits a job to the build service, streams its events (WebSocket) into the log store,
  * shows the filters (per module/source, per stream, text), follow-tail, and reports gcc
  * diagnostics and the job status to the IDE.
  */
@@ -33,15 +33,20 @@ export class BuildPanel {
   readonly element: HTMLElement;
   private readonly chips: HTMLElement;
   private readonly statusEl: HTMLElement;
+  /** Where the job followed comes from when this page did not submit it ("Build & Run of another tab"). */
+  private readonly originEl: HTMLElement;
   private readonly followBox: HTMLInputElement;
   private jobId: string | undefined;
-  private source: EventSource | undefined;
+  /** A submission is on its way (no job id yet). */
+  private submitting = false;
+  private socket: WebSocket | undefined;
   private diagnostics: GccDiagnostic[] = [];
   private chipSources = '';
 
   constructor() {
     this.chips = h('div', { class: 'chips' });
     this.statusEl = h('span', { class: 'job-status muted' }, 'No build yet');
+    this.originEl = h('span', { class: 'job-origin muted' });
     this.followBox = h('input', { type: 'checkbox', checked: true, id: 'follow-tail' });
     this.followBox.addEventListener('change', () => this.view.setFollow(this.followBox.checked));
     this.view.onFollowChange = (f) => (this.followBox.checked = f);
@@ -62,7 +67,7 @@ export class BuildPanel {
       this.view.schedule();
     });
     this.element = h('div', { class: 'build-panel' },
-      h('div', { class: 'log-toolbar' }, this.statusEl, h('span', { class: 'sep' }), this.chips, h('span', { class: 'grow' }),
+      h('div', { class: 'log-toolbar' }, this.statusEl, this.originEl, h('span', { class: 'sep' }), this.chips, h('span', { class: 'grow' }),
         streamToggle('stdout'), streamToggle('stderr'), streamToggle('system'), search,
         h('label', { class: 'toggle' }, this.followBox, 'Follow'),
         h('button', { class: 'btn small', title: 'Clear the log', onclick: () => { this.store.clear(); this.view.schedule(); } }, 'Clear')),
@@ -71,6 +76,11 @@ export class BuildPanel {
 
   get running(): boolean {
     return !!this.jobId;
+  }
+
+  /** Following a job, or submitting one. */
+  get busy(): boolean {
+    return !!this.jobId || this.submitting;
   }
 
   /** Appends a line (also used by benchmarks/tests to feed the view). */
@@ -105,81 +115,131 @@ export class BuildPanel {
 
   async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean): Promise<void> {
     if (this.jobId) await this.stop();
-    this.source?.close();
-    this.store.clear();
-    this.chipSources = '';
-    this.renderChips();
-    this.diagnostics = [];
-    this.onDiagnostics.fire([]);
+    this.clear();
     this.setStatus('submitting', undefined, true);
-    const job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
+    this.submitting = true;
+    let job;
+    try {
+      job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
+    } finally {
+      this.submitting = false;
+    }
     this.jobId = job.id;
     for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);
     this.follow(job.id, action);
   }
 
+  /** Empties the log, the source chips and the diagnostics (a new job is followed). */
+  private clear(): void {
+    const socket = this.socket;
+    this.socket = undefined;
+    socket?.close();
+    this.store.clear();
+    this.chipSources = '';
+    this.renderChips();
+    this.diagnostics = [];
+    this.onDiagnostics.fire([]);
+    this.originEl.textContent = '';
+  }
+
   /**
-   * Follows a job this page submitted before it was reloaded, if the build service still runs it:
-   * its events again from the first (the log, the diagnostics and the kept trace: docs/build-service-api.md
-   * "Events"), then live, and Stop cancels it. False when it has finished or is unknown (a restarted service).
+   * Follows a job submitted elsewhere — by this page before it was reloaded, or by another tab —
+   * if the build service still runs it and this panel follows none: its events from the first
+   * (the log, the diagnostics and the kept trace: docs/build-service-api.md "Events"), then live,
+   * and Stop cancels it. False when it has finished, is unknown (a restarted service), or this
+   * panel is busy with a job of its own. `why` is shown beside the status.
    */
-  async resume(jobId: string): Promise<boolean> {
+  async resume(jobId: string, why = 'followed again after a reload'): Promise<boolean> {
+    if (this.busy) return false;
     let job: { id: string; status: string; action: string; finishedAt: number | null };
     try {
       job = await api.getJob(jobId);
     } catch {
       return false;
     }
-    if (job.finishedAt || this.jobId || (job.action !== 'build' && job.action !== 'run')) return false;
+    if (job.finishedAt || this.busy || (job.action !== 'build' && job.action !== 'run')) return false;
+    this.clear();
     this.jobId = job.id;
-    this.setStatus(job.status, 'followed again after a reload', true);
+    this.originEl.textContent = `(${why})`;
+    this.setStatus(job.status, undefined, true);
     this.follow(job.id, job.action);
     return true;
   }
 
-  /** Streams a job's events (SSE, from the first) into the log, the diagnostics, the trace and the status. */
-  private follow(jobId: string, action: 'build' | 'run'): void {
-    const es = new EventSource(`/api/jobs/${encodeURIComponent(jobId)}/events`);
-    this.source = es;
-    this.onStarted.fire({ jobId, action });
-    es.addEventListener('trace', (e) => {
-      // the records in their columnar wire form (docs/build-service-api.md "Trace channel")
-      let records: TraceLine[];
+  /**
+   * Streams a job's events into the log, the diagnostics, the trace and the status, from the
+   * first (or after `after`, the last event seen, when a broken stream is taken up again). A
+   * WebSocket (GET /api/jobs/:id/ws, docs/build-service-api.md "Events"), not an EventSource:
+   * a browser opens at most six HTTP/1.1 connections to a server for all its tabs, and every tab
+   * keeps one for /api/events; job streams held on top of those would leave no connection for the
+   * saves of a third tab following a run.
+   */
+  private follow(jobId: string, action: 'build' | 'run', after = 0, retries = 0): void {
+    const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
+    const ws = new WebSocket(`${scheme}://${location.host}/api/jobs/${encodeURIComponent(jobId)}/ws${after ? `?after=${after}` : ''}`);
+    this.socket = ws;
+    if (!after) this.onStarted.fire({ jobId, action });
+    let last = after;
+    let ended = false;
+    ws.onmessage = (m) => {
+      let e: { type?: string; seq?: number } & Record<string, unknown>;
       try {
-        records = decodeTraceRecords(JSON.parse((e as MessageEvent).data));
-      } catch (err) {
-        this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `trace: a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs` });
+        e = JSON.parse(String(m.data));
+      } catch {
+        return; // not an event of the service
+      }
+      if (typeof e.seq === 'number') last = e.seq;
+      retries = 0;
+      switch (e.type) {
+        case 'trace': {
+          // the records in their columnar wire form (docs/build-service-api.md "Trace channel")
+          let records: TraceLine[];
+          try {
+            records = decodeTraceRecords(e);
+          } catch (err) {
+            this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `trace: a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs` });
+            return;
+          }
+          if (records.length) this.onTrace.fire({ jobId, records });
+          return;
+        }
+        case 'line':
+          return this.append(e as unknown as LogLine);
+        case 'status': {
+          const d = e as unknown as { status: string; step?: string };
+          return this.setStatus(d.status, d.step, true);
+        }
+        case 'diagnostic':
+          this.diagnostics.push((e as unknown as { diagnostic: GccDiagnostic }).diagnostic);
+          return this.onDiagnostics.fire(this.diagnostics);
+        case 'limit':
+          return this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `limit hit: ${(e as unknown as { limitHit: { name: string } }).limitHit.name}` });
+        case 'end': {
+          ended = true;
+          const d = e as unknown as { result: { ok: boolean; message: string } | null };
+          ws.close();
+          if (this.socket === ws) this.socket = undefined;
+          this.jobId = undefined;
+          this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
+          this.onFinished.fire({ jobId, action, ok: !!d.result?.ok });
+          return;
+        }
+      }
+    };
+    ws.onclose = () => {
+      if (ended || this.socket !== ws || this.jobId !== jobId) return;
+      // the stream broke before the job's end (a network hiccup, the server restarting): take it
+      // up again after the last event seen, a few times; a service that forgot the job ends it
+      if (retries < 5) {
+        setTimeout(() => {
+          if (this.socket === ws && this.jobId === jobId) this.follow(jobId, action, last, retries + 1);
+        }, 300 * (retries + 1));
         return;
       }
-      if (records.length) this.onTrace.fire({ jobId, records });
-    });
-    es.addEventListener('line', (e) => this.append(JSON.parse((e as MessageEvent).data) as LogLine));
-    es.addEventListener('status', (e) => {
-      const d = JSON.parse((e as MessageEvent).data) as { status: string; step?: string };
-      this.setStatus(d.status, d.step, true);
-    });
-    es.addEventListener('diagnostic', (e) => {
-      this.diagnostics.push((JSON.parse((e as MessageEvent).data) as { diagnostic: GccDiagnostic }).diagnostic);
-      this.onDiagnostics.fire(this.diagnostics);
-    });
-    es.addEventListener('limit', (e) => {
-      const d = JSON.parse((e as MessageEvent).data) as { limitHit: { name: string } };
-      this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `limit hit: ${d.limitHit.name}` });
-    });
-    es.addEventListener('end', (e) => {
-      const d = JSON.parse((e as MessageEvent).data) as { result: { ok: boolean; message: string } | null };
-      es.close();
-      this.source = undefined;
+      this.socket = undefined;
       this.jobId = undefined;
-      this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
-      this.onFinished.fire({ jobId, action, ok: !!d.result?.ok });
-    });
-    es.onerror = () => {
-      if (es.readyState === EventSource.CLOSED && this.jobId) {
-        this.jobId = undefined;
-        this.setStatus('disconnected', 'lost the connection to the build service', false);
-      }
+      this.setStatus('disconnected', 'lost the connection to the build service', false);
     };
   }
 

@@ -9,6 +9,7 @@ import { startIdeServer } from '../../server/ide-server.js';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, type Session } from './harness.js';
+import type { Page } from 'playwright-core';
 
 let s: Session;
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
@@ -407,32 +408,58 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('.log-row[data-source="MSC"]').count()).toBeGreaterThan(0);
     await page.locator('.log-search').fill('');
     await page.locator('#follow-tail').check();
-    // a reload during a run: the tab follows the job again (its log from the start, then live), and
-    // Stop cancels it (a cancelled run brings no logs: the timeline keeps the finished one)
+    // a reload during a run: the tab follows the job again (its log from the start, then live).
+    // Another tab, open before the run, follows it from its start; a tab opened during the run
+    // follows it too; Stop in one tab ends it for all (a cancelled run brings no logs: the
+    // timeline keeps the finished one)
+    const newTab = async () => {
+      const tab = await page.context().newPage(); // the same browser: its own session storage
+      await tab.goto(`${s.server.url}/`);
+      await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+      return tab;
+    };
+    const second = await newTab();
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 60, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' })));
     await page.locator('#btn-run').click();
     await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run'); // the old log is cleared
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 30_000 });
     // the log's lines (the view builds only the rows it shows)
-    const lines = () => page.evaluate(() => {
+    const lines = (tab: Page = page) => tab.evaluate(() => {
       const store = (window as any).__ide.build.store;
       const out: string[] = [];
       for (let i = 0; i < store.visibleCount; i++) out.push(`${store.visibleAt(i).source}: ${store.visibleAt(i).line}`);
       return out;
     });
+    const liveVersion = (tab: Page) => tab.evaluate(() => (window as any).__ide.monitor.lastLive?.version ?? 0);
     const before = await lines();
     await page.reload();
     await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
     await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
+    expect(await page.locator('.job-origin').textContent()).toBe('(followed again after a reload)');
     await expect.poll(async () => (await lines()).length, { timeout: 10_000 }).toBeGreaterThan(before.length); // replayed, then live
     expect((await lines()).slice(0, before.length)).toEqual(before);
     // the Monitor follows the run's trace again
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.lastLive?.version ?? 0), { timeout: 10_000 }).toBeGreaterThan(0);
+    await expect.poll(() => liveVersion(page), { timeout: 10_000 }).toBeGreaterThan(0);
     expect(await page.locator('.monitor-view').count()).toBe(1);
     expect(await page.locator('#btn-stop').isEnabled()).toBe(true);
-    await page.locator('#btn-stop').click();
-    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
-    await expect.poll(() => page.locator('#btn-run').isEnabled()).toBe(true);
+    // the tab that was open follows the same job: the same log from its start, the Monitor, Stop
+    const third = await newTab();
+    for (const tab of [second, third]) {
+      await expect.poll(() => tab.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
+      expect(await tab.locator('.job-origin').textContent()).toBe('(Build & Run of another tab)');
+      await expect.poll(async () => (await lines(tab)).length, { timeout: 10_000 }).toBeGreaterThan(before.length);
+      expect((await lines(tab)).slice(0, before.length)).toEqual(before);
+      await expect.poll(() => liveVersion(tab), { timeout: 10_000 }).toBeGreaterThan(0);
+      expect(await tab.locator('#btn-stop').isEnabled()).toBe(true);
+    }
+    await shot(third, '06d-run-followed-in-another-tab');
+    await second.locator('#btn-stop').click();
+    for (const tab of [page, second, third]) {
+      await expect.poll(() => tab.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
+      await expect.poll(() => tab.locator('#btn-run').isEnabled()).toBe(true);
+    }
+    await second.close();
+    await third.close();
   }, 240_000);
 
   it.skipIf(!canBuild || !canGenerate)('the real-time run setting reaches the build service, which says how it granted it or why not', async () => {

@@ -224,6 +224,33 @@ describe('one file edited in two IDE tabs and by a script', () => {
     await expect.poll(() => activeValue(other.page), { timeout: 10_000 }).toBe(expected);
     await waitSaved(a);
   });
+
+  it('seven tabs in one browser: every tab gets file changes and saves (no tab holds one of the six HTTP connections the browser allows a server)', async () => {
+    const context = other.page.context();
+    const streams: string[] = [];
+    const tabs: Page[] = [other.page];
+    other.page.on('request', (r) => void (r.resourceType() === 'eventsource' && streams.push(r.url())));
+    try {
+      while (tabs.length < 7) {
+        const tab = await context.newPage();
+        tab.on('request', (r) => void (r.resourceType() === 'eventsource' && streams.push(r.url())));
+        await tab.goto(`${s.server.url}/`);
+        await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+        tabs.push(tab);
+      }
+      const last = tabs.at(-1)!;
+      await openFile(last, SCHED);
+      await placeCursor(last, 'MSA;', 4);
+      await last.keyboard.type(' // from the seventh tab');
+      await expect.poll(disk, { timeout: 10_000 }).toContain('MSA; // from the seventh tab');
+      await waitSaved(last);
+      // and the first tab of that browser heard of it (its file events)
+      await expect.poll(() => activeValue(other.page), { timeout: 10_000 }).toContain('MSA; // from the seventh tab');
+      expect(streams).toEqual([]);
+    } finally {
+      for (const tab of tabs.slice(1)) await tab.close();
+    }
+  }, 120_000);
 });
 
 /** The second tab has nothing unsaved. */
