@@ -32,8 +32,10 @@ done
 
 command -v docker >/dev/null || die "the docker CLI is missing"
 docker info >/dev/null 2>&1 || die "no Docker engine answers (start dockerd first)"
-# fingerprint of the runtime sources, kept as the image's label: an image built from other sources is rebuilt
-runtime_hash=$(cd "$runtime_dir" && find . -path ./build -prune -o -type f \( -name '*.c' -o -name '*.h' -o -name '*.mk' -o -name Makefile -o -name '*.def' \) -print \
+# fingerprint of the runtime sources, kept as the image's label: an image built from other sources is
+# rebuilt. The tests and benchmarks (tests/, bench/) are not in it: the jobs use the library, the
+# launcher and the headers, and a change of a test alone does not cost a rebuild
+runtime_hash=$(cd "$runtime_dir" && find . \( -path ./build -o -path ./tests -o -path ./bench \) -prune -o -type f \( -name '*.c' -o -name '*.h' -o -name '*.mk' -o -name Makefile -o -name '*.def' \) -print \
   | LC_ALL=C sort | xargs sha256sum | sha256sum | cut -c1-16)
 
 if [ $force = 0 ] && docker image inspect "$IMAGE" >/dev/null 2>&1; then
