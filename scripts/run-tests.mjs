@@ -6,10 +6,11 @@
 // Suites: the C runtime (its runner prints `N passed, N failed`), each npm workspace's vitest run
 // (read through vitest's JSON reporter), and the type check of every workspace's sources and tests
 // (`npm run typecheck`: one check per workspace; vitest does not type-check). The suites that only
-// compute (conventions, language, codegen, vscode, the type check) run in the background at the
-// lowest CPU priority (nice 19), side by side, their output kept and printed whole at the end; the
-// others run one at a time meanwhile, streamed, and keep the CPUs whenever they want them (the
-// computing suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle).
+// compute (conventions, language, codegen, vscode, the type check, and the installed-CLI test
+// file: BACKGROUND_FILES) run in the background at the lowest CPU priority (nice 19), side by
+// side, their output kept and printed whole at the end; the others run one at a time meanwhile,
+// streamed, and keep the CPUs whenever they want them (the computing suites fill the time the
+// sandboxes, browsers and timed runs leave the CPUs idle).
 // `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
@@ -50,6 +51,33 @@ function countCRunner(out) {
 
 /** Workspaces whose tests only compute (no sandbox, no browser, no timing): run beside each other. */
 const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages/codegen', 'packages/vscode']);
+/**
+ * Test files of the other workspaces that assert nothing about time and mostly compute (packing
+ * and installing the CLI): they run in the background too, as a suite of their own.
+ */
+const BACKGROUND_FILES = { 'packages/cli': ['test/e2e/installed-cli.e2e.test.ts'] };
+
+/** A vitest run in a workspace (its files, or all but `exclude`), read through the JSON reporter. */
+function vitestSuite(name, ws, { beside, files = [], exclude = [] }) {
+  return {
+    name,
+    // pure computation, no sandbox timing: run side by side in the background, niced
+    // (vitest gives each one worker on a two-core machine)
+    beside,
+    exec: (echo) => {
+      const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
+      if (!pkg.scripts?.test) return Promise.resolve(null);
+      const json = join(scratch, name.replace(/\W/g, '_') + '.json');
+      return run('npx', ['vitest', 'run', ...files, ...exclude.flatMap((f) => ['--exclude', f]), '--reporter=default', '--reporter=json', `--outputFile=${json}`],
+        { cwd: join(root, ws), niced: beside }, echo).then((r) => ({ ...r, json }));
+    },
+    count: (r) => {
+      if (!r.json || !existsSync(r.json)) return null;
+      const j = JSON.parse(readFileSync(r.json, 'utf8'));
+      return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0), failures: vitestFailures(j, ws) };
+    },
+  };
+}
 
 const suites = [
   {
@@ -57,24 +85,13 @@ const suites = [
     exec: () => run('make', ['-s', '-C', 'runtime', 'test']),
     count: (r) => countCRunner(r.out),
   },
-  ...rootPkg.workspaces.map((ws) => ({
-    name: ws,
-    // pure computation, no sandbox and no timing: run side by side in the background, niced
-    // (vitest gives each one worker on a two-core machine)
-    beside: CPU_ONLY.has(ws),
-    exec: (echo) => {
-      const pkg = JSON.parse(readFileSync(join(root, ws, 'package.json'), 'utf8'));
-      if (!pkg.scripts?.test) return Promise.resolve(null);
-      const json = join(scratch, ws.replace(/\W/g, '_') + '.json');
-      return run('npx', ['vitest', 'run', '--reporter=default', '--reporter=json', `--outputFile=${json}`],
-        { cwd: join(root, ws), niced: CPU_ONLY.has(ws) }, echo).then((r) => ({ ...r, json }));
-    },
-    count: (r) => {
-      if (!r.json || !existsSync(r.json)) return null;
-      const j = JSON.parse(readFileSync(r.json, 'utf8'));
-      return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0), failures: vitestFailures(j, ws) };
-    },
-  })),
+  ...rootPkg.workspaces.flatMap((ws) => {
+    const background = BACKGROUND_FILES[ws] ?? [];
+    return [
+      vitestSuite(ws, ws, { beside: CPU_ONLY.has(ws), exclude: background }),
+      ...(background.length ? [vitestSuite(`${ws} (${background.map((f) => f.replace(/^.*\//, '')).join(', ')})`, ws, { beside: true, files: background })] : []),
+    ];
+  }),
   {
     name: 'typecheck (tsc --noEmit of sources and tests, per workspace)',
     beside: true,
