@@ -7,6 +7,14 @@ import type { GenerationReport } from '@contract-studio/codegen';
 import type { RuleChange, StepRecord, StepResult } from '@contract-studio/simulator';
 
 /** One entry of the workspace tree (GET /api/tree, /api/snapshot). */
+/** A job the IDE server announces to its tabs on /api/events (`job`, `jobs`: server/shared-runs.ts). */
+export interface SharedJob {
+  id: string;
+  action: 'build' | 'run';
+  /** The project folder, relative to the workspace ('' = the workspace itself). */
+  project: string;
+}
+
 export interface TreeEntry {
   name: string;
   /** Workspace-relative path with '/' separators. */

@@ -7,13 +7,7 @@
  * Only jobs on a project folder inside the workspace are announced, by their path relative to it.
  */
 import { isAbsolute, relative, sep } from 'node:path';
-
-export interface SharedJob {
-  id: string;
-  action: 'build' | 'run';
-  /** The project folder, relative to the workspace ('' = the workspace itself). */
-  project: string;
-}
+import type { SharedJob } from './api-types.js';
 
 /** What this needs of a build-service job (its id, whether it ended, its request). */
 interface JobLike {

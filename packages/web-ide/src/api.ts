@@ -40,6 +40,11 @@ async function call<T>(method: string, url: string, body?: unknown, raw = false,
 
 const q = (p: string) => encodeURIComponent(p);
 
+/** The WebSocket URL of a path of this server (ws:, or wss: when the page came over https). */
+export function socketUrl(path: string): string {
+  return `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${path}`;
+}
+
 export interface Snapshot {
   name: string;
   root: string;

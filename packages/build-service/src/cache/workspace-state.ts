@@ -18,7 +18,6 @@ export interface WorkspaceState {
 
 /** The file's name in the workspace (its modification time is the workspace's last use). */
 export const STATE_FILE = 'state.json';
-const FILE = STATE_FILE;
 const MAX_BYTES = 4096;
 
 function isId(v: unknown): v is number {
@@ -28,7 +27,7 @@ function isId(v: unknown): v is number {
 export function readWorkspaceState(root: string): WorkspaceState | null {
   let text: string;
   try {
-    text = readFileSync(join(root, FILE), 'utf8');
+    text = readFileSync(join(root, STATE_FILE), 'utf8');
   } catch {
     return null;
   }
@@ -45,7 +44,7 @@ export function readWorkspaceState(root: string): WorkspaceState | null {
 }
 
 export function writeWorkspaceState(root: string, state: WorkspaceState): void {
-  const tmp = join(root, `${FILE}.${process.pid}.tmp`);
+  const tmp = join(root, `${STATE_FILE}.${process.pid}.tmp`);
   writeFileSync(tmp, JSON.stringify({ version: 1, owner: state.owner, acceptedOutputs: state.acceptedOutputs }), { mode: 0o600 });
-  renameSync(tmp, join(root, FILE));
+  renameSync(tmp, join(root, STATE_FILE));
 }

@@ -287,11 +287,6 @@ export class WorkspaceManager {
   }
 
   /**
-   * Removes the persistent entries whose project folder no longer exists, each under its lock taken
-   * without waiting (an entry in use by some command is left alone). An entry that names no folder
-   * (made by an earlier version) is kept. Never throws for one entry.
-   */
-  /**
    * Removes the persistent entries whose project folder is gone, and the least recently used
    * beyond `keptProjects` (`current`, the entry being acquired, counts as the newest and stays).
    * Each under its lock taken without waiting: an entry a command holds stays (and counts). Entries

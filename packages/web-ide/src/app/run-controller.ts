@@ -6,6 +6,7 @@ import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
 import { reportError } from './report-error.js';
 import { isCpuList } from '@contract-studio/conventions';
+import type { SharedJob } from '../../server/api-types.js';
 
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 /** The job this tab follows, kept for a reload (sessionStorage: one per tab): { jobId, project }. */
@@ -90,18 +91,19 @@ export class RunController {
    * A job another tab started (announced by the IDE server, docs/ide.md "Several tabs"): this tab
    * follows it when it follows none of its own — its log, the Monitor, Stop. True when it does.
    */
-  async followShared(job: { id: string; action: 'build' | 'run'; project: string }): Promise<boolean> {
+  async followShared(job: SharedJob): Promise<boolean> {
     // this tab's own job before a reload is resume()'s
     if (this.d.build.busy || !JOB_ID.test(job.id) || this.followed()?.jobId === job.id) return false;
     const project = this.project;
     this.project = job.project;
-    const followed = await this.d.build.resume(job.id, `${job.action === 'run' ? 'Build & Run' : 'build'} of another tab`);
+    const what = job.action === 'run' ? 'Build & Run' : 'build';
+    const followed = await this.d.build.resume(job.id, `${what} of another tab`);
     if (!followed) {
       if (this.project === job.project) this.project = project;
       return false;
     }
     this.d.showPanel('output');
-    toast('info', `Following the ${job.action === 'run' ? 'Build & Run' : 'build'} another tab started${job.project ? ` (${job.project})` : ''}: its log, the Monitor; Stop ends it for every tab`);
+    toast('info', `Following the ${what} another tab started${job.project ? ` (${job.project})` : ''}: its log, the Monitor; Stop ends it for every tab`);
     return true;
   }
 

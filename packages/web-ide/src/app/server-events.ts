@@ -1,3 +1,5 @@
+import { socketUrl } from '../api.js';
+
 /**
  * The IDE server's events (GET /api/events, server/workspace-watcher.ts) over a WebSocket: file
  * changes, Generate All, the runs of other tabs. A WebSocket rather than an EventSource because a
@@ -28,8 +30,7 @@ export class ServerEvents {
   }
 
   private connect(): void {
-    const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
-    const ws = new WebSocket(`${scheme}://${location.host}${this.path}`);
+    const ws = new WebSocket(socketUrl(this.path));
     ws.onopen = () => (this.delay = 1000);
     ws.onmessage = (m) => {
       let msg: { event?: unknown; data?: unknown };

@@ -1,12 +1,6 @@
 import type { RunController } from './run-controller.js';
 import type { ServerEvents } from './server-events.js';
-
-/** A job the IDE server announced (server/shared-runs.ts). */
-interface SharedJob {
-  id: string;
-  action: 'build' | 'run';
-  project: string;
-}
+import type { SharedJob } from '../../server/api-types.js';
 
 function sharedJob(v: unknown): v is SharedJob {
   const j = v as Partial<SharedJob> | null;

@@ -1,5 +1,5 @@
 import { h } from '../util/dom.js';
-import { api } from '../api.js';
+import { api, socketUrl } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
@@ -171,13 +171,12 @@ export class BuildPanel {
    * Streams a job's events into the log, the diagnostics, the trace and the status, from the
    * first (or after `after`, the last event seen, when a broken stream is taken up again). A
    * WebSocket (GET /api/jobs/:id/ws, docs/build-service-api.md "Events"), not an EventSource:
-   * a browser opens at most six HTTP/1.1 connections to a server for all its tabs, and every tab
-   * keeps one for /api/events; job streams held on top of those would leave no connection for the
-   * saves of a third tab following a run.
+   * a browser opens at most six HTTP/1.1 connections to a server for all its tabs, and streams
+   * held on them by tabs following a run would leave none for their saves (as for /api/events,
+   * app/server-events.ts).
    */
   private follow(jobId: string, action: 'build' | 'run', after = 0, retries = 0): void {
-    const scheme = location.protocol === 'https:' ? 'wss' : 'ws';
-    const ws = new WebSocket(`${scheme}://${location.host}/api/jobs/${encodeURIComponent(jobId)}/ws${after ? `?after=${after}` : ''}`);
+    const ws = new WebSocket(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws${after ? `?after=${after}` : ''}`));
     this.socket = ws;
     if (!after) this.onStarted.fire({ jobId, action });
     let last = after;

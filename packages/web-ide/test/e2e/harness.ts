@@ -146,6 +146,14 @@ export async function openAnotherBrowser(s: Session, name: string): Promise<{ pa
   return { page, close: () => context.close().catch(() => undefined) };
 }
 
+/** Another tab of the same browser as `page` (its own session storage, the same cookies), the IDE loaded in it. */
+export async function openAnotherTab(s: Session, page: Page): Promise<Page> {
+  const tab = await page.context().newPage();
+  await tab.goto(`${s.server.url}/`);
+  await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+  return tab;
+}
+
 /** The line of the active editor's cursor (1-based). */
 export async function cursorLine(page: Page): Promise<number> {
   return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getPosition(): { lineNumber: number } } } } }).__ide.editors.editor.getPosition().lineNumber);

@@ -8,7 +8,7 @@ import { readFileSync, writeFileSync, existsSync, readdirSync, mkdirSync } from 
 import { startIdeServer } from '../../server/ide-server.js';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
-import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, type Session } from './harness.js';
+import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, openAnotherTab, type Session } from './harness.js';
 import type { Page } from 'playwright-core';
 
 let s: Session;
@@ -412,13 +412,7 @@ describe('IDE in headless Chromium', () => {
     // Another tab, open before the run, follows it from its start; a tab opened during the run
     // follows it too; Stop in one tab ends it for all (a cancelled run brings no logs: the
     // timeline keeps the finished one)
-    const newTab = async () => {
-      const tab = await page.context().newPage(); // the same browser: its own session storage
-      await tab.goto(`${s.server.url}/`);
-      await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
-      return tab;
-    };
-    const second = await newTab();
+    const second = await openAnotherTab(s, page);
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 60, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' })));
     await page.locator('#btn-run').click();
     await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run'); // the old log is cleared
@@ -443,7 +437,7 @@ describe('IDE in headless Chromium', () => {
     expect(await page.locator('.monitor-view').count()).toBe(1);
     expect(await page.locator('#btn-stop').isEnabled()).toBe(true);
     // the tab that was open follows the same job: the same log from its start, the Monitor, Stop
-    const third = await newTab();
+    const third = await openAnotherTab(s, page);
     for (const tab of [second, third]) {
       await expect.poll(() => tab.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
       expect(await tab.locator('.job-origin').textContent()).toBe('(Build & Run of another tab)');

@@ -8,8 +8,8 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync, writeFileSync, renameSync } from 'node:fs';
 import { createHash } from 'node:crypto';
 import { join } from 'node:path';
-import type { Page } from 'playwright-core';
-import { startSession, openIde, shot, placeCursor, activeValue, openFile, waitSaved, openAnotherBrowser, type Session } from './harness.js';
+import type { Page, Request } from 'playwright-core';
+import { startSession, openIde, shot, placeCursor, activeValue, openFile, waitSaved, openAnotherBrowser, openAnotherTab, type Session } from './harness.js';
 
 let s: Session;
 let other: { page: Page; close(): Promise<void> };
@@ -226,18 +226,13 @@ describe('one file edited in two IDE tabs and by a script', () => {
   });
 
   it('seven tabs in one browser: every tab gets file changes and saves (no tab holds one of the six HTTP connections the browser allows a server)', async () => {
-    const context = other.page.context();
     const streams: string[] = [];
+    // every request of that browser's tabs, those to come included, from their first
+    const seeStreams = (r: Request) => void (r.resourceType() === 'eventsource' && streams.push(r.url()));
+    other.page.context().on('request', seeStreams);
     const tabs: Page[] = [other.page];
-    other.page.on('request', (r) => void (r.resourceType() === 'eventsource' && streams.push(r.url())));
     try {
-      while (tabs.length < 7) {
-        const tab = await context.newPage();
-        tab.on('request', (r) => void (r.resourceType() === 'eventsource' && streams.push(r.url())));
-        await tab.goto(`${s.server.url}/`);
-        await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
-        tabs.push(tab);
-      }
+      while (tabs.length < 7) tabs.push(await openAnotherTab(s, other.page));
       const last = tabs.at(-1)!;
       await openFile(last, SCHED);
       await placeCursor(last, 'MSA;', 4);
@@ -248,6 +243,7 @@ describe('one file edited in two IDE tabs and by a script', () => {
       await expect.poll(() => activeValue(other.page), { timeout: 10_000 }).toContain('MSA; // from the seventh tab');
       expect(streams).toEqual([]);
     } finally {
+      other.page.context().off('request', seeStreams);
       for (const tab of tabs.slice(1)) await tab.close();
     }
   }, 120_000);

@@ -12,7 +12,7 @@ enum { MAX_CPUS = 16, MAX_STALLS = 4096 };
 
 typedef struct Watcher {
     pthread_t thread;
-    int cpu, started;
+    int cpu;
     int n; /* stalls recorded (owned by the thread until joined) */
     long long due[MAX_STALLS], woke[MAX_STALLS];
 } Watcher;
@@ -62,16 +62,14 @@ int stall_watch_start(void) {
         Watcher *w = &watchers[nwatchers];
         w->cpu = c;
         w->n = 0;
-        w->started = pthread_create(&w->thread, NULL, watch, w) == 0;
-        if (w->started) nwatchers++;
+        if (pthread_create(&w->thread, NULL, watch, w) == 0) nwatchers++;
     }
     return nwatchers;
 }
 
 void stall_watch_stop(void) {
     atomic_store(&stopping, 1);
-    for (int i = 0; i < nwatchers; i++)
-        if (watchers[i].started) pthread_join(watchers[i].thread, NULL);
+    for (int i = 0; i < nwatchers; i++) pthread_join(watchers[i].thread, NULL);
 }
 
 int stall_watch_between(long long from, long long to) {
