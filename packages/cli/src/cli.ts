@@ -2,6 +2,7 @@
 import { readFileSync } from 'node:fs';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from './command.js';
 import { COMMANDS } from './commands/index.js';
+import { makeProcessIO } from './process-io.js';
 import { terminalSafeIO } from './terminal-text.js';
 
 function version(): string {
@@ -27,11 +28,7 @@ export function helpText(commands: Command[] = COMMANDS): string {
     ].join('\n') + '\n';
 }
 
-export const processIO: CliIO = {
-    out: (text) => { process.stdout.write(text); },
-    err: (text) => { process.stderr.write(text); },
-    cwd: process.cwd()
-};
+export const processIO: CliIO = makeProcessIO();
 
 /** Runs `contract` with the given arguments; resolves to the exit code. Never throws. */
 export async function runCli(argv: string[], rawIO: CliIO = processIO, commands: Command[] = COMMANDS): Promise<number> {

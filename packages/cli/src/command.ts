@@ -6,6 +6,8 @@ export interface CliIO {
     err(text: string): void;
     /** Directory relative paths are resolved from. */
     cwd: string;
+    /** Aborted when the standard output's reader went away (a pipe closed: `| head`); writes to it are then dropped. */
+    outputClosed?: AbortSignal;
 }
 
 export interface Command {

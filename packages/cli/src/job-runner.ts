@@ -144,6 +144,8 @@ export async function runJob(
     };
     process.on('SIGINT', onSigint);
     process.on('SIGTERM', onSigint);
+    // the output's reader went away (`| head`): nobody follows the job any more, stopped as on Ctrl+C
+    io.outputClosed?.addEventListener('abort', onSigint);
     try {
         try {
             job = await service.submit({
@@ -159,6 +161,7 @@ export async function runJob(
             if (e instanceof ServiceError) return { error: e.message, exitCode: e.status === 503 ? EXIT_ENVIRONMENT : EXIT_FAILURE };
             throw e;
         }
+        if (io.outputClosed?.aborted) onSigint();
         const runLines: JobOutcome['runLines'] = [];
         const print = makePrinter(opts, io, runLines);
         const unsubscribe = job.events.subscribe(0, (e) => {
@@ -177,6 +180,7 @@ export async function runJob(
     } finally {
         process.off('SIGINT', onSigint);
         process.off('SIGTERM', onSigint);
+        io.outputClosed?.removeEventListener('abort', onSigint);
         const tc = Date.now();
         await service.close();
         timing('closing the build service', tc);

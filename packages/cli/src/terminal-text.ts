@@ -23,5 +23,6 @@ export function terminalSafeIO(io: CliIO): CliIO {
         out: (text) => io.out(escapeControls(text)),
         err: (text) => io.err(escapeControls(text)),
         cwd: io.cwd,
+        ...(io.outputClosed ? { outputClosed: io.outputClosed } : {}),
     };
 }

@@ -1,10 +1,13 @@
 /** `contract trace`: story and JSON lines of a log folder, hostile lines, links, usage errors. */
+import { spawn } from 'node:child_process';
 import { mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
+
+const BIN = new URL('../bin/contract.js', import.meta.url).pathname;
 
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
@@ -62,5 +65,28 @@ describe('contract trace', () => {
         expect(await runCli(['trace', empty], io)).toBe(1);
         expect(io.stderr).toBe(`contract trace: no CSV log (<MODULE>_*.csv) in ${empty}\n`);
         rmSync(empty, { recursive: true });
+    });
+
+    it('a reader that goes away (`| head`) ends nothing badly: no stack trace, exit 0', async () => {
+        // 20,000 records: far more than a pipe holds, so the command is still writing when the reader closes
+        const big = mkdtempSync(join(tmpdir(), 'contract-trace-big-'));
+        const lines = [HEADER];
+        for (let i = 0; i < 20_000; i++) lines.push(`${1_000_000_000 + i * 1000},w,ORD,ord_release,MSA,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1000} release_ns=${1_000_000_001 + i * 1000} release=${i + 1}`);
+        writeFileSync(join(big, 'ORD_24-Nov-2026-18h30m15s.csv'), lines.join('\n') + '\n');
+        try {
+            for (const format of ['json', 'text']) {
+                const child = spawn(process.execPath, [BIN, 'trace', big, '--format', format], { stdio: ['ignore', 'pipe', 'pipe'] });
+                let stderr = '';
+                child.stderr.on('data', (d: Buffer) => { stderr += d.toString(); });
+                const first = await new Promise<string>((resolve) => child.stdout.once('data', (d: Buffer) => resolve(d.toString())));
+                child.stdout.destroy(); // as `head -c` does once it has its bytes
+                const code = await new Promise<number | null>((resolve) => child.on('close', (c) => resolve(c)));
+                expect(first.length).toBeGreaterThan(0);
+                expect(stderr, format).toBe('');
+                expect(code, format).toBe(0);
+            }
+        } finally {
+            rmSync(big, { recursive: true, force: true });
+        }
     });
 });

@@ -40,6 +40,36 @@ describe('contract run interrupted', () => {
     }, 240_000);
 });
 
+describe('contract run whose output reader goes away', () => {
+    it('stops as on Ctrl+C (`contract run … | head`): exit 130, no stack trace, nothing left running', async () => {
+        const child = spawn(process.execPath, [BIN, 'run', 'tutorial', '--sandbox', 'bwrap', '--duration', '60s'], {
+            cwd: scratch.root,
+            env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
+            stdio: ['ignore', 'pipe', 'pipe'],
+        });
+        let stdout = '';
+        let stderr = '';
+        child.stderr.on('data', (d: Buffer) => { stderr += d.toString(); });
+        const running = new Promise<void>((resolve) => {
+            child.stdout.on('data', (d: Buffer) => {
+                stdout += d.toString();
+                if (stdout.includes('contract-launch: started GLB.mission')) resolve();
+            });
+        });
+        const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
+        await running;
+        const closed = Date.now();
+        child.stdout.destroy(); // the reader is gone: the run's next line meets a closed pipe
+        const code = await exited;
+        expect(Date.now() - closed).toBeLessThan(10_000);
+        expect(code).toBe(130);
+        expect(stderr).toContain('FAILED: cancelled');
+        expect(stderr).not.toMatch(/EPIPE|Unhandled|    at /);
+        expect(processesMentioning(scratch.root)).toEqual([]);
+        expect(leftoverWorkspaces(scratch)).toEqual([]);
+    }, 240_000);
+});
+
 describe('contract build killed with -9', () => {
     it('leaves a work tree the next build empties and rebuilds, without waiting for a lock', async () => {
         // an empty cache: the killed build must be compiling (the run above left a built tree)

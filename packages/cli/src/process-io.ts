@@ -1,0 +1,41 @@
+/**
+ * The bin's CliIO on the process's streams. A reader that goes away (`contract trace … | head`,
+ * `contract run … | grep -m1 …`) makes the next write to the pipe fail with EPIPE; Node reports it
+ * as an 'error' event which, unhandled, ended the command with a stack trace in the middle of its
+ * work (a build's cache left mid-write, a run's sandbox stopped without its clean-up).
+ *
+ * Here a failed write closes that stream for the rest of the command: later writes to it are
+ * dropped, the command goes on to its end and its exit status, and `outputClosed` is aborted when
+ * it was the standard output, so that a command whose output is the point (a build or run job)
+ * stops the way it does on Ctrl+C (packages/cli/README.md, "Exit status").
+ */
+import type { CliIO } from './command.js';
+
+export function makeProcessIO(
+    stdout: NodeJS.WriteStream = process.stdout,
+    stderr: NodeJS.WriteStream = process.stderr,
+    cwd = process.cwd(),
+): CliIO {
+    const closed = new AbortController();
+    let outOpen = true;
+    let errOpen = true;
+    stdout.on('error', (e: NodeJS.ErrnoException) => {
+        outOpen = false;
+        // a closed pipe is the reader's choice; any other failure (a full disk) is said
+        if (e.code !== 'EPIPE' && errOpen) stderr.write(`contract: cannot write the standard output (${e.code ?? e.message}): stopping\n`);
+        closed.abort();
+    });
+    stderr.on('error', () => {
+        errOpen = false;
+    });
+    return {
+        out: (text) => {
+            if (outOpen) stdout.write(text);
+        },
+        err: (text) => {
+            if (errOpen) stderr.write(text);
+        },
+        cwd,
+        outputClosed: closed.signal,
+    };
+}
