@@ -12,7 +12,7 @@ export const LOG_FILE_NAME = /^[A-Za-z_]\w*_[\w.-]*\.csv$/;
 /** Bigger logs are refused whole rather than read partly (a run's logs are megabytes). */
 export const MAX_LOG_BYTES = 256 * 1024 * 1024;
 
-/** The CSV logs of `dir` (regular files only, never through a link), or an error message. */
+/** The CSV logs of `dir` (regular files only: a FIFO, socket or device is left out; never through a link), or an error message. */
 export async function readLogFolder(dir: string): Promise<LogFile[] | string> {
     let names: string[];
     try {
@@ -26,7 +26,8 @@ export async function readLogFolder(dir: string): Promise<LogFile[] | string> {
     for (const name of names) {
         let handle;
         try {
-            handle = await fsp.open(join(dir, name), constants.O_RDONLY | constants.O_NOFOLLOW);
+            // O_NONBLOCK: a FIFO named like a log must not wait for a writer for ever (it is left out below)
+            handle = await fsp.open(join(dir, name), constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
         } catch (e) {
             return `cannot open ${join(dir, name)}: ${(e as Error).message}`;
         }
@@ -35,7 +36,10 @@ export async function readLogFolder(dir: string): Promise<LogFile[] | string> {
             if (!st.isFile()) continue;
             total += st.size;
             if (total > MAX_LOG_BYTES) return `the logs of ${dir} exceed ${MAX_LOG_BYTES / 1024 / 1024} MiB`;
-            files.push({ name, text: await handle.readFile('utf8') });
+            // the size seen is what is read: a log still growing (a run writing to it) cannot pass the bound
+            const bytes = Buffer.alloc(st.size);
+            const { bytesRead } = await handle.read(bytes, 0, st.size, 0);
+            files.push({ name, text: bytes.toString('utf8', 0, bytesRead) });
         } finally {
             await handle.close();
         }

@@ -1,5 +1,5 @@
 /** `contract trace`: story and JSON lines of a log folder, hostile lines, links, usage errors. */
-import { spawn } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import { mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -24,6 +24,7 @@ beforeAll(() => {
         '2000500001,w,ORD,ord_release,MSA,,0,schema=S cycle=0 tick_ns=2000500000 release_ns=2000500001 release=1',
         '2300000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=0 tick_ns=2000500000', ''].join('\n'));
     writeFileSync(join(dir, 'notes.txt'), 'not a log');
+    execFileSync('mkfifo', [join(dir, 'FIF_24-Nov-2026-18h30m15s.csv')]); // left out, not waited on
     symlinkSync('/etc/passwd', join(dir, 'EVL_1.csv'));
 });
 afterAll(() => rmSync(dir, { recursive: true, force: true }));

@@ -1,5 +1,6 @@
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, symlinkSync, existsSync, rmSync, realpathSync } from 'node:fs';
+import { execFileSync } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
@@ -80,6 +81,27 @@ describe('file API over HTTP', () => {
     expect((await call('DELETE', '/api/file?path=')).status).toBe(403);
     expect((await call('POST', '/api/create', '{', { 'content-type': 'application/json' })).status).toBe(400);
   });
+
+  it('answers at once for a FIFO in the workspace (400 on read, 409 on write) and leaves it in place', async () => {
+    // a hostile folder (an unpacked archive) can hold a FIFO under any name: opening it to read used
+    // to wait for a writer for ever, holding one of the server's file threads (four of them: four
+    // such requests stopped every file operation of the IDE)
+    execFileSync('mkfifo', [join(ws, 'pipe.contract')]);
+    try {
+      const reads = await Promise.all([1, 2, 3, 4, 5].map(() => call('GET', '/api/file?path=pipe.contract')));
+      for (const r of reads) {
+        expect(r.status).toBe(400);
+        expect(r.body.error).toMatch(/not a regular file/);
+      }
+      expect((await call('GET', '/api/file?path=a.contract')).status).toBe(200); // the server's file threads are free
+      const put = await call('PUT', '/api/file?path=pipe.contract', 'datatype V {int z};');
+      expect(put.status).toBe(409);
+      expect(put.body.error).toMatch(/not a regular file/);
+      expect(execFileSync('stat', ['-c', '%F', join(ws, 'pipe.contract')], { encoding: 'utf8' }).trim()).toBe('fifo');
+    } finally {
+      rmSync(join(ws, 'pipe.contract'));
+    }
+  }, 20_000);
 
   it('refuses DNS-rebinding hosts and cross-site writes', async () => {
     const { request } = await import('node:http');

@@ -71,7 +71,10 @@ export async function saveWorkspaceFile(
   // the temp file is created O_EXCL in it and renamed over the entry, never through a link
   const save = (): Promise<FileWriteResponse> => paths.fs.withParent(rel, true, async (dir, name) => {
     const file = dir.at(name);
-    if ((await WorkspaceFs.entry(dir, name))?.isDirectory()) throw new HttpError(409, 'a folder has that name');
+    const entry = await WorkspaceFs.entry(dir, name);
+    if (entry?.isDirectory()) throw new HttpError(409, 'a folder has that name');
+    // a FIFO, socket or device is not replaced by a file behind the user's back
+    if (entry && !entry.isFile() && !entry.isSymbolicLink()) throw new HttpError(409, `${rel} is not a regular file (a FIFO, socket or device): not overwritten`);
     // the version check comes first, for every file; a generated file's save that passes it then
     // goes through the region guard (docs/ide.md, "Saves, versions and merges")
     const diskBytes = options.base !== undefined || splitGeneratedPath(rel) ? await readIfPresent(dir, name, rel) : undefined;

@@ -2,7 +2,7 @@ import { constants, existsSync } from 'node:fs';
 import { open, mkdir, lstat, readdir, unlink, rmdir, type FileHandle } from 'node:fs/promises';
 import { HttpError } from './http-error.js';
 
-const { O_RDONLY, O_DIRECTORY, O_NOFOLLOW } = constants;
+const { O_RDONLY, O_DIRECTORY, O_NOFOLLOW, O_NONBLOCK } = constants;
 const PROC_FD = '/proc/self/fd';
 
 /** A folder opened by WorkspaceFs: `at(name)` names an entry of that folder, whatever its path now is. */
@@ -58,13 +58,25 @@ export class WorkspaceFs {
     }
   }
 
-  /** Opens `name` in `dir` for reading, refusing a symlink; the caller closes the handle. */
+  /**
+   * Opens `name` in `dir` for reading, refusing a symlink and anything but a file or a folder; the
+   * caller closes the handle. O_NONBLOCK: the open of a FIFO (a hostile folder can hold one under
+   * any name) would otherwise wait for a writer for ever, holding one of the few threads every file
+   * operation of the server runs on.
+   */
   static async openFile(dir: DirAt, name: string, shown: string): Promise<FileHandle> {
+    let handle: FileHandle;
     try {
-      return await open(dir.at(name), O_RDONLY | O_NOFOLLOW);
+      handle = await open(dir.at(name), O_RDONLY | O_NOFOLLOW | O_NONBLOCK);
     } catch (e) {
       throw refusedLink(e, shown);
     }
+    const st = await handle.stat().catch(() => undefined);
+    if (!st?.isFile() && !st?.isDirectory()) {
+      await handle.close().catch(() => undefined);
+      throw new HttpError(400, `${shown} is not a regular file (a FIFO, socket or device): not opened`);
+    }
+    return handle;
   }
 
   /** The entry's lstat, or undefined when it does not exist. */
