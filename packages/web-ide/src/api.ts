@@ -40,6 +40,25 @@ async function call<T>(method: string, url: string, body?: unknown, raw = false,
 
 const q = (p: string) => encodeURIComponent(p);
 
+/** A CSV log of the workspace as text (GET /api/log: bounded for logs, not for the editor's tabs). */
+async function readLog(path: string): Promise<string> {
+  let res: Response;
+  try {
+    res = await fetch(`/api/log?path=${q(path)}`);
+  } catch {
+    throw new ApiError(0, 'server unreachable');
+  }
+  if (res.ok) return res.text();
+  const text = await res.text().catch(() => '');
+  let error = `HTTP ${res.status}`;
+  try {
+    error = (JSON.parse(text) as { error?: string }).error ?? error;
+  } catch {
+    /* not JSON */
+  }
+  throw new ApiError(res.status, error);
+}
+
 /** The WebSocket URL of a path of this server (ws:, or wss: when the page came over https). */
 export function socketUrl(path: string): string {
   return `${location.protocol === 'https:' ? 'wss' : 'ws'}://${location.host}${path}`;
@@ -66,6 +85,8 @@ export const api = {
   info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
   tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
   read: (path: string) => call<FileReadResponse>('GET', `/api/file?path=${q(path)}`),
+  /** A run's CSV log in the workspace, for a replay (up to 256 MiB, where `read` stops at 8 MiB). */
+  readLog,
   /**
    * Saves a file edited from version `base` (If-Match; 409 + staleDetails when the disk moved on;
    * no base = a blind write). For a generated file the answer may be `merged` (the text now on disk is in `content`).

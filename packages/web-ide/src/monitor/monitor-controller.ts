@@ -165,14 +165,18 @@ export class MonitorController {
   async openFolder(folder: string): Promise<void> {
     const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
     const files: LogFile[] = [];
+    const leftOut: string[] = [];
     for (const p of paths) {
+      const name = p.slice(p.lastIndexOf('/') + 1);
       try {
-        files.push({ name: p.slice(p.lastIndexOf('/') + 1), text: (await api.read(p)).content });
-      } catch {
-        /* unreadable: left out */
+        files.push({ name, text: await api.readLog(p) });
+      } catch (e) {
+        leftOut.push(`${name}: ${(e as Error).message}`); // said in the label: a replay never misses a log silently
       }
     }
-    const run: Run = { id: `dir:${folder}`, label: `${files.length} CSV log(s) in ${folder || 'the workspace root'}`, model: modelOf(files), live: false };
+    const where = folder || 'the workspace root';
+    const label = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})` : `${files.length} CSV log(s) in ${where}`;
+    const run: Run = { id: `dir:${folder}`, label, model: modelOf(files), live: false };
     this.runs.set(run.id, run);
     await this.show(run.id);
   }

@@ -75,7 +75,7 @@ export class TimelineView {
     const problems: string[] = [];
     for (const f of csvs) {
       try {
-        files.push({ name: f, text: (await api.read(f)).content });
+        files.push({ name: f, text: await api.readLog(f) });
       } catch (e) {
         problems.push(`${f}: ${(e as Error).message}`);
       }

@@ -6,7 +6,7 @@
  *   live when the build service streams trace events, and on the job's recorded logs after the run.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, existsSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdirSync, readdirSync, readFileSync, truncateSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
@@ -18,6 +18,8 @@ const canBuild =
   spawnSync('bwrap', ['--version']).status === 0;
 // the build service streams the run's trace (docs/build-service-api.md "Trace channel") once its trace tail is in
 const liveChannel = await import('@contract-studio/build-service').then(() => existsSync(fileURLToPath(new URL('../../../build-service/src/pipeline/trace-tail.ts', import.meta.url))));
+/** ORD releases in the long run's log: 9.6 MB of CSV. */
+const LONG_RUN_RELEASES = 80_000;
 const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run', import.meta.url));
 
 type Page = Session['page'];
@@ -80,6 +82,14 @@ describe('Monitor in headless Chromium', () => {
     s = await startSession();
     mkdirSync(join(s.workspace, 'recorded'));
     cpSync(FIXTURE, join(s.workspace, 'recorded'), { recursive: true });
+    // a longer run's logs (`contract run` writes them to PROJECT/logs): ORD's, past the editor's
+    // 8 MiB file bound, and one past the replay's 256 MiB bound (sparse: no disk used)
+    mkdirSync(join(s.workspace, 'long-run'));
+    const ord = ['mono_ns,wall_time,module,event,peer,port,size,detail', '999000000,2026-11-29T10:00:00.000000Z,ORD,scheduler,,,0,activate S'];
+    for (let i = 0; i < LONG_RUN_RELEASES; i++) ord.push(`${1_000_000_000 + i * 1_000_000},2026-11-29T10:00:01.000000Z,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
+    writeFileSync(join(s.workspace, 'long-run', 'ORD_29-Nov-2026-10h00m00s.csv'), ord.join('\n') + '\n');
+    writeFileSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), '');
+    truncateSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), 256 * 1024 * 1024 + 1);
     await openIde(s);
   }, 60_000);
   afterAll(async () => {
@@ -133,6 +143,18 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.side-pane .monitor-view').waitFor();
     expect(await page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
   });
+
+  it('replays workspace logs past the editor\'s 8 MiB bound whole, and names a log it leaves out', async () => {
+    const { page } = s;
+    await page.locator('.monitor-sources').selectOption('dir:long-run');
+    // before GET /api/log the replay took the logs through GET /api/file, 413 past 8 MiB, and left ORD's out without a word
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
+      .toMatch(/^1 of 2 CSV logs in long-run \(left out: CTL_29-Nov-2026-10h00m00s\.csv: .*larger than 256 MiB/);
+    expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LONG_RUN_RELEASES + 1);
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('End');
+    await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe(String(LONG_RUN_RELEASES));
+  }, 60_000);
 
   it('live path: TraceEvents of a run, fed at the run\'s own pace, are followed live and give the same story at the same times as its replay', async () => {
     const { page } = s;

@@ -1,0 +1,73 @@
+/** GET /api/log: a run's CSV log of the workspace for a replay, past the editor's 8 MiB bound, never through a link or a FIFO. */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { execFileSync } from 'node:child_process';
+import { mkdtempSync, mkdirSync, writeFileSync, symlinkSync, rmSync, realpathSync, truncateSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { startIdeServer, type IdeServer } from './ide-server.js';
+import { LOG_READ_BYTES } from './log-api.js';
+
+let base: string;
+let ws: string;
+let ide: IdeServer;
+let big: string;
+
+beforeAll(async () => {
+  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-log-api-')));
+  ws = join(base, 'ws');
+  mkdirSync(join(ws, 'logs'), { recursive: true });
+  // 9.5 MiB of a 1 kHz schema's releases: past GET /api/file's 8 MiB
+  const lines = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
+  for (let i = 0; lines.length < 90_000; i++) lines.push(`${1_000_000_000 + i * 1_000_000},w,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
+  big = lines.join('\n') + '\n';
+  writeFileSync(join(ws, 'logs', 'ORD_29-Nov-2026-10h00m00s.csv'), big);
+  writeFileSync(join(ws, 'logs', 'empty_1.csv'), '');
+  writeFileSync(join(ws, 'notes.txt'), 'not a log');
+  writeFileSync(join(ws, 'huge_1.csv'), '');
+  truncateSync(join(ws, 'huge_1.csv'), LOG_READ_BYTES + 1); // sparse: no disk used
+  writeFileSync(join(base, 'secret.csv'), 'secret');
+  symlinkSync(join(base, 'secret.csv'), join(ws, 'logs', 'link_1.csv'));
+  execFileSync('mkfifo', [join(ws, 'logs', 'fifo_1.csv')]);
+  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+});
+afterAll(async () => {
+  await ide.close();
+  rmSync(base, { recursive: true, force: true });
+});
+
+const get = (path: string) => fetch(`${ide.url}${path}`, { headers: { 'x-contract-token': ide.token } });
+
+describe('GET /api/log', () => {
+  it('gives a log past 8 MiB whole, as text, where GET /api/file refuses it', async () => {
+    expect(big.length).toBeGreaterThan(8 * 1024 * 1024);
+    const file = await get('/api/file?path=logs/ORD_29-Nov-2026-10h00m00s.csv');
+    expect(file.status).toBe(413);
+    const log = await get('/api/log?path=logs/ORD_29-Nov-2026-10h00m00s.csv');
+    expect(log.status).toBe(200);
+    expect(log.headers.get('content-type')).toMatch(/^text\/plain/);
+    expect(await log.text()).toBe(big);
+    const empty = await get('/api/log?path=logs/empty_1.csv');
+    expect(empty.status).toBe(200);
+    expect(await empty.text()).toBe('');
+  });
+
+  it('refuses what is not a CSV log of the workspace, each with its reason', async () => {
+    const cases: Array<[string, number, RegExp]> = [
+      ['notes.txt', 400, /not a CSV log/],
+      ['huge_1.csv', 413, /larger than 256 MiB/],
+      ['logs/link_1.csv', 403, /link/i],
+      ['logs/fifo_1.csv', 400, /not a regular file/],
+      ['../secret.csv', 403, /'\.\.'/],
+      ['logs/none.csv', 404, /./],
+    ];
+    for (const [path, status, why] of cases) {
+      const res = await get(`/api/log?path=${encodeURIComponent(path)}`);
+      expect(res.status, path).toBe(status);
+      expect(((await res.json()) as { error: string }).error, path).toMatch(why);
+    }
+  });
+
+  it('needs the session token', async () => {
+    expect((await fetch(`${ide.url}/api/log?path=logs/empty_1.csv`)).status).toBe(401);
+  });
+});

@@ -1,0 +1,44 @@
+/**
+ * GET /api/log?path=P.csv -> the CSV log's bytes as text/plain (workspace-relative path, a regular
+ * file named *.csv, opened without following links: workspace-fs.ts).
+ *
+ * The Monitor's and the Timeline's replay of a run's logs in the workspace (`contract run` writes
+ * them to PROJECT/logs, `make run` to src-gen/generated/architecture/logs) read them here, not with
+ * GET /api/file: that answer is bounded at 8 MiB for the editor's tabs, and a 1 kHz schema's ORD
+ * log passes 8 MiB in about 20 s of run, so a replay of a longer run lost its scheduler records.
+ * The bound here is the build service's for a collected log (the same files, had from a Build &
+ * Run job): LOG_READ_BYTES. The bytes are streamed from the file to the size seen when it was
+ * opened (a log still written to stays whole up to there), never held whole in the server.
+ */
+import type { IncomingMessage, ServerResponse } from 'node:http';
+import { pipeline } from 'node:stream/promises';
+import { HttpError } from './http-error.js';
+import { WorkspaceFs } from './workspace-fs.js';
+import type { WorkspacePaths } from './workspace-paths.js';
+
+/** Largest CSV log read for a replay (the build service's ARTIFACT_BOUNDS.fileBytes). */
+export const LOG_READ_BYTES = 256 * 1024 * 1024;
+
+/** Answers GET /api/log; false for any other request. */
+export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
+  if (req.method !== 'GET' || url.pathname !== '/api/log') return false;
+  const rel = paths.entry(url.searchParams.get('path'));
+  if (!rel.endsWith('.csv')) throw new HttpError(400, `${rel} is not a CSV log (*.csv): only logs are read here`);
+  await paths.fs.withParent(rel, false, async (dir, name) => {
+    const handle = await WorkspaceFs.openFile(dir, name, rel);
+    try {
+      const st = await handle.stat();
+      if (!st.isFile()) throw new HttpError(400, `${rel} is a folder`);
+      if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the bound of a log collected from a Build & Run job)`);
+      res.writeHead(200, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store', 'x-log-bytes': String(st.size) });
+      if (st.size === 0) {
+        res.end();
+        return;
+      }
+      await pipeline(handle.createReadStream({ start: 0, end: st.size - 1, autoClose: false }), res);
+    } finally {
+      await handle.close().catch(() => undefined);
+    }
+  });
+  return true;
+}
