@@ -142,7 +142,9 @@ export class MonitorController {
       live.label = `Build & Run job ${jobId} · as streamed`;
       if (!live.model.recordCount) this.runs.delete(live.id); // no live trace (an older build service): the logs tell it all
     }
-    const run: Run = { id: `job:${jobId}`, label: `Build & Run job ${jobId} · CSV logs`, model: modelOf(logs.files), live: false };
+    // a log the service left out or capped, or one that could not be downloaded, is said: the replay lacks it
+    const label = `Build & Run job ${jobId} · CSV logs${logs.problems.length ? ` (not whole: ${logs.problems.join('; ')})` : ''}`;
+    const run: Run = { id: `job:${jobId}`, label, model: modelOf(logs.files), live: false };
     this.runs.set(run.id, run);
     // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown

@@ -34,12 +34,12 @@ describe('run logs', () => {
       return ((url: string) => fetch(base + url)) as typeof fetch;
     }
 
-    it('downloads every CSV of the listing and reports skipped or missing files as problems', async () => {
+    it('downloads every CSV of the listing and reports skipped or missing logs as problems (not other artifacts)', async () => {
       const listing = {
         id: 'j 1', status: 'succeeded',
         artifacts: {
           files: [{ name: 'MSC_1.csv', size: 1 }, { name: 'MSA_1.csv', size: 1, capped: 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written' }, { name: 'gone.csv', size: 1 }, { name: 'core.bin', size: 1 }],
-          skipped: [{ name: 'planted.csv', reason: 'not a regular file (symlink): not followed' }], runDirLeftovers: [], collect_ms: 1,
+          skipped: [{ name: 'planted.csv', reason: 'not a regular file (symlink): not followed' }, { name: 'core', reason: '3000000000 bytes, above the 268435456-byte file bound' }], runDirLeftovers: [], collect_ms: 1,
         },
       };
       const f = await serve({
