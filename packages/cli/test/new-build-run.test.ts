@@ -1,6 +1,6 @@
 /** `contract new`, `build`, `run`: usage errors, messages, exit codes, text output — real commands on real files. */
 import { spawnSync } from 'node:child_process';
-import { chmodSync, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, symlinkSync, writeFileSync } from 'node:fs';
+import { chmodSync, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -209,6 +209,23 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(code).toBe(0);
         const mis = readdirSync(join(root, 'robot-logs')).find((f) => f.startsWith('MIS_'))!;
         expect(readFileSync(join(root, 'robot-logs', mis), 'utf8')).toContain('function mission started');
+    }, 240_000);
+
+    it('does not write the logs through a link the project folder holds as DIR/logs; writes them into a real DIR/logs', async () => {
+        // a cloned project can hold logs -> anywhere: the run's CSV files would land there
+        const victim = join(root, 'victim');
+        mkdirSync(victim);
+        symlinkSync(victim, join(root, 'robot', 'logs'));
+        const io = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s'], io)).toBe(1);
+        expect(io.stderr).toBe(`contract run: ${join(root, 'robot', 'logs')} is a symbolic link (to ${victim}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT\n`);
+        expect(io.stdout).toBe(''); // refused before the run
+        expect(readdirSync(victim)).toEqual([]);
+        rmSync(join(root, 'robot', 'logs'));
+        const ok = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s'], ok)).toBe(0);
+        expect(ok.stderr).toContain(`CSV logs: 4 file(s) in ${join(root, 'robot', 'logs')}`);
+        expect(readdirSync(join(root, 'robot', 'logs')).filter((f) => f.endsWith('.csv'))).toHaveLength(4);
     }, 240_000);
 
     it("starts nothing with --start ''", async () => {

@@ -66,18 +66,42 @@ export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
 }
 
 /**
- * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
- * `job.artifacts`), into `to`; never writes through a link found there.
+ * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
+ * folder, which is not trusted (a cloned repository can hold any symlink): a link there would have
+ * the run's CSV files written wherever it points. A folder the user names with --logs is theirs to
+ * choose, link or not.
  */
-async function saveLogs(artifacts: RunArtifacts | null, to: string): Promise<string[]> {
+async function refusedDefaultLogs(logsDir: string): Promise<string | null> {
+    const st = await fsp.lstat(logsDir).catch(() => null);
+    if (!st || st.isDirectory()) return null;
+    if (st.isSymbolicLink()) {
+        const target = await fsp.readlink(logsDir).catch(() => '?');
+        return `${logsDir} is a symbolic link (to ${target}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT`;
+    }
+    return `${logsDir} is not a folder: remove it, or name a folder with --logs OUT`;
+}
+
+/**
+ * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
+ * `job.artifacts`), into `to`; never writes through a link found there (the folder itself, when
+ * `noFollowDir`, opened O_NOFOLLOW and written through its descriptor: a link put there during the
+ * run is not followed either).
+ */
+async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<string[]> {
     const saved: string[] = [];
-    for (const file of artifacts?.files ?? []) {
-        if (!/^[\w.-]+\.csv$/.test(file.name)) continue;
-        await fsp.mkdir(to, { recursive: true });
-        const handle = await fsp.open(join(to, file.name), constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
-        // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
-        await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
-        saved.push(file.name);
+    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name));
+    if (!files.length) return saved;
+    await fsp.mkdir(to, { recursive: true });
+    const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));
+    try {
+        for (const file of files) {
+            const handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
+            // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
+            await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
+            saved.push(file.name);
+        }
+    } finally {
+        await dir.close().catch(() => {});
     }
     return saved.sort();
 }
@@ -91,7 +115,7 @@ export const runCommand: Command = {
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
-        '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs; collected from every sandbox, docker included)',
+        '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included)',
         '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel; as `contract trace --format json`)',
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
@@ -109,6 +133,13 @@ export const runCommand: Command = {
         const realtime = parsed.options.get('realtime') === true;
         const logsOption = parsed.options.get('logs');
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
+        const defaultLogs = typeof logsOption !== 'string';
+        // said before the run, not after it
+        const refused = defaultLogs ? await refusedDefaultLogs(logsDir) : null;
+        if (refused) {
+            io.err(`contract run: ${refused}\n`);
+            return EXIT_FAILURE;
+        }
         const traceOption = parsed.options.get('trace');
         const traceFile = typeof traceOption === 'string' ? resolve(io.cwd, traceOption) : null;
 
@@ -131,7 +162,7 @@ export const runCommand: Command = {
         const artifacts = outcome.job.artifacts;
         let logs: string[];
         try {
-            logs = await saveLogs(artifacts, logsDir);
+            logs = await saveLogs(artifacts, logsDir, defaultLogs);
         } catch (e) {
             io.err(`contract run: cannot write the CSV logs to ${logsDir}: ${(e as Error).message}\n`);
             return EXIT_FAILURE;
