@@ -1,9 +1,10 @@
 /**
- * Ctrl+C on `contract run`: the job is cancelled, every process stopped, exit 130, no workspace left.
+ * Ctrl+C on `contract run` (or its output's reader gone: `| head`): the job is cancelled, every process stopped, exit 130, no workspace left.
  * `kill -9` of `contract build` mid-make: the project's kept work tree is not trusted by the next
  * build (docs/getting-started.md "The build cache"), which is not blocked by the dead one's lock.
  */
-import { spawn } from 'node:child_process';
+import { spawn, type ChildProcessByStdio } from 'node:child_process';
+import type { Readable } from 'node:stream';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { BIN, contract, leftoverWorkspaces, processesMentioning, scratchCopy, type Scratch } from './harness.js';
 
@@ -11,60 +12,48 @@ let scratch: Scratch;
 beforeAll(() => { scratch = scratchCopy('tutorial'); });
 afterAll(() => scratch?.dispose());
 
+/** `contract run tutorial` for 60 s; resolves once the mission started, with its exit and its stderr so far. */
+async function runningTutorial(): Promise<{ child: ChildProcessByStdio<null, Readable, Readable>; exited: Promise<number | null>; stderr: () => string }> {
+    const child = spawn(process.execPath, [BIN, 'run', 'tutorial', '--sandbox', 'bwrap', '--duration', '60s'], {
+        cwd: scratch.root,
+        env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
+        stdio: ['ignore', 'pipe', 'pipe'],
+    });
+    let stdout = '';
+    let stderr = '';
+    child.stderr.on('data', (d: Buffer) => { stderr += d.toString(); });
+    const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
+    await new Promise<void>((resolve) => {
+        child.stdout.on('data', (d: Buffer) => {
+            stdout += d.toString();
+            if (stdout.includes('contract-launch: started GLB.mission')) resolve();
+        });
+    });
+    return { child, exited, stderr: () => stderr };
+}
+
 describe('contract run interrupted', () => {
     it('stops everything within seconds of SIGINT and exits 130', async () => {
-        const child = spawn(process.execPath, [BIN, 'run', 'tutorial', '--sandbox', 'bwrap', '--duration', '60s'], {
-            cwd: scratch.root,
-            env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
-            stdio: ['ignore', 'pipe', 'pipe'],
-        });
-        let stdout = '';
-        let stderr = '';
-        child.stderr.on('data', (d: Buffer) => { stderr += d.toString(); });
-        const running = new Promise<void>((resolve) => {
-            child.stdout.on('data', (d: Buffer) => {
-                stdout += d.toString();
-                if (stdout.includes('contract-launch: started GLB.mission')) resolve();
-            });
-        });
-        const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
-        await running;
+        const run = await runningTutorial();
         const sent = Date.now();
-        child.kill('SIGINT');
-        const code = await exited;
+        run.child.kill('SIGINT');
+        const code = await run.exited;
         expect(Date.now() - sent).toBeLessThan(5000);
         expect(code).toBe(130);
-        expect(stderr).toContain('FAILED: cancelled');
+        expect(run.stderr()).toContain('FAILED: cancelled');
         expect(processesMentioning(scratch.root)).toEqual([]);
         expect(leftoverWorkspaces(scratch)).toEqual([]);
     }, 240_000);
-});
 
-describe('contract run whose output reader goes away', () => {
-    it('stops as on Ctrl+C (`contract run … | head`): exit 130, no stack trace, nothing left running', async () => {
-        const child = spawn(process.execPath, [BIN, 'run', 'tutorial', '--sandbox', 'bwrap', '--duration', '60s'], {
-            cwd: scratch.root,
-            env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
-            stdio: ['ignore', 'pipe', 'pipe'],
-        });
-        let stdout = '';
-        let stderr = '';
-        child.stderr.on('data', (d: Buffer) => { stderr += d.toString(); });
-        const running = new Promise<void>((resolve) => {
-            child.stdout.on('data', (d: Buffer) => {
-                stdout += d.toString();
-                if (stdout.includes('contract-launch: started GLB.mission')) resolve();
-            });
-        });
-        const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
-        await running;
+    it('stops as on Ctrl+C when the reader of its output goes away (`contract run … | head`): exit 130, no stack trace, nothing left running', async () => {
+        const run = await runningTutorial();
         const closed = Date.now();
-        child.stdout.destroy(); // the reader is gone: the run's next line meets a closed pipe
-        const code = await exited;
+        run.child.stdout.destroy(); // the reader is gone: the run's next line meets a closed pipe
+        const code = await run.exited;
         expect(Date.now() - closed).toBeLessThan(10_000);
         expect(code).toBe(130);
-        expect(stderr).toContain('FAILED: cancelled');
-        expect(stderr).not.toMatch(/EPIPE|Unhandled|    at /);
+        expect(run.stderr()).toContain('FAILED: cancelled');
+        expect(run.stderr()).not.toMatch(/EPIPE|Unhandled|    at /);
         expect(processesMentioning(scratch.root)).toEqual([]);
         expect(leftoverWorkspaces(scratch)).toEqual([]);
     }, 240_000);
