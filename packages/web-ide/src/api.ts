@@ -40,13 +40,21 @@ async function call<T>(method: string, url: string, body?: unknown, raw = false,
 
 const q = (p: string) => encodeURIComponent(p);
 
-/** A CSV log of the workspace as text (GET /api/log: bounded for logs, not for the editor's tabs). */
-async function readLog(path: string): Promise<string> {
+/**
+ * A CSV log of the workspace as text (GET /api/log: bounded for logs, not for the editor's tabs).
+ * `maxBytes`: a log larger than that (the server says its size first) is not downloaded: 413.
+ */
+async function readLog(path: string, maxBytes = Infinity): Promise<string> {
   let res: Response;
   try {
     res = await fetch(`/api/log?path=${q(path)}`);
   } catch {
     throw new ApiError(0, 'server unreachable');
+  }
+  const size = Number(res.headers.get('x-log-bytes') ?? 0);
+  if (res.ok && size > maxBytes) {
+    await res.body?.cancel().catch(() => undefined);
+    throw new ApiError(413, `${size} bytes, past the ${maxBytes} bytes left of the replay's bound`);
   }
   if (res.ok) return res.text();
   const text = await res.text().catch(() => '');
@@ -85,7 +93,7 @@ export const api = {
   info: () => call<{ workspace: string; name: string; buildService: string; buildAvailable: boolean }>('GET', '/api/info'),
   tree: () => call<{ root: string; entries: TreeEntry[] }>('GET', '/api/tree'),
   read: (path: string) => call<FileReadResponse>('GET', `/api/file?path=${q(path)}`),
-  /** A run's CSV log in the workspace, for a replay (up to 256 MiB, where `read` stops at 8 MiB). */
+  /** A run's CSV log in the workspace, for a replay (up to 256 MiB, where `read` stops at 8 MiB; `maxBytes`: not downloaded beyond). */
   readLog,
   /**
    * Saves a file edited from version `base` (If-Match; 409 + staleDetails when the disk moved on;

@@ -26,8 +26,9 @@ const MAX_LINES_PER_EVENT = 100_000;
 const MAX_LINE = 4096;
 /** Longest stretch of folding trace lines without yielding to rendering and input. */
 const INGEST_SLICE_MS = 8;
-/** CSV files read from the workspace for one replay, and bytes per file. */
+/** CSV files read from the workspace for one replay, and their bytes in all (the browser holds them and their records). */
 const MAX_FILES = 256;
+const MAX_REPLAY_BYTES = 512 * 1024 * 1024;
 
 interface Run {
   id: string;
@@ -44,6 +45,8 @@ export class MonitorController {
   private previous: HTMLElement | undefined;
   /** The model of the last Build & Run's live trace (tests compare it with the job's logs). */
   lastLive: MonitorModel | undefined;
+  /** Bytes of workspace logs one replay reads in all; the logs past it are left out and named (a test lowers it). */
+  replayBytes = MAX_REPLAY_BYTES;
 
   constructor(
     private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
@@ -168,10 +171,13 @@ export class MonitorController {
     const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
     const files: LogFile[] = [];
     const leftOut: string[] = [];
+    let room = this.replayBytes;
     for (const p of paths) {
       const name = p.slice(p.lastIndexOf('/') + 1);
       try {
-        files.push({ name, text: await api.readLog(p) });
+        const text = await api.readLog(p, room);
+        room -= text.length;
+        files.push({ name, text });
       } catch (e) {
         leftOut.push(`${name}: ${(e as Error).message}`); // said in the label: a replay never misses a log silently
       }
