@@ -108,15 +108,18 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
 
 /** The records of one log file, in file order (header and empty lines are not records). */
 export function parseLogFile(file: LogFile): TraceRecord[] {
-    const out: TraceRecord[] = [];
+    return [...logFileRecords(file)];
+}
+
+function* logFileRecords(file: LogFile): Generator<TraceRecord> {
     const lines = file.text.split('\n');
     if (lines.length && lines[lines.length - 1] === '') lines.pop();
-    lines.forEach((raw, i) => {
+    for (let i = 0; i < lines.length; i++) {
+        const raw = lines[i]!;
         const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
-        if (line === '' || (i === 0 && line === CSV_HEADER)) return;
-        out.push(parseRecordLine(file.name, i + 1, line));
-    });
-    return out;
+        if (line === '' || (i === 0 && line === CSV_HEADER)) continue;
+        yield parseRecordLine(file.name, i + 1, line);
+    }
 }
 
 /**
@@ -125,15 +128,32 @@ export function parseLogFile(file: LogFile): TraceRecord[] {
  * unknown record stays right after the record that preceded it in its file.
  */
 export function parseTrace(files: LogFile[]): TraceRecord[] {
+    const steps = parseTraceSteps(files, Infinity);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    return step.value;
+}
+
+/**
+ * parseTrace's work in steps, for a caller that must not stop for its whole length (the IDE's
+ * Monitor builds a recorded run of hundreds of thousands of records without freezing its page):
+ * yields after every `every` records parsed, and once before the final sort; returns what
+ * parseTrace returns.
+ */
+export function* parseTraceSteps(files: LogFile[], every = 2000): Generator<void, TraceRecord[]> {
     const keyed: { key: bigint; file: number; index: number; record: TraceRecord }[] = [];
     const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
-    sorted.forEach((file, fi) => {
+    let parsed = 0;
+    for (let fi = 0; fi < sorted.length; fi++) {
         let last = 0n;
-        parseLogFile(file).forEach((record, index) => {
+        let index = 0;
+        for (const record of logFileRecords(sorted[fi]!)) {
             if (record.kind !== 'unknown') last = BigInt((record as KnownRecord).monoNs);
-            keyed.push({ key: last, file: fi, index, record });
-        });
-    });
+            keyed.push({ key: last, file: fi, index: index++, record });
+            if (++parsed % every === 0) yield;
+        }
+    }
+    yield;
     keyed.sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.file - b.file || a.index - b.index));
     return keyed.map((k) => k.record);
 }

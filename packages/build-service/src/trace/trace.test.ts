@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, parseTraceSteps, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -93,6 +93,20 @@ describe('reading a log', () => {
         const b = { name: 'A_1.csv', text: `${CSV_HEADER}\n5,w,A,error,,,0,a5\n7,w,A,error,,,0,a7\n` };
         const order = parseTrace([a, b]).map((r) => (r.kind === 'unknown' ? 'bad' : (r as KnownRecord).detail));
         expect(order).toEqual(['a5', 'b5', 'bad', 'a7', 'b9']);
+    });
+
+    it('parseTraceSteps gives what parseTrace gives, pausing every so many records (any files, any step)', () => {
+        const line = fc.oneof(fc.constant('bad'), fc.tuple(fc.integer({ min: 0, max: 50 }), fc.constantFrom('A', 'B')).map(([t, m]) => `${t},w,${m},error,,,0,d${t}`));
+        const file = fc.tuple(fc.constantFrom('A_1.csv', 'B_1.csv', 'C_1.csv'), fc.array(line, { maxLength: 30 })).map(([name, lines]) => ({ name, text: [CSV_HEADER, ...lines].join('\n') + '\n' }));
+        fc.assert(fc.property(fc.array(file, { maxLength: 4 }), fc.integer({ min: 1, max: 7 }), (files, every) => {
+            const steps = parseTraceSteps(files, every);
+            let pauses = 0;
+            let step = steps.next();
+            for (; !step.done; step = steps.next()) pauses++;
+            const records = parseTrace(files);
+            expect(step.value).toEqual(records);
+            expect(pauses).toBe(Math.floor(records.length / every) + 1);
+        }));
     });
 
     it('tells the run: rule changes with causes, deadline misses with their cycle, counts', () => {
