@@ -12,6 +12,7 @@ export interface Activation {
 }
 
 export function parseCsvLine(line: string): string[] {
+  if (!line.includes('"')) return line.split(',');
   const out: string[] = [];
   let cur = '';
   let quoted = false;
@@ -42,7 +43,12 @@ export function activationsFromCsv(text: string): Activation[] {
   if (iMono < 0 || iModule < 0 || iEvent < 0) throw new Error('not a ContrACT CSV log (missing mono_ns/module/event columns)');
   const open = new Map<string, Activation>();
   const out: Activation[] = [];
-  for (const l of lines.slice(1)) {
+  // only run_started / run_finished lines matter (a 1 kHz run's logs are most of a million lines):
+  // with the event column between two others, such a line holds `,run_started,` or `,run_finished,`
+  const inside = iEvent > 0 && iEvent < header.length - 1;
+  for (let n = 1; n < lines.length; n++) {
+    const l = lines[n]!;
+    if (inside && !l.includes(',run_started,') && !l.includes(',run_finished,')) continue;
     const f = parseCsvLine(l);
     const t = Number(f[iMono]);
     const module = f[iModule] ?? '?';
