@@ -112,10 +112,13 @@ export function parseLogFile(file: LogFile): TraceRecord[] {
 }
 
 function* logFileRecords(file: LogFile): Generator<TraceRecord> {
-    const lines = file.text.split('\n');
-    if (lines.length && lines[lines.length - 1] === '') lines.pop();
-    for (let i = 0; i < lines.length; i++) {
-        const raw = lines[i]!;
+    // line by line (not one split of the whole text: a log of hundreds of MB would be one long step)
+    const text = file.text;
+    for (let pos = 0, i = 0; pos < text.length; i++) {
+        let nl = text.indexOf('\n', pos);
+        if (nl < 0) nl = text.length;
+        const raw = text.slice(pos, nl);
+        pos = nl + 1;
         const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
         if (line === '' || (i === 0 && line === CSV_HEADER)) continue;
         yield parseRecordLine(file.name, i + 1, line);
@@ -134,26 +137,66 @@ export function parseTrace(files: LogFile[]): TraceRecord[] {
     return step.value;
 }
 
+interface Keyed {
+    key: bigint;
+    index: number;
+    record: TraceRecord;
+}
+
 /**
  * parseTrace's work in steps, for a caller that must not stop for its whole length (the IDE's
  * Monitor builds a recorded run of hundreds of thousands of records without freezing its page):
- * yields after every `every` records parsed, and once before the final sort; returns what
- * parseTrace returns.
+ * yields after every `every` records parsed and every `every` records merged; returns what
+ * parseTrace returns. Each file's records are sorted on their own (a log is in time order but
+ * for hostile or clock-stepped lines: a sort of a sorted array is one pass), then merged.
  */
 export function* parseTraceSteps(files: LogFile[], every = 2000): Generator<void, TraceRecord[]> {
-    const keyed: { key: bigint; file: number; index: number; record: TraceRecord }[] = [];
     const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+    const runs: Keyed[][] = [];
     let parsed = 0;
-    for (let fi = 0; fi < sorted.length; fi++) {
+    for (const file of sorted) {
+        const run: Keyed[] = [];
         let last = 0n;
-        let index = 0;
-        for (const record of logFileRecords(sorted[fi]!)) {
+        for (const record of logFileRecords(file)) {
             if (record.kind !== 'unknown') last = BigInt((record as KnownRecord).monoNs);
-            keyed.push({ key: last, file: fi, index: index++, record });
+            run.push({ key: last, index: run.length, record });
             if (++parsed % every === 0) yield;
         }
+        run.sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.index - b.index));
+        runs.push(run);
     }
-    yield;
-    keyed.sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.file - b.file || a.index - b.index));
-    return keyed.map((k) => k.record);
+    // merge: a binary heap of the files by their next record (time, then file order)
+    const at = runs.map(() => 0);
+    const before = (f: number, g: number): boolean => {
+        const a = runs[f]![at[f]!]!.key;
+        const b = runs[g]![at[g]!]!.key;
+        return a < b || (a === b && f < g);
+    };
+    const heap: number[] = [];
+    const down = (i: number): void => {
+        for (;;) {
+            const l = 2 * i + 1;
+            const r = l + 1;
+            let m = i;
+            if (l < heap.length && before(heap[l]!, heap[m]!)) m = l;
+            if (r < heap.length && before(heap[r]!, heap[m]!)) m = r;
+            if (m === i) return;
+            [heap[i], heap[m]] = [heap[m]!, heap[i]!];
+            i = m;
+        }
+    };
+    runs.forEach((run, f) => run.length && heap.push(f));
+    for (let i = (heap.length >> 1) - 1; i >= 0; i--) down(i);
+    const out: TraceRecord[] = [];
+    while (heap.length) {
+        const f = heap[0]!;
+        out.push(runs[f]![at[f]!++]!.record);
+        if (at[f]! >= runs[f]!.length) {
+            heap[0] = heap[heap.length - 1]!;
+            heap.pop();
+        }
+        if (heap.length) down(0);
+        if (out.length % every === 0) yield;
+    }
+    return out;
 }

@@ -95,7 +95,18 @@ describe('reading a log', () => {
         expect(order).toEqual(['a5', 'b5', 'bad', 'a7', 'b9']);
     });
 
-    it('parseTraceSteps gives what parseTrace gives, pausing every so many records (any files, any step)', () => {
+    it('parseTrace / parseTraceSteps order as one stable sort of every record by time, then file name, then line (any files, times out of order included, any step)', () => {
+        /** The definition: every record keyed by its time (an unknown line by the time before it in its file), one stable sort. */
+        const reference = (files: { name: string; text: string }[]) => [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0))
+            .flatMap((file, fi) => {
+                let last = 0n;
+                return parseLogFile(file).map((record, index) => {
+                    if (record.kind !== 'unknown') last = BigInt((record as KnownRecord).monoNs);
+                    return { key: last, fi, index, record };
+                });
+            })
+            .sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.fi - b.fi || a.index - b.index))
+            .map((k) => k.record);
         const line = fc.oneof(fc.constant('bad'), fc.tuple(fc.integer({ min: 0, max: 50 }), fc.constantFrom('A', 'B')).map(([t, m]) => `${t},w,${m},error,,,0,d${t}`));
         const file = fc.tuple(fc.constantFrom('A_1.csv', 'B_1.csv', 'C_1.csv'), fc.array(line, { maxLength: 30 })).map(([name, lines]) => ({ name, text: [CSV_HEADER, ...lines].join('\n') + '\n' }));
         fc.assert(fc.property(fc.array(file, { maxLength: 4 }), fc.integer({ min: 1, max: 7 }), (files, every) => {
@@ -104,8 +115,9 @@ describe('reading a log', () => {
             let step = steps.next();
             for (; !step.done; step = steps.next()) pauses++;
             const records = parseTrace(files);
+            expect(records).toEqual(reference(files));
             expect(step.value).toEqual(records);
-            expect(pauses).toBe(Math.floor(records.length / every) + 1);
+            expect(pauses).toBe(2 * Math.floor(records.length / every)); // every `every` records parsed, and merged
         }));
     });
 
