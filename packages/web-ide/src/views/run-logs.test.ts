@@ -57,6 +57,22 @@ describe('run logs', () => {
       expect(logs.problems[2]).toMatch(/gone\.csv: HTTP 404 no route/);
     });
 
+    it('downloads no more than its byte bound in all: the logs past it are named, not fetched', async () => {
+      const listing = { id: 'j', status: 'succeeded', artifacts: { files: [{ name: 'A_1.csv', size: 60 }, { name: 'B_1.csv', size: 50 }, { name: 'C_1.csv', size: 30 }], skipped: [] } };
+      const fetched: string[] = [];
+      const f = await serve({
+        '/api/jobs/j/artifacts': [200, JSON.stringify(listing)],
+        '/api/jobs/j/artifacts/A_1.csv': [200, log('A', [1])],
+        '/api/jobs/j/artifacts/B_1.csv': [200, log('B', [2])],
+        '/api/jobs/j/artifacts/C_1.csv': [200, log('C', [3])],
+      });
+      const counting = ((url: string) => (fetched.push(url), f(url))) as typeof fetch;
+      const logs = await fetchJobLogs('j', counting, 100);
+      expect(logs.files.map((x) => x.name)).toEqual(['A_1.csv', 'C_1.csv']);
+      expect(logs.problems).toEqual(['B_1.csv: left out (50 bytes, past the 100 bytes a replay reads in all)']);
+      expect(fetched.some((u) => u.endsWith('B_1.csv'))).toBe(false);
+    });
+
     it('fails with a clear message when the job is unknown', async () => {
       const f = await serve({});
       await expect(fetchJobLogs('nope', f)).rejects.toThrow(/artifacts: HTTP 404 no route/);

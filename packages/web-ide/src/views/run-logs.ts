@@ -58,15 +58,27 @@ async function getOk(fetchFn: typeof fetch, url: string): Promise<Response> {
   return res;
 }
 
-/** Downloads the CSV logs the build service collected from job `id` (only `.csv` files). */
-export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch): Promise<RunLogs> {
+/**
+ * Bytes of a job's CSV logs downloaded in all: the page holds them and their records (the service
+ * keeps up to 2 GiB of a job's files). The same bound as a replay of workspace logs.
+ */
+export const MAX_RUN_LOG_BYTES = 512 * 1024 * 1024;
+
+/** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */
+export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, maxBytes = MAX_RUN_LOG_BYTES): Promise<RunLogs> {
   const base = `/api/jobs/${encodeURIComponent(id)}/artifacts`;
   const listing = (await (await getOk(fetchFn, base)).json()) as ArtifactListing;
   // a skipped artifact that is not a CSV log (a core file, an output too large) is no hole in the logs
   const problems = (listing.artifacts?.skipped ?? []).filter((s) => s.name.endsWith('.csv')).map((s) => `${s.name}: ${s.reason}`);
   const files: LogFile[] = [];
+  let room = maxBytes;
   for (const f of listing.artifacts?.files ?? []) {
     if (!f.name.endsWith('.csv')) continue;
+    if (f.size > room) {
+      problems.push(`${f.name}: left out (${f.size} bytes, past the ${maxBytes} bytes a replay reads in all)`);
+      continue;
+    }
+    room -= f.size;
     if (f.capped) problems.push(`${f.name}: not whole: ${f.capped}`); // a log-capped record ends it (docs/build-service-api.md, GET /api/jobs/:id/artifacts)
     try {
       files.push({ name: f.name, text: await (await getOk(fetchFn, `${base}/${encodeURIComponent(f.name)}`)).text() });
