@@ -151,6 +151,7 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toMatch(/^1 of 2 CSV logs in long-run \(left out: CTL_29-Nov-2026-10h00m00s\.csv: .*larger than 256 MiB/);
     expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LONG_RUN_RELEASES + 1);
+    await shot(page, 'monitor-02-replay-left-out');
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe(String(LONG_RUN_RELEASES));
