@@ -32,3 +32,34 @@ export function writePart(name, result) {
   mkdirSync(out, { recursive: true });
   writeFileSync(join(out, `${name}.json`), JSON.stringify(result, null, 2) + '\n');
 }
+
+/**
+ * Puts `window.__frames` in the page: `start()` records the gaps between animation frames (ms),
+ * `stop()` waits for two more frames (a gap the measured work caused is counted) and returns them,
+ * the first two left out (the recorder's own start).
+ */
+export async function installFrameRecorder(page) {
+  await page.evaluate(() => {
+    let gaps = [];
+    let last = 0;
+    let running = false;
+    const tick = (t) => {
+      gaps.push(t - last);
+      last = t;
+      if (running) requestAnimationFrame(tick);
+    };
+    window.__frames = {
+      start() {
+        gaps = [];
+        last = performance.now();
+        running = true;
+        requestAnimationFrame(tick);
+      },
+      async stop() {
+        await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
+        running = false;
+        return gaps.slice(2);
+      },
+    };
+  });
+}

@@ -21,7 +21,7 @@
 import { cpSync, mkdirSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
-import { buildProductionIde, launchChromium, pkg, root, writePart } from './bench-support.mjs';
+import { buildProductionIde, installFrameRecorder, launchChromium, pkg, root, writePart } from './bench-support.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 40);
 const { startIdeServer } = await buildProductionIde();
@@ -151,6 +151,7 @@ try {
   // a recorded run replayed: REPLAY_SECONDS of the same 1 kHz schema as the CSV logs a job leaves
   // (one file per module), handed to the Monitor as at the end of a Build & Run; the model is built
   // in slices, so the page keeps drawing while it is
+  await installFrameRecorder(page);
   const replay = await page.evaluate(async (seconds) => {
     const ide = window.__ide;
     const W = '2026-11-26T12:00:00.000000Z';
@@ -177,24 +178,14 @@ try {
     const header = 'mono_ns,wall_time,module,event,peer,port,size,detail';
     const files = Object.entries(texts).map(([m, lines]) => ({ name: `${m}_26-Nov-2026-12h00m00s.csv`, text: [header, ...lines].join('\n') + '\n' }));
     const records = Object.values(texts).reduce((a, l) => a + l.length, 0);
-    const gaps = [];
-    let last = performance.now();
-    let running = true;
-    const tick = (t) => {
-      gaps.push(t - last);
-      last = t;
-      if (running) requestAnimationFrame(tick);
-    };
-    requestAnimationFrame(tick);
+    window.__frames.start();
     await new Promise((r) => setTimeout(r, 100));
     const start = performance.now();
     await ide.monitor.showRecorded('bench-replay', { label: 'bench', files, problems: [] });
     const buildMs = performance.now() - start;
-    // the frames after it, so that a gap the build caused is counted
-    await new Promise((r) => requestAnimationFrame(() => requestAnimationFrame(r)));
-    running = false;
+    const gaps = await window.__frames.stop();
     const shown = ide.monitor.runs.get('job:bench-replay')?.model.recordCount;
-    return { records, shown, buildMs, maxGap: Math.max(...gaps.slice(2)) };
+    return { records, shown, buildMs, maxGap: Math.max(...gaps) };
   }, Number(process.env.REPLAY_SECONDS ?? 60));
   const round = (x, d = 1) => Math.round(x * 10 ** d) / 10 ** d;
   const result = {
