@@ -7,7 +7,8 @@
  * Here a failed write closes that stream for the rest of the command: later writes to it are
  * dropped, the command goes on to its end and its exit status, and `outputClosed` is aborted when
  * it was the standard output, so that a command whose output is the point (a build or run job)
- * stops the way it does on Ctrl+C (packages/cli/README.md, "Exit status").
+ * stops the way it does on Ctrl+C (packages/cli/README.md, "Exit status"). A failure other than a
+ * closed pipe (a full disk) also makes the exit status 1 when the command's was 0.
  */
 import type { CliIO } from './command.js';
 
@@ -15,14 +16,19 @@ export function makeProcessIO(
     stdout: NodeJS.WriteStream = process.stdout,
     stderr: NodeJS.WriteStream = process.stderr,
     cwd = process.cwd(),
+    onFailedOutput: () => void = failTheProcess,
 ): CliIO {
     const closed = new AbortController();
     let outOpen = true;
     let errOpen = true;
     stdout.on('error', (e: NodeJS.ErrnoException) => {
         outOpen = false;
-        // a closed pipe is the reader's choice; any other failure (a full disk) is said
-        if (e.code !== 'EPIPE' && errOpen) stderr.write(`contract: cannot write the standard output (${e.code ?? e.message}): stopping\n`);
+        // a closed pipe is the reader's choice; any other failure (a full disk) is said, and the
+        // command does not exit 0: its output (a SARIF report, a trace) is not whole
+        if (e.code !== 'EPIPE') {
+            if (errOpen) stderr.write(`contract: cannot write the standard output (${e.code ?? e.message}): stopping\n`);
+            onFailedOutput();
+        }
         closed.abort();
     });
     stderr.on('error', () => {
@@ -38,4 +44,15 @@ export function makeProcessIO(
         cwd,
         outputClosed: closed.signal,
     };
+}
+
+/**
+ * The process ends with status 1 at the least. Set when it exits: the failed write's 'error' can
+ * come after the command has returned its status (the last write of a report), which the bin then
+ * has already taken as the exit code.
+ */
+function failTheProcess(): void {
+    process.once('exit', () => {
+        if (!process.exitCode) process.exitCode = 1;
+    });
 }

@@ -1,6 +1,6 @@
 /** `contract trace`: story and JSON lines of a log folder, hostile lines, links, usage errors. */
 import { execFileSync, spawn } from 'node:child_process';
-import { mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { closeSync, mkdtempSync, openSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -88,6 +88,23 @@ describe('contract trace', () => {
             }
         } finally {
             rmSync(big, { recursive: true, force: true });
+        }
+    });
+
+    it('a standard output that fails (a full disk) is said, and the command does not exit 0', async () => {
+        const logs = mkdtempSync(join(tmpdir(), 'contract-trace-full-'));
+        writeFileSync(join(logs, 'ORD_24-Nov-2026-18h30m15s.csv'), `${HEADER}\n2000500000,w,ORD,scheduler,,,0,activate S\n`);
+        const full = openSync('/dev/full', 'w');
+        try {
+            const child = spawn(process.execPath, [BIN, 'trace', logs, '--format', 'json'], { stdio: ['ignore', full, 'pipe'] });
+            let stderr = '';
+            child.stderr!.on('data', (d: Buffer) => { stderr += d.toString(); });
+            const code = await new Promise<number | null>((resolve) => child.on('close', (c) => resolve(c)));
+            expect(stderr).toBe('contract: cannot write the standard output (ENOSPC): stopping\n');
+            expect(code).toBe(1);
+        } finally {
+            closeSync(full);
+            rmSync(logs, { recursive: true, force: true });
         }
     });
 });
