@@ -28,14 +28,23 @@ async function call<T>(method: string, url: string, body?: unknown, raw = false,
     throw new ApiError(0, 'server unreachable');
   }
   const text = await res.text();
-  let data: unknown;
-  try {
-    data = text ? JSON.parse(text) : {};
-  } catch {
-    data = { error: text };
-  }
-  if (!res.ok) throw new ApiError(res.status, (data as { error?: string }).error ?? `HTTP ${res.status}`, data as Record<string, unknown>);
+  const data = answerOf(text);
+  if (!res.ok) throw errorOf(res.status, data);
   return data as T;
+}
+
+/** A JSON answer's value; text that is not JSON is taken as the error it says. */
+function answerOf(text: string): unknown {
+  try {
+    return text ? JSON.parse(text) : {};
+  } catch {
+    return { error: text };
+  }
+}
+
+/** The ApiError of a failed request's answer (`{error, ...details}`). */
+function errorOf(status: number, data: unknown): ApiError {
+  return new ApiError(status, (data as { error?: string }).error ?? `HTTP ${status}`, data as Record<string, unknown>);
 }
 
 const q = (p: string) => encodeURIComponent(p);
@@ -57,14 +66,7 @@ async function readLog(path: string, maxBytes = Infinity): Promise<string> {
     throw new ApiError(413, `${size} bytes, past the ${maxBytes} bytes left of the replay's bound`);
   }
   if (res.ok) return res.text();
-  const text = await res.text().catch(() => '');
-  let error = `HTTP ${res.status}`;
-  try {
-    error = (JSON.parse(text) as { error?: string }).error ?? error;
-  } catch {
-    /* not JSON */
-  }
-  throw new ApiError(res.status, error);
+  throw errorOf(res.status, answerOf(await res.text().catch(() => '')));
 }
 
 /** The WebSocket URL of a path of this server (ws:, or wss: when the page came over https). */

@@ -10,13 +10,12 @@
  * trace reader (parseRecordLine never throws).
  */
 import { parseTraceSteps, type LogFile, type TraceLine } from '@contract-studio/build-service/trace';
-import { api } from '../api.js';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
-import type { RunLogs } from '../views/run-logs.js';
+import { MAX_RUN_LOG_BYTES, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { MonitorModel } from './monitor-model.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
@@ -26,9 +25,8 @@ const MAX_LINES_PER_EVENT = 100_000;
 const MAX_LINE = 4096;
 /** Longest stretch of folding trace lines without yielding to rendering and input. */
 const INGEST_SLICE_MS = 8;
-/** CSV files read from the workspace for one replay, and their bytes in all (the browser holds them and their records). */
+/** CSV files read from the workspace for one replay. */
 const MAX_FILES = 256;
-const MAX_REPLAY_BYTES = 512 * 1024 * 1024;
 
 interface Run {
   id: string;
@@ -46,7 +44,7 @@ export class MonitorController {
   /** The model of the last Build & Run's live trace (tests compare it with the job's logs). */
   lastLive: MonitorModel | undefined;
   /** Bytes of workspace logs one replay reads in all; the logs past it are left out and named (a test lowers it). */
-  replayBytes = MAX_REPLAY_BYTES;
+  replayBytes = MAX_RUN_LOG_BYTES;
 
   constructor(
     private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
@@ -169,19 +167,8 @@ export class MonitorController {
   /** Replays the `*.csv` logs of a workspace folder. */
   async openFolder(folder: string): Promise<void> {
     const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
-    const files: LogFile[] = [];
-    const leftOut: string[] = [];
-    let room = this.replayBytes;
-    for (const p of paths) {
-      const name = p.slice(p.lastIndexOf('/') + 1);
-      try {
-        const text = await api.readLog(p, room);
-        room -= text.length;
-        files.push({ name, text });
-      } catch (e) {
-        leftOut.push(`${name}: ${(e as Error).message}`); // said in the label: a replay never misses a log silently
-      }
-    }
+    const { files, problems: leftOut } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    // said in the label: a replay never misses a log silently
     const where = folder || 'the workspace root';
     const label = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})` : `${files.length} CSV log(s) in ${where}`;
     const run: Run = { id: `dir:${folder}`, label, model: await modelOf(files), live: false };

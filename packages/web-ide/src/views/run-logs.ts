@@ -3,6 +3,7 @@
  * project's `src-gen/generated/architecture/logs/`) or those the build service collected from a
  * sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`, docs/build-service-api.md).
  */
+import { api } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
 export interface LogFile {
@@ -59,10 +60,32 @@ async function getOk(fetchFn: typeof fetch, url: string): Promise<Response> {
 }
 
 /**
- * Bytes of a job's CSV logs downloaded in all: the page holds them and their records (the service
- * keeps up to 2 GiB of a job's files). The same bound as a replay of workspace logs.
+ * Bytes of a run's CSV logs the page reads in all, a job's or a workspace folder's: it holds them
+ * and their records (the service keeps up to 2 GiB of a job's files).
  */
 export const MAX_RUN_LOG_BYTES = 512 * 1024 * 1024;
+
+/**
+ * Reads the workspace's CSV logs `paths` (GET /api/log), `maxBytes` in all: each file under the
+ * name `nameOf(path)`; a log that cannot be read or is past the bound is a problem naming why, not
+ * downloaded.
+ */
+export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<{ files: LogFile[]; problems: string[] }> {
+  const files: LogFile[] = [];
+  const problems: string[] = [];
+  let room = maxBytes;
+  for (const p of paths) {
+    const name = nameOf(p);
+    try {
+      const text = await api.readLog(p, room);
+      room -= text.length;
+      files.push({ name, text });
+    } catch (e) {
+      problems.push(`${name}: ${(e as Error).message}`);
+    }
+  }
+  return { files, problems };
+}
 
 /** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */
 export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, maxBytes = MAX_RUN_LOG_BYTES): Promise<RunLogs> {

@@ -1,8 +1,7 @@
 import { h } from '../util/dom.js';
-import { api } from '../api.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriod, type Activation } from './activation-log.js';
-import { activationsFromLogs, type LogFile, type RunLogs } from './run-logs.js';
+import { activationsFromLogs, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 
@@ -71,15 +70,7 @@ export class TimelineView {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Runs of \`make -C src-gen/generated/architecture run\` (or \`contract run\`) write them there; a Build & Run shows its own run here when it ends.`));
       return;
     }
-    const files: LogFile[] = [];
-    const problems: string[] = [];
-    for (const f of csvs) {
-      try {
-        files.push({ name: f, text: await api.readLog(f) });
-      } catch (e) {
-        problems.push(`${f}: ${(e as Error).message}`);
-      }
-    }
+    const { files, problems } = await readWorkspaceLogs(csvs, (f) => f, Infinity);
     this.drawLogs(files, problems, '');
   }
 
