@@ -1,6 +1,6 @@
 import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
-import type { RunLogs } from '../views/run-logs.js';
+import { fetchJobLogs, type RunLogs } from '../views/run-logs.js';
 import { askFields } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
@@ -153,7 +153,6 @@ export class RunController {
   private async fetchLogs(jobId: string): Promise<void> {
     const { build } = this.d;
     try {
-      const { fetchJobLogs } = await import('../views/run-logs.js');
       const logs = await fetchJobLogs(jobId);
       for (const p of logs.problems) build.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `timeline: ${p}` });
       if (!logs.files.length) return;

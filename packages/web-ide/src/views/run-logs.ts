@@ -25,7 +25,7 @@ export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; err
   const errors: string[] = [];
   for (const f of files) {
     try {
-      acts.push(...activationsFromCsv(f.text));
+      for (const a of activationsFromCsv(f.text)) acts.push(a); // not push(...): a long run's hundreds of thousands overflow the stack
     } catch (e) {
       errors.push(`${f.name}: ${(e as Error).message}`);
     }

@@ -1,6 +1,7 @@
 import { h } from '../util/dom.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriod, type Activation } from './activation-log.js';
+import { laneBars, lastTime, type LaneBar } from './timeline-bars.js';
 import { activationsFromLogs, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
@@ -26,6 +27,9 @@ export class TimelineView {
   private readonly source: HTMLSelectElement;
   private last: { acts: Activation[]; files: number; errors: string[] } | undefined;
   private run: RunLogs | undefined;
+  /** Redraws the bars of the part of the timeline on screen (after a scroll). */
+  private drawBars: (() => void) | undefined;
+  private barsPending = false;
 
   constructor(
     private readonly project: () => string,
@@ -35,6 +39,14 @@ export class TimelineView {
     this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)', 'aria-label': 'Zoom (×2 per step)' });
     this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors));
     this.canvas = h('div', { class: 'timeline-canvas' });
+    this.canvas.addEventListener('scroll', () => {
+      if (this.barsPending || !this.drawBars) return;
+      this.barsPending = true;
+      requestAnimationFrame(() => {
+        this.barsPending = false;
+        this.drawBars?.();
+      });
+    }, { passive: true });
     this.source = h('select', { class: 'timeline-source', title: 'Which run to show', 'aria-label': 'Which run to show' });
     this.source.addEventListener('change', () => void this.update());
     this.renderSources('local');
@@ -70,7 +82,7 @@ export class TimelineView {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Runs of \`make -C src-gen/generated/architecture run\` (or \`contract run\`) write them there; a Build & Run shows its own run here when it ends.`));
       return;
     }
-    const { files, problems } = await readWorkspaceLogs(csvs, (f) => f, Infinity);
+    const { files, problems } = await readWorkspaceLogs(csvs, (f) => f);
     this.drawLogs(files, problems, '');
   }
 
@@ -87,44 +99,84 @@ export class TimelineView {
 
   private draw(acts: Activation[], files: number, errors: string[]): void {
     this.last = { acts, files, errors };
+    this.drawBars = undefined;
     if (!acts.length) {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No activations in ${files} log file(s). ${errors.join(' ')}`));
       return;
     }
     const t0 = acts[0]!.start;
-    const tEnd = Math.max(...acts.map((a) => a.end ?? a.start));
+    const tEnd = lastTime(acts);
     const span = Math.max(1, tEnd - t0);
     const modules = [...new Set(acts.map((a) => a.module))].sort();
     const period = inferPeriod(acts);
     const lane = 26;
     const left = 70;
     // fit the visible width (hover a bar for exact times)
-    const width = Math.max(600, (this.canvas.clientWidth || 1000) - 40) * 2 ** Number(this.zoom.value);
+    const fit = Math.max(600, (this.canvas.clientWidth || 1000) - 40);
+    // zoom in far enough to see each period (8 px apart) of a long run: 2^8 at least, 2^16 at most
+    this.zoom.max = String(period ? Math.min(16, Math.max(8, Math.ceil(Math.log2(((span / period) * 8) / fit)))) : 8);
+    const width = fit * 2 ** Number(this.zoom.value);
     const height = modules.length * lane + 30;
     const x = (t: number) => left + ((t - t0) / span) * (width - left - 10);
+    const invX = (px: number) => t0 + ((px - left) / (width - left - 10)) * span;
     const axis = svg('text', { x: width - 10, y: height - 6, class: 'period-label', 'text-anchor': 'end' }, `${(span / 1e6).toFixed(1)} ms`);
     const root = svg('svg', { width, height, class: 'timeline-svg' });
-    if (period) {
-      let k = 0;
-      for (let t = t0; t <= tEnd && k < 2000; t += period, k++) {
-        root.append(svg('line', { x1: x(t), x2: x(t), y1: 0, y2: height - 20, class: 'period-line' }));
-        if (k % Math.max(1, Math.ceil(2000 / 40 / 50)) === 0) root.append(svg('text', { x: x(t) + 2, y: height - 6, class: 'period-label' }, `#${k}`));
+    const grid = svg('g', { class: 'period-grid' });
+    root.append(grid);
+    // a line every `step` periods, at least 8 px apart, and a label at least 60 px apart
+    const periodPx = period ? x(t0 + period) - x(t0) : 0;
+    const step = period ? Math.max(1, Math.ceil(8 / periodPx)) : 0;
+    const labelEvery = step * Math.max(1, Math.ceil(60 / (step * periodPx)));
+    const drawGrid = (from: number, to: number): SVGElement[] => {
+      if (!period) return [];
+      const made: SVGElement[] = [];
+      const last = Math.floor((tEnd - t0) / period);
+      const first = Math.max(0, Math.floor((invX(from) - t0) / period / step) * step);
+      for (let k = first; k <= last && x(t0 + k * period) <= to; k += step) {
+        const px = x(t0 + k * period);
+        made.push(svg('line', { x1: px, x2: px, y1: 0, y2: height - 20, class: 'period-line' }));
+        if (k % labelEvery === 0) made.push(svg('text', { x: px + 2, y: height - 6, class: 'period-label' }, `#${k}`));
       }
-    }
+      return made;
+    };
     modules.forEach((m, i) => {
       root.append(svg('text', { x: 6, y: i * lane + 17, class: 'lane-label' }, m));
       root.append(svg('line', { x1: left, x2: width, y1: (i + 1) * lane, y2: (i + 1) * lane, class: 'lane-sep' }));
     });
-    for (const a of acts) {
-      const i = modules.indexOf(a.module);
-      const x1 = x(a.start);
-      const x2 = Math.max(x1 + 2, x(a.end ?? tEnd));
-      const bar = svg('rect', { x: x1, y: i * lane + 5, width: x2 - x1, height: lane - 10, rx: 2, class: `act-bar${a.end === undefined ? ' open' : ''}` });
-      bar.append(svg('title', {}, `${a.module} ${((a.start - t0) / 1e6).toFixed(3)} ms → ${a.end ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}`));
-      root.append(bar);
-    }
+    const lanes = modules.map((): Activation[] => []);
+    for (const a of acts) lanes[modules.indexOf(a.module)]!.push(a);
+    const bars = svg('g', { class: 'act-bars' });
+    root.append(bars);
+    const drawBars = () => {
+      // only what is on screen, and a screen's width either side of it (pixels of the svg): the
+      // period lines and the bars
+      const view = this.canvas.clientWidth || 1000;
+      const from = this.canvas.scrollLeft - view;
+      const to = this.canvas.scrollLeft + 2 * view;
+      const made: SVGElement[] = [];
+      lanes.forEach((laneActs, i) => {
+        for (const b of laneBars(laneActs, x, invX, tEnd, from, to)) {
+          const bar = svg('rect', { x: b.x1, y: i * lane + 5, width: b.x2 - b.x1, height: lane - 10, rx: 2, class: `act-bar${b.open ? ' open' : ''}${b.count > 1 ? ' many' : ''}` });
+          bar.append(svg('title', {}, barTitle(b, t0)));
+          made.push(bar);
+        }
+      });
+      bars.replaceChildren(...made);
+      grid.replaceChildren(...drawGrid(from, to));
+    };
     root.append(axis);
     this.info.textContent = `${acts.length} activations · ${modules.length} modules · ${(span / 1e6).toFixed(1)} ms${period ? ` · period ≈ ${(period / 1e6).toFixed(2)} ms` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
     this.canvas.replaceChildren(root);
+    // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
+    drawBars();
+    this.drawBars = drawBars;
   }
+}
+
+function barTitle(b: LaneBar, t0: number): string {
+  const ms = (t: number) => `${((t - t0) / 1e6).toFixed(3)} ms`;
+  const a = b.first;
+  if (b.count === 1) return `${a.module} ${ms(a.start)} → ${a.end !== undefined ? `${((a.end - a.start) / 1e6).toFixed(3)} ms` : 'running'} ${a.detail}`;
+  const end = b.last.end;
+  return `${a.module}: ${b.count} activations from ${ms(a.start)} to ${end !== undefined ? ms(end) : `${ms(b.last.start)} (running)`} (zoom in to see each)`;
 }

@@ -4,7 +4,7 @@
  * Screenshots of the main states go to test-output/.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { readFileSync, writeFileSync, existsSync, readdirSync, mkdirSync } from 'node:fs';
+import { readFileSync, writeFileSync, existsSync, readdirSync, mkdirSync, rmSync } from 'node:fs';
 import { startIdeServer } from '../../server/ide-server.js';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
@@ -612,6 +612,43 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.timeline-view input.zoom').fill('2');
     await expect.poll(async () => Number(await page.locator('.timeline-svg').getAttribute('width'))).toBe(w0 * 4);
   });
+
+  it('draws the timeline of a long run (300,000 activations) with a bar per pixel, each activation once zoomed in', async () => {
+    const { page } = s;
+    const logs = join(s.workspace, 'src-gen/generated/architecture/logs');
+    const long = join(logs, 'LONG_1-Jan-2026-00h01m00s.csv');
+    mkdirSync(logs, { recursive: true });
+    const rows = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
+    // 300 s of a 1 kHz module: more activations than a call can take as spread arguments
+    for (let k = 0; k < 300_000; k++) {
+      const t = 1_000_000_000 + k * 1_000_000;
+      rows.push(`${t},2026-01-01T00:00:00.000000Z,LONG,run_started,ORD,,0,activation=${k + 1}`, `${t + 300_000},2026-01-01T00:00:00.000000Z,LONG,run_finished,ORD,,0,activation=${k + 1} ACK_FINISHED`);
+    }
+    writeFileSync(long, rows.join('\n') + '\n');
+    try {
+      await page.locator('#btn-timeline').click();
+      await page.locator('.timeline-source').selectOption('local');
+      await page.locator('.timeline-view button', { hasText: 'Reload logs' }).click();
+      await expect.poll(() => page.locator('.timeline-view .muted').first().textContent(), { timeout: 30_000 }).toMatch(/^300(000|030) activations · [14] modules/) // with the test above's logs or without;
+      // the whole run fits the width: LONG's lane is one bar per stretch of pixels, not 300,000
+      const longBars = page.locator('.act-bar.many');
+      expect(await longBars.count()).toBeGreaterThan(0);
+      expect(await page.locator('.act-bar').count()).toBeLessThan(2000);
+      expect(await longBars.first().locator('title').textContent()).toMatch(/^LONG: \d+ activations from /);
+      await shot(page, '09b-timeline-long-run');
+      // zoomed in all the way (far enough for a period to be 8 px wide) and scrolled to the end: the
+      // last activations one bar each
+      const zoom = page.locator('.timeline-view input.zoom');
+      expect(Number(await zoom.getAttribute('max'))).toBeGreaterThan(8);
+      await zoom.fill(String(await zoom.getAttribute('max')));
+      await page.locator('.timeline-canvas').evaluate((el) => { el.scrollLeft = el.scrollWidth; });
+      await expect.poll(() => page.locator('.act-bar:not(.many) title', { hasText: /^LONG .* activation=300000$/ }).count(), { timeout: 10_000 }).toBe(1);
+      expect(await page.locator('.act-bar').count()).toBeLessThan(5000);
+    } finally {
+      rmSync(long, { force: true });
+      await page.locator('.timeline-view input.zoom').fill('0');
+    }
+  }, 120_000);
 
   it('creates, renames and deletes files and folders from the explorer', async () => {
     const { page } = s;
