@@ -8,6 +8,9 @@ export interface CliIO {
     cwd: string;
     /** Aborted when the standard output's reader went away (a pipe closed: `| head`); writes to it are then dropped. */
     outputClosed?: AbortSignal;
+    /** Resolves when what `out` was given has gone to the reader (or it went away): a command
+     *  printing gigabytes (`contract trace --format json`) waits on it rather than buffer them. */
+    drained?: () => Promise<void>;
 }
 
 export interface Command {

@@ -43,7 +43,24 @@ export function makeProcessIO(
         },
         cwd,
         outputClosed: closed.signal,
+        drained: () => (outOpen && stdout.writableNeedDrain ? drain(stdout, closed.signal) : Promise.resolve()),
     };
+}
+
+/** Resolves at the stream's next 'drain', or when its reader went away (no 'drain' comes then). */
+function drain(stream: NodeJS.WriteStream, closed: AbortSignal): Promise<void> {
+    return new Promise((resolve) => {
+        const done = () => {
+            stream.off('drain', done);
+            stream.off('close', done);
+            closed.removeEventListener('abort', done);
+            resolve();
+        };
+        stream.on('drain', done);
+        stream.on('close', done);
+        closed.addEventListener('abort', done);
+        if (closed.aborted) done();
+    });
 }
 
 /**

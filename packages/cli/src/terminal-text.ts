@@ -24,5 +24,6 @@ export function terminalSafeIO(io: CliIO): CliIO {
         err: (text) => io.err(escapeControls(text)),
         cwd: io.cwd,
         ...(io.outputClosed ? { outputClosed: io.outputClosed } : {}),
+        ...(io.drained ? { drained: io.drained } : {}),
     };
 }

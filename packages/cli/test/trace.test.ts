@@ -91,6 +91,35 @@ describe('contract trace', () => {
         }
     });
 
+    it('prints in pieces, each once the reader took the last (a run of gigabytes is not held in memory)', async () => {
+        const big = mkdtempSync(join(tmpdir(), 'contract-trace-slow-'));
+        const lines = [HEADER];
+        for (let i = 0; i < 5_000; i++) lines.push(`${1_000_000_000 + i * 1000},w,ORD,ord_release,MSA,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1000} release_ns=${1_000_000_001 + i * 1000} release=${i + 1}`);
+        writeFileSync(join(big, 'ORD_24-Nov-2026-18h30m15s.csv'), lines.join('\n') + '\n');
+        try {
+            const io = capture(big);
+            const pieces: number[] = [];
+            let release: () => void = () => {};
+            io.out = (text: string) => { pieces.push(text.length); io.stdout += text; };
+            io.drained = () => new Promise<void>((r) => { release = r; });
+            const done = runCli(['trace', '.', '--format', 'json'], io);
+            await new Promise((r) => setTimeout(r, 300));
+            expect(pieces).toHaveLength(1); // the reader has not taken the first piece: nothing more read or printed
+            expect(pieces[0]).toBeGreaterThanOrEqual(64 * 1024);
+            for (let i = 0; i < 100 && pieces.length < 3; i++) {
+                release();
+                await new Promise((r) => setTimeout(r, 10));
+            }
+            expect(pieces.length).toBeGreaterThan(1);
+            const poll = setInterval(() => release(), 1);
+            expect(await done).toBe(0);
+            clearInterval(poll);
+            expect(io.stdout.trim().split('\n')).toHaveLength(5_000);
+        } finally {
+            rmSync(big, { recursive: true, force: true });
+        }
+    });
+
     it('a standard output that fails (a full disk) is said, and the command does not exit 0', async () => {
         const logs = mkdtempSync(join(tmpdir(), 'contract-trace-full-'));
         writeFileSync(join(logs, 'ORD_24-Nov-2026-18h30m15s.csv'), `${HEADER}\n2000500000,w,ORD,scheduler,,,0,activate S\n`);

@@ -6,7 +6,8 @@
 export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
 export { parseTrace, parseTraceSteps, parseLogFile, parseRecordLine, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine } from './csv-line.js';
-export { renderStory } from './story.js';
+export { renderStory, StoryTeller } from './story.js';
+export { MinHeap } from './min-heap.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';
 export { isRule, isUnknown, type TraceRecord, type TraceRecordBase, type RuleRecord, type RuleCause, type KnownRecord, type UnknownRecord } from './records.js';
 export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, TraceWireError, type TraceWire, type TraceLine } from './wire.js';

@@ -5,6 +5,7 @@
  * not a record of the table is kept as an `unknown` record saying why.
  */
 import { splitCsvLine } from './csv-line.js';
+import { MinHeap } from './min-heap.js';
 import { traceKind } from './record-kinds.js';
 import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
 import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, TraceRecordBase, UnknownRecord } from './records.js';
@@ -165,37 +166,20 @@ export function* parseTraceSteps(files: LogFile[], every = 2000): Generator<void
         run.sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.index - b.index));
         runs.push(run);
     }
-    // merge: a binary heap of the files by their next record (time, then file order)
+    // merge: a heap of the files by their next record (time, then file order)
     const at = runs.map(() => 0);
-    const before = (f: number, g: number): boolean => {
+    const heap = new MinHeap<number>((f, g) => {
         const a = runs[f]![at[f]!]!.key;
         const b = runs[g]![at[g]!]!.key;
         return a < b || (a === b && f < g);
-    };
-    const heap: number[] = [];
-    const down = (i: number): void => {
-        for (;;) {
-            const l = 2 * i + 1;
-            const r = l + 1;
-            let m = i;
-            if (l < heap.length && before(heap[l]!, heap[m]!)) m = l;
-            if (r < heap.length && before(heap[r]!, heap[m]!)) m = r;
-            if (m === i) return;
-            [heap[i], heap[m]] = [heap[m]!, heap[i]!];
-            i = m;
-        }
-    };
+    });
     runs.forEach((run, f) => run.length && heap.push(f));
-    for (let i = (heap.length >> 1) - 1; i >= 0; i--) down(i);
     const out: TraceRecord[] = [];
-    while (heap.length) {
-        const f = heap[0]!;
+    while (heap.size) {
+        const f = heap.peek()!;
         out.push(runs[f]![at[f]!++]!.record);
-        if (at[f]! >= runs[f]!.length) {
-            heap[0] = heap[heap.length - 1]!;
-            heap.pop();
-        }
-        if (heap.length) down(0);
+        if (at[f]! >= runs[f]!.length) heap.pop();
+        else heap.topChanged();
         if (out.length % every === 0) yield;
     }
     return out;

@@ -26,31 +26,49 @@ function ms(ns: number): string {
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused']);
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up']);
 
-/** One line per told record, `+S.mmmmmm MODULE what`, then a summary line of counts. */
-export function renderStory(records: TraceRecord[]): string[] {
-    const timed = records.filter((r): r is KnownRecord => r.kind !== 'unknown');
-    const t0 = timed.length ? BigInt(timed[0]!.monoNs) : 0n;
-    const at = (r: TraceRecordBase) => `+${(Number(BigInt(r.monoNs) - t0) / 1e9).toFixed(6)}s ${r.module.padEnd(4)}`;
-    const lines: string[] = [];
-    const counts = new Map<string, number>();
-    for (const r of records) {
-        counts.set(r.kind, (counts.get(r.kind) ?? 0) + 1);
-        if (r.kind === 'unknown') continue;
-        if (isRule(r)) {
-            lines.push(`${at(r)} rule ${r.function}.${r.rule} ${r.active ? 'active  ' : 'inactive'} <- ${describeCause(r.causeEvent)}`);
-            continue;
-        }
+/**
+ * The story told one record at a time, in time order (a streamed run of any length: only the
+ * counts are kept): `tell` gives the record's line, if it is told; `summary` the line of counts.
+ */
+export class StoryTeller {
+    private t0: bigint | undefined;
+    private total = 0;
+    private readonly counts = new Map<string, number>();
+
+    /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
+    tell(r: TraceRecord): string | undefined {
+        this.total++;
+        this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
+        if (r.kind === 'unknown') return undefined;
+        const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));
+        const at = (x: TraceRecordBase) => `+${(Number(BigInt(x.monoNs) - t0) / 1e9).toFixed(6)}s ${x.module.padEnd(4)}`;
+        if (isRule(r)) return `${at(r)} rule ${r.function}.${r.rule} ${r.active ? 'active  ' : 'inactive'} <- ${describeCause(r.causeEvent)}`;
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
-        if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) lines.push(`${at(k)} ${k.detail}`);
-        else if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) lines.push(`${at(k)} ${k.detail}`);
-        else if (k.kind === 'ord_deadline_miss') lines.push(`${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}`);
-        else if (k.kind === 'module_started') lines.push(`${at(k)} started (${k.detail})`);
-        else if (k.kind === 'module_exit') lines.push(`${at(k)} exited (${k.detail})`);
-        else if (k.kind === 'error') lines.push(`${at(k)} error: ${k.detail}`);
+        if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
+        if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) return `${at(k)} ${k.detail}`;
+        if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}`;
+        if (k.kind === 'module_started') return `${at(k)} started (${k.detail})`;
+        if (k.kind === 'module_exit') return `${at(k)} exited (${k.detail})`;
+        if (k.kind === 'error') return `${at(k)} error: ${k.detail}`;
+        return undefined;
     }
-    const n = (kind: string) => counts.get(kind) ?? 0;
-    lines.push(`${records.length} records: ${n('ord_release')} releases, ${n('ord_complete')} completed cycles, ${n('ord_deadline_miss')} deadline misses, ` +
-        `${n('sup_rule')} rule changes, ${n('data_received')} data and ${n('event_received')} event deliveries, ${n('unknown')} unreadable line(s)`);
+
+    summary(): string {
+        const n = (kind: string) => this.counts.get(kind) ?? 0;
+        return `${this.total} records: ${n('ord_release')} releases, ${n('ord_complete')} completed cycles, ${n('ord_deadline_miss')} deadline misses, ` +
+            `${n('sup_rule')} rule changes, ${n('data_received')} data and ${n('event_received')} event deliveries, ${n('unknown')} unreadable line(s)`;
+    }
+}
+
+/** One line per told record, `+S.mmmmmm MODULE what`, then a summary line of counts. */
+export function renderStory(records: TraceRecord[]): string[] {
+    const teller = new StoryTeller();
+    const lines: string[] = [];
+    for (const r of records) {
+        const line = teller.tell(r);
+        if (line !== undefined) lines.push(line);
+    }
+    lines.push(teller.summary());
     return lines;
 }

@@ -1,0 +1,256 @@
+/**
+ * A recorded run's trace read as a stream (`contract trace`): the CSV logs of a folder, read in
+ * chunks and merged in time order as parseTrace orders them (mono_ns, then file name, then line),
+ * holding a bounded window of records per file instead of the whole run: a 1 kHz schema writes
+ * about 1.5 MB of logs a second, so a run of minutes is gigabytes.
+ *
+ * A module writes its log in time order; a record further than WINDOW records from its place in
+ * its file (a hostile or clock-stepped line) is told where the window lets it, and counted.
+ */
+import { constants, promises as fsp } from 'node:fs';
+import { join } from 'node:path';
+import { StringDecoder } from 'node:string_decoder';
+import { CSV_HEADER, MAX_LINE_CHARS, MinHeap, parseRecordLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { LOG_FILE_NAME } from './trace-files.js';
+
+/** Records held per file to put slightly out-of-order lines in place. */
+export const WINDOW = 4096;
+/** Bytes read from a log at a time. */
+export const CHUNK_BYTES = 1 << 20;
+
+export interface OpenLog {
+    name: string;
+    handle: fsp.FileHandle;
+    /** The size seen when opened: what is read (a log still growing cannot make the read endless). */
+    size: number;
+}
+
+/** The CSV logs of `dir`, opened (regular files only: a FIFO, socket or device is left out; never through a link), or an error message. */
+export async function openLogFolder(dir: string): Promise<OpenLog[] | string> {
+    let names: string[];
+    try {
+        names = (await fsp.readdir(dir)).filter((n) => LOG_FILE_NAME.test(n)).sort();
+    } catch (e) {
+        return `cannot read the log folder ${dir}: ${(e as Error).message}`;
+    }
+    if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${dir}`;
+    const logs: OpenLog[] = [];
+    for (const name of names) {
+        let handle: fsp.FileHandle;
+        try {
+            // O_NONBLOCK: a FIFO named like a log must not wait for a writer for ever (it is left out below)
+            handle = await fsp.open(join(dir, name), constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
+        } catch (e) {
+            await closeLogs(logs);
+            return `cannot open ${join(dir, name)}: ${(e as Error).message}`;
+        }
+        const st = await handle.stat();
+        if (!st.isFile()) {
+            await handle.close();
+            continue;
+        }
+        logs.push({ name, handle, size: st.size });
+    }
+    return logs;
+}
+
+export async function closeLogs(logs: readonly OpenLog[]): Promise<void> {
+    await Promise.all(logs.map((l) => l.handle.close().catch(() => {})));
+}
+
+interface Keyed {
+    key: bigint;
+    index: number;
+    record: TraceRecord;
+}
+
+/** One log's records in file order, a chunk at a time, each keyed by its time (an unknown line by the time before it). */
+class LogRecords {
+    private readonly decoder = new StringDecoder('utf8');
+    private readonly buffer: Buffer;
+    private offset = 0;
+    private rest = '';
+    /** The rest is the head of a line longer than a record can be: its end is skipped. */
+    private skipping = false;
+    private lineNo = 0;
+    private index = 0;
+    private lastKey = 0n;
+    private pending: Keyed[] = [];
+    private at = 0;
+    private ended = false;
+
+    constructor(private readonly log: OpenLog, private readonly chunkBytes: number) {
+        this.buffer = Buffer.alloc(chunkBytes);
+    }
+
+    /** The next record; null when the next chunk must be read first (`readChunk`), undefined at the end. */
+    next(): Keyed | null | undefined {
+        if (this.at < this.pending.length) return this.pending[this.at++];
+        return this.ended ? undefined : null;
+    }
+
+    /** Reads the next chunk's records (none at the end of the size seen: then `next` gives undefined). */
+    async readChunk(): Promise<void> {
+        if (!(await this.readSome())) this.ended = true;
+    }
+
+    private async readSome(): Promise<boolean> {
+        this.pending = [];
+        this.at = 0;
+        const want = Math.min(this.chunkBytes, this.log.size - this.offset);
+        let text: string;
+        if (want > 0) {
+            const { bytesRead } = await this.log.handle.read(this.buffer, 0, want, this.offset);
+            if (bytesRead === 0) return this.finish();
+            this.offset += bytesRead;
+            text = this.rest + this.decoder.write(this.buffer.subarray(0, bytesRead));
+        } else {
+            return this.finish();
+        }
+        let pos = 0;
+        for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', pos)) {
+            this.line(text.slice(pos, nl));
+            pos = nl + 1;
+        }
+        this.rest = text.slice(pos);
+        if (this.rest.length > MAX_LINE_CHARS) {
+            // a line with no end in sight: told as too long once, the rest of it skipped
+            if (!this.skipping) this.line(this.rest);
+            this.skipping = true;
+            this.rest = '';
+        }
+        return true; // perhaps no record yet (a chunk within a line): `next` says to read again
+    }
+
+    /** The last line (no newline after it), once. */
+    private finish(): boolean {
+        const last = this.rest + this.decoder.end();
+        this.rest = '';
+        if (last === '') return false;
+        this.line(last);
+        return this.pending.length > 0;
+    }
+
+    private line(raw: string): void {
+        if (this.skipping) {
+            // the end of an over-long line already told
+            this.skipping = false;
+            return;
+        }
+        const n = this.lineNo++;
+        const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
+        if (line === '' || (n === 0 && line === CSV_HEADER)) return;
+        const record = parseRecordLine(this.log.name, n + 1, line);
+        if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);
+        this.pending.push({ key: this.lastKey, index: this.index++, record });
+    }
+}
+
+/**
+ * One file's window: its next WINDOW records in order (time, then line). A log is in time order,
+ * so a record read almost always goes last; one out of order is put in its place.
+ */
+class LogWindow {
+    private held: Keyed[] = [];
+    private head = 0;
+    private lastOut: bigint | undefined;
+    outOfOrder = 0;
+
+    constructor(
+        private readonly records: LogRecords,
+        readonly order: number,
+        private readonly size: number,
+    ) {}
+
+    get length(): number {
+        return this.held.length - this.head;
+    }
+
+    /** Reads records in until the window is full or the file ended. */
+    async fill(): Promise<void> {
+        while (this.topUp()) await this.records.readChunk();
+    }
+
+    /** Reads in the records at hand; true when the file must be read to go on (`fill`). */
+    topUp(): boolean {
+        while (this.length < this.size) {
+            const r = this.records.next();
+            if (r === undefined) return false;
+            if (r === null) return true;
+            this.hold(r);
+        }
+        return false;
+    }
+
+    private hold(r: Keyed): void {
+        const held = this.held;
+        if (this.length === 0 || held[held.length - 1]!.key <= r.key) {
+            held.push(r);
+            return;
+        }
+        // after every held record of the same or an earlier time (they came first in the file)
+        let lo = this.head;
+        let hi = held.length;
+        while (lo < hi) {
+            const mid = (lo + hi) >>> 1;
+            if (held[mid]!.key <= r.key) lo = mid + 1;
+            else hi = mid;
+        }
+        held.splice(lo, 0, r);
+    }
+
+    peek(): Keyed | undefined {
+        return this.held[this.head];
+    }
+
+    /** The first record held (the window then is one short: `fill` it). */
+    take(): TraceRecord {
+        const k = this.held[this.head++]!;
+        if (this.head > 4096 && this.head * 2 > this.held.length) {
+            this.held = this.held.slice(this.head);
+            this.head = 0;
+        }
+        if (this.lastOut !== undefined && k.key < this.lastOut) this.outOfOrder++;
+        else this.lastOut = k.key;
+        return k.record;
+    }
+}
+
+export interface TraceStream {
+    /** The records in time order, in batches. */
+    batches: AsyncGenerator<TraceRecord[]>;
+    /** Records told later than their time (further than the window from their place), once the stream ended. */
+    outOfOrder(): number;
+}
+
+/** Records handed on at a time. */
+const BATCH = 1024;
+
+/** The records of `logs` in time order (files in name order break ties), read `window` records ahead per file. */
+export function streamTrace(logs: readonly OpenLog[], { window = WINDOW, chunkBytes = CHUNK_BYTES } = {}): TraceStream {
+    const sorted = [...logs].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+    const windows = sorted.map((log, i) => new LogWindow(new LogRecords(log, chunkBytes), i, window));
+    async function* batches(): AsyncGenerator<TraceRecord[]> {
+        for (const w of windows) await w.fill();
+        const files = new MinHeap<LogWindow>((f, g) => {
+            const a = f.peek()!;
+            const b = g.peek()!;
+            return a.key < b.key || (a.key === b.key && f.order < g.order);
+        });
+        for (const w of windows) if (w.peek()) files.push(w);
+        let batch: TraceRecord[] = [];
+        while (files.size) {
+            const w = files.peek()!;
+            batch.push(w.take());
+            if (w.topUp()) await w.fill();
+            if (w.peek()) files.topChanged();
+            else files.pop();
+            if (batch.length >= BATCH) {
+                yield batch;
+                batch = [];
+            }
+        }
+        if (batch.length) yield batch;
+    }
+    return { batches: batches(), outOfOrder: () => windows.reduce((n, w) => n + w.outOfOrder, 0) };
+}
