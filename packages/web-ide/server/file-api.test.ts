@@ -38,6 +38,27 @@ describe('file API over HTTP', () => {
     expect(ide.url).toMatch(/^http:\/\/127\.0\.0\.1:\d+$/);
   });
 
+  it('the first snapshot leaves out a .contract too large for it without reading it, and keeps the others', async () => {
+    // a hostile project's 400 MB file (sparse: no disk used) was read whole to be dropped, and every file after
+    // it was then left out of the snapshot (its budget spent)
+    const big = join(ws, 'huge.contract');
+    execFileSync('truncate', ['-s', '400M', big]);
+    writeFileSync(join(ws, 'z.contract'), 'datatype Z {int z};');
+    try {
+      const t0 = Date.now();
+      const snap = await call('GET', '/api/snapshot');
+      expect(snap.status).toBe(200);
+      expect(Date.now() - t0).toBeLessThan(5000);
+      const files = snap.body.files as Record<string, string>;
+      expect(Object.keys(files)).not.toContain('huge.contract');
+      expect(files['z.contract']).toBe('datatype Z {int z};');
+      expect(files['a.contract']).toBe('datatype T {int x};');
+    } finally {
+      rmSync(big);
+      rmSync(join(ws, 'z.contract'));
+    }
+  });
+
   it('lists, reads and atomically writes files', async () => {
     const tree = await call('GET', '/api/tree');
     expect((tree.body.entries as Array<{ path: string }>).map((e) => e.path)).toEqual(['sub', 'a.contract']); // symlinks are not listed

@@ -45,9 +45,8 @@ export async function handleFileApi(
     case 'GET /api/file': {
       const rel = paths.entry(url.searchParams.get('path'));
       const answer = await fs.withParent(rel, false, async (dir, name) => {
-        const handle = await WorkspaceFs.openFile(dir, name, rel);
+        const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
         try {
-          const st = await handle.stat();
           if (st.isDirectory()) throw new HttpError(400, 'is a folder');
           if (st.size > 8 * 1024 * 1024) throw new HttpError(413, 'file larger than 8 MiB');
           const bytes = await handle.readFile();

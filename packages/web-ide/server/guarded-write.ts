@@ -15,14 +15,14 @@ const MAX_COMPARED_BYTES = 8 * 1024 * 1024;
 
 async function readIfPresent(dir: DirAt, name: string, rel: string): Promise<Buffer | undefined> {
   let handle;
+  let st;
   try {
-    handle = await WorkspaceFs.openFile(dir, name, rel);
+    ({ handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel));
   } catch (e) {
     if ((e as NodeJS.ErrnoException).code === 'ENOENT') return undefined;
     throw e;
   }
   try {
-    const st = await handle.stat();
     if (!st.isFile()) throw new HttpError(409, 'a folder has that name');
     // a tab never loaded more (GET /api/file refuses it): it cannot be the base of a save
     if (st.size > MAX_COMPARED_BYTES) throw new HttpError(409, `${rel} on disk is larger than 8 MiB: not overwritten`);

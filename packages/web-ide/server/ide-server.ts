@@ -51,11 +51,16 @@ export interface IdeServer {
   close(): Promise<void>;
 }
 
-/** A workspace text file and its version, opened without following links (workspace-fs.ts). */
-async function readWorkspaceText(fs: WorkspaceFs, rel: string): Promise<{ text: string; version: string }> {
+/**
+ * A workspace text file and its version, opened without following links (workspace-fs.ts);
+ * undefined when it is larger than `maxBytes` (not read: a hostile project's huge file would
+ * otherwise be read whole to be dropped).
+ */
+async function readWorkspaceText(fs: WorkspaceFs, rel: string, maxBytes: number): Promise<{ text: string; version: string } | undefined> {
   return fs.withParent(rel, false, async (dir, name) => {
-    const handle = await WorkspaceFs.openFile(dir, name, rel);
+    const { handle, stats } = await WorkspaceFs.openFile(dir, name, rel);
     try {
+      if (!stats.isFile() || stats.size > maxBytes) return undefined;
       const bytes = await handle.readFile();
       return { text: bytes.toString('utf8'), version: fileVersion(bytes) };
     } finally {
@@ -168,7 +173,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const versions: Record<string, string> = {};
       let budget = 4 * 1024 * 1024;
       for (const p of flattenFiles(entries).filter((f) => f.endsWith('.contract'))) {
-        const read = await readWorkspaceText(paths.fs, p).catch(() => undefined);
+        const read = await readWorkspaceText(paths.fs, p, budget).catch(() => undefined);
         if (read === undefined || (budget -= read.text.length) < 0) continue;
         files[p] = read.text;
         versions[p] = read.version;

@@ -25,9 +25,8 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
   const rel = paths.entry(url.searchParams.get('path'));
   if (!rel.endsWith('.csv')) throw new HttpError(400, `${rel} is not a CSV log (*.csv): only logs are read here`);
   await paths.fs.withParent(rel, false, async (dir, name) => {
-    const handle = await WorkspaceFs.openFile(dir, name, rel);
+    const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
     try {
-      const st = await handle.stat();
       if (!st.isFile()) throw new HttpError(400, `${rel} is a folder`);
       if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the bound of a log collected from a Build & Run job)`);
       res.writeHead(200, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store', 'x-log-bytes': String(st.size) });

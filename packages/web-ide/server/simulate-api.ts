@@ -134,9 +134,9 @@ function stepOf(s: StepResult): SimulateStep {
 
 async function readText(fs: WorkspaceFs, rel: string): Promise<string> {
   return fs.withParent(rel, false, async (dir, name) => {
-    const handle = await WorkspaceFs.openFile(dir, name, rel);
+    const { handle, stats } = await WorkspaceFs.openFile(dir, name, rel);
     try {
-      if ((await handle.stat()).size > MAX_SCENARIO_CHARS * 4) throw new HttpError(413, `${rel} is too large for a scenario`);
+      if (stats.size > MAX_SCENARIO_CHARS * 4) throw new HttpError(413, `${rel} is too large for a scenario`);
       return await handle.readFile('utf8');
     } finally {
       await handle.close();

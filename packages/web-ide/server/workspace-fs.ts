@@ -1,4 +1,4 @@
-import { constants, existsSync } from 'node:fs';
+import { constants, existsSync, type Stats } from 'node:fs';
 import { open, mkdir, lstat, readdir, unlink, rmdir, type FileHandle } from 'node:fs/promises';
 import { HttpError } from './http-error.js';
 
@@ -62,21 +62,21 @@ export class WorkspaceFs {
    * Opens `name` in `dir` for reading, refusing a symlink and anything but a file or a folder; the
    * caller closes the handle. O_NONBLOCK: the open of a FIFO (a hostile folder can hold one under
    * any name) would otherwise wait for a writer for ever, holding one of the few threads every file
-   * operation of the server runs on.
+   * operation of the server runs on. Gives the handle with the stats of what it opened.
    */
-  static async openFile(dir: DirAt, name: string, shown: string): Promise<FileHandle> {
+  static async openFile(dir: DirAt, name: string, shown: string): Promise<{ handle: FileHandle; stats: Stats }> {
     let handle: FileHandle;
     try {
       handle = await open(dir.at(name), O_RDONLY | O_NOFOLLOW | O_NONBLOCK);
     } catch (e) {
       throw refusedLink(e, shown);
     }
-    const st = await handle.stat().catch(() => undefined);
-    if (!st?.isFile() && !st?.isDirectory()) {
+    const stats = await handle.stat().catch(() => undefined);
+    if (!stats || (!stats.isFile() && !stats.isDirectory())) {
       await handle.close().catch(() => undefined);
       throw new HttpError(400, `${shown} is not a regular file (a FIFO, socket or device): not opened`);
     }
-    return handle;
+    return { handle, stats };
   }
 
   /** The entry's lstat, or undefined when it does not exist. */
