@@ -13,8 +13,12 @@ import { StringDecoder } from 'node:string_decoder';
 import { CSV_HEADER, MAX_LINE_CHARS, MinHeap, parseRecordLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { LOG_FILE_NAME } from './trace-files.js';
 
-/** Records held per file to put slightly out-of-order lines in place. */
+/** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
 export const WINDOW = 4096;
+/** Records held in all files' windows: about 130 MB at most. */
+const HELD_RECORDS = 262_144;
+/** A run writes one log per module; a folder with more is not a run's (each log holds a descriptor while read). */
+export const MAX_LOG_FILES = 1024;
 /** Bytes read from a log at a time. */
 export const CHUNK_BYTES = 1 << 20;
 
@@ -34,6 +38,7 @@ export async function openLogFolder(dir: string): Promise<OpenLog[] | string> {
         return `cannot read the log folder ${dir}: ${(e as Error).message}`;
     }
     if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${dir}`;
+    if (names.length > MAX_LOG_FILES) return `${dir} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
     const logs: OpenLog[] = [];
     for (const name of names) {
         let handle: fsp.FileHandle;
@@ -67,7 +72,8 @@ interface Keyed {
 /** One log's records in file order, a chunk at a time, each keyed by its time (an unknown line by the time before it). */
 class LogRecords {
     private readonly decoder = new StringDecoder('utf8');
-    private readonly buffer: Buffer;
+    /** Made at the first read, as large as the log needs (a chunk at most), dropped at its end. */
+    private buffer: Buffer | undefined;
     private offset = 0;
     private rest = '';
     /** The rest is the head of a line longer than a record can be: its end is skipped. */
@@ -79,9 +85,7 @@ class LogRecords {
     private at = 0;
     private ended = false;
 
-    constructor(private readonly log: OpenLog, private readonly chunkBytes: number) {
-        this.buffer = Buffer.alloc(chunkBytes);
-    }
+    constructor(private readonly log: OpenLog, private readonly chunkBytes: number) {}
 
     /** The next record; null when the next chunk must be read first (`readChunk`), undefined at the end. */
     next(): Keyed | null | undefined {
@@ -100,10 +104,11 @@ class LogRecords {
         const want = Math.min(this.chunkBytes, this.log.size - this.offset);
         let text: string;
         if (want > 0) {
-            const { bytesRead } = await this.log.handle.read(this.buffer, 0, want, this.offset);
+            const buffer = (this.buffer ??= Buffer.allocUnsafe(Math.min(this.chunkBytes, this.log.size)));
+            const { bytesRead } = await this.log.handle.read(buffer, 0, want, this.offset);
             if (bytesRead === 0) return this.finish();
             this.offset += bytesRead;
-            text = this.rest + this.decoder.write(this.buffer.subarray(0, bytesRead));
+            text = this.rest + this.decoder.write(buffer.subarray(0, bytesRead));
         } else {
             return this.finish();
         }
@@ -124,6 +129,7 @@ class LogRecords {
 
     /** The last line (no newline after it), once. */
     private finish(): boolean {
+        this.buffer = undefined;
         const last = this.rest + this.decoder.end();
         this.rest = '';
         if (last === '') return false;
@@ -227,7 +233,7 @@ export interface TraceStream {
 const BATCH = 1024;
 
 /** The records of `logs` in time order (files in name order break ties), read `window` records ahead per file. */
-export function streamTrace(logs: readonly OpenLog[], { window = WINDOW, chunkBytes = CHUNK_BYTES } = {}): TraceStream {
+export function streamTrace(logs: readonly OpenLog[], { window = Math.min(WINDOW, Math.max(64, Math.floor(HELD_RECORDS / Math.max(1, logs.length)))), chunkBytes = CHUNK_BYTES } = {}): TraceStream {
     const sorted = [...logs].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
     const windows = sorted.map((log, i) => new LogWindow(new LogRecords(log, chunkBytes), i, window));
     async function* batches(): AsyncGenerator<TraceRecord[]> {

@@ -68,6 +68,22 @@ describe('contract trace', () => {
         rmSync(empty, { recursive: true });
     });
 
+    it('a folder of more logs than a run writes is refused with why, before any is opened', async () => {
+        const many = mkdtempSync(join(tmpdir(), 'contract-trace-many-'));
+        try {
+            for (let i = 0; i < 1025; i++) writeFileSync(join(many, `M${i}_1.csv`), `${HEADER}\n`);
+            const io = capture(many);
+            expect(await runCli(['trace', '.'], io)).toBe(1);
+            expect(io.stderr).toBe(`contract trace: ${many} holds 1025 CSV logs: more than the 1024 read at once (a run writes one per module); give the folder of one run\n`);
+            rmSync(join(many, 'M0_1.csv'));
+            const ok = capture(many);
+            expect(await runCli(['trace', '.'], ok)).toBe(0);
+            expect(ok.stdout).toBe('0 records: 0 releases, 0 completed cycles, 0 deadline misses, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable line(s)\n');
+        } finally {
+            rmSync(many, { recursive: true, force: true });
+        }
+    });
+
     it('a reader that goes away (`| head`) ends nothing badly: no stack trace, exit 0', async () => {
         // 20,000 records: far more than a pipe holds, so the command is still writing when the reader closes
         const big = mkdtempSync(join(tmpdir(), 'contract-trace-big-'));
