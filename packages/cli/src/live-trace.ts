@@ -2,19 +2,22 @@
  * `contract run --trace FILE`: the run's records written to FILE as they arrive on the build
  * service's live trace channel (docs/build-service-api.md "Trace channel"), one JSON line per
  * record (as `contract trace --format json`), written through per event (no buffering here).
- * At the end the caller hands the file's expected whole text (the collected logs read by
- * parseTrace): close() tells whether the live text is exactly that, else the caller rewrites it.
+ * Only a digest of what was written is kept (a run of minutes at 1 kHz is gigabytes of JSON): at
+ * the end the caller compares it with the digest of the collected logs' JSON lines (read as a
+ * stream, trace-stream.ts) and rewrites the file when they differ.
  */
+import { createHash, type Hash } from 'node:crypto';
 import { constants, promises as fsp } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
 import { parseRecordLine } from '@contract-studio/build-service/trace';
 import { toJsonLines } from './trace-files.js';
+import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
 export class LiveTrace {
     private writing: Promise<unknown> = Promise.resolve();
     private failed: Error | null = null;
-    private readonly written: string[] = [];
+    private readonly written: Hash = createHash('sha256');
     /** Records written so far. */
     records = 0;
 
@@ -30,15 +33,41 @@ export class LiveTrace {
         if (e.type !== 'trace' || this.failed) return;
         const text = toJsonLines(e.records.map((l) => parseRecordLine(l.file, l.line, l.text)));
         this.records += e.records.length;
-        this.written.push(text);
+        this.written.update(text);
         this.writing = this.writing.then(() => this.handle.write(text)).catch((err: Error) => void (this.failed ??= err));
     }
 
-    /** Waits for the writes and closes; true when the file holds exactly `whole`. Throws a write error. */
-    async close(whole?: string): Promise<boolean> {
+    /** Waits for the writes and closes; the sha256 (hex) of what the file holds. Throws a write error. */
+    async close(): Promise<string> {
         await this.writing;
         await this.handle.close();
         if (this.failed) throw this.failed;
-        return whole !== undefined && this.written.join('') === whole;
+        return this.written.digest('hex');
+    }
+}
+
+/**
+ * The JSON lines of the run's saved logs `names` in `dir`: their digest compared with what was
+ * written live (`live.digest`), and `traceFile` rewritten from them when it differs. The records
+ * counted, or why the logs could not be read. A run that left no logs keeps what came live
+ * (`live.records` records).
+ */
+export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; records: number }): Promise<{ records: number } | string> {
+    if (!names.length) return { records: live.records };
+    const logs = await openLogFolder(dir, names);
+    if (typeof logs === 'string') return logs;
+    try {
+        const hash = createHash('sha256');
+        const { records } = await jsonLinesOf(logs, (piece) => void hash.update(piece));
+        if (hash.digest('hex') === live.digest) return { records };
+        const out = await fsp.open(traceFile, constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
+        try {
+            await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
+        } finally {
+            await out.close();
+        }
+        return { records };
+    } finally {
+        await closeLogs(logs);
     }
 }

@@ -29,11 +29,14 @@ export interface OpenLog {
     size: number;
 }
 
-/** The CSV logs of `dir`, opened (regular files only: a FIFO, socket or device is left out; never through a link), or an error message. */
-export async function openLogFolder(dir: string): Promise<OpenLog[] | string> {
+/**
+ * The CSV logs of `dir` (those named in `only` when given), opened (regular files only: a FIFO,
+ * socket or device is left out; never through a link), or an error message.
+ */
+export async function openLogFolder(dir: string, only?: readonly string[]): Promise<OpenLog[] | string> {
     let names: string[];
     try {
-        names = (await fsp.readdir(dir)).filter((n) => LOG_FILE_NAME.test(n)).sort();
+        names = (await fsp.readdir(dir)).filter((n) => LOG_FILE_NAME.test(n) && (!only || only.includes(n))).sort();
     } catch (e) {
         return `cannot read the log folder ${dir}: ${(e as Error).message}`;
     }
@@ -259,4 +262,29 @@ export function streamTrace(logs: readonly OpenLog[], { window = Math.min(WINDOW
         if (batch.length) yield batch;
     }
     return { batches: batches(), outOfOrder: () => windows.reduce((n, w) => n + w.outOfOrder, 0) };
+}
+
+/** JSON lines are handed on in pieces of about this many characters. */
+export const PIECE_CHARS = 64 * 1024;
+
+/**
+ * The records of `logs` as JSON lines (one object per record, time order: `contract trace
+ * --format json`), handed to `sink` in pieces, each awaited; a sink answering false stops the
+ * read. Returns the records handed on and those told later than their time.
+ */
+export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void): Promise<{ records: number; outOfOrder: number }> {
+    const stream = streamTrace(logs);
+    let records = 0;
+    let piece = '';
+    for await (const batch of stream.batches) {
+        for (const r of batch) piece += JSON.stringify(r) + '\n';
+        records += batch.length;
+        if (piece.length >= PIECE_CHARS) {
+            const go = await sink(piece);
+            piece = '';
+            if (go === false) return { records, outOfOrder: stream.outOfOrder() };
+        }
+    }
+    if (piece) await sink(piece);
+    return { records, outOfOrder: stream.outOfOrder() };
 }

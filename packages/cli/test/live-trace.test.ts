@@ -1,11 +1,12 @@
 /** `contract run --trace FILE`: records written as the trace events arrive, not only at the end. */
-import { mkdtempSync, readFileSync, rmSync, statSync, symlinkSync } from 'node:fs';
+import { createHash } from 'node:crypto';
+import { mkdtempSync, readFileSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, it } from 'vitest';
 import type { JobEvent } from '@contract-studio/build-service';
-import { parseRecordLine } from '@contract-studio/build-service/trace';
-import { LiveTrace } from '../src/live-trace.js';
+import { CSV_HEADER, parseRecordLine, parseTrace } from '@contract-studio/build-service/trace';
+import { LiveTrace, settleTraceFile } from '../src/live-trace.js';
 import { toJsonLines } from '../src/trace-files.js';
 
 const line = (n: number) => ({ file: 'SUP_1.csv', line: n + 1, text: `${1000 + n},2026-11-24T18:30:15.123456Z,SUP,module_started,,,0,pid=${n} priority=98` });
@@ -26,19 +27,52 @@ describe('LiveTrace', () => {
         expect(readFileSync(path, 'utf8')).toBe(want1); // before the end of the run
         live.event(trace(4, 2));
         const whole = want1 + toJsonLines([4, 5].map((n) => parseRecordLine('SUP_1.csv', n + 1, line(n).text)));
-        expect(await live.close(whole)).toBe(true);
+        expect(await live.close()).toBe(createHash('sha256').update(whole).digest('hex')); // all a long run keeps of it
         expect(readFileSync(path, 'utf8')).toBe(whole);
         expect(live.records).toBe(5);
     });
 
-    it('says when the live text is not the whole trace (the caller rewrites it)', async () => {
+    it('its digest differs from that of another text (the caller then rewrites the file)', async () => {
         const live = await LiveTrace.open(join(dir, 'a.jsonl'));
         live.event(trace(1, 1));
-        expect(await live.close('something else\n')).toBe(false);
+        expect(await live.close()).not.toBe(createHash('sha256').update('something else\n').digest('hex'));
     });
 
     it('never writes through a link', async () => {
         symlinkSync(join(dir, 'target'), join(dir, 'link.jsonl'));
         await expect(LiveTrace.open(join(dir, 'link.jsonl'))).rejects.toThrow(/ELOOP/);
+    });
+
+    describe('settleTraceFile (the end of the run)', () => {
+        const logs: Record<string, string> = {
+            'SUP_1.csv': [CSV_HEADER, line(1).text, line(3).text].join('\n') + '\n',
+            'ORD_1.csv': [CSV_HEADER, '1002,w,ORD,scheduler,,,0,activate S'].join('\n') + '\n',
+        };
+        const whole = () => toJsonLines(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))));
+        const sha = (t: string) => createHash('sha256').update(t).digest('hex');
+        beforeEach(() => {
+            for (const [name, text] of Object.entries(logs)) writeFileSync(join(dir, name), text);
+            writeFileSync(join(dir, 'OLD_1.csv'), `${CSV_HEADER}\n5,w,OLD,error,,,0,an earlier run's log in the same folder\n`);
+        });
+
+        it('rewrites the file from the run\'s logs (only those) when the live text differs', async () => {
+            const file = join(dir, 'run.jsonl');
+            writeFileSync(file, 'live, partly\n');
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), records: 1 })).toEqual({ records: 3 });
+            expect(readFileSync(file, 'utf8')).toBe(whole());
+        });
+
+        it('leaves the file as written live when it is the whole trace', async () => {
+            const file = join(dir, 'run.jsonl');
+            writeFileSync(file, 'as written live\n'); // stands for the same text: not written again
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha(whole()), records: 3 })).toEqual({ records: 3 });
+            expect(readFileSync(file, 'utf8')).toBe('as written live\n');
+        });
+
+        it('keeps what came live when the run left no logs; never rewrites through a link', async () => {
+            expect(await settleTraceFile(dir, [], join(dir, 'none.jsonl'), { digest: 'x', records: 7 })).toEqual({ records: 7 });
+            symlinkSync(join(dir, 'target'), join(dir, 'link.jsonl'));
+            await expect(settleTraceFile(dir, ['SUP_1.csv'], join(dir, 'link.jsonl'), { digest: 'x', records: 0 })).rejects.toThrow(/ELOOP/);
+        });
     });
 });

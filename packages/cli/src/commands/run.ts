@@ -11,14 +11,12 @@ import { constants, promises as fsp } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { Readable } from 'node:stream';
 import { pipeline } from 'node:stream/promises';
-import { createGunzip, gunzipSync } from 'node:zlib';
+import { createGunzip } from 'node:zlib';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, UsageError, type CliIO, type Command } from '../command.js';
 import type { RunArtifacts } from '@contract-studio/build-service';
 import type { JobEvent } from '@contract-studio/build-service';
-import { parseTrace } from '@contract-studio/build-service/trace';
-import { toJsonLines, writeNoFollow } from '../trace-files.js';
-import { LiveTrace } from '../live-trace.js';
+import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from '../job-runner.js';
 import { isCpuList } from '@contract-studio/conventions';
 
@@ -169,18 +167,18 @@ export const runCommand: Command = {
         }
         let trace: { file: string; records: number } | null = null;
         if (traceFile && live) {
-            const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name)).map((f) => ({ name: f.name, text: gunzipSync(f.gzip).toString('utf8') }));
-            const records = parseTrace(files);
             try {
                 // written live; rewritten from the collected logs when the live channel was not
-                // the whole story in order (docker, its kept-lines bound, records sent late)
-                const whole = toJsonLines(records);
-                if (!(await live.close(whole))) await writeNoFollow(traceFile, whole);
+                // the whole story in order (docker, its kept-lines bound, records sent late):
+                // both compared by digest, the logs read as a stream (a long run is gigabytes)
+                const digest = await live.close();
+                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, records: live.records });
+                if (typeof whole === 'string') throw new Error(whole);
+                trace = { file: traceFile, records: whole.records };
             } catch (e) {
                 io.err(`contract run: cannot write the trace to ${traceFile}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;
             }
-            trace = { file: traceFile, records: records.length };
         }
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];

@@ -9,10 +9,8 @@ import { resolve } from 'node:path';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
-import { closeLogs, openLogFolder, streamTrace, WINDOW } from '../trace-stream.js';
+import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, WINDOW, type OpenLog } from '../trace-stream.js';
 
-/** JSON lines are printed in pieces of about this many characters, each after the reader took the last. */
-const PIECE_CHARS = 64 * 1024;
 
 export const traceCommand: Command = {
     name: 'trace',
@@ -35,31 +33,7 @@ export const traceCommand: Command = {
             return EXIT_FAILURE;
         }
         try {
-            const stream = streamTrace(logs);
-            const teller = new StoryTeller();
-            let piece = '';
-            const flush = async () => {
-                io.out(piece);
-                piece = '';
-                await io.drained?.();
-            };
-            for await (const batch of stream.batches) {
-                for (const r of batch) {
-                    if (format === 'json') piece += JSON.stringify(r) + '\n';
-                    else {
-                        const line = teller.tell(r);
-                        if (line !== undefined) piece += line + '\n';
-                    }
-                }
-                // the story's lines are few: printed as they come (and a reader gone is seen at the next)
-                if (piece.length >= PIECE_CHARS || (format === 'text' && piece)) {
-                    await flush();
-                    if (io.outputClosed?.aborted) return EXIT_OK; // the reader went away (`| head`): its choice
-                }
-            }
-            if (format === 'text') piece += teller.summary() + '\n';
-            await flush();
-            const late = stream.outOfOrder();
+            const late = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
             if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${WINDOW} lines from their time's place in their log: told later than their time\n`);
             return EXIT_OK;
         } finally {
@@ -67,3 +41,32 @@ export const traceCommand: Command = {
         }
     },
 };
+
+/** Every record as a JSON line, each piece printed once the reader took the last; stops when the reader went away (`| head`: its choice). */
+async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<number> {
+    const { outOfOrder } = await jsonLinesOf(logs, async (piece) => {
+        io.out(piece);
+        await io.drained?.();
+        return !io.outputClosed?.aborted;
+    });
+    return outOfOrder;
+}
+
+/** The story: its lines printed as they come (few: a reader gone is seen at the next), then the counts. */
+async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<number> {
+    const stream = streamTrace(logs);
+    const teller = new StoryTeller();
+    for await (const batch of stream.batches) {
+        let piece = '';
+        for (const r of batch) {
+            const line = teller.tell(r);
+            if (line !== undefined) piece += line + '\n';
+        }
+        if (!piece) continue;
+        io.out(piece);
+        await io.drained?.();
+        if (io.outputClosed?.aborted) return stream.outOfOrder();
+    }
+    io.out(teller.summary() + '\n');
+    return stream.outOfOrder();
+}

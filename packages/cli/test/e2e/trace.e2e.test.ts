@@ -46,6 +46,9 @@ describe('contract trace on a recorded tutorial run (bwrap)', () => {
     it('the run wrote its trace', () => {
         expect(run.code).toBe(0);
         expect(JSON.parse(run.stdout).trace.records).toBeGreaterThan(0);
+        // the trace file is the logs' records as JSON lines, whether written live or rewritten at the end
+        expect(readFileSync(traceFile(), 'utf8')).toBe(json.stdout);
+        expect(JSON.parse(run.stdout).trace.records).toBe(json.stdout.trim().split('\n').length);
     });
 
     it('tells every rule change of SUP with its cause: FIRST on elapsed=1ms, SECOND after MAA\'s "disconnected"', () => {
