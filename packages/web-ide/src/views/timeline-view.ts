@@ -38,7 +38,15 @@ export class TimelineView {
     this.info = h('span', { class: 'muted' });
     this.zoom = h('input', { type: 'range', min: 0, max: 8, step: 1, value: 0, class: 'zoom', title: 'Zoom (×2 per step)', 'aria-label': 'Zoom (×2 per step)' });
     this.zoom.addEventListener('input', () => this.last && this.draw(this.last.acts, this.last.files, this.last.errors));
-    this.canvas = h('div', { class: 'timeline-canvas' });
+    this.canvas = h('div', {
+      class: 'timeline-canvas', tabindex: 0, role: 'group', 'data-autofocus': true,
+      'aria-label': 'Timeline of module activations: arrows scroll, Home and End go to the start and the end of the run; hover a bar for its times',
+    });
+    this.canvas.addEventListener('keydown', (e) => {
+      if (e.key !== 'Home' && e.key !== 'End') return;
+      this.canvas.scrollLeft = e.key === 'Home' ? 0 : this.canvas.scrollWidth;
+      e.preventDefault();
+    });
     this.canvas.addEventListener('scroll', () => {
       if (this.barsPending || !this.drawBars) return;
       this.barsPending = true;
