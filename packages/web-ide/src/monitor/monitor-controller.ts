@@ -167,10 +167,12 @@ export class MonitorController {
   /** Replays the `*.csv` logs of a workspace folder. */
   async openFolder(folder: string): Promise<void> {
     const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
-    const { files, problems: leftOut } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
-    // said in the label: a replay never misses a log silently
+    const { files, problems: leftOut, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    // said in the label: a replay never misses a log silently; a run too long for the page is told
+    // whole by the CLI, which reads it as a stream
     const where = folder || 'the workspace root';
-    const label = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})` : `${files.length} CSV log(s) in ${where}`;
+    const whole = tooLarge ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
+    const label = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}`;
     const run: Run = { id: `dir:${folder}`, label, model: await modelOf(files), live: false };
     this.runs.set(run.id, run);
     await this.show(run.id);

@@ -3,7 +3,7 @@
  * project's `src-gen/generated/architecture/logs/`) or those the build service collected from a
  * sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`, docs/build-service-api.md).
  */
-import { api } from '../api.js';
+import { api, ApiError } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
 export interface LogFile {
@@ -68,11 +68,12 @@ export const MAX_RUN_LOG_BYTES = 512 * 1024 * 1024;
 /**
  * Reads the workspace's CSV logs `paths` (GET /api/log), `maxBytes` in all: each file under the
  * name `nameOf(path)`; a log that cannot be read or is past the bound is a problem naming why, not
- * downloaded.
+ * downloaded (`tooLarge`: one was past a bound).
  */
-export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<{ files: LogFile[]; problems: string[] }> {
+export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<{ files: LogFile[]; problems: string[]; tooLarge: boolean }> {
   const files: LogFile[] = [];
   const problems: string[] = [];
+  let tooLarge = false;
   let room = maxBytes;
   for (const p of paths) {
     const name = nameOf(p);
@@ -82,9 +83,10 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
       files.push({ name, text });
     } catch (e) {
       problems.push(`${name}: ${(e as Error).message}`);
+      tooLarge ||= e instanceof ApiError && e.status === 413;
     }
   }
-  return { files, problems };
+  return { files, problems, tooLarge };
 }
 
 /** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */
