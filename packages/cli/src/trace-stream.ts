@@ -19,6 +19,8 @@ export const WINDOW = 4096;
 const HELD_RECORDS = 262_144;
 /** A run writes one log per module; a folder with more is not a run's (each log holds a descriptor while read). */
 export const MAX_LOG_FILES = 1024;
+/** A "line" longer than this is no log's (a record is at most 4 KiB): the rest of its file is left out, said. */
+export const MAX_SKIP_BYTES = 64 * 1024 * 1024;
 /** Bytes read from a log at a time. */
 export const CHUNK_BYTES = 1 << 20;
 
@@ -81,6 +83,10 @@ class LogRecords {
     private rest = '';
     /** The rest is the head of a line longer than a record can be: its end is skipped. */
     private skipping = false;
+    /** Bytes of the line being skipped read so far. */
+    private skipped = 0;
+    /** What was left out of the file, and why. */
+    readonly problems: string[] = [];
     private lineNo = 0;
     private index = 0;
     private lastKey = 0n;
@@ -106,9 +112,11 @@ class LogRecords {
         this.at = 0;
         const want = Math.min(this.chunkBytes, this.log.size - this.offset);
         let text: string;
+        const wasSkipping = this.skipping;
+        let bytesRead = 0;
         if (want > 0) {
             const buffer = (this.buffer ??= Buffer.allocUnsafe(Math.min(this.chunkBytes, this.log.size)));
-            const { bytesRead } = await this.log.handle.read(buffer, 0, want, this.offset);
+            ({ bytesRead } = await this.log.handle.read(buffer, 0, want, this.offset));
             if (bytesRead === 0) return this.finish();
             this.offset += bytesRead;
             text = this.rest + this.decoder.write(buffer.subarray(0, bytesRead));
@@ -121,6 +129,16 @@ class LogRecords {
             pos = nl + 1;
         }
         this.rest = text.slice(pos);
+        // a chunk all inside a skipped line: a file of megabytes without a line end (zeros, a
+        // sparse file of terabytes) is not read to its end
+        this.skipped = wasSkipping && pos === 0 ? this.skipped + bytesRead : 0;
+        if (this.skipped > MAX_SKIP_BYTES) {
+            this.problems.push(`${this.log.name}: no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB after line ${this.lineNo}: the rest of the file (${this.log.size - this.offset} bytes) left out`);
+            this.offset = this.log.size;
+            this.rest = '';
+            this.skipping = false;
+            return true;
+        }
         if (this.rest.length > MAX_LINE_CHARS) {
             // a line with no end in sight: told as too long once, the rest of it skipped
             if (!this.skipping) this.line(this.rest);
@@ -173,6 +191,10 @@ class LogWindow {
 
     get length(): number {
         return this.held.length - this.head;
+    }
+
+    get problems(): readonly string[] {
+        return this.records.problems;
     }
 
     /** Reads records in until the window is full or the file ended. */
@@ -230,6 +252,8 @@ export interface TraceStream {
     batches: AsyncGenerator<TraceRecord[]>;
     /** Records told later than their time (further than the window from their place), once the stream ended. */
     outOfOrder(): number;
+    /** What was left out of the logs, and why (a file's rest with no line end). */
+    problems(): string[];
 }
 
 /** Records handed on at a time. */
@@ -261,7 +285,7 @@ export function streamTrace(logs: readonly OpenLog[], { window = Math.min(WINDOW
         }
         if (batch.length) yield batch;
     }
-    return { batches: batches(), outOfOrder: () => windows.reduce((n, w) => n + w.outOfOrder, 0) };
+    return { batches: batches(), outOfOrder: () => windows.reduce((n, w) => n + w.outOfOrder, 0), problems: () => windows.flatMap((w) => w.problems) };
 }
 
 /** JSON lines are handed on in pieces of about this many characters. */
@@ -272,7 +296,7 @@ export const PIECE_CHARS = 64 * 1024;
  * --format json`), handed to `sink` in pieces, each awaited; a sink answering false stops the
  * read. Returns the records handed on and those told later than their time.
  */
-export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void): Promise<{ records: number; outOfOrder: number }> {
+export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void): Promise<{ records: number; outOfOrder: number; problems: string[] }> {
     const stream = streamTrace(logs);
     let records = 0;
     let piece = '';
@@ -282,9 +306,9 @@ export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string
         if (piece.length >= PIECE_CHARS) {
             const go = await sink(piece);
             piece = '';
-            if (go === false) return { records, outOfOrder: stream.outOfOrder() };
+            if (go === false) return { records, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
         }
     }
     if (piece) await sink(piece);
-    return { records, outOfOrder: stream.outOfOrder() };
+    return { records, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
 }

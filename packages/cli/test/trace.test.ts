@@ -84,6 +84,22 @@ describe('contract trace', () => {
         }
     });
 
+    it('a log with no line end (a sparse file of a terabyte named like a log) is read no further than 64 MiB, and said', async () => {
+        const odd = mkdtempSync(join(tmpdir(), 'contract-trace-sparse-'));
+        try {
+            writeFileSync(join(odd, 'ORD_1.csv'), `${HEADER}\n2000500000,w,ORD,scheduler,,,0,activate S\n`);
+            execFileSync('truncate', ['-s', '1T', join(odd, 'ZZZ_1.csv')]);
+            const t0 = Date.now();
+            const io = capture(odd);
+            expect(await runCli(['trace', '.'], io)).toBe(0);
+            expect(Date.now() - t0).toBeLessThan(20_000); // read whole, a terabyte of zeros took hours
+            expect(io.stdout).toMatch(/^\+0\.000000s ORD  activate S\n2 records: .* 1 unreadable line\(s\)\n$/);
+            expect(io.stderr).toBe(`contract trace: warning: ZZZ_1.csv: no line end in 64 MiB after line 1: the rest of the file (${2 ** 40 - 64 * 2 ** 20 - 2 * 2 ** 20} bytes) left out\n`);
+        } finally {
+            rmSync(odd, { recursive: true, force: true });
+        }
+    });
+
     it('a reader that goes away (`| head`) ends nothing badly: no stack trace, exit 0', async () => {
         // 20,000 records: far more than a pipe holds, so the command is still writing when the reader closes
         const big = mkdtempSync(join(tmpdir(), 'contract-trace-big-'));

@@ -33,7 +33,8 @@ export const traceCommand: Command = {
             return EXIT_FAILURE;
         }
         try {
-            const late = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
+            const { late, problems } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
+            for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
             if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${WINDOW} lines from their time's place in their log: told later than their time\n`);
             return EXIT_OK;
         } finally {
@@ -43,17 +44,17 @@ export const traceCommand: Command = {
 };
 
 /** Every record as a JSON line, each piece printed once the reader took the last; stops when the reader went away (`| head`: its choice). */
-async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<number> {
-    const { outOfOrder } = await jsonLinesOf(logs, async (piece) => {
+async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
+    const { outOfOrder, problems } = await jsonLinesOf(logs, async (piece) => {
         io.out(piece);
         await io.drained?.();
         return !io.outputClosed?.aborted;
     });
-    return outOfOrder;
+    return { late: outOfOrder, problems };
 }
 
 /** The story: its lines printed as they come (few: a reader gone is seen at the next), then the counts. */
-async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<number> {
+async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
     const stream = streamTrace(logs);
     const teller = new StoryTeller();
     for await (const batch of stream.batches) {
@@ -65,8 +66,8 @@ async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<number> 
         if (!piece) continue;
         io.out(piece);
         await io.drained?.();
-        if (io.outputClosed?.aborted) return stream.outOfOrder();
+        if (io.outputClosed?.aborted) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
     io.out(teller.summary() + '\n');
-    return stream.outOfOrder();
+    return { late: stream.outOfOrder(), problems: stream.problems() };
 }
