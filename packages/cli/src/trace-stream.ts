@@ -54,9 +54,9 @@ export async function openLogFolder(dir: string, only?: readonly string[]): Prom
             await closeLogs(logs);
             return `cannot open ${join(dir, name)}: ${(e as Error).message}`;
         }
-        const st = await handle.stat();
-        if (!st.isFile()) {
-            await handle.close();
+        const st = await handle.stat().catch(() => undefined);
+        if (!st?.isFile()) {
+            await handle.close().catch(() => {});
             continue;
         }
         logs.push({ name, handle, size: st.size });
