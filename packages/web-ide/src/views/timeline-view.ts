@@ -30,6 +30,8 @@ export class TimelineView {
   /** Redraws the bars of the part of the timeline on screen (after a scroll). */
   private drawBars: (() => void) | undefined;
   private barsPending = false;
+  /** The width the timeline was last fitted to (the canvas's, padding left out). */
+  private fittedWidth = 0;
 
   constructor(
     private readonly project: () => string,
@@ -57,6 +59,18 @@ export class TimelineView {
     }, { passive: true });
     this.source = h('select', { class: 'timeline-source', title: 'Which run to show', 'aria-label': 'Which run to show' });
     this.source.addEventListener('change', () => void this.update());
+    // fitted to its pane: a pane that changed width (the Monitor docked beside it, a window
+    // resized) gets the timeline drawn again for it
+    new ResizeObserver((entries) => {
+      const width = Math.round(entries[0]?.contentRect.width ?? 0);
+      if (!width || !this.last || Math.abs(width - this.fittedWidth) < 8) return;
+      if (this.barsPending) return;
+      this.barsPending = true;
+      requestAnimationFrame(() => {
+        this.barsPending = false;
+        if (this.last) this.draw(this.last.acts, this.last.files, this.last.errors);
+      });
+    }).observe(this.canvas);
     this.renderSources('local');
     this.element = h('div', { class: 'timeline-view' },
       h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Activations per period'), this.source, this.info, h('span', { class: 'grow' }),
@@ -120,7 +134,8 @@ export class TimelineView {
     const lane = 26;
     const left = 70;
     // fit the visible width (hover a bar for exact times)
-    const fit = Math.max(600, (this.canvas.clientWidth || 1000) - 40);
+    this.fittedWidth = Math.round(this.canvas.clientWidth - 40);
+    const fit = Math.max(300, (this.canvas.clientWidth || 1000) - 40);
     // zoom in far enough to see each period (8 px apart) of a long run: 2^8 at least, 2^16 at most
     this.zoom.max = String(period ? Math.min(16, Math.max(8, Math.ceil(Math.log2(((span / period) * 8) / fit)))) : 8);
     const width = fit * 2 ** Number(this.zoom.value);

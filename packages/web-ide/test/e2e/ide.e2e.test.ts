@@ -613,8 +613,17 @@ describe('IDE in headless Chromium', () => {
     expect(await page.locator('.timeline-view .muted').first().textContent()).toMatch(/period ≈ 10\.00 ms/);
     await shot(page, '09-timeline');
     const w0 = Number(await page.locator('.timeline-svg').getAttribute('width'));
+    const svgWidth = async () => Number(await page.locator('.timeline-svg').getAttribute('width'));
+    const paneWidth = () => page.locator('.timeline-canvas').evaluate((el) => el.clientWidth - 40);
+    expect(w0).toBe(await paneWidth()); // fitted to its pane
+    // the pane changes width (the Monitor docked beside it, or put away): the timeline fits it again
+    await page.locator('#btn-monitor').click();
+    await expect.poll(svgWidth, { timeout: 5000 }).not.toBe(w0);
+    expect(await svgWidth()).toBe(await paneWidth());
+    await page.locator('#btn-monitor').click();
+    await expect.poll(svgWidth, { timeout: 5000 }).toBe(w0);
     await page.locator('.timeline-view input.zoom').fill('2');
-    await expect.poll(async () => Number(await page.locator('.timeline-svg').getAttribute('width'))).toBe(w0 * 4);
+    await expect.poll(svgWidth).toBe(w0 * 4);
   });
 
   it('draws the timeline of a long run (300,000 activations) with a bar per pixel, each activation once zoomed in', async () => {
