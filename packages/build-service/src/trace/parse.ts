@@ -8,7 +8,7 @@ import { splitCsvLine } from './csv-line.js';
 import { MinHeap } from './min-heap.js';
 import { traceKind } from './record-kinds.js';
 import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
-import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, TraceRecordBase, UnknownRecord } from './records.js';
+import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, UnknownRecord } from './records.js';
 
 export const CSV_HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 /** Longer lines are not records (csvlog.c writes at most about 1 KiB per record). */
@@ -32,6 +32,27 @@ function isPlainInteger(s: string): boolean {
     for (let i = start; i < s.length; i++) {
         const c = s.charCodeAt(i);
         if (c < 48 || c > 57) return false;
+    }
+    return true;
+}
+
+/** True when `s` is `\d{min,max}`. */
+function isDigits(s: string, min: number, max: number): boolean {
+    if (s.length < min || s.length > max) return false;
+    for (let i = 0; i < s.length; i++) {
+        const c = s.charCodeAt(i);
+        if (c < 48 || c > 57) return false;
+    }
+    return true;
+}
+
+/** True when `s` is `[\w.-]{1,64}` (a module name as the runtime writes it). */
+function isModuleName(s: string): boolean {
+    if (s.length < 1 || s.length > 64) return false;
+    for (let i = 0; i < s.length; i++) {
+        const c = s.charCodeAt(i);
+        const ok = (c >= 48 && c <= 57) || (c >= 65 && c <= 90) || (c >= 97 && c <= 122) || c === 95 /* _ */ || c === 46 /* . */ || c === 45; /* - */
+        if (!ok) return false;
     }
     return true;
 }
@@ -88,22 +109,25 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     const f = splitCsvLine(line);
     if (f.length !== 8) return unknown(file, lineNo, `${f.length} fields, expected 8`, line);
     const [mono, wall, module, event, peer, port, size, detail] = f as [string, string, string, string, string, string, string, string];
-    if (!/^\d{1,20}$/.test(mono)) return unknown(file, lineNo, 'mono_ns is not a number', line);
-    if (!/^[\w.-]{1,64}$/.test(module)) return unknown(file, lineNo, 'bad module name', line);
-    if (!/^$|^\d{1,9}$/.test(port) || !/^\d{1,15}$/.test(size)) return unknown(file, lineNo, 'bad port or size', line);
+    // checked by character rather than by regular expression, and the record made as one literal
+    // (one shape for all): this runs for every record of a live trace and of `contract trace`
+    if (!isDigits(mono, 1, 20)) return unknown(file, lineNo, 'mono_ns is not a number', line);
+    if (!isModuleName(module)) return unknown(file, lineNo, 'bad module name', line);
+    if ((port !== '' && !isDigits(port, 1, 9)) || !isDigits(size, 1, 15)) return unknown(file, lineNo, 'bad port or size', line);
     const kind = traceKind(event);
     if (!kind) return unknown(file, lineNo, `unknown event '${event.slice(0, 64)}'`, line);
-    const base: TraceRecordBase = { monoNs: mono, wallTime: wall, module, peer, port: port === '' ? null : Number(port), size: Number(size), detail };
+    const portN = port === '' ? null : Number(port);
+    const sizeN = Number(size);
     if (event === 'sup_rule') {
         const m = RULE_DETAIL.exec(detail);
         if (!m) return unknown(file, lineNo, 'sup_rule detail is not `F.R active|inactive cause=C`', line);
-        const rule: RuleRecord = { kind: 'sup_rule', ...base, function: m[1]!, rule: m[2]!, active: m[3] === 'active', cause: m[4]!, causeEvent: parseCause(m[4]!) };
+        const rule: RuleRecord = { kind: 'sup_rule', monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, function: m[1]!, rule: m[2]!, active: m[3] === 'active', cause: m[4]!, causeEvent: parseCause(m[4]!) };
         return rule;
     }
     const fields = event === 'scheduler' ? classifyLine(SCHEDULER_LINES, detail)
         : event === 'supervisor' ? classifyLine(SUPERVISOR_LINES, detail)
             : detailFields(detail, kind.detailKeys ?? []);
-    const known: KnownRecord = { kind: event, ...base, fields };
+    const known: KnownRecord = { kind: event, monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields };
     return known;
 }
 
