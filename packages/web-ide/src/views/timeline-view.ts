@@ -30,6 +30,7 @@ export class TimelineView {
   /** Redraws the bars of the part of the timeline on screen (after a scroll). */
   private drawBars: (() => void) | undefined;
   private barsPending = false;
+  private redrawPending = false;
   /** The width the timeline was last fitted to (the canvas's, padding left out). */
   private fittedWidth = 0;
 
@@ -63,11 +64,10 @@ export class TimelineView {
     // resized) gets the timeline drawn again for it
     new ResizeObserver((entries) => {
       const width = Math.round(entries[0]?.contentRect.width ?? 0);
-      if (!width || !this.last || Math.abs(width - this.fittedWidth) < 8) return;
-      if (this.barsPending) return;
-      this.barsPending = true;
+      if (!width || !this.last || Math.abs(width - this.fittedWidth) < 8 || this.redrawPending) return;
+      this.redrawPending = true;
       requestAnimationFrame(() => {
-        this.barsPending = false;
+        this.redrawPending = false;
         if (this.last) this.draw(this.last.acts, this.last.files, this.last.errors);
       });
     }).observe(this.canvas);
