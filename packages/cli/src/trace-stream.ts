@@ -10,13 +10,18 @@
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { StringDecoder } from 'node:string_decoder';
-import { CSV_HEADER, MAX_LINE_CHARS, MinHeap, parseRecordLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { LOG_FILE_NAME } from './trace-files.js';
 
 /** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
 export const WINDOW = 4096;
 /** Records held in all files' windows: about 130 MB at most. */
 const HELD_RECORDS = 262_144;
+
+/** Records held per file when `files` logs are read together: WINDOW, fewer past 64 files. */
+export function windowFor(files: number): number {
+    return Math.min(WINDOW, Math.max(64, Math.floor(HELD_RECORDS / Math.max(1, files))));
+}
 /** A run writes one log per module; a folder with more is not a run's (each log holds a descriptor while read). */
 export const MAX_LOG_FILES = 1024;
 /** A "line" longer than this is no log's (a record is at most 4 KiB): the rest of its file is left out, said. */
@@ -164,10 +169,8 @@ class LogRecords {
             this.skipping = false;
             return;
         }
-        const n = this.lineNo++;
-        const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
-        if (line === '' || (n === 0 && line === CSV_HEADER)) return;
-        const record = parseRecordLine(this.log.name, n + 1, line);
+        const record = recordOfLine(this.log.name, this.lineNo++, raw);
+        if (!record) return;
         if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);
         this.pending.push({ key: this.lastKey, index: this.index++, record });
     }
@@ -260,7 +263,7 @@ export interface TraceStream {
 const BATCH = 1024;
 
 /** The records of `logs` in time order (files in name order break ties), read `window` records ahead per file. */
-export function streamTrace(logs: readonly OpenLog[], { window = Math.min(WINDOW, Math.max(64, Math.floor(HELD_RECORDS / Math.max(1, logs.length)))), chunkBytes = CHUNK_BYTES } = {}): TraceStream {
+export function streamTrace(logs: readonly OpenLog[], { window = windowFor(logs.length), chunkBytes = CHUNK_BYTES } = {}): TraceStream {
     const sorted = [...logs].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
     const windows = sorted.map((log, i) => new LogWindow(new LogRecords(log, chunkBytes), i, window));
     async function* batches(): AsyncGenerator<TraceRecord[]> {

@@ -4,7 +4,7 @@
  * (`contract trace`, `contract run --trace`) as `@contract-studio/build-service/trace`.
  */
 export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
-export { parseTrace, parseTraceSteps, parseLogFile, parseRecordLine, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
+export { parseTrace, parseTraceSteps, parseLogFile, parseRecordLine, recordOfLine, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine } from './csv-line.js';
 export { renderStory, StoryTeller } from './story.js';
 export { MinHeap } from './min-heap.js';

@@ -26,20 +26,14 @@ function unknown(file: string, line: number, reason: string, text: string): Unkn
 /** True when `s` is `-?\d{1,15}` (a number that a double holds exactly). Faster than the regex on
  *  the hot path (every field of every live record). */
 function isPlainInteger(s: string): boolean {
-    const start = s.charCodeAt(0) === 45 /* - */ ? 1 : 0;
-    const digits = s.length - start;
-    if (digits < 1 || digits > 15) return false;
-    for (let i = start; i < s.length; i++) {
-        const c = s.charCodeAt(i);
-        if (c < 48 || c > 57) return false;
-    }
-    return true;
+    return isDigits(s, 1, 15, s.charCodeAt(0) === 45 /* - */ ? 1 : 0);
 }
 
-/** True when `s` is `\d{min,max}`. */
-function isDigits(s: string, min: number, max: number): boolean {
-    if (s.length < min || s.length > max) return false;
-    for (let i = 0; i < s.length; i++) {
+/** True when `s` from `start` is `\d{min,max}`. */
+function isDigits(s: string, min: number, max: number, start = 0): boolean {
+    const digits = s.length - start;
+    if (digits < min || digits > max) return false;
+    for (let i = start; i < s.length; i++) {
         const c = s.charCodeAt(i);
         if (c < 48 || c > 57) return false;
     }
@@ -142,12 +136,21 @@ function* logFileRecords(file: LogFile): Generator<TraceRecord> {
     for (let pos = 0, i = 0; pos < text.length; i++) {
         let nl = text.indexOf('\n', pos);
         if (nl < 0) nl = text.length;
-        const raw = text.slice(pos, nl);
+        const record = recordOfLine(file.name, i, text.slice(pos, nl));
         pos = nl + 1;
-        const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
-        if (line === '' || (i === 0 && line === CSV_HEADER)) continue;
-        yield parseRecordLine(file.name, i + 1, line);
+        if (record) yield record;
     }
+}
+
+/**
+ * The record of line `index` (0-based) of log `file`, as read from the file (a `\r` before its
+ * newline taken off); undefined for an empty line and the header on the first line. Shared by the
+ * readers of a whole log (here) and of a streamed one (the CLI's `contract trace`).
+ */
+export function recordOfLine(file: string, index: number, raw: string): TraceRecord | undefined {
+    const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
+    if (line === '' || (index === 0 && line === CSV_HEADER)) return undefined;
+    return parseRecordLine(file, index + 1, line);
 }
 
 /**

@@ -9,8 +9,7 @@ import { resolve } from 'node:path';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
-import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, WINDOW, type OpenLog } from '../trace-stream.js';
-
+import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 
 export const traceCommand: Command = {
     name: 'trace',
@@ -35,7 +34,7 @@ export const traceCommand: Command = {
         try {
             const { late, problems } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
-            if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${WINDOW} lines from their time's place in their log: told later than their time\n`);
+            if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines from their time's place in their log: told later than their time\n`);
             return EXIT_OK;
         } finally {
             await closeLogs(logs);
