@@ -1,11 +1,12 @@
 import { describe, it, expect } from 'vitest';
-import { activationsFromCsv, inferPeriod, parseCsvLine } from './activation-log.js';
+import { splitCsvLine } from '@contract-studio/build-service/trace';
+import { activationsFromCsv, inferPeriod } from './activation-log.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 
 describe('activation log', () => {
   it('parses quoted CSV fields', () => {
-    expect(parseCsvLine('1,"a,b","say ""hi""",,x')).toEqual(['1', 'a,b', 'say "hi"', '', 'x']);
+    expect(splitCsvLine('1,"a,b","say ""hi""",,x')).toEqual(['1', 'a,b', 'say "hi"', '', 'x']);
   });
 
   it('pairs run_started with run_finished per module and infers the period', () => {

@@ -1,8 +1,11 @@
 /**
  * Parses the runtime's per-module CSV logs (docs/runtime-api.md: columns
  * `mono_ns,wall_time,module,event,peer,port,size,detail`) into activations: each `run_started`
- * paired with the module's next `run_finished`. Pure: used by the timeline view and tests.
+ * paired with the module's next `run_finished` (fields split by the trace reader's splitCsvLine). Pure: used by
+ * the timeline view and tests.
  */
+import { splitCsvLine } from '@contract-studio/build-service/trace';
+
 export interface Activation {
   module: string;
   /** Monotonic start/end in ns; end undefined if the log stops while running. */
@@ -11,33 +14,10 @@ export interface Activation {
   detail: string;
 }
 
-export function parseCsvLine(line: string): string[] {
-  if (!line.includes('"')) return line.split(',');
-  const out: string[] = [];
-  let cur = '';
-  let quoted = false;
-  for (let i = 0; i < line.length; i++) {
-    const c = line[i]!;
-    if (quoted) {
-      if (c === '"' && line[i + 1] === '"') {
-        cur += '"';
-        i++;
-      } else if (c === '"') quoted = false;
-      else cur += c;
-    } else if (c === '"') quoted = true;
-    else if (c === ',') {
-      out.push(cur);
-      cur = '';
-    } else cur += c;
-  }
-  out.push(cur);
-  return out;
-}
-
 export function activationsFromCsv(text: string): Activation[] {
   const lines = text.split(/\r?\n/).filter((l) => l.length > 0);
   if (!lines.length) return [];
-  const header = parseCsvLine(lines[0]!);
+  const header = splitCsvLine(lines[0]!);
   const col = (name: string) => header.indexOf(name);
   const [iMono, iModule, iEvent, iDetail] = [col('mono_ns'), col('module'), col('event'), col('detail')];
   if (iMono < 0 || iModule < 0 || iEvent < 0) throw new Error('not a ContrACT CSV log (missing mono_ns/module/event columns)');
@@ -49,7 +29,7 @@ export function activationsFromCsv(text: string): Activation[] {
   for (let n = 1; n < lines.length; n++) {
     const l = lines[n]!;
     if (inside && !l.includes(',run_started,') && !l.includes(',run_finished,')) continue;
-    const f = parseCsvLine(l);
+    const f = splitCsvLine(l);
     const t = Number(f[iMono]);
     const module = f[iModule] ?? '?';
     if (!Number.isFinite(t)) continue;
