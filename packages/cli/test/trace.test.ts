@@ -29,6 +29,15 @@ beforeAll(() => {
 });
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
 
+/** A new temporary folder holding ORD's log of `n` releases, one a microsecond (the caller removes it). */
+function releasesFolder(n: number): string {
+    const folder = mkdtempSync(join(tmpdir(), 'contract-trace-releases-'));
+    const lines = [HEADER];
+    for (let i = 0; i < n; i++) lines.push(`${1_000_000_000 + i * 1000},w,ORD,ord_release,MSA,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1000} release_ns=${1_000_000_001 + i * 1000} release=${i + 1}`);
+    writeFileSync(join(folder, 'ORD_24-Nov-2026-18h30m15s.csv'), lines.join('\n') + '\n');
+    return folder;
+}
+
 describe('contract trace', () => {
     it('tells the run in time order, control characters made visible, links refused', async () => {
         const io = capture(dir);
@@ -102,10 +111,7 @@ describe('contract trace', () => {
 
     it('a reader that goes away (`| head`) ends nothing badly: no stack trace, exit 0', async () => {
         // 20,000 records: far more than a pipe holds, so the command is still writing when the reader closes
-        const big = mkdtempSync(join(tmpdir(), 'contract-trace-big-'));
-        const lines = [HEADER];
-        for (let i = 0; i < 20_000; i++) lines.push(`${1_000_000_000 + i * 1000},w,ORD,ord_release,MSA,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1000} release_ns=${1_000_000_001 + i * 1000} release=${i + 1}`);
-        writeFileSync(join(big, 'ORD_24-Nov-2026-18h30m15s.csv'), lines.join('\n') + '\n');
+        const big = releasesFolder(20_000);
         try {
             for (const format of ['json', 'text']) {
                 const child = spawn(process.execPath, [BIN, 'trace', big, '--format', format], { stdio: ['ignore', 'pipe', 'pipe'] });
@@ -124,10 +130,7 @@ describe('contract trace', () => {
     });
 
     it('prints in pieces, each once the reader took the last (a run of gigabytes is not held in memory)', async () => {
-        const big = mkdtempSync(join(tmpdir(), 'contract-trace-slow-'));
-        const lines = [HEADER];
-        for (let i = 0; i < 5_000; i++) lines.push(`${1_000_000_000 + i * 1000},w,ORD,ord_release,MSA,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1000} release_ns=${1_000_000_001 + i * 1000} release=${i + 1}`);
-        writeFileSync(join(big, 'ORD_24-Nov-2026-18h30m15s.csv'), lines.join('\n') + '\n');
+        const big = releasesFolder(5_000);
         try {
             const io = capture(big);
             const pieces: number[] = [];
