@@ -50,6 +50,23 @@ function errorOf(status: number, data: unknown): ApiError {
 const q = (p: string) => encodeURIComponent(p);
 
 /**
+ * GET `url` (through `fetchFn`, a test's own) when the answer is a success; else an ApiError whose
+ * message names the URL and the status: `<url>: HTTP 404 <the answer's error>`.
+ */
+export async function getOk(url: string, fetchFn: typeof fetch = fetch): Promise<Response> {
+  let res: Response;
+  try {
+    res = await fetchFn(url);
+  } catch {
+    throw new ApiError(0, `${url}: server unreachable`);
+  }
+  if (res.ok) return res;
+  const data = answerOf(await res.text().catch(() => '')) as { error?: unknown };
+  const said = typeof data.error === 'string' && data.error ? ` ${data.error}` : '';
+  throw new ApiError(res.status, `${url}: HTTP ${res.status}${said}`, data as Record<string, unknown>);
+}
+
+/**
  * A CSV log of the workspace as text (GET /api/log: bounded for logs, not for the editor's tabs).
  * `maxBytes`: a log larger than that (the server says its size first) is not downloaded: 413.
  */

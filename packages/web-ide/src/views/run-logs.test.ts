@@ -25,7 +25,7 @@ describe('run logs', () => {
 
     async function serve(routes: Record<string, [number, string]>): Promise<typeof fetch> {
       server = createServer((req, res) => {
-        const [status, body] = routes[req.url ?? ''] ?? [404, JSON.stringify({ code: 'not_found', message: `no route ${req.url}` })];
+        const [status, body] = routes[req.url ?? ''] ?? [404, JSON.stringify({ error: `no route ${req.url}`, code: 'not_found' })];
         res.writeHead(status, { 'content-type': body.startsWith('{') ? 'application/json' : 'text/csv' });
         res.end(body);
       });

@@ -3,7 +3,7 @@
  * project's `src-gen/generated/architecture/logs/`) or those the build service collected from a
  * sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`, docs/build-service-api.md).
  */
-import { api, ApiError } from '../api.js';
+import { api, ApiError, getOk } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
 export interface LogFile {
@@ -36,27 +36,6 @@ export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; err
 interface ArtifactListing {
   status: string;
   artifacts: { files: Array<{ name: string; size: number; capped?: string | null }>; skipped: Array<{ name: string; reason: string }> };
-}
-
-async function getOk(fetchFn: typeof fetch, url: string): Promise<Response> {
-  let res: Response;
-  try {
-    res = await fetchFn(url);
-  } catch {
-    throw new Error(`${url}: server unreachable`);
-  }
-  if (!res.ok) {
-    const body = await res.text().catch(() => '');
-    let msg = body;
-    try {
-      const j = JSON.parse(body) as { error?: string; message?: string };
-      msg = j.message ?? j.error ?? body;
-    } catch {
-      /* plain text */
-    }
-    throw new Error(`${url}: HTTP ${res.status}${msg ? ` ${msg}` : ''}`);
-  }
-  return res;
 }
 
 /**
@@ -92,7 +71,7 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
 /** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */
 export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, maxBytes = MAX_RUN_LOG_BYTES): Promise<RunLogs> {
   const base = `/api/jobs/${encodeURIComponent(id)}/artifacts`;
-  const listing = (await (await getOk(fetchFn, base)).json()) as ArtifactListing;
+  const listing = (await (await getOk(base, fetchFn)).json()) as ArtifactListing;
   // a skipped artifact that is not a CSV log (a core file, an output too large) is no hole in the logs
   const problems = (listing.artifacts?.skipped ?? []).filter((s) => s.name.endsWith('.csv')).map((s) => `${s.name}: ${s.reason}`);
   const files: LogFile[] = [];
@@ -106,7 +85,7 @@ export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, ma
     room -= f.size;
     if (f.capped) problems.push(`${f.name}: not whole: ${f.capped}`); // a log-capped record ends it (docs/build-service-api.md, GET /api/jobs/:id/artifacts)
     try {
-      files.push({ name: f.name, text: await (await getOk(fetchFn, `${base}/${encodeURIComponent(f.name)}`)).text() });
+      files.push({ name: f.name, text: await (await getOk(`${base}/${encodeURIComponent(f.name)}`, fetchFn)).text() });
     } catch (e) {
       problems.push((e as Error).message);
     }
