@@ -204,6 +204,52 @@ describe('Monitor in headless Chromium', () => {
     expect(await marksOf(page)).toEqual(liveMarks);
   });
 
+  it('following a 1 kHz run live, the deliveries\' counts are written at most 5 times a second, and exactly once it pauses or ends', async () => {
+    const { page } = s;
+    await page.evaluate(() => (window as any).__ide.build.onStarted.fire({ jobId: 'khz', action: 'run' }));
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
+    // MAB receiving MAA's event at 1 kHz for 2 s, in 20 ms trace events at the run's own pace;
+    // the deliveries' rows counted per write (one batch of mutations), against the frames drawn
+    const seen = await page.evaluate(async () => {
+      const w = window as any;
+      const counts = { writes: 0, frames: 0 };
+      const observer = new MutationObserver(() => counts.writes++);
+      observer.observe(document.querySelector('.monitor-flows')!, { subtree: true, childList: true, characterData: true });
+      let version = -1;
+      let feeding = true;
+      const tick = () => {
+        const drawn = w.__ide.monitor.panel.drawn.version;
+        if (drawn !== version) (version = drawn), counts.frames++;
+        if (feeding) requestAnimationFrame(tick);
+      };
+      requestAnimationFrame(tick);
+      const t0 = performance.now();
+      for (let batch = 0; batch < 100; batch++) {
+        const records = [];
+        for (let i = 0; i < 20; i++) {
+          const n = batch * 20 + i;
+          records.push({ file: 'MAB.csv', line: n + 2, text: `${1_000_000_000 + n * 1_000_000},2026-11-29T10:00:01.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000` });
+        }
+        w.__ide.build.onTrace.fire({ jobId: 'khz', records });
+        const wait = (batch + 1) * 20 - (performance.now() - t0);
+        if (wait > 0) await new Promise((r) => setTimeout(r, wait));
+      }
+      feeding = false;
+      observer.disconnect();
+      return { ...counts, seconds: (performance.now() - t0) / 1000 };
+    });
+    console.log(`[monitor e2e] 1 kHz deliveries: rows written ${seen.writes} times in ${seen.seconds.toFixed(2)} s, ${seen.frames} frames drawn`);
+    expect(seen.frames).toBeGreaterThan(3 * seen.writes);
+    expect(seen.writes).toBeLessThanOrEqual(Math.ceil(seen.seconds * 5) + 1);
+    // once the records stop, the last count is shown
+    const row = page.locator('.monitor-flow.event[data-flow="MAA:0->MAB:0"]');
+    await expect.poll(() => row.textContent()).toBe('┅ MAA:0 → MAB:0 ×2000 · last +1.999000 s');
+    // paused, the counts are those at the cursor at once
+    await page.locator('#monitor-follow').click();
+    await seek(page, 1_000_000_000);
+    await expect.poll(() => row.textContent(), { timeout: 1000 }).toBe('┅ MAA:0 → MAB:0 ×1001 · last +1.000000 s');
+  });
+
   it.skipIf(!canBuild)('Build & Run of the tutorial: live while it runs (when the service streams the trace), then the job replayed, same story at the same times', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
