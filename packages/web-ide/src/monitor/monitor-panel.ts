@@ -42,6 +42,8 @@ const PULSE_NS = 300e6;
  *  after a deadline miss or an overrun (wall ms). */
 const COUNTS_REDRAW_MS = 200;
 const URGENT_REDRAW_MS = 50;
+/** The same for the cursor's time and the diagram's marks (running modules, pulsing flows). */
+const CLOCK_REDRAW_MS = 100;
 const fmtT = (ns: number) => `+${(ns / 1e9).toFixed(6)} s`;
 
 export class MonitorPanel {
@@ -53,6 +55,8 @@ export class MonitorPanel {
   private playing = false;
   private lastPlayWall = 0;
   private dirty = false;
+  /** Drawn at the next frame whatever `drawn` says (redrawAll). */
+  private stale = false;
   private drawn = { version: -1, cursor: -1, model: undefined as MonitorModel | undefined };
   private schemas: ArchSchema[] = [];
   private catalogue: SchemaInfo[] = [];
@@ -61,8 +65,8 @@ export class MonitorPanel {
   private userChoseSchema = false;
   private redrawTimer: ReturnType<typeof setTimeout> | undefined;
   private redrawDue = 0;
-  /** When the running modules and the deliveries were last written (performance.now()). */
-  private flowsDrawnAt = 0;
+  /** When each throttled part was last drawn (performance.now()): see due(). */
+  private readonly drawnAt = { clock: 0, diagram: 0, flows: 0 };
   /** Last frame's render time (ms), for the benchmark. */
   frameMs: number[] = [];
 
@@ -158,8 +162,7 @@ export class MonitorPanel {
       this.diagram.element.querySelector('select')?.addEventListener('change', () => (this.userChoseSchema = true));
     }
     await this.diagram.update();
-    this.drawn.version = -1;
-    this.schedule();
+    this.redrawAll();
   }
 
   setFollow(on: boolean): void {
@@ -208,6 +211,12 @@ export class MonitorPanel {
     this.seek(next ? next.t : dir > 0 ? m.end : 0);
   }
 
+  /** The next frame draws even if the model and the cursor are as drawn (what it draws changed: a throttled part is due, the workspace model was read again). */
+  private redrawAll(): void {
+    this.stale = true;
+    this.schedule();
+  }
+
   /** Marks the view dirty; it redraws on the next animation frame (coalesced). */
   schedule(): void {
     if (this.dirty) return;
@@ -229,7 +238,8 @@ export class MonitorPanel {
       } else this.schedule();
     }
     const t = this.time;
-    if (this.drawn.model === m && this.drawn.version === m.version && this.drawn.cursor === t) return;
+    if (!this.stale && this.drawn.model === m && this.drawn.version === m.version && this.drawn.cursor === t) return;
+    this.stale = false;
     if (!this.element.isConnected) return;
     const t0 = performance.now();
     this.render(m, t);
@@ -241,9 +251,11 @@ export class MonitorPanel {
   private render(m: MonitorModel, t: number): void {
     const s = m.stateAt(t);
     this.element.dataset.t = String(Math.round(t));
-    this.timeText.textContent = `${fmtT(t)} / ${fmtT(m.end)}${this.live && this.follow ? ' · live' : ''}${m.exactAt(t) ? '' : ' · counters approximate this far back'}`;
-    this.slider.value = String(m.end > 0 ? Math.round((t / m.end) * 1000) : 1000);
-    this.slider.setAttribute('aria-valuetext', fmtT(t));
+    if (this.due('clock', CLOCK_REDRAW_MS)) {
+      setText(this.timeText, `${fmtT(t)} / ${fmtT(m.end)}${this.live && this.follow ? ' · live' : ''}${m.exactAt(t) ? '' : ' · counters approximate this far back'}`);
+      this.slider.value = String(m.end > 0 ? Math.round((t / m.end) * 1000) : 1000);
+      setAttr(this.slider, 'aria-valuetext', fmtT(t));
+    }
     this.strip.draw(m.marks, m.end, t);
     this.renderSupervisors(s);
     const active = activeSchemas(s, this.catalogue);
@@ -353,6 +365,24 @@ export class MonitorPanel {
     replaceIfChanged(this.periodicEl, blocks);
   }
 
+  /**
+   * Whether `part` is drawn in this frame. While following a live run, the parts that change at
+   * every cycle of a fast schema (the cursor's time, the diagram's running modules and pulses, the
+   * deliveries' counts) are drawn at most once per `ms`: each draw is a style, layout and paint
+   * pass of the page, and nobody reads a number that changes 60 times a second. A part held back
+   * is drawn by a frame `ms` later even when nothing new comes. Paused, scrubbed or replayed: every frame.
+   */
+  private due(part: keyof MonitorPanel['drawnAt'], ms: number): boolean {
+    const now = performance.now();
+    const wait = ms - (now - this.drawnAt[part]);
+    if (this.live && this.follow && wait > 0) {
+      this.redrawSoon(wait);
+      return false;
+    }
+    this.drawnAt[part] = now;
+    return true;
+  }
+
   /** A frame again in `ms` even when nothing new comes (a throttled part is then drawn). */
   private redrawSoon(ms: number): void {
     const due = performance.now() + ms;
@@ -361,8 +391,7 @@ export class MonitorPanel {
     this.redrawDue = due;
     this.redrawTimer = setTimeout(() => {
       this.redrawTimer = undefined;
-      this.drawn.version = -1;
-      this.schedule();
+      this.redrawAll();
     }, ms);
   }
 
@@ -381,17 +410,8 @@ export class MonitorPanel {
         if (t - f.last < PULSE_NS) pulsing.add(k);
       }
     }
-    d.highlight({ active: modules, running, pulsing, used });
-    // the running modules and the flows' counts change at every cycle of a fast schema: while
-    // following live they are written at most 5 times a second (each write is a layout and a
-    // paint of the panel; nobody reads a count that changes 60 times a second)
-    const now = performance.now();
-    const wait = COUNTS_REDRAW_MS - (now - this.flowsDrawnAt);
-    if (this.live && this.follow && wait > 0) {
-      this.redrawSoon(wait);
-      return;
-    }
-    this.flowsDrawnAt = now;
+    if (this.due('diagram', CLOCK_REDRAW_MS)) d.highlight({ active: modules, running, pulsing, used });
+    if (!this.due('flows', COUNTS_REDRAW_MS)) return;
     setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
     // deliveries: the busiest flows, with their count and last delivery
     const flows = [...Object.entries(s.dataFlows).map(([k, f]) => ({ k, f, kind: 'data' })), ...Object.entries(s.eventFlows).map(([k, f]) => ({ k, f, kind: 'event' }))]

@@ -204,17 +204,25 @@ describe('Monitor in headless Chromium', () => {
     expect(await marksOf(page)).toEqual(liveMarks);
   });
 
-  it('following a 1 kHz run live, the deliveries\' counts are written at most 5 times a second, and exactly once it pauses or ends', async () => {
+  it('following a 1 kHz run live, the time is written at most 10 times a second, the diagram\'s marks too, the deliveries\' counts 5 times, and exactly once it pauses or ends', async () => {
     const { page } = s;
     await page.evaluate(() => (window as any).__ide.build.onStarted.fire({ jobId: 'khz', action: 'run' }));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
-    // MAB receiving MAA's event at 1 kHz for 2 s, in 20 ms trace events at the run's own pace;
+    await page.waitForSelector('.monitor-view .arch-svg');
+    // MAB receiving MAA's event at 1 kHz for 2 s (and MSA running every other 20 ms), in 20 ms
+    // trace events at the run's own pace;
     // the deliveries' rows counted per write (one batch of mutations), against the frames drawn
     const seen = await page.evaluate(async () => {
       const w = window as any;
-      const counts = { writes: 0, frames: 0 };
-      const observer = new MutationObserver(() => counts.writes++);
-      observer.observe(document.querySelector('.monitor-flows')!, { subtree: true, childList: true, characterData: true });
+      const counts = { writes: 0, clock: 0, diagram: 0, frames: 0 };
+      const observers = [
+        new MutationObserver(() => counts.writes++),
+        new MutationObserver(() => counts.clock++),
+        new MutationObserver(() => counts.diagram++),
+      ];
+      observers[0]!.observe(document.querySelector('.monitor-flows')!, { subtree: true, childList: true, characterData: true });
+      observers[1]!.observe(document.querySelector('.monitor-time')!, { subtree: true, childList: true, characterData: true });
+      observers[2]!.observe(document.querySelector('.monitor-view .monitor-diagram')!, { subtree: true, childList: true, attributes: true, attributeFilter: ['class', 'data-live'] });
       let version = -1;
       let feeding = true;
       const tick = () => {
@@ -230,20 +238,29 @@ describe('Monitor in headless Chromium', () => {
           const n = batch * 20 + i;
           records.push({ file: 'MAB.csv', line: n + 2, text: `${1_000_000_000 + n * 1_000_000},2026-11-29T10:00:01.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000` });
         }
+        // MSA runs in one batch, stops in the next: the diagram's "running" mark changes with each
+        records.push({ file: 'MSA.csv', line: batch + 2, text: `${1_000_000_000 + (batch * 20 + 19) * 1_000_000 + 500_000},2026-11-29T10:00:01.000000Z,MSA,${batch % 2 ? 'run_finished' : 'run_started'},ORD,,0,activation=${batch + 1}` });
         w.__ide.build.onTrace.fire({ jobId: 'khz', records });
         const wait = (batch + 1) * 20 - (performance.now() - t0);
         if (wait > 0) await new Promise((r) => setTimeout(r, wait));
       }
       feeding = false;
-      observer.disconnect();
+      for (const o of observers) o.disconnect();
       return { ...counts, seconds: (performance.now() - t0) / 1000 };
     });
-    console.log(`[monitor e2e] 1 kHz deliveries: rows written ${seen.writes} times in ${seen.seconds.toFixed(2)} s, ${seen.frames} frames drawn`);
+    console.log(`[monitor e2e] 1 kHz feed for ${seen.seconds.toFixed(2)} s: ${seen.frames} frames drawn; deliveries written ${seen.writes} times, the time ${seen.clock}, the diagram's marks ${seen.diagram}`);
     expect(seen.frames).toBeGreaterThan(3 * seen.writes);
     expect(seen.writes).toBeLessThanOrEqual(Math.ceil(seen.seconds * 5) + 1);
+    expect(seen.clock).toBeGreaterThan(seen.writes);
+    expect(seen.clock).toBeLessThanOrEqual(Math.ceil(seen.seconds * 10) + 1);
+    expect(seen.diagram).toBeGreaterThan(2);
+    expect(seen.diagram).toBeLessThanOrEqual(Math.ceil(seen.seconds * 10) + 1);
     // once the records stop, the last count is shown
     const row = page.locator('.monitor-flow.event[data-flow="MAA:0->MAB:0"]');
     await expect.poll(() => row.textContent()).toBe('┅ MAA:0 → MAB:0 ×2000 · last +1.999000 s');
+    await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s · live$/);
+    const [shownAt, end] = (await page.locator('.monitor-time').textContent())!.match(/\d+\.\d{6}/g)!;
+    expect(shownAt).toBe(end);
     // paused, the counts are those at the cursor at once
     await page.locator('#monitor-follow').click();
     await seek(page, 1_000_000_000);
