@@ -143,7 +143,7 @@ export class MonitorPanel {
     this.live = false;
     this.label.textContent = label;
     this.element.dataset.mode = 'replay';
-    this.schedule();
+    this.redrawAll(); // what was held back while following is drawn now
   }
 
   /** Re-reads the schemas and supervisors of the workspace model (after an edit, or on open). */
@@ -171,7 +171,7 @@ export class MonitorPanel {
     else this.cursor = this.model?.end ?? 0; // paused where the run is now
     this.followBtn.textContent = on ? '❚❚ Pause' : '⇥ Follow';
     this.followBtn.setAttribute('aria-pressed', String(on));
-    this.schedule();
+    this.redrawAll(); // paused where the run is: what was held back while following is drawn now
   }
 
   setPlaying(on: boolean): void {
@@ -185,7 +185,7 @@ export class MonitorPanel {
     }
     this.playBtn.textContent = this.playing ? '❚❚ Stop' : '▷ Play';
     this.playBtn.setAttribute('aria-pressed', String(this.playing));
-    this.schedule();
+    this.redrawAll();
   }
 
   /** Moves the cursor to t (ns since the start) and stops following. */

@@ -261,8 +261,24 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s · live$/);
     const [shownAt, end] = (await page.locator('.monitor-time').textContent())!.match(/\d+\.\d{6}/g)!;
     expect(shownAt).toBe(end);
+    // paused right after a record came (a throttled part then waits): the view is exact at once
+    const paused = await page.evaluate(async () => {
+      const w = window as any;
+      const frame = () => new Promise((r) => requestAnimationFrame(r));
+      const time = document.querySelector('.monitor-time')!;
+      // just after the time was written, a record comes and its frame is drawn: the time waits
+      const written = new Promise((r) => new MutationObserver((_, o) => (o.disconnect(), r(undefined))).observe(time, { subtree: true, childList: true, characterData: true }));
+      w.__ide.build.onTrace.fire({ jobId: 'khz', records: [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }] });
+      const wrote = await Promise.race([written.then(() => true), new Promise((r) => setTimeout(() => r(false), 2000))]);
+      if (!wrote) return { time: `the time was not written: ${time.textContent}`, row: '' };
+      w.__ide.build.onTrace.fire({ jobId: 'khz', records: [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }] });
+      await frame();
+      w.__ide.monitor.panel.setFollow(false);
+      await frame();
+      return { time: time.textContent, row: document.querySelector('.monitor-flow.event[data-flow="MAA:0->MAB:0"]')!.textContent };
+    });
+    expect(paused).toEqual({ time: '+3.000000 s / +3.000000 s', row: '┅ MAA:0 → MAB:0 ×2001 · last +3.000000 s' });
     // paused, the counts are those at the cursor at once
-    await page.locator('#monitor-follow').click();
     await seek(page, 1_000_000_000);
     await expect.poll(() => row.textContent(), { timeout: 1000 }).toBe('┅ MAA:0 → MAB:0 ×1001 · last +1.000000 s');
   });
