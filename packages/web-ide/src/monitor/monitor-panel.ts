@@ -65,8 +65,8 @@ export class MonitorPanel {
   private userChoseSchema = false;
   private redrawTimer: ReturnType<typeof setTimeout> | undefined;
   private redrawDue = 0;
-  /** When each throttled part was last drawn (performance.now()): see due(). */
-  private readonly drawnAt = { clock: 0, diagram: 0, flows: 0 };
+  /** When each throttled part ('clock', 'diagram', 'flows', 'hist:<schema>') was last drawn (performance.now()): see due(). */
+  private readonly drawnAt = new Map<string, number>();
   /** Last frame's render time (ms), for the benchmark. */
   frameMs: number[] = [];
 
@@ -84,7 +84,7 @@ export class MonitorPanel {
   private readonly modulesEl = h('div', { class: 'monitor-modules' });
   private readonly flowsEl = h('div', { class: 'monitor-flows', 'aria-label': 'Deliveries' });
   private readonly rows = new Map<string, HTMLElement>();
-  private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; key: string; drawnAt: number }>();
+  private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; key: string }>();
 
   constructor(private readonly deps: MonitorPanelDeps) {
     this.strip = new MarksStrip((f) => this.seek(f * (this.model?.end ?? 0)));
@@ -334,7 +334,7 @@ export class MonitorPanel {
         const text = h('div', { class: 'monitor-pstats' });
         const misses = h('div', { class: 'monitor-misses' });
         const title = h('div', { class: 'monitor-pname' });
-        hist = { root: h('div', { class: 'monitor-pschema', 'data-periodic': name }, title, text, canvas, misses), title, canvas, text, misses, key: '', drawnAt: 0 };
+        hist = { root: h('div', { class: 'monitor-pschema', 'data-periodic': name }, title, text, canvas, misses), title, canvas, text, misses, key: '' };
         this.hists.set(name, hist);
       }
       // counts change every cycle of a fast schema: redrawn at most 5 times a second; a miss or an
@@ -342,12 +342,7 @@ export class MonitorPanel {
       // every cycle would otherwise rebuild this block every frame)
       const key = p ? `${p.releases}|${p.completions}|${p.deadlineMisses}|${p.overruns}|${cd}|${period}` : 'none';
       const urgent = !hist.key.endsWith(`|${p?.deadlineMisses}|${p?.overruns}|${cd}|${period}`);
-      const now = performance.now();
-      const wait = (urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS) - (now - hist.drawnAt);
-      const throttled = this.live && this.follow && wait > 0;
-      if (key !== hist.key && throttled) this.redrawSoon(wait);
-      if (key !== hist.key && !throttled) {
-        hist.drawnAt = now;
+      if (key !== hist.key && this.due(`hist:${name}`, urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS)) {
         hist.key = key;
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
@@ -368,18 +363,18 @@ export class MonitorPanel {
   /**
    * Whether `part` is drawn in this frame. While following a live run, the parts that change at
    * every cycle of a fast schema (the cursor's time, the diagram's running modules and pulses, the
-   * deliveries' counts) are drawn at most once per `ms`: each draw is a style, layout and paint
+   * deliveries' counts, each periodic schema's counts and histogram) are drawn at most once per `ms`: each draw is a style, layout and paint
    * pass of the page, and nobody reads a number that changes 60 times a second. A part held back
    * is drawn by a frame `ms` later even when nothing new comes. Paused, scrubbed or replayed: every frame.
    */
-  private due(part: keyof MonitorPanel['drawnAt'], ms: number): boolean {
+  private due(part: string, ms: number): boolean {
     const now = performance.now();
-    const wait = ms - (now - this.drawnAt[part]);
+    const wait = ms - (now - (this.drawnAt.get(part) ?? 0));
     if (this.live && this.follow && wait > 0) {
       this.redrawSoon(wait);
       return false;
     }
-    this.drawnAt[part] = now;
+    this.drawnAt.set(part, now);
     return true;
   }
 
