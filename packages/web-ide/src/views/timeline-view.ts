@@ -134,8 +134,9 @@ export class TimelineView {
     const lane = 26;
     const left = 70;
     // fit the visible width (hover a bar for exact times)
-    this.fittedWidth = Math.round(this.canvas.clientWidth - 40);
-    const fit = Math.max(300, (this.canvas.clientWidth || 1000) - 40);
+    const visible = this.canvas.clientWidth;
+    this.fittedWidth = Math.round(visible - 40);
+    const fit = Math.max(300, (visible || 1000) - 40);
     // zoom in far enough to see each period (8 px apart) of a long run: 2^8 at least, 2^16 at most
     this.zoom.max = String(period ? Math.min(16, Math.max(8, Math.ceil(Math.log2(((span / period) * 8) / fit)))) : 8);
     const width = fit * 2 ** Number(this.zoom.value);
