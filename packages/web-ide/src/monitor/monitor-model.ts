@@ -15,7 +15,8 @@
  * for 60 s is about 1.5 million records).
  */
 import { parseRecordLine, isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { applyRecord } from './apply-record.js';
+import { applyRecord, applyUnfolded } from './apply-record.js';
+import { unfoldedLineTime } from './unfolded-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
 
 export interface MonitorModelOptions {
@@ -133,29 +134,41 @@ export class MonitorModel {
     return cp.index / this.every >= this.firstChunk;
   }
 
-  /** One CSV line of the live trace channel (job-events.ts TraceLine). */
+  /**
+   * One CSV line of the live trace channel (job-events.ts TraceLine). A line of a kind the fold
+   * does not use is not parsed: its time is read off it (unfolded-line.ts).
+   */
   pushLine(file: string, line: number, text: string): void {
-    this.push(parseRecordLine(file, line, text), text);
+    const mono = unfoldedLineTime(text);
+    if (mono === undefined) this.push(parseRecordLine(file, line, text), text);
+    else this.append(this.timeOf(mono), text, undefined);
   }
 
   /** `text`: the record's CSV line, kept instead of the record when given. */
   push(r: TraceRecord, text?: string): void {
-    let t = this.live.t;
-    if (r.kind !== 'unknown') {
-      const mono = Number((r as KnownRecord).monoNs);
-      if (Number.isFinite(mono)) {
-        this.t0 ??= mono;
-        // records come in mono_ns order; one that does not (hostile input) is held at the last time
-        t = Math.max(this.live.t, mono - this.t0);
-      }
-    }
+    const t = r.kind === 'unknown' ? this.live.t : this.timeOf(Number((r as KnownRecord).monoNs));
+    this.append(t, text ?? r, r);
+  }
+
+  /** The time (ns since the first record) of a record written at `mono`. */
+  private timeOf(mono: number): Ns {
+    if (!Number.isFinite(mono)) return this.live.t;
+    this.t0 ??= mono;
+    // records come in mono_ns order; one that does not (hostile input) is held at the last time
+    return Math.max(this.live.t, mono - this.t0);
+  }
+
+  /** Keeps a record (`r`, or undefined for a line of an unfolded kind) and folds it into `live`. */
+  private append(t: Ns, kept: TraceRecord | string, r: TraceRecord | undefined): void {
     if (this.count > 0 && this.count % this.every === 0) this.checkpoint();
-    const timed = { t, r };
-    this.chunks[this.chunks.length - 1]!.push(t, text ?? r);
+    this.chunks[this.chunks.length - 1]!.push(t, kept);
     this.kept++;
     this.count++;
-    if (NOTABLE.has(r.kind)) this.notableRecord(timed);
-    applyRecord(this.live, r, t, this.t0 ?? 0);
+    if (!r) applyUnfolded(this.live, t);
+    else {
+      if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
+      applyRecord(this.live, r, t, this.t0 ?? 0);
+    }
     this.version++;
   }
 
