@@ -14,7 +14,8 @@ const MAX_STARTED = 16;
 /**
  * The record kinds applyRecord folds into the state; a record of any other kind changes only the
  * record count and the time (applyUnfolded). Kept beside the switch below: a kind added there is
- * added here (a test folds every kind of the trace table and checks this set).
+ * added here (unfolded-line.test.ts folds an example of every kind of the trace table: one outside
+ * this set must change nothing else).
  */
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',

@@ -2,7 +2,8 @@
  * The monitor model: the trace records of one run (live, fed as they come, or a whole recorded
  * run) folded into the architecture's state (monitor-state.ts), with a time cursor.
  *
- * - `live` is the state after the last record; feeding a record costs one applyRecord.
+ * - `live` is the state after the last record; feeding a record costs one applyRecord (a live
+ *   line of a kind it does not fold is not even parsed: unfolded-line.ts).
  * - `stateAt(t)` is the state at any earlier time: the nearest checkpoint (a copy of the state
  *   taken every `checkpointEvery` records) plus the records after it, so scrubbing back costs at
  *   most one copy and `checkpointEvery` folds, whatever the run's length.
