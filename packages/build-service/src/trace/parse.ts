@@ -7,6 +7,7 @@
 import { splitCsvLine } from './csv-line.js';
 import { MinHeap } from './min-heap.js';
 import { traceKind } from './record-kinds.js';
+import { isDigitsIn, isModuleNameIn } from './field-checks.js';
 import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
 import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, UnknownRecord } from './records.js';
 
@@ -26,29 +27,7 @@ function unknown(file: string, line: number, reason: string, text: string): Unkn
 /** True when `s` is `-?\d{1,15}` (a number that a double holds exactly). Faster than the regex on
  *  the hot path (every field of every live record). */
 function isPlainInteger(s: string): boolean {
-    return isDigits(s, 1, 15, s.charCodeAt(0) === 45 /* - */ ? 1 : 0);
-}
-
-/** True when `s` from `start` is `\d{min,max}`. */
-function isDigits(s: string, min: number, max: number, start = 0): boolean {
-    const digits = s.length - start;
-    if (digits < min || digits > max) return false;
-    for (let i = start; i < s.length; i++) {
-        const c = s.charCodeAt(i);
-        if (c < 48 || c > 57) return false;
-    }
-    return true;
-}
-
-/** True when `s` is `[\w.-]{1,64}` (a module name as the runtime writes it). */
-function isModuleName(s: string): boolean {
-    if (s.length < 1 || s.length > 64) return false;
-    for (let i = 0; i < s.length; i++) {
-        const c = s.charCodeAt(i);
-        const ok = (c >= 48 && c <= 57) || (c >= 65 && c <= 90) || (c >= 97 && c <= 122) || c === 95 /* _ */ || c === 46 /* . */ || c === 45; /* - */
-        if (!ok) return false;
-    }
-    return true;
+    return isDigitsIn(s, 1, 15, s.charCodeAt(0) === 45 /* - */ ? 1 : 0);
 }
 
 /** `key=value` words of a detail (the first of each key), values as numbers when they are plain
@@ -105,9 +84,9 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     const [mono, wall, module, event, peer, port, size, detail] = f as [string, string, string, string, string, string, string, string];
     // checked by character rather than by regular expression, and the record made as one literal
     // (one shape for all): this runs for every record of a live trace and of `contract trace`
-    if (!isDigits(mono, 1, 20)) return unknown(file, lineNo, 'mono_ns is not a number', line);
-    if (!isModuleName(module)) return unknown(file, lineNo, 'bad module name', line);
-    if ((port !== '' && !isDigits(port, 1, 9)) || !isDigits(size, 1, 15)) return unknown(file, lineNo, 'bad port or size', line);
+    if (!isDigitsIn(mono, 1, 20)) return unknown(file, lineNo, 'mono_ns is not a number', line);
+    if (!isModuleNameIn(module)) return unknown(file, lineNo, 'bad module name', line);
+    if ((port !== '' && !isDigitsIn(port, 1, 9)) || !isDigitsIn(size, 1, 15)) return unknown(file, lineNo, 'bad port or size', line);
     const kind = traceKind(event);
     if (!kind) return unknown(file, lineNo, `unknown event '${event.slice(0, 64)}'`, line);
     const portN = port === '' ? null : Number(port);

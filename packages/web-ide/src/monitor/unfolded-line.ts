@@ -3,12 +3,13 @@
  * A 1 kHz schema's trace is largely records that change nothing the Monitor draws (acks,
  * `ord_finished`, `data_received`, ...): for those the model needs only the record's time.
  * Parsing such a line (splitting it, a record and its fields made) took 1.2 µs of the page's main
- * thread, reading its time takes about half that and makes no object. The checks are parseRecordLine's own for such a line (docs/runtime-api.md
- * "Trace records"), so a line this accepts is exactly one that parseRecordLine reads as a record
- * of an unfolded kind; anything else (a quoted field, a malformed line, a folded kind) is left
- * to the full reader.
+ * thread, reading its time takes about half that and makes no object. The checks are
+ * parseRecordLine's own for such a line (docs/runtime-api.md "Trace records"; the field checks
+ * are the reader's, field-checks.ts), so a line this accepts is exactly one that parseRecordLine
+ * reads as a record of an unfolded kind; anything else (a quoted field, a malformed line, a
+ * folded kind) is left to the full reader.
  */
-import { MAX_LINE_CHARS, traceKind } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, isDigitsIn, isModuleNameIn, traceKind } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS } from './apply-record.js';
 
 /** mono_ns of `line` when it is a well-formed record of a kind applyRecord does not fold; else undefined. */
@@ -23,30 +24,9 @@ export function unfoldedLineTime(line: string): number | undefined {
   const c7 = line.indexOf(',', c6 + 1);
   // exactly eight fields: seven commas, none in the detail
   if (c1 < 0 || c2 < 0 || c3 < 0 || c4 < 0 || c5 < 0 || c6 < 0 || c7 < 0 || line.indexOf(',', c7 + 1) >= 0) return undefined;
-  if (!digits(line, 0, c1, 1, 20) || !moduleName(line, c2 + 1, c3)) return undefined;
-  if ((c6 > c5 + 1 && !digits(line, c5 + 1, c6, 1, 9)) || !digits(line, c6 + 1, c7, 1, 15)) return undefined;
+  if (!isDigitsIn(line, 1, 20, 0, c1) || !isModuleNameIn(line, c2 + 1, c3)) return undefined;
+  if ((c6 > c5 + 1 && !isDigitsIn(line, 1, 9, c5 + 1, c6)) || !isDigitsIn(line, 1, 15, c6 + 1, c7)) return undefined;
   const event = line.slice(c3 + 1, c4);
   if (FOLDED_KINDS.has(event) || !traceKind(event)) return undefined;
   return Number(line.slice(0, c1));
-}
-
-/** line[from, to) is `\d{min,max}`. */
-function digits(line: string, from: number, to: number, min: number, max: number): boolean {
-  if (to - from < min || to - from > max) return false;
-  for (let i = from; i < to; i++) {
-    const c = line.charCodeAt(i);
-    if (c < 48 || c > 57) return false;
-  }
-  return true;
-}
-
-/** line[from, to) is `[\w.-]{1,64}`. */
-function moduleName(line: string, from: number, to: number): boolean {
-  if (to - from < 1 || to - from > 64) return false;
-  for (let i = from; i < to; i++) {
-    const c = line.charCodeAt(i);
-    const ok = (c >= 48 && c <= 57) || (c >= 65 && c <= 90) || (c >= 97 && c <= 122) || c === 95 || c === 46 || c === 45;
-    if (!ok) return false;
-  }
-  return true;
 }
