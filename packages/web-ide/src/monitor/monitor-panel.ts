@@ -394,6 +394,11 @@ export class MonitorPanel {
     const d = this.diagram;
     if (!d) return;
     if (!this.userChoseSchema && active.length && d.schema !== active[active.length - 1] && !active.includes(d.schema ?? '')) void d.choose(active[active.length - 1]!);
+    // both asked in this order at every frame, as each keeps its own time; while following, a frame
+    // that draws neither computes nothing more
+    const drawDiagram = this.due('diagram', CLOCK_REDRAW_MS);
+    const drawFlows = this.due('flows', COUNTS_REDRAW_MS);
+    if (!drawDiagram && !drawFlows) return;
     const modules = new Set<string>();
     for (const name of active) for (const m of this.catalogue.find((c) => c.name === name)?.modules ?? []) modules.add(m);
     const running = new Set(Object.entries(s.modules).filter(([, m]) => m.running).map(([k]) => k));
@@ -405,8 +410,8 @@ export class MonitorPanel {
         if (t - f.last < PULSE_NS) pulsing.add(k);
       }
     }
-    if (this.due('diagram', CLOCK_REDRAW_MS)) d.highlight({ active: modules, running, pulsing, used });
-    if (!this.due('flows', COUNTS_REDRAW_MS)) return;
+    if (drawDiagram) d.highlight({ active: modules, running, pulsing, used });
+    if (!drawFlows) return;
     setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
     // deliveries: the busiest flows, with their count and last delivery
     const flows = [...Object.entries(s.dataFlows).map(([k, f]) => ({ k, f, kind: 'data' })), ...Object.entries(s.eventFlows).map(([k, f]) => ({ k, f, kind: 'event' }))]
