@@ -10,7 +10,7 @@ import { createServer, type IncomingMessage, type Server, type ServerResponse } 
 import type { AddressInfo } from 'node:net';
 import type { Duplex } from 'node:stream';
 import { afterSeq, createRouter } from './http/router.js';
-import { JobWebSockets } from './http/ws.js';
+import { JobWebSockets, TRACE_FILTER_ERROR, traceFilter } from './http/ws.js';
 import { foreignRequest } from './http/local-guard.js';
 import { ServiceToken, unauthorizedBody } from './http/service-token.js';
 import { JobService, type BuildServiceOptions } from './job-service.js';
@@ -63,7 +63,13 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
     const url = new URL(req.url ?? '/', 'http://localhost');
     const m = new RegExp(`^${basePath.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}/jobs/([^/]+)/ws$`).exec(url.pathname);
     if (!m) return false;
-    if (!sockets.upgrade(m[1]!, afterSeq(req, url), req, socket, head)) {
+    const trace = traceFilter(url);
+    if (!trace) {
+      const body = `${TRACE_FILTER_ERROR}\n`;
+      socket.end(`HTTP/1.1 400 Bad Request\r\nConnection: close\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
+      return true;
+    }
+    if (!sockets.upgrade(m[1]!, afterSeq(req, url), req, socket, head, trace)) {
       socket.end('HTTP/1.1 404 Not Found\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
     }
     return true;

@@ -1,0 +1,140 @@
+/**
+ * GET /api/jobs/:id/ws?trace=all|none|only on the real standalone server with the real `ws`
+ * client: each value gives its events with their original seqs, in replay and live, combined with
+ * `?after=`; any other value is a 400 that leaves the service serving. The job is a JobEvents of
+ * a few events of our own, handed out by the service for one id (no sandbox needed).
+ */
+import { request } from 'node:http';
+import WebSocket from 'ws';
+import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
+import { JobEvents } from '../pipeline/job-events.js';
+import { useBuildServer } from '../test-support/build-server.js';
+
+const built = useBuildServer({ sandbox: 'none', allowNoneSandbox: true }, { snapshotRuntime: false });
+const ID = 'j-fake';
+let events: JobEvents;
+
+beforeEach(() => {
+  events = new JobEvents();
+  const service = built.server.service;
+  const real = service.get.bind(service);
+  vi.spyOn(service, 'get').mockImplementation((id) => (id === ID ? ({ id: ID, events } as never) : real(id)));
+});
+afterEach(() => {
+  vi.restoreAllMocks();
+});
+
+const trace = (line: number) => ({ type: 'trace' as const, records: [{ file: 'M_1.csv', line, text: `${line},2026-11-26T12:00:00.000000Z,M,user,,,0,x` }] });
+
+/** seqs 1..5, kept for replay: status, line, trace, trace, line. */
+function appendReplay(): void {
+  events.append({ type: 'status', status: 'running', step: 'run' });
+  events.append({ type: 'line', step: 'run', source: 'M', stream: 'stdout', line: 'hello' });
+  events.append(trace(2));
+  events.append(trace(3));
+  events.append({ type: 'line', step: 'run', source: 'M', stream: 'stderr', line: 'oops' });
+}
+
+/** seqs 6..9 live: trace, status, trace, end. */
+function appendLive(): void {
+  events.append(trace(4));
+  events.append({ type: 'status', status: 'succeeded' });
+  events.append(trace(5));
+  events.append({ type: 'end', result: null });
+}
+
+/** Opens a socket on `query`; `frames` resolves the `type@seq` of every frame it got once the server closed it. */
+async function follow(query: string): Promise<{ frames: Promise<string[]> }> {
+  const ws = new WebSocket(`${built.url.replace('http', 'ws')}/api/jobs/${ID}/ws${query}`);
+  const got: string[] = [];
+  ws.on('message', (data) => {
+    const e = JSON.parse(String(data)) as { type: string; seq: number };
+    got.push(`${e.type}@${e.seq}`);
+  });
+  const frames = new Promise<string[]>((resolve) => ws.on('close', () => resolve(got)));
+  await new Promise((resolve, reject) => {
+    ws.on('open', resolve);
+    ws.on('error', reject);
+  });
+  return { frames };
+}
+
+/** Status and body of a raw upgrade request (101 for an accepted one). */
+function upgradeStatus(path: string): Promise<{ status: number; body: string }> {
+  return new Promise((resolve, reject) => {
+    const r = request(built.url + path, {
+      agent: false,
+      headers: { connection: 'Upgrade', upgrade: 'websocket', 'sec-websocket-version': '13', 'sec-websocket-key': 'dGhlIHNhbXBsZSBub25jZQ==' },
+    });
+    r.on('response', (res) => {
+      let body = '';
+      res.setEncoding('utf8');
+      res.on('data', (c: string) => (body += c));
+      res.on('end', () => resolve({ status: res.statusCode ?? 0, body }));
+    });
+    r.on('upgrade', (res, socket) => {
+      socket.destroy();
+      resolve({ status: res.statusCode ?? 0, body: '' });
+    });
+    r.on('error', reject);
+    r.end();
+  });
+}
+
+const ALL = ['status@1', 'line@2', 'trace@3', 'trace@4', 'line@5', 'trace@6', 'status@7', 'trace@8', 'end@9'];
+const NONE = ['status@1', 'line@2', 'line@5', 'status@7', 'end@9'];
+const ONLY = ['trace@3', 'trace@4', 'trace@6', 'trace@8', 'end@9'];
+
+describe('job WebSocket ?trace= filter', () => {
+  test('all / none / only: the right events with their own seqs, replayed then live, and with ?after=', async () => {
+    appendReplay();
+    const streams = {
+      absent: await follow(''),
+      all: await follow('?trace=all'),
+      none: await follow('?trace=none'),
+      only: await follow('?trace=only'),
+      noneAfter2: await follow('?trace=none&after=2'),
+      onlyAfter3: await follow('?after=3&trace=only'),
+      onlyAfter5: await follow('?trace=only&after=5'),
+    };
+    // every socket attached before the live events: these come by live delivery, not replay
+    expect(events.subscriberCount).toBe(Object.keys(streams).length);
+    appendLive();
+    expect(await streams.absent.frames).toEqual(ALL);
+    expect(await streams.all.frames).toEqual(ALL);
+    expect(await streams.none.frames).toEqual(NONE);
+    expect(await streams.only.frames).toEqual(ONLY);
+    expect(await streams.noneAfter2.frames).toEqual(['line@5', 'status@7', 'end@9']);
+    expect(await streams.onlyAfter3.frames).toEqual(['trace@4', 'trace@6', 'trace@8', 'end@9']);
+    expect(await streams.onlyAfter5.frames).toEqual(['trace@6', 'trace@8', 'end@9']);
+  }, 10_000);
+
+  test('a finished job: the filter applies to the whole replay, which ends with the end event', async () => {
+    appendReplay();
+    appendLive();
+    expect(await (await follow('?trace=none')).frames).toEqual(NONE);
+    expect(await (await follow('?trace=only')).frames).toEqual(ONLY);
+    // resuming a filtered stream from the last seq it saw
+    expect(await (await follow('?trace=only&after=4')).frames).toEqual(['trace@6', 'trace@8', 'end@9']);
+    expect(await (await follow('?trace=none&after=7')).frames).toEqual(['end@9']);
+  }, 10_000);
+
+  test('any other value is a 400 saying what is allowed; the service keeps serving', async () => {
+    appendReplay();
+    for (const q of ['?trace=bogus', '?trace=', '?trace=ALL', '?trace=none&trace=bogus', '?trace=only&trace=none', '?trace=only&trace']) {
+      const { status, body } = await upgradeStatus(`/api/jobs/${ID}/ws${q}`);
+      expect(status, q).toBe(400);
+      expect(body, q).toMatch(/all, none, only/);
+    }
+    // the same for a job that does not exist; a good value there is still a 404
+    expect((await upgradeStatus('/api/jobs/j-none/ws?trace=x')).status).toBe(400);
+    expect((await upgradeStatus('/api/jobs/j-none/ws?trace=only')).status).toBe(404);
+    // nobody was attached by a refused upgrade, and the service still serves HTTP and sockets
+    expect(events.subscriberCount).toBe(0);
+    expect((await fetch(`${built.url}/api/health`)).status).toBe(200);
+    expect((await upgradeStatus(`/api/jobs/${ID}/ws?trace=only&trace=only`)).status).toBe(101);
+    const stream = await follow('?trace=only');
+    appendLive();
+    expect(await stream.frames).toEqual(ONLY);
+  }, 10_000);
+});
