@@ -2,14 +2,13 @@
 // Monitor live benchmark -> bench/parts/monitor-live.json (flat metric -> number).
 // A real Build & Run in the IDE (production build, real server with the build service, bwrap) of
 // the "New project" template at 1 kHz (PERIOD = CRITICAL_DELAY = 1 ms), the Monitor following it:
-// the run's CSV records reach the page as trace events (docs/build-service-api.md "Trace
-// channel") and are drawn by the panel.
+// the run's CSV records reach the live run's Web Worker as trace events on its own socket
+// (docs/build-service-api.md "Trace channel"), are folded there and drawn by the panel.
 //   monitor.trace_latency_ms_p99 / _p50  a record written by a module (its wall_time column) ->
 //                                        drawn in the Monitor (the end of the first frame whose model holds it), same host clock
 //   monitor.live_max_frame_ms / live_frame_ms_p99   animation-frame gaps while the run streams
 //   monitor.live_trace_records           records drawn live
-//   monitor.arrival_latency_ms_p99 / _p50  the same record -> its trace event handed to the page (the rest is the page's)
-//   monitor.live_max_queued_events       most trace events waiting to be folded at a frame (the page keeping up)
+//   monitor.arrival_latency_ms_p99 / _p50  the same record -> its trace event received by the worker (the rest is the page's)
 // RUN_SECONDS (default 5) sets the run's duration; the part takes about 40 s (the build is most of it).
 import { mkdirSync, writeFileSync, mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
 import { join } from 'node:path';
@@ -36,34 +35,22 @@ try {
   await page.evaluate((duration) => {
     localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration }));
     const ide = window.__ide;
-    // wall_time of each record (µs precision) by the cumulative count the live model will reach
-    // (the second, parsed once per second of wall time, plus the fraction: the measuring must not
-    // load the page it measures with a date parse per record)
-    let second = '';
-    let secondMs = NaN;
-    const wall = (text) => {
-      const c = text.indexOf(',');
-      const w = text.slice(c + 1, c + 27); // 2026-11-28T13:58:13.785123
-      const s = w.slice(0, 19);
-      if (s !== second) {
-        second = s;
-        secondMs = Date.parse(`${s}Z`);
-      }
-      return secondMs + Number(w.slice(20, 26)) / 1000;
-    };
-    const m = { pending: [], latencies: [], arrivals: [], gaps: [], received: 0, streaming: false, maxQueued: 0 };
+    // each record's wall_time and its arrival at the worker come with the snapshot that first
+    // holds it (monitor.measure); latencies are counted in 0.1 ms bins, so that the measuring does
+    // not load the page it measures
+    ide.monitor.measure = true;
+    const m = { snapshots: [], lat: new Uint32Array(100_000), arr: new Uint32Array(100_000), n: 0, received: 0, gaps: [], streaming: false };
     window.__liveBench = m;
+    const bin = (bins, ms) => bins[Math.min(bins.length - 1, Math.max(0, Math.round(ms * 10)))]++;
     ide.build.onStarted.on(() => {
-      m.received = 0;
       m.streaming = true;
-    });
-    ide.build.onTrace.on(({ records }) => {
-      const now = Date.now();
-      for (const r of records) {
-        const w = wall(r.text);
-        m.pending.push({ version: ++m.received, wall: w });
-        if (Number.isFinite(w)) m.arrivals.push(now - w);
-      }
+      const model = ide.monitor.lastLive;
+      model.onSnapshot = (snap, version) => {
+        if (!snap.walls?.length) return;
+        m.received += snap.walls.length;
+        for (let i = 0; i < snap.walls.length; i++) bin(m.arr, snap.arrived[i] - snap.walls[i]);
+        m.snapshots.push({ version, walls: snap.walls });
+      };
     });
     ide.build.onFinished.on(() => (m.streaming = false));
     let last = performance.now();
@@ -74,14 +61,16 @@ try {
       const live = ide.monitor.lastLive;
       if (panel && live && panel.drawn.model === live) {
         const now = Date.now();
-        let i = 0;
-        for (; i < m.pending.length && m.pending[i].version <= panel.drawn.version; i++) if (Number.isFinite(m.pending[i].wall)) m.latencies.push(now - m.pending[i].wall);
-        if (i) m.pending.splice(0, i);
+        while (m.snapshots.length && m.snapshots[0].version <= panel.drawn.version) {
+          for (const w of m.snapshots.shift().walls) {
+            bin(m.lat, now - w);
+            m.n++;
+          }
+        }
       }
     };
     const tick = (t) => {
       if (m.streaming) m.gaps.push(t - last);
-      m.maxQueued = Math.max(m.maxQueued, ide.monitor.pendingEvents);
       last = t;
       setTimeout(drawn, 0);
       requestAnimationFrame(tick);
@@ -94,10 +83,16 @@ try {
   const r = await page.evaluate(() => {
     const m = window.__liveBench;
     const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor((xs.length * p) / 100))];
+    const binPct = (bins, p) => {
+      const total = bins.reduce((a, b) => a + b, 0);
+      let k = 0;
+      for (let i = 0; i < bins.length; i++) if ((k += bins[i]) >= (total * p) / 100) return i / 10;
+      return NaN;
+    };
     const g = m.gaps.slice(2);
-    return { status: document.getElementById('status-job').dataset.status, p99: pct(m.latencies, 99), p50: pct(m.latencies, 50), n: m.latencies.length,
+    return { status: document.getElementById('status-job').dataset.status, p99: binPct(m.lat, 99), p50: binPct(m.lat, 50), n: m.n,
       received: m.received, maxFrame: Math.max(...g), p99Frame: pct(g, 99), frames: g.length,
-      a99: pct(m.arrivals, 99), a50: pct(m.arrivals, 50), maxQueued: m.maxQueued };
+      a99: binPct(m.arr, 99), a50: binPct(m.arr, 50), problems: window.__ide.monitor.lastLive?.problems ?? [] };
   });
   if (r.status !== 'succeeded' || !r.n) throw new Error(`the run did not stream: ${JSON.stringify(r)}`);
   const round = (x, d = 1) => Math.round(x * 10 ** d) / 10 ** d;
@@ -109,10 +104,9 @@ try {
     'monitor.live_trace_records': r.n,
     'monitor.arrival_latency_ms_p99': round(r.a99),
     'monitor.arrival_latency_ms_p50': round(r.a50),
-    'monitor.live_max_queued_events': r.maxQueued,
   };
   writePart('monitor-live', result);
-  console.log(JSON.stringify({ ...result, received: r.received, frames: r.frames, runSeconds }));
+  console.log(JSON.stringify({ ...result, received: r.received, frames: r.frames, runSeconds, problems: r.problems }));
 } finally {
   await context?.close().catch(() => undefined);
   await server.close();

@@ -3,7 +3,6 @@ import { api, socketUrl } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
-import { decodeTraceRecords, type TraceLine } from '@contract-studio/build-service/trace';
 
 export interface GccDiagnostic {
   severity: 'error' | 'warning' | 'note';
@@ -28,8 +27,6 @@ export class BuildPanel {
   readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean }>();
   /** A job was submitted (its events follow). */
   readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
-  /** The run's trace, live: whole CSV record lines (docs/build-service-api.md "Trace channel"; build-service job-events.ts TraceEvent). */
-  readonly onTrace = new Emitter<{ jobId: string; records: TraceLine[] }>();
   readonly element: HTMLElement;
   private readonly chips: HTMLElement;
   private readonly statusEl: HTMLElement;
@@ -146,7 +143,7 @@ export class BuildPanel {
   /**
    * Follows a job submitted elsewhere — by this page before it was reloaded, or by another tab —
    * if the build service still runs it and this panel follows none: its events from the first
-   * (the log, the diagnostics and the kept trace: docs/build-service-api.md "Events"), then live,
+   * (the log and the diagnostics: docs/build-service-api.md "Events"; the Monitor follows the trace), then live,
    * and Stop cancels it. False when it has finished, is unknown (a restarted service), or this
    * panel is busy with a job of its own. `why` is shown beside the status.
    */
@@ -168,7 +165,7 @@ export class BuildPanel {
   }
 
   /**
-   * Streams a job's events into the log, the diagnostics, the trace and the status, from the
+   * Streams a job's events into the log, the diagnostics and the status (not the trace: the Monitor's own socket), from the
    * first (or after `after`, the last event seen, when a broken stream is taken up again). A
    * WebSocket (GET /api/jobs/:id/ws, docs/build-service-api.md "Events"), not an EventSource:
    * a browser opens at most six HTTP/1.1 connections to a server for all its tabs, and streams
@@ -176,7 +173,8 @@ export class BuildPanel {
    * app/server-events.ts).
    */
   private follow(jobId: string, action: 'build' | 'run', after = 0, retries = 0): void {
-    const ws = new WebSocket(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws${after ? `?after=${after}` : ''}`));
+    // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts)
+    const ws = new WebSocket(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none${after ? `&after=${after}` : ''}`));
     this.socket = ws;
     if (!after) this.onStarted.fire({ jobId, action });
     let last = after;
@@ -191,18 +189,6 @@ export class BuildPanel {
       if (typeof e.seq === 'number') last = e.seq;
       retries = 0;
       switch (e.type) {
-        case 'trace': {
-          // the records in their columnar wire form (docs/build-service-api.md "Trace channel")
-          let records: TraceLine[];
-          try {
-            records = decodeTraceRecords(e);
-          } catch (err) {
-            this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `trace: a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs` });
-            return;
-          }
-          if (records.length) this.onTrace.fire({ jobId, records });
-          return;
-        }
         case 'line':
           return this.append(e as unknown as LogLine);
         case 'status': {

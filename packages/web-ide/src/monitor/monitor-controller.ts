@@ -16,22 +16,27 @@ import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { MAX_RUN_LOG_BYTES, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
+import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
+import type { MonitorView } from './model-view.js';
+import { RemoteMonitorModel } from './remote-model.js';
+import { MAX_LINES_PER_EVENT } from './live-follower.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 
-/** Bounds on what one trace event may bring (the producer sends far less per event). */
-const MAX_LINES_PER_EVENT = 100_000;
-const MAX_LINE = 4096;
-/** Longest stretch of folding trace lines without yielding to rendering and input. */
+/** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
+const MAX_LIVE_RUNS = 4;
+/** Longest stretch of folding a recorded run's records without yielding to rendering and input. */
 const INGEST_SLICE_MS = 8;
+/** How long the end of a run waits for its worker to fold the last of the stream. */
+const SETTLE_MS = 5000;
 /** CSV files read from the workspace for one replay. */
 const MAX_FILES = 256;
 
 interface Run {
   id: string;
   label: string;
-  model: MonitorModel;
+  model: MonitorView;
   live: boolean;
 }
 
@@ -42,7 +47,9 @@ export class MonitorController {
   private symbols: SupervisorSymbols | undefined;
   private previous: HTMLElement | undefined;
   /** The model of the last Build & Run's live trace (tests compare it with the job's logs). */
-  lastLive: MonitorModel | undefined;
+  lastLive: RemoteMonitorModel | undefined;
+  /** Live runs report each record's wall_time and arrival with their snapshots (the benchmark sets it). */
+  measure = false;
   /** Bytes of workspace logs one replay reads in all; the logs past it are left out and named (a test lowers it). */
   replayBytes = MAX_RUN_LOG_BYTES;
 
@@ -51,56 +58,48 @@ export class MonitorController {
   ) {
     deps.button.addEventListener('click', () => (this.panel && deps.editors.docked === this.panel.element ? this.hide() : void this.show()));
     deps.build.onStarted.on(({ jobId, action }) => {
-      if (action !== 'run') return;
-      this.runs.delete(`job:${jobId}`);
-      const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model: new MonitorModel(), live: true };
-      this.lastLive = run.model;
-      this.runs.set(run.id, run);
-      void this.show(run.id);
-    });
-    deps.build.onTrace.on(({ jobId, records }) => {
-      const run = this.runs.get(`live:${jobId}`);
-      if (!run) return;
-      this.queue.push({ run, records: records.slice(0, MAX_LINES_PER_EVENT), next: 0 });
-      // folded now, in the event's own task (a task queued for it waits behind whatever else the
-      // page has queued: 16 ms at the median on a loaded page); what exceeds a slice goes on later
-      if (!this.drainQueued) this.drain();
+      if (action === 'run') this.followLive(jobId);
     });
   }
 
-  /** Trace events not yet folded into their model: folded in slices of INGEST_SLICE_MS, so a burst never holds a frame. */
-  private readonly queue: Array<{ run: Run; records: TraceLine[]; next: number }> = [];
-  /** A task folding the rest of the queue is due (events arriving meanwhile wait behind it, in order). */
-  private drainQueued = false;
-
-  /** Trace events received and not folded in yet. */
-  get pendingEvents(): number {
-    return this.queue.length;
-  }
-
-  /** Main-thread time spent folding live trace lines (ms), for the benchmark. */
-  ingestMs = 0;
-
-  private drain(): void {
-    this.drainQueued = false;
-    const start = performance.now();
-    const until = start + INGEST_SLICE_MS;
-    while (this.queue.length && performance.now() < until) {
-      const job = this.queue[0]!;
-      const end = Math.min(job.records.length, job.next + 256);
-      for (; job.next < end; job.next++) {
-        const r = job.records[job.next];
-        if (!r || typeof r.text !== 'string' || typeof r.file !== 'string') continue;
-        job.run.model.pushLine(r.file.slice(0, 200), Number.isInteger(r.line) ? r.line : 0, r.text.slice(0, MAX_LINE + 1));
+  /**
+   * Follows a live run in a Web Worker (live-follower.ts) that opens the job's trace stream
+   * itself (`url`: GET /api/jobs/:id/ws?trace=only), or that is fed by `feed` (url null: tests),
+   * and shows it. The page's main thread only draws: it decodes and folds nothing.
+   */
+  followLive(jobId: string, url: string | null = socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=only`)): RemoteMonitorModel {
+    this.runs.delete(`job:${jobId}`);
+    this.forget(`live:${jobId}`);
+    const model = new RemoteMonitorModel(new Worker(new URL('./live-follow.worker.ts', import.meta.url), { type: 'module' }), url, { measure: this.measure });
+    const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model, live: true };
+    let problems = 0;
+    model.onChange = () => {
+      if (model.problems.length !== problems) {
+        problems = model.problems.length;
+        run.label = `${run.label.replace(/ \(trace not whole: .*\)$/, '')} (trace not whole: ${model.problems.join('; ')})`;
+        if (this.shown === run.id) this.panel?.setLabel(run.label);
       }
-      if (job.next >= job.records.length) this.queue.shift();
-      if (this.shown === job.run.id) this.panel?.schedule();
-    }
-    this.ingestMs += performance.now() - start;
-    if (this.queue.length) {
-      this.drainQueued = true;
-      setTimeout(() => this.drain(), 0);
-    }
+      if (this.shown === run.id) this.panel?.schedule();
+    };
+    this.lastLive = model;
+    this.runs.set(run.id, run);
+    // the oldest live runs go (each holds a worker and its records): their CSV logs stay
+    const lives = [...this.runs.values()].filter((r) => r.model instanceof RemoteMonitorModel);
+    for (const old of lives.slice(0, Math.max(0, lives.length - MAX_LIVE_RUNS))) this.forget(old.id);
+    void this.show(run.id);
+    return model;
+  }
+
+  /** Trace lines of live run `jobId` handed over by the page (tests): folded by its worker as if streamed. */
+  feed(jobId: string, records: TraceLine[]): void {
+    const m = this.runs.get(`live:${jobId}`)?.model;
+    if (m instanceof RemoteMonitorModel) m.feed(records.slice(0, MAX_LINES_PER_EVENT));
+  }
+
+  private forget(id: string): void {
+    const run = this.runs.get(id);
+    if (run?.model instanceof RemoteMonitorModel) run.model.dispose();
+    this.runs.delete(id);
   }
 
   /** The panel (created on first use). */
@@ -138,10 +137,12 @@ export class MonitorController {
   /** A finished run job's CSV logs: the recorded run, replayed from its start. */
   async showRecorded(jobId: string, logs: RunLogs): Promise<void> {
     const live = this.runs.get(`live:${jobId}`);
+    // the worker may still be folding the stream's last batches
+    if (live?.model instanceof RemoteMonitorModel) await Promise.race([live.model.settled, new Promise((r) => setTimeout(r, SETTLE_MS))]);
     if (live) {
       live.live = false;
       live.label = `Build & Run job ${jobId} · as streamed`;
-      if (!live.model.recordCount) this.runs.delete(live.id); // no live trace (an older build service): the logs tell it all
+      if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
     // a log the service left out or capped, or one that could not be downloaded, is said: the replay lacks it
     const label = `Build & Run job ${jobId} · CSV logs${logs.problems.length ? ` (not whole: ${logs.problems.join('; ')})` : ''}`;
@@ -183,7 +184,7 @@ export class MonitorController {
   }
 
   /** The run shown (tests and benchmarks read its model). */
-  get current(): MonitorModel | undefined {
+  get current(): MonitorView | undefined {
     return this.shown ? this.runs.get(this.shown)?.model : undefined;
   }
 

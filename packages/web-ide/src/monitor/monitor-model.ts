@@ -19,6 +19,7 @@ import { parseRecordLine, isRule, type KnownRecord, type TraceRecord } from '@co
 import { applyRecord, applyUnfolded } from './apply-record.js';
 import { unfoldedLineTime } from './unfolded-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
+import { marksIn, type MonitorView } from './model-view.js';
 
 export interface MonitorModelOptions {
   checkpointEvery?: number;
@@ -94,7 +95,7 @@ interface Checkpoint {
 
 const NOTABLE = new Set(['sup_rule', 'supervisor', 'scheduler', 'ord_deadline_miss', 'module_hold', 'flow_hold', 'module_started', 'module_exit']);
 
-export class MonitorModel {
+export class MonitorModel implements MonitorView {
   readonly live: MonitorState = emptyState();
   readonly marks: Mark[] = [];
   /** mono_ns of the first record: time 0. */
@@ -203,16 +204,7 @@ export class MonitorModel {
 
   /** Marks with lo <= t <= hi (binary search: marks are in time order). */
   marksBetween(lo: Ns, hi: Ns): Mark[] {
-    let a = 0;
-    let b = this.marks.length;
-    while (a < b) {
-      const m = (a + b) >> 1;
-      if (this.marks[m]!.t < lo) a = m + 1;
-      else b = m;
-    }
-    const out: Mark[] = [];
-    for (let i = a; i < this.marks.length && this.marks[i]!.t <= hi; i++) out.push(this.marks[i]!);
-    return out;
+    return marksIn(this.marks, lo, hi);
   }
 
   private checkpoint(): void {

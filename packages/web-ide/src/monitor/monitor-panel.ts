@@ -5,7 +5,8 @@
  * response-time histogram against CRITICAL_DELAY and PERIOD, deadline misses and overruns, the
  * architecture diagram with active modules and pulsing flows, and the timeline strip.
  *
- * Live and replay are the same view over a MonitorModel; the cursor follows the end (live) or
+ * Live and replay are the same view over a MonitorView (a MonitorModel on the page, or a live run
+ * folded in a Web Worker: remote-model.ts); the cursor follows the end (live) or
  * stays where it was put (paused, scrubbed, or played back). Feeding records only marks the view
  * dirty: it redraws at most once per animation frame, and only what changed.
  */
@@ -13,7 +14,7 @@ import './monitor.css';
 import { h } from '../util/dom.js';
 import type { ArchSchema } from '../lsp/architecture-model.js';
 import type { ArchitectureView } from '../views/architecture-view.js';
-import type { MonitorModel } from './monitor-model.js';
+import type { MonitorView } from './model-view.js';
 import type { MonitorState } from './monitor-state.js';
 import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
@@ -48,7 +49,7 @@ const fmtT = (ns: number) => `+${(ns / 1e9).toFixed(6)} s`;
 
 export class MonitorPanel {
   readonly element: HTMLElement;
-  private model: MonitorModel | undefined;
+  private model: MonitorView | undefined;
   private live = false;
   private follow = true;
   private cursor = 0;
@@ -57,7 +58,7 @@ export class MonitorPanel {
   private dirty = false;
   /** Drawn at the next frame whatever `drawn` says (redrawAll). */
   private stale = false;
-  private drawn = { version: -1, cursor: -1, model: undefined as MonitorModel | undefined };
+  private drawn = { version: -1, cursor: -1, model: undefined as MonitorView | undefined };
   private schemas: ArchSchema[] = [];
   private catalogue: SchemaInfo[] = [];
   private sups: SupervisorCatalogue = {};
@@ -118,7 +119,7 @@ export class MonitorPanel {
   }
 
   /** Shows `model` (live: follows its end as records come). */
-  setModel(model: MonitorModel, label: string, live: boolean): void {
+  setModel(model: MonitorView, label: string, live: boolean): void {
     this.model = model;
     this.live = live;
     this.label.textContent = label;
@@ -134,8 +135,13 @@ export class MonitorPanel {
       ...options.map((o) => h('option', { value: o.id, selected: o.id === selected }, o.label)));
   }
 
-  get current(): MonitorModel | undefined {
+  get current(): MonitorView | undefined {
     return this.model;
+  }
+
+  /** The label of the run shown (what it is, and what it lacks). */
+  setLabel(label: string): void {
+    this.label.textContent = label;
   }
 
   /** The live source ended (the model stays, as a recorded run). */
@@ -242,14 +248,15 @@ export class MonitorPanel {
     this.stale = false;
     if (!this.element.isConnected) return;
     const t0 = performance.now();
-    this.render(m, t);
+    const s = m.stateAt(t);
+    if (!s) return; // asked of the worker: drawn when it comes (the model's version then moves)
+    this.render(m, t, s);
     this.drawn = { model: m, version: m.version, cursor: t };
     this.frameMs.push(performance.now() - t0);
     if (this.frameMs.length > 5000) this.frameMs.splice(0, 1000);
   }
 
-  private render(m: MonitorModel, t: number): void {
-    const s = m.stateAt(t);
+  private render(m: MonitorView, t: number, s: MonitorState): void {
     this.element.dataset.t = String(Math.round(t));
     if (this.due('clock', CLOCK_REDRAW_MS)) {
       setText(this.timeText, `${fmtT(t)} / ${fmtT(m.end)}${this.live && this.follow ? ' · live' : ''}${m.exactAt(t) ? '' : ' · counters approximate this far back'}`);

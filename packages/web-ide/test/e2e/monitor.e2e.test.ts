@@ -177,14 +177,14 @@ describe('Monitor in headless Chromium', () => {
       if (batches.at(-1)?.at === at) batches.at(-1)!.records.push(l);
       else batches.push({ at, records: [l] });
     }
-    await page.evaluate(() => (window as any).__ide.build.onStarted.fire({ jobId: 'fed', action: 'run' }));
+    await page.evaluate(() => (window as any).__ide.monitor.followLive('fed', null)); // as Build & Run does, the lines fed by the test
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     const feeding = page.evaluate(async (batches) => {
       const t0 = performance.now();
       for (const b of batches) {
         const wait = b.at - (performance.now() - t0);
         if (wait > 0) await new Promise((r) => setTimeout(r, wait));
-        (window as any).__ide.build.onTrace.fire({ jobId: 'fed', records: b.records });
+        (window as any).__ide.monitor.feed('fed', b.records);
       }
     }, batches);
     // while it runs, following the end: FIRST lit (MAA's messages arrive), then SECOND after "disconnected"
@@ -195,7 +195,7 @@ describe('Monitor in headless Chromium', () => {
     expect(await rule(page, 'SUP.action.SECOND').getAttribute('data-cause')).toBe('MAA:2 value="disconnected"');
     await shot(page, 'monitor-02-live-fed-tutorial');
     await feeding;
-    // every line folded in (the IDE folds trace events in slices between frames)
+    // every line folded in (by the live run's worker, off the page's main thread)
     await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(lines.length);
     const liveMarks = await marksOf(page);
     await checkTutorialStory(page);
@@ -206,7 +206,7 @@ describe('Monitor in headless Chromium', () => {
 
   it('following a 1 kHz run live, the time is written at most 10 times a second, the diagram\'s marks too, the deliveries\' counts 5 times, and exactly once it pauses or ends', async () => {
     const { page } = s;
-    await page.evaluate(() => (window as any).__ide.build.onStarted.fire({ jobId: 'khz', action: 'run' }));
+    await page.evaluate(() => (window as any).__ide.monitor.followLive('khz', null));
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
     await page.waitForSelector('.monitor-view .arch-svg');
     // MAB receiving MAA's event at 1 kHz for 2 s (and MSA running every other 20 ms), in 20 ms
@@ -240,7 +240,7 @@ describe('Monitor in headless Chromium', () => {
         }
         // MSA runs in one batch, stops in the next: the diagram's "running" mark changes with each
         records.push({ file: 'MSA.csv', line: batch + 2, text: `${1_000_000_000 + (batch * 20 + 19) * 1_000_000 + 500_000},2026-11-29T10:00:01.000000Z,MSA,${batch % 2 ? 'run_finished' : 'run_started'},ORD,,0,activation=${batch + 1}` });
-        w.__ide.build.onTrace.fire({ jobId: 'khz', records });
+        w.__ide.monitor.feed('khz', records);
         const wait = (batch + 1) * 20 - (performance.now() - t0);
         if (wait > 0) await new Promise((r) => setTimeout(r, wait));
       }
@@ -268,11 +268,14 @@ describe('Monitor in headless Chromium', () => {
       const time = document.querySelector('.monitor-time')!;
       // just after the time was written, a record comes and its frame is drawn: the time waits
       const written = new Promise((r) => new MutationObserver((_, o) => (o.disconnect(), r(undefined))).observe(time, { subtree: true, childList: true, characterData: true }));
-      w.__ide.build.onTrace.fire({ jobId: 'khz', records: [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }] });
+      w.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }]);
       const wrote = await Promise.race([written.then(() => true), new Promise((r) => setTimeout(() => r(false), 2000))]);
       if (!wrote) return { time: `the time was not written: ${time.textContent}`, row: '' };
-      w.__ide.build.onTrace.fire({ jobId: 'khz', records: [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }] });
-      await frame();
+      const m = w.__ide.monitor.lastLive;
+      const before = m.recordCount;
+      w.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]);
+      // folded by the live run's worker: in the page's model at its next snapshot
+      while (m.recordCount <= before) await frame();
       w.__ide.monitor.panel.setFollow(false);
       await frame();
       return { time: time.textContent, row: document.querySelector('.monitor-flow.event[data-flow="MAA:0->MAB:0"]')!.textContent };
@@ -307,7 +310,7 @@ describe('Monitor in headless Chromium', () => {
       await shot(page, 'monitor-02b-live-tutorial-during-run');
     }
     await expect.poll(running, { timeout: 180_000 }).toBe('succeeded');
-    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.pendingEvents)).toBe(0);
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.lastLive?.ended)).toBe(true); // its worker has folded the whole stream
     const streamed = await page.evaluate(() => (window as any).__ide.monitor.lastLive?.recordCount ?? 0);
     let liveMarks: MarkJson[] = [];
     if (streamed > 0) {

@@ -1,0 +1,39 @@
+/**
+ * The messages between the page (RemoteMonitorModel, remote-model.ts) and the Web Worker that
+ * follows a live run's trace (LiveFollower, live-follower.ts). Plain data: they cross by
+ * structured clone.
+ */
+import type { TraceLine } from '@contract-studio/build-service/trace';
+import type { Mark } from './monitor-model.js';
+import type { MonitorState, Ns } from './monitor-state.js';
+
+export type ToFollower =
+  /** Follow the job's trace: `url` is its WebSocket stream with `trace=only`, or null (fed by `feed`). */
+  | { type: 'follow'; url: string | null; measure?: boolean }
+  /** Trace lines handed over by the page (tests), folded as if they came on the stream. */
+  | { type: 'feed'; records: TraceLine[] }
+  /** The state at t (ns since the run's first record): answered by a `state`. */
+  | { type: 'stateAt'; t: Ns }
+  /** Stop following (the run is forgotten). */
+  | { type: 'stop' };
+
+export interface Snapshot {
+  type: 'snapshot';
+  /** The state after the last record folded in. */
+  live: MonitorState;
+  end: Ns;
+  count: number;
+  /** Marks made since the last snapshot. */
+  marks: Mark[];
+  /** The stream ended (its `end` event, or it broke for good): nothing more will come from it. */
+  ended: boolean;
+  /** Why the trace is not whole, when it is not (a batch that could not be read, the connection lost). */
+  problems: string[];
+  /** The worker's time spent folding so far (ms). */
+  foldMs: number;
+  /** With `measure`: each record folded since the last snapshot, its wall_time and its arrival (Date.now() ms). */
+  walls?: Float64Array;
+  arrived?: Float64Array;
+}
+
+export type FromFollower = Snapshot | { type: 'state'; t: Ns; state: MonitorState; exact: boolean };

@@ -1,0 +1,150 @@
+import { afterEach, describe, expect, it } from 'vitest';
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { WebSocketServer, WebSocket } from 'ws';
+import { encodeTraceRecords, type TraceLine } from '@contract-studio/build-service/trace';
+import { LiveFollower, type SocketLike } from './live-follower.js';
+import { RemoteMonitorModel, type FollowerPort } from './remote-model.js';
+import { MonitorModel } from './monitor-model.js';
+import type { FromFollower, ToFollower } from './live-follow-protocol.js';
+
+const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
+const lines: TraceLine[] = readdirSync(dir).flatMap((file) => readFileSync(join(dir, file), 'utf8').split('\n').map((text, i) => ({ file, line: i + 1, text })))
+  .filter((l) => /^\d+,/.test(l.text)).sort((a, b) => Number(BigInt(a.text.split(',')[0]!) - BigInt(b.text.split(',')[0]!)));
+
+/** The job's event stream as the service sends it on its WebSocket: seq'd trace events of `per` records, then end. */
+function events(per: number): string[] {
+  const out: string[] = [];
+  let seq = 0;
+  for (let i = 0; i < lines.length; i += per) out.push(JSON.stringify({ type: 'trace', seq: ++seq, t: Date.now(), ...encodeTraceRecords(lines.slice(i, i + per)) }));
+  out.push(JSON.stringify({ type: 'end', seq: ++seq, t: Date.now(), result: { ok: true } }));
+  return out;
+}
+
+/** A worker and its page in one process: the follower and the remote model, messages cloned both ways as postMessage does. */
+function pair(url: string | null, snapshotMs?: number): { remote: RemoteMonitorModel; follower: LiveFollower; posted: FromFollower[] } {
+  const posted: FromFollower[] = [];
+  let follower!: LiveFollower;
+  const port: FollowerPort = {
+    postMessage: (m: ToFollower) => queueMicrotask(() => follower.handle(structuredClone(m))),
+    onmessage: null,
+  };
+  follower = new LiveFollower((m) => {
+    const copy = structuredClone(m);
+    posted.push(copy);
+    setTimeout(() => port.onmessage?.({ data: copy } as MessageEvent<FromFollower>), 0);
+  }, (u) => new WebSocket(u) as unknown as SocketLike, snapshotMs);
+  const remote = new RemoteMonitorModel(port, url);
+  return { remote, follower, posted };
+}
+
+let server: WebSocketServer | undefined;
+afterEach(async () => {
+  await new Promise((r) => server?.close(r) ?? r(undefined));
+  server = undefined;
+});
+
+/** A stream server: `serve(ws, after, connection)` sends what it wants. */
+async function listen(serve: (ws: WebSocket, after: number, n: number, url: URL) => void): Promise<string> {
+  server = new WebSocketServer({ port: 0, host: '127.0.0.1' });
+  let n = 0;
+  server.on('connection', (ws, req) => {
+    const url = new URL(req.url ?? '/', 'http://x');
+    serve(ws, Number(url.searchParams.get('after') ?? 0), n++, url);
+  });
+  await new Promise((r) => server!.once('listening', r));
+  return `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/j/ws?trace=only`;
+}
+
+const settled = (m: RemoteMonitorModel) => Promise.race([m.settled, new Promise((_, no) => setTimeout(() => no(new Error('not settled')), 10_000))]);
+
+describe('a live run followed in a worker', () => {
+  it('folds every record of the stream, in order, into the same state and marks as a model fed on the page, and answers states far back', async () => {
+    const frames = events(40);
+    const url = await listen((ws, after) => {
+      for (const f of frames.slice(after)) ws.send(f);
+    });
+    const { remote, posted } = pair(url);
+    await settled(remote);
+    const local = new MonitorModel();
+    for (const l of lines) local.pushLine(l.file, l.line, l.text);
+    expect(remote.recordCount).toBe(lines.length);
+    expect(remote.end).toBe(local.end);
+    expect(remote.live).toEqual(local.live);
+    expect(remote.marks).toEqual(local.marks);
+    expect(remote.problems).toEqual([]);
+    expect(posted.filter((p) => p.type === 'snapshot').length).toBeGreaterThan(0);
+    // a state before the end is asked of the worker: undefined at first, the same as the page's model once it comes
+    for (const t of [0, local.marks[3]!.t, local.end / 3, local.end - 1]) {
+      expect(remote.stateAt(t)).toBeUndefined();
+      const v = remote.version;
+      await expect.poll(() => remote.version).toBeGreaterThan(v);
+      expect(remote.stateAt(t)).toEqual(local.stateAt(t));
+      expect(remote.exactAt(t)).toBe(local.exactAt(t));
+    }
+    expect(remote.stateAt(remote.end)).toBe(remote.live);
+    expect(remote.marksBetween(0, local.end)).toEqual(local.marksBetween(0, local.end));
+  });
+
+  it('takes a broken stream up again after the last event seen: nothing lost, nothing twice', async () => {
+    const frames = events(25);
+    const afters: number[] = [];
+    const url = await listen((ws, after, n) => {
+      afters.push(after);
+      // the first two connections break after 5 events each
+      const upTo = n < 2 ? after + 5 : frames.length;
+      for (const f of frames.slice(after, upTo)) ws.send(f);
+      if (n < 2) setTimeout(() => ws.terminate(), 20);
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    expect(afters).toEqual([0, 5, 10]);
+    expect(remote.recordCount).toBe(lines.length);
+    const local = new MonitorModel();
+    for (const l of lines) local.pushLine(l.file, l.line, l.text);
+    expect(remote.marks).toEqual(local.marks);
+    expect(remote.problems).toEqual([]);
+  }, 20_000);
+
+  it('skips what is not an event, says a batch it cannot read, and keeps the rest; a stream that never comes back is said lost', async () => {
+    const frames = events(50);
+    const url = await listen((ws, _after, n) => {
+      if (n > 0) return ws.terminate();
+      ws.send('not json');
+      ws.send('null');
+      ws.send(JSON.stringify({ type: 'trace', seq: 0, files: ['a.csv'], runs: [0, 1, 3], text: 'only one line' }));
+      ws.send(JSON.stringify({ type: 'line', seq: 0, line: 'a log line' }));
+      for (const f of frames.slice(0, 3)) ws.send(f);
+      setTimeout(() => ws.terminate(), 20);
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    expect(remote.recordCount).toBe(150);
+    expect(remote.problems[0]).toMatch(/^a trace event could not be read \(trace event: the runs count 3 records, the text holds 1 lines\)/);
+    expect(remote.problems.at(-1)).toMatch(/^lost the connection to the build service/);
+  }, 30_000);
+
+  it('sends the page at most one snapshot per snapshotMs, and the last one always', async () => {
+    const frames = events(2); // many small events, sent at once
+    const url = await listen((ws) => {
+      for (const f of frames) ws.send(f);
+    });
+    const start = performance.now();
+    const { remote, posted } = pair(url, 50);
+    await settled(remote);
+    const took = performance.now() - start;
+    const snapshots = posted.filter((p) => p.type === 'snapshot').length;
+    expect(frames.length).toBeGreaterThan(100);
+    expect(snapshots).toBeLessThanOrEqual(Math.ceil(took / 50) + 2);
+    expect(remote.recordCount).toBe(lines.length);
+  });
+
+  it('folds lines the page hands over when it follows no stream, bounded per line', async () => {
+    const { remote } = pair(null);
+    remote.feed(lines.slice(0, 100));
+    remote.feed([{ file: 'x.csv', line: 2, text: `${'9'.repeat(5000)}` }, { file: 3, line: 'x', text: null } as unknown as TraceLine]);
+    await expect.poll(() => remote.recordCount).toBe(101);
+    expect(remote.live.unknownLines).toBe(1);
+  });
+});

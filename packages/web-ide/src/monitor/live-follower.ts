@@ -1,0 +1,213 @@
+/**
+ * The Web Worker side of a live run (live-follow.worker.ts is its entry): opens the job's trace
+ * stream itself (GET /api/jobs/:id/ws?trace=only, docs/build-service-api.md "Trace channel"),
+ * decodes its batches and folds every record into a MonitorModel, off the page's main thread.
+ * The page gets a snapshot of the live state (and the new marks) at most every `snapshotMs`,
+ * and the state at an earlier time when it asks for one (remote-model.ts).
+ *
+ * Everything read from the stream is hostile: a frame that is not JSON is skipped, a batch that
+ * does not decode is skipped and said (problems), lines and batches are bounded.
+ * A broken stream is taken up again after the last event seen, as the build panel does.
+ */
+import { forEachTraceRecord } from '@contract-studio/build-service/trace';
+import { MonitorModel } from './monitor-model.js';
+import type { FromFollower, Snapshot, ToFollower } from './live-follow-protocol.js';
+
+/** Bounds on what one trace event may bring (the producer sends far less per event). */
+export const MAX_LINES_PER_EVENT = 100_000;
+export const MAX_LINE = 4096;
+const MAX_FILE_NAME = 200;
+/** Least time between two snapshots to the page (one per frame at most). */
+export const SNAPSHOT_MS = 16;
+/** Times a broken stream is taken up again before the trace is said lost. */
+const RETRIES = 5;
+const MAX_PROBLEMS = 20;
+
+/** What the follower needs of a WebSocket (the browser's, or the `ws` package's in tests). */
+export interface SocketLike {
+  onmessage: ((m: MessageEvent) => void) | null;
+  onclose: ((e: CloseEvent) => void) | null;
+  close(): void;
+}
+
+export class LiveFollower {
+  readonly model = new MonitorModel();
+  private url: string | null = null;
+  private socket: SocketLike | undefined;
+  private last = 0;
+  private retries = 0;
+  private ended = false;
+  private stopped = false;
+  private measure = false;
+  private marksSent = 0;
+  private postedVersion = -1;
+  private lastPost = -Infinity;
+  private postTimer: ReturnType<typeof setTimeout> | undefined;
+  private readonly problems: string[] = [];
+  private problemsSent = 0;
+  private walls: number[] = [];
+  private arrived: number[] = [];
+  private foldMs = 0;
+  /** Wall-clock parse cache (measure only): the second of the last record. */
+  private second = '';
+  private secondMs = NaN;
+
+  constructor(
+    private readonly post: (m: FromFollower) => void,
+    private readonly openSocket: (url: string) => SocketLike,
+    private readonly snapshotMs = SNAPSHOT_MS,
+  ) {}
+
+  /** A message of the page. */
+  handle(m: ToFollower): void {
+    switch (m?.type) {
+      case 'follow':
+        this.measure = !!m.measure;
+        this.url = typeof m.url === 'string' ? m.url : null;
+        if (this.url) this.connect(0);
+        return;
+      case 'feed':
+        if (Array.isArray(m.records)) this.fold(() => {
+          let n = 0;
+          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, Date.now());
+        });
+        return;
+      case 'stateAt': {
+        const t = Number(m.t);
+        if (!Number.isFinite(t)) return;
+        this.post({ type: 'state', t, state: this.model.stateAt(t), exact: this.model.exactAt(t) });
+        return;
+      }
+      case 'stop':
+        this.stopped = true;
+        clearTimeout(this.postTimer);
+        this.socket?.close();
+        return;
+    }
+  }
+
+  private connect(after: number): void {
+    const url = after ? `${this.url}${this.url!.includes('?') ? '&' : '?'}after=${after}` : this.url!;
+    let ws: SocketLike;
+    try {
+      ws = this.openSocket(url);
+    } catch (e) {
+      return this.finish(`the trace stream could not be opened (${(e as Error).message})`);
+    }
+    this.socket = ws;
+    ws.onmessage = (m) => this.receive(m.data);
+    ws.onclose = () => {
+      if (this.ended || this.stopped || this.socket !== ws) return;
+      // the stream broke before the job's end: taken up again after the last event seen
+      if (this.retries < RETRIES) {
+        const wait = 300 * ++this.retries;
+        setTimeout(() => {
+          if (!this.ended && !this.stopped && this.socket === ws) this.connect(this.last);
+        }, wait);
+        return;
+      }
+      this.finish('lost the connection to the build service: the trace stops here (the run\'s CSV logs hold all of it)');
+    };
+  }
+
+  private receive(data: unknown): void {
+    if (this.ended || this.stopped) return;
+    const arrival = Date.now();
+    let e: { type?: unknown; seq?: unknown } | null;
+    try {
+      e = JSON.parse(String(data));
+    } catch {
+      return; // not an event of the service
+    }
+    if (!e || typeof e !== 'object') return;
+    if (typeof e.seq === 'number' && Number.isSafeInteger(e.seq) && e.seq > this.last) this.last = e.seq;
+    this.retries = 0;
+    if (e.type === 'trace') {
+      this.fold(() => {
+        let n = 0;
+        try {
+          forEachTraceRecord(e, (file, line, text) => {
+            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, arrival);
+          });
+        } catch (err) {
+          this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
+        }
+      });
+    } else if (e.type === 'end') this.finish();
+  }
+
+  private pushLine(file: string, line: number, text: string, arrival: number): void {
+    this.model.pushLine(file.slice(0, MAX_FILE_NAME), line, text.slice(0, MAX_LINE + 1));
+    if (this.measure) {
+      this.walls.push(this.wallOf(text));
+      this.arrived.push(arrival);
+    }
+  }
+
+  private fold(work: () => void): void {
+    const start = performance.now();
+    work();
+    this.foldMs += performance.now() - start;
+    this.schedule();
+  }
+
+  private problem(text: string): void {
+    if (this.problems.length < MAX_PROBLEMS) this.problems.push(text);
+    this.schedule();
+  }
+
+  private finish(problem?: string): void {
+    if (this.ended) return;
+    this.ended = true;
+    if (problem) this.problems.push(problem);
+    const ws = this.socket;
+    this.socket = undefined;
+    ws?.close();
+    clearTimeout(this.postTimer);
+    this.postTimer = undefined;
+    this.snapshot();
+  }
+
+  /** A snapshot now, or when `snapshotMs` has passed since the last. */
+  private schedule(): void {
+    if (this.postTimer || this.stopped) return;
+    const wait = this.snapshotMs - (performance.now() - this.lastPost);
+    if (wait <= 0) this.snapshot();
+    else this.postTimer = setTimeout(() => {
+      this.postTimer = undefined;
+      this.snapshot();
+    }, wait);
+  }
+
+  private snapshot(): void {
+    const m = this.model;
+    if (m.version === this.postedVersion && !this.ended && this.problems.length === this.problemsSent) return;
+    this.lastPost = performance.now();
+    this.postedVersion = m.version;
+    const s: Snapshot = {
+      type: 'snapshot', live: m.live, end: m.end, count: m.recordCount, marks: m.marks.slice(this.marksSent),
+      ended: this.ended, problems: this.problems.slice(this.problemsSent), foldMs: this.foldMs,
+    };
+    this.marksSent = m.marks.length;
+    this.problemsSent = this.problems.length;
+    if (this.measure) {
+      s.walls = Float64Array.from(this.walls);
+      s.arrived = Float64Array.from(this.arrived);
+      this.walls = [];
+      this.arrived = [];
+    }
+    this.post(s);
+  }
+
+  /** A record's wall_time column (ms since the epoch, µs precision), for the benchmark's latency. */
+  private wallOf(text: string): number {
+    const c = text.indexOf(',');
+    const w = text.slice(c + 1, c + 27); // 2026-11-28T13:58:13.785123
+    const s = w.slice(0, 19);
+    if (s !== this.second) {
+      this.second = s;
+      this.secondMs = Date.parse(`${s}Z`);
+    }
+    return this.secondMs + Number(w.slice(20, 26)) / 1000;
+  }
+}

@@ -1,0 +1,40 @@
+/**
+ * What the Monitor panel reads of a run (monitor-panel.ts): the same for a model folded on the
+ * page (MonitorModel: a recorded run, a simulation) and for a live run folded in a Web Worker
+ * (RemoteMonitorModel, remote-model.ts), whose states far back arrive a moment after they are asked for.
+ */
+import type { Mark } from './monitor-model.js';
+import type { MonitorState, Ns } from './monitor-state.js';
+
+export interface MonitorView {
+  /** Bumped on every change the panel may draw (it redraws only when this or its cursor moved). */
+  readonly version: number;
+  /** Time of the last record (ns since the first). */
+  readonly end: Ns;
+  readonly recordCount: number;
+  /** What the timeline marks, in time order (bounded). */
+  readonly marks: readonly Mark[];
+  /**
+   * The state at t (every record with time <= t folded in); undefined while it is being computed
+   * elsewhere (the view then bumps `version` when it has it). Do not mutate it.
+   */
+  stateAt(t: Ns): MonitorState | undefined;
+  /** Whether states before t are exact (their raw records are still kept). */
+  exactAt(t: Ns): boolean;
+  /** Marks with lo <= t <= hi. */
+  marksBetween(lo: Ns, hi: Ns): Mark[];
+}
+
+/** Marks with lo <= t <= hi of a time-ordered list (binary search). */
+export function marksIn(marks: readonly Mark[], lo: Ns, hi: Ns): Mark[] {
+  let a = 0;
+  let b = marks.length;
+  while (a < b) {
+    const m = (a + b) >> 1;
+    if (marks[m]!.t < lo) a = m + 1;
+    else b = m;
+  }
+  const out: Mark[] = [];
+  for (let i = a; i < marks.length && marks[i]!.t <= hi; i++) out.push(marks[i]!);
+  return out;
+}

@@ -1,0 +1,97 @@
+/**
+ * The page's side of a live run folded in a Web Worker (live-follower.ts): a MonitorView that
+ * mirrors the worker's last snapshot (the live state, the end, the count, every mark) and asks
+ * the worker for the state at an earlier time when the cursor is put there. The panel draws
+ * from it as from a MonitorModel; a state asked for is drawn in the frame after it arrives.
+ */
+import type { TraceLine } from '@contract-studio/build-service/trace';
+import type { Mark } from './monitor-model.js';
+import { emptyState, type MonitorState, type Ns } from './monitor-state.js';
+import { marksIn, type MonitorView } from './model-view.js';
+import type { FromFollower, Snapshot, ToFollower } from './live-follow-protocol.js';
+
+/** What the model needs of a Worker (a MessagePort-like pair in tests). */
+export interface FollowerPort {
+  postMessage(m: ToFollower): void;
+  onmessage: ((e: MessageEvent<FromFollower>) => void) | null;
+  terminate?(): void;
+}
+
+export class RemoteMonitorModel implements MonitorView {
+  live: MonitorState = emptyState();
+  readonly marks: Mark[] = [];
+  end: Ns = 0;
+  recordCount = 0;
+  version = 0;
+  /** The stream ended: nothing more comes (see problems). */
+  ended = false;
+  /** Why the trace is not whole, when it is not. */
+  readonly problems: string[] = [];
+  /** The worker's time spent folding (ms). */
+  foldMs = 0;
+  /** Called after each change (a snapshot, an answered state): the panel schedules a frame. */
+  onChange: (() => void) | undefined;
+  /** Called with each snapshot and the version it became (the benchmark's latency hook). */
+  onSnapshot: ((s: Snapshot, version: number) => void) | undefined;
+  /** Resolves once the stream has ended and every record it brought is in `recordCount`. */
+  readonly settled: Promise<void>;
+  private settle!: () => void;
+  private at: { t: Ns; state: MonitorState; exact: boolean } | undefined;
+  private asked: Ns | undefined;
+
+  constructor(private readonly port: FollowerPort, url: string | null, opts: { measure?: boolean } = {}) {
+    this.settled = new Promise((r) => (this.settle = r));
+    port.onmessage = (e) => this.receive(e.data);
+    port.postMessage({ type: 'follow', url, measure: opts.measure });
+  }
+
+  /** Trace lines handed over by the page, folded as if they came on the stream (tests). */
+  feed(records: TraceLine[]): void {
+    this.port.postMessage({ type: 'feed', records });
+  }
+
+  stateAt(t: Ns): MonitorState | undefined {
+    if (t >= this.end) return this.live;
+    if (this.at?.t === t) return this.at.state;
+    if (this.asked !== t) {
+      this.asked = t;
+      this.port.postMessage({ type: 'stateAt', t });
+    }
+    return undefined;
+  }
+
+  exactAt(t: Ns): boolean {
+    return t >= this.end || this.at?.t !== t || this.at.exact;
+  }
+
+  marksBetween(lo: Ns, hi: Ns): Mark[] {
+    return marksIn(this.marks, lo, hi);
+  }
+
+  /** Stops the worker (the run is forgotten). */
+  dispose(): void {
+    this.port.postMessage({ type: 'stop' });
+    this.port.terminate?.();
+    this.settle();
+  }
+
+  private receive(m: FromFollower): void {
+    if (m.type === 'state') {
+      if (m.t !== this.asked) return; // the cursor moved on meanwhile
+      this.asked = undefined;
+      this.at = { t: m.t, state: m.state, exact: m.exact };
+    } else {
+      this.live = m.live;
+      this.end = m.end;
+      this.recordCount = m.count;
+      for (const k of m.marks) this.marks.push(k);
+      for (const p of m.problems) this.problems.push(p);
+      this.foldMs = m.foldMs;
+      if (m.ended) this.ended = true;
+    }
+    this.version++;
+    if (m.type === 'snapshot') this.onSnapshot?.(m, this.version);
+    this.onChange?.();
+    if (this.ended) this.settle();
+  }
+}
