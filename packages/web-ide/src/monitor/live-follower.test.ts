@@ -140,6 +140,17 @@ describe('a live run followed in a worker', () => {
     expect(remote.recordCount).toBe(lines.length);
   });
 
+  it('a worker that fails ends the live trace and says why', async () => {
+    const { remote } = pair(null);
+    let changes = 0;
+    remote.onChange = () => changes++;
+    remote.fail('the live trace\'s worker failed (boom)');
+    await settled(remote);
+    expect(remote.ended).toBe(true);
+    expect(remote.problems).toEqual(['the live trace\'s worker failed (boom)']);
+    expect(changes).toBe(1);
+  });
+
   it('folds lines the page hands over when it follows no stream, bounded per line', async () => {
     const { remote } = pair(null);
     remote.feed(lines.slice(0, 100));

@@ -70,7 +70,9 @@ export class MonitorController {
   followLive(jobId: string, url: string | null = socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=only`)): RemoteMonitorModel {
     this.runs.delete(`job:${jobId}`);
     this.forget(`live:${jobId}`);
-    const model = new RemoteMonitorModel(new Worker(new URL('./live-follow.worker.ts', import.meta.url), { type: 'module' }), url, { measure: this.measure });
+    const worker = new Worker(new URL('./live-follow.worker.ts', import.meta.url), { type: 'module' });
+    const model = new RemoteMonitorModel(worker, url, { measure: this.measure });
+    worker.addEventListener('error', (e) => model.fail(`the live trace's worker failed (${e.message || 'it could not start'}): the run is shown from its CSV logs when it ends`));
     const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model, live: true };
     let problems = 0;
     model.onChange = () => {

@@ -55,6 +55,8 @@ export class MonitorPanel {
   private cursor = 0;
   private playing = false;
   private lastPlayWall = 0;
+  /** The state at the cursor was asked of the model's worker and has not come yet. */
+  private awaiting = false;
   private dirty = false;
   /** Drawn at the next frame whatever `drawn` says (redrawAll). */
   private stale = false;
@@ -235,9 +237,13 @@ export class MonitorPanel {
     const m = this.model;
     if (!m) return;
     if (this.playing) {
-      const now = performance.now();
-      this.cursor += (now - this.lastPlayWall) * 1e6;
-      this.lastPlayWall = now;
+      // played back from a worker's model, the cursor waits for the state it asked for (else it
+      // would ask for a newer time at every frame and draw none); the wall time it waited is caught up
+      if (!this.awaiting) {
+        const now = performance.now();
+        this.cursor += (now - this.lastPlayWall) * 1e6;
+        this.lastPlayWall = now;
+      }
       if (this.cursor >= m.end) {
         this.cursor = m.end;
         this.setPlaying(false);
@@ -249,6 +255,7 @@ export class MonitorPanel {
     if (!this.element.isConnected) return;
     const t0 = performance.now();
     const s = m.stateAt(t);
+    this.awaiting = !s;
     if (!s) return; // asked of the worker: drawn when it comes (the model's version then moves)
     this.render(m, t, s);
     this.drawn = { model: m, version: m.version, cursor: t };

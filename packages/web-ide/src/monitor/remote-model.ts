@@ -68,6 +68,16 @@ export class RemoteMonitorModel implements MonitorView {
     return marksIn(this.marks, lo, hi);
   }
 
+  /** The worker failed (it could not load, or threw): the live trace stops here, and says why. */
+  fail(why: string): void {
+    if (this.ended) return;
+    this.ended = true;
+    this.problems.push(why);
+    this.version++;
+    this.onChange?.();
+    this.settle();
+  }
+
   /** Stops the worker (the run is forgotten). */
   dispose(): void {
     this.port.postMessage({ type: 'stop' });
@@ -77,8 +87,8 @@ export class RemoteMonitorModel implements MonitorView {
 
   private receive(m: FromFollower): void {
     if (m.type === 'state') {
-      if (m.t !== this.asked) return; // the cursor moved on meanwhile
-      this.asked = undefined;
+      // kept even when the cursor moved on meanwhile (it may come back to it: a scrub)
+      if (m.t === this.asked) this.asked = undefined;
       this.at = { t: m.t, state: m.state, exact: m.exact };
     } else {
       this.live = m.live;

@@ -198,7 +198,16 @@ describe('Monitor in headless Chromium', () => {
     // every line folded in (by the live run's worker, off the page's main thread)
     await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(lines.length);
     const liveMarks = await marksOf(page);
-    await checkTutorialStory(page);
+    const { second } = await checkTutorialStory(page);
+    // played back from just before SECOND: the states come from the live run's worker as the cursor moves
+    await seek(page, second.t - 300e6);
+    await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active')).toBe('false');
+    const drawnBefore = await page.evaluate(() => (window as any).__ide.monitor.panel.frameMs.length);
+    await page.locator('#monitor-play').click();
+    await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 5000 }).toBe('true');
+    await page.locator('#monitor-play').click();
+    // drawn along the way, not only at the end (a frame per state that came)
+    expect(await page.evaluate(() => (window as any).__ide.monitor.panel.frameMs.length) - drawnBefore).toBeGreaterThan(5);
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
     expect(await marksOf(page)).toEqual(liveMarks);
