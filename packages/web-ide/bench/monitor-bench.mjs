@@ -84,6 +84,14 @@ try {
     // main-thread tasks over 50 ms (what of a long frame is the page's own work)
     const longTasks = [];
     new PerformanceObserver((list) => longTasks.push(...list.getEntries().map((e) => e.duration))).observe({ type: 'longtask' });
+    // the frames that took over 50 ms, with the scripts that ran in them (Long Animation Frames)
+    const longFrames = [];
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) {
+        if (longFrames.length < 20) longFrames.push({ ms: Math.round(e.duration), blocking: Math.round(e.blockingDuration), render: Math.round(e.renderStart ? e.startTime + e.duration - e.renderStart : 0),
+          scripts: e.scripts.map((x) => `${x.invoker} ${x.sourceFunctionName || ''} ${Math.round(x.duration)}ms`).slice(0, 4) });
+      }
+    }).observe({ type: 'long-animation-frame' });
     // what this frame drew, looked at once it is done (a task queued from a frame callback runs after the frame)
     const drawn = () => {
       if (panel.drawn.model !== model) return;
@@ -123,7 +131,7 @@ try {
       usPerRecord: (model.foldMs * 1000) / records, longTasks: longTasks.length, longestTask: Math.max(0, ...longTasks), records, perSecond: records / elapsed, frames: g.length,
       heapMb: (window.gc?.(), (performance.memory?.usedJSHeapSize ?? 0) / 1e6),
       misses: document.querySelector('.monitor-pschema[data-periodic=schemaCommande1]')?.getAttribute('data-misses'),
-      problems: model.problems,
+      problems: model.problems, longFrames,
     };
   });
   await feed.close();
@@ -187,6 +195,7 @@ try {
   };
   writePart('monitor-panel', result);
   console.log(JSON.stringify({ ...result, seconds, frames: r.frames, records: r.records, renderMax: round(r.renderMax, 2), shown: r.shown, longTasks: r.longTasks, longestTask: round(r.longestTask), misses: r.misses }));
+  if (r.longFrames.length) console.error(`[monitor-panel] frames over 50 ms: ${JSON.stringify(r.longFrames)}`);
 } finally {
   await context?.close().catch(() => undefined);
   await server.close();
