@@ -12,7 +12,7 @@
  *   text   the records' lines joined with "\n" (a record line holds no newline)
  *
  * so that a client parses one string and splits it. Browser-safe (no Node imports): the IDE's
- * build panel decodes with it too.
+ * Monitor's live-run worker (web-ide monitor/live-follower.ts) decodes with it too.
  */
 
 /** One whole record line of a module's CSV log (docs/runtime-api.md "Trace records"), as the run wrote it. */
