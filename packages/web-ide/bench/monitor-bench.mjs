@@ -26,6 +26,7 @@ import { tmpdir } from 'node:os';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords } from '@contract-studio/build-service/trace';
 import { buildProductionIde, installFrameRecorder, launchChromium, pkg, root, writePart } from './bench-support.mjs';
+import { khzCycle } from './khz-cycle.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 60);
 const { startIdeServer } = await buildProductionIde();
@@ -142,29 +143,15 @@ try {
   // (one file per module), handed to the Monitor as at the end of a Build & Run; the model is built
   // in slices, so the page keeps drawing while it is
   await installFrameRecorder(page);
+  await page.evaluate(`window.__khzCycle = ${khzCycle.toString()};`);
   const replay = await page.evaluate(async (seconds) => {
     const ide = window.__ide;
     const W = '2026-11-26T12:00:00.000000Z';
-    const T0 = 500_000_000_000;
-    const mods = ['MSA', 'MSC', 'MSD'];
     const texts = { ORD: [], SUP: [], MSA: [], MSC: [], MSD: [] };
     const L = (ns, m, ev, peer, port, size, detail) => texts[m].push(`${ns},${W},${m},${ev},${peer},${port},${size},${detail}`);
-    L(T0, 'ORD', 'scheduler', '', '', 0, 'activate schemaCommande1');
-    let release = 0;
-    for (let c = 0; c < seconds * 1000; c++) {
-      const tick = T0 + 10_000_000 + c * 1_000_000;
-      let t = tick;
-      for (const [i, m] of mods.entries()) {
-        const id = ++release;
-        L(t + 1000, 'ORD', 'ord_release', m, '', 0, `schema=schemaCommande1 cycle=${c} tick_ns=${tick} release_ns=${t + 900} release=${id}`);
-        L(t + 5000, m, 'run_started', 'ORD', '', 0, `activation=${id}`);
-        if (i < 2) L(t + 40_000, m, 'data_posted', mods[i + 1], i, 24, `to_port=${i === 0 ? 0 : 2}`);
-        L(t + 50_000, m, 'run_finished', 'ORD', '', 0, `activation=${id} ACK_FINISHED`);
-        t += 60_000;
-        L(t + 500, 'ORD', 'ord_finished', m, '', 0, `schema=schemaCommande1 cycle=${c} release=${id} response_ns=${t + 500 - tick}`);
-      }
-      if (c % 500 === 0) L(tick + 2000, 'SUP', 'sup_rule', '', '', 0, `action.${(c / 500) % 2 ? 'FIRST' : 'SECOND'} active cause=elapsed=1000000ns`);
-    }
+    L(500_000_000_000, 'ORD', 'scheduler', '', '', 0, 'activate schemaCommande1');
+    const state = { release: 0 };
+    for (let c = 0; c < seconds * 1000; c++) window.__khzCycle(L, c, state, false);
     const header = 'mono_ns,wall_time,module,event,peer,port,size,detail';
     const files = Object.entries(texts).map(([m, lines]) => ({ name: `${m}_26-Nov-2026-12h00m00s.csv`, text: [header, ...lines].join('\n') + '\n' }));
     const records = Object.values(texts).reduce((a, l) => a + l.length, 0);
@@ -213,9 +200,8 @@ async function startFeed(seconds) {
   const feed = { url: `ws://127.0.0.1:${wss.address().port}/api/jobs/bench/ws?trace=only`, sent: 0, close: () => new Promise((r) => wss.close(r)) };
   wss.on('connection', (ws) => {
     const T0 = 500_000_000_000;
-    const mods = ['MSA', 'MSC', 'MSD'];
     let wall = '';
-    let release = 0;
+    const state = { release: 0 };
     let seq = 0;
     const lineNo = {};
     const batch = [];
@@ -223,29 +209,7 @@ async function startFeed(seconds) {
       lineNo[m] = (lineNo[m] ?? 1) + 1;
       batch.push({ file: `${m}_26-Nov-2026-12h00m00s.csv`, line: lineNo[m], text: `${ns},${wall},${m},${ev},${peer},${port},${size},${detail}` });
     };
-    /** The records of cycle c, at their times. */
-    const cycle = (c) => {
-      const tick = T0 + 10_000_000 + c * 1_000_000;
-      let t = tick;
-      for (const [i, m] of mods.entries()) {
-        const id = ++release;
-        L(t + 1000, 'ORD', 'ord_release', m, '', 0, `schema=schemaCommande1 cycle=${c} tick_ns=${tick} release_ns=${t + 900} release=${id}`);
-        L(t + 5000, m, 'run_started', 'ORD', '', 0, `activation=${id}`);
-        if (i < 2) L(t + 40_000, m, 'data_posted', mods[i + 1], i, 24, `to_port=${i === 0 ? 0 : 2}`);
-        if (i > 0) L(t + 8000, m, 'data_received', mods[i - 1], i === 1 ? 0 : 2, 24, 'latency_ns=9000');
-        L(t + 50_000, m, 'run_finished', 'ORD', '', 0, `activation=${id} ACK_FINISHED`);
-        L(t + 60_000, 'ORD', 'ack_received', m, '', 0, `ACK_FINISHED id=${id}`);
-        t += 60_000 + (c % 97) * 300;
-        L(t + 500, 'ORD', 'ord_finished', m, '', 0, `schema=schemaCommande1 cycle=${c} release=${id} response_ns=${t + 500 - tick}`);
-      }
-      L(t + 800, 'ORD', 'ord_complete', '', '', 0, `schema=schemaCommande1 cycle=${c} tick_ns=${tick} response_ns=${t + 800 - tick}`);
-      if (c % 2000 === 1999) L(tick + 1_000_000, 'ORD', 'ord_deadline_miss', '', '', 0, `schema=schemaCommande1 cycle=${c} tick_ns=${tick}`);
-      if (c % 500 === 0) {
-        const on = (c / 500) % 2 === 0;
-        L(tick + 2000, 'SUP', 'sup_rule', '', '', 0, `action.${on ? 'SECOND' : 'FIRST'} active cause=elapsed=1000000ns`);
-        L(tick + 2100, 'SUP', 'sup_rule', '', '', 0, `action.${on ? 'FIRST' : 'SECOND'} inactive cause=started(${on ? 'SECOND' : 'FIRST'})`);
-      }
-    };
+    const cycle = (c) => khzCycle(L, c, state, true);
     // each record's wall_time is when it is sent (µs digits), as a module writes it
     const stamp = () => `${new Date().toISOString().slice(0, 23)}000Z`;
     const send = () => {
