@@ -299,6 +299,21 @@ describe('Monitor in headless Chromium', () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})' })));
+    // every event the page's own sockets receive, by type: the trace goes to the live run's worker only
+    await page.evaluate(() => {
+      const w = window as any;
+      w.__pageEvents = {} as Record<string, number>;
+      const Native = WebSocket;
+      w.WebSocket = class extends Native {
+        constructor(url: string | URL, protocols?: string | string[]) {
+          super(url, protocols);
+          this.addEventListener('message', (m) => {
+            const type = /^\{"type":"([a-z]+)"/.exec(String(m.data))?.[1] ?? '?';
+            w.__pageEvents[type] = (w.__pageEvents[type] ?? 0) + 1;
+          });
+        }
+      };
+    });
     await page.locator('#btn-run').click();
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode'), { timeout: 10_000 }).toBe('live');
     const jobId = /^Build & Run job (\S+) · live$/.exec((await page.locator('.monitor-source').textContent())!)![1]!;
@@ -321,6 +336,11 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(running, { timeout: 180_000 }).toBe('succeeded');
     await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.lastLive?.ended)).toBe(true); // its worker has folded the whole stream
     const streamed = await page.evaluate(() => (window as any).__ide.monitor.lastLive?.recordCount ?? 0);
+    // the page's main thread got the job's log, status and end, and not one trace event: its worker took them
+    const pageEvents = await page.evaluate(() => (window as any).__pageEvents as Record<string, number>);
+    expect(pageEvents['line'] ?? 0).toBeGreaterThan(0);
+    expect(pageEvents['end']).toBe(1);
+    expect(pageEvents['trace'] ?? 0).toBe(0);
     let liveMarks: MarkJson[] = [];
     if (streamed > 0) {
       // the live trace arrived (trace-live producer): the story as it was streamed
