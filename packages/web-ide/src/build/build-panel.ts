@@ -1,5 +1,6 @@
 import { h } from '../util/dom.js';
 import { api, socketUrl } from '../api.js';
+import { JobStream } from './job-stream.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
@@ -36,7 +37,7 @@ export class BuildPanel {
   private jobId: string | undefined;
   /** A submission is on its way (no job id yet). */
   private submitting = false;
-  private socket: WebSocket | undefined;
+  private stream: JobStream | undefined;
   private diagnostics: GccDiagnostic[] = [];
   private chipSources = '';
 
@@ -129,9 +130,9 @@ export class BuildPanel {
 
   /** Empties the log, the source chips and the diagnostics (a new job is followed). */
   private clear(): void {
-    const socket = this.socket;
-    this.socket = undefined;
-    socket?.close();
+    const stream = this.stream;
+    this.stream = undefined;
+    stream?.close();
     this.store.clear();
     this.chipSources = '';
     this.renderChips();
@@ -166,66 +167,49 @@ export class BuildPanel {
 
   /**
    * Streams a job's events into the log, the diagnostics and the status (not the trace: the Monitor's own socket), from the
-   * first (or after `after`, the last event seen, when a broken stream is taken up again). A
+   * first (a broken stream is taken up again after the last event seen: job-stream.ts). A
    * WebSocket (GET /api/jobs/:id/ws, docs/build-service-api.md "Events"), not an EventSource:
    * a browser opens at most six HTTP/1.1 connections to a server for all its tabs, and streams
    * held on them by tabs following a run would leave none for their saves (as for /api/events,
    * app/server-events.ts).
    */
-  private follow(jobId: string, action: 'build' | 'run', after = 0, retries = 0): void {
-    // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts)
-    const ws = new WebSocket(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none${after ? `&after=${after}` : ''}`));
-    this.socket = ws;
-    if (!after) this.onStarted.fire({ jobId, action });
-    let last = after;
-    let ended = false;
-    ws.onmessage = (m) => {
-      let e: { type?: string; seq?: number } & Record<string, unknown>;
-      try {
-        e = JSON.parse(String(m.data));
-      } catch {
-        return; // not an event of the service
-      }
-      if (typeof e.seq === 'number') last = e.seq;
-      retries = 0;
-      switch (e.type) {
-        case 'line':
-          return this.append(e as unknown as LogLine);
-        case 'status': {
-          const d = e as unknown as { status: string; step?: string };
-          return this.setStatus(d.status, d.step, true);
+  private follow(jobId: string, action: 'build' | 'run'): void {
+    // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts);
+    // a broken stream is taken up again after the last event seen (job-stream.ts)
+    const stream: JobStream = new JobStream(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none`), {
+      event: (e) => {
+        switch (e.type) {
+          case 'line':
+            return this.append(e as unknown as LogLine);
+          case 'status': {
+            const d = e as unknown as { status: string; step?: string };
+            return this.setStatus(d.status, d.step, true);
+          }
+          case 'diagnostic':
+            this.diagnostics.push((e as unknown as { diagnostic: GccDiagnostic }).diagnostic);
+            return this.onDiagnostics.fire(this.diagnostics);
+          case 'limit':
+            return this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `limit hit: ${(e as unknown as { limitHit: { name: string } }).limitHit.name}` });
+          case 'end': {
+            const d = e as unknown as { result: { ok: boolean; message: string } | null };
+            stream.close();
+            if (this.stream === stream) this.stream = undefined;
+            this.jobId = undefined;
+            this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
+            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok });
+            return;
+          }
         }
-        case 'diagnostic':
-          this.diagnostics.push((e as unknown as { diagnostic: GccDiagnostic }).diagnostic);
-          return this.onDiagnostics.fire(this.diagnostics);
-        case 'limit':
-          return this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `limit hit: ${(e as unknown as { limitHit: { name: string } }).limitHit.name}` });
-        case 'end': {
-          ended = true;
-          const d = e as unknown as { result: { ok: boolean; message: string } | null };
-          ws.close();
-          if (this.socket === ws) this.socket = undefined;
-          this.jobId = undefined;
-          this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
-          this.onFinished.fire({ jobId, action, ok: !!d.result?.ok });
-          return;
-        }
-      }
-    };
-    ws.onclose = () => {
-      if (ended || this.socket !== ws || this.jobId !== jobId) return;
-      // the stream broke before the job's end (a network hiccup, the server restarting): take it
-      // up again after the last event seen, a few times; a service that forgot the job ends it
-      if (retries < 5) {
-        setTimeout(() => {
-          if (this.socket === ws && this.jobId === jobId) this.follow(jobId, action, last, retries + 1);
-        }, 300 * (retries + 1));
-        return;
-      }
-      this.socket = undefined;
-      this.jobId = undefined;
-      this.setStatus('disconnected', 'lost the connection to the build service', false);
-    };
+      },
+      lost: () => {
+        if (this.stream !== stream || this.jobId !== jobId) return;
+        this.stream = undefined;
+        this.jobId = undefined;
+        this.setStatus('disconnected', 'lost the connection to the build service', false);
+      },
+    });
+    this.stream = stream;
+    this.onStarted.fire({ jobId, action });
   }
 
   async stop(): Promise<void> {

@@ -7,9 +7,10 @@
  *
  * Everything read from the stream is hostile: a frame that is not JSON is skipped, a batch that
  * does not decode is skipped and said (problems), lines and batches are bounded.
- * A broken stream is taken up again after the last event seen, as the build panel does.
+ * A broken stream is taken up again after the last event seen (job-stream.ts, as for the build panel).
  */
 import { forEachTraceRecord } from '@contract-studio/build-service/trace';
+import { JobStream, type SocketLike, type StreamEvent } from '../build/job-stream.js';
 import { MonitorModel } from './monitor-model.js';
 import type { FromFollower, Snapshot, ToFollower } from './live-follow-protocol.js';
 
@@ -19,23 +20,13 @@ export const MAX_LINE = 4096;
 const MAX_FILE_NAME = 200;
 /** Least time between two snapshots to the page (one per frame at most). */
 export const SNAPSHOT_MS = 16;
-/** Times a broken stream is taken up again before the trace is said lost. */
-const RETRIES = 5;
 const MAX_PROBLEMS = 20;
 
-/** What the follower needs of a WebSocket (the browser's, or the `ws` package's in tests). */
-export interface SocketLike {
-  onmessage: ((m: MessageEvent) => void) | null;
-  onclose: ((e: CloseEvent) => void) | null;
-  close(): void;
-}
+export type { SocketLike };
 
 export class LiveFollower {
   readonly model = new MonitorModel();
-  private url: string | null = null;
-  private socket: SocketLike | undefined;
-  private last = 0;
-  private retries = 0;
+  private stream: JobStream | undefined;
   private ended = false;
   private stopped = false;
   private measure = false;
@@ -63,13 +54,18 @@ export class LiveFollower {
     switch (m?.type) {
       case 'follow':
         this.measure = !!m.measure;
-        this.url = typeof m.url === 'string' ? m.url : null;
-        if (this.url) this.connect(0);
+        if (typeof m.url === 'string' && !this.stream) {
+          this.stream = new JobStream(m.url, {
+            event: (e) => this.receive(e),
+            lost: (why) => this.finish(why === undefined ? 'lost the connection to the build service: the trace stops here (the run\'s CSV logs hold all of it)' : `the trace stream could not be opened (${why})`),
+          }, this.openSocket);
+        }
         return;
       case 'feed':
         if (Array.isArray(m.records)) this.fold(() => {
+          const arrival = Date.now();
           let n = 0;
-          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, Date.now());
+          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, arrival);
         });
         return;
       case 'stateAt': {
@@ -81,47 +77,15 @@ export class LiveFollower {
       case 'stop':
         this.stopped = true;
         clearTimeout(this.postTimer);
-        this.socket?.close();
+        this.stream?.close();
         return;
     }
   }
 
-  private connect(after: number): void {
-    const url = after ? `${this.url}${this.url!.includes('?') ? '&' : '?'}after=${after}` : this.url!;
-    let ws: SocketLike;
-    try {
-      ws = this.openSocket(url);
-    } catch (e) {
-      return this.finish(`the trace stream could not be opened (${(e as Error).message})`);
-    }
-    this.socket = ws;
-    ws.onmessage = (m) => this.receive(m.data);
-    ws.onclose = () => {
-      if (this.ended || this.stopped || this.socket !== ws) return;
-      // the stream broke before the job's end: taken up again after the last event seen
-      if (this.retries < RETRIES) {
-        const wait = 300 * ++this.retries;
-        setTimeout(() => {
-          if (!this.ended && !this.stopped && this.socket === ws) this.connect(this.last);
-        }, wait);
-        return;
-      }
-      this.finish('lost the connection to the build service: the trace stops here (the run\'s CSV logs hold all of it)');
-    };
-  }
-
-  private receive(data: unknown): void {
+  /** An event of the job's stream (parsed and seq-tracked by job-stream.ts). */
+  private receive(e: StreamEvent): void {
     if (this.ended || this.stopped) return;
     const arrival = Date.now();
-    let e: { type?: unknown; seq?: unknown } | null;
-    try {
-      e = JSON.parse(String(data));
-    } catch {
-      return; // not an event of the service
-    }
-    if (!e || typeof e !== 'object') return;
-    if (typeof e.seq === 'number' && Number.isSafeInteger(e.seq) && e.seq > this.last) this.last = e.seq;
-    this.retries = 0;
     if (e.type === 'trace') {
       this.fold(() => {
         let n = 0;
@@ -160,9 +124,7 @@ export class LiveFollower {
     if (this.ended) return;
     this.ended = true;
     if (problem) this.problems.push(problem);
-    const ws = this.socket;
-    this.socket = undefined;
-    ws?.close();
+    this.stream?.close();
     clearTimeout(this.postTimer);
     this.postTimer = undefined;
     this.snapshot();

@@ -20,7 +20,6 @@ import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
-import { MAX_LINES_PER_EVENT } from './live-follower.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 
@@ -95,7 +94,7 @@ export class MonitorController {
   /** Trace lines of live run `jobId` handed over by the page (tests): folded by its worker as if streamed. */
   feed(jobId: string, records: TraceLine[]): void {
     const m = this.runs.get(`live:${jobId}`)?.model;
-    if (m instanceof RemoteMonitorModel) m.feed(records.slice(0, MAX_LINES_PER_EVENT));
+    if (m instanceof RemoteMonitorModel) m.feed(records); // bounded by the worker
   }
 
   private forget(id: string): void {
