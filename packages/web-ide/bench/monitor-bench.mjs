@@ -14,6 +14,9 @@
 //   monitor.feed_to_shown_ms_p99  a record sent on the socket -> decoded and folded by the worker and drawn by the page (the
 //                                 service left out: record written -> shown is monitor.trace_latency_ms_p99)
 //   monitor.ingest_us_per_record  the worker's time to decode and fold one record (off the page's main thread)
+//   monitor.late_frames           frames over LATE_FRAME_MS (25) while fed; _with_steal: of them, those in which the
+//                                 hypervisor took time from the machine (steal-sampler.mjs); on_time_frames_with_steal_share:
+//                                 the same share of the frames on time (the chance); steal_ms_per_s: ms stolen a second (all CPUs)
 //   monitor.idle_frame_ms_p99 / idle_max_frame_ms   the same page for 3 s before, nothing fed (the machine's share)
 //   monitor.records_per_s         records fed per second
 //   monitor.heap_mb_end           the page's JS heap at the end, after a full GC (the live model is in the worker)
@@ -27,6 +30,8 @@ import { WebSocketServer } from 'ws';
 import { encodeTraceRecords } from '@contract-studio/build-service/trace';
 import { buildProductionIde, installFrameRecorder, launchChromium, pkg, root, writePart } from './bench-support.mjs';
 import { khzCycle } from './khz-cycle.mjs';
+import { lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
+import { installLatencyMeter } from './latency-meter.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 60);
 const { startIdeServer } = await buildProductionIde();
@@ -64,7 +69,9 @@ try {
   });
   // the job's trace stream: this process sends the 1 kHz schema's records as trace events every
   // 20 ms, from the connection on, for `seconds`
+  await installLatencyMeter(page);
   const feed = await startFeed(seconds);
+  const steal = startStealSampler();
   await page.evaluate((url) => {
     const ide = window.__ide;
     ide.monitor.measure = true;
@@ -77,11 +84,10 @@ try {
     const model = ide.monitor.lastLive;
     const panel = ide.monitor.panel;
     const gaps = [];
-    // record sent -> drawn, per record, in 0.1 ms bins (the measuring must not load the page it measures)
-    const bins = new Uint32Array(20_000);
-    let shown = 0;
-    const snapshots = [];
-    model.onSnapshot = (snap, version) => snap.walls?.length && snapshots.push({ version, walls: snap.walls });
+    const ends = [];
+    // record sent -> drawn (latency-meter.mjs)
+    const meter = window.__latencyMeter();
+    model.onSnapshot = (snap, version) => meter.snapshot(snap, version);
     // main-thread tasks over 50 ms (what of a long frame is the page's own work)
     const longTasks = [];
     new PerformanceObserver((list) => longTasks.push(...list.getEntries().map((e) => e.duration))).observe({ type: 'longtask' });
@@ -94,20 +100,12 @@ try {
       }
     }).observe({ type: 'long-animation-frame' });
     // what this frame drew, looked at once it is done (a task queued from a frame callback runs after the frame)
-    const drawn = () => {
-      if (panel.drawn.model !== model) return;
-      const now = Date.now();
-      while (snapshots.length && snapshots[0].version <= panel.drawn.version) {
-        for (const w of snapshots.shift().walls) {
-          bins[Math.min(bins.length - 1, Math.max(0, Math.round((now - w) * 10)))]++;
-          shown++;
-        }
-      }
-    };
+    const drawn = () => meter.drawn(panel, model);
     let last = performance.now();
     let running = true;
     const tick = (t) => {
       gaps.push(t - last);
+      ends.push(performance.timeOrigin + t);
       last = t;
       setTimeout(drawn, 0);
       if (running) requestAnimationFrame(tick);
@@ -119,23 +117,19 @@ try {
     running = false;
     const elapsed = (performance.now() - start) / 1000;
     const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor((xs.length * p) / 100))];
-    const binPct = (p) => {
-      let k = 0;
-      for (let i = 0; i < bins.length; i++) if ((k += bins[i]) >= shown * p / 100) return i / 10;
-      return NaN;
-    };
     const g = gaps.slice(2);
     const records = model.recordCount;
     return {
       maxFrame: Math.max(...g), p99Frame: pct(g, 99), renderP99: pct(panel.frameMs, 99), renderMax: Math.max(...panel.frameMs),
-      feedP99: binPct(99), feedP50: binPct(50), shown,
+      feedP99: meter.pct('shown', 99), feedP50: meter.pct('shown', 50), shown: meter.shown,
       usPerRecord: (model.foldMs * 1000) / records, longTasks: longTasks.length, longestTask: Math.max(0, ...longTasks), records, perSecond: records / elapsed, frames: g.length,
       heapMb: (window.gc?.(), (performance.memory?.usedJSHeapSize ?? 0) / 1e6),
       misses: document.querySelector('.monitor-pschema[data-periodic=schemaCommande1]')?.getAttribute('data-misses'),
-      problems: model.problems, longFrames,
+      problems: model.problems, longFrames, frameEnds: ends.slice(2).map((e, i) => [e, g[i]]),
     };
   });
   await feed.close();
+  const stolen = lateFramesAndSteal(r.frameEnds, await steal.stop());
   if (r.records !== feed.sent || r.problems.length) throw new Error(`the feed was not folded whole: ${r.records} of ${feed.sent} records (${r.problems.join('; ')})`);
   mkdirSync(join(pkg, 'test-output'), { recursive: true });
   await page.screenshot({ path: join(pkg, 'test-output', 'monitor-bench.png') }).catch(() => undefined);
@@ -172,6 +166,10 @@ try {
     'monitor.feed_to_shown_ms_p99': round(r.feedP99),
     'monitor.feed_to_shown_ms_p50': round(r.feedP50),
     'monitor.ingest_us_per_record': round(r.usPerRecord, 1),
+    'monitor.late_frames': stolen.late,
+    'monitor.late_frames_with_steal': stolen.lateStolen,
+    'monitor.on_time_frames_with_steal_share': round(stolen.onTimeStolenShare, 3),
+    'monitor.steal_ms_per_s': round(stolen.stealMsPerS),
     'monitor.idle_frame_ms_p99': round(idle.p99),
     'monitor.idle_max_frame_ms': round(idle.max),
     'monitor.records_per_s': Math.round(r.perSecond),

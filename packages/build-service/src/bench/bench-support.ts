@@ -31,6 +31,29 @@ export function median(xs: number[]): number {
   return s.length % 2 ? s[(s.length - 1) / 2]! : (s[s.length / 2 - 1]! + s[s.length / 2]!) / 2;
 }
 
+/**
+ * Least squares of log(ratio) on x (the pairs' steal difference): the ratio at x = 0 and the
+ * correlation (0 when the ratios do not vary); null when x does not vary (nothing stolen) or a
+ * ratio is not finite and positive.
+ */
+export function ratioAtZero(ratios: number[], x: number[]): { ratio: number; r: number } | null {
+  const y = ratios.map(Math.log);
+  const n = y.length;
+  const mx = x.reduce((a, b) => a + b, 0) / n;
+  const my = y.reduce((a, b) => a + b, 0) / n;
+  let sxx = 0;
+  let sxy = 0;
+  let syy = 0;
+  for (let i = 0; i < n; i++) {
+    sxx += (x[i]! - mx) ** 2;
+    sxy += (x[i]! - mx) * (y[i]! - my);
+    syy += (y[i]! - my) ** 2;
+  }
+  if (!(sxx > 0) || !y.every(Number.isFinite)) return null;
+  const slope = sxy / sxx;
+  return { ratio: Math.exp(my - slope * mx), r: syy > 0 ? sxy / Math.sqrt(sxx * syy) : 0 };
+}
+
 /** Writes bench/parts/<name>.json. */
 export function writePart(name: string, out: Record<string, unknown>): void {
   mkdirSync(join(REPO, 'bench', 'parts'), { recursive: true });

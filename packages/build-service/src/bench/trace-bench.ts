@@ -14,7 +14,10 @@
  *                             checks it), the child client is started on the service's CPUs
  *   monitor.shared.*          no placement: the modules, the service and its client share every CPU
  *   monitor.shared_realtime.* the same with the job's real-time mode (the modules at SCHED_FIFO)
- *   (MONITOR_LAYOUTS=pinned,shared,shared_realtime picks; one that the machine cannot have, as
+ *   monitor.null.*            the control: the pinned layout, its "with" phases attaching NO client
+ *                             (A/A): its ratios are the host's noise alone, the spread any
+ *                             jitter_ratio above must be read against
+ *   (MONITOR_LAYOUTS=pinned,shared,shared_realtime,null picks; one that the machine cannot have, as
  *   pinned on one CPU, is <prefix>.skipped with why.) Each layout's figures:
  *   jitter_ratio                  median over the pairs of p99 release lateness
  *                                 (release_ns - tick_ns) with the client / without (goal <= 1.1)
@@ -34,6 +37,12 @@
  *   service_cpu_us_per_record_without / _with  that CPU time over the records the run wrote in
  *                                 those phases (counted in the collected logs by mono_ns)
  *   client_cpu_ms_per_s           (child client only) its own CPU time per second of phase
+ *   steal_ms_per_s_without / _with  time the hypervisor took from the modules' CPUs (/proc/stat
+ *                                 steal, summed over those CPUs) per second of phase; steal_ms_pairs:
+ *                                 each pair's with - without (0 on a machine that is not a guest)
+ *   steal_r                       correlation of the pairs' log(ratio) with their steal difference
+ *   jitter_ratio_at_equal_steal   the ratio a least-squares line of log(ratio) on the steal
+ *                                 difference gives at no difference (left out when nothing was stolen)
  * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 200 s in all.
  */
 import { spawn } from 'node:child_process';
@@ -43,7 +52,7 @@ import { fileURLToPath } from 'node:url';
 import { artifactBytes, type Artifact } from '../pipeline/artifacts.js';
 import { postJob } from '../test-support/client.js';
 import { followTrace, type ClientReport } from './trace-bench-client.js';
-import { benchLog, median, pct, round, runBench, startBenchServer, writePart, writeTemplateProject } from './bench-support.js';
+import { benchLog, median, pct, ratioAtZero, round, runBench, startBenchServer, writePart, writeTemplateProject } from './bench-support.js';
 import { parseRecordLine } from '../trace/parse.js';
 import { ownCpus } from '../pipeline/service-affinity.js';
 
@@ -61,6 +70,16 @@ const say = benchLog('monitor');
 const sleep = (ms: number): Promise<void> => new Promise((r) => setTimeout(r, ms));
 
 const TICK_MS = 1000 / 100; // USER_HZ: /proc's clock ticks (100 on Linux)
+
+/** Stolen time (ms, /proc/stat's steal column) of each CPU so far. */
+function stealMs(): Map<number, number> {
+  const out = new Map<number, number>();
+  for (const line of readFileSync('/proc/stat', 'utf8').split('\n')) {
+    const m = /^cpu(\d+) (.*)$/.exec(line);
+    if (m) out.set(Number(m[1]), (Number(m[2]!.split(' ')[7]) || 0) * TICK_MS);
+  }
+  return out;
+}
 
 /** CPU ms of this process's threads: the main thread, the others summed by thread name. */
 function threadCpuMs(): Map<string, number> {
@@ -123,6 +142,8 @@ interface Layout {
   /** The CPUs the service should be left on while the run runs (checked; the child client goes there). */
   serviceCpus?: string;
   realtime?: boolean;
+  /** The control (A/A): the "with" phases attach no client. */
+  control?: boolean;
 }
 
 /**
@@ -132,17 +153,21 @@ interface Layout {
  * cannot have is skipped with why (one CPU, no taskset); MONITOR_LAYOUTS=pinned,shared picks some.
  */
 function planLayouts(): (Layout | { prefix: string; skip: string })[] {
-  const wanted = (process.env.MONITOR_LAYOUTS ?? 'pinned,shared,shared_realtime').split(',');
+  const wanted = (process.env.MONITOR_LAYOUTS ?? 'pinned,shared,shared_realtime,null').split(',');
   const out: (Layout | { prefix: string; skip: string })[] = [];
-  if (wanted.includes('pinned')) {
-    const own = ownCpus();
-    if (!own || own.length < 2) out.push({ prefix: 'monitor', skip: `CPUs ${own?.join(',') ?? 'unknown'}: no CPU to give the modules alone` });
-    else {
-      const modules = String(own.at(-1));
-      const service = own.slice(0, -1).join(',');
-      out.push({ prefix: 'monitor', label: `modules pinned to CPU ${modules} (cpus), the service and its client on CPU ${service}`, cpus: modules, serviceCpus: service });
-    }
-  }
+  const own = ownCpus();
+  const pinned = (prefix: string, control: boolean): Layout | { prefix: string; skip: string } => {
+    if (!own || own.length < 2) return { prefix, skip: `CPUs ${own?.join(',') ?? 'unknown'}: no CPU to give the modules alone` };
+    const modules = String(own.at(-1));
+    const service = own.slice(0, -1).join(',');
+    const label = `modules pinned to CPU ${modules} (cpus), the service${control ? '' : ' and its client'} on CPU ${service}`;
+    return control
+      ? { prefix, label: `${label}; the control: no client in either phase`, cpus: modules, serviceCpus: service, control }
+      : { prefix, label, cpus: modules, serviceCpus: service };
+  };
+  if (wanted.includes('pinned')) out.push(pinned('monitor', false));
+  // next to the pinned run, so that the host is as alike as it can be
+  if (wanted.includes('null')) out.push(pinned('monitor.null', true));
   if (wanted.includes('shared')) out.push({ prefix: 'monitor.shared', label: 'every CPU shared by the modules, the service and its client' });
   if (wanted.includes('shared_realtime'))
     out.push({ prefix: 'monitor.shared_realtime', label: 'every CPU shared, the modules in real-time mode (SCHED_FIFO)', realtime: true });
@@ -167,6 +192,8 @@ interface Phase {
   threads: Map<string, number>;
   /** Records the run wrote in the phase (by mono_ns, from the collected logs). */
   records: number;
+  /** Time the hypervisor took from the modules' CPUs in the phase (ms). */
+  stealMs: number;
 }
 
 /** The template at 1 kHz: PERIOD=1ms, module budgets well inside it. */
@@ -225,7 +252,8 @@ async function main(): Promise<void> {
       return { ratios, pooled, p99Without: pct(pooled(false), 99), p99With: pct(pooled(true), 99) };
     };
     /** PAIRS pairs of phases without / with a client (ABBA) in the running job. */
-    const alternate = async (jobId: string, clientCpus?: string) => {
+    const alternate = async (jobId: string, layout: Layout, clientCpus?: string) => {
+      const moduleCpus = layout.cpus ? cpuIds(layout.cpus) : (ownCpus() ?? []);
       const job = server.service.get(jobId)!;
       const got = { phases: [] as Phase[], latency: [] as number[], records: 0, events: 0, clientCpuMs: 0 };
       for (let pair = 0; pair < PAIRS; pair++) {
@@ -233,8 +261,9 @@ async function main(): Promise<void> {
         for (const withClient of order) {
           const cpu0 = process.cpuUsage();
           const threads0 = threadCpuMs();
+          const steal0 = stealMs();
           const from = process.hrtime.bigint();
-          if (withClient) {
+          if (withClient && !layout.control) {
             const after = job.events.all.at(-1)?.seq ?? 0;
             const report = await attach(url, jobId, after, sleep(phaseMs), clientCpus);
             got.events += report.events;
@@ -245,13 +274,15 @@ async function main(): Promise<void> {
           const cpu = process.cpuUsage(cpu0);
           const threads = threadCpuMs();
           for (const [k, v] of threads0) threads.set(k, (threads.get(k) ?? 0) - v);
-          got.phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, sysMs: cpu.system / 1000, threads, records: 0 });
+          const steal = stealMs();
+          const stolen = moduleCpus.reduce((a, c) => a + (steal.get(c) ?? 0) - (steal0.get(c) ?? 0), 0);
+          got.phases.push({ withClient, pair, from, to: process.hrtime.bigint(), cpuMs: (cpu.user + cpu.system) / 1000, sysMs: cpu.system / 1000, threads, records: 0, stealMs: stolen });
         }
       }
       return got;
     };
     /** Every figure of one layout's run, named `<prefix>.<figure>`. */
-    const figuresOf = (prefix: string, got: Awaited<ReturnType<typeof alternate>>, releases: Release[], logs: Artifact[]): Record<string, unknown> => {
+    const figuresOf = (prefix: string, control: boolean, got: Awaited<ReturnType<typeof alternate>>, releases: Release[], logs: Artifact[]): Record<string, unknown> => {
       const { phases, latency, records, events, clientCpuMs } = got;
       say(`phases on CLOCK_MONOTONIC (a --cpu-prof profile's clock, in us): ${phases[0]!.from / 1000n}..${phases.at(-1)!.to / 1000n}`);
       // the records written in each phase, by their mono_ns (the clock of the phase boundaries)
@@ -265,6 +296,11 @@ async function main(): Promise<void> {
         }
       }
       const { ratios, pooled, p99Without, p99With } = jitterOf(phases, releases);
+      const stealPairs = Array.from({ length: PAIRS }, (_, pair) => {
+        const of = (w: boolean): number => phases.find((p) => p.pair === pair && p.withClient === w)!.stealMs;
+        return of(true) - of(false);
+      });
+      const steal = ratioAtZero(ratios, stealPairs);
       const seconds = (withClient: boolean): number => phases.filter((p) => p.withClient === withClient).reduce((a, p) => a + Number(p.to - p.from) / 1e9, 0);
       const perS = (withClient: boolean, ms: (p: Phase) => number): number =>
         phases.filter((p) => p.withClient === withClient).reduce((a, p) => a + ms(p), 0) / seconds(withClient);
@@ -296,8 +332,14 @@ async function main(): Promise<void> {
         service_cpu_ms_per_s_by_thread_without: byThread(false),
         service_cpu_ms_per_s_by_thread_with: byThread(true),
         ...(CHILD_CLIENT ? { client_cpu_ms_per_s: round(clientCpuMs / seconds(true), 1) } : {}),
+        steal_ms_per_s_without: round(perS(false, (p) => p.stealMs), 1),
+        steal_ms_per_s_with: round(perS(true, (p) => p.stealMs), 1),
+        steal_ms_pairs: stealPairs.map((x) => round(x, 0)),
+        ...(steal ? { steal_r: round(steal.r), jitter_ratio_at_equal_steal: round(steal.ratio) } : {}),
       };
-      return Object.fromEntries(Object.entries(figures).map(([k, v]) => [`${prefix}.${k}`, v]));
+      // the control attached no client: it has no client figures
+      const clientFigures = ['service_trace_latency_ms_p99', 'service_trace_latency_ms_p50', 'trace_records', 'trace_events_per_s'];
+      return Object.fromEntries(Object.entries(figures).filter(([k]) => !control || !clientFigures.includes(k)).map(([k, v]) => [`${prefix}.${k}`, v]));
     };
     const out: Record<string, unknown> = { 'monitor.client': CHILD_CLIENT ? 'child process' : 'in the service process' };
     for (const layout of planLayouts()) {
@@ -306,7 +348,7 @@ async function main(): Promise<void> {
         out[`${layout.prefix}.skipped`] = layout.skip;
         continue;
       }
-      say(`${layout.prefix}: one run of ${seconds} s, ${layout.label}: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with an SSE client on the live trace (ABBA)`);
+      say(`${layout.prefix}: one run of ${seconds} s, ${layout.label}: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with ${layout.control ? 'no client either (the control)' : 'an SSE client on the live trace'} (ABBA)`);
       let got: Awaited<ReturnType<typeof alternate>> | null = null;
       const { releases, logs } = await run(seconds, async (jobId) => {
         if (layout.serviceCpus) {
@@ -314,9 +356,9 @@ async function main(): Promise<void> {
           const own = ownCpus();
           if (!own || own.join(',') !== cpuIds(layout.serviceCpus).join(',')) throw new Error(`the service runs on CPUs ${own?.join(',')}, not ${layout.serviceCpus}: it did not keep off the run's CPUs`);
         }
-        got = await alternate(jobId, CHILD_CLIENT ? layout.serviceCpus : undefined);
+        got = await alternate(jobId, layout, CHILD_CLIENT ? layout.serviceCpus : undefined);
       }, { cpus: layout.cpus, realtime: layout.realtime });
-      Object.assign(out, figuresOf(layout.prefix, got!, releases, logs), { [`${layout.prefix}.layout`]: layout.label });
+      Object.assign(out, figuresOf(layout.prefix, !!layout.control, got!, releases, logs), { [`${layout.prefix}.layout`]: layout.label });
     }
     say(JSON.stringify(out));
     writePart('monitor', out);
