@@ -26,7 +26,7 @@ const benches = [
   { part: 'codegen', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/codegen'] },
   { part: 'build', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/build-service'] },
   { part: 'ide', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/web-ide'] },
-  // a 1 kHz schema with and without an SSE client on the live trace channel, CPUs shared, then partitioned (about 140 s)
+  // a 1 kHz schema with and without an SSE client on the live trace channel: pinned, the control (no client), CPUs shared, shared real-time (about 260 s)
   { part: 'monitor', cmd: ['npm', 'run', '-s', 'bench:monitor', '-w', 'packages/build-service'] },
   // record written -> SSE client, bwrap vs Docker (skipped without an engine), a 5 s run each (about 40 s)
   { part: 'trace-latency', cmd: ['npm', 'run', '-s', 'bench:trace-latency', '-w', 'packages/build-service'] },
@@ -34,9 +34,9 @@ const benches = [
   { part: 'simulate', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/simulator'] },
   // the edit-build-run loop from the command line: no-op build vs check, one-module edit, cold folder, run overhead
   { part: 'cli', cmd: ['node', 'bench/cli-build-bench.mjs'] },
-  // the Monitor panel fed a 1 kHz schema's trace at the real rate for 40 s (MONITOR_BENCH_SECONDS)
+  // the Monitor panel fed a 1 kHz schema's trace at the real rate for 60 s (MONITOR_BENCH_SECONDS), then a 60 s recorded run replayed (about 100 s)
   { part: 'monitor-panel', cmd: ['npm', 'run', '-s', 'bench:monitor-panel', '-w', 'packages/web-ide'] },
-  // a real Build & Run of a 1 kHz schema watched live in the Monitor: record written -> drawn (about 45 s)
+  // a real Build & Run of a 1 kHz schema, 55 s, watched live in the Monitor: record written -> drawn (about 75 s)
   { part: 'monitor-live', cmd: ['npm', 'run', '-s', 'bench:monitor-live', '-w', 'packages/web-ide'] },
   // the Simulate panel's server side: POST /api/simulate of a growing session, cold then per step (about 15 s)
   { part: 'simulate-panel', cmd: ['npm', 'run', '-s', 'bench:simulate-panel', '-w', 'packages/web-ide'] },

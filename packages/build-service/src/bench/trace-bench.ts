@@ -43,7 +43,7 @@
  *   steal_r                       correlation of the pairs' log(ratio) with their steal difference
  *   jitter_ratio_at_equal_steal   the ratio a least-squares line of log(ratio) on the steal
  *                                 difference gives at no difference (left out when nothing was stolen)
- * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 200 s in all.
+ * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 260 s in all.
  */
 import { spawn } from 'node:child_process';
 import { readdirSync, readFileSync } from 'node:fs';
