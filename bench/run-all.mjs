@@ -26,7 +26,7 @@ const benches = [
   { part: 'codegen', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/codegen'] },
   { part: 'build', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/build-service'] },
   { part: 'ide', cmd: ['npm', 'run', '-s', 'bench', '-w', 'packages/web-ide'] },
-  // a 1 kHz schema with and without an SSE client on the live trace channel: pinned, the control (no client), CPUs shared, shared real-time (about 260 s)
+  // a 1 kHz schema with and without an SSE client on the live trace channel: pinned and the control (no client) twice in turns, CPUs shared, shared real-time (about 400 s)
   { part: 'monitor', cmd: ['npm', 'run', '-s', 'bench:monitor', '-w', 'packages/build-service'] },
   // record written -> SSE client, bwrap vs Docker (skipped without an engine), a 5 s run each (about 40 s)
   { part: 'trace-latency', cmd: ['npm', 'run', '-s', 'bench:trace-latency', '-w', 'packages/build-service'] },

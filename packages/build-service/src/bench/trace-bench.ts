@@ -1,13 +1,14 @@
 /**
  * Live trace benchmark -> bench/parts/monitor.json (docs/build-service-api.md "Trace channel").
  * A 1 kHz periodic schema (the "New project" template with PERIOD=1ms) run in bwrap through the
- * HTTP service, once per layout (planLayouts). In ONE run, phases of PHASE_SECONDS (default 3)
+ * HTTP service, once per layout (planLayouts; the pinned layout and its control PINNED_RUNS times,
+ * in turns). In ONE run, phases of PHASE_SECONDS (default 3)
  * alternate: no client attached, an SSE client attached to the job's stream (from the current seq:
  * it follows the live trace), in ABBA order over PAIRS (default 9: 57 s, inside the run's 60 s
  * bound) pairs, so that load drifts weigh on both sides alike. The releases (ORD's ord_release
  * records of the collected log, tick_ns on the host's CLOCK_MONOTONIC, the clock of the phase
  * boundaries) are split by phase; the first 200 ms of each phase are left out (the attach / detach
- * itself). Layouts (docs/watching-a-run.md "What watching costs the run"):
+ * itself). Layouts (docs/monitor-performance.md "Where the run, the service and the browser run"):
  *   monitor.*                 the modules pinned to the last CPU (the job's `cpus`): the set-up in
  *                             which sched.period_jitter_us_p99 is measured (docs/engines.md); the
  *                             service keeps off that CPU by itself (service-affinity.ts; the bench
@@ -19,7 +20,9 @@
  *                             jitter_ratio above must be read against
  *   (MONITOR_LAYOUTS=pinned,shared,shared_realtime,null picks; one that the machine cannot have, as
  *   pinned on one CPU, is <prefix>.skipped with why.) Each layout's figures:
- *   jitter_ratio                  median over the pairs of p99 release lateness
+ *   jitter_ratio                  median over the pairs (of every run of the layout: PINNED_RUNS,
+ *                                 default 2, for the pinned layout and its control, taken in turns;
+ *                                 one for the others; _runs: each run's own median) of p99 release lateness
  *                                 (release_ns - tick_ns) with the client / without (goal <= 1.1)
  *   jitter_ratio_pooled           the same over all phases pooled; _pairs: every pair's ratio
  *   release_lateness_us_p99_without / _with   the pooled p99s; releases: how many were counted
@@ -43,7 +46,7 @@
  *   steal_r                       correlation of the pairs' log(ratio) with their steal difference
  *   jitter_ratio_at_equal_steal   the ratio a least-squares line of log(ratio) on the steal
  *                                 difference gives at no difference (left out when nothing was stolen)
- * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 260 s in all.
+ * The runtime is built from a snapshot of runtime/. A build + warm-up run first; about 400 s in all.
  */
 import { spawn } from 'node:child_process';
 import { readdirSync, readFileSync } from 'node:fs';
@@ -58,6 +61,12 @@ import { ownCpus } from '../pipeline/service-affinity.js';
 
 const PHASE_SECONDS = Number(process.env.PHASE_SECONDS ?? 3);
 const PAIRS = Number(process.env.PAIRS ?? 9);
+/**
+ * Runs of the pinned layout and of its control, taken in turns (pinned, control, pinned, ...):
+ * their figures are over the pairs of all of them (a median of 9 pairs moves by about 10 % with
+ * nothing changed: docs/monitor-performance.md "What the host takes").
+ */
+const PINNED_RUNS = Math.max(1, Number(process.env.PINNED_RUNS ?? 2));
 /**
  * The SSE client in a child process of its own (MONITOR_CLIENT=child): the CPU figures are then
  * the service's only; in this process (the default, as the jitter goal was set) they include the
@@ -165,9 +174,11 @@ function planLayouts(): (Layout | { prefix: string; skip: string })[] {
       ? { prefix, label: `${label}; the control: no client in either phase`, cpus: modules, serviceCpus: service, control }
       : { prefix, label, cpus: modules, serviceCpus: service };
   };
-  if (wanted.includes('pinned')) out.push(pinned('monitor', false));
-  // next to the pinned run, so that the host is as alike as it can be
-  if (wanted.includes('null')) out.push(pinned('monitor.null', true));
+  // the control in turns with the pinned runs, so that the host is as alike as it can be
+  for (let i = 0; i < PINNED_RUNS; i++) {
+    if (wanted.includes('pinned')) out.push(pinned('monitor', false));
+    if (wanted.includes('null')) out.push(pinned('monitor.null', true));
+  }
   if (wanted.includes('shared')) out.push({ prefix: 'monitor.shared', label: 'every CPU shared by the modules, the service and its client' });
   if (wanted.includes('shared_realtime'))
     out.push({ prefix: 'monitor.shared_realtime', label: 'every CPU shared, the modules in real-time mode (SCHED_FIFO)', realtime: true });
@@ -239,11 +250,13 @@ async function main(): Promise<void> {
     await run(3, async () => {});
     const phaseMs = PHASE_SECONDS * 1000;
     const seconds = Math.ceil(2 * PAIRS * PHASE_SECONDS + 3);
+    /** The pairs of the phases (numbered across a layout's runs). */
+    const pairIds = (phases: Phase[]): number[] => [...new Set(phases.map((p) => p.pair))].sort((a, b) => a - b);
     /** The p99 release lateness of each pair's phases with / without the client, and pooled. */
     const jitterOf = (phases: Phase[], releases: Release[]) => {
       const inPhase = (p: Phase): number[] => releases.filter((r) => r.tick >= p.from + SETTLE_NS && r.tick < p.to).map((r) => r.lateUs);
       const ratios: number[] = [];
-      for (let pair = 0; pair < PAIRS; pair++) {
+      for (const pair of pairIds(phases)) {
         const w = phases.find((p) => p.pair === pair && p.withClient)!;
         const wo = phases.find((p) => p.pair === pair && !p.withClient)!;
         ratios.push(pct(inPhase(w), 99) / pct(inPhase(wo), 99));
@@ -296,7 +309,7 @@ async function main(): Promise<void> {
         }
       }
       const { ratios, pooled, p99Without, p99With } = jitterOf(phases, releases);
-      const stealPairs = Array.from({ length: PAIRS }, (_, pair) => {
+      const stealPairs = pairIds(phases).map((pair) => {
         const of = (w: boolean): number => phases.find((p) => p.pair === pair && p.withClient === w)!.stealMs;
         return of(true) - of(false);
       });
@@ -342,14 +355,18 @@ async function main(): Promise<void> {
       return Object.fromEntries(Object.entries(figures).filter(([k]) => !control || !clientFigures.includes(k)).map(([k, v]) => [`${prefix}.${k}`, v]));
     };
     const out: Record<string, unknown> = { 'monitor.client': CHILD_CLIENT ? 'child process' : 'in the service process' };
+    type Got = Awaited<ReturnType<typeof alternate>>;
+    /** Each layout's runs, merged: their phases' pairs numbered on from one run to the next. */
+    const byLayout = new Map<string, { layout: Layout; got: Got; releases: Release[]; logs: Artifact[]; runMedians: number[] }>();
     for (const layout of planLayouts()) {
       if ('skip' in layout) {
-        say(`${layout.prefix} skipped: ${layout.skip}`);
+        if (!(`${layout.prefix}.skipped` in out)) say(`${layout.prefix} skipped: ${layout.skip}`);
         out[`${layout.prefix}.skipped`] = layout.skip;
         continue;
       }
-      say(`${layout.prefix}: one run of ${seconds} s, ${layout.label}: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with ${layout.control ? 'no client either (the control)' : 'an SSE client on the live trace'} (ABBA)`);
-      let got: Awaited<ReturnType<typeof alternate>> | null = null;
+      const merged = byLayout.get(layout.prefix);
+      say(`${layout.prefix}: run ${merged ? merged.runMedians.length + 1 : 1} of ${seconds} s, ${layout.label}: ${PAIRS} pairs of ${PHASE_SECONDS} s phases without / with ${layout.control ? 'no client either (the control)' : 'an SSE client on the live trace'} (ABBA)`);
+      let got: Got | null = null;
       const { releases, logs } = await run(seconds, async (jobId) => {
         if (layout.serviceCpus) {
           // the service keeps off the run's CPUs by itself (service-affinity.ts): checked, not done here
@@ -358,7 +375,29 @@ async function main(): Promise<void> {
         }
         got = await alternate(jobId, layout, CHILD_CLIENT ? layout.serviceCpus : undefined);
       }, { cpus: layout.cpus, realtime: layout.realtime });
-      Object.assign(out, figuresOf(layout.prefix, !!layout.control, got!, releases, logs), { [`${layout.prefix}.layout`]: layout.label });
+      const g = got! as Got;
+      const runMedian = median(jitterOf(g.phases, releases).ratios);
+      say(`${layout.prefix}: this run's jitter_ratio ${round(runMedian)}`);
+      if (!merged) {
+        byLayout.set(layout.prefix, { layout, got: g, releases, logs, runMedians: [runMedian] });
+        continue;
+      }
+      const offset = Math.max(...merged.got.phases.map((p) => p.pair)) + 1;
+      merged.got.phases.push(...g.phases.map((p) => ({ ...p, pair: p.pair + offset })));
+      for (const x of g.latency) merged.got.latency.push(x); // (a spread of 10^5 arguments overflows the stack)
+      merged.got.records += g.records;
+      merged.got.events += g.events;
+      merged.got.clientCpuMs += g.clientCpuMs;
+      for (const r of releases) merged.releases.push(r);
+      merged.logs.push(...logs);
+      merged.runMedians.push(runMedian);
+    }
+    for (const [prefix, m] of byLayout) {
+      Object.assign(out, figuresOf(prefix, !!m.layout.control, m.got, m.releases, m.logs), {
+        [`${prefix}.layout`]: m.layout.label,
+        [`${prefix}.runs`]: m.runMedians.length,
+        ...(m.runMedians.length > 1 ? { [`${prefix}.jitter_ratio_runs`]: m.runMedians.map((x) => round(x)) } : {}),
+      });
     }
     say(JSON.stringify(out));
     writePart('monitor', out);
