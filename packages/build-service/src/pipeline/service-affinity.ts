@@ -2,7 +2,7 @@
  * While a run pinned to CPUs (`cpus`, contract-launch --cpus) goes on, the service's own threads
  * keep off those CPUs: its work for that run (the live trace channel: reading the logs, ordering,
  * sending them to the monitor) then never takes a CPU from the modules (docs/watching-a-run.md
- * "What watching costs the run"). Every thread of the process is moved at once (`taskset -a -p`,
+ * "Keep the run's CPUs to the run"). Every thread of the process is moved at once (`taskset -a -p`,
  * util-linux); threads made later inherit the mask of the thread that makes them. When no pinned
  * run is left, the mask the process had is given back. Runs pinned to every CPU the service may
  * use leave it where it is (it would have nowhere to go), and say so.

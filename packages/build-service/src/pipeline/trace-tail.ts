@@ -503,7 +503,7 @@ export class TraceTail {
    * Reads at most `budget` new bytes of one log. The fstat and the reads stay asynchronous (thread
    * pool round trips) on purpose: synchronous ones cost the service less CPU but raised the 1 kHz
    * benchmark's release lateness p99 with a client attached from about 370 to 900 us on the dev
-   * machine (docs/watching-a-run.md, "What watching costs the run").
+   * machine (docs/monitor-performance.md, "What watching costs the run").
    */
   private async readFile(f: Tailed, budget: number, now: number): Promise<{ read: number; more: boolean }> {
     if (!f.mark && f.markTries > 0) await this.openMark(f);

@@ -3,7 +3,7 @@
  * lines travels on the job's SSE and WebSocket streams. A 1 kHz schema writes about 15,000 records
  * a second; sent as one JSON object per record ({"file","line","text"}), the service's
  * serializing, the socket traffic and above all the client's JSON.parse of that many objects cost
- * the machine enough to be seen in the modules' release lateness (docs/watching-a-run.md, "What
+ * the machine enough to be seen in the modules' release lateness (docs/monitor-performance.md, "What
  * watching costs the run"). The wire form is therefore columnar:
  *
  *   files  the log files named in this batch, each once
