@@ -17,7 +17,9 @@
 //   monitor.late_frames           frames over LATE_FRAME_MS (25) while fed; _with_steal: of them, those in which the
 //                                 hypervisor took time from the machine (steal-sampler.mjs); on_time_frames_with_steal_share:
 //                                 the same share of the frames on time (the chance); steal_ms_per_s: ms stolen a second (all CPUs)
-//   monitor.idle_frame_ms_p99 / idle_max_frame_ms   the same page for 3 s before, nothing fed (the machine's share)
+//   monitor.idle_frame_ms_p99 / idle_max_frame_ms   the same page for IDLE_SECONDS (default 3) before, nothing fed
+//                                 (the machine's share); with IDLE_SECONDS=60, the control of the late frames: the output
+//                                 line gives the idle page's late frames and their steal as for the fed page
 //   monitor.records_per_s         records fed per second
 //   monitor.heap_mb_end           the page's JS heap at the end, after a full GC (the live model is in the worker)
 //   monitor.replay_build_ms / replay_max_frame_ms / replay_records   a recorded run of REPLAY_SECONDS (default 60) of that
@@ -51,22 +53,27 @@ try {
   await page.waitForSelector('.monitor-view .arch-svg', { timeout: 20_000 });
   // baseline: the same page, the panel open, nothing fed, for 3 s (on a shared machine the
   // frame gaps are the scheduler's as much as the page's)
-  const idle = await page.evaluate(async () => {
+  const idleSteal = startStealSampler();
+  const idle = await page.evaluate(async (ms) => {
     const gaps = [];
+    const ends = [];
     let last = performance.now();
     const start = last;
     await new Promise((resolve) => {
       const tick = (t) => {
         gaps.push(t - last);
+        ends.push(performance.timeOrigin + t);
         last = t;
-        if (t - start < 3000) requestAnimationFrame(tick);
+        if (t - start < ms) requestAnimationFrame(tick);
         else resolve();
       };
       requestAnimationFrame(tick);
     });
+    const frameEnds = ends.slice(2).map((e, i) => [e, gaps[i + 2]]);
     const g = gaps.slice(2).sort((a, b) => a - b);
-    return { max: g[g.length - 1], p99: g[Math.floor(g.length * 0.99)] };
-  });
+    return { max: g[g.length - 1], p99: g[Math.floor(g.length * 0.99)], frameEnds };
+  }, Number(process.env.IDLE_SECONDS ?? 3) * 1000);
+  const idleStolen = lateFramesAndSteal(idle.frameEnds, await idleSteal.stop());
   // the job's trace stream: this process sends the 1 kHz schema's records as trace events every
   // 20 ms, from the connection on, for `seconds`
   await installLatencyMeter(page);
@@ -179,7 +186,8 @@ try {
     'monitor.replay_records': replay.shown,
   };
   writePart('monitor-panel', result);
-  console.log(JSON.stringify({ ...result, seconds, frames: r.frames, records: r.records, renderMax: round(r.renderMax, 2), shown: r.shown, longTasks: r.longTasks, longestTask: round(r.longestTask), misses: r.misses }));
+  console.log(JSON.stringify({ ...result, idle: { seconds: Number(process.env.IDLE_SECONDS ?? 3), lateFrames: idleStolen.late, lateFramesWithSteal: idleStolen.lateStolen,
+    onTimeFramesWithStealShare: round(idleStolen.onTimeStolenShare, 3), stealMsPerS: round(idleStolen.stealMsPerS) }, seconds, frames: r.frames, records: r.records, renderMax: round(r.renderMax, 2), shown: r.shown, longTasks: r.longTasks, longestTask: round(r.longestTask), misses: r.misses }));
   if (r.longFrames.length) console.error(`[monitor-panel] frames over 50 ms: ${JSON.stringify(r.longFrames)}`);
 } finally {
   await context?.close().catch(() => undefined);
