@@ -29,7 +29,7 @@ export async function clearCache(dir: string, onWait: (holder: string) => void =
     try {
       await unmountWorkDisk(join(root, 'work'));
     } finally {
-      lock.release();
+      await lock.release();
     }
   }
   await removeTreeNoFollow(dir);

@@ -10,7 +10,12 @@ import { spawn, type ChildProcess } from 'node:child_process';
 import { readFileSync, writeFileSync } from 'node:fs';
 
 export interface ProjectLock {
-  release(): void;
+  /**
+   * Lets the lock go. The promise resolves once the kernel has dropped it (the `flock` child has
+   * exited): a command that awaits it before it ends leaves the next command of the same process
+   * (the IDE's server, the CLI in a script) a free lock, not a wait for itself.
+   */
+  release(): Promise<void>;
 }
 
 /**
@@ -24,6 +29,7 @@ function lockChild(path: string, blocking: boolean, held: (lock: ProjectLock) =>
   });
   let out = '';
   let locked = false;
+  const closed = new Promise<void>((resolve) => child.on('close', () => resolve()));
   child.stdout!.on('data', (c: Buffer) => {
     out += c.toString('utf8');
     if (!locked && out.includes('locked')) {
@@ -36,6 +42,7 @@ function lockChild(path: string, blocking: boolean, held: (lock: ProjectLock) =>
       held({
         release: () => {
           child.stdin!.end();
+          return closed;
         },
       });
     }

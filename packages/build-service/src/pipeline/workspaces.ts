@@ -275,12 +275,12 @@ export class WorkspaceManager {
           await this.resetWork(root, owner, disk);
         },
         release: async () => {
-          lock.release();
+          await lock.release();
           unlock();
         },
       };
     } catch (err) {
-      fileLock.release();
+      await fileLock.release();
       unlock();
       throw err;
     }
@@ -326,7 +326,7 @@ export class WorkspaceManager {
     } catch {
       return false; /* left for clear */
     } finally {
-      lock.release();
+      await lock.release();
     }
   }
 

@@ -135,7 +135,7 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
         if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
         return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0 });
     } finally {
-        lock.release();
+        await lock.release();
     }
 }
 
