@@ -55,22 +55,20 @@ try {
   // frame gaps are the scheduler's as much as the page's)
   const idleSteal = startStealSampler();
   const idle = await page.evaluate(async (ms) => {
-    const gaps = [];
-    const ends = [];
+    const frames = []; // [end (epoch ms), gap (ms)] per animation frame
     let last = performance.now();
     const start = last;
     await new Promise((resolve) => {
       const tick = (t) => {
-        gaps.push(t - last);
-        ends.push(performance.timeOrigin + t);
+        frames.push([performance.timeOrigin + t, t - last]);
         last = t;
         if (t - start < ms) requestAnimationFrame(tick);
         else resolve();
       };
       requestAnimationFrame(tick);
     });
-    const frameEnds = ends.slice(2).map((e, i) => [e, gaps[i + 2]]);
-    const g = gaps.slice(2).sort((a, b) => a - b);
+    const frameEnds = frames.slice(2);
+    const g = frameEnds.map((f) => f[1]).sort((a, b) => a - b);
     return { max: g[g.length - 1], p99: g[Math.floor(g.length * 0.99)], frameEnds };
   }, Number(process.env.IDLE_SECONDS ?? 3) * 1000);
   const idleStolen = lateFramesAndSteal(idle.frameEnds, await idleSteal.stop());
@@ -90,8 +88,7 @@ try {
     const ide = window.__ide;
     const model = ide.monitor.lastLive;
     const panel = ide.monitor.panel;
-    const gaps = [];
-    const ends = [];
+    const frames = []; // [end (epoch ms), gap (ms)] per animation frame
     // record sent -> drawn (latency-meter.mjs)
     const meter = window.__latencyMeter();
     model.onSnapshot = (snap, version) => meter.snapshot(snap, version);
@@ -111,8 +108,7 @@ try {
     let last = performance.now();
     let running = true;
     const tick = (t) => {
-      gaps.push(t - last);
-      ends.push(performance.timeOrigin + t);
+      frames.push([performance.timeOrigin + t, t - last]);
       last = t;
       setTimeout(drawn, 0);
       if (running) requestAnimationFrame(tick);
@@ -124,7 +120,8 @@ try {
     running = false;
     const elapsed = (performance.now() - start) / 1000;
     const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor((xs.length * p) / 100))];
-    const g = gaps.slice(2);
+    const frameEnds = frames.slice(2);
+    const g = frameEnds.map((f) => f[1]);
     const records = model.recordCount;
     return {
       maxFrame: Math.max(...g), p99Frame: pct(g, 99), renderP99: pct(panel.frameMs, 99), renderMax: Math.max(...panel.frameMs),
@@ -132,7 +129,7 @@ try {
       usPerRecord: (model.foldMs * 1000) / records, longTasks: longTasks.length, longestTask: Math.max(0, ...longTasks), records, perSecond: records / elapsed, frames: g.length,
       heapMb: (window.gc?.(), (performance.memory?.usedJSHeapSize ?? 0) / 1e6),
       misses: document.querySelector('.monitor-pschema[data-periodic=schemaCommande1]')?.getAttribute('data-misses'),
-      problems: model.problems, longFrames, frameEnds: ends.slice(2).map((e, i) => [e, g[i]]),
+      problems: model.problems, longFrames, frameEnds,
     };
   });
   await feed.close();

@@ -43,7 +43,7 @@ try {
     localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration }));
     const ide = window.__ide;
     ide.monitor.measure = true; // the worker's snapshots bring each record's wall time and arrival
-    const m = { meter: window.__latencyMeter(), gaps: [], ends: [], streaming: false };
+    const m = { meter: window.__latencyMeter(), frames: [], streaming: false }; // frames: [end (epoch ms), gap (ms)]
     window.__liveBench = m;
     ide.build.onStarted.on(() => {
       m.streaming = true;
@@ -53,10 +53,7 @@ try {
     let last = performance.now();
     const drawn = () => m.meter.drawn(ide.monitor.panel, ide.monitor.lastLive);
     const tick = (t) => {
-      if (m.streaming) {
-        m.gaps.push(t - last);
-        m.ends.push(performance.timeOrigin + t);
-      }
+      if (m.streaming) m.frames.push([performance.timeOrigin + t, t - last]);
       last = t;
       setTimeout(drawn, 0);
       requestAnimationFrame(tick);
@@ -71,8 +68,8 @@ try {
     const m = window.__liveBench;
     const pct = (xs, p) => [...xs].sort((a, b) => a - b)[Math.min(xs.length - 1, Math.floor((xs.length * p) / 100))];
     const meter = m.meter;
-    const g = m.gaps.slice(2);
-    const frameEnds = m.ends.slice(2).map((e, i) => [e, g[i]]);
+    const frameEnds = m.frames.slice(2);
+    const g = frameEnds.map((f) => f[1]);
     return { status: document.getElementById('status-job').dataset.status, p99: meter.pct('shown', 99), p50: meter.pct('shown', 50), n: meter.shown, p99Start: meter.pct('early', 99),
       received: meter.received, maxFrame: Math.max(...g), p99Frame: pct(g, 99), frames: g.length,
       a99: meter.pct('arrived', 99), a50: meter.pct('arrived', 50), problems: window.__ide.monitor.lastLive?.problems ?? [], frameEnds };
