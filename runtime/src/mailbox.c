@@ -255,9 +255,13 @@ int SendAck(const char *module, int wantedAck, int ack, int ackId)
 
 /* ---------------------------------------------------------------- receiving */
 
+/* The Seq of the last status or priority query this process sent (StatusParam). */
+static unsigned query_seq;
+
 static void reply_status(const RequestMessage *req)
 {
     RequestMessage *m = blank(REQ_STATUS_REPLY);
+    m->Param.Status.Seq = req->Param.Status.Seq;
     int n = snprintf((char *)m->Data, 1024,
                      "module=%s pid=%ld running=%s activations=%ld requests=%ld run_dir=%s description=\"%s\"",
                      g_rt.name, (long)getpid(), g_rt.running ? "yes" : "no", g_rt.activations, g_rt.requests,
@@ -276,6 +280,7 @@ static void reply_priority(const RequestMessage *req)
     m->Param.Priority.Priority = before;
     m->Param.Priority.Result = result;
     m->Param.Priority.Errno = err;
+    m->Param.Priority.Seq = req->Param.Priority.Seq;
     rt_send_request_to(req->Sender, m);
 }
 
@@ -483,16 +488,24 @@ int PendingRequests(void) { return g_rt.pending_count; }
 
 typedef int (*Matcher)(const RequestMessage *m, const void *ctx);
 
+/* Waits until `deadline` for the request `match` accepts (1); the others are kept for the
+ * module's own reads (0), except answers to an earlier query of this process, come too late
+ * (MATCH_STALE): dropped. A signal (EINTR) does not end the wait: the status, priority and ack
+ * waits of the engines must not read "no answer" into a handler run or a stopped process. */
+#define MATCH_STALE (-1)
 static int wait_for_match(Matcher match, const void *ctx, RTIME deadline, RequestMessage *out)
 {
     for (;;) {
+        errno = 0; /* a failure that sets no errno is not taken for EINTR */
         int r = receive_until(deadline);
+        if (r < 0 && errno == EINTR) continue;
         if (r <= 0) return r;
-        if (match(&rx_buffer, ctx)) {
+        int m = match(&rx_buffer, ctx);
+        if (m == 1) {
             if (out) deliver(out, &rx_buffer);
             return 1;
         }
-        push_pending(&rx_buffer);
+        if (m != MATCH_STALE) push_pending(&rx_buffer);
     }
 }
 
@@ -511,18 +524,28 @@ int WaitForAck(const char *module, int ackId, int ackMask, RTIME deadline, Reque
     return wait_for_match(match_ack, &w, deadline, ack);
 }
 
-static int match_status(const RequestMessage *m, const void *ctx)
+/* The answer of type `type` from `module` to the query numbered `seq`. */
+typedef struct { const char *module; RequestType type; unsigned seq; } ReplyWanted;
+
+static int match_reply(const RequestMessage *m, const void *ctx)
 {
-    return m->Type == REQ_STATUS_REPLY && strcmp(m->Sender, (const char *)ctx) == 0;
+    const ReplyWanted *w = ctx;
+    if (m->Type != w->type) return 0;
+    unsigned seq = m->Type == REQ_STATUS_REPLY ? m->Param.Status.Seq : m->Param.Priority.Seq;
+    if (seq != w->seq) return MATCH_STALE; /* whoever sent it, it answers no query of now */
+    return strcmp(m->Sender, w->module) == 0;
 }
 
 int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline)
 {
-    int rc = rt_send_request_to(module, blank(REQ_STATUS));
+    RequestMessage *q = blank(REQ_STATUS);
+    q->Param.Status.Seq = ++query_seq;
+    ReplyWanted w = { module, REQ_STATUS_REPLY, query_seq };
+    int rc = rt_send_request_to(module, q);
     if (rc != CONTRACT_OK) return rc;
     RequestMessage *reply = malloc(sizeof *reply);
     if (!reply) return CONTRACT_ESYS;
-    int r = wait_for_match(match_status, module, deadline, reply);
+    int r = wait_for_match(match_reply, &w, deadline, reply);
     if (r == 1 && textSize > 0) {
         size_t n = reply->DataSize < textSize ? reply->DataSize : textSize;
         memcpy(text, reply->Data, n);
@@ -530,14 +553,6 @@ int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline)
     }
     free(reply);
     return r == 1 ? CONTRACT_OK : (r == 0 ? CONTRACT_EBUSY : CONTRACT_ESYS);
-}
-
-typedef struct { const char *module; RequestType type; } ReplyWanted;
-
-static int match_reply(const RequestMessage *m, const void *ctx)
-{
-    const ReplyWanted *w = ctx;
-    return m->Type == w->type && strcmp(m->Sender, w->module) == 0;
 }
 
 int ContractSetModulePriority(const char *module, int priority, int *previous)
@@ -550,11 +565,12 @@ int ContractSetModulePriority(const char *module, int priority, int *previous)
     if (check_mailbox() != 0) return CONTRACT_EINVAL;
     RequestMessage *m = blank(REQ_PRIORITY);
     m->Param.Priority.Priority = priority;
+    m->Param.Priority.Seq = ++query_seq;
+    ReplyWanted w = { module, REQ_PRIORITY_REPLY, query_seq };
     int rc = rt_send_request_to(module, m);
     if (rc != CONTRACT_OK) return rc;
     RequestMessage *reply = malloc(sizeof *reply);
     if (!reply) return CONTRACT_ESYS;
-    ReplyWanted w = { module, REQ_PRIORITY_REPLY };
     int r = wait_for_match(match_reply, &w, GetTime() + 1000000000LL, reply);
     if (r == 1) {
         if (previous) *previous = reply->Param.Priority.Priority;

@@ -7,7 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 #include <sys/socket.h>
+#include <sys/time.h>
 #include <sys/un.h>
+#include <sys/wait.h>
 #include <unistd.h>
 #include "harness.h"
 #include "internal.h"
@@ -447,6 +449,66 @@ void test_status_running(void)
     CHECK(QueryStatus("tester", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=yes"));
     CHECK(SendStop("tester", ACK_NOTHING, 0) == 0 && LookForRequest(m) && m->Type == REQ_STOP);
     CHECK(QueryStatus("tester", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK && strstr(text, " running=no"));
+    h_teardown();
+}
+
+static void on_alarm(int sig) { (void)sig; }
+
+/* A child that sends SIGCONT to `pid` after `ms` milliseconds. */
+static pid_t continue_later(pid_t pid, int ms)
+{
+    pid_t c = fork();
+    if (c == 0) {
+        usleep((useconds_t)ms * 1000);
+        kill(pid, SIGCONT);
+        _exit(0);
+    }
+    return c;
+}
+
+/* The supervisors' "is it running?" and "set its priority" answers stay true when the asker
+ * gets signals and when an answer comes after its deadline (found under a stalled host: a
+ * supervisor started a module another one held). While the asker takes a SIGALRM every
+ * millisecond (no SA_RESTART), a query of a stopped module waits until the module answers;
+ * and a late answer to an earlier query is never read as the answer to the next one. */
+void test_status_through_signals(void)
+{
+    REQUIRE(h_setup("statussig") == 0);
+    pid_t pid = h_spawn_module("C1", "C1");
+    REQUIRE(pid > 0);
+    CHECK(set_param("C1", 0, 5000)); /* runs last 5 s unless stopped */
+    char text[1024];
+    /* a query that times out: C1 is stopped, the query waits in its mailbox */
+    REQUIRE(kill(pid, SIGSTOP) == 0);
+    CHECK(QueryStatus("C1", text, sizeof text, GetTime() + 30000000LL) == CONTRACT_EBUSY);
+    CHECK(SendStart("C1", ACK_NOTHING, 0) == 0); /* queued behind it */
+    /* C1 goes on in 80 ms: it answers the old query (running=no), then starts its run */
+    pid_t helper = continue_later(pid, 80);
+    struct sigaction sa, old;
+    memset(&sa, 0, sizeof sa);
+    sa.sa_handler = on_alarm; /* no SA_RESTART: every blocking call sees EINTR */
+    sigemptyset(&sa.sa_mask);
+    sigaction(SIGALRM, &sa, &old);
+    struct itimerval every_ms = { { 0, 1000 }, { 0, 1000 } }, off = { { 0, 0 }, { 0, 0 } };
+    setitimer(ITIMER_REAL, &every_ms, NULL);
+    int rc = QueryStatus("C1", text, sizeof text, GetTime() + 2000000000LL);
+    setitimer(ITIMER_REAL, &off, NULL);
+    CHECK_MSG(rc == CONTRACT_OK, "QueryStatus through signals: %s", ContractStrError(rc));
+    CHECK_MSG(rc == CONTRACT_OK && strstr(text, " running=yes"), "the late answer was taken: '%s'", text);
+    waitpid(helper, NULL, 0);
+    /* the same for priorities: a late reply says the priority before an earlier request */
+    int prev = -1;
+    REQUIRE(kill(pid, SIGSTOP) == 0);
+    CHECK(ContractSetModulePriority("C1", 20, &prev) == CONTRACT_EBUSY); /* 1 s without answer */
+    helper = continue_later(pid, 80);
+    setitimer(ITIMER_REAL, &every_ms, NULL);
+    rc = ContractSetModulePriority("C1", 10, &prev);
+    setitimer(ITIMER_REAL, &off, NULL);
+    sigaction(SIGALRM, &old, NULL);
+    CHECK_MSG(rc == 0 || rc == 1, "ContractSetModulePriority through signals: %s", ContractStrError(rc));
+    CHECK_MSG(prev == 20, "previous priority %d: the late answer to the request for 20 was taken", prev);
+    waitpid(helper, NULL, 0);
+    CHECK(SendStop("C1", ACK_NOTHING, 0) == 0);
     h_teardown();
 }
 

@@ -101,7 +101,11 @@ typedef struct { char targetModule[CONTRACT_NAME_MAX]; int targetPort; int sourc
 /** REQ_PRIORITY: Priority = the wanted priority 1..99. REQ_PRIORITY_REPLY: Priority = the
  *  priority before the request, Result = 1 (SCHED_FIFO), 0 (nice level), or CONTRACT_EPERM
  *  (not permitted: unchanged), Errno = the system's reason. */
-typedef struct { int Priority; int Result; int Errno; } PriorityParam;
+typedef struct { int Priority; int Result; int Errno; unsigned Seq; } PriorityParam;
+/** REQ_STATUS / REQ_STATUS_REPLY, and PriorityParam.Seq: the reply carries its query's Seq, so
+ *  that a reply that came too late for its query (the module was stopped, or busy past the
+ *  deadline) is never taken for the answer to a later one: it is dropped. */
+typedef struct { unsigned Seq; } StatusParam;
 /** REQ_ACK: `Module` acknowledges with `Ack` (one ACK_* bit) the request tagged `AckID`. */
 typedef struct { char Module[CONTRACT_NAME_MAX]; int Ack; int AckID; int RequestType; } AckParam;
 
@@ -127,6 +131,7 @@ typedef struct {
         UnsubscribeEventParam UnsubscribeEvent;
         AckParam Ack;
         PriorityParam Priority;       /* REQ_PRIORITY / REQ_PRIORITY_REPLY */
+        StatusParam Status;           /* REQ_STATUS / REQ_STATUS_REPLY */
     } Param;
     size_t DataSize;
     unsigned char Data[CONTRACT_REQUEST_DATA_MAX];
@@ -291,7 +296,10 @@ int PendingRequests(void);
  *  other requests received meanwhile are kept, in order, and returned by the next
  *  WaitForRequest/LookForRequest. Returns 1 (ack in *ack, may be NULL), 0 timeout, -1 error. */
 int WaitForAck(const char *module, int ackId, int ackMask, RTIME deadline, RequestMessage *ack);
-/** Ask `module` for its status line (pid, activations, requests...). Returns 0 and fills text. */
+/** Ask `module` for its status line (pid, activations, requests...). Returns 0 and fills text,
+ *  CONTRACT_EBUSY when no answer came before `deadline`. WaitForAck, QueryStatus and
+ *  ContractSetModulePriority wait until their deadline through signals (EINTR: a handler ran,
+ *  or this process was stopped and continued, as under a debugger or Ctrl-Z). */
 int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline);
 /** Does `module` exist / run in the run directory? CONTRACT_OK, CONTRACT_EUNKNOWN, CONTRACT_ENOTRUNNING. */
 int ModuleState(const char *module);

@@ -3,13 +3,40 @@
  * contract-launch. Runs every scenario of itest_scenarios.h in a fresh temporary directory,
  * kept for inspection when a check fails.
  * Usage: itest <dir with the test executables> <contract-launch>. Prints "N passed, N failed".
+ * ITEST_ONLY=name[,name…] runs only those scenarios (scheduler, nested, shared, reactivation,
+ * toggles, undo): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
  */
 #define _GNU_SOURCE
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 #include "itest_scenarios.h"
 #include "itest_support.h"
+
+typedef void (*ScenarioFn)(const char *root, const char *bin, const char *launcher);
+
+static const struct {
+    const char *name;
+    ScenarioFn run;
+} SCENARIOS[] = {{"scheduler", scenario_scheduler},  {"nested", scenario_nested},
+                 {"shared", scenario_shared_module}, {"reactivation", scenario_reactivation},
+                 {"toggles", scenario_hold_toggles}, {"undo", scenario_undo_own}};
+#define NSCENARIOS (sizeof SCENARIOS / sizeof SCENARIOS[0])
+
+/* is `name` in the comma-separated list `only` (NULL or empty: every scenario)? */
+static int selected(const char *only, const char *name) {
+    if (!only || !*only) return 1;
+    size_t n = strlen(name);
+    for (const char *p = only; *p;) {
+        const char *comma = strchr(p, ',');
+        size_t l = comma ? (size_t)(comma - p) : strlen(p);
+        if (l == n && strncmp(p, name, n) == 0) return 1;
+        if (!comma) break;
+        p = comma + 1;
+    }
+    return 0;
+}
 
 int main(int argc, char **argv) {
     if (argc < 3) {
@@ -23,12 +50,17 @@ int main(int argc, char **argv) {
         perror("mkdtemp");
         return 2;
     }
-    scenario_scheduler(root, argv[1], argv[2]);
-    scenario_nested(root, argv[1], argv[2]);
-    scenario_shared_module(root, argv[1], argv[2]);
-    scenario_reactivation(root, argv[1], argv[2]);
-    scenario_hold_toggles(root, argv[1], argv[2]);
-    scenario_undo_own(root, argv[1], argv[2]);
+    const char *only = getenv("ITEST_ONLY");
+    int ran = 0;
+    for (size_t i = 0; i < NSCENARIOS; i++)
+        if (selected(only, SCENARIOS[i].name)) {
+            SCENARIOS[i].run(root, argv[1], argv[2]);
+            ran++;
+        }
+    if (ran == 0) {
+        fprintf(stderr, "ITEST_ONLY=%s names no scenario\n", only);
+        return 2;
+    }
     if (itest_failed()) {
         fprintf(stderr, "kept %s for inspection\n", root);
     } else {
