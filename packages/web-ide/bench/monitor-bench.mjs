@@ -25,6 +25,8 @@
 //   monitor.replay_build_ms / replay_max_frame_ms / replay_records   a recorded run of REPLAY_SECONDS (default 60) of that
 //                                 schema handed over as a job's CSV logs: time to build its model, and the longest frame gap meanwhile
 // MONITOR_BENCH_SECONDS (default 60: the acceptance's "1 kHz schema for 60 s") sets how long it is fed; the part takes about 100 s.
+// FRAME_TRACE=<file.json> also records a trace of every Chromium process while fed, and marks each late frame in it
+// (frame-trace.mjs: `node bench/frame-trace.mjs <file.json>` says which threads ran in each late frame's gap).
 import { cpSync, mkdirSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
@@ -34,6 +36,7 @@ import { buildProductionIde, installFrameRecorder, launchChromium, pkg, root, wr
 import { khzCycle } from './khz-cycle.mjs';
 import { lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
+import { startFrameTrace } from './frame-trace.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 60);
 const { startIdeServer } = await buildProductionIde();
@@ -77,6 +80,8 @@ try {
   await installLatencyMeter(page);
   const feed = await startFeed(seconds);
   const steal = startStealSampler();
+  // FRAME_TRACE=<file.json>: a trace of every Chromium process while fed (frame-trace.mjs)
+  const frameTrace = process.env.FRAME_TRACE ? await startFrameTrace(context, page) : null;
   await page.evaluate((url) => {
     const ide = window.__ide;
     ide.monitor.measure = true;
@@ -109,6 +114,7 @@ try {
     let running = true;
     const tick = (t) => {
       frames.push([performance.timeOrigin + t, t - last]);
+      if (t - last > 25) performance.mark('late-frame', { detail: t - last });
       last = t;
       setTimeout(drawn, 0);
       if (running) requestAnimationFrame(tick);
@@ -134,6 +140,7 @@ try {
   });
   await feed.close();
   const stolen = lateFramesAndSteal(r.frameEnds, await steal.stop());
+  if (frameTrace) console.error(`[monitor-panel] frame trace: ${process.env.FRAME_TRACE} ${JSON.stringify(await frameTrace.stop(process.env.FRAME_TRACE))}`);
   if (r.records !== feed.sent || r.problems.length) throw new Error(`the feed was not folded whole: ${r.records} of ${feed.sent} records (${r.problems.join('; ')})`);
   mkdirSync(join(pkg, 'test-output'), { recursive: true });
   await page.screenshot({ path: join(pkg, 'test-output', 'monitor-bench.png') }).catch(() => undefined);

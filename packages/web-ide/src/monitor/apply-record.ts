@@ -5,7 +5,7 @@
  */
 import { isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
-  HIST_BUCKETS, histogramBucket, RECENT_MARKS, RECENT_PULSES,
+  HIST_BUCKETS, histogramBucket, RECENT_MARKS,
   type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FlowCount,
 } from './monitor-state.js';
 
@@ -29,7 +29,9 @@ export function applyUnfolded(s: MonitorState, t: Ns): void {
   s.t = t;
 }
 
+/** Supervisor `name`'s state, to change: every caller changes it (supervisorChanges counts it). */
 function sup(s: MonitorState, name: string): SupervisorState {
+  s.supervisorChanges++;
   return (s.supervisors[name] ??= { functions: {}, rules: {}, actionsDone: 0, actionsUndone: 0, heldModules: {}, heldFlows: {} });
 }
 
@@ -63,7 +65,10 @@ function ruleOf(s: MonitorState, name: string): string | undefined {
 function noteStarted(s: MonitorState, supName: string, what: string): void {
   const sv = s.supervisors[supName];
   const rule = sv?.lastRule ? sv.rules[sv.lastRule] : undefined;
-  if (rule && !rule.started.includes(what) && rule.started.length < MAX_STARTED) rule.started.push(what);
+  if (rule && !rule.started.includes(what) && rule.started.length < MAX_STARTED) {
+    rule.started.push(what);
+    s.supervisorChanges++;
+  }
 }
 
 /** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
@@ -205,7 +210,6 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!k.peer || k.port === null || to === undefined) return;
       const flow = `${k.module}:${k.port}->${k.peer}:${to}`;
       count(s.dataFlows, flow, t);
-      pushBounded(s.recentPulses, { t, flow, kind: 'data' }, RECENT_PULSES);
       return;
     }
     case 'event_received': {
@@ -213,7 +217,6 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!k.peer || k.port === null || from === undefined) return;
       const flow = `${k.peer}:${from}->${k.module}:${k.port}`;
       count(s.eventFlows, flow, t);
-      pushBounded(s.recentPulses, { t, flow, kind: 'event' }, RECENT_PULSES);
       return;
     }
     default:

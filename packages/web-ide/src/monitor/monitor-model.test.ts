@@ -26,6 +26,23 @@ function naive(records: TraceRecord[], t: number): MonitorState {
   return m.live;
 }
 
+describe('supervisorChanges', () => {
+  it('moves with every record that changes the supervisors, and only with those', () => {
+    const s = emptyState();
+    let changed = 0, unchanged = 0;
+    for (const r of tutorial) {
+      const before = JSON.stringify(s.supervisors), count = s.supervisorChanges;
+      applyRecord(s, r, Number((r as { monoNs?: string }).monoNs ?? 0), 0);
+      if (JSON.stringify(s.supervisors) !== before) {
+        changed++;
+        expect(s.supervisorChanges, `${r.kind} ${JSON.stringify(r).slice(0, 200)}`).toBeGreaterThan(count);
+      } else if (s.supervisorChanges === count) unchanged++;
+    }
+    expect(changed).toBeGreaterThan(20); // rules, functions, holds, schemas started by a rule
+    expect(unchanged).toBeGreaterThan(tutorial.length / 2); // releases, data, events: the list is not redrawn
+  });
+});
+
 describe('monitor model on a recorded tutorial run', () => {
   const model = new MonitorModel({ checkpointEvery: 16 });
   model.pushAll(tutorial);

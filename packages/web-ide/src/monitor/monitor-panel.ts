@@ -47,6 +47,9 @@ const URGENT_REDRAW_MS = 50;
 const CLOCK_REDRAW_MS = 100;
 const fmtT = (ns: number) => `+${(ns / 1e9).toFixed(6)} s`;
 
+/** What a periodic schema's block shows, to draw it again only when one of them moved (releases -1: not released yet). */
+interface DrawnCounts { releases: number; completions: number; misses?: number; overruns?: number; cd?: number; period?: number }
+
 export class MonitorPanel {
   readonly element: HTMLElement;
   private model: MonitorView | undefined;
@@ -61,6 +64,8 @@ export class MonitorPanel {
   /** Drawn at the next frame whatever `drawn` says (redrawAll). */
   private stale = false;
   private drawn = { version: -1, cursor: -1, model: undefined as MonitorView | undefined };
+  /** What the supervisors' list shows: while following live, it is drawn again only when one of these moved. */
+  private supsDrawn = { model: undefined as MonitorView | undefined, changes: -1, sups: undefined as SupervisorCatalogue | undefined };
   private schemas: ArchSchema[] = [];
   private catalogue: SchemaInfo[] = [];
   private sups: SupervisorCatalogue = {};
@@ -87,7 +92,9 @@ export class MonitorPanel {
   private readonly modulesEl = h('div', { class: 'monitor-modules' });
   private readonly flowsEl = h('div', { class: 'monitor-flows', 'aria-label': 'Deliveries' });
   private readonly rows = new Map<string, HTMLElement>();
-  private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; key: string }>();
+  private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; counts?: DrawnCounts }>();
+  /** Each periodic schema's CRITICAL_DELAY and PERIOD in ns, read once per schema definition. */
+  private readonly schemaTimes = new WeakMap<object, { cd?: number; period?: number }>();
 
   constructor(private readonly deps: MonitorPanelDeps) {
     this.strip = new MarksStrip((f) => this.seek(f * (this.model?.end ?? 0)));
@@ -271,7 +278,13 @@ export class MonitorPanel {
       setAttr(this.slider, 'aria-valuetext', fmtT(t));
     }
     this.strip.draw(m.marks, m.end, t);
-    this.renderSupervisors(s);
+    // at every frame of a live run of a fast schema, records come but the supervisors seldom
+    // change: their list (strings and arrays for every rule) is rebuilt only when they did
+    const d = this.supsDrawn;
+    if (!(this.live && this.follow && d.model === m && d.changes === s.supervisorChanges && d.sups === this.sups)) {
+      this.renderSupervisors(s);
+      this.supsDrawn = { model: m, changes: s.supervisorChanges, sups: this.sups };
+    }
     const active = activeSchemas(s, this.catalogue);
     this.renderSchemas(s, active);
     this.renderDiagram(s, t, active.map((a) => a.name));
@@ -340,24 +353,27 @@ export class MonitorPanel {
     const blocks = periodic.map((name) => {
       const p = s.periodic[name];
       const def = this.schemas.find((x) => x.name === name);
-      const cd = timeNs(def?.criticalDelay);
-      const period = timeNs(def?.period);
+      let times = def ? this.schemaTimes.get(def) : undefined;
+      if (def && !times) this.schemaTimes.set(def, (times = { cd: timeNs(def.criticalDelay), period: timeNs(def.period) }));
+      const cd = times?.cd, period = times?.period;
       let hist = this.hists.get(name);
       if (!hist) {
         const canvas = h('canvas', { class: 'monitor-hist', width: 320, height: 70, role: 'img', 'aria-label': `Response times of ${name} against CRITICAL_DELAY and PERIOD` });
         const text = h('div', { class: 'monitor-pstats' });
         const misses = h('div', { class: 'monitor-misses' });
         const title = h('div', { class: 'monitor-pname' });
-        hist = { root: h('div', { class: 'monitor-pschema', 'data-periodic': name }, title, text, canvas, misses), title, canvas, text, misses, key: '' };
+        hist = { root: h('div', { class: 'monitor-pschema', 'data-periodic': name }, title, text, canvas, misses), title, canvas, text, misses };
         this.hists.set(name, hist);
       }
       // counts change every cycle of a fast schema: redrawn at most 5 times a second; a miss or an
       // overrun at once, or within 50 ms of the last one in a storm of them (a 1 kHz schema missing
       // every cycle would otherwise rebuild this block every frame)
-      const key = p ? `${p.releases}|${p.completions}|${p.deadlineMisses}|${p.overruns}|${cd}|${period}` : 'none';
-      const urgent = !hist.key.endsWith(`|${p?.deadlineMisses}|${p?.overruns}|${cd}|${period}`);
-      if (key !== hist.key && this.due(`hist:${name}`, urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS)) {
-        hist.key = key;
+      // (compared field by field: a key string built at every frame was a good part of the page's garbage)
+      const was = hist.counts;
+      const urgent = !was || was.misses !== p?.deadlineMisses || was.overruns !== p?.overruns || was.cd !== cd || was.period !== period;
+      const changed = urgent || (p ? was.releases !== p.releases || was.completions !== p.completions : was.releases !== -1);
+      if (changed && this.due(`hist:${name}`, urgent ? URGENT_REDRAW_MS : COUNTS_REDRAW_MS)) {
+        hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
           ? `${p.releases} releases · cycle ${p.lastCycle} · ${p.completions} complete · response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.completions ? p.sumResponseNs / p.completions : 0)}, max ${fmtNs(p.maxResponseNs)} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`

@@ -93,34 +93,26 @@ export interface FlowCount {
   last: Ns;
 }
 
-export interface Pulse {
-  t: Ns;
-  /** `MAA:2->SUP:2` */
-  flow: string;
-  kind: 'data' | 'event';
-}
-
 export interface MonitorState {
   /** Time of the last record folded in. */
   t: Ns;
   records: number;
   supervisors: Record<string, SupervisorState>;
+  /** How many records changed `supervisors` so far: a view redraws them only when it moved. */
+  supervisorChanges: number;
   schemas: Record<string, SchemaActivation>;
   periodic: Record<string, PeriodicState>;
   modules: Record<string, ModuleState>;
   /** Keyed `PRODUCER:port->CONSUMER:port`. */
   dataFlows: Record<string, FlowCount>;
   eventFlows: Record<string, FlowCount>;
-  /** The last deliveries (bounded ring, newest last). */
-  recentPulses: Pulse[];
   unknownLines: number;
 }
 
-export const RECENT_PULSES = 32;
 export const RECENT_MARKS = 64;
 
 export function emptyState(): MonitorState {
-  return { t: 0, records: 0, supervisors: {}, schemas: {}, periodic: {}, modules: {}, dataFlows: {}, eventFlows: {}, recentPulses: [], unknownLines: 0 };
+  return { t: 0, records: 0, supervisors: {}, supervisorChanges: 0, schemas: {}, periodic: {}, modules: {}, dataFlows: {}, eventFlows: {}, unknownLines: 0 };
 }
 
 /** A deep copy (the state is plain JSON-like data). */
