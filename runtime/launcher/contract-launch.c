@@ -101,6 +101,7 @@ static long read_pid_file(const char *path)
 
 /* Remove the files a module leaves in the run directory: NAME.mbx, NAME.<port>.in, NAME.pid,
  * and the module and flow holds of the supervisor engines: NAME.<module>.hold, NAME.started.hold,
+ * NAME.engine-stopped.hold,
  * NAME.flow-<...>.hold, NAME.prio-<module>-<id>.hold. */
 static void remove_module_files(const char *dir, const char *name)
 {

@@ -54,6 +54,9 @@ void holds_unlock(const char *module) {
     locked[i].fd = -1;
 }
 
+/* <M>.engine-stopped.hold: not an identifier, so never read as a supervisor's hold of a module */
+#define STOPPED_MARK "engine-stopped"
+
 static int path_of(char *buf, size_t size, const char *holder, const char *module) {
     int n = snprintf(buf, size, "%s/%s.%s.hold", ContractRunDir(), holder, module);
     return n > 0 && (size_t)n < size ? 0 : -1;
@@ -76,6 +79,7 @@ int holds_take(const char *module, int started) {
         ContractLog("module_hold", module, -1, 0, "cannot record the start in the run directory");
         return -1;
     }
+    if (started && path_of(path, sizeof path, module, STOPPED_MARK) == 0) unlink(path);
     ContractLog("module_hold", module, -1, 0, started ? "hold taken (started it)" : "hold taken (it was running)");
     return 0;
 }
@@ -96,6 +100,16 @@ int holds_drop(const char *module) {
     }
     closedir(d);
     return others;
+}
+
+void holds_mark_stopped(const char *module) {
+    char path[4200];
+    if (path_of(path, sizeof path, module, STOPPED_MARK) == 0) touch(path);
+}
+
+int holds_stopped(const char *module) {
+    char path[4200];
+    return path_of(path, sizeof path, module, STOPPED_MARK) == 0 && access(path, F_OK) == 0;
 }
 
 int holds_started(const char *module, int clear) {

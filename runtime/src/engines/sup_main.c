@@ -138,12 +138,14 @@ static int apply_priority(const char *m, int prio) {
 
 /* Is module `m` running (a run started and not finished or stopped)? Asked to the module
    itself, so that a module started by another supervisor is not started twice. No answer
-   within 0.5 s: it is busy in its own code, hence running. */
+   within 0.5 s: it is busy in its own code, hence running -- unless the last engine decision
+   on m was to stop it (holds_stopped): then m is paused or starved with that STOP still in its
+   mailbox, and a START sent now comes after it. (The core asks this under m's lock.) */
 static int b_module_running(void *ctx, const char *m) {
     (void)ctx;
     char status[1024] = "";
     int rc = QueryStatus(m, status, sizeof status, GetTime() + 500000000LL);
-    if (rc == CONTRACT_EBUSY) return 1;
+    if (rc == CONTRACT_EBUSY) return !holds_stopped(m);
     return rc == CONTRACT_OK && strstr(status, " running=yes") != NULL;
 }
 
@@ -183,6 +185,7 @@ static void stop_if_last(const char *m, int started_here) {
         return;
     }
     int rc = SendStop(m, ACK_NOTHING, 0);
+    if (rc == CONTRACT_OK) holds_mark_stopped(m);
     ContractLog("module_hold", m, -1, 0, rc == CONTRACT_OK ? "last hold dropped (stopped)" : "last hold dropped (stop failed)");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));

@@ -4,7 +4,8 @@
  * kept for inspection when a check fails.
  * Usage: itest <dir with the test executables> <contract-launch>. Prints "N passed, N failed".
  * ITEST_ONLY=name[,name…] runs only those scenarios (scheduler, nested, shared, reactivation,
- * toggles, undo): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
+ * toggles, toggles-paused, undo): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
+ * ITEST_KEEP=1 keeps the directory when every check passed too.
  */
 #define _GNU_SOURCE
 #include <stdio.h>
@@ -21,7 +22,8 @@ static const struct {
     ScenarioFn run;
 } SCENARIOS[] = {{"scheduler", scenario_scheduler},  {"nested", scenario_nested},
                  {"shared", scenario_shared_module}, {"reactivation", scenario_reactivation},
-                 {"toggles", scenario_hold_toggles}, {"undo", scenario_undo_own}};
+                 {"toggles", scenario_hold_toggles}, {"toggles-paused", scenario_hold_toggles_paused},
+                 {"undo", scenario_undo_own}};
 #define NSCENARIOS (sizeof SCENARIOS / sizeof SCENARIOS[0])
 
 /* is `name` in the comma-separated list `only` (NULL or empty: every scenario)? */
@@ -61,7 +63,7 @@ int main(int argc, char **argv) {
         fprintf(stderr, "ITEST_ONLY=%s names no scenario\n", only);
         return 2;
     }
-    if (itest_failed()) {
+    if (itest_failed() || getenv("ITEST_KEEP")) {
         fprintf(stderr, "kept %s for inspection\n", root);
     } else {
         char cmd[300];

@@ -16,6 +16,9 @@ void scenario_shared_module(const char *root, const char *bin, const char *launc
 void scenario_reactivation(const char *root, const char *bin, const char *launcher);
 /** HTA and HTB toggle event schemas sharing AMX hundreds of times, concurrently. */
 void scenario_hold_toggles(const char *root, const char *bin, const char *launcher);
+/** The same while AMX is paused 1.3 s (SIGSTOP): a status query with no answer, when the last
+ *  decision on AMX was to stop it, means "stopped", and the next schema starts it. */
+void scenario_hold_toggles_paused(const char *root, const char *bin, const char *launcher);
 /** UPA and USM: refused activations and shared flows/schemas/priorities: undos undo only their own. */
 void scenario_undo_own(const char *root, const char *bin, const char *launcher);
 
