@@ -160,7 +160,10 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
     if (!scenario_begin(&sc, root, paused ? "toggles-paused" : "toggles")) return;
     const char *const names[] = {"HTA", "HTB", "AMX", NULL};
     pid_t pauser = paused ? pause_amx(sc.run, 20, 1300) : 0;
-    check(scenario_launch(&sc, bin, launcher, "HTA.main()", paused ? "2.5" : "1.0", names),
+    /* the flips stop at 700 ms; the run lasts 2 s so that a host that stalls the supervisors a
+       few hundred ms (seen on CI: a decision came after the launcher's end-of-run KILL) still
+       leaves them time to end before it */
+    check(scenario_launch(&sc, bin, launcher, "HTA.main()", paused ? "2.5" : "2.0", names),
           paused ? "hold toggles, AMX paused 1.3 s: architecture ran and stopped cleanly"
                  : "hold toggles: architecture ran and stopped cleanly");
     int pst = -1;
