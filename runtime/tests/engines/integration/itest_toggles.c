@@ -81,7 +81,7 @@ static int replay(const Step *s, int n, int *takes, int *quiet) {
     int held[2] = {0, 0}, bad = 0, killed = 0, stopped = 0;
     takes[0] = takes[1] = 0;
     for (int i = 0; i < n; i++) {
-        int w = s[i].who, o = 1 - w, ok = 1;
+        int w = s[i].who, o = 1 - w, ok = 1, before[2] = {held[0], held[1]};
         switch (s[i].kind) {
         case TAKE_STARTED: ok = !killed && !held[0] && !held[1]; held[w] = 1; takes[w]++; stopped = 0; break;
         case TAKE_SHARED: ok = !killed && !held[w] && held[o]; held[w] = 1; takes[w]++; break;
@@ -92,8 +92,9 @@ static int replay(const Step *s, int n, int *takes, int *quiet) {
         default: ok = 0; break; /* "it had ended", "left running", "stop failed" */
         }
         if (!ok && bad++ == 0)
-            fprintf(stderr, "  step %d at %lld: %s decision %d breaks the rules (held: HTA %d, HTB %d)\n", i, s[i].t,
-                    w == 0 ? "HTA" : "HTB", (int)s[i].kind, held[0], held[1]);
+            fprintf(stderr, "  step %d at %lld: %s decision %d breaks the rules (held before it: HTA %d, HTB %d%s)\n", i,
+                    s[i].t, w == 0 ? "HTA" : "HTB", (int)s[i].kind, before[0], before[1],
+                    killed ? "; after the launcher's KILL" : "");
     }
     *quiet = stopped && !held[0] && !held[1];
     return bad;
