@@ -107,9 +107,12 @@ void holds_mark_stopped(const char *module) {
     if (path_of(path, sizeof path, module, STOPPED_MARK) == 0) touch(path);
 }
 
-int holds_stopped(const char *module) {
+int holds_stopped(const char *module, int clear) {
     char path[4200];
-    return path_of(path, sizeof path, module, STOPPED_MARK) == 0 && access(path, F_OK) == 0;
+    if (path_of(path, sizeof path, module, STOPPED_MARK) != 0) return 0;
+    int marked = access(path, F_OK) == 0;
+    if (marked && clear) unlink(path);
+    return marked;
 }
 
 int holds_started(const char *module, int clear) {

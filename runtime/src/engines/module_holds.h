@@ -8,7 +8,7 @@
  *   <SUP>.<M>.hold     supervisor SUP holds module M (one file per supervisor and module)
  *   <M>.started.hold   M was started by a supervisor's event schema (so the last holder stops it)
  *   <M>.engine-stopped.hold   the last decision of an engine on M was to stop it (removed when
- *                      an engine starts it again): "no answer within 0.5 s" then means a module
+ *                      an engine starts it again, or M answers that it runs): "no answer within 0.5 s" then means a module
  *                      paused with that STOP waiting in its mailbox, not one busy in its run
  *   holds-<M>.hold     the lock of M's holds (hold_lock.h)
  *   <SUP>.<F>.hold     supervisor SUP's active event schemas use event flow F, named
@@ -43,8 +43,9 @@ int holds_drop(const char *module);
 int holds_started(const char *module, int clear);
 /** The last holder of `module` has just sent it a STOP (holds_take(module, 1) clears the mark). */
 void holds_mark_stopped(const char *module);
-/** 1 if an engine stopped `module` last and none started it since. */
-int holds_stopped(const char *module);
+/** 1 if an engine stopped `module` last and none started it since; `clear` removes the mark
+ *  (the module answered that it runs: someone else started it since). */
+int holds_stopped(const char *module, int clear);
 
 /** Event flows are held like modules (same files and lock, under the flow's own name): an
  *  event flow `SRC:o =* DST:i` is one subscription at SRC whichever schemas ask for it, so a

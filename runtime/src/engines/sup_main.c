@@ -145,8 +145,10 @@ static int b_module_running(void *ctx, const char *m) {
     (void)ctx;
     char status[1024] = "";
     int rc = QueryStatus(m, status, sizeof status, GetTime() + 500000000LL);
-    if (rc == CONTRACT_EBUSY) return !holds_stopped(m);
-    return rc == CONTRACT_OK && strstr(status, " running=yes") != NULL;
+    if (rc == CONTRACT_EBUSY) return !holds_stopped(m, 0);
+    int running = rc == CONTRACT_OK && strstr(status, " running=yes") != NULL;
+    if (running) holds_stopped(m, 1); /* it says it runs: someone started it since the engines' STOP */
+    return running;
 }
 
 static void b_start_module(void *ctx, const char *m, int prio) {
