@@ -7,9 +7,10 @@
  * Files (empty, in the run directory):
  *   <SUP>.<M>.hold     supervisor SUP holds module M (one file per supervisor and module)
  *   <M>.started.hold   M was started by a supervisor's event schema (so the last holder stops it)
- *   <M>.engine-stopped.hold   the last decision of an engine on M was to stop it (removed when
- *                      an engine starts it again, or M answers that it runs): "no answer within 0.5 s" then means a module
- *                      paused with that STOP waiting in its mailbox, not one busy in its run
+ *   <M>.engine-stopped.hold   the last decision of an engine on M was to stop it (removed
+ *                      when an engine starts it again, or M answers that it runs): "no answer
+ *                      within 0.5 s" then means a module paused with that STOP waiting in its
+ *                      mailbox, not one busy in its run
  *   holds-<M>.hold     the lock of M's holds (hold_lock.h)
  *   <SUP>.<F>.hold     supervisor SUP's active event schemas use event flow F, named
  *                      flow-<SRC>-<o>-<DST>-<i> (holds_flow_name): the last user disconnects it
