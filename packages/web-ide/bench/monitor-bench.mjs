@@ -34,7 +34,7 @@ import { WebSocketServer } from 'ws';
 import { encodeTraceRecords } from '@contract-studio/build-service/trace';
 import { buildProductionIde, installFrameRecorder, launchChromium, pkg, root, writePart } from './bench-support.mjs';
 import { khzCycle } from './khz-cycle.mjs';
-import { lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
+import { LATE_FRAME_MS, lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
 import { startFrameTrace } from './frame-trace.mjs';
 
@@ -89,7 +89,7 @@ try {
   }, feed.url);
   await page.waitForSelector('.side-pane .monitor-view[data-mode=live]', { timeout: 20_000 });
   await page.waitForSelector('.monitor-view .arch-svg', { timeout: 20_000 });
-  const r = await page.evaluate(async () => {
+  const r = await page.evaluate(async (lateMs) => {
     const ide = window.__ide;
     const model = ide.monitor.lastLive;
     const panel = ide.monitor.panel;
@@ -114,7 +114,7 @@ try {
     let running = true;
     const tick = (t) => {
       frames.push([performance.timeOrigin + t, t - last]);
-      if (t - last > 25) performance.mark('late-frame', { detail: t - last });
+      if (t - last > lateMs) performance.mark('late-frame', { detail: t - last });
       last = t;
       setTimeout(drawn, 0);
       if (running) requestAnimationFrame(tick);
@@ -137,7 +137,7 @@ try {
       misses: document.querySelector('.monitor-pschema[data-periodic=schemaCommande1]')?.getAttribute('data-misses'),
       problems: model.problems, longFrames, frameEnds,
     };
-  });
+  }, LATE_FRAME_MS);
   await feed.close();
   const stolen = lateFramesAndSteal(r.frameEnds, await steal.stop());
   if (frameTrace) console.error(`[monitor-panel] frame trace: ${process.env.FRAME_TRACE} ${JSON.stringify(await frameTrace.stop(process.env.FRAME_TRACE))}`);

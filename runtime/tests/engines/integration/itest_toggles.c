@@ -122,18 +122,15 @@ static int amx_followed(const Step *s, int n) {
 static pid_t pause_amx(const char *run, int after_ms, int pause_ms) {
     pid_t c = fork();
     if (c != 0) return c;
-    char path[600], text[32] = "";
+    char path[600];
     snprintf(path, sizeof path, "%s/AMX.pid", run);
-    for (int t = 0; t < 400; t++) { /* up to 4 s for the launcher to start it */
-        FILE *f = fopen(path, "r");
-        if (f && fgets(text, sizeof text, f)) {
-            fclose(f);
-            break;
-        }
-        if (f) fclose(f);
-        usleep(10000);
+    pid_t amx = 0;
+    for (int t = 0; t < 400 && amx <= 0; t++) { /* up to 4 s for the launcher to start it */
+        char *text = slurp(path);
+        amx = text ? (pid_t)atol(text) : 0;
+        free(text);
+        if (amx <= 0) usleep(10000);
     }
-    pid_t amx = (pid_t)atol(text);
     if (amx <= 0) _exit(1);
     snprintf(path, sizeof path, "%s/AMX.started.hold", run);
     for (int t = 0; t < 4000 && access(path, F_OK) != 0; t++) usleep(1000);
