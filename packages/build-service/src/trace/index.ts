@@ -11,4 +11,4 @@ export { renderStory, StoryTeller } from './story.js';
 export { MinHeap } from './min-heap.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';
 export { isRule, isUnknown, type TraceRecord, type TraceRecordBase, type RuleRecord, type RuleCause, type KnownRecord, type UnknownRecord } from './records.js';
-export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, TraceWireError, type TraceWire, type TraceLine } from './wire.js';
+export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, forEachTraceLine, TraceWireError, type TraceWire, type TraceLine } from './wire.js';

@@ -1,6 +1,6 @@
 import { describe, expect, test } from 'vitest';
 import fc from 'fast-check';
-import { decodeTraceRecords, encodeTraceRecords, TraceWireError, type TraceLine } from './wire.js';
+import { decodeTraceRecords, encodeTraceRecords, forEachTraceLine, TraceWireError, type TraceLine } from './wire.js';
 
 /** Record lines as the tail hands them: any text without a newline, files interleaved, lines anywhere. */
 const lineArb: fc.Arbitrary<TraceLine> = fc.record({
@@ -15,6 +15,15 @@ describe('trace wire form', () => {
       fc.property(fc.array(lineArb, { maxLength: 200 }), (records) => {
         const wire = encodeTraceRecords(records);
         expect(decodeTraceRecords(JSON.parse(JSON.stringify(wire)))).toEqual(records);
+        // the same records as ranges of the batch's text, in order, one text for all
+        const ranged: TraceLine[] = [];
+        const texts = new Set<string>();
+        forEachTraceLine(wire, (file, line, text, from, to) => {
+          texts.add(text);
+          ranged.push({ file, line, text: text.slice(from, to) });
+        });
+        expect(ranged).toEqual(records);
+        expect(texts.size).toBeLessThanOrEqual(1);
       }),
       { numRuns: 500 },
     );

@@ -71,12 +71,13 @@ export class TraceWireError extends Error {
 }
 
 /**
- * Calls `fn` for each record of a wire batch, in order; returns how many there were. Checks the
- * whole shape first (files are strings, runs are triples of whole numbers naming a listed file,
- * the text holds exactly as many lines as the runs count) and throws TraceWireError otherwise,
- * before any call.
+ * Calls `fn` for each record of a wire batch, in order, with the batch's text and the record's
+ * range in it (`text.slice(from, to)` is the line): a reader that checks the line in place cuts
+ * nothing out of the batch. Returns how many records there were. Checks the whole shape first
+ * (files are strings, runs are triples of whole numbers naming a listed file, the text holds
+ * exactly as many lines as the runs count) and throws TraceWireError otherwise, before any call.
  */
-export function forEachTraceRecord(wire: unknown, fn: (file: string, line: number, text: string) => void): number {
+export function forEachTraceLine(wire: unknown, fn: (file: string, line: number, text: string, from: number, to: number) => void): number {
   const w = wire as Partial<TraceWire> | null;
   if (!w || typeof w !== 'object') throw new TraceWireError('not an object');
   const { files, runs, text } = w;
@@ -97,16 +98,27 @@ export function forEachTraceRecord(wire: unknown, fn: (file: string, line: numbe
     if (text !== '') throw new TraceWireError('text without records');
     return 0;
   }
-  const lines = text.split('\n');
-  if (lines.length !== total) throw new TraceWireError(`the runs count ${total} records, the text holds ${lines.length} lines`);
-  let k = 0;
+  let lines = 1;
+  for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', nl + 1)) lines++;
+  if (lines !== total) throw new TraceWireError(`the runs count ${total} records, the text holds ${lines} lines`);
+  let from = 0;
   for (let i = 0; i < runs.length; i += 3) {
     const file = files[runs[i]!]!;
     const first = runs[i + 1]!;
     const count = runs[i + 2]!;
-    for (let j = 0; j < count; j++) fn(file, first + j, lines[k++]!);
+    for (let j = 0; j < count; j++) {
+      let to = text.indexOf('\n', from);
+      if (to < 0) to = text.length;
+      fn(file, first + j, text, from, to);
+      from = to + 1;
+    }
   }
   return total;
+}
+
+/** forEachTraceRecord with each record's line cut out of the batch (same checks, same order). */
+export function forEachTraceRecord(wire: unknown, fn: (file: string, line: number, text: string) => void): number {
+  return forEachTraceLine(wire, (file, line, text, from, to) => fn(file, line, text.slice(from, to)));
 }
 
 /** The records of a wire batch, in order (throws TraceWireError on a malformed batch). */

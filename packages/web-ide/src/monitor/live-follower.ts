@@ -9,7 +9,7 @@
  * does not decode is skipped and said (problems), lines and batches are bounded.
  * A broken stream is taken up again after the last event seen (job-stream.ts, as for the build panel).
  */
-import { forEachTraceRecord } from '@contract-studio/build-service/trace';
+import { forEachTraceLine } from '@contract-studio/build-service/trace';
 import { JobStream, type SocketLike, type StreamEvent } from '../build/job-stream.js';
 import { MonitorModel } from './monitor-model.js';
 import type { FromFollower, Snapshot, ToFollower } from './live-follow-protocol.js';
@@ -65,7 +65,7 @@ export class LiveFollower {
         if (Array.isArray(m.records)) this.fold(() => {
           const arrival = Date.now();
           let n = 0;
-          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, arrival);
+          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, 0, r.text.length, arrival);
         });
         return;
       case 'stateAt': {
@@ -90,8 +90,8 @@ export class LiveFollower {
       this.fold(() => {
         let n = 0;
         try {
-          forEachTraceRecord(e, (file, line, text) => {
-            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, arrival);
+          forEachTraceLine(e, (file, line, text, from, to) => {
+            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, from, to, arrival);
           });
         } catch (err) {
           this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
@@ -100,10 +100,11 @@ export class LiveFollower {
     } else if (e.type === 'end') this.finish();
   }
 
-  private pushLine(file: string, line: number, text: string, arrival: number): void {
-    this.model.pushLine(file.slice(0, MAX_FILE_NAME), line, text.slice(0, MAX_LINE + 1));
+  /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text). */
+  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number): void {
+    this.model.pushLineIn(file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file, line, text, from, Math.min(to, from + MAX_LINE + 1));
     if (this.measure) {
-      this.walls.push(this.wallOf(text));
+      this.walls.push(this.wallOf(text, from));
       this.arrived.push(arrival);
     }
   }
@@ -162,8 +163,8 @@ export class LiveFollower {
   }
 
   /** A record's wall_time column (ms since the epoch, µs precision), for the benchmark's latency. */
-  private wallOf(text: string): number {
-    const c = text.indexOf(',');
+  private wallOf(text: string, from: number): number {
+    const c = text.indexOf(',', from);
     const w = text.slice(c + 1, c + 27); // 2026-11-28T13:58:13.785123
     const s = w.slice(0, 19);
     if (s !== this.second) {

@@ -3,7 +3,8 @@
  * run) folded into the architecture's state (monitor-state.ts), with a time cursor.
  *
  * - `live` is the state after the last record; feeding a record costs one applyRecord (a live
- *   line of a kind it does not fold is not even parsed: unfolded-line.ts).
+ *   line is read in place: one of a kind the fold does not use is not even parsed, line-scan.ts;
+ *   the kinds of every periodic cycle are folded from their fields, hot-line.ts).
  * - `stateAt(t)` is the state at any earlier time: the nearest checkpoint (a copy of the state
  *   taken every `checkpointEvery` records) plus the records after it, so scrubbing back costs at
  *   most one copy and `checkpointEvery` folds, whatever the run's length.
@@ -16,8 +17,9 @@
  * for 60 s is about 1.5 million records).
  */
 import { parseRecordLine, isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { applyRecord, applyUnfolded } from './apply-record.js';
-import { unfoldedLineTime } from './unfolded-line.js';
+import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
+import { scanLine, scanned } from './line-scan.js';
+import { HOT_KINDS, applyHotLine } from './hot-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
 import { marksIn, type MonitorView } from './model-view.js';
 
@@ -43,48 +45,60 @@ interface Timed {
 }
 
 /**
- * The raw records between two checkpoints. A live line is kept as its text (about a fifth of the
- * parsed record's memory) and parsed again when a scrub back replays it. Once the chunk is full,
- * its texts are packed into one string and its times into one Float64Array: a minute of a 1 kHz
- * schema is then a few hundred objects instead of a million, which keeps the collector's full
- * passes (and the frames they stall) short.
+ * The raw records between two checkpoints (at most `capacity`). A live line is kept as a range of
+ * the text it came in (the trace event's, usually shared by hundreds of lines), and parsed again
+ * when a scrub back replays it: keeping it cuts nothing out, copies nothing, and leaves the
+ * collector a few typed arrays per chunk instead of an object per record.
  */
 class Chunk {
-  private times: number[] | Float64Array = [];
-  private items: Array<TraceRecord | string> | undefined = [];
-  private packed: string | undefined;
+  private n = 0;
+  private readonly times: Float64Array;
+  /** Index in `sources` of the text a record's line is in, or -1: the record is in `records`. */
+  private readonly source: Int32Array;
+  private readonly from: Int32Array;
+  private readonly to: Int32Array;
+  private readonly sources: string[] = [];
+  private records: Array<TraceRecord | undefined> | undefined;
+
+  constructor(capacity: number) {
+    this.times = new Float64Array(capacity);
+    this.source = new Int32Array(capacity);
+    this.from = new Int32Array(capacity);
+    this.to = new Int32Array(capacity);
+  }
 
   get length(): number {
-    return this.times.length;
+    return this.n;
   }
 
-  push(t: Ns, r: TraceRecord | string): void {
-    (this.times as number[]).push(t);
-    this.items!.push(r);
+  /** A record kept as text.slice(from, to). */
+  pushLine(t: Ns, text: string, from: number, to: number): void {
+    const i = this.n++;
+    let k = this.sources.length - 1;
+    if (k < 0 || this.sources[k] !== text) k = this.sources.push(text) - 1;
+    this.times[i] = t;
+    this.source[i] = k;
+    this.from[i] = from;
+    this.to[i] = to;
   }
 
-  seal(): void {
-    const items = this.items!;
-    this.times = Float64Array.from(this.times);
-    if (items.every((x) => typeof x === 'string' && !x.includes(SEP))) {
-      this.packed = items.join(SEP);
-      this.items = undefined;
-    }
+  push(t: Ns, r: TraceRecord): void {
+    const i = this.n++;
+    this.times[i] = t;
+    this.source[i] = -1;
+    (this.records ??= [])[i] = r;
   }
 
   /** The records with time <= t, in order. */
   *upTo(t: Ns): Generator<{ t: Ns; r: TraceRecord }> {
-    const items = this.items ?? (this.packed ?? '').split(SEP);
-    for (let i = 0; i < this.times.length; i++) {
+    for (let i = 0; i < this.n; i++) {
       const at = this.times[i]!;
       if (at > t) return;
-      const x = items[i]!;
-      yield { t: at, r: typeof x === 'string' ? parseRecordLine('', 0, x) : x };
+      const k = this.source[i]!;
+      yield { t: at, r: k < 0 ? this.records![i]! : parseRecordLine('', 0, this.sources[k]!.slice(this.from[i], this.to[i])) };
     }
   }
 }
-
-const SEP = '\u0000';
 
 interface Checkpoint {
   /** Index of the first record not folded into `state`. */
@@ -118,7 +132,7 @@ export class MonitorModel implements MonitorView {
     this.keep = Math.max(this.every * 2, opts.keepRecords ?? 200_000);
     this.maxMarks = opts.maxMarks ?? 20_000;
     this.checkpoints.push({ index: 0, t: 0, state: emptyState() });
-    this.chunks.push(new Chunk());
+    this.chunks.push(new Chunk(this.every));
   }
 
   get recordCount(): number {
@@ -136,20 +150,49 @@ export class MonitorModel implements MonitorView {
     return cp.index / this.every >= this.firstChunk;
   }
 
-  /**
-   * One CSV line of the live trace channel (job-events.ts TraceLine). A line of a kind the fold
-   * does not use is not parsed: its time is read off it (unfolded-line.ts).
-   */
+  /** One CSV line of the live trace channel (job-events.ts TraceLine). */
   pushLine(file: string, line: number, text: string): void {
-    const mono = unfoldedLineTime(text);
-    if (mono === undefined) this.push(parseRecordLine(file, line, text), text);
-    else this.append(this.timeOf(mono), text, undefined);
+    this.pushLineIn(file, line, text, 0, text.length);
   }
 
-  /** `text`: the record's CSV line, kept instead of the record when given. */
-  push(r: TraceRecord, text?: string): void {
-    const t = r.kind === 'unknown' ? this.live.t : this.timeOf(Number((r as KnownRecord).monoNs));
-    this.append(t, text ?? r, r);
+  /**
+   * The line text.slice(from, to) of the live trace channel, read in place (line-scan.ts): a
+   * line of a kind the fold does not use is not parsed (its time is read off it), one of the
+   * kinds a periodic schema writes at every cycle is folded from its fields in place
+   * (hot-line.ts); any other line, and any the quick readers do not accept, is parsed.
+   */
+  pushLineIn(file: string, line: number, text: string, from: number, to: number): void {
+    if (scanLine(text, from, to)) {
+      const kind = scanned.kind;
+      if (!FOLDED_KINDS.has(kind)) {
+        const t = this.timeOf(scanned.mono);
+        this.keepLine(t, text, from, to);
+        applyUnfolded(this.live, t);
+        return;
+      }
+      if (HOT_KINDS.has(kind)) {
+        const t = this.timeOf(scanned.mono);
+        this.keepLine(t, text, from, to);
+        applyHotLine(this.live, text, t, this.t0 ?? 0);
+        return;
+      }
+    }
+    const r = parseRecordLine(file, line, text.slice(from, to));
+    const t = this.timeOfRecord(r);
+    this.keepLine(t, text, from, to);
+    this.fold(t, r);
+  }
+
+  /** A parsed record (kept as it is). */
+  push(r: TraceRecord): void {
+    const t = this.timeOfRecord(r);
+    this.beforeKeep();
+    this.chunks[this.chunks.length - 1]!.push(t, r);
+    this.fold(t, r);
+  }
+
+  private timeOfRecord(r: TraceRecord): Ns {
+    return r.kind === 'unknown' ? this.live.t : this.timeOf(Number((r as KnownRecord).monoNs));
   }
 
   /** The time (ns since the first record) of a record written at `mono`. */
@@ -160,18 +203,23 @@ export class MonitorModel implements MonitorView {
     return Math.max(this.live.t, mono - this.t0);
   }
 
-  /** Keeps a record (`r`, or undefined for a line of an unfolded kind) and folds it into `live`. */
-  private append(t: Ns, kept: TraceRecord | string, r: TraceRecord | undefined): void {
+  /** Counts a record about to be kept (a checkpoint first when a chunk is full). */
+  private beforeKeep(): void {
     if (this.count > 0 && this.count % this.every === 0) this.checkpoint();
-    this.chunks[this.chunks.length - 1]!.push(t, kept);
     this.kept++;
     this.count++;
-    if (!r) applyUnfolded(this.live, t);
-    else {
-      if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
-      applyRecord(this.live, r, t, this.t0 ?? 0);
-    }
     this.version++;
+  }
+
+  private keepLine(t: Ns, text: string, from: number, to: number): void {
+    this.beforeKeep();
+    this.chunks[this.chunks.length - 1]!.pushLine(t, text, from, to);
+  }
+
+  /** Folds a parsed record into `live` (and the notable ones into marks). */
+  private fold(t: Ns, r: TraceRecord): void {
+    if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
+    applyRecord(this.live, r, t, this.t0 ?? 0);
   }
 
   pushAll(records: Iterable<TraceRecord>): void {
@@ -210,8 +258,7 @@ export class MonitorModel implements MonitorView {
   private checkpoint(): void {
     // the state before this record; its time is the last record's
     this.checkpoints.push({ index: this.count, t: this.live.t, state: cloneState(this.live) });
-    this.chunks[this.chunks.length - 1]!.seal();
-    this.chunks.push(new Chunk());
+    this.chunks.push(new Chunk(this.every));
     while (this.kept > this.keep && this.chunks.length > 1) {
       this.kept -= this.chunks.shift()!.length;
       this.firstChunk++;

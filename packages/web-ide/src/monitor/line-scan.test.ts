@@ -3,8 +3,9 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { TRACE_KINDS, parseRecordLine, type KnownRecord } from '@contract-studio/build-service/trace';
-import { unfoldedLineTime } from './unfolded-line.js';
+import { scanLine, scanned, unfoldedLineTime } from './line-scan.js';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
+import { HOT_KINDS, applyHotLine } from './hot-line.js';
 import { MonitorModel } from './monitor-model.js';
 
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
@@ -22,9 +23,25 @@ function variants(line: string): string[] {
   return out;
 }
 
-const corpus = [...tutorialLines.map((l) => l.text), ...TRACE_KINDS.map((k) => k.example)].flatMap(variants);
+/** Hostile details for the kinds folded from the line in place: words missing, repeated, empty, numbers where names go, long numbers, signs. */
+function detailVariants(line: string): string[] {
+  const c = line.lastIndexOf(',');
+  const head = line.slice(0, c + 1);
+  const d = line.slice(c + 1);
+  const out = [`${head}`, `${head} ${d}`, `${head}${d} `, `${head}${d.replace(/ /g, '  ')}`, `${head}x${d}`, `${head}${d} ${d}`];
+  for (const key of ['schema', 'cycle', 'release_ns', 'response_ns', 'to_port']) {
+    for (const v of ['', '-', '-7', '-0', '007', '1'.repeat(15), '1'.repeat(16), '12x', 'S2', '123', 'é']) {
+      out.push(`${head}${d.replace(new RegExp(`(^| )${key}=[^ ]*`), `$1${key}=${v}`)}`);
+      out.push(`${head}${key}=${v} ${d}`, `${head}x${key}=1 ${d}`, `${head}${key} ${d}`, `${head}${key}=`);
+    }
+  }
+  return out;
+}
 
-describe('a line the fold does not use, read without parsing it', () => {
+const hotExamples = [...tutorialLines.map((l) => l.text), ...TRACE_KINDS.map((k) => k.example)].filter((l) => HOT_KINDS.has(l.split(',')[3]!));
+const corpus = [...[...tutorialLines.map((l) => l.text), ...TRACE_KINDS.map((k) => k.example)].flatMap(variants), ...hotExamples.flatMap(detailVariants)];
+
+describe('a live line read in place (line-scan.ts, hot-line.ts)', () => {
   it('is read exactly when the full reader reads it as a record of an unfolded kind, with the same time', () => {
     let quick = 0;
     for (const line of corpus) {
@@ -41,6 +58,32 @@ describe('a line the fold does not use, read without parsing it', () => {
       }
     }
     expect(quick).toBeGreaterThan(500); // the corpus holds many such lines, not only rejects
+  });
+
+  it('folds a line of a kind every periodic cycle writes, in place, as parsing it and applying the record does', () => {
+    const base = new MonitorModel();
+    for (const l of tutorialLines) base.pushLine(l.file, 2, l.text);
+    let hot = 0;
+    for (const line of corpus) {
+      const r = parseRecordLine('x.csv', 2, line);
+      // the line in the middle of a batch, between lines that would mislead a reader going past it
+      const text = `1,2,"3\n${line}\n schema=S9 cycle=9 to_port=9 response_ns=9,,`;
+      const from = text.indexOf('\n') + 1;
+      const accepted = scanLine(text, from, from + line.length);
+      if (accepted && r.kind !== 'unknown') expect(scanned.mono, line).toBe(Number((r as KnownRecord).monoNs));
+      if (!accepted || !HOT_KINDS.has(scanned.kind)) {
+        if (!line.includes('"')) expect(r.kind !== 'unknown' && HOT_KINDS.has(r.kind), line).toBe(false);
+        continue;
+      }
+      hot++;
+      expect(r.kind, line).toBe(scanned.kind);
+      const quick = structuredClone(base.live);
+      applyHotLine(quick, text, 123, base.t0!);
+      const full = structuredClone(base.live);
+      applyRecord(full, r, 123, base.t0!);
+      expect(quick, line).toEqual(full);
+    }
+    expect(hot).toBeGreaterThan(1000);
   });
 
   it('is of a kind that applyRecord leaves alone but for the count and the time', () => {
@@ -61,15 +104,31 @@ describe('a line the fold does not use, read without parsing it', () => {
   it('gives the model the same states, marks and counts as the full reader, on the tutorial run and hostile lines', () => {
     const lines = [...tutorialLines.map((l) => l.text), ...tutorialLines.flatMap((l, i) => (i % 5 === 0 ? variants(l.text) : []))];
     const quick = new MonitorModel({ checkpointEvery: 16 });
+    const batched = new MonitorModel({ checkpointEvery: 16 });
     const full = new MonitorModel({ checkpointEvery: 16 });
     lines.forEach((text, i) => {
       quick.pushLine('x.csv', i + 2, text);
-      full.push(parseRecordLine('x.csv', i + 2, text), text);
+      full.push(parseRecordLine('x.csv', i + 2, text));
     });
+    // the same lines as ranges of batches of 50, as the live run's trace events bring them
+    for (let i = 0; i < lines.length; i += 50) {
+      const batch = lines.slice(i, i + 50);
+      const text = batch.join('\n');
+      let from = 0;
+      batch.forEach((line, j) => {
+        batched.pushLineIn('x.csv', i + j + 2, text, from, from + line.length);
+        from += line.length + 1;
+      });
+    }
+    expect(batched.live).toEqual(full.live);
+    expect(batched.marks).toEqual(full.marks);
     expect(quick.recordCount).toBe(full.recordCount);
     expect(quick.live).toEqual(full.live);
     expect(quick.marks).toEqual(full.marks);
     expect(quick.live.unknownLines).toBeGreaterThan(0);
-    for (let t = 0; t <= full.end; t += full.end / 97) expect(quick.stateAt(t)).toEqual(full.stateAt(t));
+    for (let t = 0; t <= full.end; t += full.end / 97) {
+      expect(quick.stateAt(t)).toEqual(full.stateAt(t));
+      expect(batched.stateAt(t)).toEqual(full.stateAt(t));
+    }
   });
 });

@@ -1,0 +1,85 @@
+/**
+ * Folds a live trace line of the kinds a periodic schema writes at every cycle (releases,
+ * completions, runs, data posted) straight from the line, read in place by line-scan.ts: the
+ * same fold as parsing it (parseRecordLine) and applying the record (applyRecord), without the
+ * strings and objects the parse makes. unfolded-line.test.ts checks both ways give the same states
+ * on the tutorial run and on hostile variants of every line.
+ *
+ * The detail's `key=value` words are found as the reader finds them (parse.ts detailFields: the
+ * first word `key=`; a value of `-?` and 1 to 15 digits is a number, anything else a string).
+ */
+import { isDigitsIn } from '@contract-studio/build-service/trace';
+import { foldComplete, foldDataPosted, foldRelease, foldRun } from './apply-record.js';
+import { digitsValue, nameIn, scanned } from './line-scan.js';
+import type { MonitorState, Ns } from './monitor-state.js';
+
+/** The kinds applyHotLine folds. */
+export const HOT_KINDS: ReadonlySet<string> = new Set(['run_started', 'run_finished', 'ord_release', 'ord_complete', 'data_posted']);
+
+/** The first space in text[from, to), or `to` (a loop, not indexOf: that would search on past the line, through the rest of the batch). */
+function spaceIn(text: string, from: number, to: number): number {
+  for (let i = from; i < to; i++) if (text.charCodeAt(i) === 32) return i;
+  return to;
+}
+
+/** Where the value of the detail text[from, to)'s first word `key=...` starts, or -1. */
+function valueAt(text: string, from: number, to: number, key: string): number {
+  const n = key.length;
+  for (let at = from; at < to;) {
+    if (at + n < to && text.charCodeAt(at + n) === 61 /* = */ && text.startsWith(key, at)) return at + n + 1;
+    at = spaceIn(text, at, to) + 1;
+  }
+  return -1;
+}
+
+/** Whether text[v, e) is `-?\d{1,15}` (a value the reader makes a number). */
+function isPlainIntegerIn(text: string, v: number, e: number): boolean {
+  return isDigitsIn(text, 1, 15, text.charCodeAt(v) === 45 /* - */ && v < e ? v + 1 : v, e);
+}
+
+/** The detail word `key` as a number (the reader's num(fields[key])), or undefined. */
+function numberOf(text: string, from: number, to: number, key: string): number | undefined {
+  const v = valueAt(text, from, to, key);
+  if (v < 0) return undefined;
+  const e = spaceIn(text, v, to);
+  if (!isPlainIntegerIn(text, v, e)) return undefined;
+  return text.charCodeAt(v) === 45 ? -digitsValue(text, v + 1, e) : digitsValue(text, v, e);
+}
+
+/** The detail word `key` as a non-empty string that is not a number (the reader's str(fields[key])), or undefined. */
+function nameOf(text: string, from: number, to: number, key: string): string | undefined {
+  const v = valueAt(text, from, to, key);
+  if (v < 0) return undefined;
+  const e = spaceIn(text, v, to);
+  if (e === v || isPlainIntegerIn(text, v, e)) return undefined;
+  return nameIn(text, v, e);
+}
+
+/**
+ * Folds the line scanLine last accepted (a kind of HOT_KINDS) into `s` at time `t` (`t0`: the
+ * run's first mono_ns), as applyRecord does with its parsed record.
+ */
+export function applyHotLine(s: MonitorState, text: string, t: Ns, t0: number): void {
+  const c = scanned.comma;
+  const to = scanned.to;
+  const detail = c[6]! + 1;
+  s.records++;
+  s.t = t;
+  switch (scanned.kind) {
+    case 'run_started':
+    case 'run_finished':
+      foldRun(s, nameIn(text, c[1]! + 1, c[2]!), scanned.kind === 'run_started', t);
+      return;
+    case 'ord_release':
+      foldRelease(s, nameOf(text, detail, to, 'schema'), numberOf(text, detail, to, 'cycle'), numberOf(text, detail, to, 'release_ns'), t, t0);
+      return;
+    case 'ord_complete':
+      foldComplete(s, nameOf(text, detail, to, 'schema'), numberOf(text, detail, to, 'response_ns'));
+      return;
+    case 'data_posted': {
+      const port = c[5]! > c[4]! + 1 ? digitsValue(text, c[4]! + 1, c[5]!) : null;
+      foldDataPosted(s, nameIn(text, c[1]! + 1, c[2]!), port, nameIn(text, c[3]! + 1, c[4]!), numberOf(text, detail, to, 'to_port'), t);
+      return;
+    }
+  }
+}
