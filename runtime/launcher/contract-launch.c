@@ -120,7 +120,7 @@ static void remove_module_files(const char *dir, const char *name)
     closedir(d);
 }
 
-/* Remove every runtime file (*.mbx, *.in, *.pid, *.hold, launcher.pid) and the directory if empty. */
+/* Remove every runtime file (*.mbx, *.in, *.pid, *.hold, launcher.pid, launcher.stopping) and the directory if empty. */
 static void clean_run_dir(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -129,11 +129,23 @@ static void clean_run_dir(const char *dir)
     while ((e = readdir(d)) != NULL) {
         size_t l = strlen(e->d_name);
         if ((l > 4 && (strcmp(e->d_name + l - 4, ".mbx") == 0 || strcmp(e->d_name + l - 4, ".pid") == 0)) ||
-            (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0) || (l > 5 && strcmp(e->d_name + l - 5, ".hold") == 0))
+            (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0) || (l > 5 && strcmp(e->d_name + l - 5, ".hold") == 0) ||
+            strcmp(e->d_name, CONTRACT_RUN_STOPPING_FILE) == 0)
             unlinkat(dirfd(d), e->d_name, 0);
     }
     closedir(d);
     rmdir(dir);
+}
+
+/* Tells the modules the run is stopping (CONTRACT_RUN_STOPPING_FILE): a module that posts to a
+ * peer already gone then logs it without an error line. */
+static void mark_stopping(void)
+{
+    const char *dir = getenv("CONTRACT_RUN_DIR");
+    char path[PATH_MAX + 32];
+    if (!dir || snprintf(path, sizeof path, "%s/%s", dir, CONTRACT_RUN_STOPPING_FILE) >= (int)sizeof path) return;
+    int fd = open(path, O_WRONLY | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
+    if (fd >= 0) close(fd);
 }
 
 /* ------------------------------------------------------------------ --kill */
@@ -171,6 +183,7 @@ static int kill_mode(const char *dir)
     }
     /* No launcher: modules started by hand. Ask each one to end, then terminate stragglers. */
     setenv("CONTRACT_RUN_DIR", dir, 1);
+    mark_stopping();
     DIR *d = opendir(dir);
     long pids[MAX_MODULES];
     int n = 0;
@@ -382,6 +395,7 @@ static int run_loop(int sfd, RTIME deadline, int until_all_dead, int until_ready
 static void stop_all(int sfd)
 {
     stopping = 1;
+    mark_stopping();
     for (int i = 0; i < n_children; i++)
         if (children[i].alive && children[i].ready && ModuleState(children[i].name) == CONTRACT_OK)
             SendKill(children[i].name, ACK_NOTHING, -1);
@@ -493,6 +507,11 @@ int main(int argc, char *argv[])
     fprintf(lp, "%ld\n", (long)getpid());
     fclose(lp);
     setenv("CONTRACT_RUN_DIR", run_dir, 1);
+    { /* a launcher that died while stopping left its mark: this run is not stopping */
+        char stale[PATH_MAX + 32];
+        snprintf(stale, sizeof stale, "%s/%s", run_dir, CONTRACT_RUN_STOPPING_FILE);
+        unlink(stale);
+    }
     if (log_dir && *log_dir) {
         if (mkdir_p(log_dir) != 0) { say("log directory %s: %s", log_dir, strerror(errno)); unlink(lp_path); return 2; }
         setenv("CONTRACT_LOG_DIR", log_dir, 1);

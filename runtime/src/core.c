@@ -32,6 +32,12 @@ void rt_error(const char *fmt, ...)
     ContractLog("error", "", -1, 0, text);
 }
 
+int rt_run_stopping(void)
+{
+    struct stat st;
+    return g_rt.run_dir_fd >= 0 && fstatat(g_rt.run_dir_fd, CONTRACT_RUN_STOPPING_FILE, &st, 0) == 0;
+}
+
 int rt_valid_name(const char *name)
 {
     if (name == NULL || name[0] == '\0' || strlen(name) >= CONTRACT_NAME_MAX) return 0;

@@ -76,6 +76,8 @@ void rt_close_peers(void);
 void rt_register_file(const char *file);
 int rt_errno_to_code(int err);
 void rt_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Whether the launcher is stopping the run (CONTRACT_RUN_STOPPING_FILE in the run directory). */
+int rt_run_stopping(void);
 const char *rt_request_name(int type);
 const char *rt_ack_name(int ack);
 int rt_write_pid_file(void);

@@ -356,6 +356,46 @@ void test_long_run_dir(void)
     h_teardown();
 }
 
+/* While the launcher stops the run (CONTRACT_RUN_STOPPING_FILE), an event a module posts to a
+ * subscriber that has already gone is logged but prints no error line; before and after, it is
+ * an error on the module's stderr. */
+void test_request_to_gone_while_stopping(void)
+{
+    REQUIRE(h_setup("stopping") == 0);
+    pid_t pid = h_spawn_module("P", "P");
+    REQUIRE(pid > 0);
+    CHECK(set_param("P", 1, 0)); /* P posts an event at every run */
+    CHECK(SendSubscribeEvent("P", 0, "GONE", 0, EVENT_CONTINUOUS) == 0 && h_wait_ack("P", 800, ACK_FINISHED, 2000, NULL));
+    char mark[700];
+    snprintf(mark, sizeof mark, "%s/%s", h_run_dir, CONTRACT_RUN_STOPPING_FILE);
+    CHECK(run_once("P", 1));
+    int fd = open(mark, O_WRONLY | O_CREAT, 0644);
+    CHECK(fd >= 0);
+    if (fd >= 0) close(fd);
+    CHECK(run_once("P", 2) && run_once("P", 3));
+    unlink(mark);
+    CHECK(run_once("P", 4));
+    CHECK(SendKill("P", ACK_NOTHING, -1) == 0 && h_wait_exit(pid, 2000) == 0);
+    char out_path[700];
+    snprintf(out_path, sizeof out_path, "%s/P.out", h_work_dir);
+    char *out = h_read_file(out_path);
+    int lines = 0;
+    for (const char *at = out; at && (at = strstr(at, "P: error: EVENT request to GONE: unknown module")) != NULL; at++) lines++;
+    CHECK_MSG(lines == 2, "%d error lines on stderr, expected 2 (runs 1 and 4)", lines);
+    free(out);
+    char *log = h_read_logs("P_");
+    int records = 0, stopping = 0;
+    for (const char *at = log; at && (at = strstr(at, ",P,error,,,0,EVENT request to GONE: unknown module")) != NULL; at++) {
+        records++;
+        const char *eol = strchr(at, '\n');
+        const char *quiet = strstr(at, "; the run is stopping)");
+        if (quiet && (!eol || quiet < eol)) stopping++;
+    }
+    CHECK_MSG(records == 4 && stopping == 2, "%d error records (%d while stopping), expected 4 (2)", records, stopping);
+    free(log);
+    h_teardown();
+}
+
 void test_maa_events_params(void)
 {
     REQUIRE(h_setup("maa") == 0);

@@ -14,6 +14,7 @@ void test_event_oneshot_continuous(void);
 void test_setparam_sizes(void);
 void test_malformed_datagrams(void);
 void test_unknown_and_stale(void);
+void test_request_to_gone_while_stopping(void);
 void test_long_run_dir(void);
 void test_maa_events_params(void);
 void test_unsub_spent_oneshot(void);
@@ -45,6 +46,7 @@ static const TestCase ALL_TESTS[] = {
     { "setparam_sizes", test_setparam_sizes },
     { "malformed_datagrams", test_malformed_datagrams },
     { "unknown_and_stale", test_unknown_and_stale },
+    { "request_to_gone_while_stopping", test_request_to_gone_while_stopping },
     { "long_run_dir", test_long_run_dir },
     { "maa_events_params", test_maa_events_params },
     { "unsub_spent_oneshot", test_unsub_spent_oneshot },

@@ -28,6 +28,9 @@ extern "C" {
 
 /** Longest module name + 1 (names are C identifiers, e.g. "MSC", "ORD", "GLB"). */
 #define CONTRACT_NAME_MAX 64
+/** The file contract-launch creates in the run directory when it starts stopping the modules:
+ *  a request to a module that has already gone is then expected, not an error on stderr. */
+#define CONTRACT_RUN_STOPPING_FILE "launcher.stopping"
 /** Longest supervision-function name + 1 carried by a START request. */
 #define CONTRACT_FUNCTION_MAX 64
 /** Largest payload of a request (setparam value, event data, start arguments), in bytes.

@@ -27,7 +27,7 @@ const whats = (values: string[]) => ` The reader types the line: \`what\` = ${va
 export const TRACE_KINDS: readonly TraceKind[] = [
     { kind: 'module_started', area: 'module', fields: 'detail `pid=N priority=P`', example: `1000,${W},MSC,module_started,,,0,pid=41 priority=40`, detailKeys: ['pid', 'priority'] },
     { kind: 'module_exit', area: 'module', fields: 'detail `status=N` (a crash has no record: the launcher reports it)', example: `9000,${W},MSC,module_exit,,,0,status=0`, detailKeys: ['status'] },
-    { kind: 'error', area: 'module', fields: 'detail = the message also printed on stderr', example: `1500,${W},MSC,error,,,0,dropped a datagram of 12 bytes`},
+    { kind: 'error', area: 'module', fields: 'detail = the message also printed on stderr (not printed for a request to a module already gone while the launcher stops the run: `...; the run is stopping)`)', example: `1500,${W},MSC,error,,,0,dropped a datagram of 12 bytes`},
     { kind: 'request_received', area: 'requests', fields: 'peer = sender; detail = the request: `START [function]`, `STOP`, `KILL`, `EVENT from_port=N` (port = target port), `SETPARAM`, `SUBSCRIBE M:p *k`, `SUB_EVENT M:p oneshot|continuous`, `UNSUBSCRIBE`, `UNSUB_EVENT`, `PURGE_MBX`', example: `2000,${W},MSC,request_received,ORD,,0,START` },
     { kind: 'run_started', area: 'requests', fields: 'peer = requester; detail `activation=N` (the START that begins a run)', example: `2001,${W},MSC,run_started,ORD,,0,activation=7`, detailKeys: ['activation'] },
     { kind: 'run_finished', area: 'requests', fields: 'peer = requester; detail `activation=N [ACK_FINISHED|ACK_STOPPED|STOP|KILL]`', example: `2500,${W},MSC,run_finished,ORD,,0,activation=7 ACK_FINISHED`, detailKeys: ['activation'] },
