@@ -6,7 +6,9 @@
  * - one protected region edited in one module: make compiles that module only;
  * - two builds of one project at once (two services): both succeed, the second waited;
  * - a build stopped mid-way leaves a workspace the next build does not trust (from scratch);
- * - the host trust rule holds across processes: an executable replaced after the build is rebuilt.
+ * - the host trust rule holds across processes: an executable replaced after the build is rebuilt;
+ * - a runtime switched to and back (two runtime sources on one cache): the tree is built again
+ *   against the runtime in use each time, though the first one's library is older than the executables.
  */
 import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -106,7 +108,7 @@ describe('the build cache across services (bwrap)', () => {
     utimesSync(exe, new Date('2100-01-01'), new Date('2100-01-01'));
     const { job, lines } = await build(service());
     expect(job.status, lines.join('\n')).toBe('succeeded');
-    expect(lines).toContain('the work dir changed after the last build ended: its build products are not trusted, building from scratch');
+    expect(lines.some((l) => /^the work dir changed after the last build ended, or it was built with another runtime than runtime-[0-9a-f]{16}: its build products are not trusted, building from scratch$/.test(l)), lines.join('\n')).toBe(true);
     expect(compiled(lines)).toContain('MSB');
     expect(readFileSync(exe).subarray(0, 4).toString('latin1')).toBe('\x7fELF');
   });
@@ -130,4 +132,32 @@ describe('the build cache across services (bwrap)', () => {
     expect(lines).toContain('no build ended in this workspace since it was emptied: building from scratch');
     expect(compiled(lines).length).toBeGreaterThan(5);
   });
+
+  test('a runtime switched to and back: each build links against the runtime it uses, built from scratch', async () => {
+    // a second runtime source on the same cache (a checkout or a toolchain switched to): another key
+    const otherSource = snapshotRuntime();
+    try {
+      // built with the first runtime (built now if it was not yet): its library is older than what the other one links
+      expect((await build(service())).job.status).toBe('succeeded');
+      writeFileSync(join(otherSource, 'src/core.c'), `${readFileSync(join(otherSource, 'src/core.c'), 'utf8')}\n/* another runtime */\n`);
+      const other = new JobService({ sandbox: 'bwrap', concurrency: 2, projectRoots: [scratch], cacheDir, persistentWorkspaces: true, runtimeSource: otherSource, limits: { buildSeconds: 300 } });
+      services.push(other);
+      const switched = /^the work dir changed after the last build ended, or it was built with another runtime than runtime-[0-9a-f]{16}: its build products are not trusted, building from scratch$/;
+      const there = await build(other);
+      expect(there.job.status, there.lines.join('\n')).toBe('succeeded');
+      expect(there.lines.some((l) => switched.test(l))).toBe(true);
+      expect(compiled(there.lines)).toContain('MSA');
+      // back: the first runtime's library is older than the executables just linked, make alone would link nothing
+      const back = await build(service());
+      expect(back.job.status, back.lines.join('\n')).toBe('succeeded');
+      expect(back.lines.some((l) => switched.test(l)), back.lines.join('\n')).toBe(true);
+      expect(compiled(back.lines)).toContain('MSA');
+      // and then the usual no-op
+      const again = await build(service());
+      expect(compiled(again.lines)).toEqual([]);
+    } finally {
+      rmSync(otherSource, { recursive: true, force: true });
+    }
+  });
 });
+

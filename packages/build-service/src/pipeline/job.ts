@@ -2,7 +2,8 @@
  * One job: prepare -> build -> run (run only for action "run"), each sandboxed step with its wall
  * time limit, output caps and live events; cancel stops everything within CANCEL_DEADLINE_MS.
  */
-import { posix } from 'node:path';
+import { createHash } from 'node:crypto';
+import { basename, posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
 import { buildJobs, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
@@ -212,6 +213,20 @@ export class Job {
         this.system('prepare', `real-time mode: ${rt.detail}`);
       }
       const t0 = Date.now();
+      // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
+      // the image for docker. Plain Makefile projects get the image's path and no bind. Known
+      // before the work tree is checked: its build products are trusted only for the runtime they
+      // were built with (another one, a version switched to and back, has its own file dates, which
+      // make would not see as newer)
+      let runtimePath = SANDBOX_RUNTIME_DIR;
+      let runtimeDir: string | undefined;
+      if (this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
+        const tr = Date.now();
+        runtimeDir = await this.orCancel(ctx.runtime.ensure((l, s) => this.line('prepare', 'runtime', s, l)));
+        runtimePath = ctx.sandbox.runtimePath(runtimeDir);
+        this.timed('prepare', 'runtime (sources hash, cache)', tr);
+      }
+      const builtWith = runtimeDir ? basename(runtimeDir) : null;
       ws = await this.orCancel(
         ctx.acquireWorkspace(this, {
           onWait: (holder) => this.system('prepare', `waiting for the other command using this project (${holder}) to finish ...`),
@@ -221,7 +236,7 @@ export class Job {
       this.timed('prepare', 'workspace (lock, checks)', t0);
       let t = Date.now();
       if (ws.reused) {
-        await this.orCancel(this.checkBuildOutputs(ctx.sandbox, ws));
+        await this.orCancel(this.checkBuildOutputs(ctx.sandbox, ws, builtWith));
         this.timed('prepare', 'work tree check (digest)', t);
       }
       t = Date.now();
@@ -230,16 +245,6 @@ export class Job {
       );
       this.prepareDiagnostics = prep.problems;
       this.timed('prepare', 'generation + copy into the work tree', t);
-      // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
-      // the image for docker. Plain Makefile projects get the image's path and no bind.
-      let runtimePath = SANDBOX_RUNTIME_DIR;
-      let runtimeDir: string | undefined;
-      if (prep.ok && this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
-        t = Date.now();
-        runtimeDir = await this.orCancel(ctx.runtime.ensure((l, s) => this.line('prepare', 'runtime', s, l)));
-        runtimePath = ctx.sandbox.runtimePath(runtimeDir);
-        this.timed('prepare', 'runtime (sources hash, cache)', t);
-      }
       this.durations.prepare = Date.now() - t0;
       if (!prep.ok) {
         const n = prep.problems.filter((p) => p.severity === 'error').length;
@@ -277,7 +282,7 @@ export class Job {
       // what this build step left (it ended by itself) is what the next job may build on
       if (!this.cancelRequested && !build.limitHit && build.exitCode !== null) {
         const td = Date.now();
-        ws.acceptedOutputs = await this.workTreeDigest(ctx.sandbox, ws);
+        ws.acceptedOutputs = acceptance(await this.workTreeDigest(ctx.sandbox, ws), builtWith);
         this.timed('build', 'work tree digest', td);
       }
       if (!build.ok) {
@@ -394,13 +399,13 @@ export class Job {
    * products between jobs"): a run (or anything after that build) that rewrote, re-dated or added
    * a file outside logs/ and run/ makes the whole work dir untrusted, and it is emptied.
    */
-  private async checkBuildOutputs(sandbox: Sandbox, ws: Workspace): Promise<void> {
+  private async checkBuildOutputs(sandbox: Sandbox, ws: Workspace, builtWith: string | null): Promise<void> {
     const accepted = ws.acceptedOutputs;
-    const now = accepted === null ? null : await this.workTreeDigest(sandbox, ws);
+    const now = accepted === null ? null : acceptance(await this.workTreeDigest(sandbox, ws), builtWith);
     if (accepted !== null && now === accepted) return;
     this.system('prepare', accepted === null
       ? 'no build ended in this workspace since it was emptied: building from scratch'
-      : 'the work dir changed after the last build ended: its build products are not trusted, building from scratch');
+      : `the work dir changed after the last build ended${builtWith ? `, or it was built with another runtime than ${builtWith}` : ''}: its build products are not trusted, building from scratch`);
     await ws.reset();
   }
 
@@ -625,4 +630,14 @@ export class Job {
       artifacts: this.artifactsJSON(),
     };
   }
+}
+
+/**
+ * What a workspace accepts a build step's work tree as: its digest, bound to the runtime it was
+ * built with (`runtime-<key>`, none for a runtime in the image): another runtime is another
+ * acceptance, so the next build starts from scratch instead of linking old objects to it.
+ */
+export function acceptance(digest: string | null, builtWith: string | null): string | null {
+  if (digest === null || builtWith === null) return digest;
+  return createHash('sha256').update(digest).update('\0').update(builtWith).digest('hex');
 }
