@@ -12,14 +12,16 @@
  *             A3: [elapsed=60ms]  activate schema EVG()          [elapsed=150ms]
  *             A4: [elapsed=160ms] activate resttime module AMX   [elapsed=280ms]
  *             B1: [elapsed=5ms]   subscribe AMX:0 => :0           [elapsed=100ms]  (spent at once)
- *             B2: [elapsed=50ms]  subscribe AMX:0 =* :0           [elapsed=200ms]
+ *             B2: [elapsed=90ms]  subscribe AMX:0 =* :0           [elapsed=200ms]
  *   (aux starts ~20 ms after top: AMX's claims are P1 140, A4 ~180, P2 260; undone P1 220,
  *   A4 ~300, P2 340, 40 ms apart)
  *   event schemas EVA { AMX }, EVF and EVG { AMX, AMY; AMX:0 =* AMY:0 }; periodic PSC { UMA }
  *   (itables.h). Expected: K2's undo leaves K1's run of aux; USM's undo of its refused PSC
  *   (same activation number as UPA's) leaves UPA's; EVG's undo leaves the flow that UPA's EVF
  *   still uses; P1's and A4's undos, each with a later change standing, change no priority;
- *   B1's undo leaves B2's subscription of the same port.
+ *   B1's undo leaves B2's subscription of the same port. B2 comes 85 ms after B1: AMX posts
+ *   every 10 ms, so B1's one-shot is spent by then even when the host holds AMX for tens of ms
+ *   (while a one-shot is pending, a second subscription of that port is refused, as documented).
  */
 #include <stddef.h>
 
@@ -73,7 +75,7 @@ static const ContractSupervisorVocabulary VOCABULARY = {
     CONTRACT_VOCABULARY_VERSION, "UPA", 95, 40, 5, 70, 0, NULL, 0, NULL, 1, functions};
 #else
 ELAPSED(at5, 5 * MS)
-ELAPSED(at50, 50 * MS)
+ELAPSED(at90, 90 * MS)
 ELAPSED(at60, 60 * MS)
 ELAPSED(at100, 100 * MS)
 ELAPSED(at200, 200 * MS)
@@ -102,7 +104,7 @@ static const ContractRule rules[] = {
     {"A3", {1, at60}, 1, a3_actions, {1, at150}},
     {"A4", {1, at160}, 1, a4_actions, {1, at280}},
     {"B1", {1, at5}, 1, b1_actions, {1, at100}},
-    {"B2", {1, at50}, 1, b2_actions, {1, at200}}};
+    {"B2", {1, at90}, 1, b2_actions, {1, at200}}};
 static const ContractFunction functions[] = {{"aux", 0, NULL, 0, 0, NULL, 0, 0, NULL, 6, rules}};
 static const ContractSupervisorVocabulary VOCABULARY = {
     CONTRACT_VOCABULARY_VERSION, "USM", 92, 40, 5, 70, 1, in_ports, 0, NULL, 1, functions};
