@@ -33,21 +33,20 @@ static int fit_line(const Trace *t, const char *use, Fit *f);
 static int fit_ticks(const Trace *t, const char *use, Fit *f) {
     if (!fit_line(t, use, f)) return 0;
     int n = t->nstart, m = 0;
-    long long *r = malloc(sizeof *r * (size_t)n);
+    long long *res = malloc(sizeof *res * (size_t)n), *sorted = malloc(sizeof *sorted * (size_t)n);
     char *early = malloc((size_t)n);
-    if (!r || !early) {
-        free(r);
-        free(early);
-        return 1;
+    if (res && sorted && early) {
+        /* each release's lateness against the first line, once */
+        for (int k = 0; k < n; k++)
+            if (use[k]) sorted[m++] = res[k] = t->start[k] - (f->origin + k * f->slope);
+        qsort(sorted, (size_t)m, sizeof *sorted, cmp_ll);
+        long long median = sorted[m / 2];
+        for (int k = 0; k < n; k++) early[k] = use[k] && res[k] <= median;
+        Fit lower;
+        if (fit_line(t, early, &lower)) *f = lower;
     }
-    for (int k = 0; k < n; k++)
-        if (use[k]) r[m++] = t->start[k] - (f->origin + k * f->slope);
-    qsort(r, (size_t)m, sizeof *r, cmp_ll);
-    long long median = r[m / 2];
-    for (int k = 0; k < n; k++) early[k] = use[k] && t->start[k] - (f->origin + k * f->slope) <= median;
-    Fit lower;
-    if (fit_line(t, early, &lower)) *f = lower;
-    free(r);
+    free(res);
+    free(sorted);
     free(early);
     return 1;
 }
