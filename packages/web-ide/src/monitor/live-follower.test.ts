@@ -159,3 +159,26 @@ describe('a live run followed in a worker', () => {
     expect(remote.live.unknownLines).toBe(1);
   });
 });
+
+describe('the benchmark\'s measure (follow with measure: true)', () => {
+  it('reads each record\'s wall time to the microsecond, across seconds, from lines read in place', async () => {
+    const url = await listen((ws) => {
+      const text = (wall: string, n: number) => `${1000 + n},${wall},MSA,run_started,ORD,,0,activation=${n}`;
+      const walls = ['2026-11-28T13:58:13.785123', '2026-11-28T13:58:13.999999', '2026-11-28T13:58:14.000001', '2026-11-28T13:59:00.500000'];
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(walls.map((w, i) => ({ file: 'MSA_1.csv', line: i + 2, text: text(w, i) }))) }));
+      ws.send(JSON.stringify({ type: 'end', seq: 2, t: Date.now(), result: { ok: true } }));
+    });
+    const posted: FromFollower[] = [];
+    const follower = new LiveFollower((m) => posted.push(structuredClone(m)), (u) => new WebSocket(u) as unknown as SocketLike, 0);
+    follower.handle({ type: 'follow', url, measure: true });
+    await expect.poll(() => posted.some((m) => m.type === 'snapshot' && m.ended), { timeout: 5000 }).toBe(true);
+    const walls = posted.flatMap((m) => (m.type === 'snapshot' && m.walls ? [...m.walls] : []));
+    const second = Date.parse('2026-11-28T13:58:13Z');
+    expect(walls).toHaveLength(4);
+    expect(walls[0]).toBeCloseTo(second + 785.123, 6);
+    expect(walls[1]).toBeCloseTo(second + 999.999, 6);
+    expect(walls[2]).toBeCloseTo(second + 1000.001, 6);
+    expect(walls[3]).toBeCloseTo(Date.parse('2026-11-28T13:59:00Z') + 500, 6);
+    follower.handle({ type: 'stop' });
+  });
+});

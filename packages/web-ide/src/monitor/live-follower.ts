@@ -36,8 +36,10 @@ export class LiveFollower {
   private postTimer: ReturnType<typeof setTimeout> | undefined;
   private readonly problems: string[] = [];
   private problemsSent = 0;
-  private walls: number[] = [];
-  private arrived: number[] = [];
+  /** measure only: each record's wall time and arrival since the last snapshot (buffers kept from one to the next) */
+  private walls = new Float64Array(1024);
+  private arrived = new Float64Array(1024);
+  private measured = 0;
   private foldMs = 0;
   /** Wall-clock parse cache (measure only): the second of the last record. */
   private second = '';
@@ -104,8 +106,16 @@ export class LiveFollower {
   private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number): void {
     this.model.pushLineIn(file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file, line, text, from, Math.min(to, from + MAX_LINE + 1));
     if (this.measure) {
-      this.walls.push(this.wallOf(text, from));
-      this.arrived.push(arrival);
+      if (this.measured === this.walls.length) {
+        const walls = new Float64Array(this.measured * 2);
+        const arrived = new Float64Array(this.measured * 2);
+        walls.set(this.walls);
+        arrived.set(this.arrived);
+        this.walls = walls;
+        this.arrived = arrived;
+      }
+      this.walls[this.measured] = this.wallOf(text, from);
+      this.arrived[this.measured++] = arrival;
     }
   }
 
@@ -154,23 +164,26 @@ export class LiveFollower {
     this.marksSent = m.marks.length;
     this.problemsSent = this.problems.length;
     if (this.measure) {
-      s.walls = Float64Array.from(this.walls);
-      s.arrived = Float64Array.from(this.arrived);
-      this.walls = [];
-      this.arrived = [];
+      s.walls = this.walls.slice(0, this.measured);
+      s.arrived = this.arrived.slice(0, this.measured);
+      this.measured = 0;
     }
     this.post(s);
   }
 
-  /** A record's wall_time column (ms since the epoch, µs precision), for the benchmark's latency. */
+  /**
+   * A record's wall_time column (ms since the epoch, µs precision), for the benchmark's latency.
+   * Read in place (the second is cut out only when it changes): the measure must not add its own
+   * garbage to the worker it measures.
+   */
   private wallOf(text: string, from: number): number {
-    const c = text.indexOf(',', from);
-    const w = text.slice(c + 1, c + 27); // 2026-11-28T13:58:13.785123
-    const s = w.slice(0, 19);
-    if (s !== this.second) {
-      this.second = s;
-      this.secondMs = Date.parse(`${s}Z`);
+    const c = text.indexOf(',', from) + 1; // 2026-11-28T13:58:13.785123
+    if (!text.startsWith(this.second, c) || this.second === '') {
+      this.second = text.slice(c, c + 19);
+      this.secondMs = Date.parse(`${this.second}Z`);
     }
-    return this.secondMs + Number(w.slice(20, 26)) / 1000;
+    let us = 0;
+    for (let i = c + 20; i < c + 26; i++) us = us * 10 + (text.charCodeAt(i) - 48);
+    return this.secondMs + us / 1000;
   }
 }
