@@ -27,7 +27,7 @@
 // MONITOR_BENCH_SECONDS (default 60: the acceptance's "1 kHz schema for 60 s") sets how long it is fed; the part takes about 100 s.
 // FRAME_TRACE=<file.json> also records a trace of every Chromium process while fed, and marks each late frame in it
 // (frame-trace.mjs: `node bench/frame-trace.mjs <file.json>` says which threads ran in each late frame's gap).
-// WORKER_ALLOC=1 prints what the live run's worker allocated a second while fed, and where (worker-alloc.mjs).
+// WORKER_ALLOC=1 (PAGE_ALLOC=1) prints what the live run's worker (the page) allocated a second while fed, and where (alloc-profile.mjs).
 import { cpSync, mkdirSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
@@ -38,7 +38,7 @@ import { khzCycle } from './khz-cycle.mjs';
 import { LATE_FRAME_MS, lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
 import { startFrameTrace } from './frame-trace.mjs';
-import { startWorkerAlloc } from './worker-alloc.mjs';
+import { startPageAlloc, startWorkerAlloc } from './alloc-profile.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 60);
 const { startIdeServer } = await buildProductionIde();
@@ -84,8 +84,9 @@ try {
   const steal = startStealSampler();
   // FRAME_TRACE=<file.json>: a trace of every Chromium process while fed (frame-trace.mjs)
   const frameTrace = process.env.FRAME_TRACE ? await startFrameTrace(context, page) : null;
-  // WORKER_ALLOC=1: what the live run's worker allocates while fed (worker-alloc.mjs)
+  // WORKER_ALLOC=1 / PAGE_ALLOC=1: what the live run's worker / the page allocates while fed (alloc-profile.mjs)
   const workerAlloc = process.env.WORKER_ALLOC ? await startWorkerAlloc(context, page) : null;
+  const pageAlloc = process.env.PAGE_ALLOC ? await startPageAlloc(context, page) : null;
   await page.evaluate((url) => {
     const ide = window.__ide;
     ide.monitor.measure = true;
@@ -94,6 +95,7 @@ try {
   await page.waitForSelector('.side-pane .monitor-view[data-mode=live]', { timeout: 20_000 });
   await page.waitForSelector('.monitor-view .arch-svg', { timeout: 20_000 });
   await workerAlloc?.begin();
+  await pageAlloc?.begin();
   const r = await page.evaluate(async (lateMs) => {
     const ide = window.__ide;
     const model = ide.monitor.lastLive;
@@ -144,6 +146,7 @@ try {
     };
   }, LATE_FRAME_MS);
   if (workerAlloc) console.error(`[monitor-panel] worker allocations: ${JSON.stringify(await workerAlloc.stop())}`);
+  if (pageAlloc) console.error(`[monitor-panel] page allocations: ${JSON.stringify(await pageAlloc.stop(12))}`);
   await feed.close();
   const stolen = lateFramesAndSteal(r.frameEnds, await steal.stop());
   if (frameTrace) console.error(`[monitor-panel] frame trace: ${process.env.FRAME_TRACE} ${JSON.stringify(await frameTrace.stop(process.env.FRAME_TRACE))}`);

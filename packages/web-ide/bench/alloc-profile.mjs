@@ -1,0 +1,90 @@
+// What the live run's Web Worker, or the page, allocates while the panel benchmark feeds it:
+// WORKER_ALLOC=1 (PAGE_ALLOC=1) node bench/monitor-bench.mjs samples the worker's (the page's main
+// thread's) heap allocations (V8's sampling heap profiler, objects already collected included) for
+// the fed phase, and prints the MB a second and the functions that allocate most. Garbage in the
+// worker is work on a CPU the compositor also needs on a two-CPU machine; the page's sets how often
+// its collections come (docs/monitor-performance.md "Traced on 2026-12-02").
+// startWorkerAlloc(context, page) attaches before the worker starts; startPageAlloc(context, page)
+// samples the page itself; begin() starts sampling, stop() returns the report.
+
+export async function startWorkerAlloc(context, page) {
+  const cdp = await context.newCDPSession(page);
+  // the workers' session ids, as they attach (messages go through the page's session: not flattened)
+  const workers = [];
+  let worker;
+  let nextId = 1;
+  const pending = new Map();
+  let attachedOne = () => undefined;
+  cdp.on('Target.attachedToTarget', (e) => {
+    if (e.targetInfo.type !== 'worker') return;
+    workers.push(e.sessionId);
+    attachedOne();
+  });
+  cdp.on('Target.receivedMessageFromTarget', (e) => {
+    const m = JSON.parse(e.message);
+    const p = pending.get(m.id);
+    if (!p) return;
+    pending.delete(m.id);
+    if (m.error) p.reject(new Error(m.error.message));
+    else p.resolve(m.result);
+  });
+  const send = (method, params = {}) => new Promise((resolve, reject) => {
+    const id = nextId++;
+    pending.set(id, { resolve, reject });
+    cdp.send('Target.sendMessageToTarget', { sessionId: worker, message: JSON.stringify({ id, method, params }) }).catch(reject);
+  });
+  await cdp.send('Target.setAutoAttach', { autoAttach: true, waitForDebuggerOnStart: false, flatten: false });
+  await new Promise((r) => setTimeout(r, 300)); // the workers already there (an earlier live run's) attach now
+  const before = workers.length;
+  let started;
+  return {
+    /** Starts sampling the first worker started since (call once the page follows the fed run). */
+    async begin() {
+      if (workers.length <= before) await new Promise((resolve) => { attachedOne = resolve; });
+      worker = workers[before];
+      await send('HeapProfiler.enable');
+      await send('HeapProfiler.startSampling', { samplingInterval: 16384, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
+      started = performance.now();
+    },
+    async stop(top = 8) {
+      const { profile } = await send('HeapProfiler.stopSampling');
+      const seconds = (performance.now() - started) / 1000;
+      await cdp.detach().catch(() => undefined);
+      return report(profile, seconds, top);
+    },
+  };
+}
+
+export async function startPageAlloc(context, page) {
+  const cdp = await context.newCDPSession(page);
+  let started;
+  return {
+    async begin() {
+      await cdp.send('HeapProfiler.enable');
+      await cdp.send('HeapProfiler.startSampling', { samplingInterval: 16384, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
+      started = performance.now();
+    },
+    async stop(top = 8) {
+      const { profile } = await cdp.send('HeapProfiler.stopSampling');
+      const seconds = (performance.now() - started) / 1000;
+      await cdp.detach().catch(() => undefined);
+      return report(profile, seconds, top);
+    },
+  };
+}
+
+/** MB allocated a second, and the functions that allocated most (self size). */
+function report(profile, seconds, top) {
+  const byFunction = new Map();
+  let total = 0;
+  const walk = (node) => {
+    const f = node.callFrame;
+    const name = `${f.functionName || '(top)'} ${f.url.split('/').pop()}:${f.lineNumber + 1}`;
+    total += node.selfSize;
+    if (node.selfSize) byFunction.set(name, (byFunction.get(name) ?? 0) + node.selfSize);
+    for (const c of node.children) walk(c);
+  };
+  walk(profile.head);
+  const mb = (b) => Math.round(b / 1e5) / 10;
+  return { mbPerS: Math.round((total / 1e6 / seconds) * 10) / 10, seconds: Math.round(seconds), top: [...byFunction].sort((a, b) => b[1] - a[1]).slice(0, top).map(([k, v]) => `${mb(v)} MB ${k}`) };
+}
