@@ -41,6 +41,9 @@ async function runJob(project: Record<string, unknown>): Promise<Record<string, 
   expect(JSON.stringify(job)).not.toContain(MARK);
   expect(job.status).toBe('failed');
   expect(job.result.message).toBe('project has 1 error(s)');
+  // a project with errors does not wait for the runtime: it is not built, nor looked up in the cache
+  const said = events.filter((e: any) => e.type === 'line').map((e: any) => e.line as string);
+  expect(said.filter((l) => /building the runtime|^runtime [0-9a-f]{16} /.test(l))).toEqual([]);
   return { ...job, events };
 }
 

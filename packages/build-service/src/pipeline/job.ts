@@ -3,7 +3,7 @@
  * time limit, output caps and live events; cancel stops everything within CANCEL_DEADLINE_MS.
  */
 import { createHash } from 'node:crypto';
-import { basename, posix } from 'node:path';
+import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
 import { buildJobs, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
@@ -21,7 +21,7 @@ import { makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSour
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
 import { TraceTail } from './trace-tail.js';
-import type { RuntimeCache } from './runtime-cache.js';
+import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
 import { SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
@@ -214,19 +214,18 @@ export class Job {
       }
       const t0 = Date.now();
       // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
-      // the image for docker. Plain Makefile projects get the image's path and no bind. Known
-      // before the work tree is checked: its build products are trusted only for the runtime they
-      // were built with (another one, a version switched to and back, has its own file dates, which
-      // make would not see as newer)
-      let runtimePath = SANDBOX_RUNTIME_DIR;
-      let runtimeDir: string | undefined;
-      if (this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime && ctx.runtime) {
+      // the image for docker. Plain Makefile projects get the image's path and no bind. Which one
+      // is known before the work tree is checked: its build products are trusted only for the
+      // runtime they were built with (another one, a version switched to and back, has its own
+      // file dates, which make would not see as newer); it is built once the project is prepared
+      const hostRuntime = this.request.kind === 'cactal' && ctx.sandbox.needsHostRuntime ? ctx.runtime : null;
+      let runtimeSources: RuntimeSources | null = null;
+      if (hostRuntime) {
         const tr = Date.now();
-        runtimeDir = await this.orCancel(ctx.runtime.ensure((l, s) => this.line('prepare', 'runtime', s, l)));
-        runtimePath = ctx.sandbox.runtimePath(runtimeDir);
-        this.timed('prepare', 'runtime (sources hash, cache)', tr);
+        runtimeSources = await this.orCancel(hostRuntime.sources());
+        this.timed('prepare', 'runtime (sources hash)', tr);
       }
-      const builtWith = runtimeDir ? basename(runtimeDir) : null;
+      const builtWith = runtimeSources?.name ?? null;
       ws = await this.orCancel(
         ctx.acquireWorkspace(this, {
           onWait: (holder) => this.system('prepare', `waiting for the other command using this project (${holder}) to finish ...`),
@@ -245,6 +244,14 @@ export class Job {
       );
       this.prepareDiagnostics = prep.problems;
       this.timed('prepare', 'generation + copy into the work tree', t);
+      let runtimePath = SANDBOX_RUNTIME_DIR;
+      let runtimeDir: string | undefined;
+      if (prep.ok && hostRuntime && runtimeSources) {
+        t = Date.now();
+        runtimeDir = await this.orCancel(hostRuntime.ensureBuilt(runtimeSources, (l, s) => this.line('prepare', 'runtime', s, l)));
+        runtimePath = ctx.sandbox.runtimePath(runtimeDir);
+        this.timed('prepare', 'runtime (cache)', t);
+      }
       this.durations.prepare = Date.now() - t0;
       if (!prep.ok) {
         const n = prep.problems.filter((p) => p.severity === 'error').length;

@@ -43,6 +43,14 @@ export function toolchainIdentity(): string {
 const SOURCE = /(\.(c|h|mk|def|S|sh)|(^|\/)Makefile)$/;
 const SKIP_DIRS = /^(build|logs|run)$|(^|\/)\.git$/;
 
+/** A runtime's sources read once: their key, the name of their folder in the cache, the files. */
+export interface RuntimeSources {
+  key: string;
+  /** `runtime-<key>`: the folder's name in the cache. */
+  name: string;
+  contents: Map<string, Buffer>;
+}
+
 export class RuntimeCache {
   private readonly builds = new Map<string, Promise<string>>();
 
@@ -57,30 +65,42 @@ export class RuntimeCache {
 
   /** Returns the host folder of the built runtime, building it first when needed. */
   ensure(onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
-    return (async () => {
-      if (!existsSync(join(this.sourceDir, 'Makefile'))) {
-        throw new Error(`no runtime at ${this.sourceDir} (expected a Makefile producing build/libmodule.a and build/contract-launch)`);
-      }
-      const files = await listFilesNoFollow(this.sourceDir, (rel, isDir) => (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel)));
-      const hash = createHash('sha256').update(toolchainIdentity()).update('\0');
-      const contents = new Map<string, Buffer>();
-      for (const f of files) {
-        const data = await readFileNoFollow(this.sourceDir, f);
-        if (!data) continue;
-        contents.set(f, data);
-        hash.update(f).update('\0').update(data).update('\0');
-      }
-      const key = hash.digest('hex').slice(0, 16);
-      let build = this.builds.get(key);
-      if (!build) {
-        build = this.build(key, contents, onLine);
-        this.builds.set(key, build);
-        build.catch(() => this.builds.delete(key));
-      } else {
-        onLine(`runtime ${key} already built`, 'stdout');
-      }
-      return build;
-    })();
+    return this.sources().then((s) => this.ensureBuilt(s, onLine));
+  }
+
+  /**
+   * The runtime's sources as they are now and their key (their hash with the toolchain's), without
+   * building anything: a job knows which runtime it will link against (`runtime-<key>`, the name
+   * of its folder) before it decides whether its work tree's build products can be kept.
+   */
+  async sources(): Promise<RuntimeSources> {
+    if (!existsSync(join(this.sourceDir, 'Makefile'))) {
+      throw new Error(`no runtime at ${this.sourceDir} (expected a Makefile producing build/libmodule.a and build/contract-launch)`);
+    }
+    const files = await listFilesNoFollow(this.sourceDir, (rel, isDir) => (isDir ? !SKIP_DIRS.test(rel) : SOURCE.test(rel)));
+    const hash = createHash('sha256').update(toolchainIdentity()).update('\0');
+    const contents = new Map<string, Buffer>();
+    for (const f of files) {
+      const data = await readFileNoFollow(this.sourceDir, f);
+      if (!data) continue;
+      contents.set(f, data);
+      hash.update(f).update('\0').update(data).update('\0');
+    }
+    const key = hash.digest('hex').slice(0, 16);
+    return { key, name: `runtime-${key}`, contents };
+  }
+
+  /** The host folder of the runtime of `s` (sources()), building it first when needed. */
+  ensureBuilt(s: RuntimeSources, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
+    let build = this.builds.get(s.key);
+    if (!build) {
+      build = this.build(s.key, s.contents, onLine);
+      this.builds.set(s.key, build);
+      build.catch(() => this.builds.delete(s.key));
+    } else {
+      onLine(`runtime ${s.key} already built`, 'stdout');
+    }
+    return build;
   }
 
   private async build(key: string, contents: Map<string, Buffer>, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
