@@ -2,7 +2,7 @@
  * Folds a live trace line of the kinds a periodic schema writes at every cycle (releases,
  * completions, runs, data posted) straight from the line, read in place by line-scan.ts: the
  * same fold as parsing it (parseRecordLine) and applying the record (applyRecord), without the
- * strings and objects the parse makes. unfolded-line.test.ts checks both ways give the same states
+ * strings and objects the parse makes. line-scan.test.ts checks both ways give the same states
  * on the tutorial run and on hostile variants of every line.
  *
  * The detail's `key=value` words are found as the reader finds them (parse.ts detailFields: the
