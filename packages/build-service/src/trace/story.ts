@@ -6,6 +6,9 @@
  */
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
+/** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
+export const RUN_STOPPING = '; the run is stopping)';
+
 function describeCause(c: RuleCause): string {
     switch (c.kind) {
         case 'event': return `${c.module}:${c.port} = ${c.value}`;
@@ -50,7 +53,8 @@ export class StoryTeller {
         if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}`;
         if (k.kind === 'module_started') return `${at(k)} started (${k.detail})`;
         if (k.kind === 'module_exit') return `${at(k)} exited (${k.detail})`;
-        if (k.kind === 'error') return `${at(k)} error: ${k.detail}`;
+        // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
+        if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
     }
 

@@ -131,4 +131,13 @@ describe('reading a log', () => {
             '4 records: 0 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
         ]);
     });
+
+    it('tells an error as an error, and a request to a module gone while the launcher stopped the run as such', () => {
+        const text = [CSV_HEADER, '1000000000,w,OBS,error,,,0,input data port 0: dropped a malformed datagram of 3 bytes',
+            '2000000000,w,OBS,error,,,0,EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)'].join('\n');
+        expect(renderStory(parseTrace([{ name: 'OBS_1.csv', text }])).slice(0, 2)).toEqual([
+            '+0.000000s OBS  error: input data port 0: dropped a malformed datagram of 3 bytes',
+            '+1.000000s OBS  while the run stopped: EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)',
+        ]);
+    });
 });
