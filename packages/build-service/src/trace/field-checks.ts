@@ -2,7 +2,8 @@
  * The character checks of a record line's fields (docs/runtime-api.md "Trace records"), on a
  * range of the line so that a reader can check a field without cutting it out first. Shared by
  * the trace reader (parse.ts) and the IDE's Monitor, which reads the time of a line it does not
- * fold without parsing it: both must accept exactly the same lines.
+ * fold, and the fields of the kinds every periodic cycle writes, without parsing it: both must
+ * accept exactly the same lines and read the same detail words.
  */
 
 /** True when s[from, to) is `\d{min,max}`. */
@@ -25,4 +26,42 @@ export function isModuleNameIn(s: string, from = 0, to = s.length): boolean {
         if (!ok) return false;
     }
     return true;
+}
+
+/** True when s[from, to) is `-?\d{1,15}`: a detail value the reader makes a number (one a double holds exactly). */
+export function isPlainIntegerIn(s: string, from = 0, to = s.length): boolean {
+    return isDigitsIn(s, 1, 15, from < to && s.charCodeAt(from) === 45 /* - */ ? from + 1 : from, to);
+}
+
+/**
+ * The first space in s[from, to), or `to`. A range that ends before the text does is searched by
+ * a loop: indexOf would search on past it (through the rest of a trace event, for every line).
+ */
+export function spaceIn(s: string, from: number, to: number): number {
+    if (to === s.length) {
+        const at = s.indexOf(' ', from);
+        return at < 0 ? to : at;
+    }
+    for (let i = from; i < to; i++) if (s.charCodeAt(i) === 32) return i;
+    return to;
+}
+
+/**
+ * Where the value of the first word `key=...` of the detail s[from, to) starts, or -1 (words are
+ * separated by spaces). A detail that is the whole text is searched with indexOf, a range of a
+ * larger text word by word (see spaceIn).
+ */
+export function wordValueIn(s: string, key: string, from = 0, to = s.length): number {
+    const n = key.length;
+    if (from === 0 && to === s.length) {
+        for (let at = s.indexOf(key); at >= 0; at = s.indexOf(key, at + 1)) {
+            if ((at === 0 || s.charCodeAt(at - 1) === 32) && s.charCodeAt(at + n) === 61 /* = */) return at + n + 1;
+        }
+        return -1;
+    }
+    for (let at = from; at < to;) {
+        if (at + n < to && s.charCodeAt(at + n) === 61 /* = */ && s.startsWith(key, at)) return at + n + 1;
+        at = spaceIn(s, at, to) + 1;
+    }
+    return -1;
 }

@@ -6,7 +6,7 @@
 export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
 export { parseTrace, parseTraceSteps, parseLogFile, parseRecordLine, recordOfLine, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine } from './csv-line.js';
-export { isDigitsIn, isModuleNameIn } from './field-checks.js';
+export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 export { renderStory, StoryTeller } from './story.js';
 export { MinHeap } from './min-heap.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';

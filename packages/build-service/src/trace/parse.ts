@@ -7,7 +7,7 @@
 import { splitCsvLine } from './csv-line.js';
 import { MinHeap } from './min-heap.js';
 import { traceKind } from './record-kinds.js';
-import { isDigitsIn, isModuleNameIn } from './field-checks.js';
+import { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
 import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, UnknownRecord } from './records.js';
 
@@ -24,36 +24,19 @@ function unknown(file: string, line: number, reason: string, text: string): Unkn
     return { kind: 'unknown', file, line, reason, text: text.slice(0, 200) };
 }
 
-/** True when `s` is `-?\d{1,15}` (a number that a double holds exactly). Faster than the regex on
- *  the hot path (every field of every live record). */
-function isPlainInteger(s: string): boolean {
-    return isDigitsIn(s, 1, 15, s.charCodeAt(0) === 45 /* - */ ? 1 : 0);
-}
-
-/** `key=value` words of a detail (the first of each key), values as numbers when they are plain
- *  digits. Each key is looked up with indexOf rather than by splitting the detail into words: this
- *  runs for every record of a live trace (thousands a second). */
+/** `key=value` words of a detail (the first of each key: field-checks.ts wordValueIn), values as
+ *  numbers when they are plain digits. Each key is looked for in place rather than by splitting the
+ *  detail into words: this runs for every record of a live trace (thousands a second). */
 function detailFields(detail: string, keys: readonly string[]): Record<string, string | number> {
     const out: Record<string, string | number> = {};
     for (const key of keys) {
-        const at = wordStart(detail, key);
-        if (at < 0) continue;
-        const from = at + key.length + 1;
-        const end = detail.indexOf(' ', from);
-        const value = end < 0 ? detail.slice(from) : detail.slice(from, end);
-        out[key] = isPlainInteger(value) ? Number(value) : value;
+        const from = wordValueIn(detail, key);
+        if (from < 0) continue;
+        const end = spaceIn(detail, from, detail.length);
+        const value = detail.slice(from, end);
+        out[key] = isPlainIntegerIn(value) ? Number(value) : value;
     }
     return out;
-}
-
-/** Where the first word `key=...` of `text` (words separated by single spaces) starts, or -1. */
-function wordStart(text: string, key: string): number {
-    let at = text.indexOf(key);
-    while (at >= 0) {
-        if ((at === 0 || text.charCodeAt(at - 1) === 32) && text.charCodeAt(at + key.length) === 61 /* = */) return at;
-        at = text.indexOf(key, at + 1);
-    }
-    return -1;
 }
 
 const CAUSE_EVENT = /^([A-Za-z_]\w*):(\d{1,9}) value=(.*)$/s;

@@ -5,10 +5,11 @@
  * strings and objects the parse makes. line-scan.test.ts checks both ways give the same states
  * on the tutorial run and on hostile variants of every line.
  *
- * The detail's `key=value` words are found as the reader finds them (parse.ts detailFields: the
- * first word `key=`; a value of `-?` and 1 to 15 digits is a number, anything else a string).
+ * The detail's `key=value` words are found with the reader's own checks (field-checks.ts
+ * wordValueIn, isPlainIntegerIn: the first word `key=`; a value of `-?` and 1 to 15 digits is a
+ * number, anything else a string).
  */
-import { isDigitsIn } from '@contract-studio/build-service/trace';
+import { isPlainIntegerIn, spaceIn, wordValueIn } from '@contract-studio/build-service/trace';
 import { foldComplete, foldDataPosted, foldRelease, foldRun } from './apply-record.js';
 import { digitsValue, nameIn, scanned } from './line-scan.js';
 import type { MonitorState, Ns } from './monitor-state.js';
@@ -16,30 +17,9 @@ import type { MonitorState, Ns } from './monitor-state.js';
 /** The kinds applyHotLine folds. */
 export const HOT_KINDS: ReadonlySet<string> = new Set(['run_started', 'run_finished', 'ord_release', 'ord_complete', 'data_posted']);
 
-/** The first space in text[from, to), or `to` (a loop, not indexOf: that would search on past the line, through the rest of the batch). */
-function spaceIn(text: string, from: number, to: number): number {
-  for (let i = from; i < to; i++) if (text.charCodeAt(i) === 32) return i;
-  return to;
-}
-
-/** Where the value of the detail text[from, to)'s first word `key=...` starts, or -1. */
-function valueAt(text: string, from: number, to: number, key: string): number {
-  const n = key.length;
-  for (let at = from; at < to;) {
-    if (at + n < to && text.charCodeAt(at + n) === 61 /* = */ && text.startsWith(key, at)) return at + n + 1;
-    at = spaceIn(text, at, to) + 1;
-  }
-  return -1;
-}
-
-/** Whether text[v, e) is `-?\d{1,15}` (a value the reader makes a number). */
-function isPlainIntegerIn(text: string, v: number, e: number): boolean {
-  return isDigitsIn(text, 1, 15, text.charCodeAt(v) === 45 /* - */ && v < e ? v + 1 : v, e);
-}
-
 /** The detail word `key` as a number (the reader's num(fields[key])), or undefined. */
 function numberOf(text: string, from: number, to: number, key: string): number | undefined {
-  const v = valueAt(text, from, to, key);
+  const v = wordValueIn(text, key, from, to);
   if (v < 0) return undefined;
   const e = spaceIn(text, v, to);
   if (!isPlainIntegerIn(text, v, e)) return undefined;
@@ -48,7 +28,7 @@ function numberOf(text: string, from: number, to: number, key: string): number |
 
 /** The detail word `key` as a non-empty string that is not a number (the reader's str(fields[key])), or undefined. */
 function nameOf(text: string, from: number, to: number, key: string): string | undefined {
-  const v = valueAt(text, from, to, key);
+  const v = wordValueIn(text, key, from, to);
   if (v < 0) return undefined;
   const e = spaceIn(text, v, to);
   if (e === v || isPlainIntegerIn(text, v, e)) return undefined;

@@ -12,7 +12,6 @@
  * to the full reader, which says what is wrong with it.
  */
 import { MAX_LINE_CHARS, TRACE_KINDS, isDigitsIn, isModuleNameIn } from '@contract-studio/build-service/trace';
-import { FOLDED_KINDS } from './apply-record.js';
 
 /**
  * What the last successful scanLine read (one object, reused: a scan makes none).
@@ -75,11 +74,6 @@ export function scanLine(text: string, from: number, to: number): boolean {
   scanned.mono = digitsValue(text, from, c1);
   scanned.to = to;
   return true;
-}
-
-/** mono_ns of `line` when it is a well-formed record of a kind applyRecord does not fold; else undefined. */
-export function unfoldedLineTime(line: string): number | undefined {
-  return scanLine(line, 0, line.length) && !FOLDED_KINDS.has(scanned.kind) ? scanned.mono : undefined;
 }
 
 /**
