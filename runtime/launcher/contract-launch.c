@@ -137,13 +137,19 @@ static void clean_run_dir(const char *dir)
     rmdir(dir);
 }
 
+/* CONTRACT_RUN_STOPPING_FILE of the run directory $CONTRACT_RUN_DIR into path; 0 if there is none. */
+static int stopping_file(char *path, size_t size)
+{
+    const char *dir = getenv("CONTRACT_RUN_DIR");
+    return dir && snprintf(path, size, "%s/%s", dir, CONTRACT_RUN_STOPPING_FILE) < (int)size;
+}
+
 /* Tells the modules the run is stopping (CONTRACT_RUN_STOPPING_FILE): a module that posts to a
  * peer already gone then logs it without an error line. */
 static void mark_stopping(void)
 {
-    const char *dir = getenv("CONTRACT_RUN_DIR");
     char path[PATH_MAX + 32];
-    if (!dir || snprintf(path, sizeof path, "%s/%s", dir, CONTRACT_RUN_STOPPING_FILE) >= (int)sizeof path) return;
+    if (!stopping_file(path, sizeof path)) return;
     int fd = open(path, O_WRONLY | O_CREAT | O_CLOEXEC | O_NOFOLLOW, 0644);
     if (fd >= 0) close(fd);
 }
@@ -509,8 +515,7 @@ int main(int argc, char *argv[])
     setenv("CONTRACT_RUN_DIR", run_dir, 1);
     { /* a launcher that died while stopping left its mark: this run is not stopping */
         char stale[PATH_MAX + 32];
-        snprintf(stale, sizeof stale, "%s/%s", run_dir, CONTRACT_RUN_STOPPING_FILE);
-        unlink(stale);
+        if (stopping_file(stale, sizeof stale)) unlink(stale);
     }
     if (log_dir && *log_dir) {
         if (mkdir_p(log_dir) != 0) { say("log directory %s: %s", log_dir, strerror(errno)); unlink(lp_path); return 2; }

@@ -88,15 +88,14 @@ int rt_send_request_to(const char *module, RequestMessage *msg)
     if (n < 0) {
         int err = errno;
         int code = rt_errno_to_code(err);
-        if ((code == CONTRACT_EUNKNOWN || code == CONTRACT_ENOTRUNNING) && rt_run_stopping()) {
-            /* the launcher is stopping every module: a peer that has already gone is expected;
-             * the record stays in the log, stderr stays quiet */
-            char text[256];
-            snprintf(text, sizeof text, "%s request to %s: %s (%s; the run is stopping)", rt_request_name(msg->Type), module,
-                     ContractStrError(code), strerror(err));
-            ContractLog("error", "", -1, 0, text);
-        } else
-            rt_error("%s request to %s: %s (%s)", rt_request_name(msg->Type), module, ContractStrError(code), strerror(err));
+        /* while the launcher stops every module, a peer that has already gone is expected: the
+         * record stays in the log, stderr stays quiet */
+        int gone_at_stop = (code == CONTRACT_EUNKNOWN || code == CONTRACT_ENOTRUNNING) && rt_run_stopping();
+        char text[256];
+        snprintf(text, sizeof text, "%s request to %s: %s (%s%s)", rt_request_name(msg->Type), module, ContractStrError(code),
+                 strerror(err), gone_at_stop ? "; the run is stopping" : "");
+        if (gone_at_stop) ContractLog("error", "", -1, 0, text);
+        else rt_error("%s", text);
         return code;
     }
     return CONTRACT_OK;
