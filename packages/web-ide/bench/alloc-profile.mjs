@@ -36,12 +36,28 @@ export async function startWorkerAlloc(context, page) {
   await cdp.send('Target.setAutoAttach', { autoAttach: true, waitForDebuggerOnStart: false, flatten: false });
   await new Promise((r) => setTimeout(r, 300)); // the workers already there (an earlier live run's) attach now
   const before = workers.length;
-  let started;
+  const sampler = heapSampler(send, () => cdp.detach());
   return {
     /** Starts sampling the first worker started since (call once the page follows the fed run). */
     async begin() {
       if (workers.length <= before) await new Promise((resolve) => { attachedOne = resolve; });
       worker = workers[before];
+      await sampler.begin();
+    },
+    stop: sampler.stop,
+  };
+}
+
+export async function startPageAlloc(context, page) {
+  const cdp = await context.newCDPSession(page);
+  return heapSampler((method, params) => cdp.send(method, params), () => cdp.detach());
+}
+
+/** V8's sampling heap profiler over `send` (a DevTools session's): begin(), then stop() gives the report. */
+function heapSampler(send, detach) {
+  let started;
+  return {
+    async begin() {
       await send('HeapProfiler.enable');
       await send('HeapProfiler.startSampling', { samplingInterval: 16384, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
       started = performance.now();
@@ -49,25 +65,7 @@ export async function startWorkerAlloc(context, page) {
     async stop(top = 8) {
       const { profile } = await send('HeapProfiler.stopSampling');
       const seconds = (performance.now() - started) / 1000;
-      await cdp.detach().catch(() => undefined);
-      return report(profile, seconds, top);
-    },
-  };
-}
-
-export async function startPageAlloc(context, page) {
-  const cdp = await context.newCDPSession(page);
-  let started;
-  return {
-    async begin() {
-      await cdp.send('HeapProfiler.enable');
-      await cdp.send('HeapProfiler.startSampling', { samplingInterval: 16384, includeObjectsCollectedByMajorGC: true, includeObjectsCollectedByMinorGC: true });
-      started = performance.now();
-    },
-    async stop(top = 8) {
-      const { profile } = await cdp.send('HeapProfiler.stopSampling');
-      const seconds = (performance.now() - started) / 1000;
-      await cdp.detach().catch(() => undefined);
+      await detach().catch(() => undefined);
       return report(profile, seconds, top);
     },
   };
