@@ -41,16 +41,19 @@ export function writePart(name, result) {
 export async function installFrameRecorder(page) {
   await page.evaluate(() => {
     let gaps = [];
+    let ends = [];
     let last = 0;
     let running = false;
     const tick = (t) => {
       gaps.push(t - last);
+      ends.push(t);
       last = t;
       if (running) requestAnimationFrame(tick);
     };
     window.__frames = {
       start() {
         gaps = [];
+        ends = [];
         last = performance.now();
         running = true;
         requestAnimationFrame(tick);
@@ -59,6 +62,10 @@ export async function installFrameRecorder(page) {
         await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
         running = false;
         return gaps.slice(2);
+      },
+      /** The end (performance.now()) of each frame whose gap stop() returned. */
+      ends() {
+        return ends.slice(2);
       },
     };
   });

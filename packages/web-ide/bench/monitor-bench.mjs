@@ -23,7 +23,10 @@
 //   monitor.records_per_s         records fed per second
 //   monitor.heap_mb_end           the page's JS heap at the end, after a full GC (the live model is in the worker)
 //   monitor.replay_build_ms / replay_max_frame_ms / replay_records   a recorded run of REPLAY_SECONDS (default 60) of that
-//                                 schema handed over as a job's CSV logs: time to build its model, and the longest frame gap meanwhile
+//                                 schema handed over as a job's CSV logs: time to build its model, and the longest frame gap meanwhile;
+//                                 replay_late_frames: frames over LATE_FRAME_MS meanwhile (the output line gives each one's time since the
+//                                 replay was asked for, and its gap); replay_heap_mb: the page's JS heap after it, after a full GC (the
+//                                 logs' text, the replay's model, and the rest of the page)
 // MONITOR_BENCH_SECONDS (default 60: the acceptance's "1 kHz schema for 60 s") sets how long it is fed; the part takes about 100 s.
 // FRAME_TRACE=<file.json> also records a trace of every Chromium process while fed, and marks each late frame in it
 // (frame-trace.mjs: `node bench/frame-trace.mjs <file.json>` says which threads ran in each late frame's gap).
@@ -158,7 +161,7 @@ try {
   // in slices, so the page keeps drawing while it is
   await installFrameRecorder(page);
   await page.evaluate(`window.__khzCycle = ${khzCycle.toString()};`);
-  const replay = await page.evaluate(async (seconds) => {
+  const replay = await page.evaluate(async ({ seconds, lateMs }) => {
     const ide = window.__ide;
     const W = '2026-11-26T12:00:00.000000Z';
     const texts = { ORD: [], SUP: [], MSA: [], MSC: [], MSD: [] };
@@ -175,9 +178,14 @@ try {
     await ide.monitor.showRecorded('bench-replay', { label: 'bench', files, problems: [] });
     const buildMs = performance.now() - start;
     const gaps = await window.__frames.stop();
+    const ends = window.__frames.ends();
     const shown = ide.monitor.runs.get('job:bench-replay')?.model.recordCount;
-    return { records, shown, buildMs, maxGap: Math.max(...gaps) };
-  }, Number(process.env.REPLAY_SECONDS ?? 60));
+    // the late frames: [ms since the replay was asked for, gap]
+    const late = gaps.flatMap((g, i) => (g > lateMs ? [[Math.round(ends[i] - start), Math.round(g)]] : []));
+    return { records, shown, buildMs, maxGap: Math.max(...gaps), late };
+  }, { seconds: Number(process.env.REPLAY_SECONDS ?? 60), lateMs: LATE_FRAME_MS });
+  // what the page holds once the replay is built (its logs' text and model), the benchmark's own text gone
+  replay.heapMb = await page.evaluate(() => (window.gc?.(), (performance.memory?.usedJSHeapSize ?? 0) / 1e6));
   const round = (x, d = 1) => Math.round(x * 10 ** d) / 10 ** d;
   const result = {
     'monitor.max_frame_ms': round(r.maxFrame),
@@ -197,10 +205,12 @@ try {
     'monitor.replay_build_ms': Math.round(replay.buildMs),
     'monitor.replay_max_frame_ms': round(replay.maxGap),
     'monitor.replay_records': replay.shown,
+    'monitor.replay_late_frames': replay.late.length,
+    'monitor.replay_heap_mb': round(replay.heapMb),
   };
   writePart('monitor-panel', result);
   console.log(JSON.stringify({ ...result, idle: { seconds: Number(process.env.IDLE_SECONDS ?? 3), lateFrames: idleStolen.late, lateFramesWithSteal: idleStolen.lateStolen,
-    onTimeFramesWithStealShare: round(idleStolen.onTimeStolenShare, 3), stealMsPerS: round(idleStolen.stealMsPerS) }, seconds, frames: r.frames, records: r.records, renderMax: round(r.renderMax, 2), shown: r.shown, longTasks: r.longTasks, longestTask: round(r.longestTask), misses: r.misses }));
+    onTimeFramesWithStealShare: round(idleStolen.onTimeStolenShare, 3), stealMsPerS: round(idleStolen.stealMsPerS) }, seconds, frames: r.frames, records: r.records, renderMax: round(r.renderMax, 2), shown: r.shown, longTasks: r.longTasks, longestTask: round(r.longestTask), misses: r.misses, replayLate: replay.late }));
   if (r.longFrames.length) console.error(`[monitor-panel] frames over 50 ms: ${JSON.stringify(r.longFrames)}`);
 } finally {
   await context?.close().catch(() => undefined);

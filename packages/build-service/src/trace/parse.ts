@@ -121,36 +121,16 @@ export function recordOfLine(file: string, index: number, raw: string): TraceRec
  * unknown record stays right after the record that preceded it in its file.
  */
 export function parseTrace(files: LogFile[]): TraceRecord[] {
-    const steps = parseTraceSteps(files, Infinity);
-    let step = steps.next();
-    while (!step.done) step = steps.next();
-    return step.value;
-}
-
-interface Keyed {
-    key: bigint;
-    index: number;
-    record: TraceRecord;
-}
-
-/**
- * parseTrace's work in steps, for a caller that must not stop for its whole length (the IDE's
- * Monitor builds a recorded run of hundreds of thousands of records without freezing its page):
- * yields after every `every` records parsed and every `every` records merged; returns what
- * parseTrace returns. Each file's records are sorted on their own (a log is in time order but
- * for hostile or clock-stepped lines: a sort of a sorted array is one pass), then merged.
- */
-export function* parseTraceSteps(files: LogFile[], every = 2000): Generator<void, TraceRecord[]> {
+    // each file's records sorted on their own (a log is in time order but for hostile or
+    // clock-stepped lines: a sort of a sorted array is one pass), then merged
     const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
     const runs: Keyed[][] = [];
-    let parsed = 0;
     for (const file of sorted) {
         const run: Keyed[] = [];
         let last = 0n;
         for (const record of logFileRecords(file)) {
             if (record.kind !== 'unknown') last = BigInt((record as KnownRecord).monoNs);
             run.push({ key: last, index: run.length, record });
-            if (++parsed % every === 0) yield;
         }
         run.sort((a, b) => (a.key < b.key ? -1 : a.key > b.key ? 1 : a.index - b.index));
         runs.push(run);
@@ -169,7 +149,12 @@ export function* parseTraceSteps(files: LogFile[], every = 2000): Generator<void
         out.push(runs[f]![at[f]!++]!.record);
         if (at[f]! >= runs[f]!.length) heap.pop();
         else heap.topChanged();
-        if (out.length % every === 0) yield;
     }
     return out;
+}
+
+interface Keyed {
+    key: bigint;
+    index: number;
+    record: TraceRecord;
 }

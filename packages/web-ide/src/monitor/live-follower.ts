@@ -44,6 +44,8 @@ export class LiveFollower {
   /** Wall-clock parse cache (measure only): the second of the last record. */
   private second = '';
   private secondMs = NaN;
+  /** Trace events folded: the id of each event's text in the model (its lines are ranges of it). */
+  private events = 0;
 
   constructor(
     private readonly post: (m: FromFollower) => void,
@@ -67,7 +69,7 @@ export class LiveFollower {
         if (Array.isArray(m.records)) this.fold(() => {
           const arrival = Date.now();
           let n = 0;
-          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, 0, r.text.length, arrival);
+          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, 0, r.text.length, arrival, undefined);
         });
         return;
       case 'stateAt': {
@@ -89,11 +91,12 @@ export class LiveFollower {
     if (this.ended || this.stopped) return;
     const arrival = Date.now();
     if (e.type === 'trace') {
+      const textId = this.events++;
       this.fold(() => {
         let n = 0;
         try {
           forEachTraceLine(e, (file, line, text, from, to) => {
-            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, from, to, arrival);
+            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, from, to, arrival, textId);
           });
         } catch (err) {
           this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
@@ -102,9 +105,9 @@ export class LiveFollower {
     } else if (e.type === 'end') this.finish();
   }
 
-  /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text). */
-  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number): void {
-    this.model.pushLineIn(file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file, line, text, from, Math.min(to, from + MAX_LINE + 1));
+  /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
+  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId: number | undefined): void {
+    this.model.pushLineIn(file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file, line, text, from, Math.min(to, from + MAX_LINE + 1), textId);
     if (this.measure) {
       if (this.measured === this.walls.length) {
         const walls = new Float64Array(this.measured * 2);

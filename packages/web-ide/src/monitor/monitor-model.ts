@@ -9,8 +9,9 @@
  *   taken every `checkpointEvery` records) plus the records after it, so scrubbing back costs at
  *   most one copy and `checkpointEvery` folds, whatever the run's length.
  * - Raw records are kept in chunks (one per checkpoint) up to `keepRecords`; on a longer run the
- *   oldest chunks go, except their notable records (rules, functions, schemas, holds, misses), so a
- *   state far back is exact for those and approximate (to the checkpoint) for counters.
+ *   oldest chunks go (their arrays are reused for the next stretch), except their notable records
+ *   (rules, functions, schemas, holds, misses), so a state far back is exact for those and
+ *   approximate (to the checkpoint) for counters.
  * - `marks` lists what the timeline marks (rule changes, schema (de)activations, deadline misses,
  *   overruns, function starts/stops), bounded.
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
@@ -39,6 +40,9 @@ export interface Mark {
   on?: boolean;
 }
 
+/** Texts a chunk looks back through for the one a record's line is in. */
+const RECENT_TEXTS = 8;
+
 interface Timed {
   t: Ns;
   r: TraceRecord;
@@ -58,6 +62,8 @@ class Chunk {
   private readonly from: Int32Array;
   private readonly to: Int32Array;
   private readonly sources: string[] = [];
+  /** The caller's id of each text in `sources` (texts are told apart by id: comparing two long texts could read them whole). */
+  private readonly sourceIds: number[] = [];
   private records: Array<TraceRecord | undefined> | undefined;
 
   constructor(capacity: number) {
@@ -71,11 +77,27 @@ class Chunk {
     return this.n;
   }
 
-  /** A record kept as text.slice(from, to). */
-  pushLine(t: Ns, text: string, from: number, to: number): void {
+  /** Empties the chunk for the records of another stretch (its arrays are reused: no new garbage per chunk). */
+  reset(): this {
+    this.n = 0;
+    this.sources.length = 0;
+    this.sourceIds.length = 0;
+    this.records = undefined;
+    return this;
+  }
+
+  /** A record kept as text.slice(from, to); `textId` names `text` (recent texts are looked up by it). */
+  pushLine(t: Ns, text: string, from: number, to: number, textId: number): void {
     const i = this.n++;
-    let k = this.sources.length - 1;
-    if (k < 0 || this.sources[k] !== text) k = this.sources.push(text) - 1;
+    const ids = this.sourceIds;
+    // the text is one of the last few (a recorded run's lines come from a few logs in turn)
+    let k = ids.length - 1;
+    const stop = Math.max(0, k - (RECENT_TEXTS - 1));
+    while (k >= stop && ids[k] !== textId) k--;
+    if (k < stop) {
+      k = this.sources.push(text) - 1;
+      ids.push(textId);
+    }
     this.times[i] = t;
     this.source[i] = k;
     this.from[i] = from;
@@ -155,32 +177,46 @@ export class MonitorModel implements MonitorView {
     this.pushLineIn(file, line, text, 0, text.length);
   }
 
+  /** Ids of the texts fed without one (each a text of its own: negative, the callers' ids are not). */
+  private anonymousText = 0;
+
   /**
    * The line text.slice(from, to) of the live trace channel, read in place (line-scan.ts): a
    * line of a kind the fold does not use is not parsed (its time is read off it), one of the
    * kinds a periodic schema writes at every cycle is folded from its fields in place
    * (hot-line.ts); any other line, and any the quick readers do not accept, is parsed.
+   * `textId` (a whole number) names `text` when several lines are ranges of one text: the model
+   * keeps each text once per chunk (a trace event's, a recorded log's); without it the text is
+   * taken as one of its own.
    */
-  pushLineIn(file: string, line: number, text: string, from: number, to: number): void {
-    if (scanLine(text, from, to)) {
-      const kind = scanned.kind;
-      if (!FOLDED_KINDS.has(kind)) {
-        const t = this.timeOf(scanned.mono);
-        this.keepLine(t, text, from, to);
-        applyUnfolded(this.live, t);
-        return;
-      }
-      if (HOT_KINDS.has(kind)) {
-        const t = this.timeOf(scanned.mono);
-        this.keepLine(t, text, from, to);
-        applyHotLine(this.live, text, t, this.t0 ?? 0);
-        return;
-      }
-    }
+  pushLineIn(file: string, line: number, text: string, from: number, to: number, textId = --this.anonymousText): void {
+    if (scanLine(text, from, to) && this.pushScanned(text, from, to, textId)) return;
     const r = parseRecordLine(file, line, text.slice(from, to));
     const t = this.timeOfRecord(r);
-    this.keepLine(t, text, from, to);
+    this.keepLine(t, text, from, to, textId);
     this.fold(t, r);
+  }
+
+  /**
+   * The line text.slice(from, to) that scanLine has accepted, `scanned` holding what it read:
+   * folded (and true) when it is of a kind read in place; false, and nothing done, when it is of
+   * a kind that is parsed (pushLineIn then parses it).
+   */
+  pushScanned(text: string, from: number, to: number, textId: number): boolean {
+    const kind = scanned.kind;
+    if (!FOLDED_KINDS.has(kind)) {
+      const t = this.timeOf(scanned.mono);
+      this.keepLine(t, text, from, to, textId);
+      applyUnfolded(this.live, t);
+      return true;
+    }
+    if (HOT_KINDS.has(kind)) {
+      const t = this.timeOf(scanned.mono);
+      this.keepLine(t, text, from, to, textId);
+      applyHotLine(this.live, text, t, this.t0 ?? 0);
+      return true;
+    }
+    return false;
   }
 
   /** A parsed record (kept as it is). */
@@ -211,9 +247,9 @@ export class MonitorModel implements MonitorView {
     this.version++;
   }
 
-  private keepLine(t: Ns, text: string, from: number, to: number): void {
+  private keepLine(t: Ns, text: string, from: number, to: number, textId: number): void {
     this.beforeKeep();
-    this.chunks[this.chunks.length - 1]!.pushLine(t, text, from, to);
+    this.chunks[this.chunks.length - 1]!.pushLine(t, text, from, to, textId);
   }
 
   /** Folds a parsed record into `live` (and the notable ones into marks). */
@@ -258,11 +294,15 @@ export class MonitorModel implements MonitorView {
   private checkpoint(): void {
     // the state before this record; its time is the last record's
     this.checkpoints.push({ index: this.count, t: this.live.t, state: cloneState(this.live) });
-    this.chunks.push(new Chunk(this.every));
+    // past the bound the oldest chunk goes, and is reused for the next stretch (never the last:
+    // keep is at least two chunks)
+    let spare: Chunk | undefined;
     while (this.kept > this.keep && this.chunks.length > 1) {
-      this.kept -= this.chunks.shift()!.length;
+      spare = this.chunks.shift()!;
+      this.kept -= spare.length;
       this.firstChunk++;
     }
+    this.chunks.push(spare?.reset() ?? new Chunk(this.every));
   }
 
   private checkpointBefore(t: Ns): Checkpoint {

@@ -1,0 +1,128 @@
+import { describe, it, expect } from 'vitest';
+import fc from 'fast-check';
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { parseTrace, type LogFile } from '@contract-studio/build-service/trace';
+import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
+import { recordedRunSteps } from './recorded-run.js';
+
+const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
+/** The tutorial's run: nine logs (more than a chunk looks back through for a line's text). */
+const tutorial: LogFile[] = readdirSync(dir).map((name) => ({ name: `${name.slice(0, -4)}_26-Nov-2026-12h29m45s.csv`, text: readFileSync(join(dir, name), 'utf8') }));
+
+const OPTS: MonitorModelOptions = { checkpointEvery: 16 };
+
+/** The model of parseTrace's records pushed in order (what the page built before recorded-run.ts). */
+function viaReader(files: LogFile[], opts = OPTS): MonitorModel {
+  const m = new MonitorModel(opts);
+  m.pushAll(parseTrace(files));
+  return m;
+}
+
+function viaRanges(files: LogFile[], every = 7, opts = OPTS): { model: MonitorModel; steps: number } {
+  const steps = recordedRunSteps(files, every, opts);
+  let n = 0;
+  let step = steps.next();
+  for (; !step.done; step = steps.next()) n++;
+  return { model: step.value, steps: n };
+}
+
+/** The two models are the same: counts, marks, the live state and the state at 97 times (each scrub back re-reads kept lines). */
+function expectSame(files: LogFile[], opts = OPTS): MonitorModel {
+  const full = viaReader(files, opts);
+  const { model } = viaRanges(files, 7, opts);
+  expect(model.recordCount).toBe(full.recordCount);
+  expect(model.t0).toBe(full.t0);
+  expect(model.marks).toEqual(full.marks);
+  expect(model.live).toEqual(full.live);
+  for (let t = 0; t <= full.end; t += Math.max(1, full.end / 97)) {
+    expect(model.stateAt(t), `t=${t}`).toEqual(full.stateAt(t));
+    expect(model.exactAt(t)).toBe(full.exactAt(t));
+  }
+  return model;
+}
+
+const W = '2026-11-26T12:00:00.000000Z';
+const rule = (mono: string, f: string, r: string, on: boolean, cause = 'elapsed=1000ns') => `${mono},${W},SUP,sup_rule,,,0,${f}.${r} ${on ? 'active' : 'inactive'} cause=${cause}`;
+const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+
+describe('a recorded run built from its logs read in place (recorded-run.ts)', () => {
+  it('gives the model parseTrace\'s records give, on the tutorial\'s run, in small steps', () => {
+    const model = expectSame(tutorial);
+    expect(model.recordCount).toBe(tutorial.reduce((n, f) => n + f.text.split('\n').slice(1).filter(Boolean).length, 0));
+    expect(model.marks.filter((m) => m.kind === 'rule').map((m) => m.label.split(' ← ')[0])).toContain('action.SECOND active');
+    // it yields as it goes: reading and folding 250 lines 7 at a time
+    expect(viaRanges(tutorial).steps).toBeGreaterThan(60);
+  });
+
+  it('keeps each log\'s text apart, when logs are alike to the byte or read in a different order', () => {
+    // two logs with the same text (a copied module log): their lines are ranges of two texts
+    const twin = tutorial.map((f) => ({ name: f.name.replace(/^(\w+)_/, '$1X_'), text: f.text }));
+    expectSame([...tutorial, ...twin]);
+    expectSame([...tutorial].reverse());
+    // a bound of 64 records kept: the oldest chunks go and are reused for later stretches
+    const bounded = expectSame([...tutorial, ...twin], { checkpointEvery: 16, keepRecords: 64 });
+    expect(bounded.exactAt(0)).toBe(false);
+  });
+
+  it('reads what the trace reader reads of hostile logs: CRLF, no last newline, garbage, lines out of order, headers out of place', () => {
+    const hostile = tutorial.map((f, k) => {
+      const lines = f.text.split('\n');
+      const body = lines.slice(1).filter(Boolean);
+      // a line moved back (a clock step), garbage between records, a header again, a broken rule
+      if (body.length > 6) [body[2], body[5]] = [body[5]!, body[2]!];
+      body.splice(1, 0, 'garbage', '', ' ', '"quoted,field",x', HEADER, `12a,${W},SUP,sup_rule,,,0,x`, rule('1', 'f', 'R', true).replace('f.R ', 'f R '));
+      body.push(`${'9'.repeat(21)},${W},SUP,module_exit,,,0,status=0`, 'x'.repeat(5000));
+      const text = [HEADER, ...body].join(k % 2 ? '\r\n' : '\n');
+      // some without their last newline, one with a blank line before its header (the header is then a line of garbage)
+      return { name: f.name, text: k === 0 ? `\n${text}` : k % 3 ? text : `${text}\n` };
+    });
+    const model = expectSame(hostile);
+    expect(model.live.unknownLines).toBeGreaterThan(20);
+  });
+
+  it('orders records by their whole mono_ns (20 digits), then by log name, then by line', () => {
+    // past 2^53 ns two times a nanosecond apart are one double: the order is read off the digits
+    const big = 18_446_744_073_709_551_000n;
+    const files: LogFile[] = [
+      { name: 'A_x.csv', text: [HEADER, rule(`${big + 1n}`, 'f', 'R1', true), rule(`${big + 3n}`, 'f', 'R1', false), ''].join('\n') },
+      { name: 'B_x.csv', text: [HEADER, rule(`${big}`, 'f', 'R2', true), rule(`${big + 2n}`, 'f', 'R2', false), rule(`${big + 3n}`, 'f', 'R3', true), ''].join('\n') },
+    ];
+    const order = (m: MonitorModel) => m.marks.map((x) => x.label.split(' ← ')[0]);
+    const { model } = viaRanges(files);
+    expect(order(model)).toEqual(order(viaReader(files)));
+    expect(order(model)).toEqual(['f.R2 active', 'f.R1 active', 'f.R2 inactive', 'f.R1 inactive', 'f.R3 active']);
+    // equal times in two logs: the log named first goes first; leading zeros are the same time
+    const equal: LogFile[] = [
+      { name: 'E_x.csv', text: [HEADER, rule('5', 'f', 'R6', true), rule('6', 'f', 'R6', false)].join('\n') },
+      { name: 'D_x.csv', text: [HEADER, rule('00005', 'f', 'R5', true), rule('4', 'f', 'R7', true), rule('7', 'f', 'R5', false)].join('\n') },
+    ];
+    const same = viaRanges(equal).model;
+    expect(order(same)).toEqual(order(viaReader(equal)));
+    expect(order(same)).toEqual(['f.R7 active', 'f.R5 active', 'f.R6 active', 'f.R6 inactive', 'f.R5 inactive']);
+  });
+
+  it('orders as parseTrace does, any logs: times out of order, equal, unreadable lines between, any step (property)', () => {
+    // rule changes, whose marks show the order; garbage and a bad rule take the time before them in their log
+    const line = fc.oneof(
+      fc.constantFrom('bad', `7,${W},SUP,sup_rule,,,0,f R active cause=x`, `x,${W},SUP,sup_rule,,,0,f.R active cause=x`),
+      fc.tuple(fc.integer({ min: 0, max: 40 }), fc.integer({ min: 0, max: 3 }), fc.boolean()).map(([t, r, on]) => rule(`${t}`, 'f', `R${r}`, on, `elapsed=${t}ns`)),
+    );
+    const log = fc.tuple(fc.constantFrom('A_1.csv', 'B_1.csv', 'C_1.csv', 'D_1.csv'), fc.array(line, { maxLength: 25 }), fc.boolean())
+      .map(([name, lines, crlf]) => ({ name, text: [HEADER, ...lines].join(crlf ? '\r\n' : '\n') }));
+    fc.assert(fc.property(fc.array(log, { maxLength: 5 }), fc.integer({ min: 1, max: 9 }), (files, every) => {
+      const full = viaReader(files);
+      const { model } = viaRanges(files, every);
+      expect(model.marks).toEqual(full.marks);
+      expect(model.recordCount).toBe(full.recordCount);
+      expect(model.live).toEqual(full.live);
+    }), { numRuns: 300 });
+  });
+
+  it('builds nothing of logs with no record', () => {
+    const empty = [{ name: 'A.csv', text: '' }, { name: 'B.csv', text: `${HEADER}\n` }, { name: 'C.csv', text: '\n\n' }];
+    expect(viaRanges(empty).model.recordCount).toBe(0);
+    expectSame(empty);
+  });
+});

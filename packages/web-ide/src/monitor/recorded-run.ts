@@ -1,0 +1,186 @@
+/**
+ * A recorded run's model (the CSV logs of a finished job, or of a workspace folder), built from
+ * the logs' text read in place: each record line is folded as a range of its file's text
+ * (MonitorModel.pushLineIn, as the live run's worker folds a trace event), in the order the trace
+ * reader gives a run's records (parseTrace: mono_ns, then file name, then line; a line with no
+ * readable time right after the line before it in its file).
+ *
+ * Parsing a 60 s run of a 1 kHz schema (some 840,000 records) into record objects first, then
+ * sorting them on BigInt keys, made the page's heap grow by hundreds of MB and its collector stop
+ * frames for up to 200 ms while the replay was built (docs/monitor-performance.md "Replaying a
+ * recorded run"). Here the only per-line cost kept until the merge is a few typed-array slots.
+ *
+ * Built in steps (a generator that yields every `every` lines) so that its caller can let the
+ * page draw between slices.
+ */
+import { CSV_HEADER, MinHeap, TRACE_KINDS, parseRecordLine, type KnownRecord, type LogFile } from '@contract-studio/build-service/trace';
+import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
+import { digitsValue, scanLine, scanned } from './line-scan.js';
+
+/** The record lines of one log, in file order: ranges of its text and their sort keys. */
+interface LogLines {
+  name: string;
+  text: string;
+  n: number;
+  from: Int32Array;
+  to: Int32Array;
+  /** 1-based line number in the file. */
+  line: Int32Array;
+  /**
+   * A line's key is its mono_ns as two exact numbers, hi * 1e9 + lo (a mono_ns has up to 20
+   * digits, more than a double holds), or the key of the line before it in the file when the
+   * trace reader reads no time off it (the first lines' key is 0).
+   */
+  hi: Float64Array;
+  lo: Float64Array;
+  /**
+   * What scanLine read of each line it accepted: the index of its kind in KINDS (0: not accepted,
+   * or a sup_rule line, which is parsed), and its seven commas (as offsets from the line's start:
+   * a line the scan accepts is at most MAX_LINE_CHARS long); the fold does not scan the line again.
+   */
+  kind: Uint8Array;
+  commas: Uint16Array;
+  /** The order of its lines by key (stable), when they are not in key order already. */
+  order: Int32Array | undefined;
+}
+
+/** The trace table's kinds, from 1 (LogLines.kind). */
+const KINDS = ['', ...TRACE_KINDS.map((k) => k.kind)];
+const KIND_INDEX = new Map(KINDS.map((k, i) => [k, i]));
+
+/** Digits of mono_ns below the split: lo holds up to 9 of them, hi the rest (at most 11). */
+const LO_DIGITS = 9;
+
+/** Key of a line, set by keyOf: [hi, lo], or nothing read (the line is no known record). */
+const key = { hi: 0, lo: 0 };
+
+/** Reads the mono_ns digits text[from, to) into `key`. */
+function setKey(text: string, from: number, to: number): void {
+  const split = Math.max(from, to - LO_DIGITS);
+  key.hi = split > from ? digitsValue(text, from, split) : 0;
+  key.lo = digitsValue(text, split, to);
+}
+
+/** What keyOf found of a line. */
+const enum Read {
+  /** The trace reader reads no time off it (an unknown record). */
+  None,
+  /** A known record, parsed: its time is in `key`. */
+  Parsed,
+  /** A known record read by scanLine, which `scanned` holds: its time is in `key`. */
+  Scanned,
+}
+
+/**
+ * Whether the trace reader reads line text[from, to) as a known record (not `unknown`), and how it
+ * was found out. The quick scan makes the reader's own checks of a line without a quoted field; a
+ * `sup_rule` line (its detail has a form of its own) and any line the scan does not accept are
+ * parsed.
+ */
+function keyOf(file: string, lineNo: number, text: string, from: number, to: number): Read {
+  if (scanLine(text, from, to) && scanned.kind !== 'sup_rule') {
+    setKey(text, from, scanned.comma[0]!);
+    return Read.Scanned;
+  }
+  const r = parseRecordLine(file, lineNo, text.slice(from, to));
+  if (r.kind === 'unknown') return Read.None;
+  const mono = (r as KnownRecord).monoNs;
+  setKey(mono, 0, mono.length);
+  return Read.Parsed;
+}
+
+function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a: A): A {
+  const b = new (a.constructor as new (n: number) => A)(a.length * 2);
+  b.set(a);
+  return b;
+}
+
+/** The record lines of a log (header and empty lines are not records; a `\r` before a newline is not the line's). */
+function* logLines(file: LogFile, every: number): Generator<void, LogLines> {
+  const { name, text } = file;
+  const size = Math.max(16, Math.ceil(text.length / 64));
+  const l: LogLines = { name, text, n: 0, from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined };
+  let hi = 0;
+  let lo = 0;
+  let sorted = true;
+  for (let pos = 0, i = 0; pos < text.length; i++) {
+    let nl = text.indexOf('\n', pos);
+    if (nl < 0) nl = text.length;
+    const from = pos;
+    const to = nl > pos && text.charCodeAt(nl - 1) === 13 /* \r */ ? nl - 1 : nl;
+    pos = nl + 1;
+    if (to === from || (i === 0 && to - from === CSV_HEADER.length && text.startsWith(CSV_HEADER, from))) continue;
+    const read = keyOf(name, i + 1, text, from, to);
+    if (read !== Read.None) {
+      if (key.hi < hi || (key.hi === hi && key.lo < lo)) sorted = false;
+      hi = key.hi;
+      lo = key.lo;
+    }
+    if (l.n === l.from.length) {
+      l.from = grow(l.from);
+      l.to = grow(l.to);
+      l.line = grow(l.line);
+      l.hi = grow(l.hi);
+      l.lo = grow(l.lo);
+      l.kind = grow(l.kind);
+      l.commas = grow(l.commas);
+    }
+    const k = l.n++;
+    if (read === Read.Scanned) {
+      l.kind[k] = KIND_INDEX.get(scanned.kind)!;
+      for (let j = 0; j < 7; j++) l.commas[k * 7 + j] = scanned.comma[j]! - from;
+    }
+    l.from[k] = from;
+    l.to[k] = to;
+    l.line[k] = i + 1;
+    l.hi[k] = hi;
+    l.lo[k] = lo;
+    if (l.n % every === 0) yield;
+  }
+  // a log is in time order but for hostile or clock-stepped lines
+  if (!sorted) l.order = Int32Array.from(Array.from({ length: l.n }, (_, k) => k).sort((a, b) => l.hi[a]! - l.hi[b]! || l.lo[a]! - l.lo[b]! || a - b));
+  return l;
+}
+
+/**
+ * Builds the model of a recorded run from its logs, yielding every `every` lines read or folded;
+ * returns the model (made with `options`). Gives the same model as parseTrace's records pushed in order.
+ */
+export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions): Generator<void, MonitorModel> {
+  const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+  const logs: LogLines[] = [];
+  for (const file of sorted) logs.push(yield* logLines(file, every));
+  // merge: a heap of the logs by their next line (key, then file order)
+  const at = logs.map(() => 0);
+  const index = (f: number): number => logs[f]!.order?.[at[f]!] ?? at[f]!;
+  const heap = new MinHeap<number>((f, g) => {
+    const a = logs[f]!, i = index(f);
+    const b = logs[g]!, j = index(g);
+    const ah = a.hi[i]!, bh = b.hi[j]!;
+    if (ah !== bh) return ah < bh;
+    const al = a.lo[i]!, bl = b.lo[j]!;
+    return al < bl || (al === bl && f < g);
+  });
+  logs.forEach((l, f) => l.n && heap.push(f));
+  const model = new MonitorModel(options);
+  let folded = 0;
+  while (heap.size) {
+    const f = heap.peek()!;
+    const l = logs[f]!;
+    const i = index(f);
+    const from = l.from[i]!, to = l.to[i]!;
+    const kind = l.kind[i]!;
+    if (kind) {
+      // what keyOf's scan read, put back: the line is not scanned again
+      for (let j = 0; j < 7; j++) scanned.comma[j] = from + l.commas[i * 7 + j]!;
+      scanned.kind = KINDS[kind]!;
+      scanned.mono = digitsValue(l.text, from, scanned.comma[0]!);
+      scanned.to = to;
+    }
+    if (!kind || !model.pushScanned(l.text, from, to, f)) model.pushLineIn(l.name, l.line[i]!, l.text, from, to, f);
+    if (++at[f]! >= l.n) heap.pop();
+    else heap.topChanged();
+    if (++folded % every === 0) yield;
+  }
+  return model;
+}
