@@ -18,7 +18,7 @@ import { isContract } from '../workspace/file-kinds.js';
 import { MAX_RUN_LOG_BYTES, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
-import { recordedRunSteps } from './recorded-run.js';
+import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
@@ -146,9 +146,12 @@ export class MonitorController {
       live.label = `Build & Run job ${jobId} · as streamed`;
       if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
-    // a log the service left out or capped, or one that could not be downloaded, is said: the replay lacks it
-    const label = `Build & Run job ${jobId} · CSV logs${logs.problems.length ? ` (not whole: ${logs.problems.join('; ')})` : ''}`;
-    const run: Run = { id: `job:${jobId}`, label, model: await modelOf(logs.files), live: false };
+    const { model, leftOut: unread } = await recordedRun(logs.files);
+    // a log the service left out or capped, one that could not be downloaded, or the rest of one
+    // that is not a trace is said: the replay lacks it
+    const problems = [...logs.problems, ...unread];
+    const label = `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}`;
+    const run: Run = { id: `job:${jobId}`, label, model, live: false };
     this.runs.set(run.id, run);
     // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
@@ -175,8 +178,10 @@ export class MonitorController {
     // whole by the CLI, which reads it as a stream
     const where = folder || 'the workspace root';
     const whole = tooLarge ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
-    const label = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}`;
-    const run: Run = { id: `dir:${folder}`, label, model: await modelOf(files), live: false };
+    const { model, leftOut: unread } = await recordedRun(files);
+    const read = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}`;
+    const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
+    const run: Run = { id: `dir:${folder}`, label, model, live: false };
     this.runs.set(run.id, run);
     await this.show(run.id);
   }
@@ -231,7 +236,7 @@ export class MonitorController {
  * the page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a
  * second or more of folding, during which the page would not draw nor answer a key.
  */
-async function modelOf(files: LogFile[]): Promise<MonitorModel> {
+async function recordedRun(files: LogFile[]): Promise<RecordedRun> {
   let until = performance.now() + INGEST_SLICE_MS;
   const steps = recordedRunSteps(files, 500);
   let step = steps.next();

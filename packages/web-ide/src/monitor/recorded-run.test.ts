@@ -25,7 +25,8 @@ function viaRanges(files: LogFile[], every = 7, opts = OPTS): { model: MonitorMo
   let n = 0;
   let step = steps.next();
   for (; !step.done; step = steps.next()) n++;
-  return { model: step.value, steps: n };
+  expect(step.value.leftOut).toEqual([]);
+  return { model: step.value.model, steps: n };
 }
 
 /** The two models are the same: counts, marks, the live state and the state at 97 times (each scrub back re-reads kept lines). */
@@ -118,6 +119,29 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
       expect(model.recordCount).toBe(full.recordCount);
       expect(model.live).toEqual(full.live);
     }), { numRuns: 300 });
+  });
+
+  it('leaves out, and says, the rest of a log past a bound of lines that are not records', () => {
+    const garbage = Array.from({ length: 50 }, (_, i) => `junk ${i}`);
+    const records = tutorial.find((f) => f.name.startsWith('SUP_'))!.text.split('\n').slice(1).filter(Boolean);
+    const files: LogFile[] = [
+      { name: 'SUP_x.csv', text: [HEADER, ...records.slice(0, 3), ...garbage, ...records.slice(3)].join('\n') },
+      { name: 'SUP_y.csv', text: [HEADER, ...garbage.slice(0, 10), ...records].join('\n') },
+    ];
+    const steps = recordedRunSteps(files, 7, OPTS, 20);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    const { model, leftOut } = step.value;
+    // x: 3 records, then 20 unreadable lines kept; the 21st and the rest left out. y: whole
+    expect(leftOut).toEqual(['SUP_x.csv: more than 20 lines that are not trace records, the rest of it from line 25 left out']);
+    expect(model.recordCount).toBe(3 + 20 + 10 + records.length);
+    expect(model.live.unknownLines).toBe(30);
+    // under the bound, nothing is left out
+    const whole = recordedRunSteps(files, 7, OPTS, 50);
+    let w = whole.next();
+    while (!w.done) w = whole.next();
+    expect(w.value.leftOut).toEqual([]);
+    expect(w.value.model.recordCount).toBe(viaReader(files).recordCount);
   });
 
   it('builds nothing of logs with no record', () => {

@@ -48,6 +48,13 @@ interface LogLines {
 const KINDS = ['', ...TRACE_KINDS.map((k) => k.kind)];
 const KIND_INDEX = new Map(KINDS.map((k, i) => [k, i]));
 
+/**
+ * Lines the trace reader cannot read in one log before the rest of it is left out (and said): a
+ * run's log has none, but each line costs a few typed-array slots here, and a log of hundreds of
+ * MB of short garbage lines would take the page's memory.
+ */
+export const MAX_UNREADABLE_LINES = 100_000;
+
 /** Digits of mono_ns below the split: lo holds up to 9 of them, hi the rest (at most 11). */
 const LO_DIGITS = 9;
 
@@ -96,13 +103,14 @@ function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a:
 }
 
 /** The record lines of a log (header and empty lines are not records; a `\r` before a newline is not the line's). */
-function* logLines(file: LogFile, every: number): Generator<void, LogLines> {
+function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
   const { name, text } = file;
   const size = Math.max(16, Math.ceil(text.length / 64));
   const l: LogLines = { name, text, n: 0, from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined };
   let hi = 0;
   let lo = 0;
   let sorted = true;
+  let unreadable = 0;
   for (let pos = 0, i = 0; pos < text.length; i++) {
     let nl = text.indexOf('\n', pos);
     if (nl < 0) nl = text.length;
@@ -111,6 +119,10 @@ function* logLines(file: LogFile, every: number): Generator<void, LogLines> {
     pos = nl + 1;
     if (to === from || (i === 0 && to - from === CSV_HEADER.length && text.startsWith(CSV_HEADER, from))) continue;
     const read = keyOf(name, i + 1, text, from, to);
+    if (read === Read.None && ++unreadable > maxUnreadable) {
+      leftOut.push(`${name}: more than ${maxUnreadable} lines that are not trace records, the rest of it from line ${i + 1} left out`);
+      break;
+    }
     if (read !== Read.None) {
       if (key.hi < hi || (key.hi === hi && key.lo < lo)) sorted = false;
       hi = key.hi;
@@ -142,14 +154,23 @@ function* logLines(file: LogFile, every: number): Generator<void, LogLines> {
   return l;
 }
 
+/** A recorded run's model, and what of its logs was left out (said in the run's label). */
+export interface RecordedRun {
+  model: MonitorModel;
+  leftOut: string[];
+}
+
 /**
- * Builds the model of a recorded run from its logs, yielding every `every` lines read or folded;
- * returns the model (made with `options`). Gives the same model as parseTrace's records pushed in order.
+ * Builds the model of a recorded run from its logs, yielding every `every` lines read or folded.
+ * Gives the same model as parseTrace's records pushed in order, but for a log with more than
+ * `maxUnreadable` lines that are not records, whose rest is left out (and said). The model is
+ * made with `options`.
  */
-export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions): Generator<void, MonitorModel> {
+export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
   const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
   const logs: LogLines[] = [];
-  for (const file of sorted) logs.push(yield* logLines(file, every));
+  const leftOut: string[] = [];
+  for (const file of sorted) logs.push(yield* logLines(file, every, maxUnreadable, leftOut));
   // merge: a heap of the logs by their next line (key, then file order)
   const at = logs.map(() => 0);
   const index = (f: number): number => logs[f]!.order?.[at[f]!] ?? at[f]!;
@@ -182,5 +203,5 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     else heap.topChanged();
     if (++folded % every === 0) yield;
   }
-  return model;
+  return { model, leftOut };
 }

@@ -90,6 +90,10 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(join(s.workspace, 'long-run', 'ORD_29-Nov-2026-10h00m00s.csv'), ord.join('\n') + '\n');
     writeFileSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), '');
     truncateSync(join(s.workspace, 'long-run', 'CTL_29-Nov-2026-10h00m00s.csv'), 256 * 1024 * 1024 + 1);
+    // a folder where a file named like a log is 40 MB of short lines that are no records
+    mkdirSync(join(s.workspace, 'junk-run'));
+    writeFileSync(join(s.workspace, 'junk-run', 'ORD_29-Nov-2026-10h00m00s.csv'), ord.slice(0, 1002).join('\n') + '\n');
+    writeFileSync(join(s.workspace, 'junk-run', 'JNK_29-Nov-2026-10h00m00s.csv'), 'x\n'.repeat(20_000_000));
     await openIde(s);
   }, 60_000);
   afterAll(async () => {
@@ -163,6 +167,19 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toMatch(/^0 of 2 CSV logs in long-run \(left out: CTL_.*larger than 256 MiB.*; ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound\) — `contract trace long-run` tells a run of any length$/);
     await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 512 * 1024 * 1024));
+  }, 60_000);
+
+  it('replays a folder with a log of millions of lines that are no records: the rest of that log left out, said, the page responsive', async () => {
+    const { page } = s;
+    await page.evaluate(() => (window as any).__ide.monitor.openFolder('junk-run'));
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
+      .toBe('2 CSV log(s) in junk-run (not whole: JNK_29-Nov-2026-10h00m00s.csv: more than 100000 lines that are not trace records, the rest of it from line 100001 left out)');
+    // ORD's 1,001 records and the 100,000 unreadable lines kept: counted, the rest not read
+    const m = await page.evaluate(() => { const c = (window as any).__ide.monitor.current; return { n: c.recordCount, unknown: c.live.unknownLines }; });
+    expect(m).toEqual({ n: 1001 + 100_000, unknown: 100_000 });
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('End');
+    await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe('1000');
   }, 60_000);
 
   it('live path: TraceEvents of a run, fed at the run\'s own pace, are followed live and give the same story at the same times as its replay', async () => {
