@@ -5,9 +5,11 @@
 // worker is work on a CPU the compositor also needs on a two-CPU machine; the page's sets how often
 // its collections come (docs/monitor-performance.md "Traced on 2026-12-02").
 // startWorkerAlloc(context, page) attaches before the worker starts; startPageAlloc(context, page)
-// samples the page itself; begin() starts sampling, stop() returns the report.
+// samples the page itself; begin() starts sampling, stop() returns the report. WORKER_CPU=1
+// (startWorkerCpu) samples the worker's CPU time instead: busy and collector ms a second.
 
-export async function startWorkerAlloc(context, page) {
+/** A DevTools session on the first worker the page starts from now on: attached() waits for it, send() talks to it. */
+async function workerSession(context, page) {
   const cdp = await context.newCDPSession(page);
   // the workers' session ids, as they attach (messages go through the page's session: not flattened)
   const workers = [];
@@ -36,15 +38,64 @@ export async function startWorkerAlloc(context, page) {
   await cdp.send('Target.setAutoAttach', { autoAttach: true, waitForDebuggerOnStart: false, flatten: false });
   await new Promise((r) => setTimeout(r, 300)); // the workers already there (an earlier live run's) attach now
   const before = workers.length;
-  const sampler = heapSampler(send, () => cdp.detach());
+  return {
+    async attached() {
+      if (workers.length <= before) await new Promise((resolve) => { attachedOne = resolve; });
+      worker = workers[before];
+    },
+    send,
+    detach: () => cdp.detach(),
+  };
+}
+
+export async function startWorkerAlloc(context, page) {
+  const w = await workerSession(context, page);
+  const sampler = heapSampler(w.send, w.detach);
   return {
     /** Starts sampling the first worker started since (call once the page follows the fed run). */
     async begin() {
-      if (workers.length <= before) await new Promise((resolve) => { attachedOne = resolve; });
-      worker = workers[before];
+      await w.attached();
       await sampler.begin();
     },
     stop: sampler.stop,
+  };
+}
+
+/**
+ * WORKER_CPU=1: the worker's CPU time, from V8's sampling CPU profiler (a sample every 200 µs):
+ * ms a second busy (all but idle), of which in the collector, and the functions with most self time.
+ */
+export async function startWorkerCpu(context, page) {
+  const w = await workerSession(context, page);
+  let started;
+  return {
+    async begin() {
+      await w.attached();
+      await w.send('Profiler.enable');
+      await w.send('Profiler.setSamplingInterval', { interval: 200 });
+      await w.send('Profiler.start');
+      started = performance.now();
+    },
+    async stop(top = 8) {
+      const { profile } = await w.send('Profiler.stop');
+      const seconds = (performance.now() - started) / 1000;
+      await w.detach().catch(() => undefined);
+      const nodes = new Map(profile.nodes.map((n) => [n.id, n]));
+      const self = new Map();
+      let busy = 0;
+      let gc = 0;
+      profile.samples.forEach((id, i) => {
+        const f = nodes.get(id).callFrame;
+        const dt = profile.timeDeltas[i] / 1000;
+        if (f.functionName === '(idle)') return;
+        busy += dt;
+        if (f.functionName === '(garbage collector)') gc += dt;
+        const name = `${f.functionName || '(top)'} ${f.url.split('/').pop()}:${f.lineNumber + 1}`;
+        self.set(name, (self.get(name) ?? 0) + dt);
+      });
+      const r = (x) => Math.round(x * 10) / 10;
+      return { busyMsPerS: r(busy / seconds), gcMsPerS: r(gc / seconds), seconds: Math.round(seconds), top: [...self].sort((a, b) => b[1] - a[1]).slice(0, top).map(([k, v]) => `${r(v / seconds)} ms/s ${k}`) };
+    },
   };
 }
 

@@ -30,7 +30,8 @@
 // MONITOR_BENCH_SECONDS (default 60: the acceptance's "1 kHz schema for 60 s") sets how long it is fed; the part takes about 100 s.
 // FRAME_TRACE=<file.json> also records a trace of every Chromium process while fed, and marks each late frame in it
 // (frame-trace.mjs: `node bench/frame-trace.mjs <file.json>` says which threads ran in each late frame's gap).
-// WORKER_ALLOC=1 (PAGE_ALLOC=1) prints what the live run's worker (the page) allocated a second while fed, and where (alloc-profile.mjs).
+// WORKER_ALLOC=1 (PAGE_ALLOC=1) prints what the live run's worker (the page) allocated a second while fed, and where (alloc-profile.mjs);
+// WORKER_CPU=1 the worker's CPU time a second while fed (busy, in its collector) and where.
 import { cpSync, mkdirSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
@@ -41,7 +42,7 @@ import { khzCycle } from './khz-cycle.mjs';
 import { LATE_FRAME_MS, lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
 import { startFrameTrace } from './frame-trace.mjs';
-import { startPageAlloc, startWorkerAlloc } from './alloc-profile.mjs';
+import { startPageAlloc, startWorkerAlloc, startWorkerCpu } from './alloc-profile.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 60);
 const { startIdeServer } = await buildProductionIde();
@@ -89,6 +90,8 @@ try {
   const frameTrace = process.env.FRAME_TRACE ? await startFrameTrace(context, page) : null;
   // WORKER_ALLOC=1 / PAGE_ALLOC=1: what the live run's worker / the page allocates while fed (alloc-profile.mjs)
   const workerAlloc = process.env.WORKER_ALLOC ? await startWorkerAlloc(context, page) : null;
+  // WORKER_CPU=1: the worker's CPU time while fed, busy and in its collector (alloc-profile.mjs)
+  const workerCpu = process.env.WORKER_CPU ? await startWorkerCpu(context, page) : null;
   const pageAlloc = process.env.PAGE_ALLOC ? await startPageAlloc(context, page) : null;
   await page.evaluate((url) => {
     const ide = window.__ide;
@@ -98,6 +101,7 @@ try {
   await page.waitForSelector('.side-pane .monitor-view[data-mode=live]', { timeout: 20_000 });
   await page.waitForSelector('.monitor-view .arch-svg', { timeout: 20_000 });
   await workerAlloc?.begin();
+  await workerCpu?.begin();
   await pageAlloc?.begin();
   const r = await page.evaluate(async (lateMs) => {
     const ide = window.__ide;
@@ -149,6 +153,7 @@ try {
     };
   }, LATE_FRAME_MS);
   if (workerAlloc) console.error(`[monitor-panel] worker allocations: ${JSON.stringify(await workerAlloc.stop())}`);
+  if (workerCpu) console.error(`[monitor-panel] worker CPU: ${JSON.stringify(await workerCpu.stop())}`);
   if (pageAlloc) console.error(`[monitor-panel] page allocations: ${JSON.stringify(await pageAlloc.stop(12))}`);
   await feed.close();
   const stolen = lateFramesAndSteal(r.frameEnds, await steal.stop());

@@ -148,6 +148,8 @@ export class MonitorModel implements MonitorView {
   private count = 0;
   /** Bumped on every change, so a view redraws only when something happened. */
   version = 0;
+  /** Ids of the texts fed without one (each a text of its own: negative, the callers' ids are not). */
+  private anonymousText = 0;
 
   constructor(opts: MonitorModelOptions = {}) {
     this.every = Math.max(16, opts.checkpointEvery ?? 1024);
@@ -176,9 +178,6 @@ export class MonitorModel implements MonitorView {
   pushLine(file: string, line: number, text: string): void {
     this.pushLineIn(file, line, text, 0, text.length);
   }
-
-  /** Ids of the texts fed without one (each a text of its own: negative, the callers' ids are not). */
-  private anonymousText = 0;
 
   /**
    * The line text.slice(from, to) of the live trace channel, read in place (line-scan.ts): a
