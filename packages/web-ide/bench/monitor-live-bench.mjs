@@ -14,12 +14,15 @@
 //   monitor.trace_latency_ms_p99_first_5s  the same p99 over the records of the run's first 5 s (the page, the worker and the
 //                                        service's stream starting: a 5 s run measured that alone)
 // RUN_SECONDS (default 55: a minute's run inside the service's 60 s bound) sets the run's duration; the part takes about 75 s.
+// FRAME_TRACE=<file.json> records a trace of every Chromium process while the run streams, late frames marked
+// (`node bench/frame-trace.mjs <file.json>` says which threads ran in each late frame's gap).
 import { mkdirSync, writeFileSync, mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
 import { buildProductionIde, launchChromium, writePart } from './bench-support.mjs';
-import { lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
+import { LATE_FRAME_MS, lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
+import { startFrameTrace } from './frame-trace.mjs';
 
 const runSeconds = Number(process.env.RUN_SECONDS ?? 55);
 const { startIdeServer } = await buildProductionIde();
@@ -39,7 +42,7 @@ try {
   await page.goto(server.openUrl);
   await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
   await installLatencyMeter(page);
-  await page.evaluate((duration) => {
+  await page.evaluate(({ duration, lateMs }) => {
     localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration }));
     const ide = window.__ide;
     ide.monitor.measure = true; // the worker's snapshots bring each record's wall time and arrival
@@ -54,13 +57,16 @@ try {
     const drawn = () => m.meter.drawn(ide.monitor.panel, ide.monitor.lastLive);
     const tick = (t) => {
       if (m.streaming) m.frames.push([performance.timeOrigin + t, t - last]);
+      if (m.streaming && t - last > lateMs) performance.mark('late-frame', { detail: t - last }); // for FRAME_TRACE
       last = t;
       setTimeout(drawn, 0);
       requestAnimationFrame(tick);
     };
     requestAnimationFrame(tick);
-  }, runSeconds);
+  }, { duration: runSeconds, lateMs: LATE_FRAME_MS });
   const steal = startStealSampler();
+  // FRAME_TRACE=<file.json>: a trace of every Chromium process while the run streams (frame-trace.mjs)
+  const frameTrace = process.env.FRAME_TRACE ? await startFrameTrace(context, page) : null;
   await page.locator('#btn-run').click();
   await page.waitForFunction(() => document.getElementById('status-job')?.dataset.status === 'succeeded' || document.getElementById('status-job')?.dataset.status === 'failed', undefined, { timeout: 150_000 });
   await page.waitForTimeout(500);
@@ -74,6 +80,7 @@ try {
       received: meter.received, maxFrame: Math.max(...g), p99Frame: pct(g, 99), frames: g.length,
       a99: meter.pct('arrived', 99), a50: meter.pct('arrived', 50), problems: window.__ide.monitor.lastLive?.problems ?? [], frameEnds };
   });
+  if (frameTrace) console.error(`[monitor-live] frame trace: ${process.env.FRAME_TRACE} ${JSON.stringify(await frameTrace.stop(process.env.FRAME_TRACE))}`);
   if (r.status !== 'succeeded' || !r.n) throw new Error(`the run did not stream: ${JSON.stringify(r)}`);
   const stolen = lateFramesAndSteal(r.frameEnds, await steal.stop());
   const round = (x, d = 1) => Math.round(x * 10 ** d) / 10 ** d;
