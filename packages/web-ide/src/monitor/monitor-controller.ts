@@ -52,6 +52,11 @@ export class MonitorController {
   measure = false;
   /** Bytes of workspace logs one replay reads in all; the logs past it are left out and named (a test lowers it). */
   replayBytes = MAX_RUN_LOG_BYTES;
+  /**
+   * Bumped at each run the user asks to see (a source picked, a folder opened, a Build & Run): a
+   * replay whose model is built after the user asked for something else is listed, not shown.
+   */
+  private picked = 0;
 
   constructor(
     private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
@@ -71,6 +76,7 @@ export class MonitorController {
     this.runs.delete(`job:${jobId}`);
     this.forget(`live:${jobId}`);
     const worker = new Worker(new URL('./live-follow.worker.ts', import.meta.url), { type: 'module' });
+    this.picked++;
     const model = new RemoteMonitorModel(worker, url, { measure: this.measure });
     worker.addEventListener('error', (e) => model.fail(`the live trace's worker failed (${e.message || 'it could not start'}): the run is shown from its CSV logs when it ends`));
     const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model, live: true };
@@ -113,7 +119,10 @@ export class MonitorController {
       supervisors: async () => (await this.readSymbols()).catalogue,
       openRule: (sup, fn, rule) => void this.openRule(sup, fn, rule),
       createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture()),
-      onSource: (id) => void this.select(id),
+      onSource: (id) => {
+        this.picked++;
+        void this.select(id);
+      },
     });
     return this.panel;
   }
@@ -138,6 +147,7 @@ export class MonitorController {
 
   /** A finished run job's CSV logs: the recorded run, replayed from its start. */
   async showRecorded(jobId: string, logs: RunLogs): Promise<void> {
+    const picked = this.picked;
     const live = this.runs.get(`live:${jobId}`);
     // the worker may still be folding the stream's last batches
     if (live?.model instanceof RemoteMonitorModel) await Promise.race([live.model.settled, new Promise((r) => setTimeout(r, SETTLE_MS))]);
@@ -160,18 +170,20 @@ export class MonitorController {
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
       this.panel?.endLive(live.label);
       await this.refreshSources();
-    } else if (this.isShown || !live) await this.show(run.id);
-    else await this.refreshSources();
+    } else if ((this.isShown || !live) && picked === this.picked) await this.show(run.id);
+    else await this.refreshSources(); // or the user picked another run meanwhile: this one is listed
   }
 
   /** A simulation's state (simulate/sim-to-trace.ts): the same view as runs, replacing the previous simulation. */
   async showSimulation(model: MonitorModel, label: string): Promise<void> {
+    this.picked++;
     this.runs.set('sim', { id: 'sim', label, model, live: false });
     await this.show('sim');
   }
 
   /** Replays the `*.csv` logs of a workspace folder. */
   async openFolder(folder: string): Promise<void> {
+    const mine = ++this.picked;
     const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
     const { files, problems: leftOut, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     // said in the label: a replay never misses a log silently; a run too long for the page is told
@@ -183,7 +195,9 @@ export class MonitorController {
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
     const run: Run = { id: `dir:${folder}`, label, model, live: false };
     this.runs.set(run.id, run);
-    await this.show(run.id);
+    // shown unless the user asked for another run while it was read and built: then listed
+    if (mine === this.picked) await this.show(run.id);
+    else await this.refreshSources();
   }
 
   private get isShown(): boolean {

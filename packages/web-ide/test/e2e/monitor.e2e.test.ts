@@ -182,6 +182,22 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe('1000');
   }, 60_000);
 
+  it('a folder opened while another is still read and built: the last one asked for is shown, the other listed', async () => {
+    const { page } = s;
+    const shownAfter = await page.evaluate(async () => {
+      const m = (window as any).__ide.monitor;
+      const before = m.runs.get('dir:long-run');
+      // long-run (9.6 MB, 80,001 records) asked for first, the tutorial's small run right after
+      const slow = m.openFolder('long-run');
+      const fast = m.openFolder('recorded');
+      await Promise.all([slow, fast]);
+      return { rebuilt: m.runs.get('dir:long-run') !== before, label: document.querySelector('.monitor-source')!.textContent, options: [...document.querySelectorAll('.monitor-sources option')].map((o) => (o as HTMLOptionElement).value) };
+    });
+    expect(shownAfter.rebuilt).toBe(true);
+    expect(shownAfter.label).toBe('9 CSV log(s) in recorded');
+    expect(shownAfter.options).toContain('dir:long-run');
+  }, 60_000);
+
   it('live path: TraceEvents of a run, fed at the run\'s own pace, are followed live and give the same story at the same times as its replay', async () => {
     const { page } = s;
     // the TraceEvent stream of the recorded run: every record line, in mono_ns order, batched per 50 ms of run time
