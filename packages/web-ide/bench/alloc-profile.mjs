@@ -90,7 +90,7 @@ export async function startWorkerCpu(context, page) {
         if (f.functionName === '(idle)') return;
         busy += dt;
         if (f.functionName === '(garbage collector)') gc += dt;
-        const name = `${f.functionName || '(top)'} ${f.url.split('/').pop()}:${f.lineNumber + 1}`;
+        const name = frameName(f);
         self.set(name, (self.get(name) ?? 0) + dt);
       });
       const r = (x) => Math.round(x * 10) / 10;
@@ -127,8 +127,7 @@ function report(profile, seconds, top) {
   const byFunction = new Map();
   let total = 0;
   const walk = (node) => {
-    const f = node.callFrame;
-    const name = `${f.functionName || '(top)'} ${f.url.split('/').pop()}:${f.lineNumber + 1}`;
+    const name = frameName(node.callFrame);
     total += node.selfSize;
     if (node.selfSize) byFunction.set(name, (byFunction.get(name) ?? 0) + node.selfSize);
     for (const c of node.children) walk(c);
@@ -136,4 +135,9 @@ function report(profile, seconds, top) {
   walk(profile.head);
   const mb = (b) => Math.round(b / 1e5) / 10;
   return { mbPerS: Math.round((total / 1e6 / seconds) * 10) / 10, seconds: Math.round(seconds), top: [...byFunction].sort((a, b) => b[1] - a[1]).slice(0, top).map(([k, v]) => `${mb(v)} MB ${k}`) };
+}
+
+/** A profile's call frame as the reports name it: function, script file, line. */
+function frameName(f) {
+  return `${f.functionName || '(top)'} ${f.url.split('/').pop()}:${f.lineNumber + 1}`;
 }

@@ -40,32 +40,26 @@ export function writePart(name, result) {
  */
 export async function installFrameRecorder(page) {
   await page.evaluate(() => {
-    let gaps = [];
-    let ends = [];
-    let last = 0;
+    let times = []; // the start, then the end of each frame (performance.now())
     let running = false;
     const tick = (t) => {
-      gaps.push(t - last);
-      ends.push(t);
-      last = t;
+      times.push(t);
       if (running) requestAnimationFrame(tick);
     };
     window.__frames = {
       start() {
-        gaps = [];
-        ends = [];
-        last = performance.now();
+        times = [performance.now()];
         running = true;
         requestAnimationFrame(tick);
       },
       async stop() {
         await new Promise((resolve) => requestAnimationFrame(() => requestAnimationFrame(resolve)));
         running = false;
-        return gaps.slice(2);
+        return times.slice(1).map((t, i) => t - times[i]).slice(2);
       },
       /** The end (performance.now()) of each frame whose gap stop() returned. */
       ends() {
-        return ends.slice(2);
+        return times.slice(3);
       },
     };
   });

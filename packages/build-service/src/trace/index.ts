@@ -4,7 +4,7 @@
  * (`contract trace`, `contract run --trace`) as `@contract-studio/build-service/trace`.
  */
 export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
-export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
+export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, recordLineEnd, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine } from './csv-line.js';
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 export { renderStory, StoryTeller } from './story.js';

@@ -110,9 +110,20 @@ function* logFileRecords(file: LogFile): Generator<TraceRecord> {
  * readers of a whole log (here) and of a streamed one (the CLI's `contract trace`).
  */
 export function recordOfLine(file: string, index: number, raw: string): TraceRecord | undefined {
-    const line = raw.endsWith('\r') ? raw.slice(0, -1) : raw;
-    if (line === '' || (index === 0 && line === CSV_HEADER)) return undefined;
-    return parseRecordLine(file, index + 1, line);
+    const end = recordLineEnd(raw, index, 0, raw.length);
+    return end < 0 ? undefined : parseRecordLine(file, index + 1, end === raw.length ? raw : raw.slice(0, end));
+}
+
+/**
+ * Where the record of line `index` (0-based) of a log ends when the line is text[from, to) (its
+ * newline left out): before a `\r` that ends it; -1 when it holds no record (an empty line, the
+ * header on the first line). recordOfLine's rule, for a reader that reads lines in place (the
+ * IDE's Monitor builds a recorded run from ranges of its logs' text).
+ */
+export function recordLineEnd(text: string, index: number, from: number, to: number): number {
+    const end = to > from && text.charCodeAt(to - 1) === 13 /* \r */ ? to - 1 : to;
+    if (end === from || (index === 0 && end - from === CSV_HEADER.length && text.startsWith(CSV_HEADER, from))) return -1;
+    return end;
 }
 
 /**

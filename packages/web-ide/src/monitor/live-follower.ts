@@ -69,7 +69,7 @@ export class LiveFollower {
         if (Array.isArray(m.records)) this.fold(() => {
           const arrival = Date.now();
           let n = 0;
-          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, 0, r.text.length, arrival, undefined);
+          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, 0, r.text.length, arrival);
         });
         return;
       case 'stateAt': {
@@ -106,7 +106,7 @@ export class LiveFollower {
   }
 
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
-  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId: number | undefined): void {
+  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number): void {
     this.model.pushLineIn(file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file, line, text, from, Math.min(to, from + MAX_LINE + 1), textId);
     if (this.measure) {
       if (this.measured === this.walls.length) {

@@ -53,7 +53,8 @@ export class MonitorController {
   /** Bytes of workspace logs one replay reads in all; the logs past it are left out and named (a test lowers it). */
   replayBytes = MAX_RUN_LOG_BYTES;
   /**
-   * Bumped at each run the user asks to see (a source picked, a folder opened, a Build & Run): a
+   * Bumped at each run the user asks to see (a source picked, a folder opened, a Build & Run, a
+   * simulation): a
    * replay whose model is built after the user asked for something else is listed, not shown.
    */
   private picked = 0;

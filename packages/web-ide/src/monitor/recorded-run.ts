@@ -13,7 +13,7 @@
  * Built in steps (a generator that yields every `every` lines) so that its caller can let the
  * page draw between slices.
  */
-import { CSV_HEADER, MinHeap, TRACE_KINDS, parseRecordLine, type KnownRecord, type LogFile } from '@contract-studio/build-service/trace';
+import { MinHeap, TRACE_KINDS, parseRecordLine, recordLineEnd, type KnownRecord, type LogFile } from '@contract-studio/build-service/trace';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
 
@@ -102,7 +102,7 @@ function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a:
   return b;
 }
 
-/** The record lines of a log (header and empty lines are not records; a `\r` before a newline is not the line's). */
+/** The record lines of a log (the trace reader's rule, recordLineEnd: header and empty lines are not records; a `\r` before a newline is not the line's). */
 function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
   const { name, text } = file;
   const size = Math.max(16, Math.ceil(text.length / 64));
@@ -115,9 +115,9 @@ function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut:
     let nl = text.indexOf('\n', pos);
     if (nl < 0) nl = text.length;
     const from = pos;
-    const to = nl > pos && text.charCodeAt(nl - 1) === 13 /* \r */ ? nl - 1 : nl;
+    const to = recordLineEnd(text, i, from, nl);
     pos = nl + 1;
-    if (to === from || (i === 0 && to - from === CSV_HEADER.length && text.startsWith(CSV_HEADER, from))) continue;
+    if (to < 0) continue;
     const read = keyOf(name, i + 1, text, from, to);
     if (read === Read.None && ++unreadable > maxUnreadable) {
       leftOut.push(`${name}: more than ${maxUnreadable} lines that are not trace records, the rest of it from line ${i + 1} left out`);
