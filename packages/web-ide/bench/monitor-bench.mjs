@@ -30,7 +30,7 @@
 // MONITOR_BENCH_SECONDS (default 60: the acceptance's "1 kHz schema for 60 s") sets how long it is fed; the part takes about 100 s.
 // FRAME_TRACE=<file.json> also records a trace of every Chromium process while fed, and marks each late frame in it
 // (frame-trace.mjs: `node bench/frame-trace.mjs <file.json>` says which threads ran in each late frame's gap).
-// WORKER_ALLOC=1 (PAGE_ALLOC=1) prints what the live run's worker (the page) allocated a second while fed, and where (alloc-profile.mjs);
+// WORKER_ALLOC=1 (PAGE_ALLOC=1) prints what the live run's worker (the page) allocated a second while fed, and where (profile-sampler.mjs);
 // WORKER_CPU=1 the worker's CPU time a second while fed (busy, in its collector) and where.
 import { cpSync, mkdirSync, mkdtempSync, rmSync, realpathSync } from 'node:fs';
 import { join } from 'node:path';
@@ -42,7 +42,7 @@ import { khzCycle } from './khz-cycle.mjs';
 import { LATE_FRAME_MS, lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
 import { startFrameTrace } from './frame-trace.mjs';
-import { startPageAlloc, startWorkerAlloc, startWorkerCpu } from './alloc-profile.mjs';
+import { startPageAlloc, startWorkerAlloc, startWorkerCpu } from './profile-sampler.mjs';
 
 const seconds = Number(process.env.MONITOR_BENCH_SECONDS ?? 60);
 const { startIdeServer } = await buildProductionIde();
@@ -88,9 +88,9 @@ try {
   const steal = startStealSampler();
   // FRAME_TRACE=<file.json>: a trace of every Chromium process while fed (frame-trace.mjs)
   const frameTrace = process.env.FRAME_TRACE ? await startFrameTrace(context, page) : null;
-  // WORKER_ALLOC=1 / PAGE_ALLOC=1: what the live run's worker / the page allocates while fed (alloc-profile.mjs)
+  // WORKER_ALLOC=1 / PAGE_ALLOC=1: what the live run's worker / the page allocates while fed (profile-sampler.mjs)
   const workerAlloc = process.env.WORKER_ALLOC ? await startWorkerAlloc(context, page) : null;
-  // WORKER_CPU=1: the worker's CPU time while fed, busy and in its collector (alloc-profile.mjs)
+  // WORKER_CPU=1: the worker's CPU time while fed, busy and in its collector (profile-sampler.mjs)
   const workerCpu = process.env.WORKER_CPU ? await startWorkerCpu(context, page) : null;
   const pageAlloc = process.env.PAGE_ALLOC ? await startPageAlloc(context, page) : null;
   await page.evaluate((url) => {

@@ -1,4 +1,4 @@
-// What the live run's Web Worker, or the page, allocates while the panel benchmark feeds it:
+// What the live run's Web Worker, or the page, allocates or spends on the CPU while the panel benchmark feeds it:
 // WORKER_ALLOC=1 (PAGE_ALLOC=1) node bench/monitor-bench.mjs samples the worker's (the page's main
 // thread's) heap allocations (V8's sampling heap profiler, objects already collected included) for
 // the fed phase, and prints the MB a second and the functions that allocate most. Garbage in the
