@@ -23,15 +23,15 @@ export function activeSchemas(s: MonitorState, catalogue: readonly SchemaInfo[])
   const out: ActiveSchema[] = [];
   const known = new Set(catalogue.map((c) => c.name));
   const holder = (module: string): string | undefined => {
-    for (const [name, sv] of Object.entries(s.supervisors)) {
-      const rule = sv.heldModules[module];
+    for (const [name, sv] of s.supervisors) {
+      const rule = sv.heldModules.get(module);
       if (rule !== undefined) return rule ? `${name}.${rule}` : name;
     }
     return undefined;
   };
   for (const c of catalogue) {
     if (c.kind === 'periodic') {
-      const a = s.schemas[c.name];
+      const a = s.schemas.get(c.name);
       if (a?.active) out.push(a.by ? { name: c.name, kind: c.kind, by: a.by } : { name: c.name, kind: c.kind });
     } else if (c.modules.length && c.modules.every((m) => holder(m) !== undefined)) {
       const by = holder(c.modules[0]!);
@@ -39,7 +39,7 @@ export function activeSchemas(s: MonitorState, catalogue: readonly SchemaInfo[])
     }
   }
   // schemas ORD activated that the model does not list (a stale model): still shown
-  for (const [name, a] of Object.entries(s.schemas)) {
+  for (const [name, a] of s.schemas) {
     if (!known.has(name) && a.active) out.push(a.by ? { name, kind: 'periodic', by: a.by } : { name, kind: 'periodic' });
   }
   return out;

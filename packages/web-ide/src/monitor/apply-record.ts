@@ -6,7 +6,7 @@
 import { isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
   HIST_BUCKETS, histogramBucket, RECENT_MARKS,
-  type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FlowCount,
+  type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FlowCount, type SchemaActivation, type ModuleState,
 } from './monitor-state.js';
 
 const MAX_STARTED = 16;
@@ -32,14 +32,32 @@ export function applyUnfolded(s: MonitorState, t: Ns): void {
 /** Supervisor `name`'s state, to change: every caller changes it (supervisorChanges counts it). */
 function sup(s: MonitorState, name: string): SupervisorState {
   s.supervisorChanges++;
-  return (s.supervisors[name] ??= { functions: {}, rules: {}, actionsDone: 0, actionsUndone: 0, heldModules: {}, heldFlows: {} });
+  let sv = s.supervisors.get(name);
+  if (!sv) s.supervisors.set(name, (sv = { functions: new Map(), rules: new Map(), actionsDone: 0, actionsUndone: 0, heldModules: new Map(), heldFlows: new Map() }));
+  return sv;
+}
+
+function schemaActivation(s: MonitorState, name: string, t: Ns): SchemaActivation {
+  let sc = s.schemas.get(name);
+  if (!sc) s.schemas.set(name, (sc = { active: false, since: t, activations: 0, conflicts: 0 }));
+  return sc;
+}
+
+function moduleState(s: MonitorState, name: string, t: Ns): ModuleState {
+  let m = s.modules.get(name);
+  if (!m) s.modules.set(name, (m = { running: false, alive: true, runs: 0, since: t }));
+  return m;
 }
 
 function periodic(s: MonitorState, schema: string): PeriodicState {
-  return (s.periodic[schema] ??= {
-    releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
-    histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, missedTicks: 0, recentMisses: [], recentOverruns: [],
-  });
+  let p = s.periodic.get(schema);
+  if (!p) {
+    s.periodic.set(schema, (p = {
+      releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
+      histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, missedTicks: 0, recentMisses: [], recentOverruns: [],
+    }));
+  }
+  return p;
 }
 
 function pushBounded<T>(list: T[], item: T, max: number): void {
@@ -47,8 +65,9 @@ function pushBounded<T>(list: T[], item: T, max: number): void {
   if (list.length > max) list.shift();
 }
 
-function count(map: Record<string, FlowCount>, key: string, t: Ns): void {
-  const f = (map[key] ??= { count: 0, last: t });
+function count(map: Map<string, FlowCount>, key: string, t: Ns): void {
+  let f = map.get(key);
+  if (!f) map.set(key, (f = { count: 0, last: t }));
   f.count++;
   f.last = t;
 }
@@ -58,13 +77,13 @@ const str = (v: unknown): string | undefined => (typeof v === 'string' && v ? v 
 
 /** The rule (`SUP.F.R`) behind a request of supervisor `name`: the last one that became active. */
 function ruleOf(s: MonitorState, name: string): string | undefined {
-  const r = s.supervisors[name]?.lastRule;
+  const r = s.supervisors.get(name)?.lastRule;
   return r ? `${name}.${r}` : undefined;
 }
 
 function noteStarted(s: MonitorState, supName: string, what: string): void {
-  const sv = s.supervisors[supName];
-  const rule = sv?.lastRule ? sv.rules[sv.lastRule] : undefined;
+  const sv = s.supervisors.get(supName);
+  const rule = sv?.lastRule ? sv.rules.get(sv.lastRule) : undefined;
   if (rule && !rule.started.includes(what) && rule.started.length < MAX_STARTED) {
     rule.started.push(what);
     s.supervisorChanges++;
@@ -96,7 +115,7 @@ export function foldComplete(s: MonitorState, schema: string | undefined, resp: 
 
 /** run_started (`started`) or run_finished of `module`. */
 export function foldRun(s: MonitorState, module: string, started: boolean, t: Ns): void {
-  const m = (s.modules[module] ??= { running: false, alive: true, runs: 0, since: t });
+  const m = moduleState(s, module, t);
   m.running = started;
   if (started) m.runs++;
   m.since = t;
@@ -119,7 +138,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
   if (isRule(r)) {
     const sv = sup(s, r.module);
     const key = `${r.function}.${r.rule}`;
-    const rule = (sv.rules[key] ??= { function: r.function, rule: r.rule, active: false, since: t, cause: '', activations: 0, started: [] });
+    let rule = sv.rules.get(key);
+    if (!rule) sv.rules.set(key, (rule = { function: r.function, rule: r.rule, active: false, since: t, cause: '', activations: 0, started: [] }));
     rule.active = r.active;
     rule.since = t;
     rule.cause = r.cause.slice(0, 200);
@@ -137,9 +157,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const sv = sup(s, k.module);
       const what = f['what'];
       const fn = str(f['function']);
-      if (what === 'function_started' && fn) sv.functions[fn] = { state: 'running', since: t };
-      else if (what === 'function_stopped' && fn) sv.functions[fn] = { state: 'stopped', since: t };
-      else if (what === 'function_refused' && fn) sv.functions[fn] = { state: sv.functions[fn]?.state === 'running' ? 'running' : 'refused', since: t };
+      if (what === 'function_started' && fn) sv.functions.set(fn, { state: 'running', since: t });
+      else if (what === 'function_stopped' && fn) sv.functions.set(fn, { state: 'stopped', since: t });
+      else if (what === 'function_refused' && fn) sv.functions.set(fn, { state: sv.functions.get(fn)?.state === 'running' ? 'running' : 'refused', since: t });
       else if (what === 'action') {
         if (/^undo\b|^un/.test(k.detail)) sv.actionsUndone++;
         else sv.actionsDone++;
@@ -151,11 +171,11 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const sv = sup(s, k.module);
       const held = k.kind === 'module_hold' ? sv.heldModules : sv.heldFlows;
       if (k.detail.startsWith('hold taken')) {
-        held[k.peer] = sv.lastRule ?? '';
+        held.set(k.peer, sv.lastRule ?? '');
         sv.actionsDone++;
         if (k.kind === 'module_hold') noteStarted(s, k.module, k.peer);
       } else if (k.detail.startsWith('last hold dropped')) {
-        delete held[k.peer];
+        held.delete(k.peer);
         sv.actionsUndone++;
       }
       return;
@@ -168,9 +188,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (k.module !== 'ORD') return;
       const m = /^START ([A-Za-z_]\w*)$/.exec(k.detail);
       if (m) {
-        const sc = (s.schemas[m[1]!] ??= { active: false, since: t, activations: 0, conflicts: 0 });
+        const sc = schemaActivation(s, m[1]!, t);
         sc.by = ruleOf(s, k.peer) ?? k.peer;
-        if (s.supervisors[k.peer]) noteStarted(s, k.peer, m[1]!);
+        if (s.supervisors.has(k.peer)) noteStarted(s, k.peer, m[1]!);
       }
       return;
     }
@@ -179,7 +199,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (!schema) return;
       const what = f['what'];
       if (what === 'activate' || what === 'deactivate' || what === 'conflict') {
-        const sc = (s.schemas[schema] ??= { active: false, since: t, activations: 0, conflicts: 0 });
+        const sc = schemaActivation(s, schema, t);
         if (what === 'activate') {
           sc.active = true;
           sc.since = t;
@@ -215,7 +235,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       return;
     case 'module_started':
     case 'module_exit': {
-      const m = (s.modules[k.module] ??= { running: false, alive: true, runs: 0, since: t });
+      const m = moduleState(s, k.module, t);
       m.alive = k.kind === 'module_started';
       if (!m.alive) m.running = false;
       m.since = t;

@@ -26,14 +26,17 @@ function naive(records: TraceRecord[], t: number): MonitorState {
   return m.live;
 }
 
+/** JSON.stringify replacer: a Map as its entries. */
+const withMaps = (_k: string, v: unknown) => (v instanceof Map ? [...v] : v);
+
 describe('supervisorChanges', () => {
   it('moves with every record that changes the supervisors, and only with those', () => {
     const s = emptyState();
     let changed = 0, unchanged = 0;
     for (const r of tutorial) {
-      const before = JSON.stringify(s.supervisors), count = s.supervisorChanges;
+      const before = JSON.stringify(s.supervisors, withMaps), count = s.supervisorChanges;
       applyRecord(s, r, Number((r as { monoNs?: string }).monoNs ?? 0), 0);
-      if (JSON.stringify(s.supervisors) !== before) {
+      if (JSON.stringify(s.supervisors, withMaps) !== before) {
         changed++;
         expect(s.supervisorChanges, `${r.kind} ${JSON.stringify(r).slice(0, 200)}`).toBeGreaterThan(count);
       } else if (s.supervisorChanges === count) unchanged++;
@@ -49,8 +52,8 @@ describe('monitor model on a recorded tutorial run', () => {
   const s = model.live;
 
   it('has SUP.action with FIRST then SECOND, each with its cause and time', () => {
-    const sup = s.supervisors['SUP']!;
-    expect(sup.functions['action']!.state).toBe('stopped');
+    const sup = s.supervisors.get('SUP')!;
+    expect(sup.functions.get('action')!.state).toBe('stopped');
     const first = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.FIRST active'))!;
     const second = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.SECOND active'))!;
     expect(first.label).toContain('elapsed=1000000ns');
@@ -59,13 +62,13 @@ describe('monitor model on a recorded tutorial run', () => {
     const firstOff = model.marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.FIRST inactive'))!;
     expect(firstOff.label).toContain('MAA:2 value="disconnected"');
     const mid = model.stateAt(second.t + 5e6);
-    expect(mid.supervisors['SUP']!.rules['action.SECOND']).toMatchObject({ active: true, cause: 'MAA:2 value="disconnected"', since: second.t });
-    expect(mid.supervisors['SUP']!.rules['action.FIRST']!.active).toBe(false);
-    expect(mid.supervisors['SUP']!.rules['action.SECOND']!.started).toContain('schemaCommande1');
+    expect(mid.supervisors.get('SUP')!.rules.get('action.SECOND')).toMatchObject({ active: true, cause: 'MAA:2 value="disconnected"', since: second.t });
+    expect(mid.supervisors.get('SUP')!.rules.get('action.FIRST')!.active).toBe(false);
+    expect(mid.supervisors.get('SUP')!.rules.get('action.SECOND')!.started).toContain('schemaCommande1');
     const before = model.stateAt(firstOff.t - 1);
-    expect(before.supervisors['SUP']!.rules['action.FIRST']).toMatchObject({ active: true, cause: 'elapsed=1000000ns' });
-    expect(before.supervisors['SUP']!.rules['action.FIRST']!.started).toEqual(['MAA', 'MAB']);
-    expect(before.supervisors['SUP']!.heldModules).toEqual({ MAA: 'action.FIRST', MAB: 'action.FIRST' });
+    expect(before.supervisors.get('SUP')!.rules.get('action.FIRST')).toMatchObject({ active: true, cause: 'elapsed=1000000ns' });
+    expect(before.supervisors.get('SUP')!.rules.get('action.FIRST')!.started).toEqual(['MAA', 'MAB']);
+    expect(before.supervisors.get('SUP')!.heldModules).toEqual(new Map([['MAA', 'action.FIRST'], ['MAB', 'action.FIRST']]));
   });
 
   it('knows which schemas were active, who activated them, and the periodic releases', () => {
@@ -78,15 +81,15 @@ describe('monitor model on a recorded tutorial run', () => {
     expect(activeSchemas(model.stateAt(firstOff.t - 1), catalogue)).toEqual([{ name: 'schemaReceptionMessage', kind: 'event', by: 'SUP.action.FIRST' }]);
     const after = model.stateAt(second.t + 5e6);
     expect(activeSchemas(after, catalogue)).toEqual([{ name: 'schemaCommande1', kind: 'periodic', by: 'SUP.action.SECOND' }]);
-    const p = s.periodic['schemaCommande1']!;
+    const p = s.periodic.get('schemaCommande1')!;
     expect(p.releases).toBe(6); // 2 cycles x 3 modules
     expect(p.lastCycle).toBe(1);
     expect(p.completions).toBe(2);
     expect(p.histogram.reduce((a, b) => a + b, 0)).toBe(2);
     expect(p.maxResponseNs).toBe(844314);
     expect(p.deadlineMisses).toBe(0);
-    expect(s.eventFlows['MAA:0->MAB:0']!.count).toBe(4);
-    expect(s.modules['MSC']!.runs).toBe(2);
+    expect(s.eventFlows.get('MAA:0->MAB:0')!.count).toBe(4);
+    expect(s.modules.get('MSC')!.runs).toBe(2);
   });
 
   it('gives the same states when fed the live channel\'s lines (kept as packed text) as when fed the records', () => {
@@ -116,10 +119,10 @@ describe('monitor model, values of the extension types', () => {
     m.pushAll([line(1000, 'MIS', 'sup_rule', '', '', `mission.AHEAD active cause=${scan}`),
       line(2000, 'MIS', 'sup_rule', '', '', 'mission.MODE active cause=DRV:0 value=SAFESTOP'),
       line(3000, 'MIS', 'sup_rule', '', '', 'mission.FLAG active cause=OBS:2 value=true')]);
-    const rules = m.live.supervisors['MIS']!.rules;
-    expect(rules['mission.AHEAD']).toMatchObject({ active: true, cause: scan });
-    expect(rules['mission.MODE']).toMatchObject({ active: true, cause: 'DRV:0 value=SAFESTOP' });
-    expect(rules['mission.FLAG']).toMatchObject({ active: true, cause: 'OBS:2 value=true' });
+    const rules = m.live.supervisors.get('MIS')!.rules;
+    expect(rules.get('mission.AHEAD')).toMatchObject({ active: true, cause: scan });
+    expect(rules.get('mission.MODE')).toMatchObject({ active: true, cause: 'DRV:0 value=SAFESTOP' });
+    expect(rules.get('mission.FLAG')).toMatchObject({ active: true, cause: 'OBS:2 value=true' });
   });
 });
 
@@ -144,15 +147,15 @@ describe('monitor model, long and hostile runs', () => {
     model.pushAll(recs);
     expect(model.recordCount).toBe(recs.length);
     expect((model as unknown as { kept: number }).kept).toBeLessThanOrEqual(50_000 + 1024);
-    expect(model.live.periodic['S']).toMatchObject({ releases: 60_000, completions: 60_000, deadlineMisses: 60 });
+    expect(model.live.periodic.get('S')).toMatchObject({ releases: 60_000, completions: 60_000, deadlineMisses: 60 });
     expect(model.marks.filter((m) => m.kind === 'miss').length).toBe(60);
     // far back (raw records gone): rules exact, counters at most one checkpoint behind
     const early = model.stateAt(20e9);
     expect(model.exactAt(20e9)).toBe(false);
-    expect(early.supervisors['SUP']!.rules['f.R']!.active).toBe(true);
-    const lateRule = model.stateAt(40e9).supervisors['SUP']!.rules['f.R']!;
+    expect(early.supervisors.get('SUP')!.rules.get('f.R')!.active).toBe(true);
+    const lateRule = model.stateAt(40e9).supervisors.get('SUP')!.rules.get('f.R')!;
     expect(lateRule).toMatchObject({ active: false, cause: 'ORD:0 value="S"' });
-    expect(Math.abs(early.periodic['S']!.releases - 20_000)).toBeLessThanOrEqual(1024);
+    expect(Math.abs(early.periodic.get('S')!.releases - 20_000)).toBeLessThanOrEqual(1024);
     // recent: exact
     expect(model.exactAt(59.5e9)).toBe(true);
     expect(model.stateAt(59.5e9)).toEqual(naive(recs, 59.5e9));
@@ -189,6 +192,6 @@ describe('monitor model, long and hostile runs', () => {
     expect(bucketStartNs(histogramBucket(1e6) + 1)).toBeGreaterThan(1e6);
     const s = emptyState();
     applyRecord(s, line(1, 'ORD', 'ord_complete', '', '', 'schema=S cycle=0 tick_ns=1 response_ns=1e99'), 0, 0);
-    expect(s.periodic['S']).toBeUndefined(); // not a number: ignored
+    expect(s.periodic.get('S')).toBeUndefined(); // not a number: ignored
   });
 });

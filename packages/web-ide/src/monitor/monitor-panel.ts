@@ -19,9 +19,9 @@ import type { MonitorState } from './monitor-state.js';
 import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
+import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 
-/** Supervisor -> function -> its rule labels, from the model (document symbols). */
-export type SupervisorCatalogue = Record<string, Record<string, string[]>>;
+export type { SupervisorCatalogue } from './supervisor-rows.js';
 
 export interface MonitorPanelDeps {
   schemas: () => Promise<ArchSchema[]>;
@@ -68,7 +68,7 @@ export class MonitorPanel {
   private supsDrawn = { model: undefined as MonitorView | undefined, changes: -1, sups: undefined as SupervisorCatalogue | undefined };
   private schemas: ArchSchema[] = [];
   private catalogue: SchemaInfo[] = [];
-  private sups: SupervisorCatalogue = {};
+  private sups: SupervisorCatalogue = new Map();
   private diagram: ArchitectureView | undefined;
   private userChoseSchema = false;
   private redrawTimer: ReturnType<typeof setTimeout> | undefined;
@@ -297,28 +297,20 @@ export class MonitorPanel {
   }
 
   private renderSupervisors(s: MonitorState): void {
-    const names = [...new Set([...Object.keys(this.sups), ...Object.keys(s.supervisors)])].sort();
     const blocks: HTMLElement[] = [];
-    for (const sup of names) {
-      const st = s.supervisors[sup];
-      const fns = { ...(this.sups[sup] ?? {}) };
-      for (const k of Object.keys(st?.rules ?? {})) {
-        const [fn, rule] = k.split('.') as [string, string];
-        fns[fn] = fns[fn]?.includes(rule) ? fns[fn]! : [...(fns[fn] ?? []), rule];
-      }
-      for (const fn of Object.keys(st?.functions ?? {})) fns[fn] ??= [];
+    for (const { name: sup, state: st, functions: fns } of supervisorRows(this.sups, s)) {
       const block = this.row(`sup:${sup}`, () => h('div', { class: 'monitor-sup', role: 'listitem', 'data-supervisor': sup }));
       const header = this.row(`suph:${sup}`, () => h('div', { class: 'monitor-sup-name' }));
       setText(header, `${sup}${st ? ` · ${st.actionsDone} action(s) done, ${st.actionsUndone} undone` : ''}`);
       const children: HTMLElement[] = [header];
-      for (const [fn, rules] of Object.entries(fns)) {
-        const fs = st?.functions[fn];
+      for (const [fn, rules] of fns) {
+        const fs = st?.functions.get(fn);
         const fnEl = this.row(`fn:${sup}.${fn}`, () => h('div', { class: 'monitor-fn', 'data-function': `${sup}.${fn}` }));
         setText(fnEl, `${fn}() — ${fs ? `${fs.state} since ${fmtT(fs.since)}` : 'not started'}`);
         setAttr(fnEl, 'data-state', fs?.state ?? 'idle');
         children.push(fnEl);
         for (const rule of rules) {
-          const rs = st?.rules[`${fn}.${rule}`];
+          const rs = st?.rules.get(`${fn}.${rule}`);
           const el = this.row(`rule:${sup}.${fn}.${rule}`, () => {
             const b = h('button', { class: 'monitor-rule', 'data-rule': `${sup}.${fn}.${rule}`, title: `Open ${fn}.${rule} in its .contract file` },
               h('span', { class: 'rule-dot', 'aria-hidden': 'true' }), h('span', { class: 'rule-name' }, rule), h('span', { class: 'rule-cause' }), h('span', { class: 'rule-time' }));
@@ -349,9 +341,9 @@ export class MonitorPanel {
     });
     if (!items.length) items.push(this.row('schema:none', () => h('div', { class: 'muted' }, 'none')));
     replaceIfChanged(this.schemasEl, items);
-    const periodic = [...new Set([...this.catalogue.filter((c) => c.kind === 'periodic').map((c) => c.name), ...Object.keys(s.periodic)])];
+    const periodic = [...new Set([...this.catalogue.filter((c) => c.kind === 'periodic').map((c) => c.name), ...s.periodic.keys()])];
     const blocks = periodic.map((name) => {
-      const p = s.periodic[name];
+      const p = s.periodic.get(name);
       const def = this.schemas.find((x) => x.name === name);
       let times = def ? this.schemaTimes.get(def) : undefined;
       if (def && !times) this.schemaTimes.set(def, (times = { cd: timeNs(def.criticalDelay), period: timeNs(def.period) }));
@@ -431,11 +423,12 @@ export class MonitorPanel {
     if (!drawDiagram && !drawFlows) return;
     const modules = new Set<string>();
     for (const name of active) for (const m of this.catalogue.find((c) => c.name === name)?.modules ?? []) modules.add(m);
-    const running = new Set(Object.entries(s.modules).filter(([, m]) => m.running).map(([k]) => k));
+    const running = new Set<string>();
+    for (const [k, m] of s.modules) if (m.running) running.add(k);
     const pulsing = new Set<string>();
     const used = new Set<string>();
     for (const flows of [s.dataFlows, s.eventFlows]) {
-      for (const [k, f] of Object.entries(flows)) {
+      for (const [k, f] of flows) {
         used.add(k);
         if (t - f.last < PULSE_NS) pulsing.add(k);
       }
@@ -444,7 +437,7 @@ export class MonitorPanel {
     if (!drawFlows) return;
     setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
     // deliveries: the busiest flows, with their count and last delivery
-    const flows = [...Object.entries(s.dataFlows).map(([k, f]) => ({ k, f, kind: 'data' })), ...Object.entries(s.eventFlows).map(([k, f]) => ({ k, f, kind: 'event' }))]
+    const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
       .sort((a, b) => b.f.count - a.f.count).slice(0, 12);
     const rows = flows.map(({ k, f, kind }) => {
       const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));

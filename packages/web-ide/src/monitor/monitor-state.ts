@@ -1,7 +1,8 @@
 /**
  * The state of a running architecture at one instant, as the monitor folds it out of the
- * run-time trace (docs/runtime-api.md "Trace records"). Plain data (maps of small objects,
- * fixed-size histograms) so that a checkpoint is a cheap deep copy and its size does not grow
+ * run-time trace (docs/runtime-api.md "Trace records"). Plain data (Maps of small objects,
+ * fixed-size histograms; every name read from a trace keys a Map, never an object's properties, so
+ * a supervisor function `constructor` or a rule `__proto__` is a name like any other) so that a checkpoint is a cheap deep copy and its size does not grow
  * with the number of records: counters and histograms aggregate, only the last few items are
  * kept in lists.
  */
@@ -29,17 +30,17 @@ export interface FunctionState {
 }
 
 export interface SupervisorState {
-  functions: Record<string, FunctionState>;
+  functions: Map<string, FunctionState>;
   /** Keyed `F.R`. */
-  rules: Record<string, RuleState>;
+  rules: Map<string, RuleState>;
   /** Actions done (holds taken, priorities set) and undone (holds dropped) — counts. */
   actionsDone: number;
   actionsUndone: number;
   /** The rule (`F.R`) that became active last: holds and START requests that follow belong to it. */
   lastRule?: string;
   /** Modules and event flows this supervisor holds (an event schema it activated), with the rule. */
-  heldModules: Record<string, string>;
-  heldFlows: Record<string, string>;
+  heldModules: Map<string, string>;
+  heldFlows: Map<string, string>;
 }
 
 export interface SchemaActivation {
@@ -97,25 +98,25 @@ export interface MonitorState {
   /** Time of the last record folded in. */
   t: Ns;
   records: number;
-  supervisors: Record<string, SupervisorState>;
+  supervisors: Map<string, SupervisorState>;
   /** How many records changed `supervisors` so far: a view redraws them only when it moved. */
   supervisorChanges: number;
-  schemas: Record<string, SchemaActivation>;
-  periodic: Record<string, PeriodicState>;
-  modules: Record<string, ModuleState>;
+  schemas: Map<string, SchemaActivation>;
+  periodic: Map<string, PeriodicState>;
+  modules: Map<string, ModuleState>;
   /** Keyed `PRODUCER:port->CONSUMER:port`. */
-  dataFlows: Record<string, FlowCount>;
-  eventFlows: Record<string, FlowCount>;
+  dataFlows: Map<string, FlowCount>;
+  eventFlows: Map<string, FlowCount>;
   unknownLines: number;
 }
 
 export const RECENT_MARKS = 64;
 
 export function emptyState(): MonitorState {
-  return { t: 0, records: 0, supervisors: {}, supervisorChanges: 0, schemas: {}, periodic: {}, modules: {}, dataFlows: {}, eventFlows: {}, unknownLines: 0 };
+  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unknownLines: 0 };
 }
 
-/** A deep copy (the state is plain JSON-like data). */
+/** A deep copy (the state is plain data: objects, arrays and Maps, which structuredClone and postMessage keep). */
 export function cloneState(s: MonitorState): MonitorState {
   return structuredClone(s);
 }

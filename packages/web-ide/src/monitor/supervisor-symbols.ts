@@ -6,7 +6,7 @@
  * opens a rule's definition from it.
  */
 import type * as lsp from 'vscode-languageserver-protocol';
-import type { SupervisorCatalogue } from './monitor-panel.js';
+import type { SupervisorCatalogue } from './supervisor-rows.js';
 
 const CLASS = 5;
 const METHOD = 6;
@@ -26,17 +26,19 @@ export interface SupervisorSymbols {
 }
 
 export async function readSupervisorSymbols(uris: string[], symbols: (uri: string) => Promise<lsp.DocumentSymbol[] | null>): Promise<SupervisorSymbols> {
-  const catalogue: SupervisorCatalogue = {};
+  const catalogue: SupervisorCatalogue = new Map();
   const locations = new Map<string, RuleLocation>();
   const signatures = new Map<string, string>();
   for (const uri of uris) {
     const list = (await symbols(uri).catch(() => null)) ?? [];
     for (const sup of list) {
       if (sup.kind !== CLASS || sup.detail !== 'supervisor') continue;
-      const fns = (catalogue[sup.name] ??= {});
+      let fns = catalogue.get(sup.name);
+      if (!fns) catalogue.set(sup.name, (fns = new Map()));
       for (const fn of sup.children ?? []) {
         if (fn.kind !== METHOD) continue;
-        const rules = (fns[fn.name] ??= []);
+        let rules = fns.get(fn.name);
+        if (!rules) fns.set(fn.name, (rules = []));
         locations.set(`${sup.name}.${fn.name}`, { uri, range: fn.selectionRange });
         signatures.set(`${sup.name}.${fn.name}`, (fn.detail ?? '').slice(0, 500));
         for (const r of fn.children ?? []) {

@@ -57,7 +57,7 @@ export class SimulateController {
     const files = workspace.allFiles().filter((p) => isContract(p) && (!project || p.startsWith(`${project}/`)));
     const { catalogue, signatures } = await readSupervisorSymbols(files.map((p) => workspace.uriOf(p).toString()), (uri) => lsp.documentSymbols(uri));
     this.panel.stepInput.attach(workspace.uriOf(project ? `${project}/${STEP_INPUT_FILE}` : STEP_INPUT_FILE));
-    const names = Object.entries(catalogue).flatMap(([sup, fns]) => Object.keys(fns).map((fn) => `${sup}.${fn}`)).sort();
+    const names = [...catalogue].flatMap(([sup, fns]) => [...fns.keys()].map((fn) => `${sup}.${fn}`)).sort();
     this.panel.setFunctions(names.map((name) => ({ name, signature: signatures.get(name) ?? '' })));
   }
 
