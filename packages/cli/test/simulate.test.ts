@@ -121,4 +121,22 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         expect(old.stderr).toContain('--cache is now --cache-dir');
         rmSync(base, { recursive: true, force: true });
     });
+
+    it('runs the project\'s C under bubblewrap: an unknown --sandbox exits 2, no working bubblewrap exits 3 with what to do', async () => {
+        const bad = capture(REPO);
+        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--sandbox', 'docker', '--cache-dir', cache], bad)).toBe(2);
+        expect(bad.stderr).toContain("unknown sandbox 'docker' (expected auto, bwrap or none)");
+        const path = process.env.PATH;
+        process.env.PATH = mkdtempSync(join(tmpdir(), 'contract-no-bwrap-')); // no bwrap on this PATH
+        try {
+            const none = capture(REPO);
+            expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--cache-dir', cache], none)).toBe(3);
+            expect(none.stderr).toMatch(/confines them with bubblewrap, which does not work here .*apt-get install bubblewrap.*--sandbox none/);
+            expect(none.stdout).toBe('');
+        } finally {
+            process.env.PATH = path;
+        }
+        const ok = capture(REPO);
+        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--sandbox', 'bwrap', '--cache-dir', cache], ok)).toBe(0);
+    });
 });

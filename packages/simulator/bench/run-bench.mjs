@@ -26,7 +26,7 @@ const out = {};
 
 async function prepare(dir) {
     const p = await prepareProject(dir, opts);
-    if (!('build' in p)) throw new Error(p.buildError ?? JSON.stringify(p.modelErrors));
+    if (!('build' in p)) throw new Error(p.buildError ?? p.sandboxError ?? JSON.stringify(p.modelErrors));
     return p;
 }
 

@@ -8,6 +8,7 @@ export * from './scenario/index.js';
 export * from './harness/tables.js';
 export * from './harness/cache.js';
 export * from './harness/build.js';
+export * from './harness/confine.js';
 export * from './runner/protocol.js';
 export * from './runner/run-scenario.js';
 export * from './simulate-project.js';

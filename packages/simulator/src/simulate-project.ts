@@ -12,6 +12,7 @@ import { MAX_SCENARIO_BYTES, parseScenario, type ParsedScenario, type ScenarioDi
 import { checkScenario, indexModels, type ModelIndex, type ResolvedLocal } from './scenario/index.js';
 import { simulationSources } from './harness/tables.js';
 import { buildHarness, type HarnessBuild } from './harness/build.js';
+import { chooseConfinement, type Confinement, type SimulatorSandboxChoice } from './harness/confine.js';
 import { runScenario, type RunOptions, type ScenarioResult } from './runner/run-scenario.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
@@ -22,6 +23,8 @@ export interface PreparedProject {
     workspace: LoadedWorkspace;
     index: ModelIndex;
     build: HarnessBuild;
+    /** How the harness is run (the one its build used). */
+    confinement: Confinement;
     warnings: string[];
 }
 
@@ -30,6 +33,8 @@ export interface ProjectProblems {
     modelErrors: WorkspaceDiagnostic[];
     /** Harness generation/build problem. */
     buildError?: string;
+    /** The sandbox asked for cannot be had here (what to install, or `--sandbox none`). */
+    sandboxError?: string;
 }
 
 export interface SimulateOptions extends RunOptions {
@@ -38,6 +43,8 @@ export interface SimulateOptions extends RunOptions {
     cacheDir?: string;
     /** Told when the harness build waits for another build holding its lock. */
     onWait?: (what: string) => void;
+    /** Where the project's C runs (harness/confine.ts): default `$CONTRACT_SIMULATOR_SANDBOX`, else `auto` (bubblewrap). */
+    sandbox?: SimulatorSandboxChoice;
 }
 
 /** Loads the project and builds its simulator; problems when the model has errors or the build fails. */
@@ -56,9 +63,11 @@ export async function prepareProject(dir: string, options: SimulateOptions): Pro
     } catch (e) {
         return { modelErrors: [], buildError: `cannot generate the engines' tables: ${e instanceof Error ? e.message : String(e)}` };
     }
-    const build = await buildHarness(sources, { runtimeDir: options.runtimeDir, cacheDir: options.cacheDir, onWait: options.onWait });
+    const confinement = await chooseConfinement(options.sandbox);
+    if ('error' in confinement) return { modelErrors: [], sandboxError: confinement.error };
+    const build = await buildHarness(sources, { runtimeDir: options.runtimeDir, cacheDir: options.cacheDir, onWait: options.onWait, confinement });
     if ('error' in build) return { modelErrors: [], buildError: build.error };
-    return { workspace, index: indexModels(docs.map((d) => d.model)), build, warnings: sources.warnings };
+    return { workspace, index: indexModels(docs.map((d) => d.model)), build, confinement, warnings: sources.warnings };
 }
 
 export interface LoadedScenario {
@@ -85,7 +94,7 @@ export function loadScenario(file: string, display: string, text: string, index:
 }
 
 export async function runLoadedScenario(project: PreparedProject, s: LoadedScenario, options: RunOptions = {}): Promise<ScenarioResult> {
-    return runScenario(project.build.exe, s.display, s.parsed, s.locals, options);
+    return runScenario(project.build.exe, s.display, s.parsed, s.locals, { ...options, confinement: project.confinement });
 }
 
 /** Display path of a file for messages: relative to cwd when inside it. */

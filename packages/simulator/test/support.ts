@@ -12,6 +12,6 @@ export const CACHE = mkdtempSync(join(tmpdir(), 'contract-sim-test-'));
 
 export async function prepared(dir: string): Promise<PreparedProject> {
     const p = await prepareProject(dir, { runtimeDir: DEFAULT_RUNTIME_DIR, cacheDir: CACHE });
-    if (!('build' in p)) throw new Error(`cannot prepare ${dir}: ${p.buildError ?? p.modelErrors.map((d) => d.message).join('; ')}`);
+    if (!('build' in p)) throw new Error(`cannot prepare ${dir}: ${p.buildError ?? p.sandboxError ?? p.modelErrors.map((d) => d.message).join('; ')}`);
     return p;
 }

@@ -97,6 +97,7 @@ export class SimulateApi {
         }));
         throw new HttpError(422, `the model has ${prepared.modelErrors.length} error(s): fix them first`, { diagnostics });
       }
+      if (prepared.sandboxError) throw new HttpError(503, prepared.sandboxError);
       throw new HttpError(500, prepared.buildError ?? 'the simulator could not be built');
     }
     const loaded = sim.loadScenario(join(projectDir, display), display, text, prepared.index);

@@ -6,7 +6,7 @@
  */
 import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
-import type { LoadedScenario, ScenarioResult } from '@contract-studio/simulator';
+import type { LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import { defaultRuntimeSource } from '../runtime-source.js';
@@ -18,25 +18,29 @@ export const simulateCommand: Command = {
     name: 'simulate',
     summary: 'run .scenario files through the supervisors and ORD in virtual time (no robot, no module code)',
     usage: [
-        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--verbose] [--runtime PATH] [--cache-dir DIR]',
+        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--verbose] [--sandbox auto|bwrap|none] [--runtime PATH] [--cache-dir DIR]',
         '  DIR: the project (its .contract files); SCENARIO: .scenario files (format: docs/simulation.md)',
         '  --format: text (default: each step, its rule changes, each failed expectation), json (every step\'s record), junit (JUnit XML)',
         '  --verbose: text also shows each step\'s actions and the engines\' trace lines',
+        '  --sandbox: where your project\'s C functions (testit, doit...) are compiled and run: bwrap (auto, the default: confined like a',
+        '             build job) or none (unconfined, as you: your own code on your own machine only); default $CONTRACT_SIMULATOR_SANDBOX, else auto',
         '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
         '  --cache-dir: the build cache of `contract build`; built simulators are kept in its sim/ (default: $CONTRACT_CACHE_DIR,',
         '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
         'exit status: 0 every expectation passed, 1 one failed (or a scenario could not run), 2 usage, model or scenario errors,',
-        '             3 a build cache folder that cannot be trusted',
+        '             3 a build cache folder that cannot be trusted, or no working bubblewrap for --sandbox auto|bwrap',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         // --cache (before it became --cache-dir) named the simulators' folder itself: told, not guessed
         if (args.some((a) => a === '--cache' || a.startsWith('--cache='))) throw new UsageError('--cache is now --cache-dir: the build cache folder (as for contract build); simulators are kept in its sim/');
-        const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir'], ['verbose']);
+        const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir', 'sandbox'], ['verbose']);
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
-            DEFAULT_RUNTIME_DIR, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
+            DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
         } = await import('@contract-studio/simulator');
         if (parsed.positionals.length < 2) throw new UsageError('expected DIR and at least one SCENARIO file');
+        const sandbox = parsed.options.get('sandbox');
+        if (sandbox !== undefined && !SIMULATOR_SANDBOXES.includes(sandbox as never)) throw new UsageError(`unknown sandbox '${String(sandbox)}' (expected auto, bwrap or none)`);
         const format = parsed.options.get('format') ?? 'text';
         if (!FORMATS.includes(format as never)) throw new UsageError(`unknown format '${String(format)}' (expected text, json or junit)`);
         const runtimeOption = parsed.options.get('runtime');
@@ -52,8 +56,14 @@ export const simulateCommand: Command = {
             return EXIT_ENVIRONMENT;
         }
 
-        const project = await prepareProject(dir, { runtimeDir, cacheDir: cache.root.dir, onWait: (what) => io.err(`waiting for ${what} ...\n`) });
+        const project = await prepareProject(dir, {
+            runtimeDir, cacheDir: cache.root.dir, onWait: (what) => io.err(`waiting for ${what} ...\n`), sandbox: sandbox as SimulatorSandboxChoice | undefined,
+        });
         if (!('build' in project)) {
+            if (project.sandboxError) {
+                io.err(`contract simulate: ${project.sandboxError}\n`);
+                return EXIT_ENVIRONMENT;
+            }
             for (const d of project.modelErrors) io.err(`${displayPath(io.cwd, join(dir, d.file))}:${d.line}:${d.column}: error: ${d.message} [${d.code}]\n`);
             if (project.modelErrors.length) {
                 io.err(`contract simulate: the model has ${project.modelErrors.length} error(s): fix them first (contract check)\n`);

@@ -22,6 +22,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { acquireProjectLock, type ProjectLock } from '@contract-studio/build-service/cache';
 import { simulatorCacheDir } from './cache.js';
+import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
 
 export interface HarnessBuild {
@@ -40,18 +41,25 @@ export interface BuildOptions {
      */
     cacheDir?: string;
     cc?: string;
+    /**
+     * How the project's own code is compiled and linked (harness/confine.ts): the compiler reads
+     * what the sources name (`#include "/etc/…"`, `.incbin`), so it sees only the build folder and
+     * the runtime. The runtime's own harness objects are built unconfined (trusted sources).
+     */
+    confinement: Confinement;
     /** Told once when another build holds a lock this one waits for. */
     onWait?: (what: string) => void;
 }
 
 const MAX_COMPILER_OUTPUT = 64 * 1024;
 
-function run(cmd: string, args: string[], cwd: string): Promise<{ code: number; output: string }> {
+function run(cmd: string, args: string[], cwd: string, confined?: { confinement: Confinement; readWrite: string[]; readOnly: string[] }): Promise<{ code: number; output: string }> {
     return new Promise((resolvePromise) => {
         let output = '';
         let child;
+        const argv = confined ? confined.confinement.wrap([cmd, ...args], { cwd, readWrite: confined.readWrite, readOnly: confined.readOnly }) : [cmd, ...args];
         try {
-            child = spawn(cmd, args, { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
+            child = spawn(argv[0]!, argv.slice(1), { cwd, stdio: ['ignore', 'pipe', 'pipe'] });
         } catch (e) {
             resolvePromise({ code: -1, output: e instanceof Error ? e.message : String(e) });
             return;
@@ -133,7 +141,7 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     try {
         // the build we waited for may have made this very executable
         if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
-        return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0 });
+        return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0, confinement: options.confinement });
     } finally {
         await lock.release();
     }
@@ -148,9 +156,10 @@ interface CompileJob {
     dir: string;
     exe: string;
     t0: number;
+    confinement: Confinement;
 }
 
-async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, dir, exe, t0 }: CompileJob): Promise<HarnessBuild | { error: string }> {
+async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, dir, exe, t0, confinement }: CompileJob): Promise<HarnessBuild | { error: string }> {
     const work = `${dir}.tmp-${process.pid}-${Math.random().toString(36).slice(2)}`;
     mkdirSync(work, { recursive: true, mode: 0o700 });
     try {
@@ -160,15 +169,17 @@ async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, d
             writeFileSync(p, f.content, 'latin1');
         }
         const include = join(runtimeDir, 'include');
+        // the project's C is compiled seeing only its build folder and the runtime (and the toolchain)
+        const confined = { confinement, readWrite: [work], readOnly: [include, dirname(objects.lib), dirname(objects.main)] };
         const compiles = src.units.map((unit, i) => run(cc, [
             '-std=c11', '-O0', '-w', '-D_POSIX_C_SOURCE=200809L', `-I${include}`,
             ...(src.includes.get(unit) ?? []).map((d) => `-I${join(work, d)}`),
             '-c', join(work, unit), '-o', join(work, `unit${i}.o`),
-        ], work));
+        ], work, confined));
         const results = await Promise.all(compiles);
         const failed = results.findIndex((r) => r.code !== 0);
         if (failed >= 0) return { error: `cannot compile ${src.units[failed]} for the simulator:\n${results[failed]!.output}` };
-        const link = await run(cc, ['-o', join(work, 'contract-sim'), ...src.units.map((_, i) => join(work, `unit${i}.o`)), objects.main, objects.lib, '-lm'], work);
+        const link = await run(cc, ['-o', join(work, 'contract-sim'), ...src.units.map((_, i) => join(work, `unit${i}.o`)), objects.main, objects.lib, '-lm'], work, confined);
         if (link.code !== 0) return { error: `cannot link the simulator:\n${link.output}` };
         writeFileSync(join(work, 'key'), key);
         try {

@@ -4,9 +4,11 @@
  * is bounded (time, output size); whatever it prints is parsed defensively.
  */
 import { spawn } from 'node:child_process';
+import { dirname } from 'node:path';
 import { formatTime, type ParsedScenario, type Step } from '../scenario/index.js';
 import type { ResolvedLocal } from '../scenario/index.js';
 import { stepLine, type StepRecord } from './protocol.js';
+import type { Confinement } from '../harness/confine.js';
 
 export interface StepResult {
     /** Scenario line (1-based) and its text; line 0 / '' for the end of the scenario. */
@@ -43,6 +45,11 @@ export interface RunOptions {
     timeoutMs?: number;
     /** Only failures and the end record (benchmarks): no per-step state. */
     quiet?: boolean;
+    /**
+     * How the harness runs (harness/confine.ts): it runs the project's C functions. Without one it
+     * runs unconfined (tests of the runner itself only: prepareProject always gives one).
+     */
+    confinement?: Confinement;
 }
 
 const MAX_OUTPUT_BYTES = 512 * 1024 * 1024;
@@ -86,7 +93,9 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
         const result: ScenarioResult = { file, title: scenario.title, passed: false, steps: [], failures: [], eventsProcessed: 0, endNs, ms: 0, harnessMs: 0 };
         let child;
         try {
-            child = spawn(exe, [], { stdio: ['pipe', 'pipe', 'pipe'] });
+            // the simulator sees its own folder (read-only) and the toolchain's libraries, nothing else
+            const argv = options.confinement?.wrap([exe], { cwd: dirname(exe), readOnly: [dirname(exe)] }) ?? [exe];
+            child = spawn(argv[0]!, argv.slice(1), { stdio: ['pipe', 'pipe', 'pipe'] });
         } catch (e) {
             result.error = `cannot start the simulator: ${e instanceof Error ? e.message : String(e)}`;
             resolvePromise(result);
