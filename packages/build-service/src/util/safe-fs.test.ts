@@ -1,5 +1,5 @@
 import { constants, existsSync, mkdirSync, mkdtempSync, readFileSync, renameSync, rmSync, symlinkSync, writeFileSync, lstatSync } from 'node:fs';
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
@@ -89,4 +89,29 @@ describe('safe fs (planted links never followed)', () => {
       await dir.close();
     }
   });
+
+  test('a folder swapped for a link while reads go on is never followed (no check-then-use gap)', async () => {
+    // lib/ and a link to the host folder trade places as fast as a process can rename
+    mkdirSync(join(root, 'lib'));
+    writeFileSync(join(root, 'lib', 'f.contract'), 'project');
+    writeFileSync(join(outside, 'f.contract'), 'host');
+    symlinkSync(outside, join(root, 'lib_link'));
+    const swapper = spawn('python3', ['-c', [
+      'import os, sys, time', `os.chdir(${JSON.stringify(root)})`, 'end = time.time() + 3',
+      'while time.time() < end:',
+      "    os.rename('lib', 'lib_real'); os.rename('lib_link', 'lib'); os.rename('lib', 'lib_link'); os.rename('lib_real', 'lib')",
+    ].join('\n')], { stdio: 'ignore' });
+    const done = new Promise((r) => swapper.on('exit', r));
+    let leaks = 0;
+    let reads = 0;
+    let exited = false;
+    void done.then(() => { exited = true; });
+    while (!exited) {
+      const data = await readFileNoFollow(root, 'lib/f.contract');
+      if (data?.toString() === 'host') leaks++;
+      else if (data) reads++;
+    }
+    expect(leaks).toBe(0);
+    expect(reads).toBeGreaterThan(0); // the race was run: reads went through between swaps
+  }, 20_000);
 });

@@ -3,8 +3,10 @@
  *
  * Rule (Judge0 CVE-2024-28185/28189): never open, chown or delete a host path through a link the
  * sandboxed code could have planted. Every function here:
- *   - checks each path component below the trusted root with lstat (a symlink or a non-directory
- *     component is refused),
+ *   - reads open each folder below the trusted root from its opened parent (openFileUnder:
+ *     `/proc/self/fd/N/name`, O_DIRECTORY|O_NOFOLLOW), so a folder swapped for a link between two
+ *     steps is refused, never followed; writes check each component below the root with lstat (a
+ *     symlink or a non-directory component is refused),
  *   - opens files with O_NOFOLLOW and changes owners with fchown on the opened descriptor or lchown,
  *   - removes trees without following symlinks (a link is unlinked, never traversed), with
  *     descriptor-relative walks that work at any depth.
@@ -105,57 +107,75 @@ export async function syncFileNoFollow(
   return true;
 }
 
-/** Reads root/rel without following symlinks in any component; null if absent or not a regular file. */
-export async function readFileNoFollow(root: string, rel: string, maxBytes = 16 * 1024 * 1024): Promise<Buffer | null> {
-  const clean = checkRelativePath(rel);
-  let current = root;
-  const parts = clean.split('/');
-  for (let i = 0; i < parts.length; i++) {
-    current = join(current, parts[i]!);
-    let st;
-    try {
-      st = await fsp.lstat(current);
-    } catch {
-      return null;
-    }
-    const last = i === parts.length - 1;
-    if (last ? !st.isFile() : !st.isDirectory()) return null;
-    if (last && st.size > maxBytes) return null;
-  }
-  const fh = await fsp.open(current, constants.O_RDONLY | constants.O_NOFOLLOW);
+/**
+ * Opens root/rel as a regular file for reading without following a link anywhere below `root`,
+ * with no check-then-use gap: each folder is opened from its opened parent
+ * (`/proc/self/fd/N/name`, O_DIRECTORY|O_NOFOLLOW; Node has no openat) and the file from the last
+ * one (O_NOFOLLOW|O_NONBLOCK, then fstat). A folder swapped for a link between two steps is refused,
+ * never followed. Null, with nothing left open, when a component is missing, a link, or not a
+ * folder, or the file is not a regular file.
+ */
+export async function openFileUnder(root: string, rel: string): Promise<{ fh: FileHandle; size: number } | null> {
+  const parts = checkRelativePath(rel).split('/');
+  let dir: FileHandle;
   try {
-    return await fh.readFile();
+    dir = await fsp.open(root, constants.O_RDONLY | constants.O_DIRECTORY);
+  } catch {
+    return null;
+  }
+  try {
+    for (const part of parts.slice(0, -1)) {
+      const next = await openDirNoFollow(entryPath(dir, part));
+      await dir.close();
+      dir = next;
+    }
+    return await openRegularFileIn(dir, parts[parts.length - 1]!, constants.O_RDONLY);
+  } catch {
+    return null;
   } finally {
-    await fh.close();
+    await dir.close().catch(() => {});
+  }
+}
+
+/** Reads up to `limit` bytes of an opened file from its start. */
+async function readUpTo(fh: FileHandle, limit: number): Promise<Buffer> {
+  const buf = Buffer.allocUnsafe(limit);
+  let off = 0;
+  while (off < limit) {
+    const { bytesRead } = await fh.read(buf, off, limit - off, off);
+    if (bytesRead === 0) break;
+    off += bytesRead;
+  }
+  return off === limit ? buf : buf.subarray(0, off);
+}
+
+/**
+ * Reads root/rel without following symlinks in any component (openFileUnder); null if absent, not
+ * a regular file, or larger than `maxBytes` (also when it grows past it while read).
+ */
+export async function readFileNoFollow(root: string, rel: string, maxBytes = 16 * 1024 * 1024): Promise<Buffer | null> {
+  const opened = await openFileUnder(root, rel);
+  if (!opened) return null;
+  try {
+    if (opened.size > maxBytes) return null;
+    const data = await readUpTo(opened.fh, maxBytes + 1);
+    return data.length > maxBytes ? null : data;
+  } finally {
+    await opened.fh.close();
   }
 }
 
 /**
- * The first `maxBytes` bytes of root/rel (all of it when smaller), read like readFileNoFollow
- * (no symlink in any component, O_NOFOLLOW); null if absent or not a regular file.
+ * The first `maxBytes` bytes of root/rel (all of it when smaller), opened like readFileNoFollow
+ * (openFileUnder); null if absent or not a regular file.
  */
 export async function readFileHeadNoFollow(root: string, rel: string, maxBytes: number): Promise<Buffer | null> {
-  const clean = checkRelativePath(rel);
-  let current = root;
-  const parts = clean.split('/');
-  for (let i = 0; i < parts.length; i++) {
-    current = join(current, parts[i]!);
-    const st = await fsp.lstat(current).catch(() => null);
-    if (!st || (i === parts.length - 1 ? !st.isFile() : !st.isDirectory())) return null;
-  }
-  const fh = await fsp.open(current, constants.O_RDONLY | constants.O_NOFOLLOW);
+  const opened = await openFileUnder(root, rel);
+  if (!opened) return null;
   try {
-    const size = Math.min((await fh.stat()).size, maxBytes);
-    const buf = Buffer.allocUnsafe(size);
-    let off = 0;
-    while (off < size) {
-      const { bytesRead } = await fh.read(buf, off, size - off, off);
-      if (bytesRead === 0) break;
-      off += bytesRead;
-    }
-    return off === size ? buf : buf.subarray(0, off);
+    return await readUpTo(opened.fh, Math.min(opened.size, maxBytes));
   } finally {
-    await fh.close();
+    await opened.fh.close();
   }
 }
 
