@@ -113,3 +113,31 @@ describe('rename carry-over and the guard on hostile src-gen folders', () => {
     expect(await isGeneratedFile(ws, 'p7/src-gen/generated/x.c', 'int x;\n')).toBe(false);
   });
 });
+
+describe('a project folder swapped for a link while Generate All runs', () => {
+  it('generates into the folder it opened, never through the link (0 files outside)', async () => {
+    const p = project('p8');
+    const elsewhere = join(base, 'elsewhere-project');
+    mkdirSync(elsewhere);
+    for (const f of readdirSync(p)) cpSync(join(p, f), join(elsewhere, f));
+    symlinkSync(elsewhere, join(ws, 'p8_link'));
+    // p8 and the link trade places as fast as a process can rename, for the whole test
+    const { spawn } = await import('node:child_process');
+    const swapper = spawn('python3', ['-c', [
+      'import os, time', `os.chdir(${JSON.stringify(ws)})`, 'end = time.time() + 6',
+      'while time.time() < end:',
+      "    os.rename('p8', 'p8_tmp'); os.rename('p8_link', 'p8'); os.rename('p8', 'p8_link'); os.rename('p8_tmp', 'p8')",
+    ].join('\n')], { stdio: 'ignore' });
+    let exited = false;
+    const done = new Promise<void>((r) => swapper.on('exit', () => { exited = true; r(); }));
+    let generated = 0;
+    while (!exited) {
+      const r = await post('/api/generate', { project: 'p8' });
+      if (r.status === 200 && Array.isArray(r.body.created) && (r.body.created.length || (r.body.unchanged as string[]).length)) generated++;
+    }
+    await done;
+    expect(readdirSync(elsewhere).filter((n) => n === 'src-gen')).toEqual([]);
+    expect(generated).toBeGreaterThan(0); // requests got through between swaps
+    expect(lstatSync(join(ws, 'p8', 'src-gen')).isDirectory()).toBe(true);
+  }, 30_000);
+});

@@ -18,6 +18,7 @@ import { PROJECT_TEMPLATES } from './project-templates.js';
 import { createEmbeddedBuildServer, loadWorkspaceDocuments, renameGeneratedEntity, runCodegen, type BuildServerLike } from './integrations.js';
 import type { GenerateResponse } from './api-types.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
+import { inProjectFolder } from './project-folder.js';
 import { FileLocks } from './file-locks.js';
 import { fileVersion } from './file-version.js';
 import { SimulateApi } from './simulate-api.js';
@@ -189,10 +190,10 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const body = await readJson(req);
       const projectDir = paths.resolve(body.project ?? '');
       const t0 = Date.now();
-      const report = await treeLock.run(async () => {
-        const { documents } = await loadWorkspaceDocuments(projectDir);
-        return runCodegen(documents, join(projectDir, SRC_GEN_DIR));
-      });
+      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, async (dir) => {
+        const { documents } = await loadWorkspaceDocuments(dir);
+        return runCodegen(documents, join(dir, SRC_GEN_DIR));
+      }));
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));
       const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
       sendJson(res, 200, answer);
@@ -213,7 +214,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       if (typeof body.from !== 'string' || typeof body.to !== 'string') throw new HttpError(400, 'from and to are required');
       const { from, to } = body;
       try {
-        const report = await treeLock.run(() => renameGeneratedEntity(join(projectDir, SRC_GEN_DIR), from, to));
+        const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => renameGeneratedEntity(join(dir, SRC_GEN_DIR), from, to)));
         sendJson(res, 200, report);
       } catch (e) {
         if (e instanceof HttpError) throw e; // codegen not built: 503

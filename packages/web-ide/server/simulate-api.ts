@@ -14,6 +14,7 @@
  * simulation runs at a time (at most 8 wait, then 429), each is bounded in wall time, and the
  * answer in size.
  */
+import { inProjectFolder } from './project-folder.js';
 import { mkdtempSync, rmSync } from 'node:fs';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { tmpdir } from 'node:os';
@@ -89,7 +90,15 @@ export class SimulateApi {
 
   private async simulate(sim: SimulatorApi, projectDir: string, display: string, text: string): Promise<SimulateResponse> {
     const t0 = performance.now();
-    const prepared = await sim.prepareProject(projectDir, { runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR, cacheDir: this.cacheFor(sim) });
+    // the project as opened, not as named: a folder swapped for a link meanwhile is not followed (project-folder.ts)
+    const prepared = await inProjectFolder(this.paths, projectDir,
+      async (dir) => {
+        const p = await sim.prepareProject(dir, { runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR, cacheDir: this.cacheFor(sim) });
+        const named = (text: string) => text.split(dir).join(projectDir);
+        if ('build' in p) p.warnings = p.warnings.map(named);
+        else if (p.buildError) p.buildError = named(p.buildError);
+        return p;
+      }, { unanchor: false });
     if (!('build' in prepared)) {
       if (prepared.modelErrors.length) {
         const diagnostics: SimulateDiagnostic[] = prepared.modelErrors.slice(0, 200).map((d) => ({
