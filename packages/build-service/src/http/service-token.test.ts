@@ -6,7 +6,7 @@
  * is left to its host's guard. Real servers, real jobs (`kind: "make"`, the Makefile only echoes).
  */
 import { createServer, request, type Server } from 'node:http';
-import { readFileSync, statSync } from 'node:fs';
+import { chownSync, closeSync, openSync, readFileSync, readSync, statSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import type { AddressInfo } from 'node:net';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
@@ -117,6 +117,25 @@ describe('the standalone service requires its token', () => {
     expect(statSync(file).mode & 0o777).toBe(0o600);
     expect((await call(started.url, '/api/health', {})).status).toBe(401);
     expect((await call(started.url, '/api/health', { 'X-Contract-Token': given })).status).toBe(200);
+  });
+
+  test('a token file someone else made (and holds open) beforehand is replaced, never written into', async () => {
+    const file = join(temp('contract-token-planted-'), 'build-service.token');
+    writeFileSync(file, 'planted\n', { mode: 0o666 });
+    if (process.getuid?.() === 0) chownSync(file, 65534, 65534); // another user's file
+    const held = openSync(file, 'r'); // the other user keeps it open to read what gets written
+    try {
+      const started = await start({ tokenFile: file });
+      expect(readFileSync(file, 'utf8')).toBe(`${started.token}\n`);
+      const st = statSync(file);
+      expect(st.mode & 0o777).toBe(0o600);
+      expect(st.uid).toBe(process.getuid?.());
+      const seen = Buffer.alloc(256);
+      const n = readSync(held, seen, 0, seen.length, 0);
+      expect(seen.subarray(0, n).toString()).toBe('planted\n');
+    } finally {
+      closeSync(held);
+    }
   });
 
   test('two starts get two different tokens', async () => {

@@ -6,7 +6,7 @@
  * service's user. A server that mounts the service (`handle()`, the IDE) applies its own guard.
  */
 import { createHash, randomBytes, timingSafeEqual } from 'node:crypto';
-import { closeSync, constants, fchmodSync, ftruncateSync, openSync, writeSync } from 'node:fs';
+import { closeSync, constants, openSync, renameSync, unlinkSync, writeSync } from 'node:fs';
 import type { IncomingMessage } from 'node:http';
 
 export const TOKEN_HEADER = 'X-Contract-Token';
@@ -28,15 +28,34 @@ export class ServiceToken {
     return typeof candidate === 'string' && timingSafeEqual(digest(candidate), this.hash);
   }
 
-  /** Writes the token to `path`, readable by its owner only; never through a link planted there. */
+  /**
+   * Writes the token to `path`, readable by its owner only: into a new file (`O_CREAT|O_EXCL|
+   * O_NOFOLLOW`, 0600) beside it, renamed over `path`. A file someone else made there beforehand
+   * (and may hold open, or own and re-read) is replaced, never written into; a link there is
+   * replaced, never followed. Throws a sentence naming the path when that cannot be done.
+   */
   writeTo(path: string): void {
-    const fd = openSync(path, constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW, 0o600);
+    const temp = `${path}.tmp-${process.pid}-${randomBytes(6).toString('hex')}`;
+    let fd: number;
     try {
-      fchmodSync(fd, 0o600); // an existing file keeps its mode on open: narrow it before writing
-      ftruncateSync(fd, 0);
+      fd = openSync(temp, constants.O_WRONLY | constants.O_CREAT | constants.O_EXCL | constants.O_NOFOLLOW, 0o600);
+    } catch (e) {
+      throw new Error(`cannot write the token file ${path}: ${(e as NodeJS.ErrnoException).code ?? (e as Error).message} (a folder you can write to?)`);
+    }
+    try {
       writeSync(fd, `${this.value}\n`);
     } finally {
       closeSync(fd);
+    }
+    try {
+      renameSync(temp, path);
+    } catch (e) {
+      try {
+        unlinkSync(temp);
+      } catch {
+        // already gone
+      }
+      throw new Error(`cannot write the token file ${path}: ${(e as NodeJS.ErrnoException).code ?? (e as Error).message} (a file of another user, or a folder, in its place? remove it or choose another path)`);
     }
   }
 }
