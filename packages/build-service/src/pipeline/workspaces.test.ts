@@ -1,4 +1,4 @@
-import { mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync, utimesSync } from 'node:fs';
+import { mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, expect, test } from 'vitest';
@@ -60,4 +60,27 @@ test('the build cache keeps the most recently used project workspaces up to its 
   await (await second.acquireForProject(p1, 'none')).release();
   expect(kept(cache)).toEqual([p1, p2, p4, p5]);
   await held.release();
+});
+
+test('first jobs on one project at once share one workspace, one after the other: none removes the folders another is using', async () => {
+  const manager = new WorkspaceManager(join(tmp, 'base'));
+  const project = join(tmp, 'p');
+  mkdirSync(project);
+  const order: string[] = [];
+  const jobs = [1, 2, 3].map(async (n) => {
+    const ws = await manager.acquireForProject(project, 'none');
+    order.push(`start ${n}`);
+    // the job leaves a file in its stage; the next one must find it (its folders were not remade)
+    writeFileSync(join(ws.stageDir, `job${n}`), 'x');
+    await new Promise((r) => setTimeout(r, 30));
+    const seen = readdirSync(ws.stageDir).sort();
+    order.push(`end ${n}`);
+    await ws.release();
+    return { root: ws.root, seen, reused: ws.reused };
+  });
+  const results = await Promise.all(jobs);
+  expect(new Set(results.map((r) => r.root)).size).toBe(1);
+  expect(order).toEqual(['start 1', 'end 1', 'start 2', 'end 2', 'start 3', 'end 3']);
+  expect(results.map((r) => r.seen)).toEqual([['job1'], ['job1', 'job2'], ['job1', 'job2', 'job3']]);
+  expect(results.map((r) => r.reused)).toEqual([false, true, true]);
 });

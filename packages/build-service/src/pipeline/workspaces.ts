@@ -65,6 +65,8 @@ interface Keyed {
   used: boolean;
   acceptedOutputs: string | null;
   lock: Promise<void>;
+  /** The folders' creation, registered before it runs so that two first jobs on a project make them once. */
+  created?: Promise<void>;
 }
 
 /** In a persistent workspace: the project folder it is for (its real path), to find entries whose folder is gone. */
@@ -141,11 +143,16 @@ export class WorkspaceManager {
     if (this.persistentDir) return this.acquirePersistent(id, key, disk, hooks);
     let entry = this.keyed.get(id);
     if (!entry) {
+      // registered before the first await: a second job on the project arriving meanwhile waits
+      // for this one instead of removing and making the same folders under it
       const root = join(this.baseDir, `ws-${id}`);
       const owner = this.nextOwner();
-      await this.removeRoot(root);
-      await this.create(root, owner, disk);
-      entry = { root, owner, used: false, acceptedOutputs: null, lock: Promise.resolve() };
+      const created = this.removeRoot(root).then(() => this.create(root, owner, disk));
+      const fresh: Keyed = { root, owner, used: false, acceptedOutputs: null, lock: created.then(() => {}, () => {}), created };
+      created.catch(() => {
+        if (this.keyed.get(id) === fresh) this.keyed.delete(id); // the next job tries again
+      });
+      entry = fresh;
       this.keyed.set(id, entry);
     }
     const e = entry;
@@ -153,6 +160,12 @@ export class WorkspaceManager {
     let unlock!: () => void;
     e.lock = new Promise<void>((r) => (unlock = r));
     await previous;
+    try {
+      await e.created;
+    } catch (err) {
+      unlock();
+      throw err;
+    }
     let reused = e.used;
     e.used = true;
     const work = join(e.root, 'work');
