@@ -43,13 +43,15 @@ export interface SimulateOptions extends RunOptions {
     cacheDir?: string;
     /** Told when the harness build waits for another build holding its lock. */
     onWait?: (what: string) => void;
+    /** Bound of the project's `.contract` files together (the language's ModelTooLargeError over it); none by default. */
+    maxModelBytes?: number;
     /** Where the project's C runs (harness/confine.ts): default `$CONTRACT_SIMULATOR_SANDBOX`, else `auto` (bubblewrap). */
     sandbox?: SimulatorSandboxChoice;
 }
 
 /** Loads the project and builds its simulator; problems when the model has errors or the build fails. */
 export async function prepareProject(dir: string, options: SimulateOptions): Promise<PreparedProject | ProjectProblems> {
-    const workspace = await loadWorkspace(dir, { confineImportsTo: dir });
+    const workspace = await loadWorkspace(dir, { confineImportsTo: dir, maxModelBytes: options.maxModelBytes });
     const modelErrors = workspace.diagnostics.filter((d) => d.severity === 'error');
     if (modelErrors.length) return { modelErrors };
     const docs = [...workspace.documents].sort((a, b) => {

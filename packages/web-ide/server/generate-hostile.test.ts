@@ -141,3 +141,20 @@ describe('a project folder swapped for a link while Generate All runs', () => {
     expect(lstatSync(join(ws, 'p8', 'src-gen')).isDirectory()).toBe(true);
   }, 30_000);
 });
+
+describe('a model too large to load', () => {
+  it('Generate All and Simulate answer 413 naming the size and the limit, before parsing anything', async () => {
+    const p = project('p9');
+    // 1.1 MiB in one file (a comment: cheap to write, and never parsed)
+    writeFileSync(join(p, 'huge.contract'), `// ${'x'.repeat(1100 * 1024)}\n`);
+    const t0 = Date.now();
+    const g = await post('/api/generate', { project: 'p9' });
+    expect(g.status).toBe(413);
+    expect(g.body.error).toMatch(/the project's \.contract files hold \d+ bytes, over the limit of 1048576 bytes/);
+    expect(Date.now() - t0).toBeLessThan(5_000);
+    expect(readdirSync(p)).not.toContain('src-gen');
+    const s = await post('/api/simulate', { project: 'p9', scenario: 'start SUP.action()\n' });
+    expect(s.status).toBe(413);
+    expect(s.body.error).toMatch(/over the limit of 1048576 bytes/);
+  });
+});

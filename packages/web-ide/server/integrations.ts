@@ -31,9 +31,26 @@ async function importWith<T, K extends keyof T>(name: string, names: readonly K[
   return mod as Pick<T, K>;
 }
 
+/**
+ * Bytes of `.contract` files the server loads for one Generate All or simulation: the build
+ * service's model size limit (1 MiB). Parsing is superlinear in a rule's expression (a 578 KB
+ * condition of 32,000 `or`: 8 s), and the server answers every tab on one thread.
+ */
+export const IDE_MAX_MODEL_BYTES = 1024 * 1024;
+
+/** The project's model, refused with 413 when its files are over IDE_MAX_MODEL_BYTES together. */
 export async function loadWorkspaceDocuments(dir: string): Promise<LoadedWorkspace> {
   const lang = await importWith<LanguageNodeApi, 'loadWorkspace'>('@contract-studio/language/node', ['loadWorkspace']);
-  return lang.loadWorkspace(dir);
+  try {
+    return await lang.loadWorkspace(dir, { maxModelBytes: IDE_MAX_MODEL_BYTES });
+  } catch (e) {
+    throw modelTooLarge(e) ?? e;
+  }
+}
+
+/** The 413 of a model over the limit (the language's ModelTooLargeError), else undefined. */
+export function modelTooLarge(e: unknown): HttpError | undefined {
+  return e instanceof Error && e.name === 'ModelTooLargeError' ? new HttpError(413, e.message) : undefined;
 }
 
 export async function runCodegen(documents: WorkspaceDocument[], outDir: string): Promise<GenerationReport> {

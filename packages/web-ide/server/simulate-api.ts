@@ -23,7 +23,7 @@ import { HttpError } from './http-error.js';
 import { readJson, sendJson } from './http-util.js';
 import type { WorkspacePaths } from './workspace-paths.js';
 import { WorkspaceFs } from './workspace-fs.js';
-import { loadSimulator, type SimulatorApi } from './integrations.js';
+import { IDE_MAX_MODEL_BYTES, loadSimulator, modelTooLarge, type SimulatorApi } from './integrations.js';
 import type { SimulateDiagnostic, SimulateResponse, SimulateStep } from './api-types.js';
 
 /** A session's scenario is small; this bounds what one request may make the harness do. */
@@ -93,7 +93,11 @@ export class SimulateApi {
     // the project as opened, not as named: a folder swapped for a link meanwhile is not followed (project-folder.ts)
     const prepared = await inProjectFolder(this.paths, projectDir,
       async (dir) => {
-        const p = await sim.prepareProject(dir, { runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR, cacheDir: this.cacheFor(sim) });
+        const p = await sim.prepareProject(dir, {
+          runtimeDir: process.env.CONTRACT_RUNTIME || sim.DEFAULT_RUNTIME_DIR, cacheDir: this.cacheFor(sim), maxModelBytes: IDE_MAX_MODEL_BYTES,
+        }).catch((e: unknown) => {
+          throw modelTooLarge(e) ?? e;
+        });
         const named = (text: string) => text.split(dir).join(projectDir);
         if ('build' in p) p.warnings = p.warnings.map(named);
         else if (p.buildError) p.buildError = named(p.buildError);
@@ -134,10 +138,10 @@ function stepOf(s: StepResult): SimulateStep {
   const rec = s.record;
   const cut = <T>(xs: T[] | undefined): T[] => (xs ?? []).slice(0, MAX_PER_STEP);
   const dropped = Math.max(0, (rec.rules?.length ?? 0) - MAX_PER_STEP) + Math.max(0, (rec.actions?.length ?? 0) - MAX_PER_STEP)
-    + Math.max(0, (rec.locals?.length ?? 0) - MAX_PER_STEP) + (rec.dropped ?? 0);
+    + Math.max(0, (rec.locals?.length ?? 0) - MAX_PER_STEP) + Math.max(0, (rec.log?.length ?? 0) - MAX_PER_STEP) + (rec.dropped ?? 0);
   return {
     line: s.line, source: s.source.slice(0, 1000), timeNs: s.timeNs, kind: s.kind, ok: s.ok, message: s.message,
-    rules: cut(rec.rules), actions: cut(rec.actions), schemas: cut(rec.schemas), locals: cut(rec.locals),
+    rules: cut(rec.rules), actions: cut(rec.actions), log: cut(rec.log), schemas: cut(rec.schemas), locals: cut(rec.locals),
     output: rec.output?.slice(0, MAX_OUTPUT), error: rec.error, ...(dropped ? { dropped } : {}),
   };
 }

@@ -66,6 +66,19 @@ export interface LoadWorkspaceOptions {
     confineImportsTo?: string;
     /** Bound of one imported file under `confineImportsTo` (default 8 MiB). */
     maxImportBytes?: number;
+    /**
+     * Bound of the `.contract` files found in DIR, all together: over it, ModelTooLargeError before
+     * any is parsed (a server loading models for clients: the IDE's Generate All and Simulate).
+     */
+    maxModelBytes?: number;
+}
+
+/** The project's `.contract` files are more than `maxModelBytes` together (nothing was parsed). */
+export class ModelTooLargeError extends Error {
+    constructor(readonly bytes: number, readonly limit: number) {
+        super(`the project's .contract files hold ${bytes} bytes, over the limit of ${limit} bytes (a model that large is not loaded: split it, or check for generated text pasted in)`);
+        this.name = 'ModelTooLargeError';
+    }
 }
 
 /** Code of the loader's diagnostic for an import that `confineImportsTo` does not allow. */
@@ -135,6 +148,11 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     const services = options.services ?? createCactalServices(NodeFileSystem).Cactal;
     const shared = services.shared;
     const files = await findContractFiles(root, options.skipDirs);
+    if (options.maxModelBytes !== undefined) {
+        let bytes = 0;
+        for (const f of files) bytes += (await stat(f).catch(() => undefined))?.size ?? 0;
+        if (bytes > options.maxModelBytes) throw new ModelTooLargeError(bytes, options.maxModelBytes);
+    }
     const documents: WorkspaceDocument[] = [];
     const loaded = new Set<string>();
     const langiumDocs = shared.workspace.LangiumDocuments;
