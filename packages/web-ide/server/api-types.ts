@@ -21,6 +21,8 @@ export interface TreeEntry {
   path: string;
   type: 'file' | 'dir';
   children?: TreeEntry[];
+  /** A folder whose content is not listed: deeper than the tree's depth bound, or past its entry bound (file-tree.ts). */
+  truncated?: true;
 }
 
 /** What Generate All did: codegen's report of generateArchitecture (Seam 4), paths relative to src-gen. */
@@ -85,7 +87,7 @@ export type SimulateRuleChange = RuleChange;
  * and message) with what its record changed and the state after it, bounded by the server.
  */
 export type SimulateStep = Pick<StepResult, 'line' | 'source' | 'timeNs' | 'kind' | 'ok' | 'message'>
-  & Pick<StepRecord, 'rules' | 'actions' | 'output' | 'error' | 'dropped'>
+  & Pick<StepRecord, 'rules' | 'actions' | 'output' | 'error' | 'dropped'> & Partial<Pick<StepRecord, 'log'>>
   & Required<Pick<StepRecord, 'schemas' | 'locals'>>;
 
 /** The answer of POST /api/simulate (200: the scenario ran; 422: diagnostics, nothing ran). */

@@ -59,6 +59,26 @@ describe('file API over HTTP', () => {
     }
   });
 
+  it('lists a tree of 200 nested folders down to 64 levels, the deeper one marked truncated (one descriptor per level)', async () => {
+    execFileSync('python3', ['-c', `import os\nos.chdir(${JSON.stringify(ws)})\nfor i in range(200):\n    os.mkdir('d'); os.chdir('d')\nopen('deep.contract', 'w').write('x')`]);
+    try {
+      const tree = await call('GET', '/api/tree');
+      expect(tree.status).toBe(200);
+      type Entry = { name: string; type: string; children?: Entry[]; truncated?: boolean };
+      let level = (tree.body.entries as Entry[]).find((e) => e.name === 'd');
+      let depth = 1;
+      while (level?.children?.length) {
+        level = level.children.find((e) => e.name === 'd');
+        depth++;
+      }
+      expect(depth).toBe(64);
+      expect(level).toMatchObject({ type: 'dir', truncated: true, children: [] });
+      expect((await call('GET', '/api/snapshot')).status).toBe(200);
+    } finally {
+      rmSync(join(ws, 'd'), { recursive: true, force: true });
+    }
+  });
+
   it('lists, reads and atomically writes files', async () => {
     const tree = await call('GET', '/api/tree');
     expect((tree.body.entries as Array<{ path: string }>).map((e) => e.path)).toEqual(['sub', 'a.contract']); // symlinks are not listed
@@ -154,5 +174,29 @@ describe('file API over HTTP', () => {
     const page = await fetch(ide.url + '/', { headers: { 'x-contract-token': ide.token } });
     expect(page.status).toBe(500);
     expect(await page.text()).toMatch(/npm run build/);
+  });
+});
+
+describe('the front end files', () => {
+  it('serve the built files; an unknown file is 404 (never the page without a session), a malformed escape 400', async () => {
+    const dist = join(base, 'dist-static');
+    mkdirSync(join(dist, 'assets'), { recursive: true });
+    writeFileSync(join(dist, 'index.html'), '<!doctype html><title>IDE</title>');
+    writeFileSync(join(dist, 'assets', 'app.js'), 'console.log(1);');
+    const server = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: dist });
+    try {
+      const get = async (path: string, headers: Record<string, string> = {}) => {
+        const r = await fetch(server.url + path, { headers });
+        return { status: r.status, text: await r.text() };
+      };
+      expect(await get('/assets/app.js')).toEqual({ status: 200, text: 'console.log(1);' });
+      expect((await get('/missing.js')).status).toBe(404);
+      expect((await get('/deep/path/x.css')).text).not.toContain('<title>IDE</title>');
+      expect((await get('/%E0%A4%A.js')).status).toBe(400);
+      expect((await get('/some/route')).status).toBe(401);
+      expect(await get('/some/route', { 'x-contract-token': server.token })).toEqual({ status: 200, text: '<!doctype html><title>IDE</title>' });
+    } finally {
+      await server.close();
+    }
   });
 });

@@ -15,9 +15,19 @@ const TYPES: Record<string, string> = {
   '.map': 'application/json',
 };
 
-/** Serves the Vite production build in `distDir`; unknown paths fall back to index.html. */
+/**
+ * Serves the Vite production build in `distDir`. An unknown path without an extension falls back
+ * to index.html (the app's own routes); an unknown file (`/x.js`) is 404, a malformed percent
+ * escape 400.
+ */
 export async function serveStatic(distDir: string, req: IncomingMessage, res: ServerResponse, url: URL): Promise<void> {
-  let rel = decodeURIComponent(url.pathname);
+  let rel: string;
+  try {
+    rel = decodeURIComponent(url.pathname);
+  } catch {
+    res.writeHead(400, { 'content-type': 'text/plain' }).end('malformed percent escape in the path');
+    return;
+  }
   if (rel === '/' || rel === '') rel = '/index.html';
   const abs = normalize(join(distDir, rel));
   if (!abs.startsWith(distDir + sep)) {
@@ -27,6 +37,10 @@ export async function serveStatic(distDir: string, req: IncomingMessage, res: Se
   let file = abs;
   let st = await stat(file).catch(() => undefined);
   if (!st || !st.isFile()) {
+    if (extname(rel) && extname(rel) !== '.html') {
+      res.writeHead(404, { 'content-type': 'text/plain' }).end('not found');
+      return;
+    }
     file = join(distDir, 'index.html');
     st = await stat(file).catch(() => undefined);
     if (!st) {
