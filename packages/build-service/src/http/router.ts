@@ -132,6 +132,11 @@ export function createRouter(service: JobService, basePath: string) {
           } catch {
             throw new ServiceError(400, 'bad_request', `bad artifact name "${parts[3]}"`);
           }
+          // a log's name is one file name: no folder part, no control character, not . or ..
+          // eslint-disable-next-line no-control-regex
+          if (name === '' || name === '.' || name === '..' || name.length > 255 || /[/\\\u0000-\u001f\u007f]/.test(name)) {
+            throw new ServiceError(400, 'bad_request', `bad artifact name ${JSON.stringify(name)}: a file name (no folder, no control character)`);
+          }
           const file = job.artifact(name);
           if (!file) throw new ServiceError(404, 'not_found', `job ${job.id} has no artifact "${name}"${job.isDone ? '' : ' (yet: the job has not finished)'}`);
           // kept gzip-compressed (artifacts.ts): sent as is to a client that takes gzip

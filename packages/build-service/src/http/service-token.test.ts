@@ -93,6 +93,15 @@ describe('the standalone service requires its token', () => {
     });
   }
 
+  test('an artifact name that is no file name is 400, an unknown one 404', async () => {
+    for (const bad of ['a%2Fb.csv', 'a%0Ab.csv', 'a%00.csv', 'x'.repeat(300)]) {
+      const r = await call(url, `/api/jobs/${jobId}/artifacts/${bad}`, { 'X-Contract-Token': token });
+      expect(r.status, bad).toBe(400);
+      expect(r.json.code, bad).toBe('bad_request');
+    }
+    expect((await call(url, `/api/jobs/${jobId}/artifacts/x.csv`, { 'X-Contract-Token': token })).status).toBe(404);
+  });
+
   test('the 401 says what is missing', async () => {
     expect((await call(url, '/api/health', {})).json.error).toBe(
       'missing X-Contract-Token header: this build service requires the token given when it was started (docs/build-service-api.md, "Token")');
