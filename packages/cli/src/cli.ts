@@ -3,7 +3,8 @@ import { readFileSync } from 'node:fs';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from './command.js';
 import { COMMANDS } from './commands/index.js';
 import { makeProcessIO } from './process-io.js';
-import { terminalSafeIO } from './terminal-text.js';
+import { safeName, terminalSafeIO } from './terminal-text.js';
+import { closestName } from './did-you-mean.js';
 
 function version(): string {
     try {
@@ -45,7 +46,8 @@ export async function runCli(argv: string[], rawIO: CliIO = processIO, commands:
     }
     const command = commands.find((c) => c.name === name);
     if (!command) {
-        io.err(`contract: unknown command '${name}'\n\n${helpText(commands)}`);
+        const near = closestName(name, commands.map((c) => c.name));
+        io.err(`contract: unknown command '${safeName(name)}'${near ? `; did you mean '${near}'?` : ''}\n\n${helpText(commands)}`);
         return EXIT_USAGE;
     }
     if (rest.includes('--help') || rest.includes('-h')) {

@@ -2,11 +2,12 @@
 import { pathToFileURL } from 'node:url';
 import type { WorkspaceDiagnostic } from '@contract-studio/language/node';
 import type { findCode } from '@contract-studio/language';
+import { safeName } from './terminal-text.js';
 
-/** `file:line:col severity code message`, one per line (newlines in messages are flattened). */
+/** `file:line:col severity code message`, one per line (newlines in messages are flattened; the file name's escaped, terminal-text.ts safeName). */
 export function formatText(diagnostics: WorkspaceDiagnostic[], displayPath: (file: string) => string = (f) => f): string {
     return diagnostics
-        .map((d) => `${displayPath(d.file)}:${d.line}:${d.column} ${d.severity} ${d.code} ${d.message.replace(/\s*\n\s*/g, ' ')}\n`)
+        .map((d) => `${safeName(displayPath(d.file))}:${d.line}:${d.column} ${d.severity} ${d.code} ${d.message.replace(/\s*\n\s*/g, ' ')}\n`)
         .join('');
 }
 

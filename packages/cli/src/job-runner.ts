@@ -12,6 +12,7 @@ import type { ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO } from './command.js';
 import { SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
+import { safeName } from './terminal-text.js';
 
 /** The environment cannot do what was asked (no sandbox, no runtime, a build cache folder that cannot be trusted). */
 export const EXIT_ENVIRONMENT = 3;
@@ -62,7 +63,7 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
     const dirArg = positionals[0]!;
     const dir = resolve(io.cwd, dirArg);
     const info = await stat(dir).catch(() => undefined);
-    if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+    if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a directory`);
     const sandbox = (options.get('sandbox') ?? 'auto') as SandboxChoice;
     if (!SANDBOXES.includes(sandbox)) throw new UsageError(`unknown sandbox '${String(sandbox)}' (expected auto, bwrap, docker or none)`);
     const format = (options.get('format') ?? 'text') as Format;
@@ -77,7 +78,7 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
 
 /** A gcc diagnostic as gcc prints it, its path from where the command was typed (`dirArg`: the project folder as given). */
 export function formatGccDiagnostic(d: GccDiagnostic, dirArg = '.'): string {
-    const where = d.file ? `${join(dirArg, 'src-gen', d.file)}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+    const where = d.file ? `${safeName(join(dirArg, 'src-gen', d.file))}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
     const region = d.protectedRegion ? ` [in protected region ${d.protectedRegion.id}]` : '';
     return `${where}${d.severity}: ${d.message}${d.option ? ` [${d.option}]` : ''}${region}\n`;
 }
@@ -187,6 +188,9 @@ export async function runJob(
     }
 }
 
+/** How the service logs a prepare problem (build-service pipeline/prepare.ts): `file:line:col: severity: message`. */
+const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
+
 /** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
 function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines']): (e: JobEvent) => void {
     const madeParts = new Set<string>();
@@ -212,6 +216,9 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             return;
         }
         if (opts.format !== 'text') return;
+        // the service's own line for each model or generation problem: printed once, at the end, at
+        // its path from where the command ran (prepareErrors), not here relative to the project
+        if (e.step === 'prepare' && e.source === 'service' && (PREPARE_PROBLEM_LINE.test(e.line) || /^the project has \d+ error\(s\): nothing generated$/.test(e.line))) return;
         if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {
@@ -230,9 +237,24 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
     };
 }
 
+/**
+ * A prepare problem is the model's (a `.contract` file, 1-based line and column: what `contract
+ * check` reports) or the generator's (a file of the generated tree, relative to src-gen, its line
+ * when known and no column: what `contract generate` reports, e.g. a broken protected-region marker).
+ */
+export function isModelProblem(p: { file: string }): boolean {
+    return p.file.endsWith('.contract');
+}
+
+/** Each prepare problem once, gcc-like, at its path from where the command ran. */
 export function prepareErrors(job: Job, dirArg: string): string {
     return job.prepareDiagnostics
-        .map((p) => `${join(dirArg, p.file)}:${p.line}:${p.column}: ${p.severity}: ${p.message}\n`)
+        .map((p) => {
+            if (isModelProblem(p)) return `${safeName(join(dirArg, p.file))}:${p.line}:${p.column}: ${p.severity}: ${p.message}\n`;
+            // the generator's own notes ("(manifest)", an absolute path) are not files of src-gen
+            const file = p.file.startsWith('(') || p.file.startsWith('/') ? p.file : join(dirArg, SRC_GEN_DIR, p.file);
+            return `${safeName(file)}${p.line ? `:${p.line}` : ''}: ${p.severity}: ${p.message}\n`;
+        })
         .join('');
 }
 
@@ -259,7 +281,11 @@ export function exitCodeOf(result: JobResult, job: Job): number {
     return EXIT_FAILURE;
 }
 
-export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, extra: Record<string, unknown> = {}): number {
+/**
+ * The report at the end of a job. `problems`: the run's problems as told (run.ts problemLines),
+ * when they differ from the service's messages, which the summary line then quotes as told.
+ */
+export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, extra: Record<string, unknown> = {}, problems?: readonly string[]): number {
     const { job, result } = outcome;
     if (opts.format === 'json') {
         io.out(jobJson(outcome, extra));
@@ -269,8 +295,22 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
     for (const w of job.warnings) io.err(`warning: ${w}\n`);
     const seconds = (ms: number | undefined) => (ms === undefined ? '-' : (ms / 1000).toFixed(1));
     const d = result.durations_ms;
-    io.err(`${result.ok ? 'ok' : 'FAILED'}: ${result.message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
-    if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) io.err(`fix the errors above (\`contract check ${opts.dirArg}\` lists them), then build again\n`);
-    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${join(opts.dirArg, SRC_GEN_DIR)}), then build again; --verbose shows every build line\n`);
+    let message = result.message;
+    (result.issues ?? []).forEach((i, n) => {
+        const told = problems?.[n];
+        if (told === undefined || told === i.message) return;
+        const short = i.message.replace(/: does its exec region set \*stateindex = -1\?$/, '');
+        message = message.includes(i.message) ? message.replace(i.message, told) : message.replace(short, told);
+    });
+    io.err(`${result.ok ? 'ok' : 'FAILED'}: ${message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
+    if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) {
+        const dir = safeName(opts.dirArg);
+        const model = job.prepareDiagnostics.filter((p) => p.severity === 'error' && isModelProblem(p)).length;
+        const generated = job.prepareDiagnostics.filter((p) => p.severity === 'error' && !isModelProblem(p)).length;
+        if (model) io.err(`fix the model errors above (\`contract check ${dir}\` lists them), then build again\n`);
+        if (generated) io.err(`fix the generated tree's errors above in ${safeName(join(opts.dirArg, SRC_GEN_DIR))} (a protected-region marker broken or edited: \`contract generate ${dir}\` lists them), then build again\n`);
+        if (!model && !generated) io.err(`fix the problems above, then build again\n`);
+    }
+    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))}), then build again; --verbose shows every build line\n`);
     return exitCodeOf(result, job);
 }

@@ -17,6 +17,23 @@ export function escapeControls(text: string): string {
     return text.replace(CONTROL, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);
 }
 
+/**
+ * Control characters, line and paragraph separators and bidirectional overrides: what may not
+ * stand raw in a name printed inside a message (a newline would start a line of its own).
+ */
+const NAME_UNSAFE = /[\x00-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
+
+/**
+ * A name that comes from a project or a sandbox (a file name, a module's output file, a path
+ * typed into a model) as it is printed inside a CLI message: every character that could start a
+ * line of its own or move the text (newline, tab, CR, every other C0/C1 control, DEL, U+2028/9,
+ * bidi overrides) is written `\uXXXX`. A file named `x\nok: run finished` cannot forge a status
+ * line. The one helper every command uses for such names (README "Terminal output").
+ */
+export function safeName(name: string): string {
+    return name.replace(NAME_UNSAFE, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);
+}
+
 /** An io whose every write goes through escapeControls. */
 export function terminalSafeIO(io: CliIO): CliIO {
     return {

@@ -12,6 +12,7 @@ import { join } from 'node:path';
 import { StringDecoder } from 'node:string_decoder';
 import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { LOG_FILE_NAME } from './trace-files.js';
+import { safeName } from './terminal-text.js';
 
 /** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
 export const WINDOW = 4096;
@@ -36,19 +37,30 @@ export interface OpenLog {
     size: number;
 }
 
+/** What a file that is not a regular file is, for the warning that leaves it out. */
+function kindOf(st: { isFIFO(): boolean; isSocket(): boolean; isCharacterDevice(): boolean; isBlockDevice(): boolean; isDirectory(): boolean }): string {
+    if (st.isFIFO()) return 'a FIFO';
+    if (st.isSocket()) return 'a socket';
+    if (st.isCharacterDevice() || st.isBlockDevice()) return 'a device';
+    if (st.isDirectory()) return 'a folder';
+    return 'not a regular file';
+}
+
 /**
- * The CSV logs of `dir` (those named in `only` when given), opened (regular files only: a FIFO,
- * socket or device is left out; never through a link), or an error message.
+ * The CSV logs of `dir` (those named in `only` when given), opened (regular files only; never
+ * through a link), or an error message. A file named like a log that is not read — a symbolic
+ * link, a FIFO, socket or device (never waited on), one that cannot be opened — is left out and
+ * said in `skipped` (`NAME: why`); the others are read.
  */
-export async function openLogFolder(dir: string, only?: readonly string[]): Promise<OpenLog[] | string> {
+export async function openLogFolder(dir: string, only?: readonly string[], skipped: string[] = []): Promise<OpenLog[] | string> {
     let names: string[];
     try {
         names = (await fsp.readdir(dir)).filter((n) => LOG_FILE_NAME.test(n) && (!only || only.includes(n))).sort();
     } catch (e) {
-        return `cannot read the log folder ${dir}: ${(e as Error).message}`;
+        return `cannot read the log folder ${safeName(dir)}: ${(e as Error).message}`;
     }
-    if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${dir}`;
-    if (names.length > MAX_LOG_FILES) return `${dir} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
+    if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${safeName(dir)}`;
+    if (names.length > MAX_LOG_FILES) return `${safeName(dir)} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
     const logs: OpenLog[] = [];
     for (const name of names) {
         let handle: fsp.FileHandle;
@@ -56,16 +68,19 @@ export async function openLogFolder(dir: string, only?: readonly string[]): Prom
             // O_NONBLOCK: a FIFO named like a log must not wait for a writer for ever (it is left out below)
             handle = await fsp.open(join(dir, name), constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
         } catch (e) {
-            await closeLogs(logs);
-            return `cannot open ${join(dir, name)}: ${(e as Error).message}`;
+            const code = (e as NodeJS.ErrnoException).code;
+            skipped.push(code === 'ELOOP' ? `${name}: a symbolic link, not read (logs are never read through a link)` : `${name}: cannot be opened (${code ?? (e as Error).message})`);
+            continue;
         }
         const st = await handle.stat().catch(() => undefined);
         if (!st?.isFile()) {
             await handle.close().catch(() => {});
+            skipped.push(`${name}: ${st ? kindOf(st) : 'cannot be read'}, not read`);
             continue;
         }
         logs.push({ name, handle, size: st.size });
     }
+    if (logs.length === 0) return `no readable CSV log in ${safeName(dir)}`;
     return logs;
 }
 

@@ -10,7 +10,7 @@ export const buildCommand: Command = {
     name: 'build',
     summary: 'generate and compile a Cactal project in a sandbox (gcc + make)',
     usage: [
-        'usage: contract build DIR [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
+        'usage: contract build DIR [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  generates DIR/src-gen (user code in protected regions kept) in a private copy and compiles it;',
         '  gcc diagnostics are printed against src-gen/ paths, naming the protected region they are in.',
         ...COMMON_USAGE,

@@ -8,6 +8,7 @@ import type { WorkspaceDiagnostic } from '@contract-studio/language/node';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatJson, formatSarif, formatText, summarize } from '../diagnostic-format.js';
+import { safeName } from '../terminal-text.js';
 
 const FORMATS = ['text', 'json', 'sarif'] as const;
 type Format = (typeof FORMATS)[number];
@@ -30,7 +31,7 @@ export const checkCommand: Command = {
         const dirArg = positionals[0]!;
         const dir = resolve(io.cwd, dirArg);
         const info = await stat(dir).catch(() => undefined);
-        if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+        if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a directory`);
 
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
         const { loadWorkspace } = await import('@contract-studio/language/node');

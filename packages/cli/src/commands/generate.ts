@@ -12,11 +12,12 @@ import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { safeName } from '../terminal-text.js';
 
 function list(io: CliIO, label: string, paths: string[], show = true): void {
     if (paths.length === 0) return;
     io.out(`${label}: ${paths.length}\n`);
-    if (show) for (const p of paths) io.out(`  ${p}\n`);
+    if (show) for (const p of paths) io.out(`  ${safeName(p)}\n`);
 }
 
 /** Prints what a generation did (also after `contract rename`). */
@@ -29,9 +30,9 @@ export async function printReport(io: CliIO, report: GenerationReport, outLabel:
     list(io, 'removed (no user code)', report.removed);
     // plain concatenation, not path.join: join would normalise the message too (a refused
     // manifest entry such as "../../x" must be shown as it is)
-    const inOut = (p: GenerationProblem) => `${outLabel.replace(/\/+$/, '')}/${formatProblem(p)}`;
+    const inOut = (p: GenerationProblem) => `${safeName(outLabel.replace(/\/+$/, ''))}/${formatProblem({ ...p, file: safeName(p.file) })}`;
     for (const w of report.warnings) io.err(`warning: ${inOut(w)}\n`);
-    for (const e of report.errors) io.err(`error: ${e.file.startsWith('(') || e.file.startsWith('/') ? formatProblem(e) : inOut(e)}\n`);
+    for (const e of report.errors) io.err(`error: ${e.file.startsWith('(') || e.file.startsWith('/') ? formatProblem({ ...e, file: safeName(e.file) }) : inOut(e)}\n`);
 }
 
 export const generateCommand: Command = {
@@ -53,7 +54,7 @@ export const generateCommand: Command = {
         const dirArg = positionals[0]!;
         const dir = resolve(io.cwd, dirArg);
         const info = await stat(dir).catch(() => undefined);
-        if (!info?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+        if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a directory`);
         const outOption = options.get('o') ?? options.get('output');
         const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, SRC_GEN_DIR);
 
@@ -70,7 +71,7 @@ export const generateCommand: Command = {
         const report = generateArchitecture(workspace.documents, out);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
         await printReport(io, report, outLabel, options.get('verbose') === true);
-        io.err(`generated ${outLabel}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
+        io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
     },
 };

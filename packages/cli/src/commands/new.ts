@@ -7,6 +7,7 @@ import { existsSync, mkdirSync, readdirSync, statSync, writeFileSync } from 'nod
 import { join, relative, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+import { safeName } from '../terminal-text.js';
 
 export const newCommand: Command = {
     name: 'new',
@@ -24,11 +25,11 @@ export const newCommand: Command = {
         const dir = resolve(io.cwd, dirArg);
         if (existsSync(dir)) {
             if (!statSync(dir).isDirectory()) {
-                io.err(`contract new: ${dirArg} exists and is not a directory; pick another name\n`);
+                io.err(`contract new: ${safeName(dirArg)} exists and is not a directory; pick another name\n`);
                 return EXIT_FAILURE;
             }
             if (readdirSync(dir).length > 0) {
-                io.err(`contract new: ${dirArg} is not empty; nothing was written (pick a new or empty folder)\n`);
+                io.err(`contract new: ${safeName(dirArg)} is not empty; nothing was written (pick a new or empty folder)\n`);
                 return EXIT_FAILURE;
             }
         }
@@ -37,9 +38,9 @@ export const newCommand: Command = {
         mkdirSync(dir, { recursive: true });
         for (const [file, text] of Object.entries(templates)) {
             writeFileSync(join(dir, file), text, { flag: 'wx' });
-            io.out(`created ${join(relative(io.cwd, dir) || '.', file)}\n`);
+            io.out(`created ${safeName(join(relative(io.cwd, dir) || '.', file))}\n`);
         }
-        io.err(`next: contract check ${dirArg} && contract run ${dirArg} --duration 5s\n`);
+        io.err(`next: contract check ${safeName(dirArg)} && contract run ${safeName(dirArg)} --duration 5s\n`);
         return EXIT_OK;
     },
 };

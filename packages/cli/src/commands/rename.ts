@@ -12,6 +12,7 @@ import { basename, dirname, join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
+import { safeName } from '../terminal-text.js';
 import { printReport } from './generate.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
@@ -32,7 +33,7 @@ export const renameCommand: Command = {
         if (positionals.length !== 3) throw new UsageError(`expected DIR OLD NEW, got ${positionals.length} argument(s)`);
         const [dirArg, oldSpec, newName] = positionals as [string, string, string];
         const dir = resolve(io.cwd, dirArg);
-        if (!(await stat(dir).catch(() => undefined))?.isDirectory()) throw new UsageError(`${dirArg} is not a directory`);
+        if (!(await stat(dir).catch(() => undefined))?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a directory`);
         const outOption = options.get('o') ?? options.get('output');
         const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, SRC_GEN_DIR);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
@@ -62,8 +63,8 @@ export const renameCommand: Command = {
         if (plan.generatedNames) {
             try {
                 const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName);
-                io.out(`${outLabel}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
-                for (const m of carried.movedPaths) io.out(`  ${m.from} -> ${m.to}\n`);
+                io.out(`${safeName(outLabel)}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
+                for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
             } catch (e) {
                 io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
                 return EXIT_FAILURE;
@@ -72,7 +73,7 @@ export const renameCommand: Command = {
         for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
         const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
         io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
-        for (const f of plan.files) io.out(`  ${join(dirArg, f.file)} (${f.occurrences})\n`);
+        for (const f of plan.files) io.out(`  ${safeName(join(dirArg, f.file))} (${f.occurrences})\n`);
 
         const renamed = await loadWorkspace(dir);
         const after = renamed.diagnostics.filter((d) => d.severity === 'error');
@@ -83,7 +84,7 @@ export const renameCommand: Command = {
         }
         const report = generateArchitecture(renamed.documents, out);
         await printReport(io, report, outLabel, options.get('verbose') === true);
-        io.err(`generated ${outLabel}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
+        io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
     },
 };

@@ -13,12 +13,15 @@ import { Readable } from 'node:stream';
 import { pipeline } from 'node:stream/promises';
 import { createGunzip } from 'node:zlib';
 import { parseArgs } from '../args.js';
-import { EXIT_FAILURE, UsageError, type CliIO, type Command } from '../command.js';
+import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import type { RunArtifacts } from '@contract-studio/build-service';
 import type { JobEvent } from '@contract-studio/build-service';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from '../job-runner.js';
 import { isCpuList } from '@contract-studio/conventions';
+import { closestName } from '../did-you-mean.js';
+import { safeName } from '../terminal-text.js';
+import { LOG_FILE_NAME } from '../trace-files.js';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
 export function parseDuration(text: string): number {
@@ -44,6 +47,41 @@ export function checkStart(text: string): string {
     return text;
 }
 
+/**
+ * Why `--start SUP.function(...)` names no supervision function of the project's model, or null
+ * (also when the model cannot be read or has errors: the build then says what is wrong). The
+ * language is loaded only for this, when --start names a function.
+ */
+export async function startProblem(start: string, dir: string): Promise<string | null> {
+    const m = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*)/.exec(start);
+    if (!m) return null;
+    const [, sup, fn] = m as unknown as [string, string, string];
+    let supervisors: Map<string, string[]>;
+    try {
+        const { loadWorkspace } = await import('@contract-studio/language/node');
+        const { isSupervisor } = await import('@contract-studio/language');
+        const ws = await loadWorkspace(dir);
+        if (ws.diagnostics.some((d) => d.severity === 'error')) return null;
+        supervisors = new Map();
+        for (const d of ws.documents) {
+            for (const e of d.model?.elements ?? []) if (isSupervisor(e)) supervisors.set(e.name, e.functions.map((f) => f.name));
+        }
+    } catch {
+        return null;
+    }
+    const all = [...supervisors].flatMap(([s, fns]) => fns.map((f) => `${s}.${f}`));
+    const listed = all.length ? `the model's supervision functions: ${all.join(', ')}` : 'the model has no supervision function';
+    const functions = supervisors.get(sup);
+    if (!functions) {
+        const near = closestName(sup, supervisors.keys());
+        const guess = near ? ` Did you mean '${near}.${closestName(fn, supervisors.get(near)!) ?? (supervisors.get(near)!.includes(fn) ? fn : supervisors.get(near)![0] ?? fn)}'?` : '';
+        return `bad --start '${start}': the model has no supervisor '${sup}'.${guess} (${listed}); nothing was started`;
+    }
+    if (functions.includes(fn)) return null;
+    const near = closestName(fn, functions);
+    return `bad --start '${start}': supervisor ${sup} has no function '${fn}'.${near ? ` Did you mean '${sup}.${near}'?` : ''} (${listed}); nothing was started`;
+}
+
 export interface ModuleFailure {
     module: string;
     how: string;
@@ -63,6 +101,21 @@ export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
     return failed;
 }
 
+/** ORD's advice on a module that does not finish its release, which is wrong for one that crashed. */
+const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
+
+/**
+ * The run's problems as told: a module ORD declared stuck because it crashed is told as crashed,
+ * without the advice to set `*stateindex = -1` (its code ended by a crash, not a loop).
+ */
+export function problemLines(issues: readonly { kind: string; module?: string; message: string }[], failures: readonly ModuleFailure[]): string[] {
+    const crashed = new Map(failures.map((f) => [f.module, f.how]));
+    return issues.map((i) => {
+        const how = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
+        return how === undefined ? i.message : `${i.message.replace(STUCK_ADVICE, '')}: it crashed (${how})`;
+    });
+}
+
 /**
  * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
  * folder, which is not trusted (a cloned repository can hold any symlink): a link there would have
@@ -74,47 +127,145 @@ async function refusedDefaultLogs(logsDir: string): Promise<string | null> {
     if (!st || st.isDirectory()) return null;
     if (st.isSymbolicLink()) {
         const target = await fsp.readlink(logsDir).catch(() => '?');
-        return `${logsDir} is a symbolic link (to ${target}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT`;
+        return `${safeName(logsDir)} is a symbolic link (to ${safeName(target)}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT`;
     }
-    return `${logsDir} is not a folder: remove it, or name a folder with --logs OUT`;
+    return `${safeName(logsDir)} is not a folder: remove it, or name a folder with --logs OUT`;
+}
+
+/** Where the previous run's logs are moved, inside the logs folder. */
+export const PREVIOUS_DIR = 'previous';
+
+/** Why OUT/previous cannot take the previous run's logs (a link or a file there), or null. */
+export async function refusedPrevious(logsDir: string): Promise<string | null> {
+    const st = await fsp.lstat(join(logsDir, PREVIOUS_DIR)).catch(() => null);
+    if (!st || st.isDirectory()) return null;
+    return `${safeName(join(logsDir, PREVIOUS_DIR))} is ${st.isSymbolicLink() ? 'a symbolic link' : 'not a folder'}: the previous run's logs are moved there (never through a link); remove it, or name another folder with --logs OUT`;
+}
+
+export interface SavedLogs {
+    /** The logs written, by name. */
+    saved: string[];
+    /** Logs not written, `NAME: why` (a link or another file of that name in the folder). */
+    refused: string[];
+    /** Where the previous run's logs were moved (OUT/previous/run-...), and how many. */
+    movedAside: { folder: string; files: number } | null;
+}
+
+/** `run-2026-12-03T02-05-31` from a time (local, as the logs' own names). */
+function runStamp(ms: number): string {
+    const d = new Date(ms);
+    const two = (n: number) => String(n).padStart(2, '0');
+    return `run-${d.getFullYear()}-${two(d.getMonth() + 1)}-${two(d.getDate())}T${two(d.getHours())}-${two(d.getMinutes())}-${two(d.getSeconds())}`;
+}
+
+/** Opens (creating it) the folder `name` inside the folder open as `parent`, never through a link. */
+async function openSubfolder(parent: fsp.FileHandle, name: string, exclusive: boolean): Promise<fsp.FileHandle> {
+    const path = `/proc/self/fd/${parent.fd}/${name}`;
+    await fsp.mkdir(path, { mode: 0o755 }).catch((e: NodeJS.ErrnoException) => {
+        if (exclusive || e.code !== 'EEXIST') throw e;
+    });
+    return fsp.open(path, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+}
+
+/**
+ * One run per logs folder: the CSV logs (regular files named `<MODULE>_*.csv`) already in the
+ * folder open as `dir` — the previous run's — are moved into `previous/run-<time of the newest>/`
+ * (never deleted; a link or anything else there is left alone). Returns that folder and the
+ * number moved, or null when there was none.
+ */
+async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<SavedLogs['movedAside']> {
+    const here = `/proc/self/fd/${dir.fd}`;
+    const old: { name: string; mtime: number }[] = [];
+    for (const name of await fsp.readdir(here)) {
+        if (!LOG_FILE_NAME.test(name)) continue;
+        const st = await fsp.lstat(`${here}/${name}`).catch(() => null);
+        if (st?.isFile()) old.push({ name, mtime: st.mtimeMs });
+    }
+    if (!old.length) return null;
+    const previous = await openSubfolder(dir, PREVIOUS_DIR, false);
+    try {
+        const stamp = runStamp(Math.max(...old.map((o) => o.mtime)));
+        let run: fsp.FileHandle | undefined;
+        let folder = stamp;
+        for (let i = 2; !run; i++) {
+            try {
+                run = await openSubfolder(previous, folder, true);
+            } catch (e) {
+                if ((e as NodeJS.ErrnoException).code !== 'EEXIST' || i > 1000) throw e;
+                folder = `${stamp}-${i}`;
+            }
+        }
+        try {
+            for (const o of old) await fsp.rename(`${here}/${o.name}`, `/proc/self/fd/${run.fd}/${o.name}`);
+        } finally {
+            await run.close().catch(() => {});
+        }
+        return { folder: join(to, PREVIOUS_DIR, folder), files: old.length };
+    } finally {
+        await previous.close().catch(() => {});
+    }
 }
 
 /**
  * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
- * `job.artifacts`), into `to`; never writes through a link found there (the folder itself, when
- * `noFollowDir`, opened O_NOFOLLOW and written through its descriptor: a link put there during the
- * run is not followed either).
+ * `job.artifacts`), into `to`, after moving the previous run's logs there aside (one run per
+ * folder: `contract trace OUT` tells this run). Never writes through a link found there (the
+ * folder itself, when `noFollowDir`, opened O_NOFOLLOW and written through its descriptor: a link
+ * put there during the run is not followed either): a log whose name is taken by a link, a FIFO or
+ * anything but a regular file is refused and said, the others are written.
  */
-async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<string[]> {
-    const saved: string[] = [];
+export async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<SavedLogs> {
+    const result: SavedLogs = { saved: [], refused: [], movedAside: null };
     const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name));
-    if (!files.length) return saved;
+    if (!files.length) return result;
     await fsp.mkdir(to, { recursive: true });
     const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));
     try {
+        result.movedAside = await moveAsidePrevious(dir, to);
         for (const file of files) {
-            const handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
-            // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
-            await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
-            saved.push(file.name);
+            let handle: fsp.FileHandle;
+            try {
+                // O_NONBLOCK: a FIFO planted under a log's name fails (ENXIO) rather than wait for a reader
+                handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW | constants.O_NONBLOCK, 0o644);
+            } catch (e) {
+                const code = (e as NodeJS.ErrnoException).code;
+                result.refused.push(`${file.name}: ${code === 'ELOOP' ? 'a symbolic link of that name is there (never written through)' : code === 'ENXIO' ? 'a FIFO of that name is there' : `cannot be written (${code ?? (e as Error).message})`}`);
+                continue;
+            }
+            try {
+                const st = await handle.stat();
+                if (!st.isFile()) {
+                    result.refused.push(`${file.name}: ${st.isDirectory() ? 'a folder' : 'something other than a file'} of that name is there`);
+                    continue;
+                }
+                await handle.truncate(0);
+                // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
+                await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
+                result.saved.push(file.name);
+            } finally {
+                await handle.close().catch(() => {});
+            }
         }
     } finally {
         await dir.close().catch(() => {});
     }
-    return saved.sort();
+    result.saved.sort();
+    return result;
 }
 
 export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
-        '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing)',
+        '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing);',
+        '           a supervisor or function the model does not have is refused before the build (exit 2, with the functions it has)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
-        '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included)',
-        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel; as `contract trace --format json`)',
+        '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
+        '          it holds one run: the previous run\'s logs there are moved to OUT/previous/run-<time>/ first (never deleted)',
+        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json`',
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
         EXIT_TABLE,
@@ -133,10 +284,18 @@ export const runCommand: Command = {
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
         const defaultLogs = typeof logsOption !== 'string';
         // said before the run, not after it
-        const refused = defaultLogs ? await refusedDefaultLogs(logsDir) : null;
+        const refused = (defaultLogs ? await refusedDefaultLogs(logsDir) : null) ?? (await refusedPrevious(logsDir));
         if (refused) {
             io.err(`contract run: ${refused}\n`);
             return EXIT_FAILURE;
+        }
+        // a misspelt function is refused before anything is built or started (the run would idle)
+        if (start) {
+            const problem = await startProblem(start, opts.dir);
+            if (problem) {
+                io.err(`contract run: ${problem}\n`);
+                return EXIT_USAGE;
+            }
         }
         const traceOption = parsed.options.get('trace');
         const traceFile = typeof traceOption === 'string' ? resolve(io.cwd, traceOption) : null;
@@ -146,7 +305,7 @@ export const runCommand: Command = {
             try {
                 live = await LiveTrace.open(traceFile);
             } catch (e) {
-                io.err(`contract run: cannot write the trace to ${traceFile}: ${(e as Error).message}\n`);
+                io.err(`contract run: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;
             }
         }
@@ -158,13 +317,14 @@ export const runCommand: Command = {
             return outcome.exitCode;
         }
         const artifacts = outcome.job.artifacts;
-        let logs: string[];
+        let savedLogs: SavedLogs;
         try {
-            logs = await saveLogs(artifacts, logsDir, defaultLogs);
+            savedLogs = await saveLogs(artifacts, logsDir, defaultLogs);
         } catch (e) {
-            io.err(`contract run: cannot write the CSV logs to ${logsDir}: ${(e as Error).message}\n`);
+            io.err(`contract run: cannot write the CSV logs to ${safeName(logsDir)}: ${(e as Error).message}\n`);
             return EXIT_FAILURE;
         }
+        const logs = savedLogs.saved;
         let trace: { file: string; records: number } | null = null;
         if (traceFile && live) {
             try {
@@ -176,24 +336,32 @@ export const runCommand: Command = {
                 if (typeof whole === 'string') throw new Error(whole);
                 trace = { file: traceFile, records: whole.records };
             } catch (e) {
-                io.err(`contract run: cannot write the trace to ${traceFile}: ${(e as Error).message}\n`);
+                io.err(`contract run: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;
             }
         }
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines);
-        const extra = { logsDir: logs.length ? logsDir : null, logs, logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, output: outcome.runLines };
-        const code = reportBuild(opts, outcome, io, extra);
+        const extra = {
+            logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
+            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, output: outcome.runLines,
+        };
+        const problems = problemLines(outcome.result.issues ?? [], failures);
+        const code = reportBuild(opts, outcome, io, extra, problems);
         if (opts.format === 'text') {
-            for (const f of failures) io.err(`module ${f.module} crashed (${f.how})\n`);
-            if (leftovers.length) io.err(`warning: the run left files in its run directory: ${leftovers.join(', ')}\n`);
-            for (const s of leftOut) if (!s.bound) io.err(`warning: log ${s.name} not collected: ${s.reason}\n`);
-            for (const i of outcome.result.issues ?? []) io.err(`problem: ${i.message}\n`);
-            if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${logsDir}\n`);
-            if (trace) io.err(`trace: ${trace.records} record(s) in ${trace.file}\n`);
+            for (const f of failures) io.err(`module ${safeName(f.module)} crashed (${f.how})\n`);
+            if (leftovers.length) io.err(`warning: the run left files in its run directory: ${leftovers.map(safeName).join(', ')}\n`);
+            for (const s of leftOut) if (!s.bound) io.err(`warning: log ${safeName(s.name)} not collected: ${s.reason}\n`);
+            for (const p of problems) io.err(`problem: ${p}\n`);
+            if (savedLogs.movedAside) io.err(`previous run's CSV logs: ${savedLogs.movedAside.files} file(s) moved to ${safeName(savedLogs.movedAside.folder)}\n`);
+            if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${safeName(logsDir)}\n`);
+            for (const r of savedLogs.refused) io.err(`contract run: log not written to ${safeName(logsDir)}: ${safeName(r)}\n`);
+            if (trace) io.err(`trace: ${trace.records} record(s) in ${safeName(trace.file)}\n`);
         }
         if (outcome.result.limitHit) return code;
-        return failures.length ? EXIT_FAILURE : code;
+        if (failures.length) return EXIT_FAILURE;
+        // a log refused (a link planted under its name): the others are written, the run is not whole on disk
+        return savedLogs.refused.length && code === EXIT_OK ? EXIT_FAILURE : code;
     },
 };

@@ -5,10 +5,12 @@
  * one JSON line, in time order. The logs are streamed (trace-stream.ts): a run of any length is
  * told in bounded memory, and printing stops when the reader goes away.
  */
+import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { StoryTeller } from '@contract-studio/build-service/trace';
+import { StoryTeller, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
+import { safeName } from '../terminal-text.js';
 import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 
 export const traceCommand: Command = {
@@ -18,15 +20,21 @@ export const traceCommand: Command = {
         'usage: contract trace LOGDIR [--format text|json]',
         '  LOGDIR: the folder of a run\'s CSV logs (`contract run --logs`, default PROJECT/logs)',
         '  --format: text (default: the story, then a count of the records) or json (one JSON object per record and line, time order)',
-        'exit status: 0 success, 1 no readable log in LOGDIR, 2 bad usage',
+        '  a file named like a log that is not read (a symbolic link, a FIFO, socket or device) is left out with a warning',
+        'exit status: 0 success, 1 no readable log in LOGDIR, 2 bad usage (LOGDIR missing or not a folder)',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const parsed = parseArgs(args, ['format']);
         if (parsed.positionals.length !== 1) throw new UsageError('expected one LOGDIR');
         const format = parsed.options.get('format') ?? 'text';
         if (format !== 'text' && format !== 'json') throw new UsageError(`unknown format '${String(format)}' (expected text or json)`);
-        const dir = resolve(io.cwd, parsed.positionals[0]!);
-        const logs = await openLogFolder(dir);
+        const dirArg = parsed.positionals[0]!;
+        const dir = resolve(io.cwd, dirArg);
+        const info = await stat(dir).catch(() => undefined);
+        if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a folder${info ? '' : ' (it does not exist)'}: give the folder of a run's CSV logs (\`contract run\` writes them to PROJECT/logs)`);
+        const skipped: string[] = [];
+        const logs = await openLogFolder(dir, undefined, skipped);
+        for (const s of skipped) io.err(`contract trace: warning: ${s}\n`);
         if (typeof logs === 'string') {
             io.err(`contract trace: ${logs}\n`);
             return EXIT_FAILURE;
@@ -52,13 +60,18 @@ async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: n
     return { late: outOfOrder, problems };
 }
 
-/** The story: its lines printed as they come (few: a reader gone is seen at the next), then the counts. */
+/**
+ * The story: its lines printed as they come (few: a reader gone is seen at the next), then what
+ * the logs say of modules that did not end (a crash leaves no exit record), then the counts.
+ */
 async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
     const stream = streamTrace(logs);
     const teller = new StoryTeller();
+    const ends = new ModuleEnds(logs);
     for await (const batch of stream.batches) {
         let piece = '';
         for (const r of batch) {
+            ends.see(r);
             const line = teller.tell(r);
             if (line !== undefined) piece += line + '\n';
         }
@@ -67,6 +80,57 @@ async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: 
         await io.drained?.();
         if (io.outputClosed?.aborted) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
-    io.out(teller.summary() + '\n');
+    io.out(ends.lines().map((l) => l + '\n').join('') + teller.summary() + '\n');
     return { late: stream.outOfOrder(), problems: stream.problems() };
+}
+
+/** The module a log is named for (`<MODULE>_<date>.csv`). */
+function moduleOfLog(name: string): string {
+    return name.slice(0, Math.max(1, name.indexOf('_')));
+}
+
+/**
+ * Which modules' logs end without their `module_exit` record. A module that crashed (or was
+ * killed) writes none: the runtime logs `module_exit` as it returns (docs/runtime-api.md "Trace
+ * records"), and a crash can lose the records still buffered, down to an empty log.
+ */
+export class ModuleEnds {
+    private t0: bigint | undefined;
+    private readonly last = new Map<string, bigint>();
+    private readonly started = new Set<string>();
+    private readonly exited = new Set<string>();
+    private readonly modules: string[];
+
+    constructor(logs: readonly { name: string }[]) {
+        this.modules = [...new Set(logs.map((l) => moduleOfLog(l.name)))];
+    }
+
+    see(r: TraceRecord): void {
+        if (r.kind === 'unknown') return;
+        const base = r as TraceRecordBase;
+        const at = BigInt(base.monoNs);
+        this.t0 ??= at;
+        this.last.set(base.module, at);
+        if (r.kind === 'module_started') this.started.add(base.module);
+        if (r.kind === 'module_exit') this.exited.add(base.module);
+    }
+
+    /**
+     * One line per module whose log has its start but no exit record, or no record at all; said
+     * only of a run's logs (some module logged its start: the runtime's logs, not hand-made ones).
+     */
+    lines(): string[] {
+        if (this.t0 === undefined || this.started.size === 0) return [];
+        const t0 = this.t0;
+        const out: string[] = [];
+        for (const m of this.modules) {
+            const last = this.last.get(m);
+            if (last === undefined) {
+                out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed or was killed before writing any (\`contract run\` names a crash)`);
+            } else if (this.started.has(m) && !this.exited.has(m)) {
+                out.push(`+${(Number(last - t0) / 1e9).toFixed(6)}s ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
+            }
+        }
+        return out;
+    }
 }

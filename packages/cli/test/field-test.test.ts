@@ -1,0 +1,287 @@
+/**
+ * The CLI field test's defects (a new user writing a project from docs/, an attacker planting
+ * files): each test fails without its fix. Fast ones on files and fake jobs; a few real bwrap
+ * builds and one run.
+ */
+import { execFileSync } from 'node:child_process';
+import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { gzipSync } from 'node:zlib';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import type { Job, RunArtifacts } from '@contract-studio/build-service';
+import { runCli } from '../src/cli.js';
+import { problemLines, refusedPrevious, saveLogs, startProblem } from '../src/commands/run.js';
+import { formatGccDiagnostic, prepareErrors } from '../src/job-runner.js';
+import { safeName } from '../src/terminal-text.js';
+import { capture } from './capture-io.js';
+import { removeScratch } from './scratch.js';
+
+const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+
+let root: string;
+beforeAll(async () => {
+    root = mkdtempSync(join(tmpdir(), 'contract-field-'));
+    chmodSync(root, 0o711);
+    process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
+    expect(await runCli(['new', 'robot'], capture(root))).toBe(0);
+}, 60_000);
+afterAll(() => {
+    delete process.env.CONTRACT_CACHE_DIR;
+    removeScratch(root);
+});
+
+/** A log of one module: started, one scheduler line, exited unless `crashed`. */
+function moduleLog(module: string, t0: number, crashed = false): string {
+    const lines = [HEADER, `${t0},w,${module},module_started,,,0,pid=1 priority=1`, `${t0 + 1000},w,${module},scheduler,,,0,activate S`];
+    if (!crashed) lines.push(`${t0 + 2_000_000_000},w,${module},module_exit,,,0,status=0`);
+    return lines.join('\n') + '\n';
+}
+
+/** Fake collected artifacts: CSV logs as the build service keeps them (gzip). */
+function artifacts(files: Record<string, string>): RunArtifacts {
+    return { files: Object.entries(files).map(([name, text]) => ({ name, gzip: gzipSync(text), size: text.length })), skipped: [], runDirLeftovers: [] } as unknown as RunArtifacts;
+}
+
+describe('1. contract trace: a link among the logs, a missing folder', () => {
+    it('leaves a log that is a symbolic link (or a FIFO) out with a warning and tells the others', async () => {
+        const dir = join(root, 'trace-links');
+        mkdirSync(dir);
+        writeFileSync(join(dir, 'ORD_1.csv'), moduleLog('ORD', 1_000_000_000));
+        symlinkSync('/etc/passwd', join(dir, 'EVL_1.csv'));
+        execFileSync('mkfifo', [join(dir, 'FIF_1.csv')]);
+        const io = capture(root);
+        expect(await runCli(['trace', 'trace-links'], io)).toBe(0);
+        expect(io.stdout).toContain('ORD  activate S');
+        expect(io.stderr).toBe(
+            'contract trace: warning: EVL_1.csv: a symbolic link, not read (logs are never read through a link)\n' +
+            'contract trace: warning: FIF_1.csv: a FIFO, not read\n');
+        // only links: nothing readable, exit 1, each said
+        const only = join(root, 'trace-only-links');
+        mkdirSync(only);
+        symlinkSync('/etc/passwd', join(only, 'EVL_1.csv'));
+        const none = capture(root);
+        expect(await runCli(['trace', 'trace-only-links'], none)).toBe(1);
+        expect(none.stderr).toContain('warning: EVL_1.csv: a symbolic link');
+        expect(none.stderr).toContain(`contract trace: no readable CSV log in ${only}\n`);
+    });
+
+    it('a LOGDIR that does not exist, or is a file, is a usage error (exit 2) that says so', async () => {
+        const io = capture(root);
+        expect(await runCli(['trace', 'nosuchdir'], io)).toBe(2);
+        expect(io.stderr).toMatch(/^contract trace: nosuchdir is not a folder \(it does not exist\): give the folder of a run's CSV logs/);
+        expect(io.stderr).not.toContain('ENOENT');
+        writeFileSync(join(root, 'a-file'), 'x');
+        const file = capture(root);
+        expect(await runCli(['trace', 'a-file'], file)).toBe(2);
+        expect(file.stderr).toMatch(/^contract trace: a-file is not a folder: /);
+    });
+});
+
+describe('2. contract run: a link planted among the logs', () => {
+    it('writes every other log, refuses the one whose name a link holds, writes nothing through it', async () => {
+        const out = join(root, 'planted');
+        mkdirSync(out);
+        const victim = join(root, 'victim.txt');
+        writeFileSync(victim, 'mine\n');
+        symlinkSync(victim, join(out, 'CTL_3-Dec-2026-02h00m00s.csv'));
+        execFileSync('mkfifo', [join(out, 'LOC_3-Dec-2026-02h00m00s.csv')]);
+        const saved = await saveLogs(artifacts({
+            'CTL_3-Dec-2026-02h00m00s.csv': moduleLog('CTL', 1),
+            'LOC_3-Dec-2026-02h00m00s.csv': moduleLog('LOC', 1),
+            'MIS_3-Dec-2026-02h00m00s.csv': moduleLog('MIS', 1),
+            'ORD_3-Dec-2026-02h00m00s.csv': moduleLog('ORD', 1),
+        }), out, true);
+        expect(saved.saved).toEqual(['MIS_3-Dec-2026-02h00m00s.csv', 'ORD_3-Dec-2026-02h00m00s.csv']);
+        expect(saved.refused).toEqual([
+            'CTL_3-Dec-2026-02h00m00s.csv: a symbolic link of that name is there (never written through)',
+            'LOC_3-Dec-2026-02h00m00s.csv: a FIFO of that name is there',
+        ]);
+        expect(readFileSync(victim, 'utf8')).toBe('mine\n');
+        expect(readFileSync(join(out, 'ORD_3-Dec-2026-02h00m00s.csv'), 'utf8')).toBe(moduleLog('ORD', 1));
+    });
+});
+
+describe('3. contract run: one run per logs folder', () => {
+    it('moves the previous run\'s logs to OUT/previous/run-<time>/ (never deleted); `contract trace OUT` tells the new run only', async () => {
+        const out = join(root, 'rotate');
+        const first = await saveLogs(artifacts({ 'ORD_1-Dec-2026-10h00m00s.csv': moduleLog('ORD', 5_000_000_000), 'MIS_1-Dec-2026-10h00m00s.csv': moduleLog('MIS', 5_000_000_000) }), out, true);
+        expect(first.movedAside).toBeNull();
+        writeFileSync(join(out, 'notes.txt'), 'mine');
+        const when = new Date(2026, 11, 1, 10, 0, 7);
+        for (const f of first.saved) utimesSync(join(out, f), when, when);
+        const second = await saveLogs(artifacts({ 'ORD_2-Dec-2026-11h00m00s.csv': moduleLog('ORD', 9_000_000_000) }), out, true);
+        expect(second.movedAside).toEqual({ folder: join(out, 'previous', 'run-2026-12-01T10-00-07'), files: 2 });
+        expect(readdirSync(out).sort()).toEqual(['ORD_2-Dec-2026-11h00m00s.csv', 'notes.txt', 'previous']);
+        expect(readdirSync(join(out, 'previous', 'run-2026-12-01T10-00-07')).sort()).toEqual(['MIS_1-Dec-2026-10h00m00s.csv', 'ORD_1-Dec-2026-10h00m00s.csv']);
+        const io = capture(root);
+        expect(await runCli(['trace', 'rotate'], io)).toBe(0);
+        expect(io.stdout).toMatch(/^3 records: /m); // one module's log of the new run, not five of two runs
+        expect(io.stdout).not.toContain('MIS');
+        // a third run: the second one's log gets a folder of its own (same time: a suffix)
+        utimesSync(join(out, 'ORD_2-Dec-2026-11h00m00s.csv'), when, when);
+        const third = await saveLogs(artifacts({ 'ORD_3-Dec-2026-12h00m00s.csv': moduleLog('ORD', 1) }), out, true);
+        expect(third.movedAside).toEqual({ folder: join(out, 'previous', 'run-2026-12-01T10-00-07-2'), files: 1 });
+    });
+
+    it('a run that collects no log leaves the previous run\'s in place', async () => {
+        const out = join(root, 'rotate-none');
+        await saveLogs(artifacts({ 'ORD_1.csv': moduleLog('ORD', 1) }), out, true);
+        const none = await saveLogs(artifacts({}), out, true);
+        expect(none).toEqual({ saved: [], refused: [], movedAside: null });
+        expect(readdirSync(out)).toEqual(['ORD_1.csv']);
+    });
+
+    it('refuses, before the run, an OUT/previous that is a link (the old logs would go through it)', async () => {
+        const out = join(root, 'prev-link');
+        mkdirSync(out);
+        symlinkSync(join(root, 'victim-dir'), join(out, 'previous'));
+        expect(await refusedPrevious(out)).toBe(`${join(out, 'previous')} is a symbolic link: the previous run's logs are moved there (never through a link); remove it, or name another folder with --logs OUT`);
+        expect(await refusedPrevious(join(root, 'rotate'))).toBeNull();
+        const io = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'none', '--logs', 'prev-link'], io)).toBe(1);
+        expect(io.stderr).toContain('is a symbolic link: the previous run\'s logs are moved there');
+        expect(io.stdout).toBe('');
+    });
+});
+
+describe('4. --start naming a function the model does not have', () => {
+    it('is refused before anything is built, exit 2, with a did-you-mean and the functions the model has', async () => {
+        expect(await startProblem('MIS.misson()', join(root, 'robot'))).toBe(
+            "bad --start 'MIS.misson()': supervisor MIS has no function 'misson'. Did you mean 'MIS.mission'? (the model's supervision functions: MIS.mission); nothing was started");
+        expect(await startProblem('MSI.mission()', join(root, 'robot'))).toMatch(/^bad --start 'MSI\.mission\(\)': the model has no supervisor 'MSI'\. Did you mean 'MIS\.mission'\?/);
+        expect(await startProblem('MIS.mission(goal={1.0,2.0,0.0})', join(root, 'robot'))).toBeNull();
+        const io = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--start', 'MIS.misson()', '--logs', 'never'], io)).toBe(2);
+        expect(io.stderr).toBe("contract run: bad --start 'MIS.misson()': supervisor MIS has no function 'misson'. Did you mean 'MIS.mission'? (the model's supervision functions: MIS.mission); nothing was started\n");
+        expect(io.stdout).toBe('');
+        expect(existsSync(join(root, 'cache', 'projects'))).toBe(false); // nothing prepared
+    });
+});
+
+describe('5. model and generation problems in build/run: once, at the right path, with a true hint', () => {
+    it('formats a generator problem at its src-gen path without a column 0, a model problem at its project path', () => {
+        const job = {
+            prepareDiagnostics: [
+                { file: 'types.contract', line: 1, column: 21, severity: 'error', message: 'Expected an int' },
+                { file: 'generated/architecture/modules/CTL_mod/module.c', line: 17, column: 0, severity: 'error', message: 'nested protected region start' },
+                { file: '(manifest)', line: 0, column: 0, severity: 'warning', message: 'note' },
+            ],
+        } as unknown as Job;
+        expect(prepareErrors(job, 'robot')).toBe(
+            'robot/types.contract:1:21: error: Expected an int\n' +
+            'robot/src-gen/generated/architecture/modules/CTL_mod/module.c:17: error: nested protected region start\n' +
+            '(manifest): warning: note\n');
+    });
+
+    it('a model error is printed once (bwrap)', async () => {
+        mkdirSync(join(root, 'broken'));
+        writeFileSync(join(root, 'broken', 'types.contract'), 'datatype T {int a = 1.5};\n');
+        const io = capture(root);
+        expect(await runCli(['build', 'broken', '--sandbox', 'bwrap'], io)).toBe(1);
+        expect(io.stderr.match(/\S*types\.contract:1:\d+: error: /g)).toEqual(['broken/types.contract:1:21: error: ']);
+        expect(io.stderr).toContain('fix the model errors above (`contract check broken` lists them), then build again');
+    }, 240_000);
+
+    it('a broken protected-region marker is printed once at its src-gen path, and the hint names the command that lists it (bwrap)', async () => {
+        expect(await runCli(['new', 'marker'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'marker'], capture(root))).toBe(0);
+        const file = join(root, 'marker/src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        writeFileSync(file, source.replace('/*PROTECTED REGION END*/', '/*PROTECTED REGOIN END*/'));
+        const io = capture(root);
+        expect(await runCli(['build', 'marker', '--sandbox', 'bwrap'], io)).toBe(1);
+        const lines = io.stderr.split('\n').filter((l) => l.includes('nested protected region'));
+        expect(lines).toEqual([expect.stringMatching(/^marker\/src-gen\/generated\/architecture\/modules\/CTL_mod\/module\.c:\d+: error: nested protected region start/)]);
+        expect(io.stderr).toContain('`contract generate marker` lists them');
+        expect(io.stderr).not.toContain('contract check');
+        // and that command does list it
+        const generate = capture(root);
+        expect(await runCli(['generate', 'marker'], generate)).toBe(1);
+        expect(generate.stderr).toContain('nested protected region start');
+    }, 240_000);
+});
+
+describe('6. a crashed module', () => {
+    it('gets no "set *stateindex = -1?" advice, in the problems and the summary line', () => {
+        const issues = [
+            { kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #6 after 100 periods: does its exec region set *stateindex = -1?' },
+            { kind: 'module-stuck', module: 'LOC', message: 'LOC has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?' },
+        ];
+        expect(problemLines(issues, [{ module: 'CTL', how: 'died by signal 11 (Segmentation fault)' }])).toEqual([
+            'CTL has not finished release #6 after 100 periods: it crashed (died by signal 11 (Segmentation fault))',
+            'LOC has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?',
+        ]);
+    });
+
+    it('contract trace says which module has no exit record, or no record at all', async () => {
+        const dir = join(root, 'crashed-logs');
+        mkdirSync(dir);
+        writeFileSync(join(dir, 'ORD_1.csv'), moduleLog('ORD', 1_000_000_000));
+        writeFileSync(join(dir, 'CTL_1.csv'), moduleLog('CTL', 1_000_000_000, true));
+        writeFileSync(join(dir, 'LOC_1.csv'), `${HEADER}\n`);
+        const io = capture(root);
+        expect(await runCli(['trace', 'crashed-logs'], io)).toBe(0);
+        const lines = io.stdout.split('\n');
+        expect(lines.at(-4)).toBe('+0.000001s CTL  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)');
+        expect(lines.at(-3)).toBe('           LOC  no record in its log: it crashed or was killed before writing any (`contract run` names a crash)');
+        expect(lines.at(-2)).toMatch(/^5 records: /);
+    });
+
+    it('a real crash (bwrap): exit 1, the crash named, no advice to set *stateindex', async () => {
+        expect(await runCli(['new', 'crash'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'crash'], capture(root))).toBe(0);
+        const file = join(root, 'crash/src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        writeFileSync(file, source.replace(/(PROTECTED REGION ID\(protect_exec_CTL\) ENABLED START\*\/)/, '$1\n    { static int calls = 0; if (++calls == 3) { volatile int *p = 0; *p = 1; } }'));
+        const io = capture(root);
+        expect(await runCli(['run', 'crash', '--sandbox', 'bwrap', '--duration', '3s'], io)).toBe(1);
+        expect(io.stderr).toContain('module CTL crashed (died by signal 11');
+        expect(io.stderr).not.toContain('stateindex');
+        const trace = capture(root);
+        expect(await runCli(['trace', 'crash/logs'], trace)).toBe(0);
+        expect(trace.stdout).toMatch(/^ {0,11}\S* ?CTL  (its last record: no exit record follows|no record in its log)/m);
+    }, 240_000);
+});
+
+describe('7. names from a project or a sandbox cannot forge a line', () => {
+    it('safeName escapes newlines, tabs, CR, every control, line separators and bidi overrides', () => {
+        expect(safeName('a\nok: run finished (exit 0)')).toBe('a\\u000aok: run finished (exit 0)');
+        expect(safeName('t\tb\rc\x1b[2J\x9b\u2028\u202e')).toBe('t\\u0009b\\u000dc\\u001b[2J\\u009b\\u2028\\u202e');
+        expect(safeName('robot/src-gen/modules/CTL_mod/module.c')).toBe('robot/src-gen/modules/CTL_mod/module.c');
+    });
+
+    it('contract check on a project file whose name holds a newline prints it on one line', async () => {
+        mkdirSync(join(root, 'nl'));
+        writeFileSync(join(root, 'nl', 'x\nok: run finished (exit 0) [bwrap].contract'), 'datatype T {int a = 1.5};\n');
+        const io = capture(root);
+        expect(await runCli(['check', 'nl'], io)).toBe(1);
+        expect(io.stdout).toMatch(/^nl\/x\\u000aok: run finished \(exit 0\) \[bwrap\]\.contract:1:21 error /);
+        expect(io.stdout.split('\n').filter((l) => l.startsWith('ok:'))).toEqual([]);
+    });
+
+    it('gcc and prepare diagnostics, and the logs folder, are printed escaped', () => {
+        expect(formatGccDiagnostic({ file: 'm\nok: run finished.c', line: 1, column: 2, severity: 'error', message: 'x' } as never, 'robot')).toBe('robot/src-gen/m\\u000aok: run finished.c:1:2: error: x\n');
+        const job = { prepareDiagnostics: [{ file: 'a\nFAILED: x.contract', line: 1, column: 1, severity: 'error', message: 'm' }] } as unknown as Job;
+        expect(prepareErrors(job, 'robot')).toBe('robot/a\\u000aFAILED: x.contract:1:1: error: m\n');
+    });
+});
+
+describe('8. small ones', () => {
+    it('an unknown command gets a did-you-mean', async () => {
+        const io = capture(root);
+        expect(await runCli(['trcae', 'x'], io)).toBe(2);
+        expect(io.stderr).toMatch(/^contract: unknown command 'trcae'; did you mean 'trace'\?\n/);
+        const far = capture(root);
+        expect(await runCli(['deploy'], far)).toBe(2);
+        expect(far.stderr).toMatch(/^contract: unknown command 'deploy'\n/);
+    });
+
+    it('contract build --help names --cache-dir in its usage line', async () => {
+        for (const name of ['build', 'run']) {
+            const io = capture(root);
+            expect(await runCli([name, '--help'], io)).toBe(0);
+            expect(io.stdout.split('\n')[0]).toContain('[--cache-dir DIR]');
+        }
+    });
+});
