@@ -267,6 +267,19 @@ describe('7. names from a project or a sandbox cannot forge a line', () => {
     });
 });
 
+describe('7. contract simulate', () => {
+    it('prints a scenario file name holding a newline escaped in its messages', async () => {
+        const scenarios = join(root, 'sim-names');
+        mkdirSync(scenarios);
+        const name = 'x\nok: 1 passed, 0 failed.scenario';
+        writeFileSync(join(scenarios, name), 'this is no scenario\n');
+        const io = capture(scenarios);
+        expect(await runCli(['simulate', join(root, 'robot'), name, '--cache-dir', join(root, 'sim-cache')], io)).toBe(2);
+        expect(io.stderr).toContain('x\\u000aok: 1 passed, 0 failed.scenario:1:');
+        expect(io.stderr.split('\n').filter((l) => l.startsWith('ok:'))).toEqual([]);
+    }, 240_000);
+});
+
 describe('8. small ones', () => {
     it('an unknown command gets a did-you-mean', async () => {
         const io = capture(root);

@@ -11,6 +11,7 @@ import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT } from '../job-runner.js';
+import { safeName } from '../terminal-text.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 
@@ -64,7 +65,7 @@ export const simulateCommand: Command = {
                 io.err(`contract simulate: ${project.sandboxError}\n`);
                 return EXIT_ENVIRONMENT;
             }
-            for (const d of project.modelErrors) io.err(`${displayPath(io.cwd, join(dir, d.file))}:${d.line}:${d.column}: error: ${d.message} [${d.code}]\n`);
+            for (const d of project.modelErrors) io.err(`${safeName(displayPath(io.cwd, join(dir, d.file)))}:${d.line}:${d.column}: error: ${d.message} [${d.code}]\n`);
             if (project.modelErrors.length) {
                 io.err(`contract simulate: the model has ${project.modelErrors.length} error(s): fix them first (contract check)\n`);
                 return EXIT_USAGE;
@@ -79,14 +80,16 @@ export const simulateCommand: Command = {
         for (const arg of parsed.positionals.slice(1)) {
             const file = resolve(io.cwd, arg);
             const display = displayPath(io.cwd, file);
+            // in messages and the text report the name is escaped (a newline in it cannot forge a line); json and junit keep it raw
+            const shown = safeName(display);
             const text = readScenarioFile(file);
             if (typeof text !== 'string') {
-                io.err(`${display}: error: cannot read this scenario: ${text.error}\n`);
+                io.err(`${shown}: error: cannot read this scenario: ${text.error}\n`);
                 bad++;
                 continue;
             }
-            const s = loadScenario(file, display, text, project.index);
-            for (const d of s.diagnostics) io.err(`${display}:${d.line}:${d.column}: ${d.severity}: ${d.message} [${d.code}]\n`);
+            const s = loadScenario(file, format === 'text' ? shown : display, text, project.index);
+            for (const d of s.diagnostics) io.err(`${shown}:${d.line}:${d.column}: ${d.severity}: ${d.message} [${d.code}]\n`);
             if (s.diagnostics.some((d) => d.severity === 'error')) bad++;
             else scenarios.push(s);
         }
