@@ -298,3 +298,22 @@ describe('8. small ones', () => {
         }
     });
 });
+
+describe('3. one run per logs folder, end to end (bwrap)', () => {
+    it('two runs into one folder: contract trace OUT tells the second only, equal to its --trace file; the first is in OUT/previous', async () => {
+        const first = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s', '--logs', 'two-runs'], first)).toBe(0);
+        expect(first.stderr).not.toContain('previous run');
+        const firstLogs = readdirSync(join(root, 'two-runs')).sort();
+        const second = capture(root);
+        expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s', '--logs', 'two-runs', '--trace', 'two-runs.jsonl'], second)).toBe(0);
+        expect(second.stderr).toMatch(new RegExp(`^previous run's CSV logs: 4 file\\(s\\) moved to ${join(root, 'two-runs', 'previous')}/run-[\\d-]+T[\\d-]+$`, 'm'));
+        const [older] = readdirSync(join(root, 'two-runs', 'previous'));
+        expect(readdirSync(join(root, 'two-runs', 'previous', older!)).sort()).toEqual(firstLogs);
+        const json = capture(root);
+        expect(await runCli(['trace', 'two-runs', '--format', 'json'], json)).toBe(0);
+        expect(json.stdout).toBe(readFileSync(join(root, 'two-runs.jsonl'), 'utf8'));
+        // one run: each module started once
+        expect(json.stdout.split('\n').filter((l) => l.includes('"kind":"module_started"'))).toHaveLength(4);
+    }, 240_000);
+});
