@@ -40,3 +40,50 @@ describe('scanRegions', () => {
         expect(errors[0]!.offset).toBe(text.indexOf('\n') + 1);
     });
 });
+
+describe('scanRegions and a start marker with a typo', () => {
+    it('reports the malformed start at its own line, not "END without a START" at the END', () => {
+        const text = [
+            'int a;', // 1
+            region('protect_init_X', '\n  ok();\n'), // 2-4
+            '/*PROTECTED REGION ID(protect_exec_X) ENABELD START*/', // 5
+            '  mine();', // 6
+            END, // 7
+        ].join('\n');
+        const { regions, errors } = scanRegions(text);
+        expect(regions.map((r) => r.id)).toEqual(['protect_init_X']);
+        expect(errors).toEqual([{
+            offset: text.indexOf('/*PROTECTED REGION ID(protect_exec_X)'),
+            line: 5,
+            message: "protected region start 'protect_exec_X' is malformed: 'ENABELD START' (expected 'ENABLED START' or 'START')",
+        }]);
+    });
+
+    it('reads other typos and pasted blanks, and keeps "END without a START" when nothing looks like a start', () => {
+        const at = (text: string) => scanRegions(text).errors.map((e) => [e.line, e.message]);
+        expect(at('/* PROTECTED REGION ID( a )\n ENABLED STRAT */\nx\n' + END)).toEqual([[1, "protected region start 'a' is malformed: 'ENABLED STRAT' (expected 'ENABLED START' or 'START')"]]);
+        expect(at('\n/*PROTECTED REGION ID(a) ENABLED*/x' + END)).toEqual([[2, "protected region start 'a' is malformed: 'ENABLED' (expected 'ENABLED START' or 'START')"]]);
+        expect(at('/*PROTECTED REGIN ID(a) ENABLED START*/\nx\n' + END)).toEqual([[1, "protected region start marker is malformed: '/*PROTECTED REGIN ID(a) ENABLED START*/' (expected '/*PROTECTED REGION ID(<id>) ENABLED START*/')"]]);
+        expect(at(`${region('a', 'x')}\n/* a comment */\n${END}`)).toEqual([[3, 'protected region END without a START']]);
+        // a typo'd start before an earlier, well-formed region is not blamed for a later stray END
+        expect(at(`/*PROTECTED REGION ID(a) ENABELD START*/${region('b', 'x')}\n${END}`)).toEqual([[2, 'protected region END without a START']]);
+    });
+
+    it('stays linear on hostile texts (ReDoS)', () => {
+        const hostile = [
+            '/*PROTECTED'.repeat(200_000) + END,
+            '/*PROTECTED REGION ID(x) '.repeat(40_000) + END,
+            ('/*PROTECTED REGION ID(x) ' + ' '.repeat(300)).repeat(3_000) + END,
+            '/*' + ' '.repeat(1_000_000) + END,
+            '/*PROTECTED REGION ID(' + 'a'.repeat(1_000_000) + END,
+            (END + '/*PROTECTED REGION ID(x) X*/').repeat(50_000),
+            END.repeat(100_000), // no line feed: lines were searched to the end of the text for each marker
+            ('/*PROTECTED REGION ID(x) START*/' + '/*PROTECTED\n'.repeat(20)).repeat(10_000) + END,
+        ];
+        for (const text of hostile) {
+            const t0 = performance.now();
+            scanRegions(text);
+            expect(performance.now() - t0, `${text.length} chars`).toBeLessThan(1_500);
+        }
+    });
+});

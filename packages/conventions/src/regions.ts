@@ -77,12 +77,65 @@ export interface RegionScan {
  */
 function lineLocator(text: string): (offset: number) => number {
     let line = 1;
-    let scanned = 0;
+    // the next line feed not yet counted (-1: none left): found once, so that a long text without
+    // line feeds is not searched to its end on every query (that made many markers quadratic)
+    let nextNl = text.indexOf('\n');
     return (offset) => {
-        for (let nl = text.indexOf('\n', scanned); nl !== -1 && nl < offset; nl = text.indexOf('\n', nl + 1)) line++;
-        scanned = Math.max(scanned, offset);
+        while (nextNl !== -1 && nextNl < offset) {
+            line++;
+            nextNl = text.indexOf('\n', nextNl + 1);
+        }
         return line;
     };
+}
+
+/**
+ * A marker-like comment that is no marker: `/*` and `PROTECTED REGION`, then at most
+ * NEAR_MISS_SPAN characters up to the closing `*\/`. Every repetition is bounded, so one attempt
+ * costs at most a few hundred steps and a scan stays linear in the text (ReDoS-safe).
+ */
+const NEAR_MISS_SPAN = 240;
+const NEAR_MISS = new RegExp(`\\/\\*\\s{0,16}PROTECTED[^*]{0,${NEAR_MISS_SPAN}}\\*\\/`, 'g');
+const NEAR_MISS_ID = /^\/\*\s*PROTECTED\s+REGION\s+ID\s*\(([^()\r\n]*)\)\s*([^]*?)\s*\*\/$/;
+
+/** Number of line feeds in text[from, to) (a bounded pass: never searches past `to`). */
+function countNewlines(text: string, from: number, to: number): number {
+    let n = 0;
+    for (let i = from; i < to; i++) if (text.charCodeAt(i) === 10) n++;
+    return n;
+}
+
+/** Blanks and line breaks collapsed, for quoting a marker's words in a message. */
+function words(s: string): string {
+    return s.trim().split(/\s+/).join(' ');
+}
+
+/**
+ * The last start marker with a typo in text[from, to) (between the previous marker and an END
+ * that has no START), with the message that names it, or undefined. Each stretch of text is
+ * searched once (stretches between markers do not overlap): linear overall.
+ */
+function nearMissStart(text: string, from: number, to: number): { offset: number; message: string } | undefined {
+    if (to - from < 12) return undefined;
+    const stretch = text.slice(from, to);
+    if (!stretch.includes('PROTECTED')) return undefined;
+    let found: { offset: number; message: string } | undefined;
+    for (const m of stretch.matchAll(NEAR_MISS)) {
+        const marker = m[0];
+        const id = NEAR_MISS_ID.exec(marker);
+        let message: string;
+        if (id) {
+            const tail = words(id[2]!);
+            if (tail === '' || /\bEND\b/i.test(tail)) continue; // `ID(x) END`: not meant as a start
+            message = `protected region start '${words(id[1]!)}' is malformed: '${tail}' (expected 'ENABLED START' or 'START')`;
+        } else {
+            // an END with a typo is not a start either; a start-like comment without a readable ID is
+            if (/^\/\*\s*PROTECTED\s+REGION\s+E\w*\s*\*\/$/.test(marker) || !/START|ID/.test(marker)) continue;
+            message = `protected region start marker is malformed: '${words(marker)}' (expected '/*PROTECTED REGION ID(<id>) ENABLED START*/')`;
+        }
+        found = { offset: from + m.index, message };
+    }
+    return found;
 }
 
 /**
@@ -96,12 +149,18 @@ export function scanRegions(text: string): RegionScan {
     const errors: RegionScanError[] = [];
     const seen = new Map<string, number>();
     let open: { rawId: string; enabled: boolean; start: number; contentStart: number; line: number } | undefined;
+    /** End of the previous marker: a near-miss start marker is looked for between it and a stray END. */
+    let previousEnd = 0;
     for (const m of text.matchAll(ANY_MARKER)) {
         const at = m.index;
         const line = lineOf(at);
         if (m[1] === undefined) {
             if (!open) {
-                errors.push({ offset: at, line, message: 'protected region END without a START' });
+                // a start marker with a typo (`ENABELD START`) is no start: say so at its line rather than at this END
+                const miss = nearMissStart(text, previousEnd, at);
+                if (miss) errors.push({ offset: miss.offset, line: line - countNewlines(text, miss.offset, at), message: miss.message });
+                else errors.push({ offset: at, line, message: 'protected region END without a START' });
+                previousEnd = at + m[0].length;
                 continue;
             }
             regions.push({
@@ -116,6 +175,7 @@ export function scanRegions(text: string): RegionScan {
                 endLine: line,
             });
             open = undefined;
+            previousEnd = at + m[0].length;
             continue;
         }
         const rawId = m[1];
@@ -128,6 +188,7 @@ export function scanRegions(text: string): RegionScan {
         if (previous !== undefined) errors.push({ offset: at, line, message: `duplicate protected region ID '${id}' (first at line ${previous})` });
         else seen.set(id, line);
         open = { rawId, enabled: m[2] !== undefined, start: at, contentStart: at + m[0].length, line };
+        previousEnd = at + m[0].length;
     }
     if (open) errors.push({ offset: open.start, line: open.line, message: `protected region '${open.rawId}' START without END` });
     return { regions, errors };
