@@ -1,6 +1,6 @@
 /** Syntax errors are reported in the user's terms. */
 import { describe, expect, it } from 'vitest';
-import { parse } from './helpers.js';
+import { build, parse } from './helpers.js';
 
 const first = (text: string) => parse(text).errors[0];
 
@@ -31,5 +31,42 @@ describe('syntax error messages', () => {
     });
     it('names the end of the file', () => {
         expect(first('datatype T {int a')).toBe("Expected '}' but found the end of the file.");
+    });
+    it('names an unknown time unit instead of the name glued to a duration (20msec)', () => {
+        expect(first('periodic schema s() { realtime { PERIOD=20msec; } }')).toBe("Unknown time unit 'msec' in '20msec': the units are ns, us, ms and s (e.g. 20ms).");
+        expect(first('periodic schema s() { realtime { PERIOD=1.5sec; } }')).toBe("Unknown time unit 'sec' in '1.5sec': the units are ns, us, ms and s (e.g. 1.5ms).");
+    });
+    it('offers the keyword a misspelt one was meant to be', () => {
+        expect(first('synchronus module ENC {}')).toMatch(/^Unexpected 'synchronus': expected .*\. Did you mean 'synchronous'\?$/);
+        expect(first('datatype T {int a = 1}\nsupervisr SUP {}')).toMatch(/Did you mean 'supervisor'\?$/);
+        // no guess for a word that is no near miss
+        expect(first('datatype T {int a = 1}\nwhatever X {}')).not.toContain('Did you mean');
+    });
+    it("says that a comparison is written '=='", () => {
+        expect(first('supervisor SUP { f() { rules { R: [MAA:1<x = 3>] [elapsed=1ms] } } }')).toContain("A comparison is written '=='.");
+    });
+});
+
+describe('follow-on errors', () => {
+    it('a line with a syntax error reports that one only: the recovery\'s later errors on the line are dropped', async () => {
+        const text = 'supervisor SUP { event flows { in :1 int count; }\n f() { local { int parts; }\n rules {\n R: [elapsed=1ms] [elapsed=2ms]\n'
+            + ' S: [MAA:1<count > 3>(parts = count)] [elapsed=1ms]\n } } }';
+        const all = parse(text).errors;
+        expect(all.length).toBeGreaterThan(1); // the parser does report several on that line
+        const built = await build({ 'sup.contract': text });
+        // (MAA is unknown here: that error is before the syntax error on the line, and kept)
+        const onLine5 = built.diagnostics.filter((d) => d.line === 5 && !d.message.includes("'MAA'"));
+        expect(onLine5).toHaveLength(1);
+        expect(onLine5[0]!.message).toContain('A relational test goes in parentheses');
+    });
+    it('a name unknown because the file defining it did not parse says so', async () => {
+        const built = await build({
+            'enc.contract': 'synchronus module ENC { }',
+            'use.contract': 'import "enc.contract";\nperiodic schema s() { modules { ENC (); } }',
+        });
+        const unknown = built.diagnostics.find((d) => d.file === 'use.contract' && d.code === 'linking-error');
+        expect(unknown?.message).toContain('("enc.contract" has a syntax error: fix it first, it may be where this is defined)');
+        const clean = await build({ 'use.contract': 'periodic schema s() { modules { ENC (); } }' });
+        expect(clean.diagnostics.find((d) => d.code === 'linking-error')?.message).not.toContain('syntax error');
     });
 });

@@ -54,15 +54,63 @@ function isSubscribeToOrd(options: { expected: TokenType; actual: IToken; previo
     return options.expected.name === 'ID' && options.actual?.image === 'ORD' && options.previous?.image === 'subscribe';
 }
 
+/** The words a top-level element starts with (for "did you mean"). */
+const TOP_LEVEL_WORDS = ['import', 'datatype', 'enum', 'const', 'function', 'synchronous', 'asynchronous', 'periodic', 'event', 'scheduler', 'supervisor'];
+
+/** Levenshtein distance, stopping early above `max`. */
+function distance(a: string, b: string, max: number): number {
+    if (Math.abs(a.length - b.length) > max) return max + 1;
+    let prev = Array.from({ length: b.length + 1 }, (_, i) => i);
+    for (let i = 1; i <= a.length; i++) {
+        const row = [i];
+        let best = i;
+        for (let j = 1; j <= b.length; j++) {
+            row[j] = Math.min(prev[j]! + 1, row[j - 1]! + 1, prev[j - 1]! + (a[i - 1] === b[j - 1] ? 0 : 1));
+            best = Math.min(best, row[j]!);
+        }
+        if (best > max) return max + 1;
+        prev = row;
+    }
+    return prev[b.length]!;
+}
+
+/** " Did you mean 'synchronous'?" when the token is a near miss of one of `words` (a typo in a keyword), else ''. */
+export function didYouMean(token: IToken | undefined, words: string[]): string {
+    const image = token?.image;
+    if (!image || !/^[A-Za-z_]\w{2,}$/.test(image)) return '';
+    const max = image.length >= 7 ? 2 : 1;
+    const near = words.filter((w) => w !== image).map((w) => ({ w, d: distance(image.toLowerCase(), w, max) })).filter((x) => x.d <= max).sort((x, y) => x.d - y.d);
+    return near.length ? ` Did you mean '${near[0]!.w}'?` : '';
+}
+
+/**
+ * `20msec` is read as the duration `20ms` then the name `ec`: say what was meant, once, instead of a
+ * puzzle about 'ec'. Empty when `actual` is not a name glued to a duration.
+ */
+export function unknownTimeUnit(previous: IToken | undefined, actual: IToken | undefined): string {
+    if (!previous || !actual || previous.tokenType?.name !== 'TIME' || actual.tokenType?.name !== 'ID') return '';
+    if (previous.endOffset === undefined || previous.endOffset + 1 !== actual.startOffset) return '';
+    const written = previous.image + actual.image;
+    const number = /^-?[0-9]+(\.[0-9]+)?/.exec(written)?.[0] ?? '';
+    return `Unknown time unit '${written.slice(number.length)}' in '${written}': the units are ns, us, ms and s (e.g. ${number}ms).`;
+}
+
+/** Keywords among the expected token types (names only). */
+function keywordsOf(types: TokenType[]): string[] {
+    return types.map((t) => (t.name.endsWith(':KW') ? t.name.slice(0, -3) : t.name)).filter((n) => /^[a-z_]+$/i.test(n) && !(n in TERMINALS));
+}
+
 export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageProvider {
     override buildMismatchTokenMessage(options: { expected: TokenType; actual: IToken; previous: IToken; ruleName: string }): string {
-        if (options.expected.name === 'EOF') return `Unexpected ${found(options.actual)}: expected ${TOP_LEVEL}.`;
+        const unit = unknownTimeUnit(options.previous, options.actual);
+        if (unit) return unit;
+        if (options.expected.name === 'EOF') return `Unexpected ${found(options.actual)}: expected ${TOP_LEVEL}.${didYouMean(options.actual, TOP_LEVEL_WORDS)}`;
         if (isSubscribeToOrd(options)) return ORD_SUBSCRIBE;
-        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.`;
+        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${didYouMean(options.actual, keywordsOf([options.expected]))}`;
     }
 
     override buildNotAllInputParsedMessage(options: { firstRedundant: IToken; ruleName: string }): string {
-        return `Unexpected ${found(options.firstRedundant)}: expected ${TOP_LEVEL}.`;
+        return `Unexpected ${found(options.firstRedundant)}: expected ${TOP_LEVEL}.${didYouMean(options.firstRedundant, TOP_LEVEL_WORDS)}`;
     }
 
     override buildNoViableAltMessage(options: { expectedPathsPerAlt: TokenType[][][]; actual: IToken[]; previous: IToken; customUserDescription: string; ruleName: string }): string {
@@ -77,9 +125,12 @@ export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageP
         const next = paths.filter((p) => matched(p) === depth).map((p) => p[depth]).filter((t): t is TokenType => !!t);
         const after = depth > 0 ? `After ${options.actual.slice(0, depth).map((t) => `'${t.image}'`).join(' ')}, expected` : 'Expected';
         const actual = options.actual[depth];
+        const unit = unknownTimeUnit(depth > 0 ? options.actual[depth - 1] : options.previous, actual);
+        if (unit) return unit;
         const relational = actual && ['<', '>', '<=', '>='].includes(actual.image) && next.some((t) => t.name === '==')
-            ? ' A relational test goes in parentheses: <(a > b)>.' : '';
-        return `${after} ${list(next)} but found ${found(actual)}.${relational}`;
+            ? ' A relational test goes in parentheses: <(a > b)>.'
+            : actual?.image === '=' && next.some((t) => t.name === '==') ? " A comparison is written '=='." : '';
+        return `${after} ${list(next)} but found ${found(actual)}.${relational}${didYouMean(actual, keywordsOf(next))}`;
     }
 
     override buildEarlyExitMessage(options: { expectedIterationPaths: TokenType[][]; actual: IToken[]; previous: IToken; customUserDescription: string; ruleName: string }): string {

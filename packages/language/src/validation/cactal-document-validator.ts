@@ -5,7 +5,7 @@
  * what would be valid in their context.
  */
 import {
-    Cancellation, DefaultDocumentValidator, DocumentValidator,
+    Cancellation, DefaultDocumentValidator, DocumentValidator, URI,
     type LangiumDocument, type ValidationOptions, type ReferenceInfo
 } from 'langium';
 import type { Diagnostic } from 'vscode-languageserver-types';
@@ -32,7 +32,28 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                 if (code) d.code = code;
             }
         }
-        return diagnostics;
+        return withoutFollowOnErrors(diagnostics);
+    }
+
+    /**
+     * " ("encoder.contract" has a syntax error: fix it first, it may define this)" when a file this
+     * one imports did not parse: its elements may be missing only because of that error (a
+     * misspelt `synchronus module ENC` made every use of ENC in three other files an error).
+     */
+    private brokenImportNote(document: LangiumDocument, info: ReferenceInfo): string {
+        const docs = this.services.shared.workspace.LangiumDocuments;
+        const own = document.uri.toString();
+        const broken: string[] = [];
+        for (const uri of this.services.imports.ImportResolver.visibleUris(info.container)) {
+            if (uri === own) continue;
+            const other = docs.getDocument(URI.parse(uri));
+            if (other && (other.parseResult.parserErrors.length > 0 || other.parseResult.lexerErrors.length > 0)) {
+                broken.push(this.services.imports.ImportResolver.relativeImportPath(document.uri, other.uri));
+            }
+        }
+        if (broken.length === 0) return '';
+        const names = broken.slice(0, 3).map((b) => `"${b}"`).join(', ') + (broken.length > 3 ? ', ...' : '');
+        return ` (${names} ${broken.length === 1 ? 'has' : 'have'} a syntax error: fix ${broken.length === 1 ? 'it' : 'them'} first, it may be where this is defined)`;
     }
 
     protected override processLinkingErrors(document: LangiumDocument, diagnostics: Diagnostic[], _options: ValidationOptions): void {
@@ -65,8 +86,9 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                     continue;
                 }
             }
-            const message = describeUnresolved(info, refText, linkingError.message);
-            if (message === undefined) continue; // follows from another unresolved reference, reported there
+            const described = describeUnresolved(info, refText, linkingError.message);
+            if (described === undefined) continue; // follows from another unresolved reference, reported there
+            const message = topLevel ? described + this.brokenImportNote(document, info) : described;
             if (isTypeRef(info.container)) {
                 diagnostics.push(this.toDiagnostic(TypeCodes['type-unknown'].severity, message, {
                     ...base, code: 'type-unknown', data: { code: 'type-unknown', refText }
@@ -80,4 +102,37 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             }));
         }
     }
+}
+
+const SYNTAX = new Set(['parsing-error', 'lexing-error']);
+
+/**
+ * After a syntax error, the parser's recovery reads the rest of that line in a way the user never
+ * meant: `[CAM:0<count > 3>(parts = count)]` gave five errors, the later ones about a rule label
+ * `count` that does not exist. The first syntax error of a line is the one to fix, so every other
+ * diagnostic starting on that line after it is dropped (the line's earlier diagnostics and the
+ * other lines are kept). Exported for its test.
+ */
+export function withoutFollowOnErrors(diagnostics: Diagnostic[]): Diagnostic[] {
+    const firstSyntax = new Map<number, number>();
+    for (const d of diagnostics) {
+        if (!SYNTAX.has(String(d.code))) continue;
+        const { line, character } = d.range.start;
+        const seen = firstSyntax.get(line);
+        if (seen === undefined || character < seen) firstSyntax.set(line, character);
+    }
+    if (firstSyntax.size === 0) return diagnostics;
+    const keptLines = new Set<number>();
+    return diagnostics.filter((d) => {
+        const { line, character } = d.range.start;
+        const at = firstSyntax.get(line);
+        if (at === undefined || character < at) return true;
+        if (character === at && SYNTAX.has(String(d.code))) {
+            // the first syntax error of the line itself (only one of several at the same place)
+            if (keptLines.has(line)) return false;
+            keptLines.add(line);
+            return true;
+        }
+        return false;
+    });
 }

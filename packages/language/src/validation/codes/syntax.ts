@@ -9,7 +9,7 @@ export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and 
     },
     'parsing-error': {
         severity: 'error',
-        description: 'The text does not follow the Cactal grammar; the message says which token was expected. Parsing recovers and the rest of the file is still checked.',
+        description: 'The text does not follow the Cactal grammar; the message says which token was expected, and what was probably meant where it can tell (a misspelt keyword: "Did you mean \'synchronous\'?"; `20msec`: an unknown time unit; `<x > 3>`: parentheses; `<x = 3>`: `==`). Parsing recovers and the rest of the file is still checked, but the other diagnostics of the same line after the error are dropped (they come from the recovery), and an unknown name defined in an imported file that has a syntax error says so.',
         example: 'datatype T {int a = };'
     },
     'linking-error': {
