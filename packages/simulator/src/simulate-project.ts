@@ -90,7 +90,8 @@ export function readScenarioFile(path: string): string | { error: string } {
 /** Parses and checks a scenario text against the project's model. */
 export function loadScenario(file: string, display: string, text: string, index: ModelIndex): LoadedScenario {
     const parsed = parseScenario(text);
-    const check = parsed.diagnostics.some((d) => d.severity === 'error') ? { diagnostics: [], locals: new Map() } : checkScenario(parsed.steps, index);
+    // the steps that parsed are checked too: every problem of the file at once, as the language server shows them
+    const check = checkScenario(parsed.steps, index);
     const diagnostics = [...parsed.diagnostics, ...check.diagnostics].sort((a, b) => a.line - b.line || a.column - b.column);
     return { file, display, parsed, locals: check.locals, diagnostics };
 }

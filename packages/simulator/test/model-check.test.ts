@@ -36,4 +36,10 @@ describe('checkScenario on the tutorial', () => {
             "11:15 scenario-unknown-module no module 'ZZZ' in the project (modules: MAA, MAB, MSA, MSB, MSC, MSD)",
         ]);
     });
+    it('checks the steps that parsed even when others did not: every problem of the file at once', async () => {
+        const project = await prepared(TUTORIAL);
+        const text = ['t=2s start SUP.action()', 't=1s expect rule SUP.action.FIRST active', 'expect rule SUP.action.NOPE active'].join('\n');
+        const s = loadScenario('x.scenario', 'x.scenario', text, project.index);
+        expect(s.diagnostics.map((d) => `${d.line}:${d.code}`)).toEqual(['2:scenario-time-order', '3:scenario-unknown-rule']);
+    });
 });
