@@ -42,4 +42,18 @@ describe('checkScenario on the tutorial', () => {
         const s = loadScenario('x.scenario', 'x.scenario', text, project.index);
         expect(s.diagnostics.map((d) => `${d.line}:${d.code}`)).toEqual(['2:scenario-time-order', '3:scenario-unknown-rule']);
     });
+    it('an event from something that emits none lists only those that do', async () => {
+        const project = await prepared(TUTORIAL);
+        const s = loadScenario('x.scenario', 'x.scenario', 'MSZ:0 1', project.index);
+        const message = s.diagnostics.find((d) => d.code === 'scenario-unknown-module')!.message;
+        const listed = /those that do: ([^)]*)\)/.exec(message)![1]!.split(', ');
+        // MSA... are synchronous modules of the tutorial without out event ports: not offered
+        for (const name of listed) {
+            const owner = project.index.modules.get(name) ?? project.index.supervisors.get(name);
+            expect(owner, name).toBeDefined();
+        }
+        expect(listed).toContain('MAA');
+        expect(listed).toContain('SUP');
+        expect(listed.length).toBeLessThan(project.index.modules.size + project.index.supervisors.size);
+    });
 });

@@ -164,7 +164,9 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
                 }
                 const owner: Module | Supervisor | undefined = index.modules.get(src) ?? index.supervisors.get(src);
                 if (!owner) {
-                    error(step.module.span, 'scenario-unknown-module', `no module or supervisor '${src}' emits events in the project (modules: ${list(index.modules.keys())})${didYouMean(src, [...index.modules.keys(), ...index.supervisors.keys()])}`);
+                    // only those that have out event ports can be the source of an event step
+                    const emitters = [...index.modules.values(), ...index.supervisors.values()].filter((o) => portsOfKind(o, 'event', 'out').length > 0).map((o) => o.name);
+                    error(step.module.span, 'scenario-unknown-module', `no module or supervisor '${src}' emits events in the project (those that do: ${list(emitters)})${didYouMean(src, emitters)}`);
                     return;
                 }
                 const port = portsOfKind(owner, 'event', 'out').find((p) => p.index === step.port);
