@@ -73,6 +73,8 @@ export class Workspace {
   readonly onNotice = new Emitter<{ level: 'info' | 'warning' | 'error'; text: string }>();
   /** Overlapping edits found: the UI shows both versions and calls resolveConflict. */
   readonly onConflict = new Emitter<Conflict>();
+  /** A file changed on disk by another program (the server's watcher), open or not (the Monitor re-reads a log folder). */
+  readonly onExternalChange = new Emitter<string>();
   /** Files whose watcher change arrived while a save was in flight: looked at again after it. */
   private readonly recheck = new Set<string>();
   private readonly timers = new Map<string, ReturnType<typeof setTimeout>>();
@@ -233,6 +235,18 @@ export class Workspace {
         return (fs.state as SaveState) !== 'conflict';
       }
       fs.error = e instanceof ApiError ? e.message : String(e);
+      if (e instanceof ApiError && e.status === 401) {
+        // the server does not know this tab's session: restarted (a new token). The edit is in
+        // localStorage: opening the new address restores it and saves it; dropping it would lose it
+        this.retryDelay.delete(path);
+        this.setState(fs, 'error');
+        this.onNotice.fire({
+          level: 'error',
+          text: `Not saved: the IDE server no longer knows this tab's session (was it restarted?). Open the address it printed ` +
+            '(…/?token=…) in this tab: your text is kept in this browser, comes back there, and is saved then.',
+        });
+        return false;
+      }
       if (e instanceof ApiError && e.status >= 400 && e.status < 500) {
         // refused (not a network or server failure): retrying the same text cannot succeed
         this.retryDelay.delete(path);
@@ -283,6 +297,17 @@ export class Workspace {
     if (result.text !== mine) this.showText(fs, result.text);
     if (result.text !== theirs) this.onNotice.fire({ level: 'info', text: `${fs.path}: merged with a change made elsewhere` });
     this.markDirty(fs); // saves the merge on its new base (or nothing: it is the disk's text)
+  }
+
+  /**
+   * Shows the overlapping edits of a file again (the user closed the side-by-side view with Escape
+   * and pressed Ctrl+S in the tab): true when the file has some.
+   */
+  showConflict(path: string): boolean {
+    const fs = this.files.get(path);
+    if (fs?.state !== 'conflict' || !fs.conflict) return false;
+    this.onConflict.fire(fs.conflict);
+    return true;
   }
 
   /** The user's choice for a conflict: `text` is written on the disk's version the conflict showed. */
@@ -362,6 +387,7 @@ export class Workspace {
    * after the save (its answer may already be the newer version, or a 409 that merges it).
    */
   async externalChange(path: string): Promise<void> {
+    this.onExternalChange.fire(path);
     const fs = this.files.get(path);
     if (!fs) return;
     if (fs.state === 'saving') {

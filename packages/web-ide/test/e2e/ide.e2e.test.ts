@@ -531,6 +531,27 @@ describe('IDE in headless Chromium', () => {
     await waitSaved(page);
   });
 
+  it('a server restarted with a new session: the save says to open its new address, and there the text comes back and is saved', async () => {
+    const { page } = s;
+    await openFile(page, 'smodule3.contract');
+    await waitSaved(page);
+    const port = Number(new URL(s.server.url).port);
+    await s.server.close();
+    s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false }); // a new token
+    await placeCursor(page, 'synchronous module MSC');
+    await page.keyboard.insertText('// typed after the restart\n');
+    const notice = page.locator('.toast.error', { hasText: "no longer knows this tab's session" }).first();
+    await notice.waitFor({ timeout: 10_000 });
+    expect(await notice.textContent()).toContain('Open the address it printed');
+    expect(await notice.textContent()).not.toContain('Reload from disk');
+    expect(disk('smodule3.contract')).not.toContain('typed after the restart');
+    await page.goto(s.server.openUrl);
+    await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    await openFile(page, 'smodule3.contract');
+    expect(await activeValue(page)).toContain('// typed after the restart');
+    await expect.poll(() => disk('smodule3.contract'), { timeout: 10_000 }).toContain('// typed after the restart');
+  }, 90_000);
+
   it('writes a file once at a time: Ctrl+S during a write waits for it, and the browser copy keeps the text sent', async () => {
     const { page } = s;
     const path = 'amodule2.contract';
