@@ -19,6 +19,15 @@ describe('mergeRegions', () => {
         expect(r.text).toBe(region('a', 'fresh'));
     });
 
+    it('lists a region without ENABLED whose content was user code (not the known default, else not the fresh one)', () => {
+        const oldText = `/*PROTECTED REGION ID(a) START*/mine/*PROTECTED REGION END*/${region('b', 'x')}/*PROTECTED REGION ID(c) START*/old default/*PROTECTED REGION END*/`;
+        const known = (id: string, c: string) => (id === 'c' ? c === 'old default' : undefined);
+        const r = mergeRegions(region('a', 'fresh') + region('b', 'y') + region('c', 'new default'), oldText, 'f.c', isTodo, known);
+        expect(r.text).toBe(region('a', 'fresh') + region('b', 'x') + region('c', 'new default'));
+        expect(r.disabled.map((d) => [d.id, d.content])).toEqual([['a', 'mine']]);
+        expect(mergeRegions(region('a', 'mine'), '/*PROTECTED REGION ID(a) START*/mine/*PROTECTED REGION END*/', 'f.c', isTodo).disabled).toEqual([]);
+    });
+
     it('maps legacy additionnal IDs onto additional ones and writes the new spelling', () => {
         const oldText = `/*PROTECTED REGION ID(protect_additionnal_import_X) ENABLED START*/#include <math.h>/*PROTECTED REGION END*/`;
         const r = mergeRegions(region('protect_additional_import_X', '//TODO'), oldText, 'f.c', isTodo);

@@ -16,23 +16,58 @@ export interface Manifest {
     version: 1;
     /** path -> region ID -> hash of the generated default content */
     files: Record<string, Record<string, string>>;
+    /**
+     * path -> hash of the file's skeleton as written (skeletonHash): tells code written outside
+     * the regions. Optional: manifests written before it have none (the check is then skipped).
+     */
+    skeletons?: Record<string, string>;
 }
 
 /** A loaded manifest: only entries whose path passed the checks (safe-paths.ts). */
 export interface LoadedManifest {
     /** path -> region ID -> hash of the generated default content */
     files: Map<string, Record<string, string>>;
+    /** path -> skeleton hash, for the paths of `files` that have a well-formed one (none in an older manifest). */
+    skeletons: Map<string, string>;
 }
 
 export function hashContent(content: string): string {
     return createHash('sha1').update(content, 'latin1').digest('hex').slice(0, 16);
 }
 
-/** The default-content hashes of a freshly generated file (byte string). */
-export function regionDefaults(generated: string, file: string): Record<string, string> {
+/** What a hash of hashContent looks like; anything else in a manifest is ignored. */
+const HASH = /^[0-9a-f]{16}$/;
+
+/**
+ * The skeleton of a file (byte string): its text outside the regions' contents, each region reduced
+ * to its (normalised) ID, so that editing inside a region, toggling `ENABLED` or re-spacing a
+ * marker does not change it, and code written anywhere else does. Throws RegionSyntaxError on a
+ * malformed file.
+ */
+export function skeletonText(text: string, file: string): string {
+    let out = '';
+    let cursor = 0;
+    for (const r of parseRegions(text, file).regions) {
+        out += `${text.slice(cursor, r.start)}\u0000${r.id}\u0000`;
+        cursor = r.end;
+    }
+    return out + text.slice(cursor);
+}
+
+export function skeletonHash(text: string, file: string): string {
+    return hashContent(skeletonText(text, file));
+}
+
+/** What the manifest records of a freshly generated file (byte string): its regions' default hashes and its skeleton hash. */
+export function fileRecord(generated: string, file: string): { defaults: Record<string, string>; skeleton: string } {
     const defaults: Record<string, string> = {};
     for (const r of parseRegions(generated, file).regions) defaults[r.id] = hashContent(r.content);
-    return defaults;
+    return { defaults, skeleton: skeletonHash(generated, file) };
+}
+
+/** The default-content hashes of a freshly generated file (byte string). */
+export function regionDefaults(generated: string, file: string): Record<string, string> {
+    return fileRecord(generated, file).defaults;
 }
 
 export interface ManifestLoad {
@@ -86,14 +121,33 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
         if (problem) problems.push(`entry ${JSON.stringify(path)} dropped (${problem}): nothing read, written or deleted for it`);
         else files.set(path, defaultsOf(value));
     }
-    return { manifest: { files }, problems };
+    // skeleton hashes (optional): only for the files kept above, only well-formed hashes; the rest
+    // is ignored (no check for that file), never acted on
+    const skeletons = new Map<string, string>();
+    const recorded = (data as { skeletons?: unknown }).skeletons;
+    if (typeof recorded === 'object' && recorded !== null && !Array.isArray(recorded)) {
+        for (const [path, hash] of Object.entries(recorded)) {
+            if (files.has(path) && typeof hash === 'string' && HASH.test(hash)) skeletons.set(path, hash);
+        }
+    }
+    return { manifest: { files, skeletons }, problems };
 }
 
-/** Deterministic JSON text of a manifest (sorted paths). */
-export function serialiseManifest(files: Map<string, Record<string, string>>): string {
+/** Deterministic JSON text of a manifest (sorted paths); skeleton hashes only for listed files. */
+export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>): string {
     const sorted: Record<string, Record<string, string>> = {};
-    for (const path of [...files.keys()].sort()) sorted[path] = files.get(path)!;
-    return JSON.stringify({ version: 1, files: sorted }, null, 1) + '\n';
+    const paths = [...files.keys()].sort();
+    for (const path of paths) sorted[path] = files.get(path)!;
+    const manifest: Manifest = { version: 1, files: sorted };
+    if (skeletons) {
+        const sortedSkeletons: Record<string, string> = {};
+        for (const path of paths) {
+            const hash = skeletons.get(path);
+            if (hash !== undefined) sortedSkeletons[path] = hash;
+        }
+        manifest.skeletons = sortedSkeletons;
+    }
+    return JSON.stringify(manifest, null, 1) + '\n';
 }
 
 /**

@@ -56,24 +56,55 @@ export function orphanEntity(path: string): string {
 }
 
 /**
- * The comment an orphan file starts with: which entity and file the code came from, when it was
- * moved, and how to bring it back (docs/codegen.md, "Renames").
+ * Why code went to orphans/: its regions vanished from the generated code, its whole file did
+ * (entity deleted), its regions were not ENABLED (the generator put its default back), or the file
+ * was edited outside its regions (the generator rewrote the file).
  */
-function orphanHeader(path: string, ids: string[], when: Date, wholeFile: boolean): string {
-    return `${HEADER_START} of ${path} (${orphanEntity(path)}), moved here on ${when.toISOString()}.\n` +
+export type OrphanReason = 'vanished' | 'deleted' | 'disabled' | 'skeleton';
+
+/**
+ * The comment an orphan file starts with: which entity and file the code came from, when it was
+ * moved, why, and how to bring it back (docs/codegen.md, "Renames", "Protected regions").
+ */
+function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanReason): string {
+    const head = `${HEADER_START} of ${path} (${orphanEntity(path)}), moved here on ${when.toISOString()}.\n`;
+    const tail = ` * Then delete this file. Renaming with \`contract rename DIR OLD NEW\` or the IDE's rename carries regions over. */\n`;
+    if (reason === 'disabled') {
+        return head +
+            ` * These protected regions were not ENABLED (their start marker lacks the word ENABLED, removed or mistyped), so the\n` +
+            ` * generator put its default back in them: ${ids.join(', ')}. Their content as it was is below.\n` +
+            ` * To bring the code back: paste each region's content into the region of the same ID in ${path}, make its start\n` +
+            ` * marker say ENABLED again (PROTECTED REGION ID(<id>) ENABLED START), then generate.\n` +
+            ` * Then delete this file. (Removing ENABLED is the way to ask for the default: if you meant that, just delete this file.) */\n`;
+    }
+    if (reason === 'skeleton') {
+        return head +
+            ` * The file was edited outside its protected regions (${ids.join('; ')}): code there belongs to the generator and was\n` +
+            ` * regenerated. Below is the file as it was, byte for byte.\n` +
+            ` * To bring the code back: move it into a protected region of ${path} (declarations in\n` +
+            ` * protect_internal_vars_/protect_internal_functions_decl_, functions in protect_internal_functions_impl_, includes in\n` +
+            ` * protect_additional_import_...), or change the .contract model if it was generated code you meant to change, then generate.\n` +
+            tail;
+    }
+    const wholeFile = reason === 'deleted';
+    return head +
         ` * ${wholeFile ? 'The entity no longer exists' : 'These protected regions no longer exist'} in the generated code (renamed or deleted entity, removed port...): ${ids.join(', ')}.\n` +
         ` * To bring the code back: if the entity was renamed, paste each region's content into the region of the same\n` +
         ` * role in the new entity's file (protect_exec_OLD -> protect_exec_NEW); if it was deleted by mistake, restore it\n` +
         ` * in the .contract files${wholeFile ? ` and copy this file, without this comment, back to ${path}` : ''}, then generate.\n` +
-        ` * Then delete this file. Renaming with \`contract rename DIR OLD NEW\` or the IDE's rename carries regions over. */\n`;
+        tail;
 }
 
-/** The text of an orphan file holding the regions that vanished from `path`. */
-export function regionOrphanText(path: string, source: string, regions: Region[], when = new Date()): string {
-    return orphanHeader(path, regions.map((r) => r.id), when, false) + regions.map((r) => `\n${source.slice(r.start, r.end)}\n`).join('');
+/** The text of an orphan file holding regions of `path`: vanished from the generated code, or (`disabled`) replaced by their default. */
+export function regionOrphanText(path: string, source: string, regions: Region[], when = new Date(), reason: 'vanished' | 'disabled' = 'vanished'): string {
+    return orphanHeader(path, regions.map((r) => r.id), when, reason) + regions.map((r) => `\n${source.slice(r.start, r.end)}\n`).join('');
 }
 
-/** The text of the orphan of a whole file whose entity disappeared: the header, then the file as it was. */
-export function fileOrphanText(path: string, source: string, ids: string[], when = new Date()): string {
-    return orphanHeader(path, ids, when, true) + source;
+/**
+ * The text of the orphan of a whole file, the header then the file as it was: its entity
+ * disappeared (`ids`: its user regions), or (`skeleton`) it was edited outside its regions (`ids`:
+ * what is known of where, e.g. the first line that differs).
+ */
+export function fileOrphanText(path: string, source: string, ids: string[], when = new Date(), reason: 'deleted' | 'skeleton' = 'deleted'): string {
+    return orphanHeader(path, ids, when, reason) + source;
 }

@@ -2,7 +2,7 @@ import { posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
-import { MANIFEST_NAME, hashContent, loadManifest, looksLikeDefault, regionDefaults, serialiseManifest, type ManifestLoad } from './manifest.js';
+import { MANIFEST_NAME, fileRecord, hashContent, loadManifest, looksLikeDefault, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
@@ -26,6 +26,22 @@ function defaultCheck(defaults: Record<string, string> | undefined) {
         const known = defaults?.[id];
         return known !== undefined ? known === hashContent(content) : looksLikeDefault(content);
     };
+}
+
+/** The manifest's verdict on a region's content when it knows the default (true/false), else undefined. */
+function knownDefaultCheck(defaults: Record<string, string> | undefined) {
+    return (id: string, content: string) => {
+        const known = defaults?.[id];
+        return known !== undefined ? known === hashContent(content) : undefined;
+    };
+}
+
+/** 1-based number of the first line of `a` that differs from `b`'s line of the same number. */
+export function firstDifferingLine(a: string, b: string): number {
+    let line = 1;
+    const n = Math.min(a.length, b.length);
+    for (let i = 0; i < n && a.charCodeAt(i) === b.charCodeAt(i); i++) if (a.charCodeAt(i) === 10) line++;
+    return line;
 }
 
 /** Files under `root` holding protected-region markers (the generator's files when no manifest says so); links are skipped. */
@@ -113,6 +129,16 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     for (const problem of loaded.problems) report.warnings.push({ file: MANIFEST_NAME, message: problem });
     const oldDefaults: DefaultsOf = (p) => loaded.manifest?.files.get(p);
     const newManifest = new Map<string, Record<string, string>>();
+    const newSkeletons = new Map<string, string>();
+    /** The skeleton hash recorded when the file was last written (undefined: an older manifest, or none: no check). */
+    const recordedSkeleton = (p: string) => loaded.manifest?.skeletons.get(p);
+    const keepPrevious = (path: string) => {
+        const previous = oldDefaults(path);
+        if (previous) newManifest.set(path, previous);
+        const skeleton = recordedSkeleton(path);
+        if (skeleton !== undefined) newSkeletons.set(path, skeleton);
+        else newSkeletons.delete(path);
+    };
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
 
@@ -129,7 +155,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     };
     for (const file of sorted) {
         const generated = toByteString(file.content);
-        newManifest.set(file.path, regionDefaults(generated, file.path));
+        const record = fileRecord(generated, file.path);
+        newManifest.set(file.path, record.defaults);
+        newSkeletons.set(file.path, record.skeleton);
         try {
             const existing = mayExist(file.path) ? tree.read(file.path) : undefined;
             if (existing === undefined) {
@@ -143,7 +171,35 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 report.unchanged.push(file.path);
                 continue;
             }
-            const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)));
+            const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)), knownDefaultCheck(oldDefaults(file.path)));
+            // code written outside the regions: the skeleton differs from the one written last time
+            // (and from the fresh one: a file edited into what the generator now writes loses nothing)
+            const recorded = recordedSkeleton(file.path);
+            if (recorded !== undefined) {
+                const skeleton = skeletonHash(existing, file.path);
+                if (skeleton !== recorded && skeleton !== record.skeleton) {
+                    const line = firstDifferingLine(existing, merged.text);
+                    const where = `first line that differs from the regenerated file: ${line}`;
+                    const orphan = writeOrphan(tree, file.path, fileOrphanText(file.path, existing, [where], undefined, 'skeleton'));
+                    if (orphan.written) report.filesWritten++;
+                    report.orphaned.push(orphan.path);
+                    report.warnings.push({
+                        file: file.path,
+                        line,
+                        message: `edited outside its protected regions (${where}): that code is regenerated, not kept; the file as it was is in ${orphan.path} (move your code into a protected region)`,
+                    });
+                }
+            }
+            if (merged.disabled.length > 0) {
+                const orphan = writeOrphan(tree, file.path, regionOrphanText(file.path, existing, merged.disabled, undefined, 'disabled'));
+                if (orphan.written) report.filesWritten++;
+                report.orphaned.push(orphan.path);
+                report.warnings.push({
+                    file: file.path,
+                    line: merged.disabled[0]!.line,
+                    message: `protected region(s) ${merged.disabled.map((r) => r.id).join(', ')} not ENABLED: their content was replaced by the generated default; what they held is in ${orphan.path} (put ENABLED back in the start marker to keep your code)`,
+                });
+            }
             if (merged.orphans.length > 0) {
                 const orphan = writeOrphan(tree, file.path, regionOrphanText(file.path, existing, merged.orphans));
                 if (orphan.written) report.filesWritten++;
@@ -163,9 +219,8 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             }
         } catch (e) {
             recordFailure(report, refusals, file.path, e, 'left untouched');
-            // keep what we knew of the untouched file so that its defaults stay recognisable
-            const previous = oldDefaults(file.path);
-            if (previous) newManifest.set(file.path, previous);
+            // keep what we knew of the untouched file so that its defaults (and skeleton) stay recognisable
+            keepPrevious(file.path);
         }
     }
 
@@ -186,13 +241,16 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             const existing = tree.read(path);
             if (existing === undefined) continue;
             const owned = userRegions(existing, path, defaultCheck(oldDefaults(path)));
-            if (owned.length > 0) {
-                const orphan = writeOrphan(tree, path, fileOrphanText(path, existing, owned.map((r) => r.id)));
+            const recorded = recordedSkeleton(path);
+            const editedOutside = recorded !== undefined && skeletonHash(existing, path) !== recorded;
+            if (owned.length > 0 || editedOutside) {
+                const what = [...owned.map((r) => r.id), ...(editedOutside ? ['code outside the protected regions'] : [])];
+                const orphan = writeOrphan(tree, path, fileOrphanText(path, existing, what));
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
                 report.warnings.push({
                     file: path,
-                    message: `its entity no longer exists; the file holds user code (${owned.map((r) => r.id).join(', ')}) and was moved to ${orphan.path}`,
+                    message: `its entity no longer exists; the file holds user code (${what.join(', ')}) and was moved to ${orphan.path}`,
                 });
             } else {
                 report.removed.push(path);
@@ -201,13 +259,12 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             tree.pruneEmptyDirs(path, (dir) => dir === ORPHANS_DIR);
         } catch (e) {
             recordFailure(report, refusals, path, e, 'its entity no longer exists, but the file was left untouched');
-            const previous = oldDefaults(path);
-            if (previous) newManifest.set(path, previous);
+            keepPrevious(path);
         }
     }
 
     if (!manifestRefused) {
-        const manifestText = serialiseManifest(newManifest);
+        const manifestText = serialiseManifest(newManifest, newSkeletons);
         try {
             if (tree.read(MANIFEST_NAME) !== manifestText) {
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));

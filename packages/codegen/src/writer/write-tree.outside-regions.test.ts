@@ -1,0 +1,163 @@
+/**
+ * Code written where the generator owns the file (outside the protected regions), and regions whose
+ * ENABLED flag is gone: regenerated as documented, but never silently (docs/codegen.md, "Protected
+ * regions"): the code as it was goes to orphans/ with a header saying why, and a warning says where.
+ */
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { afterEach, describe, expect, it } from 'vitest';
+import { region } from '../regions/markers.js';
+import { tempDir } from '../test-support/temp-dir.js';
+import { MANIFEST_NAME, hashContent, skeletonText } from './manifest.js';
+import { writeTree, type GeneratedFile } from './write-tree.js';
+
+let cleanups: Array<() => void> = [];
+afterEach(() => {
+    cleanups.forEach((c) => c());
+    cleanups = [];
+});
+function out(): string {
+    const t = tempDir();
+    cleanups.push(t.cleanup);
+    return t.dir;
+}
+
+const A = 'generated/modules/MSC_mod/module.c';
+const file = (extra = ''): GeneratedFile => ({
+    path: A,
+    content: `// generated\n#include "tools.h"\n${extra}int step(void);\n${region('protect_vars_MSC', '\n//TODO\n')}\n${region('protect_exec_MSC', '\nreturn -1;\n')}\n`,
+});
+const read = (dir: string, p: string) => readFileSync(join(dir, p), 'latin1');
+const write = (dir: string, p: string, text: string) => writeFileSync(join(dir, p), Buffer.from(text, 'latin1'));
+const manifest = (dir: string) => JSON.parse(readFileSync(join(dir, MANIFEST_NAME), 'utf8')) as { version: number; files: Record<string, unknown>; skeletons?: Record<string, string> };
+
+describe('code written outside the protected regions', () => {
+    it('is copied to orphans/ with a header saying why and how to get it back, a warning names the file and line, the file is still regenerated', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        const edited = read(dir, A).replace('int step(void);\n', 'int step(void);\nstatic int helper_\xe9(void) { return 4; } /* mine */\n');
+        write(dir, A, edited);
+        const r = writeTree(dir, [file()]);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings).toEqual([{
+            file: A,
+            line: 4,
+            message: `edited outside its protected regions (first line that differs from the regenerated file: 4): that code is regenerated, not kept; the file as it was is in orphans/${A} (move your code into a protected region)`,
+        }]);
+        expect(read(dir, A)).toBe(file().content);
+        const orphan = read(dir, `orphans/${A}`);
+        expect(orphan).toMatch(/^\/\* Orphaned user code of generated\/modules\/MSC_mod\/module\.c \(module or supervisor MSC\), moved here on /);
+        expect(orphan).toContain('The file was edited outside its protected regions (first line that differs from the regenerated file: 4)');
+        expect(orphan).toContain('move it into a protected region of');
+        expect(orphan.slice(orphan.indexOf('*/\n') + 3)).toBe(edited); // byte for byte
+        // the next regeneration has nothing more to say
+        const again = writeTree(dir, [file()]);
+        expect([again.orphaned, again.warnings, again.filesWritten]).toEqual([[], [], 0]);
+    });
+
+    it('also when the model changed the generated code around the edit', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace('// generated\n', '// generated\n#define MINE 1\n'));
+        const r = writeTree(dir, [file('int added_port;\n')]);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings[0]).toMatchObject({ file: A, line: 2 });
+        expect(read(dir, `orphans/${A}`)).toContain('#define MINE 1\n');
+        expect(read(dir, A)).toBe(file('int added_port;\n').content);
+    });
+
+    it('does not count edits inside regions, ENABLED toggles, re-spaced markers or a model change', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A)
+            .replace('\n//TODO\n', '\nint mine = 1;\n')
+            .replace('/*PROTECTED REGION ID(protect_exec_MSC) ENABLED START*/', '/* PROTECTED REGION ID( protect_exec_MSC )\n START */'));
+        const r = writeTree(dir, [file('int added_port;\n')]);
+        expect([r.orphaned, r.warnings]).toEqual([[], []]);
+        expect(read(dir, A)).toContain(region('protect_vars_MSC', '\nint mine = 1;\n'));
+    });
+
+    it('the skeleton reduces each region to its ID', () => {
+        expect(skeletonText(`a${region('x', 'body')}b/*PROTECTED REGION ID( x2 ) START*/other/*PROTECTED REGION END*/c`, 'f.c')).toBe('a\u0000x\u0000b\u0000x2\u0000c');
+    });
+
+    it('a file of a deleted entity edited outside its regions moves to orphans/ whole even without user regions', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
+        const r = writeTree(dir, []);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.removed).toEqual([]);
+        expect(r.warnings[0]!.message).toContain('code outside the protected regions');
+        expect(read(dir, `orphans/${A}`)).toContain('int mine;\n');
+        expect(existsSync(join(dir, A))).toBe(false);
+    });
+
+    it('manifest: one skeleton hash per file; an old manifest without them loads and skips the check; bad entries are ignored', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        const m = manifest(dir);
+        expect(m.version).toBe(1);
+        expect(Object.keys(m.skeletons!)).toEqual([A]);
+        expect(m.skeletons![A]).toBe(hashContent(skeletonText(file().content, A)));
+        // an older manifest: no skeletons. The edit outside is regenerated as before, no orphan, no warning
+        delete m.skeletons;
+        writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify(m));
+        write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
+        const old = writeTree(dir, [file()]);
+        expect([old.orphaned, old.warnings, old.errors]).toEqual([[], [], []]);
+        expect(manifest(dir).skeletons).toEqual({ [A]: m.files && hashContent(skeletonText(file().content, A)) });
+        // hostile skeleton entries: not a hash, not a listed file, not an object: ignored, nothing acted on
+        for (const skeletons of [{ [A]: 'not a hash' }, { '../../etc/passwd': '0123456789abcdef' }, ['x'], 'x', { [A]: 42 }]) {
+            writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify({ ...manifest(dir), skeletons }));
+            write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
+            const r = writeTree(dir, [file()]);
+            expect([r.orphaned, r.warnings, r.errors], JSON.stringify(skeletons)).toEqual([[], [], []]);
+            expect(read(dir, A)).toBe(file().content);
+        }
+        expect(existsSync(join(dir, 'orphans'))).toBe(false);
+    });
+});
+
+describe('a region that lost ENABLED', () => {
+    it('holding user code: its content goes to orphans/ with a warning, then the default is put back', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace(
+            '/*PROTECTED REGION ID(protect_exec_MSC) ENABLED START*/\nreturn -1;\n',
+            '/*PROTECTED REGION ID(protect_exec_MSC) START*/\n*stateindex = 2; my_step(); /* caf\xe9 */\n'));
+        const r = writeTree(dir, [file()]);
+        expect(read(dir, A)).toBe(file().content);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings).toEqual([{
+            file: A,
+            line: 7,
+            message: `protected region(s) protect_exec_MSC not ENABLED: their content was replaced by the generated default; what they held is in orphans/${A} (put ENABLED back in the start marker to keep your code)`,
+        }]);
+        const orphan = read(dir, `orphans/${A}`);
+        expect(orphan).toContain('These protected regions were not ENABLED');
+        expect(orphan).toContain('/*PROTECTED REGION ID(protect_exec_MSC) START*/\n*stateindex = 2; my_step(); /* caf\xe9 */\n/*PROTECTED REGION END*/');
+    });
+
+    it('holding the default (the manifest\'s, or the fresh one without a manifest): replaced silently, as asked', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace('(protect_exec_MSC) ENABLED START', '(protect_exec_MSC) START'));
+        // the default changed in the generator: the old default is known by the manifest's hash
+        const changed: GeneratedFile = { path: A, content: file().content.replace('\nreturn -1;\n', '\nreturn 0;\n') };
+        const r = writeTree(dir, [changed]);
+        expect([r.orphaned, r.warnings]).toEqual([[], []]);
+        expect(read(dir, A)).toBe(changed.content);
+        // without a manifest: only the fresh default counts as a default
+        const bare = out();
+        writeTree(bare, [file()]);
+        write(bare, MANIFEST_NAME, '');
+        write(bare, A, read(bare, A).replace('(protect_exec_MSC) ENABLED START', '(protect_exec_MSC) START'));
+        const same = writeTree(bare, [file()]);
+        expect([same.orphaned, same.warnings.filter((w) => w.file !== MANIFEST_NAME)]).toEqual([[], []]);
+        write(bare, A, read(bare, A).replace('(protect_exec_MSC) ENABLED START', '(protect_exec_MSC) START'));
+        write(bare, MANIFEST_NAME, '');
+        const other = writeTree(bare, [changed]); // 'return -1;' is not the fresh default: kept aside
+        expect(other.orphaned).toEqual([`orphans/${A}`]);
+    });
+});
