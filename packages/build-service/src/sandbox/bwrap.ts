@@ -10,13 +10,13 @@
  * Real-time mode (opt-in): SCHED_FIFO granted and bounded as realtime.ts decides.
  */
 import { execFile } from 'node:child_process';
-import { existsSync, lstatSync, readlinkSync } from 'node:fs';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { memoryBytes, REALTIME_BOUNDS, tmpBytes } from '../limits.js';
 import type { LimitCgroup } from './cgroup.js';
 import { cgroupChoice, createJobCgroup } from './cgroup-choice.js';
 import { startHostProcess } from './host-process.js';
+import { toolchainBinds as toolchainArgs } from './toolchain-binds.js';
 import { workDiskState } from './work-disk.js';
 import { describeRealtime, planRealtime, readRealtimeFacts, RealtimeCgroup, realtimePrefix } from './realtime.js';
 import type { Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxProbe, SandboxProcess } from './types.js';
@@ -33,26 +33,6 @@ export interface BwrapOptions {
   bwrapPath?: string;
   /** 'auto' (default): cgroups when possible, else rlimits. Tests force 'rlimit'. */
   limitMechanism?: LimitMechanismChoice;
-}
-
-/** Read-only binds of the host toolchain (usr-merged systems get symlinks instead). */
-function toolchainArgs(): string[] {
-  const args = ['--ro-bind', '/usr', '/usr'];
-  for (const top of ['/bin', '/sbin', '/lib', '/lib32', '/lib64', '/libx32']) {
-    let st;
-    try {
-      st = lstatSync(top);
-    } catch {
-      continue;
-    }
-    if (st.isSymbolicLink()) args.push('--symlink', readlinkSync(top), top);
-    else if (st.isDirectory()) args.push('--ro-bind', top, top);
-  }
-  // only what the toolchain needs from /etc: the loader cache and Debian's alternatives links
-  for (const f of ['/etc/ld.so.cache', '/etc/ld.so.conf', '/etc/alternatives', '/etc/localtime']) {
-    if (existsSync(f)) args.push('--ro-bind', f, f);
-  }
-  return args;
 }
 
 export class BwrapSandbox implements Sandbox {

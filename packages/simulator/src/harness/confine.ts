@@ -10,9 +10,9 @@
  * asked: for your own code on your own machine only.
  */
 import { execFile } from 'node:child_process';
-import { existsSync, lstatSync, readlinkSync } from 'node:fs';
 import { promisify } from 'node:util';
 import { SANDBOX_GID, SANDBOX_UID } from '@contract-studio/conventions';
+import { toolchainBinds as toolchainArgs } from '@contract-studio/build-service/toolchain';
 
 const exec = promisify(execFile);
 
@@ -36,25 +36,6 @@ export interface Confinement {
      * paths (so paths in arguments stay valid), nothing else of the host but the toolchain.
      */
     wrap(argv: string[], binds: { cwd: string; readWrite?: string[]; readOnly?: string[] }): string[];
-}
-
-/** The read-only binds of the host toolchain (usr-merged systems get their links). */
-function toolchainArgs(): string[] {
-    const args = ['--ro-bind', '/usr', '/usr'];
-    for (const top of ['/bin', '/sbin', '/lib', '/lib32', '/lib64', '/libx32']) {
-        let st;
-        try {
-            st = lstatSync(top);
-        } catch {
-            continue;
-        }
-        if (st.isSymbolicLink()) args.push('--symlink', readlinkSync(top), top);
-        else if (st.isDirectory()) args.push('--ro-bind', top, top);
-    }
-    for (const f of ['/etc/ld.so.cache', '/etc/ld.so.conf', '/etc/alternatives']) {
-        if (existsSync(f)) args.push('--ro-bind', f, f);
-    }
-    return args;
 }
 
 class BwrapConfinement implements Confinement {
