@@ -2,7 +2,6 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
-import { formatTime } from '../scenario/index.js';
 import type { ScenarioResult } from './run-scenario.js';
 
 /** A terminal-safe line: control characters of simulated output shown as `?`. */
@@ -10,9 +9,35 @@ function safe(s: string): string {
     return s.replace(/[\u0000-\u0008\u000b-\u001f\u007f-\u009f]/g, '?');
 }
 
+const UNITS = [['s', 1_000_000_000], ['ms', 1_000_000], ['us', 1_000], ['ns', 1]] as const;
+
+/**
+ * One unit for every time of a scenario's report, so that the time column reads down (`2900ms`,
+ * `3000ms`, `3100ms`, not `2900ms`, `3s`, `3100ms`): the coarsest unit that writes each of `times`
+ * (the steps' times and the end) as a whole number; other times (an ORD release at 300.5 ms) get
+ * decimals in that unit. Each stays a valid scenario time literal.
+ */
+export function reportTimeFormat(times: number[]): (ns: number) => string {
+    const [unit, size] = UNITS.find(([, n]) => times.every((t) => t % n === 0)) ?? UNITS[3];
+    return (ns) => {
+        if (ns === 0) return '0';
+        const whole = Math.trunc(ns / size);
+        const rest = Math.abs(ns % size);
+        if (rest === 0) return `${whole}${unit}`;
+        const digits = String(size).length - 1;
+        return `${ns < 0 && whole === 0 ? '-' : ''}${whole}.${String(rest).padStart(digits, '0').replace(/0+$/, '')}${unit}`;
+    };
+}
+
+/** The times that choose a report's unit: its steps' and its end. */
+function timesOf(r: ScenarioResult): number[] {
+    return [r.endNs, ...r.steps.map((s) => s.timeNs)];
+}
+
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
     const out: string[] = [];
     for (const r of results) {
+        const formatTime = reportTimeFormat(timesOf(r));
         out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
         for (const s of r.steps) {
             const time = formatTime(s.timeNs).padStart(8);
