@@ -45,7 +45,7 @@ export class CommandRegistry {
     target.addEventListener('keydown', (e) => {
       if (e.defaultPrevented) return;
       const cmd = this.commands.find((c) => c.keys?.some((k) => chordMatches(parseChord(k), e)));
-      if (!cmd || document.querySelector('.dialog-overlay')) return; // a dialog open: its keys are its own
+      if (!cmd || document.querySelector('.dialog-overlay, [aria-modal="true"]')) return; // a dialog open: its keys are its own
       e.preventDefault(); // Ctrl+P is the browser's print otherwise
       e.stopPropagation();
       if (!e.repeat) void Promise.resolve().then(() => cmd.run());

@@ -29,7 +29,7 @@ export class GeneratePanel {
   show(r: GenerateReport): void {
     const base = r.srcGen ? `${r.srcGen}/` : '';
     const fileLink = (rel: string, cls = '', line?: number) =>
-      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, onclick: () => this.open(base + rel, line) }, h('span', { class: 'file-glyph' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), rel);
+      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, onclick: () => this.open(base + rel, line) }, h('span', { class: 'file-glyph', 'aria-hidden': 'true' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), h('span', { class: 'gen-name', title: rel }, rel));
     const problems = (title: string, list: Problem[], cls: string) =>
       list.length
         ? h('div', { class: `gen-section ${cls}` }, h('div', { class: 'gen-title' }, `${title} (${list.length})`),

@@ -1,7 +1,11 @@
 import { monaco } from './monaco.js';
 import { h } from '../util/dom.js';
+import { openModal, type FocusStop, type Modal } from '../util/modal.js';
 import type { Conflict, Workspace } from '../workspace/workspace.js';
+import { findConflictMarker } from '../workspace/three-way-merge.js';
 import { languageOf } from '../workspace/file-kinds.js';
+
+let views = 0;
 
 /**
  * Overlapping edits of one file, side by side (Monaco's diff editor): on the left the text on disk
@@ -9,12 +13,25 @@ import { languageOf } from '../workspace/file-kinds.js';
  * edits the merge (both sides between markers) and saves it; nothing is written before that, and
  * the user's text stays in the browser copy until then (docs/ide.md, "Saves, versions and merges").
  * One conflict at a time; others wait in order.
+ *
+ * The view is a modal dialog (util/modal.ts): the page behind is inert (keys never reach the
+ * hidden editor), Tab and Shift+Tab go round the two sides and the buttons, Escape closes it
+ * without choosing (the tab stays "Overlapping edits", nothing written; Ctrl+S in the tab shows it
+ * again), and the focus goes back to the editor. "Save the right side" refuses a text with
+ * conflict markers left, naming the line.
  */
 export class ConflictView {
   private readonly queue: Conflict[] = [];
-  private current: { conflict: Conflict; diff: monaco.editor.IStandaloneDiffEditor; overlay: HTMLElement; models: monaco.editor.ITextModel[] } | undefined;
+  private current: {
+    conflict: Conflict; diff: monaco.editor.IStandaloneDiffEditor; overlay: HTMLElement; modal: Modal;
+    models: monaco.editor.ITextModel[]; listeners: monaco.IDisposable[];
+  } | undefined;
 
-  constructor(private readonly workspace: Workspace) {
+  constructor(
+    private readonly workspace: Workspace,
+    /** Where the focus goes when the view closes and nothing had it before: the IDE's editor (editor-area.ts). */
+    private readonly focusEditor: () => void = () => monaco.editor.getEditors().find((e) => e.getContainerDomNode().closest('.editor-host'))?.focus(),
+  ) {
     workspace.onConflict.on((c) => this.add(c));
     // resolved elsewhere (reload from disk, a newer disk text that merged): the view closes
     workspace.onFileState.on((fs) => {
@@ -26,6 +43,7 @@ export class ConflictView {
     const i = this.queue.findIndex((c) => c.path === conflict.path);
     if (i >= 0) this.queue.splice(i, 1);
     if (this.current?.conflict.path === conflict.path) {
+      if (this.current.conflict === conflict) return; // asked again while shown
       this.close();
       this.open(conflict);
       return;
@@ -41,6 +59,7 @@ export class ConflictView {
   }
 
   private open(conflict: Conflict): void {
+    const n = ++views;
     const host = h('div', { class: 'conflict-diff' });
     const choose = (text: () => string) => () => {
       const t = text();
@@ -48,26 +67,72 @@ export class ConflictView {
       this.workspace.resolveConflict(conflict.path, t);
       this.next();
     };
-    const original = monaco.editor.createModel(conflict.theirs, languageOf(conflict.path));
-    const modified = monaco.editor.createModel(conflict.mine, languageOf(conflict.path));
-    const overlay = h('div', { class: 'conflict-overlay', 'data-path': conflict.path, role: 'dialog' },
+    // models of their own scheme: not workspace files (the language server does not open them)
+    const original = monaco.editor.createModel(conflict.theirs, languageOf(conflict.path), monaco.Uri.from({ scheme: 'conflict', path: `/${n}/disk/${conflict.path}` }));
+    const modified = monaco.editor.createModel(conflict.mine, languageOf(conflict.path), monaco.Uri.from({ scheme: 'conflict', path: `/${n}/yours/${conflict.path}` }));
+    const error = h('div', { class: 'conflict-error hidden', role: 'alert' });
+    const saveRight = () => {
+      const text = modified.getValue();
+      const marker = findConflictMarker(text);
+      if (!marker) return choose(() => text)();
+      error.textContent = `Not saved: line ${marker.line} of the right side still has the conflict marker "${marker.marker}". ` +
+        'Keep what you want of each block and delete the <<<<<<< / ======= / >>>>>>> lines, then save again.';
+      error.classList.remove('hidden');
+      const right = diff.getModifiedEditor();
+      right.setPosition({ lineNumber: marker.line, column: 1 });
+      right.revealLineInCenter(marker.line);
+      right.focus();
+    };
+    const titleId = `conflict-title-${n}`;
+    const hintId = `conflict-hint-${n}`;
+    const buttons = [
+      h('button', { class: 'btn', id: 'conflict-edit-merge', title: 'Put both versions of each overlapping block, between markers, on the right', onclick: () => {
+        // an undo step of its own on the right side: Ctrl+Z there brings the text before it back
+        modified.pushStackElement();
+        modified.pushEditOperations([], [{ range: modified.getFullModelRange(), text: conflict.marked }], () => null);
+        modified.pushStackElement();
+        const first = findConflictMarker(conflict.marked);
+        if (first) diff.getModifiedEditor().revealLineInCenter(first.line);
+      } }, 'Edit the merge'),
+      h('button', { class: 'btn', id: 'conflict-take-theirs', onclick: choose(() => conflict.theirs) }, 'Take theirs (disk)'),
+      // the tab's text now (the user may have typed in it before the view opened)
+      h('button', { class: 'btn', id: 'conflict-keep-mine', onclick: choose(() => this.tabText(conflict)) }, 'Keep mine'),
+      h('button', { class: 'btn primary', id: 'conflict-save-right', onclick: saveRight }, 'Save the right side'),
+    ];
+    const overlay = h('div', { class: 'conflict-overlay', 'data-path': conflict.path, 'aria-labelledby': titleId, 'aria-describedby': hintId },
       h('div', { class: 'conflict-head' },
-        h('div', { class: 'conflict-title' }, `${conflict.path}: your edits and a change made elsewhere overlap`),
-        h('div', { class: 'dialog-hint' }, 'Left: the file on disk now. Right: your text (editable). Nothing is written until you choose; your text is kept in this browser meanwhile.')),
-      host,
-      h('div', { class: 'dialog-buttons' },
-        h('button', { class: 'btn', id: 'conflict-edit-merge', title: 'Put both versions of each overlapping block, between markers, on the right', onclick: () => modified.setValue(conflict.marked) }, 'Edit the merge'),
-        h('button', { class: 'btn', id: 'conflict-take-theirs', onclick: choose(() => conflict.theirs) }, 'Take theirs (disk)'),
-        // the tab's text now (the user may have typed in it since the view opened)
-        h('button', { class: 'btn', id: 'conflict-keep-mine', onclick: choose(() => this.tabText(conflict)) }, 'Keep mine'),
-        h('button', { class: 'btn primary', id: 'conflict-save-right', onclick: choose(() => modified.getValue()) }, 'Save the right side')));
+        h('div', { class: 'conflict-title', id: titleId }, `${conflict.path}: your edits and a change made elsewhere overlap`),
+        h('div', { class: 'dialog-hint', id: hintId }, 'Left: the file on disk now. Right: your text (editable). Nothing is written until you choose; your text is kept in this browser meanwhile. ' +
+          'Tab moves between the two sides and the buttons; Escape decides later (Ctrl+S in the tab shows this again).')),
+      host, error,
+      h('div', { class: 'dialog-buttons' }, ...buttons));
+    // in the page before the editor is created (it measures its host), not yet a modal
+    overlay.style.visibility = 'hidden';
     document.body.append(overlay);
     const diff = monaco.editor.createDiffEditor(host, {
       theme: 'contract-dark', automaticLayout: true, originalEditable: false, readOnly: false,
       renderSideBySide: true, minimap: { enabled: false }, fontSize: 13, scrollBeyondLastLine: false,
+      // no suggestion list: its widget, made on first use, could be asked for after the view is gone
+      // (the language server does not know these models anyway)
+      quickSuggestions: false, suggestOnTriggerCharacters: false,
+      ariaLabel: `${conflict.path}: on disk (left) and yours (right)`,
     });
     diff.setModel({ original, modified });
-    this.current = { conflict, diff, overlay, models: [original, modified] };
+    const sideStop = (editor: monaco.editor.ICodeEditor): FocusStop => ({ el: editor.getContainerDomNode(), focus: () => editor.focus() });
+    const listeners = [modified.onDidChangeContent(() => error.classList.add('hidden'))];
+    overlay.style.visibility = '';
+    const modal = openModal(overlay, overlay, {
+      onEscape: () => this.cancel(),
+      initialFocus: () => buttons[0]!.focus(),
+      stops: () => [sideStop(diff.getOriginalEditor()), sideStop(diff.getModifiedEditor()), ...buttons.map((b) => ({ el: b, focus: () => b.focus() }))],
+      fallbackFocus: this.focusEditor,
+    });
+    this.current = { conflict, diff, overlay, modal, models: [original, modified], listeners };
+  }
+
+  /** Escape: closed without a choice. The conflict stays (nothing written); the next file's, if any, is shown. */
+  private cancel(): void {
+    this.next();
   }
 
   private tabText(conflict: Conflict): string {
@@ -75,15 +140,21 @@ export class ConflictView {
     return model && !model.isDisposed() ? model.getValue() : conflict.mine;
   }
 
+  /**
+   * Takes the view down in an order that leaves nothing of it alive: the focus leaves it first (to
+   * the editor), its listeners go, the diff editor lets go of its models and is disposed, the
+   * overlay leaves the page; the models are disposed once the editor worker can no longer be
+   * computing a diff of them (a result arriving for a disposed model fails in Monaco).
+   */
   private close(): void {
     const c = this.current;
     if (!c) return;
     this.current = undefined;
-    c.diff.setModel(null);
-    c.diff.dispose();
-    // a diff the editor worker is still computing fails ("no diff result available") if its models
-    // are gone before it answers: they are dropped a little later
-    setTimeout(() => c.models.forEach((m) => m.dispose()), 3000);
-    c.overlay.remove();
+    c.modal.close(() => {
+      c.listeners.forEach((l) => l.dispose());
+      c.diff.setModel(null);
+      c.diff.dispose();
+    });
+    setTimeout(() => c.models.forEach((m) => m.isDisposed() || m.dispose()), 3000);
   }
 }

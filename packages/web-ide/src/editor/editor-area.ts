@@ -83,7 +83,10 @@ export class EditorArea {
     });
     this.editor.onDidChangeCursorSelection(() => this.updateReadOnly());
     this.editor.addCommand(monaco.KeyMod.CtrlCmd | monaco.KeyCode.KeyS, () => {
-      if (this.active && !this.views.has(this.active)) void this.workspace.save(this.active);
+      // (the keybinding is the page's: only when this editor has the focus, not the conflict view's editors)
+      if (!this.editor.hasTextFocus() || !this.active || this.views.has(this.active)) return;
+      // overlapping edits waiting for a choice: Ctrl+S shows the side-by-side view again
+      if (!this.workspace.showConflict(this.active)) void this.workspace.save(this.active);
     });
     this.editor.addAction({
       id: 'contract.reloadFromDisk',
@@ -142,8 +145,15 @@ export class EditorArea {
       return;
     }
     if (isGeneratedC(path) && !this.guards.has(path)) {
-      this.guards.set(path, new GeneratedGuard(fs.model, (msg) => toast('warning', msg), () => this.workspace.applyingExternal));
-      fs.model.onDidChangeContent(() => this.active === path && this.guards.get(path)?.decorate(this.editor));
+      // after every text change (typing, undo, a reload or merge from disk): the regions as they are
+      // now give the decorations and whether the cursor may type (a reload can move the regions
+      // under a cursor that stays put, or carry the cursor into a region)
+      const onRescan = () => {
+        if (this.active !== path || this.editor.getModel() !== fs.model) return;
+        this.guards.get(path)?.decorate(this.editor);
+        this.updateReadOnly();
+      };
+      this.guards.set(path, new GeneratedGuard(fs.model, (msg) => toast('warning', msg), () => this.workspace.applyingExternal, onRescan));
     }
     if (!this.tabs.includes(path)) this.tabs.push(path);
     this.activate(path);

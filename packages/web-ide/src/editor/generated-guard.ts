@@ -6,6 +6,10 @@ import { scanProtectedRegions, editsAllowed, type ProtectedRegion } from './prot
  * are undone at once (paste, drag, multi-cursor included), and a decoration greys out the
  * read-only skeleton. The editor itself is switched read-only while the cursor is outside a
  * region, so typing there is refused with Monaco's read-only message.
+ * The regions are scanned again after every change of the model's text, whoever made it (the
+ * user, an undo, a reload from disk or a merge after another tab's Generate All), before
+ * `onRescan` tells the editor, which then recomputes its read-only state: a cursor that a reload
+ * carried into a region whose offsets moved can type there at once.
  */
 export class GeneratedGuard {
   private regions: ProtectedRegion[] = [];
@@ -18,22 +22,26 @@ export class GeneratedGuard {
     private readonly onRejected: (msg: string) => void,
     /** True while the change is not the user's (reload from disk after Generate All or an external edit). */
     private readonly isExternal: () => boolean,
+    /** After every rescan (the regions may have moved): the editor recomputes its read-only state and decorations. */
+    private readonly onRescan: () => void = () => undefined,
   ) {
     this.rescan();
     model.onDidChangeContent((e) => {
-      if (this.reverting) return;
-      if (this.isExternal()) return this.rescan();
-      const ranges = e.changes.map((c) => ({ start: c.rangeOffset, end: c.rangeOffset + c.rangeLength }));
-      if (!e.isUndoing && !e.isRedoing && !editsAllowed(this.regions, ranges)) {
-        this.reverting = true;
-        queueMicrotask(() => {
-          model.undo();
-          this.reverting = false;
-          this.onRejected('Generated code is read-only: write inside a PROTECTED REGION');
-        });
-        return;
+      const checked = !this.reverting && !this.isExternal() && !e.isUndoing && !e.isRedoing;
+      if (checked) {
+        const ranges = e.changes.map((c) => ({ start: c.rangeOffset, end: c.rangeOffset + c.rangeLength }));
+        if (!editsAllowed(this.regions, ranges)) {
+          this.reverting = true;
+          queueMicrotask(() => {
+            model.undo();
+            this.reverting = false;
+            this.onRejected('Generated code is read-only: write inside a PROTECTED REGION');
+          });
+        }
       }
+      // always: the regions of the text the model holds now (the undo above rescans again)
       this.rescan();
+      this.onRescan();
     });
   }
 

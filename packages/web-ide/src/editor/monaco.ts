@@ -1,7 +1,7 @@
 /**
  * The slice of Monaco the IDE uses: the editor core API plus the contributions we need
  * (hover, suggest, go to definition, references, rename, format, code actions, find, folding,
- * bracket matching, comments, context menu, quick outline, markers navigation) and the C
+ * bracket matching, comments, context menu, quick outline, go to line, markers navigation) and the C
  * language only. Importing `monaco-editor` itself would pull in ~80 languages and the
  * TS/CSS/HTML/JSON language services (see docs/ide.md for the measured difference).
  */
@@ -35,6 +35,7 @@ import 'monaco-editor/editor/contrib/suggest/browser/suggestController.js';
 import 'monaco-editor/editor/contrib/tokenization/browser/tokenization.js';
 import 'monaco-editor/editor/contrib/wordHighlighter/browser/wordHighlighter.js';
 import 'monaco-editor/editor/contrib/wordOperations/browser/wordOperations.js';
+import 'monaco-editor/editor/standalone/browser/quickAccess/standaloneGotoLineQuickAccess.js'; // Ctrl+G
 import 'monaco-editor/editor/standalone/browser/quickAccess/standaloneGotoSymbolQuickAccess.js';
 import 'monaco-editor/editor/standalone/browser/quickAccess/standaloneCommandsQuickAccess.js';
 import 'monaco-editor/editor/standalone/browser/referenceSearch/standaloneReferenceSearch.js';

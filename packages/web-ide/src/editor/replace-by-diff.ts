@@ -4,7 +4,9 @@ import { monaco } from './monaco.js';
 const lines = (t: string): string[] => t.split(/(?<=\n)/);
 
 /**
- * Makes a model hold `text` by editing only the lines that differ (one undo step), so the cursor
+ * Makes a model hold `text` by editing only the lines that differ (one undo step of its own: the
+ * user's typing before it is a separate step, so Ctrl+Z after a reload takes back the reload only,
+ * never the user's last edit with it), so the cursor
  * and the scroll of every editor showing it stay with the text around them: a line added above
  * by a merge moves the cursor down with the line the user is typing on, instead of leaving it at
  * the same line number (src/workspace/workspace.ts shows merges and reloads this way).
@@ -19,6 +21,7 @@ export function replaceByDiff(model: monaco.editor.ITextModel, text: string): vo
     text: p.buffer2.chunk.join(''),
   }));
   if (!edits.length) return;
+  model.pushStackElement(); // close the user's open undo group (typing stays one group until then)
   model.pushEditOperations(null, edits, () => null);
   model.pushStackElement();
   // the line splitting must give the text back exactly; if it ever does not, take it whole

@@ -20,13 +20,15 @@ function positionOf(model: monaco.editor.ITextModel, anchor: Anchor): monaco.Pos
 }
 
 /**
- * Replaces the whole text of a model (one undo step) and puts the cursor of every editor showing
+ * Replaces the whole text of a model (one undo step of its own, apart from the user's typing
+ * before it) and puts the cursor of every editor showing
  * it back roughly where it was: at the same offset in the same protected region when it was in
  * one (the generated code around may have moved it many lines), else on the same line and column.
  */
 export function replaceKeepingCursor(model: monaco.editor.ITextModel, text: string): void {
   const editors = monaco.editor.getEditors().filter((e) => e.getModel() === model);
   const anchors = editors.map((e) => { const p = e.getPosition(); return p ? anchorOf(model, p) : undefined; });
+  model.pushStackElement(); // close the user's open undo group
   model.pushEditOperations([], [{ range: model.getFullModelRange(), text }], () => null);
   model.pushStackElement();
   editors.forEach((editor, i) => {

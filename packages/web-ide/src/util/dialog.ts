@@ -1,11 +1,18 @@
 import { h } from './dom.js';
+import { openModal } from './modal.js';
+
+// Each dialog is a modal (util/modal.ts): focus inside, Tab cycles in it, Escape cancels, and the
+// focus goes back to the element that opened it (a toolbar button, the editor).
 
 /** An in-page prompt (no native dialogs): resolves the entered text, or null when cancelled. */
 export function askText(title: string, initial = '', hint = ''): Promise<string | null> {
   return new Promise((resolve) => {
     const input = h('input', { class: 'dialog-input', value: initial, spellcheck: 'false', 'aria-label': title });
+    let modal: { close(): void } | undefined;
     const done = (v: string | null) => {
-      overlay.remove();
+      if (!modal) return;
+      modal.close();
+      modal = undefined;
       resolve(v);
     };
     const ok = h('button', { class: 'btn primary', onclick: () => done(input.value.trim() || null) }, 'OK');
@@ -14,11 +21,10 @@ export function askText(title: string, initial = '', hint = ''): Promise<string 
       if (e.key === 'Enter') done(input.value.trim() || null);
       if (e.key === 'Escape') done(null);
     });
-    const overlay = h('div', { class: 'dialog-overlay' },
-      h('div', { class: 'dialog', role: 'dialog' }, h('div', { class: 'dialog-title' }, title), hint ? h('div', { class: 'dialog-hint' }, hint) : null, input,
-        h('div', { class: 'dialog-buttons' }, cancel, ok)));
-    document.body.append(overlay);
-    input.focus();
+    const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title), hint ? h('div', { class: 'dialog-hint' }, hint) : null, input,
+      h('div', { class: 'dialog-buttons' }, cancel, ok));
+    const overlay = h('div', { class: 'dialog-overlay' }, dialog);
+    modal = openModal(overlay, dialog, { onEscape: () => done(null), initialFocus: () => input.focus() });
     const dot = initial.lastIndexOf('.');
     input.setSelectionRange(0, dot > 0 ? dot : initial.length);
   });
@@ -26,16 +32,18 @@ export function askText(title: string, initial = '', hint = ''): Promise<string 
 
 export function confirmAction(title: string, detail: string, okLabel = 'Delete'): Promise<boolean> {
   return new Promise((resolve) => {
+    let modal: { close(): void } | undefined;
     const done = (v: boolean) => {
-      overlay.remove();
+      if (!modal) return;
+      modal.close();
+      modal = undefined;
       resolve(v);
     };
     const ok = h('button', { class: 'btn danger', onclick: () => done(true) }, okLabel);
-    const overlay = h('div', { class: 'dialog-overlay' },
-      h('div', { class: 'dialog', role: 'dialog' }, h('div', { class: 'dialog-title' }, title), h('div', { class: 'dialog-hint' }, detail),
-        h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), ok)));
-    document.body.append(overlay);
-    ok.focus();
+    const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title), h('div', { class: 'dialog-hint' }, detail),
+      h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), ok));
+    const overlay = h('div', { class: 'dialog-overlay' }, dialog);
+    modal = openModal(overlay, dialog, { onEscape: () => done(false), initialFocus: () => ok.focus() });
   });
 }
 
@@ -51,16 +59,19 @@ export function askFields(title: string, fields: Array<{ key: string; label: str
         : h('input', { class: 'dialog-input', value: f.value, spellcheck: 'false', 'data-key': f.key, placeholder: f.hint ?? '', 'aria-label': f.label }),
     );
     const valueOf = (i: HTMLInputElement) => (i.type === 'checkbox' ? (i.checked ? 'yes' : '') : i.value.trim());
+    let modal: { close(): void } | undefined;
     const done = (ok: boolean) => {
-      overlay.remove();
-      resolve(ok ? Object.fromEntries(inputs.map((i, n) => [fields[n]!.key, valueOf(i)])) : null);
+      if (!modal) return;
+      const values = Object.fromEntries(inputs.map((i, n) => [fields[n]!.key, valueOf(i)]));
+      modal.close();
+      modal = undefined;
+      resolve(ok ? values : null);
     };
     for (const i of inputs) i.addEventListener('keydown', (e) => (e.key === 'Enter' ? done(true) : e.key === 'Escape' ? done(false) : undefined));
-    const overlay = h('div', { class: 'dialog-overlay' },
-      h('div', { class: 'dialog', role: 'dialog' }, h('div', { class: 'dialog-title' }, title),
-        ...fields.flatMap((f, n) => (f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, inputs[n]!, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), inputs[n]!])),
-        h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save'))));
-    document.body.append(overlay);
-    inputs[0]?.focus();
+    const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title),
+      ...fields.flatMap((f, n) => (f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, inputs[n]!, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), inputs[n]!])),
+      h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save')));
+    const overlay = h('div', { class: 'dialog-overlay' }, dialog);
+    modal = openModal(overlay, dialog, { onEscape: () => done(false), initialFocus: () => inputs[0]?.focus() });
   });
 }

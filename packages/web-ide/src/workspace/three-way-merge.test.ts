@@ -1,5 +1,5 @@
 import { describe, it, expect } from 'vitest';
-import { threeWayMerge } from './three-way-merge.js';
+import { threeWayMerge, findConflictMarker } from './three-way-merge.js';
 
 const SCHED = `scheduler configuration {
 
@@ -59,5 +59,25 @@ describe('threeWayMerge (tab text vs disk text, both edited from the tab base)',
     const base = 'a\r\nb\r\nc';
     const r = threeWayMerge(base, 'a1\r\nb\r\nc', 'a\r\nb\r\nc2');
     expect(r).toEqual({ clean: true, text: 'a1\r\nb\r\nc2' });
+  });
+});
+
+describe('findConflictMarker (what "Save the right side" refuses)', () => {
+  it("finds the first marker of a merge's marked text, with its line", () => {
+    const r = threeWayMerge(SCHED, SCHED.replace('MSD;', 'MSD; // mine'), SCHED.replace('MSD;', 'MSD; // theirs'));
+    expect(r.clean).toBe(false);
+    const marked = (r as { marked: string }).marked;
+    const line = marked.split('\n').indexOf('<<<<<<< yours') + 1;
+    expect(line).toBeGreaterThan(1);
+    expect(findConflictMarker(marked)).toEqual({ line, marker: '<<<<<<< yours' });
+  });
+  it('a separator or closing marker left alone is found too (CRLF text included)', () => {
+    expect(findConflictMarker('a\nb\n=======\nc\n')).toEqual({ line: 3, marker: '=======' });
+    expect(findConflictMarker('a\r\n>>>>>>> on disk\r\n')).toEqual({ line: 2, marker: '>>>>>>> on disk' });
+    expect(findConflictMarker('<<<<<<<\n')).toEqual({ line: 1, marker: '<<<<<<<' });
+  });
+  it('text that only looks alike is not a marker', () => {
+    expect(findConflictMarker(SCHED)).toBeUndefined();
+    expect(findConflictMarker('// =======\n==========\n  <<<<<<< indented\nx <<<<<<< y\n<<<<<<<<< nine\n')).toBeUndefined();
   });
 });

@@ -52,3 +52,18 @@ export function threeWayMerge(base: string, mine: string, theirs: string): Merge
   }
   return conflicts ? { clean: false, conflicts, marked } : { clean: true, text };
 }
+
+/**
+ * The first conflict marker line left in a text (`<<<<<<<`, `=======` or `>>>>>>>` at the start of
+ * a line, as git and threeWayMerge's `marked` write them), with its 1-based line number, or
+ * undefined. "Save the right side" refuses a text that still has one (docs/ide.md, "Saves,
+ * versions and merges"). A line of exactly seven `=` counts; `==========` or `// =======` does not.
+ */
+export function findConflictMarker(text: string): { line: number; marker: string } | undefined {
+  const all = text.split('\n');
+  for (let i = 0; i < all.length; i++) {
+    const l = all[i]!.replace(/\r$/, '');
+    if (/^(<{7}|>{7})( |$)/.test(l) || /^={7}\s*$/.test(l)) return { line: i + 1, marker: l.length > 40 ? `${l.slice(0, 40)}…` : l };
+  }
+  return undefined;
+}

@@ -115,25 +115,27 @@ describe('one file edited in two IDE tabs and by a script', () => {
     await b.waitForTimeout(1500);
     expect(puts.length).toBe(sent);
     expect(disk()).toBe(withA);
-    // edit the merge: both versions between markers on the right, saved as they are
+    // edit the merge: both versions between markers on the right; saving them as they are is refused
     await b.locator('#conflict-edit-merge').click();
+    await b.locator('#conflict-save-right').click();
+    await b.locator('.conflict-overlay .conflict-error', { hasText: 'conflict marker' }).waitFor({ timeout: 5000 });
+    expect(disk()).toBe(withA);
+    // resolved on the right side (both comments kept), then saved
+    await b.evaluate(() => {
+      const m = ((window as any).__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string }; getValue(): string; setValue(t: string): void; isDisposed(): boolean }>)
+        .find((x) => !x.isDisposed() && x.uri.scheme === 'conflict' && x.getValue().includes('<<<<<<< yours'))!;
+      m.setValue(m.getValue().replace(/<<<<<<< yours\n[^]*?>>>>>>> on disk\n/, '        schemaCommande1; // from tab A // from tab B\n'));
+    });
     await b.locator('#conflict-save-right').click();
     await expect.poll(() => view.count()).toBe(0);
     await expect.poll(disk, { timeout: 10_000 }).toContain('// from tab B');
     const merged = disk();
-    expect(merged).toContain('// from tab A');
-    expect(merged).toContain('<<<<<<< yours');
+    expect(merged).toContain('schemaCommande1; // from tab A // from tab B\n');
+    expect(merged).not.toContain('<<<<<<<');
     await expect.poll(() => activeValue(b), { timeout: 5000 }).toBe(merged);
     await expect.poll(() => activeValue(a), { timeout: 10_000 }).toBe(merged);
     await waitSaved(b);
     expect(await backups(b)).toEqual([]);
-    // restore a clean file for the next scenario (from tab A: a plain edit)
-    await a.evaluate(({ from, to }) => {
-      const m = (window as any).__ide.editors.editor.getModel();
-      m.setValue(from.replace(/<<<<<<< yours\n[^]*?>>>>>>> on disk\n/, to));
-    }, { from: merged, to: '        schemaCommande1; // from tab A // from tab B\n' });
-    await expect.poll(disk, { timeout: 10_000 }).not.toContain('<<<<<<<');
-    await expect.poll(() => activeValue(b), { timeout: 10_000 }).toBe(disk());
   });
 
   it('keep mine after overlapping edits writes the tab text on the disk version it was shown', async () => {
