@@ -1,0 +1,70 @@
+import { describe, it, expect } from 'vitest';
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import type { SimulateStep } from '../../server/api-types.js';
+import { MonitorModel } from '../monitor/monitor-model.js';
+import { activeSchemas } from '../monitor/active-schemas.js';
+import { stepsToTrace } from './sim-to-trace.js';
+
+// the step records of a real simulation of examples/tutorial (`contract simulate examples/tutorial
+// scenarios/mission.scenario --format json`): GLB.mission activates SUP.action, MAA:2 "disconnected"
+// at 300 ms (SECOND, schemaCommande1), MSC:1 at 1 s (FOURTH, schemaCommande2, SUP.action stopped)
+const steps = JSON.parse(readFileSync(fileURLToPath(new URL('./fixtures/tutorial-mission-steps.json', import.meta.url)), 'utf8')) as SimulateStep[];
+const releasesIn = (schema: string) => steps.flatMap((s) => s.log ?? []).filter((l) => l.who === 'ORD' && l.line.endsWith(`(${schema})`) && l.line.startsWith('release ')).length;
+
+function fold(ss: SimulateStep[]): MonitorModel {
+  const model = new MonitorModel({ checkpointEvery: 8 });
+  model.pushAll(stepsToTrace(ss));
+  return model;
+}
+
+describe('a simulation in the Monitor', () => {
+  for (const withLog of [true, false]) {
+    it(`has the functions a supervisor activated, their holds, START requests and action counts${withLog ? '' : ' (an answer without the engines\' lines)'}`, () => {
+      const model = fold(withLog ? steps : steps.map(({ log: _log, ...s }) => s));
+      const at = (t: number) => model.stateAt(t);
+      // SUP.action was started by GLB's rule SINGLE (`activate supervisor SUP.action`), not by a step
+      expect(at(1.5e6).supervisors.get('SUP')?.functions.get('action')?.state).toBe('running');
+      expect(at(1.5e6).supervisors.get('GLB')?.functions.get('mission')?.state).toBe('running');
+      expect(model.live.supervisors.get('SUP')?.functions.get('action')?.state).toBe('stopped');
+      // FIRST holds MAA and MAB (its event schema), SECOND asked ORD for schemaCommande1
+      const first = at(100e6);
+      expect(first.supervisors.get('SUP')!.rules.get('action.FIRST')?.started).toEqual(['MAA', 'MAB']);
+      expect(activeSchemas(first, [{ name: 'schemaReceptionMessage', kind: 'event', modules: ['MAA', 'MAB'] }])).toEqual([{ name: 'schemaReceptionMessage', kind: 'event', by: 'SUP.action.FIRST' }]);
+      const second = at(500e6);
+      expect(second.supervisors.get('SUP')!.rules.get('action.SECOND')?.started).toContain('schemaCommande1');
+      expect(second.schemas.get('schemaCommande1')).toMatchObject({ active: true, by: 'SUP.action.SECOND' });
+      // the actions counted: holds, requests, subscriptions done; holds dropped, unsubscriptions undone
+      const sup = model.live.supervisors.get('SUP')!;
+      expect(sup.actionsDone).toBeGreaterThan(5);
+      expect(sup.actionsUndone).toBeGreaterThan(3);
+      expect(model.live.supervisors.get('GLB')!.actionsDone).toBeGreaterThanOrEqual(2); // activate supervisor, subscribe
+      expect(model.live.supervisors.get('GLB')!.actionsUndone).toBeGreaterThanOrEqual(2); // stop SUP.action, unsubscribe
+      expect(model.marks.filter((m) => m.kind === 'function').map((m) => m.where)).toContain('SUP'); // on the time line's strip too
+    });
+  }
+
+  it('has ORD\'s releases, their cycles counted from 0 at each activation', () => {
+    const model = fold(steps);
+    expect(releasesIn('schemaCommande1')).toBeGreaterThan(0);
+    const p = model.live.periodic.get('schemaCommande1')!;
+    expect(p.releases).toBe(releasesIn('schemaCommande1'));
+    expect(p.lastCycle).toBe(0); // MSA, MSC, MSD released once each: one cycle
+    expect(p.lastRelease).toBe(301_500_000);
+    expect(model.live.periodic.get('schemaCommande2')?.releases).toBe(releasesIn('schemaCommande2'));
+    expect(model.stateAt(300_200_000).periodic.get('schemaCommande1')?.releases).toBe(1);
+  });
+
+  it('has a deadline miss ORD sent, on the cycle it was in, and a crash', () => {
+    const model = fold([
+      { line: 1, source: 'start SUP.f', timeNs: 0, kind: 'start', ok: true, message: '', rules: [], schemas: ['S'], locals: [], actions: [],
+        log: [{ timeNs: 0, who: 'ORD', line: 'activate S' }, { timeNs: 0, who: 'ORD', line: 'release CTL (S)' }, { timeNs: 10e6, who: 'ORD', line: 'release CTL (S)' },
+          { timeNs: 12e6, who: 'ORD', line: 'deadline miss: S (ORD:0)' }] },
+      { line: 2, source: 'crash CTL', timeNs: 20e6, kind: 'crash', ok: true, message: '', rules: [], schemas: ['S'], locals: [],
+        actions: [{ timeNs: 12e6, who: 'ORD', what: 'ORD:0 "S" (deadline miss) to every supervisor' }, { timeNs: 20e6, who: 'CTL', what: 'crashed' }], log: [] },
+    ]);
+    expect(model.live.periodic.get('S')).toMatchObject({ releases: 2, lastCycle: 1, deadlineMisses: 1, recentMisses: [{ t: 12e6, cycle: 1 }] });
+    expect(model.live.modules.get('CTL')?.alive).toBe(false);
+    expect(model.live.unknownLines).toBe(0);
+  });
+});
