@@ -8,7 +8,7 @@ import { execFileSync } from 'node:child_process';
 import { cpSync, existsSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { parseRegions } from '@contract-studio/codegen';
+import { identifierRenames, parseRegions, renameIdentifier } from '@contract-studio/codegen';
 import { runCli } from '../src/cli.js';
 import { scratchCopy, type Scratch } from './e2e/harness.js';
 import { capture } from './capture-io.js';
@@ -53,6 +53,13 @@ describe('contract rename', () => {
         expect(io.stdout).toContain('  generated/architecture/modules/MSC_mod -> generated/architecture/modules/MSK_mod');
         expect(io.stderr).toMatch(/generated tutorial\/src-gen: \d+ created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
 
+        // the scenarios follow, token by token (their comments are left as they are)
+        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:26: t=1.2s MSC:1 failing_data = {"overheat", 3}  ->  t=1.2s MSK:1 failing_data = {"overheat", 3}\n');
+        expect(io.stdout).toContain('tutorial/scenarios/mission.scenario:17: t=1s MSC:1 {"overheat", 3}  ->  t=1s MSK:1 {"overheat", 3}\n');
+        expect(readFileSync(join(dir, 'scenarios/commutation.scenario'), 'utf8')).toContain('t=1.2s MSK:1 failing_data = {"overheat", 3}\n');
+        // the old name left in user code (here only in strings) is listed with file:line, not changed
+        expect(io.stderr).toMatch(/note: tutorial\/src-gen\/generated\/architecture\/modules\/MSK_mod\/module\.c:\d+: protected region protect_exec_MSK mentions MSC \(the old name\) in a string or character literal: not changed\n/);
+        expect(io.stderr).not.toContain('warning:');
         const files = contractFiles(dir);
         expect(Object.values(files).join('\n')).not.toMatch(/\bMSC\b/);
         expect(files['smodule3.contract']).toContain('synchronous module MSK{');
@@ -77,13 +84,45 @@ describe('contract rename', () => {
         expect(await runCli(['build', 'tutorial', '--sandbox', 'bwrap'], io), io.stderr).toBe(0);
     }, 300_000);
 
-    it('renames a port by MODULE:port; a port names no generated file', async () => {
+    it('renames a port by MODULE:port; a port names no generated file; its uses in the module\'s regions follow', async () => {
+        const exec = regions(join(dir, MODULES, 'MSK_mod/module.c')).get('protect_exec_MSK')!;
+        expect(exec).toContain('GetLatestData(&in_coordinates, ');
         const io = capture(scratch.root);
         expect(await runCli(['rename', 'tutorial', 'MSK:in_coordinates', 'position'], io), io.stderr).toBe(0);
         expect(io.stdout).toContain('renamed port in_coordinates -> position: ');
         expect(io.stdout).not.toContain('path(s) moved');
+        expect(io.stdout).toMatch(/tutorial\/src-gen\/generated\/architecture\/modules\/MSK_mod\/module\.c:\d+: protected region protect_exec_MSK: 6 use\(s\) of in_coordinates renamed\n/);
         expect(contractFiles(dir)['smodule3.contract']).toContain('in :0 TypeA position;');
-        expect(regions(join(dir, MODULES, 'MSK_mod/module.c')).get('protect_init_MSK')).toContain('rename_marker = 42');
+        const after = regions(join(dir, MODULES, 'MSK_mod/module.c'));
+        expect(after.get('protect_init_MSK')).toContain('rename_marker = 42');
+        // whole identifiers in code only: 'in coordinates' in a string stays
+        expect(after.get('protect_exec_MSK')).toBe(exec.replace(/\bin_coordinates\b/g, 'position'));
+        expect(after.get('protect_exec_MSK')).toContain('"MSC : state1 => in coordinates: "');
+        expect(io.stderr).not.toContain('warning:');
+    }, 120_000);
+
+    it('the project still builds after the port rename (bwrap sandbox)', async () => {
+        const io = capture(scratch.root);
+        expect(await runCli(['build', 'tutorial', '--sandbox', 'bwrap'], io), io.stderr).toBe(0);
+    }, 300_000);
+
+    it('renames a port named in a scenario (M:P name = value) and in the user code that emits it', async () => {
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'MAA:connection_status', 'link_status'], io), io.stderr).toBe(0);
+        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:18: t=300ms MAA:2 connection_status = "disconnected"  ->  t=300ms MAA:2 link_status = "disconnected"\n');
+        expect(io.stdout).toMatch(/MAA_mod\/module\.c:\d+: protected region protect_internal_functions_impl_MAA: 2 use\(s\) of connection_status renamed\n/);
+        const maa = regions(join(dir, MODULES, 'MAA_mod/module.c')).get('protect_internal_functions_impl_MAA')!;
+        expect(maa).toContain('strcpy(link_status, status);');
+        expect(maa).toContain('PostEvent(&link_status[0]);');
+    }, 120_000);
+
+    it('a module whose description is the generated default gets the new name in it', async () => {
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'MSA', 'MSF'], io), io.stderr).toBe(0);
+        expect(io.stdout).toMatch(/MSF_mod\/module\.c:\d+: default description "synchronous module MSA" -> "synchronous module MSF"\n/);
+        expect(regions(join(dir, MODULES, 'MSF_mod/module.c')).get('protect_description_MSF')).toBe('"synchronous module MSF"');
+        expect(io.stderr).toMatch(/, 0 orphaned, 0 error\(s\)/);
+        expect(io.stderr).not.toContain('warning:');
     }, 120_000);
 
     it('renames a datatype and a function: Shared<T>.h and SharedFunction<f>.h follow with their regions', async () => {
@@ -96,10 +135,19 @@ describe('contract rename', () => {
             const io = capture(scratch.root);
             expect(await runCli(['rename', 'tutorial', from, to], io), io.stderr).toBe(0);
             expect(io.stderr).toMatch(/, 0 orphaned, 0 error\(s\)/);
+            expect(io.stderr).not.toContain('warning:');
             expect(existsSync(path)).toBe(false);
             const after = regions(join(COMMON, `${file}${to}.h`));
-            for (const [id, content] of before) expect(after.get(id.replace(new RegExp(`_${from}$`), `_${to}`)), id).toBe(content);
+            // user code byte for byte, but for the uses of the old name in code (eq_TypeA -> eq_Vec3: the build needs them)
+            const kind = file === 'Shared' ? 'datatype' : 'function';
+            const renamedUses = (content: string) => [...identifierRenames(kind, from, to)].reduce((text, [a, b]) => renameIdentifier(text, a, b).text, content);
+            for (const [id, content] of before) expect(after.get(id.replace(new RegExp(`_${from}$`), `_${to}`)), id).toBe(renamedUses(content));
+            expect(after.get(`protect_inf_${to}`) ?? '').not.toContain(`//${to} is`); // comments are not changed
         }
+        // the module code that used the datatype and its functions follows (print_TypeA -> print_Vec3)
+        const exec = regions(join(dir, MODULES, 'MSK_mod/module.c')).get('protect_exec_MSK')!;
+        expect(exec).toContain('print_Vec3(&position);');
+        expect(exec).not.toMatch(/\bprint_TypeA\b/);
     }, 120_000);
 
     it('renames a schema without touching the generated tree, even when its name is a region role (init)', async () => {
@@ -113,6 +161,23 @@ describe('contract rename', () => {
         // protect_init_MSK was not taken for the schema's name: the module's file is as it was
         expect(readFileSync(join(dir, MODULES, 'MSK_mod/module.c'))).toEqual(before);
         expect(contractFiles(dir)['supervisor.contract']).toContain('activate schema command1(');
+        // the scenarios name the schema in expectations: they follow
+        const scenario = readFileSync(join(dir, 'scenarios/commutation.scenario'), 'utf8');
+        expect(scenario).toContain('expect schema command1 active\n');
+        expect(scenario).not.toMatch(/\bschemaCommande1\b/);
+    }, 120_000);
+
+    it('renames a supervision function SUP.fn: the scenarios\' start, stop and expectations of that supervisor follow', async () => {
+        const before = readFileSync(join(dir, 'scenarios/commutation.scenario'), 'utf8');
+        expect(before).toContain('start SUP.action(consigne = {1.0, 2.0, 3.0})');
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'SUP.action', 'act'], io), io.stderr).toBe(0);
+        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:7: start SUP.action(consigne = {1.0, 2.0, 3.0})  ->  start SUP.act(consigne = {1.0, 2.0, 3.0})\n');
+        const after = readFileSync(join(dir, 'scenarios/commutation.scenario'), 'utf8');
+        expect(after).toContain('expect rule SUP.act.FIRST inactive\n');
+        // every directive follows; the comment lines and the free-text title are as they were
+        expect(after.split('\n').filter((l) => !l.startsWith('#') && !l.startsWith('scenario ') && /SUP\.action\b/.test(l))).toEqual([]);
+        expect(after.split('\n').filter((l) => l.startsWith('#'))).toEqual(before.split('\n').filter((l) => l.startsWith('#')));
     }, 120_000);
 
     it('clear errors, exit 1, nothing changed: unknown entity, name taken, invalid name', async () => {
@@ -176,5 +241,18 @@ describe('contract rename', () => {
         expect(refused.stderr).toMatch(/fix these first \(a rename needs the files parsed and every reference resolved\); nothing was renamed\n$/);
         expect(contractFiles(dir)).toEqual(snapshot);
         writeFileSync(file, readFileSync(file, 'utf8').replace('in :0 NoSuchType position;', `in :0 ${type} position;`));
+    }, 120_000);
+
+    it('a port rename whose new name the region code already uses: the code is not rewritten, each use is listed with file:line, exit 1', async () => {
+        const file = join(dir, MODULES, 'MSK_mod/module.c');
+        const text = readFileSync(file, 'latin1');
+        writeFileSync(file, Buffer.from(text.replace('/*PROTECTED REGION ID(protect_init_MSK) ENABLED START*/', '/*PROTECTED REGION ID(protect_init_MSK) ENABLED START*/\n    int spare = 0; (void)spare;'), 'latin1'));
+        const port = /in :0 \w+ (\w+);/.exec(contractFiles(dir)['smodule3.contract']!)![1]!;
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', `MSK:${port}`, 'spare'], io)).toBe(1);
+        expect(io.stderr).toMatch(/warning: 'spare' is already used in the code of protected region protect_init_MSK \(generated\/architecture\/modules\/MSK_mod\/module\.c:\d+\): uses of '\w+' were not rewritten\n/);
+        expect(io.stderr).toMatch(new RegExp(`warning: tutorial/src-gen/generated/architecture/modules/MSK_mod/module\\.c:\\d+: protected region protect_exec_MSK still uses ${port} \\(the old name\\) in its code: change it by hand, the build fails until then\n`));
+        expect(io.stderr).toContain(`contract rename: port renamed, but 6 use(s) of ${port} in protected-region code were not changed (listed above)\n`);
+        expect(regions(file).get('protect_exec_MSK')).toContain(`GetLatestData(&${port}, `);
     }, 120_000);
 });

@@ -3,9 +3,14 @@
  * port or parameter (`MODULE:port`) or supervision function (`SUP.function`) in the `.contract`
  * files with the language server's rename, carries the generated tree over for entities that name
  * generated files (codegen's renameInGeneratedTree, as the IDE's rename does: paths and region IDs
- * move, user code is kept byte for byte), then generates. docs/getting-started.md, "Renaming".
+ * move, user code is kept byte for byte, a default MODULE_DESCRIPTION follows), rewrites the uses
+ * of a renamed port or parameter in its module's protected regions (whole C identifiers in code:
+ * codegen's renameIdentifierInGeneratedTree), renames the entity in the project's `.scenario`
+ * files (rename-scenarios.ts), then generates and lists the protected regions that still mention
+ * the old name (file:line). docs/getting-started.md, "Renaming"; docs/codegen.md, "Renames".
  * Exit 1 with a message when the entity is unknown, the name invalid or taken, or the model has
- * errors (a rename needs every reference resolved); nothing is changed then.
+ * errors (a rename needs every reference resolved); nothing is changed then. Exit 1 too, after
+ * the rename, when the code of a protected region still uses the old name (the build would fail).
  */
 import { stat } from 'node:fs/promises';
 import { basename, dirname, join, resolve } from 'node:path';
@@ -14,6 +19,7 @@ import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../
 import { formatText, summarize } from '../diagnostic-format.js';
 import { safeName } from '../terminal-text.js';
 import { printReport } from './generate.js';
+import { projectScenarios, renameInScenarios } from './rename-scenarios.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export const renameCommand: Command = {
@@ -25,8 +31,11 @@ export const renameCommand: Command = {
         '       by name, or by index when only one has it); SUPERVISOR.function (a supervision function)',
         '  NEW: the new name (same rules as the editor\'s rename: modules and supervisors are three upper-case letters)',
         '  OUT: the generated tree (default DIR/src-gen): files and protected-region IDs named after OLD move to NEW',
-        'User code in protected regions is kept byte for byte; the tree is then regenerated.',
-        'exit status: 1 unknown entity, invalid or taken name, model errors or generation errors (nothing renamed), 0 otherwise, 2 on bad usage',
+        'User code in protected regions is kept byte for byte; the uses of a renamed port or parameter in its module\'s',
+        'protected regions follow (whole C identifiers in code; not in comments or strings); the .scenario files follow;',
+        'the tree is then regenerated, and the protected regions that still mention the old name are listed (file:line).',
+        'exit status: 1 unknown entity, invalid or taken name, model errors (nothing renamed), generation errors, or',
+        '  protected-region code still using the old name (renamed, but the build would fail); 0 otherwise, 2 on bad usage',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['o', 'output'], ['verbose']);
@@ -40,7 +49,8 @@ export const renameCommand: Command = {
 
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
         const { loadWorkspace, planRename, RenameError } = await import('@contract-studio/language/node');
-        const { generateArchitecture, renameInGeneratedTree, writeFileAtomic } = await import('@contract-studio/codegen');
+        const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic } = await import('@contract-studio/codegen');
+        const { parseScenario } = await import('@contract-studio/language/scenario');
         const workspace = await loadWorkspace(dir);
         // a rename needs the text parsed and every reference resolved; other errors (a reserved
         // name, a bad value...) do not stop it: renaming is often how they are fixed
@@ -65,15 +75,42 @@ export const renameCommand: Command = {
                 const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName);
                 io.out(`${safeName(outLabel)}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
                 for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
+                for (const d of carried.descriptions) io.out(`${safeName(`${outLabel.replace(/\/+$/, '')}/${d.file}`)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);
             } catch (e) {
                 io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
                 return EXIT_FAILURE;
             }
         }
+        // the user code: a port or parameter is a variable of its module's module.c, a datatype or
+        // a function a C name of every file: their uses in the protected regions follow (whole C
+        // identifiers in code only; a module's name is in strings, if anywhere: listed below)
+        const owner = ownerOf(oldSpec);
+        const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
+        const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
+        const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
+        if (identifiers.size > 0) {
+            try {
+                const carried = renameIdentifiersInGeneratedTree(out, identifiers, variable ? owner : undefined);
+                for (const r of carried.rewritten) {
+                    io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${plan.oldName}${identifiers.size > 1 ? ' (or its functions)' : ''} renamed\n`);
+                }
+                if (carried.refused) io.err(`warning: ${safeName(carried.refused)}\n`);
+            } catch (e) {
+                io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
+                return EXIT_FAILURE;
+            }
+        }
+        const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
+            kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner: plan.kind === 'supervision function' ? oldSpec.split('.')[0] : owner,
+        }, parseScenario);
         for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
         const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
         io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
         for (const f of plan.files) io.out(`  ${safeName(join(dirArg, f.file))} (${f.occurrences})\n`);
+        for (const change of scenarioChanges) {
+            writeFileAtomic(dirname(change.path), basename(change.path), Buffer.from(change.text, 'utf8'));
+            for (const e of change.edits) io.out(`${safeName(join(dirArg, e.file))}:${e.line}: ${safeName(e.before.trim())}  ->  ${safeName(e.after.trim())}\n`);
+        }
 
         const renamed = await loadWorkspace(dir);
         const after = renamed.diagnostics.filter((d) => d.severity === 'error');
@@ -85,9 +122,34 @@ export const renameCommand: Command = {
         const report = generateArchitecture(renamed.documents, out);
         await printReport(io, report, outLabel, options.get('verbose') === true);
         io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
-        return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
+
+        // user code the rename did not change: the build needs what is in code changed by hand
+        let inCode = 0;
+        if (MENTIONED_KINDS.has(plan.kind)) {
+            const mentions = findRegionMentions(out, mentionMatcher(plan.kind, plan.oldName), variable ? owner : undefined);
+            for (const m of mentions) {
+                const where = `${inTree(m.file)}:${m.line}: protected region ${safeName(m.id)}`;
+                // a header named after the entity is gone: an #include of it fails like code does
+                if (m.context === 'code' || (m.word !== plan.oldName && m.word.startsWith('Shared'))) {
+                    inCode++;
+                    io.err(`warning: ${where} still uses ${safeName(m.word)} (the old name) ${m.context === 'code' ? 'in its code' : 'in an #include'}: change it by hand, the build fails until then\n`);
+                } else {
+                    io.err(`note: ${where} mentions ${safeName(m.word)} (the old name) in a ${m.context === 'comment' ? 'comment' : 'string or character literal'}: not changed\n`);
+                }
+            }
+            if (inCode > 0) io.err(`contract rename: ${plan.kind} renamed, but ${inCode} use(s) of ${plan.oldName} in protected-region code were not changed (listed above)\n`);
+        }
+        return report.errors.length > 0 || inCode > 0 ? EXIT_FAILURE : EXIT_OK;
     },
 };
+
+/** Kinds whose names the generated C or the user code uses (a schema or a supervision function is in no module's C). */
+const MENTIONED_KINDS = new Set(['module', 'supervisor', 'datatype', 'enumeration', 'function', 'port', 'parameter']);
+
+/** The module or supervisor of `MODULE:port`, or undefined. */
+function ownerOf(spec: string): string | undefined {
+    return /^([^:.]+):([^:.]+)$/.exec(spec)?.[1];
+}
 
 /** Errors that leave the text or the imports unknown (unresolved references are checked on the documents). */
 function blocksRename(code: string): boolean {

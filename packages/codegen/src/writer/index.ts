@@ -2,10 +2,14 @@ export { writeTree, type GeneratedFile, type WriteTreeOptions } from './write-tr
 export { emptyReport, formatProblem, type GenerationReport, type GenerationProblem } from './report.js';
 export { ORPHANS_DIR } from './orphans.js';
 export { MANIFEST_NAME } from './manifest.js';
-export { renameInGeneratedTree, renameRegionId, renameGeneratedName, type RenameGeneratedReport } from './rename-generated.js';
+export {
+    renameInGeneratedTree, renameRegionId, renameGeneratedName, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher,
+    type RenameGeneratedReport, type IdentifierCarryReport, type RegionMention,
+} from './rename-generated.js';
+export { cWords, renameIdentifier, type CWord, type WordContext } from './c-identifiers.js';
 export { writeFileAtomic, isAtomicTempFile } from './atomic-write.js';
 export { UnsafePathError, checkTreePath, checkTreeRoot, lstatInTree, treePathProblem } from './safe-paths.js';
 export { OutputTree } from './output-tree.js';
 export { PROC_FD, fdPath, openDirNoFollow, requireProcFd, closeQuietly, type DirOpen, type NotAFolder } from './dir-fd.js';
-export { manifestEntryProblem, loadManifest, type ManifestLoad, type LoadedManifest } from './manifest.js';
+export { manifestEntryProblem, loadManifest, skeletonText, skeletonHash, type ManifestLoad, type LoadedManifest } from './manifest.js';
 export { STALE_TEMP_AGE_MS, removeStaleTemps } from './stale-temp.js';

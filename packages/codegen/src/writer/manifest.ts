@@ -1,5 +1,5 @@
 import { createHash } from 'node:crypto';
-import { parseRegions } from '../regions/parse-regions.js';
+import { parseRegions, type Region } from '../regions/parse-regions.js';
 import { ORPHANS_DIR } from './orphans.js';
 import type { OutputTree } from './output-tree.js';
 import { treePathProblem } from './safe-paths.js';
@@ -44,10 +44,10 @@ const HASH = /^[0-9a-f]{16}$/;
  * marker does not change it, and code written anywhere else does. Throws RegionSyntaxError on a
  * malformed file.
  */
-export function skeletonText(text: string, file: string): string {
+export function skeletonText(text: string, file: string, regions: Region[] = parseRegions(text, file).regions): string {
     let out = '';
     let cursor = 0;
-    for (const r of parseRegions(text, file).regions) {
+    for (const r of regions) {
         out += `${text.slice(cursor, r.start)}\u0000${r.id}\u0000`;
         cursor = r.end;
     }
@@ -61,8 +61,9 @@ export function skeletonHash(text: string, file: string): string {
 /** What the manifest records of a freshly generated file (byte string): its regions' default hashes and its skeleton hash. */
 export function fileRecord(generated: string, file: string): { defaults: Record<string, string>; skeleton: string } {
     const defaults: Record<string, string> = {};
-    for (const r of parseRegions(generated, file).regions) defaults[r.id] = hashContent(r.content);
-    return { defaults, skeleton: skeletonHash(generated, file) };
+    const regions = parseRegions(generated, file).regions;
+    for (const r of regions) defaults[r.id] = hashContent(r.content);
+    return { defaults, skeleton: hashContent(skeletonText(generated, file, regions)) };
 }
 
 /** The default-content hashes of a freshly generated file (byte string). */
