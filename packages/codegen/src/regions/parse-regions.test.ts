@@ -61,4 +61,10 @@ describe('parseRegions', () => {
         expect(e.line).toBe(3);
         expect(e.message).toMatch(/END without a START/);
     });
+
+    it('rejects a start marker with a typo at its own line, saying what was expected', () => {
+        const e = errorOf(`${S('a')}${E}\n/*PROTECTED REGION ID(protect_exec_X) ENABELD START*/\n  mine();\n${E}\n`);
+        expect([e.file, e.line]).toEqual(['f.c', 2]);
+        expect(e.message).toBe("f.c:2: protected region start 'protect_exec_X' is malformed: 'ENABELD START' (expected 'ENABLED START' or 'START')");
+    });
 });

@@ -160,4 +160,15 @@ describe('a region that lost ENABLED', () => {
         const other = writeTree(bare, [changed]); // 'return -1;' is not the fresh default: kept aside
         expect(other.orphaned).toEqual([`orphans/${A}`]);
     });
+
+    it('a start marker with a typo: the file is left untouched, the error is at the typo\'s line', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        const typo = read(dir, A).replace('(protect_exec_MSC) ENABLED START', '(protect_exec_MSC) ENABELD START');
+        write(dir, A, typo);
+        const r = writeTree(dir, [file()]);
+        expect(r.errors).toEqual([{ file: A, line: 7, message: "protected region start 'protect_exec_MSC' is malformed: 'ENABELD START' (expected 'ENABLED START' or 'START'); left untouched" }]);
+        expect(read(dir, A)).toBe(typo);
+        expect(r.orphaned).toEqual([]);
+    });
 });
