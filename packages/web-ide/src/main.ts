@@ -92,7 +92,7 @@ async function main(): Promise<void> {
 
   // shortcuts, quick open and the command palette (docs/ide.md "Keyboard")
   const commands = registerIdeCommands({
-    workspace, editors, explorer, outline, problems, files, generator, runs, views, monitorButton: ui.toolbar.monitor,
+    workspace, editors, explorer, outline, problems, files, generator, runs, views, openMonitor: () => monitor.open(),
     showPanel: ui.showPanel, focusPanelTabs: ui.focusPanelTabs,
   });
   ui.onPanelEscape(() => editors.focusActive());

@@ -21,7 +21,8 @@ export interface IdeParts {
   generator: GenerateController;
   runs: RunController;
   views: ViewsController;
-  monitorButton: HTMLButtonElement;
+  /** Shows the Monitor (it stays shown if it was) and puts the keyboard focus in it. */
+  openMonitor(): Promise<void>;
   showPanel(id: string): void;
   focusPanelTabs(): void;
 }
@@ -46,7 +47,7 @@ export function registerIdeCommands(p: IdeParts): CommandRegistry {
     { id: 'stop', label: 'Stop the running job', keys: ['Alt+Shift+S'], run: () => p.runs.stop() },
     { id: 'architecture', label: 'Open Architecture diagram', keys: ['Alt+Shift+D'], run: () => p.views.openArchitecture() },
     { id: 'timeline', label: 'Open Timeline', keys: ['Alt+Shift+T'], run: () => p.views.openTimeline() },
-    { id: 'monitor', label: 'Open Monitor', keys: ['Alt+Shift+M'], run: () => p.monitorButton.click() },
+    { id: 'monitor', label: 'Open Monitor', keys: ['Alt+Shift+M'], run: () => p.openMonitor() },
     { id: 'problems', label: 'Show Problems', keys: ['Ctrl+Shift+M'], run: () => focusPanel('problems', () => p.problems.focus()) },
     { id: 'output', label: 'Show Build & Run output', keys: ['Alt+Shift+B'], run: () => focusPanel('output', () => false) },
     { id: 'explorer', label: 'Focus Explorer', keys: ['Ctrl+Shift+E'], run: () => explorer.focus() },

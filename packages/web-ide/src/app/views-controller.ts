@@ -89,6 +89,7 @@ export class ViewsController {
     }
     const timeline = this.timeline;
     this.d.editors.openView({ id: 'view:timeline', title: 'Timeline', icon: '▤', element: timeline.element, onShow: () => void timeline.update() });
+    this.d.editors.focusActive(); // the keyboard goes to the timeline (arrows, Home, End)
   }
 
   /** A finished run's logs: the Timeline shows its activations (now if open, else when opened). */

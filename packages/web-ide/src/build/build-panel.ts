@@ -25,7 +25,7 @@ export class BuildPanel {
   readonly onDiagnostics = new Emitter<GccDiagnostic[]>();
   readonly onStatus = new Emitter<{ status: string; message?: string; running: boolean }>();
   /** A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET /api/jobs/:id/artifacts. */
-  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean }>();
+  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean; message?: string }>();
   /** A job was submitted (its events follow). */
   readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
   readonly element: HTMLElement;
@@ -196,7 +196,7 @@ export class BuildPanel {
             if (this.stream === stream) this.stream = undefined;
             this.jobId = undefined;
             this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
-            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok });
+            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok, message: d.result?.message });
             return;
           }
         }

@@ -27,6 +27,8 @@ export interface Snapshot {
   marks: Mark[];
   /** The stream ended (its `end` event, or it broke for good): nothing more will come from it. */
   ended: boolean;
+  /** With `ended`: how the job ended (jobOutcome), or why the stream stopped. */
+  outcome?: string;
   /** Why the trace is not whole, when it is not (a batch that could not be read, the connection lost). */
   problems: string[];
   /** The worker's time spent folding so far (ms). */
@@ -37,3 +39,15 @@ export interface Snapshot {
 }
 
 export type FromFollower = Snapshot | { type: 'state'; t: Ns; state: MonitorState; exact: boolean };
+
+/**
+ * How a job ended, from its `end` event's result (build-service JobResult: `ok`, `message`;
+ * hostile like any stream data): `succeeded`, `cancelled`, or `failed: <message>`.
+ */
+export function jobOutcome(result: unknown): string {
+  const r = result && typeof result === 'object' ? (result as { ok?: unknown; message?: unknown }) : {};
+  if (r.ok === true) return 'succeeded';
+  const message = typeof r.message === 'string' ? r.message.replace(/\s+/g, ' ').trim().slice(0, 200) : '';
+  if (message === 'cancelled') return 'cancelled';
+  return message ? `failed: ${message}` : 'failed';
+}

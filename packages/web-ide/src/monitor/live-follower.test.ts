@@ -125,6 +125,34 @@ describe('a live run followed in a worker', () => {
     expect(remote.problems.at(-1)).toMatch(/^lost the connection to the build service/);
   }, 30_000);
 
+  it('says how the job ended: succeeded, cancelled, failed with its message, or the connection lost', async () => {
+    const results: Array<[unknown, string]> = [
+      [{ ok: true, message: '' }, 'succeeded'],
+      [{ ok: false, message: 'cancelled' }, 'cancelled'],
+      [{ ok: false, message: 'run: CTL exited with status 1' }, 'failed: run: CTL exited with status 1'],
+      [null, 'failed'],
+      [{ ok: 'yes', message: { x: 1 } }, 'failed'],
+    ];
+    for (const [result, outcome] of results) {
+      const frames = events(40).slice(0, 2);
+      const url = await listen((ws) => {
+        for (const f of frames) ws.send(f);
+        ws.send(JSON.stringify({ type: 'end', seq: 3, t: Date.now(), result }));
+      });
+      const { remote } = pair(url);
+      await settled(remote);
+      expect(remote.ended).toBe(true);
+      expect(remote.outcome, JSON.stringify(result)).toBe(outcome);
+      expect(remote.recordCount).toBe(80);
+      await new Promise((r) => server!.close(r));
+    }
+    // the service went away (killed): the stream is lost for good
+    const url = await listen((ws, _after, n) => (n > 0 ? ws.terminate() : setTimeout(() => ws.terminate(), 20)));
+    const { remote } = pair(url);
+    await settled(remote);
+    expect(remote.outcome).toBe('connection to the build service lost');
+  }, 60_000);
+
   it('sends the page at most one snapshot per snapshotMs, and the last one always', async () => {
     const frames = events(2); // many small events, sent at once
     const url = await listen((ws) => {

@@ -12,7 +12,7 @@
 import { forEachTraceLine } from '@contract-studio/build-service/trace';
 import { JobStream, type SocketLike, type StreamEvent } from '../build/job-stream.js';
 import { MonitorModel } from './monitor-model.js';
-import type { FromFollower, Snapshot, ToFollower } from './live-follow-protocol.js';
+import { jobOutcome, type FromFollower, type Snapshot, type ToFollower } from './live-follow-protocol.js';
 
 /** Bounds on what one trace event may bring (the producer sends far less per event). */
 export const MAX_LINES_PER_EVENT = 100_000;
@@ -40,6 +40,8 @@ export class LiveFollower {
   private walls = new Float64Array(1024);
   private arrived = new Float64Array(1024);
   private measured = 0;
+  /** How the job ended (its `end` event's result), or why the stream stopped. */
+  private outcome: string | undefined;
   private foldMs = 0;
   /** Wall-clock parse cache (measure only): the second of the last record. */
   private second = '';
@@ -102,7 +104,7 @@ export class LiveFollower {
           this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
         }
       });
-    } else if (e.type === 'end') this.finish();
+    } else if (e.type === 'end') this.finish(undefined, jobOutcome((e as { result?: unknown }).result));
   }
 
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
@@ -134,9 +136,10 @@ export class LiveFollower {
     this.schedule();
   }
 
-  private finish(problem?: string): void {
+  private finish(problem?: string, outcome?: string): void {
     if (this.ended) return;
     this.ended = true;
+    this.outcome = outcome ?? (problem?.startsWith('lost the connection') ? 'connection to the build service lost' : 'the trace stream could not be opened');
     if (problem) this.problems.push(problem);
     this.stream?.close();
     clearTimeout(this.postTimer);
@@ -162,7 +165,7 @@ export class LiveFollower {
     this.postedVersion = m.version;
     const s: Snapshot = {
       type: 'snapshot', live: m.live, end: m.end, count: m.recordCount, marks: m.marks.slice(this.marksSent),
-      ended: this.ended, problems: this.problems.slice(this.problemsSent), foldMs: this.foldMs,
+      ended: this.ended, ...(this.ended ? { outcome: this.outcome } : {}), problems: this.problems.slice(this.problemsSent), foldMs: this.foldMs,
     };
     this.marksSent = m.marks.length;
     this.problemsSent = this.problems.length;
@@ -190,3 +193,4 @@ export class LiveFollower {
     return this.secondMs + us / 1000;
   }
 }
+

@@ -21,6 +21,7 @@ import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
+import { jobOutcome } from './live-follow-protocol.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 
@@ -32,12 +33,16 @@ const INGEST_SLICE_MS = 8;
 const SETTLE_MS = 5000;
 /** CSV files read from the workspace for one replay. */
 const MAX_FILES = 256;
+/** A shown log folder whose files changed is read again this long after the last change (a run writing its logs changes them all the time). */
+const REREAD_MS = 1000;
 
 interface Run {
   id: string;
   label: string;
   model: MonitorView;
   live: boolean;
+  /** A job's run that ended: how (`succeeded`, `cancelled`, `failed: …`, `connection to the build service lost`). */
+  outcome?: string;
 }
 
 export class MonitorController {
@@ -58,6 +63,9 @@ export class MonitorController {
    * replay whose model is built after the user asked for something else is listed, not shown.
    */
   private picked = 0;
+  /** The CSV logs each workspace folder replay was read from (to see that the folder changed). */
+  private readonly folderFiles = new Map<string, string>();
+  private rereadTimer: ReturnType<typeof setTimeout> | undefined;
 
   constructor(
     private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
@@ -65,6 +73,22 @@ export class MonitorController {
     deps.button.addEventListener('click', () => (this.panel && deps.editors.docked === this.panel.element ? this.hide() : void this.show()));
     deps.build.onStarted.on(({ jobId, action }) => {
       if (action === 'run') this.followLive(jobId);
+    });
+    // a workspace log folder changed on disk (a `contract run` wrote logs, a log was added or
+    // removed): the run list offers new folders at once, and a folder's replay is read again —
+    // now if it is shown, else when it is picked
+    deps.workspace.onTree.on(() => {
+      for (const [id, files] of [...this.folderFiles]) if (this.csvIn(id.slice(4)).join('\n') !== files) this.folderChanged(id);
+      if (this.panel) void this.refreshSources();
+    });
+    deps.workspace.onExternalChange.on((path) => {
+      if (path.endsWith('.csv') && this.folderFiles.has(`dir:${dirOf(path)}`)) this.folderChanged(`dir:${dirOf(path)}`);
+    });
+    // the job's end as the build panel's own stream tells it: a run whose live trace did not say
+    // so (its worker failed) is not left 'live'
+    deps.build.onFinished.on(({ jobId, action, ok, message }) => {
+      const run = this.runs.get(`live:${jobId}`);
+      if (action === 'run' && run) this.ended(run, jobOutcome({ ok, message }));
     });
   }
 
@@ -88,6 +112,7 @@ export class MonitorController {
         run.label = `${run.label.replace(/ \(trace not whole: .*\)$/, '')} (trace not whole: ${model.problems.join('; ')})`;
         if (this.shown === run.id) this.panel?.setLabel(run.label);
       }
+      if (model.ended && model.outcome !== undefined) this.ended(run, model.outcome);
       if (this.shown === run.id) this.panel?.schedule();
     };
     this.lastLive = model;
@@ -97,6 +122,20 @@ export class MonitorController {
     for (const old of lives.slice(0, Math.max(0, lives.length - MAX_LIVE_RUNS))) this.forget(old.id);
     void this.show(run.id);
     return model;
+  }
+
+  /**
+   * Live run `run`'s job ended (its trace stream's `end`, or the stream lost for good, or the build
+   * panel's end): the run is no longer live anywhere — run list, header, time line, follow button —
+   * and says how it ended. Its CSV logs, when the job left some, come after (showRecorded).
+   */
+  private ended(run: Run, outcome: string): void {
+    if (!run.live) return;
+    run.live = false;
+    run.outcome = outcome;
+    run.label = run.label.replace(' · live', ` · ended: ${outcome}`);
+    if (this.shown === run.id) this.panel?.endLive(run.label);
+    void this.refreshSources();
   }
 
   /** Trace lines of live run `jobId` handed over by the page (tests): folded by its worker as if streamed. */
@@ -122,7 +161,7 @@ export class MonitorController {
       createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture()),
       onSource: (id) => {
         this.picked++;
-        void this.select(id);
+        void this.select(id, true);
       },
     });
     return this.panel;
@@ -140,6 +179,15 @@ export class MonitorController {
     if (pick) await this.select(pick);
   }
 
+  /**
+   * "Open Monitor" (Alt+Shift+M, the command palette): shows the Monitor — it stays shown when it
+   * already is (the ◉ Monitor button is the toggle) — and puts the keyboard focus in it.
+   */
+  async open(): Promise<void> {
+    if (!this.isShown) await this.show();
+    this.panel?.element.focus();
+  }
+
   hide(): void {
     this.deps.editors.dock(this.previous);
     this.previous = undefined;
@@ -154,7 +202,7 @@ export class MonitorController {
     if (live?.model instanceof RemoteMonitorModel) await Promise.race([live.model.settled, new Promise((r) => setTimeout(r, SETTLE_MS))]);
     if (live) {
       live.live = false;
-      live.label = `Build & Run job ${jobId} · as streamed`;
+      live.label = `Build & Run job ${jobId} · as streamed${live.outcome ? ` · ended: ${live.outcome}` : ''}`;
       if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
     const { model, leftOut: unread } = await recordedRun(logs.files);
@@ -167,7 +215,7 @@ export class MonitorController {
     // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
     const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
-    if (cut) live!.label = `Build & Run job ${jobId} · as streamed (first ${live!.model.recordCount} records)`;
+    if (cut) live!.label = `Build & Run job ${jobId} · as streamed (first ${live!.model.recordCount} records)${live!.outcome ? ` · ended: ${live!.outcome}` : ''}`;
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
       this.panel?.endLive(live.label);
       await this.refreshSources();
@@ -182,10 +230,35 @@ export class MonitorController {
     await this.show('sim');
   }
 
-  /** Replays the `*.csv` logs of a workspace folder. */
-  async openFolder(folder: string): Promise<void> {
-    const mine = ++this.picked;
-    const paths = this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
+  /** The `*.csv` logs of workspace folder `folder` (those a replay reads). */
+  private csvIn(folder: string): string[] {
+    return this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
+  }
+
+  /** Log folder run `id` changed on disk: read again now if it is shown (once the changes pause), else when it is picked. */
+  private folderChanged(id: string): void {
+    if (this.shown !== id || !this.isShown) {
+      this.folderFiles.delete(id);
+      this.runs.delete(id);
+      return;
+    }
+    this.folderFiles.set(id, ''); // changed: still watched until read again
+    clearTimeout(this.rereadTimer);
+    this.rereadTimer = setTimeout(() => {
+      if (this.shown === id && this.isShown) void this.openFolder(id.slice(4), false);
+      else this.runs.delete(id);
+    }, REREAD_MS);
+  }
+
+  /**
+   * Replays the `*.csv` logs of a workspace folder, read now (a folder picked again is read
+   * again: its logs may have changed). `asked`: the user asked for it (else it is read again
+   * because it changed, and shown only if it still is the run shown).
+   */
+  async openFolder(folder: string, asked = true): Promise<void> {
+    const mine = asked ? ++this.picked : this.picked;
+    const paths = this.csvIn(folder);
+    this.folderFiles.set(`dir:${folder}`, paths.join('\n'));
     const { files, problems: leftOut, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     // said in the label: a replay never misses a log silently; a run too long for the page is told
     // whole by the CLI, which reads it as a stream
@@ -197,7 +270,7 @@ export class MonitorController {
     const run: Run = { id: `dir:${folder}`, label, model, live: false };
     this.runs.set(run.id, run);
     // shown unless the user asked for another run while it was read and built: then listed
-    if (mine === this.picked) await this.show(run.id);
+    if (mine === this.picked && (asked || this.shown === run.id)) await this.show(run.id);
     else await this.refreshSources();
   }
 
@@ -210,8 +283,9 @@ export class MonitorController {
     return this.shown ? this.runs.get(this.shown)?.model : undefined;
   }
 
-  private async select(id: string): Promise<void> {
-    if (id.startsWith('dir:') && !this.runs.has(id)) return this.openFolder(id.slice(4));
+  /** Shows run `id`; a workspace log folder is read (again, with `reread`: picked in the run list). */
+  private async select(id: string, reread = false): Promise<void> {
+    if (id.startsWith('dir:') && (reread || !this.runs.has(id))) return this.openFolder(id.slice(4));
     const run = this.runs.get(id);
     const panel = await this.ensurePanel();
     if (!run) return;

@@ -82,7 +82,7 @@ export class MonitorPanel {
   private readonly sourceSelect = h('select', { class: 'monitor-sources', 'aria-label': 'Run to show', title: 'Run to show: the live run, a finished job\'s CSV logs, or CSV logs of the workspace' });
   private readonly timeText = h('span', { class: 'monitor-time', 'aria-live': 'off' }, '');
   private readonly slider = h('input', { type: 'range', min: 0, max: 1000, step: 1, value: 1000, class: 'monitor-slider', 'aria-label': 'Time cursor' });
-  private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', 'aria-pressed': 'true', title: 'Follow the run (Space pauses)' }, '❚❚ Pause');
+  private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', 'aria-pressed': 'true', title: 'Put the cursor at the end of the run (End)' }, '⇥ End');
   private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time' }, '▷ Play');
   private readonly strip: MarksStrip;
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
@@ -106,9 +106,11 @@ export class MonitorPanel {
     this.element = h('div', { class: 'monitor-view', tabindex: -1, 'aria-label': 'Run monitor' },
       h('div', { class: 'monitor-toolbar', role: 'toolbar', 'aria-label': 'Time cursor controls' },
         h('strong', {}, '◉ Monitor'), this.sourceSelect, this.label, h('span', { class: 'grow' }),
-        h('button', { class: 'btn small', id: 'monitor-prev', title: 'Previous mark ([)', 'aria-label': 'Previous mark', onclick: () => step(-1) }, '◀'),
-        this.followBtn, this.playBtn,
-        h('button', { class: 'btn small', id: 'monitor-next', title: 'Next mark (])', 'aria-label': 'Next mark', onclick: () => step(1) }, '▶')),
+        // the cursor's buttons wrap together in a narrow pane, never one alone on a line
+        h('span', { class: 'monitor-buttons' },
+          h('button', { class: 'btn small', id: 'monitor-prev', title: 'Previous mark ([)', 'aria-label': 'Previous mark', onclick: () => step(-1) }, '◀'),
+          this.followBtn, this.playBtn,
+          h('button', { class: 'btn small', id: 'monitor-next', title: 'Next mark (])', 'aria-label': 'Next mark', onclick: () => step(1) }, '▶'))),
       h('div', { class: 'monitor-cursor' }, this.slider, this.timeText),
       this.strip.canvas,
       h('div', { class: 'monitor-body' },
@@ -116,7 +118,8 @@ export class MonitorPanel {
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schemasEl, this.periodicEl),
         h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
     this.element.addEventListener('keydown', (e) => {
-      if (e.target instanceof HTMLInputElement && e.key !== ' ') return; // the slider handles its arrows
+      // the slider takes its arrows, Home and End; Space and the brackets work there too
+      if (e.target instanceof HTMLInputElement && e.key !== ' ' && e.key !== '[' && e.key !== ']') return;
       if (e.key === ' ') this.setFollow(!this.follow);
       else if (e.key === '[') step(-1);
       else if (e.key === ']') step(1);
@@ -158,6 +161,7 @@ export class MonitorPanel {
     this.live = false;
     this.label.textContent = label;
     this.element.dataset.mode = 'replay';
+    this.drawFollow();
     this.redrawAll(); // what was held back while following is drawn now
   }
 
@@ -184,8 +188,7 @@ export class MonitorPanel {
     this.follow = on;
     if (on) this.setPlaying(false);
     else this.cursor = this.model?.end ?? 0; // paused where the run is now
-    this.followBtn.textContent = on ? '❚❚ Pause' : '⇥ Follow';
-    this.followBtn.setAttribute('aria-pressed', String(on));
+    this.drawFollow();
     this.redrawAll(); // paused where the run is: what was held back while following is drawn now
   }
 
@@ -193,8 +196,7 @@ export class MonitorPanel {
     this.playing = on && !!this.model;
     if (this.playing) {
       this.follow = false;
-      this.followBtn.textContent = '⇥ Follow';
-      this.followBtn.setAttribute('aria-pressed', 'false');
+      this.drawFollow();
       if (this.model && this.cursor >= this.model.end) this.cursor = 0;
       this.lastPlayWall = performance.now();
     }
@@ -206,10 +208,23 @@ export class MonitorPanel {
   /** Moves the cursor to t (ns since the start) and stops following. */
   seek(t: number): void {
     this.follow = false;
-    this.followBtn.textContent = '⇥ Follow';
-    this.followBtn.setAttribute('aria-pressed', 'false');
+    this.drawFollow();
     this.cursor = Math.max(0, Math.min(t, this.model?.end ?? 0));
     this.schedule();
+  }
+
+  /**
+   * The follow button: on a live run it pauses (❚❚ Pause) and follows the newest record again
+   * (⇥ Follow); on a run that ended (a replay, a job that finished, failed or was cancelled) there is
+   * nothing to follow: it puts the cursor at the run's end (⇥ End, pressed while it is there).
+   */
+  private drawFollow(): void {
+    const b = this.followBtn;
+    setText(b, this.live ? (this.follow ? '❚❚ Pause' : '⇥ Follow') : '⇥ End');
+    setAttr(b, 'aria-pressed', String(this.follow));
+    setAttr(b, 'title', this.live
+      ? (this.follow ? 'Following the live run: pause (Space)' : 'Follow the live run again (Space, End)')
+      : (this.follow ? 'The cursor is at the end of the run, which has ended (Space pauses here, Home goes to the start)' : 'Put the cursor at the end of the run (End)'));
   }
 
   /** The cursor's time (ns since the run's first record). */

@@ -25,6 +25,8 @@ export class RemoteMonitorModel implements MonitorView {
   version = 0;
   /** The stream ended: nothing more comes (see problems). */
   ended = false;
+  /** With `ended`: how the job ended (`succeeded`, `cancelled`, `failed: …`), or why the stream stopped. */
+  outcome: string | undefined;
   /** Why the trace is not whole, when it is not. */
   readonly problems: string[] = [];
   /** The worker's time spent folding (ms). */
@@ -97,7 +99,10 @@ export class RemoteMonitorModel implements MonitorView {
       for (const k of m.marks) this.marks.push(k);
       for (const p of m.problems) this.problems.push(p);
       this.foldMs = m.foldMs;
-      if (m.ended) this.ended = true;
+      if (m.ended) {
+        this.ended = true;
+        if (typeof m.outcome === 'string') this.outcome ??= m.outcome;
+      }
     }
     this.version++;
     if (m.type === 'snapshot') this.onSnapshot?.(m, this.version);

@@ -1,7 +1,7 @@
 import { describe, it, expect, afterEach } from 'vitest';
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
-import { activationsFromLogs, fetchJobLogs } from './run-logs.js';
+import { activationsFromLogs, fetchJobLogs, localLogFolders } from './run-logs.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 const log = (m: string, starts: number[]) =>
@@ -77,5 +77,17 @@ describe('run logs', () => {
       const f = await serve({});
       await expect(fetchJobLogs('nope', f)).rejects.toThrow(/artifacts: HTTP 404 no route/);
     });
+  });
+});
+
+describe('local run logs', () => {
+  it('are looked for where `contract run` writes them (DIR/logs) and where `make run` does (src-gen/generated/architecture/logs), older runs left out', () => {
+    const files = ['robot/logs/CTL_1.csv', 'robot/logs/previous/run-1/CTL_0.csv', 'robot/logs/notes.txt', 'robot/src-gen/generated/architecture/logs/ORD_1.csv',
+      'robot/a.contract', 'other/logs/X_1.csv', 'logs/ROOT_1.csv'];
+    expect(localLogFolders('robot', files)).toEqual([
+      { folder: 'robot/logs', csvs: ['robot/logs/CTL_1.csv'] },
+      { folder: 'robot/src-gen/generated/architecture/logs', csvs: ['robot/src-gen/generated/architecture/logs/ORD_1.csv'] },
+    ]);
+    expect(localLogFolders('', files)).toEqual([{ folder: 'logs', csvs: ['logs/ROOT_1.csv'] }, { folder: 'src-gen/generated/architecture/logs', csvs: [] }]);
   });
 });

@@ -1,7 +1,8 @@
 /**
- * The CSV logs a timeline draws: either the files of a local run (`make run` / `contract run` in the
- * project's `src-gen/generated/architecture/logs/`) or those the build service collected from a
- * sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`, docs/build-service-api.md).
+ * The CSV logs a timeline draws: either the files of a local run (`contract run` writes them to the
+ * project's `logs/`, `make run` to its `src-gen/generated/architecture/logs/`) or those the build
+ * service collected from a sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`,
+ * docs/build-service-api.md).
  */
 import { api, ApiError, getOk } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
@@ -17,6 +18,21 @@ export interface RunLogs {
   files: LogFile[];
   /** Files that could not be had, with why (left out by the service, download failed). */
   problems: string[];
+}
+
+/**
+ * The folders of project `project` (workspace-relative, '' = the root) where local runs write
+ * their CSV logs, in this order: `logs/` (`contract run`'s default, packages/cli run.ts: DIR/logs;
+ * the logs of the runs before are moved to `logs/previous/`, left out here) and
+ * `src-gen/generated/architecture/logs/` (`make run`'s LOG_DIR) — each with its `*.csv` files
+ * (direct children only) among the workspace's `files`.
+ */
+export function localLogFolders(project: string, files: readonly string[]): Array<{ folder: string; csvs: string[] }> {
+  const pre = project ? `${project}/` : '';
+  return [`${pre}logs`, `${pre}src-gen/generated/architecture/logs`].map((folder) => ({
+    folder,
+    csvs: files.filter((f) => f.endsWith('.csv') && f.startsWith(`${folder}/`) && !f.includes('/', folder.length + 1)),
+  }));
 }
 
 /** Every activation of the given logs, sorted by start; a file that is not a runtime log is a problem, not a crash. */

@@ -2,7 +2,7 @@ import { h } from '../util/dom.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriod, type Activation } from './activation-log.js';
 import { laneBars, lastTime, type LaneBar } from './timeline-bars.js';
-import { activationsFromLogs, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
+import { activationsFromLogs, localLogFolders, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 
@@ -16,8 +16,9 @@ function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string,
 /**
  * Timeline of module activations (one lane per module, one bar per activation), with period
  * gridlines, over one of two sources of the runtime's CSV logs: the run that just finished in
- * Build & Run (logs collected by the build service, given through `showRun`) or the local logs
- * under `<project>/src-gen/generated/architecture/logs/` (`make run` / `contract run`).
+ * Build & Run (logs collected by the build service, given through `showRun`) or the local logs:
+ * `<project>/logs/` (`contract run`) or `<project>/src-gen/generated/architecture/logs/` (`make run`),
+ * the first that holds some (each its own choice when both do: two runs, not one).
  */
 export class TimelineView {
   readonly element: HTMLElement;
@@ -86,22 +87,30 @@ export class TimelineView {
     if (this.element.isConnected) void this.update();
   }
 
-  private renderSources(selected: 'run' | 'local'): void {
-    const options = [h('option', { value: 'local', selected: selected === 'local' }, 'Local logs (make run / contract run)')];
+  /**
+   * `local` is the first local logs folder that holds logs (`held`: those that do); when both do,
+   * the other is offered as `local:<folder>`.
+   */
+  private renderSources(selected: string, held: string[] = []): void {
+    const options = [h('option', { value: 'local', selected: selected === 'local' }, held[0] ? `Local logs: ${held[0]}/` : 'Local logs (contract run / make run)')];
+    for (const folder of held.slice(1)) options.push(h('option', { value: `local:${folder}`, selected: selected === `local:${folder}` }, `Local logs: ${folder}/`));
     if (this.run) options.unshift(h('option', { value: 'run', selected: selected === 'run' }, `Last Build & Run (${this.run.label.replace(/^Build & Run /, '')})`));
     this.source.replaceChildren(...options);
-    this.source.value = selected === 'run' && this.run ? 'run' : 'local';
+    this.source.value = selected === 'run' && this.run ? 'run' : held.includes(selected.slice(6)) ? selected : 'local';
   }
 
   async update(): Promise<void> {
     if (this.source.value === 'run' && this.run) return this.drawLogs(this.run.files, this.run.problems, `${this.run.label} left no CSV logs.`);
-    const p = this.project();
-    const logDir = `${p ? `${p}/` : ''}src-gen/generated/architecture/logs`;
     await this.workspace.refreshTree();
-    const csvs = this.workspace.allFiles().filter((f) => f.startsWith(logDir + '/') && f.endsWith('.csv'));
+    const folders = localLogFolders(this.project(), this.workspace.allFiles());
+    const held = folders.filter((f) => f.csvs.length);
+    this.renderSources(this.source.value || 'local', held.map((f) => f.folder));
+    const csvs = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])?.csvs ?? [];
     if (!csvs.length) {
       this.info.textContent = '';
-      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${logDir}/ yet. Runs of \`make -C src-gen/generated/architecture run\` (or \`contract run\`) write them there; a Build & Run shows its own run here when it ends.`));
+      this.last = undefined;
+      const [cli, make] = folders.map((f) => `${f.folder}/`);
+      this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${cli} nor in ${make} yet. \`contract run\` writes a run's logs to ${cli} (or the folder its --logs names: open it in the Monitor), \`make -C src-gen/generated/architecture run\` to ${make}; a Build & Run shows its own run here when it ends.`));
       return;
     }
     const { files, problems } = await readWorkspaceLogs(csvs, (f) => f);
@@ -140,7 +149,9 @@ export class TimelineView {
     // zoom in far enough to see each period (8 px apart) of a long run: 2^8 at least, 2^16 at most
     this.zoom.max = String(period ? Math.min(16, Math.max(8, Math.ceil(Math.log2(((span / period) * 8) / fit)))) : 8);
     const width = fit * 2 ** Number(this.zoom.value);
-    const height = modules.length * lane + 30;
+    // under the lanes: a row of period numbers (#k), then the run's length on a row of its own (on
+    // one row, the last #k and the length overlapped)
+    const height = modules.length * lane + 44;
     const x = (t: number) => left + ((t - t0) / span) * (width - left - 10);
     const invX = (px: number) => t0 + ((px - left) / (width - left - 10)) * span;
     const axis = svg('text', { x: width - 10, y: height - 6, class: 'period-label', 'text-anchor': 'end' }, `${(span / 1e6).toFixed(1)} ms`);
@@ -150,7 +161,9 @@ export class TimelineView {
     // a line every `step` periods, at least 8 px apart, and a label at least 60 px apart
     const periodPx = period ? x(t0 + period) - x(t0) : 0;
     const step = period ? Math.max(1, Math.ceil(8 / periodPx)) : 0;
-    const labelEvery = step * Math.max(1, Math.ceil(60 / (step * periodPx)));
+    // labels as far apart as the widest one takes (10 px text: about 7 px a character) and 60 px at least
+    const labelPx = period ? Math.max(60, (String(Math.floor(span / period)).length + 1) * 7 + 14) : 60;
+    const labelEvery = step * Math.max(1, Math.ceil(labelPx / (step * periodPx)));
     const drawGrid = (from: number, to: number): SVGElement[] => {
       if (!period) return [];
       const made: SVGElement[] = [];
@@ -158,8 +171,9 @@ export class TimelineView {
       const first = Math.max(0, Math.floor((invX(from) - t0) / period / step) * step);
       for (let k = first; k <= last && x(t0 + k * period) <= to; k += step) {
         const px = x(t0 + k * period);
-        made.push(svg('line', { x1: px, x2: px, y1: 0, y2: height - 20, class: 'period-line' }));
-        if (k % labelEvery === 0) made.push(svg('text', { x: px + 2, y: height - 6, class: 'period-label' }, `#${k}`));
+        made.push(svg('line', { x1: px, x2: px, y1: 0, y2: height - 34, class: 'period-line' }));
+        // a label that would pass the right edge is left out (it was cut)
+        if (k % labelEvery === 0 && px + 2 + (String(k).length + 1) * 7 <= width) made.push(svg('text', { x: px + 2, y: height - 20, class: 'period-label' }, `#${k}`));
       }
       return made;
     };

@@ -10,6 +10,8 @@ import { cpSync, existsSync, mkdirSync, readdirSync, readFileSync, truncateSync,
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
+import { WebSocketServer } from 'ws';
+import { encodeTraceRecords } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, type Session } from './harness.js';
 
 const canBuild =
@@ -34,6 +36,12 @@ async function docShot(page: Page, name: string): Promise<void> {
   await page.waitForTimeout(300); // re-laid out and redrawn
   await shot(page, name);
   await page.setViewportSize({ width: 1440, height: 900 });
+}
+
+/** The Monitor docked beside the editor (opened with its button when it is not). */
+async function monitorShown(page: Page): Promise<void> {
+  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
+  await page.locator('.side-pane .monitor-view').waitFor();
 }
 
 /** Moves the cursor to t (ns since the start) the way the panel's own controls do. */
@@ -328,6 +336,193 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => row.textContent(), { timeout: 1000 }).toBe('┅ MAA:0 → MAB:0 ×1001 · last +1.000000 s');
   });
 
+  it('a log naming a supervisor function `constructor` and a rule `__proto__` is shown like any other, and pollutes nothing', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    const errors: string[] = [];
+    page.on('pageerror', (e) => errors.push(e.message));
+    mkdirSync(join(s.workspace, 'hostile-run'));
+    writeFileSync(join(s.workspace, 'hostile-run', 'SUP_1-Jan-2026-00h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
+      '1000,w,SUP,supervisor,,,0,function constructor started', '2000,w,SUP,sup_rule,,,0,constructor.__proto__ active cause=stop',
+      '3000,w,ORD,request_received,SUP,,0,START __proto__', '4000,w,ORD,scheduler,,,0,activate __proto__', '5000,w,SUP,sup_rule,,,0,action.toString active cause=elapsed=1000ns'].join('\n') + '\n');
+    await expect.poll(() => page.locator('.monitor-sources option[value="dir:hostile-run"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('dir:hostile-run');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('1 CSV log(s) in hostile-run');
+    await expect.poll(() => page.locator('.monitor-fn[data-function="SUP.constructor"]').textContent()).toMatch(/^constructor\(\) — running since/);
+    expect(await rule(page, 'SUP.constructor.__proto__').getAttribute('data-active')).toBe('true');
+    expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
+    expect(await page.locator('.monitor-schema').allTextContents()).toEqual(['● __proto__ (periodic) ← SUP.constructor.__proto__']);
+    expect(await page.evaluate(() => ({} as any).by ?? null)).toBeNull();
+    expect(errors).toEqual([]);
+  });
+
+  it('a workspace log folder is read again when picked again and when its logs change; a new one is listed at once', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    const dir = join(s.workspace, 'growing-run');
+    mkdirSync(dir);
+    const lines = ['mono_ns,wall_time,module,event,peer,port,size,detail', '1000000,w,SUP,supervisor,,,0,function action started'];
+    writeFileSync(join(dir, 'SUP_1-Jan-2026-00h00m00s.csv'), lines.join('\n') + '\n');
+    // listed while the Monitor stays open (no close and reopen)
+    await expect.poll(() => page.locator('.monitor-sources option[value="dir:growing-run"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('dir:growing-run');
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(1);
+    // the run writes on: the shown folder is read again
+    lines.push('2000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns');
+    writeFileSync(join(dir, 'SUP_1-Jan-2026-00h00m00s.csv'), lines.join('\n') + '\n');
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount), { timeout: 15_000 }).toBe(2);
+    await expect.poll(() => rule(page, 'SUP.action.FIRST').getAttribute('data-active')).toBe('true');
+    // a log added while another run is shown: read when the folder is picked again
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    writeFileSync(join(dir, 'ORD_1-Jan-2026-00h00m00s.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n3000000,w,ORD,scheduler,,,0,activate schemaCommande1\n');
+    await page.waitForTimeout(1500); // the watcher's change reaches the page
+    await page.locator('.monitor-sources').selectOption('dir:growing-run');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in growing-run');
+    expect(await page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(3);
+  }, 60_000);
+
+  it('keyboard: Open Monitor (Alt+Shift+M) opens it and puts the focus in it, again keeps it open; the brackets step marks from the slider', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await page.locator('#btn-monitor').click(); // hidden
+    await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
+    await openFile(page, 'supervisor.contract');
+    await page.keyboard.press('Alt+Shift+M');
+    await page.locator('.side-pane .monitor-view').waitFor();
+    await expect.poll(() => page.evaluate(() => !!document.activeElement?.closest('.monitor-view'))).toBe(true);
+    // "Open", not toggle: pressed again it stays open, the focus in it
+    await page.keyboard.press('Alt+Shift+M');
+    await page.waitForTimeout(300);
+    expect(await page.locator('.side-pane .monitor-view').isVisible()).toBe(true);
+    expect(await page.evaluate(() => !!document.activeElement?.closest('.monitor-view'))).toBe(true);
+    // [ and ] from the time slider
+    const marks = await marksOf(page);
+    await page.locator('.monitor-slider').focus();
+    await page.keyboard.press('Home');
+    await seek(page, 0);
+    await page.locator('.monitor-slider').focus();
+    await page.keyboard.press(']');
+    const firstMark = marks.find((m) => m.t > 0)!.t;
+    await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(firstMark);
+    await page.keyboard.press(']');
+    const second = marks.find((m) => m.t > firstMark)!.t;
+    await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(second);
+    await page.keyboard.press('[');
+    await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(firstMark);
+    expect(await page.evaluate(() => document.activeElement?.classList.contains('monitor-slider'))).toBe(true);
+  });
+
+  it('looks: the diagram\'s sticky toolbar is opaque above the diagram; a narrow Monitor keeps its cursor buttons on one line', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await page.locator('.monitor-view .arch-svg').waitFor();
+    await page.waitForTimeout(500);
+    // the panel scrolled so that the diagram passes under its toolbar: the toolbar is what is seen there
+    const seen = await page.evaluate(() => {
+      const body = document.querySelector('.monitor-body') as HTMLElement;
+      const bar = document.querySelector('.monitor-diagram .arch-toolbar') as HTMLElement;
+      body.scrollTop = (document.querySelector('.monitor-diagram') as HTMLElement).offsetTop + 120;
+      const r = bar.getBoundingClientRect();
+      const hits = [0.2, 0.5, 0.8].flatMap((fx) => [0.3, 0.7].map((fy) => document.elementFromPoint(r.left + r.width * fx, r.top + r.height * fy)));
+      return { inBar: hits.map((e) => !!e && bar.contains(e)), background: getComputedStyle(bar).backgroundColor };
+    });
+    expect(seen.inBar).toEqual([true, true, true, true, true, true]);
+    expect(seen.background).toMatch(/^rgb\(/); // opaque (not rgba(…, 0) nor transparent)
+    await shot(page, 'monitor-05-toolbar-scrolled');
+    await page.evaluate(() => ((document.querySelector('.monitor-body') as HTMLElement).scrollTop = 0));
+    for (const width of [300, 340, 420, 520]) {
+      await page.evaluate((w) => { const sp = document.querySelector('.side-pane') as HTMLElement; sp.style.width = `${w}px`; sp.style.flex = `0 0 ${w}px`; }, width);
+      await page.waitForTimeout(100);
+      const tops = await page.evaluate(() => ['#monitor-prev', '#monitor-follow', '#monitor-play', '#monitor-next'].map((id) => Math.round((document.querySelector(id) as HTMLElement).getBoundingClientRect().top)));
+      expect(new Set(tops).size, `${width}px: ${tops}`).toBe(1);
+    }
+    await shot(page, 'monitor-06-narrow');
+    await page.evaluate(() => { const sp = document.querySelector('.side-pane') as HTMLElement; sp.style.width = ''; sp.style.flex = ''; });
+  });
+
+  it('Timeline: finds the logs `contract run` writes (DIR/logs), takes the focus (Alt+Shift+T), and its axis labels do not overlap', async () => {
+    const { page } = s;
+    await page.locator('#btn-timeline').click();
+    await page.locator('.timeline-view').waitFor();
+    await expect.poll(() => page.locator('.timeline-canvas').textContent()).toContain('No CSV logs in logs/ nor in src-gen/generated/architecture/logs/ yet.');
+    // `contract run DIR` writes DIR/logs (packages/cli run.ts), the runs before in logs/previous/
+    mkdirSync(join(s.workspace, 'logs', 'previous', 'run-1'), { recursive: true });
+    for (const [m, off] of [['MSA', 0], ['MSC', 200_000]] as const) {
+      const rows = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
+      for (let k = 0; k < 1237; k++) { const t = 1_000_000_000 + k * 10_000_000 + off; rows.push(`${t},w,${m},run_started,ORD,,0,`, `${t + 150_000},w,${m},run_finished,,,0,`); }
+      writeFileSync(join(s.workspace, 'logs', `${m}_1-Jan-2026-00h00m00s.csv`), rows.join('\n') + '\n');
+    }
+    writeFileSync(join(s.workspace, 'logs', 'previous', 'run-1', 'OLD_1-Jan-2026-00h00m00s.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,w,OLD,run_started,ORD,,0,\n');
+    await openFile(page, 'supervisor.contract');
+    await page.keyboard.press('Alt+Shift+T');
+    await expect.poll(() => page.evaluate(() => document.activeElement?.classList.contains('timeline-canvas'))).toBe(true);
+    await page.locator('.timeline-view button', { hasText: 'Reload logs' }).click();
+    await expect.poll(() => page.locator('.lane-label').allTextContents(), { timeout: 10_000 }).toEqual(['MSA', 'MSC']);
+    expect(await page.locator('.timeline-source option:checked').textContent()).toBe('Local logs: logs/');
+    for (const zoom of ['0', '3']) {
+      await page.locator('.timeline-view input.zoom').fill(zoom);
+      for (const at of ['start', 'end']) {
+        const overlaps = await page.evaluate((at) => {
+          const c = document.querySelector('.timeline-canvas') as HTMLElement;
+          c.scrollLeft = at === 'end' ? c.scrollWidth : 0;
+          return new Promise<string[]>((done) => requestAnimationFrame(() => requestAnimationFrame(() => {
+            const labels = [...document.querySelectorAll('.timeline-svg .period-label')].map((e) => ({ text: e.textContent, r: e.getBoundingClientRect() }));
+            const svg = document.querySelector('.timeline-svg')!.getBoundingClientRect();
+            const out: string[] = [];
+            labels.forEach((a, i) => {
+              if (a.r.right > svg.right + 0.5) out.push(`${a.text} cut at the right edge`);
+              for (const b of labels.slice(i + 1)) if (a.r.left < b.r.right && b.r.left < a.r.right && a.r.top < b.r.bottom && b.r.top < a.r.bottom) out.push(`${a.text} / ${b.text}`);
+            });
+            done(out);
+          })));
+        }, at);
+        expect(overlaps, `zoom ${zoom}, ${at}`).toEqual([]);
+      }
+    }
+    await shot(page, 'timeline-contract-run-logs');
+  });
+
+  it('a job that ended — cancelled, failed, or its service gone — shows as ended with how, nowhere as live', async () => {
+    const { page } = s;
+    // the job's trace stream as the build service sends it (trace events, then its end), served by this test
+    const lines = readdirSync(FIXTURE).flatMap((file) => readFileSync(join(FIXTURE, file), 'utf8').split('\n').map((text, i) => ({ file, line: i + 1, text })))
+      .filter((l) => /^\d+,/.test(l.text)).sort((a, b) => Number(BigInt(a.text.split(',')[0]!) - BigInt(b.text.split(',')[0]!))).slice(0, 60);
+    const server = new WebSocketServer({ port: 0, host: '127.0.0.1' });
+    await new Promise((r) => server.once('listening', r));
+    const ends: Record<string, unknown> = { cancelled: { ok: false, message: 'cancelled' }, failed: { ok: false, message: 'run: MAA exited with status 3' } };
+    server.on('connection', (ws, req) => {
+      const job = /\/api\/jobs\/([^/]+)\//.exec(req.url ?? '')![1]!;
+      if (job === 'killed' && req.url!.includes('after=')) return ws.terminate(); // the service is gone: every reconnection refused
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(lines) }));
+      if (job === 'killed') setTimeout(() => ws.terminate(), 300);
+      else setTimeout(() => ws.send(JSON.stringify({ type: 'end', seq: 2, t: Date.now(), result: ends[job] })), 300);
+    });
+    const url = (job: string) => `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/${job}/ws?trace=only`;
+    try {
+      for (const [job, outcome] of [['cancelled', 'cancelled'], ['failed', 'failed: run: MAA exited with status 3'], ['killed', 'connection to the build service lost']] as const) {
+        await page.evaluate(([job, url]) => (window as any).__ide.monitor.followLive(job, url), [job, url(job)]);
+        // (the lost stream also says, as before, that the trace is not whole)
+        const label = `Build & Run job ${job} · ended: ${outcome}${job === 'killed' ? ' (trace not whole: lost the connection to the build service: the trace stops here (the run\'s CSV logs hold all of it))' : ''}`;
+        await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(label);
+        // nowhere live: the header, the run list, the time line, the follow button
+        expect(await page.locator('.monitor-view').getAttribute('data-mode')).toBe('replay');
+        expect(await page.locator('.monitor-sources option:checked').textContent()).toBe(label);
+        expect(await page.locator('.monitor-sources option').allTextContents()).not.toContain(`Build & Run job ${job} · live`);
+        await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s$/);
+        expect(await page.locator('#monitor-follow').textContent()).toBe('⇥ End');
+        // what the stream brought is still shown: FIRST became active in those records
+        expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(lines.length);
+      }
+      await shot(page, 'monitor-04-ended-job');
+    } finally {
+      await new Promise((r) => server.close(r));
+    }
+  }, 90_000);
+
   it.skipIf(!canBuild)('Build & Run of the tutorial: live while it runs (when the service streams the trace), then the job replayed, same story at the same times', async () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
@@ -378,7 +573,7 @@ describe('Monitor in headless Chromium', () => {
     if (streamed > 0) {
       // the live trace arrived (trace-live producer): the story as it was streamed
       await page.locator('.monitor-sources').selectOption(`live:${jobId}`);
-      await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Build & Run job ${jobId} · as streamed`);
+      await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Build & Run job ${jobId} · as streamed · ended: succeeded`);
       liveMarks = await marksOf(page);
       await checkTutorialStory(page);
       await shot(page, 'monitor-02-live-tutorial');
