@@ -126,7 +126,9 @@ export class SimulateController {
       this.panel.showMessage(r.error ?? `simulated to ${r.steps.at(-1)?.timeNs ?? 0} ns in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
       const model = new MonitorModel();
       model.pushAll(stepsToTrace(r.steps));
-      await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}`);
+      // the server keeps 500 rule changes, actions and engine lines a step: what it left out is said
+      const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
+      await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}${dropped ? ` (not whole: ${dropped} records of long steps left out by the server; shorter steps keep them)` : ''}`);
       return true;
     } catch (e) {
       const diags = e instanceof ApiError && Array.isArray(e.details['diagnostics']) ? (e.details['diagnostics'] as Array<{ line: number; column: number; message: string; file?: string }>) : [];
