@@ -54,8 +54,16 @@ export function skeletonText(text: string, file: string, regions: Region[] = par
     return out + text.slice(cursor);
 }
 
+/**
+ * The hash of a skeleton, line endings read as LF: a checkout that turned LF into CRLF (git's
+ * autocrlf) loses no code and is no edit outside the regions.
+ */
+function skeletonDigest(skeleton: string): string {
+    return hashContent(skeleton.includes('\r') ? skeleton.replace(/\r\n/g, '\n') : skeleton);
+}
+
 export function skeletonHash(text: string, file: string): string {
-    return hashContent(skeletonText(text, file));
+    return skeletonDigest(skeletonText(text, file));
 }
 
 /** What the manifest records of a freshly generated file (byte string): its regions' default hashes and its skeleton hash. */
@@ -63,7 +71,7 @@ export function fileRecord(generated: string, file: string): { defaults: Record<
     const defaults: Record<string, string> = {};
     const regions = parseRegions(generated, file).regions;
     for (const r of regions) defaults[r.id] = hashContent(r.content);
-    return { defaults, skeleton: hashContent(skeletonText(generated, file, regions)) };
+    return { defaults, skeleton: skeletonDigest(skeletonText(generated, file, regions)) };
 }
 
 /** The default-content hashes of a freshly generated file (byte string). */

@@ -8,7 +8,7 @@ import { join } from 'node:path';
 import { afterEach, describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
 import { tempDir } from '../test-support/temp-dir.js';
-import { MANIFEST_NAME, hashContent, skeletonText } from './manifest.js';
+import { MANIFEST_NAME, hashContent, skeletonHash, skeletonText } from './manifest.js';
 import { writeTree, type GeneratedFile } from './write-tree.js';
 
 let cleanups: Array<() => void> = [];
@@ -77,6 +77,14 @@ describe('code written outside the protected regions', () => {
         expect(read(dir, A)).toContain(region('protect_vars_MSC', '\nint mine = 1;\n'));
     });
 
+    it('does not count line endings turned into CRLF (a checkout with autocrlf)', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace(/\n/g, '\r\n'));
+        const r = writeTree(dir, [file()]);
+        expect([r.orphaned, r.warnings]).toEqual([[], []]);
+    });
+
     it('the skeleton reduces each region to its ID', () => {
         expect(skeletonText(`a${region('x', 'body')}b/*PROTECTED REGION ID( x2 ) START*/other/*PROTECTED REGION END*/c`, 'f.c')).toBe('a\u0000x\u0000b\u0000x2\u0000c');
     });
@@ -99,14 +107,14 @@ describe('code written outside the protected regions', () => {
         const m = manifest(dir);
         expect(m.version).toBe(1);
         expect(Object.keys(m.skeletons!)).toEqual([A]);
-        expect(m.skeletons![A]).toBe(hashContent(skeletonText(file().content, A)));
+        expect(m.skeletons![A]).toBe(skeletonHash(file().content, A));
         // an older manifest: no skeletons. The edit outside is regenerated as before, no orphan, no warning
         delete m.skeletons;
         writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify(m));
         write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
         const old = writeTree(dir, [file()]);
         expect([old.orphaned, old.warnings, old.errors]).toEqual([[], [], []]);
-        expect(manifest(dir).skeletons).toEqual({ [A]: m.files && hashContent(skeletonText(file().content, A)) });
+        expect(manifest(dir).skeletons).toEqual({ [A]: hashContent(skeletonText(file().content, A)) });
         // hostile skeleton entries: not a hash, not a listed file, not an object: ignored, nothing acted on
         for (const skeletons of [{ [A]: 'not a hash' }, { '../../etc/passwd': '0123456789abcdef' }, ['x'], 'x', { [A]: 42 }]) {
             writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify({ ...manifest(dir), skeletons }));
