@@ -286,6 +286,9 @@ describe('contract build / run on a project (bwrap)', () => {
         const code = await runCli(['run', 'crash', '--sandbox', 'bwrap', '--duration', '2s'], io);
         expect(io.stderr).toContain('module CTL crashed (died by signal 11');
         expect(io.stdout).toContain('contract-launch: FAILED: module CTL crashed');
+        // ORD sees the release never finish: it says the module is gone, not that its code loops
+        expect(io.stdout).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: it is no longer running \(it crashed or was killed\)$/m);
+        expect(io.stdout + io.stderr).not.toContain('*stateindex = -1?');
         expect(code).toBe(1);
         expect(readdirSync(join(dir, 'logs')).some((f) => f.startsWith('CTL_'))).toBe(true);
     }, 240_000);

@@ -129,15 +129,18 @@ static void b_trace(void *ctx, int64_t t, const char *line) {
 
 /* A module that never finishes its release (ord_core check_stuck): one line on stderr, prefixed
    `STUCK: ` so the launcher's caller (contract run, the build service) can tell the run did not
-   go as designed (docs/engines.md §4, docs/ci.md). */
+   go as designed (docs/engines.md §4, docs/ci.md). A module that is no longer running crashed or
+   was killed: the core's advice (an exec region that never sets *stateindex = -1) would mislead,
+   so the line says that instead. */
 static void b_stuck(void *ctx, const char *module, const char *schema, uint32_t id, long periods,
                     const char *message) {
     (void)ctx;
-    (void)module;
     (void)schema;
-    (void)id;
-    (void)periods;
-    fprintf(stderr, "STUCK: %s\n", message);
+    if (ModuleState(module) != CONTRACT_OK) /* ENOTRUNNING, or EUNKNOWN once the launcher removed its mailbox */
+        fprintf(stderr, "STUCK: %s has not finished release #%u after %ld periods: it is no longer running (it crashed or was killed)\n",
+                module, id, periods);
+    else
+        fprintf(stderr, "STUCK: %s\n", message);
     fflush(stderr);
 }
 
