@@ -77,7 +77,7 @@ describe('scanRegions and a start marker with a typo', () => {
             '/*' + ' '.repeat(1_000_000) + END,
             '/*PROTECTED REGION ID(' + 'a'.repeat(1_000_000) + END,
             (END + '/*PROTECTED REGION ID(x) X*/').repeat(50_000),
-            END.repeat(100_000), // no line feed: lines were searched to the end of the text for each marker
+            END.repeat(200_000), // no line feed: lines were searched to the end of the text for each marker
             ('/*PROTECTED REGION ID(x) START*/' + '/*PROTECTED\n'.repeat(20)).repeat(10_000) + END,
         ];
         for (const text of hostile) {
