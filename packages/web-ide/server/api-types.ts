@@ -105,3 +105,19 @@ export interface SimulateResponse {
   ms: number;
   runMs: number;
 }
+
+/**
+ * POST /api/rename-entity: the generated tree carried over for a rename (codegen's
+ * renameInGeneratedTree for an entity naming generated files; renameIdentifiersInGeneratedTree for
+ * a name the user code uses), paths relative to src-gen.
+ */
+export interface RenameEntityResponse {
+  movedPaths: Array<{ from: string; to: string }>;
+  regionIds: Array<{ file: string; from: string; to: string }>;
+  /** Uses of the old name in protected-region code rewritten (a port's or parameter's only in its module's files). */
+  rewritten: Array<{ file: string; line: number; id: string; occurrences: number }>;
+  /** Why no use was rewritten (the new name is already a word of that code), else absent. */
+  refused?: string;
+  /** Mentions of the old name left in protected regions: code (the build fails until changed by hand), comments, literals. */
+  remaining: Array<{ file: string; line: number; id: string; word: string; context: string }>;
+}

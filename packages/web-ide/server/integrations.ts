@@ -67,6 +67,17 @@ export async function renameGeneratedEntity(srcGen: string, from: string, to: st
   return codegen.renameInGeneratedTree(srcGen, from, to);
 }
 
+/**
+ * codegen's carry-over of a rename into the user code (the one `contract rename` uses): the uses of
+ * a renamed port or parameter in its module's protected regions, of a datatype (and its generated
+ * functions) or a function in every region, whole C identifiers in code only.
+ */
+export async function renameInUserCode(srcGen: string, kind: string, from: string, to: string, owner?: string) {
+  const codegen = await importWith<CodegenApi, 'identifierRenames' | 'renameIdentifiersInGeneratedTree'>('@contract-studio/codegen', ['identifierRenames', 'renameIdentifiersInGeneratedTree']);
+  const renames = codegen.identifierRenames(kind, from, to);
+  return codegen.renameIdentifiersInGeneratedTree(srcGen, renames, kind === 'port' || kind === 'parameter' ? owner : undefined);
+}
+
 /** codegen's protected-region parser (parseRegions + RegionSyntaxError), for the guard of generated files. */
 export async function loadRegionParser(): Promise<RegionParser> {
   const codegen = await importWith<CodegenApi, 'parseRegions' | 'RegionSyntaxError'>('@contract-studio/codegen', ['parseRegions', 'RegionSyntaxError']);

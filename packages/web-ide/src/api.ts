@@ -1,5 +1,5 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-import type { FileReadResponse, FileWriteResponse, GenerateResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
+import type { FileReadResponse, FileWriteResponse, GenerateResponse, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
 
 export type { TreeEntry, FileWriteResponse, FileReadResponse, StaleSaveDetails };
 /** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
@@ -125,9 +125,8 @@ export const api = {
   remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),
   newProject: (folder: string) => call<{ folder: string; files: string[] }>('POST', '/api/new-project', { folder }),
   generate: (project: string) => call<GenerateReport>('POST', '/api/generate', { project }),
-  renameEntity: (project: string, from: string, to: string) =>
-    call<{ movedPaths: Array<{ from: string; to: string }>; regionIds: Array<{ file: string; from: string; to: string }> }>(
-      'POST', '/api/rename-entity', { project, from, to }),
+  renameEntity: (project: string, from: string, to: string, what: { kind?: string; owner?: string } = {}) =>
+    call<RenameEntityResponse>('POST', '/api/rename-entity', { project, from, to, ...what }),
   submitJob: (body: unknown) => call<{ id: string; status: string; sandbox?: string; warnings?: string[] }>('POST', '/api/jobs', body),
   /** Runs a scenario text on a project in virtual time (422 with `diagnostics` when it has errors). */
   simulate: (project: string, scenario: string) => call<SimulateResponse>('POST', '/api/simulate', { project, scenario }),

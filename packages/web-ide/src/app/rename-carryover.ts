@@ -5,21 +5,32 @@ import { api } from '../api.js';
 import { toast } from '../util/toast.js';
 import { reportError } from './report-error.js';
 
-/** A rename refactoring of a module, schema or supervisor carries generated files and region IDs over, then regenerates. */
+/**
+ * A rename refactoring carries the generated tree over, then regenerates: a module, schema,
+ * supervisor, datatype or function moves its generated files and region IDs; a port's or
+ * parameter's uses in its module's protected-region code follow, as a datatype's and a function's
+ * do in every region (whole C identifiers in code: `contract rename` does the same). Uses it could
+ * not change (the new name already in that code) are said, with where.
+ */
 export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspace; editors: EditorArea; project(): string; generate(): Promise<boolean> }): void {
   const { lsp, workspace, editors } = d;
-  lsp.onRename.on(({ oldName: old, newName, topLevel }) => {
-    if (!old || old === newName || !topLevel) return; // ports, variables, labels: nothing generated is named after them
+  lsp.onRename.on(({ oldName: old, newName, topLevel, kind, owner }) => {
+    if (!old || old === newName || (!topLevel && !kind)) return; // variables, labels, schemas' parameters: nothing generated uses them
     void (async () => {
       await new Promise((r) => setTimeout(r, 50));
       await workspace.saveAll();
       const project = d.project();
-      const r = await api.renameEntity(project, old, newName);
-      if (r.movedPaths.length || r.regionIds.length) {
-        toast('info', `Renamed ${old} → ${newName}: ${r.movedPaths.length} generated path(s) and ${r.regionIds.length} protected region(s) carried over`);
+      const r = await api.renameEntity(project, old, newName, { kind, owner });
+      const base = `${project ? `${project}/` : ''}src-gen/`;
+      const uses = r.rewritten.reduce((n, w) => n + w.occurrences, 0);
+      if (r.movedPaths.length || r.regionIds.length || uses) {
+        const parts = [
+          ...(r.movedPaths.length || r.regionIds.length ? [`${r.movedPaths.length} generated path(s) and ${r.regionIds.length} protected region(s) carried over`] : []),
+          ...(uses ? [`${uses} use(s) in the code of ${r.rewritten.length} protected region(s) renamed`] : []),
+        ];
+        toast('info', `Renamed ${old} → ${newName}: ${parts.join('; ')}`);
         await workspace.refreshTree();
         for (const m of r.movedPaths) {
-          const base = `${project ? `${project}/` : ''}src-gen/`;
           const from = base + m.from;
           if (workspace.files.has(from) || [...workspace.files.keys()].some((p) => p.startsWith(from + '/'))) {
             for (const p of [...workspace.files.keys()]) if (p === from || p.startsWith(from + '/')) workspace.dropFile(p);
@@ -28,6 +39,12 @@ export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspac
         }
         if (editors.active?.includes('/src-gen/') || editors.active?.startsWith('src-gen/')) await editors.open(editors.active);
         await d.generate();
+      }
+      const inCode = r.remaining.filter((m) => m.context === 'code');
+      if (r.refused || inCode.length) {
+        const first = inCode[0];
+        toast('error', `${r.refused ?? `${inCode.length} use(s) of ${old} in protected-region code were not renamed`}` +
+          (first ? ` (first: ${base}${first.file}:${first.line}, region ${first.id}): change them by hand, the build fails until then` : ''));
       }
     })().catch(reportError);
   });

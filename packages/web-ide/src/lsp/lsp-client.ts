@@ -192,9 +192,10 @@ export class LspClient {
         const targetUri = conv.toLocations(defs)[0]?.uri.toString() ?? model.uri.toString();
         const symbols = (await this.documentSymbols(targetUri).catch(() => null)) ?? [];
         const topLevel = symbols.some((s) => s.name === oldName && NAMES_GENERATED_FILES.includes(s.kind));
+        const target = renamedSymbol(symbols, oldName, conv.toLocations(defs)[0]?.range.startLineNumber);
         const r = await this.request<lsp.WorkspaceEdit | null>('textDocument/rename', { ...at(model, position), newName });
         const edit = conv.toWorkspaceEdit(r);
-        if (edit.edits.length) this.onRename.fire({ oldName, newName, topLevel });
+        if (edit.edits.length) this.onRename.fire({ oldName, newName, topLevel, ...target });
         return edit;
       },
       resolveRenameLocation: async (model, position) => {
@@ -291,5 +292,44 @@ export class LspClient {
   }
 
   /** Fired when a rename was computed (the IDE carries generated files over). */
-  readonly onRename = new Emitter<{ oldName: string; newName: string; topLevel: boolean }>();
+  /**
+   * A rename applied: `topLevel` for an entity that names generated files; `kind` and `owner` when
+   * the user code of the generated C uses the name (a module's port or parameter: its module; a
+   * datatype; a function), for the carry-over (app/rename-carryover.ts).
+   */
+  readonly onRename = new Emitter<RenameEvent>();
+}
+
+export interface RenameEvent {
+  oldName: string;
+  newName: string;
+  topLevel: boolean;
+  kind?: 'port' | 'parameter' | 'datatype' | 'function';
+  owner?: string;
+}
+
+/** LSP SymbolKind numbers of the Cactal document symbols (language cactal-document-symbol-provider.ts). */
+const SYMBOL = { Class: 5, Property: 7, Function: 12, Variable: 13, Struct: 23, Event: 24 } as const;
+
+/**
+ * What a rename renames, from the document symbols of its definition's file: a datatype or a
+ * function at top level, or a port (Event, Variable) or parameter (Property) of a module (Class),
+ * the module named as owner. `line` (1-based) is the definition's line, to tell apart two ports of
+ * one name in two modules of a file. Nothing for other names (labels, locals, schemas...).
+ */
+function renamedSymbol(symbols: lsp.DocumentSymbol[], name: string, line: number | undefined): Pick<RenameEvent, 'kind' | 'owner'> {
+  const at = (s: lsp.DocumentSymbol) => line === undefined || (s.range.start.line + 1 <= line && line <= s.range.end.line + 1);
+  for (const top of symbols) {
+    if (top.name === name && at(top)) {
+      if (top.kind === SYMBOL.Struct) return { kind: 'datatype' };
+      if (top.kind === SYMBOL.Function) return { kind: 'function' };
+    }
+    if (top.kind !== SYMBOL.Class || !at(top)) continue;
+    for (const child of top.children ?? []) {
+      if (child.name !== name || !at(child)) continue;
+      if (child.kind === SYMBOL.Event || child.kind === SYMBOL.Variable) return { kind: 'port', owner: top.name };
+      if (child.kind === SYMBOL.Property) return { kind: 'parameter', owner: top.name };
+    }
+  }
+  return {};
 }

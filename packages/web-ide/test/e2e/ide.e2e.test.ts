@@ -277,6 +277,26 @@ describe('IDE in headless Chromium', () => {
     await shot(page, '04-renamed-module');
   });
 
+  it.skipIf(!canGenerate)('renames a port: its uses in the module\'s protected-region code follow, then Generate All renames its declaration', async () => {
+    const { page } = s;
+    const file = 'src-gen/generated/architecture/modules/MSX_mod/module.c'; // MSA, renamed by the test above
+    expect(disk(file)).toContain('PostData(&coordinates);'); // the tutorial's exec region uses the port's variable
+    await openFile(page, 'smodule1.contract');
+    await placeCursor(page, 'TypeA coordinates', 'TypeA '.length);
+    await page.keyboard.press('F2');
+    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
+    await page.keyboard.press('Control+a');
+    await page.keyboard.type('position');
+    await page.keyboard.press('Enter');
+    await expect.poll(() => disk('smodule1.contract'), { timeout: 5000 }).toContain('TypeA position;');
+    await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('PostData(&position);');
+    expect(disk(file)).toContain('position.i = -4.0 * (double)_period;');
+    // then Generate All renames the generated declaration
+    await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('TypeA position = { 0.0, 0.0, 0.0 };');
+    expect(disk(file)).not.toMatch(/\bcoordinates\b/);
+    await page.locator('.toast', { hasText: 'use(s) in the code of' }).first().waitFor({ timeout: 5000 });
+  });
+
   it('log view: follows the tail as lines stream in, keeps its rows when scrolled up, and filters', async () => {
     const { page } = s;
     await page.locator('.panel-tab[data-panel=output]').click();
