@@ -1,5 +1,5 @@
 import { h } from '../util/dom.js';
-import { api, socketUrl } from '../api.js';
+import { api, ApiError, socketUrl } from '../api.js';
 import { JobStream } from './job-stream.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
@@ -148,12 +148,19 @@ export class BuildPanel {
    * and Stop cancels it. False when it has finished, is unknown (a restarted service), or this
    * panel is busy with a job of its own. `why` is shown beside the status.
    */
-  async resume(jobId: string, why = 'followed again after a reload'): Promise<boolean> {
+  async resume(jobId: string, why = 'followed again after a reload', sayIfGone = why === 'followed again after a reload'): Promise<boolean> {
     if (this.busy) return false;
     let job: { id: string; status: string; action: string; finishedAt: number | null };
     try {
       job = await api.getJob(jobId);
-    } catch {
+    } catch (e) {
+      // the job this tab followed before a reload is gone: the IDE server (and its build service)
+      // was restarted, which ends its jobs. Said, rather than an empty panel as if nothing had run.
+      if (sayIfGone && e instanceof ApiError && e.status === 404 && !this.busy) {
+        this.clear();
+        this.originEl.textContent = `(${why})`;
+        this.setStatus('gone', `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs (the CSV logs a run had written are in its project's logs folder only if the run ended before)`, false);
+      }
       return false;
     }
     if (job.finishedAt || this.busy || (job.action !== 'build' && job.action !== 'run')) return false;

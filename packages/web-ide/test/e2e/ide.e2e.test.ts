@@ -531,6 +531,16 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => activeValue(page), { timeout: 5000 }).not.toContain('broken_by_test');
   }, 180_000);
 
+  it('a job the tab followed before a reload that the build service no longer knows (server restarted) is said gone', async () => {
+    const { page } = s;
+    await page.evaluate(() => sessionStorage.setItem('contract-studio:followed-job', JSON.stringify({ jobId: 'a1b2c3d4e5f60718293a4b5c6d7e8f90', project: '' })));
+    await page.reload();
+    await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('is no longer known to the build service');
+    expect(await page.locator('#status-job').getAttribute('data-status')).toBe('gone');
+    expect(await page.locator('#btn-stop').isEnabled()).toBe(false);
+  });
+
   it('tells the user when a write fails (server down) and saves once the server is back', async () => {
     const { page } = s;
     await openFile(page, 'smodule4.contract');
