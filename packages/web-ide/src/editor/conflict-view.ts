@@ -23,7 +23,7 @@ let views = 0;
 export class ConflictView {
   private readonly queue: Conflict[] = [];
   private current: {
-    conflict: Conflict; diff: monaco.editor.IStandaloneDiffEditor; overlay: HTMLElement; modal: Modal;
+    conflict: Conflict; diff: monaco.editor.IStandaloneDiffEditor; viewModel: monaco.editor.IDiffEditorViewModel; overlay: HTMLElement; modal: Modal;
     models: monaco.editor.ITextModel[]; listeners: monaco.IDisposable[];
   } | undefined;
 
@@ -117,7 +117,9 @@ export class ConflictView {
       quickSuggestions: false, suggestOnTriggerCharacters: false,
       ariaLabel: `${conflict.path}: on disk (left) and yours (right)`,
     });
-    diff.setModel({ original, modified });
+    const viewModel = diff.createViewModel({ original, modified });
+    diff.setModel(viewModel);
+    restorePageDefaults(); // the diff editor's editors just took them over: see below
     const sideStop = (editor: monaco.editor.ICodeEditor): FocusStop => ({ el: editor.getContainerDomNode(), focus: () => editor.focus() });
     const listeners = [modified.onDidChangeContent(() => error.classList.add('hidden'))];
     overlay.style.visibility = '';
@@ -127,7 +129,7 @@ export class ConflictView {
       stops: () => [sideStop(diff.getOriginalEditor()), sideStop(diff.getModifiedEditor()), ...buttons.map((b) => ({ el: b, focus: () => b.focus() }))],
       fallbackFocus: this.focusEditor,
     });
-    this.current = { conflict, diff, overlay, modal, models: [original, modified], listeners };
+    this.current = { conflict, diff, viewModel, overlay, modal, models: [original, modified], listeners };
   }
 
   /** Escape: closed without a choice. The conflict stays (nothing written); the next file's, if any, is shown. */
@@ -142,9 +144,9 @@ export class ConflictView {
 
   /**
    * Takes the view down in an order that leaves nothing of it alive: the focus leaves it first (to
-   * the editor), its listeners go, the diff editor lets go of its models and is disposed, the
-   * overlay leaves the page; the models are disposed once the editor worker can no longer be
-   * computing a diff of them (a result arriving for a disposed model fails in Monaco).
+   * the editor), its listeners go, the diff editor lets go of its models and is disposed while still
+   * in the page, the overlay leaves the page; the models are disposed once the editor worker can no
+   * longer be computing a diff of them (a result arriving for a disposed model fails in Monaco).
    */
   private close(): void {
     const c = this.current;
@@ -154,7 +156,23 @@ export class ConflictView {
       c.listeners.forEach((l) => l.dispose());
       c.diff.setModel(null);
       c.diff.dispose();
+      c.viewModel.dispose();
     });
     setTimeout(() => c.models.forEach((m) => m.isDisposed() || m.dispose()), 3000);
   }
+}
+
+/**
+ * Every standalone code editor Monaco builds installs page-wide defaults made with its own
+ * instantiation service: the hover delegate factory (used lazily, the first time any list or
+ * action bar needs a default hover) and the markdown code-block renderer. The diff editor's two
+ * editors are built with the diff editor's child service, which its dispose() disposes; a default
+ * made afterwards through it throws "InstantiationService has been disposed" (seen when a later
+ * reload or merge in the tab first rendered a suggestion list). An editor built and disposed at
+ * once with the page's own service puts the defaults back on that service, which lives as long as
+ * the page.
+ */
+function restorePageDefaults(): void {
+  const host = document.createElement('div');
+  monaco.editor.create(host, { model: null, automaticLayout: false, minimap: { enabled: false } }).dispose();
 }

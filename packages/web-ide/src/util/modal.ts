@@ -73,6 +73,7 @@ export function openModal(overlay: HTMLElement, dialog: HTMLElement, opts: {
       overlay.removeEventListener('keydown', onKey, { capture: true });
       overlay.removeEventListener('keydown', onEscape);
       for (const el of madeInert) el.inert = false;
+      dialog.removeAttribute('aria-modal');
       // the focus leaves the dialog before it goes away (a widget inside must not keep it while disposed)
       if (previous?.isConnected && !overlay.contains(previous)) previous.focus();
       else if (opts.fallbackFocus) opts.fallbackFocus();

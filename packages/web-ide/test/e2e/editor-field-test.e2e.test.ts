@@ -199,6 +199,12 @@ describe('editor defects of the field test', () => {
     await placeCursor(a, 'MSC;', 4);
     await a.keyboard.type(' // and once more');
     await expect.poll(() => activeValue(b), { timeout: 10_000 }).toContain('// and once more');
+    // a suggestion list in the tab's editor (its rows take Monaco's page-wide hover default, which
+    // the view's disposed diff editor had taken over: "InstantiationService has been disposed")
+    await placeCursor(b, 'schemaCommande2;', 0);
+    await b.keyboard.press('Control+Space');
+    await b.locator('.editor-host .suggest-widget .monaco-list-row').first().waitFor({ timeout: 10_000 });
+    await b.keyboard.press('Escape');
     await b.waitForTimeout(500);
     expect(errors).toEqual([]);
   });
