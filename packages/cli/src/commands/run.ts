@@ -7,21 +7,17 @@
  * docs/runtime-api.md "Trace records"), and exits non-zero when a module crashed
  * (1) or when the run did not go as designed (4: a limit hit, a module stuck, output or logs cut; docs/ci.md).
  */
-import { constants, promises as fsp } from 'node:fs';
 import { join, resolve } from 'node:path';
-import { Readable } from 'node:stream';
-import { pipeline } from 'node:stream/promises';
-import { createGunzip } from 'node:zlib';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
-import type { RunArtifacts } from '@contract-studio/build-service';
 import type { JobEvent } from '@contract-studio/build-service';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
-import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob, type JobOutcome } from '../job-runner.js';
+import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
 import { isCpuList } from '@contract-studio/conventions';
 import { closestName } from '../did-you-mean.js';
 import { safeName } from '../terminal-text.js';
-import { LOG_FILE_NAME } from '../trace-files.js';
+import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
+import { moduleFailures, problemLines } from './run-problems.js';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
 export function parseDuration(text: string): number {
@@ -82,176 +78,6 @@ export async function startProblem(start: string, dir: string): Promise<string |
     return `bad --start '${start}': supervisor ${sup} has no function '${fn}'.${near ? ` Did you mean '${sup}.${near}'?` : ''} (${listed}); nothing was started`;
 }
 
-export interface ModuleFailure {
-    module: string;
-    how: string;
-}
-
-/** Module crashes reported by the launcher (`FAILED: module X crashed`, with the preceding exit/signal line). */
-export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
-    const how = new Map<string, string>();
-    const failed: ModuleFailure[] = [];
-    for (const { source, line } of lines) {
-        if (source !== 'launcher') continue;
-        const exit = /^module (\S+) \(pid \d+\) (exited with status \d+|died by signal .*)$/.exec(line);
-        if (exit) how.set(exit[1]!, exit[2]!);
-        const crash = /^FAILED: module (\S+) crashed/.exec(line);
-        if (crash) failed.push({ module: crash[1]!, how: how.get(crash[1]!) ?? 'crashed' });
-    }
-    return failed;
-}
-
-/** ORD's advice on a module that does not finish its release, which is wrong for one that crashed. */
-const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
-
-/**
- * The run's problems as told: a module ORD declared stuck because it crashed is told as crashed,
- * without the advice to set `*stateindex = -1` (its code ended by a crash, not a loop).
- */
-export function problemLines(issues: readonly { kind: string; module?: string; message: string }[], failures: readonly ModuleFailure[]): string[] {
-    const crashed = new Map(failures.map((f) => [f.module, f.how]));
-    return issues.map((i) => {
-        const how = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
-        return how === undefined ? i.message : `${i.message.replace(STUCK_ADVICE, '')}: it crashed (${how})`;
-    });
-}
-
-/**
- * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
- * folder, which is not trusted (a cloned repository can hold any symlink): a link there would have
- * the run's CSV files written wherever it points. A folder the user names with --logs is theirs to
- * choose, link or not.
- */
-async function refusedDefaultLogs(logsDir: string): Promise<string | null> {
-    const st = await fsp.lstat(logsDir).catch(() => null);
-    if (!st || st.isDirectory()) return null;
-    if (st.isSymbolicLink()) {
-        const target = await fsp.readlink(logsDir).catch(() => '?');
-        return `${safeName(logsDir)} is a symbolic link (to ${safeName(target)}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT`;
-    }
-    return `${safeName(logsDir)} is not a folder: remove it, or name a folder with --logs OUT`;
-}
-
-/** Where the previous run's logs are moved, inside the logs folder. */
-export const PREVIOUS_DIR = 'previous';
-
-/** Why OUT/previous cannot take the previous run's logs (a link or a file there), or null. */
-export async function refusedPrevious(logsDir: string): Promise<string | null> {
-    const st = await fsp.lstat(join(logsDir, PREVIOUS_DIR)).catch(() => null);
-    if (!st || st.isDirectory()) return null;
-    return `${safeName(join(logsDir, PREVIOUS_DIR))} is ${st.isSymbolicLink() ? 'a symbolic link' : 'not a folder'}: the previous run's logs are moved there (never through a link); remove it, or name another folder with --logs OUT`;
-}
-
-export interface SavedLogs {
-    /** The logs written, by name. */
-    saved: string[];
-    /** Logs not written, `NAME: why` (a link or another file of that name in the folder). */
-    refused: string[];
-    /** Where the previous run's logs were moved (OUT/previous/run-...), and how many. */
-    movedAside: { folder: string; files: number } | null;
-}
-
-/** `run-2026-12-03T02-05-31` from a time (local, as the logs' own names). */
-function runStamp(ms: number): string {
-    const d = new Date(ms);
-    const two = (n: number) => String(n).padStart(2, '0');
-    return `run-${d.getFullYear()}-${two(d.getMonth() + 1)}-${two(d.getDate())}T${two(d.getHours())}-${two(d.getMinutes())}-${two(d.getSeconds())}`;
-}
-
-/** Opens (creating it) the folder `name` inside the folder open as `parent`, never through a link. */
-async function openSubfolder(parent: fsp.FileHandle, name: string, exclusive: boolean): Promise<fsp.FileHandle> {
-    const path = `/proc/self/fd/${parent.fd}/${name}`;
-    await fsp.mkdir(path, { mode: 0o755 }).catch((e: NodeJS.ErrnoException) => {
-        if (exclusive || e.code !== 'EEXIST') throw e;
-    });
-    return fsp.open(path, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
-}
-
-/**
- * One run per logs folder: the CSV logs (regular files named `<MODULE>_*.csv`) already in the
- * folder open as `dir` — the previous run's — are moved into `previous/run-<time of the newest>/`
- * (never deleted; a link or anything else there is left alone). Returns that folder and the
- * number moved, or null when there was none.
- */
-async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<SavedLogs['movedAside']> {
-    const here = `/proc/self/fd/${dir.fd}`;
-    const old: { name: string; mtime: number }[] = [];
-    for (const name of await fsp.readdir(here)) {
-        if (!LOG_FILE_NAME.test(name)) continue;
-        const st = await fsp.lstat(`${here}/${name}`).catch(() => null);
-        if (st?.isFile()) old.push({ name, mtime: st.mtimeMs });
-    }
-    if (!old.length) return null;
-    const previous = await openSubfolder(dir, PREVIOUS_DIR, false);
-    try {
-        const stamp = runStamp(Math.max(...old.map((o) => o.mtime)));
-        let run: fsp.FileHandle | undefined;
-        let folder = stamp;
-        for (let i = 2; !run; i++) {
-            try {
-                run = await openSubfolder(previous, folder, true);
-            } catch (e) {
-                if ((e as NodeJS.ErrnoException).code !== 'EEXIST' || i > 1000) throw e;
-                folder = `${stamp}-${i}`;
-            }
-        }
-        try {
-            for (const o of old) await fsp.rename(`${here}/${o.name}`, `/proc/self/fd/${run.fd}/${o.name}`);
-        } finally {
-            await run.close().catch(() => {});
-        }
-        return { folder: join(to, PREVIOUS_DIR, folder), files: old.length };
-    } finally {
-        await previous.close().catch(() => {});
-    }
-}
-
-/**
- * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
- * `job.artifacts`), into `to`, after moving the previous run's logs there aside (one run per
- * folder: `contract trace OUT` tells this run). Never writes through a link found there (the
- * folder itself, when `noFollowDir`, opened O_NOFOLLOW and written through its descriptor: a link
- * put there during the run is not followed either): a log whose name is taken by a link, a FIFO or
- * anything but a regular file is refused and said, the others are written.
- */
-export async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<SavedLogs> {
-    const result: SavedLogs = { saved: [], refused: [], movedAside: null };
-    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name));
-    if (!files.length) return result;
-    await fsp.mkdir(to, { recursive: true });
-    const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));
-    try {
-        result.movedAside = await moveAsidePrevious(dir, to);
-        for (const file of files) {
-            let handle: fsp.FileHandle;
-            try {
-                // O_NONBLOCK: a FIFO planted under a log's name fails (ENXIO) rather than wait for a reader
-                handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW | constants.O_NONBLOCK, 0o644);
-            } catch (e) {
-                const code = (e as NodeJS.ErrnoException).code;
-                result.refused.push(`${file.name}: ${code === 'ELOOP' ? 'a symbolic link of that name is there (never written through)' : code === 'ENXIO' ? 'a FIFO of that name is there' : `cannot be written (${code ?? (e as Error).message})`}`);
-                continue;
-            }
-            try {
-                const st = await handle.stat();
-                if (!st.isFile()) {
-                    result.refused.push(`${file.name}: ${st.isDirectory() ? 'a folder' : 'something other than a file'} of that name is there`);
-                    continue;
-                }
-                await handle.truncate(0);
-                // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
-                await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
-                result.saved.push(file.name);
-            } finally {
-                await handle.close().catch(() => {});
-            }
-        }
-    } finally {
-        await dir.close().catch(() => {});
-    }
-    result.saved.sort();
-    return result;
-}
 
 export const runCommand: Command = {
     name: 'run',
@@ -365,3 +191,7 @@ export const runCommand: Command = {
         return savedLogs.refused.length && code === EXIT_OK ? EXIT_FAILURE : code;
     },
 };
+
+// the parts of `contract run` that live in their own files, for their tests
+export { moduleFailures, problemLines, type ModuleFailure } from './run-problems.js';
+export { refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';

@@ -1,0 +1,152 @@
+/**
+ * Where `contract run` writes the run's CSV logs (docs/watching-a-run.md, "One run per logs
+ * folder"): the default DIR/logs is refused when it is a link (a name in an untrusted project
+ * folder); the previous run's logs are moved aside to `OUT/previous/run-<time>/` (never deleted);
+ * each log is written on its own (O_NOFOLLOW|O_NONBLOCK through the opened folder), a name taken by
+ * a link, a FIFO or a folder refused and said, the others written.
+ */
+import { constants, promises as fsp } from 'node:fs';
+import { join } from 'node:path';
+import { Readable } from 'node:stream';
+import { pipeline } from 'node:stream/promises';
+import { createGunzip } from 'node:zlib';
+import type { RunArtifacts } from '@contract-studio/build-service';
+import { safeName } from '../terminal-text.js';
+import { LOG_FILE_NAME } from '../trace-files.js';
+
+/**
+ * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
+ * folder, which is not trusted (a cloned repository can hold any symlink): a link there would have
+ * the run's CSV files written wherever it points. A folder the user names with --logs is theirs to
+ * choose, link or not.
+ */
+export async function refusedDefaultLogs(logsDir: string): Promise<string | null> {
+    const st = await fsp.lstat(logsDir).catch(() => null);
+    if (!st || st.isDirectory()) return null;
+    if (st.isSymbolicLink()) {
+        const target = await fsp.readlink(logsDir).catch(() => '?');
+        return `${safeName(logsDir)} is a symbolic link (to ${safeName(target)}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT`;
+    }
+    return `${safeName(logsDir)} is not a folder: remove it, or name a folder with --logs OUT`;
+}
+
+/** Where the previous run's logs are moved, inside the logs folder. */
+export const PREVIOUS_DIR = 'previous';
+
+/** Why OUT/previous cannot take the previous run's logs (a link or a file there), or null. */
+export async function refusedPrevious(logsDir: string): Promise<string | null> {
+    const st = await fsp.lstat(join(logsDir, PREVIOUS_DIR)).catch(() => null);
+    if (!st || st.isDirectory()) return null;
+    return `${safeName(join(logsDir, PREVIOUS_DIR))} is ${st.isSymbolicLink() ? 'a symbolic link' : 'not a folder'}: the previous run's logs are moved there (never through a link); remove it, or name another folder with --logs OUT`;
+}
+
+export interface SavedLogs {
+    /** The logs written, by name. */
+    saved: string[];
+    /** Logs not written, `NAME: why` (a link or another file of that name in the folder). */
+    refused: string[];
+    /** Where the previous run's logs were moved (OUT/previous/run-...), and how many. */
+    movedAside: { folder: string; files: number } | null;
+}
+
+/** `run-2026-12-03T02-05-31` from a time (local, as the logs' own names). */
+function runStamp(ms: number): string {
+    const d = new Date(ms);
+    const two = (n: number) => String(n).padStart(2, '0');
+    return `run-${d.getFullYear()}-${two(d.getMonth() + 1)}-${two(d.getDate())}T${two(d.getHours())}-${two(d.getMinutes())}-${two(d.getSeconds())}`;
+}
+
+/** Opens (creating it) the folder `name` inside the folder open as `parent`, never through a link. */
+async function openSubfolder(parent: fsp.FileHandle, name: string, exclusive: boolean): Promise<fsp.FileHandle> {
+    const path = `/proc/self/fd/${parent.fd}/${name}`;
+    await fsp.mkdir(path, { mode: 0o755 }).catch((e: NodeJS.ErrnoException) => {
+        if (exclusive || e.code !== 'EEXIST') throw e;
+    });
+    return fsp.open(path, constants.O_RDONLY | constants.O_DIRECTORY | constants.O_NOFOLLOW);
+}
+
+/**
+ * One run per logs folder: the CSV logs (regular files named `<MODULE>_*.csv`) already in the
+ * folder open as `dir` — the previous run's — are moved into `previous/run-<time of the newest>/`
+ * (never deleted; a link or anything else there is left alone). Returns that folder and the
+ * number moved, or null when there was none.
+ */
+async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<SavedLogs['movedAside']> {
+    const here = `/proc/self/fd/${dir.fd}`;
+    const old: { name: string; mtime: number }[] = [];
+    for (const name of await fsp.readdir(here)) {
+        if (!LOG_FILE_NAME.test(name)) continue;
+        const st = await fsp.lstat(`${here}/${name}`).catch(() => null);
+        if (st?.isFile()) old.push({ name, mtime: st.mtimeMs });
+    }
+    if (!old.length) return null;
+    const previous = await openSubfolder(dir, PREVIOUS_DIR, false);
+    try {
+        const stamp = runStamp(Math.max(...old.map((o) => o.mtime)));
+        let run: fsp.FileHandle | undefined;
+        let folder = stamp;
+        for (let i = 2; !run; i++) {
+            try {
+                run = await openSubfolder(previous, folder, true);
+            } catch (e) {
+                if ((e as NodeJS.ErrnoException).code !== 'EEXIST' || i > 1000) throw e;
+                folder = `${stamp}-${i}`;
+            }
+        }
+        try {
+            for (const o of old) await fsp.rename(`${here}/${o.name}`, `/proc/self/fd/${run.fd}/${o.name}`);
+        } finally {
+            await run.close().catch(() => {});
+        }
+        return { folder: join(to, PREVIOUS_DIR, folder), files: old.length };
+    } finally {
+        await previous.close().catch(() => {});
+    }
+}
+
+/**
+ * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
+ * `job.artifacts`), into `to`, after moving the previous run's logs there aside (one run per
+ * folder: `contract trace OUT` tells this run). Never writes through a link found there (the
+ * folder itself, when `noFollowDir`, opened O_NOFOLLOW and written through its descriptor: a link
+ * put there during the run is not followed either): a log whose name is taken by a link, a FIFO or
+ * anything but a regular file is refused and said, the others are written.
+ */
+export async function saveLogs(artifacts: RunArtifacts | null, to: string, noFollowDir: boolean): Promise<SavedLogs> {
+    const result: SavedLogs = { saved: [], refused: [], movedAside: null };
+    const files = (artifacts?.files ?? []).filter((f) => /^[\w.-]+\.csv$/.test(f.name));
+    if (!files.length) return result;
+    await fsp.mkdir(to, { recursive: true });
+    const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));
+    try {
+        result.movedAside = await moveAsidePrevious(dir, to);
+        for (const file of files) {
+            let handle: fsp.FileHandle;
+            try {
+                // O_NONBLOCK: a FIFO planted under a log's name fails (ENXIO) rather than wait for a reader
+                handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW | constants.O_NONBLOCK, 0o644);
+            } catch (e) {
+                const code = (e as NodeJS.ErrnoException).code;
+                result.refused.push(`${file.name}: ${code === 'ELOOP' ? 'a symbolic link of that name is there (never written through)' : code === 'ENXIO' ? 'a FIFO of that name is there' : `cannot be written (${code ?? (e as Error).message})`}`);
+                continue;
+            }
+            try {
+                const st = await handle.stat();
+                if (!st.isFile()) {
+                    result.refused.push(`${file.name}: ${st.isDirectory() ? 'a folder' : 'something other than a file'} of that name is there`);
+                    continue;
+                }
+                await handle.truncate(0);
+                // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
+                await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
+                result.saved.push(file.name);
+            } finally {
+                await handle.close().catch(() => {});
+            }
+        }
+    } finally {
+        await dir.close().catch(() => {});
+    }
+    result.saved.sort();
+    return result;
+}
