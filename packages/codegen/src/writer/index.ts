@@ -2,10 +2,11 @@ export { writeTree, type GeneratedFile, type WriteTreeOptions } from './write-tr
 export { emptyReport, formatProblem, type GenerationReport, type GenerationProblem } from './report.js';
 export { ORPHANS_DIR } from './orphans.js';
 export { MANIFEST_NAME } from './manifest.js';
+export { renameInGeneratedTree, renameRegionId, renameGeneratedName, type RenameGeneratedReport } from './rename-generated.js';
 export {
-    renameInGeneratedTree, renameRegionId, renameGeneratedName, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher,
-    type RenameGeneratedReport, type IdentifierCarryReport, type RegionMention,
-} from './rename-generated.js';
+    renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher,
+    type IdentifierCarryReport, type RegionMention,
+} from './rename-user-code.js';
 export { cWords, renameIdentifier, type CWord, type WordContext } from './c-identifiers.js';
 export { writeFileAtomic, isAtomicTempFile } from './atomic-write.js';
 export { UnsafePathError, checkTreePath, checkTreeRoot, lstatInTree, treePathProblem } from './safe-paths.js';

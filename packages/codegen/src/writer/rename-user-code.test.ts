@@ -10,7 +10,8 @@ import { afterEach, describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
 import { tempDir } from '../test-support/temp-dir.js';
 import { cWords, renameIdentifier } from './c-identifiers.js';
-import { findRegionMentions, identifierRenames, mentionMatcher, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, renameInGeneratedTree } from './rename-generated.js';
+import { renameInGeneratedTree } from './rename-generated.js';
+import { findRegionMentions, identifierRenames, mentionMatcher, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree } from './rename-user-code.js';
 import { writeTree } from './write-tree.js';
 
 let cleanups: Array<() => void> = [];
