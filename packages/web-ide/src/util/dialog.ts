@@ -18,6 +18,9 @@ export function askText(title: string, initial = '', hint = ''): Promise<string 
     const ok = h('button', { class: 'btn primary', onclick: () => done(input.value.trim() || null) }, 'OK');
     const cancel = h('button', { class: 'btn', onclick: () => done(null) }, 'Cancel');
     input.addEventListener('keydown', (e) => {
+      // the key is used up: the focus goes back to the button that opened the dialog, which must
+      // not get this Enter as a click (it would open the dialog again)
+      if (e.key === 'Enter' || e.key === 'Escape') e.preventDefault();
       if (e.key === 'Enter') done(input.value.trim() || null);
       if (e.key === 'Escape') done(null);
     });
@@ -67,7 +70,13 @@ export function askFields(title: string, fields: Array<{ key: string; label: str
       modal = undefined;
       resolve(ok ? values : null);
     };
-    for (const i of inputs) i.addEventListener('keydown', (e) => (e.key === 'Enter' ? done(true) : e.key === 'Escape' ? done(false) : undefined));
+    for (const i of inputs) {
+      i.addEventListener('keydown', (e) => {
+        if (e.key !== 'Enter' && e.key !== 'Escape') return;
+        e.preventDefault(); // not a click on the button the focus goes back to
+        done(e.key === 'Enter');
+      });
+    }
     const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title),
       ...fields.flatMap((f, n) => (f.checkbox ? [h('label', { class: 'dialog-hint dialog-check-row' }, inputs[n]!, ` ${f.label}`)] : [h('label', { class: 'dialog-hint' }, f.label), inputs[n]!])),
       h('div', { class: 'dialog-buttons' }, h('button', { class: 'btn', onclick: () => done(false) }, 'Cancel'), h('button', { class: 'btn primary', onclick: () => done(true) }, 'Save')));
