@@ -1,11 +1,29 @@
 import { existsSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, posix } from 'node:path';
+import { afterEach } from 'vitest';
 
 /** A fresh temporary folder; call the returned cleanup when done. */
 export function tempDir(prefix = 'codegen-'): { dir: string; cleanup: () => void } {
     const dir = mkdtempSync(join(tmpdir(), prefix));
     return { dir, cleanup: () => rmSync(dir, { recursive: true, force: true }) };
+}
+
+/**
+ * For a test file: `out()` gives a fresh temporary folder, and every folder it gave is removed
+ * after each test.
+ */
+export function scratchDirs(prefix?: string): () => string {
+    let cleanups: Array<() => void> = [];
+    afterEach(() => {
+        cleanups.forEach((c) => c());
+        cleanups = [];
+    });
+    return () => {
+        const t = tempDir(prefix);
+        cleanups.push(t.cleanup);
+        return t.dir;
+    };
 }
 
 /** Every file under `root` (relative '/'-paths, sorted) with its bytes as a latin1 string. */

@@ -1,23 +1,15 @@
 /** Orphan files say where their code came from, when, and how to bring it back (docs/codegen.md, "Renames"). */
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterEach, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
-import { tempDir } from '../test-support/temp-dir.js';
+import { scratchDirs } from '../test-support/temp-dir.js';
 import { fileOrphanText, orphanEntity, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
 import { writeTree } from './write-tree.js';
 
-let cleanups: Array<() => void> = [];
-afterEach(() => {
-    cleanups.forEach((c) => c());
-    cleanups = [];
-});
-function out(): string {
-    const t = tempDir();
-    cleanups.push(t.cleanup);
-    return t.dir;
-}
+/** A fresh output folder per call, removed after each test. */
+const out = scratchDirs();
 
 const MSC = 'generated/architecture/modules/MSC_mod/module.c';
 const module = (path: string, ...ids: string[]) => ({ path, content: `// ${path}\n` + ids.map((id) => `${region(id, '\n//TODO\n')}\n`).join('') });

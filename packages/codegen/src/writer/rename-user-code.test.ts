@@ -6,24 +6,16 @@
  */
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterEach, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
-import { tempDir } from '../test-support/temp-dir.js';
+import { scratchDirs } from '../test-support/temp-dir.js';
 import { cWords, renameIdentifier } from './c-identifiers.js';
 import { renameInGeneratedTree } from './rename-generated.js';
 import { findRegionMentions, identifierRenames, mentionMatcher, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree } from './rename-user-code.js';
 import { writeTree } from './write-tree.js';
 
-let cleanups: Array<() => void> = [];
-afterEach(() => {
-    cleanups.forEach((c) => c());
-    cleanups = [];
-});
-function out(): string {
-    const t = tempDir();
-    cleanups.push(t.cleanup);
-    return t.dir;
-}
+/** A fresh output folder per call, removed after each test. */
+const out = scratchDirs();
 const path = (m: string) => `generated/architecture/modules/${m}_mod/module.c`;
 
 describe('C words', () => {

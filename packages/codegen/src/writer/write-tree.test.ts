@@ -1,20 +1,12 @@
 import { existsSync, readFileSync, statSync, utimesSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { afterEach, describe, expect, it } from 'vitest';
+import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
-import { tempDir } from '../test-support/temp-dir.js';
+import { scratchDirs } from '../test-support/temp-dir.js';
 import { writeTree, type GeneratedFile } from './write-tree.js';
 
-let cleanups: Array<() => void> = [];
-afterEach(() => {
-    cleanups.forEach((c) => c());
-    cleanups = [];
-});
-function out(): string {
-    const t = tempDir();
-    cleanups.push(t.cleanup);
-    return t.dir;
-}
+/** A fresh output folder per call, removed after each test. */
+const out = scratchDirs();
 
 const file = (path: string, ...ids: string[]): GeneratedFile => ({
     path,
