@@ -11,7 +11,7 @@ import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import type { Page } from 'playwright-core';
-import { startSession, openIde, placeCursor, activeValue, openFile, waitSaved, openAnotherBrowser, shot, SHOTS as SHOTS_DIR, type Session } from './harness.js';
+import { startSession, openIde, placeCursor, activeValue, waitSaved, shot, SHOTS as SHOTS_DIR, type Session, startTwoBrowsersOn } from './harness.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 const SCHED = 'sched.contract';
@@ -59,13 +59,7 @@ async function makeOverlap(anchor: string, mine: string, theirs: string): Promis
 
 describe('editor defects of the field test', () => {
   beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    s.page.on('pageerror', (e) => errors.push(`A (${expect.getState().currentTestName}): ${e.message}`));
-    await openIde(s);
-    other = await openAnotherBrowser(s, 'field-b');
-    other.page.on('pageerror', (e) => errors.push(`B (${expect.getState().currentTestName}): ${e.message}`));
-    await openFile(s.page, SCHED);
-    await openFile(other.page, SCHED);
+    ({ s, other } = await startTwoBrowsersOn(SCHED, 'field-b', (which, message) => errors.push(`${which} (${expect.getState().currentTestName}): ${message}`)));
   }, 90_000);
   afterAll(async () => {
     await other?.close();

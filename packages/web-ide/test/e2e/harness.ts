@@ -158,3 +158,18 @@ export async function openAnotherTab(s: Session, page: Page): Promise<Page> {
 export async function cursorLine(page: Page): Promise<number> {
   return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getPosition(): { lineNumber: number } } } } }).__ide.editors.editor.getPosition().lineNumber);
 }
+
+/**
+ * The IDE in two browsers (each its own storage) on one server, both with `path` open: the set-up
+ * of the tests of one file edited in two places. `onPageError` hears both pages' errors.
+ */
+export async function startTwoBrowsersOn(path: string, name: string, onPageError?: (which: 'A' | 'B', message: string) => void): Promise<{ s: Session; other: { page: Page; close(): Promise<void> } }> {
+  const s = await startSession({ buildService: false });
+  if (onPageError) s.page.on('pageerror', (e) => onPageError('A', e.message));
+  await openIde(s);
+  const other = await openAnotherBrowser(s, name);
+  if (onPageError) other.page.on('pageerror', (e) => onPageError('B', e.message));
+  await openFile(s.page, path);
+  await openFile(other.page, path);
+  return { s, other };
+}

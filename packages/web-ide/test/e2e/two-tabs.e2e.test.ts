@@ -9,7 +9,7 @@ import { readFileSync, writeFileSync, renameSync } from 'node:fs';
 import { createHash } from 'node:crypto';
 import { join } from 'node:path';
 import type { Page, Request } from 'playwright-core';
-import { startSession, openIde, shot, placeCursor, activeValue, openFile, waitSaved, openAnotherBrowser, openAnotherTab, type Session } from './harness.js';
+import { shot, placeCursor, activeValue, openFile, waitSaved, openAnotherTab, type Session, startTwoBrowsersOn } from './harness.js';
 
 let s: Session;
 let other: { page: Page; close(): Promise<void> };
@@ -24,11 +24,7 @@ const backups = (page: Page) => page.evaluate((p) => Object.keys(localStorage).f
 
 describe('one file edited in two IDE tabs and by a script', () => {
   beforeAll(async () => {
-    s = await startSession({ buildService: false });
-    await openIde(s);
-    other = await openAnotherBrowser(s, 'second');
-    await openFile(s.page, SCHED);
-    await openFile(other.page, SCHED);
+    ({ s, other } = await startTwoBrowsersOn(SCHED, 'second'));
   }, 90_000);
   afterAll(async () => {
     await other?.close();
