@@ -120,4 +120,8 @@ export interface RenameEntityResponse {
   refused?: string;
   /** Mentions of the old name left in protected regions: code (the build fails until changed by hand), comments, literals. */
   remaining: Array<{ file: string; line: number; id: string; word: string; context: string }>;
+  /** Lines of the project's `.scenario` files that named the entity, rewritten (file: workspace path). */
+  scenarios: Array<{ file: string; line: number; before: string; after: string }>;
+  /** `.scenario` files that named the entity but were not rewritten, and why (changed meanwhile, not a regular file...). */
+  scenariosLeft: Array<{ file: string; reason: string }>;
 }

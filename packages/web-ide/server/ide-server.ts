@@ -15,8 +15,8 @@ import { guardRequest } from './request-guard.js';
 import { SessionToken } from './session-token.js';
 import { readJson, sendError, sendJson } from './http-util.js';
 import { PROJECT_TEMPLATES } from './project-templates.js';
-import { createEmbeddedBuildServer, loadWorkspaceDocuments, renameGeneratedEntity, renameInUserCode, runCodegen, type BuildServerLike } from './integrations.js';
-import type { RenameEntityResponse } from './api-types.js';
+import { createEmbeddedBuildServer, loadWorkspaceDocuments, runCodegen, type BuildServerLike } from './integrations.js';
+import { renameEntity } from './rename-api.js';
 import type { GenerateResponse } from './api-types.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { inProjectFolder } from './project-folder.js';
@@ -26,9 +26,6 @@ import { SimulateApi } from './simulate-api.js';
 import { SharedRuns } from './shared-runs.js';
 import { WebSocketServer } from 'ws';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
-
-/** Kinds of rename whose name the user code of the generated C uses (POST /api/rename-entity `kind`). */
-const USER_CODE_KINDS = new Set(['port', 'parameter', 'datatype', 'function']);
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -213,32 +210,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       return true;
     }
     if (route === 'POST /api/rename-entity') {
-      const body = await readJson(req);
-      const projectDir = paths.resolve(body.project ?? '');
-      if (typeof body.from !== 'string' || typeof body.to !== 'string') throw new HttpError(400, 'from and to are required');
-      const { from, to } = body;
-      const kind: unknown = body.kind;
-      const owner: unknown = body.owner;
-      if (kind !== undefined && !(typeof kind === 'string' && USER_CODE_KINDS.has(kind))) throw new HttpError(400, `kind must be one of ${[...USER_CODE_KINDS].join(', ')}`);
-      if (owner !== undefined && !(typeof owner === 'string' && /^[A-Za-z_][A-Za-z0-9_]*$/.test(owner))) throw new HttpError(400, 'owner must be a module name');
-      if ((kind === 'port' || kind === 'parameter') && owner === undefined) throw new HttpError(400, `a ${kind} rename needs its module (owner)`);
-      try {
-        const report: RenameEntityResponse = await treeLock.run(() => inProjectFolder(paths, projectDir, async (dir) => {
-          const srcGen = join(dir, SRC_GEN_DIR);
-          // entities that name generated files (modules, supervisors, datatypes, functions): paths and region IDs move
-          const moved = kind === 'port' || kind === 'parameter' ? { movedPaths: [], regionIds: [] } : await renameGeneratedEntity(srcGen, from, to);
-          // names the user code uses: its uses in protected-region code follow (contract rename does the same)
-          const code = typeof kind === 'string' ? await renameInUserCode(srcGen, kind, from, to, owner as string | undefined) : { rewritten: [], remaining: [] };
-          return {
-            movedPaths: moved.movedPaths, regionIds: moved.regionIds, rewritten: code.rewritten, remaining: code.remaining,
-            ...(code.refused ? { refused: code.refused } : {}),
-          };
-        }));
-        sendJson(res, 200, report);
-      } catch (e) {
-        if (e instanceof HttpError) throw e; // codegen not built: 503
-        throw new HttpError(409, (e as Error).message);
-      }
+      sendJson(res, 200, await renameEntity(paths, treeLock, fileLocks, await readJson(req)));
       return true;
     }
     return false;

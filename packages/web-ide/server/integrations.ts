@@ -4,7 +4,7 @@
  * built; the user then gets a clear error naming the missing package instead of a crash. The
  * types are the packages' own (type-only imports: nothing is loaded until a function runs).
  */
-import type { LoadedWorkspace, WorkspaceDocument } from '@contract-studio/language/node';
+import type { LoadedWorkspace, ScenarioRename, WorkspaceDocument } from '@contract-studio/language/node';
 import type { GenerationReport, RenameGeneratedReport } from '@contract-studio/codegen';
 import type { RegionParser } from './region-guard.js';
 import { HttpError } from './http-error.js';
@@ -76,6 +76,15 @@ export async function renameInUserCode(srcGen: string, kind: string, from: strin
   const codegen = await importWith<CodegenApi, 'identifierRenames' | 'renameIdentifiersInGeneratedTree'>('@contract-studio/codegen', ['identifierRenames', 'renameIdentifiersInGeneratedTree']);
   const renames = codegen.identifierRenames(kind, from, to);
   return codegen.renameIdentifiersInGeneratedTree(srcGen, renames, kind === 'port' || kind === 'parameter' ? owner : undefined);
+}
+
+/**
+ * The language package's carry-over of a rename into the project's `.scenario` files (the one
+ * `contract rename` uses): the new texts of the files that name the entity, token by token; not written.
+ */
+export async function renameInScenarioFiles(dir: string, skip: string[], rename: ScenarioRename) {
+  const lang = await importWith<LanguageNodeApi, 'projectScenarios' | 'renameInScenarios'>('@contract-studio/language/node', ['projectScenarios', 'renameInScenarios']);
+  return lang.renameInScenarios(dir, lang.projectScenarios(dir, skip), rename);
 }
 
 /** codegen's protected-region parser (parseRegions + RegionSyntaxError), for the guard of generated files. */

@@ -6,7 +6,7 @@
  * move, user code is kept byte for byte, a default MODULE_DESCRIPTION follows), rewrites the uses
  * of a renamed port or parameter in its module's protected regions (whole C identifiers in code:
  * codegen's renameIdentifierInGeneratedTree), renames the entity in the project's `.scenario`
- * files (rename-scenarios.ts), then generates and lists the protected regions that still mention
+ * files (language's rename-scenarios.ts), then generates and lists the protected regions that still mention
  * the old name (file:line). docs/getting-started.md, "Renaming"; docs/codegen.md, "Renames".
  * Exit 1 with a message when the entity is unknown, the name invalid or taken, or the model has
  * errors (a rename needs every reference resolved); nothing is changed then. Exit 1 too, after
@@ -19,7 +19,6 @@ import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../
 import { formatText, summarize } from '../diagnostic-format.js';
 import { safeName } from '../terminal-text.js';
 import { printReport } from './generate.js';
-import { projectScenarios, renameInScenarios } from './rename-scenarios.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export const renameCommand: Command = {
@@ -48,9 +47,8 @@ export const renameCommand: Command = {
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
 
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
-        const { loadWorkspace, planRename, RenameError } = await import('@contract-studio/language/node');
+        const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
         const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic } = await import('@contract-studio/codegen');
-        const { parseScenario } = await import('@contract-studio/language/scenario');
         const workspace = await loadWorkspace(dir);
         // a rename needs the text parsed and every reference resolved; other errors (a reserved
         // name, a bad value...) do not stop it: renaming is often how they are fixed
@@ -102,7 +100,7 @@ export const renameCommand: Command = {
         }
         const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
             kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner: plan.kind === 'supervision function' ? oldSpec.split('.')[0] : owner,
-        }, parseScenario);
+        });
         for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
         const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
         io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);

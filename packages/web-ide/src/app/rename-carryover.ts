@@ -6,11 +6,13 @@ import { toast } from '../util/toast.js';
 import { reportError } from './report-error.js';
 
 /**
- * A rename refactoring carries the generated tree over, then regenerates: a module, schema,
- * supervisor, datatype or function moves its generated files and region IDs; a port's or
- * parameter's uses in its module's protected-region code follow, as a datatype's and a function's
- * do in every region (whole C identifiers in code: `contract rename` does the same). Uses it could
- * not change (the new name already in that code) are said, with where.
+ * A rename refactoring carries the generated tree over, then regenerates: a module, supervisor,
+ * datatype or function moves its generated files and region IDs; a port's or parameter's uses in
+ * its module's protected-region code follow, as a datatype's and a function's do in every region
+ * (whole C identifiers in code); the project's `.scenario` files follow a module, supervisor,
+ * schema, supervision function, event port, datatype or enumeration (`contract rename` does the
+ * same). Uses it could not change (the new name already in that code, a scenario changed
+ * meanwhile) are said, with where.
  */
 export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspace; editors: EditorArea; project(): string; generate(): Promise<boolean> }): void {
   const { lsp, workspace, editors } = d;
@@ -23,12 +25,18 @@ export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspac
       const r = await api.renameEntity(project, old, newName, { kind, owner });
       const base = `${project ? `${project}/` : ''}src-gen/`;
       const uses = r.rewritten.reduce((n, w) => n + w.occurrences, 0);
+      const scenarioFiles = new Set(r.scenarios.map((e) => e.file)).size;
+      const parts = [
+        ...(r.movedPaths.length || r.regionIds.length ? [`${r.movedPaths.length} generated path(s) and ${r.regionIds.length} protected region(s) carried over`] : []),
+        ...(uses ? [`${uses} use(s) in the code of ${r.rewritten.length} protected region(s) renamed`] : []),
+        ...(scenarioFiles ? [`${r.scenarios.length} line(s) of ${scenarioFiles} scenario file(s) renamed`] : []),
+      ];
+      if (parts.length) toast('info', `Renamed ${old} → ${newName}: ${parts.join('; ')}`);
+      if (r.scenariosLeft.length) {
+        const first = r.scenariosLeft[0]!;
+        toast('error', `${r.scenariosLeft.length} scenario file(s) naming ${old} were not renamed (first: ${first.file}: ${first.reason}): change them by hand`);
+      }
       if (r.movedPaths.length || r.regionIds.length || uses) {
-        const parts = [
-          ...(r.movedPaths.length || r.regionIds.length ? [`${r.movedPaths.length} generated path(s) and ${r.regionIds.length} protected region(s) carried over`] : []),
-          ...(uses ? [`${uses} use(s) in the code of ${r.rewritten.length} protected region(s) renamed`] : []),
-        ];
-        toast('info', `Renamed ${old} → ${newName}: ${parts.join('; ')}`);
         await workspace.refreshTree();
         for (const m of r.movedPaths) {
           const from = base + m.from;

@@ -304,31 +304,43 @@ export interface RenameEvent {
   oldName: string;
   newName: string;
   topLevel: boolean;
-  kind?: 'port' | 'parameter' | 'datatype' | 'function';
+  kind?: RenamedKind;
   owner?: string;
 }
 
+/** What a rename renamed, as POST /api/rename-entity names it (its carry-over into src-gen and the `.scenario` files). */
+export type RenamedKind = 'module' | 'supervisor' | 'schema' | 'supervision function' | 'port' | 'parameter' | 'datatype' | 'enumeration' | 'function';
+
 /** LSP SymbolKind numbers of the Cactal document symbols (language cactal-document-symbol-provider.ts). */
-const SYMBOL = { Class: 5, Property: 7, Function: 12, Variable: 13, Struct: 23, Event: 24 } as const;
+const SYMBOL = { Class: 5, Method: 6, Property: 7, Enum: 10, Function: 12, Variable: 13, Namespace: 3, Struct: 23, Event: 24 } as const;
 
 /**
- * What a rename renames, from the document symbols of its definition's file: a datatype or a
- * function at top level, or a port (Event, Variable) or parameter (Property) of a module (Class),
- * the module named as owner. `line` (1-based) is the definition's line, to tell apart two ports of
- * one name in two modules of a file. Nothing for other names (labels, locals, schemas...).
+ * What a rename renames, from the document symbols of its definition's file: a module or a
+ * supervisor (Class, told apart by its detail), a schema (Namespace), a datatype, an enumeration or
+ * a function at top level; a port (Event, Variable) or parameter (Property) of a module or
+ * supervisor, a supervision function (Method) of a supervisor, the owner named. `line` (1-based) is
+ * the definition's line, to tell apart two ports of one name in two modules of a file. Nothing for
+ * other names (labels, locals, schemas' parameters...).
  */
 function renamedSymbol(symbols: lsp.DocumentSymbol[], name: string, line: number | undefined): Pick<RenameEvent, 'kind' | 'owner'> {
   const at = (s: lsp.DocumentSymbol) => line === undefined || (s.range.start.line + 1 <= line && line <= s.range.end.line + 1);
   for (const top of symbols) {
     if (top.name === name && at(top)) {
       if (top.kind === SYMBOL.Struct) return { kind: 'datatype' };
+      if (top.kind === SYMBOL.Enum) return { kind: 'enumeration' };
       if (top.kind === SYMBOL.Function) return { kind: 'function' };
+      if (top.kind === SYMBOL.Namespace) return { kind: 'schema' };
+      // a port's line is inside its module's range: the module itself only when the line is its own
+      if (top.kind === SYMBOL.Class && (line === undefined || top.selectionRange.start.line + 1 === line)) {
+        return { kind: top.detail === 'supervisor' ? 'supervisor' : 'module' };
+      }
     }
     if (top.kind !== SYMBOL.Class || !at(top)) continue;
     for (const child of top.children ?? []) {
       if (child.name !== name || !at(child)) continue;
       if (child.kind === SYMBOL.Event || child.kind === SYMBOL.Variable) return { kind: 'port', owner: top.name };
       if (child.kind === SYMBOL.Property) return { kind: 'parameter', owner: top.name };
+      if (child.kind === SYMBOL.Method) return { kind: 'supervision function', owner: top.name };
     }
   }
   return {};

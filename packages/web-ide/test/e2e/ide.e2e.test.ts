@@ -297,6 +297,29 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.toast', { hasText: 'use(s) in the code of' }).first().waitFor({ timeout: 5000 });
   });
 
+  it.skipIf(!canGenerate)('renames a supervision function: the project\'s scenarios follow, an open scenario tab shows it', async () => {
+    const { page } = s;
+    const file = 'scenarios/commutation.scenario';
+    expect(disk(file)).toContain('start SUP.action(consigne = {1.0, 2.0, 3.0})');
+    await openFile(page, file);
+    await openFile(page, 'supervisor.contract');
+    await placeCursor(page, 'action(TypeA consigne)', 1);
+    await page.keyboard.press('F2');
+    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
+    await page.keyboard.press('Control+a');
+    await page.keyboard.type('react');
+    await page.keyboard.press('Enter');
+    await expect.poll(() => disk('supervisor.contract'), { timeout: 5000 }).toContain('react(TypeA consigne)');
+    await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('start SUP.react(consigne = {1.0, 2.0, 3.0})');
+    expect(disk(file)).toContain('expect rule SUP.react.SECOND active');
+    // the files are written one after the other: the second may come a moment later
+    await expect.poll(() => disk('scenarios/mission.scenario'), { timeout: 10_000 }).not.toMatch(/^(?!#|scenario )[^\n]*SUP\.action\b/m);
+    await page.locator('.toast', { hasText: 'scenario file(s) renamed' }).first().waitFor({ timeout: 5000 });
+    // the scenario's tab, open and unchanged, takes the new text
+    await openFile(page, file);
+    await expect.poll(() => activeValue(page), { timeout: 10_000 }).toContain('start SUP.react(consigne');
+  });
+
   it('log view: follows the tail as lines stream in, keeps its rows when scrolled up, and filters', async () => {
     const { page } = s;
     await page.locator('.panel-tab[data-panel=output]').click();

@@ -1,14 +1,15 @@
 /**
- * `contract rename` and the project's `.scenario` files (docs/simulation.md): the names a scenario
- * writes follow the rename, token by token, from the scenario parser's spans (never a text search):
- * a module or supervisor (`M:P`, `crash M`, `exec M`, `expect module M`, `start SUP.fn`, `expect rule
- * SUP.fn.RULE`, ...), a schema (`expect schema S`, `ORD:0 "S"`), a supervision function (`SUP.fn`
- * of that supervisor), an out event port's variable name (`M:P name = value` of that module), an
- * enumeration (`Mode.AUTO` values). Part of the rename command (rename.ts).
+ * A rename carried into the project's `.scenario` files (docs/simulation.md "Scenario files"): the
+ * names a scenario writes follow the rename, token by token, from the scenario parser's spans (never
+ * a text search): a module or supervisor (`M:P`, `crash M`, `exec M`, `expect module M`, `start
+ * SUP.fn`, `expect rule SUP.fn.RULE`, ...), a schema (`expect schema S`, `ORD:0 "S"`), a supervision
+ * function (`SUP.fn` of that supervisor), an out event port's variable name (`M:P name = value` of
+ * that module), an enumeration (`Mode.AUTO` values). `contract rename` and the IDE's rename
+ * (POST /api/rename-entity) both use it.
  */
-import { readdirSync, readFileSync } from 'node:fs';
+import { closeSync, constants, fstatSync, openSync, readdirSync, readFileSync } from 'node:fs';
 import { join, relative } from 'node:path';
-import type { ParsedScenario, ScenarioValue, SourceSpan, Step } from '@contract-studio/language/scenario';
+import { parseScenario, type ScenarioValue, type SourceSpan, type Step } from '../scenario/parse.js';
 
 export interface ScenarioRename {
     /** The rename's kind word (`module`, `supervisor`, `schema`, `supervision function`, `port`, `datatype`, ...). */
@@ -29,14 +30,42 @@ export interface ScenarioEdit {
 }
 
 export interface ScenarioFileChange {
+    /** Path relative to the project folder. */
     file: string;
     path: string;
+    /** The text read (a writer can check the file did not change since). */
+    original: string;
+    /** The new text. */
     text: string;
     edits: ScenarioEdit[];
 }
 
+/** The kinds of rename a scenario can name (ScenarioRename.kind). */
+export const SCENARIO_RENAME_KINDS: ReadonlySet<string> = new Set(['module', 'supervisor', 'schema', 'supervision function', 'port', 'datatype', 'enumeration']);
+
 const MAX_DEPTH = 6;
 const MAX_FILES = 10_000;
+/** A scenario file larger than this is left as it is (the simulator reads 256 Ki characters at most). */
+const MAX_SCENARIO_BYTES = 1 << 20;
+
+/** A scenario file's text, read without following a link; undefined if it is not a regular file of a sane size. */
+function readScenario(path: string): string | undefined {
+    let fd: number;
+    try {
+        fd = openSync(path, constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
+    } catch {
+        return undefined;
+    }
+    try {
+        const st = fstatSync(fd);
+        if (!st.isFile() || st.size > MAX_SCENARIO_BYTES) return undefined;
+        return readFileSync(fd, 'utf8');
+    } catch {
+        return undefined;
+    } finally {
+        closeSync(fd);
+    }
+}
 
 /**
  * The `.scenario` files of the project folder `dir`: in it and its subfolders, except the generated
@@ -132,17 +161,12 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
  * The new texts of the scenario files that name the renamed entity (files that do not change are
  * not listed). Each replaced token is checked to be the old name where the parser put it.
  */
-export function renameInScenarios(dir: string, files: string[], r: ScenarioRename, parse: (text: string) => ParsedScenario): ScenarioFileChange[] {
+export function renameInScenarios(dir: string, files: string[], r: ScenarioRename): ScenarioFileChange[] {
     const changes: ScenarioFileChange[] = [];
     for (const path of files) {
-        let text: string;
-        try {
-            text = readFileSync(path, 'utf8');
-        } catch {
-            continue;
-        }
-        if (!text.includes(r.oldName)) continue;
-        const parsed = parse(text);
+        const text = readScenario(path);
+        if (text === undefined || !text.includes(r.oldName)) continue;
+        const parsed = parseScenario(text);
         const replacements = parsed.steps.flatMap((s) => stepReplacements(s, r));
         if (replacements.length === 0) continue;
         const lines = text.split('\n');
@@ -164,7 +188,7 @@ export function renameInScenarios(dir: string, files: string[], r: ScenarioRenam
             lines[line - 1] = after;
             edits.push({ file, line, before: before.replace(/\r$/, ''), after: after.replace(/\r$/, '') });
         }
-        if (edits.length > 0) changes.push({ file, path, text: lines.join('\n'), edits });
+        if (edits.length > 0) changes.push({ file, path, original: text, text: lines.join('\n'), edits });
     }
     return changes;
 }
