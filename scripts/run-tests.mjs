@@ -8,9 +8,10 @@
 // (`npm run typecheck`: one check per workspace; vitest does not type-check). The suites that only
 // compute (conventions, language, codegen, vscode, the type check, and the installed-CLI test
 // file: BACKGROUND_FILES) run in the background at the lowest CPU priority (nice 19), side by
-// side, their output kept and printed whole at the end; the others run one at a time meanwhile,
-// streamed, and keep the CPUs whenever they want them (the computing suites fill the time the
-// sandboxes, browsers and timed runs leave the CPUs idle).
+// side, their output kept and printed whole at the end; the others run in two lanes meanwhile
+// (SECOND_LANE: the CLI and the simulator beside the C runtime, the build service and the IDE),
+// one suite at a time in each, the first lane streamed, and keep the CPUs whenever they want them
+// (the computing suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle).
 // `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
@@ -52,6 +53,13 @@ function countCRunner(out) {
 /** Workspaces whose tests only compute (no sandbox, no browser, no timing): run beside each other. */
 const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages/codegen', 'packages/vscode']);
 /**
+ * Workspaces whose suites run in a second lane, one after the other, at normal priority, beside
+ * the first lane (the C runtime, the build service, the IDE): sandboxed builds and runs with no
+ * browser. With one lane the two CPUs sat idle about half of the time (the suites wait for
+ * sandboxes, timers and browsers; 23.5 min of CPU in 21 min of wall time on two cores).
+ */
+const SECOND_LANE = new Set(['packages/cli', 'packages/simulator']);
+/**
  * Test files of the other workspaces that assert nothing about time and mostly compute (packing
  * and installing the CLI): they run in the background too, as a suite of their own.
  */
@@ -61,6 +69,7 @@ const BACKGROUND_FILES = { 'packages/cli': ['test/e2e/installed-cli.e2e.test.ts'
 function vitestSuite(name, ws, { beside, files = [], exclude = [] }) {
   return {
     name,
+    lane: !beside && SECOND_LANE.has(ws) ? 2 : 1,
     // pure computation, no sandbox timing: run side by side in the background, niced
     // (vitest gives each one worker on a two-core machine)
     beside,
@@ -155,27 +164,36 @@ function record(s, r) {
 
 const chosen = suites.filter((s) => !only.length || only.some((o) => s.name.includes(o)));
 // the suites marked `beside` start together in the background (niced), their output printed whole
-// one after the other once the others are done; the others run one at a time meanwhile, streamed
+// one after the other once the others are done; the others run in two lanes, each one suite at a
+// time: the first lane's output streamed, the second lane's kept and printed whole at the end
 // (sandboxes, browsers and timed runs come first for the CPUs)
 const together = chosen.filter((s) => s.beside);
-const alone = chosen.filter((s) => !s.beside);
+const firstLane = chosen.filter((s) => !s.beside && s.lane !== 2);
+const secondLane = chosen.filter((s) => !s.beside && s.lane === 2);
 const t0 = Date.now();
 const background = Promise.all(together.map((s) => s.exec(false)));
 if (together.length) {
   console.log(`\n=== in the background, niced: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
 }
-for (const s of alone) {
+if (secondLane.length) {
+  console.log(`\n=== in a second lane, printed at the end: ${secondLane.map((s) => s.name).join(', ')} ===`);
+}
+const secondLaneDone = (async () => {
+  const results = [];
+  for (const s of secondLane) results.push(await s.exec(false));
+  return results;
+})();
+for (const s of firstLane) {
   console.log(`\n=== ${s.name} ===`);
   record(s, await s.exec(true));
 }
-if (together.length) {
-  const results = await background;
-  together.forEach((s, i) => {
-    console.log(`\n=== ${s.name} (ran in the background) ===`);
-    if (results[i]) process.stdout.write(results[i].out);
-    record(s, results[i]);
-  });
-}
+const printKept = (list, results, how) => list.forEach((s, i) => {
+  console.log(`\n=== ${s.name} (${how}) ===`);
+  if (results[i]) process.stdout.write(results[i].out);
+  record(s, results[i]);
+});
+if (secondLane.length) printKept(secondLane, await secondLaneDone, 'ran in the second lane');
+if (together.length) printKept(together, await background, 'ran in the background');
 console.log(`=== all suites: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);
 rmSync(scratch, { recursive: true, force: true });
 if (failureDetails.length) console.log(`\nFAILED tests:\n  ${failureDetails.join('\n  ')}`);
