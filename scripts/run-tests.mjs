@@ -9,7 +9,7 @@
 // compute (conventions, language, codegen, vscode, the type check, and the installed-CLI test
 // file: BACKGROUND_FILES) run in the background at the lowest CPU priority (nice 19), side by
 // side, their output kept and printed whole at the end; the others run in two lanes meanwhile
-// (SECOND_LANE: the CLI and the simulator beside the C runtime, the build service and the IDE),
+// (SECOND_LANE: the CLI and the IDE beside the C runtime, the build service and the simulator),
 // one suite at a time in each, the first lane streamed, and keep the CPUs whenever they want them
 // (the computing suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle).
 // `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
@@ -54,11 +54,11 @@ function countCRunner(out) {
 const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages/codegen', 'packages/vscode']);
 /**
  * Workspaces whose suites run in a second lane, one after the other, at normal priority, beside
- * the first lane (the C runtime, the build service, the IDE): sandboxed builds and runs with no
- * browser. With one lane the two CPUs sat idle about half of the time (the suites wait for
- * sandboxes, timers and browsers; 23.5 min of CPU in 21 min of wall time on two cores).
+ * the first lane (the C runtime, the build service, the simulator): the CLI's sandboxed builds and
+ * runs, then the IDE's browsers. With one lane the two CPUs sat idle about half of the time (the
+ * suites wait for sandboxes, timers and browsers; 23.5 min of CPU in 21 min of wall time on two cores).
  */
-const SECOND_LANE = new Set(['packages/cli', 'packages/simulator']);
+const SECOND_LANE = new Set(['packages/cli', 'packages/web-ide']);
 /**
  * Test files of the other workspaces that assert nothing about time and mostly compute (packing
  * and installing the CLI): they run in the background too, as a suite of their own.

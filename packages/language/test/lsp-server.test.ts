@@ -69,7 +69,7 @@ describe('contract-language-server (stdio)', () => {
         client.notify('textDocument/didOpen', { textDocument: { uri: uri('broken.contract'), languageId: 'cactal', version: 1, text: 'synchronous module MSZ {\n    scheduling { C=1ms }\n}' } });
         const edits = await client.request<unknown[]>('textDocument/formatting', { textDocument: { uri: uri('broken.contract') }, options: { tabSize: 4, insertSpaces: true } });
         expect(edits).toEqual([]);
-        const deadline = Date.now() + 5000;
+        const deadline = Date.now() + 20_000;
         let shown: Array<{ type: number; message: string }> = [];
         while (Date.now() < deadline && !shown.length) {
             await new Promise((r) => setTimeout(r, 50));
