@@ -6,7 +6,9 @@
 #      runtime sources, with runtime/docker/build-image-offline.sh: the one way to make it (it does
 #      nothing when the image is up to date, else debootstrap + the runtime built inside + docker import).
 # Prints "dockerd-started <pid>" when it started the daemon (the caller may stop it afterwards).
-# Options: --rebuild (re-create the image), --stop <pid> (stop a daemon this script started).
+# Options: --rebuild (re-create the image), --daemon (step 1 only), --stop <pid> (stop a daemon
+# this script started). Two calls at once (test files of two suites) run one after the other
+# (a lock file), so that neither starts a second daemon nor builds the image beside the other.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 IMAGE=${CONTRACT_IMAGE:-contract-gcc}
@@ -23,7 +25,12 @@ if [ "${1:-}" = "--stop" ]; then
   exit 0
 fi
 rebuild=0
+daemon_only=0
 [ "${1:-}" = "--rebuild" ] && rebuild=1
+[ "${1:-}" = "--daemon" ] && daemon_only=1
+
+exec 9>"${TMPDIR:-/tmp}/contract-docker-up.lock"
+flock 9
 
 command -v docker >/dev/null || { log "the docker CLI is missing: apt-get install docker.io"; exit 1; }
 
@@ -37,7 +44,7 @@ if ! docker info >/dev/null 2>&1; then
   log "starting dockerd (no bridge, no iptables: sandbox containers have no network anyway)"
   mkdir -p /var/log
   nohup dockerd --host unix:///var/run/docker.sock --bridge=none --iptables=false --ip6tables=false \
-    >/var/log/contract-dockerd.log 2>&1 &
+    >/var/log/contract-dockerd.log 2>&1 9>&- &  # the daemon must not hold the lock (fd 9)
   pid=$!
   for _ in $(seq 1 100); do docker info >/dev/null 2>&1 && break; sleep 0.3; done
   if ! docker info >/dev/null 2>&1; then
@@ -48,6 +55,8 @@ if ! docker info >/dev/null 2>&1; then
   fi
   echo "dockerd-started $pid"
 fi
+
+[ $daemon_only = 1 ] && exit 0
 
 build=(bash runtime/docker/build-image-offline.sh --image "$IMAGE")
 [ $rebuild = 1 ] && build+=(--force)

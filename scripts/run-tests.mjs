@@ -39,6 +39,18 @@ function run(cmd, args, opts = {}, echo = true) {
   });
 }
 
+/**
+ * Starts dockerd when none answers (scripts/docker-up.sh --daemon; the image is left to the docker
+ * tests, which build it when missing): the pid of the daemon it started, else undefined (one was
+ * running, or Docker cannot run here: the docker tests then say why and are skipped).
+ */
+async function startDockerd() {
+  const r = await run('bash', ['scripts/docker-up.sh', '--daemon'], {}, false);
+  const pid = /dockerd-started (\d+)/.exec(r.out)?.[1];
+  if (r.code !== 0) console.log(`(no Docker engine for the run: ${r.out.trim().split('\n').slice(-1)[0]})`);
+  return pid;
+}
+
 /** Sums every `N passed, N failed` line a C runner printed. */
 function countCRunner(out) {
   let passed = 0, failed = 0, seen = false;
@@ -171,6 +183,10 @@ const together = chosen.filter((s) => s.beside);
 const firstLane = chosen.filter((s) => !s.beside && s.lane !== 2);
 const secondLane = chosen.filter((s) => !s.beside && s.lane === 2);
 const t0 = Date.now();
+// one Docker engine for the whole run, started here when none answers and stopped at the end: the
+// docker test files of the two lanes then find it running and leave it alone (each file stops
+// only a daemon it started itself, which would pull it from under the other lane)
+const dockerd = chosen.some((s) => !s.beside) ? await startDockerd() : undefined;
 const background = Promise.all(together.map((s) => s.exec(false)));
 if (together.length) {
   console.log(`\n=== in the background, niced: ${together.map((s) => s.name.replace(/ \(.*$/, '')).join(', ')} ===`);
@@ -194,6 +210,7 @@ const printKept = (list, results, how) => list.forEach((s, i) => {
 });
 if (secondLane.length) printKept(secondLane, await secondLaneDone, 'ran in the second lane');
 if (together.length) printKept(together, await background, 'ran in the background');
+if (dockerd) await run('bash', ['scripts/docker-up.sh', '--stop', dockerd], {}, false);
 console.log(`=== all suites: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);
 rmSync(scratch, { recursive: true, force: true });
 if (failureDetails.length) console.log(`\nFAILED tests:\n  ${failureDetails.join('\n  ')}`);

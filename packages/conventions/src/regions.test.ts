@@ -88,5 +88,5 @@ describe('scanRegions and a start marker with a typo', () => {
             scanRegions(text);
             expect(cpuMs() - t0, `${text.length} chars`).toBeLessThan(1_500);
         }
-    });
+    }, 120_000); // niced beside the other suites it may wait long for a CPU: the bound above is on CPU time
 });
