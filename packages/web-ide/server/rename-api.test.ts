@@ -89,6 +89,28 @@ describe('a rename carried into the .scenario files', () => {
     expect(scenario(p, 'commutation.scenario')).toContain('MAZ:2 connection_status = "disconnected"');
   });
 
+  it('a rule label, a local (qualified or bare) and a parameter of SUP.action: only that function\'s names follow', async () => {
+    const p = project('fn');
+    expect((await rename({ project: 'fn', from: 'SECOND', to: 'LINK_LOST', kind: 'rule label', owner: 'SUP.action' })).status).toBe(200);
+    expect((await rename({ project: 'fn', from: 'temp_message', to: 'last_message', kind: 'local', owner: 'SUP.action' })).status).toBe(200);
+    expect((await rename({ project: 'fn', from: 'temp_mess_type', to: 'last_type', kind: 'local', owner: 'SUP.action' })).status).toBe(200);
+    expect((await rename({ project: 'fn', from: 'consigne', to: 'setpoint', kind: 'function parameter', owner: 'SUP.action' })).status).toBe(200);
+    const text = scenario(p, 'commutation.scenario');
+    expect(text).toContain('expect rule SUP.action.LINK_LOST active\n');
+    expect(text).toContain('expect local SUP.action.last_message == {"hello", 2, {0.5, 0.5, 0.5}}\n');
+    expect(text).toContain('expect local last_type == "commutation"\n');
+    expect(text).toContain('start SUP.action(setpoint = {1.0, 2.0, 3.0})\n');
+    // the title is free text; another function's rule of that name would not be renamed
+    expect(text).toContain('FIRST, SECOND on MAA:2');
+    const other = await rename({ project: 'fn', from: 'FIRST', to: 'ONE', kind: 'rule label', owner: 'GLB.mission' });
+    expect(other.body.scenarios).toEqual([]);
+    expect(scenario(p, 'commutation.scenario')).toContain('expect rule SUP.action.FIRST inactive\n');
+    // the owner of these kinds is SUP.function
+    expect((await rename({ project: 'fn', from: 'FIRST', to: 'ONE', kind: 'rule label', owner: 'SUP' })).status).toBe(400);
+    expect((await rename({ project: 'fn', from: 'FIRST', to: 'ONE', kind: 'rule label' })).status).toBe(400);
+    expect((await rename({ project: 'fn', from: 'x', to: 'y', kind: 'port', owner: 'SUP.action' })).status).toBe(400);
+  });
+
   it('a scenario that is a link, a FIFO or a file over 1 MiB is left alone; the files beside it are renamed', async () => {
     const p = project('hostile');
     const outside = join(base, 'outside.scenario');

@@ -6,7 +6,7 @@
  * - a name the user code uses (port, parameter, datatype, function) is rewritten in the code of the
  *   protected regions (codegen's renameIdentifiersInGeneratedTree);
  * - a name a scenario writes (module, supervisor, schema, supervision function, port, datatype,
- *   enumeration) is rewritten in the project's `.scenario` files (the language package's
+ *   enumeration; a rule label, local or parameter of a supervision function) is rewritten in the project's `.scenario` files (the language package's
  *   renameInScenarios), each file saved as the editor saves it: in its queue, its folder opened
  *   without following links, refused if it changed since it was read (then listed in `scenariosLeft`).
  * All of it runs under the generated-tree lock, on the project folder as opened (project-folder.ts).
@@ -28,9 +28,15 @@ const USER_CODE_KINDS = new Set(['port', 'parameter', 'datatype', 'function']);
 /** Kinds of rename whose name is a generated file's or a region ID's (the tree's paths and IDs move). */
 const GENERATED_NAME_KINDS = new Set(['module', 'supervisor', 'datatype', 'function']);
 /** Every kind the request takes: those above and those a `.scenario` file can name. */
-export const RENAME_KINDS: ReadonlySet<string> = new Set([...USER_CODE_KINDS, ...GENERATED_NAME_KINDS, 'schema', 'supervision function', 'enumeration']);
-/** Kinds that need the entity's owner: a port's or parameter's module, a supervision function's supervisor. */
-const OWNED_KINDS: Record<string, string> = { port: 'module', parameter: 'module', 'supervision function': 'supervisor' };
+export const RENAME_KINDS: ReadonlySet<string> = new Set([...USER_CODE_KINDS, ...GENERATED_NAME_KINDS, 'schema', 'supervision function', 'enumeration', 'rule label', 'local', 'function parameter']);
+/**
+ * Kinds that need the entity's owner: a port's or parameter's module, a supervision function's
+ * supervisor, a rule label's, local's or function parameter's function (`SUP.function`).
+ */
+const OWNED_KINDS: Record<string, string> = {
+  port: 'module', parameter: 'module', 'supervision function': 'supervisor',
+  'rule label': 'function (SUP.function)', local: 'function (SUP.function)', 'function parameter': 'function (SUP.function)',
+};
 
 export interface RenameRequest {
   project: string;
@@ -46,8 +52,11 @@ function checkRequest(body: Record<string, unknown>): RenameRequest {
   if (typeof from !== 'string' || typeof to !== 'string') throw new HttpError(400, 'from and to are required');
   if (project !== undefined && typeof project !== 'string') throw new HttpError(400, 'project must be a workspace folder');
   if (kind !== undefined && !(typeof kind === 'string' && RENAME_KINDS.has(kind))) throw new HttpError(400, `kind must be one of ${[...RENAME_KINDS].join(', ')}`);
-  if (owner !== undefined && !(typeof owner === 'string' && /^[A-Za-z_][A-Za-z0-9_]*$/.test(owner))) throw new HttpError(400, 'owner must be a module or supervisor name');
   const ownerKind = typeof kind === 'string' ? OWNED_KINDS[kind] : undefined;
+  const ownerShape = ownerKind?.startsWith('function') ? /^[A-Za-z_]\w*\.[A-Za-z_]\w*$/ : /^[A-Za-z_]\w*$/;
+  if (owner !== undefined && !(typeof owner === 'string' && ownerShape.test(owner))) {
+    throw new HttpError(400, `owner must be ${ownerKind?.startsWith('function') ? 'a supervision function as SUP.function' : 'a module or supervisor name'}`);
+  }
   if (ownerKind && owner === undefined) throw new HttpError(400, `a ${kind} rename needs its ${ownerKind} (owner)`);
   return { project: project ?? '', from, to, ...(kind !== undefined ? { kind } : {}), ...(owner !== undefined ? { owner } : {}) };
 }

@@ -4,7 +4,9 @@
  * a text search): a module or supervisor (`M:P`, `crash M`, `exec M`, `expect module M`, `start
  * SUP.fn`, `expect rule SUP.fn.RULE`, ...), a schema (`expect schema S`, `ORD:0 "S"`), a supervision
  * function (`SUP.fn` of that supervisor), an out event port's variable name (`M:P name = value` of
- * that module), an enumeration (`Mode.AUTO` values). `contract rename` and the IDE's rename
+ * that module), an enumeration (`Mode.AUTO` values), a rule label or a local of a supervision
+ * function (`expect rule SUP.fn.RULE`, `expect local [SUP.fn.]x`), a parameter of one (`start
+ * SUP.fn(x = ...)`). `contract rename` and the IDE's rename
  * (POST /api/rename-entity) both use it.
  */
 import { closeSync, constants, fstatSync, openSync, readdirSync, readFileSync } from 'node:fs';
@@ -16,7 +18,10 @@ export interface ScenarioRename {
     kind: string;
     oldName: string;
     newName: string;
-    /** For a port: its module (or supervisor); for a supervision function: its supervisor. */
+    /**
+     * For a port: its module (or supervisor); for a supervision function: its supervisor; for a
+     * rule label, a local or a function parameter: its function as `SUP.function`.
+     */
     owner?: string;
 }
 
@@ -41,7 +46,7 @@ export interface ScenarioFileChange {
 }
 
 /** The kinds of rename a scenario can name (ScenarioRename.kind). */
-export const SCENARIO_RENAME_KINDS: ReadonlySet<string> = new Set(['module', 'supervisor', 'schema', 'supervision function', 'port', 'datatype', 'enumeration']);
+export const SCENARIO_RENAME_KINDS: ReadonlySet<string> = new Set(['module', 'supervisor', 'schema', 'supervision function', 'port', 'datatype', 'enumeration', 'rule label', 'local', 'function parameter']);
 
 const MAX_DEPTH = 6;
 const MAX_FILES = 10_000;
@@ -118,6 +123,10 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
         if (owner && owner.text === r.owner && n && n.text === r.oldName && r.kind === kind) out.push({ span: n.span, from: r.oldName, to: r.newName });
     };
     const MOD = ['module', 'supervisor'];
+    /** A name of a supervision function's (`SUP.fn.NAME`, `start SUP.fn(NAME = ...)`): renamed when SUP.fn is the owner. */
+    const inFunction = (sup: { text: string } | undefined, fn: { text: string } | undefined, n: { text: string; span: SourceSpan } | undefined, kind: string) => {
+        if (sup && fn && `${sup.text}.${fn.text}` === r.owner) owned({ text: r.owner }, n, kind);
+    };
     switch (step.kind) {
         case 'event':
             name(step.module, MOD);
@@ -132,7 +141,10 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
         case 'start':
             name(step.supervisor, MOD);
             owned(step.supervisor, step.function, 'supervision function');
-            for (const a of step.args) valueReplacements(a.value, r, out);
+            for (const a of step.args) {
+                inFunction(step.supervisor, step.function, a.name, 'function parameter');
+                valueReplacements(a.value, r, out);
+            }
             break;
         case 'stop':
             name(step.supervisor, MOD);
@@ -146,10 +158,18 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
             const x = step.expectation;
             if (x.kind === 'schema') name(x.schema, ['schema']);
             else if (x.kind === 'module') name(x.module, MOD);
-            else {
+            else if (x.kind === 'local' && !x.supervisor) {
+                // a bare local names the one function that has it (else the scenario is in error)
+                if (r.kind === 'local' && x.local.text === r.oldName) out.push({ span: x.local.span, from: r.oldName, to: r.newName });
+                valueReplacements(x.value, r, out);
+            } else {
                 name(x.supervisor, MOD);
                 owned(x.supervisor, x.function, 'supervision function');
-                if (x.kind === 'local') valueReplacements(x.value, r, out);
+                if (x.kind === 'rule') inFunction(x.supervisor, x.function, x.rule, 'rule label');
+                if (x.kind === 'local') {
+                    inFunction(x.supervisor, x.function, x.local, 'local');
+                    valueReplacements(x.value, r, out);
+                }
             }
             break;
         }

@@ -17,7 +17,7 @@ import { reportError } from './report-error.js';
 export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspace; editors: EditorArea; project(): string; generate(): Promise<boolean> }): void {
   const { lsp, workspace, editors } = d;
   lsp.onRename.on(({ oldName: old, newName, topLevel, kind, owner }) => {
-    if (!old || old === newName || (!topLevel && !kind)) return; // variables, labels, schemas' parameters: nothing generated uses them
+    if (!old || old === newName || (!topLevel && !kind)) return; // schemas' parameters, fields: neither the generated tree nor a scenario names them
     void (async () => {
       await new Promise((r) => setTimeout(r, 50));
       await workspace.saveAll();

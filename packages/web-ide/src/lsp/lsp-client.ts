@@ -309,18 +309,20 @@ export interface RenameEvent {
 }
 
 /** What a rename renamed, as POST /api/rename-entity names it (its carry-over into src-gen and the `.scenario` files). */
-export type RenamedKind = 'module' | 'supervisor' | 'schema' | 'supervision function' | 'port' | 'parameter' | 'datatype' | 'enumeration' | 'function';
+export type RenamedKind = 'module' | 'supervisor' | 'schema' | 'supervision function' | 'port' | 'parameter' | 'datatype' | 'enumeration' | 'function'
+  | 'rule label' | 'local' | 'function parameter';
 
 /** LSP SymbolKind numbers of the Cactal document symbols (language cactal-document-symbol-provider.ts). */
-const SYMBOL = { Class: 5, Method: 6, Property: 7, Enum: 10, Function: 12, Variable: 13, Namespace: 3, Struct: 23, Event: 24 } as const;
+const SYMBOL = { Namespace: 3, Class: 5, Method: 6, Property: 7, Enum: 10, Function: 12, Variable: 13, Key: 20, Struct: 23, Event: 24, TypeParameter: 26 } as const;
 
 /**
  * What a rename renames, from the document symbols of its definition's file: a module or a
  * supervisor (Class, told apart by its detail), a schema (Namespace), a datatype, an enumeration or
  * a function at top level; a port (Event, Variable) or parameter (Property) of a module or
- * supervisor, a supervision function (Method) of a supervisor, the owner named. `line` (1-based) is
+ * supervisor, a supervision function (Method) of a supervisor, the owner named; a rule label (Key),
+ * local (Variable) or parameter (TypeParameter) of a supervision function, owned by `SUP.function`. `line` (1-based) is
  * the definition's line, to tell apart two ports of one name in two modules of a file. Nothing for
- * other names (labels, locals, schemas' parameters...).
+ * other names (schemas' parameters, fields...).
  */
 function renamedSymbol(symbols: lsp.DocumentSymbol[], name: string, line: number | undefined): Pick<RenameEvent, 'kind' | 'owner'> {
   const at = (s: lsp.DocumentSymbol) => line === undefined || (s.range.start.line + 1 <= line && line <= s.range.end.line + 1);
@@ -341,6 +343,15 @@ function renamedSymbol(symbols: lsp.DocumentSymbol[], name: string, line: number
       if (child.kind === SYMBOL.Event || child.kind === SYMBOL.Variable) return { kind: 'port', owner: top.name };
       if (child.kind === SYMBOL.Property) return { kind: 'parameter', owner: top.name };
       if (child.kind === SYMBOL.Method) return { kind: 'supervision function', owner: top.name };
+    }
+    // a supervision function's rule labels, locals and parameters: owned by SUP.function
+    for (const fn of top.children ?? []) {
+      if (fn.kind !== SYMBOL.Method || !at(fn)) continue;
+      const inner = (fn.children ?? []).find((c) => c.name === name && at(c));
+      const owner = `${top.name}.${fn.name}`;
+      if (inner?.kind === SYMBOL.Key) return { kind: 'rule label', owner };
+      if (inner?.kind === SYMBOL.Variable) return { kind: 'local', owner };
+      if (inner?.kind === SYMBOL.TypeParameter) return { kind: 'function parameter', owner };
     }
   }
   return {};

@@ -318,6 +318,16 @@ describe('IDE in headless Chromium', () => {
     // the scenario's tab, open and unchanged, takes the new text
     await openFile(page, file);
     await expect.poll(() => activeValue(page), { timeout: 10_000 }).toContain('start SUP.react(consigne');
+    // a rule label of that function: its expectations follow
+    await openFile(page, 'supervisor.contract');
+    await placeCursor(page, 'SECOND:[', 1);
+    await page.keyboard.press('F2');
+    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
+    await page.keyboard.press('Control+a');
+    await page.keyboard.type('LINK_LOST');
+    await page.keyboard.press('Enter');
+    await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('expect rule SUP.react.LINK_LOST active');
+    expect(disk('supervisor.contract')).toContain('LINK_LOST:[');
   });
 
   it('log view: follows the tail as lines stream in, keeps its rows when scrolled up, and filters', async () => {
