@@ -80,6 +80,17 @@ export async function placeCursor(page: Page, text: string, offset = 0, occurren
   if (!ok) throw new Error(`text not found in the active editor: ${text}`);
 }
 
+/** Opens `file`, puts the cursor `offset` characters into the first `text`, and renames what is there to `newName` with F2 (the editor's rename box, Enter). */
+export async function renameWithF2(page: Page, file: string, text: string, offset: number, newName: string): Promise<void> {
+  await openFile(page, file);
+  await placeCursor(page, text, offset);
+  await page.keyboard.press('F2');
+  await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
+  await page.keyboard.press('Control+a');
+  await page.keyboard.type(newName);
+  await page.keyboard.press('Enter');
+}
+
 export async function activeValue(page: Page): Promise<string> {
   return page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string } } } } }).__ide.editors.editor.getModel().getValue());
 }

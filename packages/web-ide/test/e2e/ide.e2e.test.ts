@@ -8,7 +8,7 @@ import { readFileSync, writeFileSync, existsSync, readdirSync, mkdirSync, rmSync
 import { startIdeServer } from '../../server/ide-server.js';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
-import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, openAnotherTab, type Session } from './harness.js';
+import { startSession, openIde, shot, placeCursor, activeValue, activeTab, openFile, waitSaved, openAnotherTab, renameWithF2, type Session } from './harness.js';
 import type { Page } from 'playwright-core';
 
 let s: Session;
@@ -256,13 +256,7 @@ describe('IDE in headless Chromium', () => {
     const oldFile = 'src-gen/generated/architecture/modules/MSA_mod/module.c';
     const userCode = disk(oldFile).replace(/(PROTECTED REGION ID\(protect_init_MSA\) ENABLED START\*\/)/, '$1\n/* MSA init by hand */');
     writeFileSync(join(s.workspace, oldFile), userCode);
-    await openFile(page, 'smodule1.contract');
-    await placeCursor(page, 'module MSA', 'module '.length);
-    await page.keyboard.press('F2');
-    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
-    await page.keyboard.press('Control+a');
-    await page.keyboard.type('MSX');
-    await page.keyboard.press('Enter');
+    await renameWithF2(page, 'smodule1.contract', 'module MSA', 'module '.length, 'MSX');
     await expect.poll(() => disk('sschema1.contract'), { timeout: 5000 }).toContain('MSX');
     expect(disk('smodule1.contract')).toContain('module MSX');
     expect(disk('sched.contract')).toContain('MSX;');
@@ -281,13 +275,7 @@ describe('IDE in headless Chromium', () => {
     const { page } = s;
     const file = 'src-gen/generated/architecture/modules/MSX_mod/module.c'; // MSA, renamed by the test above
     expect(disk(file)).toContain('PostData(&coordinates);'); // the tutorial's exec region uses the port's variable
-    await openFile(page, 'smodule1.contract');
-    await placeCursor(page, 'TypeA coordinates', 'TypeA '.length);
-    await page.keyboard.press('F2');
-    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
-    await page.keyboard.press('Control+a');
-    await page.keyboard.type('position');
-    await page.keyboard.press('Enter');
+    await renameWithF2(page, 'smodule1.contract', 'TypeA coordinates', 'TypeA '.length, 'position');
     await expect.poll(() => disk('smodule1.contract'), { timeout: 5000 }).toContain('TypeA position;');
     await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('PostData(&position);');
     expect(disk(file)).toContain('position.i = -4.0 * (double)_period;');
@@ -302,13 +290,7 @@ describe('IDE in headless Chromium', () => {
     const file = 'scenarios/commutation.scenario';
     expect(disk(file)).toContain('start SUP.action(consigne = {1.0, 2.0, 3.0})');
     await openFile(page, file);
-    await openFile(page, 'supervisor.contract');
-    await placeCursor(page, 'action(TypeA consigne)', 1);
-    await page.keyboard.press('F2');
-    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
-    await page.keyboard.press('Control+a');
-    await page.keyboard.type('react');
-    await page.keyboard.press('Enter');
+    await renameWithF2(page, 'supervisor.contract', 'action(TypeA consigne)', 1, 'react');
     await expect.poll(() => disk('supervisor.contract'), { timeout: 5000 }).toContain('react(TypeA consigne)');
     await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('start SUP.react(consigne = {1.0, 2.0, 3.0})');
     expect(disk(file)).toContain('expect rule SUP.react.SECOND active');
@@ -319,13 +301,7 @@ describe('IDE in headless Chromium', () => {
     await openFile(page, file);
     await expect.poll(() => activeValue(page), { timeout: 10_000 }).toContain('start SUP.react(consigne');
     // a rule label of that function: its expectations follow
-    await openFile(page, 'supervisor.contract');
-    await placeCursor(page, 'SECOND:[', 1);
-    await page.keyboard.press('F2');
-    await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
-    await page.keyboard.press('Control+a');
-    await page.keyboard.type('LINK_LOST');
-    await page.keyboard.press('Enter');
+    await renameWithF2(page, 'supervisor.contract', 'SECOND:[', 1, 'LINK_LOST');
     await expect.poll(() => disk(file), { timeout: 10_000 }).toContain('expect rule SUP.react.LINK_LOST active');
     expect(disk('supervisor.contract')).toContain('LINK_LOST:[');
   });
