@@ -3,12 +3,12 @@
  * on copies of the tutorial (its two scenarios), real files, links and FIFOs.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdtempSync, readFileSync, writeFileSync, mkdirSync, rmSync, realpathSync, symlinkSync } from 'node:fs';
+import { cpSync, readFileSync, writeFileSync, symlinkSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startIdeServer, type IdeServer } from './ide-server.js';
+import type { IdeServer } from './ide-server.js';
+import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 import type { RenameEntityResponse } from './api-types.js';
 
 const TUTORIAL = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/tutorial');
@@ -31,16 +31,12 @@ async function rename(body: unknown): Promise<{ status: number; body: RenameEnti
 
 const scenario = (p: string, name: string) => readFileSync(join(p, 'scenarios', name), 'utf8');
 
+let server: TempIdeServer;
 beforeAll(async () => {
-  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-rename-api-')));
-  ws = join(base, 'ws');
-  mkdirSync(ws);
-  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+  server = await startTempIdeServer('ide-rename-api-');
+  ({ base, ws, ide } = server);
 });
-afterAll(async () => {
-  await ide.close();
-  rmSync(base, { recursive: true, force: true });
-});
+afterAll(() => server.close());
 
 describe('a rename carried into the .scenario files', () => {
   it('a supervision function: SUP.action becomes SUP.react in start, stop and expect lines, token by token; comments stay', async () => {

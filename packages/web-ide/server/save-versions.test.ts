@@ -5,28 +5,23 @@
  * and merges".
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, rmSync, realpathSync } from 'node:fs';
+import { writeFileSync, readFileSync } from 'node:fs';
 import { createHash } from 'node:crypto';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { startIdeServer, type IdeServer } from './ide-server.js';
+import type { IdeServer } from './ide-server.js';
+import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 
-let base: string;
 let ws: string;
 let ide: IdeServer;
 const sha = (t: string) => createHash('sha256').update(Buffer.from(t, 'utf8')).digest('hex');
 const disk = (p: string) => readFileSync(join(ws, p), 'utf8');
 
+let server: TempIdeServer;
 beforeAll(async () => {
-  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-versions-')));
-  ws = join(base, 'ws');
-  mkdirSync(ws);
-  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+  server = await startTempIdeServer('ide-versions-');
+  ({ ws, ide } = server);
 });
-afterAll(async () => {
-  await ide.close();
-  rmSync(base, { recursive: true, force: true });
-});
+afterAll(() => server.close());
 
 const get = async (path: string) => {
   const res = await fetch(`${ide.url}/api/file?path=${encodeURIComponent(path)}`, { headers: { 'x-contract-token': ide.token } });
