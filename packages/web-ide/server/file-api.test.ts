@@ -1,28 +1,28 @@
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, symlinkSync, existsSync, rmSync, realpathSync } from 'node:fs';
+import { mkdirSync, writeFileSync, readFileSync, symlinkSync, existsSync, rmSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
-import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
+import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 
 let base: string;
 let ws: string;
 let ide: IdeServer;
 
+let server: TempIdeServer;
 beforeAll(async () => {
-  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-api-')));
-  ws = join(base, 'ws');
-  mkdirSync(join(ws, 'sub'), { recursive: true });
-  mkdirSync(join(base, 'outside'));
-  writeFileSync(join(base, 'outside', 'secret.txt'), 'secret');
-  writeFileSync(join(ws, 'a.contract'), 'datatype T {int x};');
-  symlinkSync(join(base, 'outside'), join(ws, 'out-link'));
-  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+  server = await startTempIdeServer('ide-api-', { prepare: (b, w) => {
+    base = b;
+    ws = w;
+    mkdirSync(join(ws, 'sub'), { recursive: true });
+    mkdirSync(join(base, 'outside'));
+    writeFileSync(join(base, 'outside', 'secret.txt'), 'secret');
+    writeFileSync(join(ws, 'a.contract'), 'datatype T {int x};');
+    symlinkSync(join(base, 'outside'), join(ws, 'out-link'));
+  } });
+  ({ base, ws, ide } = server);
 });
-afterAll(async () => {
-  await ide.close();
-  rmSync(base, { recursive: true, force: true });
-});
+afterAll(() => server.close());
 
 const call = async (method: string, path: string, body?: unknown, headers: Record<string, string> = {}) => {
   const res = await fetch(ide.url + path, {

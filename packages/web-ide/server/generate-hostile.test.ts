@@ -3,11 +3,11 @@
  * (docs/codegen.md, "What generate refuses"): the real IDE server, real files and symlinks.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdtempSync, readFileSync, readdirSync, writeFileSync, mkdirSync, rmSync, realpathSync, symlinkSync, lstatSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { cpSync, readFileSync, readdirSync, writeFileSync, mkdirSync, symlinkSync, lstatSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startIdeServer, type IdeServer } from './ide-server.js';
+import type { IdeServer } from './ide-server.js';
+import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 import { isGeneratedFile } from './generated-files.js';
 
 const TUTORIAL = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/tutorial');
@@ -32,21 +32,20 @@ async function post(route: string, body: unknown): Promise<{ status: number; bod
   return { status: res.status, body: (await res.json()) as Record<string, unknown> };
 }
 
+let server: TempIdeServer;
 beforeAll(async () => {
-  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-hostile-')));
-  ws = join(base, 'ws');
-  outside = join(base, 'outside');
-  mkdirSync(ws);
-  mkdirSync(outside);
-  mkdirSync(join(base, 'victim'));
-  victim = join(base, 'victim', 'important.txt');
-  writeFileSync(victim, VICTIM_TEXT);
-  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+  server = await startTempIdeServer('ide-hostile-', { prepare: (b, w) => {
+    base = b;
+    ws = w;
+    outside = join(base, 'outside');
+    mkdirSync(outside);
+    mkdirSync(join(base, 'victim'));
+    victim = join(base, 'victim', 'important.txt');
+    writeFileSync(victim, VICTIM_TEXT);
+  } });
+  ({ base, ws, ide } = server);
 });
-afterAll(async () => {
-  await ide.close();
-  rmSync(base, { recursive: true, force: true });
-});
+afterAll(() => server.close());
 
 describe('Generate All on a hostile project folder', () => {
   it('refuses a src-gen symlinked out of the workspace, writing nothing there', async () => {

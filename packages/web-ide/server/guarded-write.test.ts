@@ -3,11 +3,11 @@
  * (with its committed src-gen/ and the generator's manifest), real Generate All, real files.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdtempSync, readFileSync, writeFileSync, mkdirSync, rmSync, realpathSync, symlinkSync, existsSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { cpSync, readFileSync, writeFileSync, mkdirSync, symlinkSync, existsSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { startIdeServer, type IdeServer } from './ide-server.js';
+import type { IdeServer } from './ide-server.js';
+import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 
 const TUTORIAL = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/tutorial');
 const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
@@ -23,17 +23,17 @@ const put = async (path: string, text: string) => {
   return { status: res.status, body: (await res.json()) as Record<string, unknown> };
 };
 
+let server: TempIdeServer;
 beforeAll(async () => {
-  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-guard-')));
-  ws = join(base, 'tutorial');
-  cpSync(TUTORIAL, ws, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
-  mkdirSync(join(base, 'outside'));
-  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+  server = await startTempIdeServer('ide-guard-', { workspace: 'tutorial', prepare: (b, w) => {
+    base = b;
+    ws = w;
+    cpSync(TUTORIAL, ws, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
+    mkdirSync(join(base, 'outside'));
+  } });
+  ({ base, ws, ide } = server);
 });
-afterAll(async () => {
-  await ide.close();
-  rmSync(base, { recursive: true, force: true });
-});
+afterAll(() => server.close());
 
 describe('PUT /api/file on generated files', () => {
   it('writes a save that only changed region content, as given', async () => {

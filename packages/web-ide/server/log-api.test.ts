@@ -1,10 +1,10 @@
 /** GET /api/log: a run's CSV log of the workspace for a replay, past the editor's 8 MiB bound, never through a link or a FIFO. */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { execFileSync } from 'node:child_process';
-import { mkdtempSync, mkdirSync, writeFileSync, symlinkSync, rmSync, realpathSync, truncateSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { mkdirSync, writeFileSync, symlinkSync, truncateSync } from 'node:fs';
 import { join } from 'node:path';
-import { startIdeServer, type IdeServer } from './ide-server.js';
+import type { IdeServer } from './ide-server.js';
+import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-support.js';
 import { LOG_READ_BYTES } from './log-api.js';
 
 let base: string;
@@ -12,28 +12,28 @@ let ws: string;
 let ide: IdeServer;
 let big: string;
 
+let server: TempIdeServer;
 beforeAll(async () => {
-  base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-log-api-')));
-  ws = join(base, 'ws');
-  mkdirSync(join(ws, 'logs'), { recursive: true });
-  // 9.5 MiB of a 1 kHz schema's releases: past GET /api/file's 8 MiB
-  const lines = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
-  for (let i = 0; lines.length < 90_000; i++) lines.push(`${1_000_000_000 + i * 1_000_000},w,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
-  big = lines.join('\n') + '\n';
-  writeFileSync(join(ws, 'logs', 'ORD_29-Nov-2026-10h00m00s.csv'), big);
-  writeFileSync(join(ws, 'logs', 'empty_1.csv'), '');
-  writeFileSync(join(ws, 'notes.txt'), 'not a log');
-  writeFileSync(join(ws, 'huge_1.csv'), '');
-  truncateSync(join(ws, 'huge_1.csv'), LOG_READ_BYTES + 1); // sparse: no disk used
-  writeFileSync(join(base, 'secret.csv'), 'secret');
-  symlinkSync(join(base, 'secret.csv'), join(ws, 'logs', 'link_1.csv'));
-  execFileSync('mkfifo', [join(ws, 'logs', 'fifo_1.csv')]);
-  ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
+  server = await startTempIdeServer('ide-log-api-', { prepare: (b, w) => {
+    base = b;
+    ws = w;
+    mkdirSync(join(ws, 'logs'), { recursive: true });
+    // 9.5 MiB of a 1 kHz schema's releases: past GET /api/file's 8 MiB
+    const lines = ['mono_ns,wall_time,module,event,peer,port,size,detail'];
+    for (let i = 0; lines.length < 90_000; i++) lines.push(`${1_000_000_000 + i * 1_000_000},w,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
+    big = lines.join('\n') + '\n';
+    writeFileSync(join(ws, 'logs', 'ORD_29-Nov-2026-10h00m00s.csv'), big);
+    writeFileSync(join(ws, 'logs', 'empty_1.csv'), '');
+    writeFileSync(join(ws, 'notes.txt'), 'not a log');
+    writeFileSync(join(ws, 'huge_1.csv'), '');
+    truncateSync(join(ws, 'huge_1.csv'), LOG_READ_BYTES + 1); // sparse: no disk used
+    writeFileSync(join(base, 'secret.csv'), 'secret');
+    symlinkSync(join(base, 'secret.csv'), join(ws, 'logs', 'link_1.csv'));
+    execFileSync('mkfifo', [join(ws, 'logs', 'fifo_1.csv')]);
+  } });
+  ({ base, ws, ide } = server);
 });
-afterAll(async () => {
-  await ide.close();
-  rmSync(base, { recursive: true, force: true });
-});
+afterAll(() => server.close());
 
 const get = (path: string) => fetch(`${ide.url}${path}`, { headers: { 'x-contract-token': ide.token } });
 

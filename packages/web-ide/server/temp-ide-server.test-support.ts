@@ -1,7 +1,7 @@
 /**
- * For the server's tests: the real IDE server (no build service, no front end) on an empty
- * workspace in a fresh temp folder, and its removal. Not part of the server (excluded from its
- * build like the tests).
+ * For the server's tests: the real IDE server (no build service, no front end) on a workspace in
+ * a fresh temp folder (empty, or filled by the test before the server starts), and its removal.
+ * Not part of the server (excluded from its build like the tests).
  */
 import { mkdirSync, mkdtempSync, realpathSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -18,10 +18,18 @@ export interface TempIdeServer {
   close(): Promise<void>;
 }
 
-export async function startTempIdeServer(prefix: string): Promise<TempIdeServer> {
+export interface TempIdeServerOptions {
+  /** The workspace folder's name in the temp folder (default `ws`). */
+  workspace?: string;
+  /** Fills the temp folder before the server starts (the workspace folder exists then). */
+  prepare?: (base: string, ws: string) => void;
+}
+
+export async function startTempIdeServer(prefix: string, options: TempIdeServerOptions = {}): Promise<TempIdeServer> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), prefix)));
-  const ws = join(base, 'ws');
+  const ws = join(base, options.workspace ?? 'ws');
   mkdirSync(ws);
+  options.prepare?.(base, ws);
   const ide = await startIdeServer({ workspace: ws, port: 0, buildService: false, distDir: join(base, 'no-dist') });
   return {
     base, ws, ide,

@@ -1,11 +1,14 @@
 /** Carry-over of a renamed entity in a generated tree (shared by the IDE and `contract rename`). */
 import { describe, it, expect } from 'vitest';
-import { mkdtempSync, mkdirSync, writeFileSync, readFileSync, existsSync } from 'node:fs';
+import { mkdirSync, writeFileSync, readFileSync, existsSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { renameInGeneratedTree, renameRegionId } from './rename-generated.js';
 import { writeTree } from './write-tree.js';
 import { MANIFEST_NAME } from './manifest.js';
+import { scratchDirs } from '../test-support/temp-dir.js';
+
+const scratch = scratchDirs('rename-generated-');
 
 describe('renameRegionId', () => {
     it('renames only whole name parts', () => {
@@ -18,7 +21,7 @@ describe('renameRegionId', () => {
 
 describe('renameInGeneratedTree', () => {
     it('moves the module folder and rewrites its region IDs, keeping user code', async () => {
-        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const root = scratch();
         const mod = join(root, 'generated', 'architecture', 'modules', 'MSC_mod');
         mkdirSync(mod, { recursive: true });
         const body = '/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/\nmy_code();\n/*PROTECTED REGION END*/\n' +
@@ -34,7 +37,7 @@ describe('renameInGeneratedTree', () => {
     });
 
     it('refuses to overwrite an existing target', async () => {
-        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const root = scratch();
         mkdirSync(join(root, 'MSC_mod'));
         mkdirSync(join(root, 'MSK_mod'));
         await expect(renameInGeneratedTree(root, 'MSC', 'MSK')).rejects.toThrow(/already exists/);
@@ -43,7 +46,7 @@ describe('renameInGeneratedTree', () => {
 
 describe('renameInGeneratedTree for datatypes and functions', () => {
     it('renames Shared<T>.h / SharedFunction<f>.h and their region IDs, leaving other entities alone', async () => {
-        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const root = scratch();
         const common = join(root, 'generated', 'architecture', 'common');
         mkdirSync(common, { recursive: true });
         const region = (id: string, body: string) => `/*PROTECTED REGION ID(${id}) ENABLED START*/\n${body}\n/*PROTECTED REGION END*/\n`;
@@ -65,7 +68,7 @@ describe('renameInGeneratedTree for datatypes and functions', () => {
 
 describe('renameInGeneratedTree keeps user code byte for byte', () => {
     it('in any encoding, and in markers written with extra blanks', async () => {
-        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const root = scratch();
         const mod = join(root, 'generated', 'architecture', 'modules', 'MSC_mod');
         mkdirSync(mod, { recursive: true });
         // latin1 bytes that are not valid UTF-8, and a marker pasted with blanks and a line break
@@ -82,7 +85,7 @@ describe('renameInGeneratedTree keeps user code byte for byte', () => {
     });
 
     it('moves the manifest entries with the files, so that a default region is still recognised as one', async () => {
-        const root = mkdtempSync(join(tmpdir(), 'ide-rename-'));
+        const root = scratch();
         const path = (m: string) => `generated/architecture/modules/${m}_mod/module.c`;
         // protect_init holds a generated default that is not a //TODO: only the manifest knows it is no user code
         const init = (m: string) => `/*PROTECTED REGION ID(protect_init_${m}) ENABLED START*/\nreturn 0;\n/*PROTECTED REGION END*/\n`;
