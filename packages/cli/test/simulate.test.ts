@@ -127,7 +127,8 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--sandbox', 'docker', '--cache-dir', cache], bad)).toBe(2);
         expect(bad.stderr).toContain("unknown sandbox 'docker' (expected auto, bwrap or none)");
         const path = process.env.PATH;
-        process.env.PATH = mkdtempSync(join(tmpdir(), 'contract-no-bwrap-')); // no bwrap on this PATH
+        const emptyPath = mkdtempSync(join(tmpdir(), 'contract-no-bwrap-'));
+        process.env.PATH = emptyPath; // no bwrap on this PATH
         try {
             const none = capture(REPO);
             expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--cache-dir', cache], none)).toBe(3);
@@ -135,6 +136,7 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             expect(none.stdout).toBe('');
         } finally {
             process.env.PATH = path;
+            rmSync(emptyPath, { recursive: true, force: true });
         }
         const ok = capture(REPO);
         expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--sandbox', 'bwrap', '--cache-dir', cache], ok)).toBe(0);
