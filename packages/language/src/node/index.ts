@@ -2,4 +2,4 @@
 export * from './load-workspace.js';
 export { NodeFileSystem } from 'langium/node';
 export { planRename, findEntity, RenameError, type RenamePlan, type PlannedFileEdit } from './rename-entity.js';
-export { projectScenarios, renameInScenarios, SCENARIO_RENAME_KINDS, type ScenarioRename, type ScenarioEdit, type ScenarioFileChange } from './rename-scenarios.js';
+export { projectScenarios, renameInScenarios, type ScenarioRename, type ScenarioEdit, type ScenarioFileChange } from './rename-scenarios.js';

@@ -14,7 +14,10 @@ import { join, relative } from 'node:path';
 import { parseScenario, type ScenarioValue, type SourceSpan, type Step } from '../scenario/parse.js';
 
 export interface ScenarioRename {
-    /** The rename's kind word (`module`, `supervisor`, `schema`, `supervision function`, `port`, `datatype`, ...). */
+    /**
+     * The rename's kind word: `module`, `supervisor`, `schema`, `supervision function`, `port`,
+     * `datatype`, `enumeration`, `rule label`, `local`, `function parameter` (any other: nothing to rename).
+     */
     kind: string;
     oldName: string;
     newName: string;
@@ -44,9 +47,6 @@ export interface ScenarioFileChange {
     text: string;
     edits: ScenarioEdit[];
 }
-
-/** The kinds of rename a scenario can name (ScenarioRename.kind). */
-export const SCENARIO_RENAME_KINDS: ReadonlySet<string> = new Set(['module', 'supervisor', 'schema', 'supervision function', 'port', 'datatype', 'enumeration', 'rule label', 'local', 'function parameter']);
 
 const MAX_DEPTH = 6;
 const MAX_FILES = 10_000;
@@ -125,7 +125,7 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
     const MOD = ['module', 'supervisor'];
     /** A name of a supervision function's (`SUP.fn.NAME`, `start SUP.fn(NAME = ...)`): renamed when SUP.fn is the owner. */
     const inFunction = (sup: { text: string } | undefined, fn: { text: string } | undefined, n: { text: string; span: SourceSpan } | undefined, kind: string) => {
-        if (sup && fn && `${sup.text}.${fn.text}` === r.owner) owned({ text: r.owner }, n, kind);
+        if (sup && fn && `${sup.text}.${fn.text}` === r.owner && n && n.text === r.oldName && r.kind === kind) out.push({ span: n.span, from: r.oldName, to: r.newName });
     };
     switch (step.kind) {
         case 'event':
