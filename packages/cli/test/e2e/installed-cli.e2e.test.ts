@@ -1,6 +1,8 @@
 /**
  * The CLI as users install it (docs/getting-started.md "Installing the CLI"), from the one tarball
  * scripts/pack.mjs makes (packed once, for both tests):
+ * - packed and installed with no registry and an empty npm cache (the dependencies inside are
+ *   copied from the repository's install);
  * - `npm install -g --offline` puts it in a temp prefix (offline: every dependency is in the
  *   tarball), and `contract new`, `check`, `build` and `run --duration 2s` work from a temp folder
  *   outside the repository with no CONTRACT_RUNTIME: the runtime sources inside the package are
@@ -37,12 +39,14 @@ function initializeAnswer(command: string, cwd: string, env: NodeJS.ProcessEnv):
         child.stdin.write(`Content-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
     });
 }
-const npmEnv = { ...process.env, npm_config_update_notifier: 'false', npm_config_audit: 'false', npm_config_fund: 'false' };
+/** npm with no registry and an empty cache of its own: packing and installing need neither. */
+let npmEnv: NodeJS.ProcessEnv;
 beforeAll(() => {
     root = mkdtempSync(join(tmpdir(), 'contract-installed-'));
     chmodSync(root, 0o711); // the sandbox's own uid must reach the cache folder inside
+    npmEnv = { ...process.env, npm_config_offline: 'true', npm_config_cache: join(root, 'npm-cache'), npm_config_update_notifier: 'false', npm_config_audit: 'false', npm_config_fund: 'false' };
     const packs = join(root, 'packs');
-    const pack = spawnSync(process.execPath, [join(REPO, 'packages/cli/scripts/pack.mjs'), packs], { encoding: 'utf8', timeout: 300_000 });
+    const pack = spawnSync(process.execPath, [join(REPO, 'packages/cli/scripts/pack.mjs'), packs], { encoding: 'utf8', timeout: 300_000, env: npmEnv });
     expect(pack.status, pack.stderr).toBe(0);
     const tarballs = readdirSync(packs).filter((f) => f.endsWith('.tgz'));
     expect(tarballs).toHaveLength(1);
@@ -101,12 +105,12 @@ describe('the packed CLI, installed as users install it', () => {
         const install = await devInstall;
         expect(install.status, install.out).toBe(0);
 
-        const check = spawnSync('npx', ['contract', 'check', '.'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000 });
+        const check = spawnSync('npx', ['contract', 'check', '.'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000, env: npmEnv });
         expect(check.stdout).toBe('');
         expect(check.stderr).toContain('0 errors, 0 warnings, 0 hints in 13 files');
         expect(check.status).toBe(0);
 
-        const json = spawnSync('npx', ['contract', 'check', '.', '--format', 'json'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000 });
+        const json = spawnSync('npx', ['contract', 'check', '.', '--format', 'json'], { cwd: join(project, 'tutorial'), encoding: 'utf8', timeout: 60_000, env: npmEnv });
         expect(JSON.parse(json.stdout)).toEqual({ diagnostics: [] });
     }, 600_000);
 });
