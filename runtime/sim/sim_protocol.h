@@ -15,9 +15,12 @@
  * each with one JSON object per line:
  *     {"line":L,"timeNs":T,"verb":"event","ok":true,"delivered":1,"error":"...",
  *      "expected":"...","actual":"...","rules":[...],"actions":[...],"log":[...],
- *      "schemas":[...],"locals":[...],"output":"..."}
- * where rules/actions/log are what happened since the previous step (timers, releases and the
- * step itself), each with its own timeNs, and schemas/locals the state after the step. The `end`
+ *      "records":[...],"schemas":[...],"locals":[...],"output":"...","dropped":N}
+ * where rules/actions/log/records are what happened since the previous step (timers, releases
+ * and the step itself), each with its own timeNs, and schemas/locals the state after the step.
+ * A record is a typed trace record as a real run's CSV holds it: {"timeNs","module","kind",
+ * "peer","port"?,"detail"} (sim_world.h SimSink.record). Each list keeps at most
+ * SIM_MAX_RECORDS_PER_STEP items a step; "dropped" counts what was left out. The `end`
  * record also has "eventsProcessed" and "wallNs" (the harness's own wall time, input included).
  * Input is hostile (a project's scenario): every line is bounded and validated; a bad line gives
  * a record with "ok":false and "error", never a crash.

@@ -42,6 +42,7 @@ typedef struct SimModule {
     int64_t exec_ns;    /* -1: its C (wcet) from ORD's table, else 0                          */
     int64_t exec_once;  /* -1: none                                                           */
     int64_t wcet_ns;
+    long activations;   /* releases started: the `activation=N` of its run records            */
 } SimModule;
 
 typedef struct SimFinish {
@@ -49,6 +50,7 @@ typedef struct SimFinish {
     uint64_t seq;
     int module;
     uint32_t release_id;
+    long activation;     /* the module's activation this release is                            */
 } SimFinish;
 
 typedef enum SimMsgKind {
@@ -104,6 +106,19 @@ static void action(SimWorld *w, const char *who, const char *fmt, ...) {
     vsnprintf(line, sizeof line, fmt, ap);
     va_end(ap);
     w->sink.action(w->sink.ctx, w->now, who, line);
+}
+
+static void record(SimWorld *w, const char *module, const char *event, const char *peer, int port,
+                   const char *fmt, ...) __attribute__((format(printf, 6, 7)));
+static void record(SimWorld *w, const char *module, const char *event, const char *peer, int port,
+                   const char *fmt, ...) {
+    if (!w->sink.record) return;
+    char detail[384];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(detail, sizeof detail, fmt, ap);
+    va_end(ap);
+    w->sink.record(w->sink.ctx, w->now, module, event, peer, port, detail);
 }
 
 static int grow(void **p, int *cap, int need, size_t elem) { return engine_grow(p, cap, need, elem, 8); }
@@ -285,8 +300,9 @@ static void oio_release(void *ctx, const char *module, const char *schema, int64
     int64_t exec = m->exec_once >= 0 ? m->exec_once : m->exec_ns >= 0 ? m->exec_ns : m->wcet_ns;
     m->exec_once = -1;
     if (grow((void **)&w->fin, &w->capfin, w->nfin + 1, sizeof *w->fin)) return;
-    w->fin[w->nfin++] = (SimFinish){w->now + exec, w->seq++, i, release_id};
+    w->fin[w->nfin++] = (SimFinish){w->now + exec, w->seq++, i, release_id, ++m->activations};
     m->outstanding++;
+    record(w, m->name, "run_started", "ORD", -1, "activation=%ld", m->activations);
 }
 static void oio_emit(void *ctx, int port, const char *schema) {
     SimWorld *w = ctx;
@@ -302,6 +318,13 @@ static void oio_trace(void *ctx, int64_t t, const char *line) {
     SimWorld *w = ctx;
     if (w->sink.log) w->sink.log(w->sink.ctx, t, "ORD", line);
 }
+static void oio_fact(void *ctx, int64_t t, const OrdFact *f) {
+    SimWorld *w = ctx;
+    if (!w->sink.record) return;
+    char detail[384];
+    const char *event = ord_fact_record(f, t, detail, sizeof detail);
+    w->sink.record(w->sink.ctx, t, "ORD", event, f->module ? f->module : "", -1, detail);
+}
 
 /* ---- delivery ----------------------------------------------------------------------------- */
 
@@ -314,6 +337,7 @@ static int deliver_event(SimWorld *w, const char *src, int port, const void *dat
             SimSub *sub = &p->subs[i];
             if (!sub->active || sub->src_port != port || strcmp(sub->module, src) != 0) continue;
             if (sub->mode == CONTRACT_ONESHOT) sub->active = 0; /* spent by this event */
+            record(w, p->v->name, "event_received", src, sub->in_port, "from_port=%d latency_ns=0", port);
             sup_core_module_event(p->core, w->now, src, port, sub->in_port, data, size);
             n++;
         }
@@ -428,6 +452,7 @@ SimWorld *sim_world_create(const ContractSupervisorVocabulary *const *sups, int 
         io.emit = oio_emit;
         io.ack = oio_ack;
         io.trace = oio_trace;
+        io.fact = oio_fact;
         w->ord = ord_core_create(ord, &io, err, errlen);
         if (!w->ord) {
             sim_world_destroy(w);
@@ -481,6 +506,7 @@ static int finish_one(SimWorld *w, int64_t t) {
     SimModule *m = &w->mods[f.module];
     if (m->outstanding > 0) m->outstanding--;
     w->finished++;
+    record(w, m->name, "run_finished", "ORD", -1, "activation=%ld ACK_FINISHED", f.activation);
     if (w->ord) ord_core_release_finished(w->ord, w->now, m->name, f.release_id);
     drain(w);
     return 1;

@@ -26,6 +26,12 @@ typedef struct SimSink {
     void (*action)(void *ctx, int64_t t, const char *who, const char *what);
     /* a readable trace line of a core ("SUP", "ORD") */
     void (*log)(void *ctx, int64_t t, const char *who, const char *line);
+    /* a typed trace record, as a real run's CSV log of `module` holds it (docs/runtime-api.md
+       "Trace records"; port -1: none): ORD's ord_release / ord_finished / ord_complete /
+       ord_deadline_miss, a virtual module's run_started / run_finished for each release, a
+       supervisor's event_received for each event delivered to it */
+    void (*record)(void *ctx, int64_t t, const char *module, const char *event, const char *peer,
+                   int port, const char *detail);
 } SimSink;
 
 /** Creates the world for `nsups` supervisor tables and ORD's (NULL: no scheduler). NULL and a

@@ -4,7 +4,7 @@
  * (the packages' own: codegen's report, the simulator's step records; docs/architecture.md "Seams").
  */
 import type { GenerationReport } from '@contract-studio/codegen';
-import type { RuleChange, StepRecord, StepResult } from '@contract-studio/simulator';
+import type { RuleChange, SimTraceRecord, StepRecord, StepResult } from '@contract-studio/simulator';
 
 /** One entry of the workspace tree (GET /api/tree, /api/snapshot). */
 /** A job the IDE server announces to its tabs on /api/events (`job`, `jobs`: server/shared-runs.ts). */
@@ -81,13 +81,14 @@ export interface SimulateDiagnostic {
 
 /** One rule change of a simulated step, as the `sup_rule` records of a real run (docs/simulation.md §4). */
 export type SimulateRuleChange = RuleChange;
+export type { SimTraceRecord };
 
 /**
  * One step of POST /api/simulate: the simulator's step result (scenario line, its record's time, ok
  * and message) with what its record changed and the state after it, bounded by the server.
  */
 export type SimulateStep = Pick<StepResult, 'line' | 'source' | 'timeNs' | 'kind' | 'ok' | 'message'>
-  & Pick<StepRecord, 'rules' | 'actions' | 'output' | 'error' | 'dropped'> & Partial<Pick<StepRecord, 'log'>>
+  & Pick<StepRecord, 'rules' | 'actions' | 'output' | 'error' | 'dropped'> & Partial<Pick<StepRecord, 'log' | 'records'>>
   & Required<Pick<StepRecord, 'schemas' | 'locals'>>;
 
 /** The answer of POST /api/simulate (200: the scenario ran; 422: diagnostics, nothing ran). */

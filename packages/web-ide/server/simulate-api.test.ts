@@ -11,6 +11,7 @@ import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
 import type { SimulateResponse } from './api-types.js';
+import { MAX_ITEMS_PER_ANSWER } from './simulate-api.js';
 
 const TUTORIAL = resolve(__dirname, '../../../examples/tutorial');
 let base: string;
@@ -96,6 +97,30 @@ describe('POST /api/simulate', () => {
     expect(d.find((x) => x.line === 2)?.message).toMatch(/Did you mean 'SECOND'/);
     expect(d.find((x) => x.line === 3)?.code).toBe('scenario-value-type');
   }, 60_000);
+
+  it('answers the typed records of each step, and keeps at most MAX_ITEMS_PER_ANSWER items of all steps\' lists, the rest counted', async () => {
+    // schemaCommande2 (two modules, 1 s) for 15,000 s of virtual time: about 13 records and 3 engine
+    // lines a cycle, 80,000 items a step of 5,000 s (under the harness's 100,000 a list), 240,000 in all
+    const scenario = ['until 15000s', 'start SUP.action(consigne = {1.0, 2.0, 3.0})', 't=300ms MAA:2 connection_status = "disconnected"',
+      't=1.2s MSC:1 failing_data = {"overheat", 3}', 'expect at 5000s schema schemaCommande2 active', 'expect at 10000s schema schemaCommande2 active'].join('\n');
+    const { status, json } = await post({ scenario });
+    expect(status, JSON.stringify(json).slice(0, 500)).toBe(200);
+    const r = json as SimulateResponse;
+    expect(r.passed).toBe(true);
+    const ev = r.steps.find((s) => s.kind === 'event')!;
+    expect(ev.records).toContainEqual({ timeNs: 300_000_000, module: 'SUP', kind: 'event_received', peer: 'MAA', port: 2, detail: 'from_port=2 latency_ns=0' });
+    expect(ev.records).toContainEqual(expect.objectContaining({ module: 'ORD', kind: 'ord_release', peer: 'MSA' }));
+    const items = (s: SimulateResponse['steps'][number]) => s.rules.length + s.actions.length + s.schemas.length + s.locals.length + (s.records?.length ?? 0) + (s.log?.length ?? 0);
+    const kept = r.steps.reduce((n, s) => n + items(s), 0);
+    const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
+    expect(kept).toBe(MAX_ITEMS_PER_ANSWER);
+    expect(dropped).toBeGreaterThan(20_000);
+    // the steps are answered in order: the first ones whole, the last one cut (its state is still there)
+    expect(r.steps.slice(0, -1).every((s) => s.dropped === undefined)).toBe(true);
+    expect(r.steps.at(-1)!.dropped).toBe(dropped);
+    expect(r.steps.at(-1)!.kind).toBe('end');
+    expect(r.steps.at(-1)!.schemas).toEqual(['schemaCommande2']);
+  }, 120_000);
 
   it('needs the session token; hostile bodies get 4xx', async () => {
     expect((await post({ scenario: '' }, 'wrong')).status).toBe(401);

@@ -29,8 +29,12 @@ import type { SimulateDiagnostic, SimulateResponse, SimulateStep } from './api-t
 /** A session's scenario is small; this bounds what one request may make the harness do. */
 export const MAX_SCENARIO_CHARS = 256 * 1024;
 const RUN_TIMEOUT_MS = 10_000;
-/** Per step: rule changes, actions and locals kept in the answer. */
-const MAX_PER_STEP = 500;
+/**
+ * What one answer keeps of the steps' lists (rule changes, actions, locals, schemas, typed records,
+ * engine lines), all steps together, each list whole while it lasts: about 25 MB of JSON, the 1 ms
+ * schema of 2 modules for 20 s of virtual time. What is left out is counted in the step's `dropped`.
+ */
+export const MAX_ITEMS_PER_ANSWER = 200_000;
 const MAX_STEPS = 5_000;
 const MAX_OUTPUT = 2_048;
 const MAX_WAITING = 8;
@@ -122,7 +126,8 @@ export class SimulateApi {
       throw new HttpError(422, `the scenario has ${errors.length} error(s): nothing was simulated`, { diagnostics });
     }
     const r = await sim.runLoadedScenario(prepared, loaded, { timeoutMs: RUN_TIMEOUT_MS });
-    const steps: SimulateStep[] = r.steps.slice(0, MAX_STEPS).map((s) => stepOf(s));
+    const budget = { left: MAX_ITEMS_PER_ANSWER };
+    const steps: SimulateStep[] = r.steps.slice(0, MAX_STEPS).map((s) => stepOf(s, budget));
     return {
       title: r.title, passed: r.passed, endNs: r.endNs, steps,
       failures: r.failures.slice(0, 200).map((f) => ({ line: f.line, message: f.message ?? '' })),
@@ -134,14 +139,22 @@ export class SimulateApi {
 
 type StepResult = Awaited<ReturnType<SimulatorApi['runLoadedScenario']>>['steps'][number];
 
-function stepOf(s: StepResult): SimulateStep {
+/** A step as answered: its lists kept while the answer's budget lasts (the small ones first), the rest counted. */
+function stepOf(s: StepResult, budget: { left: number }): SimulateStep {
   const rec = s.record;
-  const cut = <T>(xs: T[] | undefined): T[] => (xs ?? []).slice(0, MAX_PER_STEP);
-  const dropped = Math.max(0, (rec.rules?.length ?? 0) - MAX_PER_STEP) + Math.max(0, (rec.actions?.length ?? 0) - MAX_PER_STEP)
-    + Math.max(0, (rec.locals?.length ?? 0) - MAX_PER_STEP) + Math.max(0, (rec.log?.length ?? 0) - MAX_PER_STEP) + (rec.dropped ?? 0);
+  let dropped = rec.dropped ?? 0;
+  const cut = <T>(xs: T[] | undefined): T[] => {
+    const all = xs ?? [];
+    const kept = all.length <= budget.left ? all : all.slice(0, Math.max(0, budget.left));
+    budget.left -= kept.length;
+    dropped += all.length - kept.length;
+    return kept;
+  };
+  const rules = cut(rec.rules), actions = cut(rec.actions), schemas = cut(rec.schemas), locals = cut(rec.locals);
+  const records = cut(rec.records), log = cut(rec.log);
   return {
     line: s.line, source: s.source.slice(0, 1000), timeNs: s.timeNs, kind: s.kind, ok: s.ok, message: s.message,
-    rules: cut(rec.rules), actions: cut(rec.actions), log: cut(rec.log), schemas: cut(rec.schemas), locals: cut(rec.locals),
+    rules, actions, log, records, schemas, locals,
     output: rec.output?.slice(0, MAX_OUTPUT), error: rec.error, ...(dropped ? { dropped } : {}),
   };
 }

@@ -56,6 +56,27 @@ static void fact(OrdCore *c, const SchemaState *ss, OrdFactKind kind, int m, uin
     c->io.fact(c->io.ctx, c->now, &f);
 }
 
+const char *ord_fact_record(const OrdFact *f, int64_t t, char *detail, size_t n) {
+    switch (f->kind) {
+    case ORD_FACT_RELEASE:
+        snprintf(detail, n, "schema=%s cycle=%ld tick_ns=%lld release_ns=%lld release=%u", f->schema,
+                 f->cycle, (long long)f->tick, (long long)t, f->release_id);
+        return "ord_release";
+    case ORD_FACT_FINISHED:
+        snprintf(detail, n, "schema=%s cycle=%ld release=%u response_ns=%lld", f->schema, f->cycle,
+                 f->release_id, (long long)f->response_ns);
+        return "ord_finished";
+    case ORD_FACT_COMPLETE:
+        snprintf(detail, n, "schema=%s cycle=%ld tick_ns=%lld response_ns=%lld", f->schema, f->cycle,
+                 (long long)f->tick, (long long)f->response_ns);
+        return "ord_complete";
+    case ORD_FACT_DEADLINE_MISS:
+        break;
+    }
+    snprintf(detail, n, "schema=%s cycle=%ld tick_ns=%lld", f->schema, f->cycle, (long long)f->tick);
+    return "ord_deadline_miss";
+}
+
 static int schema_index(const OrdCore *c, const char *name) {
     for (int i = 0; i < c->v->nschemas; i++)
         if (strcmp(c->v->schemas[i]->name, name) == 0) return i;

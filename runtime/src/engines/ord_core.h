@@ -33,6 +33,12 @@ typedef struct OrdFact {
     int64_t response_ns;    /* FINISHED / COMPLETE: time since the tick                        */
 } OrdFact;
 
+/** The record a fact is in a run's CSV log (docs/runtime-api.md "Trace records"): returns its
+ *  event name (`ord_release`, `ord_finished`, `ord_complete`, `ord_deadline_miss`) and writes its
+ *  detail into `detail`; the record's peer is f->module (empty when NULL). One format for the
+ *  real ORD's log and the simulator's trace. */
+const char *ord_fact_record(const OrdFact *f, int64_t t, char *detail, size_t n);
+
 typedef struct OrdIo {
     void *ctx;
     void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size);

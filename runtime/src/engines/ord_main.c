@@ -148,27 +148,8 @@ static void b_stuck(void *ctx, const char *module, const char *schema, uint32_t 
 static void b_fact(void *ctx, int64_t t, const OrdFact *f) {
     (void)ctx;
     char detail[384];
-    switch (f->kind) {
-    case ORD_FACT_RELEASE:
-        snprintf(detail, sizeof detail, "schema=%s cycle=%ld tick_ns=%lld release_ns=%lld release=%u", f->schema,
-                 f->cycle, (long long)f->tick, (long long)t, f->release_id);
-        ContractLog("ord_release", f->module, -1, 0, detail);
-        break;
-    case ORD_FACT_FINISHED:
-        snprintf(detail, sizeof detail, "schema=%s cycle=%ld release=%u response_ns=%lld", f->schema, f->cycle,
-                 f->release_id, (long long)f->response_ns);
-        ContractLog("ord_finished", f->module, -1, 0, detail);
-        break;
-    case ORD_FACT_COMPLETE:
-        snprintf(detail, sizeof detail, "schema=%s cycle=%ld tick_ns=%lld response_ns=%lld", f->schema, f->cycle,
-                 (long long)f->tick, (long long)f->response_ns);
-        ContractLog("ord_complete", "", -1, 0, detail);
-        break;
-    case ORD_FACT_DEADLINE_MISS:
-        snprintf(detail, sizeof detail, "schema=%s cycle=%ld tick_ns=%lld", f->schema, f->cycle, (long long)f->tick);
-        ContractLog("ord_deadline_miss", "", -1, 0, detail);
-        break;
-    }
+    const char *event = ord_fact_record(f, t, detail, sizeof detail);
+    ContractLog(event, f->module ? f->module : "", -1, 0, detail);
 }
 
 static int cmp64(const void *a, const void *b) {

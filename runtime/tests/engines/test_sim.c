@@ -92,6 +92,13 @@ void test_sim_report_story_records(void) {
     /* schemaCommande2's cycles of 1 s run to the end: releases in the end record's log */
     HAS(record(out, 8), "\"end\":true");
     HAS(record(out, 8), "release MSB (schemaCommande2)");
+    /* the typed records of the same facts, as a real run's CSV logs hold them */
+    HAS(record(out, 2), "{\"timeNs\":300000000,\"module\":\"SUP\",\"kind\":\"event_received\",\"peer\":\"MAA\",\"port\":");
+    HAS(record(out, 5), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=0 tick_ns=1000000000 release_ns=1000000000 release=");
+    HAS(record(out, 5), "\"module\":\"MSB\",\"kind\":\"run_started\",\"peer\":\"ORD\",\"detail\":\"activation=1\"");
+    HAS(record(out, 8), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 release_ns=4000000000 release=");
+    HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"ORD\",\"detail\":\"activation=4 ACK_FINISHED\"");
+    HAS(record(out, 8), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 response_ns=");
     free(out);
 }
 
@@ -132,6 +139,12 @@ void test_sim_overrun_makes_ord_emit_deadline_miss(void) {
     /* schemaCommande1 (period and critical delay 1 s) released at 300 ms; MSC takes 1.5 s */
     HAS(record(out, 3), "ORD:0 \\\"schemaCommande1\\\" (deadline miss)");
     HAS(record(out, 3), "\"timeNs\":1300000000,\"who\":\"ORD\",\"what\":\"ORD:0");
+    /* the same miss typed, on cycle 0; MSC, released after MSA's 0.5 ms, answered 1.5 s later */
+    HAS(record(out, 3), "{\"timeNs\":1300000000,\"module\":\"ORD\",\"kind\":\"ord_deadline_miss\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000\"}");
+    HAS(record(out, 3), "{\"timeNs\":1800500000,\"module\":\"MSC\",\"kind\":\"run_finished\",\"peer\":\"ORD\",\"detail\":\"activation=1 ACK_FINISHED\"}");
+    HAS(record(out, 3), "\"kind\":\"ord_finished\",\"peer\":\"MSC\",\"detail\":\"schema=schemaCommande1 cycle=0 release=");
+    HAS(record(out, 3), " response_ns=1500500000\"}");
+    HAS(record(out, 3), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000 response_ns=1501500000\"}");
     free(out);
 }
 

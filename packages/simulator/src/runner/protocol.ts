@@ -29,6 +29,20 @@ export interface LogLine {
     line: string;
 }
 
+/**
+ * A typed trace record, as a real run's CSV log of `module` holds it (docs/runtime-api.md "Trace
+ * records"): ORD's ord_release / ord_finished / ord_complete / ord_deadline_miss, a virtual
+ * module's run_started / run_finished for each release, a supervisor's event_received.
+ */
+export interface SimTraceRecord {
+    timeNs: number;
+    module: string;
+    kind: string;
+    peer: string;
+    port?: number;
+    detail: string;
+}
+
 export interface LocalValue {
     supervisor: string;
     function: string;
@@ -52,6 +66,7 @@ export interface StepRecord {
     rules: RuleChange[];
     actions: ActionRecord[];
     log: LogLine[];
+    records: SimTraceRecord[];
     schemas?: string[];
     locals?: LocalValue[];
     /** What user functions (tests, computes) printed. */

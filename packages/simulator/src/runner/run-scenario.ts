@@ -61,6 +61,7 @@ function asRecord(line: string): StepRecord | undefined {
         v.rules ??= [];
         v.actions ??= [];
         v.log ??= [];
+        v.records ??= [];
         return v;
     } catch {
         return undefined;

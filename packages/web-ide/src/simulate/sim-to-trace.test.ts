@@ -67,4 +67,41 @@ describe('a simulation in the Monitor', () => {
     expect(model.live.modules.get('CTL')?.alive).toBe(false);
     expect(model.live.unknownLines).toBe(0);
   });
+
+  it('has the harness\'s typed records: module runs, cycles completed with their response times, event receipts', () => {
+    const model = fold(steps);
+    // schemaCommande1 at 300 ms: MSA (0.5 ms), then MSC (1 ms), then MSD (1 ms), by precedence
+    expect(model.stateAt(300_200_000).modules.get('MSA')).toMatchObject({ running: true, runs: 1 });
+    expect(model.stateAt(301_000_000).modules.get('MSA')?.running).toBe(false);
+    expect(model.stateAt(301_000_000).modules.get('MSC')?.running).toBe(true);
+    const p = model.live.periodic.get('schemaCommande1')!;
+    expect(p).toMatchObject({ completions: 1, lastResponseNs: 2_500_000, maxResponseNs: 2_500_000, deadlineMisses: 0 });
+    expect(p.histogram.reduce((a, b) => a + b, 0)).toBe(1);
+    // MAA:2 "disconnected" received by SUP on its port 2; SUP's notification received by GLB
+    expect(model.live.eventFlows.get('MAA:2->SUP:2')?.count).toBe(1);
+    expect(model.live.eventFlows.get('SUP:1->GLB:0')?.count).toBe(1);
+    expect(model.live.unknownLines).toBe(0);
+    // an answer without them (an older server): the releases still come from ORD's lines, nothing else does
+    const older = fold(steps.map(({ records: _r, ...s }) => s));
+    expect(older.live.periodic.get('schemaCommande1')?.releases).toBe(p.releases);
+    expect(older.live.periodic.get('schemaCommande1')?.completions).toBe(0);
+    expect(older.live.modules.get('MSA')?.runs ?? 0).toBe(0);
+  });
+
+  it('takes a deadline miss from its typed record once, on the cycle the harness names', () => {
+    const rec = (timeNs: number, module: string, kind: string, peer: string, detail: string) => ({ timeNs, module, kind, peer, detail });
+    const model = fold([
+      { line: 1, source: 'start SUP.f', timeNs: 0, kind: 'start', ok: true, message: '', rules: [], schemas: ['S'], locals: [],
+        actions: [{ timeNs: 12e6, who: 'ORD', what: 'ORD:0 "S" (deadline miss) to every supervisor' }],
+        log: [{ timeNs: 0, who: 'ORD', line: 'activate S' }, { timeNs: 0, who: 'ORD', line: 'release CTL (S)' }, { timeNs: 12e6, who: 'ORD', line: 'deadline miss: S (ORD:0)' }],
+        records: [
+          rec(0, 'ORD', 'ord_release', 'CTL', 'schema=S cycle=0 tick_ns=0 release_ns=0 release=1'),
+          rec(0, 'CTL', 'run_started', 'ORD', 'activation=1'),
+          rec(10e6, 'ORD', 'ord_release', 'CTL', 'schema=S cycle=1 tick_ns=10000000 release_ns=10000000 release=2'),
+          rec(12e6, 'ORD', 'ord_deadline_miss', '', 'schema=S cycle=1 tick_ns=10000000'),
+        ] },
+    ]);
+    expect(model.live.periodic.get('S')).toMatchObject({ releases: 2, lastCycle: 1, deadlineMisses: 1, recentMisses: [{ t: 12e6, cycle: 1 }] });
+    expect(model.live.modules.get('CTL')?.running).toBe(true);
+  });
 });

@@ -11,13 +11,17 @@
  *   `module_hold` taken / dropped), priorities (`module_priority`), its START requests to ORD
  *   (`request_received`: which rule activated a schema), every other action counted done or undone
  *   (`supervisor` action records); ORD's `ORD:0 "S" (deadline miss)` → `ord_deadline_miss`; a crash → `module_exit`.
+ * - `records`: the typed records the harness writes as a real run's CSV logs hold them (ORD's
+ *   ord_release / ord_finished / ord_complete / ord_deadline_miss with their cycle and response
+ *   times, each virtual module's run_started / run_finished, each event_received of a supervisor)
+ *   → read by the trace reader as a CSV line. Without them (an older server), ORD's `release M (S)`
+ *   lines and `ORD:0` actions stand for the releases and misses, cycles counted here.
  * Without `log` (an older server), functions come from start/stop steps and `activate supervisor` /
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
- * Not in a step record, so not in the trace: module runs (run_started/finished), cycles completed
- * (ord_complete, response times) and data deliveries.
+ * Not simulated, so not in the trace: data deliveries (virtual modules run no code and post no data).
  */
 import { parseCause, parseRecordLine, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import type { SimulateStep } from '../../server/api-types.js';
+import type { SimulateStep, SimTraceRecord } from '../../server/api-types.js';
 
 function base(timeNs: number, module: string, detail: string, peer = '') {
   return { monoNs: String(Math.max(0, Math.floor(timeNs))), wallTime: '', module, peer, port: null, size: 0, detail };
@@ -27,11 +31,21 @@ function known(timeNs: number, module: string, kind: string, detail: string, fie
   return { ...base(timeNs, module, detail, peer), kind, fields };
 }
 
+/** A CSV field as the runtime writes it: quoted when it holds a quote or a comma. */
+function csvField(text: string): string {
+  const one = text.replace(/[\r\n]+/g, ' ');
+  return /[",]/.test(one) ? `"${one.replace(/"/g, '""')}"` : one;
+}
+
 /** An engine's trace line as the CSV record a real run writes (`kind`: supervisor or scheduler), read by the trace reader. */
 function engineLine(timeNs: number, who: string, kind: 'supervisor' | 'scheduler', line: string): TraceRecord {
-  const detail = line.replace(/[\r\n]+/g, ' ');
-  const csv = /[",]/.test(detail) ? `"${detail.replace(/"/g, '""')}"` : detail;
-  return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(timeNs))},,${who},${kind},,,0,${csv}`);
+  return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(timeNs))},,${who},${kind},,,0,${csvField(line)}`);
+}
+
+/** A typed record of the harness as the CSV line a real run writes, read by the trace reader. */
+function typedRecord(r: SimTraceRecord): TraceRecord {
+  const port = Number.isInteger(r.port) && r.port! >= 0 ? String(r.port) : '';
+  return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(r.timeNs))},,${csvField(r.module)},${csvField(r.kind)},${csvField(r.peer)},${port},0,${csvField(r.detail)}`);
 }
 
 const RELEASE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
@@ -50,6 +64,7 @@ export function stepsToTrace(steps: SimulateStep[]): TraceRecord[] {
   // the first record is time 0 of the Monitor's cursor: the simulation's start
   const out: TraceRecord[] = [known(0, 'SIM', 'sim_start', 'simulation start', {})];
   const withLog = steps.some((s) => Array.isArray(s.log));
+  const withRecords = steps.some((s) => Array.isArray(s.records));
   /**
    * Per periodic schema: its cycle's number (from 0 at each activation) and the modules released in
    * it (a cycle releases each module once, at its precedence's times: a module released again starts the next).
@@ -64,9 +79,14 @@ export function stepsToTrace(steps: SimulateStep[]): TraceRecord[] {
       };
       out.push(rec);
     }
+    for (const r of s.records ?? []) {
+      const rec = typedRecord(r);
+      if (rec.kind !== 'unknown') out.push(rec);
+    }
     for (const l of s.log ?? []) {
       if (l.who === 'ORD') {
         const rel = RELEASE.exec(l.line);
+        if (rel && withRecords) continue; // the typed ord_release stands for it
         if (rel) {
           const [, module, schema] = rel as unknown as [string, string, string];
           let c = cycles.get(schema);
@@ -90,7 +110,7 @@ export function stepsToTrace(steps: SimulateStep[]): TraceRecord[] {
     for (const a of s.actions) {
       const t = a.timeNs;
       if (a.who === 'ORD') {
-        const miss = DEADLINE_MISS.exec(a.what);
+        const miss = withRecords ? null : DEADLINE_MISS.exec(a.what); // else the typed ord_deadline_miss
         if (miss) {
           const schema = miss[1]!;
           const cycle = cycles.get(schema)?.cycle ?? -1;

@@ -126,9 +126,9 @@ export class SimulateController {
       this.panel.showMessage(r.error ?? `simulated to ${r.steps.at(-1)?.timeNs ?? 0} ns in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
       const model = new MonitorModel();
       model.pushAll(stepsToTrace(r.steps));
-      // the server keeps 500 rule changes, actions and engine lines a step: what it left out is said
+      // an answer keeps 200,000 records of all steps (the harness 100,000 of each kind a step): what was left out is said
       const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
-      await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}${dropped ? ` (not whole: ${dropped} records of long steps left out by the server; shorter steps keep them)` : ''}`);
+      await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}${dropped ? ` (not whole: ${dropped} records left out, from the longest steps on)` : ''}`);
       return true;
     } catch (e) {
       const diags = e instanceof ApiError && Array.isArray(e.details['diagnostics']) ? (e.details['diagnostics'] as Array<{ line: number; column: number; message: string; file?: string }>) : [];
