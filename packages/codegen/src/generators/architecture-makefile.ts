@@ -22,6 +22,8 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #   make all      build the runtime if needed, every module, supervisor, ORD and the control tools
         #   make run      run the architecture: make run [START='SUP.fn(p={1.0,2.0})'] [DURATION=10] [RUN_DIR=dir] [LOG_DIR=dir]
         #                 [CPUS=1] (pin every module to these CPUs) [PM_QOS_US=0] (hold CPU wake-up latency; root)
+        #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
+        #                 LOG_DIR/previous/run-<time of the newest>/ first (never deleted)
         #   make kill     stop a running architecture (the one in RUN_DIR)
         #   make clean    remove what all built
         # CONTRACT_RUNTIME: the runtime source folder (docs/architecture.md, seam 3); give it: make CONTRACT_RUNTIME=/path/to/runtime
@@ -48,6 +50,11 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	$(MAKE) -C tools CONTRACT_RUNTIME=$(RUNTIME)
 
         run: all
+        	@if ls '$(LOG_DIR)'/*.csv >/dev/null 2>&1; then \\
+        	  to='$(LOG_DIR)'/previous/run-$$(date -r "$$(ls -t '$(LOG_DIR)'/*.csv | head -n 1)" +%Y-%m-%dT%H-%M-%S); \\
+        	  at="$$to"; n=2; while [ -e "$$to" ]; do to="$$at-$$n"; n=$$((n + 1)); done; \\
+        	  mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/ && echo "make run: the previous run's logs moved to $$to"; \\
+        	fi
         	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
 
         kill:
