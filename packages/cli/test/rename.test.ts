@@ -180,6 +180,34 @@ describe('contract rename', () => {
         expect(after.split('\n').filter((l) => l.startsWith('#'))).toEqual(before.split('\n').filter((l) => l.startsWith('#')));
     }, 120_000);
 
+    it('renames a rule label, a local and a parameter of a supervision function (SUP.fn.NAME); the scenarios follow; it generates', async () => {
+        for (const [spec, to, kind, line] of [
+            ['SUP.act.FIRST', 'OPENING', 'rule label', 'tutorial/scenarios/commutation.scenario:8: expect rule SUP.act.FIRST inactive  ->  expect rule SUP.act.OPENING inactive'],
+            ['SUP.act.temp_mess_type', 'mess_kind', 'local', 'tutorial/scenarios/commutation.scenario:31: expect local temp_mess_type == "commutation"  ->  expect local mess_kind == "commutation"'],
+            ['SUP.act.consigne', 'setpoint', 'function parameter', 'tutorial/scenarios/commutation.scenario:7: start SUP.act(consigne = {1.0, 2.0, 3.0})  ->  start SUP.act(setpoint = {1.0, 2.0, 3.0})'],
+        ] as const) {
+            const io = capture(scratch.root);
+            expect(await runCli(['rename', 'tutorial', spec, to], io), io.stderr).toBe(0);
+            expect(io.stdout).toMatch(new RegExp(`^renamed ${kind} ${spec.split('.')[2]} -> ${to}: [1-9]\\d* occurrence\\(s\\) in [12] file\\(s\\)$`, 'm'));
+            expect(io.stdout).toContain(`${line}\n`);
+            expect(io.stderr).toContain('0 error(s)');
+        }
+        const supervisor = readFileSync(join(dir, 'supervisor.contract'), 'utf8');
+        expect(supervisor).toMatch(/\bOPENING\s*:/);
+        expect(supervisor).toMatch(/\bstring mess_kind\b/);
+        expect(supervisor).toMatch(/act\(\w+ setpoint\)/);
+        expect(supervisor).not.toMatch(/\b(FIRST|temp_mess_type)\b/);
+        // the parameter's uses follow, GLB's activation of SUP.act too; a schema's parameter of the same name does not
+        expect(supervisor).toMatch(/\w+ temp_consigne = setpoint;/);
+        expect(supervisor).toMatch(/activate schema \w+\(consigne = temp_consigne\)/);
+        expect(readFileSync(join(dir, 'supervisor2.contract'), 'utf8')).toContain('activate supervisor SUP.act(setpoint=consigne_courante)');
+        // a name the function does not have, and a module's "function": what there is is listed
+        const io = capture(scratch.root);
+        expect(await runCli(['rename', 'tutorial', 'SUP.act.NOPE', 'X'], io)).toBe(1);
+        expect(io.stderr).toContain("SUP.act has no parameter, local or rule 'NOPE'; it has: setpoint (parameter), ");
+        expect(io.stderr).toContain('OPENING (rule label)');
+    }, 240_000);
+
     it('clear errors, exit 1, nothing changed: unknown entity, name taken, invalid name', async () => {
         const snapshot = contractFiles(dir);
         const tree = readFileSync(join(dir, MODULES, 'MSK_mod/module.c'));

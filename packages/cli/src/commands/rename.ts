@@ -1,6 +1,7 @@
 /**
  * `contract rename DIR OLD NEW [-o OUT]`: renames a module, supervisor, schema, datatype, function,
- * port or parameter (`MODULE:port`) or supervision function (`SUP.function`) in the `.contract`
+ * port or parameter (`MODULE:port`), supervision function (`SUP.function`) or a parameter, local or
+ * rule label of one (`SUP.function.NAME`) in the `.contract`
  * files with the language server's rename, carries the generated tree over for entities that name
  * generated files (codegen's renameInGeneratedTree, as the IDE's rename does: paths and region IDs
  * move, user code is kept byte for byte, a default MODULE_DESCRIPTION follows), rewrites the uses
@@ -27,7 +28,8 @@ export const renameCommand: Command = {
     usage: [
         'usage: contract rename DIR OLD NEW [-o OUT] [--verbose]',
         '  OLD: a module, supervisor, schema, datatype or function name; MODULE:port (a port or parameter,',
-        '       by name, or by index when only one has it); SUPERVISOR.function (a supervision function)',
+        '       by name, or by index when only one has it); SUPERVISOR.function (a supervision function);',
+        '       SUPERVISOR.function.NAME (a parameter, local or rule label of that function)',
         '  NEW: the new name (same rules as the editor\'s rename: modules and supervisors are three upper-case letters)',
         '  OUT: the generated tree (default DIR/src-gen): files and protected-region IDs named after OLD move to NEW',
         'User code in protected regions is kept byte for byte; the uses of a renamed port or parameter in its module\'s',
@@ -99,7 +101,7 @@ export const renameCommand: Command = {
             }
         }
         const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
-            kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner: plan.kind === 'supervision function' ? oldSpec.split('.')[0] : owner,
+            kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner: scenarioOwner(plan.kind, oldSpec, owner),
         });
         for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
         const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
@@ -143,6 +145,13 @@ export const renameCommand: Command = {
 
 /** Kinds whose names the generated C or the user code uses (a schema or a supervision function is in no module's C). */
 const MENTIONED_KINDS = new Set(['module', 'supervisor', 'datatype', 'enumeration', 'function', 'port', 'parameter']);
+
+/** The owner a scenario names the entity with: `SUP` of a supervision function, `SUP.fn` of its rule labels, locals and parameters, a port's module. */
+function scenarioOwner(kind: string, spec: string, portOwner: string | undefined): string | undefined {
+    if (kind === 'supervision function') return spec.split('.')[0];
+    if (kind === 'rule label' || kind === 'local' || kind === 'function parameter') return spec.split('.').slice(0, 2).join('.');
+    return portOwner;
+}
 
 /** The module or supervisor of `MODULE:port`, or undefined. */
 function ownerOf(spec: string): string | undefined {

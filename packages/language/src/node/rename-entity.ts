@@ -1,13 +1,13 @@
 /**
  * Renaming an entity of a loaded workspace outside an editor (`contract rename`): the entity is
- * found by name (`MSC`, `TypeA`, `SUP.mission`, `MSC:in_coordinates`), the new name is checked by
+ * found by name (`MSC`, `TypeA`, `SUP.mission`, `MSC:in_coordinates`, `SUP.action.FIRST`), the new name is checked by
  * the same rules as the editor's rename and the edits are the editor's rename edits
  * (`lsp/name-rules.ts`, `lsp/rename-edits.ts`), so that both rename the same references.
  * Pure over the workspace: the caller writes the new texts (docs/getting-started.md, "Renaming").
  */
 import { AstUtils, type AstNode } from 'langium';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { isDataType, isFunctionPrototype, isModel, isModule, isSchema, isSupervisor, type Module, type Supervisor } from '../generated/ast.js';
+import { isDataType, isFunctionParameter, isFunctionPrototype, isModel, isModule, isSchema, isSupervisor, type Module, type SupervisionFunction, type Supervisor } from '../generated/ast.js';
 import { parametersOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import { kindWord, renameProblem } from '../lsp/name-rules.js';
@@ -65,10 +65,20 @@ function owner(ws: LoadedWorkspace, name: string, spec: string): Module | Superv
     return found[0]!;
 }
 
+/** The supervision function `fn` of supervisor `sup` (named in `spec`), or a RenameError. */
+function supervisionFunction(ws: LoadedWorkspace, sup: string, fn: string, spec: string): SupervisionFunction {
+    const holder = owner(ws, sup, spec);
+    if (!isSupervisor(holder)) throw new RenameError(`${holder.name} is a module; 'NAME.function' names a supervision function of a supervisor`);
+    const found = holder.functions.find((f) => f.name === fn);
+    if (!found) throw new RenameError(`supervisor ${holder.name} has no function '${fn}'; its functions: ${holder.functions.map((f) => f.name).join(', ') || 'none'}`);
+    return found;
+}
+
 /**
  * The entity `spec` designates: a top-level name (module, supervisor, schema, datatype, function),
  * `OWNER:port` (a port or parameter of a module or supervisor, by name or by index when only one
- * port has it), or `SUP.function` (a supervision function).
+ * port has it), `SUP.function` (a supervision function), or `SUP.function.NAME` (a parameter, a
+ * local or a rule label of that function).
  */
 export function findEntity(ws: LoadedWorkspace, spec: string): Named {
     const port = /^([^:.]+):([^:.]+)$/.exec(spec);
@@ -86,14 +96,18 @@ export function findEntity(ws: LoadedWorkspace, spec: string): Named {
         if (matches.length > 1) throw new RenameError(`'${spec}' is ambiguous: ${matches.map((m) => `${m.node.name} (${m.what})`).join(', ')}; name the port instead of its index`);
         return matches[0]!.node;
     }
-    const fn = /^([^:.]+)\.([^:.]+)$/.exec(spec);
-    if (fn) {
-        const sup = owner(ws, fn[1]!, spec);
-        if (!isSupervisor(sup)) throw new RenameError(`${sup.name} is a module; 'NAME.function' names a supervision function of a supervisor`);
-        const found = sup.functions.find((f) => f.name === fn[2]);
-        if (!found) throw new RenameError(`supervisor ${sup.name} has no function '${fn[2]}'; its functions: ${sup.functions.map((f) => f.name).join(', ') || 'none'}`);
-        return found as Named;
+    const member = /^([^:.]+)\.([^:.]+)\.([^:.]+)$/.exec(spec);
+    if (member) {
+        const fn = supervisionFunction(ws, member[1]!, member[2]!, spec);
+        const members = [...fn.parameters, ...fn.locals.flatMap((b) => b.variables), ...fn.rules.flatMap((b) => b.rules)] as Named[];
+        const matches = members.filter((m) => m.name === member[3]);
+        const list = members.map((m) => `${m.name} (${kindWord(m)})`).join(', ') || 'none';
+        if (matches.length === 0) throw new RenameError(`${member[1]}.${member[2]} has no parameter, local or rule '${member[3]}'; it has: ${list}`);
+        if (matches.length > 1) throw new RenameError(`'${spec}' names several elements: ${matches.map((m) => kindWord(m)).join(', ')}; rename one by hand first`);
+        return matches[0]!;
     }
+    const fn = /^([^:.]+)\.([^:.]+)$/.exec(spec);
+    if (fn) return supervisionFunction(ws, fn[1]!, fn[2]!, spec) as Named;
     const found = topLevelElements(ws).filter((e) => e.name === spec && (isModule(e) || isSupervisor(e) || isSchema(e) || isDataType(e) || isFunctionPrototype(e)));
     if (found.length === 0) {
         throw new RenameError(`no module, supervisor, schema, datatype or function named '${spec}' (a port is 'MODULE:port', a supervision function 'SUPERVISOR.function')`);
@@ -110,7 +124,8 @@ export function findEntity(ws: LoadedWorkspace, spec: string): Named {
 export function planRename(ws: LoadedWorkspace, spec: string, newName: string): RenamePlan {
     const target = findEntity(ws, spec);
     const services = ws.services;
-    const kind = kindWord(target);
+    // a supervision function's parameter is not a module's: no C variable of a module is named after it
+    const kind = isFunctionParameter(target) ? 'function parameter' : kindWord(target);
     if (target.name === newName) throw new RenameError(`${kind} ${target.name} already has that name`);
     const problem = renameProblem(target, newName, services.Grammar, services.shared.workspace.IndexManager);
     if (problem) throw new RenameError(problem);
