@@ -6,12 +6,13 @@
 // Suites: the C runtime (its runner prints `N passed, N failed`), each npm workspace's vitest run
 // (read through vitest's JSON reporter), and the type check of every workspace's sources and tests
 // (`npm run typecheck`: one check per workspace; vitest does not type-check). The suites that only
-// compute (conventions, language, codegen, vscode, the type check, and the installed-CLI test
-// file: BACKGROUND_FILES) run in the background at the lowest CPU priority (nice 19), side by
-// side, their output kept and printed whole at the end; the others run in two lanes meanwhile
-// (SECOND_LANE: the CLI and the IDE beside the C runtime, the build service and the simulator),
-// one suite at a time in each, the first lane streamed, and keep the CPUs whenever they want them
-// (the computing suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle).
+// compute (conventions, language, codegen, vscode, the type check) run in the background at the
+// lowest CPU priority (nice 19), side by side, their output kept and printed whole at the end; the
+// others run in two lanes meanwhile (SECOND_LANE: the CLI and the IDE beside the C runtime, the
+// build service, the simulator and the installed-CLI test file: FIRST_LANE_FILES), one suite at a
+// time in each, the first lane streamed, and keep the CPUs whenever they want them (the computing
+// suites fill the time the sandboxes, browsers and timed runs leave the CPUs idle; what they wait
+// for, a language server's answer, is bounded generously: they may wait long for a CPU).
 // `node scripts/run-tests.mjs NAME...` runs the suites whose names contain one of the NAMEs.
 import { spawn } from 'node:child_process';
 import { mkdtempSync, readFileSync, existsSync, rmSync } from 'node:fs';
@@ -72,16 +73,18 @@ const CPU_ONLY = new Set(['packages/conventions', 'packages/language', 'packages
  */
 const SECOND_LANE = new Set(['packages/cli', 'packages/web-ide']);
 /**
- * Test files of the other workspaces that assert nothing about time and mostly compute (packing
- * and installing the CLI): they run in the background too, as a suite of their own.
+ * Test files run as a suite of their own at the end of the first lane, at normal priority (the first
+ * lane ends about two minutes before the second): packing and installing the CLI is about a minute
+ * of CPU, and in the background at nice 19 it once waited over five minutes for a CPU while both
+ * lanes kept the two busy (its 300 s bound on the pack ran out).
  */
-const BACKGROUND_FILES = { 'packages/cli': ['test/e2e/installed-cli.e2e.test.ts'] };
+const FIRST_LANE_FILES = { 'packages/cli': ['test/e2e/installed-cli.e2e.test.ts'] };
 
 /** A vitest run in a workspace (its files, or all but `exclude`), read through the JSON reporter. */
-function vitestSuite(name, ws, { beside, files = [], exclude = [] }) {
+function vitestSuite(name, ws, { beside, files = [], exclude = [], lane }) {
   return {
     name,
-    lane: !beside && SECOND_LANE.has(ws) ? 2 : 1,
+    lane: lane ?? (!beside && SECOND_LANE.has(ws) ? 2 : 1),
     // pure computation, no sandbox timing: run side by side in the background, niced
     // (vitest gives each one worker on a two-core machine)
     beside,
@@ -107,10 +110,10 @@ const suites = [
     count: (r) => countCRunner(r.out),
   },
   ...rootPkg.workspaces.flatMap((ws) => {
-    const background = BACKGROUND_FILES[ws] ?? [];
+    const own = FIRST_LANE_FILES[ws] ?? [];
     return [
-      vitestSuite(ws, ws, { beside: CPU_ONLY.has(ws), exclude: background }),
-      ...(background.length ? [vitestSuite(`${ws} (${background.map((f) => f.replace(/^.*\//, '')).join(', ')})`, ws, { beside: true, files: background })] : []),
+      vitestSuite(ws, ws, { beside: CPU_ONLY.has(ws), exclude: own }),
+      ...(own.length ? [vitestSuite(`${ws} (${own.map((f) => f.replace(/^.*\//, '')).join(', ')})`, ws, { beside: false, files: own, lane: 1 })] : []),
     ];
   }),
   {

@@ -18,6 +18,7 @@ import {
     type ProtocolConnection, type PublishDiagnosticsParams,
 } from 'vscode-languageserver-protocol/node.js';
 import { ARCHITECTURE } from './lsp-workspace.js';
+import { LSP_TEST_MS } from './lsp-stdio-client.js';
 
 const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
 
@@ -64,7 +65,7 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
         });
         expect(init.capabilities.renameProvider).toBeTruthy();
         await connection.sendNotification(InitializedNotification.type, {});
-    }, 60_000);
+    }, LSP_TEST_MS);
 
     afterAll(async () => {
         await connection?.sendRequest(ShutdownRequest.type).catch(() => undefined);
@@ -72,7 +73,7 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
         connection?.dispose();
         if (child && child.exitCode === null) child.kill();
         if (dir) rmSync(dir, { recursive: true, force: true });
-    });
+    }, LSP_TEST_MS);
 
     it('pushes diagnostics for an opened file, with the code and the place of the problem', async () => {
         const bad = 'synchronous module msa { scheduling { C=1ms; } }';
@@ -80,7 +81,7 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
         const { diagnostics } = await diagnosticsOf('bad.contract');
         expect(diagnostics.length).toBeGreaterThan(0);
         expect(diagnostics.every((d) => d.range.start.line === 0 && typeof d.code === 'string' && d.message.length > 0)).toBe(true);
-    }, 60_000);
+    }, LSP_TEST_MS);
 
     it('answers hover and a definition in another file', async () => {
         await connection.sendNotification(DidOpenTextDocumentNotification.type, { textDocument: { uri: uri('schema.contract'), languageId: 'cactal', version: 1, text: text('schema.contract') } });
@@ -90,7 +91,7 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
         const found = await connection.sendRequest(DefinitionRequest.type, { textDocument: { uri: uri('schema.contract') }, position });
         const targets = (Array.isArray(found) ? found : found ? [found] : []) as Array<Location | LocationLink>;
         expect(targets.map((t) => ('targetUri' in t ? t.targetUri : t.uri))).toContain(uri('msc.contract'));
-    }, 60_000);
+    }, LSP_TEST_MS);
 
     it('renames a module in every file that refers to it, files not opened included', async () => {
         const position = at('schema.contract', 'MSC(consigne', 1);
@@ -101,5 +102,5 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
         const declaration = at('msc.contract', 'MSC {');
         expect(changes[uri('msc.contract')]!.map((e) => e.range.start)).toContainEqual(declaration);
         expect(changes[uri('schema.contract')]!.length).toBe(4); // modules {...}, the graph, two communications
-    }, 60_000);
+    }, LSP_TEST_MS);
 });

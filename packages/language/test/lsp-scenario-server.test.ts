@@ -12,7 +12,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { Client, waitFor } from './lsp-stdio-client.js';
+import { Client, LSP_TEST_MS, waitFor } from './lsp-stdio-client.js';
 
 const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
 const EXAMPLES = fileURLToPath(new URL('../../../examples/', import.meta.url));
@@ -61,18 +61,18 @@ describe('contract-language-server: .scenario files', () => {
             workspaceFolders: [{ uri: pathToFileURL(dir).toString(), name: 'ws' }],
         });
         client.notify('initialized', {});
-    }, 30_000);
+    }, LSP_TEST_MS);
 
     afterAll(async () => {
         await client?.stop();
         if (dir) rmSync(dir, { recursive: true, force: true });
-    });
+    }, LSP_TEST_MS);
 
     it('publishes no diagnostic for the example scenarios, each checked against its own project', async () => {
         const files = ['tutorial/scenarios/commutation.scenario', 'tutorial/scenarios/mission.scenario', 'mobile-robot/scenarios/modes.scenario'];
         for (const f of files) open(f, readFileSync(join(dir, f), 'utf8'));
         for (const f of files) expect(await nextDiagnostics(f, 0), f).toEqual([]);
-    }, 40_000);
+    }, LSP_TEST_MS);
 
     it('reports each problem of a broken scenario with its range, code, severity and message', async () => {
         const text = [
@@ -122,7 +122,7 @@ describe('contract-language-server: .scenario files', () => {
         const count = client.publishedCount(uri('tutorial/scenarios/broken.scenario'));
         change('tutorial/scenarios/broken.scenario', lines.slice(0, 2).join('\n') + '\nexpect rule SUP.action.SECOND inactive\n');
         expect(await nextDiagnostics('tutorial/scenarios/broken.scenario', count)).toEqual([]);
-    }, 40_000);
+    }, LSP_TEST_MS);
 
     it('reports a misspelt rule and an ill-typed value in a broken variant of the mobile robot\'s scenario', async () => {
         const file = 'mobile-robot/scenarios/broken.scenario';
@@ -140,7 +140,7 @@ describe('contract-language-server: .scenario files', () => {
         ]);
         expect(d[0]!.message).toMatch(/^MIS\.mission has no rule 'TELEOPP' \(rules: .*\)\. Did you mean 'TELEOP'\?$/);
         expect(d[1]!.message).toContain('float');
-    }, 40_000);
+    }, LSP_TEST_MS);
 
     it('re-checks an open scenario when a .contract file of its project changes', async () => {
         const file = 'tutorial/scenarios/commutation.scenario';
@@ -159,7 +159,7 @@ describe('contract-language-server: .scenario files', () => {
         change('tutorial/supervisor.contract', supervisor);
         await waitFor(() => client.latestDiagnostics<Diag>(uri(file))?.length === 0);
         expect(client.latestDiagnostics(uri(file))).toEqual([]);
-    }, 40_000);
+    }, LSP_TEST_MS);
 
     it('completes keywords, module names, event ports, rules, schemas, locals and the values the rules test', async () => {
         const file = 'tutorial/scenarios/typing.scenario';
@@ -194,7 +194,7 @@ describe('contract-language-server: .scenario files', () => {
         const values = (await completion(robot, 0, '"t=1ms TEL:1 '.length - 1)).map((i) => i.label);
         expect(values).toContain('"auto"');
         expect((await completion(robot, 0, 0)).map((i) => i.label)).not.toContain('MAA:');
-    }, 40_000);
+    }, LSP_TEST_MS);
 
     it('hovers a port with its type and declaration, a rule with its conditions, a schema with its period, a time in µs', async () => {
         const file = 'tutorial/scenarios/commutation.scenario';
@@ -230,5 +230,5 @@ describe('contract-language-server: .scenario files', () => {
         expect((await hover(robot, distance, 't=500ms OBS:0 dis'.length))?.contents.value).toContain('type `float`');
         // Requests that mean nothing for a scenario answer empty, not with an error.
         expect(await client.request('textDocument/documentSymbol', { textDocument: { uri: uri(file) } })).toBeNull();
-    }, 40_000);
+    }, LSP_TEST_MS);
 });

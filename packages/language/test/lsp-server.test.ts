@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { ARCHITECTURE } from './lsp-workspace.js';
-import { Client } from './lsp-stdio-client.js';
+import { Client, LSP_TEST_MS, LSP_WAIT_MS } from './lsp-stdio-client.js';
 
 
 const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
@@ -39,12 +39,12 @@ describe('contract-language-server (stdio)', () => {
         for (const file of ['schema.contract', 'msc.contract']) {
             client.notify('textDocument/didOpen', { textDocument: { uri: uri(file), languageId: 'cactal', version: 1, text: readFileSync(join(dir, file), 'utf8') } });
         }
-    }, 30_000);
+    }, LSP_TEST_MS);
 
     afterAll(async () => {
         await client?.stop();
         if (dir) rmSync(dir, { recursive: true, force: true });
-    });
+    }, LSP_TEST_MS);
 
     it('serves outline, hover, cross-file definition and formatting for files read from disk', async () => {
         const symbols = await client.request<Array<{ name: string; children?: Array<{ name: string }> }>>('textDocument/documentSymbol', { textDocument: { uri: uri('msc.contract') } });
@@ -63,13 +63,13 @@ describe('contract-language-server (stdio)', () => {
         const edits = await client.request<Array<{ newText: string }>>('textDocument/formatting', { textDocument: { uri: uri('msc.contract') }, options: { tabSize: 4, insertSpaces: true } });
         expect(edits.length).toBe(1);
         expect(edits[0]!.newText).toContain('scheduling {\n        C = 1ms;\n    }');
-    }, 30_000);
+    }, LSP_TEST_MS);
 
     it('formatting a file with a syntax error changes nothing and says why (window/showMessage)', async () => {
         client.notify('textDocument/didOpen', { textDocument: { uri: uri('broken.contract'), languageId: 'cactal', version: 1, text: 'synchronous module MSZ {\n    scheduling { C=1ms }\n}' } });
         const edits = await client.request<unknown[]>('textDocument/formatting', { textDocument: { uri: uri('broken.contract') }, options: { tabSize: 4, insertSpaces: true } });
         expect(edits).toEqual([]);
-        const deadline = Date.now() + 20_000;
+        const deadline = Date.now() + LSP_WAIT_MS;
         let shown: Array<{ type: number; message: string }> = [];
         while (Date.now() < deadline && !shown.length) {
             await new Promise((r) => setTimeout(r, 50));
@@ -78,11 +78,11 @@ describe('contract-language-server (stdio)', () => {
         expect(shown).toHaveLength(1);
         expect(shown[0]!.type).toBe(2); // warning
         expect(shown[0]!.message).toMatch(/^Not formatted: line 2, column \d+: .+Fix the syntax error first/);
-    }, 30_000);
+    }, LSP_TEST_MS);
 
     it('publishes diagnostics with codes for an opened file with a problem', async () => {
         client.notify('textDocument/didOpen', { textDocument: { uri: uri('bad.contract'), languageId: 'cactal', version: 1, text: 'synchronous module msa { scheduling { C=1ms; } }' } });
-        const deadline = Date.now() + 20_000;
+        const deadline = Date.now() + LSP_WAIT_MS;
         let codes: string[] = [];
         while (Date.now() < deadline && !codes.includes('module-name-format')) {
             await new Promise((r) => setTimeout(r, 100));
@@ -91,7 +91,7 @@ describe('contract-language-server (stdio)', () => {
                 .flatMap((n) => (n.params as { diagnostics: Array<{ code?: string }> }).diagnostics.map((d) => String(d.code)));
         }
         expect(codes).toContain('module-name-format');
-    }, 30_000);
+    }, LSP_TEST_MS);
 
     it('refreshes the diagnostics of a file that does not refer to a newly opened one (scheduler-missing)', async () => {
         const latestCodes = (file: string) => {
@@ -100,7 +100,7 @@ describe('contract-language-server (stdio)', () => {
             return last?.diagnostics.map((d) => String(d.code));
         };
         const waitFor = async (condition: () => boolean) => {
-            const deadline = Date.now() + 20_000;
+            const deadline = Date.now() + LSP_WAIT_MS;
             while (Date.now() < deadline && !condition()) await new Promise((r) => setTimeout(r, 100));
         };
         await waitFor(() => latestCodes('schema.contract')?.includes('scheduler-missing') ?? false);
@@ -111,5 +111,5 @@ describe('contract-language-server (stdio)', () => {
         await waitFor(() => latestCodes('sched.contract') !== undefined && !(latestCodes('schema.contract') ?? []).includes('scheduler-missing'));
         expect(latestCodes('sched.contract')).toEqual([]);
         expect(latestCodes('schema.contract')).not.toContain('scheduler-missing');
-    }, 45_000);
+    }, LSP_TEST_MS);
 });

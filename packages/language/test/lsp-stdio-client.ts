@@ -4,6 +4,15 @@
  */
 import type { ChildProcessWithoutNullStreams } from 'node:child_process';
 
+/**
+ * How long a test waits for the server's answer or notification: an answer, not a latency. `make
+ * test` runs this suite at nice 19 beside two lanes of sandboxes and browsers, where a server can
+ * wait for a CPU for tens of seconds (an `initialize` took over 20 s there once). LSP_TEST_MS bounds
+ * a whole test or hook that waits for several.
+ */
+export const LSP_WAIT_MS = 120_000;
+export const LSP_TEST_MS = 300_000;
+
 /** Minimal LSP client over the server's stdio (Content-Length framing). */
 export class Client {
     private buffer = Buffer.alloc(0);
@@ -39,7 +48,7 @@ export class Client {
     request<T>(method: string, params: unknown): Promise<T> {
         const id = this.nextId++;
         return new Promise((resolve, reject) => {
-            const timer = setTimeout(() => reject(new Error(`${method}: no answer in 20 s`)), 20_000);
+            const timer = setTimeout(() => reject(new Error(`${method}: no answer in ${LSP_WAIT_MS / 1000} s`)), LSP_WAIT_MS);
             this.pending.set(id, (msg) => {
                 clearTimeout(timer);
                 if (msg.error) reject(new Error(msg.error.message)); else resolve(msg.result as T);
@@ -76,7 +85,7 @@ export class Client {
 }
 
 /** Polls `condition` every 50 ms for up to `ms`. */
-export async function waitFor(condition: () => boolean, ms = 20_000): Promise<void> {
+export async function waitFor(condition: () => boolean, ms = LSP_WAIT_MS): Promise<void> {
     const deadline = Date.now() + ms;
     while (Date.now() < deadline && !condition()) await new Promise((r) => setTimeout(r, 50));
 }
