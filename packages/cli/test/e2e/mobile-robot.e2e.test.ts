@@ -98,9 +98,12 @@ describe('examples/mobile-robot end to end', () => {
             const seconds = (r: LogRecord) => Number(r.mono - first) / 1e9;
             const modes = logs.filter((r) => r.module === 'MIS' && /^rule mission\.(AUTO|STOP) active$/.test(r.detail));
             const modeAt = (t: number) => modes.filter((r) => seconds(r) <= t).pop()?.detail;
-            expect(modeAt(3.7)).toBe('rule mission.STOP active');
-            expect(modeAt(4.3)).toBe('rule mission.STOP active');
-            expect(modes.some((r) => seconds(r) > 4.5 && r.detail === 'rule mission.AUTO active')).toBe(true);
+            // on a failure, the story with its times: MIS's rule changes with their causes, ORD's misses
+            const story = () => logs.filter((r) => (r.module === 'MIS' && r.event === 'sup_rule') || (r.module === 'ORD' && r.event === 'scheduler' && !/^(activate|deactivate) /.test(r.detail)))
+                .map((r) => `${seconds(r).toFixed(3)} s ${r.module}: ${r.detail}`).join('\n');
+            expect(modeAt(3.7), story()).toBe('rule mission.STOP active');
+            expect(modeAt(4.3), story()).toBe('rule mission.STOP active');
+            expect(modes.some((r) => seconds(r) > 4.5 && r.detail === 'rule mission.AUTO active'), story()).toBe(true);
             const misses = schedulerTrace(logs).filter((l) => !/^(activate|deactivate) /.test(l));
             if (misses.length) console.warn(`scheduler reported (machine under load?): ${misses.slice(0, 5).join(' | ')}`);
             const text = json.output.map((l) => `[${l.source}] ${l.line}`);
