@@ -31,6 +31,38 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         expect(io.stdout).toMatch(/\n2 passed, 0 failed\n$/);
     });
 
+    it('--trace writes each simulation as the trace records a run writes, one JSON object a line (the same records as --format json holds)', async () => {
+        const dir = mkdtempSync(join(tmpdir(), 'contract-simulate-trace-'));
+        try {
+            const io = capture(dir);
+            expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), scenario('mission.scenario'), '--cache-dir', cache, '--trace', 'sim.jsonl', '--format', 'json'], io), io.stderr).toBe(0);
+            const records = readFileSync(join(dir, 'sim.jsonl'), 'utf8').trimEnd().split('\n').map((l) => JSON.parse(l) as { kind: string; module: string; peer: string; monoNs: string; detail: string; rule?: string; active?: boolean; cause?: string });
+            // one simulation after the other, each from its sim_start at time 0 naming the scenario
+            const starts = records.flatMap((r, i) => (r.kind === 'sim_start' ? [i] : []));
+            expect(starts).toHaveLength(2);
+            expect(records[0]!.detail).toMatch(/^simulation start: .*commutation\.scenario$/);
+            expect(records[starts[1]!]!.detail).toMatch(/^simulation start: .*mission\.scenario$/);
+            const first = records.slice(0, starts[1]);
+            // every rule change of the steps, with its cause, and ORD's and the modules' records
+            const steps = (JSON.parse(io.stdout) as { scenarios: Array<{ steps: Array<{ rules: unknown[]; records: Array<{ kind: string }> }> }> }).scenarios[0]!.steps;
+            expect(first.filter((r) => r.kind === 'sup_rule')).toHaveLength(steps.reduce((n, s) => n + s.rules.length, 0));
+            expect(first).toContainEqual(expect.objectContaining({ kind: 'sup_rule', module: 'SUP', rule: 'SECOND', active: true, cause: 'MAA:2 value="disconnected"', monoNs: '300000000' }));
+            for (const kind of ['ord_release', 'ord_finished', 'ord_complete', 'run_started', 'run_finished', 'event_received']) {
+                expect(first.filter((r) => r.kind === kind).length, kind).toBe(steps.reduce((n, s) => n + s.records.filter((x) => x.kind === kind).length, 0));
+                expect(first.some((r) => r.kind === kind), kind).toBe(true);
+            }
+            // in time order
+            const times = first.map((r) => Number(r.monoNs));
+            expect(times).toEqual([...times].sort((a, b) => a - b));
+            // a file that cannot be written: said, exit 1
+            const bad = capture(dir);
+            expect(await runCli(['simulate', TUTORIAL, scenario('mission.scenario'), '--cache-dir', cache, '--trace', join(dir, 'no', 'such', 'folder.jsonl')], bad)).toBe(1);
+            expect(bad.stderr).toMatch(/contract simulate: cannot write the trace to .*folder\.jsonl: ENOENT/);
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
+    });
+
     it('a wrong expectation exits 1, naming the step, the expected and the actual state; junit and json say it too', async () => {
         const dir = mkdtempSync(join(tmpdir(), 'contract-simulate-wrong-'));
         const file = join(dir, 'wrong.scenario');

@@ -1,10 +1,11 @@
 /**
- * `contract simulate DIR SCENARIO... [--format text|json|junit]`: steps each scenario's events
- * through the project's supervisors and ORD in virtual time — the real engine cores, linked with
- * the project's generated tables into a native harness (docs/simulation.md) — and reports each
- * step and each failed expectation like a test runner.
+ * `contract simulate DIR SCENARIO... [--format text|json|junit] [--trace FILE.jsonl]`: steps each
+ * scenario's events through the project's supervisors and ORD in virtual time — the real engine
+ * cores, linked with the project's generated tables into a native harness (docs/simulation.md) —
+ * and reports each step and each failed expectation like a test runner; `--trace` also writes the
+ * simulation as the run-time trace records `contract run --trace` writes (one JSON object a line).
  */
-import { existsSync } from 'node:fs';
+import { existsSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import type { LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
@@ -12,6 +13,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT } from '../job-runner.js';
 import { safeName } from '../terminal-text.js';
+import { toJsonLines } from '../trace-files.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 
@@ -19,10 +21,12 @@ export const simulateCommand: Command = {
     name: 'simulate',
     summary: 'run .scenario files through the supervisors and ORD in virtual time (no robot, no module code)',
     usage: [
-        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--verbose] [--sandbox auto|bwrap|none] [--runtime PATH] [--cache-dir DIR]',
+        'usage: contract simulate DIR SCENARIO... [--format text|json|junit] [--trace FILE.jsonl] [--verbose] [--sandbox auto|bwrap|none] [--runtime PATH] [--cache-dir DIR]',
         '  DIR: the project (its .contract files); SCENARIO: .scenario files (format: docs/simulation.md)',
         '  --format: text (default: each step, its rule changes, each failed expectation), json (every step\'s record), junit (JUnit XML)',
         '  --verbose: text also shows each step\'s actions and the engines\' trace lines',
+        '  --trace: also write each scenario\'s simulation to FILE as the trace records a run writes (contract run --trace), one JSON',
+        '           object a line, in virtual time from 0; each scenario starts with a sim_start record naming it',
         '  --sandbox: where your project\'s C functions (testit, doit...) are compiled and run: bwrap (auto, the default: confined like a',
         '             build job) or none (unconfined, as you: your own code on your own machine only); default $CONTRACT_SIMULATOR_SANDBOX, else auto',
         '  --runtime: the runtime source folder (default: $CONTRACT_RUNTIME, else the one inside the installed CLI or the repository\'s runtime/)',
@@ -34,7 +38,9 @@ export const simulateCommand: Command = {
     async run(args: string[], io: CliIO): Promise<number> {
         // --cache (before it became --cache-dir) named the simulators' folder itself: told, not guessed
         if (args.some((a) => a === '--cache' || a.startsWith('--cache='))) throw new UsageError('--cache is now --cache-dir: the build cache folder (as for contract build); simulators are kept in its sim/');
-        const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir', 'sandbox'], ['verbose']);
+        const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir', 'sandbox', 'trace'], ['verbose']);
+        const traceOption = parsed.options.get('trace');
+        if (traceOption === true || traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
             DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
@@ -102,6 +108,16 @@ export const simulateCommand: Command = {
         if (format === 'json') io.out(jsonReport(results));
         else if (format === 'junit') io.out(junitReport(results));
         else io.out(textReport(results, { verbose: parsed.options.get('verbose') === true }));
+        if (typeof traceOption === 'string') {
+            const { stepsToTrace, traceStepOf } = await import('@contract-studio/simulator/trace');
+            const traceFile = resolve(io.cwd, traceOption);
+            try {
+                writeFileSync(traceFile, results.map((r) => toJsonLines(stepsToTrace(r.steps.map(traceStepOf), r.file))).join(''));
+            } catch (e) {
+                io.err(`contract simulate: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
+                return EXIT_FAILURE;
+            }
+        }
         return results.every((r) => r.passed) ? EXIT_OK : EXIT_FAILURE;
     },
 };

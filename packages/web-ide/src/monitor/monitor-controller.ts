@@ -223,7 +223,7 @@ export class MonitorController {
     else await this.refreshSources(); // or the user picked another run meanwhile: this one is listed
   }
 
-  /** A simulation's state (simulate/sim-to-trace.ts): the same view as runs, replacing the previous simulation. */
+  /** A simulation's state (@contract-studio/simulator/trace): the same view as runs, replacing the previous simulation. */
   async showSimulation(model: MonitorModel, label: string): Promise<void> {
     this.picked++;
     this.runs.set('sim', { id: 'sim', label, model, live: false });

@@ -3,7 +3,7 @@
  * it: the functions to pick come from the workspace model (the language server's document symbols,
  * monitor/supervisor-symbols.ts); each session change re-runs the session's whole scenario on the
  * server (POST /api/simulate: the simulator's own API, virtual time) and shows its last state in
- * the panel and, as trace records (sim-to-trace.ts), in the Monitor beside the editor: one view for
+ * the panel and, as trace records (@contract-studio/simulator/trace), in the Monitor beside the editor: one view for
  * live runs, replays and simulations. "Save as scenario" writes through the file API.
  */
 import { api, ApiError } from '../api.js';
@@ -17,7 +17,7 @@ import type { SimulateResponse } from '../../server/api-types.js';
 import { formatTime } from '@contract-studio/language/scenario';
 import { ScenarioSession } from './scenario-session.js';
 import { SimulatePanel } from './simulate-panel.js';
-import { stepsToTrace } from './sim-to-trace.js';
+import { stepsToTrace } from '@contract-studio/simulator/trace';
 import { STEP_INPUT_FILE } from './step-input.js';
 
 /** How far "Next" looks for the engines' next change (virtual time). */

@@ -8,7 +8,7 @@ import { parseScenario } from '@contract-studio/language/scenario';
 import type { SimulateStep } from '../../server/api-types.js';
 import { MonitorModel } from '../monitor/monitor-model.js';
 import { ScenarioSession } from './scenario-session.js';
-import { stepsToTrace } from './sim-to-trace.js';
+import { stepsToTrace } from '@contract-studio/simulator/trace';
 
 const step = (over: Partial<SimulateStep>): SimulateStep => ({ line: 0, source: '', timeNs: 0, kind: 'event', ok: true, rules: [], actions: [], schemas: [], locals: [], ...over });
 

@@ -4,7 +4,7 @@ import { fileURLToPath } from 'node:url';
 import type { SimulateStep } from '../../server/api-types.js';
 import { MonitorModel } from '../monitor/monitor-model.js';
 import { activeSchemas } from '../monitor/active-schemas.js';
-import { stepsToTrace } from './sim-to-trace.js';
+import { stepsToTrace } from '@contract-studio/simulator/trace';
 
 // the step records of a real simulation of examples/tutorial (`contract simulate examples/tutorial
 // scenarios/mission.scenario --format json`): GLB.mission activates SUP.action, MAA:2 "disconnected"

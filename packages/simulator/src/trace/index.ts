@@ -1,0 +1,5 @@
+/**
+ * `@contract-studio/simulator/trace`: a simulation's steps as the run-time trace records (browser-safe:
+ * the IDE's Monitor and `contract simulate --trace` use the same conversion).
+ */
+export { stepsToTrace, traceStepOf, type TraceStep } from './steps-to-trace.js';

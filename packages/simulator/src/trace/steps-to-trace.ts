@@ -1,0 +1,185 @@
+/**
+ * The simulator's steps (docs/simulation.md §4) as the trace records a run writes
+ * (docs/runtime-api.md "Trace records"), so that one model holds a live run, a replayed run and a
+ * simulation: the IDE's Monitor folds them, `contract simulate --trace` writes them as JSON lines.
+ * Browser-safe (`@contract-studio/simulator/trace`: the trace reader and types only). mono_ns is
+ * the virtual time. A step record (runner/protocol.ts StepRecord) holds what happened since the
+ * step before:
+ * - `rules`: rule changes → `sup_rule` records (same cause text, parsed by the trace reader's parseCause);
+ * - `log`: the engines' own trace lines, as a real run's `supervisor` and `scheduler` records hold
+ *   them (read by the trace reader, parseRecordLine: `function F started`, `activate S`, `overrun: …`),
+ *   and ORD's `release M (S)` → `ord_release` records (the cycle counted from 0 at each activation);
+ * - `actions`: what the engines did → a supervisor's holds (`start module M` / `stop module M`:
+ *   `module_hold` taken / dropped), priorities (`module_priority`), its START requests to ORD
+ *   (`request_received`: which rule activated a schema), every other action counted done or undone
+ *   (`supervisor` action records); ORD's `ORD:0 "S" (deadline miss)` → `ord_deadline_miss`; a crash → `module_exit`.
+ * - `records`: the typed records the harness writes as a real run's CSV logs hold them (ORD's
+ *   ord_release / ord_finished / ord_complete / ord_deadline_miss with their cycle and response
+ *   times, each virtual module's run_started / run_finished, each event_received of a supervisor)
+ *   → read by the trace reader as a CSV line. Without them (an older server), ORD's `release M (S)`
+ *   lines and `ORD:0` actions stand for the releases and misses, cycles counted here.
+ * Without `log` (an older server), functions come from start/stop steps and `activate supervisor` /
+ * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
+ * Not simulated, so not in the trace: data deliveries (virtual modules run no code and post no data).
+ */
+import { parseCause, parseRecordLine, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import type { ActionRecord, LogLine, RuleChange, SimTraceRecord } from '../runner/protocol.js';
+
+/** What the conversion reads of a step: the runner's StepResult with its record's lists, or the IDE's answer of POST /api/simulate. */
+export interface TraceStep {
+    timeNs: number;
+    /** The scenario line (`start SUP.f(...)`): an answer without engine lines takes the started and stopped functions from it. */
+    source: string;
+    ok: boolean;
+    rules: RuleChange[];
+    actions: ActionRecord[];
+    /** The engines' trace lines (absent from an older server's answer). */
+    log?: LogLine[];
+    /** The harness's typed records (absent from an older server's answer). */
+    records?: SimTraceRecord[];
+    /** The active schemas after the step. */
+    schemas?: string[];
+}
+
+/** A runner's step as the conversion reads it (its record's lists). */
+export function traceStepOf(step: { timeNs: number; source: string; ok: boolean; record: { rules: RuleChange[]; actions: ActionRecord[]; log?: LogLine[]; records?: SimTraceRecord[]; schemas?: string[] } }): TraceStep {
+    const r = step.record;
+    return { timeNs: step.timeNs, source: step.source, ok: step.ok, rules: r.rules, actions: r.actions, log: r.log, records: r.records, schemas: r.schemas };
+}
+
+function base(timeNs: number, module: string, detail: string, peer = '') {
+    return { monoNs: String(Math.max(0, Math.floor(timeNs))), wallTime: '', module, peer, port: null, size: 0, detail };
+}
+
+function known(timeNs: number, module: string, kind: string, detail: string, fields: Record<string, string | number>, peer = ''): KnownRecord {
+    return { ...base(timeNs, module, detail, peer), kind, fields };
+}
+
+/** A CSV field as the runtime writes it: quoted when it holds a quote or a comma. */
+function csvField(text: string): string {
+    const one = text.replace(/[\r\n]+/g, ' ');
+    return /[",]/.test(one) ? `"${one.replace(/"/g, '""')}"` : one;
+}
+
+/** An engine's trace line as the CSV record a real run writes (`kind`: supervisor or scheduler), read by the trace reader. */
+function engineLine(timeNs: number, who: string, kind: 'supervisor' | 'scheduler', line: string): TraceRecord {
+    return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(timeNs))},,${who},${kind},,,0,${csvField(line)}`);
+}
+
+/** A typed record of the harness as the CSV line a real run writes, read by the trace reader. */
+function typedRecord(r: SimTraceRecord): TraceRecord {
+    const port = Number.isInteger(r.port) && r.port! >= 0 ? String(r.port) : '';
+    return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(r.timeNs))},,${csvField(r.module)},${csvField(r.kind)},${csvField(r.peer)},${port},0,${csvField(r.detail)}`);
+}
+
+const RELEASE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
+const ORD_ACTIVATE = /^activate ([A-Za-z_]\w*)$/;
+const DEADLINE_MISS = /^ORD:0 "([A-Za-z_]\w*)" \(deadline miss\)/;
+const START_MODULE = /^start module ([A-Za-z_]\w*)\b/;
+const STOP_MODULE = /^stop module ([A-Za-z_]\w*)$/;
+const SET_PRIORITY = /^set priority of ([A-Za-z_]\w*) to /;
+const ACTIVATE_SCHEMA = /^activate schema ([A-Za-z_]\w*) /;
+const ACTIVATE_SUPERVISOR = /^activate supervisor ([A-Za-z_]\w*)\.([A-Za-z_]\w*) /;
+const STOP_FUNCTION = /^stop ([A-Za-z_]\w*)\.([A-Za-z_]\w*) /;
+/** Actions that undo an earlier one (counted `undone`, as the fold counts a logged `undo`/`un…` line). */
+const UNDO = /^(stop|deactivate|disconnect|unsubscribe|release)\b/;
+
+/**
+ * The trace of one simulation, in time order; its first record (`sim_start`, time 0: the Monitor's
+ * cursor starts there) names `scenario` when given.
+ */
+export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord[] {
+    const out: TraceRecord[] = [known(0, 'SIM', 'sim_start', scenario ? `simulation start: ${scenario.replace(/[\r\n]+/g, ' ')}` : 'simulation start', {})];
+    const withLog = steps.some((s) => Array.isArray(s.log));
+    const withRecords = steps.some((s) => Array.isArray(s.records));
+    /**
+     * Per periodic schema: its cycle's number (from 0 at each activation) and the modules released in
+     * it (a cycle releases each module once, at its precedence's times: a module released again starts the next).
+     */
+    const cycles = new Map<string, { cycle: number; released: Set<string> }>();
+    let schemas = new Set<string>();
+    for (const s of steps) {
+        for (const r of s.rules) {
+            const rec: RuleRecord = {
+                ...base(r.timeNs, r.supervisor, `${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} cause=${r.cause}`),
+                kind: 'sup_rule', function: r.function, rule: r.rule, active: r.active, cause: r.cause, causeEvent: parseCause(r.cause),
+            };
+            out.push(rec);
+        }
+        for (const r of s.records ?? []) {
+            const rec = typedRecord(r);
+            if (rec.kind !== 'unknown') out.push(rec);
+        }
+        for (const l of s.log ?? []) {
+            if (l.who === 'ORD') {
+                const rel = RELEASE.exec(l.line);
+                if (rel && withRecords) continue; // the typed ord_release stands for it
+                if (rel) {
+                    const [, module, schema] = rel as unknown as [string, string, string];
+                    let c = cycles.get(schema);
+                    if (!c || c.released.has(module)) cycles.set(schema, (c = { cycle: (c?.cycle ?? -1) + 1, released: new Set() }));
+                    c.released.add(module);
+                    const cycle = c.cycle;
+                    out.push(known(l.timeNs, 'ORD', 'ord_release', `schema=${schema} cycle=${cycle} tick_ns=${l.timeNs} release_ns=${l.timeNs}`,
+                        { schema, cycle, tick_ns: l.timeNs, release_ns: l.timeNs }, module));
+                    continue;
+                }
+                const act = ORD_ACTIVATE.exec(l.line);
+                if (act) cycles.delete(act[1]!);
+                const rec = engineLine(l.timeNs, 'ORD', 'scheduler', l.line);
+                if (rec.kind !== 'unknown') out.push(rec);
+            } else {
+                const rec = engineLine(l.timeNs, l.who, 'supervisor', l.line);
+                // a supervisor's actions come from `actions` (counted once)
+                if (rec.kind !== 'unknown' && (rec as KnownRecord).fields?.['what'] !== 'action') out.push(rec);
+            }
+        }
+        for (const a of s.actions) {
+            const t = a.timeNs;
+            if (a.who === 'ORD') {
+                const miss = withRecords ? null : DEADLINE_MISS.exec(a.what); // else the typed ord_deadline_miss
+                if (miss) {
+                    const schema = miss[1]!;
+                    const cycle = cycles.get(schema)?.cycle ?? -1;
+                    out.push(known(t, 'ORD', 'ord_deadline_miss', `schema=${schema} cycle=${cycle}`, { schema, cycle }));
+                }
+                continue; // ORD's flows and parameters: not a supervisor's actions
+            }
+            if (a.who === 'sim') continue;
+            if (a.what === 'crashed') {
+                out.push(known(t, a.who, 'module_exit', 'crashed (simulated)', {}));
+                continue;
+            }
+            let m: RegExpExecArray | null;
+            if ((m = START_MODULE.exec(a.what))) out.push(known(t, a.who, 'module_hold', `hold taken (${a.what})`, {}, m[1]!));
+            else if ((m = STOP_MODULE.exec(a.what))) out.push(known(t, a.who, 'module_hold', `last hold dropped (${a.what})`, {}, m[1]!));
+            else if ((m = SET_PRIORITY.exec(a.what))) out.push(known(t, a.who, 'module_priority', a.what, {}, m[1]!));
+            else {
+                if ((m = ACTIVATE_SCHEMA.exec(a.what))) out.push(known(t, 'ORD', 'request_received', `START ${m[1]!}`, {}, a.who));
+                const undo = UNDO.test(a.what);
+                out.push(known(t, a.who, 'supervisor', undo ? `undo: ${a.what}` : a.what, { what: 'action' }));
+                if (!withLog && (m = ACTIVATE_SUPERVISOR.exec(a.what) ?? STOP_FUNCTION.exec(a.what))) {
+                    const what = a.what.startsWith('stop') ? 'function_stopped' : 'function_started';
+                    out.push(known(t, m[1]!, 'supervisor', `function ${m[2]!} ${what === 'function_started' ? 'started' : 'stopped'}`, { what, function: m[2]! }));
+                }
+            }
+        }
+        if (!withLog) {
+            const m = /^(start|stop)\s+([A-Za-z_]\w*)\.([A-Za-z_]\w*)/.exec(s.source);
+            if (m && s.ok) {
+                const what = m[1] === 'start' ? 'function_started' : 'function_stopped';
+                out.push(known(s.timeNs, m[2]!, 'supervisor', `${what} function=${m[3]}`, { what, function: m[3]! }));
+            }
+            const now = new Set(s.schemas ?? []);
+            for (const sc of now) if (!schemas.has(sc)) out.push(known(s.timeNs, 'ORD', 'scheduler', `activate ${sc}`, { what: 'activate', schema: sc }));
+            for (const sc of schemas) if (!now.has(sc)) out.push(known(s.timeNs, 'ORD', 'scheduler', `deactivate ${sc}`, { what: 'deactivate', schema: sc }));
+            schemas = now;
+        }
+    }
+    // records in time order, as a run's trace (a step's record holds what happened up to it)
+    return out.map((r, i) => ({ r, i })).sort((a, b) => time(a.r) - time(b.r) || a.i - b.i).map((x) => x.r);
+}
+
+function time(r: TraceRecord): number {
+    return r.kind === 'unknown' ? 0 : Number((r as KnownRecord).monoNs);
+}
