@@ -20,13 +20,18 @@ describe('planRename', () => {
         }
     });
 
-    it('a port by MODULE:name or by an index only one port has; a supervision function by SUP.function', () => {
+    it('a port by MODULE:name or by an index only one port has; a supervision function by SUP.function; its members by SUP.function.NAME; each with its owner', () => {
         const port = planRename(ws, 'MSC:in_coordinates', 'position');
-        expect(port).toMatchObject({ kind: 'port', oldName: 'in_coordinates', generatedNames: false });
+        expect(port).toMatchObject({ kind: 'port', oldName: 'in_coordinates', generatedNames: false, owner: 'MSC' });
         expect(port.files.map((f) => f.file)).toEqual(['smodule3.contract']);
-        expect(planRename(ws, 'SUP:2', 'link').oldName).toBe('connection_status');
-        expect(planRename(ws, 'SUP.action', 'act')).toMatchObject({ kind: 'supervision function', generatedNames: false });
-        expect(planRename(ws, 'TypeA', 'Vec3')).toMatchObject({ kind: 'datatype', generatedNames: true });
+        expect(planRename(ws, 'SUP:2', 'link')).toMatchObject({ oldName: 'connection_status', owner: 'SUP' });
+        expect(planRename(ws, 'SUP.action', 'act')).toMatchObject({ kind: 'supervision function', generatedNames: false, owner: 'SUP' });
+        expect(planRename(ws, 'SUP.action.FIRST', 'OPENING')).toMatchObject({ kind: 'rule label', owner: 'SUP.action' });
+        expect(planRename(ws, 'SUP.action.temp_mess_type', 'kind')).toMatchObject({ kind: 'local', owner: 'SUP.action' });
+        expect(planRename(ws, 'SUP.action.consigne', 'setpoint')).toMatchObject({ kind: 'function parameter', owner: 'SUP.action' });
+        const type = planRename(ws, 'TypeA', 'Vec3');
+        expect(type).toMatchObject({ kind: 'datatype', generatedNames: true });
+        expect(type.owner).toBeUndefined();
         expect(planRename(ws, 'schemaCommande1', 'command1')).toMatchObject({ kind: 'schema', generatedNames: false });
     });
 

@@ -84,7 +84,7 @@ export const renameCommand: Command = {
         // the user code: a port or parameter is a variable of its module's module.c, a datatype or
         // a function a C name of every file: their uses in the protected regions follow (whole C
         // identifiers in code only; a module's name is in strings, if anywhere: listed below)
-        const owner = ownerOf(oldSpec);
+        const owner = plan.owner;
         const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
         const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
         const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
@@ -101,7 +101,7 @@ export const renameCommand: Command = {
             }
         }
         const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
-            kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner: scenarioOwner(plan.kind, oldSpec, owner),
+            kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner,
         });
         for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
         const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
@@ -145,18 +145,6 @@ export const renameCommand: Command = {
 
 /** Kinds whose names the generated C or the user code uses (a schema or a supervision function is in no module's C). */
 const MENTIONED_KINDS = new Set(['module', 'supervisor', 'datatype', 'enumeration', 'function', 'port', 'parameter']);
-
-/** The owner a scenario names the entity with: `SUP` of a supervision function, `SUP.fn` of its rule labels, locals and parameters, a port's module. */
-function scenarioOwner(kind: string, spec: string, portOwner: string | undefined): string | undefined {
-    if (kind === 'supervision function') return spec.split('.')[0];
-    if (kind === 'rule label' || kind === 'local' || kind === 'function parameter') return spec.split('.').slice(0, 2).join('.');
-    return portOwner;
-}
-
-/** The module or supervisor of `MODULE:port`, or undefined. */
-function ownerOf(spec: string): string | undefined {
-    return /^([^:.]+):([^:.]+)$/.exec(spec)?.[1];
-}
 
 /** Errors that leave the text or the imports unknown (unresolved references are checked on the documents). */
 function blocksRename(code: string): boolean {

@@ -40,7 +40,7 @@ export const simulateCommand: Command = {
         if (args.some((a) => a === '--cache' || a.startsWith('--cache='))) throw new UsageError('--cache is now --cache-dir: the build cache folder (as for contract build); simulators are kept in its sim/');
         const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir', 'sandbox', 'trace'], ['verbose']);
         const traceOption = parsed.options.get('trace');
-        if (traceOption === true || traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
+        if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
             DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,

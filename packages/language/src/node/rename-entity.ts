@@ -7,7 +7,7 @@
  */
 import { AstUtils, type AstNode } from 'langium';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { isDataType, isFunctionParameter, isFunctionPrototype, isModel, isModule, isSchema, isSupervisor, type Module, type SupervisionFunction, type Supervisor } from '../generated/ast.js';
+import { isDataType, isFunctionParameter, isFunctionPrototype, isModel, isModule, isSchema, isSupervisionFunction, isSupervisor, type Module, type SupervisionFunction, type Supervisor } from '../generated/ast.js';
 import { parametersOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import { kindWord, renameProblem } from '../lsp/name-rules.js';
@@ -40,7 +40,22 @@ export interface RenamePlan {
      * datatypes, functions): their generated tree is carried over (codegen's renameInGeneratedTree).
      */
     generatedNames: boolean;
+    /**
+     * What the entity belongs to, as the scenarios and the generated tree name it: a port's or
+     * parameter's module or supervisor, a supervision function's supervisor, a rule label's,
+     * local's or function parameter's function (`SUP.function`); undefined for a top-level name.
+     */
+    owner?: string;
     files: PlannedFileEdit[];
+}
+
+/** The owner of `node` (RenamePlan.owner), from where it stands in the model. */
+function ownerOf(node: AstNode): string | undefined {
+    if (isSupervisionFunction(node)) return node.$container.name;
+    const fn = AstUtils.getContainerOfType(node.$container, isSupervisionFunction);
+    if (fn) return `${fn.$container.name}.${fn.name}`;
+    if (isModule(node) || isSupervisor(node)) return undefined;
+    return AstUtils.getContainerOfType(node.$container, (n): n is Module | Supervisor => isModule(n) || isSupervisor(n))?.name;
 }
 
 /** Top-level elements whose names the generated tree carries (paths and region IDs, docs/codegen.md). */
@@ -139,5 +154,5 @@ export function planRename(ws: LoadedWorkspace, spec: string, newName: string): 
         files.push({ file: doc.file, path: doc.path, text: TextDocument.applyEdits(copy, edits), occurrences: edits.length });
     }
     files.sort((a, b) => a.file.localeCompare(b.file));
-    return { kind, oldName: target.name, newName, generatedNames: namesGeneratedFiles(target), files };
+    return { kind, oldName: target.name, newName, generatedNames: namesGeneratedFiles(target), owner: ownerOf(target), files };
 }
