@@ -3,6 +3,7 @@ import { parseRegions, type Region } from '../regions/parse-regions.js';
 import { ORPHANS_DIR } from './orphans.js';
 import type { OutputTree } from './output-tree.js';
 import { treePathProblem } from './safe-paths.js';
+import { LINE_HASHES, encodeLineHashes, skeletonLines } from './skeleton-lines.js';
 
 /**
  * The manifest `<out>/.contract-manifest.json` lists the files the generator wrote last time and,
@@ -21,6 +22,11 @@ export interface Manifest {
      * the regions. Optional: manifests written before it have none (the check is then skipped).
      */
     skeletons?: Record<string, string>;
+    /**
+     * path -> a 24-bit hash of each line of that skeleton, 4 base64url characters a line
+     * (skeleton-lines.ts): says which lines were written outside the regions. Optional, as above.
+     */
+    skeletonLines?: Record<string, string>;
 }
 
 /** A loaded manifest: only entries whose path passed the checks (safe-paths.ts). */
@@ -29,6 +35,8 @@ export interface LoadedManifest {
     files: Map<string, Record<string, string>>;
     /** path -> skeleton hash, for the paths of `files` that have a well-formed one (none in an older manifest). */
     skeletons: Map<string, string>;
+    /** path -> encoded line hashes of the skeleton, for the paths of `skeletons` that have well-formed ones. */
+    skeletonLines: Map<string, string>;
 }
 
 export function hashContent(content: string): string {
@@ -66,12 +74,16 @@ export function skeletonHash(text: string, file: string): string {
     return skeletonDigest(skeletonText(text, file));
 }
 
-/** What the manifest records of a freshly generated file (byte string): its regions' default hashes and its skeleton hash. */
-export function fileRecord(generated: string, file: string): { defaults: Record<string, string>; skeleton: string } {
+/** What the manifest records of a freshly generated file (byte string): its regions' default hashes, its skeleton hash and line hashes. */
+export function fileRecord(generated: string, file: string): { defaults: Record<string, string>; skeleton: string; lines: string } {
     const defaults: Record<string, string> = {};
     const regions = parseRegions(generated, file).regions;
     for (const r of regions) defaults[r.id] = hashContent(r.content);
-    return { defaults, skeleton: skeletonDigest(skeletonText(generated, file, regions)) };
+    return {
+        defaults,
+        skeleton: skeletonDigest(skeletonText(generated, file, regions)),
+        lines: encodeLineHashes(skeletonLines(generated, file, regions).hashes),
+    };
 }
 
 /** The default-content hashes of a freshly generated file (byte string). */
@@ -139,11 +151,18 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
             if (files.has(path) && typeof hash === 'string' && HASH.test(hash)) skeletons.set(path, hash);
         }
     }
-    return { manifest: { files, skeletons }, problems };
+    const skeletonLineTable = new Map<string, string>();
+    const lines = (data as { skeletonLines?: unknown }).skeletonLines;
+    if (typeof lines === 'object' && lines !== null && !Array.isArray(lines)) {
+        for (const [path, encoded] of Object.entries(lines)) {
+            if (skeletons.has(path) && typeof encoded === 'string' && LINE_HASHES.test(encoded)) skeletonLineTable.set(path, encoded);
+        }
+    }
+    return { manifest: { files, skeletons, skeletonLines: skeletonLineTable }, problems };
 }
 
-/** Deterministic JSON text of a manifest (sorted paths); skeleton hashes only for listed files. */
-export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>): string {
+/** Deterministic JSON text of a manifest (sorted paths); skeleton hashes and line hashes only for listed files. */
+export function serialiseManifest(files: Map<string, Record<string, string>>, skeletons?: Map<string, string>, skeletonLineTable?: Map<string, string>): string {
     const sorted: Record<string, Record<string, string>> = {};
     const paths = [...files.keys()].sort();
     for (const path of paths) sorted[path] = files.get(path)!;
@@ -155,6 +174,14 @@ export function serialiseManifest(files: Map<string, Record<string, string>>, sk
             if (hash !== undefined) sortedSkeletons[path] = hash;
         }
         manifest.skeletons = sortedSkeletons;
+    }
+    if (skeletons && skeletonLineTable) {
+        const sortedLines: Record<string, string> = {};
+        for (const path of paths) {
+            const encoded = skeletonLineTable.get(path);
+            if (encoded !== undefined && skeletons.has(path)) sortedLines[path] = encoded;
+        }
+        manifest.skeletonLines = sortedLines;
     }
     return JSON.stringify(manifest, null, 1) + '\n';
 }

@@ -101,3 +101,35 @@ describe('renameInGeneratedTree keeps user code byte for byte', () => {
         expect(r.warnings).toEqual([]);
     });
 });
+
+describe('renameInGeneratedTree and the manifest', () => {
+    const path = (m: string) => `generated/architecture/modules/${m}_mod/module.c`;
+    const content = (m: string) => `// module\nint step(void);\n/*PROTECTED REGION ID(protect_exec_${m}) ENABLED START*/\nreturn 0;\n/*PROTECTED REGION END*/\nint done;\n`;
+    const append = (root: string, m: string, text: string) => writeFileSync(join(root, path(m)), readFileSync(join(root, path(m)), 'utf8') + text);
+
+    it('carries the skeleton line hashes with the region IDs: a later edit outside the regions is named at its own line', async () => {
+        const root = scratch();
+        writeTree(root, [{ path: path('MSC'), content: content('MSC') }]);
+        await renameInGeneratedTree(root, 'MSC', 'MSK');
+        const manifest = JSON.parse(readFileSync(join(root, MANIFEST_NAME), 'utf8')) as { skeletonLines: Record<string, string> };
+        expect(Object.keys(manifest.skeletonLines)).toEqual([path('MSK')]);
+        append(root, 'MSK', 'int mine;\n');
+        // the model changed too (a line at the top): the warning names the user's line 7, not line 1
+        const r = writeTree(root, [{ path: path('MSK'), content: '// a model change\n' + content('MSK') }]);
+        expect(r.warnings).toHaveLength(1);
+        expect(r.warnings[0]).toMatchObject({ line: 7 });
+        expect(r.warnings[0]!.message).toContain('(line 7 not written by the generator)');
+    });
+
+    it('drops them for a file edited outside its regions before the rename: the warning names the first line that differs', async () => {
+        const root = scratch();
+        writeTree(root, [{ path: path('MSC'), content: content('MSC') }]);
+        append(root, 'MSC', 'int mine;\n');
+        await renameInGeneratedTree(root, 'MSC', 'MSK');
+        const manifest = JSON.parse(readFileSync(join(root, MANIFEST_NAME), 'utf8')) as { skeletonLines: Record<string, string> };
+        expect(manifest.skeletonLines).toEqual({});
+        const r = writeTree(root, [{ path: path('MSK'), content: content('MSK') }]);
+        expect(r.warnings[0]).toMatchObject({ line: 7 });
+        expect(r.warnings[0]!.message).toContain('(first line that differs from the regenerated file: 7)');
+    });
+});

@@ -11,6 +11,7 @@ import { START_MARKER } from '../regions/markers.js';
 import { parseRegions } from '../regions/parse-regions.js';
 import { bytesOf } from './byte-string.js';
 import { hashContent, loadManifest, MANIFEST_NAME, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
+import { encodeLineHashes, skeletonLines } from './skeleton-lines.js';
 import { OutputTree } from './output-tree.js';
 import { checkTreeRoot, linkRefused } from './safe-paths.js';
 
@@ -28,6 +29,8 @@ export interface RenameGeneratedReport {
 interface FileCarry {
     skeletonBefore?: string;
     skeletonAfter?: string;
+    /** The rewritten file's skeleton line hashes (encoded), beside skeletonAfter. */
+    linesAfter?: string;
     /** region ID (new) -> [hash of the content before, hash after] */
     contents: Map<string, [string, string]>;
 }
@@ -138,6 +141,7 @@ function rewriteRegions(tree: OutputTree, rel: string, from: string, to: string,
             report.descriptions.push({ file: rel, line: description.line, from: description.content, to: content });
         }
         carry.skeletonAfter = skeletonHash(next, rel);
+        carry.linesAfter = encodeLineHashes(skeletonLines(next, rel).hashes);
     } catch {
         // a malformed file: its IDs are carried over as text; generate reports it (file and line) and leaves it untouched
     }
@@ -162,6 +166,7 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to:
     };
     const files = new Map<string, Record<string, string>>();
     const skeletons = new Map<string, string>();
+    const lineTable = new Map<string, string>();
     for (const [path, regions] of loaded.manifest.files) {
         const moved = movePath(path);
         const carry = carries.get(moved);
@@ -174,9 +179,15 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to:
         files.set(moved, ids);
         const skeleton = loaded.manifest.skeletons.get(path);
         if (skeleton === undefined) continue;
-        skeletons.set(moved, carry && carry.skeletonBefore === skeleton && carry.skeletonAfter !== undefined ? carry.skeletonAfter : skeleton);
+        const followed = carry !== undefined && carry.skeletonBefore === skeleton && carry.skeletonAfter !== undefined;
+        skeletons.set(moved, followed ? carry.skeletonAfter! : skeleton);
+        // line hashes name the region IDs: they follow with the hash, or (an edit outside the
+        // regions not carried) are dropped, and the next generation's warning names the first
+        // line that differs instead
+        const lines = followed ? carry.linesAfter : carry ? undefined : loaded.manifest.skeletonLines.get(path);
+        if (lines !== undefined) lineTable.set(moved, lines);
     }
-    tree.write(MANIFEST_NAME, Buffer.from(serialiseManifest(files, skeletons), 'utf8'));
+    tree.write(MANIFEST_NAME, Buffer.from(serialiseManifest(files, skeletons, lineTable), 'utf8'));
 }
 
 /** The tree to carry a change over in: refused (an error naming `what`) when src-gen is not a real folder or holds a link; undefined when there is none. */

@@ -21,7 +21,7 @@ const file = (extra = ''): GeneratedFile => ({
 });
 const read = (dir: string, p: string) => readFileSync(join(dir, p), 'latin1');
 const write = (dir: string, p: string, text: string) => writeFileSync(join(dir, p), Buffer.from(text, 'latin1'));
-const manifest = (dir: string) => JSON.parse(readFileSync(join(dir, MANIFEST_NAME), 'utf8')) as { version: number; files: Record<string, unknown>; skeletons?: Record<string, string> };
+const manifest = (dir: string) => JSON.parse(readFileSync(join(dir, MANIFEST_NAME), 'utf8')) as { version: number; files: Record<string, unknown>; skeletons?: Record<string, string>; skeletonLines?: Record<string, string> };
 
 describe('code written outside the protected regions', () => {
     it('is copied to orphans/ with a header saying why and how to get it back, a warning names the file and line, the file is still regenerated', () => {
@@ -34,12 +34,12 @@ describe('code written outside the protected regions', () => {
         expect(r.warnings).toEqual([{
             file: A,
             line: 4,
-            message: `edited outside its protected regions (first line that differs from the regenerated file: 4): that code is regenerated, not kept; the file as it was is in orphans/${A} (move your code into a protected region)`,
+            message: `edited outside its protected regions (line 4 not written by the generator): that code is regenerated, not kept; the file as it was is in orphans/${A} (move your code into a protected region)`,
         }]);
         expect(read(dir, A)).toBe(file().content);
         const orphan = read(dir, `orphans/${A}`);
         expect(orphan).toMatch(/^\/\* Orphaned user code of generated\/modules\/MSC_mod\/module\.c \(module or supervisor MSC\), moved here on /);
-        expect(orphan).toContain('The file was edited outside its protected regions (first line that differs from the regenerated file: 4)');
+        expect(orphan).toContain('The file was edited outside its protected regions (line 4 not written by the generator)');
         expect(orphan).toContain('move it into a protected region of');
         expect(orphan.slice(orphan.indexOf('*/\n') + 3)).toBe(edited); // byte for byte
         // the next regeneration has nothing more to say
@@ -56,6 +56,62 @@ describe('code written outside the protected regions', () => {
         expect(r.warnings[0]).toMatchObject({ file: A, line: 2 });
         expect(read(dir, `orphans/${A}`)).toContain('#define MINE 1\n');
         expect(read(dir, A)).toBe(file('int added_port;\n').content);
+    });
+
+    it('names the lines the user wrote, not the lines the model changed since', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        // the user writes two lines after the exec region and replaces the comment on line 1; the
+        // model then adds a line near the top (line 3 of the regenerated file)
+        const edited = read(dir, A).replace('// generated\n', '// generated for my robot\n') + '// mine\nint mine(void);\n';
+        write(dir, A, edited);
+        const r = writeTree(dir, [file('int added_port;\n')]);
+        expect(r.warnings).toHaveLength(1);
+        const lines = edited.split('\n');
+        const at = (text: string) => lines.indexOf(text) + 1;
+        expect(r.warnings[0]).toMatchObject({ file: A, line: 1 });
+        expect(r.warnings[0]!.message).toContain(`(lines 1, ${at('// mine')}-${at('int mine(void);')} not written by the generator)`);
+        expect(at('// mine')).toBeGreaterThan(3);
+        // only the appended lines: named, where the regenerated file's first difference is the model's line 3
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A) + '// mine\n');
+        const again = writeTree(dir, [file('int added_port;\n')]);
+        const appended = file().content.split('\n').length;
+        expect(again.warnings[0]).toMatchObject({ line: appended });
+        expect(again.warnings[0]!.message).toContain(`(line ${appended} not written by the generator)`);
+        expect(read(dir, `orphans/${A}`).endsWith(edited)).toBe(true);
+    });
+
+    it('names where generated lines were removed, and reads a CRLF checkout with an edit as the same lines', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace('#include "tools.h"\n', ''));
+        let r = writeTree(dir, [file()]);
+        expect(r.warnings[0]).toMatchObject({ line: 1 });
+        expect(r.warnings[0]!.message).toContain('(generated lines removed after line 1)');
+        write(dir, A, read(dir, A).replace(/\n/g, '\r\n').replace('int step(void);', 'int step(void); /* mine */'));
+        r = writeTree(dir, [file()]);
+        expect(r.warnings[0]).toMatchObject({ line: 3 });
+        expect(r.warnings[0]!.message).toContain('(line 3 not written by the generator)');
+    });
+
+    it('without line hashes (an older or tampered manifest): the first line that differs from the regenerated file', () => {
+        for (const lines of [undefined, 'not base64!', 42]) {
+            const dir = out();
+            writeTree(dir, [file()]);
+            const m = manifest(dir) as Record<string, unknown> & { skeletonLines?: Record<string, unknown> };
+            expect(typeof m.skeletonLines?.[A]).toBe('string');
+            if (lines === undefined) delete m.skeletonLines;
+            else m.skeletonLines = { [A]: lines };
+            writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify(m));
+            write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
+            const r = writeTree(dir, [file()]);
+            expect(r.warnings).toHaveLength(1);
+            expect(r.warnings[0]).toMatchObject({ line: 4 });
+            expect(r.warnings[0]!.message).toContain('(first line that differs from the regenerated file: 4)');
+            // and the regeneration records them again
+            expect(typeof manifest(dir).skeletonLines?.[A]).toBe('string');
+        }
     });
 
     it('does not count edits inside regions, ENABLED toggles, re-spaced markers or a model change', () => {

@@ -2,6 +2,7 @@ import { posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
+import { decodeLineHashes, describeEdits, editsOutside, skeletonLines } from './skeleton-lines.js';
 import { MANIFEST_NAME, fileRecord, hashContent, loadManifest, looksLikeDefault, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
@@ -42,6 +43,20 @@ export function firstDifferingLine(a: string, b: string): number {
     const n = Math.min(a.length, b.length);
     for (let i = 0; i < n && a.charCodeAt(i) === b.charCodeAt(i); i++) if (a.charCodeAt(i) === 10) line++;
     return line;
+}
+
+/**
+ * Where `existing` was written outside its regions: the lines that are not the generator's, from
+ * the line hashes the manifest recorded when it wrote the file (skeleton-lines.ts); without them
+ * (an older manifest), the first line that differs from the regenerated file `regenerated`.
+ */
+function whereEditedOutside(existing: string, file: string, recordedLines: string | undefined, regenerated: string): { line: number; where: string } {
+    if (recordedLines !== undefined) {
+        const described = describeEdits(editsOutside(decodeLineHashes(recordedLines), skeletonLines(existing, file)));
+        if (described.line !== undefined) return { line: described.line, where: described.where };
+    }
+    const line = firstDifferingLine(existing, regenerated);
+    return { line, where: `first line that differs from the regenerated file: ${line}` };
 }
 
 /** Files under `root` holding protected-region markers (the generator's files when no manifest says so); links are skipped. */
@@ -130,6 +145,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const oldDefaults: DefaultsOf = (p) => loaded.manifest?.files.get(p);
     const newManifest = new Map<string, Record<string, string>>();
     const newSkeletons = new Map<string, string>();
+    const newSkeletonLines = new Map<string, string>();
     /** The skeleton hash recorded when the file was last written (undefined: an older manifest, or none: no check). */
     const recordedSkeleton = (p: string) => loaded.manifest?.skeletons.get(p);
     const keepPrevious = (path: string) => {
@@ -138,6 +154,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const skeleton = recordedSkeleton(path);
         if (skeleton !== undefined) newSkeletons.set(path, skeleton);
         else newSkeletons.delete(path);
+        const lines = loaded.manifest?.skeletonLines.get(path);
+        if (lines !== undefined) newSkeletonLines.set(path, lines);
+        else newSkeletonLines.delete(path);
     };
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
@@ -158,6 +177,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const record = fileRecord(generated, file.path);
         newManifest.set(file.path, record.defaults);
         newSkeletons.set(file.path, record.skeleton);
+        newSkeletonLines.set(file.path, record.lines);
         try {
             const existing = mayExist(file.path) ? tree.read(file.path) : undefined;
             if (existing === undefined) {
@@ -178,8 +198,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             if (recorded !== undefined) {
                 const skeleton = skeletonHash(existing, file.path);
                 if (skeleton !== recorded && skeleton !== record.skeleton) {
-                    const line = firstDifferingLine(existing, merged.text);
-                    const where = `first line that differs from the regenerated file: ${line}`;
+                    const { line, where } = whereEditedOutside(existing, file.path, loaded.manifest?.skeletonLines.get(file.path), merged.text);
                     const orphan = writeOrphan(tree, file.path, fileOrphanText(file.path, existing, [where], undefined, 'skeleton'));
                     if (orphan.written) report.filesWritten++;
                     report.orphaned.push(orphan.path);
@@ -264,7 +283,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     }
 
     if (!manifestRefused) {
-        const manifestText = serialiseManifest(newManifest, newSkeletons);
+        const manifestText = serialiseManifest(newManifest, newSkeletons, newSkeletonLines);
         try {
             if (tree.read(MANIFEST_NAME) !== manifestText) {
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));

@@ -1,0 +1,187 @@
+import { parseRegions, type Region } from '../regions/parse-regions.js';
+
+/**
+ * Where code was written outside the protected regions. The manifest keeps, beside each file's
+ * skeleton hash (manifest.ts), a short hash of every line of that skeleton as the generator wrote
+ * it. Diffing those against the lines of the file on disk names the lines someone else wrote (or
+ * removed), even when the model changed the generated code since: the regenerated file is not
+ * what the edit is compared with.
+ *
+ * A line of the skeleton is a line of the file outside the regions' contents, a whole region
+ * (start marker to end marker) standing as its ID on the line where it starts; a trailing CR is
+ * not part of it (a CRLF checkout is no edit).
+ */
+
+/** Characters of the encoded hash of one line (4 base64url characters: 24 bits). */
+const CHARS_PER_LINE = 4;
+const ALPHABET = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_';
+/** What an encoded list looks like; anything else in a manifest is ignored. */
+export const LINE_HASHES = /^(?:[A-Za-z0-9_-]{4})*$/;
+/** Above this many cells, the middle of two lists is not diffed line by line (reported as one block). */
+const MAX_DIFF_CELLS = 4_000_000;
+
+export interface SkeletonLines {
+    /** 24-bit hash of each skeleton line. */
+    hashes: number[];
+    /** 1-based line of the file where each skeleton line starts. */
+    fileLines: number[];
+}
+
+/** FNV-1a of a byte string's line, folded to 24 bits. */
+function lineHash(text: string, from: number, to: number): number {
+    if (to > from && text.charCodeAt(to - 1) === 13) to--;
+    let h = 0x811c9dc5;
+    for (let i = from; i < to; i++) {
+        h ^= text.charCodeAt(i) & 0xff;
+        h = Math.imul(h, 0x01000193);
+    }
+    return ((h >>> 24) ^ h) & 0xffffff;
+}
+
+/** The skeleton lines of a file (byte string), each with its hash and the file line it starts on. */
+export function skeletonLines(text: string, file: string, regions: Region[] = parseRegions(text, file).regions): SkeletonLines {
+    const hashes: number[] = [];
+    const fileLines: number[] = [];
+    let line = 1;
+    // a skeleton line is built from pieces of the file (the text between regions) and region IDs
+    let pending = '';
+    let startLine = 1;
+    const addText = (from: number, to: number) => {
+        let i = from;
+        while (i < to) {
+            const nl = text.indexOf('\n', i);
+            if (nl < 0 || nl >= to) {
+                pending += text.slice(i, to);
+                return;
+            }
+            const piece = pending + text.slice(i, nl);
+            hashes.push(lineHash(piece, 0, piece.length));
+            fileLines.push(startLine);
+            pending = '';
+            line++;
+            startLine = line;
+            i = nl + 1;
+        }
+    };
+    let cursor = 0;
+    for (const r of regions) {
+        addText(cursor, r.start);
+        pending += `\u0000${r.id}\u0000`;
+        for (let i = text.indexOf('\n', r.start); i >= 0 && i < r.end; i = text.indexOf('\n', i + 1)) line++;
+        cursor = r.end;
+    }
+    addText(cursor, text.length);
+    hashes.push(lineHash(pending, 0, pending.length));
+    fileLines.push(startLine);
+    return { hashes, fileLines };
+}
+
+export function encodeLineHashes(hashes: readonly number[]): string {
+    let out = '';
+    for (const h of hashes) out += ALPHABET[(h >>> 18) & 63]! + ALPHABET[(h >>> 12) & 63]! + ALPHABET[(h >>> 6) & 63]! + ALPHABET[h & 63]!;
+    return out;
+}
+
+export function decodeLineHashes(encoded: string): number[] {
+    const out: number[] = [];
+    for (let i = 0; i + CHARS_PER_LINE <= encoded.length; i += CHARS_PER_LINE) {
+        let h = 0;
+        for (let k = 0; k < CHARS_PER_LINE; k++) h = (h << 6) | ALPHABET.indexOf(encoded[i + k]!);
+        out.push(h);
+    }
+    return out;
+}
+
+/** What was written outside the regions, in lines of the file on disk. */
+export interface EditsOutside {
+    /** File lines that the generator did not write there (added or changed), ascending. */
+    written: number[];
+    /** Where skeleton lines the generator wrote are gone (not replaced by a written line): the file line before them (0: the top). */
+    removedAfter: number[];
+}
+
+/**
+ * The lines of `current` (skeleton lines of the file on disk) that are not in `recorded` (the
+ * generator's, from the manifest), and where recorded lines were removed: a longest common
+ * subsequence of the two hash lists, after their common head and tail.
+ */
+export function editsOutside(recorded: readonly number[], current: SkeletonLines): EditsOutside {
+    const b = current.hashes;
+    let head = 0;
+    while (head < recorded.length && head < b.length && recorded[head] === b[head]) head++;
+    let tail = 0;
+    while (tail < recorded.length - head && tail < b.length - head && recorded[recorded.length - 1 - tail] === b[b.length - 1 - tail]) tail++;
+    const n = recorded.length - head - tail;
+    const m = b.length - head - tail;
+    const written: number[] = [];
+    const removedAfter: number[] = [];
+    const lineBefore = (j: number) => (j > 0 ? current.fileLines[j - 1]! : 0);
+    const addWritten = (j: number) => {
+        const line = current.fileLines[j]!;
+        if (written[written.length - 1] !== line) written.push(line);
+    };
+    const addRemoved = (j: number) => {
+        const after = lineBefore(j);
+        if (removedAfter[removedAfter.length - 1] !== after) removedAfter.push(after);
+    };
+    // a generated line replaced by another is a line written, not also one removed
+    const result = (): EditsOutside => {
+        const writtenSet = new Set(written);
+        return { written, removedAfter: removedAfter.filter((after) => !writtenSet.has(after) && !writtenSet.has(after + 1)) };
+    };
+    if (n === 0 || m === 0 || n * m > MAX_DIFF_CELLS) {
+        for (let j = head; j < head + m; j++) addWritten(j);
+        if (n > 0) addRemoved(head);
+        return result();
+    }
+    // lcs[i][j]: the longest common subsequence of recorded[head+i..] and b[head+j..]
+    const width = m + 1;
+    const lcs = new Uint32Array((n + 1) * width);
+    for (let i = n - 1; i >= 0; i--) {
+        for (let j = m - 1; j >= 0; j--) {
+            lcs[i * width + j] = recorded[head + i] === b[head + j]
+                ? lcs[(i + 1) * width + j + 1]! + 1
+                : Math.max(lcs[(i + 1) * width + j]!, lcs[i * width + j + 1]!);
+        }
+    }
+    let i = 0;
+    let j = 0;
+    while (i < n || j < m) {
+        if (i < n && j < m && recorded[head + i] === b[head + j]) {
+            i++;
+            j++;
+        } else if (j < m && (i === n || lcs[i * width + j + 1]! >= lcs[(i + 1) * width + j]!)) {
+            addWritten(head + j);
+            j++;
+        } else {
+            addRemoved(head + j);
+            i++;
+        }
+    }
+    return result();
+}
+
+/** `line 12`, `lines 12-14`, ... for ascending line numbers, at most `max` runs named. */
+function runsText(lines: readonly number[], max = 3): string {
+    const runs: [number, number][] = [];
+    for (const l of lines) {
+        const last = runs[runs.length - 1];
+        if (last && l === last[1] + 1) last[1] = l;
+        else runs.push([l, l]);
+    }
+    const named = runs.slice(0, max).map(([a, b]) => (a === b ? `${a}` : `${a}-${b}`));
+    const more = runs.length > max ? ` and ${runs.length - max} more place(s)` : '';
+    return `${lines.length === 1 ? 'line' : 'lines'} ${named.join(', ')}${more}`;
+}
+
+/** The words of a warning for `edits` (empty when they name nothing: identical hashes). */
+export function describeEdits(edits: EditsOutside): { line?: number; where: string } {
+    const parts: string[] = [];
+    if (edits.written.length > 0) parts.push(`${runsText(edits.written)} not written by the generator`);
+    if (edits.removedAfter.length > 0) {
+        const places = edits.removedAfter.map((l) => (l === 0 ? 'at the top' : `after line ${l}`));
+        parts.push(`generated lines removed ${places.slice(0, 3).join(', ')}${places.length > 3 ? ` and ${places.length - 3} more place(s)` : ''}`);
+    }
+    const line = edits.written[0] ?? (edits.removedAfter.length > 0 ? Math.max(1, edits.removedAfter[0]!) : undefined);
+    return { line, where: parts.join('; ') };
+}
