@@ -3,7 +3,7 @@ import { parseRegions, type Region } from '../regions/parse-regions.js';
 import { ORPHANS_DIR } from './orphans.js';
 import type { OutputTree } from './output-tree.js';
 import { treePathProblem } from './safe-paths.js';
-import { LINE_HASHES, encodeLineHashes, skeletonLines } from './skeleton-lines.js';
+import { LINE_HASHES, MAX_SKELETON_LINES, encodeLineHashes, skeletonLines } from './skeleton-lines.js';
 
 /**
  * The manifest `<out>/.contract-manifest.json` lists the files the generator wrote last time and,
@@ -155,7 +155,9 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
     const lines = (data as { skeletonLines?: unknown }).skeletonLines;
     if (typeof lines === 'object' && lines !== null && !Array.isArray(lines)) {
         for (const [path, encoded] of Object.entries(lines)) {
-            if (skeletons.has(path) && typeof encoded === 'string' && LINE_HASHES.test(encoded)) skeletonLineTable.set(path, encoded);
+            if (skeletons.has(path) && typeof encoded === 'string' && encoded.length <= 4 * MAX_SKELETON_LINES && LINE_HASHES.test(encoded)) {
+                skeletonLineTable.set(path, encoded);
+            }
         }
     }
     return { manifest: { files, skeletons, skeletonLines: skeletonLineTable }, problems };

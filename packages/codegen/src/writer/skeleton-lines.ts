@@ -17,6 +17,8 @@ const CHARS_PER_LINE = 4;
 const ALPHABET = 'ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789-_';
 /** What an encoded list looks like; anything else in a manifest is ignored. */
 export const LINE_HASHES = /^(?:[A-Za-z0-9_-]{4})*$/;
+/** More lines than any generated file has: a manifest entry naming more is ignored (it is read from the project folder). */
+export const MAX_SKELETON_LINES = 1_000_000;
 /** Above this many cells, the middle of two lists is not diffed line by line (reported as one block). */
 const MAX_DIFF_CELLS = 4_000_000;
 

@@ -95,8 +95,8 @@ describe('code written outside the protected regions', () => {
         expect(r.warnings[0]!.message).toContain('(line 3 not written by the generator)');
     });
 
-    it('without line hashes (an older or tampered manifest): the first line that differs from the regenerated file', () => {
-        for (const lines of [undefined, 'not base64!', 42]) {
+    it('without line hashes (an older or tampered manifest, more lines than a generated file has): the first line that differs from the regenerated file', () => {
+        for (const lines of [undefined, 'not base64!', 42, 'AAAA'.repeat(1_000_001)]) {
             const dir = out();
             writeTree(dir, [file()]);
             const m = manifest(dir) as Record<string, unknown> & { skeletonLines?: Record<string, unknown> };
