@@ -23,11 +23,28 @@ const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
 const call = (page: Session['page'], method: string, path: string) =>
   page.evaluate(async ({ method, path }) => (await fetch(`/api/file?path=${encodeURIComponent(path)}`, { method })).status, { method, path });
 
+/** What went wrong while the page loaded: failed requests and console errors (the first test reads it). */
+const loadProblems: string[] = [];
+
 describe('IDE in headless Chromium', () => {
   beforeAll(async () => {
     s = await startSession();
+    s.page.on('response', (r) => void (r.status() >= 400 && loadProblems.push(`${r.status()} ${r.url()}`)));
+    s.page.on('console', (m) => void (m.type() === 'error' && loadProblems.push(`console: ${m.text()} (${m.location().url})`)));
     await openIde(s);
   }, 60_000);
+
+  it('loads with no failed request and no console error; its icon is served (no /favicon.ico 404)', async () => {
+    const { page } = s;
+    const icon = await page.evaluate(async () => {
+      const href = document.querySelector<HTMLLinkElement>('link[rel=icon]')?.href ?? '';
+      const r = await fetch(href);
+      return { path: new URL(href).pathname, status: r.status, type: r.headers.get('content-type'), svg: (await r.text()).startsWith('<svg') };
+    });
+    expect(icon).toEqual({ path: '/favicon.svg', status: 200, type: 'image/svg+xml', svg: true });
+    await page.waitForLoadState('networkidle');
+    expect(loadProblems).toEqual([]);
+  });
   afterAll(async () => {
     await s?.close();
   });
