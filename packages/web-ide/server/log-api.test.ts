@@ -25,6 +25,7 @@ beforeAll(async () => {
     writeFileSync(join(ws, 'logs', 'ORD_29-Nov-2026-10h00m00s.csv'), big);
     writeFileSync(join(ws, 'logs', 'empty_1.csv'), '');
     writeFileSync(join(ws, 'notes.txt'), 'not a log');
+    writeFileSync(join(ws, 'logs', 'run.jsonl'), '{"kind":"module_started"}\n');
     writeFileSync(join(ws, 'huge_1.csv'), '');
     truncateSync(join(ws, 'huge_1.csv'), LOG_READ_BYTES + 1); // sparse: no disk used
     writeFileSync(join(base, 'secret.csv'), 'secret');
@@ -46,6 +47,8 @@ describe('GET /api/log', () => {
     expect(log.status).toBe(200);
     expect(log.headers.get('content-type')).toMatch(/^text\/plain/);
     expect(await log.text()).toBe(big);
+    // a trace file (contract run --trace) is read the same way
+    expect(await (await get('/api/log?path=logs/run.jsonl')).text()).toBe('{"kind":"module_started"}\n');
     const empty = await get('/api/log?path=logs/empty_1.csv');
     expect(empty.status).toBe(200);
     expect(await empty.text()).toBe('');
@@ -53,7 +56,7 @@ describe('GET /api/log', () => {
 
   it('refuses what is not a CSV log of the workspace, each with its reason', async () => {
     const cases: Array<[string, number, RegExp]> = [
-      ['notes.txt', 400, /not a CSV log/],
+      ['notes.txt', 400, /not a CSV log \(\*\.csv\) nor a trace file/],
       ['huge_1.csv', 413, /larger than 256 MiB/],
       ['logs/link_1.csv', 403, /link/i],
       ['logs/fifo_1.csv', 400, /not a regular file/],

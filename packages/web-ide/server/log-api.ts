@@ -1,6 +1,7 @@
 /**
  * GET /api/log?path=P.csv -> the CSV log's bytes as text/plain (workspace-relative path, a regular
- * file named *.csv, opened without following links: workspace-fs.ts).
+ * file named *.csv, opened without following links: workspace-fs.ts); the same for a trace file
+ * P.jsonl (`contract run --trace`, `contract simulate --trace`: the records as JSON lines).
  *
  * The Monitor's and the Timeline's replay of a run's logs in the workspace (`contract run` writes
  * them to PROJECT/logs, `make run` to src-gen/generated/architecture/logs) read them here, not with
@@ -23,7 +24,7 @@ export const LOG_READ_BYTES = 256 * 1024 * 1024;
 export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
   if (req.method !== 'GET' || url.pathname !== '/api/log') return false;
   const rel = paths.entry(url.searchParams.get('path'));
-  if (!rel.endsWith('.csv')) throw new HttpError(400, `${rel} is not a CSV log (*.csv): only logs are read here`);
+  if (!rel.endsWith('.csv') && !rel.endsWith('.jsonl')) throw new HttpError(400, `${rel} is not a CSV log (*.csv) nor a trace file (*.jsonl): only those are read here`);
   await paths.fs.withParent(rel, false, async (dir, name) => {
     const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
     try {

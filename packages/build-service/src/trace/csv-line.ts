@@ -29,3 +29,12 @@ export function splitCsvLine(line: string): string[] {
     }
     return fields;
 }
+
+/**
+ * A field of a CSV line as the runtime writes it: quoted when it holds a quote or a comma (quotes
+ * doubled); a line break, which would end the record, written as a space.
+ */
+export function csvField(text: string): string {
+    const one = /[\r\n]/.test(text) ? text.replace(/[\r\n]+/g, ' ') : text;
+    return /[",]/.test(one) ? `"${one.replace(/"/g, '""')}"` : one;
+}

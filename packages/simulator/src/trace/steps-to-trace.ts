@@ -22,7 +22,7 @@
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
  * Not simulated, so not in the trace: data deliveries (virtual modules run no code and post no data).
  */
-import { parseCause, parseRecordLine, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { csvField, parseCause, parseRecordLine, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import type { ActionRecord, LogLine, RuleChange, SimTraceRecord } from '../runner/protocol.js';
 
 /** What the conversion reads of a step: the runner's StepResult with its record's lists, or the IDE's answer of POST /api/simulate. */
@@ -53,12 +53,6 @@ function base(timeNs: number, module: string, detail: string, peer = '') {
 
 function known(timeNs: number, module: string, kind: string, detail: string, fields: Record<string, string | number>, peer = ''): KnownRecord {
     return { ...base(timeNs, module, detail, peer), kind, fields };
-}
-
-/** A CSV field as the runtime writes it: quoted when it holds a quote or a comma. */
-function csvField(text: string): string {
-    const one = text.replace(/[\r\n]+/g, ' ');
-    return /[",]/.test(one) ? `"${one.replace(/"/g, '""')}"` : one;
 }
 
 /** An engine's trace line as the CSV record a real run writes (`kind`: supervisor or scheduler), read by the trace reader. */

@@ -4,12 +4,14 @@
  *   job's `trace` events (whole CSV lines, build-service job-events.ts TraceEvent);
  * - when the job ends, its CSV logs (GET /api/jobs/:id/artifacts, run-logs.ts) become a recorded
  *   run: the same view fed from the same records, from the start;
- * - `*.csv` logs of the workspace (a folder of them: `make run` / `contract run` logs) replay the same way;
+ * - `*.csv` logs of the workspace (a folder of them: `make run` / `contract run` logs) replay the same way,
+ *   and so does a trace file of the workspace (`*.jsonl`: `contract run --trace`, `contract simulate
+ *   --trace`), read as the logs it stands for (build-service trace/jsonl.ts, the CSV reader's checks);
  * - a click on a rule opens its definition (document symbols, supervisor-symbols.ts).
  * Everything read from the stream or a log file is hostile: bounded and validated here or by the
  * trace reader (parseRecordLine never throws).
  */
-import type { LogFile, TraceLine } from '@contract-studio/build-service/trace';
+import { traceFileToLogs, type LogFile, type TraceLine } from '@contract-studio/build-service/trace';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
@@ -79,10 +81,12 @@ export class MonitorController {
     // now if it is shown, else when it is picked
     deps.workspace.onTree.on(() => {
       for (const [id, files] of [...this.folderFiles]) if (this.csvIn(id.slice(4)).join('\n') !== files) this.folderChanged(id);
+      for (const id of [...this.runs.keys()]) if (id.startsWith('file:') && !deps.workspace.hasFile(id.slice(5))) this.folderChanged(id);
       if (this.panel) void this.refreshSources();
     });
     deps.workspace.onExternalChange.on((path) => {
       if (path.endsWith('.csv') && this.folderFiles.has(`dir:${dirOf(path)}`)) this.folderChanged(`dir:${dirOf(path)}`);
+      if (path.endsWith('.jsonl') && this.runs.has(`file:${path}`)) this.folderChanged(`file:${path}`);
     });
     // the job's end as the build panel's own stream tells it: a run whose live trace did not say
     // so (its worker failed) is not left 'live'
@@ -235,7 +239,7 @@ export class MonitorController {
     return this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
   }
 
-  /** Log folder run `id` changed on disk: read again now if it is shown (once the changes pause), else when it is picked. */
+  /** Log folder or trace file run `id` changed on disk: read again now if it is shown (once the changes pause), else when it is picked. */
   private folderChanged(id: string): void {
     if (this.shown !== id || !this.isShown) {
       this.folderFiles.delete(id);
@@ -245,7 +249,7 @@ export class MonitorController {
     this.folderFiles.set(id, ''); // changed: still watched until read again
     clearTimeout(this.rereadTimer);
     this.rereadTimer = setTimeout(() => {
-      if (this.shown === id && this.isShown) void this.openFolder(id.slice(4), false);
+      if (this.shown === id && this.isShown) void (id.startsWith('file:') ? this.openTraceFile(id.slice(5), false) : this.openFolder(id.slice(4), false));
       else this.runs.delete(id);
     }, REREAD_MS);
   }
@@ -274,6 +278,24 @@ export class MonitorController {
     else await this.refreshSources();
   }
 
+  /**
+   * Replays a trace file of the workspace (`*.jsonl`, read again each time: it may have changed):
+   * its records as the logs they stand for, through the reader of a run's logs. `asked`: as openFolder.
+   */
+  async openTraceFile(path: string, asked = true): Promise<void> {
+    const mine = asked ? ++this.picked : this.picked;
+    const id = `file:${path}`;
+    const { files: read, problems: unreadable } = await readWorkspaceLogs([path], (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    const { files, problems, skipped } = read[0] ? traceFileToLogs(path, read[0].text) : { files: [], problems: [], skipped: 0 };
+    const { model, leftOut: unread } = await recordedRun(files);
+    const notWhole = [...unreadable, ...problems, ...unread];
+    const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} line(s) skipped (no record of a run)` : ''}`;
+    const label = `Trace file ${path} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
+    this.runs.set(id, { id, label, model, live: false });
+    if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
+    else await this.refreshSources();
+  }
+
   private get isShown(): boolean {
     return !!this.panel && this.deps.editors.docked === this.panel.element;
   }
@@ -286,6 +308,7 @@ export class MonitorController {
   /** Shows run `id`; a workspace log folder is read (again, with `reread`: picked in the run list). */
   private async select(id: string, reread = false): Promise<void> {
     if (id.startsWith('dir:') && (reread || !this.runs.has(id))) return this.openFolder(id.slice(4));
+    if (id.startsWith('file:') && (reread || !this.runs.has(id))) return this.openTraceFile(id.slice(5));
     const run = this.runs.get(id);
     const panel = await this.ensurePanel();
     if (!run) return;
@@ -300,6 +323,8 @@ export class MonitorController {
     const options: SourceOption[] = [...this.runs.values()].map((r) => ({ id: r.id, label: r.label }));
     const folders = [...new Set(this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv')).map(dirOf))].sort();
     for (const f of folders) if (!this.runs.has(`dir:${f}`)) options.push({ id: `dir:${f}`, label: `Workspace logs: ${f || '(root)'}` });
+    const traceFiles = this.deps.workspace.allFiles().filter((f) => f.endsWith('.jsonl')).sort().slice(0, MAX_FILES);
+    for (const f of traceFiles) if (!this.runs.has(`file:${f}`)) options.push({ id: `file:${f}`, label: `Trace file: ${f}` });
     panel.setSources(options, this.shown);
   }
 

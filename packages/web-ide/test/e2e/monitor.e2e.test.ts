@@ -11,7 +11,7 @@ import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
-import { encodeTraceRecords } from '@contract-studio/build-service/trace';
+import { encodeTraceRecords, parseTrace } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, type Session } from './harness.js';
 
 const canBuild =
@@ -154,6 +154,28 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('#btn-monitor').click();
     await page.locator('.side-pane .monitor-view').waitFor();
     expect(await page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+  });
+
+  it('replays a trace file of the workspace (contract run --trace) as the logs it was written from: the same story at the same times', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    const fromLogs = await marksOf(page);
+    // the file as `contract run --trace` writes it (one JSON object a line), a simulation's first
+    // line, and a line that is no record
+    const records = parseTrace(readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') })));
+    const sim = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} });
+    writeFileSync(join(s.workspace, 'recorded.jsonl'), [sim, 'not json', ...records.map((r) => JSON.stringify(r))].join('\n') + '\n');
+    await expect.poll(() => page.locator('.monitor-sources option[value="file:recorded.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('file:recorded.jsonl');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · ${records.length} record(s), 1 line(s) skipped (no record of a run) (not whole: line 2: not JSON)`);
+    expect(await marksOf(page)).toEqual(fromLogs);
+    await checkTutorialStory(page);
+    // changed on disk while shown: read again (the bad line gone)
+    writeFileSync(join(s.workspace, 'recorded.jsonl'), records.map((r) => JSON.stringify(r)).join('\n') + '\n');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toBe(`Trace file recorded.jsonl · ${records.length} record(s)`);
+    expect(await marksOf(page)).toEqual(fromLogs);
   });
 
   it('replays workspace logs past the editor\'s 8 MiB bound whole, and names a log it leaves out', async () => {

@@ -1,0 +1,80 @@
+/** A trace file (JSON lines) read back as a run's logs, through the CSV reader's checks (jsonl.ts). */
+import fc from 'fast-check';
+import { describe, expect, it } from 'vitest';
+import { CSV_HEADER, TRACE_KINDS, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, type TraceRecord } from './index.js';
+
+/** A run's logs: every kind of the table (its example line, at its own time), in two modules' logs, plus quoting. */
+function sampleLogs() {
+    const lines = TRACE_KINDS.map((k, i) => {
+        const f = k.example.split(',');
+        f[0] = String(1_000_000 + i * 1000);
+        return f.join(',');
+    });
+    const quoted = `2000000,2026-12-03T10:00:00.000001Z,MIS,sup_rule,,,0,"mission.AUTO active cause=TEL:1 value=""auto, now"""`;
+    const byModule = new Map<string, string[]>();
+    for (const l of [...lines, quoted]) {
+        const module = l.split(',')[2]!;
+        byModule.set(module, [...(byModule.get(module) ?? []), l]);
+    }
+    return [...byModule].map(([m, l]) => ({ name: `${m}_run.csv`, text: `${CSV_HEADER}\n${l.join('\n')}\n` }));
+}
+
+const jsonl = (records: TraceRecord[]) => records.map((r) => JSON.stringify(r)).join('\n') + '\n';
+
+describe('trace files (JSON lines)', () => {
+    it('read back as logs, give the records and the story of the logs they were written from', () => {
+        const records = parseTrace(sampleLogs());
+        expect(records.filter((r) => r.kind === 'unknown')).toEqual([]);
+        const back = traceFileToLogs('run.jsonl', jsonl(records));
+        expect(back.problems).toEqual([]);
+        expect(back.skipped).toBe(0);
+        expect(back.files.every((f) => /^[A-Za-z_]\w*_run\.csv$/.test(f.name))).toBe(true);
+        expect(parseTrace(back.files)).toEqual(records);
+        expect(renderStory(parseTrace(back.files))).toEqual(renderStory(records));
+    });
+
+    it('a simulation\'s sim_start and records the writer kept as unknown are skipped, counted', () => {
+        const records = parseTrace(sampleLogs());
+        const text = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} }) + '\n' +
+            JSON.stringify({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' }) + '\n' + jsonl(records);
+        const back = traceFileToLogs('sim.jsonl', text);
+        expect([back.skipped, back.problems]).toEqual([2, []]);
+        expect(parseTrace(back.files)).toEqual(records);
+    });
+
+    it('hostile lines are named, never trusted: the derived fields come from the columns again', () => {
+        const rule = parseTrace(sampleLogs()).find((r) => r.kind === 'sup_rule')!;
+        const lying = { ...rule, causeEvent: { kind: 'stop' }, active: false, fields: { injected: 1 } };
+        const lines = [
+            JSON.stringify(lying),
+            'not json',
+            '[1,2]',
+            JSON.stringify({ kind: 'sup_rule', monoNs: 12, module: 'MIS', detail: 'x' }),
+            JSON.stringify({ ...rule, module: '../../etc' }),
+            JSON.stringify({ ...rule, monoNs: '1,2' }),
+            JSON.stringify({ ...rule, port: -1 }),
+            JSON.stringify({ ...rule, kind: 'no_such_kind' }),
+            'x'.repeat(20_000),
+        ];
+        const back = traceFileToLogs('../../evil name.jsonl', lines.join('\n'));
+        expect(back.problems).toEqual(['line 2: not JSON', 'line 3: not a JSON object', 'line 4: kind, monoNs, module and detail must be strings', 'line 5: bad module name', 'line 9: longer than 16384 characters']);
+        // the log names are plain: no path from the file's name
+        expect(back.files.map((f) => f.name)).toEqual([`${rule.module}_evil_name.csv`]);
+        const read = parseTrace(back.files);
+        // the lying line is the rule as its columns say; the others are the CSV reader's unknown records
+        expect(read[0]).toEqual(rule);
+        expect(read.slice(1).map((r) => (r.kind === 'unknown' ? r.reason : r.kind))).toEqual(['mono_ns is not a number', 'bad port or size', "unknown event 'no_such_kind'"]);
+        expect(recordOfJsonLine('t.jsonl', 2, 'not json')).toMatchObject({ kind: 'unknown', file: 't.jsonl', line: 2, reason: 'not JSON' });
+        expect(recordOfJsonLine('t.jsonl', 3, '  ')).toBeUndefined();
+    });
+
+    it('any text: no exception, every line a record, a problem or skipped', () => {
+        fc.assert(fc.property(fc.array(fc.oneof(fc.string(), fc.json()), { maxLength: 30 }), (lines) => {
+            const text = lines.join('\n');
+            const back = traceFileToLogs('t.jsonl', text, 1000);
+            const records = back.files.reduce((n, f) => n + f.text.split('\n').length - 2, 0);
+            const nonEmpty = text.split('\n').filter((l) => l.replace(/\r$/, '').trim() !== '').length;
+            expect(records + back.problems.length + back.skipped).toBe(nonEmpty);
+        }));
+    });
+});

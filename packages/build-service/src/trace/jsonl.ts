@@ -1,0 +1,112 @@
+/**
+ * A trace file: the records as JSON lines, one object a line (`contract run --trace`, `contract
+ * trace --format json`, `contract simulate --trace`), read back as a recorded run. Browser-safe.
+ *
+ * A trace file is read by the same reader as the CSV logs: each JSON object is written back as the
+ * CSV line the runtime writes (mono_ns, wall_time, module, event, peer, port, size, detail) and that
+ * line is read by parseRecordLine, so a trace file gets exactly the checks a log gets (the file is
+ * hostile: a CI artefact, a download). What a JSON line holds beyond those eight columns (`fields`,
+ * a rule's `causeEvent`) is derived again from them, never trusted. Records the reader kept as
+ * `unknown` when the file was written, and the `sim_start` record that heads a simulation, are no
+ * records of a run: they are skipped (counted).
+ */
+import { csvField } from './csv-line.js';
+import { CSV_HEADER, parseRecordLine, type LogFile } from './parse.js';
+import type { TraceRecord } from './records.js';
+
+/** Longer lines are not records (a record's CSV line is at most MAX_LINE_CHARS; its JSON adds the derived fields). */
+export const MAX_JSON_LINE_CHARS = 16_384;
+/** Modules of one trace file: one log each; records of more modules are left out, said. */
+export const MAX_TRACE_FILE_MODULES = 256;
+const MODULE = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
+
+/** What a JSON line is, read. */
+export type JsonLineRead =
+    | { csv: string; module: string }
+    | { skip: 'unknown' | 'sim_start' }
+    | { problem: string };
+
+/** One line of a trace file -> the CSV line of its record, a line to skip, or why it is no record. */
+export function jsonLineToCsv(line: string): JsonLineRead {
+    if (line.length > MAX_JSON_LINE_CHARS) return { problem: `longer than ${MAX_JSON_LINE_CHARS} characters` };
+    let value: unknown;
+    try {
+        value = JSON.parse(line);
+    } catch {
+        return { problem: 'not JSON' };
+    }
+    if (typeof value !== 'object' || value === null || Array.isArray(value)) return { problem: 'not a JSON object' };
+    const r = value as Record<string, unknown>;
+    if (r['kind'] === 'unknown') return { skip: 'unknown' };
+    if (r['kind'] === 'sim_start') return { skip: 'sim_start' };
+    const { kind, monoNs, wallTime, module, peer, port, size, detail } = r;
+    if (typeof kind !== 'string' || typeof monoNs !== 'string' || typeof module !== 'string' || typeof detail !== 'string') {
+        return { problem: 'kind, monoNs, module and detail must be strings' };
+    }
+    if (!MODULE.test(module)) return { problem: 'bad module name' };
+    const wall = typeof wallTime === 'string' ? wallTime : '';
+    const from = typeof peer === 'string' ? peer : '';
+    const portText = port === null || port === undefined ? '' : typeof port === 'number' ? String(port) : '?';
+    const sizeText = typeof size === 'number' ? String(size) : size === undefined ? '0' : '?';
+    return { csv: `${csvField(monoNs)},${csvField(wall)},${module},${csvField(kind)},${csvField(from)},${portText},${sizeText},${csvField(detail)}`, module };
+}
+
+/** One line of a trace file as a record (the CSV reader's, `unknown` saying why), or undefined for a line to skip. */
+export function recordOfJsonLine(file: string, lineNo: number, line: string): TraceRecord | undefined {
+    if (line.trim() === '') return undefined;
+    const read = jsonLineToCsv(line);
+    if ('skip' in read) return undefined;
+    if ('problem' in read) return { kind: 'unknown', file, line: lineNo, reason: read.problem, text: line.slice(0, 200) };
+    return parseRecordLine(file, lineNo, read.csv);
+}
+
+export interface TraceFileLogs {
+    /** One CSV log a module (`<MODULE>_<file>.csv`, the header first), its records in the file's order. */
+    files: LogFile[];
+    /** Lines that are no record (`line 12: not JSON`), the first `maxProblems` named. */
+    problems: string[];
+    /** Lines skipped: records the writer could not read, and a simulation's `sim_start`. */
+    skipped: number;
+}
+
+/**
+ * A trace file's text as the CSV logs a run writes (one a module), for the readers of a run's
+ * logs (the IDE's recorded run, `contract trace`). `name`: the file's name (in the logs' names).
+ */
+export function traceFileToLogs(name: string, text: string, maxProblems = 20): TraceFileLogs {
+    const base = name.replace(/^.*\//, '').replace(/\.jsonl$/i, '').replace(/[^A-Za-z0-9_.-]/g, '_') || 'trace';
+    const lines = new Map<string, string[]>();
+    const problems: string[] = [];
+    let bad = 0;
+    let skipped = 0;
+    let tooMany = 0;
+    for (let pos = 0, n = 1; pos < text.length; n++) {
+        let nl = text.indexOf('\n', pos);
+        if (nl < 0) nl = text.length;
+        const line = text.slice(pos, nl > pos && text.charCodeAt(nl - 1) === 13 ? nl - 1 : nl);
+        pos = nl + 1;
+        if (line.trim() === '') continue;
+        const read = jsonLineToCsv(line);
+        if ('skip' in read) {
+            skipped++;
+            continue;
+        }
+        if ('problem' in read) {
+            if (bad++ < maxProblems) problems.push(`line ${n}: ${read.problem}`);
+            continue;
+        }
+        let log = lines.get(read.module);
+        if (!log) {
+            if (lines.size >= MAX_TRACE_FILE_MODULES) {
+                tooMany++;
+                continue;
+            }
+            lines.set(read.module, (log = []));
+        }
+        log.push(read.csv);
+    }
+    if (bad > maxProblems) problems.push(`${bad - maxProblems} more line(s) that are no record`);
+    if (tooMany) problems.push(`${tooMany} record(s) of modules past the first ${MAX_TRACE_FILE_MODULES} left out`);
+    const files = [...lines].map(([module, l]) => ({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.join('\n')}\n` }));
+    return { files, problems, skipped };
+}
