@@ -75,6 +75,59 @@ describe('contract trace', () => {
         rmSync(empty, { recursive: true });
     });
 
+    it('a trace file (FILE.jsonl: --format json, contract run --trace) tells the same story as the logs it was written from', async () => {
+        const json = capture(dir);
+        expect(await runCli(['trace', dir, '--format', 'json'], json)).toBe(0);
+        const file = join(dir, 'run.jsonl');
+        writeFileSync(file, json.stdout);
+        try {
+            const fromLogs = capture(dir);
+            expect(await runCli(['trace', '.'], fromLogs)).toBe(0);
+            const fromFile = capture(dir);
+            expect(await runCli(['trace', 'run.jsonl'], fromFile)).toBe(0);
+            expect(fromFile.stdout).toBe(fromLogs.stdout);
+            // the unreadable line the logs held is in the file as an unknown record: counted as it was, no warning
+            expect(fromFile.stderr).toBe('');
+            const again = capture(dir);
+            expect(await runCli(['trace', 'run.jsonl', '--format', 'json'], again)).toBe(0);
+            expect(again.stdout).toBe(json.stdout);
+        } finally {
+            rmSync(file);
+        }
+    });
+
+    it('a hostile trace file: each line that is no record named (20, then counted), a line without end bounded, no record exits 1, another file exits 2', async () => {
+        const odd = mkdtempSync(join(tmpdir(), 'contract-trace-jsonl-'));
+        try {
+            const rule = JSON.stringify({ kind: 'sup_rule', monoNs: '2001000000', wallTime: 'w', module: 'SUP', peer: '', port: null, size: 0, detail: 'action.FIRST active cause=elapsed=1000000ns', causeEvent: { kind: 'stop' } });
+            const bad = Array.from({ length: 25 }, (_, i) => (i % 2 ? '[1]' : `{"kind":"sup_rule","monoNs":"1","module":"../x","detail":"${i}"}`));
+            writeFileSync(join(odd, 'a.jsonl'), [rule, ...bad, 'x'.repeat(100_000), rule].join('\n') + '\n');
+            const io = capture(odd);
+            expect(await runCli(['trace', 'a.jsonl'], io)).toBe(0);
+            // the rule's cause is read from its detail, not from the line's causeEvent
+            expect(io.stdout.split('\n').slice(0, 2)).toEqual(['+0.000000s SUP  rule action.FIRST active   <- elapsed=1ms', '+0.000000s SUP  rule action.FIRST active   <- elapsed=1ms']);
+            const warnings = io.stderr.trim().split('\n');
+            expect(warnings[0]).toBe('contract trace: warning: a.jsonl:2: bad module name');
+            expect(warnings[1]).toBe('contract trace: warning: a.jsonl:3: not a JSON object');
+            expect(warnings).toHaveLength(21);
+            expect(warnings[20]).toBe('contract trace: warning: 6 more line(s) of a.jsonl that are no record');
+            execFileSync('truncate', ['-s', '1T', join(odd, 'sparse.jsonl')]);
+            const t0 = Date.now();
+            const sparse = capture(odd);
+            expect(await runCli(['trace', 'sparse.jsonl'], sparse)).toBe(1);
+            expect(Date.now() - t0).toBeLessThan(20_000);
+            expect(sparse.stderr).toBe(`contract trace: warning: sparse.jsonl:1: no line end in 64 MiB: the rest of the file (${2 ** 40 - 65 * 2 ** 20} bytes) left out\ncontract trace: no record in sparse.jsonl\n`);
+            writeFileSync(join(odd, 'empty.jsonl'), '');
+            expect(await runCli(['trace', 'empty.jsonl'], capture(odd))).toBe(1);
+            writeFileSync(join(odd, 'notes.txt'), rule);
+            const other = capture(odd);
+            expect(await runCli(['trace', 'notes.txt'], other)).toBe(2);
+            expect(other.stderr).toMatch(/notes\.txt is not a folder: give the folder of a run's CSV logs .* or a trace file \(FILE\.jsonl/);
+        } finally {
+            rmSync(odd, { recursive: true, force: true });
+        }
+    });
+
     it('a folder of more logs than a run writes is refused with why, before any is opened', async () => {
         const many = mkdtempSync(join(tmpdir(), 'contract-trace-many-'));
         try {

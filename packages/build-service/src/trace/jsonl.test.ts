@@ -33,13 +33,17 @@ describe('trace files (JSON lines)', () => {
         expect(renderStory(parseTrace(back.files))).toEqual(renderStory(records));
     });
 
-    it('a simulation\'s sim_start and records the writer kept as unknown are skipped, counted', () => {
+    it('a simulation\'s sim_start and records the writer kept as unknown are skipped as logs, counted; read one by one, the unknown ones come back', () => {
         const records = parseTrace(sampleLogs());
         const text = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} }) + '\n' +
             JSON.stringify({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' }) + '\n' + jsonl(records);
         const back = traceFileToLogs('sim.jsonl', text);
         expect([back.skipped, back.problems]).toEqual([2, []]);
         expect(parseTrace(back.files)).toEqual(records);
+        // one record at a time (contract trace FILE.jsonl), the unknown record comes back as it was, bounded
+        expect(recordOfJsonLine('t.jsonl', 2, text.split('\n')[1]!)).toEqual({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' });
+        expect(recordOfJsonLine('t.jsonl', 2, JSON.stringify({ kind: 'unknown', file: 'F'.repeat(500), line: -4, reason: 7 }))).toEqual({ kind: 'unknown', file: 'F'.repeat(200), line: 0, reason: '', text: '' });
+        expect(recordOfJsonLine('t.jsonl', 1, text.split('\n')[0]!)).toBeUndefined();
     });
 
     it('hostile lines are named, never trusted: the derived fields come from the columns again', () => {

@@ -7,12 +7,13 @@
  * line is read by parseRecordLine, so a trace file gets exactly the checks a log gets (the file is
  * hostile: a CI artefact, a download). What a JSON line holds beyond those eight columns (`fields`,
  * a rule's `causeEvent`) is derived again from them, never trusted. Records the reader kept as
- * `unknown` when the file was written, and the `sim_start` record that heads a simulation, are no
- * records of a run: they are skipped (counted).
+ * `unknown` when the file was written (a line of the logs it could not read) are carried as such
+ * by recordOfJsonLine (`contract trace FILE.jsonl` counts them as the logs' reader did) and skipped,
+ * counted, as logs; the `sim_start` record that heads a simulation is no record of a run: skipped.
  */
 import { csvField } from './csv-line.js';
 import { CSV_HEADER, parseRecordLine, type LogFile } from './parse.js';
-import type { TraceRecord } from './records.js';
+import type { TraceRecord, UnknownRecord } from './records.js';
 
 /** Longer lines are not records (a record's CSV line is at most MAX_LINE_CHARS; its JSON adds the derived fields). */
 export const MAX_JSON_LINE_CHARS = 16_384;
@@ -20,11 +21,15 @@ export const MAX_JSON_LINE_CHARS = 16_384;
 export const MAX_TRACE_FILE_MODULES = 256;
 const MODULE = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
 
-/** What a JSON line is, read. */
+/** What a JSON line is, read: a record's CSV line, an unreadable line of the logs it was written from (`carried`), a line to skip, or why it is none. */
 export type JsonLineRead =
     | { csv: string; module: string }
-    | { skip: 'unknown' | 'sim_start' }
+    | { carried: UnknownRecord }
+    | { skip: 'sim_start' }
     | { problem: string };
+
+/** A text field of a carried unknown record, bounded (it is printed). */
+const shortText = (v: unknown) => (typeof v === 'string' ? v.slice(0, 200) : '');
 
 /** One line of a trace file -> the CSV line of its record, a line to skip, or why it is no record. */
 export function jsonLineToCsv(line: string): JsonLineRead {
@@ -37,7 +42,10 @@ export function jsonLineToCsv(line: string): JsonLineRead {
     }
     if (typeof value !== 'object' || value === null || Array.isArray(value)) return { problem: 'not a JSON object' };
     const r = value as Record<string, unknown>;
-    if (r['kind'] === 'unknown') return { skip: 'unknown' };
+    if (r['kind'] === 'unknown') {
+        const line = r['line'];
+        return { carried: { kind: 'unknown', file: shortText(r['file']), line: Number.isSafeInteger(line) && (line as number) > 0 ? (line as number) : 0, reason: shortText(r['reason']), text: shortText(r['text']) } };
+    }
     if (r['kind'] === 'sim_start') return { skip: 'sim_start' };
     const { kind, monoNs, wallTime, module, peer, port, size, detail } = r;
     if (typeof kind !== 'string' || typeof monoNs !== 'string' || typeof module !== 'string' || typeof detail !== 'string') {
@@ -51,11 +59,16 @@ export function jsonLineToCsv(line: string): JsonLineRead {
     return { csv: `${csvField(monoNs)},${csvField(wall)},${module},${csvField(kind)},${csvField(from)},${portText},${sizeText},${csvField(detail)}`, module };
 }
 
-/** One line of a trace file as a record (the CSV reader's, `unknown` saying why), or undefined for a line to skip. */
+/**
+ * One line of a trace file as a record (the CSV reader's; `unknown` saying why it is none, with
+ * this file and line), or undefined for a line to skip. An unreadable line of the logs the file was
+ * written from comes back as the unknown record it was (its own file and line).
+ */
 export function recordOfJsonLine(file: string, lineNo: number, line: string): TraceRecord | undefined {
     if (line.trim() === '') return undefined;
     const read = jsonLineToCsv(line);
     if ('skip' in read) return undefined;
+    if ('carried' in read) return read.carried;
     if ('problem' in read) return { kind: 'unknown', file, line: lineNo, reason: read.problem, text: line.slice(0, 200) };
     return parseRecordLine(file, lineNo, read.csv);
 }
@@ -87,7 +100,7 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
         pos = nl + 1;
         if (line.trim() === '') continue;
         const read = jsonLineToCsv(line);
-        if ('skip' in read) {
+        if ('skip' in read || 'carried' in read) {
             skipped++;
             continue;
         }

@@ -7,31 +7,38 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { StoryTeller, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { StoryTeller, isUnknown, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
 import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
+import { traceFileBatches } from '../trace-file-stream.js';
+import { open } from 'node:fs/promises';
+
+/** Lines of a trace file that are no record, named one by one before they are only counted. */
+const NAMED_PROBLEMS = 20;
 
 export const traceCommand: Command = {
     name: 'trace',
-    summary: 'tell a recorded run from its CSV logs (rule changes with causes, schemas, deadline misses)',
+    summary: 'tell a recorded run from its CSV logs or a trace file (rule changes with causes, schemas, deadline misses)',
     usage: [
-        'usage: contract trace LOGDIR [--format text|json]',
+        'usage: contract trace LOGDIR|FILE.jsonl [--format text|json]',
         '  LOGDIR: the folder of a run\'s CSV logs (`contract run --logs`, default PROJECT/logs)',
+        '  FILE.jsonl: a trace file (`contract run --trace`, `contract trace --format json`, `contract simulate --trace`), told in its order',
         '  --format: text (default: the story, then a count of the records) or json (one JSON object per record and line, time order)',
         '  a file named like a log that is not read (a symbolic link, a FIFO, socket or device) is left out with a warning',
-        'exit status: 0 success, 1 no readable log in LOGDIR, 2 bad usage (LOGDIR missing or not a folder)',
+        'exit status: 0 success, 1 no readable log in LOGDIR (no record in FILE.jsonl), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const parsed = parseArgs(args, ['format']);
-        if (parsed.positionals.length !== 1) throw new UsageError('expected one LOGDIR');
+        if (parsed.positionals.length !== 1) throw new UsageError('expected one LOGDIR or FILE.jsonl');
         const format = parsed.options.get('format') ?? 'text';
         if (format !== 'text' && format !== 'json') throw new UsageError(`unknown format '${String(format)}' (expected text or json)`);
         const dirArg = parsed.positionals[0]!;
         const dir = resolve(io.cwd, dirArg);
         const info = await stat(dir).catch(() => undefined);
-        if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a folder${info ? '' : ' (it does not exist)'}: give the folder of a run's CSV logs (\`contract run\` writes them to PROJECT/logs)`);
+        if (info?.isFile() && dirArg.endsWith('.jsonl')) return traceFile(dir, dirArg, format, io);
+        if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a folder${info ? '' : ' (it does not exist)'}: give the folder of a run's CSV logs (\`contract run\` writes them to PROJECT/logs) or a trace file (FILE.jsonl: \`contract run --trace\`)`);
         const skipped: string[] = [];
         const logs = await openLogFolder(dir, undefined, skipped);
         for (const s of skipped) io.err(`contract trace: warning: ${s}\n`);
@@ -49,6 +56,53 @@ export const traceCommand: Command = {
         }
     },
 };
+
+/**
+ * `contract trace FILE.jsonl`: the records of a trace file, in its order, told (or printed as JSON
+ * lines) as a log folder's; the lines that are no record are named (the first NAMED_PROBLEMS), then counted.
+ */
+async function traceFile(path: string, arg: string, format: string, io: CliIO): Promise<number> {
+    const handle = await open(path, 'r').catch((e: Error) => e);
+    if (handle instanceof Error) {
+        io.err(`contract trace: cannot read ${safeName(arg)}: ${handle.message}\n`);
+        return EXIT_FAILURE;
+    }
+    const teller = new StoryTeller();
+    const ends = new ModuleEnds([]);
+    let records = 0;
+    let problems = 0;
+    try {
+        for await (const batch of traceFileBatches(handle, arg)) {
+            let piece = '';
+            for (const r of batch) {
+                // a line of the file that is no record is named (an unreadable line of the logs the file
+                // was written from, carried as such, is only counted in the summary, as the logs' reader counts it)
+                if (isUnknown(r) && r.file === arg) {
+                    if (problems++ < NAMED_PROBLEMS) io.err(`contract trace: warning: ${safeName(arg)}:${r.line}: ${r.reason}\n`);
+                } else if (!isUnknown(r)) records++;
+                if (format === 'json') piece += JSON.stringify(r) + '\n';
+                else {
+                    ends.see(r);
+                    const line = teller.tell(r);
+                    if (line !== undefined) piece += line + '\n';
+                }
+            }
+            if (!piece) continue;
+            io.out(piece);
+            await io.drained?.();
+            if (io.outputClosed?.aborted) return EXIT_OK;
+        }
+    } finally {
+        await handle.close();
+    }
+    if (problems > NAMED_PROBLEMS) io.err(`contract trace: warning: ${problems - NAMED_PROBLEMS} more line(s) of ${safeName(arg)} that are no record\n`);
+    if (format === 'text') io.out(ends.lines().map((l) => l + '\n').join('') + teller.summary() + '\n');
+    if (records === 0) {
+        io.err(`contract trace: no record in ${safeName(arg)}\n`);
+        return EXIT_FAILURE;
+    }
+    return EXIT_OK;
+}
 
 /** Every record as a JSON line, each piece printed once the reader took the last; stops when the reader went away (`| head`: its choice). */
 async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
@@ -99,10 +153,11 @@ export class ModuleEnds {
     private readonly last = new Map<string, bigint>();
     private readonly started = new Set<string>();
     private readonly exited = new Set<string>();
-    private readonly modules: string[];
+    /** The logs' modules, then those of records (a trace file has no log names). */
+    private readonly modules: Set<string>;
 
     constructor(logs: readonly { name: string }[]) {
-        this.modules = [...new Set(logs.map((l) => moduleOfLog(l.name)))];
+        this.modules = new Set(logs.map((l) => moduleOfLog(l.name)));
     }
 
     see(r: TraceRecord): void {
@@ -111,6 +166,7 @@ export class ModuleEnds {
         const at = BigInt(base.monoNs);
         this.t0 ??= at;
         this.last.set(base.module, at);
+        this.modules.add(base.module);
         if (r.kind === 'module_started') this.started.add(base.module);
         if (r.kind === 'module_exit') this.exited.add(base.module);
     }
