@@ -54,6 +54,14 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             // in time order
             const times = first.map((r) => Number(r.monoNs));
             expect(times).toEqual([...times].sort((a, b) => a - b));
+            // contract trace tells the file: each simulation's story under its own heading, every rule change of it
+            const told = capture(dir);
+            expect(await runCli(['trace', 'sim.jsonl'], told), told.stderr).toBe(0);
+            const story = told.stdout.split('\n');
+            const headings = story.flatMap((l, i) => (l.startsWith('--- simulation start: ') ? [i] : []));
+            expect(headings.map((i) => story[i]!.replace(/^.*\//, ''))).toEqual(['commutation.scenario', 'mission.scenario']);
+            expect(story.slice(0, headings[1]).filter((l) => / rule \S+ (active|inactive) /.test(l))).toHaveLength(first.filter((r) => r.kind === 'sup_rule').length);
+            expect(story).toContain('+0.300000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"');
             // a file that cannot be written: said, exit 1
             const bad = capture(dir);
             expect(await runCli(['simulate', TUTORIAL, scenario('mission.scenario'), '--cache-dir', cache, '--trace', join(dir, 'no', 'such', 'folder.jsonl')], bad)).toBe(1);

@@ -43,7 +43,13 @@ describe('trace files (JSON lines)', () => {
         // one record at a time (contract trace FILE.jsonl), the unknown record comes back as it was, bounded
         expect(recordOfJsonLine('t.jsonl', 2, text.split('\n')[1]!)).toEqual({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' });
         expect(recordOfJsonLine('t.jsonl', 2, JSON.stringify({ kind: 'unknown', file: 'F'.repeat(500), line: -4, reason: 7 }))).toEqual({ kind: 'unknown', file: 'F'.repeat(200), line: 0, reason: '', text: '' });
-        expect(recordOfJsonLine('t.jsonl', 1, text.split('\n')[0]!)).toBeUndefined();
+        expect(recordOfJsonLine('t.jsonl', 1, text.split('\n')[0]!)).toMatchObject({ kind: 'sim_start', module: 'SIM', monoNs: '0', detail: 'simulation start' });
+        expect(back.simulation).toBe('simulation');
+        // two simulations in one file (two scenarios): each from time 0; the first is kept, the second said left out
+        const two = traceFileToLogs('sim.jsonl', text.replace('simulation start', 'simulation start: a.scenario') + text.replace('simulation start', 'simulation start: b.scenario'));
+        expect(two.simulation).toBe('a.scenario');
+        expect(two.problems).toEqual([`the simulations after the first (a.scenario) left out, from line ${text.split('\n').length}: one is shown at a time`]);
+        expect(parseTrace(two.files)).toEqual(records);
     });
 
     it('hostile lines are named, never trusted: the derived fields come from the columns again', () => {

@@ -9,11 +9,13 @@
  * a rule's `causeEvent`) is derived again from them, never trusted. Records the reader kept as
  * `unknown` when the file was written (a line of the logs it could not read) are carried as such
  * by recordOfJsonLine (`contract trace FILE.jsonl` counts them as the logs' reader did) and skipped,
- * counted, as logs; the `sim_start` record that heads a simulation is no record of a run: skipped.
+ * counted, as logs. The `sim_start` record that heads a simulation is no record of a run: skipped as
+ * logs (each simulation of a file starts at time 0 again: the first is kept, the others left out,
+ * said) and, read one by one, handed as itself (`contract trace` heads each simulation's story with it).
  */
 import { csvField } from './csv-line.js';
 import { CSV_HEADER, parseRecordLine, type LogFile } from './parse.js';
-import type { TraceRecord, UnknownRecord } from './records.js';
+import type { KnownRecord, TraceRecord, UnknownRecord } from './records.js';
 
 /** Longer lines are not records (a record's CSV line is at most MAX_LINE_CHARS; its JSON adds the derived fields). */
 export const MAX_JSON_LINE_CHARS = 16_384;
@@ -25,7 +27,7 @@ const MODULE = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
 export type JsonLineRead =
     | { csv: string; module: string }
     | { carried: UnknownRecord }
-    | { skip: 'sim_start' }
+    | { simStart: KnownRecord }
     | { problem: string };
 
 /** A text field of a carried unknown record, bounded (it is printed). */
@@ -46,7 +48,10 @@ export function jsonLineToCsv(line: string): JsonLineRead {
         const line = r['line'];
         return { carried: { kind: 'unknown', file: shortText(r['file']), line: Number.isSafeInteger(line) && (line as number) > 0 ? (line as number) : 0, reason: shortText(r['reason']), text: shortText(r['text']) } };
     }
-    if (r['kind'] === 'sim_start') return { skip: 'sim_start' };
+    if (r['kind'] === 'sim_start') {
+        const mono = typeof r['monoNs'] === 'string' && /^\d{1,20}$/.test(r['monoNs']) ? r['monoNs'] : '0';
+        return { simStart: { kind: 'sim_start', monoNs: mono, wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: shortText(r['detail']), fields: {} } };
+    }
     const { kind, monoNs, wallTime, module, peer, port, size, detail } = r;
     if (typeof kind !== 'string' || typeof monoNs !== 'string' || typeof module !== 'string' || typeof detail !== 'string') {
         return { problem: 'kind, monoNs, module and detail must be strings' };
@@ -61,13 +66,14 @@ export function jsonLineToCsv(line: string): JsonLineRead {
 
 /**
  * One line of a trace file as a record (the CSV reader's; `unknown` saying why it is none, with
- * this file and line), or undefined for a line to skip. An unreadable line of the logs the file was
- * written from comes back as the unknown record it was (its own file and line).
+ * this file and line), or undefined for an empty line. An unreadable line of the logs the file was
+ * written from comes back as the unknown record it was (its own file and line); a simulation's
+ * `sim_start` as itself (its detail bounded: `simulation start: SCENARIO`).
  */
 export function recordOfJsonLine(file: string, lineNo: number, line: string): TraceRecord | undefined {
     if (line.trim() === '') return undefined;
     const read = jsonLineToCsv(line);
-    if ('skip' in read) return undefined;
+    if ('simStart' in read) return read.simStart;
     if ('carried' in read) return read.carried;
     if ('problem' in read) return { kind: 'unknown', file, line: lineNo, reason: read.problem, text: line.slice(0, 200) };
     return parseRecordLine(file, lineNo, read.csv);
@@ -80,6 +86,8 @@ export interface TraceFileLogs {
     problems: string[];
     /** Lines skipped: records the writer could not read, and a simulation's `sim_start`. */
     skipped: number;
+    /** A simulation's file (its `sim_start`): the scenario; of several simulations (several scenarios), the first's, the others left out (said in `problems`). */
+    simulation?: string;
 }
 
 /**
@@ -93,6 +101,7 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
     let bad = 0;
     let skipped = 0;
     let tooMany = 0;
+    let simulation: string | undefined;
     for (let pos = 0, n = 1; pos < text.length; n++) {
         let nl = text.indexOf('\n', pos);
         if (nl < 0) nl = text.length;
@@ -100,7 +109,17 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
         pos = nl + 1;
         if (line.trim() === '') continue;
         const read = jsonLineToCsv(line);
-        if ('skip' in read || 'carried' in read) {
+        if ('simStart' in read) {
+            // each simulation of the file starts again at time 0: the first one is shown, not a mix of them
+            if (simulation !== undefined) {
+                problems.push(`the simulations after the first (${simulation}) left out, from line ${n}: one is shown at a time`);
+                break;
+            }
+            simulation = read.simStart.detail.replace(/^simulation start:? ?/, '') || 'simulation';
+            skipped++;
+            continue;
+        }
+        if ('carried' in read) {
             skipped++;
             continue;
         }
@@ -121,5 +140,5 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
     if (bad > maxProblems) problems.push(`${bad - maxProblems} more line(s) that are no record`);
     if (tooMany) problems.push(`${tooMany} record(s) of modules past the first ${MAX_TRACE_FILE_MODULES} left out`);
     const files = [...lines].map(([module, l]) => ({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.join('\n')}\n` }));
-    return { files, problems, skipped };
+    return { files, problems, skipped, ...(simulation !== undefined ? { simulation } : {}) };
 }

@@ -38,6 +38,7 @@ export const traceCommand: Command = {
         const dir = resolve(io.cwd, dirArg);
         const info = await stat(dir).catch(() => undefined);
         if (info?.isFile() && dirArg.endsWith('.jsonl')) return traceFile(dir, dirArg, format, io);
+        if (!info && dirArg.endsWith('.jsonl')) throw new UsageError(`${safeName(dirArg)} does not exist: give a trace file (\`contract run --trace FILE.jsonl\` writes one) or the folder of a run's CSV logs`);
         if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a folder${info ? '' : ' (it does not exist)'}: give the folder of a run's CSV logs (\`contract run\` writes them to PROJECT/logs) or a trace file (FILE.jsonl: \`contract run --trace\`)`);
         const skipped: string[] = [];
         const logs = await openLogFolder(dir, undefined, skipped);
@@ -79,8 +80,9 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
                 // was written from, carried as such, is only counted in the summary, as the logs' reader counts it)
                 if (isUnknown(r) && r.file === arg) {
                     if (problems++ < NAMED_PROBLEMS) io.err(`contract trace: warning: ${safeName(arg)}:${r.line}: ${r.reason}\n`);
-                } else if (!isUnknown(r)) records++;
+                } else if (!isUnknown(r) && r.kind !== 'sim_start') records++;
                 if (format === 'json') piece += JSON.stringify(r) + '\n';
+                else if (r.kind === 'sim_start') piece += `--- ${(r as TraceRecordBase).detail}\n`; // a simulation's story starts (at time 0 again)
                 else {
                     ends.see(r);
                     const line = teller.tell(r);

@@ -286,11 +286,11 @@ export class MonitorController {
     const mine = asked ? ++this.picked : this.picked;
     const id = `file:${path}`;
     const { files: read, problems: unreadable } = await readWorkspaceLogs([path], (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
-    const { files, problems, skipped } = read[0] ? traceFileToLogs(path, read[0].text) : { files: [], problems: [], skipped: 0 };
+    const { files, problems, skipped, simulation } = read[0] ? traceFileToLogs(path, read[0].text) : { files: [], problems: [], skipped: 0, simulation: undefined };
     const { model, leftOut: unread } = await recordedRun(files);
     const notWhole = [...unreadable, ...problems, ...unread];
     const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} line(s) skipped (no record of a run)` : ''}`;
-    const label = `Trace file ${path} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
+    const label = `Trace file ${path}${simulation !== undefined ? ` · simulation of ${simulation}` : ''} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
     this.runs.set(id, { id, label, model, live: false });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();
