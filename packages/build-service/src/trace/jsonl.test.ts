@@ -38,17 +38,17 @@ describe('trace files (JSON lines)', () => {
         const text = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} }) + '\n' +
             JSON.stringify({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' }) + '\n' + jsonl(records);
         const back = traceFileToLogs('sim.jsonl', text);
-        expect([back.skipped, back.problems]).toEqual([2, []]);
+        expect([back.skipped, back.problems]).toEqual([1, []]);
         expect(parseTrace(back.files)).toEqual(records);
         // one record at a time (contract trace FILE.jsonl), the unknown record comes back as it was, bounded
         expect(recordOfJsonLine('t.jsonl', 2, text.split('\n')[1]!)).toEqual({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' });
         expect(recordOfJsonLine('t.jsonl', 2, JSON.stringify({ kind: 'unknown', file: 'F'.repeat(500), line: -4, reason: 7 }))).toEqual({ kind: 'unknown', file: 'F'.repeat(200), line: 0, reason: '', text: '' });
         expect(recordOfJsonLine('t.jsonl', 1, text.split('\n')[0]!)).toMatchObject({ kind: 'sim_start', module: 'SIM', monoNs: '0', detail: 'simulation start' });
-        expect(back.simulation).toBe('simulation');
+        expect(back.simulation).toBe('');
         // two simulations in one file (two scenarios): each from time 0; the first is kept, the second said left out
         const two = traceFileToLogs('sim.jsonl', text.replace('simulation start', 'simulation start: a.scenario') + text.replace('simulation start', 'simulation start: b.scenario'));
         expect(two.simulation).toBe('a.scenario');
-        expect(two.problems).toEqual([`the simulations after the first (a.scenario) left out, from line ${text.split('\n').length}: one is shown at a time`]);
+        expect(two.problems).toEqual([`the file's other simulations, from line ${text.split('\n').length}, left out: one is shown at a time`]);
         expect(parseTrace(two.files)).toEqual(records);
     });
 

@@ -84,9 +84,9 @@ export interface TraceFileLogs {
     files: LogFile[];
     /** Lines that are no record (`line 12: not JSON`), the first `maxProblems` named. */
     problems: string[];
-    /** Lines skipped: records the writer could not read, and a simulation's `sim_start`. */
+    /** Lines skipped: records the writer could not read (lines of the logs it was written from). */
     skipped: number;
-    /** A simulation's file (its `sim_start`): the scenario; of several simulations (several scenarios), the first's, the others left out (said in `problems`). */
+    /** A simulation's file (its `sim_start`): the scenario ('' when unnamed); of several simulations (several scenarios), the first's, the others left out (said in `problems`). */
     simulation?: string;
 }
 
@@ -112,11 +112,10 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
         if ('simStart' in read) {
             // each simulation of the file starts again at time 0: the first one is shown, not a mix of them
             if (simulation !== undefined) {
-                problems.push(`the simulations after the first (${simulation}) left out, from line ${n}: one is shown at a time`);
+                problems.push(`the file's other simulations, from line ${n}, left out: one is shown at a time`);
                 break;
             }
-            simulation = read.simStart.detail.replace(/^simulation start:? ?/, '') || 'simulation';
-            skipped++;
+            simulation = read.simStart.detail.replace(/^simulation start:? ?/, '');
             continue;
         }
         if ('carried' in read) {

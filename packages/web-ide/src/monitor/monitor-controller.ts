@@ -289,8 +289,8 @@ export class MonitorController {
     const { files, problems, skipped, simulation } = read[0] ? traceFileToLogs(path, read[0].text) : { files: [], problems: [], skipped: 0, simulation: undefined };
     const { model, leftOut: unread } = await recordedRun(files);
     const notWhole = [...unreadable, ...problems, ...unread];
-    const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} line(s) skipped (no record of a run)` : ''}`;
-    const label = `Trace file ${path}${simulation !== undefined ? ` · simulation of ${simulation}` : ''} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
+    const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} unreadable line(s) of the logs it was written from` : ''}`;
+    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
     this.runs.set(id, { id, label, model, live: false });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();

@@ -162,14 +162,14 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
     const fromLogs = await marksOf(page);
-    // the file as `contract run --trace` writes it (one JSON object a line), a simulation's first
-    // line, and a line that is no record
+    // the file as `contract run --trace` writes it (one JSON object a line), with a simulation's first
+    // line (`contract simulate --trace`), and a line that is no record
     const records = parseTrace(readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') })));
     const sim = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} });
     writeFileSync(join(s.workspace, 'recorded.jsonl'), [sim, 'not json', ...records.map((r) => JSON.stringify(r))].join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="file:recorded.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('file:recorded.jsonl');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · ${records.length} record(s), 1 line(s) skipped (no record of a run) (not whole: line 2: not JSON)`);
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · a simulation · ${records.length} record(s) (not whole: line 2: not JSON)`);
     expect(await marksOf(page)).toEqual(fromLogs);
     await checkTutorialStory(page);
     // changed on disk while shown: read again (the bad line gone)
