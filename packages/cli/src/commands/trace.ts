@@ -68,8 +68,7 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
         io.err(`contract trace: cannot read ${safeName(arg)}: ${handle.message}\n`);
         return EXIT_FAILURE;
     }
-    const teller = new StoryTeller();
-    const ends = new ModuleEnds([]);
+    const story = new Story(new ModuleEnds([]));
     let records = 0;
     let problems = 0;
     try {
@@ -83,22 +82,15 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
                 } else if (!isUnknown(r) && r.kind !== 'sim_start') records++;
                 if (format === 'json') piece += JSON.stringify(r) + '\n';
                 else if (r.kind === 'sim_start') piece += `--- ${(r as TraceRecordBase).detail}\n`; // a simulation's story starts (at time 0 again)
-                else {
-                    ends.see(r);
-                    const line = teller.tell(r);
-                    if (line !== undefined) piece += line + '\n';
-                }
+                else piece += story.line(r);
             }
-            if (!piece) continue;
-            io.out(piece);
-            await io.drained?.();
-            if (io.outputClosed?.aborted) return EXIT_OK;
+            if (!(await print(io, piece))) return EXIT_OK;
         }
     } finally {
         await handle.close();
     }
     if (problems > NAMED_PROBLEMS) io.err(`contract trace: warning: ${problems - NAMED_PROBLEMS} more line(s) of ${safeName(arg)} that are no record\n`);
-    if (format === 'text') io.out(ends.lines().map((l) => l + '\n').join('') + teller.summary() + '\n');
+    if (format === 'text') io.out(story.end());
     if (records === 0) {
         io.err(`contract trace: no record in ${safeName(arg)}\n`);
         return EXIT_FAILURE;
@@ -108,11 +100,7 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
 
 /** Every record as a JSON line, each piece printed once the reader took the last; stops when the reader went away (`| head`: its choice). */
 async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
-    const { outOfOrder, problems } = await jsonLinesOf(logs, async (piece) => {
-        io.out(piece);
-        await io.drained?.();
-        return !io.outputClosed?.aborted;
-    });
+    const { outOfOrder, problems } = await jsonLinesOf(logs, (piece) => print(io, piece));
     return { late: outOfOrder, problems };
 }
 
@@ -122,22 +110,39 @@ async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: n
  */
 async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
     const stream = streamTrace(logs);
-    const teller = new StoryTeller();
-    const ends = new ModuleEnds(logs);
+    const story = new Story(new ModuleEnds(logs));
     for await (const batch of stream.batches) {
-        let piece = '';
-        for (const r of batch) {
-            ends.see(r);
-            const line = teller.tell(r);
-            if (line !== undefined) piece += line + '\n';
-        }
-        if (!piece) continue;
+        if (!(await print(io, batch.map((r) => story.line(r)).join('')))) return { late: stream.outOfOrder(), problems: stream.problems() };
+    }
+    io.out(story.end());
+    return { late: stream.outOfOrder(), problems: stream.problems() };
+}
+
+/** Prints `piece` (when any) once the reader took the last; false when the reader went away (`| head`: its choice). */
+async function print(io: CliIO, piece: string): Promise<boolean> {
+    if (piece) {
         io.out(piece);
         await io.drained?.();
-        if (io.outputClosed?.aborted) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
-    io.out(ends.lines().map((l) => l + '\n').join('') + teller.summary() + '\n');
-    return { late: stream.outOfOrder(), problems: stream.problems() };
+    return !io.outputClosed?.aborted;
+}
+
+/** A story told record by record: its lines, then what the logs say of modules that did not end (ModuleEnds), then the counts. */
+class Story {
+    private readonly teller = new StoryTeller();
+
+    constructor(private readonly ends: ModuleEnds) {}
+
+    /** The record's line of the story ('' when it tells nothing). */
+    line(r: TraceRecord): string {
+        this.ends.see(r);
+        const told = this.teller.tell(r);
+        return told === undefined ? '' : told + '\n';
+    }
+
+    end(): string {
+        return this.ends.lines().map((l) => l + '\n').join('') + this.teller.summary() + '\n';
+    }
 }
 
 /** The module a log is named for (`<MODULE>_<date>.csv`). */
