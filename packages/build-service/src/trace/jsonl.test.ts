@@ -1,7 +1,7 @@
 /** A trace file (JSON lines) read back as a run's logs, through the CSV reader's checks (jsonl.ts). */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, TRACE_KINDS, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, type TraceRecord } from './index.js';
+import { CSV_HEADER, TRACE_KINDS, isRule, isUnknown, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, type TraceRecord } from './index.js';
 
 /** A run's logs: every kind of the table (its example line, at its own time), in two modules' logs, plus quoting. */
 function sampleLogs() {
@@ -53,7 +53,7 @@ describe('trace files (JSON lines)', () => {
     });
 
     it('hostile lines are named, never trusted: the derived fields come from the columns again', () => {
-        const rule = parseTrace(sampleLogs()).find((r) => r.kind === 'sup_rule')!;
+        const rule = parseTrace(sampleLogs()).find(isRule)!;
         const lying = { ...rule, causeEvent: { kind: 'stop' }, active: false, fields: { injected: 1 } };
         const lines = [
             JSON.stringify(lying),
@@ -73,7 +73,7 @@ describe('trace files (JSON lines)', () => {
         const read = parseTrace(back.files);
         // the lying line is the rule as its columns say; the others are the CSV reader's unknown records
         expect(read[0]).toEqual(rule);
-        expect(read.slice(1).map((r) => (r.kind === 'unknown' ? r.reason : r.kind))).toEqual(['mono_ns is not a number', 'bad port or size', "unknown event 'no_such_kind'"]);
+        expect(read.slice(1).map((r) => (isUnknown(r) ? r.reason : r.kind))).toEqual(['mono_ns is not a number', 'bad port or size', "unknown event 'no_such_kind'"]);
         expect(recordOfJsonLine('t.jsonl', 2, 'not json')).toMatchObject({ kind: 'unknown', file: 't.jsonl', line: 2, reason: 'not JSON' });
         expect(recordOfJsonLine('t.jsonl', 3, '  ')).toBeUndefined();
     });
