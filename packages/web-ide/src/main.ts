@@ -73,13 +73,14 @@ async function main(): Promise<void> {
 
   const runs = new RunController({ workspace, build, toolbar: ui.toolbar, jobStatus: ui.status.job, showPanel: ui.showPanel, project: currentProject });
   connectProblems({ problems, workspace, editors, lsp, build, statusEl: ui.status.problems, showPanel: ui.showPanel, buildProject: () => runs.project });
-  explorer.onOpen.on((path) => void editors.open(path));
   followActiveFile({ editors, workspace, explorer, outline, langEl: ui.status.lang, cursorEl: ui.status.cursor });
   followSharedRuns(watchExternalChanges(workspace, lsp), runs);
   const generator = new GenerateController({ workspace, explorer, problems, panel: generatePanel, button: ui.toolbar.generate, showPanel: ui.showPanel, project: currentProject });
 
   // the Monitor: live during a run (trace events), then the job's CSV logs as a recorded run
   const monitor = new MonitorController({ editors, lsp, workspace, build, button: ui.toolbar.monitor, project: () => currentProject() });
+  // a trace file (`contract run --trace`: *.jsonl) opens in the Monitor as the run it records; any other file in its editor
+  explorer.onOpen.on((path) => void (path.endsWith('.jsonl') ? monitor.openTraceFile(path) : editors.open(path)));
   // Simulate: supervisors in virtual time, shown in its panel and in the Monitor (docs/simulation.md "In the IDE")
   const simulate = new SimulateController({ lsp, workspace, monitor, project: () => currentProject(), reveal: () => ui.showPanel('simulate') });
   ui.addPanel('simulate', 'Simulate', simulate.panel.element).addEventListener('click', () => void simulate.refreshFunctions());

@@ -124,8 +124,8 @@ export class Explorer {
         const isDir = e.type === 'dir';
         const open = this.expanded.has(e.path);
         const icon = isDir ? (open ? '▾' : '▸') : '';
-        const kind = isDir ? (e.name === 'src-gen' ? 'gen-folder' : 'folder') : e.name.endsWith('.contract') ? 'cactal' : /\.(c|h)$/.test(e.name) ? 'c' : 'other';
-        const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : '≡';
+        const kind = isDir ? (e.name === 'src-gen' ? 'gen-folder' : 'folder') : e.name.endsWith('.contract') ? 'cactal' : /\.(c|h)$/.test(e.name) ? 'c' : e.name.endsWith('.jsonl') ? 'trace' : 'other';
+        const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : kind === 'trace' ? '◉' : '≡'; // a trace file opens in the ◉ Monitor
         const row = h('div', {
           class: `tree-row ${kind}${e.path === this.active ? ' active' : ''}${e === this.selected || e.path === this.selected?.path ? ' selected' : ''}`,
           role: 'treeitem', 'data-path': e.path, title: e.truncated ? `${e.path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)` : e.path, style: `padding-left:${8 + depth * 14}px`, tabindex: -1,

@@ -172,6 +172,12 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · a simulation · ${records.length} record(s) (not whole: line 2: not JSON)`);
     expect(await marksOf(page)).toEqual(fromLogs);
     await checkTutorialStory(page);
+    // a click on the file in the explorer opens it in the Monitor (not as text in an editor tab)
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    await page.locator('.tree-row[data-path="recorded.jsonl"]').click();
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toMatch(/^Trace file recorded\.jsonl · /);
+    expect(await page.locator('.tab[data-path="recorded.jsonl"]').count()).toBe(0);
     // changed on disk while shown: read again (the bad line gone)
     writeFileSync(join(s.workspace, 'recorded.jsonl'), records.map((r) => JSON.stringify(r)).join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toBe(`Trace file recorded.jsonl · ${records.length} record(s)`);
