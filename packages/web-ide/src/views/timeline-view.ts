@@ -1,3 +1,4 @@
+import { traceFileToLogs } from '@contract-studio/build-service/trace';
 import { h } from '../util/dom.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriod, type Activation } from './activation-log.js';
@@ -5,6 +6,8 @@ import { laneBars, lastTime, type LaneBar } from './timeline-bars.js';
 import { activationsFromLogs, localLogFolders, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
+/** Trace files of the project offered as sources. */
+const MAX_TRACE_FILES = 64;
 
 function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string, string | number>, text?: string): SVGElementTagNameMap[K] {
   const el = document.createElementNS(SVG, tag);
@@ -18,7 +21,8 @@ function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string,
  * gridlines, over one of two sources of the runtime's CSV logs: the run that just finished in
  * Build & Run (logs collected by the build service, given through `showRun`) or the local logs:
  * `<project>/logs/` (`contract run`) or `<project>/src-gen/generated/architecture/logs/` (`make run`),
- * the first that holds some (each its own choice when both do: two runs, not one).
+ * the first that holds some (each its own choice when both do: two runs, not one), or a trace file
+ * of the project (`*.jsonl`, `contract run --trace`), read as the logs it was written from.
  */
 export class TimelineView {
   readonly element: HTMLElement;
@@ -91,12 +95,13 @@ export class TimelineView {
    * `local` is the first local logs folder that holds logs (`held`: those that do); when both do,
    * the other is offered as `local:<folder>`.
    */
-  private renderSources(selected: string, held: string[] = []): void {
+  private renderSources(selected: string, held: string[] = [], traces: string[] = []): void {
     const options = [h('option', { value: 'local', selected: selected === 'local' }, held[0] ? `Local logs: ${held[0]}/` : 'Local logs (contract run / make run)')];
     for (const folder of held.slice(1)) options.push(h('option', { value: `local:${folder}`, selected: selected === `local:${folder}` }, `Local logs: ${folder}/`));
+    for (const path of traces) options.push(h('option', { value: `file:${path}`, selected: selected === `file:${path}` }, `Trace file: ${path}`));
     if (this.run) options.unshift(h('option', { value: 'run', selected: selected === 'run' }, `Last Build & Run (${this.run.label.replace(/^Build & Run /, '')})`));
     this.source.replaceChildren(...options);
-    this.source.value = selected === 'run' && this.run ? 'run' : held.includes(selected.slice(6)) ? selected : 'local';
+    this.source.value = selected === 'run' && this.run ? 'run' : held.includes(selected.slice(6)) || traces.includes(selected.slice(5)) ? selected : 'local';
   }
 
   async update(): Promise<void> {
@@ -104,7 +109,15 @@ export class TimelineView {
     await this.workspace.refreshTree();
     const folders = localLogFolders(this.project(), this.workspace.allFiles());
     const held = folders.filter((f) => f.csvs.length);
-    this.renderSources(this.source.value || 'local', held.map((f) => f.folder));
+    // trace files of the project (`contract run --trace`): the logs they were written from (build-service trace/jsonl.ts)
+    const pre = this.project() ? `${this.project()}/` : '';
+    const traces = this.workspace.allFiles().filter((f) => f.endsWith('.jsonl') && f.startsWith(pre)).sort().slice(0, MAX_TRACE_FILES);
+    this.renderSources(this.source.value || 'local', held.map((f) => f.folder), traces);
+    if (this.source.value.startsWith('file:')) {
+      const { files: read, problems } = await readWorkspaceLogs([this.source.value.slice(5)], (f) => f);
+      const logs = read[0] ? traceFileToLogs(read[0].name, read[0].text) : { files: [], problems: [] };
+      return this.drawLogs(logs.files, [...problems, ...logs.problems], `${this.source.value.slice(5)} holds no record.`);
+    }
     const csvs = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])?.csvs ?? [];
     if (!csvs.length) {
       this.info.textContent = '';

@@ -13,6 +13,7 @@ import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace } from '@contract-studio/build-service/trace';
 import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, type Session } from './harness.js';
+import { activationsFromLogs } from '../../src/views/run-logs.js';
 
 const canBuild =
   (await import('@contract-studio/build-service').then((m) => typeof (m as Record<string, unknown>).createBuildServer === 'function').catch(() => false)) &&
@@ -178,6 +179,16 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.tree-row[data-path="recorded.jsonl"]').click();
     await expect.poll(() => page.locator('.monitor-source').textContent()).toMatch(/^Trace file recorded\.jsonl · /);
     expect(await page.locator('.tab[data-path="recorded.jsonl"]').count()).toBe(0);
+    // the Timeline offers it too: the activations of the logs it was written from
+    const expected = activationsFromLogs(readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }))).acts.length;
+    expect(expected).toBeGreaterThan(10);
+    await page.locator('#btn-timeline').click();
+    await page.locator('.timeline-view').waitFor();
+    await expect.poll(() => page.locator('.timeline-source option[value="file:recorded.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.timeline-source').selectOption('file:recorded.jsonl');
+    await expect.poll(() => page.locator('.timeline-view .muted').first().textContent(), { timeout: 10_000 }).toMatch(new RegExp(`^${expected} activations · \\d+ modules`));
+    await page.locator('.timeline-source').selectOption('local'); // as the Timeline test below expects it
+    await monitorShown(page);
     // changed on disk while shown: read again (the bad line gone)
     writeFileSync(join(s.workspace, 'recorded.jsonl'), records.map((r) => JSON.stringify(r)).join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 10_000 }).toBe(`Trace file recorded.jsonl · ${records.length} record(s)`);
