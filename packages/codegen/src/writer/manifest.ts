@@ -74,15 +74,19 @@ export function skeletonHash(text: string, file: string): string {
     return skeletonDigest(skeletonText(text, file));
 }
 
-/** What the manifest records of a freshly generated file (byte string): its regions' default hashes, its skeleton hash and line hashes. */
-export function fileRecord(generated: string, file: string): { defaults: Record<string, string>; skeleton: string; lines: string } {
+/**
+ * What the manifest records of a freshly generated file (byte string): its regions' default hashes,
+ * its skeleton hash, and (`lines()`, computed when asked: a file whose skeleton hash is the recorded
+ * one keeps the recorded line hashes) its skeleton's line hashes.
+ */
+export function fileRecord(generated: string, file: string): { defaults: Record<string, string>; skeleton: string; lines: () => string } {
     const defaults: Record<string, string> = {};
     const regions = parseRegions(generated, file).regions;
     for (const r of regions) defaults[r.id] = hashContent(r.content);
     return {
         defaults,
         skeleton: skeletonDigest(skeletonText(generated, file, regions)),
-        lines: encodeLineHashes(skeletonLines(generated, file, regions).hashes),
+        lines: () => encodeLineHashes(skeletonLines(generated, file, regions).hashes),
     };
 }
 

@@ -29,51 +29,52 @@ export interface SkeletonLines {
     fileLines: number[];
 }
 
-/** FNV-1a of a byte string's line, folded to 24 bits. */
-function lineHash(text: string, from: number, to: number): number {
-    if (to > from && text.charCodeAt(to - 1) === 13) to--;
-    let h = 0x811c9dc5;
-    for (let i = from; i < to; i++) {
-        h ^= text.charCodeAt(i) & 0xff;
-        h = Math.imul(h, 0x01000193);
-    }
-    return ((h >>> 24) ^ h) & 0xffffff;
+const FNV_OFFSET = 0x811c9dc5;
+const FNV_PRIME = 0x01000193;
+/** FNV-1a of the characters of text[from, to) (a byte string's), continuing from `h`. */
+function feed(h: number, text: string, from: number, to: number): number {
+    for (let i = from; i < to; i++) h = Math.imul(h ^ (text.charCodeAt(i) & 0xff), FNV_PRIME);
+    return h;
 }
+/** The 24 bits a line's hash keeps. */
+const fold = (h: number) => ((h >>> 24) ^ h) & 0xffffff;
 
-/** The skeleton lines of a file (byte string), each with its hash and the file line it starts on. */
+/**
+ * The skeleton lines of a file (byte string), each with its hash and the file line it starts on.
+ * The hash runs over the file's text in place (no string is built per line): the skeleton of a
+ * generated file is hashed whenever it changed.
+ */
 export function skeletonLines(text: string, file: string, regions: Region[] = parseRegions(text, file).regions): SkeletonLines {
     const hashes: number[] = [];
     const fileLines: number[] = [];
     let line = 1;
-    // a skeleton line is built from pieces of the file (the text between regions) and region IDs
-    let pending = '';
+    let h = FNV_OFFSET;
     let startLine = 1;
+    /** Feeds text[from, to) to the line being hashed, ending a line at each newline (a CR before it left out). */
     const addText = (from: number, to: number) => {
         let i = from;
-        while (i < to) {
-            const nl = text.indexOf('\n', i);
-            if (nl < 0 || nl >= to) {
-                pending += text.slice(i, to);
-                return;
-            }
-            const piece = pending + text.slice(i, nl);
-            hashes.push(lineHash(piece, 0, piece.length));
+        for (let nl = text.indexOf('\n', i); nl >= 0 && nl < to; nl = text.indexOf('\n', i)) {
+            const end = nl > i && text.charCodeAt(nl - 1) === 13 ? nl - 1 : nl;
+            hashes.push(fold(feed(h, text, i, end)));
             fileLines.push(startLine);
-            pending = '';
+            h = FNV_OFFSET;
             line++;
             startLine = line;
             i = nl + 1;
         }
+        h = feed(h, text, i, to);
     };
     let cursor = 0;
     for (const r of regions) {
         addText(cursor, r.start);
-        pending += `\u0000${r.id}\u0000`;
+        // the region stands as its ID between two NULs
+        h = feed(Math.imul(h, FNV_PRIME), r.id, 0, r.id.length);
+        h = Math.imul(h, FNV_PRIME);
         for (let i = text.indexOf('\n', r.start); i >= 0 && i < r.end; i = text.indexOf('\n', i + 1)) line++;
         cursor = r.end;
     }
     addText(cursor, text.length);
-    hashes.push(lineHash(pending, 0, pending.length));
+    hashes.push(fold(h));
     fileLines.push(startLine);
     return { hashes, fileLines };
 }

@@ -177,7 +177,9 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const record = fileRecord(generated, file.path);
         newManifest.set(file.path, record.defaults);
         newSkeletons.set(file.path, record.skeleton);
-        newSkeletonLines.set(file.path, record.lines);
+        // the same skeleton as recorded: the same line hashes (they are the skeleton's lines)
+        const recordedLines = recordedSkeleton(file.path) === record.skeleton ? loaded.manifest?.skeletonLines.get(file.path) : undefined;
+        newSkeletonLines.set(file.path, recordedLines ?? record.lines());
         try {
             const existing = mayExist(file.path) ? tree.read(file.path) : undefined;
             if (existing === undefined) {
