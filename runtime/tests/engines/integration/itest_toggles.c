@@ -160,8 +160,11 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
     pid_t pauser = paused ? pause_amx(sc.run, 20, 1300) : 0;
     /* the flips stop at 700 ms; the run lasts 2 s so that a host that stalls the supervisors a
        few hundred ms (seen on CI: a decision came after the launcher's end-of-run KILL) still
-       leaves them time to end before it */
-    check(scenario_launch(&sc, bin, launcher, "HTA.main()", paused ? "2.5" : "2.0", names),
+       leaves them time to end before it. Paused, the supervisors' decisions wait for AMX through
+       its 1.3 s pause (HTA's rule N came 1.37 s after its start on a loaded CI host), then the
+       700 ms of flips, then a last take may wait up to 0.5 s for AMX's answer: 2.5 s was not
+       enough there (HTB's last decision came 24 ms after the KILL); the run lasts 3.5 s. */
+    check(scenario_launch(&sc, bin, launcher, "HTA.main()", paused ? "3.5" : "2.0", names),
           paused ? "hold toggles, AMX paused 1.3 s: architecture ran and stopped cleanly"
                  : "hold toggles: architecture ran and stopped cleanly");
     int pst = -1;
