@@ -24,6 +24,9 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
     let read = 0;
     /** Characters dropped of the line being skipped. */
     let dropped = 0;
+    /** The record that stands for a line no record can be (`head`: its first characters), at line `at`. */
+    const noRecord = (at: number, reason: string, head: string): TraceRecord => ({ kind: 'unknown', file: name, line: at, reason, text: head.slice(0, 200) });
+    const tooLong = `longer than ${MAX_JSON_LINE_CHARS} characters`;
     const recordOf = (line: string, out: TraceRecord[]) => {
         lineNo++;
         const r = recordOfJsonLine(name, lineNo, line.endsWith('\r') ? line.slice(0, -1) : line);
@@ -38,8 +41,7 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
         let pos = 0;
         for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', pos)) {
             if (skipping) {
-                lineNo++;
-                out.push({ kind: 'unknown', file: name, line: lineNo, reason: `longer than ${MAX_JSON_LINE_CHARS} characters`, text: partial.slice(0, 200) });
+                out.push(noRecord(++lineNo, tooLong, partial));
                 skipping = false;
                 dropped = 0;
                 partial = '';
@@ -58,14 +60,14 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
             }
         } else dropped += text.length - pos;
         if (skipping && dropped > MAX_SKIP_BYTES) {
-            out.push({ kind: 'unknown', file: name, line: lineNo + 1, reason: `no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB: the rest of the file (${size - read} bytes) left out`, text: partial.slice(0, 200) });
+            out.push(noRecord(lineNo + 1, `no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB: the rest of the file (${size - read} bytes) left out`, partial));
             yield out;
             return;
         }
         if (out.length) yield out;
     }
     const rest = partial + decoder.end();
-    if (skipping) yield [{ kind: 'unknown', file: name, line: lineNo + 1, reason: `longer than ${MAX_JSON_LINE_CHARS} characters`, text: partial.slice(0, 200) }];
+    if (skipping) yield [noRecord(lineNo + 1, tooLong, partial)];
     else if (rest) {
         const out: TraceRecord[] = [];
         recordOf(rest, out);

@@ -11,13 +11,13 @@
  * Everything read from the stream or a log file is hostile: bounded and validated here or by the
  * trace reader (parseRecordLine never throws).
  */
-import { traceFileToLogs, type LogFile, type TraceLine } from '@contract-studio/build-service/trace';
+import type { LogFile, TraceLine } from '@contract-studio/build-service/trace';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
-import { MAX_RUN_LOG_BYTES, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
+import { MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
@@ -246,7 +246,7 @@ export class MonitorController {
       this.runs.delete(id);
       return;
     }
-    this.folderFiles.set(id, ''); // changed: still watched until read again
+    if (id.startsWith('dir:')) this.folderFiles.set(id, ''); // changed: still watched until read again
     clearTimeout(this.rereadTimer);
     this.rereadTimer = setTimeout(() => {
       if (this.shown === id && this.isShown) void (id.startsWith('file:') ? this.openTraceFile(id.slice(5), false) : this.openFolder(id.slice(4), false));
@@ -285,10 +285,9 @@ export class MonitorController {
   async openTraceFile(path: string, asked = true): Promise<void> {
     const mine = asked ? ++this.picked : this.picked;
     const id = `file:${path}`;
-    const { files: read, problems: unreadable } = await readWorkspaceLogs([path], (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
-    const { files, problems, skipped, simulation } = read[0] ? traceFileToLogs(path, read[0].text) : { files: [], problems: [], skipped: 0, simulation: undefined };
+    const { files, problems, skipped, simulation } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     const { model, leftOut: unread } = await recordedRun(files);
-    const notWhole = [...unreadable, ...problems, ...unread];
+    const notWhole = [...problems, ...unread];
     const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} unreadable line(s) of the logs it was written from` : ''}`;
     const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
     this.runs.set(id, { id, label, model, live: false });

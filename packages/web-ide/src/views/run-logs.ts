@@ -2,8 +2,9 @@
  * The CSV logs a timeline draws: either the files of a local run (`contract run` writes them to the
  * project's `logs/`, `make run` to its `src-gen/generated/architecture/logs/`) or those the build
  * service collected from a sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`,
- * docs/build-service-api.md).
+ * docs/build-service-api.md), or a trace file of the workspace read as the logs it was written from.
  */
+import { traceFileToLogs } from '@contract-studio/build-service/trace';
 import { api, ApiError, getOk } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
@@ -82,6 +83,18 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
     }
   }
   return { files, problems, tooLarge };
+}
+
+/**
+ * A trace file of the workspace (`*.jsonl`: `contract run --trace`) read through GET /api/log and
+ * turned into the logs it was written from (build-service trace/jsonl.ts): `problems` says what
+ * could not be read (the file itself, then its lines that are no record).
+ */
+export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<{ files: LogFile[]; problems: string[]; skipped: number; simulation?: string }> {
+  const { files: read, problems } = await readWorkspaceLogs([path], nameOf, maxBytes);
+  if (!read[0]) return { files: [], problems, skipped: 0 };
+  const logs = traceFileToLogs(path, read[0].text);
+  return { ...logs, problems: [...problems, ...logs.problems] };
 }
 
 /** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */

@@ -1,9 +1,8 @@
-import { traceFileToLogs } from '@contract-studio/build-service/trace';
 import { h } from '../util/dom.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriod, type Activation } from './activation-log.js';
 import { laneBars, lastTime, type LaneBar } from './timeline-bars.js';
-import { activationsFromLogs, localLogFolders, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
+import { activationsFromLogs, localLogFolders, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 /** Trace files of the project offered as sources. */
@@ -114,9 +113,8 @@ export class TimelineView {
     const traces = this.workspace.allFiles().filter((f) => f.endsWith('.jsonl') && f.startsWith(pre)).sort().slice(0, MAX_TRACE_FILES);
     this.renderSources(this.source.value || 'local', held.map((f) => f.folder), traces);
     if (this.source.value.startsWith('file:')) {
-      const { files: read, problems } = await readWorkspaceLogs([this.source.value.slice(5)], (f) => f);
-      const logs = read[0] ? traceFileToLogs(read[0].name, read[0].text) : { files: [], problems: [] };
-      return this.drawLogs(logs.files, [...problems, ...logs.problems], `${this.source.value.slice(5)} holds no record.`);
+      const { files, problems } = await readTraceFile(this.source.value.slice(5), (f) => f);
+      return this.drawLogs(files, problems, `${this.source.value.slice(5)} holds no record.`);
     }
     const csvs = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])?.csvs ?? [];
     if (!csvs.length) {
