@@ -332,8 +332,10 @@ export class DockerSandbox implements Sandbox {
         clearInterval(diskWatch);
         const info = await container.inspect().catch(() => null);
         if (info?.State?.OOMKilled && !limitHit) limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
-        // a job that was refused a write and gave up is reported too
-        if (!limitHit) limitHit = await diskHit().catch(() => null);
+        // a job that was refused a write and gave up is reported too; not one the service stopped
+        // itself (run time limit, cancel): its reason is known, and the look into the volume (an exec
+        // in its holder, 0.2-0.4 s, more on a loaded engine) would only delay the kill's report
+        if (!limitHit && !killing) limitHit = await diskHit().catch(() => null);
         // the attach stream delivers the last bytes after the container ended: drain it first
         await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
         stdout.end();
