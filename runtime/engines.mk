@@ -5,7 +5,7 @@
 #                        integration test with real processes (plain and ASan+UBSan)
 #   make bench-engines   writes ../bench/parts/engines.json
 ENG_CC      ?= gcc
-ENG_WARN    := -std=c11 -Wall -Wextra -Werror
+ENG_WARN    := -std=c11 -Wall -Wextra -Werror -pthread
 ENG_INC     := -Iinclude -Isrc/engines -Itests/engines -Isim
 ENG_SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 ENG_OUT     := build/engines

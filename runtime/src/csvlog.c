@@ -1,7 +1,15 @@
 /* The per-module CSV log: <LOG_DIR>/<MODULE>_<d>-<Mon>-<Y>-<H>h<M>m<S>s.csv (report section 8.2
  * naming, without the space). Columns: see docs/runtime-api.md. Records are formatted by hand
- * into a 64 KiB buffer (no stdio on the hot path) and written when the module waits and the
- * oldest unwritten record is older than LOG_FLUSH_NS, when the buffer fills, and at exit.
+ * into a 64 KiB buffer (no stdio on the hot path) and handed to the log's writer thread when the
+ * module waits and its flush boundary came (below), when the buffer fills, and at exit.
+ *
+ * The writer thread: the module's own thread (maybe SCHED_FIFO, a period to keep) never waits in
+ * write(): a disk stall held a 1 kHz scheduler 67 ms in its log write. The module fills one buffer
+ * while the writer (SCHED_OTHER, all signals blocked) writes the other. A hand-off at a flush
+ * boundary that finds the writer still busy is tried again at the next boundary; only a module
+ * that fills a whole buffer while the writer still writes the previous one waits for it (nothing
+ * is lost). Without the thread (pthread_create failed) the module writes itself, as before. A
+ * child forked by module code does not log (its copy of the buffers is dropped, not written twice).
  *
  * The file is bounded (CONTRACT_LOG_MAX_BYTES, default LOG_MAX_DEFAULT): a module that loops
  * (an exec region that never sets *stateindex = -1) must not fill the disk nor make the whole
@@ -15,8 +23,11 @@
  * otherwise the mono_ns of the oldest record not written yet. A reader that reads the word
  * (after taking CLOCK_MONOTONIC) and then the file knows the module's log is whole up to that
  * time, so it can put several modules' logs in time order without guessing how long a module
- * holds its records (docs/build-service-api.md "Trace channel"). Cost: two stores when the
- * buffer goes from empty to dirty and one at each flush. Removed at close. Its second word is
+ * holds its records (docs/build-service-api.md "Trace channel"). The word covers both buffers: it
+ * is the oldest record of the one being written, else of the one being filled; the writer sets it
+ * after its write, under the lock the module takes when its buffer goes from empty to dirty. Cost:
+ * that lock and two stores when the buffer goes from empty to dirty, one store at each write.
+ * Removed at close. Its second word is
  * the reader's: while a client watches the live trace the build service writes there the flush
  * delay it wants (25 ms), and the module writes its records that much sooner than LOG_FLUSH_NS
  * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS.
@@ -29,6 +40,8 @@
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -43,19 +56,37 @@
 #define RECORD_MAX 1024
 #define LOG_MAX_DEFAULT (256ULL * 1024 * 1024)
 
+#define WRITER_STACK (256 * 1024) /* locked with the rest by mlockall: not the default 8 MiB */
+
 static int log_fd = -1;
-static char log_buf[LOG_BUF];
+static char log_bufs[2][LOG_BUF];
+static char *log_buf = log_bufs[0];     /* the buffer the module fills                      */
 static size_t log_len;
 static char log_path[PATH_MAX];
 static unsigned long long log_max;      /* bound of the file, bytes                         */
-static unsigned long long log_written;  /* bytes in the file                                */
-static int log_capped;                  /* the bound was reached: records are only counted */
-static unsigned long long log_dropped;  /* records not written since                        */
+static unsigned long long log_written;  /* bytes in the file (the writer's)                 */
+static int log_capped;                  /* the bound was reached: records are only counted;
+                                           set by the writer, read by the module (atomic)   */
+static unsigned long long log_dropped;  /* records not written since, counted by the module */
+static unsigned long long log_dropped_w; /* ... and by the writer                           */
 static unsigned long long log_records;  /* records logged (written or not) since the open   */
 static unsigned long long *log_mark;    /* the flush mark's word, NULL when there is none   */
 static char mark_path[PATH_MAX + 8];
 
+/* The writer thread and what it shares with the module, under log_lock (priority inheritance:
+ * a SCHED_FIFO module never waits on a preempted SCHED_OTHER writer holding it). */
+static pthread_once_t log_once = PTHREAD_ONCE_INIT;
+static pthread_mutex_t log_lock;
+static pthread_cond_t log_work, log_idle;
+static pthread_t writer;
+static int writer_on;                   /* the thread runs (the module's view)              */
+static int writer_stop;
+static const char *pending_buf;         /* the buffer being written ...                     */
+static size_t pending_len;              /* ... its length, 0 = none (atomic)                */
+
 #define MARK_BYTES 4096
+
+static void writer_start(void);
 
 static void mark_set(unsigned long long v)
 {
@@ -139,6 +170,7 @@ int rt_log_open(void)
     log_max = log_bound();
     log_capped = 0;
     log_dropped = 0;
+    log_dropped_w = 0;
     log_records = 0;
     log_written = 0;
     struct stat st;
@@ -150,6 +182,7 @@ int rt_log_open(void)
             log_written = sizeof CSV_HEADER - 1;
     }
     log_len = 0;
+    writer_start();
     return 0;
 }
 
@@ -192,8 +225,8 @@ static char *put_record(char *p, RTIME mono, const char *event, const char *peer
 {
     struct timespec wall;
     clock_gettime(CLOCK_REALTIME, &wall);
-    static time_t cached_sec = -1;
-    static char cached_text[80];
+    static _Thread_local time_t cached_sec = -1; /* the writer formats its log-capped record too */
+    static _Thread_local char cached_text[80];
     if (wall.tv_sec != cached_sec) { /* calendar conversion once per second */
         struct tm tm;
         gmtime_r(&wall.tv_sec, &tm);
@@ -223,29 +256,36 @@ static char *put_record(char *p, RTIME mono, const char *event, const char *peer
     return p;
 }
 
+static void lock(void) { pthread_mutex_lock(&log_lock); }
+static void unlock(void) { pthread_mutex_unlock(&log_lock); }
+static size_t pending(void) { return __atomic_load_n(&pending_len, __ATOMIC_ACQUIRE); }
+
 void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail)
 {
     if (log_fd < 0) return;
     log_records++;
-    if (log_capped) {
+    if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) {
         log_dropped++;
         return;
     }
-    if (log_len + RECORD_MAX > LOG_BUF) ContractLogFlush();
-    if (log_capped) { /* this flush reached the bound */
-        log_dropped++;
-        return;
+    if (log_len + RECORD_MAX > LOG_BUF) rt_log_hand_off(1);
+    RTIME mono;
+    if (!g_rt.log_dirty_since) {
+        /* the mark says "being logged" before the record's time is taken: a reader that saw it clean
+         * took its time before that, so this record is younger than what the reader concluded. While
+         * the writer holds the other buffer the mark already names an older record: left as it is. */
+        if (writer_on) lock();
+        int quiet = !pending();
+        if (quiet) mark_set(1);
+        mono = GetTime();
+        g_rt.log_dirty_since = mono;
+        if (quiet) mark_set((unsigned long long)mono);
+        if (writer_on) unlock();
+    } else {
+        mono = GetTime();
     }
-    /* the mark says "being logged" before the record's time is taken: a reader that saw it clean
-     * took its time before that, so this record is younger than what the reader concluded */
-    if (!g_rt.log_dirty_since) mark_set(1);
-    RTIME mono = GetTime();
     char *p = put_record(log_buf + log_len, mono, event, peer, port, size, detail);
     log_len = (size_t)(p - log_buf);
-    if (!g_rt.log_dirty_since) {
-        g_rt.log_dirty_since = mono;
-        mark_set((unsigned long long)mono);
-    }
 }
 
 static void write_all(const char *buf, size_t len)
@@ -276,36 +316,95 @@ static unsigned long long count_records(const char *buf, size_t len)
     return n;
 }
 
-void ContractLogFlush(void)
+/* Writes buf[0..len) to the file within its bound (the writer's, or the module's without one). */
+static void write_records(const char *buf, size_t len)
 {
-    if (log_fd >= 0 && log_len > 0) {
-        /* the room left before the bound, keeping two records' room for the markers */
-        unsigned long long room = log_written + 2 * RECORD_MAX < log_max ? log_max - 2 * RECORD_MAX - log_written : 0;
-        if (log_len <= room) {
-            write_all(log_buf, log_len);
-        } else {
-            size_t keep = 0; /* whole records only */
-            for (size_t i = 0; i < (size_t)room; i++)
-                if (log_buf[i] == '\n') keep = i + 1;
-            write_all(log_buf, keep);
-            log_dropped += count_records(log_buf + keep, log_len - keep);
-            log_capped = 1;
-            char detail[200];
-            snprintf(detail, sizeof detail, "log reached its %llu-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written",
-                     log_max);
-            write_cap_record(detail);
-            fprintf(stderr, "%s: warning: CSV log %s capped at %llu bytes (CONTRACT_LOG_MAX_BYTES); later records are not written\n",
-                    g_rt.name, log_path, log_max);
-        }
+    if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) { /* handed off before the bound was seen */
+        log_dropped_w += count_records(buf, len);
+        return;
     }
+    /* the room left before the bound, keeping two records' room for the markers */
+    unsigned long long room = log_written + 2 * RECORD_MAX < log_max ? log_max - 2 * RECORD_MAX - log_written : 0;
+    if (len <= room) {
+        write_all(buf, len);
+        return;
+    }
+    size_t keep = 0; /* whole records only */
+    for (size_t i = 0; i < (size_t)room; i++)
+        if (buf[i] == '\n') keep = i + 1;
+    write_all(buf, keep);
+    log_dropped_w += count_records(buf + keep, len - keep);
+    __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
+    char detail[200];
+    snprintf(detail, sizeof detail, "log reached its %llu-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written",
+             log_max);
+    write_cap_record(detail);
+    fprintf(stderr, "%s: warning: CSV log %s capped at %llu bytes (CONTRACT_LOG_MAX_BYTES); later records are not written\n",
+            g_rt.name, log_path, log_max);
+}
+
+static void *log_writer(void *unused)
+{
+    (void)unused;
+    lock();
+    for (;;) {
+        while (!pending() && !writer_stop) pthread_cond_wait(&log_work, &log_lock);
+        if (!pending()) break; /* stopped with nothing left */
+        const char *buf = pending_buf;
+        size_t len = pending();
+        unlock();
+        write_records(buf, len);
+        lock();
+        __atomic_store_n(&pending_len, 0, __ATOMIC_RELEASE);
+        /* after the write: the file holds every record but those of the buffer being filled */
+        mark_set((unsigned long long)g_rt.log_dirty_since);
+        pthread_cond_broadcast(&log_idle);
+    }
+    unlock();
+    return NULL;
+}
+
+int rt_log_hand_off(int wait)
+{
+    if (log_len == 0) return 1;
+    if (!writer_on) {
+        write_records(log_buf, log_len);
+        log_len = 0;
+        g_rt.log_dirty_since = 0;
+        mark_set(0); /* after the write: the file holds every record logged so far */
+        return 1;
+    }
+    lock();
+    while (pending()) {
+        if (!wait) {
+            unlock();
+            return 0;
+        }
+        pthread_cond_wait(&log_idle, &log_lock);
+    }
+    /* the mark keeps naming this buffer's oldest record until the writer wrote it */
+    pending_buf = log_buf;
+    __atomic_store_n(&pending_len, log_len, __ATOMIC_RELEASE);
+    log_buf = log_buf == log_bufs[0] ? log_bufs[1] : log_bufs[0];
     log_len = 0;
     g_rt.log_dirty_since = 0;
-    mark_set(0); /* after the write: the file holds every record logged so far */
+    pthread_cond_signal(&log_work);
+    unlock();
+    return 1;
+}
+
+void ContractLogFlush(void)
+{
+    rt_log_hand_off(1);
+    if (!writer_on) return;
+    lock();
+    while (pending()) pthread_cond_wait(&log_idle, &log_lock);
+    unlock();
 }
 
 void ContractLogFlushIfOlder(RTIME ageNs)
 {
-    if (g_rt.log_dirty_since && GetTime() - g_rt.log_dirty_since >= ageNs) ContractLogFlush();
+    if (g_rt.log_dirty_since && GetTime() - g_rt.log_dirty_since >= ageNs) rt_log_hand_off(0);
 }
 
 RTIME ContractLogPendingSince(void) { return log_fd >= 0 ? g_rt.log_dirty_since : 0; }
@@ -323,13 +422,18 @@ RTIME ContractLogFlushDue(RTIME delayNs)
 {
     RTIME since = g_rt.log_dirty_since;
     if (!since || delayNs <= 0) return since;
-    return (since / delayNs + 1) * delayNs;
+    RTIME due = (since / delayNs + 1) * delayNs;
+    if (pending()) { /* the writer still writes: try again at the next boundary, not at once */
+        RTIME now = GetTime();
+        if (due <= now) due = (now / delayNs + 1) * delayNs;
+    }
+    return due;
 }
 
 void ContractLogFlushIfDue(RTIME now, RTIME delayNs)
 {
-    RTIME due = ContractLogFlushDue(delayNs);
-    if (due && now >= due) ContractLogFlush();
+    RTIME since = g_rt.log_dirty_since;
+    if (since && delayNs > 0 && now >= (since / delayNs + 1) * delayNs) rt_log_hand_off(0);
 }
 
 void rt_log_maybe_flush(RTIME now)
@@ -337,14 +441,77 @@ void rt_log_maybe_flush(RTIME now)
     ContractLogFlushIfDue(now, rt_log_flush_ns());
 }
 
+/* In a child forked by module code: the parent's log is the parent's (its writer thread is not
+ * in the child; its records would be written twice). */
+static void log_forget_in_child(void)
+{
+    if (log_fd >= 0) close(log_fd);
+    log_fd = -1;
+    log_len = 0;
+    writer_on = 0;
+    __atomic_store_n(&pending_len, 0, __ATOMIC_RELAXED);
+    g_rt.log_dirty_since = 0;
+    log_mark = NULL; /* the parent's page: left mapped, never written */
+    pthread_mutex_init(&log_lock, NULL);
+    pthread_cond_init(&log_work, NULL);
+    pthread_cond_init(&log_idle, NULL);
+}
+
+static void log_init_once(void)
+{
+    pthread_mutexattr_t a;
+    pthread_mutexattr_init(&a);
+    pthread_mutexattr_setprotocol(&a, PTHREAD_PRIO_INHERIT);
+    pthread_mutex_init(&log_lock, &a);
+    pthread_mutexattr_destroy(&a);
+    pthread_cond_init(&log_work, NULL);
+    pthread_cond_init(&log_idle, NULL);
+    pthread_atfork(NULL, NULL, log_forget_in_child);
+}
+
+/* Starts the writer: SCHED_OTHER, a small stack, every signal blocked (they are the module's). */
+static void writer_start(void)
+{
+    pthread_once(&log_once, log_init_once);
+    writer_stop = 0;
+    pthread_attr_t attr;
+    if (pthread_attr_init(&attr) != 0) return;
+    struct sched_param sp = { .sched_priority = 0 };
+    pthread_attr_setinheritsched(&attr, PTHREAD_EXPLICIT_SCHED);
+    pthread_attr_setschedpolicy(&attr, SCHED_OTHER);
+    pthread_attr_setschedparam(&attr, &sp);
+    pthread_attr_setstacksize(&attr, WRITER_STACK);
+    sigset_t all, old;
+    sigfillset(&all);
+    pthread_sigmask(SIG_BLOCK, &all, &old);
+    int r = pthread_create(&writer, &attr, log_writer, NULL);
+    pthread_sigmask(SIG_SETMASK, &old, NULL);
+    pthread_attr_destroy(&attr);
+    if (r != 0)
+        fprintf(stderr, "%s: warning: no log writer thread (%s): the module writes its log itself\n", g_rt.name, strerror(r));
+    writer_on = r == 0;
+}
+
+static void writer_end(void)
+{
+    if (!writer_on) return;
+    lock();
+    writer_stop = 1;
+    pthread_cond_signal(&log_work);
+    unlock();
+    pthread_join(writer, NULL);
+    writer_on = 0;
+}
+
 void rt_log_close(void)
 {
     if (log_fd < 0) return;
     ContractLogFlush();
+    writer_end();
     if (log_capped) {
         char detail[200];
-        snprintf(detail, sizeof detail, "%llu records not written after the log reached its %llu-byte bound", log_dropped,
-                 log_max);
+        snprintf(detail, sizeof detail, "%llu records not written after the log reached its %llu-byte bound",
+                 log_dropped + log_dropped_w, log_max);
         write_cap_record(detail);
     }
     close(log_fd);

@@ -100,6 +100,9 @@ void rt_log_close(void);
 /* Records logged since the log was opened (written or not: see CONTRACT_LOG_MAX_BYTES). */
 unsigned long long rt_log_records(void);
 void rt_log_maybe_flush(RTIME now);
+/* Hands the buffered records to the log's writer thread (written at once without one); 1 when
+ * handed. wait = 0: returns 0 when the writer still writes the previous buffer. */
+int rt_log_hand_off(int wait);
 /* LOG_FLUSH_NS, or the shorter delay the flush mark asks for while a live monitor watches. */
 RTIME rt_log_flush_ns(void);
 

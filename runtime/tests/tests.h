@@ -33,6 +33,8 @@ void test_csv_log_cap(void);
 void test_csv_log_mark(void);
 void test_csv_log_mark_delay(void);
 void test_csv_log_flush_boundary(void);
+void test_csv_log_writer_thread(void);
+void test_csv_log_fork_child(void);
 
 static const TestCase ALL_TESTS[] = {
     { "tools_parse", test_tools_parse },
@@ -65,6 +67,8 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_mark", test_csv_log_mark },
     { "csv_log_mark_delay", test_csv_log_mark_delay },
     { "csv_log_flush_boundary", test_csv_log_flush_boundary },
+    { "csv_log_writer_thread", test_csv_log_writer_thread },
+    { "csv_log_fork_child", test_csv_log_fork_child },
     { "ext_types_round_trip", test_ext_types_round_trip },
     { NULL, NULL },
 };

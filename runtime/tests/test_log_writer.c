@@ -1,0 +1,179 @@
+/* The CSV log's writer thread (csvlog.c): a module never waits in write(). The runner is linked
+ * with -Wl,--wrap=write: a write from any thread but the test's own can be made slow, as a disk
+ * stall makes it. In process, on the tester's own log. */
+#define _GNU_SOURCE
+#include <dirent.h>
+#include <fcntl.h>
+#include <pthread.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/types.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+#include "harness.h"
+#include "internal.h"
+
+ssize_t __real_write(int fd, const void *buf, size_t len);
+ssize_t __wrap_write(int fd, const void *buf, size_t len);
+
+static long long write_delay_ns; /* 0: writes as they are */
+static pthread_t test_thread;
+
+ssize_t __wrap_write(int fd, const void *buf, size_t len)
+{
+    long long d = __atomic_load_n(&write_delay_ns, __ATOMIC_ACQUIRE);
+    if (d > 0 && !pthread_equal(pthread_self(), test_thread)) {
+        struct timespec ts = { (time_t)(d / 1000000000LL), (long)(d % 1000000000LL) };
+        nanosleep(&ts, NULL);
+    }
+    return __real_write(fd, buf, len);
+}
+
+static void slow_writes(long long ns)
+{
+    test_thread = pthread_self();
+    __atomic_store_n(&write_delay_ns, ns, __ATOMIC_RELEASE);
+}
+
+static int find_tester_file(const char *suffix, char *out, size_t cap)
+{
+    DIR *d = opendir(h_log_dir);
+    if (!d) return 0;
+    struct dirent *e;
+    int found = 0;
+    while (!found && (e = readdir(d)) != NULL) {
+        size_t n = strlen(e->d_name), s = strlen(suffix);
+        if (strncmp(e->d_name, "tester_", 7) == 0 && n > s && strcmp(e->d_name + n - s, suffix) == 0) {
+            snprintf(out, cap, "%s/%s", h_log_dir, e->d_name);
+            found = 1;
+        }
+    }
+    closedir(d);
+    return found;
+}
+
+static unsigned long long mark_word(int fd)
+{
+    unsigned long long w = 7;
+    if (pread(fd, &w, sizeof w, 0) != (ssize_t)sizeof w) return 7;
+    return w;
+}
+
+/* Records handed off while the writer is stalled in write(): the module goes on at once, the mark
+ * keeps naming the oldest record not in the file, the next hand-off waits for the next boundary
+ * instead of spinning, and after the stall every record is in the file, in order, once. */
+void test_csv_log_writer_thread(void)
+{
+    REQUIRE(h_setup("logwriter") == 0);
+    setenv("CONTRACT_LOG_MARK", "1", 1);
+    REQUIRE(rt_log_open() == 0);
+    unsetenv("CONTRACT_LOG_MARK");
+    char csv[1024], mark[1024];
+    REQUIRE(find_tester_file(".csv", csv, sizeof csv));
+    REQUIRE(find_tester_file(".csv.mark", mark, sizeof mark));
+    int fd = open(mark, O_RDONLY | O_CLOEXEC);
+    REQUIRE(fd >= 0);
+
+    const long long stall = 300000000LL; /* 300 ms in write() */
+    slow_writes(stall);
+    char detail[32];
+    for (int i = 0; i < 100; i++) {
+        snprintf(detail, sizeof detail, "first %d", i);
+        ContractLog("test_record", "", -1, 0, detail);
+    }
+    RTIME first = ContractLogPendingSince();
+    REQUIRE(first > 0);
+    CHECK(mark_word(fd) == (unsigned long long)first);
+    RTIME t0 = GetTime();
+    CHECK(rt_log_hand_off(0) == 1);
+    RTIME handed = GetTime() - t0;
+    CHECK_MSG(handed < 50000000LL, "the module waited %lld ms for a stalled write", (long long)(handed / 1000000));
+    CHECK(ContractLogPendingSince() == 0);
+    CHECK_MSG(mark_word(fd) == (unsigned long long)first, "the mark says %llu while the first records are not written", mark_word(fd));
+
+    /* the module logs on; its next hand-off finds the writer busy: no wait, tried again later */
+    for (int i = 0; i < 50; i++) {
+        snprintf(detail, sizeof detail, "second %d", i);
+        ContractLog("test_record", "", -1, 0, detail);
+    }
+    RTIME second = ContractLogPendingSince();
+    CHECK(second > first);
+    CHECK_MSG(mark_word(fd) == (unsigned long long)first, "the mark moved to a younger record while older ones wait");
+    const RTIME delay = 10000000LL;
+    t0 = GetTime();
+    ContractLogFlushIfDue(GetTime() + 10 * delay, delay);
+    CHECK_MSG(GetTime() - t0 < 50000000LL, "a due hand-off waited for the stalled writer");
+    CHECK_MSG(ContractLogPendingSince() == second, "the records were taken while the writer was busy");
+    RTIME due = ContractLogFlushDue(delay);
+    RTIME now = GetTime();
+    CHECK_MSG(due > now && due - now <= delay, "due %lld ns from now while the writer is busy: a waiting module would spin",
+              (long long)(due - now));
+
+    /* ContractLogFlush waits for both buffers; nothing is lost, nothing doubled, order kept */
+    t0 = GetTime();
+    ContractLogFlush();
+    CHECK_MSG(GetTime() - t0 >= stall / 2, "ContractLogFlush returned before the stalled write ended");
+    CHECK(mark_word(fd) == 0);
+    slow_writes(0);
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    const char *at = log;
+    for (int i = 0; i < 150; i++) {
+        char want[40];
+        snprintf(want, sizeof want, ",%s %d\n", i < 100 ? "first" : "second", i < 100 ? i : i - 100);
+        const char *found = strstr(at, want);
+        CHECK_MSG(found != NULL, "record %s missing or out of order", want);
+        if (!found) break;
+        CHECK_MSG(strstr(found + 1, want) == NULL, "record %s written twice", want);
+        at = found + strlen(want) - 1;
+    }
+    free(log);
+    rt_log_close();
+    close(fd);
+    h_teardown();
+}
+
+/* A child forked by module code does not write the parent's records (nor its own) to the
+ * parent's log, and its exit does not wait for a writer thread it does not have. */
+void test_csv_log_fork_child(void)
+{
+    REQUIRE(h_setup("logfork") == 0);
+    REQUIRE(rt_log_open() == 0);
+    char csv[1024];
+    REQUIRE(find_tester_file(".csv", csv, sizeof csv));
+    ContractLog("test_record", "", -1, 0, "before fork");
+    pid_t pid = fork();
+    REQUIRE(pid >= 0);
+    if (pid == 0) {
+        ContractLog("test_record", "", -1, 0, "in the child");
+        ContractLogFlush();
+        rt_log_close();
+        _exit(0);
+    }
+    int status = 0;
+    RTIME t0 = GetTime();
+    int exited = 0;
+    while (!exited && GetTime() - t0 < 5000000000LL) {
+        if (waitpid(pid, &status, WNOHANG) == pid) exited = 1;
+        else usleep(5000);
+    }
+    if (!exited) {
+        kill(pid, SIGKILL);
+        waitpid(pid, &status, 0);
+    }
+    CHECK_MSG(exited && WIFEXITED(status) && WEXITSTATUS(status) == 0, "the forked child did not end by itself");
+    ContractLog("test_record", "", -1, 0, "after fork");
+    rt_log_close();
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    const char *b = strstr(log, ",before fork\n");
+    CHECK(b != NULL);
+    CHECK_MSG(b && strstr(b + 1, ",before fork\n") == NULL, "the parent's record was written twice");
+    CHECK_MSG(strstr(log, "in the child") == NULL, "the child wrote to the parent's log");
+    CHECK(strstr(log, ",after fork\n") != NULL);
+    free(log);
+    h_teardown();
+}
