@@ -13,7 +13,8 @@
  *   supervisors decide on them, including the misses that come while AUTO is not active (no decision);
  * - the times of decisions differ (a real message takes microseconds, a simulated one none): the
  *   comparison is on the order and the causes, not the times; `elapsed=1ms` timers are compared
- *   as causes;
+ *   as causes; a miss that made MIS stop DRV.autonomous before its LOOPS' 1 ms came (DRV got the
+ *   START late) is replayed as soon after the start as DRV really ran (replay-run.ts shortRuns);
  * - values: OBS:0 distances that changed a rule are named by their cause (`value=0.35`, `value=5`);
  *   those that changed none are replayed as 0.75, a distance that neither starts a safe stop
  *   (< 0.5) nor ends one (> 1.0), whatever the mode (the real one was 5 in AUTO or 0.35 in STOP:

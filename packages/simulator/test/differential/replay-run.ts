@@ -14,7 +14,10 @@
  * sent to several supervisors (ORD's, to each subscriber) is one scenario event: the k-th receipt
  * of that source at each supervisor (each mailbox is first in, first out), at the first of their
  * times. A supervisor's own notifications
- * are not replayed (the simulated supervisor makes them).
+ * are not replayed (the simulated supervisor makes them). Two timings of a real run that the
+ * simulator (where a message takes no time) would meet in another order are moved: inFlight (an
+ * event received while another supervisor's request was on its way) and shortRuns (a function
+ * stopped before its `elapsed` timer came).
  *
  * Which ORD events there are (deadline misses `ORD:0`, conflicts `ORD:1`) depends on the machine's
  * timing, so the simulated ORD (whose virtual modules are never late) cannot make them by itself:
@@ -153,7 +156,10 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // while such a request was on its way (after the event that started the sender's decision,
     // before the request) is replayed just before that event, so that the receiver meets both in
     // the order it really did
-    inFlight(known, plan.supervisors, received, receivers);
+    const timeline = timelineOf(known, plan.supervisors, received, receivers);
+    inFlight(timeline);
+    // a function that really ran less than its `elapsed` delay must do so in the simulator too
+    shortRuns(timeline);
 
     // ORD's events name their schema in ORD's own records, in the order it sent them
     const ordValues = new Map<string, string[]>([
@@ -194,29 +200,85 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
 /** How long before a decision the event that caused it may have been received (same file: microseconds). */
 const CAUSE_WINDOW = 5_000_000n;
 
-/** Moves the events a supervisor received while another's request was on its way (see scenarioOfRun). */
-function inFlight(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): void {
+/** What inFlight and shortRuns look at: the supervisors' decisions, receipts and requests to each other. */
+interface Timeline {
+    known: (KnownRecord | RuleRecord)[];
+    supervisors: ReadonlySet<string>;
+    receivers: Map<string, string[]>;
+    /** Each supervisor's decision times, in order. */
+    decisions: Map<string, bigint[]>;
+    /** Each supervisor's receipts of every source, in time order. */
+    receipts(sup: string): Receipt[];
+    /** START/STOP/KILL requests a supervisor received from another, in order. */
+    requests: (KnownRecord | RuleRecord)[];
+}
+
+function timelineOf(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): Timeline {
     const decisions = new Map<string, bigint[]>();
     for (const r of known) if (isRule(r) && supervisors.has(r.module)) (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
-    // each supervisor's receipts of every source, in time order, gathered once
     const bySupervisor = new Map<string, Receipt[]>();
     for (const [key, list] of received) {
         const sup = key.slice(0, key.indexOf(' '));
         bySupervisor.set(sup, [...(bySupervisor.get(sup) ?? []), ...list]);
     }
     for (const list of bySupervisor.values()) list.sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
-    const receiptsOf = (sup: string): Receipt[] => bySupervisor.get(sup) ?? [];
-    for (const q of known) {
-        if (q.kind !== 'request_received' || !supervisors.has(q.module) || !supervisors.has(q.peer) || !/^(START|STOP|KILL)\b/.test(q.detail)) continue;
+    const requests = known.filter((q) => q.kind === 'request_received' && supervisors.has(q.module) && supervisors.has(q.peer) && /^(START|STOP|KILL)\b/.test(q.detail));
+    return { known, supervisors, receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests };
+}
+
+/**
+ * When the decision that sent a request to another supervisor began: the replay time of the event
+ * that caused it (received at most CAUSE_WINDOW before it), else the decision's own time; undefined
+ * when the sender made no decision before.
+ */
+function decisionStart(tl: Timeline, sender: string, tq: bigint): { start: bigint; trigger?: Receipt } | undefined {
+    const tp = (tl.decisions.get(sender) ?? []).filter((t) => t <= tq).pop();
+    if (tp === undefined) return undefined;
+    const trigger = tl.receipts(sender).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).pop();
+    return { start: trigger?.emission?.t ?? tp, trigger };
+}
+
+/** Moves the events a supervisor received while another's request was on its way (see scenarioOfRun). */
+function inFlight(tl: Timeline): void {
+    for (const q of tl.requests) {
         const tq = mono(q);
         // the sender's decision that sent it, and the event that started that decision (if one did)
-        const tp = (decisions.get(q.peer) ?? []).filter((t) => t <= tq).pop();
-        if (tp === undefined) continue;
-        const trigger = receiptsOf(q.peer).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).pop();
-        const start = trigger?.emission?.t ?? tp;
+        const at = decisionStart(tl, q.peer, tq);
+        if (!at) continue;
         // the receiver's own events (not shared with another supervisor) that came in between
-        const between = receiptsOf(q.module).filter((x) => x.emission && x.t > start && x.t < tq && receivers.get(x.source)?.length === 1);
-        between.forEach((x, i) => (x.emission!.t = start - BigInt(between.length - i)));
+        const between = tl.receipts(q.module).filter((x) => x.emission && x.t > at.start && x.t < tq && tl.receivers.get(x.source)?.length === 1);
+        between.forEach((x, i) => (x.emission!.t = at.start - BigInt(between.length - i)));
+    }
+}
+
+/**
+ * A function a supervisor started and stopped at another's request before any of its rules changed
+ * (a real run: MIS starts DRV.autonomous on OBS:0, a deadline miss 1.9 ms after that OBS:0 makes it
+ * stop it 0.8 ms after DRV got the START, before the function's `elapsed=1ms` came). The simulator
+ * starts the function at the event that made the caller decide, with no delay, so replayed at its
+ * own time the stopping event would come after the `elapsed` timer, and the simulated function
+ * would make a decision the real one never made. The event that made the caller stop the function
+ * is replayed instead as long after the start's event as the function really ran (and the caller's
+ * own events between the two times just before it, in their order), so the simulated function
+ * runs as long as the real one did. Not when an event to move is shared with another supervisor.
+ */
+function shortRuns(tl: Timeline): void {
+    for (const [k, q1] of tl.requests.entries()) {
+        if (!q1.detail.startsWith('START')) continue;
+        const q2 = tl.requests.slice(k + 1).find((q) => q.module === q1.module);
+        if (!q2 || q2.peer !== q1.peer || !/^(STOP|KILL)\b/.test(q2.detail)) continue;
+        const [tq1, tq2] = [mono(q1), mono(q2)];
+        if ((tl.decisions.get(q1.module) ?? []).some((t) => t > tq1 && t < tq2)) continue;
+        const started = decisionStart(tl, q1.peer, tq1);
+        const stopped = decisionStart(tl, q2.peer, tq2);
+        const e = stopped?.trigger?.emission;
+        if (!started || !e || tl.receivers.get(e.source)?.length !== 1) continue;
+        const latest = started.start + (tq2 - tq1);
+        if (e.t <= latest) continue;
+        const between = tl.receipts(q1.peer).filter((x) => x.emission && x.emission !== e && x.emission.t >= latest && x.emission.t < e.t);
+        if (between.some((x) => tl.receivers.get(x.source)?.length !== 1) || latest - BigInt(between.length) <= started.start) continue;
+        between.forEach((x, i) => (x.emission!.t = latest - BigInt(between.length - i)));
+        e.t = latest;
     }
 }
 

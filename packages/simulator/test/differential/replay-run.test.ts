@@ -1,0 +1,77 @@
+/**
+ * The differential tests' scenario builder (replay-run.ts) on hand-written logs: the timing races
+ * of a loaded real run that the scenario must replay in the order the supervisors met them.
+ */
+import { describe, expect, it } from 'vitest';
+import { parseTrace } from '@contract-studio/build-service/trace';
+import { scenarioOfRun } from './replay-run.js';
+
+const W = '2026-12-03T16:00:00.000000Z';
+const csv = (module: string, lines: string[]): { name: string; text: string } => ({
+    name: `${module}_3-Dec-2026-16h00m00s.csv`,
+    text: ['mono_ns,wall_time,module,event,peer,port,size,detail', ...lines.map((l) => l.replace('W', W))].join('\n') + '\n',
+});
+const UNIT: Record<string, bigint> = { ns: 1n, us: 1_000n, ms: 1_000_000n, s: 1_000_000_000n };
+
+/** The scenario's event lines: time in ns since the start, and source. */
+function events(text: string): { t: bigint; source: string }[] {
+    return text.split('\n').flatMap((l) => {
+        const m = /^t=(\d+)(ns|us|ms|s) (\S+)/.exec(l);
+        return m ? [{ t: BigInt(m[1]!) * UNIT[m[2]!]!, source: m[3]! }] : [];
+    });
+}
+
+/**
+ * MIS starts DRV.autonomous on OBS:0 (DRV gets the START 1.2 ms later: a loaded host), then a
+ * deadline miss (ORD:0, 1.94 ms after the OBS:0) makes MIS stop it; DRV gets the STOP 0.8 ms after
+ * the START. `drvDecidedInBetween`: DRV's LOOPS became active (elapsed=1ms) before the STOP.
+ */
+function run(drvDecidedInBetween: boolean) {
+    const [tStart, tStop] = drvDecidedInBetween ? [2_001_200_000, 2_003_000_000] : [2_001_200_000, 2_002_000_000];
+    const files = [
+        csv('MIS', [
+            '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
+            '1000000000,W,MIS,supervisor,,,0,function mission started',
+            '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+            '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
+            '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            '2001930000,W,MIS,request_received,OBS,2,1448,EVENT from_port=1',
+            `${drvDecidedInBetween ? 2_002_900_000 : 2_001_940_000},W,MIS,request_received,ORD,0,12,EVENT from_port=0`,
+            `${drvDecidedInBetween ? 2_002_950_000 : 2_001_960_000},W,MIS,sup_rule,,,0,"mission.AUTO inactive cause=ORD:0 value=""velocityLoop"""`,
+            `${drvDecidedInBetween ? 2_002_960_000 : 2_001_970_000},W,MIS,sup_rule,,,0,mission.STOP active cause=endof(AUTO)`,
+            '3000000000,W,MIS,request_received,contract-launch,,0,STOP',
+        ]),
+        csv('DRV', [
+            `${tStart},W,DRV,request_received,MIS,,29,START autonomous`,
+            ...(drvDecidedInBetween ? ['2002200000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns'] : []),
+            `${tStop},W,DRV,request_received,MIS,,11,STOP`,
+            `${tStop + 100_000},W,DRV,request_received,MIS,,5,START safestop`,
+            `${tStop + 1_100_000},W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns`,
+        ]),
+        csv('ORD', [`${drvDecidedInBetween ? 2_002_890_000 : 2_001_930_000},W,ORD,ord_deadline_miss,,,0,schema=velocityLoop cycle=7 tick_ns=1990000000`]),
+    ];
+    const { text } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()' });
+    const list = events(text);
+    const at = (source: string) => list.find((e) => e.source === source)!;
+    return { text, list, obs0: at('OBS:0'), obs1: at('OBS:1'), ord0: at('ORD:0') };
+}
+
+describe('scenarioOfRun', () => {
+    it('a function stopped before its elapsed timer came is stopped as soon in the simulator: the stopping event moves', () => {
+        const { text, list, obs0, obs1, ord0 } = run(false);
+        expect(text).toContain('ORD:0 "velocityLoop"');
+        // DRV.autonomous really ran 0.8 ms (START at 2.0012 s, STOP at 2.002 s); the simulator starts
+        // it at the OBS:0: the miss is replayed 0.8 ms after it (its own time was 1.94 ms after)
+        expect(ord0.t - obs0.t).toBe(800_000n);
+        // MIS got OBS:1 before the miss: it still comes before it, after the OBS:0
+        expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0']);
+        expect(obs1.t).toBeGreaterThan(obs0.t);
+        expect(obs1.t).toBeLessThan(ord0.t);
+    });
+
+    it('a function that made a decision before it was stopped keeps the events at their own times', () => {
+        const { obs0, obs1, ord0 } = run(true);
+        expect(ord0.t - obs0.t).toBe(2_900_000n);
+        expect(obs1.t - obs0.t).toBe(1_930_000n);
+    });
+});
