@@ -614,16 +614,19 @@ describe('IDE in headless Chromium', () => {
     const original = disk(path);
     await openFile(page, path);
     await waitSaved(page);
-    // every write of the file is held 800 ms before it goes on to the server
+    // the first write of the file is held until the test lets it go (a fixed hold could end before
+    // the checks on a loaded machine), the later ones 200 ms, before they go on to the server
     let held = 0;
     let most = 0;
     let puts = 0;
+    let letFirstGo!: () => void;
+    const firstHeld = new Promise<void>((r) => (letFirstGo = r));
     const pattern = `**/api/file?path=${path}`;
     await page.route(pattern, async (route) => {
       if (route.request().method() !== 'PUT') return route.continue();
       puts++;
       most = Math.max(most, ++held);
-      await new Promise((r) => setTimeout(r, 800));
+      await (puts === 1 ? firstHeld : new Promise((r) => setTimeout(r, 200)));
       held--;
       // the page may have moved on (a failed assertion, a reload): the held write is then dropped
       await route.continue().catch(() => undefined);
@@ -641,16 +644,20 @@ describe('IDE in headless Chromium', () => {
       await page.keyboard.insertText('// second write\n');
       await page.keyboard.press('Control+s');
       await page.waitForTimeout(300);
+      // Ctrl+S waits for the write in flight: nothing more was sent
+      expect(puts).toBe(1);
       // the copy a reload would restore still names the text in flight: if it lands, it is the base
       const sent = await sentInCopy();
       expect(sent).toContain('// first write');
       expect(sent).not.toContain('// second write');
+      letFirstGo();
       await waitSaved(page);
       expect(most).toBe(1);
       expect(puts).toBe(2);
       expect(disk(path)).toContain('// first write\n// second write\n');
       expect(await page.locator('.conflict-overlay').count()).toBe(0);
     } finally {
+      letFirstGo();
       await page.unroute(pattern);
     }
     // put the file back as it was
