@@ -196,6 +196,23 @@ char *h_read_file(const char *path)
     return s;
 }
 
+int h_find_log_file(const char *prefix, const char *suffix, char *out, size_t cap)
+{
+    DIR *d = opendir(h_log_dir);
+    if (!d) return 0;
+    struct dirent *e;
+    int found = 0;
+    while (!found && (e = readdir(d)) != NULL) {
+        size_t n = strlen(e->d_name), s = strlen(suffix);
+        if (strncmp(e->d_name, prefix, strlen(prefix)) == 0 && n > s && strcmp(e->d_name + n - s, suffix) == 0) {
+            snprintf(out, cap, "%s/%s", h_log_dir, e->d_name);
+            found = 1;
+        }
+    }
+    closedir(d);
+    return found;
+}
+
 char *h_read_logs(const char *prefix)
 {
     DIR *d = opendir(h_log_dir);

@@ -37,6 +37,8 @@ int h_wait_ack(const char *from, int ackId, int mask, int timeout_ms, RequestMes
 int h_wait_exit(pid_t pid, int timeout_ms);
 /* Whole file into a malloc'd string (NULL if missing). */
 char *h_read_file(const char *path);
+/* Path of the first file of h_log_dir whose name starts with `prefix` and ends with `suffix` (0: none). */
+int h_find_log_file(const char *prefix, const char *suffix, char *out, size_t cap);
 /* Concatenation of every file of h_log_dir whose name starts with prefix. */
 char *h_read_logs(const char *prefix);
 /* Number of entries in a directory (-1 if it does not exist). */

@@ -2,7 +2,6 @@
  * with -Wl,--wrap=write: a write from any thread but the test's own can be made slow, as a disk
  * stall makes it. In process, on the tester's own log. */
 #define _GNU_SOURCE
-#include <dirent.h>
 #include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
@@ -38,23 +37,6 @@ static void slow_writes(long long ns)
     __atomic_store_n(&write_delay_ns, ns, __ATOMIC_RELEASE);
 }
 
-static int find_tester_file(const char *suffix, char *out, size_t cap)
-{
-    DIR *d = opendir(h_log_dir);
-    if (!d) return 0;
-    struct dirent *e;
-    int found = 0;
-    while (!found && (e = readdir(d)) != NULL) {
-        size_t n = strlen(e->d_name), s = strlen(suffix);
-        if (strncmp(e->d_name, "tester_", 7) == 0 && n > s && strcmp(e->d_name + n - s, suffix) == 0) {
-            snprintf(out, cap, "%s/%s", h_log_dir, e->d_name);
-            found = 1;
-        }
-    }
-    closedir(d);
-    return found;
-}
-
 static unsigned long long mark_word(int fd)
 {
     unsigned long long w = 7;
@@ -72,8 +54,8 @@ void test_csv_log_writer_thread(void)
     REQUIRE(rt_log_open() == 0);
     unsetenv("CONTRACT_LOG_MARK");
     char csv[1024], mark[1024];
-    REQUIRE(find_tester_file(".csv", csv, sizeof csv));
-    REQUIRE(find_tester_file(".csv.mark", mark, sizeof mark));
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    REQUIRE(h_find_log_file("tester_", ".csv.mark", mark, sizeof mark));
     int fd = open(mark, O_RDONLY | O_CLOEXEC);
     REQUIRE(fd >= 0);
 
@@ -143,7 +125,7 @@ void test_csv_log_fork_child(void)
     REQUIRE(h_setup("logfork") == 0);
     REQUIRE(rt_log_open() == 0);
     char csv[1024];
-    REQUIRE(find_tester_file(".csv", csv, sizeof csv));
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
     ContractLog("test_record", "", -1, 0, "before fork");
     pid_t pid = fork();
     REQUIRE(pid >= 0);

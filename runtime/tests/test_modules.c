@@ -595,24 +595,6 @@ void test_csv_log_cap(void)
     h_teardown();
 }
 
-/* Path of the first file of the log dir whose name starts with `prefix` and ends with `suffix`. */
-static int find_log_file(const char *prefix, const char *suffix, char *out, size_t cap)
-{
-    DIR *d = opendir(h_log_dir);
-    if (!d) return 0;
-    struct dirent *e;
-    int found = 0;
-    while (!found && (e = readdir(d)) != NULL) {
-        size_t n = strlen(e->d_name), s = strlen(suffix);
-        if (strncmp(e->d_name, prefix, strlen(prefix)) == 0 && n > s && strcmp(e->d_name + n - s, suffix) == 0) {
-            snprintf(out, cap, "%s/%s", h_log_dir, e->d_name);
-            found = 1;
-        }
-    }
-    closedir(d);
-    return found;
-}
-
 /* The largest mono_ns of a log's records (0 when none). */
 static unsigned long long max_mono(const char *log)
 {
@@ -637,8 +619,8 @@ void test_csv_log_mark(void)
     unsetenv("CONTRACT_LOG_MARK");
     REQUIRE(pid > 0);
     char csv[1024], mark[1024];
-    REQUIRE(find_log_file("MSC_", ".csv", csv, sizeof csv));
-    REQUIRE(find_log_file("MSC_", ".csv.mark", mark, sizeof mark));
+    REQUIRE(h_find_log_file("MSC_", ".csv", csv, sizeof csv));
+    REQUIRE(h_find_log_file("MSC_", ".csv.mark", mark, sizeof mark));
     int fd = open(mark, O_RDONLY | O_CLOEXEC);
     REQUIRE(fd >= 0);
     unsigned long long dirty = 0;
@@ -689,7 +671,7 @@ void test_csv_log_mark_delay(void)
     REQUIRE(rt_log_open() == 0);
     unsetenv("CONTRACT_LOG_MARK");
     char mark[1024];
-    REQUIRE(find_log_file("tester_", ".csv.mark", mark, sizeof mark));
+    REQUIRE(h_find_log_file("tester_", ".csv.mark", mark, sizeof mark));
     int fd = open(mark, O_RDWR | O_CLOEXEC);
     REQUIRE(fd >= 0);
     unsigned long long asked, word = 7;
