@@ -321,27 +321,29 @@ long ContractActivations(void);
 
 /** Add a record to this module's CSV log (see docs/runtime-api.md for the columns). */
 void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail);
-/** Flush the CSV log now. */
+/** Write every record logged so far to the CSV log; returns once they are in the file (it waits
+ *  for the log's writer thread). */
 void ContractLogFlush(void);
-/** [ENGINE] Flush the CSV log if its oldest unwritten record waited at least `ageNs`. For
- *  time-critical loops (ORD): call it when about to wait with time to spare, so that the write
- *  never happens at the next mailbox read (the library writes records ContractLogFlushDelay()
- *  old there). */
+/** [ENGINE] Hand the buffered records to the log's writer thread if the oldest waited at least
+ *  `ageNs` (no wait: when the writer still writes the previous buffer they stay for the next
+ *  try). For time-critical loops (ORD): call it when about to wait with time to spare. */
 void ContractLogFlushIfOlder(RTIME ageNs);
 /** [ENGINE] How old a record may get in the buffer while the module waits: 50 ms, or the shorter
  *  delay a live monitor asks for through the flush mark (docs/runtime-api.md "CSV log"). */
 RTIME ContractLogFlushDelay(void);
 /** [ENGINE] When the buffered records are due to be written with flush delay `delayNs`: the first
  *  multiple of `delayNs` on CLOCK_MONOTONIC (GetTime) after the oldest of them, so that every
- *  module of a run writes at the same instants; 0 when nothing waits. */
+ *  module of a run writes at the same instants (while the writer thread still writes the previous
+ *  buffer: the next multiple after now); 0 when nothing waits. */
 RTIME ContractLogFlushDue(RTIME delayNs);
-/** [ENGINE] Flush the CSV log if `now` has reached ContractLogFlushDue(delayNs). For time-critical
- *  loops (ORD): call it when about to wait with time to spare, so that the write never happens at
- *  the next mailbox read (the library writes its records there when they are due). */
+/** [ENGINE] Hand the buffered records to the log's writer thread if `now` has reached their first
+ *  boundary (ContractLogFlushDue(delayNs) with the writer idle); never waits. For time-critical
+ *  loops (ORD): call it when about to wait with time to spare. */
 void ContractLogFlushIfDue(RTIME now, RTIME delayNs);
 
-/** [ENGINE] When the oldest record not yet written to the CSV log was logged (GetTime), 0 when
- *  none waits: an engine that goes idle wakes to write it (readers tail the log while it runs). */
+/** [ENGINE] When the oldest record not yet handed to the log's writer thread was logged (GetTime),
+ *  0 when none waits: an engine that goes idle wakes to hand it over (readers tail the log while it
+ *  runs). */
 RTIME ContractLogPendingSince(void);
 
 /** Apply a priority 1..99: SCHED_FIFO if permitted, else one warning on stderr and a nice level.
