@@ -418,14 +418,17 @@ RTIME rt_log_flush_ns(void)
 
 RTIME ContractLogFlushDelay(void) { return rt_log_flush_ns(); }
 
+/* The first multiple of delayNs after `since`: when records logged since then are due. */
+static RTIME first_boundary(RTIME since, RTIME delayNs) { return (since / delayNs + 1) * delayNs; }
+
 RTIME ContractLogFlushDue(RTIME delayNs)
 {
     RTIME since = g_rt.log_dirty_since;
     if (!since || delayNs <= 0) return since;
-    RTIME due = (since / delayNs + 1) * delayNs;
+    RTIME due = first_boundary(since, delayNs);
     if (pending()) { /* the writer still writes: try again at the next boundary, not at once */
         RTIME now = GetTime();
-        if (due <= now) due = (now / delayNs + 1) * delayNs;
+        if (due <= now) due = first_boundary(now, delayNs);
     }
     return due;
 }
@@ -433,7 +436,7 @@ RTIME ContractLogFlushDue(RTIME delayNs)
 void ContractLogFlushIfDue(RTIME now, RTIME delayNs)
 {
     RTIME since = g_rt.log_dirty_since;
-    if (since && delayNs > 0 && now >= (since / delayNs + 1) * delayNs) rt_log_hand_off(0);
+    if (since && delayNs > 0 && now >= first_boundary(since, delayNs)) rt_log_hand_off(0);
 }
 
 void rt_log_maybe_flush(RTIME now)

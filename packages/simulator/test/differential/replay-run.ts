@@ -202,8 +202,6 @@ const CAUSE_WINDOW = 5_000_000n;
 
 /** What inFlight and shortRuns look at: the supervisors' decisions, receipts and requests to each other. */
 interface Timeline {
-    known: (KnownRecord | RuleRecord)[];
-    supervisors: ReadonlySet<string>;
     receivers: Map<string, string[]>;
     /** Each supervisor's decision times, in order. */
     decisions: Map<string, bigint[]>;
@@ -223,7 +221,7 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySe
     }
     for (const list of bySupervisor.values()) list.sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
     const requests = known.filter((q) => q.kind === 'request_received' && supervisors.has(q.module) && supervisors.has(q.peer) && /^(START|STOP|KILL)\b/.test(q.detail));
-    return { known, supervisors, receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests };
+    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests };
 }
 
 /**
