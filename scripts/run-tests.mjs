@@ -1,5 +1,6 @@
 #!/usr/bin/env node
-// Runs every test suite of the project in turn, streams their output, and ends with one
+// Runs every test suite of the project in turn, streams their output, lists the ten slowest test
+// files (what makes the run long), and ends with one
 // summary line `N passed, N failed` (plus skipped) over all suites. Exit code 1 if any suite
 // failed or ran no test.
 //
@@ -98,6 +99,9 @@ function vitestSuite(name, ws, { beside, files = [], exclude = [], lane }) {
     count: (r) => {
       if (!r.json || !existsSync(r.json)) return null;
       const j = JSON.parse(readFileSync(r.json, 'utf8'));
+      for (const f of j.testResults ?? []) {
+        if (f.startTime && f.endTime) fileTimes.push({ file: `${ws}/${relative(join(root, ws), f.name)}`, s: (f.endTime - f.startTime) / 1000 });
+      }
       return { passed: j.numPassedTests, failed: j.numFailedTests, skipped: j.numPendingTests + (j.numTodoTests ?? 0), failures: vitestFailures(j, ws) };
     },
   };
@@ -162,6 +166,8 @@ function vitestFailures(report, ws) {
 }
 
 const totals = { passed: 0, failed: 0, skipped: 0 };
+/** Every vitest file's own time, for the closing list of the slowest (what makes the run long). */
+const fileTimes = [];
 const problems = [];
 const failureDetails = [];
 
@@ -214,6 +220,8 @@ const printKept = (list, results, how) => list.forEach((s, i) => {
 if (secondLane.length) printKept(secondLane, await secondLaneDone, 'ran in the second lane');
 if (together.length) printKept(together, await background, 'ran in the background');
 if (dockerd) await run('bash', ['scripts/docker-up.sh', '--stop', dockerd], {}, false);
+const slowest = fileTimes.sort((a, b) => b.s - a.s).slice(0, 10);
+if (slowest.length) console.log(`\n=== slowest test files ===\n${slowest.map((f) => `${f.s.toFixed(0).padStart(5)} s  ${f.file}`).join('\n')}`);
 console.log(`=== all suites: ${((Date.now() - t0) / 1000).toFixed(0)} s ===`);
 rmSync(scratch, { recursive: true, force: true });
 if (failureDetails.length) console.log(`\nFAILED tests:\n  ${failureDetails.join('\n  ')}`);

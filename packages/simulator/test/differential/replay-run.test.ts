@@ -25,9 +25,12 @@ function events(text: string): { t: bigint; source: string }[] {
  * MIS starts DRV.autonomous on OBS:0 (DRV gets the START 1.2 ms later: a loaded host), then a
  * deadline miss (ORD:0, 1.94 ms after the OBS:0) makes MIS stop it; DRV gets the STOP 0.8 ms after
  * the START. `drvDecidedInBetween`: DRV's LOOPS became active (elapsed=1ms) before the STOP.
+ * `drvLate`: DRV gets the STOP 1.5 ms after the START, after its LOOPS' 1 ms, yet LOOPS did not
+ * fire (DRV was not scheduled, then took the waiting STOP first); a later run of autonomous shows
+ * LOOPS' delay.
  */
-function run(drvDecidedInBetween: boolean) {
-    const [tStart, tStop] = drvDecidedInBetween ? [2_001_200_000, 2_003_000_000] : [2_001_200_000, 2_002_000_000];
+function run(drvDecidedInBetween: boolean, drvLate = false) {
+    const [tStart, tStop] = drvDecidedInBetween ? [2_001_200_000, 2_003_000_000] : drvLate ? [2_001_200_000, 2_002_700_000] : [2_001_200_000, 2_002_000_000];
     const files = [
         csv('MIS', [
             '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
@@ -47,6 +50,7 @@ function run(drvDecidedInBetween: boolean) {
             `${tStop},W,DRV,request_received,MIS,,11,STOP`,
             `${tStop + 100_000},W,DRV,request_received,MIS,,5,START safestop`,
             `${tStop + 1_100_000},W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns`,
+            ...(drvLate ? ['2500000000,W,DRV,request_received,MIS,,29,START autonomous', '2501100000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns'] : []),
         ]),
         csv('ORD', [`${drvDecidedInBetween ? 2_002_890_000 : 2_001_930_000},W,ORD,ord_deadline_miss,,,0,schema=velocityLoop cycle=7 tick_ns=1990000000`]),
     ];
@@ -66,6 +70,15 @@ describe('scenarioOfRun', () => {
         // MIS got OBS:1 before the miss: it still comes before it, after the OBS:0
         expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0']);
         expect(obs1.t).toBeGreaterThan(obs0.t);
+        expect(obs1.t).toBeLessThan(ord0.t);
+    });
+
+    it('a function that got its STOP after its first elapsed delay but met no timer is stopped just under that delay', () => {
+        const { list, obs0, obs1, ord0 } = run(false, true);
+        // DRV's autonomous ran 1.5 ms without a decision; LOOPS' elapsed=1ms (seen later in the
+        // run) never came: the simulated function must be stopped before 1 ms, not 1.5 ms
+        expect(ord0.t - obs0.t).toBe(999_000n);
+        expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0']);
         expect(obs1.t).toBeLessThan(ord0.t);
     });
 

@@ -200,6 +200,9 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
 /** How long before a decision the event that caused it may have been received (same file: microseconds). */
 const CAUSE_WINDOW = 5_000_000n;
 
+/** How far under its first `elapsed` delay a function that met no timer is stopped (shortRuns). */
+const TIMER_MARGIN = 1_000n;
+
 /** What inFlight and shortRuns look at: the supervisors' decisions, receipts and requests to each other. */
 interface Timeline {
     receivers: Map<string, string[]>;
@@ -209,6 +212,8 @@ interface Timeline {
     receipts(sup: string): Receipt[];
     /** START/STOP/KILL requests a supervisor received from another, in order. */
     requests: (KnownRecord | RuleRecord)[];
+    /** `SUP function` -> the shortest `elapsed` delay that changed one of its rules in the run (ns). */
+    firstTimers: Map<string, bigint>;
 }
 
 function timelineOf(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): Timeline {
@@ -221,7 +226,15 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySe
     }
     for (const list of bySupervisor.values()) list.sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
     const requests = known.filter((q) => q.kind === 'request_received' && supervisors.has(q.module) && supervisors.has(q.peer) && /^(START|STOP|KILL)\b/.test(q.detail));
-    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests };
+    const firstTimers = new Map<string, bigint>();
+    for (const r of known) {
+        if (!isRule(r) || r.causeEvent.kind !== 'elapsed') continue;
+        const key = `${r.module} ${r.function}`;
+        const ns = BigInt(r.causeEvent.ns);
+        const shortest = firstTimers.get(key);
+        if (shortest === undefined || ns < shortest) firstTimers.set(key, ns);
+    }
+    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers };
 }
 
 /**
@@ -259,6 +272,13 @@ function inFlight(tl: Timeline): void {
  * is replayed instead as long after the start's event as the function really ran (and the caller's
  * own events between the two times just before it, in their order), so the simulated function
  * runs as long as the real one did. Not when an event to move is shared with another supervisor.
+ *
+ * A function that made no decision ran, as far as its timers go, less than its first `elapsed`
+ * delay, even when it got the STOP later than that (a real run on a loaded host: DRV got START
+ * safestop, was not scheduled for 1.5 ms, and then took the STOP already waiting in its mailbox
+ * before the timer that had come due meanwhile, since an engine takes a waiting request first).
+ * The replayed run is then cut to 1 us under that delay (the shortest `elapsed` that changed a rule
+ * of that function anywhere in the run; a function none changed keeps its real length).
  */
 function shortRuns(tl: Timeline): void {
     for (const [k, q1] of tl.requests.entries()) {
@@ -271,7 +291,9 @@ function shortRuns(tl: Timeline): void {
         const stopped = decisionStart(tl, q2.peer, tq2);
         const e = stopped?.trigger?.emission;
         if (!started || !e || tl.receivers.get(e.source)?.length !== 1) continue;
-        const latest = started.start + (tq2 - tq1);
+        const timer = tl.firstTimers.get(`${q1.module} ${/^START (\S+)/.exec(q1.detail)?.[1]}`);
+        const ran = timer !== undefined && tq2 - tq1 >= timer ? timer - TIMER_MARGIN : tq2 - tq1;
+        const latest = started.start + ran;
         if (e.t <= latest) continue;
         const between = tl.receipts(q1.peer).filter((x) => x.emission && x.emission !== e && x.emission.t >= latest && x.emission.t < e.t);
         if (between.some((x) => tl.receivers.get(x.source)?.length !== 1) || latest - BigInt(between.length) <= started.start) continue;
