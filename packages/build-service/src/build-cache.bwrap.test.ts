@@ -13,12 +13,13 @@
 import { chmodSync, cpSync, mkdtempSync, readdirSync, readFileSync, rmSync, statSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { afterAll, describe, expect, test } from 'vitest';
+import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { JobService } from './job-service.js';
 import type { Job } from './pipeline/job.js';
 import type { JobEvent } from './pipeline/job-events.js';
 import { unmountWorkDisk } from './sandbox/work-disk.js';
 import { listFilesNoFollow } from './util/safe-fs.js';
+import { seedRuntime } from './test-support/runtime-seed.js';
 import { snapshotRuntime, TUTORIAL_DIR } from './test-support/tutorial.js';
 
 const scratch = mkdtempSync(join(tmpdir(), 'build-cache-test-'));
@@ -28,6 +29,8 @@ const project = join(scratch, 'tutorial');
 cpSync(TUTORIAL_DIR, project, { recursive: true, filter: (src) => !/\/(logs|run)(\/|$)/.test(src) });
 const runtimeSource = snapshotRuntime();
 const services: JobService[] = [];
+// the test run's built runtime (the second runtime of the last test is built here)
+beforeAll(() => seedRuntime(cacheDir, runtimeSource), 240_000);
 afterAll(async () => {
   for (const s of services) await s.close();
   // the kept work trees are tmpfs mounts when the tests run as root: unmount them before removing

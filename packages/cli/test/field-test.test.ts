@@ -16,6 +16,7 @@ import { formatGccDiagnostic, prepareErrors } from '../src/job-runner.js';
 import { safeName } from '../src/terminal-text.js';
 import { capture } from './capture-io.js';
 import { removeScratch } from './scratch.js';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 
@@ -24,8 +25,9 @@ beforeAll(async () => {
     root = mkdtempSync(join(tmpdir(), 'contract-field-'));
     chmodSync(root, 0o711);
     process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
+    await seedRuntime(join(root, 'cache')); // the test run's built runtime
     expect(await runCli(['new', 'robot'], capture(root))).toBe(0);
-}, 60_000);
+}, 240_000);
 afterAll(() => {
     delete process.env.CONTRACT_CACHE_DIR;
     removeScratch(root);

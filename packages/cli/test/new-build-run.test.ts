@@ -11,14 +11,17 @@ import type { Job, JobResult } from '@contract-studio/build-service';
 import { REPO } from './e2e/harness.js';
 import { capture } from './capture-io.js';
 import { removeScratch } from './scratch.js';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 
 
 let root: string;
-beforeAll(() => {
+beforeAll(async () => {
     root = mkdtempSync(join(tmpdir(), 'contract-nbr-'));
     chmodSync(root, 0o711);
     process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
-});
+    // the test run's built runtime, in both caches the builds use
+    for (const cache of ['cache', 'cache-opt']) await seedRuntime(join(root, cache));
+}, 240_000);
 afterAll(() => {
     delete process.env.CONTRACT_CACHE_DIR;
     removeScratch(root);

@@ -10,6 +10,7 @@ import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { identifierRenames, parseRegions, renameIdentifier } from '@contract-studio/codegen';
 import { runCli } from '../src/cli.js';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 import { scratchCopy, type Scratch } from './e2e/harness.js';
 import { capture } from './capture-io.js';
 
@@ -27,8 +28,9 @@ function contractFiles(dir: string): Record<string, string> {
 
 let scratch: Scratch;
 let dir: string;
-beforeAll(() => {
+beforeAll(async () => {
     scratch = scratchCopy('tutorial');
+    await seedRuntime(scratch.cache); // the test run's built runtime
     dir = scratch.project;
     process.env.CONTRACT_CACHE_DIR = scratch.cache;
     // user code in MSC's regions, with bytes that are not UTF-8, beside the tutorial's own code
@@ -36,7 +38,7 @@ beforeAll(() => {
     const text = readFileSync(file, 'latin1');
     writeFileSync(file, Buffer.from(text.replace('/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/',
         '/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/\n    /* calibr\xe9 \xff by hand */ int rename_marker = 42; (void)rename_marker;'), 'latin1'));
-});
+}, 240_000);
 afterAll(() => {
     delete process.env.CONTRACT_CACHE_DIR;
     scratch.dispose();

@@ -11,15 +11,17 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { escapeControls } from '../src/terminal-text.js';
 import { BIN } from './e2e/harness.js';
 import { removeScratch } from './scratch.js';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 
 /** What a terminal would act on: C0 except tab and newline, DEL, C1. */
 const RAW_CONTROL = /[\x00-\x08\x0b-\x1f\x7f-\x9f]/;
 
 let root: string;
-beforeAll(() => {
+beforeAll(async () => {
     root = mkdtempSync(join(tmpdir(), 'contract-esc-'));
     chmodSync(root, 0o711);
-});
+    await seedRuntime(join(root, 'cache')); // the test run's built runtime
+}, 240_000);
 afterAll(() => removeScratch(root));
 
 function contract(args: string[]): { code: number | null; stdout: string; stderr: string } {

@@ -10,6 +10,7 @@ import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 import { startIdeServer, type IdeServer } from './ide-server.js';
 
 const REPO = join(dirname(fileURLToPath(import.meta.url)), '..', '..', '..');
@@ -28,7 +29,8 @@ beforeAll(async () => {
   cache = join(base, 'cache');
   cpSync(join(REPO, 'examples', 'tutorial'), project, { recursive: true, filter: (src) => !/\/(logs|run)(\/|$)/.test(src) });
   process.env.CONTRACT_CACHE_DIR = cache;
-}, 60_000);
+  await seedRuntime(cache); // the test run's built runtime
+}, 240_000);
 
 afterAll(async () => {
   await ide?.close();

@@ -9,6 +9,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll } from 'vitest';
 import { createBuildServer, type BuildServer, type BuildServerOptions } from '../server.js';
+import { seedRuntime } from './runtime-seed.js';
 import { snapshotRuntime } from './tutorial.js';
 
 export interface TestBuildServer {
@@ -20,6 +21,8 @@ export interface TestBuildServer {
 export interface TestBuildServerSetup {
   /** Build on a copy of runtime/ (default), so that edits of runtime/ meanwhile do not relink everything. */
   snapshotRuntime?: boolean;
+  /** Start with the test run's built runtime in the cache (default; see runtime-seed.ts): false for a cold cache. */
+  seedRuntime?: boolean;
   skip?: boolean;
   afterClose?: () => void;
   /** The start's timeout (a first build of the runtime, an image to bootstrap). */
@@ -35,6 +38,7 @@ export function useBuildServer(options: Omit<BuildServerOptions, 'cacheDir' | 'r
     dirs.push(cacheDir);
     const runtimeSource = setup.snapshotRuntime === false ? undefined : snapshotRuntime();
     if (runtimeSource) dirs.push(runtimeSource);
+    if (setup.seedRuntime !== false) await seedRuntime(cacheDir, runtimeSource);
     const server = createBuildServer({ token: false, port: 0, ...options, cacheDir, ...(runtimeSource ? { runtimeSource } : {}) });
     started = { server, cacheDir, url: (await server.listen()).url };
   }, setup.timeoutMs ?? 240_000);

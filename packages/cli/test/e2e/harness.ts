@@ -9,6 +9,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { expect } from 'vitest';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 import { readLogs, type LogRecord } from './csv-log.js';
 import { removeScratch } from '../scratch.js';
 
@@ -36,6 +37,16 @@ export function scratchCopy(example: string): Scratch {
         logs: join(root, 'logs'),
         dispose: () => removeScratch(root),
     };
+}
+
+/**
+ * scratchCopy, its cache holding the test run's built runtime (build-service test-support
+ * runtime-seed: `make test` builds it once for all the files that do not test a cold cache).
+ */
+export async function seededScratchCopy(example: string): Promise<Scratch> {
+    const scratch = scratchCopy(example);
+    await seedRuntime(scratch.cache);
+    return scratch;
 }
 
 export interface CliRun {

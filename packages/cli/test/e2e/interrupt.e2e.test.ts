@@ -6,10 +6,10 @@
 import { spawn, type ChildProcessByStdio } from 'node:child_process';
 import type { Readable } from 'node:stream';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { BIN, contract, leftoverWorkspaces, processesMentioning, scratchCopy, type Scratch } from './harness.js';
+import { BIN, contract, leftoverWorkspaces, processesMentioning, seededScratchCopy, type Scratch } from './harness.js';
 
 let scratch: Scratch;
-beforeAll(() => { scratch = scratchCopy('tutorial'); });
+beforeAll(async () => { scratch = await seededScratchCopy('tutorial'); }, 240_000);
 afterAll(() => scratch?.dispose());
 
 /** `contract run tutorial` for 60 s; resolves once the mission started, with its exit and its stderr so far. */

@@ -8,7 +8,7 @@ import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { readLogs } from './csv-log.js';
-import { contract, scratchCopy, type CliRun, type Scratch } from './harness.js';
+import { contract, seededScratchCopy, type CliRun, type Scratch } from './harness.js';
 
 interface JsonRecord {
     kind: string;
@@ -27,8 +27,8 @@ let story: CliRun;
 let json: CliRun;
 const traceFile = () => join(scratch.root, 'run.jsonl');
 
-beforeAll(() => {
-    scratch = scratchCopy('tutorial');
+beforeAll(async () => {
+    scratch = await seededScratchCopy('tutorial');
     run = contract(['run', 'tutorial', '--sandbox', 'bwrap', '--duration', '5s', '--logs', scratch.logs, '--trace', traceFile(), '--format', 'json'], scratch);
     story = contract(['trace', scratch.logs], scratch);
     json = contract(['trace', scratch.logs, '--format', 'json'], scratch);

@@ -5,10 +5,10 @@
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { checkChain, deliveryWindows, isSubsequence, schedulerTrace, supervisorTrace, whileActive, type LogRecord } from './csv-log.js';
-import { contract, expectCleanRun, runExample, scratchCopy, type ExampleRun, type RunJson, type Scratch } from './harness.js';
+import { contract, expectCleanRun, runExample, seededScratchCopy, type ExampleRun, type RunJson, type Scratch } from './harness.js';
 
 let scratch: Scratch;
-beforeAll(() => { scratch = scratchCopy('tutorial'); });
+beforeAll(async () => { scratch = await seededScratchCopy('tutorial'); }, 240_000);
 afterAll(() => scratch?.dispose());
 
 describe('examples/tutorial end to end', () => {
