@@ -54,6 +54,8 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
         ({ text, real, counts } = scenarioOfRun(run.records, {
             supervisors: SUPERVISORS,
             start: 'MIS.mission()',
+            // mission.contract: TELEOP, AUTO and STOP each `activate supervisor DRV.…()`
+            requestRules: { DRV: ['MIS mission.TELEOP', 'MIS mission.AUTO', 'MIS mission.STOP'] },
             fallback: (module, port) => (module === 'OBS' && port === 0 ? '0.75' : module === 'OBS' && port === 1 ? scan((i) => (i === 90 ? 0.75 : 5), false) : undefined),
             causeValue: (module, port, logged) => {
                 if (module !== 'OBS' || port !== 1) return undefined;

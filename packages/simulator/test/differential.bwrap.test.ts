@@ -33,6 +33,8 @@ describe('simulator vs a real bwrap run of the tutorial', () => {
         ({ text, real } = scenarioOfRun(run.records, {
             supervisors: SUPERVISORS,
             start: 'GLB.mission()',
+            // supervisor2.contract: SINGLE does `activate supervisor SUP.action(…)`
+            requestRules: { SUP: ['GLB mission.SINGLE'] },
             fallback: (module, port) => (module === 'MAA' && port === 2 ? '"connected"' : undefined),
         }));
         const project = await prepared(TUTORIAL);

@@ -60,7 +60,53 @@ function run(drvDecidedInBetween: boolean, drvLate = false) {
     return { text, list, obs0: at('OBS:0'), obs1: at('OBS:1'), ord0: at('ORD:0') };
 }
 
+/**
+ * DRV not scheduled for 10 ms: MIS starts DRV.autonomous on OBS:0 (after stopping safestop), and
+ * a deadline miss 10 ms later makes it stop it again; DRV takes the STOP of safestop, the START
+ * of autonomous and its STOP one after the other, 10 ms late, and its autonomous makes no decision.
+ */
+function asleep(requestRules?: Record<string, string[]>) {
+    const files = [
+        csv('MIS', [
+            '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
+            '1000000000,W,MIS,supervisor,,,0,function mission started',
+            '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+            '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
+            '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            '2005000000,W,MIS,request_received,OBS,2,1448,EVENT from_port=1',
+            '2010000000,W,MIS,request_received,ORD,0,12,EVENT from_port=0',
+            `2010020000,W,MIS,sup_rule,,,0,"mission.AUTO inactive cause=ORD:0 value=""velocityLoop"""`,
+            '2010030000,W,MIS,sup_rule,,,0,mission.STOP active cause=endof(AUTO)',
+            '3000000000,W,MIS,request_received,contract-launch,,0,STOP',
+        ]),
+        csv('DRV', [
+            '2010500000,W,DRV,request_received,MIS,,11,STOP',
+            '2010510000,W,DRV,request_received,MIS,,29,START autonomous',
+            '2010520000,W,DRV,request_received,MIS,,11,STOP',
+            '2010530000,W,DRV,request_received,MIS,,5,START safestop',
+            '2011600000,W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns',
+        ]),
+        csv('ORD', ['2009990000,W,ORD,ord_deadline_miss,,,0,schema=velocityLoop cycle=7 tick_ns=1990000000']),
+    ];
+    const { text } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules });
+    const list = events(text);
+    const at = (source: string) => list.find((e) => e.source === source)!;
+    return { list, obs0: at('OBS:0'), obs1: at('OBS:1'), ord0: at('ORD:0') };
+}
+
 describe('scenarioOfRun', () => {
+    it('a START received after the sender had decided again is matched with the decision that sent it: the function ran as little as DRV saw', () => {
+        const { list, obs0, obs1, ord0 } = asleep({ DRV: ['MIS mission.TELEOP', 'MIS mission.AUTO', 'MIS mission.STOP'] });
+        // DRV saw autonomous run 10 us (START at 2.01051 s, STOP at 2.01052 s): the miss is
+        // replayed 10 us after the OBS:0 that made MIS start it, and the scan MIS got between stays before it
+        expect(ord0.t - obs0.t).toBe(10_000n);
+        expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0']);
+        expect(obs1.t).toBeGreaterThan(obs0.t);
+        // without the rules, the START is taken as sent by MIS's latest decision (the miss's): nothing moves
+        const unmatched = asleep();
+        expect(unmatched.ord0.t - unmatched.obs0.t).toBe(10_000_000n);
+    });
+
     it('a function stopped before its elapsed timer came is stopped as soon in the simulator: the stopping event moves', () => {
         const { text, list, obs0, obs1, ord0 } = run(false);
         expect(text).toContain('ORD:0 "velocityLoop"');

@@ -81,6 +81,15 @@ export interface ReplayPlan {
      * the logged text is the value.
      */
     causeValue?: (module: string, port: number, logged: string) => string | undefined;
+    /**
+     * Per supervisor, the rules of other supervisors whose changes send it a request
+     * (`SUP function.RULE`: a rule that does `activate supervisor X.f()` sends X a START when it
+     * becomes active and a STOP when it ends), so that the k-th request X received from SUP is
+     * matched with the k-th such change of SUP (a mailbox is first in, first out). Without it, a
+     * request is taken as sent by the sender's latest decision before it was received, which is
+     * wrong when the receiver was not scheduled meanwhile and the sender decided again.
+     */
+    requestRules?: Readonly<Record<string, readonly string[]>>;
 }
 
 export interface RunScenario {
@@ -156,7 +165,14 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // while such a request was on its way (after the event that started the sender's decision,
     // before the request) is replayed just before that event, so that the receiver meets both in
     // the order it really did
-    const timeline = timelineOf(known, plan.supervisors, received, receivers);
+    const timeline = timelineOf(known, plan, received, receivers);
+    // a stale requestRules table would match requests with the wrong decisions: more requests
+    // received than the rules' changes sent says so
+    for (const [pair, sent] of timeline.sendingDecisions) {
+        const [sender, receiver] = pair.split(' ');
+        const got = timeline.requests.filter((q) => q.peer === sender && q.module === receiver && mono(q) < end).length;
+        if (got > sent.length) throw new Error(`${receiver} received ${got} requests from ${sender}, but the plan's requestRules name only ${sent.length} changes of ${sender} that send them`);
+    }
     inFlight(timeline);
     // a function that really ran less than its `elapsed` delay must do so in the simulator too
     shortRuns(timeline);
@@ -214,9 +230,12 @@ interface Timeline {
     requests: (KnownRecord | RuleRecord)[];
     /** `SUP function` -> the shortest `elapsed` delay that changed one of its rules in the run (ns). */
     firstTimers: Map<string, bigint>;
+    /** `SENDER RECEIVER` -> the times of the sender's decisions that sent the receiver a request, in order (ReplayPlan.requestRules). */
+    sendingDecisions: Map<string, bigint[]>;
 }
 
-function timelineOf(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): Timeline {
+function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): Timeline {
+    const supervisors = plan.supervisors;
     const decisions = new Map<string, bigint[]>();
     for (const r of known) if (isRule(r) && supervisors.has(r.module)) (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
     const bySupervisor = new Map<string, Receipt[]>();
@@ -234,16 +253,42 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySe
         const shortest = firstTimers.get(key);
         if (shortest === undefined || ns < shortest) firstTimers.set(key, ns);
     }
-    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers };
+    const sendingDecisions = new Map<string, bigint[]>();
+    for (const [receiver, rules] of Object.entries(plan.requestRules ?? {})) {
+        for (const r of known) {
+            // (a rule ended by its own function's stop sends nothing: the launcher stops every supervisor)
+            if (!isRule(r) || r.causeEvent.kind === 'stop' || !rules.includes(`${r.module} ${r.function}.${r.rule}`)) continue;
+            const key = `${r.module} ${receiver}`;
+            (sendingDecisions.get(key) ?? sendingDecisions.set(key, []).get(key)!).push(mono(r));
+        }
+    }
+    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sendingDecisions };
 }
 
 /**
- * When the decision that sent a request to another supervisor began: the replay time of the event
- * that caused it (received at most CAUSE_WINDOW before it), else the decision's own time; undefined
- * when the sender made no decision before.
+ * The time of the sender's decision that sent request `q`: the k-th of its request-sending
+ * decisions for the k-th request the receiver got from it (ReplayPlan.requestRules), else its
+ * latest decision before the receipt; undefined when there is none.
  */
-function decisionStart(tl: Timeline, sender: string, tq: bigint): { start: bigint; trigger?: Receipt } | undefined {
-    const tp = (tl.decisions.get(sender) ?? []).filter((t) => t <= tq).pop();
+function sendingDecision(tl: Timeline, q: KnownRecord | RuleRecord): bigint | undefined {
+    const tq = mono(q);
+    const sent = tl.sendingDecisions.get(`${q.peer} ${q.module}`);
+    if (sent) {
+        const k = tl.requests.filter((x) => x.module === q.module && x.peer === q.peer && mono(x) < tq).length;
+        const tp = sent[k];
+        if (tp !== undefined && tp <= tq) return tp;
+    }
+    return (tl.decisions.get(q.peer) ?? []).filter((t) => t <= tq).pop();
+}
+
+/**
+ * When the decision that sent request `q` to another supervisor began: the replay time of the
+ * event that caused it (received at most CAUSE_WINDOW before it), else the decision's own time;
+ * undefined when the sender made no decision before.
+ */
+function decisionStart(tl: Timeline, q: KnownRecord | RuleRecord): { start: bigint; trigger?: Receipt } | undefined {
+    const sender = q.peer;
+    const tp = sendingDecision(tl, q);
     if (tp === undefined) return undefined;
     const trigger = tl.receipts(sender).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).pop();
     return { start: trigger?.emission?.t ?? tp, trigger };
@@ -254,7 +299,7 @@ function inFlight(tl: Timeline): void {
     for (const q of tl.requests) {
         const tq = mono(q);
         // the sender's decision that sent it, and the event that started that decision (if one did)
-        const at = decisionStart(tl, q.peer, tq);
+        const at = decisionStart(tl, q);
         if (!at) continue;
         // the receiver's own events (not shared with another supervisor) that came in between
         const between = tl.receipts(q.module).filter((x) => x.emission && x.t > at.start && x.t < tq && tl.receivers.get(x.source)?.length === 1);
@@ -287,8 +332,8 @@ function shortRuns(tl: Timeline): void {
         if (!q2 || q2.peer !== q1.peer || !/^(STOP|KILL)\b/.test(q2.detail)) continue;
         const [tq1, tq2] = [mono(q1), mono(q2)];
         if ((tl.decisions.get(q1.module) ?? []).some((t) => t > tq1 && t < tq2)) continue;
-        const started = decisionStart(tl, q1.peer, tq1);
-        const stopped = decisionStart(tl, q2.peer, tq2);
+        const started = decisionStart(tl, q1);
+        const stopped = decisionStart(tl, q2);
         const e = stopped?.trigger?.emission;
         if (!started || !e || tl.receivers.get(e.source)?.length !== 1) continue;
         const timer = tl.firstTimers.get(`${q1.module} ${/^START (\S+)/.exec(q1.detail)?.[1]}`);
