@@ -13,6 +13,15 @@ const csv = (module: string, lines: string[]): { name: string; text: string } =>
 });
 const UNIT: Record<string, bigint> = { ns: 1n, us: 1_000n, ms: 1_000_000n, s: 1_000_000_000n };
 
+/** MIS's start, then the OBS:0 (value 5, at 2 s) that ends STOP and starts AUTO: DRV.autonomous. */
+const MIS_STARTS_AUTONOMOUS = [
+    '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
+    '1000000000,W,MIS,supervisor,,,0,function mission started',
+    '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+    '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
+    '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+];
+
 /** The scenario's event lines: time in ns since the start, and source. */
 function events(text: string): { t: bigint; source: string }[] {
     return text.split('\n').flatMap((l) => {
@@ -33,11 +42,7 @@ function run(drvDecidedInBetween: boolean, drvLate = false) {
     const [tStart, tStop] = drvDecidedInBetween ? [2_001_200_000, 2_003_000_000] : drvLate ? [2_001_200_000, 2_002_700_000] : [2_001_200_000, 2_002_000_000];
     const files = [
         csv('MIS', [
-            '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
-            '1000000000,W,MIS,supervisor,,,0,function mission started',
-            '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
-            '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
-            '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            ...MIS_STARTS_AUTONOMOUS,
             '2001930000,W,MIS,request_received,OBS,2,1448,EVENT from_port=1',
             `${drvDecidedInBetween ? 2_002_900_000 : 2_001_940_000},W,MIS,request_received,ORD,0,12,EVENT from_port=0`,
             `${drvDecidedInBetween ? 2_002_950_000 : 2_001_960_000},W,MIS,sup_rule,,,0,"mission.AUTO inactive cause=ORD:0 value=""velocityLoop"""`,
@@ -68,11 +73,7 @@ function run(drvDecidedInBetween: boolean, drvLate = false) {
 function asleep(requestRules?: Record<string, string[]>) {
     const files = [
         csv('MIS', [
-            '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
-            '1000000000,W,MIS,supervisor,,,0,function mission started',
-            '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
-            '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
-            '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            ...MIS_STARTS_AUTONOMOUS,
             '2005000000,W,MIS,request_received,OBS,2,1448,EVENT from_port=1',
             '2010000000,W,MIS,request_received,ORD,0,12,EVENT from_port=0',
             `2010020000,W,MIS,sup_rule,,,0,"mission.AUTO inactive cause=ORD:0 value=""velocityLoop"""`,
