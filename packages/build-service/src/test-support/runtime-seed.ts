@@ -1,7 +1,7 @@
 /**
  * One runtime build for a whole test run. Most test files make a fresh build cache and build
- * projects in it, and each such cache would compile the same runtime again (about 11 s of CPU, some
- * twenty times a run on a two-CPU machine whose tests are CPU-bound). `make test`
+ * projects in it, and each such cache would compile the same runtime again (about 11 s of CPU, about
+ * fifteen times a run on a two-CPU machine whose tests are CPU-bound). `make test`
  * (scripts/run-tests.mjs) names a folder of its own in CONTRACT_TEST_RUNTIME_SEED; `seedRuntime`
  * builds the repository's runtime there once (the first test file to ask; two at once both build,
  * the first rename wins, as in any cache) and copies it into a test's fresh cache, where the service

@@ -165,14 +165,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // while such a request was on its way (after the event that started the sender's decision,
     // before the request) is replayed just before that event, so that the receiver meets both in
     // the order it really did
-    const timeline = timelineOf(known, plan, received, receivers);
-    // a stale requestRules table would match requests with the wrong decisions: more requests
-    // received than the rules' changes sent says so
-    for (const [pair, sent] of timeline.sendingDecisions) {
-        const [sender, receiver] = pair.split(' ');
-        const got = timeline.requests.filter((q) => q.peer === sender && q.module === receiver && mono(q) < end).length;
-        if (got > sent.length) throw new Error(`${receiver} received ${got} requests from ${sender}, but the plan's requestRules name only ${sent.length} changes of ${sender} that send them`);
-    }
+    const timeline = timelineOf(known, plan, received, receivers, end);
     inFlight(timeline);
     // a function that really ran less than its `elapsed` delay must do so in the simulator too
     shortRuns(timeline);
@@ -230,11 +223,11 @@ interface Timeline {
     requests: (KnownRecord | RuleRecord)[];
     /** `SUP function` -> the shortest `elapsed` delay that changed one of its rules in the run (ns). */
     firstTimers: Map<string, bigint>;
-    /** `SENDER RECEIVER` -> the times of the sender's decisions that sent the receiver a request, in order (ReplayPlan.requestRules). */
-    sendingDecisions: Map<string, bigint[]>;
+    /** A request -> the time of the sender's decision that sent it (ReplayPlan.requestRules). */
+    sentAt: Map<KnownRecord | RuleRecord, bigint>;
 }
 
-function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: Map<string, Receipt[]>, receivers: Map<string, string[]>): Timeline {
+function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: Map<string, Receipt[]>, receivers: Map<string, string[]>, end: bigint): Timeline {
     const supervisors = plan.supervisors;
     const decisions = new Map<string, bigint[]>();
     for (const r of known) if (isRule(r) && supervisors.has(r.module)) (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
@@ -253,16 +246,27 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
         const shortest = firstTimers.get(key);
         if (shortest === undefined || ns < shortest) firstTimers.set(key, ns);
     }
-    const sendingDecisions = new Map<string, bigint[]>();
+    // the k-th request a receiver got from a sender was sent by the k-th change of the sender's rules
+    // that activate it (a mailbox is first in, first out)
+    const sentAt = new Map<KnownRecord | RuleRecord, bigint>();
     for (const [receiver, rules] of Object.entries(plan.requestRules ?? {})) {
+        const changes = new Map<string, bigint[]>(); // sender -> its request-sending decisions, in order
         for (const r of known) {
             // (a rule ended by its own function's stop sends nothing: the launcher stops every supervisor)
             if (!isRule(r) || r.causeEvent.kind === 'stop' || !rules.includes(`${r.module} ${r.function}.${r.rule}`)) continue;
-            const key = `${r.module} ${receiver}`;
-            (sendingDecisions.get(key) ?? sendingDecisions.set(key, []).get(key)!).push(mono(r));
+            (changes.get(r.module) ?? changes.set(r.module, []).get(r.module)!).push(mono(r));
+        }
+        for (const [sender, sent] of changes) {
+            const got = requests.filter((q) => q.peer === sender && q.module === receiver);
+            // a stale table would match requests with the wrong decisions: more requests than changes says so
+            const beforeEnd = got.filter((q) => mono(q) < end).length;
+            if (beforeEnd > sent.length) throw new Error(`${receiver} received ${beforeEnd} requests from ${sender}, but the plan's requestRules name only ${sent.length} changes of ${sender} that send them`);
+            got.forEach((q, k) => {
+                if (k < sent.length) sentAt.set(q, sent[k]!);
+            });
         }
     }
-    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sendingDecisions };
+    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt };
 }
 
 /**
@@ -272,12 +276,8 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
  */
 function sendingDecision(tl: Timeline, q: KnownRecord | RuleRecord): bigint | undefined {
     const tq = mono(q);
-    const sent = tl.sendingDecisions.get(`${q.peer} ${q.module}`);
-    if (sent) {
-        const k = tl.requests.filter((x) => x.module === q.module && x.peer === q.peer && mono(x) < tq).length;
-        const tp = sent[k];
-        if (tp !== undefined && tp <= tq) return tp;
-    }
+    const sent = tl.sentAt.get(q);
+    if (sent !== undefined && sent <= tq) return sent;
     return (tl.decisions.get(q.peer) ?? []).filter((t) => t <= tq).pop();
 }
 
