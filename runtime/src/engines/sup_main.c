@@ -423,6 +423,11 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
                 engine_data_string(m, name, sizeof name);
                 sup_core_ord_event(c, now, m->Param.Event.sourcePort, name);
             } else {
+                /* the same record as a module's GetEventId: the delivery, for the trace's event flows */
+                char detail[48];
+                snprintf(detail, sizeof detail, "from_port=%d latency_ns=%lld", m->Param.Event.sourcePort,
+                         (long long)(m->ReceptionTime - m->ProductionTime));
+                ContractLog("event_received", m->Param.Event.sourceModule, m->Param.Event.targetPort, m->DataSize, detail);
                 sup_core_module_event(c, now, m->Param.Event.sourceModule, m->Param.Event.sourcePort,
                                       m->Param.Event.targetPort, m->Data, m->DataSize);
             }

@@ -8,7 +8,7 @@ import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
 import { activeSchemas } from './active-schemas.js';
 
-// a real run of examples/tutorial (`contract run --duration 4s --start 'GLB.mission(...)'`, bwrap)
+// a real run of examples/tutorial (`contract run --duration 4s`, bwrap; recorded again 2026-12-03 when supervisors began to write event_received)
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
 const tutorial = parseTrace(readdirSync(dir).map((name) => ({ name, text: readFileSync(join(dir, name), 'utf8') })));
 
@@ -86,9 +86,15 @@ describe('monitor model on a recorded tutorial run', () => {
     expect(p.lastCycle).toBe(1);
     expect(p.completions).toBe(2);
     expect(p.histogram.reduce((a, b) => a + b, 0)).toBe(2);
-    expect(p.maxResponseNs).toBe(844314);
+    // the largest response_ns of ORD's ord_complete records in the file
+    const responses = [...readFileSync(join(dir, 'ORD.csv'), 'utf8').matchAll(/,ord_complete,.*response_ns=(\d+)/g)].map((m) => Number(m[1]));
+    expect(responses).toHaveLength(2);
+    expect(p.maxResponseNs).toBe(Math.max(...responses));
     expect(p.deadlineMisses).toBe(0);
     expect(s.eventFlows.get('MAA:0->MAB:0')!.count).toBe(4);
+    // a supervisor's deliveries count as a module's: SUP took MAA's two connection_status events
+    expect(s.eventFlows.get('MAA:2->SUP:2')!.count).toBe(2);
+    expect(s.eventFlows.get('MAA:0->SUP:1')!.count).toBe(4);
     expect(s.modules.get('MSC')!.runs).toBe(2);
   });
 

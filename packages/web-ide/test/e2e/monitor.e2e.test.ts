@@ -78,6 +78,8 @@ async function checkTutorialStory(page: Page): Promise<{ first: MarkJson; second
   expect(Number(await rule(page, 'SUP.action.SECOND').getAttribute('data-since'))).toBe(second.t);
   expect(await rule(page, 'SUP.action.SECOND').textContent()).toContain('schemaCommande1');
   expect(await rule(page, 'SUP.action.FIRST').getAttribute('data-active')).toBe('false');
+  // the "disconnected" reached SUP over its subscription MAA:2 =* :2: a delivery, counted like a module's
+  expect(await page.locator('.monitor-flow.event[data-flow="MAA:2->SUP:2"]').textContent()).toMatch(/^┅ MAA:2 → SUP:2 ×[1-9]\d* · last \+/);
   expect(await page.locator('.monitor-schema').allTextContents()).toEqual(['● schemaCommande1 (periodic) ← SUP.action.SECOND']);
   await expect.poll(() => page.locator('.monitor-view .arch-svg').getAttribute('data-schema'), { timeout: 10_000 }).toBe('schemaCommande1');
   expect(Number(await periodic(page, 'schemaCommande1').getAttribute('data-releases'))).toBeGreaterThan(0);

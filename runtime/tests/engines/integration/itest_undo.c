@@ -31,6 +31,19 @@ static int count_of(const char *s, const char *text) {
     return n;
 }
 
+/* how many lines of s contain both a and b */
+static int lines_with(const char *s, const char *a, const char *b) {
+    int n = 0;
+    for (const char *line = s; line && *line;) {
+        const char *end = strchr(line, '\n');
+        size_t len = end ? (size_t)(end - line) : strlen(line);
+        const char *pa = strstr(line, a), *pb = strstr(line, b);
+        if (pa && pb && pa < line + len && pb < line + len) n++;
+        line = end ? end + 1 : NULL;
+    }
+    return n;
+}
+
 void scenario_undo_own(const char *root, const char *bin, const char *launcher) {
     Scenario s;
     if (!scenario_begin(&s, root, "undo")) return;
@@ -78,6 +91,11 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
     check(usm && strstr(usm, "kept: subscription AMX:0 to :0 (made again since by another rule)") && b1_end > 0 &&
               usm_last >= b1_end + 40 * MS,
           "subscription: B1's undo left B2's subscription of AMX:0 (USM kept receiving AMX's events)");
+    /* a supervisor records each module event it takes as event_received, as a module does */
+    int usm_events = lines_with(usm, ",request_received,AMX,", "EVENT from_port="), usm_received = count_of(usm, ",event_received,AMX,");
+    check(usm_events > 0 && usm_received == usm_events && strstr(usm, ",event_received,AMX,0,") &&
+              strstr(usm, "from_port=0 latency_ns="),
+          "event received: USM recorded each of AMX's events it took (event_received, its port and latency)");
 
     if (scenario_failed(&s)) fprintf(stderr, "launcher output (undo scenario):\n%s\n", txt ? txt : "(none)");
     free(txt);
