@@ -26,8 +26,10 @@ describe('contract simulate', { timeout: 60_000 }, () => {
     it('passes the tutorial scenarios (exit 0), each step and rule change printed', async () => {
         const io = capture(REPO);
         expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), scenario('mission.scenario'), '--cache-dir', cache], io)).toBe(0);
-        expect(io.stdout).toContain('+ SUP.action.SECOND active  <- MAA:2 value="disconnected"');
-        expect(io.stdout).toContain('- GLB.mission.SINGLE inactive  <- SUP:1 value="commutation"');
+        expect(io.stdout).toContain('+ SUP.action.SECOND active  <- MAA:2 = "disconnected"');
+        expect(io.stdout).toContain('- GLB.mission.SINGLE inactive  <- SUP:1 = "commutation"');
+        // a timer's cause as the model writes it, as `contract trace` tells it
+        expect(io.stdout).toContain('+ SUP.action.FIRST active  <- elapsed=1ms');
         expect(io.stdout).toMatch(/\n2 passed, 0 failed\n$/);
     });
 

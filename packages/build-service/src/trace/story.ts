@@ -4,25 +4,37 @@
  * conflicts, deadline misses with their cycle, overruns, module starts and exits. Releases,
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
+import { parseCause } from './parse.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
 export const RUN_STOPPING = '; the run is stopping)';
+
+/**
+ * A rule's cause as a reader writes it: the `sup_rule` cause `elapsed=1000000ns` as `elapsed=1ms`,
+ * `MAA:2 value="disconnected"` as `MAA:2 = "disconnected"`, `stop` as `its function stopped`. The
+ * same words in `contract trace`, `contract simulate` and the IDE's Monitor and Simulate panels.
+ */
+export function readableCause(logged: string): string {
+    return describeCause(parseCause(logged));
+}
 
 function describeCause(c: RuleCause): string {
     switch (c.kind) {
         case 'event': return `${c.module}:${c.port} = ${c.value}`;
         case 'started': return `started(${c.rule})`;
         case 'endof': return `endof(${c.rule})`;
-        case 'duration': return `duration(${c.rule})=${ms(c.ns)}`;
-        case 'elapsed': return `elapsed=${ms(c.ns)}`;
+        case 'duration': return `duration(${c.rule})=${timeLiteral(c.ns)}`;
+        case 'elapsed': return `elapsed=${timeLiteral(c.ns)}`;
         case 'stop': return 'its function stopped';
         case 'other': return c.text;
     }
 }
 
-function ms(ns: number): string {
-    return `${Number((ns / 1e6).toFixed(3))}ms`;
+/** A time as a Cactal time literal: the coarsest unit that writes it whole (`1ms`, `250us`, `2s`, `1500ms`). */
+function timeLiteral(ns: number): string {
+    for (const [unit, size] of [['s', 1e9], ['ms', 1e6], ['us', 1e3]] as const) if (ns !== 0 && ns % size === 0) return `${ns / size}${unit}`;
+    return `${ns}ns`;
 }
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */

@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -141,5 +141,19 @@ describe('reading a log', () => {
             '+0.000000s OBS  error: input data port 0: dropped a malformed datagram of 3 bytes',
             '+1.000000s OBS  while the run stopped: EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)',
         ]);
+    });
+});
+
+describe('a rule cause in the words of the model', () => {
+    it('writes times as Cactal time literals, an event as its port and value, and says what stop means', () => {
+        expect(['elapsed=1000000ns', 'elapsed=250000ns', 'elapsed=1500000000ns', 'elapsed=2000000000ns', 'elapsed=1234ns', 'duration(PAUSE)=100000000ns'].map(readableCause))
+            .toEqual(['elapsed=1ms', 'elapsed=250us', 'elapsed=1500ms', 'elapsed=2s', 'elapsed=1234ns', 'duration(PAUSE)=100ms']);
+        expect(readableCause('MAA:2 value="disconnected"')).toBe('MAA:2 = "disconnected"');
+        expect(readableCause('ORD:0 value="velocityLoop"')).toBe('ORD:0 = "velocityLoop"');
+        expect(readableCause('started(FIRST)')).toBe('started(FIRST)');
+        expect(readableCause('endof(AUTO)')).toBe('endof(AUTO)');
+        expect(readableCause('stop')).toBe('its function stopped');
+        // what it does not know stays as logged
+        expect(readableCause('elapsed=soon')).toBe('elapsed=soon');
     });
 });

@@ -2,6 +2,7 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
+import { readableCause } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
 
 /** A terminal-safe line: control characters of simulated output shown as `?`. */
@@ -44,7 +45,7 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             const mark = s.ok ? (s.kind === 'expect' ? 'ok  ' : '    ') : 'FAIL';
             out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
             for (const c of s.record.rules) {
-                out.push(`              ${formatTime(c.timeNs).padStart(8)}  ${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(c.cause)}`);
+                out.push(`              ${formatTime(c.timeNs).padStart(8)}  ${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`);
             }
             if (options.verbose) {
                 for (const a of s.record.actions) out.push(`              ${formatTime(a.timeNs).padStart(8)}    ${a.who}: ${safe(a.what)}`);

@@ -11,6 +11,7 @@
  * dirty: it redraws at most once per animation frame, and only what changed.
  */
 import './monitor.css';
+import { readableCause } from '@contract-studio/build-service/trace';
 import { h } from '../util/dom.js';
 import type { ArchSchema } from '../lsp/architecture-model.js';
 import type { ArchitectureView } from '../views/architecture-view.js';
@@ -334,7 +335,7 @@ export class MonitorPanel {
           });
           setAttr(el, 'data-active', String(!!rs?.active));
           setAttr(el, 'aria-pressed', String(!!rs?.active));
-          setText(el.children[2] as HTMLElement, rs ? `${rs.active ? '' : 'off '}← ${rs.cause}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '');
+          setText(el.children[2] as HTMLElement, rs ? `${rs.active ? '' : 'off '}← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '');
           setText(el.children[3] as HTMLElement, rs ? fmtT(rs.since) : '');
           setAttr(el, 'data-cause', rs?.cause ?? '');
           setAttr(el, 'data-since', rs ? String(rs.since) : '');

@@ -6,6 +6,7 @@
  * It only draws and reports clicks: simulate-controller.ts owns the session and the server calls.
  */
 import { formatTime } from '@contract-studio/language/scenario';
+import { readableCause } from '@contract-studio/build-service/trace';
 import { h } from '../util/dom.js';
 import './simulate.css';
 import type { SimulateResponse } from '../../server/api-types.js';
@@ -97,7 +98,7 @@ export class SimulatePanel {
     this.rules.replaceChildren(...[...rules].map(([name, s]) =>
       h('div', { class: `sim-rule ${s.active ? 'active' : 'inactive'}`, 'data-rule': name },
         h('span', { class: 'sim-rule-name' }, `${s.active ? '●' : '○'} ${name}`), ' ',
-        h('span', { class: 'sim-cause' }, `← ${s.cause} at ${formatTime(s.timeNs)}`))));
+        h('span', { class: 'sim-cause' }, `← ${readableCause(s.cause)} at ${formatTime(s.timeNs)}`))));
     if (!rules.size) this.rules.textContent = 'no rule changed yet';
     const last = r.steps.at(-1);
     this.schemas.replaceChildren(...(last?.schemas ?? []).map((s) => h('div', { class: 'sim-schema', 'data-schema': s }, s)));
@@ -107,7 +108,7 @@ export class SimulatePanel {
     this.steps.replaceChildren(...shown.map((s) =>
       h('div', { class: `sim-step-row ${s.ok ? '' : 'failed'}` },
         h('div', { class: 'sim-step-head' }, `${formatTime(s.timeNs)}  ${s.kind === 'end' ? '(end)' : s.source}${s.message ? `  ✖ ${s.message}` : ''}`),
-        ...s.rules.map((c) => h('div', { class: 'sim-change' }, `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${c.cause}`)),
+        ...s.rules.map((c) => h('div', { class: 'sim-change' }, `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${readableCause(c.cause)}`)),
         ...s.actions.slice(0, 50).map((a) => h('div', { class: 'sim-action' }, `${a.who}: ${a.what}`)),
         s.output ? h('pre', { class: 'sim-output' }, s.output) : null)));
     this.steps.scrollTop = this.steps.scrollHeight;

@@ -77,6 +77,8 @@ async function checkTutorialStory(page: Page): Promise<{ first: MarkJson; second
   expect(await rule(page, 'SUP.action.SECOND').getAttribute('data-cause')).toBe('MAA:2 value="disconnected"');
   expect(Number(await rule(page, 'SUP.action.SECOND').getAttribute('data-since'))).toBe(second.t);
   expect(await rule(page, 'SUP.action.SECOND').textContent()).toContain('schemaCommande1');
+  // shown in the words of the model and of `contract trace` (data-cause keeps the engine's)
+  expect(await rule(page, 'SUP.action.SECOND').textContent()).toContain('← MAA:2 = "disconnected" → schemaCommande1');
   expect(await rule(page, 'SUP.action.FIRST').getAttribute('data-active')).toBe('false');
   // the "disconnected" reached SUP over its subscription MAA:2 =* :2: a delivery, counted like a module's
   expect(await page.locator('.monitor-flow.event[data-flow="MAA:2->SUP:2"]').textContent()).toMatch(/^┅ MAA:2 → SUP:2 ×[1-9]\d* · last \+/);

@@ -57,7 +57,7 @@ describe('Simulate panel', () => {
     await page.click('.sim-next');
     await expect.poll(() => now(page), { timeout: 30_000 }).toBe('1ms');
     await expect.poll(() => simRule(page, 'SUP.action.FIRST').getAttribute('class')).toContain('active');
-    expect(await simRule(page, 'SUP.action.FIRST').textContent()).toContain('elapsed=1000000ns');
+    expect(await simRule(page, 'SUP.action.FIRST').textContent()).toContain('← elapsed=1ms at 1ms');
     await expect.poll(() => page.locator('.sim-schema').allTextContents()).toEqual(['schemaReceptionMessage']);
     await expect.poll(() => monitorRule(page, 'SUP.action.FIRST').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
 
@@ -82,7 +82,7 @@ describe('Simulate panel', () => {
     // inject the disconnection: SECOND active, caused by it; FIRST inactive
     await injectStep(page, 'MAA:2 connection_status = "disconnected"');
     await expect.poll(() => simRule(page, 'SUP.action.SECOND').getAttribute('class'), { timeout: 30_000 }).toBe('sim-rule active');
-    expect(await simRule(page, 'SUP.action.SECOND').textContent()).toContain('← MAA:2 value="disconnected" at 1ms');
+    expect(await simRule(page, 'SUP.action.SECOND').textContent()).toContain('← MAA:2 = "disconnected" at 1ms');
     expect(await simRule(page, 'SUP.action.FIRST').getAttribute('class')).toBe('sim-rule inactive');
     expect(await page.locator('.sim-schema').allTextContents()).toContain('schemaCommande1');
     expect(await page.locator('.sim-local').count()).toBeGreaterThan(0);
