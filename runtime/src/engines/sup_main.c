@@ -21,6 +21,7 @@
 #define _GNU_SOURCE
 #include <sched.h>
 #include <errno.h>
+#include <stdarg.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -89,6 +90,21 @@ static void remove_subscriber(SupBinding *b, const char *module, int target_port
         }
 }
 
+/* Each action the supervisor sends and each undo, as a `supervisor` record of its CSV log (not on
+   stdout: a rule that fires at every event would flood the console), in the simulator's words
+   (runtime/sim/sim_world.c), undos prefixed `undo: `; peer = the module, supervisor or ORD it
+   goes to. Holds, priorities and event-schema flows have their own records (module_hold,
+   module_priority, flow_hold). */
+static void log_action(const char *peer, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void log_action(const char *peer, const char *fmt, ...) {
+    char line[256];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(line, sizeof line, fmt, ap);
+    va_end(ap);
+    ContractLog("supervisor", peer, -1, 0, line);
+}
+
 /* undo requests go to modules that may already have ended (architecture stopping): skip those */
 static int alive(const char *module) { return ModuleState(module) == CONTRACT_OK; }
 
@@ -96,6 +112,7 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
                            uint32_t id) {
     (void)ctx;
     int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
+    log_action("ORD", "activate schema %s (activation #%u, to ORD)%s", s->name, id, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot ask ORD to activate %s: %s\n", ContractSelfName(), s->name,
                 ContractStrError(rc));
@@ -105,6 +122,7 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     (void)ctx;
     if (!alive("ORD")) return;
     int rc = engine_send_stop("ORD", s->name, (int)id);
+    log_action("ORD", "undo: deactivate schema %s (activation #%u, to ORD)%s", s->name, id, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot ask ORD to deactivate %s: %s\n", ContractSelfName(), s->name,
                 ContractStrError(rc));
@@ -243,6 +261,7 @@ static void b_release_priority(void *ctx, const char *m, uint32_t id) {
 static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
     (void)ctx;
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
+    log_action(m, "parameterize %s:%d (%zu bytes)%s", m, port, size, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,
                 ContractStrError(rc));
@@ -283,18 +302,20 @@ static void b_disconnect(void *ctx, const ContractEventFlow *f) {
 
 static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode) {
     (void)ctx;
-    SendSubscribeEvent(m, sp, ContractSelfName(), ip, mode_of(mode));
+    int rc = SendSubscribeEvent(m, sp, ContractSelfName(), ip, mode_of(mode));
+    log_action(m, "subscribe %s:%d %s :%d%s", m, sp, mode == CONTRACT_ONESHOT ? "=>" : "=*", ip, rc == CONTRACT_OK ? "" : " not sent");
 }
 
 static void b_unsubscribe(void *ctx, const char *m, int sp, int ip) {
     (void)ctx;
     if (!alive(m)) return;
-    SendUnsubscribeEvent(m, sp, ContractSelfName(), ip);
+    int rc = SendUnsubscribeEvent(m, sp, ContractSelfName(), ip);
+    log_action(m, "undo: unsubscribe %s:%d :%d%s", m, sp, ip, rc == CONTRACT_OK ? "" : " not sent");
 }
 
 static void b_notify(void *ctx, int port, const ContractType *t, const void *v, size_t size) {
     SupBinding *b = ctx;
-    (void)t;
+    log_action("", "notify :%d (%s)", port, t && t->name ? t->name : "?");
     for (int i = 0; i < b->nsubs;) {
         Subscriber *s = &b->subs[i];
         if (s->source_port != port) {
@@ -312,6 +333,7 @@ static int b_start_function(void *ctx, const char *sup, const char *fn, const vo
                             uint32_t id) {
     (void)ctx;
     int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
+    log_action(sup, "activate supervisor %s.%s (activation #%u)%s", sup, fn, id, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK) {
         fprintf(stderr, "%s: cannot start %s.%s: %s\n", ContractSelfName(), sup, fn, ContractStrError(rc));
         return -1;
@@ -322,7 +344,8 @@ static int b_start_function(void *ctx, const char *sup, const char *fn, const vo
 static void b_stop_function(void *ctx, const char *sup, const char *fn, uint32_t id) {
     (void)ctx;
     if (!alive(sup)) return;
-    engine_send_stop(sup, fn, (int)id);
+    int rc = engine_send_stop(sup, fn, (int)id);
+    log_action(sup, "undo: stop %s.%s (activation #%u)%s", sup, fn, id, rc == CONTRACT_OK ? "" : " not sent");
 }
 
 static void b_trace(void *ctx, int64_t t, const char *line) {

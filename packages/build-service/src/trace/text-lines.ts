@@ -2,7 +2,7 @@
  * The engines' readable trace lines (`scheduler` and `supervisor` records, formatted by
  * ord_core.c and sup_core.c) -> typed fields: `what` plus the names the line holds. The first
  * pattern that matches wins; a supervisor line no pattern names is one of its actions or undos
- * (`subscribe MAA:2 =* :2`, `unsubscribe ...`): `what` = `action`. docs/runtime-api.md
+ * (`subscribe MAA:2 =* :2`, `undo: unsubscribe MAA:2 :2`): `what` = `action`. docs/runtime-api.md
  * "Trace records" lists the `what` values (from these tables).
  */
 

@@ -95,6 +95,16 @@ describe('monitor model on a recorded tutorial run', () => {
     // a supervisor's deliveries count as a module's: SUP took MAA's two connection_status events
     expect(s.eventFlows.get('MAA:2->SUP:2')!.count).toBe(2);
     expect(s.eventFlows.get('MAA:0->SUP:1')!.count).toBe(4);
+    // SUP's actions and undos, as its log lists them: the supervisor action records (subscriptions,
+    // parameters, schemaCommande1 asked of ORD), the holds and the priorities it set
+    const sup = readFileSync(join(dir, 'SUP.csv'), 'utf8').split('\n');
+    const actions = sup.filter((l) => /,SUP,supervisor,[A-Z]+,/.test(l));
+    expect(actions.length).toBeGreaterThan(5);
+    const undos = actions.filter((l) => /,0,"?undo: /.test(l)).length;
+    expect(undos).toBeGreaterThanOrEqual(3); // MAA:2, MAA:0 and MSC:1 unsubscribed, schemaCommande1 deactivated
+    const of = (re: RegExp) => sup.filter((l) => re.test(l)).length;
+    expect(s.supervisors.get('SUP')!.actionsDone).toBe(actions.length - undos + of(/,module_hold,.*,hold taken/) + of(/,flow_hold,.*,hold taken/) + of(/,module_priority,/));
+    expect(s.supervisors.get('SUP')!.actionsUndone).toBe(undos + of(/,(module|flow)_hold,.*,last hold dropped/));
     expect(s.modules.get('MSC')!.runs).toBe(2);
   });
 

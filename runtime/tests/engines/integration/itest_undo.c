@@ -91,6 +91,20 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
     check(usm && strstr(usm, "kept: subscription AMX:0 to :0 (made again since by another rule)") && b1_end > 0 &&
               usm_last >= b1_end + 40 * MS,
           "subscription: B1's undo left B2's subscription of AMX:0 (USM kept receiving AMX's events)");
+    /* each action a supervisor sends and each undo: a `supervisor` record, peer = where it goes
+       (a detail with a comma is quoted in the CSV) */
+    check(count_of(upa, ",supervisor,USM,,0,activate supervisor USM.aux (activation #") == 2 &&
+              count_of(upa, ",supervisor,USM,,0,undo: stop USM.aux (activation #") == 1 &&
+              strstr(upa, ",supervisor,ORD,,0,\"activate schema PSC (activation #") &&
+              strstr(upa, ",supervisor,ORD,,0,\"undo: deactivate schema PSC (activation #"),
+          "actions: UPA recorded K1's and K2's activate supervisor, K1's undo only (K2 was refused), PSC and its undo");
+    check(strstr(usm, ",supervisor,ORD,,0,\"activate schema PSC (activation #1, to ORD)\"") &&
+              strstr(usm, ",supervisor,ORD,,0,\"undo: deactivate schema PSC (activation #1, to ORD)\"") &&
+              count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 => :0") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 =* :0") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,undo: unsubscribe AMX:0 :0") == 1,
+          "actions: USM recorded A2's PSC and its undo on ORD:1, B1's and B2's subscriptions, one unsubscribe (B1's undo kept B2's)");
+
     /* a supervisor records each module event it takes as event_received, as a module does */
     int usm_events = lines_with(usm, ",request_received,AMX,", "EVENT from_port="), usm_received = count_of(usm, ",event_received,AMX,");
     check(usm_events > 0 && usm_received == usm_events && strstr(usm, ",event_received,AMX,0,") &&
