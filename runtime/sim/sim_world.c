@@ -53,6 +53,14 @@ typedef struct SimFinish {
     long activation;     /* the module's activation this release is                            */
 } SimFinish;
 
+/* A data flow ORD connected (`A:o -> B:i * k`): B receives what A posts on every k-th activation
+   of A since the connection, as libmodule's PostData counts (dataflow.c). */
+typedef struct SimFlow {
+    char src[64], dst[64];
+    int src_port, dst_port, periodicity;
+    long base;           /* A's activations when connected                                      */
+} SimFlow;
+
 typedef enum SimMsgKind {
     MSG_ORD_ACTIVATE = 1, MSG_ORD_DEACTIVATE, MSG_ORD_EVENT, MSG_EVENT, MSG_START_FN, MSG_STOP_FN,
     MSG_ANSWER
@@ -82,6 +90,8 @@ struct SimWorld {
     int nmods, capmods;
     SimFinish *fin;
     int nfin, capfin;
+    SimFlow *flows;
+    int nflows, capflows;
     uint64_t seq;
     SimMsg *head, *tail;
     uint64_t finished;
@@ -280,13 +290,49 @@ static void oio_set_param(void *ctx, const char *module, int port, const void *v
     (void)value;
     action(ctx, "ORD", "parameterize %s:%d (%zu bytes)", module, port, size);
 }
+static int flow_index(const SimWorld *w, const ContractDataFlow *f) {
+    for (int i = 0; i < w->nflows; i++) {
+        const SimFlow *g = &w->flows[i];
+        if (g->src_port == f->src_port && g->dst_port == f->dst_port && strcmp(g->src, f->src_module) == 0 &&
+            strcmp(g->dst, f->dst_module) == 0)
+            return i;
+    }
+    return -1;
+}
 static void oio_connect(void *ctx, const ContractDataFlow *f) {
-    action(ctx, "ORD", "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module,
+    SimWorld *w = ctx;
+    action(w, "ORD", "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module,
            f->dst_port, f->periodicity);
+    int i = flow_index(w, f), src = module_index(w, f->src_module, 1);
+    if (i < 0) {
+        if (grow((void **)&w->flows, &w->capflows, w->nflows + 1, sizeof *w->flows)) return;
+        i = w->nflows++;
+    }
+    SimFlow *g = &w->flows[i];
+    scopy(g->src, sizeof g->src, f->src_module);
+    scopy(g->dst, sizeof g->dst, f->dst_module);
+    g->src_port = f->src_port;
+    g->dst_port = f->dst_port;
+    g->periodicity = f->periodicity < 1 ? 1 : f->periodicity;
+    g->base = src >= 0 ? w->mods[src].activations : 0;
 }
 static void oio_disconnect(void *ctx, const ContractDataFlow *f) {
-    action(ctx, "ORD", "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module,
+    SimWorld *w = ctx;
+    action(w, "ORD", "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module,
            f->dst_port);
+    int i = flow_index(w, f);
+    if (i >= 0) w->flows[i] = w->flows[--w->nflows];
+}
+/* A virtual module posts each of its connected output ports once per run (it runs no code: the
+   value is not known), at the end of the run: the producer's data_posted records of a real run. */
+static void post_data(SimWorld *w, const SimModule *m, long activation) {
+    for (int i = 0; i < w->nflows; i++) {
+        const SimFlow *g = &w->flows[i];
+        if (strcmp(g->src, m->name) != 0) continue;
+        long n = activation - g->base;
+        if (n <= 0 || n % g->periodicity != 0) continue;
+        record(w, m->name, "data_posted", g->dst, g->src_port, "to_port=%d", g->dst_port);
+    }
 }
 static void oio_release(void *ctx, const char *module, const char *schema, int64_t tick,
                         uint32_t release_id) {
@@ -478,6 +524,7 @@ void sim_world_destroy(SimWorld *w) {
     free(w->sups);
     free(w->mods);
     free(w->fin);
+    free(w->flows);
     free(w);
 }
 
@@ -506,6 +553,7 @@ static int finish_one(SimWorld *w, int64_t t) {
     SimModule *m = &w->mods[f.module];
     if (m->outstanding > 0) m->outstanding--;
     w->finished++;
+    post_data(w, m, f.activation);
     record(w, m->name, "run_finished", "ORD", -1, "activation=%ld ACK_FINISHED", f.activation);
     if (w->ord) ord_core_release_finished(w->ord, w->now, m->name, f.release_id);
     drain(w);

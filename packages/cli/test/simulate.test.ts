@@ -49,10 +49,15 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             const steps = (JSON.parse(io.stdout) as { scenarios: Array<{ steps: Array<{ rules: unknown[]; records: Array<{ kind: string }> }> }> }).scenarios[0]!.steps;
             expect(first.filter((r) => r.kind === 'sup_rule')).toHaveLength(steps.reduce((n, s) => n + s.rules.length, 0));
             expect(first).toContainEqual(expect.objectContaining({ kind: 'sup_rule', module: 'SUP', rule: 'SECOND', active: true, cause: 'MAA:2 value="disconnected"', monoNs: '300000000' }));
-            for (const kind of ['ord_release', 'ord_finished', 'ord_complete', 'run_started', 'run_finished', 'event_received']) {
+            for (const kind of ['ord_release', 'ord_finished', 'ord_complete', 'run_started', 'run_finished', 'event_received', 'data_posted']) {
                 expect(first.filter((r) => r.kind === kind).length, kind).toBe(steps.reduce((n, s) => n + s.records.filter((x) => x.kind === kind).length, 0));
                 expect(first.some((r) => r.kind === kind), kind).toBe(true);
             }
+            // the data a virtual module posts on a flow ORD connected: every run of MSA reaches MSC
+            // (schemaCommande1's MSA:0 -> MSC:0 * 1), as many times as MSA finished a run in it
+            const msaRuns = first.filter((r) => r.kind === 'run_finished' && r.module === 'MSA').length;
+            expect(msaRuns).toBeGreaterThan(0);
+            expect(first.filter((r) => r.kind === 'data_posted' && r.module === 'MSA' && r.peer === 'MSC' && r.port === 0 && r.detail === 'to_port=0')).toHaveLength(msaRuns);
             // in time order
             const times = first.map((r) => Number(r.monoNs));
             expect(times).toEqual([...times].sort((a, b) => a - b));

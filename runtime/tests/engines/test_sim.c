@@ -2,7 +2,8 @@
  * test_sim.c — the simulator's harness (runtime/sim/, docs/simulation.md) driven through its
  * line protocol with the report's hand-written tables: the §4.7 story as JSON records, a failed
  * expectation with its expected and actual state, determinism (the same lines twice give the
- * same bytes), an overrun that makes ORD emit ORD:0, and hostile lines answered by error records.
+ * same bytes), an overrun that makes ORD emit ORD:0, the data a virtual module posts on the
+ * flows ORD connected, and hostile lines answered by error records.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -145,6 +146,42 @@ void test_sim_overrun_makes_ord_emit_deadline_miss(void) {
     HAS(record(out, 3), "\"kind\":\"ord_finished\",\"peer\":\"MSC\",\"detail\":\"schema=schemaCommande1 cycle=0 release=");
     HAS(record(out, 3), " response_ns=1500500000\"}");
     HAS(record(out, 3), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000 response_ns=1501500000\"}");
+    free(out);
+}
+
+static int count_in(const char *s, const char *text) {
+    int n = 0;
+    for (const char *p = s ? strstr(s, text) : NULL; p; p = strstr(p + 1, text)) n++;
+    return n;
+}
+
+void test_sim_virtual_modules_post_on_connected_flows(void) {
+    report_log = NULL;
+    testit_result = 1;
+    /* schemaCommande1 (MSA:0 -> MSC:0 * 1, MSC:1 -> MSD:2 * 2; period 1 s) from 300 ms: five
+       cycles by 4.5 s; then SECOND ends on MSC:1 and its flows are disconnected */
+    static const char *const lines[] = {
+        "0\t1\tstart\tSUP\taction\tconsigne={1.0,2.0,3.0}",
+        "300000000\t2\tevent\tMAA\t2\t\"disconnected\"",
+        "4500000000\t3\tevent\tMSC\t1\t",
+        "9000000000\t0\tend",
+        NULL};
+    char *out = run_lines(lines);
+    CHECK(out != NULL);
+    if (!out) return;
+    const char *msa = "\"module\":\"MSA\",\"kind\":\"data_posted\",\"peer\":\"MSC\",\"port\":0,\"detail\":\"to_port=0\"";
+    const char *msc = "\"module\":\"MSC\",\"kind\":\"data_posted\",\"peer\":\"MSD\",\"port\":1,\"detail\":\"to_port=2\"";
+    /* every run of MSA reaches MSC; MSC reaches MSD on its 2nd and 4th runs only (* 2) */
+    CHECK(count_in(record(out, 2), msa) == 5);
+    CHECK(count_in(record(out, 2), msc) == 2);
+    /* a post comes at the end of its run, before the run's run_finished */
+    HAS(record(out, 2), "{\"timeNs\":1300500000,\"module\":\"MSA\",\"kind\":\"data_posted\"");
+    /* disconnected with schemaCommande1 at 4.5 s; schemaCommande2 (FOURTH) connects MSB:0 -> MSC:0
+       and MSC:1 -> MSD:2 again, * 1 this time: MSC reaches MSD at every run from then on */
+    const char *msb = "\"module\":\"MSB\",\"kind\":\"data_posted\",\"peer\":\"MSC\",\"port\":0,\"detail\":\"to_port=0\"";
+    int runs = count_in(record(out, 3), "\"module\":\"MSC\",\"kind\":\"run_finished\"");
+    CHECK(count_in(record(out, 3), msa) == 0 && runs >= 4);
+    CHECK(count_in(record(out, 3), msc) == runs && count_in(record(out, 3), msb) == runs);
     free(out);
 }
 

@@ -15,12 +15,13 @@
  *   (`supervisor` action records); ORD's `ORD:0 "S" (deadline miss)` → `ord_deadline_miss`; a crash → `module_exit`.
  * - `records`: the typed records the harness writes as a real run's CSV logs hold them (ORD's
  *   ord_release / ord_finished / ord_complete / ord_deadline_miss with their cycle and response
- *   times, each virtual module's run_started / run_finished, each event_received of a supervisor)
+ *   times, each virtual module's run_started / run_finished and data_posted on each connected data
+ *   flow, each event_received of a supervisor)
  *   → read by the trace reader as a CSV line. Without them (an older server), ORD's `release M (S)`
  *   lines and `ORD:0` actions stand for the releases and misses, cycles counted here.
  * Without `log` (an older server), functions come from start/stop steps and `activate supervisor` /
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
- * Not simulated, so not in the trace: data deliveries (virtual modules run no code and post no data).
+ * Not simulated, so not in the trace: data_received (virtual modules read no data) and the values posted.
  */
 import { csvField, parseCause, parseRecordLine, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import type { ActionRecord, LogLine, RuleChange, SimTraceRecord } from '../runner/protocol.js';
