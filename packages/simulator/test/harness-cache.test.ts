@@ -2,9 +2,11 @@
  * Where the simulators are kept and how their builds are locked (docs/simulation.md §3): in `sim/`
  * of the build cache, each under `sim-<hash>/`; two builds of one project on a cold cache at once
  * compile it once (the second waits for the lock, then finds the first one's executable); a link
- * planted in place of `sim/` is refused with the build cache's sentence, nothing executed.
+ * planted in place of `sim/` is refused with the build cache's sentence, nothing executed; the
+ * folder of a build that was killed (SIGKILL) is removed by the next build.
  */
-import { mkdirSync, mkdtempSync, readdirSync, rmSync, symlinkSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
@@ -24,6 +26,22 @@ describe('the simulators in the build cache', () => {
         expect(harnessKey(a.build.exe)).toBe(harnessKey(b.build.exe));
         expect(a.build.exe.startsWith(join(cacheDir, 'sim', 'sim-'))).toBe(true);
         expect(readdirSync(join(cacheDir, 'sim')).filter((n) => n.startsWith('sim-'))).toHaveLength(1);
+    });
+
+    it('the folder a killed build left (sim-<key>.tmp-<pid>-...) is removed by the next build', async () => {
+        const cacheDir = join(scratch, 'killed');
+        mkdirSync(join(cacheDir, 'sim'), { recursive: true, mode: 0o700 });
+        const dead = spawnSync('true').pid!;
+        const left = join(cacheDir, 'sim', `sim-0123456789abcdef0123.tmp-${dead}-k1lled`);
+        mkdirSync(left);
+        writeFileSync(join(left, 'unit0.o'), 'half a build');
+        const old = (Date.now() - 20 * 60_000) / 1000;
+        utimesSync(left, old, old);
+        const p = await prepareProject(TUTORIAL, { runtimeDir: DEFAULT_RUNTIME_DIR, cacheDir });
+        if (!p || !('build' in p)) throw new Error(`not built: ${JSON.stringify(p)}`);
+        expect(p.build.cached).toBe(false);
+        expect(existsSync(left)).toBe(false);
+        expect(readdirSync(join(cacheDir, 'sim')).filter((n) => n.includes('.tmp-'))).toEqual([]);
     });
 
     it('refuses a link planted in place of sim/ (nothing built or executed there)', async () => {

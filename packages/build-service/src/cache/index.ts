@@ -6,3 +6,4 @@
  */
 export { CACHE_DIR_ENV, CACHE_ENTRIES, CacheRefusedError, checkCacheEntry, prepareCacheDir, resolveCacheDir, type CacheDirChoice } from './cache-dir.js';
 export { acquireProjectLock, type ProjectLock } from './project-lock.js';
+export { ABANDONED_AFTER_MS, removeAbandonedBuilds } from './abandoned-builds.js';

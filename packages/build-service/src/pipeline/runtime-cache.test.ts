@@ -1,9 +1,11 @@
 /**
  * The runtime cache (runtime-cache.ts) with a small runtime source folder built by the real make
  * and gcc: one build per key, shared by two caches on the same folder (two processes), a new key
- * when a source changes, a half-finished build folder never used, a planted link refused.
+ * when a source changes, a half-finished build folder never used, the build folders of killed
+ * processes removed, a planted link refused.
  */
-import { chmodSync, mkdirSync, mkdtempSync, readdirSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
+import { spawn, spawnSync } from 'node:child_process';
+import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, statSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
@@ -74,6 +76,40 @@ describe('RuntimeCache', () => {
     expect(await new RuntimeCache(source, cacheDir).ensure(log)).toBe(dir);
     expect(lines.join('\n')).toContain('building the runtime');
     expect(statSync(join(dir, 'build', 'contract-launch')).isFile()).toBe(true);
+  });
+
+  test('the build folder a killed process left is removed by the next build; a live or recent one is kept', async () => {
+    // a pid that existed and ended: `true`, waited for
+    const dead = spawnSync('true').pid!;
+    const live = spawn('sleep', ['30']);
+    try {
+      const old = (Date.now() - 20 * 60_000) / 1000;
+      const folder = (pid: number, rand: string, age: number | undefined) => {
+        const d = join(cacheDir, `.building-0123456789abcdef-${pid}-${rand}`);
+        mkdirSync(join(d, 'build'), { recursive: true });
+        writeFileSync(join(d, 'build', 'lib.o'), 'half a build');
+        if (age !== undefined) utimesSync(d, age, age);
+        return d;
+      };
+      const abandoned = folder(dead, 'aaaaaaaa', old);
+      const running = folder(live.pid!, 'bbbbbbbb', old);
+      const recent = folder(dead, 'cccccccc', undefined);
+      // a link with a build folder's name is not followed: its target stays
+      mkdirSync(join(scratch, 'kept-target'), { recursive: true });
+      writeFileSync(join(scratch, 'kept-target', 'file'), 'x');
+      const link = join(cacheDir, `.building-0123456789abcdef-${dead}-dddddddd`);
+      symlinkSync(join(scratch, 'kept-target'), link);
+      // a new key: a build, which sweeps first
+      writeFileSync(join(source, 'src', 'lib.c'), 'int contract_value(void) { return 3; }\n');
+      await new RuntimeCache(source, cacheDir).ensure(log);
+      expect(existsSync(abandoned)).toBe(false);
+      expect(existsSync(running) && existsSync(recent)).toBe(true);
+      expect(existsSync(join(scratch, 'kept-target', 'file'))).toBe(true);
+      for (const d of [running, recent, link]) rmSync(d, { recursive: true, force: true });
+    } finally {
+      live.kill('SIGKILL');
+      runtimeSources(source, 1);
+    }
   });
 
   test('a link planted in place of the runtime folder is refused with a clear message', async () => {

@@ -14,6 +14,7 @@ import { createHash, randomBytes } from 'node:crypto';
 import { existsSync, promises as fsp } from 'node:fs';
 import { availableParallelism, machine } from 'node:os';
 import { join } from 'node:path';
+import { removeAbandonedBuilds } from '../cache/abandoned-builds.js';
 import { assertCacheEntry } from '../cache/cache-dir.js';
 import { listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 
@@ -114,6 +115,8 @@ export class RuntimeCache {
     }
     // a folder without its stamp is a build that did not finish (older layout): not trusted
     await removeTreeNoFollow(final);
+    await removeAbandonedBuilds(this.cacheDir, RUNTIME_BUILDING);
+    // named as RUNTIME_BUILDING matches: a killed build's folder is removed by a later build
     const dir = join(this.cacheDir, `.building-${key}-${process.pid}-${randomBytes(4).toString('hex')}`);
     await fsp.mkdir(dir, { mode: 0o700 });
     for (const [rel, data] of contents) await syncFileNoFollow(dir, rel, data, undefined, /\.(sh)$/.test(rel) ? 0o755 : 0o644);
@@ -155,3 +158,6 @@ export class RuntimeCache {
     }
   }
 }
+
+/** `.building-<key>-<pid>-<random>`: a runtime build in progress, by process pid. */
+export const RUNTIME_BUILDING = /^\.building-[0-9a-f]{16}-(\d{1,10})-[0-9a-f]{8}$/;

@@ -20,7 +20,7 @@ import { createHash } from 'node:crypto';
 import { existsSync, mkdirSync, readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { acquireProjectLock, type ProjectLock } from '@contract-studio/build-service/cache';
+import { acquireProjectLock, removeAbandonedBuilds, type ProjectLock } from '@contract-studio/build-service/cache';
 import { simulatorCacheDir } from './cache.js';
 import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
@@ -141,11 +141,16 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     try {
         // the build we waited for may have made this very executable
         if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
+        await removeAbandonedBuilds(cache.dir, SIM_BUILDING);
         return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0, confinement: options.confinement });
     } finally {
         await lock.release();
     }
 }
+
+/** `sim-<key>.tmp-<pid>-<random>`: a harness being compiled by process pid (compileAndLink); one a
+ *  killed build left is removed by the next build. */
+export const SIM_BUILDING = /^sim-[0-9a-f]{20}\.tmp-(\d{1,10})-[0-9a-z]+$/;
 
 interface CompileJob {
     cc: string;
