@@ -344,7 +344,8 @@ export class Job {
       if (this.cancelRequested) await tail?.stop();
       else await tail?.finish();
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
-      if (!this.cancelRequested) await this.collectArtifacts(ctx.sandbox, ws.workDir);
+      // a cancelled run's logs too: what it wrote until it was stopped is the user's record of it
+      await this.collectArtifacts(ctx.sandbox, ws.workDir);
       const issues = this.runIssues.all;
       if (!run.ok) {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
@@ -459,7 +460,9 @@ export class Job {
     const t0 = Date.now();
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
-      this.artifacts = await collectRunArtifacts(reader, workDir, undefined, (_name, data) => this.runIssues.log(data));
+      const collected = await collectRunArtifacts(reader, workDir, undefined, (_name, data) => this.runIssues.log(data));
+      // a cancelled run's processes were killed: the mailboxes and pid files they leave say nothing
+      this.artifacts = this.cancelRequested ? { ...collected, runDirLeftovers: [] } : collected;
       this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
       this.runIssues.artifacts(a);

@@ -1,9 +1,12 @@
 /**
- * Ctrl+C on `contract run` (or its output's reader gone: `| head`): the job is cancelled, every process stopped, exit 130, no workspace left.
+ * Ctrl+C on `contract run` (or its output's reader gone: `| head`): the job is cancelled, every process stopped, exit 130, no workspace left,
+ * and the CSV logs the run wrote until then saved in PROJECT/logs as a finished run's are.
  * `kill -9` of `contract build` mid-make: the project's kept work tree is not trusted by the next
  * build (docs/getting-started.md "The build cache"), which is not blocked by the dead one's lock.
  */
 import { spawn, type ChildProcessByStdio } from 'node:child_process';
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import type { Readable } from 'node:stream';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { BIN, contract, leftoverWorkspaces, processesMentioning, seededScratchCopy, type Scratch } from './harness.js';
@@ -43,6 +46,14 @@ describe('contract run interrupted', () => {
         expect(run.stderr()).toContain('FAILED: cancelled');
         expect(processesMentioning(scratch.root)).toEqual([]);
         expect(leftoverWorkspaces(scratch)).toEqual([]);
+        // what the run wrote until then is kept: its logs in tutorial/logs, GLB's with the mission it started
+        const logs = join(scratch.root, 'tutorial', 'logs');
+        const csv = readdirSync(logs).filter((n) => n.endsWith('.csv'));
+        expect(csv.map((n) => n.split('_')[0]).sort()).toEqual(['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP']);
+        expect(readFileSync(join(logs, csv.find((n) => n.startsWith('GLB_'))!), 'utf8')).toContain(',supervisor,,,0,function mission started');
+        expect(run.stderr()).toContain(`CSV logs: 9 file(s) in ${logs}`);
+        // the killed modules' mailboxes are no news
+        expect(run.stderr()).not.toContain('left files in its run directory');
     }, 240_000);
 
     it('stops as on Ctrl+C when the reader of its output goes away (`contract run … | head`): exit 130, no stack trace, nothing left running', async () => {

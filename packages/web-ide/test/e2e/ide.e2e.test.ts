@@ -456,8 +456,8 @@ describe('IDE in headless Chromium', () => {
     await page.locator('#follow-tail').check();
     // a reload during a run: the tab follows the job again (its log from the start, then live).
     // Another tab, open before the run, follows it from its start; a tab opened during the run
-    // follows it too; Stop in one tab ends it for all (a cancelled run brings no logs: the
-    // timeline keeps the finished one)
+    // follows it too; Stop in one tab ends it for all, and the logs the run wrote until then are
+    // collected as a finished run's are (ready for the Timeline and the Monitor's replay)
     const second = await openAnotherTab(s, page);
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 60, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' })));
     await page.locator('#btn-run').click();
@@ -498,6 +498,7 @@ describe('IDE in headless Chromium', () => {
       await expect.poll(() => tab.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
       await expect.poll(() => tab.locator('#btn-run').isEnabled()).toBe(true);
     }
+    await second.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 15_000 });
     await second.close();
     await third.close();
   }, 240_000);
