@@ -18,9 +18,9 @@
  * - values: OBS:0 distances that changed a rule are named by their cause (`value=0.35`, `value=5`);
  *   those that changed none are replayed as 0.75, a distance that neither starts a safe stop
  *   (< 0.5) nor ends one (> 1.0), whatever the mode (the real one was 5 in AUTO or 0.35 in STOP:
- *   changing nothing either); joystick and navigation commands are `Twist` datatypes, logged as
- *   `{16 bytes}` and replayed as {0.0, 0.0}: the rules test only `v > 100.0` (false for both) and
- *   store them;
+ *   changing nothing either); joystick and navigation commands are `Twist` datatypes, logged
+ *   field by field (`{v=0.3,w=0}`) and replayed with that value when they changed a rule, else as
+ *   {0.0, 0.0}: the rules test only `v > 100.0` (false for both) and store them;
  * - OBS:1 laser scans (180 beams) are logged abridged (`{ranges=[5,5,...],blocked=true}`): a scan
  *   that changed a rule is rebuilt as OBS sends it (beams 80 to 100 at 0.35 m when blocked, every
  *   other beam at 5 m), so the simulator's cause prints as the real one; a scan that changed none is

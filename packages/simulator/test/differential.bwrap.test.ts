@@ -6,8 +6,9 @@
  *
  * The events are the run's (test/differential/replay-run.ts: what is replayed and how values are
  * found). Values the logs do not give: MAA:2 events that changed no rule were "connected" (the only
- * other status the tutorial's MAA script posts); datatype values are logged as `{N bytes}` and the
- * tutorial's rules test none of them, so they are replayed with the type's default.
+ * other status the tutorial's MAA script posts); a datatype's value that changed a rule is logged field
+ * by field and replayed as logged; one that changed none (the tutorial's rules test none of them)
+ * takes the type's default.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { RuleRecord } from '@contract-studio/build-service/trace';

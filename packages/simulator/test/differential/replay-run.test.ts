@@ -4,7 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { parseTrace } from '@contract-studio/build-service/trace';
-import { scenarioOfRun } from './replay-run.js';
+import { scenarioOfRun, scenarioValueOf } from './replay-run.js';
 
 const W = '2026-12-03T16:00:00.000000Z';
 const csv = (module: string, lines: string[]): { name: string; text: string } => ({
@@ -133,5 +133,37 @@ describe('scenarioOfRun', () => {
         const { obs0, obs1, ord0 } = run(true);
         expect(ord0.t - obs0.t).toBe(2_900_000n);
         expect(obs1.t - obs0.t).toBe(1_930_000n);
+    });
+});
+
+describe('scenarioOfRun: events a busy supervisor took late', () => {
+    it('a module event is replayed when the engine took it (event_received), with the value of the decision it caused', () => {
+        // SUP waited for MAA's priority answer: the event that arrived at 1.0 s was taken at 1.25 s,
+        // with the one that arrived then; the first made RECEPTION active
+        const logs = [csv('SUP', [
+            '100000000,W,SUP,request_received,contract-launch,,0,START action',
+            '100000000,W,SUP,supervisor,,,0,function action started',
+            '1000000000,W,SUP,request_received,MAA,1,288,EVENT from_port=0',
+            '1250000000,W,SUP,request_received,MAA,1,288,EVENT from_port=0',
+            '1250100000,W,SUP,event_received,MAA,1,288,from_port=0 latency_ns=50000',
+            '1250200000,W,SUP,sup_rule,,,0,"action.RECEPTION active cause=MAA:0 value={message=""FUFU"",messagetype=1}"',
+            '1250300000,W,SUP,event_received,MAA,1,288,from_port=0 latency_ns=60000',
+            '3000000000,W,SUP,request_received,contract-launch,,0,STOP',
+        ])];
+        const { text } = scenarioOfRun(parseTrace(logs), { supervisors: new Set(['SUP']), start: 'SUP.action()' });
+        const lines = text.split('\n').filter((l) => l.startsWith('t='));
+        expect(lines).toEqual(['t=1150100us MAA:0 {"FUFU", 1}', 't=1150300us MAA:0']);
+    });
+});
+
+describe('scenarioValueOf', () => {
+    it('writes a logged value in scenario syntax, or says the log does not give it whole', () => {
+        expect(scenarioValueOf('{v=0.5,w=-1e-05}')).toBe('{0.5, -1e-05}');
+        expect(scenarioValueOf('{message="a, b=c {d}",messagetype=2,value={i=1,j=2,k=3}}')).toBe('{"a, b=c {d}", 2, {1, 2, 3}}');
+        expect(scenarioValueOf('{q=[0.1,0.2],ok=true}')).toBe('{{0.1, 0.2}, true}');
+        expect(scenarioValueOf('"say \\"hi\\""')).toBe('"say \\"hi\\""');
+        expect(scenarioValueOf('0.35')).toBe('0.35');
+        // not whole, or not writable without the model
+        for (const cut of ['{ranges=[5,5,...],blocked=true}', '{288 bytes}', '{mode=AUTO}', '{name="abc', '{a=1,...}']) expect(scenarioValueOf(cut), cut).toBeUndefined();
     });
 });

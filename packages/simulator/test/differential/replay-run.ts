@@ -27,8 +27,10 @@
  * (`cause=OBS:0 value=0.35`), and it goes to the latest receipt of that source by the deciding
  * supervisor before the decision (the same file: no guessing). An ORD event names its schema in
  * ORD's own records: the k-th `ord_deadline_miss` for the k-th `ORD:0`, the k-th conflict for the
- * k-th `ORD:1`. Datatype values are logged as `{N bytes}` and events that changed no rule name no
- * value: those take the example's `fallback` (a value the test explains), else the type's default.
+ * k-th `ORD:1`. A datatype's value is logged field by field (`{v=0.5,w=0}`) and replayed as that
+ * value (scenarioValueOf); one logged abridged (an array's first elements, `...`), older logs'
+ * `{N bytes}` and events that changed no rule name no value: those take the example's `fallback`
+ * (a value the test explains), else the type's default.
  */
 import { spawnSync } from 'node:child_process';
 import { cpSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
@@ -132,6 +134,16 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     const end = stop ? mono(stop) : BigInt(Number.MAX_SAFE_INTEGER);
     const real = known.filter(isRule).filter((r) => plan.supervisors.has(r.module) && mono(r) < end);
 
+    // when each supervisor's engine took each module event (event_received, in its log's order): a
+    // supervisor waiting for a module's answer (a priority change, docs/engines.md "Known limits")
+    // takes an event that arrived meanwhile later, and the simulator, which never waits, is given it
+    // then; events of a log without them (and ORD's) count from their arrival
+    const takes = new Map<string, bigint[]>(); // `${supervisor} ${source}` -> times taken
+    for (const r of known) {
+        if (r.kind !== 'event_received' || !plan.supervisors.has(r.module) || plan.supervisors.has(r.peer)) continue;
+        const key = `${r.module} ${r.peer}:${(r as KnownRecord).fields?.['from_port'] ?? ''}`;
+        takes.set(key, [...(takes.get(key) ?? []), mono(r)]);
+    }
     // every event each supervisor received from a module, over the whole run, in its log's order
     const received = new Map<string, Receipt[]>(); // `${supervisor} ${source}` -> receipts
     const receivers = new Map<string, string[]>(); // source -> its supervisors
@@ -145,7 +157,8 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
             received.set(key, []);
             receivers.set(source, [...(receivers.get(source) ?? []), r.module]);
         }
-        received.get(key)!.push({ t: mono(r), source });
+        const list = received.get(key)!;
+        list.push({ t: takes.get(key)?.[list.length] ?? mono(r), source });
     }
     // one emission per event sent: the k-th receipt of a source at each of its supervisors
     const emissions: Emission[] = [];
@@ -191,7 +204,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
             if (x.t > mono(r)) break;
             receipt = x;
         }
-        if (receipt?.emission && receipt.emission.value === undefined) receipt.emission.value = plan.causeValue?.(c.module, c.port, c.value) ?? c.value;
+        if (receipt?.emission && receipt.emission.value === undefined) receipt.emission.value = plan.causeValue?.(c.module, c.port, c.value) ?? scenarioValueOf(c.value);
     }
 
     const replayed = emissions.filter((e) => e.t >= t0 && e.t < end).sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
@@ -204,6 +217,51 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
         lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source} ${value}`.trimEnd());
     }
     return { text: lines.join('\n') + '\n', real, counts };
+}
+
+/**
+ * A value as a rule's cause logs it, in scenario syntax: a datatype's fields without their names
+ * (`{v=0.5,w=0}` -> `{0.5, 0}`), an array in braces (`[1,2]` -> `{1, 2}`); undefined when the log
+ * does not give the whole value (`...` of an abridged array or string, `{N bytes}`) or gives an
+ * enumeration member without its enumeration (`AUTO`): such an event is replayed with the plan's
+ * fallback.
+ */
+export function scenarioValueOf(logged: string): string | undefined {
+    if (LOGGED_DATATYPE.test(logged)) return undefined;
+    let out = '';
+    for (let i = 0; i < logged.length;) {
+        const ch = logged[i]!;
+        if (ch === '"') {
+            let j = i + 1;
+            while (j < logged.length && logged[j] !== '"') j += logged[j] === '\\' ? 2 : 1;
+            if (j >= logged.length) return undefined; // cut inside the string
+            out += logged.slice(i, j + 1);
+            i = j + 1;
+        } else if (logged.startsWith('...', i)) {
+            return undefined;
+        } else if (ch === '[' || ch === '{') {
+            out += '{';
+            i++;
+        } else if (ch === ']' || ch === '}') {
+            out += '}';
+            i++;
+        } else if (ch === ',') {
+            out += ', ';
+            i++;
+        } else {
+            const word = /^[A-Za-z_]\w*/.exec(logged.slice(i));
+            if (word && logged[i + word[0].length] === '=') {
+                i += word[0].length + 1; // a field's name
+            } else if (word && word[0] !== 'true' && word[0] !== 'false') {
+                return undefined; // an enumeration member, logged without its enumeration
+            } else {
+                const token = word?.[0] ?? /^[^,\]}]+/.exec(logged.slice(i))![0];
+                out += token;
+                i += token.length;
+            }
+        }
+    }
+    return out;
 }
 
 /** How long before a decision the event that caused it may have been received (same file: microseconds). */

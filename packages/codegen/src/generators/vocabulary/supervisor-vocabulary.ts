@@ -8,7 +8,9 @@ import { assignments, valueRef, valueType, type Resolver } from './value-refs.js
 
 /** `<SUP>_mod/vocabulary.c`: a supervisor's ports, functions, rules, conditions and actions as tables. */
 export function generateSupervisorVocabulary(sup: Supervisor, priority: number, index: ArchitectureIndex): string {
-    const b = new TableBuilder(index);
+    // every datatype with its field table: the rule causes of the trace show an event's value field
+    // by field (`TEL:0 value={v=0.5,w=0}`), not `{16 bytes}`
+    const b = new TableBuilder(index, { allFieldTables: true });
     const schemas = new Map<string, string>();
     const signatures = new Map<string, string>();
     const S = sup.name;

@@ -9,11 +9,22 @@
 #include "SharedTypeD.h"
 
 static const TypeA contract_default_TypeA = { 0.0, 0.0, 0.0 };
-CONTRACT_DEFINE_TYPE(TypeA, &contract_default_TypeA)
+static const ContractField contract_fields_TypeA[] = {
+    {"i", offsetof(TypeA, i), &contract_type_double},
+    {"j", offsetof(TypeA, j), &contract_type_double},
+    {"k", offsetof(TypeA, k), &contract_type_double}};
+CONTRACT_DEFINE_TYPE_FIELDS(TypeA, &contract_default_TypeA, 3, contract_fields_TypeA)
 static const TypeC contract_default_TypeC = { "\0", 0, { 0.0, 0.0, 0.0 } };
-CONTRACT_DEFINE_TYPE(TypeC, &contract_default_TypeC)
+static const ContractField contract_fields_TypeC[] = {
+    {"message", offsetof(TypeC, message), &contract_type_string},
+    {"messagetype", offsetof(TypeC, messagetype), &contract_type_long},
+    {"value", offsetof(TypeC, value), &contract_type_TypeA}};
+CONTRACT_DEFINE_TYPE_FIELDS(TypeC, &contract_default_TypeC, 3, contract_fields_TypeC)
 static const TypeD contract_default_TypeD = { "\0", 0 };
-CONTRACT_DEFINE_TYPE(TypeD, &contract_default_TypeD)
+static const ContractField contract_fields_TypeD[] = {
+    {"dataname", offsetof(TypeD, dataname), &contract_type_string},
+    {"datavalue", offsetof(TypeD, datavalue), &contract_type_long}};
+CONTRACT_DEFINE_TYPE_FIELDS(TypeD, &contract_default_TypeD, 2, contract_fields_TypeD)
 
 static const ContractEventPort in_ports[] = {
     {1, "message_received", &contract_type_TypeC, NULL},
