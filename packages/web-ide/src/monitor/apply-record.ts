@@ -239,6 +239,15 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       m.alive = k.kind === 'module_started';
       if (!m.alive) m.running = false;
       m.since = t;
+      // ORD gone (the end of a run: the launcher stops it before the supervisors, whose undos then
+      // find no ORD to deactivate their schemas): no periodic schema runs any more
+      if (!m.alive && k.module === 'ORD') {
+        for (const sc of s.schemas.values()) {
+          if (!sc.active) continue;
+          sc.active = false;
+          sc.since = t;
+        }
+      }
       return;
     }
     case 'data_posted':

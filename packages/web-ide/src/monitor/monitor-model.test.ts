@@ -46,6 +46,25 @@ describe('supervisorChanges', () => {
   });
 });
 
+describe('the end of a run', () => {
+  it('ORD gone: no periodic schema is active any more, even when no supervisor could deactivate it', () => {
+    // a new project's run: MIS.START activates goTo; at the end the launcher stops ORD first, and
+    // MIS's undo finds no ORD to ask (its CSV has no deactivate)
+    const model = new MonitorModel({ checkpointEvery: 4 });
+    const records = [
+      line(1_000_000, 'ORD', 'module_started', '', '', 'pid=14 priority=90'),
+      line(2_000_000, 'ORD', 'scheduler', '', '', 'activate goTo'),
+      line(900_000_000, 'ORD', 'module_exit', '', '', 'status=0 records=709'),
+      line(900_500_000, 'MIS', 'sup_rule', '', '', 'mission.START inactive cause=stop'),
+    ];
+    model.pushAll(records);
+    const catalogue = [{ name: 'goTo', kind: 'periodic' as const, modules: ['LOC', 'CTL'] }];
+    expect(activeSchemas(model.stateAt(500_000_000 - 1_000_000), catalogue).map((x) => x.name)).toEqual(['goTo']);
+    expect(activeSchemas(model.live, catalogue)).toEqual([]);
+    expect(model.live.schemas.get('goTo')).toMatchObject({ active: false, since: 899_000_000, activations: 1 });
+  });
+});
+
 describe('monitor model on a recorded tutorial run', () => {
   const model = new MonitorModel({ checkpointEvery: 16 });
   model.pushAll(tutorial);
