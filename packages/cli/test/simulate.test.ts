@@ -38,7 +38,7 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         try {
             const io = capture(dir);
             expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), scenario('mission.scenario'), '--cache-dir', cache, '--trace', 'sim.jsonl', '--format', 'json'], io), io.stderr).toBe(0);
-            const records = readFileSync(join(dir, 'sim.jsonl'), 'utf8').trimEnd().split('\n').map((l) => JSON.parse(l) as { kind: string; module: string; peer: string; monoNs: string; detail: string; rule?: string; active?: boolean; cause?: string });
+            const records = readFileSync(join(dir, 'sim.jsonl'), 'utf8').trimEnd().split('\n').map((l) => JSON.parse(l) as { kind: string; module: string; peer: string; monoNs: string; port: number | null; detail: string; rule?: string; active?: boolean; cause?: string });
             // one simulation after the other, each from its sim_start at time 0 naming the scenario
             const starts = records.flatMap((r, i) => (r.kind === 'sim_start' ? [i] : []));
             expect(starts).toHaveLength(2);
