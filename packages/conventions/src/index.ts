@@ -1,8 +1,9 @@
 /**
  * @contract-studio/conventions — what the packages agree on (browser-safe, no dependencies): the
- * generated tree's layout, the sandbox conventions and the protected-region markers with their
- * one parser (docs/architecture.md "Shared conventions").
+ * generated tree's layout, the sandbox conventions, the protected-region markers with their
+ * one parser and the writing of a time literal (docs/architecture.md "Shared conventions").
  */
 export * from './layout.js';
 export * from './sandbox.js';
 export * from './regions.js';
+export * from './time-literal.js';

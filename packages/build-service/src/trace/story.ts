@@ -4,6 +4,7 @@
  * conflicts, deadline misses with their cycle, overruns, module starts and exits. Releases,
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
+import { formatNanoseconds } from '@contract-studio/conventions';
 import { parseCause } from './parse.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
@@ -24,18 +25,13 @@ function describeCause(c: RuleCause): string {
         case 'event': return `${c.module}:${c.port} = ${c.value}`;
         case 'started': return `started(${c.rule})`;
         case 'endof': return `endof(${c.rule})`;
-        case 'duration': return `duration(${c.rule})=${timeLiteral(c.ns)}`;
-        case 'elapsed': return `elapsed=${timeLiteral(c.ns)}`;
+        case 'duration': return `duration(${c.rule})=${formatNanoseconds(c.ns)}`;
+        case 'elapsed': return `elapsed=${formatNanoseconds(c.ns)}`;
         case 'stop': return 'its function stopped';
         case 'other': return c.text;
     }
 }
 
-/** A time as a Cactal time literal: the coarsest unit that writes it whole (`1ms`, `250us`, `2s`, `1500ms`). */
-function timeLiteral(ns: number): string {
-    for (const [unit, size] of [['s', 1e9], ['ms', 1e6], ['us', 1e3]] as const) if (ns !== 0 && ns % size === 0) return `${ns / size}${unit}`;
-    return `${ns}ns`;
-}
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused']);

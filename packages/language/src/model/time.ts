@@ -16,10 +16,5 @@ export function timeToNanoseconds(text: string): number {
     return Math.round(parsed.amount * UNIT_NS[parsed.unit]!);
 }
 
-/** Readable form of a duration in nanoseconds, with the largest unit that keeps it exact-ish. */
-export function formatNanoseconds(ns: number): string {
-    if (ns !== 0 && ns % 1_000_000_000 === 0) return `${ns / 1_000_000_000}s`;
-    if (ns !== 0 && ns % 1_000_000 === 0) return `${ns / 1_000_000}ms`;
-    if (ns !== 0 && ns % 1_000 === 0) return `${ns / 1_000}us`;
-    return `${ns}ns`;
-}
+/** Readable form of a duration in nanoseconds (shared with the trace and the simulator). */
+export { formatNanoseconds } from '@contract-studio/conventions';

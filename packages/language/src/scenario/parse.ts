@@ -7,6 +7,7 @@
  * One line = one directive, optionally timed: `[t=TIME] DIRECTIVE`; `expect at TIME ...` is the
  * same as `t=TIME expect ...`. A line without a time takes the previous line's time (0 at first).
  */
+import { formatNanoseconds } from '@contract-studio/conventions';
 
 /** 1-based line and columns; `endColumn` is exclusive. */
 export interface SourceSpan {
@@ -100,11 +101,7 @@ export function parseTimeLiteral(text: string): number | undefined {
 
 /** Readable time: the largest unit that keeps it exact (`1s`, `300ms`, `1500us`, `7ns`). */
 export function formatTime(ns: number): string {
-    if (ns === 0) return '0';
-    if (ns % 1_000_000_000 === 0) return `${ns / 1_000_000_000}s`;
-    if (ns % 1_000_000 === 0) return `${ns / 1_000_000}ms`;
-    if (ns % 1_000 === 0) return `${ns / 1_000}us`;
-    return `${ns}ns`;
+    return ns === 0 ? '0' : formatNanoseconds(ns);
 }
 
 class Failure {
