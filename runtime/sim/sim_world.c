@@ -56,7 +56,8 @@ typedef struct SimFinish {
 /* A data flow ORD connected (`A:o -> B:i * k`): B receives what A posts on every k-th activation
    of A since the connection, as libmodule's PostData counts (dataflow.c). */
 typedef struct SimFlow {
-    char src[64], dst[64];
+    int src;             /* A: its index in mods (a release's end compares no names)              */
+    char dst[64];
     int src_port, dst_port, periodicity;
     long base;           /* A's activations when connected                                      */
 } SimFlow;
@@ -290,11 +291,10 @@ static void oio_set_param(void *ctx, const char *module, int port, const void *v
     (void)value;
     action(ctx, "ORD", "parameterize %s:%d (%zu bytes)", module, port, size);
 }
-static int flow_index(const SimWorld *w, const ContractDataFlow *f) {
+static int flow_index(const SimWorld *w, int src, const ContractDataFlow *f) {
     for (int i = 0; i < w->nflows; i++) {
         const SimFlow *g = &w->flows[i];
-        if (g->src_port == f->src_port && g->dst_port == f->dst_port && strcmp(g->src, f->src_module) == 0 &&
-            strcmp(g->dst, f->dst_module) == 0)
+        if (g->src == src && g->src_port == f->src_port && g->dst_port == f->dst_port && strcmp(g->dst, f->dst_module) == 0)
             return i;
     }
     return -1;
@@ -303,32 +303,35 @@ static void oio_connect(void *ctx, const ContractDataFlow *f) {
     SimWorld *w = ctx;
     action(w, "ORD", "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module,
            f->dst_port, f->periodicity);
-    int i = flow_index(w, f), src = module_index(w, f->src_module, 1);
+    int src = module_index(w, f->src_module, 1);
+    if (src < 0) return;
+    int i = flow_index(w, src, f);
     if (i < 0) {
         if (grow((void **)&w->flows, &w->capflows, w->nflows + 1, sizeof *w->flows)) return;
         i = w->nflows++;
     }
     SimFlow *g = &w->flows[i];
-    scopy(g->src, sizeof g->src, f->src_module);
+    g->src = src;
     scopy(g->dst, sizeof g->dst, f->dst_module);
     g->src_port = f->src_port;
     g->dst_port = f->dst_port;
     g->periodicity = f->periodicity < 1 ? 1 : f->periodicity;
-    g->base = src >= 0 ? w->mods[src].activations : 0;
+    g->base = w->mods[src].activations;
 }
 static void oio_disconnect(void *ctx, const ContractDataFlow *f) {
     SimWorld *w = ctx;
     action(w, "ORD", "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module,
            f->dst_port);
-    int i = flow_index(w, f);
+    int i = flow_index(w, module_index(w, f->src_module, 0), f);
     if (i >= 0) w->flows[i] = w->flows[--w->nflows];
 }
 /* A virtual module posts each of its connected output ports once per run (it runs no code: the
    value is not known), at the end of the run: the producer's data_posted records of a real run. */
-static void post_data(SimWorld *w, const SimModule *m, long activation) {
+static void post_data(SimWorld *w, int module, long activation) {
+    const SimModule *m = &w->mods[module];
     for (int i = 0; i < w->nflows; i++) {
         const SimFlow *g = &w->flows[i];
-        if (strcmp(g->src, m->name) != 0) continue;
+        if (g->src != module) continue;
         long n = activation - g->base;
         if (n <= 0 || n % g->periodicity != 0) continue;
         record(w, m->name, "data_posted", g->dst, g->src_port, "to_port=%d", g->dst_port);
@@ -553,7 +556,7 @@ static int finish_one(SimWorld *w, int64_t t) {
     SimModule *m = &w->mods[f.module];
     if (m->outstanding > 0) m->outstanding--;
     w->finished++;
-    post_data(w, m, f.activation);
+    post_data(w, f.module, f.activation);
     record(w, m->name, "run_finished", "ORD", -1, "activation=%ld ACK_FINISHED", f.activation);
     if (w->ord) ord_core_release_finished(w->ord, w->now, m->name, f.release_id);
     drain(w);
