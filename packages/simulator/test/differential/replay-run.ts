@@ -142,7 +142,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     for (const r of known) {
         if (r.kind !== 'event_received' || !plan.supervisors.has(r.module) || plan.supervisors.has(r.peer)) continue;
         const key = `${r.module} ${r.peer}:${(r as KnownRecord).fields?.['from_port'] ?? ''}`;
-        takes.set(key, [...(takes.get(key) ?? []), mono(r)]);
+        (takes.get(key) ?? takes.set(key, []).get(key)!).push(mono(r));
     }
     // every event each supervisor received from a module, over the whole run, in its log's order
     const received = new Map<string, Receipt[]>(); // `${supervisor} ${source}` -> receipts
