@@ -107,13 +107,6 @@ static int cycles_delayed(const Trace *const *t, int nt, const Fit *f) {
     return delayed;
 }
 
-/* lines of csv that contain text */
-static int count_lines(const char *csv, const char *text) {
-    int n = 0;
-    for (const char *p = csv ? strstr(csv, text) : NULL; p; p = strstr(p + 1, text)) n++;
-    return n;
-}
-
 /* ORD's ord_release records of `module` (docs/runtime-api.md "Trace records"): cycles 0, 1, 2...
    in order (none skipped unless ORD skipped the tick), each tick exactly tick_0 + cycle * period,
    released at or after its tick. Returns the number of records, -1 when one breaks that. */
@@ -203,10 +196,10 @@ void scenario_scheduler(const char *root, const char *bin, const char *launcher)
               check_releases(ord, "IMB", 20000000LL, overruns + missed) == b.nstart,
           "ORD's log has an ord_release record per release IMA and IMB ran, cycles in order, ticks at "
           "tick_0 + cycle * 20 ms, released at or after the tick");
-    check(ord && count_lines(ord, ",ord_finished,IMA,") == a.nend && count_lines(ord, ",ord_finished,IMC,") == c.nend,
+    check(ord && count_of(ord, ",ord_finished,IMA,") == a.nend && count_of(ord, ",ord_finished,IMC,") == c.nend,
           "ORD's log has an ord_finished record per run IMA and IMC finished");
-    check(ord && count_lines(ord, ",ord_complete,") == json_number(js, "completed") &&
-              count_lines(ord, ",ord_deadline_miss,") == misses,
+    check(ord && count_of(ord, ",ord_complete,") == json_number(js, "completed") &&
+              count_of(ord, ",ord_deadline_miss,") == misses,
           "ORD's log has an ord_complete record per completed cycle and an ord_deadline_miss per miss");
     check(isu && strstr(isu, ",sup_rule,,,0,go.R1 active cause=elapsed=10000000ns\n") &&
               strstr(isu, ",sup_rule,,,0,\"go.R3 active cause=ORD:1 value=\"\"ICF\"\"\"\n") &&

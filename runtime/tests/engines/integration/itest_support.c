@@ -125,6 +125,24 @@ long json_number(const char *json, const char *key) {
     return p ? strtol(p + strlen(pat), NULL, 10) : -1;
 }
 
+int count_of(const char *s, const char *text) {
+    int n = 0;
+    for (const char *p = s ? strstr(s, text) : NULL; p; p = strstr(p + 1, text)) n++;
+    return n;
+}
+
+int lines_with(const char *s, const char *a, const char *b) {
+    int n = 0;
+    for (const char *line = s; line && *line;) {
+        const char *end = strchr(line, '\n');
+        size_t len = end ? (size_t)(end - line) : strlen(line);
+        const char *pa = strstr(line, a), *pb = strstr(line, b);
+        if (pa && pb && pa < line + len && pb < line + len) n++;
+        line = end ? end + 1 : NULL;
+    }
+    return n;
+}
+
 long long csv_time_of(const char *csv, const char *from, const char *text, const char **at) {
     if (!csv) return -1;
     const char *p = from ? from : csv;

@@ -44,6 +44,10 @@ long json_number(const char *json, const char *key);
 /** mono_ns of the first CSV record at or after `from` (a position in csv) whose line contains
  *  `text`; -1 if none. *at (may be NULL) receives the position after that line. */
 long long csv_time_of(const char *csv, const char *from, const char *text, const char **at);
+/** How many times `text` occurs in s (NULL: 0). */
+int count_of(const char *s, const char *text);
+/** How many lines of s contain both a and b. */
+int lines_with(const char *s, const char *a, const char *b);
 
 /** What imod.c writes to <out>/<name>.trace. */
 #define TRACE_MAX 256

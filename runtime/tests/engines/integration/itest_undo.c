@@ -25,25 +25,6 @@ static long long csv_last_time(const char *csv, const char *text) {
     return last;
 }
 
-static int count_of(const char *s, const char *text) {
-    int n = 0;
-    for (const char *p = s ? strstr(s, text) : NULL; p; p = strstr(p + 1, text)) n++;
-    return n;
-}
-
-/* how many lines of s contain both a and b */
-static int lines_with(const char *s, const char *a, const char *b) {
-    int n = 0;
-    for (const char *line = s; line && *line;) {
-        const char *end = strchr(line, '\n');
-        size_t len = end ? (size_t)(end - line) : strlen(line);
-        const char *pa = strstr(line, a), *pb = strstr(line, b);
-        if (pa && pb && pa < line + len && pb < line + len) n++;
-        line = end ? end + 1 : NULL;
-    }
-    return n;
-}
-
 void scenario_undo_own(const char *root, const char *bin, const char *launcher) {
     Scenario s;
     if (!scenario_begin(&s, root, "undo")) return;
