@@ -4,8 +4,13 @@
  * the supervisor start request, and stops everything cleanly (no process or socket left).
  *
  *   contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']
- *                   [--duration SECONDS] [--ready-timeout SECONDS]
+ *                   [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']
  *                   [--cpus LIST] [--pm-qos-us N] EXECUTABLE...
+ *
+ * Stopping (end of --duration, SIGINT, SIGTERM, --kill): the modules named by --stop-first (the
+ * generated Makefile names the supervisors) get their KILL request first and the launcher waits
+ * for them (up to 2 s), so that their undo (deactivate schemas, stop modules) still reaches ORD
+ * and the modules; then every other module gets its KILL request.
  *   contract-launch --kill RUN_DIR
  *
  * Exit status: 0 all modules ran and stopped cleanly; 1 a module crashed (named on stderr);
@@ -51,6 +56,7 @@ static Child children[MAX_MODULES];
 static int n_children;
 static char run_dir[PATH_MAX];
 static int stopping;
+static const char *stop_first;  /* --stop-first: names, separated by spaces or commas */
 static cpu_set_t module_cpus;  /* --cpus: every module's affinity */
 static int pin_modules;
 
@@ -69,7 +75,7 @@ static void usage(void)
 {
     fprintf(stderr,
             "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
-            "                       [--duration SECONDS] [--ready-timeout SECONDS]\n"
+            "                       [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']\n"
             "                       [--cpus LIST] [--pm-qos-us N] EXECUTABLE...\n"
             "       contract-launch --kill RUN_DIR\n");
 }
@@ -360,17 +366,41 @@ static int alive_count(void)
     return n;
 }
 
-/* Poll outputs and signals until `deadline` or until stop is asked. Returns 1 if a stop signal came. */
-static int run_loop(int sfd, RTIME deadline, int until_all_dead, int until_ready)
+/* 1 if `name` is one of the --stop-first names. */
+static int stops_first(const char *name)
+{
+    size_t n = strlen(name);
+    for (const char *p = stop_first; p && *p;) {
+        p += strspn(p, " ,");
+        size_t l = strcspn(p, " ,");
+        if (l == n && l > 0 && strncmp(p, name, n) == 0) return 1;
+        p += l;
+    }
+    return 0;
+}
+
+/* What a run_loop waits for (besides its deadline and a stop signal). */
+static int all_ready(void)
+{
+    scan_ready();
+    for (int i = 0; i < n_children; i++)
+        if (children[i].alive && !children[i].ready) return 0;
+    return 1;
+}
+static int all_ended(void) { return alive_count() == 0; }
+static int first_ended(void)
+{
+    for (int i = 0; i < n_children; i++)
+        if (children[i].alive && stops_first(children[i].name)) return 0;
+    return 1;
+}
+
+/* Poll outputs and signals until `deadline`, until `reached()` (may be NULL) or until stop is asked.
+ * Returns 1 if a stop signal came. */
+static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
 {
     for (;;) {
-        if (until_all_dead && alive_count() == 0) return 0;
-        if (until_ready) {
-            scan_ready();
-            int waiting = 0;
-            for (int i = 0; i < n_children; i++) waiting += children[i].alive && !children[i].ready;
-            if (!waiting) return 0;
-        }
+        if (reached && reached()) return 0;
         RTIME now = now_ns();
         if (deadline != INT64_MAX && now >= deadline) return 0;
         struct pollfd pfd[MAX_MODULES + 1];
@@ -398,20 +428,37 @@ static int run_loop(int sfd, RTIME deadline, int until_all_dead, int until_ready
     }
 }
 
+/* Sends KILL to the running modules of one group (those --stop-first names, or the others);
+ * returns how many. */
+static int send_kills(int first)
+{
+    int sent = 0;
+    for (int i = 0; i < n_children; i++)
+        if (children[i].alive && children[i].ready && stops_first(children[i].name) == first &&
+            ModuleState(children[i].name) == CONTRACT_OK) {
+            SendKill(children[i].name, ACK_NOTHING, -1);
+            sent++;
+        }
+    return sent;
+}
+
 static void stop_all(int sfd)
 {
     stopping = 1;
     mark_stopping();
-    for (int i = 0; i < n_children; i++)
-        if (children[i].alive && children[i].ready && ModuleState(children[i].name) == CONTRACT_OK)
-            SendKill(children[i].name, ACK_NOTHING, -1);
-    run_loop(sfd, now_ns() + 2000000000LL, 1, 0);
+    if (send_kills(1) > 0) {
+        run_loop(sfd, now_ns() + 2000000000LL, first_ended);
+        for (int i = 0; i < n_children; i++)
+            if (children[i].alive && stops_first(children[i].name)) say("module %s did not end within 2 s: stopping the others", children[i].name);
+    }
+    send_kills(0);
+    run_loop(sfd, now_ns() + 2000000000LL, all_ended);
     for (int i = 0; i < n_children; i++)
         if (children[i].alive) { say("module %s did not end on KILL: terminating it", children[i].name); kill(-children[i].pid, SIGTERM); }
-    run_loop(sfd, now_ns() + 1000000000LL, 1, 0);
+    run_loop(sfd, now_ns() + 1000000000LL, all_ended);
     for (int i = 0; i < n_children; i++)
         if (children[i].alive) kill(-children[i].pid, SIGKILL);
-    run_loop(sfd, now_ns() + 1000000000LL, 1, 0);
+    run_loop(sfd, now_ns() + 1000000000LL, all_ended);
     for (int i = 0; i < n_children; i++) if (children[i].alive) kill(-children[i].pid, SIGKILL);
     /* leftover children of modules (same process group) */
     for (int i = 0; i < n_children; i++) kill(-children[i].pid, SIGKILL);
@@ -471,6 +518,7 @@ int main(int argc, char *argv[])
         if (strcmp(a, "--run-dir") == 0) dir_opt = v;
         else if (strcmp(a, "--log-dir") == 0) log_dir = v;
         else if (strcmp(a, "--start") == 0) start = v;
+        else if (strcmp(a, "--stop-first") == 0) stop_first = v;
         else if (strcmp(a, "--duration") == 0) {
             duration = strtod(v, &end);
             if (*end || duration < 0) { say("--duration '%s': expected a number of seconds", v); return 2; }
@@ -558,7 +606,7 @@ int main(int argc, char *argv[])
         struct sched_param other = {0};
         if (sched_setscheduler(0, SCHED_OTHER, &other) != 0) say("could not leave SCHED_FIFO: %s", strerror(errno));
     }
-    int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), 0, 1);
+    int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), all_ready);
     int not_ready = 0;
     for (int k = 0; k < n_children; k++)
         if (children[k].alive && !children[k].ready) { not_ready++; say("module %s is not ready after %.0f s", children[k].name, ready_timeout); }
@@ -566,7 +614,7 @@ int main(int argc, char *argv[])
     if (!stop && start && *start && !not_ready) send_start(start);
     if (!stop) {
         RTIME deadline = duration >= 0 ? now_ns() + (RTIME)(duration * 1e9) : INT64_MAX;
-        run_loop(sfd, deadline, 1, 0);
+        run_loop(sfd, deadline, all_ended);
     }
     say("stopping");
     stop_all(sfd);

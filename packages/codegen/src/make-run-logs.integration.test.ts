@@ -3,7 +3,8 @@
  * does (docs/codegen.md "The architecture Makefile"): the CSV logs of the run before are moved to
  * LOG_DIR/previous/run-<time of the newest>/ first, never deleted. The recipe runs for real (GNU
  * make and a shell) on examples/tutorial's committed Makefile, with the launcher replaced by
- * `true` and `all` taken as made (`-o all`): only the move is exercised.
+ * `true` and `all` taken as made (`-o all`): only the move is exercised. With the launcher replaced
+ * by `echo`, the second test reads the command line: the supervisors are given to `--stop-first`.
  */
 import { spawnSync } from 'node:child_process';
 import { cpSync, existsSync, mkdirSync, readdirSync, utimesSync, writeFileSync } from 'node:fs';
@@ -65,5 +66,18 @@ describe('make run: one run per LOG_DIR', () => {
         expect(readdirSync(join(logs, 'previous')).sort()).toEqual([stamp(newest), `${stamp(newest)}-2`]);
         expect(readdirSync(join(logs, 'previous', `${stamp(newest)}-2`))).toEqual(['MAA_28-Nov-2026-09h30m07s.csv']);
         expect(readdirSync(to)).toHaveLength(2);
+    });
+});
+
+describe('make run: the supervisors stop first', () => {
+    it('gives the architecture\'s supervisors to contract-launch --stop-first, and every executable to run', () => {
+        const arch = join(root, 'stop-first');
+        mkdirSync(arch);
+        cpSync(MAKEFILE, join(arch, 'Makefile'));
+        const r = spawnSync('make', ['-s', '-o', 'all', 'run', 'LAUNCH=echo', `LOG_DIR=${join(root, 'stop-first-logs')}`, `CONTRACT_RUNTIME=${join(REPO, 'runtime')}`], { cwd: arch, encoding: 'utf8' });
+        expect(r.status, r.stderr).toBe(0);
+        // echo prints the launcher's arguments, quotes removed by the shell
+        expect(r.stdout).toContain(' --stop-first SUP GLB ');
+        expect(r.stdout.trim().endsWith(['ORD', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'SUP', 'GLB'].map((e) => `modules/${e}_mod/${e}`).join(' '))).toBe(true);
     });
 });

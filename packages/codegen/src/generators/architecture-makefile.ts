@@ -24,6 +24,8 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #                 [CPUS=1] (pin every module to these CPUs) [PM_QOS_US=0] (hold CPU wake-up latency; root)
         #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
         #                 LOG_DIR/previous/run-<time of the newest>/ first (never deleted)
+        #                 stopping (DURATION, Ctrl-C, make kill) stops the SUPERVISORS first, then the others:
+        #                 their undo still reaches ORD and the modules
         #   make kill     stop a running architecture (the one in RUN_DIR)
         #   make clean    remove what all built
         # CONTRACT_RUNTIME: the runtime source folder (docs/architecture.md, seam 3); give it: make CONTRACT_RUNTIME=/path/to/runtime
@@ -31,6 +33,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         RUNTIME := $(abspath $(CONTRACT_RUNTIME))
         LAUNCH = $(RUNTIME)/build/contract-launch
         EXECUTABLES = ${executables.join(' ')}
+        SUPERVISORS = ${arch.supervisors.map((s) => s.name).join(' ')}
         START ?= ${defaultStart(arch)}
         DURATION ?=
         CPUS ?=
@@ -55,7 +58,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	  at="$$to"; n=2; while [ -e "$$to" ]; do to="$$at-$$n"; n=$$((n + 1)); done; \\
         	  mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/ && echo "make run: the previous run's logs moved to $$to"; \\
         	fi
-        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
+        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
 
         kill:
         	$(LAUNCH) --kill '$(RUN_DIR)'

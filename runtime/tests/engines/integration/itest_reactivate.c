@@ -74,6 +74,7 @@ void scenario_reactivation(const char *root, const char *bin, const char *launch
     Scenario s;
     if (!scenario_begin(&s, root, "reactivation")) return;
     const char *const names[] = {"rsc/ORD", "RSU", "RMA", "RMB", "RMC", NULL};
+    s.stop_first = "RSU"; /* as the generated Makefile names its supervisors */
     check(scenario_launch(&s, bin, launcher, "RSU.go()", "0.9", names),
           "reactivation: architecture ran and stopped cleanly");
 
@@ -115,17 +116,26 @@ void scenario_reactivation(const char *root, const char *bin, const char *launch
     const Trace *all[3] = {&a, &b, &c};
     check(ids_distinct_and_increasing(all, 3), "every START carries its own release id (AckID), increasing");
 
+    /* the end of the run: RSC is still active; RSU stops first, so its undo reaches ORD */
+    char *rsu = read_csv_log(&s, "RSU"), *txt = slurp(s.launch);
+    check(rsu && strstr(rsu, ",supervisor,ORD,,0,\"undo: deactivate schema RSC (activation #"),
+          "at the end of the run RSU undoes its last activation of RSC (a supervisor record)");
+    check(t_act2 > 0 && csv_time_of(ord, after_act2, ",deactivate RSC", NULL) > 0,
+          "ORD deactivates RSC at the end of the run (RSU stopped before ORD: --stop-first)");
+    const char *rsu_end = txt ? strstr(txt, "module RSU (pid ") : NULL, *ord_end = txt ? strstr(txt, "module ORD (pid ") : NULL;
+    check(rsu_end && ord_end && rsu_end < ord_end && strstr(txt, "all modules stopped cleanly"),
+          "the launcher saw RSU end before ORD, and every module stop cleanly");
+    free(rsu);
+
     char *js = slurp(s.stats);
     check(json_number(js, "held_cycles") >= 1 && json_number(js, "late_acks") >= 1,
           "ORD stats count the held cycle and the late ack");
     struct stat st;
     check(stat(s.run, &st) != 0, "clean shutdown: no runtime file left in the run directory");
-    if (scenario_failed(&s)) {
-        char *txt = slurp(s.launch);
+    if (scenario_failed(&s))
         fprintf(stderr, "launcher output (reactivation scenario):\n%s\nORD stats: %s\n", txt ? txt : "(none)",
                 js ? js : "(none)");
-        free(txt);
-    }
+    free(txt);
     free(js);
     free(ord);
 }

@@ -37,6 +37,7 @@ int scenario_begin(Scenario *s, const char *root, const char *name) {
     snprintf(s->launch, sizeof s->launch, "%s/launch.txt", base);
     snprintf(s->stats, sizeof s->stats, "%s/ord.json", s->out);
     s->failed_before = failed;
+    s->stop_first = NULL;
     if (make_dir(base) != 0 || make_dir(s->logs) != 0 || make_dir(s->out) != 0) {
         char what[500];
         snprintf(what, sizeof what, "scenario %s set up in %s", name, base);
@@ -53,7 +54,7 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
                     const char *duration, const char *const *names) {
     enum { MAX_EXE = 16 };
     static char exe[MAX_EXE][512];
-    const char *argv[MAX_EXE + 12];
+    const char *argv[MAX_EXE + 14];
     int n = 0;
     argv[n++] = launcher;
     argv[n++] = "--run-dir";
@@ -64,6 +65,10 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
     argv[n++] = start;
     argv[n++] = "--duration";
     argv[n++] = duration;
+    if (s->stop_first) {
+        argv[n++] = "--stop-first";
+        argv[n++] = s->stop_first;
+    }
     for (int i = 0; names[i] && i < MAX_EXE; i++) {
         snprintf(exe[i], sizeof exe[i], "%s/%s", bin_dir, names[i]);
         argv[n++] = exe[i];

@@ -23,6 +23,7 @@ typedef struct Scenario {
     char launch[512];  /* the launcher's stdout + stderr                         */
     char stats[600];   /* CONTRACT_ORD_STATS: ORD's figures (out/ord.json)        */
     int failed_before; /* itest_failed() when the scenario began                  */
+    const char *stop_first; /* contract-launch --stop-first (NULL: none; scenario_begin) */
 } Scenario;
 
 /** Makes root/<name>/{out,logs}, sets ITEST_OUT and CONTRACT_ORD_STATS for the processes to
