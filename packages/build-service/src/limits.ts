@@ -166,6 +166,11 @@ export const REALTIME_BOUNDS: Readonly<RealtimeBounds> = Object.freeze({
 
 /** Time a cancel may take, end to end (documented guarantee, checked by the tests). */
 export const CANCEL_DEADLINE_MS = 2000;
+/**
+ * Part of it a cancelled run's launcher has to stop the architecture itself (as at the end of a
+ * run, so that every module writes its last records) before everything is killed.
+ */
+export const CANCEL_GRACE_MS = 1000;
 
 export type LimitName = keyof Limits;
 

@@ -3,9 +3,12 @@
  * report's tutorial through the HTTP service: the trace events carry exactly the record lines of
  * the CSV logs collected after the run (per file, count and order), in non-decreasing mono_ns
  * across the stream, the supervisor's rule story among them, and a client subscribing from seq 0
- * after the run gets the identical trace (SSE and WebSocket).
+ * after the run gets the identical trace (SSE and WebSocket). A run stopped mid-way (DELETE: the
+ * IDE's Stop, the CLI's Ctrl+C) is stopped by its launcher as at the end of a run: every module's
+ * log ends with its exit record, the supervisors' undos reach ORD, and the live trace is whole.
  */
 import { expect, test } from 'vitest';
+import { CANCEL_DEADLINE_MS } from './limits.js';
 import WebSocket from 'ws';
 import type { JobEvent, TraceEvent, TraceLine } from './pipeline/job-events.js';
 import { useBuildServer } from './test-support/build-server.js';
@@ -85,4 +88,47 @@ test('the tutorial in bwrap: the live trace is the collected logs, in mono_ns or
   // a late client from seq 0 gets the same trace, over SSE and over WebSocket
   expect(traceLines(await readEvents(served.url, id))).toEqual(trace);
   expect(traceLines(await wsEvents(id))).toEqual(trace);
+}, 240_000);
+
+test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs and live trace end with every exit record', async () => {
+  const files = await tutorialFiles();
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 60, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  let asked = 0;
+  let secondActive = false;
+  const live = await readEvents(served.url, id, (e) => {
+    if (e.type !== 'trace' || asked) return;
+    // once SUP's SECOND rule is active (schemaCommande1 asked of ORD), half a second of run, then Stop
+    if (e.records.some((l) => l.text.includes(',SUP,sup_rule,') && l.text.includes('action.SECOND active'))) secondActive = true;
+    if (secondActive && !asked) {
+      asked = Date.now() + 500;
+      setTimeout(() => void fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' }), 500);
+    }
+  });
+  const stoppedMs = Date.now() - asked;
+  const job = await getJob(served.url, id);
+  const lines = live.filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  expect(job.status, lines.slice(-20).join('\n')).toBe('cancelled');
+  expect(stoppedMs).toBeLessThan(CANCEL_DEADLINE_MS + 1500); // + collecting the logs
+  expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
+  expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
+  expect(lines.filter((l) => /did not stop within|: killed|terminated/.test(l))).toEqual([]);
+
+  // every log is whole: it ends with its module's exit record, and the live trace has each of its records
+  const trace = traceLines(live);
+  const listing = job.artifacts as { files: { name: string }[] };
+  expect(listing.files).toHaveLength(9);
+  const texts = new Map<string, string>();
+  for (const f of listing.files) {
+    const text = await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
+    texts.set(f.name.split('_')[0]!, text);
+    const want = parseLogFile({ name: f.name, text });
+    expect(want.at(-1)?.kind, f.name).toBe('module_exit');
+    expect(trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text)), f.name).toEqual(want);
+  }
+  // the supervisors stopped first: SUP's undo of its schemas reached ORD, which deactivated them
+  const undone = [...texts.get('SUP')!.matchAll(/,supervisor,ORD,,0,"undo: deactivate schema (\w+) \(activation #\d+, to ORD\)"/g)].map((m) => m[1]!);
+  expect(undone.length).toBeGreaterThan(0);
+  for (const schema of undone) expect(texts.get('ORD')!, schema).toContain(`,scheduler,,,0,deactivate ${schema}\n`);
 }, 240_000);

@@ -6,7 +6,8 @@
  * same records as the collected logs; what the sandboxed program plants in its logs/ (a link to
  * /etc, a FIFO, odd names, a huge sparse file, logs/ swapped for a link mid-run) is never followed
  * and never blocks the job; when the Mountpoint is not the volume (what a remote engine, rootless
- * Docker or a VM give), the job says why in one line and runs as before.
+ * Docker or a VM give), the job says why in one line and runs as before. Stop mid-run asks the
+ * launcher in the container to stop the architecture: every log ends with its exit record.
  * Starts dockerd and bootstraps the image when needed, or says SKIPPED loudly with the reason.
  */
 import { createRequire } from 'node:module';
@@ -114,6 +115,32 @@ describe.skipIf(!docker.available)('live trace in docker', () => {
     for (const ms of latencyMs) expect(ms).toBeGreaterThanOrEqual(0);
     expect(pct(latencyMs, 50)).toBeLessThan(10_000);
     console.info(`docker live trace: ${latencyMs.length} records while running; write -> SSE client latency p50 ${pct(latencyMs, 50).toFixed(1)} ms, p99 ${pct(latencyMs, 99).toFixed(1)} ms`);
+  }, 300_000);
+
+  test('Stop mid-run: the launcher in the container is asked (SIGTERM by an exec) and stops the tutorial; every log ends with its exit record', async () => {
+    const files = await tutorialFiles();
+    const r = await postJob(served.url, { action: 'run', duration: 60, project: { files } });
+    expect(r.status, JSON.stringify(r.json)).toBe(201);
+    const id = r.json.id as string;
+    let asked = false;
+    const events = await readEvents(served.url, id, (e) => {
+      if (asked || e.type !== 'trace' || !e.records.some((l) => l.text.includes(',SUP,sup_rule,') && l.text.includes('action.SECOND active'))) return;
+      asked = true;
+      setTimeout(() => void fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' }), 500);
+    });
+    const job = await getJob(served.url, id);
+    const lines = events.filter((e): e is LineEvent => e.type === 'line').map((e) => e.line);
+    expect(job.status, lines.slice(-20).join('\n')).toBe('cancelled');
+    expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
+    expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
+    const trace = traceLines(events);
+    const listing = job.artifacts as { files: { name: string }[] };
+    expect(listing.files).toHaveLength(9);
+    for (const f of listing.files) {
+      const want = parseLogFile({ name: f.name, text: await artifactText(id, f.name) });
+      expect(want.at(-1)?.kind, f.name).toBe('module_exit');
+      expect(trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text)), f.name).toEqual(want);
+    }
   }, 300_000);
 
   test('the proof leaves nothing in the work tree, is kept per volume, and says why when the Mountpoint is not the volume', async () => {

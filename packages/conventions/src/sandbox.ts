@@ -19,6 +19,13 @@ export const SANDBOX_RUNTIME_DIR = '/opt/contract/runtime';
 export const SANDBOX_UID = 1000;
 export const SANDBOX_GID = 1000;
 
+/**
+ * The process name (the kernel's `comm`, 15 characters at most) of the runtime's launcher, which
+ * `make run` starts in the sandbox: a cancelled run asks it, by this name, to stop the architecture
+ * as at the end of a run (SIGTERM) before anything is killed.
+ */
+export const LAUNCHER_PROCESS_NAME = 'contract-launch';
+
 /** The Docker image holding gcc, make and the runtime (built by scripts/docker-up.sh). */
 export const DOCKER_IMAGE = 'contract-gcc';
 

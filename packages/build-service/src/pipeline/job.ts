@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -24,7 +24,7 @@ import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
-import { SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
+import { LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
 
 export interface JobRequest {
   action: 'build' | 'run';
@@ -95,6 +95,9 @@ export class Job {
   sandboxProbeMs: number | null = null;
 
   private current: SandboxProcess | null = null;
+  private currentStep: 'build' | 'run' | null = null;
+  /** A cancelled run whose launcher stopped the architecture itself: its logs are whole. */
+  private stoppedGracefully = false;
   private cancelRequested = false;
   private cancelSignal!: () => void;
   private readonly cancelled = new Promise<void>((r) => (this.cancelSignal = r));
@@ -183,12 +186,27 @@ export class Job {
     this.finishedSignal();
   }
 
-  /** Cancels: kills the running sandbox (if any); the job ends with status "cancelled". */
+  /**
+   * Cancels; the job ends with status "cancelled". A running architecture is first asked to stop
+   * as at the end of a run (its launcher gets SIGTERM: the supervisors undo what they did, every
+   * module writes its last records and its exit record), for CANCEL_GRACE_MS at most; whatever still
+   * runs then, and any other step (a build), is killed.
+   */
   async cancel(): Promise<void> {
     if (this.isDone) return;
     this.cancelRequested = true;
     this.cancelSignal();
-    if (this.current) await this.current.kill();
+    const proc = this.current;
+    if (!proc) return;
+    if (this.currentStep === 'run' && (await proc.terminateNamed(LAUNCHER_PROCESS_NAME).catch(() => false))) {
+      this.system('run', `stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
+      let timer: NodeJS.Timeout | undefined;
+      const ended = await Promise.race([proc.done.then(() => true), new Promise<false>((r) => (timer = setTimeout(() => r(false), CANCEL_GRACE_MS)))]);
+      clearTimeout(timer);
+      this.stoppedGracefully = ended;
+      if (!ended) this.system('run', `the architecture did not stop within ${CANCEL_GRACE_MS} ms: killed`);
+    }
+    await proc.kill();
   }
 
   async execute(ctx: JobContext): Promise<void> {
@@ -341,7 +359,8 @@ export class Job {
       }
       await keptOff?.release();
       this.events.onSubscribers = null;
-      if (this.cancelRequested) await tail?.stop();
+      // a run the launcher stopped (Stop, Ctrl+C) wrote its logs to the end: all of them are sent
+      if (this.cancelRequested && !this.stoppedGracefully) await tail?.stop();
       else await tail?.finish();
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
       // a cancelled run's logs too: what it wrote until it was stopped is the user's record of it
@@ -524,6 +543,7 @@ export class Job {
       ...(step === 'run' && this.request.realtime ? { realtime: true } : {}),
     });
     this.current = proc;
+    this.currentStep = step;
     this.mechanisms = proc.mechanisms;
     this.timed(step, `sandbox start (limits set-up: memory ${proc.mechanisms.memory}, processes ${proc.mechanisms.processes}, disk ${proc.mechanisms.disk})`, t0);
     const note = (line: string): void => proc.noteLine(line);
@@ -570,6 +590,7 @@ export class Job {
     clearTimeout(pumpTimer);
     clearTimeout(timer);
     this.current = null;
+    this.currentStep = null;
     this.durations[step] = Date.now() - t0;
     const limitHit: LimitHit | null = exit.limitHit ?? timeHit;
     if (exit.limitHit) this.events.append({ type: 'limit', limitHit: exit.limitHit });

@@ -44,6 +44,11 @@ export const DOCKER_RUNTIME = SANDBOX_RUNTIME_DIR;
 const DOCKER_USER = `${SANDBOX_UID}:${SANDBOX_GID}`;
 /** statfs of the work volume while a step runs: a job refused a write is stopped within this time. */
 const DISK_WATCH_INTERVAL_MS = 1000;
+/**
+ * terminateNamed inside a container (sh + /proc, in any image; builtins only, no fork per
+ * process): SIGTERM to each process whose comm is $1, printing its pid.
+ */
+const TERMINATE_NAMED = 'for d in /proc/[0-9]*; do c=; read -r c < "$d/comm" || continue; [ "$c" = "$1" ] && kill -TERM "${d#/proc/}" && echo "${d#/proc/}"; done 2>/dev/null; true';
 
 export interface DockerOptions {
   image?: string;
@@ -350,7 +355,18 @@ export class DockerSandbox implements Sandbox {
           void kill();
         }
       };
-      const proc: SandboxProcess = { stdout, stderr, mechanisms, done, kill, noteLine };
+      const terminateNamed = async (name: string): Promise<boolean> => {
+        if (killing) return false;
+        // inside the container, as its user: the container's own processes are all it sees
+        const out = new PassThrough();
+        let text = '';
+        out.on('data', (c: Buffer) => (text += c.toString()));
+        await this.execIn(container, ['sh', '-c', TERMINATE_NAMED, 'contract-terminate', name.slice(0, 15)], out).catch(() => null);
+        // a pid per process asked, as soon as it is: an architecture that stops at once ends the
+        // container, and this exec with it, before the loop is done
+        return /^\d+$/m.test(text);
+      };
+      const proc: SandboxProcess = { stdout, stderr, mechanisms, done, kill, terminateNamed, noteLine };
       return proc;
     } catch (e) {
       await removeContainer();
@@ -574,7 +590,12 @@ export class DockerSandbox implements Sandbox {
       out.end();
       return null;
     }
-    const exec = await holder.exec({ Cmd: cmd, AttachStdout: true, AttachStderr: true, User: DOCKER_USER });
+    return this.execIn(holder, cmd, out);
+  }
+
+  /** Runs a command in a running container, as the jobs' user; stdout to `out`, resolves with the exit code. */
+  private async execIn(container: Docker.Container, cmd: string[], out: PassThrough): Promise<number | null> {
+    const exec = await container.exec({ Cmd: cmd, AttachStdout: true, AttachStderr: true, User: DOCKER_USER });
     const stream = (await exec.start({ hijack: true, stdin: false })) as unknown as Readable;
     const err = new PassThrough();
     err.resume();

@@ -76,6 +76,24 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     if (opts.cgroup) await opts.cgroup.killAll();
   };
 
+  const terminateNamed = async (name: string): Promise<boolean> => {
+    const pid = child.pid;
+    if (pid === undefined || exited || killing) return false;
+    const pids = new Set<number>(descendantsOf(pid));
+    if (opts.cgroup) for (const p of await opts.cgroup.pids()) if (p !== pid) pids.add(p);
+    let found = false;
+    for (const p of pids) {
+      if (processName(p) !== name.slice(0, COMM_MAX)) continue;
+      try {
+        process.kill(p, 'SIGTERM');
+        found = true;
+      } catch {
+        /* already gone */
+      }
+    }
+    return found;
+  };
+
   const kill = (): Promise<void> => {
     killing ??= killTree();
     return killing.then(() => done.then(() => undefined));
@@ -186,8 +204,21 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     mechanisms: opts.mechanisms,
     done,
     kill,
+    terminateNamed,
     noteLine,
   };
+}
+
+/** The kernel keeps a process's name (comm) to this many characters. */
+const COMM_MAX = 15;
+
+/** A process's name (/proc/<pid>/comm), '' when it is gone. */
+function processName(pid: number): string {
+  try {
+    return readFileSync(`/proc/${pid}/comm`, 'utf8').replace(/\n$/, '');
+  } catch {
+    return '';
+  }
 }
 
 /** pid -> parent pid of every process of the machine (from /proc/<pid>/stat). */

@@ -61,6 +61,12 @@ export interface SandboxProcess {
   /** Stops every process of the command (idempotent); resolves when they are gone. */
   kill(): Promise<void>;
   /**
+   * Sends SIGTERM to the command's processes named `name` (the kernel's `comm`, compared on its 15
+   * characters), inside the sandbox and nowhere else; resolves with whether one was found. A
+   * program may take any name: this only asks, `kill` still ends everything.
+   */
+  terminateNamed(name: string): Promise<boolean>;
+  /**
    * Every output line the job reads from the process: the sandbox may recognise a limit hit that
    * only shows in the output (a refused fork under RLIMIT_NPROC or in Docker, an allocation refused
    * under RLIMIT_AS) and report it in `done`.

@@ -1,6 +1,8 @@
 /**
- * Ctrl+C on `contract run` (or its output's reader gone: `| head`): the job is cancelled, every process stopped, exit 130, no workspace left,
- * and the CSV logs the run wrote until then saved in PROJECT/logs as a finished run's are.
+ * Ctrl+C on `contract run` (or its output's reader gone: `| head`): the job is cancelled, its
+ * launcher stops the architecture as at the end of a run (supervisors first, every module's exit
+ * record written), exit 130, no process or workspace left, and the CSV logs saved in PROJECT/logs
+ * as a finished run's are.
  * `kill -9` of `contract build` mid-make: the project's kept work tree is not trusted by the next
  * build (docs/getting-started.md "The build cache"), which is not blocked by the dead one's lock.
  */
@@ -15,8 +17,8 @@ let scratch: Scratch;
 beforeAll(async () => { scratch = await seededScratchCopy('tutorial'); }, 240_000);
 afterAll(() => scratch?.dispose());
 
-/** `contract run tutorial` for 60 s; resolves once the mission started, with its exit and its stderr so far. */
-async function runningTutorial(): Promise<{ child: ChildProcessByStdio<null, Readable, Readable>; exited: Promise<number | null>; stderr: () => string }> {
+/** `contract run tutorial` for 60 s; resolves once its output has a line with `until` (default: the mission started), with its exit and its stderr so far. */
+async function runningTutorial(until = 'contract-launch: started GLB.mission'): Promise<{ child: ChildProcessByStdio<null, Readable, Readable>; exited: Promise<number | null>; stderr: () => string }> {
     const child = spawn(process.execPath, [BIN, 'run', 'tutorial', '--sandbox', 'bwrap', '--duration', '60s'], {
         cwd: scratch.root,
         env: { ...process.env, CONTRACT_CACHE_DIR: scratch.cache },
@@ -29,18 +31,17 @@ async function runningTutorial(): Promise<{ child: ChildProcessByStdio<null, Rea
     await new Promise<void>((resolve) => {
         child.stdout.on('data', (d: Buffer) => {
             stdout += d.toString();
-            if (stdout.includes('contract-launch: started GLB.mission')) resolve();
+            if (stdout.includes(until)) resolve();
         });
     });
     return { child, exited, stderr: () => stderr };
 }
 
 describe('contract run interrupted', () => {
-    it('stops everything within seconds of SIGINT and exits 130', async () => {
-        const run = await runningTutorial();
-        // the modules are killed, not stopped: what a log still buffers is lost (up to its flush
-        // delay, 25–50 ms: docs/build-service-api.md); a second of run writes GLB's mission start
-        await new Promise((r) => setTimeout(r, 1000));
+    it('stops the architecture as at the end of a run on SIGINT, within seconds, and exits 130', async () => {
+        // once SUP's SECOND rule is active (it asked ORD for schemaCommande1), half a second more
+        const run = await runningTutorial('[SUP] rule action.SECOND active');
+        await new Promise((r) => setTimeout(r, 500));
         const sent = Date.now();
         run.child.kill('SIGINT');
         const code = await run.exited;
@@ -53,9 +54,15 @@ describe('contract run interrupted', () => {
         const logs = join(scratch.root, 'tutorial', 'logs');
         const csv = readdirSync(logs).filter((n) => n.endsWith('.csv'));
         expect(csv.map((n) => n.split('_')[0]).sort()).toEqual(['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP']);
-        expect(readFileSync(join(logs, csv.find((n) => n.startsWith('GLB_'))!), 'utf8')).toContain(',supervisor,,,0,function mission started');
+        const log = (m: string): string => readFileSync(join(logs, csv.find((n) => n.startsWith(`${m}_`))!), 'utf8');
+        expect(log('GLB')).toContain(',supervisor,,,0,function mission started');
         expect(run.stderr()).toContain(`CSV logs: 9 file(s) in ${logs}`);
-        // the killed modules' mailboxes are no news
+        // the launcher stopped it (docs/build-service-api.md "Cancel"): every module wrote its last
+        // records and its exit record; SUP stopped before ORD, which deactivated schemaCommande1
+        for (const m of ['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP']) expect(log(m).trimEnd().split('\n').at(-1), m).toMatch(/,module_exit,,,0,status=0 records=\d+$/);
+        expect(log('SUP')).toContain(',supervisor,ORD,,0,"undo: deactivate schema schemaCommande1 (activation #');
+        expect(log('ORD')).toContain(',scheduler,,,0,deactivate schemaCommande1\n');
+        // the run directory's files are no news
         expect(run.stderr()).not.toContain('left files in its run directory');
     }, 240_000);
 
