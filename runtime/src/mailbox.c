@@ -265,6 +265,17 @@ int SendAck(const char *module, int wantedAck, int ack, int ackId)
 
 /* The Seq of the last status or priority query this process sent (StatusParam). */
 static unsigned query_seq;
+/* Seq of the priority requests whose answer is read later (ContractAskModulePriority): the high
+ * bit set, so that a synchronous wait keeps them for their reader instead of dropping them as
+ * answers to an older query of its own. */
+#define ASYNC_SEQ_BIT 0x80000000u
+static unsigned async_seq;
+static unsigned next_query_seq(void)
+{
+    query_seq = (query_seq + 1) & ~ASYNC_SEQ_BIT;
+    if (query_seq == 0) query_seq = 1;
+    return query_seq;
+}
 
 static void reply_status(const RequestMessage *req)
 {
@@ -298,6 +309,7 @@ static int accept_request(RequestMessage *m)
     char detail[160];
     int port = -1;
     if (m->Type == REQ_PRIORITY) { reply_priority(m); return 0; }
+    if (m->Type == REQ_PRIORITY_REPLY) return 1; /* its reader logs what it says (module_priority) */
     if (!rt_log_enabled()) { /* bookkeeping only */
         if (m->Type == REQ_STATUS) { reply_status(m); return 0; }
         if (m->Type == REQ_ACK) return 1;
@@ -540,14 +552,15 @@ static int match_reply(const RequestMessage *m, const void *ctx)
     const ReplyWanted *w = ctx;
     if (m->Type != w->type) return 0;
     unsigned seq = m->Type == REQ_STATUS_REPLY ? m->Param.Status.Seq : m->Param.Priority.Seq;
-    if (seq != w->seq) return MATCH_STALE; /* whoever sent it, it answers no query of now */
+    if (seq != w->seq) /* whoever sent it, it answers no query of now; unless it is read later */
+        return m->Type == REQ_PRIORITY_REPLY && (seq & ASYNC_SEQ_BIT) ? 0 : MATCH_STALE;
     return strcmp(m->Sender, w->module) == 0;
 }
 
 int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline)
 {
     RequestMessage *q = blank(REQ_STATUS);
-    q->Param.Status.Seq = ++query_seq;
+    q->Param.Status.Seq = next_query_seq();
     ReplyWanted w = { module, REQ_STATUS_REPLY, query_seq };
     int rc = rt_send_request_to(module, q);
     if (rc != CONTRACT_OK) return rc;
@@ -573,7 +586,7 @@ int ContractSetModulePriority(const char *module, int priority, int *previous)
     if (check_mailbox() != 0) return CONTRACT_EINVAL;
     RequestMessage *m = blank(REQ_PRIORITY);
     m->Param.Priority.Priority = priority;
-    m->Param.Priority.Seq = ++query_seq;
+    m->Param.Priority.Seq = next_query_seq();
     ReplyWanted w = { module, REQ_PRIORITY_REPLY, query_seq };
     int rc = rt_send_request_to(module, m);
     if (rc != CONTRACT_OK) return rc;
@@ -589,6 +602,48 @@ int ContractSetModulePriority(const char *module, int priority, int *previous)
     }
     free(reply);
     return rc;
+}
+
+int ContractAskModulePriority(const char *module, int priority, unsigned *seq)
+{
+    if (priority < 1 || priority > 99 || !module || strcmp(module, g_rt.name) == 0) return CONTRACT_EINVAL;
+    if (check_mailbox() != 0) return CONTRACT_EINVAL;
+    RequestMessage *m = blank(REQ_PRIORITY);
+    m->Param.Priority.Priority = priority;
+    async_seq = (async_seq + 1) & ~ASYNC_SEQ_BIT;
+    m->Param.Priority.Seq = ASYNC_SEQ_BIT | async_seq;
+    int rc = rt_send_request_to(module, m);
+    if (rc == CONTRACT_OK && seq) *seq = m->Param.Priority.Seq;
+    return rc;
+}
+
+static int match_async_priority_reply(const RequestMessage *m, const void *ctx)
+{
+    (void)ctx;
+    return m->Type == REQ_PRIORITY_REPLY && (m->Param.Priority.Seq & ASYNC_SEQ_BIT);
+}
+
+/* Takes the first kept request `match` accepts out of the pending list. 1 (in *out), 0 none. */
+static int take_pending(Matcher match, const void *ctx, RequestMessage *out)
+{
+    for (Pending **at = &g_rt.pending_head, *prev = NULL; *at; prev = *at, at = &(*at)->next) {
+        Pending *p = *at;
+        if (match(&p->msg, ctx) != 1) continue;
+        *at = p->next;
+        if (g_rt.pending_tail == p) g_rt.pending_tail = prev;
+        g_rt.pending_count--;
+        deliver(out, &p->msg);
+        free(p);
+        return 1;
+    }
+    return 0;
+}
+
+int ContractWaitModulePriority(RTIME deadline, RequestMessage *reply)
+{
+    if (check_mailbox() != 0) return -1;
+    if (take_pending(match_async_priority_reply, NULL, reply)) return 1;
+    return wait_for_match(match_async_priority_reply, NULL, deadline, reply);
 }
 
 int ModuleState(const char *module)

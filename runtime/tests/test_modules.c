@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/socket.h>
 #include <sys/time.h>
 #include <sys/un.h>
@@ -549,6 +550,42 @@ void test_status_through_signals(void)
     CHECK_MSG(prev == 20, "previous priority %d: the late answer to the request for 20 was taken", prev);
     waitpid(helper, NULL, 0);
     CHECK(SendStop("C1", ACK_NOTHING, 0) == 0);
+    h_teardown();
+}
+
+/* ContractAskModulePriority (the supervisor engine's priority changes): sent without waiting;
+ * a synchronous wait of the same process meanwhile (a status query) keeps its answer instead of
+ * dropping it as stale; ContractWaitModulePriority then gives it (the kept one first), and the
+ * next answer comes through WaitForRequest as a REQ_PRIORITY_REPLY. */
+void test_ask_module_priority(void)
+{
+    REQUIRE(h_setup("askprio") == 0);
+    pid_t pid = h_spawn_module("C1", "C1");
+    REQUIRE(pid > 0);
+    RequestMessage *m = h_msg();
+    unsigned s1 = 0, s2 = 0;
+    REQUIRE(kill(pid, SIGSTOP) == 0); /* C1 busy: it answers when it goes on */
+    CHECK(ContractAskModulePriority("C1", 20, &s1) == CONTRACT_OK);
+    CHECK(ContractAskModulePriority("C1", 10, &s2) == CONTRACT_OK);
+    CHECK(s1 != s2 && (s1 & 0x80000000u) && (s2 & 0x80000000u));
+    CHECK(ContractAskModulePriority("C1", 0, &s1) == CONTRACT_EINVAL);
+    CHECK(ContractAskModulePriority("NOPE", 10, NULL) == CONTRACT_EUNKNOWN);
+    REQUIRE(kill(pid, SIGCONT) == 0);
+    char text[1024];
+    /* both answers come before the status answer: this wait keeps them */
+    CHECK(QueryStatus("C1", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK);
+    CHECK(ContractWaitModulePriority(GetTime() + 2000000000LL, m) == 1);
+    CHECK(m->Type == REQ_PRIORITY_REPLY && m->Param.Priority.Seq == s1 && m->Param.Priority.Priority == 30 &&
+          m->Param.Priority.Result == 0);
+    int got = WaitForRequestUntil(m, GetTime() + 2000000000LL);
+    CHECK(got == 1 && m->Type == REQ_PRIORITY_REPLY && m->Param.Priority.Seq == s2 && m->Param.Priority.Priority == 20);
+    CHECK(ContractWaitModulePriority(GetTime() + 50000000LL, m) == 0); /* none left */
+    CHECK(getpriority(PRIO_PROCESS, (id_t)pid) == (99 - 10) * 19 / 98);
+    CHECK(SendKill("C1", ACK_NOTHING, 0) == 0);
+    CHECK(h_wait_exit(pid, 2000) == 0);
+    char *log = h_read_logs("tester_");
+    CHECK(!log || !strstr(log, "PRIORITY_REPLY")); /* the answers are not request_received records */
+    free(log);
     h_teardown();
 }
 

@@ -20,6 +20,7 @@ void test_maa_events_params(void);
 void test_unsub_spent_oneshot(void);
 void test_status_running(void);
 void test_status_through_signals(void);
+void test_ask_module_priority(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_launcher_sigint(void);
@@ -54,6 +55,7 @@ static const TestCase ALL_TESTS[] = {
     { "unsub_spent_oneshot", test_unsub_spent_oneshot },
     { "status_running", test_status_running },
     { "status_through_signals", test_status_through_signals },
+    { "ask_module_priority", test_ask_module_priority },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
     { "launcher_sigint", test_launcher_sigint },

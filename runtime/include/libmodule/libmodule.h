@@ -70,7 +70,8 @@ typedef enum {
     REQ_STATUS_REPLY,  /* [ENGINE] answer to REQ_STATUS; Data holds a text line */
     REQ_PRIORITY,      /* [ENGINE] apply priority Param.Priority.Priority to yourself; answered
                           inside the library (ContractSetModulePriority), never returned */
-    REQ_PRIORITY_REPLY /* [ENGINE] answer to REQ_PRIORITY: Param.Priority, Data = text detail */
+    REQ_PRIORITY_REPLY /* [ENGINE] answer to REQ_PRIORITY: Param.Priority, Data = text detail;
+                          returned only for ContractAskModulePriority's requests */
 } RequestType;
 
 /* Acknowledgement kinds: a bit mask. A requester puts the acks it wants in WantedAck;
@@ -358,6 +359,15 @@ int ContractSetPriority(int priority);
  *  another CONTRACT_E* code (unknown / not running module, no answer: CONTRACT_EBUSY).
  *  No message on stderr: the caller decides what to say. */
 int ContractSetModulePriority(const char *module, int priority, int *previous);
+/** The same request without the wait (the supervisor engine: a busy module answers when it next
+ *  reads its mailbox): sends it and puts its Seq in *seq. The answer comes later as a
+ *  REQ_PRIORITY_REPLY with that Seq, returned by WaitForRequest/LookForRequest (no CSV record)
+ *  or ContractWaitModulePriority. Returns CONTRACT_OK or a CONTRACT_E* code (not sent). */
+int ContractAskModulePriority(const char *module, int priority, unsigned *seq);
+/** Waits until `deadline` for the next answer to a ContractAskModulePriority request (one an
+ *  earlier wait kept comes first); other requests are kept for the next reads. 1 (the answer in
+ *  *reply), 0 timeout, -1 error. */
+int ContractWaitModulePriority(RTIME deadline, RequestMessage *reply);
 /** This process's current priority 1..99 (MODULE_PRIORITY, or the last one applied). */
 int ContractPriority(void);
 

@@ -26,6 +26,23 @@ static int locked_slot(const char *module) {
     return -1;
 }
 
+static void (*before_block)(void);
+
+void holds_before_block(void (*fn)(void)) { before_block = fn; }
+
+/* The lock file of `module`, taken at once if free; else, after before_block, waited for. */
+static int acquire(const char *module) {
+    int fd = hold_lock_try(ContractRunDir(), module);
+    if (fd >= 0 || errno != EWOULDBLOCK) return fd;
+    static int in_hook;
+    if (before_block && !in_hook) {
+        in_hook = 1;
+        before_block();
+        in_hook = 0;
+    }
+    return hold_lock_acquire(ContractRunDir(), module);
+}
+
 int holds_lock(const char *module) {
     int i = locked_slot(module);
     if (i >= 0) {
@@ -33,7 +50,11 @@ int holds_lock(const char *module) {
         return 0;
     }
     i = locked_slot(NULL);
-    int fd = i >= 0 ? hold_lock_acquire(ContractRunDir(), module) : -1;
+    int fd = i >= 0 ? acquire(module) : -1;
+    if (fd >= 0 && (i = locked_slot(NULL)) < 0) { /* the hook may have taken and released locks */
+        hold_lock_release(fd);
+        fd = -1;
+    }
     if (fd < 0) {
         char detail[160];
         snprintf(detail, sizeof detail, "cannot lock its holds: %s", i >= 0 ? strerror(errno) : "too many locks");

@@ -33,6 +33,9 @@
  *  calls in one process only count (the lock is released by the outermost holds_unlock).
  *  0, or -1 (logged: the caller goes on unlocked, as before the lock existed). */
 int holds_lock(const char *module);
+/** `fn` runs before this process waits for a lock another process holds (holds_lock), so that it
+ *  first ends what others may be waiting for (prio_requests_settle). */
+void holds_before_block(void (*fn)(void));
 /** Releases one holds_lock of `module`. */
 void holds_unlock(const char *module);
 /** This supervisor holds `module`; `started`: it has just started it. 0, or -1 (logged). */

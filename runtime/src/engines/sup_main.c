@@ -28,13 +28,14 @@
 #include <string.h>
 #include <sys/resource.h>
 #include <sys/types.h>
+#include <unistd.h>
 
 #include "contract/vocabulary.h"
 #include "engine_wait.h"
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
 #include "module_holds.h"
-#include "prio_claims.h"
+#include "prio_requests.h"
 #include "sup_core.h"
 
 /* subscribers of the supervisor's out event ports (kept here: the generated module.c of a
@@ -51,8 +52,17 @@ typedef struct SupBinding {
 } SupBinding;
 
 /* the core's deadlines, for engine_next_request */
-static int sup_next_deadline(const void *core, int64_t *deadline) { return sup_core_next_deadline(core, deadline); }
-static void sup_advance(void *core, int64_t t) { sup_core_advance(core, t); }
+/* the core's deadlines, and those of the priority answers it does not wait for */
+static int sup_next_deadline(const void *core, int64_t *deadline) {
+    int rc = sup_core_next_deadline(core, deadline);
+    int64_t answers = prio_requests_next_deadline();
+    if (answers < *deadline) *deadline = answers;
+    return rc;
+}
+static void sup_advance(void *core, int64_t t) {
+    prio_requests_expire(t);
+    sup_core_advance(core, t);
+}
 
 static void add_subscriber(SupBinding *b, const char *module, int target_port, int source_port, int mode) {
     int known = 0;
@@ -128,31 +138,9 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
                 ContractStrError(rc));
 }
 
-/* Priorities of other modules: the module applies them to itself (ContractSetModulePriority:
-   SCHED_FIFO where permitted, else a nice level, which an unprivileged module may lower but not
-   raise). Returns the previous priority (for the undo), or -1 when it was not applied. One line
-   on stderr only when the change is impossible; every outcome is in the CSV log. */
-static int apply_priority(const char *m, int prio) {
-    int old = -1;
-    int rc = ContractSetModulePriority(m, prio, &old);
-    char detail[160];
-    if (rc == 1 || rc == 0) {
-        snprintf(detail, sizeof detail, "%s %d (was %d)", rc == 1 ? "SCHED_FIFO" : "nice level for priority", prio,
-                 old);
-        ContractLog("module_priority", m, -1, 0, detail);
-        return old;
-    }
-    if (rc == CONTRACT_EPERM) {
-        fprintf(stderr, "%s: cannot raise %s to priority %d: not permitted for an unprivileged process "
-                        "(needs CAP_SYS_NICE or RLIMIT_RTPRIO/RLIMIT_NICE); it keeps priority %d\n",
-                ContractSelfName(), m, prio, old);
-        snprintf(detail, sizeof detail, "priority %d not permitted; keeps %d", prio, old);
-    } else {
-        snprintf(detail, sizeof detail, "priority %d not applied: %s", prio, ContractStrError(rc));
-    }
-    ContractLog("module_priority", m, -1, 0, detail);
-    return -1;
-}
+/* Priorities of other modules: the module applies them to itself when it next reads its
+   mailbox (SCHED_FIFO where permitted, else a nice level, which an unprivileged module may lower
+   but not raise); the supervisor does not wait for the answer (prio_requests.h). */
 
 /* Is module `m` running (a run started and not finished or stopped)? Asked to the module
    itself, so that a module started by another supervisor is not started twice. No answer
@@ -176,7 +164,7 @@ static void b_start_module(void *ctx, const char *m, int prio) {
         fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(state));
         return;
     }
-    apply_priority(m, prio); /* before the start: its run begins at that priority */
+    prio_request_start(m, prio); /* read before the start: its run begins at that priority */
     int rc = SendStart(m, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK) {
         fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
@@ -231,31 +219,15 @@ static void b_share_module(void *ctx, const char *m, int hold) {
 }
 
 /* `activate resttime|critical module` on a running module: a claim shared with the other
-   supervisors of the run (prio_claims.h), made and dropped under the module's lock so that
-   "apply, record" and "drop, decide, apply" of two supervisors never interleave */
+   supervisors of the run (prio_claims.h), recorded when the module answers (prio_requests.h) */
 static int b_claim_priority(void *ctx, const char *m, uint32_t id, int prio) {
     (void)ctx;
-    holds_lock(m);
-    int before = apply_priority(m, prio);
-    int rc = before >= 0 && prio_claims_record(m, id, prio, before) == 0 ? 0 : -1;
-    holds_unlock(m);
-    return rc;
+    return prio_request_claim(m, id, prio);
 }
 
 static void b_release_priority(void *ctx, const char *m, uint32_t id) {
     (void)ctx;
-    holds_lock(m);
-    int restore = -1;
-    char later[CONTRACT_NAME_MAX] = "";
-    int r = prio_claims_release(m, id, &restore, later, sizeof later);
-    if (r == 1) {
-        apply_priority(m, restore);
-    } else if (r == 0) {
-        char detail[160];
-        snprintf(detail, sizeof detail, "kept: a later change by %s stands", later);
-        ContractLog("priority_kept", m, -1, 0, detail);
-    }
-    holds_unlock(m);
+    prio_request_release(m, id);
 }
 
 static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
@@ -394,6 +366,12 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
             rc == 0 ? ACK_START : ACK_NOTDONE, m->Param.Start.AckID);
 }
 
+static int run_stopping(void) {
+    char path[4200];
+    snprintf(path, sizeof path, "%s/%s", ContractRunDir(), CONTRACT_RUN_STOPPING_FILE);
+    return access(path, F_OK) == 0;
+}
+
 int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, const char *argv[]) {
     (void)argc;
     (void)argv;
@@ -405,6 +383,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
                 b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
                 b_rule};
     char err[512] = "";
+    holds_before_block(prio_requests_settle);
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {
         fprintf(stderr, "%s: %s\n", v && v->name ? v->name : "supervisor", err);
@@ -463,6 +442,9 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
             remove_subscriber(&b, m->Param.UnsubscribeEvent.targetModule,
                               m->Param.UnsubscribeEvent.targetPort, m->Param.UnsubscribeEvent.sourcePort);
             break;
+        case REQ_PRIORITY_REPLY: /* a module's answer to a priority change of ours */
+            prio_request_answered(m);
+            break;
         case REQ_ACK: /* another supervisor's answer to an `activate supervisor` of ours */
             if (m->Param.Ack.AckID > 0 && (m->Param.Ack.Ack & (ACK_START | ACK_NOTDONE)))
                 sup_core_function_answer(c, now, m->Param.Ack.Module, (uint32_t)m->Param.Ack.AckID,
@@ -473,6 +455,9 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
         }
     }
 out:
+    /* a supervisor stopped alone (not the run) still records the claims it made and restores
+       what its undos asked for; at the end of a run the modules are being stopped too */
+    if (!run_stopping()) prio_requests_settle();
     free(m);
     sup_core_destroy(c);
     return rc;

@@ -3,12 +3,15 @@
  * with -DAMOD_NAME='"AMY"'): once started it posts a counter 1, 2, 3, ... on its output event
  * port 0 every 10 ms until it is stopped; events on its input event port 0 are recorded.
  * Waiting uses WaitForRequestUntil on absolute deadlines. It writes "param <v>", "start",
- * "post <v>", "got <v>" and "stop" lines to $ITEST_OUT/<name>.trace.
+ * "post <v>", "got <v>" and "stop" lines to $ITEST_OUT/<name>.trace. Built with
+ * -DAMOD_BUSY_MS=N (AMB), each START first runs N ms of its own code without reading its
+ * mailbox (a requested priority is answered after).
  */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <time.h>
 
 #include "imodule.h"
 
@@ -17,6 +20,9 @@ MODULE_AUTHOR("engines tests");
 
 #ifndef AMOD_NAME
 #define AMOD_NAME "AMX"
+#endif
+#ifndef AMOD_BUSY_MS
+#define AMOD_BUSY_MS 0
 #endif
 
 static long counter, received, param_step = 1;
@@ -51,6 +57,11 @@ int ModuleMain(int argc, const char *argv[]) {
         switch (m->Type) {
         case REQ_START:
             if (trace) fprintf(trace, "start\n");
+            if (AMOD_BUSY_MS > 0) {
+                struct timespec busy = {AMOD_BUSY_MS / 1000, (AMOD_BUSY_MS % 1000) * 1000000L};
+                while (nanosleep(&busy, &busy) != 0) {
+                }
+            }
             running = 1;
             counter = 0;
             next = GetTime() + 10000000LL;

@@ -21,5 +21,8 @@ void scenario_hold_toggles(const char *root, const char *bin, const char *launch
 void scenario_hold_toggles_paused(const char *root, const char *bin, const char *launcher);
 /** UPA and USM: refused activations and shared flows/schemas/priorities: undos undo only their own. */
 void scenario_undo_own(const char *root, const char *bin, const char *launcher);
+/** PQS and AMB (300 ms of its own code at each START): PQS does not wait for AMB's priority
+ *  answers; the claims are recorded when they come, an undo that came before is done then. */
+void scenario_late_priority_answer(const char *root, const char *bin, const char *launcher);
 
 #endif
