@@ -5,7 +5,8 @@
  * Waiting uses WaitForRequestUntil on absolute deadlines. It writes "param <v>", "start",
  * "post <v>", "got <v>" and "stop" lines to $ITEST_OUT/<name>.trace. Built with
  * -DAMOD_BUSY_MS=N (AMB), each START first runs N ms of its own code without reading its
- * mailbox (a requested priority is answered after).
+ * mailbox (a requested priority is answered after); with -DAMOD_BUSY_ALWAYS too (AMD, AME),
+ * each post is followed by those N ms as well: the module is almost always busy.
  */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
@@ -24,6 +25,16 @@ MODULE_AUTHOR("engines tests");
 #ifndef AMOD_BUSY_MS
 #define AMOD_BUSY_MS 0
 #endif
+#ifndef AMOD_BUSY_ALWAYS
+#define AMOD_BUSY_ALWAYS 0
+#endif
+
+/* AMOD_BUSY_MS of the module's own code: no mailbox read meanwhile */
+static void busy(void) {
+    struct timespec left = {AMOD_BUSY_MS / 1000, (AMOD_BUSY_MS % 1000) * 1000000L};
+    while (nanosleep(&left, &left) != 0) {
+    }
+}
 
 static long counter, received, param_step = 1;
 char MODULE_NAME[] = AMOD_NAME;
@@ -50,18 +61,16 @@ int ModuleMain(int argc, const char *argv[]) {
             counter += param_step;
             if (trace) fprintf(trace, "post %ld\n", counter);
             PostEvent(&counter);
+            if (AMOD_BUSY_ALWAYS) busy();
             next += 10000000LL;
+            if (AMOD_BUSY_ALWAYS && next < GetTime()) next = GetTime() + 10000000LL;
             continue;
         }
         if (imodule_connect(m)) continue;
         switch (m->Type) {
         case REQ_START:
             if (trace) fprintf(trace, "start\n");
-            if (AMOD_BUSY_MS > 0) {
-                struct timespec busy = {AMOD_BUSY_MS / 1000, (AMOD_BUSY_MS % 1000) * 1000000L};
-                while (nanosleep(&busy, &busy) != 0) {
-                }
-            }
+            if (AMOD_BUSY_MS > 0) busy();
             running = 1;
             counter = 0;
             next = GetTime() + 10000000LL;

@@ -24,7 +24,8 @@ static const struct {
                  {"shared", scenario_shared_module}, {"reactivation", scenario_reactivation},
                  {"toggles", scenario_hold_toggles}, {"toggles-paused", scenario_hold_toggles_paused},
                  {"undo", scenario_undo_own},
-                 {"late-priority", scenario_late_priority_answer}};
+                 {"late-priority", scenario_late_priority_answer},
+                 {"crossed-claims", scenario_crossed_claims}};
 #define NSCENARIOS (sizeof SCENARIOS / sizeof SCENARIOS[0])
 
 /* is `name` in the comma-separated list `only` (NULL or empty: every scenario)? */

@@ -24,5 +24,8 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher);
 /** PQS and AMB (300 ms of its own code at each START): PQS does not wait for AMB's priority
  *  answers; the claims are recorded when they come, an undo that came before is done then. */
 void scenario_late_priority_answer(const char *root, const char *bin, const char *launcher);
+/** DLA and DLB claim the priorities of AMD and AME (both answering late) in opposite orders:
+ *  neither waits for the other (answers settled before waiting for a lock). */
+void scenario_crossed_claims(const char *root, const char *bin, const char *launcher);
 
 #endif
