@@ -5,72 +5,29 @@
  * as the runtime's CSV line and read with the CSV reader's checks). The records are told in the
  * file's order, the order its writer gave them (time order). The file is hostile: a line longer
  * than a record's (MAX_JSON_LINE_CHARS) is skipped up to its end, never held, and named; with no
- * line end in MAX_SKIP_BYTES (a sparse file of a terabyte) the rest of the file is left out, said.
+ * line end in MAX_SKIP_BYTES (a sparse file of a terabyte) the rest of the file is left out, said
+ * (the lines: bounded-lines.ts, as for the CSV logs).
  */
-import { promises as fsp } from 'node:fs';
-import { StringDecoder } from 'node:string_decoder';
+import type { promises as fsp } from 'node:fs';
 import { MAX_JSON_LINE_CHARS, recordOfJsonLine, type TraceRecord } from '@contract-studio/build-service/trace';
-import { CHUNK_BYTES, MAX_SKIP_BYTES } from './trace-stream.js';
+import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES } from './bounded-lines.js';
 
 /** Records of a trace file in batches (one batch a chunk read), until the file's size when opened. */
 export async function* traceFileBatches(handle: fsp.FileHandle, name: string, chunkBytes = CHUNK_BYTES): AsyncGenerator<TraceRecord[]> {
     const size = (await handle.stat()).size;
-    const decoder = new StringDecoder('utf8');
-    const buffer = Buffer.alloc(chunkBytes);
-    let partial = '';
-    /** The current line is past the bound: its characters are dropped up to its newline. */
-    let skipping = false;
     let lineNo = 0;
-    let read = 0;
-    /** Characters dropped of the line being skipped. */
-    let dropped = 0;
-    /** The record that stands for a line no record can be (`head`: its first characters), at line `at`. */
-    const noRecord = (at: number, reason: string, head: string): TraceRecord => ({ kind: 'unknown', file: name, line: at, reason, text: head.slice(0, 200) });
-    const tooLong = `longer than ${MAX_JSON_LINE_CHARS} characters`;
-    const recordOf = (line: string, out: TraceRecord[]) => {
-        lineNo++;
-        const r = recordOfJsonLine(name, lineNo, line.endsWith('\r') ? line.slice(0, -1) : line);
-        if (r) out.push(r);
-    };
-    while (read < size) {
-        const { bytesRead } = await handle.read(buffer, 0, Math.min(chunkBytes, size - read), read);
-        if (bytesRead === 0) break;
-        read += bytesRead;
-        const text = decoder.write(buffer.subarray(0, bytesRead));
+    /** The record that stands for a line no record can be (`head`: its first characters). */
+    const noRecord = (reason: string, head: string): TraceRecord => ({ kind: 'unknown', file: name, line: lineNo, reason, text: head.slice(0, 200) });
+    for await (const lines of boundedLines(handle, size, { maxChars: MAX_JSON_LINE_CHARS, chunkBytes })) {
         const out: TraceRecord[] = [];
-        let pos = 0;
-        for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', pos)) {
-            if (skipping) {
-                out.push(noRecord(++lineNo, tooLong, partial));
-                skipping = false;
-                dropped = 0;
-                partial = '';
-            } else {
-                recordOf(partial + text.slice(pos, nl), out);
-                partial = '';
-            }
-            pos = nl + 1;
+        for (const l of lines) {
+            lineNo++;
+            if (l.kind === 'line') {
+                const r = recordOfJsonLine(name, lineNo, l.text.endsWith('\r') ? l.text.slice(0, -1) : l.text);
+                if (r) out.push(r);
+            } else if (l.kind === 'overLong') out.push(noRecord(`longer than ${MAX_JSON_LINE_CHARS} characters`, l.head));
+            else out.push(noRecord(`no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB: the rest of the file (${l.leftBytes} bytes) left out`, l.head));
         }
-        if (!skipping) {
-            partial += text.slice(pos);
-            if (partial.length > MAX_JSON_LINE_CHARS) {
-                skipping = true;
-                dropped = partial.length;
-                partial = partial.slice(0, 200);
-            }
-        } else dropped += text.length - pos;
-        if (skipping && dropped > MAX_SKIP_BYTES) {
-            out.push(noRecord(lineNo + 1, `no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB: the rest of the file (${size - read} bytes) left out`, partial));
-            yield out;
-            return;
-        }
-        if (out.length) yield out;
-    }
-    const rest = partial + decoder.end();
-    if (skipping) yield [noRecord(lineNo + 1, tooLong, partial)];
-    else if (rest) {
-        const out: TraceRecord[] = [];
-        recordOf(rest, out);
         if (out.length) yield out;
     }
 }

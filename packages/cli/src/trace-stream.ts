@@ -9,8 +9,8 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { StringDecoder } from 'node:string_decoder';
 import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
 import { LOG_FILE_NAME } from './trace-files.js';
 import { safeName } from './terminal-text.js';
 
@@ -25,10 +25,6 @@ export function windowFor(files: number): number {
 }
 /** A run writes one log per module; a folder with more is not a run's (each log holds a descriptor while read). */
 export const MAX_LOG_FILES = 1024;
-/** A "line" longer than this is no log's (a record is at most 4 KiB): the rest of its file is left out, said. */
-export const MAX_SKIP_BYTES = 64 * 1024 * 1024;
-/** Bytes read from a log at a time. */
-export const CHUNK_BYTES = 1 << 20;
 
 export interface OpenLog {
     name: string;
@@ -96,15 +92,7 @@ interface Keyed {
 
 /** One log's records in file order, a chunk at a time, each keyed by its time (an unknown line by the time before it). */
 class LogRecords {
-    private readonly decoder = new StringDecoder('utf8');
-    /** Made at the first read, as large as the log needs (a chunk at most), dropped at its end. */
-    private buffer: Buffer | undefined;
-    private offset = 0;
-    private rest = '';
-    /** The rest is the head of a line longer than a record can be: its end is skipped. */
-    private skipping = false;
-    /** Bytes of the line being skipped read so far. */
-    private skipped = 0;
+    private readonly lines: AsyncGenerator<BoundedLine[]>;
     /** What was left out of the file, and why. */
     readonly problems: string[] = [];
     private lineNo = 0;
@@ -114,7 +102,9 @@ class LogRecords {
     private at = 0;
     private ended = false;
 
-    constructor(private readonly log: OpenLog, private readonly chunkBytes: number) {}
+    constructor(private readonly log: OpenLog, chunkBytes: number) {
+        this.lines = boundedLines(log.handle, log.size, { maxChars: MAX_LINE_CHARS, chunkBytes });
+    }
 
     /** The next record; null when the next chunk must be read first (`readChunk`), undefined at the end. */
     next(): Keyed | null | undefined {
@@ -124,66 +114,22 @@ class LogRecords {
 
     /** Reads the next chunk's records (none at the end of the size seen: then `next` gives undefined). */
     async readChunk(): Promise<void> {
-        if (!(await this.readSome())) this.ended = true;
-    }
-
-    private async readSome(): Promise<boolean> {
         this.pending = [];
         this.at = 0;
-        const want = Math.min(this.chunkBytes, this.log.size - this.offset);
-        let text: string;
-        const wasSkipping = this.skipping;
-        let bytesRead = 0;
-        if (want > 0) {
-            const buffer = (this.buffer ??= Buffer.allocUnsafe(Math.min(this.chunkBytes, this.log.size)));
-            ({ bytesRead } = await this.log.handle.read(buffer, 0, want, this.offset));
-            if (bytesRead === 0) return this.finish();
-            this.offset += bytesRead;
-            text = this.rest + this.decoder.write(buffer.subarray(0, bytesRead));
-        } else {
-            return this.finish();
+        const batch = await this.lines.next();
+        if (batch.done) {
+            this.ended = true;
+            return;
         }
-        let pos = 0;
-        for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', pos)) {
-            this.line(text.slice(pos, nl));
-            pos = nl + 1;
+        for (const l of batch.value) {
+            // a line too long is one unreadable record (recordOfLine says why)
+            this.line(l.kind === 'line' ? l.text : l.head);
+            if (l.kind === 'noEnd')
+                this.problems.push(`${this.log.name}: no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB after line ${this.lineNo}: the rest of the file (${l.leftBytes} bytes) left out`);
         }
-        this.rest = text.slice(pos);
-        // a chunk all inside a skipped line: a file of megabytes without a line end (zeros, a
-        // sparse file of terabytes) is not read to its end
-        this.skipped = wasSkipping && pos === 0 ? this.skipped + bytesRead : 0;
-        if (this.skipped > MAX_SKIP_BYTES) {
-            this.problems.push(`${this.log.name}: no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB after line ${this.lineNo}: the rest of the file (${this.log.size - this.offset} bytes) left out`);
-            this.offset = this.log.size;
-            this.rest = '';
-            this.skipping = false;
-            return true;
-        }
-        if (this.rest.length > MAX_LINE_CHARS) {
-            // a line with no end in sight: told as too long once, the rest of it skipped
-            if (!this.skipping) this.line(this.rest);
-            this.skipping = true;
-            this.rest = '';
-        }
-        return true; // perhaps no record yet (a chunk within a line): `next` says to read again
-    }
-
-    /** The last line (no newline after it), once. */
-    private finish(): boolean {
-        this.buffer = undefined;
-        const last = this.rest + this.decoder.end();
-        this.rest = '';
-        if (last === '') return false;
-        this.line(last);
-        return this.pending.length > 0;
     }
 
     private line(raw: string): void {
-        if (this.skipping) {
-            // the end of an over-long line already told
-            this.skipping = false;
-            return;
-        }
         const record = recordOfLine(this.log.name, this.lineNo++, raw);
         if (!record) return;
         if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);
