@@ -5,7 +5,7 @@
  */
 import WebSocket from 'ws';
 import { describe, expect, test } from 'vitest';
-import { CANCEL_DEADLINE_MS } from './limits.js';
+import { CANCEL_DEADLINE_MS, CANCEL_GRACE_MS } from './limits.js';
 import type { JobEvent, LineEvent } from './pipeline/job-events.js';
 import { useBuildServer } from './test-support/build-server.js';
 import { brokenProgram, honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
@@ -111,6 +111,20 @@ describe('queue and cancel', () => {
     expect(job.status).toBe('cancelled');
     expect(job.result.message).toBe('cancelled');
     expect(ms).toBeLessThan(CANCEL_DEADLINE_MS);
+  });
+
+  test('cancel of a program that takes the launcher\'s name and ignores SIGTERM: asked, then killed after the grace, within 2 s', async () => {
+    const files = makeProject(infiniteLoop);
+    // `make run` runs a shell named like the launcher (its comm: the file name) that ignores SIGTERM
+    files.Makefile = `all:\n\ttrue\nrun:\n\tcp /bin/sh ./contract-launch && exec ./contract-launch -c 'trap "" TERM; echo looping; while :; do sleep 1; done'\n`;
+    const { ms, job } = await cancelWhen({ action: 'run', kind: 'make', project: { files } }, (e) => e.type === 'line' && e.line === 'looping');
+    expect(job.status).toBe('cancelled');
+    console.info(`cancel of a program named like the launcher that ignores SIGTERM: ${ms} ms`);
+    expect(ms).toBeGreaterThanOrEqual(CANCEL_GRACE_MS - 50);
+    expect(ms).toBeLessThan(CANCEL_DEADLINE_MS);
+    const log = await (await fetch(`${served.url}/api/jobs/${job.id as string}/log`)).text();
+    expect(log).toContain('stopping the architecture as at the end of a run');
+    expect(log).toContain(`the architecture did not stop within ${CANCEL_GRACE_MS} ms: killed`);
   });
 
   test('cancel mid-build stops everything within 2 s', async () => {
