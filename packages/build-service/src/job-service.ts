@@ -8,7 +8,7 @@ import { chmodSync, mkdirSync, mkdtempSync, realpathSync } from 'node:fs';
 import { availableParallelism, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_LIMITS, LimitsError, mergeLimits, workDiskBytes, type Limits } from './limits.js';
+import { DEFAULT_LIMITS, LimitsError, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
 import { Job, type JobRequest } from './pipeline/job.js';
 import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
@@ -186,10 +186,11 @@ export class JobService {
       if (e instanceof LimitsError) throw new ServiceError(400, 'bad_request', e.message);
       throw e;
     }
-    const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, limits.runSeconds);
+    const longest = longestDuration(limits.runSeconds);
+    const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, longest);
     const { project, projectKey } = this.parseProject(b.project);
     return {
-      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },
       sandbox,
     };
   }

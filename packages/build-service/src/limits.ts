@@ -167,6 +167,19 @@ export const REALTIME_BOUNDS: Readonly<RealtimeBounds> = Object.freeze({
 /** Time a cancel may take, end to end (documented guarantee, checked by the tests). */
 export const CANCEL_DEADLINE_MS = 2000;
 /**
+ * Seconds of the run step kept besides the architecture's duration: make, the modules' start and
+ * their stop (supervisors first, contract-launch). A request's duration is capped at runSeconds
+ * minus this (half of runSeconds when that is less), so that a run asked for the longest ends on
+ * its own and is not cut by the time limit.
+ */
+export const RUN_STOP_ROOM_SECONDS = 5;
+
+/** The longest duration of an architecture's run under `runSeconds` (RUN_STOP_ROOM_SECONDS). */
+export function longestDuration(runSeconds: number): number {
+  return runSeconds - Math.min(RUN_STOP_ROOM_SECONDS, runSeconds / 2);
+}
+
+/**
  * Part of it a cancelled run's launcher has to stop the architecture itself (as at the end of a
  * run, so that every module writes its last records) before everything is killed.
  */

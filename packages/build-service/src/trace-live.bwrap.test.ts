@@ -132,3 +132,40 @@ test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs
   expect(undone.length).toBeGreaterThan(0);
   for (const schema of undone) expect(texts.get('ORD')!, schema).toContain(`,scheduler,,,0,deactivate ${schema}\n`);
 }, 240_000);
+
+/** The 9 collected logs of a job, by module, each checked to end with its module's exit record. */
+async function logsEndingWithExit(id: string, job: Record<string, any>): Promise<void> {
+  const listing = job.artifacts as { files: { name: string }[] };
+  expect(listing.files).toHaveLength(9);
+  for (const f of listing.files) {
+    const text = await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
+    expect(parseLogFile({ name: f.name, text }).at(-1)?.kind, f.name).toBe('module_exit');
+  }
+}
+
+test('a duration as long as the run time limit is capped to leave room to stop: the run ends on its own, its logs whole', async () => {
+  const files = await tutorialFiles();
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 6, limits: { runSeconds: 6 }, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  const lines = (await readEvents(served.url, id)).filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  const job = await getJob(served.url, id);
+  expect(job.status, lines.slice(-20).join('\n')).toBe('succeeded');
+  expect(lines).toContain('duration 6 s capped to 3 s: the run time limit is 6 s, of which 3 s are kept to start and stop the architecture');
+  expect(lines).toContain('all modules stopped cleanly');
+  await logsEndingWithExit(id, job);
+}, 240_000);
+
+test('the run time limit stops an architecture that runs on (no duration) as at the end of a run: failed on the limit, its logs whole', async () => {
+  const files = await tutorialFiles();
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', limits: { runSeconds: 4 }, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  const lines = (await readEvents(served.url, id)).filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  const job = await getJob(served.url, id);
+  expect(job.status).toBe('failed');
+  expect(job.result.message).toBe('killed: run time limit 4 s');
+  expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
+  expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
+  await logsEndingWithExit(id, job);
+}, 240_000);

@@ -34,6 +34,8 @@ export interface JobRequest {
   kind: ProjectKind;
   start?: string;
   duration?: number;
+  /** The duration the request asked for, when it was capped (limits.ts longestDuration). */
+  durationAsked?: number;
   /** CPU list every module is pinned to (`make run CPUS=…`, contract-launch --cpus). */
   cpus?: string;
   /** Real-time mode (run only): modules take their SCHED_FIFO priorities, bounded (docs/sandbox.md "Real-time mode"). */
@@ -198,7 +200,16 @@ export class Job {
     this.cancelSignal();
     const proc = this.current;
     if (!proc) return;
-    if (this.currentStep === 'run' && (await proc.terminateNamed(LAUNCHER_PROCESS_NAME).catch(() => false))) {
+    if (this.currentStep === 'run') await this.stopArchitecture(proc);
+    else await proc.kill();
+  }
+
+  /**
+   * Asks the run's launcher to stop the architecture as at the end of a run (Stop, the run time
+   * limit); what still runs CANCEL_GRACE_MS later, or a run with no launcher, is killed.
+   */
+  private async stopArchitecture(proc: SandboxProcess): Promise<void> {
+    if (await proc.terminateNamed(LAUNCHER_PROCESS_NAME).catch(() => false)) {
       this.system('run', `stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
       let timer: NodeJS.Timeout | undefined;
       const ended = await Promise.race([proc.done.then(() => true), new Promise<false>((r) => (timer = setTimeout(() => r(false), CANCEL_GRACE_MS)))]);
@@ -336,6 +347,8 @@ export class Job {
       const runVars = [...vars, `RUN_DIR=${posix.join(work, 'run')}`, `LOG_DIR=${posix.join(work, 'logs')}`];
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
+      if (this.request.durationAsked !== undefined)
+        this.system('run', `duration ${this.request.durationAsked} s capped to ${this.request.duration} s: the run time limit is ${this.request.limits.runSeconds} s, of which ${this.request.limits.runSeconds - this.request.duration!} s are kept to start and stop the architecture`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
@@ -556,7 +569,7 @@ export class Job {
         mechanism: 'service-timer',
       };
       this.events.append({ type: 'limit', limitHit: timeHit });
-      proc.kill().catch(() => {});
+      (step === 'run' ? this.stopArchitecture(proc) : proc.kill()).catch(() => {});
     }), seconds * 1000);
     if (this.cancelRequested || this.fault) proc.kill().catch(() => {});
     const pump = (stream: Readable, name: 'stdout' | 'stderr'): Promise<void> =>
