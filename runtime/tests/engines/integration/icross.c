@@ -27,9 +27,6 @@ ENGINE_EXECUTABLE("DLB", 89, "engines integration test supervisor (crossed claim
 #endif
 
 #define MS ITEST_MS
-#define ELAPSED(name, t)                                                                   \
-    static const ContractEvent name##_ev[] = {{.kind = CONTRACT_EV_ELAPSED, .time_ns = (t)}}; \
-    static const ContractClause name[] = {{1, name##_ev}};
 
 static const ContractAction on_amd[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AMD"}};
 static const ContractAction on_ame[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AME"}};

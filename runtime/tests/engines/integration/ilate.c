@@ -18,9 +18,6 @@
 ENGINE_EXECUTABLE("PQS", 90, "engines integration test supervisor (late priority answers)")
 
 #define MS ITEST_MS
-#define ELAPSED(name, t)                                                                   \
-    static const ContractEvent name##_ev[] = {{.kind = CONTRACT_EV_ELAPSED, .time_ns = (t)}}; \
-    static const ContractClause name[] = {{1, name##_ev}};
 
 ELAPSED(at5, 5 * MS)
 ELAPSED(at40, 40 * MS)

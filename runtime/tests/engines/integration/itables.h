@@ -9,6 +9,10 @@
 #include <contract/vocabulary.h>
 
 #define ITEST_MS 1000000LL
+/* `name`: the precondition or postcondition [elapsed=t] */
+#define ELAPSED(name, t)                                                                   \
+    static const ContractEvent name##_ev[] = {{.kind = CONTRACT_EV_ELAPSED, .time_ns = (t)}}; \
+    static const ContractClause name[] = {{1, name##_ev}};
 static const long itest_gain_default = 3;
 static const ContractVar isc_params[] = {{"gain", &contract_type_long, 0, &itest_gain_default}};
 static const ContractAssign isc_ima_p0[] = {

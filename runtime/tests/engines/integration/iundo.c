@@ -35,9 +35,6 @@ ENGINE_EXECUTABLE("USM", 92, "engines integration test supervisor")
 #endif
 
 #define MS ITEST_MS
-#define ELAPSED(name, t)                                                                   \
-    static const ContractEvent name##_ev[] = {{.kind = CONTRACT_EV_ELAPSED, .time_ns = (t)}}; \
-    static const ContractClause name[] = {{1, name##_ev}};
 
 static const ContractSchemaModule evf_modules[] = {{"AMX", 0, NULL}, {"AMY", 0, NULL}};
 static const ContractEventFlow evf_flows[] = {{"AMX", 0, "AMY", 0, CONTRACT_CONTINUOUS}};
