@@ -145,26 +145,26 @@ async function logsEndingWithExit(id: string, job: Record<string, any>): Promise
 
 test('a duration as long as the run time limit is capped to leave room to stop: the run ends on its own, its logs whole', async () => {
   const files = await tutorialFiles();
-  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 6, limits: { runSeconds: 6 }, project: { files } });
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 4, limits: { runSeconds: 4 }, project: { files } });
   expect(r.status, JSON.stringify(r.json)).toBe(201);
   const id = r.json.id as string;
   const lines = (await readEvents(served.url, id)).filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
   const job = await getJob(served.url, id);
   expect(job.status, lines.slice(-20).join('\n')).toBe('succeeded');
-  expect(lines).toContain('duration 6 s capped to 3 s: the run time limit is 6 s, of which 3 s are kept to start and stop the architecture');
+  expect(lines).toContain('duration 4 s capped to 2 s: the run time limit is 4 s, of which 2 s are kept to start and stop the architecture');
   expect(lines).toContain('all modules stopped cleanly');
   await logsEndingWithExit(id, job);
 }, 240_000);
 
 test('the run time limit stops an architecture that runs on (no duration) as at the end of a run: failed on the limit, its logs whole', async () => {
   const files = await tutorialFiles();
-  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', limits: { runSeconds: 4 }, project: { files } });
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', limits: { runSeconds: 3 }, project: { files } });
   expect(r.status, JSON.stringify(r.json)).toBe(201);
   const id = r.json.id as string;
   const lines = (await readEvents(served.url, id)).filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
   const job = await getJob(served.url, id);
   expect(job.status).toBe('failed');
-  expect(job.result.message).toBe('killed: run time limit 4 s');
+  expect(job.result.message).toBe('killed: run time limit 3 s');
   expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
   expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
   await logsEndingWithExit(id, job);
