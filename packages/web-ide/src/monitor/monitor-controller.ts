@@ -17,6 +17,7 @@ import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
+import { debounce } from '../util/dom.js';
 import { MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
@@ -76,6 +77,14 @@ export class MonitorController {
     deps.build.onStarted.on(({ jobId, action }) => {
       if (action === 'run') this.followLive(jobId);
     });
+    // the language server built the model, or built it again after an edit: the panel reads its
+    // schemas and the rules' places again (a panel made before the server was ready, by a Build &
+    // Run pressed at once, showed "PERIOD ?" and no CRITICAL_DELAY line for the whole run)
+    const remodel = debounce(() => {
+      this.symbols = undefined;
+      if (this.panel) void this.panel.refreshModel();
+    }, 400);
+    deps.lsp.onDiagnostics.on(remodel);
     // a workspace log folder changed on disk (a `contract run` wrote logs, a log was added or
     // removed): the run list offers new folders at once, and a folder's replay is read again —
     // now if it is shown, else when it is picked

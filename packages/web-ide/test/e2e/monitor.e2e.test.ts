@@ -570,6 +570,14 @@ describe('Monitor in headless Chromium', () => {
     const { page } = s;
     await openFile(page, 'supervisor.contract');
     await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})' })));
+    // a page just opened, Build & Run pressed at once: the Monitor is made before the language
+    // server has built the model, and reads the schemas again once it has (PERIOD, CRITICAL_DELAY)
+    const cdp = await page.context().newCDPSession(page);
+    await cdp.send('Network.setCacheDisabled', { cacheDisabled: true }); // a cold load, as a first visit
+    await page.reload();
+    await page.waitForSelector('#btn-run:not([disabled])');
+    await cdp.send('Network.setCacheDisabled', { cacheDisabled: false });
+    await cdp.detach();
     // every event the page's own sockets receive, by type: the trace goes to the live run's worker only
     await page.evaluate(() => {
       const w = window as any;
@@ -600,6 +608,7 @@ describe('Monitor in headless Chromium', () => {
       expect(await rule(page, 'SUP.action.FIRST').getAttribute('data-active')).toBe('false');
       await expect.poll(() => page.locator('.monitor-schema').allTextContents(), { timeout: 5000 }).toEqual(['● schemaCommande1 (periodic) ← SUP.action.SECOND']);
       await expect.poll(async () => Number(await periodic(page, 'schemaCommande1').getAttribute('data-releases')), { timeout: 5000 }).toBeGreaterThan(0);
+      await expect.poll(() => periodic(page, 'schemaCommande1').locator('.monitor-pname').textContent(), { timeout: 5000 }).toBe('schemaCommande1 · PERIOD 1s · CRITICAL_DELAY 1s');
       expect(await running()).toBe('running');
       expect(await page.locator('.monitor-time').textContent()).toContain('· live');
       await shot(page, 'monitor-02b-live-tutorial-during-run');
