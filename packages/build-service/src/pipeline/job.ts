@@ -209,14 +209,17 @@ export class Job {
    * limit); what still runs CANCEL_GRACE_MS later, or a run with no launcher, is killed.
    */
   private async stopArchitecture(proc: SandboxProcess): Promise<void> {
-    if (await proc.terminateNamed(LAUNCHER_PROCESS_NAME).catch(() => false)) {
+    // the grace counts from now: asking (an exec in Docker, on a loaded engine) is part of it
+    let timer: NodeJS.Timeout | undefined;
+    const graceOver = new Promise<false>((r) => (timer = setTimeout(() => r(false), CANCEL_GRACE_MS)));
+    const asked = await Promise.race([proc.terminateNamed(LAUNCHER_PROCESS_NAME).catch(() => false), graceOver]);
+    if (asked) {
       this.system('run', `stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
-      let timer: NodeJS.Timeout | undefined;
-      const ended = await Promise.race([proc.done.then(() => true), new Promise<false>((r) => (timer = setTimeout(() => r(false), CANCEL_GRACE_MS)))]);
-      clearTimeout(timer);
+      const ended = await Promise.race([proc.done.then(() => true), graceOver]);
       this.stoppedGracefully = ended;
       if (!ended) this.system('run', `the architecture did not stop within ${CANCEL_GRACE_MS} ms: killed`);
     }
+    clearTimeout(timer);
     await proc.kill();
   }
 

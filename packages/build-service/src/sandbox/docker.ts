@@ -357,11 +357,17 @@ export class DockerSandbox implements Sandbox {
       };
       const terminateNamed = async (name: string): Promise<boolean> => {
         if (killing) return false;
+        const comm = name.slice(0, 15);
+        // the engine lists the container's processes without starting one in it (most runs that
+        // are stopped by the time limit are no architecture, and a fork bomb leaves no room to exec)
+        const listed = (await container.top({ ps_args: '-o pid,comm' }).catch(() => null)) as { Titles?: string[]; Processes?: string[][] } | null;
+        const at = listed?.Titles?.indexOf('COMMAND') ?? -1;
+        if (listed?.Processes && at >= 0 && !listed.Processes.some((p) => p[at] === comm)) return false;
         // inside the container, as its user: the container's own processes are all it sees
         const out = new PassThrough();
         let text = '';
         out.on('data', (c: Buffer) => (text += c.toString()));
-        await this.execIn(container, ['sh', '-c', TERMINATE_NAMED, 'contract-terminate', name.slice(0, 15)], out).catch(() => null);
+        await this.execIn(container, ['sh', '-c', TERMINATE_NAMED, 'contract-terminate', comm], out).catch(() => null);
         // a pid per process asked, as soon as it is: an architecture that stops at once ends the
         // container, and this exec with it, before the loop is done
         return /^\d+$/m.test(text);

@@ -117,6 +117,7 @@ describe(`${sandbox} sandbox, adversarial jobs running together`, () => {
     // deadline (docs/sandbox.md); artifact collection and the workspace's release come after it
     const killed = events.find((e): e is LineEvent => e.type === 'line' && e.stream === 'system' && e.line === 'run: killed: run time limit 4 s');
     expect(killed).toBeDefined();
+    console.info(`${mechanism}: run time limit -> every process of the loop gone: ${killed!.t - limit.t} ms`);
     expect(killed!.t - limit.t).toBeLessThan(2000);
     expect(killed!.t).toBeGreaterThanOrEqual(limit.t);
   });
