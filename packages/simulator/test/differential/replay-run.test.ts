@@ -38,7 +38,7 @@ function events(text: string): { t: bigint; source: string }[] {
  * fire (DRV was not scheduled, then took the waiting STOP first); a later run of autonomous shows
  * LOOPS' delay.
  */
-function run(drvDecidedInBetween: boolean, drvLate = false) {
+function run(drvDecidedInBetween: boolean, drvLate = false, navBetweenRequests = false, requestRules?: Record<string, string[]>) {
     const [tStart, tStop] = drvDecidedInBetween ? [2_001_200_000, 2_003_000_000] : drvLate ? [2_001_200_000, 2_002_700_000] : [2_001_200_000, 2_002_000_000];
     const files = [
         csv('MIS', [
@@ -50,19 +50,21 @@ function run(drvDecidedInBetween: boolean, drvLate = false) {
             '3000000000,W,MIS,request_received,contract-launch,,0,STOP',
         ]),
         csv('DRV', [
+            ...(navBetweenRequests ? ['2000100000,W,DRV,request_received,MIS,,11,STOP'] : []), // STOP's end: safestop's stop
             `${tStart},W,DRV,request_received,MIS,,29,START autonomous`,
             ...(drvDecidedInBetween ? ['2002200000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns'] : []),
             `${tStop},W,DRV,request_received,MIS,,11,STOP`,
+            ...(navBetweenRequests ? [`${tStop + 50_000},W,DRV,request_received,NAV,1,8,EVENT from_port=0`, `${tStop + 60_000},W,DRV,event_received,NAV,1,8,from_port=0 latency_ns=10000`] : []),
             `${tStop + 100_000},W,DRV,request_received,MIS,,5,START safestop`,
             `${tStop + 1_100_000},W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns`,
             ...(drvLate ? ['2500000000,W,DRV,request_received,MIS,,29,START autonomous', '2501100000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns'] : []),
         ]),
         csv('ORD', [`${drvDecidedInBetween ? 2_002_890_000 : 2_001_930_000},W,ORD,ord_deadline_miss,,,0,schema=velocityLoop cycle=7 tick_ns=1990000000`]),
     ];
-    const { text } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()' });
+    const { text } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules });
     const list = events(text);
     const at = (source: string) => list.find((e) => e.source === source)!;
-    return { text, list, obs0: at('OBS:0'), obs1: at('OBS:1'), ord0: at('ORD:0') };
+    return { text, list, obs0: at('OBS:0'), obs1: at('OBS:1'), ord0: at('ORD:0'), nav0: list.find((e) => e.source === 'NAV:0') };
 }
 
 /**
@@ -127,6 +129,21 @@ describe('scenarioOfRun', () => {
         expect(ord0.t - obs0.t).toBe(999_000n);
         expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0']);
         expect(obs1.t).toBeLessThan(ord0.t);
+    });
+
+    it('an event a supervisor got between two requests of one decision of another stays after that decision', () => {
+        // MIS decided on the miss: STOP autonomous, START safestop; DRV took a NAV:0 after the STOP
+        // (its autonomous already stopped: no decision on it), before the START. In the simulator
+        // both requests arrive at the miss: the NAV:0 must come after it, at its own time, not
+        // before the miss as an event met before the STOP would (a CI run's DRV then steered once more)
+        // (also when the requests are matched with the rule changes that sent them: AUTO's end
+        // sent the STOP, STOP's start the START, both on the miss)
+        for (const rules of [undefined, { DRV: ['MIS mission.AUTO', 'MIS mission.STOP'] }]) {
+            const { list, ord0, nav0 } = run(true, false, true, rules);
+            expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0', 'NAV:0']);
+            expect(nav0!.t).toBe(2_003_060_000n - 1_000_000_000n);
+            expect(nav0!.t).toBeGreaterThan(ord0.t);
+        }
     });
 
     it('a function that made a decision before it was stopped keeps the events at their own times', () => {

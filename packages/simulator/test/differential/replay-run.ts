@@ -352,15 +352,24 @@ function decisionStart(tl: Timeline, q: KnownRecord | RuleRecord): { start: bigi
     return { start: trigger?.emission?.t ?? tp, trigger };
 }
 
-/** Moves the events a supervisor received while another's request was on its way (see scenarioOfRun). */
+/**
+ * Moves the events a supervisor received while another's request was on its way (see scenarioOfRun):
+ * those it met before the first request of the sender's decision, not those after an earlier one.
+ */
 function inFlight(tl: Timeline): void {
     for (const q of tl.requests) {
         const tq = mono(q);
         // the sender's decision that sent it, and the event that started that decision (if one did)
         const at = decisionStart(tl, q);
         if (!at) continue;
+        // an earlier request the sender made on the same event (STOP autonomous as AUTO ended,
+        // then START safestop as STOP began): the receiver met the events after it after that
+        // request, as in the simulator, which delivers both at that event: only those before the
+        // first such request move
+        const first = tl.requests.filter((p) => p.module === q.module && p.peer === q.peer && mono(p) <= tq && decisionStart(tl, p)?.start === at.start).map(mono);
+        const to = first.reduce((min, t) => (t < min ? t : min), tq);
         // the receiver's own events (not shared with another supervisor) that came in between
-        const between = tl.receipts(q.module).filter((x) => x.emission && x.t > at.start && x.t < tq && tl.receivers.get(x.source)?.length === 1);
+        const between = tl.receipts(q.module).filter((x) => x.emission && x.t > at.start && x.t < to && tl.receivers.get(x.source)?.length === 1);
         between.forEach((x, i) => (x.emission!.t = at.start - BigInt(between.length - i)));
     }
 }
