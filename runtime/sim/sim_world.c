@@ -284,6 +284,11 @@ static void sio_rule(void *ctx, int64_t t, const char *function, const char *rul
     SimSup *p = ctx;
     if (p->w->sink.rule) p->w->sink.rule(p->w->sink.ctx, t, p->v->name, function, rule, active, cause);
 }
+static void sio_action(void *ctx, int64_t t, const char *line) {
+    SimSup *p = ctx;
+    (void)t;
+    action(p->w, p->v->name, "%s", line);
+}
 
 /* ---- ORD io ------------------------------------------------------------------------------- */
 
@@ -484,6 +489,7 @@ SimWorld *sim_world_create(const ContractSupervisorVocabulary *const *sups, int 
         io.stop_function = sio_stop_function;
         io.trace = sio_trace;
         io.rule = sio_rule;
+        io.action = sio_action;
         p->core = sup_core_create(sups[i], &io, err, errlen);
         if (!p->core) {
             sim_world_destroy(w);

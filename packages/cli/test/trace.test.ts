@@ -17,7 +17,10 @@ beforeAll(() => {
     writeFileSync(join(dir, 'SUP_24-Nov-2026-18h30m15s.csv'), [HEADER,
         '2000000000,w,SUP,supervisor,,,0,function action started',
         '2001000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns',
+        '2001000100,w,SUP,supervisor,MAA,,0,subscribe MAA:2 =* :2', // an action: not told
+        '2001000200,w,SUP,supervisor,,,0,activate schema R (event schema)', // an event schema's: told
         '\u001b]0;pwned\u0007 garbage',
+        '2499000000,w,SUP,supervisor,,,0,undo: deactivate schema R (event schema)',
         '2500000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""dis\u001b[2Jconnected"""', ''].join('\n'));
     writeFileSync(join(dir, 'ORD_24-Nov-2026-18h30m15s.csv'), [HEADER,
         '2000500000,w,ORD,scheduler,,,0,activate S',
@@ -48,9 +51,11 @@ describe('contract trace', () => {
             '+0.000000s SUP  function action started',
             '+0.000500s ORD  activate S',
             '+0.001000s SUP  rule action.FIRST active   <- elapsed=1ms',
+            '+0.001000s SUP  activate schema R (event schema)',
             '+0.300000s ORD  deadline miss (ORD:0): S cycle 0',
+            '+0.499000s SUP  undo: deactivate schema R (event schema)',
             '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
-            '7 records: 1 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
+            '10 records: 1 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
             '',
         ].join('\n'));
     });
@@ -59,8 +64,9 @@ describe('contract trace', () => {
         const io = capture(dir);
         expect(await runCli(['trace', dir, '--format', 'json'], io)).toBe(0);
         const records = io.stdout.trim().split('\n').map((l) => JSON.parse(l) as { kind: string; reason?: string; fields?: Record<string, unknown> });
-        expect(records.map((r) => r.kind)).toEqual(['supervisor', 'scheduler', 'ord_release', 'sup_rule', 'unknown', 'ord_deadline_miss', 'sup_rule']);
-        expect(records[4]!.reason).toBe('1 fields, expected 8');
+        expect(records.map((r) => r.kind)).toEqual(['supervisor', 'scheduler', 'ord_release', 'sup_rule', 'supervisor', 'supervisor', 'unknown', 'ord_deadline_miss', 'supervisor', 'sup_rule']);
+        expect(records[6]!.reason).toBe('1 fields, expected 8');
+        expect(records[5]!.fields).toEqual({ what: 'action', schema: 'R' });
         expect(records[2]!.fields).toEqual({ schema: 'S', cycle: 0, tick_ns: 2000500000, release_ns: 2000500001, release: 1 });
     });
 

@@ -136,6 +136,15 @@ struct SupCore {
 
 ENGINE_DEFINE_TRACE(SupCore)
 
+/* an action no other io call carries (io.action) */
+static void note_action(SupCore *c, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+static void note_action(SupCore *c, const char *fmt, ...) {
+    va_list ap;
+    va_start(ap, fmt);
+    engine_vtrace(c->io.action, c->io.ctx, c->now, fmt, ap);
+    va_end(ap);
+}
+
 static void *scratch_alloc(SupCore *c, size_t n) {
     size_t a = (c->scratch_used + 15u) & ~(size_t)15u;
     if (a + n > SCRATCH_SIZE) return NULL;
@@ -312,6 +321,7 @@ static unsigned char *build_block(SupCore *c, int f, const ContractVar *vars, in
 
 static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
                                   const unsigned char *params) {
+    note_action(c, "activate schema %s (event schema)", sc->name);
     EngineScope s = fn_scope(c, f);
     s.params = params;
     s.param_vars = sc->params;
@@ -336,6 +346,7 @@ static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
 }
 
 static void deactivate_event_schema(SupCore *c, const ContractSchema *sc) {
+    note_action(c, "undo: deactivate schema %s (event schema)", sc->name);
     for (int i = 0; i < sc->nevent_flows; i++) {
         const ContractEventFlow *fl = &sc->event_flows[i];
         int left = sup_claims_flow_use(&c->claims, fl, -1);
@@ -443,6 +454,7 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
             }
         }
         a->fn->call(args);
+        note_action(c, "compute %s", a->fn->name);
         break;
     }
     case CONTRACT_ACT_SUBSCRIBE: {

@@ -327,6 +327,13 @@ static void b_trace(void *ctx, int64_t t, const char *line) {
     ContractLog("supervisor", "", -1, 0, line);
 }
 
+/* an action the core has no other call for (event schemas, compute): CSV only, as the others */
+static void b_action(void *ctx, int64_t t, const char *line) {
+    (void)ctx;
+    (void)t;
+    ContractLog("supervisor", "", -1, 0, line);
+}
+
 /* a rule change with its cause (docs/runtime-api.md "Trace records"): CSV only, the readable
    `rule F.R active` line is b_trace's */
 static void b_rule(void *ctx, int64_t t, const char *function, const char *rule, int active,
@@ -381,7 +388,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
     SupIo io = {&b, b_ord_activate, b_ord_deactivate, b_module_running, b_start_module, b_stop_module,
                 b_claim_priority, b_release_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
                 b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
-                b_rule};
+                b_rule, b_action};
     char err[512] = "";
     holds_before_block(prio_requests_settle);
     SupCore *c = sup_core_create(v, &io, err, sizeof err);

@@ -325,6 +325,10 @@ static void s_trace(void *ctx, int64_t t, const char *line) {
     (void)t;
     wlog(ctx, line);
 }
+static void s_action(void *ctx, int64_t t, const char *line) {
+    (void)t;
+    if (((FakeWorld *)ctx)->log_actions) wlog(ctx, line);
+}
 static void s_share_module(void *ctx, const char *m, int hold) {
     require_locked(ctx, m);
     WLOG((FakeWorld *)ctx, "%s %s", hold ? "share" : "unshare", m);
@@ -345,7 +349,7 @@ SupIo fake_sup_io(FakeWorld *w) {
     SupIo io = {w, s_ord_activate, s_ord_deactivate, s_module_running, s_start_module,
                 s_stop_module, s_claim_priority, s_release_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
                 s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module,
-                s_lock_module, NULL};
+                s_lock_module, NULL, s_action};
     return io;
 }
 

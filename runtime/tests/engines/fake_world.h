@@ -37,6 +37,9 @@ typedef struct FakeWorld {
        several supervisors can share them */
     struct FakeWorld *modules;
     SupClaims prio_claims;
+    /* SupIo.action lines (event schemas, compute) go to the log too when set (off by default:
+       most tests check the effects only) */
+    int log_actions;
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);

@@ -32,6 +32,7 @@ void test_report_sup_full_sequence(void) {
     SupCore *c = make_sup(&w, &SUP_VOCAB, NULL);
     CHECK(c != NULL);
     if (!c) return;
+    w.log_actions = 1; /* the event schema's activation and undo, the compute, in their place */
     TypeA consigne = {1.0, 2.0, 3.0};
     CHECK(sup_core_start_function(c, 0, "action", &consigne, sizeof consigne) == 0);
 
@@ -77,6 +78,7 @@ void test_report_sup_full_sequence(void) {
               "rule action.FIRST active",
               "subscribe MAA:2 =* :2",
               "subscribe MAA:0 =* :1",
+              "activate schema schemaReceptionMessage (event schema)",
               "setparam MAA:0 {27.12,0,0.04}",
               "connect MAA:0 =* MAB:0",
               "start MAA prio 40",
@@ -92,6 +94,7 @@ void test_report_sup_full_sequence(void) {
               "rule action.FIRST inactive",
               "unsubscribe MAA:2 :2",
               "unsubscribe MAA:0 :1",
+              "undo: deactivate schema schemaReceptionMessage (event schema)",
               "disconnect MAA:0 =* MAB:0",
               "stop MAA",
               "stop MAB",
@@ -106,6 +109,7 @@ void test_report_sup_full_sequence(void) {
               "notify :1 commutation",
               "rule action.FOURTH active",
               "compute doit(1.24,3)",
+              "compute doit",
               "ORD activate schemaCommande2 consigne={1,2,3}",
               "rule action.THIRD inactive",
               "ignored: event MSC:1 (no active subscription)",

@@ -57,6 +57,8 @@ export class StoryTeller {
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
+        // an event schema's activation and undo (ORD tells the periodic ones)
+        if (k.kind === 'supervisor' && what === 'action' && k.fields['schema'] !== undefined) return `${at(k)} ${k.detail}`;
         if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}`;
         if (k.kind === 'module_started') return `${at(k)} started (${k.detail})`;

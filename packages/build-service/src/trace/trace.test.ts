@@ -82,6 +82,10 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'refused: no function nope')).toEqual({ what: 'function_refused', function: 'nope' });
         expect(fields('supervisor', 'rule action.FIRST inactive')).toEqual({ what: 'rule', function: 'action', rule: 'FIRST', state: 'inactive' });
         expect(fields('supervisor', 'subscribe MAA:2 =* :2')).toEqual({ what: 'action' });
+        expect(fields('supervisor', 'activate schema schemaReceptionMessage (event schema)')).toEqual({ what: 'action', schema: 'schemaReceptionMessage' });
+        expect(fields('supervisor', 'undo: deactivate schema console (event schema)')).toEqual({ what: 'action', schema: 'console' });
+        expect(fields('supervisor', 'activate schema S (activation #3, to ORD)')).toEqual({ what: 'action' });
+        expect(fields('supervisor', 'compute record')).toEqual({ what: 'action' });
     });
 
     it('keeps what it cannot read as unknown records saying why, and never throws', () => {

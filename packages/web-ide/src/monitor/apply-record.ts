@@ -162,7 +162,12 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       else if (what === 'function_refused' && fn) sv.functions.set(fn, { state: sv.functions.get(fn)?.state === 'running' ? 'running' : 'refused', since: t });
       else if (what === 'action') {
         if (/^undo\b|^un/.test(k.detail)) sv.actionsUndone++;
-        else sv.actionsDone++;
+        else {
+          sv.actionsDone++;
+          // an event schema it runs itself: what its rule started, as ORD's START names a periodic one
+          const schema = str(f['schema']);
+          if (schema) noteStarted(s, k.module, schema);
+        }
       }
       return;
     }

@@ -8,7 +8,7 @@ import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
 import { activeSchemas } from './active-schemas.js';
 
-// a real run of examples/tutorial (`contract run --duration 4s`, bwrap; recorded again 2026-12-03 when supervisors began to write event_received)
+// a real run of examples/tutorial (`contract run --duration 4s`, bwrap; recorded again 2026-12-04 when supervisors began to write their event schemas' activations)
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
 const tutorial = parseTrace(readdirSync(dir).map((name) => ({ name, text: readFileSync(join(dir, name), 'utf8') })));
 
@@ -86,7 +86,8 @@ describe('monitor model on a recorded tutorial run', () => {
     expect(mid.supervisors.get('SUP')!.rules.get('action.SECOND')!.started).toContain('schemaCommande1');
     const before = model.stateAt(firstOff.t - 1);
     expect(before.supervisors.get('SUP')!.rules.get('action.FIRST')).toMatchObject({ active: true, cause: 'elapsed=1000000ns' });
-    expect(before.supervisors.get('SUP')!.rules.get('action.FIRST')!.started).toEqual(['MAA', 'MAB']);
+    // the event schema FIRST activated (its record), then the modules it started (their holds)
+    expect(before.supervisors.get('SUP')!.rules.get('action.FIRST')!.started).toEqual(['schemaReceptionMessage', 'MAA', 'MAB']);
     expect(before.supervisors.get('SUP')!.heldModules).toEqual(new Map([['MAA', 'action.FIRST'], ['MAB', 'action.FIRST']]));
   });
 
@@ -115,9 +116,11 @@ describe('monitor model on a recorded tutorial run', () => {
     expect(s.eventFlows.get('MAA:2->SUP:2')!.count).toBe(2);
     expect(s.eventFlows.get('MAA:0->SUP:1')!.count).toBe(4);
     // SUP's actions and undos, as its log lists them: the supervisor action records (subscriptions,
-    // parameters, schemaCommande1 asked of ORD), the holds and the priorities it set
+    // parameters, schemaCommande1 asked of ORD, schemaReceptionMessage run by SUP itself: every
+    // supervisor line but the readable ones), the holds and the priorities it set
     const sup = readFileSync(join(dir, 'SUP.csv'), 'utf8').split('\n');
-    const actions = sup.filter((l) => /,SUP,supervisor,[A-Z]+,/.test(l));
+    const actions = sup.filter((l) => /,SUP,supervisor,[A-Z]*,,0,"?(?!function |rule |refused: |ignored: |kept: |error: |warning: )/.test(l));
+    expect(actions.filter((l) => l.includes('(event schema)'))).toHaveLength(2);
     expect(actions.length).toBeGreaterThan(5);
     const undos = actions.filter((l) => /,0,"?undo: /.test(l)).length;
     expect(undos).toBeGreaterThanOrEqual(3); // MAA:2, MAA:0 and MSC:1 unsubscribed, schemaCommande1 deactivated
