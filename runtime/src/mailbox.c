@@ -363,8 +363,12 @@ static int accept_request(RequestMessage *m)
     return 1;
 }
 
-/* One datagram from the mailbox into rx_buffer. Returns 1 (valid request), 0 (none: EAGAIN,
- * or an invalid datagram that was reported and dropped), -1 (error, errno set). */
+/* One datagram from the mailbox into rx_buffer. Returns RX_GOT (a request for the caller),
+ * RX_NONE (EAGAIN, or the receive timed out), RX_TAKEN (one the library answered itself, or an
+ * invalid datagram that was reported and dropped: read on), -1 (error, errno set). */
+#define RX_NONE 0
+#define RX_GOT 1
+#define RX_TAKEN 2
 static int receive_one(int flags)
 {
     WirePrefix pre;
@@ -381,22 +385,39 @@ static int receive_one(int flags)
     RTIME now = GetTime();
     if ((size_t)n < sizeof pre + REQUEST_HEADER_SIZE || pre.magic != WIRE_MAGIC || pre.kind != WIRE_REQUEST) {
         rt_error("dropped a malformed datagram of %zd bytes in the mailbox", n);
-        return 0;
+        return RX_TAKEN;
     }
     if ((mh.msg_flags & MSG_TRUNC) || (size_t)n != sizeof pre + REQUEST_HEADER_SIZE + rx_buffer.DataSize) {
         rt_error("dropped a %s request from %.63s: size %zd does not match its header (payload %zu, max %d)",
                  rt_request_name(rx_buffer.Type), rx_buffer.Sender, n, rx_buffer.DataSize, CONTRACT_REQUEST_DATA_MAX);
-        return 0;
+        return RX_TAKEN;
     }
     rx_buffer.Sender[CONTRACT_NAME_MAX - 1] = '\0';
     rx_buffer.ReceptionTime = now;
-    return accept_request(&rx_buffer);
+    return accept_request(&rx_buffer) ? RX_GOT : RX_TAKEN;
 }
+
+/* At most this many datagrams a non-blocking read goes through (answered queries, dropped
+ * datagrams) before it says "none": a flood of them cannot hold the module in the read. */
+#define RX_TAKEN_MAX 64
+/* At most this many requests read ahead are kept (read_ahead): beyond, they wait in the socket,
+ * whose bound tells senders that the module is behind (CONTRACT_EBUSY). 16 KiB each at most. */
+#define READ_AHEAD_MAX 64
 
 static void deliver(RequestMessage *out, const RequestMessage *in)
 {
     if (out != in) memcpy(out, in, REQUEST_HEADER_SIZE + in->DataSize);
     if (out->Type == REQ_EVENT) rt_remember_event(out);
+    if (out->Type == REQ_START && !g_rt.running) {
+        /* a START read ahead while the run before went on, handed over once that run ended
+         * (WaitForRequest): the module runs again from now (status queries) */
+        g_rt.running = 1;
+        if (rt_log_enabled()) {
+            char d[48];
+            snprintf(d, sizeof d, "activation=%ld", g_rt.activations);
+            ContractLog("run_started", out->Sender, -1, 0, d);
+        }
+    }
 }
 
 static int pop_pending(RequestMessage *out)
@@ -440,7 +461,13 @@ static int receive_until(RTIME deadline)
     for (;;) {
         RTIME now = GetTime();
         rt_log_maybe_flush(now);
-        if (deadline <= now) return receive_one(MSG_DONTWAIT);
+        if (deadline <= now) {
+            for (int taken = 0; taken < RX_TAKEN_MAX; taken++) {
+                int r = receive_one(MSG_DONTWAIT);
+                if (r != RX_TAKEN) return r;
+            }
+            return RX_NONE;
+        }
         RTIME wait = deadline == INT64_MAX ? -1 : deadline - now;
         RTIME flush_ns = rt_log_flush_ns();
         RTIME due = ContractLogFlushDue(flush_ns);
@@ -461,14 +488,14 @@ static int receive_until(RTIME deadline)
                 g_rt.mbx_rcvtimeo = timeo;
             }
             r = receive_one(0);
-            if (r != 0) return r;
+            if (r == RX_GOT || r < 0) return r;
             continue;
         }
         struct pollfd pfd = { g_rt.mbx_fd, POLLIN, 0 };
         struct timespec ts = { (time_t)(wait / 1000000000LL), (long)(wait % 1000000000LL) };
         int pr = ppoll(&pfd, 1, &ts, NULL);
         if (pr < 0) return -1;
-        if (pr > 0 && (r = receive_one(MSG_DONTWAIT)) != 0) return r;
+        if (pr > 0 && ((r = receive_one(MSG_DONTWAIT)) == RX_GOT || r < 0)) return r;
     }
 }
 
@@ -498,9 +525,24 @@ RequestMessage *WaitForRequest(RequestMessage *msg)
     }
 }
 
+/* The requests already waiting in the mailbox, read into the pending list in their order: a
+ * status or priority query among them is answered at once (the library answers those at
+ * reception) instead of after one module state per request ahead of it. */
+static void read_ahead(void)
+{
+    for (int taken = 0; g_rt.pending_count < READ_AHEAD_MAX && taken < RX_TAKEN_MAX;) {
+        int r = receive_one(MSG_DONTWAIT);
+        if (r == RX_GOT) push_pending(&rx_buffer);
+        else if (r == RX_TAKEN) taken++;
+        else break; /* none left, or an error the next read meets again */
+    }
+}
+
 RequestMessage *LookForRequest(RequestMessage *msg)
 {
-    return WaitForRequestUntil(msg, 0) == 1 ? msg : NULL;
+    if (WaitForRequestUntil(msg, 0) != 1) return NULL;
+    read_ahead(); /* the module is busy in its run: what waits behind this request */
+    return msg;
 }
 
 int MailboxFd(void) { return g_rt.mbx_fd; }

@@ -589,6 +589,65 @@ void test_ask_module_priority(void)
     h_teardown();
 }
 
+/* A module busy in its run reads its mailbox once per state (100 ms here): a status query
+   behind six parameter requests is answered at the next read, not after six more states (the
+   engines' "is it running?" waited up to 0.5 s for it), and the requests ahead of it are all
+   handled, in their order. A START read ahead with the request that ends the run is handed over
+   once the run has ended: the module says it runs again (a run_started record, status). */
+void test_status_behind_requests(void)
+{
+    REQUIRE(h_setup("statusahead") == 0);
+    RequestMessage *m = h_msg();
+    REQUIRE(h_spawn_module("C1", "C1") > 0);
+    REQUIRE(set_param("C1", 16, 5000));
+    CHECK(SendStart("C1", ACK_START | ACK_FINISHED, 1) == CONTRACT_OK);
+    CHECK(h_wait_ack("C1", 1, ACK_START, 2000, m));
+    usleep(150000); /* in its states */
+    TestParam p;
+    memset(&p, 0, sizeof p);
+    p.flags = 16;
+    p.run_ms = 5000;
+    for (int i = 0; i < 6; i++) {
+        snprintf(p.label, sizeof p.label, "request %d", i);
+        CHECK(SendSetParam("C1", 0, &p, sizeof p, ACK_NOTHING, -1) == CONTRACT_OK);
+    }
+    char text[1024] = "";
+    RTIME t0 = GetTime();
+    CHECK(QueryStatus("C1", text, sizeof text, t0 + 2000000000LL) == CONTRACT_OK);
+    double waited_ms = (double)(GetTime() - t0) / 1e6;
+    CHECK_MSG(waited_ms < 350, "the status answer took %.0f ms (one state is 100 ms; six requests ahead of it)", waited_ms);
+    CHECK_MSG(strstr(text, " running=yes") != NULL, "status '%s'", text);
+    /* each parameter request handled, in order (the module reports each on port 3) */
+    for (int i = 0; i < 6; i++) {
+        CHECK(h_wait_event("C1", 3, 2000, m));
+        char want[32];
+        snprintf(want, sizeof want, "request %d", i);
+        CHECK_MSG(strcmp(((TestParam *)m->Data)->label, want) == 0, "parameter %d: '%s'", i, ((TestParam *)m->Data)->label);
+    }
+    /* run_ms 0: the state after this request ends the run; the START behind it is read with it */
+    p.run_ms = 0;
+    snprintf(p.label, sizeof p.label, "end");
+    CHECK(SendSetParam("C1", 0, &p, sizeof p, ACK_NOTHING, -1) == CONTRACT_OK);
+    CHECK(SendStart("C1", ACK_START | ACK_FINISHED, 2) == CONTRACT_OK);
+    CHECK(h_wait_event("C1", 3, 2000, m));
+    CHECK(h_wait_ack("C1", 1, ACK_FINISHED, 2000, m)); /* run 1 ends */
+    CHECK(h_wait_ack("C1", 2, ACK_START, 2000, m));    /* run 2 begins */
+    CHECK(h_wait_ack("C1", 2, ACK_FINISHED, 2000, m));
+    CHECK(QueryStatus("C1", text, sizeof text, GetTime() + 2000000000LL) == CONTRACT_OK);
+    CHECK_MSG(strstr(text, " running=no") && strstr(text, " activations=2"), "status after run 2: '%s'", text);
+    CHECK(SendKill("C1", ACK_KILLED, 3) == CONTRACT_OK);
+    CHECK(h_wait_ack("C1", 3, ACK_KILLED, 2000, m));
+    usleep(100000);
+    char *log = h_read_logs("C1_");
+    REQUIRE(log);
+    int started = 0, finished = 0;
+    for (const char *at = log; (at = strstr(at, ",C1,run_started,")) != NULL; at++) started++;
+    for (const char *at = log; (at = strstr(at, ",C1,run_finished,")) != NULL; at++) finished++;
+    CHECK_MSG(started == 2 && finished == 2, "%d run_started and %d run_finished records", started, finished);
+    free(log);
+    h_teardown();
+}
+
 /* A module whose log reaches CONTRACT_LOG_MAX_BYTES keeps its whole records up to the bound, then
    a `log-capped` record, and at exit a last one saying how many records were not written: the
    file stays a readable CSV, never larger than the bound (docs/runtime-api.md "CSV log"). */

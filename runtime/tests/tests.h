@@ -21,6 +21,7 @@ void test_unsub_spent_oneshot(void);
 void test_status_running(void);
 void test_status_through_signals(void);
 void test_ask_module_priority(void);
+void test_status_behind_requests(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_launcher_sigint(void);
@@ -56,6 +57,7 @@ static const TestCase ALL_TESTS[] = {
     { "status_running", test_status_running },
     { "status_through_signals", test_status_through_signals },
     { "ask_module_priority", test_ask_module_priority },
+    { "status_behind_requests", test_status_behind_requests },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
     { "launcher_sigint", test_launcher_sigint },

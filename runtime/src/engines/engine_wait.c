@@ -31,7 +31,7 @@ static int ensure_timer(void) {
 int engine_wait(RequestMessage *m, int64_t deadline) {
     if (ensure_timer() != 0) return -1;
     for (;;) {
-        if (LookForRequest(m)) return 1;
+        if (WaitForRequestUntil(m, 0) == 1) return 1; /* (no read-ahead: an engine is never busy long) */
         if (deadline != INT64_MAX && GetTime() >= deadline) return 0;
         /* Write the CSV log while idle with time to spare (>= 200 us before the deadline), so
            that it is never written between a wake-up and the releases it is for. */

@@ -5,7 +5,8 @@
  *   port 2: an event it received (long), sourcePort = the input event port
  *   port 3: the parameter it accepted (TestParam); port 4: a refused setparam (no data)
  * Behaviour flags in TestParam.flags: 1 post an event each run, 2 abort() at the next run,
- * 4 report inputs each run, 8 read inputs with GetLatestData. TestParam.run_ms: how long a run lasts (interruptible by STOP).
+ * 4 report inputs each run, 8 read inputs with GetLatestData, 16 each state after the first
+ * sleeps 100 ms (a module busy in its own code reads its mailbox once per state). TestParam.run_ms: how long a run lasts (interruptible by STOP).
  * $TMOD_CRASH_NAME equal to the module name: abort() 200 ms after start-up. */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
@@ -64,8 +65,9 @@ static void exec_state(int *state)
         if (param.flags & 1) { ev_out = out_value; PostEvent(&ev_out); }
         run_start = GetTime();
         *state = 1;
-    } else if (GetTime() - run_start >= param.run_ms * 1000000L) {
-        *state = -1;
+    } else {
+        if (param.flags & 16) usleep(100000); /* busy in its own code between two reads */
+        if (GetTime() - run_start >= param.run_ms * 1000000L) *state = -1;
     }
 }
 
