@@ -145,7 +145,8 @@ typedef struct {
  *  stderr). Status queries are answered inside and never returned. */
 RequestMessage *WaitForRequest(RequestMessage *msg);
 /** [GEN] Non-blocking: fills *msg and returns msg if a request is pending, else NULL
- *  (*msg untouched). */
+ *  (*msg untouched). Also reads the requests waiting behind it (up to 64, returned by the next
+ *  reads in their order), so that status and priority queries among them are answered now. */
 RequestMessage *LookForRequest(RequestMessage *msg);
 /** [GEN] Send acknowledgement `ack` (one ACK_* bit) for request `ackId` to `module`.
  *  Nothing is sent (returns 0) when `wantedAck` has ACK_NOTHING or `module` is empty.
@@ -292,9 +293,10 @@ int SendRequest(const char *module, RequestMessage *msg);
  *  INT64_MAX: forever). Returns 1 (msg filled), 0 (deadline passed), -1 (error / EINTR). */
 int WaitForRequestUntil(RequestMessage *msg, RTIME deadline);
 /** The mailbox file descriptor, to poll together with other fds (POLLIN: call LookForRequest).
- *  Call LookForRequest until NULL before polling: requests kept by WaitForAck are not in the fd. */
+ *  Call LookForRequest until NULL before polling: requests kept by WaitForAck or read ahead are
+ *  not in the fd. */
 int MailboxFd(void);
-/** Number of requests kept by WaitForAck and not yet returned. */
+/** Number of requests kept by WaitForAck or read ahead by LookForRequest, not yet returned. */
 int PendingRequests(void);
 /** Wait for the REQ_ACK from `module` tagged `ackId` whose Ack is in `ackMask`, until `deadline`;
  *  other requests received meanwhile are kept, in order, and returned by the next
