@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# Runs the CLI smoke test and the language and codegen tests on other Node versions than the one
-# that builds the project (README.md "Requirements": Node 20, 22 and 24 are supported).
-#   bash scripts/test-node-versions.sh            # Node 22 and 24
+# Runs the CLI smoke test, a simulation told by `contract trace`, and the language and codegen tests
+# on other Node versions than the one that builds the project (README.md "Requirements": Node 20,
+# 22, 24 and 26 are supported).
+#   bash scripts/test-node-versions.sh            # Node 22, 24 and 26
 #   NODE_VERSIONS="24" bash scripts/test-node-versions.sh
 # Each Node is installed once from the npm registry (the `node-linux-<arch>` package, a plain
 # binary; nothing is added to package.json) into $NODE_VERSIONS_DIR (default
@@ -10,7 +11,7 @@
 set -euo pipefail
 
 ROOT="$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)"
-VERSIONS="${NODE_VERSIONS:-22 24}"
+VERSIONS="${NODE_VERSIONS:-22 24 26}"
 CACHE="${NODE_VERSIONS_DIR:-$HOME/.cache/contract-studio/node}"
 case "$(uname -m)" in
     x86_64) ARCH=x64 ;;
@@ -78,18 +79,32 @@ cli_smoke() {
     done
 }
 
+# The tutorial's scenarios simulated with --trace (virtual time: the same bytes on every Node),
+# then told by `contract trace`: trace file and story must equal those of the Node that built the
+# project (the simulator's native harness is built once, in the scratch cache, by the first call).
+sim_trace() {
+    local node="$1" out="$SCRATCH/sim-$2"
+    mkdir -p "$out"
+    "$node" "$CLI" simulate "$ROOT/examples/tutorial" "$ROOT"/examples/tutorial/scenarios/*.scenario \
+        --trace "$out/trace.jsonl" --cache-dir "$SCRATCH/cache" > /dev/null || return 1
+    "$node" "$CLI" trace "$out/trace.jsonl" > "$out/story.txt" || return 1
+    cmp "$out/trace.jsonl" "$SCRATCH/sim-reference/trace.jsonl" && cmp "$out/story.txt" "$SCRATCH/sim-reference/story.txt"
+}
+
 vitest_in() {
     local node="$1" pkg="$2"
     (cd "$ROOT/packages/$pkg" && "$node" "$ROOT/node_modules/vitest/vitest.mjs" run --reporter=dot)
 }
 
 TOTAL_START="$(now)"
+step "node $(node --version): simulation reference (tutorial scenarios, contract trace)" sim_trace node reference
 for v in $VERSIONS; do
     start="$(now)"
     NODE_BIN="$(install_node "$v")"
     SUMMARY+=("ok    $(elapsed "$start") s  node $v: install (cached after the first time)")
     echo "== node $v: $("$NODE_BIN" --version) ($NODE_BIN)"
     step "node $v: CLI check + generate (tutorial, mobile-robot)" cli_smoke "$NODE_BIN" "node$v"
+    step "node $v: simulation told by contract trace (same bytes as the reference)" sim_trace "$NODE_BIN" "node$v"
     step "node $v: language tests" vitest_in "$NODE_BIN" language
     step "node $v: codegen tests" vitest_in "$NODE_BIN" codegen
 done
