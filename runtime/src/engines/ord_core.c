@@ -29,10 +29,11 @@ typedef struct SchemaState {
     uint32_t *cycle_rel;   /* per module: id of its release in the current cycle (0: none)   */
     uint32_t *outstanding; /* per module: id of a release not acked yet, whatever the cycle or
                               activation (kept across deactivation: the module may still run it) */
+    int64_t *outstanding_t; /* per module: when that release was sent */
     int held;              /* cycle started, releases wait until no module of it is outstanding */
     long cycle_overruns;   /* ticks skipped by the current cycle (only the first is traced)  */
     long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)     */
-    char *stuck;           /* per module: its release of the current cycle was reported stuck */
+    char *stuck;           /* per module: its outstanding release was reported stuck */
     OrdSchemaStats stats;
 } SchemaState;
 
@@ -96,6 +97,8 @@ static void release(OrdCore *c, SchemaState *ss, int m) {
     ss->released[m] = 1;
     ss->cycle_rel[m] = id;
     ss->outstanding[m] = id;
+    ss->outstanding_t[m] = c->now;
+    ss->stuck[m] = 0;
     trace(c, "release %s (%s)", ss->s->modules[m].module, ss->s->name);
     fact(c, ss, ORD_FACT_RELEASE, m, id);
     if (c->io.release)
@@ -155,7 +158,6 @@ static void start_cycle(OrdCore *c, SchemaState *ss, int64_t tick) {
         ss->released[m] = 0;
         ss->finished[m] = 0;
         ss->cycle_rel[m] = 0;
-        ss->stuck[m] = 0;
     }
     if (s->nmodules == 0) {
         finish_cycle(c, ss);
@@ -192,29 +194,61 @@ static void give_up_waiting(OrdCore *c, SchemaState *ss) {
         }
 }
 
+static int64_t stuck_limit(const SchemaState *ss) {
+    int64_t limit = ORD_STUCK_PERIODS * ss->s->period_ns;
+    return limit < ORD_STUCK_MIN_NS ? ORD_STUCK_MIN_NS : limit;
+}
+
+/* Reports module m's outstanding release stuck, once (`periods` periods of ss after it). */
+static void report_stuck(OrdCore *c, SchemaState *ss, int m, long periods, const char *whose) {
+    ss->stuck[m] = 1;
+    ss->stats.stuck_releases++;
+    char msg[320];
+    snprintf(msg, sizeof msg,
+             "%s has not finished release #%u after %ld periods%s: does its exec region set "
+             "*stateindex = -1?",
+             ss->s->modules[m].module, ss->outstanding[m], periods, whose);
+    trace(c, "stuck: %s (%s)", msg, ss->s->name);
+    if (c->io.stuck)
+        c->io.stuck(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->outstanding[m], periods, msg);
+}
+
 /* The cycle started at ss->cycle_tick still runs at `tick`: each module released and not
    finished for ORD_STUCK_PERIODS periods (at least ORD_STUCK_MIN_NS) is reported once, by name,
    with the likely cause (a synchronous module's exec region that never sets *stateindex = -1
    runs for ever: docs/engines.md §4), instead of an overrun at every tick. */
 static void check_stuck(OrdCore *c, SchemaState *ss, int64_t tick) {
     int64_t period = ss->s->period_ns, elapsed = tick - ss->cycle_tick;
-    int64_t limit = ORD_STUCK_PERIODS * period;
-    if (limit < ORD_STUCK_MIN_NS) limit = ORD_STUCK_MIN_NS;
-    if (period <= 0 || elapsed < limit) return;
-    long periods = (long)(elapsed / period);
-    for (int m = 0; m < ss->s->nmodules; m++) {
-        if (!ss->released[m] || ss->finished[m] || ss->stuck[m]) continue;
-        ss->stuck[m] = 1;
-        ss->stats.stuck_releases++;
-        char msg[320];
-        snprintf(msg, sizeof msg,
-                 "%s has not finished release #%u after %ld periods: does its exec region set "
-                 "*stateindex = -1?",
-                 ss->s->modules[m].module, ss->cycle_rel[m], periods);
-        trace(c, "stuck: %s (%s)", msg, ss->s->name);
-        if (c->io.stuck)
-            c->io.stuck(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->cycle_rel[m], periods, msg);
+    if (period <= 0 || elapsed < stuck_limit(ss)) return;
+    for (int m = 0; m < ss->s->nmodules; m++)
+        if (ss->released[m] && !ss->finished[m] && !ss->stuck[m] && ss->outstanding[m] == ss->cycle_rel[m])
+            report_stuck(c, ss, m, (long)(elapsed / period), "");
+}
+
+/* A release outside the running cycle of its schema: its activation was deactivated (the module
+   may still run it), or the schema's new cycle is held for it. No tick of a running cycle
+   checks it (check_stuck): it is checked at its own due time (stuck_due). */
+static int orphan_release(const SchemaState *ss, int m) {
+    return ss->outstanding[m] && !ss->stuck[m] && ss->s->period_ns > 0 &&
+           !(ss->active && ss->running && !ss->held && ss->released[m] && ss->cycle_rel[m] == ss->outstanding[m]);
+}
+
+/* The earliest time an orphan release becomes stuck, its schema and module (INT64_MAX: none). */
+static int64_t stuck_due(const OrdCore *c, int *schema, int *module) {
+    int64_t due = INT64_MAX;
+    for (int i = 0; i < c->v->nschemas; i++) {
+        const SchemaState *ss = &c->st[i];
+        for (int m = 0; m < ss->s->nmodules; m++) {
+            if (!orphan_release(ss, m)) continue;
+            int64_t t = ss->outstanding_t[m] + stuck_limit(ss);
+            if (t < due) {
+                due = t;
+                if (schema) *schema = i;
+                if (module) *module = m;
+            }
+        }
     }
+    return due;
 }
 
 static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
@@ -278,6 +312,16 @@ static void run_until(OrdCore *c, int64_t until, int inclusive) {
                 best_is_check = 0;
             }
         }
+        int so = -1, sm = -1;
+        int64_t st = stuck_due(c, &so, &sm);
+        if (st != INT64_MAX && (best < 0 || st < best_t) && (st < until || (inclusive && st == until))) {
+            if (st > c->now) c->now = st;
+            SchemaState *ss = &c->st[so];
+            report_stuck(c, ss, sm, (long)((c->now - ss->outstanding_t[sm]) / ss->s->period_ns),
+                         ss->active && ss->running ? " (its schema's new cycle waits for it)"
+                                                   : " (of a deactivated activation)");
+            continue;
+        }
         if (best < 0 || best_t > until || (!inclusive && best_t == until)) break;
         if (best_t > c->now) c->now = best_t;
         if (best_is_check) do_check(c, &c->st[best]);
@@ -289,7 +333,9 @@ static void run_until(OrdCore *c, int64_t until, int inclusive) {
 void ord_core_advance(OrdCore *c, int64_t t) { run_until(c, t, 1); }
 
 int ord_core_next_deadline(const OrdCore *c, int64_t *deadline) {
-    int found = 0;
+    int64_t stuck = stuck_due(c, NULL, NULL);
+    int found = stuck != INT64_MAX;
+    if (found) *deadline = stuck;
     for (int i = 0; i < c->v->nschemas; i++) {
         const SchemaState *ss = &c->st[i];
         if (!ss->active) continue;
@@ -428,8 +474,8 @@ void ord_core_release_finished(OrdCore *c, int64_t t, const char *module, uint32
             complete_module(c, ss, m);
         } else {
             ss->stats.late_acks++;
-            trace(c, "late ack: %s finished release #%u of an earlier cycle of %s (not counted)",
-                  module, id, ss->s->name);
+            trace(c, "late ack: %s finished release #%u of an earlier cycle of %s (not counted%s)",
+                  module, id, ss->s->name, ss->stuck[m] ? ", reported stuck" : "");
         }
         resume_held(c);
     }
@@ -475,8 +521,9 @@ OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *
         ss->finished = calloc(n, 1);
         ss->cycle_rel = calloc(n, sizeof(uint32_t));
         ss->outstanding = calloc(n, sizeof(uint32_t));
+        ss->outstanding_t = calloc(n, sizeof(int64_t));
         ss->stuck = calloc(n, 1);
-        if (!ss->stuck || !ss->cycle_rel || !ss->outstanding || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
+        if (!ss->stuck || !ss->cycle_rel || !ss->outstanding || !ss->outstanding_t || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
         for (int e = 0; e < s->nprecedences; e++) ss->npreds[s->precedences[e].after]++;
         /* the precedence graph must be acyclic: Kahn's algorithm */
         int *w = ss->waiting, done = 0;
@@ -518,6 +565,7 @@ void ord_core_destroy(OrdCore *c) {
             free(c->st[i].finished);
             free(c->st[i].cycle_rel);
             free(c->st[i].outstanding);
+            free(c->st[i].outstanding_t);
             free(c->st[i].stuck);
         }
     free(c->st);

@@ -298,7 +298,7 @@ void test_ord_ack_matched_to_its_cycle_by_release_id(void) {
 /* A held cycle waits at most 1 s: E, released before the deactivation, never answers
    (stopped by someone else, or crashed). Until then every tick is an overrun; at the first tick
    1 s after the held cycle's, ORD forgets that release and the cycle starts afresh; the old ack,
-   if it comes at last, completes nothing. */
+   if it comes at last, completes nothing. E's release, 1 s old before that, is reported stuck. */
 void test_ord_held_cycle_gives_up_after_1s(void) {
     FakeWorld w;
     OrdCore *c = make(&w);
@@ -316,10 +316,13 @@ void test_ord_held_cycle_gives_up_after_1s(void) {
     ord_core_release_finished(c, 1005 * MS, "E", e0);
     ord_core_release_finished(c, 1005 * MS, "E", e1);
     ord_core_advance(c, 1007 * MS);
-    check_log_filtered(&LOG, (const char *const[]){"release E", "held", "gave up", "ignored", "late", NULL},
+    check_log_filtered(&LOG, (const char *const[]){"release E", "held", "stuck", "gave up", "ignored", "late", NULL},
                        (const char *const[]){
                            "0us release E (FST)",
                            "2000us cycle of FST held: E still runs a release of an earlier activation",
+                           "1000000us stuck: E has not finished release #1 after 333 periods (its schema's new cycle "
+                           "waits for it): does its exec region set *stateindex = -1? (FST)",
+                           "stuck E #1 (FST) after 333 periods",
                            "1004000us overrun: FST cycle still held, restarted",
                            "1004000us gave up waiting for E release #1 (no ack within 1 s, FST)",
                            "1004000us release E (FST)",
@@ -376,6 +379,55 @@ void test_ord_module_that_never_finishes_is_reported_once(void) {
     OrdSchemaStats st;
     ord_core_stats(c, "SLW", &st);
     CHECK(st.overruns == 25 && st.stuck_releases == 1 && st.completed == 1 && st.cycles == 2);
+    ord_core_destroy(c);
+}
+
+/* A supervisor that deactivates the schema at each deadline miss and activates it again (field
+   test: a gripper stuck in its exec region, a cell supervisor recovering on ORD:0): no cycle of
+   an activation ever runs 10 periods, every new one is held for the stuck module. Its release is
+   still reported stuck once, 10 periods after it was sent, and so when nothing is active at all
+   (ORD's next deadline is that due time). */
+void test_ord_stuck_release_outliving_its_activation_is_reported(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    uint32_t g = fake_last_release(&w, "G");
+    uint32_t id = 1;
+    for (int64_t t = 201 * MS; t < 2600 * MS; t += 201 * MS) {
+        CHECK(ord_core_deactivate(c, t, "SLW", "SUP", id) == 0);
+        CHECK(ord_core_activate(c, t + 1 * MS, "SLW", NULL, 0, "SUP", ++id) == 0);
+    }
+    char stuck[LOG_LINE], called[LOG_LINE];
+    snprintf(stuck, sizeof stuck, "2000000us stuck: G has not finished release #%u after 10 periods (its "
+             "schema's new cycle waits for it): does its exec region set *stateindex = -1? (SLW)", g);
+    snprintf(called, sizeof called, "stuck G #%u (SLW) after 10 periods", g);
+    check_log_filtered(&LOG, (const char *const[]){"stuck", NULL}, (const char *const[]){stuck, called, NULL},
+                       __FILE__, __LINE__);
+    CHECK(fake_last_release(&w, "G") == g); /* never released again: every cycle was held */
+    OrdSchemaStats st;
+    ord_core_stats(c, "SLW", &st);
+    CHECK(st.stuck_releases == 1 && st.held_cycles >= 10 && st.deadline_misses >= 10);
+    ord_core_destroy(c);
+
+    /* deactivated, nothing active: the due time wakes ORD; the late ack says it was reported */
+    c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    g = fake_last_release(&w, "G");
+    ord_core_deactivate(c, 10 * MS, "SLW", "SUP", 1);
+    int64_t next = 0;
+    CHECK(ord_core_next_deadline(c, &next) == 1 && next == 2000 * MS);
+    ord_core_advance(c, 2500 * MS);
+    ord_core_release_finished(c, 3000 * MS, "G", g);
+    CHECK(ord_core_next_deadline(c, &next) == 0);
+    snprintf(stuck, sizeof stuck, "2000000us stuck: G has not finished release #%u after 10 periods (of a "
+             "deactivated activation): does its exec region set *stateindex = -1? (SLW)", g);
+    char late[LOG_LINE];
+    snprintf(late, sizeof late, "3000000us late ack: G finished release #%u of an earlier cycle of SLW (not "
+             "counted, reported stuck)", g);
+    check_log_filtered(&LOG, (const char *const[]){"stuck", "late ack", NULL},
+                       (const char *const[]){stuck, called, late, NULL}, __FILE__, __LINE__);
     ord_core_destroy(c);
 }
 

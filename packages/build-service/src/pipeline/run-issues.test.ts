@@ -9,12 +9,15 @@ describe('RunIssues', () => {
     r.log(Buffer.from(
       'mono_ns,wall_time,module,event,peer,port,size,detail\n' +
       '5,t,ORD,scheduler,,,0,stuck: CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1? (goTo)\n' +
-      '6,t,ORD,scheduler,,,0,stuck: LOC has not finished release #9 after 10 periods: does its exec region set *stateindex = -1? (goTo)\n',
+      '6,t,ORD,scheduler,,,0,stuck: LOC has not finished release #9 after 10 periods: does its exec region set *stateindex = -1? (goTo)\n' +
+      // a release that outlived its activation (its supervisor deactivated the schema on ORD:0)
+      '7,t,ORD,scheduler,,,0,stuck: GRP has not finished release #6 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (pick)\n',
     ));
     r.line('overrun: goTo cycle still running, release skipped');
     expect(r.all).toEqual([
       { kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?' },
       { kind: 'module-stuck', module: 'LOC', message: 'LOC has not finished release #9 after 10 periods: does its exec region set *stateindex = -1?' },
+      { kind: 'module-stuck', module: 'GRP', message: 'GRP has not finished release #6 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1?' },
     ]);
   });
 
