@@ -31,6 +31,8 @@ struct SimSession {
     int failures;
     Buf rules, actions, log, records;
     long dropped;
+    long seq;            /* order of the rules, actions, log lines and records over the session:
+                            within one virtual time, a cause comes before its effects */
     int64_t started_ns;  /* CLOCK_MONOTONIC at creation: the end record's wallNs       */
 };
 
@@ -89,7 +91,7 @@ static void on_rule(void *ctx, int64_t t, const char *sup, const char *fn, const
     SimSession *s = ctx;
     if (s->quiet || !room(s, &s->rules)) return;
     item_sep(&s->rules);
-    bfmt(&s->rules, "{\"timeNs\":%" PRId64 ",\"supervisor\":", t);
+    bfmt(&s->rules, "{\"timeNs\":%" PRId64 ",\"seq\":%ld,\"supervisor\":", t, s->seq++);
     bjson(&s->rules, sup, 256);
     bstr(&s->rules, ",\"function\":");
     bjson(&s->rules, fn, 256);
@@ -103,7 +105,7 @@ static void on_action(void *ctx, int64_t t, const char *who, const char *what) {
     SimSession *s = ctx;
     if (s->quiet || !room(s, &s->actions)) return;
     item_sep(&s->actions);
-    bfmt(&s->actions, "{\"timeNs\":%" PRId64 ",\"who\":", t);
+    bfmt(&s->actions, "{\"timeNs\":%" PRId64 ",\"seq\":%ld,\"who\":", t, s->seq++);
     bjson(&s->actions, who, 256);
     bstr(&s->actions, ",\"what\":");
     bjson(&s->actions, what, 1024);
@@ -113,7 +115,7 @@ static void on_log(void *ctx, int64_t t, const char *who, const char *line) {
     SimSession *s = ctx;
     if (s->quiet || !room(s, &s->log)) return;
     item_sep(&s->log);
-    bfmt(&s->log, "{\"timeNs\":%" PRId64 ",\"who\":", t);
+    bfmt(&s->log, "{\"timeNs\":%" PRId64 ",\"seq\":%ld,\"who\":", t, s->seq++);
     bjson(&s->log, who, 256);
     bstr(&s->log, ",\"line\":");
     bjson(&s->log, line, 1024);
@@ -125,7 +127,7 @@ static void on_record(void *ctx, int64_t t, const char *module, const char *even
     SimSession *s = ctx;
     if (s->quiet || !room(s, &s->records)) return;
     item_sep(&s->records);
-    bfmt(&s->records, "{\"timeNs\":%" PRId64 ",\"module\":", t);
+    bfmt(&s->records, "{\"timeNs\":%" PRId64 ",\"seq\":%ld,\"module\":", t, s->seq++);
     bjson(&s->records, module, 256);
     bstr(&s->records, ",\"kind\":");
     bjson(&s->records, event, 64);

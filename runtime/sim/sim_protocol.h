@@ -17,7 +17,9 @@
  *      "expected":"...","actual":"...","rules":[...],"actions":[...],"log":[...],
  *      "records":[...],"schemas":[...],"locals":[...],"output":"...","dropped":N}
  * where rules/actions/log/records are what happened since the previous step (timers, releases
- * and the step itself), each with its own timeNs, and schemas/locals the state after the step.
+ * and the step itself), each with its own timeNs and "seq" (their order over the session, across the
+ * four lists: at one time, a cause has a lower seq than its effects), and schemas/locals the state
+ * after the step.
  * A record is a typed trace record as a real run's CSV holds it: {"timeNs","module","kind",
  * "peer","port"?,"detail"} (sim_world.h SimSink.record). Each list keeps at most
  * SIM_MAX_RECORDS_PER_STEP items a step; "dropped" counts what was left out. The `end`

@@ -61,6 +61,20 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             // in time order
             const times = first.map((r) => Number(r.monoNs));
             expect(times).toEqual([...times].sort((a, b) => a - b));
+            // and at one time in the engines' order, cause before effect, as a run logs them: MAA's
+            // event taken, FIRST made inactive by it, FIRST's undos, SECOND active, SECOND's actions
+            const at300 = first.filter((r) => r.monoNs === '300000000');
+            const where = (pred: (r: (typeof first)[number]) => boolean) => at300.findIndex(pred);
+            const order = [
+                where((r) => r.kind === 'event_received' && r.module === 'SUP' && r.peer === 'MAA' && r.port === 2),
+                where((r) => r.kind === 'sup_rule' && r.rule === 'FIRST' && r.active === false),
+                where((r) => r.detail === 'undo: deactivate schema schemaReceptionMessage (event schema)'),
+                where((r) => r.kind === 'sup_rule' && r.rule === 'SECOND' && r.active === true),
+                where((r) => r.detail.startsWith('activate schema schemaCommande1 ')),
+                where((r) => r.kind === 'ord_release' && r.peer === 'MSA'),
+            ];
+            expect(order.every((i) => i >= 0), JSON.stringify(order)).toBe(true);
+            expect(order).toEqual([...order].sort((a, b) => a - b));
             // contract trace tells the file: each simulation's story under its own heading, every rule change of it
             const told = capture(dir);
             expect(await runCli(['trace', 'sim.jsonl'], told), told.stderr).toBe(0);

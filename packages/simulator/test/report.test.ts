@@ -26,4 +26,29 @@ describe('the text report\'s times', () => {
         expect(text).toContain('  3100ms  MAA:2 "b"');
         expect(text).toContain('4000ms simulated');
     });
+
+    it('what happened before a step (a timer, a deadline miss) is above its line, in the engines\' order; an expectation comes after what happened at its time', () => {
+        const rule = (timeNs: number, seq: number, r: string, active: boolean, cause: string) => ({ timeNs, seq, supervisor: 'CEL', function: 'cell', rule: r, active, cause });
+        const step = (timeNs: number, kind: 'event' | 'expect', source: string, rules: ReturnType<typeof rule>[], log: Array<{ timeNs: number; seq: number; who: string; line: string }> = []) => ({
+            line: 1, source, timeNs, kind, ok: true,
+            record: { line: 1, timeNs, ok: true, verb: kind, rules, actions: [], log },
+        });
+        const result = {
+            file: 'cell.scenario', passed: true, failures: [], eventsProcessed: 2, endNs: 1e9, ms: 1, harnessMs: 1,
+            steps: [
+                step(100e6, 'event', 't=100ms SCN:0 0.3', [rule(100e6, 3, 'SLOW', true, 'SCN:0 value=0.3')]),
+                // listed rules first, log after: the log's deadline miss (seq 7) came first
+                step(140e6, 'expect', 'expect rule CEL.cell.RECOVER active', [rule(116e6, 8, 'PICK', false, 'ORD:0 value="pickLoop"'), rule(140e6, 10, 'RECOVER', true, 'endof(PICK)')],
+                    [{ timeNs: 116e6, seq: 7, who: 'ORD', line: 'deadline miss: pickLoop (ORD:0)' }]),
+            ],
+        } as unknown as ScenarioResult;
+        const lines = textReport([result], { verbose: true }).split('\n').map((l) => l.trim().replace(/\s+/g, ' '));
+        const at = (text: string) => lines.findIndex((l) => l.includes(text));
+        expect(at('100ms t=100ms SCN:0 0.3')).toBeLessThan(at('+ CEL.cell.SLOW active'));
+        expect(at('116ms ORD| deadline miss: pickLoop (ORD:0)')).toBeLessThan(at('116ms - CEL.cell.PICK inactive <- ORD:0 = "pickLoop"'));
+        expect(at('- CEL.cell.PICK inactive')).toBeLessThan(at('140ms + CEL.cell.RECOVER active'));
+        expect(at('+ CEL.cell.RECOVER active')).toBeLessThan(at('ok 140ms expect rule CEL.cell.RECOVER active'));
+        const times = lines.map((l) => /^(?:ok )?(\d+)ms /.exec(l)?.[1]).filter((t): t is string => t !== undefined).map(Number);
+        expect(times).toEqual([...times].sort((a, b) => a - b));
+    });
 });

@@ -39,10 +39,46 @@ static char *run_lines(const char *const *lines) {
     return buf;
 }
 
-/** The n-th record (0-based) of the output, in a static buffer ("" when absent). */
+/** The seq of the item of `rec` holding `needle` (its `"seq":N` is just before it); -1: not found. */
+static long seq_of(const char *rec, const char *needle) {
+    const char *at = strstr(rec, needle), *q = NULL;
+    for (const char *p = rec; at && (p = strstr(p, "\"seq\":")) != NULL && p < at; p++) q = p;
+    return q ? strtol(q + 6, NULL, 10) : -1;
+}
+
+/** Removes every `"seq":N,` of a record (the items' order, checked with seq_of on the raw line). */
+static void strip_seq(char *s) {
+    for (char *w; (w = strstr(s, "\"seq\":")) != NULL;) {
+        char *e = w + 6;
+        while (*e >= '0' && *e <= '9') e++;
+        if (*e == ',') e++;
+        memmove(w, e, strlen(e) + 1);
+    }
+}
+
+/** The n-th record (0-based) of the output without its items' seq, in a static buffer ("" when absent). */
 static const char *record(const char *out, int n) {
     static char line[65536];
     line[0] = '\0';
+    const char *p = out;
+    for (int i = 0; p && i < n; i++) {
+        p = strchr(p, '\n');
+        if (p) p++;
+    }
+    if (!p || !*p) return line;
+    const char *e = strchr(p, '\n');
+    size_t l = e ? (size_t)(e - p) : strlen(p);
+    if (l >= sizeof line) l = sizeof line - 1;
+    memcpy(line, p, l);
+    line[l] = '\0';
+    strip_seq(line);
+    return line;
+}
+
+/** The n-th record with its items' seq. */
+static const char *raw_record(const char *out, int n) {
+    static char line[65536];
+    snprintf(line, sizeof line, "%s", "");
     const char *p = out;
     for (int i = 0; p && i < n; i++) {
         p = strchr(p, '\n');
@@ -100,6 +136,22 @@ void test_sim_report_story_records(void) {
     HAS(record(out, 8), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 release_ns=4000000000 release=");
     HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"ORD\",\"detail\":\"activation=4 ACK_FINISHED\"");
     HAS(record(out, 8), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 response_ns=");
+    /* the four lists in one order (seq): at 300 ms MAA's event taken, FIRST inactive, its undo,
+       SECOND active, its activation of schemaCommande1, ORD's release of MSA */
+    const char *r2 = raw_record(out, 2);
+    long order[] = {seq_of(r2, "\"kind\":\"event_received\",\"peer\":\"MAA\""),
+                    seq_of(r2, "\"rule\":\"FIRST\",\"active\":false"),
+                    seq_of(r2, "\"what\":\"undo: deactivate schema schemaReceptionMessage"),
+                    seq_of(r2, "\"rule\":\"SECOND\",\"active\":true"),
+                    seq_of(r2, "\"what\":\"activate schema schemaCommande1"),
+                    seq_of(r2, "\"kind\":\"ord_release\",\"peer\":\"MSA\"")};
+    for (size_t i = 0; i < sizeof order / sizeof order[0]; i++) {
+        CHECK(order[i] >= 0);
+        if (i > 0 && !(order[i - 1] < order[i])) {
+            fprintf(stderr, "  item %zu: seq %ld after %ld\n", i, order[i], order[i - 1]);
+            CHECK(0);
+        }
+    }
     free(out);
 }
 

@@ -6,8 +6,10 @@
 import type { ScenarioValue, Step } from '../scenario/index.js';
 import type { ResolvedLocal } from '../scenario/index.js';
 
+/** `seq`: the harness's order of rules, actions, log lines and records over the session (at one virtual time, a cause comes before its effects). */
 export interface RuleChange {
     timeNs: number;
+    seq?: number;
     supervisor: string;
     function: string;
     rule: string;
@@ -18,6 +20,7 @@ export interface RuleChange {
 
 export interface ActionRecord {
     timeNs: number;
+    seq?: number;
     /** The engine (supervisor name, `ORD`) or the module that acted. */
     who: string;
     what: string;
@@ -25,6 +28,7 @@ export interface ActionRecord {
 
 export interface LogLine {
     timeNs: number;
+    seq?: number;
     who: string;
     line: string;
 }
@@ -36,6 +40,7 @@ export interface LogLine {
  */
 export interface SimTraceRecord {
     timeNs: number;
+    seq?: number;
     module: string;
     kind: string;
     peer: string;

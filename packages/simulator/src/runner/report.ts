@@ -43,14 +43,23 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
         for (const s of r.steps) {
             const time = formatTime(s.timeNs).padStart(8);
             const mark = s.ok ? (s.kind === 'expect' ? 'ok  ' : '    ') : 'FAIL';
-            out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
-            for (const c of s.record.rules) {
-                out.push(`              ${formatTime(c.timeNs).padStart(8)}  ${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`);
-            }
+            // what happened since the step before, in the engines' order: what came before this
+            // step (a timer, a release) above its line, so that the time column reads down
+            const happened: Array<{ t: number; seq: number; text: string }> = s.record.rules.map((c) => ({
+                t: c.timeNs, seq: c.seq ?? -1,
+                text: `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`,
+            }));
             if (options.verbose) {
-                for (const a of s.record.actions) out.push(`              ${formatTime(a.timeNs).padStart(8)}    ${a.who}: ${safe(a.what)}`);
-                for (const l of s.record.log) out.push(`              ${formatTime(l.timeNs).padStart(8)}    ${l.who}| ${safe(l.line)}`);
+                for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.what)}` });
+                for (const l of s.record.log) happened.push({ t: l.timeNs, seq: l.seq ?? -1, text: `  ${l.who}| ${safe(l.line)}` });
             }
+            const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);
+            const line = (h: { t: number; text: string }) => `              ${formatTime(h.t).padStart(8)}  ${h.text}`;
+            // (an expectation looks at the state after its time: what happened at its time too)
+            const before = (h: { t: number }) => h.t < s.timeNs || (h.t === s.timeNs && (s.kind === 'expect' || s.kind === 'end'));
+            for (const h of ordered) if (before(h)) out.push(line(h));
+            out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
+            for (const h of ordered) if (!before(h)) out.push(line(h));
             if (s.kind === 'event' && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
             if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
         }

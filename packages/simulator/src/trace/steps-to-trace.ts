@@ -19,6 +19,9 @@
  *   flow, each event_received of a supervisor)
  *   → read by the trace reader as a CSV line. Without them (an older server), ORD's `release M (S)`
  *   lines and `ORD:0` actions stand for the releases and misses, cycles counted here.
+ * The records are in time order and, at one virtual time, in the harness's order (each entry's `seq`):
+ * ORD's deadline miss comes before the rule it made inactive, a module's notification before the
+ * supervisor's `event_received` (an older server's answer, without seq: as listed above).
  * Without `log` (an older server), functions come from start/stop steps and `activate supervisor` /
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
  * Not simulated, so not in the trace: data_received (virtual modules read no data) and the values posted.
@@ -85,6 +88,10 @@ const UNDO = /^(stop|deactivate|disconnect|unsubscribe|release)\b/;
  */
 export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord[] {
     const out: TraceRecord[] = [known(0, 'SIM', 'sim_start', scenario ? `simulation start: ${scenario.replace(/[\r\n]+/g, ' ')}` : 'simulation start', {})];
+    /** Per record of out: the harness's seq of the entry it comes from (-1: none, an older server's or the step's own). */
+    const seqs: number[] = [-1];
+    let cur = -1;
+    const push = (rec: TraceRecord) => { out.push(rec); seqs.push(cur); };
     const withLog = steps.some((s) => Array.isArray(s.log));
     const withRecords = steps.some((s) => Array.isArray(s.records));
     /**
@@ -94,18 +101,22 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
     const cycles = new Map<string, { cycle: number; released: Set<string> }>();
     let schemas = new Set<string>();
     for (const s of steps) {
+        cur = -1;
         for (const r of s.rules) {
+            cur = r.seq ?? -1;
             const rec: RuleRecord = {
                 ...base(r.timeNs, r.supervisor, `${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} cause=${r.cause}`),
                 kind: 'sup_rule', function: r.function, rule: r.rule, active: r.active, cause: r.cause, causeEvent: parseCause(r.cause),
             };
-            out.push(rec);
+            push(rec);
         }
         for (const r of s.records ?? []) {
+            cur = r.seq ?? -1;
             const rec = typedRecord(r);
-            if (rec.kind !== 'unknown') out.push(rec);
+            if (rec.kind !== 'unknown') push(rec);
         }
         for (const l of s.log ?? []) {
+            cur = l.seq ?? -1;
             if (l.who === 'ORD') {
                 const rel = RELEASE.exec(l.line);
                 if (rel && withRecords) continue; // the typed ord_release stands for it
@@ -115,64 +126,68 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
                     if (!c || c.released.has(module)) cycles.set(schema, (c = { cycle: (c?.cycle ?? -1) + 1, released: new Set() }));
                     c.released.add(module);
                     const cycle = c.cycle;
-                    out.push(known(l.timeNs, 'ORD', 'ord_release', `schema=${schema} cycle=${cycle} tick_ns=${l.timeNs} release_ns=${l.timeNs}`,
+                    push(known(l.timeNs, 'ORD', 'ord_release', `schema=${schema} cycle=${cycle} tick_ns=${l.timeNs} release_ns=${l.timeNs}`,
                         { schema, cycle, tick_ns: l.timeNs, release_ns: l.timeNs }, module));
                     continue;
                 }
                 const act = ORD_ACTIVATE.exec(l.line);
                 if (act) cycles.delete(act[1]!);
                 const rec = engineLine(l.timeNs, 'ORD', 'scheduler', l.line);
-                if (rec.kind !== 'unknown') out.push(rec);
+                if (rec.kind !== 'unknown') push(rec);
             } else {
                 const rec = engineLine(l.timeNs, l.who, 'supervisor', l.line);
                 // a supervisor's actions come from `actions` (counted once)
-                if (rec.kind !== 'unknown' && (rec as KnownRecord).fields?.['what'] !== 'action') out.push(rec);
+                if (rec.kind !== 'unknown' && (rec as KnownRecord).fields?.['what'] !== 'action') push(rec);
             }
         }
         for (const a of s.actions) {
+            cur = a.seq ?? -1;
             const t = a.timeNs;
             if (a.who === 'ORD') {
                 const miss = withRecords ? null : DEADLINE_MISS.exec(a.what); // else the typed ord_deadline_miss
                 if (miss) {
                     const schema = miss[1]!;
                     const cycle = cycles.get(schema)?.cycle ?? -1;
-                    out.push(known(t, 'ORD', 'ord_deadline_miss', `schema=${schema} cycle=${cycle}`, { schema, cycle }));
+                    push(known(t, 'ORD', 'ord_deadline_miss', `schema=${schema} cycle=${cycle}`, { schema, cycle }));
                 }
                 continue; // ORD's flows and parameters: not a supervisor's actions
             }
             if (a.who === 'sim') continue;
             if (a.what === 'crashed') {
-                out.push(known(t, a.who, 'module_exit', 'crashed (simulated)', {}));
+                push(known(t, a.who, 'module_exit', 'crashed (simulated)', {}));
                 continue;
             }
             let m: RegExpExecArray | null;
-            if ((m = START_MODULE.exec(a.what))) out.push(known(t, a.who, 'module_hold', `hold taken (${a.what})`, {}, m[1]!));
-            else if ((m = STOP_MODULE.exec(a.what))) out.push(known(t, a.who, 'module_hold', `last hold dropped (${a.what})`, {}, m[1]!));
-            else if ((m = SET_PRIORITY.exec(a.what))) out.push(known(t, a.who, 'module_priority', a.what, {}, m[1]!));
+            if ((m = START_MODULE.exec(a.what))) push(known(t, a.who, 'module_hold', `hold taken (${a.what})`, {}, m[1]!));
+            else if ((m = STOP_MODULE.exec(a.what))) push(known(t, a.who, 'module_hold', `last hold dropped (${a.what})`, {}, m[1]!));
+            else if ((m = SET_PRIORITY.exec(a.what))) push(known(t, a.who, 'module_priority', a.what, {}, m[1]!));
             else {
-                if ((m = ACTIVATE_SCHEMA.exec(a.what))) out.push(known(t, 'ORD', 'request_received', `START ${m[1]!}`, {}, a.who));
+                if ((m = ACTIVATE_SCHEMA.exec(a.what))) push(known(t, 'ORD', 'request_received', `START ${m[1]!}`, {}, a.who));
                 const undo = UNDO.test(a.what);
-                out.push(known(t, a.who, 'supervisor', undo ? `undo: ${a.what}` : a.what, { what: 'action' }));
+                push(known(t, a.who, 'supervisor', undo ? `undo: ${a.what}` : a.what, { what: 'action' }));
                 if (!withLog && (m = ACTIVATE_SUPERVISOR.exec(a.what) ?? STOP_FUNCTION.exec(a.what))) {
                     const what = a.what.startsWith('stop') ? 'function_stopped' : 'function_started';
-                    out.push(known(t, m[1]!, 'supervisor', `function ${m[2]!} ${what === 'function_started' ? 'started' : 'stopped'}`, { what, function: m[2]! }));
+                    push(known(t, m[1]!, 'supervisor', `function ${m[2]!} ${what === 'function_started' ? 'started' : 'stopped'}`, { what, function: m[2]! }));
                 }
             }
         }
+        cur = -1;
         if (!withLog) {
             const m = /^(start|stop)\s+([A-Za-z_]\w*)\.([A-Za-z_]\w*)/.exec(s.source);
             if (m && s.ok) {
                 const what = m[1] === 'start' ? 'function_started' : 'function_stopped';
-                out.push(known(s.timeNs, m[2]!, 'supervisor', `${what} function=${m[3]}`, { what, function: m[3]! }));
+                push(known(s.timeNs, m[2]!, 'supervisor', `${what} function=${m[3]}`, { what, function: m[3]! }));
             }
             const now = new Set(s.schemas ?? []);
-            for (const sc of now) if (!schemas.has(sc)) out.push(known(s.timeNs, 'ORD', 'scheduler', `activate ${sc}`, { what: 'activate', schema: sc }));
-            for (const sc of schemas) if (!now.has(sc)) out.push(known(s.timeNs, 'ORD', 'scheduler', `deactivate ${sc}`, { what: 'deactivate', schema: sc }));
+            for (const sc of now) if (!schemas.has(sc)) push(known(s.timeNs, 'ORD', 'scheduler', `activate ${sc}`, { what: 'activate', schema: sc }));
+            for (const sc of schemas) if (!now.has(sc)) push(known(s.timeNs, 'ORD', 'scheduler', `deactivate ${sc}`, { what: 'deactivate', schema: sc }));
             schemas = now;
         }
     }
-    // records in time order, as a run's trace (a step's record holds what happened up to it)
-    return out.map((r, i) => ({ r, i })).sort((a, b) => time(a.r) - time(b.r) || a.i - b.i).map((x) => x.r);
+    // records in time order, as a run's trace (a step's record holds what happened up to it); at one
+    // time in the harness's order (a deadline miss before the rule it made inactive), else as listed
+    const ordered = seqs.every((q, i) => i === 0 || q >= 0);
+    return out.map((r, i) => ({ r, i, q: seqs[i]! })).sort((a, b) => time(a.r) - time(b.r) || (ordered ? a.q - b.q : 0) || a.i - b.i).map((x) => x.r);
 }
 
 function time(r: TraceRecord): number {
