@@ -52,7 +52,7 @@ describe('contract trace', () => {
             '+0.000500s ORD  activate S',
             '+0.001000s SUP  rule action.FIRST active   <- elapsed=1ms',
             '+0.001000s SUP  activate schema R (event schema)',
-            '+0.300000s ORD  deadline miss (ORD:0): S cycle 0',
+            '+0.300000s ORD  deadline miss (ORD:0): S cycle 0 (not finished: MSA)',
             '+0.499000s SUP  undo: deactivate schema R (event schema)',
             '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
             '10 records: 1 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',

@@ -35,7 +35,13 @@ function describeCause(c: RuleCause): string {
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused']);
-const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up']);
+const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
+
+/** `+1.250000s` after the first record, `-0.000100s` before it (a record out of its place). */
+function offset(ns: bigint): string {
+    const s = (Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6);
+    return `${ns < 0n ? '-' : '+'}${s}s`;
+}
 
 /**
  * The story told one record at a time, in time order (a streamed run of any length: only the
@@ -45,6 +51,10 @@ export class StoryTeller {
     private t0: bigint | undefined;
     private total = 0;
     private readonly counts = new Map<string, number>();
+    /** Per periodic schema: its current cycle and the modules released in it and not finished (a deadline miss names them). */
+    private readonly cycles = new Map<string, { cycle: string; running: Set<string> }>();
+    /** Per periodic schema whose new cycle is held: the module it waits for. */
+    private readonly held = new Map<string, string>();
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -52,20 +62,47 @@ export class StoryTeller {
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
         if (r.kind === 'unknown') return undefined;
         const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));
-        const at = (x: TraceRecordBase) => `+${(Number(BigInt(x.monoNs) - t0) / 1e9).toFixed(6)}s ${x.module.padEnd(4)}`;
+        const at = (x: TraceRecordBase) => `${offset(BigInt(x.monoNs) - t0)} ${x.module.padEnd(4)}`;
         if (isRule(r)) return `${at(r)} rule ${r.function}.${r.rule} ${r.active ? 'active  ' : 'inactive'} <- ${describeCause(r.causeEvent)}`;
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // an event schema's activation and undo (ORD tells the periodic ones)
         if (k.kind === 'supervisor' && what === 'action' && k.fields['schema'] !== undefined) return `${at(k)} ${k.detail}`;
+        if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
+            if (what === 'held') this.held.set(String(k.fields['schema']), String(k.fields['module']));
+            else this.held.delete(String(k.fields['schema']));
+        }
         if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) return `${at(k)} ${k.detail}`;
-        if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}`;
+        if (k.kind === 'ord_release' || k.kind === 'ord_finished') {
+            this.followCycle(k);
+            return undefined;
+        }
+        if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}${this.lateOf(k)}`;
         if (k.kind === 'module_started') return `${at(k)} started (${k.detail})`;
         if (k.kind === 'module_exit') return `${at(k)} exited (${k.detail})`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
+    }
+
+    private followCycle(k: KnownRecord): void {
+        const schema = String(k.fields['schema'] ?? ''), cycle = String(k.fields['cycle'] ?? '');
+        this.held.delete(schema);
+        let c = this.cycles.get(schema);
+        if (!c || c.cycle !== cycle) this.cycles.set(schema, (c = { cycle, running: new Set() }));
+        if (k.kind === 'ord_release') c.running.add(k.peer);
+        else c.running.delete(k.peer);
+    }
+
+    /** ` (not finished: ARM, GRP)`, ` (held: nothing released, GRP still runs an earlier release)`, else ''. */
+    private lateOf(k: KnownRecord): string {
+        const schema = String(k.fields['schema'] ?? '');
+        const waitsFor = this.held.get(schema);
+        if (waitsFor !== undefined) return ` (held: nothing released, ${waitsFor} still runs an earlier release)`;
+        const c = this.cycles.get(schema);
+        if (!c || c.cycle !== String(k.fields['cycle'] ?? '') || c.running.size === 0) return '';
+        return ` (not finished: ${[...c.running].sort().join(', ')})`;
     }
 
     summary(): string {

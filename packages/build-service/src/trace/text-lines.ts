@@ -28,6 +28,7 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'resumed', re: new RegExp(`^cycle of ${ID} resumed$`), keys: ['schema'] },
     { what: 'late_ack', re: new RegExp(`^late ack: ${ID} finished release #(\\d+) of an earlier cycle of ${ID}`), keys: ['module', 'release', 'schema'] },
     { what: 'gave_up', re: new RegExp(`^gave up waiting for ${ID} release #(\\d+)`), keys: ['module', 'release'] },
+    { what: 'stuck', re: new RegExp(`^stuck: ${ID} has not finished release #(\\d+) after (\\d+) periods`), keys: ['module', 'release', 'periods'] },
     { what: 'ignored', re: new RegExp(`^ignored: ${ID} finished outside a cycle`), keys: ['module'] },
     { what: 'warning', re: /^warning: /, keys: [] },
 ];

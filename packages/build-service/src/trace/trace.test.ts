@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -136,6 +136,37 @@ describe('reading a log', () => {
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
             '4 records: 0 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
         ]);
+    });
+
+    it('names the modules a missed cycle still waits for, or the module its held cycle waits for; tells held, resumed and stuck; a record before the first is at a negative time', () => {
+        const text = [CSV_HEADER,
+            '1000000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=20',
+            '1000000000,w,ORD,ord_release,GRP,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=21',
+            '1001000000,w,ORD,ord_finished,CAM,,0,schema=pick cycle=7 release=20 response_ns=1000000',
+            '1015000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=7 tick_ns=1000000000',
+            '1016000000,w,ORD,scheduler,,,0,deactivate pick',
+            '1017000000,w,ORD,scheduler,,,0,activate pick',
+            '1017000000,w,ORD,scheduler,,,0,cycle of pick held: GRP still runs a release of an earlier activation',
+            '1032000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=0 tick_ns=1017000000',
+            '2000000000,w,ORD,scheduler,,,0,stuck: GRP has not finished release #21 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (pick)',
+            '2100000000,w,ORD,scheduler,,,0,late ack: GRP finished release #21 of an earlier cycle of pick (not counted, reported stuck)',
+            '2100000000,w,ORD,scheduler,,,0,cycle of pick resumed',
+            '2100000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=0 tick_ns=1017000000 release_ns=2100000000 release=22',
+            '2130000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=0 tick_ns=1017000000',
+        ].join('\n');
+        const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]));
+        expect(told.filter((l) => / ORD {2}(deadline|cycle|stuck)/.test(l))).toEqual([
+            '+0.015000s ORD  deadline miss (ORD:0): pick cycle 7 (not finished: GRP)',
+            '+0.017000s ORD  cycle of pick held: GRP still runs a release of an earlier activation',
+            '+0.032000s ORD  deadline miss (ORD:0): pick cycle 0 (held: nothing released, GRP still runs an earlier release)',
+            '+1.000000s ORD  stuck: GRP has not finished release #21 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (pick)',
+            '+1.100000s ORD  cycle of pick resumed',
+            '+1.130000s ORD  deadline miss (ORD:0): pick cycle 0 (not finished: CAM)',
+        ]);
+        // a trace file's record placed before the first one (times are the file's): a negative offset, not "+-"
+        const teller = new StoryTeller();
+        teller.tell(parseRecordLine('X_1.csv', 2, '5000000000,w,X,error,,,0,first'));
+        expect(teller.tell(parseRecordLine('X_1.csv', 3, '4999900000,w,X,error,,,0,earlier'))).toBe('-0.000100s X    error: earlier');
     });
 
     it('tells an error as an error, and a request to a module gone while the launcher stopped the run as such', () => {
