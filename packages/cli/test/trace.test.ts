@@ -56,8 +56,32 @@ describe('contract trace', () => {
             '+0.499000s SUP  undo: deactivate schema R (event schema)',
             '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
             '10 records: 1 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
+            // which line, in which file (the control characters of the line itself are not printed)
+            'unreadable: SUP_24-Nov-2026-18h30m15s.csv line 6: 1 fields, expected 8',
             '',
         ].join('\n'));
+    });
+
+    it("says of a module's log that holds another number of records than its exit record counts that it is not whole (a line removed, one repeated), not of a capped log", async () => {
+        const folder = mkdtempSync(join(tmpdir(), 'contract-trace-whole-'));
+        try {
+            const log = (m: string, records: string[], counted: number) => writeFileSync(join(folder, `${m}_24-Nov-2026-18h30m15s.csv`), [HEADER,
+                `1000000000,w,${m},module_started,,,0,pid=7 priority=10`, ...records, `3000000000,w,${m},module_exit,,,0,status=0 records=${counted}`, ''].join('\n'));
+            const rule = (t: number, r: string, m = 'CEL') => `${t},w,${m},sup_rule,,,0,cell.${r} active cause=elapsed=1000000ns`;
+            log('CEL', [rule(2000000000, 'PICK'), rule(2100000000, 'RECOVER')], 5);          // one removed
+            log('SAF', [rule(2000000000, 'WATCH', 'SAF'), rule(2000000000, 'WATCH', 'SAF')], 3);          // one repeated
+            log('ARM', ['2000000000,w,ARM,log-capped,,,4096,log reached its 4096-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written'], 4);          // capped: left out on purpose
+            log('CAM', [rule(2000000000, 'X', 'CAM'), '\u00ff\u00fe junk'], 4);                      // an unreadable line counts
+            const io = capture(folder);
+            expect(await runCli(['trace', '.'], io)).toBe(0);
+            const said = io.stdout.split('\n').filter((l) => l.includes('not whole'));
+            expect(said).toEqual([
+                '           CEL  not whole: its log holds 4 record(s), its exit record counts 5: 1 missing (removed or cut after the run?)',
+                '           SAF  not whole: its log holds 4 record(s), its exit record counts 3: 1 more than it wrote (repeated or added after the run?)',
+            ]);
+        } finally {
+            rmSync(folder, { recursive: true, force: true });
+        }
     });
 
     it('--format json: one record per line, unknown lines kept with the reason', async () => {
@@ -159,7 +183,7 @@ describe('contract trace', () => {
             const io = capture(odd);
             expect(await runCli(['trace', '.'], io)).toBe(0);
             expect(Date.now() - t0).toBeLessThan(20_000); // read whole, a terabyte of zeros took hours
-            expect(io.stdout).toMatch(/^\+0\.000000s ORD  activate S\n2 records: .* 1 unreadable line\(s\)\n$/);
+            expect(io.stdout).toMatch(/^\+0\.000000s ORD  activate S\n2 records: .* 1 unreadable line\(s\)\nunreadable: ZZZ_1\.csv line 1: line longer than 4096 characters\n$/);
             // 65 chunks of 1 MiB read: the line passed 64 MiB (as in a trace file: one reader of lines, bounded-lines.ts)
             expect(io.stderr).toBe(`contract trace: warning: ZZZ_1.csv: no line end in 64 MiB after line 1: the rest of the file (${2 ** 40 - 65 * 2 ** 20} bytes) left out\n`);
         } finally {

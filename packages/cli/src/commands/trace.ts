@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { StoryTeller, isUnknown, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { StoryTeller, isUnknown, type KnownRecord, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -141,7 +141,7 @@ class Story {
     }
 
     end(): string {
-        return this.ends.lines().map((l) => l + '\n').join('') + this.teller.summary() + '\n';
+        return this.ends.lines().map((l) => l + '\n').join('') + this.teller.summary() + '\n' + this.ends.unreadable().map((l) => l + '\n').join('');
     }
 }
 
@@ -150,16 +150,29 @@ function moduleOfLog(name: string): string {
     return name.slice(0, Math.max(1, name.indexOf('_')));
 }
 
+/** Unreadable lines named one by one at the end of the story (the rest counted). */
+const UNREADABLE_NAMED = 5;
+
 /**
  * Which modules' logs end without their `module_exit` record. A module that crashed (or was
  * killed) writes none: the runtime logs `module_exit` as it returns (docs/runtime-api.md "Trace
- * records"), and a crash can lose the records still buffered, down to an empty log.
+ * records"), and a crash can lose the records still buffered, down to an empty log. And whose
+ * log does not hold as many records as its exit record counts (`records=K`): a record removed,
+ * cut or repeated after the run.
  */
 export class ModuleEnds {
     private t0: bigint | undefined;
     private readonly last = new Map<string, bigint>();
     private readonly started = new Set<string>();
     private readonly exited = new Set<string>();
+    /** Records read per module (an unreadable line counts for the module its log is named for). */
+    private readonly read = new Map<string, number>();
+    /** What each module's exit record counts. */
+    private readonly counted = new Map<string, number>();
+    /** Modules whose log reached its bound (records left out on purpose: log-capped). */
+    private readonly capped = new Set<string>();
+    private readonly unknowns: string[] = [];
+    private unknownCount = 0;
     /** The logs' modules, then those of records (a trace file has no log names). */
     private readonly modules: Set<string>;
 
@@ -168,14 +181,32 @@ export class ModuleEnds {
     }
 
     see(r: TraceRecord): void {
-        if (r.kind === 'unknown') return;
+        if (r.kind === 'unknown') {
+            const u = r as UnknownRecord;
+            const m = moduleOfLog(u.file);
+            this.read.set(m, (this.read.get(m) ?? 0) + 1);
+            if (this.unknownCount++ < UNREADABLE_NAMED) this.unknowns.push(`unreadable: ${safeName(u.file)} line ${u.line}: ${u.reason}`);
+            return;
+        }
         const base = r as TraceRecordBase;
         const at = BigInt(base.monoNs);
         this.t0 ??= at;
         this.last.set(base.module, at);
         this.modules.add(base.module);
+        this.read.set(base.module, (this.read.get(base.module) ?? 0) + 1);
         if (r.kind === 'module_started') this.started.add(base.module);
-        if (r.kind === 'module_exit') this.exited.add(base.module);
+        if (r.kind === 'log-capped') this.capped.add(base.module);
+        if (r.kind === 'module_exit') {
+            this.exited.add(base.module);
+            const k = (r as KnownRecord).fields['records'];
+            if (typeof k === 'number') this.counted.set(base.module, k);
+        }
+    }
+
+    /** The unreadable lines, the first few by file and line (the summary counts them all). */
+    unreadable(): string[] {
+        const more = this.unknownCount - this.unknowns.length;
+        return more > 0 ? [...this.unknowns, `unreadable: ${more} more line(s) (\`--format json\` lists each)`] : this.unknowns;
     }
 
     /**
@@ -192,6 +223,11 @@ export class ModuleEnds {
                 out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed or was killed before writing any (\`contract run\` names a crash)`);
             } else if (this.started.has(m) && !this.exited.has(m)) {
                 out.push(`+${(Number(last - t0) / 1e9).toFixed(6)}s ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
+            }
+            const counted = this.counted.get(m), read = this.read.get(m) ?? 0;
+            if (counted !== undefined && counted !== read && !this.capped.has(m)) {
+                const gap = counted > read ? `${counted - read} missing (removed or cut after the run?)` : `${read - counted} more than it wrote (repeated or added after the run?)`;
+                out.push(`${''.padStart(10)} ${m.padEnd(4)} not whole: its log holds ${read} record(s), its exit record counts ${counted}: ${gap}`);
             }
         }
         return out;
