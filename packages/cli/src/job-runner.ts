@@ -192,6 +192,9 @@ export async function runJob(
 const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
 
 /** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
+/** The service's line when a run's stdout or stderr went past its cap (job.ts). */
+const OUTPUT_TRUNCATED_LINE = /^\[output truncated: (stdout|stderr) limit .* reached\]$/;
+
 function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines']): (e: JobEvent) => void {
     const madeParts = new Set<string>();
     return (e) => {
@@ -216,6 +219,11 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             return;
         }
         if (opts.format !== 'text') return;
+        // the run's output cut at its cap: said where it was cut, in the same stream (the modules' lines go on in their CSV logs)
+        if (e.step === 'run' && e.source === 'service' && OUTPUT_TRUNCATED_LINE.test(e.line)) {
+            io.out(`${e.line.slice(0, -1)}: later lines of the run are not shown; the CSV logs and --trace are whole]\n`);
+            return;
+        }
         // the service's own line for each model or generation problem: printed once, at the end, at
         // its path from where the command ran (prepareErrors), not here relative to the project
         if (e.step === 'prepare' && e.source === 'service' && (PREPARE_PROBLEM_LINE.test(e.line) || /^the project has \d+ error\(s\): nothing generated$/.test(e.line))) return;

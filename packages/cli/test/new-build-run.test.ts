@@ -320,4 +320,29 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(out.status).toBe('failed');
         expect(out.result.issues.map((i) => [i.kind, i.module])).toEqual([['module-stuck', 'CTL']]);
     }, 240_000);
+
+    it('a module flooding its output: the cut is said in place, in stdout, and the run exits 4 with the problem', async () => {
+        const dir = join(root, 'flood');
+        expect(await runCli(['new', 'flood'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'flood'], capture(root))).toBe(0);
+        const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const flooding = source.replace(
+            /(PROTECTED REGION ID\(protect_init_CTL\) ENABLED START\*\/)/,
+            '$1\n    for (int i = 0; i < 60000; i++) printf("CTL flood line %d of 60000\\n", i);',
+        );
+        expect(flooding).not.toBe(source);
+        writeFileSync(file, flooding);
+        const io = capture(root);
+        const code = await runCli(['run', 'flood', '--sandbox', 'bwrap', '--duration', '2s'], io);
+        const lines = io.stdout.split('\n');
+        const cut = lines.findIndex((l) => l.startsWith('[output truncated: stdout limit 1 MiB reached'));
+        expect(cut, io.stdout.slice(-2000)).toBeGreaterThan(0);
+        expect(lines[cut]).toBe('[output truncated: stdout limit 1 MiB reached: later lines of the run are not shown; the CSV logs and --trace are whole]');
+        expect(lines[cut - 1]).toMatch(/^\[CTL\] CTL f/); // the line it cut
+        expect(lines.slice(cut + 1).some((l) => l.startsWith('[CTL] CTL flood line'))).toBe(false);
+        expect(io.stderr).toMatch(/^problem: the run's stdout went past the output limit \(1 MiB per stream\)/m);
+        expect(code).toBe(4);
+    }, 240_000);
 });
+
