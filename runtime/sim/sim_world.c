@@ -210,10 +210,12 @@ static void sio_release_priority(void *ctx, const char *module, uint32_t id) {
     SimSup *p = ctx;
     action(p->w, p->v->name, "release priority claim #%u on %s", id, module);
 }
-static void sio_set_param(void *ctx, const char *module, int port, const void *value, size_t size) {
+static void sio_set_param(void *ctx, const char *module, int port, const void *value, size_t size,
+                          const ContractType *type) {
     SimSup *p = ctx;
-    (void)value;
-    action(p->w, p->v->name, "parameterize %s:%d (%zu bytes)", module, port, size);
+    char v[ACTION_VALUE_MAX];
+    engine_format_value(v, sizeof v, value, type);
+    action(p->w, p->v->name, "parameterize %s:%d (%zu bytes) = %s", module, port, size, v);
 }
 static void sio_connect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
@@ -256,7 +258,9 @@ static void sio_notify(void *ctx, int out_port, const ContractType *type, const 
     SimSup *p = ctx;
     SimMsg *m = msg_new(p->w, MSG_EVENT, p->index, value, size);
     if (m) { scopy(m->a, sizeof m->a, p->v->name); m->port = out_port; }
-    action(p->w, p->v->name, "notify :%d (%s)", out_port, type ? type->name : "?");
+    char v[ACTION_VALUE_MAX];
+    engine_format_value(v, sizeof v, value, type);
+    action(p->w, p->v->name, "notify :%d (%s) = %s", out_port, type ? type->name : "?", v);
 }
 static int sio_start_function(void *ctx, const char *sup, const char *fn, const void *params,
                               size_t size, uint32_t id) {
@@ -292,9 +296,11 @@ static void sio_action(void *ctx, int64_t t, const char *line) {
 
 /* ---- ORD io ------------------------------------------------------------------------------- */
 
-static void oio_set_param(void *ctx, const char *module, int port, const void *value, size_t size) {
-    (void)value;
-    action(ctx, "ORD", "parameterize %s:%d (%zu bytes)", module, port, size);
+static void oio_set_param(void *ctx, const char *module, int port, const void *value, size_t size,
+                          const ContractType *type) {
+    char v[ACTION_VALUE_MAX];
+    engine_format_value(v, sizeof v, value, type);
+    action(ctx, "ORD", "parameterize %s:%d (%zu bytes) = %s", module, port, size, v);
 }
 static int flow_index(const SimWorld *w, int src, const ContractDataFlow *f) {
     for (int i = 0; i < w->nflows; i++) {

@@ -51,10 +51,15 @@ void engine_init_block(unsigned char *block, const ContractVar *vars, int nvars)
 /** Builds the value of a module parameter port into dst (size setting->type->size). */
 int engine_build_setting(const EngineScope *s, const ContractParamSetting *setting, void *dst);
 
+/** The room for a value in a readable trace line (a rule's cause, a notified or parameterized
+ *  value): with the rest of the line it fits the 400-byte CSV detail. */
+#define ACTION_VALUE_MAX 200
+
 /** Writes a short readable form of a value into buf (trace records, docs/runtime-api.md "Trace
  *  records"): int `12`, float `%g`, string `"text"` (quotes and backslashes escaped, control
- *  characters as `?`, cut at 64 characters with `...`), datatype `{N bytes}`; no value or type:
- *  `?`. Never longer than len - 1. */
+ *  characters as `?`, cut at 64 characters with `...`), enum member, bool, array and datatype
+ *  `{a,b}` / `{x=1,y=2}` (at most CONTRACT_FORMAT_MAX_ITEMS elements, then `...`; a datatype
+ *  without a field table `{N bytes}`); no value or type: `?`. Never longer than len - 1. */
 void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type);
 
 /** Copies a NUL-terminated string into a string value (char[256]), truncating. */

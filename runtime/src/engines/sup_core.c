@@ -332,7 +332,7 @@ static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
             void *val = scratch_alloc(c, sm->settings[k].type->size);
             if (val && engine_build_setting(&s, &sm->settings[k], val) == 0 && c->io.set_param)
                 c->io.set_param(c->io.ctx, sm->module, sm->settings[k].port, val,
-                                sm->settings[k].type->size);
+                                sm->settings[k].type->size, sm->settings[k].type);
         }
     }
     /* connected at every activation (the same subscription again: a spent one-shot flow is
@@ -394,7 +394,7 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
             }
             if (c->io.set_param)
                 c->io.set_param(c->io.ctx, a->module, a->settings[k].port, val,
-                                a->settings[k].type->size);
+                                a->settings[k].type->size, a->settings[k].type);
         }
         break;
     case CONTRACT_ACT_SUPERVISOR: {
@@ -574,7 +574,7 @@ static void format_cause(const SupCore *c, int f, char *buf, size_t len) {
     const char *label = cur->rule >= 0 && cur->rule < fn->nrules ? fn->rules[cur->rule].label : "?";
     switch (cur->kind) {
     case CONTRACT_EV_MODULE: {
-        char value[200]; /* with the module and port, fits the 400-byte CSV detail */
+        char value[ACTION_VALUE_MAX]; /* with the module and port, fits the 400-byte CSV detail */
         const ContractType *type = NULL;
         int pi = cur->ord_schema ? -1 : in_port_index(c->v, cur->in_port);
         if (cur->ord_schema) type = &contract_type_string;

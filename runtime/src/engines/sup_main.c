@@ -31,6 +31,7 @@
 #include <unistd.h>
 
 #include "contract/vocabulary.h"
+#include "engine_values.h"
 #include "engine_wait.h"
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
@@ -230,10 +231,12 @@ static void b_release_priority(void *ctx, const char *m, uint32_t id) {
     prio_request_release(m, id);
 }
 
-static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size) {
+static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size, const ContractType *t) {
     (void)ctx;
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
-    log_action(m, "parameterize %s:%d (%zu bytes)%s", m, port, size, rc == CONTRACT_OK ? "" : " not sent");
+    char value[ACTION_VALUE_MAX];
+    engine_format_value(value, sizeof value, v, t);
+    log_action(m, "parameterize %s:%d (%zu bytes) = %s%s", m, port, size, value, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,
                 ContractStrError(rc));
@@ -287,7 +290,9 @@ static void b_unsubscribe(void *ctx, const char *m, int sp, int ip) {
 
 static void b_notify(void *ctx, int port, const ContractType *t, const void *v, size_t size) {
     SupBinding *b = ctx;
-    log_action("", "notify :%d (%s)", port, t && t->name ? t->name : "?");
+    char value[ACTION_VALUE_MAX];
+    engine_format_value(value, sizeof value, v, t);
+    log_action("", "notify :%d (%s) = %s", port, t && t->name ? t->name : "?", value);
     for (int i = 0; i < b->nsubs;) {
         Subscriber *s = &b->subs[i];
         if (s->source_port != port) {

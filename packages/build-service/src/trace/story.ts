@@ -69,6 +69,8 @@ export class StoryTeller {
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // an event schema's activation and undo (ORD tells the periodic ones)
         if (k.kind === 'supervisor' && what === 'action' && k.fields['schema'] !== undefined) return `${at(k)} ${k.detail}`;
+        // what it sent, with the value: a notification, a parameter
+        if (k.kind === 'supervisor' && what === 'action' && /^(notify|parameterize) /.test(k.detail)) return `${at(k)} ${k.detail}`;
         if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
             if (what === 'held') this.held.set(String(k.fields['schema']), String(k.fields['module']));
             else this.held.delete(String(k.fields['schema']));

@@ -131,12 +131,17 @@ describe('reading a log', () => {
 
     it('tells the run: rule changes with causes, deadline misses with their cycle, counts', () => {
         const text = [CSV_HEADER, '1000000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns',
-            '1500000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=4 tick_ns=1', '2000000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""', 'junk'].join('\n');
+            '1000000000,w,SUP,supervisor,MAA,,0,"parameterize MAA:0 (24 bytes) = {i=27.12,j=0,k=0.04}"',
+            '1000000000,w,SUP,supervisor,MAA,,0,subscribe MAA:2 =* :2', // an action without a value: counted, not told
+            '1500000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=4 tick_ns=1',
+            '1500000000,w,SUP,supervisor,,,0,"notify :1 (string) = ""commutation""', '2000000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""', 'junk'].join('\n');
         expect(renderStory(parseTrace([{ name: 'X_1.csv', text }]))).toEqual([
             '+0.000000s SUP  rule action.FIRST active   <- elapsed=1ms',
+            '+0.000000s SUP  parameterize MAA:0 (24 bytes) = {i=27.12,j=0,k=0.04}',
             '+0.500000s ORD  deadline miss (ORD:0): S cycle 4',
+            '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
-            '4 records: 0 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
+            '7 records: 0 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
         ]);
     });
 
