@@ -290,10 +290,12 @@ export function exitCodeOf(result: JobResult, job: Job): number {
 }
 
 /**
- * The report at the end of a job. `problems`: the run's problems as told (run.ts problemLines),
- * when they differ from the service's messages, which the summary line then quotes as told.
+ * The report at the end of a job (json: the whole record); returns its exit code. `problems`: the
+ * run's problems as told (run.ts problemLines), when they differ from the service's messages,
+ * which the summary line then quotes as told. `afterwards`: what went wrong here after the job (a
+ * log that could not be saved): the status line then says FAILED, not ok.
  */
-export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, extra: Record<string, unknown> = {}, problems?: readonly string[]): number {
+export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, extra: Record<string, unknown> = {}, problems?: readonly string[], afterwards: readonly string[] = []): number {
     const { job, result } = outcome;
     if (opts.format === 'json') {
         io.out(jobJson(outcome, extra));
@@ -310,7 +312,8 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
         const short = i.message.replace(/: does its exec region set \*stateindex = -1\?$/, '');
         message = message.includes(i.message) ? message.replace(i.message, told) : message.replace(short, told);
     });
-    io.err(`${result.ok ? 'ok' : 'FAILED'}: ${message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
+    if (afterwards.length) message = `${message}, but ${afterwards.join('; ')}`;
+    io.err(`${result.ok && !afterwards.length ? 'ok' : 'FAILED'}: ${message} [${job.sandboxName}; prepare ${seconds(d.prepare)} s, build ${seconds(d.build)} s${d.run !== undefined ? `, run ${seconds(d.run)} s` : ''}]\n`);
     if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) {
         const dir = safeName(opts.dirArg);
         const model = job.prepareDiagnostics.filter((p) => p.severity === 'error' && isModelProblem(p)).length;

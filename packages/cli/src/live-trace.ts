@@ -7,11 +7,10 @@
  * stream, trace-stream.ts) and rewrites the file when they differ.
  */
 import { createHash, type Hash } from 'node:crypto';
-import { constants, promises as fsp } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
 import { parseRecordLine } from '@contract-studio/build-service/trace';
-import { toJsonLines } from './trace-files.js';
+import { openTraceFile, toJsonLines } from './trace-files.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
 export class LiveTrace {
@@ -25,7 +24,7 @@ export class LiveTrace {
 
     /** Creates or truncates FILE, never through a link found there. */
     static async open(path: string): Promise<LiveTrace> {
-        return new LiveTrace(await fsp.open(path, constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644));
+        return new LiveTrace(await openTraceFile(path));
     }
 
     /** A job event: a trace event's records are appended to the file. */
@@ -60,7 +59,7 @@ export async function settleTraceFile(dir: string, names: readonly string[], tra
         const hash = createHash('sha256');
         const { records } = await jsonLinesOf(logs, (piece) => void hash.update(piece));
         if (hash.digest('hex') === live.digest) return { records };
-        const out = await fsp.open(traceFile, constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW, 0o644);
+        const out = await openTraceFile(traceFile);
         try {
             await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
         } finally {

@@ -12,7 +12,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Job, RunArtifacts } from '@contract-studio/build-service';
 import { runCli } from '../src/cli.js';
 import { problemLines, refusedPrevious, saveLogs, startProblem } from '../src/commands/run.js';
-import { formatGccDiagnostic, prepareErrors } from '../src/job-runner.js';
+import { formatGccDiagnostic, prepareErrors, reportBuild, type JobOutcome } from '../src/job-runner.js';
 import { safeName } from '../src/terminal-text.js';
 import { capture } from './capture-io.js';
 import { removeScratch } from './scratch.js';
@@ -101,6 +101,20 @@ describe('2. contract run: a link planted among the logs', () => {
         ]);
         expect(readFileSync(victim, 'utf8')).toBe('mine\n');
         expect(readFileSync(join(out, 'ORD_3-Dec-2026-02h00m00s.csv'), 'utf8')).toBe(moduleLog('ORD', 1));
+    });
+
+    it("a run whose log could not be saved does not end on an 'ok' line (it said ok, then refused the log, then exited 1)", () => {
+        const outcome = {
+            job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status: 'succeeded' },
+            result: { ok: true, message: 'run finished (exit 0)', step: 'run', issues: [], durations_ms: { prepare: 1900, build: 900, run: 2300 } },
+            runLines: [],
+        } as unknown as JobOutcome;
+        const io = capture(root);
+        reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], outcome, io, {}, [], ['log CEL_4-Dec-2026-11h27m40s.csv not written: a symbolic link of that name is there (never written through)']);
+        expect(io.stderr).toBe('FAILED: run finished (exit 0), but log CEL_4-Dec-2026-11h27m40s.csv not written: a symbolic link of that name is there (never written through) [bwrap; prepare 1.9 s, build 0.9 s, run 2.3 s]\n');
+        const fine = capture(root);
+        reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], outcome, fine);
+        expect(fine.stderr).toMatch(/^ok: run finished \(exit 0\) \[bwrap;/);
     });
 });
 

@@ -5,7 +5,7 @@
  * are kept in the `sim/` folder of the build cache `contract build` uses (`--cache-dir`,
  * `$CONTRACT_CACHE_DIR`, the XDG cache folder), under the same trust rules.
  */
-import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -87,6 +87,13 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             const bad = capture(dir);
             expect(await runCli(['simulate', TUTORIAL, scenario('mission.scenario'), '--cache-dir', cache, '--trace', join(dir, 'no', 'such', 'folder.jsonl')], bad)).toBe(1);
             expect(bad.stderr).toMatch(/contract simulate: cannot write the trace to .*folder\.jsonl: ENOENT/);
+            // a link planted where the trace goes (a hostile checkout): never written through, said so
+            writeFileSync(join(dir, 'victim.txt'), 'mine\n');
+            symlinkSync(join(dir, 'victim.txt'), join(dir, 'planted.jsonl'));
+            const planted = capture(dir);
+            expect(await runCli(['simulate', TUTORIAL, scenario('mission.scenario'), '--cache-dir', cache, '--trace', 'planted.jsonl'], planted)).toBe(1);
+            expect(planted.stderr).toMatch(/cannot write the trace to .*planted\.jsonl: it is a symbolic link: a trace file is never written through a link/);
+            expect(readFileSync(join(dir, 'victim.txt'), 'utf8')).toBe('mine\n');
         } finally {
             rmSync(dir, { recursive: true, force: true });
         }

@@ -174,7 +174,8 @@ export const runCommand: Command = {
             logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, output: outcome.runLines,
         };
         const problems = problemLines(outcome.result.issues ?? [], failures);
-        const code = reportBuild(opts, outcome, io, extra, problems);
+        const notSaved = savedLogs.refused.map((r) => `log ${r.replace(/: /, ' not written: ')}`);
+        const code = reportBuild(opts, outcome, io, extra, problems, notSaved);
         if (opts.format === 'text') {
             for (const f of failures) io.err(`module ${safeName(f.module)} crashed (${f.how})\n`);
             if (leftovers.length) io.err(`warning: the run left files in its run directory: ${leftovers.map(safeName).join(', ')}\n`);

@@ -5,7 +5,7 @@
  * and reports each step and each failed expectation like a test runner; `--trace` also writes the
  * simulation as the run-time trace records `contract run --trace` writes (one JSON object a line).
  */
-import { existsSync, writeFileSync } from 'node:fs';
+import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import type { LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
@@ -13,7 +13,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT } from '../job-runner.js';
 import { safeName } from '../terminal-text.js';
-import { toJsonLines } from '../trace-files.js';
+import { toJsonLines, writeTraceFileSync } from '../trace-files.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 
@@ -112,7 +112,7 @@ export const simulateCommand: Command = {
             const { stepsToTrace, traceStepOf } = await import('@contract-studio/simulator/trace');
             const traceFile = resolve(io.cwd, traceOption);
             try {
-                writeFileSync(traceFile, results.map((r) => toJsonLines(stepsToTrace(r.steps.map(traceStepOf), r.file))).join(''));
+                writeTraceFileSync(traceFile, results.map((r) => toJsonLines(stepsToTrace(r.steps.map(traceStepOf), r.file))).join(''));
             } catch (e) {
                 io.err(`contract simulate: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;
