@@ -62,6 +62,21 @@ describe('contract trace', () => {
         ].join('\n'));
     });
 
+    it('exits 1 for logs that hold no record (empty, or only their header), saying so', async () => {
+        const folder = mkdtempSync(join(tmpdir(), 'contract-trace-empty-'));
+        try {
+            writeFileSync(join(folder, 'EMP_24-Nov-2026-18h30m15s.csv'), '');
+            writeFileSync(join(folder, 'HDR_24-Nov-2026-18h30m15s.csv'), `${HEADER}\n`);
+            for (const format of ['text', 'json']) {
+                const io = capture(folder);
+                expect(await runCli(['trace', '.', '--format', format], io)).toBe(1);
+                expect(io.stderr).toContain('contract trace: no record in the 2 log(s) of . (empty, or only their header)');
+            }
+        } finally {
+            rmSync(folder, { recursive: true, force: true });
+        }
+    });
+
     it("says of a module's log that holds another number of records than its exit record counts that it is not whole (a line removed, one repeated), not of a capped log", async () => {
         const folder = mkdtempSync(join(tmpdir(), 'contract-trace-whole-'));
         try {
@@ -166,9 +181,11 @@ describe('contract trace', () => {
             expect(await runCli(['trace', '.'], io)).toBe(1);
             expect(io.stderr).toBe(`contract trace: ${many} holds 1025 CSV logs: more than the 1024 read at once (a run writes one per module); give the folder of one run\n`);
             rmSync(join(many, 'M0_1.csv'));
+            // 1024 are read (each holds only its header: no record, exit 1 saying so)
             const ok = capture(many);
-            expect(await runCli(['trace', '.'], ok)).toBe(0);
+            expect(await runCli(['trace', '.'], ok)).toBe(1);
             expect(ok.stdout).toBe('0 records: 0 releases, 0 completed cycles, 0 deadline misses, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable line(s)\n');
+            expect(ok.stderr).toBe('contract trace: no record in the 1024 log(s) of . (empty, or only their header)\n');
         } finally {
             rmSync(many, { recursive: true, force: true });
         }

@@ -27,7 +27,7 @@ export const traceCommand: Command = {
         '  FILE.jsonl: a trace file (`contract run --trace`, `contract trace --format json`, `contract simulate --trace`), told in its order',
         '  --format: text (default: the story, then a count of the records) or json (one JSON object per record and line, time order)',
         '  a file named like a log that is not read (a symbolic link, a FIFO, socket or device) is left out with a warning',
-        'exit status: 0 success, 1 no readable log in LOGDIR (no record in FILE.jsonl), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
+        'exit status: 0 success, 1 no readable log in LOGDIR, or no record in its logs (in FILE.jsonl), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const parsed = parseArgs(args, ['format']);
@@ -48,9 +48,13 @@ export const traceCommand: Command = {
             return EXIT_FAILURE;
         }
         try {
-            const { late, problems } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
+            const { late, problems, records } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
             if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines from their time's place in their log: told later than their time\n`);
+            if (records === 0) {
+                io.err(`contract trace: no record in the ${logs.length} log(s) of ${safeName(dirArg)} (empty, or only their header)\n`);
+                return EXIT_FAILURE;
+            }
             return EXIT_OK;
         } finally {
             await closeLogs(logs);
@@ -68,7 +72,7 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
         io.err(`contract trace: cannot read ${safeName(arg)}: ${handle.message}\n`);
         return EXIT_FAILURE;
     }
-    const story = new Story(new ModuleEnds([]));
+    const story = new Story(new ModuleEnds([], arg)); // the file's own bad lines are named on stderr below
     let records = 0;
     let problems = 0;
     try {
@@ -99,23 +103,25 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
 }
 
 /** Every record as a JSON line, each piece printed once the reader took the last; stops when the reader went away (`| head`: its choice). */
-async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
-    const { outOfOrder, problems } = await jsonLinesOf(logs, (piece) => print(io, piece));
-    return { late: outOfOrder, problems };
+async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[]; records?: number }> {
+    const { outOfOrder, problems, records } = await jsonLinesOf(logs, (piece) => print(io, piece));
+    return { late: outOfOrder, problems, records };
 }
 
 /**
  * The story: its lines printed as they come (few: a reader gone is seen at the next), then what
  * the logs say of modules that did not end (a crash leaves no exit record), then the counts.
  */
-async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[] }> {
+async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[]; records?: number }> {
     const stream = streamTrace(logs);
     const story = new Story(new ModuleEnds(logs));
+    let records = 0;
     for await (const batch of stream.batches) {
+        records += batch.length;
         if (!(await print(io, batch.map((r) => story.line(r)).join('')))) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
     io.out(story.end());
-    return { late: stream.outOfOrder(), problems: stream.problems() };
+    return { late: stream.outOfOrder(), problems: stream.problems(), records };
 }
 
 /** Prints `piece` (when any) once the reader took the last; false when the reader went away (`| head`: its choice). */
@@ -176,13 +182,15 @@ export class ModuleEnds {
     /** The logs' modules, then those of records (a trace file has no log names). */
     private readonly modules: Set<string>;
 
-    constructor(logs: readonly { name: string }[]) {
+    /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
+    constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
         this.modules = new Set(logs.map((l) => moduleOfLog(l.name)));
     }
 
     see(r: TraceRecord): void {
         if (r.kind === 'unknown') {
             const u = r as UnknownRecord;
+            if (u.file === this.namedElsewhere) return;
             const m = moduleOfLog(u.file);
             this.read.set(m, (this.read.get(m) ?? 0) + 1);
             if (this.unknownCount++ < UNREADABLE_NAMED) this.unknowns.push(`unreadable: ${safeName(u.file)} line ${u.line}: ${u.reason}`);
