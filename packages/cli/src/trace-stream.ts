@@ -46,17 +46,18 @@ function kindOf(st: { isFIFO(): boolean; isSocket(): boolean; isCharacterDevice(
  * The CSV logs of `dir` (those named in `only` when given), opened (regular files only; never
  * through a link), or an error message. A file named like a log that is not read — a symbolic
  * link, a FIFO, socket or device (never waited on), one that cannot be opened — is left out and
- * said in `skipped` (`NAME: why`); the others are read.
+ * said in `skipped` (`NAME: why`); the others are read. `shownAs`: the folder as the user wrote it
+ * (the messages name it so).
  */
-export async function openLogFolder(dir: string, only?: readonly string[], skipped: string[] = []): Promise<OpenLog[] | string> {
+export async function openLogFolder(dir: string, only?: readonly string[], skipped: string[] = [], shownAs = dir): Promise<OpenLog[] | string> {
     let names: string[];
     try {
         names = (await fsp.readdir(dir)).filter((n) => LOG_FILE_NAME.test(n) && (!only || only.includes(n))).sort();
     } catch (e) {
-        return `cannot read the log folder ${safeName(dir)}: ${(e as Error).message}`;
+        return `cannot read the log folder ${safeName(shownAs)}: ${(e as Error).message.replace(dir, shownAs)}`;
     }
-    if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${safeName(dir)}`;
-    if (names.length > MAX_LOG_FILES) return `${safeName(dir)} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
+    if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${safeName(shownAs)}`;
+    if (names.length > MAX_LOG_FILES) return `${safeName(shownAs)} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
     const logs: OpenLog[] = [];
     for (const name of names) {
         let handle: fsp.FileHandle;

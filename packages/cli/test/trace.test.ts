@@ -2,7 +2,7 @@
 import { execFileSync, spawn } from 'node:child_process';
 import { closeSync, mkdtempSync, openSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { basename, join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
@@ -117,6 +117,10 @@ describe('contract trace', () => {
         const io = capture(dir);
         expect(await runCli(['trace', empty], io)).toBe(1);
         expect(io.stderr).toBe(`contract trace: no CSV log (<MODULE>_*.csv) in ${empty}\n`);
+        // named as typed: a relative folder stays relative
+        const typed = capture(tmpdir());
+        expect(await runCli(['trace', basename(empty)], typed)).toBe(1);
+        expect(typed.stderr).toBe(`contract trace: no CSV log (<MODULE>_*.csv) in ${basename(empty)}\n`);
         rmSync(empty, { recursive: true });
     });
 
@@ -179,7 +183,7 @@ describe('contract trace', () => {
             for (let i = 0; i < 1025; i++) writeFileSync(join(many, `M${i}_1.csv`), `${HEADER}\n`);
             const io = capture(many);
             expect(await runCli(['trace', '.'], io)).toBe(1);
-            expect(io.stderr).toBe(`contract trace: ${many} holds 1025 CSV logs: more than the 1024 read at once (a run writes one per module); give the folder of one run\n`);
+            expect(io.stderr).toBe(`contract trace: . holds 1025 CSV logs: more than the 1024 read at once (a run writes one per module); give the folder of one run\n`);
             rmSync(join(many, 'M0_1.csv'));
             // 1024 are read (each holds only its header: no record, exit 1 saying so)
             const ok = capture(many);

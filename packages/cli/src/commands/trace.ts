@@ -41,7 +41,7 @@ export const traceCommand: Command = {
         if (!info && dirArg.endsWith('.jsonl')) throw new UsageError(`${safeName(dirArg)} does not exist: give a trace file (\`contract run --trace FILE.jsonl\` writes one) or the folder of a run's CSV logs`);
         if (!info?.isDirectory()) throw new UsageError(`${safeName(dirArg)} is not a folder${info ? '' : ' (it does not exist)'}: give the folder of a run's CSV logs (\`contract run\` writes them to PROJECT/logs) or a trace file (FILE.jsonl: \`contract run --trace\`)`);
         const skipped: string[] = [];
-        const logs = await openLogFolder(dir, undefined, skipped);
+        const logs = await openLogFolder(dir, undefined, skipped, dirArg);
         for (const s of skipped) io.err(`contract trace: warning: ${s}\n`);
         if (typeof logs === 'string') {
             io.err(`contract trace: ${logs}\n`);
