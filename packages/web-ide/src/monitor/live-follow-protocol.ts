@@ -23,6 +23,8 @@ export interface Snapshot {
   live: MonitorState;
   end: Ns;
   count: number;
+  /** Lines of the run's logs that did not come on the stream (gaps in a log's line numbers: records the service did not keep for this stream). */
+  missed: number;
   /** Marks made since the last snapshot. */
   marks: Mark[];
   /** The stream ended (its `end` event, or it broke for good): nothing more will come from it. */

@@ -74,6 +74,7 @@ describe('a live run followed in a worker', () => {
     expect(remote.live).toEqual(local.live);
     expect(remote.marks).toEqual(local.marks);
     expect(remote.problems).toEqual([]);
+    expect(remote.missed).toBe(0); // every log's lines 2, 3, … came: nothing missing
     expect(posted.filter((p) => p.type === 'snapshot').length).toBeGreaterThan(0);
     // a state before the end is asked of the worker: undefined at first, the same as the page's model once it comes
     for (const t of [0, local.marks[3]!.t, local.end / 3, local.end - 1]) {
@@ -152,6 +153,40 @@ describe('a live run followed in a worker', () => {
     await settled(remote);
     expect(remote.outcome).toBe('connection to the build service lost');
   }, 60_000);
+
+  it('counts the records a stream attached late never got: the service keeps the first ones for replay, the later ones go live only', async () => {
+    // as job-events.ts does past traceLinesKept: the kept events replay from seq 0; the later ones
+    // went to the clients attached then (not this page, reloaded meanwhile) and are not kept; those
+    // read after it attached come live, carrying the seq of the last kept event
+    const kept = 80, gone = 100;
+    const keptFrames: string[] = [];
+    for (let i = 0; i < kept; i += 40) keptFrames.push(JSON.stringify({ type: 'trace', seq: keptFrames.length + 1, t: Date.now(), ...encodeTraceRecords(lines.slice(i, i + 40)) }));
+    const received = [...lines.slice(0, kept), ...lines.slice(kept + gone)];
+    let release!: () => void;
+    const resumed = new Promise<void>((r) => (release = r));
+    const url = await listen((ws, after) => {
+      for (const f of keptFrames.slice(after)) ws.send(f);
+      void resumed.then(() => {
+        for (let i = kept + gone; i < lines.length; i += 40) ws.send(JSON.stringify({ type: 'trace', seq: keptFrames.length, t: Date.now(), ...encodeTraceRecords(lines.slice(i, i + 40)) }));
+        ws.send(JSON.stringify({ type: 'end', seq: keptFrames.length + 1, t: Date.now(), result: { ok: true } }));
+      });
+    });
+    const { remote } = pair(url);
+    // the kept records alone: whole so far (nothing tells of a gap yet)
+    await expect.poll(() => remote.recordCount).toBe(kept);
+    expect(remote.missed).toBe(0);
+    release();
+    await settled(remote);
+    expect(remote.recordCount).toBe(received.length);
+    // each log's lines that did not come before one that did: the gap in its numbering
+    const byFile = new Map<string, number[]>();
+    for (const l of received) byFile.set(l.file, [...(byFile.get(l.file) ?? []), l.line]);
+    const gaps = [...byFile.values()].reduce((n, ls) => n + Math.max(...ls) - 1 - ls.length, 0);
+    expect(gaps).toBeGreaterThan(50);
+    expect(remote.missed).toBe(gaps);
+    // the records missing at the end of a log (none came after them) are not counted: only the logs say how many
+    expect(remote.missed).toBeLessThanOrEqual(gone);
+  });
 
   it('sends the page at most one snapshot per snapshotMs, and the last one always', async () => {
     const frames = events(2); // many small events, sent at once

@@ -21,6 +21,10 @@ const MAX_FILE_NAME = 200;
 /** Least time between two snapshots to the page (one per frame at most). */
 export const SNAPSHOT_MS = 16;
 const MAX_PROBLEMS = 20;
+/** Logs whose line numbers are followed for gaps (the service tails at most 256). */
+const MAX_GAP_FILES = 1024;
+/** A log's first record line: line 1 is its header (counted by the service, never sent). */
+const FIRST_RECORD_LINE = 2;
 
 export type { SocketLike };
 
@@ -48,6 +52,17 @@ export class LiveFollower {
   private secondMs = NaN;
   /** Trace events folded: the id of each event's text in the model (its lines are ranges of it). */
   private events = 0;
+  /**
+   * Lines of the logs that never came: each log's lines arrive in order, numbered as in the file
+   * (docs/build-service-api.md "Trace channel"), so a number past the next one expected is a gap —
+   * records the service sent before this stream attached (or while it was broken) and did not keep
+   * past its traceLinesKept bound. The log followed last is kept out of the map (the common case: a
+   * run of lines of one log).
+   */
+  private missed = 0;
+  private readonly nextLines = new Map<string, number>();
+  private gapFile: string | undefined;
+  private gapNext = FIRST_RECORD_LINE;
 
   constructor(
     private readonly post: (m: FromFollower) => void,
@@ -109,7 +124,9 @@ export class LiveFollower {
 
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
   private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number): void {
-    this.model.pushLineIn(file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file, line, text, from, Math.min(to, from + MAX_LINE + 1), textId);
+    const name = file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
+    this.followLines(name, line);
+    this.model.pushLineIn(name, line, text, from, Math.min(to, from + MAX_LINE + 1), textId);
     if (this.measure) {
       if (this.measured === this.walls.length) {
         const walls = new Float64Array(this.measured * 2);
@@ -122,6 +139,17 @@ export class LiveFollower {
       this.walls[this.measured] = this.wallOf(text, from);
       this.arrived[this.measured++] = arrival;
     }
+  }
+
+  /** Counts the lines of `file` skipped before `line` (missed). */
+  private followLines(file: string, line: number): void {
+    if (file !== this.gapFile) {
+      if (this.gapFile !== undefined && (this.nextLines.has(this.gapFile) || this.nextLines.size < MAX_GAP_FILES)) this.nextLines.set(this.gapFile, this.gapNext);
+      this.gapFile = file;
+      this.gapNext = this.nextLines.get(file) ?? FIRST_RECORD_LINE;
+    }
+    if (line > this.gapNext) this.missed = Math.min(Number.MAX_SAFE_INTEGER, this.missed + (line - this.gapNext));
+    if (line >= this.gapNext) this.gapNext = line + 1;
   }
 
   private fold(work: () => void): void {
@@ -164,7 +192,7 @@ export class LiveFollower {
     this.lastPost = performance.now();
     this.postedVersion = m.version;
     const s: Snapshot = {
-      type: 'snapshot', live: m.live, end: m.end, count: m.recordCount, marks: m.marks.slice(this.marksSent),
+      type: 'snapshot', live: m.live, end: m.end, count: m.recordCount, missed: this.missed, marks: m.marks.slice(this.marksSent),
       ended: this.ended, ...(this.ended ? { outcome: this.outcome } : {}), problems: this.problems.slice(this.problemsSent), foldMs: this.foldMs,
     };
     this.marksSent = m.marks.length;

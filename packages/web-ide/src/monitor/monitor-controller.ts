@@ -36,6 +36,8 @@ const INGEST_SLICE_MS = 8;
 const SETTLE_MS = 5000;
 /** CSV files read from the workspace for one replay. */
 const MAX_FILES = 256;
+/** Trace records the build service keeps for replay (its traceLinesKept bound, docs/build-service-api.md "Trace channel"). */
+const TRACE_LINES_KEPT = 50_000;
 /** A shown log folder whose files changed is read again this long after the last change (a run writing its logs changes them all the time). */
 const REREAD_MS = 1000;
 
@@ -119,11 +121,17 @@ export class MonitorController {
     worker.addEventListener('error', (e) => model.fail(`the live trace's worker failed (${e.message || 'it could not start'}): the run is shown from its CSV logs when it ends`));
     const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model, live: true };
     let problems = 0;
+    let missed = 0;
     model.onChange = () => {
-      if (model.problems.length !== problems) {
+      if (model.problems.length !== problems || model.missed !== missed) {
         problems = model.problems.length;
-        run.label = `${run.label.replace(/ \(trace not whole: .*\)$/, '')} (trace not whole: ${model.problems.join('; ')})`;
+        missed = model.missed;
+        // a stream attached late (a reload during a long run) or taken up again past the service's
+        // bound gets the first records and the newest: the gap between them is said while it runs
+        const notWhole = [...(missed ? [`${count(missed)} records not received (the build service keeps the first ${count(TRACE_LINES_KEPT)} for a page that attaches later); the whole run is shown from its logs when it ends`] : []), ...model.problems];
+        run.label = `${run.label.replace(/ \(trace not whole: .*\)$/, '')} (trace not whole: ${notWhole.join('; ')})`;
         if (this.shown === run.id) this.panel?.setLabel(run.label);
+        if (this.panel) void this.refreshSources(); // the run list says it too
       }
       if (model.ended && model.outcome !== undefined) this.ended(run, model.outcome);
       if (this.shown === run.id) this.panel?.schedule();
@@ -198,7 +206,8 @@ export class MonitorController {
    */
   async open(): Promise<void> {
     if (!this.isShown) await this.show();
-    this.panel?.element.focus();
+    // its ring shown: the focus came from a shortcut or the palette, even after a mouse click elsewhere
+    this.panel?.element.focus({ focusVisible: true } as FocusOptions);
   }
 
   hide(): void {
@@ -228,7 +237,8 @@ export class MonitorController {
     // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
     const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
-    if (cut) live!.label = `Build & Run job ${jobId} · as streamed (first ${live!.model.recordCount} records)${live!.outcome ? ` · ended: ${live!.outcome}` : ''}`;
+    // (not "the first N": a stream attached late got the first records and the last ones, a gap between)
+    if (cut) live!.label = `Build & Run job ${jobId} · as streamed (${count(live!.model.recordCount)} of the ${count(run.model.recordCount)} records of its logs: ${count(run.model.recordCount - live!.model.recordCount)} not received)${live!.outcome ? ` · ended: ${live!.outcome}` : ''}`;
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
       this.panel?.endLive(live.label);
       await this.refreshSources();
@@ -384,6 +394,11 @@ function yieldToPage(): Promise<void> {
     };
     channel.port2.postMessage(undefined);
   });
+}
+
+/** 50000 -> `50,000`. */
+function count(n: number): string {
+  return n.toLocaleString('en-US');
 }
 
 function dirOf(path: string): string {

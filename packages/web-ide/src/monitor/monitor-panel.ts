@@ -119,8 +119,10 @@ export class MonitorPanel {
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schemasEl, this.periodicEl),
         h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
     this.element.addEventListener('keydown', (e) => {
-      // the slider takes its arrows, Home and End; Space and the brackets work there too
-      if (e.target instanceof HTMLInputElement && e.key !== ' ' && e.key !== '[' && e.key !== ']') return;
+      // a control's own keys are its own: Space presses a focused button (▷ Play, ▶, a rule), the
+      // run list and text fields take every key; the slider takes its arrows, Home and End (Space
+      // and the brackets work there too)
+      if (ownKey(e.target, e.key)) return;
       if (e.key === ' ') this.setFollow(!this.follow);
       else if (e.key === '[') step(-1);
       else if (e.key === ']') step(1);
@@ -328,15 +330,18 @@ export class MonitorPanel {
         for (const rule of rules) {
           const rs = st?.rules.get(`${fn}.${rule}`);
           const el = this.row(`rule:${sup}.${fn}.${rule}`, () => {
-            const b = h('button', { class: 'monitor-rule', 'data-rule': `${sup}.${fn}.${rule}`, title: `Open ${fn}.${rule} in its .contract file` },
+            const b = h('button', { class: 'monitor-rule', 'data-rule': `${sup}.${fn}.${rule}` },
               h('span', { class: 'rule-dot', 'aria-hidden': 'true' }), h('span', { class: 'rule-name' }, rule), h('span', { class: 'rule-cause' }), h('span', { class: 'rule-time' }));
             b.addEventListener('click', () => this.deps.openRule(sup, fn, rule));
             return b;
           });
           setAttr(el, 'data-active', String(!!rs?.active));
           setAttr(el, 'aria-pressed', String(!!rs?.active));
-          setText(el.children[2] as HTMLElement, rs ? `${rs.active ? '' : 'off '}← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '');
+          const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
+          setText(el.children[2] as HTMLElement, rs && !rs.active ? `off ${cause}` : cause);
           setText(el.children[3] as HTMLElement, rs ? fmtT(rs.since) : '');
+          // the cause is cut to the row's width: whole in the tooltip (and in the text read out)
+          setAttr(el, 'title', `${fn}.${rule}${rs ? ` ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)} ${cause}` : ': not active yet'} · click to open it in its .contract file`);
           setAttr(el, 'data-cause', rs?.cause ?? '');
           setAttr(el, 'data-since', rs ? String(rs.since) : '');
           children.push(el);
@@ -463,6 +468,15 @@ export class MonitorPanel {
     });
     replaceIfChanged(this.flowsEl, rows);
   }
+}
+
+/** Whether `key` pressed on `target` is the focused control's own key, not the panel's shortcut. */
+function ownKey(target: EventTarget | null, key: string): boolean {
+  if (!(target instanceof HTMLElement)) return false;
+  if (target instanceof HTMLInputElement) return target.type !== 'range' || (key !== ' ' && key !== '[' && key !== ']');
+  if (target instanceof HTMLSelectElement || target instanceof HTMLTextAreaElement || target.isContentEditable) return true;
+  const pressable = target instanceof HTMLButtonElement || target instanceof HTMLAnchorElement || /^(button|link|checkbox|switch|menuitem|tab|option)$/.test(target.getAttribute('role') ?? '');
+  return pressable && (key === ' ' || key === 'Enter');
 }
 
 function setText(el: HTMLElement, text: string): void {

@@ -22,6 +22,8 @@ export class RemoteMonitorModel implements MonitorView {
   readonly marks: Mark[] = [];
   end: Ns = 0;
   recordCount = 0;
+  /** Lines of the run's logs the stream did not bring (records the build service did not keep: live-follower.ts). */
+  missed = 0;
   version = 0;
   /** The stream ended: nothing more comes (see problems). */
   ended = false;
@@ -96,6 +98,7 @@ export class RemoteMonitorModel implements MonitorView {
       this.live = m.live;
       this.end = m.end;
       this.recordCount = m.count;
+      this.missed = Number.isSafeInteger(m.missed) ? m.missed : 0;
       for (const k of m.marks) this.marks.push(k);
       for (const p of m.problems) this.problems.push(p);
       this.foldMs = m.foldMs;

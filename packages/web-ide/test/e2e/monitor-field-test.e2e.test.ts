@@ -1,0 +1,230 @@
+/**
+ * End-to-end: what a field test of the Monitor (docs/watching-a-run.md) found, in headless Chromium
+ * on the real IDE server:
+ * - a live run followed by a page that attached late (a reload during a long run): the records the
+ *   build service did not keep are said missing while it runs, and the end-of-run label is true;
+ * - Space on a focused control of the panel presses that control (▷ Play, ▶, a rule, the run list),
+ *   and toggles Pause/Follow only elsewhere in the panel;
+ * - axe-core while a rule is lit on a live run; the panel's and a rule's focus rings;
+ * - at 900x700: every control of the top bar on screen, the Monitor's time, histogram and causes whole.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { cpSync, mkdirSync, readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { WebSocketServer } from 'ws';
+import { encodeTraceRecords } from '@contract-studio/build-service/trace';
+import { startSession, openIde, shot, activeTab, openFile, type Session } from './harness.js';
+import { axeScan, seriousOf } from './axe.js';
+
+const FIXTURE = fileURLToPath(new URL('../../src/monitor/fixtures/tutorial-run', import.meta.url));
+/** The recorded tutorial run's record lines, in mono_ns order, numbered as in their logs. */
+const LINES = readdirSync(FIXTURE).flatMap((file) => readFileSync(join(FIXTURE, file), 'utf8').split('\n').map((text, i) => ({ file, line: i + 1, text })))
+  .filter((l) => /^\d+,/.test(l.text)).sort((a, b) => Number(BigInt(a.text.split(',')[0]!) - BigInt(b.text.split(',')[0]!)));
+
+type Page = Session['page'];
+const rule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="${id}"]`);
+const label = (page: Page) => page.locator('.monitor-source').textContent();
+
+async function showRecorded(page: Page): Promise<void> {
+  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
+  await page.locator('.side-pane .monitor-view').waitFor();
+  await page.locator('.monitor-sources').selectOption('dir:recorded');
+  await expect.poll(() => label(page)).toBe('9 CSV log(s) in recorded');
+}
+
+describe('Monitor field test', () => {
+  let s: Session;
+  beforeAll(async () => {
+    s = await startSession();
+    mkdirSync(join(s.workspace, 'recorded'));
+    cpSync(FIXTURE, join(s.workspace, 'recorded'), { recursive: true });
+    await openIde(s);
+  }, 60_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
+  it('a live run attached late (past the records the service keeps) says what it did not receive while it runs, and the end-of-run label is true', async () => {
+    const { page } = s;
+    // the service past its traceLinesKept bound (job-events.ts): the kept events replay from seq 0;
+    // what was read while this page was away went to no one and is not kept; what is read after it
+    // attached comes live, with the seq of the last kept event
+    const kept = 80, gone = 100;
+    const batches = (from: number, to: number) => {
+      const out: (typeof LINES)[] = [];
+      for (let i = from; i < to; i += 40) out.push(LINES.slice(i, Math.min(to, i + 40)));
+      return out;
+    };
+    const keptEvents = batches(0, kept).map((records, i) => JSON.stringify({ type: 'trace', seq: i + 1, t: Date.now(), ...encodeTraceRecords(records) }));
+    const server = new WebSocketServer({ port: 0, host: '127.0.0.1' });
+    await new Promise((r) => server.once('listening', r));
+    let socket: import('ws').WebSocket | undefined;
+    server.on('connection', (ws) => {
+      socket = ws;
+      for (const e of keptEvents) ws.send(e);
+    });
+    const url = `ws://127.0.0.1:${(server.address() as { port: number }).port}/api/jobs/late/ws?trace=only`;
+    try {
+      await page.evaluate((url) => (window as any).__ide.monitor.followLive('late', url), url);
+      await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(kept);
+      expect(await label(page)).toBe('Build & Run job late · live'); // nothing tells of a gap yet
+      for (const records of batches(kept + gone, LINES.length)) socket!.send(JSON.stringify({ type: 'trace', seq: keptEvents.length, t: Date.now(), ...encodeTraceRecords(records) }));
+      // each log's lines that never came before one that did
+      const received = [...LINES.slice(0, kept), ...LINES.slice(kept + gone)];
+      const last = new Map<string, number>();
+      const count = new Map<string, number>();
+      for (const l of received) (last.set(l.file, l.line), count.set(l.file, (count.get(l.file) ?? 0) + 1));
+      const missed = [...last].reduce((n, [f, line]) => n + line - 1 - count.get(f)!, 0);
+      expect(missed).toBeGreaterThan(50);
+      const notWhole = ` (trace not whole: ${missed} records not received (the build service keeps the first 50,000 for a page that attaches later); the whole run is shown from its logs when it ends)`;
+      await expect.poll(() => label(page)).toBe(`Build & Run job late · live${notWhole}`);
+      expect(await page.locator('.monitor-sources option:checked').textContent()).toBe(`Build & Run job late · live${notWhole}`);
+      await shot(page, 'monitor-field-01-live-not-whole');
+      socket!.send(JSON.stringify({ type: 'end', seq: keptEvents.length + 1, t: Date.now(), result: { ok: true } }));
+      await expect.poll(() => label(page)).toBe(`Build & Run job late · ended: succeeded${notWhole}`);
+      // the job's logs come (as run-controller.ts hands them over): the whole run is shown from them,
+      // and the run as streamed says how much of it came (it was never "the first N records")
+      const files = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
+      await page.evaluate((files) => (window as any).__ide.monitor.showRecorded('late', { label: 'Build & Run job late', files, problems: [] }), files);
+      await expect.poll(() => label(page)).toBe('Build & Run job late · CSV logs');
+      expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(LINES.length);
+      expect(await page.locator('.monitor-sources option[value="live:late"]').textContent())
+        .toBe(`Build & Run job late · as streamed (${received.length} of the ${LINES.length} records of its logs: ${LINES.length - received.length} not received) · ended: succeeded`);
+    } finally {
+      for (const c of server.clients) c.terminate();
+      await new Promise((r) => server.close(r));
+    }
+  }, 60_000);
+
+  it('Space on a focused control presses it (▷ Play, ▶, a rule, the run list); elsewhere in the panel it pauses and follows', async () => {
+    const { page } = s;
+    await showRecorded(page);
+    const follow = () => page.locator('#monitor-follow').getAttribute('aria-pressed');
+    const t = async () => Number(await page.locator('.monitor-view').getAttribute('data-t'));
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('Home');
+    await expect.poll(t).toBe(0);
+    expect(await follow()).toBe('false');
+    // ▶ Next: the next mark, as a click
+    const first = await page.evaluate(() => ((window as any).__ide.monitor.current.marks as { t: number }[]).find((m) => m.t > 0)!.t);
+    await page.locator('#monitor-next').focus();
+    await page.keyboard.press('Space');
+    await expect.poll(t).toBe(first);
+    expect(await follow()).toBe('false');
+    // ▷ Play: plays, and Space again stops it
+    await page.locator('#monitor-play').focus();
+    await page.keyboard.press('Space');
+    await expect.poll(() => page.locator('#monitor-play').getAttribute('aria-pressed')).toBe('true');
+    expect(await follow()).toBe('false');
+    await page.keyboard.press('Space');
+    await expect.poll(() => page.locator('#monitor-play').getAttribute('aria-pressed')).toBe('false');
+    expect(await follow()).toBe('false');
+    // the run list: its own key (it opens), the cursor left as it was
+    await page.locator('.monitor-sources').focus();
+    await page.keyboard.press('Space');
+    await page.keyboard.press('Escape');
+    expect(await follow()).toBe('false');
+    expect(await label(page)).toBe('9 CSV log(s) in recorded');
+    // ⇥ End itself, and the slider and the panel: Space is the panel's pause/follow
+    await page.locator('#monitor-follow').focus();
+    await page.keyboard.press('Space');
+    await expect.poll(follow).toBe('true');
+    await page.locator('.monitor-slider').focus();
+    await page.keyboard.press('Space');
+    await expect.poll(follow).toBe('false');
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('Space');
+    await expect.poll(follow).toBe('true');
+    // a rule: opens its definition
+    await openFile(page, 'datatype.contract');
+    await rule(page, 'SUP.action.SECOND').focus();
+    await page.keyboard.press('Space');
+    await expect.poll(() => activeTab(page)).toBe('supervisor.contract');
+    expect(await follow()).toBe('true');
+  }, 60_000);
+
+  it('axe-core finds no serious violation while a rule is lit on a live run; the panel and a focused rule show a ring', async () => {
+    const { page } = s;
+    await page.evaluate(() => (window as any).__ide.monitor.followLive('axe', null));
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
+    const upTo = LINES.findIndex((l) => l.text.includes('action.SECOND active'));
+    await page.evaluate((records) => (window as any).__ide.monitor.feed('axe', records), LINES.slice(0, upTo + 40));
+    await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active')).toBe('true');
+    await expect.poll(() => page.locator('.monitor-rule[data-active=true] .rule-time').first().textContent()).toMatch(/^\+\d/);
+    const scan = await axeScan(page, 'Monitor, live, a rule lit');
+    expect(seriousOf(scan)).toEqual([]);
+    // the lit rule's time: 4.5:1 at least on its row
+    const ratio = await rule(page, 'SUP.action.SECOND').evaluate((b) => {
+      const rgb = (c: string) => c.match(/\d+/g)!.slice(0, 3).map(Number);
+      const lum = (c: number[]) => c.map((v) => v / 255).map((v) => (v <= 0.03928 ? v / 12.92 : ((v + 0.055) / 1.055) ** 2.4)).reduce((s, v, i) => s + v * [0.2126, 0.7152, 0.0722][i]!, 0);
+      const [a, z] = [lum(rgb(getComputedStyle(b.querySelector('.rule-time')!).color)), lum(rgb(getComputedStyle(b).backgroundColor))];
+      return (Math.max(a, z) + 0.05) / (Math.min(a, z) + 0.05);
+    });
+    expect(ratio).toBeGreaterThanOrEqual(4.5);
+    // Alt+Shift+M puts the focus in the panel: a ring shows it; Tab to a rule: a ring on the rule
+    const ring = (sel: string) => page.locator(sel).evaluate((el) => {
+      const cs = getComputedStyle(el);
+      return { focused: el.matches(':focus-visible'), style: cs.outlineStyle, width: cs.outlineWidth, color: cs.outlineColor };
+    });
+    await openFile(page, 'supervisor.contract');
+    await page.keyboard.press('Alt+Shift+M');
+    await expect.poll(() => ring('.monitor-view')).toEqual({ focused: true, style: 'solid', width: '2px', color: 'rgb(79, 140, 255)' });
+    await shot(page, 'monitor-field-02-panel-focused');
+    // Tab from the control before the first rule (the run list is the first control of the panel)
+    await page.locator('#monitor-next').focus();
+    for (let i = 0; i < 30 && !(await page.evaluate(() => document.activeElement?.classList.contains('monitor-rule'))); i++) await page.keyboard.press('Tab');
+    const focusedRule = page.locator('.monitor-rule:focus');
+    expect(await focusedRule.count()).toBe(1);
+    expect(await ring('.monitor-rule:focus')).toEqual({ focused: true, style: 'solid', width: '2px', color: 'rgb(79, 140, 255)' });
+    await rule(page, 'SUP.action.SECOND').focus();
+    await shot(page, 'monitor-field-03-rule-focused-live');
+  }, 60_000);
+
+  it('at 900x700 every control of the top bar is on screen and under the mouse; the Monitor\'s time, histogram and causes are whole', async () => {
+    const { page } = s;
+    await showRecorded(page);
+    for (const [width, height] of [[900, 700], [800, 700]] as const) {
+      await page.setViewportSize({ width, height });
+      await page.waitForTimeout(200);
+      const off = await page.locator('.topbar button, .topbar .workspace-name, .topbar .brand').evaluateAll((els, [w, h]) => els.flatMap((el) => {
+        const r = el.getBoundingClientRect();
+        const name = el.id || el.className;
+        if (r.left < 0 || r.top < 0 || r.right > w || r.bottom > h) return [`${name} at ${r.left}..${r.right} x ${r.top}..${r.bottom}`];
+        const hit = document.elementFromPoint(r.left + r.width / 2, r.top + r.height / 2);
+        return hit && el.contains(hit) ? [] : [`${name} under ${hit?.className}`];
+      }), [width, height]);
+      expect(off, `${width}x${height}`).toEqual([]);
+      await page.locator('#btn-monitor').click({ trial: true }); // reachable by the mouse
+    }
+    await page.setViewportSize({ width: 900, height: 700 });
+    // the cursor where SECOND is lit with a long cause, schemaCommande1 released
+    const second = await page.evaluate(() => ((window as any).__ide.monitor.current.marks as { t: number; label: string }[]).find((m) => m.label.startsWith('action.SECOND active'))!.t);
+    await page.evaluate((t) => (window as any).__ide.monitor.panel.seek(t), second + 1.5e9);
+    await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active')).toBe('true');
+    await page.locator('.monitor-pschema[data-periodic="schemaCommande1"] .monitor-hist').waitFor();
+    const fits = await page.evaluate(() => {
+      const out: string[] = [];
+      const body = document.querySelector('.monitor-body') as HTMLElement;
+      if (body.scrollWidth > body.clientWidth + 1) out.push(`the panel scrolls sideways: ${body.scrollWidth} > ${body.clientWidth}`);
+      const time = document.querySelector('.monitor-time') as HTMLElement;
+      const view = (document.querySelector('.monitor-view') as HTMLElement).getBoundingClientRect();
+      const tr = time.getBoundingClientRect();
+      if (time.scrollWidth > time.clientWidth + 1 || tr.right > view.right + 1) out.push(`the time is cut: ${time.textContent}`);
+      for (const c of document.querySelectorAll('.monitor-hist')) {
+        const r = c.getBoundingClientRect();
+        const box = c.parentElement!.getBoundingClientRect();
+        if (r.right > box.right + 1) out.push(`a histogram past its block: ${r.right} > ${box.right}`);
+      }
+      return out;
+    });
+    expect(fits).toEqual([]);
+    // the rule's whole cause, even where its row cuts it
+    expect(await rule(page, 'SUP.action.SECOND').getAttribute('title')).toMatch(/^action\.SECOND active since \+\d+\.\d{6} s ← MAA:2 = "disconnected" → schemaCommande1 · click to open it in its \.contract file$/);
+    await rule(page, 'SUP.action.SECOND').scrollIntoViewIfNeeded();
+    await shot(page, 'monitor-field-04-900x700-rules');
+    await page.locator('.monitor-pschema[data-periodic="schemaCommande1"]').scrollIntoViewIfNeeded();
+    await shot(page, 'monitor-field-05-900x700-histogram');
+    await page.setViewportSize({ width: 1440, height: 900 });
+  }, 60_000);
+});
