@@ -56,8 +56,8 @@ static void strip_seq(char *s) {
     }
 }
 
-/** The n-th record (0-based) of the output without its items' seq, in a static buffer ("" when absent). */
-static const char *record(const char *out, int n) {
+/** The n-th record (0-based) of the output, with its items' seq, in a static buffer ("" when absent). */
+static const char *raw_record(const char *out, int n) {
     static char line[65536];
     line[0] = '\0';
     const char *p = out;
@@ -71,25 +71,14 @@ static const char *record(const char *out, int n) {
     if (l >= sizeof line) l = sizeof line - 1;
     memcpy(line, p, l);
     line[l] = '\0';
-    strip_seq(line);
     return line;
 }
 
-/** The n-th record with its items' seq. */
-static const char *raw_record(const char *out, int n) {
+/** The n-th record without its items' seq (the order is checked with seq_of on raw_record). */
+static const char *record(const char *out, int n) {
     static char line[65536];
-    snprintf(line, sizeof line, "%s", "");
-    const char *p = out;
-    for (int i = 0; p && i < n; i++) {
-        p = strchr(p, '\n');
-        if (p) p++;
-    }
-    if (!p || !*p) return line;
-    const char *e = strchr(p, '\n');
-    size_t l = e ? (size_t)(e - p) : strlen(p);
-    if (l >= sizeof line) l = sizeof line - 1;
-    memcpy(line, p, l);
-    line[l] = '\0';
+    snprintf(line, sizeof line, "%s", raw_record(out, n));
+    strip_seq(line);
     return line;
 }
 
