@@ -1,6 +1,7 @@
 import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { fetchJobLogs, type RunLogs } from '../views/run-logs.js';
+import { jobStatusText } from '../build/job-end.js';
 import { askFields } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
@@ -42,7 +43,7 @@ export class RunController {
     build.onStatus.on(({ status, message, running }) => {
       toolbar.run.disabled = running;
       toolbar.stop.disabled = !running;
-      d.jobStatus.textContent = `${running ? '⟳' : status === 'succeeded' ? '✓' : '■'} ${status}${message ? `: ${message}` : ''}`;
+      d.jobStatus.textContent = jobStatusText(status, message, running);
       d.jobStatus.dataset.status = status;
     });
     // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline

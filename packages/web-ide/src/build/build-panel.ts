@@ -4,6 +4,7 @@ import { JobStream } from './job-stream.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
+import { jobEndStatus } from './job-end.js';
 
 export interface GccDiagnostic {
   severity: 'error' | 'warning' | 'note';
@@ -183,6 +184,7 @@ export class BuildPanel {
   private follow(jobId: string, action: 'build' | 'run'): void {
     // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts);
     // a broken stream is taken up again after the last event seen (job-stream.ts)
+    let lastStatus: string | undefined;
     const stream: JobStream = new JobStream(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none`), {
       event: (e) => {
         switch (e.type) {
@@ -190,6 +192,7 @@ export class BuildPanel {
             return this.append(e as unknown as LogLine);
           case 'status': {
             const d = e as unknown as { status: string; step?: string };
+            lastStatus = d.status;
             return this.setStatus(d.status, d.step, true);
           }
           case 'diagnostic':
@@ -202,7 +205,8 @@ export class BuildPanel {
             stream.close();
             if (this.stream === stream) this.stream = undefined;
             this.jobId = undefined;
-            this.setStatus(d.result?.ok ? 'succeeded' : 'failed', d.result?.message, false);
+            const end = jobEndStatus(d.result, lastStatus);
+            this.setStatus(end.status, end.message, false);
             this.onFinished.fire({ jobId, action, ok: !!d.result?.ok, message: d.result?.message });
             return;
           }

@@ -36,6 +36,40 @@ function nameOf(text: string, from: number, to: number, key: string): string | u
 }
 
 /**
+ * What readCycleLine read, as places in the line (one object, reused: a read makes no string):
+ * the schema is text[schemaFrom, schemaTo), the module (the line's peer) text[moduleFrom, moduleTo).
+ */
+export const cycleLine = { schemaFrom: 0, schemaTo: 0, cycle: 0, moduleFrom: 0, moduleTo: 0 };
+
+/** The schema and cycle of the last `ord_release` line applyHotLine folded (undefined: not in the line, or not of the reader's type). */
+export const hotRelease = { schema: undefined as string | undefined, cycle: undefined as number | undefined };
+
+/**
+ * Reads the schema, cycle and module (its peer) of the `ord_release` or `ord_finished` line
+ * scanLine last accepted into `cycleLine`, as the parsed record types them (a schema that is a
+ * string, not a number; a cycle that is a number; a peer that is not empty): false when one of
+ * them is missing.
+ */
+export function readCycleLine(text: string): boolean {
+  const c = scanned.comma;
+  const to = scanned.to;
+  const detail = c[6]! + 1;
+  if (c[4]! === c[3]! + 1) return false;
+  const v = wordValueIn(text, 'schema', detail, to);
+  if (v < 0) return false;
+  const e = spaceIn(text, v, to);
+  if (e === v || isPlainIntegerIn(text, v, e)) return false;
+  const cycle = numberOf(text, detail, to, 'cycle');
+  if (cycle === undefined) return false;
+  cycleLine.schemaFrom = v;
+  cycleLine.schemaTo = e;
+  cycleLine.cycle = cycle;
+  cycleLine.moduleFrom = c[3]! + 1;
+  cycleLine.moduleTo = c[4]!;
+  return true;
+}
+
+/**
  * Folds the line scanLine last accepted (a kind of HOT_KINDS) into `s` at time `t` (`t0`: the
  * run's first mono_ns), as applyRecord does with its parsed record.
  */
@@ -50,9 +84,15 @@ export function applyHotLine(s: MonitorState, text: string, t: Ns, t0: number): 
     case 'run_finished':
       foldRun(s, nameIn(text, c[1]! + 1, c[2]!), scanned.kind === 'run_started', t);
       return;
-    case 'ord_release':
-      foldRelease(s, nameOf(text, detail, to, 'schema'), numberOf(text, detail, to, 'cycle'), numberOf(text, detail, to, 'release_ns'), t, t0);
+    case 'ord_release': {
+      const schema = nameOf(text, detail, to, 'schema');
+      const cycle = numberOf(text, detail, to, 'cycle');
+      foldRelease(s, schema, cycle, numberOf(text, detail, to, 'release_ns'), t, t0);
+      // what a deadline miss names (MonitorModel): the release's schema and cycle, as read here
+      hotRelease.schema = schema;
+      hotRelease.cycle = cycle;
       return;
+    }
     case 'ord_complete':
       foldComplete(s, nameOf(text, detail, to, 'schema'), numberOf(text, detail, to, 'response_ns'));
       return;

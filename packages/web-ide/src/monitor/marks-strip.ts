@@ -5,8 +5,12 @@
  * (per row, the latest mark of a column sets its colour), then each row is drawn as runs of one
  * colour, so a frame costs at most a few rectangles per column however many marks there are (a
  * 1 kHz schema missing its deadlines for a minute reaches the model's 20,000).
+ * Hovering it, its tooltip says the marks under the pointer (markTooltip): a deadline miss names
+ * what its cycle was still waiting for.
  */
 import type { Mark } from './monitor-model.js';
+import { marksIn } from './model-view.js';
+import { fmtT } from './panel-text.js';
 
 /** Colours by index (0: no mark); a rule switched off is grey. */
 const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd'];
@@ -14,6 +18,16 @@ const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, overr
 const RULE_OFF = 2;
 const ROW: Record<Mark['kind'], number> = { function: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
 const ROWS = 4;
+/** Marks a tooltip names (the rest counted), and how far from the pointer a mark is under it (px). */
+const TOOLTIP_MARKS = 6;
+const TOOLTIP_PX = 3;
+
+/** The tooltip of the marks `under` the pointer: one line each, `+2.210000 s velocityLoop: deadline miss (ORD:0) cycle 220 (not finished: VEL)`. */
+export function markTooltip(under: readonly Mark[]): string {
+  const lines = under.slice(0, TOOLTIP_MARKS).map((m) => `${fmtT(m.t)} ${m.where}: ${m.label}`);
+  if (under.length > TOOLTIP_MARKS) lines.push(`… and ${under.length - TOOLTIP_MARKS} more mark(s) here`);
+  return lines.join('\n');
+}
 
 export class MarksStrip {
   readonly canvas: HTMLCanvasElement;
@@ -21,6 +35,8 @@ export class MarksStrip {
   private width = 600;
   /** Colour index per row and pixel column, reused from frame to frame. */
   private bins = new Uint8Array(0);
+  /** What the last draw showed (the tooltip reads it). */
+  private shown: { marks: readonly Mark[]; end: number; w: number } = { marks: [], end: 0, w: 600 };
 
   constructor(onSeek: (fraction: number) => void) {
     this.canvas = document.createElement('canvas');
@@ -38,14 +54,30 @@ export class MarksStrip {
       this.canvas.setPointerCapture?.(e.pointerId);
       seek(e);
     });
-    this.canvas.addEventListener('pointermove', (e) => dragging && seek(e));
+    this.canvas.addEventListener('pointermove', (e) => (dragging ? seek(e) : this.hover(e)));
     this.canvas.addEventListener('pointerup', () => (dragging = false));
     new ResizeObserver((entries) => (this.width = Math.floor(entries[0]?.contentRect.width || this.width))).observe(this.canvas);
+  }
+
+  /** The tooltip: the marks within TOOLTIP_PX of the pointer (read when it moves, not at every frame). */
+  private hover(e: PointerEvent): void {
+    const { marks, end, w } = this.shown;
+    const r = this.canvas.getBoundingClientRect();
+    const px = ((e.clientX - r.left) / Math.max(1, r.width)) * w;
+    const span = Math.max(1, end);
+    const tOf = (x: number) => ((x - 1) / (w - 3)) * span;
+    const under = marksIn(marks, tOf(px - TOOLTIP_PX), tOf(px + TOOLTIP_PX));
+    const title = under.length ? markTooltip(under) : '';
+    if (this.canvas.title !== title) this.canvas.title = title;
   }
 
   draw(marks: readonly Mark[], end: number, cursor: number): void {
     const c = this.canvas;
     const w = Math.max(100, this.width);
+    const shown = this.shown;
+    shown.marks = marks;
+    shown.end = end;
+    shown.w = w;
     if (c.width !== w) c.width = w;
     const ctx = c.getContext('2d');
     if (!ctx) return;

@@ -23,6 +23,12 @@ export interface MonitorView {
   exactAt(t: Ns): boolean;
   /** Marks with lo <= t <= hi. */
   marksBetween(lo: Ns, hi: Ns): Mark[];
+  /**
+   * A live run's own clock at `nowMs` (performance.now()): ns since its first record, estimated
+   * from when its records arrived, never before the last record; undefined before the first record
+   * (and for a run that is not live: absent).
+   */
+  runClock?(nowMs: number): Ns | undefined;
 }
 
 /** Marks with lo <= t <= hi of a time-ordered list (binary search). */

@@ -7,6 +7,7 @@ import { MonitorModel } from './monitor-model.js';
 import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
 import { activeSchemas } from './active-schemas.js';
+import { recordedRunSteps } from './recorded-run.js';
 
 // a real run of examples/tutorial (`contract run --duration 4s`, bwrap; recorded again 2026-12-04 when supervisors began to write their event schemas' activations)
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
@@ -147,6 +148,65 @@ describe('monitor model on a recorded tutorial run', () => {
     for (const t of [0, ...times.filter((_, i) => i % 7 === 0), times[times.length - 1]! - 1]) {
       expect(model.stateAt(t)).toEqual(naive(tutorial, t));
     }
+  });
+});
+
+describe('a deadline miss names what its cycle was waiting for', () => {
+  // ORD's log of `contract trace`'s own example (build-service trace.test.ts): GRP does not finish
+  // cycle 7, the schema is re-activated, its cycle 0 is held for GRP, then resumes with CAM late
+  const ORD_LOG = [
+    '1000000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=20',
+    '1000000000,w,ORD,ord_release,GRP,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=21',
+    '1000000000,w,ORD,ord_release,ARM,,0,schema=other cycle=3 tick_ns=1000000000 release_ns=1000000000 release=5',
+    '1001000000,w,ORD,ord_finished,CAM,,0,schema=pick cycle=7 release=20 response_ns=1000000',
+    '1015000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=7 tick_ns=1000000000',
+    '1016000000,w,ORD,scheduler,,,0,deactivate pick',
+    '1017000000,w,ORD,scheduler,,,0,activate pick',
+    '1017000000,w,ORD,scheduler,,,0,cycle of pick held: GRP still runs a release of an earlier activation',
+    '1032000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=0 tick_ns=1017000000',
+    '2100000000,w,ORD,scheduler,,,0,cycle of pick resumed',
+    '2100000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=0 tick_ns=1017000000 release_ns=2100000000 release=22',
+    // PERIOD = CRITICAL_DELAY: the next cycle released before ORD writes the miss of this one
+    '2101000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=1 tick_ns=2101000000 release_ns=2101000000 release=23',
+    '2101000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=0 tick_ns=1017000000',
+    '2102000000,w,ORD,ord_finished,CAM,,0,schema=pick cycle=1 release=23 response_ns=1000000',
+    '2102000000,w,ORD,ord_finished,CAM,,0,schema=pick cycle=0 release=22 response_ns=1000000',
+    '2111000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=1 tick_ns=2101000000',
+    '2111000000,w,ORD,ord_deadline_miss,,,0,schema=other cycle=3 tick_ns=1000000000',
+  ];
+  const expected = [
+    'deadline miss (ORD:0) cycle 7 (not finished: GRP)',
+    'deadline miss (ORD:0) cycle 0 (held: nothing released, GRP still runs an earlier release)',
+    'deadline miss (ORD:0) cycle 0 (not finished: CAM)',
+    'deadline miss (ORD:0) cycle 1', // nothing left unfinished in it: nothing named
+    'deadline miss (ORD:0) cycle 3 (not finished: ARM)',
+  ];
+  const missLabels = (m: MonitorModel) => m.marks.filter((k) => k.kind === 'miss').map((k) => k.label);
+
+  it('live lines read in place, parsed records and a recorded log give the same labels, as `contract trace` words them', () => {
+    const live = new MonitorModel({ checkpointEvery: 16 });
+    ORD_LOG.forEach((l, i) => live.pushLine('ORD.csv', i + 2, l));
+    expect(missLabels(live)).toEqual(expected);
+    const parsed = new MonitorModel({ checkpointEvery: 16 });
+    parsed.pushAll(ORD_LOG.map((l, i) => parseRecordLine('ORD.csv', i + 2, l)));
+    expect(missLabels(parsed)).toEqual(expected);
+    const steps = recordedRunSteps([{ name: 'ORD_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${ORD_LOG.join('\n')}\n` }], 1000);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    expect(missLabels(step.value.model)).toEqual(expected);
+  });
+
+  it('stays bounded on a hostile trace: thousands of schemas and modules, long names', () => {
+    const m = new MonitorModel({ checkpointEvery: 64 });
+    for (let i = 0; i < 2000; i++) m.pushLine('ORD.csv', i, `${1000 + i},w,ORD,ord_release,M${i},,0,schema=S${i % 500} cycle=1 tick_ns=1 release_ns=1 release=1`);
+    for (let i = 0; i < 100; i++) m.pushLine('ORD.csv', i, `${5000 + i},w,ORD,ord_release,${'X'.repeat(60)}${i},,0,schema=S0 cycle=1 tick_ns=1 release_ns=1 release=1`);
+    m.pushLine('ORD.csv', 1, '9000,w,ORD,ord_deadline_miss,,,0,schema=S0 cycle=1 tick_ns=1');
+    m.pushLine('ORD.csv', 1, '9001,w,ORD,ord_deadline_miss,,,0,schema=S499 cycle=1 tick_ns=1');
+    const [s0, s499] = missLabels(m);
+    expect(s0).toMatch(/^deadline miss \(ORD:0\) cycle 1 \(not finished: M0, M1000, .*…\)$/);
+    expect(s0!.length).toBeLessThan(240);
+    expect(s499).toBe('deadline miss (ORD:0) cycle 1'); // past the bound of schemas followed: not named, not wrong
+    expect((m as unknown as { waits: Map<string, unknown> }).waits.size).toBe(64);
   });
 });
 

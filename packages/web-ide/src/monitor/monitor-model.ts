@@ -13,14 +13,17 @@
  *   (rules, functions, schemas, holds, misses), so a state far back is exact for those and
  *   approximate (to the checkpoint) for counters.
  * - `marks` lists what the timeline marks (rule changes, schema (de)activations, deadline misses,
- *   overruns, function starts/stops), bounded.
+ *   overruns, function starts/stops), bounded. A deadline miss's mark names what its cycle was
+ *   still waiting for, as `contract trace` does (`(not finished: ARM)`, `(held: nothing released,
+ *   GRP still runs an earlier release)`): per periodic schema, the modules released in its current
+ *   and previous cycle and not finished yet are followed (CycleWaits, no allocation per record).
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
 import { parseRecordLine, isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
-import { scanLine, scanned } from './line-scan.js';
-import { HOT_KINDS, applyHotLine } from './hot-line.js';
+import { nameIn, scanLine, scanned } from './line-scan.js';
+import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
 import { marksIn, type MonitorView } from './model-view.js';
 
@@ -129,6 +132,108 @@ interface Checkpoint {
   state: MonitorState;
 }
 
+/** Periodic schemas and modules a cycle's wait is followed for (a hostile trace could name thousands). */
+const MAX_WAIT_SCHEMAS = 64;
+const MAX_WAIT_MODULES = 32;
+/** Longest list of modules a miss's label names. */
+const MAX_WAIT_TEXT = 160;
+
+/**
+ * The modules released in one cycle of a periodic schema and not finished yet. Read off the live
+ * lines in place: a module is matched by its place in the line, and its name kept in a slot of
+ * the list (slots past `n` keep the names that left, for the next cycles), so following a cycle
+ * makes no string nor array once its modules were seen.
+ */
+class CycleModules {
+  cycle = -1;
+  n = 0;
+  private readonly names: string[] = [];
+
+  reset(cycle: number): this {
+    this.cycle = cycle;
+    this.n = 0;
+    return this;
+  }
+
+  /** Module text[from, to) released. */
+  addIn(text: string, from: number, to: number): void {
+    const names = this.names;
+    const len = to - from;
+    for (let i = 0; i < names.length; i++) {
+      const s = names[i]!;
+      if (s.length !== len || !text.startsWith(s, from)) continue;
+      if (i < this.n || this.n >= MAX_WAIT_MODULES) return; // waited for already, or the list is full
+      names[i] = names[this.n]!; // a name it held before: back in the list
+      names[this.n++] = s;
+      return;
+    }
+    if (this.n >= MAX_WAIT_MODULES) return;
+    if (this.n < names.length && names.length < 2 * MAX_WAIT_MODULES) names.push(names[this.n]!);
+    names[this.n++] = nameIn(text, from, to);
+  }
+
+  /** Module text[from, to) finished. */
+  removeIn(text: string, from: number, to: number): void {
+    const names = this.names;
+    const len = to - from;
+    for (let i = 0; i < this.n; i++) {
+      const s = names[i]!;
+      if (s.length !== len || !text.startsWith(s, from)) continue;
+      names[i] = names[--this.n]!;
+      names[this.n] = s; // kept past n for the next cycles
+      return;
+    }
+  }
+
+  /** `ARM, GRP` (sorted), cut to MAX_WAIT_TEXT. */
+  text(): string {
+    const s = this.names.slice(0, this.n).sort().join(', ');
+    return s.length > MAX_WAIT_TEXT ? `${s.slice(0, MAX_WAIT_TEXT)}…` : s;
+  }
+}
+
+/**
+ * What a periodic schema's cycles wait for: the modules released in its current and previous
+ * cycle (a miss may come after the next cycle's releases when CRITICAL_DELAY = PERIOD) and not
+ * finished, and the module its held cycle waits for (ORD's `cycle of S held: M still runs ...`).
+ */
+class CycleWaits {
+  current = new CycleModules();
+  previous = new CycleModules();
+  held: string | undefined;
+
+  /** Module text[from, to) released in `cycle`. */
+  released(cycle: number, text: string, from: number, to: number): void {
+    this.held = undefined;
+    if (this.current.cycle !== cycle) {
+      const p = this.previous;
+      this.previous = this.current;
+      this.current = p.reset(cycle);
+    }
+    this.current.addIn(text, from, to);
+  }
+
+  /** Module text[from, to) finished its release of `cycle`. */
+  finished(cycle: number, text: string, from: number, to: number): void {
+    this.held = undefined;
+    if (this.current.cycle === cycle) this.current.removeIn(text, from, to);
+    else if (this.previous.cycle === cycle) this.previous.removeIn(text, from, to);
+  }
+
+  /** A new activation (cycles count from 0 again), or the schema stopped. */
+  restart(): void {
+    this.current.reset(-1);
+    this.previous.reset(-1);
+  }
+
+  /** ` (not finished: ARM, GRP)`, ` (held: nothing released, GRP still runs an earlier release)`, or ''. */
+  lateOf(cycle: number): string {
+    if (this.held !== undefined) return ` (held: nothing released, ${this.held} still runs an earlier release)`;
+    const c = this.current.cycle === cycle ? this.current : this.previous.cycle === cycle ? this.previous : undefined;
+    return c?.n ? ` (not finished: ${c.text()})` : '';
+  }
+}
+
 const NOTABLE = new Set(['sup_rule', 'supervisor', 'scheduler', 'ord_deadline_miss', 'module_hold', 'flow_hold', 'module_started', 'module_exit']);
 
 export class MonitorModel implements MonitorView {
@@ -150,6 +255,11 @@ export class MonitorModel implements MonitorView {
   version = 0;
   /** Ids of the texts fed without one (each a text of its own: negative, the callers' ids are not). */
   private anonymousText = 0;
+  /** Per periodic schema, what its cycles wait for (a deadline miss's mark names it). */
+  private readonly waits = new Map<string, CycleWaits>();
+  /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
+  private lastWaits: CycleWaits | undefined;
+  private lastWaitsName = '';
 
   constructor(opts: MonitorModelOptions = {}) {
     this.every = Math.max(16, opts.checkpointEvery ?? 1024);
@@ -204,6 +314,7 @@ export class MonitorModel implements MonitorView {
   pushScanned(text: string, from: number, to: number, textId: number): boolean {
     const kind = scanned.kind;
     if (!FOLDED_KINDS.has(kind)) {
+      if (kind === 'ord_finished') this.finishedLine(text);
       const t = this.timeOf(scanned.mono);
       this.keepLine(t, text, from, to, textId);
       applyUnfolded(this.live, t);
@@ -213,6 +324,8 @@ export class MonitorModel implements MonitorView {
       const t = this.timeOf(scanned.mono);
       this.keepLine(t, text, from, to, textId);
       applyHotLine(this.live, text, t, this.t0 ?? 0);
+      // a release: its module waited for in its cycle (the schema and cycle as applyHotLine read them)
+      if (kind === 'ord_release') this.releaseLine(text);
       return true;
     }
     return false;
@@ -253,8 +366,77 @@ export class MonitorModel implements MonitorView {
 
   /** Folds a parsed record into `live` (and the notable ones into marks). */
   private fold(t: Ns, r: TraceRecord): void {
+    if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
     applyRecord(this.live, r, t, this.t0 ?? 0);
+  }
+
+  /** The `ord_release` line applyHotLine just folded (hotRelease: its schema and cycle): its module (its peer) waited for in that cycle. */
+  private releaseLine(text: string): void {
+    const { schema, cycle } = hotRelease;
+    const c = scanned.comma;
+    if (schema === undefined || cycle === undefined || c[4]! === c[3]! + 1) return;
+    this.waitsOf(schema)?.released(cycle, text, c[3]! + 1, c[4]!);
+  }
+
+  /**
+   * An `ord_finished` line that scanLine accepted, read in place (readCycleLine): its module done
+   * with its schema's cycle. The schema named by the line before is matched in place; no string
+   * is made once the names were seen.
+   */
+  private finishedLine(text: string): void {
+    if (!readCycleLine(text)) return;
+    const { schemaFrom: from, schemaTo: to } = cycleLine;
+    let w = this.lastWaits;
+    const last = this.lastWaitsName;
+    if (!w || to - from !== last.length || !text.startsWith(last, from)) {
+      const schema = nameIn(text, from, to);
+      w = this.waitsOf(schema);
+      if (!w) return;
+      this.lastWaits = w;
+      this.lastWaitsName = schema;
+    }
+    w.finished(cycleLine.cycle, text, cycleLine.moduleFrom, cycleLine.moduleTo);
+  }
+
+  /** The waits of periodic schema `schema` (made on first use, up to MAX_WAIT_SCHEMAS schemas). */
+  private waitsOf(schema: string): CycleWaits | undefined {
+    let w = this.waits.get(schema);
+    if (!w && this.waits.size < MAX_WAIT_SCHEMAS) this.waits.set(schema, (w = new CycleWaits()));
+    return w;
+  }
+
+  /** What the cycle of deadline miss `k` was still waiting for (CycleWaits.lateOf), or ''. */
+  private lateOf(k: KnownRecord): string {
+    const schema = k.fields?.['schema'];
+    const cycle = k.fields?.['cycle'];
+    if (typeof schema !== 'string' || typeof cycle !== 'number') return '';
+    return this.waits.get(schema)?.lateOf(cycle) ?? '';
+  }
+
+  /** A parsed release, completion of a module's release, or ORD scheduler line: what the schema's cycles wait for. */
+  private followCycles(k: KnownRecord): void {
+    const f = k.fields ?? {};
+    const schema = f['schema'];
+    if (typeof schema !== 'string' || !schema) return;
+    if (k.kind === 'scheduler') {
+      const what = f['what'];
+      const w = what === 'held' ? this.waitsOf(schema) : this.waits.get(schema);
+      if (!w) return;
+      if (what === 'held') w.held = typeof f['module'] === 'string' && f['module'] ? f['module'] : '?';
+      else if (what === 'resumed') w.held = undefined;
+      else if (what === 'activate') w.restart();
+      else if (what === 'deactivate') {
+        w.held = undefined;
+        w.restart();
+      }
+      return;
+    }
+    const cycle = f['cycle'];
+    if (typeof cycle !== 'number' || !Number.isFinite(cycle) || !k.peer) return;
+    const w = this.waitsOf(schema);
+    if (k.kind === 'ord_release') w?.released(cycle, k.peer, 0, k.peer.length);
+    else w?.finished(cycle, k.peer, 0, k.peer.length);
   }
 
   pushAll(records: Iterable<TraceRecord>): void {
@@ -328,17 +510,17 @@ export class MonitorModel implements MonitorView {
 
   private notableRecord(x: Timed): void {
     if (this.notable.length < this.keep) this.notable.push(x);
-    const mark = markOf(x);
+    const mark = markOf(x, x.r.kind === 'ord_deadline_miss' ? this.lateOf(x.r as KnownRecord) : '');
     if (mark && this.marks.length < this.maxMarks) this.marks.push(mark);
   }
 }
 
-function markOf({ t, r }: Timed): Mark | undefined {
+function markOf({ t, r }: Timed, late: string): Mark | undefined {
   if (isRule(r)) return { t, kind: 'rule', where: r.module, label: `${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} ← ${r.cause.slice(0, 80)}`, on: r.active };
   if (r.kind === 'unknown') return undefined;
   const k = r as KnownRecord;
   const what = k.fields?.['what'];
-  if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}` };
+  if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}${late}` };
   if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict')) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
   if (k.kind === 'scheduler' && what === 'overrun') return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
   if (k.kind === 'supervisor' && (what === 'function_started' || what === 'function_stopped' || what === 'function_refused')) return { t, kind: 'function', where: k.module, label: k.detail.slice(0, 120) };

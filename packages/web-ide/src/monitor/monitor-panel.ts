@@ -21,6 +21,7 @@ import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
+import { fmtT, followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -46,7 +47,8 @@ const COUNTS_REDRAW_MS = 200;
 const URGENT_REDRAW_MS = 50;
 /** The same for the cursor's time and the diagram's marks (running modules, pulsing flows). */
 const CLOCK_REDRAW_MS = 100;
-const fmtT = (ns: number) => `+${(ns / 1e9).toFixed(6)} s`;
+/** While following a live run, the time readout alone runs with the run's clock this often, records or not (wall ms). */
+const CLOCK_TICK_MS = 250;
 
 /** What a periodic schema's block shows, to draw it again only when one of them moved (releases -1: not released yet). */
 interface DrawnCounts { releases: number; completions: number; misses?: number; overruns?: number; cd?: number; period?: number }
@@ -74,6 +76,8 @@ export class MonitorPanel {
   private userChoseSchema = false;
   private redrawTimer: ReturnType<typeof setTimeout> | undefined;
   private redrawDue = 0;
+  /** While following a live run: writes the time readout alone, so that it runs with the run's clock through a quiet stretch. */
+  private clockTimer: ReturnType<typeof setInterval> | undefined;
   /** When each throttled part ('clock', 'diagram', 'flows', 'hist:<schema>') was last drawn (performance.now()): see due(). */
   private readonly drawnAt = new Map<string, number>();
   /** Last frame's render time (ms), for the benchmark. */
@@ -83,7 +87,7 @@ export class MonitorPanel {
   private readonly sourceSelect = h('select', { class: 'monitor-sources', 'aria-label': 'Run to show', title: 'Run to show: the live run, a finished job\'s CSV logs, or CSV logs of the workspace' });
   private readonly timeText = h('span', { class: 'monitor-time', 'aria-live': 'off' }, '');
   private readonly slider = h('input', { type: 'range', min: 0, max: 1000, step: 1, value: 1000, class: 'monitor-slider', 'aria-label': 'Time cursor' });
-  private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', 'aria-pressed': 'true', title: 'Put the cursor at the end of the run (End)' }, '⇥ End');
+  private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', title: 'Put the cursor at the end of the run (End)' }, '⇥ End');
   private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time' }, '▷ Play');
   private readonly strip: MarksStrip;
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
@@ -99,7 +103,8 @@ export class MonitorPanel {
 
   constructor(private readonly deps: MonitorPanelDeps) {
     this.strip = new MarksStrip((f) => this.seek(f * (this.model?.end ?? 0)));
-    this.followBtn.addEventListener('click', () => this.setFollow(!this.follow));
+    // live: pause / follow again; a run that ended: to its end (it says what it does: no toggle)
+    this.followBtn.addEventListener('click', () => this.setFollow(this.live ? !this.follow : true));
     this.sourceSelect.addEventListener('change', () => this.deps.onSource(this.sourceSelect.value));
     this.playBtn.addEventListener('click', () => this.setPlaying(!this.playing));
     this.slider.addEventListener('input', () => this.seek((Number(this.slider.value) / 1000) * (this.model?.end ?? 0)));
@@ -217,17 +222,48 @@ export class MonitorPanel {
   }
 
   /**
-   * The follow button: on a live run it pauses (❚❚ Pause) and follows the newest record again
-   * (⇥ Follow); on a run that ended (a replay, a job that finished, failed or was cancelled) there is
-   * nothing to follow: it puts the cursor at the run's end (⇥ End, pressed while it is there).
+   * The follow button (panel-text.ts followButton): on a live run it pauses (❚❚ Pause) and follows
+   * the newest record again (⇥ Follow); on a run that ended (a replay, a job that finished, failed
+   * or was cancelled) there is nothing to follow: it puts the cursor at the run's end (⇥ End). Its
+   * name says what it does (no aria-pressed: "pressed" while following read as paused);
+   * data-following says whether the cursor follows the end.
    */
   private drawFollow(): void {
     const b = this.followBtn;
-    setText(b, this.live ? (this.follow ? '❚❚ Pause' : '⇥ Follow') : '⇥ End');
-    setAttr(b, 'aria-pressed', String(this.follow));
-    setAttr(b, 'title', this.live
-      ? (this.follow ? 'Following the live run: pause (Space)' : 'Follow the live run again (Space, End)')
-      : (this.follow ? 'The cursor is at the end of the run, which has ended (Space pauses here, Home goes to the start)' : 'Put the cursor at the end of the run (End)'));
+    const v = followButton(this.live, this.follow);
+    setText(b, v.text);
+    setAttr(b, 'aria-label', v.label);
+    setAttr(b, 'title', v.title);
+    setAttr(b, 'data-following', String(this.follow));
+    // the time readout runs with the run's clock only while it follows a live run
+    const ticking = this.live && this.follow;
+    if (ticking && !this.clockTimer) this.clockTimer = setInterval(() => this.tickClock(), CLOCK_TICK_MS);
+    else if (!ticking && this.clockTimer) {
+      clearInterval(this.clockTimer);
+      this.clockTimer = undefined;
+    }
+  }
+
+  /**
+   * The time readout alone, with the run's clock (a quiet stretch of a live run does not look
+   * stalled): nothing else is drawn, and it is written at most once per CLOCK_REDRAW_MS with the
+   * frames' own writes of it.
+   */
+  private tickClock(): void {
+    const m = this.model;
+    if (!m || !this.live || !this.follow || !this.element.isConnected) return;
+    const now = performance.now();
+    if (now - (this.drawnAt.get('clock') ?? 0) < CLOCK_REDRAW_MS) return;
+    this.drawnAt.set('clock', now);
+    this.drawClock(m, m.end, now);
+  }
+
+  /** The time readout and the slider at `t` (`now`: performance.now()). */
+  private drawClock(m: MonitorView, t: number, now: number): void {
+    const following = this.live && this.follow;
+    setText(this.timeText, timeReadout({ t, end: m.end, following, runClock: following ? m.runClock?.(now) : undefined, exact: m.exactAt(t) }));
+    this.slider.value = String(m.end > 0 ? Math.round((t / m.end) * 1000) : 1000);
+    setAttr(this.slider, 'aria-valuetext', fmtT(t));
   }
 
   /** The cursor's time (ns since the run's first record). */
@@ -290,11 +326,7 @@ export class MonitorPanel {
 
   private render(m: MonitorView, t: number, s: MonitorState): void {
     this.element.dataset.t = String(Math.round(t));
-    if (this.due('clock', CLOCK_REDRAW_MS)) {
-      setText(this.timeText, `${fmtT(t)} / ${fmtT(m.end)}${this.live && this.follow ? ' · live' : ''}${m.exactAt(t) ? '' : ' · counters approximate this far back'}`);
-      this.slider.value = String(m.end > 0 ? Math.round((t / m.end) * 1000) : 1000);
-      setAttr(this.slider, 'aria-valuetext', fmtT(t));
-    }
+    if (this.due('clock', CLOCK_REDRAW_MS)) this.drawClock(m, t, performance.now());
     this.strip.draw(m.marks, m.end, t);
     // at every frame of a live run of a fast schema, records come but the supervisors seldom
     // change: their list (strings and arrays for every rule) is rebuilt only when they did
@@ -304,7 +336,7 @@ export class MonitorPanel {
       this.supsDrawn = { model: m, changes: s.supervisorChanges, sups: this.sups };
     }
     const active = activeSchemas(s, this.catalogue);
-    this.renderSchemas(s, active);
+    this.renderSchemas(m, s, active);
     this.renderDiagram(s, t, active.map((a) => a.name));
   }
 
@@ -336,8 +368,9 @@ export class MonitorPanel {
             return b;
           });
           setAttr(el, 'data-active', String(!!rs?.active));
-          setAttr(el, 'aria-pressed', String(!!rs?.active));
           const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
+          // a plain button (it opens the rule): its name says its state, no aria-pressed
+          setAttr(el, 'aria-label', ruleAccessibleName(rule, rs, cause));
           setText(el.children[2] as HTMLElement, rs && !rs.active ? `off ${cause}` : cause);
           setText(el.children[3] as HTMLElement, rs ? fmtT(rs.since) : '');
           // the cause is cut to the row's width: whole in the tooltip (and in the text read out)
@@ -354,7 +387,7 @@ export class MonitorPanel {
     replaceIfChanged(this.supEl, blocks);
   }
 
-  private renderSchemas(s: MonitorState, active: ReturnType<typeof activeSchemas>): void {
+  private renderSchemas(m: MonitorView, s: MonitorState, active: ReturnType<typeof activeSchemas>): void {
     const items = active.map((a) => {
       const el = this.row(`schema:${a.name}`, () => h('div', { class: 'monitor-schema', 'data-schema': a.name }));
       setText(el, `● ${a.name} (${a.kind})${a.by ? ` ← ${a.by}` : ''}`);
@@ -395,7 +428,11 @@ export class MonitorPanel {
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));
         setAttr(hist.root, 'data-overruns', String(p?.overruns ?? 0));
         drawHistogram(hist.canvas, p?.histogram ?? [], cd, period);
-        hist.misses.replaceChildren(...(p?.recentMisses ?? []).slice(-5).map((x) => h('span', { class: 'miss', 'data-cycle': x.cycle }, `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`)),
+        // each miss's tooltip: its mark's label, which names what the cycle was still waiting for
+        hist.misses.replaceChildren(...(p?.recentMisses ?? []).slice(-5).map((x) => h('span', {
+          class: 'miss', 'data-cycle': x.cycle,
+          title: m.marksBetween(x.t, x.t).find((k) => k.kind === 'miss' && k.where === name)?.label ?? `deadline miss (ORD:0) cycle ${x.cycle}`,
+        }, `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`)),
           ...(p?.recentOverruns ?? []).slice(-3).map((x) => h('span', { class: 'overrun' }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
       }
       return hist.root;

@@ -42,8 +42,16 @@ export class RemoteMonitorModel implements MonitorView {
   private settle!: () => void;
   private at: { t: Ns; state: MonitorState; exact: boolean } | undefined;
   private asked: Ns | undefined;
+  /**
+   * The run's clock minus the page's (performance.now() in ns), at its largest: a record of time
+   * `end` was written at the latest when the snapshot bringing it came, so the run's clock was at
+   * least `end` then. One subtraction per snapshot, none per record.
+   */
+  private clockOffset = -Infinity;
+  private readonly now: () => number;
 
-  constructor(private readonly port: FollowerPort, url: string | null, opts: { measure?: boolean } = {}) {
+  constructor(private readonly port: FollowerPort, url: string | null, opts: { measure?: boolean; now?: () => number } = {}) {
+    this.now = opts.now ?? (() => performance.now());
     this.settled = new Promise((r) => (this.settle = r));
     port.onmessage = (e) => this.receive(e.data);
     port.postMessage({ type: 'follow', url, measure: opts.measure });
@@ -72,6 +80,17 @@ export class RemoteMonitorModel implements MonitorView {
     return marksIn(this.marks, lo, hi);
   }
 
+  /**
+   * The run's clock at `nowMs` (ns since its first record): the page's clock plus the largest
+   * offset seen (so it never runs backwards, and shows the least delay of the stream), never
+   * before the last record. Through a quiet stretch of the run it goes on (the time since the
+   * last record came); undefined before the first record.
+   */
+  runClock(nowMs: number): Ns | undefined {
+    if (!this.recordCount || this.clockOffset === -Infinity) return undefined;
+    return Math.max(this.end, nowMs * 1e6 + this.clockOffset);
+  }
+
   /** The worker failed (it could not load, or threw): the live trace stops here, and says why. */
   fail(why: string): void {
     if (this.ended) return;
@@ -98,6 +117,7 @@ export class RemoteMonitorModel implements MonitorView {
       this.live = m.live;
       this.end = m.end;
       this.recordCount = m.count;
+      if (m.count > 0) this.clockOffset = Math.max(this.clockOffset, m.end - this.now() * 1e6);
       this.missed = Number.isSafeInteger(m.missed) ? m.missed : 0;
       for (const k of m.marks) this.marks.push(k);
       for (const p of m.problems) this.problems.push(p);

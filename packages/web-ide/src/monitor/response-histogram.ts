@@ -1,7 +1,8 @@
 /**
  * Draws a periodic schema's response-time histogram (the model's log buckets, monitor-state.ts)
  * on a canvas, against its CRITICAL_DELAY (red line: beyond it ORD sends ORD:0) and PERIOD
- * (grey line), over four decades around CRITICAL_DELAY.
+ * (grey line), over four decades around CRITICAL_DELAY. When the two are one (PERIOD =
+ * CRITICAL_DELAY, as in a control loop), one line and one label say so.
  */
 import { bucketStartNs, HIST_BUCKETS, HIST_PER_DECADE, histogramBucket } from './monitor-state.js';
 
@@ -29,20 +30,58 @@ export function drawHistogram(canvas: HTMLCanvasElement, histogram: readonly num
   });
   const xOf = (ns: number) => 2 + ((Math.log10(ns / bucketStartNs(lo || 1)) * HIST_PER_DECADE) / n) * (w - 4);
   ctx.font = '10px sans-serif';
-  const line = (ns: number | undefined, color: string, label: string, dy: number) => {
-    if (!ns) return;
-    const x = Math.min(w - 1, Math.max(1, xOf(ns)));
-    ctx.fillStyle = color;
-    ctx.fillRect(x, 0, 1.5, base);
-    ctx.fillText(label, Math.min(x + 3, w - 90), 10 + dy);
-  };
-  line(periodNs, '#9aa3b2', 'PERIOD', 12);
-  line(criticalNs, '#e06c75', 'CRITICAL_DELAY', 0);
+  for (const m of histogramMarkers(criticalNs, periodNs, xOf, w, (text) => ctx.measureText(text).width)) {
+    ctx.fillStyle = m.color;
+    ctx.fillRect(m.x, 0, 1.5, base);
+    // on the canvas's own background: readable over the bars
+    const y = 10 + m.row * 12;
+    ctx.fillStyle = 'rgba(17, 20, 25, 0.85)';
+    ctx.fillRect(m.labelX - 1, y - 9, ctx.measureText(m.label).width + 2, 11);
+    ctx.fillStyle = m.color;
+    ctx.fillText(m.label, m.labelX, y);
+  }
   ctx.fillStyle = '#7f8796';
   ctx.fillText(fmtNs(bucketStartNs(lo || 1)), 2, hgt - 2);
   ctx.textAlign = 'right';
   ctx.fillText(fmtNs(bucketStartNs(hi + 1)), w - 2, hgt - 2);
   ctx.textAlign = 'left';
+}
+
+export interface HistogramMarker {
+  /** The line's x, its colour, and its label's text, left x and row (0: top, 1: under it). */
+  x: number;
+  color: string;
+  label: string;
+  labelX: number;
+  row: number;
+}
+
+/** Lines closer than this (px) are one line. */
+const SAME_LINE_PX = 2;
+
+/**
+ * The lines of CRITICAL_DELAY (red, top row) and PERIOD (grey, the row under it) on a histogram
+ * `w` px wide (`xOf`: ns -> x; `measure`: a label's width). Equal (or on the same pixels): one
+ * red line labelled `PERIOD = CRITICAL_DELAY`. A label goes right of its line, or left of it
+ * when it would pass the edge; it never covers the line.
+ */
+export function histogramMarkers(criticalNs: number | undefined, periodNs: number | undefined, xOf: (ns: number) => number, w: number, measure: (text: string) => number): HistogramMarker[] {
+  const xAt = (ns: number) => Math.min(w - 1, Math.max(1, xOf(ns)));
+  const marker = (ns: number, color: string, label: string, row: number): HistogramMarker => {
+    const x = xAt(ns);
+    const width = measure(label);
+    const labelX = x + 3 + width <= w - 1 ? x + 3 : Math.max(1, x - 3 - width);
+    return { x, color, label, labelX, row };
+  };
+  const cd = criticalNs || undefined;
+  const period = periodNs || undefined;
+  if (cd !== undefined && period !== undefined && (cd === period || Math.abs(xAt(cd) - xAt(period)) < SAME_LINE_PX)) {
+    return [marker(cd, '#e06c75', cd === period ? 'PERIOD = CRITICAL_DELAY' : 'PERIOD ≈ CRITICAL_DELAY', 0)];
+  }
+  const out: HistogramMarker[] = [];
+  if (period !== undefined) out.push(marker(period, '#9aa3b2', 'PERIOD', 1));
+  if (cd !== undefined) out.push(marker(cd, '#e06c75', 'CRITICAL_DELAY', 0));
+  return out;
 }
 
 export function fmtNs(ns: number): string {

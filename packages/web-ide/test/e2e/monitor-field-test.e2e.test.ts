@@ -6,7 +6,10 @@
  * - Space on a focused control of the panel presses that control (▷ Play, ▶, a rule, the run list),
  *   and toggles Pause/Follow only elsewhere in the panel;
  * - axe-core while a rule is lit on a live run; the panel's and a rule's focus rings;
- * - at 900x700: every control of the top bar on screen, the Monitor's time, histogram and causes whole.
+ * - at 900x700: every control of the top bar on screen, the Monitor's time, histogram and causes whole;
+ * - a live run's quiet stretch: the time runs with the run's clock, the state stays at its last
+ *   record, nothing else is drawn again; a deadline miss names the module its cycle waited for;
+ *   PERIOD = CRITICAL_DELAY is one label.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { cpSync, mkdirSync, readdirSync, readFileSync } from 'node:fs';
@@ -100,7 +103,7 @@ describe('Monitor field test', () => {
   it('Space on a focused control presses it (▷ Play, ▶, a rule, the run list); elsewhere in the panel it pauses and follows', async () => {
     const { page } = s;
     await showRecorded(page);
-    const follow = () => page.locator('#monitor-follow').getAttribute('aria-pressed');
+    const follow = () => page.locator('#monitor-follow').getAttribute('data-following');
     const t = async () => Number(await page.locator('.monitor-view').getAttribute('data-t'));
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('Home');
@@ -154,6 +157,22 @@ describe('Monitor field test', () => {
     await expect.poll(() => page.locator('.monitor-rule[data-active=true] .rule-time').first().textContent()).toMatch(/^\+\d/);
     const scan = await axeScan(page, 'Monitor, live, a rule lit');
     expect(seriousOf(scan)).toEqual([]);
+    // a lit rule is a plain button (it opens the rule) whose name says its state; the follow button
+    // names what it does: neither is a "pressed" toggle
+    const second = rule(page, 'SUP.action.SECOND');
+    expect(await second.getAttribute('aria-pressed')).toBeNull();
+    expect(await second.getAttribute('aria-label')).toMatch(/^SECOND, active since \+\d+\.\d{6} s ← MAA:2 = "disconnected" → schemaCommande1$/);
+    expect(await rule(page, 'SUP.action.FIRST').getAttribute('aria-label')).toMatch(/^FIRST, inactive since \+\d+\.\d{6} s ← /);
+    expect(await page.getByRole('button', { name: /^SECOND, active since/ }).count()).toBe(1);
+    const followBtn = page.locator('#monitor-follow');
+    expect(await followBtn.getAttribute('aria-pressed')).toBeNull();
+    expect(await page.getByRole('button', { name: 'Pause', exact: true }).count()).toBe(1);
+    await followBtn.click();
+    expect(await followBtn.textContent()).toBe('⇥ Follow');
+    expect(await page.getByRole('button', { name: 'Follow live', exact: true }).count()).toBe(1);
+    expect(await followBtn.getAttribute('aria-pressed')).toBeNull();
+    await followBtn.click();
+    expect(await followBtn.getAttribute('aria-label')).toBe('Pause');
     // the lit rule's time: 4.5:1 at least on its row
     const ratio = await rule(page, 'SUP.action.SECOND').evaluate((b) => {
       const rgb = (c: string) => c.match(/\d+/g)!.slice(0, 3).map(Number);
@@ -226,5 +245,66 @@ describe('Monitor field test', () => {
     await page.locator('.monitor-pschema[data-periodic="schemaCommande1"]').scrollIntoViewIfNeeded();
     await shot(page, 'monitor-field-05-900x700-histogram');
     await page.setViewportSize({ width: 1440, height: 900 });
+  }, 60_000);
+  it('a live run\'s quiet stretch: the time runs with the run\'s clock, the state stays at the last record, nothing else redrawn; a deadline miss names what its cycle waited for', async () => {
+    const { page } = s;
+    await page.setViewportSize({ width: 1440, height: 900 });
+    await page.evaluate(() => (window as any).__ide.monitor.followLive('quiet', null));
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
+    // the tutorial's run up to MSC's release in schemaCommande1's cycle 1 (PERIOD = CRITICAL_DELAY = 1s),
+    // then ORD's deadline miss of that cycle (MSC not finished), then nothing: a quiet stretch
+    const upTo = LINES.findIndex((l) => l.text.includes(',ord_release,MSC,') && l.text.includes('cycle=1 '));
+    expect(upTo).toBeGreaterThan(0);
+    const msc = LINES[upTo]!;
+    const mono = Number(msc.text.split(',')[0]);
+    const tick = /tick_ns=(\d+)/.exec(msc.text)![1];
+    const miss = { file: msc.file, line: msc.line + 1, text: `${mono + 1000},2026-12-04T05:49:27.540500Z,ORD,ord_deadline_miss,,,0,schema=schemaCommande1 cycle=1 tick_ns=${tick}` };
+    const records = [...LINES.slice(0, upTo + 1), miss];
+    await page.evaluate((records) => (window as any).__ide.monitor.feed('quiet', records), records);
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(records.length);
+    const label = 'deadline miss (ORD:0) cycle 1 (not finished: MSC)';
+    const marks = await page.evaluate(() => (window as any).__ide.monitor.current.marks as { t: number; kind: string; label: string }[]);
+    const mark = marks.find((m) => m.kind === 'miss')!;
+    expect(mark.label).toBe(label);
+    // the periodic block lists it; its tooltip says what the cycle waited for
+    const missEl = page.locator('.monitor-pschema[data-periodic="schemaCommande1"] .miss');
+    await expect.poll(() => missEl.getAttribute('title')).toBe(label);
+    // the quiet stretch: what is drawn after the last throttled parts caught up
+    await page.waitForTimeout(600);
+    const end = await page.evaluate(() => (window as any).__ide.monitor.current.end as number);
+    const seen = await page.evaluate(async () => {
+      const w = window as any;
+      const counts = { time: 0, rest: 0, frames: w.__ide.monitor.panel.frameMs.length as number };
+      const texts: string[] = [];
+      const time = document.querySelector('.monitor-time')!;
+      new MutationObserver(() => (counts.time++, texts.push(time.textContent ?? ''))).observe(time, { subtree: true, childList: true, characterData: true });
+      for (const sel of ['.monitor-sups', '.monitor-periodic', '.monitor-flows', '.monitor-modules', '.monitor-schemas']) {
+        new MutationObserver(() => counts.rest++).observe(document.querySelector(sel)!, { subtree: true, childList: true, characterData: true, attributes: true });
+      }
+      await new Promise((r) => setTimeout(r, 1600));
+      counts.frames = w.__ide.monitor.panel.frameMs.length - counts.frames;
+      return { ...counts, texts, t: document.querySelector('.monitor-view')!.getAttribute('data-t') };
+    });
+    console.log(`[monitor field test] quiet 1.6 s: the time written ${seen.time} times (${seen.texts.at(0)} … ${seen.texts.at(-1)}), ${seen.frames} frames drawn, other parts written ${seen.rest} times`);
+    expect(seen.time).toBeGreaterThanOrEqual(4); // a few times a second
+    expect(seen.time).toBeLessThanOrEqual(17); // at most 10 times a second
+    expect(seen.frames).toBe(0); // the readout alone: no frame drawn
+    expect(seen.rest).toBe(0);
+    expect(seen.t).toBe(String(Math.round(end))); // the state stays at the last record
+    const readout = /^\+(\d+\.\d) s · live \(last record \+(\d+\.\d{6}) s\)$/;
+    const first = readout.exec(seen.texts[0]!)!, last = readout.exec(seen.texts.at(-1)!)!;
+    expect(first && last).toBeTruthy();
+    expect(Number(last[2])).toBeCloseTo(end / 1e9, 5);
+    expect(Number(last[1]) - Number(first[1])).toBeGreaterThanOrEqual(1.0);
+    expect(Number(last[1]) - Number(last[2])).toBeGreaterThanOrEqual(1.5);
+    await shot(page, 'monitor-field-06-live-quiet-stretch');
+    // the timeline strip's tooltip at the miss: its label
+    const box = (await page.locator('.monitor-strip').boundingBox())!;
+    const width = await page.locator('.monitor-strip').evaluate((c) => (c as HTMLCanvasElement).width);
+    await page.mouse.move(box.x + ((1 + (mark.t / end) * (width - 3)) / width) * box.width, box.y + 35);
+    await expect.poll(() => page.locator('.monitor-strip').getAttribute('title')).toContain(`schemaCommande1: ${label}`);
+    await page.locator('.monitor-pschema[data-periodic="schemaCommande1"]').scrollIntoViewIfNeeded();
+    await page.locator('.monitor-pschema[data-periodic="schemaCommande1"]').screenshot({ path: fileURLToPath(new URL('../../test-output/monitor-field-07-histogram-period-equals-critical-delay.png', import.meta.url)) });
+    await page.mouse.move(0, 0);
   }, 60_000);
 });

@@ -146,7 +146,7 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(marks.find((m) => m.t > 0)!.t);
     // End follows the end again: every function stopped, no rule lit
     await page.keyboard.press('End');
-    await expect.poll(() => page.locator('#monitor-follow').getAttribute('aria-pressed')).toBe('true');
+    await expect.poll(() => page.locator('#monitor-follow').getAttribute('data-following')).toBe('true');
     expect(await page.locator('.monitor-rule[data-active=true]').count()).toBe(0);
     // a click on a rule opens its definition
     await rule(page, 'SUP.action.SECOND').click();
@@ -273,7 +273,8 @@ describe('Monitor in headless Chromium', () => {
     }, batches);
     // while it runs, following the end: FIRST lit (MAA's messages arrive), then SECOND after "disconnected"
     await expect.poll(() => rule(page, 'SUP.action.FIRST').getAttribute('data-active'), { timeout: 3000 }).toBe('true');
-    expect(await page.locator('#monitor-follow').getAttribute('aria-pressed')).toBe('true');
+    expect(await page.locator('#monitor-follow').getAttribute('data-following')).toBe('true');
+    expect(await page.locator('#monitor-follow').getAttribute('aria-label')).toBe('Pause');
     expect(await page.locator('.monitor-time').textContent()).toContain('· live');
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 5000 }).toBe('true');
     expect(await rule(page, 'SUP.action.SECOND').getAttribute('data-cause')).toBe('MAA:2 value="disconnected"');
@@ -351,9 +352,9 @@ describe('Monitor in headless Chromium', () => {
     // once the records stop, the last count is shown
     const row = page.locator('.monitor-flow.event[data-flow="MAA:0->MAB:0"]');
     await expect.poll(() => row.textContent()).toBe('┅ MAA:0 → MAB:0 ×2000 · last +1.999000 s');
-    await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s · live$/);
-    const [shownAt, end] = (await page.locator('.monitor-time').textContent())!.match(/\d+\.\d{6}/g)!;
-    expect(shownAt).toBe(end);
+    // following live, the readout runs with the run's clock and names the last record's time (the state shown)
+    await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/^\+\d+\.\d s · live \(last record \+\d+\.\d{6} s\)$/);
+    await expect.poll(async () => (await page.locator('.monitor-time').textContent())!.match(/\d+\.\d{6}/)![0]).toBe('1.999500');
     // paused right after a record came (a throttled part then waits): the view is exact at once
     const paused = await page.evaluate(async () => {
       const w = window as any;
@@ -729,6 +730,9 @@ describe.skipIf(!canBuild)('Monitor on examples/mobile-robot with a velocity-loo
     await seek(page, miss.t + 1);
     await expect.poll(() => periodic(page, 'velocityLoop').getAttribute('data-misses')).toBe(String(index + 1));
     expect(await periodic(page, 'velocityLoop').locator('.miss').allTextContents()).toContain(`ORD:0 cycle ${cycle} at +${(miss.t / 1e9).toFixed(6)} s`);
+    // the miss names what its cycle was still waiting for: VEL, asleep (as `contract trace` says it), in its label and tooltip
+    expect(miss.label).toMatch(/ \((not finished: ([A-Z]+, )*VEL(, [A-Z]+)*|held: nothing released, VEL still runs an earlier release)\)$/);
+    expect(await periodic(page, 'velocityLoop').locator(`.miss[data-cycle="${cycle}"]`).last().getAttribute('title')).toBe(miss.label);
     // the reaction to the first miss while MIS.mission.AUTO is active (autonomous mode, from 1.5 s)
     const story = JSON.stringify(marks.map((m) => `${(m.t / 1e9).toFixed(3)} ${m.where} ${m.label}`));
     const autoOn = marks.find((m) => m.kind === 'rule' && m.where === 'MIS' && m.label.startsWith('mission.AUTO active'))!;

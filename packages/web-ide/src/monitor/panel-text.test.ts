@@ -1,0 +1,118 @@
+import { describe, it, expect } from 'vitest';
+import { followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { histogramMarkers } from './response-histogram.js';
+import { markTooltip } from './marks-strip.js';
+import { RemoteMonitorModel, type FollowerPort } from './remote-model.js';
+import { emptyState } from './monitor-state.js';
+import type { FromFollower, ToFollower } from './live-follow-protocol.js';
+
+describe('the time readout', () => {
+  it('following a live run, it runs with the run\'s clock through a quiet stretch and says where the state shown is', () => {
+    // the tutorial's quiet stretch: the last record at +4.13 s, the run at +20.1 s
+    expect(timeReadout({ t: 4.13e9, end: 4.13e9, following: true, runClock: 20.1e9, exact: true })).toBe('+20.1 s · live (last record +4.130000 s)');
+    // never before the last record (a record that came a little ahead of the estimate)
+    expect(timeReadout({ t: 4.13e9, end: 4.13e9, following: true, runClock: 4.0e9, exact: true })).toBe('+4.1 s · live (last record +4.130000 s)');
+  });
+
+  it('paused, scrubbed or replayed, and before the first record: the cursor and the run\'s end, as before', () => {
+    expect(timeReadout({ t: 1.5e9, end: 4.13e9, following: false, exact: true })).toBe('+1.500000 s / +4.130000 s');
+    expect(timeReadout({ t: 0, end: 0, following: true, runClock: undefined, exact: true })).toBe('+0.000000 s / +0.000000 s · live');
+    expect(timeReadout({ t: 1e9, end: 60e9, following: false, exact: false })).toBe('+1.000000 s / +60.000000 s · counters approximate this far back');
+  });
+});
+
+describe("a live run's clock (RemoteMonitorModel.runClock)", () => {
+  const snapshot = (end: number, count: number): FromFollower => ({ type: 'snapshot', live: emptyState(), end, count, missed: 0, marks: [], ended: false, problems: [], foldMs: 0 });
+
+  it('goes on with the page\'s clock from the arrival of the records, never backwards, never before the last record', () => {
+    let now = 1000; // performance.now(), ms
+    const port: FollowerPort = { postMessage: (_m: ToFollower) => undefined, onmessage: null };
+    const model = new RemoteMonitorModel(port, null, { now: () => now });
+    const deliver = (m: FromFollower) => port.onmessage!({ data: m } as MessageEvent<FromFollower>);
+    expect(model.runClock(now)).toBeUndefined(); // no record yet
+    deliver(snapshot(0, 0));
+    expect(model.runClock(now)).toBeUndefined();
+    deliver(snapshot(4.13e9, 500)); // the last record of a burst arrives at page time 1000 ms
+    expect(model.runClock(1000)).toBe(4.13e9);
+    // 16 s without a record: the clock goes on, the last record stays where it was
+    now = 17_000;
+    expect(model.runClock(17_000)).toBeCloseTo(20.13e9, -3);
+    expect(model.end).toBe(4.13e9);
+    // a batch that came late (its records were written long before): the clock does not go back
+    now = 18_000;
+    deliver(snapshot(4.5e9, 510));
+    expect(model.runClock(18_000)).toBeCloseTo(21.13e9, -3);
+    // a batch that came sooner after its records than any before: the estimate moves up to it
+    now = 18_100;
+    deliver(snapshot(21.5e9, 520));
+    expect(model.runClock(18_100)).toBeCloseTo(21.5e9, -3);
+    expect(model.runClock(18_600)).toBeCloseTo(22.0e9, -3);
+  });
+});
+
+describe('the follow button and the rules say their state in words, not as pressed toggles', () => {
+  it('the follow button names what it does', () => {
+    expect(followButton(true, true)).toMatchObject({ text: '❚❚ Pause', label: 'Pause' });
+    expect(followButton(true, false)).toMatchObject({ text: '⇥ Follow', label: 'Follow live' });
+    expect(followButton(false, true)).toMatchObject({ text: '⇥ End', label: 'Go to the end' });
+    expect(followButton(false, false)).toMatchObject({ text: '⇥ End', label: 'Go to the end' });
+    for (const [live, follow] of [[true, true], [true, false], [false, true], [false, false]] as const) {
+      const b = followButton(live, follow);
+      // the name holds the words on the button (a speech user says what they see)
+      expect(b.label.toLowerCase()).toContain(b.text.replace(/^\S+ /, '').toLowerCase());
+      expect(b).not.toHaveProperty('pressed');
+    }
+  });
+
+  it("a rule's name says whether it is active, since when and why", () => {
+    expect(ruleAccessibleName('SECOND', { active: true, since: 2.010325e9 }, '← MAA:2 = "disconnected" → schemaCommande1'))
+      .toBe('SECOND, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1');
+    expect(ruleAccessibleName('FIRST', { active: false, since: 2.010325e9 }, '← MAA:2 = "disconnected"')).toBe('FIRST, inactive since +2.010325 s ← MAA:2 = "disconnected"');
+    expect(ruleAccessibleName('THIRD', undefined, '')).toBe('THIRD, not active yet');
+  });
+});
+
+describe('the histogram\'s CRITICAL_DELAY and PERIOD', () => {
+  const W = 320;
+  const xOf = (ns: number) => 2 + Math.log10(ns / 1e3) * 50; // 50 px a decade from 1 µs
+  const measure = (text: string) => text.length * 5.5;
+  const overlap = (a: { labelX: number; label: string; row: number }, b: { labelX: number; label: string; row: number }) =>
+    a.row === b.row && a.labelX < b.labelX + measure(b.label) && b.labelX < a.labelX + measure(a.label);
+
+  it('equal (a control loop: PERIOD = CRITICAL_DELAY): one line, one label that says both', () => {
+    const markers = histogramMarkers(10e6, 10e6, xOf, W, measure);
+    expect(markers).toHaveLength(1);
+    expect(markers[0]).toMatchObject({ label: 'PERIOD = CRITICAL_DELAY', color: '#e06c75', row: 0 });
+    expect(markers[0]!.labelX + measure(markers[0]!.label)).toBeLessThanOrEqual(W); // whole on the canvas
+  });
+
+  it('apart: two lines, each labelled on its own row, whole on the canvas, beside its line', () => {
+    for (const [cd, period] of [[50e6, 100e6], [1e6, 1.001e9], [1e9, 1e9 * 1.5]]) {
+      const markers = histogramMarkers(cd, period, xOf, W, measure);
+      expect(markers.map((m) => m.label).sort()).toEqual(['CRITICAL_DELAY', 'PERIOD']);
+      expect(overlap(markers[0]!, markers[1]!)).toBe(false);
+      for (const m of markers) {
+        expect(m.labelX).toBeGreaterThanOrEqual(0);
+        expect(m.labelX + measure(m.label)).toBeLessThanOrEqual(W);
+        expect(m.x < m.labelX || m.x > m.labelX + measure(m.label)).toBe(true); // the label does not cover its line
+      }
+    }
+  });
+
+  it('one of them unknown: only the other', () => {
+    expect(histogramMarkers(undefined, 1e9, xOf, W, measure).map((m) => m.label)).toEqual(['PERIOD']);
+    expect(histogramMarkers(1e9, undefined, xOf, W, measure).map((m) => m.label)).toEqual(['CRITICAL_DELAY']);
+    expect(histogramMarkers(undefined, undefined, xOf, W, measure)).toEqual([]);
+  });
+});
+
+describe('the timeline strip\'s tooltip', () => {
+  it('names the marks under the pointer, a miss with what its cycle waited for', () => {
+    const miss = { t: 2.21e9, kind: 'miss' as const, where: 'velocityLoop', label: 'deadline miss (ORD:0) cycle 220 (not finished: VEL)' };
+    expect(markTooltip([miss])).toBe('+2.210000 s velocityLoop: deadline miss (ORD:0) cycle 220 (not finished: VEL)');
+    const many = Array.from({ length: 9 }, (_, i) => ({ ...miss, t: miss.t + i }));
+    const text = markTooltip(many).split('\n');
+    expect(text).toHaveLength(7);
+    expect(text[6]).toBe('… and 3 more mark(s) here');
+  });
+});

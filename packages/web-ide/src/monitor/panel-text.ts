@@ -1,0 +1,64 @@
+/**
+ * The Monitor panel's words (monitor-panel.ts), as pure functions of what it shows: the time
+ * readout, the follow button, a rule's accessible name. Kept apart so that they are tested
+ * without a page (panel-text.test.ts).
+ */
+import type { RuleState } from './monitor-state.js';
+
+/** `+2.010325 s`: a time of the run (ns since its first record). */
+export const fmtT = (ns: number): string => `+${(ns / 1e9).toFixed(6)} s`;
+
+export interface ReadoutInput {
+  /** The cursor's time, and the time of the run's last record (ns since its first). */
+  t: number;
+  end: number;
+  /** Following a live run (the cursor at its last record). */
+  following: boolean;
+  /** While following: the run's own clock, estimated from when its records arrived (MonitorView.runClock); undefined before the first. */
+  runClock?: number;
+  /** Whether the state at `t` is exact (its raw records still kept). */
+  exact: boolean;
+}
+
+/**
+ * The time readout. Following a live run, it runs with the run's clock (a quiet stretch of the
+ * run does not look stalled) and says where the shown state is: `+20.1 s · live (last record
+ * +4.130000 s)`. Otherwise the cursor and the run's end: `+1.500000 s / +4.130000 s`.
+ */
+export function timeReadout({ t, end, following, runClock, exact }: ReadoutInput): string {
+  const approximate = exact ? '' : ' · counters approximate this far back';
+  if (following && runClock !== undefined) return `+${(Math.max(runClock, end) / 1e9).toFixed(1)} s · live (last record ${fmtT(end)})${approximate}`;
+  return `${fmtT(t)} / ${fmtT(end)}${following ? ' · live' : ''}${approximate}`;
+}
+
+export interface FollowButton {
+  text: string;
+  /** Its accessible name: what pressing it does (it is no toggle: no aria-pressed). */
+  label: string;
+  title: string;
+}
+
+/**
+ * The follow button: on a live run it pauses (❚❚ Pause) and follows the newest record again
+ * (⇥ Follow); on a run that ended there is nothing to follow: ⇥ End puts the cursor at its end.
+ * An action button whose words change with what it does, never "pressed".
+ */
+export function followButton(live: boolean, following: boolean): FollowButton {
+  if (live && following) return { text: '❚❚ Pause', label: 'Pause', title: 'Following the live run: pause here (Space)' };
+  if (live) return { text: '⇥ Follow', label: 'Follow live', title: 'Paused: follow the live run again (Space, End)' };
+  return {
+    text: '⇥ End', label: 'Go to the end',
+    title: following ? 'The cursor is at the end of the run, which has ended (Space pauses here, Home goes to the start)' : 'Put the cursor at the end of the run (End)',
+  };
+}
+
+/**
+ * A rule's accessible name: its state said in words (a lit rule is a plain button that opens the
+ * rule, not a toggle): `SECOND, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1`,
+ * `FIRST, inactive since +2.010325 s ← MAA:2 = "disconnected"`, `THIRD, not active yet`.
+ * `cause` is the row's shown cause (`← ...`, `→ ...` while active).
+ */
+export function ruleAccessibleName(rule: string, rs: Pick<RuleState, 'active' | 'since'> | undefined, cause: string): string {
+  if (!rs) return `${rule}, not active yet`;
+  return `${rule}, ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)}${cause ? ` ${cause}` : ''}`;
+}
