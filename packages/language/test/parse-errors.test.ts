@@ -35,6 +35,9 @@ describe('syntax error messages', () => {
     it('names an unknown time unit instead of the name glued to a duration (20msec)', () => {
         expect(first('periodic schema s() { realtime { PERIOD=20msec; } }')).toBe("Unknown time unit 'msec' in '20msec': the units are ns, us, ms and s (e.g. 20ms).");
         expect(first('periodic schema s() { realtime { PERIOD=1.5sec; } }')).toBe("Unknown time unit 'sec' in '1.5sec': the units are ns, us, ms and s (e.g. 1.5ms).");
+        // in a duration clause before 'and' (it said "Expected at least one 'and' but found 'ec'")
+        const rule = 'supervisor SAF { event flows { in :0 float d; } g() { rules { STOP: [elapsed=1ms] subscribe LDR:0 =* :0 [(duration(STOP)=1sec{infinite} and SAF:0<(d > 1.0)>)] } } }';
+        expect(first(rule)).toBe("Unknown time unit 'sec' in '1sec': the units are ns, us, ms and s (e.g. 1ms).");
     });
     it('offers the keyword a misspelt one was meant to be', () => {
         expect(first('synchronus module ENC {}')).toMatch(/^Unexpected 'synchronus': expected .*\. Did you mean 'synchronous'\?$/);

@@ -134,6 +134,9 @@ export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageP
     }
 
     override buildEarlyExitMessage(options: { expectedIterationPaths: TokenType[][]; actual: IToken[]; previous: IToken; customUserDescription: string; ruleName: string }): string {
+        // `duration(L)=1sec{...} and ...`: the unit is what is wrong, not the missing 'and'
+        const unit = unknownTimeUnit(options.previous, options.actual[0]);
+        if (unit) return unit;
         const first = options.expectedIterationPaths.map((path) => path[0]).filter((t): t is TokenType => !!t);
         return `Expected at least one ${list(first)} but found ${found(options.actual[0])}.`;
     }
