@@ -37,10 +37,27 @@ function describeCause(c: RuleCause): string {
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused']);
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
 
+/**
+ * What a missed cycle was waiting for, as `contract trace` and the IDE's Monitor say it after
+ * `deadline miss (ORD:0): S cycle k`: ` (held: nothing released, GRP still runs an earlier
+ * release)` when its cycle was held for `heldFor`, ` (not finished: ARM, GRP)` for the modules
+ * released and not finished (`notFinished`, written out), else ''.
+ */
+export function missWaitText(heldFor: string | undefined, notFinished: string): string {
+    if (heldFor !== undefined) return ` (held: nothing released, ${heldFor} still runs an earlier release)`;
+    return notFinished ? ` (not finished: ${notFinished})` : '';
+}
+
 /** `+1.250000s` after the first record, `-0.000100s` before it (a record out of its place). */
 function offset(ns: bigint): string {
     const s = (Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6);
     return `${ns < 0n ? '-' : '+'}${s}s`;
+}
+
+/** The modules released in one cycle and not finished yet. */
+interface CycleRunning {
+    cycle: string;
+    running: Set<string>;
 }
 
 /**
@@ -51,8 +68,12 @@ export class StoryTeller {
     private t0: bigint | undefined;
     private total = 0;
     private readonly counts = new Map<string, number>();
-    /** Per periodic schema: its current cycle and the modules released in it and not finished (a deadline miss names them). */
-    private readonly cycles = new Map<string, { cycle: string; running: Set<string> }>();
+    /**
+     * Per periodic schema: its current and previous cycle and the modules released in each and not
+     * finished (a deadline miss names them; it may come after the next cycle's releases when
+     * CRITICAL_DELAY = PERIOD).
+     */
+    private readonly cycles = new Map<string, { current: CycleRunning; previous?: CycleRunning }>();
     /** Per periodic schema whose new cycle is held: the module it waits for. */
     private readonly held = new Map<string, string>();
 
@@ -91,20 +112,26 @@ export class StoryTeller {
     private followCycle(k: KnownRecord): void {
         const schema = String(k.fields['schema'] ?? ''), cycle = String(k.fields['cycle'] ?? '');
         this.held.delete(schema);
-        let c = this.cycles.get(schema);
-        if (!c || c.cycle !== cycle) this.cycles.set(schema, (c = { cycle, running: new Set() }));
-        if (k.kind === 'ord_release') c.running.add(k.peer);
-        else c.running.delete(k.peer);
+        let s = this.cycles.get(schema);
+        if (!s) this.cycles.set(schema, (s = { current: { cycle, running: new Set() } }));
+        if (k.kind === 'ord_release') {
+            if (s.current.cycle !== cycle) s = { current: { cycle, running: new Set() }, previous: s.current };
+            this.cycles.set(schema, s);
+            s.current.running.add(k.peer);
+        } else {
+            this.cycleOf(schema, cycle)?.running.delete(k.peer);
+        }
     }
 
-    /** ` (not finished: ARM, GRP)`, ` (held: nothing released, GRP still runs an earlier release)`, else ''. */
+    private cycleOf(schema: string, cycle: string): CycleRunning | undefined {
+        const s = this.cycles.get(schema);
+        return s?.current.cycle === cycle ? s.current : s?.previous?.cycle === cycle ? s.previous : undefined;
+    }
+
     private lateOf(k: KnownRecord): string {
         const schema = String(k.fields['schema'] ?? '');
-        const waitsFor = this.held.get(schema);
-        if (waitsFor !== undefined) return ` (held: nothing released, ${waitsFor} still runs an earlier release)`;
-        const c = this.cycles.get(schema);
-        if (!c || c.cycle !== String(k.fields['cycle'] ?? '') || c.running.size === 0) return '';
-        return ` (not finished: ${[...c.running].sort().join(', ')})`;
+        const c = this.cycleOf(schema, String(k.fields['cycle'] ?? ''));
+        return missWaitText(this.held.get(schema), c ? [...c.running].sort().join(', ') : '');
     }
 
     summary(): string {

@@ -2,7 +2,7 @@ import { describe, it, expect } from 'vitest';
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { parseTrace, parseRecordLine, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseTrace, parseRecordLine, renderStory, type TraceRecord } from '@contract-studio/build-service/trace';
 import { MonitorModel } from './monitor-model.js';
 import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
@@ -194,6 +194,10 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     let step = steps.next();
     while (!step.done) step = steps.next();
     expect(missLabels(step.value.model)).toEqual(expected);
+    // and `contract trace`'s story of the same log says the same (its own follower of the cycles)
+    const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${ORD_LOG.join('\n')}\n` }]))
+      .filter((l) => l.includes(' deadline miss ')).map((l) => l.replace(/^.* deadline miss \(ORD:0\): \w+ cycle /, 'deadline miss (ORD:0) cycle '));
+    expect(told).toEqual(expected);
   });
 
   it('stays bounded on a hostile trace: thousands of schemas and modules, long names', () => {

@@ -20,7 +20,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, missWaitText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -226,11 +226,10 @@ class CycleWaits {
     this.previous.reset(-1);
   }
 
-  /** ` (not finished: ARM, GRP)`, ` (held: nothing released, GRP still runs an earlier release)`, or ''. */
+  /** What the miss of `cycle` waited for, in contract trace's words (missWaitText). */
   lateOf(cycle: number): string {
-    if (this.held !== undefined) return ` (held: nothing released, ${this.held} still runs an earlier release)`;
     const c = this.current.cycle === cycle ? this.current : this.previous.cycle === cycle ? this.previous : undefined;
-    return c?.n ? ` (not finished: ${c.text()})` : '';
+    return missWaitText(this.held, c?.n ? c.text() : '');
   }
 }
 
