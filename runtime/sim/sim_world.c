@@ -176,7 +176,9 @@ static void sio_ord_activate(void *ctx, const ContractSchema *s, const void *par
     SimSup *p = ctx;
     SimMsg *m = msg_new(p->w, MSG_ORD_ACTIVATE, p->index, params, size);
     if (m) { scopy(m->a, sizeof m->a, s->name); m->id = id; }
-    action(p->w, p->v->name, "activate schema %s (activation #%u, to ORD)", s->name, id);
+    char args[ACTION_VALUE_MAX];
+    engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : 0, params);
+    action(p->w, p->v->name, "activate schema %s%s (activation #%u, to ORD)", s->name, args, id);
 }
 static void sio_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     SimSup *p = ctx;
@@ -262,15 +264,18 @@ static void sio_notify(void *ctx, int out_port, const ContractType *type, const 
     engine_format_value(v, sizeof v, value, type);
     action(p->w, p->v->name, "notify :%d (%s) = %s", out_port, type ? type->name : "?", v);
 }
-static int sio_start_function(void *ctx, const char *sup, const char *fn, const void *params,
-                              size_t size, uint32_t id) {
+static int sio_start_function(void *ctx, const ContractFunctionSignature *callee,
+                              const void *params, size_t size, uint32_t id) {
     SimSup *p = ctx;
+    const char *sup = callee->supervisor, *fn = callee->function;
     SimMsg *m = msg_new(p->w, MSG_START_FN, p->index, params, size);
     if (!m) return -1;
     scopy(m->a, sizeof m->a, sup);
     scopy(m->b, sizeof m->b, fn);
     m->id = id;
-    action(p->w, p->v->name, "activate supervisor %s.%s (activation #%u)", sup, fn, id);
+    char args[ACTION_VALUE_MAX];
+    engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : 0, params);
+    action(p->w, p->v->name, "activate supervisor %s.%s%s (activation #%u)", sup, fn, args, id);
     return 0;
 }
 static void sio_stop_function(void *ctx, const char *sup, const char *fn, uint32_t id) {

@@ -62,6 +62,12 @@ int engine_build_setting(const EngineScope *s, const ContractParamSetting *setti
  *  without a field table `{N bytes}`); no value or type: `?`. Never longer than len - 1. */
 void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type);
 
+/** Writes the values of a parameter block as a trace line names them, `(speed = 0.3, mode =
+ *  AUTO)` (each value as engine_format_value writes it), cut with `...)` to fit len - 1 bytes;
+ *  "" for no parameters. `function F(...) started`, `activate schema S(...)`,
+ *  `activate supervisor SUP.f(...)`. */
+void engine_format_params(char *buf, size_t len, const ContractVar *vars, int nvars, const void *block);
+
 /** Copies a NUL-terminated string into a string value (char[256]), truncating. */
 void engine_set_string(char *dst, const char *src);
 

@@ -409,8 +409,7 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
             r = g < 0 ? -1
                       : local_start(c, c->now, g, p, sig->params_size, c->v->name, u->act_id);
         } else {
-            r = c->io.start_function ? c->io.start_function(c->io.ctx, sig->supervisor,
-                                                            sig->function, p, sig->params_size,
+            r = c->io.start_function ? c->io.start_function(c->io.ctx, sig, p, sig->params_size,
                                                             u->act_id)
                                      : -1;
         }
@@ -930,7 +929,9 @@ static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t 
         engine_apply_assign(&s, &fn->local_inits[i], fs->locals, fn->locals);
     for (int r = 0; r < fn->nrules; r++) fs->rules[r].active = 0;
     for (int i = 0; i < fs->nslots; i++) fs->occ[i].valid = 0;
-    trace(c, "function %s started", fn->name);
+    char args[ACTION_VALUE_MAX];
+    engine_format_params(args, sizeof args, fn->params, fn->nparams, fs->params);
+    trace(c, "function %s%s started", fn->name, args);
     for (int i = 0; i < fs->nslots; i++) {
         const ContractEvent *ev = fs->slots[i].ev;
         if (ev->kind != CONTRACT_EV_ELAPSED) continue;

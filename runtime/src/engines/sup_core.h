@@ -51,7 +51,7 @@ typedef struct SupIo {
        stops the function only if it runs this very activation, never one that another caller
        started (docs/engines.md §4). start returns 0 when sent, -1 when it could not be sent
        (taken as refused: its undo stops nothing) */
-    int (*start_function)(void *ctx, const char *supervisor, const char *function,
+    int (*start_function)(void *ctx, const ContractFunctionSignature *callee,
                           const void *params, size_t size, uint32_t activation_id);
     void (*stop_function)(void *ctx, const char *supervisor, const char *function,
                           uint32_t activation_id);

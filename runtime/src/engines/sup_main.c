@@ -108,7 +108,7 @@ static void remove_subscriber(SupBinding *b, const char *module, int target_port
    module_priority, flow_hold). */
 static void log_action(const char *peer, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void log_action(const char *peer, const char *fmt, ...) {
-    char line[256];
+    char line[400];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(line, sizeof line, fmt, ap);
@@ -123,7 +123,9 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
                            uint32_t id) {
     (void)ctx;
     int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
-    log_action("ORD", "activate schema %s (activation #%u, to ORD)%s", s->name, id, rc == CONTRACT_OK ? "" : " not sent");
+    char args[ACTION_VALUE_MAX];
+    engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : 0, params);
+    log_action("ORD", "activate schema %s%s (activation #%u, to ORD)%s", s->name, args, id, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot ask ORD to activate %s: %s\n", ContractSelfName(), s->name,
                 ContractStrError(rc));
@@ -306,11 +308,14 @@ static void b_notify(void *ctx, int port, const ContractType *t, const void *v, 
     }
 }
 
-static int b_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size,
-                            uint32_t id) {
+static int b_start_function(void *ctx, const ContractFunctionSignature *callee, const void *p,
+                            size_t size, uint32_t id) {
     (void)ctx;
+    const char *sup = callee->supervisor, *fn = callee->function;
     int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
-    log_action(sup, "activate supervisor %s.%s (activation #%u)%s", sup, fn, id, rc == CONTRACT_OK ? "" : " not sent");
+    char args[ACTION_VALUE_MAX];
+    engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : 0, p);
+    log_action(sup, "activate supervisor %s.%s%s (activation #%u)%s", sup, fn, args, id, rc == CONTRACT_OK ? "" : " not sent");
     if (rc != CONTRACT_OK) {
         fprintf(stderr, "%s: cannot start %s.%s: %s\n", ContractSelfName(), sup, fn, ContractStrError(rc));
         return -1;

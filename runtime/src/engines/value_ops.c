@@ -374,6 +374,33 @@ void engine_format_value(char *buf, size_t len, const void *value, const Contrac
     contract_value_format(buf, len, type, value);
 }
 
+void engine_format_params(char *buf, size_t len, const ContractVar *vars, int nvars, const void *block) {
+    if (!buf || len == 0) return;
+    buf[0] = 0;
+    if (!vars || nvars <= 0 || !block || len < 8) return;
+    char all[4 * ACTION_VALUE_MAX];
+    size_t n = 0;
+    all[n++] = '(';
+    for (int i = 0; i < nvars && n < sizeof all - 1; i++) {
+        char value[ACTION_VALUE_MAX];
+        engine_format_value(value, sizeof value, (const unsigned char *)block + vars[i].offset, vars[i].type);
+        int w = snprintf(all + n, sizeof all - n, "%s%s = %s", i ? ", " : "", vars[i].name, value);
+        if (w < 0) break;
+        n += (size_t)w < sizeof all - n ? (size_t)w : sizeof all - n - 1;
+    }
+    if (n < sizeof all - 1) all[n++] = ')';
+    all[n] = 0;
+    if (n < len) {
+        memcpy(buf, all, n + 1);
+        return;
+    }
+    /* too long: cut on a character boundary, then `...)` */
+    size_t keep = len - 5;
+    while (keep > 0 && ((unsigned char)all[keep] & 0xC0) == 0x80) keep--;
+    memcpy(buf, all, keep);
+    memcpy(buf + keep, "...)", 5);
+}
+
 /* ---- printing (stdout) ------------------------------------------------------------------ */
 
 

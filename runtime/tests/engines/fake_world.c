@@ -287,9 +287,10 @@ static void s_notify(void *ctx, int port, const ContractType *t, const void *v, 
         if (s->mode == CONTRACT_ONESHOT) s->active = 0;
     }
 }
-static int s_start_function(void *ctx, const char *sup, const char *fn, const void *p, size_t size,
-                            uint32_t id) {
+static int s_start_function(void *ctx, const ContractFunctionSignature *callee, const void *p,
+                            size_t size, uint32_t id) {
     FakeWorld *w = ctx;
+    const char *sup = callee->supervisor, *fn = callee->function;
     char buf[300] = "";
     if (size == sizeof(TypeA)) /* the report's parameter blocks; others are not shown */
         fake_format(buf, sizeof buf, &(ContractType){.name = "TypeA", .kind = CONTRACT_KIND_STRUCT}, p);

@@ -73,7 +73,7 @@ void test_report_sup_full_sequence(void) {
     CHECK(!sup_core_function_running(c, "action"));
 
     CHECK_LOG(&LOG,
-              "function action started",
+              "function action(consigne = {24 bytes}) started",
               "ignored: event MAA:2 (no active subscription)",
               "rule action.FIRST active",
               "subscribe MAA:2 =* :2",
@@ -221,7 +221,7 @@ void test_report_nested_glb_stops_sup_on_commutation(void) {
 
     static const char *const glb_only[] = {"GLB: ", NULL};
     check_log_filtered(&LOG, glb_only,
-                       (const char *const[]){"GLB: function mission started",
+                       (const char *const[]){"GLB: function mission(consigne = {24 bytes}) started",
                                              "GLB: rule mission.SINGLE active",
                                              "GLB: subscribe SUP:1 => :0",
                                              "GLB: start SUP.action {7,8,9}",

@@ -191,6 +191,42 @@ void test_ext_format_is_cut_but_well_formed(void) {
     CHECK(strcmp(fmt(&type_Scan, &s, 4), "?") == 0);
 }
 
+/* a parameter block as `function F(...) started` and `activate schema S(...)` name it */
+void test_ext_params_are_named_and_cut_on_a_character(void) {
+    typedef struct Block {
+        Mode mode;
+        double speed;
+        char label[256];
+    } Block;
+    const ContractVar vars[] = {{"mode", &type_Mode, offsetof(Block, mode), NULL},
+                                {"speed", &contract_type_double, offsetof(Block, speed), NULL},
+                                {"label", &contract_type_string, offsetof(Block, label), NULL}};
+    Block b;
+    memset(&b, 0, sizeof b);
+    b.mode = Mode_AUTO;
+    b.speed = 0.3;
+    strcpy(b.label, "dock");
+    char out[200];
+    engine_format_params(out, sizeof out, vars, 3, &b);
+    CHECK(strcmp(out, "(mode = AUTO, speed = 0.3, label = \"dock\")") == 0);
+    engine_format_params(out, sizeof out, vars, 0, &b);
+    CHECK(strcmp(out, "") == 0);
+    engine_format_params(out, sizeof out, vars, 3, NULL);
+    CHECK(strcmp(out, "") == 0);
+    /* too long for its room: cut before a multi-byte character, never inside it, then `...)` */
+    strcpy(b.label, "\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9\xc3\xa9");
+    char small[36];
+    engine_format_params(small, sizeof small, vars, 3, &b);
+    CHECK(strlen(small) <= sizeof small - 1);
+    CHECK(strncmp(small, "(mode = AUTO, speed = 0.3, label", 32) == 0 || strncmp(small, "(mode = AUTO, speed = 0.3, la", 29) == 0);
+    CHECK(strcmp(small + strlen(small) - 4, "...)") == 0);
+    for (size_t i = 0; small[i]; i++) /* no lone continuation byte before the cut */
+        if (((unsigned char)small[i] & 0xC0) == 0xC0) CHECK(((unsigned char)small[i + 1] & 0xC0) == 0x80);
+    char tiny[12];
+    engine_format_params(tiny, sizeof tiny, vars, 3, &b);
+    CHECK(strcmp(tiny, "(mode =...)") == 0);
+}
+
 /* ---- table checks ---------------------------------------------------------------------- */
 
 static const ContractType bad_array_size =

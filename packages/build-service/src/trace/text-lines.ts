@@ -34,7 +34,7 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
 ];
 
 export const SUPERVISOR_LINES: readonly LinePattern[] = [
-    { what: 'function_started', re: new RegExp(`^function ${ID} started$`), keys: ['function'] },
+    { what: 'function_started', re: new RegExp(`^function ${ID}(?:\\(.*\\))? started$`), keys: ['function'] },
     { what: 'function_stopped', re: new RegExp(`^function ${ID} stopped$`), keys: ['function'] },
     { what: 'function_refused', re: new RegExp(`^refused: (?:function ${ID} already running|no function (.*))$`), keys: ['function', 'function'] },
     { what: 'rule', re: new RegExp(`^rule ${ID}\\.${ID} (active|inactive)$`), keys: ['function', 'rule', 'state'] },

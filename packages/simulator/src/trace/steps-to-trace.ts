@@ -76,8 +76,8 @@ const DEADLINE_MISS = /^ORD:0 "([A-Za-z_]\w*)" \(deadline miss\)/;
 const START_MODULE = /^start module ([A-Za-z_]\w*)\b/;
 const STOP_MODULE = /^stop module ([A-Za-z_]\w*)$/;
 const SET_PRIORITY = /^set priority of ([A-Za-z_]\w*) to /;
-const ACTIVATE_SCHEMA = /^activate schema ([A-Za-z_]\w*) /;
-const ACTIVATE_SUPERVISOR = /^activate supervisor ([A-Za-z_]\w*)\.([A-Za-z_]\w*) /;
+const ACTIVATE_SCHEMA = /^activate schema ([A-Za-z_]\w*)[ (]/;
+const ACTIVATE_SUPERVISOR = /^activate supervisor ([A-Za-z_]\w*)\.([A-Za-z_]\w*)[ (]/;
 const STOP_FUNCTION = /^stop ([A-Za-z_]\w*)\.([A-Za-z_]\w*) /;
 /** Actions that undo an earlier one (counted `undone`, as the fold counts a logged `undo`/`un…` line). */
 const UNDO = /^(stop|deactivate|disconnect|unsubscribe|release)\b/;

@@ -126,7 +126,7 @@ interface Receipt {
 export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScenario {
     const known = records.filter((r): r is KnownRecord | RuleRecord => r.kind !== 'unknown');
     const [startSup, startFn] = plan.start.replace(/\(.*$/, '').split('.');
-    const started = known.find((r) => r.module === startSup && r.kind === 'supervisor' && r.detail === `function ${startFn} started`);
+    const started = known.find((r) => r.module === startSup && r.kind === 'supervisor' && r.fields['what'] === 'function_started' && r.fields['function'] === startFn);
     if (!started) throw new Error(`the run has no "function ${startFn} started" record of ${startSup}`);
     const t0 = mono(started);
     // the launcher's stop (KILL/STOP from contract-launch) ends the comparison

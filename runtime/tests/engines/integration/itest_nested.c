@@ -44,7 +44,7 @@ void scenario_nested(const char *root, const char *bin, const char *launcher) {
           "event schema: AMX parameterised (GLT's value through SLV's local), started, stopped after W1, "
           "which ended on AMX's 6");
     char *txt = slurp(s.launch);
-    const char *order[] = {"[GLT] rule top.T1 active", "[SLV] function work started", "[SLV] rule work.W1 active",
+    const char *order[] = {"[GLT] rule top.T1 active", "[SLV] function work(n = 2) started", "[SLV] rule work.W1 active",
                            "[SLV] rule work.W1 inactive", "[SLV] rule work.W2 active",
                            "[SLV] function work stopped", NULL};
     int in_order = txt != NULL;

@@ -9,9 +9,16 @@
 static const ContractEnumMember contract_members_DriveMode[] = {{"TELEOP", DriveMode_TELEOP}, {"AUTO", DriveMode_AUTO}, {"SAFESTOP", DriveMode_SAFESTOP}};
 static const ContractType contract_type_DriveMode = CONTRACT_ENUM_TYPE(DriveMode, contract_members_DriveMode, 3, NULL);
 static const Pose contract_default_Pose = { 0.0, 0.0, 0.0 };
-CONTRACT_DEFINE_TYPE(Pose, &contract_default_Pose)
+static const ContractField contract_fields_Pose[] = {
+    {"x", offsetof(Pose, x), &contract_type_double},
+    {"y", offsetof(Pose, y), &contract_type_double},
+    {"theta", offsetof(Pose, theta), &contract_type_double}};
+CONTRACT_DEFINE_TYPE_FIELDS(Pose, &contract_default_Pose, 3, contract_fields_Pose)
 static const Twist contract_default_Twist = { 0.0, 0.0 };
-CONTRACT_DEFINE_TYPE(Twist, &contract_default_Twist)
+static const ContractField contract_fields_Twist[] = {
+    {"v", offsetof(Twist, v), &contract_type_double},
+    {"w", offsetof(Twist, w), &contract_type_double}};
+CONTRACT_DEFINE_TYPE_FIELDS(Twist, &contract_default_Twist, 2, contract_fields_Twist)
 
 typedef struct schema_velocityLoop_params_t {
     Twist setpoint;

@@ -5,7 +5,11 @@
 #include "SharedTypeA.h"
 
 static const TypeA contract_default_TypeA = { 0.0, 0.0, 0.0 };
-CONTRACT_DEFINE_TYPE(TypeA, &contract_default_TypeA)
+static const ContractField contract_fields_TypeA[] = {
+    {"i", offsetof(TypeA, i), &contract_type_double},
+    {"j", offsetof(TypeA, j), &contract_type_double},
+    {"k", offsetof(TypeA, k), &contract_type_double}};
+CONTRACT_DEFINE_TYPE_FIELDS(TypeA, &contract_default_TypeA, 3, contract_fields_TypeA)
 
 typedef struct schema_schemaCommande1_params_t {
     TypeA consigne;
