@@ -48,6 +48,11 @@ export function missWaitText(heldFor: string | undefined, notFinished: string): 
     return notFinished ? ` (not finished: ${notFinished})` : '';
 }
 
+/** `1 release`, `2 releases`. */
+function plural(n: number, one: string, many = `${one}s`): string {
+    return `${n} ${n === 1 ? one : many}`;
+}
+
 /** `+1.250000s` after the first record, `-0.000100s` before it (a record out of its place). */
 function offset(ns: bigint): string {
     const s = (Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6);
@@ -88,10 +93,8 @@ export class StoryTeller {
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
-        // an event schema's activation and undo (ORD tells the periodic ones)
-        if (k.kind === 'supervisor' && what === 'action' && k.fields['schema'] !== undefined) return `${at(k)} ${k.detail}`;
-        // what it sent, with the value: a notification, a parameter
-        if (k.kind === 'supervisor' && what === 'action' && /^(notify|parameterize) /.test(k.detail)) return `${at(k)} ${k.detail}`;
+        // every action and undo, with its target and value: who activated a schema or a function, what it sent
+        if (k.kind === 'supervisor' && what === 'action') return `${at(k)} ${k.detail}`;
         if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
             if (what === 'held') this.held.set(String(k.fields['schema']), String(k.fields['module']));
             else this.held.delete(String(k.fields['schema']));
@@ -136,8 +139,9 @@ export class StoryTeller {
 
     summary(): string {
         const n = (kind: string) => this.counts.get(kind) ?? 0;
-        return `${this.total} records: ${n('ord_release')} releases, ${n('ord_complete')} completed cycles, ${n('ord_deadline_miss')} deadline misses, ` +
-            `${n('sup_rule')} rule changes, ${n('data_received')} data and ${n('event_received')} event deliveries, ${n('unknown')} unreadable line(s)`;
+        return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
+            `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('sup_rule'), 'rule change')}, ` +
+            `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ${plural(n('unknown'), 'unreadable line')}`;
     }
 }
 

@@ -80,6 +80,7 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'late ack: B finished release #12 of an earlier cycle of DIA (not counted)')).toEqual({ what: 'late_ack', module: 'B', release: 12, schema: 'DIA' });
         expect(fields('scheduler', 'something new')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'function action started')).toEqual({ what: 'function_started', function: 'action' });
+        expect(fields('supervisor', 'function action(consigne = {i=0,j=0,k=0}, mode = AUTO) started')).toEqual({ what: 'function_started', function: 'action' });
         expect(fields('supervisor', 'refused: function action already running')).toEqual({ what: 'function_refused', function: 'action' });
         expect(fields('supervisor', 'refused: no function nope')).toEqual({ what: 'function_refused', function: 'nope' });
         expect(fields('supervisor', 'rule action.FIRST inactive')).toEqual({ what: 'rule', function: 'action', rule: 'FIRST', state: 'inactive' });
@@ -138,10 +139,11 @@ describe('reading a log', () => {
         expect(renderStory(parseTrace([{ name: 'X_1.csv', text }]))).toEqual([
             '+0.000000s SUP  rule action.FIRST active   <- elapsed=1ms',
             '+0.000000s SUP  parameterize MAA:0 (24 bytes) = {i=27.12,j=0,k=0.04}',
+            '+0.000000s SUP  subscribe MAA:2 =* :2',
             '+0.500000s ORD  deadline miss (ORD:0): S cycle 4',
             '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
-            '7 records: 0 releases, 0 completed cycles, 1 deadline misses, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line(s)',
+            '7 records: 0 releases, 0 completed cycles, 1 deadline miss, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
         ]);
     });
 
