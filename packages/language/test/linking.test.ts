@@ -150,6 +150,23 @@ describe('cross-file linking', () => {
         expect(b.diagnostics.map((d) => [d.code, (d.data as { importPath?: string }).importPath])).toEqual([['import-not-imported', '../common/types.contract']]);
     });
 
+    it('says that a supervisor named in an event schema is no module, and who receives its events', async () => {
+        const b = await build({
+            'm.contract': 'asynchronous module MAB { event flows { in :0 string note; } }',
+            's.contract': 'supervisor SUP { event flows { out :1 string mode; } f() { rules { R: [elapsed=1ms] notify :1(mode = "x") [elapsed=2ms] } } }',
+            'e.contract': 'import "m.contract";\nimport "s.contract";\nevent schema ES () { modules { MAB (); } communications { SUP:1 =* MAB:0; } }'
+        }, services);
+        const linking = b.lines.filter((l) => l.includes('linking-error'));
+        expect(linking).toEqual([expect.stringContaining("linking-error 'SUP' is a supervisor, not a module: ")]);
+        expect(linking[0]).toContain('reach only the supervisors that subscribe to them (subscribe SUP:o =* :i in a rule)');
+        // an unknown name that is no supervisor keeps the message it had
+        const other = await build({
+            'm.contract': 'asynchronous module MAB { event flows { in :0 string note; } }',
+            'e.contract': 'import "m.contract";\nevent schema ES () { modules { MAB (); } communications { ZZZ:1 =* MAB:0; } }'
+        }, services);
+        expect(other.lines.filter((l) => l.includes('linking-error'))).toEqual([expect.stringContaining("Unknown module 'ZZZ': no module of this name")]);
+    });
+
     it('reports a port of the wrong direction as unresolved with the valid ports', async () => {
         const files = { ...FILES, 'schemas/s1.contract': FILES['schemas/s1.contract'].replace('MSC:1 -> MSD :2', 'MSC:0 -> MSD :2') };
         const b = await build(files, services);

@@ -112,7 +112,7 @@ describe('contract-language-server: .scenario files', () => {
             range: { start: { line: 5, character: 2 }, end: { line: 5, character: 7 } },
             message: "steps go forward in time: 150ms is before the previous step's 200ms",
         })]);
-        expect(at(6)).toEqual([expect.objectContaining({ code: 'scenario-syntax', severity: 1, message: "expected 'running' or 'stopped'" })]);
+        expect(at(6)).toEqual([expect.objectContaining({ code: 'scenario-syntax', severity: 1, message: "expected 'running' or 'stopped', found 'runing'. Did you mean 'running'?" })]);
         expect(at(6)[0]!.range.start.character).toBe(col(6, 'runing'));
         expect(at(7)).toEqual([expect.objectContaining({ code: 'scenario-unknown-schema', message: expect.stringMatching(/^no schema 'schemaCommande3' in the project \(schemas: .*\)\. Did you mean 'schemaCommande[12]'\?$/) })]);
         expect(at(8)).toEqual([expect.objectContaining({ code: 'scenario-unknown-module', message: expect.stringContaining("Did you mean 'MAA'?") })]);

@@ -1,5 +1,8 @@
 /** Syntax errors are reported in the user's terms. */
 import { describe, expect, it } from 'vitest';
+import { readFileSync } from 'node:fs';
+import { fileURLToPath } from 'node:url';
+import { ALL_WORDS } from '../src/parser/error-messages.js';
 import { build, parse } from './helpers.js';
 
 const first = (text: string) => parse(text).errors[0];
@@ -44,6 +47,18 @@ describe('syntax error messages', () => {
         expect(first('datatype T {int a = 1}\nsupervisr SUP {}')).toMatch(/Did you mean 'supervisor'\?$/);
         // no guess for a word that is no near miss
         expect(first('datatype T {int a = 1}\nwhatever X {}')).not.toContain('Did you mean');
+    });
+    it('offers the keyword a misspelt action was meant to be, where the expected tokens do not name it', () => {
+        // after a rule's pre-condition come its actions or its post-condition '[': the parser names only '['
+        const rule = (actions: string) => `supervisor SUP { f() { rules { R: [elapsed=1ms] ${actions} [elapsed=1ms] } } }`;
+        expect(first(rule('parametrize MSC(1 :0)'))).toMatch(/but found 'parametrize'\. Did you mean 'parameterize'\?$/);
+        expect(first(rule('subcribe MAA:0 => :1'))).toMatch(/Did you mean 'subscribe'\?$/);
+        expect(first(rule('nonsense MSC(1 :0)'))).not.toContain('Did you mean');
+    });
+    it('knows every keyword of the grammar for those suggestions', () => {
+        const grammar = readFileSync(fileURLToPath(new URL('../src/cactal.langium', import.meta.url)), 'utf8');
+        const words = [...new Set([...grammar.matchAll(/'([a-z_]{3,})'/g)].map((m) => m[1]!))].sort();
+        expect([...ALL_WORDS].sort()).toEqual(words);
     });
     it("says that a comparison is written '=='", () => {
         expect(first('supervisor SUP { f() { rules { R: [MAA:1<x = 3>] [elapsed=1ms] } } }')).toContain("A comparison is written '=='.");

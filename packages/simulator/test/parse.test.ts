@@ -67,6 +67,25 @@ describe('parseScenario', () => {
         expect(p.diagnostics[4]!.message).toContain('unknown directive');
     });
 
+    it('offers the word a misspelt one was meant to be', () => {
+        const p = parseScenario([
+            'exepct rule SUP.action.FIRST active',
+            'expect rule SUP.action.FIRST actve',
+            'expect rlue SUP.action.FIRST active',
+            'expect function SUP.action runing',
+            'strat SUP.action()',
+            'expect rule SUP.action.FIRST maybe',
+        ].join('\n'));
+        expect(p.diagnostics.map((d) => d.message)).toEqual([
+            expect.stringMatching(/^unknown directive 'exepct': .*\. Did you mean 'expect'\?$/),
+            expect.stringMatching(/^expected 'active' or 'inactive', found 'actve'\. Did you mean 'active'\?$/),
+            expect.stringMatching(/^expected what to expect: .*, found 'rlue'\. Did you mean 'rule'\?$/),
+            expect.stringMatching(/^expected 'running' or 'stopped', found 'runing'\. Did you mean 'running'\?$/),
+            expect.stringMatching(/^unknown directive 'strat': .*\. Did you mean 'start'\?$/),
+            "expected 'active' or 'inactive', found 'maybe'",
+        ]);
+    });
+
     it('never throws, whatever the text', () => {
         fc.assert(fc.property(fc.string({ unit: 'binary', maxLength: 300 }), (text) => {
             const p = parseScenario(text);

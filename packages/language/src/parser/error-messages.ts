@@ -95,6 +95,19 @@ export function unknownTimeUnit(previous: IToken | undefined, actual: IToken | u
     return `Unknown time unit '${written.slice(number.length)}' in '${written}': the units are ns, us, ms and s (e.g. ${number}ms).`;
 }
 
+/** Every keyword of the grammar (cactal.langium; a test checks the list against it), for a typo the expected tokens do not explain (`parametrize` where a
+ *  rule's actions or its post-condition '[' may come: Did you mean 'parameterize'?). */
+export const ALL_WORDS = ['activate', 'and', 'asynchronous', 'bool', 'communications', 'compute', 'configuration', 'const',
+    'critical', 'data', 'datatype', 'duration', 'elapsed', 'endof', 'enum', 'event', 'false', 'float', 'flows', 'function', 'graph',
+    'import', 'infinite', 'int', 'local', 'module', 'modules', 'notify', 'ord_schema', 'out', 'parameterize', 'parameters',
+    'periodic', 'realtime', 'resttime', 'rules', 'scheduler', 'scheduling', 'schema', 'schemas', 'started', 'string', 'subscribe',
+    'supervisor', 'synchronous', 'true', 'void'];
+
+/** Did you mean one of the expected keywords, else any word of the language. */
+function nearKeyword(token: IToken | undefined, expected: TokenType[]): string {
+    return didYouMean(token, keywordsOf(expected)) || didYouMean(token, ALL_WORDS);
+}
+
 /** Keywords among the expected token types (names only). */
 function keywordsOf(types: TokenType[]): string[] {
     return types.map((t) => (t.name.endsWith(':KW') ? t.name.slice(0, -3) : t.name)).filter((n) => /^[a-z_]+$/i.test(n) && !(n in TERMINALS));
@@ -106,7 +119,7 @@ export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageP
         if (unit) return unit;
         if (options.expected.name === 'EOF') return `Unexpected ${found(options.actual)}: expected ${TOP_LEVEL}.${didYouMean(options.actual, TOP_LEVEL_WORDS)}`;
         if (isSubscribeToOrd(options)) return ORD_SUBSCRIBE;
-        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${didYouMean(options.actual, keywordsOf([options.expected]))}`;
+        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${nearKeyword(options.actual, [options.expected])}`;
     }
 
     override buildNotAllInputParsedMessage(options: { firstRedundant: IToken; ruleName: string }): string {
@@ -130,7 +143,7 @@ export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageP
         const relational = actual && ['<', '>', '<=', '>='].includes(actual.image) && next.some((t) => t.name === '==')
             ? ' A relational test goes in parentheses: <(a > b)>.'
             : actual?.image === '=' && next.some((t) => t.name === '==') ? " A comparison is written '=='." : '';
-        return `${after} ${list(next)} but found ${found(actual)}.${relational}${didYouMean(actual, keywordsOf(next))}`;
+        return `${after} ${list(next)} but found ${found(actual)}.${relational}${nearKeyword(actual, next)}`;
     }
 
     override buildEarlyExitMessage(options: { expectedIterationPaths: TokenType[][]; actual: IToken[]; previous: IToken; customUserDescription: string; ruleName: string }): string {

@@ -8,6 +8,7 @@
  * same as `t=TIME expect ...`. A line without a time takes the previous line's time (0 at first).
  */
 import { formatNanoseconds } from '@contract-studio/conventions';
+import { didYouMean } from './did-you-mean.js';
 
 /** 1-based line and columns; `endColumn` is exclusive. */
 export interface SourceSpan {
@@ -251,10 +252,14 @@ function qualified(cur: LineCursor, what: string): { supervisor: Name; function:
     return { supervisor, function: fn };
 }
 
+/** The words a scenario line may start with (besides an event `MODULE:PORT value`). */
+const DIRECTIVES = ['start', 'stop', 'crash', 'exec', 'expect', 'scenario', 'until'];
+
 function activeWord(cur: LineCursor, yes: string, no: string): boolean {
     if (cur.keyword(yes)) return true;
     if (cur.keyword(no)) return false;
-    return cur.fail(`expected '${yes}' or '${no}'`);
+    const found = cur.peekWord();
+    return cur.fail(`expected '${yes}' or '${no}'${found ? `, found '${found}'${didYouMean(found, [yes, no])}` : ''}`);
 }
 
 function parseExpectation(cur: LineCursor): Expectation {
@@ -296,7 +301,7 @@ function parseExpectation(cur: LineCursor): Expectation {
                 : { kind: 'local', local: parts[0]!, value };
         }
         default:
-            return cur.fail(`expected what to expect: rule, schema, function, module or local`);
+            return cur.fail(`expected what to expect: rule, schema, function, module or local${what ? `, found '${what}'${didYouMean(what, ['rule', 'schema', 'function', 'module', 'local'])}` : ''}`);
     }
 }
 
@@ -376,7 +381,7 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
         // MODULE:PORT [name=]value
         const module = cur.ident('a module');
         if (!cur.char(':')) {
-            cur.fail(`unknown directive '${word}': expected start, stop, crash, exec, expect, scenario, until or an event MODULE:PORT value`, wordSpan.column - 1, wordSpan.endColumn - 1);
+            cur.fail(`unknown directive '${word}': expected start, stop, crash, exec, expect, scenario, until or an event MODULE:PORT value${didYouMean(word, DIRECTIVES)}`, wordSpan.column - 1, wordSpan.endColumn - 1);
         }
         cur.skipSpaces();
         const pm = /^[0-9]+/.exec(cur.text.slice(cur.pos));

@@ -86,6 +86,15 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                     continue;
                 }
             }
+            // a supervisor where a module is expected (`SUP:1 =* MAB:0` in an event schema): say what it is
+            if (referenceType === 'Module' && refText && index.allElements('Supervisor').some((d) => d.name === refText)) {
+                diagnostics.push(this.toDiagnostic(SyntaxCodes['linking-error'].severity, supervisorNotModule(refText, info.container.$type), {
+                    ...base,
+                    code: DocumentValidator.LinkingError,
+                    data: { code: DocumentValidator.LinkingError, containerType: info.container.$type, property: info.property, refText }
+                }));
+                continue;
+            }
             const described = describeUnresolved(info, refText, linkingError.message);
             if (described === undefined) continue; // follows from another unresolved reference, reported there
             const message = topLevel ? described + this.brokenImportNote(document, info) : described;
@@ -102,6 +111,18 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             }));
         }
     }
+}
+
+/**
+ * A supervisor named where only a module may be: a schema's modules and flows, `parameterize`,
+ * `activate resttime|critical module`. Its events (`notify :o`) reach only the supervisors that
+ * subscribe to them; no module receives them.
+ */
+export function supervisorNotModule(name: string, containerType: string): string {
+    const flow = containerType === 'EventCommunication'
+        ? ` A supervisor's events (notify :o) reach only the supervisors that subscribe to them (subscribe ${name}:o =* :i in a rule); no module receives them, and a schema's event flows join modules.`
+        : '';
+    return `'${name}' is a supervisor, not a module: a schema's modules and flows, parameterize and activate resttime|critical module name modules only.${flow}`;
 }
 
 const SYNTAX = new Set(['parsing-error', 'lexing-error']);

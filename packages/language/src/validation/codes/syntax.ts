@@ -9,12 +9,12 @@ export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and 
     },
     'parsing-error': {
         severity: 'error',
-        description: 'The text does not follow the Cactal grammar; the message says which token was expected, and what was probably meant where it can tell (a misspelt keyword: "Did you mean \'synchronous\'?"; `20msec`: an unknown time unit; `<x > 3>`: parentheses; `<x = 3>`: `==`). Parsing recovers and the rest of the file is still checked, but the other diagnostics of the same line after the error are dropped (they come from the recovery), and an unknown name defined in an imported file that has a syntax error says so.',
+        description: 'The text does not follow the Cactal grammar; the message says which token was expected, and what was probably meant where it can tell (a misspelt keyword: "Did you mean \'synchronous\'?", also where the parser expected something else: `parametrize MSC(...)` after a rule\'s condition gives "Expected \'[\' but found \'parametrize\'. Did you mean \'parameterize\'?"; `20msec`: an unknown time unit; `<x > 3>`: parentheses; `<x = 3>`: `==`). Parsing recovers and the rest of the file is still checked, but the other diagnostics of the same line after the error are dropped (they come from the recovery), and an unknown name defined in an imported file that has a syntax error says so.',
         example: 'datatype T {int a = };'
     },
     'linking-error': {
         severity: 'error',
-        description: 'A name or port index that does not resolve in its context: unknown type, module, schema, rule label, variable or field, or a port index that the module does not have with that kind and direction. The message lists what would be valid.',
+        description: 'A name or port index that does not resolve in its context: unknown type, module, schema, rule label, variable or field, or a port index that the module does not have with that kind and direction. The message lists what would be valid; a supervisor named where a module must be (a schema\'s modules and flows, `parameterize`) is said to be one: its events reach only the supervisors that subscribe to them.',
         example: 'periodic schema s() { modules { MZZ (); } }   // no module MZZ'
     }
 });
