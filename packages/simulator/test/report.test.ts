@@ -51,4 +51,31 @@ describe('the text report\'s times', () => {
         const times = lines.map((l) => /^(?:ok )?(\d+)ms /.exec(l)?.[1]).filter((t): t is string => t !== undefined).map(Number);
         expect(times).toEqual([...times].sort((a, b) => a - b));
     });
+
+    it('--verbose folds ORD\'s periodic releases: each module\'s first after an activation, then a count per step', () => {
+        const log = (timeNs: number, seq: number, line: string) => ({ timeNs, seq, who: 'ORD', line });
+        const cycle = (k: number) => [log(k * 10e6, 3 * k, 'release A (loop)'), log(k * 10e6 + 1e6, 3 * k + 1, 'release B (loop)')];
+        const step = (timeNs: number, source: string, lines: ReturnType<typeof log>[]) => ({
+            line: 1, source, timeNs, kind: 'event' as const, ok: true,
+            record: { line: 1, timeNs, ok: true, verb: 'event', delivered: 1, rules: [], actions: [], log: lines },
+        });
+        const result = {
+            file: 'loop.scenario', passed: true, failures: [], eventsProcessed: 2, endNs: 1e9, ms: 1, harnessMs: 1,
+            steps: [
+                step(0, 't=0 X:0 1', [log(0, -1, 'activate loop'), ...cycle(0), ...cycle(1), ...cycle(2)]),
+                step(100e6, 't=100ms X:0 2', [...cycle(5), ...cycle(6), log(70e6, 100, 'deactivate loop'), log(80e6, 101, 'activate loop'), ...cycle(8)]),
+            ],
+        } as unknown as ScenarioResult;
+        const lines = textReport([result], { verbose: true }).split('\n').map((l) => l.trim().replace(/\s+/g, ' '));
+        const releases = lines.filter((l) => / ORD\| (release|…)/.test(l));
+        expect(releases).toEqual([
+            '0 ORD| release A (loop)', '1ms ORD| release B (loop)',
+            "21ms ORD| … 4 more releases of loop (each module's first after an activation is shown)",
+            // a new activation shows each module's first release again
+            '80ms ORD| release A (loop)', '81ms ORD| release B (loop)',
+            "61ms ORD| … 4 more releases of loop (each module's first after an activation is shown)",
+        ].sort((x, y) => parseFloat(x) - parseFloat(y)));
+        // without --verbose no engine line at all
+        expect(textReport([result]).includes('ORD|')).toBe(false);
+    });
 });

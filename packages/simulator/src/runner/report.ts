@@ -35,10 +35,52 @@ function timesOf(r: ScenarioResult): number[] {
     return [r.endNs, ...r.steps.map((s) => s.timeNs)];
 }
 
+/** ORD's readable line of a periodic release, `release MSA (schemaCommande1)`, and of an activation. */
+const RELEASE_LINE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
+const ACTIVATE_LINE = /^activate ([A-Za-z_]\w*)$/;
+
+/**
+ * The verbose report's engine lines, with ORD's periodic releases folded: the first release of each
+ * module after each activation of its schema is shown, the later ones of a step are counted on one
+ * line at the time of the last (`ORD| … 297 more releases of velocityLoop (each module's first after
+ * an activation is shown)`), so a 1 kHz schema does not bury the rule changes.
+ */
+class ReleaseFolder {
+    /** Per schema, the modules whose release was shown since its last activation. */
+    private readonly shown = new Map<string, Set<string>>();
+
+    fold(log: ScenarioResult['steps'][number]['record']['log']): Array<{ t: number; seq: number; text: string }> {
+        const out: Array<{ t: number; seq: number; text: string }> = [];
+        const folded = new Map<string, { n: number; t: number; seq: number }>();
+        for (const l of log) {
+            const activated = l.who === 'ORD' ? ACTIVATE_LINE.exec(l.line) : null;
+            if (activated) this.shown.set(activated[1]!, new Set());
+            const release = l.who === 'ORD' ? RELEASE_LINE.exec(l.line) : null;
+            if (release) {
+                const [, module, schema] = release as unknown as [string, string, string];
+                let seen = this.shown.get(schema);
+                if (!seen) this.shown.set(schema, (seen = new Set()));
+                if (seen.has(module)) {
+                    const f = folded.get(schema) ?? { n: 0, t: l.timeNs, seq: -1 };
+                    folded.set(schema, { n: f.n + 1, t: l.timeNs, seq: l.seq ?? -1 });
+                    continue;
+                }
+                seen.add(module);
+            }
+            out.push({ t: l.timeNs, seq: l.seq ?? -1, text: `  ${l.who}| ${safe(l.line)}` });
+        }
+        for (const [schema, f] of folded) {
+            out.push({ t: f.t, seq: f.seq, text: `  ORD| … ${f.n} more release${f.n === 1 ? '' : 's'} of ${schema} (each module's first after an activation is shown)` });
+        }
+        return out;
+    }
+}
+
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
     const out: string[] = [];
     for (const r of results) {
         const formatTime = reportTimeFormat(timesOf(r));
+        const releases = new ReleaseFolder();
         out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
         for (const s of r.steps) {
             const time = formatTime(s.timeNs).padStart(8);
@@ -51,7 +93,7 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             }));
             if (options.verbose) {
                 for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.what)}` });
-                for (const l of s.record.log) happened.push({ t: l.timeNs, seq: l.seq ?? -1, text: `  ${l.who}| ${safe(l.line)}` });
+                happened.push(...releases.fold(s.record.log));
             }
             const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);
             const line = (h: { t: number; text: string }) => `              ${formatTime(h.t).padStart(8)}  ${h.text}`;
