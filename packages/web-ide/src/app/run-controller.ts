@@ -133,7 +133,8 @@ export class RunController {
     this.d.jobStatus.textContent = '■ build service unavailable';
   }
 
-  private async editSettings(): Promise<void> {
+  /** The Run settings dialog (the toolbar's ⚙ beside Build & Run, or the command palette). */
+  async editSettings(): Promise<void> {
     const cur = runSettings();
     const r = await askFields('Run settings', [
       { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },

@@ -88,7 +88,7 @@ export class MonitorPanel {
   private readonly timeText = h('span', { class: 'monitor-time', 'aria-live': 'off' }, '');
   private readonly slider = h('input', { type: 'range', min: 0, max: 1000, step: 1, value: 1000, class: 'monitor-slider', 'aria-label': 'Time cursor' });
   private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', title: 'Put the cursor at the end of the run (End)' }, '⇥ End');
-  private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time' }, '▷ Play');
+  private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time', 'aria-label': 'Play the run from the cursor' }, '▷ Play');
   private readonly strip: MarksStrip;
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
   private readonly schemasEl = h('div', { class: 'monitor-schemas', 'aria-label': 'Active schemas' });
@@ -208,8 +208,9 @@ export class MonitorPanel {
       if (this.model && this.cursor >= this.model.end) this.cursor = 0;
       this.lastPlayWall = performance.now();
     }
+    // its name says what pressing it does (no aria-pressed, as for Pause/Follow)
     this.playBtn.textContent = this.playing ? '❚❚ Stop' : '▷ Play';
-    this.playBtn.setAttribute('aria-pressed', String(this.playing));
+    this.playBtn.setAttribute('aria-label', this.playing ? 'Stop playing the run' : 'Play the run from the cursor');
     this.redrawAll();
   }
 

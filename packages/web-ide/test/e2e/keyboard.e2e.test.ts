@@ -122,6 +122,17 @@ describe('keyboard-first IDE', () => {
     await page.locator('.gen-summary').waitFor({ timeout: 60_000 });
     expect(await page.locator('.gen-summary .pill').first().textContent()).toContain('generated');
     expect(await page.locator('.panel-tab[data-panel=generate]').getAttribute('aria-selected')).toBe('true');
+    // Run settings has no shortcut: the palette opens its dialog, Escape closes it
+    await page.keyboard.press('F1');
+    await palette.waitFor({ timeout: 5000 });
+    await page.keyboard.type('run settings');
+    expect(await palette.locator('[role=option][aria-selected=true] .qp-label').textContent()).toBe('Run settings: duration, start request, CPUs, real-time');
+    await page.keyboard.press('Enter');
+    const dialog = page.locator('.dialog-overlay .dialog');
+    await dialog.waitFor({ timeout: 5000 });
+    expect(await dialog.textContent()).toContain('Duration of a run');
+    await page.keyboard.press('Escape');
+    await expect.poll(() => dialog.count()).toBe(0);
   }, 150_000);
 
   it.skipIf(!canBuild)('Build & Run from the palette, to the end of the run, without the mouse', async () => {

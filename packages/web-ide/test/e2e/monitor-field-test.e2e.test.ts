@@ -118,10 +118,11 @@ describe('Monitor field test', () => {
     // ▷ Play: plays, and Space again stops it
     await page.locator('#monitor-play').focus();
     await page.keyboard.press('Space');
-    await expect.poll(() => page.locator('#monitor-play').getAttribute('aria-pressed')).toBe('true');
+    await expect.poll(() => page.locator('#monitor-play').getAttribute('aria-label')).toBe('Stop playing the run');
+    expect(await page.locator('#monitor-play').getAttribute('aria-pressed')).toBeNull(); // its name says its state
     expect(await follow()).toBe('false');
     await page.keyboard.press('Space');
-    await expect.poll(() => page.locator('#monitor-play').getAttribute('aria-pressed')).toBe('false');
+    await expect.poll(() => page.locator('#monitor-play').getAttribute('aria-label')).toBe('Play the run from the cursor');
     expect(await follow()).toBe('false');
     // the run list: its own key (it opens), the cursor left as it was
     await page.locator('.monitor-sources').focus();
