@@ -46,7 +46,7 @@ describe('examples/tutorial end to end', () => {
 
         it('fires the supervisor rules in the report\'s order and activates schemaCommande1', () => {
             expect(isSubsequence(supervisorTrace(logs, 'GLB'), ['function mission(consigne = {i=0,j=0,k=0}) started', 'rule mission.SINGLE active',
-                'activate supervisor SUP.action(consigne = {i=0,j=0,k=0}) (activation #1)'])).toBe(true);
+                'activate supervisor SUP.action(consigne = {i=0,j=0,k=0}) (activation #2)'])).toBe(true);
             const sup = supervisorTrace(logs, 'SUP');
             expect(isSubsequence(sup, [
                 'function action(consigne = {i=0,j=0,k=0}) started', 'rule action.FIRST active',
