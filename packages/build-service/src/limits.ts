@@ -10,6 +10,7 @@
  * Numeric limits (configurable per server, and per job downwards only):
  */
 import { availableParallelism } from 'node:os';
+import { TRACE_LINES_KEPT } from './trace/replay-bound.js';
 export interface Limits {
   /** Memory of the whole job (all processes, tmpfs included), MiB. */
   memoryMiB: number;
@@ -131,7 +132,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceWatchedFlushMs: 25,
   traceFiles: 256,
   traceLinesPerEvent: 1000,
-  traceLinesKept: 50_000,
+  traceLinesKept: TRACE_LINES_KEPT,
   projectFileBytes: 8 * 1024 * 1024,
   projectBytes: 64 * 1024 * 1024,
   diagnosticsPerJob: 1000,

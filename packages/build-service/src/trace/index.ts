@@ -10,6 +10,7 @@ export { traceFileToLogs, recordOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, 
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 export { renderStory, StoryTeller, readableCause, missWaitText } from './story.js';
 export { MinHeap } from './min-heap.js';
+export { TRACE_LINES_KEPT } from './replay-bound.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';
 export { isRule, isUnknown, type TraceRecord, type TraceRecordBase, type RuleRecord, type RuleCause, type KnownRecord, type UnknownRecord } from './records.js';
 export { encodeTraceRecords, decodeTraceRecords, forEachTraceRecord, forEachTraceLine, TraceWireError, type TraceWire, type TraceLine } from './wire.js';

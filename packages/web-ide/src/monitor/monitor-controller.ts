@@ -11,7 +11,7 @@
  * Everything read from the stream or a log file is hostile: bounded and validated here or by the
  * trace reader (parseRecordLine never throws).
  */
-import type { LogFile, TraceLine } from '@contract-studio/build-service/trace';
+import { TRACE_LINES_KEPT, type LogFile, type TraceLine } from '@contract-studio/build-service/trace';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
@@ -36,8 +36,6 @@ const INGEST_SLICE_MS = 8;
 const SETTLE_MS = 5000;
 /** CSV files read from the workspace for one replay. */
 const MAX_FILES = 256;
-/** Trace records the build service keeps for replay (its traceLinesKept bound, docs/build-service-api.md "Trace channel"). */
-const TRACE_LINES_KEPT = 50_000;
 /** A shown log folder whose files changed is read again this long after the last change (a run writing its logs changes them all the time). */
 const REREAD_MS = 1000;
 
