@@ -147,6 +147,26 @@ describe('keyboard-first IDE', () => {
     await shot(page, 'kb-04-build-and-run');
   }, 180_000);
 
+  it('in the editor Tab indents; Ctrl+M makes Tab leave the editor (and Ctrl+M again gives Tab back to the text)', async () => {
+    const { page } = s;
+    await openFile(page, 'sched.contract');
+    await page.locator('.monaco-editor textarea').first().focus();
+    expect(await focusOf(page)).toBe('editor');
+    await page.keyboard.press('Control+m');
+    await page.keyboard.press('Tab');
+    await expect.poll(() => focusOf(page)).not.toBe('editor');
+    await page.keyboard.press('Shift+Tab');
+    await expect.poll(() => focusOf(page)).toBe('editor');
+    await page.keyboard.press('Control+m'); // back to Tab indenting: the text gets it
+    const text = () => page.evaluate(() => (window as unknown as { __ide: { editors: { editor: { getModel(): { getValue(): string } } } } }).__ide.editors.editor.getModel().getValue());
+    const before = await text();
+    await page.keyboard.press('Tab');
+    await expect.poll(text).not.toBe(before);
+    expect(await focusOf(page)).toBe('editor');
+    await page.keyboard.press('Control+z');
+    await expect.poll(text).toBe(before);
+  });
+
   it('explorer, tabs and panel tabs work by keyboard (tree, tablist, roving tabindex, Escape back to the editor)', async () => {
     const { page } = s;
     await page.keyboard.press('Control+Shift+E');
