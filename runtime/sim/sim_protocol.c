@@ -1,6 +1,7 @@
 /* sim_protocol.c — see sim_protocol.h. */
 #define _POSIX_C_SOURCE 200809L
 #include "sim_protocol.h"
+#include "engine_values.h"
 
 #include <errno.h>
 #include <inttypes.h>
@@ -335,13 +336,15 @@ static void expect_local(SimSession *s, char **a, StepResult *r) {
     unsigned char *want = calloc(1, type->size ? type->size : 1);
     char *copy = strdup(a[3]);
     if (!want || !copy) { r->ok = 0; snprintf(r->error, sizeof r->error, "out of memory"); free(want); free(copy); return; }
-    int used = type->get ? type->get(want, copy) : -1;
+    /* the generic reader and comparison: a type's own get/eq when it has them, else the
+       extension types' (an enumeration `Mode.AUTO` or `AUTO`, an array, a datatype's fields) */
+    engine_default_value(want, type, NULL);
+    int used = contract_value_get(type, want, copy);
     if (used < 0) {
         r->ok = 0;
         snprintf(r->error, sizeof r->error, "'%s' is not a value of type %s", a[3], type->name);
-    } else {
-        int eq = type->eq ? type->eq(want, (void *)v) : memcmp(want, v, type->size) == 0;
-        if (!eq) r->ok = 0;
+    } else if (!contract_value_compare(CONTRACT_TEST_EQ, type, want, v)) {
+        r->ok = 0;
     }
     format_value(s, &r->actual, type, v);
     free(want);
