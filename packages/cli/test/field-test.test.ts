@@ -173,6 +173,14 @@ describe('4. --start naming a function the model does not have', () => {
         expect(io.stdout).toBe('');
         expect(existsSync(join(root, 'cache', 'projects'))).toBe(false); // nothing prepared
     });
+
+    it('a parameter the function does not have, or a value of the wrong type, is refused the same way', async () => {
+        expect(await startProblem('MIS.mission(gaol={1.0,2.0,0.0})', join(root, 'robot'))).toBe(
+            "bad --start 'MIS.mission(gaol={1.0,2.0,0.0})': MIS.mission has no parameter 'gaol' (parameters: goal). Did you mean 'goal'?; nothing was started");
+        expect(await startProblem('MIS.mission(goal="far")', join(root, 'robot'))).toMatch(/^bad --start 'MIS\.mission\(goal="far"\)': Expected .* for parameter 'goal', found a string; nothing was started$/);
+        // written in a way the scenario reader does not take: left to the supervisor (a refusal is a run issue, start-refused)
+        expect(await startProblem('MIS.mission(goal={1.0,2.0,0.0', join(root, 'robot'))).toBeNull();
+    });
 });
 
 describe('5. model and generation problems in build/run: once, at the right path, with a true hint', () => {

@@ -105,15 +105,27 @@ static void remove_subscriber(SupBinding *b, const char *module, int target_port
    stdout: a rule that fires at every event would flood the console), in the simulator's words
    (runtime/sim/sim_world.c), undos prefixed `undo: `; peer = the module, supervisor or ORD it
    goes to. Holds, priorities and event-schema flows have their own records (module_hold,
-   module_priority, flow_hold). */
+   module_priority, flow_hold). An action is logged *before* its request is sent, so that its
+   record comes before what the receiver does with it (the receiver may log within microseconds);
+   a request that could not be sent is followed by `error: not sent: <the action>: <reason>`
+   (not_sent). */
+static char last_action[400]; /* the engine's thread only */
 static void log_action(const char *peer, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 static void log_action(const char *peer, const char *fmt, ...) {
-    char line[400];
     va_list ap;
     va_start(ap, fmt);
-    vsnprintf(line, sizeof line, fmt, ap);
+    vsnprintf(last_action, sizeof last_action, fmt, ap);
     va_end(ap);
+    ContractLog("supervisor", peer, -1, 0, last_action);
+}
+
+/* rc of the request of the action logged last: a failure gets its own record */
+static int not_sent(const char *peer, int rc) {
+    if (rc == CONTRACT_OK) return 0;
+    char line[512];
+    snprintf(line, sizeof line, "error: not sent: %.380s: %s", last_action, ContractStrError(rc));
     ContractLog("supervisor", peer, -1, 0, line);
+    return 1;
 }
 
 /* undo requests go to modules that may already have ended (architecture stopping): skip those */
@@ -122,11 +134,11 @@ static int alive(const char *module) { return ModuleState(module) == CONTRACT_OK
 static void b_ord_activate(void *ctx, const ContractSchema *s, const void *params, size_t size,
                            uint32_t id) {
     (void)ctx;
-    int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
     char args[ACTION_VALUE_MAX];
     engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : 0, params);
-    log_action("ORD", "activate schema %s%s (activation #%u, to ORD)%s", s->name, args, id, rc == CONTRACT_OK ? "" : " not sent");
-    if (rc != CONTRACT_OK)
+    log_action("ORD", "activate schema %s%s (activation #%u, to ORD)", s->name, args, id);
+    int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
+    if (not_sent("ORD", rc))
         fprintf(stderr, "%s: cannot ask ORD to activate %s: %s\n", ContractSelfName(), s->name,
                 ContractStrError(rc));
 }
@@ -134,9 +146,9 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
 static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     (void)ctx;
     if (!alive("ORD")) return;
+    log_action("ORD", "undo: deactivate schema %s (activation #%u, to ORD)", s->name, id);
     int rc = engine_send_stop("ORD", s->name, (int)id);
-    log_action("ORD", "undo: deactivate schema %s (activation #%u, to ORD)%s", s->name, id, rc == CONTRACT_OK ? "" : " not sent");
-    if (rc != CONTRACT_OK)
+    if (not_sent("ORD", rc))
         fprintf(stderr, "%s: cannot ask ORD to deactivate %s: %s\n", ContractSelfName(), s->name,
                 ContractStrError(rc));
 }
@@ -235,11 +247,11 @@ static void b_release_priority(void *ctx, const char *m, uint32_t id) {
 
 static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size, const ContractType *t) {
     (void)ctx;
-    int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     char value[ACTION_VALUE_MAX];
     engine_format_value(value, sizeof value, v, t);
-    log_action(m, "parameterize %s:%d (%zu bytes) = %s%s", m, port, size, value, rc == CONTRACT_OK ? "" : " not sent");
-    if (rc != CONTRACT_OK)
+    log_action(m, "parameterize %s:%d (%zu bytes) = %s", m, port, size, value);
+    int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
+    if (not_sent(m, rc))
         fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,
                 ContractStrError(rc));
 }
@@ -279,15 +291,15 @@ static void b_disconnect(void *ctx, const ContractEventFlow *f) {
 
 static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode) {
     (void)ctx;
-    int rc = SendSubscribeEvent(m, sp, ContractSelfName(), ip, mode_of(mode));
-    log_action(m, "subscribe %s:%d %s :%d%s", m, sp, mode == CONTRACT_ONESHOT ? "=>" : "=*", ip, rc == CONTRACT_OK ? "" : " not sent");
+    log_action(m, "subscribe %s:%d %s :%d", m, sp, mode == CONTRACT_ONESHOT ? "=>" : "=*", ip);
+    not_sent(m, SendSubscribeEvent(m, sp, ContractSelfName(), ip, mode_of(mode)));
 }
 
 static void b_unsubscribe(void *ctx, const char *m, int sp, int ip) {
     (void)ctx;
     if (!alive(m)) return;
-    int rc = SendUnsubscribeEvent(m, sp, ContractSelfName(), ip);
-    log_action(m, "undo: unsubscribe %s:%d :%d%s", m, sp, ip, rc == CONTRACT_OK ? "" : " not sent");
+    log_action(m, "undo: unsubscribe %s:%d :%d", m, sp, ip);
+    not_sent(m, SendUnsubscribeEvent(m, sp, ContractSelfName(), ip));
 }
 
 static void b_notify(void *ctx, int port, const ContractType *t, const void *v, size_t size) {
@@ -312,11 +324,11 @@ static int b_start_function(void *ctx, const ContractFunctionSignature *callee, 
                             size_t size, uint32_t id) {
     (void)ctx;
     const char *sup = callee->supervisor, *fn = callee->function;
-    int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
     char args[ACTION_VALUE_MAX];
     engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : 0, p);
-    log_action(sup, "activate supervisor %s.%s%s (activation #%u)%s", sup, fn, args, id, rc == CONTRACT_OK ? "" : " not sent");
-    if (rc != CONTRACT_OK) {
+    log_action(sup, "activate supervisor %s.%s%s (activation #%u)", sup, fn, args, id);
+    int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
+    if (not_sent(sup, rc)) {
         fprintf(stderr, "%s: cannot start %s.%s: %s\n", ContractSelfName(), sup, fn, ContractStrError(rc));
         return -1;
     }
@@ -326,8 +338,8 @@ static int b_start_function(void *ctx, const ContractFunctionSignature *callee, 
 static void b_stop_function(void *ctx, const char *sup, const char *fn, uint32_t id) {
     (void)ctx;
     if (!alive(sup)) return;
-    int rc = engine_send_stop(sup, fn, (int)id);
-    log_action(sup, "undo: stop %s.%s (activation #%u)%s", sup, fn, id, rc == CONTRACT_OK ? "" : " not sent");
+    log_action(sup, "undo: stop %s.%s (activation #%u)", sup, fn, id);
+    not_sent(sup, engine_send_stop(sup, fn, (int)id));
 }
 
 static void b_trace(void *ctx, int64_t t, const char *line) {
@@ -377,8 +389,19 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
         memcpy(args, m->Data, n);
         args[n] = '\0';
         rc = sup_core_start_function_text(c, t, fn, args, err, sizeof err);
+        /* a start request (contract-launch's, a control tool's) that names no function or
+           parameter, or a value the type cannot read: said on stderr (the build service makes it
+           a run issue, start-refused) and in the CSV log, so that the story tells it; "already
+           running" is the core's own `refused: function F already running` line */
+        if (rc != 0 && !strstr(err, "is already running")) {
+            fprintf(stderr, "%s: start request from %s refused: %s\n", v->name, m->Sender, err);
+            char line[400];
+            snprintf(line, sizeof line, "refused: start request from %s: %.300s", m->Sender, err);
+            ContractLog("supervisor", m->Sender, -1, 0, line);
+            rc = -2; /* told */
+        }
     }
-    if (rc != 0) fprintf(stderr, "%s: start refused: %s\n", v->name, err);
+    if (rc != 0 && rc != -2) fprintf(stderr, "%s: start refused: %s\n", v->name, err);
     SendAck(m->Param.Start.ModAck[0] ? m->Param.Start.ModAck : m->Sender, m->Param.Start.WantedAck,
             rc == 0 ? ACK_START : ACK_NOTDONE, m->Param.Start.AckID);
 }

@@ -21,6 +21,18 @@ describe('RunIssues', () => {
     ]);
   });
 
+  test("the run's start request refused by its supervisor is an issue (once); a control tool's, or an activation another supervisor refused, is not", () => {
+    const r = new RunIssues();
+    r.line("STA: start request from contract-control refused: STA.station has no parameter 'sped'");
+    r.line('SUP: start refused: SUP.action refused (unknown or already running)');
+    expect(r.all).toEqual([]);
+    r.line("STA: start request from contract-launch refused: STA.station has no parameter 'sped'");
+    r.line("STA: start request from contract-launch refused: STA.station has no parameter 'sped'");
+    expect(r.all).toEqual([
+      { kind: 'start-refused', module: 'STA', message: "STA refused the run's start request: STA.station has no parameter 'sped' (nothing was started by it)" },
+    ]);
+  });
+
   test('capped and lost logs, limits and cut output are issues; a whole log is not', () => {
     const r = new RunIssues();
     r.artifacts({

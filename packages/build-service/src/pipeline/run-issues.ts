@@ -7,13 +7,13 @@
 import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import type { RunArtifacts } from './artifacts.js';
 
-export type RunIssueKind = 'module-stuck' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
+export type RunIssueKind = 'module-stuck' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
 
 export interface RunIssue {
   kind: RunIssueKind;
   /** One sentence for people. */
   message: string;
-  /** The module it is about (module-stuck), or the log file (log-capped, log-lost). */
+  /** The module it is about (module-stuck; start-refused: the supervisor), or the log file (log-capped, log-lost). */
   module?: string;
   file?: string;
 }
@@ -22,6 +22,9 @@ export interface RunIssue {
 const STUCK_LINE = /^STUCK: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods.*)$/;
 /** The same report in ORD's CSV log (its `scheduler` records, docs/runtime-api.md). */
 const STUCK_RECORD = /,scheduler,,,0,stuck: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods[^\n]*?)(?: \([A-Za-z_]\w*\))?\n/g;
+
+/** A supervisor's line on stderr when the run's start request cannot start anything (runtime/src/engines/sup_main.c handle_start). */
+const START_REFUSED_LINE = /^([A-Za-z_]\w*): start request from contract-launch refused: (.*)$/;
 
 export class RunIssues {
   private readonly list: RunIssue[] = [];
@@ -35,6 +38,10 @@ export class RunIssues {
   line(text: string): void {
     const m = STUCK_LINE.exec(text);
     if (m) this.stuck(m[2]!, m[3]!, m[1]!);
+    const refused = START_REFUSED_LINE.exec(text);
+    if (refused && !this.list.some((i) => i.kind === 'start-refused')) {
+      this.list.push({ kind: 'start-refused', module: refused[1]!, message: `${refused[1]!} refused the run's start request: ${refused[2]!.slice(0, 300)} (nothing was started by it)` });
+    }
   }
 
   /** The bytes of a collected CSV log: stuck reports the output may have lost (truncated). */

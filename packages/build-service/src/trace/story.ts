@@ -34,7 +34,7 @@ function describeCause(c: RuleCause): string {
 
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
-const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused']);
+const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning']);
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
 
 /**
@@ -46,6 +46,12 @@ const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused',
 export function missWaitText(heldFor: string | undefined, notFinished: string): string {
     if (heldFor !== undefined) return ` (held: nothing released, ${heldFor} still runs an earlier release)`;
     return notFinished ? ` (not finished: ${notFinished})` : '';
+}
+
+/** `flow-SCN-0-DIV-0` (a flow_hold record's peer) as `SCN:0 -> DIV:0`; another name as it is. */
+function flowName(peer: string): string {
+    const m = /^flow-([A-Za-z_]\w*)-(\d+)-([A-Za-z_]\w*)-(\d+)$/.exec(peer);
+    return m ? `${m[1]}:${m[2]} -> ${m[3]}:${m[4]}` : peer;
 }
 
 /** `1 release`, `2 releases`. */
@@ -95,6 +101,9 @@ export class StoryTeller {
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // every action and undo, with its target and value: who activated a schema or a function, what it sent
         if (k.kind === 'supervisor' && what === 'action') return `${at(k)} ${k.detail}`;
+        // the modules a supervisor starts and stops (event schemas, activate resttime|critical module) and the event flows it connects
+        if (k.kind === 'module_hold') return `${at(k)} module ${k.peer}: ${k.detail}`;
+        if (k.kind === 'flow_hold') return `${at(k)} event flow ${flowName(k.peer)}: ${k.detail}`;
         if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
             if (what === 'held') this.held.set(String(k.fields['schema']), String(k.fields['module']));
             else this.held.delete(String(k.fields['schema']));

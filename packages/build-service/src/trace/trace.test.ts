@@ -133,7 +133,7 @@ describe('reading a log', () => {
     it('tells the run: rule changes with causes, deadline misses with their cycle, counts', () => {
         const text = [CSV_HEADER, '1000000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns',
             '1000000000,w,SUP,supervisor,MAA,,0,"parameterize MAA:0 (24 bytes) = {i=27.12,j=0,k=0.04}"',
-            '1000000000,w,SUP,supervisor,MAA,,0,subscribe MAA:2 =* :2', // an action without a value: counted, not told
+            '1000000000,w,SUP,supervisor,MAA,,0,subscribe MAA:2 =* :2',
             '1500000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=4 tick_ns=1',
             '1500000000,w,SUP,supervisor,,,0,"notify :1 (string) = ""commutation""', '2000000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""', 'junk'].join('\n');
         expect(renderStory(parseTrace([{ name: 'X_1.csv', text }]))).toEqual([
@@ -144,6 +144,30 @@ describe('reading a log', () => {
             '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
             '7 records: 0 releases, 0 completed cycles, 1 deadline miss, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+        ]);
+    });
+
+    it('tells the modules a supervisor starts and stops, the event flows it connects, and a request it could not send', () => {
+        const text = [CSV_HEADER,
+            '1000,w,LIN,supervisor,,,0,activate schema sorting (event schema)',
+            '1100,w,LIN,flow_hold,flow-SCN-0-DIV-0,,0,hold taken',
+            '1200,w,LIN,module_hold,SCN,,0,hold taken (started it)',
+            '1300,w,LIN,module_priority,SCN,,0,nice level for priority 30 (was 30)',
+            '1400,w,LIN,supervisor,ORD,,0,"activate schema conveyor(speed = 0.6) (activation #2, to ORD)"',
+            '1500,w,LIN,supervisor,ORD,,0,"error: not sent: activate schema conveyor(speed = 0.6) (activation #2, to ORD): no such module"',
+            '2000,w,LIN,flow_hold,flow-SCN-0-DIV-0,,0,last hold dropped (disconnected)',
+            '2100,w,LIN,module_hold,SCN,,0,last hold dropped (stopped)',
+            '2200,w,STA,supervisor,contract-launch,,0,refused: start request from contract-launch: STA.station has no parameter \'sped\'',
+        ].join('\n');
+        expect(renderStory(parseTrace([{ name: 'LIN_1.csv', text }])).slice(0, -1)).toEqual([
+            '+0.000000s LIN  activate schema sorting (event schema)',
+            '+0.000000s LIN  event flow SCN:0 -> DIV:0: hold taken',
+            '+0.000000s LIN  module SCN: hold taken (started it)',
+            '+0.000000s LIN  activate schema conveyor(speed = 0.6) (activation #2, to ORD)',
+            '+0.000000s LIN  error: not sent: activate schema conveyor(speed = 0.6) (activation #2, to ORD): no such module',
+            '+0.000001s LIN  event flow SCN:0 -> DIV:0: last hold dropped (disconnected)',
+            '+0.000001s LIN  module SCN: last hold dropped (stopped)',
+            "+0.000001s STA  refused: start request from contract-launch: STA.station has no parameter 'sped'",
         ]);
     });
 

@@ -5,7 +5,7 @@
  * name, writes the CSV logs the build service collected from the sandbox (any sandbox, docker included) to OUT (default DIR/logs),
  * with `--trace FILE` their records as JSON lines as they arrive (docs/build-service-api.md "Trace channel";
  * docs/runtime-api.md "Trace records"), and exits non-zero when a module crashed
- * (1) or when the run did not go as designed (4: a limit hit, a module stuck, output or logs cut; docs/ci.md).
+ * (1) or when the run did not go as designed (4: a limit hit, a module stuck, the start request refused, output or logs cut; docs/ci.md).
  */
 import { join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
@@ -44,15 +44,20 @@ export function checkStart(text: string): string {
 }
 
 /**
- * Why `--start SUP.function(...)` names no supervision function of the project's model, or null
- * (also when the model cannot be read or has errors: the build then says what is wrong). The
- * language is loaded only for this, when --start names a function.
+ * Why `--start SUP.function(...)` names no supervision function of the project's model, or gives
+ * it a parameter it does not have or a value of the wrong type, or null (also when the model
+ * cannot be read or has errors: the build then says what is wrong; and when the arguments are
+ * written in a way the scenario reader does not take: the supervisor then reads them itself, and
+ * a refusal is a run issue, start-refused). The parameters are checked as a scenario's `start`
+ * line is (@contract-studio/language/scenario). The language is loaded only for this, when
+ * --start names a function.
  */
 export async function startProblem(start: string, dir: string): Promise<string | null> {
     const m = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*)/.exec(start);
     if (!m) return null;
     const [, sup, fn] = m as unknown as [string, string, string];
     let supervisors: Map<string, string[]>;
+    let argumentProblems: () => Promise<string[]>;
     try {
         const { loadWorkspace } = await import('@contract-studio/language/node');
         const { isSupervisor } = await import('@contract-studio/language');
@@ -62,6 +67,13 @@ export async function startProblem(start: string, dir: string): Promise<string |
         for (const d of ws.documents) {
             for (const e of d.model?.elements ?? []) if (isSupervisor(e)) supervisors.set(e.name, e.functions.map((f) => f.name));
         }
+        argumentProblems = async () => {
+            const { parseScenario, checkScenario, indexModels } = await import('@contract-studio/language/scenario');
+            const parsed = parseScenario(`start ${start}`);
+            if (parsed.diagnostics.length || parsed.steps.length !== 1) return [];
+            const models = ws.documents.flatMap((d) => (d.model ? [d.model] : []));
+            return checkScenario(parsed.steps, indexModels(models)).diagnostics.filter((d) => d.severity === 'error').map((d) => d.message.replace(/\.$/, ''));
+        };
     } catch {
         return null;
     }
@@ -73,7 +85,10 @@ export async function startProblem(start: string, dir: string): Promise<string |
         const guess = near ? ` Did you mean '${near}.${closestName(fn, supervisors.get(near)!) ?? (supervisors.get(near)!.includes(fn) ? fn : supervisors.get(near)![0] ?? fn)}'?` : '';
         return `bad --start '${start}': the model has no supervisor '${sup}'.${guess} (${listed}); nothing was started`;
     }
-    if (functions.includes(fn)) return null;
+    if (functions.includes(fn)) {
+        const problems = await argumentProblems().catch(() => []);
+        return problems.length ? `bad --start '${start}': ${problems.slice(0, 5).join('; ')}; nothing was started` : null;
+    }
     const near = closestName(fn, functions);
     return `bad --start '${start}': supervisor ${sup} has no function '${fn}'.${near ? ` Did you mean '${sup}.${near}'?` : ''} (${listed}); nothing was started`;
 }
@@ -86,7 +101,7 @@ export const runCommand: Command = {
         'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing);',
-        '           a supervisor or function the model does not have is refused before the build (exit 2, with the functions it has)',
+        '           a supervisor, function or parameter the model does not have, or a value of the wrong type, is refused before the build (exit 2, with what it has)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',

@@ -57,6 +57,21 @@ describe('examples/tutorial end to end', () => {
             expect(schedulerTrace(logs)).toContain('activate schemaCommande1');
         });
 
+        it('logs each action before what its receiver does with it (the story reads cause, then effect)', () => {
+            // k-th `activate schema S (..., to ORD)` of SUP <= k-th `activate S` of ORD; GLB's activate supervisor <= SUP's function start
+            const sent = logs.filter((r) => r.module === 'SUP' && r.event === 'supervisor' && /^activate schema \w+.* \(activation #\d+, to ORD\)$/.test(r.detail));
+            const done = logs.filter((r) => r.module === 'ORD' && r.event === 'scheduler' && /^activate \w+$/.test(r.detail));
+            expect(sent.length).toBeGreaterThanOrEqual(1);
+            expect(done.length).toBe(sent.length);
+            sent.forEach((r, k) => {
+                expect(done[k]!.detail).toBe(`activate ${/^activate schema (\w+)/.exec(r.detail)![1]}`);
+                expect(r.mono).toBeLessThanOrEqual(done[k]!.mono);
+            });
+            const asked = logs.find((r) => r.module === 'GLB' && r.detail.startsWith('activate supervisor SUP.action('))!;
+            const started = logs.find((r) => r.module === 'SUP' && r.detail.startsWith('function action('))!;
+            expect(asked.mono).toBeLessThanOrEqual(started.mono);
+        });
+
         it('releases MSA -> MSC -> MSD in precedence order every second', () => {
             // the rules may switch to schemaCommande2 (MSB -> MSC -> MSD) when MSC reports a failure
             const chain = checkChain(whileActive(logs, 'schemaCommande1'), ['MSA', 'MSC', 'MSD']);
