@@ -149,6 +149,12 @@ static void b_stuck(void *ctx, const char *module, const char *schema, uint32_t 
 static void b_fact(void *ctx, int64_t t, const OrdFact *f) {
     (void)ctx;
     char detail[384];
+    /* a release's release_ns is when it was sent: the core's time is the tick it serves, which a
+       late wake-up of ORD (a loaded machine) leaves behind; release_ns - tick_ns shows that */
+    if (f->kind == ORD_FACT_RELEASE) {
+        int64_t sent = (int64_t)GetTime();
+        if (sent > t) t = sent;
+    }
     const char *event = ord_fact_record(f, t, detail, sizeof detail);
     ContractLog(event, f->module ? f->module : "", -1, 0, detail);
 }

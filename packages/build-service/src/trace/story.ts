@@ -37,15 +37,24 @@ function describeCause(c: RuleCause): string {
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning']);
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
 
+/** A cycle whose first release ORD sent this long after its tick or more is said released late. */
+export const LATE_RELEASE_NS = 1_000_000;
+
 /**
  * What a missed cycle was waiting for, as `contract trace` and the IDE's Monitor say it after
  * `deadline miss (ORD:0): S cycle k`: ` (held: nothing released, GRP still runs an earlier
  * release)` when its cycle was held for `heldFor`, ` (not finished: ARM, GRP)` for the modules
- * released and not finished (`notFinished`, written out), else ''.
+ * released and not finished (`notFinished`, written out), and, when ORD sent the cycle's first
+ * release LATE_RELEASE_NS or more after its tick (`firstReleaseLateNs`: release_ns - tick_ns; ORD
+ * woke late on a loaded machine, or the cycle was held and resumed), `; ORD released the cycle 13.4 ms
+ * after its tick`, else ''.
  */
-export function missWaitText(heldFor: string | undefined, notFinished: string): string {
+export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number): string {
     if (heldFor !== undefined) return ` (held: nothing released, ${heldFor} still runs an earlier release)`;
-    return notFinished ? ` (not finished: ${notFinished})` : '';
+    const late = firstReleaseLateNs !== undefined && firstReleaseLateNs >= LATE_RELEASE_NS
+        ? `ORD released the cycle ${(firstReleaseLateNs / 1e6).toFixed(1)} ms after its tick` : '';
+    if (notFinished) return ` (not finished: ${notFinished}${late ? `; ${late}` : ''})`;
+    return late ? ` (${late})` : '';
 }
 
 /** `flow-SCN-0-DIV-0` (a flow_hold record's peer) as `SCN:0 -> DIV:0`; another name as it is. */
@@ -65,10 +74,11 @@ function offset(ns: bigint): string {
     return `${ns < 0n ? '-' : '+'}${s}s`;
 }
 
-/** The modules released in one cycle and not finished yet. */
+/** The modules released in one cycle and not finished yet; how late ORD sent its first release. */
 interface CycleRunning {
     cycle: string;
     running: Set<string>;
+    firstReleaseLateNs?: number;
 }
 
 /**
@@ -127,7 +137,11 @@ export class StoryTeller {
         let s = this.cycles.get(schema);
         if (!s) this.cycles.set(schema, (s = { current: { cycle, running: new Set() } }));
         if (k.kind === 'ord_release') {
-            if (s.current.cycle !== cycle) s = { current: { cycle, running: new Set() }, previous: s.current };
+            if (s.current.cycle !== cycle || s.current.firstReleaseLateNs === undefined) {
+                const late = Number(k.fields['release_ns']) - Number(k.fields['tick_ns']);
+                if (s.current.cycle !== cycle) s = { current: { cycle, running: new Set() }, previous: s.current };
+                s.current.firstReleaseLateNs = Number.isFinite(late) ? late : 0;
+            }
             this.cycles.set(schema, s);
             s.current.running.add(k.peer);
         } else {
@@ -143,7 +157,7 @@ export class StoryTeller {
     private lateOf(k: KnownRecord): string {
         const schema = String(k.fields['schema'] ?? '');
         const c = this.cycleOf(schema, String(k.fields['cycle'] ?? ''));
-        return missWaitText(this.held.get(schema), c ? [...c.running].sort().join(', ') : '');
+        return missWaitText(this.held.get(schema), c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs);
     }
 
     summary(): string {

@@ -194,7 +194,19 @@ describe('reading a log', () => {
             '+0.032000s ORD  deadline miss (ORD:0): pick cycle 0 (held: nothing released, GRP still runs an earlier release)',
             '+1.000000s ORD  stuck: GRP has not finished release #21 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (pick)',
             '+1.100000s ORD  cycle of pick resumed',
-            '+1.130000s ORD  deadline miss (ORD:0): pick cycle 0 (not finished: CAM)',
+            '+1.130000s ORD  deadline miss (ORD:0): pick cycle 0 (not finished: CAM; ORD released the cycle 1083.0 ms after its tick)',
+        ]);
+        // a cycle ORD released late (it woke 13.4 ms after the tick): said, not only the module that then missed
+        const late = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+            '3000000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=66 tick_ns=2986600000 release_ns=3000000000 release=300',
+            '3000100000,w,ORD,ord_release,SPC,,0,schema=conveyor cycle=66 tick_ns=2986600000 release_ns=3000100000 release=301',
+            '3001600000,w,ORD,ord_deadline_miss,,,0,schema=conveyor cycle=66 tick_ns=2986600000',
+            '3020000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=67 tick_ns=3006600000 release_ns=3006600500 release=302',
+            '3021700000,w,ORD,ord_deadline_miss,,,0,schema=conveyor cycle=67 tick_ns=3006600000',
+        ].join('\n') }]));
+        expect(late.filter((l) => l.includes(' deadline miss ('))).toEqual([
+            '+0.001600s ORD  deadline miss (ORD:0): conveyor cycle 66 (not finished: ENC, SPC; ORD released the cycle 13.4 ms after its tick)',
+            '+0.021700s ORD  deadline miss (ORD:0): conveyor cycle 67 (not finished: ENC)', // 500 ns late: on time
         ]);
         // a trace file's record placed before the first one (times are the file's): a negative offset, not "+-"
         const teller = new StoryTeller();

@@ -42,7 +42,7 @@ function nameOf(text: string, from: number, to: number, key: string): string | u
 export const cycleLine = { schemaFrom: 0, schemaTo: 0, cycle: 0, moduleFrom: 0, moduleTo: 0 };
 
 /** The schema and cycle of the last `ord_release` line applyHotLine folded (undefined: not in the line, or not of the reader's type). */
-export const hotRelease = { schema: undefined as string | undefined, cycle: undefined as number | undefined };
+export const hotRelease = { schema: undefined as string | undefined, cycle: undefined as number | undefined, lateNs: 0 };
 
 /**
  * Reads the schema, cycle and module (its peer) of the `ord_release` or `ord_finished` line
@@ -87,10 +87,13 @@ export function applyHotLine(s: MonitorState, text: string, t: Ns, t0: number): 
     case 'ord_release': {
       const schema = nameOf(text, detail, to, 'schema');
       const cycle = numberOf(text, detail, to, 'cycle');
-      foldRelease(s, schema, cycle, numberOf(text, detail, to, 'release_ns'), t, t0);
-      // what a deadline miss names (MonitorModel): the release's schema and cycle, as read here
+      const releaseNs = numberOf(text, detail, to, 'release_ns');
+      foldRelease(s, schema, cycle, releaseNs, t, t0);
+      // what a deadline miss names (MonitorModel): the release's schema and cycle, as read here, and how late ORD sent it
       hotRelease.schema = schema;
       hotRelease.cycle = cycle;
+      const tickNs = releaseNs === undefined ? undefined : numberOf(text, detail, to, 'tick_ns');
+      hotRelease.lateNs = releaseNs !== undefined && tickNs !== undefined ? releaseNs - tickNs : 0;
       return;
     }
     case 'ord_complete':

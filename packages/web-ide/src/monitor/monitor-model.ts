@@ -147,11 +147,14 @@ const MAX_WAIT_TEXT = 160;
 class CycleModules {
   cycle = -1;
   n = 0;
+  /** release_ns - tick_ns of the cycle's first release (ORD woke late: missWaitText says so). */
+  firstLateNs = 0;
   private readonly names: string[] = [];
 
-  reset(cycle: number): this {
+  reset(cycle: number, firstLateNs = 0): this {
     this.cycle = cycle;
     this.n = 0;
+    this.firstLateNs = firstLateNs;
     return this;
   }
 
@@ -202,13 +205,13 @@ class CycleWaits {
   previous = new CycleModules();
   held: string | undefined;
 
-  /** Module text[from, to) released in `cycle`. */
-  released(cycle: number, text: string, from: number, to: number): void {
+  /** Module text[from, to) released in `cycle`, `lateNs` after its tick. */
+  released(cycle: number, text: string, from: number, to: number, lateNs: number): void {
     this.held = undefined;
     if (this.current.cycle !== cycle) {
       const p = this.previous;
       this.previous = this.current;
-      this.current = p.reset(cycle);
+      this.current = p.reset(cycle, lateNs);
     }
     this.current.addIn(text, from, to);
   }
@@ -229,7 +232,7 @@ class CycleWaits {
   /** What the miss of `cycle` waited for, in contract trace's words (missWaitText). */
   lateOf(cycle: number): string {
     const c = this.current.cycle === cycle ? this.current : this.previous.cycle === cycle ? this.previous : undefined;
-    return missWaitText(this.held, c?.n ? c.text() : '');
+    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs);
   }
 }
 
@@ -375,7 +378,7 @@ export class MonitorModel implements MonitorView {
     const { schema, cycle } = hotRelease;
     const c = scanned.comma;
     if (schema === undefined || cycle === undefined || c[4]! === c[3]! + 1) return;
-    this.waitsOf(schema)?.released(cycle, text, c[3]! + 1, c[4]!);
+    this.waitsOf(schema)?.released(cycle, text, c[3]! + 1, c[4]!, hotRelease.lateNs);
   }
 
   /**
@@ -434,7 +437,10 @@ export class MonitorModel implements MonitorView {
     const cycle = f['cycle'];
     if (typeof cycle !== 'number' || !Number.isFinite(cycle) || !k.peer) return;
     const w = this.waitsOf(schema);
-    if (k.kind === 'ord_release') w?.released(cycle, k.peer, 0, k.peer.length);
+    if (k.kind === 'ord_release') {
+      const late = Number(f['release_ns']) - Number(f['tick_ns']);
+      w?.released(cycle, k.peer, 0, k.peer.length, Number.isFinite(late) ? late : 0);
+    }
     else w?.finished(cycle, k.peer, 0, k.peer.length);
   }
 
