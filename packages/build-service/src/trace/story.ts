@@ -37,6 +37,9 @@ function describeCause(c: RuleCause): string {
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning']);
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
 
+/** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
+const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
+
 /** A cycle whose first release ORD sent this long after its tick or more is said released late. */
 export const LATE_RELEASE_NS = 1_000_000;
 
@@ -97,6 +100,8 @@ export class StoryTeller {
     private readonly cycles = new Map<string, { current: CycleRunning; previous?: CycleRunning }>();
     /** Per periodic schema whose new cycle is held: the module it waits for. */
     private readonly held = new Map<string, string>();
+    /** Modules whose exit record was read, with its detail: ORD's stuck advice does not fit them. */
+    private readonly exited = new Map<string, string>();
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -118,6 +123,10 @@ export class StoryTeller {
             if (what === 'held') this.held.set(String(k.fields['schema']), String(k.fields['module']));
             else this.held.delete(String(k.fields['schema']));
         }
+        if (k.kind === 'scheduler' && what === 'stuck' && this.exited.has(String(k.fields['module']))) {
+            // a module that had ended (a crash the simulator made, an exit) never finishes: the advice to set *stateindex = -1 does not fit it
+            return `${at(k)} ${k.detail.replace(STUCK_ADVICE, `: it had exited before (${this.exited.get(String(k.fields['module']))})`)}`;
+        }
         if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         if (k.kind === 'ord_release' || k.kind === 'ord_finished') {
             this.followCycle(k);
@@ -125,7 +134,10 @@ export class StoryTeller {
         }
         if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}${this.lateOf(k)}`;
         if (k.kind === 'module_started') return `${at(k)} started (${k.detail})`;
-        if (k.kind === 'module_exit') return `${at(k)} exited (${k.detail})`;
+        if (k.kind === 'module_exit') {
+            if (this.exited.size < 4096) this.exited.set(k.module, k.detail.slice(0, 120));
+            return `${at(k)} exited (${k.detail})`;
+        }
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;

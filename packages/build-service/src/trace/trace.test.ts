@@ -169,6 +169,16 @@ describe('reading a log', () => {
             '+0.000001s LIN  module SCN: last hold dropped (stopped)',
             "+0.000001s STA  refused: start request from contract-launch: STA.station has no parameter 'sped'",
         ]);
+        // a module that had exited (a crash the simulator made) is not told to set *stateindex = -1
+        const crashed = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+            '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',
+            '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (conveyor)',
+            '2503000000,w,ORD,scheduler,,,0,stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+        ].join('\n') }]));
+        expect(crashed.filter((l) => l.includes('stuck:'))).toEqual([
+            '+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): it had exited before (crashed (simulated)) (conveyor)',
+            '+1.003000s ORD  stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+        ]);
     });
 
     it('names the modules a missed cycle still waits for, or the module its held cycle waits for; tells held, resumed and stuck; a record before the first is at a negative time', () => {

@@ -4,6 +4,7 @@
  */
 import { readableCause } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
+import { actionAsLogged } from '../trace/steps-to-trace.js';
 
 /** A terminal-safe line: control characters of simulated output shown as `?`. */
 function safe(s: string): string {
@@ -92,7 +93,7 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
                 text: `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`,
             }));
             if (options.verbose) {
-                for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.what)}` });
+                for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.who === 'ORD' ? a.what : actionAsLogged(a.what))}` });
                 happened.push(...releases.fold(s.record.log));
             }
             const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);

@@ -82,6 +82,11 @@ const STOP_FUNCTION = /^stop ([A-Za-z_]\w*)\.([A-Za-z_]\w*) /;
 /** Actions that undo an earlier one (counted `undone`, as the fold counts a logged `undo`/`un…` line). */
 const UNDO = /^(stop|deactivate|disconnect|unsubscribe|release)\b/;
 
+/** A harness action line as the runtime's log writes it: an undo prefixed `undo: ` (a module's stop and a priority are holds, as they are). */
+export function actionAsLogged(what: string): string {
+    return UNDO.test(what) && !STOP_MODULE.test(what) ? `undo: ${what}` : what;
+}
+
 /**
  * The trace of one simulation, in time order; its first record (`sim_start`, time 0: the Monitor's
  * cursor starts there) names `scenario` when given.
@@ -163,8 +168,7 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
             else if ((m = SET_PRIORITY.exec(a.what))) push(known(t, a.who, 'module_priority', a.what, {}, m[1]!));
             else {
                 if ((m = ACTIVATE_SCHEMA.exec(a.what))) push(known(t, 'ORD', 'request_received', `START ${m[1]!}`, {}, a.who));
-                const undo = UNDO.test(a.what);
-                push(known(t, a.who, 'supervisor', undo ? `undo: ${a.what}` : a.what, { what: 'action' }));
+                push(known(t, a.who, 'supervisor', actionAsLogged(a.what), { what: 'action' }));
                 if (!withLog && (m = ACTIVATE_SUPERVISOR.exec(a.what) ?? STOP_FUNCTION.exec(a.what))) {
                     const what = a.what.startsWith('stop') ? 'function_stopped' : 'function_started';
                     push(known(t, m[1]!, 'supervisor', `function ${m[2]!} ${what === 'function_started' ? 'started' : 'stopped'}`, { what, function: m[2]! }));
