@@ -346,7 +346,15 @@ static void expect_local(SimSession *s, char **a, StepResult *r) {
     } else if (!contract_value_compare(CONTRACT_TEST_EQ, type, want, v)) {
         r->ok = 0;
     }
-    format_value(s, &r->actual, type, v);
+    /* the actual value as a rule's cause writes it (`{what="late",speed=0.2,mode=SLOW}`), the
+       notation of the expectation beside it; a datatype without a field table as it prints */
+    if (type->kind == CONTRACT_KIND_STRUCT && type->nfields > 0 && type->fields) {
+        char tmp[4096];
+        contract_value_format(tmp, sizeof tmp, type, v);
+        bstr(&r->actual, tmp);
+    } else {
+        format_value(s, &r->actual, type, v);
+    }
     free(want);
     free(copy);
 }

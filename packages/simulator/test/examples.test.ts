@@ -52,7 +52,7 @@ describe('wrong expectations', () => {
         const lastLineOf = (needle: string) => text.split('\n').length - [...text.split('\n')].reverse().findIndex((l) => l.includes(needle));
         expect(r.failures.map((f) => f.message)).toEqual([
             `scenarios/commutation.scenario:${lineOf('SECOND inactive')}: at 300ms (expect rule SUP.action.SECOND inactive): expected rule SUP.action.SECOND inactive, but it is active`,
-            `scenarios/commutation.scenario:${lineOf('{"overheat", 4}')}: at 1200ms (expect local SUP.action.failure_data == {"overheat", 4}): expected SUP.action.failure_data == {"overheat",4}, but it is (object type TypeD : dataname : overheat ; datavalue : 3 ; )`,
+            `scenarios/commutation.scenario:${lineOf('{"overheat", 4}')}: at 1200ms (expect local SUP.action.failure_data == {"overheat", 4}): expected SUP.action.failure_data == {"overheat",4}, but it is {dataname="overheat",datavalue=3}`,
             `scenarios/commutation.scenario:${lastLineOf('expect schema schemaCommande1 active')}: at 1200ms (expect schema schemaCommande1 active): expected schema schemaCommande1 active, but it is inactive`,
         ]);
         // the other expectations still pass, and the steps still carry the story
