@@ -10,8 +10,8 @@
  */
 import type { CliIO } from './command.js';
 
-/** C0 except \t (0x09) and \n (0x0a), DEL (0x7f) and C1 (0x80-0x9f). */
-const CONTROL = /[\x00-\x08\x0b-\x1f\x7f-\x9f]/g;
+/** C0 except \t (0x09) and \n (0x0a), DEL (0x7f), C1 (0x80-0x9f), the line and paragraph separators and the bidi embeddings, overrides and isolates (U+202A-202E, U+2066-2069: they reorder what follows on the terminal's line). */
+const CONTROL = /[\x00-\x08\x0b-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
 
 export function escapeControls(text: string): string {
     return text.replace(CONTROL, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`);

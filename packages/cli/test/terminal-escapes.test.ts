@@ -40,7 +40,9 @@ describe('escapeControls', () => {
         expect(escapeControls('a\tb\n')).toBe('a\tb\n');
         expect(escapeControls('100%\rOVER')).toBe('100%\\u000dOVER');
         expect(escapeControls('\x9b31m\x85\x7f\0')).toBe('\\u009b31m\\u0085\\u007f\\u0000');
-        expect(escapeControls('héllo → ü 日本')).toBe('héllo → ü 日本');
+        expect(escapeControls('héllo → ü 日本 עברית')).toBe('héllo → ü 日本 עברית');
+        // bidi overrides and isolates, line and paragraph separators: they reorder or break the terminal's line
+        expect(escapeControls('ok \u202eevil\u202c \u2066x\u2069 a\u2028b')).toBe('ok \\u202eevil\\u202c \\u2066x\\u2069 a\\u2028b');
         // the JSON view stays valid JSON with the same strings
         const json = JSON.stringify({ line: '\x9b\x7f\x1b' });
         expect(JSON.parse(escapeControls(json))).toEqual({ line: '\x9b\x7f\x1b' });

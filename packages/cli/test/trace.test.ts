@@ -146,6 +146,27 @@ describe('contract trace', () => {
         }
     });
 
+    it('a trace file cannot forge story lines: a newline or a bidi override in a detail or a reason stays inside its line', async () => {
+        const odd = mkdtempSync(join(tmpdir(), 'contract-trace-forge-'));
+        try {
+            writeFileSync(join(odd, 'forge.jsonl'), [
+                { kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start: x\n+0.000000s ORD  deadline miss (ORD:0): forged cycle 1' },
+                { kind: 'supervisor', monoNs: '1000', wallTime: 'w', module: 'EVL', peer: '', port: null, size: 0, detail: 'function x started' },
+                { kind: 'supervisor', monoNs: '2000', wallTime: 'w', module: 'EVL', peer: '', port: null, size: 0, detail: 'refused: \u202eevil' },
+                { kind: 'unknown', file: 'EVL_1.csv', line: 3, reason: 'bad\n+9.000000s ORD  forged via reason\nok: all good', text: 't' },
+            ].map((r) => JSON.stringify(r)).join('\n') + '\n');
+            const io = capture(odd);
+            expect(await runCli(['trace', 'forge.jsonl'], io)).toBe(0);
+            const lines = io.stdout.trimEnd().split('\n');
+            expect(lines.every((l) => /^(--- |[+-]\d+\.\d{6}s |\d+ records: |unreadable: )/.test(l))).toBe(true);
+            expect(lines).toHaveLength(5);
+            expect(io.stdout).not.toMatch(/[\u202a-\u202e]/);
+            expect(io.stdout).toContain('refused: \\u202eevil');
+        } finally {
+            rmSync(odd, { recursive: true });
+        }
+    });
+
     it('a hostile trace file: each line that is no record named (20, then counted), a line without end bounded, no record exits 1, another file exits 2', async () => {
         const odd = mkdtempSync(join(tmpdir(), 'contract-trace-jsonl-'));
         try {

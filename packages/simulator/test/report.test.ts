@@ -1,6 +1,6 @@
 /** The text report writes every time of a scenario in one unit, so that its time column reads down. */
 import { describe, expect, it } from 'vitest';
-import { reportTimeFormat, textReport, type ScenarioResult } from '../src/index.js';
+import { junitReport, reportTimeFormat, textReport, type ScenarioResult } from '../src/index.js';
 
 describe('the text report\'s times', () => {
     it('picks the coarsest unit that writes each time as a whole number', () => {
@@ -77,5 +77,18 @@ describe('the text report\'s times', () => {
         ].sort((x, y) => parseFloat(x) - parseFloat(y)));
         // without --verbose no engine line at all
         expect(textReport([result]).includes('ORD|')).toBe(false);
+    });
+
+    it('a string value with a newline stays on its line; junit counts a failed event step as a test, as its testsuite does', () => {
+        const failedEvent = {
+            line: 2, source: 't=1ms MAZ:0 "q', timeNs: 1e6, kind: 'event' as const, ok: false, message: 'x.scenario:2: event failed: "a\nb\u202ec" is not a value',
+            record: { line: 2, timeNs: 1e6, ok: false, verb: 'event', delivered: 0, rules: [], actions: [], log: [] },
+        };
+        const result = { file: 'x.scenario', passed: false, failures: [failedEvent], eventsProcessed: 1, endNs: 2e6, ms: 1, harnessMs: 1, steps: [failedEvent] } as unknown as ScenarioResult;
+        const text = textReport([result]);
+        expect(text).toContain('event failed: "a?b?c" is not a value');
+        const junit = junitReport([result]);
+        expect(junit).toMatch(/<testsuites name="contract simulate" tests="1" failures="1">/);
+        expect(junit).toMatch(/<testsuite name="x.scenario" tests="1" failures="1"/);
     });
 });

@@ -268,15 +268,46 @@ static int put(Writer *w, const char *s) {
 }
 
 /* `"text"`: quotes and backslashes escaped, control characters as `?`, cut at 64 with `...`. */
+/* Length of the well-formed UTF-8 sequence at s[i] (at most `left` bytes), or 0 if it is not one. */
+static size_t utf8_length(const unsigned char *s, size_t left) {
+    unsigned char c = s[0];
+    size_t len = c >= 0xF0 && c <= 0xF4 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 && c < 0xE0 ? 2 : 0;
+    if (c >= 0xF5 || len == 0 || len > left) return 0;
+    for (size_t k = 1; k < len; k++)
+        if ((s[k] & 0xC0) != 0x80) return 0;
+    if (len == 3 && ((c == 0xE0 && s[1] < 0xA0) || (c == 0xED && s[1] >= 0xA0))) return 0; /* overlong, surrogate */
+    if (len == 4 && ((c == 0xF0 && s[1] < 0x90) || (c == 0xF4 && s[1] >= 0x90))) return 0; /* overlong, past U+10FFFF */
+    return len;
+}
+
+/* `"text"`: quotes and backslashes escaped, control characters and bytes that are no UTF-8 as
+   `?`, cut after 64 bytes with `...` — never inside a character, so the line stays UTF-8. */
 static void quote_string(char out[140], const char *s) {
     size_t n = 0, i = 0;
     out[n++] = '"';
-    for (; i < CONTRACT_STRING_SIZE && s[i] && i < 64; i++) {
-        unsigned char ch = (unsigned char)s[i];
-        if (ch == '"' || ch == '\\') out[n++] = '\\';
-        out[n++] = ch < 0x20 || ch == 0x7f ? '?' : (char)ch;
+    size_t end = 0; /* the string's bytes (not NUL-terminated at CONTRACT_STRING_SIZE) */
+    while (end < CONTRACT_STRING_SIZE && s[end]) end++;
+    const unsigned char *u = (const unsigned char *)s;
+    while (i < end && i < 64) {
+        unsigned char ch = u[i];
+        if (ch < 0x80) {
+            if (ch == '"' || ch == '\\') out[n++] = '\\';
+            out[n++] = ch < 0x20 || ch == 0x7f ? '?' : (char)ch;
+            i++;
+            continue;
+        }
+        size_t len = utf8_length(u + i, end - i);
+        if (len == 0 || (len == 2 && ch == 0xC2 && u[i + 1] < 0xA0)) { /* not UTF-8, or a C1 control: ? */
+            out[n++] = '?';
+            i += len ? len : 1;
+            continue;
+        }
+        if (i + len > 64) break; /* the cut falls inside this character: cut before it */
+        memcpy(out + n, u + i, len);
+        n += len;
+        i += len;
     }
-    if (i < CONTRACT_STRING_SIZE && s[i]) {
+    if (i < end) {
         memcpy(out + n, "...", 3);
         n += 3;
     }

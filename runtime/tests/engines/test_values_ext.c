@@ -191,6 +191,32 @@ void test_ext_format_is_cut_but_well_formed(void) {
     CHECK(strcmp(fmt(&type_Scan, &s, 4), "?") == 0);
 }
 
+/* a string value is cut after 64 bytes, never inside a UTF-8 character; bytes that are no UTF-8
+   and C1 controls are shown as ?, so a trace line is always UTF-8 */
+void test_ext_string_cut_keeps_utf8_whole(void) {
+    char v[256];
+    char out[200];
+    for (int lead = 60; lead <= 64; lead++) { /* the 4-byte character straddles the cut at each offset */
+        memset(v, 0, sizeof v);
+        memset(v, 'A', (size_t)lead);
+        strcat(v, "\xf0\x9f\x98\x80tail");
+        engine_format_value(out, sizeof out, v, &contract_type_string);
+        size_t len = strlen(out);
+        CHECK(strcmp(out + len - 4, "...\"") == 0);
+        /* every byte at or above 0x80 belongs to a whole character */
+        for (size_t i = 0; i < len;) {
+            unsigned char c = (unsigned char)out[i];
+            size_t n = c < 0x80 ? 1 : c >= 0xF0 ? 4 : c >= 0xE0 ? 3 : 2;
+            for (size_t k = 1; k < n; k++) CHECK(((unsigned char)out[i + k] & 0xC0) == 0x80);
+            i += n;
+        }
+        CHECK((lead <= 60) == (strstr(out, "\xf0\x9f\x98\x80") != NULL));
+    }
+    strcpy(v, "a\xff\xfe b \xc2\x9b[2J \xc3\xa9 \xed\xa0\x80 z");
+    engine_format_value(out, sizeof out, v, &contract_type_string);
+    CHECK(strcmp(out, "\"a?? b ?[2J \xc3\xa9 ??? z\"") == 0);
+}
+
 /* a parameter block as `function F(...) started` and `activate schema S(...)` name it */
 void test_ext_params_are_named_and_cut_on_a_character(void) {
     typedef struct Block {

@@ -85,7 +85,7 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
                     if (problems++ < NAMED_PROBLEMS) io.err(`contract trace: warning: ${safeName(arg)}:${r.line}: ${r.reason}\n`);
                 } else if (!isUnknown(r) && r.kind !== 'sim_start') records++;
                 if (format === 'json') piece += JSON.stringify(r) + '\n';
-                else if (r.kind === 'sim_start') piece += `--- ${(r as TraceRecordBase).detail}\n`; // a simulation's story starts (at time 0 again)
+                else if (r.kind === 'sim_start') piece += `--- ${safeName((r as TraceRecordBase).detail)}\n`; // a simulation's story starts (at time 0 again)
                 else piece += story.line(r);
             }
             if (!(await print(io, piece))) return EXIT_OK;
@@ -143,11 +143,12 @@ class Story {
     line(r: TraceRecord): string {
         this.ends.see(r);
         const told = this.teller.tell(r);
-        return told === undefined ? '' : told + '\n';
+        return told === undefined ? '' : safeName(told) + '\n';
     }
 
+    /** Each line one line: a newline or a bidi override carried by a record (a trace file's detail, an unreadable line's reason) is escaped, never a line of its own. */
     end(): string {
-        return this.ends.lines().map((l) => l + '\n').join('') + this.teller.summary() + '\n' + this.ends.unreadable().map((l) => l + '\n').join('');
+        return this.ends.lines().map((l) => safeName(l) + '\n').join('') + safeName(this.teller.summary()) + '\n' + this.ends.unreadable().map((l) => safeName(l) + '\n').join('');
     }
 }
 

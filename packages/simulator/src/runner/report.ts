@@ -6,9 +6,12 @@ import { readableCause } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
 import { actionAsLogged } from '../trace/steps-to-trace.js';
 
-/** A terminal-safe line: control characters of simulated output shown as `?`. */
+/**
+ * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
+ * string value too: one line stays one line), line separators and bidi overrides shown as `?`.
+ */
 function safe(s: string): string {
-    return s.replace(/[\u0000-\u0008\u000b-\u001f\u007f-\u009f]/g, '?');
+    return s.replace(/[\u0000-\u001f\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g, '?');
 }
 
 const UNITS = [['s', 1_000_000_000], ['ms', 1_000_000], ['us', 1_000], ['ns', 1]] as const;
@@ -133,7 +136,8 @@ function xml(s: string): string {
 
 export function junitReport(results: ScenarioResult[]): string {
     const out = ['<?xml version="1.0" encoding="UTF-8"?>'];
-    const total = results.reduce((n, r) => n + r.steps.filter((s) => s.kind === 'expect').length + (r.error ? 1 : 0), 0);
+    // one testcase per expectation and per failed step (an event or start the harness refused), as each testsuite counts them
+    const total = results.reduce((n, r) => n + r.steps.filter((s) => s.kind === 'expect' || !s.ok).length + (r.error ? 1 : 0), 0);
     const failures = results.reduce((n, r) => n + r.failures.length + (r.error ? 1 : 0), 0);
     out.push(`<testsuites name="contract simulate" tests="${total}" failures="${failures}">`);
     for (const r of results) {
