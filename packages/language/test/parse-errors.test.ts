@@ -54,6 +54,8 @@ describe('syntax error messages', () => {
         expect(first(rule('parametrize MSC(1 :0)'))).toMatch(/but found 'parametrize'\. Did you mean 'parameterize'\?$/);
         expect(first(rule('subcribe MAA:0 => :1'))).toMatch(/Did you mean 'subscribe'\?$/);
         expect(first(rule('nonsense MSC(1 :0)'))).not.toContain('Did you mean');
+        // the misspelt word was read as a name, the error comes at the next token
+        expect(first('supervisor SUP { f() { rules { R: [elapsd=1ms] [elapsed=1ms] } } }')).toBe("Expected ':' but found '='. Did you mean 'elapsed' (not 'elapsd')?");
     });
     it('knows every keyword of the grammar for those suggestions', () => {
         const grammar = readFileSync(fileURLToPath(new URL('../src/cactal.langium', import.meta.url)), 'utf8');

@@ -108,6 +108,17 @@ function nearKeyword(token: IToken | undefined, expected: TokenType[]): string {
     return didYouMean(token, keywordsOf(expected)) || didYouMean(token, ALL_WORDS);
 }
 
+/**
+ * The name just read, when it is a misspelt keyword that explains the error at the next token
+ * (`[elapsd=1ms]`: 'elapsd' read as a module, then '=' where ':' was expected):
+ * ` Did you mean 'elapsed' (not 'elapsd')?`, else ''.
+ */
+function nearKeywordBefore(previous: IToken | undefined): string {
+    if (!previous || previous.tokenType?.name !== 'ID') return '';
+    const near = didYouMean(previous, ALL_WORDS);
+    return near ? near.replace(/\?$/, ` (not '${previous.image}')?`) : '';
+}
+
 /** Keywords among the expected token types (names only). */
 function keywordsOf(types: TokenType[]): string[] {
     return types.map((t) => (t.name.endsWith(':KW') ? t.name.slice(0, -3) : t.name)).filter((n) => /^[a-z_]+$/i.test(n) && !(n in TERMINALS));
@@ -119,7 +130,7 @@ export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageP
         if (unit) return unit;
         if (options.expected.name === 'EOF') return `Unexpected ${found(options.actual)}: expected ${TOP_LEVEL}.${didYouMean(options.actual, TOP_LEVEL_WORDS)}`;
         if (isSubscribeToOrd(options)) return ORD_SUBSCRIBE;
-        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${nearKeyword(options.actual, [options.expected])}`;
+        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${nearKeyword(options.actual, [options.expected]) || nearKeywordBefore(options.previous)}`;
     }
 
     override buildNotAllInputParsedMessage(options: { firstRedundant: IToken; ruleName: string }): string {
