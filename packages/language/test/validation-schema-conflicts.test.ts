@@ -9,6 +9,9 @@ import type { MarkupContent } from 'vscode-languageserver-protocol';
 import { loadWorkspace } from '../src/node/load-workspace.js';
 import { architecture, supervisor } from './architecture-fixture.js';
 import { build, type Built } from './helpers.js';
+import { isSupervisor, type Model } from '../src/generated/ast.js';
+import { rulesOf } from '../src/model/blocks.js';
+import { activeTogether, groupOf } from '../src/model/schema-conflicts.js';
 import { offsetOf, positionParams } from './lsp-workspace.js';
 
 /** sc2 shares MSC and MSD with sc1; sc3 (in ev2.contract, a file of the schemas' import tier) shares nothing (MSB alone). */
@@ -61,6 +64,20 @@ describe('supervisor-schema-conflict', () => {
         const same = await conflicts(`P: [elapsed=1ms] ${A} [elapsed=1s]\nQ: [elapsed=1000us] ${B} [elapsed=2s]`);
         expect(same.map((f) => f.line)).toEqual([expect.stringContaining('(P and Q both become active on elapsed=1ms)')]);
         expect(await conflicts(`P: [elapsed=1ms] ${A} [elapsed=1s]\nQ: [elapsed=2ms] ${B} [elapsed=2s]`)).toEqual([]);
+    });
+
+    it('many rules on one event: each later activation is warned once, its reason the direct one, with links linear in the rules (not every pair)', async () => {
+        const n = 300;
+        const rules = Array.from({ length: n }, (_, i) => `R${i}: [elapsed=1ms] ${i % 2 ? B : A} [elapsed=2ms]`).join('\n');
+        const found = await conflicts(rules);
+        expect(found).toHaveLength(n - 1);
+        expect(found[0]!.line).toContain('In rule R1, periodic schema sc2 shares modules MSC, MSD with sc1, activated by rule R0, and the two rules are active together (R0 and R1 both become active on elapsed=1ms)');
+        expect(found[n - 2]!.line).toContain(`(R0 and R${n - 1} both become active on elapsed=1ms)`);
+        const built = await build(withRules(rules));
+        const fn = (built.docs.get('sup.contract')!.parseResult.value as Model).elements.find(isSupervisor)!.functions[0]!;
+        const links = activeTogether(fn);
+        expect([...links.values()].reduce((total, l) => total + l.length, 0)).toBe(2 * (n - 1));
+        expect(groupOf(rulesOf(fn)[n - 1]!, links).size).toBe(n);
     });
 
     it('through a chain of rules: P, then Q on started(P), then S on started(Q)', async () => {

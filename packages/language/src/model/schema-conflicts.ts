@@ -89,32 +89,35 @@ function startedBy(rule: Rule): Rule[] {
 }
 
 /**
- * For each rule of the function, the other rules that become active with it, and why:
- * `started(L)` in one's precondition, or a one-event precondition clause on the same event.
- * Direct links only; callers follow them to the rules active together through a chain.
+ * For each rule of the function, rules that become active with it, and why: `started(L)` in one's
+ * precondition, or a one-event precondition clause on the same event. Direct links only; callers
+ * follow them to the rules active together through a chain. Rules that start on one event are
+ * linked to the first of them (a star, not every pair): the same groups in linear time and memory
+ * (3,000 rules on `[elapsed=1ms]` took 155 s and 1.4 GB when every pair was linked).
  */
 export function activeTogether(fn: SupervisionFunction): Map<Rule, Together[]> {
     const rules = rulesOf(fn);
     const links = new Map<Rule, Together[]>(rules.map((r) => [r, []]));
+    const linked = new Map<Rule, Set<Rule>>(rules.map((r) => [r, new Set()]));
     const link = (a: Rule, b: Rule, reason: string) => {
-        if (a === b) return;
-        if (!links.get(a)?.some((t) => t.rule === b)) links.get(a)?.push({ rule: b, reason });
-        if (!links.get(b)?.some((t) => t.rule === a)) links.get(b)?.push({ rule: a, reason });
+        if (a === b || linked.get(a)?.has(b)) return;
+        linked.get(a)?.add(b);
+        linked.get(b)?.add(a);
+        links.get(a)?.push({ rule: b, reason });
+        links.get(b)?.push({ rule: a, reason });
     };
     for (const rule of rules) {
         for (const other of startedBy(rule)) {
             if (links.has(other)) link(rule, other, `${rule.name} becomes active on started(${other.name})`);
         }
     }
-    const starts = rules.map((r) => startingEvents(r));
-    for (let i = 0; i < rules.length; i++) {
-        for (let j = i + 1; j < rules.length; j++) {
-            for (const [key, event] of starts[i]!) {
-                if (starts[j]!.has(key)) {
-                    link(rules[i]!, rules[j]!, `${rules[i]!.name} and ${rules[j]!.name} both become active on ${eventText(event)}`);
-                    break;
-                }
-            }
+    // per starting event, the first rule (in declaration order) that starts on it
+    const firstOn = new Map<string, { rule: Rule; event: Event }>();
+    for (const rule of rules) {
+        for (const [key, event] of startingEvents(rule)) {
+            const first = firstOn.get(key);
+            if (!first) firstOn.set(key, { rule, event });
+            else link(first.rule, rule, `${first.rule.name} and ${rule.name} both become active on ${eventText(first.event)}`);
         }
     }
     return links;
