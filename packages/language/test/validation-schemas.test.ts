@@ -16,6 +16,10 @@ const CASES: Record<string, CodeCase> = {
         clean: architecture({ 'ev2.contract': 'event schema ev2() { modules { MAB (); } }' }),
         message: "Schema 'ev' is defined more than once (also in"
     },
+    'schema-name-too-long': {
+        raise: architecture({ 'ev9.contract': `event schema ${'e'.repeat(64)}(TypeA param) { modules { MAA (); } }` }),
+        clean: architecture({ 'ev9.contract': `event schema ${'e'.repeat(63)}(TypeA param) { modules { MAA (); } }` })
+    },
     'schema-parameter-duplicate': {
         raise: periodic(`${RT} ${MODS}`, 'TypeA consigne, int consigne'),
         clean: periodic(`${RT} ${MODS}`, 'TypeA consigne, int mode')

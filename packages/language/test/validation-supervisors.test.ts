@@ -15,6 +15,10 @@ const SC2 = {
 };
 
 const CASES: Record<string, CodeCase> = {
+    'supervisor-function-name-too-long': {
+        raise: sup('', { more: `${'f'.repeat(64)}() { }` }),
+        clean: sup('', { more: `${'f'.repeat(63)}() { }` })
+    },
     'supervisor-function-duplicate': {
         raise: sup('', { more: 'action() { }' }),
         clean: sup('', { more: 'other() { }' })

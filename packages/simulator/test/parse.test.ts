@@ -86,6 +86,15 @@ describe('parseScenario', () => {
         ]);
     });
 
+    it('lists 200 problems, then says how many more; a long word is quoted cut', () => {
+        const p = parseScenario(Array.from({ length: 1000 }, (_, i) => `frobnicate${i}`).join('\n'));
+        expect(p.diagnostics).toHaveLength(201);
+        expect(p.diagnostics[200]!.message).toBe('800 more problem(s) not listed: the first 200 are');
+        const long = parseScenario(`${'x'.repeat(10_000)} 1`);
+        expect(long.diagnostics[0]!.message.length).toBeLessThanOrEqual(301);
+        expect(long.diagnostics[0]!.message.endsWith('…')).toBe(true);
+    });
+
     it('never throws, whatever the text', () => {
         fc.assert(fc.property(fc.string({ unit: 'binary', maxLength: 300 }), (text) => {
             const p = parseScenario(text);

@@ -31,7 +31,8 @@ export function describeToken(type: TokenType): string {
 
 function found(token: IToken | undefined): string {
     if (!token || token.tokenType?.name === 'EOF' || token.image === undefined || token.image === '') return 'the end of the file';
-    return `'${token.image}'`;
+    // a 5,000-character word is quoted cut, not echoed whole
+    return token.image.length > 64 ? `'${token.image.slice(0, 64)}…'` : `'${token.image}'`;
 }
 
 function list(types: TokenType[]): string {

@@ -85,7 +85,9 @@ function functionOf(sup: Supervisor, name: string): SupervisionFunction | undefi
 export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
     const diagnostics: ScenarioDiagnostic[] = [];
     const locals = new Map<number, ResolvedLocal>();
-    const error = (span: SourceSpan, code: string, message: string) => diagnostics.push({ ...span, severity: 'error', code, message });
+    // a message quotes what was written: a 10,000-character name is cut, not echoed whole
+    const error = (span: SourceSpan, code: string, message: string) =>
+        diagnostics.push({ ...span, severity: 'error', code, message: message.length > 300 ? `${message.slice(0, 300)}…` : message });
     const list = (names: Iterable<string>) => {
         const all = [...names];
         return all.length ? all.slice(0, 12).join(', ') + (all.length > 12 ? ', ...' : '') : 'none';

@@ -86,6 +86,8 @@ export const MAX_SCENARIO_BYTES = 8 * 1024 * 1024;
 export const MAX_STEPS = 1_000_000;
 const MAX_VALUE_DEPTH = 32;
 const MAX_DIAGNOSTICS = 200;
+/** Longest message of a diagnostic (it quotes what was written). */
+const MAX_MESSAGE_CHARS = 300;
 /** Virtual times above one day are refused (int64 ns holds far more; this catches typos). */
 export const MAX_TIME_NS = 86_400_000_000_000;
 
@@ -410,8 +412,18 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
 /** Parses a whole scenario text. Never throws. */
 export function parseScenario(text: string): ParsedScenario {
     const out: ParsedScenario = { steps: [], diagnostics: [] };
+    let unlisted = 0;
+    let lastLine = 1;
     const diag = (d: Omit<ScenarioDiagnostic, 'severity'> & { severity?: 'error' | 'warning' }) => {
-        if (out.diagnostics.length < MAX_DIAGNOSTICS) out.diagnostics.push({ severity: 'error', ...d });
+        lastLine = d.line;
+        // a message quotes what was written: a 10,000-character word is cut, not echoed whole
+        const message = d.message.length > MAX_MESSAGE_CHARS ? `${d.message.slice(0, MAX_MESSAGE_CHARS)}…` : d.message;
+        if (out.diagnostics.length < MAX_DIAGNOSTICS) out.diagnostics.push({ severity: 'error', ...d, message });
+        else unlisted++;
+    };
+    const said = () => {
+        if (unlisted > 0) out.diagnostics.push({ severity: 'error', line: lastLine, column: 1, endColumn: 2, code: 'scenario-syntax', message: `${unlisted} more problem(s) not listed: the first ${MAX_DIAGNOSTICS} are` });
+        return out;
     };
     if (typeof text !== 'string') {
         diag({ line: 1, column: 1, endColumn: 2, code: 'scenario-syntax', message: 'a scenario is text' });
@@ -473,5 +485,5 @@ export function parseScenario(text: string): ParsedScenario {
         const last = out.steps[out.steps.length - 1]!;
         diag({ ...last.span, code: 'scenario-time-order', message: `this step at ${formatTime(now)} is after the scenario's end (until ${formatTime(out.untilNs)})` });
     }
-    return out;
+    return said();
 }

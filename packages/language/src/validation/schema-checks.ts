@@ -58,8 +58,16 @@ export function schemaChecks(services: CactalServices): ValidationChecks<CactalA
     };
 }
 
+/** Longest schema or supervision-function name: the runtime's request fields hold 63 characters and a NUL (CONTRACT_NAME_MAX, CONTRACT_FUNCTION_MAX). */
+export const NAME_CHARS_MAX = 63;
+
 function checkSchemaName(schema: Schema, names: ProjectNames, accept: ValidationAcceptor): void {
     if (!schema.name) return;
+    if (schema.name.length > NAME_CHARS_MAX) {
+        report(accept, SchemaCodes['schema-name-too-long'],
+            `Schema name '${schema.name.slice(0, 20)}…' has ${schema.name.length} characters: at most ${NAME_CHARS_MAX} (the requests that activate a schema carry its name in 64 bytes).`,
+            { node: schema, property: 'name' });
+    }
     const same = names.byName(['Schema']).get(schema.name);
     if (same.length <= 1) return;
     const where = otherLocations(AstUtils.getDocument(schema).uri.toString(), same.map((d) => d.documentUri));

@@ -13,6 +13,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { eventPortsOf, localsOf, rulesOf } from '../model/blocks.js';
 import { SupervisorCodes } from './codes/supervisors.js';
 import { report } from './report.js';
+import { NAME_CHARS_MAX } from './schema-checks.js';
 
 export function supervisorChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
     return {
@@ -26,6 +27,11 @@ function checkFunctionNames(sup: Supervisor, accept: ValidationAcceptor): void {
     const seen = new Set<string>();
     for (const fn of sup.functions) {
         if (!fn.name) continue;
+        if (fn.name.length > NAME_CHARS_MAX) {
+            report(accept, SupervisorCodes['supervisor-function-name-too-long'],
+                `Function name '${fn.name.slice(0, 20)}…' has ${fn.name.length} characters: at most ${NAME_CHARS_MAX} (a start request carries the name in 64 bytes).`,
+                { node: fn, property: 'name' });
+        }
         if (seen.has(fn.name)) {
             report(accept, SupervisorCodes['supervisor-function-duplicate'],
                 `Supervisor ${sup.name} already has a function '${fn.name}': function names are unique within a supervisor.`,

@@ -7,6 +7,11 @@ export const { area: schemasArea, codes: SchemaCodes } = defineCodes('Schemas', 
         description: 'Schema names are unique among all schemas of the project, periodic and event schemas together.',
         example: '// a.contract\nevent schema s() { }\n// b.contract\nevent schema s() { }'
     },
+    'schema-name-too-long': {
+        severity: 'error',
+        description: 'A schema name has at most 63 characters: the requests that activate it carry the name in a field of 64 bytes (ORD would refuse a longer one as an unknown schema).',
+        example: `periodic schema ${'s'.repeat(64)}() { realtime { PERIOD=1s; CRITICAL_DELAY=1s; } modules { MSA (); } }`
+    },
     'schema-parameter-duplicate': {
         severity: 'error',
         description: 'The parameter names of a schema are unique within it (an activation sets parameters by name).',

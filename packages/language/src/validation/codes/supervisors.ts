@@ -2,6 +2,11 @@ import { defineCodes } from './code-table.js';
 
 /** docs/language-reference.md §6: supervisors, supervision functions, rules, conditions and actions (report §4.7). */
 export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Supervisors', 'language-reference.md §6', {
+    'supervisor-function-name-too-long': {
+        severity: 'error',
+        description: 'A supervision function name has at most 63 characters: the start request carries it in a field of 64 bytes (a longer one could never be started).',
+        example: `supervisor SUP { ${'f'.repeat(64)}() { } }`
+    },
     'supervisor-function-duplicate': {
         severity: 'error',
         description: 'Supervision function names are unique within a supervisor (`activate supervisor SUP.fn` names them).',
