@@ -125,13 +125,17 @@ int get_string(char *value, char *description)
         char c = description[i++];
         if (c == '\0') return -1; /* unterminated */
         if (c == '"') break;
-        if (c == '\\') {
+        if (c == '\\') { /* the language's escapes: \n \t \r \b \f \0, any other character itself */
             char e = description[i++];
             switch (e) {
+            case '\0': return -1; /* unterminated */
             case 'n': c = '\n'; break;
             case 't': c = '\t'; break;
-            case '"': case '\\': c = e; break;
-            default: return -1;
+            case 'r': c = '\r'; break;
+            case 'b': c = '\b'; break;
+            case 'f': c = '\f'; break;
+            case '0': c = '\0'; break;
+            default: c = e; break;
             }
         }
         if (n >= CONTRACT_STRING_SIZE - 1) return -1; /* longer than 255 bytes */

@@ -36,6 +36,11 @@ void test_tools_parse(void)
     CHECK(get_string(s, s1) == 9 && strcmp(s, "a b\"c") == 0);
     char s2[] = "\"unterminated";
     CHECK(get_string(s, s2) == -1);
+    /* the language's escapes: \n \t \r, any other character itself (\x -> x), as a .contract literal */
+    char s3[] = "\"a\\r\\x\\n\"";
+    CHECK(get_string(s, s3) == 9 && strcmp(s, "a\rx\n") == 0);
+    char s4[] = "\"ends in a backslash\\";
+    CHECK(get_string(s, s4) == -1);
     char longs[400];
     longs[0] = '"';
     memset(longs + 1, 'x', 300);

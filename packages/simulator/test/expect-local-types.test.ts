@@ -1,6 +1,6 @@
 /**
  * `expect local` on the extension types (docs/simulation.md "Values and names"): an enumeration
- * local (`== Mode.FAST`), a bool and an array compare by value, like a struct local
+ * local (`== Mode.FAST`), a string with escapes (`"say \\"hi\\""`), a bool and an array compare by value, like a struct local
  * that holds them; a value of the wrong member fails with the actual value, not an error.
  */
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
@@ -21,7 +21,7 @@ beforeAll(async () => {
         'enum LineMode { SLOW, FAST };\ndatatype Report {string what, LineMode mode = LineMode.SLOW, bool ok = false};\n');
     writeFileSync(join(dir, 'supervisor.contract'), PROJECT_TEMPLATES['supervisor.contract']!.replace(
         'local { Position target = goal; string last; }',
-        'local { Position target = goal; string last; LineMode m = LineMode.FAST; bool on = true; float[3] gains = {0.5, 1.0, 2.0}; Report r = {"x", LineMode.FAST, true}; }'));
+        'local { Position target = goal; string last; LineMode m = LineMode.FAST; bool on = true; float[3] gains = {0.5, 1.0, 2.0}; Report r = {"x", LineMode.FAST, true}; string note = "say \\"hi\\" a\\\\b"; }'));
     project = await prepared(dir);
 }, 240_000);
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -40,6 +40,8 @@ describe('expect local on enumerations, bools and arrays', () => {
             'expect local MIS.mission.on == true',
             'expect local MIS.mission.gains == {0.5, 1.0, 2.0}',
             'expect local MIS.mission.r == {"x", LineMode.FAST, true}',
+            // a string written with the language's escapes, in the .contract and in the scenario
+            'expect local MIS.mission.note == "say \\"hi\\" a\\\\b"',
         ].join('\n'));
         expect(r.error).toBeUndefined();
         expect(r.failures.map((f) => f.message)).toEqual([]);

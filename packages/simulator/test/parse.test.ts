@@ -95,6 +95,14 @@ describe('parseScenario', () => {
         expect(long.diagnostics[0]!.message.endsWith('…')).toBe(true);
     });
 
+    it('a string reads the language\'s escapes, and refuses a raw control character', () => {
+        const ok = parseScenario('t=1ms MAA:2 "a\\nb\\\\c\\"d\\x"');
+        expect(ok.diagnostics).toEqual([]);
+        expect((ok.steps[0] as unknown as { value: { value: string } }).value.value).toBe('a\nb\\c"dx');
+        const raw = parseScenario('t=1ms MAA:2 "a\u0000b\u001b[2J"');
+        expect(raw.diagnostics.map((d) => d.message)).toEqual([expect.stringContaining('a string holds no raw control character')]);
+    });
+
     it('never throws, whatever the text', () => {
         fc.assert(fc.property(fc.string({ unit: 'binary', maxLength: 300 }), (text) => {
             const p = parseScenario(text);

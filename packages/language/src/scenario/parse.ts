@@ -93,6 +93,9 @@ export const MAX_TIME_NS = 86_400_000_000_000;
 
 const UNIT_NS: Record<string, number> = { ns: 1, us: 1_000, ms: 1_000_000, s: 1_000_000_000 };
 
+/** A string literal's escapes that stand for a control character (the runtime's reader decodes the same). */
+const STRING_ESCAPES: Record<string, string> = { n: '\n', t: '\t', r: '\r', b: '\b', f: '\f', '0': '\0' };
+
 /** Parses a time literal (`300ms`, `1.5s`, `0`) to nanoseconds; undefined when it is not one. */
 export function parseTimeLiteral(text: string): number | undefined {
     if (text === '0') return 0;
@@ -199,8 +202,11 @@ class LineCursor {
         }
         const str = /^"((?:\\.|[^"\\\r\n])*)"/.exec(rest);
         if (str) {
+            // a raw control character (a NUL, an escape) would not reach the harness whole: written as an escape only
+            if (/[\u0000-\u0008\u000b-\u001f\u007f]/.test(str[1]!)) this.fail('a string holds no raw control character: write it as an escape (\\n, \\t, \\r)', from, from + str[0].length);
             this.pos += str[0].length;
-            const value = str[1]!.replace(/\\(.)/g, (_, c: string) => (c === 'n' ? '\n' : c === 't' ? '\t' : c));
+            // the language's escapes (as in a .contract file): \n \t \r \b \f \0, any other character itself
+            const value = str[1]!.replace(/\\(.)/g, (_, c: string) => STRING_ESCAPES[c] ?? c);
             return { kind: 'string', value, text: str[0], span: this.span(from, this.pos) };
         }
         const bool = /^(true|false)(?![A-Za-z0-9_])/.exec(rest);

@@ -83,6 +83,8 @@ export interface StepRecord {
     wallNs?: number;
 }
 
+const VALUE_ESCAPES: Record<string, string> = { '\n': '\\n', '\t': '\\t', '\r': '\\r', '\b': '\\b', '\f': '\\f', '\0': '\\0' };
+
 /** A value in the text form the types' get_ functions read (tools.h): no raw tab or newline. */
 export function valueText(v: ScenarioValue): string {
     switch (v.kind) {
@@ -92,7 +94,8 @@ export function valueText(v: ScenarioValue): string {
         case 'enum': // `Mode.AUTO`: get_Mode (common/SharedMode.h) reads it
             return v.text;
         case 'string':
-            return `"${v.value.replace(/[\\"\n\t\r]/g, (c) => (c === '\n' ? '\\n' : c === '\t' ? '\\t' : c === '\r' ? ' ' : `\\${c}`))}"`;
+            // the escapes the runtime's string reader decodes (engine_values.c prim_string_get): no raw tab, newline or NUL on the harness's line
+            return `"${v.value.replace(/[\\"\n\t\r\b\f\0]/g, (c) => VALUE_ESCAPES[c] ?? `\\${c}`)}"`;
         case 'struct':
             return `{${v.elements.map(valueText).join(',')}}`;
     }
