@@ -7,13 +7,23 @@
 import { closeSync, constants, openSync, promises as fsp, writeSync } from 'node:fs';
 import type { FileHandle } from 'node:fs/promises';
 import type { TraceRecord } from '@contract-studio/build-service/trace';
+import { escapeControls } from './terminal-text.js';
 
 /** `<MODULE>_<date>.csv`, as runtime/src/csvlog.c names them. */
 export const LOG_FILE_NAME = /^[A-Za-z_]\w*_[\w.-]*\.csv$/;
 
+/**
+ * A record as one JSON line, spelled as `contract trace --format json` prints it: DEL, C1 and the
+ * bidi and line-separator characters, which JSON.stringify leaves raw, written `\uXXXX` (the same
+ * JSON; a `cat` of a trace file does not act on them), so a `--trace` file is byte for byte that output.
+ */
+export function jsonLine(r: TraceRecord): string {
+    return escapeControls(JSON.stringify(r));
+}
+
 /** One JSON object per line, in order. */
 export function toJsonLines(records: TraceRecord[]): string {
-    return records.map((r) => JSON.stringify(r)).join('\n') + (records.length ? '\n' : '');
+    return records.map(jsonLine).join('\n') + (records.length ? '\n' : '');
 }
 
 /** Flags of a trace file opened for writing: created or truncated, never through a link found there. */

@@ -11,7 +11,7 @@ import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
-import { LOG_FILE_NAME } from './trace-files.js';
+import { jsonLine, LOG_FILE_NAME } from './trace-files.js';
 import { safeName } from './terminal-text.js';
 
 /** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
@@ -266,7 +266,7 @@ export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string
     let records = 0;
     let piece = '';
     for await (const batch of stream.batches) {
-        for (const r of batch) piece += JSON.stringify(r) + '\n';
+        for (const r of batch) piece += jsonLine(r) + '\n';
         records += batch.length;
         if (piece.length >= PIECE_CHARS) {
             const go = await sink(piece);

@@ -6,6 +6,8 @@ import { basename, join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
+import { toJsonLines } from '../src/trace-files.js';
+import type { TraceRecord } from '@contract-studio/build-service/trace';
 
 const BIN = new URL('../bin/contract.js', import.meta.url).pathname;
 
@@ -143,6 +145,22 @@ describe('contract trace', () => {
             expect(again.stdout).toBe(json.stdout);
         } finally {
             rmSync(file);
+        }
+    });
+
+    it('a --trace file is spelled as --format json prints: C1 and bidi characters escaped in both, the same JSON', async () => {
+        const odd = mkdtempSync(join(tmpdir(), 'contract-trace-c1-'));
+        try {
+            writeFileSync(join(odd, 'EVL_1.csv'), `${HEADER}\n1000,w,EVL,error,,,0,x\u009b31m \u202eevil\n`);
+            const io = capture(odd);
+            expect(await runCli(['trace', '.', '--format', 'json'], io)).toBe(0);
+            expect(io.stdout).not.toMatch(/[\u0080-\u009f\u202a-\u202e]/);
+            expect(io.stdout).toContain('x\\u009b31m \\u202eevil');
+            const records = io.stdout.trim().split('\n').map((l) => JSON.parse(l) as TraceRecord);
+            expect((records[0] as { detail: string }).detail).toBe('x\u009b31m \u202eevil');
+            expect(toJsonLines(records)).toBe(io.stdout); // what run --trace and simulate --trace write
+        } finally {
+            rmSync(odd, { recursive: true });
         }
     });
 

@@ -11,6 +11,7 @@ import { StoryTeller, isUnknown, type KnownRecord, type TraceRecord, type TraceR
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
+import { jsonLine } from '../trace-files.js';
 import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 import { traceFileBatches } from '../trace-file-stream.js';
 import { open } from 'node:fs/promises';
@@ -84,7 +85,7 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
                 if (isUnknown(r) && r.file === arg) {
                     if (problems++ < NAMED_PROBLEMS) io.err(`contract trace: warning: ${safeName(arg)}:${r.line}: ${r.reason}\n`);
                 } else if (!isUnknown(r) && r.kind !== 'sim_start') records++;
-                if (format === 'json') piece += JSON.stringify(r) + '\n';
+                if (format === 'json') piece += jsonLine(r) + '\n';
                 else if (r.kind === 'sim_start') piece += `--- ${safeName((r as TraceRecordBase).detail)}\n`; // a simulation's story starts (at time 0 again)
                 else piece += story.line(r);
             }
