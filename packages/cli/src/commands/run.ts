@@ -40,6 +40,10 @@ export function checkStart(text: string): string {
     if (!/^[A-Za-z_]\w*\.[A-Za-z_]\w*(\(.*\))?$/s.test(text) || /[\n\0]/.test(text)) {
         throw new UsageError(`bad --start '${text}' (expected SUPERVISOR.function(param={...}) e.g. GLB.mission(consigne={1.0,2.0,3.0}), or '' to start nothing)`);
     }
+    // the build service's rule (the request ends up in a make recipe): said here, as bad usage
+    if (!/^[\w .,:;=+\-(){}[\]"]*$/.test(text) || text.length > 4096) {
+        throw new UsageError(`bad --start '${text}': a start request holds letters, digits, spaces and . , : ; = + - ( ) { } [ ] " only (no backslash, quote or $), at most 4096 characters`);
+    }
     return text;
 }
 
