@@ -70,7 +70,7 @@ describe('contract simulate', { timeout: 60_000 }, () => {
                 where((r) => r.kind === 'sup_rule' && r.rule === 'FIRST' && r.active === false),
                 where((r) => r.detail === 'undo: deactivate schema schemaReceptionMessage (event schema)'),
                 where((r) => r.kind === 'sup_rule' && r.rule === 'SECOND' && r.active === true),
-                where((r) => r.detail.startsWith('activate schema schemaCommande1 ')),
+                where((r) => r.detail.startsWith('activate schema schemaCommande1(consigne = ')),
                 where((r) => r.kind === 'ord_release' && r.peer === 'MSA'),
             ];
             expect(order.every((i) => i >= 0), JSON.stringify(order)).toBe(true);
