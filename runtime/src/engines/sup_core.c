@@ -321,7 +321,9 @@ static unsigned char *build_block(SupCore *c, int f, const ContractVar *vars, in
 
 static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
                                   const unsigned char *params) {
-    note_action(c, "activate schema %s (event schema)", sc->name);
+    char args[ACTION_VALUE_MAX];
+    engine_format_params(args, sizeof args, sc->params, sc->nparams, params);
+    note_action(c, "activate schema %s%s (event schema)", sc->name, args);
     EngineScope s = fn_scope(c, f);
     s.params = params;
     s.param_vars = sc->params;

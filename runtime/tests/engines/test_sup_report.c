@@ -78,7 +78,7 @@ void test_report_sup_full_sequence(void) {
               "rule action.FIRST active",
               "subscribe MAA:2 =* :2",
               "subscribe MAA:0 =* :1",
-              "activate schema schemaReceptionMessage (event schema)",
+              "activate schema schemaReceptionMessage(param = {24 bytes}) (event schema)",
               "setparam MAA:0 {27.12,0,0.04}",
               "connect MAA:0 =* MAB:0",
               "start MAA prio 40",

@@ -44,7 +44,7 @@ export const SUPERVISOR_LINES: readonly LinePattern[] = [
     { what: 'error', re: /^error: /, keys: [] },
     { what: 'warning', re: /^warning: /, keys: [] },
     // an event schema the supervisor runs itself: its activation and undo name it (`schema`)
-    { what: 'action', re: new RegExp(`^activate schema ${ID} \\(event schema\\)$`), keys: ['schema'] },
+    { what: 'action', re: new RegExp(`^activate schema ${ID}(?:\\(.*\\))? \\(event schema\\)$`), keys: ['schema'] },
     { what: 'action', re: new RegExp(`^undo: deactivate schema ${ID} \\(event schema\\)$`), keys: ['schema'] },
     { what: 'action', re: /^/, keys: [] },
 ];

@@ -86,6 +86,7 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'rule action.FIRST inactive')).toEqual({ what: 'rule', function: 'action', rule: 'FIRST', state: 'inactive' });
         expect(fields('supervisor', 'subscribe MAA:2 =* :2')).toEqual({ what: 'action' });
         expect(fields('supervisor', 'activate schema schemaReceptionMessage (event schema)')).toEqual({ what: 'action', schema: 'schemaReceptionMessage' });
+        expect(fields('supervisor', 'activate schema schemaReceptionMessage(param = {i=27.12,j=0,k=0.04}) (event schema)')).toEqual({ what: 'action', schema: 'schemaReceptionMessage' });
         expect(fields('supervisor', 'undo: deactivate schema console (event schema)')).toEqual({ what: 'action', schema: 'console' });
         expect(fields('supervisor', 'activate schema S (activation #3, to ORD)')).toEqual({ what: 'action' });
         expect(fields('supervisor', 'compute record')).toEqual({ what: 'action' });
