@@ -87,9 +87,10 @@ describe('examples/mobile-robot end to end', () => {
                 'rule mission.STOP inactive', 'rule mission.AUTO active',
             ])).toBe(true);
             expect(isSubsequence(supervisorTrace(logs, 'DRV'), [
-                'function teleop started', 'function teleop stopped', 'function autonomous started',
+                // autonomous names the goal it was started with (its parameter's default: MIS gives none)
+                'function teleop started', 'function teleop stopped', 'function autonomous(goal = {x=4,y=2,theta=0}) started',
                 'function autonomous stopped', 'function safestop started', 'function safestop stopped',
-                'function autonomous started',
+                'function autonomous(goal = {x=4,y=2,theta=0}) started',
             ])).toBe(true);
             // the simulated obstacle stands from 3.0 s to 4.5 s after the detector's first cycle: the
             // robot is in safe stop while it is there and back in autonomous mode after it is gone
