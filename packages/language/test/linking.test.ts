@@ -167,6 +167,20 @@ describe('cross-file linking', () => {
         expect(other.lines.filter((l) => l.includes('linking-error'))).toEqual([expect.stringContaining("Unknown module 'ZZZ': no module of this name")]);
     });
 
+    it('offers the closest name for a misspelt module, supervisor, parameter or rule label', async () => {
+        const b = await build({
+            'm.contract': 'asynchronous module MAB { event flows { out :0 string note; } }',
+            's.contract': 'import "m.contract";\nsupervisor SUP { event flows { in :0 string n; } f(float speed = 1.0) { rules { R: [elapsed=1ms] subscribe MBA:0 =* :0 [endof(RR)] } } }',
+            'g.contract': 'import "s.contract";\nsupervisor GLB { g() { rules { G: [elapsed=1ms] activate supervisor SUP.f(sped = 2.0) [elapsed=2ms] } } }'
+        }, services);
+        const linking = b.lines.filter((l) => l.includes('linking-error'));
+        expect(linking).toEqual(expect.arrayContaining([
+            expect.stringMatching(/Unknown module or supervisor 'MBA': .* Did you mean 'MAB'\?$/),
+            expect.stringMatching(/No rule labelled 'RR' in function f; its labels: R\. Did you mean 'R'\?$/),
+            expect.stringMatching(/Function f has no parameter 'sped'; its parameters: speed\. Did you mean 'speed'\?$/),
+        ]));
+    });
+
     it('reports a port of the wrong direction as unresolved with the valid ports', async () => {
         const files = { ...FILES, 'schemas/s1.contract': FILES['schemas/s1.contract'].replace('MSC:1 -> MSD :2', 'MSC:0 -> MSD :2') };
         const b = await build(files, services);

@@ -10,7 +10,7 @@ import {
 } from 'langium';
 import type { Diagnostic } from 'vscode-languageserver-types';
 import type { CactalServices } from '../cactal-module.js';
-import { describeUnresolved } from './unresolved-messages.js';
+import { describeUnresolved, nearName } from './unresolved-messages.js';
 import { ImportCodes } from './codes/imports.js';
 import { SyntaxCodes } from './codes/syntax.js';
 import { TypeCodes } from './codes/types.js';
@@ -97,7 +97,9 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             }
             const described = describeUnresolved(info, refText, linkingError.message);
             if (described === undefined) continue; // follows from another unresolved reference, reported there
-            const message = topLevel ? described + this.brokenImportNote(document, info) : described;
+            // a top-level name: the closest one of that kind in the workspace (`LNI` -> 'LIN')
+            const near = topLevel && referenceType && refText ? nearName(refText, index.allElements(referenceType).map((d) => d.name).distinct()) : '';
+            const message = topLevel ? described + near + this.brokenImportNote(document, info) : described;
             if (isTypeRef(info.container)) {
                 diagnostics.push(this.toDiagnostic(TypeCodes['type-unknown'].severity, message, {
                     ...base, code: 'type-unknown', data: { code: 'type-unknown', refText }

@@ -10,6 +10,7 @@ import {
 import { parametersOf, rulesOf } from '../model/blocks.js';
 import { portsOfKind, type PortDirection, type PortKind } from '../model/ports.js';
 import { typeName, typeOfPathPrefix } from '../model/types.js';
+import { closestName } from '../scenario/did-you-mean.js';
 
 const TOP_LEVEL_WORDS: Record<string, string> = {
     DataType: 'datatype', FunctionPrototype: 'function', Module: 'module', Supervisor: 'supervisor',
@@ -18,6 +19,13 @@ const TOP_LEVEL_WORDS: Record<string, string> = {
 
 function list(items: string[]): string {
     return items.length ? items.join(', ') : 'none';
+}
+
+/** ` Did you mean 'X'?` for the closest of `names` (scenario/did-you-mean.ts: within 1-3 edits), or ''. */
+export function nearName(written: string, names: Iterable<string | undefined>): string {
+    // a name left undefined by a syntax error is no candidate
+    const near = closestName(written, [...names].filter((n): n is string => typeof n === 'string' && n !== ''));
+    return near ? ` Did you mean '${near}'?` : '';
 }
 
 function portMessage(owner: Module | Supervisor | undefined, index: string, kind: PortKind, direction: PortDirection): string | undefined {
@@ -60,35 +68,35 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
     if (isSchemaArgument(c)) {
         const schema = isActivateSchema(c.$container) ? c.$container.schema?.ref : undefined;
         return schema
-            ? `Schema ${schema.name} has no parameter '${refText}'; its parameters: ${list(schema.parameters.map((q) => q.name))}.`
+            ? `Schema ${schema.name} has no parameter '${refText}'; its parameters: ${list(schema.parameters.map((q) => q.name))}.${nearName(refText, schema.parameters.map((q) => q.name))}`
             : undefined;
     }
     if (isActivateSupervisor(c) && p === 'function') {
         const sup = c.supervisor?.ref;
         return sup
-            ? `Supervisor ${sup.name} has no function '${refText}'; its functions: ${list(sup.functions.map((f) => f.name))}.`
+            ? `Supervisor ${sup.name} has no function '${refText}'; its functions: ${list(sup.functions.map((f) => f.name))}.${nearName(refText, sup.functions.map((f) => f.name))}`
             : undefined;
     }
     if (isFunctionArgumentAssignment(c)) {
         const fn = isActivateSupervisor(c.$container) ? c.$container.function?.ref : undefined;
         return fn
-            ? `Function ${fn.name} has no parameter '${refText}'; its parameters: ${list(fn.parameters.map((q) => q.name))}.`
+            ? `Function ${fn.name} has no parameter '${refText}'; its parameters: ${list(fn.parameters.map((q) => q.name))}.${nearName(refText, fn.parameters.map((q) => q.name))}`
             : undefined;
     }
     if (isStartedEvent(c) || isEndofEvent(c) || isDurationEvent(c)) {
         const fn = AstUtils.getContainerOfType(c, isSupervisionFunction);
-        return `No rule labelled '${refText}' in function ${fn?.name ?? '?'}; its labels: ${list(fn ? rulesOf(fn).map((r) => r.name) : [])}.`;
+        return `No rule labelled '${refText}' in function ${fn?.name ?? '?'}; its labels: ${list(fn ? rulesOf(fn).map((r) => r.name) : [])}.${nearName(refText, fn ? rulesOf(fn).map((r) => r.name) : [])}`;
     }
     if (isFieldSegment(c)) {
         const ref = c.$container;
         if (isVariableRef(ref)) {
             const head = ref.variable?.ref;
             if (isEnumType(head) && (c.$containerIndex ?? 0) === 0) {
-                return `'${refText}' is not a member of enumeration ${head.name}; its members: ${list(head.members.map((m) => m.name))}.`;
+                return `'${refText}' is not a member of enumeration ${head.name}; its members: ${list(head.members.map((m) => m.name))}.${nearName(refText, head.members.map((m) => m.name))}`;
             }
             const type = typeOfPathPrefix(ref, c.$containerIndex ?? 0);
             if (type.kind === 'struct') {
-                return `'${refText}' is not a field of ${type.datatype.name}; its fields: ${list(type.datatype.fields.map((f) => f.name))}.`;
+                return `'${refText}' is not a field of ${type.datatype.name}; its fields: ${list(type.datatype.fields.map((f) => f.name))}.${nearName(refText, type.datatype.fields.map((f) => f.name))}`;
             }
             if (type.kind === 'primitive' || type.kind === 'enum' || type.kind === 'array') {
                 return `'${refText}': a value of type ${typeName(type)} has no fields${type.kind === 'array' ? ' (an element is written [i])' : ''}.`;

@@ -14,7 +14,7 @@ export const { area: syntaxArea, codes: SyntaxCodes } = defineCodes('Syntax and 
     },
     'linking-error': {
         severity: 'error',
-        description: 'A name or port index that does not resolve in its context: unknown type, module, schema, rule label, variable or field, or a port index that the module does not have with that kind and direction. The message lists what would be valid; a supervisor named where a module must be (a schema\'s modules and flows, `parameterize`) is said to be one: its events reach only the supervisors that subscribe to them.',
+        description: 'A name or port index that does not resolve in its context: unknown type, module, schema, rule label, variable or field, or a port index that the module does not have with that kind and direction. The message lists what would be valid, and the closest name when one is near (`Unknown module or supervisor \'LNI\': ... Did you mean \'LIN\'?`, `Function run has no parameter \'sped\'; its parameters: speed, mode. Did you mean \'speed\'?`); a supervisor named where a module must be (a schema\'s modules and flows, `parameterize`) is said to be one: its events reach only the supervisors that subscribe to them.',
         example: 'periodic schema s() { modules { MZZ (); } }   // no module MZZ'
     }
 });
