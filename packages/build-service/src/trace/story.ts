@@ -133,7 +133,10 @@ export class StoryTeller {
             return undefined;
         }
         if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}${this.lateOf(k)}`;
-        if (k.kind === 'module_started') return `${at(k)} started (${k.detail})`;
+        if (k.kind === 'module_started') {
+            this.exited.delete(k.module); // started again: a later stuck report is about this run of it
+            return `${at(k)} started (${k.detail})`;
+        }
         if (k.kind === 'module_exit') {
             if (this.exited.size < 4096) this.exited.set(k.module, k.detail.slice(0, 120));
             return `${at(k)} exited (${k.detail})`;

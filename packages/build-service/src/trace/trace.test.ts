@@ -176,6 +176,13 @@ describe('reading a log', () => {
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (conveyor)',
             '2503000000,w,ORD,scheduler,,,0,stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
         ].join('\n') }]));
+        // started again after its exit: a later stuck report gets ORD's advice again
+        const again = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+            '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',
+            '1600000000,w,SPC,module_started,,,0,pid=7 priority=84',
+            '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+        ].join('\n') }]));
+        expect(again.filter((l) => l.includes('stuck:'))).toEqual(['+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)']);
         expect(crashed.filter((l) => l.includes('stuck:'))).toEqual([
             '+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): it had exited before (crashed (simulated)) (conveyor)',
             '+1.003000s ORD  stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
