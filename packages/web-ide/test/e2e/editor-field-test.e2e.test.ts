@@ -7,7 +7,7 @@
  * right side" refuses unresolved conflict markers, naming the line; using the view twice then
  * merging leaves no page error; Ctrl+G goes to a line; Escape on Run settings gives the focus back.
  */
-import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { describe, it, expect, beforeAll, afterAll, afterEach } from 'vitest';
 import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import type { Page } from 'playwright-core';
@@ -20,6 +20,12 @@ const MAA = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
 let s: Session;
 let other: { page: Page; close(): Promise<void> };
 const errors: string[] = [];
+/** The last step a test reached, with its time: said when the test fails (a CI host once stalled one for 30 s, nothing said where). */
+let reached = '';
+let since = 0;
+const step = (what: string) => {
+  reached = `${what} (${Date.now() - since} ms into the test)`;
+};
 const disk = (p = SCHED) => readFileSync(join(s.workspace, p), 'utf8');
 /** The text of a file's model in a page (the tab's text, shown or not). */
 const tabText = (page: Page, path = SCHED) => page.evaluate((p) => (window as any).__ide.workspace.files.get(p).model.getValue() as string, path);
@@ -36,13 +42,16 @@ const focusIn = (page: Page) => page.evaluate(() => {
 async function makeOverlap(anchor: string, mine: string, theirs: string): Promise<{ mine: string; theirs: string }> {
   const a = s.page;
   const b = other.page;
+  step('overlap: both saved?');
   await waitSaved(a);
   await waitSaved(b);
   await b.context().setOffline(true);
   try {
+    step('overlap: B types offline');
     await placeCursor(b, anchor, anchor.length);
     await b.keyboard.type(mine);
     await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+    step('overlap: A types and saves');
     await placeCursor(a, anchor, anchor.length);
     await a.keyboard.type(theirs);
     await expect.poll(() => disk(), { timeout: 10_000 }).toContain(anchor + theirs);
@@ -51,9 +60,11 @@ async function makeOverlap(anchor: string, mine: string, theirs: string): Promis
     await b.context().setOffline(false);
   }
   const onDisk = disk();
+  step('overlap: B saves (Ctrl+S)');
   const tab = await activeValue(b);
   await b.keyboard.press('Control+s');
   await b.locator('.conflict-overlay .monaco-diff-editor').waitFor({ timeout: 15_000 });
+  step('overlap: the view is open');
   return { mine: tab, theirs: onDisk };
 }
 
@@ -64,6 +75,16 @@ describe('editor defects of the field test', () => {
   afterAll(async () => {
     await other?.close();
     await s?.close();
+  });
+  afterEach(async (ctx) => {
+    if (ctx.task.result?.state !== 'fail') return;
+    console.error(`editor field test: "${ctx.task.name}" failed after its step: ${reached || 'none'}`);
+    // a failed conflict test leaves B's view open (or B offline): put B back as the next test expects it
+    const b = other?.page;
+    if (!b) return;
+    await b.context().setOffline(false).catch(() => undefined);
+    if (await b.locator('.conflict-overlay').count().catch(() => 0)) await b.locator('#conflict-take-theirs').click({ timeout: 5000 }).catch(() => undefined);
+    await waitSaved(b).catch(() => undefined);
   });
 
   it("Ctrl+Z after a reload from disk undoes the reload only: the user's own typing before it stays", async () => {
@@ -94,6 +115,7 @@ describe('editor defects of the field test', () => {
   });
 
   it('the overlapping-edits view is a modal: focus inside, keys stay in it, Tab cycles in it, Escape cancels (nothing written) and gives the editor the focus; Ctrl+S shows it again', async () => {
+    since = Date.now();
     const b = other.page;
     const { mine, theirs } = await makeOverlap('schemaCommande1;', ' // B offline', ' // A online');
     const view = b.locator('.conflict-overlay');
@@ -105,6 +127,7 @@ describe('editor defects of the field test', () => {
     // keys typed now do not reach the editor hidden behind the view
     await b.keyboard.type('zz');
     expect(await tabText(b)).toBe(mine);
+    step('view: Tab cycles');
     const visited = new Set<string>();
     for (let i = 0; i < 8; i++) {
       await b.keyboard.press('Tab');
@@ -118,7 +141,9 @@ describe('editor defects of the field test', () => {
       await b.keyboard.press('Shift+Tab');
       expect(await focusIn(b)).toBe('conflict');
     }
+    step('view: screenshot');
     await shot(b, '30-conflict-modal');
+    step('view: Escape');
     await b.keyboard.press('Escape');
     await expect.poll(() => view.count()).toBe(0);
     expect(await focusIn(b)).toBe('editor');
@@ -126,6 +151,7 @@ describe('editor defects of the field test', () => {
     expect(disk()).toBe(theirs);
     expect(await tabText(b)).toBe(mine);
     // Ctrl+S in the tab asks again
+    step('view: Ctrl+S again');
     await b.keyboard.press('Control+s');
     await view.waitFor({ timeout: 5000 });
     await expect.poll(() => focusIn(b)).toBe('conflict');
@@ -134,9 +160,10 @@ describe('editor defects of the field test', () => {
     expect(await focusIn(b)).toBe('editor');
     await expect.poll(() => activeValue(b), { timeout: 5000 }).toBe(theirs);
     await waitSaved(b);
-  });
+  }, 60_000); // about 2 s; its waits add up to more on a loaded host
 
   it('"Save the right side" with conflict markers left is refused, naming the line; once resolved it is saved', async () => {
+    since = Date.now();
     const b = other.page;
     const { theirs } = await makeOverlap('MSD;', ' // mine', ' // theirs');
     await b.locator('#conflict-edit-merge').click();
