@@ -1065,7 +1065,10 @@ int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const 
     }
     if (rc == 0) {
         rc = sup_core_start_function(c, t, name, block, fn->params_size);
-        if (rc != 0) snprintf(err, errlen, "%s.%s is already running", c->v->name, name);
+        if (rc != 0) { /* refused and traced by local_start: `refused: function F already running` */
+            snprintf(err, errlen, "%s.%s is already running", c->v->name, name);
+            rc = -2;
+        }
     }
     free(block);
     free(copy);

@@ -97,8 +97,10 @@ int sup_core_start_function(SupCore *c, int64_t t, const char *name, const void 
  *  ends it. */
 int sup_core_start_function_for(SupCore *c, int64_t t, const char *name, const void *params,
                                 size_t size, const char *caller, uint32_t activation_id);
-/** Same, with parameters in text form `p1={1.0,2.0,3.0} p2="x"` (control tools). -1 on a
- *  parse error, with a message in err. */
+/** Same, with parameters in text form `p1={1.0,2.0,3.0} p2="x"` (control tools). -1 when the
+ *  request names no function or parameter of it or a value cannot be read (not traced: the
+ *  caller says it), -2 when the function is already running (traced `refused: function F already
+ *  running`); a message in err either way. */
 int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const char *args,
                                  char *err, size_t errlen);
 /** Stops a running function: its active rules are deactivated (undos run). 0 or -1. */

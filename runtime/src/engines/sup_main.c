@@ -382,7 +382,7 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
     size_t size;
     if (engine_binary_args(m, &block, &size)) { /* `activate supervisor` of another supervisor */
         rc = sup_core_start_function_for(c, t, fn, block, size, m->Sender, (uint32_t)m->Param.Start.AckID);
-        if (rc != 0) snprintf(err, sizeof err, "%s.%s refused (unknown or already running)", v->name, fn);
+        if (rc != 0) fprintf(stderr, "%s: start refused: %s.%s refused (unknown or already running)\n", v->name, v->name, fn);
     } else {
         char args[CONTRACT_REQUEST_DATA_MAX + 1];
         size_t n = m->DataSize < CONTRACT_REQUEST_DATA_MAX ? m->DataSize : CONTRACT_REQUEST_DATA_MAX;
@@ -390,18 +390,18 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
         args[n] = '\0';
         rc = sup_core_start_function_text(c, t, fn, args, err, sizeof err);
         /* a start request (contract-launch's, a control tool's) that names no function or
-           parameter, or a value the type cannot read: said on stderr (the build service makes it
-           a run issue, start-refused) and in the CSV log, so that the story tells it; "already
-           running" is the core's own `refused: function F already running` line */
-        if (rc != 0 && !strstr(err, "is already running")) {
+           parameter, or a value the type cannot read (-1: the core did not trace it): said on
+           stderr (the build service makes it a run issue, start-refused) and in the CSV log, so
+           that the story tells it; -2, already running, is the core's own `refused: ...` line */
+        if (rc == -1) {
             fprintf(stderr, "%s: start request from %s refused: %s\n", v->name, m->Sender, err);
             char line[400];
             snprintf(line, sizeof line, "refused: start request from %s: %.300s", m->Sender, err);
             ContractLog("supervisor", m->Sender, -1, 0, line);
-            rc = -2; /* told */
+        } else if (rc != 0) {
+            fprintf(stderr, "%s: start refused: %s\n", v->name, err);
         }
     }
-    if (rc != 0 && rc != -2) fprintf(stderr, "%s: start refused: %s\n", v->name, err);
     SendAck(m->Param.Start.ModAck[0] ? m->Param.Start.ModAck : m->Sender, m->Param.Start.WantedAck,
             rc == 0 ? ACK_START : ACK_NOTDONE, m->Param.Start.AckID);
 }

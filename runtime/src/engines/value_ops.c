@@ -267,7 +267,6 @@ static int put(Writer *w, const char *s) {
     return 1;
 }
 
-/* `"text"`: quotes and backslashes escaped, control characters as `?`, cut at 64 with `...`. */
 /* Length of the well-formed UTF-8 sequence at s[i] (at most `left` bytes), or 0 if it is not one. */
 static size_t utf8_length(const unsigned char *s, size_t left) {
     unsigned char c = s[0];

@@ -178,6 +178,9 @@ void test_report_sup_start_with_text_parameters(void) {
     CHECK(sup_core_start_function_text(c, 0, "action", "consigne={1.5, 2.5, 3.5}", err, sizeof err) == 0);
     const TypeA *tc = sup_core_local(c, "action", "temp_consigne");
     CHECK(tc && tc->i == 1.5 && tc->j == 2.5 && tc->k == 3.5);
+    /* a second start while it runs: refused, and told apart from a bad request (-2: the core traced it) */
+    CHECK(sup_core_start_function_text(c, 0, "action", "consigne={1.5, 2.5, 3.5}", err, sizeof err) == -2);
+    CHECK(strstr(err, "is already running") != NULL);
     CHECK(sup_core_stop_function(c, 1, "action") == 0);
     CHECK(sup_core_start_function_text(c, 2, "action", "consign={1,2,3}", err, sizeof err) == -1);
     CHECK(strstr(err, "no parameter 'consign'") != NULL);
