@@ -158,14 +158,24 @@ class CycleModules {
     return this;
   }
 
+  /** The slot among the first `end` that holds the name text[from, to), or -1 (matched in place: no string made). */
+  private slotOf(text: string, from: number, to: number, end: number): number {
+    const names = this.names;
+    const len = to - from;
+    for (let i = 0; i < end; i++) {
+      const s = names[i]!;
+      if (s.length === len && text.startsWith(s, from)) return i;
+    }
+    return -1;
+  }
+
   /** Module text[from, to) released. */
   addIn(text: string, from: number, to: number): void {
     const names = this.names;
-    const len = to - from;
-    for (let i = 0; i < names.length; i++) {
-      const s = names[i]!;
-      if (s.length !== len || !text.startsWith(s, from)) continue;
+    const i = this.slotOf(text, from, to, names.length);
+    if (i >= 0) {
       if (i < this.n || this.n >= MAX_WAIT_MODULES) return; // waited for already, or the list is full
+      const s = names[i]!;
       names[i] = names[this.n]!; // a name it held before: back in the list
       names[this.n++] = s;
       return;
@@ -177,15 +187,12 @@ class CycleModules {
 
   /** Module text[from, to) finished. */
   removeIn(text: string, from: number, to: number): void {
+    const i = this.slotOf(text, from, to, this.n);
+    if (i < 0) return;
     const names = this.names;
-    const len = to - from;
-    for (let i = 0; i < this.n; i++) {
-      const s = names[i]!;
-      if (s.length !== len || !text.startsWith(s, from)) continue;
-      names[i] = names[--this.n]!;
-      names[this.n] = s; // kept past n for the next cycles
-      return;
-    }
+    const s = names[i]!;
+    names[i] = names[--this.n]!;
+    names[this.n] = s; // kept past n for the next cycles
   }
 
   /** `ARM, GRP` (sorted), cut to MAX_WAIT_TEXT. */
