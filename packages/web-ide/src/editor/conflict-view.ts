@@ -2,7 +2,7 @@ import { monaco } from './monaco.js';
 import { h } from '../util/dom.js';
 import { openModal, type FocusStop, type Modal } from '../util/modal.js';
 import type { Conflict, Workspace } from '../workspace/workspace.js';
-import { findConflictMarker } from '../workspace/three-way-merge.js';
+import { findConflictMarker, threeWayMerge } from '../workspace/three-way-merge.js';
 import { languageOf } from '../workspace/file-kinds.js';
 
 let views = 0;
@@ -44,8 +44,17 @@ export class ConflictView {
     if (i >= 0) this.queue.splice(i, 1);
     if (this.current?.conflict.path === conflict.path) {
       if (this.current.conflict === conflict) return; // asked again while shown
+      // the disk changed again while shown: its newest text on the left. What the user made of the
+      // right side so far (their merge in progress) is kept, with the disk's new change merged into
+      // it when the two do not overlap; unedited, the right side is their tab's text now
+      const right = this.current.models[1]!.getValue();
+      const shown = this.current.conflict;
       this.close();
-      this.open(conflict);
+      if (right === shown.mine) this.open(conflict, {});
+      else {
+        const merged = threeWayMerge(shown.theirs, right, conflict.theirs);
+        this.open(conflict, merged.clean ? { right: merged.text, merged: true } : { right });
+      }
       return;
     }
     this.queue.push(conflict);
@@ -58,7 +67,13 @@ export class ConflictView {
     if (c) this.open(c);
   }
 
-  private open(conflict: Conflict): void {
+  /**
+   * `again`: the view replaces one of the same file (the disk changed again); `again.right`, the
+   * right side's text when it is not the tab's (a merge in progress carried over), `merged` when the
+   * disk's new change was merged into it.
+   */
+  private open(conflict: Conflict, again?: { right?: string; merged?: boolean }): void {
+    const right = again?.right;
     const n = ++views;
     const host = h('div', { class: 'conflict-diff' });
     const choose = (text: () => string) => () => {
@@ -69,8 +84,12 @@ export class ConflictView {
     };
     // models of their own scheme: not workspace files (the language server does not open them)
     const original = monaco.editor.createModel(conflict.theirs, languageOf(conflict.path), monaco.Uri.from({ scheme: 'conflict', path: `/${n}/disk/${conflict.path}` }));
-    const modified = monaco.editor.createModel(conflict.mine, languageOf(conflict.path), monaco.Uri.from({ scheme: 'conflict', path: `/${n}/yours/${conflict.path}` }));
+    const modified = monaco.editor.createModel(right ?? conflict.mine, languageOf(conflict.path), monaco.Uri.from({ scheme: 'conflict', path: `/${n}/yours/${conflict.path}` }));
     const error = h('div', { class: 'conflict-error hidden', role: 'alert' });
+    const changedAgain = h('div', { class: `conflict-again${again ? '' : ' hidden'}`, role: 'status' },
+      'The file on disk changed again while this view was open: the left side is its newest text' +
+      (right === undefined ? '.' : again?.merged ? '; your right side is kept as you left it, with that new change merged in.' :
+        '; your right side is kept as you left it (the new change overlaps your edits there: compare the two sides).'));
     const saveRight = () => {
       const text = modified.getValue();
       const marker = findConflictMarker(text);
@@ -104,7 +123,7 @@ export class ConflictView {
         h('div', { class: 'conflict-title', id: titleId }, `${conflict.path}: your edits and a change made elsewhere overlap`),
         h('div', { class: 'dialog-hint', id: hintId }, 'Left: the file on disk now. Right: your text (editable). Nothing is written until you choose; your text is kept in this browser meanwhile. ' +
           'Tab moves between the two sides and the buttons; Escape decides later (Ctrl+S in the tab shows this again).')),
-      host, error,
+      changedAgain, host, error,
       h('div', { class: 'dialog-buttons' }, ...buttons));
     // in the page before the editor is created (it measures its host), not yet a modal
     overlay.style.visibility = 'hidden';

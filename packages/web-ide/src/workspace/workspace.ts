@@ -292,6 +292,11 @@ export class Workspace {
       this.onConflict.fire(conflict);
       return;
     }
+    if (fs.state === 'conflict') {
+      // a newer disk text merges cleanly with the user's: the overlap is gone (its view closes)
+      fs.conflict = undefined;
+      this.setState(fs, 'dirty');
+    }
     fs.diskText = theirs;
     fs.diskVersion = theirsVersion;
     if (result.text !== mine) this.showText(fs, result.text);
@@ -406,12 +411,11 @@ export class Workspace {
       this.recheck.add(path);
       return;
     }
-    if (fs.state === 'conflict') {
-      // the conflict view showed an older disk text: compare the user's text with the newest one
-      fs.conflict = undefined;
-      this.setState(fs, 'dirty');
-    }
+    // the disk text the conflict view shows already (a re-read after a reconnect, a late event):
+    // nothing new, and the view, with what the user is merging in it, stays as it is
+    if (fs.state === 'conflict' && fs.conflict?.theirsVersion === version) return;
     if (content === fs.model.getValue()) {
+      fs.conflict = undefined;
       fs.diskText = content;
       fs.diskVersion = version;
       this.clearBackup(path);
@@ -426,6 +430,8 @@ export class Workspace {
       if (!/(^|\/)src-gen\//.test(path)) this.onNotice.fire({ level: 'info', text: `${path} changed on disk: reloaded` });
       return;
     }
+    // unsaved edits, or a conflict whose view showed an older disk text: the user's text is compared
+    // with the newest one, on the same base (a conflict again replaces the view's left side)
     this.cancelPendingSave(path);
     this.reconcile(fs, content, version);
   }

@@ -190,6 +190,78 @@ describe('editor defects of the field test', () => {
     await expect.poll(() => activeValue(s.page), { timeout: 10_000 }).toBe(resolved);
   });
 
+  it('the view stays as it is when the same disk text is read again (the merge being edited is kept); a newer disk text replaces its left side and is merged into the right side, kept', async () => {
+    since = Date.now();
+    const a = s.page;
+    const b = other.page;
+    const { theirs } = await makeOverlap('MSB;', ' // mine 3', ' // theirs 3');
+    const view = b.locator('.conflict-overlay');
+    const viewId = () => view.getAttribute('aria-labelledby');
+    /** The view's two sides (its models are named /N/disk/… and /N/yours/…). */
+    const sides = async () => b.evaluate((title) => {
+      const n = title!.replace('conflict-title-', '');
+      const models = ((window as any).__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string; path: string }; getValue(): string; isDisposed(): boolean }>)
+        .filter((m) => !m.isDisposed() && m.uri.scheme === 'conflict' && m.uri.path.startsWith(`/${n}/`));
+      return { left: models.find((m) => m.uri.path.includes('/disk/'))?.getValue(), right: models.find((m) => m.uri.path.includes('/yours/'))?.getValue() };
+    }, await viewId());
+    await b.locator('#conflict-edit-merge').click();
+    const first = await viewId();
+    const merging = (await sides()).right!;
+    expect(merging).toContain('<<<<<<< yours');
+    step('again: the same disk text read again');
+    // what a reconnect or a late file event does: the disk still holds what the left side shows
+    await b.evaluate((p) => (window as any).__ide.workspace.externalChange(p), SCHED);
+    await b.waitForTimeout(300);
+    expect(await viewId()).toBe(first);
+    expect(await sides()).toEqual({ left: theirs, right: merging });
+    expect(await b.locator('.conflict-again').isVisible()).toBe(false);
+    step('again: A changes another line');
+    await placeCursor(a, 'MSA;', 4);
+    await a.keyboard.type(' // A third');
+    await expect.poll(() => disk(), { timeout: 10_000 }).toContain('MSA; // A third');
+    await expect.poll(() => viewId(), { timeout: 10_000 }).not.toBe(first);
+    const newest = disk();
+    // A's new line does not overlap the merge being edited: it is merged into the right side
+    const withThird = merging.replace('MSA;', 'MSA; // A third');
+    expect(withThird).not.toBe(merging);
+    await expect.poll(() => sides(), { timeout: 5000 }).toEqual({ left: newest, right: withThird });
+    await b.locator('.conflict-again').waitFor({ timeout: 5000 });
+    expect(await b.locator('.conflict-again').textContent()).toContain('your right side is kept as you left it, with that new change merged in');
+    await shot(b, '32-conflict-changed-again');
+    step('again: both change one line');
+    // the user edits a line on the right side; A then changes the same line
+    const second = await viewId();
+    const edited = withThird.replace('MSC; // typed in B', 'MSC; // typed in B, kept by B');
+    expect(edited).not.toBe(withThird);
+    await b.evaluate(({ title, text }) => {
+      const n = title!.replace('conflict-title-', '');
+      const m = ((window as any).__ide.monaco.editor.getModels() as Array<{ uri: { scheme: string; path: string }; setValue(t: string): void; isDisposed(): boolean }>)
+        .find((x) => !x.isDisposed() && x.uri.scheme === 'conflict' && x.uri.path.startsWith(`/${n}/yours/`))!;
+      m.setValue(text);
+    }, { title: second, text: edited });
+    await placeCursor(a, 'MSC; // typed in B', 'MSC; // typed in B'.length);
+    await a.keyboard.type(' and A');
+    await expect.poll(() => disk(), { timeout: 10_000 }).toContain('MSC; // typed in B and A');
+    await expect.poll(() => viewId(), { timeout: 10_000 }).not.toBe(second);
+    const latest = disk();
+    // it overlaps what the user is merging: the right side stays exactly as they left it
+    await expect.poll(() => sides(), { timeout: 5000 }).toEqual({ left: latest, right: edited });
+    await expect.poll(() => b.locator('.conflict-again').textContent()).toContain('the new change overlaps your edits there');
+    step('again: A takes back its overlapping edit');
+    // the newest disk text now merges cleanly with B's tab: the conflict ends, the merge is saved
+    await placeCursor(a, 'MSB; // theirs 3', 'MSB;'.length);
+    await a.keyboard.press('Shift+End');
+    await a.keyboard.press('Delete');
+    await expect.poll(() => view.count(), { timeout: 10_000 }).toBe(0);
+    await expect.poll(() => disk(), { timeout: 10_000 }).toContain('MSB; // mine 3');
+    await waitSaved(b);
+    const merged = disk();
+    for (const line of ['MSA; // A third', 'MSC; // typed in B and A']) expect(merged).toContain(line);
+    expect(merged).not.toContain('theirs 3');
+    expect(await activeValue(b)).toBe(merged);
+    expect(await b.locator('#status-save').textContent()).not.toMatch(/Overlapping/);
+  }, 60_000);
+
   it('after the view was used (twice), later merges and reloads raise no page error', async () => {
     const a = s.page;
     const b = other.page;
