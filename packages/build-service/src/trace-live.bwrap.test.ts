@@ -128,9 +128,10 @@ test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs
     expect(trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text)), f.name).toEqual(want);
   }
   // the supervisors stopped first: SUP's undo of its schemas reached ORD, which deactivated them
-  const undone = [...texts.get('SUP')!.matchAll(/,supervisor,ORD,,0,"undo: deactivate schema (\w+) \(activation #\d+, to ORD\)"/g)].map((m) => m[1]!);
+  const undone = [...texts.get('SUP')!.matchAll(/,supervisor,ORD,,0,"undo: deactivate schema (\w+) \(activation #(\d+), to ORD\)"/g)].map((m) => [m[1]!, m[2]!] as const);
   expect(undone.length).toBeGreaterThan(0);
-  for (const schema of undone) expect(texts.get('ORD')!, schema).toContain(`,scheduler,,,0,deactivate ${schema}\n`);
+  // ORD's line names the activation it ends, as SUP numbered it
+  for (const [schema, n] of undone) expect(texts.get('ORD')!, schema).toContain(`,scheduler,,,0,deactivate ${schema} (activation #${n} from SUP)\n`);
 }, 240_000);
 
 /** The 9 collected logs of a job, by module, each checked to end with its module's exit record. */

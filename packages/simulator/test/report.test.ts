@@ -52,6 +52,32 @@ describe('the text report\'s times', () => {
         expect(times).toEqual([...times].sort((a, b) => a - b));
     });
 
+    it('--verbose tells a deadline miss as contract trace does: its cycle and the modules not finished, from ORD\'s typed records over the steps', () => {
+        const rec = (timeNs: number, seq: number, kind: string, peer: string, detail: string) => ({ timeNs, seq, module: 'ORD', kind, peer, detail });
+        const step = (timeNs: number, source: string, records: ReturnType<typeof rec>[], log: Array<{ timeNs: number; seq: number; who: string; line: string }> = []) => ({
+            line: 1, source, timeNs, kind: 'event' as const, ok: true,
+            record: { line: 1, timeNs, ok: true, verb: 'event', delivered: 1, rules: [], actions: [], log, records },
+        });
+        const result = {
+            file: 'line.scenario', passed: true, failures: [], eventsProcessed: 2, endNs: 1e9, ms: 1, harnessMs: 1,
+            steps: [
+                // cycle 3 released in the first step: A finishes, B does not
+                step(30e6, 't=30ms X:0 1', [
+                    rec(30e6, 1, 'ord_release', 'A', 'schema=loop cycle=3 tick_ns=30000000 release_ns=30000000 release=7'),
+                    rec(30e6, 2, 'ord_release', 'B', 'schema=loop cycle=3 tick_ns=30000000 release_ns=30000000 release=8'),
+                    rec(31e6, 3, 'ord_finished', 'A', 'schema=loop cycle=3 release=7 response_ns=1000000'),
+                ]),
+                // missed in the next
+                step(40e6, 't=40ms X:0 2', [rec(38e6, 5, 'ord_deadline_miss', '', 'schema=loop cycle=3 tick_ns=30000000')],
+                    [{ timeNs: 38e6, seq: 4, who: 'ORD', line: 'deadline miss: loop (ORD:0)' }]),
+            ],
+        } as unknown as ScenarioResult;
+        const text = textReport([result], { verbose: true });
+        expect(text).toMatch(/38ms {4}ORD\| deadline miss \(ORD:0\): loop cycle 3 \(not finished: B\)\n/);
+        expect(text).not.toContain('deadline miss: loop (ORD:0)'); // ORD's bare line: told by the record
+        expect(textReport([result])).not.toContain('deadline miss'); // not verbose: the rules say it
+    });
+
     it('--verbose folds ORD\'s periodic releases: each module\'s first after an activation, then a count per step', () => {
         const log = (timeNs: number, seq: number, line: string) => ({ timeNs, seq, who: 'ORD', line });
         const cycle = (k: number) => [log(k * 10e6, 3 * k, 'release A (loop)'), log(k * 10e6 + 1e6, 3 * k + 1, 'release B (loop)')];

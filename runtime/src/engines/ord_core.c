@@ -91,6 +91,15 @@ static int shares_module(const ContractSchema *a, const ContractSchema *b) {
     return 0;
 }
 
+/* " (activation #N from SUP)": which activation an activate/deactivate line serves, as the
+   requester's own `activate schema S (activation #N, to ORD)` line numbers it; "" for none (0) */
+static const char *activation_text(char *buf, size_t n, uint32_t id, const char *requester) {
+    if (id == 0) snprintf(buf, n, "%s", "");
+    else if (requester && *requester) snprintf(buf, n, " (activation #%u from %s)", id, requester);
+    else snprintf(buf, n, " (activation #%u)", id);
+    return buf;
+}
+
 static void release(OrdCore *c, SchemaState *ss, int m) {
     uint32_t id = ++c->next_release_id;
     if (id == 0) id = ++c->next_release_id; /* 0 never names a release */
@@ -258,7 +267,8 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
         ss->stats.missed_ticks++;
         /* a module hogging the CPU makes ORD late at every tick: one line per cycle, and the
            stuck check still runs (it may never see an overrun) */
-        if (!ss->running || ++ss->cycle_missed == 1) trace(c, "missed tick of %s", ss->s->name);
+        if (!ss->running || ++ss->cycle_missed == 1)
+            trace(c, "missed tick of %s (cycle %ld)", ss->s->name, (long)((tick - ss->act_t) / ss->s->period_ns));
         if (ss->running && !ss->held) check_stuck(c, ss, tick);
         return;
     }
@@ -394,7 +404,8 @@ int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *param
     ss->running = 0;
     ss->next_tick = c->now;
     ss->act_t = c->now;
-    trace(c, "activate %s", name);
+    char act[96];
+    trace(c, "activate %s%s", name, activation_text(act, sizeof act, activation_id, requester));
     if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 1);
     ord_core_advance(c, c->now);
     return 0;
@@ -419,7 +430,8 @@ int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *req
     ss->held = 0; /* modules released and not acked stay outstanding: they may still run */
     for (int k = 0; k < ss->s->ndata_flows; k++)
         if (c->io.disconnect_data) c->io.disconnect_data(c->io.ctx, &ss->s->data_flows[k]);
-    trace(c, "deactivate %s", name);
+    char act[96];
+    trace(c, "deactivate %s%s", name, activation_text(act, sizeof act, ss->act_id, ss->requester));
     if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 1);
     return 0;
 }

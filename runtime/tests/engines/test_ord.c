@@ -84,7 +84,7 @@ void test_ord_precedence_every_cycle(void) {
     check_log_filtered(&LOG, SCHED, expp, __FILE__, __LINE__);
     /* parameterised and connected before the first release, with periodicities */
     CHECK_LOG(&LOG, "setparam B:1 <8 bytes>", "connect A:0 -> D:0 * 2", "connect B:0 -> D:1 * 1",
-              "0us activate DIA", "ack SUP #1 done", "0us release A (DIA)", "1000us release B (DIA)",
+              "0us activate DIA (activation #1 from SUP)", "ack SUP #1 done", "0us release A (DIA)", "1000us release B (DIA)",
               "1000us release C (DIA)", "3000us release D (DIA)", "10000us release A (DIA)",
               "11000us release B (DIA)", "11000us release C (DIA)", "13000us release D (DIA)",
               "20000us release A (DIA)", "21000us release B (DIA)", "21000us release C (DIA)",
@@ -181,6 +181,9 @@ void test_ord_two_periods_and_deactivation(void) {
     CHECK(dia == 2); /* 0 and 10 ms, nothing after the deactivation */
     CHECK(last_dia >= 0 && strcmp(LOG.lines[last_dia], "10000us release A (DIA)") == 0);
     CHECK(log_find(&LOG, "disconnect A:0 -> D:0", 0) >= 0);
+    /* the activate and deactivate lines name the activation they serve, as SUP numbered it */
+    CHECK(log_find(&LOG, "0us activate FST (activation #2 from SUP)", 0) >= 0);
+    CHECK(log_find(&LOG, "14500us deactivate DIA (activation #1 from SUP)", 0) >= 0);
     CHECK(log_find(&LOG, "3000us release E (FST)", 0) >= 0);
     CHECK(log_find(&LOG, "39000us release E (FST)", 0) >= 0);
     int64_t d;
@@ -470,7 +473,7 @@ void test_ord_stuck_reported_when_every_tick_is_missed(void) {
              "does its exec region set *stateindex = -1? (SLW)", g);
     snprintf(called, sizeof called, "stuck G #%u (SLW) after 10 periods", g);
     check_log_filtered(&LOG, (const char *const[]){"missed", "overrun", "stuck", NULL},
-                       (const char *const[]){"200000us missed tick of SLW",
+                       (const char *const[]){"200000us missed tick of SLW (cycle 1)",
                                              "400000us overrun: SLW cycle still running, release skipped",
                                              stuck, called, NULL},
                        __FILE__, __LINE__);

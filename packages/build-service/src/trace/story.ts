@@ -34,7 +34,7 @@ function describeCause(c: RuleCause): string {
 
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
-const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning']);
+const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning', 'activation_refused']);
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
 
 /** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
@@ -116,6 +116,8 @@ export class StoryTeller {
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
         // every action and undo, with its target and value: who activated a schema or a function, what it sent
         if (k.kind === 'supervisor' && what === 'action') return `${at(k)} ${k.detail}`;
+        // a line of another engine version, or forged: told, but not as an action
+        if (k.kind === 'supervisor' && what === 'other') return `${at(k)} (a supervisor line this reader does not know) ${k.detail}`;
         // the modules a supervisor starts and stops (event schemas, activate resttime|critical module) and the event flows it connects
         if (k.kind === 'module_hold') return `${at(k)} module ${k.peer}: ${k.detail}`;
         if (k.kind === 'flow_hold') return `${at(k)} event flow ${flowName(k.peer)}: ${k.detail}`;
@@ -132,7 +134,7 @@ export class StoryTeller {
             this.followCycle(k);
             return undefined;
         }
-        if (k.kind === 'ord_deadline_miss') return `${at(k)} deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}${this.lateOf(k)}`;
+        if (k.kind === 'ord_deadline_miss') return `${at(k)} ${this.missText(k)}`;
         if (k.kind === 'module_started') {
             this.exited.delete(k.module); // started again: a later stuck report is about this run of it
             return `${at(k)} started (${k.detail})`;
@@ -144,6 +146,14 @@ export class StoryTeller {
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
+    }
+
+    /**
+     * `deadline miss (ORD:0): S cycle k (not finished: ARM)` for an `ord_deadline_miss` record, from
+     * the releases and completions told before it (`simulate --verbose` says it so too).
+     */
+    missText(k: KnownRecord): string {
+        return `deadline miss (ORD:0): ${k.fields['schema']} cycle ${k.fields['cycle']}${this.lateOf(k)}`;
     }
 
     private followCycle(k: KnownRecord): void {

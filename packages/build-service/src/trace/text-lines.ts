@@ -1,9 +1,11 @@
 /**
  * The engines' readable trace lines (`scheduler` and `supervisor` records, formatted by
- * ord_core.c and sup_core.c) -> typed fields: `what` plus the names the line holds. The first
- * pattern that matches wins; a supervisor line no pattern names is one of its actions or undos
- * (`subscribe MAA:2 =* :2`, `undo: unsubscribe MAA:2 :2`): `what` = `action`. docs/runtime-api.md
- * "Trace records" lists the `what` values (from these tables).
+ * ord_core.c, sup_core.c and sup_main.c) -> typed fields: `what` plus the names the line holds.
+ * The first pattern that matches wins; a line no pattern names is `what` = `other` (a line of
+ * another engine version, or forged in a log folder: never taken for an action). A supervisor's
+ * actions and undos (`subscribe MAA:2 =* :2`, `undo: unsubscribe MAA:2 :2`) are `what` = `action`,
+ * each with what it names. docs/runtime-api.md "Trace records" lists the `what` values (from
+ * these tables).
  */
 
 export interface LinePattern {
@@ -14,16 +16,18 @@ export interface LinePattern {
 }
 
 const ID = '([A-Za-z_]\\w*)';
+const SERVED = `(?: \\(activation #(\\d+)(?: from ${ID})?\\))?`;
 
 export const SCHEDULER_LINES: readonly LinePattern[] = [
-    { what: 'activate', re: new RegExp(`^activate ${ID}$`), keys: ['schema'] },
-    { what: 'deactivate', re: new RegExp(`^deactivate ${ID}$`), keys: ['schema'] },
+    // ` (activation #N from SUP)`: the activation served, as its requester numbered it (older logs: none)
+    { what: 'activate', re: new RegExp(`^activate ${ID}${SERVED}$`), keys: ['schema', 'activation', 'requester'] },
+    { what: 'deactivate', re: new RegExp(`^deactivate ${ID}${SERVED}$`), keys: ['schema', 'activation', 'requester'] },
     { what: 'conflict', re: new RegExp(`^conflict: ${ID} shares a module with active ${ID} \\(ORD:1\\)$`), keys: ['schema', 'active'] },
     { what: 'refused', re: new RegExp(`^refused: unknown schema (.*)$`), keys: ['schema'] },
     { what: 'ignored', re: new RegExp(`^ignored: deactivate ${ID} \\(not this activation\\)$`), keys: ['schema'] },
     { what: 'deadline_miss', re: new RegExp(`^deadline miss: ${ID} \\(ORD:0\\)$`), keys: ['schema'] },
     { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)`), keys: ['schema', 'state'] },
-    { what: 'missed_tick', re: new RegExp(`^missed tick of ${ID}$`), keys: ['schema'] },
+    { what: 'missed_tick', re: new RegExp(`^missed tick of ${ID}(?: \\(cycle (\\d+)\\))?$`), keys: ['schema', 'cycle'] },
     { what: 'held', re: new RegExp(`^cycle of ${ID} held: ${ID} still runs`), keys: ['schema', 'module'] },
     { what: 'resumed', re: new RegExp(`^cycle of ${ID} resumed$`), keys: ['schema'] },
     { what: 'late_ack', re: new RegExp(`^late ack: ${ID} finished release #(\\d+) of an earlier cycle of ${ID}`), keys: ['module', 'release', 'schema'] },
@@ -43,13 +47,26 @@ export const SUPERVISOR_LINES: readonly LinePattern[] = [
     { what: 'kept', re: /^kept: /, keys: [] },
     { what: 'error', re: /^error: /, keys: [] },
     { what: 'warning', re: /^warning: /, keys: [] },
-    // an event schema the supervisor runs itself: its activation and undo name it (`schema`)
+    // the callee refused a function this supervisor activated: its undo will stop nothing
+    { what: 'activation_refused', re: new RegExp(`^activation #(\\d+) of ${ID}\\.${ID} refused: `), keys: ['activation', 'supervisor', 'function'] },
+    // its actions and undos (sup_main.c, sup_core.c), each with what it names; with parameters,
+    // `(p = v, ...)` follows the schema or function name
+    { what: 'action', re: new RegExp(`^activate schema ${ID}(?:\\(.*\\))? \\(activation #(\\d+), to ORD\\)$`), keys: ['schema', 'activation'] },
+    { what: 'action', re: new RegExp(`^undo: deactivate schema ${ID} \\(activation #(\\d+), to ORD\\)$`), keys: ['schema', 'activation'] },
+    // an event schema the supervisor runs itself
     { what: 'action', re: new RegExp(`^activate schema ${ID}(?:\\(.*\\))? \\(event schema\\)$`), keys: ['schema'] },
     { what: 'action', re: new RegExp(`^undo: deactivate schema ${ID} \\(event schema\\)$`), keys: ['schema'] },
-    { what: 'action', re: /^/, keys: [] },
+    { what: 'action', re: new RegExp(`^activate supervisor ${ID}\\.${ID}(?:\\(.*\\))? \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
+    { what: 'action', re: new RegExp(`^undo: stop ${ID}\\.${ID} \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
+    // (older logs: no ` = value`)
+    { what: 'action', re: new RegExp(`^parameterize ${ID}:(\\d+) \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port'] },
+    { what: 'action', re: new RegExp(`^subscribe ${ID}:(\\d+) (?:=>|=\\*) :(\\d+)$`), keys: ['module', 'port', 'in_port'] },
+    { what: 'action', re: new RegExp(`^undo: unsubscribe ${ID}:(\\d+) :(\\d+)$`), keys: ['module', 'port', 'in_port'] },
+    { what: 'action', re: new RegExp(`^notify :(\\d+) \\((?:${ID}|\\?)\\)(?: = |$)`), keys: ['out_port', 'type'] },
+    { what: 'action', re: new RegExp(`^compute ${ID}$`), keys: ['function'] },
 ];
 
-/** `what` and the named parts of a line, numbers when digits (a scheduler line no pattern names:
+/** `what` and the named parts of a line, numbers when digits (a line no pattern names:
  *  `what` = `other`). */
 export function classifyLine(patterns: readonly LinePattern[], line: string): Record<string, string | number> {
     for (const p of patterns) {

@@ -74,7 +74,12 @@ describe('reading a log', () => {
 
     it('types the engines\' readable lines: what they are and the names they hold', () => {
         const fields = (event: string, detail: string) => (parseRecordLine('L', 2, `1,w,X,${event},,,0,"${detail}"`) as KnownRecord).fields;
-        expect(fields('scheduler', 'activate schemaCommande1')).toEqual({ what: 'activate', schema: 'schemaCommande1' });
+        expect(fields('scheduler', 'activate schemaCommande1')).toEqual({ what: 'activate', schema: 'schemaCommande1' }); // older logs
+        expect(fields('scheduler', 'activate schemaCommande1 (activation #4 from SUP)')).toEqual({ what: 'activate', schema: 'schemaCommande1', activation: 4, requester: 'SUP' });
+        expect(fields('scheduler', 'deactivate conveyor (activation #2 from LIN)')).toEqual({ what: 'deactivate', schema: 'conveyor', activation: 2, requester: 'LIN' });
+        expect(fields('scheduler', 'activate conveyor (activation #2)')).toEqual({ what: 'activate', schema: 'conveyor', activation: 2 });
+        expect(fields('scheduler', 'missed tick of SLW (cycle 12)')).toEqual({ what: 'missed_tick', schema: 'SLW', cycle: 12 });
+        expect(fields('scheduler', 'activate conveyor (activation #2 from LIN) and more')).toEqual({ what: 'other' });
         expect(fields('scheduler', 'conflict: ICF shares a module with active ISC (ORD:1)')).toEqual({ what: 'conflict', schema: 'ICF', active: 'ISC' });
         expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' });
         expect(fields('scheduler', 'late ack: B finished release #12 of an earlier cycle of DIA (not counted)')).toEqual({ what: 'late_ack', module: 'B', release: 12, schema: 'DIA' });
@@ -84,12 +89,24 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'refused: function action already running')).toEqual({ what: 'function_refused', function: 'action' });
         expect(fields('supervisor', 'refused: no function nope')).toEqual({ what: 'function_refused', function: 'nope' });
         expect(fields('supervisor', 'rule action.FIRST inactive')).toEqual({ what: 'rule', function: 'action', rule: 'FIRST', state: 'inactive' });
-        expect(fields('supervisor', 'subscribe MAA:2 =* :2')).toEqual({ what: 'action' });
+        expect(fields('supervisor', 'subscribe MAA:2 =* :2')).toEqual({ what: 'action', module: 'MAA', port: 2, in_port: 2 });
+        expect(fields('supervisor', 'undo: unsubscribe MAA:2 :2')).toEqual({ what: 'action', module: 'MAA', port: 2, in_port: 2 });
+        expect(fields('supervisor', 'parameterize VEL:0 (16 bytes) = {v=0.3,w=0}')).toEqual({ what: 'action', module: 'VEL', port: 0 });
+        expect(fields('supervisor', 'parameterize MSC:1 (8 bytes)')).toEqual({ what: 'action', module: 'MSC', port: 1 }); // older logs
+        expect(fields('supervisor', 'notify :1 (string) = "paused"')).toEqual({ what: 'action', out_port: 1, type: 'string' });
+        expect(fields('supervisor', 'activate supervisor SUP.action(consigne = {i=0,j=0,k=0}) (activation #2)')).toEqual({ what: 'action', supervisor: 'SUP', function: 'action', activation: 2 });
+        expect(fields('supervisor', 'undo: stop SUP.action (activation #2)')).toEqual({ what: 'action', supervisor: 'SUP', function: 'action', activation: 2 });
+        expect(fields('supervisor', 'activation #3 of SUP.action refused: its undo stops nothing')).toEqual({ what: 'activation_refused', activation: 3, supervisor: 'SUP', function: 'action' });
+        // a line no engine writes (another version's, or forged in a log folder) is not taken for an action
+        expect(fields('supervisor', 'launch the missiles')).toEqual({ what: 'other' });
+        expect(fields('supervisor', 'subscribe MAA:2 =* :2 and more')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'activate schema schemaReceptionMessage (event schema)')).toEqual({ what: 'action', schema: 'schemaReceptionMessage' });
         expect(fields('supervisor', 'activate schema schemaReceptionMessage(param = {i=27.12,j=0,k=0.04}) (event schema)')).toEqual({ what: 'action', schema: 'schemaReceptionMessage' });
         expect(fields('supervisor', 'undo: deactivate schema console (event schema)')).toEqual({ what: 'action', schema: 'console' });
-        expect(fields('supervisor', 'activate schema S (activation #3, to ORD)')).toEqual({ what: 'action' });
-        expect(fields('supervisor', 'compute record')).toEqual({ what: 'action' });
+        expect(fields('supervisor', 'activate schema S (activation #3, to ORD)')).toEqual({ what: 'action', schema: 'S', activation: 3 });
+        expect(fields('supervisor', 'activate schema conveyor(speed = 0.6) (activation #2, to ORD)')).toEqual({ what: 'action', schema: 'conveyor', activation: 2 });
+        expect(fields('supervisor', 'undo: deactivate schema S (activation #3, to ORD)')).toEqual({ what: 'action', schema: 'S', activation: 3 });
+        expect(fields('supervisor', 'compute record')).toEqual({ what: 'action', function: 'record' });
     });
 
     it('keeps what it cannot read as unknown records saying why, and never throws', () => {
@@ -159,6 +176,8 @@ describe('reading a log', () => {
             '2000,w,LIN,flow_hold,flow-SCN-0-DIV-0,,0,last hold dropped (disconnected)',
             '2100,w,LIN,module_hold,SCN,,0,last hold dropped (stopped)',
             '2200,w,STA,supervisor,contract-launch,,0,refused: start request from contract-launch: STA.station has no parameter \'sped\'',
+            '2300,w,LIN,supervisor,,,0,activation #3 of STA.station refused: its undo stops nothing',
+            '2400,w,LIN,supervisor,,,0,launch the missiles',
         ].join('\n');
         expect(renderStory(parseTrace([{ name: 'LIN_1.csv', text }])).slice(0, -1)).toEqual([
             '+0.000000s LIN  activate schema sorting (event schema)',
@@ -169,6 +188,9 @@ describe('reading a log', () => {
             '+0.000001s LIN  event flow SCN:0 -> DIV:0: last hold dropped (disconnected)',
             '+0.000001s LIN  module SCN: last hold dropped (stopped)',
             "+0.000001s STA  refused: start request from contract-launch: STA.station has no parameter 'sped'",
+            '+0.000001s LIN  activation #3 of STA.station refused: its undo stops nothing',
+            // a line no engine writes is told, but not as an action
+            '+0.000001s LIN  (a supervisor line this reader does not know) launch the missiles',
         ]);
         // a module that had exited (a crash the simulator made) is not told to set *stateindex = -1
         const crashed = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,

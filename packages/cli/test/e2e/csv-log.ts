@@ -157,8 +157,10 @@ export function whileActive(records: LogRecord[], schema: string): LogRecord[] {
     let active = false;
     for (const r of records) {
         if (r.module === 'ORD' && r.event === 'scheduler') {
-            if (r.detail === `activate ${schema}`) active = true;
-            else if (r.detail === `deactivate ${schema}`) active = false;
+            // `activate S (activation #N from SUP)`; logs of older versions end at the name
+            const names = (what: string) => r.detail === `${what} ${schema}` || r.detail.startsWith(`${what} ${schema} (`);
+            if (names('activate')) active = true;
+            else if (names('deactivate')) active = false;
         }
         if (active) out.push(r);
     }

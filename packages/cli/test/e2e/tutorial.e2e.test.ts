@@ -54,17 +54,19 @@ describe('examples/tutorial end to end', () => {
                 'rule action.FIRST inactive', 'rule action.SECOND active',
             ])).toBe(true);
             expect(sup.filter((l) => l === 'rule action.RECEPTION active').length).toBeGreaterThanOrEqual(2); // one per MAA message
-            expect(schedulerTrace(logs)).toContain('activate schemaCommande1');
+            expect(schedulerTrace(logs).some((l) => /^activate schemaCommande1 \(activation #\d+ from SUP\)$/.test(l))).toBe(true);
         });
 
         it('logs each action before what its receiver does with it (the story reads cause, then effect)', () => {
-            // k-th `activate schema S (..., to ORD)` of SUP <= k-th `activate S` of ORD; GLB's activate supervisor <= SUP's function start
+            // SUP's `activate schema S (activation #N, to ORD)` <= ORD's `activate S (activation #N from SUP)`, which
+            // names the same activation; GLB's activate supervisor <= SUP's function start
             const sent = logs.filter((r) => r.module === 'SUP' && r.event === 'supervisor' && /^activate schema \w+.* \(activation #\d+, to ORD\)$/.test(r.detail));
-            const done = logs.filter((r) => r.module === 'ORD' && r.event === 'scheduler' && /^activate \w+$/.test(r.detail));
+            const done = logs.filter((r) => r.module === 'ORD' && r.event === 'scheduler' && /^activate \w+ /.test(r.detail));
             expect(sent.length).toBeGreaterThanOrEqual(1);
             expect(done.length).toBe(sent.length);
             sent.forEach((r, k) => {
-                expect(done[k]!.detail).toBe(`activate ${/^activate schema (\w+)/.exec(r.detail)![1]}`);
+                const [, schema, n] = /^activate schema (\w+).* \(activation #(\d+), to ORD\)$/.exec(r.detail)!;
+                expect(done[k]!.detail).toBe(`activate ${schema} (activation #${n} from SUP)`);
                 expect(r.mono).toBeLessThanOrEqual(done[k]!.mono);
             });
             const asked = logs.find((r) => r.module === 'GLB' && r.detail.startsWith('activate supervisor SUP.action('))!;

@@ -2,9 +2,9 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
-import { readableCause } from '@contract-studio/build-service/trace';
+import { readableCause, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
-import { actionAsLogged } from '../trace/steps-to-trace.js';
+import { actionAsLogged, typedRecord } from '../trace/steps-to-trace.js';
 
 /**
  * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
@@ -41,7 +41,8 @@ function timesOf(r: ScenarioResult): number[] {
 
 /** ORD's readable line of a periodic release, `release MSA (schemaCommande1)`, and of an activation. */
 const RELEASE_LINE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
-const ACTIVATE_LINE = /^activate ([A-Za-z_]\w*)$/;
+/** ORD's `activate S (activation #N from SUP)` (the parenthesis: the activation it serves). */
+const ACTIVATE_LINE = /^activate ([A-Za-z_]\w*)(?: \(activation #\d+(?: from [A-Za-z_]\w*)?\))?$/;
 
 /**
  * The verbose report's engine lines, with ORD's periodic releases folded: the first release of each
@@ -80,11 +81,37 @@ class ReleaseFolder {
     }
 }
 
+/** ORD's own line of a deadline miss; the verbose report says it from the typed record instead. */
+const MISS_LINE = /^deadline miss: ([A-Za-z_]\w*) \(ORD:0\)$/;
+
+/**
+ * The verbose report's deadline misses, told as `contract trace` tells them: `deadline miss (ORD:0):
+ * S cycle k (not finished: ARM)`, from ORD's typed records (releases and completions followed over
+ * the scenario's steps), in place of ORD's bare `deadline miss: S (ORD:0)` line.
+ */
+class MissTeller {
+    private readonly story = new StoryTeller();
+
+    /** The step's misses, at their times; follows the step's cycles for the next. */
+    misses(records: ScenarioResult['steps'][number]['record']['records']): Array<{ t: number; seq: number; text: string }> {
+        const out: Array<{ t: number; seq: number; text: string }> = [];
+        const ordered = records.map((r, i) => ({ r, i })).sort((a, b) => a.r.timeNs - b.r.timeNs || (a.r.seq ?? -1) - (b.r.seq ?? -1) || a.i - b.i);
+        for (const { r } of ordered) {
+            if (r.module !== 'ORD') continue;
+            const rec = typedRecord(r);
+            if (rec.kind === 'ord_deadline_miss') out.push({ t: r.timeNs, seq: r.seq ?? -1, text: `  ORD| ${safe(this.story.missText(rec as KnownRecord))}` });
+            this.story.tell(rec);
+        }
+        return out;
+    }
+}
+
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
     const out: string[] = [];
     for (const r of results) {
         const formatTime = reportTimeFormat(timesOf(r));
         const releases = new ReleaseFolder();
+        const misses = new MissTeller();
         out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
         for (const s of r.steps) {
             const time = formatTime(s.timeNs).padStart(8);
@@ -97,7 +124,10 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             }));
             if (options.verbose) {
                 for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.who === 'ORD' ? a.what : actionAsLogged(a.what))}` });
-                happened.push(...releases.fold(s.record.log));
+                const told = misses.misses(s.record.records ?? []);
+                // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
+                const log = told.length ? s.record.log.filter((l) => !(l.who === 'ORD' && MISS_LINE.test(l.line))) : s.record.log;
+                happened.push(...releases.fold(log), ...told);
             }
             const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);
             const line = (h: { t: number; text: string }) => `              ${formatTime(h.t).padStart(8)}  ${h.text}`;

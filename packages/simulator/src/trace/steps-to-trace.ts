@@ -65,13 +65,14 @@ function engineLine(timeNs: number, who: string, kind: 'supervisor' | 'scheduler
 }
 
 /** A typed record of the harness as the CSV line a real run writes, read by the trace reader. */
-function typedRecord(r: SimTraceRecord): TraceRecord {
+export function typedRecord(r: SimTraceRecord): TraceRecord {
     const port = Number.isInteger(r.port) && r.port! >= 0 ? String(r.port) : '';
     return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(r.timeNs))},,${csvField(r.module)},${csvField(r.kind)},${csvField(r.peer)},${port},0,${csvField(r.detail)}`);
 }
 
 const RELEASE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
-const ORD_ACTIVATE = /^activate ([A-Za-z_]\w*)$/;
+/** ORD's `activate S (activation #N from SUP)` (the parenthesis: the activation it serves). */
+const ORD_ACTIVATE = /^activate ([A-Za-z_]\w*)(?: \(activation #\d+(?: from [A-Za-z_]\w*)?\))?$/;
 const DEADLINE_MISS = /^ORD:0 "([A-Za-z_]\w*)" \(deadline miss\)/;
 const START_MODULE = /^start module ([A-Za-z_]\w*)\b/;
 const STOP_MODULE = /^stop module ([A-Za-z_]\w*)$/;

@@ -166,7 +166,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
           sv.actionsDone++;
           // an event schema it runs itself: what its rule started, as ORD's START names a periodic one
           const schema = str(f['schema']);
-          if (schema) noteStarted(s, k.module, schema);
+          if (schema && k.detail.endsWith('(event schema)')) noteStarted(s, k.module, schema);
         }
       }
       return;
