@@ -7,6 +7,8 @@ import {
 import { CactalGeneratedModule, CactalGeneratedSharedModule } from './generated/module.js';
 import { CactalDocumentFactory } from './parser/nesting-guard.js';
 import { CactalParserErrorMessageProvider } from './parser/error-messages.js';
+import { CactalLexer, createCactalParser } from './parser/keyword-repair.js';
+import { CactalValueConverter } from './parser/value-converter.js';
 import { CactalDocumentBuilder } from './scoping/cactal-document-builder.js';
 import { CactalScopeProvider } from './scoping/cactal-scope-provider.js';
 import { CactalScopeComputation } from './scoping/cactal-scope-computation.js';
@@ -32,7 +34,10 @@ export const CactalModule: Module<CactalServices, PartialLangiumServices & Cacta
         ImportResolver: (services) => new ImportResolver(services)
     },
     parser: {
-        ParserErrorMessageProvider: () => new CactalParserErrorMessageProvider()
+        ParserErrorMessageProvider: () => new CactalParserErrorMessageProvider(),
+        Lexer: (services) => new CactalLexer(services),
+        LangiumParser: (services) => createCactalParser(services),
+        ValueConverter: () => new CactalValueConverter()
     },
     references: {
         ScopeProvider: (services) => new CactalScopeProvider(services),

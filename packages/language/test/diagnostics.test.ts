@@ -93,6 +93,11 @@ export const CASES: Record<string, CodeCase> = {
         raise: { 'a.contract': `datatype T {string s = "${'é'.repeat(128)}"};` },
         clean: { 'a.contract': `datatype T {string s = "${'x'.repeat(255)}"};` }
     },
+    'value-string-unknown-escape': {
+        raise: { 'a.contract': 'const string ESC = "\\e[0m";' },
+        clean: { 'a.contract': 'const string ESC = "\\\\e[0m\\n";' },
+        message: "Unknown escape '\\e' in a string: it is read as 'e'."
+    },
     'value-array-length': {
         raise: { 'a.contract': 'datatype T {float[3] v = {1.0, 2.0}};' },
         clean: { 'a.contract': 'datatype T {float[3] v = {1.0, 2.0, 3}};' },

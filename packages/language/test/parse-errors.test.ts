@@ -1,9 +1,25 @@
 /** Syntax errors are reported in the user's terms. */
 import { describe, expect, it } from 'vitest';
-import { readFileSync } from 'node:fs';
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { ALL_WORDS } from '../src/parser/error-messages.js';
+import { isModule, isSchema, isSupervisor, type ActivateModule } from '../src/generated/ast.js';
 import { build, parse } from './helpers.js';
+
+const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
+
+/** The tutorial's .contract files, `edits` applied (file -> [written, replacement]). */
+function tutorial(edits: Record<string, Array<[string, string]>>): Record<string, string> {
+    return Object.fromEntries(readdirSync(TUTORIAL).filter((f) => f.endsWith('.contract')).map((f) => {
+        let text = readFileSync(join(TUTORIAL, f), 'utf8');
+        for (const [written, replacement] of edits[f] ?? []) {
+            expect(text).toContain(written);
+            text = text.replace(written, replacement);
+        }
+        return [f, text];
+    }));
+}
 
 const first = (text: string) => parse(text).errors[0];
 
@@ -81,12 +97,73 @@ describe('follow-on errors', () => {
     });
     it('a name unknown because the file defining it did not parse says so', async () => {
         const built = await build({
-            'enc.contract': 'synchronus module ENC { }',
+            'enc.contract': 'sync module ENC { }',
             'use.contract': 'import "enc.contract";\nperiodic schema s() { modules { ENC (); } }',
         });
         const unknown = built.diagnostics.find((d) => d.file === 'use.contract' && d.code === 'linking-error');
         expect(unknown?.message).toContain('("enc.contract" has a syntax error: fix it first, it may be where this is defined)');
         const clean = await build({ 'use.contract': 'periodic schema s() { modules { ENC (); } }' });
         expect(clean.diagnostics.find((d) => d.code === 'linking-error')?.message).not.toContain('syntax error');
+    });
+});
+
+describe('unused imports and syntax errors', () => {
+    it('an import is not said unused while this file or the imported one has a syntax error: the use or the definition may be what was lost', async () => {
+        // a stray 'foo bar baz;' among the actions of FIRST: the recovery loses the rule's 'activate schema schemaReceptionMessage()'
+        const broken = await build(tutorial({ 'supervisor.contract': [['            activate schema schemaReceptionMessage()', '            foo bar baz;\n            activate schema schemaReceptionMessage()']] }));
+        expect(broken.lines.filter((l) => l.startsWith('supervisor.contract:33:'))).toEqual(["supervisor.contract:33:13 error parsing-error Expected '[' but found 'foo'."]);
+        expect(broken.diagnostics.filter((d) => d.code === 'import-unused')).toEqual([]);
+        const imported = await build({
+            'enc.contract': 'sync module ENC { }',
+            'use.contract': 'import "enc.contract";\nperiodic schema s() { modules { ENC (); } }'
+        });
+        expect(imported.diagnostics.filter((d) => d.code === 'import-unused')).toEqual([]);
+        // a file that parses, importing one that parses: said
+        const clean = await build({ 'enc.contract': 'synchronous module ENC { }', 'use.contract': 'import "enc.contract";\nperiodic schema s() { }' });
+        expect(clean.diagnostics.filter((d) => d.code === 'import-unused').map((d) => d.file)).toEqual(['use.contract']);
+    });
+});
+
+describe('a misspelt keyword', () => {
+    // the tutorial with one misspelt keyword: before, the recovery's errors went on (23 errors and 9 hints for the rule)
+    const cases: Array<[string, string, string, string, string]> = [
+        ['a module declaration', 'smodule1.contract', 'synchronous module MSA', 'synchronus module MSA', "smodule1.contract:3:1 error parsing-error Unexpected 'synchronus': expected a datatype, function, module, schema, scheduler configuration or supervisor. Did you mean 'synchronous'?"],
+        ['a schema block', 'sschema1.contract', 'realtime{', 'realtme{', "sschema1.contract:8:5 error parsing-error Expected '}' but found 'realtme'. Did you mean 'realtime'?"],
+        ['a supervisor rule', 'supervisor.contract', '            activate schema schemaReceptionMessage()', '            activate restime module MAA;\n            activate schema schemaReceptionMessage()',
+            "supervisor.contract:33:13 error parsing-error After 'activate', expected one of 'schema', 'supervisor', 'resttime' or 'critical' but found 'restime'. Did you mean 'resttime'?"],
+        // 'module' is as near to 'moduls' as 'modules': the keyword suggested is the one that parses
+        ['a scheduler block', 'sched.contract', 'modules{', 'moduls{', "sched.contract:11:5 error parsing-error Expected '}' but found 'moduls'. Did you mean 'modules'?"]
+    ];
+    it.each(cases)('in %s is the one diagnostic of the project: the rest is read with the keyword meant', async (_where, file, written, misspelt, error) => {
+        const built = await build(tutorial({ [file]: [[written, misspelt]] }));
+        expect(built.lines).toEqual([error]);
+    });
+
+    it('does not hide the errors that do not follow from it: a second misspelling, an unknown module lines later', async () => {
+        const built = await build(tutorial({
+            'supervisor.contract': [
+                ['            activate schema schemaReceptionMessage()', '            activate restime module MAA;\n            activate schema schemaReceptionMessage()'],
+                ['notify :1(failure_message_type=temp_mess_type)', 'notfy :1(failure_message_type=temp_mess_type)'],
+                ['activate resttime module MAA', 'activate resttime module MXX']
+            ]
+        }));
+        expect(built.lines.map((l) => l.split(' ').slice(0, 3).join(' '))).toEqual([
+            'supervisor.contract:33:13 error parsing-error',
+            'supervisor.contract:44:17 error parsing-error',
+            'supervisor.contract:54:42 error linking-error'
+        ]);
+        expect(built.lines[0]).toContain("but found 'restime'. Did you mean 'resttime'?");
+        expect(built.lines[1]).toContain("but found 'notfy'. Did you mean 'notify'?");
+        expect(built.lines[2]).toContain("Unknown module 'MXX'");
+    });
+
+    it('is read as the keyword in the model: the checks see the element as it was meant', () => {
+        const { model, errors } = parse('periodc schema s() { realtime { PERIOD=1s; CRITICAL_DELAY=1s; } }\nsynchronus module M { }\n'
+            + 'supervisor SUP { f() { rules { R: [elapsed=1ms] activate critcal module M [elapsed=1ms] } } }');
+        expect(errors).toHaveLength(3);
+        const [schema, module, sup] = model.elements;
+        expect(isSchema(schema) && schema.kind).toBe('periodic');
+        expect(isModule(module) && module.kind).toBe('synchronous');
+        expect(isSupervisor(sup) && (sup.functions[0]!.rules[0]!.rules[0]!.actions[0] as ActivateModule).priority).toBe('critical');
     });
 });

@@ -5,3 +5,4 @@ export * from './types.js';
 export * from './values.js';
 export * from './schema-conflicts.js';
 export * from './constants.js';
+export * from './strings.js';

@@ -75,13 +75,18 @@ function distance(a: string, b: string, max: number): number {
     return prev[b.length]!;
 }
 
+/** The words of `words` that `image` is a near miss of (a typo in a keyword), closest first. */
+export function nearWords(image: string | undefined, words: readonly string[]): string[] {
+    if (!image || !/^[A-Za-z_]\w{2,}$/.test(image)) return [];
+    const max = image.length >= 7 ? 2 : 1;
+    return words.filter((w) => w !== image).map((w) => ({ w, d: distance(image.toLowerCase(), w, max) })).filter((x) => x.d <= max)
+        .sort((x, y) => x.d - y.d).map((x) => x.w);
+}
+
 /** " Did you mean 'synchronous'?" when the token is a near miss of one of `words` (a typo in a keyword), else ''. */
 export function didYouMean(token: IToken | undefined, words: string[]): string {
-    const image = token?.image;
-    if (!image || !/^[A-Za-z_]\w{2,}$/.test(image)) return '';
-    const max = image.length >= 7 ? 2 : 1;
-    const near = words.filter((w) => w !== image).map((w) => ({ w, d: distance(image.toLowerCase(), w, max) })).filter((x) => x.d <= max).sort((x, y) => x.d - y.d);
-    return near.length ? ` Did you mean '${near[0]!.w}'?` : '';
+    const near = nearWords(token?.image, words);
+    return near.length ? ` Did you mean '${near[0]}'?` : '';
 }
 
 /**

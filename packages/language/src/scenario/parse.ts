@@ -9,6 +9,7 @@
  */
 import { formatNanoseconds } from '@contract-studio/conventions';
 import { didYouMean } from './did-you-mean.js';
+import { unescapeString, unknownEscapeMessage, unknownEscapes } from '../model/strings.js';
 
 /** 1-based line and columns; `endColumn` is exclusive. */
 export interface SourceSpan {
@@ -93,9 +94,6 @@ export const MAX_TIME_NS = 86_400_000_000_000;
 
 const UNIT_NS: Record<string, number> = { ns: 1, us: 1_000, ms: 1_000_000, s: 1_000_000_000 };
 
-/** A string literal's escapes that stand for a control character (the runtime's reader decodes the same). */
-const STRING_ESCAPES: Record<string, string> = { n: '\n', t: '\t', r: '\r', b: '\b', f: '\f', '0': '\0' };
-
 /** Parses a time literal (`300ms`, `1.5s`, `0`) to nanoseconds; undefined when it is not one. */
 export function parseTimeLiteral(text: string): number | undefined {
     if (text === '0') return 0;
@@ -117,6 +115,8 @@ class Failure {
 /** A cursor over one line (0-based offsets; spans are reported 1-based). */
 class LineCursor {
     pos = 0;
+    /** Warnings about what the line's values hold (an unknown escape in a string): reported whether the line parses or not. */
+    readonly warnings: Array<{ column: number; endColumn: number; code: string; message: string }> = [];
     constructor(readonly text: string, readonly line: number) {}
 
     skipSpaces(): void {
@@ -205,8 +205,12 @@ class LineCursor {
             // a raw control character (a NUL, an escape) would not reach the harness whole: written as an escape only
             if (/[\u0000-\u0008\u000b-\u001f\u007f]/.test(str[1]!)) this.fail('a string holds no raw control character: write it as an escape (\\n, \\t, \\r)', from, from + str[0].length);
             this.pos += str[0].length;
-            // the language's escapes (as in a .contract file): \n \t \r \b \f \0, any other character itself
-            const value = str[1]!.replace(/\\(.)/g, (_, c: string) => STRING_ESCAPES[c] ?? c);
+            // the language's escapes (as in a .contract file): \n \t \r \b \f \0, any other character itself, with a warning
+            for (const e of unknownEscapes(str[1]!)) {
+                const at = from + 1 + e.offset;
+                this.warnings.push({ column: at + 1, endColumn: at + 3, code: 'scenario-unknown-escape', message: unknownEscapeMessage(e.char) });
+            }
+            const value = unescapeString(str[1]!);
             return { kind: 'string', value, text: str[0], span: this.span(from, this.pos) };
         }
         const bool = /^(true|false)(?![A-Za-z0-9_])/.exec(rest);
@@ -485,6 +489,8 @@ export function parseScenario(text: string): ParsedScenario {
         } catch (e) {
             if (e instanceof Failure) diag({ line: i + 1, column: e.column, endColumn: e.endColumn, code: e.code, message: e.message });
             else diag({ line: i + 1, column: 1, endColumn: body.length + 1, code: 'scenario-syntax', message: `cannot read this line (${e instanceof Error ? e.message : String(e)})` });
+        } finally {
+            for (const w of cur.warnings) diag({ line: i + 1, ...w, severity: 'warning' });
         }
     }
     if (out.untilNs !== undefined && out.steps.length > 0 && out.untilNs < now) {

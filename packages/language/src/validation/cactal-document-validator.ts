@@ -38,7 +38,8 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
     /**
      * " ("encoder.contract" has a syntax error: fix it first, it may define this)" when a file this
      * one imports did not parse: its elements may be missing only because of that error (a
-     * misspelt `synchronus module ENC` made every use of ENC in three other files an error).
+     * misspelt `synchronus module ENC`, before misspelt keywords were read as meant, made every use of
+     * ENC in three other files an error).
      */
     private brokenImportNote(document: LangiumDocument, info: ReferenceInfo): string {
         const docs = this.services.shared.workspace.LangiumDocuments;

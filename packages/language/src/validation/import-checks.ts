@@ -14,6 +14,10 @@ export function importChecks(services: CactalServices): ValidationChecks<CactalA
     return { Model: (model, accept) => checker.checkModel(model, accept) };
 }
 
+function hasSyntaxError(document: LangiumDocument | undefined): boolean {
+    return !!document && (document.parseResult.parserErrors.length > 0 || document.parseResult.lexerErrors.length > 0);
+}
+
 interface ImportGraph {
     edges: Map<string, string[]>;
     /** file URI -> id of its strongly connected component */
@@ -71,7 +75,8 @@ class ImportChecker {
                     `Import cycle: ${names.join(' -> ')}. Imports are not transitive, so no file needs to import a file that imports it back.`,
                     { node: imp, property: 'path' });
             }
-            if (!used.has(key)) {
+            // a syntax error here or there: the recovery may have lost the use or the definition (and the quick fix would remove a needed import)
+            if (!used.has(key) && !hasSyntaxError(document) && !hasSyntaxError(docs.getDocument(uri))) {
                 report(accept, ImportCodes['import-unused'], `Nothing from "${imp.path}" is used in this file.`, { node: imp, property: 'path', tags: [1] });
             }
         }

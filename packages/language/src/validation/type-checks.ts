@@ -1,5 +1,5 @@
 /** docs/language-reference.md §2: datatypes, function prototypes, values in declarations, test/compute function use. */
-import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
+import { AstUtils, GrammarUtils, type AstNode, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
     isDataType, isFunctionPrototype, isLocalVariable, isParameter, isPort, isVariableRef,
     type FunctionParameter, type LocalVariable, type Parameter, type Port, type SchemaParameter,
@@ -11,6 +11,7 @@ import type { CactalServices } from '../cactal-module.js';
 import { portKind } from '../model/ports.js';
 import { cLayout, segmentIndex, typeName, typeOf, typeOfPathPrefix, typeRefText, variableRefText } from '../model/types.js';
 import { constantChain, constantInt } from '../model/constants.js';
+import { unknownEscapeMessage, unknownEscapes } from '../model/strings.js';
 import { TypeCodes } from './codes/types.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
@@ -62,8 +63,22 @@ export function typeChecks(services: CactalServices): ValidationChecks<CactalAst
         FunctionParameter: [checkDeclaration, checkValueSize],
         LocalVariable: [checkDeclaration, checkValueSize],
         FunctionTest: (test, accept) => checkFunctionUse(test, 'bool', accept),
-        Compute: (compute, accept) => checkFunctionUse(compute, 'void', accept)
+        Compute: (compute, accept) => checkFunctionUse(compute, 'void', accept),
+        StringLiteral: (literal, accept) => checkStringEscapes(literal, 'value', accept),
+        Import: (imp, accept) => checkStringEscapes(imp, 'path', accept)
     };
+}
+
+/** A warning on each unknown escape of a string literal (model/strings.ts), on the escape itself. */
+function checkStringEscapes(node: AstNode, property: string, accept: ValidationAcceptor): void {
+    const cst = node.$cstNode && GrammarUtils.findNodeForProperty(node.$cstNode, property);
+    if (!cst) return;
+    const { line, character } = cst.range.start; // a string is on one line
+    for (const e of unknownEscapes(cst.text.slice(1, -1))) {
+        const at = character + 1 + e.offset;
+        report(accept, TypeCodes['value-string-unknown-escape'], unknownEscapeMessage(e.char),
+            { node, range: { start: { line, character: at }, end: { line, character: at + 2 } } });
+    }
 }
 
 function checkUniqueTopLevel(names: ProjectNames, node: DataType | FunctionPrototype, type: string, word: string, accept: ValidationAcceptor): void {

@@ -14,7 +14,7 @@ export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and 
     },
     'import-unused': {
         severity: 'hint',
-        description: 'Nothing the file refers to comes from the imported file, nor from what those elements rely on (a schema\'s modules, a module\'s types), nor (for a file that activates a periodic schema) is it the scheduler configuration. Hints are not counted by `contract check` as warnings.',
+        description: 'Nothing the file refers to comes from the imported file, nor from what those elements rely on (a schema\'s modules, a module\'s types), nor (for a file that activates a periodic schema) is it the scheduler configuration. Not said while this file or the imported one has a syntax error (the use or the definition may be what did not parse). Hints are not counted by `contract check` as warnings.',
         example: 'import "datatype.contract";\nsynchronous module MSA { scheduling { C=1ms; } }'
     },
     'import-not-imported': {

@@ -52,6 +52,11 @@ export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, va
         description: 'A string literal longer than 255 bytes (UTF-8) does not fit the generated `char[256]`.',
         example: 'datatype T {string s = "<256 characters or more>"};'
     },
+    'value-string-unknown-escape': {
+        severity: 'warning',
+        description: 'A backslash in a string (a value or an import path) before a character that is none of `n` `t` `r` `b` `f` `0` `\\\\` `"`: the backslash is dropped and the character kept (`"\\u001b"` is `u001b`, `"\\x41"` is `x41`), as the simulator and the runtime read it too; there are no `\\u`, `\\x` or octal escapes. Write `\\\\` for a backslash.',
+        example: 'const string ESC = "\\e[0m";'
+    },
     'value-array-length': {
         severity: 'error',
         description: 'A value `{...}` for an array (an extension of the report) needs exactly as many elements as the array has, recursively for arrays of arrays.',
