@@ -18,7 +18,8 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
     let lineNo = 0;
     /** The record that stands for a line no record can be (`head`: its first characters). */
     const noRecord = (reason: string, head: string): TraceRecord => ({ kind: 'unknown', file: name, line: lineNo, reason, text: head.slice(0, 200) });
-    for await (const lines of boundedLines(handle, size, { maxChars: MAX_JSON_LINE_CHARS, chunkBytes })) {
+    // a line of MAX_JSON_LINE_CHARS and its `\r` is whole: its reader takes the `\r` off
+    for await (const lines of boundedLines(handle, size, { maxChars: MAX_JSON_LINE_CHARS + 1, chunkBytes })) {
         const out: TraceRecord[] = [];
         for (const l of lines) {
             lineNo++;

@@ -4,24 +4,40 @@
  * holding a bounded window of records per file instead of the whole run: a 1 kHz schema writes
  * about 1.5 MB of logs a second, so a run of minutes is gigabytes.
  *
- * A module writes its log in time order; a record further than WINDOW records from its place in
- * its file (a hostile or clock-stepped line) is told where the window lets it, and counted.
+ * A module writes its log in time order; a record further than its file's window from its place
+ * (a hostile or clock-stepped line) is told where the window lets it, and counted. A window holds
+ * WINDOW records, and no more than WINDOW_CHARS characters of their lines: memory is bounded
+ * whatever the lines' length (a record keeps only its own line: bounded-lines.ts).
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
 import { jsonLine, LOG_FILE_NAME } from './trace-files.js';
 import { safeName } from './terminal-text.js';
 
 /** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
 export const WINDOW = 4096;
-/** Records held in all files' windows: about 130 MB at most. */
+/** Records held in all files' windows. */
 const HELD_RECORDS = 262_144;
+/**
+ * Characters of lines held per record of a window, on average: a window of WINDOW records holds
+ * at most WINDOW * LINE_CHARS_HELD characters (512 Ki: 4,096 records of the runtime's lines,
+ * which are 80 to 110 characters on average, 170 at most in a tutorial run; 128 of the longest
+ * lines a record may have). All windows together: 32 Mi characters at most, whatever the lines.
+ */
+export const LINE_CHARS_HELD = 128;
+/** Characters of lines held in one window (of WINDOW records). */
+export const WINDOW_CHARS = WINDOW * LINE_CHARS_HELD;
 
 /** Records held per file when `files` logs are read together: WINDOW, fewer past 64 files. */
 export function windowFor(files: number): number {
     return Math.min(WINDOW, Math.max(64, Math.floor(HELD_RECORDS / Math.max(1, files))));
+}
+
+/** Bytes read from a log at a time when `files` logs are read together (a buffer each): 1 MiB, less past 16 files (16 MiB in all; 64 KiB at least). */
+export function chunkFor(files: number): number {
+    return Math.min(CHUNK_BYTES, Math.max(64 * 1024, Math.floor((16 * CHUNK_BYTES) / Math.max(1, files))));
 }
 /** A run writes one log per module; a folder with more is not a run's (each log holds a descriptor while read). */
 export const MAX_LOG_FILES = 1024;
@@ -89,9 +105,11 @@ interface Keyed {
     key: bigint;
     index: number;
     record: TraceRecord;
+    /** Characters of its line (what the record keeps, at most). */
+    chars: number;
 }
 
-/** One log's records in file order, a chunk at a time, each keyed by its time (an unknown line by the time before it). */
+/** One log's records in file order, a batch of lines at a time, each keyed by its time (an unknown line by the time before it). */
 class LogRecords {
     private readonly lines: AsyncGenerator<BoundedLine[]>;
     /** What was left out of the file, and why. */
@@ -104,16 +122,17 @@ class LogRecords {
     private ended = false;
 
     constructor(private readonly log: OpenLog, chunkBytes: number) {
-        this.lines = boundedLines(log.handle, log.size, { maxChars: MAX_LINE_CHARS, chunkBytes });
+        // a line of MAX_LINE_CHARS and its `\r` is whole: recordOfLine reads it as parseTrace does
+        this.lines = boundedLines(log.handle, log.size, { maxChars: MAX_LINE_CHARS + 1, chunkBytes });
     }
 
-    /** The next record; null when the next chunk must be read first (`readChunk`), undefined at the end. */
+    /** The next record; null when the next lines must be read first (`readChunk`), undefined at the end. */
     next(): Keyed | null | undefined {
         if (this.at < this.pending.length) return this.pending[this.at++];
         return this.ended ? undefined : null;
     }
 
-    /** Reads the next chunk's records (none at the end of the size seen: then `next` gives undefined). */
+    /** Reads the next batch of lines' records (none at the end of the size seen: then `next` gives undefined). */
     async readChunk(): Promise<void> {
         this.pending = [];
         this.at = 0;
@@ -134,17 +153,23 @@ class LogRecords {
         const record = recordOfLine(this.log.name, this.lineNo++, raw);
         if (!record) return;
         if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);
-        this.pending.push({ key: this.lastKey, index: this.index++, record });
+        // what the record keeps: its line, or, a line that is no record, why and its first 200 characters (copies)
+        const chars = record.kind === 'unknown' ? (record as UnknownRecord).text.length + (record as UnknownRecord).reason.length : raw.length;
+        this.pending.push({ key: this.lastKey, index: this.index++, record, chars });
     }
 }
 
 /**
- * One file's window: its next WINDOW records in order (time, then line). A log is in time order,
- * so a record read almost always goes last; one out of order is put in its place.
+ * One file's window: its next `size` records in order (time, then line), and no more than `chars`
+ * characters of their lines (always one record at least). A log is in time order, so a record
+ * read almost always goes last; one out of order is put in its place.
  */
 class LogWindow {
-    private held: Keyed[] = [];
+    /** The records from `head` on (those before it were taken: their places emptied). */
+    private held: (Keyed | undefined)[] = [];
     private head = 0;
+    /** Characters of the lines of the records held. */
+    private heldChars = 0;
     private lastOut: bigint | undefined;
     outOfOrder = 0;
 
@@ -152,6 +177,7 @@ class LogWindow {
         private readonly records: LogRecords,
         readonly order: number,
         private readonly size: number,
+        private readonly chars: number,
     ) {}
 
     get length(): number {
@@ -169,7 +195,7 @@ class LogWindow {
 
     /** Reads in the records at hand; true when the file must be read to go on (`fill`). */
     topUp(): boolean {
-        while (this.length < this.size) {
+        while (this.length < this.size && (this.heldChars < this.chars || this.length === 0)) {
             const r = this.records.next();
             if (r === undefined) return false;
             if (r === null) return true;
@@ -180,6 +206,7 @@ class LogWindow {
 
     private hold(r: Keyed): void {
         const held = this.held;
+        this.heldChars += r.chars;
         if (this.length === 0 || held[held.length - 1]!.key <= r.key) {
             held.push(r);
             return;
@@ -201,7 +228,9 @@ class LogWindow {
 
     /** The first record held (the window then is one short: `fill` it). */
     take(): TraceRecord {
-        const k = this.held[this.head++]!;
+        const k = this.held[this.head]!;
+        this.held[this.head++] = undefined; // told: its place no longer keeps it (and its line) until the array is cut
+        this.heldChars -= k.chars;
         if (this.head > 4096 && this.head * 2 > this.held.length) {
             this.held = this.held.slice(this.head);
             this.head = 0;
@@ -224,10 +253,13 @@ export interface TraceStream {
 /** Records handed on at a time. */
 const BATCH = 1024;
 
-/** The records of `logs` in time order (files in name order break ties), read `window` records ahead per file. */
-export function streamTrace(logs: readonly OpenLog[], { window = windowFor(logs.length), chunkBytes = CHUNK_BYTES } = {}): TraceStream {
+/**
+ * The records of `logs` in time order (files in name order break ties), read `window` records
+ * (and `window * LINE_CHARS_HELD` characters of lines at most) ahead per file.
+ */
+export function streamTrace(logs: readonly OpenLog[], { window = windowFor(logs.length), chunkBytes = chunkFor(logs.length) } = {}): TraceStream {
     const sorted = [...logs].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
-    const windows = sorted.map((log, i) => new LogWindow(new LogRecords(log, chunkBytes), i, window));
+    const windows = sorted.map((log, i) => new LogWindow(new LogRecords(log, chunkBytes), i, window, window * LINE_CHARS_HELD));
     async function* batches(): AsyncGenerator<TraceRecord[]> {
         for (const w of windows) await w.fill();
         const files = new MinHeap<LogWindow>((f, g) => {

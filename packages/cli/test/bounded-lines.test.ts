@@ -9,12 +9,12 @@ import { open } from 'node:fs/promises';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
-import { boundedLines, type BoundedLine } from '../src/bounded-lines.js';
+import { boundedLines, type BoundedLine, type BoundedLinesOptions } from '../src/bounded-lines.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'bounded-lines-'));
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
 
-async function linesOf(text: string | Buffer, opts: { maxChars: number; chunkBytes: number; maxSkipBytes?: number }, size?: number): Promise<{ items: BoundedLine[]; batches: number }> {
+async function linesOf(text: string | Buffer, opts: BoundedLinesOptions, size?: number): Promise<{ items: BoundedLine[]; batches: number }> {
     const path = join(dir, 'f');
     writeFileSync(path, text);
     const handle = await open(path, 'r');
@@ -49,8 +49,16 @@ describe('boundedLines', () => {
             { kind: 'line', text: 'b' },
             { kind: 'overLong', head: 'y'.repeat(11) },
         ]);
-        // a long line whole in one chunk is given whole: its reader bounds it
-        expect((await linesOf(`${'z'.repeat(50)}\n`, { maxChars: 10, chunkBytes: 1024 })).items).toEqual([{ kind: 'line', text: 'z'.repeat(50) }]);
+        // whole in one chunk too: a long line is never given whole (its pieces would keep it, or the chunk, alive)
+        expect((await linesOf(`${'z'.repeat(50)}\n`, { maxChars: 10, chunkBytes: 1024 })).items).toEqual([{ kind: 'overLong', head: 'z'.repeat(11) }]);
+        // a line of maxChars characters is whole, in bytes of any length (3 a character), cut by chunks anywhere
+        for (const chunkBytes of [1, 2, 5, 31, 32, 33, 1024]) {
+            expect((await linesOf(`${'€'.repeat(10)}\n${'€'.repeat(11)}\n${'€'.repeat(12)}`, { maxChars: 10, chunkBytes })).items, `chunk ${chunkBytes}`).toEqual([
+                { kind: 'line', text: '€'.repeat(10) },
+                { kind: 'overLong', head: '€'.repeat(11) },
+                { kind: 'overLong', head: '€'.repeat(11) },
+            ]);
+        }
     });
 
     it('no line end in maxSkipBytes: the last item says how many bytes were not read', async () => {
@@ -62,6 +70,17 @@ describe('boundedLines', () => {
         expect(last.head).toHaveLength(11);
         // 11 chunks of 100 bytes read: 1097 characters of the line (> 1000)
         expect(last.leftBytes).toBe(10_003 - 1100);
+    });
+
+    it('gives a chunk of many lines in batches of at most batchLines lines, about batchChars characters (their records are made a batch at a time)', async () => {
+        const lines = Array.from({ length: 100 }, (_, i) => `line ${String(i).padStart(2, '0')}`); // 7 characters each
+        const text = lines.join('\n') + '\n';
+        const byLines = await linesOf(text, { maxChars: 100, chunkBytes: 1 << 20, batchLines: 10 });
+        expect(byLines.items).toEqual(lines.map((t) => ({ kind: 'line', text: t })));
+        expect(byLines.batches).toBe(10);
+        const byChars = await linesOf(text, { maxChars: 100, chunkBytes: 1 << 20, batchChars: 70 });
+        expect(byChars.items).toEqual(lines.map((t) => ({ kind: 'line', text: t })));
+        expect(byChars.batches).toBe(10);
     });
 
     it('reads no further than the size given (the size a growing file had when opened)', async () => {

@@ -4,11 +4,11 @@
  * (`contract trace`, `contract run --trace`) as `@contract-studio/build-service/trace`.
  */
 export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
-export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, recordLineEnd, parseCause, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
+export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, recordLineEnd, parseCause, ownString, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine, csvField } from './csv-line.js';
 export { traceFileToLogs, recordOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
-export { renderStory, StoryTeller, readableCause, missWaitText, LATE_RELEASE_NS } from './story.js';
+export { renderStory, StoryTeller, readableCause, missWaitText, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { MinHeap } from './min-heap.js';
 export { TRACE_LINES_KEPT } from './replay-bound.js';
 export { renderTraceTable, withTraceTable } from './render-doc.js';

@@ -20,8 +20,18 @@ export interface LogFile {
     text: string;
 }
 
+/**
+ * A string of its own: a piece cut out of a longer string (slice, split, a regular expression's
+ * match) is, in V8, a view that keeps the whole string alive. A record kept (the merge of a
+ * streamed trace, a replay's buffer) keeps this copy, never the long line it was cut from.
+ */
+export function ownString(s: string): string {
+    return s.length < 13 ? s : (' ' + s).slice(1); // shorter ones are copied by V8 itself
+}
+
+/** A line that is no record: why, and its first 200 characters (copies: the record keeps nothing more of the line). */
 function unknown(file: string, line: number, reason: string, text: string): UnknownRecord {
-    return { kind: 'unknown', file, line, reason, text: text.slice(0, 200) };
+    return { kind: 'unknown', file, line, reason: ownString(reason), text: ownString(text.slice(0, 200)) };
 }
 
 /** `key=value` words of a detail (the first of each key: field-checks.ts wordValueIn), values as

@@ -5,7 +5,7 @@
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
 import { formatNanoseconds } from '@contract-studio/conventions';
-import { parseCause } from './parse.js';
+import { ownString, parseCause } from './parse.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -77,6 +77,15 @@ function offset(ns: bigint): string {
     return `${ns < 0n ? '-' : '+'}${s}s`;
 }
 
+/**
+ * Schemas (cycles, held cycles) and modules (exits) the story follows at most, and modules released
+ * and not finished in all followed cycles: a run has far fewer. Past them (a forged log of a
+ * million schema names) a record is told without what it would add: the story's memory does not
+ * grow with the logs. The names kept are copies (ownString), never the lines they were read from.
+ */
+export const STORY_FOLLOWED = 4096;
+const RUNNING_FOLLOWED = 65_536;
+
 /** The modules released in one cycle and not finished yet; how late ORD sent its first release. */
 interface CycleRunning {
     cycle: string;
@@ -102,6 +111,8 @@ export class StoryTeller {
     private readonly held = new Map<string, string>();
     /** Modules whose exit record was read, with its detail: ORD's stuck advice does not fit them. */
     private readonly exited = new Map<string, string>();
+    /** Modules in the `running` sets of all cycles followed. */
+    private running = 0;
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -122,8 +133,9 @@ export class StoryTeller {
         if (k.kind === 'module_hold') return `${at(k)} module ${k.peer}: ${k.detail}`;
         if (k.kind === 'flow_hold') return `${at(k)} event flow ${flowName(k.peer)}: ${k.detail}`;
         if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
-            if (what === 'held') this.held.set(String(k.fields['schema']), String(k.fields['module']));
-            else this.held.delete(String(k.fields['schema']));
+            const schema = String(k.fields['schema']);
+            if (what === 'held' && (this.held.has(schema) || this.held.size < STORY_FOLLOWED)) this.held.set(ownString(schema), ownString(String(k.fields['module'])));
+            else if (what !== 'held') this.held.delete(schema);
         }
         if (k.kind === 'scheduler' && what === 'stuck' && this.exited.has(String(k.fields['module']))) {
             // a module that had ended (a crash the simulator made, an exit) never finishes: the advice to set *stateindex = -1 does not fit it
@@ -140,7 +152,7 @@ export class StoryTeller {
             return `${at(k)} started (${k.detail})`;
         }
         if (k.kind === 'module_exit') {
-            if (this.exited.size < 4096) this.exited.set(k.module, k.detail.slice(0, 120));
+            if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(k.detail.slice(0, 120)));
             return `${at(k)} exited (${k.detail})`;
         }
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
@@ -160,17 +172,26 @@ export class StoryTeller {
         const schema = String(k.fields['schema'] ?? ''), cycle = String(k.fields['cycle'] ?? '');
         this.held.delete(schema);
         let s = this.cycles.get(schema);
-        if (!s) this.cycles.set(schema, (s = { current: { cycle, running: new Set() } }));
+        if (!s) {
+            if (this.cycles.size >= STORY_FOLLOWED) return;
+            this.cycles.set(ownString(schema), (s = { current: { cycle: ownString(cycle), running: new Set() } }));
+        }
         if (k.kind === 'ord_release') {
             if (s.current.cycle !== cycle || s.current.firstReleaseLateNs === undefined) {
                 const late = Number(k.fields['release_ns']) - Number(k.fields['tick_ns']);
-                if (s.current.cycle !== cycle) s = { current: { cycle, running: new Set() }, previous: s.current };
+                if (s.current.cycle !== cycle) {
+                    this.running -= s.previous?.running.size ?? 0; // the cycle before the previous one is no longer followed
+                    s = { current: { cycle: ownString(cycle), running: new Set() }, previous: s.current };
+                }
                 s.current.firstReleaseLateNs = Number.isFinite(late) ? late : 0;
             }
             this.cycles.set(schema, s);
-            s.current.running.add(k.peer);
-        } else {
-            this.cycleOf(schema, cycle)?.running.delete(k.peer);
+            if (this.running < RUNNING_FOLLOWED && !s.current.running.has(k.peer)) {
+                s.current.running.add(ownString(k.peer));
+                this.running++;
+            }
+        } else if (this.cycleOf(schema, cycle)?.running.delete(k.peer)) {
+            this.running--;
         }
     }
 

@@ -7,12 +7,12 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { StoryTeller, isUnknown, type KnownRecord, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { StoryTeller, isUnknown, ownString, type KnownRecord, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
 import { jsonLine } from '../trace-files.js';
-import { closeLogs, jsonLinesOf, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
+import { closeLogs, jsonLinesOf, LINE_CHARS_HELD, openLogFolder, streamTrace, windowFor, type OpenLog } from '../trace-stream.js';
 import { traceFileBatches } from '../trace-file-stream.js';
 import { open } from 'node:fs/promises';
 
@@ -51,7 +51,7 @@ export const traceCommand: Command = {
         try {
             const { late, problems, records } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
-            if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines from their time's place in their log: told later than their time\n`);
+            if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines (fewer when lines are longer than ${LINE_CHARS_HELD} characters) from their time's place in their log: told later than their time\n`);
             if (records === 0) {
                 io.err(`contract trace: no record in the ${logs.length} log(s) of ${safeName(dirArg)} (empty, or only their header)\n`);
                 return EXIT_FAILURE;
@@ -160,6 +160,8 @@ function moduleOfLog(name: string): string {
 
 /** Unreadable lines named one by one at the end of the story (the rest counted). */
 const UNREADABLE_NAMED = 5;
+/** Modules followed at most (a run writes a log per module, 1,024 at most): the records of others (a forged log) are only counted. */
+const MODULES_FOLLOWED = 4096;
 
 /**
  * Which modules' logs end without their `module_exit` record. A module that crashed (or was
@@ -181,35 +183,51 @@ export class ModuleEnds {
     private readonly capped = new Set<string>();
     private readonly unknowns: string[] = [];
     private unknownCount = 0;
-    /** The logs' modules, then those of records (a trace file has no log names). */
-    private readonly modules: Set<string>;
+    /** The logs' modules, then those of records (a trace file has no log names), each as kept: a copy, never the line it was read from. */
+    private readonly modules = new Map<string, string>();
+    /** Records of modules past MODULES_FOLLOWED. */
+    private notFollowed = 0;
 
     /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
     constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
-        this.modules = new Set(logs.map((l) => moduleOfLog(l.name)));
+        for (const l of logs) this.follow(moduleOfLog(l.name));
+    }
+
+    /** The module's name as kept, or undefined past MODULES_FOLLOWED modules (its record is only counted). */
+    private follow(m: string): string | undefined {
+        const kept = this.modules.get(m);
+        if (kept !== undefined) return kept;
+        if (this.modules.size >= MODULES_FOLLOWED) {
+            this.notFollowed++;
+            return undefined;
+        }
+        const own = ownString(m);
+        this.modules.set(own, own);
+        return own;
     }
 
     see(r: TraceRecord): void {
         if (r.kind === 'unknown') {
             const u = r as UnknownRecord;
             if (u.file === this.namedElsewhere) return;
-            const m = moduleOfLog(u.file);
-            this.read.set(m, (this.read.get(m) ?? 0) + 1);
+            const m = this.follow(moduleOfLog(u.file));
+            if (m !== undefined) this.read.set(m, (this.read.get(m) ?? 0) + 1);
             if (this.unknownCount++ < UNREADABLE_NAMED) this.unknowns.push(`unreadable: ${safeName(u.file)} line ${u.line}: ${u.reason}`);
             return;
         }
         const base = r as TraceRecordBase;
         const at = BigInt(base.monoNs);
         this.t0 ??= at;
-        this.last.set(base.module, at);
-        this.modules.add(base.module);
-        this.read.set(base.module, (this.read.get(base.module) ?? 0) + 1);
-        if (r.kind === 'module_started') this.started.add(base.module);
-        if (r.kind === 'log-capped') this.capped.add(base.module);
+        const m = this.follow(base.module);
+        if (m === undefined) return;
+        this.last.set(m, at);
+        this.read.set(m, (this.read.get(m) ?? 0) + 1);
+        if (r.kind === 'module_started') this.started.add(m);
+        if (r.kind === 'log-capped') this.capped.add(m);
         if (r.kind === 'module_exit') {
-            this.exited.add(base.module);
+            this.exited.add(m);
             const k = (r as KnownRecord).fields['records'];
-            if (typeof k === 'number') this.counted.set(base.module, k);
+            if (typeof k === 'number') this.counted.set(m, k);
         }
     }
 
@@ -224,10 +242,12 @@ export class ModuleEnds {
      * only of a run's logs (some module logged its start: the runtime's logs, not hand-made ones).
      */
     lines(): string[] {
-        if (this.t0 === undefined || this.started.size === 0) return [];
+        // a forged log's modules past MODULES_FOLLOWED: their records are counted, not followed
+        const past = this.notFollowed ? [`${''.padStart(10)} ${this.notFollowed} record(s) of modules past the first ${MODULES_FOLLOWED} not followed (more modules than a run has)`] : [];
+        if (this.t0 === undefined || this.started.size === 0) return past;
         const t0 = this.t0;
         const out: string[] = [];
-        for (const m of this.modules) {
+        for (const m of this.modules.keys()) {
             const last = this.last.get(m);
             if (last === undefined) {
                 out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed or was killed before writing any (\`contract run\` names a crash)`);
@@ -240,6 +260,6 @@ export class ModuleEnds {
                 out.push(`${''.padStart(10)} ${m.padEnd(4)} not whole: its log holds ${read} record(s), its exit record counts ${counted}: ${gap}`);
             }
         }
-        return out;
+        return [...out, ...past];
     }
 }
