@@ -52,7 +52,7 @@ describe('the text report\'s times', () => {
         expect(times).toEqual([...times].sort((a, b) => a - b));
     });
 
-    it('--verbose tells a deadline miss as contract trace does: its cycle and the modules not finished, from ORD\'s typed records over the steps', () => {
+    it('--verbose tells a deadline miss as contract trace does: its cycle and the modules not finished or the one a held cycle waits for, from ORD\'s records and lines over the steps', () => {
         const rec = (timeNs: number, seq: number, kind: string, peer: string, detail: string) => ({ timeNs, seq, module: 'ORD', kind, peer, detail });
         const step = (timeNs: number, source: string, records: ReturnType<typeof rec>[], log: Array<{ timeNs: number; seq: number; who: string; line: string }> = []) => ({
             line: 1, source, timeNs, kind: 'event' as const, ok: true,
@@ -70,10 +70,17 @@ describe('the text report\'s times', () => {
                 // missed in the next
                 step(40e6, 't=40ms X:0 2', [rec(38e6, 5, 'ord_deadline_miss', '', 'schema=loop cycle=3 tick_ns=30000000')],
                     [{ timeNs: 38e6, seq: 4, who: 'ORD', line: 'deadline miss: loop (ORD:0)' }]),
+                // activated again while B still runs: the new cycle is held (ORD's line), then missed
+                step(60e6, 't=60ms X:0 3', [rec(58e6, 9, 'ord_deadline_miss', '', 'schema=loop cycle=0 tick_ns=50000000')], [
+                    { timeNs: 50e6, seq: 6, who: 'ORD', line: 'activate loop (activation #2 from SUP)' },
+                    { timeNs: 50e6, seq: 7, who: 'ORD', line: 'cycle of loop held: B still runs a release of an earlier activation' },
+                    { timeNs: 58e6, seq: 8, who: 'ORD', line: 'deadline miss: loop (ORD:0)' },
+                ]),
             ],
         } as unknown as ScenarioResult;
         const text = textReport([result], { verbose: true });
         expect(text).toMatch(/38ms {4}ORD\| deadline miss \(ORD:0\): loop cycle 3 \(not finished: B\)\n/);
+        expect(text).toMatch(/58ms {4}ORD\| deadline miss \(ORD:0\): loop cycle 0 \(held: nothing released, B still runs an earlier release\)\n/);
         expect(text).not.toContain('deadline miss: loop (ORD:0)'); // ORD's bare line: told by the record
         expect(textReport([result])).not.toContain('deadline miss'); // not verbose: the rules say it
     });

@@ -35,7 +35,8 @@ function describeCause(c: RuleCause): string {
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning', 'activation_refused']);
-const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck']);
+/* (not told: ORD's `ignored`, `late_ack`, expected when a schema is deactivated while its modules run) */
+const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning']);
 
 /** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
 const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
@@ -142,6 +143,7 @@ export class StoryTeller {
             return `${at(k)} ${k.detail.replace(STUCK_ADVICE, `: it had exited before (${this.exited.get(String(k.fields['module']))})`)}`;
         }
         if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) return `${at(k)} ${k.detail}`;
+        if (k.kind === 'scheduler' && what === 'other') return `${at(k)} (an ORD line this reader does not know) ${k.detail}`;
         if (k.kind === 'ord_release' || k.kind === 'ord_finished') {
             this.followCycle(k);
             return undefined;

@@ -27,6 +27,7 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'ignored', re: new RegExp(`^ignored: deactivate ${ID} \\(not this activation\\)$`), keys: ['schema'] },
     { what: 'deadline_miss', re: new RegExp(`^deadline miss: ${ID} \\(ORD:0\\)$`), keys: ['schema'] },
     { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)`), keys: ['schema', 'state'] },
+    { what: 'overrun_ended', re: new RegExp(`^overrun: ${ID} cycle ended after (\\d+) skipped releases$`), keys: ['schema', 'skipped'] },
     { what: 'missed_tick', re: new RegExp(`^missed tick of ${ID}(?: \\(cycle (\\d+)\\))?$`), keys: ['schema', 'cycle'] },
     { what: 'held', re: new RegExp(`^cycle of ${ID} held: ${ID} still runs`), keys: ['schema', 'module'] },
     { what: 'resumed', re: new RegExp(`^cycle of ${ID} resumed$`), keys: ['schema'] },
@@ -34,6 +35,9 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'gave_up', re: new RegExp(`^gave up waiting for ${ID} release #(\\d+)`), keys: ['module', 'release'] },
     { what: 'stuck', re: new RegExp(`^stuck: ${ID} has not finished release #(\\d+) after (\\d+) periods`), keys: ['module', 'release', 'periods'] },
     { what: 'ignored', re: new RegExp(`^ignored: ${ID} finished outside a cycle`), keys: ['module'] },
+    { what: 'unstuck', re: new RegExp(`^${ID} finished release #(\\d+) at last \\(reported stuck, ${ID}\\)$`), keys: ['module', 'release', 'schema'] },
+    // each periodic release (its typed record is ord_release)
+    { what: 'release', re: new RegExp(`^release ${ID} \\(${ID}\\)$`), keys: ['module', 'schema'] },
     { what: 'warning', re: /^warning: /, keys: [] },
 ];
 

@@ -83,6 +83,9 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'conflict: ICF shares a module with active ISC (ORD:1)')).toEqual({ what: 'conflict', schema: 'ICF', active: 'ISC' });
         expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' });
         expect(fields('scheduler', 'late ack: B finished release #12 of an earlier cycle of DIA (not counted)')).toEqual({ what: 'late_ack', module: 'B', release: 12, schema: 'DIA' });
+        expect(fields('scheduler', 'overrun: DIA cycle ended after 3 skipped releases')).toEqual({ what: 'overrun_ended', schema: 'DIA', skipped: 3 });
+        expect(fields('scheduler', 'B finished release #12 at last (reported stuck, DIA)')).toEqual({ what: 'unstuck', module: 'B', release: 12, schema: 'DIA' });
+        expect(fields('scheduler', 'release B (DIA)')).toEqual({ what: 'release', module: 'B', schema: 'DIA' });
         expect(fields('scheduler', 'something new')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'function action started')).toEqual({ what: 'function_started', function: 'action' });
         expect(fields('supervisor', 'function action(consigne = {i=0,j=0,k=0}, mode = AUTO) started')).toEqual({ what: 'function_started', function: 'action' });
@@ -235,6 +238,24 @@ describe('reading a log', () => {
             '+1.000000s ORD  stuck: GRP has not finished release #21 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (pick)',
             '+1.100000s ORD  cycle of pick resumed',
             '+1.130000s ORD  deadline miss (ORD:0): pick cycle 0 (not finished: CAM; ORD released the cycle 1083.0 ms after its tick)',
+        ]);
+        // every line ORD writes to its CSV log is typed; those a reader needs are told (an overrun's end, a stuck
+        // module finishing at last, a table warning), the expected ones are not, and a line no version writes is told as such
+        const ord = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+            '1000,w,ORD,scheduler,,,0,"overrun: alt cycle still running, release skipped"',
+            '2000,w,ORD,scheduler,,,0,overrun: alt cycle ended after 2 skipped releases',
+            '3000,w,ORD,scheduler,,,0,"GRP finished release #21 at last (reported stuck, pick)"',
+            '4000,w,ORD,scheduler,,,0,late ack: GRP finished release #21 of an earlier cycle of pick (not counted)',
+            '5000,w,ORD,scheduler,,,0,ignored: GRP finished outside a cycle (release #22 is not outstanding)',
+            '6000,w,ORD,scheduler,,,0,"warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)"',
+            '7000,w,ORD,scheduler,,,0,reboot the drone',
+        ].join('\n') }]));
+        expect(ord.slice(0, -1)).toEqual([
+            '+0.000000s ORD  overrun: alt cycle still running, release skipped',
+            '+0.000001s ORD  overrun: alt cycle ended after 2 skipped releases',
+            '+0.000002s ORD  GRP finished release #21 at last (reported stuck, pick)',
+            '+0.000005s ORD  warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)',
+            '+0.000006s ORD  (an ORD line this reader does not know) reboot the drone',
         ]);
         // a cycle ORD released late (it woke 13.4 ms after the tick): said, not only the module that then missed
         const late = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,

@@ -4,7 +4,7 @@
  */
 import { readableCause, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
-import { actionAsLogged, typedRecord } from '../trace/steps-to-trace.js';
+import { actionAsLogged, engineLine, typedRecord } from '../trace/steps-to-trace.js';
 
 /**
  * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
@@ -86,20 +86,22 @@ const MISS_LINE = /^deadline miss: ([A-Za-z_]\w*) \(ORD:0\)$/;
 
 /**
  * The verbose report's deadline misses, told as `contract trace` tells them: `deadline miss (ORD:0):
- * S cycle k (not finished: ARM)`, from ORD's typed records (releases and completions followed over
- * the scenario's steps), in place of ORD's bare `deadline miss: S (ORD:0)` line.
+ * S cycle k (not finished: ARM)` or `(held: nothing released, CTL still runs an earlier release)`,
+ * from ORD's typed records and its held/resumed lines (followed over the scenario's steps), in place
+ * of ORD's bare `deadline miss: S (ORD:0)` line.
  */
 class MissTeller {
     private readonly story = new StoryTeller();
 
     /** The step's misses, at their times; follows the step's cycles for the next. */
-    misses(records: ScenarioResult['steps'][number]['record']['records']): Array<{ t: number; seq: number; text: string }> {
+    misses(step: ScenarioResult['steps'][number]['record']): Array<{ t: number; seq: number; text: string }> {
         const out: Array<{ t: number; seq: number; text: string }> = [];
-        const ordered = records.map((r, i) => ({ r, i })).sort((a, b) => a.r.timeNs - b.r.timeNs || (a.r.seq ?? -1) - (b.r.seq ?? -1) || a.i - b.i);
-        for (const { r } of ordered) {
-            if (r.module !== 'ORD') continue;
-            const rec = typedRecord(r);
-            if (rec.kind === 'ord_deadline_miss') out.push({ t: r.timeNs, seq: r.seq ?? -1, text: `  ORD| ${safe(this.story.missText(rec as KnownRecord))}` });
+        const ord = [
+            ...(step.records ?? []).filter((r) => r.module === 'ORD').map((r) => ({ t: r.timeNs, seq: r.seq ?? -1, rec: typedRecord(r) })),
+            ...step.log.filter((l) => l.who === 'ORD' && !MISS_LINE.test(l.line)).map((l) => ({ t: l.timeNs, seq: l.seq ?? -1, rec: engineLine(l.timeNs, 'ORD', 'scheduler', l.line) })),
+        ].map((x, i) => ({ ...x, i })).sort((a, b) => a.t - b.t || a.seq - b.seq || a.i - b.i);
+        for (const { t, seq, rec } of ord) {
+            if (rec.kind === 'ord_deadline_miss') out.push({ t, seq, text: `  ORD| ${safe(this.story.missText(rec as KnownRecord))}` });
             this.story.tell(rec);
         }
         return out;
@@ -124,7 +126,7 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             }));
             if (options.verbose) {
                 for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.who === 'ORD' ? a.what : actionAsLogged(a.what))}` });
-                const told = misses.misses(s.record.records ?? []);
+                const told = misses.misses(s.record);
                 // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
                 const log = told.length ? s.record.log.filter((l) => !(l.who === 'ORD' && MISS_LINE.test(l.line))) : s.record.log;
                 happened.push(...releases.fold(log), ...told);

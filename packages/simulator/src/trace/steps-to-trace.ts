@@ -60,7 +60,7 @@ function known(timeNs: number, module: string, kind: string, detail: string, fie
 }
 
 /** An engine's trace line as the CSV record a real run writes (`kind`: supervisor or scheduler), read by the trace reader. */
-function engineLine(timeNs: number, who: string, kind: 'supervisor' | 'scheduler', line: string): TraceRecord {
+export function engineLine(timeNs: number, who: string, kind: 'supervisor' | 'scheduler', line: string): TraceRecord {
     return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(timeNs))},,${who},${kind},,,0,${csvField(line)}`);
 }
 
