@@ -58,7 +58,8 @@ export async function runCli(argv: string[], rawIO: CliIO = processIO, commands:
         return await command.run(rest, io);
     } catch (err) {
         if (err instanceof UsageError) {
-            io.err(`contract ${command.name}: ${err.message}\n${command.usage}\n`);
+            // the synopsis only: the whole option list (20 lines for run) buried the message
+            io.err(`contract ${command.name}: ${err.message}\n${command.usage.split('\n')[0]}\n(contract ${command.name} --help lists every option)\n`);
             return EXIT_USAGE;
         }
         io.err(`contract ${command.name}: ${err instanceof Error ? err.message : String(err)}\n`);

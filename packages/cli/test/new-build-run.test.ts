@@ -109,9 +109,13 @@ describe('contract build / run usage', () => {
         expect(checkStart('')).toBe('');
         expect(() => checkStart('mission()')).toThrow(/SUPERVISOR\.function/);
         // what the build service refuses (a backslash, a quote other than ", a $) is bad usage here, exit 2
-        expect(() => checkStart('XSU.f(s="\\x")')).toThrow(/no backslash, quote or \$/);
+        expect(() => checkStart('XSU.f(s="\\x")')).toThrow(/no backslash, single quote, \$ or other sign/);
         expect(() => checkStart("XSU.f(s='a')")).toThrow(/no backslash/);
         expect(checkStart('XSU.f(s="a b", n=-1.5e3, m=Mode.AUTO)')).toBe('XSU.f(s="a b", n=-1.5e3, m=Mode.AUTO)');
+        // a number glued to letters: no reader takes it; refused before the build (the supervisor refused it once started)
+        expect(() => checkStart('FLT.hold(height = 1.5x)')).toThrow(/'1\.5x' is not a number/);
+        expect(() => checkStart('FLT.hold(delay = 20ms)')).toThrow(/'20ms' is not a number/);
+        expect(checkStart('FLT.hold(note = "1.5x", v = {1.0,-2,3e2}, m = Mode.F2, x2 = +2)')).toBe('FLT.hold(note = "1.5x", v = {1.0,-2,3e2}, m = Mode.F2, x2 = +2)');
         expect(checkCpus('0-1,3')).toBe('0-1,3');
         expect(() => checkCpus('1-')).toThrow(/CPU list/);
     });

@@ -42,9 +42,25 @@ export function checkStart(text: string): string {
     }
     // the build service's rule (the request ends up in a make recipe): said here, as bad usage
     if (!/^[\w .,:;=+\-(){}[\]"]*$/.test(text) || text.length > 4096) {
-        throw new UsageError(`bad --start '${text}': a start request holds letters, digits, spaces and . , : ; = + - ( ) { } [ ] " only (no backslash, quote or $), at most 4096 characters`);
+        throw new UsageError(`bad --start '${text}': a start request holds letters, digits, spaces and . , : ; = + - ( ) { } [ ] " only (no backslash, single quote, $ or other sign), at most 4096 characters`);
     }
+    const glued = gluedNumber(text);
+    if (glued) throw new UsageError(`bad --start '${text}': '${glued}' is not a number (a value starting with a digit is a number: 1.5, -2, 1e3); nothing was started`);
     return text;
+}
+
+/**
+ * A value of a start request that starts as a number and goes on with letters (`1.5x`, `20ms`,
+ * `3m`): no reader takes it (a name never starts with a digit), and the supervisor would refuse
+ * it only once the run is built and started. Text between double quotes is not looked at.
+ */
+export function gluedNumber(text: string): string | undefined {
+    const outside = text.replace(/"[^"]*"?/g, '""');
+    for (const m of outside.matchAll(/(?<![\w.])[-+]?\.?\d[\w.+-]*/g)) {
+        const word = m[0].replace(/[+-]+$/, '');
+        if (!/^[-+]?(\d+\.?\d*|\.\d+)([eE][-+]?\d+)?$/.test(word)) return word;
+    }
+    return undefined;
 }
 
 /**
