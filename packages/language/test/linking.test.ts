@@ -181,6 +181,44 @@ describe('cross-file linking', () => {
         ]));
     });
 
+    it('offers the closest of the names valid where an unknown variable is, ord_schema in an ORD event', async () => {
+        const b = await build({
+            'm.contract': 'asynchronous module MAB { event flows { out :0 string note; } }',
+            'c.contract': 'enum Mode { AUTO, MANUAL };\nconst int LIMIT = 3;',
+            's.contract': `import "m.contract";
+import "c.contract";
+supervisor SUP {
+    event flows { in :0 string status; out :1 string report; }
+    f(string consigne = "x") {
+        local { string late; string goal = consgine; }
+        rules {
+            R1: [ORD:0(late = ord_shema)] subscribe MAB:0 =* :0 [ORD:1<ord_shema == "s">]
+            R2: [MAB:0<stauts == "x">] notify :1(reprot = late) [MAB:0(lat = status)]
+            R3: [MAB:0<ord_shema == "x">] [MAB:0<status == LIMTI>]
+            R4: [MAB:0<status == Mdoe.AUTO>] [elapsed=1ms]
+        }
+    }
+}`
+        }, services);
+        const message = (written: string) => b.diagnostics.filter((d) => d.code === 'linking-error' && d.message.includes(`'${written}'`)).map((d) => d.message);
+        const ord = "in this ORD event, also 'ord_schema' (the name of the schema it is about).";
+        // in an ORD event's extracted value and its test: said, and suggested
+        expect(message('ord_shema').slice(0, 2)).toEqual([
+            `Unknown variable 'ord_shema': rules use the locals of f, the event-port variables of its supervisor and constants; ${ord} Did you mean 'ord_schema'?`,
+            `Unknown variable 'ord_shema': rules use the locals of f, the event-port variables of its supervisor and constants; ${ord} Did you mean 'ord_schema'?`
+        ]);
+        // in another event: neither said nor suggested
+        expect(message('ord_shema')[2]).toBe("Unknown variable 'ord_shema': rules use the locals of f, the event-port variables of its supervisor and constants.");
+        // an event-port variable (two letters swapped), a constant, an enumeration, a parameter in a local's initial value
+        expect(message('stauts')).toEqual([expect.stringMatching(/^Unknown variable 'stauts': rules use .*\. Did you mean 'status'\?$/)]);
+        expect(message('LIMTI')).toEqual([expect.stringMatching(/\. Did you mean 'LIMIT'\?$/)]);
+        expect(message('Mdoe')).toEqual([expect.stringMatching(/\. Did you mean 'Mode'\?$/)]);
+        expect(message('consgine')).toEqual(["Unknown variable 'consgine': a local is initialised from constants and the parameters of f (consigne). Did you mean 'consigne'?"]);
+        // an extraction's target is a local; a notify's, the variable of its port
+        expect(message('lat')).toEqual(["Unknown variable 'lat': an extraction assigns a local of f (late, goal). Did you mean 'late'?"]);
+        expect(message('reprot')).toEqual(["Unknown variable 'reprot': notify :1 assigns the variable of that port, 'report'. Did you mean 'report'?"]);
+    });
+
     it('reports a port of the wrong direction as unresolved with the valid ports', async () => {
         const files = { ...FILES, 'schemas/s1.contract': FILES['schemas/s1.contract'].replace('MSC:1 -> MSD :2', 'MSC:0 -> MSD :2') };
         const b = await build(files, services);

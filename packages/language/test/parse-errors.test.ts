@@ -61,6 +61,9 @@ describe('syntax error messages', () => {
     it('offers the keyword a misspelt one was meant to be', () => {
         expect(first('synchronus module ENC {}')).toMatch(/^Unexpected 'synchronus': expected .*\. Did you mean 'synchronous'\?$/);
         expect(first('datatype T {int a = 1}\nsupervisr SUP {}')).toMatch(/Did you mean 'supervisor'\?$/);
+        // two adjacent letters swapped are one edit (a word under 7 letters gets a suggestion within 1)
+        expect(first('datatype T {int a = 1}\ncosnt int N = 3;')).toMatch(/^Unexpected 'cosnt': .* Did you mean 'const'\?$/);
+        expect(first('improt "t.contract";')).toMatch(/Did you mean 'import'\?$/);
         // no guess for a word that is no near miss
         expect(first('datatype T {int a = 1}\nwhatever X {}')).not.toContain('Did you mean');
     });
@@ -132,7 +135,11 @@ describe('a misspelt keyword', () => {
         ['a supervisor rule', 'supervisor.contract', '            activate schema schemaReceptionMessage()', '            activate restime module MAA;\n            activate schema schemaReceptionMessage()',
             "supervisor.contract:33:13 error parsing-error After 'activate', expected one of 'schema', 'supervisor', 'resttime' or 'critical' but found 'restime'. Did you mean 'resttime'?"],
         // 'module' is as near to 'moduls' as 'modules': the keyword suggested is the one that parses
-        ['a scheduler block', 'sched.contract', 'modules{', 'moduls{', "sched.contract:11:5 error parsing-error Expected '}' but found 'moduls'. Did you mean 'modules'?"]
+        ['a scheduler block', 'sched.contract', 'modules{', 'moduls{', "sched.contract:11:5 error parsing-error Expected '}' but found 'moduls'. Did you mean 'modules'?"],
+        // two letters swapped are one edit (optimal string alignment): 'rulse' gave 11 errors and no suggestion
+        ['a supervision function (two letters swapped)', 'supervisor.contract', '    rules{', '    rulse{', "supervisor.contract:30:5 error parsing-error Expected '}' but found 'rulse'. Did you mean 'rules'?"],
+        ['a supervision function (the first two letters swapped)', 'supervisor.contract', '    rules{', '    rlues{', "supervisor.contract:30:5 error parsing-error Expected '}' but found 'rlues'. Did you mean 'rules'?"],
+        ['a schema\'s scheduling graph (two letters swapped)', 'sschema1.contract', 'scheduling graph{', 'scheduling grahp{', "sschema1.contract:19:16 error parsing-error Expected 'graph' but found 'grahp'. Did you mean 'graph'?"]
     ];
     it.each(cases)('in %s is the one diagnostic of the project: the rest is read with the keyword meant', async (_where, file, written, misspelt, error) => {
         const built = await build(tutorial({ [file]: [[written, misspelt]] }));

@@ -62,6 +62,17 @@ describe('scenario editor services', () => {
         expect(closestName('x'.repeat(10_000), ['x'])).toBeUndefined();
     });
 
+    it('suggests a name or a word of the scenario with two letters swapped', async () => {
+        const models = await tutorialModels();
+        const text = 'start SUP.atcion(consigne = {1.0, 2.0, 3.0})\nexpect rule SUP.action.SECNOD active\nexepct module MAA running\nexpect module MAA runnign\n';
+        expect(scenarioDiagnostics(text, { models }).map((d) => [d.range.start.line, d.message.replace(/^.*(Did you mean '[^']*'\?)$/, '$1')]).sort()).toEqual([
+            [0, "Did you mean 'action'?"],
+            [1, "Did you mean 'SECOND'?"],
+            [2, "Did you mean 'expect'?"],
+            [3, "Did you mean 'running'?"]
+        ]);
+    });
+
     it('warns that names are not checked when the scenario has no project', () => {
         const d = scenarioDiagnostics('start SUP.action()\n', { models: [] });
         expect(d.map((x) => [x.code, x.severity])).toEqual([['scenario-no-project', 2]]);

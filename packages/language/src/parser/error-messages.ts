@@ -4,6 +4,7 @@
  */
 import { LangiumParserErrorMessageProvider } from 'langium';
 import type { IToken, TokenType } from 'chevrotain';
+import { nearKeywords } from '../model/near-names.js';
 
 const TERMINALS: Record<string, string> = {
     TIME: 'a duration (number + unit ns, us, ms or s, e.g. 500us)',
@@ -58,34 +59,9 @@ function isSubscribeToOrd(options: { expected: TokenType; actual: IToken; previo
 /** The words a top-level element starts with (for "did you mean"). */
 const TOP_LEVEL_WORDS = ['import', 'datatype', 'enum', 'const', 'function', 'synchronous', 'asynchronous', 'periodic', 'event', 'scheduler', 'supervisor'];
 
-/** Levenshtein distance, stopping early above `max`. */
-function distance(a: string, b: string, max: number): number {
-    if (Math.abs(a.length - b.length) > max) return max + 1;
-    let prev = Array.from({ length: b.length + 1 }, (_, i) => i);
-    for (let i = 1; i <= a.length; i++) {
-        const row = [i];
-        let best = i;
-        for (let j = 1; j <= b.length; j++) {
-            row[j] = Math.min(prev[j]! + 1, row[j - 1]! + 1, prev[j - 1]! + (a[i - 1] === b[j - 1] ? 0 : 1));
-            best = Math.min(best, row[j]!);
-        }
-        if (best > max) return max + 1;
-        prev = row;
-    }
-    return prev[b.length]!;
-}
-
-/** The words of `words` that `image` is a near miss of (a typo in a keyword), closest first. */
-export function nearWords(image: string | undefined, words: readonly string[]): string[] {
-    if (!image || !/^[A-Za-z_]\w{2,}$/.test(image)) return [];
-    const max = image.length >= 7 ? 2 : 1;
-    return words.filter((w) => w !== image).map((w) => ({ w, d: distance(image.toLowerCase(), w, max) })).filter((x) => x.d <= max)
-        .sort((x, y) => x.d - y.d).map((x) => x.w);
-}
-
 /** " Did you mean 'synchronous'?" when the token is a near miss of one of `words` (a typo in a keyword), else ''. */
 export function didYouMean(token: IToken | undefined, words: string[]): string {
-    const near = nearWords(token?.image, words);
+    const near = nearKeywords(token?.image, words);
     return near.length ? ` Did you mean '${near[0]}'?` : '';
 }
 

@@ -13,7 +13,8 @@ import {
     type AstNode, type LangiumCoreServices, type LexerResult, type ParseResult, type ParserOptions, type TokenizeOptions
 } from 'langium';
 import type { IRecognitionException, IToken, TokenType } from 'chevrotain';
-import { ALL_WORDS, nearWords } from './error-messages.js';
+import { nearKeywords } from '../model/near-names.js';
+import { ALL_WORDS } from './error-messages.js';
 
 /** At most this many parses of one text (the first included): each repair tried costs one. */
 const MAX_PARSES = 8;
@@ -119,7 +120,7 @@ function candidates(error: IRecognitionException, tokens: IToken[], lexer: Cacta
     return [at, at - 1, at + 1, at + 2].flatMap((index) => {
         const token = tokens[index];
         if (!token || token.tokenType.name !== 'ID') return [];
-        return nearWords(token.image, ALL_WORDS).slice(0, 3).flatMap((word) => {
+        return nearKeywords(token.image, ALL_WORDS).slice(0, 3).flatMap((word) => {
             const keyword = lexer.definition[word];
             return keyword ? [{ token, index, keyword }] : [];
         });

@@ -14,7 +14,7 @@ import { describeUnresolved, nearName } from './unresolved-messages.js';
 import { ImportCodes } from './codes/imports.js';
 import { SyntaxCodes } from './codes/syntax.js';
 import { TypeCodes } from './codes/types.js';
-import { isTypeRef } from '../generated/ast.js';
+import { isTypeRef, isVariableRef } from '../generated/ast.js';
 
 export class CactalDocumentValidator extends DefaultDocumentValidator {
     private readonly services: CactalServices;
@@ -96,10 +96,12 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
                 }));
                 continue;
             }
-            const described = describeUnresolved(info, refText, linkingError.message);
+            // a top-level name: the closest one of that kind in the workspace (`LNI` -> 'LIN'); a
+            // variable: the closest of those of its context and these (describeUnresolved)
+            const globals = topLevel && referenceType && refText ? index.allElements(referenceType).map((d) => d.name).distinct().toArray() : [];
+            const described = describeUnresolved(info, refText, linkingError.message, globals);
             if (described === undefined) continue; // follows from another unresolved reference, reported there
-            // a top-level name: the closest one of that kind in the workspace (`LNI` -> 'LIN')
-            const near = topLevel && referenceType && refText ? nearName(refText, index.allElements(referenceType).map((d) => d.name).distinct()) : '';
+            const near = isVariableRef(info.container) ? '' : nearName(refText, globals);
             const message = topLevel ? described + near + this.brokenImportNote(document, info) : described;
             if (isTypeRef(info.container)) {
                 diagnostics.push(this.toDiagnostic(TypeCodes['type-unknown'].severity, message, {

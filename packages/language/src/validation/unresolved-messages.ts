@@ -4,13 +4,13 @@ import {
     isActivateSchema, isActivateSupervisor, isDataCommunication, isDurationEvent, isEndofEvent,
     isEventCommunication, isFieldSegment, isFunctionArgumentAssignment, isFunctionParameter, isLocalBlock,
     isModule, isModuleEvent, isModuleInstance, isNotify, isParameterize, isParameterSetting, isSchema,
-    isSchemaArgument, isStartedEvent, isArrayDimension, isIndexSegment, isEnumType, isSubscribe, isSupervisionFunction, isSupervisor, isTypeRef, isVariableRef,
-    type Module, type Supervisor
+    isSchemaArgument, isStartedEvent, isExtraction, isArrayDimension, isIndexSegment, isEnumType, isSubscribe, isSupervisionFunction, isSupervisor, isTypeRef, isVariableRef,
+    type Module, type Supervisor, type VariableRef
 } from '../generated/ast.js';
-import { parametersOf, rulesOf } from '../model/blocks.js';
+import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
 import { portsOfKind, type PortDirection, type PortKind } from '../model/ports.js';
 import { typeName, typeOfPathPrefix } from '../model/types.js';
-import { closestName } from '../scenario/did-you-mean.js';
+import { closestName } from '../model/near-names.js';
 
 const TOP_LEVEL_WORDS: Record<string, string> = {
     DataType: 'datatype', FunctionPrototype: 'function', Module: 'module', Supervisor: 'supervisor',
@@ -21,7 +21,7 @@ function list(items: string[]): string {
     return items.length ? items.join(', ') : 'none';
 }
 
-/** ` Did you mean 'X'?` for the closest of `names` (scenario/did-you-mean.ts: within 1-3 edits), or ''. */
+/** ` Did you mean 'X'?` for the closest of `names` (model/near-names.ts: within 1-3 edits, a swap of two letters one), or ''. */
 export function nearName(written: string, names: Iterable<string | undefined>): string {
     // a name left undefined by a syntax error is no candidate
     const near = closestName(written, [...names].filter((n): n is string => typeof n === 'string' && n !== ''));
@@ -38,9 +38,10 @@ function portMessage(owner: Module | Supervisor | undefined, index: string, kind
 /**
  * The message for an unresolved reference, or undefined when it only fails because what it
  * depends on is unresolved (a port of an unknown module, a field of an unknown variable): that
- * cause is reported already.
+ * cause is reported already. `globals`: the names of the project's top-level elements of the
+ * reference's type (for a variable: its constants and enumerations), candidates for "Did you mean".
  */
-export function describeUnresolved(info: ReferenceInfo, refText: string, fallback: string): string | undefined {
+export function describeUnresolved(info: ReferenceInfo, refText: string, fallback: string, globals: readonly string[] = []): string | undefined {
     const c = info.container;
     const p = info.property;
     if (isTypeRef(c)) {
@@ -104,26 +105,54 @@ export function describeUnresolved(info: ReferenceInfo, refText: string, fallbac
         }
         return undefined; // the variable or an earlier field is unresolved
     }
-    if (isVariableRef(c)) {
-        const fn = AstUtils.getContainerOfType(c, isSupervisionFunction);
-        if (fn) {
-            if (AstUtils.getContainerOfType(c, isFunctionParameter)) {
-                return `'${refText}': a function parameter's default value is a constant.`;
-            }
-            if (AstUtils.getContainerOfType(c, isLocalBlock)) {
-                return `Unknown variable '${refText}': a local is initialised from constants and the parameters of ${fn.name} (${list(fn.parameters.map((q) => q.name))}).`;
-            }
-            return `Unknown variable '${refText}': rules use the locals of ${fn.name} and the event-port variables of its supervisor.`;
-        }
-        const schema = AstUtils.getContainerOfType(c, isSchema);
-        if (schema) {
-            return `Unknown variable '${refText}': a module parameterisation uses constants and the parameters of schema ${schema.name} (${list(schema.parameters.map((q) => q.name))}).`;
-        }
-        return `'${refText}' is not a constant: only constant values (numbers, strings, true/false, {...}, enumeration members, named constants) are allowed here.`;
-    }
+    if (isVariableRef(c)) return unknownVariable(c, refText, globals);
     const type = info.container && TOP_LEVEL_WORDS[refTypeOf(info)];
     if (type) return `Unknown ${type} '${refText}': no ${type} of this name is defined in this file or in a file it imports.`;
     return fallback;
+}
+
+/**
+ * An unknown variable: what may be named there, and the nearest of those names (constants and
+ * enumerations, `globals`, included; the implicit `ord_schema` where it is valid: the tests and
+ * extracted values of an ORD:0/ORD:1 event).
+ */
+function unknownVariable(ref: VariableRef, refText: string, globals: readonly string[]): string {
+    const fn = AstUtils.getContainerOfType(ref, isSupervisionFunction);
+    if (fn) {
+        if (AstUtils.getContainerOfType(ref, isFunctionParameter)) {
+            return `'${refText}': a function parameter's default value is a constant.${nearName(refText, globals)}`;
+        }
+        const parameters = fn.parameters.map((q) => q.name);
+        if (AstUtils.getContainerOfType(ref, isLocalBlock)) {
+            return `Unknown variable '${refText}': a local is initialised from constants and the parameters of ${fn.name} (${list(parameters)}).${nearName(refText, [...parameters, ...globals])}`;
+        }
+        const locals = localsOf(fn).map((l) => l.name);
+        const sup = fn.$container;
+        const ports = isSupervisor(sup) ? sup.eventFlows.flatMap((b) => b.ports) : [];
+        const extraction = isExtraction(ref.$container) ? ref.$container : undefined;
+        if (extraction?.target === ref) {
+            const owner = extraction.$container;
+            // an event's extraction assigns a local; a notify's, the variable of its port
+            if (isModuleEvent(owner)) {
+                return `Unknown variable '${refText}': an extraction assigns a local of ${fn.name} (${list(locals)}).${nearName(refText, locals)}`;
+            }
+            if (isNotify(owner) && owner.port?.ref) {
+                return `Unknown variable '${refText}': notify :${owner.port.ref.index} assigns the variable of that port, '${owner.port.ref.name}'.${nearName(refText, [owner.port.ref.name])}`;
+            }
+        }
+        const ord = AstUtils.getContainerOfType(ref, isModuleEvent)?.ord === true;
+        const names = [...locals, ...ports.map((q) => q.name), ...(ord ? ['ord_schema'] : []), ...globals];
+        const what = `rules use the locals of ${fn.name}, the event-port variables of its supervisor and constants`;
+        return ord
+            ? `Unknown variable '${refText}': ${what}; in this ORD event, also 'ord_schema' (the name of the schema it is about).${nearName(refText, names)}`
+            : `Unknown variable '${refText}': ${what}.${nearName(refText, names)}`;
+    }
+    const schema = AstUtils.getContainerOfType(ref, isSchema);
+    if (schema) {
+        const parameters = schema.parameters.map((q) => q.name);
+        return `Unknown variable '${refText}': a module parameterisation uses constants and the parameters of schema ${schema.name} (${list(parameters)}).${nearName(refText, [...parameters, ...globals])}`;
+    }
+    return `'${refText}' is not a constant: only constant values (numbers, strings, true/false, {...}, enumeration members, named constants) are allowed here.${nearName(refText, globals)}`;
 }
 
 function refTypeOf(info: ReferenceInfo): string {
