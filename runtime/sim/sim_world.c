@@ -230,7 +230,7 @@ static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
            f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
 }
 static void sio_subscribe(void *ctx, const char *module, int src_port, int in_port,
-                          ContractEventMode mode) {
+                          ContractEventMode mode, uint32_t id) {
     SimSup *p = ctx;
     SimSub *s = NULL;
     for (int i = 0; i < p->nsubs; i++)
@@ -244,16 +244,16 @@ static void sio_subscribe(void *ctx, const char *module, int src_port, int in_po
         s->in_port = in_port;
     }
     if (s) { s->mode = mode; s->active = 1; }
-    action(p->w, p->v->name, "subscribe %s:%d %s :%d", module, src_port,
-           mode == CONTRACT_ONESHOT ? "=>" : "=*", in_port);
+    action(p->w, p->v->name, "subscribe %s:%d %s :%d (activation #%u)", module, src_port,
+           mode == CONTRACT_ONESHOT ? "=>" : "=*", in_port, id);
 }
-static void sio_unsubscribe(void *ctx, const char *module, int src_port, int in_port) {
+static void sio_unsubscribe(void *ctx, const char *module, int src_port, int in_port, uint32_t id) {
     SimSup *p = ctx;
     for (int i = 0; i < p->nsubs; i++)
         if (p->subs[i].src_port == src_port && p->subs[i].in_port == in_port &&
             strcmp(p->subs[i].module, module) == 0)
             p->subs[i].active = 0;
-    action(p->w, p->v->name, "unsubscribe %s:%d :%d", module, src_port, in_port);
+    action(p->w, p->v->name, "unsubscribe %s:%d :%d (activation #%u)", module, src_port, in_port, id);
 }
 static void sio_notify(void *ctx, int out_port, const ContractType *type, const void *value,
                        size_t size) {

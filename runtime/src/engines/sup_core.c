@@ -473,7 +473,7 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
         sub->mode = a->mode;
         sub->token = u->act_id = ++c->next_token;
         if (c->io.subscribe)
-            c->io.subscribe(c->io.ctx, a->module, a->src_port, a->in_port, a->mode);
+            c->io.subscribe(c->io.ctx, a->module, a->src_port, a->in_port, a->mode, u->act_id);
         u->done = 1;
         break;
     }
@@ -533,7 +533,8 @@ static void undo_action(SupCore *c, const ContractAction *a, UndoRec *u) {
                   a->module, a->src_port, a->in_port);
             break;
         }
-        if (c->io.unsubscribe) c->io.unsubscribe(c->io.ctx, a->module, a->src_port, a->in_port);
+        if (c->io.unsubscribe)
+            c->io.unsubscribe(c->io.ctx, a->module, a->src_port, a->in_port, u->act_id);
         break;
     }
     default: /* parameterize, compute, notify: no undo */

@@ -40,9 +40,11 @@ typedef struct SupIo {
     void (*connect_events)(void *ctx, const ContractEventFlow *flow);
     void (*disconnect_events)(void *ctx, const ContractEventFlow *flow);
     /* the supervisor's own event ports */
+    /* id: the supervisor's number for this subscription (one counter with its activations),
+       named again by its unsubscribe */
     void (*subscribe)(void *ctx, const char *module, int src_port, int in_port,
-                      ContractEventMode mode);
-    void (*unsubscribe)(void *ctx, const char *module, int src_port, int in_port);
+                      ContractEventMode mode, uint32_t id);
+    void (*unsubscribe)(void *ctx, const char *module, int src_port, int in_port, uint32_t id);
     void (*notify)(void *ctx, int out_port, const ContractType *type, const void *value,
                    size_t size);
     /* other supervisors' functions (own functions are handled inside the core).

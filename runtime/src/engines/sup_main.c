@@ -289,16 +289,16 @@ static void b_disconnect(void *ctx, const ContractEventFlow *f) {
     holds_unlock(name);
 }
 
-static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode) {
+static void b_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode, uint32_t id) {
     (void)ctx;
-    log_action(m, "subscribe %s:%d %s :%d", m, sp, mode == CONTRACT_ONESHOT ? "=>" : "=*", ip);
+    log_action(m, "subscribe %s:%d %s :%d (activation #%u)", m, sp, mode == CONTRACT_ONESHOT ? "=>" : "=*", ip, id);
     not_sent(m, SendSubscribeEvent(m, sp, ContractSelfName(), ip, mode_of(mode)));
 }
 
-static void b_unsubscribe(void *ctx, const char *m, int sp, int ip) {
+static void b_unsubscribe(void *ctx, const char *m, int sp, int ip, uint32_t id) {
     (void)ctx;
     if (!alive(m)) return;
-    log_action(m, "undo: unsubscribe %s:%d :%d", m, sp, ip);
+    log_action(m, "undo: unsubscribe %s:%d :%d (activation #%u)", m, sp, ip, id);
     not_sent(m, SendUnsubscribeEvent(m, sp, ContractSelfName(), ip));
 }
 

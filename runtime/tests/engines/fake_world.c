@@ -241,8 +241,9 @@ static void s_disconnect(void *ctx, const ContractEventFlow *f) {
     WLOG((FakeWorld *)ctx, "disconnect %s:%d %s %s:%d", f->src_module, f->src_port,
          f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
 }
-static void s_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode) {
+static void s_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventMode mode, uint32_t id) {
     FakeWorld *w = ctx;
+    (void)id; /* the lines of the supervisor tests name the port, not the number */
     WLOG(w, "subscribe %s:%d %s :%d", m, sp, mode == CONTRACT_ONESHOT ? "=>" : "=*", ip);
     if (w->bus && w->bus->nsubs < 32) {
         BusSub *s = &w->bus->subs[w->bus->nsubs++];
@@ -254,8 +255,9 @@ static void s_subscribe(void *ctx, const char *m, int sp, int ip, ContractEventM
         s->mode = mode;
     }
 }
-static void s_unsubscribe(void *ctx, const char *m, int sp, int ip) {
+static void s_unsubscribe(void *ctx, const char *m, int sp, int ip, uint32_t id) {
     FakeWorld *w = ctx;
+    (void)id;
     WLOG(w, "unsubscribe %s:%d :%d", m, sp, ip);
     if (w->bus)
         for (int i = 0; i < w->bus->nsubs; i++) {

@@ -64,8 +64,9 @@ export const SUPERVISOR_LINES: readonly LinePattern[] = [
     { what: 'action', re: new RegExp(`^undo: stop ${ID}\\.${ID} \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
     // (older logs: no ` = value`)
     { what: 'action', re: new RegExp(`^parameterize ${ID}:(\\d+) \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port'] },
-    { what: 'action', re: new RegExp(`^subscribe ${ID}:(\\d+) (?:=>|=\\*) :(\\d+)$`), keys: ['module', 'port', 'in_port'] },
-    { what: 'action', re: new RegExp(`^undo: unsubscribe ${ID}:(\\d+) :(\\d+)$`), keys: ['module', 'port', 'in_port'] },
+    // (older logs: no activation number)
+    { what: 'action', re: new RegExp(`^subscribe ${ID}:(\\d+) (?:=>|=\\*) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },
+    { what: 'action', re: new RegExp(`^undo: unsubscribe ${ID}:(\\d+) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },
     { what: 'action', re: new RegExp(`^notify :(\\d+) \\((?:${ID}|\\?)\\)(?: = |$)`), keys: ['out_port', 'type'] },
     { what: 'action', re: new RegExp(`^compute ${ID}$`), keys: ['function'] },
 ];

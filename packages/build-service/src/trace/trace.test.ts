@@ -94,6 +94,8 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'rule action.FIRST inactive')).toEqual({ what: 'rule', function: 'action', rule: 'FIRST', state: 'inactive' });
         expect(fields('supervisor', 'subscribe MAA:2 =* :2')).toEqual({ what: 'action', module: 'MAA', port: 2, in_port: 2 });
         expect(fields('supervisor', 'undo: unsubscribe MAA:2 :2')).toEqual({ what: 'action', module: 'MAA', port: 2, in_port: 2 });
+        expect(fields('supervisor', 'subscribe MAA:0 => :1 (activation #2)')).toEqual({ what: 'action', module: 'MAA', port: 0, in_port: 1, activation: 2 });
+        expect(fields('supervisor', 'undo: unsubscribe MAA:0 :1 (activation #2)')).toEqual({ what: 'action', module: 'MAA', port: 0, in_port: 1, activation: 2 });
         expect(fields('supervisor', 'parameterize VEL:0 (16 bytes) = {v=0.3,w=0}')).toEqual({ what: 'action', module: 'VEL', port: 0 });
         expect(fields('supervisor', 'parameterize MSC:1 (8 bytes)')).toEqual({ what: 'action', module: 'MSC', port: 1 }); // older logs
         expect(fields('supervisor', 'notify :1 (string) = "paused"')).toEqual({ what: 'action', out_port: 1, type: 'string' });

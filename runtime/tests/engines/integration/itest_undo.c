@@ -81,9 +81,9 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
           "actions: UPA recorded K1's and K2's activate supervisor, K1's undo only (K2 was refused), PSC and its undo");
     check(strstr(usm, ",supervisor,ORD,,0,\"activate schema PSC (activation #1, to ORD)\"") &&
               strstr(usm, ",supervisor,ORD,,0,\"undo: deactivate schema PSC (activation #1, to ORD)\"") &&
-              count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 => :0") == 1 &&
-              count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 =* :0") == 1 &&
-              count_of(usm, ",supervisor,AMX,,0,undo: unsubscribe AMX:0 :0") == 1,
+              count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 => :0 (activation #") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 =* :0 (activation #") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,undo: unsubscribe AMX:0 :0 (activation #") == 1,
           "actions: USM recorded A2's PSC and its undo on ORD:1, B1's and B2's subscriptions, one unsubscribe (B1's undo kept B2's)");
 
     /* a supervisor records each module event it takes as event_received, as a module does */
