@@ -294,7 +294,8 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
 static void do_check(OrdCore *c, SchemaState *ss) {
     ss->reported = 1;
     ss->stats.deadline_misses++;
-    trace(c, "deadline miss: %s (ORD:0)", ss->s->name);
+    trace(c, "deadline miss: %s cycle %ld (ORD:0)", ss->s->name,
+          (long)((ss->cycle_tick - ss->act_t) / ss->s->period_ns));
     fact(c, ss, ORD_FACT_DEADLINE_MISS, -1, 0);
     if (c->io.emit) c->io.emit(c->io.ctx, CONTRACT_ORD_EVENT_DEADLINE_MISS, ss->s->name);
 }

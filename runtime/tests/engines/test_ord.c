@@ -106,8 +106,8 @@ void test_ord_deadline_miss_is_inclusive_and_emits_ord0(void) {
     diamond_cycle(c, 0, 6 * MS);          /* finishes exactly at tick + CRITICAL_DELAY: in time */
     diamond_cycle(c, 10 * MS, 6 * MS + 1); /* 1 ns late: ORD:0 at tick + 6ms */
     ord_core_advance(c, 19 * MS);
-    CHECK(log_find(&LOG, "6000us deadline miss: DIA (ORD:0)", 0) < 0);
-    int i = log_find(&LOG, "16000us deadline miss: DIA (ORD:0)", 0);
+    CHECK(log_find(&LOG, "6000us deadline miss: DIA cycle 0 (ORD:0)", 0) < 0);
+    int i = log_find(&LOG, "16000us deadline miss: DIA cycle 1 (ORD:0)", 0);
     CHECK(i >= 0);
     CHECK(i >= 0 && log_find(&LOG, "emit ORD:0 DIA", i) == i + 1);
     OrdSchemaStats st;
@@ -126,7 +126,7 @@ void test_ord_overrun_skips_release(void) {
     check_log_filtered(&LOG, SCHED,
                        (const char *const[]){"0us release A (DIA)", "1000us release B (DIA)",
                                              "1000us release C (DIA)", "3000us release D (DIA)",
-                                             "6000us deadline miss: DIA (ORD:0)",
+                                             "6000us deadline miss: DIA cycle 0 (ORD:0)",
                                              "10000us overrun: DIA cycle still running, release skipped",
                                              "20000us release A (DIA)", NULL},
                        __FILE__, __LINE__);
@@ -288,7 +288,7 @@ void test_ord_ack_matched_to_its_cycle_by_release_id(void) {
                            "0us release E (FST)", "3000us release E (FST)",
                            "4000us ignored: E finished outside a cycle (release #1 is not outstanding)",
                            "4000us ignored: F finished outside a cycle (release #99 is not outstanding)",
-                           "6000us deadline miss: FST (ORD:0)",
+                           "6000us deadline miss: FST cycle 1 (ORD:0)",
                            "6000us overrun: FST cycle still running, release skipped",
                            "9000us release E (FST)", NULL},
                        __FILE__, __LINE__);

@@ -25,7 +25,8 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'conflict', re: new RegExp(`^conflict: ${ID} shares a module with active ${ID} \\(ORD:1\\)$`), keys: ['schema', 'active'] },
     { what: 'refused', re: new RegExp(`^refused: unknown schema (.*)$`), keys: ['schema'] },
     { what: 'ignored', re: new RegExp(`^ignored: deactivate ${ID} \\(not this activation\\)$`), keys: ['schema'] },
-    { what: 'deadline_miss', re: new RegExp(`^deadline miss: ${ID} \\(ORD:0\\)$`), keys: ['schema'] },
+    // (older logs: no cycle)
+    { what: 'deadline_miss', re: new RegExp(`^deadline miss: ${ID}(?: cycle (\\d+))? \\(ORD:0\\)$`), keys: ['schema', 'cycle'] },
     { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)`), keys: ['schema', 'state'] },
     { what: 'overrun_ended', re: new RegExp(`^overrun: ${ID} cycle ended after (\\d+) skipped releases$`), keys: ['schema', 'skipped'] },
     { what: 'missed_tick', re: new RegExp(`^missed tick of ${ID}(?: \\(cycle (\\d+)\\))?$`), keys: ['schema', 'cycle'] },

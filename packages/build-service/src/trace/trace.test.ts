@@ -79,6 +79,8 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'deactivate conveyor (activation #2 from LIN)')).toEqual({ what: 'deactivate', schema: 'conveyor', activation: 2, requester: 'LIN' });
         expect(fields('scheduler', 'activate conveyor (activation #2)')).toEqual({ what: 'activate', schema: 'conveyor', activation: 2 });
         expect(fields('scheduler', 'missed tick of SLW (cycle 12)')).toEqual({ what: 'missed_tick', schema: 'SLW', cycle: 12 });
+        expect(fields('scheduler', 'deadline miss: DIA cycle 7 (ORD:0)')).toEqual({ what: 'deadline_miss', schema: 'DIA', cycle: 7 });
+        expect(fields('scheduler', 'deadline miss: DIA (ORD:0)')).toEqual({ what: 'deadline_miss', schema: 'DIA' }); // older logs
         expect(fields('scheduler', 'activate conveyor (activation #2 from LIN) and more')).toEqual({ what: 'other' });
         expect(fields('scheduler', 'conflict: ICF shares a module with active ISC (ORD:1)')).toEqual({ what: 'conflict', schema: 'ICF', active: 'ISC' });
         expect(fields('scheduler', 'overrun: DIA cycle still running, release skipped')).toEqual({ what: 'overrun', schema: 'DIA', state: 'running' });

@@ -82,13 +82,13 @@ class ReleaseFolder {
 }
 
 /** ORD's own line of a deadline miss; the verbose report says it from the typed record instead. */
-const MISS_LINE = /^deadline miss: ([A-Za-z_]\w*) \(ORD:0\)$/;
+const MISS_LINE = /^deadline miss: ([A-Za-z_]\w*)(?: cycle \d+)? \(ORD:0\)$/;
 
 /**
  * The verbose report's deadline misses, told as `contract trace` tells them: `deadline miss (ORD:0):
  * S cycle k (not finished: ARM)` or `(held: nothing released, CTL still runs an earlier release)`,
  * from ORD's typed records and its held/resumed lines (followed over the scenario's steps), in place
- * of ORD's bare `deadline miss: S (ORD:0)` line.
+ * of ORD's bare `deadline miss: S cycle k (ORD:0)` line.
  */
 class MissTeller {
     private readonly story = new StoryTeller();
