@@ -730,8 +730,9 @@ describe.skipIf(!canBuild)('Monitor on examples/mobile-robot with a velocity-loo
     await seek(page, miss.t + 1);
     await expect.poll(() => periodic(page, 'velocityLoop').getAttribute('data-misses')).toBe(String(index + 1));
     expect(await periodic(page, 'velocityLoop').locator('.miss').allTextContents()).toContain(`ORD:0 cycle ${cycle} at +${(miss.t / 1e9).toFixed(6)} s`);
-    // the miss names what its cycle was still waiting for: VEL, asleep (as `contract trace` says it), in its label and tooltip
-    expect(miss.label).toMatch(/ \((not finished: ([A-Z]+, )*VEL(, [A-Z]+)*|held: nothing released, VEL still runs an earlier release)\)$/);
+    // the miss names what its cycle was still waiting for: VEL, asleep (as `contract trace` says it), in its label and tooltip;
+    // on a loaded host ORD itself may wake late, take VEL's completion first, and say it released the cycle late
+    expect(miss.label).toMatch(/ \((not finished: ([A-Z]+, )*VEL(, [A-Z]+)*(; ORD released the cycle [\d.]+ ms after its tick)?|not finished: [A-Z]+(, [A-Z]+)*; ORD released the cycle [\d.]+ ms after its tick|held: nothing released, VEL still runs an earlier release)\)$/);
     expect(await periodic(page, 'velocityLoop').locator(`.miss[data-cycle="${cycle}"]`).last().getAttribute('title')).toBe(miss.label);
     // the reaction to the first miss while MIS.mission.AUTO is active (autonomous mode, from 1.5 s)
     const story = JSON.stringify(marks.map((m) => `${(m.t / 1e9).toFixed(3)} ${m.where} ${m.label}`));
