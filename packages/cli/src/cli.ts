@@ -4,7 +4,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import { COMMANDS } from './commands/index.js';
 import { makeProcessIO } from './process-io.js';
 import { safeName, terminalSafeIO } from './terminal-text.js';
-import { closestName } from './did-you-mean.js';
+import { closestName } from '@contract-studio/language/near-names';
 
 function version(): string {
     try {

@@ -14,7 +14,7 @@ import type { JobEvent } from '@contract-studio/build-service';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
 import { isCpuList } from '@contract-studio/conventions';
-import { closestName } from '../did-you-mean.js';
+import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { moduleFailures, problemLines } from './run-problems.js';
