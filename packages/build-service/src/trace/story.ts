@@ -119,6 +119,11 @@ export class StoryTeller {
     tell(r: TraceRecord): string | undefined {
         this.total++;
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
+        // ORD's overruns and held cycles, counted by their line (`scheduler:overrun`, `scheduler:held`)
+        if (r.kind === 'scheduler') {
+            const what = (r as KnownRecord).fields['what'];
+            if (what === 'overrun' || what === 'held') this.counts.set(`scheduler:${what}`, (this.counts.get(`scheduler:${what}`) ?? 0) + 1);
+        }
         if (r.kind === 'unknown') return undefined;
         const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));
         const at = (x: TraceRecordBase) => `${offset(BigInt(x.monoNs) - t0)} ${x.module.padEnd(4)}`;
@@ -211,7 +216,8 @@ export class StoryTeller {
     summary(): string {
         const n = (kind: string) => this.counts.get(kind) ?? 0;
         return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
-            `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('sup_rule'), 'rule change')}, ` +
+            `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('scheduler:overrun'), 'overrun')}, ` +
+            `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
             `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ${plural(n('unknown'), 'unreadable line')}`;
     }
 }

@@ -168,7 +168,7 @@ describe('reading a log', () => {
             '+0.500000s ORD  deadline miss (ORD:0): S cycle 4',
             '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
-            '7 records: 0 releases, 0 completed cycles, 1 deadline miss, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+            '7 records: 0 releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
         ]);
     });
 
@@ -261,6 +261,7 @@ describe('reading a log', () => {
             '+0.000005s ORD  warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)',
             '+0.000006s ORD  (an ORD line this reader does not know) reboot the drone',
         ]);
+        expect(ord.at(-1)).toContain(', 1 overrun, 0 held cycles, '); // the summary counts the overrun (once: its end is the same one)
         // a cycle ORD released late (it woke 13.4 ms after the tick): said, not only the module that then missed
         const late = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
             '3000000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=66 tick_ns=2986600000 release_ns=3000000000 release=300',
