@@ -263,6 +263,8 @@ describe('Monitor in headless Chromium', () => {
     }
     await page.evaluate(() => (window as any).__ide.monitor.followLive('fed', null)); // as Build & Run does, the lines fed by the test
     await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
+    // the live run drawn (its first frame: an empty run, followed), not the run shown before it
+    await expect.poll(() => page.locator('.monitor-time').textContent()).toContain('· live');
     const feeding = page.evaluate(async (batches) => {
       const t0 = performance.now();
       for (const b of batches) {
@@ -577,6 +579,8 @@ describe('Monitor in headless Chromium', () => {
     await cdp.send('Network.setCacheDisabled', { cacheDisabled: true }); // a cold load, as a first visit
     await page.reload();
     await page.waitForSelector('#btn-run:not([disabled])');
+    // the page is whole (its language server has built the workspace: __ide is set then), as openIde waits
+    await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
     await cdp.send('Network.setCacheDisabled', { cacheDisabled: false });
     await cdp.detach();
     // every event the page's own sockets receive, by type: the trace goes to the live run's worker only
