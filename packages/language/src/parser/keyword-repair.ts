@@ -85,6 +85,8 @@ export class CactalParser extends LangiumParser {
         }
         for (const repair of repairs) {
             repair.error.message = suggesting(repair.error.message, repair.token.image, repair.keyword);
+            // on the misspelt word, not where the recovery tripped (`[elapsd=1ms]` failed at '=')
+            repair.error.token = repair.token;
             readAsKeyword(result.value, repair);
         }
         result.parserErrors = [...repairs.map((r) => r.error), ...result.parserErrors].sort((a, b) => offsetOf(a, input) - offsetOf(b, input));
@@ -142,8 +144,11 @@ function firstTokenFrom(tokens: IToken[], offset: number): number {
 
 /** The error's message, suggesting the keyword that made the text parse. */
 function suggesting(message: string, word: string, keyword: string): string {
-    if (message.includes(`Did you mean '${keyword}'`)) return message;
     const base = message.replace(/ Did you mean .*\?$/, '');
+    // `Expected '[' but found 'subscrib'` names what the parser's recovery wanted, which the keyword
+    // meant is not (a rule's actions go on after a pre-condition): the word and the keyword say it all
+    if (/^Expected .* but found /.test(base)) return `Unexpected '${word}'. Did you mean '${keyword}'? (the rest of the file is checked as if it were)`;
+    if (message.includes(`Did you mean '${keyword}'`)) return message;
     return `${base} Did you mean '${keyword}'${base.includes(`found '${word}'`) ? '' : ` (not '${word}')`}?`;
 }
 
