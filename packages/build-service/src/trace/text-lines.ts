@@ -19,6 +19,8 @@ const ID = '([A-Za-z_]\\w*)';
 const SERVED = `(?: \\(activation #(\\d+)(?: from ${ID})?\\))?`;
 
 export const SCHEDULER_LINES: readonly LinePattern[] = [
+    // each periodic release (its typed record is ord_release); first: the line ORD writes most
+    { what: 'release', re: new RegExp(`^release ${ID} \\(${ID}\\)$`), keys: ['module', 'schema'] },
     // ` (activation #N from SUP)`: the activation served, as its requester numbered it (older logs: none)
     { what: 'activate', re: new RegExp(`^activate ${ID}${SERVED}$`), keys: ['schema', 'activation', 'requester'] },
     { what: 'deactivate', re: new RegExp(`^deactivate ${ID}${SERVED}$`), keys: ['schema', 'activation', 'requester'] },
@@ -37,8 +39,6 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'stuck', re: new RegExp(`^stuck: ${ID} has not finished release #(\\d+) after (\\d+) periods`), keys: ['module', 'release', 'periods'] },
     { what: 'ignored', re: new RegExp(`^ignored: ${ID} finished outside a cycle`), keys: ['module'] },
     { what: 'unstuck', re: new RegExp(`^${ID} finished release #(\\d+) at last \\(reported stuck, ${ID}\\)$`), keys: ['module', 'release', 'schema'] },
-    // each periodic release (its typed record is ord_release)
-    { what: 'release', re: new RegExp(`^release ${ID} \\(${ID}\\)$`), keys: ['module', 'schema'] },
     { what: 'warning', re: /^warning: /, keys: [] },
 ];
 
@@ -86,6 +86,14 @@ export function classifyLine(patterns: readonly LinePattern[], line: string): Re
         return out;
     }
     return { what: 'other' };
+}
+
+/**
+ * ORD's readable line typed (`what` and the names it holds, as a `scheduler` record's fields): the
+ * one reading of ORD's lines, also for the simulator's log of them (releases, activations, misses).
+ */
+export function schedulerLineFields(line: string): Record<string, string | number> {
+    return classifyLine(SCHEDULER_LINES, line);
 }
 
 /** The `what` values of a table, once each, in order (for the doc). */

@@ -2,7 +2,7 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
-import { readableCause, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
+import { readableCause, schedulerLineFields, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
 import { actionAsLogged, engineLine, typedRecord } from '../trace/steps-to-trace.js';
 
@@ -39,10 +39,12 @@ function timesOf(r: ScenarioResult): number[] {
     return [r.endNs, ...r.steps.map((s) => s.timeNs)];
 }
 
-/** ORD's readable line of a periodic release, `release MSA (schemaCommande1)`, and of an activation. */
-const RELEASE_LINE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
-/** ORD's `activate S (activation #N from SUP)` (the parenthesis: the activation it serves). */
-const ACTIVATE_LINE = /^activate ([A-Za-z_]\w*)(?: \(activation #\d+(?: from [A-Za-z_]\w*)?\))?$/;
+/** What an engine's line is when ORD wrote it, read as the trace reader reads it (`release`, `activate`, `deadline_miss`, ...), else ''. */
+function ordWhat(l: { who: string; line: string }): { what: string; fields: Record<string, string | number> } {
+    if (l.who !== 'ORD') return { what: '', fields: {} };
+    const fields = schedulerLineFields(l.line);
+    return { what: String(fields['what']), fields };
+}
 
 /**
  * The verbose report's engine lines, with ORD's periodic releases folded: the first release of each
@@ -58,11 +60,10 @@ class ReleaseFolder {
         const out: Array<{ t: number; seq: number; text: string }> = [];
         const folded = new Map<string, { n: number; t: number; seq: number }>();
         for (const l of log) {
-            const activated = l.who === 'ORD' ? ACTIVATE_LINE.exec(l.line) : null;
-            if (activated) this.shown.set(activated[1]!, new Set());
-            const release = l.who === 'ORD' ? RELEASE_LINE.exec(l.line) : null;
-            if (release) {
-                const [, module, schema] = release as unknown as [string, string, string];
+            const ord = ordWhat(l);
+            if (ord.what === 'activate') this.shown.set(String(ord.fields['schema']), new Set());
+            if (ord.what === 'release') {
+                const module = String(ord.fields['module']), schema = String(ord.fields['schema']);
                 let seen = this.shown.get(schema);
                 if (!seen) this.shown.set(schema, (seen = new Set()));
                 if (seen.has(module)) {
@@ -82,7 +83,7 @@ class ReleaseFolder {
 }
 
 /** ORD's own line of a deadline miss; the verbose report says it from the typed record instead. */
-const MISS_LINE = /^deadline miss: ([A-Za-z_]\w*)(?: cycle \d+)? \(ORD:0\)$/;
+const isMissLine = (l: { who: string; line: string }) => ordWhat(l).what === 'deadline_miss';
 
 /**
  * The verbose report's deadline misses, told as `contract trace` tells them: `deadline miss (ORD:0):
@@ -98,7 +99,7 @@ class MissTeller {
         const out: Array<{ t: number; seq: number; text: string }> = [];
         const ord = [
             ...(step.records ?? []).filter((r) => r.module === 'ORD').map((r) => ({ t: r.timeNs, seq: r.seq ?? -1, rec: typedRecord(r) })),
-            ...step.log.filter((l) => l.who === 'ORD' && !MISS_LINE.test(l.line)).map((l) => ({ t: l.timeNs, seq: l.seq ?? -1, rec: engineLine(l.timeNs, 'ORD', 'scheduler', l.line) })),
+            ...step.log.filter((l) => l.who === 'ORD' && !isMissLine(l)).map((l) => ({ t: l.timeNs, seq: l.seq ?? -1, rec: engineLine(l.timeNs, 'ORD', 'scheduler', l.line) })),
         ].map((x, i) => ({ ...x, i })).sort((a, b) => a.t - b.t || a.seq - b.seq || a.i - b.i);
         for (const { t, seq, rec } of ord) {
             if (rec.kind === 'ord_deadline_miss') out.push({ t, seq, text: `  ORD| ${safe(this.story.missText(rec as KnownRecord))}` });
@@ -128,7 +129,7 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
                 for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.who === 'ORD' ? a.what : actionAsLogged(a.what))}` });
                 const told = misses.misses(s.record);
                 // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
-                const log = told.length ? s.record.log.filter((l) => !(l.who === 'ORD' && MISS_LINE.test(l.line))) : s.record.log;
+                const log = told.length ? s.record.log.filter((l) => !isMissLine(l)) : s.record.log;
                 happened.push(...releases.fold(log), ...told);
             }
             const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);

@@ -26,7 +26,7 @@
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
  * Not simulated, so not in the trace: data_received (virtual modules read no data) and the values posted.
  */
-import { csvField, parseCause, parseRecordLine, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { csvField, parseCause, parseRecordLine, schedulerLineFields, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import type { ActionRecord, LogLine, RuleChange, SimTraceRecord } from '../runner/protocol.js';
 
 /** What the conversion reads of a step: the runner's StepResult with its record's lists, or the IDE's answer of POST /api/simulate. */
@@ -70,9 +70,6 @@ export function typedRecord(r: SimTraceRecord): TraceRecord {
     return parseRecordLine('simulation', 0, `${Math.max(0, Math.floor(r.timeNs))},,${csvField(r.module)},${csvField(r.kind)},${csvField(r.peer)},${port},0,${csvField(r.detail)}`);
 }
 
-const RELEASE = /^release ([A-Za-z_]\w*) \(([A-Za-z_]\w*)\)$/;
-/** ORD's `activate S (activation #N from SUP)` (the parenthesis: the activation it serves). */
-const ORD_ACTIVATE = /^activate ([A-Za-z_]\w*)(?: \(activation #\d+(?: from [A-Za-z_]\w*)?\))?$/;
 const DEADLINE_MISS = /^ORD:0 "([A-Za-z_]\w*)" \(deadline miss\)/;
 const START_MODULE = /^start module ([A-Za-z_]\w*)\b/;
 const STOP_MODULE = /^stop module ([A-Za-z_]\w*)$/;
@@ -124,10 +121,11 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
         for (const l of s.log ?? []) {
             cur = l.seq ?? -1;
             if (l.who === 'ORD') {
-                const rel = RELEASE.exec(l.line);
-                if (rel && withRecords) continue; // the typed ord_release stands for it
-                if (rel) {
-                    const [, module, schema] = rel as unknown as [string, string, string];
+                // ORD's line read as the trace reader reads it (`release M (S)`, `activate S (activation #N from SUP)`)
+                const ord = schedulerLineFields(l.line);
+                if (ord['what'] === 'release' && withRecords) continue; // the typed ord_release stands for it
+                if (ord['what'] === 'release') {
+                    const module = String(ord['module']), schema = String(ord['schema']);
                     let c = cycles.get(schema);
                     if (!c || c.released.has(module)) cycles.set(schema, (c = { cycle: (c?.cycle ?? -1) + 1, released: new Set() }));
                     c.released.add(module);
@@ -136,8 +134,7 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
                         { schema, cycle, tick_ns: l.timeNs, release_ns: l.timeNs }, module));
                     continue;
                 }
-                const act = ORD_ACTIVATE.exec(l.line);
-                if (act) cycles.delete(act[1]!);
+                if (ord['what'] === 'activate') cycles.delete(String(ord['schema']));
                 const rec = engineLine(l.timeNs, 'ORD', 'scheduler', l.line);
                 if (rec.kind !== 'unknown') push(rec);
             } else {
