@@ -5,6 +5,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include "tools.h"
+#include "string_escape.h"
 
 unsigned int extract_float(unsigned char *buffer, unsigned int offset, double value)
 {
@@ -125,18 +126,10 @@ int get_string(char *value, char *description)
         char c = description[i++];
         if (c == '\0') return -1; /* unterminated */
         if (c == '"') break;
-        if (c == '\\') { /* the language's escapes: \n \t \r \b \f \0, any other character itself */
+        if (c == '\\') { /* the language's escapes (string_escape.h) */
             char e = description[i++];
-            switch (e) {
-            case '\0': return -1; /* unterminated */
-            case 'n': c = '\n'; break;
-            case 't': c = '\t'; break;
-            case 'r': c = '\r'; break;
-            case 'b': c = '\b'; break;
-            case 'f': c = '\f'; break;
-            case '0': c = '\0'; break;
-            default: c = e; break;
-            }
+            if (e == '\0') return -1; /* unterminated */
+            c = contract_string_escape(e);
         }
         if (n >= CONTRACT_STRING_SIZE - 1) return -1; /* longer than 255 bytes */
         tmp[n++] = c;

@@ -2,6 +2,7 @@
  * (bool and the generic operations of the extension kinds: value_ops.c). */
 #define _POSIX_C_SOURCE 200809L
 #include "engine_values.h"
+#include "../string_escape.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -41,20 +42,6 @@ static int prim_string_sup(void *a, void *b) { return str_cmp(a, b) > 0; }
 static int prim_string_infeq(void *a, void *b) { return str_cmp(a, b) <= 0; }
 static int prim_string_supeq(void *a, void *b) { return str_cmp(a, b) >= 0; }
 static void prim_string_set(void *d, void *s) { engine_set_string((char *)d, (const char *)s); }
-/* A backslash escape of a quoted string as the language reads it (Langium's string literals):
-   \n \t \r \b \f \0 the control characters, any other character itself (\" \\ \x -> x). */
-static char string_escape(char e) {
-    switch (e) {
-    case 'n': return '\n';
-    case 't': return '\t';
-    case 'r': return '\r';
-    case 'b': return '\b';
-    case 'f': return '\f';
-    case '0': return '\0';
-    default: return e;
-    }
-}
-
 static int prim_string_get(void *d, char *text) {
     /* "quoted text" with the language's escapes (a scenario's or a start request's value is
        written as in a .contract file), or a bare word up to ',' '}' or end */
@@ -68,7 +55,7 @@ static int prim_string_get(void *d, char *text) {
             char c = *p++;
             if (c == '\\') {
                 if (!*p) return -1;
-                c = string_escape(*p++);
+                c = contract_string_escape(*p++);
             }
             if (i < CONTRACT_STRING_SIZE - 1) out[i++] = c;
         }
