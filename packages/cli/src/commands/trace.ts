@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { StoryTeller, isUnknown, ownString, type KnownRecord, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -160,8 +160,8 @@ function moduleOfLog(name: string): string {
 
 /** Unreadable lines named one by one at the end of the story (the rest counted). */
 const UNREADABLE_NAMED = 5;
-/** Modules followed at most (a run writes a log per module, 1,024 at most): the records of others (a forged log) are only counted. */
-const MODULES_FOLLOWED = 4096;
+/** Modules followed at most, as the story follows them (a run writes a log per module, 1,024 at most): the records of others (a forged log) are only counted. */
+const MODULES_FOLLOWED = STORY_FOLLOWED;
 
 /**
  * Which modules' logs end without their `module_exit` record. A module that crashed (or was
