@@ -364,14 +364,15 @@ describe('Monitor in headless Chromium', () => {
       const time = document.querySelector('.monitor-time')!;
       // just after the time was written, a record comes and its frame is drawn: the time waits
       const written = new Promise((r) => new MutationObserver((_, o) => (o.disconnect(), r(undefined))).observe(time, { subtree: true, childList: true, characterData: true }));
+      const m = w.__ide.monitor.lastLive;
+      // the two records below are counted from here: the write awaited may be the clock's own tick, before the first is folded
+      const before = m.recordCount;
       w.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2002, text: '3500000000,2026-11-29T10:00:03.500000Z,MSA,run_finished,ORD,,0,activation=1000' }]);
       const wrote = await Promise.race([written.then(() => true), new Promise((r) => setTimeout(() => r(false), 2000))]);
       if (!wrote) return { time: `the time was not written: ${time.textContent}`, row: '' };
-      const m = w.__ide.monitor.lastLive;
-      const before = m.recordCount;
       w.__ide.monitor.feed('khz', [{ file: 'MAB.csv', line: 2003, text: '4000000000,2026-11-29T10:00:04.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]);
       // folded by the live run's worker: in the page's model at its next snapshot
-      while (m.recordCount <= before) await frame();
+      while (m.recordCount < before + 2) await frame();
       w.__ide.monitor.panel.setFollow(false);
       await frame();
       return { time: time.textContent, row: document.querySelector('.monitor-flow.event[data-flow="MAA:0->MAB:0"]')!.textContent };
