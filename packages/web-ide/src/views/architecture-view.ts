@@ -198,7 +198,8 @@ export class ArchitectureView {
   private readonly panZoom: PanZoom;
   private schemas: ArchSchema[] = [];
   private chosen: string | undefined;
-  private drawn: { schema: string; pane: Size } | undefined;
+  /** What the canvas shows: the schema, the pane it was laid out for, and the model it was drawn from (`source`: none after a failed layout). */
+  private drawn: { schema: string; pane: Size; source?: string } | undefined;
   private seq = 0;
   private live: LiveHighlight | undefined;
   private cursor: CursorAt | undefined;
@@ -307,6 +308,7 @@ export class ArchitectureView {
       this.schemas = await this.fetchSchemas();
     } catch (e) {
       this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Cannot read the model: ${(e as Error).message}`));
+      if (this.drawn) this.drawn.source = undefined;
       return;
     }
     const names = this.schemas.map((s) => s.name);
@@ -322,6 +324,7 @@ export class ArchitectureView {
     const schema = this.schemas.find((s) => s.name === this.chosen);
     if (!schema) {
       this.canvas.replaceChildren(h('div', { class: 'muted pad' }, 'No schema in the workspace'));
+      if (this.drawn) this.drawn.source = undefined;
       this.info.textContent = '';
       return;
     }
@@ -333,6 +336,11 @@ export class ArchitectureView {
       : 'event schema (asynchronous modules)';
     try {
       const pane = this.paneSize();
+      // the same schema of the same model in a pane of the same size (a model re-read after a save that
+      // changed another file, the Monitor opened again by Build & Run): the drawing is already right
+      const source = JSON.stringify(schema);
+      const d = this.drawn;
+      if (d?.source === source && d.schema === schema.name && pane && d.pane.width === pane.width && d.pane.height === pane.height) return;
       const graph = await layoutSchema(schema, pane);
       if (seq !== this.seq) return;
       const drawing = renderSchema(schema, graph);
@@ -341,9 +349,10 @@ export class ArchitectureView {
       // the same schema re-drawn after an edit keeps the user's zoom and pan; a new one starts readable
       const keepView = this.drawn?.schema === schema.name && pane && this.drawn.pane.width === pane.width && this.drawn.pane.height === pane.height;
       this.panZoom.setContent(size, !keepView);
-      this.drawn = { schema: schema.name, pane: pane ?? { width: 0, height: 0 } };
+      this.drawn = { schema: schema.name, pane: pane ?? { width: 0, height: 0 }, source };
       if (this.live) this.highlight(this.live);
     } catch (e) {
+      if (this.drawn) this.drawn.source = undefined; // the error replaced the drawing: the next draw makes one
       this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Layout failed: ${(e as Error).message}`));
     }
   }

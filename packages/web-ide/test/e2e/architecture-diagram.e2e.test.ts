@@ -57,6 +57,28 @@ describe('architecture diagram docked', () => {
     expect(seriousOf(report)).toEqual([]);
   });
 
+  it('the model read again unchanged keeps the drawing (no new layout); a change of the schema draws it again', async () => {
+    const { page } = s;
+    await page.locator(`${pane} .arch-svg`).waitFor({ timeout: 20_000 });
+    const svgMarked = () => page.evaluate((sel) => (document.querySelector(sel) as any)?.__seen === true, `${pane} .arch-svg`);
+    await page.evaluate((sel) => ((document.querySelector(sel) as any).__seen = true), `${pane} .arch-svg`);
+    // read again (what an edit elsewhere, or Build & Run opening the Monitor, does): the same element stays
+    await page.evaluate(() => (window as any).__ide.views.arch.update());
+    expect(await svgMarked()).toBe(true);
+    // the schema shown changes (its period): a new drawing
+    await openFile(page, 'sschema1.contract');
+    await placeCursor(page, 'PERIOD=1s;', 'PERIOD='.length);
+    await expect.poll(() => page.locator(`${pane} .arch-svg`).getAttribute('data-schema')).toBe('schemaCommande1');
+    await page.evaluate((sel) => ((document.querySelector(sel) as any).__seen = true), `${pane} .arch-svg`);
+    await page.keyboard.press('Delete');
+    await page.keyboard.type('2');
+    await expect.poll(svgMarked, { timeout: 10_000 }).toBe(false);
+    await expect.poll(() => page.locator('.side-pane .arch-info').textContent()).toMatch(/^PERIOD 2s/);
+    await page.keyboard.press('Control+Z');
+    await page.keyboard.press('Control+Z');
+    await expect.poll(() => page.locator('.side-pane .arch-info').textContent()).toMatch(/^PERIOD 1s/);
+  });
+
   it('wheel zooms at the pointer, a drag pans, Fit and F fit the whole diagram, + and − zoom', async () => {
     const { page } = s;
     const box = (await page.locator(pane).boundingBox())!;
