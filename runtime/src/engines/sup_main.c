@@ -104,8 +104,11 @@ static void remove_subscriber(SupBinding *b, const char *module, int target_port
 /* Each action the supervisor sends and each undo, as a `supervisor` record of its CSV log (not on
    stdout: a rule that fires at every event would flood the console), in the simulator's words
    (runtime/sim/sim_world.c), undos prefixed `undo: `; peer = the module, supervisor or ORD it
-   goes to. Holds, priorities and event-schema flows have their own records (module_hold,
-   module_priority, flow_hold). An action is logged *before* its request is sent, so that its
+   goes to (a flow's: its source module). A module started or stopped, an event-schema flow
+   connected or disconnected and a priority claimed or released are logged so too (`start module
+   M (priority P)`, `undo: stop module M`, `connect A:p =* B:i`, `undo: disconnect A:p =* B:i`,
+   `set priority of M to P (claim #N)`, `undo: release priority claim #N on M`), and what came of
+   them has its own records (module_hold, flow_hold, module_priority). An action is logged *before* its request is sent, so that its
    record comes before what the receiver does with it (the receiver may log within microseconds);
    a request that could not be sent is followed by `error: not sent: <the action>: <reason>`
    (not_sent). */
@@ -172,16 +175,17 @@ static int b_module_running(void *ctx, const char *m) {
     return running;
 }
 
+/* `start module M (priority P)`, then the hold it takes (module_hold `hold taken (started it)`);
+   a start it cannot send (M not there, its mailbox full) is `error: not sent: ...`, no hold */
 static void b_start_module(void *ctx, const char *m, int prio) {
     (void)ctx;
-    int state = ModuleState(m);
-    if (state != CONTRACT_OK) {
-        fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(state));
-        return;
+    log_action(m, "start module %s (priority %d)", m, prio);
+    int rc = ModuleState(m);
+    if (rc == CONTRACT_OK) {
+        prio_request_start(m, prio); /* read before the start: its run begins at that priority */
+        rc = SendStart(m, ACK_NOTHING, 0);
     }
-    prio_request_start(m, prio); /* read before the start: its run begins at that priority */
-    int rc = SendStart(m, ACK_NOTHING, 0);
-    if (rc != CONTRACT_OK) {
+    if (not_sent(m, rc)) {
         fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
         return;
     }
@@ -222,8 +226,11 @@ static void b_lock_module(void *ctx, const char *m, int lock) {
     else holds_unlock(m);
 }
 
+/* `undo: stop module M` (the undo of its start), then what its hold decided: `last hold dropped
+   (stopped)`, or kept running for another supervisor, or it had ended (module_hold) */
 static void b_stop_module(void *ctx, const char *m) {
     (void)ctx;
+    log_action(m, "undo: stop module %s", m);
     stop_if_last(m, 1);
 }
 
@@ -234,14 +241,19 @@ static void b_share_module(void *ctx, const char *m, int hold) {
 }
 
 /* `activate resttime|critical module` on a running module: a claim shared with the other
-   supervisors of the run (prio_claims.h), recorded when the module answers (prio_requests.h) */
+   supervisors of the run (prio_claims.h),
+   recorded when the module answers (prio_requests.h); `set priority of M to P (claim #N)` and
+   `undo: release priority claim #N on M` name the claim by the supervisor's activation number
+   (a request that cannot be sent is a module_priority record `priority P not applied: ...`) */
 static int b_claim_priority(void *ctx, const char *m, uint32_t id, int prio) {
     (void)ctx;
+    log_action(m, "set priority of %s to %d (claim #%u)", m, prio, id);
     return prio_request_claim(m, id, prio);
 }
 
 static void b_release_priority(void *ctx, const char *m, uint32_t id) {
     (void)ctx;
+    log_action(m, "undo: release priority claim #%u on %s", id, m);
     prio_request_release(m, id);
 }
 
@@ -261,14 +273,17 @@ static int mode_of(ContractEventMode m) { return m == CONTRACT_ONESHOT ? EVENT_O
 /* Event flows of event schemas. The core connects a flow at each activation and disconnects
    it when its last active schema *in this supervisor* ends; across supervisors the flow is one
    subscription at its producer, so this supervisor holds it (module_holds.h) and unsubscribes
-   only when no other supervisor holds it, under the flow's lock. */
+   only when no other supervisor holds it, under the flow's lock. Each is logged first, peer =
+   the flow's source: `connect A:p =* B:i` (`=>` one shot), `undo: disconnect A:p =* B:i`. */
 static void b_connect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
     char name[CONTRACT_NAME_MAX];
     holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
+    log_action(f->src_module, "connect %s:%d %s %s:%d", f->src_module, f->src_port,
+               f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
     holds_lock(name);
     holds_take_flow(name);
-    SendSubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port, mode_of(f->mode));
+    not_sent(f->src_module, SendSubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port, mode_of(f->mode)));
     holds_unlock(name);
 }
 
@@ -276,6 +291,8 @@ static void b_disconnect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
     char name[CONTRACT_NAME_MAX];
     holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
+    log_action(f->src_module, "undo: disconnect %s:%d %s %s:%d", f->src_module, f->src_port,
+               f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
     holds_lock(name);
     int others = holds_drop(name);
     if (others > 0) {
@@ -284,7 +301,8 @@ static void b_disconnect(void *ctx, const ContractEventFlow *f) {
         ContractLog("flow_hold", name, -1, 0, detail);
     } else {
         ContractLog("flow_hold", name, -1, 0, "last hold dropped (disconnected)");
-        if (alive(f->src_module)) SendUnsubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port);
+        if (alive(f->src_module))
+            not_sent(f->src_module, SendUnsubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port));
     }
     holds_unlock(name);
 }

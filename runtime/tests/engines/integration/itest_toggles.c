@@ -68,6 +68,31 @@ static int collect(const char *csv, int who, Step *steps, int n) {
     return n;
 }
 
+/* In one supervisor's log (its supervisor and module_hold records), each `hold taken (started
+   it)` of AMX comes right after its action `start module AMX (priority P)`, and each such action
+   and each `undo: stop module AMX` right before a hold record of AMX (what the stop decided:
+   stopped, kept running for the other). (A supervisor that only shared AMX and is its last
+   holder stops it too, `last hold dropped (stopped)` with no action line: it started nothing.) */
+static int actions_logged(const char *csv) {
+    int starts = 0, stops = 0, bad = 0;
+    enum { NONE, START, STOP } last = NONE;
+    for (const char *line = csv; line && *line;) {
+        const char *nl = strchr(line, '\n');
+        const char *event = field(line, 3), *detail = field(line, 7);
+        if (event && detail && strncmp(event, "supervisor,", 11) == 0) {
+            if (last != NONE) bad++; /* an action without its hold record */
+            last = NONE;
+            if (strncmp(event, "supervisor,AMX,", 15) == 0 && strncmp(detail, "start module AMX (priority ", 27) == 0) last = START, starts++;
+            else if (strncmp(event, "supervisor,AMX,", 15) == 0 && strncmp(detail, "undo: stop module AMX\n", 22) == 0) last = STOP, stops++;
+        } else if (event && detail && strncmp(event, "module_hold,AMX,", 16) == 0) {
+            if (strncmp(detail, "hold taken (started it)", 23) == 0 && last != START) bad++;
+            last = NONE;
+        }
+        line = nl ? nl + 1 : NULL;
+    }
+    return bad == 0 && starts > 0 && stops > 0;
+}
+
 static int by_time(const void *a, const void *b) {
     const Step *x = a, *y = b;
     return (x->t > y->t) - (x->t < y->t);
@@ -184,6 +209,9 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
     check(bad == 0, "every decision on AMX agrees with the holds before it: started only when nobody held it, "
                     "shared only while the other held it, stopped only by its last holder");
     check(steps && amx_followed(steps, n), "AMX received exactly the decided STARTs and STOPs, in that order");
+    check(actions_logged(logs[0]) && actions_logged(logs[1]),
+          "each start and stop of AMX is logged as an action (start module AMX (priority P), undo: stop module AMX) "
+          "right before its hold record");
     check(quiet, "both functions stopped at 700 ms: the last decision stopped AMX, nobody holds it");
     int lock_errors = 0;
     for (int w = 0; w < 2; w++)

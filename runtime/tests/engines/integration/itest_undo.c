@@ -58,6 +58,12 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
               amy_last >= a3_end + 40 * MS,
           "event flow: USM's undo left AMX:0 =* AMY:0 connected for UPA's EVF (AMY kept receiving)");
     check(upa && strstr(upa, "last hold dropped (disconnected)"), "event flow: UPA, its last user, disconnected it");
+    /* the flow's connect and its undo, logged by each supervisor before its hold (peer = the source) */
+    check(upa && usm && count_of(upa, ",supervisor,AMX,,0,connect AMX:0 =* AMY:0\n") == 1 &&
+              count_of(upa, ",supervisor,AMX,,0,undo: disconnect AMX:0 =* AMY:0\n") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,connect AMX:0 =* AMY:0\n") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,undo: disconnect AMX:0 =* AMY:0\n") == 1,
+          "event flow: each supervisor logged its connect and its undo (connect AMX:0 =* AMY:0, undo: disconnect ...)");
 
     /* priority: P1 (UPA), A4 (USM), P2 (UPA) on AMX; P1 and A4 undone while a later change
        stands: no request; P2's undo restores the priority from before P1 */
@@ -65,6 +71,12 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
           "priority: UPA changed AMX 3 times (critical, resttime, back to the one before P1), none at P1's undo");
     check(usm && strstr(usm, ",priority_kept,AMX,") && count_of(usm, ",module_priority,AMX,") == 2,
           "priority: USM's undo of A4 changed nothing (UPA's later change stood): start + A4 only");
+    /* each claim and its undo logged as an action, by its activation number (the claim's, shown) */
+    check(upa && lines_with(upa, ",supervisor,AMX,,0,set priority of AMX to ", " (claim #") == 2 &&
+              count_of(upa, ",supervisor,AMX,,0,undo: release priority claim #") == 2 && usm &&
+              lines_with(usm, ",supervisor,AMX,,0,set priority of AMX to ", " (claim #") == 1 &&
+              count_of(usm, ",supervisor,AMX,,0,undo: release priority claim #") == 1,
+          "priority: UPA logged P1's and P2's claims and their releases, USM A4's (set priority of AMX to P (claim #N))");
 
     /* subscription: B1's one-shot, spent, undone after B2 subscribed AMX:0 to :0 again */
     long long b1_end = csv_time_of(usm, NULL, "rule aux.B1 inactive", NULL);
