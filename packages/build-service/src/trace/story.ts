@@ -1,11 +1,13 @@
 /**
  * A readable story of a recorded run from its trace records (`contract trace`): supervisor
- * decisions with their causes, functions started/stopped/refused, schema activations,
+ * decisions with their causes, functions started/stopped/refused, schema activations, the
+ * supervisors' actions in the simulator's words (`simulate --verbose` tells the same lines),
  * conflicts, deadline misses with their cycle, overruns, module starts and exits. Releases,
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
 import { formatNanoseconds } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
+import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -114,6 +116,11 @@ export class StoryTeller {
     private readonly exited = new Map<string, string>();
     /** Modules in the `running` sets of all cycles followed. */
     private running = 0;
+    /**
+     * Per supervisor (at most STORY_FOLLOWED): the hold record that would only confirm the action
+     * line it wrote last (`start module M` then `module M: hold taken (started it)`): not told again.
+     */
+    private readonly confirming = new Map<string, ConfirmingHold>();
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -130,14 +137,20 @@ export class StoryTeller {
         if (isRule(r)) return `${at(r)} rule ${r.function}.${r.rule} ${r.active ? 'active  ' : 'inactive'} <- ${describeCause(r.causeEvent)}`;
         const k = r as KnownRecord;
         const what = String(k.fields['what'] ?? '');
+        if (k.kind === 'supervisor') this.followAction(k, what);
         if (k.kind === 'supervisor' && SUPERVISOR_TOLD.has(what)) return `${at(k)} ${k.detail}`;
-        // every action and undo, with its target and value: who activated a schema or a function, what it sent
+        // every action and undo, with its target and value: who activated a schema or a function, what it sent,
+        // the modules it started and stopped, the flows it connected, the priorities it claimed
         if (k.kind === 'supervisor' && what === 'action') return `${at(k)} ${k.detail}`;
         // a line of another engine version, or forged: told, but not as an action
         if (k.kind === 'supervisor' && what === 'other') return `${at(k)} (a supervisor line this reader does not know) ${k.detail}`;
-        // the modules a supervisor starts and stops (event schemas, activate resttime|critical module) and the event flows it connects
-        if (k.kind === 'module_hold') return `${at(k)} module ${k.peer}: ${k.detail}`;
-        if (k.kind === 'flow_hold') return `${at(k)} event flow ${flowName(k.peer)}: ${k.detail}`;
+        // what the holds of the modules a supervisor starts and stops (event schemas, activate
+        // resttime|critical module) and of the event flows it connects decided: told unless it only
+        // confirms the action line just told (a log of an older version has no such line: all told)
+        if (k.kind === 'module_hold' || k.kind === 'flow_hold') {
+            if (this.confirms(k)) return undefined;
+            return k.kind === 'module_hold' ? `${at(k)} module ${k.peer}: ${k.detail}` : `${at(k)} event flow ${flowName(k.peer)}: ${k.detail}`;
+        }
         if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
             const schema = String(k.fields['schema']);
             if (what === 'held' && (this.held.has(schema) || this.held.size < STORY_FOLLOWED)) this.held.set(ownString(schema), ownString(String(k.fields['module'])));
@@ -165,6 +178,24 @@ export class StoryTeller {
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
+    }
+
+    /** A supervisor's record: the hold record its action line expects, if any, replaces the one it expected. */
+    private followAction(k: KnownRecord, what: string): void {
+        const hold = what === 'action' ? confirmingHold(k.fields) : undefined;
+        if (!hold) {
+            this.confirming.delete(k.module);
+        } else if (this.confirming.has(k.module) || this.confirming.size < STORY_FOLLOWED) {
+            this.confirming.set(ownString(k.module), { kind: hold.kind, peer: ownString(hold.peer), detail: hold.detail });
+        }
+    }
+
+    /** Whether a hold record only confirms the action line its supervisor wrote just before (it is then expected no more). */
+    private confirms(k: KnownRecord): boolean {
+        const c = this.confirming.get(k.module);
+        if (!c) return false;
+        this.confirming.delete(k.module);
+        return c.kind === k.kind && c.peer === k.peer && c.detail === k.detail;
     }
 
     /**

@@ -13,6 +13,8 @@ export interface LinePattern {
     re: RegExp;
     /** Names of the capture groups, in order; an unmatched optional group is left out. */
     keys: readonly string[];
+    /** Fields every line of the pattern has (a supervisor's `action` whose outcome has a record of its own). */
+    fixed?: Readonly<Record<string, string>>;
 }
 
 const ID = '([A-Za-z_]\\w*)';
@@ -70,6 +72,19 @@ export const SUPERVISOR_LINES: readonly LinePattern[] = [
     { what: 'action', re: new RegExp(`^undo: unsubscribe ${ID}:(\\d+) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },
     { what: 'action', re: new RegExp(`^notify :(\\d+) \\((?:${ID}|\\?)\\)(?: = |$)`), keys: ['out_port', 'type'] },
     { what: 'action', re: new RegExp(`^compute ${ID}$`), keys: ['function'] },
+    // the modules it starts (an event schema's, `activate resttime|critical module` on one not
+    // running) and stops, the event flows of event schemas it connects and disconnects (module =
+    // the source), the priority claims of `activate resttime|critical module` on a running module
+    // and their undos (activation = the claim's number). Each has a record of what came of it
+    // (module_hold, flow_hold, module_priority), which readers pair with the line: field `action`
+    // names it. (Logs of older versions: none of these lines, only those records.) A simulation's
+    // start of a module it made crash adds `: it has crashed, it does not start`.
+    { what: 'action', re: new RegExp(`^start module ${ID} \\(priority (\\d+)\\)(?:: it has crashed, it does not start)?$`), keys: ['module', 'priority'], fixed: { action: 'start_module' } },
+    { what: 'action', re: new RegExp(`^undo: stop module ${ID}$`), keys: ['module'], fixed: { action: 'stop_module' } },
+    { what: 'action', re: new RegExp(`^connect ${ID}:(\\d+) (?:=>|=\\*) ${ID}:(\\d+)$`), keys: ['module', 'port', 'to_module', 'to_port'], fixed: { action: 'connect' } },
+    { what: 'action', re: new RegExp(`^undo: disconnect ${ID}:(\\d+) (?:=>|=\\*) ${ID}:(\\d+)$`), keys: ['module', 'port', 'to_module', 'to_port'], fixed: { action: 'disconnect' } },
+    { what: 'action', re: new RegExp(`^set priority of ${ID} to (\\d+) \\(claim #(\\d+)\\)$`), keys: ['module', 'priority', 'activation'], fixed: { action: 'claim_priority' } },
+    { what: 'action', re: new RegExp(`^undo: release priority claim #(\\d+) on ${ID}$`), keys: ['activation', 'module'], fixed: { action: 'release_priority' } },
 ];
 
 /** `what` and the named parts of a line, numbers when digits (a line no pattern names:
@@ -78,7 +93,7 @@ export function classifyLine(patterns: readonly LinePattern[], line: string): Re
     for (const p of patterns) {
         const m = p.re.exec(line);
         if (!m) continue;
-        const out: Record<string, string | number> = { what: p.what };
+        const out: Record<string, string | number> = { what: p.what, ...p.fixed };
         p.keys.forEach((key, i) => {
             const v = m[i + 1];
             if (v !== undefined) out[key] = /^\d{1,15}$/.test(v) ? Number(v) : v;

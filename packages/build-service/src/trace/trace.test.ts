@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -114,6 +114,39 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'activate schema conveyor(speed = 0.6) (activation #2, to ORD)')).toEqual({ what: 'action', schema: 'conveyor', activation: 2 });
         expect(fields('supervisor', 'undo: deactivate schema S (activation #3, to ORD)')).toEqual({ what: 'action', schema: 'S', activation: 3 });
         expect(fields('supervisor', 'compute record')).toEqual({ what: 'action', function: 'record' });
+        // the modules it starts and stops, the flows it connects, the priorities it claims: field `action`
+        // names the line (its outcome is a record of its own); the claim's number is its activation
+        expect(fields('supervisor', 'start module GCS (priority 30)')).toEqual({ what: 'action', action: 'start_module', module: 'GCS', priority: 30 });
+        expect(fields('supervisor', 'start module GCS (priority 30): it has crashed, it does not start')).toEqual({ what: 'action', action: 'start_module', module: 'GCS', priority: 30 }); // a simulation
+        expect(fields('supervisor', 'undo: stop module GCS')).toEqual({ what: 'action', action: 'stop_module', module: 'GCS' });
+        expect(fields('supervisor', 'connect GCS:0 =* REC:0')).toEqual({ what: 'action', action: 'connect', module: 'GCS', port: 0, to_module: 'REC', to_port: 0 });
+        expect(fields('supervisor', 'connect SCN:1 => DIV:2')).toEqual({ what: 'action', action: 'connect', module: 'SCN', port: 1, to_module: 'DIV', to_port: 2 });
+        expect(fields('supervisor', 'undo: disconnect GCS:0 =* REC:0')).toEqual({ what: 'action', action: 'disconnect', module: 'GCS', port: 0, to_module: 'REC', to_port: 0 });
+        expect(fields('supervisor', 'undo: disconnect SCN:1 => DIV:2')).toEqual({ what: 'action', action: 'disconnect', module: 'SCN', port: 1, to_module: 'DIV', to_port: 2 });
+        expect(fields('supervisor', 'set priority of MAA to 84 (claim #5)')).toEqual({ what: 'action', action: 'claim_priority', module: 'MAA', priority: 84, activation: 5 });
+        expect(fields('supervisor', 'undo: release priority claim #5 on MAA')).toEqual({ what: 'action', action: 'release_priority', activation: 5, module: 'MAA' });
+        // the simulator's words without the run's `undo: `, or something more: not these actions
+        expect(fields('supervisor', 'stop module GCS')).toEqual({ what: 'other' });
+        expect(fields('supervisor', 'disconnect GCS:0 =* REC:0')).toEqual({ what: 'other' });
+        expect(fields('supervisor', 'start module GCS (priority 30) twice')).toEqual({ what: 'other' });
+        expect(fields('supervisor', 'set priority of MAA to 84')).toEqual({ what: 'other' });
+        expect(fields('supervisor', 'connect GCS:0 -> REC:0')).toEqual({ what: 'other' });
+    });
+
+    it('names the hold record that only confirms an action line, with the runtime\'s flow hold names', () => {
+        expect(flowHoldName('SCN', 0, 'DIV', 0)).toBe('flow-SCN-0-DIV-0');
+        // 64 characters or more: module_holds.c holds_flow_name's FNV-1a hash (the C code run on these names)
+        const long = 'M'.repeat(30);
+        expect(flowHoldName(long, 1, long, 2)).toBe('flow-3d6ad01208bf6728');
+        expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(27), 0)).toBe('flow-232cbf124a7b62a0'); // 64 characters
+        expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(26), 0)).toBe(`flow-${'A'.repeat(27)}-0-${'B'.repeat(26)}-0`); // 63: as it is
+        const of = (line: string) => confirmingHold((parseRecordLine('L', 2, `1,w,SUP,supervisor,,,0,${line}`) as KnownRecord).fields);
+        expect(of('start module GCS (priority 30)')).toEqual({ kind: 'module_hold', peer: 'GCS', detail: 'hold taken (started it)' });
+        expect(of('undo: stop module GCS')).toEqual({ kind: 'module_hold', peer: 'GCS', detail: 'last hold dropped (stopped)' });
+        expect(of('connect GCS:0 =* REC:0')).toEqual({ kind: 'flow_hold', peer: 'flow-GCS-0-REC-0', detail: 'hold taken' });
+        expect(of('undo: disconnect GCS:0 => REC:1')).toEqual({ kind: 'flow_hold', peer: 'flow-GCS-0-REC-1', detail: 'last hold dropped (disconnected)' });
+        expect(of('set priority of MAA to 84 (claim #5)')).toBeUndefined();
+        expect(of('subscribe MAA:2 =* :2')).toBeUndefined();
     });
 
     it('keeps what it cannot read as unknown records saying why, and never throws', () => {
@@ -170,6 +203,74 @@ describe('reading a log', () => {
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
             '7 records: 0 releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
         ]);
+    });
+
+    it('tells a supervisor\'s start, stop, connect, disconnect and priority claims in the simulator\'s words, and not again the hold records that only confirm them', () => {
+        const text = [CSV_HEADER,
+            '1000,w,MIS,supervisor,,,0,activate schema groundLink(channel = 2) (event schema)',
+            '1010,w,MIS,supervisor,GCS,,0,parameterize GCS:0 (8 bytes) = 2',
+            '1020,w,MIS,supervisor,GCS,,0,connect GCS:0 =* REC:0',
+            '1030,w,MIS,flow_hold,flow-GCS-0-REC-0,,0,hold taken',
+            '1040,w,MIS,supervisor,GCS,,0,start module GCS (priority 30)',
+            '1050,w,MIS,module_priority,GCS,,0,nice level for priority 30 (was 40)',
+            '1060,w,MIS,module_hold,GCS,,0,hold taken (started it)',
+            '1070,w,MIS,supervisor,REC,,0,start module REC (priority 30)',
+            '1075,w,REC,request_received,MIS,,0,START',
+            '1080,w,MIS,module_hold,REC,,0,hold taken (started it)',
+            // says more than the action: told
+            '1090,w,MIS,module_hold,NAV,,0,hold taken (it was running)',
+            '1100,w,MIS,supervisor,NAV,,0,set priority of NAV to 84 (claim #3)',
+            '1110,w,MIS,module_priority,NAV,,0,nice level for priority 84 (was 30)',
+            '2000,w,MIS,supervisor,NAV,,0,undo: release priority claim #3 on NAV',
+            '2010,w,MIS,supervisor,,,0,undo: deactivate schema groundLink (event schema)',
+            '2020,w,MIS,supervisor,GCS,,0,undo: disconnect GCS:0 =* REC:0',
+            '2030,w,MIS,flow_hold,flow-GCS-0-REC-0,,0,hold dropped (kept connected: used by 1 other supervisor(s))',
+            '2040,w,MIS,supervisor,GCS,,0,undo: stop module GCS',
+            '2050,w,MIS,module_hold,GCS,,0,last hold dropped (stopped)',
+            '2060,w,MIS,supervisor,REC,,0,undo: stop module REC',
+            '2070,w,MIS,module_hold,REC,,0,hold dropped (kept running: still used by 1 other supervisor(s))',
+            '2080,w,MIS,module_hold,NAV,,0,last hold dropped (stopped)',
+            // a start it could not send: no hold; a hold of another module than the action's: told
+            '3000,w,MIS,supervisor,CAM,,0,start module CAM (priority 30)',
+            '3010,w,MIS,supervisor,CAM,,0,"error: not sent: start module CAM (priority 30): no such module"',
+            '3020,w,MIS,supervisor,GCS,,0,start module GCS (priority 30)',
+            '3030,w,MIS,module_hold,GCS,,0,cannot record the hold in the run directory',
+            '3040,w,MIS,supervisor,GCS,,0,undo: stop module GCS',
+            '3050,w,MIS,module_hold,GCS,,0,last hold dropped (stop failed)',
+        ].join('\n');
+        const story = renderStory(parseTrace([{ name: 'MIS_1.csv', text }])).slice(0, -1).map((l) => l.slice(11));
+        expect(story).toEqual([
+            'MIS  activate schema groundLink(channel = 2) (event schema)',
+            'MIS  parameterize GCS:0 (8 bytes) = 2',
+            'MIS  connect GCS:0 =* REC:0',
+            'MIS  start module GCS (priority 30)',
+            'MIS  start module REC (priority 30)',
+            'MIS  module NAV: hold taken (it was running)',
+            'MIS  set priority of NAV to 84 (claim #3)',
+            'MIS  undo: release priority claim #3 on NAV',
+            'MIS  undo: deactivate schema groundLink (event schema)',
+            'MIS  undo: disconnect GCS:0 =* REC:0',
+            'MIS  event flow GCS:0 -> REC:0: hold dropped (kept connected: used by 1 other supervisor(s))',
+            'MIS  undo: stop module GCS',
+            'MIS  undo: stop module REC',
+            'MIS  module REC: hold dropped (kept running: still used by 1 other supervisor(s))',
+            // the last holder of a module it only shared stops it: no action line before it
+            'MIS  module NAV: last hold dropped (stopped)',
+            'MIS  start module CAM (priority 30)',
+            'MIS  error: not sent: start module CAM (priority 30): no such module',
+            'MIS  start module GCS (priority 30)',
+            'MIS  module GCS: cannot record the hold in the run directory',
+            'MIS  undo: stop module GCS',
+            'MIS  module GCS: last hold dropped (stop failed)',
+        ]);
+        // a hold record confirms only its own supervisor's action line, the one just before it
+        const two = renderStory(parseTrace([{ name: 'A_1.csv', text: [CSV_HEADER,
+            '1000,w,SUA,supervisor,GCS,,0,start module GCS (priority 30)',
+            '1010,w,SUB,module_hold,GCS,,0,hold taken (started it)',
+            '1020,w,SUA,supervisor,,,0,rule f.R active',
+            '1030,w,SUA,module_hold,GCS,,0,hold taken (started it)',
+        ].join('\n') }])).slice(0, -1).map((l) => l.slice(11));
+        expect(two).toEqual(['SUA  start module GCS (priority 30)', 'SUB  module GCS: hold taken (started it)', 'SUA  module GCS: hold taken (started it)']);
     });
 
     it('tells the modules a supervisor starts and stops, the event flows it connects, and a request it could not send', () => {

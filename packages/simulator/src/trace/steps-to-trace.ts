@@ -9,10 +9,14 @@
  * - `log`: the engines' own trace lines, as a real run's `supervisor` and `scheduler` records hold
  *   them (read by the trace reader, parseRecordLine: `function F started`, `activate S`, `overrun: …`),
  *   and ORD's `release M (S)` → `ord_release` records (the cycle counted from 0 at each activation);
- * - `actions`: what the engines did → a supervisor's holds (`start module M` / `stop module M`:
- *   `module_hold` taken / dropped), priorities (`module_priority`), its START requests to ORD
- *   (`request_received`: which rule activated a schema), every other action counted done or undone
- *   (`supervisor` action records); ORD's `ORD:0 "S" (deadline miss)` → `ord_deadline_miss`; a crash → `module_exit`.
+ * - `actions`: what the engines did → a supervisor's `supervisor` action record, in the words a
+ *   run's log holds (actionAsLogged), each typed by the trace reader; then, as a run writes them, the
+ *   hold it takes or drops (`start module M` → `module_hold` `hold taken (started it)`, `undo: stop
+ *   module M` → `last hold dropped (stopped)`, `connect A:p =* B:i` / `undo: disconnect …` →
+ *   `flow_hold` `hold taken` / `last hold dropped (disconnected)` on the flow's hold name), a priority
+ *   claim's `module_priority`, and before an `activate schema` its START request to ORD
+ *   (`request_received`: which rule activated a schema); ORD's `ORD:0 "S" (deadline miss)` →
+ *   `ord_deadline_miss`; a crash → `module_exit`.
  * - `records`: the typed records the harness writes as a real run's CSV logs hold them (ORD's
  *   ord_release / ord_finished / ord_complete / ord_deadline_miss with their cycle and response
  *   times, each virtual module's run_started / run_finished and data_posted on each connected data
@@ -26,7 +30,7 @@
  * `stop SUP.f` actions, and the schemas from each step's list of active schemas.
  * Not simulated, so not in the trace: data_received (virtual modules read no data) and the values posted.
  */
-import { csvField, parseCause, parseRecordLine, schedulerLineFields, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { confirmingHold, csvField, parseCause, parseRecordLine, schedulerLineFields, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import type { ActionRecord, LogLine, RuleChange, SimTraceRecord } from '../runner/protocol.js';
 
 /** What the conversion reads of a step: the runner's StepResult with its record's lists, or the IDE's answer of POST /api/simulate. */
@@ -71,18 +75,33 @@ export function typedRecord(r: SimTraceRecord): TraceRecord {
 }
 
 const DEADLINE_MISS = /^ORD:0 "([A-Za-z_]\w*)" \(deadline miss\)/;
-const START_MODULE = /^start module ([A-Za-z_]\w*)\b/;
-const STOP_MODULE = /^stop module ([A-Za-z_]\w*)$/;
+/** A simulated module that crashed is not started again: no hold taken (a run's start that cannot be sent takes none either). */
+const NOT_STARTED = /: it has crashed, it does not start$/;
 const SET_PRIORITY = /^set priority of ([A-Za-z_]\w*) to /;
 const ACTIVATE_SCHEMA = /^activate schema ([A-Za-z_]\w*)[ (]/;
 const ACTIVATE_SUPERVISOR = /^activate supervisor ([A-Za-z_]\w*)\.([A-Za-z_]\w*)[ (]/;
 const STOP_FUNCTION = /^stop ([A-Za-z_]\w*)\.([A-Za-z_]\w*) /;
-/** Actions that undo an earlier one (counted `undone`, as the fold counts a logged `undo`/`un…` line). */
+/**
+ * Actions that undo an earlier one (counted `undone`, as the fold counts a logged `undo`/`un…`
+ * line): the undo of an `activate schema` (deactivate, its flows' disconnect, its modules' stop), of
+ * an `activate supervisor` (stop SUP.f), of a subscription, of a priority claim (release).
+ */
 const UNDO = /^(stop|deactivate|disconnect|unsubscribe|release)\b/;
 
-/** A harness action line as the runtime's log writes it: an undo prefixed `undo: ` (a module's stop and a priority are holds, as they are). */
+/**
+ * A harness action line as the runtime's log writes it (sup_main.c): every undo prefixed `undo: `
+ * (`undo: stop module M`, `undo: disconnect A:p =* B:i`, `undo: release priority claim #N on M`).
+ */
 export function actionAsLogged(what: string): string {
-    return UNDO.test(what) && !STOP_MODULE.test(what) ? `undo: ${what}` : what;
+    return UNDO.test(what) ? `undo: ${what}` : what;
+}
+
+/** A supervisor's action as the `supervisor` record a run writes, typed by the trace reader (a line it does not know, the simulator's own: an action all the same). */
+function actionRecord(timeNs: number, who: string, what: string): TraceRecord {
+    const rec = engineLine(timeNs, who, 'supervisor', actionAsLogged(what));
+    if (rec.kind === 'unknown') return known(timeNs, who, 'supervisor', actionAsLogged(what), { what: 'action' });
+    const k = rec as KnownRecord;
+    return k.fields['what'] === 'action' ? k : { ...k, fields: { what: 'action' } };
 }
 
 /**
@@ -161,16 +180,16 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
                 continue;
             }
             let m: RegExpExecArray | null;
-            if ((m = START_MODULE.exec(a.what))) push(known(t, a.who, 'module_hold', `hold taken (${a.what})`, {}, m[1]!));
-            else if ((m = STOP_MODULE.exec(a.what))) push(known(t, a.who, 'module_hold', `last hold dropped (${a.what})`, {}, m[1]!));
+            if ((m = ACTIVATE_SCHEMA.exec(a.what))) push(known(t, 'ORD', 'request_received', `START ${m[1]!}`, {}, a.who));
+            const action = actionRecord(t, a.who, a.what);
+            push(action);
+            // what a run writes right after the line: the hold taken or dropped (module, event flow), the priority
+            const hold = action.kind === 'supervisor' && !NOT_STARTED.test(a.what) ? confirmingHold((action as KnownRecord).fields) : undefined;
+            if (hold) push(known(t, a.who, hold.kind, hold.detail, {}, hold.peer));
             else if ((m = SET_PRIORITY.exec(a.what))) push(known(t, a.who, 'module_priority', a.what, {}, m[1]!));
-            else {
-                if ((m = ACTIVATE_SCHEMA.exec(a.what))) push(known(t, 'ORD', 'request_received', `START ${m[1]!}`, {}, a.who));
-                push(known(t, a.who, 'supervisor', actionAsLogged(a.what), { what: 'action' }));
-                if (!withLog && (m = ACTIVATE_SUPERVISOR.exec(a.what) ?? STOP_FUNCTION.exec(a.what))) {
-                    const what = a.what.startsWith('stop') ? 'function_stopped' : 'function_started';
-                    push(known(t, m[1]!, 'supervisor', `function ${m[2]!} ${what === 'function_started' ? 'started' : 'stopped'}`, { what, function: m[2]! }));
-                }
+            if (!withLog && (m = ACTIVATE_SUPERVISOR.exec(a.what) ?? STOP_FUNCTION.exec(a.what))) {
+                const what = a.what.startsWith('stop') ? 'function_stopped' : 'function_started';
+                push(known(t, m[1]!, 'supervisor', `function ${m[2]!} ${what === 'function_started' ? 'started' : 'stopped'}`, { what, function: m[2]! }));
             }
         }
         cur = -1;

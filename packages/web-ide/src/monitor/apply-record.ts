@@ -161,6 +161,10 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       else if (what === 'function_stopped' && fn) sv.functions.set(fn, { state: 'stopped', since: t });
       else if (what === 'function_refused' && fn) sv.functions.set(fn, { state: sv.functions.get(fn)?.state === 'running' ? 'running' : 'refused', since: t });
       else if (what === 'action') {
+        // a module started or stopped, a flow connected or disconnected, a priority claimed or
+        // released (field `action`): counted by the record of what came of it (module_hold,
+        // flow_hold, module_priority), as in a log of an older version, which has no such line
+        if (f['action'] !== undefined) return;
         if (/^undo\b|^un/.test(k.detail)) sv.actionsUndone++;
         else {
           sv.actionsDone++;

@@ -1,0 +1,49 @@
+/**
+ * A supervisor's action lines whose outcome has a record of its own (text-lines.ts: field `action`):
+ * `start module M (priority P)` and `undo: stop module M` (module_hold), `connect A:p =* B:i` and
+ * `undo: disconnect A:p =* B:i` (flow_hold), `set priority of M to P (claim #N)` and `undo: release
+ * priority claim #N on M` (module_priority, when the module answers). sup_main.c writes the hold
+ * record right after the line; when it says only that the action was done, it is the record
+ * confirmingHold names: `contract trace` does not tell it again, the simulator's trace writes it
+ * after the line as a run does (steps-to-trace.ts). Browser-safe.
+ */
+
+/** The hold record that only says an action line was done: its kind, peer and detail. */
+export interface ConfirmingHold {
+    kind: 'module_hold' | 'flow_hold';
+    peer: string;
+    detail: string;
+}
+
+/**
+ * The name of an event flow's holds (a flow_hold record's peer), as module_holds.c holds_flow_name
+ * makes it: `flow-SRC-p-DST-i`, or, when that is 64 characters or more (CONTRACT_NAME_MAX), `flow-`
+ * and the 16 hex digits of its 64-bit FNV-1a hash.
+ */
+export function flowHoldName(src: string, srcPort: number | string, dst: string, dstPort: number | string): string {
+    const full = `flow-${src}-${srcPort}-${dst}-${dstPort}`;
+    const bytes = new TextEncoder().encode(full);
+    if (bytes.length < 64) return full;
+    let h = 1469598103934665603n;
+    for (const b of bytes) h = ((h ^ BigInt(b)) * 1099511628211n) & 0xffff_ffff_ffff_ffffn;
+    return `flow-${h.toString(16).padStart(16, '0')}`;
+}
+
+/**
+ * The hold record that would only confirm the action line of these fields (a `supervisor`
+ * record's, text-lines.ts), or undefined (another line, or a priority claim: its module_priority
+ * record says the priority the module had).
+ */
+export function confirmingHold(fields: Readonly<Record<string, string | number>>): ConfirmingHold | undefined {
+    const module = String(fields['module'] ?? '');
+    switch (fields['action']) {
+        case 'start_module': return { kind: 'module_hold', peer: module, detail: 'hold taken (started it)' };
+        case 'stop_module': return { kind: 'module_hold', peer: module, detail: 'last hold dropped (stopped)' };
+        case 'connect':
+        case 'disconnect': {
+            const peer = flowHoldName(module, fields['port'] ?? '', String(fields['to_module'] ?? ''), fields['to_port'] ?? '');
+            return { kind: 'flow_hold', peer, detail: fields['action'] === 'connect' ? 'hold taken' : 'last hold dropped (disconnected)' };
+        }
+        default: return undefined;
+    }
+}
