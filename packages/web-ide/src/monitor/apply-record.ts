@@ -162,9 +162,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       else if (what === 'function_refused' && fn) sv.functions.set(fn, { state: sv.functions.get(fn)?.state === 'running' ? 'running' : 'refused', since: t });
       else if (what === 'action') {
         // a module started or stopped, a flow connected or disconnected, a priority claimed or
-        // released (field `action`): counted by the record of what came of it (module_hold,
-        // flow_hold, module_priority), as in a log of an older version, which has no such line
-        if (f['action'] !== undefined) return;
+        // released (field `action`): counted here, once; the hold and priority records that follow
+        // are then not counted (a log of an older version has no such line: they count instead)
+        if (f['action'] !== undefined) sv.actionLines = true;
         if (/^undo\b|^un/.test(k.detail)) sv.actionsUndone++;
         else {
           sv.actionsDone++;
@@ -181,17 +181,19 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const held = k.kind === 'module_hold' ? sv.heldModules : sv.heldFlows;
       if (k.detail.startsWith('hold taken')) {
         held.set(k.peer, sv.lastRule ?? '');
-        sv.actionsDone++;
+        if (!sv.actionLines) sv.actionsDone++;
         if (k.kind === 'module_hold') noteStarted(s, k.module, k.peer);
       } else if (k.detail.startsWith('last hold dropped')) {
         held.delete(k.peer);
-        sv.actionsUndone++;
+        if (!sv.actionLines) sv.actionsUndone++;
       }
       return;
     }
-    case 'module_priority':
-      sup(s, k.module).actionsDone++;
+    case 'module_priority': {
+      const sv = sup(s, k.module);
+      if (!sv.actionLines) sv.actionsDone++;
       return;
+    }
     case 'request_received': {
       // ORD receives `START schema` from the supervisor whose rule activates it
       if (k.module !== 'ORD') return;

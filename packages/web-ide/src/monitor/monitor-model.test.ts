@@ -298,3 +298,45 @@ describe('monitor model, long and hostile runs', () => {
     expect(s.periodic.get('S')).toBeUndefined(); // not a number: ignored
   });
 });
+
+describe('a supervisor\'s actions counted once', () => {
+  const W = '2026-12-04T20:00:00.000000Z';
+  const fold = (lines: string[]) => {
+    const s = emptyState();
+    lines.forEach((l, i) => applyRecord(s, parseRecordLine('SUP.csv', i + 2, l), i, 0));
+    return s.supervisors.get('SUP')!;
+  };
+  it('a log with a line per module start, flow connect and priority claim counts the lines, not the hold and priority records after them', () => {
+    const sup = fold([
+      `1,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,
+      `2,${W},SUP,supervisor,MAA,,0,connect MAA:0 =* MAB:0`,
+      `3,${W},SUP,flow_hold,flow-MAA-0-MAB-0,,0,hold taken`,
+      `4,${W},SUP,supervisor,MAA,,0,start module MAA (priority 30)`,
+      `5,${W},SUP,module_hold,MAA,,0,hold taken (started it)`,
+      `6,${W},SUP,module_priority,MAA,,0,nice level for priority 30 (was 30)`,
+      `7,${W},SUP,supervisor,MAA,,0,set priority of MAA to 10 (claim #3)`,
+      `8,${W},SUP,module_priority,MAA,,0,nice level for priority 10 (was 30)`,
+      `9,${W},SUP,supervisor,MAA,,0,undo: release priority claim #3 on MAA`,
+      `10,${W},SUP,module_priority,MAA,,0,nice level for priority 30 (was 10)`,
+      `11,${W},SUP,supervisor,,,0,undo: deactivate schema watch (event schema)`,
+      `12,${W},SUP,supervisor,MAA,,0,undo: disconnect MAA:0 =* MAB:0`,
+      `13,${W},SUP,flow_hold,flow-MAA-0-MAB-0,,0,last hold dropped (disconnected)`,
+      `14,${W},SUP,supervisor,MAA,,0,undo: stop module MAA`,
+      `15,${W},SUP,module_hold,MAA,,0,last hold dropped (stopped)`,
+    ]);
+    expect([sup.actionsDone, sup.actionsUndone]).toEqual([4, 4]);
+    expect([...sup.heldModules.keys(), ...sup.heldFlows.keys()]).toEqual([]);
+  });
+  it('a log of an older version, without those lines, counts its holds and priorities', () => {
+    const sup = fold([
+      `1,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,
+      `3,${W},SUP,flow_hold,flow-MAA-0-MAB-0,,0,hold taken`,
+      `5,${W},SUP,module_hold,MAA,,0,hold taken (started it)`,
+      `8,${W},SUP,module_priority,MAA,,0,nice level for priority 10 (was 30)`,
+      `11,${W},SUP,supervisor,,,0,undo: deactivate schema watch (event schema)`,
+      `13,${W},SUP,flow_hold,flow-MAA-0-MAB-0,,0,last hold dropped (disconnected)`,
+    ]);
+    expect([sup.actionsDone, sup.actionsUndone]).toEqual([4, 2]);
+    expect([...sup.heldModules.keys()]).toEqual(['MAA']);
+  });
+});

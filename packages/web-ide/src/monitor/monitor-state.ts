@@ -33,9 +33,15 @@ export interface SupervisorState {
   functions: Map<string, FunctionState>;
   /** Keyed `F.R`. */
   rules: Map<string, RuleState>;
-  /** Actions done (holds taken, priorities set) and undone (holds dropped) — counts. */
+  /**
+   * Actions done and undone (`undo: …`), as its log lists them: one per action line. A log of an
+   * older version, without lines for the modules started and stopped, the flows connected and the
+   * priorities claimed, counts those by their hold and priority records instead.
+   */
   actionsDone: number;
   actionsUndone: number;
+  /** Its log writes a line for each module start, flow connect and priority claim (field `action`): their records are not counted again. */
+  actionLines?: boolean;
   /** The rule (`F.R`) that became active last: holds and START requests that follow belong to it. */
   lastRule?: string;
   /** Modules and event flows this supervisor holds (an event schema it activated), with the rule. */
