@@ -177,7 +177,7 @@ static void sio_ord_activate(void *ctx, const ContractSchema *s, const void *par
     SimMsg *m = msg_new(p->w, MSG_ORD_ACTIVATE, p->index, params, size);
     if (m) { scopy(m->a, sizeof m->a, s->name); m->id = id; }
     char args[ACTION_VALUE_MAX];
-    engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : 0, params);
+    engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : -1, params);
     action(p->w, p->v->name, "activate schema %s%s (activation #%u, to ORD)", s->name, args, id);
 }
 static void sio_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
@@ -274,7 +274,7 @@ static int sio_start_function(void *ctx, const ContractFunctionSignature *callee
     scopy(m->b, sizeof m->b, fn);
     m->id = id;
     char args[ACTION_VALUE_MAX];
-    engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : 0, params);
+    engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : -1, params);
     action(p->w, p->v->name, "activate supervisor %s.%s%s (activation #%u)", sup, fn, args, id);
     return 0;
 }

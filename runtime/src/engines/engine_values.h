@@ -64,8 +64,9 @@ void engine_format_value(char *buf, size_t len, const void *value, const Contrac
 
 /** Writes the values of a parameter block as a trace line names them, `(speed = 0.3, mode =
  *  AUTO)` (each value as engine_format_value writes it), cut with `...)` to fit len - 1 bytes;
- *  "" for no parameters. `function F(...) started`, `activate schema S(...)`,
- *  `activate supervisor SUP.f(...)`. */
+ *  `()` for no parameters (nvars 0: as the source writes the call); "" when the values are not
+ *  known (nvars < 0: a block of another size than the parameters'). `function F(...) started`,
+ *  `activate schema S(...)`, `activate supervisor SUP.f(...)`. */
 void engine_format_params(char *buf, size_t len, const ContractVar *vars, int nvars, const void *block);
 
 /** Copies a NUL-terminated string into a string value (char[256]), truncating. */

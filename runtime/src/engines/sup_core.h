@@ -75,7 +75,7 @@ typedef struct SupIo {
     void (*rule)(void *ctx, int64_t t, const char *function, const char *rule, int active,
                  const char *cause);
     /* an action or undo that no call above carries, for the binding to log with the others
-       (docs/runtime-api.md "Trace records", `supervisor`): `activate schema S (event schema)`,
+       (docs/runtime-api.md "Trace records", `supervisor`): `activate schema S() (event schema)` (its values in the parentheses),
        `undo: deactivate schema S (event schema)` (before the holds and flows they take or drop),
        `compute f` (after the call). NULL: none */
     void (*action)(void *ctx, int64_t t, const char *line);

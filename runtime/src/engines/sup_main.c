@@ -138,7 +138,7 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
                            uint32_t id) {
     (void)ctx;
     char args[ACTION_VALUE_MAX];
-    engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : 0, params);
+    engine_format_params(args, sizeof args, s->params, size == s->params_size ? s->nparams : -1, params);
     log_action("ORD", "activate schema %s%s (activation #%u, to ORD)", s->name, args, id);
     int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
     if (not_sent("ORD", rc))
@@ -343,7 +343,7 @@ static int b_start_function(void *ctx, const ContractFunctionSignature *callee, 
     (void)ctx;
     const char *sup = callee->supervisor, *fn = callee->function;
     char args[ACTION_VALUE_MAX];
-    engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : 0, p);
+    engine_format_params(args, sizeof args, callee->params, size == callee->params_size ? callee->nparams : -1, p);
     log_action(sup, "activate supervisor %s.%s%s (activation #%u)", sup, fn, args, id);
     int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
     if (not_sent(sup, rc)) {

@@ -407,7 +407,11 @@ void engine_format_value(char *buf, size_t len, const void *value, const Contrac
 void engine_format_params(char *buf, size_t len, const ContractVar *vars, int nvars, const void *block) {
     if (!buf || len == 0) return;
     buf[0] = 0;
-    if (!vars || nvars <= 0 || !block || len < 8) return;
+    if (nvars == 0 && len >= 3) { /* none: written as the source writes the call, `f()` */
+        memcpy(buf, "()", 3);
+        return;
+    }
+    if (!vars || nvars < 0 || !block || len < 8) return;
     char all[4 * ACTION_VALUE_MAX];
     size_t n = 0;
     all[n++] = '(';

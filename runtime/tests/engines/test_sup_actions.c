@@ -101,7 +101,7 @@ void test_actions_event_schemas_share_modules_and_module_activation(void) {
     fake_set_running(&w, "MRT", 33);
     sup_core_start_function(c, 0, "schemas", NULL, 0);
     sup_core_advance(c, 10 * MS);
-    CHECK_LOG(&LOG, "function schemas started",
+    CHECK_LOG(&LOG, "function schemas() started",
               /* 1 ms */
               "rule schemas.A active", "connect MAA:0 =* MAB:0", "start MAA prio 40", "start MAB prio 40",
               "rule schemas.C active", "start MCR prio 70",
@@ -138,7 +138,7 @@ void test_actions_activate_own_function_with_parameter(void) {
     CHECK(sup_core_start_function(c, 1 * MS + 1, "callee", NULL, 0) == -1);
     sup_core_advance(c, 3 * MS);
     CHECK(!sup_core_function_running(c, "callee"));
-    CHECK_LOG(&LOG, "function caller started", "rule caller.K active", "function callee(x = 5) started",
+    CHECK_LOG(&LOG, "function caller() started", "rule caller.K active", "function callee(x = 5) started",
               "refused: function callee already running", "rule callee.Q active", "notify :0 5",
               "rule caller.K inactive", "rule callee.Q inactive", "function callee stopped");
     sup_core_destroy(c);

@@ -251,7 +251,7 @@ void test_stop_undoes_active_rules_in_order(void) {
     SupCore *c = start(&w, "window");
     if (!c) { CHECK(0); return; }
     CHECK(sup_core_stop_function(c, T0 + 1, "window") == 0);
-    CHECK_LOG(&LOG, "function window started", "rule window.S active", "subscribe X:0 =* :0",
+    CHECK_LOG(&LOG, "function window() started", "rule window.S active", "subscribe X:0 =* :0",
               "subscribe X:1 =* :1", "subscribe X:2 =* :2", "rule window.S inactive",
               "unsubscribe X:0 :0", "unsubscribe X:1 :1", "unsubscribe X:2 :2",
               "function window stopped");

@@ -235,7 +235,11 @@ void test_ext_params_are_named_and_cut_on_a_character(void) {
     char out[200];
     engine_format_params(out, sizeof out, vars, 3, &b);
     CHECK(strcmp(out, "(mode = AUTO, speed = 0.3, label = \"dock\")") == 0);
-    engine_format_params(out, sizeof out, vars, 0, &b);
+    engine_format_params(out, sizeof out, vars, 0, &b); /* none: the call as the source writes it */
+    CHECK(strcmp(out, "()") == 0);
+    engine_format_params(out, sizeof out, NULL, 0, NULL);
+    CHECK(strcmp(out, "()") == 0);
+    engine_format_params(out, sizeof out, vars, -1, &b); /* not known (a block of another size) */
     CHECK(strcmp(out, "") == 0);
     engine_format_params(out, sizeof out, vars, 3, NULL);
     CHECK(strcmp(out, "") == 0);

@@ -89,7 +89,12 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'B finished release #12 at last (reported stuck, DIA)')).toEqual({ what: 'unstuck', module: 'B', release: 12, schema: 'DIA' });
         expect(fields('scheduler', 'release B (DIA)')).toEqual({ what: 'release', module: 'B', schema: 'DIA' });
         expect(fields('scheduler', 'something new')).toEqual({ what: 'other' });
-        expect(fields('supervisor', 'function action started')).toEqual({ what: 'function_started', function: 'action' });
+        expect(fields('supervisor', 'function action started')).toEqual({ what: 'function_started', function: 'action' }); // older logs
+        // a call without parameters is written as the source writes it: `land()`
+        expect(fields('supervisor', 'function land() started')).toEqual({ what: 'function_started', function: 'land' });
+        expect(fields('supervisor', 'activate supervisor FLT.land() (activation #4)')).toEqual({ what: 'action', supervisor: 'FLT', function: 'land', activation: 4 });
+        expect(fields('supervisor', 'activate schema altHold() (activation #1, to ORD)')).toEqual({ what: 'action', schema: 'altHold', activation: 1 });
+        expect(fields('supervisor', 'activate schema watch() (event schema)')).toEqual({ what: 'action', schema: 'watch' });
         expect(fields('supervisor', 'function action(consigne = {i=0,j=0,k=0}, mode = AUTO) started')).toEqual({ what: 'function_started', function: 'action' });
         expect(fields('supervisor', 'refused: function action already running')).toEqual({ what: 'function_refused', function: 'action' });
         expect(fields('supervisor', 'refused: no function nope')).toEqual({ what: 'function_refused', function: 'nope' });

@@ -59,6 +59,6 @@ describe('the examples in the docker sandbox', () => {
         expect(ran.runDirLeftovers).toEqual([]);
         expect(readdirSync(robot.logs).sort()).toEqual([...ran.logs].sort());
         const misLog = ran.logs.find((f) => f.startsWith('MIS_'))!;
-        expect(readFileSync(join(robot.logs, misLog), 'utf8')).toContain('function mission started');
+        expect(readFileSync(join(robot.logs, misLog), 'utf8')).toContain('function mission() started');
     }, 300_000);
 });

@@ -81,15 +81,15 @@ describe('examples/mobile-robot end to end', () => {
 
         it('switches teleoperation -> autonomous -> safe stop on the obstacle -> autonomous', () => {
             expect(isSubsequence(supervisorTrace(logs, 'MIS'), [
-                'function mission started', 'rule mission.LINK active', 'rule mission.TELEOP active',
+                'function mission() started', 'rule mission.LINK active', 'rule mission.TELEOP active',
                 'rule mission.TELEOP inactive', 'rule mission.AUTO active',
                 'rule mission.AUTO inactive', 'rule mission.STOP active',
                 'rule mission.STOP inactive', 'rule mission.AUTO active',
             ])).toBe(true);
             expect(isSubsequence(supervisorTrace(logs, 'DRV'), [
                 // autonomous names the goal it was started with (its parameter's default: MIS gives none)
-                'function teleop started', 'function teleop stopped', 'function autonomous(goal = {x=4,y=2,theta=0}) started',
-                'function autonomous stopped', 'function safestop started', 'function safestop stopped',
+                'function teleop() started', 'function teleop stopped', 'function autonomous(goal = {x=4,y=2,theta=0}) started',
+                'function autonomous stopped', 'function safestop() started', 'function safestop stopped',
                 'function autonomous(goal = {x=4,y=2,theta=0}) started',
             ])).toBe(true);
             // the simulated obstacle stands from 3.0 s to 4.5 s after the detector's first cycle: the

@@ -29,8 +29,8 @@ void scenario_crossed_claims(const char *root, const char *bin, const char *laun
               lines_with(dla, ",module_priority,AME,", "(was ") >= 1 && lines_with(dlb, ",module_priority,AME,", "(was ") >= 2 &&
               lines_with(dlb, ",module_priority,AMD,", "(was ") >= 1 && !strstr(dla, "not applied") && !strstr(dlb, "not applied"),
           "both supervisors' claims on AMD and AME were answered and recorded");
-    long long a_go = csv_time_of(dla, NULL, "function go started", NULL), a_t = csv_time_of(dla, NULL, "rule go.T active", NULL);
-    long long b_go = csv_time_of(dlb, NULL, "function go started", NULL), b_t = csv_time_of(dlb, NULL, "rule go.T active", NULL);
+    long long a_go = csv_time_of(dla, NULL, "function go() started", NULL), a_t = csv_time_of(dla, NULL, "rule go.T active", NULL);
+    long long b_go = csv_time_of(dlb, NULL, "function go() started", NULL), b_t = csv_time_of(dlb, NULL, "rule go.T active", NULL);
     check(a_go > 0 && a_t > 0 && b_go > 0 && b_t > 0 && a_t - a_go < 1100 * MS && b_t - b_go < 1100 * MS,
           "neither supervisor waited for the other: both took rule T (900 ms) on time");
     if (scenario_failed(&s)) {

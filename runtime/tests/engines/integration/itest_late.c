@@ -29,7 +29,7 @@ void scenario_late_priority_answer(const char *root, const char *bin, const char
     check(scenario_launch(&s, bin, launcher, "PQS.go()", "0.8", names),
           "late priority answer: architecture ran and stopped cleanly");
     char *pqs = read_csv_log(&s, "PQS");
-    long long go = csv_time_of(pqs, NULL, "function go started", NULL);
+    long long go = csv_time_of(pqs, NULL, "function go() started", NULL);
     long long t_active = csv_time_of(pqs, NULL, "rule go.T active", NULL);
     /* the records of AMB's priority, in order: S's start, C1's and C2's claims (answered after
        AMB's 300 ms), C2's undo (restore), C1's undo (restore) */

@@ -86,12 +86,12 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
           "subscription: B1's undo left B2's subscription of AMX:0 (USM kept receiving AMX's events)");
     /* each action a supervisor sends and each undo: a `supervisor` record, peer = where it goes
        (a detail with a comma is quoted in the CSV) */
-    check(count_of(upa, ",supervisor,USM,,0,activate supervisor USM.aux (activation #") == 2 &&
+    check(count_of(upa, ",supervisor,USM,,0,activate supervisor USM.aux() (activation #") == 2 &&
               count_of(upa, ",supervisor,USM,,0,undo: stop USM.aux (activation #") == 1 &&
-              strstr(upa, ",supervisor,ORD,,0,\"activate schema PSC (activation #") &&
+              strstr(upa, ",supervisor,ORD,,0,\"activate schema PSC() (activation #") &&
               strstr(upa, ",supervisor,ORD,,0,\"undo: deactivate schema PSC (activation #"),
           "actions: UPA recorded K1's and K2's activate supervisor, K1's undo only (K2 was refused), PSC and its undo");
-    check(strstr(usm, ",supervisor,ORD,,0,\"activate schema PSC (activation #1, to ORD)\"") &&
+    check(strstr(usm, ",supervisor,ORD,,0,\"activate schema PSC() (activation #1, to ORD)\"") &&
               strstr(usm, ",supervisor,ORD,,0,\"undo: deactivate schema PSC (activation #1, to ORD)\"") &&
               count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 => :0 (activation #") == 1 &&
               count_of(usm, ",supervisor,AMX,,0,subscribe AMX:0 =* :0 (activation #") == 1 &&
