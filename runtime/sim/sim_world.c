@@ -212,12 +212,13 @@ static void sio_release_priority(void *ctx, const char *module, uint32_t id) {
     SimSup *p = ctx;
     action(p->w, p->v->name, "release priority claim #%u on %s", id, module);
 }
-static void sio_set_param(void *ctx, const char *module, int port, const void *value, size_t size,
-                          const ContractType *type) {
+static void sio_set_param(void *ctx, const char *module, int port, const char *name, const void *value,
+                          size_t size, const ContractType *type) {
     SimSup *p = ctx;
-    char v[ACTION_VALUE_MAX];
+    char v[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
     engine_format_value(v, sizeof v, value, type);
-    action(p->w, p->v->name, "parameterize %s:%d (%zu bytes) = %s", module, port, size, v);
+    engine_format_param_port(target, sizeof target, module, port, name);
+    action(p->w, p->v->name, "parameterize %s (%zu bytes) = %s", target, size, v);
 }
 static void sio_connect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
@@ -301,11 +302,12 @@ static void sio_action(void *ctx, int64_t t, const char *line) {
 
 /* ---- ORD io ------------------------------------------------------------------------------- */
 
-static void oio_set_param(void *ctx, const char *module, int port, const void *value, size_t size,
-                          const ContractType *type) {
-    char v[ACTION_VALUE_MAX];
+static void oio_set_param(void *ctx, const char *module, int port, const char *name, const void *value,
+                          size_t size, const ContractType *type) {
+    char v[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
     engine_format_value(v, sizeof v, value, type);
-    action(ctx, "ORD", "parameterize %s:%d (%zu bytes) = %s", module, port, size, v);
+    engine_format_param_port(target, sizeof target, module, port, name);
+    action(ctx, "ORD", "parameterize %s (%zu bytes) = %s", target, size, v);
 }
 static int flow_index(const SimWorld *w, int src, const ContractDataFlow *f) {
     for (int i = 0; i < w->nflows; i++) {

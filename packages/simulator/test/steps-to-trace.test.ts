@@ -17,7 +17,7 @@ const STEPS: TraceStep[] = [
         timeNs: 1_000_000, source: 'start MIS.mission(altitude = 2.0)', ok: true, rules: [], log: [], records: [],
         actions: actions(1_000_000,
             'activate schema groundLink(channel = 2) (event schema)',
-            'parameterize GCS:0 (8 bytes) = 2',
+            'parameterize GCS:0 link (8 bytes) = 2',
             'connect GCS:0 =* REC:0',
             'start module GCS (priority 30)',
             'start module REC (priority 30)',
@@ -39,7 +39,7 @@ const STEPS: TraceStep[] = [
 const RUN_LOG = [
     'mono_ns,wall_time,module,event,peer,port,size,detail',
     '1000000,w,MIS,supervisor,,,0,activate schema groundLink(channel = 2) (event schema)',
-    '1000000,w,MIS,supervisor,GCS,,0,parameterize GCS:0 (8 bytes) = 2',
+    '1000000,w,MIS,supervisor,GCS,,0,parameterize GCS:0 link (8 bytes) = 2',
     '1000000,w,MIS,supervisor,GCS,,0,connect GCS:0 =* REC:0',
     '1000000,w,MIS,flow_hold,flow-GCS-0-REC-0,,0,hold taken',
     '1000000,w,MIS,supervisor,GCS,,0,start module GCS (priority 30)',
@@ -67,7 +67,7 @@ describe('stepsToTrace: a supervisor\'s actions as a run logs them', () => {
     it('writes each action record in the run\'s words, then the hold record a run writes after it', () => {
         expect(supervisorSide(trace).map(row)).toEqual([
             'supervisor MIS  activate schema groundLink(channel = 2) (event schema)',
-            'supervisor MIS  parameterize GCS:0 (8 bytes) = 2',
+            'supervisor MIS  parameterize GCS:0 link (8 bytes) = 2',
             'supervisor MIS  connect GCS:0 =* REC:0',
             'flow_hold MIS flow-GCS-0-REC-0 hold taken',
             'supervisor MIS  start module GCS (priority 30)',
@@ -100,7 +100,7 @@ describe('stepsToTrace: a supervisor\'s actions as a run logs them', () => {
         expect(sim.slice(0, run.length)).toEqual(run);
         expect(run).toEqual([
             'MIS  activate schema groundLink(channel = 2) (event schema)',
-            'MIS  parameterize GCS:0 (8 bytes) = 2',
+            'MIS  parameterize GCS:0 link (8 bytes) = 2',
             'MIS  connect GCS:0 =* REC:0',
             'MIS  start module GCS (priority 30)',
             'MIS  start module REC (priority 30)',

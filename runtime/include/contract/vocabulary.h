@@ -291,6 +291,8 @@ typedef struct ContractParamSetting {
     const ContractType *type;  /* type of that parameter port                                */
     int nparts;
     const ContractAssign *parts;
+    const char *name;          /* the port's name in the module's declaration ("consigne"),
+                                  for the trace (`parameterize MSC:0 consigne ...`); NULL: none */
 } ContractParamSetting;
 
 /* ======================================================================================

@@ -62,6 +62,13 @@ int engine_build_setting(const EngineScope *s, const ContractParamSetting *setti
  *  without a field table `{N bytes}`); no value or type: `?`. Never longer than len - 1. */
 void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type);
 
+/** Room for engine_format_param_port: two names of up to 63 bytes, a port number, a colon, a space. */
+#define ENGINE_PARAM_PORT_MAX 160
+
+/** A parameter port as the trace names it: `MSC:0 consigne` (its name from the tables), or
+ *  `MSC:0` when the tables have none (name NULL or ""). `parameterize MSC:0 consigne (N bytes) = V`. */
+void engine_format_param_port(char *buf, size_t len, const char *module, int port, const char *name);
+
 /** Writes the values of a parameter block as a trace line names them, `(speed = 0.3, mode =
  *  AUTO)` (each value as engine_format_value writes it), cut with `...)` to fit len - 1 bytes;
  *  `()` for no parameters (nvars 0: as the source writes the call); "" when the values are not

@@ -394,7 +394,7 @@ int ord_core_activate(OrdCore *c, int64_t t, const char *name, const void *param
             const ContractParamSetting *ps = &s->modules[m].settings[k];
             unsigned char *val = malloc(ps->type->size);
             if (val && engine_build_setting(&scope, ps, val) == 0 && c->io.set_param)
-                c->io.set_param(c->io.ctx, s->modules[m].module, ps->port, val, ps->type->size, ps->type);
+                c->io.set_param(c->io.ctx, s->modules[m].module, ps->port, ps->name, val, ps->type->size, ps->type);
             free(val);
         }
     for (int k = 0; k < s->ndata_flows; k++)

@@ -41,8 +41,9 @@ const char *ord_fact_record(const OrdFact *f, int64_t t, char *detail, size_t n)
 
 typedef struct OrdIo {
     void *ctx;
-    void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size,
-                      const ContractType *type);
+    /* port_name: the parameter port's name (ContractParamSetting.name), NULL when the tables have none */
+    void (*set_param)(void *ctx, const char *module, int port, const char *port_name, const void *value,
+                      size_t size, const ContractType *type);
     void (*connect_data)(void *ctx, const ContractDataFlow *flow);
     void (*disconnect_data)(void *ctx, const ContractDataFlow *flow);
     /* start one activation (one cycle) of a synchronous module; release_id (never 0) names

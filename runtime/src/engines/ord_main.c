@@ -48,8 +48,10 @@ typedef struct OrdBinding {
 static int ord_next_deadline(const void *core, int64_t *deadline) { return ord_core_next_deadline(core, deadline); }
 static void ord_advance(void *core, int64_t t) { ord_core_advance(core, t); }
 
-static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size, const ContractType *t) {
+static void b_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
+                        const ContractType *t) {
     (void)ctx;
+    (void)name;
     (void)t;
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK)

@@ -333,7 +333,7 @@ static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
         for (int k = 0; k < sm->nsettings; k++) {
             void *val = scratch_alloc(c, sm->settings[k].type->size);
             if (val && engine_build_setting(&s, &sm->settings[k], val) == 0 && c->io.set_param)
-                c->io.set_param(c->io.ctx, sm->module, sm->settings[k].port, val,
+                c->io.set_param(c->io.ctx, sm->module, sm->settings[k].port, sm->settings[k].name, val,
                                 sm->settings[k].type->size, sm->settings[k].type);
         }
     }
@@ -395,7 +395,7 @@ static void do_action(SupCore *c, int f, const ContractAction *a, UndoRec *u) {
                 continue;
             }
             if (c->io.set_param)
-                c->io.set_param(c->io.ctx, a->module, a->settings[k].port, val,
+                c->io.set_param(c->io.ctx, a->module, a->settings[k].port, a->settings[k].name, val,
                                 a->settings[k].type->size, a->settings[k].type);
         }
         break;

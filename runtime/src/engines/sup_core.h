@@ -35,8 +35,9 @@ typedef struct SupIo {
        only if no later claim on that module, of any supervisor, still stands (sup_claims.h) */
     int (*claim_priority)(void *ctx, const char *module, uint32_t id, int priority);
     void (*release_priority)(void *ctx, const char *module, uint32_t id);
-    void (*set_param)(void *ctx, const char *module, int port, const void *value, size_t size,
-                      const ContractType *type);
+    /* port_name: the parameter port's name (ContractParamSetting.name), NULL when the tables have none */
+    void (*set_param)(void *ctx, const char *module, int port, const char *port_name, const void *value,
+                      size_t size, const ContractType *type);
     void (*connect_events)(void *ctx, const ContractEventFlow *flow);
     void (*disconnect_events)(void *ctx, const ContractEventFlow *flow);
     /* the supervisor's own event ports */

@@ -257,11 +257,13 @@ static void b_release_priority(void *ctx, const char *m, uint32_t id) {
     prio_request_release(m, id);
 }
 
-static void b_set_param(void *ctx, const char *m, int port, const void *v, size_t size, const ContractType *t) {
+static void b_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
+                        const ContractType *t) {
     (void)ctx;
-    char value[ACTION_VALUE_MAX];
+    char value[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
     engine_format_value(value, sizeof value, v, t);
-    log_action(m, "parameterize %s:%d (%zu bytes) = %s", m, port, size, value);
+    engine_format_param_port(target, sizeof target, m, port, name);
+    log_action(m, "parameterize %s (%zu bytes) = %s", target, size, value);
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     if (not_sent(m, rc))
         fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,

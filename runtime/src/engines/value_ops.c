@@ -404,6 +404,12 @@ void engine_format_value(char *buf, size_t len, const void *value, const Contrac
     contract_value_format(buf, len, type, value);
 }
 
+void engine_format_param_port(char *buf, size_t len, const char *module, int port, const char *name) {
+    if (!buf || len == 0) return;
+    if (name && name[0]) snprintf(buf, len, "%s:%d %s", module ? module : "?", port, name);
+    else snprintf(buf, len, "%s:%d", module ? module : "?", port);
+}
+
 void engine_format_params(char *buf, size_t len, const ContractVar *vars, int nvars, const void *block) {
     if (!buf || len == 0) return;
     buf[0] = 0;

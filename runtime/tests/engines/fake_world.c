@@ -226,7 +226,9 @@ static void s_release_priority(void *ctx, const char *m, uint32_t id) {
                           mw->prio_claims.prio[later].owner[0] ? mw->prio_claims.prio[later].owner : "this supervisor");
     if (mw->prio_claims.nprio == 0) sup_claims_free(&mw->prio_claims); /* nothing left to free */
 }
-static void s_set_param(void *ctx, const char *m, int port, const void *v, size_t size, const ContractType *t) {
+static void s_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
+                        const ContractType *t) {
+    (void)name;
     (void)t;
     char buf[300];
     if (size == sizeof(TypeA)) fake_format(buf, sizeof buf, &(ContractType){.name = "TypeA", .kind = CONTRACT_KIND_STRUCT}, v);
@@ -359,8 +361,9 @@ SupIo fake_sup_io(FakeWorld *w) {
 
 /* ---- OrdIo ------------------------------------------------------------------------------ */
 
-static void o_set_param(void *ctx, const char *m, int port, const void *v, size_t size, const ContractType *t) {
-    s_set_param(ctx, m, port, v, size, t);
+static void o_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
+                        const ContractType *t) {
+    s_set_param(ctx, m, port, name, v, size, t);
 }
 static void o_connect(void *ctx, const ContractDataFlow *f) {
     WLOG((FakeWorld *)ctx, "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module,

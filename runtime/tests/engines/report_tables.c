@@ -60,7 +60,7 @@ static const TypeA k_consigne_zero = {0.0, 0.0, 0.0};
 static const ContractVar recep_params[] = {{"param", &contract_type_TypeA, 0, &k_param_reception}};
 static const ContractAssign recep_maa_p0[] = {
     {0, 0, &contract_type_TypeA, REF(CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL)}};
-static const ContractParamSetting recep_maa_settings[] = {{0, &contract_type_TypeA, 1, recep_maa_p0}};
+static const ContractParamSetting recep_maa_settings[] = {{0, &contract_type_TypeA, 1, recep_maa_p0, "param"}};
 static const ContractSchemaModule recep_modules[] = {{"MAA", 1, recep_maa_settings}, {"MAB", 0, NULL}};
 static const ContractEventFlow recep_flows[] = {{"MAA", 0, "MAB", 0, CONTRACT_CONTINUOUS}};
 const ContractSchema schema_schemaReceptionMessage = {
@@ -73,7 +73,7 @@ const ContractSchema schema_schemaReceptionMessage = {
 static const ContractVar cmd_params[] = {{"consigne", &contract_type_TypeA, 0, &k_consigne_zero}};
 static const ContractAssign cmd_msc_p0[] = {
     {0, 0, &contract_type_TypeA, REF(CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL)}};
-static const ContractParamSetting cmd_msc_settings[] = {{0, &contract_type_TypeA, 1, cmd_msc_p0}};
+static const ContractParamSetting cmd_msc_settings[] = {{0, &contract_type_TypeA, 1, cmd_msc_p0, "param"}};
 static const ContractSchemaModule cmd1_modules[] = {
     {"MSA", 0, NULL}, {"MSC", 1, cmd_msc_settings}, {"MSD", 0, NULL}};
 static const ContractPrecedence cmd_prec[] = {{0, 1}, {1, 2}};
@@ -202,7 +202,7 @@ static const ContractClause reception_pre[] = {{1, reception_pre_ev}};
 static const ContractAssign reception_msc_p0[] = {
     {0, 0, &contract_type_TypeA,
      REF(CONTRACT_REF_LOCAL, L_TEMP_MESSAGE, offsetof(TypeC, value), &contract_type_TypeA, NULL)}};
-static const ContractParamSetting reception_settings[] = {{0, &contract_type_TypeA, 1, reception_msc_p0}};
+static const ContractParamSetting reception_settings[] = {{0, &contract_type_TypeA, 1, reception_msc_p0, "param"}};
 static const ContractAction reception_actions[] = {
     {.kind = CONTRACT_ACT_PARAMETERIZE, .module = "MSC", .nsettings = 1, .settings = reception_settings},
     {.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "MAA"}};

@@ -17,7 +17,7 @@ static const long k_gain = 4;
 static const ContractVar dia_params[] = {{"gain", &contract_type_long, 0, &k_gain}};
 static const ContractAssign dia_b_p1[] = {
     {0, 0, &contract_type_long, {CONTRACT_REF_PARAM, 0, 0, &contract_type_long, NULL}}};
-static const ContractParamSetting dia_b_settings[] = {{1, &contract_type_long, 1, dia_b_p1}};
+static const ContractParamSetting dia_b_settings[] = {{1, &contract_type_long, 1, dia_b_p1, NULL}};
 static const ContractSchemaModule dia_modules[] = {
     {"A", 0, NULL}, {"B", 1, dia_b_settings}, {"C", 0, NULL}, {"D", 0, NULL}};
 static const ContractPrecedence dia_prec[] = {{0, 1}, {0, 2}, {1, 3}, {2, 3}};

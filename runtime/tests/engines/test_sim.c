@@ -111,7 +111,7 @@ void test_sim_report_story_records(void) {
     /* a notified value as sent (SUP:1 "commutation"); a parameterized one as its type prints
        (these hand-written tables give TypeA no field table: its size) */
     HAS(out, "\"who\":\"SUP\",\"what\":\"notify :1 (string) = \\\"commutation\\\"\"");
-    HAS(record(out, 1), "\"who\":\"SUP\",\"what\":\"parameterize MAA:0 (24 bytes) = {24 bytes}\"");
+    HAS(record(out, 1), "\"who\":\"SUP\",\"what\":\"parameterize MAA:0 param (24 bytes) = {24 bytes}\"");
     HAS(record(out, 4), "\"ok\":true");
     HAS(record(out, 4), "\"schemas\":[\"schemaCommande1\"]");
     HAS(record(out, 5), "\"rule\":\"FOURTH\",\"active\":true,\"cause\":\"endof(SECOND)\"");

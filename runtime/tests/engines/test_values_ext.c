@@ -235,6 +235,12 @@ void test_ext_params_are_named_and_cut_on_a_character(void) {
     char out[200];
     engine_format_params(out, sizeof out, vars, 3, &b);
     CHECK(strcmp(out, "(mode = AUTO, speed = 0.3, label = \"dock\")") == 0);
+    engine_format_param_port(out, sizeof out, "MSC", 0, "consigne"); /* a parameter port by its name too */
+    CHECK(strcmp(out, "MSC:0 consigne") == 0);
+    engine_format_param_port(out, sizeof out, "MSC", 2, NULL); /* tables without names */
+    CHECK(strcmp(out, "MSC:2") == 0);
+    engine_format_param_port(out, sizeof out, "MSC", 2, "");
+    CHECK(strcmp(out, "MSC:2") == 0);
     engine_format_params(out, sizeof out, vars, 0, &b); /* none: the call as the source writes it */
     CHECK(strcmp(out, "()") == 0);
     engine_format_params(out, sizeof out, NULL, 0, NULL);

@@ -64,3 +64,30 @@ describe('prepareWorkspace with an inline manifest naming host files', () => {
     expect(out.problems.filter((p) => p.severity === 'error')).toEqual([]);
   }, 120_000);
 });
+
+describe('prepareWorkspace on a workspace prepared before', () => {
+  const tutorial = (): Record<string, string> => {
+    const files: Record<string, string> = {};
+    for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) files[f] = readFileSync(join(TUTORIAL, f), 'utf8');
+    return files;
+  };
+  it('skips generation for the same inputs and generator, and generates again when the generator changed (an upgrade)', async () => {
+    const ws = workspace();
+    const run = async () => {
+      const log: string[] = [];
+      const out = await prepareWorkspace(ws, { files: tutorial() }, 'cactal', { ...DEFAULT_LIMITS }, (l: string) => log.push(l));
+      expect(out.ok, log.join('\n')).toBe(true);
+      return log;
+    };
+    expect((await run()).some((l) => l.startsWith('generated src-gen/'))).toBe(true);
+    expect(await run()).toContain('project unchanged since the last build: generation skipped');
+    // the stamp an older version wrote: the inputs' digest alone, no generator
+    const stampFile = join(ws.stageDir, 'inputs.sha256');
+    const stamp = readFileSync(stampFile, 'utf8');
+    expect(stamp).toMatch(/^[0-9a-f]{64} generator=[0-9a-f]{64}$/);
+    writeFileSync(stampFile, stamp.split(' ')[0]!);
+    const again = await run();
+    expect(again).not.toContain('project unchanged since the last build: generation skipped');
+    expect(again.some((l) => l.startsWith('generated src-gen/'))).toBe(true);
+  }, 60_000);
+});

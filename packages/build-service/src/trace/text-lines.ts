@@ -66,7 +66,8 @@ export const SUPERVISOR_LINES: readonly LinePattern[] = [
     { what: 'action', re: new RegExp(`^activate supervisor ${ID}\\.${ID}(?:\\(.*\\))? \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
     { what: 'action', re: new RegExp(`^undo: stop ${ID}\\.${ID} \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
     // (older logs: no ` = value`)
-    { what: 'action', re: new RegExp(`^parameterize ${ID}:(\\d+) \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port'] },
+    // the port's name after its number since 2026-12-04 (`parameterize MSC:0 consigne (24 bytes) = …`: field `name`)
+    { what: 'action', re: new RegExp(`^parameterize ${ID}:(\\d+)(?: ${ID})? \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port', 'name'] },
     // (older logs: no activation number)
     { what: 'action', re: new RegExp(`^subscribe ${ID}:(\\d+) (?:=>|=\\*) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },
     { what: 'action', re: new RegExp(`^undo: unsubscribe ${ID}:(\\d+) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },

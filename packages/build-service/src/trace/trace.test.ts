@@ -105,6 +105,8 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'undo: unsubscribe MAA:0 :1 (activation #2)')).toEqual({ what: 'action', module: 'MAA', port: 0, in_port: 1, activation: 2 });
         expect(fields('supervisor', 'parameterize VEL:0 (16 bytes) = {v=0.3,w=0}')).toEqual({ what: 'action', module: 'VEL', port: 0 });
         expect(fields('supervisor', 'parameterize MSC:1 (8 bytes)')).toEqual({ what: 'action', module: 'MSC', port: 1 }); // older logs
+        expect(fields('supervisor', 'parameterize MSC:0 consigne (24 bytes) = {i=1,j=2,k=3}')).toEqual({ what: 'action', module: 'MSC', port: 0, name: 'consigne' });
+        expect(fields('supervisor', 'parameterize MSC:0 consigne extra (24 bytes) = 1')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'notify :1 (string) = "paused"')).toEqual({ what: 'action', out_port: 1, type: 'string' });
         expect(fields('supervisor', 'activate supervisor SUP.action(consigne = {i=0,j=0,k=0}) (activation #2)')).toEqual({ what: 'action', supervisor: 'SUP', function: 'action', activation: 2 });
         expect(fields('supervisor', 'undo: stop SUP.action (activation #2)')).toEqual({ what: 'action', supervisor: 'SUP', function: 'action', activation: 2 });

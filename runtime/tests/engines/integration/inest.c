@@ -59,7 +59,7 @@ static const ContractAssign work_inits[] = {
 static const ContractVar evs_params[] = {{"step", &contract_type_long, 0, &k1}};
 static const ContractAssign evs_amx_p0[] = {
     {0, 0, &contract_type_long, {CONTRACT_REF_PARAM, 0, 0, &contract_type_long, NULL}}};
-static const ContractParamSetting evs_amx_settings[] = {{0, &contract_type_long, 1, evs_amx_p0}};
+static const ContractParamSetting evs_amx_settings[] = {{0, &contract_type_long, 1, evs_amx_p0, NULL}};
 static const ContractSchemaModule evs_modules[] = {{"AMX", 1, evs_amx_settings}};
 static const ContractSchema EVS = {"EVS", CONTRACT_SCHEMA_EVENT, 0, 0, 1, evs_params, sizeof(long),
                                    1, evs_modules, 0, NULL, 0, NULL, 0, NULL};

@@ -17,7 +17,7 @@ static const long itest_gain_default = 3;
 static const ContractVar isc_params[] = {{"gain", &contract_type_long, 0, &itest_gain_default}};
 static const ContractAssign isc_ima_p0[] = {
     {0, 0, &contract_type_long, {CONTRACT_REF_PARAM, 0, 0, &contract_type_long, NULL}}};
-static const ContractParamSetting isc_ima_settings[] = {{0, &contract_type_long, 1, isc_ima_p0}};
+static const ContractParamSetting isc_ima_settings[] = {{0, &contract_type_long, 1, isc_ima_p0, "gain"}};
 static const ContractSchemaModule isc_modules[] = {
     {"IMA", 1, isc_ima_settings}, {"IMB", 0, NULL}, {"IMC", 0, NULL}};
 static const ContractPrecedence isc_prec[] = {{0, 1}, {0, 2}};

@@ -7,7 +7,7 @@ import { TableBuilder } from './table-builder.js';
 /** `ORD_mod/vocabulary.c`: the scheduler configuration as ContractOrdVocabulary tables. */
 export function generateOrdVocabulary(arch: Architecture, index: ArchitectureIndex, priorities: Priorities): string {
     // every datatype with its field table: its parameterize actions show values field by field
-    // (`parameterize VEL:0 (16 bytes) = {v=0.3,w=0}`), not `{16 bytes}`
+    // (`parameterize VEL:0 setpoint (16 bytes) = {v=0.3,w=0}`), not `{16 bytes}`
     const b = new TableBuilder(index, { allFieldTables: true });
     const config = arch.scheduler ?? { modules: [], schemas: [] };
     const modules = config.modules.map((m) => `{"${m}", ${priorities.of.get(m) ?? 0}, ${index.modules.get(m)?.wcetNs ?? 0}}`);

@@ -21,7 +21,7 @@ export function schemaTable(b: TableBuilder, schema: Schema, emitted: Map<string
             if (!port) return [];
             const parts = assignments(b, 0, port.type, [], s.value, resolve);
             const arr = b.array(`schema_${S}_${m.module}_p${s.port}`, 'ContractAssign', parts);
-            return [`{${s.port}, ${b.typeRef(port.type)}, ${parts.length}, ${arr}}`];
+            return [`{${s.port}, ${b.typeRef(port.type)}, ${parts.length}, ${arr}, "${port.name}"}`];
         });
         const arr = b.array(`schema_${S}_${m.module}_settings`, 'ContractParamSetting', settings);
         return `{"${m.module}", ${settings.length}, ${arr}}`;

@@ -149,7 +149,7 @@ function settingsTable(ctx: RuleContext, module: string, settings: Array<{ port:
         const port = m?.parameters.find((p) => p.index === s.port);
         if (!port) return [];
         const parts = assignments(ctx.b, 0, port.type, [], s.value, ctx.resolve);
-        return [`{${s.port}, ${ctx.b.typeRef(port.type)}, ${parts.length}, ${ctx.b.array(`${base}_p${s.port}`, 'ContractAssign', parts)}}`];
+        return [`{${s.port}, ${ctx.b.typeRef(port.type)}, ${parts.length}, ${ctx.b.array(`${base}_p${s.port}`, 'ContractAssign', parts)}, "${port.name}"}`];
     });
 }
 

@@ -46,8 +46,8 @@ static const ContractAssign schema_velocityLoop_VEL_p0[] = {
 static const ContractAssign schema_velocityLoop_VEL_p1[] = {
     {0, 0, &contract_type_DriveMode, {CONTRACT_REF_PARAM, 1, 0, &contract_type_DriveMode, NULL}}};
 static const ContractParamSetting schema_velocityLoop_VEL_settings[] = {
-    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0},
-    {1, &contract_type_DriveMode, 1, schema_velocityLoop_VEL_p1}};
+    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0, "setpoint"},
+    {1, &contract_type_DriveMode, 1, schema_velocityLoop_VEL_p1, "mode"}};
 static const ContractSchemaModule schema_velocityLoop_modules[] = {
     {"WHL", 0, NULL},
     {"ODO", 0, NULL},
@@ -90,7 +90,7 @@ static const ContractClause teleop_FOLLOW_pre_clauses[] = {
 static const ContractAssign teleop_FOLLOW_a0_p0[] = {
     {0, 0, &contract_type_Twist, {CONTRACT_REF_LOCAL, 0, 0, &contract_type_Twist, NULL}}};
 static const ContractParamSetting teleop_FOLLOW_a0_settings[] = {
-    {0, &contract_type_Twist, 1, teleop_FOLLOW_a0_p0}};
+    {0, &contract_type_Twist, 1, teleop_FOLLOW_a0_p0, "setpoint"}};
 static const ContractAction teleop_FOLLOW_actions[] = {
     {.kind = CONTRACT_ACT_PARAMETERIZE, .module = "VEL", .nsettings = 1, .settings = teleop_FOLLOW_a0_settings}};
 static const ContractEvent teleop_FOLLOW_post_c0_events[] = {
@@ -130,7 +130,7 @@ static const ContractVar schema_localisationLoop_params[] = {
 static const ContractAssign schema_localisationLoop_NAV_p0[] = {
     {0, 0, &contract_type_Pose, {CONTRACT_REF_PARAM, 0, 0, &contract_type_Pose, NULL}}};
 static const ContractParamSetting schema_localisationLoop_NAV_settings[] = {
-    {0, &contract_type_Pose, 1, schema_localisationLoop_NAV_p0}};
+    {0, &contract_type_Pose, 1, schema_localisationLoop_NAV_p0, "goal"}};
 static const ContractSchemaModule schema_localisationLoop_modules[] = {
     {"LOC", 0, NULL},
     {"NAV", 1, schema_localisationLoop_NAV_settings}};
@@ -166,7 +166,7 @@ static const ContractClause autonomous_STEER_pre_clauses[] = {
 static const ContractAssign autonomous_STEER_a0_p0[] = {
     {0, 0, &contract_type_Twist, {CONTRACT_REF_LOCAL, 1, 0, &contract_type_Twist, NULL}}};
 static const ContractParamSetting autonomous_STEER_a0_settings[] = {
-    {0, &contract_type_Twist, 1, autonomous_STEER_a0_p0}};
+    {0, &contract_type_Twist, 1, autonomous_STEER_a0_p0, "setpoint"}};
 static const ContractAction autonomous_STEER_actions[] = {
     {.kind = CONTRACT_ACT_PARAMETERIZE, .module = "VEL", .nsettings = 1, .settings = autonomous_STEER_a0_settings}};
 static const ContractEvent autonomous_STEER_post_c0_events[] = {

@@ -34,8 +34,8 @@ static const ContractAssign schema_velocityLoop_VEL_p0[] = {
 static const ContractAssign schema_velocityLoop_VEL_p1[] = {
     {0, 0, &contract_type_DriveMode, {CONTRACT_REF_PARAM, 1, 0, &contract_type_DriveMode, NULL}}};
 static const ContractParamSetting schema_velocityLoop_VEL_settings[] = {
-    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0},
-    {1, &contract_type_DriveMode, 1, schema_velocityLoop_VEL_p1}};
+    {0, &contract_type_Twist, 1, schema_velocityLoop_VEL_p0, "setpoint"},
+    {1, &contract_type_DriveMode, 1, schema_velocityLoop_VEL_p1, "mode"}};
 static const ContractSchemaModule schema_velocityLoop_modules[] = {
     {"WHL", 0, NULL},
     {"ODO", 0, NULL},
@@ -64,7 +64,7 @@ static const ContractVar schema_localisationLoop_params[] = {
 static const ContractAssign schema_localisationLoop_NAV_p0[] = {
     {0, 0, &contract_type_Pose, {CONTRACT_REF_PARAM, 0, 0, &contract_type_Pose, NULL}}};
 static const ContractParamSetting schema_localisationLoop_NAV_settings[] = {
-    {0, &contract_type_Pose, 1, schema_localisationLoop_NAV_p0}};
+    {0, &contract_type_Pose, 1, schema_localisationLoop_NAV_p0, "goal"}};
 static const ContractSchemaModule schema_localisationLoop_modules[] = {
     {"LOC", 0, NULL},
     {"NAV", 1, schema_localisationLoop_NAV_settings}};

@@ -20,7 +20,7 @@ static const ContractVar schema_schemaCommande1_params[] = {
 static const ContractAssign schema_schemaCommande1_MSC_p0[] = {
     {0, 0, &contract_type_TypeA, {CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL}}};
 static const ContractParamSetting schema_schemaCommande1_MSC_settings[] = {
-    {0, &contract_type_TypeA, 1, schema_schemaCommande1_MSC_p0}};
+    {0, &contract_type_TypeA, 1, schema_schemaCommande1_MSC_p0, "param"}};
 static const ContractSchemaModule schema_schemaCommande1_modules[] = {
     {"MSA", 0, NULL},
     {"MSC", 1, schema_schemaCommande1_MSC_settings},
@@ -43,7 +43,7 @@ static const ContractVar schema_schemaCommande2_params[] = {
 static const ContractAssign schema_schemaCommande2_MSC_p0[] = {
     {0, 0, &contract_type_TypeA, {CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL}}};
 static const ContractParamSetting schema_schemaCommande2_MSC_settings[] = {
-    {0, &contract_type_TypeA, 1, schema_schemaCommande2_MSC_p0}};
+    {0, &contract_type_TypeA, 1, schema_schemaCommande2_MSC_p0, "param"}};
 static const ContractSchemaModule schema_schemaCommande2_modules[] = {
     {"MSB", 0, NULL},
     {"MSC", 1, schema_schemaCommande2_MSC_settings},

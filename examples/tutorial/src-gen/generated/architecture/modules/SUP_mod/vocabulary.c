@@ -63,7 +63,7 @@ static const ContractVar schema_schemaReceptionMessage_params[] = {
 static const ContractAssign schema_schemaReceptionMessage_MAA_p0[] = {
     {0, 0, &contract_type_TypeA, {CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL}}};
 static const ContractParamSetting schema_schemaReceptionMessage_MAA_settings[] = {
-    {0, &contract_type_TypeA, 1, schema_schemaReceptionMessage_MAA_p0}};
+    {0, &contract_type_TypeA, 1, schema_schemaReceptionMessage_MAA_p0, "param"}};
 static const ContractSchemaModule schema_schemaReceptionMessage_modules[] = {
     {"MAA", 1, schema_schemaReceptionMessage_MAA_settings},
     {"MAB", 0, NULL}};
@@ -112,7 +112,7 @@ static const ContractVar schema_schemaCommande1_params[] = {
 static const ContractAssign schema_schemaCommande1_MSC_p0[] = {
     {0, 0, &contract_type_TypeA, {CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL}}};
 static const ContractParamSetting schema_schemaCommande1_MSC_settings[] = {
-    {0, &contract_type_TypeA, 1, schema_schemaCommande1_MSC_p0}};
+    {0, &contract_type_TypeA, 1, schema_schemaCommande1_MSC_p0, "param"}};
 static const ContractSchemaModule schema_schemaCommande1_modules[] = {
     {"MSA", 0, NULL},
     {"MSC", 1, schema_schemaCommande1_MSC_settings},
@@ -171,7 +171,7 @@ static const ContractVar schema_schemaCommande2_params[] = {
 static const ContractAssign schema_schemaCommande2_MSC_p0[] = {
     {0, 0, &contract_type_TypeA, {CONTRACT_REF_PARAM, 0, 0, &contract_type_TypeA, NULL}}};
 static const ContractParamSetting schema_schemaCommande2_MSC_settings[] = {
-    {0, &contract_type_TypeA, 1, schema_schemaCommande2_MSC_p0}};
+    {0, &contract_type_TypeA, 1, schema_schemaCommande2_MSC_p0, "param"}};
 static const ContractSchemaModule schema_schemaCommande2_modules[] = {
     {"MSB", 0, NULL},
     {"MSC", 1, schema_schemaCommande2_MSC_settings},
@@ -204,7 +204,7 @@ static const ContractClause action_RECEPTION_pre_clauses[] = {
 static const ContractAssign action_RECEPTION_a0_p0[] = {
     {0, 0, &contract_type_TypeA, {CONTRACT_REF_LOCAL, 0, offsetof(TypeC, value), &contract_type_TypeA, NULL}}};
 static const ContractParamSetting action_RECEPTION_a0_settings[] = {
-    {0, &contract_type_TypeA, 1, action_RECEPTION_a0_p0}};
+    {0, &contract_type_TypeA, 1, action_RECEPTION_a0_p0, "param"}};
 static const ContractAction action_RECEPTION_actions[] = {
     {.kind = CONTRACT_ACT_PARAMETERIZE, .module = "MSC", .nsettings = 1, .settings = action_RECEPTION_a0_settings},
     {.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "MAA"}};
