@@ -115,6 +115,27 @@ describe('stepsToTrace: a supervisor\'s actions as a run logs them', () => {
         expect(STEPS.flatMap((s) => s.actions).map((a) => `MIS  ${actionAsLogged(a.what)}`).slice(0, run.length)).toEqual(run);
     });
 
+    it('writes ORD\'s parameters and data flows at an activation as a run\'s ORD logs them, and contract trace tells them the same', () => {
+        const ord = (timeNs: number, ...what: string[]) => what.map((w, i) => ({ timeNs, seq: timeNs / 1000 + i, who: 'ORD', what: w }));
+        const steps: TraceStep[] = [
+            { timeNs: 1_000_000, source: 'x', ok: true, rules: [], log: [], records: [], actions: ord(1_000_000, 'parameterize CTL:0 setpoint (8 bytes) = 3', 'connect ALT:0 -> CTL:0 * 1') },
+            { timeNs: 2_000_000, source: 'y', ok: true, rules: [], log: [], records: [], actions: ord(2_000_000, 'disconnect ALT:0 -> CTL:0', 'ORD:0 "altHold" (deadline miss)') },
+        ];
+        const sim = stepsToTrace(steps).filter((r) => r.kind === 'scheduler');
+        expect(sim.map((r) => [row(r), (r as KnownRecord).fields['what']])).toEqual([
+            ['scheduler ORD  parameterize CTL:0 setpoint (8 bytes) = 3', 'parameterize'],
+            ['scheduler ORD  connect ALT:0 -> CTL:0 * 1', 'connect'],
+            ['scheduler ORD  disconnect ALT:0 -> CTL:0', 'disconnect'],
+        ]);
+        const runLog = ['mono_ns,wall_time,module,event,peer,port,size,detail',
+            '1000000,w,ORD,scheduler,CTL,,0,parameterize CTL:0 setpoint (8 bytes) = 3', '1000000,w,ORD,scheduler,ALT,,0,connect ALT:0 -> CTL:0 * 1',
+            '2000000,w,ORD,scheduler,ALT,,0,disconnect ALT:0 -> CTL:0'].join('\n');
+        const told = (records: TraceRecord[]) => renderStory(records).slice(0, -1).map((l) => l.slice(11)).filter((l) => l.startsWith('ORD '));
+        expect(told(stepsToTrace(steps))).toEqual(told(parseTrace([{ name: 'ORD_1.csv', text: runLog }])));
+        expect(told(parseTrace([{ name: 'ORD_1.csv', text: runLog }]))).toEqual([
+            'ORD  parameterize CTL:0 setpoint (8 bytes) = 3', 'ORD  connect ALT:0 -> CTL:0 * 1', 'ORD  disconnect ALT:0 -> CTL:0']);
+    });
+
     it('names a flow\'s hold as the runtime does, hashed when the name is 64 characters or more', () => {
         const long = 'M'.repeat(30);
         const t = stepsToTrace([{ timeNs: 0, source: 'x', ok: true, rules: [], log: [], records: [], actions: [{ timeNs: 0, who: 'MIS', what: `connect ${long}:1 =* ${long}:2` }] }]);

@@ -26,6 +26,7 @@
 #include <string.h>
 
 #include "contract/vocabulary.h"
+#include "engine_values.h"
 #include "engine_wait.h"
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
@@ -48,11 +49,18 @@ typedef struct OrdBinding {
 static int ord_next_deadline(const void *core, int64_t *deadline) { return ord_core_next_deadline(core, deadline); }
 static void ord_advance(void *core, int64_t t) { ord_core_advance(core, t); }
 
+/* What ORD does at a schema's activation and deactivation, in the simulator's words
+   (runtime/sim/sim_world.c oio_*), as `scheduler` records of its CSV log only (peer = the module):
+   `parameterize M:p NAME (N bytes) = V`, `connect A:p -> B:i * k`, `disconnect A:p -> B:i`; logged
+   before the request, as a supervisor's actions are. */
 static void b_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
                         const ContractType *t) {
     (void)ctx;
-    (void)name;
-    (void)t;
+    char value[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX], line[ACTION_VALUE_MAX + ENGINE_PARAM_PORT_MAX + 48];
+    engine_format_value(value, sizeof value, v, t);
+    engine_format_param_port(target, sizeof target, m, port, name);
+    snprintf(line, sizeof line, "parameterize %s (%zu bytes) = %s", target, size, value);
+    ContractLog("scheduler", m, -1, 0, line);
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "ORD: cannot set parameter %d of %s: %s\n", port, m, ContractStrError(rc));
@@ -60,6 +68,10 @@ static void b_set_param(void *ctx, const char *m, int port, const char *name, co
 
 static void b_connect(void *ctx, const ContractDataFlow *f) {
     (void)ctx;
+    char line[3 * CONTRACT_NAME_MAX];
+    snprintf(line, sizeof line, "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module, f->dst_port,
+             f->periodicity);
+    ContractLog("scheduler", f->src_module, -1, 0, line);
     int rc = SendSubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port, f->periodicity, 1);
     if (rc != CONTRACT_OK)
         fprintf(stderr, "ORD: cannot connect %s:%d -> %s:%d: %s\n", f->src_module, f->src_port,
@@ -68,6 +80,9 @@ static void b_connect(void *ctx, const ContractDataFlow *f) {
 
 static void b_disconnect(void *ctx, const ContractDataFlow *f) {
     (void)ctx;
+    char line[3 * CONTRACT_NAME_MAX];
+    snprintf(line, sizeof line, "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module, f->dst_port);
+    ContractLog("scheduler", f->src_module, -1, 0, line);
     SendUnsubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port);
 }
 

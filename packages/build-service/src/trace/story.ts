@@ -38,7 +38,8 @@ function describeCause(c: RuleCause): string {
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning', 'activation_refused']);
 /* (not told: ORD's `ignored`, `late_ack`, expected when a schema is deactivated while its modules run) */
-const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning']);
+const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning',
+    'parameterize', 'connect', 'disconnect']);
 
 /** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
 const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;

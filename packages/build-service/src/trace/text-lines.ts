@@ -42,6 +42,10 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'ignored', re: new RegExp(`^ignored: ${ID} finished outside a cycle`), keys: ['module'] },
     { what: 'unstuck', re: new RegExp(`^${ID} finished release #(\\d+) at last \\(reported stuck, ${ID}\\)$`), keys: ['module', 'release', 'schema'] },
     { what: 'warning', re: /^warning: /, keys: [] },
+    // what it does at a schema's activation and deactivation (ord_main.c, since 2026-12-04; the simulator's words)
+    { what: 'parameterize', re: new RegExp(`^parameterize ${ID}:(\\d+)(?: ${ID})? \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port', 'name'] },
+    { what: 'connect', re: new RegExp(`^connect ${ID}:(\\d+) -> ${ID}:(\\d+) \\* (\\d+)$`), keys: ['module', 'port', 'to_module', 'to_port', 'periodicity'] },
+    { what: 'disconnect', re: new RegExp(`^disconnect ${ID}:(\\d+) -> ${ID}:(\\d+)$`), keys: ['module', 'port', 'to_module', 'to_port'] },
 ];
 
 export const SUPERVISOR_LINES: readonly LinePattern[] = [

@@ -89,6 +89,11 @@ describe('reading a log', () => {
         expect(fields('scheduler', 'B finished release #12 at last (reported stuck, DIA)')).toEqual({ what: 'unstuck', module: 'B', release: 12, schema: 'DIA' });
         expect(fields('scheduler', 'release B (DIA)')).toEqual({ what: 'release', module: 'B', schema: 'DIA' });
         expect(fields('scheduler', 'something new')).toEqual({ what: 'other' });
+        // what ORD does at an activation (since 2026-12-04), in the simulator's words
+        expect(fields('scheduler', 'parameterize CTL:0 setpoint (8 bytes) = 3')).toEqual({ what: 'parameterize', module: 'CTL', port: 0, name: 'setpoint' });
+        expect(fields('scheduler', 'connect ALT:0 -> CTL:0 * 1')).toEqual({ what: 'connect', module: 'ALT', port: 0, to_module: 'CTL', to_port: 0, periodicity: 1 });
+        expect(fields('scheduler', 'disconnect ALT:0 -> CTL:0')).toEqual({ what: 'disconnect', module: 'ALT', port: 0, to_module: 'CTL', to_port: 0 });
+        expect(fields('scheduler', 'connect ALT:0 -> CTL:0 * 1 twice')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'function action started')).toEqual({ what: 'function_started', function: 'action' }); // older logs
         // a call without parameters is written as the source writes it: `land()`
         expect(fields('supervisor', 'function land() started')).toEqual({ what: 'function_started', function: 'land' });

@@ -172,7 +172,10 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
                     const cycle = cycles.get(schema)?.cycle ?? -1;
                     push(known(t, 'ORD', 'ord_deadline_miss', `schema=${schema} cycle=${cycle}`, { schema, cycle }));
                 }
-                continue; // ORD's flows and parameters: not a supervisor's actions
+                // ORD's parameters and data flows at an activation: the `scheduler` records a run's ORD writes (same words)
+                const rec = engineLine(t, 'ORD', 'scheduler', a.what);
+                if (rec.kind !== 'unknown' && (rec as KnownRecord).fields?.['what'] !== 'other') push(rec);
+                continue;
             }
             if (a.who === 'sim') continue;
             if (a.what === 'crashed') {
