@@ -16,7 +16,8 @@
  *   `flow_hold` `hold taken` / `last hold dropped (disconnected)` on the flow's hold name), a priority
  *   claim's `module_priority`, and before an `activate schema` its START request to ORD
  *   (`request_received`: which rule activated a schema); ORD's `ORD:0 "S" (deadline miss)` →
- *   `ord_deadline_miss`; a crash → `module_exit`.
+ *   `ord_deadline_miss`; ORD's `parameterize …`, `connect A:p -> B:i * k`, `disconnect …` → the
+ *   `scheduler` records a run's ORD writes; a crash → `module_exit`.
  * - `records`: the typed records the harness writes as a real run's CSV logs hold them (ORD's
  *   ord_release / ord_finished / ord_complete / ord_deadline_miss with their cycle and response
  *   times, each virtual module's run_started / run_finished and data_posted on each connected data
