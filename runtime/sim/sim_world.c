@@ -194,41 +194,42 @@ static void sio_start_module(void *ctx, const char *module, int priority) {
     SimSup *p = ctx;
     int i = module_index(p->w, module, 1);
     if (i >= 0 && !p->w->mods[i].crashed) p->w->mods[i].started = 1;
-    action(p->w, p->v->name, "start module %s (priority %d)%s", module, priority,
+    action(p->w, p->v->name, ACTION_START_MODULE "%s", module, priority,
            i >= 0 && p->w->mods[i].crashed ? ": it has crashed, it does not start" : "");
 }
 static void sio_stop_module(void *ctx, const char *module) {
     SimSup *p = ctx;
     int i = module_index(p->w, module, 1);
     if (i >= 0) p->w->mods[i].started = 0;
-    action(p->w, p->v->name, "stop module %s", module);
+    action(p->w, p->v->name, ACTION_STOP_MODULE, module);
 }
 static int sio_claim_priority(void *ctx, const char *module, uint32_t id, int priority) {
     SimSup *p = ctx;
-    action(p->w, p->v->name, "set priority of %s to %d (claim #%u)", module, priority, id);
+    action(p->w, p->v->name, ACTION_CLAIM_PRIORITY, module, priority, id);
     return 0;
 }
 static void sio_release_priority(void *ctx, const char *module, uint32_t id) {
     SimSup *p = ctx;
-    action(p->w, p->v->name, "release priority claim #%u on %s", id, module);
+    action(p->w, p->v->name, ACTION_RELEASE_PRIORITY, id, module);
 }
 static void sio_set_param(void *ctx, const char *module, int port, const char *name, const void *value,
                           size_t size, const ContractType *type) {
     SimSup *p = ctx;
-    char v[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
-    engine_format_value(v, sizeof v, value, type);
-    engine_format_param_port(target, sizeof target, module, port, name);
-    action(p->w, p->v->name, "parameterize %s (%zu bytes) = %s", target, size, v);
+    char line[ACTION_LINE_MAX];
+    engine_format_parameterize(line, sizeof line, module, port, name, value, size, type);
+    action(p->w, p->v->name, "%s", line);
 }
 static void sio_connect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
-    action(p->w, p->v->name, "connect %s:%d %s %s:%d", f->src_module, f->src_port,
-           f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
+    char flow[ACTION_LINE_MAX];
+    engine_format_event_flow(flow, sizeof flow, f);
+    action(p->w, p->v->name, "connect %s", flow);
 }
 static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
-    action(p->w, p->v->name, "disconnect %s:%d %s %s:%d", f->src_module, f->src_port,
-           f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
+    char flow[ACTION_LINE_MAX];
+    engine_format_event_flow(flow, sizeof flow, f);
+    action(p->w, p->v->name, "disconnect %s", flow);
 }
 static void sio_subscribe(void *ctx, const char *module, int src_port, int in_port,
                           ContractEventMode mode, uint32_t id) {
@@ -304,10 +305,9 @@ static void sio_action(void *ctx, int64_t t, const char *line) {
 
 static void oio_set_param(void *ctx, const char *module, int port, const char *name, const void *value,
                           size_t size, const ContractType *type) {
-    char v[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
-    engine_format_value(v, sizeof v, value, type);
-    engine_format_param_port(target, sizeof target, module, port, name);
-    action(ctx, "ORD", "parameterize %s (%zu bytes) = %s", target, size, v);
+    char line[ACTION_LINE_MAX];
+    engine_format_parameterize(line, sizeof line, module, port, name, value, size, type);
+    action(ctx, "ORD", "%s", line);
 }
 static int flow_index(const SimWorld *w, int src, const ContractDataFlow *f) {
     for (int i = 0; i < w->nflows; i++) {
@@ -319,8 +319,9 @@ static int flow_index(const SimWorld *w, int src, const ContractDataFlow *f) {
 }
 static void oio_connect(void *ctx, const ContractDataFlow *f) {
     SimWorld *w = ctx;
-    action(w, "ORD", "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module,
-           f->dst_port, f->periodicity);
+    char flow[ACTION_LINE_MAX];
+    engine_format_data_flow(flow, sizeof flow, f);
+    action(w, "ORD", "connect %s * %d", flow, f->periodicity);
     int src = module_index(w, f->src_module, 1);
     if (src < 0) return;
     int i = flow_index(w, src, f);
@@ -338,8 +339,9 @@ static void oio_connect(void *ctx, const ContractDataFlow *f) {
 }
 static void oio_disconnect(void *ctx, const ContractDataFlow *f) {
     SimWorld *w = ctx;
-    action(w, "ORD", "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module,
-           f->dst_port);
+    char flow[ACTION_LINE_MAX];
+    engine_format_data_flow(flow, sizeof flow, f);
+    action(w, "ORD", "disconnect %s", flow);
     int i = flow_index(w, module_index(w, f->src_module, 0), f);
     if (i >= 0) w->flows[i] = w->flows[--w->nflows];
 }

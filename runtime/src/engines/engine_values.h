@@ -69,6 +69,30 @@ void engine_format_value(char *buf, size_t len, const void *value, const Contrac
  *  `MSC:0` when the tables have none (name NULL or ""). `parameterize MSC:0 consigne (N bytes) = V`. */
 void engine_format_param_port(char *buf, size_t len, const char *module, int port, const char *name);
 
+/* ---- the words of the engines' actions --------------------------------------------------------
+   One place for a run's engines (sup_main.c, ord_main.c) and the simulator (sim_world.c), so that
+   `contract trace` and `contract simulate --verbose` tell an action alike. A run's log prefixes an
+   undo with `undo: `; the simulator's harness reports it bare and its trace conversion adds the
+   prefix (steps-to-trace.ts actionAsLogged). */
+#define ACTION_START_MODULE "start module %s (priority %d)"       /* module, priority            */
+#define ACTION_STOP_MODULE "stop module %s"                       /* module                      */
+#define ACTION_CLAIM_PRIORITY "set priority of %s to %d (claim #%u)" /* module, priority, claim  */
+#define ACTION_RELEASE_PRIORITY "release priority claim #%u on %s" /* claim, module              */
+
+/** Room for the lines below: a parameterize line is the longest (a port, a value, the rest). */
+#define ACTION_LINE_MAX (ACTION_VALUE_MAX + ENGINE_PARAM_PORT_MAX + 48)
+
+/** `parameterize MSC:0 consigne (24 bytes) = {i=1,j=2,k=3}`: a parameter port set (its value as
+ *  engine_format_value writes it, its port as engine_format_param_port names it). */
+void engine_format_parameterize(char *buf, size_t len, const char *module, int port, const char *name,
+                                const void *value, size_t size, const ContractType *type);
+
+/** An event schema's event flow as its actions name it: `A:p =* B:i` (`=>` one shot). */
+void engine_format_event_flow(char *buf, size_t len, const ContractEventFlow *f);
+
+/** A data flow as ORD's actions name it: `A:p -> B:i` (`connect` adds ` * k`, its periodicity). */
+void engine_format_data_flow(char *buf, size_t len, const ContractDataFlow *f);
+
 /** Writes the values of a parameter block as a trace line names them, `(speed = 0.3, mode =
  *  AUTO)` (each value as engine_format_value writes it), cut with `...)` to fit len - 1 bytes;
  *  `()` for no parameters (nvars 0: as the source writes the call); "" when the values are not

@@ -56,10 +56,8 @@ static void ord_advance(void *core, int64_t t) { ord_core_advance(core, t); }
 static void b_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
                         const ContractType *t) {
     (void)ctx;
-    char value[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX], line[ACTION_VALUE_MAX + ENGINE_PARAM_PORT_MAX + 48];
-    engine_format_value(value, sizeof value, v, t);
-    engine_format_param_port(target, sizeof target, m, port, name);
-    snprintf(line, sizeof line, "parameterize %s (%zu bytes) = %s", target, size, value);
+    char line[ACTION_LINE_MAX];
+    engine_format_parameterize(line, sizeof line, m, port, name, v, size, t);
     ContractLog("scheduler", m, -1, 0, line);
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     if (rc != CONTRACT_OK)
@@ -68,9 +66,9 @@ static void b_set_param(void *ctx, const char *m, int port, const char *name, co
 
 static void b_connect(void *ctx, const ContractDataFlow *f) {
     (void)ctx;
-    char line[3 * CONTRACT_NAME_MAX];
-    snprintf(line, sizeof line, "connect %s:%d -> %s:%d * %d", f->src_module, f->src_port, f->dst_module, f->dst_port,
-             f->periodicity);
+    char flow[ACTION_LINE_MAX], line[ACTION_LINE_MAX + 32];
+    engine_format_data_flow(flow, sizeof flow, f);
+    snprintf(line, sizeof line, "connect %s * %d", flow, f->periodicity);
     ContractLog("scheduler", f->src_module, -1, 0, line);
     int rc = SendSubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port, f->periodicity, 1);
     if (rc != CONTRACT_OK)
@@ -80,8 +78,9 @@ static void b_connect(void *ctx, const ContractDataFlow *f) {
 
 static void b_disconnect(void *ctx, const ContractDataFlow *f) {
     (void)ctx;
-    char line[3 * CONTRACT_NAME_MAX];
-    snprintf(line, sizeof line, "disconnect %s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module, f->dst_port);
+    char flow[ACTION_LINE_MAX], line[ACTION_LINE_MAX + 16];
+    engine_format_data_flow(flow, sizeof flow, f);
+    snprintf(line, sizeof line, "disconnect %s", flow);
     ContractLog("scheduler", f->src_module, -1, 0, line);
     SendUnsubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port);
 }

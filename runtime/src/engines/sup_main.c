@@ -179,7 +179,7 @@ static int b_module_running(void *ctx, const char *m) {
    a start it cannot send (M not there, its mailbox full) is `error: not sent: ...`, no hold */
 static void b_start_module(void *ctx, const char *m, int prio) {
     (void)ctx;
-    log_action(m, "start module %s (priority %d)", m, prio);
+    log_action(m, ACTION_START_MODULE, m, prio);
     int rc = ModuleState(m);
     if (rc == CONTRACT_OK) {
         prio_request_start(m, prio); /* read before the start: its run begins at that priority */
@@ -230,7 +230,7 @@ static void b_lock_module(void *ctx, const char *m, int lock) {
    (stopped)`, or kept running for another supervisor, or it had ended (module_hold) */
 static void b_stop_module(void *ctx, const char *m) {
     (void)ctx;
-    log_action(m, "undo: stop module %s", m);
+    log_action(m, "undo: " ACTION_STOP_MODULE, m);
     stop_if_last(m, 1);
 }
 
@@ -247,23 +247,22 @@ static void b_share_module(void *ctx, const char *m, int hold) {
    (a request that cannot be sent is a module_priority record `priority P not applied: ...`) */
 static int b_claim_priority(void *ctx, const char *m, uint32_t id, int prio) {
     (void)ctx;
-    log_action(m, "set priority of %s to %d (claim #%u)", m, prio, id);
+    log_action(m, ACTION_CLAIM_PRIORITY, m, prio, id);
     return prio_request_claim(m, id, prio);
 }
 
 static void b_release_priority(void *ctx, const char *m, uint32_t id) {
     (void)ctx;
-    log_action(m, "undo: release priority claim #%u on %s", id, m);
+    log_action(m, "undo: " ACTION_RELEASE_PRIORITY, id, m);
     prio_request_release(m, id);
 }
 
 static void b_set_param(void *ctx, const char *m, int port, const char *name, const void *v, size_t size,
                         const ContractType *t) {
     (void)ctx;
-    char value[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
-    engine_format_value(value, sizeof value, v, t);
-    engine_format_param_port(target, sizeof target, m, port, name);
-    log_action(m, "parameterize %s (%zu bytes) = %s", target, size, value);
+    char line[ACTION_LINE_MAX];
+    engine_format_parameterize(line, sizeof line, m, port, name, v, size, t);
+    log_action(m, "%s", line);
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     if (not_sent(m, rc))
         fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,
@@ -279,10 +278,10 @@ static int mode_of(ContractEventMode m) { return m == CONTRACT_ONESHOT ? EVENT_O
    the flow's source: `connect A:p =* B:i` (`=>` one shot), `undo: disconnect A:p =* B:i`. */
 static void b_connect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
-    char name[CONTRACT_NAME_MAX];
+    char name[CONTRACT_NAME_MAX], flow[ACTION_LINE_MAX];
     holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
-    log_action(f->src_module, "connect %s:%d %s %s:%d", f->src_module, f->src_port,
-               f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
+    engine_format_event_flow(flow, sizeof flow, f);
+    log_action(f->src_module, "connect %s", flow);
     holds_lock(name);
     holds_take_flow(name);
     not_sent(f->src_module, SendSubscribeEvent(f->src_module, f->src_port, f->dst_module, f->dst_port, mode_of(f->mode)));
@@ -291,10 +290,10 @@ static void b_connect(void *ctx, const ContractEventFlow *f) {
 
 static void b_disconnect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
-    char name[CONTRACT_NAME_MAX];
+    char name[CONTRACT_NAME_MAX], flow[ACTION_LINE_MAX];
     holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
-    log_action(f->src_module, "undo: disconnect %s:%d %s %s:%d", f->src_module, f->src_port,
-               f->mode == CONTRACT_ONESHOT ? "=>" : "=*", f->dst_module, f->dst_port);
+    engine_format_event_flow(flow, sizeof flow, f);
+    log_action(f->src_module, "undo: disconnect %s", flow);
     holds_lock(name);
     int others = holds_drop(name);
     if (others > 0) {

@@ -410,6 +410,23 @@ void engine_format_param_port(char *buf, size_t len, const char *module, int por
     else snprintf(buf, len, "%s:%d", module ? module : "?", port);
 }
 
+void engine_format_parameterize(char *buf, size_t len, const char *module, int port, const char *name,
+                                const void *value, size_t size, const ContractType *type) {
+    char v[ACTION_VALUE_MAX], target[ENGINE_PARAM_PORT_MAX];
+    engine_format_value(v, sizeof v, value, type);
+    engine_format_param_port(target, sizeof target, module, port, name);
+    snprintf(buf, len, "parameterize %s (%zu bytes) = %s", target, size, v);
+}
+
+void engine_format_event_flow(char *buf, size_t len, const ContractEventFlow *f) {
+    snprintf(buf, len, "%s:%d %s %s:%d", f->src_module, f->src_port, f->mode == CONTRACT_ONESHOT ? "=>" : "=*",
+             f->dst_module, f->dst_port);
+}
+
+void engine_format_data_flow(char *buf, size_t len, const ContractDataFlow *f) {
+    snprintf(buf, len, "%s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module, f->dst_port);
+}
+
 void engine_format_params(char *buf, size_t len, const ContractVar *vars, int nvars, const void *block) {
     if (!buf || len == 0) return;
     buf[0] = 0;

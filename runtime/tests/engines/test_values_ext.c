@@ -241,6 +241,16 @@ void test_ext_params_are_named_and_cut_on_a_character(void) {
     CHECK(strcmp(out, "MSC:2") == 0);
     engine_format_param_port(out, sizeof out, "MSC", 2, "");
     CHECK(strcmp(out, "MSC:2") == 0);
+    /* the action words a run and the simulator share */
+    long three = 3;
+    engine_format_parameterize(out, sizeof out, "CTL", 0, "setpoint", &three, sizeof three, &contract_type_long);
+    CHECK(strcmp(out, "parameterize CTL:0 setpoint (8 bytes) = 3") == 0);
+    const ContractEventFlow ef = {"GCS", 0, "REC", 1, CONTRACT_ONESHOT};
+    engine_format_event_flow(out, sizeof out, &ef);
+    CHECK(strcmp(out, "GCS:0 => REC:1") == 0);
+    const ContractDataFlow df = {"ALT", 0, "CTL", 2, 4};
+    engine_format_data_flow(out, sizeof out, &df);
+    CHECK(strcmp(out, "ALT:0 -> CTL:2") == 0);
     engine_format_params(out, sizeof out, vars, 0, &b); /* none: the call as the source writes it */
     CHECK(strcmp(out, "()") == 0);
     engine_format_params(out, sizeof out, NULL, 0, NULL);
