@@ -19,6 +19,10 @@ export interface LinePattern {
 
 const ID = '([A-Za-z_]\\w*)';
 const SERVED = `(?: \\(activation #(\\d+)(?: from ${ID})?\\))?`;
+/** `parameterize M:p NAME (N bytes) = V`, a supervisor's action or ORD's (engine_format_parameterize):
+ *  the port's name after its number since 2026-12-04 (field `name`); older logs: none, and an older
+ *  supervisor's line may end at `(N bytes)`. */
+const PARAMETERIZE = new RegExp(`^parameterize ${ID}:(\\d+)(?: ${ID})? \\(\\d+ bytes\\)(?: = |$)`);
 
 export const SCHEDULER_LINES: readonly LinePattern[] = [
     // each periodic release (its typed record is ord_release); first: the line ORD writes most
@@ -43,7 +47,7 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'unstuck', re: new RegExp(`^${ID} finished release #(\\d+) at last \\(reported stuck, ${ID}\\)$`), keys: ['module', 'release', 'schema'] },
     { what: 'warning', re: /^warning: /, keys: [] },
     // what it does at a schema's activation and deactivation (ord_main.c, since 2026-12-04; the simulator's words)
-    { what: 'parameterize', re: new RegExp(`^parameterize ${ID}:(\\d+)(?: ${ID})? \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port', 'name'] },
+    { what: 'parameterize', re: PARAMETERIZE, keys: ['module', 'port', 'name'] },
     { what: 'connect', re: new RegExp(`^connect ${ID}:(\\d+) -> ${ID}:(\\d+) \\* (\\d+)$`), keys: ['module', 'port', 'to_module', 'to_port', 'periodicity'] },
     { what: 'disconnect', re: new RegExp(`^disconnect ${ID}:(\\d+) -> ${ID}:(\\d+)$`), keys: ['module', 'port', 'to_module', 'to_port'] },
 ];
@@ -70,8 +74,7 @@ export const SUPERVISOR_LINES: readonly LinePattern[] = [
     { what: 'action', re: new RegExp(`^activate supervisor ${ID}\\.${ID}(?:\\(.*\\))? \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
     { what: 'action', re: new RegExp(`^undo: stop ${ID}\\.${ID} \\(activation #(\\d+)\\)$`), keys: ['supervisor', 'function', 'activation'] },
     // (older logs: no ` = value`)
-    // the port's name after its number since 2026-12-04 (`parameterize MSC:0 consigne (24 bytes) = …`: field `name`)
-    { what: 'action', re: new RegExp(`^parameterize ${ID}:(\\d+)(?: ${ID})? \\(\\d+ bytes\\)(?: = |$)`), keys: ['module', 'port', 'name'] },
+    { what: 'action', re: PARAMETERIZE, keys: ['module', 'port', 'name'] },
     // (older logs: no activation number)
     { what: 'action', re: new RegExp(`^subscribe ${ID}:(\\d+) (?:=>|=\\*) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },
     { what: 'action', re: new RegExp(`^undo: unsubscribe ${ID}:(\\d+) :(\\d+)(?: \\(activation #(\\d+)\\))?$`), keys: ['module', 'port', 'in_port', 'activation'] },

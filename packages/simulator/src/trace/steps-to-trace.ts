@@ -99,8 +99,9 @@ export function actionAsLogged(what: string): string {
 
 /** A supervisor's action as the `supervisor` record a run writes, typed by the trace reader (a line it does not know, the simulator's own: an action all the same). */
 function actionRecord(timeNs: number, who: string, what: string): TraceRecord {
-    const rec = engineLine(timeNs, who, 'supervisor', actionAsLogged(what));
-    if (rec.kind === 'unknown') return known(timeNs, who, 'supervisor', actionAsLogged(what), { what: 'action' });
+    const line = actionAsLogged(what);
+    const rec = engineLine(timeNs, who, 'supervisor', line);
+    if (rec.kind === 'unknown') return known(timeNs, who, 'supervisor', line, { what: 'action' });
     const k = rec as KnownRecord;
     return k.fields['what'] === 'action' ? k : { ...k, fields: { what: 'action' } };
 }
