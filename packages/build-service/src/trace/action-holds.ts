@@ -24,9 +24,33 @@ export function flowHoldName(src: string, srcPort: number | string, dst: string,
     const full = `flow-${src}-${srcPort}-${dst}-${dstPort}`;
     const bytes = new TextEncoder().encode(full);
     if (bytes.length < 64) return full;
-    let h = 1469598103934665603n;
-    for (const b of bytes) h = ((h ^ BigInt(b)) * 1099511628211n) & 0xffff_ffff_ffff_ffffn;
-    return `flow-${h.toString(16).padStart(16, '0')}`;
+    return `flow-${fnv1a64(bytes)}`;
+}
+
+/**
+ * 64-bit FNV-1a of `bytes` (with the runtime's offset basis) as 16 hex digits, in four 16-bit lanes (every product stays below 2^53):
+ * h * 0x100000001b3 = h * 0x1b3 + (h << 40), and 40 bits is two lanes and 8 bits. A forged log line
+ * names a flow of up to 4 KB: BigInt arithmetic took ten times as long as reading the line.
+ */
+function fnv1a64(bytes: Uint8Array): string {
+    // module_holds.c's offset basis, 1469598103934665603 = 0x14650fb0739d0383 (not FNV's usual
+    // 0xcbf29ce484222325: the names are the runtime's, so its basis), low lane first
+    let h0 = 0x0383, h1 = 0x739d, h2 = 0x0fb0, h3 = 0x1465;
+    for (const b of bytes) {
+        h0 ^= b;
+        const t0 = h0 * 0x1b3;
+        let t1 = h1 * 0x1b3;
+        let t2 = h2 * 0x1b3 + (h0 << 8);
+        const t3 = h3 * 0x1b3 + (h1 << 8);
+        t1 += t0 >>> 16;
+        h0 = t0 & 0xffff;
+        t2 += t1 >>> 16;
+        h1 = t1 & 0xffff;
+        h3 = (t3 + (t2 >>> 16)) & 0xffff;
+        h2 = t2 & 0xffff;
+    }
+    const hex = (x: number) => x.toString(16).padStart(4, '0');
+    return hex(h3) + hex(h2) + hex(h1) + hex(h0);
 }
 
 /**

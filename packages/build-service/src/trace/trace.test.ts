@@ -152,6 +152,18 @@ describe('reading a log', () => {
         expect(flowHoldName(long, 1, long, 2)).toBe('flow-3d6ad01208bf6728');
         expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(27), 0)).toBe('flow-232cbf124a7b62a0'); // 64 characters
         expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(26), 0)).toBe(`flow-${'A'.repeat(27)}-0-${'B'.repeat(26)}-0`); // 63: as it is
+        // the 16-bit-lane hash is module_holds.c's 64-bit arithmetic, byte for byte, on any name (multi-byte, up to a line's length)
+        const reference = (full: string) => {
+            let h = 1469598103934665603n;
+            for (const byte of new TextEncoder().encode(full)) h = ((h ^ BigInt(byte)) * 1099511628211n) & 0xffff_ffff_ffff_ffffn;
+            return `flow-${h.toString(16).padStart(16, '0')}`;
+        };
+        let seed = 7;
+        const next = () => (seed = (seed * 1103515245 + 12345) % 2147483648);
+        for (let i = 0; i < 500; i++) {
+            const src = Array.from({ length: 40 + (next() % 4000) }, () => String.fromCharCode(65 + (next() % 2000))).join('');
+            expect(flowHoldName(src, i, 'DST', i % 9)).toBe(reference(`flow-${src}-${i}-DST-${i % 9}`));
+        }
         const of = (line: string) => confirmingHold((parseRecordLine('L', 2, `1,w,SUP,supervisor,,,0,${line}`) as KnownRecord).fields);
         expect(of('start module GCS (priority 30)')).toEqual({ kind: 'module_hold', peer: 'GCS', detail: 'hold taken (started it)' });
         expect(of('undo: stop module GCS')).toEqual({ kind: 'module_hold', peer: 'GCS', detail: 'last hold dropped (stopped)' });
