@@ -1,7 +1,7 @@
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { debounce } from '../util/dom.js';
-import { toast } from '../util/toast.js';
+import { dismissToasts, toast } from '../util/toast.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { ServerEvents } from './server-events.js';
 
@@ -35,11 +35,22 @@ export function watchExternalChanges(workspace: Workspace, lsp: LspClient): Serv
     for (const p of paths) if (typeof p === 'string') void workspace.externalChange(p);
   });
   let wasDisconnected = false;
+  let sessionEnded = false;
   events.onLost(() => {
-    if (!wasDisconnected) toast('warning', 'Lost the connection to the IDE server: edits are kept in this browser until it is back');
+    if (!wasDisconnected) toast('warning', `${LOST}: edits are kept in this browser until it is back`);
     wasDisconnected = true;
+    // a server that answers but refuses the socket was restarted (a new session token): said at
+    // once, and until the tab has a session again, rather than a quiet "disconnected" status
+    if (!sessionEnded) void sessionRefused().then((refused) => {
+      if (!refused || sessionEnded) return;
+      sessionEnded = true;
+      dismissToasts(LOST);
+      toast('error', SESSION_ENDED, { sticky: true });
+    });
   });
   events.on('hello', () => {
+    if (sessionEnded) dismissToasts(SESSION_ENDED);
+    sessionEnded = false;
     if (wasDisconnected) {
       wasDisconnected = false;
       toast('info', 'Reconnected to the IDE server: saving pending edits');
@@ -48,4 +59,17 @@ export function watchExternalChanges(workspace: Workspace, lsp: LspClient): Serv
     }
   });
   return events;
+}
+
+const LOST = 'Lost the connection to the IDE server';
+export const SESSION_ENDED = 'The IDE server was restarted and no longer knows this tab\'s session: open the address it printed ' +
+  '(…/?token=…) in this tab or another one of this browser. Your unsaved edits are kept in this browser and saved then.';
+
+/** True when the IDE server answers but refuses this tab's session (401); false when it is unreachable. */
+async function sessionRefused(): Promise<boolean> {
+  try {
+    return (await fetch('/api/info', { cache: 'no-store' })).status === 401;
+  } catch {
+    return false;
+  }
 }

@@ -78,7 +78,7 @@ export class LiveFollower {
         if (typeof m.url === 'string' && !this.stream) {
           this.stream = new JobStream(m.url, {
             event: (e) => this.receive(e),
-            lost: (why) => this.finish(why === undefined ? 'lost the connection to the build service: the trace stops here (the run\'s CSV logs hold all of it)' : `the trace stream could not be opened (${why})`),
+            lost: (why) => this.finish(why === undefined ? 'lost the connection to the build service: the trace stops here (a run that goes on to its end has all of it in its CSV logs, which Replay shows)' : `the trace stream could not be opened (${why})`),
           }, this.openSocket);
         }
         return;

@@ -595,13 +595,25 @@ describe('IDE in headless Chromium', () => {
     const port = Number(new URL(s.server.url).port);
     await s.server.close();
     s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false }); // a new token
+    // said at once, before any edit: the status alone ("disconnected") did not say what to do
+    const ended = page.locator('.toast.error', { hasText: 'The IDE server was restarted and no longer knows this tab' });
+    await ended.waitFor({ timeout: 15_000 });
+    expect(await ended.textContent()).toContain('open the address it printed');
+    await page.waitForTimeout(6000); // stays (not a 15 s toast's fade) and is not repeated by later reconnects
+    expect(await ended.count()).toBe(1);
     await placeCursor(page, 'synchronous module MSC');
     await page.keyboard.insertText('// typed after the restart\n');
-    const notice = page.locator('.toast.error', { hasText: "no longer knows this tab's session" }).first();
+    const notice = page.locator('.toast.error', { hasText: "Not saved: the IDE server no longer knows this tab's session" }).first();
     await notice.waitFor({ timeout: 10_000 });
     expect(await notice.textContent()).toContain('Open the address it printed');
     expect(await notice.textContent()).not.toContain('Reload from disk');
     expect(disk('smodule3.contract')).not.toContain('typed after the restart');
+    // the new address opened in another tab of the browser gives this one its session back too
+    const other = await page.context().newPage();
+    await other.goto(s.server.openUrl);
+    await expect.poll(() => ended.count(), { timeout: 15_000 }).toBe(0);
+    await expect.poll(() => disk('smodule3.contract'), { timeout: 10_000 }).toContain('// typed after the restart'); // saved on reconnecting
+    await other.close();
     await page.goto(s.server.openUrl);
     await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
     await openFile(page, 'smodule3.contract');

@@ -553,7 +553,7 @@ describe('Monitor in headless Chromium', () => {
       for (const [job, outcome] of [['cancelled', 'cancelled'], ['failed', 'failed: run: MAA exited with status 3'], ['killed', 'connection to the build service lost']] as const) {
         await page.evaluate(([job, url]) => (window as any).__ide.monitor.followLive(job, url), [job, url(job)]);
         // (the lost stream also says, as before, that the trace is not whole)
-        const label = `Build & Run job ${job} · ended: ${outcome}${job === 'killed' ? ' (trace not whole: lost the connection to the build service: the trace stops here (the run\'s CSV logs hold all of it))' : ''}`;
+        const label = `Build & Run job ${job} · ended: ${outcome}${job === 'killed' ? ' (trace not whole: lost the connection to the build service: the trace stops here (a run that goes on to its end has all of it in its CSV logs, which Replay shows))' : ''}`;
         await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(label);
         // nowhere live: the header, the run list, the time line, the follow button
         expect(await page.locator('.monitor-view').getAttribute('data-mode')).toBe('replay');
