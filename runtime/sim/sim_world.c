@@ -32,11 +32,16 @@ typedef struct SimSup {
     SupCore *core;
     SimSub *subs;
     int nsubs, capsubs;
+    int *held;           /* the modules (indices in mods) it holds: started or shared          */
+    int nheld, capheld;
+    char (*flows)[ENGINE_HOLD_NAME_MAX]; /* the event flows it holds (engine_flow_hold_name)   */
+    int nflows, capflows;
 } SimSup;
 
 typedef struct SimModule {
     char name[64];
     int started;        /* started by an engine (event schema, activate ... module)          */
+    int start_marked;   /* an engine started it, not stopped since: module_holds.c's M.started */
     int crashed;
     int outstanding;    /* releases not acked yet                                            */
     int64_t exec_ns;    /* -1: its C (wcet) from ORD's table, else 0                          */
@@ -190,18 +195,89 @@ static int sio_module_running(void *ctx, const char *module) {
     SimSup *p = ctx;
     return sim_world_module_running(p->w, module) == 1;
 }
+/* ---- module holds: what module_holds.c and sup_main.c decide in a run, with the same
+   module_hold records. A module is stopped when the last supervisor holding it lets it go, and
+   only when an engine started it (one started otherwise, e.g. run by ORD, is left running). */
+
+static int holds_index(const SimSup *p, int mod) {
+    for (int k = 0; k < p->nheld; k++)
+        if (p->held[k] == mod) return k;
+    return -1;
+}
+
+static int hold_take(SimSup *p, int mod) {
+    if (holds_index(p, mod) >= 0) return 0;
+    if (grow((void **)&p->held, &p->capheld, p->nheld + 1, sizeof *p->held) != 0) return -1;
+    p->held[p->nheld++] = mod;
+    return 0;
+}
+
+/* drops p's hold on mod; the number of other supervisors that still hold it */
+static int hold_drop(SimSup *p, int mod) {
+    int k = holds_index(p, mod);
+    if (k >= 0) p->held[k] = p->held[--p->nheld];
+    int others = 0;
+    for (int s = 0; s < p->w->nsups; s++)
+        if (&p->w->sups[s] != p && holds_index(&p->w->sups[s], mod) >= 0) others++;
+    return others;
+}
+
+static void hold_record(SimSup *p, const char *module, const char *detail) {
+    record(p->w, p->v->name, "module_hold", module, -1, "%s", detail);
+}
+
+/* sup_main.c's stop_if_last: kept for the others, left running, it had ended, or stopped */
+static void stop_if_last(SimSup *p, const char *module, int started_here) {
+    int i = module_index(p->w, module, 1);
+    if (i < 0) return;
+    SimModule *m = &p->w->mods[i];
+    int others = hold_drop(p, i);
+    if (others > 0) {
+        char detail[96];
+        snprintf(detail, sizeof detail, "hold dropped (kept running: still used by %d other supervisor(s))", others);
+        hold_record(p, module, detail);
+        return;
+    }
+    int marked = m->start_marked;
+    m->start_marked = 0;
+    if (!marked && !started_here) {
+        hold_record(p, module, "last hold dropped (left running: not started by an engine)");
+        return;
+    }
+    if (m->crashed) {
+        hold_record(p, module, "last hold dropped (it had ended)");
+        return;
+    }
+    m->started = 0;
+    hold_record(p, module, "last hold dropped (stopped)");
+}
+
 static void sio_start_module(void *ctx, const char *module, int priority) {
     SimSup *p = ctx;
     int i = module_index(p->w, module, 1);
-    if (i >= 0 && !p->w->mods[i].crashed) p->w->mods[i].started = 1;
+    int crashed = i >= 0 && p->w->mods[i].crashed;
     action(p->w, p->v->name, ACTION_START_MODULE "%s", module, priority,
-           i >= 0 && p->w->mods[i].crashed ? ": it has crashed, it does not start" : "");
+           crashed ? ": it has crashed, it does not start" : "");
+    if (i < 0 || crashed) return; /* a run's start that cannot be sent takes no hold */
+    p->w->mods[i].started = 1;
+    p->w->mods[i].start_marked = 1;
+    if (hold_take(p, i) == 0) hold_record(p, module, "hold taken (started it)");
 }
+/* `stop module M` (the undo of its start: steps-to-trace.ts adds `undo: `), then what its hold decided */
 static void sio_stop_module(void *ctx, const char *module) {
     SimSup *p = ctx;
-    int i = module_index(p->w, module, 1);
-    if (i >= 0) p->w->mods[i].started = 0;
     action(p->w, p->v->name, ACTION_STOP_MODULE, module);
+    stop_if_last(p, module, 1);
+}
+/* a module running when the supervisor needs it (started by another one, or by ORD): shared */
+static void sio_share_module(void *ctx, const char *module, int hold) {
+    SimSup *p = ctx;
+    if (!hold) {
+        stop_if_last(p, module, 0);
+        return;
+    }
+    int i = module_index(p->w, module, 1);
+    if (i >= 0 && hold_take(p, i) == 0) hold_record(p, module, "hold taken (it was running)");
 }
 static int sio_claim_priority(void *ctx, const char *module, uint32_t id, int priority) {
     SimSup *p = ctx;
@@ -219,17 +295,43 @@ static void sio_set_param(void *ctx, const char *module, int port, const char *n
     engine_format_parameterize(line, sizeof line, module, port, name, value, size, type);
     action(p->w, p->v->name, "%s", line);
 }
+/* ---- event flow holds: sup_main.c's b_connect / b_disconnect, the same flow_hold records. One
+   flow is one subscription whichever supervisors ask for it: the last one lets it go. */
+
+static int flow_hold_index(const SimSup *p, const char *name) {
+    for (int k = 0; k < p->nflows; k++)
+        if (strcmp(p->flows[k], name) == 0) return k;
+    return -1;
+}
+
 static void sio_connect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
-    char flow[ACTION_LINE_MAX];
+    char flow[ACTION_LINE_MAX], name[ENGINE_HOLD_NAME_MAX];
     engine_format_event_flow(flow, sizeof flow, f);
+    engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     action(p->w, p->v->name, "connect %s", flow);
+    if (flow_hold_index(p, name) < 0) {
+        if (grow((void **)&p->flows, &p->capflows, p->nflows + 1, sizeof *p->flows) != 0) return;
+        scopy(p->flows[p->nflows++], sizeof *p->flows, name);
+    }
+    record(p->w, p->v->name, "flow_hold", name, -1, "hold taken");
 }
 static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
-    char flow[ACTION_LINE_MAX];
+    char flow[ACTION_LINE_MAX], name[ENGINE_HOLD_NAME_MAX];
     engine_format_event_flow(flow, sizeof flow, f);
+    engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     action(p->w, p->v->name, "disconnect %s", flow);
+    int k = flow_hold_index(p, name);
+    if (k >= 0) memcpy(p->flows[k], p->flows[--p->nflows], sizeof *p->flows);
+    int others = 0;
+    for (int s = 0; s < p->w->nsups; s++)
+        if (&p->w->sups[s] != p && flow_hold_index(&p->w->sups[s], name) >= 0) others++;
+    if (others > 0)
+        record(p->w, p->v->name, "flow_hold", name, -1,
+               "hold dropped (kept connected: used by %d other supervisor(s))", others);
+    else
+        record(p->w, p->v->name, "flow_hold", name, -1, "last hold dropped (disconnected)");
 }
 static void sio_subscribe(void *ctx, const char *module, int src_port, int in_port,
                           ContractEventMode mode, uint32_t id) {
@@ -492,6 +594,7 @@ SimWorld *sim_world_create(const ContractSupervisorVocabulary *const *sups, int 
         io.module_running = sio_module_running;
         io.start_module = sio_start_module;
         io.stop_module = sio_stop_module;
+        io.share_module = sio_share_module;
         io.claim_priority = sio_claim_priority;
         io.release_priority = sio_release_priority;
         io.set_param = sio_set_param;
@@ -543,6 +646,8 @@ void sim_world_destroy(SimWorld *w) {
     for (int i = 0; i < w->nsups; i++) {
         if (w->sups[i].core) sup_core_destroy(w->sups[i].core);
         free(w->sups[i].subs);
+        free(w->sups[i].held);
+        free(w->sups[i].flows);
     }
     if (w->ord) ord_core_destroy(w->ord);
     free(w->sups);

@@ -90,6 +90,12 @@ void engine_format_parameterize(char *buf, size_t len, const char *module, int p
 /** An event schema's event flow as its actions name it: `A:p =* B:i` (`=>` one shot). */
 void engine_format_event_flow(char *buf, size_t len, const ContractEventFlow *f);
 
+/** The name of an event flow's holds, in the run's hold files and flow_hold records (and the
+ *  simulator's): `flow-SRC-o-DST-i`, or `flow-<16 hex digits>` (a hash of it) when that is
+ *  ENGINE_HOLD_NAME_MAX characters or more. */
+#define ENGINE_HOLD_NAME_MAX 64 /* a module name's room, libmodule.h CONTRACT_NAME_MAX (module_holds.c checks) */
+void engine_flow_hold_name(char *out, size_t n, const char *src, int src_port, const char *dst, int dst_port);
+
 /** A data flow as ORD's actions name it: `A:p -> B:i` (`connect` adds ` * k`, its periodicity). */
 void engine_format_data_flow(char *buf, size_t len, const ContractDataFlow *f);
 

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 
+#include "engine_values.h"
 #include "hold_lock.h"
 #include "libmodule/libmodule.h"
 
@@ -78,6 +79,8 @@ void holds_unlock(const char *module) {
 /* <M>.engine-stopped.hold: not an identifier, so never read as a supervisor's hold of a module */
 #define STOPPED_MARK "engine-stopped"
 
+_Static_assert(ENGINE_HOLD_NAME_MAX == CONTRACT_NAME_MAX, "a flow's hold name has a module name's room");
+
 static int path_of(char *buf, size_t size, const char *holder, const char *module) {
     int n = snprintf(buf, size, "%s/%s.%s.hold", ContractRunDir(), holder, module);
     return n > 0 && (size_t)n < size ? 0 : -1;
@@ -142,18 +145,6 @@ int holds_started(const char *module, int clear) {
     int marked = access(path, F_OK) == 0;
     if (marked && clear) unlink(path);
     return marked;
-}
-
-void holds_flow_name(char *out, size_t n, const char *src, int src_port, const char *dst, int dst_port) {
-    char full[3 * CONTRACT_NAME_MAX];
-    snprintf(full, sizeof full, "flow-%s-%d-%s-%d", src, src_port, dst, dst_port);
-    if (strlen(full) < CONTRACT_NAME_MAX) {
-        snprintf(out, n, "%s", full);
-        return;
-    }
-    unsigned long long h = 1469598103934665603ULL; /* FNV-1a: a stable name per flow */
-    for (const char *p = full; *p; p++) h = (h ^ (unsigned char)*p) * 1099511628211ULL;
-    snprintf(out, n, "flow-%016llx", h);
 }
 
 int holds_take_flow(const char *name) {

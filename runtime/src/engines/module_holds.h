@@ -13,7 +13,7 @@
  *                      mailbox, not one busy in its run
  *   holds-<M>.hold     the lock of M's holds (hold_lock.h)
  *   <SUP>.<F>.hold     supervisor SUP's active event schemas use event flow F, named
- *                      flow-<SRC>-<o>-<DST>-<i> (holds_flow_name): the last user disconnects it
+ *                      flow-<SRC>-<o>-<DST>-<i> (engine_flow_hold_name): the last user disconnects it
  * The launcher removes a crashed supervisor's <SUP>.*.hold (and a crashed module's
  * <M>.started.hold) with its other files, and every *.hold at the end of a run.
  *
@@ -54,8 +54,8 @@ int holds_stopped(const char *module, int clear);
 /** Event flows are held like modules (same files and lock, under the flow's own name): an
  *  event flow `SRC:o =* DST:i` is one subscription at SRC whichever schemas ask for it, so a
  *  supervisor's undo must not disconnect it while another supervisor's active schema uses it.
- *  The name: `flow-SRC-o-DST-i` (`flow-<hash>` when longer than a module name). */
-void holds_flow_name(char *out, size_t n, const char *src, int src_port, const char *dst, int dst_port);
+ *  The name: engine_flow_hold_name (engine_values.h), `flow-SRC-o-DST-i` (`flow-<hash>` when
+ *  longer than a module name). */
 /** This supervisor uses flow `name`. 0, or -1 (logged). Drop it with holds_drop(name). */
 int holds_take_flow(const char *name);
 

@@ -279,7 +279,7 @@ static int mode_of(ContractEventMode m) { return m == CONTRACT_ONESHOT ? EVENT_O
 static void b_connect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
     char name[CONTRACT_NAME_MAX], flow[ACTION_LINE_MAX];
-    holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
+    engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     engine_format_event_flow(flow, sizeof flow, f);
     log_action(f->src_module, "connect %s", flow);
     holds_lock(name);
@@ -291,7 +291,7 @@ static void b_connect(void *ctx, const ContractEventFlow *f) {
 static void b_disconnect(void *ctx, const ContractEventFlow *f) {
     (void)ctx;
     char name[CONTRACT_NAME_MAX], flow[ACTION_LINE_MAX];
-    holds_flow_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
+    engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     engine_format_event_flow(flow, sizeof flow, f);
     log_action(f->src_module, "undo: disconnect %s", flow);
     holds_lock(name);

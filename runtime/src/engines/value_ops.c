@@ -423,6 +423,20 @@ void engine_format_event_flow(char *buf, size_t len, const ContractEventFlow *f)
              f->dst_module, f->dst_port);
 }
 
+void engine_flow_hold_name(char *out, size_t n, const char *src, int src_port, const char *dst, int dst_port) {
+    char full[3 * ENGINE_HOLD_NAME_MAX];
+    snprintf(full, sizeof full, "flow-%s-%d-%s-%d", src, src_port, dst, dst_port);
+    if (strlen(full) < ENGINE_HOLD_NAME_MAX) {
+        snprintf(out, n, "%s", full);
+        return;
+    }
+    /* FNV-1a's arithmetic: a stable name per flow (its offset basis is not FNV's usual
+       0xcbf29ce484222325, but names already written depend on it: kept) */
+    unsigned long long h = 1469598103934665603ULL;
+    for (const char *p = full; *p; p++) h = (h ^ (unsigned char)*p) * 1099511628211ULL;
+    snprintf(out, n, "flow-%016llx", h);
+}
+
 void engine_format_data_flow(char *buf, size_t len, const ContractDataFlow *f) {
     snprintf(buf, len, "%s:%d -> %s:%d", f->src_module, f->src_port, f->dst_module, f->dst_port);
 }

@@ -129,6 +129,14 @@ void test_sim_report_story_records(void) {
     HAS(record(out, 8), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 release_ns=4000000000 release=");
     HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"ORD\",\"detail\":\"activation=4 ACK_FINISHED\"");
     HAS(record(out, 8), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 response_ns=");
+    /* the holds of schemaReceptionMessage's modules and flow, as a run's engines write them:
+       taken at 1 ms (after their action lines), the last (only) holder's undo at 300 ms */
+    HAS(record(out, 1), "\"module\":\"SUP\",\"kind\":\"flow_hold\",\"peer\":\"flow-MAA-0-MAB-0\",\"detail\":\"hold taken\"");
+    HAS(record(out, 1), "\"module\":\"SUP\",\"kind\":\"module_hold\",\"peer\":\"MAA\",\"detail\":\"hold taken (started it)\"");
+    HAS(record(out, 2), "\"kind\":\"flow_hold\",\"peer\":\"flow-MAA-0-MAB-0\",\"detail\":\"last hold dropped (disconnected)\"");
+    HAS(record(out, 2), "\"kind\":\"module_hold\",\"peer\":\"MAB\",\"detail\":\"last hold dropped (stopped)\"");
+    const char *r1 = raw_record(out, 1);
+    CHECK(seq_of(r1, "\"what\":\"start module MAA") < seq_of(r1, "\"peer\":\"MAA\",\"detail\":\"hold taken (started it)\""));
     /* the four lists in one order (seq): at 300 ms MAA's event taken, FIRST inactive, its undo,
        SECOND active, its activation of schemaCommande1, ORD's release of MSA */
     const char *r2 = raw_record(out, 2);

@@ -16,7 +16,7 @@ export interface ConfirmingHold {
 }
 
 /**
- * The name of an event flow's holds (a flow_hold record's peer), as module_holds.c holds_flow_name
+ * The name of an event flow's holds (a flow_hold record's peer), as value_ops.c engine_flow_hold_name
  * makes it: `flow-SRC-p-DST-i`, or, when that is 64 characters or more (CONTRACT_NAME_MAX), `flow-`
  * and the 16 hex digits of its 64-bit FNV-1a hash.
  */
@@ -33,7 +33,7 @@ export function flowHoldName(src: string, srcPort: number | string, dst: string,
  * names a flow of up to 4 KB: BigInt arithmetic took ten times as long as reading the line.
  */
 function fnv1a64(bytes: Uint8Array): string {
-    // module_holds.c's offset basis, 1469598103934665603 = 0x14650fb0739d0383 (not FNV's usual
+    // engine_flow_hold_name's offset basis (value_ops.c), 1469598103934665603 = 0x14650fb0739d0383 (not FNV's usual
     // 0xcbf29ce484222325: the names are the runtime's, so its basis), low lane first
     let h0 = 0x0383, h1 = 0x739d, h2 = 0x0fb0, h3 = 0x1465;
     for (const b of bytes) {

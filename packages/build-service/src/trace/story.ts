@@ -70,6 +70,11 @@ function flowName(peer: string): string {
     return m ? `${m[1]}:${m[2]} -> ${m[3]}:${m[4]}` : peer;
 }
 
+/** A hold record as the story tells it: `module M: hold taken (it was running)`, `event flow A:0 -> B:0: hold taken`. */
+export function holdText(kind: 'module_hold' | 'flow_hold', peer: string, detail: string): string {
+    return kind === 'module_hold' ? `module ${peer}: ${detail}` : `event flow ${flowName(peer)}: ${detail}`;
+}
+
 /** `1 release`, `2 releases`. */
 function plural(n: number, one: string, many = `${one}s`): string {
     return `${n} ${n === 1 ? one : many}`;
@@ -150,7 +155,7 @@ export class StoryTeller {
         // confirms the action line just told (a log of an older version has no such line: all told)
         if (k.kind === 'module_hold' || k.kind === 'flow_hold') {
             if (this.confirms(k)) return undefined;
-            return k.kind === 'module_hold' ? `${at(k)} module ${k.peer}: ${k.detail}` : `${at(k)} event flow ${flowName(k.peer)}: ${k.detail}`;
+            return `${at(k)} ${holdText(k.kind, k.peer, k.detail)}`;
         }
         if (k.kind === 'scheduler' && (what === 'held' || what === 'resumed' || what === 'deactivate')) {
             const schema = String(k.fields['schema']);

@@ -147,7 +147,7 @@ describe('reading a log', () => {
 
     it('names the hold record that only confirms an action line, with the runtime\'s flow hold names', () => {
         expect(flowHoldName('SCN', 0, 'DIV', 0)).toBe('flow-SCN-0-DIV-0');
-        // 64 characters or more: module_holds.c holds_flow_name's FNV-1a hash (the C code run on these names)
+        // 64 characters or more: value_ops.c engine_flow_hold_name's FNV-1a hash (the C code run on these names)
         const long = 'M'.repeat(30);
         expect(flowHoldName(long, 1, long, 2)).toBe('flow-3d6ad01208bf6728');
         expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(27), 0)).toBe('flow-232cbf124a7b62a0'); // 64 characters

@@ -5,6 +5,7 @@
 import { readableCause, schedulerLineFields, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
 import { actionAsLogged, engineLine, typedRecord } from '../trace/steps-to-trace.js';
+import { toldHolds } from './told-holds.js';
 
 /**
  * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
@@ -127,6 +128,8 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             }));
             if (options.verbose) {
                 for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.who === 'ORD' ? a.what : actionAsLogged(a.what))}` });
+                // what a module hold decided beyond its action line: shared, kept running for another supervisor, ended
+                for (const h of toldHolds(s.record.actions, s.record.records ?? [])) happened.push({ t: h.t, seq: h.seq, text: `  ${h.who}: ${safe(h.text)}` });
                 const told = misses.misses(s.record);
                 // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
                 const log = told.length ? s.record.log.filter((l) => !isMissLine(l)) : s.record.log;

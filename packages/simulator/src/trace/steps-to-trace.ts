@@ -11,9 +11,11 @@
  *   and ORD's `release M (S)` → `ord_release` records (the cycle counted from 0 at each activation);
  * - `actions`: what the engines did → a supervisor's `supervisor` action record, in the words a
  *   run's log holds (actionAsLogged), each typed by the trace reader; then, as a run writes them, the
- *   hold it takes or drops (`start module M` → `module_hold` `hold taken (started it)`, `undo: stop
- *   module M` → `last hold dropped (stopped)`, `connect A:p =* B:i` / `undo: disconnect …` →
- *   `flow_hold` `hold taken` / `last hold dropped (disconnected)` on the flow's hold name), a priority
+ *   hold it takes or drops, when the harness does not write its holds itself (an older one: `start
+ *   module M` → `module_hold` `hold taken (started it)`, `undo: stop module M` → `last hold dropped
+ *   (stopped)`, `connect A:p =* B:i` / `undo: disconnect …` → `flow_hold` `hold taken` / `last hold
+ *   dropped (disconnected)` on the flow's hold name; a newer one writes them as `records`, with what
+ *   a run's engines decide when supervisors share a module or a flow), a priority
  *   claim's `module_priority`, and before an `activate schema` its START request to ORD
  *   (`request_received`: which rule activated a schema); ORD's `ORD:0 "S" (deadline miss)` →
  *   `ord_deadline_miss`; ORD's `parameterize …`, `connect A:p -> B:i * k`, `disconnect …` → the
@@ -118,6 +120,8 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
     const push = (rec: TraceRecord) => { out.push(rec); seqs.push(cur); };
     const withLog = steps.some((s) => Array.isArray(s.log));
     const withRecords = steps.some((s) => Array.isArray(s.records));
+    /** The hold kinds the harness writes itself (sim_world.c, as a run's engines: shared, kept, left running, ended); the others told from the action. */
+    const harnessHolds = new Set(steps.flatMap((s) => (s.records ?? []).map((r) => r.kind)).filter((k) => k === 'module_hold' || k === 'flow_hold'));
     /**
      * Per periodic schema: its cycle's number (from 0 at each activation) and the modules released in
      * it (a cycle releases each module once, at its precedence's times: a module released again starts the next).
@@ -189,7 +193,8 @@ export function stepsToTrace(steps: TraceStep[], scenario?: string): TraceRecord
             const action = actionRecord(t, a.who, a.what);
             push(action);
             // what a run writes right after the line: the hold taken or dropped (module, event flow), the priority
-            const hold = action.kind === 'supervisor' && !NOT_STARTED.test(a.what) ? confirmingHold((action as KnownRecord).fields) : undefined;
+            const told = action.kind === 'supervisor' && !NOT_STARTED.test(a.what) ? confirmingHold((action as KnownRecord).fields) : undefined;
+            const hold = told && harnessHolds.has(told.kind) ? undefined : told;
             if (hold) push(known(t, a.who, hold.kind, hold.detail, {}, hold.peer));
             else if ((m = SET_PRIORITY.exec(a.what))) push(known(t, a.who, 'module_priority', a.what, {}, m[1]!));
             if (!withLog && (m = ACTIVATE_SUPERVISOR.exec(a.what) ?? STOP_FUNCTION.exec(a.what))) {

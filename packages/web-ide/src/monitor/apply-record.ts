@@ -183,7 +183,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         held.set(k.peer, sv.lastRule ?? '');
         if (!sv.actionLines) sv.actionsDone++;
         if (k.kind === 'module_hold') noteStarted(s, k.module, k.peer);
-      } else if (k.detail.startsWith('last hold dropped')) {
+      } else if (k.detail.startsWith('last hold dropped') || k.detail.startsWith('hold dropped')) {
+        // its hold is gone either way: the last one, or kept for another supervisor (`hold dropped (kept running: …)`)
         held.delete(k.peer);
         if (!sv.actionLines) sv.actionsUndone++;
       }

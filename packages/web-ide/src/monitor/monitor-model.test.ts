@@ -327,6 +327,20 @@ describe('a supervisor\'s actions counted once', () => {
     expect([sup.actionsDone, sup.actionsUndone]).toEqual([4, 4]);
     expect([...sup.heldModules.keys(), ...sup.heldFlows.keys()]).toEqual([]);
   });
+  it('a module and a flow kept for another supervisor are no longer held by the one that let them go', () => {
+    const sup = fold([
+      `1,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,
+      `2,${W},SUP,supervisor,MAA,,0,connect MAA:0 =* MAB:0`,
+      `3,${W},SUP,flow_hold,flow-MAA-0-MAB-0,,0,hold taken`,
+      `4,${W},SUP,module_hold,MAA,,0,hold taken (it was running)`,
+      `5,${W},SUP,supervisor,,,0,undo: deactivate schema watch (event schema)`,
+      `6,${W},SUP,supervisor,MAA,,0,undo: disconnect MAA:0 =* MAB:0`,
+      `7,${W},SUP,flow_hold,flow-MAA-0-MAB-0,,0,hold dropped (kept connected: used by 1 other supervisor(s))`,
+      `8,${W},SUP,module_hold,MAA,,0,hold dropped (kept running: still used by 1 other supervisor(s))`,
+    ]);
+    expect([...sup.heldModules.keys(), ...sup.heldFlows.keys()]).toEqual([]);
+    expect([sup.actionsDone, sup.actionsUndone]).toEqual([2, 2]);
+  });
   it('a log of an older version, without those lines, counts its holds and priorities', () => {
     const sup = fold([
       `1,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,

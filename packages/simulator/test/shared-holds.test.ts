@@ -1,0 +1,118 @@
+/**
+ * Two supervisors using the same modules and event flow (one event schema each activates): the
+ * simulator decides their holds as a run's engines do (module_holds.c, sup_main.c) and says it in
+ * the same records and words. The first one's undo leaves the modules running and the flow
+ * connected for the other (`hold dropped (kept running: still used by 1 other supervisor(s))`),
+ * the other's undo stops them; a module that crashed meanwhile is said to have ended.
+ */
+import { mkdtempSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { renderStory, type KnownRecord } from '@contract-studio/build-service/trace';
+import { loadScenario, runLoadedScenario, textReport, type PreparedProject } from '../src/index.js';
+import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
+import { prepared } from './support.js';
+
+const FILES: Record<string, string> = {
+    'scn.contract': 'asynchronous module SCN {\n    event flows { out :0 string seen; }\n}\n',
+    'lgr.contract': 'asynchronous module LGR {\n    event flows { in :0 string line; }\n}\n',
+    'watch.contract': 'import "scn.contract";\nimport "lgr.contract";\n\nevent schema watch() {\n    modules { SCN (); LGR (); }\n    communications { SCN:0 =* LGR:0; }\n}\n',
+    'alf.contract': 'import "watch.contract";\n\nsupervisor ALF {\n    first() {\n        rules {\n            USE: [elapsed=1ms] activate schema watch() [elapsed=20ms]\n        }\n    }\n}\n',
+    'bet.contract': 'import "watch.contract";\n\nsupervisor BET {\n    second() {\n        rules {\n            USE: [elapsed=5ms] activate schema watch() [elapsed=40ms]\n        }\n    }\n}\n',
+};
+
+let dir: string;
+let project: PreparedProject;
+
+beforeAll(async () => {
+    dir = mkdtempSync(join(tmpdir(), 'sim-shared-holds-'));
+    mkdirSync(join(dir, 'scenarios'));
+    for (const [name, text] of Object.entries(FILES)) writeFileSync(join(dir, name), text);
+    project = await prepared(dir);
+}, 240_000);
+afterAll(() => rmSync(dir, { recursive: true, force: true }));
+
+async function run(text: string) {
+    const s = loadScenario(join(dir, 'scenarios', 'share.scenario'), 'share.scenario', text, project.index);
+    expect(s.diagnostics).toEqual([]);
+    const r = await runLoadedScenario(project, s);
+    expect(r.error).toBeUndefined();
+    return r;
+}
+
+/** `contract trace`'s lines of the two supervisors, without the time column. */
+const story = (r: Awaited<ReturnType<typeof run>>) => renderStory(stepsToTrace(r.steps.map(traceStepOf)))
+    .map((l) => l.slice(11)).filter((l) => /^(ALF|BET) /.test(l) && !/ (rule|function) /.test(l));
+
+describe('modules and event flows two supervisors share', () => {
+    it('stay running and connected until the last one lets them go, told as a run tells it', async () => {
+        const r = await run([
+            'start ALF.first()', 'start BET.second()',
+            'expect at 10ms module SCN running',
+            // ALF's undo (20 ms) keeps them for BET; the simulator used to stop them
+            'expect at 30ms module SCN running', 'expect module LGR running',
+            'expect at 50ms module SCN stopped', 'expect module LGR stopped',
+        ].join('\n'));
+        expect(r.failures.map((f) => f.message)).toEqual([]);
+        expect(story(r)).toEqual([
+            'ALF  activate schema watch() (event schema)',
+            'ALF  connect SCN:0 =* LGR:0',
+            'ALF  start module SCN (priority 30)',
+            'ALF  start module LGR (priority 30)',
+            'BET  activate schema watch() (event schema)',
+            'BET  connect SCN:0 =* LGR:0',
+            'BET  module SCN: hold taken (it was running)',
+            'BET  module LGR: hold taken (it was running)',
+            'ALF  undo: deactivate schema watch (event schema)',
+            'ALF  undo: disconnect SCN:0 =* LGR:0',
+            'ALF  event flow SCN:0 -> LGR:0: hold dropped (kept connected: used by 1 other supervisor(s))',
+            'ALF  undo: stop module SCN',
+            'ALF  module SCN: hold dropped (kept running: still used by 1 other supervisor(s))',
+            'ALF  undo: stop module LGR',
+            'ALF  module LGR: hold dropped (kept running: still used by 1 other supervisor(s))',
+            'BET  undo: deactivate schema watch (event schema)',
+            'BET  undo: disconnect SCN:0 =* LGR:0',
+            'BET  module SCN: last hold dropped (stopped)',
+            'BET  module LGR: last hold dropped (stopped)',
+        ]);
+        // each hold record once, as the harness wrote it (none added from the action lines)
+        const holds = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => x.kind === 'module_hold' || x.kind === 'flow_hold') as KnownRecord[];
+        expect(holds.map((h) => `${h.module} ${h.peer} ${h.detail}`)).toEqual([
+            'ALF flow-SCN-0-LGR-0 hold taken',
+            'ALF SCN hold taken (started it)',
+            'ALF LGR hold taken (started it)',
+            'BET flow-SCN-0-LGR-0 hold taken',
+            'BET SCN hold taken (it was running)',
+            'BET LGR hold taken (it was running)',
+            'ALF flow-SCN-0-LGR-0 hold dropped (kept connected: used by 1 other supervisor(s))',
+            'ALF SCN hold dropped (kept running: still used by 1 other supervisor(s))',
+            'ALF LGR hold dropped (kept running: still used by 1 other supervisor(s))',
+            'BET flow-SCN-0-LGR-0 last hold dropped (disconnected)',
+            'BET SCN last hold dropped (stopped)',
+            'BET LGR last hold dropped (stopped)',
+        ]);
+        // the verbose report says the same, after the action line each decides
+        const report = textReport([r], { verbose: true }).split('\n').map((l) => l.trim().replace(/^\S+\s+/, ''));
+        const at = (line: string) => report.indexOf(line);
+        expect(at('BET: module SCN: hold taken (it was running)')).toBeGreaterThan(at('BET: connect SCN:0 =* LGR:0'));
+        expect(at('ALF: module SCN: hold dropped (kept running: still used by 1 other supervisor(s))')).toBe(at('ALF: undo: stop module SCN') + 1);
+        expect(at('ALF: event flow SCN:0 -> LGR:0: hold dropped (kept connected: used by 1 other supervisor(s))')).toBe(at('ALF: undo: disconnect SCN:0 =* LGR:0') + 1);
+        // BET did not start them: no `stop module` line of its own (a run writes none either), the hold says it stopped them
+        expect(at('BET: undo: stop module SCN')).toBe(-1);
+        expect(at('BET: module SCN: last hold dropped (stopped)')).toBe(at('BET: undo: disconnect SCN:0 =* LGR:0') + 1);
+        expect(report.filter((l) => l.includes('hold taken (started it)'))).toEqual([]); // confirms its line: not repeated
+    }, 60_000);
+
+    it('a module that crashed while held: its last holder is told it had ended', async () => {
+        const r = await run(['start ALF.first()', 't=10ms crash SCN', 'expect at 30ms module SCN stopped'].join('\n'));
+        expect(r.failures.map((f) => f.message)).toEqual([]);
+        expect(story(r).filter((l) => l.includes('SCN'))).toEqual([
+            'ALF  connect SCN:0 =* LGR:0',
+            'ALF  start module SCN (priority 30)',
+            'ALF  undo: disconnect SCN:0 =* LGR:0',
+            'ALF  undo: stop module SCN',
+            'ALF  module SCN: last hold dropped (it had ended)',
+        ]);
+    }, 60_000);
+});
