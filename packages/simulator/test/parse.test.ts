@@ -86,6 +86,16 @@ describe('parseScenario', () => {
         ]);
     });
 
+    it('a step other than expect written with `at TIME` says how to time it', () => {
+        const p = parseScenario(['crash SCN at 10ms', 'stop SUP.action at 2s', 't=3s crash MAA at 4s', 'crash SCN now'].join('\n'));
+        expect(p.diagnostics.map((d) => d.message)).toEqual([
+            "unexpected 'at' after the module (only 'expect' takes 'at TIME': write 't=10ms crash SCN')",
+            expect.stringMatching(/^unexpected 'at' after .* \(only 'expect' takes 'at TIME': write 't=2s stop SUP\.action'\)$/),
+            "unexpected 'at' after the module (only 'expect' takes 'at TIME')",
+            "unexpected 'now' after the module",
+        ]);
+    });
+
     it('lists 200 problems, then says how many more; a long word is quoted cut', () => {
         const p = parseScenario(Array.from({ length: 1000 }, (_, i) => `frobnicate${i}`).join('\n'));
         expect(p.diagnostics).toHaveLength(201);

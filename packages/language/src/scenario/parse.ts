@@ -239,7 +239,13 @@ class LineCursor {
         this.fail(`expected a value (integer, real, "string", true, false, Enum.MEMBER or {structured, value}), found '${this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`);
     }
     endOfLine(after: string): void {
-        if (!this.atEnd()) this.fail(`unexpected '${this.text.slice(this.pos, this.tokenEnd(this.pos))}' after ${after}`, this.pos, this.text.length);
+        if (this.atEnd()) return;
+        // `crash SCN at 10ms`: only `expect` takes `at TIME`; another step's time comes first
+        const at = /^at\s+(\S+)\s*$/.exec(this.text.slice(this.pos));
+        const step = this.text.slice(0, this.pos).trim();
+        const hint = !at ? '' : /^t\s*=/.test(step) ? " (only 'expect' takes 'at TIME')"
+            : ` (only 'expect' takes 'at TIME': write 't=${at[1]} ${step}')`;
+        this.fail(`unexpected '${this.text.slice(this.pos, this.tokenEnd(this.pos))}' after ${after}${hint}`, this.pos, this.text.length);
     }
 }
 
