@@ -1,4 +1,4 @@
-/** Quick fixes (docs/ide.md "Editor services"): add a missing import, upper-case a module name, renumber a duplicate port index. */
+/** Quick fixes (docs/ide.md "Editor services"): add a missing import, upper-case a module name, renumber a duplicate port index, insert a rule's missing ';'. */
 import { describe, expect, it } from 'vitest';
 import type { CodeAction, WorkspaceEdit } from 'vscode-languageserver-protocol';
 import { build, type Built } from './helpers.js';
@@ -70,6 +70,19 @@ synchronous module MXX { scheduling { C=1ms; } data flows { out :0 int a; out :0
         const [action] = await fixes(ws, 'm.contract', 'port-index-duplicate');
         expect(action!.title).toBe('Renumber to :2');
         expect(apply(ws, action!.edit!)['m.contract']).toContain('out :0 int a; out :2 int b; out :1 int c;');
+    });
+
+    it("inserts a rule's missing ';' between two actions, after the first one, and the file then checks clean", async () => {
+        const text = (sep: string) => `supervisor SUP {\n  event flows { in :1 int x; in :2 int y; }\n  f() { rules { R: [elapsed=1ms] subscribe MAA:2 =* :1${sep} // keep\n    subscribe MAA:0 =* :2 [elapsed=1ms] } }\n}\n`;
+        const files = { 'maa.contract': 'asynchronous module MAA { event flows { out :0 int a; out :2 int b; } }', 'sup.contract': 'import "maa.contract";\n' + text('') };
+        const ws = await build(files);
+        const [action, ...rest] = await fixes(ws, 'sup.contract', 'supervisor-action-separator');
+        expect(rest).toEqual([]);
+        expect(action!.title).toBe("Insert ';'");
+        const fixed = apply(ws, action!.edit!)['sup.contract']!;
+        expect(fixed).toBe('import "maa.contract";\n' + text(';'));
+        const again = await build({ ...files, 'sup.contract': fixed });
+        expect(again.diagnostics.filter((d) => d.file === 'sup.contract')).toEqual([]);
     });
 
     it('offers nothing for diagnostics without a fix', async () => {

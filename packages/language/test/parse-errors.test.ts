@@ -37,11 +37,11 @@ describe('syntax error messages', () => {
         expect(first('supervisor SUP { f() { rules { R: [elapsed=1ms] activate foo [elapsed=1ms] } } }'))
             .toBe("After 'activate', expected one of 'schema', 'supervisor', 'resttime' or 'critical' but found 'foo'.");
     });
-    it('says that a \';\' is probably missing between two actions', () => {
-        expect(first('supervisor SUP { f() { rules { R: [elapsed=1ms] subscribe MAA:2 =* :2 subscribe MAA:0 =* :1 [elapsed=1ms] } } }'))
-            .toBe("Expected '[' but found 'subscribe'. Two actions are separated by ';': is one missing before 'subscribe'?");
-        expect(first('supervisor SUP { f() { rules { R: [elapsed=1ms] subscribe MAA:2 =* :2 activate schema S() [elapsed=1ms] } } }'))
-            .toMatch(/is one missing before 'activate'\?$/);
+    it('reads two actions without the \';\' between them (the validator reports it: supervisor-action-separator)', () => {
+        for (const second of ['subscribe MAA:0 =* :1', 'activate schema S()', 'notify :1', 'compute f()', 'parameterize MSC()', 'activate resttime module MAA']) {
+            const r = parse(`supervisor SUP { f() { rules { R: [elapsed=1ms] subscribe MAA:2 =* :2 ${second} [elapsed=1ms] } } }`);
+            expect(r.errors, second).toEqual([]);
+        }
     });
     it('says that a relational test needs parentheses', () => {
         expect(first('supervisor SUP { f() { rules { R: [MAA:1<x > 3>] [elapsed=1ms] } } }')).toContain('A relational test goes in parentheses');

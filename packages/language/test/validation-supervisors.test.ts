@@ -38,6 +38,11 @@ const CASES: Record<string, CodeCase> = {
         message: "Rules cannot use the parameter 'consigne' of action: they use locals, event-port variables and constants. Use the local 'temp_consigne', initialised from it.",
         data: { local: 'temp_consigne' }
     },
+    'supervisor-action-separator': {
+        raise: sup('R: [elapsed=1ms] subscribe MAA:2 =* :2 subscribe MSC:1 => :3 [elapsed=2ms]'),
+        clean: sup('R: [elapsed=1ms] subscribe MAA:2 =* :2; subscribe MSC:1 => :3 [elapsed=2ms]'),
+        message: "Two actions are separated by ';': one is missing before 'subscribe'."
+    },
     'supervisor-label-duplicate': {
         raise: sup('R: [elapsed=1ms] [elapsed=2ms]\nR: [elapsed=3ms] [elapsed=4ms]'),
         clean: sup('R: [elapsed=1ms] [elapsed=2ms]\nQ: [elapsed=3ms] [elapsed=4ms]')

@@ -1119,6 +1119,9 @@ export function isRelationalTest(item: unknown): item is RelationalTest {
     return reflection.isInstance(item, RelationalTest.$type);
 }
 
+/** Actions are separated by ';'. A missing one is read all the same (each action starts with its own
+ *  keyword) and reported by the validator (supervisor-action-separator): one error, not the
+ *  parser's recovery and its follow-on errors. */
 export interface Rule extends langium.AstNode {
     readonly $container: RulesBlock;
     readonly $type: 'Rule';

@@ -4,6 +4,7 @@
  * - `module-name-format` (data.suggestion): rename the module/supervisor to its upper-case form,
  *   in every file that refers to it;
  * - `port-index-duplicate` (data.suggestedIndex): renumber the port to a free index;
+ * - `supervisor-action-separator` (data.insertAt, the end of the action before): insert the missing ';';
  * - `identifier-c-reserved`, `identifier-generated-clash` (data.suggestion): rename the element everywhere to a name the
  *   generated C does not take (the suggestion, or the next free `<name>_N` if the rename rules refuse it).
  */
@@ -16,7 +17,7 @@ import { suggestName } from '../validation/c-names/reserved-names.js';
 import { renameProblem } from './name-rules.js';
 import { renameEdits } from './rename-edits.js';
 
-type DiagnosticData = { code?: string; importPath?: string; suggestion?: string; suggestedIndex?: number };
+type DiagnosticData = { code?: string; importPath?: string; suggestion?: string; suggestedIndex?: number; insertAt?: { line?: unknown; character?: unknown } };
 
 export class CactalCodeActionProvider implements CodeActionProvider {
     private readonly references: References;
@@ -54,6 +55,15 @@ export class CactalCodeActionProvider implements CodeActionProvider {
                     diagnostics: [diagnostic],
                     isPreferred: true,
                     edit: { changes: { [document.textDocument.uri]: [{ range: diagnostic.range, newText: String(data.suggestedIndex) }] } }
+                });
+            } else if (code === 'supervisor-action-separator' && Number.isInteger(data.insertAt?.line) && Number.isInteger(data.insertAt?.character)) {
+                const at = { line: data.insertAt!.line as number, character: data.insertAt!.character as number };
+                actions.push({
+                    title: "Insert ';'",
+                    kind: CodeActionKind.QuickFix,
+                    diagnostics: [diagnostic],
+                    isPreferred: true,
+                    edit: { changes: { [document.textDocument.uri]: [{ range: { start: at, end: at }, newText: ';' }] } }
                 });
             }
         }

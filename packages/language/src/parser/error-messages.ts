@@ -49,15 +49,6 @@ function tokenMatches(token: IToken, type: TokenType): boolean {
     return token.tokenType === type || token.tokenType?.name === type.name;
 }
 
-/** The words an action starts with: after an action, one of them where '[' (the post-condition) was expected means a missing ';'. */
-const ACTION_WORDS = new Set(['subscribe', 'activate', 'notify', 'parameterize', 'compute']);
-
-/** `subscribe A:0 =* :1 subscribe B:0 =* :2`: two actions with no ';' between them. */
-function missingActionSeparator(options: { expected: TokenType; actual: IToken; previous: IToken }): string {
-    if (options.expected.name !== '[' || !ACTION_WORDS.has(options.actual?.image ?? '') || options.previous?.image === ';') return '';
-    return ` Two actions are separated by ';': is one missing before '${options.actual.image}'?`;
-}
-
 const ORD_SUBSCRIBE = "ORD events need no subscribe: every supervisor receives them. Remove this subscribe and test 'ORD:n' directly in a rule's condition.";
 
 /** `subscribe ORD:n ...`: the source of a subscribe is a module or supervisor, never the scheduler. */
@@ -121,7 +112,7 @@ export class CactalParserErrorMessageProvider extends LangiumParserErrorMessageP
         if (unit) return unit;
         if (options.expected.name === 'EOF') return `Unexpected ${found(options.actual)}: expected ${TOP_LEVEL}.${didYouMean(options.actual, TOP_LEVEL_WORDS)}`;
         if (isSubscribeToOrd(options)) return ORD_SUBSCRIBE;
-        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${missingActionSeparator(options) || nearKeyword(options.actual, [options.expected]) || nearKeywordBefore(options.previous)}`;
+        return `Expected ${describeToken(options.expected)} but found ${found(options.actual)}.${nearKeyword(options.actual, [options.expected]) || nearKeywordBefore(options.previous)}`;
     }
 
     override buildNotAllInputParsedMessage(options: { firstRedundant: IToken; ruleName: string }): string {

@@ -4,9 +4,9 @@
  * modules, `subscribe` port types, `notify` assignments set once. (`parameterize` is checked with
  * schema parameterisations; `compute` and test functions with the function prototypes.)
  */
-import type { ValidationAcceptor, ValidationChecks } from 'langium';
+import { GrammarUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import type {
-    ActivateModule, ActivateSchema, ActivateSupervisor, CactalAstType, Notify, Subscribe
+    ActivateModule, ActivateSchema, ActivateSupervisor, CactalAstType, Notify, Rule, Subscribe
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
 import { sameType, typeName, typeOf, variableRefText } from '../model/types.js';
@@ -20,8 +20,27 @@ export function supervisorActionChecks(_services: CactalServices): ValidationChe
         ActivateSupervisor: checkActivateSupervisor,
         ActivateModule: checkActivateModule,
         Subscribe: checkSubscribe,
-        Notify: checkNotify
+        Notify: checkNotify,
+        Rule: checkActionSeparators
     };
+}
+
+/**
+ * `subscribe A:2 =* :2 subscribe B:0 =* :1`: the grammar reads two actions without their ';'
+ * (each starts with its keyword), so that a missing one is this one error, with its fix (insert
+ * it), rather than the parser's recovery and its follow-on errors.
+ */
+function checkActionSeparators(rule: Rule, accept: ValidationAcceptor): void {
+    if (rule.actions.length < 2 || !rule.$cstNode) return;
+    const separators = GrammarUtils.findNodesForKeyword(rule.$cstNode, ';').map((n) => n.offset);
+    for (let i = 1; i < rule.actions.length; i++) {
+        const before = rule.actions[i - 1]!.$cstNode, next = rule.actions[i]!.$cstNode;
+        if (!before || !next || separators.some((o) => o >= before.end && o < next.offset)) continue;
+        const word = next.text.split(/\s/, 1)[0];
+        report(accept, SupervisorCodes['supervisor-action-separator'],
+            `Two actions are separated by ';': one is missing before '${word}'.`,
+            { node: rule.actions[i]!, data: { insertAt: before.range.end } });
+    }
 }
 
 

@@ -27,6 +27,11 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
         description: 'Rules use the function\'s locals, the supervisor\'s event-port variables and constants, never the function\'s parameters: copy the parameter into a local (`local { TypeA c = consigne; }`) and use the local. When a local is initialised from exactly that parameter, the message names it and the diagnostic data holds it (`local`).',
         example: 'f(TypeA consigne) { rules { R: [elapsed=1ms] activate schema s(consigne = consigne) [elapsed=2ms] } }'
     },
+    'supervisor-action-separator': {
+        severity: 'error',
+        description: 'The actions of a rule are separated by `;`. A missing one is read as if it were there (the rest of the rule and of the file is checked as meant, with no follow-on error), reported on the action it should come before; the quick fix inserts it.',
+        example: 'rules { R: [elapsed=1ms] subscribe MAA:2 =* :2 subscribe MAA:0 =* :1 [elapsed=2ms] }'
+    },
     'supervisor-label-duplicate': {
         severity: 'error',
         description: 'Rule labels are unique within a supervision function (`started(L)`, `endof(L)` and `duration(L)` name them). A label that is referenced but not defined is a `linking-error` listing the function\'s labels.',
