@@ -24,10 +24,10 @@ export const BATCH_LINES = 1024;
 export const BATCH_CHARS = 64 * 1024;
 
 export type BoundedLine =
-    /** A whole line of at most maxChars characters, without its '\n'. */
-    | { kind: 'line'; text: string }
-    /** A line longer than maxChars: its first maxChars + 1 characters. */
-    | { kind: 'overLong'; head: string }
+    /** A whole line of at most maxChars characters, without its '\n' (`unended`: the file's last, with none). */
+    | { kind: 'line'; text: string; unended?: boolean }
+    /** A line longer than maxChars: its first maxChars + 1 characters (`unended` as for a line). */
+    | { kind: 'overLong'; head: string; unended?: boolean }
     /** The last item: no line end in maxSkipBytes after this line began (its head), `leftBytes` not read. */
     | { kind: 'noEnd'; head: string; leftBytes: number };
 
@@ -62,7 +62,7 @@ export async function* boundedLines(handle: fsp.FileHandle, size: number, { maxC
     /** maxChars + 1 characters of a line (`bytes`: its first holdBytes bytes or more; a character they cut is left out). */
     const headOf = (bytes: Buffer): string => new StringDecoder('utf8').write(bytes.subarray(0, holdBytes)).slice(0, maxChars + 1);
     /** The line of `bytes` (all of it), whole or its head. */
-    const lineOf = (bytes: Buffer, from: number, to: number): BoundedLine => {
+    const lineOf = (bytes: Buffer, from: number, to: number): Exclude<BoundedLine, { kind: 'noEnd' }> => {
         if (to - from > holdBytes) return { kind: 'overLong', head: headOf(bytes.subarray(from, to)) };
         const text = bytes.toString('utf8', from, to);
         return text.length > maxChars ? { kind: 'overLong', head: text.slice(0, maxChars + 1) } : { kind: 'line', text };
@@ -126,9 +126,9 @@ export async function* boundedLines(handle: fsp.FileHandle, size: number, { maxC
             outChars = 0;
         }
     }
-    if (skipped !== undefined) yield [{ kind: 'overLong', head: skipped }];
+    if (skipped !== undefined) yield [{ kind: 'overLong', head: skipped, unended: true }];
     else if (carryBytes) {
         const bytes = Buffer.concat(carry);
-        yield [lineOf(bytes, 0, bytes.length)];
+        yield [{ ...lineOf(bytes, 0, bytes.length), unended: true }];
     }
 }

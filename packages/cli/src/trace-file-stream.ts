@@ -9,7 +9,7 @@
  * (the lines: bounded-lines.ts, as for the CSV logs).
  */
 import type { promises as fsp } from 'node:fs';
-import { MAX_JSON_LINE_CHARS, recordOfJsonLine, type TraceRecord } from '@contract-studio/build-service/trace';
+import { MAX_JSON_LINE_CHARS, recordOfJsonLine, unendedLine, type TraceRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES } from './bounded-lines.js';
 
 /** Records of a trace file in batches (one batch a chunk read), until the file's size when opened. */
@@ -25,8 +25,11 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
             lineNo++;
             if (l.kind === 'line') {
                 const r = recordOfJsonLine(name, lineNo, l.text.endsWith('\r') ? l.text.slice(0, -1) : l.text);
-                if (r) out.push(r);
-            } else if (l.kind === 'overLong') out.push(noRecord(`longer than ${MAX_JSON_LINE_CHARS} characters`, l.head));
+                if (r) out.push(l.unended ? unendedLine(r) : r);
+            } else if (l.kind === 'overLong') {
+                const r = noRecord(`longer than ${MAX_JSON_LINE_CHARS} characters`, l.head);
+                out.push(l.unended ? unendedLine(r) : r);
+            }
             else out.push(noRecord(`no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB: the rest of the file (${l.leftBytes} bytes) left out`, l.head));
         }
         if (out.length) yield out;

@@ -11,7 +11,7 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MAX_LINE_CHARS, MinHeap, recordOfLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, MinHeap, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
 import { jsonLine, LOG_FILE_NAME } from './trace-files.js';
 import { safeName } from './terminal-text.js';
@@ -143,15 +143,16 @@ class LogRecords {
         }
         for (const l of batch.value) {
             // a line too long is one unreadable record (recordOfLine says why)
-            this.line(l.kind === 'line' ? l.text : l.head);
+            this.line(l.kind === 'line' ? l.text : l.head, l.kind !== 'noEnd' && l.unended === true);
             if (l.kind === 'noEnd')
                 this.problems.push(`${this.log.name}: no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB after line ${this.lineNo}: the rest of the file (${l.leftBytes} bytes) left out`);
         }
     }
 
-    private line(raw: string): void {
-        const record = recordOfLine(this.log.name, this.lineNo++, raw);
-        if (!record) return;
+    private line(raw: string, unended: boolean): void {
+        const read = recordOfLine(this.log.name, this.lineNo++, raw);
+        if (!read) return;
+        const record = unended ? unendedLine(read) : read;
         if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);
         // what the record keeps: its line, or, a line that is no record, why and its first 200 characters (copies)
         const chars = record.kind === 'unknown' ? (record as UnknownRecord).text.length + (record as UnknownRecord).reason.length : raw.length;

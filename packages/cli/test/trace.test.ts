@@ -217,6 +217,29 @@ describe('contract trace', () => {
         }
     });
 
+    it('a last line cut by a writer stopped mid-line (a killed module, `contract run --trace` killed) is said to be cut, in a log and in a trace file', async () => {
+        const cut = mkdtempSync(join(tmpdir(), 'contract-trace-cut-'));
+        try {
+            const rule = '2001000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns';
+            writeFileSync(join(cut, 'SUP_1.csv'), [HEADER, rule, '2002000000,w,SUP,super'].join('\n'));
+            const io = capture(cut);
+            expect(await runCli(['trace', '.'], io)).toBe(0);
+            expect(io.stdout).toContain('unreadable: SUP_1.csv line 3: 4 fields, expected 8 (the file ends inside this line: its writer was stopped, or is still writing it)');
+            // a bad line that has its line end is not said to be cut
+            writeFileSync(join(cut, 'SUP_1.csv'), [HEADER, '2002000000,w,SUP,super', rule, ''].join('\n'));
+            const whole = capture(cut);
+            expect(await runCli(['trace', '.'], whole)).toBe(0);
+            expect(whole.stdout).toContain('unreadable: SUP_1.csv line 2: 4 fields, expected 8\n');
+            const json = JSON.stringify({ kind: 'sup_rule', monoNs: '2001000000', wallTime: 'w', module: 'SUP', peer: '', port: null, size: 0, detail: 'action.FIRST active cause=elapsed=1000000ns' });
+            writeFileSync(join(cut, 'run.jsonl'), `${json}\n${json.slice(0, 40)}`);
+            const file = capture(cut);
+            expect(await runCli(['trace', 'run.jsonl'], file)).toBe(0);
+            expect(file.stderr).toBe('contract trace: warning: run.jsonl:2: not JSON (the file ends inside this line: its writer was stopped, or is still writing it)\n');
+        } finally {
+            rmSync(cut, { recursive: true, force: true });
+        }
+    });
+
     it('a folder of more logs than a run writes is refused with why, before any is opened', async () => {
         const many = mkdtempSync(join(tmpdir(), 'contract-trace-many-'));
         try {

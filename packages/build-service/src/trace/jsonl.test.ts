@@ -66,7 +66,7 @@ describe('trace files (JSON lines)', () => {
             JSON.stringify({ ...rule, kind: 'no_such_kind' }),
             'x'.repeat(20_000),
         ];
-        const back = traceFileToLogs('../../evil name.jsonl', lines.join('\n'));
+        const back = traceFileToLogs('../../evil name.jsonl', lines.join('\n') + '\n');
         expect(back.problems).toEqual(['line 2: not JSON', 'line 3: not a JSON object', 'line 4: kind, monoNs, module and detail must be strings', 'line 5: bad module name', 'line 9: longer than 16384 characters']);
         // the log names are plain: no path from the file's name
         expect(back.files.map((f) => f.name)).toEqual([`${rule.module}_evil_name.csv`]);

@@ -123,7 +123,8 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
             continue;
         }
         if ('problem' in read) {
-            if (bad++ < maxProblems) problems.push(`line ${n}: ${read.problem}`);
+            const cut = nl === text.length ? ' (the file ends inside this line: its writer was stopped, or is still writing it)' : '';
+            if (bad++ < maxProblems) problems.push(`line ${n}: ${read.problem}${cut}`);
             continue;
         }
         let log = lines.get(read.module);

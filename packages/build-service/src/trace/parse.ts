@@ -107,11 +107,22 @@ function* logFileRecords(file: LogFile): Generator<TraceRecord> {
     const text = file.text;
     for (let pos = 0, i = 0; pos < text.length; i++) {
         let nl = text.indexOf('\n', pos);
+        const unended = nl < 0;
         if (nl < 0) nl = text.length;
         const record = recordOfLine(file.name, i, text.slice(pos, nl));
         pos = nl + 1;
-        if (record) yield record;
+        if (record) yield unended ? unendedLine(record) : record;
     }
+}
+
+/**
+ * A file's last line, which has no line end: when it is no record, its reason says why that may
+ * be (`4 fields, expected 8 (the file ends inside this line: ...)`): a module killed while writing.
+ */
+export function unendedLine(record: TraceRecord): TraceRecord {
+    return record.kind === 'unknown'
+        ? { ...record, reason: `${(record as UnknownRecord).reason} (the file ends inside this line: its writer was stopped, or is still writing it)` } as TraceRecord
+        : record;
 }
 
 /**

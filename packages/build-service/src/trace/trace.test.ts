@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -41,6 +41,17 @@ describe('trace record kinds', () => {
 });
 
 describe('reading a log', () => {
+    it('says of a last line with no line end that is no record that the file ends inside it (a writer stopped mid-line)', () => {
+        const rule = '2001000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns';
+        const cut = parseLogFile({ name: 'SUP_1.csv', text: `${CSV_HEADER}\n2000000000,w,SUP,sup\n${rule}\n2002000000,w,SUP,super` });
+        expect(cut.filter(isUnknown).map((u) => [u.line, u.reason])).toEqual([
+            [2, '4 fields, expected 8'],
+            [4, '4 fields, expected 8 (the file ends inside this line: its writer was stopped, or is still writing it)'],
+        ]);
+        // a whole last record without its line end is read as any other
+        expect(parseLogFile({ name: 'SUP_1.csv', text: `${CSV_HEADER}\n${rule}` }).filter(isUnknown)).toEqual([]);
+        expect(traceFileToLogs('run.jsonl', '{"kind":"sup_rule","mono').problems).toEqual(['line 1: not JSON (the file ends inside this line: its writer was stopped, or is still writing it)']);
+    });
     it('reads a rule change with its cause, event values included', () => {
         const r = parseRecordLine('SUP.csv', 2, '3000,2026-11-24T18:30:15.123456Z,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""') as RuleRecord;
         expect(isRule(r)).toBe(true);
