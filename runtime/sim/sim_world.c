@@ -323,7 +323,7 @@ static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     action(p->w, p->v->name, "disconnect %s", flow);
     int k = flow_hold_index(p, name);
-    if (k >= 0) memcpy(p->flows[k], p->flows[--p->nflows], sizeof *p->flows);
+    if (k >= 0 && k != --p->nflows) memcpy(p->flows[k], p->flows[p->nflows], sizeof *p->flows);
     int others = 0;
     for (int s = 0; s < p->w->nsups; s++)
         if (&p->w->sups[s] != p && flow_hold_index(&p->w->sups[s], name) >= 0) others++;
