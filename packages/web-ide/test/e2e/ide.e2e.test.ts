@@ -132,6 +132,10 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.problem-row[data-path="amodule2.contract"]').first().waitFor({ timeout: 3000 });
     await page.keyboard.press('Control+.');
     await page.locator('.action-widget .action-label, .action-widget .monaco-list-row').first().waitFor({ timeout: 5000 });
+    // the fix's title is whole (Monaco's own menu measured it before it was in the page: "Rename 'mab' to '…")
+    const title = page.locator('.action-widget .monaco-list-row.action .title').first();
+    expect(await title.textContent()).toBe("Rename 'mab' to 'MAB'");
+    expect(await title.evaluate((el) => el.scrollWidth <= el.clientWidth)).toBe(true);
     await shot(page, '02b-quick-fix');
     await page.keyboard.press('Enter');
     await expect.poll(() => activeValue(page), { timeout: 5000 }).toMatch(/module MAB\b/);
