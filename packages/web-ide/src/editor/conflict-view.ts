@@ -75,7 +75,7 @@ export class ConflictView {
   private open(conflict: Conflict, again?: { right?: string; merged?: boolean }): void {
     const right = again?.right;
     const n = ++views;
-    const host = h('div', { class: 'conflict-diff' });
+    const host = h('div', { class: 'conflict-diff monaco-component' }); // the theme's colours for its right-click menu (editor-area.ts)
     const choose = (text: () => string) => () => {
       const t = text();
       this.close();

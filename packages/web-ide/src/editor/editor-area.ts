@@ -59,7 +59,10 @@ export class EditorArea {
         return true;
       },
     });
-    this.editorHost = h('div', { class: 'editor-host' });
+    // monaco-component: Monaco's theme colours (CSS variables) are set on .monaco-editor and
+    // .monaco-component; the right-click menu is drawn in a shadow root beside the editor, under
+    // this host, and had none of them (a transparent menu, black text over the code)
+    this.editorHost = h('div', { class: 'editor-host monaco-component' });
     this.viewHost = h('div', { class: 'view-host hidden' });
     this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer, or Ctrl+P'),
       h('div', { class: 'muted' }, 'F1 all commands · Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));

@@ -140,6 +140,18 @@ describe('IDE in headless Chromium', () => {
     await page.keyboard.press('Enter');
     await expect.poll(() => activeValue(page), { timeout: 5000 }).toMatch(/module MAB\b/);
     await expect.poll(() => page.locator('.problem-row[data-path="amodule2.contract"]').count(), { timeout: 3000 }).toBe(0);
+    // the right-click menu has the theme's colours (it is drawn in a shadow root beside the editor:
+    // without them it was transparent, black text over the code)
+    const lines = await page.locator('.monaco-editor .view-lines').first().boundingBox();
+    await page.mouse.click(lines!.x + 60, lines!.y + 10, { button: 'right' });
+    await expect.poll(() => page.evaluate(() => !!document.querySelector('.editor-host .shadow-root-host')?.shadowRoot?.querySelector('.monaco-menu .action-label')), { timeout: 5000 }).toBe(true);
+    const colours = await page.evaluate(() => {
+      const el = document.querySelector('.editor-host .shadow-root-host')!.shadowRoot!.querySelector('.monaco-menu-container')!;
+      return { bg: getComputedStyle(el).getPropertyValue('--vscode-menu-background').trim(), fg: getComputedStyle(el.querySelector('.action-label')!).color };
+    });
+    expect(colours.bg).toMatch(/^#[0-9a-f]{6}$/i);
+    expect(colours.fg).not.toBe('rgb(0, 0, 0)');
+    await page.keyboard.press('Escape');
   });
 
   it('reflects a change made on disk by another program', async () => {
