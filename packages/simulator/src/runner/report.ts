@@ -4,8 +4,8 @@
  */
 import { readableCause, schedulerLineFields, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
-import { actionAsLogged, engineLine, typedRecord } from '../trace/steps-to-trace.js';
-import { toldHolds } from './told-holds.js';
+import { engineLine, typedRecord } from '../trace/steps-to-trace.js';
+import { actionLines } from '../trace/action-lines.js';
 
 /**
  * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
@@ -127,9 +127,8 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
                 text: `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`,
             }));
             if (options.verbose) {
-                for (const a of s.record.actions) happened.push({ t: a.timeNs, seq: a.seq ?? -1, text: `  ${a.who}: ${safe(a.who === 'ORD' ? a.what : actionAsLogged(a.what))}` });
-                // what a module hold decided beyond its action line: shared, kept running for another supervisor, ended
-                for (const h of toldHolds(s.record.actions, s.record.records ?? [])) happened.push({ t: h.t, seq: h.seq, text: `  ${h.who}: ${safe(h.text)}` });
+                // the actions in a run's words, and what a module or flow hold decided beyond its action line
+                for (const l of actionLines(s.record.actions, s.record.records)) happened.push({ t: l.t, seq: l.seq, text: `  ${l.who}: ${safe(l.text)}` });
                 const told = misses.misses(s.record);
                 // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
                 const log = told.length ? s.record.log.filter((l) => !isMissLine(l)) : s.record.log;

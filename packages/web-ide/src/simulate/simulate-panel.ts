@@ -2,11 +2,13 @@
  * The Simulate panel's DOM (docs/simulation.md "In the IDE"): the supervisor function and its
  * parameters, Start, the virtual time (step by a time, run to a time), a step to inject, Undo,
  * Save as scenario; then the state after the last step: rules (active/inactive with their
- * causes), active schemas, locals, and each step with the rule changes and actions it produced.
+ * causes), active schemas, locals, and each step with the rule changes and actions it produced
+ * (in a run's words, with what the module and flow holds decided: simulator/trace action-lines.ts).
  * It only draws and reports clicks: simulate-controller.ts owns the session and the server calls.
  */
 import { formatTime } from '@contract-studio/language/scenario';
 import { readableCause } from '@contract-studio/build-service/trace';
+import { actionLines } from '@contract-studio/simulator/trace';
 import { h } from '../util/dom.js';
 import './simulate.css';
 import type { SimulateResponse } from '../../server/api-types.js';
@@ -109,7 +111,8 @@ export class SimulatePanel {
       h('div', { class: `sim-step-row ${s.ok ? '' : 'failed'}` },
         h('div', { class: 'sim-step-head' }, `${formatTime(s.timeNs)}  ${s.kind === 'end' ? '(end)' : s.source}${s.message ? `  ✖ ${s.message}` : ''}`),
         ...s.rules.map((c) => h('div', { class: 'sim-change' }, `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${readableCause(c.cause)}`)),
-        ...s.actions.slice(0, 50).map((a) => h('div', { class: 'sim-action' }, `${a.who}: ${a.what}`)),
+        // in a run's words (`undo: stop module SCN`) with what the holds decided, as `simulate --verbose` shows them
+        ...actionLines(s.actions, s.records).slice(0, 50).map((a) => h('div', { class: 'sim-action' }, `${a.who}: ${a.text}`)),
         s.output ? h('pre', { class: 'sim-output' }, s.output) : null)));
     this.steps.scrollTop = this.steps.scrollHeight;
   }

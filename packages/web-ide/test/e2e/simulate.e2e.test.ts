@@ -86,7 +86,10 @@ describe('Simulate panel', () => {
     expect(await simRule(page, 'SUP.action.FIRST').getAttribute('class')).toBe('sim-rule inactive');
     expect(await page.locator('.sim-schema').allTextContents()).toContain('schemaCommande1');
     expect(await page.locator('.sim-local').count()).toBeGreaterThan(0);
-    expect(await page.locator('.sim-step-row').filter({ hasText: 'MAA:2 connection_status' }).locator('.sim-action').count()).toBeGreaterThan(0);
+    const actions = await page.locator('.sim-step-row').filter({ hasText: 'MAA:2 connection_status' }).locator('.sim-action').allTextContents();
+    // FIRST's undo in a run's words (as `contract trace` and `simulate --verbose` say it), not the harness's bare `stop module MAA`
+    expect(actions).toContain('SUP: undo: stop module MAA');
+    expect(actions.filter((a) => /^SUP: (stop|disconnect|unsubscribe|release) /.test(a))).toEqual([]);
     await expect.poll(() => monitorRule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
     expect(await monitorRule(page, 'SUP.action.SECOND').getAttribute('data-cause')).toBe('MAA:2 value="disconnected"');
     expect(await stepValue(page)).toBe('');
