@@ -123,7 +123,7 @@ export class SimulateController {
       this.last = r;
       this.panel.showResult(r);
       const failed = r.failures.map((f) => `line ${f.line}: ${f.message}`);
-      this.panel.showMessage(r.error ?? `simulated to ${r.steps.at(-1)?.timeNs ?? 0} ns in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
+      this.panel.showMessage(r.error ?? `simulated to ${formatTime(r.steps.at(-1)?.timeNs ?? 0)} in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
       const model = new MonitorModel();
       model.pushAll(stepsToTrace(r.steps));
       // an answer keeps 200,000 records of all steps (the harness 100,000 of each kind a step): what was left out is said
