@@ -250,6 +250,8 @@ static void stop_if_last(SimSup *p, const char *module, int started_here) {
     }
     m->started = 0;
     hold_record(p, module, "last hold dropped (stopped)");
+    /* its run ends with the STOP, as libmodule logs it (mailbox.c) */
+    record(p->w, module, "run_finished", p->v->name, -1, "activation=%ld STOP", m->activations);
 }
 
 static void sio_start_module(void *ctx, const char *module, int priority) {
@@ -259,9 +261,13 @@ static void sio_start_module(void *ctx, const char *module, int priority) {
     action(p->w, p->v->name, ACTION_START_MODULE "%s", module, priority,
            crashed ? ": it has crashed, it does not start" : "");
     if (i < 0 || crashed) return; /* a run's start that cannot be sent takes no hold */
-    p->w->mods[i].started = 1;
-    p->w->mods[i].start_marked = 1;
+    SimModule *m = &p->w->mods[i];
+    m->started = 1;
+    m->start_marked = 1;
     if (hold_take(p, i) == 0) hold_record(p, module, "hold taken (started it)");
+    /* the START begins a run of the (virtual, asynchronous) module, as libmodule logs it: the
+       Monitor's running modules; it lasts until a STOP or a crash (its code never returns) */
+    record(p->w, module, "run_started", p->v->name, -1, "activation=%ld", ++m->activations);
 }
 /* `stop module M` (the undo of its start: steps-to-trace.ts adds `undo: `), then what its hold decided */
 static void sio_stop_module(void *ctx, const char *module) {

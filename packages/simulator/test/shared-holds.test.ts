@@ -3,7 +3,8 @@
  * simulator decides their holds as a run's engines do (module_holds.c, sup_main.c) and says it in
  * the same records and words. The first one's undo leaves the modules running and the flow
  * connected for the other (`hold dropped (kept running: still used by 1 other supervisor(s))`),
- * the other's undo stops them; a module that crashed meanwhile is said to have ended.
+ * the other's undo stops them (the module's run begun by the first START ends with that STOP); a
+ * module that crashed meanwhile is said to have ended.
  */
 import { mkdtempSync, mkdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -92,6 +93,9 @@ describe('modules and event flows two supervisors share', () => {
             'BET SCN last hold dropped (stopped)',
             'BET LGR last hold dropped (stopped)',
         ]);
+        // the modules' runs, as libmodule logs them: begun by ALF's START, ended by BET's STOP (the Monitor's running modules)
+        const runs = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => (x.kind === 'run_started' || x.kind === 'run_finished') && (x as KnownRecord).module === 'SCN') as KnownRecord[];
+        expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual(['1ms run_started ALF activation=1', '40ms run_finished BET activation=1 STOP']);
         // the verbose report says the same, after the action line each decides
         const report = textReport([r], { verbose: true }).split('\n').map((l) => l.trim().replace(/^\S+\s+/, ''));
         const at = (line: string) => report.indexOf(line);

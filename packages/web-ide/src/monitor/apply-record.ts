@@ -182,7 +182,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (k.detail.startsWith('hold taken')) {
         held.set(k.peer, sv.lastRule ?? '');
         if (!sv.actionLines) sv.actionsDone++;
-        if (k.kind === 'module_hold') noteStarted(s, k.module, k.peer);
+        // what its rule started: not a module another supervisor had started (`hold taken (it was running)`)
+        if (k.kind === 'module_hold' && !k.detail.includes('(it was running)')) noteStarted(s, k.module, k.peer);
       } else if (k.detail.startsWith('last hold dropped') || k.detail.startsWith('hold dropped')) {
         // its hold is gone either way: the last one, or kept for another supervisor (`hold dropped (kept running: …)`)
         held.delete(k.peer);

@@ -341,6 +341,16 @@ describe('a supervisor\'s actions counted once', () => {
     expect([...sup.heldModules.keys(), ...sup.heldFlows.keys()]).toEqual([]);
     expect([sup.actionsDone, sup.actionsUndone]).toEqual([2, 2]);
   });
+  it('a module its rule shares (another supervisor started it) is not listed as what the rule started', () => {
+    const s = emptyState();
+    [`1,${W},SUP,sup_rule,,,0,action.R active cause=elapsed=1000000ns`,
+      `2,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,
+      `3,${W},SUP,module_hold,MAA,,0,hold taken (it was running)`,
+      `4,${W},SUP,supervisor,MAB,,0,start module MAB (priority 30)`,
+      `5,${W},SUP,module_hold,MAB,,0,hold taken (started it)`,
+    ].forEach((l, i) => applyRecord(s, parseRecordLine('SUP.csv', i + 2, l), i, 0));
+    expect(s.supervisors.get('SUP')!.rules.get('action.R')!.started).toEqual(['watch', 'MAB']);
+  });
   it('a log of an older version, without those lines, counts its holds and priorities', () => {
     const sup = fold([
       `1,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,
