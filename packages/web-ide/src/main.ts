@@ -94,9 +94,15 @@ async function main(): Promise<void> {
   // shortcuts, quick open and the command palette (docs/ide.md "Keyboard")
   const commands = registerIdeCommands({
     workspace, editors, explorer, outline, problems, files, generator, runs, views, openMonitor: () => monitor.open(),
+    openSimulate: () => {
+      ui.showPanel('simulate');
+      void simulate.refreshFunctions();
+      simulate.panel.focus();
+    },
     showPanel: ui.showPanel, focusPanelTabs: ui.focusPanelTabs,
   });
   ui.onPanelEscape(() => editors.focusActive());
+  simulate.panel.onEscape = () => editors.focusActive();
   window.addEventListener('beforeunload', () => void workspace.saveAll());
 
   // ---- start

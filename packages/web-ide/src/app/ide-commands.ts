@@ -23,6 +23,8 @@ export interface IdeParts {
   views: ViewsController;
   /** Shows the Monitor (it stays shown if it was) and puts the keyboard focus in it. */
   openMonitor(): Promise<void>;
+  /** Shows the Simulate panel and puts the keyboard focus on its supervisor function. */
+  openSimulate(): void;
   showPanel(id: string): void;
   focusPanelTabs(): void;
 }
@@ -49,6 +51,7 @@ export function registerIdeCommands(p: IdeParts): CommandRegistry {
     { id: 'architecture', label: 'Open Architecture diagram', keys: ['Alt+Shift+D'], run: () => p.views.openArchitecture() },
     { id: 'timeline', label: 'Open Timeline', keys: ['Alt+Shift+T'], run: () => p.views.openTimeline() },
     { id: 'monitor', label: 'Open Monitor', keys: ['Alt+Shift+M'], run: () => p.openMonitor() },
+    { id: 'simulate', label: 'Open Simulate panel', keys: ['Alt+Shift+U'], run: () => p.openSimulate() },
     { id: 'problems', label: 'Show Problems', keys: ['Ctrl+Shift+M'], run: () => focusPanel('problems', () => p.problems.focus()) },
     { id: 'output', label: 'Show Build & Run output', keys: ['Alt+Shift+B'], run: () => focusPanel('output', () => false) },
     { id: 'explorer', label: 'Focus Explorer', keys: ['Ctrl+Shift+E'], run: () => explorer.focus() },

@@ -91,11 +91,11 @@ export class MonitorPanel {
   private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time', 'aria-label': 'Play the run from the cursor' }, '▷ Play');
   private readonly strip: MarksStrip;
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
-  private readonly schemasEl = h('div', { class: 'monitor-schemas', 'aria-label': 'Active schemas' });
+  private readonly schemasEl = h('div', { class: 'monitor-schemas', role: 'group', 'aria-label': 'Active schemas' });
   private readonly periodicEl = h('div', { class: 'monitor-periodic' });
   private readonly diagramEl = h('div', { class: 'monitor-diagram' });
   private readonly modulesEl = h('div', { class: 'monitor-modules' });
-  private readonly flowsEl = h('div', { class: 'monitor-flows', 'aria-label': 'Deliveries' });
+  private readonly flowsEl = h('div', { class: 'monitor-flows', role: 'group', 'aria-label': 'Deliveries' });
   private readonly rows = new Map<string, HTMLElement>();
   private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; counts?: DrawnCounts }>();
   /** Each periodic schema's CRITICAL_DELAY and PERIOD in ns, read once per schema definition. */

@@ -65,7 +65,17 @@ export class SimulatePanel {
         h('div', {}, h('h4', {}, 'Rules'), this.rules),
         h('div', {}, h('h4', {}, 'Active schemas'), this.schemas, h('h4', {}, 'Locals'), this.locals),
         h('div', { class: 'sim-steps-col' }, h('h4', {}, 'Steps'), this.steps)));
+    // Escape on a control goes back to the editor, as in the panel tabs (the step's own editor
+    // keeps it: it closes its completion list there)
+    this.element.addEventListener('keydown', (e) => {
+      if (e.key !== 'Escape' || e.defaultPrevented || (e.target as HTMLElement | null)?.closest('.monaco-editor')) return;
+      e.preventDefault();
+      this.onEscape?.();
+    });
   }
+
+  /** What Escape on one of the panel's controls does (main.ts: focus the editor). */
+  onEscape?: () => void;
 
   /** The functions to pick from (`SUP.fn`) with their parameters (`(TypeA consigne)`), shown in the parameters' hint. */
   setFunctions(fns: Array<{ name: string; signature: string }>): void {
@@ -92,6 +102,11 @@ export class SimulatePanel {
 
   showTime(ns: number | undefined): void {
     this.now.textContent = ns === undefined ? 'not started' : formatTime(ns);
+  }
+
+  /** Puts the keyboard focus on the supervisor function (the panel's first control). */
+  focus(): void {
+    this.fnSelect.focus();
   }
 
   /** The result of the session's last run: state after its last step, and the steps. */

@@ -92,7 +92,7 @@ describe('keyboard-first IDE', () => {
     await palette.waitFor({ timeout: 5000 });
     const rows = await palette.locator('[role=option]').evaluateAll((els) => els.map((e) => `${e.querySelector('.qp-label')?.textContent}|${e.querySelector('.qp-key')?.textContent ?? ''}`));
     for (const [label, key] of [['Generate All', 'Ctrl+Shift+G'], ['Build & Run', 'Ctrl+Shift+B'], ['Stop the running job', 'Alt+Shift+S'], ['Go to File…', 'Ctrl+P'],
-      ['Open Architecture diagram', 'Alt+Shift+D'], ['Open Timeline', 'Alt+Shift+T'], ['Open Monitor', 'Alt+Shift+M'], ['Show Problems', 'Ctrl+Shift+M'],
+      ['Open Architecture diagram', 'Alt+Shift+D'], ['Open Timeline', 'Alt+Shift+T'], ['Open Monitor', 'Alt+Shift+M'], ['Open Simulate panel', 'Alt+Shift+U'], ['Show Problems', 'Ctrl+Shift+M'],
       ['Focus Outline', 'Alt+Shift+O'], ['New File…', 'Alt+Shift+N'], ['Rename File…', 'Alt+Shift+R'], ['Reload from disk (discard unsaved edits)', 'Alt+Shift+L']]) {
       expect(rows, label).toContain(`${label}|${key}`);
     }
@@ -271,6 +271,25 @@ describe('keyboard-first IDE', () => {
     await page.keyboard.press('Enter');
     expect(await focusOf(page)).toBe('editor');
     expect(await cursorLine(page)).toBe(10);
+  });
+
+  it('Alt+Shift+U opens the Simulate panel on its supervisor function: arrows choose one, Tab reaches Start, Enter starts; Escape goes back to the editor', async () => {
+    const { page } = s;
+    await page.keyboard.press('Control+p');
+    await page.keyboard.type('supervisor.contract');
+    await page.keyboard.press('Enter');
+    await expect.poll(() => focusOf(page)).toBe('editor');
+    await page.keyboard.press('Alt+Shift+U');
+    await expect.poll(() => focusOf(page)).toBe('select:supervisor function');
+    await page.waitForSelector('.sim-fn option[value="SUP.action"]', { state: 'attached', timeout: 30_000 });
+    await page.selectOption('.sim-fn', 'SUP.action'); // (what the arrow keys do in a headless select)
+    const onStart = () => page.evaluate(() => document.activeElement?.classList.contains('sim-start') === true);
+    for (let i = 0; i < 5 && !(await onStart()); i++) await page.keyboard.press('Tab');
+    expect(await onStart()).toBe(true);
+    await page.keyboard.press('Enter');
+    await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 30_000 }).toMatch(/^simulated to 0 in \d+ ms/);
+    await page.keyboard.press('Escape');
+    await expect.poll(() => focusOf(page)).toBe('editor');
   });
 
   it('a tab click focuses its editor (Ctrl+Z undoes there), the status bar cursor follows the active editor, the active tab is scrolled into view', async () => {
