@@ -21,6 +21,14 @@ const focusOf = (page: Session['page']) => page.evaluate(() => {
   return `${el.getAttribute('role') ?? el.tagName.toLowerCase()}:${el.dataset.path ?? el.dataset.panel ?? el.dataset.name ?? el.getAttribute('aria-label') ?? ''}`;
 });
 
+/** Opens `file` by quick open (Ctrl+P, its name typed, Enter) and waits for its tab (`typed`: what is typed, when not the name). */
+async function quickOpen(page: Session['page'], file: string, typed = file): Promise<void> {
+  await page.keyboard.press('Control+p');
+  await page.keyboard.type(typed);
+  await page.keyboard.press('Enter');
+  await expect.poll(() => activeTab(page)).toBe(file);
+}
+
 describe('keyboard-first IDE', () => {
   beforeAll(async () => {
     s = await startSession();
@@ -61,10 +69,7 @@ describe('keyboard-first IDE', () => {
     const { page } = s;
     await placeCursor(page, 'C=1ms', 3);
     await page.keyboard.type('x'); // C=1xms: an error the user typed
-    await page.keyboard.press('Control+p');
-    await page.keyboard.type('supervisor.contract');
-    await page.keyboard.press('Enter');
-    await expect.poll(() => activeTab(page)).toBe('supervisor.contract');
+    await quickOpen(page, 'supervisor.contract');
     await page.locator('.problem-row[data-path="smodule3.contract"]').first().waitFor({ timeout: 5000 });
     await page.keyboard.press('Control+Shift+M');
     await expect.poll(() => focusOf(page)).toMatch(/^option:smodule3.contract/);
@@ -104,10 +109,7 @@ describe('keyboard-first IDE', () => {
     scans.push(await axeScan(page, 'command palette'));
     await page.keyboard.press('Escape');
     // an editor action from the palette: Go to Definition on MSB in sschema2.contract
-    await page.keyboard.press('Control+p');
-    await page.keyboard.type('sschema2');
-    await page.keyboard.press('Enter');
-    await expect.poll(() => activeTab(page)).toBe('sschema2.contract');
+    await quickOpen(page, 'sschema2.contract', 'sschema2');
     await placeCursor(page, 'MSB ();', 1);
     await page.keyboard.press('F1');
     await page.keyboard.type('go to definition');
@@ -260,10 +262,7 @@ describe('keyboard-first IDE', () => {
 
   it('outline by keyboard: Enter reveals the symbol in the editor', async () => {
     const { page } = s;
-    await page.keyboard.press('Control+p');
-    await page.keyboard.type('smodule3.contract');
-    await page.keyboard.press('Enter');
-    await expect.poll(() => activeTab(page)).toBe('smodule3.contract');
+    await quickOpen(page, 'smodule3.contract');
     await page.locator('.outline-row[data-name="in_coordinates"]').waitFor({ timeout: 5000 });
     await page.keyboard.press('Alt+Shift+O');
     await expect.poll(() => focusOf(page)).toMatch(/^treeitem:/);
@@ -275,9 +274,7 @@ describe('keyboard-first IDE', () => {
 
   it('Alt+Shift+U opens the Simulate panel on its supervisor function: arrows choose one, Tab reaches Start, Enter starts; Escape goes back to the editor', async () => {
     const { page } = s;
-    await page.keyboard.press('Control+p');
-    await page.keyboard.type('supervisor.contract');
-    await page.keyboard.press('Enter');
+    await quickOpen(page, 'supervisor.contract');
     await expect.poll(() => focusOf(page)).toBe('editor');
     await page.keyboard.press('Alt+Shift+U');
     await expect.poll(() => focusOf(page)).toBe('select:supervisor function');
@@ -310,10 +307,7 @@ describe('keyboard-first IDE', () => {
     await waitSaved(page);
     // many tabs: the active one is always visible in the strip
     for (const f of ['amodule2.contract', 'aschema1.contract', 'datatype.contract', 'smodule1.contract', 'smodule2.contract', 'smodule4.contract', 'sschema1.contract', 'supervisor2.contract']) {
-      await page.keyboard.press('Control+p');
-      await page.keyboard.type(f);
-      await page.keyboard.press('Enter');
-      await expect.poll(() => activeTab(page)).toBe(f);
+      await quickOpen(page, f);
     }
     await page.setViewportSize({ width: 900, height: 800 });
     for (const id of ['supervisor2.contract', await page.locator('.tabs .tab').first().getAttribute('data-path')]) {
