@@ -32,10 +32,10 @@ typedef struct SimSup {
     SupCore *core;
     SimSub *subs;
     int nsubs, capsubs;
-    int *held;           /* the modules (indices in mods) it holds: started or shared          */
+    /* what it holds, by name, as module_holds.c's files: the modules it started or shares, and
+       the event flows its event schemas use (engine_flow_hold_name) */
+    char (*held)[ENGINE_HOLD_NAME_MAX];
     int nheld, capheld;
-    char (*flows)[ENGINE_HOLD_NAME_MAX]; /* the event flows it holds (engine_flow_hold_name)   */
-    int nflows, capflows;
 } SimSup;
 
 typedef struct SimModule {
@@ -195,30 +195,32 @@ static int sio_module_running(void *ctx, const char *module) {
     SimSup *p = ctx;
     return sim_world_module_running(p->w, module) == 1;
 }
-/* ---- module holds: what module_holds.c and sup_main.c decide in a run, with the same
-   module_hold records. A module is stopped when the last supervisor holding it lets it go, and
-   only when an engine started it (one started otherwise, e.g. run by ORD, is left running). */
+/* ---- holds: what module_holds.c and sup_main.c decide in a run, with the same module_hold and
+   flow_hold records. A module or an event flow is held by name, per supervisor; the last holder
+   lets it go. A module is stopped then only when an engine started it (one started otherwise,
+   e.g. run by ORD, is left running). */
 
-static int holds_index(const SimSup *p, int mod) {
+static int hold_index(const SimSup *p, const char *name) {
     for (int k = 0; k < p->nheld; k++)
-        if (p->held[k] == mod) return k;
+        if (strcmp(p->held[k], name) == 0) return k;
     return -1;
 }
 
-static int hold_take(SimSup *p, int mod) {
-    if (holds_index(p, mod) >= 0) return 0;
+/* 0 once p holds `name` (already, or now), -1 out of memory */
+static int hold_take(SimSup *p, const char *name) {
+    if (hold_index(p, name) >= 0) return 0;
     if (grow((void **)&p->held, &p->capheld, p->nheld + 1, sizeof *p->held) != 0) return -1;
-    p->held[p->nheld++] = mod;
+    scopy(p->held[p->nheld++], sizeof *p->held, name);
     return 0;
 }
 
-/* drops p's hold on mod; the number of other supervisors that still hold it */
-static int hold_drop(SimSup *p, int mod) {
-    int k = holds_index(p, mod);
-    if (k >= 0) p->held[k] = p->held[--p->nheld];
+/* drops p's hold on `name`; the number of other supervisors that still hold it (module_holds.c's holds_drop) */
+static int hold_drop(SimSup *p, const char *name) {
+    int k = hold_index(p, name);
+    if (k >= 0 && k != --p->nheld) memcpy(p->held[k], p->held[p->nheld], sizeof *p->held);
     int others = 0;
     for (int s = 0; s < p->w->nsups; s++)
-        if (&p->w->sups[s] != p && holds_index(&p->w->sups[s], mod) >= 0) others++;
+        if (&p->w->sups[s] != p && hold_index(&p->w->sups[s], name) >= 0) others++;
     return others;
 }
 
@@ -231,7 +233,7 @@ static void stop_if_last(SimSup *p, const char *module, int started_here) {
     int i = module_index(p->w, module, 1);
     if (i < 0) return;
     SimModule *m = &p->w->mods[i];
-    int others = hold_drop(p, i);
+    int others = hold_drop(p, module);
     if (others > 0) {
         char detail[96];
         snprintf(detail, sizeof detail, "hold dropped (kept running: still used by %d other supervisor(s))", others);
@@ -264,7 +266,7 @@ static void sio_start_module(void *ctx, const char *module, int priority) {
     SimModule *m = &p->w->mods[i];
     m->started = 1;
     m->start_marked = 1;
-    if (hold_take(p, i) == 0) hold_record(p, module, "hold taken (started it)");
+    if (hold_take(p, module) == 0) hold_record(p, module, "hold taken (started it)");
     /* the START begins a run of the (virtual, asynchronous) module, as libmodule logs it: the
        Monitor's running modules; it lasts until a STOP or a crash (its code never returns) */
     record(p->w, module, "run_started", p->v->name, -1, "activation=%ld", ++m->activations);
@@ -283,7 +285,7 @@ static void sio_share_module(void *ctx, const char *module, int hold) {
         return;
     }
     int i = module_index(p->w, module, 1);
-    if (i >= 0 && hold_take(p, i) == 0) hold_record(p, module, "hold taken (it was running)");
+    if (i >= 0 && hold_take(p, module) == 0) hold_record(p, module, "hold taken (it was running)");
 }
 static int sio_claim_priority(void *ctx, const char *module, uint32_t id, int priority) {
     SimSup *p = ctx;
@@ -301,14 +303,8 @@ static void sio_set_param(void *ctx, const char *module, int port, const char *n
     engine_format_parameterize(line, sizeof line, module, port, name, value, size, type);
     action(p->w, p->v->name, "%s", line);
 }
-/* ---- event flow holds: sup_main.c's b_connect / b_disconnect, the same flow_hold records. One
-   flow is one subscription whichever supervisors ask for it: the last one lets it go. */
-
-static int flow_hold_index(const SimSup *p, const char *name) {
-    for (int k = 0; k < p->nflows; k++)
-        if (strcmp(p->flows[k], name) == 0) return k;
-    return -1;
-}
+/* ---- event flows: sup_main.c's b_connect / b_disconnect, held as modules are (above). One flow
+   is one subscription whichever supervisors ask for it: the last one lets it go. */
 
 static void sio_connect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
@@ -316,11 +312,7 @@ static void sio_connect(void *ctx, const ContractEventFlow *f) {
     engine_format_event_flow(flow, sizeof flow, f);
     engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     action(p->w, p->v->name, "connect %s", flow);
-    if (flow_hold_index(p, name) < 0) {
-        if (grow((void **)&p->flows, &p->capflows, p->nflows + 1, sizeof *p->flows) != 0) return;
-        scopy(p->flows[p->nflows++], sizeof *p->flows, name);
-    }
-    record(p->w, p->v->name, "flow_hold", name, -1, "hold taken");
+    if (hold_take(p, name) == 0) record(p->w, p->v->name, "flow_hold", name, -1, "hold taken");
 }
 static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     SimSup *p = ctx;
@@ -328,11 +320,7 @@ static void sio_disconnect(void *ctx, const ContractEventFlow *f) {
     engine_format_event_flow(flow, sizeof flow, f);
     engine_flow_hold_name(name, sizeof name, f->src_module, f->src_port, f->dst_module, f->dst_port);
     action(p->w, p->v->name, "disconnect %s", flow);
-    int k = flow_hold_index(p, name);
-    if (k >= 0 && k != --p->nflows) memcpy(p->flows[k], p->flows[p->nflows], sizeof *p->flows);
-    int others = 0;
-    for (int s = 0; s < p->w->nsups; s++)
-        if (&p->w->sups[s] != p && flow_hold_index(&p->w->sups[s], name) >= 0) others++;
+    int others = hold_drop(p, name);
     if (others > 0)
         record(p->w, p->v->name, "flow_hold", name, -1,
                "hold dropped (kept connected: used by %d other supervisor(s))", others);
@@ -653,7 +641,6 @@ void sim_world_destroy(SimWorld *w) {
         if (w->sups[i].core) sup_core_destroy(w->sups[i].core);
         free(w->sups[i].subs);
         free(w->sups[i].held);
-        free(w->sups[i].flows);
     }
     if (w->ord) ord_core_destroy(w->ord);
     free(w->sups);
