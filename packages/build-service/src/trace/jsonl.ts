@@ -14,7 +14,7 @@
  * said) and, read one by one, handed as itself (`contract trace` heads each simulation's story with it).
  */
 import { csvField } from './csv-line.js';
-import { CSV_HEADER, parseRecordLine, type LogFile } from './parse.js';
+import { CSV_HEADER, UNENDED_LINE, parseRecordLine, type LogFile } from './parse.js';
 import type { KnownRecord, TraceRecord, UnknownRecord } from './records.js';
 
 /** Longer lines are not records (a record's CSV line is at most MAX_LINE_CHARS; its JSON adds the derived fields). */
@@ -123,8 +123,7 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
             continue;
         }
         if ('problem' in read) {
-            const cut = nl === text.length ? ' (the file ends inside this line: its writer was stopped, or is still writing it)' : '';
-            if (bad++ < maxProblems) problems.push(`line ${n}: ${read.problem}${cut}`);
+            if (bad++ < maxProblems) problems.push(`line ${n}: ${read.problem}${nl === text.length ? UNENDED_LINE : ''}`);
             continue;
         }
         let log = lines.get(read.module);

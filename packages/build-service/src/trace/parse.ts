@@ -120,10 +120,11 @@ function* logFileRecords(file: LogFile): Generator<TraceRecord> {
  * be (`4 fields, expected 8 (the file ends inside this line: ...)`): a module killed while writing.
  */
 export function unendedLine(record: TraceRecord): TraceRecord {
-    return record.kind === 'unknown'
-        ? { ...record, reason: `${(record as UnknownRecord).reason} (the file ends inside this line: its writer was stopped, or is still writing it)` } as TraceRecord
-        : record;
+    return record.kind === 'unknown' ? { ...record, reason: `${(record as UnknownRecord).reason}${UNENDED_LINE}` } as TraceRecord : record;
 }
+
+/** What a file's last line without a line end adds to why it is no record (unendedLine, trace files' problems). */
+export const UNENDED_LINE = ' (the file ends inside this line: its writer was stopped, or is still writing it)';
 
 /**
  * The record of line `index` (0-based) of log `file`, as read from the file (a `\r` before its

@@ -163,7 +163,7 @@ describe('reading a log', () => {
         expect(flowHoldName(long, 1, long, 2)).toBe('flow-3d6ad01208bf6728');
         expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(27), 0)).toBe('flow-232cbf124a7b62a0'); // 64 characters
         expect(flowHoldName('A'.repeat(27), 0, 'B'.repeat(26), 0)).toBe(`flow-${'A'.repeat(27)}-0-${'B'.repeat(26)}-0`); // 63: as it is
-        // the 16-bit-lane hash is module_holds.c's 64-bit arithmetic, byte for byte, on any name (multi-byte, up to a line's length)
+        // the 16-bit-lane hash is engine_flow_hold_name's 64-bit arithmetic, byte for byte, on any name (multi-byte, up to a line's length)
         const reference = (full: string) => {
             let h = 1469598103934665603n;
             for (const byte of new TextEncoder().encode(full)) h = ((h ^ BigInt(byte)) * 1099511628211n) & 0xffff_ffff_ffff_ffffn;

@@ -2,6 +2,7 @@ import type { LspClient } from '../lsp/lsp-client.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { debounce } from '../util/dom.js';
 import { dismissToasts, toast } from '../util/toast.js';
+import { api, ApiError } from '../api.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { ServerEvents } from './server-events.js';
 
@@ -67,9 +68,5 @@ export const SESSION_ENDED = 'The IDE server was restarted and no longer knows t
 
 /** True when the IDE server answers but refuses this tab's session (401); false when it is unreachable. */
 async function sessionRefused(): Promise<boolean> {
-  try {
-    return (await fetch('/api/info', { cache: 'no-store' })).status === 401;
-  } catch {
-    return false;
-  }
+  return api.info().then(() => false, (e: unknown) => e instanceof ApiError && e.status === 401);
 }
