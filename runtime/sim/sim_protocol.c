@@ -407,6 +407,9 @@ int sim_session_line(SimSession *s, char *line) {
         } else if (strcmp(verb, "crash") == 0) {
             NEED(1);
             sim_world_crash(s->w, a[0]);
+        } else if (strcmp(verb, "finish") == 0) {
+            NEED(1);
+            if (sim_world_finish(s->w, a[0], r.error, sizeof r.error)) r.ok = 0;
         } else if (strcmp(verb, "exec") == 0) {
             NEED(3);
             int64_t ns;

@@ -246,7 +246,7 @@ static void stop_if_last(SimSup *p, const char *module, int started_here) {
         hold_record(p, module, "last hold dropped (left running: not started by an engine)");
         return;
     }
-    if (m->crashed) {
+    if (m->crashed || !m->started) { /* crashed, or its code returned (finish) */
         hold_record(p, module, "last hold dropped (it had ended)");
         return;
     }
@@ -268,7 +268,7 @@ static void sio_start_module(void *ctx, const char *module, int priority) {
     m->start_marked = 1;
     if (hold_take(p, module) == 0) hold_record(p, module, "hold taken (started it)");
     /* the START begins a run of the (virtual, asynchronous) module, as libmodule logs it: the
-       Monitor's running modules; it lasts until a STOP or a crash (its code never returns) */
+       Monitor's running modules; it lasts until a STOP, a crash or a scenario's `finish` */
     record(p->w, module, "run_started", p->v->name, -1, "activation=%ld", ++m->activations);
 }
 /* `stop module M` (the undo of its start: steps-to-trace.ts adds `undo: `), then what its hold decided */
@@ -792,6 +792,20 @@ void sim_world_crash(SimWorld *w, const char *module) {
         if (w->fin[k].module == i) w->fin[k] = w->fin[--w->nfin];
         else k++;
     action(w, module, "crashed");
+}
+
+int sim_world_finish(SimWorld *w, const char *module, char *err, size_t errlen) {
+    int i = module_index(w, module, 0);
+    if (i < 0 || !w->mods[i].started || w->mods[i].crashed) {
+        snprintf(err, errlen, "%s is not running: it has no run to finish%s", module,
+                 i >= 0 && w->mods[i].crashed ? " (it has crashed)" : "");
+        return -1;
+    }
+    SimModule *m = &w->mods[i];
+    m->started = 0; /* its holders keep their holds: the last one finds it ended (stop_if_last) */
+    /* the run ends as libmodule logs a run whose code returned (mailbox.c: no STOP, no ack) */
+    record(w, module, "run_finished", "", -1, "activation=%ld", m->activations);
+    return 0;
 }
 
 void sim_world_set_exec(SimWorld *w, const char *module, int64_t exec_ns, int once) {

@@ -18,6 +18,8 @@ describe('checkScenario on the tutorial', () => {
             't=3ms ORD:0 "noSchema"',                          // 9
             'expect schema schemaCommande1 active',            // 10: fine
             'expect module ZZZ running',                       // 11
+            'finish MSA',                                      // 12: synchronous
+            'finish MAA',                                      // 13: fine
         ].join('\n');
         const s = loadScenario('x.scenario', 'x.scenario', text, project.index);
         const d = s.diagnostics.map((x) => `${x.line}:${x.column} ${x.code} ${x.message}`);
@@ -34,6 +36,7 @@ describe('checkScenario on the tutorial', () => {
             '8:6 scenario-not-synchronous MAA is an asynchronous module: only synchronous modules are released by ORD (exec sets the time of a release)',
             "9:13 scenario-unknown-schema no schema 'noSchema' in the project (schemas: schemaReceptionMessage, schemaCommande1, schemaCommande2)",
             "11:15 scenario-unknown-module no module 'ZZZ' in the project (modules: MAA, MAB, MSA, MSB, MSC, MSD)",
+            '12:8 scenario-not-asynchronous MSA is a synchronous module: each of its releases ends by itself (exec sets how long one takes); finish ends the run of an asynchronous module',
         ]);
     });
     it('checks the steps that parsed even when others did not: every problem of the file at once', async () => {

@@ -13,6 +13,7 @@ describe('parseScenario', () => {
             't=1s ORD:0 "schemaCommande1"',
             'exec MSC 1.5s once',
             't=2s crash MSC',
+            'finish MAA',
             'expect local SUP.action.temp_consigne == {1.0, 2.0, 3.0}',
             'expect local failure_data == {"x", -3}',
             'expect schema schemaCommande1 inactive',
@@ -24,8 +25,8 @@ describe('parseScenario', () => {
         expect(p.title).toBe('the story');
         expect(p.untilNs).toBe(5e9);
         expect(p.steps.map((s) => [s.kind, s.atNs, s.span.line])).toEqual([
-            ['start', 0, 3], ['expect', 1e6, 4], ['event', 3e8, 5], ['event', 1e9, 6], ['exec', 1e9, 7], ['crash', 2e9, 8],
-            ['expect', 2e9, 9], ['expect', 2e9, 10], ['expect', 2e9, 11], ['expect', 2e9, 12], ['expect', 2e9, 13], ['stop', 3e9, 14],
+            ['start', 0, 3], ['expect', 1e6, 4], ['event', 3e8, 5], ['event', 1e9, 6], ['exec', 1e9, 7], ['crash', 2e9, 8], ['finish', 2e9, 9],
+            ['expect', 2e9, 10], ['expect', 2e9, 11], ['expect', 2e9, 12], ['expect', 2e9, 13], ['expect', 2e9, 14], ['stop', 3e9, 15],
         ]);
         const ev = p.steps[2]!;
         expect(ev.kind === 'event' && ev.portName?.text).toBe('connection_status');
@@ -33,8 +34,9 @@ describe('parseScenario', () => {
         const start = p.steps[0]!;
         expect(start.kind === 'start' && start.args[0]!.value).toMatchObject({ kind: 'struct', elements: [{ kind: 'real' }, { kind: 'int' }, { kind: 'real', value: 30 }] });
         expect(p.steps[4]).toMatchObject({ kind: 'exec', execNs: 1.5e9, once: true });
-        expect(p.steps[7]).toMatchObject({ kind: 'expect', expectation: { kind: 'local', local: { text: 'failure_data' } } });
-        expect(p.steps[7]!.kind === 'expect' && p.steps[7]!.expectation.kind === 'local' && p.steps[7]!.expectation.supervisor).toBeUndefined();
+        expect(p.steps[6]).toMatchObject({ kind: 'finish', module: { text: 'MAA', span: { line: 9, column: 8 } } });
+        expect(p.steps[8]).toMatchObject({ kind: 'expect', expectation: { kind: 'local', local: { text: 'failure_data' } } });
+        expect(p.steps[8]!.kind === 'expect' && p.steps[8]!.expectation.kind === 'local' && p.steps[8]!.expectation.supervisor).toBeUndefined();
     });
 
     it('reads bool values (true, false) alone and inside structured values; truer is no value', () => {

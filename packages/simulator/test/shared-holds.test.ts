@@ -119,4 +119,39 @@ describe('modules and event flows two supervisors share', () => {
             'ALF  module SCN: last hold dropped (it had ended)',
         ]);
     }, 60_000);
+
+    it("a module whose code returned (finish) ends its run; the next supervisor that needs it starts it again", async () => {
+        // SCN returns at 3ms, before BET's rule (5ms) needs it: BET starts it again, where
+        // without `finish` it shares ALF's run (the first test's `hold taken (it was running)`)
+        const r = await run([
+            'start ALF.first()', 'start BET.second()',
+            't=3ms finish SCN', 'expect module SCN stopped', 'expect module LGR running',
+            'expect at 10ms module SCN running',
+            'expect at 30ms module SCN running', // ALF's undo keeps BET's run
+            'expect at 50ms module SCN stopped',
+        ].join('\n'));
+        expect(r.failures.map((f) => f.message)).toEqual([]);
+        expect(story(r).filter((l) => l.includes('module SCN'))).toEqual([
+            'ALF  start module SCN (priority 30)',
+            'BET  start module SCN (priority 30)',
+            'ALF  undo: stop module SCN',
+            'ALF  module SCN: hold dropped (kept running: still used by 1 other supervisor(s))',
+            'BET  undo: stop module SCN', // its hold's `last hold dropped (stopped)` confirms the line: not repeated
+        ]);
+        const runs = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => (x.kind === 'run_started' || x.kind === 'run_finished') && (x as KnownRecord).module === 'SCN') as KnownRecord[];
+        expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual([
+            '1ms run_started ALF activation=1', '3ms run_finished  activation=1', // returned: no STOP, no peer
+            '5ms run_started BET activation=2', '40ms run_finished BET activation=2 STOP',
+        ]);
+    }, 60_000);
+
+    it("finish of a module that is not running fails that step and says why; the last holder of a finished module is told it had ended", async () => {
+        const r = await run(['t=1ms finish SCN', 'start ALF.first()', 't=3ms finish SCN', 'expect at 30ms module SCN stopped'].join('\n'));
+        expect(r.failures.map((f) => f.message)).toEqual([expect.stringContaining('SCN is not running: it has no run to finish')]);
+        expect(story(r).filter((l) => l.includes('module SCN'))).toEqual([
+            'ALF  start module SCN (priority 30)',
+            'ALF  undo: stop module SCN',
+            'ALF  module SCN: last hold dropped (it had ended)',
+        ]);
+    }, 60_000);
 });

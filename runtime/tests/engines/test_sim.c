@@ -3,7 +3,8 @@
  * line protocol with the report's hand-written tables: the §4.7 story as JSON records, a failed
  * expectation with its expected and actual state, determinism (the same lines twice give the
  * same bytes), an overrun that makes ORD emit ORD:0, the data a virtual module posts on the
- * flows ORD connected, and hostile lines answered by error records.
+ * flows ORD connected, a module whose code returns (finish), and hostile lines answered by error
+ * records.
  */
 #define _POSIX_C_SOURCE 200809L
 #include <stdio.h>
@@ -264,5 +265,35 @@ void test_sim_hostile_lines_get_error_records(void) {
     HAS(record(out, 6), "is before the simulation's");
     HAS(record(out, 7), "\"actual\":\"SUP.action is not running (no local temp_consigne)\"");
     HAS(record(out, 8), "\"end\":true");
+    free(out);
+}
+
+/* `finish M`: the asynchronous module's code returns: its run ends as libmodule logs it (no STOP,
+   no peer), it no longer runs; a second finish, or one of a module never started, is an error */
+void test_sim_finish_ends_an_asynchronous_run(void) {
+    report_log = NULL;
+    testit_result = 1;
+    static const char *const lines[] = {
+        "0\t1\tstart\tSUP\taction\tconsigne={1.0,2.0,3.0}",
+        "1000000\t2\texpect-module\tMAA\t1",
+        "2000000\t3\tfinish\tMAA",
+        "2000000\t4\texpect-module\tMAA\t0",
+        "2000000\t5\tfinish\tMAA",
+        "2000000\t6\tfinish\tNOPE",
+        "2000000\t7\tfinish",
+        "3000000\t0\tend",
+        NULL};
+    char *out = run_lines(lines);
+    CHECK(out != NULL);
+    if (!out) return;
+    HAS(record(out, 1), "\"ok\":true");
+    HAS(record(out, 1), "\"module\":\"MAA\",\"kind\":\"run_started\",\"peer\":\"SUP\",\"detail\":\"activation=1\"");
+    HAS(record(out, 2), "\"verb\":\"finish\",\"ok\":true");
+    HAS(record(out, 2), "{\"timeNs\":2000000,\"module\":\"MAA\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1\"}");
+    HAS(record(out, 3), "\"ok\":true");
+    HAS(record(out, 4), "\"ok\":false,\"error\":\"MAA is not running: it has no run to finish\"");
+    HAS(record(out, 5), "\"error\":\"NOPE is not running: it has no run to finish\"");
+    HAS(record(out, 6), "finish takes 1 arguments");
+    HAS(record(out, 7), "\"end\":true");
     free(out);
 }

@@ -93,6 +93,8 @@ function offset(ns: bigint): string {
  * grow with the logs. The names kept are copies (ownString), never the lines they were read from.
  */
 export const STORY_FOLLOWED = 4096;
+/** A run_finished that no STOP, KILL or ack ended: the module's code returned (libmodule's WaitForRequest). */
+const RUN_RETURNED = /^activation=(\d+)$/;
 const RUNNING_FOLLOWED = 65_536;
 
 /** The modules released in one cycle and not finished yet; how late ORD sent its first release. */
@@ -127,6 +129,13 @@ export class StoryTeller {
      * line it wrote last (`start module M` then `module M: hold taken (started it)`): not told again.
      */
     private readonly confirming = new Map<string, ConfirmingHold>();
+    /**
+     * Modules (at most STORY_FOLLOWED) whose current run a supervisor or a control tool began (a
+     * `run_started` whose peer is not ORD), with that peer: a run of theirs that ends with no STOP
+     * and no ack (`activation=N` alone) is told: the module's own code ended it. ORD's releases end
+     * with an ack and are not followed.
+     */
+    private readonly runs = new Map<string, string>();
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -173,6 +182,17 @@ export class StoryTeller {
             return undefined;
         }
         if (k.kind === 'ord_deadline_miss') return `${at(k)} ${this.missText(k)}`;
+        if (k.kind === 'run_started') {
+            if (k.peer === 'ORD') this.runs.delete(k.module);
+            else if (this.runs.has(k.module) || this.runs.size < STORY_FOLLOWED) this.runs.set(ownString(k.module), ownString(k.peer));
+            return undefined;
+        }
+        if (k.kind === 'run_finished') {
+            const starter = this.runs.get(k.module);
+            this.runs.delete(k.module);
+            const returned = starter !== undefined && RUN_RETURNED.exec(k.detail);
+            return returned ? `${at(k)} run #${returned[1]} ended by its own code (started by ${starter || 'a control tool'})` : undefined;
+        }
         if (k.kind === 'module_started') {
             this.exited.delete(k.module); // started again: a later stuck report is about this run of it
             return `${at(k)} started (${k.detail})`;

@@ -354,6 +354,24 @@ describe('reading a log', () => {
         ]);
     });
 
+    it("tells a run a supervisor or a control tool began that its module's own code ended (no STOP, no ack); not a release's end or a stopped run", () => {
+        const story = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+            '1000000,w,MAB,run_started,SUP,,0,activation=1',
+            '1200000,w,MAB,run_finished,,,0,activation=1',                // its code set *stateindex = -1
+            '2000000,w,SCN,run_started,ALF,,0,activation=1',
+            '3000000,w,SCN,run_finished,BET,,0,activation=1 STOP',       // stopped: the holds tell it
+            '4000000,w,MSC,run_started,ORD,,0,activation=7',
+            '4500000,w,MSC,run_finished,ORD,,0,activation=7 ACK_FINISHED', // a release's end
+            '5000000,w,TEL,run_started,,,0,activation=2',                 // a control tool's START
+            '6000000,w,TEL,run_finished,,,0,activation=2',
+            '7000000,w,TEL,run_finished,,,0,activation=3',               // no start read: not told
+        ].join('\n') }]));
+        expect(story.slice(0, -1)).toEqual([
+            '+0.000200s MAB  run #1 ended by its own code (started by SUP)',
+            '+0.005000s TEL  run #2 ended by its own code (started by a control tool)',
+        ]);
+    });
+
     it('names the modules a missed cycle still waits for, or the module its held cycle waits for; tells held, resumed and stuck; a record before the first is at a negative time', () => {
         const text = [CSV_HEADER,
             '1000000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=20',

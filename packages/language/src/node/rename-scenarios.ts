@@ -151,6 +151,7 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
             owned(step.supervisor, step.function, 'supervision function');
             break;
         case 'crash':
+        case 'finish':
         case 'exec':
             name(step.module, MOD);
             break;

@@ -61,6 +61,8 @@ export type StepBody =
     | { kind: 'stop'; supervisor: Name; function: Name }
     /** The module crashes: it stops running, never acks a release again. */
     | { kind: 'crash'; module: Name }
+    /** The asynchronous module's code returns: its run ends, as a real module's does; a supervisor that needs it again starts it. */
+    | { kind: 'finish'; module: Name }
     /** From now on (or for its next release only) each release of the module takes `execNs`. */
     | { kind: 'exec'; module: Name; execNs: number; once: boolean }
     | { kind: 'expect'; expectation: Expectation };
@@ -271,7 +273,7 @@ function qualified(cur: LineCursor, what: string): { supervisor: Name; function:
 }
 
 /** The words a scenario line may start with (besides an event `MODULE:PORT value`). */
-const DIRECTIVES = ['start', 'stop', 'crash', 'exec', 'expect', 'scenario', 'until'];
+const DIRECTIVES = ['start', 'stop', 'crash', 'finish', 'exec', 'expect', 'scenario', 'until'];
 
 function activeWord(cur: LineCursor, yes: string, no: string): boolean {
     if (cur.keyword(yes)) return true;
@@ -376,6 +378,12 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
         cur.endOfLine('the module');
         return { kind: 'crash', module };
     }
+    if (word === 'finish') {
+        cur.keyword('finish');
+        const module = cur.ident('the asynchronous module whose code returns');
+        cur.endOfLine('the module');
+        return { kind: 'finish', module };
+    }
     if (word === 'exec') {
         cur.keyword('exec');
         const module = cur.ident('a synchronous module');
@@ -399,7 +407,7 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
         // MODULE:PORT [name=]value
         const module = cur.ident('a module');
         if (!cur.char(':')) {
-            cur.fail(`unknown directive '${word}': expected start, stop, crash, exec, expect, scenario, until or an event MODULE:PORT value${didYouMean(word, DIRECTIVES)}`, wordSpan.column - 1, wordSpan.endColumn - 1);
+            cur.fail(`unknown directive '${word}': expected start, stop, crash, finish, exec, expect, scenario, until or an event MODULE:PORT value${didYouMean(word, DIRECTIVES)}`, wordSpan.column - 1, wordSpan.endColumn - 1);
         }
         cur.skipSpaces();
         const pm = /^[0-9]+/.exec(cur.text.slice(cur.pos));
@@ -422,7 +430,7 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
         cur.endOfLine('the event\'s value');
         return { kind: 'event', module, port, portSpan, portName, value };
     }
-    return cur.fail('expected a directive: start, stop, crash, exec, expect, an event MODULE:PORT value, scenario or until');
+    return cur.fail('expected a directive: start, stop, crash, finish, exec, expect, an event MODULE:PORT value, scenario or until');
 }
 
 /** Parses a whole scenario text. Never throws. */

@@ -117,6 +117,8 @@ export function stepLine(step: Step, index: number, locals: Map<number, Resolved
             return head + ['event', step.module.text, String(step.port), step.value ? valueText(step.value) : ''].join('\t');
         case 'crash':
             return head + ['crash', step.module.text].join('\t');
+        case 'finish':
+            return head + ['finish', step.module.text].join('\t');
         case 'exec':
             return head + ['exec', step.module.text, String(step.execNs), step.once ? 'once' : 'always'].join('\t');
         case 'expect': {

@@ -10,7 +10,7 @@ export const SCENARIO_LANGUAGE_ID = 'cactal-scenario';
 
 export const scenarioMonarch: monaco.languages.IMonarchLanguage = {
   defaultToken: '',
-  directives: ['start', 'stop', 'crash', 'exec', 'expect', 'scenario', 'until', 'at', 'once'],
+  directives: ['start', 'stop', 'crash', 'finish', 'exec', 'expect', 'scenario', 'until', 'at', 'once'],
   expectations: ['rule', 'schema', 'function', 'module', 'local'],
   states: ['active', 'inactive', 'running', 'stopped'],
   tokenizer: {

@@ -24,6 +24,7 @@ const DIRECTIVES: Array<{ label: string; detail: string; header?: boolean }> = [
     { label: 'stop', detail: 'stop SUP.function: a control tool stops it' },
     { label: 'expect', detail: 'expect rule|schema|function|module|local ...: checked at this time' },
     { label: 'crash', detail: 'crash MODULE: it stops and never acknowledges a release again' },
+    { label: 'finish', detail: 'finish MODULE: the asynchronous module\'s code returns, its run ends' },
     { label: 'exec', detail: 'exec MODULE TIME [once]: execution time of each release of a synchronous module' },
     { label: 'scenario', detail: 'scenario TITLE: the scenario\'s title (header line)', header: true },
     { label: 'until', detail: 'until TIME: the virtual end of the scenario (header line)', header: true },
@@ -159,10 +160,11 @@ export function completeUnguarded(text: string, position: Position, names: Scena
         f?.parameters.forEach((p) => add(p.name, CompletionItemKind.Variable, `${typeName(typeOf(p.type))} ${p.name}`, `${p.name} = `));
         return items;
     }
-    // crash / exec MODULE
-    if ((m = /^\s*(crash|exec)\s+[A-Za-z0-9_]*$/.exec(rest))) {
+    // crash / finish / exec MODULE (finish: asynchronous modules, exec: synchronous ones)
+    if ((m = /^\s*(crash|finish|exec)\s+[A-Za-z0-9_]*$/.exec(rest))) {
+        const kind = m[1] === 'exec' ? 'synchronous' : m[1] === 'finish' ? 'asynchronous' : undefined;
         names.modules.forEach((mod, n) => {
-            if (m![1] === 'crash' || mod.kind === 'synchronous') add(n, CompletionItemKind.Class, `${mod.kind} module`);
+            if (!kind || mod.kind === kind) add(n, CompletionItemKind.Class, `${mod.kind} module`);
         });
         return items;
     }

@@ -145,6 +145,7 @@ export function hoverUnguarded(text: string, position: Position, names: Scenario
             return null;
         }
         case 'crash':
+        case 'finish':
         case 'exec': {
             const m = names.modules.get(step.module.text);
             return at(step.module) && m ? answer(moduleHover(m), step.module.span) : null;
