@@ -246,14 +246,17 @@ static void stop_if_last(SimSup *p, const char *module, int started_here) {
         hold_record(p, module, "last hold dropped (left running: not started by an engine)");
         return;
     }
-    if (m->crashed || !m->started) { /* crashed, or its code returned (finish) */
+    if (m->crashed) { /* its process is gone (sup_main.c's alive()) */
         hold_record(p, module, "last hold dropped (it had ended)");
         return;
     }
+    /* a module whose own code ended its run (finish) is still there: the STOP is sent and finds no
+       run, as in a run (the module answers it, logs nothing) */
+    int running = m->started;
     m->started = 0;
     hold_record(p, module, "last hold dropped (stopped)");
-    /* its run ends with the STOP, as libmodule logs it (mailbox.c) */
-    record(p->w, module, "run_finished", p->v->name, -1, "activation=%ld STOP", m->activations);
+    /* a run it ends ends with the STOP, as libmodule logs it (mailbox.c) */
+    if (running) record(p->w, module, "run_finished", p->v->name, -1, "activation=%ld STOP", m->activations);
 }
 
 static void sio_start_module(void *ctx, const char *module, int priority) {
@@ -802,7 +805,7 @@ int sim_world_finish(SimWorld *w, const char *module, char *err, size_t errlen) 
         return -1;
     }
     SimModule *m = &w->mods[i];
-    m->started = 0; /* its holders keep their holds: the last one finds it ended (stop_if_last) */
+    m->started = 0; /* its holders keep their holds: the last one's STOP finds no run (stop_if_last) */
     /* the run ends as libmodule logs a run whose code returned (mailbox.c: no STOP, no ack) */
     record(w, module, "run_finished", "", -1, "activation=%ld", m->activations);
     return 0;

@@ -62,7 +62,7 @@ int sim_world_event(SimWorld *w, const char *module, int port, const char *value
 /** The module crashes: not running, never acks a release again. */
 void sim_world_crash(SimWorld *w, const char *module);
 /** The asynchronous module's code returns: its run ends (run_finished), it no longer runs; its
- *  holders keep their holds, and a supervisor that needs it later starts it again. -1 and a
+ *  holders keep their holds (the last one's STOP finds no run), and a supervisor that needs it later starts it again. -1 and a
  *  message when it is not running. */
 int sim_world_finish(SimWorld *w, const char *module, char *err, size_t errlen);
 /** Execution time of a synchronous module's releases from now on (once: the next one only). */

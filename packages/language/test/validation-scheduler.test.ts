@@ -80,6 +80,15 @@ describe('scheduler configuration: more behaviour', () => {
         expect(built.diagnostics.filter((d) => d.code.startsWith('scheduler-'))).toEqual([]);
     });
 
+    it('a listed module whose file is not imported is one error, not also "not listed"', async () => {
+        const built = await build({
+            'cam.contract': 'synchronous module CAM { scheduling { C=1ms; } }',
+            'look.contract': 'import "cam.contract";\nperiodic schema look() { realtime { PERIOD=10ms; CRITICAL_DELAY=10ms; } modules { CAM (); } }',
+            'sched.contract': 'import "look.contract";\nscheduler configuration { modules { CAM; } schemas { look; } }',
+        });
+        expect(built.diagnostics.filter((d) => d.severity === 'error').map((d) => `${d.file} ${d.code}`)).toEqual(['sched.contract import-not-imported']);
+    });
+
     it('does not crash on unresolved entries', async () => {
         const built = await build(sched('modules { MSA; MZZ; } schemas { nosuch; sc1; }'));
         expect(built.diagnostics.filter((d) => d.code === 'linking-error').length).toBe(2);

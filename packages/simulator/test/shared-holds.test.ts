@@ -145,13 +145,19 @@ describe('modules and event flows two supervisors share', () => {
         ]);
     }, 60_000);
 
-    it("finish of a module that is not running fails that step and says why; the last holder of a finished module is told it had ended", async () => {
+    it("finish of a module that is not running fails that step and says why; the last holder of a finished module still stops it, as a run does", async () => {
         const r = await run(['t=1ms finish SCN', 'start ALF.first()', 't=3ms finish SCN', 'expect at 30ms module SCN stopped'].join('\n'));
         expect(r.failures.map((f) => f.message)).toEqual([expect.stringContaining('SCN is not running: it has no run to finish')]);
         expect(story(r).filter((l) => l.includes('module SCN'))).toEqual([
             'ALF  start module SCN (priority 30)',
-            'ALF  undo: stop module SCN',
-            'ALF  module SCN: last hold dropped (it had ended)',
+            'ALF  undo: stop module SCN', // confirmed by `last hold dropped (stopped)`: the module is there, its STOP finds no run
+        ]);
+        const holds = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => x.kind === 'module_hold' || ((x.kind === 'run_finished' || x.kind === 'run_started') && (x as KnownRecord).module === 'SCN')) as KnownRecord[];
+        expect(holds.filter((h) => h.module === 'SCN' || h.peer === 'SCN').map((h) => `${Number(h.monoNs) / 1e6}ms ${h.module} ${h.kind} ${h.detail}`)).toEqual([
+            '2ms ALF module_hold hold taken (started it)', // ALF started at 1ms, its rule 1ms later
+            '2ms SCN run_started activation=1',
+            '3ms SCN run_finished activation=1', // no second run_finished at the STOP: there was no run to end
+            '21ms ALF module_hold last hold dropped (stopped)',
         ]);
     }, 60_000);
 });

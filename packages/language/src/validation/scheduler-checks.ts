@@ -71,7 +71,9 @@ function checkListedModules(config: SchedulerConfiguration, accept: ValidationAc
 }
 
 function checkListedSchemas(config: SchedulerConfiguration, accept: ValidationAcceptor): void {
-    const listedModules = new Set(scheduledModulesOf(config).map((r) => r.ref).filter((m): m is Module => m !== undefined));
+    // by name: a listed module whose name does not resolve (its file not imported) has its own
+    // error, and is listed all the same (no second error saying it is not)
+    const listedModules = new Set(scheduledModulesOf(config).map((r) => r.ref?.name ?? r.$refText));
     for (const block of config.blocks.filter(isSchedulerSchemas)) {
         block.schemas.forEach((ref, index) => {
             const schema = ref.ref;
@@ -82,7 +84,7 @@ function checkListedSchemas(config: SchedulerConfiguration, accept: ValidationAc
                     { node: block, property: 'schemas', index });
                 return;
             }
-            const missing = schemaModules(schema).filter((m) => !listedModules.has(m));
+            const missing = schemaModules(schema).filter((m) => !listedModules.has(m.name));
             if (missing.length) {
                 report(accept, SchedulerCodes['scheduler-module-unlisted'],
                     `Schema ${schema.name} uses ${missing.map((m) => m.name).join(', ')}, which ${missing.length === 1 ? 'is' : 'are'} not listed in the 'modules' block of the scheduler configuration: list every module of a listed schema.`,

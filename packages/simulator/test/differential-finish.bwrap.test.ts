@@ -1,0 +1,144 @@
+/**
+ * Differential test of a module whose own code ends its run: a pan-tilt tracker (written for this
+ * test) whose supervisor PAN homes the unit when an axis hits its limit. The homing module HOM posts
+ * "homed" and its exec region sets `*stateindex = -1`: its run ends by itself, then PAN's rule
+ * ends and its undo stops HOM. A real run (`contract run --sandbox bwrap`) and the simulator given
+ * the same events, with `finish HOM` where the real HOM's run ended, tell the same story per module:
+ * `HOM  run #1 ended by its own code (started by PAN)`, then PAN's `undo: stop module HOM` (its STOP
+ * finds no run, the module is still there: `last hold dropped (stopped)` in both) and PAN's
+ * decisions with their causes. Compared per module (PAN's lines, HOM's lines): which of two
+ * processes logs first within microseconds is timing, not semantics.
+ */
+import { spawnSync } from 'node:child_process';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { renderStory, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { loadScenario, runLoadedScenario } from '../src/index.js';
+import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
+import { runForReal, type RealRun } from './differential/replay-run.js';
+import { prepared, REPO } from './support.js';
+
+const FILES: Record<string, string> = {
+    'cam.contract': 'synchronous module CAM {\n    scheduling { C=1ms; }\n    data flows { out :0 float u; }\n}\n',
+    'trk.contract': 'synchronous module TRK {\n    scheduling { C=1ms; }\n    data flows { in :0 float u; }\n}\n',
+    'ptu.contract': 'asynchronous module PTU {\n    event flows { out :0 string axis; }\n}\n',
+    'hom.contract': 'asynchronous module HOM {\n    event flows { out :0 string result; }\n}\n',
+    'track.contract': 'import "cam.contract";\nimport "trk.contract";\n\nperiodic schema track() {\n    realtime { PERIOD=20ms; CRITICAL_DELAY=20ms; }\n    modules { CAM (); TRK (); }\n    scheduling graph { CAM -> TRK; }\n    communications { CAM:0 -> TRK:0 * 1; }\n}\n',
+    'drive.contract': 'import "ptu.contract";\n\nevent schema drive() {\n    modules { PTU (); }\n}\n',
+    'homing.contract': 'import "hom.contract";\n\nevent schema homing() {\n    modules { HOM (); }\n}\n',
+    'sched.contract': 'import "cam.contract";\nimport "trk.contract";\nimport "track.contract";\n\nscheduler configuration {\n    modules { CAM; TRK; }\n    schemas { track; }\n}\n',
+    'pan.contract': [
+        'import "ptu.contract";', 'import "hom.contract";', 'import "track.contract";', 'import "drive.contract";',
+        'import "homing.contract";', 'import "sched.contract";', '',
+        'supervisor PAN {',
+        '    event flows { in :0 string axis; in :1 string result; }',
+        '    follow() {',
+        '        rules {',
+        '            TRACK: [elapsed=1ms or HOM:0<result == "homed">]',
+        '                subscribe PTU:0 =* :0; activate schema drive(); activate schema track()',
+        '                [PTU:0]',
+        '            HOME: [endof(TRACK)]',
+        '                subscribe HOM:0 =* :1; activate schema homing()',
+        '                [HOM:0<result == "homed">]',
+        '        }',
+        '    }',
+        '}', '',
+    ].join('\n'),
+};
+
+/** The module code, in the protected regions `contract generate` made. */
+const REGIONS: Array<{ module: string; body: string }> = [
+    // the pan axis reaches its limit 300 ms after PTU starts, then PTU idles until stopped
+    { module: 'PTU', body: `
+    if (*stateindex < 6) {
+        nanosleep(&(struct timespec){0, 50 * 1000000L}, NULL);
+        (*stateindex)++;
+    } else if (*stateindex == 6) {
+        snprintf(axis, sizeof axis, "pan");
+        PostEvent(&axis);
+        *stateindex = 7;
+    } else {
+        nanosleep(&(struct timespec){0, 10 * 1000000L}, NULL);
+    }
+    ` },
+    // homing: 100 ms, then "homed", and the run ends by itself
+    { module: 'HOM', body: `
+    if (*stateindex < 2) {
+        nanosleep(&(struct timespec){0, 50 * 1000000L}, NULL);
+        (*stateindex)++;
+    } else {
+        snprintf(result, sizeof result, "homed");
+        PostEvent(&result);
+        *stateindex = -1;
+    }
+    ` },
+];
+
+let dir: string;
+let run: RealRun;
+
+beforeAll(() => {
+    dir = mkdtempSync(join(tmpdir(), 'sim-diff-finish-'));
+    for (const [name, text] of Object.entries(FILES)) writeFileSync(join(dir, name), text);
+    const gen = spawnSync(process.execPath, [join(REPO, 'packages/cli/bin/contract.js'), 'generate', dir], { encoding: 'utf8' });
+    if (gen.status !== 0) throw new Error(`contract generate: ${gen.stdout}${gen.stderr}`);
+    for (const { module, body } of REGIONS) {
+        const file = join(dir, 'src-gen/generated/architecture/modules', `${module}_mod`, 'module.c');
+        const id = `/*PROTECTED REGION ID(protect_exec_${module}) ENABLED START*/`;
+        const text = readFileSync(file, 'utf8');
+        const from = text.indexOf(id), to = text.indexOf('/*PROTECTED REGION END*/', from);
+        if (from < 0 || to < 0) throw new Error(`no exec region in ${file}`);
+        writeFileSync(file, text.slice(0, from + id.length) + body + text.slice(to));
+    }
+    // HOM ends its run at ~0.4 s after the start; the second limit comes at ~0.7 s
+    run = runForReal(dir, '1s');
+}, 300_000);
+afterAll(() => {
+    run?.cleanUp();
+    rmSync(dir, { recursive: true, force: true });
+});
+
+const mono = (r: TraceRecord) => BigInt((r as KnownRecord).monoNs);
+/** A story's lines without their time, per module (`PAN`, `HOM`), up to PAN's second TRACK (the one after the homing). */
+function perModule(lines: string[]): Map<string, string[]> {
+    const out = new Map<string, string[]>();
+    let tracks = 0;
+    for (const line of lines.map((l) => l.slice(11))) {
+        const [module] = line.split(' ');
+        if ((module !== 'PAN' && module !== 'HOM') || / started \(pid=/.test(line)) continue; // not the processes' starts
+        (out.get(module!) ?? out.set(module!, []).get(module!)!).push(line);
+        if (/^PAN {2}rule follow\.TRACK active/.test(line) && ++tracks === 2) break;
+    }
+    return out;
+}
+
+describe('a module whose own code ends its run: a real bwrap run and the simulator with finish', () => {
+    it('tell the same story, per module, up to the tracking that follows the homing', async () => {
+        expect(run.code, run.output).toBe(0);
+        const known = run.records.filter((r): r is KnownRecord => r.kind !== 'unknown' && !('rule' in r)) as KnownRecord[];
+        const started = known.find((r) => r.module === 'PAN' && r.kind === 'supervisor' && r.fields['what'] === 'function_started');
+        const limit = known.find((r) => r.module === 'PAN' && r.kind === 'event_received' && r.peer === 'PTU');
+        const ended = known.find((r) => r.module === 'HOM' && r.kind === 'run_finished' && r.detail === 'activation=1');
+        expect(started && limit && ended, run.output).toBeTruthy();
+        const ms = (r: TraceRecord) => Number(mono(r) - mono(started!)) / 1e6;
+        // HOM's "homed" and the end of its run come together: the run's end first, as HOM posts
+        // then returns (the scenario's steps at one time run in file order)
+        const text = ['until 1s', 'start PAN.follow()', `t=${ms(limit!).toFixed(3)}ms PTU:0 "pan"`,
+            `t=${ms(ended!).toFixed(3)}ms finish HOM`, 'HOM:0 "homed"'].join('\n');
+        const project = await prepared(dir);
+        const s = loadScenario(join(dir, 'real.scenario'), 'real.scenario', text, project.index);
+        expect(s.diagnostics, text).toEqual([]);
+        const sim = await runLoadedScenario(project, s);
+        expect(sim.failures.map((f) => f.message), text).toEqual([]);
+
+        const real = perModule(renderStory(run.records));
+        const simulated = perModule(renderStory(stepsToTrace(sim.steps.map(traceStepOf))));
+        expect(real.get('HOM')).toEqual(['HOM  run #1 ended by its own code (started by PAN)']);
+        expect(real.get('PAN')).toContain('PAN  undo: stop module HOM');
+        expect(real.get('PAN')!.some((l) => l.includes('it had ended'))).toBe(false);
+        expect(simulated.get('HOM'), text).toEqual(real.get('HOM'));
+        expect(simulated.get('PAN'), text).toEqual(real.get('PAN'));
+    }, 120_000);
+});
