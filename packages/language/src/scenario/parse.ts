@@ -272,8 +272,10 @@ function qualified(cur: LineCursor, what: string): { supervisor: Name; function:
     return { supervisor, function: fn };
 }
 
+/** The words a step may start with (besides an event `MODULE:PORT value`): the IDE's Simulate panel injects these but `start`. */
+export const STEP_DIRECTIVES: readonly string[] = ['start', 'stop', 'crash', 'finish', 'exec', 'expect'];
 /** The words a scenario line may start with (besides an event `MODULE:PORT value`). */
-const DIRECTIVES = ['start', 'stop', 'crash', 'finish', 'exec', 'expect', 'scenario', 'until'];
+const DIRECTIVES = [...STEP_DIRECTIVES, 'scenario', 'until'];
 
 function activeWord(cur: LineCursor, yes: string, no: string): boolean {
     if (cur.keyword(yes)) return true;

@@ -5,7 +5,7 @@
  * again in virtual time (POST /api/simulate), so what the panel shows is exactly what
  * `contract simulate` of the saved file computes. Pure: no DOM, no network.
  */
-import { formatTime, parseTimeLiteral, MAX_TIME_NS } from '@contract-studio/language/scenario';
+import { formatTime, parseTimeLiteral, MAX_TIME_NS, STEP_DIRECTIVES } from '@contract-studio/language/scenario';
 import type { SimulateStep } from '../../server/api-types.js';
 
 export interface SessionStart {
@@ -18,8 +18,9 @@ export interface SessionStart {
 const MAX_LINES = 2_000;
 const MAX_LINE = 2_000;
 const NAME = /^[A-Za-z_]\w*$/;
-/** Directives a user may inject (docs/simulation.md §1 "Steps"); `start` and times are the session's. */
-const STEP = /^(?:[A-Za-z_]\w*:\w+\b|stop\s|crash\s|exec\s|expect\s)/;
+/** Directives a user may inject (docs/simulation.md §1 "Steps"): the scenario parser's steps but `start`; `start` and times are the session's. */
+const INJECTED = STEP_DIRECTIVES.filter((d) => d !== 'start');
+const STEP = new RegExp(`^(?:[A-Za-z_]\\w*:\\w+\\b|(?:${INJECTED.join('|')})\\s)`);
 
 export class ScenarioSession {
   start: SessionStart | undefined;
@@ -54,7 +55,7 @@ export class ScenarioSession {
     const t = text.trim();
     if (!this.start) return 'start a supervisor function first';
     if (!t || /[\n\r]/.test(t) || t.length > MAX_LINE) return 'one step on one line';
-    if (!STEP.test(t)) return 'a step: `MODULE:PORT value`, `ORD:0 "schema"`, `crash M`, `exec M 2ms`, `stop SUP.fn` or `expect ...`';
+    if (!STEP.test(t)) return 'a step: `MODULE:PORT value`, `ORD:0 "schema"`, `crash M`, `finish M`, `exec M 2ms`, `stop SUP.fn` or `expect ...`';
     if (this.lines.length >= MAX_LINES) return `at most ${MAX_LINES} steps in a session`;
     this.lines.push({ atNs: this.nowNs, text: t });
     return undefined;

@@ -21,12 +21,22 @@ describe('ScenarioSession', () => {
     expect(s.inject('MAA:2 connection_status = "disconnected"')).toBeUndefined();
     expect(s.advance('1.5s')).toBeUndefined();
     expect(s.inject('crash MSC')).toBeUndefined();
-    expect(s.text('t')).toBe('scenario t\nuntil 1500ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\nt=1ms MAA:2 connection_status = "disconnected"\nt=1500ms crash MSC\n');
+    expect(s.inject('finish MAB')).toBeUndefined();
+    expect(s.text('t')).toBe('scenario t\nuntil 1500ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\nt=1ms MAA:2 connection_status = "disconnected"\nt=1500ms crash MSC\nt=1500ms finish MAB\n');
     const parsed = parseScenario(s.text());
     expect(parsed.diagnostics).toEqual([]);
-    expect(parsed.steps.map((x) => [x.kind, x.atNs, x.span.line])).toEqual([['start', 0, 3], ['event', 1_000_000, 4], ['crash', 1_500_000_000, 5]]);
+    expect(parsed.steps.map((x) => [x.kind, x.atNs, x.span.line])).toEqual([['start', 0, 3], ['event', 1_000_000, 4], ['crash', 1_500_000_000, 5], ['finish', 1_500_000_000, 6]]);
+    s.undo();
     s.undo();
     expect(s.lines).toHaveLength(1);
+    // every step directive of the parser but start is injectable; start and header lines are not
+    const started = () => {
+      const x = new ScenarioSession();
+      x.begin({ supervisor: 'SUP', fn: 'action', params: '' });
+      return x;
+    };
+    for (const d of ['stop SUP.action', 'crash MSC', 'finish MAB', 'exec MSC 2ms', 'expect rule SUP.action.FIRST active']) expect(started().inject(d)).toBeUndefined();
+    for (const d of ['start SUP.action()', 'scenario x', 'until 1s']) expect(started().inject(d)).toMatch(/^a step:/);
   });
 
   it('refuses times going back, non-times, several lines, comments and unknown directives', () => {

@@ -2,7 +2,8 @@
  * End-to-end: the Simulate panel (docs/simulation.md "In the IDE") in headless Chromium on the
  * real IDE server and a copy of examples/tutorial; the steps run in the real simulator (native
  * harness on the engine cores, POST /api/simulate). The §4.7 story step by step: start
- * SUP.action, step to 1 ms (FIRST active), inject MAA:2 "disconnected" (SECOND active, its cause
+ * SUP.action, step to 1 ms (FIRST active), inject `finish MAB` (its run ends: no longer running in
+ * the Monitor), inject MAA:2 "disconnected" (SECOND active, its cause
  * shown, in the panel and in the Monitor), a wrong step refused with its diagnostic, then Save as
  * scenario and `contract simulate` of the saved file passes.
  */
@@ -79,6 +80,12 @@ describe('Simulate panel', () => {
     await expect.poll(() => page.locator('.suggest-widget .monaco-list-row').allTextContents(), { timeout: 15_000 }).toEqual(expect.arrayContaining([expect.stringContaining('"disconnected"')]));
     await page.keyboard.press('Escape');
 
+    // MAB's own code ends its run (the tutorial's MAB does so at once): the Monitor no longer lists it as running
+    await expect.poll(() => page.locator('.monitor-modules').textContent(), { timeout: 10_000 }).toBe('Running now: MAA, MAB');
+    await injectStep(page, 'finish MAB');
+    await expect.poll(() => page.locator('.monitor-modules').textContent(), { timeout: 30_000 }).toBe('Running now: MAA');
+    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.length)).toBe(1);
+
     // inject the disconnection: SECOND active, caused by it; FIRST inactive
     await injectStep(page, 'MAA:2 connection_status = "disconnected"');
     await expect.poll(() => simRule(page, 'SUP.action.SECOND').getAttribute('class'), { timeout: 30_000 }).toBe('sim-rule active');
@@ -101,6 +108,7 @@ describe('Simulate panel', () => {
     await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 10_000 }).toContain('saved scenarios/session.scenario');
     const saved = readFileSync(join(s.workspace, 'scenarios/session.scenario'), 'utf8');
     expect(saved).toContain('start SUP.action(consigne = {1.0, 2.0, 3.0})');
+    expect(saved).toContain('t=1ms finish MAB');
     expect(saved).toContain('t=1ms MAA:2 connection_status = "disconnected"');
     expect(saved).toContain('expect at 1ms rule SUP.action.SECOND active');
     expect(saved).toContain('expect at 1ms rule SUP.action.FIRST inactive');
