@@ -7,6 +7,7 @@ import { GeneratedGuard } from './generated-guard.js';
 import { toast } from '../util/toast.js';
 import { confirmAction } from '../util/dialog.js';
 import { RovingFocus } from '../util/roving-focus.js';
+import { fitActionMenus } from './action-menu-width.js';
 
 /** A non-file tab (architecture, timeline) rendered by its owner into `element`. */
 export interface ViewTab {
@@ -84,6 +85,7 @@ export class EditorArea {
       'semanticHighlighting.enabled': true,
       readOnlyMessage: { value: 'Generated code: only the content of PROTECTED REGIONs can be edited.' },
     });
+    fitActionMenus(this.editor);
     this.editor.onDidChangeCursorSelection(() => this.updateReadOnly());
     this.editor.addCommand(monaco.KeyMod.CtrlCmd | monaco.KeyCode.KeyS, () => {
       // (the keybinding is the page's: only when this editor has the focus, not the conflict view's editors)

@@ -140,6 +140,28 @@ describe('IDE in headless Chromium', () => {
     await page.keyboard.press('Enter');
     await expect.poll(() => activeValue(page), { timeout: 5000 }).toMatch(/module MAB\b/);
     await expect.poll(() => page.locator('.problem-row[data-path="amodule2.contract"]').count(), { timeout: 3000 }).toBe(0);
+    // a title longer than the menu's 320 px (an import of a file in a subfolder with a long name):
+    // the menu widens to it (action-menu-width.ts; Monaco's own width left it 10 px short)
+    mkdirSync(join(s.workspace, 'shared'), { recursive: true });
+    writeFileSync(join(s.workspace, 'shared/navigation-and-perception-types.contract'), 'datatype NavigationAndPerceptionState {float x = 0.0};\n');
+    await openFile(page, 'datatype.contract');
+    const original = await activeValue(page);
+    await page.evaluate(() => {
+      const ed = (window as any).__ide.editors.editor;
+      const m = ed.getModel();
+      m.setValue(`${m.getValue()}datatype NavUse {NavigationAndPerceptionState s};\n`);
+      ed.setPosition({ lineNumber: m.getLineCount() - 1, column: 'datatype NavUse {Nav'.length });
+      ed.focus();
+    });
+    await expect.poll(() => page.locator('.problem-row[data-path="datatype.contract"]').allTextContents(), { timeout: 15_000 }).toEqual([expect.stringContaining('add import "shared/navigation-and-perception-types.contract"')]);
+    await page.keyboard.press('Control+.');
+    const longTitle = page.locator('.action-widget .monaco-list-row.action .title').first();
+    await expect.poll(() => longTitle.textContent(), { timeout: 5000 }).toBe('Add import "shared/navigation-and-perception-types.contract"');
+    await expect.poll(() => longTitle.evaluate((el) => el.scrollWidth <= el.clientWidth && el.clientWidth > 320), { timeout: 5000 }).toBe(true);
+    await page.keyboard.press('Escape');
+    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), original);
+    rmSync(join(s.workspace, 'shared'), { recursive: true, force: true });
+    await openFile(page, 'amodule2.contract');
     // the right-click menu has the theme's colours (it is drawn in a shadow root beside the editor:
     // without them it was transparent, black text over the code)
     const lines = await page.locator('.monaco-editor .view-lines').first().boundingBox();
