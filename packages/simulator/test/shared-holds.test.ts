@@ -143,6 +143,9 @@ describe('modules and event flows two supervisors share', () => {
             '1ms run_started ALF activation=1', '3ms run_finished  activation=1', // returned: no STOP, no peer
             '5ms run_started BET activation=2', '40ms run_finished BET activation=2 STOP',
         ]);
+        // the verbose report tells the run's end under the step, in the words of `contract trace`
+        const report = textReport([r], { verbose: true }).split('\n').map((l) => l.trim());
+        expect(report[report.findIndex((l) => l.endsWith('t=3ms finish SCN')) + 1]).toBe('3ms    SCN| run #1 ended by its own code');
     }, 60_000);
 
     it("finish of a module that is not running fails that step and says why; the last holder of a finished module still stops it, as a run does", async () => {

@@ -110,6 +110,9 @@ class MissTeller {
     }
 }
 
+/** A run_finished that no STOP and no ack ended (`activation=N` alone): a `finish` step's. */
+const RUN_RETURNED = /^activation=(\d+)$/;
+
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
     const out: string[] = [];
     for (const r of results) {
@@ -129,6 +132,11 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             if (options.verbose) {
                 // the actions in a run's words, and what a module or flow hold decided beyond its action line
                 for (const l of actionLines(s.record.actions, s.record.records)) happened.push({ t: l.t, seq: l.seq, text: `  ${l.who}: ${safe(l.text)}` });
+                // a run a `finish` ended (no STOP, no ack), in the words of `contract trace`
+                for (const rec of s.record.records ?? []) {
+                    const run = rec.kind === 'run_finished' ? RUN_RETURNED.exec(rec.detail) : null;
+                    if (run) happened.push({ t: rec.timeNs, seq: rec.seq ?? -1, text: `  ${safe(rec.module)}| run #${run[1]} ended by its own code` });
+                }
                 const told = misses.misses(s.record);
                 // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
                 const log = told.length ? s.record.log.filter((l) => !isMissLine(l)) : s.record.log;
