@@ -83,7 +83,8 @@ async function main(): Promise<void> {
   explorer.onOpen.on((path) => void (path.endsWith('.jsonl') ? monitor.openTraceFile(path) : editors.open(path)));
   // Simulate: supervisors in virtual time, shown in its panel and in the Monitor (docs/simulation.md "In the IDE")
   const simulate = new SimulateController({ lsp, workspace, monitor, project: () => currentProject(), reveal: () => ui.showPanel('simulate') });
-  ui.addPanel('simulate', 'Simulate', simulate.panel.element).addEventListener('click', () => void simulate.refreshFunctions());
+  // its functions read when it is shown (also by the layout restored after a reload), and the session this browser kept grown again
+  ui.addPanel('simulate', 'Simulate', simulate.panel.element, () => void simulate.refreshFunctions());
   const views = new ViewsController({ editors, lsp, workspace, toolbar: ui.toolbar, project: currentProject });
   runs.onRunLogs.on(({ jobId, logs }) => {
     void monitor.showRecorded(jobId, logs);
@@ -96,7 +97,6 @@ async function main(): Promise<void> {
     workspace, editors, explorer, outline, problems, files, generator, runs, views, openMonitor: () => monitor.open(),
     openSimulate: () => {
       ui.showPanel('simulate');
-      void simulate.refreshFunctions();
       simulate.panel.focus();
     },
     showPanel: ui.showPanel, focusPanelTabs: ui.focusPanelTabs,

@@ -59,13 +59,14 @@ export function createLayout(root: HTMLElement) {
     panel.style.height = `${hgt}px`;
   });
 
-  const panels = new Map<string, { tab: HTMLElement; body: HTMLElement }>();
+  const panels = new Map<string, { tab: HTMLElement; body: HTMLElement; onShow?: () => void }>();
   const showPanel = (id: string) => {
     for (const [k, p] of panels) {
       p.tab.classList.toggle('active', k === id);
       p.tab.setAttribute('aria-selected', String(k === id));
       p.body.classList.toggle('hidden', k !== id);
     }
+    panels.get(id)?.onShow?.(); // however it is shown: a click, the keyboard, a command, the layout restored after a reload
     panelFocus.forget(); // the tab stop is the shown panel's tab
     panelFocus.refresh();
   };
@@ -79,7 +80,8 @@ export function createLayout(root: HTMLElement) {
     onActivate: (tab) => tab.click(),
     onEscape: () => escape(),
   });
-  const addPanel = (id: string, title: string, body: HTMLElement) => {
+  /** `onShow`: called each time the panel is shown. */
+  const addPanel = (id: string, title: string, body: HTMLElement, onShow?: () => void) => {
     const tab = h('div', {
       class: 'panel-tab', role: 'tab', id: `panel-tab-${id}`, 'aria-controls': `panel-${id}`, 'aria-selected': 'false', tabindex: -1, 'data-panel': id,
       onclick: () => showPanel(id),
@@ -87,7 +89,7 @@ export function createLayout(root: HTMLElement) {
     const wrapper = h('div', { class: 'panel-body hidden', role: 'tabpanel', id: `panel-${id}`, 'aria-labelledby': `panel-tab-${id}`, 'data-panel': id }, body);
     panelTabs.append(tab);
     panelBodies.append(wrapper);
-    panels.set(id, { tab, body: wrapper });
+    panels.set(id, { tab, body: wrapper, onShow });
     panelFocus.refresh();
     return tab;
   };

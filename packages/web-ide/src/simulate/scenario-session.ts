@@ -8,6 +8,13 @@
 import { formatTime, parseTimeLiteral, MAX_TIME_NS, STEP_DIRECTIVES } from '@contract-studio/language/scenario';
 import type { SimulateStep } from '../../server/api-types.js';
 
+/** A session as the browser keeps it across a reload. */
+export interface SessionSnapshot {
+  start: SessionStart;
+  nowNs: number;
+  lines: Array<{ atNs: number; text: string }>;
+}
+
 export interface SessionStart {
   supervisor: string;
   fn: string;
@@ -72,6 +79,38 @@ export class ScenarioSession {
       for (const x of [...st.rules, ...st.actions]) if (x.timeNs > afterNs && (next === undefined || x.timeNs < next)) next = x.timeNs;
     }
     return next;
+  }
+
+  /** What a reload needs to grow the session again (SimulateController keeps it in the browser). */
+  snapshot(): SessionSnapshot | undefined {
+    return this.start ? { start: { ...this.start }, nowNs: this.nowNs, lines: this.lines.map((l) => ({ ...l })) } : undefined;
+  }
+
+  /**
+   * Grows the session again from a snapshot, through the same checks as when it was grown (the
+   * snapshot is read from the browser's storage: anything may be there). An error message, and
+   * the session unchanged, when it is not one.
+   */
+  restore(data: unknown): string | undefined {
+    const d = data as Partial<SessionSnapshot> | null;
+    const s = d?.start;
+    if (!d || typeof d !== 'object' || !s || typeof s.supervisor !== 'string' || typeof s.fn !== 'string' || typeof s.params !== 'string'
+      || !Number.isSafeInteger(d.nowNs) || !Array.isArray(d.lines) || d.lines.length > MAX_LINES) return 'not a saved session';
+    const copy = new ScenarioSession();
+    const error = copy.begin(s);
+    if (error) return error;
+    for (const l of d.lines as unknown[]) {
+      const line = l as { atNs?: unknown; text?: unknown };
+      if (!Number.isSafeInteger(line?.atNs) || typeof line.text !== 'string') return 'not a saved session';
+      const e = copy.advance(formatTime(line.atNs as number)) ?? copy.inject(line.text);
+      if (e) return e;
+    }
+    const e = copy.advance(formatTime(d.nowNs as number));
+    if (e) return e;
+    this.start = copy.start;
+    this.nowNs = copy.nowNs;
+    this.lines.splice(0, this.lines.length, ...copy.lines);
+    return undefined;
   }
 
   /** Drops the last injected step. */

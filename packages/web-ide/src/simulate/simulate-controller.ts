@@ -20,6 +20,12 @@ import { SimulatePanel } from './simulate-panel.js';
 import { stepsToTrace } from '@contract-studio/simulator/trace';
 import { STEP_INPUT_FILE } from './step-input.js';
 
+/**
+ * Where the browser keeps the session (its start, its steps, its time) across a reload: one per
+ * browser, the last one changed in any tab, with the project it simulates.
+ */
+export const SESSION_KEY = 'contract-studio:sim-session';
+
 /** How far "Next" looks for the engines' next change (virtual time). */
 const LOOK_AHEAD_NS = 10_000_000_000;
 
@@ -59,7 +65,56 @@ export class SimulateController {
     this.panel.stepInput.attach(workspace.uriOf(project ? `${project}/${STEP_INPUT_FILE}` : STEP_INPUT_FILE));
     const names = [...catalogue].flatMap(([sup, fns]) => [...fns.keys()].map((fn) => `${sup}.${fn}`)).sort();
     this.panel.setFunctions(names.map((name) => ({ name, signature: signatures.get(name) ?? '' })));
+    if (!this.session.start && !this.restoring) {
+      this.restoring = true;
+      await this.restoreSaved(project);
+    }
   }
+
+  /** Set once the session kept across a reload was looked for (once per page). */
+  private restoring = false;
+
+  /**
+   * Grows again the session this browser kept for `project` (a reload, a crash of the tab), and
+   * simulates it. A session the model no longer accepts (a rule renamed meanwhile) is kept, its
+   * steps shown with the diagnostics: Undo or a new Start drops it.
+   */
+  private async restoreSaved(project: string): Promise<void> {
+    let saved: { project?: unknown } | null = null;
+    try {
+      saved = JSON.parse(localStorage.getItem(SESSION_KEY) ?? 'null') as { project?: unknown } | null;
+    } catch {
+      return; // not JSON: nothing to restore (the next change overwrites it)
+    }
+    if (!saved || saved.project !== project) return;
+    const run = this.running.then(async () => {
+      if (this.session.start) return; // a session was started meanwhile
+      const error = this.session.restore(saved);
+      if (error) return this.panel.showMessage(`the session kept from before the reload cannot be read (${error}): start a new one`, 'error');
+      const s = this.session.start!;
+      this.panel.showStart(`${s.supervisor}.${s.fn}`, s.params);
+      this.panel.showTime(this.session.nowNs);
+      if (await this.simulate()) {
+        this.panel.showMessage(`restored the session of ${s.supervisor}.${s.fn} from before the reload: ${this.session.lines.length} step(s), at ${formatTime(this.session.nowNs)}`);
+      }
+    });
+    this.running = run.catch(() => undefined);
+    await run;
+  }
+
+  /** Keeps the session in the browser (a full storage: not kept, said once). */
+  private keep(): void {
+    const snapshot = this.session.snapshot();
+    try {
+      if (snapshot) localStorage.setItem(SESSION_KEY, JSON.stringify({ project: this.deps.project(), ...snapshot }));
+      else localStorage.removeItem(SESSION_KEY);
+    } catch (e) {
+      if (!this.keepFailed) this.panel.showMessage(`the session is not kept across a reload: ${(e as Error).message}`, 'error');
+      this.keepFailed = true;
+    }
+  }
+
+  private keepFailed = false;
 
   private async start(fn: string, params: string): Promise<void> {
     const [supervisor = '', name = ''] = fn.split('.');
@@ -85,6 +140,8 @@ export class SimulateController {
       if (!ok) {
         this.session.nowNs = before.now;
         this.session.lines.splice(0, this.session.lines.length, ...before.lines);
+      } else {
+        this.keep();
       }
       this.panel.showTime(this.session.start ? this.session.nowNs : undefined);
       return ok;

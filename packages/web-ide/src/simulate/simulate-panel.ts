@@ -91,6 +91,13 @@ export class SimulatePanel {
     this.params.placeholder = names.length ? `${names.map((n) => `${n} = value`).join(', ')}   (empty: the defaults)` : 'no parameters';
   }
 
+  /** Shows the function and parameters of a session grown again after a reload. */
+  showStart(fn: string, params: string): void {
+    if ([...this.fnSelect.options].some((o) => o.value === fn)) this.fnSelect.value = fn;
+    this.params.value = params;
+    this.showSignature();
+  }
+
   clearStep(): void {
     this.stepInput.value = '';
   }

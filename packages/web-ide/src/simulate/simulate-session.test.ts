@@ -39,6 +39,37 @@ describe('ScenarioSession', () => {
     for (const d of ['start SUP.action()', 'scenario x', 'until 1s']) expect(started().inject(d)).toMatch(/^a step:/);
   });
 
+  it('grows a session again from its snapshot, through the same checks; anything else is refused and changes nothing', () => {
+    const s = new ScenarioSession();
+    s.begin({ supervisor: 'SUP', fn: 'action', params: 'consigne = {1.0, 2.0, 3.0}' });
+    s.advance('1ms');
+    s.inject('MAA:2 "disconnected"');
+    s.advance('2ms');
+    s.inject('finish MAB');
+    s.advance('6ms');
+    const kept = JSON.parse(JSON.stringify({ project: 'p', ...s.snapshot() }));
+    const again = new ScenarioSession();
+    expect(again.restore(kept)).toBeUndefined();
+    expect(again.text()).toBe(s.text());
+    expect(again.nowNs).toBe(6_000_000);
+    // hostile or damaged storage: refused with a reason, the session as it was
+    const other = new ScenarioSession();
+    other.begin({ supervisor: 'GLB', fn: 'mission', params: '' });
+    const bad: unknown[] = [
+      null, 'x', 42, {}, { ...kept, start: { supervisor: 'SUP', fn: 'a b', params: '' } },
+      { ...kept, start: { ...kept.start, params: 'x = 1\nstop SUP.action' } },
+      { ...kept, lines: [{ atNs: 1e6, text: 'MAA:2 "a"\nuntil 9s' }] },
+      { ...kept, lines: [{ atNs: 2e6, text: 'MAA:2 "a"' }, { atNs: 1e6, text: 'MAA:2 "b"' }] }, // time going back
+      { ...kept, lines: [{ atNs: 1e6, text: 'until 9s' }] },
+      { ...kept, nowNs: 1e6 }, // before its last step
+      { ...kept, nowNs: 1e30 },
+      { ...kept, lines: Array.from({ length: 2_001 }, () => ({ atNs: 0, text: 'MAA:2 "a"' })) },
+      { ...kept, lines: [{ atNs: '1ms', text: 'MAA:2 "a"' }] },
+    ];
+    for (const b of bad) expect(other.restore(b), JSON.stringify(b)?.slice(0, 80)).toBeTruthy();
+    expect(other.text()).toBe('scenario simulation session\nuntil 0\nstart GLB.mission\n');
+  });
+
   it('refuses times going back, non-times, several lines, comments and unknown directives', () => {
     const s = new ScenarioSession();
     expect(s.begin({ supervisor: 'SUP', fn: 'a b', params: '' })).toBeTruthy();

@@ -5,7 +5,7 @@
  * SUP.action, step to 1 ms (FIRST active), inject `finish MAB` (its run ends: no longer running in
  * the Monitor), inject MAA:2 "disconnected" (SECOND active, its cause
  * shown, in the panel and in the Monitor), a wrong step refused with its diagnostic, then Save as
- * scenario and `contract simulate` of the saved file passes.
+ * scenario and `contract simulate` of the saved file passes; a reload grows the session again.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { readFileSync } from 'node:fs';
@@ -125,5 +125,21 @@ describe('Simulate panel', () => {
     const cli = spawnSync(process.execPath, [join(PKG, '../cli/bin/contract.js'), 'simulate', s.workspace, join(s.workspace, 'scenarios/session.scenario')], { encoding: 'utf8', timeout: 60_000 });
     expect(cli.status, cli.stdout + cli.stderr).toBe(0);
     expect(cli.stdout).toMatch(/1 passed, 0 failed/);
+
+    // a reload keeps the session: the panel is shown again with its functions, and the session is
+    // grown again and simulated (its function, parameters, steps and time; the rules as before)
+    await page.reload();
+    await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
+    await expect.poll(() => now(page), { timeout: 30_000 }).toBe('6ms');
+    expect(await page.locator('.sim-fn').inputValue()).toBe('SUP.action');
+    expect(await page.locator('.sim-params').inputValue()).toBe('consigne = {1.0, 2.0, 3.0}');
+    expect(await page.locator('.sim-message').textContent()).toBe('restored the session of SUP.action from before the reload: 2 step(s), at 6ms');
+    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.map((l: { text: string }) => l.text))).toEqual(['finish MAB', 'MAA:2 connection_status = "disconnected"']);
+    await expect.poll(() => simRule(page, 'SUP.action.SECOND').getAttribute('class'), { timeout: 30_000 }).toBe('sim-rule active');
+    await expect.poll(() => monitorRule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
+    // the session goes on from there
+    await page.fill('.sim-time', '+1ms');
+    await page.click('.sim-advance');
+    await expect.poll(() => now(page), { timeout: 30_000 }).toBe('7ms');
   }, 180_000);
 });
