@@ -240,8 +240,13 @@ export class MonitorController {
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
       this.panel?.endLive(live.label);
       await this.refreshSources();
-    } else if ((this.isShown || !live) && picked === this.picked) await this.show(run.id);
-    else await this.refreshSources(); // or the user picked another run meanwhile: this one is listed
+    } else if (picked === this.picked && (this.shown === undefined || this.shown === live?.id)) {
+      await this.show(run.id); // the view followed this job (its stream was cut), or showed no run
+    } else {
+      // the view shows a run the user picked (a simulation, a workspace log, a trace file, another
+      // tab's job): it stays, this one is listed
+      await this.refreshSources();
+    }
   }
 
   /** A simulation's state (@contract-studio/simulator/trace): the same view as runs, replacing the previous simulation. */

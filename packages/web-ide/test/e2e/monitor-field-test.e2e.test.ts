@@ -309,4 +309,13 @@ describe('Monitor field test', () => {
     await page.locator('.monitor-pschema[data-periodic="schemaCommande1"]').screenshot({ path: fileURLToPath(new URL('../../test-output/monitor-field-07-histogram-period-equals-critical-delay.png', import.meta.url)) });
     await page.mouse.move(0, 0);
   }, 60_000);
+
+  it('a job that ends while the view shows a run the user picked (here a workspace log) is listed, not shown in its place', async () => {
+    const { page } = s;
+    await showRecorded(page);
+    const files = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
+    await page.evaluate((files) => (window as any).__ide.monitor.showRecorded('elsewhere', { label: 'Build & Run job elsewhere', files, problems: [] }), files);
+    await expect.poll(() => page.locator('.monitor-sources option').allTextContents()).toContain('Build & Run job elsewhere · CSV logs');
+    expect(await label(page)).toBe('9 CSV log(s) in recorded');
+  }, 60_000);
 });
