@@ -4,13 +4,15 @@
  * and hover come from the language server in the worker (`src/lsp/`), which checks scenarios with
  * the simulator's own parser and model checks.
  */
+import { STEP_DIRECTIVES } from '@contract-studio/language/scenario';
 import { monaco } from './monaco.js';
 
 export const SCENARIO_LANGUAGE_ID = 'cactal-scenario';
 
 export const scenarioMonarch: monaco.languages.IMonarchLanguage = {
   defaultToken: '',
-  directives: ['start', 'stop', 'crash', 'finish', 'exec', 'expect', 'scenario', 'until', 'at', 'once'],
+  // the parser's steps (one list: a new step is coloured too), its header words, `at` and `once`
+  directives: [...STEP_DIRECTIVES, 'scenario', 'until', 'at', 'once'],
   expectations: ['rule', 'schema', 'function', 'module', 'local'],
   states: ['active', 'inactive', 'running', 'stopped'],
   tokenizer: {
