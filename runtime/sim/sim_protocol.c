@@ -410,6 +410,11 @@ int sim_session_line(SimSession *s, char *line) {
         } else if (strcmp(verb, "finish") == 0) {
             NEED(1);
             if (sim_world_finish(s->w, a[0], r.error, sizeof r.error)) r.ok = 0;
+        } else if (strcmp(verb, "finish-after") == 0) {
+            NEED(3);
+            int64_t ns;
+            if (parse_i64(a[1], &ns) || ns < 0) { r.ok = 0; snprintf(r.error, sizeof r.error, "bad time '%s'", a[1]); break; }
+            sim_world_set_run_time(s->w, a[0], ns, strcmp(a[2], "once") == 0);
         } else if (strcmp(verb, "exec") == 0) {
             NEED(3);
             int64_t ns;

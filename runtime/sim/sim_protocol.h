@@ -6,7 +6,8 @@
  *
  * with VERB one of
  *     start SUP FN ARGS          stop SUP FN           event MODULE PORT VALUE
- *     crash MODULE               finish MODULE         exec MODULE NS once|always
+ *     crash MODULE               finish MODULE         finish-after MODULE NS once|always
+ *     exec MODULE NS once|always
  *     expect-rule SUP FN RULE 1|0          expect-function SUP FN 1|0
  *     expect-schema NAME 1|0               expect-module MODULE 1|0
  *     expect-local SUP FN LOCAL VALUE      end

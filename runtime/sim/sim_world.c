@@ -48,6 +48,8 @@ typedef struct SimModule {
     int64_t exec_once;  /* -1: none                                                           */
     int64_t wcet_ns;
     long activations;   /* releases started: the `activation=N` of its run records            */
+    int64_t run_ns;     /* asynchronous: each run ends this long after its start, -1: never   */
+    int64_t run_once;   /* -1: none; else the next run only                                   */
 } SimModule;
 
 typedef struct SimFinish {
@@ -56,6 +58,7 @@ typedef struct SimFinish {
     int module;
     uint32_t release_id;
     long activation;     /* the module's activation this release is                            */
+    int own_end;         /* an asynchronous run its own code ends (finish M after T), not a release */
 } SimFinish;
 
 /* A data flow ORD connected (`A:o -> B:i * k`): B receives what A posts on every k-th activation
@@ -148,6 +151,8 @@ static int module_index(SimWorld *w, const char *name, int create) {
     scopy(m->name, sizeof m->name, name);
     m->exec_ns = -1;
     m->exec_once = -1;
+    m->run_ns = -1;
+    m->run_once = -1;
     if (w->ordv)
         for (int i = 0; i < w->ordv->nmodules; i++)
             if (strcmp(w->ordv->modules[i].name, name) == 0) m->wcet_ns = w->ordv->modules[i].wcet_ns;
@@ -273,6 +278,11 @@ static void sio_start_module(void *ctx, const char *module, int priority) {
     /* the START begins a run of the (virtual, asynchronous) module, as libmodule logs it: the
        Monitor's running modules; it lasts until a STOP, a crash or a scenario's `finish` */
     record(p->w, module, "run_started", p->v->name, -1, "activation=%ld", ++m->activations);
+    /* `finish M after T`: this run's own code ends it T later (unless a STOP or a crash comes first) */
+    int64_t run = m->run_once >= 0 ? m->run_once : m->run_ns;
+    m->run_once = -1;
+    if (run >= 0 && grow((void **)&p->w->fin, &p->w->capfin, p->w->nfin + 1, sizeof *p->w->fin) == 0)
+        p->w->fin[p->w->nfin++] = (SimFinish){p->w->now + run, p->w->seq++, i, 0, m->activations, 1};
 }
 /* `stop module M` (the undo of its start: steps-to-trace.ts adds `undo: `), then what its hold decided */
 static void sio_stop_module(void *ctx, const char *module) {
@@ -468,7 +478,7 @@ static void oio_release(void *ctx, const char *module, const char *schema, int64
     int64_t exec = m->exec_once >= 0 ? m->exec_once : m->exec_ns >= 0 ? m->exec_ns : m->wcet_ns;
     m->exec_once = -1;
     if (grow((void **)&w->fin, &w->capfin, w->nfin + 1, sizeof *w->fin)) return;
-    w->fin[w->nfin++] = (SimFinish){w->now + exec, w->seq++, i, release_id, ++m->activations};
+    w->fin[w->nfin++] = (SimFinish){w->now + exec, w->seq++, i, release_id, ++m->activations, 0};
     m->outstanding++;
     record(w, m->name, "run_started", "ORD", -1, "activation=%ld", m->activations);
 }
@@ -653,6 +663,15 @@ void sim_world_destroy(SimWorld *w) {
     free(w);
 }
 
+/* The asynchronous module's own code ends its run (finish): it no longer runs; its holders keep
+   their holds (the last one's STOP finds no run: stop_if_last). Logged as libmodule logs a run
+   whose code returned (mailbox.c: no STOP, no ack, no peer). */
+static void end_own_run(SimWorld *w, SimModule *m) {
+    m->started = 0;
+    record(w, m->name, "run_finished", "", -1, "activation=%ld", m->activations);
+    drain(w);
+}
+
 /* ---- the clock ---------------------------------------------------------------------------- */
 
 static int next_due(const SimWorld *w, int64_t *at) {
@@ -676,6 +695,10 @@ static int finish_one(SimWorld *w, int64_t t) {
     SimFinish f = w->fin[k];
     w->fin[k] = w->fin[--w->nfin];
     SimModule *m = &w->mods[f.module];
+    if (f.own_end) { /* that run, if it still goes on (not stopped, not started again since) */
+        if (m->started && !m->crashed && m->activations == f.activation) end_own_run(w, m);
+        return 1;
+    }
     if (m->outstanding > 0) m->outstanding--;
     w->finished++;
     post_data(w, f.module, f.activation);
@@ -804,11 +827,15 @@ int sim_world_finish(SimWorld *w, const char *module, char *err, size_t errlen) 
                  i >= 0 && w->mods[i].crashed ? " (it has crashed)" : "");
         return -1;
     }
-    SimModule *m = &w->mods[i];
-    m->started = 0; /* its holders keep their holds: the last one's STOP finds no run (stop_if_last) */
-    /* the run ends as libmodule logs a run whose code returned (mailbox.c: no STOP, no ack) */
-    record(w, module, "run_finished", "", -1, "activation=%ld", m->activations);
+    end_own_run(w, &w->mods[i]);
     return 0;
+}
+
+void sim_world_set_run_time(SimWorld *w, const char *module, int64_t run_ns, int once) {
+    int i = module_index(w, module, 1);
+    if (i < 0) return;
+    if (once) w->mods[i].run_once = run_ns;
+    else w->mods[i].run_ns = run_ns;
 }
 
 void sim_world_set_exec(SimWorld *w, const char *module, int64_t exec_ns, int once) {

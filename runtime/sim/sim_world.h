@@ -65,6 +65,9 @@ void sim_world_crash(SimWorld *w, const char *module);
  *  holders keep their holds (the last one's STOP finds no run), and a supervisor that needs it later starts it again. -1 and a
  *  message when it is not running. */
 int sim_world_finish(SimWorld *w, const char *module, char *err, size_t errlen);
+/** Each run of the asynchronous module started from now on (once: the next one only) ends
+ *  run_ns after its start, by its own code as sim_world_finish ends it (unless stopped first). */
+void sim_world_set_run_time(SimWorld *w, const char *module, int64_t run_ns, int once);
 /** Execution time of a synchronous module's releases from now on (once: the next one only). */
 void sim_world_set_exec(SimWorld *w, const char *module, int64_t exec_ns, int once);
 

@@ -163,7 +163,7 @@ describe('contract-language-server: .scenario files', () => {
 
     it('completes keywords, module names, event ports, rules, schemas, locals and the values the rules test', async () => {
         const file = 'tutorial/scenarios/typing.scenario';
-        const lines = ['', 't=1ms MAA:', 'expect rule SUP.action.', 't=2ms MAA:2 ', 'expect schema ', 'expect local SUP.action.', 'start SUP.action(', 'expect ', 't=3ms ORD:0 ', 'exec ', 'start SUP.action(consigne = ', 'expect local SUP.action.failure_data == ', 't=4ms MAA:0 message_type_notification = ', 'finish '];
+        const lines = ['', 't=1ms MAA:', 'expect rule SUP.action.', 't=2ms MAA:2 ', 'expect schema ', 'expect local SUP.action.', 'start SUP.action(', 'expect ', 't=3ms ORD:0 ', 'exec ', 'start SUP.action(consigne = ', 'expect local SUP.action.failure_data == ', 't=4ms MAA:0 message_type_notification = ', 'finish ', 'finish MAB '];
         open(file, lines.join('\n'));
         const labels = async (line: number) => (await completion(file, line, lines[line]!.length)).map((i) => i.label);
 
@@ -183,6 +183,7 @@ describe('contract-language-server: .scenario files', () => {
         expect(await labels(8)).toEqual(expect.arrayContaining(['"schemaCommande1"']));
         expect(await labels(9)).toEqual(['MSA', 'MSB', 'MSC', 'MSD']);
         expect(await labels(13)).toEqual(['MAA', 'MAB']); // finish: the asynchronous modules only
+        expect(await labels(14)).toEqual(['after']); // finish MAB after TIME: each of its runs
         // Value templates: the type's default, one element per field.
         expect(await labels(10)).toEqual(['{0.0, 0.0, 0.0}']);
         expect(await labels(11)).toEqual(['{"", 0}']);

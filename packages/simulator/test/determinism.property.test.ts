@@ -15,7 +15,7 @@ const event = fc.oneof(
     fc.integer({ min: -50, max: 50 }).map((n) => `MSC:1 {"failure", ${n}}`),
     fc.constantFrom('ORD:0 "schemaCommande1"', 'ORD:1 "schemaCommande2"'),
     fc.integer({ min: 0, max: 2500 }).map((ms) => `exec MSC ${ms}ms once`),
-    fc.constantFrom('crash MSD', 'finish MAA', 'finish MAB', 'stop SUP.action', 'start SUP.action(consigne = {1.0, 2.0, 3.0})', 'stop GLB.mission', 'start GLB.mission()'),
+    fc.constantFrom('crash MSD', 'finish MAA', 'finish MAB', 'finish MAB after 3ms', 'finish MAA after 0 once', 'stop SUP.action', 'start SUP.action(consigne = {1.0, 2.0, 3.0})', 'stop GLB.mission', 'start GLB.mission()'),
 );
 const steps = fc.array(fc.tuple(fc.integer({ min: 0, max: 700 }), event), { minLength: 1, maxLength: 40 });
 

@@ -39,6 +39,15 @@ describe('parseScenario', () => {
         expect(p.steps[8]!.kind === 'expect' && p.steps[8]!.expectation.kind === 'local' && p.steps[8]!.expectation.supervisor).toBeUndefined();
     });
 
+    it('reads finish M, finish M after TIME and finish M after TIME once', () => {
+        const p = parseScenario(['finish MAB', 'finish MAB after 150ms', 't=1s finish MAB after 0 once', 'finish MAB now', 'finish MAB after'].join('\n'));
+        expect(p.steps.map((s) => s.kind === 'finish' && [s.module.text, s.afterNs, s.once])).toEqual([['MAB', undefined, undefined], ['MAB', 150e6, false], ['MAB', 0, true]]);
+        expect(p.diagnostics.map((d) => `${d.line} ${d.message}`)).toEqual([
+            "4 unexpected 'now' after the module (or 'after TIME' for each of its runs)",
+            expect.stringMatching(/^5 expected how long each of its runs lasts/),
+        ]);
+    });
+
     it('reads bool values (true, false) alone and inside structured values; truer is no value', () => {
         const p = parseScenario(['t=1ms OBS:1 scan = {{0.3, 5.0}, true}', 't=2ms X:0 false'].join('\n'));
         expect(p.diagnostics).toEqual([]);

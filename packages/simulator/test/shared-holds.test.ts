@@ -148,6 +148,20 @@ describe('modules and event flows two supervisors share', () => {
         expect(report[report.findIndex((l) => l.endsWith('t=3ms finish SCN')) + 1]).toBe('3ms    SCN| run #1 ended by its own code');
     }, 60_000);
 
+    it('finish M after TIME: each run started from then on ends that long after its start (once: the next one only)', async () => {
+        const r = await run(['finish SCN after 2ms', 'start ALF.first()', 'start BET.second()', 'expect at 4ms module SCN stopped', 'expect at 6ms module SCN running', 'expect at 8ms module SCN stopped'].join('\n'));
+        expect(r.failures.map((f) => f.message)).toEqual([]);
+        const runs = (x: typeof r) => stepsToTrace(x.steps.map(traceStepOf)).filter((y) => (y.kind === 'run_started' || y.kind === 'run_finished') && (y as KnownRecord).module === 'SCN')
+            .map((y) => `${Number((y as KnownRecord).monoNs) / 1e6}ms ${y.kind} ${(y as KnownRecord).detail}`);
+        // ALF starts it at 1ms, it ends at 3ms; BET needs it at 5ms and starts it again, it ends at 7ms
+        expect(runs(r)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1', '5ms run_started activation=2', '7ms run_finished activation=2']);
+        const once = await run(['finish SCN after 2ms once', 'start ALF.first()', 'start BET.second()', 'expect at 50ms module SCN stopped'].join('\n'));
+        expect(runs(once)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1', '5ms run_started activation=2', '40ms run_finished activation=2 STOP']);
+        // a run stopped before its time is not ended again: ALF's undo at 20ms keeps it for BET, BET's at 40ms stops it
+        const late = await run(['finish SCN after 100ms', 'start ALF.first()', 'start BET.second()', 'expect at 200ms module SCN stopped'].join('\n'));
+        expect(runs(late)).toEqual(['1ms run_started activation=1', '40ms run_finished activation=1 STOP']);
+    }, 60_000);
+
     it("finish of a module that is not running fails that step and says why; the last holder of a finished module still stops it, as a run does", async () => {
         const r = await run(['t=1ms finish SCN', 'start ALF.first()', 't=3ms finish SCN', 'expect at 30ms module SCN stopped'].join('\n'));
         expect(r.failures.map((f) => f.message)).toEqual([expect.stringContaining('SCN is not running: it has no run to finish')]);

@@ -297,3 +297,29 @@ void test_sim_finish_ends_an_asynchronous_run(void) {
     HAS(record(out, 7), "\"end\":true");
     free(out);
 }
+
+/* `finish-after M NS`: each run of M started from then on ends NS after its start, by its own code
+   (run_finished with no STOP); a run stopped before that time is not ended again */
+void test_sim_finish_after_ends_each_run(void) {
+    report_log = NULL;
+    testit_result = 1;
+    static const char *const lines[] = {
+        "0\t1\tfinish-after\tMAB\t500000\talways",
+        "0\t2\tstart\tSUP\taction\tconsigne={1.0,2.0,3.0}",
+        "1000000\t3\texpect-module\tMAB\t1",
+        "2000000\t4\texpect-module\tMAB\t0",
+        "2000000\t5\tfinish-after\tMAB\tsoon\talways",
+        "3000000\t0\tend",
+        NULL};
+    char *out = run_lines(lines);
+    CHECK(out != NULL);
+    if (!out) return;
+    HAS(record(out, 0), "\"verb\":\"finish-after\",\"ok\":true");
+    HAS(record(out, 2), "\"module\":\"MAB\",\"kind\":\"run_started\",\"peer\":\"SUP\",\"detail\":\"activation=1\"");
+    HAS(record(out, 2), "\"ok\":true");
+    HAS(record(out, 3), "{\"timeNs\":1500000,\"module\":\"MAB\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1\"}");
+    HAS(record(out, 3), "\"ok\":true");
+    HAS(record(out, 4), "bad time 'soon'");
+    HAS(record(out, 5), "\"end\":true");
+    free(out);
+}

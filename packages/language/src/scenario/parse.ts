@@ -61,8 +61,12 @@ export type StepBody =
     | { kind: 'stop'; supervisor: Name; function: Name }
     /** The module crashes: it stops running, never acks a release again. */
     | { kind: 'crash'; module: Name }
-    /** The asynchronous module's code returns: its run ends, as a real module's does; a supervisor that needs it again starts it. */
-    | { kind: 'finish'; module: Name }
+    /**
+     * The asynchronous module's own code ends its run, as a real module's does; a supervisor that
+     * needs it again starts it. Now (its current run), or, with `afterNs`, each run started from
+     * now on (`once`: the next one only) ends that long after its start.
+     */
+    | { kind: 'finish'; module: Name; afterNs?: number; once?: boolean }
     /** From now on (or for its next release only) each release of the module takes `execNs`. */
     | { kind: 'exec'; module: Name; execNs: number; once: boolean }
     | { kind: 'expect'; expectation: Expectation };
@@ -382,9 +386,15 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
     }
     if (word === 'finish') {
         cur.keyword('finish');
-        const module = cur.ident('the asynchronous module whose code returns');
-        cur.endOfLine('the module');
-        return { kind: 'finish', module };
+        const module = cur.ident('the asynchronous module whose code ends its run');
+        if (!cur.keyword('after')) {
+            cur.endOfLine("the module (or 'after TIME' for each of its runs)");
+            return { kind: 'finish', module };
+        }
+        const time = cur.time('how long each of its runs lasts');
+        const once = cur.keyword('once');
+        cur.endOfLine(once ? "'once'" : "the time (or 'once')");
+        return { kind: 'finish', module, afterNs: time.ns, once };
     }
     if (word === 'exec') {
         cur.keyword('exec');

@@ -118,7 +118,8 @@ export function stepLine(step: Step, index: number, locals: Map<number, Resolved
         case 'crash':
             return head + ['crash', step.module.text].join('\t');
         case 'finish':
-            return head + ['finish', step.module.text].join('\t');
+            return step.afterNs === undefined ? head + ['finish', step.module.text].join('\t')
+                : head + ['finish-after', step.module.text, String(step.afterNs), step.once ? 'once' : 'always'].join('\t');
         case 'exec':
             return head + ['exec', step.module.text, String(step.execNs), step.once ? 'once' : 'always'].join('\t');
         case 'expect': {

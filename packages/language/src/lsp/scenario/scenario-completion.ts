@@ -24,7 +24,7 @@ const DIRECTIVES: Array<{ label: string; detail: string; header?: boolean }> = [
     { label: 'stop', detail: 'stop SUP.function: a control tool stops it' },
     { label: 'expect', detail: 'expect rule|schema|function|module|local ...: checked at this time' },
     { label: 'crash', detail: 'crash MODULE: it stops and never acknowledges a release again' },
-    { label: 'finish', detail: 'finish MODULE: the asynchronous module\'s code returns, its run ends' },
+    { label: 'finish', detail: 'finish MODULE [after TIME [once]]: the asynchronous module\'s own code ends its run (now, or each run that long after its start)' },
     { label: 'exec', detail: 'exec MODULE TIME [once]: execution time of each release of a synchronous module' },
     { label: 'scenario', detail: 'scenario TITLE: the scenario\'s title (header line)', header: true },
     { label: 'until', detail: 'until TIME: the virtual end of the scenario (header line)', header: true },
@@ -166,6 +166,11 @@ export function completeUnguarded(text: string, position: Position, names: Scena
         names.modules.forEach((mod, n) => {
             if (!kind || mod.kind === kind) add(n, CompletionItemKind.Class, `${mod.kind} module`);
         });
+        return items;
+    }
+    // finish MODULE |: its run ends now, or `after TIME` each run
+    if (/^\s*finish\s+[A-Za-z_]\w*\s+[a-z]*$/.test(rest)) {
+        add('after', CompletionItemKind.Keyword, 'finish MODULE after TIME [once]: each of its runs from now on (once: the next one) ends TIME after its start');
         return items;
     }
     // expect [at TIME] WHAT ...
