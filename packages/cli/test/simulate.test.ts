@@ -33,6 +33,26 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         expect(io.stdout).toMatch(/\n2 passed, 0 failed\n$/);
     });
 
+    it('the scenario of docs/getting-started.md passes on a `contract new` project, as the page says', async () => {
+        const dir = mkdtempSync(join(tmpdir(), 'contract-simulate-getting-started-'));
+        try {
+            expect(await runCli(['new', join(dir, 'my-robot')], capture(dir))).toBe(0);
+            const page = readFileSync(join(REPO, 'docs/getting-started.md'), 'utf8');
+            const text = /Write `my-robot\/scenarios\/start\.scenario`:\n\n```\n([^]*?)```/.exec(page)?.[1];
+            expect(text, 'the page shows the scenario').toBeTruthy();
+            mkdirSync(join(dir, 'my-robot', 'scenarios'));
+            writeFileSync(join(dir, 'my-robot', 'scenarios', 'start.scenario'), text!);
+            const io = capture(dir);
+            expect(await runCli(['simulate', 'my-robot', 'my-robot/scenarios/start.scenario', '--cache-dir', cache], io), io.stdout + io.stderr).toBe(0);
+            expect(io.stdout).toContain('passed: 5/5 expectations');
+            expect(page).toContain('5/5 expectations');
+            expect(io.stdout).toContain('- MIS.mission.START inactive  <- CTL:0 = "arrived"');
+            expect(page).toContain('`- MIS.mission.START inactive  <- CTL:0 = "arrived"`');
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
+    });
+
     it('--trace writes each simulation as the trace records a run writes, one JSON object a line (the same records as --format json holds)', async () => {
         const dir = mkdtempSync(join(tmpdir(), 'contract-simulate-trace-'));
         try {
