@@ -46,6 +46,10 @@ async function run(text: string) {
 const story = (r: Awaited<ReturnType<typeof run>>) => renderStory(stepsToTrace(r.steps.map(traceStepOf)))
     .map((l) => l.slice(11)).filter((l) => /^(ALF|BET) /.test(l) && !/ (rule|function) /.test(l));
 
+/** SCN's runs as the trace holds them (run_started / run_finished: the Monitor's running modules). */
+const scnRuns = (r: Awaited<ReturnType<typeof run>>) => stepsToTrace(r.steps.map(traceStepOf))
+    .filter((x) => (x.kind === 'run_started' || x.kind === 'run_finished') && (x as KnownRecord).module === 'SCN') as KnownRecord[];
+
 describe('modules and event flows two supervisors share', () => {
     it('stay running and connected until the last one lets them go, told as a run tells it', async () => {
         const r = await run([
@@ -94,7 +98,7 @@ describe('modules and event flows two supervisors share', () => {
             'BET LGR last hold dropped (stopped)',
         ]);
         // the modules' runs, as libmodule logs them: begun by ALF's START, ended by BET's STOP (the Monitor's running modules)
-        const runs = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => (x.kind === 'run_started' || x.kind === 'run_finished') && (x as KnownRecord).module === 'SCN') as KnownRecord[];
+        const runs = scnRuns(r);
         expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual(['1ms run_started ALF activation=1', '40ms run_finished BET activation=1 STOP']);
         // the verbose report says the same, after the action line each decides
         const report = textReport([r], { verbose: true }).split('\n').map((l) => l.trim().replace(/^\S+\s+/, ''));
@@ -138,7 +142,7 @@ describe('modules and event flows two supervisors share', () => {
             'ALF  module SCN: hold dropped (kept running: still used by 1 other supervisor(s))',
             'BET  undo: stop module SCN', // its hold's `last hold dropped (stopped)` confirms the line: not repeated
         ]);
-        const runs = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => (x.kind === 'run_started' || x.kind === 'run_finished') && (x as KnownRecord).module === 'SCN') as KnownRecord[];
+        const runs = scnRuns(r);
         expect(runs.map((x) => `${Number(x.monoNs) / 1e6}ms ${x.kind} ${x.peer} ${x.detail}`)).toEqual([
             '1ms run_started ALF activation=1', '3ms run_finished  activation=1', // returned: no STOP, no peer
             '5ms run_started BET activation=2', '40ms run_finished BET activation=2 STOP',
@@ -151,8 +155,7 @@ describe('modules and event flows two supervisors share', () => {
     it('finish M after TIME: each run started from then on ends that long after its start (once: the next one only)', async () => {
         const r = await run(['finish SCN after 2ms', 'start ALF.first()', 'start BET.second()', 'expect at 4ms module SCN stopped', 'expect at 6ms module SCN running', 'expect at 8ms module SCN stopped'].join('\n'));
         expect(r.failures.map((f) => f.message)).toEqual([]);
-        const runs = (x: typeof r) => stepsToTrace(x.steps.map(traceStepOf)).filter((y) => (y.kind === 'run_started' || y.kind === 'run_finished') && (y as KnownRecord).module === 'SCN')
-            .map((y) => `${Number((y as KnownRecord).monoNs) / 1e6}ms ${y.kind} ${(y as KnownRecord).detail}`);
+        const runs = (x: typeof r) => scnRuns(x).map((y) => `${Number(y.monoNs) / 1e6}ms ${y.kind} ${y.detail}`);
         // ALF starts it at 1ms, it ends at 3ms; BET needs it at 5ms and starts it again, it ends at 7ms
         expect(runs(r)).toEqual(['1ms run_started activation=1', '3ms run_finished activation=1', '5ms run_started activation=2', '7ms run_finished activation=2']);
         const once = await run(['finish SCN after 2ms once', 'start ALF.first()', 'start BET.second()', 'expect at 50ms module SCN stopped'].join('\n'));

@@ -95,6 +95,15 @@ function offset(ns: bigint): string {
 export const STORY_FOLLOWED = 4096;
 /** A run_finished that no STOP, KILL or ack ended: the module's code returned (libmodule's WaitForRequest). */
 const RUN_RETURNED = /^activation=(\d+)$/;
+
+/**
+ * `run #N ended by its own code` for the detail of a run_finished that no STOP, KILL or ack ended,
+ * else undefined: the words of the story and of `simulate --verbose` (a scenario's `finish`).
+ */
+export function ownRunEndText(detail: string): string | undefined {
+    const run = RUN_RETURNED.exec(detail);
+    return run ? `run #${run[1]} ended by its own code` : undefined;
+}
 const RUNNING_FOLLOWED = 65_536;
 
 /** The modules released in one cycle and not finished yet; how late ORD sent its first release. */
@@ -190,8 +199,8 @@ export class StoryTeller {
         if (k.kind === 'run_finished') {
             const starter = this.runs.get(k.module);
             this.runs.delete(k.module);
-            const returned = starter !== undefined && RUN_RETURNED.exec(k.detail);
-            return returned ? `${at(k)} run #${returned[1]} ended by its own code (started by ${starter || 'a control tool'})` : undefined;
+            const ended = starter === undefined ? undefined : ownRunEndText(k.detail);
+            return ended && `${at(k)} ${ended} (started by ${starter || 'a control tool'})`;
         }
         if (k.kind === 'module_started') {
             this.exited.delete(k.module); // started again: a later stuck report is about this run of it

@@ -2,7 +2,7 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
-import { readableCause, schedulerLineFields, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
+import { ownRunEndText, readableCause, schedulerLineFields, StoryTeller, type KnownRecord } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
 import { engineLine, typedRecord } from '../trace/steps-to-trace.js';
 import { actionLines } from '../trace/action-lines.js';
@@ -110,9 +110,6 @@ class MissTeller {
     }
 }
 
-/** A run_finished that no STOP and no ack ended (`activation=N` alone): a `finish` step's. */
-const RUN_RETURNED = /^activation=(\d+)$/;
-
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
     const out: string[] = [];
     for (const r of results) {
@@ -134,8 +131,8 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
                 for (const l of actionLines(s.record.actions, s.record.records)) happened.push({ t: l.t, seq: l.seq, text: `  ${l.who}: ${safe(l.text)}` });
                 // a run a `finish` ended (no STOP, no ack), in the words of `contract trace`
                 for (const rec of s.record.records ?? []) {
-                    const run = rec.kind === 'run_finished' ? RUN_RETURNED.exec(rec.detail) : null;
-                    if (run) happened.push({ t: rec.timeNs, seq: rec.seq ?? -1, text: `  ${safe(rec.module)}| run #${run[1]} ended by its own code` });
+                    const ended = rec.kind === 'run_finished' ? ownRunEndText(rec.detail) : undefined;
+                    if (ended) happened.push({ t: rec.timeNs, seq: rec.seq ?? -1, text: `  ${safe(rec.module)}| ${ended}` });
                 }
                 const told = misses.misses(s.record);
                 // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
