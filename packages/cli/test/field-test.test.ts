@@ -253,6 +253,30 @@ describe('6. a crashed module', () => {
         expect(lines.at(-2)).toMatch(/^5 records: /);
     });
 
+    it('contract trace names modules without an exit record in the order of their last record, and a whole run killed in one line', async () => {
+        // two modules crashed (CTL's last record after LOC's, CTL read first), ORD exited
+        const two = join(root, 'two-crashed');
+        mkdirSync(two);
+        writeFileSync(join(two, 'CTL_1.csv'), moduleLog('CTL', 1_000_500_000, true));
+        writeFileSync(join(two, 'LOC_1.csv'), moduleLog('LOC', 1_000_000_000, true));
+        writeFileSync(join(two, 'ORD_1.csv'), moduleLog('ORD', 1_000_000_000));
+        let io = capture(root);
+        expect(await runCli(['trace', 'two-crashed'], io)).toBe(0);
+        expect(io.stdout.split('\n').filter((l) => l.includes('no exit record'))).toEqual([
+            '+0.000001s LOC  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)',
+            '+0.000501s CTL  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)',
+        ]);
+        // every module without its exit record (the runner killed): one line, at the last record
+        const killed = join(root, 'run-killed');
+        mkdirSync(killed);
+        for (const [m, t] of [['CTL', 1_000_500_000], ['LOC', 1_000_000_000], ['ORD', 1_000_200_000]] as const) writeFileSync(join(killed, `${m}_1.csv`), moduleLog(m, t, true));
+        io = capture(root);
+        expect(await runCli(['trace', 'run-killed'], io)).toBe(0);
+        expect(io.stdout.split('\n').filter((l) => l.includes('exit record'))).toEqual([
+            '+0.000501s the records end here: no module wrote its exit record (3 modules): the run was killed before its end, or is still running',
+        ]);
+    });
+
     it('a real crash (bwrap): exit 1, the crash named, no advice to set *stateindex', async () => {
         expect(await runCli(['new', 'crash'], capture(root))).toBe(0);
         expect(await runCli(['generate', 'crash'], capture(root))).toBe(0);

@@ -246,13 +246,20 @@ export class ModuleEnds {
         const past = this.notFollowed ? [`${''.padStart(10)} ${this.notFollowed} record(s) of modules past the first ${MODULES_FOLLOWED} not followed (more modules than a run has)`] : [];
         if (this.t0 === undefined || this.started.size === 0) return past;
         const t0 = this.t0;
+        const at = (ns: bigint): string => `+${(Number(ns - t0) / 1e9).toFixed(6)}s`;
+        // modules started and never exited, in the order of their last record (the story's order)
+        const open = [...this.modules.keys()].filter((m) => this.started.has(m) && !this.exited.has(m) && this.last.has(m))
+            .sort((a, b) => (this.last.get(a)! < this.last.get(b)! ? -1 : this.last.get(a)! > this.last.get(b)! ? 1 : 0));
         const out: string[] = [];
+        if (open.length > 1 && open.length === this.started.size) {
+            // not one module's crash: the whole run ended without its modules' exit records
+            out.push(`${at(this.last.get(open.at(-1)!)!)} the records end here: no module wrote its exit record (${open.length} modules): the run was killed before its end, or is still running`);
+        } else {
+            for (const m of open) out.push(`${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
+        }
         for (const m of this.modules.keys()) {
-            const last = this.last.get(m);
-            if (last === undefined) {
+            if (!this.last.has(m)) {
                 out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed or was killed before writing any (\`contract run\` names a crash)`);
-            } else if (this.started.has(m) && !this.exited.has(m)) {
-                out.push(`+${(Number(last - t0) / 1e9).toFixed(6)}s ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
             }
             const counted = this.counted.get(m), read = this.read.get(m) ?? 0;
             if (counted !== undefined && counted !== read && !this.capped.has(m)) {
