@@ -4,7 +4,7 @@
  * full event log and result) up to `keepJobs`, and cleans everything up on close.
  */
 import { randomBytes } from 'node:crypto';
-import { chmodSync, mkdirSync, mkdtempSync, realpathSync } from 'node:fs';
+import { chmodSync, mkdirSync, mkdtempSync, promises as fsp, realpathSync } from 'node:fs';
 import { availableParallelism, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -14,6 +14,7 @@ import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
 import { GenerationCache } from './cache/generation-cache.js';
 import { WorkspaceManager } from './pipeline/workspaces.js';
+import { serviceFolder } from './pipeline/dead-service-folders.js';
 import type { BwrapOptions } from './sandbox/bwrap.js';
 import type { DockerOptions } from './sandbox/docker.js';
 import type { SweepReport } from './sandbox/docker-sweep.js';
@@ -96,11 +97,13 @@ export class JobService {
     mkdirSync(this.cacheDir, { recursive: true, mode: 0o711 });
     chmodSync(this.cacheDir, 0o711); // job uids must traverse it to reach their own work dir
     this.workspaces = new WorkspaceManager(
-      join(this.cacheDir, 'ws'),
+      serviceFolder(join(this.cacheDir, 'ws')),
       async (workDir) => {
         await this.sandboxes.sandboxes.docker.release?.(workDir);
       },
       options.persistentWorkspaces && options.cacheDir ? join(this.cacheDir, 'projects') : undefined,
+      undefined,
+      true,
     );
     this.generated = options.persistentWorkspaces && options.cacheDir ? new GenerationCache(join(this.cacheDir, 'generated')) : null;
     this.runtime = new RuntimeCache(options.runtimeSource ?? DEFAULT_RUNTIME_SOURCE, join(this.cacheDir, 'runtime'));
@@ -341,6 +344,10 @@ export class JobService {
     await this.startupSweep;
     for (const sandbox of Object.values(this.sandboxes.sandboxes)) await sandbox.close?.();
     if (this.ownsCacheDir) await removeTreeNoFollow(this.cacheDir);
-    else await removeTreeNoFollow(join(this.cacheDir, 'ws'));
+    else {
+      // only this service's folder: another service may share the cache folder (and its ws/)
+      await removeTreeNoFollow(serviceFolder(join(this.cacheDir, 'ws')));
+      await fsp.rmdir(join(this.cacheDir, 'ws')).catch(() => {});
+    }
   }
 }

@@ -9,6 +9,7 @@ import { tmpdir } from 'node:os';
 import { connect, type Socket } from 'node:net';
 import { join } from 'node:path';
 import { describe, expect, test, vi } from 'vitest';
+import { freshWorkspaces } from './test-support/scratch.js';
 import type { LineEvent } from './pipeline/job-events.js';
 import { BuildOutputRouter } from './pipeline/output-router.js';
 import { createBuildServer } from './server.js';
@@ -107,7 +108,7 @@ describe('the service in its own process, as `contract serve` runs it', () => {
       expect(job.status, job.result?.message).toBe('succeeded');
       expect((await fetch(`${base}/api/health`)).status).toBe(200);
       expect(exited).toBeNull();
-      expect(readdirSync(join(cache, 'ws'))).toEqual([]);
+      expect(freshWorkspaces(cache)).toEqual([]);
     } finally {
       child.kill('SIGTERM');
       await new Promise((r) => (exited !== null ? r(null) : child.once('exit', r)));
@@ -231,6 +232,6 @@ describe('an exception of the service while it reads a job output', () => {
     }
     expect(jobIds.length).toBeGreaterThanOrEqual(4);
     expect(cgroups).toEqual([]);
-    expect(readdirSync(join(served.cacheDir, 'ws'))).toEqual([]);
+    expect(freshWorkspaces(served.cacheDir)).toEqual([]);
   });
 });

@@ -4,11 +4,12 @@
  * handling; the job's container and volume never stay behind. Starts dockerd and bootstraps the
  * image when needed, or says SKIPPED loudly with the reason.
  */
-import { mkdtempSync, readdirSync, rmSync } from 'node:fs';
+import { mkdtempSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import Docker from 'dockerode';
 import { afterAll, beforeAll, describe, expect, test, vi } from 'vitest';
+import { freshWorkspaces } from './test-support/scratch.js';
 import type { LineEvent } from './pipeline/job-events.js';
 import { BuildOutputRouter } from './pipeline/output-router.js';
 import { LABEL_JOB } from './sandbox/docker-owner.js';
@@ -34,7 +35,7 @@ async function expectNothingLeft(id: string): Promise<void> {
   const label = [`${LABEL_JOB}=${id}`];
   expect(await docker.listContainers({ all: true, filters: { label } })).toEqual([]);
   expect((await docker.listVolumes({ filters: { label } })).Volumes ?? []).toEqual([]);
-  expect(readdirSync(join(cacheDir, 'ws'))).toEqual([]);
+  expect(freshWorkspaces(cacheDir)).toEqual([]);
 }
 
 if (env.available) {

@@ -23,7 +23,7 @@
  */
 import { createHash } from 'node:crypto';
 import { existsSync, promises as fsp } from 'node:fs';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
 import { canMountWorkDisk, mountWorkDisk, resizeWorkDisk, unmountWorkDisk, workDiskState } from '../sandbox/work-disk.js';
 import type { Owner } from '../util/safe-fs.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -31,6 +31,7 @@ import { assertCacheEntry, CacheRefusedError, checkCacheEntry } from '../cache/c
 import { acquireProjectLock, tryProjectLock } from '../cache/project-lock.js';
 import { readWorkspaceState, STATE_FILE, writeWorkspaceState, type WorkspaceState } from '../cache/workspace-state.js';
 import { SERVICE_BOUNDS } from '../limits.js';
+import { removeDeadServiceFolders } from './dead-service-folders.js';
 
 export interface Workspace {
   readonly root: string;
@@ -79,6 +80,8 @@ export class WorkspaceManager {
   private readonly fresh = new Set<string>();
   /** The sweep of persistent entries (folder gone, or beyond the kept number): once per process. */
   private swept: Promise<void> | undefined;
+  /** The removal of dead services' folders beside baseDir (dead-service-folders.ts): once. */
+  private deadSwept: Promise<unknown> | undefined;
   /** Random start: two services on one machine rarely hand out the same uids. */
   private uidCounter = Math.floor(Math.random() * UID_SPAN);
 
@@ -90,6 +93,8 @@ export class WorkspaceManager {
     private readonly persistentDir?: string,
     /** How many of them the sweep keeps (the most recently used). */
     private readonly keptProjects: number = SERVICE_BOUNDS.keptProjectWorkspaces,
+    /** baseDir is one service's folder (dead-service-folders.ts): remove dead services' beside it. */
+    private readonly sweepDeadSiblings = false,
   ) {}
 
   private nextOwner(): Owner {
@@ -107,6 +112,8 @@ export class WorkspaceManager {
   }
 
   private async create(root: string, owner: Owner, disk: WorkDiskBytes): Promise<void> {
+    if (this.sweepDeadSiblings) this.deadSwept ??= removeDeadServiceFolders(dirname(this.baseDir));
+    await this.deadSwept;
     await fsp.mkdir(this.baseDir, { recursive: true, mode: 0o711 });
     await fsp.mkdir(root, { mode: 0o711 });
     await fsp.mkdir(join(root, 'stage'), { mode: 0o700 });

@@ -15,6 +15,7 @@ import { promisify } from 'node:util';
 import { memoryBytes, REALTIME_BOUNDS, tmpBytes } from '../limits.js';
 import type { LimitCgroup } from './cgroup.js';
 import { cgroupChoice, createJobCgroup } from './cgroup-choice.js';
+import { jobCgroupName } from './cgroup-sweep.js';
 import { startHostProcess } from './host-process.js';
 import { toolchainBinds as toolchainArgs } from './toolchain-binds.js';
 import { workDiskState } from './work-disk.js';
@@ -89,7 +90,7 @@ export class BwrapSandbox implements Sandbox {
       const choice = cgroupChoice();
       if (choice.kind !== 'none') {
         try {
-          cgroup = await createJobCgroup(choice, `contract-${cmd.name}`, memoryBytes(cmd.limits), cmd.limits.processes);
+          cgroup = await createJobCgroup(choice, jobCgroupName(`contract-${cmd.name}`), memoryBytes(cmd.limits), cmd.limits.processes);
         } catch (e) {
           cgroupError = (e as Error).message;
         }
@@ -100,7 +101,7 @@ export class BwrapSandbox implements Sandbox {
     if (plan?.ok) {
       let rtCgroup: RealtimeCgroup | null = null;
       try {
-        if (plan.cpuCgroupDir) rtCgroup = await RealtimeCgroup.create(plan.cpuCgroupDir, `contract-rt-${cmd.name}`, REALTIME_BOUNDS);
+        if (plan.cpuCgroupDir) rtCgroup = await RealtimeCgroup.create(plan.cpuCgroupDir, jobCgroupName(`contract-rt-${cmd.name}`), REALTIME_BOUNDS);
       } catch (e) {
         await cgroup?.destroy();
         throw new Error(`real-time mode refused: ${(e as Error).message}`);

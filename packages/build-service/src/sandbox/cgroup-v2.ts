@@ -20,6 +20,7 @@
 import { promises as fsp, readFileSync, accessSync, constants } from 'node:fs';
 import { join } from 'node:path';
 import { cgroupPids, killUntilEmpty, removeCgroupDir } from './cgroup-procs.js';
+import { sweepStaleCgroups } from './cgroup-sweep.js';
 import type { LimitCgroup } from './cgroup.js';
 
 export interface CgroupV2Paths {
@@ -119,6 +120,7 @@ export class JobCgroupV2 implements LimitCgroup {
   private constructor(readonly dir: string) {}
 
   static async create(parent: string, name: string, memoryBytes: number, maxProcesses: number): Promise<JobCgroupV2> {
+    await sweepStaleCgroups(parent);
     const dir = join(parent, name);
     await fsp.mkdir(dir);
     try {

@@ -6,6 +6,7 @@
 import { promises as fsp, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { cgroupPids, killUntilEmpty, removeCgroupDir } from './cgroup-procs.js';
+import { sweepStaleCgroups } from './cgroup-sweep.js';
 
 const CGROUP_ROOT = '/sys/fs/cgroup';
 const CONTROLLERS = ['memory', 'pids'] as const;
@@ -61,7 +62,9 @@ export class JobCgroup implements LimitCgroup {
     const dirs = {} as Record<Controller, string>;
     try {
       for (const c of CONTROLLERS) {
-        const dir = join(CGROUP_ROOT, c, own.get(c) ?? '/', name);
+        const parent = join(CGROUP_ROOT, c, own.get(c) ?? '/');
+        await sweepStaleCgroups(parent);
+        const dir = join(parent, name);
         await fsp.mkdir(dir);
         dirs[c] = dir;
       }

@@ -18,6 +18,7 @@ import { accessSync, constants, existsSync, promises as fsp, readFileSync } from
 import { join } from 'node:path';
 import type { RealtimeBounds } from '../limits.js';
 import { cgroupPids, killUntilEmpty, removeCgroupDir } from './cgroup-procs.js';
+import { sweepStaleCgroups } from './cgroup-sweep.js';
 
 const CPU_HIERARCHY = '/sys/fs/cgroup/cpu';
 const CAP_SYS_NICE = 23;
@@ -159,11 +160,23 @@ export class RealtimeCgroup {
 
   /** Creates `<parent>/<name>` with the budget; throws a user-readable error when the host refuses it. */
   static async create(parent: string, name: string, bounds: RealtimeBounds): Promise<RealtimeCgroup> {
+    // a killed service's run keeps its budget until its cgroup is removed (cgroup-sweep.ts); the
+    // kernel gives a removed group's budget back a little later (its offlining is deferred), so
+    // after a sweep that removed one, a refusal is tried again for a while
+    const sweptSome = (await sweepStaleCgroups(parent)).length > 0;
     const dir = join(parent, name);
     await fsp.mkdir(dir);
     try {
       await fsp.writeFile(join(dir, 'cpu.rt_period_us'), String(bounds.cpuPeriodUs));
-      await fsp.writeFile(join(dir, 'cpu.rt_runtime_us'), String(bounds.cpuRuntimeUs));
+      for (let tries = sweptSome ? 100 : 1; ; tries--) {
+        try {
+          await fsp.writeFile(join(dir, 'cpu.rt_runtime_us'), String(bounds.cpuRuntimeUs));
+          break;
+        } catch (e) {
+          if (tries <= 1 || (e as NodeJS.ErrnoException).code !== 'EINVAL') throw e;
+          await new Promise((r) => setTimeout(r, 20));
+        }
+      }
     } catch (e) {
       await fsp.rmdir(dir).catch(() => {});
       const code = (e as NodeJS.ErrnoException).code;

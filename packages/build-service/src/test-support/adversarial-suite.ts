@@ -8,6 +8,7 @@ import { createServer, type Server } from 'node:net';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
+import { freshWorkspaces } from './scratch.js';
 
 import { createBuildServer, type BuildServer } from '../server.js';
 import {
@@ -194,7 +195,7 @@ describe(`${sandbox} sandbox, adversarial jobs running together`, () => {
     const ownPids = readFileSync('/proc/self/cgroup', 'utf8').match(/^\d+:pids:(.*)$/m)?.[1] ?? '/';
     const ids = Object.values(outcomes).map((o) => o.job.id as string);
     expect(readdirSync(join('/sys/fs/cgroup/pids', ownPids)).filter((d) => ids.some((id) => d.startsWith(`contract-${id}`)))).toEqual([]);
-    expect(readdirSync(join(cacheDir, 'ws'))).toEqual([]);
+    expect(freshWorkspaces(cacheDir)).toEqual([]);
     await extraChecks();
   });
 });

@@ -4,7 +4,7 @@
  * name; a 1,200-level tree with chmod 000 folders and links out is cleaned up; an executable a run
  * replaced (dated 2100) is never run by the next job, while a no-op rebuild stays a no-op.
  */
-import { existsSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, test } from 'vitest';
 import { createBuildServer, type BuildServer } from '../server.js';
@@ -12,7 +12,7 @@ import type { SandboxName } from '../sandbox/types.js';
 import { diskFiller, honestProgram, makeProject, poisoner } from './c-projects.js';
 import { getJob, postJob, readEvents } from './client.js';
 import { hostileTreeProgram } from './hostile-tree.js';
-import { useScratch } from './scratch.js';
+import { freshWorkspaces, useScratch } from './scratch.js';
 
 type AnyJob = Record<string, any>;
 
@@ -64,7 +64,7 @@ export function hostTrustSuite(sandbox: SandboxName): void {
       const inline = await runJob(first.url, { action: 'build', kind: 'make', project: { files } });
       expect(inline.status, inline.result.message).toBe('succeeded');
       await first.server.close();
-      const leftovers = (): string[] => (existsSync(join(first.cacheDir, 'ws')) ? readdirSync(join(first.cacheDir, 'ws')) : []);
+      const leftovers = (): string[] => freshWorkspaces(first.cacheDir);
       expect(leftovers()).toEqual([]);
       expect(readFileSync(join(outside, 'keep.txt'), 'utf8')).toBe('keep\n');
       // a later service on the same cache folder builds the project (twice: the tree is there again)

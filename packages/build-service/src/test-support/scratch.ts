@@ -2,7 +2,7 @@
  * The temp folders and build servers of a test file (or describe block): each is removed or
  * closed after all its tests, servers first. Call it at file or describe level.
  */
-import { mkdtempSync, rmSync } from 'node:fs';
+import { existsSync, mkdtempSync, readdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll } from 'vitest';
@@ -33,4 +33,21 @@ export function useScratch(): Scratch {
       return server;
     },
   };
+}
+
+/**
+ * The fresh workspaces left in a cache folder (`ws/<service folder>/<job-…|ws-…>`), as
+ * `<service folder>/<name>`: none once every job of its services ended. A service's own (empty)
+ * folder stays while it lives (pipeline/dead-service-folders.ts).
+ */
+export function freshWorkspaces(cacheDir: string): string[] {
+  const ws = join(cacheDir, 'ws');
+  if (!existsSync(ws)) return [];
+  return readdirSync(ws).flatMap((s) => {
+    try {
+      return readdirSync(join(ws, s)).map((n) => `${s}/${n}`);
+    } catch {
+      return [s]; // not a folder: something left
+    }
+  });
 }
