@@ -56,8 +56,8 @@ describe('contract rename', () => {
         expect(io.stderr).toMatch(/generated tutorial\/src-gen: \d+ created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
 
         // the scenarios follow, token by token (their comments are left as they are)
-        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:26: t=1.2s MSC:1 failing_data = {"overheat", 3}  ->  t=1.2s MSK:1 failing_data = {"overheat", 3}\n');
-        expect(io.stdout).toContain('tutorial/scenarios/mission.scenario:17: t=1s MSC:1 {"overheat", 3}  ->  t=1s MSK:1 {"overheat", 3}\n');
+        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:28: t=1.2s MSC:1 failing_data = {"overheat", 3}  ->  t=1.2s MSK:1 failing_data = {"overheat", 3}\n');
+        expect(io.stdout).toContain('tutorial/scenarios/mission.scenario:19: t=1s MSC:1 {"overheat", 3}  ->  t=1s MSK:1 {"overheat", 3}\n');
         expect(readFileSync(join(dir, 'scenarios/commutation.scenario'), 'utf8')).toContain('t=1.2s MSK:1 failing_data = {"overheat", 3}\n');
         // the old name left in user code (here only in strings) is listed with file:line, not changed
         expect(io.stderr).toMatch(/note: tutorial\/src-gen\/generated\/architecture\/modules\/MSK_mod\/module\.c:\d+: protected region protect_exec_MSK mentions MSC \(the old name\) in a string or character literal: not changed\n/);
@@ -111,7 +111,7 @@ describe('contract rename', () => {
     it('renames a port named in a scenario (M:P name = value) and in the user code that emits it', async () => {
         const io = capture(scratch.root);
         expect(await runCli(['rename', 'tutorial', 'MAA:connection_status', 'link_status'], io), io.stderr).toBe(0);
-        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:18: t=300ms MAA:2 connection_status = "disconnected"  ->  t=300ms MAA:2 link_status = "disconnected"\n');
+        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:20: t=300ms MAA:2 connection_status = "disconnected"  ->  t=300ms MAA:2 link_status = "disconnected"\n');
         expect(io.stdout).toMatch(/MAA_mod\/module\.c:\d+: protected region protect_internal_functions_impl_MAA: 2 use\(s\) of connection_status renamed\n/);
         const maa = regions(join(dir, MODULES, 'MAA_mod/module.c')).get('protect_internal_functions_impl_MAA')!;
         expect(maa).toContain('strcpy(link_status, status);');
@@ -174,7 +174,7 @@ describe('contract rename', () => {
         expect(before).toContain('start SUP.action(consigne = {1.0, 2.0, 3.0})');
         const io = capture(scratch.root);
         expect(await runCli(['rename', 'tutorial', 'SUP.action', 'act'], io), io.stderr).toBe(0);
-        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:7: start SUP.action(consigne = {1.0, 2.0, 3.0})  ->  start SUP.act(consigne = {1.0, 2.0, 3.0})\n');
+        expect(io.stdout).toContain('tutorial/scenarios/commutation.scenario:9: start SUP.action(consigne = {1.0, 2.0, 3.0})  ->  start SUP.act(consigne = {1.0, 2.0, 3.0})\n');
         const after = readFileSync(join(dir, 'scenarios/commutation.scenario'), 'utf8');
         expect(after).toContain('expect rule SUP.act.FIRST inactive\n');
         // every directive follows; the comment lines and the free-text title are as they were
@@ -184,9 +184,9 @@ describe('contract rename', () => {
 
     it('renames a rule label, a local and a parameter of a supervision function (SUP.fn.NAME); the scenarios follow; it generates', async () => {
         for (const [spec, to, kind, line] of [
-            ['SUP.act.FIRST', 'OPENING', 'rule label', 'tutorial/scenarios/commutation.scenario:8: expect rule SUP.act.FIRST inactive  ->  expect rule SUP.act.OPENING inactive'],
-            ['SUP.act.temp_mess_type', 'mess_kind', 'local', 'tutorial/scenarios/commutation.scenario:31: expect local temp_mess_type == "commutation"  ->  expect local mess_kind == "commutation"'],
-            ['SUP.act.consigne', 'setpoint', 'function parameter', 'tutorial/scenarios/commutation.scenario:7: start SUP.act(consigne = {1.0, 2.0, 3.0})  ->  start SUP.act(setpoint = {1.0, 2.0, 3.0})'],
+            ['SUP.act.FIRST', 'OPENING', 'rule label', 'tutorial/scenarios/commutation.scenario:10: expect rule SUP.act.FIRST inactive  ->  expect rule SUP.act.OPENING inactive'],
+            ['SUP.act.temp_mess_type', 'mess_kind', 'local', 'tutorial/scenarios/commutation.scenario:33: expect local temp_mess_type == "commutation"  ->  expect local mess_kind == "commutation"'],
+            ['SUP.act.consigne', 'setpoint', 'function parameter', 'tutorial/scenarios/commutation.scenario:9: start SUP.act(consigne = {1.0, 2.0, 3.0})  ->  start SUP.act(setpoint = {1.0, 2.0, 3.0})'],
         ] as const) {
             const io = capture(scratch.root);
             expect(await runCli(['rename', 'tutorial', spec, to], io), io.stderr).toBe(0);

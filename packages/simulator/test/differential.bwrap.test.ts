@@ -2,7 +2,11 @@
  * Differential test of the tutorial: a real run (`contract run --sandbox bwrap`, 5 s, real
  * processes, real MAA/MSC code) and the simulator fed with the same events must take the same
  * supervisor decisions: every `sup_rule` record of the run's CSV trace, in order, per supervisor,
- * equals the simulator's rule changes with their causes.
+ * equals the simulator's rule changes with their causes. The module runs that their own code ended
+ * are replayed as `finish` steps (MAB's, at once, in every run; MAA's after it posts "disconnected"
+ * in some: its script ends its run then, and SUP's STOP arrives 0.5 ms later or first, a race of
+ * the two processes: 1 run of 8 here), and the story of both sides tells the same such runs, each
+ * started by the same supervisor.
  *
  * The events are the run's (test/differential/replay-run.ts: what is replayed and how values are
  * found). Values the logs do not give: MAA:2 events that changed no rule were "connected" (the only
@@ -11,13 +15,17 @@
  * takes the type's default.
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import type { RuleRecord } from '@contract-studio/build-service/trace';
+import { renderStory, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
+import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
 import { prepared, TUTORIAL } from './support.js';
 import { firstDifference, realDecisions, runForReal, scenarioOfRun, simulatedDecisions, type RealRun } from './differential/replay-run.js';
 
 const SUPERVISORS = new Set(['SUP', 'GLB']);
 let run: RealRun;
+
+/** The story's `run #N ended by its own code (started by X)` lines, without their times. */
+const ownRunEnds = (records: TraceRecord[]): string[] => renderStory(records).filter((l) => l.includes(' ended by its own code ')).map((l) => l.slice(11));
 
 beforeAll(() => {
     run = runForReal(TUTORIAL, '5s');
@@ -28,10 +36,11 @@ describe('simulator vs a real bwrap run of the tutorial', () => {
     let sim: ScenarioResult;
     let real: RuleRecord[];
     let text: string;
+    let finished: string[];
 
     beforeAll(async () => {
         expect(run.code, run.output).toBe(0);
-        ({ text, real } = scenarioOfRun(run.records, {
+        ({ text, real, finished } = scenarioOfRun(run.records, {
             supervisors: SUPERVISORS,
             start: 'GLB.mission()',
             // supervisor2.contract: SINGLE does `activate supervisor SUP.action(…)`
@@ -58,5 +67,16 @@ describe('simulator vs a real bwrap run of the tutorial', () => {
             const want = realDecisions(real, sup);
             expect(got, firstDifference(sup, got, want, text)).toEqual(want);
         }
+    });
+
+    it('the runs their own code ended (MAB at once; MAA when it won the race) end in the simulation too', () => {
+        expect(finished).toContain('MAB');
+        const known = run.records.filter((r): r is KnownRecord => r.kind !== 'unknown');
+        const stop = known.find((r) => r.kind === 'request_received' && r.peer === 'contract-launch' && /^(STOP|KILL)/.test(r.detail));
+        const beforeStop = known.filter((r) => !stop || BigInt(r.monoNs) < BigInt(stop.monoNs));
+        const want = ownRunEnds(beforeStop);
+        expect(want).toContain('MAB  run #1 ended by its own code (started by SUP)');
+        expect(ownRunEnds(stepsToTrace(sim.steps.map(traceStepOf))), text).toEqual(want);
+        expect(sim.failures.map((f) => f.message), text).toEqual([]);
     });
 });

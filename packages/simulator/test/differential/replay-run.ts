@@ -19,6 +19,12 @@
  * event received while another supervisor's request was on its way) and shortRuns (a function
  * stopped before its `elapsed` timer came).
  *
+ * A module run that its own code ended (`run_finished` with no STOP: the tutorial's MAB at once,
+ * MAA after posting "disconnected" when its end comes before SUP's STOP) is replayed as `finish M`
+ * at the time it ended, before an event
+ * logged at the same time, so that the simulated supervisors find the module as the real ones did
+ * (its STOP finding no run).
+ *
  * Which ORD events there are (deadline misses `ORD:0`, conflicts `ORD:1`) depends on the machine's
  * timing, so the simulated ORD (whose virtual modules are never late) cannot make them by itself:
  * they are replayed like the others.
@@ -36,7 +42,7 @@ import { spawnSync } from 'node:child_process';
 import { cpSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
-import { isRule, parseTrace, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { isRule, ownRunEndText, parseTrace, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { formatTime, type RuleChange } from '../../src/index.js';
 import { REPO } from '../support.js';
 
@@ -101,6 +107,8 @@ export interface RunScenario {
     real: RuleRecord[];
     /** How many replayed events of each source (`OBS:0`, `ORD:0`...), for the test's own checks. */
     counts: Map<string, number>;
+    /** The modules whose runs their own code ended, once per such run, in time order (`finish` steps). */
+    finished: string[];
 }
 
 const mono = (r: KnownRecord | RuleRecord): bigint => BigInt(r.monoNs);
@@ -207,16 +215,24 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
         if (receipt?.emission && receipt.emission.value === undefined) receipt.emission.value = plan.causeValue?.(c.module, c.port, c.value) ?? scenarioValueOf(c.value);
     }
 
-    const replayed = emissions.filter((e) => e.t >= t0 && e.t < end).sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0));
+    // the runs their own code ended (not a supervisor's: its functions are what the scenario starts)
+    const ownEnds = known.filter((r) => r.kind === 'run_finished' && !r.peer && !plan.supervisors.has(r.module) && ownRunEndText(r.detail) !== undefined && mono(r) >= t0 && mono(r) < end);
+    const finished = ownEnds.map((r) => r.module);
+    const replayed = [...ownEnds.map((r): Emission => ({ t: mono(r), source: `finish ${r.module}` })), ...emissions.filter((e) => e.t >= t0 && e.t < end)]
+        .sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0)); // stable: a run's end before an event of the same time
     const counts = new Map<string, number>();
     const lines = [`until ${formatTime(Number(end - t0))}`, `start ${plan.start}`];
     for (const e of replayed) {
+        if (e.source.startsWith('finish ')) {
+            lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source}`);
+            continue;
+        }
         counts.set(e.source, (counts.get(e.source) ?? 0) + 1);
         const [module, port] = e.source.split(':');
         const value = e.value ?? plan.fallback?.(module!, Number(port)) ?? '';
         lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source} ${value}`.trimEnd());
     }
-    return { text: lines.join('\n') + '\n', real, counts };
+    return { text: lines.join('\n') + '\n', real, counts, finished };
 }
 
 /**
