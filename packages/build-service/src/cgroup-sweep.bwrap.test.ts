@@ -7,11 +7,10 @@
  * (memory), and made the next service sharing the cache folder fail to close. Each service now
  * removes a dead one's cgroups and work folders before it makes its first own.
  */
-import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
+import { spawnSync } from 'node:child_process';
 import { existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, rmdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
 import { JobService } from './job-service.js';
 import { BwrapSandbox } from './sandbox/bwrap.js';
@@ -20,8 +19,8 @@ import type { ProcessOwner } from './sandbox/process-owner.js';
 import { processStartTime } from './sandbox/docker-owner.js';
 import { readRealtimeFacts } from './sandbox/realtime.js';
 import { honestProgram, makeProject } from './test-support/c-projects.js';
+import { killServiceMidRun } from './test-support/child-process-service.js';
 
-const pkg = join(dirname(fileURLToPath(import.meta.url)), '..');
 const ID = 'j-0123456789abcdef0123456789abcdef';
 const self: ProcessOwner = { pid: 100, startTime: '5000', pidns: '4026531836' };
 
@@ -107,47 +106,19 @@ const budgetCgroups = facts.cpuCgroupDir !== null && facts.cpuCgroupRtRuntimeUs 
 const support = budgetCgroups ? await new BwrapSandbox().realtimeSupport() : { ok: false };
 
 describe.skipIf(!support.ok || !budgetCgroups)('a service killed with -9 during a real-time run (bwrap, cgroup v1 real-time budget)', () => {
-  const children: ChildProcess[] = [];
   const dirs: string[] = [];
   afterAll(() => {
-    for (const c of children) c.kill('SIGKILL');
     for (const d of dirs) rmSync(d, { recursive: true, force: true });
   });
 
-  /** A child service whose real-time run loops; killed with -9 once it loops. Its job's id. */
-  async function killedMidRun(cacheDir: string): Promise<string> {
-    const child = spawn(process.execPath, [join(pkg, 'dist', 'test-support', 'orphan-service.js'), cacheDir, 'bwrap-realtime'], { stdio: ['ignore', 'pipe', 'pipe'] });
-    children.push(child);
-    let out = '';
-    let err = '';
-    child.stderr!.on('data', (d: Buffer) => (err += d.toString()));
-    const jobId = await new Promise<string>((resolve, reject) => {
-      const timer = setTimeout(() => reject(new Error(`the child's job did not loop within 60 s; stdout: ${out} stderr: ${err}`)), 60_000);
-      child.stdout!.on('data', (d: Buffer) => {
-        out += d.toString();
-        const m = /LOOPING (j-[0-9a-f]+)/.exec(out);
-        if (m) {
-          clearTimeout(timer);
-          resolve(m[1]!);
-        }
-        if (out.includes('ENDED')) reject(new Error(`the child's job ended: ${out}`));
-      });
-      child.once('exit', (code) => reject(new Error(`the child exited (${code}) before its job looped; stdout: ${out} stderr: ${err}`)));
-    });
-    const exited = new Promise((r) => child.once('exit', r));
-    child.kill('SIGKILL');
-    await exited;
-    return jobId;
-  }
+  /** A child service whose real-time run loops, killed with -9 once it loops: its job's id. */
+  const killedMidRun = async (cacheDir: string): Promise<string> => (await killServiceMidRun(cacheDir, 'bwrap-realtime')).jobId;
 
   const leftovers = (jobId: string) => readdirSync(facts.cpuCgroupDir!).filter((n) => n.startsWith(`contract-rt-${jobId}-`));
   /** The work tmpfs mounts of the job (its fresh workspace under the service's folder of ws/). */
   const mounts = (jobId: string) => readFileSync('/proc/self/mounts', 'utf8').split('\n').filter((l) => l.includes(`/job-${jobId}/work `));
 
   test('its cpu cgroup keeps the budget; the next service removes it and its real-time run is granted', async () => {
-    // the child runs the compiled service (what `contract serve` runs): bring dist/ up to date
-    const tsc = spawnSync('npx', ['tsc', '-b'], { cwd: pkg, encoding: 'utf8' });
-    expect(tsc.status, `${tsc.stdout}${tsc.stderr}`).toBe(0);
     const cacheDir = mkdtempSync(join(tmpdir(), 'contract-rt-orphan-'));
     dirs.push(cacheDir);
     // what the bug was: a killed run's budget stays with its cgroup (bwrap's processes are gone)

@@ -4,12 +4,11 @@
  * service child killed with -9 while its job loops for ever; the shutdown clean-up of close().
  * Starts dockerd when needed (scripts/docker-up.sh), or says SKIPPED loudly with the reason.
  */
-import { spawn, spawnSync, type ChildProcess } from 'node:child_process';
+import { spawn } from 'node:child_process';
 import { randomBytes } from 'node:crypto';
 import { mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { dirname, join } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { join } from 'node:path';
 import Docker from 'dockerode';
 import { afterAll, beforeAll, describe, expect, test } from 'vitest';
 import { JobService } from './job-service.js';
@@ -17,14 +16,15 @@ import { DOCKER_IMAGE, DockerSandbox } from './sandbox/docker.js';
 import { currentOwner, LABEL_JOB, ownerLabels, processStartTime, type ServiceOwner } from './sandbox/docker-owner.js';
 import type { SweepReport } from './sandbox/docker-sweep.js';
 import { honestProgram, infiniteLoop, makeProject } from './test-support/c-projects.js';
+import { killServiceMidRun } from './test-support/child-process-service.js';
 import { dockerUp } from './test-support/docker-env.js';
 
 const env = dockerUp();
-const pkg = join(dirname(fileURLToPath(import.meta.url)), '..');
 const docker = new Docker();
 const planted = { containers: new Set<string>(), volumes: new Set<string>() };
 const childJobs: string[] = [];
-const children: ChildProcess[] = [];
+/** A child service was started (and killed: killServiceMidRun): its leftovers are a dead service's. */
+let orphanSpawned = false;
 const tempDirs: string[] = [];
 const services: JobService[] = [];
 
@@ -84,17 +84,10 @@ function collectingService(options: ConstructorParameters<typeof JobService>[0])
 
 afterAll(async () => {
   try {
-    for (const c of children) {
-      if (c.exitCode === null && c.signalCode === null) {
-        const exited = new Promise((r) => c.once('exit', r));
-        c.kill('SIGKILL');
-        await exited;
-      }
-    }
     for (const s of services) await s.close().catch(() => {});
     if (env.available) {
       // a child killed before it said its job id: its leftovers are those of a dead service
-      if (children.length) await new DockerSandbox({ log: () => {} }).sweep();
+      if (orphanSpawned) await new DockerSandbox({ log: () => {} }).sweep();
       for (const job of childJobs) {
         for (const c of await docker.listContainers({ all: true, filters: { label: [`${LABEL_JOB}=${job}`] } })) planted.containers.add(c.Id);
         const { Volumes } = await docker.listVolumes({ filters: { label: [`${LABEL_JOB}=${job}`] } });
@@ -225,32 +218,12 @@ if (!env.available) {
 
   describe('a service killed with -9 mid-run', () => {
     test('its looping container keeps running; the next service sweeps it at its first docker job', async () => {
-      // the child runs the compiled service (what `contract serve` runs): bring dist/ up to date
-      const tsc = spawnSync('npx', ['tsc', '-b'], { cwd: pkg, encoding: 'utf8' });
-      expect(tsc.status, `${tsc.stdout}${tsc.stderr}`).toBe(0);
       const cacheDir = mkdtempSync(join(tmpdir(), 'contract-orphan-cache-'));
       tempDirs.push(cacheDir);
-      const child = spawn(process.execPath, [join(pkg, 'dist', 'test-support', 'orphan-service.js'), cacheDir], { stdio: ['ignore', 'pipe', 'pipe'] });
-      children.push(child);
-      let out = '';
-      let err = '';
-      child.stderr!.on('data', (d: Buffer) => (err += d.toString()));
-      const jobId = await new Promise<string>((resolve, reject) => {
-        const timer = setTimeout(() => reject(new Error(`the child's job did not loop within 40 s; stdout: ${out} stderr: ${err}`)), 40_000);
-        child.stdout!.on('data', (d: Buffer) => {
-          out += d.toString();
-          const m = /LOOPING (j-[0-9a-f]+)/.exec(out);
-          if (m) {
-            clearTimeout(timer);
-            resolve(m[1]!);
-          }
-        });
-        child.once('exit', (code) => reject(new Error(`the child exited (${code}) before its job looped; stdout: ${out} stderr: ${err}`)));
-      });
+      orphanSpawned = true;
+      const child = await killServiceMidRun(cacheDir, 'docker', 40_000);
+      const jobId = child.jobId;
       childJobs.push(jobId);
-      const exited = new Promise((r) => child.once('exit', r));
-      child.kill('SIGKILL');
-      await exited; // reaped: /proc/<pid> is gone
       const [orphan] = await docker.listContainers({ all: true, filters: { label: [`${LABEL_JOB}=${jobId}`] } });
       expect(orphan, 'the run container of the killed service').toBeDefined();
       expect(orphan!.Names[0]).toBe(`/contract-${jobId}-run`);
