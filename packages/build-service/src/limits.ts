@@ -110,6 +110,14 @@ export interface ServiceBounds {
    * number, and those whose project folder is gone; one a command holds stays.
    */
   keptProjectWorkspaces: number;
+  /**
+   * Built simulators (`sim/sim-<key>/`, about 0.6 MB each, a new key per model simulated) the
+   * build cache keeps: a new one removes the least recently used beyond this number (none used in
+   * the last hour).
+   */
+  keptSimulators: number;
+  /** Generated trees (`generated/<key>.json.gz`) the build cache keeps, likewise. */
+  keptGeneratedTrees: number;
 }
 
 export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
@@ -137,6 +145,8 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   projectBytes: 64 * 1024 * 1024,
   diagnosticsPerJob: 1000,
   keptProjectWorkspaces: 32,
+  keptSimulators: 64,
+  keptGeneratedTrees: 256,
 });
 
 /**

@@ -3,12 +3,14 @@
  * of the build cache, each under `sim-<hash>/`; two builds of one project on a cold cache at once
  * compile it once (the second waits for the lock, then finds the first one's executable); a link
  * planted in place of `sim/` is refused with the build cache's sentence, nothing executed; the
- * folder of a build that was killed (SIGKILL) is removed by the next build.
+ * folder of a build that was killed (SIGKILL) is removed by the next build; the cache keeps the most
+ * recently used simulators only.
  */
 import { spawnSync } from 'node:child_process';
-import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
+import { existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, statSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
+import { SERVICE_BOUNDS } from '@contract-studio/build-service/cache';
 import { afterAll, describe, expect, it } from 'vitest';
 import { DEFAULT_RUNTIME_DIR, harnessKey, prepareProject, simulatorCacheDir } from '../src/index.js';
 import { TUTORIAL } from './support.js';
@@ -42,6 +44,35 @@ describe('the simulators in the build cache', () => {
         expect(p.build.cached).toBe(false);
         expect(existsSync(left)).toBe(false);
         expect(readdirSync(join(cacheDir, 'sim')).filter((n) => n.includes('.tmp-'))).toEqual([]);
+    });
+
+    it('keeps the keptSimulators most recently used: a new build removes the least recently used beyond it; a hit marks its simulator used', async () => {
+        const cacheDir = join(scratch, 'bounded');
+        const sim = join(cacheDir, 'sim');
+        mkdirSync(sim, { recursive: true, mode: 0o700 });
+        const kept = SERVICE_BOUNDS.keptSimulators;
+        // kept + 1 simulators of earlier models, the first two last used 3 and 2 days ago, the others 1 day ago
+        const names = Array.from({ length: kept + 1 }, (_, i) => `sim-${String(i).padStart(20, '0')}`);
+        names.forEach((n, i) => {
+            mkdirSync(join(sim, n));
+            writeFileSync(join(sim, n, 'contract-sim'), 'an earlier model');
+            const used = (Date.now() - (i === 0 ? 3 : i === 1 ? 2 : 1) * 86_400_000 + i * 1000) / 1000;
+            utimesSync(join(sim, n), used, used);
+        });
+        const built = await prepareProject(TUTORIAL, { runtimeDir: DEFAULT_RUNTIME_DIR, cacheDir });
+        if (!built || !('build' in built)) throw new Error(`not built: ${JSON.stringify(built)}`);
+        expect(built.build.cached).toBe(false);
+        const left = readdirSync(sim).filter((n) => /^sim-[0-9a-f]{20}$/.test(n));
+        // kept - 1 old ones stay, plus the new one: the two least recently used went
+        expect(names.filter((n) => !left.includes(n))).toEqual([names[0], names[1]]);
+        expect(left).toHaveLength(kept);
+        // a hit marks the simulator used: it is now the most recent
+        const stamp = (Date.now() - 5 * 86_400_000) / 1000;
+        utimesSync(dirname(built.build.exe), stamp, stamp);
+        const again = await prepareProject(TUTORIAL, { runtimeDir: DEFAULT_RUNTIME_DIR, cacheDir });
+        if (!again || !('build' in again)) throw new Error(`not built: ${JSON.stringify(again)}`);
+        expect(again.build.cached).toBe(true);
+        expect(Date.now() - statSync(dirname(built.build.exe)).mtimeMs).toBeLessThan(60_000);
     });
 
     it('refuses a link planted in place of sim/ (nothing built or executed there)', async () => {

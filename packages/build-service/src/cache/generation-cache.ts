@@ -11,16 +11,21 @@
  * Only trees generated on a stage that had no src-gen before the project was staged are stored
  * (what any fresh workspace would generate). The entries are written by the service alone, in the
  * trusted cache folder, atomically; an entry that does not read back as exactly this shape, or
- * names a path leaving src-gen, is ignored (generation runs).
+ * names a path leaving src-gen, is ignored (generation runs). Each hit marks its entry used; each
+ * new entry first removes those beyond `keptGeneratedTrees` (least recently used first,
+ * least-recently-used.ts) and the temporary files of writers killed before their rename.
  */
 import { createHash, randomBytes } from 'node:crypto';
 import { promises as fsp, readdirSync, statSync } from 'node:fs';
 import { createRequire } from 'node:module';
-import { dirname, join } from 'node:path';
+import { basename, dirname, join } from 'node:path';
+import { removeStaleTemps } from '@contract-studio/codegen/stale-temp';
+import { SERVICE_BOUNDS } from '../limits.js';
 import { gunzipSync, gzipSync } from 'node:zlib';
 import type { CactalProblem } from '../pipeline/cactal-adapter.js';
 import { checkRelativePath } from '../util/safe-fs.js';
 import { assertCacheEntry } from './cache-dir.js';
+import { markUsed, removeLeastRecentlyUsed } from './least-recently-used.js';
 
 export interface GeneratedTree {
   problems: CactalProblem[];
@@ -32,6 +37,8 @@ export interface GeneratedTree {
 
 /** Entries above this size (compressed) are neither stored nor read. */
 const MAX_ENTRY_BYTES = 32 * 1024 * 1024;
+/** An entry's name: `<key>.json.gz`. */
+const ENTRY_NAME = /^[0-9a-f]{32}\.json\.gz$/;
 
 let identity: string | undefined;
 
@@ -74,12 +81,14 @@ export class GenerationCache {
     return join(this.dir, `${key}.json.gz`);
   }
 
+
   async get(inputsDigest: string): Promise<GeneratedTree | null> {
     try {
       assertCacheEntry(this.dir);
       const path = this.file(inputsDigest);
       const st = await fsp.lstat(path);
       if (!st.isFile() || st.size > MAX_ENTRY_BYTES) return null;
+      await markUsed(path);
       const v = JSON.parse(gunzipSync(await fsp.readFile(path), { maxOutputLength: 8 * MAX_ENTRY_BYTES }).toString('utf8')) as {
         version?: unknown;
         problems?: unknown;
@@ -113,8 +122,11 @@ export class GenerationCache {
       }),
     );
     if (body.length > MAX_ENTRY_BYTES) return;
+    // the entries beyond the bound, and the temporary files of writers killed before their rename
+    removeStaleTemps(this.dir);
+    await removeLeastRecentlyUsed(this.dir, ENTRY_NAME, SERVICE_BOUNDS.keptGeneratedTrees - 1);
     const path = this.file(inputsDigest);
-    const tmp = `${path}.${process.pid}.${randomBytes(4).toString('hex')}.tmp`;
+    const tmp = join(this.dir, `.${basename(path)}.${randomBytes(4).toString('hex')}.tmp-${process.pid}`);
     await fsp.writeFile(tmp, body, { mode: 0o600 });
     await fsp.rename(tmp, path);
   }

@@ -7,3 +7,5 @@
 export { CACHE_DIR_ENV, CACHE_ENTRIES, CacheRefusedError, checkCacheEntry, prepareCacheDir, resolveCacheDir, type CacheDirChoice } from './cache-dir.js';
 export { acquireProjectLock, type ProjectLock } from './project-lock.js';
 export { ABANDONED_AFTER_MS, removeAbandonedBuilds } from './abandoned-builds.js';
+export { CACHE_ENTRY_IDLE_MS, markUsed, removeLeastRecentlyUsed } from './least-recently-used.js';
+export { SERVICE_BOUNDS } from '../limits.js';

@@ -46,7 +46,7 @@ export const cacheCommand: Command = {
             }
         };
         io.out(`${cache.dir}\n`);
-        io.err(`build cache (${cache.source}; move it with --cache-dir or ${CACHE_DIR_ENV}): ${count('runtime', (n) => n.startsWith('runtime-'))} runtime build(s), ${count('projects')} project work tree(s), ${count('sim', (n) => n.startsWith('sim-'))} simulator(s); \`contract cache clear\` empties it\n`);
+        io.err(`build cache (${cache.source}; move it with --cache-dir or ${CACHE_DIR_ENV}): ${count('runtime', (n) => n.startsWith('runtime-'))} runtime build(s), ${count('projects')} project work tree(s), ${count('sim', (n) => /^sim-[0-9a-f]{20}$/.test(n))} simulator(s), ${count('generated', (n) => /^[0-9a-f]{32}\.json\.gz$/.test(n))} generated tree(s); \`contract cache clear\` empties it\n`);
         return EXIT_OK;
     },
 };

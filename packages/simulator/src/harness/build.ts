@@ -13,14 +13,15 @@
  * under an flock of `<cache>/sim/lock` (the second waits, then finds the first one's executable),
  * and each build is made in a private folder renamed into place, so a reader never sees half an
  * executable. The locks are held by child processes and dropped by the kernel when they exit,
- * even when this process is killed.
+ * even when this process is killed. The cache keeps the `keptSimulators` most recently used
+ * simulators (a new key per model simulated).
  */
 import { spawn } from 'node:child_process';
 import { createHash } from 'node:crypto';
 import { existsSync, mkdirSync, readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { acquireProjectLock, removeAbandonedBuilds, type ProjectLock } from '@contract-studio/build-service/cache';
+import { acquireProjectLock, markUsed, removeAbandonedBuilds, removeLeastRecentlyUsed, SERVICE_BOUNDS, type ProjectLock } from '@contract-studio/build-service/cache';
 import { simulatorCacheDir } from './cache.js';
 import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
@@ -130,7 +131,10 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     const key = hash.digest('hex').slice(0, 20);
     const dir = join(cache.dir, `sim-${key}`);
     const exe = join(dir, 'contract-sim');
-    if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
+    if (existsSync(exe)) {
+        await markUsed(dir);
+        return { exe, cached: true, ms: performance.now() - t0 };
+    }
 
     let lock: ProjectLock;
     try {
@@ -140,8 +144,13 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     }
     try {
         // the build we waited for may have made this very executable
-        if (existsSync(exe)) return { exe, cached: true, ms: performance.now() - t0 };
+        if (existsSync(exe)) {
+            await markUsed(dir);
+            return { exe, cached: true, ms: performance.now() - t0 };
+        }
         await removeAbandonedBuilds(cache.dir, SIM_BUILDING);
+        // a new simulator per model simulated: the least recently used beyond the bound go
+        await removeLeastRecentlyUsed(cache.dir, SIM_ENTRY, SERVICE_BOUNDS.keptSimulators - 1);
         return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0, confinement: options.confinement });
     } finally {
         await lock.release();
@@ -151,6 +160,9 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
 /** `sim-<key>.tmp-<pid>-<random>`: a harness being compiled by process pid (compileAndLink); one a
  *  killed build left is removed by the next build. */
 export const SIM_BUILDING = /^sim-[0-9a-f]{20}\.tmp-(\d{1,10})-[0-9a-z]+$/;
+/** `sim-<key>`: a built simulator, marked used at each hit, the least recently used beyond
+ *  `keptSimulators` removed by a new build (build-service cache/least-recently-used.ts). */
+export const SIM_ENTRY = /^sim-[0-9a-f]{20}$/;
 
 interface CompileJob {
     cc: string;
