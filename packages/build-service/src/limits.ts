@@ -118,6 +118,8 @@ export interface ServiceBounds {
   keptSimulators: number;
   /** Generated trees (`generated/<key>.json.gz`) the build cache keeps, likewise. */
   keptGeneratedTrees: number;
+  /** Built runtimes (`runtime/runtime-<key>/`, about 5 MB, a new key per version or compiler), likewise. */
+  keptRuntimes: number;
 }
 
 export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
@@ -147,6 +149,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   keptProjectWorkspaces: 32,
   keptSimulators: 64,
   keptGeneratedTrees: 256,
+  keptRuntimes: 4,
 });
 
 /**

@@ -2,13 +2,14 @@
  * The runtime cache (runtime-cache.ts) with a small runtime source folder built by the real make
  * and gcc: one build per key, shared by two caches on the same folder (two processes), a new key
  * when a source changes, a half-finished build folder never used, the build folders of killed
- * processes removed, a planted link refused.
+ * processes removed, the least recently used beyond the bound removed, a planted link refused.
  */
 import { spawn, spawnSync } from 'node:child_process';
 import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, rmSync, statSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
+import { SERVICE_BOUNDS } from '../limits.js';
 import { RuntimeCache, toolchainIdentity } from './runtime-cache.js';
 
 const scratch = mkdtempSync(join(tmpdir(), 'runtime-cache-test-'));
@@ -110,6 +111,28 @@ describe('RuntimeCache', () => {
       live.kill('SIGKILL');
       runtimeSources(source, 1);
     }
+  });
+
+  test('keeps the keptRuntimes most recently used: a new build removes the least recently used beyond it; each job marks its runtime used', async () => {
+    const bounded = join(scratch, 'bounded', 'runtime');
+    mkdirSync(bounded, { recursive: true });
+    // runtimes of earlier versions, last used 5, 4, 3 and 2 days ago
+    const earlier = [5, 4, 3, 2].map((days, i) => {
+      const d = join(bounded, `runtime-${String(i).padStart(16, '0')}`);
+      mkdirSync(join(d, 'build'), { recursive: true });
+      writeFileSync(join(d, '.contract-built'), 'earlier');
+      const t = (Date.now() - days * 86_400_000) / 1000;
+      utimesSync(d, t, t);
+      return basename(d);
+    });
+    const built = await new RuntimeCache(source, bounded).ensure(log);
+    const left = readdirSync(bounded).filter((n) => /^runtime-[0-9a-f]{16}$/.test(n));
+    expect(left.sort()).toEqual([...earlier.slice(-(SERVICE_BOUNDS.keptRuntimes - 1)), basename(built)].sort());
+    // another process's job on it marks it used
+    const t = (Date.now() - 9 * 86_400_000) / 1000;
+    utimesSync(built, t, t);
+    expect(await new RuntimeCache(source, bounded).ensure(log)).toBe(built);
+    expect(Date.now() - statSync(built).mtimeMs).toBeLessThan(60_000);
   });
 
   test('a link planted in place of the runtime folder is refused with a clear message', async () => {

@@ -15,6 +15,8 @@ import { existsSync, promises as fsp } from 'node:fs';
 import { availableParallelism, machine } from 'node:os';
 import { join } from 'node:path';
 import { removeAbandonedBuilds } from '../cache/abandoned-builds.js';
+import { markUsed, removeLeastRecentlyUsed } from '../cache/least-recently-used.js';
+import { SERVICE_BOUNDS } from '../limits.js';
 import { assertCacheEntry } from '../cache/cache-dir.js';
 import { listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 
@@ -101,7 +103,11 @@ export class RuntimeCache {
     } else {
       onLine(`runtime ${s.key} already built`, 'stdout');
     }
-    return build;
+    // each job marks the runtime it links against as used (the cache's bound keeps it)
+    return build.then(async (dir) => {
+      await markUsed(dir);
+      return dir;
+    });
   }
 
   private async build(key: string, contents: Map<string, Buffer>, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
@@ -116,6 +122,8 @@ export class RuntimeCache {
     // a folder without its stamp is a build that did not finish (older layout): not trusted
     await removeTreeNoFollow(final);
     await removeAbandonedBuilds(this.cacheDir, RUNTIME_BUILDING);
+    // a new runtime per ContrACT Studio version or compiler: the least recently used beyond the bound go
+    await removeLeastRecentlyUsed(this.cacheDir, RUNTIME_ENTRY, SERVICE_BOUNDS.keptRuntimes - 1);
     // named as RUNTIME_BUILDING matches: a killed build's folder is removed by a later build
     const dir = join(this.cacheDir, `.building-${key}-${process.pid}-${randomBytes(4).toString('hex')}`);
     await fsp.mkdir(dir, { mode: 0o700 });
@@ -161,3 +169,5 @@ export class RuntimeCache {
 
 /** `.building-<key>-<pid>-<random>`: a runtime build in progress, by process pid. */
 export const RUNTIME_BUILDING = /^\.building-[0-9a-f]{16}-(\d{1,10})-[0-9a-f]{8}$/;
+/** `runtime-<key>`: a built runtime, marked used by each job that links against it. */
+export const RUNTIME_ENTRY = /^runtime-[0-9a-f]{16}$/;
