@@ -27,7 +27,12 @@ export class ViewsController {
     const archRefresh = debounce(() => {
       if (this.arch && (this.archDocked || d.editors.active === 'view:architecture')) void this.arch.update();
     }, 400);
-    monaco.editor.onDidCreateModel((m) => m.onDidChangeContent(() => archRefresh()));
+    // an edit, a file loaded (opened, or made on disk by another program: external-changes.ts) or dropped
+    monaco.editor.onDidCreateModel((m) => {
+      m.onDidChangeContent(() => archRefresh());
+      archRefresh();
+    });
+    monaco.editor.onWillDisposeModel(() => archRefresh());
     for (const m of monaco.editor.getModels()) m.onDidChangeContent(() => archRefresh());
     // the diagram shows the schema the editor's cursor is in
     const follow = debounce(() => this.arch?.follow(this.cursor()), 150);

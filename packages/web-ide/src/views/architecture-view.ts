@@ -61,7 +61,10 @@ export const definitionOf = new WeakMap<Element, ArchLocation>();
 const SMALLEST_FONT_PX = 11;
 const MIN_FONT_PX = 9;
 
-/** Lays the schema out for the pane it is shown in: left to right in a wide pane, top to bottom in a narrow one. */
+/**
+ * Lays the schema out for the pane it is shown in: left to right in a wide pane, top to bottom in a
+ * narrow one; folded into rows (or columns) when it would not fit the pane at a readable size.
+ */
 export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<ElkNode> {
   const known = new Set(schema.modules.map((m) => m.name));
   const edges: ElkExtendedEdge[] = [];
@@ -76,7 +79,7 @@ export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<Elk
   const portIds = new Set(schema.modules.flatMap((m) => nodeOf(m).ports!.map((p) => p.id)));
   const valid = edges.filter((e) => [...e.sources, ...e.targets].every((s) => portIds.has(s) || known.has(s)));
   const down = !!pane && pane.width / Math.max(1, pane.height) < 1.3;
-  return elk.layout({
+  const layout = (wrapRatio?: number) => elk.layout({
     id: 'root',
     layoutOptions: {
       'elk.algorithm': 'layered',
@@ -86,10 +89,26 @@ export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<Elk
       'elk.layered.spacing.nodeNodeBetweenLayers': down ? '50' : '90',
       'elk.edgeRouting': 'ORTHOGONAL',
       'elk.edgeLabels.inline': 'true',
+      // a long chain (a periodic loop of 8 modules) folded into rows shaped like the pane
+      ...(wrapRatio ? { 'elk.layered.wrapping.strategy': 'MULTI_EDGE', 'elk.aspectRatio': wrapRatio.toFixed(2) } : {}),
     },
     children: schema.modules.map(nodeOf),
-    edges: valid,
+    edges: valid.map((e) => ({ ...e, labels: e.labels?.map((l) => ({ ...l })) })), // fresh for each layout
   });
+  const straight = await layout();
+  if (!pane) return straight;
+  // folded only when the straight drawing does not fit the pane at a readable size: into rows shaped
+  // like the pane, then (ELK's folding only approaches the shape asked) twice and four times as many,
+  // keeping the one that shows most of the schema
+  const readable = MIN_FONT_PX / SMALLEST_FONT_PX;
+  const fitScale = (g: ElkNode) => Math.min((pane.width - 32) / Math.max(1, g.width ?? 1), (pane.height - 32) / Math.max(1, g.height ?? 1));
+  let best = straight;
+  for (const k of [1, 2, 4]) {
+    if (fitScale(best) >= readable) break;
+    const folded = await layout(pane.width / Math.max(1, pane.height) / k);
+    if (fitScale(folded) > fitScale(best)) best = folded;
+  }
+  return best;
 }
 
 export function renderSchema(schema: ArchSchema, graph: ElkNode): SVGSVGElement {

@@ -3,6 +3,8 @@
  * schema at the cursor, keeps its labels readable at the docked size, zooms at the pointer, pans,
  * fits, and a click on a module, port or flow goes to its definition.
  */
+import { writeFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { startSession, openIde, shot, placeCursor, activeTab, openFile, cursorLine, type Session } from './harness.js';
 import { axeScan, seriousOf } from './axe.js';
@@ -163,5 +165,45 @@ describe('architecture diagram docked', () => {
     await page.keyboard.press('Enter');
     await expect.poll(() => activeTab(page)).toBe('smodule4.contract');
     await shot(page, 'arch-03-went-to-definition');
+  });
+  it('a schema file made on disk shows up; a long loop (8 modules in a chain) is folded into rows: every module readable in the tab, none cut off', async () => {
+    const { page } = s;
+    const names = ['CHA', 'CHB', 'CHC', 'CHD', 'CHE', 'CHF', 'CHG', 'CHH'];
+    for (const n of names) writeFileSync(join(s.workspace, `${n.toLowerCase()}.contract`), `synchronous module ${n} {\n    scheduling { C=300us; }\n    data flows { in :0 float u; out :1 float y; }\n}\n`);
+    const pairs = names.slice(1).map((n, i) => [names[i]!, n]);
+    writeFileSync(join(s.workspace, 'chain.contract'), [
+      ...names.map((n) => `import "${n.toLowerCase()}.contract";`), '',
+      'periodic schema chain() {',
+      '    realtime { PERIOD=10ms; CRITICAL_DELAY=10ms; }',
+      `    modules { ${names.map((n) => `${n} ();`).join(' ')} }`,
+      `    scheduling graph { ${pairs.map(([a, b]) => `${a} -> ${b};`).join(' ')} }`,
+      `    communications { ${pairs.map(([a, b]) => `${a}:1 -> ${b}:0 * 1;`).join(' ')} }`,
+      '}', '',
+    ].join('\n'));
+    // the files appear in the explorer (the workspace watcher); the cursor in the schema shows it
+    await page.locator('.tree-row[data-path="chain.contract"]').waitFor({ timeout: 15_000 });
+    await openFile(page, 'chain.contract');
+    await placeCursor(page, 'CHA ();');
+
+    // (a file made by another program: the diagram's list had only the schemas known at the start)
+    await expect.poll(() => page.locator(`${pane} .arch-svg`).getAttribute('data-schema'), { timeout: 15_000 }).toBe('chain');
+    // back in its own tab (wide): folded into rows that fit it at a readable size
+    await page.locator('.side-pane #arch-dock').click();
+    const tab = '.arch-canvas:visible';
+    await page.locator(`${tab} .arch-svg[data-schema="chain"]`).waitFor({ timeout: 10_000 });
+    await page.waitForTimeout(400); // the relayout for the pane's size settles
+    const canvas = (await page.locator(tab).boundingBox())!;
+    const boxes = await page.locator(`${tab} .arch-svg .arch-node`).evaluateAll((els) => els.map((e) => { const r = e.getBoundingClientRect(); return { x: r.left, y: r.top, w: r.width, h: r.height }; }));
+    expect(boxes).toHaveLength(8);
+    for (const b of boxes) {
+      expect(b.x).toBeGreaterThanOrEqual(canvas.x - 1);
+      expect(b.y).toBeGreaterThanOrEqual(canvas.y - 1);
+      expect(b.x + b.w).toBeLessThanOrEqual(canvas.x + canvas.width + 1);
+      expect(b.y + b.h).toBeLessThanOrEqual(canvas.y + canvas.height + 1);
+    }
+    const fontPx = await page.locator(`${tab} .arch-svg .port-label`).first().evaluate((e) => parseFloat(getComputedStyle(e).fontSize));
+    const scale = await page.locator(`${tab} .arch-scene`).evaluate((g) => Number(/scale\(([-\d.]+)\)/.exec(g.getAttribute('transform')!)![1]));
+    expect(fontPx * scale).toBeGreaterThanOrEqual(9);
+    await shot(page, 'arch-04-long-loop-folded');
   });
 });
