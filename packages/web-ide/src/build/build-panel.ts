@@ -43,7 +43,13 @@ export class BuildPanel {
   private chipSources = '';
 
   constructor() {
-    this.chips = h('div', { class: 'chips' });
+    this.chips = h('div', { class: 'chips', title: 'Show or hide a source\'s lines (more sources: scroll, or the wheel)' });
+    // a run of 30 modules has more chips than the row shows: the wheel scrolls them sideways
+    this.chips.addEventListener('wheel', (e) => {
+      if (this.chips.scrollWidth <= this.chips.clientWidth || Math.abs(e.deltaX) > Math.abs(e.deltaY)) return;
+      e.preventDefault();
+      this.chips.scrollLeft += e.deltaY;
+    }, { passive: false });
     this.statusEl = h('span', { class: 'job-status muted' }, 'No build yet');
     this.originEl = h('span', { class: 'job-origin muted' });
     this.followBox = h('input', { type: 'checkbox', checked: true, id: 'follow-tail' });
