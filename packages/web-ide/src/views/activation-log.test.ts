@@ -1,6 +1,6 @@
 import { describe, it, expect } from 'vitest';
 import { splitCsvLine } from '@contract-studio/build-service/trace';
-import { activationsFromCsv, inferPeriod } from './activation-log.js';
+import { activationsFromCsv, inferPeriod, inferPeriodOf } from './activation-log.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 
@@ -22,6 +22,13 @@ describe('activation log', () => {
     expect(acts[0]).toMatchObject({ module: 'MSC', start: 10, end: 90 });
     expect(acts[5]!.end).toBeUndefined();
     expect(inferPeriod(acts)).toBe(1000);
+  });
+
+  it('reads the period of the most active module, and names it (loops of several periods)', () => {
+    const act = (module: string, start: number) => ({ module, start, end: start + 5, detail: '' });
+    const acts = [...[0, 10, 20, 30, 40, 50].map((t) => act('FST', t)), ...[0, 50].map((t) => act('SLW', t))];
+    expect(inferPeriodOf(acts)).toEqual({ ns: 10, module: 'FST' });
+    expect(inferPeriodOf(acts.slice(0, 2))).toBeUndefined();
   });
 
   it('refuses a file that is not a runtime log', () => {

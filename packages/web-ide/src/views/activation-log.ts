@@ -49,11 +49,20 @@ export function activationsFromCsv(text: string): Activation[] {
 
 /** Median gap between consecutive activations of the most active module (the period guess), ns. */
 export function inferPeriod(acts: Activation[]): number | undefined {
+  return inferPeriodOf(acts)?.ns;
+}
+
+/**
+ * The period guess and the module it is read from (the most active one): a run with loops of
+ * several periods has its grid drawn at that module's.
+ */
+export function inferPeriodOf(acts: Activation[]): { ns: number; module: string } | undefined {
   const byModule = new Map<string, number[]>();
   for (const a of acts) (byModule.get(a.module) ?? byModule.set(a.module, []).get(a.module)!).push(a.start);
   let best: number[] = [];
-  for (const starts of byModule.values()) if (starts.length > best.length) best = starts;
+  let module = '';
+  for (const [m, starts] of byModule) if (starts.length > best.length) [best, module] = [starts, m];
   if (best.length < 3) return undefined;
   const gaps = best.slice(1).map((s, i) => s - best[i]!).sort((a, b) => a - b);
-  return gaps[Math.floor(gaps.length / 2)];
+  return { ns: gaps[Math.floor(gaps.length / 2)]!, module };
 }

@@ -1,6 +1,6 @@
 import { h } from '../util/dom.js';
 import type { Workspace } from '../workspace/workspace.js';
-import { inferPeriod, type Activation } from './activation-log.js';
+import { inferPeriodOf, type Activation } from './activation-log.js';
 import { laneBars, lastTime, type LaneBar } from './timeline-bars.js';
 import { activationsFromLogs, localLogFolders, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
@@ -150,7 +150,8 @@ export class TimelineView {
     const tEnd = lastTime(acts);
     const span = Math.max(1, tEnd - t0);
     const modules = [...new Set(acts.map((a) => a.module))].sort();
-    const period = inferPeriod(acts);
+    const periodOf = inferPeriodOf(acts);
+    const period = periodOf?.ns;
     const lane = 26;
     const left = 70;
     // fit the visible width (hover a bar for exact times)
@@ -214,7 +215,7 @@ export class TimelineView {
       grid.replaceChildren(...drawGrid(from, to));
     };
     root.append(axis);
-    this.info.textContent = `${acts.length} activations · ${modules.length} modules · ${(span / 1e6).toFixed(1)} ms${period ? ` · period ≈ ${(period / 1e6).toFixed(2)} ms` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
+    this.info.textContent = `${acts.length} activations · ${modules.length} modules · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
     this.canvas.replaceChildren(root);
     // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
     drawBars();
