@@ -171,7 +171,7 @@ export function generateSyntheticArchitecture(options = {}) {
                 `            WATCH: [(started(P0){infinite} and ${mod.name}:1<(f0.value > 3) | f0.name == "x">(fail = f0))]`,
                 `                compute apply${t}("watch", tgt.x);`,
                 `                notify :0 (status = status_text)`,
-                `                [elapsed=10s]`);
+                `                [duration(WATCH)=10s]`);
         }
         children.forEach((c, k) => {
             rules.push(

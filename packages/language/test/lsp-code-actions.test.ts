@@ -85,6 +85,23 @@ synchronous module MXX { scheduling { C=1ms; } data flows { out :0 int a; out :0
         expect(again.diagnostics.filter((d) => d.file === 'sup.contract')).toEqual([]);
     });
 
+    it('turns elapsed=t that ends a rule only once into duration(R)=t, and the file then checks clean', async () => {
+        const text = (end: string) => `supervisor SUP {\n  f() { rules {\n    A: [elapsed=1ms or endof(B)] [${end}]\n    B: [endof(A)] [duration(B)=2ms]\n  } }\n}\n`;
+        const ws = await build({ 'sup.contract': text('elapsed=10ms') });
+        const [action, ...rest] = await fixes(ws, 'sup.contract', 'supervisor-elapsed-once');
+        expect(rest).toEqual([]);
+        expect(action!.title).toBe('Use duration(A)=10ms (ends it 10ms after each activation)');
+        const fixed = apply(ws, action!.edit!)['sup.contract']!;
+        expect(fixed).toBe(text('duration(A)=10ms'));
+        const again = await build({ 'sup.contract': fixed });
+        expect(again.diagnostics.filter((d) => d.file === 'sup.contract')).toEqual([]);
+        // a rule that nothing makes active again (its precondition only elapsed, or a module event): no warning
+        for (const pre of ['elapsed=1ms', 'elapsed=1ms or elapsed=5ms']) {
+            const once = await build({ 'sup.contract': `supervisor SUP {\n  f() { rules {\n    A: [${pre}] [elapsed=10ms]\n  } }\n}\n` });
+            expect(once.diagnostics.filter((d) => d.code === 'supervisor-elapsed-once')).toEqual([]);
+        }
+    });
+
     it('offers nothing for diagnostics without a fix', async () => {
         const ws = await build({ 'a.contract': 'import "nosuch.contract";\ndatatype T {int a};' });
         const doc = ws.docs.get('a.contract')!;

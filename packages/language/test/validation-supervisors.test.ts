@@ -95,6 +95,11 @@ const CASES: Record<string, CodeCase> = {
         raise: sup('A: [started(A)] compute doit("x", 1.0) [elapsed=2ms]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]'),
         clean: sup('A: [started(B)] compute doit("x", 1.0) [elapsed=2ms]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]')
     },
+    'supervisor-elapsed-once': {
+        raise: sup('A: [elapsed=1ms or endof(B)] compute doit("x", 1.0) [elapsed=5ms]\nB: [endof(A)] compute doit("y", 1.0) [duration(B)=4ms]'),
+        clean: sup('A: [elapsed=1ms or endof(B)] compute doit("x", 1.0) [duration(A)=5ms]\nB: [endof(A)] compute doit("y", 1.0) [duration(B)=4ms]'),
+        message: 'elapsed=5ms occurs once, 5ms after the function started: A becomes active on endof(B), which may come again, and a later A (or one that starts after 5ms) is never ended by it. To end A 5ms after each of its activations, write duration(A)=5ms.'
+    },
     'supervisor-clause-transient': {
         raise: withSub('R: [(MAA:2 and elapsed=1ms)] compute doit("x", 1.0) [elapsed=2ms]'),
         clean: withSub('R: [(MAA:2 and elapsed=1ms{infinite})] compute doit("x", 1.0) [elapsed=2ms]')
@@ -146,7 +151,7 @@ describe('supervisors: more behaviour', () => {
             RECEPTION: [MAA:0(temp_message=message_received)]
                 parameterize MSC(temp_message.value :0); activate resttime module MAA
                 [started(RECEPTION)]
-            LATE: [ORD:0<ord_schema == "sc1">(temp_mess_type = ord_schema)] notify :1(failure_message_type = temp_mess_type) [elapsed=1s]`;
+            LATE: [ORD:0<ord_schema == "sc1">(temp_mess_type = ord_schema)] notify :1(failure_message_type = temp_mess_type) [duration(LATE)=1s]`;
         expect(await errorsAndWarnings(architecture({
             'sup.contract': supervisor(rules),
             'glb.contract': `import "sup.contract";\nsupervisor GLB { event flows { in :0 string s; } mission(TypeA consigne) { local { TypeA c = consigne; } rules {
@@ -163,7 +168,7 @@ describe('supervisors: more behaviour', () => {
 
     it('an extraction may read the port of any module event of its clause, not others', async () => {
         const rule = (extract: string) => `A: [elapsed=1ms] subscribe MAA:2 =* :2; subscribe MSC:1 => :3 [elapsed=1s]
-            B: [(MAA:2{infinite} and MSC:1(${extract}))] compute doit("x", 1.0) [elapsed=2s]`;
+            B: [(MAA:2{infinite} and MSC:1(${extract}))] compute doit("x", 1.0) [duration(B)=2s]`;
         const codesOf = async (extract: string) => (await build(sup(rule(extract)))).diagnostics.filter((d) => d.severity !== 'hint').map((d) => d.code);
         expect(await codesOf('temp_mess_type = connection_status, failure_data = failure')).toEqual([]);
         expect(await codesOf('temp_message = message_received')).toEqual(['supervisor-event-variable']);

@@ -5,6 +5,7 @@
  *   in every file that refers to it;
  * - `port-index-duplicate` (data.suggestedIndex): renumber the port to a free index;
  * - `supervisor-action-separator` (data.insertAt, the end of the action before): insert the missing ';';
+ * - `supervisor-elapsed-once` (data.suggestion): `elapsed=t` -> `duration(R)=t`;
  * - `identifier-c-reserved`, `identifier-generated-clash` (data.suggestion): rename the element everywhere to a name the
  *   generated C does not take (the suggestion, or the next free `<name>_N` if the rename rules refuse it).
  */
@@ -55,6 +56,14 @@ export class CactalCodeActionProvider implements CodeActionProvider {
                     diagnostics: [diagnostic],
                     isPreferred: true,
                     edit: { changes: { [document.textDocument.uri]: [{ range: diagnostic.range, newText: String(data.suggestedIndex) }] } }
+                });
+            } else if (code === 'supervisor-elapsed-once' && data.suggestion) {
+                actions.push({
+                    title: `Use ${data.suggestion} (ends it ${data.suggestion.replace(/^.*=/, '')} after each activation)`,
+                    kind: CodeActionKind.QuickFix,
+                    diagnostics: [diagnostic],
+                    isPreferred: true,
+                    edit: { changes: { [document.textDocument.uri]: [{ range: diagnostic.range, newText: data.suggestion }] } }
                 });
             } else if (code === 'supervisor-action-separator' && Number.isInteger(data.insertAt?.line) && Number.isInteger(data.insertAt?.character)) {
                 const at = { line: data.insertAt!.line as number, character: data.insertAt!.character as number };

@@ -2,14 +2,15 @@
  * docs/language-reference.md §6, rules and conditions: rules never use the function's parameters; ORD events and
  * `ord_schema`; test operands of the same type; extraction targets are locals and values fit them;
  * the report's rule hygiene warnings (§4.7): endof(L) in L's postcondition, started/duration(L) in
- * L's precondition, clauses with more than one transient event, module events never subscribed.
+ * L's precondition, clauses with more than one transient event, module events never subscribed; a
+ * rule that only a transient `elapsed` ends, made active again by a rule sequence (elapsed-once).
  */
 import { AstUtils, type ValidationAcceptor, type ValidationChecks } from 'langium';
 import {
-    isDurationEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
+    isDurationEvent, isElapsedEvent, isEndofEvent, isExtraction, isFunctionParameter, isLocalVariable, isModuleEvent, isModuleInstance,
     isNotify, isRule, isStartedEvent, isStructValue, isSubscribe, isSupervisionFunction, isVariableRef,
     isIntLiteral, isRealLiteral, isStringLiteral, isBoolLiteral, isRelationalTest, isPort, isSupervisor, isClause,
-    type CactalAstType, type Clause, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
+    type CactalAstType, type Clause, type ElapsedEvent, type EqualityTest, type Event, type Extraction, type ModuleEvent, type RelationalTest,
     type Port, type Rule, type TestOperand, type VariableRef
 } from '../generated/ast.js';
 import type { CactalServices } from '../cactal-module.js';
@@ -29,7 +30,7 @@ export function supervisorRuleChecks(_services: CactalServices): ValidationCheck
         EqualityTest: checkTestOperands,
         RelationalTest: checkTestOperands,
         Extraction: checkExtraction,
-        Rule: checkOwnRuleEvents,
+        Rule: [checkOwnRuleEvents, checkElapsedOnce],
         Clause: checkTransientEvents
     };
 }
@@ -218,6 +219,47 @@ function checkOwnRuleEvents(rule: Rule, accept: ValidationAcceptor): void {
                 `${word}(${rule.name}) in the precondition of ${rule.name} can never be true: the precondition defines when ${rule.name} becomes active, it cannot wait for an event that follows that activation (report §4.7).`,
                 { node: event });
         }
+    }
+}
+
+/** A transient `elapsed=t`: present at one instant of the function's run. */
+const onceEvent = (e: Event): e is ElapsedEvent => isElapsedEvent(e) && !e.persistence;
+
+/**
+ * Whether `rule` can become active only a bounded number of times in a run of its function: each
+ * precondition clause needs a transient event that occurs at most once (an `elapsed=t`, or an
+ * endof/started/duration of such a rule). A module event, a persistence, or a cycle of rules
+ * (R1 on endof(R6), ..., R6 on endof(R5)) makes it recur. `seen`: the rules being decided.
+ */
+function activeOnlyOnce(rule: Rule, seen = new Set<Rule>()): boolean {
+    if (seen.has(rule)) return false; // a cycle: each turn makes it active again
+    seen.add(rule);
+    const once = (e: Event): boolean => {
+        if (e.persistence) return false;
+        if (isElapsedEvent(e)) return true;
+        const other = (isEndofEvent(e) || isStartedEvent(e) || isDurationEvent(e)) ? e.rule?.ref : undefined;
+        return other !== undefined && activeOnlyOnce(other, seen);
+    };
+    const clauses = rule.precondition?.clauses ?? [];
+    const result = clauses.length > 0 && clauses.every((c) => c.events.some(once));
+    seen.delete(rule);
+    return result;
+}
+
+/**
+ * A rule that only `elapsed` ends (each postcondition clause waits for a transient `elapsed=t`)
+ * and that may become active again (activeOnlyOnce): after its first activation nothing ends it.
+ */
+function checkElapsedOnce(rule: Rule, accept: ValidationAcceptor): void {
+    const post = rule.postcondition?.clauses ?? [];
+    if (post.length === 0 || !post.every((c) => c.events.some(onceEvent)) || activeOnlyOnce(rule)) return;
+    const again = (rule.precondition?.clauses ?? []).find((c) => !c.events.some(onceEvent)) ?? rule.precondition?.clauses[0];
+    const cause = again?.$cstNode?.text.replace(/\s+/g, ' ') ?? 'its precondition';
+    for (const event of post.flatMap((c) => c.events).filter(onceEvent)) {
+        const time = event.time?.text ?? '?';
+        report(accept, SupervisorCodes['supervisor-elapsed-once'],
+            `elapsed=${time} occurs once, ${time} after the function started: ${rule.name} becomes active on ${cause}, which may come again, and a later ${rule.name} (or one that starts after ${time}) is never ended by it. To end ${rule.name} ${time} after each of its activations, write duration(${rule.name})=${time}.`,
+            { node: event, data: { suggestion: `duration(${rule.name})=${time}` } });
     }
 }
 

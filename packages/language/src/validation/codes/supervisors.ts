@@ -97,6 +97,11 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
         description: 'Report §4.7: in a clause `(e1 and e2 ...)` all events but at most one need a persistence `{time}` or `{infinite}`: events are never simultaneous, so a clause with two transient events can never be true. The one transient event is necessarily the last one notified when the clause becomes true.',
         example: 'R: [(MAA:2 and elapsed=1ms)] ... [...]'
     },
+    'supervisor-elapsed-once': {
+        severity: 'warning',
+        description: '`elapsed=t` occurs once in a run of the function, t after it started, whatever the rule: a rule that only `elapsed` ends, and that a rule sequence (`endof`, `started`, `duration` in its precondition) may make active again, never ends after its first activation, nor on one that comes after t. To end the rule t after each of its activations, write `duration(R)=t` (quick fix).',
+        example: 'R2: [endof(R1)] activate schema watchB() [elapsed=60ms]   // R1: [elapsed=1ms or endof(R6)] ...'
+    },
     'supervisor-event-not-subscribed': {
         severity: 'warning',
         description: 'A condition uses an event of a module or supervisor output port that the function never subscribes to (`subscribe M:o =* :i`): until it subscribes, every clause with this event is false (report §4.7). `ORD` events need no subscribe.',
