@@ -85,8 +85,9 @@ export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<Elk
       'elk.algorithm': 'layered',
       // a narrow pane (docked beside the editor) gets the modules top to bottom, a wide one left to right
       'elk.direction': down ? 'DOWN' : 'RIGHT',
-      'elk.spacing.nodeNode': '50',
-      'elk.layered.spacing.nodeNodeBetweenLayers': down ? '50' : '90',
+      // folded: tighter, so that more of the schema fits the pane at a readable size
+      'elk.spacing.nodeNode': wrapRatio ? '30' : '50',
+      'elk.layered.spacing.nodeNodeBetweenLayers': down ? (wrapRatio ? '30' : '50') : '90',
       'elk.edgeRouting': 'ORTHOGONAL',
       'elk.edgeLabels.inline': 'true',
       // a long chain (a periodic loop of 8 modules) folded into rows shaped like the pane
