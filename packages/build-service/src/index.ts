@@ -6,7 +6,7 @@ export { createBuildServer, DEFAULT_PORT, type BuildServer, type BuildServerOpti
 export { JobService, DEFAULT_RUNTIME_SOURCE, type BuildServiceOptions } from './job-service.js';
 export { ServiceError } from './service-errors.js';
 export { clearCache } from './cache/clear-cache.js';
-export { CACHE_DIR_ENV, CacheRefusedError, prepareCacheDir, resolveCacheDir, type CacheDirChoice } from './cache/cache-dir.js';
+export { CACHE_DIR_ENV, CACHE_ENTRY_NAMES, CacheRefusedError, prepareCacheDir, resolveCacheDir, type CacheDirChoice } from './cache/cache-dir.js';
 export { DEFAULT_LIMITS, CANCEL_DEADLINE_MS, describeLimitHit, mergeLimits, type Limits, type LimitHit, type Mechanism } from './limits.js';
 export type { Job, JobRequest, JobResult } from './pipeline/job.js';
 export type { JobEvent, JobStatus, JobStep, LineEvent } from './pipeline/job-events.js';

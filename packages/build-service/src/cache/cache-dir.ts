@@ -19,6 +19,17 @@ export const CACHE_DIR_ENV = 'CONTRACT_CACHE_DIR';
 /** Entries of the cache folder the service and the simulator (`sim/`) make (each checked: a real folder, ours). */
 export const CACHE_ENTRIES = ['runtime', 'projects', 'generated', 'sim'] as const;
 
+/**
+ * The names of the kept entries inside those folders (a built runtime, a generated tree, a built
+ * simulator): what the cache's bound counts and removes (least-recently-used.ts) and what
+ * `contract cache` counts. Anything else there (a build in progress, a temporary file) is not one.
+ */
+export const CACHE_ENTRY_NAMES = {
+  runtime: /^runtime-[0-9a-f]{16}$/,
+  generated: /^[0-9a-f]{32}\.json\.gz$/,
+  sim: /^sim-[0-9a-f]{20}$/,
+} as const;
+
 export interface CacheDirChoice {
   dir: string;
   /** Where it came from, for --verbose and error messages. */

@@ -24,7 +24,7 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { gunzipSync, gzipSync } from 'node:zlib';
 import type { CactalProblem } from '../pipeline/cactal-adapter.js';
 import { checkRelativePath } from '../util/safe-fs.js';
-import { assertCacheEntry } from './cache-dir.js';
+import { assertCacheEntry, CACHE_ENTRY_NAMES } from './cache-dir.js';
 import { markUsed, removeLeastRecentlyUsed } from './least-recently-used.js';
 
 export interface GeneratedTree {
@@ -37,8 +37,6 @@ export interface GeneratedTree {
 
 /** Entries above this size (compressed) are neither stored nor read. */
 const MAX_ENTRY_BYTES = 32 * 1024 * 1024;
-/** An entry's name: `<key>.json.gz`. */
-const ENTRY_NAME = /^[0-9a-f]{32}\.json\.gz$/;
 
 let identity: string | undefined;
 
@@ -124,7 +122,7 @@ export class GenerationCache {
     if (body.length > MAX_ENTRY_BYTES) return;
     // the entries beyond the bound, and the temporary files of writers killed before their rename
     removeStaleTemps(this.dir);
-    await removeLeastRecentlyUsed(this.dir, ENTRY_NAME, SERVICE_BOUNDS.keptGeneratedTrees - 1);
+    await removeLeastRecentlyUsed(this.dir, CACHE_ENTRY_NAMES.generated, SERVICE_BOUNDS.keptGeneratedTrees - 1);
     const path = this.file(inputsDigest);
     const tmp = join(this.dir, `.${basename(path)}.${randomBytes(4).toString('hex')}.tmp-${process.pid}`);
     await fsp.writeFile(tmp, body, { mode: 0o600 });

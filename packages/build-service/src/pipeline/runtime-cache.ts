@@ -17,7 +17,7 @@ import { join } from 'node:path';
 import { removeAbandonedBuilds } from '../cache/abandoned-builds.js';
 import { markUsed, removeLeastRecentlyUsed } from '../cache/least-recently-used.js';
 import { SERVICE_BOUNDS } from '../limits.js';
-import { assertCacheEntry } from '../cache/cache-dir.js';
+import { assertCacheEntry, CACHE_ENTRY_NAMES } from '../cache/cache-dir.js';
 import { listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 
 let toolchainCache: string | undefined;
@@ -123,7 +123,7 @@ export class RuntimeCache {
     await removeTreeNoFollow(final);
     await removeAbandonedBuilds(this.cacheDir, RUNTIME_BUILDING);
     // a new runtime per ContrACT Studio version or compiler: the least recently used beyond the bound go
-    await removeLeastRecentlyUsed(this.cacheDir, RUNTIME_ENTRY, SERVICE_BOUNDS.keptRuntimes - 1);
+    await removeLeastRecentlyUsed(this.cacheDir, CACHE_ENTRY_NAMES.runtime, SERVICE_BOUNDS.keptRuntimes - 1);
     // named as RUNTIME_BUILDING matches: a killed build's folder is removed by a later build
     const dir = join(this.cacheDir, `.building-${key}-${process.pid}-${randomBytes(4).toString('hex')}`);
     await fsp.mkdir(dir, { mode: 0o700 });
@@ -169,5 +169,3 @@ export class RuntimeCache {
 
 /** `.building-<key>-<pid>-<random>`: a runtime build in progress, by process pid. */
 export const RUNTIME_BUILDING = /^\.building-[0-9a-f]{16}-(\d{1,10})-[0-9a-f]{8}$/;
-/** `runtime-<key>`: a built runtime, marked used by each job that links against it. */
-export const RUNTIME_ENTRY = /^runtime-[0-9a-f]{16}$/;

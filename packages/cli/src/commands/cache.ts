@@ -21,7 +21,7 @@ export const cacheCommand: Command = {
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['cache-dir'], []);
         if (positionals.length > 1 || (positionals[0] !== undefined && positionals[0] !== 'clear')) throw new UsageError(`unknown cache action '${positionals.join(' ')}' (expected nothing or clear)`);
-        const { resolveCacheDir, clearCache, CACHE_DIR_ENV } = await import('@contract-studio/build-service');
+        const { resolveCacheDir, clearCache, CACHE_DIR_ENV, CACHE_ENTRY_NAMES } = await import('@contract-studio/build-service');
         const option = options.get('cache-dir');
         const cache = resolveCacheDir(typeof option === 'string' ? resolve(io.cwd, option) : undefined, process.env, process.getuid?.(), undefined, io.cwd);
         if (positionals[0] === 'clear') {
@@ -46,7 +46,7 @@ export const cacheCommand: Command = {
             }
         };
         io.out(`${cache.dir}\n`);
-        io.err(`build cache (${cache.source}; move it with --cache-dir or ${CACHE_DIR_ENV}): ${count('runtime', (n) => n.startsWith('runtime-'))} runtime build(s), ${count('projects')} project work tree(s), ${count('sim', (n) => /^sim-[0-9a-f]{20}$/.test(n))} simulator(s), ${count('generated', (n) => /^[0-9a-f]{32}\.json\.gz$/.test(n))} generated tree(s); \`contract cache clear\` empties it\n`);
+        io.err(`build cache (${cache.source}; move it with --cache-dir or ${CACHE_DIR_ENV}): ${count('runtime', (n) => CACHE_ENTRY_NAMES.runtime.test(n))} runtime build(s), ${count('projects')} project work tree(s), ${count('sim', (n) => CACHE_ENTRY_NAMES.sim.test(n))} simulator(s), ${count('generated', (n) => CACHE_ENTRY_NAMES.generated.test(n))} generated tree(s); \`contract cache clear\` empties it\n`);
         return EXIT_OK;
     },
 };

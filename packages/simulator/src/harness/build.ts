@@ -21,7 +21,7 @@ import { createHash } from 'node:crypto';
 import { existsSync, mkdirSync, readFileSync, renameSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { dirname, join } from 'node:path';
-import { acquireProjectLock, markUsed, removeAbandonedBuilds, removeLeastRecentlyUsed, SERVICE_BOUNDS, type ProjectLock } from '@contract-studio/build-service/cache';
+import { acquireProjectLock, CACHE_ENTRY_NAMES, markUsed, removeAbandonedBuilds, removeLeastRecentlyUsed, SERVICE_BOUNDS, type ProjectLock } from '@contract-studio/build-service/cache';
 import { simulatorCacheDir } from './cache.js';
 import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
@@ -150,7 +150,7 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
         }
         await removeAbandonedBuilds(cache.dir, SIM_BUILDING);
         // a new simulator per model simulated: the least recently used beyond the bound go
-        await removeLeastRecentlyUsed(cache.dir, SIM_ENTRY, SERVICE_BOUNDS.keptSimulators - 1);
+        await removeLeastRecentlyUsed(cache.dir, CACHE_ENTRY_NAMES.sim, SERVICE_BOUNDS.keptSimulators - 1);
         return await compileAndLink(src, { cc, runtimeDir: options.runtimeDir, objects, key, dir, exe, t0, confinement: options.confinement });
     } finally {
         await lock.release();
@@ -160,9 +160,6 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
 /** `sim-<key>.tmp-<pid>-<random>`: a harness being compiled by process pid (compileAndLink); one a
  *  killed build left is removed by the next build. */
 export const SIM_BUILDING = /^sim-[0-9a-f]{20}\.tmp-(\d{1,10})-[0-9a-z]+$/;
-/** `sim-<key>`: a built simulator, marked used at each hit, the least recently used beyond
- *  `keptSimulators` removed by a new build (build-service cache/least-recently-used.ts). */
-export const SIM_ENTRY = /^sim-[0-9a-f]{20}$/;
 
 interface CompileJob {
     cc: string;

@@ -1,6 +1,6 @@
 import { describe, it, expect } from 'vitest';
 import { splitCsvLine } from '@contract-studio/build-service/trace';
-import { activationsFromCsv, inferPeriod, inferPeriodOf } from './activation-log.js';
+import { activationsFromCsv, inferPeriodOf } from './activation-log.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 
@@ -21,7 +21,7 @@ describe('activation log', () => {
     expect(acts).toHaveLength(6);
     expect(acts[0]).toMatchObject({ module: 'MSC', start: 10, end: 90 });
     expect(acts[5]!.end).toBeUndefined();
-    expect(inferPeriod(acts)).toBe(1000);
+    expect(inferPeriodOf(acts)?.ns).toBe(1000);
   });
 
   it('reads the period of the most active module, and names it (loops of several periods)', () => {

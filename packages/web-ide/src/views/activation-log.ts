@@ -47,14 +47,9 @@ export function activationsFromCsv(text: string): Activation[] {
   return out.sort((a, b) => a.start - b.start);
 }
 
-/** Median gap between consecutive activations of the most active module (the period guess), ns. */
-export function inferPeriod(acts: Activation[]): number | undefined {
-  return inferPeriodOf(acts)?.ns;
-}
-
 /**
- * The period guess and the module it is read from (the most active one): a run with loops of
- * several periods has its grid drawn at that module's.
+ * The period guess: the median gap between consecutive activations of the most active module
+ * (ns), and that module (a run with loops of several periods has its grid drawn at its period).
  */
 export function inferPeriodOf(acts: Activation[]): { ns: number; module: string } | undefined {
   const byModule = new Map<string, number[]>();
