@@ -1,20 +1,23 @@
 /*
  * iundo.c — two supervisors of the undo scenario, built twice (-DIUNDO_TOP for UPA): each
  * undo must undo only what its own action did (docs/engines.md §4, "Undo and refusals").
- *   UPA.top:  S1: [elapsed=10ms]  activate schema PSC()          [elapsed=450ms]
- *             K1: [elapsed=20ms]  activate supervisor USM.aux()  [elapsed=400ms]
- *             F1: [elapsed=40ms]  activate schema EVF()          [elapsed=250ms]
+ *   UPA.top:  S1: [elapsed=10ms]  activate schema PSC()          [elapsed=680ms]
+ *             K1: [elapsed=20ms]  activate supervisor USM.aux()  [elapsed=640ms]
+ *             F1: [elapsed=120ms] activate schema EVF()          [elapsed=450ms]
  *             K2: [elapsed=60ms]  activate supervisor USM.aux()  [elapsed=120ms]  (refused)
- *             P1: [elapsed=140ms] activate critical module AMX   [elapsed=220ms]
- *             P2: [elapsed=260ms] activate resttime module AMX   [elapsed=340ms]
+ *             P1: [elapsed=140ms] activate critical module AMX   [elapsed=300ms]
+ *             P2: [elapsed=340ms] activate resttime module AMX   [elapsed=560ms]
  *   USM.aux:  A1: [elapsed=5ms]   activate schema EVA()          [ ]  (starts AMX)
  *             A2: [elapsed=5ms]   activate schema PSC()          [ORD:1]  (refused by ORD)
  *             A3: [elapsed=60ms]  activate schema EVG()          [elapsed=150ms]
- *             A4: [elapsed=160ms] activate resttime module AMX   [elapsed=280ms]
+ *             A4: [elapsed=160ms] activate resttime module AMX   [elapsed=380ms]
  *             B1: [elapsed=5ms]   subscribe AMX:0 => :0           [elapsed=100ms]  (spent at once)
  *             B2: [elapsed=90ms]  subscribe AMX:0 =* :0           [elapsed=200ms]
- *   (aux starts ~20 ms after top: AMX's claims are P1 140, A4 ~180, P2 260; undone P1 220,
- *   A4 ~300, P2 340, 40 ms apart)
+ *   (aux starts ~20 ms after top: USM's A1 starts AMX at ~25 ms, before UPA's EVF shares it;
+ *   AMX's claims are P1 140, A4 ~180, P2 340; undone P1 300, A4 ~400, P2 560. The order holds
+ *   while aux starts up to ~90 ms late. The first version had F1 at 40 ms: in a CI run of the
+ *   full suite aux started over 15 ms late, UPA's EVF started AMX, and the counts of priority
+ *   records per supervisor were swapped)
  *   event schemas EVA { AMX }, EVF and EVG { AMX, AMY; AMX:0 =* AMY:0 }; periodic PSC { UMA }
  *   (itables.h). Expected: K2's undo leaves K1's run of aux; USM's undo of its refused PSC
  *   (same activation number as UPA's) leaves UPA's; EVG's undo leaves the flow that UPA's EVF
@@ -42,16 +45,15 @@ static const ContractEventFlow evf_flows[] = {{"AMX", 0, "AMY", 0, CONTRACT_CONT
 #ifdef IUNDO_TOP
 ELAPSED(at10, 10 * MS)
 ELAPSED(at20, 20 * MS)
-ELAPSED(at40, 40 * MS)
 ELAPSED(at60, 60 * MS)
 ELAPSED(at120, 120 * MS)
 ELAPSED(at140, 140 * MS)
-ELAPSED(at220, 220 * MS)
-ELAPSED(at250, 250 * MS)
-ELAPSED(at260, 260 * MS)
+ELAPSED(at300, 300 * MS)
 ELAPSED(at340, 340 * MS)
-ELAPSED(at400, 400 * MS)
 ELAPSED(at450, 450 * MS)
+ELAPSED(at560, 560 * MS)
+ELAPSED(at640, 640 * MS)
+ELAPSED(at680, 680 * MS)
 static const ContractSchema EVF = {"EVF", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 2, evf_modules,
                                    0, NULL, 0, NULL, 1, evf_flows};
 static const ContractFunctionSignature sig_aux = {"USM", "aux", 0, NULL, 0};
@@ -61,12 +63,12 @@ static const ContractAction f1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schem
 static const ContractAction p1_actions[] = {{.kind = CONTRACT_ACT_CRITICAL_MODULE, .module = "AMX"}};
 static const ContractAction p2_actions[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AMX"}};
 static const ContractRule rules[] = {
-    {"S1", {1, at10}, 1, s1_actions, {1, at450}},
-    {"K1", {1, at20}, 1, k_actions, {1, at400}},
-    {"F1", {1, at40}, 1, f1_actions, {1, at250}},
+    {"S1", {1, at10}, 1, s1_actions, {1, at680}},
+    {"K1", {1, at20}, 1, k_actions, {1, at640}},
+    {"F1", {1, at120}, 1, f1_actions, {1, at450}},
     {"K2", {1, at60}, 1, k_actions, {1, at120}},
-    {"P1", {1, at140}, 1, p1_actions, {1, at220}},
-    {"P2", {1, at260}, 1, p2_actions, {1, at340}}};
+    {"P1", {1, at140}, 1, p1_actions, {1, at300}},
+    {"P2", {1, at340}, 1, p2_actions, {1, at560}}};
 static const ContractFunction functions[] = {{"top", 0, NULL, 0, 0, NULL, 0, 0, NULL, 6, rules}};
 static const ContractSupervisorVocabulary VOCABULARY = {
     CONTRACT_VOCABULARY_VERSION, "UPA", 95, 40, 5, 70, 0, NULL, 0, NULL, 1, functions};
@@ -78,7 +80,7 @@ ELAPSED(at100, 100 * MS)
 ELAPSED(at200, 200 * MS)
 ELAPSED(at150, 150 * MS)
 ELAPSED(at160, 160 * MS)
-ELAPSED(at280, 280 * MS)
+ELAPSED(at380, 380 * MS)
 static const ContractSchemaModule eva_modules[] = {{"AMX", 0, NULL}};
 static const ContractSchema EVA = {"EVA", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 1, eva_modules,
                                    0, NULL, 0, NULL, 0, NULL};
@@ -99,7 +101,7 @@ static const ContractRule rules[] = {
     {"A1", {1, at5}, 1, a1_actions, {0, NULL}},
     {"A2", {1, at5}, 1, a2_actions, {1, ord1}},
     {"A3", {1, at60}, 1, a3_actions, {1, at150}},
-    {"A4", {1, at160}, 1, a4_actions, {1, at280}},
+    {"A4", {1, at160}, 1, a4_actions, {1, at380}},
     {"B1", {1, at5}, 1, b1_actions, {1, at100}},
     {"B2", {1, at90}, 1, b2_actions, {1, at200}}};
 static const ContractFunction functions[] = {{"aux", 0, NULL, 0, 0, NULL, 0, 0, NULL, 6, rules}};
