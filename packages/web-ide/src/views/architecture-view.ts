@@ -62,6 +62,19 @@ const SMALLEST_FONT_PX = 11;
 const MIN_FONT_PX = 9;
 
 /**
+ * A folded drawing is tighter, so that more of the schema fits the pane at a readable size: an
+ * 8-module loop docked beside the editor (about 530 x 470 px) fits whole at the readable scale
+ * (modules 20 px apart, edges 5 px from modules and each other, a 4 px border).
+ */
+const FOLDED_SPACING = {
+  'elk.layered.spacing.edgeNodeBetweenLayers': '5',
+  'elk.layered.spacing.edgeEdgeBetweenLayers': '5',
+  'elk.spacing.edgeNode': '5',
+  'elk.spacing.edgeEdge': '5',
+  'elk.padding': '[top=4,left=4,bottom=4,right=4]',
+};
+
+/**
  * Lays the schema out for the pane it is shown in: left to right in a wide pane, top to bottom in a
  * narrow one; folded into rows (or columns) when it would not fit the pane at a readable size.
  */
@@ -85,13 +98,12 @@ export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<Elk
       'elk.algorithm': 'layered',
       // a narrow pane (docked beside the editor) gets the modules top to bottom, a wide one left to right
       'elk.direction': down ? 'DOWN' : 'RIGHT',
-      // folded: tighter, so that more of the schema fits the pane at a readable size
-      'elk.spacing.nodeNode': wrapRatio ? '30' : '50',
-      'elk.layered.spacing.nodeNodeBetweenLayers': down ? (wrapRatio ? '30' : '50') : '90',
+      'elk.spacing.nodeNode': wrapRatio ? '20' : '50',
+      'elk.layered.spacing.nodeNodeBetweenLayers': down ? (wrapRatio ? '20' : '50') : '90',
       'elk.edgeRouting': 'ORTHOGONAL',
       'elk.edgeLabels.inline': 'true',
       // a long chain (a periodic loop of 8 modules) folded into rows shaped like the pane
-      ...(wrapRatio ? { 'elk.layered.wrapping.strategy': 'MULTI_EDGE', 'elk.aspectRatio': wrapRatio.toFixed(2) } : {}),
+      ...(wrapRatio ? { 'elk.layered.wrapping.strategy': 'MULTI_EDGE', 'elk.aspectRatio': wrapRatio.toFixed(2), ...FOLDED_SPACING } : {}),
     },
     children: schema.modules.map(nodeOf),
     edges: valid.map((e) => ({ ...e, labels: e.labels?.map((l) => ({ ...l })) })), // fresh for each layout

@@ -188,12 +188,12 @@ describe('architecture diagram docked', () => {
     // (a file made by another program: the diagram's list had only the schemas known at the start)
     await expect.poll(() => page.locator(`${pane} .arch-svg`).getAttribute('data-schema'), { timeout: 15_000 }).toBe('chain');
     await page.waitForTimeout(400); // the relayout for the pane's size settles
-    // docked (about 530 x 470 px): folded into columns, every module starts inside the pane at a
-    // readable size (the last row's bottom may need a pan)
+    // docked (about 530 x 470 px): folded into columns, every module whole inside the pane at a
+    // readable size (with the first folded spacing, the last row's bottom needed a pan)
     const docked = (await page.locator(pane).boundingBox())!;
-    const starts = await page.locator(`${pane} .arch-svg .arch-node`).evaluateAll((els) => els.map((e) => { const r = e.getBoundingClientRect(); return { x: r.left, y: r.top }; }));
+    const starts = await page.locator(`${pane} .arch-svg .arch-node`).evaluateAll((els) => els.map((e) => { const r = e.getBoundingClientRect(); return { x: r.left, y: r.top, right: r.right, bottom: r.bottom }; }));
     expect(starts).toHaveLength(8);
-    for (const b of starts) expect(b.x >= docked.x - 1 && b.x < docked.x + docked.width && b.y >= docked.y - 1 && b.y < docked.y + docked.height, JSON.stringify({ b, docked })).toBe(true);
+    for (const b of starts) expect(b.x >= docked.x - 1 && b.right <= docked.x + docked.width + 1 && b.y >= docked.y - 1 && b.bottom <= docked.y + docked.height + 1, JSON.stringify({ b, docked })).toBe(true);
     expect((await viewOf(page)).scale).toBeGreaterThanOrEqual(9 / 11 - 1e-3);
     await shot(page, 'arch-03b-docked-loop');
     // back in its own tab (wide): folded into rows that fit it at a readable size
