@@ -96,15 +96,13 @@ export class JobService {
     this.cacheDir = options.cacheDir ?? mkdtempSync(join(tmpdir(), 'contract-build-'));
     mkdirSync(this.cacheDir, { recursive: true, mode: 0o711 });
     chmodSync(this.cacheDir, 0o711); // job uids must traverse it to reach their own work dir
-    this.workspaces = new WorkspaceManager(
-      serviceFolder(join(this.cacheDir, 'ws')),
-      async (workDir) => {
+    this.workspaces = new WorkspaceManager(serviceFolder(join(this.cacheDir, 'ws')), {
+      onRemove: async (workDir) => {
         await this.sandboxes.sandboxes.docker.release?.(workDir);
       },
-      options.persistentWorkspaces && options.cacheDir ? join(this.cacheDir, 'projects') : undefined,
-      undefined,
-      true,
-    );
+      persistentDir: options.persistentWorkspaces && options.cacheDir ? join(this.cacheDir, 'projects') : undefined,
+      sweepDeadSiblings: true,
+    });
     this.generated = options.persistentWorkspaces && options.cacheDir ? new GenerationCache(join(this.cacheDir, 'generated')) : null;
     this.runtime = new RuntimeCache(options.runtimeSource ?? DEFAULT_RUNTIME_SOURCE, join(this.cacheDir, 'runtime'));
     this.startupSweep = this.sweepAtStart();

@@ -17,18 +17,18 @@ test('the build cache drops the workspace of a project folder that is gone at th
   const cache = join(tmp, 'projects');
   const [p1, p2, p3] = ['p1', 'p2', 'p3'].map((n) => join(tmp, n)) as [string, string, string];
   for (const p of [p1, p2, p3]) mkdirSync(p);
-  const first = new WorkspaceManager(join(tmp, 'base1'), undefined, cache);
+  const first = new WorkspaceManager(join(tmp, 'base1'), { persistentDir: cache });
   for (const p of [p1, p2, p3]) await (await first.acquireForProject(p, 'none')).release();
   expect(kept(cache)).toEqual([p1, p2, p3]);
   // p3's workspace is in use (a command holds it); p1 and p3 are deleted
   const held = await first.acquireForProject(p3, 'none');
   rmSync(p1, { recursive: true });
   rmSync(p3, { recursive: true });
-  const second = new WorkspaceManager(join(tmp, 'base2'), undefined, cache); // another command
+  const second = new WorkspaceManager(join(tmp, 'base2'), { persistentDir: cache }); // another command
   await (await second.acquireForProject(p2, 'none')).release();
   expect(kept(cache)).toEqual([p2, p3]);
   await held.release();
-  const third = new WorkspaceManager(join(tmp, 'base3'), undefined, cache);
+  const third = new WorkspaceManager(join(tmp, 'base3'), { persistentDir: cache });
   await (await third.acquireForProject(p2, 'none')).release();
   expect(kept(cache)).toEqual([p2]);
   // the one left is the same workspace, reused
@@ -40,7 +40,7 @@ test('the build cache drops the workspace of a project folder that is gone at th
 test('the build cache keeps the most recently used project workspaces up to its bound, the one acquired and the held ones besides', async () => {
   const cache = join(tmp, 'projects');
   const [p1, p2, p3, p4, p5] = ['p1', 'p2', 'p3', 'p4', 'p5'].map((n) => join(tmp, n)) as [string, string, string, string, string];
-  const first = new WorkspaceManager(join(tmp, 'base1'), undefined, cache, 3);
+  const first = new WorkspaceManager(join(tmp, 'base1'), { persistentDir: cache, keptProjects: 3 });
   for (const p of [p1, p2, p3, p4, p5]) {
     mkdirSync(p);
     await (await first.acquireForProject(p, 'none')).release();
@@ -54,7 +54,7 @@ test('the build cache keeps the most recently used project workspaces up to its 
     const n = Number(readFileSync(join(cache, id, 'folder'), 'utf8').slice(-1));
     utimesSync(join(cache, id, 'state.json'), now - 100 + n, now - 100 + n);
   }
-  const second = new WorkspaceManager(join(tmp, 'base2'), undefined, cache, 3);
+  const second = new WorkspaceManager(join(tmp, 'base2'), { persistentDir: cache, keptProjects: 3 });
   // the one acquired (p1, the least recently used) stays, with the two most recent (p5, p4);
   // p3 goes; p2 is held, so it stays too
   await (await second.acquireForProject(p1, 'none')).release();

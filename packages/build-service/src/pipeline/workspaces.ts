@@ -75,6 +75,17 @@ const FOLDER_FILE = 'folder';
 const UID_BASE = 100_000;
 const UID_SPAN = 60_000;
 
+export interface WorkspaceManagerOptions {
+  /** Called before a workspace folder is deleted (docker removes the workspace's volume). */
+  onRemove?: (workDir: string) => Promise<void>;
+  /** Project workspaces live here and outlive the service (the shared build cache); undefined: removed at close. */
+  persistentDir?: string;
+  /** How many of them the sweep keeps (the most recently used); default SERVICE_BOUNDS.keptProjectWorkspaces. */
+  keptProjects?: number;
+  /** baseDir is one service's folder (dead-service-folders.ts): remove dead services' beside it. */
+  sweepDeadSiblings?: boolean;
+}
+
 export class WorkspaceManager {
   private readonly keyed = new Map<string, Keyed>();
   private readonly fresh = new Set<string>();
@@ -85,17 +96,20 @@ export class WorkspaceManager {
   /** Random start: two services on one machine rarely hand out the same uids. */
   private uidCounter = Math.floor(Math.random() * UID_SPAN);
 
+  private readonly onRemove: (workDir: string) => Promise<void>;
+  private readonly persistentDir: string | undefined;
+  private readonly keptProjects: number;
+  private readonly sweepDeadSiblings: boolean;
+
   constructor(
     private readonly baseDir: string,
-    /** Called before a workspace folder is deleted (docker removes the workspace's volume). */
-    private readonly onRemove: (workDir: string) => Promise<void> = async () => {},
-    /** Project workspaces live here and outlive the service (the shared build cache); undefined: removed at close. */
-    private readonly persistentDir?: string,
-    /** How many of them the sweep keeps (the most recently used). */
-    private readonly keptProjects: number = SERVICE_BOUNDS.keptProjectWorkspaces,
-    /** baseDir is one service's folder (dead-service-folders.ts): remove dead services' beside it. */
-    private readonly sweepDeadSiblings = false,
-  ) {}
+    options: WorkspaceManagerOptions = {},
+  ) {
+    this.onRemove = options.onRemove ?? (async () => {});
+    this.persistentDir = options.persistentDir;
+    this.keptProjects = options.keptProjects ?? SERVICE_BOUNDS.keptProjectWorkspaces;
+    this.sweepDeadSiblings = options.sweepDeadSiblings ?? false;
+  }
 
   private nextOwner(): Owner {
     const isRoot = process.getuid?.() === 0;
