@@ -75,6 +75,19 @@ export function holdText(kind: 'module_hold' | 'flow_hold', peer: string, detail
     return kind === 'module_hold' ? `module ${peer}: ${detail}` : `event flow ${flowName(peer)}: ${detail}`;
 }
 
+/**
+ * The first dropped value of the data flow `flow` (`CAM:0 -> SRT:0`) to `consumer`'s input
+ * `toPort`, from the `data_dropped` detail (`to_port=0 queue full`): `data CAM:0 -> SRT:0 dropped:
+ * queue full (SRT does not read its input :0 as fast as it comes: ...)`.
+ */
+export function dropText(flow: string, consumer: string, toPort: string, detail: string): string {
+    const reason = detail.replace(/^to_port=\S*\s*/, '') || 'not sent';
+    const why = reason === 'queue full'
+        ? ` (${consumer} does not read its input :${toPort} as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all)`
+        : '';
+    return `data ${flow} dropped: ${reason}${why}; its later drops are counted at the end`;
+}
+
 /** `1 release`, `2 releases`. */
 function plural(n: number, one: string, many = `${one}s`): string {
     return `${n} ${n === 1 ? one : many}`;
@@ -145,6 +158,8 @@ export class StoryTeller {
      * with an ack and are not followed.
      */
     private readonly runs = new Map<string, string>();
+    /** Data flows (at most STORY_FOLLOWED) whose first dropped value was told: later drops are only counted. */
+    private readonly droppingFlows = new Set<string>();
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -210,9 +225,25 @@ export class StoryTeller {
             if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(k.detail.slice(0, 120)));
             return `${at(k)} exited (${k.detail})`;
         }
+        if (k.kind === 'data_dropped') {
+            const text = this.firstDropText(k);
+            return text && `${at(k)} ${text}`;
+        }
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
+    }
+
+    /**
+     * The first value a data flow dropped (`data_dropped`), told with why; its later drops are only
+     * counted (a consumer that never reads drops one value per release): undefined for them.
+     */
+    private firstDropText(k: KnownRecord): string | undefined {
+        const toPort = k.fields['to_port'];
+        const flow = `${k.module}:${k.port ?? '?'} -> ${k.peer}:${toPort ?? '?'}`;
+        if (this.droppingFlows.has(flow) || this.droppingFlows.size >= STORY_FOLLOWED) return undefined;
+        this.droppingFlows.add(ownString(flow));
+        return dropText(flow, k.peer, String(toPort ?? '?'), k.detail);
     }
 
     /** A supervisor's record: the hold record its action line expects, if any, replaces the one it expected. */
@@ -284,7 +315,8 @@ export class StoryTeller {
         return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
             `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('scheduler:overrun'), 'overrun')}, ` +
             `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
-            `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ${plural(n('unknown'), 'unreadable line')}`;
+            `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ` +
+            `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}${plural(n('unknown'), 'unreadable line')}`;
     }
 }
 

@@ -372,6 +372,23 @@ describe('reading a log', () => {
         ]);
     });
 
+    it('tells the first value each data flow dropped, with why, and counts every drop at the end', () => {
+        const story = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+            '1000000,w,CAM,data_posted,SRT,0,24,to_port=0',
+            '2000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',      // SRT never reads: told once
+            '3000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',
+            '3000000,w,CAM,data_dropped,LOG,0,24,to_port=2 queue full',      // another flow of the same port
+            '4000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',
+            '5000000,w,GPS,data_dropped,NAV,1,16,to_port=3 Connection refused',
+        ].join('\n') }]));
+        expect(story).toEqual([
+            '+0.001000s CAM  data CAM:0 -> SRT:0 dropped: queue full (SRT does not read its input :0 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
+            '+0.002000s CAM  data CAM:0 -> LOG:2 dropped: queue full (LOG does not read its input :2 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
+            '+0.004000s GPS  data GPS:1 -> NAV:3 dropped: Connection refused; its later drops are counted at the end',
+            '6 records: 0 releases, 0 completed cycles, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 5 data values dropped, 0 unreadable lines',
+        ]);
+    });
+
     it('names the modules a missed cycle still waits for, or the module its held cycle waits for; tells held, resumed and stuck; a record before the first is at a negative time', () => {
         const text = [CSV_HEADER,
             '1000000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=20',

@@ -20,7 +20,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'data_posted', 'event_received',
+  'data_posted', 'data_dropped', 'event_received',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -125,6 +125,17 @@ export function foldRun(s: MonitorState, module: string, started: boolean, t: Ns
 export function foldDataPosted(s: MonitorState, module: string, port: number | null, peer: string, toPort: number | undefined, t: Ns): void {
   if (!peer || port === null || toPort === undefined) return;
   count(s.dataFlows, `${module}:${port}->${peer}:${toPort}`, t);
+}
+
+/** data_dropped: a value of `module`'s output `port` for `peer`'s `to_port` that was not sent, and why (`queue full`). */
+export function foldDataDropped(s: MonitorState, module: string, port: number | null, peer: string, toPort: number | undefined, reason: string, t: Ns): void {
+  if (!peer || port === null || toPort === undefined) return;
+  const key = `${module}:${port}->${peer}:${toPort}`;
+  let f = s.dataFlows.get(key);
+  // a flow that never delivered: `last` is when it was first seen
+  if (!f) s.dataFlows.set(key, (f = { count: 0, last: t }));
+  f.dropped = (f.dropped ?? 0) + 1;
+  f.dropReason = reason.slice(0, 80) || 'not sent';
 }
 
 /** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
@@ -265,6 +276,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     }
     case 'data_posted':
       foldDataPosted(s, k.module, k.port, k.peer, num(f['to_port']), t);
+      return;
+    case 'data_dropped':
+      foldDataDropped(s, k.module, k.port, k.peer, num(f['to_port']), k.detail.replace(/^to_port=\S*\s*/, ''), t);
       return;
     case 'event_received': {
       const from = num(f['from_port']);

@@ -21,7 +21,7 @@ import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { fmtT, followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { flowDropText, fmtT, followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -496,12 +496,14 @@ export class MonitorPanel {
     if (!drawFlows) return;
     setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
     // deliveries: the busiest flows, with their count and last delivery
+    // (a flow that drops values comes first: its consumer does not read it)
     const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]
-      .sort((a, b) => b.f.count - a.f.count).slice(0, 12);
+      .sort((a, b) => (b.f.dropped ?? 0) - (a.f.dropped ?? 0) || b.f.count - a.f.count).slice(0, 12);
     const rows = flows.map(({ k, f, kind }) => {
       const el = this.row(`flow:${kind}:${k}`, () => h('div', { class: `monitor-flow ${kind}`, 'data-flow': k }));
-      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count} · last ${fmtT(f.last)}`);
+      setText(el, `${kind === 'data' ? '━' : '┅'} ${k.replace('->', ' → ')} ×${f.count}${flowDropText(k, f)} · last ${fmtT(f.last)}`);
       setAttr(el, 'data-pulse', String(pulsing.has(k)));
+      setAttr(el, 'data-dropped', String(f.dropped ?? 0));
       return el;
     });
     replaceIfChanged(this.flowsEl, rows);

@@ -98,6 +98,9 @@ export interface ModuleState {
 export interface FlowCount {
   count: number;
   last: Ns;
+  /** Values the flow dropped (data_dropped: the consumer's queue full, ...), and the last one's reason. */
+  dropped?: number;
+  dropReason?: string;
 }
 
 export interface MonitorState {

@@ -1,5 +1,7 @@
 import { describe, it, expect } from 'vitest';
-import { followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { parseRecordLine } from '@contract-studio/build-service/trace';
+import { flowDropText, followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { MonitorModel } from './monitor-model.js';
 import { histogramMarkers } from './response-histogram.js';
 import { markTooltip } from './marks-strip.js';
 import { RemoteMonitorModel, type FollowerPort } from './remote-model.js';
@@ -114,5 +116,24 @@ describe('the timeline strip\'s tooltip', () => {
     const text = markTooltip(many).split('\n');
     expect(text).toHaveLength(7);
     expect(text[6]).toBe('… and 3 more mark(s) here');
+  });
+});
+
+describe("a data flow's dropped values", () => {
+  const at = (ns: number, kind: string, peer: string, detail: string) =>
+    parseRecordLine('CAM.csv', 2, `${ns},w,CAM,${kind},${peer},0,24,${detail}`);
+
+  it('are counted per flow with their reason, shown after its deliveries; a flow that delivers all shows none', () => {
+    const m = new MonitorModel();
+    m.push(at(1_000_000, 'data_posted', 'SRT', 'to_port=0'));
+    m.push(at(2_000_000, 'data_posted', 'LOG', 'to_port=1'));
+    for (let i = 0; i < 5; i++) m.push(at(3_000_000 + i, 'data_dropped', 'SRT', 'to_port=0 queue full'));
+    m.push(at(4_000_000, 'data_dropped', 'NAV', 'to_port=2 Connection refused')); // a flow that never delivered
+    const flows = m.live.dataFlows;
+    expect(flows.get('CAM:0->SRT:0')).toEqual({ count: 1, last: 0, dropped: 5, dropReason: 'queue full' });
+    expect(flowDropText('CAM:0->SRT:0', flows.get('CAM:0->SRT:0')!)).toBe(' · 5 dropped (queue full: SRT does not read it fast enough)');
+    expect(flowDropText('CAM:0->NAV:2', flows.get('CAM:0->NAV:2')!)).toBe(' · 1 dropped (Connection refused)');
+    expect(flows.get('CAM:0->NAV:2')).toMatchObject({ count: 0, last: 3_000_000 });
+    expect(flowDropText('CAM:0->LOG:1', flows.get('CAM:0->LOG:1')!)).toBe('');
   });
 });

@@ -3,7 +3,7 @@
  * readout, the follow button, a rule's accessible name. Kept apart so that they are tested
  * without a page (panel-text.test.ts).
  */
-import type { RuleState } from './monitor-state.js';
+import type { FlowCount, RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
 export const fmtT = (ns: number): string => `+${(ns / 1e9).toFixed(6)} s`;
@@ -61,4 +61,15 @@ export function followButton(live: boolean, following: boolean): FollowButton {
 export function ruleAccessibleName(rule: string, rs: Pick<RuleState, 'active' | 'since'> | undefined, cause: string): string {
   if (!rs) return `${rule}, not active yet`;
   return `${rule}, ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)}${cause ? ` ${cause}` : ''}`;
+}
+
+/**
+ * ` · 593 dropped (queue full: SRT does not read it fast enough)` for a data flow `A:0->SRT:0` that
+ * dropped values, else ''.
+ */
+export function flowDropText(key: string, f: FlowCount): string {
+  if (!f.dropped) return '';
+  const consumer = key.slice(key.indexOf('->') + 2).split(':')[0];
+  const why = f.dropReason === 'queue full' ? `queue full: ${consumer} does not read it fast enough` : f.dropReason;
+  return ` · ${f.dropped} dropped (${why})`;
 }
