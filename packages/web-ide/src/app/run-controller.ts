@@ -10,7 +10,11 @@ import { isCpuList } from '@contract-studio/conventions';
 import type { SharedJob } from '../../server/api-types.js';
 
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
-/** The job this tab follows, kept for a reload (sessionStorage: one per tab): { jobId, project }. */
+/**
+ * The job this tab follows or followed last, kept for a reload (sessionStorage: one per tab):
+ * { jobId, project }. Replaced by the next job the tab follows; removed when the build service no
+ * longer knows it.
+ */
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
@@ -47,8 +51,8 @@ export class RunController {
       d.jobStatus.dataset.status = status;
     });
     // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
+    // (the job stays this tab's after its end: a reload shows it again, its log, the Monitor and its logs)
     build.onFinished.on(({ jobId, action }) => {
-      if (this.followed()?.jobId === jobId) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
       if (action === 'run') void this.fetchLogs(jobId);
     });
     build.onStarted.on(({ jobId }) => {
@@ -73,7 +77,8 @@ export class RunController {
 
   /**
    * After a reload: follows again the job this tab had started if the build service still runs it
-   * (its log from the start, then live; the Monitor too; Stop cancels it). True when it does.
+   * (its log from the start, then live; the Monitor too; Stop cancels it), or shows it again when it
+   * has ended (its whole log and its end; a run's Monitor and CSV logs). True when it does.
    */
   async resume(): Promise<boolean> {
     const f = this.followed();
@@ -82,7 +87,7 @@ export class RunController {
       return false;
     }
     this.project = f.project;
-    const followed = await this.d.build.resume(f.jobId);
+    const followed = await this.d.build.resume(f.jobId, { ended: true });
     if (!followed) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
     else this.d.showPanel('output');
     return followed;
@@ -98,7 +103,7 @@ export class RunController {
     const project = this.project;
     this.project = job.project;
     const what = job.action === 'run' ? 'Build & Run' : 'build';
-    const followed = await this.d.build.resume(job.id, `${what} of another tab`);
+    const followed = await this.d.build.resume(job.id, { why: `${what} of another tab` });
     if (!followed) {
       if (this.project === job.project) this.project = project;
       return false;

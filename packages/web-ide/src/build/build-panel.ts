@@ -152,10 +152,14 @@ export class BuildPanel {
    * Follows a job submitted elsewhere — by this page before it was reloaded, or by another tab —
    * if the build service still runs it and this panel follows none: its events from the first
    * (the log and the diagnostics: docs/build-service-api.md "Events"; the Monitor follows the trace), then live,
-   * and Stop cancels it. False when it has finished, is unknown (a restarted service), or this
-   * panel is busy with a job of its own. `why` is shown beside the status.
+   * and Stop cancels it. False when it has finished (unless `ended`: this tab's own last job, shown
+   * again after a reload, its log whole and its end, the Monitor and its logs too), is unknown (a
+   * restarted service: said when `sayIfGone`), or this panel is busy with a job of its own. `why`
+   * is shown beside the status.
    */
-  async resume(jobId: string, why = 'followed again after a reload', sayIfGone = why === 'followed again after a reload'): Promise<boolean> {
+  async resume(jobId: string, opts: { why?: string; sayIfGone?: boolean; ended?: boolean } = {}): Promise<boolean> {
+    const why = opts.why ?? 'followed again after a reload';
+    const sayIfGone = opts.sayIfGone ?? why === 'followed again after a reload';
     if (this.busy) return false;
     let job: { id: string; status: string; action: string; finishedAt: number | null };
     try {
@@ -170,11 +174,11 @@ export class BuildPanel {
       }
       return false;
     }
-    if (job.finishedAt || this.busy || (job.action !== 'build' && job.action !== 'run')) return false;
+    if ((job.finishedAt && !opts.ended) || this.busy || (job.action !== 'build' && job.action !== 'run')) return false;
     this.clear();
     this.jobId = job.id;
-    this.originEl.textContent = `(${why})`;
-    this.setStatus(job.status, undefined, true);
+    this.originEl.textContent = job.finishedAt ? '(shown again after a reload: it had ended)' : `(${why})`;
+    this.setStatus(job.status, undefined, !job.finishedAt);
     this.follow(job.id, job.action);
     return true;
   }

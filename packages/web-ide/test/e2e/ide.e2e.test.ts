@@ -539,6 +539,18 @@ describe('IDE in headless Chromium', () => {
     await second.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 15_000 });
     await second.close();
     await third.close();
+    // a reload after the end shows the tab's last job again (it showed "No build yet"): its whole
+    // log and its end, the Monitor and the run's CSV logs; nothing to stop
+    await page.reload();
+    await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    await expect.poll(() => page.locator('.job-origin').textContent(), { timeout: 10_000 }).toBe('(shown again after a reload: it had ended)');
+    await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
+    await expect.poll(async () => (await lines()).length, { timeout: 10_000 }).toBeGreaterThan(before.length);
+    expect((await lines()).slice(0, before.length)).toEqual(before);
+    expect(await page.locator('#btn-stop').isEnabled()).toBe(false);
+    expect(await page.locator('#btn-run').isEnabled()).toBe(true);
+    await page.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 15_000 });
+    expect(await page.locator('.monitor-view').count()).toBe(1);
   }, 240_000);
 
   it.skipIf(!canBuild || !canGenerate)('the real-time run setting reaches the build service, which says how it granted it or why not', async () => {
