@@ -1,10 +1,10 @@
-import { constants, existsSync, mkdirSync, mkdtempSync, readFileSync, renameSync, rmSync, symlinkSync, writeFileSync, lstatSync } from 'node:fs';
+import { appendFileSync, constants, existsSync, mkdirSync, mkdtempSync, readFileSync, renameSync, rmSync, symlinkSync, writeFileSync, lstatSync, promises as fsp } from 'node:fs';
 import { execFileSync, spawn } from 'node:child_process';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
 import { hostileTreeScript } from '../test-support/hostile-tree.js';
-import { checkRelativePath, entryPath, openDirNoFollow, openRegularFileIn, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow, UnsafePathError } from './safe-fs.js';
+import { checkRelativePath, entryPath, openDirNoFollow, openRegularFileIn, readFileNoFollow, readUpTo, removeTreeNoFollow, syncFileNoFollow, UnsafePathError } from './safe-fs.js';
 
 let root: string;
 let outside: string;
@@ -31,6 +31,26 @@ describe('safe fs (planted links never followed)', () => {
     await expect(syncFileNoFollow(root, 'src/secret', Buffer.from('x'))).rejects.toThrow(UnsafePathError);
     expect(readFileSync(join(outside, 'secret'), 'utf8')).toBe('host');
     expect(await readFileNoFollow(root, 'src/secret')).toBeNull();
+  });
+
+  test('reads whole files of any size up to the bound, none past it; a file that grew while read is read to its new end', async () => {
+    for (const size of [0, 1, 4096, 70_001]) {
+      const data = Buffer.from(Array.from({ length: size }, (_, i) => i % 251));
+      writeFileSync(join(root, `f${size}`), data);
+      expect((await readFileNoFollow(root, `f${size}`))?.equals(data)).toBe(true);
+      expect((await readFileNoFollow(root, `f${size}`, size))?.equals(data)).toBe(true); // exactly the bound
+      if (size > 0) expect(await readFileNoFollow(root, `f${size}`, size - 1)).toBeNull();
+    }
+    // opened at 10 bytes, 5,000 more appended before the read: the buffer grows to hold them
+    writeFileSync(join(root, 'grows'), 'x'.repeat(10));
+    const fh = await fsp.open(join(root, 'grows'), 'r');
+    try {
+      appendFileSync(join(root, 'grows'), 'y'.repeat(5000));
+      expect((await readUpTo(fh, 1_000_000, 10)).toString()).toBe('x'.repeat(10) + 'y'.repeat(5000));
+      expect((await readUpTo(fh, 4001, 10)).length).toBe(4001); // never past the limit
+    } finally {
+      await fh.close();
+    }
   });
 
   test('unchanged content is not rewritten (mtime kept for make)', async () => {

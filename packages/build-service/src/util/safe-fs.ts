@@ -137,16 +137,26 @@ export async function openFileUnder(root: string, rel: string): Promise<{ fh: Fi
   }
 }
 
-/** Reads up to `limit` bytes of an opened file from its start. */
-async function readUpTo(fh: FileHandle, limit: number): Promise<Buffer> {
-  const buf = Buffer.allocUnsafe(limit);
+/**
+ * Reads up to `limit` bytes of an opened file from its start, into a buffer of the size `expected`
+ * (its size when opened) plus one byte, grown only if the file grew meanwhile: a 16 MiB bound costs
+ * nothing for a 2 kB file (a buffer of the bound's size for each file made hashing the runtime's
+ * 130 sources take 0.7 s).
+ */
+export async function readUpTo(fh: FileHandle, limit: number, expected = limit): Promise<Buffer> {
+  let buf = Buffer.allocUnsafe(Math.max(1, Math.min(limit, expected + 1)));
   let off = 0;
   while (off < limit) {
-    const { bytesRead } = await fh.read(buf, off, limit - off, off);
+    if (off === buf.length) {
+      const bigger = Buffer.allocUnsafe(Math.min(limit, buf.length * 2));
+      buf.copy(bigger, 0, 0, off);
+      buf = bigger;
+    }
+    const { bytesRead } = await fh.read(buf, off, buf.length - off, off);
     if (bytesRead === 0) break;
     off += bytesRead;
   }
-  return off === limit ? buf : buf.subarray(0, off);
+  return off === buf.length ? buf : buf.subarray(0, off);
 }
 
 /**
@@ -158,7 +168,7 @@ export async function readFileNoFollow(root: string, rel: string, maxBytes = 16 
   if (!opened) return null;
   try {
     if (opened.size > maxBytes) return null;
-    const data = await readUpTo(opened.fh, maxBytes + 1);
+    const data = await readUpTo(opened.fh, maxBytes + 1, opened.size);
     return data.length > maxBytes ? null : data;
   } finally {
     await opened.fh.close();
