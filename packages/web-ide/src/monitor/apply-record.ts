@@ -5,8 +5,8 @@
  */
 import { isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
-  HIST_BUCKETS, histogramBucket, RECENT_MARKS,
-  type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FlowCount, type SchemaActivation, type ModuleState,
+  HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
+  type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FunctionState, type FlowCount, type SchemaActivation, type ModuleState,
 } from './monitor-state.js';
 
 const MAX_STARTED = 16;
@@ -29,35 +29,43 @@ export function applyUnfolded(s: MonitorState, t: Ns): void {
   s.t = t;
 }
 
+/**
+ * The entry `key` of `map`, made by `make` when new, unless the state already folds MAX_NAMES
+ * names: then undefined, and the record is counted in namesPastBound instead of folded.
+ */
+function entry<V>(s: MonitorState, map: Map<string, V>, key: string, make: () => V): V | undefined {
+  let v = map.get(key);
+  if (v === undefined) {
+    if (s.names >= MAX_NAMES) {
+      s.namesPastBound++;
+      return undefined;
+    }
+    s.names++;
+    map.set(key, (v = make()));
+  }
+  return v;
+}
+
 /** Supervisor `name`'s state, to change: every caller changes it (supervisorChanges counts it). */
-function sup(s: MonitorState, name: string): SupervisorState {
-  s.supervisorChanges++;
-  let sv = s.supervisors.get(name);
-  if (!sv) s.supervisors.set(name, (sv = { functions: new Map(), rules: new Map(), actionsDone: 0, actionsUndone: 0, heldModules: new Map(), heldFlows: new Map() }));
+function sup(s: MonitorState, name: string): SupervisorState | undefined {
+  const sv = entry(s, s.supervisors, name, () => ({ functions: new Map(), rules: new Map(), actionsDone: 0, actionsUndone: 0, heldModules: new Map(), heldFlows: new Map() }));
+  if (sv) s.supervisorChanges++;
   return sv;
 }
 
-function schemaActivation(s: MonitorState, name: string, t: Ns): SchemaActivation {
-  let sc = s.schemas.get(name);
-  if (!sc) s.schemas.set(name, (sc = { active: false, since: t, activations: 0, conflicts: 0 }));
-  return sc;
+function schemaActivation(s: MonitorState, name: string, t: Ns): SchemaActivation | undefined {
+  return entry(s, s.schemas, name, () => ({ active: false, since: t, activations: 0, conflicts: 0 }));
 }
 
-function moduleState(s: MonitorState, name: string, t: Ns): ModuleState {
-  let m = s.modules.get(name);
-  if (!m) s.modules.set(name, (m = { running: false, alive: true, runs: 0, since: t }));
-  return m;
+function moduleState(s: MonitorState, name: string, t: Ns): ModuleState | undefined {
+  return entry(s, s.modules, name, () => ({ running: false, alive: true, runs: 0, since: t }));
 }
 
-function periodic(s: MonitorState, schema: string): PeriodicState {
-  let p = s.periodic.get(schema);
-  if (!p) {
-    s.periodic.set(schema, (p = {
-      releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
-      histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, missedTicks: 0, recentMisses: [], recentOverruns: [],
-    }));
-  }
-  return p;
+function periodic(s: MonitorState, schema: string): PeriodicState | undefined {
+  return entry(s, s.periodic, schema, () => ({
+    releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
+    histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, missedTicks: 0, recentMisses: [], recentOverruns: [],
+  }));
 }
 
 function pushBounded<T>(list: T[], item: T, max: number): void {
@@ -65,9 +73,9 @@ function pushBounded<T>(list: T[], item: T, max: number): void {
   if (list.length > max) list.shift();
 }
 
-function count(map: Map<string, FlowCount>, key: string, t: Ns): void {
-  let f = map.get(key);
-  if (!f) map.set(key, (f = { count: 0, last: t }));
+function count(s: MonitorState, map: Map<string, FlowCount>, key: string, t: Ns): void {
+  const f = entry(s, map, key, () => ({ count: 0, last: t }));
+  if (!f) return;
   f.count++;
   f.last = t;
 }
@@ -97,6 +105,7 @@ function noteStarted(s: MonitorState, supName: string, what: string): void {
 export function foldRelease(s: MonitorState, schema: string | undefined, cycle: number | undefined, releaseNs: number | undefined, t: Ns, t0: number): void {
   if (!schema) return;
   const p = periodic(s, schema);
+  if (!p) return;
   p.releases++;
   if (cycle !== undefined) p.lastCycle = cycle;
   p.lastRelease = releaseNs !== undefined ? releaseNs - t0 : t;
@@ -106,6 +115,7 @@ export function foldRelease(s: MonitorState, schema: string | undefined, cycle: 
 export function foldComplete(s: MonitorState, schema: string | undefined, resp: number | undefined): void {
   if (!schema || resp === undefined) return;
   const p = periodic(s, schema);
+  if (!p) return;
   p.completions++;
   p.lastResponseNs = resp;
   p.sumResponseNs += resp;
@@ -116,6 +126,7 @@ export function foldComplete(s: MonitorState, schema: string | undefined, resp: 
 /** run_started (`started`) or run_finished of `module`. */
 export function foldRun(s: MonitorState, module: string, started: boolean, t: Ns): void {
   const m = moduleState(s, module, t);
+  if (!m) return;
   m.running = started;
   if (started) m.runs++;
   m.since = t;
@@ -124,16 +135,15 @@ export function foldRun(s: MonitorState, module: string, started: boolean, t: Ns
 /** data_posted: `module`'s output `port` to `peer`'s `to_port`. */
 export function foldDataPosted(s: MonitorState, module: string, port: number | null, peer: string, toPort: number | undefined, t: Ns): void {
   if (!peer || port === null || toPort === undefined) return;
-  count(s.dataFlows, `${module}:${port}->${peer}:${toPort}`, t);
+  count(s, s.dataFlows, `${module}:${port}->${peer}:${toPort}`, t);
 }
 
 /** data_dropped: a value of `module`'s output `port` for `peer`'s `to_port` that was not sent, and why (`queue full`). */
 export function foldDataDropped(s: MonitorState, module: string, port: number | null, peer: string, toPort: number | undefined, reason: string, t: Ns): void {
   if (!peer || port === null || toPort === undefined) return;
-  const key = `${module}:${port}->${peer}:${toPort}`;
-  let f = s.dataFlows.get(key);
   // a flow that never delivered: `last` is when it was first seen
-  if (!f) s.dataFlows.set(key, (f = { count: 0, last: t }));
+  const f = entry<FlowCount>(s, s.dataFlows, `${module}:${port}->${peer}:${toPort}`, () => ({ count: 0, last: t }));
+  if (!f) return;
   f.dropped = (f.dropped ?? 0) + 1;
   f.dropReason = reason.slice(0, 80) || 'not sent';
 }
@@ -149,8 +159,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
   if (isRule(r)) {
     const sv = sup(s, r.module);
     const key = `${r.function}.${r.rule}`;
-    let rule = sv.rules.get(key);
-    if (!rule) sv.rules.set(key, (rule = { function: r.function, rule: r.rule, active: false, since: t, cause: '', activations: 0, started: [] }));
+    const rule = sv && entry(s, sv.rules, key, () => ({ function: r.function, rule: r.rule, active: false, since: t, cause: '', activations: 0, started: [] }));
+    if (!sv || !rule) return;
     rule.active = r.active;
     rule.since = t;
     rule.cause = r.cause.slice(0, 200);
@@ -166,11 +176,14 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
   switch (k.kind) {
     case 'supervisor': {
       const sv = sup(s, k.module);
+      if (!sv) return;
       const what = f['what'];
       const fn = str(f['function']);
-      if (what === 'function_started' && fn) sv.functions.set(fn, { state: 'running', since: t });
-      else if (what === 'function_stopped' && fn) sv.functions.set(fn, { state: 'stopped', since: t });
-      else if (what === 'function_refused' && fn) sv.functions.set(fn, { state: sv.functions.get(fn)?.state === 'running' ? 'running' : 'refused', since: t });
+      const fs = fn && (what === 'function_started' || what === 'function_stopped' || what === 'function_refused')
+        ? entry(s, sv.functions, fn, () => ({ state: 'stopped' as FunctionState['state'], since: t })) : undefined;
+      if (what === 'function_started' && fs) Object.assign(fs, { state: 'running', since: t });
+      else if (what === 'function_stopped' && fs) Object.assign(fs, { state: 'stopped', since: t });
+      else if (what === 'function_refused' && fs) Object.assign(fs, { state: fs.state === 'running' ? 'running' : 'refused', since: t });
       else if (what === 'action') {
         // a module started or stopped, a flow connected or disconnected, a priority claimed or
         // released (field `action`): counted here, once; the hold and priority records that follow
@@ -189,9 +202,11 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     case 'module_hold':
     case 'flow_hold': {
       const sv = sup(s, k.module);
+      if (!sv) return;
       const held = k.kind === 'module_hold' ? sv.heldModules : sv.heldFlows;
       if (k.detail.startsWith('hold taken')) {
-        held.set(k.peer, sv.lastRule ?? '');
+        const rule = sv.lastRule ?? '';
+        if (entry(s, held, k.peer, () => rule) !== undefined) held.set(k.peer, rule);
         if (!sv.actionLines) sv.actionsDone++;
         // what its rule started: not a module another supervisor had started (`hold taken (it was running)`)
         if (k.kind === 'module_hold' && !k.detail.includes('(it was running)')) noteStarted(s, k.module, k.peer);
@@ -204,7 +219,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     }
     case 'module_priority': {
       const sv = sup(s, k.module);
-      if (!sv.actionLines) sv.actionsDone++;
+      if (sv && !sv.actionLines) sv.actionsDone++;
       return;
     }
     case 'request_received': {
@@ -213,6 +228,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const m = /^START ([A-Za-z_]\w*)$/.exec(k.detail);
       if (m) {
         const sc = schemaActivation(s, m[1]!, t);
+        if (!sc) return;
         sc.by = ruleOf(s, k.peer) ?? k.peer;
         if (s.supervisors.has(k.peer)) noteStarted(s, k.peer, m[1]!);
       }
@@ -224,6 +240,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const what = f['what'];
       if (what === 'activate' || what === 'deactivate' || what === 'conflict') {
         const sc = schemaActivation(s, schema, t);
+        if (!sc) return;
         if (what === 'activate') {
           sc.active = true;
           sc.since = t;
@@ -234,9 +251,13 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         } else sc.conflicts++;
       } else if (what === 'overrun') {
         const p = periodic(s, schema);
+        if (!p) return;
         p.overruns++;
         pushBounded(p.recentOverruns, { t, cycle: p.lastCycle }, RECENT_MARKS);
-      } else if (what === 'missed_tick') periodic(s, schema).missedTicks++;
+      } else if (what === 'missed_tick') {
+        const p = periodic(s, schema);
+        if (p) p.missedTicks++;
+      }
       return;
     }
     case 'ord_release':
@@ -249,6 +270,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const schema = str(f['schema']);
       if (!schema) return;
       const p = periodic(s, schema);
+      if (!p) return;
       p.deadlineMisses++;
       pushBounded(p.recentMisses, { t, cycle: num(f['cycle']) ?? -1 }, RECENT_MARKS);
       return;
@@ -260,6 +282,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     case 'module_started':
     case 'module_exit': {
       const m = moduleState(s, k.module, t);
+      if (!m) return;
       m.alive = k.kind === 'module_started';
       if (!m.alive) m.running = false;
       m.since = t;
@@ -284,7 +307,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       const from = num(f['from_port']);
       if (!k.peer || k.port === null || from === undefined) return;
       const flow = `${k.peer}:${from}->${k.module}:${k.port}`;
-      count(s.eventFlows, flow, t);
+      count(s, s.eventFlows, flow, t);
       return;
     }
     default:

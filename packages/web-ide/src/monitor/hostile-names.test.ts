@@ -1,7 +1,8 @@
 import { describe, it, expect, afterEach } from 'vitest';
 import { parseRecordLine } from '@contract-studio/build-service/trace';
 import { MonitorModel } from './monitor-model.js';
-import { cloneState } from './monitor-state.js';
+import { cloneState, MAX_NAMES } from './monitor-state.js';
+import { namesPastBoundText } from './panel-text.js';
 import { activeSchemas } from './active-schemas.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -73,5 +74,33 @@ describe('names from a model or a log that are also Object.prototype names', () 
     expect(active.find((a) => a.name === 'constructor')).toMatchObject({ kind: 'periodic', by: 'SUP.action.constructor' });
     expect(active.find((a) => a.name === 'ev')).toMatchObject({ kind: 'event' });
     expect(active.find((a) => a.name === '__proto__')).toMatchObject({ kind: 'periodic' });
+  });
+});
+
+describe('a log that names something new on every line (a module may write its own log)', () => {
+  it('folds at most MAX_NAMES names, counts the records past them, and says so; a real name keeps being folded', () => {
+    const m = new MonitorModel();
+    const N = 20_000;
+    let i = 0;
+    const push = (detail: string, kind: string, module = 'CAM', peer = '') => m.push(parseRecordLine('CAM.csv', ++i + 1, `${1000 + i},${W},${module},${kind},${peer},0,8,${detail}`));
+    push('pid=1 priority=80', 'module_started');
+    for (let k = 0; k < N; k++) {
+      push('to_port=0', 'data_posted', 'CAM', `P${k}`);                 // a new flow
+      push('activation=1', 'run_started', `M${k}`);                     // a new module
+      push(`schema=S${k} cycle=0 release_ns=${k}`, 'ord_release', 'ORD', 'CAM'); // a new schema
+      push(`fn.R${k} active cause=stop`, 'sup_rule', 'SUP');            // a new rule
+    }
+    push('activation=1', 'run_started');                                // CAM, known: still folded
+    const s = m.live;
+    expect(s.names).toBe(MAX_NAMES);
+    const folded = s.dataFlows.size + s.modules.size + s.periodic.size + s.supervisors.size + [...s.supervisors.values()].reduce((n, sv) => n + sv.rules.size, 0);
+    expect(folded).toBe(MAX_NAMES);
+    expect(s.namesPastBound).toBe(4 * N + 2 - MAX_NAMES);              // 4 new names a step, CAM's and SUP's
+    expect(s.modules.get('CAM')).toMatchObject({ running: true, runs: 1 });
+    expect(s.records).toBe(4 * N + 2);
+    // each checkpoint's copy stays as small as the bound: scrubbing back works
+    expect(m.stateAt(s.t / 2).names).toBe(MAX_NAMES);
+    expect(namesPastBoundText(s.namesPastBound)).toMatch(/^⚠ 78,978 record\(s\) named more .* \(1,024\): left out\./);
+    expect(namesPastBoundText(0)).toBe('');
   });
 });

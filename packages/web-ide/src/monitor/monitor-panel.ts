@@ -21,7 +21,7 @@ import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { flowDropText, fmtT, followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { flowDropText, fmtT, followButton, namesPastBoundText, ruleAccessibleName, timeReadout } from './panel-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -96,6 +96,8 @@ export class MonitorPanel {
   private readonly diagramEl = h('div', { class: 'monitor-diagram' });
   private readonly modulesEl = h('div', { class: 'monitor-modules' });
   private readonly flowsEl = h('div', { class: 'monitor-flows', role: 'group', 'aria-label': 'Deliveries' });
+  /** Said when records named more than the state folds (MAX_NAMES): a log that is no run's. */
+  private readonly boundEl = h('div', { class: 'monitor-bound', role: 'status', hidden: true });
   private readonly rows = new Map<string, HTMLElement>();
   private readonly hists = new Map<string, { root: HTMLElement; title: HTMLElement; canvas: HTMLCanvasElement; text: HTMLElement; misses: HTMLElement; counts?: DrawnCounts }>();
   /** Each periodic schema's CRITICAL_DELAY and PERIOD in ns, read once per schema definition. */
@@ -120,6 +122,7 @@ export class MonitorPanel {
       h('div', { class: 'monitor-cursor' }, this.slider, this.timeText),
       this.strip.canvas,
       h('div', { class: 'monitor-body' },
+        this.boundEl,
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schemasEl, this.periodicEl),
         h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
@@ -495,6 +498,8 @@ export class MonitorPanel {
     if (drawDiagram) d.highlight({ active: modules, running, pulsing, used });
     if (!drawFlows) return;
     setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
+    this.boundEl.hidden = s.namesPastBound === 0;
+    setText(this.boundEl, namesPastBoundText(s.namesPastBound));
     // deliveries: the busiest flows, with their count and last delivery
     // (a flow that drops values comes first: its consumer does not read it)
     const flows = [...[...s.dataFlows].map(([k, f]) => ({ k, f, kind: 'data' })), ...[...s.eventFlows].map(([k, f]) => ({ k, f, kind: 'event' }))]

@@ -117,12 +117,24 @@ export interface MonitorState {
   dataFlows: Map<string, FlowCount>;
   eventFlows: Map<string, FlowCount>;
   unknownLines: number;
+  /** Distinct names folded (supervisors, their functions, rules and holds, schemas, modules, flows): at most MAX_NAMES. */
+  names: number;
+  /** Records whose name would have gone past MAX_NAMES: not folded (a forged log; a run has far fewer). */
+  namesPastBound: number;
 }
+
+/**
+ * Distinct names a state folds at most: a run of 31 modules and 8 supervisors with 43 rules names
+ * about 200. A log a module's code wrote with a new name on each line (anything in the sandbox may
+ * write its own log) would otherwise grow the state, and each checkpoint's copy of it, with every
+ * line: 300,000 such lines ran a recorded run out of memory.
+ */
+export const MAX_NAMES = 1024;
 
 export const RECENT_MARKS = 64;
 
 export function emptyState(): MonitorState {
-  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unknownLines: 0 };
+  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unknownLines: 0, names: 0, namesPastBound: 0 };
 }
 
 /** A deep copy (the state is plain data: objects, arrays and Maps, which structuredClone and postMessage keep). */

@@ -3,7 +3,7 @@
  * readout, the follow button, a rule's accessible name. Kept apart so that they are tested
  * without a page (panel-text.test.ts).
  */
-import type { FlowCount, RuleState } from './monitor-state.js';
+import { MAX_NAMES, type FlowCount, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
 export const fmtT = (ns: number): string => `+${(ns / 1e9).toFixed(6)} s`;
@@ -72,4 +72,13 @@ export function flowDropText(key: string, f: FlowCount): string {
   const consumer = key.slice(key.indexOf('->') + 2).split(':')[0];
   const why = f.dropReason === 'queue full' ? `queue full: ${consumer} does not read it fast enough` : f.dropReason;
   return ` · ${f.dropped} dropped (${why})`;
+}
+
+/**
+ * What the Monitor says of records it did not fold because their names went past MAX_NAMES
+ * (a log a module's code wrote: a run names far fewer), or '' when there were none.
+ */
+export function namesPastBoundText(n: number): string {
+  if (!n) return '';
+  return `⚠ ${n.toLocaleString('en-US')} record(s) named more supervisors, rules, schemas, modules and flows than the Monitor follows (${MAX_NAMES.toLocaleString('en-US')}): left out. A run names far fewer: did a module's code write into its log? contract trace tells every record.`;
 }
