@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import type { Activation } from './activation-log.js';
-import { firstStartingAt, laneBars, lastTime } from './timeline-bars.js';
+import { firstStartingAt, laneBars, lanesOf, lastTime } from './timeline-bars.js';
 import { activationsFromLogs } from './run-logs.js';
 
 /** `n` activations of CTL, one every `periodNs` from 0, each running `runNs`. */
@@ -57,5 +57,21 @@ describe('timeline bars', () => {
     expect(errors).toEqual([]);
     expect(acts).toHaveLength(300_000);
     expect(lastTime(acts)).toBe(299_999_300);
+  });
+});
+
+describe('timeline lanes', () => {
+  it('one per module, sorted, each with its activations in order; past the bound counted, not drawn (a log naming a new module a line)', () => {
+    const acts: Activation[] = [
+      { module: 'MSC', start: 1, detail: '' }, { module: 'MSA', start: 2, detail: '' }, { module: 'MSC', start: 3, detail: '' },
+      ...Array.from({ length: 100_000 }, (_, i): Activation => ({ module: `Z${i}`, start: 10 + i, detail: '' })),
+    ];
+    const { modules, lanes, leftOutModules, leftOutActs } = lanesOf(acts, 256);
+    expect(modules).toHaveLength(256);
+    expect(modules.slice(0, 2)).toEqual(['MSA', 'MSC']);
+    expect(lanes[1]!.map((a) => a.start)).toEqual([1, 3]);
+    expect(leftOutModules).toBe(100_002 - 256);
+    expect(leftOutActs).toBe(100_000 - 254);
+    expect(lanesOf(acts.slice(0, 3), 256)).toMatchObject({ modules: ['MSA', 'MSC'], leftOutModules: 0, leftOutActs: 0 });
   });
 });

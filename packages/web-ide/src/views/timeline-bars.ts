@@ -74,3 +74,21 @@ export function laneBars(
   }
   return bars;
 }
+
+/**
+ * The Timeline's lanes: the modules the activations name, sorted, `max` at most, and each one's
+ * activations in the order given; what a module past them had is counted, not drawn.
+ */
+export function lanesOf(acts: readonly Activation[], max: number): { modules: string[]; lanes: Activation[][]; leftOutModules: number; leftOutActs: number } {
+  const named = [...new Set(acts.map((a) => a.module))].sort();
+  const modules = named.slice(0, max);
+  const laneOf = new Map(modules.map((m, i) => [m, i]));
+  const lanes = modules.map((): Activation[] => []);
+  let leftOutActs = 0;
+  for (const a of acts) {
+    const i = laneOf.get(a.module);
+    if (i === undefined) leftOutActs++;
+    else lanes[i]!.push(a);
+  }
+  return { modules, lanes, leftOutModules: named.length - modules.length, leftOutActs };
+}

@@ -1,12 +1,14 @@
 import { h } from '../util/dom.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriodOf, type Activation } from './activation-log.js';
-import { laneBars, lastTime, type LaneBar } from './timeline-bars.js';
+import { laneBars, lanesOf, lastTime, type LaneBar } from './timeline-bars.js';
 import { activationsFromLogs, localLogFolders, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from './run-logs.js';
 
 const SVG = 'http://www.w3.org/2000/svg';
 /** Trace files of the project offered as sources. */
 const MAX_TRACE_FILES = 64;
+/** Lanes (modules) the Timeline draws at most: a run has tens; a forged log may name a module a line. */
+export const MAX_LANES = 256;
 
 function svg<K extends keyof SVGElementTagNameMap>(tag: K, attrs: Record<string, string | number>, text?: string): SVGElementTagNameMap[K] {
   const el = document.createElementNS(SVG, tag);
@@ -146,10 +148,13 @@ export class TimelineView {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No activations in ${files} log file(s). ${errors.join(' ')}`));
       return;
     }
+    // a lane per module, MAX_LANES at most (by name): a log a module's code wrote may name a new
+    // module on each line; the activations of the others are left out, and the header says so
+    const { modules, lanes, leftOutModules, leftOutActs } = lanesOf(acts, MAX_LANES);
+    if (leftOutActs) acts = lanes.flat().sort((a, b) => a.start - b.start);
     const t0 = acts[0]!.start;
     const tEnd = lastTime(acts);
     const span = Math.max(1, tEnd - t0);
-    const modules = [...new Set(acts.map((a) => a.module))].sort();
     const periodOf = inferPeriodOf(acts);
     const period = periodOf?.ns;
     const lane = 26;
@@ -193,8 +198,6 @@ export class TimelineView {
       root.append(svg('text', { x: 6, y: i * lane + 17, class: 'lane-label' }, m));
       root.append(svg('line', { x1: left, x2: width, y1: (i + 1) * lane, y2: (i + 1) * lane, class: 'lane-sep' }));
     });
-    const lanes = modules.map((): Activation[] => []);
-    for (const a of acts) lanes[modules.indexOf(a.module)]!.push(a);
     const bars = svg('g', { class: 'act-bars' });
     root.append(bars);
     const drawBars = () => {
@@ -215,7 +218,8 @@ export class TimelineView {
       grid.replaceChildren(...drawGrid(from, to));
     };
     root.append(axis);
-    this.info.textContent = `${acts.length} activations · ${modules.length} modules · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
+    const leftOut = leftOutModules ? ` · ${leftOutModules} more modules named in the logs, past the ${MAX_LANES} lanes shown (${leftOutActs} activations left out: did a module's code write into its log?)` : '';
+    this.info.textContent = `${acts.length} activations · ${modules.length} modules${leftOut} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
     this.canvas.replaceChildren(root);
     // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
     drawBars();
