@@ -10,6 +10,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 
+#include "../engine_executable.h" /* under ASan, SCHED_OTHER before the leak check at exit */
+
 /** $ITEST_OUT/<name>.trace opened for writing, line-buffered; NULL without ITEST_OUT. */
 static inline FILE *imodule_open_trace(const char *name) {
     const char *dir = getenv("ITEST_OUT");

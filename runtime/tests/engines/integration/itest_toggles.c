@@ -13,9 +13,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sched.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include "itest_scenarios.h"
@@ -140,13 +142,39 @@ static int amx_followed(const Step *s, int n) {
     return 1;
 }
 
+static long long mono_ns(void) {
+    struct timespec ts;
+    clock_gettime(CLOCK_MONOTONIC, &ts); /* the clock of the CSV logs' mono_ns (GetTime) */
+    return (long long)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+}
+
+/* in `run`: the last decision on AMX was to stop it (its engine-stopped mark) and nobody holds it */
+static int stopped_and_free(const char *run) {
+    char path[600];
+    snprintf(path, sizeof path, "%s/AMX.engine-stopped.hold", run);
+    if (access(path, F_OK) != 0) return 0;
+    snprintf(path, sizeof path, "%s/HTA.AMX.hold", run);
+    if (access(path, F_OK) == 0) return 0;
+    snprintf(path, sizeof path, "%s/HTB.AMX.hold", run);
+    return access(path, F_OK) != 0;
+}
+
 /* A child that, once a supervisor has started AMX (AMX.started.hold in `run`: the first
-   decision on AMX is made with AMX answering), waits `after_ms`, then stops AMX (SIGSTOP) for
-   `pause_ms`: AMX reads no request meanwhile, as a module the host paused or that
-   higher-priority modules starved. Returns the child, or -1. */
-static pid_t pause_amx(const char *run, int after_ms, int pause_ms) {
+   decision on AMX is made with AMX answering) and `after_ms` more, waits for a moment when the
+   last decision on AMX was its last holder's STOP and nobody holds it, and stops AMX (SIGSTOP)
+   for `pause_ms`: AMX reads no request meanwhile, as a module the host paused or that
+   higher-priority modules starved, and the next supervisor's status query gets no answer. If a
+   supervisor holds AMX again 3 ms after the SIGSTOP (its query was answered just before), AMX
+   goes on and the child waits for the next such moment (up to 400 ms: the flips end at 700 ms).
+   The pause's ends (CLOCK_MONOTONIC ns) go to `window` as "<stop> <cont>". Paused at a fixed
+   20 ms instead, the pause sometimes met a holder that kept AMX through it (each take waits
+   0.5 s for the status, and the other's drop waits for its lock): nothing was decided on a
+   stopped AMX, and the run tested nothing of the pause. Returns the child, or -1. */
+static pid_t pause_amx(const char *run, const char *window, int after_ms, int pause_ms) {
     pid_t c = fork();
     if (c != 0) return c;
+    struct sched_param sp = {.sched_priority = 99}; /* polls on time when allowed (as stall_watch.c) */
+    (void)sched_setscheduler(0, SCHED_FIFO, &sp);
     char path[600];
     snprintf(path, sizeof path, "%s/AMX.pid", run);
     pid_t amx = 0;
@@ -160,21 +188,45 @@ static pid_t pause_amx(const char *run, int after_ms, int pause_ms) {
     snprintf(path, sizeof path, "%s/AMX.started.hold", run);
     for (int t = 0; t < 4000 && access(path, F_OK) != 0; t++) usleep(1000);
     usleep((useconds_t)after_ms * 1000);
-    if (kill(amx, SIGSTOP) != 0) _exit(1);
+    long long give_up = mono_ns() + 400000000LL, stop = -1;
+    while (stop < 0 && mono_ns() < give_up) {
+        if (!stopped_and_free(run)) {
+            usleep(100);
+            continue;
+        }
+        if (kill(amx, SIGSTOP) != 0) _exit(1);
+        long long at = mono_ns();
+        usleep(3000);
+        if (stopped_and_free(run)) stop = at;
+        else kill(amx, SIGCONT);
+    }
+    if (stop < 0) _exit(2);
     usleep((useconds_t)pause_ms * 1000);
+    long long cont = mono_ns(); /* before AMX goes on: whatever it reads comes after */
     kill(amx, SIGCONT);
-    _exit(0);
+    FILE *f = fopen(window, "w");
+    if (!f) _exit(1);
+    fprintf(f, "%lld %lld\n", stop, cont);
+    _exit(fclose(f) == 0 ? 0 : 1);
 }
 
-/* AMX's log: a STOP and a START received back to back (under 5 ms apart), as when a STOP waited
-   in its mailbox while it was paused and the next supervisor decided to start it meanwhile */
-static int stop_then_start_queued(const Step *s, int n) {
-    long long stop_at = -1;
+/* A supervisor decided to start AMX while it was paused after its last holder's STOP: a `hold
+   taken (started it)` 250 ms or more into the pause (its status query went unanswered: a take
+   with an answer decides at once, one without waits 0.5 s), that AMX received after the pause
+   (decisions and AMX's requests pair up in order: amx_followed). A status query with no answer
+   taken for "it runs" would have made that take "it was running" (and the replay fail). An
+   order of the logs against the pause, so a loaded host cannot break it; the first version
+   asked for a STOP and a START received under 5 ms apart, which the toggling gives every few
+   ms anyway, and which a loaded host can stretch. */
+static int started_while_paused(const Step *s, int n, long long stop, long long cont) {
+    static long long decided[MAX_STEPS], got[MAX_STEPS];
+    int nd = 0, ng = 0;
     for (int i = 0; i < n; i++) {
-        if (s[i].kind == AMX_STOP) stop_at = s[i].t;
-        else if (s[i].kind == AMX_START && stop_at >= 0 && s[i].t - stop_at < 5000000LL) return 1;
-        else if (s[i].kind == AMX_START) stop_at = -1;
+        if (s[i].kind == TAKE_STARTED || s[i].kind == DROP_STOPPED) decided[nd++] = s[i].t;
+        else if (s[i].kind == AMX_START || s[i].kind == AMX_STOP) got[ng++] = s[i].t;
     }
+    for (int k = 0; k < nd && k < ng; k += 2) /* even: STARTs */
+        if (decided[k] >= stop + 250000000LL && decided[k] < cont && got[k] >= cont) return 1;
     return 0;
 }
 
@@ -182,7 +234,9 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
     Scenario sc;
     if (!scenario_begin(&sc, root, paused ? "toggles-paused" : "toggles")) return;
     const char *const names[] = {"HTA", "HTB", "AMX", NULL};
-    pid_t pauser = paused ? pause_amx(sc.run, 20, 1300) : 0;
+    char window[600];
+    snprintf(window, sizeof window, "%s/pause.txt", sc.out);
+    pid_t pauser = paused ? pause_amx(sc.run, window, 20, 1300) : 0;
     /* the flips stop at 700 ms; the run lasts 2 s so that a host that stalls the supervisors a
        few hundred ms (seen on CI: a decision came after the launcher's end-of-run KILL) still
        leaves them time to end before it. Paused, the supervisors' decisions wait for AMX through
@@ -194,7 +248,15 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
                  : "hold toggles: architecture ran and stopped cleanly");
     int pst = -1;
     if (pauser > 0) waitpid(pauser, &pst, 0);
-    if (paused) check(pauser > 0 && WIFEXITED(pst) && WEXITSTATUS(pst) == 0, "AMX was paused 1.3 s from 20 ms after a supervisor first started it");
+    long long stop = -1, cont = -1;
+    if (paused) {
+        char *text = slurp(window);
+        if (!text || sscanf(text, "%lld %lld", &stop, &cont) != 2) stop = cont = -1;
+        free(text);
+        check(pauser > 0 && WIFEXITED(pst) && WEXITSTATUS(pst) == 0 && stop > 0 && cont - stop >= 1300000000LL,
+              "AMX was paused 1.3 s, right after its last holder stopped it (20 ms or more after a supervisor first "
+              "started it)");
+    }
     char *logs[3] = {read_csv_log(&sc, "HTA"), read_csv_log(&sc, "HTB"), read_csv_log(&sc, "AMX")};
     Step *steps = malloc(MAX_STEPS * sizeof *steps);
     int n = 0;
@@ -220,9 +282,9 @@ static void hold_toggles(const char *root, const char *bin, const char *launcher
     struct stat st;
     check(stat(sc.run, &st) != 0, "no hold or lock file left in the run directory");
     if (paused)
-        check(steps && stop_then_start_queued(steps, n),
-              "while AMX was paused, its last holder's STOP waited in its mailbox and the next schema "
-              "started it (a status query with no answer did not pass for \"it runs\")");
+        check(steps && stop > 0 && started_while_paused(steps, n, stop, cont),
+              "while AMX was paused after its last holder's STOP, the next schema's status query got no answer "
+              "and it started AMX (a status query with no answer did not pass for \"it runs\")");
     for (int w = 0; w < 3; w++) free(logs[w]);
     free(steps);
 }

@@ -29,7 +29,7 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
     Scenario s;
     if (!scenario_begin(&s, root, "undo")) return;
     const char *const names[] = {"undo/ORD", "UPA", "USM", "UMA", "AMX", "AMY", NULL};
-    check(scenario_launch(&s, bin, launcher, "UPA.top()", "0.9", names),
+    check(scenario_launch(&s, bin, launcher, "UPA.top()", "1.0", names),
           "undo: architecture ran and stopped cleanly");
     char *txt = slurp(s.launch);
     char *upa = read_csv_log(&s, "UPA"), *usm = read_csv_log(&s, "USM"), *amy = read_csv_log(&s, "AMY");
