@@ -18,6 +18,8 @@ const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
+/** The job a tab follows or followed last, and whether it had ended (a reload shows it again). */
+type Followed = { jobId: string; project: string; ended: boolean };
 
 function runSettings(): RunSettings {
   try {
@@ -53,22 +55,26 @@ export class RunController {
     // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
     // (the job stays this tab's after its end: a reload shows it again, its log, the Monitor and its logs)
     build.onFinished.on(({ jobId, action }) => {
+      const f = this.followed();
+      if (f?.jobId === jobId) this.keep({ ...f, ended: true });
       if (action === 'run') void this.fetchLogs(jobId);
     });
-    build.onStarted.on(({ jobId }) => {
-      try {
-        sessionStorage.setItem(FOLLOWED_JOB_KEY, JSON.stringify({ jobId, project: this.project }));
-      } catch {
-        /* storage full or refused: a reload then loses the job's stream, not the job */
-      }
-    });
+    build.onStarted.on(({ jobId }) => this.keep({ jobId, project: this.project, ended: false }));
+  }
+
+  private keep(f: Followed): void {
+    try {
+      sessionStorage.setItem(FOLLOWED_JOB_KEY, JSON.stringify(f));
+    } catch {
+      /* storage full or refused: a reload then loses the job's stream, not the job */
+    }
   }
 
   /** The job this tab followed before a reload, as kept (anything else there is ignored). */
-  private followed(): { jobId: string; project: string } | undefined {
+  private followed(): Followed | undefined {
     try {
-      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown } | null;
-      if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '' };
+      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown } | null;
+      if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true };
     } catch {
       /* not JSON */
     }
@@ -87,7 +93,9 @@ export class RunController {
       return false;
     }
     this.project = f.project;
-    const followed = await this.d.build.resume(f.jobId, { ended: true });
+    // a job that had ended may since have left the service's last 50 (other tabs' jobs): gone
+    // without a word, as it would have been for a restarted server, not said to be one
+    const followed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended });
     if (!followed) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
     else this.d.showPanel('output');
     return followed;

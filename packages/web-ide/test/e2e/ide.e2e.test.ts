@@ -616,6 +616,14 @@ describe('IDE in headless Chromium', () => {
     await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('is no longer known to the build service');
     expect(await page.locator('#status-job').getAttribute('data-status')).toBe('gone');
     expect(await page.locator('#btn-stop').isEnabled()).toBe(false);
+    // a job that had ended when the page was reloaded may just have left the service's last 50
+    // (other tabs' jobs): not said to be a restarted server, nothing shown
+    await page.evaluate(() => sessionStorage.setItem('contract-studio:followed-job', JSON.stringify({ jobId: 'a1b2c3d4e5f60718293a4b5c6d7e8f90', project: '', ended: true })));
+    await page.reload();
+    await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    await page.waitForTimeout(1000);
+    expect(await page.locator('#status-job').getAttribute('data-status')).not.toBe('gone');
+    expect(await page.locator('#status-job').textContent()).not.toContain('is no longer known');
   });
 
   it('tells the user when a write fails (server down) and saves once the server is back', async () => {
