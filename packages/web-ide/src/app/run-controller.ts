@@ -12,8 +12,8 @@ import type { SharedJob } from '../../server/api-types.js';
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 /**
  * The job this tab follows or followed last, kept for a reload (sessionStorage: one per tab):
- * { jobId, project }. Replaced by the next job the tab follows; removed when the build service no
- * longer knows it.
+ * { jobId, project, ended }. Replaced by the next job the tab follows; removed when the build
+ * service no longer knows it.
  */
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
