@@ -62,16 +62,16 @@ void test_ext_types_round_trip(void)
     XMode mode = XMode_TELEOP;
     check_same(1, &mode, sizeof mode, "TELEOP");
     double mat[3][3] = { { 1, 2, 3 }, { 4, 5, 6 }, { 7, 8, 9.5 } };
-    check_same(2, mat, sizeof mat, "[[1,2,3],[4,5,6],[7,8,9.5]]");
+    check_same(2, mat, sizeof mat, "[[1.0,2.0,3.0],[4.0,5.0,6.0],[7.0,8.0,9.5]]");
     XCell cells[4] = { { 1, 0.25, "a" }, { 2, 0.5, "b" }, { 3, 0.75, "" }, { -4, 1e9, "d,e" } };
     check_same(3, cells, sizeof cells,
-               "[{id=1,w=0.25,tag=\"a\"},{id=2,w=0.5,tag=\"b\"},{id=3,w=0.75,tag=\"\"},{id=-4,w=1e+09,tag=\"d,e\"}]");
+               "[{id=1,w=0.25,tag=\"a\"},{id=2,w=0.5,tag=\"b\"},{id=3,w=0.75,tag=\"\"},{id=-4,w=1000000000.0,tag=\"d,e\"}]");
     static XScan scan;
     fill_scan(&scan);
     check_same(4, &scan, sizeof scan,
                "{ranges=[0.5,0.51,0.52,0.53,0.54,0.55,0.56,0.57,0.58,0.59,...],mode=AUTO,ok=true,"
                "cells=[{id=1,w=0.5,tag=\"left\"},{id=2,w=-1.5,tag=\"right \\\"wheel\\\"\"}],"
-               "m=[[1,0,2.5],[0,1,0],[0,0,1]]}");
+               "m=[[1.0,0.0,2.5],[0.0,1.0,0.0],[0.0,0.0,1.0]]}");
     /* one element more or less is not the same value */
     static XScan other;
     other = scan;
@@ -104,8 +104,8 @@ void test_ext_types_round_trip(void)
     char *argv[] = { "controlECHO", "setparam", "0", value, NULL };
     CHECK(h_run(argv, out, 5000) == 0);
     char *text = h_read_file(out);
-    CHECK_MSG(text && strstr(text, "ECHO: parameter 0 set to {ranges=[1,1,1,1,1,1,1,1,1,1,...],mode=TELEOP,ok=true,"
-                                   "cells=[{id=1,w=0.5,tag=\"l\"},{id=2,w=0.5,tag=\"r\"}],m=[[1,0,0],[0,1,0],[0,0,1]]}"),
+    CHECK_MSG(text && strstr(text, "ECHO: parameter 0 set to {ranges=[1.0,1.0,1.0,1.0,1.0,1.0,1.0,1.0,1.0,1.0,...],mode=TELEOP,ok=true,"
+                                   "cells=[{id=1,w=0.5,tag=\"l\"},{id=2,w=0.5,tag=\"r\"}],m=[[1.0,0.0,0.0],[0.0,1.0,0.0],[0.0,0.0,1.0]]}"),
               "control tool printed: %s", text ? text : "(nothing)");
     free(text);
     got = 0;

@@ -27,7 +27,7 @@ function expectTutorialRan(job: Record<string, any>, lines: LineEvent[]): void {
   expect(job.status, `${job.result?.message}\n${lines.slice(-30).map((l) => `${l.source}: ${l.line}`).join('\n')}`).toBe('succeeded');
   const run = lines.filter((l) => l.step === 'run');
   expect(run.some((l) => l.source === 'MAA' && l.line === 'initialization of MAA')).toBe(true);
-  expect(run.some((l) => l.source === 'GLB' && /function mission\(consigne = \{i=0,j=0,k=0\}\) started/.test(l.line))).toBe(true);
+  expect(run.some((l) => l.source === 'GLB' && /function mission\(consigne = \{i=0\.0,j=0\.0,k=0\.0\}\) started/.test(l.line))).toBe(true);
   expect(run.some((l) => l.source === 'MSC')).toBe(true);
   expect(lines.filter((l) => l.step === 'build' && /^cc .* -o MAA /.test(l.line))).toHaveLength(1);
 }
@@ -59,7 +59,7 @@ async function expectTutorialLogs(id: string): Promise<ArtifactListing> {
   const body = await artifactText(id, glb.name);
   expect(body.status).toBe(200);
   expect(Buffer.byteLength(body.text)).toBe(glb.size);
-  expect(body.text).toMatch(/function mission\(consigne = \{i=0,j=0,k=0\}\) started/);
+  expect(body.text).toMatch(/function mission\(consigne = \{i=0\.0,j=0\.0,k=0\.0\}\) started/);
   return list;
 }
 

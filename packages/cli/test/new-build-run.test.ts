@@ -220,7 +220,7 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(code).toBe(0);
         const mis = readdirSync(join(root, 'robot-logs')).find((f) => f.startsWith('MIS_'))!;
         // the function's start names the values it was given
-        expect(readFileSync(join(root, 'robot-logs', mis), 'utf8')).toContain('"function mission(goal = {x=2,y=0,theta=0}) started"');
+        expect(readFileSync(join(root, 'robot-logs', mis), 'utf8')).toContain('"function mission(goal = {x=2.0,y=0.0,theta=0.0}) started"');
     }, 240_000);
 
     it('does not write the logs through a link the project folder holds as DIR/logs; writes them into a real DIR/logs', async () => {

@@ -15,7 +15,7 @@
  *   comparison is on the order and the causes, not the times; `elapsed=1ms` timers are compared
  *   as causes; a miss that made MIS stop DRV.autonomous before its LOOPS' 1 ms came (DRV got the
  *   START late) is replayed as soon after the start as DRV really ran (replay-run.ts shortRuns);
- * - values: OBS:0 distances that changed a rule are named by their cause (`value=0.35`, `value=5`);
+ * - values: OBS:0 distances that changed a rule are named by their cause (`value=0.35`, `value=5.0`);
  *   those that changed none are replayed as 0.75, a distance that neither starts a safe stop
  *   (< 0.5) nor ends one (> 1.0), whatever the mode (the real one was 5 in AUTO or 0.35 in STOP:
  *   changing nothing either); joystick and navigation commands are `Twist` datatypes, logged
@@ -72,7 +72,7 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
     // which ends AUTO first, the obstacle (0.35 m) or a deadline miss, is timing: either is a safe stop
     it('the run went through its modes: teleop, autonomous on "auto", a safe stop, autonomous again when the way is clear', () => {
         const mis = realDecisions(real, 'MIS');
-        const order = ['MIS mission.TELEOP active <- started(LINK)', 'MIS mission.AUTO active <- TEL:1 value="auto"', 'MIS mission.STOP active <- endof(AUTO)', 'MIS mission.STOP inactive <- OBS:0 value=5', 'MIS mission.AUTO active <- endof(STOP)'];
+        const order = ['MIS mission.TELEOP active <- started(LINK)', 'MIS mission.AUTO active <- TEL:1 value="auto"', 'MIS mission.STOP active <- endof(AUTO)', 'MIS mission.STOP inactive <- OBS:0 value=5.0', 'MIS mission.AUTO active <- endof(STOP)'];
         let at = -1;
         for (const d of order) {
             const next = mis.indexOf(d, at + 1);

@@ -351,6 +351,14 @@ static int format_list(Writer *w, const ContractType *t, const unsigned char *v,
     return 1;
 }
 
+/* A float as Cactal writes it: 15 significant digits (%g kept 6: 1234567.0 was 1.23457e+06; 17
+   would show 0.5 + 7 * 0.01 as 0.57000000000000006), with a decimal point when it would look like
+   an int (1.0, not 1: a float parameter shown as `speed = 1` read as an int) */
+static void format_double(char *out, size_t size, double x) {
+    snprintf(out, size, "%.15g", x);
+    if (strpbrk(out, ".eEni") == NULL && strlen(out) + 2 < size) strcat(out, ".0");
+}
+
 static int format_into(Writer *w, const ContractType *t, const unsigned char *v, int depth) {
     char tmp[160];
     if (depth > 8) return put(w, "?");
@@ -364,7 +372,7 @@ static int format_into(Writer *w, const ContractType *t, const unsigned char *v,
     case CONTRACT_KIND_DOUBLE: {
         double x;
         memcpy(&x, v, sizeof x);
-        snprintf(tmp, sizeof tmp, "%g", x);
+        format_double(tmp, sizeof tmp, x);
         return put(w, tmp);
     }
     case CONTRACT_KIND_STRING:

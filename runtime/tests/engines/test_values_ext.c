@@ -115,11 +115,11 @@ void test_ext_array_values(void) {
     CHECK(contract_value_compare(CONTRACT_TEST_LE, &type_float_3, a, b));  /* eq */
     CHECK(contract_value_compare(CONTRACT_TEST_GE, &type_float_3, c, a));  /* every sup */
     CHECK(!contract_value_compare(CONTRACT_TEST_GE, &type_float_3, d, a));
-    CHECK(strcmp(fmt(&type_float_3, a, 64), "[1,2,3]") == 0);
+    CHECK(strcmp(fmt(&type_float_3, a, 64), "[1.0,2.0,3.0]") == 0);
 
     /* 2-D: C layout m[i][j], printed and parsed row by row */
     double m[3][3] = {{1, 0, 0}, {0, 1, 0}, {0, 0, 1}}, n[3][3];
-    CHECK(strcmp(fmt(&type_float_3_3, m, 128), "[[1,0,0],[0,1,0],[0,0,1]]") == 0);
+    CHECK(strcmp(fmt(&type_float_3_3, m, 128), "[[1.0,0.0,0.0],[0.0,1.0,0.0],[0.0,0.0,1.0]]") == 0);
     char tm[] = "{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, [0, 0, 1]} rest";
     CHECK(contract_value_get(&type_float_3_3, n, tm) == (int)strlen("{{1.0, 0.0, 0.0}, {0.0, 1.0, 0.0}, [0, 0, 1]}"));
     CHECK(memcmp(m, n, sizeof m) == 0);
@@ -182,11 +182,11 @@ void test_ext_format_is_cut_but_well_formed(void) {
     s.ok = true;
     const char *out = fmt(&type_Scan, &s, 60);
     CHECK(strlen(out) <= 59);
-    CHECK(strncmp(out, "{ranges=[0,0.25,0.5,", 20) == 0);
+    CHECK(strncmp(out, "{ranges=[0.0,0.25,0.5,", 22) == 0);
     CHECK(strcmp(out + strlen(out) - 6, ",...]}") == 0 || strcmp(out + strlen(out) - 5, ",...}") == 0);
     /* arrays show their first CONTRACT_FORMAT_MAX_ITEMS elements, so later fields keep room */
     out = fmt(&type_Scan, &s, 200);
-    CHECK(strcmp(out, "{ranges=[0,0.25,0.5,0.75,1,1.25,1.5,1.75,2,2.25,...],mode=AUTO,ok=true}") == 0);
+    CHECK(strcmp(out, "{ranges=[0.0,0.25,0.5,0.75,1.0,1.25,1.5,1.75,2.0,2.25,...],mode=AUTO,ok=true}") == 0);
     /* nothing fits: "?" */
     CHECK(strcmp(fmt(&type_Scan, &s, 4), "?") == 0);
 }
@@ -458,10 +458,10 @@ void test_ext_supervisor_tests_and_extractions_on_arrays_enums_bools(void) {
     /* the notify carried the array: logged by the fake world through contract_value_format */
     int notified = 0;
     for (int i = 0; i < log.n; i++)
-        if (strcmp(log.lines[i], "notify :0 [0.1,2,2,2,2,2,2,2,2,2,...]") == 0) notified++;
+        if (strcmp(log.lines[i], "notify :0 [0.1,2.0,2.0,2.0,2.0,2.0,2.0,2.0,2.0,2.0,...]") == 0) notified++;
     CHECK(notified == 1);
     /* the cause of the rule change shows the value readably */
-    CHECK(CAUSES.n >= 1 && strstr(CAUSES.lines[CAUSES.n - 1], "watch.NEAR active cause=X:0 value={ranges=[0.1,2,2,2,2,2,2,2,2,2,...],mode=AUTO,ok=false}") != NULL);
+    CHECK(CAUSES.n >= 1 && strstr(CAUSES.lines[CAUSES.n - 1], "watch.NEAR active cause=X:0 value={ranges=[0.1,2.0,2.0,2.0,2.0,2.0,2.0,2.0,2.0,2.0,...],mode=AUTO,ok=false}") != NULL);
     s.ranges[90] = 1.5;
     sup_core_module_event(c, 4 * MS, "X", 0, -1, &s, sizeof s);
     CHECK(!sup_core_rule_active(c, "watch", "NEAR"));

@@ -55,7 +55,7 @@ describe('contract run interrupted', () => {
         const csv = readdirSync(logs).filter((n) => n.endsWith('.csv'));
         expect(csv.map((n) => n.split('_')[0]).sort()).toEqual(['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP']);
         const log = (m: string): string => readFileSync(join(logs, csv.find((n) => n.startsWith(`${m}_`))!), 'utf8');
-        expect(log('GLB')).toContain(',supervisor,,,0,"function mission(consigne = {i=0,j=0,k=0}) started"');
+        expect(log('GLB')).toContain(',supervisor,,,0,"function mission(consigne = {i=0.0,j=0.0,k=0.0}) started"');
         expect(run.stderr()).toContain(`CSV logs: 9 file(s) in ${logs}`);
         // the launcher stopped it (docs/build-service-api.md "Cancel"): every module wrote its last
         // records and its exit record; SUP stopped before ORD, which deactivated schemaCommande1

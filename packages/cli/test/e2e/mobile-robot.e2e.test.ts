@@ -88,9 +88,9 @@ describe('examples/mobile-robot end to end', () => {
             ])).toBe(true);
             expect(isSubsequence(supervisorTrace(logs, 'DRV'), [
                 // autonomous names the goal it was started with (its parameter's default: MIS gives none)
-                'function teleop() started', 'function teleop stopped', 'function autonomous(goal = {x=4,y=2,theta=0}) started',
+                'function teleop() started', 'function teleop stopped', 'function autonomous(goal = {x=4.0,y=2.0,theta=0.0}) started',
                 'function autonomous stopped', 'function safestop() started', 'function safestop stopped',
-                'function autonomous(goal = {x=4,y=2,theta=0}) started',
+                'function autonomous(goal = {x=4.0,y=2.0,theta=0.0}) started',
             ])).toBe(true);
             // the simulated obstacle stands from 3.0 s to 4.5 s after the detector's first cycle: the
             // robot is in safe stop while it is there and back in autonomous mode after it is gone
@@ -133,9 +133,9 @@ describe('examples/mobile-robot end to end', () => {
             expect(seconds(aheadOn)).toBeGreaterThan(2.9);
             expect(seconds(aheadOn)).toBeLessThan(3.6);
             // the cause is the scan, shown readably in the trace (docs/runtime-api.md "Trace records")
-            expect(aheadOn.detail).toMatch(/^mission\.AHEAD active cause=OBS:1 value=\{ranges=\[5,5,5,5,5,5,5,5,5,5,\.\.\.\],blocked=true\}$/);
+            expect(aheadOn.detail).toMatch(/^mission\.AHEAD active cause=OBS:1 value=\{ranges=\[5\.0,5\.0,5\.0,5\.0,5\.0,5\.0,5\.0,5\.0,5\.0,5\.0,\.\.\.\],blocked=true\}$/);
             const aheadOff = ahead.find((r) => r.detail.startsWith('mission.AHEAD inactive') && r.mono > aheadOn.mono)!;
-            expect(aheadOff.detail).toMatch(/cause=OBS:1 value=\{ranges=\[5,.*\],blocked=false\}$/);
+            expect(aheadOff.detail).toMatch(/cause=OBS:1 value=\{ranges=\[5\.0,.*\],blocked=false\}$/);
             expect(seconds(aheadOff)).toBeGreaterThan(4.4);
             // DRV hands VEL its drive mode (an enum schema parameter -> VEL's parameter port 1); the
             // wheel vectors float[2]/int[2] carry the loop (the robot moves: odometry above)

@@ -45,11 +45,11 @@ describe('examples/tutorial end to end', () => {
         });
 
         it('fires the supervisor rules in the report\'s order and activates schemaCommande1', () => {
-            expect(isSubsequence(supervisorTrace(logs, 'GLB'), ['function mission(consigne = {i=0,j=0,k=0}) started', 'rule mission.SINGLE active',
-                'activate supervisor SUP.action(consigne = {i=0,j=0,k=0}) (activation #2)'])).toBe(true);
+            expect(isSubsequence(supervisorTrace(logs, 'GLB'), ['function mission(consigne = {i=0.0,j=0.0,k=0.0}) started', 'rule mission.SINGLE active',
+                'activate supervisor SUP.action(consigne = {i=0.0,j=0.0,k=0.0}) (activation #2)'])).toBe(true);
             const sup = supervisorTrace(logs, 'SUP');
             expect(isSubsequence(sup, [
-                'function action(consigne = {i=0,j=0,k=0}) started', 'rule action.FIRST active',
+                'function action(consigne = {i=0.0,j=0.0,k=0.0}) started', 'rule action.FIRST active',
                 'rule action.RECEPTION active', 'rule action.RECEPTION inactive',
                 'rule action.FIRST inactive', 'rule action.SECOND active',
             ])).toBe(true);
