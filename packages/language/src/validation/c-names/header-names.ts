@@ -190,7 +190,7 @@ export const RUNTIME_LIBRARY_SYMBOLS: readonly string[] = [
     'rt_run_stopping', 'rt_send_request_to', 'rt_valid_name', 'rt_write_pid_file', 'sched_getscheduler',
     'sched_setscheduler', 'sendmsg', 'setenv', 'setpriority', 'setsockopt', 'setvbuf', 'sigaction', 'sigemptyset',
     'sigfillset', 'signal', 'snprintf', 'socket', 'stat', 'stderr', 'stdout', 'strchr', 'strcmp', 'strdup',
-    'strerror', 'strlen', 'strncmp', 'strncpy', 'strnlen', 'strstr', 'strtod', 'strtol', 'strtoull',
+    'strerror', 'strlen', 'strncmp', 'strncpy', 'strnlen', 'strpbrk', 'strstr', 'strtod', 'strtol', 'strtoull',
     'sup_claims_drop_priority', 'sup_claims_flow_use', 'sup_claims_free', 'sup_claims_push_priority',
     'sup_core_advance', 'sup_core_create', 'sup_core_destroy', 'sup_core_events_processed',
     'sup_core_function_answer', 'sup_core_function_running', 'sup_core_in_port_value', 'sup_core_local',
