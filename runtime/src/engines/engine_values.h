@@ -56,10 +56,11 @@ int engine_build_setting(const EngineScope *s, const ContractParamSetting *setti
 #define ACTION_VALUE_MAX 200
 
 /** Writes a short readable form of a value into buf (trace records, docs/runtime-api.md "Trace
- *  records"): int `12`, float `%g`, string `"text"` (quotes and backslashes escaped, control
- *  characters as `?`, cut at 64 characters with `...`), enum member, bool, array and datatype
- *  `{a,b}` / `{x=1,y=2}` (at most CONTRACT_FORMAT_MAX_ITEMS elements, then `...`; a datatype
- *  without a field table `{N bytes}`); no value or type: `?`. Never longer than len - 1. */
+ *  records"): int `12`, float `1.0` / `0.35` (15 significant digits, always a decimal point),
+ *  string `"text"` (quotes and backslashes escaped, control characters as `?`, cut at 64
+ *  characters with `...`), enum member, bool, array and datatype `{a,b}` / `{x=1.5,y=2.0}` (at
+ *  most CONTRACT_FORMAT_MAX_ITEMS elements, then `...`; a datatype without a field table
+ *  `{N bytes}`); no value or type: `?`. Never longer than len - 1. */
 void engine_format_value(char *buf, size_t len, const void *value, const ContractType *type);
 
 /** Room for engine_format_param_port: two names of up to 63 bytes, a port number, a colon, a space. */

@@ -79,7 +79,6 @@ export class GenerationCache {
     return join(this.dir, `${key}.json.gz`);
   }
 
-
   async get(inputsDigest: string): Promise<GeneratedTree | null> {
     try {
       assertCacheEntry(this.dir);

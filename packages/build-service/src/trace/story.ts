@@ -76,12 +76,20 @@ export function holdText(kind: 'module_hold' | 'flow_hold', peer: string, detail
 }
 
 /**
+ * Why a data value was not sent, from its `data_dropped` detail (`to_port=0 queue full` ->
+ * `queue full`; `not sent` when it says nothing): the words of `contract trace` and the Monitor.
+ */
+export function dataDropReason(detail: string): string {
+    return detail.replace(/^to_port=\S*\s*/, '') || 'not sent';
+}
+
+/**
  * The first dropped value of the data flow `flow` (`CAM:0 -> SRT:0`) to `consumer`'s input
  * `toPort`, from the `data_dropped` detail (`to_port=0 queue full`): `data CAM:0 -> SRT:0 dropped:
  * queue full (SRT does not read its input :0 as fast as it comes: ...)`.
  */
-export function dropText(flow: string, consumer: string, toPort: string, detail: string): string {
-    const reason = detail.replace(/^to_port=\S*\s*/, '') || 'not sent';
+function dropText(flow: string, consumer: string, toPort: string, detail: string): string {
+    const reason = dataDropReason(detail);
     const why = reason === 'queue full'
         ? ` (${consumer} does not read its input :${toPort} as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all)`
         : '';

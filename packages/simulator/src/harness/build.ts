@@ -131,10 +131,14 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     const key = hash.digest('hex').slice(0, 20);
     const dir = join(cache.dir, `sim-${key}`);
     const exe = join(dir, 'contract-sim');
-    if (existsSync(exe)) {
+    // a simulator found built: marked used (the cache's bound keeps the recently used)
+    const found = async (): Promise<HarnessBuild | undefined> => {
+        if (!existsSync(exe)) return undefined;
         await markUsed(dir);
         return { exe, cached: true, ms: performance.now() - t0 };
-    }
+    };
+    const built = await found();
+    if (built) return built;
 
     let lock: ProjectLock;
     try {
@@ -144,10 +148,8 @@ export async function buildHarness(src: SimSources, options: BuildOptions): Prom
     }
     try {
         // the build we waited for may have made this very executable
-        if (existsSync(exe)) {
-            await markUsed(dir);
-            return { exe, cached: true, ms: performance.now() - t0 };
-        }
+        const waited = await found();
+        if (waited) return waited;
         await removeAbandonedBuilds(cache.dir, SIM_BUILDING);
         // a new simulator per model simulated: the least recently used beyond the bound go
         await removeLeastRecentlyUsed(cache.dir, CACHE_ENTRY_NAMES.sim, SERVICE_BOUNDS.keptSimulators - 1);

@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { dataDropReason, isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
   type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FunctionState, type FlowCount, type SchemaActivation, type ModuleState,
@@ -138,14 +138,14 @@ export function foldDataPosted(s: MonitorState, module: string, port: number | n
   count(s, s.dataFlows, `${module}:${port}->${peer}:${toPort}`, t);
 }
 
-/** data_dropped: a value of `module`'s output `port` for `peer`'s `to_port` that was not sent, and why (`queue full`). */
+/** data_dropped: a value of `module`'s output `port` for `peer`'s `to_port` that was not sent, and why (dataDropReason: `queue full`). */
 export function foldDataDropped(s: MonitorState, module: string, port: number | null, peer: string, toPort: number | undefined, reason: string, t: Ns): void {
   if (!peer || port === null || toPort === undefined) return;
   // a flow that never delivered: `last` is when it was first seen
   const f = entry<FlowCount>(s, s.dataFlows, `${module}:${port}->${peer}:${toPort}`, () => ({ count: 0, last: t }));
   if (!f) return;
   f.dropped = (f.dropped ?? 0) + 1;
-  f.dropReason = reason.slice(0, 80) || 'not sent';
+  f.dropReason = reason.slice(0, 80);
 }
 
 /** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
@@ -301,7 +301,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       foldDataPosted(s, k.module, k.port, k.peer, num(f['to_port']), t);
       return;
     case 'data_dropped':
-      foldDataDropped(s, k.module, k.port, k.peer, num(f['to_port']), k.detail.replace(/^to_port=\S*\s*/, ''), t);
+      foldDataDropped(s, k.module, k.port, k.peer, num(f['to_port']), dataDropReason(k.detail), t);
       return;
     case 'event_received': {
       const from = num(f['from_port']);

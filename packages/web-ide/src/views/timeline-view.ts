@@ -151,7 +151,10 @@ export class TimelineView {
     // a lane per module, MAX_LANES at most (by name): a log a module's code wrote may name a new
     // module on each line; the activations of the others are left out, and the header says so
     const { modules, lanes, leftOutModules, leftOutActs } = lanesOf(acts, MAX_LANES);
-    if (leftOutActs) acts = lanes.flat().sort((a, b) => a.start - b.start);
+    if (leftOutActs) {
+      const drawn = new Set(modules);
+      acts = acts.filter((a) => drawn.has(a.module)); // still in start order
+    }
     const t0 = acts[0]!.start;
     const tEnd = lastTime(acts);
     const span = Math.max(1, tEnd - t0);
