@@ -5,7 +5,8 @@
  * host work dir, so nothing needs to be shared with a remote engine; the volume of a project's
  * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec, user 1000,
  * no-new-privileges, all capabilities dropped, Memory (= MemorySwap) and PidsLimit.
- * A memory kill is read from State.OOMKilled; a refused fork from the program's own messages.
+ * A memory kill is read from State.OOMKilled (docker-oom.ts: the flag can come late); a refused fork
+ * from the program's own messages.
  * Disk: the work volume is a tmpfs of workDiskMiB (local driver options); a tmpfs volume is only
  * kept while some container mounts it, so each workspace volume has a holder container (`sleep`,
  * volume read-only, no network, no capabilities) for its lifetime, which also answers the statfs
@@ -35,6 +36,7 @@ import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from '.
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
 import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
@@ -315,6 +317,7 @@ export class DockerSandbox implements Sandbox {
         ...(realtime?.ok ? { realtime: realtime.detail } : {}),
       };
       let limitHit: LimitHit | null = null;
+      let sawKilled = false;
       const diskHit = async (): Promise<LimitHit | null> => {
         const state = await this.volumeState(volume);
         return state && isWorkDiskFull(state) ? { name: 'workDiskMiB', value: diskBytes, unit: 'bytes', mechanism: 'docker-tmpfs-volume' } : null;
@@ -335,20 +338,23 @@ export class DockerSandbox implements Sandbox {
       const done: Promise<SandboxExit> = (async () => {
         const waited = (await container.wait().catch(() => ({ StatusCode: null }))) as { StatusCode: number | null };
         clearInterval(diskWatch);
-        const info = await container.inspect().catch(() => null);
-        if (info?.State?.OOMKilled && !limitHit) limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
+        // the attach stream delivers the last bytes after the container ended: drain it first (a
+        // shell's or make's "Killed" line, read below, is among them)
+        await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
+        if (!limitHit && (await engineSaysOomKilled(() => container.inspect(), !killing && looksKilled(waited.StatusCode, sawKilled)))) {
+          limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
+        }
         // a job that was refused a write and gave up is reported too; not one the service stopped
         // itself (run time limit, cancel): its reason is known, and the look into the volume (an exec
         // in its holder, 0.2-0.4 s, more on a loaded engine) would only delay the kill's report
         if (!limitHit && !killing) limitHit = await diskHit().catch(() => null);
-        // the attach stream delivers the last bytes after the container ended: drain it first
-        await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
         stdout.end();
         stderr.end();
         await removeContainer();
         return { exitCode: waited.StatusCode, signal: null, limitHit };
       })();
       const noteLine = (line: string): void => {
+        if (KILLED_LINE.test(line)) sawKilled = true;
         if (limitHit) return;
         if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) {
           limitHit = { name: 'processes', value: cmd.limits.processes, unit: 'count', mechanism: 'docker' };
