@@ -18,6 +18,7 @@ import type { BuildPanel } from '../build/build-panel.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { debounce } from '../util/dom.js';
+import { toast } from '../util/toast.js';
 import { MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
@@ -358,10 +359,21 @@ export class MonitorController {
     return this.symbols;
   }
 
+  /**
+   * Opens a rule the Monitor lists in its .contract file. A rule the run names and the model no
+   * longer has (renamed or removed since the run) opens its function, saying so; when the function
+   * is gone too, it says that and opens nothing.
+   */
   private async openRule(sup: string, fn: string, rule: string): Promise<void> {
-    const loc = (await this.readSymbols()).locations.get(`${sup}.${fn}.${rule}`) ?? this.symbols?.locations.get(`${sup}.${fn}`);
+    const { locations } = await this.readSymbols();
+    const ruleAt = locations.get(`${sup}.${fn}.${rule}`);
+    const loc = ruleAt ?? locations.get(`${sup}.${fn}`);
     const path = loc && this.deps.workspace.pathOf(loc.uri);
-    if (!loc || !path) return;
+    if (!loc || !path) {
+      toast('warning', `${sup}.${fn} is not in the model: renamed or removed since this run (the Monitor shows what the run recorded)`);
+      return;
+    }
+    if (!ruleAt) toast('info', `Rule ${rule} is not in ${sup}.${fn} any more (renamed or removed since this run): its function is shown`);
     await this.deps.editors.open(path, { lineNumber: loc.range.start.line + 1, column: loc.range.start.character + 1 });
   }
 }

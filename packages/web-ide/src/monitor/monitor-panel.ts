@@ -25,6 +25,10 @@ import { flowDropText, fmtT, followButton, namesPastBoundText, ruleAccessibleNam
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
+/** What marks a supervisor, function or rule the run names and the model does not (supervisor-rows.ts). */
+const NOT_IN_MODEL = '(not in the model)';
+const NOT_IN_MODEL_LONG = 'not in the model: renamed or removed since this run';
+
 export interface MonitorPanelDeps {
   schemas: () => Promise<ArchSchema[]>;
   supervisors: () => Promise<SupervisorCatalogue>;
@@ -352,18 +356,21 @@ export class MonitorPanel {
 
   private renderSupervisors(s: MonitorState): void {
     const blocks: HTMLElement[] = [];
-    for (const { name: sup, state: st, functions: fns } of supervisorRows(this.sups, s)) {
+    for (const { name: sup, state: st, functions: fns, inModel, notInModel } of supervisorRows(this.sups, s)) {
       const block = this.row(`sup:${sup}`, () => h('div', { class: 'monitor-sup', role: 'listitem', 'data-supervisor': sup }));
       const header = this.row(`suph:${sup}`, () => h('div', { class: 'monitor-sup-name' }));
-      setText(header, `${sup}${st ? ` · ${st.actionsDone} action(s) done, ${st.actionsUndone} undone` : ''}`);
+      setText(header, `${sup}${inModel === false ? ` ${NOT_IN_MODEL}` : ''}${st ? ` · ${st.actionsDone} action(s) done, ${st.actionsUndone} undone` : ''}`);
+      setAttr(header, 'data-in-model', String(inModel !== false));
       const children: HTMLElement[] = [header];
       for (const [fn, rules] of fns) {
         const fs = st?.functions.get(fn);
         const fnEl = this.row(`fn:${sup}.${fn}`, () => h('div', { class: 'monitor-fn', 'data-function': `${sup}.${fn}` }));
-        setText(fnEl, `${fn}() — ${fs ? `${fs.state} since ${fmtT(fs.since)}` : 'not started'}`);
+        setText(fnEl, `${fn}()${notInModel.has(fn) ? ` ${NOT_IN_MODEL}` : ''} — ${fs ? `${fs.state} since ${fmtT(fs.since)}` : 'not started'}`);
         setAttr(fnEl, 'data-state', fs?.state ?? 'idle');
+        setAttr(fnEl, 'data-in-model', String(!notInModel.has(fn)));
         children.push(fnEl);
         for (const rule of rules) {
+          const gone = notInModel.has(`${fn}.${rule}`);
           const rs = st?.rules.get(`${fn}.${rule}`);
           const el = this.row(`rule:${sup}.${fn}.${rule}`, () => {
             const b = h('button', { class: 'monitor-rule', 'data-rule': `${sup}.${fn}.${rule}` },
@@ -374,11 +381,12 @@ export class MonitorPanel {
           setAttr(el, 'data-active', String(!!rs?.active));
           const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
           // a plain button (it opens the rule): its name says its state, no aria-pressed
-          setAttr(el, 'aria-label', ruleAccessibleName(rule, rs, cause));
+          setAttr(el, 'aria-label', `${ruleAccessibleName(rule, rs, cause)}${gone ? `, ${NOT_IN_MODEL_LONG}` : ''}`);
+          setAttr(el, 'data-in-model', String(!gone));
           setText(el.children[2] as HTMLElement, rs && !rs.active ? `off ${cause}` : cause);
           setText(el.children[3] as HTMLElement, rs ? fmtT(rs.since) : '');
           // the cause is cut to the row's width: whole in the tooltip (and in the text read out)
-          setAttr(el, 'title', `${fn}.${rule}${rs ? ` ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)} ${cause}` : ': not active yet'} · click to open it in its .contract file`);
+          setAttr(el, 'title', `${fn}.${rule}${rs ? ` ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)} ${cause}` : ': not active yet'}${gone ? ` · ${NOT_IN_MODEL_LONG}: click to open its function` : ' · click to open it in its .contract file'}`);
           setAttr(el, 'data-cause', rs?.cause ?? '');
           setAttr(el, 'data-since', rs ? String(rs.since) : '');
           children.push(el);
@@ -426,7 +434,7 @@ export class MonitorPanel {
         hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
-          ? `${p.releases} releases · cycle ${p.lastCycle} · ${p.completions} complete · response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.completions ? p.sumResponseNs / p.completions : 0)}, max ${fmtNs(p.maxResponseNs)} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`
+          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.completions ? p.sumResponseNs / p.completions : 0)}, max ${fmtNs(p.maxResponseNs)} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`
           : 'not released yet');
         setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));

@@ -14,20 +14,41 @@ export interface SupervisorRow {
   state: SupervisorState | undefined;
   /** Function -> its rules, the model's order first, then those only the trace names. */
   functions: Map<string, string[]>;
+  /**
+   * Whether the model has this supervisor: false for one only the trace names (the model has
+   * others), undefined when the model names no supervisor (not read yet, or another project's logs).
+   */
+  inModel: boolean | undefined;
+  /**
+   * `function.rule` of the rules and `function` of the functions the trace names and the model,
+   * which has this supervisor, does not: renamed or removed since the run was recorded.
+   */
+  notInModel: Set<string>;
 }
 
 export function supervisorRows(catalogue: SupervisorCatalogue, s: MonitorState): SupervisorRow[] {
   const names = [...new Set([...catalogue.keys(), ...s.supervisors.keys()])].sort();
   return names.map((name) => {
     const st = s.supervisors.get(name);
+    const model = catalogue.get(name);
     const fns = new Map<string, string[]>();
-    for (const [fn, rules] of catalogue.get(name) ?? []) fns.set(fn, [...rules]);
+    for (const [fn, rules] of model ?? []) fns.set(fn, [...rules]);
+    const notInModel = new Set<string>();
+    const traceOnly = (key: string): void => void (model && notInModel.add(key));
     for (const r of st?.rules.values() ?? []) {
       const rules = fns.get(r.function);
-      if (!rules) fns.set(r.function, [r.rule]);
-      else if (!rules.includes(r.rule)) rules.push(r.rule);
+      if (!rules) {
+        fns.set(r.function, [r.rule]);
+        traceOnly(r.function);
+      } else if (rules.includes(r.rule)) continue;
+      else rules.push(r.rule);
+      traceOnly(`${r.function}.${r.rule}`);
     }
-    for (const fn of st?.functions.keys() ?? []) if (!fns.has(fn)) fns.set(fn, []);
-    return { name, state: st, functions: fns };
+    for (const fn of st?.functions.keys() ?? []) {
+      if (fns.has(fn)) continue;
+      fns.set(fn, []);
+      traceOnly(fn);
+    }
+    return { name, state: st, functions: fns, inModel: catalogue.size ? !!model : undefined, notInModel };
   });
 }

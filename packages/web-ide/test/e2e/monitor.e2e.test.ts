@@ -153,6 +153,22 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => activeTab(page)).toBe('supervisor.contract');
     const line = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
     expect((await activeValue(page)).split('\n')[line - 1]).toMatch(/^\s*SECOND:/);
+    // renamed since the run (here on disk, as by another editor): the run's SECOND is marked as not
+    // in the model, after the model's SECOND_X; a click opens its function and says why
+    const supFile = join(s.workspace, 'supervisor.contract');
+    const supText = readFileSync(supFile, 'utf8');
+    writeFileSync(supFile, supText.replaceAll('SECOND', 'SECOND_X'));
+    await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-in-model'), { timeout: 10_000 }).toBe('false');
+    expect(await rule(page, 'SUP.action.SECOND').getAttribute('aria-label')).toMatch(/^SECOND, inactive since .*, not in the model: renamed or removed since this run$/);
+    expect(await rule(page, 'SUP.action.SECOND_X').getAttribute('data-in-model')).toBe('true');
+    expect(await rule(page, 'SUP.action.FIRST').getAttribute('data-in-model')).toBe('true');
+    await rule(page, 'SUP.action.SECOND').click();
+    await expect.poll(() => page.locator('.toast').allTextContents()).toContainEqual(expect.stringContaining('Rule SECOND is not in SUP.action any more'));
+    const fnLine = await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber);
+    expect((await activeValue(page)).split('\n')[fnLine - 1]).toMatch(/^\s*action\(/);
+    writeFileSync(supFile, supText);
+    await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-in-model'), { timeout: 10_000 }).toBe('true');
+    expect(await rule(page, 'SUP.action.SECOND_X').count()).toBe(0);
     // ◉ Monitor hides it and shows it again, on the same run
     await page.locator('#btn-monitor').click();
     await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
@@ -395,7 +411,7 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-sources option[value="dir:hostile-run"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('dir:hostile-run');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('1 CSV log(s) in hostile-run');
-    await expect.poll(() => page.locator('.monitor-fn[data-function="SUP.constructor"]').textContent()).toMatch(/^constructor\(\) — running since/);
+    await expect.poll(() => page.locator('.monitor-fn[data-function="SUP.constructor"]').textContent()).toMatch(/^constructor\(\) \(not in the model\) — running since/);
     expect(await rule(page, 'SUP.constructor.__proto__').getAttribute('data-active')).toBe('true');
     expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
     expect(await page.locator('.monitor-schema').allTextContents()).toEqual(['● __proto__ (periodic) ← SUP.constructor.__proto__']);

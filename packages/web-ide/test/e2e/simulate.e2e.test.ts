@@ -120,7 +120,7 @@ describe('Simulate panel', () => {
     // the Monitor shows what the virtual modules did: schemaCommande1's first cycle (MSA 0.5 ms, then
     // MSC and MSD 1 ms each, from 1 ms) complete with its response time, from the harness's typed records
     const cycle = page.locator('.monitor-pschema[data-periodic="schemaCommande1"] .monitor-pstats');
-    await expect.poll(() => cycle.textContent(), { timeout: 10_000 }).toMatch(/^3 releases · cycle 0 · 1 complete · response last 2\.5 ms, mean 2\.5 ms, max 2\.5 ms · 0 deadline miss/);
+    await expect.poll(() => cycle.textContent(), { timeout: 10_000 }).toMatch(/^3 module release\(s\) · last cycle 0 · 1 cycle\(s\) complete · response last 2\.5 ms, mean 2\.5 ms, max 2\.5 ms · 0 deadline miss/);
     await shot(page, 'simulate-monitor-cycle');
     const cli = spawnSync(process.execPath, [join(PKG, '../cli/bin/contract.js'), 'simulate', s.workspace, join(s.workspace, 'scenarios/session.scenario')], { encoding: 'utf8', timeout: 60_000 });
     expect(cli.status, cli.stdout + cli.stderr).toBe(0);
