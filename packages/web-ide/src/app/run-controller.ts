@@ -36,6 +36,8 @@ export class RunController {
   readonly onRunLogs = new Emitter<{ jobId: string; logs: RunLogs }>();
   /** The project folder of the last Build & Run (gcc paths are relative to its src-gen/). */
   project = '';
+  /** The last job another tab started while this tab was busy with its own (not followed then). */
+  private passedOver: SharedJob | undefined;
 
   constructor(private readonly d: {
     workspace: Workspace; build: BuildPanel;
@@ -54,10 +56,15 @@ export class RunController {
     });
     // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
     // (the job stays this tab's after its end: a reload shows it again, its log, the Monitor and its logs)
-    build.onFinished.on(({ jobId, action }) => {
+    build.onFinished.on(({ jobId, action, cancelledElsewhere }) => {
       const f = this.followed();
       if (f?.jobId === jobId) this.keep({ ...f, ended: true });
       if (action === 'run') void this.fetchLogs(jobId);
+      // cancelled by another tab's Build & Run, announced while this tab was busy: its new run is
+      // followed now (the run this one was replaced by); after any other end the log stays
+      const next = this.passedOver;
+      this.passedOver = undefined;
+      if (cancelledElsewhere && next && next.id !== jobId) void this.followShared(next, { replacing: jobId });
     });
     build.onStarted.on(({ jobId }) => this.keep({ jobId, project: this.project, ended: false }));
   }
@@ -105,9 +112,13 @@ export class RunController {
    * A job another tab started (announced by the IDE server, docs/ide.md "Several tabs"): this tab
    * follows it when it follows none of its own — its log, the Monitor, Stop. True when it does.
    */
-  async followShared(job: SharedJob): Promise<boolean> {
+  async followShared(job: SharedJob, opts: { replacing?: string } = {}): Promise<boolean> {
     // this tab's own job before a reload is resume()'s
-    if (this.d.build.busy || !JOB_ID.test(job.id) || this.followed()?.jobId === job.id) return false;
+    if (!JOB_ID.test(job.id) || this.followed()?.jobId === job.id) return false;
+    if (this.d.build.busy) {
+      this.passedOver = job;
+      return false;
+    }
     const project = this.project;
     this.project = job.project;
     const what = job.action === 'run' ? 'Build & Run' : 'build';
@@ -117,7 +128,10 @@ export class RunController {
       return false;
     }
     this.d.showPanel('output');
-    toast('info', `Following the ${what} another tab started${job.project ? ` (${job.project})` : ''}: its log, the Monitor; Stop ends it for every tab`);
+    const where = job.project ? ` (${job.project})` : '';
+    if (opts.replacing) {
+      toast('info', `Your run was cancelled by another tab's ${what}${where}: following that one now (yours stays in the Monitor's run list)`);
+    } else toast('info', `Following the ${what} another tab started${where}: its log, the Monitor; Stop ends it for every tab`);
     return true;
   }
 

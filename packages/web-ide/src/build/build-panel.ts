@@ -15,6 +15,10 @@ export interface GccDiagnostic {
   protectedRegion?: { id: string } | null;
 }
 
+/** The line a job's log ends with when it was cancelled without this tab's Stop. */
+export const CANCELLED_ELSEWHERE =
+  'cancelled, not by this tab: by another tab (its Stop, or its Build & Run, which replaces the run it follows) or a request to the build service';
+
 /**
  * Build & Run: submits a job to the build service, streams its events (WebSocket) into the log store,
  * shows the filters (per module/source, per stream, text), follow-tail, and reports gcc
@@ -26,7 +30,8 @@ export class BuildPanel {
   readonly onDiagnostics = new Emitter<GccDiagnostic[]>();
   readonly onStatus = new Emitter<{ status: string; message?: string; running: boolean }>();
   /** A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET /api/jobs/:id/artifacts. */
-  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean; message?: string }>();
+  /** A job's end; `cancelledElsewhere`: cancelled without this tab's Stop (another tab's Stop or Build & Run, a script). */
+  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean; message?: string; cancelledElsewhere: boolean }>();
   /** A job was submitted (its events follow). */
   readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
   readonly element: HTMLElement;
@@ -36,6 +41,8 @@ export class BuildPanel {
   private readonly originEl: HTMLElement;
   private readonly followBox: HTMLInputElement;
   private jobId: string | undefined;
+  /** The job this tab asked to stop (its Stop, or its own next Build & Run). */
+  private stopAsked: string | undefined;
   /** A submission is on its way (no job id yet). */
   private submitting = false;
   private stream: JobStream | undefined;
@@ -216,8 +223,12 @@ export class BuildPanel {
             if (this.stream === stream) this.stream = undefined;
             this.jobId = undefined;
             const end = jobEndStatus(d.result, lastStatus);
-            this.setStatus(end.status, end.message, false);
-            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok, message: d.result?.message });
+            const cancelledElsewhere = end.status === 'cancelled' && this.stopAsked !== jobId;
+            if (cancelledElsewhere) {
+              this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: CANCELLED_ELSEWHERE });
+            }
+            this.setStatus(end.status, cancelledElsewhere ? 'from another tab or a script' : end.message, false);
+            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok, message: d.result?.message, cancelledElsewhere });
             return;
           }
         }
@@ -236,6 +247,7 @@ export class BuildPanel {
   async stop(): Promise<void> {
     const id = this.jobId;
     if (!id) return;
+    this.stopAsked = id;
     this.setStatus('cancelling', undefined, true);
     try {
       await api.cancelJob(id);

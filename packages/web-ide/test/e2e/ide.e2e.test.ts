@@ -553,6 +553,41 @@ describe('IDE in headless Chromium', () => {
     expect(await page.locator('.monitor-view').count()).toBe(1);
   }, 240_000);
 
+  it.skipIf(!canBuild || !canGenerate)('a Build & Run in a tab that follows another tab\'s run replaces it: the other tab says its run was cancelled elsewhere and follows the new one', async () => {
+    const { page } = s;
+    const runs = (tab: Page) => tab.evaluate(() => JSON.parse(sessionStorage.getItem('contract-studio:followed-job') ?? 'null')?.jobId as string | undefined);
+    await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 60, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' })));
+    const other = await openAnotherTab(s, page);
+    try {
+      await page.locator('#btn-run').click();
+      await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run');
+      const first = await runs(page);
+      await expect.poll(() => other.locator('.job-origin').textContent(), { timeout: 10_000 }).toBe('(Build & Run of another tab)');
+      await expect.poll(() => other.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
+      // the other tab starts a run of its own: the one it followed is cancelled for every tab
+      await other.keyboard.press('Control+Shift+B');
+      await expect.poll(() => other.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run');
+      const second = await runs(other);
+      expect(second).not.toBe(first);
+      // the first tab says why its run ended, then follows the run that replaced it
+      await expect.poll(() => runs(page), { timeout: 30_000 }).toBe(second);
+      expect(await page.locator('.job-origin').textContent()).toBe('(Build & Run of another tab)');
+      await page.locator('.toast', { hasText: "Your run was cancelled by another tab's Build & Run" }).waitFor({ timeout: 10_000 });
+      await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
+      expect(await page.locator('#btn-stop').isEnabled()).toBe(true);
+      // its own cancelled run stays in the Monitor's run list, said cancelled
+      const options = await page.locator('.monitor-sources option').allTextContents();
+      expect(options.some((o) => o.includes(first!.slice(0, 12)) && /ended: cancelled/.test(o))).toBe(true);
+      await page.locator('#btn-stop').click();
+      for (const tab of [page, other]) await expect.poll(() => tab.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
+      // Stop in this tab: not "cancelled elsewhere"
+      expect(await page.locator('#status-job').textContent()).not.toContain('another tab');
+      expect(await other.locator('#status-job').textContent()).toContain('cancelled: from another tab or a script');
+    } finally {
+      await other.close();
+    }
+  }, 300_000);
+
   it.skipIf(!canBuild || !canGenerate)('the real-time run setting reaches the build service, which says how it granted it or why not', async () => {
     const { page } = s;
     const settings = () => page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!));
