@@ -53,10 +53,11 @@ export class FileOperations {
     const hint = this.rootHasContracts()
       ? 'Folder to create. This workspace already holds a project and the language server checks all files together: to work on the new project alone, open its folder with `contract serve <folder>`.'
       : 'Folder to create (empty = the workspace root). Creates datatype, module1, module2, schema, sched and supervisor .contract files.';
-    const folder = await askText('New project from the report templates', this.rootHasContracts() ? 'my-robot' : '', hint);
-    if (folder === null && this.rootHasContracts()) return;
+    const folder = await askText('New project from the report templates', this.rootHasContracts() ? 'my-robot' : '', hint, { allowEmpty: !this.rootHasContracts() });
+    // Escape or Cancel: nothing is created (it used to write the templates into an empty workspace's root)
+    if (folder === null) return;
     try {
-      const r = await api.newProject(folder ?? '');
+      const r = await api.newProject(folder);
       await workspace.refreshTree();
       await Promise.all(r.files.map((f) => workspace.ensureModel(f)));
       lsp.revalidateAll();

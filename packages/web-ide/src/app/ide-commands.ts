@@ -58,6 +58,8 @@ export function registerIdeCommands(p: IdeParts): CommandRegistry {
     { id: 'outline', label: 'Focus Outline', keys: ['Alt+Shift+O'], run: () => p.outline.focus() || toast('info', 'The outline is empty: open a Cactal file') },
     { id: 'tabs', label: 'Focus open tabs', keys: ['Alt+Shift+W'], run: () => editors.focusTabs() },
     { id: 'newFile', label: 'New File…', keys: ['Alt+Shift+N'], run: () => p.files.newEntry('file') },
+    { id: 'newFolder', label: 'New Folder…', run: () => p.files.newEntry('dir') },
+    { id: 'newProject', label: 'New Project… (the report\'s six templates)', run: () => p.files.newProject() },
     {
       id: 'renameFile', label: 'Rename File…', keys: ['Alt+Shift+R'], run: () => {
         const entry = explorer.entryOf(activeFile() ?? '') ?? explorer.selected;

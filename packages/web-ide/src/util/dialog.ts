@@ -4,24 +4,28 @@ import { openModal } from './modal.js';
 // Each dialog is a modal (util/modal.ts): focus inside, Tab cycles in it, Escape cancels, and the
 // focus goes back to the element that opened it (a toolbar button, the editor).
 
-/** An in-page prompt (no native dialogs): resolves the entered text, or null when cancelled. */
-export function askText(title: string, initial = '', hint = ''): Promise<string | null> {
+/**
+ * An in-page prompt (no native dialogs): resolves the entered text, or null when cancelled (Escape,
+ * Cancel). An empty answer is null too, unless `allowEmpty` (then '': OK on an empty field is an answer).
+ */
+export function askText(title: string, initial = '', hint = '', opts: { allowEmpty?: boolean } = {}): Promise<string | null> {
   return new Promise((resolve) => {
     const input = h('input', { class: 'dialog-input', value: initial, spellcheck: 'false', 'aria-label': title });
     let modal: { close(): void } | undefined;
+    const answer = (): string | null => input.value.trim() || (opts.allowEmpty ? '' : null);
     const done = (v: string | null) => {
       if (!modal) return;
       modal.close();
       modal = undefined;
       resolve(v);
     };
-    const ok = h('button', { class: 'btn primary', onclick: () => done(input.value.trim() || null) }, 'OK');
+    const ok = h('button', { class: 'btn primary', onclick: () => done(answer()) }, 'OK');
     const cancel = h('button', { class: 'btn', onclick: () => done(null) }, 'Cancel');
     input.addEventListener('keydown', (e) => {
       // the key is used up: the focus goes back to the button that opened the dialog, which must
       // not get this Enter as a click (it would open the dialog again)
       if (e.key === 'Enter' || e.key === 'Escape') e.preventDefault();
-      if (e.key === 'Enter') done(input.value.trim() || null);
+      if (e.key === 'Enter') done(answer());
       if (e.key === 'Escape') done(null);
     });
     const dialog = h('div', { class: 'dialog', 'aria-label': title }, h('div', { class: 'dialog-title' }, title), hint ? h('div', { class: 'dialog-hint' }, hint) : null, input,

@@ -895,6 +895,17 @@ describe('New Project in an empty workspace', () => {
 
   it('creates the six report templates, valid Cactal with no problem', async () => {
     const { page } = e;
+    // from the command palette, cancelled: nothing is written (Escape used to create it all the same)
+    await page.keyboard.press('F1');
+    await page.locator('#command-palette').waitFor({ timeout: 5000 });
+    await page.keyboard.type('new project');
+    await page.keyboard.press('Enter');
+    await page.locator('.dialog-input').waitFor();
+    await page.keyboard.press('Escape');
+    await expect.poll(() => page.locator('.dialog-input').count()).toBe(0);
+    await page.waitForTimeout(500);
+    expect(readdirSync(e.workspace).filter((f) => f.endsWith('.contract'))).toEqual([]);
+    // the button, then Enter on the empty field: the workspace root
     await page.locator('#btn-new-project').click();
     await page.locator('.dialog-input').waitFor();
     await page.keyboard.press('Enter');

@@ -98,7 +98,8 @@ describe('keyboard-first IDE', () => {
     const rows = await palette.locator('[role=option]').evaluateAll((els) => els.map((e) => `${e.querySelector('.qp-label')?.textContent}|${e.querySelector('.qp-key')?.textContent ?? ''}`));
     for (const [label, key] of [['Generate All', 'Ctrl+Shift+G'], ['Build & Run', 'Ctrl+Shift+B'], ['Stop the running job', 'Alt+Shift+S'], ['Go to File…', 'Ctrl+P'],
       ['Open Architecture diagram', 'Alt+Shift+D'], ['Open Timeline', 'Alt+Shift+T'], ['Open Monitor', 'Alt+Shift+M'], ['Open Simulate panel', 'Alt+Shift+U'], ['Show Problems', 'Ctrl+Shift+M'],
-      ['Focus Outline', 'Alt+Shift+O'], ['New File…', 'Alt+Shift+N'], ['Rename File…', 'Alt+Shift+R'], ['Reload from disk (discard unsaved edits)', 'Alt+Shift+L']]) {
+      ['Focus Outline', 'Alt+Shift+O'], ['New File…', 'Alt+Shift+N'], ['Rename File…', 'Alt+Shift+R'], ['Reload from disk (discard unsaved edits)', 'Alt+Shift+L'],
+      ['New Folder…', ''], ["New Project… (the report's six templates)", '']]) {
       expect(rows, label).toContain(`${label}|${key}`);
     }
     // the editor's own actions are there too (one palette inside and outside the editor)
