@@ -35,6 +35,21 @@ describe('fuzzyFilter', () => {
     expect(fuzzyFilter('msc.c', files, (f) => f)[0]!.item).toBe('src-gen/generated/architecture/modules/MSC/MSC.c');
   });
 
+  it('finds the best alignment, not the leftmost: a module folder typed whole ranks that module first', () => {
+    const modules = ['LOC', 'CTL', 'MIS'].map((m) => `rover/src-gen/generated/architecture/modules/${m}_mod/module.c`);
+    const ranked = fuzzyFilter('CTL_mod/module.c', modules, (f) => f);
+    expect(ranked[0]!.item).toBe(modules[1]);
+    // contiguous: the positions are CTL_mod/module.c itself
+    expect(ranked[0]!.match.positions[0]).toBe(modules[1]!.indexOf('CTL_mod'));
+    expect(fuzzyFilter('smod3', ['smodule1.contract', 'smodule3.contract', 'sschema1.contract'], (f) => f)[0]!.item).toBe('smodule3.contract');
+  });
+
+  it('ranks the path typed whole first among 5,000 alike', () => {
+    const paths = Array.from({ length: 5000 }, (_, i) => `robot${i % 7}/src-gen/generated/architecture/modules/M${i}_mod/module_${i}.c`);
+    const ranked = fuzzyFilter('M4242_mod/module_4242', paths, (f) => f);
+    expect(ranked[0]!.item).toBe(paths[4242]);
+  });
+
   it('drops what does not match and keeps the order of equals', () => {
     expect(fuzzyFilter('make', files, (f) => f).map((r) => r.item)).toEqual(['src-gen/Makefile']);
     expect(fuzzyFilter('', files, (f) => f).map((r) => r.item)).toEqual(files);
