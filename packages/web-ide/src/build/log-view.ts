@@ -1,5 +1,6 @@
 import { h } from '../util/dom.js';
 import type { LogLine, LogStore } from './log-store.js';
+import { isLauncherNews } from './launcher-lines.js';
 
 const ROW = 18;
 /** Rows drawn above and below the viewport. */
@@ -144,7 +145,8 @@ export class LogView {
 
   private row(l: LogLine): HTMLElement {
     const time = new Date(l.t).toISOString().slice(11, 23);
-    return h('div', { class: `log-row ${l.stream}`, 'data-source': l.source },
+    const news = l.source === 'launcher' && l.stream === 'stderr' && isLauncherNews(l.line);
+    return h('div', { class: `log-row ${l.stream}${news ? ' news' : ''}`, 'data-source': l.source },
       h('span', { class: 'log-time' }, time), h('span', { class: `log-src src-${l.source.replace(/\W/g, '')}` }, l.source), h('span', { class: 'log-text' }, l.line));
   }
 }

@@ -147,6 +147,12 @@ describe('keyboard-first IDE', () => {
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 150_000 }).toMatch(/succeeded|failed/);
     expect(await page.locator('#status-job').getAttribute('data-status')).toBe('succeeded');
     expect(await page.locator('.panel-tab[data-panel=output]').getAttribute('aria-selected')).toBe('true');
+    // the launcher's news is not in the error colour of stderr (it was: "exited with status 0" in red)
+    const last = page.locator('.log-row[data-source=launcher]', { hasText: 'all modules stopped cleanly' });
+    await last.waitFor({ timeout: 10_000 });
+    expect(await last.getAttribute('class')).toBe('log-row stderr news');
+    const colour = (row: typeof last) => row.locator('.log-text').evaluate((e) => getComputedStyle(e).color);
+    expect(await colour(last)).toBe(await page.evaluate(() => getComputedStyle(document.body).color));
     await shot(page, 'kb-04-build-and-run');
   }, 180_000);
 
