@@ -28,6 +28,9 @@ export type { SupervisorCatalogue } from './supervisor-rows.js';
 /** What marks a supervisor, function or rule the run names and the model does not (supervisor-rows.ts). */
 const NOT_IN_MODEL = '(not in the model)';
 const NOT_IN_MODEL_LONG = 'not in the model: renamed or removed since this run';
+/** Width of the rules' name column, in characters: the longest name of the supervisor within these (longer ones are cut, whole in the tooltip). */
+const RULE_NAME_MIN_CH = 12;
+const RULE_NAME_MAX_CH = 28;
 
 export interface MonitorPanelDeps {
   schemas: () => Promise<ArchSchema[]>;
@@ -360,12 +363,16 @@ export class MonitorPanel {
       const block = this.row(`sup:${sup}`, () => h('div', { class: 'monitor-sup', role: 'listitem', 'data-supervisor': sup }));
       const header = this.row(`suph:${sup}`, () => h('div', { class: 'monitor-sup-name' }));
       setText(header, `${sup}${inModel === false ? ` ${NOT_IN_MODEL}` : ''}${st ? ` · ${st.actionsDone} action(s) done, ${st.actionsUndone} undone` : ''}`);
+      setAttr(header, 'title', header.textContent ?? '');
       setAttr(header, 'data-in-model', String(inModel !== false));
       const children: HTMLElement[] = [header];
+      const longest = Math.max(0, ...[...fns.values()].map((rules) => Math.max(0, ...rules.map((r) => r.length))));
+      block.style.setProperty('--rule-name-ch', String(Math.min(RULE_NAME_MAX_CH, Math.max(RULE_NAME_MIN_CH, longest + 1))));
       for (const [fn, rules] of fns) {
         const fs = st?.functions.get(fn);
         const fnEl = this.row(`fn:${sup}.${fn}`, () => h('div', { class: 'monitor-fn', 'data-function': `${sup}.${fn}` }));
         setText(fnEl, `${fn}()${notInModel.has(fn) ? ` ${NOT_IN_MODEL}` : ''} — ${fs ? `${fs.state} since ${fmtT(fs.since)}` : 'not started'}`);
+        setAttr(fnEl, 'title', fnEl.textContent ?? '');
         setAttr(fnEl, 'data-state', fs?.state ?? 'idle');
         setAttr(fnEl, 'data-in-model', String(!notInModel.has(fn)));
         children.push(fnEl);

@@ -407,7 +407,9 @@ describe('Monitor in headless Chromium', () => {
     mkdirSync(join(s.workspace, 'hostile-run'));
     writeFileSync(join(s.workspace, 'hostile-run', 'SUP_1-Jan-2026-00h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
       '1000,w,SUP,supervisor,,,0,function constructor started', '2000,w,SUP,sup_rule,,,0,constructor.__proto__ active cause=stop',
-      '3000,w,ORD,request_received,SUP,,0,START __proto__', '4000,w,ORD,scheduler,,,0,activate __proto__', '5000,w,SUP,sup_rule,,,0,action.toString active cause=elapsed=1000ns'].join('\n') + '\n');
+      '3000,w,ORD,request_received,SUP,,0,START __proto__', '4000,w,ORD,scheduler,,,0,activate __proto__', '5000,w,SUP,sup_rule,,,0,action.toString active cause=elapsed=1000ns',
+      // long names: a rule name of 27 characters is shown whole, a function name of 2,000 is cut to the pane
+      '6000,w,SUP,sup_rule,,,0,action.OBSTACLE_AVOIDANCE_RECOVERY active cause=elapsed=1000ns', `7000,w,SUP,supervisor,,,0,function ${'F'.repeat(2000)} started`].join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="dir:hostile-run"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('dir:hostile-run');
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('1 CSV log(s) in hostile-run');
@@ -416,6 +418,11 @@ describe('Monitor in headless Chromium', () => {
     expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
     expect(await page.locator('.monitor-schema').allTextContents()).toEqual(['● __proto__ (periodic) ← SUP.constructor.__proto__']);
     expect(await page.evaluate(() => ({} as any).by ?? null)).toBeNull();
+    const longRule = rule(page, 'SUP.action.OBSTACLE_AVOIDANCE_RECOVERY').locator('.rule-name');
+    expect(await longRule.evaluate((e) => e.scrollWidth <= e.clientWidth)).toBe(true);
+    const sups = page.locator('.monitor-sups');
+    expect(await sups.evaluate((e) => e.scrollWidth <= e.clientWidth)).toBe(true);
+    expect(await page.locator(`.monitor-fn[data-function="SUP.${'F'.repeat(2000)}"]`).getAttribute('title')).toMatch(/^F{2000}\(\) \(not in the model\) — running since/);
     expect(errors).toEqual([]);
   });
 
