@@ -58,7 +58,7 @@ describe('contract trace', () => {
             '+0.300000s ORD  deadline miss (ORD:0): S cycle 0 (not finished: MSA)',
             '+0.499000s SUP  undo: deactivate schema R (event schema)',
             '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
-            '10 records: 1 release, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+            '10 records: 1 module release, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
             // which line, in which file (the control characters of the line itself are not printed)
             'unreadable: SUP_24-Nov-2026-18h30m15s.csv line 6: 1 fields, expected 8',
             '',
@@ -251,7 +251,7 @@ describe('contract trace', () => {
             // 1024 are read (each holds only its header: no record, exit 1 saying so)
             const ok = capture(many);
             expect(await runCli(['trace', '.'], ok)).toBe(1);
-            expect(ok.stdout).toBe('0 records: 0 releases, 0 completed cycles, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines\n');
+            expect(ok.stdout).toBe('0 records: 0 module releases, 0 completed cycles, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines\n');
             expect(ok.stderr).toBe('contract trace: no record in the 1024 log(s) of . (empty, or only their header)\n');
         } finally {
             rmSync(many, { recursive: true, force: true });

@@ -320,7 +320,7 @@ export class StoryTeller {
 
     summary(): string {
         const n = (kind: string) => this.counts.get(kind) ?? 0;
-        return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
+        return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'module release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
             `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('scheduler:overrun'), 'overrun')}, ` +
             `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
             `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ` +

@@ -236,7 +236,7 @@ describe('reading a log', () => {
             '+0.500000s ORD  deadline miss (ORD:0): S cycle 4',
             '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
-            '7 records: 0 releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+            '7 records: 0 module releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
         ]);
     });
 
@@ -385,7 +385,7 @@ describe('reading a log', () => {
             '+0.001000s CAM  data CAM:0 -> SRT:0 dropped: queue full (SRT does not read its input :0 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
             '+0.002000s CAM  data CAM:0 -> LOG:2 dropped: queue full (LOG does not read its input :2 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
             '+0.004000s GPS  data GPS:1 -> NAV:3 dropped: Connection refused; its later drops are counted at the end',
-            '6 records: 0 releases, 0 completed cycles, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 5 data values dropped, 0 unreadable lines',
+            '6 records: 0 module releases, 0 completed cycles, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 5 data values dropped, 0 unreadable lines',
         ]);
     });
 

@@ -73,7 +73,7 @@ describe('contract trace on a recorded tutorial run (bwrap)', () => {
 
     it('tells the schema activations and ORD\'s releases of the run', () => {
         expect(story.stdout).toMatch(/ ORD +activate schemaCommande1 \(activation #\d+ from SUP\)\n/);
-        expect(story.stdout).toMatch(/\d+ records: [1-9]\d* releases, [1-9]\d* completed cycles, /);
+        expect(story.stdout).toMatch(/\d+ records: [1-9]\d* module releases, [1-9]\d* completed cycles, /);
     });
 
     it('gives one JSON record per CSV record, none unknown, in time order, each module\'s in its file order', () => {

@@ -12,14 +12,14 @@ import type { SharedJob } from '../../server/api-types.js';
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 /**
  * The job this tab follows or followed last, kept for a reload (sessionStorage: one per tab):
- * { jobId, project, ended }. Replaced by the next job the tab follows; removed when the build
+ * { jobId, project, ended, stopped }. Replaced by the next job the tab follows; removed when the build
  * service no longer knows it.
  */
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
-/** The job a tab follows or followed last, and whether it had ended (a reload shows it again). */
-type Followed = { jobId: string; project: string; ended: boolean };
+/** The job a tab follows or followed last, whether it had ended (a reload shows it again) and whether this tab stopped it. */
+type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean };
 
 function runSettings(): RunSettings {
   try {
@@ -80,8 +80,10 @@ export class RunController {
   /** The job this tab followed before a reload, as kept (anything else there is ignored). */
   private followed(): Followed | undefined {
     try {
-      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown } | null;
-      if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true };
+      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown; stopped?: unknown } | null;
+      if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) {
+        return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true };
+      }
     } catch {
       /* not JSON */
     }
@@ -102,7 +104,7 @@ export class RunController {
     this.project = f.project;
     // a job that had ended may since have left the service's last 50 (other tabs' jobs): gone
     // without a word, as it would have been for a restarted server, not said to be one
-    const followed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended });
+    const followed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended, stoppedHere: f.stopped });
     if (!followed) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
     else this.d.showPanel('output');
     return followed;
@@ -150,6 +152,9 @@ export class RunController {
   }
 
   stop(): Promise<void> {
+    // kept for a reload: the job's end then still says this tab stopped it
+    const f = this.followed();
+    if (f && this.d.build.running) this.keep({ ...f, stopped: true });
     return this.d.build.stop();
   }
 

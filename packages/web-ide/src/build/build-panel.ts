@@ -29,8 +29,12 @@ export class BuildPanel {
   readonly view = new LogView(this.store);
   readonly onDiagnostics = new Emitter<GccDiagnostic[]>();
   readonly onStatus = new Emitter<{ status: string; message?: string; running: boolean }>();
-  /** A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET /api/jobs/:id/artifacts. */
-  /** A job's end; `cancelledElsewhere`: cancelled without this tab's Stop (another tab's Stop or Build & Run, a script). */
+  /**
+   * A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET
+   * /api/jobs/:id/artifacts. `cancelledElsewhere`: it was cancelled while this tab followed it, not
+   * by this tab's Stop (another tab's Stop or Build & Run, a script); false for a job that had
+   * ended before the tab showed it (a reload).
+   */
   readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean; message?: string; cancelledElsewhere: boolean }>();
   /** A job was submitted (its events follow). */
   readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
@@ -164,7 +168,7 @@ export class BuildPanel {
    * restarted service: said when `sayIfGone`), or this panel is busy with a job of its own. `why`
    * is shown beside the status.
    */
-  async resume(jobId: string, opts: { why?: string; sayIfGone?: boolean; ended?: boolean } = {}): Promise<boolean> {
+  async resume(jobId: string, opts: { why?: string; sayIfGone?: boolean; ended?: boolean; stoppedHere?: boolean } = {}): Promise<boolean> {
     const why = opts.why ?? 'followed again after a reload';
     const sayIfGone = opts.sayIfGone ?? why === 'followed again after a reload';
     if (this.busy) return false;
@@ -186,7 +190,9 @@ export class BuildPanel {
     this.jobId = job.id;
     this.originEl.textContent = job.finishedAt ? '(shown again after a reload: it had ended)' : `(${why})`;
     this.setStatus(job.status, undefined, !job.finishedAt);
-    this.follow(job.id, job.action);
+    // this tab's Stop before the reload is still its own
+    this.stopAsked = opts.stoppedHere ? job.id : undefined;
+    this.follow(job.id, job.action, { hadEnded: !!job.finishedAt });
     return true;
   }
 
@@ -198,7 +204,7 @@ export class BuildPanel {
    * held on them by tabs following a run would leave none for their saves (as for /api/events,
    * app/server-events.ts).
    */
-  private follow(jobId: string, action: 'build' | 'run'): void {
+  private follow(jobId: string, action: 'build' | 'run', opts: { hadEnded?: boolean } = {}): void {
     // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts);
     // a broken stream is taken up again after the last event seen (job-stream.ts)
     let lastStatus: string | undefined;
@@ -228,7 +234,7 @@ export class BuildPanel {
               this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: CANCELLED_ELSEWHERE });
             }
             this.setStatus(end.status, cancelledElsewhere ? 'from another tab or a script' : end.message, false);
-            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok, message: d.result?.message, cancelledElsewhere });
+            this.onFinished.fire({ jobId, action, ok: !!d.result?.ok, message: d.result?.message, cancelledElsewhere: cancelledElsewhere && !opts.hadEnded });
             return;
           }
         }

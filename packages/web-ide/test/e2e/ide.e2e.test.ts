@@ -583,6 +583,15 @@ describe('IDE in headless Chromium', () => {
       // Stop in this tab: not "cancelled elsewhere"
       expect(await page.locator('#status-job').textContent()).not.toContain('another tab');
       expect(await other.locator('#status-job').textContent()).toContain('cancelled: from another tab or a script');
+      // after a reload each tab shows its last job again, and who stopped it is still told right
+      for (const tab of [page, other]) {
+        await tab.reload();
+        await tab.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+        await expect.poll(() => tab.locator('.job-origin').textContent(), { timeout: 10_000 }).toBe('(shown again after a reload: it had ended)');
+        await expect.poll(() => tab.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toBe('cancelled');
+      }
+      expect(await page.locator('#status-job').textContent()).not.toContain('another tab');
+      expect(await other.locator('#status-job').textContent()).toContain('cancelled: from another tab or a script');
     } finally {
       await other.close();
     }
