@@ -19,7 +19,7 @@ import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { debounce } from '../util/dom.js';
 import { toast } from '../util/toast.js';
-import { MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
+import { fetchJobLogs, MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
@@ -31,6 +31,16 @@ import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symb
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
+/**
+ * Recorded runs (a job's CSV logs, a workspace folder, a trace file) whose model the page keeps:
+ * each holds its logs' text and their records (a 60 s run of a 1 kHz schema: some 840,000 records,
+ * tens of MB), and an engineer runs Build & Run again and again. Past these, the runs used least
+ * recently are let go (the one shown never): a folder or a trace file is read again when picked (as
+ * it always is), a job's run stays in the run list and its logs are fetched again from the build
+ * service when picked.
+ */
+const MAX_RECORDED_RUNS = 6;
+const MAX_RECORDED_RECORDS = 3_000_000;
 /** Longest stretch of folding a recorded run's records without yielding to rendering and input. */
 const INGEST_SLICE_MS = 8;
 /** How long the end of a run waits for its worker to fold the last of the stream. */
@@ -45,12 +55,17 @@ interface Run {
   label: string;
   model: MonitorView;
   live: boolean;
+  /** When it was made or last shown (the recorded runs used least recently are let go first). */
+  used?: number;
   /** A job's run that ended: how (`succeeded`, `cancelled`, `failed: …`, `connection to the build service lost`). */
   outcome?: string;
 }
 
 export class MonitorController {
   private panel: MonitorPanel | undefined;
+  /** Jobs' recorded runs let go (MAX_RECORDED_RUNS): id -> their label; fetched again when picked. */
+  private readonly letGo = new Map<string, string>();
+  private uses = 0;
   private readonly runs = new Map<string, Run>();
   private shown: string | undefined;
   private symbols: SupervisorSymbols | undefined;
@@ -226,13 +241,7 @@ export class MonitorController {
       live.label = `Build & Run job ${jobId} · as streamed${live.outcome ? ` · ended: ${live.outcome}` : ''}`;
       if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
-    const { model, leftOut: unread } = await recordedRun(logs.files);
-    // a log the service left out or capped, one that could not be downloaded, or the rest of one
-    // that is not a trace is said: the replay lacks it
-    const problems = [...logs.problems, ...unread];
-    const label = `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}`;
-    const run: Run = { id: `job:${jobId}`, label, model, live: false };
-    this.runs.set(run.id, run);
+    const run = await this.recordedJobRun(jobId, logs);
     // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
     const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
@@ -248,6 +257,51 @@ export class MonitorController {
       // tab's job): it stays, this one is listed
       await this.refreshSources();
     }
+  }
+
+  /** Job `jobId`'s recorded run from its CSV logs, kept (and the least used recorded runs let go past the bounds). */
+  private async recordedJobRun(jobId: string, logs: RunLogs): Promise<Run> {
+    const { model, leftOut: unread } = await recordedRun(logs.files);
+    // a log the service left out or capped, one that could not be downloaded, or the rest of one
+    // that is not a trace is said: the replay lacks it
+    const problems = [...logs.problems, ...unread];
+    const label = `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}`;
+    const run: Run = { id: `job:${jobId}`, label, model, live: false };
+    this.keepRecorded(run);
+    return run;
+  }
+
+  /** Keeps recorded run `run`, and lets go of the least recently used ones past MAX_RECORDED_RUNS / MAX_RECORDED_RECORDS. */
+  private keepRecorded(run: Run): void {
+    run.used = ++this.uses;
+    this.runs.set(run.id, run);
+    this.letGo.delete(run.id);
+    const recorded = [...this.runs.values()].filter((r) => !r.live && /^(job|dir|file):/.test(r.id)).sort((a, b) => (b.used ?? 0) - (a.used ?? 0));
+    let records = 0;
+    recorded.forEach((r, i) => {
+      records += r.model.recordCount;
+      if (r.id === run.id || r.id === this.shown || (i < MAX_RECORDED_RUNS && records <= MAX_RECORDED_RECORDS)) return;
+      this.runs.delete(r.id);
+      if (r.id.startsWith('job:')) this.letGo.set(r.id, `${r.label} · read again when picked`);
+    });
+  }
+
+  /** A job's recorded run that was let go, picked again: its logs fetched again from the build service. */
+  private async fetchAgain(id: string): Promise<void> {
+    const mine = ++this.picked;
+    const jobId = id.slice(4);
+    try {
+      const logs = await fetchJobLogs(jobId);
+      if (!logs.files.length) throw new Error('the build service has no CSV logs of it any more');
+      await this.recordedJobRun(jobId, logs);
+    } catch (e) {
+      this.letGo.delete(id);
+      toast('warning', `Build & Run job ${jobId}: its logs could not be read again (${(e as Error).message}); the build service keeps its last 50 jobs`);
+      await this.refreshSources();
+      return;
+    }
+    if (mine === this.picked) await this.show(id);
+    else await this.refreshSources();
   }
 
   /** A simulation's state (@contract-studio/simulator/trace): the same view as runs, replacing the previous simulation. */
@@ -295,7 +349,7 @@ export class MonitorController {
     const read = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}`;
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
     const run: Run = { id: `dir:${folder}`, label, model, live: false };
-    this.runs.set(run.id, run);
+    this.keepRecorded(run);
     // shown unless the user asked for another run while it was read and built: then listed
     if (mine === this.picked && (asked || this.shown === run.id)) await this.show(run.id);
     else await this.refreshSources();
@@ -313,7 +367,7 @@ export class MonitorController {
     const notWhole = [...problems, ...unread];
     const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} unreadable line(s) of the logs it was written from` : ''}`;
     const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
-    this.runs.set(id, { id, label, model, live: false });
+    this.keepRecorded({ id, label, model, live: false });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();
   }
@@ -331,9 +385,11 @@ export class MonitorController {
   private async select(id: string, reread = false): Promise<void> {
     if (id.startsWith('dir:') && (reread || !this.runs.has(id))) return this.openFolder(id.slice(4));
     if (id.startsWith('file:') && (reread || !this.runs.has(id))) return this.openTraceFile(id.slice(5));
+    if (this.letGo.has(id) && !this.runs.has(id)) return this.fetchAgain(id);
     const run = this.runs.get(id);
     const panel = await this.ensurePanel();
     if (!run) return;
+    if (run.used !== undefined) run.used = ++this.uses;
     this.shown = id;
     this.symbols = undefined; // the model may have changed since
     panel.setModel(run.model, run.label, run.live);
@@ -343,6 +399,7 @@ export class MonitorController {
   private async refreshSources(): Promise<void> {
     const panel = await this.ensurePanel();
     const options: SourceOption[] = [...this.runs.values()].map((r) => ({ id: r.id, label: r.label }));
+    for (const [id, label] of this.letGo) if (!this.runs.has(id)) options.push({ id, label });
     const folders = [...new Set(this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv')).map(dirOf))].sort();
     for (const f of folders) if (!this.runs.has(`dir:${f}`)) options.push({ id: `dir:${f}`, label: `Workspace logs: ${f || '(root)'}` });
     const traceFiles = this.deps.workspace.allFiles().filter((f) => f.endsWith('.jsonl')).sort().slice(0, MAX_FILES);

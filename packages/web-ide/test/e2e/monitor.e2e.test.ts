@@ -679,6 +679,26 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('#monitor-play').click();
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 5000 }).toBe('true');
     console.log(`[monitor e2e] live channel: ${liveChannel}; live records streamed: ${streamed}; replay marks: ${replayMarks.length}`);
+
+    // many runs later (here: 7 recorded runs of other jobs, one an unknown one), the page keeps 6
+    // recorded runs: this job's is let go, listed still, and read again from the build service
+    // when picked, the same story; one the service does not know is said and dropped
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    const fixture = readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') }));
+    for (let i = 0; i < 7; i++) {
+      await page.evaluate(({ id, files }) => (window as any).__ide.monitor.showRecorded(id, { label: id, files, problems: [] }), { id: `j-other-${i}`, files: fixture });
+    }
+    const option = (id: string) => page.locator(`.monitor-sources option[value="job:${id}"]`);
+    await expect.poll(() => option(jobId).textContent()).toBe(`Build & Run job ${jobId} · CSV logs · read again when picked`);
+    expect(await option('j-other-0').textContent()).toBe('Build & Run job j-other-0 · CSV logs · read again when picked');
+    expect(await option('j-other-6').textContent()).toBe('Build & Run job j-other-6 · CSV logs');
+    await page.locator('.monitor-sources').selectOption(`job:${jobId}`);
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 20_000 }).toBe(`Build & Run job ${jobId} · CSV logs`);
+    expect(await marksOf(page)).toEqual(replayMarks);
+    await page.locator('.monitor-sources').selectOption('job:j-other-0');
+    await page.locator('.toast', { hasText: 'Build & Run job j-other-0: its logs could not be read again' }).waitFor({ timeout: 10_000 });
+    await expect.poll(() => option('j-other-0').count()).toBe(0);
   }, 240_000);
 });
 
