@@ -444,6 +444,22 @@ int sim_session_line(SimSession *s, char *line) {
             say(&r.expected, "module %s %s", a[0], want ? "running" : "stopped");
             say(&r.actual, got ? "running" : "stopped");
             r.ok = got == want;
+        } else if (strcmp(verb, "expect-count") == 0) {
+            NEED(3);
+            int overruns = strcmp(a[1], "overruns") == 0;
+            const char *what = overruns ? "overruns" : "deadline misses";
+            int64_t want;
+            if (parse_i64(a[2], &want) || want < 0) { r.ok = 0; snprintf(r.error, sizeof r.error, "bad count '%s'", a[2]); break; }
+            OrdSchemaStats st;
+            say(&r.expected, "%s %s == %" PRId64, what, a[0], want);
+            if (sim_world_schema_stats(s->w, a[0], &st) != 0) {
+                say(&r.actual, "no periodic schema %s", a[0]);
+                r.ok = 0;
+                break;
+            }
+            long got = overruns ? st.overruns : st.deadline_misses;
+            say(&r.actual, "%ld", got);
+            r.ok = got == want;
         } else if (strcmp(verb, "expect-local") == 0) {
             NEED(4);
             expect_local(s, a, &r);

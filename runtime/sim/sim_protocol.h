@@ -10,7 +10,8 @@
  *     exec MODULE NS once|always
  *     expect-rule SUP FN RULE 1|0          expect-function SUP FN 1|0
  *     expect-schema NAME 1|0               expect-module MODULE 1|0
- *     expect-local SUP FN LOCAL VALUE      end
+ *     expect-local SUP FN LOCAL VALUE      expect-count SCHEMA deadline-misses|overruns N
+ *     end
  *     quiet                      (no step records but failed expectations and the end: benchmarks)
  * (VALUE in Cactal value syntax, escapes inside strings, never a raw tab), and the harness answers
  * each with one JSON object per line:

@@ -889,6 +889,10 @@ int sim_world_schema_active(const SimWorld *w, const char *schema) {
     return event_schema_active(w, schema);
 }
 
+int sim_world_schema_stats(const SimWorld *w, const char *schema, OrdSchemaStats *out) {
+    return w->ord ? ord_core_stats(w->ord, schema, out) : -1;
+}
+
 int sim_world_module_running(const SimWorld *w, const char *module) {
     for (int i = 0; i < w->nmods; i++)
         if (strcmp(w->mods[i].name, module) == 0)

@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "contract/vocabulary.h"
+#include "ord_core.h"
 
 typedef struct SimWorld SimWorld;
 
@@ -79,6 +80,9 @@ int sim_world_function_running(const SimWorld *w, const char *sup, const char *f
 /** 1 active (periodic: in ORD; event: an active rule of a running function activated it). */
 int sim_world_schema_active(const SimWorld *w, const char *schema);
 int sim_world_module_running(const SimWorld *w, const char *module);
+/** ORD's figures of periodic schema `schema` since the simulation started (ord_core_stats):
+ *  0, or -1 when ORD has no such schema. */
+int sim_world_schema_stats(const SimWorld *w, const char *schema, OrdSchemaStats *out);
 /** The local `name` of running SUP.fn with its type, or NULL. */
 const void *sim_world_local(const SimWorld *w, const char *sup, const char *fn, const char *name,
                             const ContractType **type);

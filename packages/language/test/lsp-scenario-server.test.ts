@@ -163,7 +163,7 @@ describe('contract-language-server: .scenario files', () => {
 
     it('completes keywords, module names, event ports, rules, schemas, locals and the values the rules test', async () => {
         const file = 'tutorial/scenarios/typing.scenario';
-        const lines = ['', 't=1ms MAA:', 'expect rule SUP.action.', 't=2ms MAA:2 ', 'expect schema ', 'expect local SUP.action.', 'start SUP.action(', 'expect ', 't=3ms ORD:0 ', 'exec ', 'start SUP.action(consigne = ', 'expect local SUP.action.failure_data == ', 't=4ms MAA:0 message_type_notification = ', 'finish ', 'finish MAB '];
+        const lines = ['', 't=1ms MAA:', 'expect rule SUP.action.', 't=2ms MAA:2 ', 'expect schema ', 'expect local SUP.action.', 'start SUP.action(', 'expect ', 't=3ms ORD:0 ', 'exec ', 'start SUP.action(consigne = ', 'expect local SUP.action.failure_data == ', 't=4ms MAA:0 message_type_notification = ', 'finish ', 'finish MAB ', 'expect deadline misses ', 'expect deadline ', 'expect overruns s'];
         open(file, lines.join('\n'));
         const labels = async (line: number) => (await completion(file, line, lines[line]!.length)).map((i) => i.label);
 
@@ -179,7 +179,11 @@ describe('contract-language-server: .scenario files', () => {
         expect(await labels(4)).toEqual(expect.arrayContaining(['schemaReceptionMessage', 'schemaCommande1', 'schemaCommande2']));
         expect(await labels(5)).toEqual(['temp_message', 'temp_mess_type', 'failure_data', 'temp_consigne']);
         expect(await labels(6)).toEqual(['consigne']);
-        expect(await labels(7)).toEqual(['rule', 'schema', 'function', 'module', 'local', 'at']);
+        expect(await labels(7)).toEqual(['rule', 'schema', 'function', 'module', 'local', 'deadline misses', 'overruns', 'at']);
+        // deadline misses and overruns: the periodic schemas only (an event schema has no period)
+        expect(await labels(15)).toEqual(['schemaCommande1', 'schemaCommande2']);
+        expect(await labels(16)).toEqual(['misses']);
+        expect(await labels(17)).toEqual(['schemaCommande1', 'schemaCommande2']);
         expect(await labels(8)).toEqual(expect.arrayContaining(['"schemaCommande1"']));
         expect(await labels(9)).toEqual(['MSA', 'MSB', 'MSC', 'MSD']);
         expect(await labels(13)).toEqual(['MAA', 'MAB']); // finish: the asynchronous modules only

@@ -60,4 +60,17 @@ describe('wrong expectations', () => {
         const changes = r.steps.flatMap((s) => s.record.rules).map((c) => `${c.rule} ${c.active} ${c.cause}`);
         expect(changes).toContain('SECOND true MAA:2 value="disconnected"');
     });
+
+    it('a count of deadline misses or overruns that is not ORD\'s fails with both figures', async () => {
+        const project = await prepared(ROBOT);
+        const text = readFileSync(join(ROBOT, 'scenarios', 'modes.scenario'), 'utf8')
+            .replace('expect at 1.1s deadline misses velocityLoop == 1', 'expect at 1.1s deadline misses velocityLoop == 2')
+            .replace('expect overruns velocityLoop == 1', 'expect overruns velocityLoop == 0');
+        const r = await runFile(project, ROBOT, 'modes.scenario', text);
+        const lineOf = (needle: string) => text.split('\n').findIndex((l) => l.includes(needle)) + 1;
+        expect(r.failures.map((f) => f.message)).toEqual([
+            `scenarios/modes.scenario:${lineOf('misses velocityLoop == 2')}: at 1100ms (expect at 1.1s deadline misses velocityLoop == 2): expected deadline misses velocityLoop == 2, but it is 1`,
+            `scenarios/modes.scenario:${lineOf('overruns velocityLoop == 0')}: at 1100ms (expect overruns velocityLoop == 0): expected overruns velocityLoop == 0, but it is 1`,
+        ]);
+    });
 });

@@ -20,6 +20,9 @@ describe('checkScenario on the tutorial', () => {
             'expect module ZZZ running',                       // 11
             'finish MSA',                                      // 12: synchronous
             'finish MAA',                                      // 13: fine
+            'expect deadline misses schemaReceptionMessage == 0', // 14: an event schema
+            'expect overruns schemaCommande3 == 0',             // 15
+            'expect overruns schemaCommande1 == 0',             // 16: fine
         ].join('\n');
         const s = loadScenario('x.scenario', 'x.scenario', text, project.index);
         const d = s.diagnostics.map((x) => `${x.line}:${x.column} ${x.code} ${x.message}`);
@@ -37,6 +40,8 @@ describe('checkScenario on the tutorial', () => {
             "9:13 scenario-unknown-schema no schema 'noSchema' in the project (schemas: schemaReceptionMessage, schemaCommande1, schemaCommande2)",
             "11:15 scenario-unknown-module no module 'ZZZ' in the project (modules: MAA, MAB, MSA, MSB, MSC, MSD)",
             '12:8 scenario-not-asynchronous MSA is a synchronous module: each of its releases ends by itself (exec sets how long one takes); finish ends the run of an asynchronous module',
+            '14:24 scenario-not-periodic schemaReceptionMessage is an event schema: it has no period, so no deadline misses nor overruns (ORD counts those of periodic schemas: schemaCommande1, schemaCommande2)',
+            "15:17 scenario-unknown-schema no schema 'schemaCommande3' in the project (schemas: schemaReceptionMessage, schemaCommande1, schemaCommande2). Did you mean 'schemaCommande1'?",
         ]);
     });
     it('checks the steps that parsed even when others did not: every problem of the file at once', async () => {

@@ -39,6 +39,24 @@ describe('parseScenario', () => {
         expect(p.steps[8]!.kind === 'expect' && p.steps[8]!.expectation.kind === 'local' && p.steps[8]!.expectation.supervisor).toBeUndefined();
     });
 
+    it('reads expect deadline misses S == N and expect overruns S == N; a count is a whole number', () => {
+        const p = parseScenario(['t=1s expect deadline misses velocityLoop == 1', 'expect overruns velocityLoop == 0',
+            'expect deadline velocityLoop == 1', 'expect overruns velocityLoop 1', 'expect overruns velocityLoop == 1.5', 'expect overruns velocityLoop == -1',
+            'expect deadline misses velocityLoop == 2000000000', 'expect overrun velocityLoop == 1'].join('\n'));
+        expect(p.steps.map((s) => s.kind === 'expect' && s.expectation)).toMatchObject([
+            { kind: 'count', what: 'deadline misses', schema: { text: 'velocityLoop', span: { line: 1, column: 29 } }, count: 1 },
+            { kind: 'count', what: 'overruns', schema: { text: 'velocityLoop' }, count: 0 },
+        ]);
+        expect(p.diagnostics.map((d) => `${d.line}:${d.column} ${d.message}`)).toEqual([
+            "3:17 expected 'misses' after 'deadline' (expect deadline misses SCHEMA == N)",
+            "4:30 expected '==' after the schema's name (expect overruns velocityLoop == N)",
+            '5:33 expected a count (a whole number, 0 to 1000000000) after \'==\'',
+            '6:33 expected a count (a whole number, 0 to 1000000000) after \'==\'',
+            '7:40 expected a count (a whole number, 0 to 1000000000) after \'==\'',
+            "8:8 expected what to expect: rule, schema, function, module, local, deadline, overruns, found 'overrun'. Did you mean 'overruns'?",
+        ]);
+    });
+
     it('reads finish M, finish M after TIME and finish M after TIME once', () => {
         const p = parseScenario(['finish MAB', 'finish MAB after 150ms', 't=1s finish MAB after 0 once', 'finish MAB now', 'finish MAB after'].join('\n'));
         expect(p.steps.map((s) => s.kind === 'finish' && [s.module.text, s.afterNs, s.once])).toEqual([['MAB', undefined, undefined], ['MAB', 150e6, false], ['MAB', 0, true]]);

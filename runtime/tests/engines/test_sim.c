@@ -250,6 +250,9 @@ void test_sim_hostile_lines_get_error_records(void) {
         "50\t5\texpect-rule\tSUP\taction",
         "5\t6\texpect-schema\tS\t1",
         "60\t7\texpect-local\tSUP\taction\ttemp_consigne\t{1.0,2.0,3.0}",
+        "61\t8\texpect-count\tNOPE\tdeadline-misses\t0",
+        "62\t9\texpect-count\tschemaCommande1\toverruns\t-3",
+        "63\t10\texpect-count\tschemaCommande1\toverruns",
         "70\t0\tend",
         NULL};
     char *out = run_lines(lines);
@@ -264,7 +267,11 @@ void test_sim_hostile_lines_get_error_records(void) {
     HAS(record(out, 5), "expect-rule takes 4 arguments");
     HAS(record(out, 6), "is before the simulation's");
     HAS(record(out, 7), "\"actual\":\"SUP.action is not running (no local temp_consigne)\"");
-    HAS(record(out, 8), "\"end\":true");
+    HAS(record(out, 8), "\"ok\":false");
+    HAS(record(out, 8), "\"actual\":\"no periodic schema NOPE\"");
+    HAS(record(out, 9), "bad count '-3'");
+    HAS(record(out, 10), "expect-count takes 3 arguments");
+    HAS(record(out, 11), "\"end\":true");
     free(out);
 }
 

@@ -157,7 +157,7 @@ function stepReplacements(step: Step, r: ScenarioRename): Replacement[] {
             break;
         case 'expect': {
             const x = step.expectation;
-            if (x.kind === 'schema') name(x.schema, ['schema']);
+            if (x.kind === 'schema' || x.kind === 'count') name(x.schema, ['schema']);
             else if (x.kind === 'module') name(x.module, MOD);
             else if (x.kind === 'local' && !x.supervisor) {
                 // a bare local names the one function that has it (else the scenario is in error)

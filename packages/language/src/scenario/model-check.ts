@@ -18,18 +18,23 @@ export interface ModelIndex {
     supervisors: Map<string, Supervisor>;
     modules: Map<string, Module>;
     schemas: Set<string>;
+    /** The periodic ones (ORD's: deadlines, overruns); absent means not known (no check). */
+    periodic?: Set<string>;
     /** Enumerations (extension), for values `Mode.AUTO`; absent means none. */
     enums?: Map<string, EnumType>;
 }
 
 export function indexModels(models: Model[]): ModelIndex {
-    const index: ModelIndex = { supervisors: new Map(), modules: new Map(), schemas: new Set(), enums: new Map() };
+    const index: ModelIndex = { supervisors: new Map(), modules: new Map(), schemas: new Set(), periodic: new Set(), enums: new Map() };
     for (const m of models) {
         for (const e of m.elements) {
             if (isEnumType(e)) index.enums!.set(e.name, e);
             else if (isSupervisor(e)) index.supervisors.set(e.name, e);
             else if (isModule(e)) index.modules.set(e.name, e);
-            else if (isSchema(e)) index.schemas.add(e.name);
+            else if (isSchema(e)) {
+                index.schemas.add(e.name);
+                if (e.kind === 'periodic') index.periodic!.add(e.name);
+            }
         }
     }
     return index;
@@ -204,6 +209,12 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
                         return;
                     case 'module':
                         module(e.module);
+                        return;
+                    case 'count':
+                        if (!index.schemas.has(e.schema.text)) error(e.schema.span, 'scenario-unknown-schema', `no schema '${e.schema.text}' in the project (schemas: ${list(index.schemas)})${didYouMean(e.schema.text, index.schemas)}`);
+                        else if (index.periodic && !index.periodic.has(e.schema.text)) {
+                            error(e.schema.span, 'scenario-not-periodic', `${e.schema.text} is an event schema: it has no period, so no deadline misses nor overruns (ORD counts those of periodic schemas: ${list(index.periodic)})`);
+                        }
                         return;
                     case 'local': {
                         let owners: Array<{ sup: Supervisor; f: SupervisionFunction }> = [];

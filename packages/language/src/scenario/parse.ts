@@ -52,7 +52,12 @@ export type Expectation =
     | { kind: 'function'; supervisor: Name; function: Name; running: boolean }
     | { kind: 'module'; module: Name; running: boolean }
     /** `local [SUP.fn.]name == value`: supervisor/function undefined when not written. */
-    | { kind: 'local'; supervisor?: Name; function?: Name; local: Name; value: ScenarioValue };
+    | { kind: 'local'; supervisor?: Name; function?: Name; local: Name; value: ScenarioValue }
+    /** `deadline misses S == N` / `overruns S == N`: the periodic schema's count since the scenario started. */
+    | { kind: 'count'; what: ScheduleCount; schema: Name; count: number };
+
+/** What `expect deadline misses` and `expect overruns` count: ORD's figures of a periodic schema. */
+export type ScheduleCount = 'deadline misses' | 'overruns';
 
 export type StepBody =
     /** An event of a module's (or a supervisor's, or ORD's) out event port. */
@@ -288,6 +293,24 @@ function activeWord(cur: LineCursor, yes: string, no: string): boolean {
     return cur.fail(`expected '${yes}' or '${no}'${found ? `, found '${found}'${didYouMean(found, [yes, no])}` : ''}`);
 }
 
+/** What `expect` may be followed by. */
+const EXPECTED_WHAT = ['rule', 'schema', 'function', 'module', 'local', 'deadline', 'overruns'];
+/** The largest count `expect deadline misses` / `expect overruns` takes. */
+const MAX_COUNT = 1_000_000_000;
+
+/** `SCHEMA == N` after `deadline misses` or `overruns`. */
+function scheduleCount(cur: LineCursor, what: ScheduleCount): Expectation {
+    const schema = cur.ident('a periodic schema name');
+    cur.skipSpaces();
+    if (!cur.text.startsWith('==', cur.pos)) cur.fail(`expected '==' after the schema's name (expect ${what} ${schema.text} == N)`);
+    cur.pos += 2;
+    cur.skipSpaces();
+    const m = /^[0-9]+(?![A-Za-z0-9_.])/.exec(cur.text.slice(cur.pos));
+    if (!m || Number(m[0]) > MAX_COUNT) cur.fail(`expected a count (a whole number, 0 to ${MAX_COUNT}) after '=='`);
+    cur.pos += m[0].length;
+    return { kind: 'count', what, schema, count: Number(m[0]) };
+}
+
 function parseExpectation(cur: LineCursor): Expectation {
     const what = cur.peekWord();
     switch (what) {
@@ -326,8 +349,15 @@ function parseExpectation(cur: LineCursor): Expectation {
                 ? { kind: 'local', supervisor: parts[0], function: parts[1], local: parts[2]!, value }
                 : { kind: 'local', local: parts[0]!, value };
         }
+        case 'deadline':
+            cur.keyword('deadline');
+            if (!cur.keyword('misses')) cur.fail(`expected 'misses' after 'deadline' (expect deadline misses SCHEMA == N)`);
+            return scheduleCount(cur, 'deadline misses');
+        case 'overruns':
+            cur.keyword('overruns');
+            return scheduleCount(cur, 'overruns');
         default:
-            return cur.fail(`expected what to expect: rule, schema, function, module or local${what ? `, found '${what}'${didYouMean(what, ['rule', 'schema', 'function', 'module', 'local'])}` : ''}`);
+            return cur.fail(`expected what to expect: ${EXPECTED_WHAT.join(', ')}${what ? `, found '${what}'${didYouMean(what, EXPECTED_WHAT)}` : ''}`);
     }
 }
 

@@ -129,6 +129,7 @@ export function stepLine(step: Step, index: number, locals: Map<number, Resolved
                 case 'function': return head + ['expect-function', e.supervisor.text, e.function.text, e.running ? '1' : '0'].join('\t');
                 case 'schema': return head + ['expect-schema', e.schema.text, e.active ? '1' : '0'].join('\t');
                 case 'module': return head + ['expect-module', e.module.text, e.running ? '1' : '0'].join('\t');
+                case 'count': return head + ['expect-count', e.schema.text, e.what === 'overruns' ? 'overruns' : 'deadline-misses', String(e.count)].join('\t');
                 case 'local': {
                     const owner = locals.get(index) ?? { supervisor: e.supervisor?.text ?? '', function: e.function?.text ?? '' };
                     return head + ['expect-local', owner.supervisor, owner.function, e.local.text, clean(valueText(e.value))].join('\t');

@@ -13,7 +13,7 @@ export const scenarioMonarch: monaco.languages.IMonarchLanguage = {
   defaultToken: '',
   // the parser's steps (one list: a new step is coloured too), its header words, `at` and `once`
   directives: [...STEP_DIRECTIVES, 'scenario', 'until', 'at', 'once'],
-  expectations: ['rule', 'schema', 'function', 'module', 'local'],
+  expectations: ['rule', 'schema', 'function', 'module', 'local', 'deadline', 'misses', 'overruns'],
   states: ['active', 'inactive', 'running', 'stopped'],
   tokenizer: {
     root: [

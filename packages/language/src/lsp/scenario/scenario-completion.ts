@@ -22,7 +22,7 @@ const IDENT = '[A-Za-z_][A-Za-z0-9_]*';
 const DIRECTIVES: Array<{ label: string; detail: string; header?: boolean }> = [
     { label: 'start', detail: 'start SUP.function(param = value, ...): a control tool starts a supervision function' },
     { label: 'stop', detail: 'stop SUP.function: a control tool stops it' },
-    { label: 'expect', detail: 'expect rule|schema|function|module|local ...: checked at this time' },
+    { label: 'expect', detail: 'expect rule|schema|function|module|local|deadline misses|overruns ...: checked at this time' },
     { label: 'crash', detail: 'crash MODULE: it stops and never acknowledges a release again' },
     { label: 'finish', detail: 'finish MODULE [after TIME [once]]: the asynchronous module\'s own code ends its run (now, or each run that long after its start)' },
     { label: 'exec', detail: 'exec MODULE TIME [once]: execution time of each release of a synchronous module' },
@@ -36,6 +36,8 @@ const EXPECTATIONS: Array<{ label: string; detail: string }> = [
     { label: 'function', detail: 'expect function SUP.function running|stopped' },
     { label: 'module', detail: 'expect module NAME running|stopped' },
     { label: 'local', detail: 'expect local [SUP.function.]name == value' },
+    { label: 'deadline misses', detail: 'expect deadline misses SCHEMA == N: the periodic schema\'s deadline misses (ORD:0) since the scenario started' },
+    { label: 'overruns', detail: 'expect overruns SCHEMA == N: the periodic schema\'s overruns (ticks skipped) since the scenario started' },
 ];
 
 /** A value in the scenarios' spelling (docs/simulation.md: `{1.0, {2, "a"}, 3}`, spaced after commas). */
@@ -192,6 +194,11 @@ export function completeUnguarded(text: string, position: Position, names: Scena
     }
     if (new RegExp(`^(rule\\s+${IDENT}\\.${IDENT}\\.${IDENT}|schema\\s+${IDENT})\\s+[A-Za-z]*$`).test(rest)) return words('active', 'inactive'), items;
     if (new RegExp(`^(function\\s+${IDENT}\\.${IDENT}|module\\s+${IDENT})\\s+[A-Za-z]*$`).test(rest)) return words('running', 'stopped'), items;
+    if (/^(deadline\s+misses|overruns)\s+[A-Za-z0-9_]*$/.test(rest)) {
+        names.schemas.forEach((s, n) => void (s.kind === 'periodic' && add(n, CompletionItemKind.Module, 'periodic schema')));
+        return items;
+    }
+    if (/^deadline\s+[a-z]*$/.test(rest)) return words('misses'), items;
     if (/^schema\s+[A-Za-z0-9_]*$/.test(rest)) {
         names.schemas.forEach((s, n) => add(n, CompletionItemKind.Module, `${s.kind} schema`));
         return items;

@@ -165,7 +165,8 @@ export function hoverUnguarded(text: string, position: Position, names: Scenario
                     }
                     return null;
                 }
-                case 'schema': {
+                case 'schema':
+                case 'count': {
                     const s = names.schemas.get(e.schema.text);
                     return at(e.schema) && s ? answer(schemaHover(s), e.schema.span) : null;
                 }
