@@ -60,9 +60,13 @@ describe('a rename carried into the .scenario files', () => {
 
   it('a schema: expect schema lines follow; an owner-less supervision function, an unknown kind and a bad owner are 400', async () => {
     const p = project('sch');
+    // and expect deadline misses / overruns lines
+    const file = join(p, 'scenarios', 'commutation.scenario');
+    writeFileSync(file, `${readFileSync(file, 'utf8')}expect deadline misses schemaCommande1 == 0\nexpect overruns schemaCommande1 == 0\n`);
     const r = await rename({ project: 'sch', from: 'schemaCommande1', to: 'command1', kind: 'schema' });
     expect(r.status).toBe(200);
     expect(scenario(p, 'commutation.scenario')).toContain('expect schema command1 active\n');
+    expect(scenario(p, 'commutation.scenario')).toContain('expect deadline misses command1 == 0\nexpect overruns command1 == 0\n');
     expect(scenario(p, 'commutation.scenario')).not.toMatch(/\bschemaCommande1\b/);
     expect((await rename({ project: 'sch', from: 'action', to: 'x', kind: 'supervision function' })).status).toBe(400);
     expect((await rename({ project: 'sch', from: 'a', to: 'b', kind: 'rule label' })).status).toBe(400);
