@@ -140,6 +140,7 @@ export class ScenarioSession {
     const lines = [...rules].map(([name, r]) => `expect at ${at} rule ${name} ${r.active ? 'active' : 'inactive'}`);
     const last = steps.at(-1);
     for (const schema of last?.schemas ?? []) lines.push(`expect at ${at} schema ${schema} active`);
+    for (const [schema, n] of deadlineMisses(steps) ?? []) lines.push(`expect at ${at} deadline misses ${schema} == ${n}`);
     return this.text(title) + (lines.length ? `# the state the Simulate panel showed at ${at}\n${lines.join('\n')}\n` : '');
   }
 }
@@ -148,6 +149,25 @@ export interface RuleState {
   active: boolean;
   cause: string;
   timeNs: number;
+}
+
+/**
+ * The deadline misses (ORD:0) of each periodic schema that was released in the steps, from their
+ * records (`ord_release`, `ord_deadline_miss`), in order of first release; undefined when the
+ * steps do not hold every record (the answer left some out: a count would be wrong).
+ */
+export function deadlineMisses(steps: SimulateStep[]): Map<string, number> | undefined {
+  if (!steps.length || steps.some((s) => s.dropped || !s.records)) return undefined;
+  const misses = new Map<string, number>();
+  for (const s of steps) {
+    for (const r of s.records ?? []) {
+      if (r.kind !== 'ord_release' && r.kind !== 'ord_deadline_miss') continue;
+      const schema = /(?:^|\s)schema=([A-Za-z_]\w*)(?:\s|$)/.exec(r.detail)?.[1];
+      if (!schema) continue;
+      misses.set(schema, (misses.get(schema) ?? 0) + (r.kind === 'ord_deadline_miss' ? 1 : 0));
+    }
+  }
+  return misses;
 }
 
 /** Every rule that changed in the steps, with its last state and cause, keyed `SUP.fn.RULE` in order of first change. */

@@ -100,6 +100,24 @@ describe('ScenarioSession', () => {
   });
 });
 
+describe('Save as scenario with deadline misses', () => {
+  const rec = (kind: string, detail: string) => ({ timeNs: 1, module: 'ORD', kind, peer: '', detail });
+  it('pins each released periodic schema\'s deadline misses, 0 included; none when records were left out', () => {
+    const s = new ScenarioSession();
+    s.begin({ supervisor: 'MIS', fn: 'mission', params: '' });
+    s.advance('30ms');
+    const steps = [
+      step({ records: [rec('ord_release', 'schema=goTo cycle=0 tick_ns=1 release_ns=1 release=1'), rec('ord_release', 'schema=other cycle=0 tick_ns=1 release_ns=1 release=2')] }),
+      step({ kind: 'end', records: [rec('ord_deadline_miss', 'schema=goTo cycle=0 tick_ns=1 missing=CTL'), rec('scheduler', 'schema=goTo'), rec('ord_release', 'schema=goTo cycle=1 tick_ns=2 release_ns=2 release=3')] }),
+    ];
+    const text = s.withExpectations(steps);
+    expect(text).toContain('expect at 30ms deadline misses goTo == 1\nexpect at 30ms deadline misses other == 0\n');
+    expect(parseScenario(text).diagnostics).toEqual([]);
+    // a step whose records were cut: no count (it could be wrong)
+    expect(s.withExpectations([steps[0]!, { ...steps[1]!, dropped: 3 }])).not.toContain('deadline misses');
+  });
+});
+
 describe('ScenarioSession.nextChange', () => {
   it('finds the first rule change or action after now, in any step of a look-ahead run', () => {
     const steps = [step({ rules: [{ timeNs: 0, supervisor: 'S', function: 'f', rule: 'A', active: true, cause: 'started' }] }),
