@@ -23,6 +23,7 @@ import { fetchJobLogs, MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type
 import { socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
+import { recordedRunsToLetGo } from './recorded-runs.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
 import { jobOutcome } from './live-follow-protocol.js';
@@ -31,16 +32,6 @@ import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symb
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
-/**
- * Recorded runs (a job's CSV logs, a workspace folder, a trace file) whose model the page keeps:
- * each holds its logs' text and their records (a 60 s run of a 1 kHz schema: some 840,000 records,
- * tens of MB), and an engineer runs Build & Run again and again. Past these, the runs used least
- * recently are let go (the one shown never): a folder or a trace file is read again when picked (as
- * it always is), a job's run stays in the run list and its logs are fetched again from the build
- * service when picked.
- */
-const MAX_RECORDED_RUNS = 6;
-const MAX_RECORDED_RECORDS = 3_000_000;
 /** Longest stretch of folding a recorded run's records without yielding to rendering and input. */
 const INGEST_SLICE_MS = 8;
 /** How long the end of a run waits for its worker to fold the last of the stream. */
@@ -63,7 +54,7 @@ interface Run {
 
 export class MonitorController {
   private panel: MonitorPanel | undefined;
-  /** Jobs' recorded runs let go (MAX_RECORDED_RUNS): id -> their label; fetched again when picked. */
+  /** Jobs' recorded runs let go (recorded-runs.ts): id -> their label; fetched again when picked. */
   private readonly letGo = new Map<string, string>();
   private uses = 0;
   private readonly runs = new Map<string, Run>();
@@ -271,19 +262,17 @@ export class MonitorController {
     return run;
   }
 
-  /** Keeps recorded run `run`, and lets go of the least recently used ones past MAX_RECORDED_RUNS / MAX_RECORDED_RECORDS. */
+  /** Keeps recorded run `run`, and lets go of the least recently used ones past the bounds (recorded-runs.ts). */
   private keepRecorded(run: Run): void {
     run.used = ++this.uses;
     this.runs.set(run.id, run);
     this.letGo.delete(run.id);
-    const recorded = [...this.runs.values()].filter((r) => !r.live && /^(job|dir|file):/.test(r.id)).sort((a, b) => (b.used ?? 0) - (a.used ?? 0));
-    let records = 0;
-    recorded.forEach((r, i) => {
-      records += r.model.recordCount;
-      if (r.id === run.id || r.id === this.shown || (i < MAX_RECORDED_RUNS && records <= MAX_RECORDED_RECORDS)) return;
-      this.runs.delete(r.id);
-      if (r.id.startsWith('job:')) this.letGo.set(r.id, `${r.label} · read again when picked`);
-    });
+    const kept = [...this.runs.values()].map((r) => ({ id: r.id, live: r.live, used: r.used, recordCount: r.model.recordCount }));
+    for (const id of recordedRunsToLetGo(kept, new Set([run.id, ...(this.shown ? [this.shown] : [])]))) {
+      const gone = this.runs.get(id)!;
+      this.runs.delete(id);
+      if (id.startsWith('job:')) this.letGo.set(id, `${gone.label} · read again when picked`);
+    }
   }
 
   /** A job's recorded run that was let go, picked again: its logs fetched again from the build service. */
