@@ -7,6 +7,7 @@
  */
 import { formatTime, parseTimeLiteral, MAX_TIME_NS, STEP_DIRECTIVES } from '@contract-studio/language/scenario';
 import type { SimulateStep } from '../../server/api-types.js';
+import type { MonitorState } from '../monitor/monitor-state.js';
 
 /** A session as the browser keeps it across a reload. */
 export interface SessionSnapshot {
@@ -132,15 +133,16 @@ export class ScenarioSession {
 
   /**
    * The session as a regression test: its text plus, at the current time, the state the
-   * simulator showed (every rule seen, active or inactive; the active schemas).
+   * simulator showed (every rule seen, active or inactive; the active schemas; the deadline misses
+   * of the periodic schemas, from `shown`: the Monitor's state of the same steps).
    */
-  withExpectations(steps: SimulateStep[], title?: string): string {
+  withExpectations(steps: SimulateStep[], shown: SchedulerFigures, title?: string): string {
     const rules = ruleStates(steps);
     const at = formatTime(this.nowNs);
     const lines = [...rules].map(([name, r]) => `expect at ${at} rule ${name} ${r.active ? 'active' : 'inactive'}`);
     const last = steps.at(-1);
     for (const schema of last?.schemas ?? []) lines.push(`expect at ${at} schema ${schema} active`);
-    for (const [schema, n] of deadlineMisses(steps) ?? []) lines.push(`expect at ${at} deadline misses ${schema} == ${n}`);
+    for (const [schema, n] of deadlineMisses(steps, shown) ?? []) lines.push(`expect at ${at} deadline misses ${schema} == ${n}`);
     return this.text(title) + (lines.length ? `# the state the Simulate panel showed at ${at}\n${lines.join('\n')}\n` : '');
   }
 }
@@ -151,23 +153,17 @@ export interface RuleState {
   timeNs: number;
 }
 
+/** What the Monitor folded of the session's periodic schemas (its state of the steps' records). */
+export type SchedulerFigures = Pick<MonitorState, 'periodic'>;
+
 /**
- * The deadline misses (ORD:0) of each periodic schema that was released in the steps, from their
- * records (`ord_release`, `ord_deadline_miss`), in order of first release; undefined when the
- * steps do not hold every record (the answer left some out: a count would be wrong).
+ * The deadline misses (ORD:0) of each periodic schema released in the steps, as the Monitor
+ * counted them from the steps' records; undefined when the steps do not hold every record (the
+ * answer left some out: a count would be wrong).
  */
-export function deadlineMisses(steps: SimulateStep[]): Map<string, number> | undefined {
+export function deadlineMisses(steps: SimulateStep[], shown: SchedulerFigures): Map<string, number> | undefined {
   if (!steps.length || steps.some((s) => s.dropped || !s.records)) return undefined;
-  const misses = new Map<string, number>();
-  for (const s of steps) {
-    for (const r of s.records ?? []) {
-      if (r.kind !== 'ord_release' && r.kind !== 'ord_deadline_miss') continue;
-      const schema = /(?:^|\s)schema=([A-Za-z_]\w*)(?:\s|$)/.exec(r.detail)?.[1];
-      if (!schema) continue;
-      misses.set(schema, (misses.get(schema) ?? 0) + (r.kind === 'ord_deadline_miss' ? 1 : 0));
-    }
-  }
-  return misses;
+  return new Map([...shown.periodic].filter(([, p]) => p.releases > 0).map(([schema, p]) => [schema, p.deadlineMisses]));
 }
 
 /** Every rule that changed in the steps, with its last state and cause, keyed `SUP.fn.RULE` in order of first change. */

@@ -15,7 +15,7 @@ import { MonitorModel } from '../monitor/monitor-model.js';
 import { readSupervisorSymbols } from '../monitor/supervisor-symbols.js';
 import type { SimulateResponse } from '../../server/api-types.js';
 import { formatTime } from '@contract-studio/language/scenario';
-import { ScenarioSession } from './scenario-session.js';
+import { ScenarioSession, type SchedulerFigures } from './scenario-session.js';
 import { SimulatePanel } from './simulate-panel.js';
 import { stepsToTrace } from '@contract-studio/simulator/trace';
 import { STEP_INPUT_FILE } from './step-input.js';
@@ -34,6 +34,8 @@ export class SimulateController {
   readonly session = new ScenarioSession();
   /** The last run's answer (tests read it). */
   last: SimulateResponse | undefined;
+  /** The Monitor's state of `last`'s steps (Save as scenario reads its deadline misses). */
+  private lastShown: SchedulerFigures | undefined;
   /** Runs one after the other: each is the whole session again. */
   private running: Promise<unknown> = Promise.resolve();
 
@@ -178,11 +180,13 @@ export class SimulateController {
     try {
       const r = await api.simulate(this.deps.project(), text);
       this.last = r;
+      this.lastShown = undefined;
       this.panel.showResult(r);
       const failed = r.failures.map((f) => `line ${f.line}: ${f.message}`);
       this.panel.showMessage(r.error ?? `simulated to ${formatTime(r.steps.at(-1)?.timeNs ?? 0)} in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
       const model = new MonitorModel();
       model.pushAll(stepsToTrace(r.steps));
+      this.lastShown = model.live;
       // an answer keeps 200,000 records of all steps (the harness 100,000 of each kind a step): what was left out is said
       const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
       await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}${dropped ? ` (not whole: ${dropped} records left out, from the longest steps on)` : ''}`);
@@ -206,7 +210,7 @@ export class SimulateController {
     if (!p.endsWith('.scenario')) return this.panel.showMessage('the file name must end in .scenario', 'error');
     const project = this.deps.project();
     const rel = project && !p.startsWith(`${project}/`) ? `${project}/${p}` : p;
-    const text = this.session.withExpectations(this.last.steps, `session of ${this.session.start.supervisor}.${this.session.start.fn}`);
+    const text = this.session.withExpectations(this.last.steps, this.lastShown ?? { periodic: new Map() }, `session of ${this.session.start.supervisor}.${this.session.start.fn}`);
     try {
       if (this.deps.workspace.hasFile(rel)) await api.write(rel, text);
       else await api.create(rel, 'file', text);

@@ -94,7 +94,7 @@ describe('ScenarioSession', () => {
     s.advance('1ms');
     const steps = [step({ rules: [{ timeNs: 1e6, supervisor: 'SUP', function: 'action', rule: 'FIRST', active: true, cause: 'elapsed=1000000ns' }] }),
       step({ kind: 'end', rules: [{ timeNs: 1e6, supervisor: 'SUP', function: 'action', rule: 'FIRST', active: false, cause: 'x' }], schemas: ['S1'] })];
-    const text = s.withExpectations(steps);
+    const text = s.withExpectations(steps, { periodic: new Map() });
     expect(text).toContain('expect at 1ms rule SUP.action.FIRST inactive\nexpect at 1ms schema S1 active\n');
     expect(parseScenario(text).diagnostics).toEqual([]);
   });
@@ -110,11 +110,18 @@ describe('Save as scenario with deadline misses', () => {
       step({ records: [rec('ord_release', 'schema=goTo cycle=0 tick_ns=1 release_ns=1 release=1'), rec('ord_release', 'schema=other cycle=0 tick_ns=1 release_ns=1 release=2')] }),
       step({ kind: 'end', records: [rec('ord_deadline_miss', 'schema=goTo cycle=0 tick_ns=1 missing=CTL'), rec('scheduler', 'schema=goTo'), rec('ord_release', 'schema=goTo cycle=1 tick_ns=2 release_ns=2 release=3')] }),
     ];
-    const text = s.withExpectations(steps);
+    // as the Simulate panel does: the Monitor's state of the same steps
+    const shown = (list: SimulateStep[]) => {
+      const model = new MonitorModel();
+      model.pushAll(stepsToTrace(list));
+      return model.live;
+    };
+    const text = s.withExpectations(steps, shown(steps));
     expect(text).toContain('expect at 30ms deadline misses goTo == 1\nexpect at 30ms deadline misses other == 0\n');
     expect(parseScenario(text).diagnostics).toEqual([]);
     // a step whose records were cut: no count (it could be wrong)
-    expect(s.withExpectations([steps[0]!, { ...steps[1]!, dropped: 3 }])).not.toContain('deadline misses');
+    const cut = [steps[0]!, { ...steps[1]!, dropped: 3 }];
+    expect(s.withExpectations(cut, shown(cut))).not.toContain('deadline misses');
   });
 });
 
