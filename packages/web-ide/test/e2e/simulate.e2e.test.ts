@@ -135,7 +135,8 @@ describe('Simulate panel', () => {
     await expect.poll(() => now(page), { timeout: 30_000 }).toBe('6ms');
     expect(await page.locator('.sim-fn').inputValue()).toBe('SUP.action');
     expect(await page.locator('.sim-params').inputValue()).toBe('consigne = {1.0, 2.0, 3.0}');
-    expect(await page.locator('.sim-message').textContent()).toBe('restored the session of SUP.action from before the reload: 2 step(s), at 6ms');
+    // the time is shown before the restored session is simulated again, the message after: waited for
+    await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 30_000 }).toBe('restored the session of SUP.action from before the reload: 2 step(s), at 6ms');
     expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.map((l: { text: string }) => l.text))).toEqual(['finish MAB', 'MAA:2 connection_status = "disconnected"']);
     await expect.poll(() => simRule(page, 'SUP.action.SECOND').getAttribute('class'), { timeout: 30_000 }).toBe('sim-rule active');
     await expect.poll(() => monitorRule(page, 'SUP.action.SECOND').getAttribute('data-active'), { timeout: 10_000 }).toBe('true');
