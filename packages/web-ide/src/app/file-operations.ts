@@ -50,10 +50,11 @@ export class FileOperations {
 
   async newProject(): Promise<void> {
     const { workspace, editors, lsp } = this.d;
-    const hint = this.rootHasContracts()
+    const rootHasContracts = this.rootHasContracts();
+    const hint = rootHasContracts
       ? 'Folder to create. This workspace already holds a project and the language server checks all files together: to work on the new project alone, open its folder with `contract serve <folder>`.'
       : 'Folder to create (empty = the workspace root). Creates datatype, module1, module2, schema, sched and supervisor .contract files.';
-    const folder = await askText('New project from the report templates', this.rootHasContracts() ? 'my-robot' : '', hint, { allowEmpty: !this.rootHasContracts() });
+    const folder = await askText('New project from the report templates', rootHasContracts ? 'my-robot' : '', hint, { allowEmpty: !rootHasContracts });
     // Escape or Cancel: nothing is created (it used to write the templates into an empty workspace's root)
     if (folder === null) return;
     try {

@@ -34,7 +34,10 @@ export function supervisorRows(catalogue: SupervisorCatalogue, s: MonitorState):
     const fns = new Map<string, string[]>();
     for (const [fn, rules] of model ?? []) fns.set(fn, [...rules]);
     const notInModel = new Set<string>();
-    const traceOnly = (key: string): void => void (model && notInModel.add(key));
+    // only when the model has this supervisor: else nothing of it is the model's to compare
+    const traceOnly = (key: string): void => {
+      if (model) notInModel.add(key);
+    };
     for (const r of st?.rules.values() ?? []) {
       const rules = fns.get(r.function);
       if (!rules) {

@@ -32,11 +32,13 @@ export function fuzzyMatch(query: string, candidate: string): FuzzyMatch | undef
   // most candidates of a long query lack one of its characters: a left-to-right scan says so before any table
   for (let k = 0, at = -1; k < m; k++) if ((at = lower.indexOf(q[k]!, at + 1)) < 0) return undefined;
   const nameStart = candidate.lastIndexOf('/') + 1;
-  const charScore = (i: number): number => MATCH + (isBoundary(candidate, i) ? WORD_START : 0) + (i >= nameStart ? IN_NAME : 0);
+  // a character's own score at each position, once (the table below asks for it per query character)
+  const charScore = new Float64Array(n);
+  for (let i = 0; i < n; i++) charScore[i] = MATCH + (isBoundary(candidate, i) ? WORD_START : 0) + (i >= nameStart ? IN_NAME : 0);
   // best[k * n + i]: the best score of q[0..k] with q[k] at i (-Infinity: impossible); from[]: where q[k-1] was
   const best = new Float64Array(m * n).fill(-Infinity);
   const from = new Int32Array(m * n).fill(-1);
-  for (let i = 0; i < n; i++) if (lower[i] === q[0]) best[i] = charScore(i);
+  for (let i = 0; i < n; i++) if (lower[i] === q[0]) best[i] = charScore[i]!;
   for (let k = 1; k < m; k++) {
     // the best of row k-1 at positions before i-1, and where it is
     let prefixBest = -Infinity;
@@ -53,7 +55,7 @@ export function fuzzyMatch(query: string, candidate: string): FuzzyMatch | undef
       const apart = prefixBest;
       if (adjacent === -Infinity && apart === -Infinity) continue;
       const takeAdjacent = adjacent >= apart;
-      best[row + i] = charScore(i) + (takeAdjacent ? adjacent : apart);
+      best[row + i] = charScore[i]! + (takeAdjacent ? adjacent : apart);
       from[row + i] = takeAdjacent ? i - 1 : prefixAt;
     }
   }

@@ -195,7 +195,9 @@ export function completeUnguarded(text: string, position: Position, names: Scena
     if (new RegExp(`^(rule\\s+${IDENT}\\.${IDENT}\\.${IDENT}|schema\\s+${IDENT})\\s+[A-Za-z]*$`).test(rest)) return words('active', 'inactive'), items;
     if (new RegExp(`^(function\\s+${IDENT}\\.${IDENT}|module\\s+${IDENT})\\s+[A-Za-z]*$`).test(rest)) return words('running', 'stopped'), items;
     if (/^(deadline\s+misses|overruns)\s+[A-Za-z0-9_]*$/.test(rest)) {
-        names.schemas.forEach((s, n) => void (s.kind === 'periodic' && add(n, CompletionItemKind.Module, 'periodic schema')));
+        names.schemas.forEach((s, n) => {
+            if (s.kind === 'periodic') add(n, CompletionItemKind.Module, 'periodic schema');
+        });
         return items;
     }
     if (/^deadline\s+[a-z]*$/.test(rest)) return words('misses'), items;
