@@ -447,6 +447,7 @@ int sim_session_line(SimSession *s, char *line) {
         } else if (strcmp(verb, "expect-count") == 0) {
             NEED(3);
             int overruns = strcmp(a[1], "overruns") == 0;
+            if (!overruns && strcmp(a[1], "deadline-misses") != 0) { r.ok = 0; snprintf(r.error, sizeof r.error, "bad count kind '%s'", a[1]); break; }
             const char *what = overruns ? "overruns" : "deadline misses";
             int64_t want;
             if (parse_i64(a[2], &want) || want < 0) { r.ok = 0; snprintf(r.error, sizeof r.error, "bad count '%s'", a[2]); break; }

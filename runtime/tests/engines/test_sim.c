@@ -253,6 +253,7 @@ void test_sim_hostile_lines_get_error_records(void) {
         "61\t8\texpect-count\tNOPE\tdeadline-misses\t0",
         "62\t9\texpect-count\tschemaCommande1\toverruns\t-3",
         "63\t10\texpect-count\tschemaCommande1\toverruns",
+        "64\t11\texpect-count\tschemaCommande1\tmisses\t0",
         "70\t0\tend",
         NULL};
     char *out = run_lines(lines);
@@ -271,7 +272,8 @@ void test_sim_hostile_lines_get_error_records(void) {
     HAS(record(out, 8), "\"actual\":\"no periodic schema NOPE\"");
     HAS(record(out, 9), "bad count '-3'");
     HAS(record(out, 10), "expect-count takes 3 arguments");
-    HAS(record(out, 11), "\"end\":true");
+    HAS(record(out, 11), "bad count kind 'misses'");
+    HAS(record(out, 12), "\"end\":true");
     free(out);
 }
 

@@ -125,6 +125,12 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
         if (!f) error(name.span, 'scenario-unknown-function', `supervisor ${sup.name} has no function '${name.text}' (functions: ${list(sup.functions.map((x) => x.name))})${didYouMean(name.text, sup.functions.map((x) => x.name))}`);
         return f;
     };
+    /** Whether the project has schema `text`; when not, the error names those it has. */
+    const schema = (text: string, span: SourceSpan): boolean => {
+        if (index.schemas.has(text)) return true;
+        error(span, 'scenario-unknown-schema', `no schema '${text}' in the project (schemas: ${list(index.schemas)})${didYouMean(text, index.schemas)}`);
+        return false;
+    };
     const module = (name: { text: string; span: SourceSpan }) => {
         if (!index.modules.has(name.text)) error(name.span, 'scenario-unknown-module', `no module '${name.text}' in the project (modules: ${list(index.modules.keys())})${didYouMean(name.text, index.modules.keys())}`);
         return index.modules.get(name.text);
@@ -171,7 +177,7 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
                     if (step.portName) error(step.portName.span, 'scenario-unknown-port', 'ORD\'s events carry the schema name only: write ORD:0 "schema"');
                     if (!step.value) error(step.span, 'scenario-missing-value', 'an ORD event carries a schema name: ORD:0 "schemaName"');
                     else if (step.value.kind !== 'string') value(step.value, { kind: 'primitive', name: 'string' }, 'the schema name of an ORD event');
-                    else if (!index.schemas.has(step.value.value)) error(step.value.span, 'scenario-unknown-schema', `no schema '${step.value.value}' in the project (schemas: ${list(index.schemas)})${didYouMean(step.value.value, index.schemas)}`);
+                    else schema(step.value.value, step.value.span);
                     return;
                 }
                 const owner: Module | Supervisor | undefined = index.modules.get(src) ?? index.supervisors.get(src);
@@ -205,14 +211,13 @@ export function checkScenario(steps: Step[], index: ModelIndex): ScenarioCheck {
                         fn(supervisor(e.supervisor), e.function);
                         return;
                     case 'schema':
-                        if (!index.schemas.has(e.schema.text)) error(e.schema.span, 'scenario-unknown-schema', `no schema '${e.schema.text}' in the project (schemas: ${list(index.schemas)})${didYouMean(e.schema.text, index.schemas)}`);
+                        schema(e.schema.text, e.schema.span);
                         return;
                     case 'module':
                         module(e.module);
                         return;
                     case 'count':
-                        if (!index.schemas.has(e.schema.text)) error(e.schema.span, 'scenario-unknown-schema', `no schema '${e.schema.text}' in the project (schemas: ${list(index.schemas)})${didYouMean(e.schema.text, index.schemas)}`);
-                        else if (index.periodic && !index.periodic.has(e.schema.text)) {
+                        if (schema(e.schema.text, e.schema.span) && index.periodic && !index.periodic.has(e.schema.text)) {
                             error(e.schema.span, 'scenario-not-periodic', `${e.schema.text} is an event schema: it has no period, so no deadline misses nor overruns (ORD counts those of periodic schemas: ${list(index.periodic)})`);
                         }
                         return;
