@@ -12,6 +12,9 @@ import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
 import type { SimulateResponse } from './api-types.js';
 import { MAX_ITEMS_PER_ANSWER } from './simulate-api.js';
+import { stepsToTrace } from '@contract-studio/simulator/trace';
+import { MonitorModel } from '../src/monitor/monitor-model.js';
+import { ScenarioSession } from '../src/simulate/scenario-session.js';
 
 const TUTORIAL = resolve(__dirname, '../../../examples/tutorial');
 let base: string;
@@ -120,6 +123,42 @@ describe('POST /api/simulate', () => {
     expect(r.steps.at(-1)!.dropped).toBe(dropped);
     expect(r.steps.at(-1)!.kind).toBe('end');
     expect(r.steps.at(-1)!.schemas).toEqual(['schemaCommande2']);
+  }, 120_000);
+
+  it('Save as scenario pins ORD\'s overruns as the simulator counts them (every skipped release), and the saved file passes', async () => {
+    // MSA runs 3.5 s in schemaCommande1's first cycle (PERIOD 1s): ORD skips the releases at 1, 2 and 3 s,
+    // tells the first at once and the count when the cycle ends (3.5 s)
+    const session = new ScenarioSession();
+    session.begin({ supervisor: 'SUP', fn: 'action', params: 'consigne = {1.0, 2.0, 3.0}' });
+    session.advance('1ms');
+    expect(session.inject('exec MSA 3.5s once')).toBeUndefined();
+    expect(session.inject('MAA:2 connection_status = "disconnected"')).toBeUndefined();
+    const saveAt = async (until: string) => {
+      session.advance(until);
+      const { status, json } = await post({ scenario: session.text() });
+      expect(status, JSON.stringify(json)).toBe(200);
+      const steps = (json as SimulateResponse).steps;
+      const model = new MonitorModel(); // as the Simulate panel: the Monitor's state of the steps
+      model.pushAll(stepsToTrace(steps));
+      return { text: session.withExpectations(steps, model.live), shown: model.live.periodic.get('schemaCommande1')! };
+    };
+    // mid-cycle: one skip seen, the others not told yet: not pinned, said why
+    const mid = await saveAt('2.5s');
+    expect(mid.shown).toMatchObject({ overruns: 1, overrunning: true, deadlineMisses: 1 });
+    expect(mid.text).toContain('expect at 2500ms deadline misses schemaCommande1 == 1\n# overruns of schemaCommande1 not pinned: its cycle still overran at 2500ms');
+    expect(mid.text).not.toContain('expect at 2500ms overruns');
+    // the cycle ended: 3 skipped releases, as ORD counted them
+    const after = await saveAt('5s');
+    expect(after.shown).toMatchObject({ overruns: 3, overrunning: false, deadlineMisses: 1 });
+    expect(after.text).toContain('expect at 5s deadline misses schemaCommande1 == 1\nexpect at 5s overruns schemaCommande1 == 3\n');
+    for (const saved of [mid.text, after.text]) {
+      const run = await post({ scenario: saved });
+      expect(run.status, JSON.stringify(run.json)).toBe(200);
+      expect((run.json as SimulateResponse).passed, saved).toBe(true);
+    }
+    // and the count is ORD's: one more than the simulator counted fails
+    const wrong = await post({ scenario: after.text.replace('overruns schemaCommande1 == 3', 'overruns schemaCommande1 == 4') });
+    expect((wrong.json as SimulateResponse).passed).toBe(false);
   }, 120_000);
 
   it('needs the session token; hostile bodies get 4xx', async () => {

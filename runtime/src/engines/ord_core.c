@@ -31,7 +31,7 @@ typedef struct SchemaState {
                               activation (kept across deactivation: the module may still run it) */
     int64_t *outstanding_t; /* per module: when that release was sent */
     int held;              /* cycle started, releases wait until no module of it is outstanding */
-    long cycle_overruns;   /* ticks skipped by the current cycle (only the first is traced)  */
+    long cycle_overruns;   /* ticks skipped by the current cycle (the first traced, the count at its end) */
     long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)     */
     char *stuck;           /* per module: its outstanding release was reported stuck */
     OrdSchemaStats stats;
@@ -143,11 +143,19 @@ static void resume_held(OrdCore *c) {
     }
 }
 
+/* the current cycle ends (finished, restarted or deactivated): a cycle that skipped more than one
+   release says how many, so that a reader of the trace counts every skipped release (ORD traces
+   only the first, "cycle still running") */
+static void end_overruns(OrdCore *c, SchemaState *ss) {
+    if (ss->cycle_overruns > 1)
+        trace(c, "overrun: %s cycle ended after %ld skipped releases", ss->s->name, ss->cycle_overruns);
+    ss->cycle_overruns = 0;
+}
+
 static void finish_cycle(OrdCore *c, SchemaState *ss) {
     ss->running = 0;
     ss->stats.completed++;
-    if (ss->cycle_overruns > 1)
-        trace(c, "overrun: %s cycle ended after %ld skipped releases", ss->s->name, ss->cycle_overruns);
+    end_overruns(c, ss);
     fact(c, ss, ORD_FACT_COMPLETE, -1, 0);
     int64_t rt = c->now - ss->cycle_tick;
     if (rt > ss->stats.max_response_ns) ss->stats.max_response_ns = rt;
@@ -275,6 +283,7 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     if (ss->running && ss->held &&
         tick - ss->cycle_tick >= (ss->s->period_ns > ORD_HOLD_LIMIT_NS ? ss->s->period_ns : ORD_HOLD_LIMIT_NS)) {
         /* the held cycle never ran: this tick starts afresh */
+        end_overruns(c, ss);
         ss->stats.overruns++;
         trace(c, "overrun: %s cycle still held, restarted", ss->s->name);
         give_up_waiting(c, ss);
@@ -426,6 +435,7 @@ int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *req
         if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 0);
         return -1;
     }
+    if (ss->running) end_overruns(c, ss);
     ss->active = 0;
     ss->running = 0;
     ss->held = 0; /* modules released and not acked stay outstanding: they may still run */

@@ -319,13 +319,16 @@ void test_ord_held_cycle_gives_up_after_1s(void) {
     ord_core_release_finished(c, 1005 * MS, "E", e0);
     ord_core_release_finished(c, 1005 * MS, "E", e1);
     ord_core_advance(c, 1007 * MS);
-    check_log_filtered(&LOG, (const char *const[]){"release E", "held", "stuck", "gave up", "ignored", "late", NULL},
+    check_log_filtered(&LOG, (const char *const[]){"release E", "held", "stuck", "gave up", "ignored", "late", "overrun", NULL},
                        (const char *const[]){
                            "0us release E (FST)",
                            "2000us cycle of FST held: E still runs a release of an earlier activation",
+                           "5000us overrun: FST cycle still running, release skipped",
                            "1000000us stuck: E has not finished release #1 after 333 periods (its schema's new cycle "
                            "waits for it): does its exec region set *stateindex = -1? (FST)",
                            "stuck E #1 (FST) after 333 periods",
+                           /* the held cycle's count, then the restart's own: 333 + 1, as counted */
+                           "1004000us overrun: FST cycle ended after 333 skipped releases",
                            "1004000us overrun: FST cycle still held, restarted",
                            "1004000us gave up waiting for E release #1 (no ack within 1 s, FST)",
                            "1004000us release E (FST)",
@@ -335,6 +338,36 @@ void test_ord_held_cycle_gives_up_after_1s(void) {
     OrdSchemaStats st;
     ord_core_stats(c, "FST", &st);
     CHECK(st.overruns == 334 && st.held_cycles == 1 && st.completed == 1); /* 5..1001 ms: 333 */
+    ord_core_destroy(c);
+}
+
+/* A cycle deactivated while it overran says how many releases it skipped, as one that finishes
+   does: a reader of the trace counts ORD's overruns from its lines (`contract trace`, the Monitor,
+   Save as scenario), and ORD traces only a cycle's first skipped release. */
+void test_ord_deactivated_overrunning_cycle_tells_its_skipped_releases(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    ord_core_advance(c, 700 * MS);                 /* ticks 200, 400, 600 ms skipped */
+    CHECK(ord_core_deactivate(c, 700 * MS, "SLW", "SUP", 1) == 0);
+    ord_core_release_finished(c, 750 * MS, "G", fake_last_release(&w, "G"));
+    ord_core_activate(c, 800 * MS, "SLW", NULL, 0, "SUP", 2);
+    ord_core_advance(c, 1100 * MS);                 /* one skipped (1000 ms): no count line */
+    CHECK(ord_core_deactivate(c, 1100 * MS, "SLW", "SUP", 2) == 0);
+    check_log_filtered(&LOG, (const char *const[]){"overrun", "activate", NULL},
+                       (const char *const[]){
+                           "0us activate SLW (activation #1 from SUP)",
+                           "200000us overrun: SLW cycle still running, release skipped",
+                           "700000us overrun: SLW cycle ended after 3 skipped releases",
+                           "700000us deactivate SLW (activation #1 from SUP)",
+                           "800000us activate SLW (activation #2 from SUP)",
+                           "1000000us overrun: SLW cycle still running, release skipped",
+                           "1100000us deactivate SLW (activation #2 from SUP)", NULL},
+                       __FILE__, __LINE__);
+    OrdSchemaStats st;
+    ord_core_stats(c, "SLW", &st);
+    CHECK(st.overruns == 4);
     ord_core_destroy(c);
 }
 

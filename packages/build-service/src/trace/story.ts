@@ -8,6 +8,7 @@
 import { formatNanoseconds } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
+import { skippedReleasesOf } from './overrun-count.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -173,10 +174,12 @@ export class StoryTeller {
     tell(r: TraceRecord): string | undefined {
         this.total++;
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
-        // ORD's overruns and held cycles, counted by their line (`scheduler:overrun`, `scheduler:held`)
+        // ORD's overruns (every skipped release, as ORD counts them: overrun-count.ts) and held cycles (by their line)
         if (r.kind === 'scheduler') {
-            const what = (r as KnownRecord).fields['what'];
-            if (what === 'overrun' || what === 'held') this.counts.set(`scheduler:${what}`, (this.counts.get(`scheduler:${what}`) ?? 0) + 1);
+            const fields = (r as KnownRecord).fields;
+            const skipped = skippedReleasesOf(fields);
+            if (skipped) this.counts.set('scheduler:overrun', (this.counts.get('scheduler:overrun') ?? 0) + skipped);
+            if (fields['what'] === 'held') this.counts.set('scheduler:held', (this.counts.get('scheduler:held') ?? 0) + 1);
         }
         if (r.kind === 'unknown') return undefined;
         const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));

@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -154,6 +154,25 @@ describe('reading a log', () => {
         expect(fields('supervisor', 'start module GCS (priority 30) twice')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'set priority of MAA to 84')).toEqual({ what: 'other' });
         expect(fields('supervisor', 'connect GCS:0 -> REC:0')).toEqual({ what: 'other' });
+    });
+
+    it('counts ORD\'s overruns from its lines as ORD counts them: the first skip of a cycle, the rest at its end, each restart of a held cycle', () => {
+        const fields = (event: string, detail: string) => (parseRecordLine('L', 2, `1,w,ORD,${event},,,0,"${detail}"`) as KnownRecord).fields;
+        const lines = [
+            'overrun: SLW cycle still running, release skipped', // 1
+            'overrun: SLW cycle ended after 3 skipped releases', // + 2
+            'overrun: SLW cycle still running, release skipped', // 1: a second cycle, one skip, no end line
+            'overrun: FST cycle still running, release skipped', // 1
+            'overrun: FST cycle ended after 333 skipped releases', // + 332
+            'overrun: FST cycle still held, restarted', // 1
+            'missed tick of SLW (cycle 12)', 'deadline miss: DIA cycle 7 (ORD:0)', 'activate SLW (activation #2 from SUP)',
+        ];
+        const told = lines.map((l) => fields('scheduler', l) as Record<string, unknown>);
+        expect(told.reduce((n, f) => n + skippedReleasesOf(f), 0)).toBe(338); // 3 + 1 + 333 + 1
+        expect(told.map(overrunningAfter)).toEqual([true, false, true, true, false, false, undefined, undefined, undefined]);
+        // a forged count adds nothing it cannot stand for: not a number, unsafe, zero or one
+        for (const skipped of ['3', 2 ** 60, 0, 1, -5, Number.NaN]) expect(skippedReleasesOf({ what: 'overrun_ended', skipped })).toBe(0);
+        expect(fields('scheduler', 'overrun: SLW cycle ended after 99999999999999999999 skipped releases')).not.toMatchObject({ skipped: expect.any(Number) });
     });
 
     it('names the hold record that only confirms an action line, with the runtime\'s flow hold names', () => {
@@ -432,7 +451,8 @@ describe('reading a log', () => {
             '+0.000005s ORD  warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)',
             '+0.000006s ORD  (an ORD line this reader does not know) reboot the drone',
         ]);
-        expect(ord.at(-1)).toContain(', 1 overrun, 0 held cycles, '); // the summary counts the overrun (once: its end is the same one)
+        // the summary counts every skipped release, as ORD does: the first line is one, its end says 2 in all
+        expect(ord.at(-1)).toContain(', 2 overruns, 0 held cycles, ');
         // a cycle ORD released late (it woke 13.4 ms after the tick): said, not only the module that then missed
         const late = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
             '3000000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=66 tick_ns=2986600000 release_ns=3000000000 release=300',

@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { dataDropReason, isRule, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { dataDropReason, isRule, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
   type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FunctionState, type FlowCount, type SchemaActivation, type ModuleState,
@@ -64,7 +64,7 @@ function moduleState(s: MonitorState, name: string, t: Ns): ModuleState | undefi
 function periodic(s: MonitorState, schema: string): PeriodicState | undefined {
   return entry(s, s.periodic, schema, () => ({
     releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
-    histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, missedTicks: 0, recentMisses: [], recentOverruns: [],
+    histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, overrunning: false, missedTicks: 0, recentMisses: [], recentOverruns: [],
   }));
 }
 
@@ -117,6 +117,7 @@ export function foldComplete(s: MonitorState, schema: string | undefined, resp: 
   const p = periodic(s, schema);
   if (!p) return;
   p.completions++;
+  p.overrunning = false;
   p.lastResponseNs = resp;
   p.sumResponseNs += resp;
   if (resp > p.maxResponseNs) p.maxResponseNs = resp;
@@ -248,12 +249,16 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         } else if (what === 'deactivate') {
           sc.active = false;
           sc.since = t;
+          const p = s.periodic.get(schema);
+          if (p) p.overrunning = false;
         } else sc.conflicts++;
-      } else if (what === 'overrun') {
+      } else if (what === 'overrun' || what === 'overrun_ended') {
+        // every skipped release, as ORD counts them (overrun-count.ts); a mark at each cycle's first
         const p = periodic(s, schema);
         if (!p) return;
-        p.overruns++;
-        pushBounded(p.recentOverruns, { t, cycle: p.lastCycle }, RECENT_MARKS);
+        p.overruns += skippedReleasesOf(f);
+        p.overrunning = overrunningAfter(f) ?? p.overrunning;
+        if (what === 'overrun') pushBounded(p.recentOverruns, { t, cycle: p.lastCycle }, RECENT_MARKS);
       } else if (what === 'missed_tick') {
         const p = periodic(s, schema);
         if (p) p.missedTicks++;

@@ -79,7 +79,10 @@ export interface PeriodicState {
   sumResponseNs: number;
   histogram: number[];
   deadlineMisses: number;
+  /** Every release ORD skipped (as ORD counts them: its lines tell a cycle's first skip, and the rest when the cycle ends). */
   overruns: number;
+  /** The current cycle has skipped a release and has not ended: `overruns` counts 1 for it until it does. */
+  overrunning: boolean;
   missedTicks: number;
   /** The last misses and overruns (bounded), for the timeline marks. */
   recentMisses: MissMark[];

@@ -134,7 +134,7 @@ export class ScenarioSession {
   /**
    * The session as a regression test: its text plus, at the current time, the state the
    * simulator showed (every rule seen, active or inactive; the active schemas; the deadline misses
-   * of the periodic schemas, from `shown`: the Monitor's state of the same steps).
+   * and overruns of the periodic schemas, from `shown`: the Monitor's state of the same steps).
    */
   withExpectations(steps: SimulateStep[], shown: SchedulerFigures, title?: string): string {
     const rules = ruleStates(steps);
@@ -142,7 +142,12 @@ export class ScenarioSession {
     const lines = [...rules].map(([name, r]) => `expect at ${at} rule ${name} ${r.active ? 'active' : 'inactive'}`);
     const last = steps.at(-1);
     for (const schema of last?.schemas ?? []) lines.push(`expect at ${at} schema ${schema} active`);
-    for (const [schema, n] of deadlineMisses(steps, shown) ?? []) lines.push(`expect at ${at} deadline misses ${schema} == ${n}`);
+    for (const [schema, c] of schedulerCounts(steps, shown) ?? []) {
+      lines.push(`expect at ${at} deadline misses ${schema} == ${c.deadlineMisses}`);
+      lines.push(c.overruns === undefined
+        ? `# overruns of ${schema} not pinned: its cycle still overran at ${at} (ORD tells how many releases it skipped when the cycle ends)`
+        : `expect at ${at} overruns ${schema} == ${c.overruns}`);
+    }
     return this.text(title) + (lines.length ? `# the state the Simulate panel showed at ${at}\n${lines.join('\n')}\n` : '');
   }
 }
@@ -157,13 +162,15 @@ export interface RuleState {
 export type SchedulerFigures = Pick<MonitorState, 'periodic'>;
 
 /**
- * The deadline misses (ORD:0) of each periodic schema released in the steps, as the Monitor
- * counted them from the steps' records; undefined when the steps do not hold every record (the
- * answer left some out: a count would be wrong).
+ * The deadline misses (ORD:0) and overruns (skipped releases) of each periodic schema released in
+ * the steps, as the Monitor counted them from the steps' records; undefined when the steps do not
+ * hold every record (the answer left some out: a count would be wrong). A schema whose cycle still
+ * overruns has no overrun count: ORD tells the cycle's skipped releases when it ends.
  */
-export function deadlineMisses(steps: SimulateStep[], shown: SchedulerFigures): Map<string, number> | undefined {
+export function schedulerCounts(steps: SimulateStep[], shown: SchedulerFigures): Map<string, { deadlineMisses: number; overruns?: number }> | undefined {
   if (!steps.length || steps.some((s) => s.dropped || !s.records)) return undefined;
-  return new Map([...shown.periodic].filter(([, p]) => p.releases > 0).map(([schema, p]) => [schema, p.deadlineMisses]));
+  return new Map([...shown.periodic].filter(([, p]) => p.releases > 0)
+    .map(([schema, p]) => [schema, { deadlineMisses: p.deadlineMisses, ...(p.overrunning ? {} : { overruns: p.overruns }) }]));
 }
 
 /** Every rule that changed in the steps, with its last state and cause, keyed `SUP.fn.RULE` in order of first change. */

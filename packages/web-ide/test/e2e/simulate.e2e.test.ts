@@ -112,8 +112,8 @@ describe('Simulate panel', () => {
     expect(saved).toContain('t=1ms MAA:2 connection_status = "disconnected"');
     expect(saved).toContain('expect at 1ms rule SUP.action.SECOND active');
     expect(saved).toContain('expect at 1ms rule SUP.action.FIRST inactive');
-    // the periodic schema released by then: its deadline misses pinned (none)
-    expect(saved).toContain('expect at 1ms deadline misses schemaCommande1 == 0');
+    // the periodic schema released by then: its deadline misses and overruns pinned (none)
+    expect(saved).toContain('expect at 1ms deadline misses schemaCommande1 == 0\nexpect at 1ms overruns schemaCommande1 == 0\n');
     // stepping on by a time: the session runs on, the saved file is unchanged
     await page.fill('.sim-time', '+5ms');
     await page.click('.sim-advance');
