@@ -59,14 +59,17 @@ function whereEditedOutside(existing: string, file: string, recordedLines: strin
     return { line, where: `first line that differs from the regenerated file: ${line}` };
 }
 
-/** Files under `root` holding protected-region markers (the generator's files when no manifest says so); links are skipped. */
-function scanGeneratedFiles(tree: OutputTree, root: string): string[] {
+/**
+ * Files under `root` holding protected-region markers (the generator's files when no manifest says
+ * so), but those in `skip` (generated again: not read); links are skipped.
+ */
+function scanGeneratedFiles(tree: OutputTree, root: string, skip: ReadonlySet<string>): string[] {
     const found: string[] = [];
     const walk = (rel: string) => {
         for (const entry of tree.list(rel) ?? []) {
             const child = posix.join(rel, entry.name);
             if (entry.isDirectory()) walk(child);
-            else if (entry.isFile()) {
+            else if (entry.isFile() && !skip.has(child)) {
                 let text: string | undefined;
                 try {
                     text = tree.read(child, 4_000_000);
@@ -161,6 +164,21 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
 
+    // the generator's files before this generation: the manifest's, else (none, or unreadable) the
+    // files holding protected regions, found before writing (a new tree has none: nothing is listed or
+    // read back); a file generated again is no candidate for removal and is not read
+    let previousFiles: string[] = [];
+    if (loaded.manifest) {
+        previousFiles = [...loaded.manifest.files.keys()].sort();
+    } else {
+        const root = options.managedRoot ?? 'generated';
+        try {
+            previousFiles = scanGeneratedFiles(tree, root, produced);
+        } catch (e) {
+            recordFailure(report, refusals, root, e, 'not scanned for files of deleted entities');
+        }
+    }
+
     const listings = new Map<string, Set<string>>();
     /** Whether `rel` may exist: one directory listing per folder instead of one failed open per new file. */
     const mayExist = (rel: string): boolean => {
@@ -245,17 +263,6 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
     }
 
-    let previousFiles: string[] = [];
-    if (loaded.manifest) {
-        previousFiles = [...loaded.manifest.files.keys()].sort();
-    } else {
-        const root = options.managedRoot ?? 'generated';
-        try {
-            previousFiles = scanGeneratedFiles(tree, root);
-        } catch (e) {
-            recordFailure(report, refusals, root, e, 'not scanned for files of deleted entities');
-        }
-    }
     for (const path of previousFiles) {
         if (produced.has(path)) continue;
         try {
