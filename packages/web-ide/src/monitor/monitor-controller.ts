@@ -29,6 +29,7 @@ import { RemoteMonitorModel } from './remote-model.js';
 import { jobOutcome } from './live-follow-protocol.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
+import { NOT_IN_MODEL_LONG } from './panel-text.js';
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
@@ -416,7 +417,7 @@ export class MonitorController {
     const loc = ruleAt ?? locations.get(`${sup}.${fn}`);
     const path = loc && this.deps.workspace.pathOf(loc.uri);
     if (!loc || !path) {
-      toast('warning', `${sup}.${fn} is not in the model: renamed or removed since this run (the Monitor shows what the run recorded)`);
+      toast('warning', `${sup}.${fn} is ${NOT_IN_MODEL_LONG} (the Monitor shows what the run recorded)`);
       return;
     }
     if (!ruleAt) toast('info', `Rule ${rule} is not in ${sup}.${fn} any more (renamed or removed since this run): its function is shown`);

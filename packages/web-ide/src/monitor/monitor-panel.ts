@@ -11,7 +11,6 @@
  * dirty: it redraws at most once per animation frame, and only what changed.
  */
 import './monitor.css';
-import { readableCause } from '@contract-studio/build-service/trace';
 import { h } from '../util/dom.js';
 import type { ArchSchema } from '../lsp/architecture-model.js';
 import type { ArchitectureView } from '../views/architecture-view.js';
@@ -21,13 +20,11 @@ import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { flowDropText, fmtT, followButton, namesPastBoundText, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { NOT_IN_MODEL, flowDropText, fmtT, followButton, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
 /** What marks a supervisor, function or rule the run names and the model does not (supervisor-rows.ts). */
-const NOT_IN_MODEL = '(not in the model)';
-const NOT_IN_MODEL_LONG = 'not in the model: renamed or removed since this run';
 /** Width of the rules' name column, in characters: the longest name of the supervisor within these (longer ones are cut, whole in the tooltip). */
 const RULE_NAME_MIN_CH = 12;
 const RULE_NAME_MAX_CH = 28;
@@ -386,14 +383,14 @@ export class MonitorPanel {
             return b;
           });
           setAttr(el, 'data-active', String(!!rs?.active));
-          const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
+          const texts = ruleTexts(fn, rule, rs, gone);
           // a plain button (it opens the rule): its name says its state, no aria-pressed
-          setAttr(el, 'aria-label', `${ruleAccessibleName(rule, rs, cause)}${gone ? `, ${NOT_IN_MODEL_LONG}` : ''}`);
+          setAttr(el, 'aria-label', texts.label);
           setAttr(el, 'data-in-model', String(!gone));
-          setText(el.children[2] as HTMLElement, rs && !rs.active ? `off ${cause}` : cause);
+          setText(el.children[2] as HTMLElement, texts.shown);
           setText(el.children[3] as HTMLElement, rs ? fmtT(rs.since) : '');
           // the cause is cut to the row's width: whole in the tooltip (and in the text read out)
-          setAttr(el, 'title', `${fn}.${rule}${rs ? ` ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)} ${cause}` : ': not active yet'}${gone ? ` · ${NOT_IN_MODEL_LONG}: click to open its function` : ' · click to open it in its .contract file'}`);
+          setAttr(el, 'title', texts.title);
           setAttr(el, 'data-cause', rs?.cause ?? '');
           setAttr(el, 'data-since', rs ? String(rs.since) : '');
           children.push(el);

@@ -1,6 +1,6 @@
 import { describe, it, expect } from 'vitest';
 import { parseRecordLine } from '@contract-studio/build-service/trace';
-import { flowDropText, followButton, ruleAccessibleName, timeReadout } from './panel-text.js';
+import { NOT_IN_MODEL_LONG, flowDropText, followButton, ruleTexts, timeReadout } from './panel-text.js';
 import { MonitorModel } from './monitor-model.js';
 import { histogramMarkers } from './response-histogram.js';
 import { markTooltip } from './marks-strip.js';
@@ -66,11 +66,19 @@ describe('the follow button and the rules say their state in words, not as press
     }
   });
 
-  it("a rule's name says whether it is active, since when and why", () => {
-    expect(ruleAccessibleName('SECOND', { active: true, since: 2.010325e9 }, '← MAA:2 = "disconnected" → schemaCommande1'))
-      .toBe('SECOND, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1');
-    expect(ruleAccessibleName('FIRST', { active: false, since: 2.010325e9 }, '← MAA:2 = "disconnected"')).toBe('FIRST, inactive since +2.010325 s ← MAA:2 = "disconnected"');
-    expect(ruleAccessibleName('THIRD', undefined, '')).toBe('THIRD, not active yet');
+  it("a rule's row says whether it is active, since when and why, and what a click does; a rule the model lost says so", () => {
+    const second = { active: true, since: 2.010325e9, cause: 'MAA:2 value="disconnected"', started: ['schemaCommande1'] };
+    expect(ruleTexts('action', 'SECOND', second, false)).toEqual({
+      shown: '← MAA:2 = "disconnected" → schemaCommande1',
+      label: 'SECOND, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1',
+      title: 'action.SECOND active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1 · click to open it in its .contract file',
+    });
+    // inactive: what it started is no longer said; the row says `off`
+    expect(ruleTexts('action', 'FIRST', { ...second, active: false }, false)).toMatchObject({ shown: 'off ← MAA:2 = "disconnected"', label: 'FIRST, inactive since +2.010325 s ← MAA:2 = "disconnected"' });
+    expect(ruleTexts('action', 'THIRD', undefined, false)).toEqual({ shown: '', label: 'THIRD, not active yet', title: 'action.THIRD: not active yet · click to open it in its .contract file' });
+    const gone = ruleTexts('action', 'OLD', second, true);
+    expect(gone.label).toBe(`OLD, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1, ${NOT_IN_MODEL_LONG}`);
+    expect(gone.title).toContain(`· ${NOT_IN_MODEL_LONG}: click to open its function`);
   });
 });
 

@@ -1,8 +1,9 @@
 /**
  * The Monitor panel's words (monitor-panel.ts), as pure functions of what it shows: the time
- * readout, the follow button, a rule's accessible name. Kept apart so that they are tested
+ * readout, the follow button, a rule's row (its cause, accessible name and tooltip). Kept apart so that they are tested
  * without a page (panel-text.test.ts).
  */
+import { readableCause } from '@contract-studio/build-service/trace';
 import { MAX_NAMES, type FlowCount, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
@@ -52,15 +53,33 @@ export function followButton(live: boolean, following: boolean): FollowButton {
   };
 }
 
-/**
- * A rule's accessible name: its state said in words (a lit rule is a plain button that opens the
- * rule, not a toggle): `SECOND, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1`,
- * `FIRST, inactive since +2.010325 s ← MAA:2 = "disconnected"`, `THIRD, not active yet`.
- * `cause` is the row's shown cause (`← ...`, `→ ...` while active).
- */
-export function ruleAccessibleName(rule: string, rs: Pick<RuleState, 'active' | 'since'> | undefined, cause: string): string {
-  if (!rs) return `${rule}, not active yet`;
-  return `${rule}, ${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)}${cause ? ` ${cause}` : ''}`;
+/** Marks a supervisor, function or rule the run names and the model no longer has. */
+export const NOT_IN_MODEL = '(not in the model)';
+export const NOT_IN_MODEL_LONG = 'not in the model: renamed or removed since this run';
+
+export interface RuleTexts {
+  /** The shown cause: `← MAA:2 = "disconnected" → schemaCommande1` (what it started, while active), `off ← ...` once inactive, '' before. */
+  shown: string;
+  /**
+   * Its accessible name, the state said in words (a lit rule is a plain button that opens the
+   * rule, not a toggle): `SECOND, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1`,
+   * `FIRST, inactive since +2.010325 s ← MAA:2 = "disconnected"`, `THIRD, not active yet`, and
+   * `, not in the model: ...` for a rule the model no longer has.
+   */
+  label: string;
+  /** The tooltip: the whole cause (the row cuts it) and what a click does. */
+  title: string;
+}
+
+/** The words of rule `fn.rule`'s row; `gone`: the model no longer has it. */
+export function ruleTexts(fn: string, rule: string, rs: Pick<RuleState, 'active' | 'since' | 'cause' | 'started'> | undefined, gone: boolean): RuleTexts {
+  const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
+  const state = rs ? `${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)}${cause ? ` ${cause}` : ''}` : 'not active yet';
+  return {
+    shown: rs && !rs.active ? `off ${cause}` : cause,
+    label: `${rule}, ${state}${gone ? `, ${NOT_IN_MODEL_LONG}` : ''}`,
+    title: `${fn}.${rule}${rs ? ` ${state}` : `: ${state}`}${gone ? ` · ${NOT_IN_MODEL_LONG}: click to open its function` : ' · click to open it in its .contract file'}`,
+  };
 }
 
 /**
