@@ -16,7 +16,7 @@ import { JobService } from './job-service.js';
 import { BwrapSandbox } from './sandbox/bwrap.js';
 import { forgetSweptParents, jobCgroupName, LEGACY_AGE_MS, planCgroupSweep, sweepStaleCgroups } from './sandbox/cgroup-sweep.js';
 import type { ProcessOwner } from './sandbox/process-owner.js';
-import { processStartTime } from './sandbox/docker-owner.js';
+import { processStartTime } from './sandbox/process-owner.js';
 import { readRealtimeFacts } from './sandbox/realtime.js';
 import { honestProgram, makeProject } from './test-support/c-projects.js';
 import { killServiceMidRun } from './test-support/child-process-service.js';

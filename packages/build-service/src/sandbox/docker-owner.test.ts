@@ -3,7 +3,8 @@ import { mkdtempSync, readFileSync, rmSync } from 'node:fs';
 import { hostname, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { describe, expect, test } from 'vitest';
-import { currentOwner, judgeOwner, LABEL_OWNER, LABEL_OWNER_BOOT, LABEL_OWNER_PIDNS, ownerLabels, processStartTime, type ServiceOwner } from './docker-owner.js';
+import { currentOwner, judgeOwner, LABEL_OWNER, LABEL_OWNER_BOOT, LABEL_OWNER_PIDNS, ownerLabels, type ServiceOwner } from './docker-owner.js';
+import { isProcessAlive, ownerProcessState, processStartTime } from './process-owner.js';
 import { DEFAULT_SWEEP_POLICY, planSweep, type SeenContainer, type SeenVolume } from './docker-sweep.js';
 
 /** A real process that is gone: its pid and the start time it had. */
@@ -87,6 +88,10 @@ describe('owner of a container or volume', () => {
     // our own pid with another start time: the pid was reused by a newer process
     const recycled: ServiceOwner = { ...self, startTime: String(Number(self.startTime) - 1) };
     expect(judgeOwner(ownerLabels(recycled, 'job', 'j'), self)).toMatchObject({ state: 'dead', why: expect.stringMatching(/newer process/) });
+    // the same check judges a job cgroup's or a work folder's owner tag (process-owner.ts)
+    expect([ownerProcessState(self.pid, self.startTime), ownerProcessState(gone.pid, gone.startTime), ownerProcessState(self.pid, recycled.startTime)])
+      .toEqual(['alive', 'gone', 'reused']);
+    expect([isProcessAlive(self.pid, self.startTime), isProcessAlive(gone.pid, gone.startTime), isProcessAlive(self.pid, recycled.startTime)]).toEqual([true, false, false]);
   });
 
   test('another boot is dead; another host or pid namespace cannot be judged; no label is unowned', () => {

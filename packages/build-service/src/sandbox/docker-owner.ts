@@ -10,10 +10,12 @@
  *   contract-studio.owner-instance = a random id per service instance (one process may hold
  *                                 several services, e.g. tests: each closes only its own)
  *   contract-studio.job         = the job id (for the log lines)
+ * Whether the owner's process lives is process-owner.ts's answer, as for the cgroups and work folders.
  */
 import { randomBytes } from 'node:crypto';
 import { readFileSync, readlinkSync } from 'node:fs';
 import { hostname } from 'node:os';
+import { ownerProcessState, processStartTime } from './process-owner.js';
 
 export const LABEL_KIND = 'contract-studio';
 export const LABEL_OWNER = 'contract-studio.owner';
@@ -31,24 +33,6 @@ export interface ServiceOwner {
   pidns: string;
   /** Random per service instance (not part of liveness). */
   instance: string;
-}
-
-/**
- * Field 22 (starttime) of /proc/<pid>/stat, or null when there is no such process or it has
- * ended and waits to be reaped (state Z/X: a zombie service owns nothing any more).
- */
-export function processStartTime(pid: number): string | null {
-  let stat: string;
-  try {
-    stat = readFileSync(`/proc/${pid}/stat`, 'utf8');
-  } catch {
-    return null;
-  }
-  // field 2 (comm) is in parentheses and may hold spaces and ')': fields 3.. follow the last ')'
-  const rest = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
-  if (rest[0] === 'Z' || rest[0] === 'X') return null;
-  const field22 = rest[22 - 3];
-  return field22 && /^\d+$/.test(field22) ? field22 : null;
 }
 
 function readOr(read: () => string, fallback: string): string {
@@ -117,8 +101,8 @@ export function judgeOwner(
   if (boot !== undefined && boot !== self.boot) return { state: 'dead', why: `its service pid ${pid} ran before this machine rebooted` };
   const pidns = labels?.[LABEL_OWNER_PIDNS];
   if (pidns !== undefined && pidns !== self.pidns) return { state: 'elsewhere', why: `its service pid ${pid} is in another pid namespace (${pidns})` };
-  const now = startTimeOf(pid);
-  if (now === null) return { state: 'dead', why: `its service pid ${pid} is gone` };
-  if (now !== startTime) return { state: 'dead', why: `its service pid ${pid} is gone (the pid now belongs to a newer process)` };
+  const state = ownerProcessState(pid, startTime, startTimeOf);
+  if (state === 'gone') return { state: 'dead', why: `its service pid ${pid} is gone` };
+  if (state === 'reused') return { state: 'dead', why: `its service pid ${pid} is gone (the pid now belongs to a newer process)` };
   return { state: 'alive' };
 }

@@ -14,7 +14,8 @@
  * planSweep decides (pure: tested without an engine), sweepOrphans acts and logs one line per item.
  */
 import type Docker from 'dockerode';
-import { judgeOwner, LABEL_JOB, LABEL_KIND, LABEL_OWNER, LABEL_OWNER_INSTANCE, ownerLabelValue, processStartTime, type ServiceOwner } from './docker-owner.js';
+import { judgeOwner, LABEL_JOB, LABEL_KIND, LABEL_OWNER, LABEL_OWNER_INSTANCE, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
+import { processStartTime } from './process-owner.js';
 
 export interface SweepPolicy {
   /** An unowned container that is not running is removed once it is this old. Default 600 (10 min). */

@@ -5,8 +5,7 @@
  * gone or started at another time (a reused pid), `alive` when it runs, `unknown` when it was in
  * another pid namespace (its pid means nothing here): only what a `dead` owner left is removed.
  */
-import { readlinkSync } from 'node:fs';
-import { processStartTime } from './docker-owner.js';
+import { readFileSync, readlinkSync } from 'node:fs';
 
 export interface ProcessOwner {
   pid: number;
@@ -37,9 +36,43 @@ export function ownerTag(owner: ProcessOwner = currentProcessOwner()): string {
   return `${owner.pid}-${owner.startTime}-${owner.pidns}`;
 }
 
+/**
+ * Field 22 (starttime) of /proc/<pid>/stat, or null when there is no such process or it has
+ * ended and waits to be reaped (state Z/X: a zombie service owns nothing any more).
+ */
+export function processStartTime(pid: number): string | null {
+  let stat: string;
+  try {
+    stat = readFileSync(`/proc/${pid}/stat`, 'utf8');
+  } catch {
+    return null;
+  }
+  // field 2 (comm) is in parentheses and may hold spaces and ')': fields 3.. follow the last ')'
+  const rest = stat.slice(stat.lastIndexOf(')') + 2).split(' ');
+  if (rest[0] === 'Z' || rest[0] === 'X') return null;
+  const field22 = rest[22 - 3];
+  return field22 && /^\d+$/.test(field22) ? field22 : null;
+}
+
+/**
+ * The process that was `pid`, started at `startTime`: `alive`, `gone` (no such process, or a
+ * zombie), or `reused` (the pid belongs to a newer process). The one liveness check of every owner:
+ * a job cgroup's and a work folder's tag here, a Docker container's or volume's labels in
+ * docker-owner.ts. `startTimeOf`: how a pid's start time is read (tests give their own).
+ */
+export function ownerProcessState(
+  pid: number,
+  startTime: string,
+  startTimeOf: (pid: number) => string | null = processStartTime,
+): 'alive' | 'gone' | 'reused' {
+  const now = startTimeOf(pid);
+  if (now === null) return 'gone';
+  return now === startTime ? 'alive' : 'reused';
+}
+
 /** Is the process `pid` running, started at `startTime`? */
 export function isProcessAlive(pid: number, startTime: string): boolean {
-  return processStartTime(pid) === startTime;
+  return ownerProcessState(pid, startTime) === 'alive';
 }
 
 /** The owner named by a tag's three parts, judged from `self`'s pid namespace. */
