@@ -151,6 +151,42 @@ describe('monitor model on a recorded tutorial run', () => {
   });
 });
 
+describe('ORD\'s overruns', () => {
+  // ORD's lines for SLW (PERIOD 200 ms): a cycle that skips 3 releases and finishes, one deactivated after
+  // 1 skip (no count line), a held cycle restarted after 5 (its count, then the restart's own)
+  const ORD_LOG = [
+    '0,w,ORD,ord_release,G,,0,schema=SLW cycle=0 tick_ns=0 release_ns=0 release=1',
+    '200000000,w,ORD,scheduler,,,0,"overrun: SLW cycle still running, release skipped"',
+    '700000000,w,ORD,scheduler,,,0,overrun: SLW cycle ended after 3 skipped releases',
+    '700000000,w,ORD,ord_complete,,,0,schema=SLW cycle=0 tick_ns=0 response_ns=700000000',
+    '800000000,w,ORD,ord_release,G,,0,schema=SLW cycle=4 tick_ns=800000000 release_ns=800000000 release=2',
+    '1000000000,w,ORD,scheduler,,,0,"overrun: SLW cycle still running, release skipped"',
+    '1100000000,w,ORD,scheduler,,,0,deactivate SLW (activation #1 from SUP)',
+    '1200000000,w,ORD,scheduler,,,0,activate SLW (activation #2 from SUP)',
+    '1400000000,w,ORD,scheduler,,,0,"overrun: SLW cycle still running, release skipped"',
+    '2400000000,w,ORD,scheduler,,,0,overrun: SLW cycle ended after 5 skipped releases',
+    '2400000000,w,ORD,scheduler,,,0,"overrun: SLW cycle still held, restarted"',
+    '2400000000,w,ORD,ord_release,G,,0,schema=SLW cycle=6 tick_ns=2400000000 release_ns=2400000000 release=3',
+  ].map((l) => parseRecordLine('ORD_1.csv', 2, l));
+  it('counts every skipped release, as ORD does, and knows while a cycle still overruns', () => {
+    const model = new MonitorModel({ checkpointEvery: 2 });
+    model.pushAll(ORD_LOG);
+    const at = (ms: number) => model.stateAt(ms * 1e6).periodic.get('SLW')!;
+    expect([at(100), at(300), at(700), at(1000), at(1100), at(1400), at(2400)].map((p) => [p.overruns, p.overrunning])).toEqual([
+      [0, false], [1, true], [3, false], [4, true], [4, false], [5, true], [3 + 1 + 5 + 1, false],
+    ]);
+    expect(model.live.periodic.get('SLW')!.recentOverruns.map((x) => x.t)).toEqual([200e6, 1000e6, 1400e6, 2400e6]);
+    // on the strip: each first skip, and the count of a cycle that skipped more
+    expect(model.marks.filter((k) => k.kind === 'overrun').map((k) => k.label)).toEqual([
+      'overrun: SLW cycle still running, release skipped', 'overrun: SLW cycle ended after 3 skipped releases',
+      'overrun: SLW cycle still running, release skipped', 'overrun: SLW cycle still running, release skipped',
+      'overrun: SLW cycle ended after 5 skipped releases', 'overrun: SLW cycle still held, restarted',
+    ]);
+    // the same count as `contract trace`'s story
+    expect(renderStory(ORD_LOG).at(-1)).toContain(', 10 overruns, ');
+  });
+});
+
 describe('a deadline miss names what its cycle was waiting for', () => {
   // ORD's log of `contract trace`'s own example (build-service trace.test.ts): GRP does not finish
   // cycle 7, the schema is re-activated, its cycle 0 is held for GRP, then resumes with CAM late

@@ -534,7 +534,8 @@ function markOf({ t, r }: Timed, late: string): Mark | undefined {
   const what = k.fields?.['what'];
   if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}${late}` };
   if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict')) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
-  if (k.kind === 'scheduler' && what === 'overrun') return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
+  // an overrun's first skipped release, and, when the cycle skipped more, its count at its end
+  if (k.kind === 'scheduler' && (what === 'overrun' || what === 'overrun_ended')) return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
   if (k.kind === 'supervisor' && (what === 'function_started' || what === 'function_stopped' || what === 'function_refused')) return { t, kind: 'function', where: k.module, label: k.detail.slice(0, 120) };
   return undefined;
 }
