@@ -58,6 +58,7 @@ describe('contract trace', () => {
             '+0.300000s ORD  deadline miss (ORD:0): S cycle 0 (not finished: MSA)',
             '+0.499000s SUP  undo: deactivate schema R (event schema)',
             '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
+            'schema S: 0 completed cycles, 1 deadline miss, 0 overruns',
             '10 records: 1 module release, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
             // which line, in which file (the control characters of the line itself are not printed)
             'unreadable: SUP_24-Nov-2026-18h30m15s.csv line 6: 1 fields, expected 8',

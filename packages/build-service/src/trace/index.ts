@@ -10,6 +10,7 @@ export { traceFileToLogs, recordOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, 
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 export { schedulerLineFields } from './text-lines.js';
 export { skippedReleasesOf, overrunningAfter } from './overrun-count.js';
+export { durationText } from './duration-text.js';
 export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-holds.js';
 export { renderStory, StoryTeller, dataDropReason, holdText, ownRunEndText, readableCause, missWaitText, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';
 export { MinHeap } from './min-heap.js';

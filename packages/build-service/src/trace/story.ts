@@ -9,6 +9,7 @@ import { formatNanoseconds } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { skippedReleasesOf } from './overrun-count.js';
+import { durationText } from './duration-text.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -128,6 +129,17 @@ export function ownRunEndText(detail: string): string | undefined {
 }
 const RUNNING_FOLLOWED = 65_536;
 
+/** What ORD did of one periodic schema in the run, as the story's schema lines tell it. */
+interface SchemaFigures {
+    completed: number;
+    maxResponseNs: number;
+    misses: number;
+    /** Every skipped release (overrun-count.ts). */
+    overruns: number;
+    held: number;
+    missedTicks: number;
+}
+
 /** The modules released in one cycle and not finished yet; how late ORD sent its first release. */
 interface CycleRunning {
     cycle: string;
@@ -137,7 +149,8 @@ interface CycleRunning {
 
 /**
  * The story told one record at a time, in time order (a streamed run of any length: only the
- * counts are kept): `tell` gives the record's line, if it is told; `summary` the line of counts.
+ * counts are kept): `tell` gives the record's line, if it is told; `schemaLines` each periodic
+ * schema's figures, `summary` the line of counts.
  */
 export class StoryTeller {
     private t0: bigint | undefined;
@@ -169,6 +182,10 @@ export class StoryTeller {
     private readonly runs = new Map<string, string>();
     /** Data flows (at most STORY_FOLLOWED) whose first dropped value was told: later drops are only counted. */
     private readonly droppingFlows = new Set<string>();
+    /** Per periodic schema (at most STORY_FOLLOWED): its figures, told before the counts (schemaLines). */
+    private readonly schemas = new Map<string, SchemaFigures>();
+    /** Schemas past STORY_FOLLOWED: counted in the totals only. */
+    private schemasLeftOut = 0;
 
     /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
     tell(r: TraceRecord): string | undefined {
@@ -181,6 +198,7 @@ export class StoryTeller {
             if (skipped) this.counts.set('scheduler:overrun', (this.counts.get('scheduler:overrun') ?? 0) + skipped);
             if (fields['what'] === 'held') this.counts.set('scheduler:held', (this.counts.get('scheduler:held') ?? 0) + 1);
         }
+        this.countSchema(r);
         if (r.kind === 'unknown') return undefined;
         const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));
         const at = (x: TraceRecordBase) => `${offset(BigInt(x.monoNs) - t0)} ${x.module.padEnd(4)}`;
@@ -321,6 +339,59 @@ export class StoryTeller {
         return missWaitText(this.held.get(schema), c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs);
     }
 
+    /** The figures of schema `name` (undefined past STORY_FOLLOWED schemas). */
+    private schemaFigures(name: unknown): SchemaFigures | undefined {
+        if (typeof name !== 'string' || !name) return undefined;
+        let f = this.schemas.get(name);
+        if (!f) {
+            if (this.schemas.size >= STORY_FOLLOWED) {
+                this.schemasLeftOut++;
+                return undefined;
+            }
+            f = { completed: 0, maxResponseNs: 0, misses: 0, overruns: 0, held: 0, missedTicks: 0 };
+            this.schemas.set(ownString(name), f);
+        }
+        return f;
+    }
+
+    /** A record's share of its periodic schema's figures (ORD's completions, misses, overruns, held cycles, missed ticks). */
+    private countSchema(r: TraceRecord): void {
+        if (r.kind !== 'ord_complete' && r.kind !== 'ord_deadline_miss' && r.kind !== 'scheduler') return;
+        const fields = (r as KnownRecord).fields;
+        if (r.kind === 'ord_complete') {
+            const f = this.schemaFigures(fields['schema']);
+            if (!f) return;
+            f.completed++;
+            const resp = fields['response_ns'];
+            if (typeof resp === 'number' && Number.isFinite(resp) && resp > f.maxResponseNs) f.maxResponseNs = resp;
+        } else if (r.kind === 'ord_deadline_miss') {
+            const f = this.schemaFigures(fields['schema']);
+            if (f) f.misses++;
+        } else {
+            const what = fields['what'];
+            if (what !== 'overrun' && what !== 'overrun_ended' && what !== 'held' && what !== 'missed_tick') return;
+            const f = this.schemaFigures(fields['schema']);
+            if (!f) return;
+            f.overruns += skippedReleasesOf(fields);
+            if (what === 'held') f.held++;
+            if (what === 'missed_tick') f.missedTicks++;
+        }
+    }
+
+    /**
+     * One line per periodic schema ORD completed, missed or overran a cycle of, in name order, told
+     * before the counts: `schema velocityLoop: 560 completed cycles (response max 100.312 ms), 2
+     * deadline misses, 9 overruns, 1 held cycle` (held cycles and ORD's missed ticks when any).
+     */
+    schemaLines(): string[] {
+        const lines = [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([name, f]) =>
+            `schema ${name}: ${plural(f.completed, 'completed cycle')}${f.completed ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
+            `${plural(f.misses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
+            `${f.held ? `, ${plural(f.held, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}`);
+        if (this.schemasLeftOut) lines.push(`(${plural(this.schemasLeftOut, 'record')} of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
+        return lines;
+    }
+
     summary(): string {
         const n = (kind: string) => this.counts.get(kind) ?? 0;
         return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'module release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
@@ -331,7 +402,7 @@ export class StoryTeller {
     }
 }
 
-/** One line per told record, `+S.mmmmmm MODULE what`, then a summary line of counts. */
+/** One line per told record, `+S.mmmmmm MODULE what`, then one line per periodic schema, then a summary line of counts. */
 export function renderStory(records: TraceRecord[]): string[] {
     const teller = new StoryTeller();
     const lines: string[] = [];
@@ -339,6 +410,6 @@ export function renderStory(records: TraceRecord[]): string[] {
         const line = teller.tell(r);
         if (line !== undefined) lines.push(line);
     }
-    lines.push(teller.summary());
+    lines.push(...teller.schemaLines(), teller.summary());
     return lines;
 }

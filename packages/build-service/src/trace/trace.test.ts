@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, StoryTeller, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -255,8 +255,35 @@ describe('reading a log', () => {
             '+0.500000s ORD  deadline miss (ORD:0): S cycle 4',
             '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
+            'schema S: 0 completed cycles, 1 deadline miss, 0 overruns',
             '7 records: 0 module releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
         ]);
+    });
+
+    it('tells each periodic schema\'s figures before the counts: cycles completed with the longest response, misses, every skipped release, held cycles, ORD\'s missed ticks', () => {
+        const text = [CSV_HEADER,
+            '1000,w,ORD,ord_complete,,,0,schema=velocityLoop cycle=0 tick_ns=0 response_ns=2500000',
+            '2000,w,ORD,ord_complete,,,0,schema=velocityLoop cycle=1 tick_ns=0 response_ns=100312000',
+            '3000,w,ORD,ord_deadline_miss,,,0,schema=velocityLoop cycle=2 tick_ns=0',
+            '4000,w,ORD,scheduler,,,0,"overrun: velocityLoop cycle still running, release skipped"',
+            '5000,w,ORD,scheduler,,,0,overrun: velocityLoop cycle ended after 8 skipped releases',
+            '6000,w,ORD,scheduler,,,0,cycle of velocityLoop held: VEL still runs a release of an earlier activation',
+            '7000,w,ORD,scheduler,,,0,missed tick of localisationLoop (cycle 12)',
+            '8000,w,ORD,ord_complete,,,0,schema=localisationLoop cycle=13 tick_ns=0 response_ns=900',
+            '9000,w,ORD,ord_complete,,,0,schema=ALPHA cycle=0 tick_ns=0 response_ns=-5',
+        ].join('\n');
+        const story = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]));
+        expect(story.slice(-4)).toEqual([
+            'schema ALPHA: 1 completed cycle (response max 0 ns), 0 deadline misses, 0 overruns', // a forged negative response is no maximum
+            'schema localisationLoop: 1 completed cycle (response max 900 ns), 0 deadline misses, 0 overruns, 1 missed tick (ORD itself late)',
+            'schema velocityLoop: 2 completed cycles (response max 100.312 ms), 1 deadline miss, 8 overruns, 1 held cycle',
+            '9 records: 0 module releases, 4 completed cycles, 1 deadline miss, 8 overruns, 1 held cycle, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines',
+        ]);
+        // a forged log naming more schemas than the story follows: bounded, and said
+        const many = [CSV_HEADER, ...Array.from({ length: STORY_FOLLOWED + 3 }, (_, i) => `${i + 1},w,ORD,ord_deadline_miss,,,0,schema=S${i} cycle=0 tick_ns=0`)].join('\n');
+        const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text: many }]));
+        expect(told.filter((l) => l.startsWith('schema S'))).toHaveLength(STORY_FOLLOWED);
+        expect(told.at(-2)).toBe(`(3 records of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
     });
 
     it('tells a supervisor\'s start, stop, connect, disconnect and priority claims in the simulator\'s words, and not again the hold records that only confirm them', () => {
@@ -450,6 +477,7 @@ describe('reading a log', () => {
             '+0.000002s ORD  GRP finished release #21 at last (reported stuck, pick)',
             '+0.000005s ORD  warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)',
             '+0.000006s ORD  (an ORD line this reader does not know) reboot the drone',
+            'schema alt: 0 completed cycles, 0 deadline misses, 2 overruns',
         ]);
         // the summary counts every skipped release, as ORD does: the first line is one, its end says 2 in all
         expect(ord.at(-1)).toContain(', 2 overruns, 0 held cycles, ');

@@ -4,6 +4,7 @@
  * (grey line), over four decades around CRITICAL_DELAY. When the two are one (PERIOD =
  * CRITICAL_DELAY, as in a control loop), one line and one label say so.
  */
+import { durationText } from '@contract-studio/build-service/trace';
 import { bucketStartNs, HIST_BUCKETS, HIST_PER_DECADE, histogramBucket } from './monitor-state.js';
 
 export function drawHistogram(canvas: HTMLCanvasElement, histogram: readonly number[], criticalNs?: number, periodNs?: number): void {
@@ -84,12 +85,8 @@ export function histogramMarkers(criticalNs: number | undefined, periodNs: numbe
   return out;
 }
 
-export function fmtNs(ns: number): string {
-  if (ns >= 1e9) return `${+(ns / 1e9).toFixed(3)} s`;
-  if (ns >= 1e6) return `${+(ns / 1e6).toFixed(3)} ms`;
-  if (ns >= 1e3) return `${+(ns / 1e3).toFixed(1)} µs`;
-  return `${Math.round(ns)} ns`;
-}
+/** A response time as the Monitor shows it: `2.5 ms` (`contract trace`'s words, duration-text.ts). */
+export const fmtNs = durationText;
 
 /** `1s`, `10ms`, `500us`, `3ns` (the model's time literals) -> ns. */
 export function timeNs(t: string | undefined): number | undefined {
