@@ -83,6 +83,8 @@ describe('the text report\'s times', () => {
         expect(text).toMatch(/58ms {4}ORD\| deadline miss \(ORD:0\): loop cycle 0 \(held: nothing released, B still runs an earlier release\)\n/);
         expect(text).not.toMatch(/deadline miss: loop (cycle \d+ )?\(ORD:0\)/); // ORD's bare line (both forms): told by the record
         expect(textReport([result])).not.toContain('deadline miss'); // not verbose: the rules say it
+        // at the end, each periodic schema's figures, as `contract trace` ends a run's story
+        expect(text).toContain('t=60ms X:0 3\n                  schema loop: 0 completed cycles, 2 deadline misses, 0 overruns, 1 held cycle\n  passed:');
     });
 
     it('--verbose folds ORD\'s periodic releases: each module\'s first after an activation, then a count per step', () => {

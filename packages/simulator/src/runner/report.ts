@@ -108,6 +108,11 @@ class MissTeller {
         }
         return out;
     }
+
+    /** Each periodic schema's figures over the scenario, as `contract trace` ends a run's story. */
+    schemaLines(): string[] {
+        return this.story.schemaLines();
+    }
 }
 
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
@@ -149,6 +154,8 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             if (s.kind === 'event' && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
             if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
         }
+        // what ORD did of each periodic schema in the whole scenario (the counts `expect deadline misses` and `expect overruns` check)
+        if (options.verbose) for (const l of misses.schemaLines()) out.push(`                  ${safe(l)}`);
         if (r.error) out.push(`  ERROR ${safe(r.error)}`);
         const expectations = r.steps.filter((s) => s.kind === 'expect').length;
         out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
