@@ -438,7 +438,7 @@ export class MonitorPanel {
         hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
-          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.completions ? p.sumResponseNs / p.completions : 0)}, max ${fmtNs(p.maxResponseNs)} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`
+          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`
           : 'not released yet');
         setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));
