@@ -143,8 +143,8 @@ static void resume_held(OrdCore *c) {
     }
 }
 
-/* the current cycle ends (finished, restarted or deactivated): a cycle that skipped more than one
-   release says how many, so that a reader of the trace counts every skipped release (ORD traces
+/* the current cycle ends (finished, restarted, deactivated, or ORD stops): a cycle that skipped
+   more than one release says how many, so that a reader of the trace counts every skipped release (ORD traces
    only the first, "cycle still running") */
 static void end_overruns(OrdCore *c, SchemaState *ss) {
     if (ss->cycle_overruns > 1)
@@ -575,6 +575,11 @@ oom:
     snprintf(err, errlen, "out of memory creating ORD");
     ord_core_destroy(c);
     return NULL;
+}
+
+void ord_core_stop(OrdCore *c) {
+    for (int i = 0; i < c->v->nschemas; i++)
+        if (c->st[i].active && c->st[i].running) end_overruns(c, &c->st[i]);
 }
 
 void ord_core_destroy(OrdCore *c) {

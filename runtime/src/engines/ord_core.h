@@ -90,6 +90,9 @@ typedef struct OrdCore OrdCore;
 
 OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *err, size_t errlen);
 void ord_core_destroy(OrdCore *c);
+/** ORD stops (the end of a run): a cycle still running that skipped more than one release says
+ *  how many, as one that ends does, so that the trace gives ORD's count of overruns whole. */
+void ord_core_stop(OrdCore *c);
 
 /** Activates schema `name` at time t with its parameter block (NULL: defaults). Refused (and
  *  ORD:1 emitted) if it shares a module with an active schema, including itself. The first

@@ -290,6 +290,7 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
         }
     }
 out:
+    ord_core_stop(c); /* a cycle still overrunning tells its count (the trace's overruns are ORD's) */
     if (b.record) write_stats(&b, c, stats_path);
     free(b.late);
     free(m);

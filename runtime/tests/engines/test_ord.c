@@ -368,6 +368,13 @@ void test_ord_deactivated_overrunning_cycle_tells_its_skipped_releases(void) {
     OrdSchemaStats st;
     ord_core_stats(c, "SLW", &st);
     CHECK(st.overruns == 4);
+    /* ORD stopped with a cycle overrunning (the end of a run): its count too */
+    ord_core_activate(c, 1200 * MS, "SLW", NULL, 0, "SUP", 3);
+    ord_core_advance(c, 1900 * MS);                 /* held (G still runs #2's release): 1400, 1600, 1800 ms skipped */
+    ord_core_stop(c);
+    CHECK(log_find(&LOG, "1900000us overrun: SLW cycle ended after 3 skipped releases", 0) >= 0);
+    ord_core_stats(c, "SLW", &st);
+    CHECK(st.overruns == 7);
     ord_core_destroy(c);
 }
 

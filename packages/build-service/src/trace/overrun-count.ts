@@ -4,11 +4,11 @@
  * `expect overruns` checks), but it writes one line per cycle, not one per tick:
  * - `overrun: S cycle still running, release skipped` at the cycle's first skip;
  * - `overrun: S cycle ended after N skipped releases` when a cycle that skipped more than one ends
- *   (finished, restarted or deactivated; N counts the first too);
+ *   (finished, restarted, deactivated, or ORD stopped at the end of the run; N counts the first too);
  * - `overrun: S cycle still held, restarted`: one more.
- * Summed over a run's lines, this is ORD's own count, but for a cycle still running when the lines
- * stop: it counts 1 until it ends. Logs written before 2026-12-05 told no count when a cycle was
- * restarted or deactivated.
+ * Summed over a run's lines, this is ORD's own count; while a cycle still overruns, its first
+ * skip counts 1 until it ends (a live run, a simulation stepped to that time). Logs written before
+ * 2026-12-05 told no count when a cycle was restarted or deactivated, or when ORD stopped.
  */
 
 /** How many skipped releases a scheduler line's fields (`what`, `skipped`) add to ORD's overruns. */
