@@ -32,7 +32,7 @@ typedef struct SchemaState {
     int64_t *outstanding_t; /* per module: when that release was sent */
     int held;              /* cycle started, releases wait until no module of it is outstanding */
     long cycle_overruns;   /* ticks skipped by the current cycle (the first traced, the count at its end) */
-    long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)     */
+    long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)    */
     char *stuck;           /* per module: its outstanding release was reported stuck */
     OrdSchemaStats stats;
 } SchemaState;
@@ -144,18 +144,22 @@ static void resume_held(OrdCore *c) {
 }
 
 /* the current cycle ends (finished, restarted, deactivated, or ORD stops): a cycle that skipped
-   more than one release says how many, so that a reader of the trace counts every skipped release (ORD traces
-   only the first, "cycle still running") */
-static void end_overruns(OrdCore *c, SchemaState *ss) {
+   more than one release says how many, and one during which ORD missed more than one tick too,
+   so that a reader of the trace counts them as ORD does (ORD traces only the first of each,
+   "cycle still running", "missed tick of S") */
+static void end_cycle_counts(OrdCore *c, SchemaState *ss) {
     if (ss->cycle_overruns > 1)
         trace(c, "overrun: %s cycle ended after %ld skipped releases", ss->s->name, ss->cycle_overruns);
+    if (ss->cycle_missed > 1)
+        trace(c, "missed ticks: %s cycle ended after %ld missed ticks", ss->s->name, ss->cycle_missed);
     ss->cycle_overruns = 0;
+    ss->cycle_missed = 0;
 }
 
 static void finish_cycle(OrdCore *c, SchemaState *ss) {
     ss->running = 0;
     ss->stats.completed++;
-    end_overruns(c, ss);
+    end_cycle_counts(c, ss);
     fact(c, ss, ORD_FACT_COMPLETE, -1, 0);
     int64_t rt = c->now - ss->cycle_tick;
     if (rt > ss->stats.max_response_ns) ss->stats.max_response_ns = rt;
@@ -283,7 +287,7 @@ static void do_tick(OrdCore *c, SchemaState *ss, int64_t until) {
     if (ss->running && ss->held &&
         tick - ss->cycle_tick >= (ss->s->period_ns > ORD_HOLD_LIMIT_NS ? ss->s->period_ns : ORD_HOLD_LIMIT_NS)) {
         /* the held cycle never ran: this tick starts afresh */
-        end_overruns(c, ss);
+        end_cycle_counts(c, ss);
         ss->stats.overruns++;
         trace(c, "overrun: %s cycle still held, restarted", ss->s->name);
         give_up_waiting(c, ss);
@@ -435,7 +439,7 @@ int ord_core_deactivate(OrdCore *c, int64_t t, const char *name, const char *req
         if (c->io.ack) c->io.ack(c->io.ctx, requester, activation_id, 0);
         return -1;
     }
-    if (ss->running) end_overruns(c, ss);
+    if (ss->running) end_cycle_counts(c, ss);
     ss->active = 0;
     ss->running = 0;
     ss->held = 0; /* modules released and not acked stay outstanding: they may still run */
@@ -579,7 +583,7 @@ oom:
 
 void ord_core_stop(OrdCore *c) {
     for (int i = 0; i < c->v->nschemas; i++)
-        if (c->st[i].active && c->st[i].running) end_overruns(c, &c->st[i]);
+        if (c->st[i].active && c->st[i].running) end_cycle_counts(c, &c->st[i]);
 }
 
 void ord_core_destroy(OrdCore *c) {

@@ -9,7 +9,7 @@ export { splitCsvLine, csvField } from './csv-line.js';
 export { traceFileToLogs, recordOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';
 export { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 export { schedulerLineFields } from './text-lines.js';
-export { skippedReleasesOf, overrunningAfter } from './overrun-count.js';
+export { skippedReleasesOf, overrunningAfter, missedTicksOf } from './ord-counts.js';
 export { durationText } from './duration-text.js';
 export { confirmingHold, flowHoldName, type ConfirmingHold } from './action-holds.js';
 export { renderStory, StoryTeller, dataDropReason, holdText, ownRunEndText, readableCause, missWaitText, LATE_RELEASE_NS, STORY_FOLLOWED } from './story.js';

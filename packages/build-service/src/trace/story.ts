@@ -8,7 +8,7 @@
 import { formatNanoseconds } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
-import { skippedReleasesOf } from './overrun-count.js';
+import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
 import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
@@ -40,7 +40,7 @@ function describeCause(c: RuleCause): string {
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning', 'activation_refused']);
 /* (not told: ORD's `ignored`, `late_ack`, expected when a schema is deactivated while its modules run) */
-const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning',
+const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'missed_ticks_ended', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning',
     'parameterize', 'connect', 'disconnect']);
 
 /** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
@@ -134,7 +134,7 @@ interface SchemaFigures {
     completed: number;
     maxResponseNs: number;
     misses: number;
-    /** Every skipped release (overrun-count.ts). */
+    /** Every skipped release (ord-counts.ts). */
     overruns: number;
     held: number;
     missedTicks: number;
@@ -191,7 +191,7 @@ export class StoryTeller {
     tell(r: TraceRecord): string | undefined {
         this.total++;
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
-        // ORD's overruns (every skipped release, as ORD counts them: overrun-count.ts) and held cycles (by their line)
+        // ORD's overruns (every skipped release, as ORD counts them: ord-counts.ts) and held cycles (by their line)
         if (r.kind === 'scheduler') {
             const fields = (r as KnownRecord).fields;
             const skipped = skippedReleasesOf(fields);
@@ -369,12 +369,12 @@ export class StoryTeller {
             if (f) f.misses++;
         } else {
             const what = fields['what'];
-            if (what !== 'overrun' && what !== 'overrun_ended' && what !== 'held' && what !== 'missed_tick') return;
+            if (what !== 'overrun' && what !== 'overrun_ended' && what !== 'held' && what !== 'missed_tick' && what !== 'missed_ticks_ended') return;
             const f = this.schemaFigures(fields['schema']);
             if (!f) return;
             f.overruns += skippedReleasesOf(fields);
+            f.missedTicks += missedTicksOf(fields);
             if (what === 'held') f.held++;
-            if (what === 'missed_tick') f.missedTicks++;
         }
     }
 

@@ -38,6 +38,7 @@ export const SCHEDULER_LINES: readonly LinePattern[] = [
     { what: 'overrun', re: new RegExp(`^overrun: ${ID} cycle still (running|held)`), keys: ['schema', 'state'] },
     { what: 'overrun_ended', re: new RegExp(`^overrun: ${ID} cycle ended after (\\d+) skipped releases$`), keys: ['schema', 'skipped'] },
     { what: 'missed_tick', re: new RegExp(`^missed tick of ${ID}(?: \\(cycle (\\d+)\\))?$`), keys: ['schema', 'cycle'] },
+    { what: 'missed_ticks_ended', re: new RegExp(`^missed ticks: ${ID} cycle ended after (\\d+) missed ticks$`), keys: ['schema', 'missed'] },
     { what: 'held', re: new RegExp(`^cycle of ${ID} held: ${ID} still runs`), keys: ['schema', 'module'] },
     { what: 'resumed', re: new RegExp(`^cycle of ${ID} resumed$`), keys: ['schema'] },
     { what: 'late_ack', re: new RegExp(`^late ack: ${ID} finished release #(\\d+) of an earlier cycle of ${ID}`), keys: ['module', 'release', 'schema'] },

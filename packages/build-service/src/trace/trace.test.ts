@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -173,6 +173,12 @@ describe('reading a log', () => {
         // a forged count adds nothing it cannot stand for: not a number, unsafe, zero or one
         for (const skipped of ['3', 2 ** 60, 0, 1, -5, Number.NaN]) expect(skippedReleasesOf({ what: 'overrun_ended', skipped })).toBe(0);
         expect(fields('scheduler', 'overrun: SLW cycle ended after 99999999999999999999 skipped releases')).not.toMatchObject({ skipped: expect.any(Number) });
+        // ORD's missed ticks the same way: one line each when no cycle runs, a running cycle's first, then its count at its end
+        const missed = ['missed tick of SLW (cycle 3)', 'missed tick of SLW (cycle 5)', 'missed ticks: SLW cycle ended after 7 missed ticks', 'overrun: SLW cycle ended after 7 skipped releases']
+            .map((l) => fields('scheduler', l) as Record<string, unknown>);
+        expect(missed[2]).toEqual({ what: 'missed_ticks_ended', schema: 'SLW', missed: 7 });
+        expect(missed.map(missedTicksOf)).toEqual([1, 1, 6, 0]);
+        for (const n of ['7', 2 ** 60, 1, -2]) expect(missedTicksOf({ what: 'missed_ticks_ended', missed: n })).toBe(0);
     });
 
     it('names the hold record that only confirms an action line, with the runtime\'s flow hold names', () => {
@@ -269,15 +275,16 @@ describe('reading a log', () => {
             '5000,w,ORD,scheduler,,,0,overrun: velocityLoop cycle ended after 8 skipped releases',
             '6000,w,ORD,scheduler,,,0,cycle of velocityLoop held: VEL still runs a release of an earlier activation',
             '7000,w,ORD,scheduler,,,0,missed tick of localisationLoop (cycle 12)',
+            '7500,w,ORD,scheduler,,,0,missed ticks: localisationLoop cycle ended after 4 missed ticks',
             '8000,w,ORD,ord_complete,,,0,schema=localisationLoop cycle=13 tick_ns=0 response_ns=900',
             '9000,w,ORD,ord_complete,,,0,schema=ALPHA cycle=0 tick_ns=0 response_ns=-5',
         ].join('\n');
         const story = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]));
         expect(story.slice(-4)).toEqual([
             'schema ALPHA: 1 completed cycle (response max 0 ns), 0 deadline misses, 0 overruns', // a forged negative response is no maximum
-            'schema localisationLoop: 1 completed cycle (response max 900 ns), 0 deadline misses, 0 overruns, 1 missed tick (ORD itself late)',
+            'schema localisationLoop: 1 completed cycle (response max 900 ns), 0 deadline misses, 0 overruns, 4 missed ticks (ORD itself late)',
             'schema velocityLoop: 2 completed cycles (response max 100.312 ms), 1 deadline miss, 8 overruns, 1 held cycle',
-            '9 records: 0 module releases, 4 completed cycles, 1 deadline miss, 8 overruns, 1 held cycle, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines',
+            '10 records: 0 module releases, 4 completed cycles, 1 deadline miss, 8 overruns, 1 held cycle, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines',
         ]);
         // a forged log naming more schemas than the story follows: bounded, and said
         const many = [CSV_HEADER, ...Array.from({ length: STORY_FOLLOWED + 3 }, (_, i) => `${i + 1},w,ORD,ord_deadline_miss,,,0,schema=S${i} cycle=0 tick_ns=0`)].join('\n');

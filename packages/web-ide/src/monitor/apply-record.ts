@@ -3,7 +3,7 @@
  * writes which kind, and what peer/port/detail hold). Pure and total: a record it does not use
  * changes only the record count; nothing read from the trace can make it throw.
  */
-import { dataDropReason, isRule, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { dataDropReason, isRule, missedTicksOf, overrunningAfter, skippedReleasesOf, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import {
   HIST_BUCKETS, histogramBucket, MAX_NAMES, RECENT_MARKS,
   type MonitorState, type Ns, type PeriodicState, type SupervisorState, type FunctionState, type FlowCount, type SchemaActivation, type ModuleState,
@@ -253,15 +253,15 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
           if (p) p.overrunning = false;
         } else sc.conflicts++;
       } else if (what === 'overrun' || what === 'overrun_ended') {
-        // every skipped release, as ORD counts them (overrun-count.ts); a mark at each cycle's first
+        // every skipped release, as ORD counts them (ord-counts.ts); a mark at each cycle's first
         const p = periodic(s, schema);
         if (!p) return;
         p.overruns += skippedReleasesOf(f);
         p.overrunning = overrunningAfter(f) ?? p.overrunning;
         if (what === 'overrun') pushBounded(p.recentOverruns, { t, cycle: p.lastCycle }, RECENT_MARKS);
-      } else if (what === 'missed_tick') {
+      } else if (what === 'missed_tick' || what === 'missed_ticks_ended') {
         const p = periodic(s, schema);
-        if (p) p.missedTicks++;
+        if (p) p.missedTicks += missedTicksOf(f);
       }
       return;
     }

@@ -184,6 +184,11 @@ describe('ORD\'s overruns', () => {
     ]);
     // the same count as `contract trace`'s story
     expect(renderStory(ORD_LOG).at(-1)).toContain(', 10 overruns, ');
+    // ORD's missed ticks likewise: one line each, a running cycle's first, then its count at its end
+    const late = new MonitorModel();
+    late.pushAll(['missed tick of SLW (cycle 3)', 'missed tick of SLW (cycle 9)', 'missed ticks: SLW cycle ended after 6 missed ticks']
+      .map((d, i) => parseRecordLine('ORD_1.csv', 2, `${(i + 1) * 1e9},w,ORD,scheduler,,,0,${d}`)));
+    expect(late.live.periodic.get('SLW')!.missedTicks).toBe(7);
   });
 });
 

@@ -1,5 +1,5 @@
 /**
- * ORD's overruns, as its scheduler lines tell them. ORD skips a periodic release when the schema's
+ * ORD's overruns and missed ticks, as its scheduler lines tell them. ORD skips a periodic release when the schema's
  * previous cycle still runs at the tick, and counts every skip (its `overruns`, what a scenario's
  * `expect overruns` checks), but it writes one line per cycle, not one per tick:
  * - `overrun: S cycle still running, release skipped` at the cycle's first skip;
@@ -9,6 +9,11 @@
  * Summed over a run's lines, this is ORD's own count; while a cycle still overruns, its first
  * skip counts 1 until it ends (a live run, a simulation stepped to that time). Logs written before
  * 2026-12-05 told no count when a cycle was restarted or deactivated, or when ORD stopped.
+ *
+ * Missed ticks (ORD itself woke after a later tick was due: it skips the overtaken one) are told
+ * the same way: `missed tick of S (cycle k)` for each when no cycle runs, the first of a running
+ * cycle's, and `missed ticks: S cycle ended after N missed ticks` when that cycle ends (N counts the
+ * first too; logs written before 2026-12-05 have no such line).
  */
 
 /** How many skipped releases a scheduler line's fields (`what`, `skipped`) add to ORD's overruns. */
@@ -28,4 +33,12 @@ export function overrunningAfter(fields: Readonly<Record<string, unknown>>): boo
     if (fields['what'] === 'overrun') return fields['state'] === 'running';
     if (fields['what'] === 'overrun_ended') return false;
     return undefined;
+}
+
+/** How many ticks ORD missed that a scheduler line's fields (`what`, `missed`) add to its count. */
+export function missedTicksOf(fields: Readonly<Record<string, unknown>>): number {
+    if (fields['what'] === 'missed_tick') return 1;
+    if (fields['what'] !== 'missed_ticks_ended') return 0;
+    const n = fields['missed'];
+    return typeof n === 'number' && Number.isSafeInteger(n) && n > 1 ? n - 1 : 0;
 }
