@@ -498,7 +498,8 @@ void test_ord_stuck_needs_at_least_1s_on_short_periods(void) {
 
 /* Real-time mode: a module hogging the CPU makes ORD wake late, so every tick is overtaken by the
    next (missed, not an overrun). The stuck module is still reported, and the missed ticks of its
-   cycle are one line, not one per tick. */
+   cycle are one line, not one per tick, then their count when the cycle ends (the trace's missed
+   ticks are ORD's count). */
 void test_ord_stuck_reported_when_every_tick_is_missed(void) {
     FakeWorld w;
     OrdCore *c = make(&w);
@@ -520,27 +521,10 @@ void test_ord_stuck_reported_when_every_tick_is_missed(void) {
     OrdSchemaStats st;
     ord_core_stats(c, "SLW", &st);
     CHECK(st.stuck_releases == 1 && st.missed_ticks > 5);
-    ord_core_destroy(c);
-}
-
-/* ORD late at every tick while a cycle runs (a module hogging the CPU): one `missed tick` line
-   for the cycle, and its count when it ends, so that the trace's missed ticks are ORD's count */
-void test_ord_missed_ticks_of_a_cycle_are_told_when_it_ends(void) {
-    FakeWorld w;
-    OrdCore *c = make(&w);
-    if (!c) { CHECK(0); return; }
-    ord_core_set_skip_late_ticks(c, 1);
-    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
-    uint32_t g = fake_last_release(&w, "G");
-    for (int64_t t = 450 * MS; t <= 1350 * MS; t += 450 * MS) ord_core_advance(c, t);
-    ord_core_release_finished(c, 1350 * MS, "G", g);
-    OrdSchemaStats st;
-    ord_core_stats(c, "SLW", &st);
+    ord_core_release_finished(c, 4500 * MS, "G", g);
     char count[LOG_LINE];
-    snprintf(count, sizeof count, "1350000us missed ticks: SLW cycle ended after %ld missed ticks", st.missed_ticks);
-    check_log_filtered(&LOG, (const char *const[]){"missed", NULL},
-                       (const char *const[]){"200000us missed tick of SLW (cycle 1)", count, NULL}, __FILE__, __LINE__);
-    CHECK(st.missed_ticks > 1 && st.completed == 1);
+    snprintf(count, sizeof count, "4500000us missed ticks: SLW cycle ended after %ld missed ticks", st.missed_ticks);
+    CHECK(log_find(&LOG, count, 0) >= 0);
     ord_core_destroy(c);
 }
 
