@@ -191,13 +191,6 @@ export class StoryTeller {
     tell(r: TraceRecord): string | undefined {
         this.total++;
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
-        // ORD's overruns (every skipped release, as ORD counts them: ord-counts.ts) and held cycles (by their line)
-        if (r.kind === 'scheduler') {
-            const fields = (r as KnownRecord).fields;
-            const skipped = skippedReleasesOf(fields);
-            if (skipped) this.counts.set('scheduler:overrun', (this.counts.get('scheduler:overrun') ?? 0) + skipped);
-            if (fields['what'] === 'held') this.counts.set('scheduler:held', (this.counts.get('scheduler:held') ?? 0) + 1);
-        }
         this.countSchema(r);
         if (r.kind === 'unknown') return undefined;
         const t0 = (this.t0 ??= BigInt((r as TraceRecordBase).monoNs));
@@ -354,7 +347,11 @@ export class StoryTeller {
         return f;
     }
 
-    /** A record's share of its periodic schema's figures (ORD's completions, misses, overruns, held cycles, missed ticks). */
+    /**
+     * A record's share of its periodic schema's figures (ORD's completions, misses, overruns, held
+     * cycles, missed ticks), and of the totals' overruns (every skipped release, as ORD counts them:
+     * ord-counts.ts) and held cycles (`scheduler:overrun`, `scheduler:held`).
+     */
     private countSchema(r: TraceRecord): void {
         if (r.kind !== 'ord_complete' && r.kind !== 'ord_deadline_miss' && r.kind !== 'scheduler') return;
         const fields = (r as KnownRecord).fields;
@@ -370,11 +367,15 @@ export class StoryTeller {
         } else {
             const what = fields['what'];
             if (what !== 'overrun' && what !== 'overrun_ended' && what !== 'held' && what !== 'missed_tick' && what !== 'missed_ticks_ended') return;
+            const skipped = skippedReleasesOf(fields);
+            const held = what === 'held' ? 1 : 0;
+            if (skipped) this.counts.set('scheduler:overrun', (this.counts.get('scheduler:overrun') ?? 0) + skipped);
+            if (held) this.counts.set('scheduler:held', (this.counts.get('scheduler:held') ?? 0) + 1);
             const f = this.schemaFigures(fields['schema']);
             if (!f) return;
-            f.overruns += skippedReleasesOf(fields);
+            f.overruns += skipped;
             f.missedTicks += missedTicksOf(fields);
-            if (what === 'held') f.held++;
+            f.held += held;
         }
     }
 
