@@ -32,7 +32,7 @@ typedef struct SchemaState {
     int64_t *outstanding_t; /* per module: when that release was sent */
     int held;              /* cycle started, releases wait until no module of it is outstanding */
     long cycle_overruns;   /* ticks skipped by the current cycle (the first traced, the count at its end) */
-    long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)    */
+    long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)     */
     char *stuck;           /* per module: its outstanding release was reported stuck */
     OrdSchemaStats stats;
 } SchemaState;
