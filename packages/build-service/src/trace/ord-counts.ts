@@ -1,6 +1,6 @@
 /**
- * ORD's overruns and missed ticks, as its scheduler lines tell them. ORD skips a periodic release when the schema's
- * previous cycle still runs at the tick, and counts every skip (its `overruns`, what a scenario's
+ * ORD's overruns and missed ticks, as its scheduler lines tell them. ORD skips a periodic release
+ * when the schema's previous cycle still runs at the tick, and counts every skip (its `overruns`, what a scenario's
  * `expect overruns` checks), but it writes one line per cycle, not one per tick:
  * - `overrun: S cycle still running, release skipped` at the cycle's first skip;
  * - `overrun: S cycle ended after N skipped releases` when a cycle that skipped more than one ends
@@ -16,12 +16,15 @@
  * first too; logs written before 2026-12-05 have no such line).
  */
 
+/** A cycle's count told at its end, less its first (told when it happened); 0 for a forged or unread count. */
+function afterTheFirst(n: unknown): number {
+    return typeof n === 'number' && Number.isSafeInteger(n) && n > 1 ? n - 1 : 0;
+}
+
 /** How many skipped releases a scheduler line's fields (`what`, `skipped`) add to ORD's overruns. */
 export function skippedReleasesOf(fields: Readonly<Record<string, unknown>>): number {
     if (fields['what'] === 'overrun') return 1;
-    if (fields['what'] !== 'overrun_ended') return 0;
-    const n = fields['skipped'];
-    return typeof n === 'number' && Number.isSafeInteger(n) && n > 1 ? n - 1 : 0;
+    return fields['what'] === 'overrun_ended' ? afterTheFirst(fields['skipped']) : 0;
 }
 
 /**
@@ -38,7 +41,5 @@ export function overrunningAfter(fields: Readonly<Record<string, unknown>>): boo
 /** How many ticks ORD missed that a scheduler line's fields (`what`, `missed`) add to its count. */
 export function missedTicksOf(fields: Readonly<Record<string, unknown>>): number {
     if (fields['what'] === 'missed_tick') return 1;
-    if (fields['what'] !== 'missed_ticks_ended') return 0;
-    const n = fields['missed'];
-    return typeof n === 'number' && Number.isSafeInteger(n) && n > 1 ? n - 1 : 0;
+    return fields['what'] === 'missed_ticks_ended' ? afterTheFirst(fields['missed']) : 0;
 }
