@@ -154,13 +154,15 @@ export class MonitorController {
   /**
    * Live run `run`'s job ended (its trace stream's `end`, or the stream lost for good, or the build
    * panel's end): the run is no longer live anywhere — run list, header, time line, follow button —
-   * and says how it ended. Its CSV logs, when the job left some, come after (showRecorded).
+   * and says how it ended, once (the first of those to say it). Its CSV logs, when the job left
+   * some, usually come after (showRecorded); when they came first (the stream's end was late past
+   * SETTLE_MS, or only the build panel's end says it), the label they gave gets the outcome too.
    */
   private ended(run: Run, outcome: string): void {
-    if (!run.live) return;
-    run.live = false;
+    if (run.outcome !== undefined) return;
     run.outcome = outcome;
-    run.label = run.label.replace(' · live', ` · ended: ${outcome}`);
+    run.label = run.live ? run.label.replace(' · live', ` · ended: ${outcome}`) : `${run.label} · ended: ${outcome}`;
+    run.live = false;
     if (this.shown === run.id) this.panel?.endLive(run.label);
     void this.refreshSources();
   }
