@@ -30,6 +30,7 @@ import { jobOutcome } from './live-follow-protocol.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 import { NOT_IN_MODEL_LONG } from './panel-text.js';
+import { count, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
@@ -125,7 +126,7 @@ export class MonitorController {
     this.picked++;
     const model = new RemoteMonitorModel(worker, url, { measure: this.measure });
     worker.addEventListener('error', (e) => model.fail(`the live trace's worker failed (${e.message || 'it could not start'}): the run is shown from its CSV logs when it ends`));
-    const run: Run = { id: `live:${jobId}`, label: `Build & Run job ${jobId} · live`, model, live: true };
+    const run: Run = { id: `live:${jobId}`, label: liveRunLabel(jobId), model, live: true };
     let problems = 0;
     let missed = 0;
     model.onChange = () => {
@@ -161,7 +162,7 @@ export class MonitorController {
   private ended(run: Run, outcome: string): void {
     if (run.outcome !== undefined) return;
     run.outcome = outcome;
-    run.label = run.live ? run.label.replace(' · live', ` · ended: ${outcome}`) : `${run.label} · ended: ${outcome}`;
+    run.label = endedRunLabel(run.label, run.live, outcome);
     run.live = false;
     if (this.shown === run.id) this.panel?.endLive(run.label);
     void this.refreshSources();
@@ -232,7 +233,7 @@ export class MonitorController {
     if (live?.model instanceof RemoteMonitorModel) await Promise.race([live.model.settled, new Promise((r) => setTimeout(r, SETTLE_MS))]);
     if (live) {
       live.live = false;
-      live.label = `Build & Run job ${jobId} · as streamed${live.outcome ? ` · ended: ${live.outcome}` : ''}`;
+      live.label = streamedRunLabel(jobId, live.outcome);
       if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
     const run = await this.recordedJobRun(jobId, logs);
@@ -240,7 +241,7 @@ export class MonitorController {
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
     const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
     // (not "the first N": a stream attached late got the first records and the last ones, a gap between)
-    if (cut) live!.label = `Build & Run job ${jobId} · as streamed (${count(live!.model.recordCount)} of the ${count(run.model.recordCount)} records of its logs: ${count(run.model.recordCount - live!.model.recordCount)} not received)${live!.outcome ? ` · ended: ${live!.outcome}` : ''}`;
+    if (cut) live!.label = streamedRunLabel(jobId, live!.outcome, { streamed: live!.model.recordCount, logged: run.model.recordCount });
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
       this.panel?.endLive(live.label);
       await this.refreshSources();
@@ -458,11 +459,6 @@ function yieldToPage(): Promise<void> {
     };
     channel.port2.postMessage(undefined);
   });
-}
-
-/** 50000 -> `50,000`. */
-function count(n: number): string {
-  return n.toLocaleString('en-US');
 }
 
 function dirOf(path: string): string {

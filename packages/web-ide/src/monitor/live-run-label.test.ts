@@ -1,0 +1,23 @@
+import { describe, it, expect } from 'vitest';
+import { endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+
+describe("a live job's label in the Monitor's run list", () => {
+  it('says how the job ended whichever reaches the page first, its end or its CSV logs', () => {
+    // the usual order: the end, then the logs
+    const ended = endedRunLabel(liveRunLabel('j-1'), true, 'cancelled');
+    expect(ended).toBe('Build & Run job j-1 · ended: cancelled');
+    expect(streamedRunLabel('j-1', 'cancelled')).toBe('Build & Run job j-1 · as streamed · ended: cancelled');
+    // the logs first (the stream's end came past the wait, or only the build panel's end says it): the end still says how
+    expect(endedRunLabel(streamedRunLabel('j-1', undefined), false, 'cancelled')).toBe('Build & Run job j-1 · as streamed · ended: cancelled');
+  });
+
+  it("keeps what the stream missed: while it runs, and counted from the logs once they are shown", () => {
+    expect(endedRunLabel(`${liveRunLabel('j-2')} (trace not whole: 12 records not received)`, true, 'succeeded'))
+      .toBe('Build & Run job j-2 · ended: succeeded (trace not whole: 12 records not received)');
+    expect(streamedRunLabel('j-2', 'succeeded', { streamed: 40_000, logged: 52_500 }))
+      .toBe('Build & Run job j-2 · as streamed (40,000 of the 52,500 records of its logs: 12,500 not received) · ended: succeeded');
+    // nothing streamed (an older build service), or all of it: no count
+    expect(streamedRunLabel('j-2', 'failed', { streamed: 0, logged: 10 })).toBe('Build & Run job j-2 · as streamed · ended: failed');
+    expect(streamedRunLabel('j-2', 'failed', { streamed: 10, logged: 10 })).toBe('Build & Run job j-2 · as streamed · ended: failed');
+  });
+});

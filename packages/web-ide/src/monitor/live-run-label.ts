@@ -1,0 +1,37 @@
+/**
+ * The Monitor's run list label of a Build & Run job it followed live, at each stage: while it runs,
+ * once it ended (how, said once), once its CSV logs are shown (what the stream did not receive).
+ * Pure, so that the order in which the job's end and its logs reach the page is tested without one
+ * (live-run-label.test.ts).
+ */
+
+/** 50000 -> `50,000`. */
+export function count(n: number): string {
+  return n.toLocaleString('en-US');
+}
+
+/** While it runs: `Build & Run job j-… · live`. */
+export function liveRunLabel(jobId: string): string {
+  return `Build & Run job ${jobId} · live`;
+}
+
+/**
+ * Its label once the job ended with `outcome`: `· live` becomes `· ended: cancelled`, a note of
+ * what the stream missed kept after it; a label its CSV logs gave first (`· as streamed`: the
+ * stream's end came late, or only the build panel's end said it) gets the outcome at its end.
+ */
+export function endedRunLabel(label: string, stillLive: boolean, outcome: string): string {
+  return stillLive ? label.replace(' · live', ` · ended: ${outcome}`) : `${label} · ended: ${outcome}`;
+}
+
+/**
+ * Its label once its CSV logs are shown: `· as streamed`, with the records the stream did not
+ * receive (a stream attached late, or taken up again past the service's bound: its first records
+ * and its newest, a gap between) and how it ended when that is known yet.
+ */
+export function streamedRunLabel(jobId: string, outcome: string | undefined, records?: { streamed: number; logged: number }): string {
+  const cut = records && records.streamed > 0 && records.streamed < records.logged
+    ? ` (${count(records.streamed)} of the ${count(records.logged)} records of its logs: ${count(records.logged - records.streamed)} not received)`
+    : '';
+  return `Build & Run job ${jobId} · as streamed${cut}${outcome ? ` · ended: ${outcome}` : ''}`;
+}
