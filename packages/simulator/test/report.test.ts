@@ -1,6 +1,6 @@
 /** The text report writes every time of a scenario in one unit, so that its time column reads down. */
 import { describe, expect, it } from 'vitest';
-import { junitReport, reportTimeFormat, textReport, type ScenarioResult } from '../src/index.js';
+import { jsonReport, junitReport, reportTimeFormat, textReport, type ScenarioResult } from '../src/index.js';
 
 describe('the text report\'s times', () => {
     it('picks the coarsest unit that writes each time as a whole number', () => {
@@ -85,6 +85,10 @@ describe('the text report\'s times', () => {
         expect(textReport([result])).not.toContain('deadline miss'); // not verbose: the rules say it
         // at the end, each periodic schema's figures, as `contract trace` ends a run's story
         expect(text).toContain('t=60ms X:0 3\n                  schema loop: 0 completed cycles, 2 deadline misses, 0 overruns, 1 held cycle\n  passed:');
+        // and as data in the JSON report
+        expect(JSON.parse(jsonReport([result])).scenarios[0].schemas).toEqual([
+            { schema: 'loop', completedCycles: 0, maxResponseNs: 0, deadlineMisses: 2, overruns: 0, heldCycles: 1, missedTicks: 0 },
+        ]);
     });
 
     it('--verbose folds ORD\'s periodic releases: each module\'s first after an activation, then a count per step', () => {

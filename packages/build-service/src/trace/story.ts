@@ -130,7 +130,7 @@ export function ownRunEndText(detail: string): string | undefined {
 const RUNNING_FOLLOWED = 65_536;
 
 /** What ORD did of one periodic schema in the run, as the story's schema lines tell it. */
-interface SchemaFigures {
+export interface SchemaFigures {
     completed: number;
     maxResponseNs: number;
     misses: number;
@@ -333,7 +333,7 @@ export class StoryTeller {
     }
 
     /** The figures of schema `name` (undefined past STORY_FOLLOWED schemas). */
-    private schemaFigures(name: unknown): SchemaFigures | undefined {
+    private figuresOf(name: unknown): SchemaFigures | undefined {
         if (typeof name !== 'string' || !name) return undefined;
         let f = this.schemas.get(name);
         if (!f) {
@@ -356,13 +356,13 @@ export class StoryTeller {
         if (r.kind !== 'ord_complete' && r.kind !== 'ord_deadline_miss' && r.kind !== 'scheduler') return;
         const fields = (r as KnownRecord).fields;
         if (r.kind === 'ord_complete') {
-            const f = this.schemaFigures(fields['schema']);
+            const f = this.figuresOf(fields['schema']);
             if (!f) return;
             f.completed++;
             const resp = fields['response_ns'];
             if (typeof resp === 'number' && Number.isFinite(resp) && resp > f.maxResponseNs) f.maxResponseNs = resp;
         } else if (r.kind === 'ord_deadline_miss') {
-            const f = this.schemaFigures(fields['schema']);
+            const f = this.figuresOf(fields['schema']);
             if (f) f.misses++;
         } else {
             const what = fields['what'];
@@ -371,7 +371,7 @@ export class StoryTeller {
             const held = what === 'held' ? 1 : 0;
             if (skipped) this.counts.set('scheduler:overrun', (this.counts.get('scheduler:overrun') ?? 0) + skipped);
             if (held) this.counts.set('scheduler:held', (this.counts.get('scheduler:held') ?? 0) + 1);
-            const f = this.schemaFigures(fields['schema']);
+            const f = this.figuresOf(fields['schema']);
             if (!f) return;
             f.overruns += skipped;
             f.missedTicks += missedTicksOf(fields);
@@ -385,12 +385,17 @@ export class StoryTeller {
      * deadline misses, 9 overruns, 1 held cycle` (held cycles and ORD's missed ticks when any).
      */
     schemaLines(): string[] {
-        const lines = [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([name, f]) =>
-            `schema ${name}: ${plural(f.completed, 'completed cycle')}${f.completed ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
+        const lines = this.schemaFigures().map((f) =>
+            `schema ${f.schema}: ${plural(f.completed, 'completed cycle')}${f.completed ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
             `${plural(f.misses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
             `${f.held ? `, ${plural(f.held, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}`);
         if (this.schemasLeftOut) lines.push(`(${plural(this.schemasLeftOut, 'record')} of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
         return lines;
+    }
+
+    /** The same figures as data, in name order (`contract simulate --format json`). */
+    schemaFigures(): Array<{ schema: string } & SchemaFigures> {
+        return [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([schema, f]) => ({ schema, ...f }));
     }
 
     summary(): string {

@@ -113,6 +113,33 @@ class MissTeller {
     schemaLines(): string[] {
         return this.story.schemaLines();
     }
+
+    /** The same as data (`--format json`): the counts `expect deadline misses` and `expect overruns` check. */
+    schemaFigures(): SchemaCounts[] {
+        return this.story.schemaFigures().map((f) => ({
+            schema: f.schema, completedCycles: f.completed, maxResponseNs: f.maxResponseNs, deadlineMisses: f.misses,
+            overruns: f.overruns, heldCycles: f.held, missedTicks: f.missedTicks,
+        }));
+    }
+}
+
+/** What ORD did of one periodic schema in a scenario (`contract simulate --format json`'s `schemas`). */
+export interface SchemaCounts {
+    schema: string;
+    completedCycles: number;
+    maxResponseNs: number;
+    deadlineMisses: number;
+    /** Every skipped release, as `expect overruns` counts them. */
+    overruns: number;
+    heldCycles: number;
+    missedTicks: number;
+}
+
+/** Each periodic schema's figures over scenario `r`, from ORD's records and lines of its steps. */
+function schemaCounts(r: ScenarioResult): SchemaCounts[] {
+    const teller = new MissTeller();
+    for (const s of r.steps) teller.misses(s.record);
+    return teller.schemaFigures();
 }
 
 export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
@@ -170,6 +197,7 @@ export function jsonReport(results: ScenarioResult[]): string {
     return JSON.stringify({
         scenarios: results.map((r) => ({
             file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
+            schemas: schemaCounts(r),
             failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),
             steps: r.steps.map((s) => ({ ...s.record, source: s.source, kind: s.kind })),
         })),
