@@ -328,10 +328,15 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(code).toBe(4);
         const json = capture(root);
         expect(await runCli(['run', 'stuck', '--sandbox', 'bwrap', '--duration', '3s', '--format', 'json'], json)).toBe(4);
-        const out = JSON.parse(json.stdout) as { ok: boolean; status: string; result: { issues: { kind: string; module?: string }[] } };
+        const out = JSON.parse(json.stdout) as { ok: boolean; status: string; result: { issues: { kind: string; module?: string }[] }; schemas: unknown };
         expect(out.ok).toBe(false);
         expect(out.status).toBe('failed');
         expect(out.result.issues.map((i) => [i.kind, i.module])).toEqual([['module-stuck', 'CTL']]);
+        // the schema's figures from the run's logs, for a CI gate: its first cycle never completed, one
+        // deadline miss, and every tick of the 3 s after it skipped (counted as ORD counts them)
+        expect(out.schemas).toEqual([{ schema: 'goTo', completedCycles: 0, maxResponseNs: 0, deadlineMisses: 1, overruns: expect.any(Number), heldCycles: 0, missedTicks: expect.any(Number) }]);
+        const [goTo] = out.schemas as Array<{ overruns: number; missedTicks: number }>;
+        expect(goTo!.overruns + goTo!.missedTicks).toBeGreaterThan(200);
     }, 240_000);
 
     it('a module flooding its output: the cut is said in place, in stdout, and the run exits 4 with the problem', async () => {

@@ -129,14 +129,17 @@ export function ownRunEndText(detail: string): string | undefined {
 }
 const RUNNING_FOLLOWED = 65_536;
 
-/** What ORD did of one periodic schema in the run, as the story's schema lines tell it. */
+/**
+ * What ORD did of one periodic schema in a run or a scenario, as the story's schema lines tell it
+ * (and `contract run` / `contract simulate --format json` give it: their `schemas`).
+ */
 export interface SchemaFigures {
-    completed: number;
+    completedCycles: number;
     maxResponseNs: number;
-    misses: number;
-    /** Every skipped release (ord-counts.ts). */
+    deadlineMisses: number;
+    /** Every skipped release (ord-counts.ts), as `expect overruns` counts them. */
     overruns: number;
-    held: number;
+    heldCycles: number;
     missedTicks: number;
 }
 
@@ -341,7 +344,7 @@ export class StoryTeller {
                 this.schemasLeftOut++;
                 return undefined;
             }
-            f = { completed: 0, maxResponseNs: 0, misses: 0, overruns: 0, held: 0, missedTicks: 0 };
+            f = { completedCycles: 0, maxResponseNs: 0, deadlineMisses: 0, overruns: 0, heldCycles: 0, missedTicks: 0 };
             this.schemas.set(ownString(name), f);
         }
         return f;
@@ -358,12 +361,12 @@ export class StoryTeller {
         if (r.kind === 'ord_complete') {
             const f = this.figuresOf(fields['schema']);
             if (!f) return;
-            f.completed++;
+            f.completedCycles++;
             const resp = fields['response_ns'];
             if (typeof resp === 'number' && Number.isFinite(resp) && resp > f.maxResponseNs) f.maxResponseNs = resp;
         } else if (r.kind === 'ord_deadline_miss') {
             const f = this.figuresOf(fields['schema']);
-            if (f) f.misses++;
+            if (f) f.deadlineMisses++;
         } else {
             const what = fields['what'];
             if (what !== 'overrun' && what !== 'overrun_ended' && what !== 'held' && what !== 'missed_tick' && what !== 'missed_ticks_ended') return;
@@ -375,7 +378,7 @@ export class StoryTeller {
             if (!f) return;
             f.overruns += skipped;
             f.missedTicks += missedTicksOf(fields);
-            f.held += held;
+            f.heldCycles += held;
         }
     }
 
@@ -386,14 +389,14 @@ export class StoryTeller {
      */
     schemaLines(): string[] {
         const lines = this.schemaFigures().map((f) =>
-            `schema ${f.schema}: ${plural(f.completed, 'completed cycle')}${f.completed ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
-            `${plural(f.misses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
-            `${f.held ? `, ${plural(f.held, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}`);
+            `schema ${f.schema}: ${plural(f.completedCycles, 'completed cycle')}${f.completedCycles ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
+            `${plural(f.deadlineMisses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
+            `${f.heldCycles ? `, ${plural(f.heldCycles, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}`);
         if (this.schemasLeftOut) lines.push(`(${plural(this.schemasLeftOut, 'record')} of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
         return lines;
     }
 
-    /** The same figures as data, in name order (`contract simulate --format json`). */
+    /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */
     schemaFigures(): Array<{ schema: string } & SchemaFigures> {
         return [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([schema, f]) => ({ schema, ...f }));
     }

@@ -18,6 +18,7 @@ import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { moduleFailures, problemLines } from './run-problems.js';
+import { runSchemaFigures } from './run-schemas.js';
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
 export function parseDuration(text: string): number {
@@ -204,9 +205,11 @@ export const runCommand: Command = {
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines);
+        // each periodic schema's figures, for a CI script's gate (read from the saved logs: --format json only)
+        const schemas = opts.format === 'json' ? await runSchemaFigures(logsDir, logs).catch(() => null) : null;
         const extra = {
             logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
-            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, output: outcome.runLines,
+            logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, output: outcome.runLines,
         };
         const problems = problemLines(outcome.result.issues ?? [], failures);
         const notSaved = savedLogs.refused.map((r) => `log ${r.replace(/: /, ' not written: ')}`);
