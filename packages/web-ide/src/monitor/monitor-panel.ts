@@ -24,7 +24,6 @@ import { NOT_IN_MODEL, flowDropText, fmtT, followButton, namesPastBoundText, rul
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
-/** What marks a supervisor, function or rule the run names and the model does not (supervisor-rows.ts). */
 /** Width of the rules' name column, in characters: the longest name of the supervisor within these (longer ones are cut, whole in the tooltip). */
 const RULE_NAME_MIN_CH = 12;
 const RULE_NAME_MAX_CH = 28;

@@ -34,7 +34,7 @@ export class SimulateController {
   readonly session = new ScenarioSession();
   /** The last run's answer (tests read it). */
   last: SimulateResponse | undefined;
-  /** The Monitor's state of `last`'s steps (Save as scenario reads its deadline misses). */
+  /** The Monitor's state of `last`'s steps (Save as scenario reads its deadline misses and overruns). */
   private lastShown: SchedulerFigures | undefined;
   /** Runs one after the other: each is the whole session again. */
   private running: Promise<unknown> = Promise.resolve();
