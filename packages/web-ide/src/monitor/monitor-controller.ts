@@ -109,7 +109,8 @@ export class MonitorController {
     // the job's end as the build panel's own stream tells it: a run whose live trace did not say
     // so (its worker failed) is not left 'live'
     deps.build.onFinished.on(({ jobId, action, ok, message }) => {
-      const run = this.runs.get(`live:${jobId}`);
+      // (or its logs' run, when the live one was forgotten for want of records)
+      const run = this.runs.get(`live:${jobId}`) ?? this.runs.get(`job:${jobId}`);
       if (action === 'run' && run) this.ended(run, jobOutcome({ ok, message }));
     });
   }
@@ -236,7 +237,8 @@ export class MonitorController {
       live.label = streamedRunLabel(jobId, live.outcome);
       if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
-    const run = await this.recordedJobRun(jobId, logs);
+    // a live run forgotten for want of records: its logs' run says how the job ended
+    const run = await this.recordedJobRun(jobId, logs, live && !live.model.recordCount ? live.outcome : undefined);
     // a monitor attached late, or reconnected, misses what the service did not keep (docs/build-service-api.md
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
     const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
@@ -255,13 +257,13 @@ export class MonitorController {
   }
 
   /** Job `jobId`'s recorded run from its CSV logs, kept (and the least used recorded runs let go past the bounds). */
-  private async recordedJobRun(jobId: string, logs: RunLogs): Promise<Run> {
+  private async recordedJobRun(jobId: string, logs: RunLogs, outcome?: string): Promise<Run> {
     const { model, leftOut: unread } = await recordedRun(logs.files);
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
-    const label = `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}`;
-    const run: Run = { id: `job:${jobId}`, label, model, live: false };
+    const label = `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${outcome ? ` · ended: ${outcome}` : ''}`;
+    const run: Run = { id: `job:${jobId}`, label, model, live: false, outcome };
     this.keepRecorded(run);
     return run;
   }
