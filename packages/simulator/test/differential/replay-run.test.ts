@@ -53,6 +53,8 @@ function run(drvDecidedInBetween: boolean, drvLate = false, navBetweenRequests =
             ...(navBetweenRequests ? ['2000100000,W,DRV,request_received,MIS,,11,STOP'] : []), // STOP's end: safestop's stop
             `${tStart},W,DRV,request_received,MIS,,29,START autonomous`,
             ...(drvDecidedInBetween ? ['2002200000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns'] : []),
+            // ORD sends its events to every supervisor: DRV takes the miss from its mailbox before MIS's STOP
+            `${tStop - 5_000},W,DRV,request_received,ORD,0,12,EVENT from_port=0`,
             `${tStop},W,DRV,request_received,MIS,,11,STOP`,
             ...(navBetweenRequests ? [`${tStop + 50_000},W,DRV,request_received,NAV,1,8,EVENT from_port=0`, `${tStop + 60_000},W,DRV,event_received,NAV,1,8,from_port=0 latency_ns=10000`] : []),
             `${tStop + 100_000},W,DRV,request_received,MIS,,5,START safestop`,
@@ -150,6 +152,91 @@ describe('scenarioOfRun', () => {
         const { obs0, obs1, ord0 } = run(true);
         expect(ord0.t - obs0.t).toBe(2_900_000n);
         expect(obs1.t - obs0.t).toBe(1_930_000n);
+    });
+});
+
+/**
+ * A CI run's form (the host stalled DRV for 96 ms): a miss of obstacleWatch ends AUTO (MIS:
+ * STOP autonomous, START safestop), a miss of localisationLoop 7 ms later changes nothing, and the
+ * OBS:0 at 5 m 96 ms after the first ends STOP (STOP safestop, START autonomous). DRV, not
+ * scheduled meanwhile, takes both misses and the four requests in a row: its safestop made no
+ * decision. Both misses went to MIS and DRV (ORD notifies every supervisor). A later safestop
+ * shows HALT's 1 ms delay. `drvSteersBetween`: DRV was stalled only after it took the first miss
+ * and the requests it made MIS send, then a NAV:0 between the two misses' times.
+ */
+function twoMisses(drvSteersBetween = false) {
+    const files = [
+        csv('MIS', [
+            ...MIS_STARTS_AUTONOMOUS,
+            '2551400000,W,MIS,request_received,ORD,0,12,EVENT from_port=0',
+            `2551450000,W,MIS,sup_rule,,,0,"mission.AUTO inactive cause=ORD:0 value=""obstacleWatch"""`,
+            '2551460000,W,MIS,sup_rule,,,0,mission.STOP active cause=endof(AUTO)',
+            '2558500000,W,MIS,request_received,ORD,0,12,EVENT from_port=0',
+            '2647600000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+            '2647650000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5.0',
+            '2647660000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            '3000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+            '3000050000,W,MIS,sup_rule,,,0,mission.AUTO inactive cause=OBS:0 value=0.35',
+            '3000060000,W,MIS,sup_rule,,,0,mission.STOP active cause=endof(AUTO)',
+            '4000000000,W,MIS,request_received,contract-launch,,0,STOP',
+        ]),
+        csv('DRV', [
+            '2000100000,W,DRV,request_received,MIS,,11,STOP',
+            '2001200000,W,DRV,request_received,MIS,,29,START autonomous',
+            '2002200000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns',
+            ...[
+                '2648000000,W,DRV,request_received,ORD,0,12,EVENT from_port=0',
+                '2648010000,W,DRV,request_received,MIS,,11,STOP',
+                '2648020000,W,DRV,sup_rule,,,0,autonomous.LOOPS inactive cause=stop',
+                '2648030000,W,DRV,request_received,MIS,,5,START safestop',
+            ].map((line, i) => (drvSteersBetween ? line.replace(/^\d+/, String(2_551_410_000 + 20_000 * i)) : line)),
+            ...(drvSteersBetween ? ['2553000000,W,DRV,request_received,NAV,1,8,EVENT from_port=0'] : []),
+            '2648040000,W,DRV,request_received,ORD,0,12,EVENT from_port=0',
+            '2648050000,W,DRV,request_received,MIS,,11,STOP',
+            '2648060000,W,DRV,request_received,MIS,,29,START autonomous',
+            '2649100000,W,DRV,sup_rule,,,0,autonomous.LOOPS active cause=elapsed=1000000ns',
+            '3000100000,W,DRV,request_received,MIS,,11,STOP',
+            '3000110000,W,DRV,sup_rule,,,0,autonomous.LOOPS inactive cause=stop',
+            '3000120000,W,DRV,request_received,MIS,,5,START safestop',
+            '3001200000,W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns',
+        ]),
+        csv('ORD', [
+            '2551390000,W,ORD,ord_deadline_miss,,,0,schema=obstacleWatch cycle=25 tick_ns=2500000000',
+            '2558490000,W,ORD,ord_deadline_miss,,,0,schema=localisationLoop cycle=25 tick_ns=2500000000',
+        ]),
+    ];
+    const { text } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules: { DRV: ['MIS mission.AUTO', 'MIS mission.STOP'] } });
+    return { text, list: events(text).filter((e) => e.t > 1_551_000_000n && e.t < 2_000_000_000n) };
+}
+
+describe("scenarioOfRun: events every supervisor received (ORD's)", () => {
+    it('a miss that stopped the function moves though DRV received it too', () => {
+        // run(false) as a real run logs it: DRV also took the miss (before MIS's STOP)
+        const { list, obs0, ord0 } = run(false);
+        expect(ord0.t - obs0.t).toBe(800_000n);
+        expect(list.map((e) => e.source)).toEqual(['OBS:0', 'OBS:1', 'ORD:0']);
+    });
+
+    it('a miss MIS met between the start and the stopping event moves with it when DRV meets it in the same order', () => {
+        const { text, list } = twoMisses();
+        // safestop really ran 20 us (DRV took START at 2.64803 s, STOP at 2.64805 s): the OBS:0
+        // that ended it is replayed 20 us after the first miss, and the second miss just before it
+        expect(list.map((e) => e.source)).toEqual(['ORD:0', 'ORD:0', 'OBS:0']);
+        const [first, second, obs] = list;
+        expect(obs!.t - first!.t).toBe(20_000n);
+        expect(obs!.t - second!.t).toBe(1n);
+        expect(text.indexOf('"obstacleWatch"')).toBeGreaterThan(0);
+        expect(text.indexOf('"obstacleWatch"')).toBeLessThan(text.indexOf('"localisationLoop"'));
+    });
+
+    it("nothing moves when DRV took another event between the second miss's new time and its own", () => {
+        const { list } = twoMisses(true);
+        // (safestop ran 96 ms without HALT: cut to just under 1 ms, the second miss would have to
+        // come before the NAV:0, which DRV took first)
+        expect(list.map((e) => e.source)).toEqual(['ORD:0', 'NAV:0', 'ORD:0', 'OBS:0']);
+        const [first, , second, obs] = list;
+        expect(second!.t - first!.t).toBe(7_100_000n);
+        expect(obs!.t - first!.t).toBe(96_200_000n);
     });
 });
 

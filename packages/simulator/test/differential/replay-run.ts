@@ -291,6 +291,8 @@ interface Timeline {
     receivers: Map<string, string[]>;
     /** Each supervisor's decision times, in order. */
     decisions: Map<string, bigint[]>;
+    /** Each supervisor's decisions not made by a function's stop (`cause=stop`), in order. */
+    eventDecisions: Map<string, bigint[]>;
     /** Each supervisor's receipts of every source, in time order. */
     receipts(sup: string): Receipt[];
     /** START/STOP/KILL requests a supervisor received from another, in order. */
@@ -304,7 +306,12 @@ interface Timeline {
 function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: Map<string, Receipt[]>, receivers: Map<string, string[]>, end: bigint): Timeline {
     const supervisors = plan.supervisors;
     const decisions = new Map<string, bigint[]>();
-    for (const r of known) if (isRule(r) && supervisors.has(r.module)) (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
+    const eventDecisions = new Map<string, bigint[]>();
+    for (const r of known) {
+        if (!isRule(r) || !supervisors.has(r.module)) continue;
+        (decisions.get(r.module) ?? decisions.set(r.module, []).get(r.module)!).push(mono(r));
+        if (r.causeEvent.kind !== 'stop') (eventDecisions.get(r.module) ?? eventDecisions.set(r.module, []).get(r.module)!).push(mono(r));
+    }
     const bySupervisor = new Map<string, Receipt[]>();
     for (const [key, list] of received) {
         const sup = key.slice(0, key.indexOf(' '));
@@ -340,7 +347,7 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
             });
         }
     }
-    return { receivers, decisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt };
+    return { receivers, decisions, eventDecisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt };
 }
 
 /**
@@ -399,7 +406,9 @@ function inFlight(tl: Timeline): void {
  * would make a decision the real one never made. The event that made the caller stop the function
  * is replayed instead as long after the start's event as the function really ran (and the caller's
  * own events between the two times just before it, in their order), so the simulated function
- * runs as long as the real one did. Not when an event to move is shared with another supervisor.
+ * runs as long as the real one did. An event to move that other supervisors received too (ORD's
+ * go to every supervisor, the function's own included) moves only when each of them meets it in
+ * the same order as it really did (othersKeepOrder).
  *
  * A function that made no decision ran, as far as its timers go, less than its first `elapsed`
  * delay, even when it got the STOP later than that (a real run on a loaded host: DRV got START
@@ -418,16 +427,31 @@ function shortRuns(tl: Timeline): void {
         const started = decisionStart(tl, q1);
         const stopped = decisionStart(tl, q2);
         const e = stopped?.trigger?.emission;
-        if (!started || !e || tl.receivers.get(e.source)?.length !== 1) continue;
+        if (!started || !e) continue;
         const timer = tl.firstTimers.get(`${q1.module} ${/^START (\S+)/.exec(q1.detail)?.[1]}`);
         const ran = timer !== undefined && tq2 - tq1 >= timer ? timer - TIMER_MARGIN : tq2 - tq1;
         const latest = started.start + ran;
         if (e.t <= latest) continue;
         const between = tl.receipts(q1.peer).filter((x) => x.emission && x.emission !== e && x.emission.t >= latest && x.emission.t < e.t);
-        if (between.some((x) => tl.receivers.get(x.source)?.length !== 1) || latest - BigInt(between.length) <= started.start) continue;
-        between.forEach((x, i) => (x.emission!.t = latest - BigInt(between.length - i)));
-        e.t = latest;
+        if (latest - BigInt(between.length) <= started.start) continue;
+        const moves = [...between.map((x, i) => ({ emission: x.emission!, to: latest - BigInt(between.length - i) })), { emission: e, to: latest }];
+        if (!moves.every((m) => othersKeepOrder(tl, m.emission, m.to, q1.peer))) continue;
+        for (const m of moves) m.emission.t = m.to;
     }
+}
+
+/**
+ * Whether an event received by several supervisors (ORD's, sent to every one) can be replayed at
+ * `to`, earlier than its time, for `mover`'s sake: every other receiver then meets it in the same
+ * order among its own module events and decisions as it really did, since none of them falls
+ * between the two times. A decision a function's stop made (`cause=stop`) does not count: the
+ * simulator delivers the request at the decision that sent it, not at the receiver's time.
+ */
+function othersKeepOrder(tl: Timeline, emission: Emission, to: bigint, mover: string): boolean {
+    const within = (t: bigint): boolean => t >= to && t < emission.t;
+    return (tl.receivers.get(emission.source) ?? []).filter((sup) => sup !== mover).every((sup) =>
+        !tl.receipts(sup).some((x) => x.emission !== emission && within(x.emission?.t ?? x.t))
+        && !(tl.eventDecisions.get(sup) ?? []).some(within));
 }
 
 /** One decision, as both sides write it: `SUP action.SECOND active <- MAA:2 value="disconnected"`. */
