@@ -61,12 +61,15 @@ function whereEditedOutside(existing: string, file: string, recordedLines: strin
 
 /**
  * Files under `root` holding protected-region markers (the generator's files when no manifest says
- * so), but those in `skip` (generated again: not read); links are skipped.
+ * so), but those in `skip` (generated again: not read); links are skipped. Each folder's names go
+ * to `listings`, so that writing the new files lists no folder a second time.
  */
-function scanGeneratedFiles(tree: OutputTree, root: string, skip: ReadonlySet<string>): string[] {
+function scanGeneratedFiles(tree: OutputTree, root: string, skip: ReadonlySet<string>, listings: Map<string, Set<string>>): string[] {
     const found: string[] = [];
     const walk = (rel: string) => {
-        for (const entry of tree.list(rel) ?? []) {
+        const entries = tree.list(rel) ?? [];
+        listings.set(rel, new Set(entries.map((e) => e.name)));
+        for (const entry of entries) {
             const child = posix.join(rel, entry.name);
             if (entry.isDirectory()) walk(child);
             else if (entry.isFile() && !skip.has(child)) {
@@ -168,18 +171,18 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     // files holding protected regions, found before writing (a new tree has none: nothing is listed or
     // read back); a file generated again is no candidate for removal and is not read
     let previousFiles: string[] = [];
+    const listings = new Map<string, Set<string>>(); // folder -> its names before writing
     if (loaded.manifest) {
         previousFiles = [...loaded.manifest.files.keys()].sort();
     } else {
         const root = options.managedRoot ?? 'generated';
         try {
-            previousFiles = scanGeneratedFiles(tree, root, produced);
+            previousFiles = scanGeneratedFiles(tree, root, produced, listings);
         } catch (e) {
             recordFailure(report, refusals, root, e, 'not scanned for files of deleted entities');
         }
     }
 
-    const listings = new Map<string, Set<string>>();
     /** Whether `rel` may exist: one directory listing per folder instead of one failed open per new file. */
     const mayExist = (rel: string): boolean => {
         const dir = posix.dirname(rel) === '.' ? '' : posix.dirname(rel);
