@@ -1,7 +1,7 @@
 import { chromium, type Browser, type Page } from 'playwright-core';
 import { cpSync, mkdtempSync, rmSync, mkdirSync, realpathSync } from 'node:fs';
 import { tmpdir } from 'node:os';
-import { join } from 'node:path';
+import { basename, join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { startIdeServer, type IdeServer } from '../../server/ide-server.js';
 
@@ -28,7 +28,8 @@ export interface Session {
 /** A temp copy of the tutorial, the real IDE server on a free port, and a fresh headless Chromium. */
 export async function startSession(opts: { buildService?: boolean; empty?: boolean; example?: string } = {}): Promise<Session> {
   const base = realpathSync(mkdtempSync(join(tmpdir(), 'ide-e2e-')));
-  const workspace = join(base, 'tutorial');
+  // named after its example, as `contract serve examples/mobile-robot` names it (the top bar shows it)
+  const workspace = join(base, opts.empty ? 'workspace' : basename(opts.example ?? TUTORIAL));
   if (opts.empty) mkdirSync(workspace);
   else cpSync(opts.example ?? TUTORIAL, workspace, { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
   const server = await startIdeServer({ workspace, port: 0, buildService: opts.buildService ?? true });

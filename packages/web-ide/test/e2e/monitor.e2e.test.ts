@@ -31,11 +31,22 @@ const marksOf = (page: Page) => page.evaluate(() => ((window as any).__ide.monit
 const rule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="${id}"]`);
 const periodic = (page: Page, name: string) => page.locator(`.monitor-pschema[data-periodic="${name}"]`);
 
-/** A taller screenshot of the IDE with the monitor (for docs/watching-a-run.md), then the usual size again. */
-async function docShot(page: Page, name: string): Promise<void> {
+/**
+ * A taller screenshot of the IDE with the monitor (for docs/watching-a-run.md), then the usual size
+ * again. `hidden`: the workspace entries the other tests made (their fixtures), left out of the
+ * explorer for the picture only, so that it shows the example as a user has it.
+ */
+async function docShot(page: Page, name: string, hidden: readonly string[] = []): Promise<void> {
   await page.setViewportSize({ width: 1440, height: 1350 });
+  await page.evaluate((paths) => {
+    const style = document.createElement('style');
+    style.id = 'doc-shot-hidden';
+    style.textContent = paths.map((p) => `[data-path="${p}"]`).join(',') + '{display:none}';
+    if (paths.length) document.head.append(style);
+  }, [...hidden]);
   await page.waitForTimeout(300); // re-laid out and redrawn
   await shot(page, name);
+  await page.evaluate(() => document.getElementById('doc-shot-hidden')?.remove());
   await page.setViewportSize({ width: 1440, height: 900 });
 }
 
@@ -667,7 +678,7 @@ describe('Monitor in headless Chromium', () => {
     await shot(page, 'monitor-03-job-replay-tutorial');
     await seek(page, second.t + 1.5e9);
     await rule(page, 'SUP.action.SECOND').focus();
-    await docShot(page, 'doc-monitor-tutorial');
+    await docShot(page, 'doc-monitor-tutorial', ['growing-run', 'hostile-run', 'junk-run', 'logs', 'long-run', 'recorded', 'recorded.jsonl']);
     const replayMarks = await marksOf(page);
     if (liveChannel) {
       expect(streamed).toBeGreaterThan(0);
