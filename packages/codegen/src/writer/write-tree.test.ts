@@ -1,8 +1,10 @@
-import { existsSync, readFileSync, statSync, utimesSync, writeFileSync } from 'node:fs';
+import { existsSync, readFileSync, rmSync, statSync, utimesSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { describe, expect, it } from 'vitest';
+import { describe, expect, it, vi } from 'vitest';
 import { region } from '../regions/markers.js';
 import { scratchDirs } from '../test-support/temp-dir.js';
+import { MANIFEST_NAME } from './manifest.js';
+import { OutputTree } from './output-tree.js';
 import { writeTree, type GeneratedFile } from './write-tree.js';
 
 /** A fresh output folder per call, removed after each test. */
@@ -18,6 +20,39 @@ function edit(dir: string, path: string, id: string, text: string): void {
     const re = new RegExp(`(ID\\(${id}\\) ENABLED START\\*/)[\\s\\S]*?(/\\*PROTECTED REGION END)`);
     writeFileSync(abs, src.replace(re, (_m, a: string, b: string) => a + text + b));
 }
+
+/** The folders writeTree lists (OutputTree.list), in order, while it writes `files` into `dir`. */
+function listedWhileWriting(dir: string, files: GeneratedFile[]): string[] {
+    const spy = vi.spyOn(OutputTree.prototype, 'list');
+    try {
+        writeTree(dir, files);
+        return spy.mock.calls.map(([rel]) => rel);
+    } finally {
+        spy.mockRestore();
+    }
+}
+
+describe('writeTree: folders listed', () => {
+    const tree = [file('generated/a.c', 'x'), file('generated/sub/b.h', 'y'), file('generated/sub/deep/c.c', 'z'), file('generated/other/d.c', 'w')];
+
+    it('a new tree: only the generated folder is looked for (missing: nothing under it is listed)', () => {
+        expect(listedWhileWriting(out(), tree)).toEqual(['generated']);
+    });
+
+    it('a tree without its manifest: each folder listed once, by the search for files of deleted entities', () => {
+        const dir = out();
+        writeTree(dir, tree);
+        rmSync(join(dir, MANIFEST_NAME));
+        const listed = listedWhileWriting(dir, [...tree, file('generated/sub/new/e.c', 'v')]);
+        expect([...listed].sort()).toEqual(['generated', 'generated/other', 'generated/sub', 'generated/sub/deep']);
+    });
+
+    it('a tree with its manifest: each folder of a generated file listed once, to know which files exist', () => {
+        const dir = out();
+        writeTree(dir, tree);
+        expect([...listedWhileWriting(dir, tree)].sort()).toEqual(['generated', 'generated/other', 'generated/sub', 'generated/sub/deep']);
+    });
+});
 
 describe('writeTree', () => {
     it('creates files, then rewrites nothing when regenerated unchanged (mtime stays)', () => {

@@ -183,12 +183,24 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
     }
 
-    /** Whether `rel` may exist: one directory listing per folder instead of one failed open per new file. */
+    const parentOf = (rel: string): string => (posix.dirname(rel) === '.' ? '' : posix.dirname(rel));
+    /** Whether the nearest folder above `dir` that was listed did not hold the way down to it (then `dir` did not exist). */
+    const knownAbsent = (dir: string): boolean => {
+        for (let child = dir; child !== ''; child = parentOf(child)) {
+            const names = listings.get(parentOf(child));
+            if (names) return !names.has(posix.basename(child));
+        }
+        return false;
+    };
+    /**
+     * Whether `rel` may exist: one directory listing per folder instead of one failed open per new
+     * file, and none for a folder under one that was listed without it (a new tree: none at all).
+     */
     const mayExist = (rel: string): boolean => {
-        const dir = posix.dirname(rel) === '.' ? '' : posix.dirname(rel);
+        const dir = parentOf(rel);
         let names = listings.get(dir);
         if (!names) {
-            names = new Set((tree.list(dir) ?? []).map((e) => e.name));
+            names = knownAbsent(dir) ? new Set<string>() : new Set((tree.list(dir) ?? []).map((e) => e.name));
             listings.set(dir, names);
         }
         return names.has(posix.basename(rel));
