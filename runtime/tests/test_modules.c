@@ -12,6 +12,7 @@
 #include <sys/un.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include "engines/engine_wire.h"
 #include "harness.h"
 #include "internal.h"
 #include "modules/tmod.h"
@@ -394,6 +395,30 @@ void test_request_to_gone_while_stopping(void)
     }
     CHECK_MSG(records == 4 && stopping == 2, "%d error records (%d while stopping), expected 4 (2)", records, stopping);
     free(log);
+    h_teardown();
+}
+
+/* What ORD asks before it prints an error line for a request that failed (engine_wire.h): a
+ * peer gone (no mailbox) is quiet only while the launcher stops the run; any other failure, or
+ * the same outside the stop, is not. At a run's stop ORD ticked once more after LOC had gone and
+ * printed `ORD: cannot release LOC (goTo): unknown module` under `all modules stopped cleanly`. */
+void test_engine_peer_gone_at_stop(void)
+{
+    REQUIRE(h_setup("gone-at-stop") == 0);
+    char mark[700];
+    snprintf(mark, sizeof mark, "%s/%s", h_run_dir, CONTRACT_RUN_STOPPING_FILE);
+    int before = SendStart("GONE", ACK_NOTHING, 0);
+    CHECK_MSG(before == CONTRACT_EUNKNOWN, "a release to a module with no mailbox: %d, expected CONTRACT_EUNKNOWN", before);
+    CHECK(!engine_run_stopping() && !engine_peer_gone_at_stop(before));
+    int fd = open(mark, O_WRONLY | O_CREAT, 0644);
+    CHECK(fd >= 0);
+    if (fd >= 0) close(fd);
+    int during = SendStart("GONE", ACK_NOTHING, 0);
+    CHECK(engine_run_stopping() && during == CONTRACT_EUNKNOWN && engine_peer_gone_at_stop(during));
+    CHECK(engine_peer_gone_at_stop(CONTRACT_ENOTRUNNING));
+    CHECK(!engine_peer_gone_at_stop(CONTRACT_OK) && !engine_peer_gone_at_stop(CONTRACT_EBUSY) && !engine_peer_gone_at_stop(CONTRACT_ETOOBIG));
+    unlink(mark);
+    CHECK(!engine_run_stopping() && !engine_peer_gone_at_stop(CONTRACT_EUNKNOWN));
     h_teardown();
 }
 

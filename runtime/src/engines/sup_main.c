@@ -425,12 +425,6 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
             rc == 0 ? ACK_START : ACK_NOTDONE, m->Param.Start.AckID);
 }
 
-static int run_stopping(void) {
-    char path[4200];
-    snprintf(path, sizeof path, "%s/%s", ContractRunDir(), CONTRACT_RUN_STOPPING_FILE);
-    return access(path, F_OK) == 0;
-}
-
 int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, const char *argv[]) {
     (void)argc;
     (void)argv;
@@ -516,7 +510,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
 out:
     /* a supervisor stopped alone (not the run) still records the claims it made and restores
        what its undos asked for; at the end of a run the modules are being stopped too */
-    if (!run_stopping()) prio_requests_settle();
+    if (!engine_run_stopping()) prio_requests_settle();
     free(m);
     sup_core_destroy(c);
     return rc;
