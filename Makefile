@@ -2,7 +2,7 @@
 #   make start   install what is missing, build, and serve the IDE + build service on the tutorial
 #   make test    install what is missing, build, and run every test (TypeScript, C, browser, sandboxes)
 #   make bench   run every benchmark, write bench/results.json
-#   make test-node-versions   CLI smoke, a simulation told by `contract trace`, language/codegen tests on Node 22, 24 and 26 (several minutes: not in make test)
+#   make test-node-versions   CLI smoke, a simulation and a real run told by `contract trace`, contract serve, language/codegen tests on Node 22, 24 and 26 (several minutes: not in make test)
 #   make pack-cli             the CLI as one self-contained tarball in dist-packages/ (npm install -g it)
 #   make test-installed-cli   pack, install into a temp prefix, new/check/build/run outside the repository
 .PHONY: setup start test test-ts test-c test-node-versions pack-cli test-installed-cli bench clean

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# Runs the CLI smoke test, a simulation told by `contract trace`, and the language and codegen tests
+# Runs the CLI smoke test, a simulation told by `contract trace`, a real run told by it, `contract
+# serve`, and the language and codegen tests
 # on other Node versions than the one that builds the project (README.md "Requirements": Node 20,
 # 22, 24 and 26 are supported).
 #   bash scripts/test-node-versions.sh            # Node 22, 24 and 26
@@ -91,6 +92,36 @@ sim_trace() {
     cmp "$out/trace.jsonl" "$SCRATCH/sim-reference/trace.jsonl" && cmp "$out/story.txt" "$SCRATCH/sim-reference/story.txt"
 }
 
+# A real run of the tutorial (bwrap: 4 s, the build service in-process, gcc, the runtime) and its
+# story: the run must end cleanly and `contract trace` tell SUP's rule changes with their causes.
+run_trace() {
+    local node="$1" work="$SCRATCH/run-$2"
+    if ! command -v bwrap > /dev/null; then echo "no bwrap: run step skipped"; return 0; fi
+    rm -rf "$work" && mkdir -p "$work" && cp -r "$ROOT/examples/tutorial" "$work/tutorial" && rm -rf "$work/tutorial/logs"
+    "$node" "$CLI" run "$work/tutorial" --duration 4s --sandbox bwrap > "$work/run.out" 2>&1 || { tail -n 20 "$work/run.out"; return 1; }
+    "$node" "$CLI" trace "$work/tutorial/logs" > "$work/story.txt" || return 1
+    grep -q 'SUP  rule action.SECOND active   <- MAA:2 = "disconnected"' "$work/story.txt" || { grep ' rule ' "$work/story.txt"; return 1; }
+}
+
+# `contract serve` (the IDE and the build service): the page, opened with the printed URL's
+# token, and the jobs API with the token's cookie.
+serve_smoke() {
+    local node="$1" work="$SCRATCH/serve-$2"
+    rm -rf "$work" && mkdir -p "$work" && cp -r "$ROOT/examples/tutorial" "$work/tutorial"
+    "$node" "$CLI" serve "$work/tutorial" --port 0 > "$work/serve.log" 2>&1 &
+    local pid=$! url="" ok=1
+    for _ in $(seq 1 100); do
+        url="$(grep -o 'http://[^ ]*' "$work/serve.log" | head -n 1 || true)"
+        [ -n "$url" ] && break
+        sleep 0.1
+    done
+    if [ -n "$url" ] && curl -sf -L -c "$work/cookies" -b "$work/cookies" "$url" | grep -q '<title>ContrACT Studio'; then
+        curl -sf -b "$work/cookies" "${url%%/\?*}/api/jobs" > /dev/null && ok=0
+    fi
+    kill "$pid" 2> /dev/null; wait "$pid" 2> /dev/null || true
+    [ "$ok" -eq 0 ] || { cat "$work/serve.log"; return 1; }
+}
+
 vitest_in() {
     local node="$1" pkg="$2"
     (cd "$ROOT/packages/$pkg" && "$node" "$ROOT/node_modules/vitest/vitest.mjs" run --reporter=dot)
@@ -105,6 +136,8 @@ for v in $VERSIONS; do
     echo "== node $v: $("$NODE_BIN" --version) ($NODE_BIN)"
     step "node $v: CLI check + generate (tutorial, mobile-robot)" cli_smoke "$NODE_BIN" "node$v"
     step "node $v: simulation told by contract trace (same bytes as the reference)" sim_trace "$NODE_BIN" "node$v"
+    step "node $v: contract run (bwrap, tutorial 4 s) told by contract trace" run_trace "$NODE_BIN" "node$v"
+    step "node $v: contract serve (the IDE page, the jobs API)" serve_smoke "$NODE_BIN" "node$v"
     step "node $v: language tests" vitest_in "$NODE_BIN" language
     step "node $v: codegen tests" vitest_in "$NODE_BIN" codegen
 done
