@@ -48,10 +48,11 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
     let real: RuleRecord[];
     let text: string;
     let counts: Map<string, number>;
+    let adjustments: string[];
 
     beforeAll(async () => {
         expect(run.code, run.output).toBe(0);
-        ({ text, real, counts } = scenarioOfRun(run.records, {
+        ({ text, real, counts, adjustments } = scenarioOfRun(run.records, {
             supervisors: SUPERVISORS,
             start: 'MIS.mission()',
             // mission.contract: TELEOP, AUTO and STOP each `activate supervisor DRV.…()`
@@ -90,7 +91,7 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
         for (const sup of SUPERVISORS) {
             const got = simulatedDecisions(simulated, sup);
             const want = realDecisions(real, sup);
-            expect(got, firstDifference(sup, got, want, text)).toEqual(want);
+            expect(got, firstDifference(sup, got, want, text, adjustments)).toEqual(want);
         }
     });
 });

@@ -4,7 +4,7 @@
  */
 import { describe, expect, it } from 'vitest';
 import { parseTrace } from '@contract-studio/build-service/trace';
-import { scenarioOfRun, scenarioValueOf } from './replay-run.js';
+import { firstDifference, scenarioOfRun, scenarioValueOf } from './replay-run.js';
 
 const W = '2026-12-03T16:00:00.000000Z';
 const csv = (module: string, lines: string[]): { name: string; text: string } => ({
@@ -205,8 +205,8 @@ function twoMisses(drvSteersBetween = false) {
             '2558490000,W,ORD,ord_deadline_miss,,,0,schema=localisationLoop cycle=25 tick_ns=2500000000',
         ]),
     ];
-    const { text } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules: { DRV: ['MIS mission.AUTO', 'MIS mission.STOP'] } });
-    return { text, list: events(text).filter((e) => e.t > 1_551_000_000n && e.t < 2_000_000_000n) };
+    const { text, adjustments } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules: { DRV: ['MIS mission.AUTO', 'MIS mission.STOP'] } });
+    return { text, adjustments, list: events(text).filter((e) => e.t > 1_551_000_000n && e.t < 2_000_000_000n) };
 }
 
 describe("scenarioOfRun: events every supervisor received (ORD's)", () => {
@@ -218,7 +218,7 @@ describe("scenarioOfRun: events every supervisor received (ORD's)", () => {
     });
 
     it('a miss MIS met between the start and the stopping event moves with it when DRV meets it in the same order', () => {
-        const { text, list } = twoMisses();
+        const { text, list, adjustments } = twoMisses();
         // safestop really ran 20 us (DRV took START at 2.64803 s, STOP at 2.64805 s): the OBS:0
         // that ended it is replayed 20 us after the first miss, and the second miss just before it
         expect(list.map((e) => e.source)).toEqual(['ORD:0', 'ORD:0', 'OBS:0']);
@@ -227,10 +227,13 @@ describe("scenarioOfRun: events every supervisor received (ORD's)", () => {
         expect(obs!.t - second!.t).toBe(1n);
         expect(text.indexOf('"obstacleWatch"')).toBeGreaterThan(0);
         expect(text.indexOf('"obstacleWatch"')).toBeLessThan(text.indexOf('"localisationLoop"'));
+        // a failing differential test prints what the replay moved
+        expect(adjustments).toContain("shortRuns: DRV's safestop (t=1551400us) ran 20us without a decision: ORD:0 t=1558500us -> t=1551419999ns, OBS:0 t=1647600us -> t=1551420us");
     });
 
     it("nothing moves when DRV took another event between the second miss's new time and its own", () => {
-        const { list } = twoMisses(true);
+        const { list, adjustments } = twoMisses(true);
+        expect(adjustments.filter((a) => a.startsWith('shortRuns'))).toEqual(["shortRuns: DRV's safestop (t=1551400us) ran 999us without a decision; nothing moved: another receiver of ORD:0 t=1558500us met something else before it"]);
         // (safestop ran 96 ms without HALT: cut to just under 1 ms, the second miss would have to
         // come before the NAV:0, which DRV took first)
         expect(list.map((e) => e.source)).toEqual(['ORD:0', 'NAV:0', 'ORD:0', 'OBS:0']);
@@ -257,6 +260,15 @@ describe('scenarioOfRun: events a busy supervisor took late', () => {
         const { text } = scenarioOfRun(parseTrace(logs), { supervisors: new Set(['SUP']), start: 'SUP.action()' });
         const lines = text.split('\n').filter((l) => l.startsWith('t='));
         expect(lines).toEqual(['t=1150100us MAA:0 {"FUFU", 1}', 't=1150300us MAA:0']);
+    });
+});
+
+describe('firstDifference', () => {
+    it('says where the two sides part, and what the replay moved', () => {
+        const message = firstDifference('DRV', ['DRV a.X active <- elapsed=1ms'], [], 'until 1s\n', ['shortRuns: one move']);
+        expect(message.split('\n')[0]).toBe('DRV: decision 0 differs (simulated 1, real 0)');
+        expect(message).toContain('replay adjustments:\nshortRuns: one move\n');
+        expect(firstDifference('DRV', [], [], '')).toBe('DRV: the same 0 decisions');
     });
 });
 

@@ -109,6 +109,8 @@ export interface RunScenario {
     counts: Map<string, number>;
     /** The modules whose runs their own code ended, once per such run, in time order (`finish` steps). */
     finished: string[];
+    /** What inFlight and shortRuns moved (or left, and why), for a failure's message (firstDifference). */
+    adjustments: string[];
 }
 
 const mono = (r: KnownRecord | RuleRecord): bigint => BigInt(r.monoNs);
@@ -186,7 +188,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // while such a request was on its way (after the event that started the sender's decision,
     // before the request) is replayed just before that event, so that the receiver meets both in
     // the order it really did
-    const timeline = timelineOf(known, plan, received, receivers, end);
+    const timeline = timelineOf(known, plan, received, receivers, end, t0);
     inFlight(timeline);
     // a function that really ran less than its `elapsed` delay must do so in the simulator too
     shortRuns(timeline);
@@ -232,7 +234,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
         const value = e.value ?? plan.fallback?.(module!, Number(port)) ?? '';
         lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source} ${value}`.trimEnd());
     }
-    return { text: lines.join('\n') + '\n', real, counts, finished };
+    return { text: lines.join('\n') + '\n', real, counts, finished, adjustments: timeline.adjustments };
 }
 
 /**
@@ -301,9 +303,13 @@ interface Timeline {
     firstTimers: Map<string, bigint>;
     /** A request -> the time of the sender's decision that sent it (ReplayPlan.requestRules). */
     sentAt: Map<KnownRecord | RuleRecord, bigint>;
+    /** A time as the scenario writes it (`t=1551400us`). */
+    at(t: bigint): string;
+    /** What inFlight and shortRuns did, in words (RunScenario.adjustments). */
+    adjustments: string[];
 }
 
-function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: Map<string, Receipt[]>, receivers: Map<string, string[]>, end: bigint): Timeline {
+function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: Map<string, Receipt[]>, receivers: Map<string, string[]>, end: bigint, t0: bigint): Timeline {
     const supervisors = plan.supervisors;
     const decisions = new Map<string, bigint[]>();
     const eventDecisions = new Map<string, bigint[]>();
@@ -347,7 +353,7 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
             });
         }
     }
-    return { receivers, decisions, eventDecisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt };
+    return { receivers, decisions, eventDecisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt, at: (t) => `t=${formatTime(Number(t - t0))}`, adjustments: [] };
 }
 
 /**
@@ -393,6 +399,7 @@ function inFlight(tl: Timeline): void {
         const to = first.reduce((min, t) => (t < min ? t : min), tq);
         // the receiver's own events (not shared with another supervisor) that came in between
         const between = tl.receipts(q.module).filter((x) => x.emission && x.t > at.start && x.t < to && tl.receivers.get(x.source)?.length === 1);
+        if (between.length) tl.adjustments.push(`inFlight: ${between.map((x) => `${x.source} ${tl.at(x.emission!.t)}`).join(', ')} moved before ${tl.at(at.start)}, ${q.module} having met them before ${q.peer}'s ${q.detail}`);
         between.forEach((x, i) => (x.emission!.t = at.start - BigInt(between.length - i)));
     }
 }
@@ -435,7 +442,13 @@ function shortRuns(tl: Timeline): void {
         const between = tl.receipts(q1.peer).filter((x) => x.emission && x.emission !== e && x.emission.t >= latest && x.emission.t < e.t);
         if (latest - BigInt(between.length) <= started.start) continue;
         const moves = [...between.map((x, i) => ({ emission: x.emission!, to: latest - BigInt(between.length - i) })), { emission: e, to: latest }];
-        if (!moves.every((m) => othersKeepOrder(tl, m.emission, m.to, q1.peer))) continue;
+        const what = `${q1.module}'s ${q1.detail.slice('START '.length)} (${tl.at(started.start)}) ran ${formatTime(Number(ran))} without a decision`;
+        const refused = moves.find((m) => !othersKeepOrder(tl, m.emission, m.to, q1.peer));
+        if (refused) {
+            tl.adjustments.push(`shortRuns: ${what}; nothing moved: another receiver of ${refused.emission.source} ${tl.at(refused.emission.t)} met something else before it`);
+            continue;
+        }
+        tl.adjustments.push(`shortRuns: ${what}: ${moves.map((m) => `${m.emission.source} ${tl.at(m.emission.t)} -> ${tl.at(m.to)}`).join(', ')}`);
         for (const m of moves) m.emission.t = m.to;
     }
 }
@@ -469,7 +482,7 @@ export const simulatedDecisions = (changes: RuleChange[], sup: string): string[]
  * saved to a file (it is long: 180-beam scans). CI prints only the first lines of a failure: they
  * must say what differs.
  */
-export function firstDifference(sup: string, simulated: string[], real: string[], scenario: string): string {
+export function firstDifference(sup: string, simulated: string[], real: string[], scenario: string, adjustments: readonly string[] = []): string {
     let i = 0;
     while (i < simulated.length && i < real.length && simulated[i] === real[i]) i++;
     if (i === simulated.length && i === real.length) return `${sup}: the same ${i} decisions`;
@@ -481,6 +494,7 @@ export function firstDifference(sup: string, simulated: string[], real: string[]
         `${sup}: decision ${i} differs (simulated ${simulated.length}, real ${real.length})`,
         `simulated:\n${around(simulated)}`,
         `real:\n${around(real)}`,
+        `replay adjustments:${adjustments.length ? `\n${adjustments.join('\n')}` : ' none'}`,
         `scenario replayed (${file}):\n${short}`,
     ].join('\n');
 }
