@@ -234,6 +234,13 @@ export class ArchitectureView {
   private drawn: { schema: string; pane: Size; source?: string } | undefined;
   private seq = 0;
   private live: LiveHighlight | undefined;
+  /**
+   * The pane's size as the ResizeObserver last reported it (null: not on screen; undefined: not
+   * reported yet). Read instead of measuring: a measure while the page is being changed (the
+   * Monitor opening beside the editor) forces a layout the frame then does again.
+   */
+  private observed: Size | null | undefined;
+  private onObserved: Array<() => void> = [];
   private cursor: CursorAt | undefined;
   private followed: string | undefined;
 
@@ -276,12 +283,18 @@ export class ArchitectureView {
       this.canvas);
     // the layout is made for the pane: a pane that changed shape (docked, resized) gets a new one
     const relayout = debounce(() => {
-      const pane = this.paneSize();
+      const pane = this.observed;
       if (!this.drawn || !pane) return;
       const ratio = (a: Size) => a.width / Math.max(1, a.height);
       if (Math.abs(Math.log(ratio(pane) / ratio(this.drawn.pane))) > 0.25) void this.draw();
     }, 250);
-    new ResizeObserver(relayout).observe(this.canvas);
+    new ResizeObserver((entries) => {
+      const box = entries[entries.length - 1]?.borderBoxSize?.[0];
+      const [width, height] = box ? [box.inlineSize, box.blockSize] : [this.canvas.offsetWidth, this.canvas.offsetHeight];
+      this.observed = width > 0 && height > 0 ? { width, height } : null;
+      for (const waiter of this.onObserved.splice(0)) waiter();
+      relayout();
+    }).observe(this.canvas);
   }
 
   /** The schema shown, when one is. */
@@ -367,7 +380,8 @@ export class ArchitectureView {
       ? `PERIOD ${schema.period ?? '?'} · CRITICAL_DELAY ${schema.criticalDelay ?? '?'} · ΣC ${(sumC * 1000).toFixed(2)} ms${period ? ` · utilisation ${((sumC / period) * 100).toFixed(1)} %` : ''}`
       : 'event schema (asynchronous modules)';
     try {
-      const pane = this.paneSize();
+      const pane = await this.paneSize();
+      if (seq !== this.seq) return;
       // the same schema of the same model in a pane of the same size (a model re-read after a save that
       // changed another file, the Monitor opened again by Build & Run): the drawing is already right
       const source = JSON.stringify(schema);
@@ -389,8 +403,19 @@ export class ArchitectureView {
     }
   }
 
-  /** The pane's size, when it is on screen. */
-  private paneSize(): Size | undefined {
+  /**
+   * The pane's size, when it is on screen: the observer's, after its first report (it comes with the
+   * next layout); a pane that is not laid out (not in the page, hidden) gets no report, so after
+   * 100 ms it is measured.
+   */
+  private async paneSize(): Promise<Size | undefined> {
+    if (this.observed === undefined) {
+      await new Promise<void>((done) => {
+        const timer = setTimeout(done, 100);
+        this.onObserved.push(() => (clearTimeout(timer), done()));
+      });
+    }
+    if (this.observed !== undefined) return this.observed ?? undefined;
     const r = this.canvas.getBoundingClientRect();
     return r.width > 0 && r.height > 0 ? { width: r.width, height: r.height } : undefined;
   }
