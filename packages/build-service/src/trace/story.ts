@@ -143,6 +143,11 @@ export interface SchemaFigures {
     missedTicks: number;
 }
 
+/** A periodic schema's figures with its name, as `schemaFigures()` lists them. */
+export interface NamedSchemaFigures extends SchemaFigures {
+    schema: string;
+}
+
 /** The modules released in one cycle and not finished yet; how late ORD sent its first release. */
 interface CycleRunning {
     cycle: string;
@@ -397,7 +402,7 @@ export class StoryTeller {
     }
 
     /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */
-    schemaFigures(): Array<{ schema: string } & SchemaFigures> {
+    schemaFigures(): NamedSchemaFigures[] {
         return [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([schema, f]) => ({ schema, ...f }));
     }
 

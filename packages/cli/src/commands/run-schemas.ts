@@ -4,10 +4,10 @@
  * run` saved, read as a stream as `contract trace` reads them: the lines its story ends with, as
  * data (`contract run --format json`'s `schemas`, docs/ci.md).
  */
-import { StoryTeller, type SchemaFigures } from '@contract-studio/build-service/trace';
+import { StoryTeller, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
 import { closeLogs, openLogFolder, streamTrace } from '../trace-stream.js';
 
-export async function runSchemaFigures(logsDir: string, names: readonly string[]): Promise<Array<{ schema: string } & SchemaFigures> | null> {
+export async function runSchemaFigures(logsDir: string, names: readonly string[]): Promise<NamedSchemaFigures[] | null> {
     if (!names.length) return null;
     const logs = await openLogFolder(logsDir, names);
     if (typeof logs === 'string') return null;

@@ -2,7 +2,7 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
-import { ownRunEndText, readableCause, schedulerLineFields, StoryTeller, type KnownRecord, type SchemaFigures } from '@contract-studio/build-service/trace';
+import { ownRunEndText, readableCause, schedulerLineFields, StoryTeller, type KnownRecord, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
 import type { ScenarioResult } from './run-scenario.js';
 import { engineLine, typedRecord } from '../trace/steps-to-trace.js';
 import { actionLines } from '../trace/action-lines.js';
@@ -115,13 +115,13 @@ class MissTeller {
     }
 
     /** The same as data (`--format json`): the counts `expect deadline misses` and `expect overruns` check. */
-    schemaFigures(): Array<{ schema: string } & SchemaFigures> {
+    schemaFigures(): NamedSchemaFigures[] {
         return this.story.schemaFigures();
     }
 }
 
 /** Each periodic schema's figures over scenario `r`, from ORD's records and lines of its steps. */
-function schemaCounts(r: ScenarioResult): Array<{ schema: string } & SchemaFigures> {
+function schemaCounts(r: ScenarioResult): NamedSchemaFigures[] {
     const teller = new MissTeller();
     for (const s of r.steps) teller.misses(s.record);
     return teller.schemaFigures();
