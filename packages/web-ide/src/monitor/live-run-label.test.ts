@@ -1,5 +1,5 @@
 import { describe, it, expect } from 'vitest';
-import { endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
 
 describe("a live job's label in the Monitor's run list", () => {
   it('says how the job ended whichever reaches the page first, its end or its CSV logs', () => {
@@ -19,5 +19,13 @@ describe("a live job's label in the Monitor's run list", () => {
     // nothing streamed (an older build service), or all of it: no count
     expect(streamedRunLabel('j-2', 'failed', { streamed: 0, logged: 10 })).toBe('Build & Run job j-2 · as streamed · ended: failed');
     expect(streamedRunLabel('j-2', 'failed', { streamed: 10, logged: 10 })).toBe('Build & Run job j-2 · as streamed · ended: failed');
+  });
+
+  it('the run of its CSV logs: what the replay lacks, and how the job ended when it carries that', () => {
+    expect(csvLogsRunLabel('j-3', [])).toBe('Build & Run job j-3 · CSV logs');
+    expect(csvLogsRunLabel('j-3', ['MSC_1.csv capped', 'LOC_1.csv not downloaded'], 'cancelled'))
+      .toBe('Build & Run job j-3 · CSV logs (not whole: MSC_1.csv capped; LOC_1.csv not downloaded) · ended: cancelled');
+    // its outcome given later, by the build panel's end
+    expect(endedRunLabel(csvLogsRunLabel('j-3', []), false, 'failed')).toBe('Build & Run job j-3 · CSV logs · ended: failed');
   });
 });

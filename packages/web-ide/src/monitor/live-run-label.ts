@@ -1,6 +1,7 @@
 /**
- * The Monitor's run list label of a Build & Run job it followed live, at each stage: while it runs,
- * once it ended (how, said once), once its CSV logs are shown (what the stream did not receive).
+ * The Monitor's run list labels of a Build & Run job: the run it followed live, at each stage (while
+ * it runs, once it ended: how, said once, once its CSV logs are shown: what the stream did not
+ * receive), and the run of its CSV logs.
  * Pure, so that the order in which the job's end and its logs reach the page is tested without one
  * (live-run-label.test.ts).
  */
@@ -8,6 +9,11 @@
 /** 50000 -> `50,000`. */
 export function count(n: number): string {
   return n.toLocaleString('en-US');
+}
+
+/** How a job ended, as every label ends with it: ` · ended: cancelled` (nothing when not known yet). */
+function endedText(outcome: string | undefined): string {
+  return outcome ? ` · ended: ${outcome}` : '';
 }
 
 /** While it runs: `Build & Run job j-… · live`. */
@@ -21,7 +27,7 @@ export function liveRunLabel(jobId: string): string {
  * stream's end came late, or only the build panel's end said it) gets the outcome at its end.
  */
 export function endedRunLabel(label: string, stillLive: boolean, outcome: string): string {
-  return stillLive ? label.replace(' · live', ` · ended: ${outcome}`) : `${label} · ended: ${outcome}`;
+  return stillLive ? label.replace(' · live', endedText(outcome)) : `${label}${endedText(outcome)}`;
 }
 
 /**
@@ -33,5 +39,14 @@ export function streamedRunLabel(jobId: string, outcome: string | undefined, rec
   const cut = records && records.streamed > 0 && records.streamed < records.logged
     ? ` (${count(records.streamed)} of the ${count(records.logged)} records of its logs: ${count(records.logged - records.streamed)} not received)`
     : '';
-  return `Build & Run job ${jobId} · as streamed${cut}${outcome ? ` · ended: ${outcome}` : ''}`;
+  return `Build & Run job ${jobId} · as streamed${cut}${endedText(outcome)}`;
+}
+
+/**
+ * The run of its CSV logs: `Build & Run job j-… · CSV logs`, with what the replay lacks (a log left
+ * out or capped, one not downloaded) and how the job ended when that run carries it (the live run
+ * was forgotten for want of records).
+ */
+export function csvLogsRunLabel(jobId: string, problems: readonly string[], outcome?: string): string {
+  return `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${endedText(outcome)}`;
 }

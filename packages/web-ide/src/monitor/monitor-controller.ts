@@ -30,7 +30,7 @@ import { jobOutcome } from './live-follow-protocol.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 import { NOT_IN_MODEL_LONG } from './panel-text.js';
-import { count, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { count, csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
@@ -262,8 +262,7 @@ export class MonitorController {
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
-    const label = `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${outcome ? ` · ended: ${outcome}` : ''}`;
-    const run: Run = { id: `job:${jobId}`, label, model, live: false, outcome };
+    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome), model, live: false, outcome };
     this.keepRecorded(run);
     return run;
   }
