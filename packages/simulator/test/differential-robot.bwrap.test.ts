@@ -15,6 +15,9 @@
  *   comparison is on the order and the causes, not the times; `elapsed=1ms` timers are compared
  *   as causes; a miss that made MIS stop DRV.autonomous before its LOOPS' 1 ms came (DRV got the
  *   START late) is replayed as soon after the start as DRV really ran (replay-run.ts shortRuns);
+ * - the end: the launcher stops the supervisors a few microseconds apart; a request MIS sent DRV
+ *   just before (STOP safestop as the way clears) may never reach it, where the simulator delivers
+ *   it at once: the comparison then ends before MIS's decision (replay-run.ts endBeforeUnreceived);
  * - values: OBS:0 distances that changed a rule are named by their cause (`value=0.35`, `value=5.0`);
  *   those that changed none are replayed as 0.75, a distance that neither starts a safe stop
  *   (< 0.5) nor ends one (> 1.0), whatever the mode (the real one was 5 in AUTO or 0.35 in STOP:

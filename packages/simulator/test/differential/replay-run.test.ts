@@ -243,6 +243,54 @@ describe("scenarioOfRun: events every supervisor received (ORD's)", () => {
     });
 });
 
+/**
+ * MIS starts DRV.safestop on an obstacle (OBS:0 0.35 at 1.2 s); at 2 s the way is clear (OBS:0 5):
+ * MIS stops safestop and starts autonomous, and 30 us later the launcher stops the run.
+ * `drvGotStop`: DRV took MIS's STOP before the launcher's (else it was still on its way).
+ */
+function stoppedWhileSent(drvGotStop: boolean) {
+    const files = [
+        csv('MIS', [
+            '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
+            '1000000000,W,MIS,supervisor,,,0,function mission started',
+            '1200000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+            '1200050000,W,MIS,sup_rule,,,0,mission.STOP active cause=OBS:0 value=0.35',
+            '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+            '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
+            '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            '2000080000,W,MIS,request_received,contract-launch,,0,STOP',
+        ]),
+        csv('DRV', [
+            '1200100000,W,DRV,request_received,MIS,,5,START safestop',
+            '1201200000,W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns',
+            ...(drvGotStop ? ['2000070000,W,DRV,request_received,MIS,,11,STOP', '2000071000,W,DRV,sup_rule,,,0,safestop.HALT inactive cause=stop', '2000075000,W,DRV,request_received,MIS,,29,START autonomous'] : []),
+            '2000100000,W,DRV,request_received,contract-launch,,0,STOP',
+        ]),
+    ];
+    const { text, real, adjustments } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules: { DRV: ['MIS mission.AUTO', 'MIS mission.STOP'] } });
+    return { text, adjustments, decisions: real.map((r) => `${r.module} ${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} <- ${r.cause}`) };
+}
+
+describe('scenarioOfRun: the end of the run', () => {
+    it('a request still on its way when the launcher stopped the run ends the comparison before the decision that sent it', () => {
+        const { text, decisions, adjustments } = stoppedWhileSent(false);
+        // the simulator would stop safestop at MIS's decision; the real DRV never took that STOP:
+        // neither side has the decision, nor the OBS:0 that caused it
+        expect(text.split('\n')[0]).toBe('until 1s');
+        expect(events(text).map((e) => `${e.t} ${e.source}`)).toEqual(['200000000 OBS:0']);
+        expect(decisions).toEqual(['MIS mission.STOP active <- OBS:0 value=0.35', 'DRV safestop.HALT active <- elapsed=1000000ns']);
+        expect(adjustments).toEqual(["end: MIS's decision at t=1000050us sent DRV a request it had not received when the launcher stopped the run (t=1000080us): the comparison ends at t=1s"]);
+    });
+
+    it("the comparison goes on to the launcher's stop when every request arrived before it", () => {
+        const { text, decisions, adjustments } = stoppedWhileSent(true);
+        expect(text.split('\n')[0]).toBe('until 1000080us');
+        expect(events(text).map((e) => e.source)).toEqual(['OBS:0', 'OBS:0']);
+        expect(decisions.slice(2)).toEqual(['MIS mission.STOP inactive <- OBS:0 value=5', 'MIS mission.AUTO active <- endof(STOP)', 'DRV safestop.HALT inactive <- stop']);
+        expect(adjustments).toEqual([]);
+    });
+});
+
 describe('scenarioOfRun: events a busy supervisor took late', () => {
     it('a module event is replayed when the engine took it (event_received), with the value of the decision it caused', () => {
         // SUP waited for MAA's priority answer: the event that arrived at 1.0 s was taken at 1.25 s,

@@ -19,6 +19,10 @@
  * event received while another supervisor's request was on its way) and shortRuns (a function
  * stopped before its `elapsed` timer came).
  *
+ * The comparison ends when the launcher stops the run (the first supervisor's STOP from it), or
+ * earlier when a request one supervisor sent another was still on its way then
+ * (endBeforeUnreceived): the simulator delivers a request at the decision that sends it.
+ *
  * A module run that its own code ended (`run_finished` with no STOP: the tutorial's MAB at once,
  * MAA after posting "disconnected" when its end comes before SUP's STOP) is replayed as `finish M`
  * at the time it ended, before an event
@@ -103,7 +107,7 @@ export interface ReplayPlan {
 export interface RunScenario {
     /** The scenario text: `until`, `start`, then one line per replayed event. */
     text: string;
-    /** The run's `sup_rule` records of the supervisors, up to the launcher's stop. */
+    /** The run's `sup_rule` records of the supervisors, up to the comparison's end (the scenario's `until`). */
     real: RuleRecord[];
     /** How many replayed events of each source (`OBS:0`, `ORD:0`...), for the test's own checks. */
     counts: Map<string, number>;
@@ -141,8 +145,7 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     const t0 = mono(started);
     // the launcher's stop (KILL/STOP from contract-launch) ends the comparison
     const stop = known.find((r) => plan.supervisors.has(r.module) && r.kind === 'request_received' && r.peer === 'contract-launch' && /^(STOP|KILL)/.test(r.detail));
-    const end = stop ? mono(stop) : BigInt(Number.MAX_SAFE_INTEGER);
-    const real = known.filter(isRule).filter((r) => plan.supervisors.has(r.module) && mono(r) < end);
+    const launcherStop = stop ? mono(stop) : BigInt(Number.MAX_SAFE_INTEGER);
 
     // when each supervisor's engine took each module event (event_received, in its log's order): a
     // supervisor waiting for a module's answer (a priority change, docs/engines.md "Known limits")
@@ -188,10 +191,13 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // while such a request was on its way (after the event that started the sender's decision,
     // before the request) is replayed just before that event, so that the receiver meets both in
     // the order it really did
-    const timeline = timelineOf(known, plan, received, receivers, end, t0);
+    const timeline = timelineOf(known, plan, received, receivers, launcherStop, t0);
     inFlight(timeline);
     // a function that really ran less than its `elapsed` delay must do so in the simulator too
     shortRuns(timeline);
+    // a request still on its way when the launcher stopped the run: the comparison ends before it
+    const end = endBeforeUnreceived(timeline, plan, launcherStop);
+    const real = known.filter(isRule).filter((r) => plan.supervisors.has(r.module) && mono(r) < end);
 
     // ORD's events name their schema in ORD's own records, in the order it sent them
     const ordValues = new Map<string, string[]>([
@@ -303,6 +309,8 @@ interface Timeline {
     firstTimers: Map<string, bigint>;
     /** A request -> the time of the sender's decision that sent it (ReplayPlan.requestRules). */
     sentAt: Map<KnownRecord | RuleRecord, bigint>;
+    /** Receiver -> sender -> the times of the sender's decisions that sent it a request (ReplayPlan.requestRules). */
+    requestChanges: Map<string, Map<string, bigint[]>>;
     /** A time as the scenario writes it (`t=1551400us`). */
     at(t: bigint): string;
     /** What inFlight and shortRuns did, in words (RunScenario.adjustments). */
@@ -336,6 +344,7 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
     // the k-th request a receiver got from a sender was sent by the k-th change of the sender's rules
     // that activate it (a mailbox is first in, first out)
     const sentAt = new Map<KnownRecord | RuleRecord, bigint>();
+    const requestChanges = new Map<string, Map<string, bigint[]>>();
     for (const [receiver, rules] of Object.entries(plan.requestRules ?? {})) {
         const changes = new Map<string, bigint[]>(); // sender -> its request-sending decisions, in order
         for (const r of known) {
@@ -343,6 +352,7 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
             if (!isRule(r) || r.causeEvent.kind === 'stop' || !rules.includes(`${r.module} ${r.function}.${r.rule}`)) continue;
             (changes.get(r.module) ?? changes.set(r.module, []).get(r.module)!).push(mono(r));
         }
+        requestChanges.set(receiver, changes);
         for (const [sender, sent] of changes) {
             const got = requests.filter((q) => q.peer === sender && q.module === receiver);
             // a stale table would match requests with the wrong decisions: more requests than changes says so
@@ -353,7 +363,44 @@ function timelineOf(known: (KnownRecord | RuleRecord)[], plan: ReplayPlan, recei
             });
         }
     }
-    return { receivers, decisions, eventDecisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt, at: (t) => `t=${formatTime(Number(t - t0))}`, adjustments: [] };
+    return { receivers, decisions, eventDecisions, receipts: (sup) => bySupervisor.get(sup) ?? [], requests, firstTimers, sentAt, requestChanges, at: (t) => `t=${formatTime(Number(t - t0))}`, adjustments: [] };
+}
+
+/**
+ * Where the comparison ends: at the launcher's stop, or earlier when a supervisor's decision before
+ * it sent another a request (ReplayPlan.requestRules) that had not reached it then. The simulator
+ * delivers that request at the decision, and the receiver would decide on it (`cause=stop`, or a
+ * START's first timer) where the real one never did before it was stopped: the comparison then
+ * ends where that decision began (the replay time of the event that caused it), so that neither
+ * side has it. Without requestRules, the launcher's stop.
+ */
+function endBeforeUnreceived(tl: Timeline, plan: ReplayPlan, launcherStop: bigint): bigint {
+    let end = launcherStop;
+    for (const receiver of Object.keys(plan.requestRules ?? {})) {
+        for (const [sender, sent] of tl.requestChanges.get(receiver) ?? []) {
+            const got = tl.requests.filter((q) => q.peer === sender && q.module === receiver && mono(q) < launcherStop).length;
+            const unreceived = sent.filter((t) => t < launcherStop)[got];
+            if (unreceived === undefined) continue;
+            const start = startOfDecision(tl, sender, unreceived);
+            if (start >= end) continue;
+            tl.adjustments.push(`end: ${sender}'s decision at ${tl.at(unreceived)} sent ${receiver} a request it had not received when the launcher stopped the run (${tl.at(launcherStop)}): the comparison ends at ${tl.at(start)}`);
+            end = start;
+        }
+    }
+    return end;
+}
+
+/**
+ * When a decision `sender` made at `tp` began: the replay time of the event that caused it
+ * (received at most CAUSE_WINDOW before it), else the decision's own time.
+ */
+function startOfDecision(tl: Timeline, sender: string, tp: bigint): bigint {
+    return triggerOf(tl, sender, tp)?.emission?.t ?? tp;
+}
+
+/** The event that caused the decision `sender` made at `tp`: its latest receipt at most CAUSE_WINDOW before. */
+function triggerOf(tl: Timeline, sender: string, tp: bigint): Receipt | undefined {
+    return tl.receipts(sender).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).pop();
 }
 
 /**
@@ -377,7 +424,7 @@ function decisionStart(tl: Timeline, q: KnownRecord | RuleRecord): { start: bigi
     const sender = q.peer;
     const tp = sendingDecision(tl, q);
     if (tp === undefined) return undefined;
-    const trigger = tl.receipts(sender).filter((x) => x.t <= tp && tp - x.t <= CAUSE_WINDOW && x.emission).pop();
+    const trigger = triggerOf(tl, sender, tp);
     return { start: trigger?.emission?.t ?? tp, trigger };
 }
 
@@ -397,7 +444,9 @@ function inFlight(tl: Timeline): void {
         // first such request move
         const first = tl.requests.filter((p) => p.module === q.module && p.peer === q.peer && mono(p) <= tq && decisionStart(tl, p)?.start === at.start).map(mono);
         const to = first.reduce((min, t) => (t < min ? t : min), tq);
-        // the receiver's own events (not shared with another supervisor) that came in between
+        // the receiver's own events (not shared with another supervisor) that came in between: one
+        // the sender received too (ORD's go to every supervisor) cannot move before the sender's
+        // trigger without the sender meeting it in another order (see othersKeepOrder)
         const between = tl.receipts(q.module).filter((x) => x.emission && x.t > at.start && x.t < to && tl.receivers.get(x.source)?.length === 1);
         if (between.length) tl.adjustments.push(`inFlight: ${between.map((x) => `${x.source} ${tl.at(x.emission!.t)}`).join(', ')} moved before ${tl.at(at.start)}, ${q.module} having met them before ${q.peer}'s ${q.detail}`);
         between.forEach((x, i) => (x.emission!.t = at.start - BigInt(between.length - i)));
