@@ -97,6 +97,7 @@ int rt_init_run_dir(void)
 }
 
 const char *ContractRunDir(void) { return g_rt.run_dir; }
+int ContractRunStopping(void) { return rt_run_stopping(); }
 const char *ContractSelfName(void) { return g_rt.name; }
 long ContractActivations(void) { return g_rt.activations; }
 

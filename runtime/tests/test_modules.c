@@ -410,16 +410,16 @@ void test_engine_peer_gone_at_stop(void)
     snprintf(mark, sizeof mark, "%s/%s", h_run_dir, CONTRACT_RUN_STOPPING_FILE);
     int before = SendStart("GONE", ACK_NOTHING, 0);
     CHECK_MSG(before == CONTRACT_EUNKNOWN, "a release to a module with no mailbox: %d, expected CONTRACT_EUNKNOWN", before);
-    CHECK(!engine_run_stopping() && !engine_peer_gone_at_stop(before));
+    CHECK(!ContractRunStopping() && !engine_peer_gone_at_stop(before));
     int fd = open(mark, O_WRONLY | O_CREAT, 0644);
     CHECK(fd >= 0);
     if (fd >= 0) close(fd);
     int during = SendStart("GONE", ACK_NOTHING, 0);
-    CHECK(engine_run_stopping() && during == CONTRACT_EUNKNOWN && engine_peer_gone_at_stop(during));
+    CHECK(ContractRunStopping() && during == CONTRACT_EUNKNOWN && engine_peer_gone_at_stop(during));
     CHECK(engine_peer_gone_at_stop(CONTRACT_ENOTRUNNING));
     CHECK(!engine_peer_gone_at_stop(CONTRACT_OK) && !engine_peer_gone_at_stop(CONTRACT_EBUSY) && !engine_peer_gone_at_stop(CONTRACT_ETOOBIG));
     unlink(mark);
-    CHECK(!engine_run_stopping() && !engine_peer_gone_at_stop(CONTRACT_EUNKNOWN));
+    CHECK(!ContractRunStopping() && !engine_peer_gone_at_stop(CONTRACT_EUNKNOWN));
     h_teardown();
 }
 

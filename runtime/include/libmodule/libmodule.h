@@ -317,6 +317,9 @@ int ContractClientInit(const char *name);
 void ContractShutdown(void);
 /** The run directory in use (CONTRACT_RUN_DIR, or the fresh one created at start-up). */
 const char *ContractRunDir(void);
+/** 1 once the launcher has begun stopping the run (its `launcher.stopping` mark is in the run
+ *  directory), else 0: a request to a peer that has already gone is then expected, not an error. */
+int ContractRunStopping(void);
 /** This process's module name. */
 const char *ContractSelfName(void);
 /** Number of START requests received so far (activations). */

@@ -2,11 +2,8 @@
 #define _POSIX_C_SOURCE 200809L
 #include "engine_wire.h"
 
-#include <limits.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <unistd.h>
 
 int engine_send_start(const char *module, const char *function, const void *block, size_t size,
                       int ackId, int wantedAck) {
@@ -75,13 +72,6 @@ void engine_terminate_names(RequestMessage *m) {
     }
 }
 
-int engine_run_stopping(void) {
-    char path[PATH_MAX + 32];
-    const char *dir = ContractRunDir();
-    if (!dir || snprintf(path, sizeof path, "%s/%s", dir, CONTRACT_RUN_STOPPING_FILE) >= (int)sizeof path) return 0;
-    return access(path, F_OK) == 0;
-}
-
 int engine_peer_gone_at_stop(int rc) {
-    return (rc == CONTRACT_EUNKNOWN || rc == CONTRACT_ENOTRUNNING) && engine_run_stopping();
+    return (rc == CONTRACT_EUNKNOWN || rc == CONTRACT_ENOTRUNNING) && ContractRunStopping();
 }

@@ -31,8 +31,6 @@ int engine_binary_args(const RequestMessage *m, const unsigned char **block, siz
 void engine_terminate_names(RequestMessage *m);
 /** Copies the request's Data as a NUL-terminated string (truncated to n-1). */
 void engine_data_string(const RequestMessage *m, char *out, size_t n);
-/** 1 while the launcher stops the run (CONTRACT_RUN_STOPPING_FILE in the run directory). */
-int engine_run_stopping(void);
 /** 1 when a request the engine sent failed with `rc` because its peer had gone
  *  (CONTRACT_EUNKNOWN, CONTRACT_ENOTRUNNING) while the launcher stops the run: expected then
  *  (the launcher stops ORD with the modules, after the supervisors). libmodule has logged it as

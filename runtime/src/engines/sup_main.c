@@ -510,7 +510,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
 out:
     /* a supervisor stopped alone (not the run) still records the claims it made and restores
        what its undos asked for; at the end of a run the modules are being stopped too */
-    if (!engine_run_stopping()) prio_requests_settle();
+    if (!ContractRunStopping()) prio_requests_settle();
     free(m);
     sup_core_destroy(c);
     return rc;
