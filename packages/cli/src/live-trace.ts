@@ -9,7 +9,7 @@
 import { createHash, type Hash } from 'node:crypto';
 import type { FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
-import { parseRecordLine } from '@contract-studio/build-service/trace';
+import { parseRecordLine, type TraceRecord } from '@contract-studio/build-service/trace';
 import { openTraceFile, toJsonLines } from './trace-files.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
@@ -49,15 +49,15 @@ export class LiveTrace {
  * The JSON lines of the run's saved logs `names` in `dir`: their digest compared with what was
  * written live (`live.digest`), and `traceFile` rewritten from them when it differs. The records
  * counted, or why the logs could not be read. A run that left no logs keeps what came live
- * (`live.records` records).
+ * (`live.records` records). `observe` sees each record of the logs once, in the order written.
  */
-export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; records: number }): Promise<{ records: number } | string> {
+export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; records: number }, observe?: (r: TraceRecord) => void): Promise<{ records: number } | string> {
     if (!names.length) return { records: live.records };
     const logs = await openLogFolder(dir, names);
     if (typeof logs === 'string') return logs;
     try {
         const hash = createHash('sha256');
-        const { records } = await jsonLinesOf(logs, (piece) => void hash.update(piece));
+        const { records } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe);
         if (hash.digest('hex') === live.digest) return { records };
         const out = await openTraceFile(traceFile);
         try {

@@ -292,14 +292,18 @@ export const PIECE_CHARS = 64 * 1024;
 /**
  * The records of `logs` as JSON lines (one object per record, time order: `contract trace
  * --format json`), handed to `sink` in pieces, each awaited; a sink answering false stops the
- * read. Returns the records handed on and those told later than their time.
+ * read. `observe` sees each record as it is written (another reader of the same pass: `contract
+ * run`'s schema figures). Returns the records handed on and those told later than their time.
  */
-export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void): Promise<{ records: number; outOfOrder: number; problems: string[] }> {
+export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void, observe?: (r: TraceRecord) => void): Promise<{ records: number; outOfOrder: number; problems: string[] }> {
     const stream = streamTrace(logs);
     let records = 0;
     let piece = '';
     for await (const batch of stream.batches) {
-        for (const r of batch) piece += jsonLine(r) + '\n';
+        for (const r of batch) {
+            piece += jsonLine(r) + '\n';
+            observe?.(r);
+        }
         records += batch.length;
         if (piece.length >= PIECE_CHARS) {
             const go = await sink(piece);

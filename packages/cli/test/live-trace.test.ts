@@ -58,14 +58,19 @@ describe('LiveTrace', () => {
         it('rewrites the file from the run\'s logs (only those) when the live text differs', async () => {
             const file = join(dir, 'run.jsonl');
             writeFileSync(file, 'live, partly\n');
-            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), records: 1 })).toEqual({ records: 3 });
+            const seen: string[] = [];
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), records: 1 }, (r) => seen.push(`${r.module} ${r.monoNs}`))).toEqual({ records: 3 });
             expect(readFileSync(file, 'utf8')).toBe(whole());
+            // each record seen once (the pass that rewrote the file shows it none again), in time order
+            expect(seen).toEqual(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))).map((r) => `${r.module} ${r.monoNs}`));
         });
 
         it('leaves the file as written live when it is the whole trace', async () => {
             const file = join(dir, 'run.jsonl');
             writeFileSync(file, 'as written live\n'); // stands for the same text: not written again
-            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha(whole()), records: 3 })).toEqual({ records: 3 });
+            let seen = 0;
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha(whole()), records: 3 }, () => seen++)).toEqual({ records: 3 });
+            expect(seen).toBe(3);
             expect(readFileSync(file, 'utf8')).toBe('as written live\n');
         });
 

@@ -2,7 +2,9 @@
  * Each periodic schema's figures over a run — completed cycles, longest response, deadline misses,
  * overruns (every skipped release), held cycles, ORD's missed ticks — from the CSV logs `contract
  * run` saved, read as a stream as `contract trace` reads them: the lines its story ends with, as
- * data (`contract run --format json`'s `schemas`, docs/ci.md).
+ * data (`contract run --format json`'s `schemas`, docs/ci.md). With `--trace`, `contract run`
+ * tells its StoryTeller on the pass that checks the trace file instead (live-trace.ts), and
+ * the logs are not read again.
  */
 import { StoryTeller, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
 import { closeLogs, openLogFolder, streamTrace } from '../trace-stream.js';

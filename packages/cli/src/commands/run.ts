@@ -11,6 +11,7 @@ import { join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import type { JobEvent } from '@contract-studio/build-service';
+import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
 import { isCpuList } from '@contract-studio/conventions';
@@ -188,13 +189,16 @@ export const runCommand: Command = {
         }
         const logs = savedLogs.saved;
         let trace: { file: string; records: number } | null = null;
+        // each periodic schema's figures, for a CI script's gate (--format json only): told by the
+        // pass over the saved logs that checks the trace file, else by a read of its own
+        const teller = opts.format === 'json' && traceFile && logs.length ? new StoryTeller() : null;
         if (traceFile && live) {
             try {
                 // written live; rewritten from the collected logs when the live channel was not
                 // the whole story in order (docker, its kept-lines bound, records sent late):
                 // both compared by digest, the logs read as a stream (a long run is gigabytes)
                 const digest = await live.close();
-                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, records: live.records });
+                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, records: live.records }, teller ? (r) => teller.tell(r) : undefined);
                 if (typeof whole === 'string') throw new Error(whole);
                 trace = { file: traceFile, records: whole.records };
             } catch (e) {
@@ -205,8 +209,7 @@ export const runCommand: Command = {
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
         const failures = moduleFailures(outcome.runLines);
-        // each periodic schema's figures, for a CI script's gate (read from the saved logs: --format json only)
-        const schemas = opts.format === 'json' ? await runSchemaFigures(logsDir, logs).catch(() => null) : null;
+        const schemas = opts.format !== 'json' ? null : teller && trace ? teller.schemaFigures() : await runSchemaFigures(logsDir, logs).catch(() => null);
         const extra = {
             logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
             logsLeftOut: leftOut, moduleFailures: failures, runDirLeftovers: leftovers, trace, schemas, output: outcome.runLines,

@@ -7,6 +7,7 @@
 import { readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { runSchemaFigures } from '../../src/commands/run-schemas.js';
 import { readLogs } from './csv-log.js';
 import { contract, seededScratchCopy, type CliRun, type Scratch } from './harness.js';
 
@@ -49,6 +50,13 @@ describe('contract trace on a recorded tutorial run (bwrap)', () => {
         // the trace file is the logs' records as JSON lines, whether written live or rewritten at the end
         expect(readFileSync(traceFile(), 'utf8')).toBe(json.stdout);
         expect(JSON.parse(run.stdout).trace.records).toBe(json.stdout.trim().split('\n').length);
+    });
+
+    it("gives the schema's figures told on the trace file's check, as a read of the saved logs of their own gives them", async () => {
+        const out = JSON.parse(run.stdout) as { logs: string[]; schemas: { schema: string; completedCycles: number }[] };
+        // (schemaCommande2 too when SUP's SECOND came in time to activate it)
+        expect(out.schemas.find((s) => s.schema === 'schemaCommande1')?.completedCycles).toBeGreaterThan(0);
+        expect(out.schemas).toEqual(await runSchemaFigures(scratch.logs, out.logs));
     });
 
     it('tells every rule change of SUP with its cause: FIRST on elapsed=1ms, SECOND after MAA\'s "disconnected"', () => {
