@@ -245,10 +245,17 @@ describe("scenarioOfRun: events every supervisor received (ORD's)", () => {
 
 /**
  * MIS starts DRV.safestop on an obstacle (OBS:0 0.35 at 1.2 s); at 2 s the way is clear (OBS:0 5):
- * MIS stops safestop and starts autonomous, and 30 us later the launcher stops the run.
- * `drvGotStop`: DRV took MIS's STOP before the launcher's (else it was still on its way).
+ * MIS stops safestop and starts autonomous, and 30 us later the launcher stops the run (MIS gets
+ * its STOP at 2.00008 s, DRV at 2.0001 s). DRV took MIS's STOP: `before` the launcher's, and
+ * decided on it before too; `decidedAfter`, took it before but logged the decision 5 us after
+ * (here MIS starts nothing after safestop: DRV would take that START after the end, and the
+ * comparison end before MIS's decision); `never`, it was still on its way (DRV's HALT then ends
+ * on the launcher's STOP).
  */
-function stoppedWhileSent(drvGotStop: boolean) {
+function stoppedWhileSent(drv: 'before' | 'decidedAfter' | 'never') {
+    const drvGotStop = drv !== 'never';
+    const decidedAt = drv === 'before' ? 2_000_071_000 : 2_000_085_000;
+    const startsAutonomous = drv !== 'decidedAfter';
     const files = [
         csv('MIS', [
             '1000000000,W,MIS,request_received,contract-launch,,0,START mission',
@@ -257,14 +264,16 @@ function stoppedWhileSent(drvGotStop: boolean) {
             '1200050000,W,MIS,sup_rule,,,0,mission.STOP active cause=OBS:0 value=0.35',
             '2000000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
             '2000050000,W,MIS,sup_rule,,,0,mission.STOP inactive cause=OBS:0 value=5',
-            '2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)',
+            ...(startsAutonomous ? ['2000060000,W,MIS,sup_rule,,,0,mission.AUTO active cause=endof(STOP)'] : []),
             '2000080000,W,MIS,request_received,contract-launch,,0,STOP',
         ]),
         csv('DRV', [
             '1200100000,W,DRV,request_received,MIS,,5,START safestop',
             '1201200000,W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns',
-            ...(drvGotStop ? ['2000070000,W,DRV,request_received,MIS,,11,STOP', '2000071000,W,DRV,sup_rule,,,0,safestop.HALT inactive cause=stop', '2000075000,W,DRV,request_received,MIS,,29,START autonomous'] : []),
+            ...(drvGotStop ? ['2000070000,W,DRV,request_received,MIS,,11,STOP', `${decidedAt},W,DRV,sup_rule,,,0,safestop.HALT inactive cause=stop`] : []),
+            ...(drv === 'before' ? ['2000075000,W,DRV,request_received,MIS,,29,START autonomous'] : []),
             '2000100000,W,DRV,request_received,contract-launch,,0,STOP',
+            ...(drvGotStop ? [] : ['2000110000,W,DRV,sup_rule,,,0,safestop.HALT inactive cause=stop']),
         ]),
     ];
     const { text, real, adjustments } = scenarioOfRun(parseTrace(files), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules: { DRV: ['MIS mission.AUTO', 'MIS mission.STOP'] } });
@@ -273,7 +282,7 @@ function stoppedWhileSent(drvGotStop: boolean) {
 
 describe('scenarioOfRun: the end of the run', () => {
     it('a request still on its way when the launcher stopped the run ends the comparison before the decision that sent it', () => {
-        const { text, decisions, adjustments } = stoppedWhileSent(false);
+        const { text, decisions, adjustments } = stoppedWhileSent('never');
         // the simulator would stop safestop at MIS's decision; the real DRV never took that STOP:
         // neither side has the decision, nor the OBS:0 that caused it
         expect(text.split('\n')[0]).toBe('until 1s');
@@ -283,11 +292,27 @@ describe('scenarioOfRun: the end of the run', () => {
     });
 
     it("the comparison goes on to the launcher's stop when every request arrived before it", () => {
-        const { text, decisions, adjustments } = stoppedWhileSent(true);
-        expect(text.split('\n')[0]).toBe('until 1000080us');
-        expect(events(text).map((e) => e.source)).toEqual(['OBS:0', 'OBS:0']);
-        expect(decisions.slice(2)).toEqual(['MIS mission.STOP inactive <- OBS:0 value=5', 'MIS mission.AUTO active <- endof(STOP)', 'DRV safestop.HALT inactive <- stop']);
-        expect(adjustments).toEqual([]);
+        for (const drv of ['before', 'decidedAfter'] as const) {
+            const { text, decisions, adjustments } = stoppedWhileSent(drv);
+            expect(text.split('\n')[0], drv).toBe('until 1000080us');
+            expect(events(text).map((e) => e.source), drv).toEqual(['OBS:0', 'OBS:0']);
+            // DRV decided on a STOP it took before the end: kept, though logged after it when `decidedAfter`
+            expect(decisions.slice(2), drv).toEqual(['MIS mission.STOP inactive <- OBS:0 value=5', ...(drv === 'before' ? ['MIS mission.AUTO active <- endof(STOP)'] : []), 'DRV safestop.HALT inactive <- stop']);
+            expect(adjustments, drv).toEqual(drv === 'before' ? [] : ['end: kept DRV safestop.HALT inactive <- stop logged at t=1000085us, after the end, on an input before it']);
+        }
+    });
+
+    it('keeps a decision logged after the end on a timer due before it, not one due after', () => {
+        // safestop started at 1.2001 s: its 1 ms HALT timer was due long before the end
+        const late = (haltAt: number, endAt: number) => scenarioOfRun(parseTrace([
+            csv('MIS', ['1000000000,W,MIS,request_received,contract-launch,,0,START mission', '1000000000,W,MIS,supervisor,,,0,function mission started', '1200000000,W,MIS,request_received,OBS,1,8,EVENT from_port=0',
+                '1200050000,W,MIS,sup_rule,,,0,mission.STOP active cause=OBS:0 value=0.35', `${endAt},W,MIS,request_received,contract-launch,,0,STOP`]),
+            csv('DRV', ['1200100000,W,DRV,request_received,MIS,,5,START safestop', '1200110000,W,DRV,supervisor,,,0,function safestop() started',
+                `${haltAt},W,DRV,sup_rule,,,0,safestop.HALT active cause=elapsed=1000000ns`, '1201500000,W,DRV,request_received,contract-launch,,0,STOP']),
+        ]), { supervisors: new Set(['MIS', 'DRV']), start: 'MIS.mission()', requestRules: { DRV: ['MIS mission.STOP'] } }).real.map((r) => `${r.module} ${r.rule}`);
+        // the run ends at 1.201 s: due at 1.20111 s, HALT is not kept; a run ending at 1.2012 s keeps it though logged at 1.2013 s
+        expect(late(1_201_300_000, 1_201_000_000)).toEqual(['MIS STOP']);
+        expect(late(1_201_300_000, 1_201_200_000)).toEqual(['MIS STOP', 'DRV HALT']);
     });
 });
 

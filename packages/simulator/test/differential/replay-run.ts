@@ -21,7 +21,9 @@
  *
  * The comparison ends when the launcher stops the run (the first supervisor's STOP from it), or
  * earlier when a request one supervisor sent another was still on its way then
- * (endBeforeUnreceived): the simulator delivers a request at the decision that sends it.
+ * (endBeforeUnreceived): the simulator delivers a request at the decision that sends it. The real
+ * decisions compared are those on inputs before the end, though logged after it
+ * (decisionsOnInputsBefore): the simulator, run until the end, makes them too.
  *
  * A module run that its own code ended (`run_finished` with no STOP: the tutorial's MAB at once,
  * MAA after posting "disconnected" when its end comes before SUP's STOP) is replayed as `finish M`
@@ -107,7 +109,7 @@ export interface ReplayPlan {
 export interface RunScenario {
     /** The scenario text: `until`, `start`, then one line per replayed event. */
     text: string;
-    /** The run's `sup_rule` records of the supervisors, up to the comparison's end (the scenario's `until`). */
+    /** The run's `sup_rule` records of the supervisors on inputs before the comparison's end (the scenario's `until`). */
     real: RuleRecord[];
     /** How many replayed events of each source (`OBS:0`, `ORD:0`...), for the test's own checks. */
     counts: Map<string, number>;
@@ -197,7 +199,8 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     shortRuns(timeline);
     // a request still on its way when the launcher stopped the run: the comparison ends before it
     const end = endBeforeUnreceived(timeline, plan, launcherStop);
-    const real = known.filter(isRule).filter((r) => plan.supervisors.has(r.module) && mono(r) < end);
+    const real = decisionsOnInputsBefore(known, plan.supervisors, end);
+    for (const r of real) if (mono(r) >= end) timeline.adjustments.push(`end: kept ${r.module} ${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} <- ${r.cause} logged at ${timeline.at(mono(r))}, after the end, on an input before it`);
 
     // ORD's events name their schema in ORD's own records, in the order it sent them
     const ordValues = new Map<string, string[]>([
@@ -388,6 +391,35 @@ function endBeforeUnreceived(tl: Timeline, plan: ReplayPlan, launcherStop: bigin
         }
     }
     return end;
+}
+
+/**
+ * The supervisors' decisions the comparison keeps: those logged before `end`, and those logged
+ * after it on an input that came before it, which the simulator (run until `end`) makes too: a
+ * request or an event the supervisor took before `end` and had not decided on yet (a STOP's
+ * `cause=stop` is logged some 20 to 60 us after the request), or a timer due before `end` (an
+ * `elapsed` delay from the function's start, a `duration` from its rule's activation). The
+ * launcher's stop is an input at or after `end`: what it made is not kept.
+ */
+function decisionsOnInputsBefore(known: (KnownRecord | RuleRecord)[], supervisors: ReadonlySet<string>, end: bigint): RuleRecord[] {
+    const input = new Map<string, bigint>(); // supervisor -> its latest request or event taken
+    const started = new Map<string, bigint>(); // supervisor -> its latest function start
+    const activeSince = new Map<string, bigint>(); // `SUP function.RULE` -> when it became active
+    const kept: RuleRecord[] = [];
+    for (const r of known) {
+        if (!supervisors.has(r.module)) continue;
+        const t = mono(r);
+        if (r.kind === 'request_received' || r.kind === 'event_received') input.set(r.module, t);
+        else if (r.kind === 'supervisor' && (r as KnownRecord).fields?.['what'] === 'function_started') started.set(r.module, t);
+        if (!isRule(r)) continue;
+        if (r.active) activeSince.set(`${r.module} ${r.function}.${r.rule}`, t);
+        const c = r.causeEvent;
+        const due = c.kind === 'elapsed' ? (started.get(r.module) ?? end) + BigInt(c.ns)
+            : c.kind === 'duration' ? (activeSince.get(`${r.module} ${r.function}.${c.rule}`) ?? end) + BigInt(c.ns)
+            : input.get(r.module) ?? end;
+        if (t < end || due < end) kept.push(r);
+    }
+    return kept;
 }
 
 /**
