@@ -5,7 +5,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, it } from 'vitest';
 import type { JobEvent } from '@contract-studio/build-service';
-import { CSV_HEADER, parseRecordLine, parseTrace } from '@contract-studio/build-service/trace';
+import { CSV_HEADER, parseRecordLine, parseTrace, type TraceRecord } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../src/live-trace.js';
 import { toJsonLines } from '../src/trace-files.js';
 
@@ -50,6 +50,7 @@ describe('LiveTrace', () => {
         };
         const whole = () => toJsonLines(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))));
         const sha = (t: string) => createHash('sha256').update(t).digest('hex');
+        const told = (r: TraceRecord) => ('monoNs' in r ? `${r.module} ${r.monoNs}` : 'unknown');
         beforeEach(() => {
             for (const [name, text] of Object.entries(logs)) writeFileSync(join(dir, name), text);
             writeFileSync(join(dir, 'OLD_1.csv'), `${CSV_HEADER}\n5,w,OLD,error,,,0,an earlier run's log in the same folder\n`);
@@ -59,10 +60,10 @@ describe('LiveTrace', () => {
             const file = join(dir, 'run.jsonl');
             writeFileSync(file, 'live, partly\n');
             const seen: string[] = [];
-            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), records: 1 }, (r) => seen.push(`${r.module} ${r.monoNs}`))).toEqual({ records: 3 });
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), records: 1 }, (r) => seen.push(told(r)))).toEqual({ records: 3 });
             expect(readFileSync(file, 'utf8')).toBe(whole());
             // each record seen once (the pass that rewrote the file shows it none again), in time order
-            expect(seen).toEqual(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))).map((r) => `${r.module} ${r.monoNs}`));
+            expect(seen).toEqual(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))).map(told));
         });
 
         it('leaves the file as written live when it is the whole trace', async () => {
