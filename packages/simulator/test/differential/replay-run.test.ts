@@ -2,6 +2,8 @@
  * The differential tests' scenario builder (replay-run.ts) on hand-written logs: the timing races
  * of a loaded real run that the scenario must replay in the order the supervisors met them.
  */
+import { readFileSync, rmSync } from 'node:fs';
+import { dirname } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { parseTrace } from '@contract-studio/build-service/trace';
 import { firstDifference, scenarioOfRun, scenarioValueOf } from './replay-run.js';
@@ -341,6 +343,10 @@ describe('firstDifference', () => {
         const message = firstDifference('DRV', ['DRV a.X active <- elapsed=1ms'], [], 'until 1s\n', ['shortRuns: one move']);
         expect(message.split('\n')[0]).toBe('DRV: decision 0 differs (simulated 1, real 0)');
         expect(message).toContain('replay adjustments:\nshortRuns: one move\n');
+        // the whole scenario is saved for a failing run's reader; this one is removed
+        const saved = /scenario replayed \((.+)\):/.exec(message)?.[1];
+        expect(saved && readFileSync(saved, 'utf8')).toBe('until 1s\n');
+        rmSync(dirname(saved!), { recursive: true, force: true });
         expect(firstDifference('DRV', [], [], '')).toBe('DRV: the same 0 decisions');
     });
 });
