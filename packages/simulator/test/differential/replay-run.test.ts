@@ -340,9 +340,21 @@ describe('scenarioOfRun: events a busy supervisor took late', () => {
 
 describe('firstDifference', () => {
     it('says where the two sides part, and what the replay moved', () => {
-        const message = firstDifference('DRV', ['DRV a.X active <- elapsed=1ms'], [], 'until 1s\n', ['shortRuns: one move']);
-        expect(message.split('\n')[0]).toBe('DRV: decision 0 differs (simulated 1, real 0)');
-        expect(message).toContain('replay adjustments:\nshortRuns: one move\n');
+        const message = firstDifference('DRV', ['DRV a.X active <- elapsed=1ms'], [], 'until 1s\n', ['shortRuns: one move', 'end: another']);
+        // one line each, for CI's first lines of a failure
+        expect(message.split('\n').slice(0, 4)).toEqual([
+            'DRV: decision 0 differs (simulated 1, real 0)',
+            'simulated: > DRV a.X active <- elapsed=1ms | (end)',
+            'real: (end)',
+            'replay adjustments: shortRuns: one move; end: another',
+        ]);
+        const long = Array.from({ length: 8 }, (_, k) => `S f.R${k} active <- stop`);
+        const parted = firstDifference('S', long, [...long.slice(0, 4), 'S f.X active <- stop'], 'until 1s\n');
+        rmSync(dirname(/scenario replayed \((.+)\):/.exec(parted)![1]!), { recursive: true, force: true });
+        expect(parted.split('\n').slice(1, 3)).toEqual([
+            'simulated: S f.R2 active <- stop | S f.R3 active <- stop | > S f.R4 active <- stop | S f.R5 active <- stop | S f.R6 active <- stop',
+            'real: S f.R2 active <- stop | S f.R3 active <- stop | > S f.X active <- stop | (end)',
+        ]);
         // the whole scenario is saved for a failing run's reader; this one is removed
         const saved = /scenario replayed \((.+)\):/.exec(message)?.[1];
         expect(saved && readFileSync(saved, 'utf8')).toBe('until 1s\n');

@@ -559,23 +559,24 @@ export const simulatedDecisions = (changes: RuleChange[], sup: string): string[]
 
 /**
  * The assertion message of a decision comparison: where the two sides first part, with the
- * decisions around it, the scenario lines around the real decision's time, and the whole scenario
- * saved to a file (it is long: 180-beam scans). CI prints only the first lines of a failure: they
- * must say what differs.
+ * decisions around it, what the replay moved, and the whole scenario, also saved to a file (it is
+ * long: 180-beam scans). CI prints only the first 6 lines of a failure, cut at 300 characters:
+ * the first 4 say what differs, one line each.
  */
 export function firstDifference(sup: string, simulated: string[], real: string[], scenario: string, adjustments: readonly string[] = []): string {
     let i = 0;
     while (i < simulated.length && i < real.length && simulated[i] === real[i]) i++;
     if (i === simulated.length && i === real.length) return `${sup}: the same ${i} decisions`;
-    const around = (list: string[]): string => list.slice(Math.max(0, i - 2), i + 3).map((d, k) => `${Math.max(0, i - 2) + k === i ? '>' : ' '} ${d}`).join('\n');
+    const from = Math.max(0, i - 2);
+    const around = (list: string[]): string => [...list.slice(from, i + 3).map((d, k) => `${from + k === i ? '> ' : ''}${d}`), ...(list.length <= i + 2 ? ['(end)'] : [])].join(' | ');
     const file = join(mkdtempSync(join(tmpdir(), 'contract-sim-diff-scenario-')), 'run.scenario');
     writeFileSync(file, scenario);
     const short = scenario.split('\n').map((l) => (l.length > 160 ? `${l.slice(0, 160)}...` : l)).join('\n');
     return [
         `${sup}: decision ${i} differs (simulated ${simulated.length}, real ${real.length})`,
-        `simulated:\n${around(simulated)}`,
-        `real:\n${around(real)}`,
-        `replay adjustments:${adjustments.length ? `\n${adjustments.join('\n')}` : ' none'}`,
+        `simulated: ${around(simulated)}`,
+        `real: ${around(real)}`,
+        `replay adjustments: ${adjustments.length ? adjustments.join('; ') : 'none'}`,
         `scenario replayed (${file}):\n${short}`,
     ].join('\n');
 }
