@@ -4,7 +4,7 @@
  * structured clone.
  */
 import type { TraceLine } from '@contract-studio/build-service/trace';
-import type { Mark } from './monitor-model.js';
+import type { Mark } from './model-view.js';
 import type { MonitorState, Ns } from './monitor-state.js';
 
 export type ToFollower =

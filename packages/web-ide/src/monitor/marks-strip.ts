@@ -8,7 +8,7 @@
  * Hovering it, its tooltip says the marks under the pointer (markTooltip): a deadline miss names
  * what its cycle was still waiting for.
  */
-import type { Mark } from './monitor-model.js';
+import type { Mark } from './model-view.js';
 import { marksIn } from './model-view.js';
 import { fmtT } from './panel-text.js';
 

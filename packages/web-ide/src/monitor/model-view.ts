@@ -3,8 +3,18 @@
  * page (MonitorModel: a recorded run, a simulation) and for a live run folded in a Web Worker
  * (RemoteMonitorModel, remote-model.ts), whose states far back arrive a moment after they are asked for.
  */
-import type { Mark } from './monitor-model.js';
 import type { MonitorState, Ns } from './monitor-state.js';
+
+/** One thing the timeline marks at its time. */
+export interface Mark {
+  t: Ns;
+  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function';
+  /** Where: the supervisor or schema. */
+  where: string;
+  label: string;
+  /** Rule marks: active (true) or inactive. */
+  on?: boolean;
+}
 
 export interface MonitorView {
   /** Bumped on every change the panel may draw (it redraws only when this or its cursor moved). */

@@ -25,22 +25,12 @@ import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
 import { cloneState, emptyState, type MonitorState, type Ns } from './monitor-state.js';
-import { marksIn, type MonitorView } from './model-view.js';
+import { marksIn, type Mark, type MonitorView } from './model-view.js';
 
 export interface MonitorModelOptions {
   checkpointEvery?: number;
   keepRecords?: number;
   maxMarks?: number;
-}
-
-export interface Mark {
-  t: Ns;
-  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function';
-  /** Where: the supervisor or schema. */
-  where: string;
-  label: string;
-  /** Rule marks: active (true) or inactive. */
-  on?: boolean;
 }
 
 /** Texts a chunk looks back through for the one a record's line is in. */

@@ -5,7 +5,7 @@
  * from it as from a MonitorModel; a state asked for is drawn in the frame after it arrives.
  */
 import type { TraceLine } from '@contract-studio/build-service/trace';
-import type { Mark } from './monitor-model.js';
+import type { Mark } from './model-view.js';
 import { emptyState, type MonitorState, type Ns } from './monitor-state.js';
 import { marksIn, type MonitorView } from './model-view.js';
 import type { FromFollower, Snapshot, ToFollower } from './live-follow-protocol.js';
