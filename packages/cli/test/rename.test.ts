@@ -221,7 +221,7 @@ describe('contract rename', () => {
         ] as Array<[string[], string]>) {
             const io = capture(scratch.root);
             expect(await runCli(['rename', 'tutorial', ...args], io)).toBe(1);
-            expect(io.stderr).toMatch(/^contract rename: .*; nothing was renamed\n$/);
+            expect(io.stderr).toMatch(/^contract rename: .*[^.]; nothing was renamed\n$/);
             expect(io.stderr).toContain(message);
         }
         const usage = capture(scratch.root);

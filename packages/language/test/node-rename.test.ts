@@ -1,4 +1,7 @@
 /** `planRename` (contract rename): the editor's rename rules and edits on a workspace loaded from disk. */
+import { cpSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadWorkspace, type LoadedWorkspace } from '../src/node/load-workspace.js';
@@ -33,6 +36,24 @@ describe('planRename', () => {
         expect(type).toMatchObject({ kind: 'datatype', generatedNames: true });
         expect(type.owner).toBeUndefined();
         expect(planRename(ws, 'schemaCommande1', 'command1')).toMatchObject({ kind: 'schema', generatedNames: false });
+    });
+
+    it('a schema: also the strings an ORD event test compares ord_schema with, not other strings', async () => {
+        const dir = mkdtempSync(join(tmpdir(), 'rename-ord-'));
+        try {
+            cpSync(TUTORIAL, dir, { recursive: true, filter: (src) => !/\/(src-gen|logs)$/.test(src) });
+            const file = join(dir, 'supervisor.contract');
+            writeFileSync(file, readFileSync(file, 'utf8')
+                .replace('[started(THIRD)]', '[ORD:0<ord_schema == "schemaCommande1"> or started(THIRD)]')
+                .replace('temp_mess_type = "commutation"', 'temp_mess_type = "schemaCommande1"'));
+            const plan = planRename(await loadWorkspace(dir), 'schemaCommande1', 'command1');
+            const sup = plan.files.find((f) => f.file === 'supervisor.contract')!;
+            expect(sup.text).toContain('[ORD:0<ord_schema == "command1"> or started(THIRD)]');
+            expect(sup.text).toContain('temp_mess_type = "schemaCommande1"'); // a string, not a test of ord_schema
+            expect(sup.occurrences).toBe(2); // the activation and the ORD test
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
     });
 
     it('clear errors: unknown entity, ambiguous index, invalid name, name taken', () => {

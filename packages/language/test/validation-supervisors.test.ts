@@ -55,6 +55,11 @@ const CASES: Record<string, CodeCase> = {
         raise: withSub('R: [MAA:2<ord_schema == "sc1">] compute doit("late", 1.0) [elapsed=2ms]'),
         clean: withSub('R: [ORD:0<ord_schema == "sc1">] compute doit("late", 1.0) [elapsed=2ms]')
     },
+    'supervisor-ord-schema-unknown': {
+        raise: sup('R: [ORD:0<ord_schema == "sc">] compute doit("late", 1.0) [elapsed=2ms]'),
+        clean: sup('R: [ORD:0<ord_schema == "sc1">] compute doit("late", 1.0) [elapsed=2ms]'),
+        message: 'No schema is named "sc": ORD:0 names the schema whose cycle missed its critical delay, so this test is never true. Did you mean \'sc1\'?'
+    },
     'supervisor-test-type': {
         raise: withSub('R: [MAA:2<connection_status == 3>] compute doit("x", 1.0) [elapsed=2ms]'),
         clean: withSub('R: [MAA:2<connection_status == "3">] compute doit("x", 1.0) [elapsed=2ms]'),
@@ -200,6 +205,17 @@ describe('supervisors: more behaviour', () => {
         expect(ok).toEqual([]);
         const bad = await errorsAndWarnings(sup('R: [elapsed=1ms] subscribe MSC:1 => :3 [MSC:1<failure == {"x"}>]'));
         expect(bad).toEqual(['value-struct-arity: TypeD has 2 fields (dataname, datavalue); this value has 1 element for this comparison.']);
+    });
+
+    it('an ORD test names a schema of the project, periodic or event, on either side of == or !=', async () => {
+        const unknown = async (rule: string) => (await build(sup(rule))).diagnostics.filter((d) => d.code === 'supervisor-ord-schema-unknown').map((d) => d.message);
+        expect(await unknown('R: [ORD:1<"sc2" != ord_schema>] compute doit("x", 1.0) [elapsed=2ms]'))
+            .toEqual(['No schema is named "sc2": ORD:1 names the schema whose activation was refused, so this test is always true. Did you mean \'sc1\'?']);
+        expect(await unknown('R: [ORD:0<ord_schema == "nothingLike">] compute doit("x", 1.0) [elapsed=2ms]'))
+            .toEqual(['No schema is named "nothingLike": ORD:0 names the schema whose cycle missed its critical delay, so this test is never true.']);
+        for (const named of ['"ev" == ord_schema', 'ord_schema == "sc1"', 'ord_schema != "ev"']) expect(await unknown(`R: [ORD:1<${named}>] compute doit("x", 1.0) [elapsed=2ms]`), named).toEqual([]);
+        // only a test of ord_schema itself: a local holding it is another string
+        expect(await unknown('R: [ORD:0(temp_mess_type = ord_schema)] compute doit("x", 1.0) [(ORD:0<temp_mess_type == "nothingLike">)]')).toEqual([]);
     });
 
     it('a supervisor activating itself is a cycle', async () => {

@@ -66,7 +66,8 @@ export const renameCommand: Command = {
             plan = planRename(workspace, oldSpec, newName);
         } catch (e) {
             if (!(e instanceof RenameError)) throw e;
-            io.err(`contract rename: ${e.message}; nothing was renamed\n`);
+            // (the editor's messages are sentences: no '.;' before the CLI's end)
+            io.err(`contract rename: ${e.message.replace(/\.$/, '')}; nothing was renamed\n`);
             return EXIT_FAILURE;
         }
         // the generated tree first: if a target path is taken there, the .contract files stay as they were

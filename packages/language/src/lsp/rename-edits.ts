@@ -2,9 +2,13 @@
  * The text edits that rename a named element everywhere (its declaration and every reference in
  * every file). Port and parameter references written as their index (`MSC:1`, `(v :0)`) designate
  * the port by number, not by name: only the segments whose text is the old name are replaced.
+ * A schema's name is also written as a string in ORD event tests (`ORD:0<ord_schema == "s">`):
+ * those strings are renamed with it (model/ord-schema-tests.ts).
  */
 import type { AstNode, LangiumDocuments, References } from 'langium';
 import type { TextEdit, WorkspaceEdit } from 'vscode-languageserver-types';
+import { isSchema } from '../generated/ast.js';
+import { ordSchemaNamesIn } from '../model/ord-schema-tests.js';
 
 export function renameEdits(references: References, documents: LangiumDocuments, target: AstNode & { name?: string }, newName: string): WorkspaceEdit {
     const changes: Record<string, TextEdit[]> = {};
@@ -20,6 +24,13 @@ export function renameEdits(references: References, documents: LangiumDocuments,
         const text = doc?.textDocument.getText().slice(ref.segment.offset, ref.segment.end);
         if (text !== oldName) continue; // a reference by index
         (changes[uri] ??= []).push({ range: ref.segment.range, newText: newName });
+    }
+    if (isSchema(target)) {
+        for (const doc of documents.all) {
+            for (const literal of ordSchemaNamesIn(doc.parseResult.value, oldName)) {
+                if (literal.$cstNode) (changes[doc.uri.toString()] ??= []).push({ range: literal.$cstNode.range, newText: `"${newName}"` });
+            }
+        }
     }
     return { changes };
 }

@@ -17,17 +17,21 @@ import type { CactalServices } from '../cactal-module.js';
 import { rulesOf } from '../model/blocks.js';
 import { isNumeric, isOrdered, sameType, typeName, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { SupervisorCodes } from './codes/supervisors.js';
+import { ordSchemaTestName } from '../model/ord-schema-tests.js';
+import { ProjectNames } from './project-index.js';
+import { nearName } from './unresolved-messages.js';
 import { report } from './report.js';
 import { checkValue } from './value-checker.js';
 
 /** The ORD event ports (docs/semantics.md "Scheduler: critical delay (ORD:0)", "Scheduler: conflict (ORD:1)"): 0 = critical delay missed, 1 = activation refused. */
 export const ORD_EVENT_PORTS: Readonly<Record<number, string>> = { 0: 'critical delay missed', 1: 'schema activation refused' };
 
-export function supervisorRuleChecks(_services: CactalServices): ValidationChecks<CactalAstType> {
+export function supervisorRuleChecks(services: CactalServices): ValidationChecks<CactalAstType> {
+    const names = new ProjectNames(services);
     return {
         VariableRef: [checkNoParameterInRule, checkOrdSchemaUse],
         ModuleEvent: [checkOrdPort, checkEventSubscribed, checkEventVariables],
-        EqualityTest: checkTestOperands,
+        EqualityTest: [checkTestOperands, (test, accept) => checkOrdSchemaName(test, names, accept)],
         RelationalTest: checkTestOperands,
         Extraction: checkExtraction,
         Rule: [checkOwnRuleEvents, checkElapsedOnce],
@@ -58,6 +62,16 @@ function checkOrdSchemaUse(ref: VariableRef, accept: ValidationAcceptor): void {
             ? `'ord_schema' is read-only: it holds the schema name of an ORD event; extract it into a local (local = ord_schema).`
             : `'ord_schema' holds the schema name of an ORD event: it is only usable in the tests and extractions of an ORD:0/ORD:1 event (e.g. ORD:0<ord_schema == "schemaCommande1">).`,
         { node: ref });
+}
+
+function checkOrdSchemaName(test: EqualityTest, names: ProjectNames, accept: ValidationAcceptor): void {
+    const literal = ordSchemaTestName(test);
+    if (!literal || names.byName(['Schema']).has(literal.value)) return;
+    const event = AstUtils.getContainerOfType(test, isModuleEvent);
+    const what = event?.ordPort === 1 ? 'whose activation was refused' : 'whose cycle missed its critical delay';
+    report(accept, SupervisorCodes['supervisor-ord-schema-unknown'],
+        `No schema is named "${literal.value}": ORD:${event?.ordPort ?? 0} names the schema ${what}, so this test is ${test.operator === '==' ? 'never' : 'always'} true.${nearName(literal.value, names.byName(['Schema']).keys())}`,
+        { node: literal });
 }
 
 function checkOrdPort(event: ModuleEvent, accept: ValidationAcceptor): void {

@@ -47,6 +47,11 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
         description: '`ord_schema` is the implicit string holding the schema name of an `ORD` event: it is only usable in the tests and extractions of an `ORD:0`/`ORD:1` event (and it is a reserved name).',
         example: 'R: [MAA:2<ord_schema == "s">] [elapsed=1ms]'
     },
+    'supervisor-ord-schema-unknown': {
+        severity: 'warning',
+        description: 'A test `ord_schema == "name"` (or `!=`) in an `ORD:0`/`ORD:1` event compares with a schema name that no schema of the project has: ORD names the schema whose cycle missed its critical delay (ORD:0) or whose activation was refused (ORD:1), so the test is never true (`!=`: always). Often a typo or a schema renamed by hand; `contract rename` and the editor\'s rename of a schema rewrite these strings. The message names the closest schema.',
+        example: 'R: [ORD:0<ord_schema == "pikLoop">] ...   // the schema is pickLoop'
+    },
     'supervisor-test-type': {
         severity: 'error',
         description: 'Both operands of a test have the same type (int and float mix); structs and strings compare through the generated `eq_`/`diff_`/`inf_`/`sup_`/`infeq_`/`supeq_` functions.',
