@@ -5,7 +5,7 @@
  * are kept in the `sim/` folder of the build cache `contract build` uses (`--cache-dir`,
  * `$CONTRACT_CACHE_DIR`, the XDG cache folder), under the same trust rules.
  */
-import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -144,6 +144,41 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         expect(step.schemas).toEqual(['schemaCommande1']);
         expect(step.locals.length).toBe(4);
         rmSync(dir, { recursive: true });
+    });
+
+    it('what the user\'s functions print is in the text report under its step, without --verbose', async () => {
+        const io = capture(REPO);
+        expect(await runCli(['simulate', TUTORIAL, scenario('commutation.scenario'), '--cache-dir', cache], io)).toBe(0);
+        const lines = io.stdout.split('\n');
+        // the tutorial's test function prints when MAA:2 "disconnected" makes SUP test it
+        const step = lines.findIndex((l) => l.includes('MAA:2 connection_status = "disconnected"'));
+        const printed = lines.findIndex((l) => /^ +output\| testit\("dedede", .*\) => 1$/.test(l));
+        expect(step).toBeGreaterThan(0);
+        expect(printed).toBeGreaterThan(step);
+        // under that step: no other step's line between them
+        expect(lines.slice(step + 1, printed).every((l) => /^ {14}/.test(l))).toBe(true);
+    });
+
+    it('a project whose C does not compile: gcc\'s errors as contract build prints them (DIR/src-gen path, line, region), no cache path; exit 1', async () => {
+        const dir = mkdtempSync(join(tmpdir(), 'contract-simulate-broken-'));
+        try {
+            cpSync(TUTORIAL, join(dir, 'tut'), { recursive: true });
+            const rel = 'generated/architecture/common/SharedFunctiontestit.h';
+            const header = join(dir, 'tut', 'src-gen', rel);
+            const text = readFileSync(header, 'utf8');
+            const at = text.indexOf('\n', text.indexOf('ID(protect_function_impl_testit) ENABLED START*/')) + 1;
+            writeFileSync(header, text.slice(0, at) + '    int x = 1 oops;\n' + text.slice(at));
+            const line = text.slice(0, at).split('\n').length;
+            const io = capture(dir);
+            expect(await runCli(['simulate', 'tut', join('tut', 'scenarios', 'commutation.scenario'), '--cache-dir', cache], io), io.stderr).toBe(1);
+            expect(io.stderr).toMatch(new RegExp(`^tut/src-gen/${rel}:${line}:\\d+: error: .*oops.* \\[in protected region protect_function_impl_testit\\]$`, 'm'));
+            expect(io.stderr).toContain('contract simulate: cannot compile the simulator: 1 error(s) in your C (above; user code lives in the PROTECTED REGION blocks of tut/src-gen)');
+            expect(io.stderr).not.toContain(cache);
+            expect(io.stderr).not.toMatch(/sim-[0-9a-f]{20}|\.tmp-\d+-/);
+            expect(io.stdout).toBe('');
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
     });
 
     it('scenario errors exit 2 with file:line:col, nothing simulated; usage errors exit 2', async () => {

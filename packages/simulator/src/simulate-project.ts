@@ -12,6 +12,7 @@ import { MAX_SCENARIO_BYTES, parseScenario, type ParsedScenario, type ScenarioDi
 import { checkScenario, indexModels, type ModelIndex, type ResolvedLocal } from './scenario/index.js';
 import { simulationSources } from './harness/tables.js';
 import { buildHarness, type HarnessBuild } from './harness/build.js';
+import type { CompileFailure } from './harness/compile-diagnostics.js';
 import { chooseConfinement, type Confinement, type SimulatorSandboxChoice } from './harness/confine.js';
 import { runScenario, type RunOptions, type ScenarioResult } from './runner/run-scenario.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
@@ -33,6 +34,11 @@ export interface ProjectProblems {
     modelErrors: WorkspaceDiagnostic[];
     /** Harness generation/build problem. */
     buildError?: string;
+    /**
+     * When the project's C (the protected regions of its common headers) did not compile: gcc's
+     * diagnostics at the user's src-gen files, lines and regions (`buildError` tells them too).
+     */
+    compile?: CompileFailure;
     /** The sandbox asked for cannot be had here (what to install, or `--sandbox none`). */
     sandboxError?: string;
 }
@@ -68,7 +74,7 @@ export async function prepareProject(dir: string, options: SimulateOptions): Pro
     const confinement = await chooseConfinement(options.sandbox);
     if ('error' in confinement) return { modelErrors: [], sandboxError: confinement.error };
     const build = await buildHarness(sources, { runtimeDir: options.runtimeDir, cacheDir: options.cacheDir, onWait: options.onWait, confinement });
-    if ('error' in build) return { modelErrors: [], buildError: build.error };
+    if ('error' in build) return { modelErrors: [], buildError: build.error, ...(build.compile ? { compile: build.compile } : {}) };
     return { workspace, index: indexModels(docs.map((d) => d.model)), build, confinement, warnings: sources.warnings };
 }
 

@@ -11,7 +11,7 @@ import type { LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@co
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import { defaultRuntimeSource } from '../runtime-source.js';
-import { EXIT_ENVIRONMENT } from '../job-runner.js';
+import { EXIT_ENVIRONMENT, formatGccDiagnostic } from '../job-runner.js';
 import { safeName } from '../terminal-text.js';
 import { toJsonLines, writeTraceFileSync } from '../trace-files.js';
 
@@ -75,6 +75,15 @@ export const simulateCommand: Command = {
             if (project.modelErrors.length) {
                 io.err(`contract simulate: the model has ${project.modelErrors.length} error(s): fix them first (contract check)\n`);
                 return EXIT_USAGE;
+            }
+            if (project.compile?.diagnostics.length) {
+                // the project's C did not compile: told as `contract build` tells it, at the files of DIR/src-gen and their regions
+                const dirArg = parsed.positionals[0]!;
+                for (const d of project.compile.diagnostics) io.err(formatGccDiagnostic(d, dirArg));
+                for (const l of project.compile.other) io.err(`${l}\n`);
+                const errors = project.compile.diagnostics.filter((d) => d.severity === 'error').length;
+                io.err(`contract simulate: cannot compile the simulator: ${errors} error(s) in your C (above; user code lives in the PROTECTED REGION blocks of ${safeName(join(dirArg, 'src-gen'))})\n`);
+                return EXIT_FAILURE;
             }
             io.err(`contract simulate: ${project.buildError}\n`);
             return EXIT_FAILURE;

@@ -25,12 +25,19 @@ import { acquireProjectLock, CACHE_ENTRY_NAMES, markUsed, removeAbandonedBuilds,
 import { simulatorCacheDir } from './cache.js';
 import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
+import { compileDiagnostics, describeCompileFailure, type CompileFailure } from './compile-diagnostics.js';
 
 export interface HarnessBuild {
     exe: string;
     /** True when the executable was already in the cache. */
     cached: boolean;
     ms: number;
+}
+
+/** Why no simulator was built; `compile`: the project's C did not compile (its diagnostics at the user's files). */
+export interface HarnessBuildError {
+    error: string;
+    compile?: CompileFailure;
 }
 
 export interface BuildOptions {
@@ -112,7 +119,7 @@ async function compilerIdentity(cc: string): Promise<string> {
     return compilerId;
 }
 
-export async function buildHarness(src: SimSources, options: BuildOptions): Promise<HarnessBuild | { error: string }> {
+export async function buildHarness(src: SimSources, options: BuildOptions): Promise<HarnessBuild | HarnessBuildError> {
     const t0 = performance.now();
     const cc = options.cc ?? process.env.CC ?? 'gcc';
     const onWait = options.onWait ?? (() => undefined);
@@ -175,7 +182,7 @@ interface CompileJob {
     confinement: Confinement;
 }
 
-async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, dir, exe, t0, confinement }: CompileJob): Promise<HarnessBuild | { error: string }> {
+async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, dir, exe, t0, confinement }: CompileJob): Promise<HarnessBuild | HarnessBuildError> {
     const work = `${dir}.tmp-${process.pid}-${Math.random().toString(36).slice(2)}`;
     mkdirSync(work, { recursive: true, mode: 0o700 });
     try {
@@ -193,10 +200,15 @@ async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, d
             '-c', join(work, unit), '-o', join(work, `unit${i}.o`),
         ], work, confined));
         const results = await Promise.all(compiles);
-        const failed = results.findIndex((r) => r.code !== 0);
-        if (failed >= 0) return { error: `cannot compile ${src.units[failed]} for the simulator:\n${results[failed]!.output}` };
+        const failed = results.filter((r) => r.code !== 0);
+        if (failed.length) {
+            // told at the user's src-gen files, never at this temporary folder (harness/compile-diagnostics.ts)
+            const compile = compileDiagnostics(failed.map((r) => r.output), work, src);
+            return { error: describeCompileFailure(compile), compile };
+        }
         const link = await run(cc, ['-o', join(work, 'contract-sim'), ...src.units.map((_, i) => join(work, `unit${i}.o`)), objects.main, objects.lib, '-lm'], work, confined);
-        if (link.code !== 0) return { error: `cannot link the simulator:\n${link.output}` };
+        // a link error (a function the user's code calls that nobody defines) names this temporary folder's objects: told relative to it
+        if (link.code !== 0) return { error: `cannot link the simulator:\n${link.output.split(`${work}/`).join('')}` };
         writeFileSync(join(work, 'key'), key);
         try {
             renameSync(work, dir);

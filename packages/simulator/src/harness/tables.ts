@@ -7,9 +7,7 @@
  * carried over, read from the project folder as hostile input: regular files only, bounded, no
  * link followed out of it.
  */
-import { realpathSync } from 'node:fs';
-import { readRegularFile } from '../read-regular-file.js';
-import { join, sep } from 'node:path';
+import { readUserFile } from './user-file.js';
 import { architectureFromModels, generateFiles, mergeRegions } from '@contract-studio/codegen';
 import type { Model } from '@contract-studio/language';
 import { ARCHITECTURE_DIR } from '@contract-studio/conventions';
@@ -30,24 +28,16 @@ export interface SimSources {
     hasOrd: boolean;
     /** Carry-over problems (a user header that could not be read or merged): the generated default is used. */
     warnings: string[];
+    /**
+     * The project's src-gen folder the regions were read from (undefined: none given): a compile
+     * error is told against its files (harness/compile-diagnostics.ts). A file of `files` is
+     * `${ARCHITECTURE_DIR}/${path}` there; `sim_tables.c` is the simulator's own.
+     */
+    srcGen: string | undefined;
 }
 
 const ARCH = `${ARCHITECTURE_DIR}/`;
-const MAX_USER_HEADER_BYTES = 4 * 1024 * 1024;
 const C_NAME = /^[A-Za-z_][A-Za-z0-9_]*$/;
-
-/** The user's version of a generated file, or undefined (absent, not a regular file, too large, outside DIR). */
-function readUserFile(srcGen: string, rel: string): string | undefined {
-    try {
-        const root = realpathSync(srcGen);
-        const real = realpathSync(join(srcGen, rel));
-        if (!real.startsWith(root + sep)) return undefined;
-        const data = readRegularFile(real, MAX_USER_HEADER_BYTES);
-        return Buffer.isBuffer(data) ? data.toString('latin1') : undefined;
-    } catch {
-        return undefined;
-    }
-}
 
 /**
  * `models` in the order generateArchitecture uses (documents sorted by URI), so that the tables
@@ -55,7 +45,7 @@ function readUserFile(srcGen: string, rel: string): string | undefined {
  */
 export function simulationSources(models: Model[], userSrcGen: string | undefined): SimSources {
     const generated = generateFiles(architectureFromModels(models));
-    const out: SimSources = { files: [], units: [], includes: new Map(), supervisors: [], hasOrd: false, warnings: [] };
+    const out: SimSources = { files: [], units: [], includes: new Map(), supervisors: [], hasOrd: false, warnings: [], srcGen: userSrcGen };
     for (const f of generated) {
         if (!f.path.startsWith(ARCH)) continue;
         const rel = f.path.slice(ARCH.length);

@@ -6,6 +6,7 @@ import { ownRunEndText, readableCause, schedulerLineFields, StoryTeller, type Kn
 import type { ScenarioResult } from './run-scenario.js';
 import { engineLine, typedRecord } from '../trace/steps-to-trace.js';
 import { actionLines } from '../trace/action-lines.js';
+import { outputLines } from './output-lines.js';
 
 /**
  * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
@@ -163,6 +164,8 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             for (const h of ordered) if (before(h)) out.push(line(h));
             out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
             for (const h of ordered) if (!before(h)) out.push(line(h));
+            // what the user's functions printed (with or without --verbose: docs/simulation.md §2), under the step's own lines
+            out.push(...outputLines(s.record.output, ' '.repeat(26)));
             if (s.kind === 'event' && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
             if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
         }
