@@ -6,7 +6,7 @@
  * (`$CONTRACT_CACHE_DIR` here: a folder of the test).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, realpathSync, rmSync, symlinkSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, realpathSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, resolve } from 'node:path';
 import { startIdeServer, type IdeServer } from './ide-server.js';
@@ -159,6 +159,27 @@ describe('POST /api/simulate', () => {
     // and the count is ORD's: one more than the simulator counted fails
     const wrong = await post({ scenario: after.text.replace('overruns schemaCommande1 == 3', 'overruns schemaCommande1 == 4') });
     expect((wrong.json as SimulateResponse).passed).toBe(false);
+  }, 120_000);
+
+  it("the project's C not compiling: 422 with its src-gen file, line and region, no cache path; the run works again once mended", async () => {
+    const file = join(base, 'tutorial', 'src-gen', 'generated', 'architecture', 'common', 'SharedFunctiontestit.h');
+    const before = readFileSync(file, 'latin1');
+    const marker = 'ID(protect_function_impl_testit) ENABLED START*/';
+    const at = before.indexOf('\n', before.indexOf(marker)) + 1;
+    expect(at).toBeGreaterThan(marker.length);
+    writeFileSync(file, `${before.slice(0, at)}    int x = 1 oops;\n${before.slice(at)}`, 'latin1');
+    try {
+      const { status, json } = await post({ scenario: 'until 1ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\n' });
+      expect(status, JSON.stringify(json)).toBe(422);
+      expect(json.error).toMatch(/^the project's C does not compile for the simulator: 1 error\(s\) in src-gen\//);
+      const line = before.slice(0, at).split('\n').length;
+      expect(json.diagnostics[0]).toMatchObject({ file: 'src-gen/generated/architecture/common/SharedFunctiontestit.h', line, severity: 'error' });
+      expect(json.diagnostics[0].message).toMatch(/oops.* \(in protected region protect_function_impl_testit\)$/);
+      expect(JSON.stringify(json)).not.toContain(join(base, 'cache'));
+    } finally {
+      writeFileSync(file, before, 'latin1');
+    }
+    expect((await post({ scenario: 'until 1ms\nstart SUP.action(consigne = {1.0, 2.0, 3.0})\n' })).status).toBe(200);
   }, 120_000);
 
   it('needs the session token; hostile bodies get 4xx', async () => {

@@ -19,6 +19,7 @@ import { mkdtempSync, rmSync } from 'node:fs';
 import type { IncomingMessage, ServerResponse } from 'node:http';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 import { HttpError } from './http-error.js';
 import { readJson, sendJson } from './http-util.js';
 import type { WorkspacePaths } from './workspace-paths.js';
@@ -115,6 +116,17 @@ export class SimulateApi {
         throw new HttpError(422, `the model has ${prepared.modelErrors.length} error(s): fix them first`, { diagnostics });
       }
       if (prepared.sandboxError) throw new HttpError(503, prepared.sandboxError);
+      if (prepared.compile?.diagnostics.length) {
+        // the project's own C (a region of a src-gen common header): the user's to fix, at the user's
+        // file, line and region, as the build log tells it; only the first errors
+        const diagnostics: SimulateDiagnostic[] = prepared.compile.diagnostics.slice(0, 200).map((d) => ({
+          ...(d.file !== null ? { file: this.paths.toRelative(join(projectDir, SRC_GEN_DIR, d.file)) } : {}),
+          line: d.line ?? 1, column: d.column ?? 1, severity: d.severity === 'note' ? 'info' : d.severity,
+          message: `${d.message}${d.protectedRegion ? ` (in protected region ${d.protectedRegion.id})` : ''}`,
+        }));
+        const errors = prepared.compile.diagnostics.filter((d) => d.severity === 'error').length;
+        throw new HttpError(422, `the project's C does not compile for the simulator: ${errors} error(s) in ${SRC_GEN_DIR}/ (your code in its protected regions)`, { diagnostics });
+      }
       throw new HttpError(500, prepared.buildError ?? 'the simulator could not be built');
     }
     const loaded = sim.loadScenario(join(projectDir, display), display, text, prepared.index);
