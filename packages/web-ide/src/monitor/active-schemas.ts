@@ -44,3 +44,27 @@ export function activeSchemas(s: MonitorState, catalogue: readonly SchemaInfo[])
   }
   return out;
 }
+
+/**
+ * Of the active schemas, the one that became active last (the Monitor's diagram shows it,
+ * docs/watching-a-run.md): a periodic schema's activation by ORD, an event schema's by the rule
+ * that holds its modules (when it became active); the later in the list between equal times.
+ * Undefined when none is active.
+ */
+export function lastActivated(s: MonitorState, active: readonly ActiveSchema[]): string | undefined {
+  let last: { name: string; t: number } | undefined;
+  for (const a of active) {
+    const t = activatedAt(s, a);
+    if (!last || t >= last.t) last = { name: a.name, t };
+  }
+  return last?.name;
+}
+
+function activatedAt(s: MonitorState, a: ActiveSchema): number {
+  const periodic = s.schemas.get(a.name);
+  if (periodic?.active) return periodic.since;
+  // an event schema: `by` is `SUP.F.R` (the rule holding its modules) or `SUP`
+  const dot = a.by?.indexOf('.') ?? -1;
+  const rule = dot > 0 ? s.supervisors.get(a.by!.slice(0, dot))?.rules.get(a.by!.slice(dot + 1)) : undefined;
+  return rule?.active ? rule.since : -Infinity;
+}

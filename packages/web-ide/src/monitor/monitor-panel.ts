@@ -16,7 +16,7 @@ import type { ArchSchema } from '../lsp/architecture-model.js';
 import type { ArchitectureView } from '../views/architecture-view.js';
 import type { MonitorView } from './model-view.js';
 import type { MonitorState } from './monitor-state.js';
-import { activeSchemas, type SchemaInfo } from './active-schemas.js';
+import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
@@ -344,7 +344,7 @@ export class MonitorPanel {
     }
     const active = activeSchemas(s, this.catalogue);
     this.renderSchemas(m, s, active);
-    this.renderDiagram(s, t, active.map((a) => a.name));
+    this.renderDiagram(s, t, active.map((a) => a.name), lastActivated(s, active));
   }
 
   private row(key: string, make: () => HTMLElement): HTMLElement {
@@ -485,10 +485,12 @@ export class MonitorPanel {
     }, ms);
   }
 
-  private renderDiagram(s: MonitorState, t: number, active: string[]): void {
+  private renderDiagram(s: MonitorState, t: number, active: string[], last: string | undefined): void {
     const d = this.diagram;
     if (!d) return;
-    if (!this.userChoseSchema && active.length && d.schema !== active[active.length - 1] && !active.includes(d.schema ?? '')) void d.choose(active[active.length - 1]!);
+    // the schema that became active last at the cursor's time, until the user picks one in the list:
+    // the same in every tab, live or replayed, at the same time
+    if (!this.userChoseSchema && last !== undefined && d.schema !== last) void d.choose(last);
     // both asked in this order at every frame, as each keeps its own time; while following, a frame
     // that draws neither computes nothing more
     const drawDiagram = this.due('diagram', CLOCK_REDRAW_MS);
