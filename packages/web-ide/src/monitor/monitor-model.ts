@@ -20,7 +20,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, missWaitText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, missWaitText, readableCause, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -518,7 +518,7 @@ export class MonitorModel implements MonitorView {
 }
 
 function markOf({ t, r }: Timed, late: string): Mark | undefined {
-  if (isRule(r)) return { t, kind: 'rule', where: r.module, label: `${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} ← ${r.cause.slice(0, 80)}`, on: r.active };
+  if (isRule(r)) return { t, kind: 'rule', where: r.module, label: `${r.function}.${r.rule} ${r.active ? 'active' : 'inactive'} ← ${readableCause(r.cause).slice(0, 80)}`, on: r.active };
   if (r.kind === 'unknown') return undefined;
   const k = r as KnownRecord;
   const what = k.fields?.['what'];
