@@ -18,8 +18,13 @@ const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
-/** The job a tab follows or followed last, whether it had ended (a reload shows it again) and whether this tab stopped it. */
-type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean };
+/**
+ * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
+ * this tab stopped it, and, for a job another tab started, what it was (its status says so again
+ * after a reload).
+ */
+type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat };
+type SharedWhat = 'Build & Run' | 'build';
 
 function runSettings(): RunSettings {
   try {
@@ -80,9 +85,10 @@ export class RunController {
   /** The job this tab followed before a reload, as kept (anything else there is ignored). */
   private followed(): Followed | undefined {
     try {
-      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown; stopped?: unknown } | null;
+      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown; stopped?: unknown; otherTabs?: unknown } | null;
       if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) {
-        return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true };
+        const otherTabs = v.otherTabs === 'Build & Run' || v.otherTabs === 'build' ? { otherTabs: v.otherTabs as SharedWhat } : {};
+        return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true, ...otherTabs };
       }
     } catch {
       /* not JSON */
@@ -104,7 +110,8 @@ export class RunController {
     this.project = f.project;
     // a job that had ended may since have left the service's last 50 (other tabs' jobs): gone
     // without a word, as it would have been for a restarted server, not said to be one
-    const followed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended, stoppedHere: f.stopped });
+    // another tab's job says so again, as before the reload (docs/ide.md "Several tabs")
+    const followed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended, stoppedHere: f.stopped, ...(f.otherTabs ? { why: `${f.otherTabs} of another tab` } : {}) });
     if (!followed) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
     else this.d.showPanel('output');
     return followed;
@@ -123,12 +130,15 @@ export class RunController {
     }
     const project = this.project;
     this.project = job.project;
-    const what = job.action === 'run' ? 'Build & Run' : 'build';
+    const what: SharedWhat = job.action === 'run' ? 'Build & Run' : 'build';
     const followed = await this.d.build.resume(job.id, { why: `${what} of another tab` });
     if (!followed) {
       if (this.project === job.project) this.project = project;
       return false;
     }
+    // kept for a reload as this tab's followed job (onStarted): whose it is, too
+    const f = this.followed();
+    if (f?.jobId === job.id) this.keep({ ...f, otherTabs: what });
     this.d.showPanel('output');
     const where = job.project ? ` (${job.project})` : '';
     if (opts.replacing) {

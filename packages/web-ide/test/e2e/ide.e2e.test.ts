@@ -545,6 +545,12 @@ describe('IDE in headless Chromium', () => {
       await expect.poll(() => liveVersion(tab), { timeout: 10_000 }).toBeGreaterThan(0);
       expect(await tab.locator('#btn-stop').isEnabled()).toBe(true);
     }
+    // a tab following another tab's run, reloaded: it follows it again, still said to be the other tab's
+    await second.reload();
+    await second.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    await expect.poll(() => second.locator('#status-job').textContent(), { timeout: 10_000 }).toContain('running');
+    expect(await second.locator('.job-origin').textContent()).toBe('(Build & Run of another tab)');
+    expect(await second.locator('#btn-stop').isEnabled()).toBe(true);
     await shot(third, '06d-run-followed-in-another-tab');
     await second.locator('#btn-stop').click();
     for (const tab of [page, second, third]) {
