@@ -3,7 +3,7 @@ import type { EditorArea } from '../editor/editor-area.js';
 import type { Explorer } from '../panels/explorer.js';
 import type { OutlinePanel } from '../panels/outline.js';
 import type { Workspace } from '../workspace/workspace.js';
-import { isContract } from '../workspace/file-kinds.js';
+import { isContract, languageLabel } from '../workspace/file-kinds.js';
 import { scanProtectedRegions } from '../editor/protected-regions.js';
 
 /**
@@ -29,7 +29,7 @@ export function followActiveFile(d: { editors: EditorArea; workspace: Workspace;
     const guard = isFile ? editors.guardOf(id) : undefined;
     if (fs && guard) showRegionOutline(fs.model);
     else outline.show(fs && isContract(id!) ? fs.model.uri.toString() : undefined);
-    d.langEl.textContent = fs ? (fs.model.getLanguageId() === 'c' ? 'C (generated)' : 'Cactal') : '';
+    d.langEl.textContent = fs ? languageLabel(id!, fs.model.getLanguageId()) : '';
     // the cursor shown is the active editor's (a view tab has none)
     const pos = fs && editors.editor.getModel() === fs.model ? editors.editor.getPosition() : null;
     d.cursorEl.textContent = pos ? `Ln ${pos.lineNumber}, Col ${pos.column}` : '';

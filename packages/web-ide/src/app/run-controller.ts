@@ -180,7 +180,7 @@ export class RunController {
     const cur = runSettings();
     const r = await askFields('Run settings', [
       { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
-      { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'GLB.mission(consigne={1.0,2.0,3.0})' },
+      { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'SUPERVISOR.function(parameter = value, ...)' },
       { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
       { key: 'realtime', label: 'Real-time: modules take their SCHED_FIFO priorities in the sandbox, bounded (refused, saying why, where the host cannot grant it)', value: cur.realtime ? 'yes' : '', checkbox: true },
     ]);
