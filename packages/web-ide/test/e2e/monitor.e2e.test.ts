@@ -69,7 +69,7 @@ async function checkTutorialStory(page: Page): Promise<{ first: MarkJson; second
   const firstOff = marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.FIRST inactive'))!;
   const second = marks.find((m) => m.kind === 'rule' && m.label.startsWith('action.SECOND active'))!;
   expect(first && firstOff && second).toBeTruthy();
-  expect(second.label).toContain('MAA:2 value="disconnected"');
+  expect(second.label).toBe('action.SECOND active ← MAA:2 = "disconnected"'); // the cause in the rule rows' words
   expect(first.t).toBeLessThan(second.t);
   // while FIRST is active: it is lit with its cause, SECOND is not, the event schema it activated is active
   await seek(page, first.t + (firstOff.t - first.t) / 2);
@@ -801,7 +801,7 @@ describe.skipIf(!canBuild)('Monitor on examples/mobile-robot with a velocity-loo
     expect(reacted, story).toBeTruthy();
     // the supervisor's reaction: MIS.mission.AUTO ends on ORD:0 (velocityLoop), STOP takes over (endof(AUTO))
     const autoOff = marks.find((m) => m.kind === 'rule' && m.where === 'MIS' && m.t >= reacted.t && m.label.startsWith('mission.AUTO inactive'))!;
-    expect(autoOff?.label, story).toContain('ORD:0 value="velocityLoop"');
+    expect(autoOff?.label, story).toBe('mission.AUTO inactive ← ORD:0 = "velocityLoop"');
     const stop = marks.find((m) => m.kind === 'rule' && m.where === 'MIS' && m.t >= autoOff.t && m.label.startsWith('mission.STOP active'))!;
     expect(stop?.label, story).toContain('endof(AUTO)');
     await seek(page, stop.t);
