@@ -103,6 +103,15 @@ if (!docker.available) {
   test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});
 }
 
+describe('the start request (bwrap)', () => {
+  test('one naming no supervisor of the project (another project\'s) fails the run with a start-refused issue, not a success', async () => {
+    const { job, lines } = await runJob({ action: 'run', sandbox: 'bwrap', duration: 1, start: 'MIS.mission()', project: { dir: TUTORIAL_DIR } });
+    expect(lines.some((l) => l.source === 'launcher' && /^error: START request to MIS: /.test(l.line))).toBe(true);
+    expect(job.status, JSON.stringify(job.result)).not.toBe('succeeded');
+    expect(job.result.issues).toEqual([expect.objectContaining({ kind: 'start-refused', module: 'MIS', message: expect.stringMatching(/^the run's start request names MIS, which the launcher could not reach: .*is MIS a supervisor of this project\?\)$/) })]);
+  });
+});
+
 describe('user code in protected regions (bwrap)', () => {
   test('a compile error in MAA init is reported on module.c, inside protect_init_MAA', async () => {
     const files = withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', '    return undeclared_in_region;');

@@ -364,7 +364,7 @@ export class Job {
         const runEnv: Record<string, string> = tail ? { CONTRACT_LOG_MARK: '1' } : {};
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
-          this.runIssues.line(routed.line);
+          this.runIssues.line(routed.line, routed.source);
           return [routed];
         }, runEnv);
       } catch (e) {

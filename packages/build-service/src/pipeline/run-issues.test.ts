@@ -33,6 +33,20 @@ describe('RunIssues', () => {
     ]);
   });
 
+  test("a start request naming no module of the run (the launcher could not send it) is an issue; a module's own failed START is not", () => {
+    const r = new RunIssues();
+    const line = 'error: START request to GLB: unknown module (no mailbox in the run directory) (No such file or directory)';
+    r.line(line, 'MIS'); // a supervisor's request of its own, its tag taken off
+    r.line(line);
+    expect(r.all).toEqual([]);
+    r.line(line, 'launcher');
+    r.line(line, 'launcher');
+    expect(r.all).toEqual([{
+      kind: 'start-refused', module: 'GLB',
+      message: "the run's start request names GLB, which the launcher could not reach: unknown module (no mailbox in the run directory) (No such file or directory) (nothing was started: is GLB a supervisor of this project?)",
+    }]);
+  });
+
   test('capped and lost logs, limits and cut output are issues; a whole log is not', () => {
     const r = new RunIssues();
     r.artifacts({

@@ -25,6 +25,11 @@ const STUCK_RECORD = /,scheduler,,,0,stuck: (([A-Za-z_]\w*) has not finished rel
 
 /** A supervisor's line on stderr when the run's start request cannot start anything (runtime/src/engines/sup_main.c handle_start). */
 const START_REFUSED_LINE = /^([A-Za-z_]\w*): start request from contract-launch refused: (.*)$/;
+/**
+ * contract-launch's line when the start request cannot be sent: it names no module of the run (a
+ * supervisor of another project, a typo the client did not check), libmodule's error (src/mailbox.c).
+ */
+const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
 
 export class RunIssues {
   private readonly list: RunIssue[] = [];
@@ -34,13 +39,23 @@ export class RunIssues {
     return this.list;
   }
 
-  /** A line of the run's output (any source: ORD's module tag is the scheduler's name). */
-  line(text: string): void {
+  /**
+   * A line of the run's output, without its source's tag (any source: ORD's module tag is the
+   * scheduler's name); `source`: `launcher` for contract-launch's own lines.
+   */
+  line(text: string, source?: string): void {
     const m = STUCK_LINE.exec(text);
     if (m) this.stuck(m[2]!, m[3]!, m[1]!);
+    if (this.list.some((i) => i.kind === 'start-refused')) return;
     const refused = START_REFUSED_LINE.exec(text);
-    if (refused && !this.list.some((i) => i.kind === 'start-refused')) {
+    if (refused) {
       this.list.push({ kind: 'start-refused', module: refused[1]!, message: `${refused[1]!} refused the run's start request: ${refused[2]!.slice(0, 300)} (nothing was started by it)` });
+      return;
+    }
+    // the launcher sends one START, the run's: a module's own failed requests are not the start's
+    const unsent = source === 'launcher' ? START_UNSENT_LINE.exec(text) : null;
+    if (unsent) {
+      this.list.push({ kind: 'start-refused', module: unsent[1]!, message: `the run's start request names ${unsent[1]!}, which the launcher could not reach: ${unsent[2]!.slice(0, 300)} (nothing was started: is ${unsent[1]!} a supervisor of this project?)` });
     }
   }
 
