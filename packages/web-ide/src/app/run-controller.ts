@@ -17,6 +17,12 @@ const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
  */
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
+/**
+ * Kept in the browser, one set for the server's origin: the duration, CPUs and real-time go for
+ * every project; the start request (it names the project's own supervisor) only for the project it
+ * was saved for (`startFor`: the workspace root and project folder; a value saved without one, by
+ * an older version, goes for any).
+ */
 type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
 /**
  * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
@@ -26,10 +32,12 @@ type RunSettings = { duration: number; start?: string; cpus?: string; realtime?:
 type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat };
 type SharedWhat = 'Build & Run' | 'build';
 
-function runSettings(): RunSettings {
+/** The run settings for the project at `where` (`root/project`). */
+function runSettings(where: string): RunSettings {
   try {
-    const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings>;
-    return { duration: v.duration ?? 10, start: v.start || undefined, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
+    const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings> & { startFor?: unknown };
+    const start = v.start && (v.startFor === undefined || v.startFor === where) ? v.start : undefined;
+    return { duration: v.duration ?? 10, start, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
   } catch {
     return { duration: 10 };
   }
@@ -153,7 +161,7 @@ export class RunController {
     try {
       await workspace.saveAll();
       this.project = this.d.project();
-      const settings = runSettings();
+      const settings = runSettings(this.where(this.project));
       await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus, settings.realtime);
     } catch (e) {
       reportError(e);
@@ -168,6 +176,11 @@ export class RunController {
     return this.d.build.stop();
   }
 
+  /** Which project the start request of the run settings is kept for: the workspace root and the project folder. */
+  private where(project: string): string {
+    return `${this.d.workspace.root}/${project}`;
+  }
+
   /** Marks Build & Run unavailable (no build service). */
   disable(reason: string): void {
     this.d.toolbar.run.disabled = true;
@@ -177,7 +190,8 @@ export class RunController {
 
   /** The Run settings dialog (the toolbar's ⚙ beside Build & Run, or the command palette). */
   async editSettings(): Promise<void> {
-    const cur = runSettings();
+    const where = this.where(this.d.project());
+    const cur = runSettings(where);
     const r = await askFields('Run settings', [
       { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
       { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'SUPERVISOR.function(parameter = value, ...)' },
@@ -190,7 +204,7 @@ export class RunController {
     const cpus = (r.cpus ?? '').trim();
     if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
     const realtime = r.realtime === 'yes';
-    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
+    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
     toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${realtime ? ', real-time priorities' : ''}`);
   }
 

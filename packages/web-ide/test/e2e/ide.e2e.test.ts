@@ -469,7 +469,15 @@ describe('IDE in headless Chromium', () => {
     await page.locator('.dialog-input[data-key=start]').fill('GLB.mission(consigne={1.0,2.0,3.0})');
     await page.locator('.dialog-input[data-key=cpus]').fill('0');
     await page.locator('.dialog .btn.primary').click();
-    expect(await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!))).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' });
+    const saved = await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!));
+    expect(saved).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})', startFor: expect.stringMatching(/\/$/), cpus: '0' });
+    // the start request is this project's: another workspace served on the same port does not get it
+    await page.evaluate((v) => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ ...v, startFor: '/elsewhere/robot' })), saved);
+    await page.locator('#btn-run-settings').click();
+    expect(await page.locator('.dialog-input[data-key=start]').inputValue()).toBe('');
+    expect(await page.locator('.dialog-input[data-key=duration]').inputValue()).toBe('4');
+    await page.keyboard.press('Escape');
+    await page.evaluate((v) => localStorage.setItem('contract-studio:run-settings', JSON.stringify(v)), saved);
     await page.locator('#btn-run').click();
     await page.locator('.log-row[data-source="MSC"]').first().waitFor({ timeout: 140_000 }).catch(async (e) => {
       await shot(page, '06-build-and-run-FAILED');
