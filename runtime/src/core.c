@@ -98,6 +98,7 @@ int rt_init_run_dir(void)
 
 const char *ContractRunDir(void) { return g_rt.run_dir; }
 int ContractRunStopping(void) { return rt_run_stopping(); }
+int ContractPeerGoneAtStop(int rc) { return (rc == CONTRACT_EUNKNOWN || rc == CONTRACT_ENOTRUNNING) && rt_run_stopping(); }
 const char *ContractSelfName(void) { return g_rt.name; }
 long ContractActivations(void) { return g_rt.activations; }
 

@@ -90,7 +90,7 @@ int rt_send_request_to(const char *module, RequestMessage *msg)
         int code = rt_errno_to_code(err);
         /* while the launcher stops every module, a peer that has already gone is expected: the
          * record stays in the log, stderr stays quiet */
-        int gone_at_stop = (code == CONTRACT_EUNKNOWN || code == CONTRACT_ENOTRUNNING) && rt_run_stopping();
+        int gone_at_stop = ContractPeerGoneAtStop(code);
         char text[256];
         snprintf(text, sizeof text, "%s request to %s: %s (%s%s)", rt_request_name(msg->Type), module, ContractStrError(code),
                  strerror(err), gone_at_stop ? "; the run is stopping" : "");

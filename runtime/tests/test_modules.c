@@ -398,28 +398,28 @@ void test_request_to_gone_while_stopping(void)
     h_teardown();
 }
 
-/* What ORD asks before it prints an error line for a request that failed (engine_wire.h): a
+/* What ORD asks before it prints an error line for a request that failed (ContractPeerGoneAtStop): a
  * peer gone (no mailbox) is quiet only while the launcher stops the run; any other failure, or
  * the same outside the stop, is not. At a run's stop ORD may tick once more after LOC has gone:
  * without the check it prints `ORD: cannot release LOC (goTo): unknown module` under `all modules
  * stopped cleanly`. */
-void test_engine_peer_gone_at_stop(void)
+void test_peer_gone_at_stop(void)
 {
     REQUIRE(h_setup("gone-at-stop") == 0);
     char mark[700];
     snprintf(mark, sizeof mark, "%s/%s", h_run_dir, CONTRACT_RUN_STOPPING_FILE);
     int before = SendStart("GONE", ACK_NOTHING, 0);
     CHECK_MSG(before == CONTRACT_EUNKNOWN, "a release to a module with no mailbox: %d, expected CONTRACT_EUNKNOWN", before);
-    CHECK(!ContractRunStopping() && !engine_peer_gone_at_stop(before));
+    CHECK(!ContractRunStopping() && !ContractPeerGoneAtStop(before));
     int fd = open(mark, O_WRONLY | O_CREAT, 0644);
     CHECK(fd >= 0);
     if (fd >= 0) close(fd);
     int during = SendStart("GONE", ACK_NOTHING, 0);
-    CHECK(ContractRunStopping() && during == CONTRACT_EUNKNOWN && engine_peer_gone_at_stop(during));
-    CHECK(engine_peer_gone_at_stop(CONTRACT_ENOTRUNNING));
-    CHECK(!engine_peer_gone_at_stop(CONTRACT_OK) && !engine_peer_gone_at_stop(CONTRACT_EBUSY) && !engine_peer_gone_at_stop(CONTRACT_ETOOBIG));
+    CHECK(ContractRunStopping() && during == CONTRACT_EUNKNOWN && ContractPeerGoneAtStop(during));
+    CHECK(ContractPeerGoneAtStop(CONTRACT_ENOTRUNNING));
+    CHECK(!ContractPeerGoneAtStop(CONTRACT_OK) && !ContractPeerGoneAtStop(CONTRACT_EBUSY) && !ContractPeerGoneAtStop(CONTRACT_ETOOBIG));
     unlink(mark);
-    CHECK(!ContractRunStopping() && !engine_peer_gone_at_stop(CONTRACT_EUNKNOWN));
+    CHECK(!ContractRunStopping() && !ContractPeerGoneAtStop(CONTRACT_EUNKNOWN));
     h_teardown();
 }
 

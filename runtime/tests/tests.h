@@ -15,7 +15,7 @@ void test_setparam_sizes(void);
 void test_malformed_datagrams(void);
 void test_unknown_and_stale(void);
 void test_request_to_gone_while_stopping(void);
-void test_engine_peer_gone_at_stop(void);
+void test_peer_gone_at_stop(void);
 void test_long_run_dir(void);
 void test_maa_events_params(void);
 void test_unsub_spent_oneshot(void);
@@ -52,7 +52,7 @@ static const TestCase ALL_TESTS[] = {
     { "malformed_datagrams", test_malformed_datagrams },
     { "unknown_and_stale", test_unknown_and_stale },
     { "request_to_gone_while_stopping", test_request_to_gone_while_stopping },
-    { "engine_peer_gone_at_stop", test_engine_peer_gone_at_stop },
+    { "peer_gone_at_stop", test_peer_gone_at_stop },
     { "long_run_dir", test_long_run_dir },
     { "maa_events_params", test_maa_events_params },
     { "unsub_spent_oneshot", test_unsub_spent_oneshot },

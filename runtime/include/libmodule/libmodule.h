@@ -320,6 +320,11 @@ const char *ContractRunDir(void);
 /** 1 once the launcher has begun stopping the run (its `launcher.stopping` mark is in the run
  *  directory), else 0: a request to a peer that has already gone is then expected, not an error. */
 int ContractRunStopping(void);
+/** 1 when a request failed with `rc` because its peer had gone (CONTRACT_EUNKNOWN,
+ *  CONTRACT_ENOTRUNNING) while the launcher stops the run: expected then, not an error. libmodule
+ *  logs such a request as an `error` record ending "; the run is stopping" and prints nothing;
+ *  a caller that reports its own failures (the engines) stays as quiet. */
+int ContractPeerGoneAtStop(int rc);
 /** This process's module name. */
 const char *ContractSelfName(void);
 /** Number of START requests received so far (activations). */

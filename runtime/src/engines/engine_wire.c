@@ -71,7 +71,3 @@ void engine_terminate_names(RequestMessage *m) {
     default: break;
     }
 }
-
-int engine_peer_gone_at_stop(int rc) {
-    return (rc == CONTRACT_EUNKNOWN || rc == CONTRACT_ENOTRUNNING) && ContractRunStopping();
-}

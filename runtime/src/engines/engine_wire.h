@@ -31,10 +31,5 @@ int engine_binary_args(const RequestMessage *m, const unsigned char **block, siz
 void engine_terminate_names(RequestMessage *m);
 /** Copies the request's Data as a NUL-terminated string (truncated to n-1). */
 void engine_data_string(const RequestMessage *m, char *out, size_t n);
-/** 1 when a request the engine sent failed with `rc` because its peer had gone
- *  (CONTRACT_EUNKNOWN, CONTRACT_ENOTRUNNING) while the launcher stops the run: expected then
- *  (the launcher stops ORD with the modules, after the supervisors). libmodule has logged it as
- *  an `error` record ending "; the run is stopping"; the engine prints no error line for it. */
-int engine_peer_gone_at_stop(int rc);
 
 #endif

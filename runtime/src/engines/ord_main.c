@@ -60,7 +60,7 @@ static void b_set_param(void *ctx, const char *m, int port, const char *name, co
     engine_format_parameterize(line, sizeof line, m, port, name, v, size, t);
     ContractLog("scheduler", m, -1, 0, line);
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
-    if (rc != CONTRACT_OK && !engine_peer_gone_at_stop(rc))
+    if (rc != CONTRACT_OK && !ContractPeerGoneAtStop(rc))
         fprintf(stderr, "ORD: cannot set parameter %d of %s: %s\n", port, m, ContractStrError(rc));
 }
 
@@ -71,7 +71,7 @@ static void b_connect(void *ctx, const ContractDataFlow *f) {
     snprintf(line, sizeof line, "connect %s * %d", flow, f->periodicity);
     ContractLog("scheduler", f->src_module, -1, 0, line);
     int rc = SendSubscribe(f->src_module, f->src_port, f->dst_module, f->dst_port, f->periodicity, 1);
-    if (rc != CONTRACT_OK && !engine_peer_gone_at_stop(rc))
+    if (rc != CONTRACT_OK && !ContractPeerGoneAtStop(rc))
         fprintf(stderr, "ORD: cannot connect %s:%d -> %s:%d: %s\n", f->src_module, f->src_port,
                 f->dst_module, f->dst_port, ContractStrError(rc));
 }
@@ -110,7 +110,7 @@ static void b_release(void *ctx, const char *m, const char *schema, int64_t tick
     int rc = SendStart(m, ACK_FINISHED | ACK_STOPPED | ACK_NOTDONE, (int)id);
     /* at the run's stop, ORD (stopped with the modules) may tick once more after a module has
        gone: libmodule logs that release as an error record, quietly */
-    if (rc != CONTRACT_OK && !engine_peer_gone_at_stop(rc))
+    if (rc != CONTRACT_OK && !ContractPeerGoneAtStop(rc))
         fprintf(stderr, "ORD: cannot release %s (%s): %s\n", m, schema, ContractStrError(rc));
 }
 
@@ -121,7 +121,7 @@ static void b_emit(void *ctx, int port, const char *schema) {
     strncpy(name, schema, sizeof name - 1);
     for (int i = 0; i < b->v->nsupervisors; i++) {
         int rc = SendEvent(b->v->supervisors[i], -1, port, name, sizeof name);
-        if (rc != CONTRACT_OK && rc != CONTRACT_EUNKNOWN && !engine_peer_gone_at_stop(rc))
+        if (rc != CONTRACT_OK && rc != CONTRACT_EUNKNOWN && !ContractPeerGoneAtStop(rc))
             fprintf(stderr, "ORD: cannot notify ORD:%d to %s: %s\n", port, b->v->supervisors[i],
                     ContractStrError(rc));
     }
