@@ -124,8 +124,7 @@ export class SimulateApi {
           line: d.line ?? 1, column: d.column ?? 1, severity: d.severity === 'note' ? 'info' : d.severity,
           message: `${d.message}${d.protectedRegion ? ` (in protected region ${d.protectedRegion.id})` : ''}`,
         }));
-        const errors = prepared.compile.diagnostics.filter((d) => d.severity === 'error').length;
-        throw new HttpError(422, `the project's C does not compile for the simulator: ${errors} error(s) in ${SRC_GEN_DIR}/ (your code in its protected regions)`, { diagnostics });
+        throw new HttpError(422, `the project's C does not compile for the simulator: ${sim.errorCount(prepared.compile)} error(s) in ${SRC_GEN_DIR}/ (your code in its protected regions)`, { diagnostics });
       }
       throw new HttpError(500, prepared.buildError ?? 'the simulator could not be built');
     }

@@ -43,7 +43,7 @@ export const simulateCommand: Command = {
         if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
-            DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
+            DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, errorCount, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
         } = await import('@contract-studio/simulator');
         if (parsed.positionals.length < 2) throw new UsageError('expected DIR and at least one SCENARIO file');
         const sandbox = parsed.options.get('sandbox');
@@ -81,8 +81,7 @@ export const simulateCommand: Command = {
                 const dirArg = parsed.positionals[0]!;
                 for (const d of project.compile.diagnostics) io.err(formatGccDiagnostic(d, dirArg));
                 for (const l of project.compile.other) io.err(`${l}\n`);
-                const errors = project.compile.diagnostics.filter((d) => d.severity === 'error').length;
-                io.err(`contract simulate: cannot compile the simulator: ${errors} error(s) in your C (above; user code lives in the PROTECTED REGION blocks of ${safeName(join(dirArg, 'src-gen'))})\n`);
+                io.err(`contract simulate: cannot compile the simulator: ${errorCount(project.compile)} error(s) in your C (above; user code lives in the PROTECTED REGION blocks of ${safeName(join(dirArg, 'src-gen'))})\n`);
                 return EXIT_FAILURE;
             }
             io.err(`contract simulate: ${project.buildError}\n`);

@@ -25,7 +25,7 @@ import { acquireProjectLock, CACHE_ENTRY_NAMES, markUsed, removeAbandonedBuilds,
 import { simulatorCacheDir } from './cache.js';
 import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
-import { compileDiagnostics, describeCompileFailure, type CompileFailure } from './compile-diagnostics.js';
+import { compileDiagnostics, describeCompileFailure, withoutFolder, type CompileFailure } from './compile-diagnostics.js';
 
 export interface HarnessBuild {
     exe: string;
@@ -208,7 +208,7 @@ async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, d
         }
         const link = await run(cc, ['-o', join(work, 'contract-sim'), ...src.units.map((_, i) => join(work, `unit${i}.o`)), objects.main, objects.lib, '-lm'], work, confined);
         // a link error (a function the user's code calls that nobody defines) names this temporary folder's objects: told relative to it
-        if (link.code !== 0) return { error: `cannot link the simulator:\n${link.output.split(`${work}/`).join('')}` };
+        if (link.code !== 0) return { error: `cannot link the simulator:\n${withoutFolder(link.output, work)}` };
         writeFileSync(join(work, 'key'), key);
         try {
             renameSync(work, dir);

@@ -108,7 +108,7 @@ class FilePlacer {
 }
 
 /** `text` with every mention of the build folder taken out (relative paths remain). */
-function withoutFolder(text: string, work: string): string {
+export function withoutFolder(text: string, work: string): string {
     return text.split(`${work}/`).join('').split(work).join('.');
 }
 
