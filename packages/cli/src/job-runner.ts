@@ -78,7 +78,8 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
 
 /** A gcc diagnostic as gcc prints it, its path from where the command was typed (`dirArg`: the project folder as given). */
 export function formatGccDiagnostic(d: GccDiagnostic, dirArg = '.'): string {
-    const where = d.file ? `${safeName(join(dirArg, 'src-gen', d.file))}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+    // a file outside the tree (a system header, the runtime's) keeps its own absolute path
+    const where = d.file ? `${safeName(d.file.startsWith('/') ? d.file : join(dirArg, 'src-gen', d.file))}:${d.line ?? 0}${d.column === null ? '' : `:${d.column}`}: ` : '';
     const region = d.protectedRegion ? ` [in protected region ${d.protectedRegion.id}]` : '';
     return `${where}${d.severity}: ${d.message}${d.option ? ` [${d.option}]` : ''}${region}\n`;
 }
@@ -88,7 +89,18 @@ export interface JobOutcome {
     result: JobResult;
     /** Lines of the run step: [source, line] (module tag or 'launcher'/'run'). */
     runLines: { source: string; stream: string; line: string }[];
+    /**
+     * The build step's last error lines (make's `***`, the assembler's, a tool's): told when a
+     * build fails with no error gcc or ld reported, so that the report never points at errors
+     * "above" that were not printed.
+     */
+    buildTail: string[];
 }
+
+/** The build's error lines a failed build with no diagnostic shows (the last ones). */
+const BUILD_TAIL_LINES = 15;
+/** A build line that says what failed: make's `***`, the assembler's, a tool's error (matched on its first 500 characters). */
+const BUILD_ERROR_LINE = /\*\*\*|\berror\b|Assembler messages|cannot|not found|No such file|Killed|Segmentation fault/i;
 
 export interface RunRequest {
     action: 'build' | 'run';
@@ -164,7 +176,8 @@ export async function runJob(
         }
         if (io.outputClosed?.aborted) onSigint();
         const runLines: JobOutcome['runLines'] = [];
-        const print = makePrinter(opts, io, runLines);
+        const buildTail: string[] = [];
+        const print = makePrinter(opts, io, runLines, buildTail);
         const unsubscribe = job.events.subscribe(0, (e) => {
             print(e);
             try {
@@ -175,7 +188,7 @@ export async function runJob(
         });
         await job.finished;
         unsubscribe();
-        const outcome: JobOutcome = { job, result: job.result!, runLines };
+        const outcome: JobOutcome = { job, result: job.result!, runLines, buildTail };
         if (whileOpen) await whileOpen(service, cache.dir, outcome);
         return outcome;
     } finally {
@@ -195,9 +208,19 @@ const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
 /** The service's line when a run's stdout or stderr went past its cap (job.ts). */
 const OUTPUT_TRUNCATED_LINE = /^\[output truncated: (stdout|stderr) limit .* reached\]$/;
 
-function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines']): (e: JobEvent) => void {
+/** Keeps `e` in `tail` (the last BUILD_TAIL_LINES) when it is a line of the build that says what failed. */
+export function noteBuildErrorLine(tail: string[], e: JobEvent): void {
+    if (e.type !== 'line' || e.step !== 'build' || e.source === 'service') return;
+    const head = e.line.slice(0, 500);
+    if (!BUILD_ERROR_LINE.test(head) || /^g?make(?:\[\d+\])?: Target .* not remade/.test(head)) return;
+    tail.push(e.line);
+    if (tail.length > BUILD_TAIL_LINES) tail.shift();
+}
+
+function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[]): (e: JobEvent) => void {
     const madeParts = new Set<string>();
     return (e) => {
+        noteBuildErrorLine(buildTail, e);
         if (e.type === 'diagnostic') {
             if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic, opts.dirArg));
             return;
@@ -322,6 +345,12 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
         if (generated) io.err(`fix the generated tree's errors above in ${safeName(join(opts.dirArg, SRC_GEN_DIR))} (a protected-region marker broken or edited: \`contract generate ${dir}\` lists them), then build again\n`);
         if (!model && !generated) io.err(`fix the problems above, then build again\n`);
     }
-    if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))}), then build again; --verbose shows every build line\n`);
+    const buildErrors = result.step === 'build' ? job.diagnostics.filter((x) => x.severity === 'error').length : 0;
+    if (!result.ok && result.step === 'build' && !buildErrors && !opts.verbose && outcome.buildTail.length && job.status !== 'cancelled' && !result.limitHit) {
+        // nothing gcc or ld reported: make's and the tools' error lines say why (the assembler's, a tool killed)
+        io.err(`no compiler or linker error was reported; the build's last error lines:\n${outcome.buildTail.map((l) => `  | ${safeName(l.length > 500 ? `${l.slice(0, 500)}…` : l)}\n`).join('')}`);
+    }
+    if (!result.ok && result.step === 'build' && !buildErrors && job.status !== 'cancelled' && !result.limitHit) io.err(`fix what the build's error lines say, then build again; --verbose shows every build line\n`);
+    else if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))}), then build again; --verbose shows every build line\n`);
     return exitCodeOf(result, job);
 }

@@ -12,7 +12,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { Job, RunArtifacts } from '@contract-studio/build-service';
 import { runCli } from '../src/cli.js';
 import { problemLines, refusedPrevious, saveLogs, startProblem } from '../src/commands/run.js';
-import { formatGccDiagnostic, prepareErrors, reportBuild, type JobOutcome } from '../src/job-runner.js';
+import { formatGccDiagnostic, noteBuildErrorLine, prepareErrors, reportBuild, type JobOutcome } from '../src/job-runner.js';
 import { safeName } from '../src/terminal-text.js';
 import { capture } from './capture-io.js';
 import { removeScratch } from './scratch.js';
@@ -107,7 +107,7 @@ describe('2. contract run: a link planted among the logs', () => {
         const outcome = {
             job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status: 'succeeded' },
             result: { ok: true, message: 'run finished (exit 0)', step: 'run', issues: [], durations_ms: { prepare: 1900, build: 900, run: 2300 } },
-            runLines: [],
+            runLines: [], buildTail: [],
         } as unknown as JobOutcome;
         const io = capture(root);
         reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], outcome, io, {}, [], ['log CEL_4-Dec-2026-11h27m40s.csv not written: a symbolic link of that name is there (never written through)']);
@@ -115,6 +115,56 @@ describe('2. contract run: a link planted among the logs', () => {
         const fine = capture(root);
         reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], outcome, fine);
         expect(fine.stderr).toMatch(/^ok: run finished \(exit 0\) \[bwrap;/);
+    });
+});
+
+describe('a build that fails with no compiler, assembler or linker diagnostic', () => {
+    const lines = [
+        ['build', 'build', "make[1]: Entering directory '/work/src-gen/generated/architecture/modules/CTL_mod'"],
+        ['build', 'build', 'cc -std=c11 -o CTL module.c'],
+        ['build', 'build', 'cc: fatal error: Killed signal terminated program cc1'],
+        ['build', 'build', 'compilation terminated.'],
+        ['build', 'build', 'make[1]: *** [Makefile:23: CTL] Error 1'],
+        ['build', 'build', "make[1]: Target 'all' not remade because of errors."],
+        ['build', 'service', 'build: exit 2'],
+        ['run', 'CTL', 'error: a module\'s own line is not the build\'s'],
+    ] as const;
+    const failed = (buildTail: string[], diagnostics: unknown[]) => ({
+        job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status: 'failed', diagnostics },
+        result: { ok: false, message: 'build failed (make exit 2)', step: 'build', issues: [], durations_ms: { prepare: 300, build: 900 } },
+        runLines: [], buildTail,
+    } as unknown as JobOutcome);
+
+    it('shows the build\'s error lines (the compiler killed, make\'s ***), not "the gcc errors above" with none above', () => {
+        const tail: string[] = [];
+        for (const [step, source, line] of lines) noteBuildErrorLine(tail, { type: 'line', step, source, stream: 'stdout', line } as never);
+        expect(tail).toEqual(['cc: fatal error: Killed signal terminated program cc1', 'make[1]: *** [Makefile:23: CTL] Error 1']);
+        const io = capture(root);
+        reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], failed(tail, []), io);
+        expect(io.stderr).toBe([
+            'FAILED: build failed (make exit 2) [bwrap; prepare 0.3 s, build 0.9 s]',
+            "no compiler or linker error was reported; the build's last error lines:",
+            '  | cc: fatal error: Killed signal terminated program cc1',
+            '  | make[1]: *** [Makefile:23: CTL] Error 1',
+            "fix what the build's error lines say, then build again; --verbose shows every build line",
+            '',
+        ].join('\n'));
+    });
+
+    it('keeps the last 15 such lines, each cut at 500 characters, its controls escaped; with a diagnostic, the usual words', () => {
+        const tail: string[] = [];
+        for (let i = 0; i < 40; i++) noteBuildErrorLine(tail, { type: 'line', step: 'build', source: 'build', stream: 'stdout', line: `error ${i}: \u001b[2J${'x'.repeat(i === 39 ? 900 : 1)}` } as never);
+        expect(tail).toHaveLength(15);
+        const io = capture(root);
+        reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], failed(tail, []), io);
+        expect(io.stderr).toContain('  | error 25:');
+        expect(io.stderr).not.toContain('  | error 24:');
+        expect(io.stderr).not.toContain('\u001b');
+        expect(io.stderr.split('\n').find((l) => l.includes('error 39'))!.length).toBeLessThan(520);
+        const withError = capture(root);
+        reportBuild({ format: 'text', dirArg: 'cell' } as Parameters<typeof reportBuild>[0], failed(tail, [{ severity: 'error' }]), withError);
+        expect(withError.stderr).not.toContain('last error lines');
+        expect(withError.stderr).toContain('fix the gcc errors above');
     });
 });
 
@@ -251,6 +301,19 @@ describe('6. a crashed module', () => {
         expect(lines.at(-4)).toBe('+0.000001s CTL  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)');
         expect(lines.at(-3)).toBe('           LOC  no record in its log: it crashed or was killed before writing any (`contract run` names a crash)');
         expect(lines.at(-2)).toMatch(/^5 records: /);
+    });
+
+    it('contract trace says a log the build service cut (its log-capped record) was cut, not that its module crashed', async () => {
+        const dir = join(root, 'cut-by-service');
+        mkdirSync(dir);
+        writeFileSync(join(dir, 'ORD_1.csv'), moduleLog('ORD', 1_000_000_000));
+        const ctl = moduleLog('CTL', 1_000_000_000, true) + '1000001000,2026-12-05T19:00:00.000Z,CTL,log-capped,build-service,,99999,collected the first 4000 of 99999 bytes (the 4096-byte bound of the build service)\n';
+        writeFileSync(join(dir, 'CTL_1.csv'), ctl);
+        const io = capture(root);
+        expect(await runCli(['trace', 'cut-by-service'], io)).toBe(0);
+        expect(io.stdout).toContain('+0.000001s CTL  its log was cut here by the build service (its bound on a collected log): later records, its exit record among them, are not in it\n');
+        expect(io.stdout).not.toContain('no exit record follows');
+        expect(io.stdout).toMatch(/, 0 unreadable lines\n$/);
     });
 
     it('contract trace names modules without an exit record in the order of their last record, and a whole run killed in one line', async () => {

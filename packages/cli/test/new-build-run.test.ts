@@ -116,7 +116,10 @@ describe('contract build / run usage', () => {
         expect(() => checkStart('FLT.hold(height = 1.5x)')).toThrow(/'1\.5x' is not a number/);
         expect(() => checkStart('FLT.hold(delay = 20ms)')).toThrow(/'20ms' is not a number/);
         expect(checkStart('FLT.hold(note = "1.5x", v = {1.0,-2,3e2}, m = Mode.F2, x2 = +2)')).toBe('FLT.hold(note = "1.5x", v = {1.0,-2,3e2}, m = Mode.F2, x2 = +2)');
-        expect(checkCpus('0-1,3')).toBe('0-1,3');
+        expect(checkCpus('0-1,3', 4)).toBe('0-1,3');
+        // a CPU the machine does not have: refused before anything is built (exit 2), not after the build by the launcher
+        expect(() => checkCpus('0-1,3', 2)).toThrow("bad --cpus '0-1,3': CPU 3 is not available here (2 CPUs online: 0-1)");
+        expect(() => checkCpus('5-9', 8)).toThrow(/CPU 8 is not available here \(8 CPUs online: 0-7\)/);
         expect(() => checkCpus('1-')).toThrow(/CPU list/);
     });
 
@@ -280,6 +283,45 @@ describe('contract build / run on a project (bwrap)', () => {
             expect(readFileSync(join(root, at![1]!), 'utf8').split('\n')[Number(at![2]) - 1]).toContain(`missing_${m}`);
         }
         expect(io.stderr).toContain('build failed: 2 error(s)');
+    }, 240_000);
+
+    it('a link error (a function a region calls that nobody defines) is told at the region\'s file and line, not only in --verbose', async () => {
+        const dir = join(root, 'link-error');
+        expect(await runCli(['new', 'link-error'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'link-error'], capture(root))).toBe(0);
+        const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const broken = source.replace(/(PROTECTED REGION ID\(protect_exec_CTL\) ENABLED START\*\/)/, '$1\n    { extern int gripper_ready(void); if (gripper_ready()) { } }');
+        expect(broken).not.toBe(source);
+        writeFileSync(file, broken);
+        const io = capture(root);
+        expect(await runCli(['build', 'link-error', '--sandbox', 'bwrap'], io)).toBe(1);
+        const at = /^(\S+):(\d+): error: undefined reference to `gripper_ready' \(in function \w+\) \[in protected region protect_exec_CTL\]$/m.exec(io.stderr);
+        expect(at, io.stderr).not.toBeNull();
+        expect(at![1]).toBe('link-error/src-gen/generated/architecture/modules/CTL_mod/module.c');
+        expect(readFileSync(join(root, at![1]!), 'utf8').split('\n')[Number(at![2]) - 1]).toContain('gripper_ready()');
+        // ld tells the reference twice; the build reports it once
+        expect(io.stderr.match(/undefined reference to `gripper_ready'/g)).toHaveLength(1);
+        expect(io.stderr).toContain('build failed: 1 error(s)');
+    }, 240_000);
+
+    it('the assembler\'s error (an __asm__ statement of a region) is told at the region\'s file and line, once', async () => {
+        const dir = join(root, 'asm-error');
+        expect(await runCli(['new', 'asm-error'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'asm-error'], capture(root))).toBe(0);
+        const file = join(dir, 'src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const broken = source.replace(/(PROTECTED REGION ID\(protect_exec_CTL\) ENABLED START\*\/)/, '$1\n    __asm__("gripper_open");');
+        expect(broken).not.toBe(source);
+        writeFileSync(file, broken);
+        const io = capture(root);
+        expect(await runCli(['build', 'asm-error', '--sandbox', 'bwrap'], io)).toBe(1);
+        const at = /^(\S+):(\d+): error: no such instruction: `gripper_open' \[in protected region protect_exec_CTL\]$/m.exec(io.stderr);
+        expect(at, io.stderr).not.toBeNull();
+        expect(at![1]).toBe('asm-error/src-gen/generated/architecture/modules/CTL_mod/module.c');
+        expect(readFileSync(join(root, at![1]!), 'utf8').split('\n')[Number(at![2]) - 1]).toContain('gripper_open');
+        expect(io.stderr.match(/no such instruction/g)).toHaveLength(1);
+        expect(io.stderr).toContain('build failed: 1 error(s)');
     }, 240_000);
 
     it('exits 1 and names the module when user code crashes during the run', async () => {

@@ -61,7 +61,7 @@ export function located(
 
 /** gcc-like one-line rendering, for the text log. */
 export function renderDiagnostic(d: GccDiagnostic): string {
-  const where = d.file ? `${d.file}:${d.line ?? 0}:${d.column ?? 0}: ` : '';
+  const where = d.file ? `${d.file}:${d.line ?? 0}${d.column === null ? '' : `:${d.column}`}: ` : '';
   const opt = d.option ? ` [${d.option}]` : '';
   const region = d.protectedRegion ? ` (in protected region ${d.protectedRegion.id})` : '';
   return `${where}${d.severity}: ${d.message}${opt}${region}`;

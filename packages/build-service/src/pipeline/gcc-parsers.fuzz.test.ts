@@ -90,6 +90,9 @@ describe('lines of a sandbox: bounded time, no exception', () => {
     ['make directories', "make[1]: Entering directory '" + "'".repeat(100_000)],
     ['JSON opening', '[{"kind"' + ' '.repeat(100_000)],
     ['NUL', '\u0000'.repeat(100_000)],
+    ['ld places', '/usr/bin/ld: ' + 'a.o:'.repeat(25_000) + ': undefined reference to `x\''],
+    ['ld definitions', 'ld: x:1: multiple definition of `g\'' + '; a:1'.repeat(20_000) + ': first defined here'],
+    ['ld functions', '/usr/bin/ld: ' + ": in function `".repeat(7_000) + "':"],
     ['unicode', 'é:1: error: ' + '\u{1F600}'.repeat(40_000)],
   ])('%s (100k characters)', (_name, line) => {
     expect(timed(line)).toBeLessThan(LINE_MS);

@@ -9,6 +9,8 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic } from './gcc-diagnostics.js';
 import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
+import { inFunction, parseLinkerLine } from './ld-text.js';
+import { parseAssemblerLine } from './as-text.js';
 import type { ProtectedRegion } from './protected-regions.js';
 
 export interface RoutedLine {
@@ -28,6 +30,10 @@ export interface BuildRouterOptions {
 
 export class BuildOutputRouter {
   private readonly dirs: string[];
+  /** The function ld said the next errors are in (its `in function` line). */
+  private linkFunction: string | undefined;
+  /** The assembler's and ld's errors told so far: each says one again for every use of what is wrong. */
+  private readonly linkErrors = new Set<string>();
 
   constructor(private readonly options: BuildRouterOptions) {
     this.dirs = [options.startDir];
@@ -53,7 +59,23 @@ export class BuildOutputRouter {
       }
     }
     const text = parseGccTextLine(line, ctx);
-    return { lines: [{ source: 'build', line }], diagnostics: text && text.severity !== 'note' ? [text] : [] };
+    if (text) return { lines: [{ source: 'build', line }], diagnostics: text.severity !== 'note' ? [text] : [] };
+    // the assembler's (as-text.ts) and the linker's (ld-text.ts) errors at the user's files, each once
+    const asm = parseAssemblerLine(line, ctx);
+    const ld = asm ? { kind: 'diagnostic' as const, diagnostic: asm } : parseLinkerLine(line, ctx);
+    if (!ld) {
+      this.linkFunction = undefined;
+      return { lines: [{ source: 'build', line }], diagnostics: [] };
+    }
+    if (ld.kind === 'function') {
+      this.linkFunction = ld.name;
+      return { lines: [{ source: 'build', line }], diagnostics: [] };
+    }
+    const d = inFunction(ld.diagnostic, this.linkFunction);
+    const key = renderDiagnostic(d);
+    if (this.linkErrors.has(key)) return { lines: [{ source: 'build', line }], diagnostics: [] };
+    if (this.linkErrors.size < SERVICE_BOUNDS.diagnosticsPerJob) this.linkErrors.add(key);
+    return { lines: [{ source: 'build', line }], diagnostics: [d] };
   }
 }
 

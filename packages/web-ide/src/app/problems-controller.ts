@@ -18,6 +18,9 @@ export interface ProblemsDeps {
   buildProject(): string;
 }
 
+/** The group of the build's errors that name no file of the project (the linker's `cannot find -lx`, a system header): they open nothing. */
+export const BUILD_WITHOUT_FILE = '(build: outside the project)';
+
 const sevOf = (s: number | undefined): Severity => (s === 1 ? 'error' : s === 2 ? 'warning' : s === 3 ? 'info' : 'hint');
 
 /**
@@ -40,12 +43,14 @@ export function connectProblems(d: ProblemsDeps): void {
     statusEl.dataset.warnings = String(warnings);
   });
   statusEl.addEventListener('click', () => d.showPanel('problems'));
-  problems.onOpen.on((p) => void editors.open(p.path, { lineNumber: p.line, column: p.column }));
+  problems.onOpen.on((p) => {
+    if (p.path !== BUILD_WITHOUT_FILE) void editors.open(p.path, { lineNumber: p.line, column: p.column });
+  });
   // gcc diagnostics also become squiggles in the generated files (owner 'gcc'), when they are open
   let gccMarked = new Set<string>();
   const applyGccMarkers = () => {
     const byPath = new Map<string, monaco.editor.IMarkerData[]>();
-    for (const p of problems.all().filter((q) => q.source === 'gcc')) {
+    for (const p of problems.all().filter((q) => q.source === 'gcc' && q.path !== BUILD_WITHOUT_FILE)) {
       const list = byPath.get(p.path) ?? byPath.set(p.path, []).get(p.path)!;
       const sev = p.severity === 'error' ? monaco.MarkerSeverity.Error : p.severity === 'warning' ? monaco.MarkerSeverity.Warning : monaco.MarkerSeverity.Info;
       list.push({ severity: sev, message: p.message, source: 'gcc', startLineNumber: p.line, startColumn: p.column, endLineNumber: p.line, endColumn: p.column + 1 });
@@ -62,8 +67,11 @@ export function connectProblems(d: ProblemsDeps): void {
     const project = d.buildProject();
     const srcGen = `${project ? `${project}/` : ''}src-gen/`;
     problems.set('gcc', diags.map((x) => ({
-      path: srcGen + x.file, line: x.line, column: x.column || 1,
-      severity: x.severity === 'note' ? 'info' : x.severity, message: x.message + (x.protectedRegion ? ` (in region ${x.protectedRegion.id})` : ''), source: 'gcc',
+      ...(x.file === null || x.file.startsWith('/')
+        // no place, or a file outside the project (a system header, the runtime's): said in the message, opens nothing
+        ? { path: BUILD_WITHOUT_FILE, line: 1, column: 1, message: `${x.file ? `${x.file}:${x.line ?? 0}: ` : ''}${x.message}` }
+        : { path: srcGen + x.file, line: x.line ?? 1, column: x.column || 1, message: x.message + (x.protectedRegion ? ` (in region ${x.protectedRegion.id})` : '') }),
+      severity: x.severity === 'note' ? 'info' : x.severity, source: 'gcc',
     })));
     if (diags.some((x) => x.severity === 'error')) d.showPanel('problems');
   });

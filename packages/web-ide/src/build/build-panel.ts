@@ -9,9 +9,10 @@ import { jobEndStatus } from './job-end.js';
 export interface GccDiagnostic {
   severity: 'error' | 'warning' | 'note';
   message: string;
-  file: string;
-  line: number;
-  column: number;
+  /** Relative to the project's src-gen; null for an error with no place (ld's `cannot find -lx`, a reference without debug information). */
+  file: string | null;
+  line: number | null;
+  column: number | null;
   protectedRegion?: { id: string } | null;
 }
 

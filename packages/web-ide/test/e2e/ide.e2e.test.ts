@@ -661,7 +661,7 @@ describe('IDE in headless Chromium', () => {
     expect((await settings()).realtime).toBeUndefined();
   }, 300_000);
 
-  it.skipIf(!canBuild || !canGenerate)('shows gcc errors in the problems panel and opens the generated file at the line', async () => {
+  it.skipIf(!canBuild || !canGenerate)('shows gcc errors and link errors in the problems panel and opens the generated file at the line', async () => {
     const { page } = s;
     const path = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
     const good = disk(path);
@@ -669,10 +669,23 @@ describe('IDE in headless Chromium', () => {
     expect(bad).not.toBe(good);
     writeFileSync(join(s.workspace, path), bad);
     const badLine = bad.split('\n').findIndex((l) => l.includes('broken_by_test')) + 1;
+    // and a link error in another module (a function its region calls that nobody defines): at its line too
+    const linkPath = 'src-gen/generated/architecture/modules/MAA_mod/module.c';
+    const linkGood = disk(linkPath);
+    const linkBad = linkGood.replace(/(PROTECTED REGION ID\(protect_init_MAA\) ENABLED START\*\/)/, '$1\n    { extern int gripper_ready(void); (void)gripper_ready(); }');
+    expect(linkBad).not.toBe(linkGood);
+    writeFileSync(join(s.workspace, linkPath), linkBad);
+    const linkLine = linkBad.split('\n').findIndex((l) => l.includes('gripper_ready();')) + 1;
     await page.locator('#btn-run').click();
     const row = page.locator(`.problem-row.error[data-path="${path}"]`);
     await row.first().waitFor({ timeout: 140_000 });
     expect(Number(await row.first().getAttribute('data-line'))).toBe(badLine);
+    const linkRow = page.locator(`.problem-row.error[data-path="${linkPath}"]`);
+    await linkRow.first().waitFor({ timeout: 30_000 });
+    expect(await linkRow.count()).toBe(1);
+    expect(Number(await linkRow.getAttribute('data-line'))).toBe(linkLine);
+    expect(await linkRow.textContent()).toMatch(/undefined reference to `gripper_ready' \(in function \w+\) \(in region protect_init_MAA\)/);
+    writeFileSync(join(s.workspace, linkPath), linkGood);
     await row.first().click();
     await expect.poll(() => activeTab(page)).toBe(path);
     expect(await page.evaluate(() => (window as any).__ide.editors.editor.getPosition().lineNumber)).toBe(badLine);
