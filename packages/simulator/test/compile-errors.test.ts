@@ -4,13 +4,14 @@
  * the protected region, through the build service's gcc reader — never the temporary folder of the
  * cache the simulator compiles in. The line is the user's also when the simulator's copy of the
  * header differs from it (src-gen older than the model: lines mapped through the region); a line
- * that cannot be mapped says so. Module code (module.c) is not the simulator's to compile.
+ * that cannot be mapped says so. A link error (a function a region calls that nobody defines) is
+ * told the same way, from ld's lines. Module code (module.c) is not the simulator's to compile.
  */
 import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
-import { compileDiagnostics, DEFAULT_RUNTIME_DIR, describeCompileFailure, prepareProject, type SimSources } from '../src/index.js';
+import { compileDiagnostics, DEFAULT_RUNTIME_DIR, describeCompileFailure, linkDiagnostics, prepareProject, type SimSources } from '../src/index.js';
 import { CACHE, TUTORIAL } from './support.js';
 
 const scratch = mkdtempSync(join(tmpdir(), 'contract-sim-compile-errors-'));
@@ -71,6 +72,22 @@ describe('compile errors of the project\'s C name the user\'s file, line and pro
         expect(d).toMatchObject({ file: typeA, line: lineOf(dir, typeA, 'oops_undeclared;'), protectedRegion: { id: 'protect_additional_impl_TypeA' } });
         expect(d!.message).not.toContain('as the simulator generated it');
         expect(p.buildError).not.toContain(CACHE);
+    });
+
+    it('a function the region calls that nobody defines (a link error): the user\'s header, the line of the call, the region, the function it is in', async () => {
+        const dir = brokenCopy('link', TESTIT, (t) => intoRegion(t, 'protect_function_impl_testit', '    extern int gripper_ready(void); if (gripper_ready()) { }'));
+        const p = await problems(dir);
+        expect(p.compile?.stage).toBe('link');
+        const line = lineOf(dir, TESTIT, 'gripper_ready()) {');
+        expect(p.compile?.diagnostics).toHaveLength(1);
+        expect(p.compile?.diagnostics[0]).toMatchObject({
+            severity: 'error', file: TESTIT, line, protectedRegion: { id: 'protect_function_impl_testit' },
+        });
+        expect(p.compile!.diagnostics[0]!.message).toMatch(/^undefined reference to `gripper_ready' \(in function \w+\)$/);
+        expect(p.buildError).toMatch(/^cannot link the project's C for the simulator \(1 error\(s\) in src-gen\/\):/);
+        expect(p.buildError).toContain(`src-gen/${TESTIT}:${line}: error: undefined reference to \`gripper_ready'`);
+        expect(p.buildError).not.toContain(CACHE);
+        expect(p.buildError).not.toMatch(/sim-[0-9a-f]{20}|unit\d+\.o/);
     });
 
     it('a broken module.c region does not stop the simulation: modules are virtual, their code is not compiled', async () => {
@@ -135,6 +152,30 @@ describe('compileDiagnostics (gcc\'s text output of the temporary folder, told a
         const none = compileDiagnostics([gcc(4)], work, sources(undefined));
         expect(none.diagnostics[0]).toMatchObject({ line: 4, protectedRegion: { id: 'protect_function_impl_f' } });
         expect(none.diagnostics[0]!.message).toMatch(/you have no readable copy of it/);
+    });
+
+    it('ld\'s output: a reference at the user\'s line and region, once; a definition twice with its first place; ld\'s placeless lines without the folder', () => {
+        const ld = [
+            `/usr/bin/ld: ${work}/unit0.o: in function \`f':`,
+            `${work}/common/SharedFunctionf.h:4: undefined reference to \`gripper_ready'`,
+            `/usr/bin/ld: ${work}/common/SharedFunctionf.h:4: undefined reference to \`gripper_ready'`,
+            `/usr/bin/ld: ${work}/unit1.o:${work}/common/SharedFunctionf.h:6: multiple definition of \`after'; ${work}/unit0.o:${work}/common/SharedFunctionf.h:6: first defined here`,
+            `/usr/bin/ld: cannot find ${work}/libx.a: No such file or directory`,
+            'collect2: error: ld returned 1 exit status',
+            '',
+        ].join('\n');
+        const f = linkDiagnostics(ld, work, sources(header('')));
+        expect(f.stage).toBe('link');
+        expect(f.diagnostics).toHaveLength(3);
+        expect(f.diagnostics[0]).toMatchObject({
+            file: 'generated/architecture/common/SharedFunctionf.h', line: 4, protectedRegion: { id: 'protect_function_impl_f' },
+            message: "undefined reference to `gripper_ready' (in function f)",
+        });
+        expect(f.diagnostics[1]).toMatchObject({ line: 6, protectedRegion: null, message: "multiple definition of `after'", children: [{ severity: 'note', line: 6, message: 'first defined here' }] });
+        expect(f.diagnostics[2]).toMatchObject({ file: null, message: 'cannot find libx.a: No such file or directory' });
+        expect(f.other).toEqual([]);
+        expect(describeCompileFailure(f)).toMatch(/^cannot link the project's C for the simulator \(3 error\(s\) in src-gen\/\):/);
+        expect(describeCompileFailure(f)).not.toContain(work);
     });
 
     it('output that holds no diagnostic is told without the folder\'s path; the simulator\'s own table file is named as such', () => {

@@ -124,7 +124,7 @@ export class SimulateApi {
           line: d.line ?? 1, column: d.column ?? 1, severity: d.severity === 'note' ? 'info' : d.severity,
           message: `${d.message}${d.protectedRegion ? ` (in protected region ${d.protectedRegion.id})` : ''}`,
         }));
-        throw new HttpError(422, `the project's C does not compile for the simulator: ${sim.errorCount(prepared.compile)} error(s) in ${SRC_GEN_DIR}/ (your code in its protected regions)`, { diagnostics });
+        throw new HttpError(422, `the project's C does not ${prepared.compile.stage === 'link' ? 'link' : 'compile'} for the simulator: ${sim.errorCount(prepared.compile)} error(s) in ${SRC_GEN_DIR}/ (your code in its protected regions)`, { diagnostics });
       }
       throw new HttpError(500, prepared.buildError ?? 'the simulator could not be built');
     }

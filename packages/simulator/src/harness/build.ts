@@ -25,7 +25,7 @@ import { acquireProjectLock, CACHE_ENTRY_NAMES, markUsed, removeAbandonedBuilds,
 import { simulatorCacheDir } from './cache.js';
 import type { Confinement } from './confine.js';
 import type { SimSources } from './tables.js';
-import { compileDiagnostics, describeCompileFailure, withoutFolder, type CompileFailure } from './compile-diagnostics.js';
+import { compileDiagnostics, describeCompileFailure, linkDiagnostics, withoutFolder, type CompileFailure } from './compile-diagnostics.js';
 
 export interface HarnessBuild {
     exe: string;
@@ -195,7 +195,10 @@ async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, d
         // the project's C is compiled seeing only its build folder and the runtime (and the toolchain)
         const confined = { confinement, readWrite: [work], readOnly: [include, dirname(objects.lib), dirname(objects.main)] };
         const compiles = src.units.map((unit, i) => run(cc, [
-            '-std=c11', '-O0', '-w', '-D_POSIX_C_SOURCE=200809L', `-I${include}`,
+            // -g1: line tables only, so that a link error names the user's file and line; DWARF 4,
+            // whose line table binutils 2.40's ld reads right for a function of a header (with
+            // DWARF 5 it names the unit that includes it)
+            '-std=c11', '-O0', '-w', '-g1', '-gdwarf-4', '-D_POSIX_C_SOURCE=200809L', `-I${include}`,
             ...(src.includes.get(unit) ?? []).map((d) => `-I${join(work, d)}`),
             '-c', join(work, unit), '-o', join(work, `unit${i}.o`),
         ], work, confined));
@@ -207,8 +210,12 @@ async function compileAndLink(src: SimSources, { cc, runtimeDir, objects, key, d
             return { error: describeCompileFailure(compile), compile };
         }
         const link = await run(cc, ['-o', join(work, 'contract-sim'), ...src.units.map((_, i) => join(work, `unit${i}.o`)), objects.main, objects.lib, '-lm'], work, confined);
-        // a link error (a function the user's code calls that nobody defines) names this temporary folder's objects: told relative to it
-        if (link.code !== 0) return { error: `cannot link the simulator:\n${withoutFolder(link.output, work)}` };
+        if (link.code !== 0) {
+            // a function the user's code calls that nobody defines: at the user's file, line and region
+            const failure = linkDiagnostics(link.output, work, src);
+            if (failure.diagnostics.length) return { error: describeCompileFailure(failure), compile: failure };
+            return { error: `cannot link the simulator:\n${withoutFolder(link.output, work)}` };
+        }
         writeFileSync(join(work, 'key'), key);
         try {
             renameSync(work, dir);

@@ -16,7 +16,7 @@
  */
 import { ARCHITECTURE_DIR } from '@contract-studio/conventions';
 import {
-    cutText, findProtectedRegions, parseGccTextLine, regionAt, renderDiagnostic, type DiagnosticContext, type GccDiagnostic, type ProtectedRegion,
+    cutText, findProtectedRegions, inFunction, parseGccTextLine, parseLinkerLine, regionAt, renderDiagnostic, type DiagnosticContext, type GccDiagnostic, type ProtectedRegion,
 } from '@contract-studio/build-service/gcc';
 import { readUserFile } from './user-file.js';
 import type { SimSources } from './tables.js';
@@ -30,6 +30,8 @@ export interface CompileFailure {
     diagnostics: GccDiagnostic[];
     /** Output of a unit that gave no diagnostic (the compiler did not run, crashed...), the build folder's path taken out. */
     other: string[];
+    /** 'link': the units compiled and the link failed (a function the user's code calls that nobody defines). */
+    stage?: 'link';
 }
 
 /** Diagnostics told at most (the first errors are the ones to fix), and lines of other output. */
@@ -155,6 +157,48 @@ export function compileDiagnostics(outputs: readonly string[], work: string, src
     return { diagnostics, other };
 }
 
+/**
+ * The errors of a failed link (`output`: what gcc and ld wrote), told against the user's files as
+ * a compile's are: ld names the file and line from the units' debug information (the compile's
+ * `-g1 -gdwarf-4`), the function the reference is in, and for a function defined twice, where it
+ * was first defined (a note). ld's lines that name no file are told without the folder's path.
+ */
+export function linkDiagnostics(output: string, work: string, src: SimSources): CompileFailure {
+    const ctx: DiagnosticContext = { cwd: work, root: work, regions: new Map() };
+    const placer = new FilePlacer(src);
+    const seen = new Set<string>();
+    const diagnostics: GccDiagnostic[] = [];
+    const other: string[] = [];
+    let fn: string | undefined;
+    let left = 0;
+    const told = (d: GccDiagnostic): GccDiagnostic => {
+        if (d.file !== null && !d.file.startsWith('/') && placer.file(d.file)) return placer.place(d);
+        // no place, or a file the simulator did not write (the runtime's): without the folder's path
+        const where = d.file === null ? '' : `${withoutFolder(d.file, work)}:${d.line ?? 0}: `;
+        return { ...d, file: null, line: null, column: null, protectedRegion: null, message: withoutFolder(`${where}${d.message}`, work), children: d.children.map(told) };
+    };
+    for (const line of output.split('\n')) {
+        if (!line.trim() || line.startsWith('collect2: ')) continue;
+        const ld = parseLinkerLine(line, ctx);
+        if (!ld) {
+            if (other.length < MAX_OTHER_LINES) other.push(cutText(withoutFolder(line, work), MAX_OTHER_LINE_CHARS));
+            continue;
+        }
+        if (ld.kind === 'function') {
+            fn = ld.name;
+            continue;
+        }
+        const d = told(inFunction(ld.diagnostic, fn));
+        const key = JSON.stringify(d);
+        if (seen.has(key)) continue; // ld tells a reference again for every use in the function
+        seen.add(key);
+        if (diagnostics.length < MAX_DIAGNOSTICS) diagnostics.push(d);
+        else left++;
+    }
+    if (left) other.push(`(${left} more diagnostic(s) not shown)`);
+    return { diagnostics, other, stage: 'link' };
+}
+
 /** The errors a failure counts (gcc's top-level errors; every other failure counts as one). */
 export function errorCount(failure: CompileFailure): number {
     return failure.diagnostics.filter((d) => d.severity === 'error').length;
@@ -164,5 +208,5 @@ export function errorCount(failure: CompileFailure): number {
 export function describeCompileFailure(failure: CompileFailure): string {
     const errors = errorCount(failure);
     const lines = failure.diagnostics.map((d) => renderDiagnostic(d.file === null ? d : { ...d, file: `src-gen/${d.file}` }));
-    return [`cannot compile the project's C for the simulator${errors ? ` (${errors} error(s) in src-gen/)` : ''}:`, ...lines, ...failure.other].join('\n');
+    return [`cannot ${failure.stage === 'link' ? 'link' : 'compile'} the project's C for the simulator${errors ? ` (${errors} error(s) in src-gen/)` : ''}:`, ...lines, ...failure.other].join('\n');
 }
