@@ -702,7 +702,7 @@ static int finish_one(SimWorld *w, int64_t t) {
     if (m->outstanding > 0) m->outstanding--;
     w->finished++;
     post_data(w, f.module, f.activation);
-    record(w, m->name, "run_finished", "ORD", -1, "activation=%ld ACK_FINISHED", f.activation);
+    record(w, m->name, "run_finished", "", -1, "activation=%ld ACK_FINISHED", f.activation);
     if (w->ord) ord_core_release_finished(w->ord, w->now, m->name, f.release_id);
     drain(w);
     return 1;

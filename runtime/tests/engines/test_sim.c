@@ -128,7 +128,7 @@ void test_sim_report_story_records(void) {
     HAS(record(out, 5), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=0 tick_ns=1000000000 release_ns=1000000000 release=");
     HAS(record(out, 5), "\"module\":\"MSB\",\"kind\":\"run_started\",\"peer\":\"ORD\",\"detail\":\"activation=1\"");
     HAS(record(out, 8), "\"module\":\"ORD\",\"kind\":\"ord_release\",\"peer\":\"MSB\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 release_ns=4000000000 release=");
-    HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"ORD\",\"detail\":\"activation=4 ACK_FINISHED\"");
+    HAS(record(out, 8), "\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=4 ACK_FINISHED\"");
     HAS(record(out, 8), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande2 cycle=3 tick_ns=4000000000 response_ns=");
     /* the holds of schemaReceptionMessage's modules and flow, as a run's engines write them:
        taken at 1 ms (after their action lines), the last (only) holder's undo at 300 ms */
@@ -196,7 +196,7 @@ void test_sim_overrun_makes_ord_emit_deadline_miss(void) {
     HAS(record(out, 3), "\"timeNs\":1300000000,\"who\":\"ORD\",\"what\":\"ORD:0");
     /* the same miss typed, on cycle 0; MSC, released after MSA's 0.5 ms, answered 1.5 s later */
     HAS(record(out, 3), "{\"timeNs\":1300000000,\"module\":\"ORD\",\"kind\":\"ord_deadline_miss\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000\"}");
-    HAS(record(out, 3), "{\"timeNs\":1800500000,\"module\":\"MSC\",\"kind\":\"run_finished\",\"peer\":\"ORD\",\"detail\":\"activation=1 ACK_FINISHED\"}");
+    HAS(record(out, 3), "{\"timeNs\":1800500000,\"module\":\"MSC\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1 ACK_FINISHED\"}");
     HAS(record(out, 3), "\"kind\":\"ord_finished\",\"peer\":\"MSC\",\"detail\":\"schema=schemaCommande1 cycle=0 release=");
     HAS(record(out, 3), " response_ns=1500500000\"}");
     HAS(record(out, 3), "\"kind\":\"ord_complete\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000 response_ns=1501500000\"}");

@@ -4,6 +4,7 @@ import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { artifactBytes, collectRunArtifacts, hostWorkDirReader, listHostDir } from './artifacts.js';
+import { parseRecordLine } from '../trace/parse.js';
 
 let work: string;
 let outside: string;
@@ -70,8 +71,11 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     ]);
     const cut = artifactBytes(a.files[1]!).toString().split('\n');
     expect(cut.slice(0, 77)).toEqual(csv(77).split('\n').slice(0, 77)); // whole records, in order
-    expect(cut[77]).toMatch(/^,\d{4}-.*Z,MOT,log-capped,build-service,,9200,collected the first 3542 of 9200 bytes \(the 4096-byte bound of the build service\)$/);
+    // at the time of the last record kept (1076): a record a trace reader reads, after what was kept
+    expect(cut[77]).toMatch(/^1076,\d{4}-.*Z,MOT,log-capped,build-service,,9200,collected the first 3542 of 9200 bytes \(the 4096-byte bound of the build service\)$/);
     expect(cut[78]).toBe('');
+    // the trace reader reads it as the log-capped record it is (a record with no time was 'unknown')
+    expect(parseRecordLine('MOT_2.csv', 78, cut[77]!)).toMatchObject({ kind: 'log-capped', monoNs: '1076', module: 'MOT', peer: 'build-service' });
     expect(artifactBytes(a.files[2]!).toString()).toBe(csv(60));
     expect(a.skipped).toEqual([{ name: 'MOT_4.csv', reason: 'the 9400-byte total bound is reached', bound: true }]);
     expect(a.files[1]!.gzip.length).toBeLessThan(a.files[1]!.size);

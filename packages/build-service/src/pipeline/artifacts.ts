@@ -98,10 +98,22 @@ const MARKER_ROOM = 512;
 /** Bytes of the tail searched for the runtime's `log-capped` records (it writes them last). */
 const TAIL_BYTES = 4096;
 
+/**
+ * The mono_ns of the last record of `kept` (whole lines), 0 when it has none (a header alone): the
+ * time of the service's log-capped record, so that it is read as a record (a trace reader needs
+ * a time) and sorts after what was kept, where the cut is.
+ */
+function lastMonoNs(kept: Buffer): string {
+  const start = kept.lastIndexOf(10, kept.length - 2) + 1;
+  const comma = kept.indexOf(44, start);
+  const first = comma === -1 ? '' : kept.subarray(start, comma).toString('latin1');
+  return /^\d{1,19}$/.test(first) ? first : '0';
+}
+
 /** A CSV record (docs/runtime-api.md columns) saying the service cut the file. */
-function cutRecord(name: string, kept: number, size: number, bound: number): string {
+function cutRecord(name: string, kept: Buffer, size: number, bound: number): string {
   const module = /^([A-Za-z0-9_]+?)_\d/.exec(name)?.[1] ?? '';
-  return `,${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${kept} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
+  return `${lastMonoNs(kept)},${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${kept.length} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
 }
 
 /** Sees the bytes of each collected file before they are compressed (run-issues.ts). */
@@ -141,7 +153,7 @@ export async function selectArtifacts(
       if (cut) {
         const end = data.lastIndexOf(10) + 1; // whole records only
         const bound = room === bounds.fileBytes ? bounds.fileBytes : bounds.totalBytes;
-        kept = Buffer.concat([data.subarray(0, end), Buffer.from(cutRecord(e.name, end, e.size, bound))]);
+        kept = Buffer.concat([data.subarray(0, end), Buffer.from(cutRecord(e.name, data.subarray(0, end), e.size, bound))]);
         capped = `${e.size} bytes: the first ${end} kept (the ${bound}-byte ${bound === bounds.fileBytes ? 'file' : 'total'} bound of the build service)`;
       } else if (data.subarray(Math.max(0, data.length - TAIL_BYTES)).includes(`,${LOG_CAPPED_EVENT},`)) {
         capped = 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written';

@@ -384,7 +384,7 @@ export class Job {
       const issues = this.runIssues.all;
       if (!run.ok) {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
-        const message = run.message ?? `run failed (exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
+        const message = run.message ?? `run failed (make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;

@@ -2,7 +2,7 @@
  * Whether the Docker engine says a job's container was killed for memory (State.OOMKilled).
  * The engine learns of an OOM kill and of the container's exit by two events that race (the
  * runtime's OOM and exit notices): right after the exit the flag may not be set yet, and a job
- * killed for memory would read as `run failed (exit 2)`. So an exit that looks like a kill is
+ * killed for memory would read as `run failed (make exit 2)`. So an exit that looks like a kill is
  * asked about again for a while; any other exit is asked once.
  */
 

@@ -7,6 +7,7 @@
  * docs/runtime-api.md "Trace records"), and exits non-zero when a module crashed
  * (1) or when the run did not go as designed (4: a limit hit, a module stuck, the start request refused, output or logs cut; docs/ci.md).
  */
+import { cpus as machineCpus } from 'node:os';
 import { join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
@@ -30,9 +31,17 @@ export function parseDuration(text: string): number {
     return value;
 }
 
-/** `--cpus` list: `1`, `0-1`, `0,2` (contract-launch checks the CPUs exist on the machine that runs). */
-export function checkCpus(text: string): string {
+/**
+ * `--cpus` list: `1`, `0-1`, `0,2`. A CPU this machine does not have (`online`: its online CPUs,
+ * which the sandbox on this machine runs on) is refused here, before anything is built;
+ * contract-launch checks the rest (a CPU online but outside the run's affinity).
+ */
+export function checkCpus(text: string, online = machineCpus().length): string {
     if (!isCpuList(text)) throw new UsageError(`bad --cpus '${text}' (expected a CPU list such as 1, 0-1 or 0,2)`);
+    for (const part of text.split(',')) {
+        const [lo, hi = lo] = part.split('-').map(Number) as [number, number?];
+        if (online > 0 && hi >= online) throw new UsageError(`bad --cpus '${text}': CPU ${Math.max(lo, online)} is not available here (${online} CPUs online: 0-${online - 1})`);
+    }
     return text;
 }
 

@@ -181,6 +181,8 @@ export class ModuleEnds {
     private readonly counted = new Map<string, number>();
     /** Modules whose log reached its bound (records left out on purpose: log-capped). */
     private readonly capped = new Set<string>();
+    /** Modules whose log the build service cut at its bound (its log-capped record, peer build-service): what follows is not in the file. */
+    private readonly cutByService = new Set<string>();
     private readonly unknowns: string[] = [];
     private unknownCount = 0;
     /** The logs' modules, then those of records (a trace file has no log names), each as kept: a copy, never the line it was read from. */
@@ -223,7 +225,10 @@ export class ModuleEnds {
         this.last.set(m, at);
         this.read.set(m, (this.read.get(m) ?? 0) + 1);
         if (r.kind === 'module_started') this.started.add(m);
-        if (r.kind === 'log-capped') this.capped.add(m);
+        if (r.kind === 'log-capped') {
+            this.capped.add(m);
+            if (base.peer === 'build-service') this.cutByService.add(m);
+        }
         if (r.kind === 'module_exit') {
             this.exited.add(m);
             const k = (r as KnownRecord).fields['records'];
@@ -255,7 +260,11 @@ export class ModuleEnds {
             // not one module's crash: the whole run ended without its modules' exit records
             out.push(`${at(this.last.get(open.at(-1)!)!)} the records end here: no module wrote its exit record (${open.length} modules): the run was killed before its end, or is still running`);
         } else {
-            for (const m of open) out.push(`${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
+            for (const m of open) {
+                out.push(this.cutByService.has(m)
+                    ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log was cut here by the build service (its bound on a collected log): later records, its exit record among them, are not in it`
+                    : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
+            }
         }
         for (const m of this.modules.keys()) {
             if (!this.last.has(m)) {
