@@ -148,6 +148,8 @@ describe('requests', () => {
     [{ project: { files: {} }, action: 'deploy' }, 400, /action must be/],
     [{ project: { files: {} }, cpus: '0; reboot' }, 400, /cpus must be a CPU list/],
     [{ project: { files: {} }, cpus: 1 }, 400, /cpus must be a CPU list/],
+    // a CPU this machine lacks: refused now (contract-launch refused it only after the build)
+    [{ project: { files: {} }, cpus: '0,4096' }, 400, /cpus: CPU 4096 is not available here \(\d+ CPUs online: 0-\d+\)/],
     [{ project: { files: {} }, start: "GLB.mission()'; rm -rf /work; '" }, 400, /start must be one line/],
   ])('%j -> %i', async (body, status, message) => {
     const r = await postJob(served.url, body);

@@ -5,7 +5,7 @@
  */
 import { randomBytes } from 'node:crypto';
 import { chmodSync, mkdirSync, mkdtempSync, promises as fsp, realpathSync } from 'node:fs';
-import { availableParallelism, tmpdir } from 'node:os';
+import { availableParallelism, cpus, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { DEFAULT_LIMITS, LimitsError, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
@@ -22,7 +22,7 @@ import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './san
 import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
 import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
-import { isCpuList } from '@contract-studio/conventions';
+import { cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 
 export interface BuildServiceOptions {
   /** Default sandbox of jobs that name none. Default 'auto'. */
@@ -178,6 +178,10 @@ export class JobService {
     if (b.cpus !== undefined && (typeof b.cpus !== 'string' || b.cpus.length > 256 || !isCpuList(b.cpus))) {
       throw new ServiceError(400, 'bad_request', 'cpus must be a CPU list such as "1", "0-1" or "0,2"');
     }
+    // the sandbox runs on this machine: a CPU it does not have is refused now, not after the build by contract-launch
+    const online = cpus().length;
+    const missing = typeof b.cpus === 'string' && online > 0 ? cpuMissingFrom(b.cpus, online) : undefined;
+    if (missing !== undefined) throw new ServiceError(400, 'bad_request', `cpus: CPU ${missing} is not available here (${online} CPUs online: 0-${online - 1})`);
     if (b.realtime !== undefined && typeof b.realtime !== 'boolean') throw new ServiceError(400, 'bad_request', 'realtime must be true or false');
     if (b.realtime === true && action !== 'run') throw new ServiceError(400, 'bad_request', 'realtime applies to action "run" only');
     let limits: Limits;

@@ -38,3 +38,17 @@ const CPU_LIST = /^\d+(-\d+)?(,\d+(-\d+)?)*$/;
 export function isCpuList(text: string): boolean {
     return CPU_LIST.test(text);
 }
+
+/**
+ * The first CPU of a well-formed CPU list (isCpuList) that a machine with `online` CPUs (numbered
+ * 0 to online-1) does not have, or undefined when it has them all. The CLI and the build service
+ * refuse such a list before building; contract-launch checks the rest (a CPU online but outside
+ * the run's affinity).
+ */
+export function cpuMissingFrom(text: string, online: number): number | undefined {
+    for (const part of text.split(',')) {
+        const [lo, hi = lo] = part.split('-').map(Number) as [number, number?];
+        if (hi >= online) return Math.max(lo, online);
+    }
+    return undefined;
+}

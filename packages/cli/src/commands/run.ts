@@ -15,7 +15,7 @@ import type { JobEvent } from '@contract-studio/build-service';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
-import { isCpuList } from '@contract-studio/conventions';
+import { cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
@@ -38,10 +38,8 @@ export function parseDuration(text: string): number {
  */
 export function checkCpus(text: string, online = machineCpus().length): string {
     if (!isCpuList(text)) throw new UsageError(`bad --cpus '${text}' (expected a CPU list such as 1, 0-1 or 0,2)`);
-    for (const part of text.split(',')) {
-        const [lo, hi = lo] = part.split('-').map(Number) as [number, number?];
-        if (online > 0 && hi >= online) throw new UsageError(`bad --cpus '${text}': CPU ${Math.max(lo, online)} is not available here (${online} CPUs online: 0-${online - 1})`);
-    }
+    const missing = online > 0 ? cpuMissingFrom(text, online) : undefined;
+    if (missing !== undefined) throw new UsageError(`bad --cpus '${text}': CPU ${missing} is not available here (${online} CPUs online: 0-${online - 1})`);
     return text;
 }
 
