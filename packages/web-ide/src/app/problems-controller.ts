@@ -5,6 +5,7 @@ import type { BuildPanel } from '../build/build-panel.js';
 import type { ProblemsPanel, Severity } from '../panels/problems.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { STEP_INPUT_FILE } from '../simulate/step-input.js';
+import { BUILD_WITHOUT_FILE, gccProblems } from '../build/gcc-problems.js';
 
 export interface ProblemsDeps {
   problems: ProblemsPanel;
@@ -17,9 +18,6 @@ export interface ProblemsDeps {
   /** The project folder of the last build (gcc paths are relative to its src-gen/). */
   buildProject(): string;
 }
-
-/** The group of the build's errors that name no file of the project (the linker's `cannot find -lx`, a system header): they open nothing. */
-export const BUILD_WITHOUT_FILE = '(build: outside the project)';
 
 const sevOf = (s: number | undefined): Severity => (s === 1 ? 'error' : s === 2 ? 'warning' : s === 3 ? 'info' : 'hint');
 
@@ -66,13 +64,7 @@ export function connectProblems(d: ProblemsDeps): void {
   build.onDiagnostics.on((diags) => {
     const project = d.buildProject();
     const srcGen = `${project ? `${project}/` : ''}src-gen/`;
-    problems.set('gcc', diags.map((x) => ({
-      ...(x.file === null || x.file.startsWith('/')
-        // no place, or a file outside the project (a system header, the runtime's): said in the message, opens nothing
-        ? { path: BUILD_WITHOUT_FILE, line: 1, column: 1, message: `${x.file ? `${x.file}:${x.line ?? 0}: ` : ''}${x.message}` }
-        : { path: srcGen + x.file, line: x.line ?? 1, column: x.column || 1, message: x.message + (x.protectedRegion ? ` (in region ${x.protectedRegion.id})` : '') }),
-      severity: x.severity === 'note' ? 'info' : x.severity, source: 'gcc',
-    })));
+    problems.set('gcc', gccProblems(diags, srcGen));
     if (diags.some((x) => x.severity === 'error')) d.showPanel('problems');
   });
 }
