@@ -26,7 +26,7 @@ export function helpText(commands: Command[] = COMMANDS): string {
         'contract <command> --help shows the usage of a command.',
         'exit status: 0 success, 1 failure (e.g. errors found, build failed, a module crashed), 2 bad usage,',
         '3 environment (no usable sandbox, a build cache folder that cannot be trusted),',
-        '4 run incomplete (contract run: a limit hit, a module stuck, the start request refused, output or logs cut), 130 interrupted.'
+        '4 run incomplete (contract run: a limit hit, a module stuck, hung at the stop or ended early, the start request refused, output or logs cut), 130 interrupted.'
     ].join('\n') + '\n';
 }
 

@@ -54,7 +54,7 @@ export const COMMON_USAGE = [
     '               else $XDG_CACHE_HOME/contract-studio, else ~/.cache/contract-studio; root: /var/cache/contract-studio)',
     '  --verbose: print every build line and the time of every step (otherwise only gcc diagnostics and the summary)',
 ];
-export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or a build cache folder that cannot be trusted, 4 run incomplete (a limit hit, a module stuck, the start request refused, output or logs cut), 130 interrupted';
+export const EXIT_TABLE = 'exit status: 0 success, 1 project errors / build failed / run failed or a module crashed, 2 bad usage, 3 no usable sandbox or a build cache folder that cannot be trusted, 4 run incomplete (a limit hit, a module stuck, hung at the stop or ended early, the start request refused, output or logs cut), 130 interrupted';
 
 /** Parses DIR and the options build and run share. */
 export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: boolean): Promise<JobOptions> {

@@ -298,8 +298,8 @@ describe('6. a crashed module', () => {
         const io = capture(root);
         expect(await runCli(['trace', 'crashed-logs'], io)).toBe(0);
         const lines = io.stdout.split('\n');
-        expect(lines.at(-4)).toBe('+0.000001s CTL  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)');
-        expect(lines.at(-3)).toBe('           LOC  no record in its log: it crashed or was killed before writing any (`contract run` names a crash)');
+        expect(lines.at(-4)).toBe('+0.000001s CTL  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which)');
+        expect(lines.at(-3)).toBe('           LOC  no record in its log: it crashed, hung or was killed before writing any (`contract run` says which)');
         expect(lines.at(-2)).toMatch(/^5 records: /);
     });
 
@@ -326,8 +326,8 @@ describe('6. a crashed module', () => {
         let io = capture(root);
         expect(await runCli(['trace', 'two-crashed'], io)).toBe(0);
         expect(io.stdout.split('\n').filter((l) => l.includes('no exit record'))).toEqual([
-            '+0.000001s LOC  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)',
-            '+0.000501s CTL  its last record: no exit record follows (it crashed or was killed; `contract run` names a crash)',
+            '+0.000001s LOC  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which)',
+            '+0.000501s CTL  its last record: no exit record follows (it crashed, was killed, or its code called exit(); `contract run` says which)',
         ]);
         // every module without its exit record (the runner killed): one line, at the last record
         const killed = join(root, 'run-killed');

@@ -131,6 +131,13 @@ describe('contract build / run usage', () => {
             { source: 'launcher', stream: 'stderr', line: 'FAILED: module MSC crashed' },
         ];
         expect(moduleFailures(lines)).toEqual([{ module: 'MSC', how: 'died by signal 11 (Segmentation fault)' }]);
+        // a crash or a non-zero exit while the run stopped (its exit code) is named as such
+        expect(moduleFailures([
+            { source: 'launcher', stream: 'stderr', line: 'module MSC (pid 12) exited with status 3 while the run stopped' },
+            { source: 'launcher', stream: 'stderr', line: 'module MSB (pid 14) died by signal 6 (Aborted) while the run stopped' },
+            { source: 'launcher', stream: 'stderr', line: 'FAILED: module MSC crashed' },
+            { source: 'launcher', stream: 'stderr', line: 'FAILED: module MSB crashed' },
+        ])).toEqual([{ module: 'MSC', how: 'exited with status 3 while the run stopped' }, { module: 'MSB', how: 'died by signal 6 (Aborted) while the run stopped' }]);
     });
 
     it('exits 4 for a run that hit a limit or has run issues, 1 for other failures, 130 when cancelled', () => {

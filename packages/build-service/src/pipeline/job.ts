@@ -19,6 +19,7 @@ import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-
 import { BuildOutputRouter, routeRunLine } from './output-router.js';
 import { makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
+import { LauncherCrashes } from './launcher-crashes.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
 import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
@@ -359,12 +360,14 @@ export class Job {
       const keptOff = this.request.cpus !== undefined ? await SERVICE_AFFINITY.keepOff(this.request.cpus) : null;
       if (keptOff?.said) this.system('run', keptOff.said);
       let run: Awaited<ReturnType<Job['runStep']>>;
+      const crashes = new LauncherCrashes();
       try {
         // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
         const runEnv: Record<string, string> = tail ? { CONTRACT_LOG_MARK: '1' } : {};
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
           this.runIssues.line(routed.line, routed.source);
+          if (routed.source === 'launcher') crashes.line(routed.line);
           return [routed];
         }, runEnv);
       } catch (e) {
@@ -384,7 +387,9 @@ export class Job {
       const issues = this.runIssues.all;
       if (!run.ok) {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
-        const message = run.message ?? `run failed (make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
+        // a module's crash is the failure to name (make's status alone reads like a build failure)
+        const crashed = crashes.summary();
+        const message = run.message ?? `run failed${crashed ? `: ${crashed}` : ''} (make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;

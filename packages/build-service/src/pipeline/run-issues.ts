@@ -7,13 +7,13 @@
 import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import type { RunArtifacts } from './artifacts.js';
 
-export type RunIssueKind = 'module-stuck' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
+export type RunIssueKind = 'module-stuck' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
 
 export interface RunIssue {
   kind: RunIssueKind;
   /** One sentence for people. */
   message: string;
-  /** The module it is about (module-stuck; start-refused: the supervisor), or the log file (log-capped, log-lost). */
+  /** The module it is about (module-stuck, module-hung, module-ended; start-refused: the supervisor), or the log file (log-capped, log-lost). */
   module?: string;
   file?: string;
 }
@@ -30,6 +30,10 @@ const START_REFUSED_LINE = /^([A-Za-z_]\w*): start request from contract-launch 
  * supervisor of another project, a typo the client did not check), libmodule's error (src/mailbox.c).
  */
 const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
+/** contract-launch's line when a module does not end on the KILL request of the run's stop (runtime/launcher stop_all). */
+const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on KILL: terminating it$/;
+/** contract-launch's line when a module's own code ended it, status 0, before the run's stop (reap). */
+const ENDED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0 before the run's end$/;
 
 export class RunIssues {
   private readonly list: RunIssue[] = [];
@@ -46,6 +50,7 @@ export class RunIssues {
   line(text: string, source?: string): void {
     const m = STUCK_LINE.exec(text);
     if (m) this.stuck(m[2]!, m[3]!, m[1]!);
+    if (source === 'launcher') this.moduleEnd(text);
     if (this.list.some((i) => i.kind === 'start-refused')) return;
     const refused = START_REFUSED_LINE.exec(text);
     if (refused) {
@@ -80,6 +85,17 @@ export class RunIssues {
     for (const s of a.skipped) {
       if (s.bound) this.list.push({ kind: 'log-lost', file: s.name, message: `log ${s.name} was not collected: ${s.reason}` });
     }
+  }
+
+  /** A module that did not end when the run stopped, or whose own code ended it before (the launcher's lines). */
+  private moduleEnd(text: string): void {
+    const hung = HUNG_LINE.exec(text);
+    if (hung) {
+      this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its init, exec or exit code?)` });
+      return;
+    }
+    const ended = ENDED_LINE.exec(text);
+    if (ended) this.list.push({ kind: 'module-ended', module: ended[1]!, message: `${ended[1]!} ended before the run did: its code exited with status 0, and the run went on without it` });
   }
 
   private stuck(module: string, release: string, message: string): void {

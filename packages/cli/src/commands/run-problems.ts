@@ -15,7 +15,7 @@ export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
     const failed: ModuleFailure[] = [];
     for (const { source, line } of lines) {
         if (source !== 'launcher') continue;
-        const exit = /^module (\S+) \(pid \d+\) (exited with status \d+|died by signal .*)$/.exec(line);
+        const exit = /^module (\S+) \(pid \d+\) (exited with status \d+(?: while the run stopped)?|died by signal .*)$/.exec(line);
         if (exit) how.set(exit[1]!, exit[2]!);
         const crash = /^FAILED: module (\S+) crashed/.exec(line);
         if (crash) failed.push({ module: crash[1]!, how: how.get(crash[1]!) ?? 'crashed' });

@@ -5,7 +5,7 @@
  * name, writes the CSV logs the build service collected from the sandbox (any sandbox, docker included) to OUT (default DIR/logs),
  * with `--trace FILE` their records as JSON lines as they arrive (docs/build-service-api.md "Trace channel";
  * docs/runtime-api.md "Trace records"), and exits non-zero when a module crashed
- * (1) or when the run did not go as designed (4: a limit hit, a module stuck, the start request refused, output or logs cut; docs/ci.md).
+ * (1) or when the run did not go as designed (4: a limit hit, a module stuck, hung at the stop or ended early, the start request refused, output or logs cut; docs/ci.md).
  */
 import { cpus as machineCpus } from 'node:os';
 import { join, resolve } from 'node:path';

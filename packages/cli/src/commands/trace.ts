@@ -263,12 +263,12 @@ export class ModuleEnds {
             for (const m of open) {
                 out.push(this.cutByService.has(m)
                     ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log was cut here by the build service (its bound on a collected log): later records, its exit record among them, are not in it`
-                    : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed or was killed; \`contract run\` names a crash)`);
+                    : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); \`contract run\` says which)`);
             }
         }
         for (const m of this.modules.keys()) {
             if (!this.last.has(m)) {
-                out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed or was killed before writing any (\`contract run\` names a crash)`);
+                out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed, hung or was killed before writing any (\`contract run\` says which)`);
             }
             const counted = this.counted.get(m), read = this.read.get(m) ?? 0;
             if (counted !== undefined && counted !== read && !this.capped.has(m)) {

@@ -76,7 +76,11 @@ int ModuleMain(int argc, const char * argv[])
     memset(&receivedMessage, 0, sizeof(receivedMessage));
     memset(&registered, 0, sizeof(registered));
 
-    if( _init_module() == 0 ) return(-1);
+    if( _init_module() == 0 ){
+        /* the init region refused to start (it returned 0): said, not left to read as a crash */
+        fprintf(stderr, "%s: its init region returned 0 (false): the module does not start\n", MODULE_NAME);
+        return(-1);
+    }
     receivedMessage.Type=REQ_UNKNOWN;
     while(!end)
     {
