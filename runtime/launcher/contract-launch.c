@@ -49,7 +49,8 @@ typedef struct {
     size_t line_len;
     int alive;
     int ready;            /* its <NAME>.pid file exists */
-    int failed;           /* died on its own with a signal or a non-zero status */
+    int failed;           /* died on its own with a signal or a non-zero status (also while the run stops) */
+    int signalled;        /* the signal the launcher sent it at the stop (SIGTERM, then SIGKILL), 0 when none */
 } Child;
 
 static Child children[MAX_MODULES];
@@ -343,16 +344,22 @@ static void reap(void)
             Child *c = &children[i];
             if (c->pid != pid) continue;
             c->alive = 0;
+            /* a module the launcher signalled at the stop ended by that; any other end while the run
+             * stops (a crash in its exit region, a non-zero exit) is its own, as before the stop */
+            const char *when = stopping ? " while the run stopped" : "";
             if (WIFSIGNALED(status)) {
                 int sig = WTERMSIG(status);
-                if (!stopping) c->failed = 1;
+                int ours = c->signalled != 0;
+                if (!ours) c->failed = 1;
                 char note[160];
-                say("module %s (pid %ld) %s by signal %d (%s)%s", c->name, (long)pid, stopping ? "terminated" : "died",
-                    sig, strsignal(sig), rttime_note(sig, &ru, note, sizeof note));
+                say("module %s (pid %ld) %s by signal %d (%s)%s%s", c->name, (long)pid, ours ? "terminated" : "died",
+                    sig, strsignal(sig), rttime_note(sig, &ru, note, sizeof note), ours ? "" : when);
             } else {
                 int code = WEXITSTATUS(status);
-                if (code != 0 && !stopping) c->failed = 1;
-                say("module %s (pid %ld) exited with status %d", c->name, (long)pid, code);
+                if (code != 0 && !c->signalled) c->failed = 1;
+                /* a module that ends with status 0 before the stop: its own code ended it (exit(0)) */
+                say("module %s (pid %ld) exited with status %d%s", c->name, (long)pid, code,
+                    c->signalled ? "" : stopping ? (code ? when : "") : code ? "" : " before the run's end");
             }
             remove_module_files(run_dir, c->name);
         }
@@ -442,6 +449,35 @@ static int send_kills(int first)
     return sent;
 }
 
+/* What the modules wrote last, until each output ends, for `ns` at most: a process a module
+ * started that left its process group (setsid) is not killed with it and may hold the output
+ * pipe open for ever; it is not waited for (said once per module). */
+static void drain_outputs(RTIME ns)
+{
+    RTIME until = now_ns() + ns;
+    for (;;) {
+        struct pollfd pfd[MAX_MODULES];
+        int idx[MAX_MODULES];
+        int n = 0;
+        for (int i = 0; i < n_children; i++)
+            if (children[i].out_fd >= 0) { pfd[n].fd = children[i].out_fd; pfd[n].events = POLLIN; idx[n++] = i; }
+        RTIME now = now_ns();
+        if (n == 0 || now >= until) break;
+        int r = poll(pfd, (nfds_t)n, (int)((until - now) / 1000000) + 1);
+        if (r < 0 && errno != EINTR) break;
+        for (int k = 0; r > 0 && k < n; k++)
+            if (pfd[k].revents) pump(&children[idx[k]]);
+    }
+    for (int i = 0; i < n_children; i++) {
+        Child *c = &children[i];
+        if (c->out_fd < 0) continue;
+        if (c->line_len) { emit_line(c, c->line, c->line_len); c->line_len = 0; }
+        close(c->out_fd);
+        c->out_fd = -1;
+        say("module %s: a process it started still holds its output after it ended (it left the module's process group): not waited for", c->name);
+    }
+}
+
 static void stop_all(int sfd)
 {
     stopping = 1;
@@ -454,15 +490,19 @@ static void stop_all(int sfd)
     send_kills(0);
     run_loop(sfd, now_ns() + 2000000000LL, all_ended);
     for (int i = 0; i < n_children; i++)
-        if (children[i].alive) { say("module %s did not end on KILL: terminating it", children[i].name); kill(-children[i].pid, SIGTERM); }
+        if (children[i].alive) {
+            say("module %s did not end on KILL: terminating it", children[i].name);
+            children[i].signalled = SIGTERM;
+            kill(-children[i].pid, SIGTERM);
+        }
     run_loop(sfd, now_ns() + 1000000000LL, all_ended);
     for (int i = 0; i < n_children; i++)
-        if (children[i].alive) kill(-children[i].pid, SIGKILL);
+        if (children[i].alive) { children[i].signalled = SIGKILL; kill(-children[i].pid, SIGKILL); }
     run_loop(sfd, now_ns() + 1000000000LL, all_ended);
-    for (int i = 0; i < n_children; i++) if (children[i].alive) kill(-children[i].pid, SIGKILL);
+    for (int i = 0; i < n_children; i++) if (children[i].alive) { children[i].signalled = SIGKILL; kill(-children[i].pid, SIGKILL); }
     /* leftover children of modules (same process group) */
     for (int i = 0; i < n_children; i++) kill(-children[i].pid, SIGKILL);
-    for (int i = 0; i < n_children; i++) while (children[i].out_fd >= 0) pump(&children[i]);
+    drain_outputs(1000000000LL);
 }
 
 /* --start 'SUP.function(p=v,...)' */
@@ -590,6 +630,10 @@ int main(int argc, char *argv[])
     int sfd = signalfd(-1, &mask, SFD_CLOEXEC | SFD_NONBLOCK);
     if (sfd < 0) { say("signalfd: %s", strerror(errno)); return 2; }
     if (ContractClientInit("contract-launch") != 0) { unlink(lp_path); return 2; }
+    /* its START and KILL requests never wait on a full mailbox: a module that does not read its
+     * mailbox (a looping region) would hold the whole stop 2 s per request; such a module is
+     * terminated after the stop's wait instead, as one that does not answer its KILL */
+    ContractSetNonBlockingSends(1);
 
     for (int k = i; k < argc; k++) {
         Child *c = &children[n_children++];

@@ -124,6 +124,18 @@ int rt_module_addr(const char *module, const char *suffix, struct sockaddr_un *s
     return rt_addr(file, sa, len);
 }
 
+/* `fd` moved above the standard streams: module code that closed its stdout or stderr (close(1))
+ * must not have its next printf written into a peer's mailbox through a socket that took fd 1. */
+static int above_stdio(int fd)
+{
+    if (fd < 0 || fd > 2) return fd;
+    int high = fcntl(fd, F_DUPFD_CLOEXEC, 3);
+    int e = errno;
+    close(fd);
+    errno = e;
+    return high;
+}
+
 void rt_register_file(const char *file)
 {
     if (g_rt.n_created < (int)(sizeof g_rt.created / sizeof g_rt.created[0]))
@@ -135,7 +147,7 @@ int rt_bind_dgram(const char *file, int *fd_out)
     struct sockaddr_un sa;
     socklen_t len;
     if (rt_addr(file, &sa, &len) != 0) { rt_error("socket path for %s: %s", file, strerror(errno)); return -1; }
-    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    int fd = above_stdio(socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0));
     if (fd < 0) { rt_error("socket: %s", strerror(errno)); return -1; }
     int rc = bind(fd, (struct sockaddr *)&sa, len);
     if (rc != 0 && errno == EADDRINUSE) {
@@ -163,7 +175,7 @@ int rt_bind_dgram(const char *file, int *fd_out)
 
 int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock)
 {
-    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | (nonblock ? SOCK_NONBLOCK : 0), 0);
+    int fd = above_stdio(socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | (nonblock ? SOCK_NONBLOCK : 0), 0));
     if (fd < 0) return -1;
     if (!nonblock) {
         struct timeval tv = { SEND_TIMEOUT_MS / 1000, (SEND_TIMEOUT_MS % 1000) * 1000 };

@@ -60,6 +60,7 @@ typedef struct {
     RTIME log_dirty_since;  /* 0 = nothing unflushed */
     RTIME mbx_rcvtimeo;     /* SO_RCVTIMEO currently set on the mailbox (0 = none) */
     int priority;           /* current priority 1..99 (0: never set) */
+    int send_nowait;        /* ContractSetNonBlockingSends: requests never wait for a full mailbox */
 } ContractRuntime;
 
 extern ContractRuntime g_rt;

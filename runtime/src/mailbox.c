@@ -77,10 +77,13 @@ int rt_send_request_to(const char *module, RequestMessage *msg)
     mh.msg_iov = iov;
     mh.msg_iovlen = msg->DataSize ? 3 : 2;
     ssize_t n = -1;
+    /* a full mailbox: wait up to SEND_TIMEOUT_MS (the sockets' SO_SNDTIMEO), or not at all in a
+       process that asked for non-blocking sends (ContractSetNonBlockingSends: ORD) */
+    int flags = MSG_NOSIGNAL | (g_rt.send_nowait ? MSG_DONTWAIT : 0);
     for (int attempt = 0; attempt < 2; attempt++) {
         Peer *p = peer_for(module, attempt > 0);
         if (!p) break;
-        do n = sendmsg(p->fd, &mh, MSG_NOSIGNAL); while (n < 0 && errno == EINTR);
+        do n = sendmsg(p->fd, &mh, flags); while (n < 0 && errno == EINTR);
         if (n >= 0) break;
         /* the peer restarted or died since we connected: reconnect once */
         if (errno != ECONNREFUSED && errno != ENOTCONN && errno != ECONNRESET) break;
@@ -91,9 +94,11 @@ int rt_send_request_to(const char *module, RequestMessage *msg)
         /* while the launcher stops every module, a peer that has already gone is expected: the
          * record stays in the log, stderr stays quiet */
         int gone_at_stop = ContractPeerGoneAtStop(code);
-        char text[256];
+        char text[384], why[128] = "";
+        if (gone_at_stop) snprintf(why, sizeof why, "; the run is stopping");
+        else if (code == CONTRACT_EBUSY && g_rt.send_nowait) snprintf(why, sizeof why, "; %s does not wait for a full mailbox", g_rt.name);
         snprintf(text, sizeof text, "%s request to %s: %s (%s%s)", rt_request_name(msg->Type), module, ContractStrError(code),
-                 strerror(err), gone_at_stop ? "; the run is stopping" : "");
+                 strerror(err), why);
         if (gone_at_stop) ContractLog("error", "", -1, 0, text);
         else rt_error("%s", text);
         return code;
@@ -102,6 +107,13 @@ int rt_send_request_to(const char *module, RequestMessage *msg)
 }
 
 int SendRequest(const char *module, RequestMessage *msg) { return rt_send_request_to(module, msg); }
+
+int ContractSetNonBlockingSends(int on)
+{
+    int before = g_rt.send_nowait;
+    g_rt.send_nowait = on != 0;
+    return before;
+}
 
 /* Small requests are built in this header-only buffer (Data never read beyond DataSize). */
 static RequestMessage *blank(RequestType type)

@@ -58,6 +58,7 @@ int h_setup(const char *test)
     setenv("CONTRACT_LOG_DIR", h_log_dir, 1);
     setenv("CONTRACT_SCHED", "other", 1);
     unsetenv("TMOD_CRASH_NAME");
+    unsetenv("TMOD_END");
     n_spawned = 0;
     h_active = 1;
     return ContractClientInit("tester");

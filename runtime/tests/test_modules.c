@@ -11,6 +11,7 @@
 #include <sys/time.h>
 #include <sys/un.h>
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 #include "engines/engine_wire.h"
 #include "harness.h"
@@ -338,6 +339,26 @@ void test_unknown_and_stale(void)
     h_teardown();
 }
 
+/* Module code that closed its stdout (close(1)): the socket libmodule opens next must not take
+ * fd 1, or the code's next printf goes into a peer's mailbox as a malformed datagram. */
+void test_sockets_above_stdio(void)
+{
+    REQUIRE(h_setup("stdio") == 0);
+    pid_t p = h_spawn_module("P", "P");
+    REQUIRE(p > 0);
+    fflush(stdout);
+    int saved = dup(1);
+    REQUIRE(saved >= 0);
+    close(1);
+    int rc = SendStart("P", ACK_NOTHING, 0); /* the first request to P: a new socket to its mailbox */
+    int fd1_open = fcntl(1, F_GETFD) != -1;
+    dup2(saved, 1);
+    close(saved);
+    CHECK(rc == CONTRACT_OK);
+    CHECK(!fd1_open);
+    h_teardown();
+}
+
 void test_long_run_dir(void)
 {
     REQUIRE(h_setup("longdir") == 0);
@@ -420,6 +441,62 @@ void test_peer_gone_at_stop(void)
     CHECK(!ContractPeerGoneAtStop(CONTRACT_OK) && !ContractPeerGoneAtStop(CONTRACT_EBUSY) && !ContractPeerGoneAtStop(CONTRACT_ETOOBIG));
     unlink(mark);
     CHECK(!ContractRunStopping() && !ContractPeerGoneAtStop(CONTRACT_EUNKNOWN));
+    h_teardown();
+}
+
+/* ContractSetNonBlockingSends (ORD sets it at start): a request to a mailbox that is full (its
+ * module stuck, not reading it) fails at once with CONTRACT_EBUSY, said on stderr; without it
+ * (every module's default) the sender waits for room, here made by a reader 300 ms later. */
+void test_nonblocking_sends(void)
+{
+    REQUIRE(h_setup("nonblocking") == 0);
+    struct sockaddr_un sa;
+    socklen_t len;
+    REQUIRE(rt_module_addr("FULL", ".mbx", &sa, &len) == 0);
+    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0); /* a mailbox nobody reads */
+    REQUIRE(fd >= 0);
+    REQUIRE(bind(fd, (struct sockaddr *)&sa, len) == 0);
+    char err_path[700];
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
+    fflush(stderr);
+    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    REQUIRE(saved >= 0 && out >= 0);
+    dup2(out, 2);
+    close(out);
+    int before = ContractSetNonBlockingSends(1);
+    int sent = 0, rc = CONTRACT_OK;
+    RTIME t0 = GetTime();
+    while (sent < 1000 && (rc = SendStart("FULL", ACK_NOTHING, 0)) == CONTRACT_OK) sent++;
+    RTIME took = GetTime() - t0;
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    CHECK_MSG(before == 0, "non-blocking sends were on (%d) before the call: every process starts waiting", before);
+    CHECK_MSG(rc == CONTRACT_EBUSY && sent > 0 && sent < 1000, "%d requests taken, then %d (expected CONTRACT_EBUSY)", sent, rc);
+    CHECK_MSG(took < 500000000LL, "filling the mailbox and the refused request took %lld ms (a full mailbox is not waited for)",
+              (long long)(took / 1000000));
+    char *err = h_read_file(err_path);
+    CHECK_MSG(err && strstr(err, "tester: error: START request to FULL: mailbox full") &&
+                  strstr(err, "; tester does not wait for a full mailbox)"), "stderr: %s", err ? err : "(none)");
+    free(err);
+    CHECK(ContractSetNonBlockingSends(0) == 1);
+    pid_t reader = fork();
+    REQUIRE(reader >= 0);
+    if (reader == 0) {
+        struct timespec later = { 0, 300000000L };
+        nanosleep(&later, NULL);
+        char byte;
+        _exit(recv(fd, &byte, 1, 0) >= 0 ? 0 : 1); /* one request read: room for one more */
+    }
+    t0 = GetTime();
+    rc = SendStart("FULL", ACK_NOTHING, 0);
+    took = GetTime() - t0;
+    CHECK_MSG(rc == CONTRACT_OK && took >= 250000000LL && took < 2000000000LL,
+              "by default the request waited %lld ms for room and returned %d (expected ~300 ms, CONTRACT_OK)",
+              (long long)(took / 1000000), rc);
+    CHECK(h_wait_exit(reader, 2000) == 0);
+    close(fd);
+    unlink(sa.sun_path);
     h_teardown();
 }
 

@@ -92,6 +92,72 @@ void test_launcher_crash_cleanup(void)
     h_teardown();
 }
 
+/* How modules end is told as it is: one whose own code ends it mid-run (exit(0)) is said to end
+ * before the run's end; one that crashes or exits non-zero while the run stops (its exit code) is a
+ * crash like any other (exit 1, FAILED); one that does not end on its KILL is terminated, said,
+ * and not counted as a crash. */
+void test_launcher_module_ends(void)
+{
+    REQUIRE(h_setup("ends") == 0);
+    ContractShutdown();
+    char exe_p[600], exe_c1[600], exe_c2[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
+    snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1", exe_p, exe_c1, exe_c2, NULL };
+    setenv("TMOD_END", "P:exit0", 1);
+    pid_t launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(h_wait_exit(launcher, 8000) == 0);
+    char *text = h_read_file(out);
+    CHECK(text && strstr(text, "module P (pid") && strstr(text, "exited with status 0 before the run's end"));
+    CHECK(text && strstr(text, "all modules stopped cleanly"));
+    free(text);
+
+    setenv("TMOD_END", "C1:crash", 1);
+    launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(h_wait_exit(launcher, 8000) == 1);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "died by signal 6 (Aborted) while the run stopped"));
+    CHECK(text && strstr(text, "FAILED: module C1 crashed"));
+    CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "FAILED: module P"));
+    free(text);
+
+    setenv("TMOD_END", "C1:exit3", 1);
+    launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(h_wait_exit(launcher, 8000) == 1);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "module C1 (pid") && strstr(text, "exited with status 3 while the run stopped"));
+    CHECK(text && strstr(text, "FAILED: module C1 crashed"));
+    free(text);
+
+    /* a process left behind in a session of its own holds the output: the launcher does not wait for it */
+    setenv("TMOD_END", "C1:daemon", 1);
+    RTIME t0 = GetTime();
+    launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(h_wait_exit(launcher, 7000) == 0);
+    CHECK(GetTime() - t0 < 6000000000LL);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "module C1: a process it started still holds its output after it ended"));
+    free(text);
+
+    setenv("TMOD_END", "C2:hang", 1);
+    launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(h_wait_exit(launcher, 10000) == 0);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "module C2 did not end on KILL: terminating it"));
+    CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "while the run stopped"));
+    free(text);
+    unsetenv("TMOD_END");
+    CHECK(h_count_entries(h_run_dir) == -1);
+    h_teardown();
+}
+
 void test_launcher_start_duration(void)
 {
     REQUIRE(h_setup("duration") == 0);

@@ -16,6 +16,8 @@ void test_malformed_datagrams(void);
 void test_unknown_and_stale(void);
 void test_request_to_gone_while_stopping(void);
 void test_peer_gone_at_stop(void);
+void test_nonblocking_sends(void);
+void test_sockets_above_stdio(void);
 void test_long_run_dir(void);
 void test_maa_events_params(void);
 void test_unsub_spent_oneshot(void);
@@ -25,6 +27,7 @@ void test_ask_module_priority(void);
 void test_status_behind_requests(void);
 void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
+void test_launcher_module_ends(void);
 void test_launcher_sigint(void);
 void test_kill_without_launcher(void);
 void test_launcher_placement(void);
@@ -53,6 +56,8 @@ static const TestCase ALL_TESTS[] = {
     { "unknown_and_stale", test_unknown_and_stale },
     { "request_to_gone_while_stopping", test_request_to_gone_while_stopping },
     { "peer_gone_at_stop", test_peer_gone_at_stop },
+    { "nonblocking_sends", test_nonblocking_sends },
+    { "sockets_above_stdio", test_sockets_above_stdio },
     { "long_run_dir", test_long_run_dir },
     { "maa_events_params", test_maa_events_params },
     { "unsub_spent_oneshot", test_unsub_spent_oneshot },
@@ -62,6 +67,7 @@ static const TestCase ALL_TESTS[] = {
     { "status_behind_requests", test_status_behind_requests },
     { "launcher_crash_cleanup", test_launcher_crash_cleanup },
     { "launcher_start_duration", test_launcher_start_duration },
+    { "launcher_module_ends", test_launcher_module_ends },
     { "launcher_sigint", test_launcher_sigint },
     { "kill_without_launcher", test_kill_without_launcher },
     { "launcher_placement", test_launcher_placement },

@@ -261,7 +261,8 @@ int GetDataFromSetParamRequest(RequestMessage *msg, void *dst, size_t size,
 #define CONTRACT_EUNKNOWN     -2   /* no such module in the run directory */
 #define CONTRACT_ENOTRUNNING  -3   /* its mailbox exists but nobody reads it (crashed) */
 #define CONTRACT_ETOOBIG      -4   /* payload larger than the limit */
-#define CONTRACT_EBUSY        -5   /* its mailbox stayed full past the send timeout (2 s) */
+#define CONTRACT_EBUSY        -5   /* its mailbox stayed full past the send timeout (2 s; at once
+                                       after ContractSetNonBlockingSends(1)) */
 #define CONTRACT_EINVAL       -6   /* bad argument */
 #define CONTRACT_ESYS         -7   /* other system error (errno kept) */
 #define CONTRACT_EPERM        -8   /* not permitted (e.g. raising another module's priority unprivileged) */
@@ -288,6 +289,15 @@ int SendPurge(const char *module);
 int SendEvent(const char *module, int targetPort, int sourcePort, const void *data, size_t size);
 /** Send a prepared request (Sender, ProductionTime are filled in). */
 int SendRequest(const char *module, RequestMessage *msg);
+/** [ENGINE] on = 1: this process's requests (every Send* above, SendAck, the library's own
+ *  answers) never wait: one whose receiver's mailbox is full (its queue depth reached) fails at
+ *  once with CONTRACT_EBUSY, with the usual `error` record and stderr line, instead of after the
+ *  2 s the sender otherwise waits for room. on = 0 is every process's default (modules, control
+ *  tools): a module briefly behind then still gets the request. ORD sets it at start: a periodic
+ *  scheduler must not stop serving every schema while one module does not read its mailbox
+ *  (docs/engines.md §4). Data values (PostData) never wait, whatever the setting. Returns the
+ *  setting before the call. */
+int ContractSetNonBlockingSends(int on);
 
 /** Wait for a request until the absolute CLOCK_MONOTONIC `deadline` (ns; <= 0: no wait,
  *  INT64_MAX: forever). Returns 1 (msg filled), 0 (deadline passed), -1 (error / EINTR). */

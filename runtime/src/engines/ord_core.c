@@ -220,15 +220,18 @@ static int64_t stuck_limit(const SchemaState *ss) {
     return limit < ORD_STUCK_MIN_NS ? ORD_STUCK_MIN_NS : limit;
 }
 
-/* Reports module m's outstanding release stuck, once (`periods` periods of ss after it). */
+/* Reports module m's outstanding release stuck, once (`periods` periods of ss after it): with the
+   likely cause, an exec region that never sets *stateindex = -1, unless the module is no longer
+   running (crashed, killed: OrdIo.module_gone), which the trace line and the stuck call then say. */
 static void report_stuck(OrdCore *c, SchemaState *ss, int m, long periods, const char *whose) {
     ss->stuck[m] = 1;
     ss->stats.stuck_releases++;
+    const char *module = ss->s->modules[m].module;
+    int gone = c->io.module_gone && c->io.module_gone(c->io.ctx, module);
     char msg[320];
-    snprintf(msg, sizeof msg,
-             "%s has not finished release #%u after %ld periods%s: does its exec region set "
-             "*stateindex = -1?",
-             ss->s->modules[m].module, ss->outstanding[m], periods, whose);
+    snprintf(msg, sizeof msg, "%s has not finished release #%u after %ld periods%s: %s", module, ss->outstanding[m],
+             periods, whose,
+             gone ? "it is no longer running (it crashed or was killed)" : "does its exec region set *stateindex = -1?");
     trace(c, "stuck: %s (%s)", msg, ss->s->name);
     if (c->io.stuck)
         c->io.stuck(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->outstanding[m], periods, msg);

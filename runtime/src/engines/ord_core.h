@@ -58,12 +58,17 @@ typedef struct OrdIo {
     void (*trace)(void *ctx, int64_t t, const char *line);
     /* a released module has not finished its release `release_id` after `periods` periods of
        its schema (ORD_STUCK_PERIODS, at least ORD_STUCK_MIN_NS): called once per release, with
-       the sentence to show ("MSC has not finished release #2 after 10 periods: does its exec
-       region set *stateindex = -1?"). Optional (NULL: the trace line only). */
+       the sentence to show, the `stuck: ` trace line's ("MSC has not finished release #2 after
+       10 periods: does its exec region set *stateindex = -1?", or "...: it is no longer running
+       (it crashed or was killed)" when module_gone says so). Optional (NULL: the trace line only). */
     void (*stuck)(void *ctx, const char *module, const char *schema, uint32_t release_id,
                   long periods, const char *message);
     /* typed facts of the timeline at time t (NULL: none); the readable lines stay in trace */
     void (*fact)(void *ctx, int64_t t, const OrdFact *f);
+    /* 1 when `module` is no longer running (it crashed or was killed), else 0: asked when one of
+       its releases is reported stuck, whose sentence then says so instead of the advice about
+       its exec region, which fits only a module that runs on. Optional (NULL: never asked). */
+    int (*module_gone)(void *ctx, const char *module);
 } OrdIo;
 
 /* A release not finished after this many periods of its schema, and at least ORD_STUCK_MIN_NS

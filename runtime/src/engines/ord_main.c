@@ -148,19 +148,26 @@ static void b_trace(void *ctx, int64_t t, const char *line) {
 
 /* A module that never finishes its release (ord_core check_stuck): one line on stderr, prefixed
    `STUCK: ` so the launcher's caller (contract run, the build service) can tell the run did not
-   go as designed (docs/engines.md §4, docs/ci.md). A module that is no longer running crashed or
-   was killed: the core's advice (an exec region that never sets *stateindex = -1) would mislead,
-   so the line says that instead. */
+   go as designed (docs/engines.md §4, docs/ci.md). The sentence is the core's, the one of the CSV
+   record `stuck: ...` too: for a module that is no longer running (b_module_gone) it says so
+   instead of the advice about its exec region. */
 static void b_stuck(void *ctx, const char *module, const char *schema, uint32_t id, long periods,
                     const char *message) {
     (void)ctx;
+    (void)module;
     (void)schema;
-    if (ModuleState(module) != CONTRACT_OK) /* ENOTRUNNING, or EUNKNOWN once the launcher removed its mailbox */
-        fprintf(stderr, "STUCK: %s has not finished release #%u after %ld periods: it is no longer running (it crashed or was killed)\n",
-                module, id, periods);
-    else
-        fprintf(stderr, "STUCK: %s\n", message);
+    (void)id;
+    (void)periods;
+    fprintf(stderr, "STUCK: %s\n", message);
     fflush(stderr);
+}
+
+/* A module whose mailbox is stale (it crashed or was killed) or gone (the launcher removed it)
+   is no longer running: a stuck release of it will never finish, whatever its exec region does. */
+static int b_module_gone(void *ctx, const char *module) {
+    (void)ctx;
+    int state = ModuleState(module);
+    return state == CONTRACT_ENOTRUNNING || state == CONTRACT_EUNKNOWN;
 }
 
 /* the typed records of the periodic timeline (docs/runtime-api.md "Trace records"): CSV only */
@@ -227,7 +234,7 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
     b.v = v;
     const char *stats_path = getenv("CONTRACT_ORD_STATS");
     b.record = stats_path && *stats_path;
-    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace, b_stuck, b_fact};
+    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace, b_stuck, b_fact, b_module_gone};
     char err[512] = "";
     OrdCore *c = ord_core_create(v, &io, err, sizeof err);
     if (!c) {
@@ -235,6 +242,14 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
         return 2;
     }
     ord_core_set_skip_late_ticks(c, 1);
+    /* ORD never waits for a module: a request whose receiver's mailbox is full (a module stuck in
+       its exec region no longer reads it) fails at once (CONTRACT_EBUSY: libmodule's `error`
+       record, and the binding's own line as for any request it could not send), instead of
+       blocking ORD up to 2 s per request while every other schema misses its ticks and ORD its
+       KILL. What a failed request does is unchanged: a release not delivered stays outstanding
+       (its cycle misses its deadline, overruns, and the module is reported stuck), a parameter,
+       connection or ORD:0 not delivered is lost, as when its receiver has crashed. */
+    ContractSetNonBlockingSends(1);
     int rc = 0;
     RequestMessage *m = malloc(sizeof *m);
     if (!m) {

@@ -436,6 +436,17 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
                 b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
                 b_rule, b_action};
     char err[512] = "";
+    /* Unlike ORD (ord_main.c), a supervisor keeps libmodule's default and waits up to 2 s for
+       room in a full mailbox (ContractSetNonBlockingSends not called): its requests are one-off
+       transitions (start or stop a module, activate or undo a schema, parameterize, connect),
+       each lost one leaving the architecture in a state its rules never chose (an undo lost keeps
+       a module running, a deactivation lost keeps a schema), and no later request repeats it, as
+       ORD's next cycle repeats a release, and a receiver only briefly behind (a burst of
+       requests to a module of lower priority on the supervisor's CPU) still gets it. It serves
+       no periodic timeline of its own; the cost is that it reads nothing while it waits: its
+       timers fire late, and its own mailbox may fill, so that a module posting events to it
+       waits too (docs/engines.md §6). A receiver still full after 2 s fails the request
+       (`error: not sent: ...`). */
     holds_before_block(prio_requests_settle);
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {

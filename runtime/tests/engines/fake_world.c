@@ -397,8 +397,20 @@ static void o_trace(void *ctx, int64_t t, const char *line) {
 
 static void o_stuck(void *ctx, const char *m, const char *schema, uint32_t id, long periods,
                     const char *message) {
-    (void)message;
-    WLOG((FakeWorld *)ctx, "stuck %s #%u (%s) after %ld periods", m, id, schema, periods);
+    FakeWorld *w = ctx;
+    snprintf(w->stuck_message, sizeof w->stuck_message, "%s", message);
+    WLOG(w, "stuck %s #%u (%s) after %ld periods", m, id, schema, periods);
+}
+
+static int o_module_gone(void *ctx, const char *m) {
+    const FakeWorld *w = ctx;
+    for (int i = 0; i < w->ngone; i++)
+        if (strcmp(w->gone[i], m) == 0) return 1;
+    return 0;
+}
+
+void fake_set_gone(FakeWorld *w, const char *module) {
+    if (w->ngone < FW_MAX) snprintf(w->gone[w->ngone++], sizeof w->gone[0], "%s", module);
 }
 
 uint32_t fake_last_release(const FakeWorld *w, const char *module) {
@@ -408,6 +420,6 @@ uint32_t fake_last_release(const FakeWorld *w, const char *module) {
 }
 
 OrdIo fake_ord_io(FakeWorld *w) {
-    OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace, o_stuck, NULL};
+    OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace, o_stuck, NULL, o_module_gone};
     return io;
 }

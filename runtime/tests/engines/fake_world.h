@@ -40,6 +40,11 @@ typedef struct FakeWorld {
     /* SupIo.action lines (event schemas, compute) go to the log too when set (off by default:
        most tests check the effects only) */
     int log_actions;
+    /* OrdIo.module_gone: the modules no longer running (fake_set_gone), and the sentence of the
+       last OrdIo.stuck call */
+    int ngone;
+    char gone[FW_MAX][16];
+    char stuck_message[320];
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);
@@ -49,6 +54,8 @@ OrdIo fake_ord_io(FakeWorld *w);
 /** Marks a module as already running (started by someone else) at a priority. */
 void fake_set_running(FakeWorld *w, const char *module, int priority);
 int fake_is_running(const FakeWorld *w, const char *module);
+/** Marks a module as no longer running (crashed or killed): OrdIo.module_gone says so. */
+void fake_set_gone(FakeWorld *w, const char *module);
 /** The id of the latest ORD release of `module` (0: never released). */
 uint32_t fake_last_release(const FakeWorld *w, const char *module);
 /** Formats a value for log lines: ints, floats (%g), strings, TypeA {i,j,k}, TypeD {name,v}. */

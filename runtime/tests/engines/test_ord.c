@@ -474,6 +474,34 @@ void test_ord_stuck_release_outliving_its_activation_is_reported(void) {
     ord_core_destroy(c);
 }
 
+/* A module that is no longer running (crashed, killed: OrdIo.module_gone) never finishes its
+   release whatever its exec region does: its stuck report says so instead of the advice to set
+   *stateindex = -1, in the trace line (ORD's CSV record `stuck: ...`, which contract trace and the
+   IDE's Monitor show) as in the sentence of the stuck call (ORD's stderr line): one wording. A
+   module running on still gets the advice. */
+void test_ord_stuck_report_of_a_module_no_longer_running(void) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    fake_set_gone(&w, "G");
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    ord_core_activate(c, 0, "FST", NULL, 0, "SUP", 2);
+    uint32_t g = fake_last_release(&w, "G"), e = fake_last_release(&w, "E");
+    ord_core_deactivate(c, 10 * MS, "SLW", "SUP", 1);
+    ord_core_advance(c, 2500 * MS);
+    char said[LOG_LINE - 32], stuck[LOG_LINE], advice[LOG_LINE];
+    snprintf(said, sizeof said, "G has not finished release #%u after 10 periods (of a deactivated activation): "
+             "it is no longer running (it crashed or was killed)", g);
+    snprintf(stuck, sizeof stuck, "2000000us stuck: %s (SLW)", said);
+    snprintf(advice, sizeof advice, "1002000us stuck: E has not finished release #%u after 334 periods: does its "
+             "exec region set *stateindex = -1? (FST)", e);
+    check_log_filtered(&LOG, (const char *const[]){"1002000us stuck", "2000000us stuck", NULL},
+                       (const char *const[]){advice, stuck, NULL}, __FILE__, __LINE__);
+    if (strcmp(w.stuck_message, said) != 0) fprintf(stderr, "  the stuck call's sentence: %s\n", w.stuck_message);
+    CHECK(strcmp(w.stuck_message, said) == 0);
+    ord_core_destroy(c);
+}
+
 /* Short periods: a loaded machine may hold a module for a few periods; it is declared stuck only
    after ORD_STUCK_MIN_NS (1 s), i.e. 334 periods of 3 ms. */
 void test_ord_stuck_needs_at_least_1s_on_short_periods(void) {

@@ -7,7 +7,11 @@
  * Behaviour flags in TestParam.flags: 1 post an event each run, 2 abort() at the next run,
  * 4 report inputs each run, 8 read inputs with GetLatestData, 16 each state after the first
  * sleeps 100 ms (a module busy in its own code reads its mailbox once per state). TestParam.run_ms: how long a run lasts (interruptible by STOP).
- * $TMOD_CRASH_NAME equal to the module name: abort() 200 ms after start-up. */
+ * $TMOD_CRASH_NAME equal to the module name: abort() 200 ms after start-up.
+ * $TMOD_END equal to `NAME:how`: what the module named does instead of a clean end, `exit0` 200 ms
+ * after start-up (its own code ends it mid-run), and at its KILL (the run's stop) `crash` (abort(),
+ * a crash in its exit code), `exit3` (exit status 3), `hang` (never ends: the launcher must
+ * terminate it) or `daemon` (leaves a process in a session of its own holding its output 8 s). */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <signal.h>
@@ -48,6 +52,14 @@ static const char *tester(void)
     return t && *t ? t : "tester";
 }
 
+/* What $TMOD_END asks of this module ("" when nothing). */
+static const char *end_how(void)
+{
+    const char *e = getenv("TMOD_END");
+    size_t n = strlen(MODULE_NAME);
+    return e && strncmp(e, MODULE_NAME, n) == 0 && e[n] == ':' ? e + n + 1 : "";
+}
+
 static void exec_state(int *state)
 {
     if (*state == 0) {
@@ -76,6 +88,7 @@ int ModuleMain(int argc, const char *argv[])
     (void)argc; (void)argv;
     const char *crash = getenv("TMOD_CRASH_NAME");
     if (crash && strcmp(crash, MODULE_NAME) == 0) { usleep(200000); abort(); }
+    if (strcmp(end_how(), "exit0") == 0) { usleep(200000); exit(0); }
     printf("%s ready\n", MODULE_NAME);
     RequestMessage receivedMessage, registered;
     int end = 0, state = 0, interact, cycleRunning = 0;
@@ -194,5 +207,11 @@ int ModuleMain(int argc, const char *argv[])
             break;
         }
     }
+    /* its exit code (the stop): what the test asks */
+    const char *how = end_how();
+    if (strcmp(how, "crash") == 0) abort();
+    if (strcmp(how, "exit3") == 0) exit(3);
+    if (strcmp(how, "hang") == 0) for (;;) pause();
+    if (strcmp(how, "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); } /* holds the output pipe 8 s */
     return 0;
 }

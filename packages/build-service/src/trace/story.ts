@@ -45,6 +45,8 @@ const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused',
 
 /** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
 const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
+/** What a `stuck:` line says instead of the advice when its module is no longer running (crashed, killed). */
+const STUCK_GONE = /: it is no longer running \(it crashed or was killed\)/;
 
 /** A cycle whose first release ORD sent this long after its tick or more is said released late. */
 export const LATE_RELEASE_NS = 1_000_000;
@@ -52,13 +54,16 @@ export const LATE_RELEASE_NS = 1_000_000;
 /**
  * What a missed cycle was waiting for, as `contract trace` and the IDE's Monitor say it after
  * `deadline miss (ORD:0): S cycle k`: ` (held: nothing released, GRP still runs an earlier
- * release)` when its cycle was held for `heldFor`, ` (not finished: ARM, GRP)` for the modules
+ * release)` when its cycle was held for `heldFor` (` (held: nothing released, GRP never finished an
+ * earlier release: it is no longer running)` when `heldForGone`: a stuck record or its exit said it
+ * had crashed, been killed or ended), ` (not finished: ARM, GRP)` for the modules
  * released and not finished (`notFinished`, written out), and, when ORD sent the cycle's first
  * release LATE_RELEASE_NS or more after its tick (`firstReleaseLateNs`: release_ns - tick_ns; ORD
  * woke late on a loaded machine, or the cycle was held and resumed), `; ORD released the cycle 13.4 ms
  * after its tick`, else ''.
  */
-export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number): string {
+export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number, heldForGone = false): string {
+    if (heldFor !== undefined && heldForGone) return ` (held: nothing released, ${heldFor} never finished an earlier release: it is no longer running)`;
     if (heldFor !== undefined) return ` (held: nothing released, ${heldFor} still runs an earlier release)`;
     const late = firstReleaseLateNs !== undefined && firstReleaseLateNs >= LATE_RELEASE_NS
         ? `ORD released the cycle ${(firstReleaseLateNs / 1e6).toFixed(1)} ms after its tick` : '';
@@ -174,6 +179,11 @@ export class StoryTeller {
     private readonly held = new Map<string, string>();
     /** Modules whose exit record was read, with its detail: ORD's stuck advice does not fit them. */
     private readonly exited = new Map<string, string>();
+    /**
+     * Modules (at most STORY_FOLLOWED) a `stuck:` record said are no longer running (crashed, killed):
+     * a cycle held for one of them does not wait for a module that "still runs" its release.
+     */
+    private readonly gone = new Set<string>();
     /** Modules in the `running` sets of all cycles followed. */
     private running = 0;
     /**
@@ -225,6 +235,15 @@ export class StoryTeller {
             if (what === 'held' && (this.held.has(schema) || this.held.size < STORY_FOLLOWED)) this.held.set(ownString(schema), ownString(String(k.fields['module'])));
             else if (what !== 'held') this.held.delete(schema);
         }
+        if (k.kind === 'scheduler' && what === 'stuck' && STUCK_GONE.test(k.detail)) {
+            const module = String(k.fields['module']);
+            if (this.gone.has(module) || this.gone.size < STORY_FOLLOWED) this.gone.add(ownString(module));
+        }
+        if (k.kind === 'scheduler' && (what === 'unstuck' || what === 'late_ack')) this.gone.delete(String(k.fields['module'])); // it ran on after all
+        if (k.kind === 'scheduler' && what === 'held' && this.isGone(String(k.fields['module']))) {
+            // ORD only knows the release is outstanding: the module that "still runs" it is gone
+            return `${at(k)} cycle of ${String(k.fields['schema'])} held: ${String(k.fields['module'])} never finished a release of an earlier activation: it is no longer running`;
+        }
         if (k.kind === 'scheduler' && what === 'stuck' && this.exited.has(String(k.fields['module']))) {
             // a module that had ended (a crash the simulator made, an exit) never finishes: the advice to set *stateindex = -1 does not fit it
             return `${at(k)} ${k.detail.replace(STUCK_ADVICE, `: it had exited before (${this.exited.get(String(k.fields['module']))})`)}`;
@@ -249,6 +268,7 @@ export class StoryTeller {
         }
         if (k.kind === 'module_started') {
             this.exited.delete(k.module); // started again: a later stuck report is about this run of it
+            this.gone.delete(k.module);
             return `${at(k)} started (${k.detail})`;
         }
         if (k.kind === 'module_exit') {
@@ -337,7 +357,13 @@ export class StoryTeller {
     private lateOf(k: KnownRecord): string {
         const schema = String(k.fields['schema'] ?? '');
         const c = this.cycleOf(schema, String(k.fields['cycle'] ?? ''));
-        return missWaitText(this.held.get(schema), c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs);
+        const heldFor = this.held.get(schema);
+        return missWaitText(heldFor, c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs, heldFor !== undefined && this.isGone(heldFor));
+    }
+
+    /** Whether `module` is known to be no longer running: a stuck record said so, or its exit record was read. */
+    private isGone(module: string): boolean {
+        return this.gone.has(module) || this.exited.has(module);
     }
 
     /** The figures of schema `name` (undefined past STORY_FOLLOWED schemas). */

@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, missWaitText, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -467,6 +467,28 @@ describe('reading a log', () => {
             '+1.100000s ORD  cycle of pick resumed',
             '+1.130000s ORD  deadline miss (ORD:0): pick cycle 0 (not finished: CAM; ORD released the cycle 1083.0 ms after its tick)',
         ]);
+        // a stuck record that says its module is no longer running (a crash, ORD's words on stderr too): the cycles
+        // held for it and their misses do not say it "still runs" its release; started again, it is followed afresh
+        const dead = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+            '1000000000,w,ORD,scheduler,,,0,cycle of loop held: VEL still runs a release of an earlier activation',
+            '1500000000,w,ORD,scheduler,,,0,stuck: VEL has not finished release #204 after 100 periods: it is no longer running (it crashed or was killed) (loop)',
+            '1518000000,w,ORD,scheduler,,,0,activate loop (activation #4 from DRV)',
+            '1518000000,w,ORD,scheduler,,,0,cycle of loop held: VEL still runs a release of an earlier activation',
+            '1531000000,w,ORD,ord_deadline_miss,,,0,schema=loop cycle=0 tick_ns=1518000000',
+            '1600000000,w,VEL,module_started,,,0,pid=9 priority=84',
+            '1700000000,w,ORD,scheduler,,,0,cycle of loop held: VEL still runs a release of an earlier activation',
+            '1710000000,w,ORD,ord_deadline_miss,,,0,schema=loop cycle=0 tick_ns=1700000000',
+        ].join('\n') }]));
+        expect(dead.filter((l) => / ORD {2}(deadline|cycle|stuck)/.test(l))).toEqual([
+            '+0.000000s ORD  cycle of loop held: VEL still runs a release of an earlier activation',
+            '+0.500000s ORD  stuck: VEL has not finished release #204 after 100 periods: it is no longer running (it crashed or was killed) (loop)',
+            '+0.518000s ORD  cycle of loop held: VEL never finished a release of an earlier activation: it is no longer running',
+            '+0.531000s ORD  deadline miss (ORD:0): loop cycle 0 (held: nothing released, VEL never finished an earlier release: it is no longer running)',
+            '+0.700000s ORD  cycle of loop held: VEL still runs a release of an earlier activation',
+            '+0.710000s ORD  deadline miss (ORD:0): loop cycle 0 (held: nothing released, VEL still runs an earlier release)',
+        ]);
+        expect(missWaitText('VEL', '', undefined, true)).toBe(' (held: nothing released, VEL never finished an earlier release: it is no longer running)');
+        expect(missWaitText('VEL', '')).toBe(' (held: nothing released, VEL still runs an earlier release)');
         // every line ORD writes to its CSV log is typed; those a reader needs are told (an overrun's end, a stuck
         // module finishing at last, a table warning), the expected ones are not, and a line no version writes is told as such
         const ord = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,

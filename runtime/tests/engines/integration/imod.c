@@ -4,15 +4,22 @@
  * is one activation: it drains its input data port, works IMOD_WORK_NS (clock_nanosleep), posts
  * an activation counter on its output data port and acks ACK_FINISHED with the START's AckID.
  * With -DIMOD_SLOW_AT=n, its n-th activation first posts n on its output event port 0 ("I am
- * in my slow run") and then works IMOD_SLOW_NS instead. It writes what it observes to
- * $ITEST_OUT/<name>.trace: "start <ns> <AckID>", "slow", "got <value>", "end <ns>", "param <v>".
+ * in my slow run") and then works IMOD_SLOW_NS instead. With -DIMOD_STUCK_AT=n, its n-th
+ * activation never returns (a stuck exec region, asleep so as not to take a CPU): it no longer
+ * reads its mailbox, and ends only on the launcher's SIGTERM. With -DIMOD_KILLED_AT=n, its n-th
+ * activation is killed (SIGKILL, as by the OOM killer: its mailbox stays, stale, never read
+ * again). It writes what it observes to
+ * $ITEST_OUT/<name>.trace: "start <ns> <AckID>", "slow", "stuck", "killed", "got <value>", "end <ns>",
+ * "param <v>".
  */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
+#include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
+#include <unistd.h>
 
 #include "imodule.h"
 
@@ -24,6 +31,12 @@
 #endif
 #ifndef IMOD_SLOW_AT
 #define IMOD_SLOW_AT 0 /* 0: no slow activation */
+#endif
+#ifndef IMOD_STUCK_AT
+#define IMOD_STUCK_AT 0 /* 0: never stuck */
+#endif
+#ifndef IMOD_KILLED_AT
+#define IMOD_KILLED_AT 0 /* 0: never killed */
 #endif
 #ifndef IMOD_SLOW_NS
 #define IMOD_SLOW_NS 300000000L /* work of the slow activation: many periods of the tests */
@@ -59,7 +72,15 @@ int ModuleMain(int argc, const char *argv[]) {
             while (GetData(&in_value, &pt, &rt) == 1)
                 if (trace) fprintf(trace, "got %ld\n", in_value);
             long work_ns = IMOD_WORK_NS;
-            if (++activations == IMOD_SLOW_AT) {
+            if (++activations == IMOD_STUCK_AT) {
+                if (trace) fprintf(trace, "stuck\n");
+                for (;;) pause();
+            }
+            if (activations == IMOD_KILLED_AT) {
+                if (trace) fprintf(trace, "killed\n");
+                raise(SIGKILL);
+            }
+            if (activations == IMOD_SLOW_AT) {
                 if (trace) fprintf(trace, "slow\n");
                 slow_event = activations;
                 PostEvent(&slow_event);

@@ -5,7 +5,8 @@
  * uses IMB too (conflict); supervisor to notify: ISU. Built with -DIORD_RSC (as rsc/ORD) for
  * the reactivation scenario: schema RSC: RMA -> RMB -> RMC, supervisor RSU (tables: itables.h).
  * Built with -DIORD_UNDO (as undo/ORD) for the undo scenario: schema PSC: UMA, supervisors UPA
- * and USM.
+ * and USM. Built with -DIORD_STK (as stk/ORD) for the stuck- and crashed-module scenarios:
+ * schemas FST (STK), SLW (OKM) and CRH (CRS), supervisor SKS.
  */
 #include "../engine_executable.h"
 
@@ -13,7 +14,11 @@ ENGINE_EXECUTABLE("ORD", 80, "engines integration test scheduler")
 
 #include "itables.h"
 
-#if defined(IORD_UNDO)
+#if defined(IORD_STK)
+static const ContractOrdModule modules[] = {{"STK", 50, 300000}, {"OKM", 50, 300000}, {"CRS", 50, 300000}};
+static const ContractSchema *const schemas[] = {&ITEST_FST, &ITEST_SLW, &ITEST_CRH};
+static const char *const supervisors[] = {"SKS"};
+#elif defined(IORD_UNDO)
 static const ContractOrdModule modules[] = {{"UMA", 50, 300000}};
 static const ContractSchema *const schemas[] = {&ITEST_PSC};
 static const char *const supervisors[] = {"UPA", "USM"};

@@ -3,7 +3,10 @@
  *   ISC (20 ms, critical delay 15 ms): IMA (gain :0) -> IMB, IMA -> IMC; IMA:0 -> IMB:0 * 1,
  *       IMA:0 -> IMC:0 * 2.          ICF: IMB alone (conflicts with ISC).
  *   RSC (20 ms, critical delay 15 ms): RMA -> RMB -> RMC (RMB is slow in its 4th activation).
- *   PSC (20 ms, critical delay 15 ms): UMA alone (activated by UPA and USM: undo scenario). */
+ *   PSC (20 ms, critical delay 15 ms): UMA alone (activated by UPA and USM: undo scenario).
+ *   FST (10 ms, critical delay 10 ms): STK (gain :0), which never finishes its 5th release;
+ *   SLW (20 ms, critical delay 15 ms): OKM alone (stuck-module scenario).
+ *   CRH (20 ms, critical delay 15 ms): CRS alone, killed in its 5th release (crashed-module scenario). */
 #ifndef ITEST_TABLES_H
 #define ITEST_TABLES_H
 #include <contract/vocabulary.h>
@@ -35,4 +38,13 @@ static const ContractSchema ITEST_RSC = {"RSC", CONTRACT_SCHEMA_PERIODIC, 20 * I
 static const ContractSchemaModule psc_modules[] = {{"UMA", 0, NULL}};
 static const ContractSchema ITEST_PSC = {"PSC", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
                                          0, NULL, 0, 1, psc_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchemaModule fst_modules[] = {{"STK", 1, isc_ima_settings}};
+static const ContractSchema ITEST_FST = {"FST", CONTRACT_SCHEMA_PERIODIC, 10 * ITEST_MS, 10 * ITEST_MS,
+                                         1, isc_params, sizeof(long), 1, fst_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchemaModule slw_modules[] = {{"OKM", 0, NULL}};
+static const ContractSchema ITEST_SLW = {"SLW", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
+                                         0, NULL, 0, 1, slw_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchemaModule crh_modules[] = {{"CRS", 0, NULL}};
+static const ContractSchema ITEST_CRH = {"CRH", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
+                                         0, NULL, 0, 1, crh_modules, 0, NULL, 0, NULL, 0, NULL};
 #endif

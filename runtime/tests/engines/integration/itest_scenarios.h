@@ -27,5 +27,11 @@ void scenario_late_priority_answer(const char *root, const char *bin, const char
 /** DLA and DLB claim the priorities of AMD and AME (both answering late) in opposite orders:
  *  neither waits for the other (answers settled before waiting for a lock). */
 void scenario_crossed_claims(const char *root, const char *bin, const char *launcher);
+/** SKS toggles FST on each of its deadline misses while FST's STK is stuck in its release (its
+ *  mailbox full): ORD never blocks on STK, SLW keeps its ticks and ORD ends on its KILL. */
+void scenario_stuck_module(const char *root, const char *bin, const char *launcher);
+/** CRS, killed in its 5th release of CRH: ORD's stuck report, CSV record and stderr line alike,
+ *  says it is no longer running (no advice about its exec region). */
+void scenario_crashed_module(const char *root, const char *bin, const char *launcher);
 
 #endif

@@ -1,0 +1,49 @@
+/*
+ * istuck.c — the supervisor SKS of the stuck-module scenario (itest_stuck.c):
+ *   SKS.go:
+ *     W:  [elapsed=10ms] activate schema SLW() [ ]
+ *     T1: [elapsed=10ms | endof(T2)] activate schema FST() [ORD:0<(ord_schema == "FST")>]
+ *     T2: [endof(T1)] [duration(T2)=20ms]
+ * as a supervisor that recovers from a deadline miss by deactivating the schema and activating
+ * it again (the mobile robot's DRV and MIS do so on ORD:0). Once STK is stuck in its release,
+ * every activation of FST is held for it and misses its deadline: SKS toggles FST every ~30 ms,
+ * and each activation makes ORD send STK a parameter request (gain) that STK never reads.
+ *   SKS.crash:
+ *     C:  [elapsed=10ms] activate schema CRH() [ ]
+ * for the crashed-module scenario: CRS is killed in its 5th release of CRH.
+ */
+#include "../engine_executable.h"
+
+ENGINE_EXECUTABLE("SKS", 90, "engines integration test supervisor (stuck module)")
+
+#include "itables.h"
+
+static const char k_fst[256] = "FST";
+ELAPSED(c10, 10 * ITEST_MS)
+static const ContractAction w_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_SLW}};
+static const ContractEvent t1_again[] = {{.kind = CONTRACT_EV_ENDOF, .rule = 2}};
+static const ContractClause t1_pre[] = {{1, c10_ev}, {1, t1_again}};
+static const ContractAction t1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_FST}};
+static const ContractTest miss_tests[] = {
+    {CONTRACT_TEST_EQ, {CONTRACT_REF_ORD_SCHEMA, 0, 0, &contract_type_string, NULL},
+     {CONTRACT_REF_CONST, 0, 0, &contract_type_string, k_fst}, NULL, 0, NULL}};
+static const ContractTestClause miss_tc[] = {{1, miss_tests}};
+static const ContractEvent miss_ev[] = {
+    {.kind = CONTRACT_EV_MODULE, .module = "ORD", .port = 0, .in_port = -1, .ntest_clauses = 1,
+     .test_clauses = miss_tc}};
+static const ContractClause t1_post[] = {{1, miss_ev}};
+static const ContractEvent t2_start[] = {{.kind = CONTRACT_EV_ENDOF, .rule = 1}};
+static const ContractClause t2_pre[] = {{1, t2_start}};
+static const ContractEvent t2_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 2, .time_ns = 20 * ITEST_MS}};
+static const ContractClause t2_post[] = {{1, t2_end}};
+static const ContractRule go_rules[] = {{"W", {1, c10}, 1, w_actions, {0, NULL}},
+                                        {"T1", {2, t1_pre}, 1, t1_actions, {1, t1_post}},
+                                        {"T2", {1, t2_pre}, 0, NULL, {1, t2_post}}};
+static const ContractAction c_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_CRH}};
+static const ContractRule crash_rules[] = {{"C", {1, c10}, 1, c_actions, {0, NULL}}};
+static const ContractFunction functions[] = {{"go", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, go_rules},
+                                             {"crash", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, crash_rules}};
+static const ContractSupervisorVocabulary SKS_VOCABULARY = {
+    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 2, functions};
+
+int ModuleMain(int argc, const char *argv[]) { return contract_supervisor_main(&SKS_VOCABULARY, argc, argv); }

@@ -1,0 +1,196 @@
+/*
+ * itest_stuck.c — scenarios 10 and 11. 10: a module stuck in a fast schema does not freeze ORD (the field
+ * test's D4: the mobile robot's VEL looping in its exec region). ORD (iord.c -DIORD_STK), the
+ * supervisor SKS (istuck.c), STK (imod.c, never returns from its 5th release) in FST (10 ms) and
+ * OKM (imod.c) in SLW (20 ms). SKS deactivates and activates FST again at each of its deadline
+ * misses: every activation makes ORD send STK a parameter request, and STK's mailbox, which it no
+ * longer reads, is full within half a second. A request ORD cannot deliver at once must fail at
+ * once (it used to block ORD up to 2 s each: SLW then missed nearly every tick, and ORD, still
+ * blocked at the stop, did not answer its KILL and was terminated, losing its last records).
+ * Asserted on ORD's CSV log, its stats and the launcher's output, with bounds that a loaded host
+ * keeps: SLW released on nearly every tick from its activation to SKS's undo, ORD's failed sends
+ * to STK reported within 100 ms of the request, FST toggled many times, and ORD ending on KILL.
+ * 11 (D4b): CRS, killed in its 5th release of CRH, is reported stuck as a module that is no
+ * longer running, in ORD's CSV record (what contract trace and the IDE's Monitor show) in the
+ * same words as on ORD's stderr, not with the advice to set *stateindex = -1.
+ */
+#define _GNU_SOURCE
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#include "itest_scenarios.h"
+#include "itest_support.h"
+
+#define MS 1000000LL
+#define SLW_PERIOD (20 * MS)
+
+/* ORD's ord_release records of OKM up to `until` (ORD's clock): how many, the first one's tick 0
+   (its tick minus cycle * period) and the largest gap between two released cycles (1: none
+   skipped). Returns the count. */
+static int okm_releases(const char *csv, long long until, long long *tick0, long *max_gap) {
+    int n = 0;
+    long prev = -1;
+    *tick0 = -1;
+    *max_gap = 0;
+    for (const char *p = csv ? strstr(csv, ",ord_release,OKM,") : NULL; p; p = strstr(p + 1, ",ord_release,OKM,")) {
+        long cycle = -1;
+        long long tick = -1;
+        const char *d = strstr(p, "cycle=");
+        if (!d || sscanf(d, "cycle=%ld tick_ns=%lld", &cycle, &tick) != 2) break;
+        if (until >= 0 && tick > until) break;
+        if (*tick0 < 0) *tick0 = tick - cycle * SLW_PERIOD;
+        if (prev >= 0 && cycle - prev > *max_gap) *max_gap = cycle - prev;
+        prev = cycle;
+        n++;
+    }
+    return n;
+}
+
+/* mono_ns of the last record of a CSV log, -1 if none */
+static long long last_record_time(const char *csv) {
+    long long t = -1, v;
+    for (const char *line = csv; line && *line;) {
+        if (sscanf(line, "%lld,", &v) == 1) t = v;
+        const char *end = strchr(line, '\n');
+        line = end ? end + 1 : NULL;
+    }
+    return t;
+}
+
+/* Each `error` record of a request to STK that its full mailbox refused, against ORD's
+   `parameterize STK:0` record just before it (logged before the request is sent): how many,
+   and the longest time from the one to the other in *slowest. */
+static int refused_sends(const char *csv, long long *slowest) {
+    int n = 0;
+    long long asked = -1;
+    *slowest = 0;
+    for (const char *line = csv; line && *line;) {
+        const char *end = strchr(line, '\n');
+        size_t len = end ? (size_t)(end - line) : strlen(line);
+        long long t = -1;
+        const char *param = strstr(line, ",parameterize STK:0 gain ");
+        const char *refused = strstr(line, ",error,,,0,SETPARAM request to STK: mailbox full");
+        if (sscanf(line, "%lld,", &t) == 1) {
+            if (param && param < line + len) asked = t;
+            if (refused && refused < line + len && asked >= 0) {
+                if (t - asked > *slowest) *slowest = t - asked;
+                n++;
+            }
+        }
+        line = end ? end + 1 : NULL;
+    }
+    return n;
+}
+
+void scenario_stuck_module(const char *root, const char *bin, const char *launcher) {
+    Scenario s;
+    if (!scenario_begin(&s, root, "stuck")) return;
+    const char *const names[] = {"stk/ORD", "SKS", "STK", "OKM", NULL};
+    s.stop_first = "SKS"; /* as the generated Makefile names its supervisors: its undo reaches ORD */
+    check(scenario_launch(&s, bin, launcher, "SKS.go()", "2.5", names),
+          "stuck module: architecture ran and stopped (the stuck STK terminated by the launcher)");
+
+    char *stk = NULL;
+    char path[700];
+    snprintf(path, sizeof path, "%s/STK.trace", s.out);
+    stk = slurp(path);
+    check(stk && count_of(stk, "start ") == 5 && strstr(stk, "stuck\n"),
+          "STK ran 4 releases and never returned from its 5th");
+
+    char *ord = read_csv_log(&s, "ORD"), *txt = slurp(s.launch), *js = slurp(s.stats);
+    check(txt && strstr(txt, "[ORD] STUCK: STK has not finished release #"), "ORD reported STK stuck");
+
+    /* ORD went on serving SKS: each ORD:0 of FST became a deactivation and an activation */
+    int toggles = count_of(ord, ",activate FST (activation #");
+    char what[400];
+    snprintf(what, sizeof what, "ORD served SKS's activations of FST all along (%d, at least 25: one per ~30 ms)", toggles);
+    check(toggles >= 25, what);
+
+    /* the requests STK's full mailbox refused failed at once, told as any failed request */
+    long long slowest = 0;
+    int refused = refused_sends(ord, &slowest);
+    snprintf(what, sizeof what,
+             "a request to STK's full mailbox fails at once (%d refused, at least 5; the slowest told %lld ms after "
+             "ORD logged it, at most 100 ms: no 2 s wait)",
+             refused, slowest / MS);
+    check(refused >= 5 && slowest <= 100 * MS, what);
+    check(txt && strstr(txt, "[ORD] ORD: cannot set parameter 0 of STK: mailbox full") &&
+              strstr(txt, "ORD does not wait for a full mailbox"),
+          "ORD says on stderr that it could not parameterize STK, whose mailbox is full");
+
+    /* SLW on time: from its first release to SKS's undo at the stop (or, when ORD's log has none,
+       its last record), every tick released but a few */
+    long long t_deact = csv_time_of(ord, NULL, ",deactivate SLW (activation #", NULL), tick0 = -1;
+    long long t_end = t_deact > 0 ? t_deact : last_record_time(ord);
+    long max_gap = 0;
+    int released = okm_releases(ord, t_end, &tick0, &max_gap);
+    long window = t_end > 0 && tick0 > 0 && t_end >= tick0 ? (long)((t_end - tick0) / SLW_PERIOD) + 1 : -1;
+    long missed = window - released;
+    snprintf(what, sizeof what,
+             "SLW released on its ticks while STK was stuck (%d of %ld ticks from its activation to %s, at least "
+             "100; %ld skipped, at most 3 + 5 %%; largest gap %ld periods, at most 5)",
+             released, window, t_deact > 0 ? "its deactivation" : "ORD's last record (no deactivation)", missed, max_gap);
+    check(t_deact > 0 && window >= 100 && missed <= 3 + window / 20 && max_gap <= 5, what);
+    int misses = count_of(ord, ",deadline miss: SLW cycle ");
+    snprintf(what, sizeof what, "SLW missed few deadlines (%d, at most 2 + 5 %% of %ld)", misses, window);
+    check(window > 0 && misses <= 2 + window / 20, what);
+
+    /* the stop: SKS's undo reached ORD, which then ended on its KILL with its records whole */
+    check(txt && strstr(txt, "module STK did not end on KILL"), "the stuck STK did not read its KILL (expected)");
+    check(txt && !strstr(txt, "module ORD did not end on KILL") && ord && strstr(ord, ",ORD,module_exit,,,0,status=0 "),
+          "ORD ended on its KILL (its module_exit record written, not terminated by the launcher)");
+    check(json_number(js, "stuck_releases") >= 1 && json_number(js, "cycles") > 0,
+          "ORD wrote its stats at its end, counting STK's stuck release");
+    struct stat st;
+    check(stat(s.run, &st) != 0, "clean shutdown: no runtime file left in the run directory");
+    if (scenario_failed(&s))
+        fprintf(stderr, "launcher output (stuck scenario):\n%s\nORD stats: %s\n", txt ? txt : "(none)", js ? js : "(none)");
+    free(stk);
+    free(ord);
+    free(txt);
+    free(js);
+}
+
+void scenario_crashed_module(const char *root, const char *bin, const char *launcher) {
+    Scenario s;
+    if (!scenario_begin(&s, root, "crashed")) return;
+    const char *const names[] = {"stk/ORD", "SKS", "CRS", NULL};
+    s.stop_first = "SKS";
+    int launched = scenario_launch(&s, bin, launcher, "SKS.crash()", "1.6", names);
+    char *txt = slurp(s.launch), *ord = read_csv_log(&s, "ORD"), *crs = NULL;
+    check(!launched && txt && strstr(txt, "module CRS (pid ") && strstr(txt, "died by signal 9"),
+          "crashed module: the launcher reports CRS killed (and fails the run)");
+    char path[700];
+    snprintf(path, sizeof path, "%s/CRS.trace", s.out);
+    crs = slurp(path);
+    check(crs && count_of(crs, "start ") == 5 && strstr(crs, "killed\n"), "CRS was killed in its 5th release");
+
+    /* ORD's CSV record: `stuck: <sentence> (CRH)`; its stderr line: `STUCK: <sentence>` */
+    const char *rec = ord ? strstr(ord, ",scheduler,,,0,stuck: CRS has not finished release #") : NULL;
+    char sentence[400] = "", line[450] = "";
+    if (rec) {
+        rec += strlen(",scheduler,,,0,stuck: ");
+        size_t n = strcspn(rec, "\n");
+        if (n > 6 && n < sizeof sentence && strncmp(rec + n - 6, " (CRH)", 6) == 0) {
+            memcpy(sentence, rec, n - 6);
+            sentence[n - 6] = '\0';
+        }
+    }
+    char what[600];
+    snprintf(what, sizeof what, "ORD's CSV record says CRS is no longer running (`%s`), without the exec region advice",
+             sentence);
+    check(strstr(sentence, " periods: it is no longer running (it crashed or was killed)") &&
+              !strstr(ord, "does its exec region set"),
+          what);
+    snprintf(line, sizeof line, "[ORD] STUCK: %s\n", sentence);
+    check(sentence[0] && txt && strstr(txt, line), "ORD's stderr line says the same sentence as its CSV record");
+    check(txt && !strstr(txt, "module ORD did not end on KILL") && ord && strstr(ord, ",ORD,module_exit,,,0,status=0 "),
+          "ORD ended on its KILL");
+    if (scenario_failed(&s))
+        fprintf(stderr, "launcher output (crashed scenario):\n%s\nORD's log:\n%s\n", txt ? txt : "(none)", ord ? ord : "(none)");
+    free(crs);
+    free(ord);
+    free(txt);
+}
