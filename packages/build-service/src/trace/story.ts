@@ -48,6 +48,11 @@ const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
 /** What a `stuck:` line says instead of the advice when its module is no longer running (crashed, killed). */
 const STUCK_GONE = /: it is no longer running \(it crashed or was killed\)/;
 
+/** Whether the detail of ORD's `stuck:` record says its module is no longer running (the story and the IDE's Monitor). */
+export function stuckSaysGone(detail: string): boolean {
+    return STUCK_GONE.test(detail);
+}
+
 /** A cycle whose first release ORD sent this long after its tick or more is said released late. */
 export const LATE_RELEASE_NS = 1_000_000;
 
@@ -235,7 +240,7 @@ export class StoryTeller {
             if (what === 'held' && (this.held.has(schema) || this.held.size < STORY_FOLLOWED)) this.held.set(ownString(schema), ownString(String(k.fields['module'])));
             else if (what !== 'held') this.held.delete(schema);
         }
-        if (k.kind === 'scheduler' && what === 'stuck' && STUCK_GONE.test(k.detail)) {
+        if (k.kind === 'scheduler' && what === 'stuck' && stuckSaysGone(k.detail)) {
             const module = String(k.fields['module']);
             if (this.gone.has(module) || this.gone.size < STORY_FOLLOWED) this.gone.add(ownString(module));
         }

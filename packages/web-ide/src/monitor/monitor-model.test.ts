@@ -243,6 +243,22 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     expect(told).toEqual(expected);
   });
 
+  it('a cycle held for a module ORD said is no longer running: "never finished", as contract trace says, live and parsed', () => {
+    // GRP crashed: ORD's stuck record says it is gone before the held cycle misses its deadline
+    const log = [...ORD_LOG];
+    log.splice(7, 0, '1016500000,w,ORD,scheduler,,,0,stuck: GRP has not finished release #21 after 10 periods: it is no longer running (it crashed or was killed) (pick)');
+    const gone = 'deadline miss (ORD:0) cycle 0 (held: nothing released, GRP never finished an earlier release: it is no longer running)';
+    const live = new MonitorModel({ checkpointEvery: 16 });
+    log.forEach((l, i) => live.pushLine('ORD.csv', i + 2, l));
+    expect(missLabels(live)[1]).toBe(gone);
+    const parsed = new MonitorModel({ checkpointEvery: 16 });
+    parsed.pushAll(log.map((l, i) => parseRecordLine('ORD.csv', i + 2, l)));
+    expect(missLabels(parsed)[1]).toBe(gone);
+    const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${log.join('\n')}\n` }]))
+      .filter((l) => l.includes(' deadline miss ')).map((l) => l.replace(/^.* deadline miss \(ORD:0\): \w+ cycle /, 'deadline miss (ORD:0) cycle '));
+    expect(told[1]).toBe(gone);
+  });
+
   it('stays bounded on a hostile trace: thousands of schemas and modules, long names', () => {
     const m = new MonitorModel({ checkpointEvery: 64 });
     for (let i = 0; i < 2000; i++) m.pushLine('ORD.csv', i, `${1000 + i},w,ORD,ord_release,M${i},,0,schema=S${i % 500} cycle=1 tick_ns=1 release_ns=1 release=1`);

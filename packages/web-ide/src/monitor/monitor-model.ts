@@ -20,7 +20,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, missWaitText, readableCause, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, missWaitText, readableCause, stuckSaysGone, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -125,6 +125,8 @@ interface Checkpoint {
 /** Periodic schemas and modules a cycle's wait is followed for (a hostile trace could name thousands). */
 const MAX_WAIT_SCHEMAS = 64;
 const MAX_WAIT_MODULES = 32;
+/** Modules known to be no longer running, followed at most (a real run names a few dozen). */
+const MAX_GONE = 1024;
 /** Longest list of modules a miss's label names. */
 const MAX_WAIT_TEXT = 160;
 
@@ -226,10 +228,10 @@ class CycleWaits {
     this.previous.reset(-1);
   }
 
-  /** What the miss of `cycle` waited for, in contract trace's words (missWaitText). */
-  lateOf(cycle: number): string {
+  /** What the miss of `cycle` waited for, in contract trace's words (missWaitText); `gone`: the modules known to be no longer running. */
+  lateOf(cycle: number, gone: ReadonlySet<string>): string {
     const c = this.current.cycle === cycle ? this.current : this.previous.cycle === cycle ? this.previous : undefined;
-    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs);
+    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs, this.held !== undefined && gone.has(this.held));
   }
 }
 
@@ -256,6 +258,12 @@ export class MonitorModel implements MonitorView {
   private anonymousText = 0;
   /** Per periodic schema, what its cycles wait for (a deadline miss's mark names it). */
   private readonly waits = new Map<string, CycleWaits>();
+  /**
+   * Modules known to be no longer running (ORD's stuck record said so, or their exit was read), at
+   * most MAX_GONE: a miss of a cycle held for one says it "never finished" its release, not that it
+   * "still runs" it, as contract trace says.
+   */
+  private readonly gone = new Set<string>();
   /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
   private lastWaits: CycleWaits | undefined;
   private lastWaitsName = '';
@@ -366,6 +374,7 @@ export class MonitorModel implements MonitorView {
   /** Folds a parsed record into `live` (and the notable ones into marks). */
   private fold(t: Ns, r: TraceRecord): void {
     if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
+    if (r.kind === 'module_exit' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
@@ -410,7 +419,24 @@ export class MonitorModel implements MonitorView {
     const schema = k.fields?.['schema'];
     const cycle = k.fields?.['cycle'];
     if (typeof schema !== 'string' || typeof cycle !== 'number') return '';
-    return this.waits.get(schema)?.lateOf(cycle) ?? '';
+    return this.waits.get(schema)?.lateOf(cycle, this.gone) ?? '';
+  }
+
+  /** Which modules are no longer running: a stuck record saying so, an exit; started again, or finished at last, it runs. */
+  private followGone(k: KnownRecord): void {
+    if (k.kind === 'module_exit') {
+      if (this.gone.size < MAX_GONE) this.gone.add(k.module);
+      return;
+    }
+    if (k.kind === 'module_started') {
+      this.gone.delete(k.module);
+      return;
+    }
+    const what = k.fields?.['what'];
+    const module = k.fields?.['module'];
+    if (typeof module !== 'string') return;
+    if (what === 'stuck' && stuckSaysGone(k.detail) && this.gone.size < MAX_GONE) this.gone.add(module);
+    else if (what === 'unstuck' || what === 'late_ack') this.gone.delete(module);
   }
 
   /** A parsed release, completion of a module's release, or ORD scheduler line: what the schema's cycles wait for. */
