@@ -76,7 +76,13 @@ describe('RunIssues', () => {
       skipped: [{ name: 'link.csv', reason: 'not a regular file (symlink): not followed' }, { name: 'C_1.csv', reason: 'more than 256 files', bound: true }],
       runDirLeftovers: [],
     });
+    r.line('module MSC (pid 29) died by signal 9 (Killed)', 'MSA'); // a module's own words: not the launcher's
     r.limit({ name: 'runSeconds', value: 60, unit: 's', mechanism: 'service-timer' });
+    // at the memory limit, the module the kernel killed first is named (the launcher's line only)
+    const memory = new RunIssues();
+    memory.line('module MSC (pid 29) died by signal 9 (Killed)', 'launcher');
+    memory.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
+    expect(memory.all.map((i) => i.message)).toEqual([expect.stringMatching(/^the run was stopped by the memory limit 512 MiB.* \(the kernel killed MSC first: the module using the most memory\)$/)]);
     r.outputTruncated('stdout', 1024 * 1024);
     expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
       ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],

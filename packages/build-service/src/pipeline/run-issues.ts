@@ -34,10 +34,14 @@ const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
 const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on KILL: terminating it$/;
 /** contract-launch's line when a module's own code ended it, status 0, before the run's stop (reap). */
 const ENDED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0 before the run's end$/;
+/** contract-launch's line for a module killed by SIGKILL it did not send (the kernel's OOM killer, at the memory limit). */
+const KILLED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) died by signal 9 \(Killed\)/;
 
 export class RunIssues {
   private readonly list: RunIssue[] = [];
   private readonly stuckSeen = new Set<string>();
+  /** Modules the launcher saw killed by SIGKILL during the run (at most 16): at the memory limit, the kernel's choice. */
+  private readonly killed: string[] = [];
 
   get all(): readonly RunIssue[] {
     return this.list;
@@ -71,7 +75,9 @@ export class RunIssues {
   }
 
   limit(hit: LimitHit): void {
-    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}` });
+    // at the memory limit the kernel kills the process using the most memory first: the module to look at
+    const first = hit.name === 'memory' && this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
+    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}` });
   }
 
   outputTruncated(stream: 'stdout' | 'stderr', bytes: number): void {
@@ -90,6 +96,8 @@ export class RunIssues {
   /** A module that did not end when the run stopped, or whose own code ended it before (the launcher's lines). */
   private moduleEnd(text: string): void {
     const hung = HUNG_LINE.exec(text);
+    const killed = KILLED_LINE.exec(text);
+    if (killed && this.killed.length < 16) this.killed.push(killed[1]!);
     if (hung) {
       this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its init, exec or exit code?)` });
       return;

@@ -226,7 +226,8 @@ export const runCommand: Command = {
         const code = reportBuild(opts, outcome, io, extra, problems, notSaved);
         if (opts.format === 'text') {
             for (const f of failures) io.err(`module ${safeName(f.module)} crashed (${f.how})\n`);
-            if (leftovers.length) io.err(`warning: the run left files in its run directory: ${leftovers.map(safeName).join(', ')}\n`);
+            // a run a sandbox limit killed left its modules' files: expected, not a warning (the limit is the problem told)
+            if (leftovers.length && !outcome.result.limitHit) io.err(`warning: the run left files in its run directory: ${leftovers.map(safeName).join(', ')}\n`);
             for (const s of leftOut) if (!s.bound) io.err(`warning: log ${safeName(s.name)} not collected: ${s.reason}\n`);
             for (const p of problems) io.err(`problem: ${p}\n`);
             if (savedLogs.movedAside) io.err(`previous run's CSV logs: ${savedLogs.movedAside.files} file(s) moved to ${safeName(savedLogs.movedAside.folder)}\n`);
