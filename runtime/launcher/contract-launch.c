@@ -491,7 +491,7 @@ static void stop_all(int sfd)
     run_loop(sfd, now_ns() + 2000000000LL, all_ended);
     for (int i = 0; i < n_children; i++)
         if (children[i].alive) {
-            say("module %s did not end on KILL: terminating it", children[i].name);
+            say("module %s did not end on its KILL request within 2 s: terminating it (SIGTERM)", children[i].name);
             children[i].signalled = SIGTERM;
             kill(-children[i].pid, SIGTERM);
         }

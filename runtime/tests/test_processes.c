@@ -150,7 +150,7 @@ void test_launcher_module_ends(void)
     REQUIRE(launcher > 0);
     CHECK(h_wait_exit(launcher, 10000) == 0);
     text = h_read_file(out);
-    CHECK(text && strstr(text, "module C2 did not end on KILL: terminating it"));
+    CHECK(text && strstr(text, "module C2 did not end on its KILL request within 2 s: terminating it (SIGTERM)"));
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "while the run stopped"));
     free(text);
     unsetenv("TMOD_END");

@@ -50,7 +50,7 @@ describe('RunIssues', () => {
   test("the launcher's words for a module that did not end on its KILL, or that its own code ended mid-run, are issues; a module's own lines of the same words are not", () => {
     const r = new RunIssues();
     for (const source of ['MSC', undefined]) {
-      r.line('module MSC did not end on KILL: terminating it', source);
+      r.line('module MSC did not end on its KILL request within 2 s: terminating it (SIGTERM)', source);
       r.line("module MAA (pid 17) exited with status 0 before the run's end", source);
     }
     // a clean end, a stop-time end, a crash (the launcher's FAILED line is the crash's report)
@@ -58,7 +58,7 @@ describe('RunIssues', () => {
     r.line('module MSB (pid 19) terminated by signal 15 (Terminated)', 'launcher');
     r.line('module MSD (pid 20) died by signal 11 (Segmentation fault) while the run stopped', 'launcher');
     expect(r.all).toEqual([]);
-    r.line('module MSC did not end on KILL: terminating it', 'launcher');
+    r.line('module MSC did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
     r.line("module MAA (pid 17) exited with status 0 before the run's end", 'launcher');
     expect(r.all).toEqual([
       { kind: 'module-hung', module: 'MSC', message: 'MSC did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its init, exec or exit code?)' },

@@ -31,7 +31,7 @@ const START_REFUSED_LINE = /^([A-Za-z_]\w*): start request from contract-launch 
  */
 const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
 /** contract-launch's line when a module does not end on the KILL request of the run's stop (runtime/launcher stop_all). */
-const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on KILL: terminating it$/;
+const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on its KILL request within 2 s: terminating it \(SIGTERM\)$/;
 /** contract-launch's line when a module's own code ended it, status 0, before the run's stop (reap). */
 const ENDED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0 before the run's end$/;
 /** contract-launch's line for a module killed by SIGKILL it did not send (the kernel's OOM killer, at the memory limit). */

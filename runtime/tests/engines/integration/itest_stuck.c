@@ -138,8 +138,8 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
     check(window > 0 && misses <= 2 + window / 20, what);
 
     /* the stop: SKS's undo reached ORD, which then ended on its KILL with its records whole */
-    check(txt && strstr(txt, "module STK did not end on KILL"), "the stuck STK did not read its KILL (expected)");
-    check(txt && !strstr(txt, "module ORD did not end on KILL") && ord && strstr(ord, ",ORD,module_exit,,,0,status=0 "),
+    check(txt && strstr(txt, "module STK did not end on its KILL request"), "the stuck STK did not read its KILL (expected)");
+    check(txt && !strstr(txt, "module ORD did not end on its KILL request") && ord && strstr(ord, ",ORD,module_exit,,,0,status=0 "),
           "ORD ended on its KILL (its module_exit record written, not terminated by the launcher)");
     check(json_number(js, "stuck_releases") >= 1 && json_number(js, "cycles") > 0,
           "ORD wrote its stats at its end, counting STK's stuck release");
@@ -186,7 +186,7 @@ void scenario_crashed_module(const char *root, const char *bin, const char *laun
           what);
     snprintf(line, sizeof line, "[ORD] STUCK: %s\n", sentence);
     check(sentence[0] && txt && strstr(txt, line), "ORD's stderr line says the same sentence as its CSV record");
-    check(txt && !strstr(txt, "module ORD did not end on KILL") && ord && strstr(ord, ",ORD,module_exit,,,0,status=0 "),
+    check(txt && !strstr(txt, "module ORD did not end on its KILL request") && ord && strstr(ord, ",ORD,module_exit,,,0,status=0 "),
           "ORD ended on its KILL");
     if (scenario_failed(&s))
         fprintf(stderr, "launcher output (crashed scenario):\n%s\nORD's log:\n%s\n", txt ? txt : "(none)", ord ? ord : "(none)");
