@@ -274,6 +274,32 @@ static void on_fatal_signal(int sig)
     raise(sig);
 }
 
+/* A crash of the module's code: its CSV log's records not written yet are written, then the
+ * process dies by the same signal (the launcher's `died by signal 11`, core dump and exit status as
+ * without the handler). Async-signal-safe (rt_log_crash). The signal is reset to SIG_DFL on entry
+ * (SA_RESETHAND) and every crash signal is blocked while the handler runs: a fault in the handler
+ * kills the process at once (the kernel forces the default action of a blocked fault), nothing
+ * loops. The writer thread blocks every signal: a fault there kills at once too. A crash in a
+ * second thread while the first is handled ends the process at once when it is the same signal
+ * (reset by then), else waits for the first to end the process (1 s at most). */
+static const int crash_signals[] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
+static char crash_stack[64 * 1024]; /* the handler's stack: a stack overflow leaves none */
+
+static void on_crash_signal(int sig)
+{
+    static int entered;
+    int saved = errno;
+    if (!__atomic_exchange_n(&entered, 1, __ATOMIC_SEQ_CST)) {
+        rt_log_crash(sig);
+    } else {
+        struct timespec ts = { 1, 0 };
+        nanosleep(&ts, NULL);
+    }
+    errno = saved;
+    signal(sig, SIG_DFL);
+    raise(sig); /* delivered as the handler returns: the process ends by it */
+}
+
 void rt_install_signal_cleanup(void)
 {
     struct sigaction sa;
@@ -285,6 +311,16 @@ void rt_install_signal_cleanup(void)
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGHUP, &sa, NULL);
     signal(SIGPIPE, SIG_IGN);
+    /* the crash handler runs on a stack of its own (the module's thread: the one that calls this) */
+    stack_t alt = { .ss_sp = crash_stack, .ss_size = sizeof crash_stack, .ss_flags = 0 };
+    int on_alt = sigaltstack(&alt, NULL) == 0;
+    struct sigaction ca;
+    memset(&ca, 0, sizeof ca);
+    ca.sa_handler = on_crash_signal;
+    sigemptyset(&ca.sa_mask);
+    for (size_t i = 0; i < sizeof crash_signals / sizeof crash_signals[0]; i++) sigaddset(&ca.sa_mask, crash_signals[i]);
+    ca.sa_flags = SA_RESETHAND | (on_alt ? SA_ONSTACK : 0);
+    for (size_t i = 0; i < sizeof crash_signals / sizeof crash_signals[0]; i++) sigaction(crash_signals[i], &ca, NULL);
 }
 
 void ContractShutdown(void)

@@ -36,7 +36,17 @@
  * delay on CLOCK_MONOTONIC after its oldest unwritten record (ContractLogFlushDue), not a delay
  * after it. Every module of a run counts from the same clock, so they write at the same instants:
  * a reader that puts the logs in time order waits for the last of them once per delay, instead of
- * for modules writing at phases of their own (up to one more delay). */
+ * for modules writing at phases of their own (up to one more delay).
+ *
+ * A crash (core.c on_crash_signal: SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) must not lose the
+ * records that explain it: rt_log_crash, async-signal-safe, writes what the log holds and has not
+ * written, in file order — the buffer handed to the writer (the handler writes it itself when the
+ * writer has not begun it, pending_owner decides; else it waits up to CRASH_WAIT_NS for the
+ * writer's write to end, and writes anyway after that), then the whole records of the buffer being
+ * filled (log_len is stored once a record is whole; log_busy says when the buffers are changing
+ * hands, or the module writes one itself: then skipped), then a `module_crashed` record — within
+ * the bound and log-capped as any write, the mark then 0. Records are formatted without a lock or
+ * stdio for that (put_record, write_records_r). */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -83,6 +93,18 @@ static int writer_on;                   /* the thread runs (the module's view)  
 static int writer_stop;
 static const char *pending_buf;         /* the buffer being written ...                     */
 static size_t pending_len;              /* ... its length, 0 = none (atomic)                */
+
+/* For the crash handler (rt_log_crash), which may run on the module's thread anywhere in this
+ * code: who writes the pending buffer (the writer claims it before writing, the handler takes it
+ * when the writer has not), and what the module's thread is doing with its buffers. A record
+ * being formatted is no concern: log_len grows only once the record is whole. */
+enum { OWNER_NONE, OWNER_WRITER, OWNER_WROTE, OWNER_CRASH };
+static int pending_owner;               /* OWNER_*, of the buffer pending_len names (atomic) */
+enum { BUSY_NONE, BUSY_SWAP, BUSY_WRITE };
+static int log_busy;                    /* BUSY_SWAP: the buffers change hands; BUSY_WRITE: the
+                                           module writes its buffer itself (no writer thread) */
+static _Thread_local int on_writer;     /* this thread is the writer                        */
+#define CRASH_WAIT_NS 100000000LL       /* the handler waits this long for a busy writer    */
 
 #define MARK_BYTES 4096
 
@@ -219,7 +241,48 @@ static char *put_field(char *p, const char *s, size_t max)
     return p;
 }
 
-/* Formats one record at p (at most RECORD_MAX bytes); returns its end. */
+/* v in decimal, at least `width` digits (zero-padded). */
+static char *put_dec(char *p, unsigned long long v, int width)
+{
+    char tmp[24];
+    int n = 0;
+    do tmp[n++] = (char)('0' + v % 10); while ((v /= 10) != 0);
+    while (n < width) tmp[n++] = '0';
+    while (n) *p++ = tmp[--n];
+    return p;
+}
+
+/* `YYYY-MM-DDTHH:MM:SS.` of a UTC time, as gmtime_r would give it, by hand: gmtime_r may take a lock
+ * (glibc's tz lock), and the crash handler formats a record too (H. Hinnant's civil_from_days). */
+static void put_utc(char *p, time_t t)
+{
+    long long days = (long long)t / 86400, secs = (long long)t % 86400;
+    if (secs < 0) { secs += 86400; days--; }
+    long long z = days + 719468;
+    long long era = (z >= 0 ? z : z - 146096) / 146097;
+    long long doe = z - era * 146097;
+    long long yoe = (doe - doe / 1460 + doe / 36524 - doe / 146096) / 365;
+    long long doy = doe - (365 * yoe + yoe / 4 - yoe / 100);
+    long long mp = (5 * doy + 2) / 153;
+    long long day = doy - (153 * mp + 2) / 5 + 1, month = mp < 10 ? mp + 3 : mp - 9;
+    long long year = yoe + era * 400 + (month <= 2);
+    p = put_dec(p, (unsigned long long)(year > 0 ? year : 0), 4);
+    *p++ = '-';
+    p = put_dec(p, (unsigned long long)month, 2);
+    *p++ = '-';
+    p = put_dec(p, (unsigned long long)day, 2);
+    *p++ = 'T';
+    p = put_dec(p, (unsigned long long)(secs / 3600), 2);
+    *p++ = ':';
+    p = put_dec(p, (unsigned long long)(secs / 60 % 60), 2);
+    *p++ = ':';
+    p = put_dec(p, (unsigned long long)(secs % 60), 2);
+    *p++ = '.';
+    *p = '\0';
+}
+
+/* Formats one record at p (at most RECORD_MAX bytes); returns its end. Async-signal-safe (the
+ * crash handler's record): no lock, no stdio, no allocation. */
 static char *put_record(char *p, RTIME mono, const char *event, const char *peer, int port, size_t size,
                         const char *detail)
 {
@@ -228,10 +291,7 @@ static char *put_record(char *p, RTIME mono, const char *event, const char *peer
     static _Thread_local time_t cached_sec = -1; /* the writer formats its log-capped record too */
     static _Thread_local char cached_text[80];
     if (wall.tv_sec != cached_sec) { /* calendar conversion once per second */
-        struct tm tm;
-        gmtime_r(&wall.tv_sec, &tm);
-        snprintf(cached_text, sizeof cached_text, "%04d-%02d-%02dT%02d:%02d:%02d.", tm.tm_year + 1900, tm.tm_mon + 1,
-                 tm.tm_mday, tm.tm_hour, tm.tm_min, tm.tm_sec);
+        put_utc(cached_text, wall.tv_sec);
         cached_sec = wall.tv_sec;
     }
     p = put_u64(p, (unsigned long long)mono);
@@ -256,6 +316,22 @@ static char *put_record(char *p, RTIME mono, const char *event, const char *peer
     return p;
 }
 
+/* The module's thread marks what it does for a crash handler running on the same thread (compiler
+ * barriers: the handler sees the flag set before the buffers change, and cleared after). */
+static int busy_enter(int what)
+{
+    int was = __atomic_load_n(&log_busy, __ATOMIC_RELAXED);
+    __atomic_store_n(&log_busy, what, __ATOMIC_RELAXED);
+    __atomic_signal_fence(__ATOMIC_SEQ_CST);
+    return was;
+}
+
+static void busy_leave(int was)
+{
+    __atomic_signal_fence(__ATOMIC_SEQ_CST);
+    __atomic_store_n(&log_busy, was, __ATOMIC_RELAXED);
+}
+
 static void lock(void) { pthread_mutex_lock(&log_lock); }
 static void unlock(void) { pthread_mutex_unlock(&log_lock); }
 static size_t pending(void) { return __atomic_load_n(&pending_len, __ATOMIC_ACQUIRE); }
@@ -263,8 +339,8 @@ static size_t pending(void) { return __atomic_load_n(&pending_len, __ATOMIC_ACQU
 void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail)
 {
     if (log_fd < 0) return;
-    log_records++;
     if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) {
+        log_records++;
         log_dropped++;
         return;
     }
@@ -285,7 +361,8 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
         mono = GetTime();
     }
     char *p = put_record(log_buf + log_len, mono, event, peer, port, size, detail);
-    log_len = (size_t)(p - log_buf);
+    __atomic_store_n(&log_len, (size_t)(p - log_buf), __ATOMIC_RELEASE); /* whole: a crash handler may write it */
+    log_records++; /* counted once in the buffer (a crash inside the record does not count it) */
 }
 
 static void write_all(const char *buf, size_t len)
@@ -300,7 +377,7 @@ static void write_all(const char *buf, size_t len)
     log_written += off;
 }
 
-/* Writes one `log-capped` record (room for two is kept below the bound). */
+/* Writes one `log-capped` record (room for two is kept below the bound). Async-signal-safe. */
 static void write_cap_record(const char *detail)
 {
     char rec[RECORD_MAX];
@@ -316,15 +393,18 @@ static unsigned long long count_records(const char *buf, size_t len)
     return n;
 }
 
-/* Writes buf[0..len) to the file within its bound (the writer's, or the module's without one). */
-static void write_records(const char *buf, size_t len)
+/* Writes buf[0..len) to the file within its bound (the writer's, or the module's without one), as
+ * if `reserve` more bytes were in the file (a crash handler's: those the stalled writer may still
+ * write). Async-signal-safe. */
+static void write_records_r(const char *buf, size_t len, unsigned long long reserve)
 {
     if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) { /* handed off before the bound was seen */
         log_dropped_w += count_records(buf, len);
         return;
     }
     /* the room left before the bound, keeping two records' room for the markers */
-    unsigned long long room = log_written + 2 * RECORD_MAX < log_max ? log_max - 2 * RECORD_MAX - log_written : 0;
+    unsigned long long used = log_written + reserve + 2 * RECORD_MAX;
+    unsigned long long room = used < log_max ? log_max - used : 0;
     if (len <= room) {
         write_all(buf, len);
         return;
@@ -335,29 +415,56 @@ static void write_records(const char *buf, size_t len)
     write_all(buf, keep);
     log_dropped_w += count_records(buf + keep, len - keep);
     __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
-    char detail[200];
-    snprintf(detail, sizeof detail, "log reached its %llu-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written",
-             log_max);
+    char text[PATH_MAX + 300], *p = text; /* by hand: no stdio (a crash handler may be here) */
+    p = put_str(p, "log reached its ");
+    p = put_u64(p, log_max);
+    p = put_str(p, "-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written");
+    *p = '\0';
+    write_cap_record(text);
+    p = put_str(text, g_rt.name);
+    p = put_str(p, ": warning: CSV log ");
+    p = put_str(p, log_path);
+    p = put_str(p, " capped at ");
+    p = put_u64(p, log_max);
+    p = put_str(p, " bytes (CONTRACT_LOG_MAX_BYTES); later records are not written\n");
+    if (write(STDERR_FILENO, text, (size_t)(p - text)) < 0) { /* nothing more to say it with */ }
+}
+
+static void write_records(const char *buf, size_t len) { write_records_r(buf, len, 0); }
+
+/* The last `log-capped` record: how many records were not written. Async-signal-safe. */
+static void write_cap_final(void)
+{
+    char detail[200], *p = detail;
+    p = put_u64(p, log_dropped + log_dropped_w);
+    p = put_str(p, " records not written after the log reached its ");
+    p = put_u64(p, log_max);
+    p = put_str(p, "-byte bound");
+    *p = '\0';
     write_cap_record(detail);
-    fprintf(stderr, "%s: warning: CSV log %s capped at %llu bytes (CONTRACT_LOG_MAX_BYTES); later records are not written\n",
-            g_rt.name, log_path, log_max);
 }
 
 static void *log_writer(void *unused)
 {
     (void)unused;
+    on_writer = 1;
     lock();
     for (;;) {
         while (!pending() && !writer_stop) pthread_cond_wait(&log_work, &log_lock);
         if (!pending()) break; /* stopped with nothing left */
         const char *buf = pending_buf;
         size_t len = pending();
+        int none = OWNER_NONE;
+        if (!__atomic_compare_exchange_n(&pending_owner, &none, OWNER_WRITER, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE))
+            break; /* a crash handler took it: the process ends */
         unlock();
         write_records(buf, len);
+        __atomic_store_n(&pending_owner, OWNER_WROTE, __ATOMIC_RELEASE);
         lock();
-        __atomic_store_n(&pending_len, 0, __ATOMIC_RELEASE);
-        /* after the write: the file holds every record but those of the buffer being filled */
+        /* after the write: the file holds every record but those of the buffer being filled
+         * (before the buffer is free: a crash handler that saw it free finds the mark set) */
         mark_set((unsigned long long)g_rt.log_dirty_since);
+        __atomic_store_n(&pending_len, 0, __ATOMIC_RELEASE);
         pthread_cond_broadcast(&log_idle);
     }
     unlock();
@@ -368,10 +475,12 @@ int rt_log_hand_off(int wait)
 {
     if (log_len == 0) return 1;
     if (!writer_on) {
+        int was = busy_enter(BUSY_WRITE);
         write_records(log_buf, log_len);
         log_len = 0;
         g_rt.log_dirty_since = 0;
         mark_set(0); /* after the write: the file holds every record logged so far */
+        busy_leave(was);
         return 1;
     }
     lock();
@@ -383,10 +492,14 @@ int rt_log_hand_off(int wait)
         pthread_cond_wait(&log_idle, &log_lock);
     }
     /* the mark keeps naming this buffer's oldest record until the writer wrote it */
+    int was = busy_enter(BUSY_SWAP);
+    __atomic_store_n(&pending_owner, OWNER_NONE, __ATOMIC_RELAXED);
     pending_buf = log_buf;
     __atomic_store_n(&pending_len, log_len, __ATOMIC_RELEASE);
+    __atomic_signal_fence(__ATOMIC_SEQ_CST);
     log_buf = log_buf == log_bufs[0] ? log_bufs[1] : log_bufs[0];
     log_len = 0;
+    busy_leave(was);
     g_rt.log_dirty_since = 0;
     pthread_cond_signal(&log_work);
     unlock();
@@ -453,6 +566,8 @@ static void log_forget_in_child(void)
     log_len = 0;
     writer_on = 0;
     __atomic_store_n(&pending_len, 0, __ATOMIC_RELAXED);
+    __atomic_store_n(&pending_owner, OWNER_NONE, __ATOMIC_RELAXED);
+    __atomic_store_n(&log_busy, BUSY_NONE, __ATOMIC_RELAXED);
     g_rt.log_dirty_since = 0;
     log_mark = NULL; /* the parent's page: left mapped, never written */
     pthread_mutex_init(&log_lock, NULL);
@@ -511,13 +626,76 @@ void rt_log_close(void)
     if (log_fd < 0) return;
     ContractLogFlush();
     writer_end();
-    if (log_capped) {
-        char detail[200];
-        snprintf(detail, sizeof detail, "%llu records not written after the log reached its %llu-byte bound",
-                 log_dropped + log_dropped_w, log_max);
-        write_cap_record(detail);
-    }
+    if (log_capped) write_cap_final();
     close(log_fd);
     log_fd = -1;
     mark_close();
+}
+
+static const char *crash_signal_name(int sig)
+{
+    switch (sig) {
+    case SIGSEGV: return "SIGSEGV";
+    case SIGBUS: return "SIGBUS";
+    case SIGFPE: return "SIGFPE";
+    case SIGILL: return "SIGILL";
+    case SIGABRT: return "SIGABRT";
+    default: return "?";
+    }
+}
+
+/* The crash handler's part (core.c on_crash_signal; async-signal-safe: write, clock_gettime,
+ * nanosleep, atomics; no lock, no stdio, no allocation). Writes what the log holds and has not
+ * written, in order: the buffer handed to the writer (itself if the writer has not begun it, else
+ * it waits up to CRASH_WAIT_NS for the writer to end it), then the buffer being filled (unless the
+ * module's thread was changing buffers or writing it itself: those records are skipped), then a
+ * `module_crashed` record; within the bound (log-capped, as at exit); then the mark says 0. */
+void rt_log_crash(int sig)
+{
+    if (log_fd < 0) return;
+    int busy = __atomic_load_n(&log_busy, __ATOMIC_RELAXED);
+    __atomic_signal_fence(__ATOMIC_SEQ_CST);
+    unsigned long long reserve = 0; /* bytes the writer may still write (it stalled) */
+    size_t plen = pending();
+    if (plen) {
+        const char *pbuf = pending_buf;
+        int none = OWNER_NONE;
+        if (__atomic_compare_exchange_n(&pending_owner, &none, OWNER_CRASH, 0, __ATOMIC_ACQ_REL, __ATOMIC_ACQUIRE)) {
+            write_records(pbuf, plen); /* the writer had not begun it */
+        } else {
+            /* the writer writes it: wait for the end of its write and its mark (file order), not
+             * for ever (nanosleep: a SCHED_FIFO module leaves the CPU to it) */
+            struct timespec step = { 0, 1000000 };
+            for (RTIME waited = 0; !on_writer && waited < CRASH_WAIT_NS && pending(); waited += step.tv_nsec)
+                nanosleep(&step, NULL);
+            /* still writing (a stalled disk, or the crash is the writer's): written anyway, the room
+             * counting its buffer as written */
+            if (__atomic_load_n(&pending_owner, __ATOMIC_ACQUIRE) == OWNER_WRITER) reserve = plen;
+        }
+    }
+    /* the buffer being filled: whole records up to log_len (a record being formatted is not in
+     * it); skipped while it changes hands (unless not handed yet) or the module writes it itself */
+    if (busy == BUSY_NONE || (busy == BUSY_SWAP && plen == 0)) {
+        size_t len = __atomic_load_n(&log_len, __ATOMIC_ACQUIRE);
+        if (len) write_records_r(log_buf, len, reserve);
+    }
+    /* the crash, a record like module_exit: `records=K` counts every record logged, this one included */
+    log_records++;
+    char detail[96], *d = detail;
+    d = put_str(d, "signal ");
+    d = put_u64(d, (unsigned long long)sig);
+    d = put_str(d, " (");
+    d = put_str(d, crash_signal_name(sig));
+    d = put_str(d, ") records=");
+    d = put_u64(d, log_records);
+    *d = '\0';
+    if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) {
+        log_dropped++;
+    } else {
+        char rec[RECORD_MAX];
+        char *end = put_record(rec, GetTime(), "module_crashed", "", -1, 0, detail);
+        write_records_r(rec, (size_t)(end - rec), reserve);
+    }
+    if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) write_cap_final();
+    mark_set(0); /* nothing more will be written */
 }

@@ -159,3 +159,78 @@ void test_csv_log_fork_child(void)
     free(log);
     h_teardown();
 }
+
+/* A store through a null pointer (not UBSan's to report in the sanitizer build: the crash is the point). */
+__attribute__((no_sanitize("undefined"))) static void null_store(void)
+{
+    volatile int *volatile p = 0;
+    *p = 1;
+}
+
+/* A crash while the writer thread still writes the buffer handed to it: the crash handler waits
+ * for that write (up to 100 ms), then writes the records of the buffer being filled after it, in
+ * order, and a `module_crashed` record; a writer stalled longer does not hold the dying process:
+ * the handler writes anyway, and the crash record's `records=K` counts what the file lacks. In a
+ * forked child (the crash ends it), on the tester's own log. */
+void test_csv_log_crash_writer_busy(void)
+{
+    static const long long stalls[] = { 60000000LL, 2000000000LL }; /* within the wait, and beyond it */
+    for (int s = 0; s < 2; s++) {
+        REQUIRE(h_setup("logcrashbusy") == 0);
+        RTIME t0 = GetTime();
+        pid_t pid = fork();
+        REQUIRE(pid >= 0);
+        if (pid == 0) {
+            rt_install_signal_cleanup();
+            if (rt_log_open() != 0) _exit(3);
+            slow_writes(stalls[s]);
+            char detail[32];
+            for (int i = 0; i < 100; i++) {
+                snprintf(detail, sizeof detail, "first %d", i);
+                ContractLog("test_record", "", -1, 0, detail);
+            }
+            if (rt_log_hand_off(0) != 1) _exit(4);
+            usleep(20000); /* the writer took the buffer: it stalls in its write */
+            for (int i = 0; i < 50; i++) {
+                snprintf(detail, sizeof detail, "second %d", i);
+                ContractLog("test_record", "", -1, 0, detail);
+            }
+            null_store();
+            _exit(5);
+        }
+        int status = 0, ended = 0;
+        while (!ended && GetTime() - t0 < 5000000000LL) {
+            if (waitpid(pid, &status, WNOHANG) == pid) ended = 1;
+            else usleep(5000);
+        }
+        if (!ended) {
+            kill(pid, SIGKILL);
+            waitpid(pid, &status, 0);
+        }
+        RTIME took = GetTime() - t0;
+        CHECK_MSG(ended && WIFSIGNALED(status) && WTERMSIG(status) == SIGSEGV, "stall %d: the child did not die by SIGSEGV (status %#x)", s, status);
+        if (s == 0) CHECK_MSG(took >= stalls[0], "the child died after %lld ms: before its writer's write ended", (long long)(took / 1000000));
+        if (s == 1) CHECK_MSG(took < 1000000000LL, "a stalled writer held the dying process %lld ms", (long long)(took / 1000000));
+        char csv[1024];
+        REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+        char *log = h_read_file(csv);
+        REQUIRE(log);
+        const char *at = log;
+        for (int i = s == 0 ? 0 : 100; i < 150; i++) {
+            char want[40];
+            snprintf(want, sizeof want, ",%s %d\n", i < 100 ? "first" : "second", i < 100 ? i : i - 100);
+            const char *found = strstr(at, want);
+            CHECK_MSG(found != NULL, "stall %d: record %s missing or out of order", s, want);
+            if (!found) break;
+            CHECK_MSG(strstr(found + 1, want) == NULL, "stall %d: record %s written twice", s, want);
+            at = found + strlen(want);
+        }
+        /* then the crash record, last, counting the 150 records and itself */
+        const char *crash = strstr(at, ",tester,module_crashed,,,0,signal 11 (SIGSEGV) records=151\n");
+        CHECK_MSG(crash != NULL && crash[strlen(",tester,module_crashed,,,0,signal 11 (SIGSEGV) records=151\n")] == '\0',
+                  "stall %d: no crash record at the end: '%s'", s, at);
+        if (s == 1) CHECK_MSG(strstr(log, ",first 0\n") == NULL, "the stalled writer's records are in the file after all");
+        free(log);
+        h_teardown();
+    }
+}

@@ -933,3 +933,133 @@ void test_csv_log_flush_boundary(void)
     rt_log_close();
     h_teardown();
 }
+
+/* Removes what a module that died outside contract-launch left in the run directory (the launcher
+   removes it otherwise). */
+static void remove_files_of(const char *name)
+{
+    DIR *d = opendir(h_run_dir);
+    if (!d) return;
+    size_t n = strlen(name);
+    struct dirent *e;
+    while ((e = readdir(d)) != NULL)
+        if (strncmp(e->d_name, name, n) == 0 && e->d_name[n] == '.') unlinkat(dirfd(d), e->d_name, 0);
+    closedir(d);
+}
+
+/* Lines (records) of a log after its header. */
+static int record_lines(const char *log)
+{
+    int n = 0;
+    for (const char *c = log; *c; c++) n += *c == '\n';
+    return n - 1;
+}
+
+/* The last line of a log (a static copy). */
+static const char *last_line(const char *log)
+{
+    static char line[1024];
+    size_t len = strlen(log);
+    if (len && log[len - 1] == '\n') len--;
+    size_t from = len;
+    while (from > 0 && log[from - 1] != '\n') from--;
+    snprintf(line, sizeof line, "%.*s", (int)(len - from), log + from);
+    return line;
+}
+
+/* Starts P with $TMOD_CRASH_LOG=P:how, sends it a START (at which it logs its crash_test records
+   and crashes) and returns its log once it died (NULL: no log); *status: as h_wait_exit. */
+static char *crash_run(const char *how, int *status)
+{
+    char env[64];
+    snprintf(env, sizeof env, "P:%s", how);
+    setenv("TMOD_CRASH_LOG", env, 1);
+    pid_t pid = h_spawn_module("P", "P");
+    unsetenv("TMOD_CRASH_LOG");
+    *status = -1;
+    if (pid <= 0) return NULL;
+    if (SendStart("P", ACK_NOTHING, 1) != CONTRACT_OK) return NULL;
+    *status = h_wait_exit(pid, 5000);
+    remove_files_of("P");
+    char csv[1024];
+    return h_find_log_file("P_", ".csv", csv, sizeof csv) ? h_read_file(csv) : NULL; /* (not its .mark) */
+}
+
+/* `before crash 1`..`n` each once, in order, from `from` on; returns the end of the last one (NULL: not so). */
+static const char *crash_records_in_order(const char *from, int n)
+{
+    const char *at = from;
+    for (int i = 1; i <= n && at; i++) {
+        char want[64];
+        snprintf(want, sizeof want, ",P,crash_test,,,0,before crash %d\n", i);
+        const char *found = strstr(at, want);
+        CHECK_MSG(found != NULL, "record 'before crash %d' missing or out of order", i);
+        if (!found) return NULL;
+        CHECK_MSG(strstr(found + 1, want) == NULL, "record 'before crash %d' written twice", i);
+        at = found + strlen(want);
+    }
+    return at;
+}
+
+/* A module whose code crashes loses none of its records: the records it logged just before the
+   crash (well inside the flush delay, still in its buffer) are written, in order, after those the
+   writer thread wrote, then a `module_crashed` record; the process still dies by its signal
+   (docs/runtime-api.md "CSV log"). */
+void test_csv_log_crash(void)
+{
+    static const struct { const char *how; int sig; const char *name; } cases[] = {
+        { "segv", SIGSEGV, "SIGSEGV" }, { "abort", SIGABRT, "SIGABRT" }, { "fpe", SIGFPE, "SIGFPE" },
+        { "stack", SIGSEGV, "SIGSEGV" }, { "inlog", SIGSEGV, "SIGSEGV" }, { "many", SIGSEGV, "SIGSEGV" },
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        REQUIRE(h_setup("logcrash") == 0);
+        if (c == 0) setenv("CONTRACT_LOG_MARK", "1", 1);
+        int status;
+        char *log = crash_run(cases[c].how, &status);
+        unsetenv("CONTRACT_LOG_MARK");
+        CHECK_MSG(status == 128 + cases[c].sig, "%s: the module ended with %d, not by signal %d", cases[c].how, status, cases[c].sig);
+        CHECK_MSG(log != NULL, "%s: no log", cases[c].how);
+        if (!log) { h_teardown(); continue; }
+        CHECK(strncmp(log, "mono_ns,wall_time,module,event,peer,port,size,detail\n", 52) == 0);
+        const char *start = strstr(log, ",P,request_received,tester,,0,START\n"); /* the release that led to it */
+        CHECK_MSG(start != NULL, "%s: the START is not in the log", cases[c].how);
+        const char *end = crash_records_in_order(start ? start : log, strcmp(cases[c].how, "many") == 0 ? 3000 : 5);
+        char want[128];
+        snprintf(want, sizeof want, ",P,module_crashed,,,0,signal %d (%s) records=%d", cases[c].sig, cases[c].name, record_lines(log));
+        const char *last = last_line(log);
+        CHECK_MSG(strstr(last, want) != NULL, "%s: last record '%s', expected '...%s'", cases[c].how, last, want);
+        /* the crash record is the line after the last record logged (inlog: the record being logged is not written) */
+        const char *nl = end ? strchr(end, '\n') : NULL;
+        const char *crashed = end ? strstr(end, ",P,module_crashed,") : NULL;
+        CHECK_MSG(nl && nl[1] == '\0' && crashed && crashed < nl, "%s: not one crash record right after the last crash_test record", cases[c].how);
+        if (c == 0) { /* the mark says the log is whole */
+            char mark[1024];
+            unsigned long long word = 7;
+            if (h_find_log_file("P_", ".csv.mark", mark, sizeof mark)) {
+                int fd = open(mark, O_RDONLY | O_CLOEXEC);
+                CHECK(fd >= 0 && pread(fd, &word, sizeof word, 0) == (ssize_t)sizeof word);
+                if (fd >= 0) close(fd);
+            }
+            CHECK_MSG(word == 0, "the mark word after the crash: %llu", word);
+        }
+        free(log);
+        h_teardown();
+    }
+
+    /* within the log's bound: whole records, log-capped, the last log-capped record; never larger */
+    REQUIRE(h_setup("logcrashcap") == 0);
+    setenv("CONTRACT_LOG_MAX_BYTES", "8192", 1);
+    int status;
+    char *log = crash_run("many", &status);
+    unsetenv("CONTRACT_LOG_MAX_BYTES");
+    CHECK_MSG(status == 128 + SIGSEGV, "the capped module ended with %d", status);
+    REQUIRE(log);
+    size_t len = strlen(log);
+    CHECK_MSG(len <= 8192, "the log holds %zu bytes, above its 8192-byte bound", len);
+    CHECK(strstr(log, ",P,log-capped,,,8192,log reached its 8192-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written\n"));
+    CHECK_MSG(strstr(last_line(log), ",P,log-capped,,,8192,") && strstr(last_line(log), " records not written after the log reached its 8192-byte bound"),
+              "last record: '%s'", last_line(log));
+    CHECK(len > 0 && log[len - 1] == '\n');
+    free(log);
+    h_teardown();
+}

@@ -89,6 +89,10 @@ void test_launcher_crash_cleanup(void)
     char *logs = h_read_logs("P_");
     CHECK(logs && strstr(logs, ",P,module_exit,"));
     free(logs);
+    /* the crashed module's log says so last (docs/runtime-api.md "CSV log") */
+    logs = h_read_logs("C2_");
+    CHECK(logs && strstr(logs, ",C2,module_started,") && strstr(logs, ",C2,module_crashed,,,0,signal 6 (SIGABRT) records="));
+    free(logs);
     h_teardown();
 }
 

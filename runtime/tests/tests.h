@@ -39,6 +39,8 @@ void test_csv_log_cap(void);
 void test_csv_log_mark(void);
 void test_csv_log_mark_delay(void);
 void test_csv_log_flush_boundary(void);
+void test_csv_log_crash(void);
+void test_csv_log_crash_writer_busy(void);
 void test_csv_log_writer_thread(void);
 void test_csv_log_fork_child(void);
 
@@ -79,6 +81,8 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_mark", test_csv_log_mark },
     { "csv_log_mark_delay", test_csv_log_mark_delay },
     { "csv_log_flush_boundary", test_csv_log_flush_boundary },
+    { "csv_log_crash", test_csv_log_crash },
+    { "csv_log_crash_writer_busy", test_csv_log_crash_writer_busy },
     { "csv_log_writer_thread", test_csv_log_writer_thread },
     { "csv_log_fork_child", test_csv_log_fork_child },
     { "ext_types_round_trip", test_ext_types_round_trip },

@@ -8,6 +8,12 @@
  * 4 report inputs each run, 8 read inputs with GetLatestData, 16 each state after the first
  * sleeps 100 ms (a module busy in its own code reads its mailbox once per state). TestParam.run_ms: how long a run lasts (interruptible by STOP).
  * $TMOD_CRASH_NAME equal to the module name: abort() 200 ms after start-up.
+ * $TMOD_CRASH_LOG equal to `NAME:how`: at its first START the module named logs 5 `crash_test`
+ * records (detail `before crash 1`..`5`) and crashes at once (well inside the log's flush delay):
+ * how = `segv` (a store through a null pointer), `abort`, `fpe` (integer division by zero),
+ * `stack` (endless recursion: a stack overflow), `inlog` (a sixth record whose detail is
+ * unreadable memory: the crash is inside ContractLog), `many` (3000 records, more than the log's
+ * two buffers hold, then the segv).
  * $TMOD_END equal to `NAME:how`: what the module named does instead of a clean end, `exit0` 200 ms
  * after start-up (its own code ends it mid-run), and at its KILL (the run's stop) `crash` (abort(),
  * a crash in its exit code), `exit3` (exit status 3), `hang` (never ends: the launcher must
@@ -18,6 +24,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/mman.h>
 #include <unistd.h>
 #include "tmod.h"
 
@@ -60,10 +67,61 @@ static const char *end_how(void)
     return e && strncmp(e, MODULE_NAME, n) == 0 && e[n] == ':' ? e + n + 1 : "";
 }
 
+/* What $TMOD_CRASH_LOG asks of this module ("" when nothing). */
+static const char *crash_how(void)
+{
+    const char *e = getenv("TMOD_CRASH_LOG");
+    size_t n = strlen(MODULE_NAME);
+    return e && strncmp(e, MODULE_NAME, n) == 0 && e[n] == ':' ? e + n + 1 : "";
+}
+
+static volatile int recursing = 1;
+
+static int deep(int n)
+{
+    volatile char pad[4096];
+    pad[0] = (char)n;
+    if (!recursing) return pad[0];
+    return deep(n + 1) + pad[0];
+}
+
+/* The faults themselves (not UBSan's to report in the sanitizer build: the crash is the point). */
+__attribute__((no_sanitize("undefined"))) static void null_store(void)
+{
+    volatile int *volatile p = 0;
+    *p = 1;
+}
+
+__attribute__((no_sanitize("undefined"))) static void divide_by_zero(void)
+{
+    volatile int zero = 0, seven = 7; /* (1 / x is no division for gcc) */
+    volatile int q = seven / zero;
+    (void)q;
+}
+
+static void crash_after_logging(const char *how)
+{
+    int n = strcmp(how, "many") == 0 ? 3000 : 5;
+    char detail[40];
+    for (int i = 1; i <= n; i++) {
+        snprintf(detail, sizeof detail, "before crash %d", i);
+        ContractLog("crash_test", "", -1, 0, detail);
+    }
+    if (strcmp(how, "abort") == 0) abort();
+    if (strcmp(how, "fpe") == 0) divide_by_zero();
+    if (strcmp(how, "stack") == 0) recursing = deep(0);
+    if (strcmp(how, "inlog") == 0) {
+        char *page = mmap(NULL, 4096, PROT_NONE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+        if (page != MAP_FAILED) ContractLog("crash_test", "", -1, 0, page);
+    }
+    null_store();
+}
+
 static void exec_state(int *state)
 {
     if (*state == 0) {
         if (param.flags & 2) abort();
+        if (*crash_how()) crash_after_logging(crash_how());
         long vals[64];
         int n = 0;
         if (param.flags & 8) { /* newest only */

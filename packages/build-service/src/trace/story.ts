@@ -53,6 +53,11 @@ export function stuckSaysGone(detail: string): boolean {
     return STUCK_GONE.test(detail);
 }
 
+/** `crashed: signal 11 (SIGSEGV)` for a `module_crashed` record's detail (its record count left to the log's checks). */
+function crashText(detail: string): string {
+    return `crashed: ${detail.replace(/ records=\d+$/, '')}`;
+}
+
 /** A cycle whose first release ORD sent this long after its tick or more is said released late. */
 export const LATE_RELEASE_NS = 1_000_000;
 
@@ -279,6 +284,11 @@ export class StoryTeller {
         if (k.kind === 'module_exit') {
             if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(k.detail.slice(0, 120)));
             return `${at(k)} exited (${k.detail})`;
+        }
+        if (k.kind === 'module_crashed') {
+            const crash = crashText(k.detail);
+            if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(crash.slice(0, 120)));
+            return `${at(k)} ${crash}`;
         }
         if (k.kind === 'data_dropped') {
             const text = this.firstDropText(k);

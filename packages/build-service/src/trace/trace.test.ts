@@ -394,6 +394,15 @@ describe('reading a log', () => {
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (conveyor)',
             '2503000000,w,ORD,scheduler,,,0,stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
         ].join('\n') }]));
+        // a crash the runtime's signal handler wrote (module_crashed): told as the crash, and a later stuck report says it
+        const segv = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+            '1500000000,w,SPC,module_crashed,,,0,signal 11 (SIGSEGV) records=42',
+            '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+        ].join('\n') }]));
+        expect(segv.slice(0, 2)).toEqual([
+            '+0.000000s SPC  crashed: signal 11 (SIGSEGV)',
+            '+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods: it had exited before (crashed: signal 11 (SIGSEGV)) (conveyor)',
+        ]);
         // started again after its exit: a later stuck report gets ORD's advice again
         const again = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
             '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',

@@ -164,17 +164,20 @@ const UNREADABLE_NAMED = 5;
 const MODULES_FOLLOWED = STORY_FOLLOWED;
 
 /**
- * Which modules' logs end without their `module_exit` record. A module that crashed (or was
- * killed) writes none: the runtime logs `module_exit` as it returns (docs/runtime-api.md "Trace
- * records"), and a crash can lose the records still buffered, down to an empty log. And whose
- * log does not hold as many records as its exit record counts (`records=K`): a record removed,
- * cut or repeated after the run.
+ * Which modules' logs end without their `module_exit` or `module_crashed` record. The runtime logs
+ * `module_exit` as the module returns and `module_crashed` when its code crashes
+ * (docs/runtime-api.md "Trace records"); a module that was killed (or an older runtime's that
+ * crashed) writes neither, and may have lost the records still buffered, down to an empty log. And
+ * whose log does not hold as many records as that last record counts (`records=K`): a record
+ * removed, cut or repeated after the run, or lost at the crash.
  */
 export class ModuleEnds {
     private t0: bigint | undefined;
     private readonly last = new Map<string, bigint>();
     private readonly started = new Set<string>();
     private readonly exited = new Set<string>();
+    /** Modules whose last record is `module_crashed` (its count is a crash record's). */
+    private readonly crashed = new Set<string>();
     /** Records read per module (an unreadable line counts for the module its log is named for). */
     private readonly read = new Map<string, number>();
     /** What each module's exit record counts. */
@@ -229,8 +232,10 @@ export class ModuleEnds {
             this.capped.add(m);
             if (base.peer === 'build-service') this.cutByService.add(m);
         }
-        if (r.kind === 'module_exit') {
+        if (r.kind === 'module_exit' || r.kind === 'module_crashed') {
             this.exited.add(m);
+            if (r.kind === 'module_crashed') this.crashed.add(m);
+            else this.crashed.delete(m);
             const k = (r as KnownRecord).fields['records'];
             if (typeof k === 'number') this.counted.set(m, k);
         }
@@ -272,8 +277,9 @@ export class ModuleEnds {
             }
             const counted = this.counted.get(m), read = this.read.get(m) ?? 0;
             if (counted !== undefined && counted !== read && !this.capped.has(m)) {
-                const gap = counted > read ? `${counted - read} missing (removed or cut after the run?)` : `${read - counted} more than it wrote (repeated or added after the run?)`;
-                out.push(`${''.padStart(10)} ${m.padEnd(4)} not whole: its log holds ${read} record(s), its exit record counts ${counted}: ${gap}`);
+                const crashed = this.crashed.has(m);
+                const gap = counted > read ? `${counted - read} missing (${crashed ? 'lost at the crash, or removed or cut after the run?' : 'removed or cut after the run?'})` : `${read - counted} more than it wrote (repeated or added after the run?)`;
+                out.push(`${''.padStart(10)} ${m.padEnd(4)} not whole: its log holds ${read} record(s), its ${crashed ? 'crash' : 'exit'} record counts ${counted}: ${gap}`);
             }
         }
         return [...out, ...past];

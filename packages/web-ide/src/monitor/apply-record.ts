@@ -20,7 +20,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'data_posted', 'data_dropped', 'event_received',
+  'module_crashed', 'data_posted', 'data_dropped', 'event_received',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -285,7 +285,8 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       foldRun(s, k.module, k.kind === 'run_started', t);
       return;
     case 'module_started':
-    case 'module_exit': {
+    case 'module_exit':
+    case 'module_crashed': { // the runtime's last record of a module that crashed: its end, as an exit
       const m = moduleState(s, k.module, t);
       if (!m) return;
       m.alive = k.kind === 'module_started';

@@ -422,3 +422,21 @@ describe('a supervisor\'s actions counted once', () => {
     expect([...sup.heldModules.keys()]).toEqual(['MAA']);
   });
 });
+
+describe('a module that crashed', () => {
+  it('its module_crashed record ends it as an exit does: not alive, not running; ORD\'s crash ends the periodic schemas', () => {
+    const s = emptyState();
+    const lines = [
+      '1000,w,MSC,module_started,,,0,pid=7 priority=40',
+      '1000,w,ORD,module_started,,,0,pid=8 priority=90',
+      '1100,w,ORD,scheduler,,,0,activate loop (activation #1 from SUP)',
+      '1200,w,MSC,run_started,ORD,,0,activation=1',
+      '1300,w,MSC,module_crashed,,,0,signal 11 (SIGSEGV) records=3',
+    ];
+    lines.forEach((l, i) => applyRecord(s, parseRecordLine('MSC.csv', i + 2, l), 1000 + i, 1000));
+    expect(s.modules.get('MSC')).toMatchObject({ alive: false, running: false });
+    applyRecord(s, parseRecordLine('ORD.csv', 9, '1400,w,ORD,module_crashed,,,0,signal 6 (SIGABRT) records=9'), 1400, 1000);
+    expect(s.modules.get('ORD')!.alive).toBe(false);
+    expect([...s.schemas.values()].some((sc) => sc.active)).toBe(false);
+  });
+});

@@ -374,7 +374,7 @@ export class MonitorModel implements MonitorView {
   /** Folds a parsed record into `live` (and the notable ones into marks). */
   private fold(t: Ns, r: TraceRecord): void {
     if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
-    if (r.kind === 'module_exit' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
+    if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
@@ -424,7 +424,7 @@ export class MonitorModel implements MonitorView {
 
   /** Which modules are no longer running: a stuck record saying so, an exit; started again, or finished at last, it runs. */
   private followGone(k: KnownRecord): void {
-    if (k.kind === 'module_exit') {
+    if (k.kind === 'module_exit' || k.kind === 'module_crashed') {
       if (this.gone.size < MAX_GONE) this.gone.add(k.module);
       return;
     }
