@@ -96,6 +96,16 @@ void test_launcher_crash_cleanup(void)
     h_teardown();
 }
 
+/* One launcher run with $TMOD_END = `end` (tmod.c): its exit status in *code (-1 when it did not
+ * end within `timeout_ms`), its output (free it). */
+static char *launch_ending(char **argv, const char *out, const char *end, int timeout_ms, int *code)
+{
+    setenv("TMOD_END", end, 1);
+    pid_t launcher = start_launcher(argv, out);
+    *code = launcher > 0 ? h_wait_exit(launcher, timeout_ms) : -1;
+    return h_read_file(out);
+}
+
 /* How modules end is told as it is: one whose own code ends it mid-run (exit(0)) is said to end
  * before the run's end; one that crashes or exits non-zero while the run stops (its exit code) is a
  * crash like any other (exit 1, FAILED); one that does not end on its KILL is terminated, said,
@@ -110,50 +120,36 @@ void test_launcher_module_ends(void)
     snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
     snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
     char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1", exe_p, exe_c1, exe_c2, NULL };
-    setenv("TMOD_END", "P:exit0", 1);
-    pid_t launcher = start_launcher(argv, out);
-    REQUIRE(launcher > 0);
-    CHECK(h_wait_exit(launcher, 8000) == 0);
-    char *text = h_read_file(out);
+    int code = -1;
+    char *text = launch_ending(argv, out, "P:exit0", 8000, &code);
+    CHECK(code == 0);
     CHECK(text && strstr(text, "module P (pid") && strstr(text, "exited with status 0 before the run's end"));
     CHECK(text && strstr(text, "all modules stopped cleanly"));
     free(text);
 
-    setenv("TMOD_END", "C1:crash", 1);
-    launcher = start_launcher(argv, out);
-    REQUIRE(launcher > 0);
-    CHECK(h_wait_exit(launcher, 8000) == 1);
-    text = h_read_file(out);
+    text = launch_ending(argv, out, "C1:crash", 8000, &code);
+    CHECK(code == 1);
     CHECK(text && strstr(text, "died by signal 6 (Aborted) while the run stopped"));
     CHECK(text && strstr(text, "FAILED: module C1 crashed"));
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "FAILED: module P"));
     free(text);
 
-    setenv("TMOD_END", "C1:exit3", 1);
-    launcher = start_launcher(argv, out);
-    REQUIRE(launcher > 0);
-    CHECK(h_wait_exit(launcher, 8000) == 1);
-    text = h_read_file(out);
+    text = launch_ending(argv, out, "C1:exit3", 8000, &code);
+    CHECK(code == 1);
     CHECK(text && strstr(text, "module C1 (pid") && strstr(text, "exited with status 3 while the run stopped"));
     CHECK(text && strstr(text, "FAILED: module C1 crashed"));
     free(text);
 
     /* a process left behind in a session of its own holds the output: the launcher does not wait for it */
-    setenv("TMOD_END", "C1:daemon", 1);
     RTIME t0 = GetTime();
-    launcher = start_launcher(argv, out);
-    REQUIRE(launcher > 0);
-    CHECK(h_wait_exit(launcher, 7000) == 0);
+    text = launch_ending(argv, out, "C1:daemon", 7000, &code);
+    CHECK(code == 0);
     CHECK(GetTime() - t0 < 6000000000LL);
-    text = h_read_file(out);
     CHECK(text && strstr(text, "module C1: a process it started still holds its output after it ended"));
     free(text);
 
-    setenv("TMOD_END", "C2:hang", 1);
-    launcher = start_launcher(argv, out);
-    REQUIRE(launcher > 0);
-    CHECK(h_wait_exit(launcher, 10000) == 0);
-    text = h_read_file(out);
+    text = launch_ending(argv, out, "C2:hang", 10000, &code);
+    CHECK(code == 0);
     CHECK(text && strstr(text, "module C2 did not end on its KILL request within 2 s: terminating it (SIGTERM)"));
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "while the run stopped"));
     free(text);
