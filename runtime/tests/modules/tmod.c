@@ -17,7 +17,8 @@
  * $TMOD_END equal to `NAME:how`: what the module named does instead of a clean end, `exit0` 200 ms
  * after start-up (its own code ends it mid-run), and at its KILL (the run's stop) `crash` (abort(),
  * a crash in its exit code), `exit3` (exit status 3), `hang` (never ends: the launcher must
- * terminate it) or `daemon` (leaves a process in a session of its own holding its output 8 s). */
+ * terminate it); `daemon`: at start-up, leaves a process in a session of its own holding its
+ * output 8 s (forked at the end, it could be killed with the module's group before its setsid). */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <signal.h>
@@ -147,6 +148,8 @@ int ModuleMain(int argc, const char *argv[])
     const char *crash = getenv("TMOD_CRASH_NAME");
     if (crash && strcmp(crash, MODULE_NAME) == 0) { usleep(200000); abort(); }
     if (strcmp(end_how(), "exit0") == 0) { usleep(200000); exit(0); }
+    /* in a session of its own from the start: the launcher's kill of the module's group at the stop cannot reach it */
+    if (strcmp(end_how(), "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); }
     printf("%s ready\n", MODULE_NAME);
     RequestMessage receivedMessage, registered;
     int end = 0, state = 0, interact, cycleRunning = 0;
@@ -270,6 +273,5 @@ int ModuleMain(int argc, const char *argv[])
     if (strcmp(how, "crash") == 0) abort();
     if (strcmp(how, "exit3") == 0) exit(3);
     if (strcmp(how, "hang") == 0) for (;;) pause();
-    if (strcmp(how, "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); } /* holds the output pipe 8 s */
     return 0;
 }
