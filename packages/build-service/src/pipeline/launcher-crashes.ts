@@ -28,12 +28,18 @@ export class LauncherCrashes {
     if (failed && !this.crashed.includes(failed[1]!) && this.crashed.length < 1024) this.crashed.push(failed[1]!);
   }
 
+  /** The modules that crashed, in the order the launcher named them, each with how it ended (undefined: no exit line read). */
+  failures(): { module: string; how: string | undefined }[] {
+    return this.crashed.map((module) => ({ module, how: this.how.get(module) }));
+  }
+
   /** `module MSC crashed (died by signal 11 (...))`, `2 modules crashed: MSC (...), MAB (...)`; undefined when none did. */
   summary(): string | undefined {
-    if (!this.crashed.length) return undefined;
-    const one = (m: string) => `${m} (${this.how.get(m) ?? 'no exit line'})`;
-    if (this.crashed.length === 1) return `module ${this.crashed[0]!} crashed (${this.how.get(this.crashed[0]!) ?? 'no exit line'})`;
-    const named = this.crashed.slice(0, NAMED).map(one).join(', ');
+    const failures = this.failures();
+    if (!failures.length) return undefined;
+    const one = (f: { module: string; how: string | undefined }) => `${f.module} (${f.how ?? 'no exit line'})`;
+    if (failures.length === 1) return `module ${failures[0]!.module} crashed (${failures[0]!.how ?? 'no exit line'})`;
+    const named = failures.slice(0, NAMED).map(one).join(', ');
     const more = this.crashed.length > NAMED ? ` and ${this.crashed.length - NAMED} more` : '';
     return `${this.crashed.length} modules crashed: ${named}${more}`;
   }

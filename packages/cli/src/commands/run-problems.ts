@@ -2,6 +2,7 @@
  * What went wrong in a `contract run`, as told to the user: the modules the launcher saw crash, and
  * the run's problems with ORD's `*stateindex` advice left out for a module that crashed.
  */
+import { LauncherCrashes } from '@contract-studio/build-service';
 import type { JobOutcome } from '../job-runner.js';
 
 export interface ModuleFailure {
@@ -9,18 +10,14 @@ export interface ModuleFailure {
     how: string;
 }
 
-/** Module crashes reported by the launcher (`FAILED: module X crashed`, with the preceding exit/signal line). */
+/**
+ * Module crashes reported by the launcher (`FAILED: module X crashed`, with the preceding exit/signal
+ * line), read by the build service's reader of them (the failed run's message names the same).
+ */
 export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
-    const how = new Map<string, string>();
-    const failed: ModuleFailure[] = [];
-    for (const { source, line } of lines) {
-        if (source !== 'launcher') continue;
-        const exit = /^module (\S+) \(pid \d+\) (exited with status \d+(?: while the run stopped)?|died by signal .*)$/.exec(line);
-        if (exit) how.set(exit[1]!, exit[2]!);
-        const crash = /^FAILED: module (\S+) crashed/.exec(line);
-        if (crash) failed.push({ module: crash[1]!, how: how.get(crash[1]!) ?? 'crashed' });
-    }
-    return failed;
+    const crashes = new LauncherCrashes();
+    for (const { source, line } of lines) if (source === 'launcher') crashes.line(line);
+    return crashes.failures().map(({ module, how }) => ({ module, how: how ?? 'crashed' }));
 }
 
 /** ORD's advice on a module that does not finish its release, which is wrong for one that crashed. */
