@@ -11,7 +11,7 @@
  *     it was whole — `mark()`: the module's own word, 0 = nothing buffered, else the mono_ns of
  *     its oldest buffered record, read before the file, so exact: a module that holds its records
  *     for long holds the others back, it is not overtaken; a log whose module wrote `module_exit`
- *     no longer counts; never past the time the folder was listed, for the logs of modules started
+ *     or `module_crashed` (its last record: endsItsLog) no longer counts; never past the time the folder was listed, for the logs of modules started
  *     since), or
  *   - it is `windowMs` old — `markedWindowMs` when every log has its mark: then only a module
  *     that holds its records that long (or died holding them) is overtaken — (now - its mono_ns,
@@ -30,6 +30,15 @@
  */
 import type { TraceLine } from './job-events.js';
 
+/**
+ * Whether a record line (or a chunk of them) holds a module's last record: `module_exit`, or the
+ * `module_crashed` record its crash handler writes before the process dies (runtime/src/csvlog.c);
+ * a Buffer is searched as it is (no string made).
+ */
+export function endsItsLog(text: string | Buffer): boolean {
+    return text.includes(',module_exit,') || text.includes(',module_crashed,');
+}
+
 interface Held {
   key: bigint;
   readAt: number;
@@ -40,7 +49,7 @@ interface Source {
   queue: Held[];
   /** Key of the last line read (-1 while none). */
   lastKey: bigint;
-  /** Its module wrote module_exit, or the log is no longer read: it does not hold the watermark. */
+  /** Its module wrote module_exit or module_crashed, or the log is no longer read: it does not hold the watermark. */
   closed: boolean;
   /** Time up to which the log is known whole from its flush mark (-1 while none was read). */
   whole: bigint;
@@ -127,14 +136,14 @@ export class TraceOrder {
       if (mono > s.lastKey) s.lastKey = mono;
       s.queue.push({ key: s.lastKey, readAt: now, line });
       this.held++;
-      if (line.text.includes(',module_exit,')) s.closed = true;
+      if (endsItsLog(line.text)) s.closed = true;
     }
   }
 
   /**
    * Lines of one file read and not added (nobody would receive them): the file is known read up to
    * `lastMono` (the mono_ns of the last of them, -1 when unreadable); `exited`: its module wrote
-   * module_exit among them.
+   * module_exit or module_crashed among them.
    */
   skipped(file: string, lastMono: bigint, exited: boolean): void {
     this.track(file);

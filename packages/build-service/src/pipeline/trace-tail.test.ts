@@ -203,6 +203,19 @@ describe('TraceOrder', () => {
     expect(o.release(2, { all: true }).map((l) => l.text)).toEqual([rec(50, 'MAB', 'module_exit', 'status=0')]);
     expect(o.held).toBe(0);
   });
+
+  test('a module_crashed record (a crashed module\'s last) frees the watermark as module_exit does', () => {
+    const o = new TraceOrder(1000);
+    o.track('A.csv');
+    o.track('B.csv');
+    o.add('A.csv', [line('A.csv', 10), line('A.csv', 40)], 0);
+    o.add('B.csv', [line('B.csv', 20)], 0);
+    // B's log is known whole up to 20 only: A's 40 waits for it
+    expect(o.release(1).map((l) => l.text)).toEqual([rec(10), rec(20)]);
+    o.add('B.csv', [{ file: 'B.csv', line: 0, text: rec(30, 'MAB', 'module_crashed', 'signal 11 (SIGSEGV) records=2') }], 1);
+    expect(o.release(2).map((l) => l.text)).toEqual([rec(30, 'MAB', 'module_crashed', 'signal 11 (SIGSEGV) records=2'), rec(40)]);
+    expect(o.held).toBe(0);
+  });
 });
 
 describe('TraceTail on a folder written while it is read', () => {

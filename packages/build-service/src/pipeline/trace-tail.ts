@@ -24,7 +24,7 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { ARTIFACT_BOUNDS, LOG_DIR, SAFE_NAME } from './artifacts.js';
 import type { TraceLine } from './job-events.js';
 import { TraceLineSplitter } from './trace-lines.js';
-import { monoOf, TraceOrder } from './trace-order.js';
+import { endsItsLog, monoOf, TraceOrder } from './trace-order.js';
 import { openDirNoFollow, openedDirPath, openRegularFileIn } from '../util/safe-fs.js';
 
 export interface TraceTailBounds {
@@ -536,7 +536,7 @@ export class TraceTail {
         const lineNo = f.splitter.nextLine;
         const last = f.splitter.count(chunk);
         this.counted += f.splitter.nextLine - lineNo;
-        if (last >= 0) this.order.skipped(f.name, monoOf(chunk.toString('latin1', last, Math.min(chunk.length, last + 22))), chunk.includes(',module_exit,'));
+        if (last >= 0) this.order.skipped(f.name, monoOf(chunk.toString('latin1', last, Math.min(chunk.length, last + 22))), endsItsLog(chunk));
       } else this.order.add(f.name, f.splitter.push(chunk), now);
     }
     const more = f.splitter.offset < size;
