@@ -27,7 +27,7 @@ function isDigit(code: number): boolean {
 }
 
 /** End of the run of digits starting at i (i when there is none). */
-function digitsEnd(s: string, i: number): number {
+export function digitsEnd(s: string, i: number): number {
   let j = i;
   while (j < s.length && isDigit(s.charCodeAt(j))) j++;
   return j;

@@ -1,7 +1,7 @@
 /**
  * ld's errors of a failed link, read as the build reads them: real gcc and ld output (a region
  * calling a function nobody defines, a function defined in two units) placed at the user's file,
- * line and protected region, each once; hostile lines never throw and stay bounded.
+ * line and protected region, each once (LinkErrorReader); hostile lines never throw and stay bounded.
  */
 import { spawnSync } from 'node:child_process';
 import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
@@ -11,7 +11,8 @@ import { afterAll, describe, expect, test } from 'vitest';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { findProtectedRegions } from './protected-regions.js';
 import { BuildOutputRouter } from './output-router.js';
-import { parseLinkerLine } from './ld-text.js';
+import { renderDiagnostic } from './gcc-diagnostics.js';
+import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'ld-text-'));
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -111,5 +112,52 @@ describe('ld\'s errors of a failed link', () => {
     }
     // a line number too long to be ld's is no line
     expect(parseLinkerLine("ld: /work/a.c:99999999999: undefined reference to `y'", ctx)).toMatchObject({ kind: 'diagnostic', diagnostic: { line: null, file: null } });
+  });
+});
+
+/** A function calling `calibrate_arm` twice on one line, another calling it once. */
+const CALLS = [
+  'extern int calibrate_arm(int);', // 1
+  'int f(void) {', // 2
+  '  return calibrate_arm(3) + calibrate_arm(4);', // 3
+  '}', // 4
+  'int g(void) { return calibrate_arm(1); }', // 5
+  'int main(void) { return f() + g(); }', // 6
+  '',
+].join('\n');
+
+describe('LinkErrorReader', () => {
+  const ctx = { cwd: join(dir, 'MAA_mod'), root: dir, regions: new Map() };
+  /** The errors told of `lines`, each as `line: message`. */
+  function told(reader: LinkErrorReader, lines: string[]): string[] {
+    return lines.flatMap((l) => {
+      const d = reader.read(parseLinkerLine(l, ctx));
+      return d && reader.first(renderDiagnostic(d)) ? [`${d.line}: ${d.message}`] : [];
+    });
+  }
+
+  test('each error in the function of the `in function` line before it; a reference ld repeats for every use, told once', () => {
+    const output = link({ 'main.c': CALLS });
+    // ld: `in function f`, the reference at line 3 twice, `in function g`, the one at line 5
+    expect(output.match(/undefined reference to `calibrate_arm'/g)).toHaveLength(3);
+    expect(told(new LinkErrorReader(), output.split('\n').filter(Boolean))).toEqual([
+      "3: undefined reference to `calibrate_arm' (in function f)",
+      "5: undefined reference to `calibrate_arm' (in function g)",
+    ]);
+  });
+
+  test('a line that is not ld\'s forgets the function', () => {
+    const [fn, ref] = link({ 'main.c': CALLS }).split('\n');
+    expect(told(new LinkErrorReader(), [fn!, ref!])).toEqual(["3: undefined reference to `calibrate_arm' (in function f)"]);
+    expect(told(new LinkErrorReader(), [fn!, 'make[1]: *** [Makefile:23: MAA] Error 1', ref!])).toEqual(["3: undefined reference to `calibrate_arm'"]);
+  });
+
+  test('no more errors remembered than its bound: the ones after it are told every time', () => {
+    const reader = new LinkErrorReader(1);
+    expect([reader.first('a'), reader.first('a'), reader.first('b'), reader.first('b'), reader.first('a')]).toEqual([true, false, true, true, false]);
+    // by default, a job's diagnostics
+    const job = new LinkErrorReader();
+    for (let i = 0; i < SERVICE_BOUNDS.diagnosticsPerJob; i++) expect(job.first(`e${i}`)).toBe(true);
+    expect([job.first('e0'), job.first('more'), job.first('more')]).toEqual([false, true, true]);
   });
 });

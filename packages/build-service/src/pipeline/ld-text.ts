@@ -17,7 +17,7 @@
  */
 import { SERVICE_BOUNDS } from '../limits.js';
 import { located, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
-import { cutText } from './gcc-text.js';
+import { cutText, digitsEnd } from './gcc-text.js';
 
 /** What one line of ld's output says. */
 export type LinkerLine =
@@ -54,11 +54,7 @@ export function place(loc: string): { file: string; line: number | null } | null
   if (inner !== -1) file = file.slice(inner + 1);
   if (!file) return null;
   if (tail.startsWith('(') && tail.endsWith(')')) return { file, line: null };
-  if (!tail || tail.length > MAX_DIGITS) return null;
-  for (let i = 0; i < tail.length; i++) {
-    const code = tail.charCodeAt(i);
-    if (code < 0x30 || code > 0x39) return null;
-  }
+  if (!tail || tail.length > MAX_DIGITS || digitsEnd(tail, 0) !== tail.length) return null;
   return { file, line: Number(tail) };
 }
 
@@ -111,4 +107,33 @@ export function parseLinkerLine(line: string, ctx: DiagnosticContext): LinkerLin
 export function inFunction(d: GccDiagnostic, fn: string | undefined): GccDiagnostic {
   if (!fn || !d.message.startsWith('undefined reference to ')) return d;
   return { ...d, message: `${d.message} (in function ${fn})` };
+}
+
+/**
+ * Reads a link's errors line after line, as the build's router and the simulator's link do: ld
+ * names the function of the next errors once, on its `in function` line (forgotten at a line that
+ * is not ld's), and tells a reference again for every use of it, so each error is told once (the
+ * first `max` remembered: hostile output keeps no more).
+ */
+export class LinkErrorReader {
+  /** The function ld said the next errors are in. */
+  private fn: string | undefined;
+  private readonly told = new Set<string>();
+
+  constructor(private readonly max = SERVICE_BOUNDS.diagnosticsPerJob) {}
+
+  /** The error of one line (parseLinkerLine's reading; null: not ld's) with the function it is in; null for other lines. */
+  read(line: LinkerLine | null): GccDiagnostic | null {
+    if (!line) this.fn = undefined;
+    else if (line.kind === 'function') this.fn = line.name;
+    else return inFunction(line.diagnostic, this.fn);
+    return null;
+  }
+
+  /** Whether the error `key` (its rendering as told) is new: false when it was told before. */
+  first(key: string): boolean {
+    if (this.told.has(key)) return false;
+    if (this.told.size < this.max) this.told.add(key);
+    return true;
+  }
 }

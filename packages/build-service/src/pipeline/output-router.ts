@@ -9,7 +9,7 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic } from './gcc-diagnostics.js';
 import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
-import { inFunction, parseLinkerLine } from './ld-text.js';
+import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
 import { parseAssemblerLine } from './as-text.js';
 import type { ProtectedRegion } from './protected-regions.js';
 
@@ -30,10 +30,8 @@ export interface BuildRouterOptions {
 
 export class BuildOutputRouter {
   private readonly dirs: string[];
-  /** The function ld said the next errors are in (its `in function` line). */
-  private linkFunction: string | undefined;
-  /** The assembler's and ld's errors told so far: each says one again for every use of what is wrong. */
-  private readonly linkErrors = new Set<string>();
+  /** The assembler's and ld's errors: each says one again for every use of what is wrong. */
+  private readonly linkErrors = new LinkErrorReader();
 
   constructor(private readonly options: BuildRouterOptions) {
     this.dirs = [options.startDir];
@@ -63,18 +61,8 @@ export class BuildOutputRouter {
     // the assembler's (as-text.ts) and the linker's (ld-text.ts) errors at the user's files, each once
     const asm = parseAssemblerLine(line, ctx);
     const ld = asm ? { kind: 'diagnostic' as const, diagnostic: asm } : parseLinkerLine(line, ctx);
-    if (!ld) {
-      this.linkFunction = undefined;
-      return { lines: [{ source: 'build', line }], diagnostics: [] };
-    }
-    if (ld.kind === 'function') {
-      this.linkFunction = ld.name;
-      return { lines: [{ source: 'build', line }], diagnostics: [] };
-    }
-    const d = inFunction(ld.diagnostic, this.linkFunction);
-    const key = renderDiagnostic(d);
-    if (this.linkErrors.has(key)) return { lines: [{ source: 'build', line }], diagnostics: [] };
-    if (this.linkErrors.size < SERVICE_BOUNDS.diagnosticsPerJob) this.linkErrors.add(key);
+    const d = this.linkErrors.read(ld);
+    if (!d || !this.linkErrors.first(renderDiagnostic(d))) return { lines: [{ source: 'build', line }], diagnostics: [] };
     return { lines: [{ source: 'build', line }], diagnostics: [d] };
   }
 }

@@ -16,7 +16,7 @@
  */
 import { ARCHITECTURE_DIR } from '@contract-studio/conventions';
 import {
-    cutText, findProtectedRegions, inFunction, parseGccTextLine, parseLinkerLine, regionAt, renderDiagnostic, type DiagnosticContext, type GccDiagnostic, type ProtectedRegion,
+    cutText, findProtectedRegions, LinkErrorReader, parseGccTextLine, parseLinkerLine, regionAt, renderDiagnostic, type DiagnosticContext, type GccDiagnostic, type ProtectedRegion,
 } from '@contract-studio/build-service/gcc';
 import { readUserFile } from './user-file.js';
 import type { SimSources } from './tables.js';
@@ -166,10 +166,9 @@ export function compileDiagnostics(outputs: readonly string[], work: string, src
 export function linkDiagnostics(output: string, work: string, src: SimSources): CompileFailure {
     const ctx: DiagnosticContext = { cwd: work, root: work, regions: new Map() };
     const placer = new FilePlacer(src);
-    const seen = new Set<string>();
+    const reader = new LinkErrorReader();
     const diagnostics: GccDiagnostic[] = [];
     const other: string[] = [];
-    let fn: string | undefined;
     let left = 0;
     const told = (d: GccDiagnostic): GccDiagnostic => {
         if (d.file !== null && !d.file.startsWith('/') && placer.file(d.file)) return placer.place(d);
@@ -180,18 +179,11 @@ export function linkDiagnostics(output: string, work: string, src: SimSources): 
     for (const line of output.split('\n')) {
         if (!line.trim() || line.startsWith('collect2: ')) continue;
         const ld = parseLinkerLine(line, ctx);
-        if (!ld) {
-            if (other.length < MAX_OTHER_LINES) other.push(cutText(withoutFolder(line, work), MAX_OTHER_LINE_CHARS));
-            continue;
-        }
-        if (ld.kind === 'function') {
-            fn = ld.name;
-            continue;
-        }
-        const d = told(inFunction(ld.diagnostic, fn));
-        const key = JSON.stringify(d);
-        if (seen.has(key)) continue; // ld tells a reference again for every use in the function
-        seen.add(key);
+        const error = reader.read(ld);
+        if (!ld && other.length < MAX_OTHER_LINES) other.push(cutText(withoutFolder(line, work), MAX_OTHER_LINE_CHARS));
+        if (!error) continue;
+        const d = told(error);
+        if (!reader.first(JSON.stringify(d))) continue; // ld tells a reference again for every use in the function
         if (diagnostics.length < MAX_DIAGNOSTICS) diagnostics.push(d);
         else left++;
     }
