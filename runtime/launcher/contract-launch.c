@@ -48,7 +48,8 @@ typedef struct {
     char line[LINE_MAX_LEN];
     size_t line_len;
     int alive;
-    int ready;            /* its <NAME>.pid file exists */
+    int named;            /* its <NAME>.pid file was read: `name` is the module's own */
+    int ready;            /* its <NAME>.ready file exists: its init returned */
     int failed;           /* died on its own with a signal or a non-zero status (also while the run stops) */
     int signalled;        /* the signal the launcher sent it at the stop (SIGTERM, then SIGKILL), 0 when none */
 } Child;
@@ -120,14 +121,14 @@ static void remove_module_files(const char *dir, const char *name)
         if (strncmp(e->d_name, name, n) != 0 || e->d_name[n] != '.') continue;
         const char *rest = e->d_name + n;
         size_t rl = strlen(rest);
-        if (strcmp(rest, ".mbx") == 0 || strcmp(rest, ".pid") == 0 || (rl > 3 && strcmp(rest + rl - 3, ".in") == 0) ||
+        if (strcmp(rest, ".mbx") == 0 || strcmp(rest, ".pid") == 0 || strcmp(rest, ".ready") == 0 || (rl > 3 && strcmp(rest + rl - 3, ".in") == 0) ||
             (rl > 5 && strcmp(rest + rl - 5, ".hold") == 0))
             unlinkat(dirfd(d), e->d_name, 0);
     }
     closedir(d);
 }
 
-/* Remove every runtime file (*.mbx, *.in, *.pid, *.hold, launcher.pid, launcher.stopping) and the directory if empty. */
+/* Remove every runtime file (*.mbx, *.in, *.pid, *.ready, *.hold, launcher.pid, launcher.stopping) and the directory if empty. */
 static void clean_run_dir(const char *dir)
 {
     DIR *d = opendir(dir);
@@ -136,6 +137,7 @@ static void clean_run_dir(const char *dir)
     while ((e = readdir(d)) != NULL) {
         size_t l = strlen(e->d_name);
         if ((l > 4 && (strcmp(e->d_name + l - 4, ".mbx") == 0 || strcmp(e->d_name + l - 4, ".pid") == 0)) ||
+            (l > 6 && strcmp(e->d_name + l - 6, ".ready") == 0) ||
             (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0) || (l > 5 && strcmp(e->d_name + l - 5, ".hold") == 0) ||
             strcmp(e->d_name, CONTRACT_RUN_STOPPING_FILE) == 0)
             unlinkat(dirfd(d), e->d_name, 0);
@@ -295,7 +297,9 @@ static int spawn(Child *c, const sigset_t *oldmask)
     return 0;
 }
 
-/* Learn module names from the <NAME>.pid files the library writes once a module is ready. */
+/* Learn module names from the <NAME>.pid files the library writes at start-up, and which modules
+ * are ready from their <NAME>.ready files (written when the module first looks for a request: its
+ * init has returned). */
 static void scan_ready(void)
 {
     DIR *d = opendir(run_dir);
@@ -309,11 +313,17 @@ static void scan_ready(void)
         snprintf(path, sizeof path, "%s/%s", run_dir, e->d_name);
         long pid = read_pid_file(path);
         for (int i = 0; i < n_children; i++) {
-            if (children[i].pid == pid && !children[i].ready) {
-                children[i].ready = 1;
+            if (children[i].pid == pid && !children[i].named) {
+                children[i].named = 1;
                 snprintf(children[i].name, sizeof children[i].name, "%.*s", (int)(l - 4), e->d_name);
             }
         }
+    }
+    for (int i = 0; i < n_children; i++) {
+        if (!children[i].named || children[i].ready) continue;
+        char ready[CONTRACT_NAME_MAX + 8];
+        snprintf(ready, sizeof ready, "%s.ready", children[i].name);
+        if (faccessat(dirfd(d), ready, F_OK, 0) == 0) children[i].ready = 1;
     }
     closedir(d);
 }
@@ -441,7 +451,7 @@ static int send_kills(int first)
 {
     int sent = 0;
     for (int i = 0; i < n_children; i++)
-        if (children[i].alive && children[i].ready && stops_first(children[i].name) == first &&
+        if (children[i].alive && children[i].named && stops_first(children[i].name) == first &&
             ModuleState(children[i].name) == CONTRACT_OK) {
             SendKill(children[i].name, ACK_NOTHING, -1);
             sent++;
@@ -652,10 +662,18 @@ int main(int argc, char *argv[])
     }
     int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), all_ready);
     int not_ready = 0;
+    /* a module is ready once it looks for its first request (libmodule writes <NAME>.pid then):
+     * its init region has returned. One that is not, after the ready timeout, loops or blocks in
+     * it: the architecture would never start, so the run stops here, its start not sent. */
     for (int k = 0; k < n_children; k++)
-        if (children[k].alive && !children[k].ready) { not_ready++; say("module %s is not ready after %.0f s", children[k].name, ready_timeout); }
+        if (children[k].alive && !children[k].ready) {
+            not_ready++;
+            say("module %s is not ready after %g s: its init has not returned (does its init region loop or block?); the run stops without its start request",
+                children[k].name, ready_timeout);
+        }
+    if (not_ready) stop = 1;
     if (!stop) say("%d module(s) running", alive_count());
-    if (!stop && start && *start && !not_ready) send_start(start);
+    if (!stop && start && *start) send_start(start);
     if (!stop) {
         RTIME deadline = duration >= 0 ? now_ns() + (RTIME)(duration * 1e9) : INT64_MAX;
         run_loop(sfd, deadline, all_ended);

@@ -240,10 +240,11 @@ const char *rt_ack_name(int ack)
     }
 }
 
-int rt_write_pid_file(void)
+/* Writes <NAME><suffix> in the run directory with `text` (removed when the process ends). */
+static int write_run_file(const char *suffix, const char *text)
 {
     char file[CONTRACT_NAME_MAX + 8];
-    snprintf(file, sizeof file, "%s.pid", g_rt.name);
+    snprintf(file, sizeof file, "%s%s", g_rt.name, suffix);
     int fd = openat(g_rt.run_dir_fd, file, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
         /* O_PATH dirfds cannot be used to create files on every kernel: fall back to the path. */
@@ -252,12 +253,30 @@ int rt_write_pid_file(void)
         fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     }
     if (fd < 0) { rt_error("cannot write %s/%s: %s", g_rt.run_dir, file, strerror(errno)); return -1; }
-    char text[32];
-    int n = snprintf(text, sizeof text, "%ld\n", (long)getpid());
-    if (write(fd, text, (size_t)n) != n) { close(fd); return -1; }
+    size_t n = strlen(text);
+    if (write(fd, text, n) != (ssize_t)n) { close(fd); return -1; }
     close(fd);
     rt_register_file(file);
     return 0;
+}
+
+int rt_write_pid_file(void)
+{
+    char text[32];
+    snprintf(text, sizeof text, "%ld\n", (long)getpid());
+    return write_run_file(".pid", text);
+}
+
+/* A module is ready when it first looks for a request (WaitForRequestUntil, under every way of
+ * waiting for one): its init region has returned. It then writes <NAME>.ready, which the launcher
+ * waits for before it sends the start request (contract-launch: `module M is not ready after 10 s`
+ * names a module whose init loops or blocks). A module that cannot write it ends (status 2), as
+ * one that cannot write its <NAME>.pid. */
+void rt_mark_ready(void)
+{
+    if (g_rt.ready || !g_rt.is_module) return;
+    g_rt.ready = 1;
+    if (write_run_file(".ready", "") != 0) exit(2);
 }
 
 static void remove_created_files(void)
@@ -267,8 +286,15 @@ static void remove_created_files(void)
     if (g_rt.run_dir_created) rmdir(g_rt.run_dir); /* only if empty */
 }
 
+static int log_dying; /* a handler writes the log's last records (only one: the first) */
+
+/* SIGTERM, SIGINT, SIGHUP: the records the CSV log has not written yet are written (a module blocked
+ * in its own code, which the launcher terminates at the stop, would lose what it did before: its
+ * buffer is written only when it calls the library), then its files are removed and it dies by the
+ * signal. Async-signal-safe (rt_log_crash). */
 static void on_fatal_signal(int sig)
 {
+    if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) rt_log_crash(sig);
     remove_created_files(); /* unlinkat / rmdir are async-signal-safe */
     signal(sig, SIG_DFL);
     raise(sig);
@@ -287,9 +313,8 @@ static char crash_stack[64 * 1024]; /* the handler's stack: a stack overflow lea
 
 static void on_crash_signal(int sig)
 {
-    static int entered;
     int saved = errno;
-    if (!__atomic_exchange_n(&entered, 1, __ATOMIC_SEQ_CST)) {
+    if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) {
         rt_log_crash(sig);
     } else {
         struct timespec ts = { 1, 0 };

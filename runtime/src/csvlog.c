@@ -649,7 +649,9 @@ static const char *crash_signal_name(int sig)
  * written, in order: the buffer handed to the writer (itself if the writer has not begun it, else
  * it waits up to CRASH_WAIT_NS for the writer to end it), then the buffer being filled (unless the
  * module's thread was changing buffers or writing it itself: those records are skipped), then a
- * `module_crashed` record; within the bound (log-capped, as at exit); then the mark says 0. */
+ * `module_crashed` record; within the bound (log-capped, as at exit); then the mark says 0. Also
+ * the stop signals' handler (core.c on_fatal_signal: SIGTERM, SIGINT, SIGHUP): the same records,
+ * without a record of its own. */
 void rt_log_crash(int sig)
 {
     if (log_fd < 0) return;
@@ -678,6 +680,13 @@ void rt_log_crash(int sig)
     if (busy == BUSY_NONE || (busy == BUSY_SWAP && plen == 0)) {
         size_t len = __atomic_load_n(&log_len, __ATOMIC_ACQUIRE);
         if (len) write_records_r(log_buf, len, reserve);
+    }
+    /* a stop signal (SIGTERM, SIGINT, SIGHUP: the launcher terminating a module that did not end on
+     * its KILL request): the records are kept, no record of its own (the launcher says it) */
+    if (crash_signal_name(sig)[0] == '?') {
+        if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) write_cap_final();
+        mark_set(0);
+        return;
     }
     /* the crash, a record like module_exit: `records=K` counts every record logged, this one included */
     log_records++;

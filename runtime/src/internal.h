@@ -61,6 +61,7 @@ typedef struct {
     RTIME mbx_rcvtimeo;     /* SO_RCVTIMEO currently set on the mailbox (0 = none) */
     int priority;           /* current priority 1..99 (0: never set) */
     int send_nowait;        /* ContractSetNonBlockingSends: requests never wait for a full mailbox */
+    int ready;              /* a module: its <NAME>.ready is written (rt_mark_ready) */
 } ContractRuntime;
 
 extern ContractRuntime g_rt;
@@ -82,6 +83,7 @@ int rt_run_stopping(void);
 const char *rt_request_name(int type);
 const char *rt_ack_name(int ack);
 int rt_write_pid_file(void);
+void rt_mark_ready(void);
 void rt_install_signal_cleanup(void);
 
 /* mailbox.c */

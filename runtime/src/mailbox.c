@@ -513,6 +513,7 @@ static int receive_until(RTIME deadline)
 
 int WaitForRequestUntil(RequestMessage *msg, RTIME deadline)
 {
+    rt_mark_ready(); /* the first time: its init is done (the launcher then sends the start) */
     if (pop_pending(msg)) return 1;
     int r = receive_until(deadline);
     if (r == 1) deliver(msg, &rx_buffer);

@@ -68,7 +68,9 @@ int main(int argc, char *argv[])
     snprintf(detail, sizeof detail, "pid=%ld priority=%d", (long)getpid(), MODULE_PRIORITY);
     ContractLog("module_started", "", -1, 0, detail);
     if (ContractSetPriority(MODULE_PRIORITY) == 1) rt_lock_memory(); /* real time: no page faults */
-    if (rt_write_pid_file() != 0) return 2; /* last: the launcher treats it as "module ready" */
+    /* the process is there (the launcher learns its name, `--kill` finds it); it is ready, for the
+     * launcher, once it first looks for a request: <NAME>.ready (rt_mark_ready) */
+    if (rt_write_pid_file() != 0) return 2;
     int rc = ModuleMain(argc, (const char **)argv);
     /* records=N counts this record too: a reader of the log can tell none is missing */
     snprintf(detail, sizeof detail, "status=%d records=%llu", rc, rt_log_records() + 1);

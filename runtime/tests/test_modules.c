@@ -1046,6 +1046,29 @@ void test_csv_log_crash(void)
         h_teardown();
     }
 
+    /* a module blocked in its own code and terminated (the launcher's SIGTERM at the stop): the
+     * records it logged before, still in its buffer, are written; no record of its own */
+    REQUIRE(h_setup("logterm") == 0);
+    setenv("TMOD_CRASH_LOG", "P:block", 1);
+    pid_t pid = h_spawn_module("P", "P");
+    unsetenv("TMOD_CRASH_LOG");
+    REQUIRE(pid > 0);
+    CHECK(SendStart("P", ACK_NOTHING, 1) == CONTRACT_OK);
+    usleep(300000); /* far past the log's flush delay: nothing writes a blocked module's buffer */
+    kill(pid, SIGTERM);
+    CHECK(h_wait_exit(pid, 5000) == 128 + SIGTERM);
+    remove_files_of("P");
+    char csv[1024];
+    char *termlog = h_find_log_file("P_", ".csv", csv, sizeof csv) ? h_read_file(csv) : NULL;
+    REQUIRE(termlog);
+    const char *tstart = strstr(termlog, ",P,request_received,tester,,0,START\n");
+    CHECK_MSG(tstart != NULL, "the START is not in the terminated module's log");
+    const char *tend = crash_records_in_order(tstart ? tstart : termlog, 5);
+    CHECK_MSG(tend && *tend == '\0', "the terminated module's log does not end with its 5 records: '%s'", last_line(termlog));
+    CHECK(!strstr(termlog, "module_crashed") && !strstr(termlog, "module_exit"));
+    free(termlog);
+    h_teardown();
+
     /* within the log's bound: whole records, log-capped, the last log-capped record; never larger */
     REQUIRE(h_setup("logcrashcap") == 0);
     setenv("CONTRACT_LOG_MAX_BYTES", "8192", 1);

@@ -153,6 +153,29 @@ void test_launcher_module_ends(void)
     CHECK(text && strstr(text, "module C2 did not end on its KILL request within 2 s: terminating it (SIGTERM)"));
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "while the run stopped"));
     free(text);
+
+    /* a module whose init never returns (it never looks for a request) is not ready: the run stops
+     * at the ready timeout without its start request, and the module is terminated */
+    char *ready_argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "30",
+                           "--ready-timeout", "1", "--start", "P.mission()", exe_p, exe_c1, exe_c2, NULL };
+    t0 = GetTime();
+    text = launch_ending(ready_argv, out, "C2:inithang", 10000, &code);
+    CHECK(code == 0);
+    CHECK(GetTime() - t0 < 6000000000LL); /* not the 30 s asked: nothing would ever start */
+    CHECK(text && strstr(text, "module C2 is not ready after 1 s: its init has not returned (does its init region loop or block?); the run stops without its start request"));
+    CHECK(text && !strstr(text, "module P is not ready") && !strstr(text, "module C1 is not ready"));
+    CHECK(text && !strstr(text, "started P.mission") && !strstr(text, "module(s) running"));
+    CHECK(text && strstr(text, "module C2 did not end on its KILL request within 2 s: terminating it (SIGTERM)"));
+    free(text);
+    /* nor is the start request sent before a slow init has returned: P's START is read after C2's 300 ms */
+    char *slow_argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1",
+                          "--start", "P.mission()", exe_p, exe_c1, exe_c2, NULL };
+    text = launch_ending(slow_argv, out, "C2:slowinit", 10000, &code);
+    CHECK(code == 0);
+    CHECK(text && !strstr(text, "is not ready"));
+    CHECK(text && strstr(text, "C2 init done\n") && strstr(text, "started P.mission"));
+    CHECK(text && strstr(text, "C2 init done\n") < strstr(text, "started P.mission"));
+    free(text);
     unsetenv("TMOD_END");
     CHECK(h_count_entries(h_run_dir) == -1);
     h_teardown();
@@ -279,8 +302,8 @@ void test_control_tool(void)
     CHECK(text && strstr(text, "not running"));
     free(text);
     char f[700];
-    const char *left[] = { "MSC.mbx", "MSC.0.in", "MSC.pid" };
-    for (int i = 0; i < 3; i++) { snprintf(f, sizeof f, "%s/%s", h_run_dir, left[i]); unlink(f); }
+    const char *left[] = { "MSC.mbx", "MSC.0.in", "MSC.pid", "MSC.ready" };
+    for (int i = 0; i < 4; i++) { snprintf(f, sizeof f, "%s/%s", h_run_dir, left[i]); unlink(f); }
     unsetenv("CONTRACT_RUN_DIR");
     CHECK(control(out, "status", NULL, NULL) == 2);
     setenv("CONTRACT_RUN_DIR", h_run_dir, 1);

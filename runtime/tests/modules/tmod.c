@@ -13,12 +13,15 @@
  * how = `segv` (a store through a null pointer), `abort`, `fpe` (integer division by zero),
  * `stack` (endless recursion: a stack overflow), `inlog` (a sixth record whose detail is
  * unreadable memory: the crash is inside ContractLog), `many` (3000 records, more than the log's
- * two buffers hold, then the segv).
+ * two buffers hold, then the segv), `block` (no crash: it blocks for ever, until a SIGTERM).
  * $TMOD_END equal to `NAME:how`: what the module named does instead of a clean end, `exit0` 200 ms
  * after start-up (its own code ends it mid-run), and at its KILL (the run's stop) `crash` (abort(),
  * a crash in its exit code), `exit3` (exit status 3), `hang` (never ends: the launcher must
  * terminate it); `daemon`: at start-up, leaves a process in a session of its own holding its
- * output 8 s (forked at the end, it could be killed with the module's group before its setsid). */
+ * output 8 s (forked at the end, it could be killed with the module's group before its setsid);
+ * `inithang`: never leaves its init (it never looks for a request: the launcher must find it not
+ * ready, stop the run without its start, and terminate it); `slowinit`: 300 ms in its init, then
+ * `NAME init done` (the run's start request must come after). */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <signal.h>
@@ -108,6 +111,7 @@ static void crash_after_logging(const char *how)
         snprintf(detail, sizeof detail, "before crash %d", i);
         ContractLog("crash_test", "", -1, 0, detail);
     }
+    if (strcmp(how, "block") == 0) for (;;) pause(); /* blocked in its own code: the launcher's SIGTERM ends it */
     if (strcmp(how, "abort") == 0) abort();
     if (strcmp(how, "fpe") == 0) divide_by_zero();
     if (strcmp(how, "stack") == 0) recursing = deep(0);
@@ -150,6 +154,8 @@ int ModuleMain(int argc, const char *argv[])
     if (strcmp(end_how(), "exit0") == 0) { usleep(200000); exit(0); }
     /* in a session of its own from the start: the launcher's kill of the module's group at the stop cannot reach it */
     if (strcmp(end_how(), "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); }
+    if (strcmp(end_how(), "inithang") == 0) for (;;) pause();
+    if (strcmp(end_how(), "slowinit") == 0) { usleep(300000); printf("%s init done\n", MODULE_NAME); }
     printf("%s ready\n", MODULE_NAME);
     RequestMessage receivedMessage, registered;
     int end = 0, state = 0, interact, cycleRunning = 0;

@@ -61,8 +61,22 @@ describe('RunIssues', () => {
     r.line('module MSC did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
     r.line("module MAA (pid 17) exited with status 0 before the run's end", 'launcher');
     expect(r.all).toEqual([
-      { kind: 'module-hung', module: 'MSC', message: 'MSC did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its init, exec or exit code?)' },
+      { kind: 'module-hung', module: 'MSC', message: 'MSC did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)' },
       { kind: 'module-ended', module: 'MAA', message: 'MAA ended before the run did: its code exited with status 0, and the run went on without it' },
+    ]);
+  });
+
+  test("the launcher's word for a module whose init never returned is an issue, told once (not again as hung at the stop)", () => {
+    const r = new RunIssues();
+    const notReady = 'module MSC is not ready after 10 s: its init has not returned (does its init region loop or block?); the run stops without its start request';
+    r.line(notReady, 'MSC'); // a module's own words: not the launcher's
+    expect(r.all).toEqual([]);
+    r.line(notReady, 'launcher');
+    r.line('module MSC did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
+    r.line('module MAA did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
+    expect(r.all).toEqual([
+      { kind: 'module-not-ready', module: 'MSC', message: 'MSC was not ready after 10 s: its init region had not returned (does it loop or block?), so the run stopped before its start request' },
+      { kind: 'module-hung', module: 'MAA', message: 'MAA did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)' },
     ]);
   });
 

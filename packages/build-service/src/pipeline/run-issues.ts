@@ -7,13 +7,13 @@
 import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import type { RunArtifacts } from './artifacts.js';
 
-export type RunIssueKind = 'module-stuck' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
+export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
 
 export interface RunIssue {
   kind: RunIssueKind;
   /** One sentence for people. */
   message: string;
-  /** The module it is about (module-stuck, module-hung, module-ended; start-refused: the supervisor), or the log file (log-capped, log-lost). */
+  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor), or the log file (log-capped, log-lost). */
   module?: string;
   file?: string;
 }
@@ -30,6 +30,11 @@ const START_REFUSED_LINE = /^([A-Za-z_]\w*): start request from contract-launch 
  * supervisor of another project, a typo the client did not check), libmodule's error (src/mailbox.c).
  */
 const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
+/**
+ * contract-launch's line when a module has not looked for its first request by its ready timeout:
+ * its init has not returned, and the run stops without its start request (runtime/launcher main).
+ */
+const NOT_READY_LINE = /^module ([A-Za-z_]\w*) is not ready after (\d+(?:\.\d+)?) s: its init has not returned/;
 /** contract-launch's line when a module does not end on the KILL request of the run's stop (runtime/launcher stop_all). */
 const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on its KILL request within 2 s: terminating it \(SIGTERM\)$/;
 /** contract-launch's line when a module's own code ended it, status 0, before the run's stop (reap). */
@@ -42,6 +47,8 @@ export class RunIssues {
   private readonly stuckSeen = new Set<string>();
   /** Modules the launcher saw killed by SIGKILL during the run (at most 16): at the memory limit, the kernel's choice. */
   private readonly killed: string[] = [];
+  /** Modules the launcher found not ready (at most 16): their KILL unanswered at the stop is not told again. */
+  private readonly notReady = new Set<string>();
 
   get all(): readonly RunIssue[] {
     return this.list;
@@ -95,11 +102,19 @@ export class RunIssues {
 
   /** A module that did not end when the run stopped, or whose own code ended it before (the launcher's lines). */
   private moduleEnd(text: string): void {
+    const notReady = NOT_READY_LINE.exec(text);
+    if (notReady) {
+      if (this.notReady.size < 16) this.notReady.add(notReady[1]!);
+      this.list.push({ kind: 'module-not-ready', module: notReady[1]!, message: `${notReady[1]!} was not ready after ${notReady[2]!} s: its init region had not returned (does it loop or block?), so the run stopped before its start request` });
+      return;
+    }
     const hung = HUNG_LINE.exec(text);
     const killed = KILLED_LINE.exec(text);
     if (killed && this.killed.length < 16) this.killed.push(killed[1]!);
+    // a module not ready does not answer the stop's KILL either: the same fault, told once
+    if (hung && this.notReady.has(hung[1]!)) return;
     if (hung) {
-      this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its init, exec or exit code?)` });
+      this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)` });
       return;
     }
     const ended = ENDED_LINE.exec(text);

@@ -23,7 +23,7 @@ describe("the launcher's lines", () => {
       'FAILED: module VEL crashed',
       'all modules stopped',
       'SUP refused to start action(consigne={1.0,2.0,3.0})',
-      'module MIS is not ready after 10 s',
+      'module MIS is not ready after 10 s: its init has not returned (does its init region loop or block?); the run stops without its start request',
       'sent the start request to GLB.mission() (no acknowledgement within 2 s)',
       'module ORD did not end within 2 s: stopping the others',
       // a module's own line that merely looks like news is not the launcher's: only the launcher's source is asked
