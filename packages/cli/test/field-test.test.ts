@@ -356,6 +356,29 @@ describe('6. a crashed module', () => {
         expect(trace.stdout).toMatch(/^\+\d+\.\d{6}s CTL  crashed: signal 11 \(SIGSEGV\)$/m);
         expect(trace.stdout).not.toContain('CTL  its last record: no exit record follows');
     }, 240_000);
+
+    it('a real init region that blocks for ever (bwrap): exit 4 at the ready timeout, not ready named, no start sent, its records kept', async () => {
+        expect(await runCli(['new', 'stall'], capture(root))).toBe(0);
+        expect(await runCli(['generate', 'stall'], capture(root))).toBe(0);
+        const file = join(root, 'stall/src-gen/generated/architecture/modules/CTL_mod/module.c');
+        const source = readFileSync(file, 'utf8');
+        const edited = source.replace(/(PROTECTED REGION ID\(protect_init_CTL\) ENABLED START\*\/)/, '$1\n    ContractLog("waiting", "", -1, 0, "for the gripper"); for (;;) { struct timespec t = { 1, 0 }; nanosleep(&t, NULL); }');
+        expect(edited).not.toBe(source);
+        writeFileSync(file, edited);
+        const io = capture(root);
+        const t0 = Date.now();
+        expect(await runCli(['run', 'stall', '--sandbox', 'bwrap', '--duration', '30s'], io)).toBe(4);
+        expect(Date.now() - t0).toBeLessThan(30_000); // the 10 s ready timeout, not the 30 s asked
+        expect(io.stderr).toContain('problem: CTL was not ready after 10 s: its init region had not returned (does it loop or block?), so the run stopped before its start request');
+        expect(io.stderr).not.toContain('CTL did not end when the run stopped'); // the same fault, told once
+        expect(io.stdout + io.stderr).not.toMatch(/started [A-Z]+\.\w+\(/); // the start request was never sent
+        const trace = capture(root);
+        expect(await runCli(['trace', 'stall/logs'], trace)).toBe(0);
+        // terminated at the stop (SIGTERM), it still wrote what it logged in its init (docs/runtime-api.md "CSV log")
+        // (its own record, logged with ContractLog: docs/runtime-api.md)
+        expect(trace.stdout).toMatch(/^\+\d+\.\d{6}s CTL  waiting: for the gripper$/m);
+        expect(trace.stdout).toContain(' 0 unreadable lines');
+    }, 240_000);
 });
 
 describe('7. names from a project or a sandbox cannot forge a line', () => {

@@ -3,7 +3,7 @@
  * browser-safe reader of a run's CSV logs, and the readable story. Imported by the CLI
  * (`contract trace`, `contract run --trace`) as `@contract-studio/build-service/trace`.
  */
-export { TRACE_KINDS, traceKind, type TraceKind, type TraceArea } from './record-kinds.js';
+export { TRACE_KINDS, traceKind, isUserEventName, type TraceKind, type TraceArea } from './record-kinds.js';
 export { parseTrace, parseLogFile, parseRecordLine, recordOfLine, unendedLine, recordLineEnd, parseCause, ownString, CSV_HEADER, MAX_LINE_CHARS, type LogFile } from './parse.js';
 export { splitCsvLine, csvField } from './csv-line.js';
 export { traceFileToLogs, recordOfJsonLine, jsonLineToCsv, MAX_JSON_LINE_CHARS, MAX_TRACE_FILE_MODULES, type TraceFileLogs, type JsonLineRead } from './jsonl.js';

@@ -1,7 +1,7 @@
 /** A trace file (JSON lines) read back as a run's logs, through the CSV reader's checks (jsonl.ts). */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, TRACE_KINDS, isRule, isUnknown, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, type TraceRecord } from './index.js';
+import { CSV_HEADER, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, type TraceRecord } from './index.js';
 
 /** A run's logs: every kind of the table (its example line, at its own time), in two modules' logs, plus quoting. */
 function sampleLogs() {
@@ -63,7 +63,7 @@ describe('trace files (JSON lines)', () => {
             JSON.stringify({ ...rule, module: '../../etc' }),
             JSON.stringify({ ...rule, monoNs: '1,2' }),
             JSON.stringify({ ...rule, port: -1 }),
-            JSON.stringify({ ...rule, kind: 'no_such_kind' }),
+            JSON.stringify({ ...rule, kind: 'no such kind' }),
             'x'.repeat(20_000),
         ];
         const back = traceFileToLogs('../../evil name.jsonl', lines.join('\n') + '\n');
@@ -73,9 +73,24 @@ describe('trace files (JSON lines)', () => {
         const read = parseTrace(back.files);
         // the lying line is the rule as its columns say; the others are the CSV reader's unknown records
         expect(read[0]).toEqual(rule);
-        expect(read.slice(1).map((r) => (isUnknown(r) ? r.reason : r.kind))).toEqual(['mono_ns is not a number', 'bad port or size', "unknown event 'no_such_kind'"]);
+        expect(read.slice(1).map((r) => (isUnknown(r) ? r.reason : r.kind))).toEqual(['mono_ns is not a number', 'bad port or size', "unknown event 'no such kind'"]);
         expect(recordOfJsonLine('t.jsonl', 2, 'not json')).toMatchObject({ kind: 'unknown', file: 't.jsonl', line: 2, reason: 'not JSON' });
         expect(recordOfJsonLine('t.jsonl', 3, '  ')).toBeUndefined();
+    });
+
+    it('a module\'s own record (ContractLog with an event name of its own) comes back with its name', () => {
+        const text = [CSV_HEADER, '2500,w,MAA,gripper_closed,,,0,force=12.5 N', '2600,w,MAA,user,,,0,literally user', ''].join('\n');
+        const records = parseLogFile({ name: 'MAA_1.csv', text });
+        expect(records).toMatchObject([
+            { kind: 'user', module: 'MAA', detail: 'force=12.5 N', fields: { event: 'gripper_closed' } },
+            { kind: 'user', detail: 'literally user', fields: { event: 'user' } },
+        ]);
+        const back = recordOfJsonLine('t.jsonl', 1, JSON.stringify(records[0]));
+        expect(back).toEqual(records[0]);
+        // `contract trace` tells them (EVENT: DETAIL), none is an unreadable line
+        const story = renderStory(parseTrace([{ name: 'MAA_1.csv', text }]));
+        expect(story.slice(0, 2)).toEqual(['+0.000000s MAA  gripper_closed: force=12.5 N', '+0.000000s MAA  user: literally user']);
+        expect(story.at(-1)).toContain('0 unreadable lines');
     });
 
     it('any text: no exception, every line a record, a problem or skipped', () => {

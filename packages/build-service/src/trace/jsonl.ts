@@ -61,7 +61,11 @@ export function jsonLineToCsv(line: string): JsonLineRead {
     const from = typeof peer === 'string' ? peer : '';
     const portText = port === null || port === undefined ? '' : typeof port === 'number' ? String(port) : '?';
     const sizeText = typeof size === 'number' ? String(size) : size === undefined ? '0' : '?';
-    return { csv: `${csvField(monoNs)},${csvField(wall)},${module},${csvField(kind)},${csvField(from)},${portText},${sizeText},${csvField(detail)}`, module };
+    // a module's own record: its CSV event is the name it logged (fields.event), `user` only when none
+    const fields = r['fields'];
+    const userEvent = kind === 'user' && typeof fields === 'object' && fields !== null ? (fields as Record<string, unknown>)['event'] : undefined;
+    const event = typeof userEvent === 'string' && userEvent ? userEvent : kind;
+    return { csv: `${csvField(monoNs)},${csvField(wall)},${module},${csvField(event)},${csvField(from)},${portText},${sizeText},${csvField(detail)}`, module };
 }
 
 /**

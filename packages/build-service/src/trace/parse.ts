@@ -6,7 +6,7 @@
  */
 import { splitCsvLine } from './csv-line.js';
 import { MinHeap } from './min-heap.js';
-import { traceKind } from './record-kinds.js';
+import { USER_KIND, isUserEventName, traceKind } from './record-kinds.js';
 import { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
 import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, UnknownRecord } from './records.js';
@@ -81,9 +81,14 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     if (!isModuleNameIn(module)) return unknown(file, lineNo, 'bad module name', line);
     if ((port !== '' && !isDigitsIn(port, 1, 9)) || !isDigitsIn(size, 1, 15)) return unknown(file, lineNo, 'bad port or size', line);
     const kind = traceKind(event);
-    if (!kind) return unknown(file, lineNo, `unknown event '${event.slice(0, 64)}'`, line);
     const portN = port === '' ? null : Number(port);
     const sizeN = Number(size);
+    // a module's own record (ContractLog with an event name of its own): a `user` record naming it
+    if (!kind || kind === USER_KIND) {
+        if (!isUserEventName(event)) return unknown(file, lineNo, `unknown event '${event.slice(0, 64)}'`, line);
+        const user: KnownRecord = { kind: 'user', monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields: { event } };
+        return user;
+    }
     if (event === 'sup_rule') {
         const m = RULE_DETAIL.exec(detail);
         if (!m) return unknown(file, lineNo, 'sup_rule detail is not `F.R active|inactive cause=C`', line);

@@ -30,6 +30,7 @@ export const TRACE_KINDS: readonly TraceKind[] = [
     { kind: 'module_crashed', area: 'module', fields: 'the module\'s code crashed (SIGSEGV, SIGBUS, SIGFPE, SIGILL or SIGABRT): its last record, written by the runtime\'s signal handler after the records it had not written yet, before the process dies by that signal (the launcher\'s `died by signal 11 (Segmentation fault)`); detail `signal N (NAME) records=K`, K as module_exit\'s (a log that holds fewer lost records at the crash: `contract trace` says it is not whole). `contract trace` tells it as `crashed: signal 11 (SIGSEGV)`', example: `9000,${W},MSC,module_crashed,,,0,signal 11 (SIGSEGV) records=42`, detailKeys: ['records'] },
     { kind: 'log-capped', area: 'module', fields: 'the log reached its bound (`CONTRACT_LOG_MAX_BYTES`): size = the bound; detail `log reached its N-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written`, and at exit `K records not written after the log reached its N-byte bound` (its module_exit `records=K` then counts records the file does not hold). The build service ends a log it collected cut at its own bound with one too: peer `build-service`, size = the file\'s size, mono_ns = the last kept record\'s, detail `collected the first K of N bytes (the B-byte bound of the build service)`', example: `5000,${W},MSC,log-capped,,,268435456,log reached its 268435456-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written` },
     { kind: 'error', area: 'module', fields: 'detail = the message also printed on stderr (not printed for a request to a module already gone while the launcher stops the run: `...; the run is stopping)`)', example: `1500,${W},MSC,error,,,0,dropped a datagram of 12 bytes`},
+    { kind: 'user', area: 'module', fields: 'a record the module\'s own code logged, `ContractLog(event, peer, port, size, detail)` with an event name of its own (a word: a letter or `_`, then letters, digits, `_`, `.` or `-`, 64 characters at most, and not a kind of this table): the reader makes it a `user` record whose field `event` is that name, peer, port, size and detail as logged (a name that is no such word is an unreadable line). `contract trace` tells it as `EVENT: DETAIL` (`gripper_closed: force=12.5 N`), the IDE\'s Monitor counts it', example: `2500,${W},MAA,gripper_closed,,,0,force=12.5 N` },
     { kind: 'request_received', area: 'requests', fields: 'peer = sender; detail = the request: `START [function]`, `STOP`, `KILL`, `EVENT from_port=N` (port = target port), `SETPARAM`, `SUBSCRIBE M:p *k`, `SUB_EVENT M:p oneshot|continuous`, `UNSUBSCRIBE`, `UNSUB_EVENT`, `PURGE_MBX`, `STATUS_REPLY` (the answer to a supervisor\'s status query)', example: `2000,${W},MSC,request_received,ORD,,0,START` },
     { kind: 'run_started', area: 'requests', fields: 'peer = requester; detail `activation=N` (the START that begins a run)', example: `2001,${W},MSC,run_started,ORD,,0,activation=7`, detailKeys: ['activation'] },
     { kind: 'run_finished', area: 'requests', fields: 'detail `activation=N [ACK_FINISHED|ACK_STOPPED|STOP|KILL]`; peer = the sender of the STOP or KILL that ended the run, empty otherwise (the module ended it: ACK_FINISHED or ACK_STOPPED to its requester, or nothing when no acknowledgement was asked)', example: `2500,${W},MSC,run_finished,,,0,activation=7 ACK_FINISHED`, detailKeys: ['activation'] },
@@ -69,4 +70,22 @@ const BY_KIND = new Map(TRACE_KINDS.map((k) => [k.kind, k]));
 
 export function traceKind(kind: string): TraceKind | undefined {
     return BY_KIND.get(kind);
+}
+
+/** The `user` kind: what a module's code logs under an event name of its own (ContractLog). */
+export const USER_KIND = BY_KIND.get('user')!;
+
+/**
+ * Whether `event` (a CSV event column the table does not know; text[from, to) when given, read in
+ * place) is a name a module's own record may have: a `user` record.
+ */
+export function isUserEventName(event: string, from = 0, to = event.length): boolean {
+    if (to <= from || to - from > 64) return false;
+    for (let i = from; i < to; i++) {
+        const c = event.charCodeAt(i);
+        const letter = (c >= 0x41 && c <= 0x5a) || (c >= 0x61 && c <= 0x7a) || c === 0x5f;
+        if (letter || (i > from && ((c >= 0x30 && c <= 0x39) || c === 0x2e || c === 0x2d))) continue;
+        return false;
+    }
+    return true;
 }

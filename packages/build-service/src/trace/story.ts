@@ -295,6 +295,7 @@ export class StoryTeller {
             return text && `${at(k)} ${text}`;
         }
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
+        if (k.kind === 'user') return `${at(k)} ${k.fields['event']}${k.detail ? `: ${k.detail}` : ''}`;
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
     }

@@ -11,7 +11,7 @@
  * a record of that kind, with that time. Anything else (a quoted field, a malformed line) is left
  * to the full reader, which says what is wrong with it.
  */
-import { MAX_LINE_CHARS, TRACE_KINDS, isDigitsIn, isModuleNameIn } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, TRACE_KINDS, isDigitsIn, isModuleNameIn, isUserEventName } from '@contract-studio/build-service/trace';
 
 /**
  * What the last successful scanLine read (one object, reused: a scan makes none).
@@ -49,7 +49,7 @@ export function digitsValue(text: string, from: number, to: number): number {
 
 /**
  * Whether text[from, to) is a record line the full reader accepts (eight unquoted fields, the
- * mono_ns, module, port and size checks, an event of the trace table); if so, `scanned` holds
+ * mono_ns, module, port and size checks, an event of the trace table or a module's own); if so, `scanned` holds
  * its commas, time and kind.
  */
 export function scanLine(text: string, from: number, to: number): boolean {
@@ -68,7 +68,8 @@ export function scanLine(text: string, from: number, to: number): boolean {
   const c1 = comma[0]!, c2 = comma[1]!, c3 = comma[2]!, c4 = comma[3]!, c5 = comma[4]!, c6 = comma[5]!, c7 = comma[6]!;
   if (!isDigitsIn(text, 1, 20, from, c1) || !isModuleNameIn(text, c2 + 1, c3)) return false;
   if ((c6 > c5 + 1 && !isDigitsIn(text, 1, 9, c5 + 1, c6)) || !isDigitsIn(text, 1, 15, c6 + 1, c7)) return false;
-  const kind = kindIn(text, c3 + 1, c4);
+  // an event of the table, or a module's own (a `user` record, as the full reader reads it)
+  const kind = kindIn(text, c3 + 1, c4) ?? (isUserEventName(text, c3 + 1, c4) ? 'user' : undefined);
   if (!kind) return false;
   scanned.kind = kind;
   scanned.mono = digitsValue(text, from, c1);
