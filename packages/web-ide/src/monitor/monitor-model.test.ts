@@ -3,7 +3,7 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseTrace, parseRecordLine, renderStory, type TraceRecord } from '@contract-studio/build-service/trace';
-import { MonitorModel } from './monitor-model.js';
+import { MAX_USER_MARKS, MonitorModel } from './monitor-model.js';
 import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
 import { activeSchemas } from './active-schemas.js';
@@ -257,6 +257,31 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${log.join('\n')}\n` }]))
       .filter((l) => l.includes(' deadline miss ')).map((l) => l.replace(/^.* deadline miss \(ORD:0\): \w+ cycle /, 'deadline miss (ORD:0) cycle '));
     expect(told[1]).toBe(gone);
+  });
+
+  it('marks a module\'s own records (ContractLog under a name of its own), live, parsed and recorded alike; a flood of them takes no mark from the rules', () => {
+    const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+    const log = [
+      `1000000000,${W},MAA,gripper_closed,,,0,force=12.5 N`,
+      `1000500000,${W},MAA,homed,,,0,`,
+      ...Array.from({ length: MAX_USER_MARKS + 500 }, (_, i) => `${1001000000 + i * 1000},${W},MAA,tick,,,0,n=${i}`),
+      `1100000000,${W},SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns`,
+    ];
+    const userLabels = (m: MonitorModel) => m.marks.filter((k) => k.kind === 'user').slice(0, 2).map((k) => `${k.where} ${k.label}`);
+    const live = new MonitorModel({ checkpointEvery: 64 });
+    log.forEach((l, i) => live.pushLine('MAA.csv', i + 2, l));
+    const parsed = new MonitorModel({ checkpointEvery: 64 });
+    parsed.pushAll(log.map((l, i) => parseRecordLine('MAA.csv', i + 2, l)));
+    const steps = recordedRunSteps([{ name: 'MAA_1.csv', text: `${HEADER}\n${log.join('\n')}\n` }], 1000);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    for (const m of [live, parsed, step.value.model]) {
+      expect(userLabels(m)).toEqual(['MAA gripper_closed: force=12.5 N', 'MAA homed']);
+      expect(m.marks.filter((k) => k.kind === 'user')).toHaveLength(MAX_USER_MARKS);
+      expect(m.marks.at(-1)).toMatchObject({ kind: 'rule', where: 'SUP' }); // the rule after the flood is marked
+      expect(m.live.unknownLines).toBe(0);
+      expect(m.recordCount).toBe(log.length);
+    }
   });
 
   it('stays bounded on a hostile trace: thousands of schemas and modules, long names', () => {

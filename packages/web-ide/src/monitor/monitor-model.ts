@@ -127,6 +127,9 @@ const MAX_WAIT_SCHEMAS = 64;
 const MAX_WAIT_MODULES = 32;
 /** Modules known to be no longer running, followed at most (a real run names a few dozen). */
 const MAX_GONE = 1024;
+/** Marks the modules' own records may take (the first ones; the rest are counted as records). */
+export const MAX_USER_MARKS = 2000;
+
 /** Longest list of modules a miss's label names. */
 const MAX_WAIT_TEXT = 160;
 
@@ -245,6 +248,8 @@ export class MonitorModel implements MonitorView {
   private readonly every: number;
   private readonly keep: number;
   private readonly maxMarks: number;
+  /** Marks of the modules' own records so far (userMark). */
+  private userMarks = 0;
   private readonly checkpoints: Checkpoint[] = [];
   /** chunks[i] holds records [firstChunk + i) * every ...; dropped chunks leave their notable records. */
   private chunks: Chunk[] = [];
@@ -320,6 +325,7 @@ export class MonitorModel implements MonitorView {
    */
   pushScanned(text: string, from: number, to: number, textId: number): boolean {
     const kind = scanned.kind;
+    if (kind === 'user') return false; // a module's own record: parsed, for its mark (userMark)
     if (!FOLDED_KINDS.has(kind)) {
       if (kind === 'ord_finished') this.finishedLine(text);
       const t = this.timeOf(scanned.mono);
@@ -376,6 +382,7 @@ export class MonitorModel implements MonitorView {
     if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
     if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
+    else if (r.kind === 'user') this.userMark(t, r as KnownRecord);
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
 
@@ -534,6 +541,18 @@ export class MonitorModel implements MonitorView {
       else b = m;
     }
     return a;
+  }
+
+  /**
+   * A module's own record (ContractLog under a name of its own): a mark, `gripper_closed: force=12.5 N`.
+   * Not a notable record (it changes no state); the first MAX_USER_MARKS only, so that a module
+   * logging at every cycle cannot take the marks the supervisors' and ORD's records need.
+   */
+  private userMark(t: Ns, k: KnownRecord): void {
+    if (this.userMarks >= MAX_USER_MARKS || this.marks.length >= this.maxMarks) return;
+    this.userMarks++;
+    const event = String(k.fields?.['event'] ?? k.kind);
+    this.marks.push({ t, kind: 'user', where: k.module, label: (k.detail ? `${event}: ${k.detail}` : event).slice(0, 120) });
   }
 
   private notableRecord(x: Timed): void {

@@ -733,6 +733,7 @@ describe.skipIf(!canBuild)('Monitor on examples/mobile-robot with a velocity-loo
             struct timespec late = { 0, 100000000 };
             slept = 1;
             printf("VEL: test sleeps 100 ms past CRITICAL_DELAY\\n");
+            ContractLog("test_sleep", "", -1, 0, "100 ms past CRITICAL_DELAY");
             nanosleep(&late, NULL);
         }
     }`);
@@ -788,6 +789,10 @@ describe.skipIf(!canBuild)('Monitor on examples/mobile-robot with a velocity-loo
     const miss = shownMisses[index]!;
     const cycle = ordMisses[index]!.cycle;
     expect(cycle).toBe(slept!.cycle);
+    // VEL's own record of its sleep (ContractLog under a name of its own) is a mark of the timeline, by the miss
+    const own = marks.filter((m) => m.kind === 'user');
+    expect(own.map((m) => `${m.where} ${m.label}`)).toEqual(['VEL test_sleep: 100 ms past CRITICAL_DELAY']);
+    expect(Math.abs(miss.t - own[0]!.t)).toBeLessThan(150e6);
     // the cursor on it: the panel lists it, ORD:0 on that cycle at that time
     await seek(page, miss.t + 1);
     await expect.poll(() => periodic(page, 'velocityLoop').getAttribute('data-misses')).toBe(String(index + 1));
