@@ -151,6 +151,10 @@ describe('requests', () => {
     // a CPU this machine lacks: refused now (contract-launch refused it only after the build)
     [{ project: { files: {} }, cpus: '0,4096' }, 400, /cpus: CPU 4096 is not available here \(\d+ CPUs online: 0-\d+\)/],
     [{ project: { files: {} }, start: "GLB.mission()'; rm -rf /work; '" }, 400, /start must be one line/],
+    // READY_TIMEOUT ends up in the make command line: a number within the run's time only
+    [{ project: { files: {} }, readyTimeout: '30; reboot' }, 400, /readyTimeout must be a number of seconds from 0\.1 to \d+/],
+    [{ project: { files: {} }, readyTimeout: 0.01 }, 400, /readyTimeout must be a number of seconds from 0\.1/],
+    [{ project: { files: {} }, readyTimeout: 1e9 }, 400, /readyTimeout must be a number of seconds from 0\.1 to \d+ \(the run's time limit, \d+ s, less the room kept to stop it\)/],
   ])('%j -> %i', async (body, status, message) => {
     const r = await postJob(served.url, body);
     expect(r.status).toBe(status);

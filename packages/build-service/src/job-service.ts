@@ -8,7 +8,7 @@ import { chmodSync, mkdirSync, mkdtempSync, promises as fsp, realpathSync } from
 import { availableParallelism, cpus, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_LIMITS, LimitsError, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
+import { DEFAULT_LIMITS, LimitsError, MIN_READY_TIMEOUT_SECONDS, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
 import { Job, type JobRequest } from './pipeline/job.js';
 import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
@@ -159,7 +159,7 @@ export class JobService {
   parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
     if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', 'the body must be a JSON object');
     const b = body as Record<string, unknown>;
-    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'cpus', 'realtime', 'limits']);
+    const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'readyTimeout', 'cpus', 'realtime', 'limits']);
     for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);
     const action = b.action ?? 'build';
     if (action !== 'build' && action !== 'run') throw new ServiceError(400, 'bad_request', 'action must be "build" or "run"');
@@ -193,9 +193,14 @@ export class JobService {
     }
     const longest = longestDuration(limits.runSeconds);
     const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, longest);
+    // READY_TIMEOUT ends up in the make command line: a plain number of seconds, within the run's time
+    const readyTimeout = b.readyTimeout;
+    if (readyTimeout !== undefined && (typeof readyTimeout !== 'number' || !Number.isFinite(readyTimeout) || readyTimeout < MIN_READY_TIMEOUT_SECONDS || readyTimeout > longest)) {
+      throw new ServiceError(400, 'bad_request', `readyTimeout must be a number of seconds from ${MIN_READY_TIMEOUT_SECONDS} to ${longest} (the run's time limit, ${limits.runSeconds} s, less the room kept to stop it)`);
+    }
     const { project, projectKey } = this.parseProject(b.project);
     return {
-      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },
+      request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(readyTimeout !== undefined ? { readyTimeout: readyTimeout as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },
       sandbox,
     };
   }

@@ -188,6 +188,13 @@ export const CANCEL_DEADLINE_MS = 2000;
  */
 export const RUN_STOP_ROOM_SECONDS = 5;
 
+/**
+ * The least time a run may give its modules' inits before its start request (`readyTimeout`,
+ * contract-launch --ready-timeout; its default is 10 s). The wait counts against `runSeconds` too:
+ * a slow init and a duration near the longest together can reach the run's time limit.
+ */
+export const MIN_READY_TIMEOUT_SECONDS = 0.1;
+
 /** The longest duration of an architecture's run under `runSeconds` (RUN_STOP_ROOM_SECONDS). */
 export function longestDuration(runSeconds: number): number {
   return runSeconds - Math.min(RUN_STOP_ROOM_SECONDS, runSeconds / 2);

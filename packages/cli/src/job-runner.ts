@@ -106,6 +106,8 @@ export interface RunRequest {
     action: 'build' | 'run';
     start?: string;
     duration?: number;
+    /** Seconds every module's init may take before the start request (contract-launch's default: 10). */
+    readyTimeout?: number;
     cpus?: string;
     realtime?: boolean;
 }
@@ -140,7 +142,8 @@ export async function runJob(
     const refused = prepareCacheDir(cache.dir, process.getuid?.() === 0 && opts.sandbox !== 'docker');
     if (refused) return { error: refused, exitCode: EXIT_ENVIRONMENT };
     if (opts.verbose && opts.format === 'text') io.err(`build cache: ${cache.dir} (${cache.source})\n`);
-    const runSeconds = Math.ceil((request.duration ?? 10) + 60);
+    // the run's time: its duration, the wait for the modules' inits past the launcher's default 10 s, and room to start and stop
+    const runSeconds = Math.ceil((request.duration ?? 10) + Math.max(0, (request.readyTimeout ?? 10) - 10) + 60);
     const service = new JobService({
         sandbox: opts.sandbox,
         concurrency: 1,
@@ -167,6 +170,7 @@ export async function runJob(
                 sandbox: opts.sandbox,
                 ...(request.start !== undefined ? { start: request.start } : {}),
                 ...(request.duration !== undefined ? { duration: request.duration } : {}),
+                ...(request.readyTimeout !== undefined ? { readyTimeout: request.readyTimeout } : {}),
                 ...(request.cpus !== undefined ? { cpus: request.cpus } : {}),
                 ...(request.realtime ? { realtime: true } : {}),
             });

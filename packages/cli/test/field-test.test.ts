@@ -357,6 +357,14 @@ describe('6. a crashed module', () => {
         expect(trace.stdout).not.toContain('CTL  its last record: no exit record follows');
     }, 240_000);
 
+    it('a --ready-timeout below 100 ms, or not a duration, is a usage error', async () => {
+        for (const bad of ['50ms', 'soon', '-1s']) {
+            const io = capture(root);
+            expect(await runCli(['run', 'robot', '--ready-timeout', bad], io)).toBe(2);
+            expect(io.stderr).toMatch(/bad --ready-timeout '50ms': at least 100ms|bad duration 'soon'|bad duration '-1s'/);
+        }
+    });
+
     it('a real init region that blocks for ever (bwrap): exit 4 at the ready timeout, not ready named, no start sent, its records kept', async () => {
         expect(await runCli(['new', 'stall'], capture(root))).toBe(0);
         expect(await runCli(['generate', 'stall'], capture(root))).toBe(0);
@@ -367,9 +375,9 @@ describe('6. a crashed module', () => {
         writeFileSync(file, edited);
         const io = capture(root);
         const t0 = Date.now();
-        expect(await runCli(['run', 'stall', '--sandbox', 'bwrap', '--duration', '30s'], io)).toBe(4);
-        expect(Date.now() - t0).toBeLessThan(30_000); // the 10 s ready timeout, not the 30 s asked
-        expect(io.stderr).toContain('problem: CTL was not ready after 10 s: its init region had not returned (does it loop or block?), so the run stopped before its start request');
+        expect(await runCli(['run', 'stall', '--sandbox', 'bwrap', '--duration', '30s', '--ready-timeout', '3s'], io)).toBe(4);
+        expect(Date.now() - t0).toBeLessThan(30_000); // the 3 s ready timeout asked, not the 30 s of the run
+        expect(io.stderr).toContain('problem: CTL was not ready after 3 s: its init region had not returned (does it loop or block?), so the run stopped before its start request');
         expect(io.stderr).not.toContain('CTL did not end when the run stopped'); // the same fault, told once
         expect(io.stdout + io.stderr).not.toMatch(/started [A-Z]+\.\w+\(/); // the start request was never sent
         const trace = capture(root);

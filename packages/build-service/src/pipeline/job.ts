@@ -37,6 +37,8 @@ export interface JobRequest {
   duration?: number;
   /** The duration the request asked for, when it was capped (limits.ts longestDuration). */
   durationAsked?: number;
+  /** Seconds every module's init may take before the start request (`make run READY_TIMEOUT=…`, contract-launch --ready-timeout; default 10). */
+  readyTimeout?: number;
   /** CPU list every module is pinned to (`make run CPUS=…`, contract-launch --cpus). */
   cpus?: string;
   /** Real-time mode (run only): modules take their SCHED_FIFO priorities, bounded (docs/sandbox.md "Real-time mode"). */
@@ -353,6 +355,7 @@ export class Job {
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
       if (this.request.durationAsked !== undefined)
         this.system('run', `duration ${this.request.durationAsked} s capped to ${this.request.duration} s: the run time limit is ${this.request.limits.runSeconds} s, of which ${this.request.limits.runSeconds - this.request.duration!} s are kept to start and stop the architecture`);
+      if (this.request.readyTimeout !== undefined) runVars.push(`READY_TIMEOUT=${this.request.readyTimeout}`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);

@@ -31,6 +31,13 @@ export function parseDuration(text: string): number {
     return value;
 }
 
+/** `--ready-timeout` as seconds: a duration (parseDuration) of 100 ms at least. */
+export function checkReadyTimeout(text: string): number {
+    const seconds = parseDuration(text);
+    if (seconds < 0.1) throw new UsageError(`bad --ready-timeout '${text}': at least 100ms`);
+    return seconds;
+}
+
 /**
  * `--cpus` list: `1`, `0-1`, `0,2`. A CPU this machine does not have (`online`: its online CPUs,
  * which the sandbox on this machine runs on) is refused here, before anything is built;
@@ -127,10 +134,11 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing);',
         '           a supervisor, function or parameter the model does not have, or a value of the wrong type, is refused before the build (exit 2, with what it has)',
+        '  --ready-timeout: how long every module\'s init may take before the start request is sent (default 10s); a module whose init has not returned by then stops the run (exit 4)',
         '  --cpus: pin every module to these CPUs (e.g. 1, 0-1; default: the system places them) — steadier periods',
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
@@ -141,10 +149,12 @@ export const runCommand: Command = {
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus', 'trace'], [...COMMON_FLAGS, 'realtime']);
+        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus', 'trace', 'ready-timeout'], [...COMMON_FLAGS, 'realtime']);
         const opts = await parseJobOptions(parsed, io, onTerminal());
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
+        const readyOption = parsed.options.get('ready-timeout');
+        const readyTimeout = typeof readyOption === 'string' ? checkReadyTimeout(readyOption) : undefined;
         const startOption = parsed.options.get('start');
         const start = typeof startOption === 'string' ? checkStart(startOption) : undefined;
         const cpusOption = parsed.options.get('cpus');
@@ -180,7 +190,7 @@ export const runCommand: Command = {
             }
         }
         const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
-        const outcome = await runJob(opts, { action: 'run', duration, ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}) }, io, undefined, onEvent);
+        const outcome = await runJob(opts, { action: 'run', duration, ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
             await live?.close().catch(() => {});
             io.err(`contract run: ${outcome.error}\n`);

@@ -22,6 +22,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #   make all      build the runtime if needed, every module, supervisor, ORD and the control tools
         #   make run      run the architecture: make run [START='SUP.fn(p={1.0,2.0})'] [DURATION=10] [RUN_DIR=dir] [LOG_DIR=dir]
         #                 [CPUS=1] (pin every module to these CPUs) [PM_QOS_US=0] (hold CPU wake-up latency; root)
+        #                 [READY_TIMEOUT=10] (seconds every module's init may take before the start; else the run stops)
         #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
         #                 LOG_DIR/previous/run-<time of the newest>/ first (never deleted)
         #                 stopping (DURATION, Ctrl-C, make kill) stops the SUPERVISORS first, then the others:
@@ -38,6 +39,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         DURATION ?=
         CPUS ?=
         PM_QOS_US ?=
+        READY_TIMEOUT ?=
         RUN_DIR ?= $(CURDIR)/run
         LOG_DIR ?= $(CURDIR)/logs
 
@@ -58,7 +60,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	  at="$$to"; n=2; while [ -e "$$to" ]; do to="$$at-$$n"; n=$$((n + 1)); done; \\
         	  mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/ && echo "make run: the previous run's logs moved to $$to"; \\
         	fi
-        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
+        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(if $(READY_TIMEOUT),--ready-timeout '$(READY_TIMEOUT)') $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
 
         kill:
         	$(LAUNCH) --kill '$(RUN_DIR)'
