@@ -23,7 +23,7 @@ const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
  * was saved for (`startFor`: the workspace root and project folder; a value saved without one, by
  * an older version, goes for any).
  */
-type RunSettings = { duration: number; start?: string; cpus?: string; realtime?: boolean };
+type RunSettings = { duration: number; start?: string; readyTimeout?: number; cpus?: string; realtime?: boolean };
 /**
  * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
  * this tab stopped it, and, for a job another tab started, what it was (its status says so again
@@ -37,7 +37,8 @@ function runSettings(where: string): RunSettings {
   try {
     const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings> & { startFor?: unknown };
     const start = v.start && (v.startFor === undefined || v.startFor === where) ? v.start : undefined;
-    return { duration: v.duration ?? 10, start, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
+    const readyTimeout = typeof v.readyTimeout === 'number' && Number.isFinite(v.readyTimeout) && v.readyTimeout >= 0.1 ? v.readyTimeout : undefined;
+    return { duration: v.duration ?? 10, start, readyTimeout, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
   } catch {
     return { duration: 10 };
   }
@@ -162,7 +163,7 @@ export class RunController {
       await workspace.saveAll();
       this.project = this.d.project();
       const settings = runSettings(this.where(this.project));
-      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus, settings.realtime);
+      await build.start(this.project ? `${workspace.root}/${this.project}` : workspace.root, 'run', settings.duration, settings.start, settings.cpus, settings.realtime, settings.readyTimeout);
     } catch (e) {
       reportError(e);
       build.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `could not start: ${(e as Error).message}` });
@@ -195,17 +196,21 @@ export class RunController {
     const r = await askFields('Run settings', [
       { key: 'duration', label: 'Duration of a run (seconds, capped by the build service)', value: String(cur.duration) },
       { key: 'start', label: "Start request (START=), empty = the generator's default (first function of the top supervisor)", value: cur.start ?? '', hint: 'SUPERVISOR.function(parameter = value, ...)' },
+      { key: 'readyTimeout', label: "Time every module's init may take before the start request (seconds; READY_TIMEOUT=), empty = 10: a module not ready by then stops the run", value: cur.readyTimeout === undefined ? '' : String(cur.readyTimeout), hint: '10' },
       { key: 'cpus', label: 'Pin every module to these CPUs (CPUS=; steadier periods), empty = the system places them', value: cur.cpus ?? '', hint: '1 or 0-1' },
       { key: 'realtime', label: 'Real-time: modules take their SCHED_FIFO priorities in the sandbox, bounded (refused, saying why, where the host cannot grant it)', value: cur.realtime ? 'yes' : '', checkbox: true },
     ]);
     if (!r) return;
     const duration = Number(r.duration);
     if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
+    const readyText = (r.readyTimeout ?? '').trim();
+    const readyTimeout = readyText ? Number(readyText) : undefined;
+    if (readyTimeout !== undefined && !(Number.isFinite(readyTimeout) && readyTimeout >= 0.1)) return toast('error', `The init time must be a number of seconds, 0.1 or more, not "${readyText}"`);
     const cpus = (r.cpus ?? '').trim();
     if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
     const realtime = r.realtime === 'yes';
-    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
-    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${realtime ? ', real-time priorities' : ''}`);
+    localStorage.setItem(RUN_SETTINGS_KEY, JSON.stringify({ duration, start: r.start, ...(r.start ? { startFor: where } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) }));
+    toast('info', `Runs last ${duration} s${r.start ? `, start ${r.start}` : ''}${readyTimeout !== undefined ? `, inits get ${readyTimeout} s` : ''}${cpus ? `, modules on CPUs ${cpus}` : ''}${realtime ? ', real-time priorities' : ''}`);
   }
 
   private async fetchLogs(jobId: string): Promise<void> {

@@ -130,14 +130,14 @@ export class BuildPanel {
     }));
   }
 
-  async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean): Promise<void> {
+  async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
     if (this.jobId) await this.stop();
     this.clear();
     this.setStatus('submitting', undefined, true);
     this.submitting = true;
     let job;
     try {
-      job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
+      job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(readyTimeout ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
     } finally {
       this.submitting = false;
     }

@@ -482,10 +482,11 @@ describe('IDE in headless Chromium', () => {
     await page.locator('#btn-run-settings').click();
     await page.locator('.dialog-input[data-key=duration]').fill('4');
     await page.locator('.dialog-input[data-key=start]').fill('GLB.mission(consigne={1.0,2.0,3.0})');
+    await page.locator('.dialog-input[data-key=readyTimeout]').fill('20');
     await page.locator('.dialog-input[data-key=cpus]').fill('0');
     await page.locator('.dialog .btn.primary').click();
     const saved = await page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!));
-    expect(saved).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})', startFor: expect.stringMatching(/\/$/), cpus: '0' });
+    expect(saved).toEqual({ duration: 4, start: 'GLB.mission(consigne={1.0,2.0,3.0})', startFor: expect.stringMatching(/\/$/), readyTimeout: 20, cpus: '0' });
     // the start request is this project's: another workspace served on the same port does not get it
     await page.evaluate((v) => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ ...v, startFor: '/elsewhere/robot' })), saved);
     await page.locator('#btn-run-settings').click();
@@ -501,6 +502,9 @@ describe('IDE in headless Chromium', () => {
     // the CPUs setting reached the launcher (contract-launch --cpus through make run CPUS=0)
     await page.locator('.log-search').fill('modules pinned to CPUs 0');
     await expect.poll(() => page.locator('.log-row', { hasText: 'modules pinned to CPUs 0' }).count(), { timeout: 10_000 }).toBeGreaterThan(0);
+    // and the init time too (make run READY_TIMEOUT=20: make echoes the launcher's command)
+    await page.locator('.log-search').fill("--ready-timeout '20'");
+    await expect.poll(() => page.locator('.log-row', { hasText: "--ready-timeout '20'" }).count(), { timeout: 10_000 }).toBeGreaterThan(0);
     await page.locator('.log-search').fill('');
     await shot(page, '06-build-and-run');
     // the run ends by itself after DURATION; the service collected its CSV logs from the sandbox
