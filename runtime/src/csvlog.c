@@ -63,7 +63,12 @@
 
 #define CSV_HEADER "mono_ns,wall_time,module,event,peer,port,size,detail\n"
 #define LOG_BUF 65536
-#define RECORD_MAX 1024
+#define EVENT_MAX 64     /* bytes of a record's event name: a longer one is cut (one warning) */
+#define DETAIL_MAX 400   /* bytes of a record's detail: a longer one is cut, ending with `…` */
+/* A record's room: its fields at their bounds, each quoted with every byte a doubled quote (the
+ * detail with its cut mark), the separators and the line end: 20 + 27 + 63 + 2 * (2 + 2 * 64)
+ * + 10 + 20 + (2 + 2 * (400 + 3)) + 8 = 1216 bytes. */
+#define RECORD_MAX 1280
 #define LOG_MAX_DEFAULT (256ULL * 1024 * 1024)
 
 #define WRITER_STACK (256 * 1024) /* locked with the rest by mlockall: not the default 8 MiB */
@@ -224,19 +229,32 @@ static char *put_u64(char *p, unsigned long long v)
 }
 
 /* CSV field of at most `max` characters, quoted when it holds a comma, quote or line break. */
-static char *put_field(char *p, const char *s, size_t max)
+/* The CUT_MARK a detail longer than DETAIL_MAX ends with (U+2026 HORIZONTAL ELLIPSIS, 3 bytes). */
+#define CUT_MARK "\xe2\x80\xa6"
+
+/* At most `max` bytes of s as a CSV field (quoted, quotes doubled, line ends as spaces: at most
+ * 2 * (max + 3) + 2 bytes). `mark`: a longer s is cut before the UTF-8 character the bound would
+ * split, and ends with CUT_MARK (the reader sees the cut); else it is cut at `max`. */
+static char *put_field(char *p, const char *s, size_t max, int mark)
 {
     if (!s) return p;
-    size_t n = strnlen(s, max);
+    size_t n = strnlen(s, max + 1);
+    int cut = n > max;
+    if (cut) {
+        n = max;
+        if (mark) while (n > 0 && ((unsigned char)s[n] & 0xC0) == 0x80) n--; /* s[n]: inside a character */
+    }
+    const char *tail = cut && mark ? CUT_MARK : "";
     if (!memchr(s, ',', n) && !memchr(s, '"', n) && !memchr(s, '\n', n) && !memchr(s, '\r', n)) {
         memcpy(p, s, n);
-        return p + n;
+        return put_str(p + n, tail);
     }
     *p++ = '"';
     for (size_t i = 0; i < n; i++) {
         if (s[i] == '"') *p++ = '"';
         *p++ = (s[i] == '\n' || s[i] == '\r') ? ' ' : s[i];
     }
+    p = put_str(p, tail);
     *p++ = '"';
     return p;
 }
@@ -303,15 +321,15 @@ static char *put_record(char *p, RTIME mono, const char *event, const char *peer
     *p++ = ',';
     p = put_str(p, g_rt.name);
     *p++ = ',';
-    p = put_field(p, event, 64);
+    p = put_field(p, event, EVENT_MAX, 0);
     *p++ = ',';
-    p = put_field(p, peer, CONTRACT_NAME_MAX);
+    p = put_field(p, peer, CONTRACT_NAME_MAX, 0);
     *p++ = ',';
     if (port >= 0) p = put_u64(p, (unsigned long long)port);
     *p++ = ',';
     p = put_u64(p, (unsigned long long)size);
     *p++ = ',';
-    p = put_field(p, detail, 400);
+    p = put_field(p, detail, DETAIL_MAX, 1);
     *p++ = '\n';
     return p;
 }
@@ -336,9 +354,20 @@ static void lock(void) { pthread_mutex_lock(&log_lock); }
 static void unlock(void) { pthread_mutex_unlock(&log_lock); }
 static size_t pending(void) { return __atomic_load_n(&pending_len, __ATOMIC_ACQUIRE); }
 
+/* An event name longer than EVENT_MAX is cut to it: said once per process, on stderr (two long names
+ * with the same first 64 bytes become one event in the trace). */
+static void warn_long_event(const char *event)
+{
+    static int said;
+    if (__atomic_exchange_n(&said, 1, __ATOMIC_RELAXED)) return;
+    fprintf(stderr, "%s: warning: ContractLog: an event name longer than %d bytes is cut to them: '%.*s...' (give your records shorter names)\n",
+            g_rt.name[0] ? g_rt.name : "libmodule", EVENT_MAX, EVENT_MAX, event);
+}
+
 void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail)
 {
     if (log_fd < 0) return;
+    if (event && strnlen(event, EVENT_MAX + 1) > EVENT_MAX) warn_long_event(event);
     if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) {
         log_records++;
         log_dropped++;

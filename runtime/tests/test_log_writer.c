@@ -234,3 +234,56 @@ void test_csv_log_crash_writer_busy(void)
         h_teardown();
     }
 }
+
+/* A record whose fields are at their bounds and made of characters the CSV must quote (every one
+ * doubled) fits the record's room: the log's buffer and the crash handler's record buffer are never
+ * overrun (ASan), and each record reads back whole. A detail longer than its bound is cut there, and
+ * says so (`…`, never inside a UTF-8 character); a name longer than its bound is cut too. */
+void test_csv_log_record_bounds(void)
+{
+    REQUIRE(h_setup("logbounds") == 0);
+    REQUIRE(rt_log_open() == 0);
+    char csv[1024];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    char event[65], peer[65], detail[401];
+    memset(event, '"', 64); event[64] = '\0';
+    memset(peer, '"', 64); peer[64] = '\0';
+    memset(detail, '"', 400); detail[400] = '\0';
+    /* records of many sizes, so that one starts anywhere near a 64 KiB buffer's end */
+    for (int i = 0; i < 4000; i++) ContractLog(event, peer, 7, 9, detail + (i % 97));
+    /* 500 bytes: cut at 400, the cut said; a 3-byte character across the bound is not split */
+    char longer[501];
+    memset(longer, 'x', 500); longer[500] = '\0';
+    memcpy(longer + 398, "\xe2\x82\xac", 3); /* a euro sign on bytes 398..400 */
+    ContractLog("long_detail", "", -1, 0, longer);
+    char exact[401];
+    memset(exact, 'y', 400); exact[400] = '\0';
+    ContractLog("exact_detail", "", -1, 0, exact);
+    char name[80];
+    memset(name, 'n', 79); name[79] = '\0';
+    ContractLog(name, "", -1, 0, "long name");
+    ContractLogFlush();
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    int whole = 0;
+    for (const char *l = strstr(log, "\n") + 1; l && *l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+        if (strncmp(strchr(strchr(strchr(l, ',') + 1, ',') + 1, ',') + 1, "\"\"\"", 3) != 0) continue;
+        const char *end = strchr(l, '\n');
+        CHECK_MSG(end && (size_t)(end - l) > 2 * 304 + 2 * 64 * 2, "a quoted record was cut: %.80s", l);
+        whole++;
+    }
+    CHECK_MSG(whole == 4000, "%d of 4000 quoted records read back", whole);
+    char want[500];
+    memset(want, 'x', 398);
+    memcpy(want + 398, "\xe2\x80\xa6\n", 5); /* 398 x, then … (the euro sign would not fit whole) */
+    const char *cut = strstr(log, ",long_detail,,,0,");
+    CHECK(cut && strncmp(cut + strlen(",long_detail,,,0,"), want, 398 + 4) == 0);
+    const char *ex = strstr(log, ",exact_detail,,,0,");
+    CHECK(ex && strncmp(ex + strlen(",exact_detail,,,0,"), exact, 400) == 0 && ex[strlen(",exact_detail,,,0,") + 400] == '\n');
+    memset(want, 'n', 64);
+    memcpy(want + 64, ",,,0,long name\n", 16);
+    CHECK(strstr(log, want) != NULL);
+    free(log);
+    rt_log_close();
+    h_teardown();
+}
