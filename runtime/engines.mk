@@ -8,7 +8,7 @@ ENG_CC      ?= gcc
 ENG_WARN    := -std=c11 -Wall -Wextra -Werror -pthread
 ENG_INC     := -Iinclude -Isrc/engines -Itests/engines -Isim
 ENG_SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
-ENG_OUT     := build/engines
+ENG_OUT     := $(BUILD)/engines
 ENG_CORE    := src/engines/engine_values.c src/engines/value_ops.c src/engines/engine_check.c src/engines/sup_core.c src/engines/sup_claims.c \
                src/engines/ord_core.c
 ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def sim/*.h)
@@ -36,7 +36,7 @@ test-engines: $(ENG_OUT)/engine-tests $(ENG_OUT)/engine-tests-san
 	@$(MAKE) --no-print-directory test-engines-integration
 
 # ---- integration test: real processes through libmodule (needs the runtime Makefile's
-# build/libmodule.a, build/san/libmodule.a and build/contract-launch) ----
+# $(BUILD)/libmodule.a, $(BUILD)/san/libmodule.a and $(BUILD)/contract-launch) ----
 ENG_IT_SRC  := tests/engines/integration
 ENG_IT_DEPS := $(wildcard $(ENG_IT_SRC)/*.h) $(wildcard include/*/*.h) tests/engines/engine_executable.h
 ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c) $(ENG_IT_SRC)/stall_watch.c
@@ -89,8 +89,8 @@ $(1)/$(4): $(ENG_IT_SRC)/$(ENG_IT_FROM_$(4)) $(2) $(ENG_IT_DEPS)
 	@mkdir -p $$(@D)
 	$$(ENG_CC) $(ENG_WARN) -O2 $(3) -Iinclude $(ENG_IT_FLAGS_$(4)) $$< $(2) -o $$@
 endef
-$(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it,build/libmodule.a,,$(e))))
-$(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it-san,build/san/libmodule.a,$(ENG_SAN),$(e))))
+$(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it,$(BUILD)/libmodule.a,,$(e))))
+$(foreach e,$(ENG_IT_EXES),$(eval $(call ENG_IT_EXE,$(ENG_OUT)/it-san,$(BUILD)/san/libmodule.a,$(ENG_SAN),$(e))))
 $(ENG_OUT)/it/itest $(ENG_OUT)/it-san/itest: $(ENG_IT_MAIN) $(ENG_IT_DEPS)
 	@mkdir -p $(@D)
 	$(ENG_CC) $(ENG_WARN) -O2 -pthread $(ENG_IT_MAIN) -o $@
@@ -98,26 +98,26 @@ ENG_IT_BINS := $(ENG_IT_EXES) itest
 
 .PHONY: test-engines-integration
 test-engines-integration: $(addprefix $(ENG_OUT)/it/,$(ENG_IT_BINS)) \
-                          $(addprefix $(ENG_OUT)/it-san/,$(ENG_IT_BINS)) build/contract-launch
+                          $(addprefix $(ENG_OUT)/it-san/,$(ENG_IT_BINS)) $(BUILD)/contract-launch
 	@echo "== engine integration test (real processes)"
-	@$(ENG_OUT)/it/itest $(ENG_OUT)/it build/contract-launch
+	@$(ENG_OUT)/it/itest $(ENG_OUT)/it $(BUILD)/contract-launch
 	@echo "== engine integration test (real processes, ASan+UBSan)"
-	@$(ENG_OUT)/it-san/itest $(ENG_OUT)/it-san build/contract-launch
+	@$(ENG_OUT)/it-san/itest $(ENG_OUT)/it-san $(BUILD)/contract-launch
 
 # ---- benchmark -> ../bench/parts/engines.json (see tests/engines/bench/bench_engines.c) ----
 ENG_BENCH_SRC := tests/engines/bench
 ENG_BENCH_OUT := $(ENG_OUT)/bench
 ENG_BENCH_SECONDS ?= 10.2
 
-$(ENG_BENCH_OUT)/BMA $(ENG_BENCH_OUT)/BMB $(ENG_BENCH_OUT)/BMC: $(ENG_IT_SRC)/imod.c $(ENG_IT_SRC)/imodule.h build/libmodule.a
+$(ENG_BENCH_OUT)/BMA $(ENG_BENCH_OUT)/BMB $(ENG_BENCH_OUT)/BMC: $(ENG_IT_SRC)/imod.c $(ENG_IT_SRC)/imodule.h $(BUILD)/libmodule.a
 	@mkdir -p $(ENG_BENCH_OUT)
-	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude -DIMOD_NAME='"$(notdir $@)"' -DIMOD_WORK_NS=20000 $< build/libmodule.a -o $@
-$(ENG_BENCH_OUT)/ORD: $(ENG_BENCH_SRC)/bord.c $(ENG_BENCH_SRC)/btables.h tests/engines/engine_executable.h build/libmodule.a
+	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude -DIMOD_NAME='"$(notdir $@)"' -DIMOD_WORK_NS=20000 $< $(BUILD)/libmodule.a -o $@
+$(ENG_BENCH_OUT)/ORD: $(ENG_BENCH_SRC)/bord.c $(ENG_BENCH_SRC)/btables.h tests/engines/engine_executable.h $(BUILD)/libmodule.a
 	@mkdir -p $(ENG_BENCH_OUT)
-	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< build/libmodule.a -o $@
-$(ENG_BENCH_OUT)/BSU: $(ENG_BENCH_SRC)/bsup.c $(ENG_BENCH_SRC)/btables.h tests/engines/engine_executable.h build/libmodule.a
+	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< $(BUILD)/libmodule.a -o $@
+$(ENG_BENCH_OUT)/BSU: $(ENG_BENCH_SRC)/bsup.c $(ENG_BENCH_SRC)/btables.h tests/engines/engine_executable.h $(BUILD)/libmodule.a
 	@mkdir -p $(ENG_BENCH_OUT)
-	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< build/libmodule.a -o $@
+	$(ENG_CC) $(ENG_WARN) -O2 -Iinclude $< $(BUILD)/libmodule.a -o $@
 $(ENG_BENCH_OUT)/bench_engines: $(ENG_BENCH_SRC)/bench_engines.c $(ENG_BENCH_SRC)/platform_probe.c \
                                  $(ENG_BENCH_SRC)/platform_probe.h launcher/rt_placement.c launcher/rt_placement.h \
                                  $(ENG_CORE) $(ENG_HDRS)
@@ -125,7 +125,7 @@ $(ENG_BENCH_OUT)/bench_engines: $(ENG_BENCH_SRC)/bench_engines.c $(ENG_BENCH_SRC
 	$(ENG_CC) $(ENG_WARN) -O2 $(ENG_INC) -Ilauncher $< $(ENG_BENCH_SRC)/platform_probe.c launcher/rt_placement.c \
 	  $(ENG_CORE) -o $@
 
-bench-engines: $(addprefix $(ENG_BENCH_OUT)/,BMA BMB BMC ORD BSU bench_engines) build/contract-launch
+bench-engines: $(addprefix $(ENG_BENCH_OUT)/,BMA BMB BMC ORD BSU bench_engines) $(BUILD)/contract-launch
 	@mkdir -p ../bench/parts
-	$(ENG_BENCH_OUT)/bench_engines $(ENG_BENCH_OUT) build/contract-launch ../bench/parts/engines.json $(ENG_BENCH_SECONDS)
+	$(ENG_BENCH_OUT)/bench_engines $(ENG_BENCH_OUT) $(BUILD)/contract-launch ../bench/parts/engines.json $(ENG_BENCH_SECONDS)
 	@cat ../bench/parts/engines.json
