@@ -192,12 +192,14 @@ export class JobService {
       throw e;
     }
     const longest = longestDuration(limits.runSeconds);
-    const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, longest);
     // READY_TIMEOUT ends up in the make command line: a plain number of seconds, within the run's time
     const readyTimeout = b.readyTimeout;
     if (readyTimeout !== undefined && (typeof readyTimeout !== 'number' || !Number.isFinite(readyTimeout) || readyTimeout < MIN_READY_TIMEOUT_SECONDS || readyTimeout > longest)) {
       throw new ServiceError(400, 'bad_request', `readyTimeout must be a number of seconds from ${MIN_READY_TIMEOUT_SECONDS} to ${longest} (the run's time limit, ${limits.runSeconds} s, less the room kept to stop it)`);
     }
+    // the inits' time past the launcher's default comes out of the longest duration
+    const longestRun = longestDuration(limits.runSeconds, readyTimeout as number | undefined);
+    const duration = b.duration === undefined ? undefined : Math.min(b.duration as number, longestRun);
     const { project, projectKey } = this.parseProject(b.project);
     return {
       request: { action, project, projectKey, kind, start: b.start as string | undefined, duration, ...(duration !== undefined && duration < (b.duration as number) ? { durationAsked: b.duration as number } : {}), ...(readyTimeout !== undefined ? { readyTimeout: readyTimeout as number } : {}), ...(b.cpus !== undefined ? { cpus: b.cpus as string } : {}), ...(b.realtime === true ? { realtime: true } : {}), limits },

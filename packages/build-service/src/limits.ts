@@ -190,14 +190,23 @@ export const RUN_STOP_ROOM_SECONDS = 5;
 
 /**
  * The least time a run may give its modules' inits before its start request (`readyTimeout`,
- * contract-launch --ready-timeout; its default is 10 s). The wait counts against `runSeconds` too:
- * a slow init and a duration near the longest together can reach the run's time limit.
+ * contract-launch --ready-timeout; its default is 10 s). What it gives past that default comes out
+ * of the longest duration (longestDuration).
  */
 export const MIN_READY_TIMEOUT_SECONDS = 0.1;
 
-/** The longest duration of an architecture's run under `runSeconds` (RUN_STOP_ROOM_SECONDS). */
-export function longestDuration(runSeconds: number): number {
-  return runSeconds - Math.min(RUN_STOP_ROOM_SECONDS, runSeconds / 2);
+/** contract-launch's own ready timeout (`--ready-timeout`'s default), seconds. */
+export const DEFAULT_READY_TIMEOUT_SECONDS = 10;
+
+/**
+ * The longest duration of an architecture's run under `runSeconds` (RUN_STOP_ROOM_SECONDS), less
+ * what a `readyTimeout` longer than the launcher's default may add before the start (the modules'
+ * inits): a run asked for the longest still ends on its own.
+ */
+export function longestDuration(runSeconds: number, readyTimeout?: number): number {
+  const longest = runSeconds - Math.min(RUN_STOP_ROOM_SECONDS, runSeconds / 2);
+  const initsExtra = readyTimeout === undefined ? 0 : Math.max(0, readyTimeout - DEFAULT_READY_TIMEOUT_SECONDS);
+  return Math.max(Math.min(longest, DEFAULT_READY_TIMEOUT_SECONDS), longest - initsExtra);
 }
 
 /**

@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, DEFAULT_READY_TIMEOUT_SECONDS, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -354,7 +354,7 @@ export class Job {
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
       if (this.request.durationAsked !== undefined)
-        this.system('run', `duration ${this.request.durationAsked} s capped to ${this.request.duration} s: the run time limit is ${this.request.limits.runSeconds} s, of which ${this.request.limits.runSeconds - this.request.duration!} s are kept to start and stop the architecture`);
+        this.system('run', `duration ${this.request.durationAsked} s capped to ${this.request.duration} s: the run time limit is ${this.request.limits.runSeconds} s, of which ${this.request.limits.runSeconds - this.request.duration!} s are kept to start and stop the architecture${this.request.readyTimeout !== undefined && this.request.readyTimeout > DEFAULT_READY_TIMEOUT_SECONDS ? ` (its modules' inits may take ${this.request.readyTimeout} s)` : ''}`);
       if (this.request.readyTimeout !== undefined) runVars.push(`READY_TIMEOUT=${this.request.readyTimeout}`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
