@@ -662,10 +662,10 @@ int main(int argc, char *argv[])
     }
     int stop = run_loop(sfd, now_ns() + (RTIME)(ready_timeout * 1e9), all_ready);
     int not_ready = 0;
-    /* a module is ready once it looks for its first request (libmodule writes <NAME>.pid then):
+    /* a module is ready once it looks for its first request (libmodule writes <NAME>.ready then):
      * its init region has returned. One that is not, after the ready timeout, loops or blocks in
      * it: the architecture would never start, so the run stops here, its start not sent. */
-    for (int k = 0; k < n_children; k++)
+    for (int k = 0; k < n_children && !stop; k++) /* (a stop signal during the wait: no module is late) */
         if (children[k].alive && !children[k].ready) {
             not_ready++;
             say("module %s is not ready after %g s: its init has not returned (does its init region loop or block?); the run stops without its start request",

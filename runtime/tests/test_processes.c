@@ -167,6 +167,18 @@ void test_launcher_module_ends(void)
     CHECK(text && !strstr(text, "started P.mission") && !strstr(text, "module(s) running"));
     CHECK(text && strstr(text, "module C2 did not end on its KILL request within 2 s: terminating it (SIGTERM)"));
     free(text);
+    /* stopped (SIGTERM: a cancelled job) while it waits for that init: no module is said late */
+    char *wait_argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "30",
+                          "--ready-timeout", "5", exe_p, exe_c1, exe_c2, NULL };
+    setenv("TMOD_END", "C2:inithang", 1);
+    pid_t waiting = start_launcher(wait_argv, out);
+    REQUIRE(waiting > 0);
+    usleep(700000);
+    kill(waiting, SIGTERM);
+    CHECK(h_wait_exit(waiting, 8000) >= 0);
+    text = h_read_file(out);
+    CHECK(text && strstr(text, "stopping") && !strstr(text, "is not ready"));
+    free(text);
     /* nor is the start request sent before a slow init has returned: P's START is read after C2's 300 ms */
     char *slow_argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "1",
                           "--start", "P.mission()", exe_p, exe_c1, exe_c2, NULL };

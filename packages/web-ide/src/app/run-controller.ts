@@ -16,6 +16,8 @@ const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
  * service no longer knows it.
  */
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
+/** How soon after this tab's job was cancelled from elsewhere a job another tab announces is taken for its replacement. */
+const REPLACED_WITHIN_MS = 10_000;
 const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 /**
  * Kept in the browser, one set for the server's origin: the duration, CPUs and real-time go for
@@ -52,6 +54,12 @@ export class RunController {
   project = '';
   /** The last job another tab started while this tab was busy with its own (not followed then). */
   private passedOver: SharedJob | undefined;
+  /**
+   * This tab's last job cancelled from elsewhere, and when: the job another tab announces next, soon
+   * after, is the one that replaced it, whichever of the two news came first (on a loaded machine the
+   * announcement can come after the end of the job it replaced).
+   */
+  private cancelledHere: { jobId: string; at: number } | undefined;
 
   constructor(private readonly d: {
     workspace: Workspace; build: BuildPanel;
@@ -78,6 +86,7 @@ export class RunController {
       // followed now (the run this one was replaced by); after any other end the log stays
       const next = this.passedOver;
       this.passedOver = undefined;
+      this.cancelledHere = cancelledElsewhere ? { jobId, at: Date.now() } : undefined;
       if (cancelledElsewhere && next && next.id !== jobId) void this.followShared(next, { replacing: jobId });
     });
     build.onStarted.on(({ jobId }) => this.keep({ jobId, project: this.project, ended: false }));
@@ -137,6 +146,10 @@ export class RunController {
       this.passedOver = job;
       return false;
     }
+    // announced only after this tab's own job ended, cancelled from elsewhere a moment before: its replacement
+    const cancelled = this.cancelledHere;
+    this.cancelledHere = undefined;
+    if (!opts.replacing && cancelled && cancelled.jobId !== job.id && Date.now() - cancelled.at < REPLACED_WITHIN_MS) opts = { ...opts, replacing: cancelled.jobId };
     const project = this.project;
     this.project = job.project;
     const what: SharedWhat = job.action === 'run' ? 'Build & Run' : 'build';
