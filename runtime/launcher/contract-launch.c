@@ -107,41 +107,43 @@ static long read_pid_file(const char *path)
     return pid;
 }
 
-/* Remove the files a module leaves in the run directory: NAME.mbx, NAME.<port>.in, NAME.pid,
- * and the module and flow holds of the supervisor engines: NAME.<module>.hold, NAME.started.hold,
- * NAME.engine-stopped.hold,
- * NAME.flow-<...>.hold, NAME.prio-<module>-<id>.hold. */
+/* The runtime's files in a run directory, by their ends: NAME.mbx, NAME.<port>.in, NAME.pid,
+ * NAME.ready, and the module and flow holds of the supervisor engines (NAME.<module>.hold,
+ * NAME.started.hold, NAME.engine-stopped.hold, NAME.flow-<...>.hold, NAME.prio-<module>-<id>.hold);
+ * launcher.pid too. */
+static int is_runtime_file(const char *file)
+{
+    static const char *const ends[] = { ".mbx", ".pid", ".ready", ".in", ".hold" };
+    size_t l = strlen(file);
+    for (size_t i = 0; i < sizeof ends / sizeof ends[0]; i++) {
+        size_t n = strlen(ends[i]);
+        if (l > n && strcmp(file + l - n, ends[i]) == 0) return 1;
+    }
+    return 0;
+}
+
+/* Remove the runtime files of module `name` from the run directory (is_runtime_file). */
 static void remove_module_files(const char *dir, const char *name)
 {
     DIR *d = opendir(dir);
     if (!d) return;
     size_t n = strlen(name);
     struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        if (strncmp(e->d_name, name, n) != 0 || e->d_name[n] != '.') continue;
-        const char *rest = e->d_name + n;
-        size_t rl = strlen(rest);
-        if (strcmp(rest, ".mbx") == 0 || strcmp(rest, ".pid") == 0 || strcmp(rest, ".ready") == 0 || (rl > 3 && strcmp(rest + rl - 3, ".in") == 0) ||
-            (rl > 5 && strcmp(rest + rl - 5, ".hold") == 0))
+    while ((e = readdir(d)) != NULL)
+        if (strncmp(e->d_name, name, n) == 0 && e->d_name[n] == '.' && is_runtime_file(e->d_name))
             unlinkat(dirfd(d), e->d_name, 0);
-    }
     closedir(d);
 }
 
-/* Remove every runtime file (*.mbx, *.in, *.pid, *.ready, *.hold, launcher.pid, launcher.stopping) and the directory if empty. */
+/* Remove every runtime file (is_runtime_file, launcher.stopping) and the directory if empty. */
 static void clean_run_dir(const char *dir)
 {
     DIR *d = opendir(dir);
     if (!d) return;
     struct dirent *e;
-    while ((e = readdir(d)) != NULL) {
-        size_t l = strlen(e->d_name);
-        if ((l > 4 && (strcmp(e->d_name + l - 4, ".mbx") == 0 || strcmp(e->d_name + l - 4, ".pid") == 0)) ||
-            (l > 6 && strcmp(e->d_name + l - 6, ".ready") == 0) ||
-            (l > 3 && strcmp(e->d_name + l - 3, ".in") == 0) || (l > 5 && strcmp(e->d_name + l - 5, ".hold") == 0) ||
-            strcmp(e->d_name, CONTRACT_RUN_STOPPING_FILE) == 0)
+    while ((e = readdir(d)) != NULL)
+        if (is_runtime_file(e->d_name) || strcmp(e->d_name, CONTRACT_RUN_STOPPING_FILE) == 0)
             unlinkat(dirfd(d), e->d_name, 0);
-    }
     closedir(d);
     rmdir(dir);
 }

@@ -291,10 +291,10 @@ static int log_dying; /* a handler writes the log's last records (only one: the 
 /* SIGTERM, SIGINT, SIGHUP: the records the CSV log has not written yet are written (a module blocked
  * in its own code, which the launcher terminates at the stop, would lose what it did before: its
  * buffer is written only when it calls the library), then its files are removed and it dies by the
- * signal. Async-signal-safe (rt_log_crash). */
+ * signal. Async-signal-safe (rt_log_at_signal). */
 static void on_fatal_signal(int sig)
 {
-    if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) rt_log_crash(sig);
+    if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) rt_log_at_signal(sig, 0);
     remove_created_files(); /* unlinkat / rmdir are async-signal-safe */
     signal(sig, SIG_DFL);
     raise(sig);
@@ -302,7 +302,7 @@ static void on_fatal_signal(int sig)
 
 /* A crash of the module's code: its CSV log's records not written yet are written, then the
  * process dies by the same signal (the launcher's `died by signal 11`, core dump and exit status as
- * without the handler). Async-signal-safe (rt_log_crash). The signal is reset to SIG_DFL on entry
+ * without the handler). Async-signal-safe (rt_log_at_signal). The signal is reset to SIG_DFL on entry
  * (SA_RESETHAND) and every crash signal is blocked while the handler runs: a fault in the handler
  * kills the process at once (the kernel forces the default action of a blocked fault), nothing
  * loops. The writer thread blocks every signal: a fault there kills at once too. A crash in a
@@ -315,7 +315,7 @@ static void on_crash_signal(int sig)
 {
     int saved = errno;
     if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) {
-        rt_log_crash(sig);
+        rt_log_at_signal(sig, 1);
     } else {
         struct timespec ts = { 1, 0 };
         nanosleep(&ts, NULL);

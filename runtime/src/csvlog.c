@@ -39,14 +39,15 @@
  * for modules writing at phases of their own (up to one more delay).
  *
  * A crash (core.c on_crash_signal: SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT) must not lose the
- * records that explain it: rt_log_crash, async-signal-safe, writes what the log holds and has not
+ * records that explain it: rt_log_at_signal, async-signal-safe, writes what the log holds and has not
  * written, in file order — the buffer handed to the writer (the handler writes it itself when the
  * writer has not begun it, pending_owner decides; else it waits up to CRASH_WAIT_NS for the
  * writer's write to end, and writes anyway after that), then the whole records of the buffer being
  * filled (log_len is stored once a record is whole; log_busy says when the buffers are changing
  * hands, or the module writes one itself: then skipped), then a `module_crashed` record — within
  * the bound and log-capped as any write, the mark then 0. Records are formatted without a lock or
- * stdio for that (put_record, write_records_r). */
+ * stdio for that (put_record, write_records_r). A stop signal (core.c on_fatal_signal: SIGTERM,
+ * SIGINT, SIGHUP) writes the same records, without one of its own. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -99,7 +100,7 @@ static int writer_stop;
 static const char *pending_buf;         /* the buffer being written ...                     */
 static size_t pending_len;              /* ... its length, 0 = none (atomic)                */
 
-/* For the crash handler (rt_log_crash), which may run on the module's thread anywhere in this
+/* For the crash handler (rt_log_at_signal), which may run on the module's thread anywhere in this
  * code: who writes the pending buffer (the writer claims it before writing, the handler takes it
  * when the writer has not), and what the module's thread is doing with its buffers. A record
  * being formatted is no concern: log_len grows only once the record is whole. */
@@ -228,7 +229,6 @@ static char *put_u64(char *p, unsigned long long v)
     return p;
 }
 
-/* CSV field of at most `max` characters, quoted when it holds a comma, quote or line break. */
 /* The CUT_MARK a detail longer than DETAIL_MAX ends with (U+2026 HORIZONTAL ELLIPSIS, 3 bytes). */
 #define CUT_MARK "\xe2\x80\xa6"
 
@@ -678,10 +678,9 @@ static const char *crash_signal_name(int sig)
  * written, in order: the buffer handed to the writer (itself if the writer has not begun it, else
  * it waits up to CRASH_WAIT_NS for the writer to end it), then the buffer being filled (unless the
  * module's thread was changing buffers or writing it itself: those records are skipped), then a
- * `module_crashed` record; within the bound (log-capped, as at exit); then the mark says 0. Also
- * the stop signals' handler (core.c on_fatal_signal: SIGTERM, SIGINT, SIGHUP): the same records,
- * without a record of its own. */
-void rt_log_crash(int sig)
+ * `module_crashed` record when `crashed` (a stop signal's handler, core.c on_fatal_signal: none);
+ * within the bound (log-capped, as at exit); then the mark says 0. */
+void rt_log_at_signal(int sig, int crashed)
 {
     if (log_fd < 0) return;
     int busy = __atomic_load_n(&log_busy, __ATOMIC_RELAXED);
@@ -712,7 +711,7 @@ void rt_log_crash(int sig)
     }
     /* a stop signal (SIGTERM, SIGINT, SIGHUP: the launcher terminating a module that did not end on
      * its KILL request): the records are kept, no record of its own (the launcher says it) */
-    if (crash_signal_name(sig)[0] == '?') {
+    if (!crashed) {
         if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) write_cap_final();
         mark_set(0);
         return;

@@ -108,9 +108,9 @@ void rt_log_maybe_flush(RTIME now);
 int rt_log_hand_off(int wait);
 /* LOG_FLUSH_NS, or the shorter delay the flush mark asks for while a live monitor watches. */
 RTIME rt_log_flush_ns(void);
-/* At a fatal signal (core.c): writes what the log holds and has not written yet, then a
- * `module_crashed` record (async-signal-safe). */
-void rt_log_crash(int sig);
+/* At a fatal signal (core.c): writes what the log holds and has not written yet, then, for a crash
+ * (`crashed`), a `module_crashed` record; a stop signal writes none (async-signal-safe). */
+void rt_log_at_signal(int sig, int crashed);
 
 /* dataflow.c / eventflow.c */
 int rt_dataflow_setup(void);
