@@ -8,7 +8,7 @@ import { chmodSync, mkdirSync, mkdtempSync, promises as fsp, realpathSync } from
 import { availableParallelism, cpus, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_LIMITS, LimitsError, MIN_READY_TIMEOUT_SECONDS, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
+import { DEFAULT_LIMITS, LimitsError, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
 import { Job, type JobRequest } from './pipeline/job.js';
 import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
@@ -22,7 +22,7 @@ import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './san
 import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
 import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
-import { cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
+import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 
 export interface BuildServiceOptions {
   /** Default sandbox of jobs that name none. Default 'auto'. */

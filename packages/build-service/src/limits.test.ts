@@ -1,5 +1,6 @@
 import { describe, expect, it } from 'vitest';
-import { DEFAULT_READY_TIMEOUT_SECONDS, RUN_STOP_ROOM_SECONDS, longestDuration } from './limits.js';
+import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
+import { RUN_STOP_ROOM_SECONDS, longestDuration } from './limits.js';
 
 describe('longestDuration: a run asked for the longest still ends on its own', () => {
   it('keeps RUN_STOP_ROOM_SECONDS (half the limit when that is less) to start and stop the architecture', () => {

@@ -10,6 +10,7 @@
  * Numeric limits (configurable per server, and per job downwards only):
  */
 import { availableParallelism } from 'node:os';
+import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
 import { TRACE_LINES_KEPT } from './trace/replay-bound.js';
 export interface Limits {
   /** Memory of the whole job (all processes, tmpfs included), MiB. */
@@ -187,16 +188,6 @@ export const CANCEL_DEADLINE_MS = 2000;
  * its own and is not cut by the time limit.
  */
 export const RUN_STOP_ROOM_SECONDS = 5;
-
-/**
- * The least time a run may give its modules' inits before its start request (`readyTimeout`,
- * contract-launch --ready-timeout; its default is 10 s). What it gives past that default comes out
- * of the longest duration (longestDuration).
- */
-export const MIN_READY_TIMEOUT_SECONDS = 0.1;
-
-/** contract-launch's own ready timeout (`--ready-timeout`'s default), seconds. */
-export const DEFAULT_READY_TIMEOUT_SECONDS = 10;
 
 /**
  * The longest duration of an architecture's run under `runSeconds` (RUN_STOP_ROOM_SECONDS), less

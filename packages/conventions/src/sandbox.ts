@@ -29,6 +29,11 @@ export const LAUNCHER_PROCESS_NAME = 'contract-launch';
 /** The Docker image holding gcc, make and the runtime (built by scripts/docker-up.sh). */
 export const DOCKER_IMAGE = 'contract-gcc';
 
+/** contract-launch's ready timeout (`--ready-timeout`'s default): seconds every module's init may take before the start request. */
+export const DEFAULT_READY_TIMEOUT_SECONDS = 10;
+/** The least ready timeout a run may ask for (`contract run --ready-timeout`, the API's `readyTimeout`, the IDE's run settings). */
+export const MIN_READY_TIMEOUT_SECONDS = 0.1;
+
 const CPU_LIST = /^\d+(-\d+)?(,\d+(-\d+)?)*$/;
 
 /**

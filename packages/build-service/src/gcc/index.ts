@@ -8,5 +8,5 @@
  */
 export { renderDiagnostic, type DiagnosticContext, type GccDiagnostic } from '../pipeline/gcc-diagnostics.js';
 export { cutText, parseGccTextLine } from '../pipeline/gcc-text.js';
-export { inFunction, LinkErrorReader, parseLinkerLine, type LinkerLine } from '../pipeline/ld-text.js';
+export { LinkErrorReader, parseLinkerLine, type LinkerLine } from '../pipeline/ld-text.js';
 export { findProtectedRegions, regionAt, type ProtectedRegion } from '../pipeline/protected-regions.js';

@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, DEFAULT_READY_TIMEOUT_SECONDS, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -25,7 +25,7 @@ import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
-import { LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
+import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
 
 export interface JobRequest {
   action: 'build' | 'run';

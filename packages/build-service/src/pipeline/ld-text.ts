@@ -104,7 +104,7 @@ export function parseLinkerLine(line: string, ctx: DiagnosticContext): LinkerLin
 }
 
 /** `d` with the function ld said it is in (`in function` line before it), for an undefined reference. */
-export function inFunction(d: GccDiagnostic, fn: string | undefined): GccDiagnostic {
+function inFunction(d: GccDiagnostic, fn: string | undefined): GccDiagnostic {
   if (!fn || !d.message.startsWith('undefined reference to ')) return d;
   return { ...d, message: `${d.message} (in function ${fn})` };
 }

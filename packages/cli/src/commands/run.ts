@@ -15,7 +15,7 @@ import type { JobEvent } from '@contract-studio/build-service';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
 import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
-import { cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
+import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
@@ -31,10 +31,10 @@ export function parseDuration(text: string): number {
     return value;
 }
 
-/** `--ready-timeout` as seconds: a duration (parseDuration) of 100 ms at least. */
+/** `--ready-timeout` as seconds: a duration (parseDuration) of MIN_READY_TIMEOUT_SECONDS at least. */
 export function checkReadyTimeout(text: string): number {
     const seconds = parseDuration(text);
-    if (seconds < 0.1) throw new UsageError(`bad --ready-timeout '${text}': at least 100ms`);
+    if (seconds < MIN_READY_TIMEOUT_SECONDS) throw new UsageError(`bad --ready-timeout '${text}': at least ${MIN_READY_TIMEOUT_SECONDS * 1000}ms`);
     return seconds;
 }
 

@@ -6,7 +6,7 @@ import { askFields } from '../util/dialog.js';
 import { toast } from '../util/toast.js';
 import { Emitter } from '../util/emitter.js';
 import { reportError } from './report-error.js';
-import { isCpuList } from '@contract-studio/conventions';
+import { MIN_READY_TIMEOUT_SECONDS, isCpuList } from '@contract-studio/conventions';
 import type { SharedJob } from '../../server/api-types.js';
 
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
@@ -34,12 +34,15 @@ type RunSettings = { duration: number; start?: string; readyTimeout?: number; cp
 type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat };
 type SharedWhat = 'Build & Run' | 'build';
 
+/** Whether `v` is a ready timeout a run may ask for (seconds: MIN_READY_TIMEOUT_SECONDS or more). */
+const isReadyTimeout = (v: unknown): v is number => typeof v === 'number' && Number.isFinite(v) && v >= MIN_READY_TIMEOUT_SECONDS;
+
 /** The run settings for the project at `where` (`root/project`). */
 function runSettings(where: string): RunSettings {
   try {
     const v = JSON.parse(localStorage.getItem(RUN_SETTINGS_KEY) ?? '{}') as Partial<RunSettings> & { startFor?: unknown };
     const start = v.start && (v.startFor === undefined || v.startFor === where) ? v.start : undefined;
-    const readyTimeout = typeof v.readyTimeout === 'number' && Number.isFinite(v.readyTimeout) && v.readyTimeout >= 0.1 ? v.readyTimeout : undefined;
+    const readyTimeout = isReadyTimeout(v.readyTimeout) ? v.readyTimeout : undefined;
     return { duration: v.duration ?? 10, start, readyTimeout, cpus: v.cpus || undefined, realtime: v.realtime === true || undefined };
   } catch {
     return { duration: 10 };
@@ -218,7 +221,7 @@ export class RunController {
     if (!Number.isFinite(duration) || duration <= 0) return toast('error', `Duration must be a positive number of seconds, not "${r.duration}"`);
     const readyText = (r.readyTimeout ?? '').trim();
     const readyTimeout = readyText ? Number(readyText) : undefined;
-    if (readyTimeout !== undefined && !(Number.isFinite(readyTimeout) && readyTimeout >= 0.1)) return toast('error', `The init time must be a number of seconds, 0.1 or more, not "${readyText}"`);
+    if (readyTimeout !== undefined && !isReadyTimeout(readyTimeout)) return toast('error', `The init time must be a number of seconds, ${MIN_READY_TIMEOUT_SECONDS} or more, not "${readyText}"`);
     const cpus = (r.cpus ?? '').trim();
     if (cpus && !isCpuList(cpus)) return toast('error', `CPUs must be a list such as 1, 0-1 or 0,2, not "${cpus}"`);
     const realtime = r.realtime === 'yes';
