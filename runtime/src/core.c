@@ -2,6 +2,7 @@
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdarg.h>
 #include <stdio.h>
@@ -138,11 +139,32 @@ static int above_stdio(int fd)
 
 void rt_register_file(const char *file)
 {
-    if (g_rt.n_created < (int)(sizeof g_rt.created / sizeof g_rt.created[0]))
-        snprintf(g_rt.created[g_rt.n_created++], PATH_MAX, "%s", file);
+    if (g_rt.n_created < (int)(sizeof g_rt.created / sizeof g_rt.created[0])) {
+        snprintf(g_rt.created[g_rt.n_created], PATH_MAX, "%s", file);
+        g_rt.n_created++; /* counted once its name is whole: a handler reads the list */
+    }
 }
 
-int rt_bind_dgram(const char *file, int *fd_out)
+/* A run file is created and then registered for removal; a stop signal (SIGTERM at the launcher's
+ * stop, a test's teardown) between the two would end the process through on_fatal_signal with the
+ * file on disk but not in the list, left behind in the run directory. The stop signals wait while
+ * a file is created and registered, and are delivered as they are released. */
+static void hold_stop_signals(sigset_t *before)
+{
+    sigset_t stop;
+    sigemptyset(&stop);
+    sigaddset(&stop, SIGTERM);
+    sigaddset(&stop, SIGINT);
+    sigaddset(&stop, SIGHUP);
+    pthread_sigmask(SIG_BLOCK, &stop, before);
+}
+
+static void release_stop_signals(const sigset_t *before)
+{
+    pthread_sigmask(SIG_SETMASK, before, NULL);
+}
+
+static int bind_dgram_held(const char *file, int *fd_out)
 {
     struct sockaddr_un sa;
     socklen_t len;
@@ -171,6 +193,15 @@ int rt_bind_dgram(const char *file, int *fd_out)
     rt_register_file(file);
     *fd_out = fd;
     return 0;
+}
+
+int rt_bind_dgram(const char *file, int *fd_out)
+{
+    sigset_t before;
+    hold_stop_signals(&before);
+    int rc = bind_dgram_held(file, fd_out);
+    release_stop_signals(&before);
+    return rc;
 }
 
 int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock)
@@ -240,11 +271,8 @@ const char *rt_ack_name(int ack)
     }
 }
 
-/* Writes <NAME><suffix> in the run directory with `text` (removed when the process ends). */
-static int write_run_file(const char *suffix, const char *text)
+static int write_run_file_held(const char *file, const char *text)
 {
-    char file[CONTRACT_NAME_MAX + 8];
-    snprintf(file, sizeof file, "%s%s", g_rt.name, suffix);
     int fd = openat(g_rt.run_dir_fd, file, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     if (fd < 0) {
         /* O_PATH dirfds cannot be used to create files on every kernel: fall back to the path. */
@@ -253,11 +281,23 @@ static int write_run_file(const char *suffix, const char *text)
         fd = open(path, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
     }
     if (fd < 0) { rt_error("cannot write %s/%s: %s", g_rt.run_dir, file, strerror(errno)); return -1; }
+    rt_register_file(file); /* removed at the end even when it could not be written whole */
     size_t n = strlen(text);
     if (write(fd, text, n) != (ssize_t)n) { close(fd); return -1; }
     close(fd);
-    rt_register_file(file);
     return 0;
+}
+
+/* Writes <NAME><suffix> in the run directory with `text` (removed when the process ends). */
+static int write_run_file(const char *suffix, const char *text)
+{
+    char file[CONTRACT_NAME_MAX + 8];
+    snprintf(file, sizeof file, "%s%s", g_rt.name, suffix);
+    sigset_t before;
+    hold_stop_signals(&before);
+    int rc = write_run_file_held(file, text);
+    release_stop_signals(&before);
+    return rc;
 }
 
 int rt_write_pid_file(void)

@@ -1,6 +1,7 @@
 /* Whole-process behaviour: contract-launch, clean shutdown, side-by-side run directories,
  * the control tool, priorities. */
 #define _GNU_SOURCE
+#include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
 #include <sched.h>
@@ -418,6 +419,52 @@ void test_kill_without_launcher(void)
     free(text);
     char *missing[] = { "contract-launch", "--kill", "/nonexistent/run", NULL };
     CHECK(h_run(missing, out, 3000) == 2);
+    h_teardown();
+}
+
+/* A stop signal that reaches a module as it starts up removes every runtime file it has created:
+ * each file is registered for removal before a stop signal can end the process (a SIGTERM between
+ * the creation of P.pid and its registration left P.pid behind; the harness, which waits for that
+ * file, sent its SIGTERM right then). Signals sent at once on the file's appearance, many times. */
+void test_stop_signal_at_startup(void)
+{
+    REQUIRE(h_setup("stopstart") == 0);
+    char exe[1024], pidfile[700], out[700];
+    snprintf(exe, sizeof exe, "%s/P", h_bin_dir);
+    snprintf(pidfile, sizeof pidfile, "%s/P.pid", h_run_dir);
+    snprintf(out, sizeof out, "%s/P.out", h_work_dir);
+    int left = 0, seen = 0;
+    for (int round = 0; round < 150 && !left; round++) {
+        pid_t pid = fork();
+        if (pid == 0) {
+            int fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+            if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+            execl(exe, exe, (char *)NULL);
+            _exit(127);
+        }
+        REQUIRE(pid > 0);
+        /* the moment P.pid appears (or P has gone: 2 s at most), not a poll later */
+        for (int spin = 0; spin < 2000000 && access(pidfile, F_OK) != 0; spin++)
+            if (waitpid(pid, NULL, WNOHANG) == pid) { pid = -1; break; }
+        if (pid < 0) continue;
+        seen++;
+        kill(pid, SIGTERM);
+        if (h_wait_exit(pid, 3000) == -1) { kill(pid, SIGKILL); waitpid(pid, NULL, 0); }
+        DIR *d = opendir(h_run_dir);
+        struct dirent *e;
+        while (d && (e = readdir(d)) != NULL)
+            if (!strncmp(e->d_name, "P.", 2)) {
+                h_failf(__FILE__, __LINE__, "round %d: left behind: %s", round, e->d_name);
+                left = 1;
+            }
+        if (d) closedir(d);
+        if (left) { /* the next round would fail on the stale files */
+            char path[1400];
+            const char *ends[] = { "pid", "mbx", "ready" };
+            for (int i = 0; i < 3; i++) { snprintf(path, sizeof path, "%s/P.%s", h_run_dir, ends[i]); unlink(path); }
+        }
+    }
+    CHECK_MSG(left || seen >= 100, "P.pid seen in only %d of 150 start-ups", seen);
     h_teardown();
 }
 
