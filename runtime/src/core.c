@@ -390,6 +390,7 @@ void rt_install_signal_cleanup(void)
 
 void ContractShutdown(void)
 {
+    rt_outbox_drain(); /* its failures are logged: before the log closes */
     rt_log_close();
     rt_dataflow_teardown();
     rt_eventflow_teardown();

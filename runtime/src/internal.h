@@ -61,6 +61,7 @@ typedef struct {
     RTIME mbx_rcvtimeo;     /* SO_RCVTIMEO currently set on the mailbox (0 = none) */
     int priority;           /* current priority 1..99 (0: never set) */
     int send_nowait;        /* ContractSetNonBlockingSends: requests never wait for a full mailbox */
+    int send_queued;        /* ContractSetQueuedSends: requests to a full mailbox are kept (outbox.c) */
     int ready;              /* a module: its <NAME>.ready is written (rt_mark_ready) */
 } ContractRuntime;
 
@@ -88,6 +89,17 @@ void rt_install_signal_cleanup(void);
 
 /* mailbox.c */
 int rt_send_request_to(const char *module, RequestMessage *msg);
+/* One datagram (a request's header and payload) to module's mailbox: 0 sent, else its errno
+ * (EAGAIN: the mailbox is full; dontwait = 0 waits SEND_TIMEOUT_MS for room first). */
+int rt_send_datagram(const char *module, const void *request, size_t len, int dontwait);
+/* The `error` record and stderr line of a request that could not be sent (why_more: the end of
+ * its parenthesis); returns the CONTRACT_E* code of err. */
+int rt_send_failed(const char *module, int type, int err, const char *why_more);
+
+/* outbox.c: requests kept for full mailboxes (ContractSetQueuedSends) */
+int rt_outbox_holds(const char *module);
+int rt_outbox_add(const char *module, int type, const void *request, size_t len);
+void rt_outbox_drain(void); /* at exit: tries the kept requests 0.5 s more, then fails those left */
 
 /* priority.c: apply `priority` to this process without a stderr warning (requests from a
  * supervisor). Returns 1 SCHED_FIFO, 0 nice, CONTRACT_EPERM (errno set) when not permitted. */

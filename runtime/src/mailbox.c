@@ -55,7 +55,54 @@ static Peer *peer_for(const char *module, int reconnect)
     return p;
 }
 
-int rt_send_request_to(const char *module, RequestMessage *msg)
+int rt_send_datagram(const char *module, const void *request, size_t len, int dontwait)
+{
+    WirePrefix pre = { WIRE_MAGIC, WIRE_REQUEST };
+    struct iovec iov[2] = { { &pre, sizeof pre }, { (void *)request, len } };
+    struct msghdr mh;
+    memset(&mh, 0, sizeof mh);
+    mh.msg_iov = iov;
+    mh.msg_iovlen = 2;
+    ssize_t n = -1;
+    int flags = MSG_NOSIGNAL | (dontwait ? MSG_DONTWAIT : 0);
+    for (int attempt = 0; attempt < 2; attempt++) {
+        Peer *p = peer_for(module, attempt > 0);
+        if (!p) break;
+        do n = sendmsg(p->fd, &mh, flags); while (n < 0 && errno == EINTR);
+        if (n >= 0) break;
+        /* the peer restarted or died since we connected: reconnect once */
+        if (errno != ECONNREFUSED && errno != ENOTCONN && errno != ECONNRESET) break;
+    }
+    return n < 0 ? (errno ? errno : EIO) : 0;
+}
+
+int rt_send_failed(const char *module, int type, int err, const char *why_more)
+{
+    int code = rt_errno_to_code(err);
+    /* while the launcher stops every module, a peer that has already gone is expected: the
+     * record stays in the log, stderr stays quiet */
+    int gone_at_stop = ContractPeerGoneAtStop(code);
+    char text[384], why[160] = "";
+    if (gone_at_stop) snprintf(why, sizeof why, "; the run is stopping");
+    else if (why_more) snprintf(why, sizeof why, "; %s", why_more);
+    snprintf(text, sizeof text, "%s request to %s: %s (%s%s)", rt_request_name(type), module, ContractStrError(code),
+             strerror(err), why);
+    if (gone_at_stop) ContractLog("error", "", -1, 0, text);
+    else rt_error("%s", text);
+    return code;
+}
+
+/* How a request meets a full mailbox: it waits up to SEND_TIMEOUT_MS (the sockets' SO_SNDTIMEO),
+ * fails at once (ContractSetNonBlockingSends: ORD), or is kept and sent later
+ * (ContractSetQueuedSends: supervisors; outbox.c) */
+typedef enum { FULL_WAIT, FULL_FAIL, FULL_KEEP } OnFull;
+
+static OnFull on_full(void)
+{
+    return g_rt.send_queued ? FULL_KEEP : g_rt.send_nowait ? FULL_FAIL : FULL_WAIT;
+}
+
+static int send_request(const char *module, RequestMessage *msg, OnFull full)
 {
     if (!rt_valid_name(module)) {
         rt_error("invalid module name '%s'", module ? module : "(null)");
@@ -70,40 +117,31 @@ int rt_send_request_to(const char *module, RequestMessage *msg)
     memcpy(msg->Sender, g_rt.name, sizeof msg->Sender);
     msg->ProductionTime = GetTime();
     msg->ReceptionTime = 0;
-    WirePrefix pre = { WIRE_MAGIC, WIRE_REQUEST };
-    struct iovec iov[3] = { { &pre, sizeof pre }, { msg, REQUEST_HEADER_SIZE }, { msg->Data, msg->DataSize } };
-    struct msghdr mh;
-    memset(&mh, 0, sizeof mh);
-    mh.msg_iov = iov;
-    mh.msg_iovlen = msg->DataSize ? 3 : 2;
-    ssize_t n = -1;
-    /* a full mailbox: wait up to SEND_TIMEOUT_MS (the sockets' SO_SNDTIMEO), or not at all in a
-       process that asked for non-blocking sends (ContractSetNonBlockingSends: ORD) */
-    int flags = MSG_NOSIGNAL | (g_rt.send_nowait ? MSG_DONTWAIT : 0);
-    for (int attempt = 0; attempt < 2; attempt++) {
-        Peer *p = peer_for(module, attempt > 0);
-        if (!p) break;
-        do n = sendmsg(p->fd, &mh, flags); while (n < 0 && errno == EINTR);
-        if (n >= 0) break;
-        /* the peer restarted or died since we connected: reconnect once */
-        if (errno != ECONNREFUSED && errno != ENOTCONN && errno != ECONNRESET) break;
+    size_t len = REQUEST_HEADER_SIZE + msg->DataSize;
+    if (full == FULL_KEEP && rt_outbox_holds(module)) /* after the ones kept before: in order */
+        return rt_outbox_add(module, msg->Type, msg, len);
+    int err = rt_send_datagram(module, msg, len, full != FULL_WAIT);
+    if (err == 0) return CONTRACT_OK;
+    if (full == FULL_KEEP && (err == EAGAIN || err == EWOULDBLOCK)) return rt_outbox_add(module, msg->Type, msg, len);
+    const char *why = NULL;
+    char text[CONTRACT_NAME_MAX + 48];
+    if (rt_errno_to_code(err) == CONTRACT_EBUSY && full == FULL_FAIL) {
+        snprintf(text, sizeof text, "%s does not wait for a full mailbox", g_rt.name);
+        why = text;
     }
-    if (n < 0) {
-        int err = errno;
-        int code = rt_errno_to_code(err);
-        /* while the launcher stops every module, a peer that has already gone is expected: the
-         * record stays in the log, stderr stays quiet */
-        int gone_at_stop = ContractPeerGoneAtStop(code);
-        char text[384], why[128] = "";
-        if (gone_at_stop) snprintf(why, sizeof why, "; the run is stopping");
-        else if (code == CONTRACT_EBUSY && g_rt.send_nowait) snprintf(why, sizeof why, "; %s does not wait for a full mailbox", g_rt.name);
-        snprintf(text, sizeof text, "%s request to %s: %s (%s%s)", rt_request_name(msg->Type), module, ContractStrError(code),
-                 strerror(err), why);
-        if (gone_at_stop) ContractLog("error", "", -1, 0, text);
-        else rt_error("%s", text);
-        return code;
-    }
-    return CONTRACT_OK;
+    return rt_send_failed(module, msg->Type, err, why);
+}
+
+int rt_send_request_to(const char *module, RequestMessage *msg) { return send_request(module, msg, on_full()); }
+
+/* QueryStatus and the priority query wait for an answer: with queued sends their question is
+ * never kept for later (its answer would come after the wait). A receiver whose mailbox is full,
+ * or that has requests kept for it, is busy: CONTRACT_EBUSY at once, as no answer in time. */
+static int send_query(const char *module, RequestMessage *q)
+{
+    if (on_full() != FULL_KEEP) return rt_send_request_to(module, q);
+    if (rt_outbox_holds(module)) return CONTRACT_EBUSY;
+    return send_request(module, q, FULL_FAIL);
 }
 
 int SendRequest(const char *module, RequestMessage *msg) { return rt_send_request_to(module, msg); }
@@ -466,11 +504,13 @@ static int check_mailbox(void)
 
 /* Receive the next accepted request into rx_buffer until `deadline`. 1 / 0 timeout / -1 error.
  * System calls per request: one blocking recvmsg when nothing is due in the log, else
- * ppoll (bounded by the log flush delay) + recvmsg. */
+ * ppoll (bounded by the log flush delay, and by the next try of requests kept for full
+ * mailboxes: outbox.c) + recvmsg. */
 static int receive_until(RTIME deadline)
 {
     if (check_mailbox() != 0) return -1;
     for (;;) {
+        RTIME retry = ContractRetryQueuedSends(); /* 0: no request kept for a full mailbox */
         RTIME now = GetTime();
         rt_log_maybe_flush(now);
         if (deadline <= now) {
@@ -488,8 +528,12 @@ static int receive_until(RTIME deadline)
             if (flush_in < 0) flush_in = 0;
             if (wait < 0 || flush_in < wait) wait = flush_in;
         }
+        if (retry) {
+            RTIME retry_in = retry > now ? retry - now : 0;
+            if (wait < 0 || retry_in < wait) wait = retry_in;
+        }
         int r;
-        if (deadline == INT64_MAX || deadline - now >= COARSE_WAIT_NS) {
+        if (!retry && (deadline == INT64_MAX || deadline - now >= COARSE_WAIT_NS)) {
             /* Plain blocking receive (one system call). It times out after the flush delay while log
              * records wait to be written, so that they reach the file even when idle, and after
              * COARSE_WAIT_NS when a far deadline must be checked; near deadlines use ppoll. */
@@ -617,7 +661,7 @@ int QueryStatus(const char *module, char *text, size_t textSize, RTIME deadline)
     RequestMessage *q = blank(REQ_STATUS);
     q->Param.Status.Seq = next_query_seq();
     ReplyWanted w = { module, REQ_STATUS_REPLY, query_seq };
-    int rc = rt_send_request_to(module, q);
+    int rc = send_query(module, q);
     if (rc != CONTRACT_OK) return rc;
     RequestMessage *reply = malloc(sizeof *reply);
     if (!reply) return CONTRACT_ESYS;
@@ -643,7 +687,7 @@ int ContractSetModulePriority(const char *module, int priority, int *previous)
     m->Param.Priority.Priority = priority;
     m->Param.Priority.Seq = next_query_seq();
     ReplyWanted w = { module, REQ_PRIORITY_REPLY, query_seq };
-    int rc = rt_send_request_to(module, m);
+    int rc = send_query(module, m);
     if (rc != CONTRACT_OK) return rc;
     RequestMessage *reply = malloc(sizeof *reply);
     if (!reply) return CONTRACT_ESYS;

@@ -72,6 +72,7 @@ int main(int argc, char *argv[])
      * launcher, once it first looks for a request: <NAME>.ready (rt_mark_ready) */
     if (rt_write_pid_file() != 0) return 2;
     int rc = ModuleMain(argc, (const char **)argv);
+    rt_outbox_drain(); /* its records before the last one */
     /* records=N counts this record too: a reader of the log can tell none is missing */
     snprintf(detail, sizeof detail, "status=%d records=%llu", rc, rt_log_records() + 1);
     ContractLog("module_exit", "", -1, 0, detail);

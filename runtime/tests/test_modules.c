@@ -500,6 +500,157 @@ void test_nonblocking_sends(void)
     h_teardown();
 }
 
+/* Requests sent without waiting until the mailbox takes no more (AckID 0). */
+static void fill_mailbox(const char *name)
+{
+    int queued = ContractSetQueuedSends(0), nowait = ContractSetNonBlockingSends(1);
+    for (int i = 0; i < 1000 && SendStart(name, ACK_NOTHING, 0) == CONTRACT_OK; i++) continue;
+    ContractSetNonBlockingSends(nowait);
+    ContractSetQueuedSends(queued);
+}
+
+/* A mailbox nobody reads, filled to the brim. */
+static int full_mailbox(const char *name, struct sockaddr_un *sa)
+{
+    socklen_t len;
+    if (rt_module_addr(name, ".mbx", sa, &len) != 0) return -1;
+    int fd = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    if (fd < 0 || bind(fd, (struct sockaddr *)sa, len) != 0) return -1;
+    fill_mailbox(name);
+    return fd;
+}
+
+/* Takes every datagram out of a mailbox; the AckIDs of the START requests among them, in order,
+ * into ids (at most cap). Returns the number of datagrams. */
+static int drain_starts(int fd, int *ids, int cap, int *n_ids)
+{
+    static struct { WirePrefix pre; RequestMessage m; } d;
+    int n = 0;
+    *n_ids = 0;
+    while (recv(fd, &d, sizeof d, MSG_DONTWAIT) > 0) {
+        n++;
+        if (d.m.Type == REQ_START && *n_ids < cap) ids[(*n_ids)++] = d.m.Param.Start.AckID;
+    }
+    return n;
+}
+
+/* Queued sends (the supervisors): a request to a full mailbox is kept and returns at once; it is
+ * sent, in order, while the process waits for requests, once the mailbox has room; requests to
+ * others go at once; a status question to it is not kept (busy at once); one still not sent after
+ * 2 s fails with the usual error; at exit the process waits for what it kept. */
+void test_queued_sends(void)
+{
+    REQUIRE(h_setup("queued") == 0);
+    struct sockaddr_un full_sa, other_sa;
+    char err_path[700];
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
+    fflush(stderr);
+    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    REQUIRE(saved >= 0 && out >= 0);
+    dup2(out, 2);
+    close(out);
+    int fd = full_mailbox("FULL", &full_sa);
+    socklen_t other_len;
+    int other = socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC, 0);
+    int other_ok = rt_module_addr("OTHER", ".mbx", &other_sa, &other_len) == 0 &&
+                   bind(other, (struct sockaddr *)&other_sa, other_len) == 0;
+    int before = ContractSetQueuedSends(1);
+    RTIME t0 = GetTime();
+    int rc1 = SendStart("FULL", ACK_NOTHING, 11), rc2 = SendStart("FULL", ACK_NOTHING, 12),
+        rc3 = SendStart("FULL", ACK_NOTHING, 13), rc_other = SendStart("OTHER", ACK_NOTHING, 21);
+    RTIME took = GetTime() - t0;
+    int kept = ContractQueuedSends();
+    char status[256];
+    t0 = GetTime();
+    int rc_status = QueryStatus("FULL", status, sizeof status, GetTime() + 1000000000LL);
+    RTIME status_took = GetTime() - t0;
+    static struct { WirePrefix pre; RequestMessage m; } d;
+    int other_got = recv(other, &d, sizeof d, MSG_DONTWAIT) > 0 && d.m.Param.Start.AckID == 21;
+    int ids[8], n_ids;
+    int filled = drain_starts(fd, ids, 8, &n_ids); /* room now: the kept ones go at the next wait */
+    RequestMessage *m = h_msg();
+    t0 = GetTime();
+    while (ContractQueuedSends() > 0 && GetTime() - t0 < 1000000000LL) WaitForRequestUntil(m, GetTime() + 20000000LL);
+    RTIME sent_after = GetTime() - t0;
+    int left = ContractQueuedSends();
+    drain_starts(fd, ids, 8, &n_ids);
+
+    /* a mailbox that stays full: the kept request fails after 2 s, the one behind it too */
+    fill_mailbox("FULL");
+    RTIME q0 = GetTime();
+    int rc_late = SendStart("FULL", ACK_NOTHING, 31);
+    SendStart("FULL", ACK_NOTHING, 32);
+    RTIME first_failed = 0;
+    while (ContractQueuedSends() > 0 && GetTime() - q0 < 3000000000LL) {
+        WaitForRequestUntil(m, GetTime() + 10000000LL);
+        if (!first_failed && ContractQueuedSends() < 2) first_failed = GetTime() - q0;
+    }
+    int left_late = ContractQueuedSends();
+
+    /* at exit: the process waits for a request it kept until the mailbox has room */
+    int late_ids[8], n_late;
+    drain_starts(fd, late_ids, 8, &n_late);
+    fill_mailbox("FULL");
+    SendStart("FULL", ACK_NOTHING, 41);
+    pid_t reader = fork();
+    REQUIRE(reader >= 0);
+    if (reader == 0) {
+        struct timespec later = { 0, 300000000L };
+        nanosleep(&later, NULL);
+        int got41 = 0, k, n;
+        for (int t = 0; t < 200 && !got41; t++) { /* 2 s */
+            drain_starts(fd, late_ids, 8, &n);
+            for (k = 0; k < n; k++) got41 |= late_ids[k] == 41;
+            nanosleep(&(struct timespec){ 0, 10000000L }, NULL);
+        }
+        _exit(got41 ? 0 : 1);
+    }
+    t0 = GetTime();
+    ContractShutdown();
+    RTIME exit_took = GetTime() - t0;
+    int reader_rc = h_wait_exit(reader, 3000);
+    ContractSetQueuedSends(before);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+
+    CHECK_MSG(before == 0, "queued sends were on (%d) before the call: every process starts without", before);
+    CHECK(fd >= 0 && other_ok);
+    CHECK_MSG(rc1 == CONTRACT_OK && rc2 == CONTRACT_OK && rc3 == CONTRACT_OK && rc_other == CONTRACT_OK,
+              "sends to a full mailbox returned %d %d %d, to another %d (expected CONTRACT_OK: kept)", rc1, rc2, rc3, rc_other);
+    CHECK_MSG(took < 100000000LL, "keeping 3 requests and sending 1 took %lld ms (nothing waits)", (long long)(took / 1000000));
+    CHECK_MSG(kept == 3, "%d requests kept (expected the 3 to the full mailbox)", kept);
+    CHECK_MSG(other_got, "the request to a mailbox with room did not go at once");
+    CHECK_MSG(rc_status == CONTRACT_EBUSY && status_took < 100000000LL,
+              "a status question to a full mailbox returned %d after %lld ms (expected CONTRACT_EBUSY at once)", rc_status,
+              (long long)(status_took / 1000000));
+    CHECK_MSG(filled > 0, "the mailbox was not full");
+    CHECK_MSG(left == 0 && sent_after < 200000000LL, "%d requests still kept %lld ms after the mailbox had room", left,
+              (long long)(sent_after / 1000000));
+    CHECK_MSG(n_ids == 3 && ids[0] == 11 && ids[1] == 12 && ids[2] == 13, "the kept requests arrived as %d: %d %d %d (expected 11 12 13)",
+              n_ids, n_ids > 0 ? ids[0] : -1, n_ids > 1 ? ids[1] : -1, n_ids > 2 ? ids[2] : -1);
+    CHECK(rc_late == CONTRACT_OK);
+    CHECK_MSG(left_late == 0 && first_failed >= 2000000000LL && first_failed < 2300000000LL,
+              "a request kept for a mailbox that stays full failed after %lld ms (expected 2 s), %d still kept",
+              (long long)(first_failed / 1000000), left_late);
+    for (int k = 0; k < n_late; k++) CHECK_MSG(late_ids[k] == 0, "a failed request was sent after all: %d", late_ids[k]);
+    CHECK_MSG(exit_took >= 250000000LL && exit_took < 2000000000LL && reader_rc == 0,
+              "at exit the kept request waited %lld ms (expected ~300 ms) and reached the mailbox: %s",
+              (long long)(exit_took / 1000000), reader_rc == 0 ? "yes" : "no");
+    char *err = h_read_file(err_path);
+    const char *fail = "tester: error: START request to FULL: mailbox full: the module did not read its requests in time "
+                       "(Resource temporarily unavailable; its mailbox "
+                       "stayed full for 2 s; tester kept the request meanwhile)";
+    const char *first = err ? strstr(err, fail) : NULL;
+    CHECK_MSG(first && strstr(first + 1, fail) && !strstr(err, "STATUS request"), "stderr: %s", err ? err : "(none)");
+    free(err);
+    close(fd);
+    close(other);
+    unlink(full_sa.sun_path);
+    unlink(other_sa.sun_path);
+    h_teardown();
+}
+
 void test_maa_events_params(void)
 {
     REQUIRE(h_setup("maa") == 0);

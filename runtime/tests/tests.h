@@ -17,6 +17,7 @@ void test_unknown_and_stale(void);
 void test_request_to_gone_while_stopping(void);
 void test_peer_gone_at_stop(void);
 void test_nonblocking_sends(void);
+void test_queued_sends(void);
 void test_sockets_above_stdio(void);
 void test_long_run_dir(void);
 void test_maa_events_params(void);
@@ -61,6 +62,7 @@ static const TestCase ALL_TESTS[] = {
     { "request_to_gone_while_stopping", test_request_to_gone_while_stopping },
     { "peer_gone_at_stop", test_peer_gone_at_stop },
     { "nonblocking_sends", test_nonblocking_sends },
+    { "queued_sends", test_queued_sends },
     { "sockets_above_stdio", test_sockets_above_stdio },
     { "long_run_dir", test_long_run_dir },
     { "maa_events_params", test_maa_events_params },

@@ -298,6 +298,25 @@ int SendRequest(const char *module, RequestMessage *msg);
  *  (docs/engines.md §4). Data values (PostData) never wait, whatever the setting. Returns the
  *  setting before the call. */
 int ContractSetNonBlockingSends(int on);
+/** [ENGINE] on = 1: a request of this process whose receiver's mailbox is full is neither waited
+ *  for nor dropped: it is kept and the call returns CONTRACT_OK. Kept requests are sent again
+ *  every 5 ms while the process waits for requests (WaitForRequestUntil and every wait built on
+ *  it; a process with a wait of its own calls ContractRetryQueuedSends), until the receiver has
+ *  room; one still not sent 2 s after its call fails then, with the usual `error` record and
+ *  stderr line. A later request to the same receiver is kept behind it (a receiver gets its
+ *  requests in order); others go at once. Questions that wait for their answer (QueryStatus,
+ *  ContractSetModulePriority) are never kept: CONTRACT_EBUSY at once for a receiver whose mailbox
+ *  is full or has requests kept. At exit the process tries its kept requests 0.5 s more,
+ *  then fails those left (the run is stopping: their receivers are about to be stopped too). Supervisors set it at start: a supervisor keeps reacting to events
+ *  while one module does not read its mailbox (docs/engines.md §6). Takes precedence over
+ *  ContractSetNonBlockingSends. Returns the setting before the call. */
+int ContractSetQueuedSends(int on);
+/** [ENGINE] Sends again the requests kept by ContractSetQueuedSends (those whose receivers have
+ *  room now), fails those kept 2 s. Returns when to call it again (CLOCK_MONOTONIC ns), or 0 when
+ *  none is kept. */
+RTIME ContractRetryQueuedSends(void);
+/** [ENGINE] The number of requests kept for full mailboxes (ContractSetQueuedSends). */
+int ContractQueuedSends(void);
 
 /** Wait for a request until the absolute CLOCK_MONOTONIC `deadline` (ns; <= 0: no wait,
  *  INT64_MAX: forever). Returns 1 (msg filled), 0 (deadline passed), -1 (error / EINTR). */

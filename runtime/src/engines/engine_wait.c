@@ -44,6 +44,10 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
            request, which may come seconds later: wake at the boundary (unless that is too close
            to the deadline), so that the log on disk — the live trace — lags at most about `delay`. */
         int64_t wake = deadline;
+        /* requests kept for a full mailbox (a supervisor's: ContractSetQueuedSends) are tried
+           again at each wake, and wake it while they wait */
+        RTIME retry = ContractRetryQueuedSends();
+        if (retry && (int64_t)retry < wake) wake = (int64_t)retry;
         RTIME due = ContractLogFlushDue(delay);
         if (due && (int64_t)due < wake && (deadline == INT64_MAX || deadline - (int64_t)due >= IDLE_FLUSH_SLACK_NS)) wake = (int64_t)due;
         struct itimerspec its;

@@ -436,17 +436,18 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
                 b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
                 b_rule, b_action};
     char err[512] = "";
-    /* Unlike ORD (ord_main.c), a supervisor keeps libmodule's default and waits up to 2 s for
-       room in a full mailbox (ContractSetNonBlockingSends not called): its requests are one-off
-       transitions (start or stop a module, activate or undo a schema, parameterize, connect),
-       each lost one leaving the architecture in a state its rules never chose (an undo lost keeps
-       a module running, a deactivation lost keeps a schema), and no later request repeats it, as
-       ORD's next cycle repeats a release, and a receiver only briefly behind (a burst of
-       requests to a module of lower priority on the supervisor's CPU) still gets it. It serves
-       no periodic timeline of its own; the cost is that it reads nothing while it waits: its
-       timers fire late, and its own mailbox may fill, so that a module posting events to it
-       waits too (docs/engines.md §6). A receiver still full after 2 s fails the request
-       (`error: not sent: ...`). */
+    /* A request to a module whose mailbox is full is kept and sent as soon as it has room
+       (ContractSetQueuedSends), for up to 2 s, while the supervisor goes on: its requests are
+       one-off transitions (start or stop a module, activate or undo a schema, parameterize,
+       connect), each lost one leaving the architecture in a state its rules never chose (an undo
+       lost keeps a module running, a deactivation lost keeps a schema), and nothing repeats
+       them, as ORD's next cycle repeats a release (ORD drops instead: ord_main.c); and waiting
+       for room, as libmodule does by default, would stop the supervisor reading anything for up
+       to 2 s per request: its rules' events, its timers, the other modules' requests (one module
+       stuck in its exec region, its mailbox full, held the supervisor, whose own mailbox then
+       filled, so that every module posting events to it waited too). Requests to one module
+       keep their order; a request still not sent after 2 s fails (`error: ... mailbox full`). */
+    ContractSetQueuedSends(1);
     holds_before_block(prio_requests_settle);
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {

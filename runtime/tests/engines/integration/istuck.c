@@ -2,12 +2,15 @@
  * istuck.c — the supervisor SKS of the stuck-module scenario (itest_stuck.c):
  *   SKS.go:
  *     W:  [elapsed=10ms] activate schema SLW() [ ]
- *     T1: [elapsed=10ms | endof(T2)] activate schema FST() [ORD:0<(ord_schema == "FST")>]
+ *     T1: [elapsed=10ms | endof(T2)] activate schema FST(), parameterize STK(7 :0)
+ *         [ORD:0<(ord_schema == "FST")>]
  *     T2: [endof(T1)] [duration(T2)=20ms]
  * as a supervisor that recovers from a deadline miss by deactivating the schema and activating
  * it again (the mobile robot's DRV and MIS do so on ORD:0). Once STK is stuck in its release,
  * every activation of FST is held for it and misses its deadline: SKS toggles FST every ~30 ms,
- * and each activation makes ORD send STK a parameter request (gain) that STK never reads.
+ * and each activation makes ORD send STK a parameter request (gain) that STK never reads, and
+ * SKS send it one of its own: SKS keeps those for STK's full mailbox and goes on (it used to wait
+ * 2 s for room at each, toggling FST once per 2 s: the mobile robot's DRV parameterizing VEL).
  *   SKS.crash:
  *     C:  [elapsed=10ms] activate schema CRH() [ ]
  * for the crashed-module scenario: CRS is killed in its 5th release of CRH.
@@ -23,7 +26,12 @@ ELAPSED(c10, 10 * ITEST_MS)
 static const ContractAction w_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_SLW}};
 static const ContractEvent t1_again[] = {{.kind = CONTRACT_EV_ENDOF, .rule = 2}};
 static const ContractClause t1_pre[] = {{1, c10_ev}, {1, t1_again}};
-static const ContractAction t1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_FST}};
+static const long k_gain = 7;
+static const ContractAssign stk_gain[] = {{0, 0, &contract_type_long, {CONTRACT_REF_CONST, 0, 0, &contract_type_long, &k_gain}}};
+static const ContractParamSetting stk_settings[] = {{0, &contract_type_long, 1, stk_gain, "gain"}};
+static const ContractAction t1_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_FST},
+                                            {.kind = CONTRACT_ACT_PARAMETERIZE, .module = "STK", .nsettings = 1,
+                                             .settings = stk_settings}};
 static const ContractTest miss_tests[] = {
     {CONTRACT_TEST_EQ, {CONTRACT_REF_ORD_SCHEMA, 0, 0, &contract_type_string, NULL},
      {CONTRACT_REF_CONST, 0, 0, &contract_type_string, k_fst}, NULL, 0, NULL}};
@@ -37,7 +45,7 @@ static const ContractClause t2_pre[] = {{1, t2_start}};
 static const ContractEvent t2_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 2, .time_ns = 20 * ITEST_MS}};
 static const ContractClause t2_post[] = {{1, t2_end}};
 static const ContractRule go_rules[] = {{"W", {1, c10}, 1, w_actions, {0, NULL}},
-                                        {"T1", {2, t1_pre}, 1, t1_actions, {1, t1_post}},
+                                        {"T1", {2, t1_pre}, 2, t1_actions, {1, t1_post}},
                                         {"T2", {1, t2_pre}, 0, NULL, {1, t2_post}}};
 static const ContractAction c_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_CRH}};
 static const ContractRule crash_rules[] = {{"C", {1, c10}, 1, c_actions, {0, NULL}}};

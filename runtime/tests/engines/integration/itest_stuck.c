@@ -120,6 +120,31 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
               strstr(txt, "ORD does not wait for a full mailbox"),
           "ORD says on stderr that it could not parameterize STK, whose mailbox is full");
 
+    /* SKS's own parameter requests to STK are kept for its full mailbox, not waited for: SKS went
+       on toggling FST (the check above; waiting 2 s at each, it toggled once per 2 s), and each
+       request still kept after 2 s failed then, told on SKS's stderr and in its log */
+    char *sks = read_csv_log(&s, "SKS");
+    int kept_failed = count_of(sks, "SETPARAM request to STK: mailbox full");
+    snprintf(what, sizeof what,
+             "SKS parameterized STK at each activation of FST (%d) and its requests to STK's full mailbox failed only "
+             "after 2 s kept (%d, at least 1, and none waited for)",
+             count_of(sks, ",parameterize STK:0 gain "), kept_failed);
+    check(count_of(sks, ",parameterize STK:0 gain ") >= 25 && kept_failed >= 1 &&
+              count_of(sks, "its mailbox stayed full for 2 s; SKS kept the request meanwhile") +
+                      count_of(sks, "SKS ended before its mailbox had room") ==
+                  kept_failed &&
+              txt && strstr(txt, "[SKS] SKS: error: SETPARAM request to STK: mailbox full") &&
+              !strstr(txt, "SKS did not end"),
+          what);
+    /* at the stop SKS still kept requests for STK: it tried them 0.5 s more, then ended */
+    long long killed = csv_time_of(sks, NULL, ",request_received,contract-launch,,0,KILL", NULL),
+              ended = csv_time_of(sks, NULL, ",SKS,module_exit,", NULL);
+    snprintf(what, sizeof what, "SKS ended %lld ms after its KILL (at most 1 s: its kept requests tried 0.5 s more)",
+             killed > 0 && ended > 0 ? (ended - killed) / MS : -1);
+    check(killed > 0 && ended > killed && ended - killed <= 1000 * MS &&
+              count_of(sks, "SKS ended before its mailbox had room") >= 1,
+          what);
+
     /* SLW on time: from its first release to SKS's undo at the stop (or, when ORD's log has none,
        its last record), every tick released but a few */
     long long t_deact = csv_time_of(ord, NULL, ",deactivate SLW (activation #", NULL), tick0 = -1;
@@ -149,6 +174,7 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
         fprintf(stderr, "launcher output (stuck scenario):\n%s\nORD stats: %s\n", txt ? txt : "(none)", js ? js : "(none)");
     free(stk);
     free(ord);
+    free(sks);
     free(txt);
     free(js);
 }
