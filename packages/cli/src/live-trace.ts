@@ -9,7 +9,7 @@
 import { createHash, type Hash } from 'node:crypto';
 import type { FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
-import { parseRecordLine, type TraceRecord } from '@contract-studio/build-service/trace';
+import { countRecord, parseRecordLine, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
 import { openTraceFile, toJsonLines } from './trace-files.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
@@ -17,8 +17,8 @@ export class LiveTrace {
     private writing: Promise<unknown> = Promise.resolve();
     private failed: Error | null = null;
     private readonly written: Hash = createHash('sha256');
-    /** Records written so far. */
-    records = 0;
+    /** Written so far: records (readable ones) and, apart, unreadable lines (their `unknown` objects). */
+    readonly counts: RecordCounts = { records: 0, unreadable: 0 };
 
     private constructor(private readonly handle: FileHandle) {}
 
@@ -30,8 +30,9 @@ export class LiveTrace {
     /** A job event: a trace event's records are appended to the file. */
     event(e: JobEvent): void {
         if (e.type !== 'trace' || this.failed) return;
-        const text = toJsonLines(e.records.map((l) => parseRecordLine(l.file, l.line, l.text)));
-        this.records += e.records.length;
+        const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text));
+        for (const r of records) countRecord(this.counts, r);
+        const text = toJsonLines(records);
         this.written.update(text);
         this.writing = this.writing.then(() => this.handle.write(text)).catch((err: Error) => void (this.failed ??= err));
     }
@@ -49,23 +50,23 @@ export class LiveTrace {
  * The JSON lines of the run's saved logs `names` in `dir`: their digest compared with what was
  * written live (`live.digest`), and `traceFile` rewritten from them when it differs. The records
  * counted, or why the logs could not be read. A run that left no logs keeps what came live
- * (`live.records` records). `observe` sees each record of the logs once, in the order written.
+ * (`live.counts`). `observe` sees each record of the logs once, in the order written.
  */
-export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; records: number }, observe?: (r: TraceRecord) => void): Promise<{ records: number } | string> {
-    if (!names.length) return { records: live.records };
+export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; counts: RecordCounts }, observe?: (r: TraceRecord) => void): Promise<RecordCounts | string> {
+    if (!names.length) return { ...live.counts };
     const logs = await openLogFolder(dir, names);
     if (typeof logs === 'string') return logs;
     try {
         const hash = createHash('sha256');
-        const { records } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe);
-        if (hash.digest('hex') === live.digest) return { records };
+        const { counts } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe);
+        if (hash.digest('hex') === live.digest) return counts;
         const out = await openTraceFile(traceFile);
         try {
             await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
         } finally {
             await out.close();
         }
-        return { records };
+        return counts;
     } finally {
         await closeLogs(logs);
     }

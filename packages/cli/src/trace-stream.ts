@@ -11,7 +11,7 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MAX_LINE_CHARS, MinHeap, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, MinHeap, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
 import { jsonLine, LOG_FILE_NAME } from './trace-files.js';
 import { safeName } from './terminal-text.js';
@@ -293,24 +293,25 @@ export const PIECE_CHARS = 64 * 1024;
  * The records of `logs` as JSON lines (one object per record, time order: `contract trace
  * --format json`), handed to `sink` in pieces, each awaited; a sink answering false stops the
  * read. `observe` sees each record as it is written (another reader of the same pass: `contract
- * run`'s schema figures). Returns the records handed on and those told later than their time.
+ * run`'s schema figures). Returns the records handed on (readable ones, and unreadable lines
+ * apart: countRecord) and those told later than their time.
  */
-export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void, observe?: (r: TraceRecord) => void): Promise<{ records: number; outOfOrder: number; problems: string[] }> {
+export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void, observe?: (r: TraceRecord) => void): Promise<{ counts: RecordCounts; outOfOrder: number; problems: string[] }> {
     const stream = streamTrace(logs);
-    let records = 0;
+    const counts: RecordCounts = { records: 0, unreadable: 0 };
     let piece = '';
     for await (const batch of stream.batches) {
         for (const r of batch) {
             piece += jsonLine(r) + '\n';
+            countRecord(counts, r);
             observe?.(r);
         }
-        records += batch.length;
         if (piece.length >= PIECE_CHARS) {
             const go = await sink(piece);
             piece = '';
-            if (go === false) return { records, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
+            if (go === false) return { counts, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
         }
     }
     if (piece) await sink(piece);
-    return { records, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
+    return { counts, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
 }

@@ -29,7 +29,14 @@ describe('LiveTrace', () => {
         const whole = want1 + toJsonLines([4, 5].map((n) => parseRecordLine('SUP_1.csv', n + 1, line(n).text)));
         expect(await live.close()).toBe(createHash('sha256').update(whole).digest('hex')); // all a long run keeps of it
         expect(readFileSync(path, 'utf8')).toBe(whole);
-        expect(live.records).toBe(5);
+        expect(live.counts).toEqual({ records: 5, unreadable: 0 });
+    });
+
+    it('counts an unreadable line apart from the records, as `contract trace` and the Monitor do', async () => {
+        const live = await LiveTrace.open(join(dir, 'u.jsonl'));
+        live.event({ type: 'trace', seq: 1, t: 0, records: [line(1), { file: 'SUP_1.csv', line: 3, text: 'not a record at all' }, line(2)] });
+        await live.close();
+        expect(live.counts).toEqual({ records: 2, unreadable: 1 });
     });
 
     it('its digest differs from that of another text (the caller then rewrites the file)', async () => {
@@ -60,7 +67,7 @@ describe('LiveTrace', () => {
             const file = join(dir, 'run.jsonl');
             writeFileSync(file, 'live, partly\n');
             const seen: string[] = [];
-            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), records: 1 }, (r) => seen.push(told(r)))).toEqual({ records: 3 });
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha('live, partly\n'), counts: { records: 1, unreadable: 0 } }, (r) => seen.push(told(r)))).toEqual({ records: 3, unreadable: 0 });
             expect(readFileSync(file, 'utf8')).toBe(whole());
             // each record seen once (the pass that rewrote the file shows it none again), in time order
             expect(seen).toEqual(parseTrace(Object.entries(logs).map(([name, text]) => ({ name, text }))).map(told));
@@ -70,15 +77,15 @@ describe('LiveTrace', () => {
             const file = join(dir, 'run.jsonl');
             writeFileSync(file, 'as written live\n'); // stands for the same text: not written again
             let seen = 0;
-            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha(whole()), records: 3 }, () => seen++)).toEqual({ records: 3 });
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { digest: sha(whole()), counts: { records: 3, unreadable: 0 } }, () => seen++)).toEqual({ records: 3, unreadable: 0 });
             expect(seen).toBe(3);
             expect(readFileSync(file, 'utf8')).toBe('as written live\n');
         });
 
         it('keeps what came live when the run left no logs; never rewrites through a link', async () => {
-            expect(await settleTraceFile(dir, [], join(dir, 'none.jsonl'), { digest: 'x', records: 7 })).toEqual({ records: 7 });
+            expect(await settleTraceFile(dir, [], join(dir, 'none.jsonl'), { digest: 'x', counts: { records: 7, unreadable: 1 } })).toEqual({ records: 7, unreadable: 1 });
             symlinkSync(join(dir, 'target'), join(dir, 'link.jsonl'));
-            await expect(settleTraceFile(dir, ['SUP_1.csv'], join(dir, 'link.jsonl'), { digest: 'x', records: 0 })).rejects.toThrow(/it is a symbolic link: a trace file is never written through a link/);
+            await expect(settleTraceFile(dir, ['SUP_1.csv'], join(dir, 'link.jsonl'), { digest: 'x', counts: { records: 0, unreadable: 0 } })).rejects.toThrow(/it is a symbolic link: a trace file is never written through a link/);
         });
     });
 });

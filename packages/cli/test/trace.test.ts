@@ -59,7 +59,8 @@ describe('contract trace', () => {
             '+0.499000s SUP  undo: deactivate schema R (event schema)',
             '+0.500000s SUP  rule action.SECOND active   <- MAA:2 = "dis\\u001b[2Jconnected"',
             'schema S: 0 completed cycles, 1 deadline miss, 0 overruns',
-            '10 records: 1 module release, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+            // the readable records, the unreadable line apart (as the IDE's Monitor counts them)
+            '9 records: 1 module release, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
             // which line, in which file (the control characters of the line itself are not printed)
             'unreadable: SUP_24-Nov-2026-18h30m15s.csv line 6: 1 fields, expected 8',
             '',
@@ -132,6 +133,28 @@ describe('contract trace', () => {
         expect(records[6]!.reason).toBe('1 fields, expected 8');
         expect(records[5]!.fields).toEqual({ what: 'action', schema: 'R' });
         expect(records[2]!.fields).toEqual({ schema: 'S', cycle: 0, tick_ns: 2000500000, release_ns: 2000500001, release: 1 });
+    });
+
+    it('--format json: the same counts as the story, each unreadable line an object of kind "unknown"; logs of unreadable lines only hold no record', async () => {
+        const json = capture(dir);
+        expect(await runCli(['trace', dir, '--format', 'json'], json)).toBe(0);
+        const kinds = json.stdout.trim().split('\n').map((l) => (JSON.parse(l) as { kind: string }).kind);
+        const text = capture(dir);
+        expect(await runCli(['trace', dir], text)).toBe(0);
+        const counts = /^(\d+) records: .*, (\d+) unreadable lines?$/m.exec(text.stdout)!;
+        expect([kinds.filter((k) => k !== 'unknown').length, kinds.filter((k) => k === 'unknown').length]).toEqual([9, 1]);
+        expect([Number(counts[1]), Number(counts[2])]).toEqual([9, 1]);
+        const junk = mkdtempSync(join(tmpdir(), 'contract-trace-junk-'));
+        try {
+            writeFileSync(join(junk, 'JNK_24-Nov-2026-18h30m15s.csv'), [HEADER, 'junk', 'more junk', ''].join('\n'));
+            for (const format of ['text', 'json']) {
+                const io = capture(junk);
+                expect(await runCli(['trace', '.', '--format', format], io)).toBe(1);
+                expect(io.stderr).toBe('contract trace: no record in the 1 log(s) of . (only 2 unreadable line(s))\n');
+            }
+        } finally {
+            rmSync(junk, { recursive: true, force: true });
+        }
     });
 
     it('usage errors exit 2; a folder without logs exits 1', async () => {
@@ -289,7 +312,7 @@ describe('contract trace', () => {
             const io = capture(odd);
             expect(await runCli(['trace', '.'], io)).toBe(0);
             expect(Date.now() - t0).toBeLessThan(20_000); // read whole, a terabyte of zeros took hours
-            expect(io.stdout).toMatch(/^\+0\.000000s ORD  activate S\n2 records: .* 1 unreadable line\nunreadable: ZZZ_1\.csv line 1: line longer than 4096 characters\n$/);
+            expect(io.stdout).toMatch(/^\+0\.000000s ORD  activate S\n1 record: .* 1 unreadable line\nunreadable: ZZZ_1\.csv line 1: line longer than 4096 characters\n$/);
             // 65 chunks of 1 MiB read: the line passed 64 MiB (as in a trace file: one reader of lines, bounded-lines.ts)
             expect(io.stderr).toBe(`contract trace: warning: ZZZ_1.csv: no line end in 64 MiB after line 1: the rest of the file (${2 ** 40 - 65 * 2 ** 20} bytes) left out\n`);
         } finally {

@@ -61,3 +61,18 @@ export function isRule(r: TraceRecord): r is RuleRecord {
 export function isUnknown(r: TraceRecord): r is UnknownRecord {
     return r.kind === 'unknown' && 'reason' in r;
 }
+
+/**
+ * A trace's counts as `contract trace` and the IDE's Monitor say them: its records are the
+ * readable ones; a line that is no record (`unknown`) is counted apart, as an unreadable line.
+ */
+export interface RecordCounts {
+    records: number;
+    unreadable: number;
+}
+
+/** Counts `r` in `c`: a record, or an unreadable line. */
+export function countRecord(c: RecordCounts, r: TraceRecord): void {
+    if (r.kind === 'unknown') c.unreadable++;
+    else c.records++;
+}

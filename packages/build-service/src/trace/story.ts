@@ -10,7 +10,7 @@ import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
-import { isRule, type KnownRecord, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
+import { countRecord, isRule, type KnownRecord, type RecordCounts, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
 export const RUN_STOPPING = '; the run is stopping)';
@@ -118,6 +118,19 @@ function plural(n: number, one: string, many = `${one}s`): string {
     return `${n} ${n === 1 ? one : many}`;
 }
 
+/**
+ * A module's own record (`user`: ContractLog under an event name of its own) as the story and the
+ * IDE's Monitor (its timeline mark) tell it: `EVENT: DETAIL`, then those of the peer, port and size
+ * it was logged with that it gave (a peer not empty; a port, its column not empty as a port < 0
+ * leaves it; a size above 0): `gripper_closed: force=12.5 N (peer MAB, port 2, 16 bytes)`.
+ * `detailChars`: the detail cut to so many characters (the Monitor's short mark label).
+ */
+export function userRecordText(k: KnownRecord, detailChars = Infinity): string {
+    const detail = k.detail.slice(0, detailChars);
+    const given = [k.peer ? `peer ${k.peer}` : '', k.port !== null ? `port ${k.port}` : '', k.size > 0 ? plural(k.size, 'byte') : ''].filter(Boolean);
+    return `${k.fields['event'] ?? k.kind}${detail ? `: ${detail}` : ''}${given.length ? ` (${given.join(', ')})` : ''}`;
+}
+
 /** `+1.250000s` after the first record, `-0.000100s` before it (a record out of its place). */
 function offset(ns: bigint): string {
     const s = (Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6);
@@ -177,7 +190,8 @@ interface CycleRunning {
  */
 export class StoryTeller {
     private t0: bigint | undefined;
-    private total = 0;
+    /** Records told and unreadable lines (countRecord). */
+    private readonly counted: RecordCounts = { records: 0, unreadable: 0 };
     private readonly counts = new Map<string, number>();
     /**
      * Per periodic schema: its current and previous cycle and the modules released in each and not
@@ -215,9 +229,9 @@ export class StoryTeller {
     /** Schemas past STORY_FOLLOWED: counted in the totals only. */
     private schemasLeftOut = 0;
 
-    /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record. */
+    /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every unreadable line apart. */
     tell(r: TraceRecord): string | undefined {
-        this.total++;
+        countRecord(this.counted, r);
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
         this.countSchema(r);
         if (r.kind === 'unknown') return undefined;
@@ -294,8 +308,8 @@ export class StoryTeller {
             const text = this.firstDropText(k);
             return text && `${at(k)} ${text}`;
         }
+        if (k.kind === 'user') return `${at(k)} ${userRecordText(k)}`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
-        if (k.kind === 'user') return `${at(k)} ${k.fields['event']}${k.detail ? `: ${k.detail}` : ''}`;
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;
     }
@@ -448,13 +462,22 @@ export class StoryTeller {
         return [...this.schemas].sort(([a], [b]) => (a < b ? -1 : a > b ? 1 : 0)).map(([schema, f]) => ({ schema, ...f }));
     }
 
+    /** The records told so far (readable ones) and, apart, the unreadable lines: the numbers of the summary's first and last counts. */
+    get recordCounts(): RecordCounts {
+        return { ...this.counted };
+    }
+
+    /**
+     * The line of counts: the records (readable ones: an unreadable line is no record, as in the
+     * IDE's Monitor), what they were, and the unreadable lines.
+     */
     summary(): string {
         const n = (kind: string) => this.counts.get(kind) ?? 0;
-        return `${plural(this.total, 'record')}: ${plural(n('ord_release'), 'module release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
+        return `${plural(this.counted.records, 'record')}: ${plural(n('ord_release'), 'module release')}, ${plural(n('ord_complete'), 'completed cycle')}, ` +
             `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('scheduler:overrun'), 'overrun')}, ` +
             `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
             `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ` +
-            `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}${plural(n('unknown'), 'unreadable line')}`;
+            `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}${plural(this.counted.unreadable, 'unreadable line')}`;
     }
 }
 

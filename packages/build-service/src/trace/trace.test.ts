@@ -263,7 +263,32 @@ describe('reading a log', () => {
             '+0.500000s SUP  notify :1 (string) = "commutation"',
             '+1.000000s SUP  rule action.SECOND active   <- MAA:2 = "disconnected"',
             'schema S: 0 completed cycles, 1 deadline miss, 0 overruns',
-            '7 records: 0 module releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+            // the records are the readable ones (as the IDE's Monitor counts them), the unreadable line apart
+            '6 records: 0 module releases, 0 completed cycles, 1 deadline miss, 0 overruns, 0 held cycles, 2 rule changes, 0 data and 0 event deliveries, 1 unreadable line',
+        ]);
+    });
+
+    it('counts the readable records apart from the unreadable lines, also for logs of unreadable lines only', () => {
+        const teller = new StoryTeller();
+        const records = parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER, '1000,w,SUP,error,,,0,x', 'junk', '2000,w,SUP,error,,,0,y', 'more junk', '3000,w,SUP'].join('\n') }]);
+        for (const r of records) teller.tell(r);
+        expect(teller.recordCounts).toEqual({ records: 2, unreadable: 3 });
+        expect(teller.summary()).toMatch(/^2 records: .*, 3 unreadable lines$/);
+        expect(renderStory(parseTrace([{ name: 'X_1.csv', text: `${CSV_HEADER}\njunk\n` }])).at(-1)).toMatch(/^0 records: .*, 1 unreadable line$/);
+    });
+
+    it("tells a module's own record with the peer, port and size it was logged with, those given", () => {
+        const text = [CSV_HEADER,
+            '1000,w,MAA,gripper_closed,MAB,2,16,force=12.5 N',
+            '2000,w,MAA,homed,,0,0,',          // port 0 is a port
+            '3000,w,MAA,waiting,,,0,for the gripper', // ContractLog(event, "", -1, 0, detail): nothing more
+            '4000,w,MAA,sent,SUP,,1,',
+        ].join('\n');
+        expect(renderStory(parseTrace([{ name: 'MAA_1.csv', text }])).slice(0, 4)).toEqual([
+            '+0.000000s MAA  gripper_closed: force=12.5 N (peer MAB, port 2, 16 bytes)',
+            '+0.000001s MAA  homed (port 0)',
+            '+0.000002s MAA  waiting: for the gripper',
+            '+0.000003s MAA  sent (peer SUP, 1 byte)',
         ]);
     });
 

@@ -205,7 +205,7 @@ export const runCommand: Command = {
             return EXIT_FAILURE;
         }
         const logs = savedLogs.saved;
-        let trace: { file: string; records: number } | null = null;
+        let trace: { file: string; records: number; unreadable: number } | null = null;
         // each periodic schema's figures, for a CI script's gate (--format json only): told by the
         // pass over the saved logs that checks the trace file, else by a read of its own
         const teller = opts.format === 'json' && traceFile && logs.length ? new StoryTeller() : null;
@@ -215,9 +215,9 @@ export const runCommand: Command = {
                 // the whole story in order (docker, its kept-lines bound, records sent late):
                 // both compared by digest, the logs read as a stream (a long run is gigabytes)
                 const digest = await live.close();
-                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, records: live.records }, teller ? (r) => teller.tell(r) : undefined);
+                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, counts: live.counts }, teller ? (r) => teller.tell(r) : undefined);
                 if (typeof whole === 'string') throw new Error(whole);
-                trace = { file: traceFile, records: whole.records };
+                trace = { file: traceFile, ...whole };
             } catch (e) {
                 io.err(`contract run: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;
@@ -243,7 +243,7 @@ export const runCommand: Command = {
             if (savedLogs.movedAside) io.err(`previous run's CSV logs: ${savedLogs.movedAside.files} file(s) moved to ${safeName(savedLogs.movedAside.folder)}\n`);
             if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${safeName(logsDir)}\n`);
             for (const r of savedLogs.refused) io.err(`contract run: log not written to ${safeName(logsDir)}: ${safeName(r)}\n`);
-            if (trace) io.err(`trace: ${trace.records} record(s) in ${safeName(trace.file)}\n`);
+            if (trace) io.err(`trace: ${trace.records} record(s)${trace.unreadable ? `, ${trace.unreadable} unreadable line(s)` : ''} in ${safeName(trace.file)}\n`);
         }
         if (outcome.result.limitHit) return code;
         if (failures.length) return EXIT_FAILURE;

@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -26,9 +26,9 @@ export const traceCommand: Command = {
         'usage: contract trace LOGDIR|FILE.jsonl [--format text|json]',
         '  LOGDIR: the folder of a run\'s CSV logs (`contract run --logs`, default PROJECT/logs)',
         '  FILE.jsonl: a trace file (`contract run --trace`, `contract trace --format json`, `contract simulate --trace`), told in its order',
-        '  --format: text (default: the story, then a count of the records) or json (one JSON object per record and line, time order)',
+        '  --format: text (default: the story, then a count of the records and, apart, of the unreadable lines) or json (one JSON object per record and line, time order; an unreadable line is an object of kind "unknown")',
         '  a file named like a log that is not read (a symbolic link, a FIFO, socket or device) is left out with a warning',
-        'exit status: 0 success, 1 no readable log in LOGDIR, or no record in its logs (in FILE.jsonl), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
+        'exit status: 0 success, 1 no readable log in LOGDIR, or no record in its logs (in FILE.jsonl; unreadable lines are no records), 2 bad usage (LOGDIR missing, not a folder nor a .jsonl file)',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const parsed = parseArgs(args, ['format']);
@@ -49,11 +49,12 @@ export const traceCommand: Command = {
             return EXIT_FAILURE;
         }
         try {
-            const { late, problems, records } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
+            const { late, problems, counts } = format === 'json' ? await printJson(logs, io) : await printStory(logs, io);
             for (const p of problems) io.err(`contract trace: warning: ${p}\n`);
             if (late) io.err(`contract trace: warning: ${late} record(s) were more than ${windowFor(logs.length)} lines (fewer when lines are longer than ${LINE_CHARS_HELD} characters) from their time's place in their log: told later than their time\n`);
-            if (records === 0) {
-                io.err(`contract trace: no record in the ${logs.length} log(s) of ${safeName(dirArg)} (empty, or only their header)\n`);
+            if (counts?.records === 0) {
+                const only = counts.unreadable ? `only ${counts.unreadable} unreadable line(s)` : 'empty, or only their header';
+                io.err(`contract trace: no record in the ${logs.length} log(s) of ${safeName(dirArg)} (${only})\n`);
                 return EXIT_FAILURE;
             }
             return EXIT_OK;
@@ -103,26 +104,34 @@ async function traceFile(path: string, arg: string, format: string, io: CliIO): 
     return EXIT_OK;
 }
 
-/** Every record as a JSON line, each piece printed once the reader took the last; stops when the reader went away (`| head`: its choice). */
-async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[]; records?: number }> {
-    const { outOfOrder, problems, records } = await jsonLinesOf(logs, (piece) => print(io, piece));
-    return { late: outOfOrder, problems, records };
+/** What a print of the logs tells the command: the records and unreadable lines counted (the story's: none when its reader went away first). */
+interface Printed {
+    late: number;
+    problems: string[];
+    counts?: RecordCounts;
+}
+
+/**
+ * Every record as a JSON line (an unreadable line as its `unknown` object), each piece printed once
+ * the reader took the last; stops when the reader went away (`| head`: its choice).
+ */
+async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<Printed> {
+    const { outOfOrder, problems, counts } = await jsonLinesOf(logs, (piece) => print(io, piece));
+    return { late: outOfOrder, problems, counts };
 }
 
 /**
  * The story: its lines printed as they come (few: a reader gone is seen at the next), then what
  * the logs say of modules that did not end (a crash leaves no exit record), then the counts.
  */
-async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<{ late: number; problems: string[]; records?: number }> {
+async function printStory(logs: readonly OpenLog[], io: CliIO): Promise<Printed> {
     const stream = streamTrace(logs);
     const story = new Story(new ModuleEnds(logs));
-    let records = 0;
     for await (const batch of stream.batches) {
-        records += batch.length;
         if (!(await print(io, batch.map((r) => story.line(r)).join('')))) return { late: stream.outOfOrder(), problems: stream.problems() };
     }
     io.out(story.end());
-    return { late: stream.outOfOrder(), problems: stream.problems(), records };
+    return { late: stream.outOfOrder(), problems: stream.problems(), counts: story.counts };
 }
 
 /** Prints `piece` (when any) once the reader took the last; false when the reader went away (`| head`: its choice). */
@@ -139,6 +148,11 @@ class Story {
     private readonly teller = new StoryTeller();
 
     constructor(private readonly ends: ModuleEnds) {}
+
+    /** The records told (readable ones) and, apart, the unreadable lines: what the line of counts says. */
+    get counts(): RecordCounts {
+        return this.teller.recordCounts;
+    }
 
     /** The record's line of the story ('' when it tells nothing). */
     line(r: TraceRecord): string {

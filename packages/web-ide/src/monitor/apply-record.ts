@@ -151,11 +151,11 @@ export function foldDataDropped(s: MonitorState, module: string, port: number | 
 
 /** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
 export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number): void {
-  s.records++;
   if (r.kind === 'unknown') {
     s.unknownLines++;
     return;
   }
+  s.records++;
   s.t = t;
   if (isRule(r)) {
     const sv = sup(s, r.module);

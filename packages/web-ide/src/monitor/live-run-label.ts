@@ -5,11 +5,8 @@
  * Pure, so that the order in which the job's end and its logs reach the page is tested without one
  * (live-run-label.test.ts).
  */
-
-/** 50000 -> `50,000`. */
-export function count(n: number): string {
-  return n.toLocaleString('en-US');
-}
+import type { RecordCounts } from '@contract-studio/build-service/trace';
+import { count, unreadableNote } from './record-counts.js';
 
 /** How a job ended, as every label ends with it: ` · ended: cancelled` (nothing when not known yet). */
 function endedText(outcome: string | undefined): string {
@@ -43,10 +40,11 @@ export function streamedRunLabel(jobId: string, outcome: string | undefined, rec
 }
 
 /**
- * The run of its CSV logs: `Build & Run job j-… · CSV logs`, with what the replay lacks (a log left
- * out or capped, one not downloaded) and how the job ended when that run carries it (the live run
- * was forgotten for want of records).
+ * The run of its CSV logs: `Build & Run job j-… · CSV logs`, its records and unreadable lines when
+ * some lines are unreadable (`counts`: unreadableNote), what the replay lacks (a log left out or
+ * capped, one not downloaded) and how the job ended when that run carries it (the live run was
+ * forgotten for want of records).
  */
-export function csvLogsRunLabel(jobId: string, problems: readonly string[], outcome?: string): string {
-  return `Build & Run job ${jobId} · CSV logs${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${endedText(outcome)}`;
+export function csvLogsRunLabel(jobId: string, problems: readonly string[], outcome?: string, counts?: RecordCounts): string {
+  return `Build & Run job ${jobId} · CSV logs${counts ? unreadableNote(counts) : ''}${problems.length ? ` (not whole: ${problems.join('; ')})` : ''}${endedText(outcome)}`;
 }

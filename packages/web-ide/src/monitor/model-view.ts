@@ -21,7 +21,10 @@ export interface MonitorView {
   readonly version: number;
   /** Time of the last record (ns since the first). */
   readonly end: Ns;
+  /** Lines folded (records and unreadable lines): the model's size. What a label counts is in `live` (record-counts.ts). */
   readonly recordCount: number;
+  /** The state after the last record. */
+  readonly live: MonitorState;
   /** What the timeline marks, in time order (bounded). */
   readonly marks: readonly Mark[];
   /**

@@ -30,7 +30,8 @@ import { jobOutcome } from './live-follow-protocol.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 import { NOT_IN_MODEL_LONG } from './panel-text.js';
-import { count, csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { count, recordCounts, recordCountsText, unreadableNote } from './record-counts.js';
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
@@ -243,7 +244,7 @@ export class MonitorController {
     // "Trace channel": past traceLinesKept records go live only): then the logs, which hold the whole run, are shown
     const cut = !!live && live.model.recordCount > 0 && live.model.recordCount < run.model.recordCount;
     // (not "the first N": a stream attached late got the first records and the last ones, a gap between)
-    if (cut) live!.label = streamedRunLabel(jobId, live!.outcome, { streamed: live!.model.recordCount, logged: run.model.recordCount });
+    if (cut) live!.label = streamedRunLabel(jobId, live!.outcome, { streamed: live!.model.live.records, logged: run.model.live.records });
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
       this.panel?.endLive(live.label);
       await this.refreshSources();
@@ -262,7 +263,7 @@ export class MonitorController {
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
-    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome), model, live: false, outcome };
+    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model)), model, live: false, outcome };
     this.keepRecorded(run);
     return run;
   }
@@ -340,7 +341,8 @@ export class MonitorController {
     const where = folder || 'the workspace root';
     const whole = tooLarge ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
     const { model, leftOut: unread } = await recordedRun(files);
-    const read = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}`;
+    const counted = unreadableNote(recordCounts(model));
+    const read = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
     const run: Run = { id: `dir:${folder}`, label, model, live: false };
     this.keepRecorded(run);
@@ -359,8 +361,7 @@ export class MonitorController {
     const { files, problems, skipped, simulation } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     const { model, leftOut: unread } = await recordedRun(files);
     const notWhole = [...problems, ...unread];
-    const what = `${model.recordCount} record(s)${skipped ? `, ${skipped} unreadable line(s) of the logs it was written from` : ''}`;
-    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${what}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
+    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
     this.keepRecorded({ id, label, model, live: false });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();

@@ -264,10 +264,13 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     const log = [
       `1000000000,${W},MAA,gripper_closed,,,0,force=12.5 N`,
       `1000500000,${W},MAA,homed,,,0,`,
+      `1000600000,${W},MAA,gripper_opened,MAB,2,16,width=40 mm`,
+      `1000700000,${W},MAA,tare,,0,0,`,
+      `1000800000,${W},MAA,${'x'.repeat(64)},SUP,1,8,${'d'.repeat(300)}`,
       ...Array.from({ length: MAX_USER_MARKS + 500 }, (_, i) => `${1001000000 + i * 1000},${W},MAA,tick,,,0,n=${i}`),
       `1100000000,${W},SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns`,
     ];
-    const userLabels = (m: MonitorModel) => m.marks.filter((k) => k.kind === 'user').slice(0, 2).map((k) => `${k.where} ${k.label}`);
+    const userLabels = (m: MonitorModel) => m.marks.filter((k) => k.kind === 'user').slice(0, 5).map((k) => `${k.where} ${k.label}`);
     const live = new MonitorModel({ checkpointEvery: 64 });
     log.forEach((l, i) => live.pushLine('MAA.csv', i + 2, l));
     const parsed = new MonitorModel({ checkpointEvery: 64 });
@@ -276,7 +279,9 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     let step = steps.next();
     while (!step.done) step = steps.next();
     for (const m of [live, parsed, step.value.model]) {
-      expect(userLabels(m)).toEqual(['MAA gripper_closed: force=12.5 N', 'MAA homed']);
+      // the story's words (contract trace): the peer, port and size it was logged with when given, after a detail cut short
+      expect(userLabels(m)).toEqual(['MAA gripper_closed: force=12.5 N', 'MAA homed', 'MAA gripper_opened: width=40 mm (peer MAB, port 2, 16 bytes)', 'MAA tare (port 0)',
+        `MAA ${'x'.repeat(64)}: ${'d'.repeat(80)} (peer SUP, port 1, 8 bytes)`]);
       expect(m.marks.filter((k) => k.kind === 'user')).toHaveLength(MAX_USER_MARKS);
       expect(m.marks.at(-1)).toMatchObject({ kind: 'rule', where: 'SUP' }); // the rule after the flood is marked
       expect(m.live.unknownLines).toBe(0);

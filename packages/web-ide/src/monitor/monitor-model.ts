@@ -20,7 +20,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, missWaitText, readableCause, stuckSaysGone, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -544,15 +544,16 @@ export class MonitorModel implements MonitorView {
   }
 
   /**
-   * A module's own record (ContractLog under a name of its own): a mark, `gripper_closed: force=12.5 N`.
+   * A module's own record (ContractLog under a name of its own): a mark, `gripper_closed: force=12.5 N`
+   * (`(peer MAB, port 2, 16 bytes)` after it when it gave them: userRecordText, the story's words).
    * Not a notable record (it changes no state); the first MAX_USER_MARKS only, so that a module
    * logging at every cycle cannot take the marks the supervisors' and ORD's records need.
    */
   private userMark(t: Ns, k: KnownRecord): void {
     if (this.userMarks >= MAX_USER_MARKS || this.marks.length >= this.maxMarks) return;
     this.userMarks++;
-    const event = String(k.fields?.['event'] ?? k.kind);
-    this.marks.push({ t, kind: 'user', where: k.module, label: (k.detail ? `${event}: ${k.detail}` : event).slice(0, 120) });
+    // the detail cut so that the peer, port and size after it show
+    this.marks.push({ t, kind: 'user', where: k.module, label: userRecordText(k, 80).slice(0, 200) });
   }
 
   private notableRecord(x: Timed): void {

@@ -109,6 +109,7 @@ export interface FlowCount {
 export interface MonitorState {
   /** Time of the last record folded in. */
   t: Ns;
+  /** Records folded in: readable ones (a line that is no record counts in unknownLines instead, as `contract trace` counts them). */
   records: number;
   supervisors: Map<string, SupervisorState>;
   /** How many records changed `supervisors` so far: a view redraws them only when it moved. */
@@ -119,6 +120,7 @@ export interface MonitorState {
   /** Keyed `PRODUCER:port->CONSUMER:port`. */
   dataFlows: Map<string, FlowCount>;
   eventFlows: Map<string, FlowCount>;
+  /** Lines that are no record (unreadable). */
   unknownLines: number;
   /** Distinct names folded (supervisors, their functions, rules and holds, schemas, modules, flows): at most MAX_NAMES. */
   names: number;

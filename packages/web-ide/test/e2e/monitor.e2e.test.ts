@@ -251,10 +251,10 @@ describe('Monitor in headless Chromium', () => {
     const { page } = s;
     await page.evaluate(() => (window as any).__ide.monitor.openFolder('junk-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
-      .toBe('2 CSV log(s) in junk-run (not whole: JNK_29-Nov-2026-10h00m00s.csv: more than 100000 lines that are not trace records, the rest of it from line 100001 left out)');
+      .toBe('2 CSV log(s) in junk-run · 1,001 record(s), 100,000 unreadable line(s) (not whole: JNK_29-Nov-2026-10h00m00s.csv: more than 100000 lines that are not trace records, the rest of it from line 100001 left out)');
     // ORD's 1,001 records and the 100,000 unreadable lines kept: counted, the rest not read
-    const m = await page.evaluate(() => { const c = (window as any).__ide.monitor.current; return { n: c.recordCount, unknown: c.live.unknownLines }; });
-    expect(m).toEqual({ n: 1001 + 100_000, unknown: 100_000 });
+    const m = await page.evaluate(() => { const c = (window as any).__ide.monitor.current; return { n: c.recordCount, records: c.live.records, unknown: c.live.unknownLines }; });
+    expect(m).toEqual({ n: 1001 + 100_000, records: 1001, unknown: 100_000 });
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe('1000');
