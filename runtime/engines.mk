@@ -44,7 +44,7 @@ ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c) $(ENG_IT_SRC)/stall_watch.c
 # The test's executables: ENG_IT_FROM_<exe> = its source in $(ENG_IT_SRC), ENG_IT_FLAGS_<exe> =
 # its -D flags. Each is built twice: $(ENG_OUT)/it (plain) and $(ENG_OUT)/it-san (ASan+UBSan).
 ENG_IT_EXES := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB \
-               undo/ORD UMA AMY UPA USM PQS AMB DLA DLB AMD AME stk/ORD SKS STK OKM CRS
+               undo/ORD UMA AMY UPA USM PQS AMB DLA DLB AMD AME stk/ORD SKS STK OKM CRS AMS
 $(foreach m,IMA IMB IMC RMA RMB RMC UMA,$(eval ENG_IT_FROM_$(m) := imod.c)$(eval ENG_IT_FLAGS_$(m) := -DIMOD_NAME='"$(m)"'))
 ENG_IT_FLAGS_RMB += -DIMOD_SLOW_AT=4
 ENG_IT_FROM_ORD := iord.c
@@ -72,6 +72,8 @@ ENG_IT_FROM_USM := iundo.c
 ENG_IT_FROM_PQS := ilate.c
 ENG_IT_FROM_AMB := amod.c
 ENG_IT_FLAGS_AMB := -DAMOD_NAME='"AMB"' -DAMOD_BUSY_MS=300
+ENG_IT_FROM_AMS := amod.c
+ENG_IT_FLAGS_AMS := -DAMOD_NAME='"AMS"' -DAMOD_BUSY_MS=5000
 ENG_IT_FROM_DLA := icross.c
 ENG_IT_FLAGS_DLA := -DICROSS_TOP
 ENG_IT_FROM_DLB := icross.c

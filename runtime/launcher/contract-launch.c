@@ -689,7 +689,16 @@ int main(int argc, char *argv[])
         failed++;
         say("FAILED: module %s crashed", children[k].name);
     }
-    say("all modules stopped%s", failed ? "" : " cleanly");
+    /* "cleanly" only when every module ended on its KILL request: one the launcher had to terminate
+     * (it did not answer) is named again, after the lines of the others' last output */
+    char terminated[256] = "";
+    size_t used = 0;
+    for (int k = 0; k < n_children; k++)
+        if (children[k].signalled && !children[k].failed && used < sizeof terminated)
+            used += (size_t)snprintf(terminated + used, sizeof terminated - used, "%s%s", used ? ", " : "", children[k].name);
+    if (failed) say("all modules stopped");
+    else if (terminated[0]) say("all modules stopped (terminated at the stop: %s)", terminated);
+    else say("all modules stopped cleanly");
     if (pm_qos_fd >= 0) close(pm_qos_fd);
     clean_run_dir(run_dir); /* removes launcher.pid last: `--kill` waits for that */
     return failed ? 1 : 0;

@@ -258,6 +258,8 @@ const char *rt_request_name(int type)
     return names[type];
 }
 
+const char *ContractRequestName(int type) { return rt_request_name(type); }
+
 const char *rt_ack_name(int ack)
 {
     switch (ack) {

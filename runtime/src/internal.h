@@ -95,10 +95,15 @@ int rt_send_datagram(const char *module, const void *request, size_t len, int do
 /* The `error` record and stderr line of a request that could not be sent (why_more: the end of
  * its parenthesis); returns the CONTRACT_E* code of err. */
 int rt_send_failed(const char *module, int type, int err, const char *why_more);
+/* The record of a request sent (sent = 1) or not: setparam_sent (detail: `detail`, NULL: none),
+ * ack_sent / ack_failed (other requests have none: a failure is an `error` record,
+ * rt_send_failed). At the send itself, also for a request kept for a full mailbox (outbox.c),
+ * not when it is kept. */
+void rt_log_sent(const char *module, const RequestMessage *request, int sent, const char *detail);
 
 /* outbox.c: requests kept for full mailboxes (ContractSetQueuedSends) */
 int rt_outbox_holds(const char *module);
-int rt_outbox_add(const char *module, int type, const void *request, size_t len);
+int rt_outbox_add(const char *module, const RequestMessage *request, size_t len);
 void rt_outbox_drain(void); /* at exit: tries the kept requests 0.5 s more, then fails those left */
 
 /* priority.c: apply `priority` to this process without a stderr warning (requests from a

@@ -76,13 +76,24 @@ int rt_send_datagram(const char *module, const void *request, size_t len, int do
     return n < 0 ? (errno ? errno : EIO) : 0;
 }
 
+void rt_log_sent(const char *module, const RequestMessage *request, int sent, const char *detail)
+{
+    if (request->Type == REQ_SETPARAM && sent) {
+        ContractLog("setparam_sent", module, request->Param.SetParam.Port, request->DataSize, detail ? detail : "");
+    } else if (request->Type == REQ_ACK) {
+        char detail[64];
+        snprintf(detail, sizeof detail, "%s id=%d", rt_ack_name(request->Param.Ack.Ack), request->Param.Ack.AckID);
+        ContractLog(sent ? "ack_sent" : "ack_failed", module, -1, 0, detail);
+    }
+}
+
 int rt_send_failed(const char *module, int type, int err, const char *why_more)
 {
     int code = rt_errno_to_code(err);
     /* while the launcher stops every module, a peer that has already gone is expected: the
      * record stays in the log, stderr stays quiet */
     int gone_at_stop = ContractPeerGoneAtStop(code);
-    char text[384], why[160] = "";
+    char text[512], why[288] = "";
     if (gone_at_stop) snprintf(why, sizeof why, "; the run is stopping");
     else if (why_more) snprintf(why, sizeof why, "; %s", why_more);
     snprintf(text, sizeof text, "%s request to %s: %s (%s%s)", rt_request_name(type), module, ContractStrError(code),
@@ -111,6 +122,7 @@ static int send_request(const char *module, RequestMessage *msg, OnFull full)
     if (msg->DataSize > CONTRACT_REQUEST_DATA_MAX) {
         rt_error("%s request to %s: payload of %zu bytes exceeds the limit of %d bytes (not sent)",
                  rt_request_name(msg->Type), module, msg->DataSize, CONTRACT_REQUEST_DATA_MAX);
+        rt_log_sent(module, msg, 0, NULL);
         return CONTRACT_ETOOBIG;
     }
     if (g_rt.run_dir_fd < 0 && rt_init_run_dir() != 0) return CONTRACT_ESYS;
@@ -118,18 +130,27 @@ static int send_request(const char *module, RequestMessage *msg, OnFull full)
     msg->ProductionTime = GetTime();
     msg->ReceptionTime = 0;
     size_t len = REQUEST_HEADER_SIZE + msg->DataSize;
-    if (full == FULL_KEEP && rt_outbox_holds(module)) /* after the ones kept before: in order */
-        return rt_outbox_add(module, msg->Type, msg, len);
-    int err = rt_send_datagram(module, msg, len, full != FULL_WAIT);
-    if (err == 0) return CONTRACT_OK;
-    if (full == FULL_KEEP && (err == EAGAIN || err == EWOULDBLOCK)) return rt_outbox_add(module, msg->Type, msg, len);
+    int rc;
+    /* a receiver with requests kept gets this one after them (in order): kept too */
+    int err = full == FULL_KEEP && rt_outbox_holds(module) ? EAGAIN : rt_send_datagram(module, msg, len, full != FULL_WAIT);
+    if (err == 0) {
+        rt_log_sent(module, msg, 1, NULL);
+        return CONTRACT_OK;
+    }
+    if (full == FULL_KEEP && (err == EAGAIN || err == EWOULDBLOCK)) {
+        rc = rt_outbox_add(module, msg, len);
+        if (rc != CONTRACT_OK) rt_log_sent(module, msg, 0, NULL);
+        return rc;
+    }
     const char *why = NULL;
     char text[CONTRACT_NAME_MAX + 48];
     if (rt_errno_to_code(err) == CONTRACT_EBUSY && full == FULL_FAIL) {
         snprintf(text, sizeof text, "%s does not wait for a full mailbox", g_rt.name);
         why = text;
     }
-    return rt_send_failed(module, msg->Type, err, why);
+    rc = rt_send_failed(module, msg->Type, err, why);
+    rt_log_sent(module, msg, 0, NULL);
+    return rc;
 }
 
 int rt_send_request_to(const char *module, RequestMessage *msg) { return send_request(module, msg, on_full()); }
@@ -223,9 +244,7 @@ int SendSetParam(const char *module, int port, const void *value, size_t size, i
     set_ack(m->Param.SetParam.ModAck, &m->Param.SetParam.WantedAck, &m->Param.SetParam.AckID, wantedAck, ackId);
     if (size) memcpy(m->Data, value, size);
     m->DataSize = size;
-    int rc = rt_send_request_to(module, m);
-    if (rc == CONTRACT_OK) ContractLog("setparam_sent", module, port, size, "");
-    return rc;
+    return rt_send_request_to(module, m); /* setparam_sent once it is sent (rt_log_sent) */
 }
 
 int SendSubscribe(const char *producer, int sourcePort, const char *consumer, int targetPort, int periodicity,
@@ -304,10 +323,7 @@ int SendAck(const char *module, int wantedAck, int ack, int ackId)
         snprintf(d, sizeof d, "activation=%ld %s", g_rt.activations, rt_ack_name(ack));
         ContractLog("run_finished", "", -1, 0, d);
     }
-    int rc = rt_send_request_to(module, m);
-    char detail[64];
-    snprintf(detail, sizeof detail, "%s id=%d", rt_ack_name(ack), ackId);
-    ContractLog(rc == CONTRACT_OK ? "ack_sent" : "ack_failed", module, -1, 0, detail);
+    int rc = rt_send_request_to(module, m); /* ack_sent or ack_failed once sent or not (rt_log_sent) */
     return rc == CONTRACT_OK ? 0 : -1;
 }
 

@@ -6,33 +6,49 @@
  * process waits for requests (WaitForRequestUntil, an engine's wait: ContractRetryQueuedSends),
  * every OUTBOX_RETRY_NS, until its receiver has room or SEND_TIMEOUT_MS (2 s, as the wait it
  * replaces) has passed since it was sent: then it fails with the usual `error` record and stderr
- * line. A later request to the same receiver is kept behind it (each receiver gets its requests
- * in the order they were sent); requests to other receivers go at once. At exit the process
- * tries its kept requests for OUTBOX_EXIT_NS more, then fails those left: a supervisor ends at
- * the run's stop, when a module that has not read its mailbox is about to be killed anyway, and
- * waiting 2 s for it would delay the stop of every other module (the launcher stops the modules
- * after the supervisors). */
+ * line, and the process's handler hears of it (ContractSetKeptSendFailed: the supervisor ties it
+ * back to its action). A later request to the same receiver is kept behind it (each receiver gets
+ * its requests in order); requests to other receivers go at once.
+ *
+ * Room: OUTBOX_PER_RECEIVER requests per receiver, OUTBOX_MAX in all (one more fails at once): a
+ * stuck module does not take the room that a request to another one needs (its undo). A new
+ * value for a parameter port that has one kept replaces it (the older is dropped, the new one
+ * goes behind the other kept requests, and is given the older's time: it fails 2 s after the
+ * first value that could not be sent): a receiver that reads nothing would have found only the
+ * last value anyway, and a supervisor parameterizing at 100 Hz keeps one request, not 200. Its
+ * setparam_sent record, or its error, says how many it replaced (`in place of 74 earlier values
+ * for its port`): every value is accounted for in the log.
+ *
+ * At exit the process tries its kept requests for OUTBOX_EXIT_NS more, then fails those left: a
+ * supervisor ends at the run's stop, when a module that has not read its mailbox is about to be
+ * stopped anyway, and waiting 2 s for it would delay the stop of every other module (the
+ * launcher stops the modules after the supervisors). */
 #define _GNU_SOURCE
 #include <errno.h>
+#include <stdalign.h>
 #include <stdlib.h>
 #include <string.h>
 #include <time.h>
 #include "internal.h"
 
-#define OUTBOX_MAX 256             /* requests kept at once; one more fails (CONTRACT_EBUSY) */
+#define OUTBOX_MAX 256             /* requests kept at once ...                              */
+#define OUTBOX_PER_RECEIVER 64     /* ... and for one receiver                               */
 #define OUTBOX_RETRY_NS 5000000LL  /* a kept request is tried again this often while the process waits */
 #define OUTBOX_EXIT_NS 500000000LL /* at exit, kept requests are tried this long more */
 
 typedef struct {
     char module[CONTRACT_NAME_MAX];
-    int type;
     RTIME since;                   /* when it was sent: it fails SEND_TIMEOUT_MS later */
+    unsigned replaced;             /* earlier values for its parameter port it replaced */
     size_t len;
-    unsigned char request[];       /* header and payload, as on the wire */
+    alignas(RequestMessage) unsigned char request[]; /* header and payload, as on the wire */
 } Kept;
 
 static Kept *kept[OUTBOX_MAX];
 static int n_kept;
+static ContractKeptSendFailed on_failed;
+
+static const RequestMessage *header(const Kept *k) { return (const RequestMessage *)(const void *)k->request; }
 
 int ContractSetQueuedSends(int on)
 {
@@ -41,31 +57,18 @@ int ContractSetQueuedSends(int on)
     return before;
 }
 
+void ContractSetKeptSendFailed(ContractKeptSendFailed handler) { on_failed = handler; }
+
 int ContractQueuedSends(void) { return n_kept; }
 
-int rt_outbox_holds(const char *module)
+int ContractQueuedFor(const char *module)
 {
-    for (int i = 0; i < n_kept; i++)
-        if (strcmp(kept[i]->module, module) == 0) return 1;
-    return 0;
+    int n = 0;
+    for (int i = 0; i < n_kept; i++) n += strcmp(kept[i]->module, module) == 0;
+    return n;
 }
 
-int rt_outbox_add(const char *module, int type, const void *request, size_t len)
-{
-    Kept *k = n_kept < OUTBOX_MAX ? malloc(sizeof *k + len) : NULL;
-    if (!k) {
-        char why[96];
-        snprintf(why, sizeof why, "%d requests already wait for full mailboxes", n_kept);
-        return rt_send_failed(module, type, EAGAIN, why);
-    }
-    snprintf(k->module, sizeof k->module, "%s", module);
-    k->type = type;
-    k->since = GetTime();
-    k->len = len;
-    memcpy(k->request, request, len);
-    kept[n_kept++] = k;
-    return CONTRACT_OK;
-}
+int rt_outbox_holds(const char *module) { return ContractQueuedFor(module) > 0; }
 
 static void take_out(int i)
 {
@@ -74,12 +77,75 @@ static void take_out(int i)
     n_kept--;
 }
 
+/* The kept request that a new one replaces: a value for the same parameter port of the same receiver. */
+static int superseded_by(const char *module, const RequestMessage *request)
+{
+    if (request->Type != REQ_SETPARAM) return -1;
+    for (int i = 0; i < n_kept; i++) {
+        const RequestMessage *h = header(kept[i]);
+        if (h->Type == REQ_SETPARAM && h->Param.SetParam.Port == request->Param.SetParam.Port &&
+            strcmp(kept[i]->module, module) == 0)
+            return i;
+    }
+    return -1;
+}
+
+int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
+{
+    RTIME since = GetTime();
+    unsigned replaced = 0;
+    int old = superseded_by(module, request);
+    if (old >= 0) {
+        since = kept[old]->since;
+        replaced = kept[old]->replaced + 1;
+        take_out(old);
+    }
+    int for_it = ContractQueuedFor(module);
+    char why[CONTRACT_NAME_MAX + 96] = "";
+    if (for_it >= OUTBOX_PER_RECEIVER)
+        snprintf(why, sizeof why, "%d requests to %s already wait for its full mailbox", for_it, module);
+    else if (n_kept >= OUTBOX_MAX)
+        snprintf(why, sizeof why, "%d requests already wait for full mailboxes", n_kept);
+    Kept *k = why[0] ? NULL : malloc(sizeof *k + len);
+    if (!k) return rt_send_failed(module, request->Type, EAGAIN, why[0] ? why : "no memory to keep it");
+    snprintf(k->module, sizeof k->module, "%s", module);
+    k->since = since;
+    k->replaced = replaced;
+    k->len = len;
+    memcpy(k->request, request, len);
+    kept[n_kept++] = k;
+    return CONTRACT_OK;
+}
+
+/* `, in place of N earlier values for its port` (none: '') */
+static void replaced_text(char *out, size_t cap, const Kept *k)
+{
+    out[0] = '\0';
+    if (k->replaced) snprintf(out, cap, "in place of %u earlier value%s for its port", k->replaced, k->replaced == 1 ? "" : "s");
+}
+
+/* Kept request i failed (err): said, then its record, then the handler (the supervisor's). */
+static void fail(int i, int err, const char *why)
+{
+    Kept *k = kept[i];
+    const RequestMessage *h = header(k);
+    char replaced[64], text[CONTRACT_NAME_MAX + 192];
+    replaced_text(replaced, sizeof replaced, k);
+    snprintf(text, sizeof text, "%s%s%s", why, replaced[0] ? ", " : "", replaced);
+    int code = rt_send_failed(k->module, h->Type, err, text);
+    rt_log_sent(k->module, h, 0, NULL);
+    if (on_failed) on_failed(k->module, h, code);
+    /* the handler may send: the list may have changed; k is still ours */
+    for (int j = 0; j < n_kept; j++)
+        if (kept[j] == k) { take_out(j); break; }
+}
+
 RTIME ContractRetryQueuedSends(void)
 {
     if (n_kept == 0) return 0;
     RTIME now = GetTime(), next = now + OUTBOX_RETRY_NS;
     /* receivers still full in this pass: their later requests stay behind */
-    const char *full[OUTBOX_MAX];
+    char full[OUTBOX_MAX][CONTRACT_NAME_MAX];
     int n_full = 0;
     for (int i = 0; i < n_kept;) {
         Kept *k = kept[i];
@@ -87,22 +153,27 @@ RTIME ContractRetryQueuedSends(void)
         for (int f = 0; f < n_full && !behind; f++) behind = strcmp(full[f], k->module) == 0;
         if (behind) { i++; continue; }
         int err = rt_send_datagram(k->module, k->request, k->len, 1);
-        int still_full = err == EAGAIN || err == EWOULDBLOCK;
+        if (err == 0) {
+            char replaced[64];
+            replaced_text(replaced, sizeof replaced, k);
+            rt_log_sent(k->module, header(k), 1, replaced);
+            take_out(i);
+            continue;
+        }
         RTIME fails_at = k->since + (RTIME)SEND_TIMEOUT_MS * 1000000LL;
+        int still_full = err == EAGAIN || err == EWOULDBLOCK;
         if (still_full && now < fails_at) {
-            full[n_full++] = k->module;
+            snprintf(full[n_full++], CONTRACT_NAME_MAX, "%s", k->module);
             if (fails_at < next) next = fails_at;
             i++;
             continue;
         }
-        if (err) {
-            char why[160];
-            snprintf(why, sizeof why, still_full ? "its mailbox stayed full for %d s; %s kept the request meanwhile"
-                                                 : "kept while its mailbox was full (%d s at most); %s sent it later",
-                     SEND_TIMEOUT_MS / 1000, g_rt.name);
-            rt_send_failed(k->module, k->type, err, why);
-        }
-        take_out(i);
+        char why[CONTRACT_NAME_MAX + 96];
+        if (still_full)
+            snprintf(why, sizeof why, "its mailbox stayed full for %d s; %s kept the request meanwhile", SEND_TIMEOUT_MS / 1000, g_rt.name);
+        else
+            snprintf(why, sizeof why, "%s had kept the request while its mailbox was full", g_rt.name);
+        fail(i, err, why); /* the next one is at i now (a handler's own kept requests go at the end) */
     }
     return n_kept ? next : 0;
 }
@@ -122,8 +193,6 @@ void rt_outbox_drain(void)
     }
     char why[CONTRACT_NAME_MAX + 64];
     snprintf(why, sizeof why, "%s ended before its mailbox had room", g_rt.name);
-    while (n_kept > 0) {
-        rt_send_failed(kept[0]->module, kept[0]->type, EAGAIN, why);
-        take_out(0);
-    }
+    ContractSetKeptSendFailed(NULL); /* the process ends: nothing to tie back */
+    while (n_kept > 0) fail(0, EAGAIN, why);
 }

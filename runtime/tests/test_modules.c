@@ -534,6 +534,16 @@ static int drain_starts(int fd, int *ids, int cap, int *n_ids)
     return n;
 }
 
+static int failed_calls, failed_type, failed_code;
+static char failed_module[CONTRACT_NAME_MAX];
+static void on_kept_failed(const char *module, const RequestMessage *request, int code)
+{
+    failed_calls++;
+    failed_type = request->Type;
+    failed_code = code;
+    snprintf(failed_module, sizeof failed_module, "%s", module);
+}
+
 /* Queued sends (the supervisors): a request to a full mailbox is kept and returns at once; it is
  * sent, in order, while the process waits for requests, once the mailbox has room; requests to
  * others go at once; a status question to it is not kept (busy at once); one still not sent after
@@ -575,8 +585,11 @@ void test_queued_sends(void)
     int left = ContractQueuedSends();
     drain_starts(fd, ids, 8, &n_ids);
 
-    /* a mailbox that stays full: the kept request fails after 2 s, the one behind it too */
+    /* a mailbox that stays full: the kept request fails after 2 s, the one behind it too; the
+       handler hears of each */
     fill_mailbox("FULL");
+    ContractSetKeptSendFailed(on_kept_failed);
+    failed_calls = 0;
     RTIME q0 = GetTime();
     int rc_late = SendStart("FULL", ACK_NOTHING, 31);
     SendStart("FULL", ACK_NOTHING, 32);
@@ -586,6 +599,7 @@ void test_queued_sends(void)
         if (!first_failed && ContractQueuedSends() < 2) first_failed = GetTime() - q0;
     }
     int left_late = ContractQueuedSends();
+    int calls_late = failed_calls;
 
     /* at exit: the process waits for a request it kept until the mailbox has room */
     int late_ids[8], n_late;
@@ -610,10 +624,15 @@ void test_queued_sends(void)
     RTIME exit_took = GetTime() - t0;
     int reader_rc = h_wait_exit(reader, 3000);
     ContractSetQueuedSends(before);
+    ContractSetKeptSendFailed(NULL);
     fflush(stderr);
     dup2(saved, 2);
     close(saved);
 
+    CHECK_MSG(calls_late == 2 && failed_calls == 2 && failed_type == REQ_START && failed_code == CONTRACT_EBUSY &&
+                  !strcmp(failed_module, "FULL"),
+              "the handler heard of %d failures (%d with the exit; expected the 2 that failed after 2 s, not the exit's): "
+              "last %s type %d code %d", calls_late, failed_calls, failed_module, failed_type, failed_code);
     CHECK_MSG(before == 0, "queued sends were on (%d) before the call: every process starts without", before);
     CHECK(fd >= 0 && other_ok);
     CHECK_MSG(rc1 == CONTRACT_OK && rc2 == CONTRACT_OK && rc3 == CONTRACT_OK && rc_other == CONTRACT_OK,
@@ -648,6 +667,75 @@ void test_queued_sends(void)
     close(other);
     unlink(full_sa.sun_path);
     unlink(other_sa.sun_path);
+    h_teardown();
+}
+
+/* Queued sends: room for 64 kept requests per receiver (one more fails at once; another
+ * receiver still has its room), and a new value for a parameter port replaces the one kept for it
+ * (sent once, the last value, behind the other kept requests). */
+void test_queued_sends_room(void)
+{
+    REQUIRE(h_setup("queuedroom") == 0);
+    char err_path[700];
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
+    fflush(stderr);
+    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    REQUIRE(saved >= 0 && out >= 0);
+    dup2(out, 2);
+    close(out);
+    struct sockaddr_un a_sa, b_sa;
+    int a = full_mailbox("ROOMA", &a_sa), b = full_mailbox("ROOMB", &b_sa);
+    int before = ContractSetQueuedSends(1);
+    int taken = 0, rc = CONTRACT_OK;
+    while (taken < 100 && (rc = SendStart("ROOMA", ACK_NOTHING, 100 + taken)) == CONTRACT_OK) taken++;
+    int for_a = ContractQueuedFor("ROOMA");
+    int rc_b = SendStart("ROOMB", ACK_NOTHING, 7), for_b = ContractQueuedFor("ROOMB");
+    long v1 = 1, v2 = 2, v3 = 3;
+    int p1 = SendSetParam("ROOMB", 0, &v1, sizeof v1, ACK_NOTHING, 0), p2 = SendSetParam("ROOMB", 1, &v2, sizeof v2, ACK_NOTHING, 0);
+    int p3 = SendSetParam("ROOMB", 0, &v3, sizeof v3, ACK_NOTHING, 0), p4 = SendStart("ROOMB", ACK_NOTHING, 8);
+    int for_b_params = ContractQueuedFor("ROOMB");
+    /* room again in ROOMB: its kept requests go, in order */
+    int ids[8], n_ids;
+    drain_starts(b, ids, 8, &n_ids);
+    RequestMessage *m = h_msg();
+    for (int t = 0; t < 50 && ContractQueuedFor("ROOMB") > 0; t++) WaitForRequestUntil(m, GetTime() + 10000000LL);
+    static struct { WirePrefix pre; RequestMessage m; } d;
+    char order[64] = "";
+    while (recv(b, &d, sizeof d, MSG_DONTWAIT) > 0 && strlen(order) < 50) {
+        char one[16];
+        if (d.m.Type == REQ_START) snprintf(one, sizeof one, "S%d ", d.m.Param.Start.AckID);
+        else if (d.m.Type == REQ_SETPARAM) snprintf(one, sizeof one, "P%d=%ld ", d.m.Param.SetParam.Port, *(long *)(void *)d.m.Data);
+        else snprintf(one, sizeof one, "?%d ", (int)d.m.Type);
+        strcat(order, one);
+    }
+    ContractSetQueuedSends(0);
+    RTIME t0 = GetTime();
+    ContractShutdown(); /* ROOMA's 64 fail at the exit, 0.5 s later */
+    RTIME exit_took = GetTime() - t0;
+    ContractSetQueuedSends(before);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    CHECK(a >= 0 && b >= 0);
+    CHECK_MSG(taken == 64 && rc == CONTRACT_EBUSY && for_a == 64, "%d requests kept for ROOMA (%d counted), then %d (expected 64, then CONTRACT_EBUSY)",
+              taken, for_a, rc);
+    CHECK_MSG(rc_b == CONTRACT_OK && for_b == 1, "another full mailbox's request: %d, %d kept (its own room)", rc_b, for_b);
+    CHECK_MSG(p1 == CONTRACT_OK && p2 == CONTRACT_OK && p3 == CONTRACT_OK && p4 == CONTRACT_OK && for_b_params == 4,
+              "ROOMB keeps %d requests after 2 values for port 0, 1 for port 1 and a start (expected 4: the second value replaced the first)",
+              for_b_params);
+    CHECK_MSG(!strcmp(order, "S7 P1=2 P0=3 S8 "), "ROOMB got, in order: %s (expected S7 P1=2 P0=3 S8)", order);
+    CHECK_MSG(exit_took >= 450000000LL && exit_took < 1500000000LL, "the exit waited %lld ms for the kept requests (expected 0.5 s)",
+              (long long)(exit_took / 1000000));
+    char *err = h_read_file(err_path);
+    CHECK_MSG(err && strstr(err, "tester: error: START request to ROOMA: mailbox full: the module did not read its requests in time "
+                                 "(Resource temporarily unavailable; 64 requests to ROOMA already wait for its full mailbox)") &&
+                  strstr(err, "(Resource temporarily unavailable; tester ended before its mailbox had room)"),
+              "stderr: %.2000s", err ? err : "(none)");
+    free(err);
+    close(a);
+    close(b);
+    unlink(a_sa.sun_path);
+    unlink(b_sa.sun_path);
     h_teardown();
 }
 

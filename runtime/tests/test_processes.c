@@ -153,6 +153,7 @@ void test_launcher_module_ends(void)
     CHECK(code == 0);
     CHECK(text && strstr(text, "module C2 did not end on its KILL request within 2 s: terminating it (SIGTERM)"));
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "while the run stopped"));
+    CHECK(text && strstr(text, "all modules stopped (terminated at the stop: C2)") && !strstr(text, "stopped cleanly"));
     free(text);
 
     /* a module whose init never returns (it never looks for a request) is not ready: the run stops

@@ -268,6 +268,8 @@ int GetDataFromSetParamRequest(RequestMessage *msg, void *dst, size_t size,
 #define CONTRACT_EPERM        -8   /* not permitted (e.g. raising another module's priority unprivileged) */
 /** Text for a CONTRACT_E* code. */
 const char *ContractStrError(int code);
+/** Name of a request type (REQ_STOP: "STOP"), as the runtime's records and lines write it. */
+const char *ContractRequestName(int type);
 
 int SendStart(const char *module, int wantedAck, int ackId);
 /** Start a supervision function: `function` name and textual arguments "p={1.0,2.0},q=3"
@@ -303,20 +305,32 @@ int ContractSetNonBlockingSends(int on);
  *  every 5 ms while the process waits for requests (WaitForRequestUntil and every wait built on
  *  it; a process with a wait of its own calls ContractRetryQueuedSends), until the receiver has
  *  room; one still not sent 2 s after its call fails then, with the usual `error` record and
- *  stderr line. A later request to the same receiver is kept behind it (a receiver gets its
- *  requests in order); others go at once. Questions that wait for their answer (QueryStatus,
- *  ContractSetModulePriority) are never kept: CONTRACT_EBUSY at once for a receiver whose mailbox
- *  is full or has requests kept. At exit the process tries its kept requests 0.5 s more,
- *  then fails those left (the run is stopping: their receivers are about to be stopped too). Supervisors set it at start: a supervisor keeps reacting to events
- *  while one module does not read its mailbox (docs/engines.md §6). Takes precedence over
+ *  stderr line, and the handler of ContractSetKeptSendFailed hears of it. A later request to the
+ *  same receiver is kept behind it (a receiver gets its requests in order); others go at once.
+ *  Room: 64 kept requests per receiver, 256 in all (one more fails at once). A new value for a
+ *  parameter port that has one kept replaces it (it goes behind the others, and fails 2 s after
+ *  the first value that could not be sent). The records of a request sent (setparam_sent,
+ *  ack_sent) are written when it is sent, not when it is kept. Questions that wait for their
+ *  answer (QueryStatus, ContractSetModulePriority) are never kept: CONTRACT_EBUSY at once for a
+ *  receiver whose mailbox is full or has requests kept. At exit the process tries its kept
+ *  requests 0.5 s more, then fails those left (the run is stopping: their receivers are about to
+ *  be stopped too). Supervisors set it at start: a supervisor keeps reacting to events while one
+ *  module does not read its mailbox (docs/engines.md §3). Takes precedence over
  *  ContractSetNonBlockingSends. Returns the setting before the call. */
 int ContractSetQueuedSends(int on);
 /** [ENGINE] Sends again the requests kept by ContractSetQueuedSends (those whose receivers have
  *  room now), fails those kept 2 s. Returns when to call it again (CLOCK_MONOTONIC ns), or 0 when
  *  none is kept. */
 RTIME ContractRetryQueuedSends(void);
-/** [ENGINE] The number of requests kept for full mailboxes (ContractSetQueuedSends). */
+/** [ENGINE] The number of requests kept for full mailboxes (ContractSetQueuedSends), in all or
+ *  for one receiver (after a Send* that returned CONTRACT_OK: was it kept?). */
 int ContractQueuedSends(void);
+int ContractQueuedFor(const char *module);
+/** [ENGINE] Told of a kept request that failed after all (its error already logged and said):
+ *  the receiver, the request (header; its Data holds DataSize bytes) and the CONTRACT_E* code.
+ *  It may send requests. Not called for those that fail at the exit. NULL: none (the default). */
+typedef void (*ContractKeptSendFailed)(const char *module, const RequestMessage *request, int code);
+void ContractSetKeptSendFailed(ContractKeptSendFailed handler);
 
 /** Wait for a request until the absolute CLOCK_MONOTONIC `deadline` (ns; <= 0: no wait,
  *  INT64_MAX: forever). Returns 1 (msg filled), 0 (deadline passed), -1 (error / EINTR). */

@@ -175,6 +175,20 @@ static int b_module_running(void *ctx, const char *m) {
     return running;
 }
 
+/* A request kept for a full mailbox (ContractSetQueuedSends) that failed after all, 2 s later:
+   its `error` record is written (libmodule); this says which of the supervisor's requests it was
+   (`error: not sent: STOP request to ASY (kept 2 s for its full mailbox): mailbox full`), and a
+   STOP that did not reach its module leaves it running: the engines' "stopped it" mark goes, as
+   for a STOP that fails at once (no lock taken: this runs inside any wait, maybe under one). */
+static void kept_send_failed(const char *module, const RequestMessage *request, int code) {
+    char line[256];
+    snprintf(line, sizeof line, "error: not sent: %s request to %s (kept 2 s for its full mailbox): %s",
+             ContractRequestName(request->Type), module, ContractStrError(code));
+    ContractLog("supervisor", module, -1, 0, line);
+    if (request->Type == REQ_STOP && holds_stopped(module, 1))
+        ContractLog("module_hold", module, -1, 0, "stop failed: it had been kept for its full mailbox (it still runs)");
+}
+
 /* `start module M (priority P)`, then the hold it takes (module_hold `hold taken (started it)`);
    a start it cannot send (M not there, its mailbox full) is `error: not sent: ...`, no hold */
 static void b_start_module(void *ctx, const char *m, int prio) {
@@ -213,7 +227,9 @@ static void stop_if_last(const char *m, int started_here) {
     }
     int rc = SendStop(m, ACK_NOTHING, 0);
     if (rc == CONTRACT_OK) holds_mark_stopped(m);
-    ContractLog("module_hold", m, -1, 0, rc == CONTRACT_OK ? "last hold dropped (stopped)" : "last hold dropped (stop failed)");
+    ContractLog("module_hold", m, -1, 0, rc != CONTRACT_OK       ? "last hold dropped (stop failed)"
+                                         : ContractQueuedFor(m) ? "last hold dropped (stop kept: its mailbox is full)"
+                                                                : "last hold dropped (stopped)");
     if (rc != CONTRACT_OK)
         fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
 }
@@ -448,6 +464,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
        filled, so that every module posting events to it waited too). Requests to one module
        keep their order; a request still not sent after 2 s fails (`error: ... mailbox full`). */
     ContractSetQueuedSends(1);
+    ContractSetKeptSendFailed(kept_send_failed);
     holds_before_block(prio_requests_settle);
     SupCore *c = sup_core_create(v, &io, err, sizeof err);
     if (!c) {

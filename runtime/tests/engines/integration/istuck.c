@@ -14,6 +14,12 @@
  *   SKS.crash:
  *     C:  [elapsed=10ms] activate schema CRH() [ ]
  * for the crashed-module scenario: CRS is killed in its 5th release of CRH.
+ *   SKS.busy:
+ *     A:  [elapsed=10ms] activate resttime module AMS [duration(A)=400ms]
+ *     P:  [elapsed=10ms | endof(Q)] parameterize AMS(1 :0) [duration(P)=5ms]
+ *     Q:  [endof(P)] [duration(Q)=5ms]
+ * for the kept-stop scenario: AMS, busy 5 s in its own code from its START, reads nothing, so
+ * P's values fill its mailbox; A's undo, the STOP of AMS, is kept behind them and fails 2 s later.
  */
 #include "../engine_executable.h"
 
@@ -49,9 +55,29 @@ static const ContractRule go_rules[] = {{"W", {1, c10}, 1, w_actions, {0, NULL}}
                                         {"T2", {1, t2_pre}, 0, NULL, {1, t2_post}}};
 static const ContractAction c_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_CRH}};
 static const ContractRule crash_rules[] = {{"C", {1, c10}, 1, c_actions, {0, NULL}}};
+ELAPSED(c10b, 10 * ITEST_MS)
+static const long k_one = 1;
+static const ContractAssign ams_step[] = {{0, 0, &contract_type_long, {CONTRACT_REF_CONST, 0, 0, &contract_type_long, &k_one}}};
+static const ContractParamSetting ams_settings[] = {{0, &contract_type_long, 1, ams_step, "step"}};
+static const ContractAction a_actions[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AMS"}};
+static const ContractEvent a_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 0, .time_ns = 400 * ITEST_MS}};
+static const ContractClause a_post[] = {{1, a_end}};
+static const ContractAction p_actions[] = {{.kind = CONTRACT_ACT_PARAMETERIZE, .module = "AMS", .nsettings = 1, .settings = ams_settings}};
+static const ContractEvent p_again[] = {{.kind = CONTRACT_EV_ENDOF, .rule = 2}};
+static const ContractClause p_pre[] = {{1, c10b_ev}, {1, p_again}};
+static const ContractEvent p_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 1, .time_ns = 5 * ITEST_MS}};
+static const ContractClause p_post[] = {{1, p_end}};
+static const ContractEvent q_start[] = {{.kind = CONTRACT_EV_ENDOF, .rule = 1}};
+static const ContractClause q_pre[] = {{1, q_start}};
+static const ContractEvent q_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 2, .time_ns = 5 * ITEST_MS}};
+static const ContractClause q_post[] = {{1, q_end}};
+static const ContractRule busy_rules[] = {{"A", {1, c10b}, 1, a_actions, {1, a_post}},
+                                          {"P", {2, p_pre}, 1, p_actions, {1, p_post}},
+                                          {"Q", {1, q_pre}, 0, NULL, {1, q_post}}};
 static const ContractFunction functions[] = {{"go", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, go_rules},
-                                             {"crash", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, crash_rules}};
+                                             {"crash", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, crash_rules},
+                                             {"busy", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, busy_rules}};
 static const ContractSupervisorVocabulary SKS_VOCABULARY = {
-    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 2, functions};
+    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 3, functions};
 
 int ModuleMain(int argc, const char *argv[]) { return contract_supervisor_main(&SKS_VOCABULARY, argc, argv); }

@@ -33,5 +33,8 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
 /** CRS, killed in its 5th release of CRH: ORD's stuck report, CSV record and stderr line alike,
  *  says it is no longer running (no advice about its exec region). */
 void scenario_crashed_module(const char *root, const char *bin, const char *launcher);
+/** SKS's undo (the STOP of AMS, busy in its own code, its mailbox full of SKS's values) is kept,
+ *  fails 2 s later, and is tied back to its action: `error: not sent: ...`, its hold "still runs". */
+void scenario_kept_stop(const char *root, const char *bin, const char *launcher);
 
 #endif

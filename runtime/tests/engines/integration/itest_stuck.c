@@ -121,20 +121,21 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
           "ORD says on stderr that it could not parameterize STK, whose mailbox is full");
 
     /* SKS's own parameter requests to STK are kept for its full mailbox, not waited for: SKS went
-       on toggling FST (the check above; waiting 2 s at each, it toggled once per 2 s), and each
-       request still kept after 2 s failed then, told on SKS's stderr and in its log */
+       on toggling FST (the check above; waiting 2 s at each, it toggled once per 2 s). A new value
+       replaces the one kept (STK would read only the last), and the one kept fails after 2 s, told
+       on SKS's stderr and in its log with the values it replaced: every value is accounted for */
     char *sks = read_csv_log(&s, "SKS");
-    int kept_failed = count_of(sks, "SETPARAM request to STK: mailbox full");
+    int asked = count_of(sks, ",parameterize STK:0 gain "), sent = count_of(sks, ",setparam_sent,STK,0,");
+    int failed = count_of(sks, "SETPARAM request to STK: mailbox full"), replaced = 0;
+    for (const char *p = sks ? strstr(sks, "in place of ") : NULL; p; p = strstr(p + 1, "in place of ")) replaced += atoi(p + 12);
+    int told = count_of(sks, "error: not sent: SETPARAM request to STK (kept 2 s for its full mailbox)");
+    int stayed = count_of(sks, "its mailbox stayed full for 2 s; SKS kept the request meanwhile");
     snprintf(what, sizeof what,
-             "SKS parameterized STK at each activation of FST (%d) and its requests to STK's full mailbox failed only "
-             "after 2 s kept (%d, at least 1, and none waited for)",
-             count_of(sks, ",parameterize STK:0 gain "), kept_failed);
-    check(count_of(sks, ",parameterize STK:0 gain ") >= 25 && kept_failed >= 1 &&
-              count_of(sks, "its mailbox stayed full for 2 s; SKS kept the request meanwhile") +
-                      count_of(sks, "SKS ended before its mailbox had room") ==
-                  kept_failed &&
-              txt && strstr(txt, "[SKS] SKS: error: SETPARAM request to STK: mailbox full") &&
-              !strstr(txt, "SKS did not end"),
+             "SKS's %d values for STK: %d sent, %d replaced by a later one, %d failed (%d after 2 s kept, each tied to "
+             "its action: %d; the rest at its end), none lost, none waited for",
+             asked, sent, replaced, failed, stayed, told);
+    check(asked >= 25 && sent + replaced + failed == asked && stayed >= 1 && told == stayed &&
+              txt && strstr(txt, "[SKS] SKS: error: SETPARAM request to STK: mailbox full") && !strstr(txt, "SKS did not end"),
           what);
     /* at the stop SKS still kept requests for STK: it tried them 0.5 s more, then ended */
     long long killed = csv_time_of(sks, NULL, ",request_received,contract-launch,,0,KILL", NULL),
@@ -218,5 +219,30 @@ void scenario_crashed_module(const char *root, const char *bin, const char *laun
         fprintf(stderr, "launcher output (crashed scenario):\n%s\nORD's log:\n%s\n", txt ? txt : "(none)", ord ? ord : "(none)");
     free(crs);
     free(ord);
+    free(txt);
+}
+
+void scenario_kept_stop(const char *root, const char *bin, const char *launcher) {
+    Scenario s;
+    if (!scenario_begin(&s, root, "kept-stop")) return;
+    const char *const names[] = {"stk/ORD", "SKS", "AMS", NULL};
+    s.stop_first = "SKS";
+    scenario_launch(&s, bin, launcher, "SKS.busy()", "3", names); /* fails: AMS is terminated at the stop */
+    char *sks = read_csv_log(&s, "SKS"), *txt = slurp(s.launch);
+    long long kept = csv_time_of(sks, NULL, ",module_hold,AMS,,0,last hold dropped (stop kept: its mailbox is full)", NULL);
+    long long failed = csv_time_of(sks, NULL, ",supervisor,AMS,,0,error: not sent: STOP request to AMS (kept 2 s for its full mailbox): mailbox full", NULL);
+    long long mark = csv_time_of(sks, NULL, ",module_hold,AMS,,0,stop failed: it had been kept for its full mailbox (it still runs)", NULL);
+    char what[400];
+    snprintf(what, sizeof what,
+             "A's undo, the STOP of the busy AMS, was kept (%s), failed %lld ms later tied to its action (%s), and its hold "
+             "said it still runs (%s)",
+             kept > 0 ? "yes" : "no", kept > 0 && failed > 0 ? (failed - kept) / MS : -1, failed > 0 ? "yes" : "no",
+             mark > 0 ? "yes" : "no");
+    check(kept > 0 && failed > kept && failed - kept >= 1900 * MS && failed - kept < 2500 * MS && mark >= failed, what);
+    check(sks && count_of(sks, "in place of ") >= 1 && count_of(sks, ",setparam_sent,AMS,0,") >= 5,
+          "P's values filled AMS's mailbox, the later ones replaced the one kept");
+    if (scenario_failed(&s))
+        fprintf(stderr, "launcher output (kept-stop scenario):\n%s\nSKS's log:\n%s\n", txt ? txt : "(none)", sks ? sks : "(none)");
+    free(sks);
     free(txt);
 }
