@@ -22,6 +22,25 @@ RTIME GetTime(void)
     return (RTIME)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 }
 
+/* The same error line again within ERROR_REPEAT_NS of its last print is not printed again (a
+ * supervisor parameterizing a crashed module at 100 Hz printed 100 identical lines a second, and
+ * a run's output is bounded): it is counted, and the count is printed with its next print (1 s
+ * later at the earliest), before another line, or at the end. Every one is a CSV record. */
+#define ERROR_REPEAT_NS 1000000000LL
+static char error_last[512];
+static RTIME error_last_said;
+static unsigned error_repeats;
+
+static const char *self_name(void) { return g_rt.name[0] ? g_rt.name : "libmodule"; }
+
+void rt_error_repeats_say(void)
+{
+    if (!error_repeats) return;
+    fprintf(stderr, "%s: error: (the same error %u more time%s in %.1f s)\n", self_name(), error_repeats,
+            error_repeats == 1 ? "" : "s", (double)(GetTime() - error_last_said) / 1e9);
+    error_repeats = 0;
+}
+
 void rt_error(const char *fmt, ...)
 {
     char text[512];
@@ -29,8 +48,16 @@ void rt_error(const char *fmt, ...)
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    fprintf(stderr, "%s: error: %s\n", g_rt.name[0] ? g_rt.name : "libmodule", text);
     ContractLog("error", "", -1, 0, text);
+    RTIME now = GetTime();
+    if (strcmp(text, error_last) == 0 && now - error_last_said < ERROR_REPEAT_NS) {
+        error_repeats++;
+        return;
+    }
+    rt_error_repeats_say();
+    fprintf(stderr, "%s: error: %s\n", self_name(), text);
+    memcpy(error_last, text, sizeof error_last);
+    error_last_said = now;
 }
 
 int rt_run_stopping(void)
@@ -393,6 +420,7 @@ void rt_install_signal_cleanup(void)
 void ContractShutdown(void)
 {
     rt_outbox_drain(); /* its failures are logged: before the log closes */
+    rt_error_repeats_say();
     rt_log_close();
     rt_dataflow_teardown();
     rt_eventflow_teardown();

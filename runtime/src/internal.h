@@ -78,7 +78,11 @@ int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock);
 void rt_close_peers(void);
 void rt_register_file(const char *file);
 int rt_errno_to_code(int err);
+/* `NAME: error: TEXT` on stderr and an `error` record; the same line again within 1 s of its last
+ * print is only counted, said with its next print, before another line, or at the end
+ * (rt_error_repeats_say). */
 void rt_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+void rt_error_repeats_say(void);
 /* Whether the launcher is stopping the run (CONTRACT_RUN_STOPPING_FILE in the run directory). */
 int rt_run_stopping(void);
 const char *rt_request_name(int type);

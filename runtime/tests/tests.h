@@ -18,6 +18,7 @@ void test_request_to_gone_while_stopping(void);
 void test_peer_gone_at_stop(void);
 void test_nonblocking_sends(void);
 void test_queued_sends(void);
+void test_error_repeats(void);
 void test_queued_sends_room(void);
 void test_sockets_above_stdio(void);
 void test_long_run_dir(void);
@@ -64,6 +65,7 @@ static const TestCase ALL_TESTS[] = {
     { "peer_gone_at_stop", test_peer_gone_at_stop },
     { "nonblocking_sends", test_nonblocking_sends },
     { "queued_sends", test_queued_sends },
+    { "error_repeats", test_error_repeats },
     { "queued_sends_room", test_queued_sends_room },
     { "sockets_above_stdio", test_sockets_above_stdio },
     { "long_run_dir", test_long_run_dir },

@@ -122,6 +122,39 @@ static void log_action(const char *peer, const char *fmt, ...) {
     ContractLog("supervisor", peer, -1, 0, last_action);
 }
 
+/* A request the supervisor could not send is said on stderr (`SUP: cannot set parameter 0 of CTL:
+   mailbox full`) beside libmodule's own error line; the same line again within 1 s of its last
+   print is counted instead (a rule parameterizing a crashed module at 100 Hz), as libmodule
+   counts its own: said with its next print, or at the end (say_cannot_repeats). */
+static char cannot_last[256];
+static int64_t cannot_said;
+static unsigned cannot_repeats;
+
+static void say_cannot_repeats(void) {
+    if (!cannot_repeats) return;
+    fprintf(stderr, "%s: (the same failure %u more time%s in %.1f s)\n", ContractSelfName(), cannot_repeats,
+            cannot_repeats == 1 ? "" : "s", (double)(GetTime() - cannot_said) / 1e9);
+    cannot_repeats = 0;
+}
+
+static void say_cannot(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+static void say_cannot(const char *fmt, ...) {
+    char text[sizeof cannot_last];
+    va_list ap;
+    va_start(ap, fmt);
+    vsnprintf(text, sizeof text, fmt, ap);
+    va_end(ap);
+    int64_t now = GetTime();
+    if (strcmp(text, cannot_last) == 0 && now - cannot_said < 1000000000LL) {
+        cannot_repeats++;
+        return;
+    }
+    say_cannot_repeats();
+    fprintf(stderr, "%s: cannot %s\n", ContractSelfName(), text);
+    memcpy(cannot_last, text, sizeof cannot_last);
+    cannot_said = now;
+}
+
 /* rc of the request of the action logged last: a failure gets its own record */
 static int not_sent(const char *peer, int rc) {
     if (rc == CONTRACT_OK) return 0;
@@ -142,7 +175,7 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
     log_action("ORD", "activate schema %s%s (activation #%u, to ORD)", s->name, args, id);
     int rc = engine_send_start("ORD", s->name, params, size, (int)id, ACK_NOTHING);
     if (not_sent("ORD", rc))
-        fprintf(stderr, "%s: cannot ask ORD to activate %s: %s\n", ContractSelfName(), s->name,
+        say_cannot("ask ORD to activate %s: %s", s->name,
                 ContractStrError(rc));
 }
 
@@ -152,7 +185,7 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     log_action("ORD", "undo: deactivate schema %s (activation #%u, to ORD)", s->name, id);
     int rc = engine_send_stop("ORD", s->name, (int)id);
     if (not_sent("ORD", rc))
-        fprintf(stderr, "%s: cannot ask ORD to deactivate %s: %s\n", ContractSelfName(), s->name,
+        say_cannot("ask ORD to deactivate %s: %s", s->name,
                 ContractStrError(rc));
 }
 
@@ -200,7 +233,7 @@ static void b_start_module(void *ctx, const char *m, int prio) {
         rc = SendStart(m, ACK_NOTHING, 0);
     }
     if (not_sent(m, rc)) {
-        fprintf(stderr, "%s: cannot start %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+        say_cannot("start %s: %s", m, ContractStrError(rc));
         return;
     }
     holds_take(m, 1);
@@ -231,7 +264,7 @@ static void stop_if_last(const char *m, int started_here) {
                                          : ContractQueuedFor(m) ? "last hold dropped (stop kept: its mailbox is full)"
                                                                 : "last hold dropped (stopped)");
     if (rc != CONTRACT_OK)
-        fprintf(stderr, "%s: cannot stop %s: %s\n", ContractSelfName(), m, ContractStrError(rc));
+        say_cannot("stop %s: %s", m, ContractStrError(rc));
 }
 
 /* "is it running? share it or start it" and "drop, count, stop" on one module: one
@@ -281,7 +314,7 @@ static void b_set_param(void *ctx, const char *m, int port, const char *name, co
     log_action(m, "%s", line);
     int rc = SendSetParam(m, port, v, size, ACK_NOTHING, 0);
     if (not_sent(m, rc))
-        fprintf(stderr, "%s: cannot set parameter %d of %s: %s\n", ContractSelfName(), port, m,
+        say_cannot("set parameter %d of %s: %s", port, m,
                 ContractStrError(rc));
 }
 
@@ -364,7 +397,7 @@ static int b_start_function(void *ctx, const ContractFunctionSignature *callee, 
     log_action(sup, "activate supervisor %s.%s%s (activation #%u)", sup, fn, args, id);
     int rc = engine_send_start(sup, fn, p, size, (int)id, ACK_START | ACK_NOTDONE);
     if (not_sent(sup, rc)) {
-        fprintf(stderr, "%s: cannot start %s.%s: %s\n", ContractSelfName(), sup, fn, ContractStrError(rc));
+        say_cannot("start %s.%s: %s", sup, fn, ContractStrError(rc));
         return -1;
     }
     return 0;
@@ -542,5 +575,6 @@ out:
     if (!ContractRunStopping()) prio_requests_settle();
     free(m);
     sup_core_destroy(c);
+    say_cannot_repeats();
     return rc;
 }
