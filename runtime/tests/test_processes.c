@@ -403,6 +403,42 @@ void test_launcher_sigint(void)
     h_teardown();
 }
 
+/* A stop by a signal under CONTRACT_STOP_BUDGET_MS (the build service's cancel grace, 900 ms)
+ * fits its waits in it: a module that does not answer its KILL is terminated by the launcher
+ * (said, and its records written by its SIGTERM handler) before the budget ends, not killed
+ * from outside after it. */
+void test_launcher_stop_budget(void)
+{
+    REQUIRE(h_setup("budget") == 0);
+    ContractShutdown();
+    char exe_p[600], exe_c2[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c2, NULL };
+    setenv("TMOD_END", "C2:hang", 1);
+    setenv("CONTRACT_STOP_BUDGET_MS", "900", 1);
+    pid_t launcher = start_launcher(argv, out);
+    unsetenv("CONTRACT_STOP_BUDGET_MS");
+    unsetenv("TMOD_END");
+    REQUIRE(launcher > 0);
+    CHECK(wait_for_text(out, "2 module(s) running", 5000));
+    RTIME t0 = GetTime();
+    kill(launcher, SIGTERM); /* the build service's cancel */
+    int rc = h_wait_exit(launcher, 5000);
+    RTIME took = GetTime() - t0;
+    char *text = h_read_file(out);
+    CHECK_MSG(rc == 0 && took < 1300000000LL, "the launcher ended %lld ms after its SIGTERM with %d (expected within the 900 ms budget)",
+              (long long)(took / 1000000), rc);
+    CHECK_MSG(text && strstr(text, "module C2 did not end on its KILL request within 0.36 s: terminating it (SIGTERM)") &&
+                  strstr(text, "module C2 (pid ") && strstr(text, "terminated by signal 15") &&
+                  strstr(text, "all modules stopped (terminated at the stop: C2)"),
+              "launcher output: %s", text ? text : "(none)");
+    free(text);
+    CHECK(h_count_entries(h_run_dir) == -1);
+    h_teardown();
+}
+
 void test_kill_without_launcher(void)
 {
     REQUIRE(h_setup("killnl") == 0);

@@ -205,6 +205,11 @@ export function longestDuration(runSeconds: number, readyTimeout?: number): numb
  * run, so that every module writes its last records) before everything is killed.
  */
 export const CANCEL_GRACE_MS = 1000;
+/**
+ * Of that grace, what the launcher leaves unused when it stops by a signal (CONTRACT_STOP_BUDGET_MS =
+ * CANCEL_GRACE_MS minus this): its last SIGKILL and its own exit come before the grace ends.
+ */
+export const STOP_BUDGET_MARGIN_MS = 100;
 
 export type LimitName = keyof Limits;
 

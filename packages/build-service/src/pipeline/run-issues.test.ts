@@ -66,6 +66,14 @@ describe('RunIssues', () => {
     ]);
   });
 
+  test('a stop fitted in the cancel grace (CONTRACT_STOP_BUDGET_MS) says its own wait, and the issue says the same', () => {
+    const r = new RunIssues();
+    r.line('module VEL did not end on its KILL request within 0.36 s: terminating it (SIGTERM)', 'launcher');
+    expect(r.all).toEqual([
+      { kind: 'module-hung', module: 'VEL', message: 'VEL did not end when the run stopped: it did not answer its KILL request for 0.36 s and was terminated (does a region of it loop or block: its exec or exit code?)' },
+    ]);
+  });
+
   test("the launcher's word for a module whose init never returned is an issue, told once (not again as hung at the stop)", () => {
     const r = new RunIssues();
     const notReady = 'module MSC is not ready after 10 s: its init has not returned (does its init region loop or block?); the run stops without its start request';

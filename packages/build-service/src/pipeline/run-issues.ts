@@ -36,7 +36,7 @@ const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
  */
 const NOT_READY_LINE = /^module ([A-Za-z_]\w*) is not ready after (\d+(?:\.\d+)?) s: its init has not returned/;
 /** contract-launch's line when a module does not end on the KILL request of the run's stop (runtime/launcher stop_all). */
-const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on its KILL request within 2 s: terminating it \(SIGTERM\)$/;
+const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on its KILL request within (\d+(?:\.\d+)?) s: terminating it \(SIGTERM\)$/;
 /** contract-launch's line when a module's own code ended it, status 0, before the run's stop (reap). */
 const ENDED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0 before the run's end$/;
 /** contract-launch's line for a module killed by SIGKILL it did not send (the kernel's OOM killer, at the memory limit). */
@@ -114,7 +114,7 @@ export class RunIssues {
     // a module not ready does not answer the stop's KILL either: the same fault, told once
     if (hung && this.notReady.has(hung[1]!)) return;
     if (hung) {
-      this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)` });
+      this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for ${hung[2]!} s and was terminated (does a region of it loop or block: its exec or exit code?)` });
       return;
     }
     const ended = ENDED_LINE.exec(text);
