@@ -3,7 +3,7 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseTrace, parseRecordLine, renderStory, type TraceRecord } from '@contract-studio/build-service/trace';
-import { MAX_USER_MARKS, MonitorModel } from './monitor-model.js';
+import { MAX_ERROR_MARKS, MAX_USER_MARKS, MonitorModel } from './monitor-model.js';
 import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
 import { activeSchemas } from './active-schemas.js';
@@ -286,6 +286,38 @@ describe('a deadline miss names what its cycle was waiting for', () => {
       expect(m.marks.at(-1)).toMatchObject({ kind: 'rule', where: 'SUP' }); // the rule after the flood is marked
       expect(m.live.unknownLines).toBe(0);
       expect(m.recordCount).toBe(log.length);
+    }
+  });
+
+  it('marks the run\'s errors (a request not sent, a supervisor\'s request kept and failed, its hold), live, parsed and recorded alike; a flood of them takes no mark from the rules', () => {
+    const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+    const full = 'mailbox full: the module did not read its requests in time';
+    const log = [
+      `1000000000,${W},SUP,supervisor,ASY,,0,undo: stop module ASY`,
+      `1000000100,${W},SUP,module_hold,ASY,,0,last hold dropped (stop kept: its mailbox is full)`,
+      `3000000000,${W},SUP,error,,,0,STOP request to ASY: ${full} (Resource temporarily unavailable; its mailbox stayed full for 2 s; SUP kept the request meanwhile)`,
+      `3000000100,${W},SUP,supervisor,ASY,,0,error: not sent: STOP request to ASY (kept 2 s for its full mailbox): ${full}`,
+      `3000000200,${W},SUP,module_hold,ASY,,0,stop failed: it had been kept for its full mailbox (it still runs)`,
+      ...Array.from({ length: MAX_ERROR_MARKS + 500 }, (_, i) => `${3001000000 + i * 1000},${W},SUP,error,,,0,SETPARAM request to CTL: unknown module (no mailbox in the run directory) (No such file or directory)`),
+      `3100000000,${W},SUP,sup_rule,,,0,main.BEAT active cause=elapsed=1000000ns`,
+    ];
+    const errorLabels = (m: MonitorModel) => m.marks.filter((k) => k.kind === 'error').slice(0, 3).map((k) => `${k.where} ${k.label}`);
+    const live = new MonitorModel({ checkpointEvery: 64 });
+    log.forEach((l, i) => live.pushLine('SUP.csv', i + 2, l));
+    const parsed = new MonitorModel({ checkpointEvery: 64 });
+    parsed.pushAll(log.map((l, i) => parseRecordLine('SUP.csv', i + 2, l)));
+    const steps = recordedRunSteps([{ name: 'SUP_1.csv', text: `${HEADER}\n${log.join('\n')}\n` }], 1000);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    for (const m of [live, parsed, step.value.model]) {
+      expect(errorLabels(m)).toEqual([
+        `SUP error: STOP request to ASY: ${full} (Resource temporarily unavailable; its mailbox stayed full for 2 s; SUP kept the request meanwhile)`,
+        `SUP error: not sent: STOP request to ASY (kept 2 s for its full mailbox): ${full}`,
+        'SUP ASY: stop failed: it had been kept for its full mailbox (it still runs)',
+      ]);
+      expect(m.marks.filter((k) => k.kind === 'error')).toHaveLength(MAX_ERROR_MARKS);
+      expect(m.marks.at(-1)).toMatchObject({ kind: 'rule', where: 'SUP' }); // the rule after the flood is marked
+      expect(m.live.records).toBe(log.length);
     }
   });
 

@@ -129,6 +129,19 @@ const MAX_WAIT_MODULES = 32;
 const MAX_GONE = 1024;
 /** Marks the modules' own records may take (the first ones; the rest are counted as records). */
 export const MAX_USER_MARKS = 2000;
+/** Marks the run's errors may take, likewise (a request failing at 100 Hz must not take them all). */
+export const MAX_ERROR_MARKS = 2000;
+
+/**
+ * An error of the run, for its mark: an `error` record (a request not sent, a datagram dropped), a
+ * supervisor's `error: not sent: ...`, a kept STOP's `stop failed: ...`. Its label, else undefined.
+ */
+function errorLabel(k: KnownRecord): string | undefined {
+  if (k.kind === 'error') return `error: ${k.detail}`;
+  if (k.kind === 'supervisor' && k.detail.startsWith('error: ')) return k.detail;
+  if (k.kind === 'module_hold' && k.detail.startsWith('stop failed')) return `${k.peer}: ${k.detail}`;
+  return undefined;
+}
 
 /** Longest list of modules a miss's label names. */
 const MAX_WAIT_TEXT = 160;
@@ -250,6 +263,7 @@ export class MonitorModel implements MonitorView {
   private readonly maxMarks: number;
   /** Marks of the modules' own records so far (userMark). */
   private userMarks = 0;
+  private errorMarks = 0;
   private readonly checkpoints: Checkpoint[] = [];
   /** chunks[i] holds records [firstChunk + i) * every ...; dropped chunks leave their notable records. */
   private chunks: Chunk[] = [];
@@ -325,7 +339,7 @@ export class MonitorModel implements MonitorView {
    */
   pushScanned(text: string, from: number, to: number, textId: number): boolean {
     const kind = scanned.kind;
-    if (kind === 'user') return false; // a module's own record: parsed, for its mark (userMark)
+    if (kind === 'user' || kind === 'error') return false; // parsed, for its mark (userMark, errorMark)
     if (!FOLDED_KINDS.has(kind)) {
       if (kind === 'ord_finished') this.finishedLine(text);
       const t = this.timeOf(scanned.mono);
@@ -383,6 +397,7 @@ export class MonitorModel implements MonitorView {
     if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
     else if (r.kind === 'user') this.userMark(t, r as KnownRecord);
+    if (r.kind !== 'unknown') this.errorMark(t, r as KnownRecord);
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
 
@@ -554,6 +569,18 @@ export class MonitorModel implements MonitorView {
     this.userMarks++;
     // the detail cut so that the peer, port and size after it show
     this.marks.push({ t, kind: 'user', where: k.module, label: userRecordText(k, 80).slice(0, 200) });
+  }
+
+  /**
+   * An error of the run (errorLabel) is a mark, in its own colour on the row of the functions: the
+   * first MAX_ERROR_MARKS only, as for the modules' own records.
+   */
+  private errorMark(t: Ns, k: KnownRecord): void {
+    if (this.errorMarks >= MAX_ERROR_MARKS || this.marks.length >= this.maxMarks) return;
+    const label = errorLabel(k);
+    if (label === undefined) return;
+    this.errorMarks++;
+    this.marks.push({ t, kind: 'error', where: k.module, label: label.slice(0, 200) });
   }
 
   private notableRecord(x: Timed): void {
