@@ -11,7 +11,8 @@
  * generated Makefile names the supervisors) get their KILL request first and the launcher waits
  * for them (up to 2 s), so that their undo (deactivate schemas, stop modules) still reaches ORD
  * and the modules; then every other module gets its KILL request. A stop by a signal under
- * $CONTRACT_STOP_BUDGET_MS fits those waits in that budget (stop_waits).
+ * $CONTRACT_STOP_BUDGET_MS fits those waits in that budget (stop_waits). $CONTRACT_END_BY_S: a
+ * run with a --duration stops that long after the launch at the latest (end_by_deadline).
  *   contract-launch --kill RUN_DIR
  *
  * Exit status: 0 all modules ran and stopped cleanly; 1 a module crashed (named on stderr);
@@ -61,6 +62,7 @@ static char run_dir[PATH_MAX];
 static int stopping;
 static int stop_signalled;      /* the stop came from SIGINT, SIGTERM or SIGHUP */
 static RTIME stop_budget_ns;    /* CONTRACT_STOP_BUDGET_MS: a stop by a signal fits in it (stop_waits) */
+static double end_by_s;         /* CONTRACT_END_BY_S: the run stops this long after the launch at the latest */
 static const char *stop_first;  /* --stop-first: names, separated by spaces or commas */
 static cpu_set_t module_cpus;  /* --cpus: every module's affinity */
 static int pin_modules;
@@ -536,6 +538,21 @@ static void stop_all(int sfd)
     drain_outputs(w.last);
 }
 
+/* The run's end: `deadline` (its duration from the start request), or CONTRACT_END_BY_S after the
+ * launch when that comes first: the build service's run time limit counts from the launch, and
+ * the modules' inits (up to the ready timeout) come before the start, so that a run asked for the
+ * longest duration whose inits were slow still ends on its own, said, instead of at the limit. */
+static RTIME end_by_deadline(RTIME deadline, RTIME launched, double duration)
+{
+    if (end_by_s <= 0 || duration < 0) return deadline; /* a run without a duration runs until stopped */
+    RTIME end = launched + (RTIME)(end_by_s * 1e9);
+    if (end >= deadline) return deadline;
+    RTIME now = now_ns();
+    say("the run stops %.1f s before the end of its %g s: its start came %.1f s after the launch (the modules' inits), and it must end %g s after the launch (the run time limit)",
+        (double)(deadline - end) / 1e9, duration, (double)(now - launched) / 1e9, end_by_s);
+    return end;
+}
+
 /* --start 'SUP.function(p=v,...)' */
 static int send_start(const char *spec)
 {
@@ -580,6 +597,14 @@ int main(int argc, char *argv[])
         if (*end || ms < 100 || ms > 60000) say("warning: CONTRACT_STOP_BUDGET_MS=%.20s is not 100..60000 (ms): the stop keeps its own waits", budget);
         else stop_budget_ns = ms * 1000000LL;
     }
+    const char *end_by = getenv("CONTRACT_END_BY_S");
+    if (end_by && *end_by) {
+        char *end;
+        double v = strtod(end_by, &end);
+        if (*end || !(v > 0 && v <= 1e6)) say("warning: CONTRACT_END_BY_S=%.20s is not a number of seconds: ignored", end_by);
+        else end_by_s = v;
+    }
+    RTIME launched = now_ns();
     double duration = -1, ready_timeout = 10;
     int i = 1;
     for (; i < argc; i++) {
@@ -704,6 +729,7 @@ int main(int argc, char *argv[])
     if (!stop && start && *start) send_start(start);
     if (!stop) {
         RTIME deadline = duration >= 0 ? now_ns() + (RTIME)(duration * 1e9) : INT64_MAX;
+        deadline = end_by_deadline(deadline, launched, duration);
         run_loop(sfd, deadline, all_ended);
     }
     say("stopping");

@@ -439,6 +439,38 @@ void test_launcher_stop_budget(void)
     h_teardown();
 }
 
+/* CONTRACT_END_BY_S (the build service: its run time limit less the room to stop): a run whose
+ * start came late (a slow init) stops that long after the launch at the latest, said, rather than
+ * its whole duration after the start. */
+void test_launcher_end_by(void)
+{
+    REQUIRE(h_setup("endby") == 0);
+    ContractShutdown();
+    char exe_p[600], exe_c2[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c2, sizeof exe_c2, "%s/C2", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "3", exe_p, exe_c2, NULL };
+    setenv("CONTRACT_END_BY_S", "1", 1);
+    int code;
+    RTIME t0 = GetTime();
+    char *text = launch_ending(argv, out, "C2:slowinit", 10000, &code);
+    RTIME took = GetTime() - t0;
+    unsetenv("CONTRACT_END_BY_S");
+    unsetenv("TMOD_END");
+    CHECK_MSG(code == 0 && took < 2500000000LL, "the launcher ended %lld ms after its launch with %d (expected ~1 s: 3 s asked)",
+              (long long)(took / 1000000), code);
+    const char *said = text ? strstr(text, "the run stops ") : NULL;
+    double before = 0, start = 0;
+    CHECK_MSG(said && sscanf(said, "the run stops %lf s before the end of its 3 s: its start came %lf s after the launch", &before, &start) == 2 &&
+                  start >= 0.25 && start < 1.0 && before > 2.0 && before < 2.8 &&
+                  strstr(said, "and it must end 1 s after the launch (the run time limit)"),
+              "launcher output: %s", text ? text : "(none)");
+    free(text);
+    CHECK(h_count_entries(h_run_dir) == -1);
+    h_teardown();
+}
+
 void test_kill_without_launcher(void)
 {
     REQUIRE(h_setup("killnl") == 0);

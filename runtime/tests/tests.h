@@ -33,6 +33,7 @@ void test_launcher_start_duration(void);
 void test_launcher_module_ends(void);
 void test_launcher_sigint(void);
 void test_kill_without_launcher(void);
+void test_launcher_end_by(void);
 void test_launcher_stop_budget(void);
 void test_stop_signal_at_startup(void);
 void test_launcher_placement(void);
@@ -81,6 +82,7 @@ static const TestCase ALL_TESTS[] = {
     { "launcher_module_ends", test_launcher_module_ends },
     { "launcher_sigint", test_launcher_sigint },
     { "kill_without_launcher", test_kill_without_launcher },
+    { "launcher_end_by", test_launcher_end_by },
     { "launcher_stop_budget", test_launcher_stop_budget },
     { "stop_signal_at_startup", test_stop_signal_at_startup },
     { "launcher_placement", test_launcher_placement },

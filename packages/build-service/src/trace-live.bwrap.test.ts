@@ -13,7 +13,7 @@ import WebSocket from 'ws';
 import type { JobEvent, TraceEvent, TraceLine } from './pipeline/job-events.js';
 import { useBuildServer } from './test-support/build-server.js';
 import { getJob, jobEventFromWire, postJob, readEvents } from './test-support/client.js';
-import { MAA_MODULE, tutorialFiles } from './test-support/tutorial.js';
+import { MAA_MODULE, tutorialFiles, withRegion } from './test-support/tutorial.js';
 import { parseLogFile, parseRecordLine } from './trace/parse.js';
 import type { RuleRecord } from './trace/records.js';
 
@@ -153,6 +153,26 @@ test('a duration as long as the run time limit is capped to leave room to stop: 
   const job = await getJob(served.url, id);
   expect(job.status, lines.slice(-20).join('\n')).toBe('succeeded');
   expect(lines).toContain('duration 4 s capped to 2 s: the run time limit is 4 s, of which 2 s are kept to start and stop the architecture');
+  expect(lines).toContain('all modules stopped cleanly');
+  await logsEndingWithExit(id, job);
+}, 240_000);
+
+test('a run whose inits were slow stops by the longest duration after its launch, said: it ends on its own before the run time limit', async () => {
+  // MSC's init takes 3 s (a calibration): its start comes 3 s after the launch, and 4 s of run
+  // after it would end past the time limit (8 s, of which 4 s at most for the run)
+  const files = withRegion(await tutorialFiles(), 'src-gen/generated/architecture/modules/MSC_mod/module.c', 'protect_init_MSC',
+    '    { struct timespec cal = { 3, 0 }; nanosleep(&cal, NULL); }', true);
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 4, limits: { runSeconds: 8 }, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  const lines = (await readEvents(served.url, id)).filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  const job = await getJob(served.url, id);
+  expect(job.status, lines.slice(-20).join('\n')).toBe('succeeded');
+  const said = lines.find((l) => l.startsWith('the run stops '));
+  const m = /^the run stops (\d+\.\d) s before the end of its 4 s: its start came (\d+\.\d) s after the launch \(the modules' inits\), and it must end 4 s after the launch \(the run time limit\)$/.exec(said ?? '');
+  expect(m, lines.slice(-30).join('\n')).not.toBeNull();
+  expect(Number(m![2])).toBeGreaterThanOrEqual(3); // after MSC's 3 s init
+  expect(Number(m![1])).toBeGreaterThanOrEqual(2.9); // 4 s after the start would have been 7 s after the launch
   expect(lines).toContain('all modules stopped cleanly');
   await logsEndingWithExit(id, job);
 }, 240_000);

@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
@@ -368,7 +368,13 @@ export class Job {
         // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
         // a stop asked for (cancel, the run time limit) is killed CANCEL_GRACE_MS later: the launcher fits its
         // waits in that, so that a module not answering its KILL is still terminated by it (its last records written)
-        const runEnv: Record<string, string> = { CONTRACT_STOP_BUDGET_MS: String(CANCEL_GRACE_MS - STOP_BUDGET_MARGIN_MS), ...(tail ? { CONTRACT_LOG_MARK: '1' } : {}) };
+        // and the run stops by the longest duration after its launch whatever its inits took: it ends on its own, said,
+        // before the run time limit (which counts from the launch) rather than at it
+        const runEnv: Record<string, string> = {
+          CONTRACT_STOP_BUDGET_MS: String(CANCEL_GRACE_MS - STOP_BUDGET_MARGIN_MS),
+          CONTRACT_END_BY_S: String(longestDuration(this.request.limits.runSeconds)),
+          ...(tail ? { CONTRACT_LOG_MARK: '1' } : {}),
+        };
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
           this.runIssues.line(routed.line, routed.source);
