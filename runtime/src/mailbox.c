@@ -81,9 +81,9 @@ void rt_log_sent(const char *module, const RequestMessage *request, int sent, co
     if (request->Type == REQ_SETPARAM && sent) {
         ContractLog("setparam_sent", module, request->Param.SetParam.Port, request->DataSize, detail ? detail : "");
     } else if (request->Type == REQ_ACK) {
-        char detail[64];
-        snprintf(detail, sizeof detail, "%s id=%d", rt_ack_name(request->Param.Ack.Ack), request->Param.Ack.AckID);
-        ContractLog(sent ? "ack_sent" : "ack_failed", module, -1, 0, detail);
+        char ack[64];
+        snprintf(ack, sizeof ack, "%s id=%d", rt_ack_name(request->Param.Ack.Ack), request->Param.Ack.AckID);
+        ContractLog(sent ? "ack_sent" : "ack_failed", module, -1, 0, ack);
     }
 }
 
@@ -113,7 +113,10 @@ static OnFull on_full(void)
     return g_rt.send_queued ? FULL_KEEP : g_rt.send_nowait ? FULL_FAIL : FULL_WAIT;
 }
 
-static int send_request(const char *module, RequestMessage *msg, OnFull full)
+#define KEPT 1 /* try_send: the request is kept for its receiver's full mailbox (outbox.c) */
+
+/* Sends msg: CONTRACT_OK, KEPT, or the CONTRACT_E* code of a failure (already said: rt_error). */
+static int try_send(const char *module, RequestMessage *msg, OnFull full)
 {
     if (!rt_valid_name(module)) {
         rt_error("invalid module name '%s'", module ? module : "(null)");
@@ -122,7 +125,6 @@ static int send_request(const char *module, RequestMessage *msg, OnFull full)
     if (msg->DataSize > CONTRACT_REQUEST_DATA_MAX) {
         rt_error("%s request to %s: payload of %zu bytes exceeds the limit of %d bytes (not sent)",
                  rt_request_name(msg->Type), module, msg->DataSize, CONTRACT_REQUEST_DATA_MAX);
-        rt_log_sent(module, msg, 0, NULL);
         return CONTRACT_ETOOBIG;
     }
     if (g_rt.run_dir_fd < 0 && rt_init_run_dir() != 0) return CONTRACT_ESYS;
@@ -130,17 +132,12 @@ static int send_request(const char *module, RequestMessage *msg, OnFull full)
     msg->ProductionTime = GetTime();
     msg->ReceptionTime = 0;
     size_t len = REQUEST_HEADER_SIZE + msg->DataSize;
-    int rc;
     /* a receiver with requests kept gets this one after them (in order): kept too */
     int err = full == FULL_KEEP && rt_outbox_holds(module) ? EAGAIN : rt_send_datagram(module, msg, len, full != FULL_WAIT);
-    if (err == 0) {
-        rt_log_sent(module, msg, 1, NULL);
-        return CONTRACT_OK;
-    }
+    if (err == 0) return CONTRACT_OK;
     if (full == FULL_KEEP && (err == EAGAIN || err == EWOULDBLOCK)) {
-        rc = rt_outbox_add(module, msg, len);
-        if (rc != CONTRACT_OK) rt_log_sent(module, msg, 0, NULL);
-        return rc;
+        int rc = rt_outbox_add(module, msg, len);
+        return rc == CONTRACT_OK ? KEPT : rc;
     }
     const char *why = NULL;
     char text[CONTRACT_NAME_MAX + 48];
@@ -148,8 +145,15 @@ static int send_request(const char *module, RequestMessage *msg, OnFull full)
         snprintf(text, sizeof text, "%s does not wait for a full mailbox", g_rt.name);
         why = text;
     }
-    rc = rt_send_failed(module, msg->Type, err, why);
-    rt_log_sent(module, msg, 0, NULL);
+    return rt_send_failed(module, msg->Type, err, why);
+}
+
+/* A request sent or failed has its record (rt_log_sent); a kept one has it when it goes or fails. */
+static int send_request(const char *module, RequestMessage *msg, OnFull full)
+{
+    int rc = try_send(module, msg, full);
+    if (rc == KEPT) return CONTRACT_OK;
+    rt_log_sent(module, msg, rc == CONTRACT_OK, NULL);
     return rc;
 }
 
