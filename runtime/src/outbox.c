@@ -2,10 +2,10 @@
  * queued sends (ContractSetQueuedSends: the supervisors). Such a request is neither waited for
  * (the process would read nothing meanwhile: its timers late, its own mailbox filling, the
  * modules that post events to it waiting in turn) nor dropped (a supervisor's request is a
- * one-off transition nothing repeats). It is kept, in order, and sent again each time the
- * process waits for requests (WaitForRequestUntil, an engine's wait: ContractRetryQueuedSends),
- * every OUTBOX_RETRY_NS, until its receiver has room or SEND_TIMEOUT_MS (2 s, as the wait it
- * replaces) has passed since it was sent: then it fails with the usual `error` record and stderr
+ * one-off transition nothing repeats). It is kept, in order, and sent again while the process
+ * waits for requests (WaitForRequestUntil, an engine's wait: ContractRetryQueuedSends), every
+ * OUTBOX_RETRY_NS (a call before that tries nothing), until its receiver has room or
+ * SEND_TIMEOUT_MS (2 s, as the wait it replaces) has passed since it was sent: then it fails with the usual `error` record and stderr
  * line, and the process's handler hears of it (ContractSetKeptSendFailed: the supervisor ties it
  * back to its action). A later request to the same receiver is kept behind it (each receiver gets
  * its requests in order); requests to other receivers go at once.
@@ -46,6 +46,8 @@ typedef struct {
 
 static Kept *kept[OUTBOX_MAX];
 static int n_kept;
+static RTIME retry_at; /* the next pass: a call before it tries nothing (the engine's wait and its
+                          WaitForRequestUntil both call; each request received calls again) */
 static ContractKeptSendFailed on_failed;
 
 static const RequestMessage *header(const Kept *k) { return (const RequestMessage *)(const void *)k->request; }
@@ -113,6 +115,7 @@ int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
     k->replaced = replaced;
     k->len = len;
     memcpy(k->request, request, len);
+    if (n_kept == 0) retry_at = GetTime() + OUTBOX_RETRY_NS; /* it found the mailbox full just now */
     kept[n_kept++] = k;
     return CONTRACT_OK;
 }
@@ -144,6 +147,7 @@ RTIME ContractRetryQueuedSends(void)
 {
     if (n_kept == 0) return 0;
     RTIME now = GetTime(), next = now + OUTBOX_RETRY_NS;
+    if (now < retry_at) return retry_at;
     /* receivers still full in this pass: their later requests stay behind */
     char full[OUTBOX_MAX][CONTRACT_NAME_MAX];
     int n_full = 0;
@@ -175,7 +179,8 @@ RTIME ContractRetryQueuedSends(void)
             snprintf(why, sizeof why, "%s had kept the request while its mailbox was full", g_rt.name);
         fail(i, err, why); /* the next one is at i now (a handler's own kept requests go at the end) */
     }
-    return n_kept ? next : 0;
+    retry_at = n_kept ? next : 0;
+    return retry_at;
 }
 
 void rt_outbox_drain(void)

@@ -45,7 +45,8 @@ int engine_wait(RequestMessage *m, int64_t deadline) {
            to the deadline), so that the log on disk — the live trace — lags at most about `delay`. */
         int64_t wake = deadline;
         /* requests kept for a full mailbox (a supervisor's: ContractSetQueuedSends) are tried
-           again at each wake, and wake it while they wait */
+           again every 5 ms (the call above, WaitForRequestUntil, may have just tried them: then
+           this only says when next), and wake it while they wait */
         RTIME retry = ContractRetryQueuedSends();
         if (retry && (int64_t)retry < wake) wake = (int64_t)retry;
         RTIME due = ContractLogFlushDue(delay);
