@@ -22,24 +22,36 @@ RTIME GetTime(void)
     return (RTIME)ts.tv_sec * 1000000000LL + ts.tv_nsec;
 }
 
-/* The same error line again within ERROR_REPEAT_NS of its last print is not printed again (a
- * supervisor parameterizing a crashed module at 100 Hz printed 100 identical lines a second, and
- * a run's output is bounded): it is counted, and the count is printed with its next print (1 s
- * later at the earliest), before another line, or at the end. Every one is a CSV record. */
-#define ERROR_REPEAT_NS 1000000000LL
-static char error_last[512];
-static RTIME error_last_said;
-static unsigned error_repeats;
+#define SAID_AGAIN_NS 1000000000LL /* ContractSay: the same line again this soon is counted */
 
 static const char *self_name(void) { return g_rt.name[0] ? g_rt.name : "libmodule"; }
 
-void rt_error_repeats_say(void)
+void ContractSayRepeats(ContractSaidLines *lines)
 {
-    if (!error_repeats) return;
-    fprintf(stderr, "%s: error: (the same error %u more time%s in %.1f s)\n", self_name(), error_repeats,
-            error_repeats == 1 ? "" : "s", (double)(GetTime() - error_last_said) / 1e9);
-    error_repeats = 0;
+    if (!lines->repeats) return;
+    fprintf(stderr, "%s: %s(the same %s %u more time%s in %.1f s)\n", self_name(), lines->countLead, lines->noun,
+            lines->repeats, lines->repeats == 1 ? "" : "s", (double)(GetTime() - lines->said) / 1e9);
+    lines->repeats = 0;
 }
+
+void ContractSay(ContractSaidLines *lines, const char *text)
+{
+    RTIME now = GetTime();
+    if (strncmp(text, lines->last, sizeof lines->last) == 0 && now - lines->said < SAID_AGAIN_NS) {
+        lines->repeats++;
+        return;
+    }
+    ContractSayRepeats(lines);
+    fprintf(stderr, "%s: %s%s\n", self_name(), lines->lead, text);
+    snprintf(lines->last, sizeof lines->last, "%s", text);
+    lines->said = now;
+}
+
+/* libmodule's error lines: a supervisor parameterizing a crashed module at 100 Hz printed 100
+ * identical lines a second, and a run's output is bounded; every one is still a CSV record. */
+static ContractSaidLines error_lines = { "error: ", "error: ", "error", "", 0, 0 };
+
+void rt_error_repeats_say(void) { ContractSayRepeats(&error_lines); }
 
 void rt_error(const char *fmt, ...)
 {
@@ -49,15 +61,7 @@ void rt_error(const char *fmt, ...)
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
     ContractLog("error", "", -1, 0, text);
-    RTIME now = GetTime();
-    if (strcmp(text, error_last) == 0 && now - error_last_said < ERROR_REPEAT_NS) {
-        error_repeats++;
-        return;
-    }
-    rt_error_repeats_say();
-    fprintf(stderr, "%s: error: %s\n", self_name(), text);
-    memcpy(error_last, text, sizeof error_last);
-    error_last_said = now;
+    ContractSay(&error_lines, text);
 }
 
 int rt_run_stopping(void)

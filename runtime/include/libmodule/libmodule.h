@@ -370,6 +370,20 @@ int ContractRunStopping(void);
 int ContractPeerGoneAtStop(int rc);
 /** This process's module name. */
 const char *ContractSelfName(void);
+/** [ENGINE] Lines of one kind on stderr, `NAME: <lead>TEXT`, of which the same line again within 1 s
+ *  of its last print is counted rather than printed: the count is said with the kind's next print
+ *  (another line, or the same 1 s later) or by ContractSayRepeats at the end, `NAME: <countLead>(the
+ *  same <noun> N more times in X s)`. libmodule's own error lines are one such kind (`error: `,
+ *  `error: `, "error"); a supervisor's `cannot ...` lines another. Zero-initialize all but the three
+ *  texts. Not thread-safe: one thread per kind. */
+typedef struct {
+    const char *lead, *countLead, *noun;
+    char last[512];
+    RTIME said;
+    unsigned repeats;
+} ContractSaidLines;
+void ContractSay(ContractSaidLines *lines, const char *text);
+void ContractSayRepeats(ContractSaidLines *lines);
 /** Number of START requests received so far (activations). */
 long ContractActivations(void);
 

@@ -123,36 +123,18 @@ static void log_action(const char *peer, const char *fmt, ...) {
 }
 
 /* A request the supervisor could not send is said on stderr (`SUP: cannot set parameter 0 of CTL:
-   mailbox full`) beside libmodule's own error line; the same line again within 1 s of its last
-   print is counted instead (a rule parameterizing a crashed module at 100 Hz), as libmodule
-   counts its own: said with its next print, or at the end (say_cannot_repeats). */
-static char cannot_last[256];
-static int64_t cannot_said;
-static unsigned cannot_repeats;
-
-static void say_cannot_repeats(void) {
-    if (!cannot_repeats) return;
-    fprintf(stderr, "%s: (the same failure %u more time%s in %.1f s)\n", ContractSelfName(), cannot_repeats,
-            cannot_repeats == 1 ? "" : "s", (double)(GetTime() - cannot_said) / 1e9);
-    cannot_repeats = 0;
-}
+   mailbox full`) beside libmodule's own error line, and counted as libmodule counts its own
+   (ContractSay: a rule parameterizing a crashed module at 100 Hz), the count said at the end. */
+static ContractSaidLines cannot_lines = {"cannot ", "", "failure", "", 0, 0};
 
 static void say_cannot(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 static void say_cannot(const char *fmt, ...) {
-    char text[sizeof cannot_last];
+    char text[256];
     va_list ap;
     va_start(ap, fmt);
     vsnprintf(text, sizeof text, fmt, ap);
     va_end(ap);
-    int64_t now = GetTime();
-    if (strcmp(text, cannot_last) == 0 && now - cannot_said < 1000000000LL) {
-        cannot_repeats++;
-        return;
-    }
-    say_cannot_repeats();
-    fprintf(stderr, "%s: cannot %s\n", ContractSelfName(), text);
-    memcpy(cannot_last, text, sizeof cannot_last);
-    cannot_said = now;
+    ContractSay(&cannot_lines, text);
 }
 
 /* rc of the request of the action logged last: a failure gets its own record */
@@ -575,6 +557,6 @@ out:
     if (!ContractRunStopping()) prio_requests_settle();
     free(m);
     sup_core_destroy(c);
-    say_cannot_repeats();
+    ContractSayRepeats(&cannot_lines);
     return rc;
 }
