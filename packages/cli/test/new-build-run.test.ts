@@ -338,6 +338,9 @@ describe('contract build / run on a project (bwrap)', () => {
         const io = capture(root);
         const code = await runCli(['run', 'crash', '--sandbox', 'bwrap', '--duration', '2s'], io);
         expect(io.stderr).toContain('module CTL crashed (died by signal 11');
+        // make's "*** [...: run] Error 1" in the log and its own exit 2 are both named, not left to contradict
+        expect(io.stdout + io.stderr).toMatch(/^make: \*\*\* \[Makefile:\d+: run\] Error 1$/m);
+        expect(io.stderr).toContain('(contract-launch exit 1; make exit 2)');
         expect(io.stdout).toContain('contract-launch: FAILED: module CTL crashed');
         // ORD sees the release never finish: it says the module is gone, not that its code loops
         expect(io.stdout).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: it is no longer running \(it crashed or was killed\)$/m);

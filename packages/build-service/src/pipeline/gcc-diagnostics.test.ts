@@ -7,7 +7,7 @@ import { makeEnteringDirectory, renderDiagnostic } from './gcc-diagnostics.js';
 import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { findProtectedRegions, regionAt } from './protected-regions.js';
-import { BuildOutputRouter, routeRunLine } from './output-router.js';
+import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
 import { buildJobs, DEFAULT_LIMITS } from '../limits.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'gccdiag-'));
@@ -91,6 +91,15 @@ describe('gcc diagnostics', () => {
     expect(routeRunLine('make: Entering directory')).toEqual({ source: 'run', line: 'make: Entering directory' });
     // a bare CR (or U+2028) inside a module's line keeps it that module's, not make's
     expect(routeRunLine('[CTL] 50%\rOVER\u2028x')).toEqual({ source: 'CTL', line: '50%\rOVER\u2028x' });
+  });
+
+  test("make's line for a failed recipe gives its target and status; nothing else does", () => {
+    expect(makeRecipeStatus('make: *** [Makefile:67: run] Error 1')).toEqual({ target: 'run', status: 1 });
+    expect(makeRecipeStatus('make[1]: *** [Makefile:23: MAA] Error 2')).toEqual({ target: 'MAA', status: 2 });
+    for (const line of ['make: *** [Makefile:6: run] Killed', 'make: Entering directory', '[MAA] make: *** [Makefile:1: run] Error 9',
+      'make: *** [Makefile:67: run] Error 1 and more', `make: *** [${'x'.repeat(500)}: run] Error 1`]) {
+      expect(makeRecipeStatus(line)).toBeNull();
+    }
   });
 
   test('a parallel build (make -j --output-sync, 2>&1): every module\'s diagnostics map to its own files', () => {

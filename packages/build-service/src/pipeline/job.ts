@@ -16,7 +16,7 @@ import { collectRunArtifacts, hostWorkDirReader, type Artifact, type RunArtifact
 import type { CactalProblem } from './cactal-adapter.js';
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
-import { BuildOutputRouter, routeRunLine } from './output-router.js';
+import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
 import { makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
@@ -364,6 +364,8 @@ export class Job {
       if (keptOff?.said) this.system('run', keptOff.said);
       let run: Awaited<ReturnType<Job['runStep']>>;
       const crashes = new LauncherCrashes();
+      // the launcher's exit status, as make's "*** [...: run] Error N" line gives it (make itself exits 2)
+      let launcherStatus: number | null = null;
       try {
         // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
         // a stop asked for (cancel, the run time limit) is killed CANCEL_GRACE_MS later: the launcher fits its
@@ -377,6 +379,10 @@ export class Job {
         };
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
+          if (routed.source === 'run') {
+            const failed = makeRecipeStatus(routed.line);
+            if (failed?.target === 'run') launcherStatus = failed.status;
+          }
           this.runIssues.line(routed.line, routed.source);
           if (routed.source === 'launcher') crashes.line(routed.line);
           return [routed];
@@ -400,7 +406,8 @@ export class Job {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
         // a module's crash is the failure to name (make's status alone reads like a build failure)
         const crashed = crashes.summary();
-        const message = run.message ?? `run failed${crashed ? `: ${crashed}` : ''} (make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
+        const launcher = launcherStatus !== null ? `contract-launch exit ${launcherStatus}; ` : '';
+        const message = run.message ?? `run failed${crashed ? `: ${crashed}` : ''} (${launcher}make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;

@@ -83,3 +83,17 @@ export function routeRunLine(line: string): RoutedLine {
   if (line.startsWith('contract-launch: ')) return { source: 'launcher', line: line.slice('contract-launch: '.length) };
   return { source: 'run', line };
 }
+
+// make's own line for a recipe that failed: "make: *** [Makefile:40: run] Error 1" (make[1] in a sub-make)
+const MAKE_RECIPE_ERROR = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: ([A-Za-z0-9_.-]{1,64})\] Error (\d{1,3})$/;
+
+/**
+ * The target and exit status make names for a recipe that failed ("Error 1": the recipe's own
+ * status; make itself then exits 2), or null for any other line. The run step's message gives
+ * both, so that the `Error 1` the user sees in the log and make's exit 2 do not read as a contradiction.
+ */
+export function makeRecipeStatus(line: string): { target: string; status: number } | null {
+  if (line.length > 400 || !line.startsWith('make')) return null;
+  const m = MAKE_RECIPE_ERROR.exec(line);
+  return m ? { target: m[1]!, status: Number(m[2]) } : null;
+}
