@@ -19,6 +19,13 @@
  * setparam_sent record, or its error, says how many it replaced (`in place of 74 earlier values
  * for its port`): every value is accounted for in the log.
  *
+ * What the log says of it: besides each request's own record when it goes (setparam_sent, ...)
+ * or fails (error), a receiver's streak of kept requests is bracketed: `requests_kept` (peer = the
+ * receiver, detail `request=STOP`: the first one kept) when its first request is kept, and
+ * `requests_kept_end` (`sent=N failed=M replaced=R kept_ns=T`) when none is kept for it any more,
+ * so that a reader (the Monitor, `contract trace`) sees the requests waiting while they wait, not
+ * only when one fails 2 s later.
+ *
  * At exit the process tries its kept requests for OUTBOX_EXIT_NS more, then fails those left: a
  * supervisor ends at the run's stop, when a module that has not read its mailbox is about to be
  * stopped anyway, and waiting 2 s for it would delay the stop of every other module (the
@@ -46,6 +53,16 @@ typedef struct {
 
 static Kept *kept[OUTBOX_MAX];
 static int n_kept;
+
+/* A receiver's streak of kept requests, from its first kept request to the moment none is kept
+ * for it any more (at most one a receiver; a receiver has a streak only while it has kept requests). */
+typedef struct {
+    char module[CONTRACT_NAME_MAX];
+    RTIME since;
+    unsigned sent, failed, replaced;
+} Streak;
+static Streak streaks[OUTBOX_MAX];
+static int n_streaks;
 static RTIME retry_at; /* the next pass: a call before it tries nothing (the engine's wait and its
                           WaitForRequestUntil both call; each request received calls again) */
 static ContractKeptSendFailed on_failed;
@@ -79,6 +96,41 @@ static void take_out(int i)
     n_kept--;
 }
 
+static Streak *streak_of(const char *module)
+{
+    for (int i = 0; i < n_streaks; i++)
+        if (strcmp(streaks[i].module, module) == 0) return &streaks[i];
+    return NULL;
+}
+
+/* The first request kept for module: its streak begins (`requests_kept`). */
+static void streak_begin(const char *module, const RequestMessage *request)
+{
+    if (streak_of(module) || n_streaks >= OUTBOX_MAX) return;
+    Streak *st = &streaks[n_streaks++];
+    snprintf(st->module, sizeof st->module, "%s", module);
+    st->since = GetTime();
+    st->sent = st->failed = st->replaced = 0;
+    char detail[48];
+    snprintf(detail, sizeof detail, "request=%s", rt_request_name(request->Type));
+    ContractLog("requests_kept", module, -1, 0, detail);
+}
+
+/* After a kept request for module went, failed or was replaced: its streak ends when none is left
+ * (`requests_kept_end`). */
+static void streak_check_end(const char *module)
+{
+    Streak *st = streak_of(module);
+    if (!st || ContractQueuedFor(module) > 0) return;
+    char detail[128];
+    snprintf(detail, sizeof detail, "sent=%u failed=%u replaced=%u kept_ns=%lld", st->sent, st->failed, st->replaced,
+             (long long)(GetTime() - st->since));
+    char who[CONTRACT_NAME_MAX];
+    snprintf(who, sizeof who, "%s", st->module);
+    *st = streaks[--n_streaks]; /* st is free now: ContractLog below cannot reach the outbox */
+    ContractLog("requests_kept_end", who, -1, 0, detail);
+}
+
 /* The kept request that a new one replaces: a value for the same parameter port of the same receiver. */
 static int superseded_by(const char *module, const RequestMessage *request)
 {
@@ -101,6 +153,8 @@ int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
         since = kept[old]->since;
         replaced = kept[old]->replaced + 1;
         take_out(old);
+        Streak *st = streak_of(module);
+        if (st) st->replaced++;
     }
     int for_it = ContractQueuedFor(module);
     char why[CONTRACT_NAME_MAX + 96] = "";
@@ -109,7 +163,13 @@ int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
     else if (n_kept >= OUTBOX_MAX)
         snprintf(why, sizeof why, "%d requests already wait for full mailboxes", n_kept);
     Kept *k = why[0] ? NULL : malloc(sizeof *k + len);
-    if (!k) return rt_send_failed(module, request->Type, EAGAIN, why[0] ? why : "no memory to keep it");
+    if (!k) {
+        int code = rt_send_failed(module, request->Type, EAGAIN, why[0] ? why : "no memory to keep it");
+        Streak *st = streak_of(module);
+        if (st) st->failed++;
+        streak_check_end(module); /* the value it replaced was its last kept request */
+        return code;
+    }
     snprintf(k->module, sizeof k->module, "%s", module);
     k->since = since;
     k->replaced = replaced;
@@ -117,6 +177,7 @@ int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
     memcpy(k->request, request, len);
     if (n_kept == 0) retry_at = GetTime() + OUTBOX_RETRY_NS; /* it found the mailbox full just now */
     kept[n_kept++] = k;
+    streak_begin(module, request);
     return CONTRACT_OK;
 }
 
@@ -137,10 +198,16 @@ static void fail(int i, int err, const char *why)
     snprintf(text, sizeof text, "%s%s%s", why, replaced[0] ? ", " : "", replaced);
     int code = rt_send_failed(k->module, h->Type, err, text);
     rt_log_sent(k->module, h, 0, NULL);
+    Streak *st = streak_of(k->module);
+    if (st) st->failed++;
+    char module[CONTRACT_NAME_MAX];
+    snprintf(module, sizeof module, "%s", k->module);
     if (on_failed) on_failed(k->module, h, code);
-    /* the handler may send: the list may have changed; k is still ours */
+    /* the handler may send: the list may have changed (what it sent to this receiver was kept
+       behind k, in the same streak); k is still ours */
     for (int j = 0; j < n_kept; j++)
         if (kept[j] == k) { take_out(j); break; }
+    streak_check_end(module);
 }
 
 RTIME ContractRetryQueuedSends(void)
@@ -161,7 +228,12 @@ RTIME ContractRetryQueuedSends(void)
             char replaced[64];
             replaced_text(replaced, sizeof replaced, k);
             rt_log_sent(k->module, header(k), 1, replaced);
+            Streak *st = streak_of(k->module);
+            if (st) st->sent++;
+            char module[CONTRACT_NAME_MAX];
+            snprintf(module, sizeof module, "%s", k->module);
             take_out(i);
+            streak_check_end(module);
             continue;
         }
         RTIME fails_at = k->since + (RTIME)SEND_TIMEOUT_MS * 1000000LL;

@@ -560,6 +560,31 @@ static void on_kept_failed(const char *module, const RequestMessage *request, in
     snprintf(failed_module, sizeof failed_module, "%s", module);
 }
 
+/* The requests_kept / requests_kept_end records of log, from their event column on, joined by
+ * " | ", kept_ns cut to whole seconds (kept_s). */
+static void kept_records(const char *log, char *out, size_t cap)
+{
+    out[0] = '\0';
+    for (const char *line = log; line && *line;) {
+        const char *end = strchr(line, '\n');
+        size_t n = end ? (size_t)(end - line) : strlen(line);
+        const char *ev = strstr(line, ",requests_kept");
+        if (ev && ev < line + n) {
+            /* mono,wall,module,EVENT,PEER,PORT,SIZE,DETAIL: from the event on, kept_ns's value cut */
+            char one[160];
+            snprintf(one, sizeof one, "%.*s", (int)(line + n - ev - 1), ev + 1);
+            char *ns = strstr(one, " kept_ns=");
+            if (ns) {
+                long long v = atoll(ns + 9);
+                snprintf(ns, sizeof one - (size_t)(ns - one), " kept_s=%lld", v / 1000000000LL);
+            }
+            size_t len = strlen(out);
+            snprintf(out + len, cap - len, "%s%s", len ? " | " : "", one);
+        }
+        line = end ? end + 1 : NULL;
+    }
+}
+
 /* Queued sends (the supervisors): a request to a full mailbox is kept and returns at once; it is
  * sent, in order, while the process waits for requests, once the mailbox has room; requests to
  * others go at once; a status question to it is not kept (busy at once); one still not sent after
@@ -567,6 +592,7 @@ static void on_kept_failed(const char *module, const RequestMessage *request, in
 void test_queued_sends(void)
 {
     REQUIRE(h_setup("queued") == 0);
+    REQUIRE(rt_log_open() == 0); /* the tester's own log: the kept requests' records */
     struct sockaddr_un full_sa, other_sa;
     char err_path[700];
     int saved = stderr_to_file(err_path, sizeof err_path);
@@ -674,6 +700,16 @@ void test_queued_sends(void)
     CHECK_MSG(first && strstr(first, "tester: error: (the same error ") && !strstr(err, "STATUS request"), "stderr: %s",
               err ? err : "(none)");
     free(err);
+    /* each receiver's streak of kept requests is bracketed in the log, with what came of them
+       (the exit's too, before the log closes) */
+    char *log = h_read_logs("tester_"), recs[1024];
+    kept_records(log, recs, sizeof recs);
+    const char *begin = "requests_kept,FULL,,0,request=START | requests_kept_end,FULL,,0,";
+    char want[1024];
+    snprintf(want, sizeof want, "%ssent=3 failed=0 replaced=0 kept_s=0 | %ssent=0 failed=2 replaced=0 kept_s=2 | %ssent=1 failed=0 replaced=0 kept_s=0",
+             begin, begin, begin);
+    CHECK_MSG(!strcmp(recs, want), "the kept requests' records:\n  %s\nexpected\n  %s", recs, want);
+    free(log);
     close(fd);
     close(other);
     unlink(full_sa.sun_path);
@@ -687,6 +723,7 @@ void test_queued_sends(void)
 void test_queued_sends_room(void)
 {
     REQUIRE(h_setup("queuedroom") == 0);
+    REQUIRE(rt_log_open() == 0); /* the tester's own log: the kept requests' records */
     char err_path[700];
     int saved = stderr_to_file(err_path, sizeof err_path);
     REQUIRE(saved >= 0);
@@ -737,6 +774,15 @@ void test_queued_sends_room(void)
                   strstr(err, "(Resource temporarily unavailable; tester ended before its mailbox had room)"),
               "stderr: %.2000s", err ? err : "(none)");
     free(err);
+    /* ROOMB's streak: its 4 kept requests sent, one value replaced; ROOMA's: the 65th refused at
+       once and the 64 failed at the exit */
+    char *log = h_read_logs("tester_"), recs[1024];
+    kept_records(log, recs, sizeof recs);
+    CHECK_MSG(strstr(recs, "requests_kept,ROOMA,,0,request=START") && strstr(recs, "requests_kept,ROOMB,,0,request=START") &&
+                  strstr(recs, "requests_kept_end,ROOMB,,0,sent=4 failed=0 replaced=1 kept_s=0") &&
+                  strstr(recs, "requests_kept_end,ROOMA,,0,sent=0 failed=65 replaced=0 kept_s=0"),
+              "the kept requests' records: %s", recs);
+    free(log);
     close(a);
     close(b);
     unlink(a_sa.sun_path);

@@ -135,6 +135,30 @@ describe('contract trace', () => {
         expect(records[2]!.fields).toEqual({ schema: 'S', cycle: 0, tick_ns: 2000500000, release_ns: 2000500001, release: 1 });
     });
 
+    it("tells a supervisor's requests kept for a full mailbox, and --format json gives their typed fields", async () => {
+        const folder = mkdtempSync(join(tmpdir(), 'contract-trace-kept-'));
+        try {
+            writeFileSync(join(folder, 'SUP_24-Nov-2026-18h30m15s.csv'), [HEADER,
+                '5100000000,2026-11-24T18:30:15.123456Z,SUP,requests_kept,VEL,,0,request=STOP',
+                '7100000000,2026-11-24T18:30:17.123456Z,SUP,requests_kept_end,VEL,,0,sent=4 failed=1 replaced=73 kept_ns=2000000000', ''].join('\n'));
+            const story = capture(folder);
+            expect(await runCli(['trace', folder], story)).toBe(0);
+            expect(story.stdout.split('\n').slice(0, 2)).toEqual([
+                "+0.000000s SUP  VEL's mailbox is full: its STOP request is kept (tried again every 5 ms, for up to 2 s)",
+                "+2.000000s SUP  the requests kept for VEL's full mailbox ended after 2 s: 4 sent, 1 failed, 73 values replaced by later ones",
+            ]);
+            const json = capture(folder);
+            expect(await runCli(['trace', folder, '--format', 'json'], json)).toBe(0);
+            const records = json.stdout.trim().split('\n').map((l) => JSON.parse(l) as { kind: string; peer: string; fields?: Record<string, unknown> });
+            expect(records.map((r) => [r.kind, r.peer, r.fields])).toEqual([
+                ['requests_kept', 'VEL', { request: 'STOP' }],
+                ['requests_kept_end', 'VEL', { sent: 4, failed: 1, replaced: 73, kept_ns: 2000000000 }],
+            ]);
+        } finally {
+            rmSync(folder, { recursive: true, force: true });
+        }
+    });
+
     it('--format json: the same counts as the story, each unreadable line an object of kind "unknown"; logs of unreadable lines only hold no record', async () => {
         const json = capture(dir);
         expect(await runCli(['trace', dir, '--format', 'json'], json)).toBe(0);

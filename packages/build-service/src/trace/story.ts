@@ -131,6 +131,40 @@ export function userRecordText(k: KnownRecord, detailChars = Infinity): string {
     return `${k.fields['event'] ?? k.kind}${detail ? `: ${detail}` : ''}${given.length ? ` (${given.join(', ')})` : ''}`;
 }
 
+/** How the runtime tries a request kept for a full mailbox again (docs/runtime-api.md, queued sends). */
+const KEPT_RETRY = 'tried again every 5 ms, for up to 2 s';
+
+/** A detail word of a record as text (a number the reader typed as one back to its digits), cut to 64 characters. */
+function wordText(v: string | number | undefined): string {
+    return v === undefined ? '' : String(v).slice(0, 64);
+}
+
+/** A count of a `requests_kept_end` detail: a whole number, else 0 (a forged word is no count). */
+function keptCount(v: string | number | undefined): number {
+    return typeof v === 'number' && Number.isSafeInteger(v) && v > 0 ? v : 0;
+}
+
+/**
+ * A supervisor's `requests_kept` or `requests_kept_end` record as the story and the IDE's Monitor
+ * (its timeline marks) tell it, else undefined: `VEL's mailbox is full: its STOP request is kept
+ * (tried again every 5 ms, for up to 2 s)`; `the requests kept for VEL's full mailbox ended after
+ * 2 s: 4 sent, 1 failed, 73 values replaced by later ones` (the counts that are 0 left out).
+ */
+export function keptRequestsText(k: Pick<KnownRecord, 'kind' | 'peer' | 'fields'>): string | undefined {
+    const peer = k.peer || '?';
+    if (k.kind === 'requests_kept') {
+        const request = wordText(k.fields['request']);
+        return `${peer}'s mailbox is full: its ${request ? `${request} ` : ''}request is kept (${KEPT_RETRY})`;
+    }
+    if (k.kind !== 'requests_kept_end') return undefined;
+    const keptNs = k.fields['kept_ns'];
+    const after = typeof keptNs === 'number' && keptNs >= 0 ? ` after ${durationText(keptNs)}` : '';
+    const sent = keptCount(k.fields['sent']), failed = keptCount(k.fields['failed']), replaced = keptCount(k.fields['replaced']);
+    const parts = [sent ? `${sent} sent` : '', failed ? `${failed} failed` : '',
+        replaced ? `${plural(replaced, 'value')} replaced by ${replaced === 1 ? 'a later one' : 'later ones'}` : ''].filter(Boolean);
+    return `the requests kept for ${peer}'s full mailbox ended${after}${parts.length ? `: ${parts.join(', ')}` : ''}`;
+}
+
 /** `+1.250000s` after the first record, `-0.000100s` before it (a record out of its place). */
 function offset(ns: bigint): string {
     const s = (Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6);
@@ -309,6 +343,8 @@ export class StoryTeller {
             return text && `${at(k)} ${text}`;
         }
         if (k.kind === 'user') return `${at(k)} ${userRecordText(k)}`;
+        // a supervisor's requests kept for a receiver's full mailbox: when it began, and what came of them
+        if (k.kind === 'requests_kept' || k.kind === 'requests_kept_end') return `${at(k)} ${keptRequestsText(k)}`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
         if (k.kind === 'error') return k.detail.endsWith(RUN_STOPPING) ? `${at(k)} while the run stopped: ${k.detail}` : `${at(k)} error: ${k.detail}`;
         return undefined;

@@ -573,6 +573,39 @@ describe('reading a log', () => {
     });
 });
 
+describe("a supervisor's requests kept for a full mailbox", () => {
+    it('reads the request kept as a word, and the counts and the time of their end as numbers', () => {
+        expect((parseRecordLine('SUP.csv', 2, '5100000000,w,SUP,requests_kept,VEL,,0,request=STOP') as KnownRecord).fields).toEqual({ request: 'STOP' });
+        expect((parseRecordLine('SUP.csv', 3, '7100000000,w,SUP,requests_kept_end,VEL,,0,sent=4 failed=1 replaced=73 kept_ns=2000000000') as KnownRecord).fields)
+            .toEqual({ sent: 4, failed: 1, replaced: 73, kept_ns: 2000000000 });
+    });
+
+    it('tells when a receiver\'s full mailbox made it keep requests, and what came of them when that ended (the counts that are 0 left out)', () => {
+        const text = [CSV_HEADER,
+            '5100000000,w,SUP,requests_kept,VEL,,0,request=STOP',
+            '5200000000,w,SUP,setparam_sent,VEL,0,8,in place of 73 earlier values for its port',
+            '7100000000,w,SUP,error,,,0,STOP request to VEL: mailbox full',
+            '7100000000,w,SUP,requests_kept_end,VEL,,0,sent=4 failed=1 replaced=73 kept_ns=2000000000',
+            '8000000000,w,SUP,requests_kept,ARM,,0,request=SETPARAM',
+            '8012500000,w,SUP,requests_kept_end,ARM,,0,sent=1 failed=0 replaced=1 kept_ns=12500000',
+            '9000000000,w,SUP,requests_kept,GRP,,0,',
+            '9000000000,w,SUP,requests_kept_end,GRP,,0,sent=0 failed=0 replaced=0 kept_ns=soon',
+            '9100000000,w,SUP,module_exit,,,0,status=0 records=9',
+        ].join('\n');
+        expect(renderStory(parseTrace([{ name: 'SUP_1.csv', text }])).slice(0, -1)).toEqual([
+            "+0.000000s SUP  VEL's mailbox is full: its STOP request is kept (tried again every 5 ms, for up to 2 s)",
+            '+2.000000s SUP  error: STOP request to VEL: mailbox full',
+            "+2.000000s SUP  the requests kept for VEL's full mailbox ended after 2 s: 4 sent, 1 failed, 73 values replaced by later ones",
+            "+2.900000s SUP  ARM's mailbox is full: its SETPARAM request is kept (tried again every 5 ms, for up to 2 s)",
+            "+2.912500s SUP  the requests kept for ARM's full mailbox ended after 12.5 ms: 1 sent, 1 value replaced by a later one",
+            // a record without its words (a forged log): told without them
+            "+3.900000s SUP  GRP's mailbox is full: its request is kept (tried again every 5 ms, for up to 2 s)",
+            "+3.900000s SUP  the requests kept for GRP's full mailbox ended",
+            '+4.000000s SUP  exited (status=0 records=9)',
+        ]);
+    });
+});
+
 describe('a rule cause in the words of the model', () => {
     it('writes times as Cactal time literals, an event as its port and value, and says what stop means', () => {
         expect(['elapsed=1000000ns', 'elapsed=250000ns', 'elapsed=1500000000ns', 'elapsed=2000000000ns', 'elapsed=1234ns', 'duration(PAUSE)=100000000ns'].map(readableCause))

@@ -20,7 +20,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'module_crashed', 'data_posted', 'data_dropped', 'event_received',
+  'module_crashed', 'data_posted', 'data_dropped', 'event_received', 'requests_kept', 'requests_kept_end',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -48,7 +48,7 @@ function entry<V>(s: MonitorState, map: Map<string, V>, key: string, make: () =>
 
 /** Supervisor `name`'s state, to change: every caller changes it (supervisorChanges counts it). */
 function sup(s: MonitorState, name: string): SupervisorState | undefined {
-  const sv = entry(s, s.supervisors, name, () => ({ functions: new Map(), rules: new Map(), actionsDone: 0, actionsUndone: 0, heldModules: new Map(), heldFlows: new Map() }));
+  const sv = entry(s, s.supervisors, name, () => ({ functions: new Map(), rules: new Map(), actionsDone: 0, actionsUndone: 0, heldModules: new Map(), heldFlows: new Map(), keptFor: new Map() }));
   if (sv) s.supervisorChanges++;
   return sv;
 }
@@ -147,6 +147,42 @@ export function foldDataDropped(s: MonitorState, module: string, port: number | 
   if (!f) return;
   f.dropped = (f.dropped ?? 0) + 1;
   f.dropReason = reason.slice(0, 80);
+}
+
+/** Longest request name kept for the panel (a forged detail can be a whole line). */
+const MAX_REQUEST_CHARS = 40;
+
+/**
+ * requests_kept (`kept`) or requests_kept_end of supervisor `module` for receiver `peer`: the
+ * receiver is listed while the supervisor keeps requests for it. A receiver no longer listed is a
+ * name no longer folded (names counts down): a module slow now and then begins a new streak each
+ * time, and that must not fill the bound of names of a real run.
+ */
+function foldKept(s: MonitorState, module: string, peer: string, kept: boolean, request: unknown, t: Ns): void {
+  if (!peer) return;
+  if (!kept) {
+    const sv = s.supervisors.get(module);
+    if (sv?.keptFor.delete(peer)) {
+      s.names--;
+      s.supervisorChanges++;
+    }
+    return;
+  }
+  const sv = sup(s, module);
+  const k = sv && entry(s, sv.keptFor, peer, () => ({ since: t, request: '' }));
+  if (!k) return;
+  // a streak begun again without its end (a log cut, a forged one): the newer one
+  k.since = t;
+  k.request = typeof request === 'string' || typeof request === 'number' ? String(request).slice(0, MAX_REQUEST_CHARS) : '';
+}
+
+/** A supervisor that ended (its exit, its crash) keeps nothing any more, whatever its log said last. */
+function endKept(s: MonitorState, module: string): void {
+  const sv = s.supervisors.get(module);
+  if (!sv?.keptFor.size) return;
+  s.names -= sv.keptFor.size;
+  sv.keptFor.clear();
+  s.supervisorChanges++;
 }
 
 /** `t`: the record's time in ns since the run's first record; `t0`: that first record's mono_ns. */
@@ -287,6 +323,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     case 'module_started':
     case 'module_exit':
     case 'module_crashed': { // the runtime's last record of a module that crashed: its end, as an exit
+      if (k.kind !== 'module_started') endKept(s, k.module);
       const m = moduleState(s, k.module, t);
       if (!m) return;
       m.alive = k.kind === 'module_started';
@@ -308,6 +345,10 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       return;
     case 'data_dropped':
       foldDataDropped(s, k.module, k.port, k.peer, num(f['to_port']), dataDropReason(k.detail), t);
+      return;
+    case 'requests_kept':
+    case 'requests_kept_end':
+      foldKept(s, k.module, k.peer, k.kind === 'requests_kept', f['request'], t);
       return;
     case 'event_received': {
       const from = num(f['from_port']);

@@ -1,7 +1,7 @@
 /**
  * The monitor's timeline strip: the whole run on one canvas, a tick per mark (rule changes,
  * schema activations, deadline misses, overruns, function starts/stops, the modules' own records,
- * the run's errors)
+ * the run's errors, the requests a supervisor kept for a full mailbox: when it began and ended)
  * and the time cursor.
  * Clicking or dragging moves the cursor. A canvas: the marks are first binned by pixel column
  * (per row, the latest mark of a column sets its colour), then each row is drawn as runs of one
@@ -15,10 +15,10 @@ import { marksIn } from './model-view.js';
 import { fmtT } from './panel-text.js';
 
 /** Colours by index (0: no mark); a rule switched off is grey. */
-const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd', '#e5c07b', '#ff6ac1'];
-const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, overrun: 5, function: 6, user: 7, error: 8 };
+const PALETTE = ['', '#98c379', '#5c6370', '#61afef', '#e06c75', '#d19a66', '#c678dd', '#e5c07b', '#ff6ac1', '#56b6c2'];
+const COLOR: Record<Mark['kind'], number> = { rule: 1, schema: 3, miss: 4, overrun: 5, function: 6, user: 7, error: 8, kept: 9 };
 const RULE_OFF = 2;
-const ROW: Record<Mark['kind'], number> = { function: 0, user: 0, error: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
+const ROW: Record<Mark['kind'], number> = { function: 0, user: 0, error: 0, kept: 0, rule: 1, schema: 2, miss: 3, overrun: 3 };
 const ROWS = 4;
 /** Marks a tooltip names (the rest counted), and how far from the pointer a mark is under it (px). */
 const TOOLTIP_MARKS = 6;
@@ -45,7 +45,7 @@ export class MarksStrip {
     this.canvas.className = 'monitor-strip';
     this.canvas.height = 44;
     this.canvas.setAttribute('role', 'img');
-    this.canvas.setAttribute('aria-label', 'Run timeline: function starts and stops (purple), the modules\' own records (yellow) and errors (pink), rule changes (green), schema activations (blue), deadline misses (red), overruns (orange); click to move the cursor');
+    this.canvas.setAttribute('aria-label', 'Run timeline: function starts and stops (purple), the modules\' own records (yellow), errors (pink) and requests kept for a full mailbox and their end (cyan), rule changes (green), schema activations (blue), deadline misses (red), overruns (orange); click to move the cursor');
     let dragging = false;
     const seek = (e: PointerEvent) => {
       const r = this.canvas.getBoundingClientRect();

@@ -8,7 +8,7 @@ import type { MonitorState, Ns } from './monitor-state.js';
 /** One thing the timeline marks at its time. */
 export interface Mark {
   t: Ns;
-  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function' | 'user' | 'error';
+  kind: 'rule' | 'schema' | 'miss' | 'overrun' | 'function' | 'user' | 'error' | 'kept';
   /** Where: the supervisor or schema. */
   where: string;
   label: string;

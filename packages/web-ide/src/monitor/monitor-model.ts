@@ -13,14 +13,15 @@
  *   (rules, functions, schemas, holds, misses), so a state far back is exact for those and
  *   approximate (to the checkpoint) for counters.
  * - `marks` lists what the timeline marks (rule changes, schema (de)activations, deadline misses,
- *   overruns, function starts/stops), bounded. A deadline miss's mark names what its cycle was
+ *   overruns, function starts/stops, the modules' own records, errors, the requests a supervisor
+ *   kept for a full mailbox), bounded. A deadline miss's mark names what its cycle was
  *   still waiting for, as `contract trace` does (`(not finished: ARM)`, `(held: nothing released,
  *   GRP still runs an earlier release)`): per periodic schema, the modules released in its current
  *   and previous cycle and not finished yet are followed (CycleWaits, no allocation per record).
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -131,6 +132,8 @@ const MAX_GONE = 1024;
 export const MAX_USER_MARKS = 2000;
 /** Marks the run's errors may take, likewise (a request failing at 100 Hz must not take them all). */
 export const MAX_ERROR_MARKS = 2000;
+/** Marks the requests kept for full mailboxes may take, likewise (a module slow at every cycle begins a streak each time). */
+export const MAX_KEPT_MARKS = 2000;
 
 /**
  * An error of the run, for its mark: an `error` record (a request not sent, a datagram dropped), a
@@ -251,7 +254,8 @@ class CycleWaits {
   }
 }
 
-const NOTABLE = new Set(['sup_rule', 'supervisor', 'scheduler', 'ord_deadline_miss', 'module_hold', 'flow_hold', 'module_started', 'module_exit']);
+const NOTABLE = new Set(['sup_rule', 'supervisor', 'scheduler', 'ord_deadline_miss', 'module_hold', 'flow_hold', 'module_started', 'module_exit',
+  'requests_kept', 'requests_kept_end']);
 
 export class MonitorModel implements MonitorView {
   readonly live: MonitorState = emptyState();
@@ -264,6 +268,7 @@ export class MonitorModel implements MonitorView {
   /** Marks of the modules' own records so far (userMark). */
   private userMarks = 0;
   private errorMarks = 0;
+  private keptMarks = 0;
   private readonly checkpoints: Checkpoint[] = [];
   /** chunks[i] holds records [firstChunk + i) * every ...; dropped chunks leave their notable records. */
   private chunks: Chunk[] = [];
@@ -398,6 +403,7 @@ export class MonitorModel implements MonitorView {
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
     else if (r.kind === 'user') this.userMark(t, r as KnownRecord);
     if (r.kind !== 'unknown') this.errorMark(t, r as KnownRecord);
+    if (r.kind === 'requests_kept' || r.kind === 'requests_kept_end') this.keptMark(t, r as KnownRecord);
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
 
@@ -581,6 +587,19 @@ export class MonitorModel implements MonitorView {
     if (label === undefined) return;
     this.errorMarks++;
     this.marks.push({ t, kind: 'error', where: k.module, label: label.slice(0, 200) });
+  }
+
+  /**
+   * A supervisor's requests kept for a receiver's full mailbox: a mark when it began and one when it
+   * ended, in the story's words (keptRequestsText), in their own colour on the row of the functions;
+   * the first MAX_KEPT_MARKS only, as for the errors.
+   */
+  private keptMark(t: Ns, k: KnownRecord): void {
+    if (this.keptMarks >= MAX_KEPT_MARKS || this.marks.length >= this.maxMarks) return;
+    const label = keptRequestsText(k);
+    if (label === undefined) return;
+    this.keptMarks++;
+    this.marks.push({ t, kind: 'kept', where: k.module, label: label.slice(0, 200) });
   }
 
   private notableRecord(x: Timed): void {

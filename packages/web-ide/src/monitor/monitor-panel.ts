@@ -5,6 +5,9 @@
  * response-time histogram against CRITICAL_DELAY and PERIOD, deadline misses and overruns, the
  * architecture diagram with active modules and pulsing flows, and the timeline strip.
  *
+ * A supervisor that keeps requests for a receiver's full mailbox says so under its name while it
+ * does (keptRequestsLine).
+ *
  * Live and replay are the same view over a MonitorView (a MonitorModel on the page, or a live run
  * folded in a Web Worker: remote-model.ts); the cursor follows the end (live) or
  * stays where it was put (paused, scrubbed, or played back). Feeding records only marks the view
@@ -20,7 +23,7 @@ import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.
 import { MarksStrip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, flowDropText, fmtT, followButton, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
+import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -362,6 +365,16 @@ export class MonitorPanel {
       setAttr(header, 'title', header.textContent ?? '');
       setAttr(header, 'data-in-model', String(inModel !== false));
       const children: HTMLElement[] = [header];
+      // the receivers whose full mailbox makes it keep requests, while it does: rows by place, not
+      // by name (a forged log may name a new receiver at each streak: the rows stay as few as shown)
+      let i = 0;
+      for (const [receiver, kept] of st?.keptFor ?? []) {
+        const el = this.row(`kept:${sup}:${i++}`, () => h('div', { class: 'monitor-kept' }));
+        setText(el, keptRequestsLine(receiver, kept));
+        setAttr(el, 'title', el.textContent ?? '');
+        setAttr(el, 'data-receiver', receiver);
+        children.push(el);
+      }
       const longest = Math.max(0, ...[...fns.values()].map((rules) => Math.max(0, ...rules.map((r) => r.length))));
       block.style.setProperty('--rule-name-ch', String(Math.min(RULE_NAME_MAX_CH, Math.max(RULE_NAME_MIN_CH, longest + 1))));
       for (const [fn, rules] of fns) {

@@ -47,6 +47,19 @@ export interface SupervisorState {
   /** Modules and event flows this supervisor holds (an event schema it activated), with the rule. */
   heldModules: Map<string, string>;
   heldFlows: Map<string, string>;
+  /**
+   * Receivers whose full mailbox makes it keep its requests (a `requests_kept` record, until its
+   * `requests_kept_end`), keyed by the receiver module's name.
+   */
+  keptFor: Map<string, KeptRequests>;
+}
+
+/** A streak of requests a supervisor keeps for one receiver's full mailbox (docs/runtime-api.md, queued sends). */
+export interface KeptRequests {
+  /** When the supervisor began to keep them (its `requests_kept` record). */
+  since: Ns;
+  /** The first request kept (`STOP`, `SETPARAM`, ...), '' when the record names none. */
+  request: string;
 }
 
 export interface SchemaActivation {
@@ -122,7 +135,11 @@ export interface MonitorState {
   eventFlows: Map<string, FlowCount>;
   /** Lines that are no record (unreadable). */
   unknownLines: number;
-  /** Distinct names folded (supervisors, their functions, rules and holds, schemas, modules, flows): at most MAX_NAMES. */
+  /**
+   * Distinct names folded (supervisors, their functions, rules and holds, schemas, modules, flows),
+   * and the receivers a supervisor keeps requests for now (counted down when it no longer does): at
+   * most MAX_NAMES.
+   */
   names: number;
   /** Records whose name would have gone past MAX_NAMES: not folded (a forged log; a run has far fewer). */
   namesPastBound: number;

@@ -4,7 +4,7 @@
  * without a page (panel-text.test.ts).
  */
 import { readableCause } from '@contract-studio/build-service/trace';
-import { MAX_NAMES, type FlowCount, type RuleState } from './monitor-state.js';
+import { MAX_NAMES, type FlowCount, type KeptRequests, type RuleState } from './monitor-state.js';
 
 /** `+2.010325 s`: a time of the run (ns since its first record). */
 export const fmtT = (ns: number): string => `+${(ns / 1e9).toFixed(6)} s`;
@@ -91,6 +91,14 @@ export function flowDropText(key: string, f: FlowCount): string {
   const consumer = key.slice(key.indexOf('->') + 2).split(':')[0];
   const why = f.dropReason === 'queue full' ? `queue full: ${consumer} does not read it fast enough` : f.dropReason;
   return ` · ${f.dropped} dropped (${why})`;
+}
+
+/**
+ * A supervisor's line for a receiver whose full mailbox makes it keep its requests (while it does):
+ * `keeping requests for VEL: its mailbox is full since +3.510000 s (first: STOP)`.
+ */
+export function keptRequestsLine(receiver: string, k: KeptRequests): string {
+  return `keeping requests for ${receiver}: its mailbox is full since ${fmtT(k.since)}${k.request ? ` (first: ${k.request})` : ''}`;
 }
 
 /**

@@ -137,6 +137,20 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
     check(asked >= 25 && sent + replaced + failed == asked && stayed >= 1 && told == stayed &&
               txt && strstr(txt, "[SKS] SKS: error: SETPARAM request to STK: mailbox full") && !strstr(txt, "SKS did not end"),
           what);
+    /* each streak of kept requests for STK is bracketed, and its end accounts for them as the
+       requests' own records do: the values replaced, the requests failed; the last ends before SKS's exit */
+    int streaks = count_of(sks, ",requests_kept,STK,,0,request=SETPARAM"), ends = count_of(sks, ",requests_kept_end,STK,,0,");
+    long long end_replaced = sum_of_key(sks, ",requests_kept_end,STK,,0,", "replaced"),
+              end_failed = sum_of_key(sks, ",requests_kept_end,STK,,0,", "failed");
+    const char *last_end = NULL;
+    for (const char *p = sks ? strstr(sks, ",requests_kept_end,STK,") : NULL; p; p = strstr(p + 1, ",requests_kept_end,STK,")) last_end = p;
+    snprintf(what, sizeof what,
+             "SKS's streaks of kept requests for STK: %d begun, %d ended, the ends count %lld values replaced (the records "
+             "say %d) and %lld failed (%d), the last before its exit (%s)",
+             streaks, ends, end_replaced, replaced, end_failed, failed, last_end && strstr(last_end, ",SKS,module_exit,") ? "yes" : "no");
+    check(streaks >= 1 && ends == streaks && end_replaced == replaced && end_failed == failed && last_end &&
+              strstr(last_end, ",SKS,module_exit,"),
+          what);
     /* at the stop SKS still kept requests for STK: it tried them 0.5 s more, then ended */
     long long killed = csv_time_of(sks, NULL, ",request_received,contract-launch,,0,KILL", NULL),
               ended = csv_time_of(sks, NULL, ",SKS,module_exit,", NULL);
@@ -241,6 +255,17 @@ void scenario_kept_stop(const char *root, const char *bin, const char *launcher)
     check(kept > 0 && failed > kept && failed - kept >= 1900 * MS && failed - kept < 2500 * MS && mark >= failed, what);
     check(sks && count_of(sks, "in place of ") >= 1 && count_of(sks, ",setparam_sent,AMS,0,") >= 5,
           "P's values filled AMS's mailbox, the later ones replaced the one kept");
+    /* the log said the requests were waiting while they waited: the streak holding the STOP began
+       before it was kept, and did not end before its failure */
+    const char *at = NULL;
+    long long began = -1, ended = -1;
+    for (long long t; (t = csv_time_of(sks, at, ",requests_kept,AMS,,0,request=", &at)) > 0 && t <= kept;) began = t;
+    at = NULL;
+    for (long long t; began > 0 && (t = csv_time_of(sks, at, ",requests_kept_end,AMS,,0,", &at)) > 0;)
+        if (t >= began) { ended = t; break; }
+    snprintf(what, sizeof what, "SKS's records of its requests kept for AMS: the streak with the STOP began %lld ms before it was kept, "
+             "ended %lld ms after it failed", began > 0 ? (kept - began) / MS : -1, ended > 0 ? (ended - failed) / MS : -1);
+    check(began > 0 && ended >= failed, what);
     if (scenario_failed(&s))
         fprintf(stderr, "launcher output (kept-stop scenario):\n%s\nSKS's log:\n%s\n", txt ? txt : "(none)", sks ? sks : "(none)");
     free(sks);

@@ -148,6 +148,17 @@ int lines_with(const char *s, const char *a, const char *b) {
     return n;
 }
 
+long long sum_of_key(const char *s, const char *text, const char *key) {
+    long long sum = 0;
+    size_t klen = strlen(key);
+    for (const char *p = s ? strstr(s, text) : NULL; p; p = strstr(p + 1, text)) {
+        const char *end = strchr(p, '\n');
+        for (const char *k = strstr(p, key); k && (!end || k < end); k = strstr(k + 1, key))
+            if (k[klen] == '=' && (k[-1] == ' ' || k[-1] == ',')) { sum += atoll(k + klen + 1); break; }
+    }
+    return sum;
+}
+
 long long csv_time_of(const char *csv, const char *from, const char *text, const char **at) {
     if (!csv) return -1;
     const char *p = from ? from : csv;

@@ -49,6 +49,8 @@ long long csv_time_of(const char *csv, const char *from, const char *text, const
 int count_of(const char *s, const char *text);
 /** How many lines of s contain both a and b. */
 int lines_with(const char *s, const char *a, const char *b);
+/* The sum of the `key=N` values of the lines of s that hold text (0 for a line without key). */
+long long sum_of_key(const char *s, const char *text, const char *key);
 
 /** What imod.c writes to <out>/<name>.trace. */
 #define TRACE_MAX 256
