@@ -309,6 +309,41 @@ describe('contract trace', () => {
         }
     });
 
+    it('a last line cut inside its detail that still reads as a record (8 fields) is told as cut, kept in the JSON and in a trace file read back', async () => {
+        const cut = mkdtempSync(join(tmpdir(), 'contract-trace-cut8-'));
+        try {
+            const rule = '2001000000,w,CTL,module_started,,,0,pid=41 priority=40';
+            // CTL was killed inside its user record `burst`: the detail lost its end, the line its newline
+            writeFileSync(join(cut, 'CTL_1.csv'), [HEADER, rule, '2002000000,w,CTL,burst,,,0,seq=2046970 padding=xxxxx'].join('\n'));
+            const io = capture(cut);
+            expect(await runCli(['trace', '.'], io)).toBe(0);
+            expect(io.stdout).toMatch(/^\+0\.001000s CTL  burst: seq=2046970 padding=xxxxx \[cut: its log ends inside this line, with no line end; the record may have lost its end/m);
+            expect(io.stdout).toContain('2 records');
+            // a record of a kind the story does not tell is told when cut
+            writeFileSync(join(cut, 'CTL_1.csv'), [HEADER, rule, '2002000000,w,CTL,data_posted,MOT,0,24,to_port=0'].join('\n'));
+            const untold = capture(cut);
+            expect(await runCli(['trace', '.'], untold)).toBe(0);
+            expect(untold.stdout).toMatch(/^\+0\.001000s CTL  data_posted record \[cut: /m);
+            // the same line with its line end is whole: not said
+            writeFileSync(join(cut, 'CTL_1.csv'), [HEADER, rule, '2002000000,w,CTL,burst,,,0,seq=2046970 padding=xxxxx', ''].join('\n'));
+            const whole = capture(cut);
+            expect(await runCli(['trace', '.'], whole)).toBe(0);
+            expect(whole.stdout).not.toContain('[cut:');
+            writeFileSync(join(cut, 'CTL_1.csv'), [HEADER, rule, '2002000000,w,CTL,burst,,,0,seq=2046970 padding=xxxxx'].join('\n'));
+            const json = capture(cut);
+            expect(await runCli(['trace', '.', '--format', 'json'], json)).toBe(0);
+            const lines = json.stdout.trim().split('\n').map((l) => JSON.parse(l) as Record<string, unknown>);
+            expect(lines.map((l) => l['cut'])).toEqual([undefined, true]);
+            writeFileSync(join(cut, 'run.jsonl'), json.stdout);
+            rmSync(join(cut, 'CTL_1.csv'));
+            const back = capture(cut);
+            expect(await runCli(['trace', 'run.jsonl'], back)).toBe(0);
+            expect(back.stdout).toContain('padding=xxxxx [cut: ');
+        } finally {
+            rmSync(cut, { recursive: true, force: true });
+        }
+    });
+
     it('a folder of more logs than a run writes is refused with why, before any is opened', async () => {
         const many = mkdtempSync(join(tmpdir(), 'contract-trace-many-'));
         try {

@@ -25,7 +25,8 @@ const MODULE = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
 
 /** What a JSON line is, read: a record's CSV line, an unreadable line of the logs it was written from (`carried`), a line to skip, or why it is none. */
 export type JsonLineRead =
-    | { csv: string; module: string }
+    /** `cut`: the record was its log's last line, with no line end (TraceRecordBase.cut) */
+    | { csv: string; module: string; cut?: true }
     | { carried: UnknownRecord }
     | { simStart: KnownRecord }
     | { problem: string };
@@ -65,7 +66,8 @@ export function jsonLineToCsv(line: string): JsonLineRead {
     const fields = r['fields'];
     const userEvent = kind === 'user' && typeof fields === 'object' && fields !== null ? (fields as Record<string, unknown>)['event'] : undefined;
     const event = typeof userEvent === 'string' && userEvent ? userEvent : kind;
-    return { csv: `${csvField(monoNs)},${csvField(wall)},${module},${csvField(event)},${csvField(from)},${portText},${sizeText},${csvField(detail)}`, module };
+    const csv = `${csvField(monoNs)},${csvField(wall)},${module},${csvField(event)},${csvField(from)},${portText},${sizeText},${csvField(detail)}`;
+    return r['cut'] === true ? { csv, module, cut: true } : { csv, module };
 }
 
 /**
@@ -80,7 +82,8 @@ export function recordOfJsonLine(file: string, lineNo: number, line: string): Tr
     if ('simStart' in read) return read.simStart;
     if ('carried' in read) return read.carried;
     if ('problem' in read) return { kind: 'unknown', file, line: lineNo, reason: read.problem, text: line.slice(0, 200) };
-    return parseRecordLine(file, lineNo, read.csv);
+    const record = parseRecordLine(file, lineNo, read.csv);
+    return read.cut && record.kind !== 'unknown' ? { ...record, cut: true } : record;
 }
 
 export interface TraceFileLogs {

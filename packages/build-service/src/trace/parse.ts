@@ -123,9 +123,11 @@ function* logFileRecords(file: LogFile): Generator<TraceRecord> {
 /**
  * A file's last line, which has no line end: when it is no record, its reason says why that may
  * be (`4 fields, expected 8 (the file ends inside this line: ...)`): a module killed while writing.
+ * When it reads as a record it is one, marked `cut` (its detail may have lost its end: a record
+ * of 8 fields is no proof of a whole line).
  */
 export function unendedLine(record: TraceRecord): TraceRecord {
-    return record.kind === 'unknown' ? { ...record, reason: `${(record as UnknownRecord).reason}${UNENDED_LINE}` } as TraceRecord : record;
+    return record.kind === 'unknown' ? { ...record, reason: `${(record as UnknownRecord).reason}${UNENDED_LINE}` } as TraceRecord : { ...record, cut: true };
 }
 
 /** What a file's last line without a line end adds to why it is no record (unendedLine, trace files' problems). */

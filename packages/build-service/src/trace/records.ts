@@ -14,6 +14,12 @@ export interface TraceRecordBase {
     port: number | null;
     size: number;
     detail: string;
+    /**
+     * The record is its log's last line and that line has no line end (the runtime writes every
+     * record whole, with its newline): its writer was killed or stopped inside it, or is still
+     * writing it, so its last field may be cut. Read as the line holds it; `contract trace` says so.
+     */
+    cut?: true;
 }
 
 /** A rule of a supervisor function became active or inactive, and why. */

@@ -165,6 +165,9 @@ export function keptRequestsText(k: Pick<KnownRecord, 'kind' | 'peer' | 'fields'
     return `the requests kept for ${peer}'s full mailbox ended${after}${parts.length ? `: ${parts.join(', ')}` : ''}`;
 }
 
+/** What the story adds to a record cut at its log's end (TraceRecordBase.cut). */
+export const CUT_RECORD = ' [cut: its log ends inside this line, with no line end; the record may have lost its end (its module was killed while writing it, or still writes it)]';
+
 /** `+1.250000s` after the first record, `-0.000100s` before it (a record out of its place). */
 function offset(ns: bigint): string {
     const s = (Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6);
@@ -263,8 +266,19 @@ export class StoryTeller {
     /** Schemas past STORY_FOLLOWED: counted in the totals only. */
     private schemasLeftOut = 0;
 
-    /** `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every unreadable line apart. */
+    /**
+     * `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every
+     * unreadable line apart. A record cut at its log's end (`cut`) is told whatever its kind, and
+     * said to be cut.
+     */
     tell(r: TraceRecord): string | undefined {
+        const told = this.tellRecord(r);
+        if (r.kind === 'unknown' || !(r as TraceRecordBase).cut) return told;
+        const k = r as TraceRecordBase & { kind: string };
+        return told ? `${told}${CUT_RECORD}` : `${offset(BigInt(k.monoNs) - (this.t0 ?? 0n))} ${k.module.padEnd(4)} ${k.kind} record${CUT_RECORD}`;
+    }
+
+    private tellRecord(r: TraceRecord): string | undefined {
         countRecord(this.counted, r);
         this.counts.set(r.kind, (this.counts.get(r.kind) ?? 0) + 1);
         this.countSchema(r);

@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, missWaitText, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, CUT_RECORD, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, missWaitText, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -42,6 +42,14 @@ describe('trace record kinds', () => {
 });
 
 describe('reading a log', () => {
+    it('marks a last line with no line end that reads as a record cut (its detail may have lost its end), and tells it so', () => {
+        const text = [CSV_HEADER, '1000,w,CTL,module_started,,,0,pid=4 priority=40', '2000,w,CTL,burst,,,0,seq=20 padding=xx'].join('\n');
+        const records = parseLogFile({ name: 'CTL_1.csv', text });
+        expect(records.map((r) => (r as { cut?: true }).cut)).toEqual([undefined, true]);
+        expect(parseLogFile({ name: 'CTL_1.csv', text: `${text}\n` }).map((r) => (r as { cut?: true }).cut)).toEqual([undefined, undefined]);
+        expect(renderStory(parseTrace([{ name: 'CTL_1.csv', text }]))[1]).toBe(`+0.000001s CTL  burst: seq=20 padding=xx${CUT_RECORD}`);
+    });
+
     it('says of a last line with no line end that is no record that the file ends inside it (a writer stopped mid-line)', () => {
         const rule = '2001000000,w,SUP,sup_rule,,,0,action.FIRST active cause=elapsed=1000000ns';
         const cut = parseLogFile({ name: 'SUP_1.csv', text: `${CSV_HEADER}\n2000000000,w,SUP,sup\n${rule}\n2002000000,w,SUP,super` });
@@ -283,6 +291,7 @@ describe('reading a log', () => {
             '2000,w,MAA,homed,,0,0,',          // port 0 is a port
             '3000,w,MAA,waiting,,,0,for the gripper', // ContractLog(event, "", -1, 0, detail): nothing more
             '4000,w,MAA,sent,SUP,,1,',
+            '',
         ].join('\n');
         expect(renderStory(parseTrace([{ name: 'MAA_1.csv', text }])).slice(0, 4)).toEqual([
             '+0.000000s MAA  gripper_closed: force=12.5 N (peer MAB, port 2, 16 bytes)',
@@ -304,6 +313,7 @@ describe('reading a log', () => {
             '7500,w,ORD,scheduler,,,0,missed ticks: localisationLoop cycle ended after 4 missed ticks',
             '8000,w,ORD,ord_complete,,,0,schema=localisationLoop cycle=13 tick_ns=0 response_ns=900',
             '9000,w,ORD,ord_complete,,,0,schema=ALPHA cycle=0 tick_ns=0 response_ns=-5',
+            '',
         ].join('\n');
         const story = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]));
         expect(story.slice(-4)).toEqual([
@@ -351,6 +361,7 @@ describe('reading a log', () => {
             '3030,w,MIS,module_hold,GCS,,0,cannot record the hold in the run directory',
             '3040,w,MIS,supervisor,GCS,,0,undo: stop module GCS',
             '3050,w,MIS,module_hold,GCS,,0,last hold dropped (stop failed)',
+            '',
         ].join('\n');
         const story = renderStory(parseTrace([{ name: 'MIS_1.csv', text }])).slice(0, -1).map((l) => l.slice(11));
         expect(story).toEqual([
@@ -383,6 +394,7 @@ describe('reading a log', () => {
             '1010,w,SUB,module_hold,GCS,,0,hold taken (started it)',
             '1020,w,SUA,supervisor,,,0,rule f.R active',
             '1030,w,SUA,module_hold,GCS,,0,hold taken (started it)',
+            '',
         ].join('\n') }])).slice(0, -1).map((l) => l.slice(11));
         expect(two).toEqual(['SUA  start module GCS (priority 30)', 'SUB  module GCS: hold taken (started it)', 'SUA  module GCS: hold taken (started it)']);
     });
@@ -400,6 +412,7 @@ describe('reading a log', () => {
             '2200,w,STA,supervisor,contract-launch,,0,refused: start request from contract-launch: STA.station has no parameter \'sped\'',
             '2300,w,LIN,supervisor,,,0,activation #3 of STA.station refused: its undo stops nothing',
             '2400,w,LIN,supervisor,,,0,launch the missiles',
+            '',
         ].join('\n');
         expect(renderStory(parseTrace([{ name: 'LIN_1.csv', text }])).slice(0, -1)).toEqual([
             '+0.000000s LIN  activate schema sorting (event schema)',
@@ -419,11 +432,13 @@ describe('reading a log', () => {
             '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (conveyor)',
             '2503000000,w,ORD,scheduler,,,0,stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+            '',
         ].join('\n') }]));
         // a crash the runtime's signal handler wrote (module_crashed): told as the crash, and a later stuck report says it
         const segv = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
             '1500000000,w,SPC,module_crashed,,,0,signal 11 (SIGSEGV) records=42',
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+            '',
         ].join('\n') }]));
         expect(segv.slice(0, 2)).toEqual([
             '+0.000000s SPC  crashed: signal 11 (SIGSEGV)',
@@ -434,6 +449,7 @@ describe('reading a log', () => {
             '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',
             '1600000000,w,SPC,module_started,,,0,pid=7 priority=84',
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
+            '',
         ].join('\n') }]));
         expect(again.filter((l) => l.includes('stuck:'))).toEqual(['+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)']);
         expect(crashed.filter((l) => l.includes('stuck:'))).toEqual([
@@ -453,6 +469,7 @@ describe('reading a log', () => {
             '5000000,w,TEL,run_started,,,0,activation=2',                 // a control tool's START
             '6000000,w,TEL,run_finished,,,0,activation=2',
             '7000000,w,TEL,run_finished,,,0,activation=3',               // no start read: not told
+            '',
         ].join('\n') }]));
         expect(story.slice(0, -1)).toEqual([
             '+0.000200s MAB  run #1 ended by its own code (started by SUP)',
@@ -468,6 +485,7 @@ describe('reading a log', () => {
             '3000000,w,CAM,data_dropped,LOG,0,24,to_port=2 queue full',      // another flow of the same port
             '4000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',
             '5000000,w,GPS,data_dropped,NAV,1,16,to_port=3 Connection refused',
+            '',
         ].join('\n') }]));
         expect(story).toEqual([
             '+0.001000s CAM  data CAM:0 -> SRT:0 dropped: queue full (SRT does not read its input :0 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
@@ -492,6 +510,7 @@ describe('reading a log', () => {
             '2100000000,w,ORD,scheduler,,,0,cycle of pick resumed',
             '2100000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=0 tick_ns=1017000000 release_ns=2100000000 release=22',
             '2130000000,w,ORD,ord_deadline_miss,,,0,schema=pick cycle=0 tick_ns=1017000000',
+            '',
         ].join('\n');
         const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]));
         expect(told.filter((l) => / ORD {2}(deadline|cycle|stuck)/.test(l))).toEqual([
@@ -513,6 +532,7 @@ describe('reading a log', () => {
             '1600000000,w,VEL,module_started,,,0,pid=9 priority=84',
             '1700000000,w,ORD,scheduler,,,0,cycle of loop held: VEL still runs a release of an earlier activation',
             '1710000000,w,ORD,ord_deadline_miss,,,0,schema=loop cycle=0 tick_ns=1700000000',
+            '',
         ].join('\n') }]));
         expect(dead.filter((l) => / ORD {2}(deadline|cycle|stuck)/.test(l))).toEqual([
             '+0.000000s ORD  cycle of loop held: VEL still runs a release of an earlier activation',
@@ -534,6 +554,7 @@ describe('reading a log', () => {
             '5000,w,ORD,scheduler,,,0,ignored: GRP finished outside a cycle (release #22 is not outstanding)',
             '6000,w,ORD,scheduler,,,0,"warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)"',
             '7000,w,ORD,scheduler,,,0,reboot the drone',
+            '',
         ].join('\n') }]));
         expect(ord.slice(0, -1)).toEqual([
             '+0.000000s ORD  overrun: alt cycle still running, release skipped',
@@ -552,6 +573,7 @@ describe('reading a log', () => {
             '3001600000,w,ORD,ord_deadline_miss,,,0,schema=conveyor cycle=66 tick_ns=2986600000',
             '3020000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=67 tick_ns=3006600000 release_ns=3006600500 release=302',
             '3021700000,w,ORD,ord_deadline_miss,,,0,schema=conveyor cycle=67 tick_ns=3006600000',
+            '',
         ].join('\n') }]));
         expect(late.filter((l) => l.includes(' deadline miss ('))).toEqual([
             '+0.001600s ORD  deadline miss (ORD:0): conveyor cycle 66 (not finished: ENC, SPC; ORD released the cycle 13.4 ms after its tick)',
@@ -565,7 +587,7 @@ describe('reading a log', () => {
 
     it('tells an error as an error, and a request to a module gone while the launcher stopped the run as such', () => {
         const text = [CSV_HEADER, '1000000000,w,OBS,error,,,0,input data port 0: dropped a malformed datagram of 3 bytes',
-            '2000000000,w,OBS,error,,,0,EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)'].join('\n');
+            '2000000000,w,OBS,error,,,0,EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)', ''].join('\n');
         expect(renderStory(parseTrace([{ name: 'OBS_1.csv', text }])).slice(0, 2)).toEqual([
             '+0.000000s OBS  error: input data port 0: dropped a malformed datagram of 3 bytes',
             '+1.000000s OBS  while the run stopped: EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)',
@@ -591,6 +613,7 @@ describe("a supervisor's requests kept for a full mailbox", () => {
             '9000000000,w,SUP,requests_kept,GRP,,0,',
             '9000000000,w,SUP,requests_kept_end,GRP,,0,sent=0 failed=0 replaced=0 kept_ns=soon',
             '9100000000,w,SUP,module_exit,,,0,status=0 records=9',
+            '',
         ].join('\n');
         expect(renderStory(parseTrace([{ name: 'SUP_1.csv', text }])).slice(0, -1)).toEqual([
             "+0.000000s SUP  VEL's mailbox is full: its STOP request is kept (tried again every 5 ms, for up to 2 s)",
