@@ -105,12 +105,33 @@ describe('RunIssues', () => {
     memory.line('module MSC (pid 29) died by signal 9 (Killed)', 'launcher');
     memory.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
     expect(memory.all.map((i) => i.message)).toEqual([expect.stringMatching(/^the run was stopped by the memory limit 512 MiB.* \(the kernel killed MSC first: the module using the most memory\)$/)]);
+    expect(memory.all.map((i) => i.module)).toEqual(['MSC']);
     r.outputTruncated('stdout', 1024 * 1024);
     expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
       ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],
       ['log-lost', 'C_1.csv', 'log C_1.csv was not collected: more than 256 files'],
       ['limit', null, 'the run was stopped by the run time limit 60 s'],
-      ['output-truncated', null, "the run's stdout went past the output limit (1 MiB per stream): later lines were not kept"],
+      ['output-truncated', null, "the run's stdout went past the output limit (1 MiB per stream) (MSA wrote 100 % of the run's output lines until then): later lines were not kept"],
     ]);
+  });
+
+  test('names the module that filled the output when it wrote half of it or more; not the launcher, not a module of a small share', () => {
+    const flood = new RunIssues();
+    flood.line('module CTL (pid 9) started', 'launcher');
+    for (let i = 0; i < 30; i++) flood.line(`CTL flood line ${i}`, 'CTL');
+    flood.line('ok', 'ENC');
+    flood.outputTruncated('stdout', 1024 * 1024);
+    expect(flood.all.map((i) => [i.module, i.message])).toEqual([
+      ['CTL', expect.stringMatching(/^the run's stdout went past the output limit \(1 MiB per stream\) \(CTL wrote 9\d % of the run's output lines until then\): later lines were not kept$/)],
+    ]);
+    const launcher = new RunIssues();
+    for (let i = 0; i < 30; i++) launcher.line(`a long line of the launcher's own, number ${i}`, 'launcher');
+    launcher.line('x', 'CTL');
+    launcher.outputTruncated('stderr', 1024);
+    const shared = new RunIssues();
+    for (let i = 0; i < 30; i++) ['A', 'B', 'C'].forEach((m) => shared.line(`line ${i}`, m));
+    shared.outputTruncated('stdout', 1024);
+    expect([...launcher.all, ...shared.all].map((i) => i.module)).toEqual([undefined, undefined]);
+    expect(shared.all[0]!.message).toBe("the run's stdout went past the output limit (1 KiB per stream): later lines were not kept");
   });
 });

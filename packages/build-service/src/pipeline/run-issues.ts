@@ -13,7 +13,7 @@ export interface RunIssue {
   kind: RunIssueKind;
   /** One sentence for people. */
   message: string;
-  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor), or the log file (log-capped, log-lost). */
+  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor; limit: the module the kernel killed first at the memory limit; output-truncated: the module that wrote most of the output), or the log file (log-capped, log-lost). */
   module?: string;
   file?: string;
 }
@@ -42,6 +42,9 @@ const ENDED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0 befo
 /** contract-launch's line for a module killed by SIGKILL it did not send (the kernel's OOM killer, at the memory limit). */
 const KILLED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) died by signal 9 \(Killed\)/;
 
+/** Sources of output lines counted apart (a run has far fewer modules; a hostile tag stream more). */
+const MAX_SOURCES = 256;
+
 export class RunIssues {
   private readonly list: RunIssue[] = [];
   private readonly stuckSeen = new Set<string>();
@@ -49,6 +52,8 @@ export class RunIssues {
   private readonly killed: string[] = [];
   /** Modules the launcher found not ready (at most 16): their KILL unanswered at the stop is not told again. */
   private readonly notReady = new Set<string>();
+  /** Characters of output lines per source (at most MAX_SOURCES: a module tag, `launcher`, `run`): who filled the output. */
+  private readonly outputChars = new Map<string, number>();
 
   get all(): readonly RunIssue[] {
     return this.list;
@@ -59,6 +64,9 @@ export class RunIssues {
    * scheduler's name); `source`: `launcher` for contract-launch's own lines.
    */
   line(text: string, source?: string): void {
+    if (source !== undefined && (this.outputChars.has(source) || this.outputChars.size < MAX_SOURCES)) {
+      this.outputChars.set(source, (this.outputChars.get(source) ?? 0) + text.length + 1);
+    }
     const m = STUCK_LINE.exec(text);
     if (m) this.stuck(m[2]!, m[3]!, m[1]!);
     if (source === 'launcher') this.moduleEnd(text);
@@ -84,11 +92,25 @@ export class RunIssues {
   limit(hit: LimitHit): void {
     // at the memory limit the kernel kills the process using the most memory first: the module to look at
     const first = hit.name === 'memory' && this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
-    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}` });
+    const module = hit.name === 'memory' ? this.killed[0] : undefined;
+    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}`, ...(module ? { module } : {}) });
   }
 
+  /** The output went past its cap: said with the module that wrote most of it (its issue's `module`), when one did. */
   outputTruncated(stream: 'stdout' | 'stderr', bytes: number): void {
-    this.list.push({ kind: 'output-truncated', message: `the run's ${stream} went past the output limit (${formatBytes(bytes)} per stream): later lines were not kept` });
+    const top = this.topModuleOutput();
+    const who = top ? ` (${top.module} wrote ${top.percent} % of the run's output lines until then)` : '';
+    this.list.push({ kind: 'output-truncated', message: `the run's ${stream} went past the output limit (${formatBytes(bytes)} per stream)${who}: later lines were not kept`, ...(top ? { module: top.module } : {}) });
+  }
+
+  /** The module (not the launcher's or make's lines) that wrote the most output so far, with its share, when it wrote half of it or more. */
+  private topModuleOutput(): { module: string; percent: number } | undefined {
+    let all = 0, best: string | undefined, most = 0;
+    for (const [source, chars] of this.outputChars) {
+      all += chars;
+      if (source !== 'launcher' && source !== 'run' && source !== 'service' && chars > most) [best, most] = [source, chars];
+    }
+    return best && most * 2 >= all ? { module: best, percent: Math.floor((most * 100) / all) } : undefined;
   }
 
   artifacts(a: RunArtifacts): void {
