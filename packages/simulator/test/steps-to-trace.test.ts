@@ -56,6 +56,7 @@ const RUN_LOG = [
     '2000000,w,MIS,module_hold,GCS,,0,last hold dropped (stopped)',
     '2000000,w,MIS,supervisor,REC,,0,undo: stop module REC',
     '2000000,w,MIS,module_hold,REC,,0,last hold dropped (stopped)',
+    '',
 ].join('\n');
 
 const row = (r: TraceRecord) => { const k = r as KnownRecord; return `${k.kind} ${k.module} ${k.peer} ${k.detail}`; };
@@ -129,7 +130,7 @@ describe('stepsToTrace: a supervisor\'s actions as a run logs them', () => {
         ]);
         const runLog = ['mono_ns,wall_time,module,event,peer,port,size,detail',
             '1000000,w,ORD,scheduler,CTL,,0,parameterize CTL:0 setpoint (8 bytes) = 3', '1000000,w,ORD,scheduler,ALT,,0,connect ALT:0 -> CTL:0 * 1',
-            '2000000,w,ORD,scheduler,ALT,,0,disconnect ALT:0 -> CTL:0'].join('\n');
+            '2000000,w,ORD,scheduler,ALT,,0,disconnect ALT:0 -> CTL:0', ''].join('\n');
         const told = (records: TraceRecord[]) => renderStory(records).slice(0, -1).map((l) => l.slice(11)).filter((l) => l.startsWith('ORD '));
         expect(told(stepsToTrace(steps))).toEqual(told(parseTrace([{ name: 'ORD_1.csv', text: runLog }])));
         expect(told(parseTrace([{ name: 'ORD_1.csv', text: runLog }]))).toEqual([

@@ -272,7 +272,12 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(system).toEqual([]);
     for (const [name, path] of [['A_1.csv', a], ['B_1.csv', b]] as const) {
       const text = readFileSync(path, 'utf8');
-      const want = parseLogFile({ name, text });
+      // a file's last line without its line end is a record marked cut (parse.ts unendedLine); the
+      // live channel sends its text as any line, unmarked (the Monitor shows it as any record)
+      const want = parseLogFile({ name, text }).map((r) => {
+        const { cut: _cut, ...rest } = r as typeof r & { cut?: true };
+        return rest;
+      });
       const got = traced.filter((l) => l.file === name);
       expect(got.map((l) => parseRecordLine(name, l.line, l.text))).toEqual(want);
     }
