@@ -211,6 +211,26 @@ export const CANCEL_GRACE_MS = 1000;
  */
 export const STOP_BUDGET_MARGIN_MS = 100;
 
+/** The runtime's own bound of a module's CSV log (runtime/src/csvlog.c, CONTRACT_LOG_MAX_BYTES' default). */
+export const RUNTIME_LOG_MAX_BYTES = 256 * 1024 * 1024;
+/**
+ * The least CONTRACT_LOG_MAX_BYTES the service gives a run: room for about a thousand records (the
+ * runtime refuses a bound under 4 records of 1280 bytes, and would then use its 256 MiB default).
+ */
+export const RUN_LOG_MIN_BYTES = 64 * 1024;
+
+/**
+ * CONTRACT_LOG_MAX_BYTES of a run (docs/sandbox.md "The disk limit"): 3/4 of the room left in its
+ * work dir when the run starts (`roomBytes`: the disk limit less what the build left there), at
+ * most the runtime's default and at least RUN_LOG_MIN_BYTES. A module that floods its CSV log is
+ * then capped (a `log-capped` record, the run goes on) before the disk limit stops the whole run;
+ * the last quarter keeps room for the other modules' logs.
+ */
+export function runLogMaxBytes(roomBytes: number): number {
+  const room = Number.isFinite(roomBytes) ? Math.max(0, roomBytes) : 0;
+  return Math.max(RUN_LOG_MIN_BYTES, Math.min(RUNTIME_LOG_MAX_BYTES, Math.floor((room * 3) / 4)));
+}
+
 export type LimitName = keyof Limits;
 
 export const LIMIT_NAMES: readonly LimitName[] = [

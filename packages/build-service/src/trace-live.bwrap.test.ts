@@ -190,3 +190,29 @@ test('the run time limit stops an architecture that runs on (no duration) as at 
   expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
   await logsEndingWithExit(id, job);
 }, 240_000);
+
+test('the memory limit hit mid-run stops the architecture as at the end of a run: every module the kernel left writes its last records and its exit record', async () => {
+  // MSC's first release allocates without end: at the job's memory limit the kernel kills it (the
+  // process using the most memory); the service then asks the launcher to stop the rest
+  const msc = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
+  const leak = '    for (;;) { char *p = malloc((size_t)16 << 20); if (p) memset(p, 1, (size_t)16 << 20); }';
+  const files = withRegion(withRegion(await tutorialFiles(), msc, 'protect_exec_MSC', leak, true), msc, 'protect_additional_import_MSC', '#include <stdlib.h>\n#include <string.h>', true);
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 20, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  const lines = (await readEvents(served.url, id)).filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  const job = await getJob(served.url, id);
+  expect(job.result.message, lines.slice(-30).join('\n')).toBe('killed: memory limit 512 MiB');
+  expect(lines).toContain('memory limit 512 MiB reached: stopping the architecture as at the end of a run (what still runs after 1000 ms is killed)');
+  expect(lines.some((l) => /^module MSC \(pid \d+\) died by signal 9 \(Killed\)/.test(l)), lines.slice(-30).join('\n')).toBe(true);
+  expect(job.result.issues).toEqual(expect.arrayContaining([expect.objectContaining({ kind: 'limit', module: 'MSC' })]));
+  // the 8 others stopped as at a run's end: each log ends with its exit record; MSC's does not
+  const listing = job.artifacts as { files: { name: string }[] };
+  expect(listing.files).toHaveLength(9);
+  for (const f of listing.files) {
+    const text = await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
+    const last = parseLogFile({ name: f.name, text }).at(-1)?.kind;
+    if (f.name.startsWith('MSC_')) expect(last, f.name).not.toBe('module_exit');
+    else expect(last, `${f.name}\n${lines.slice(-30).join('\n')}`).toBe('module_exit');
+  }
+}, 240_000);

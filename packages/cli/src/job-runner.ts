@@ -110,6 +110,25 @@ export interface RunRequest {
     readyTimeout?: number;
     cpus?: string;
     realtime?: boolean;
+    /** --run-limit: the run step's wall time limit in seconds (default: cliLimits). */
+    runLimit?: number;
+}
+
+/** The build step's wall time limit of `contract build` and `contract run` (the service's default is 120 s). */
+export const CLI_BUILD_SECONDS = 600;
+/** Room the CLI's default run time limit keeps past the duration, to start and stop the architecture. */
+export const CLI_RUN_ROOM_SECONDS = 60;
+
+/**
+ * The time limits the CLI gives its job (packages/cli/README.md, "Limits"): the build gets CLI_BUILD_SECONDS
+ * (a cold build of a big project on a slow runner); the run, `--run-limit` when given, else its
+ * duration (default 10 s), plus the wait for the modules' inits past the launcher's default 10 s,
+ * plus CLI_RUN_ROOM_SECONDS: the run lasts as long as asked. The other limits are the service's
+ * defaults (docs/sandbox.md "Limits").
+ */
+export function cliLimits(request: RunRequest): { runSeconds: number; buildSeconds: number } {
+    const runSeconds = request.runLimit ?? Math.ceil((request.duration ?? 10) + Math.max(0, (request.readyTimeout ?? 10) - 10) + CLI_RUN_ROOM_SECONDS);
+    return { runSeconds, buildSeconds: CLI_BUILD_SECONDS };
 }
 
 /**
@@ -142,8 +161,6 @@ export async function runJob(
     const refused = prepareCacheDir(cache.dir, process.getuid?.() === 0 && opts.sandbox !== 'docker');
     if (refused) return { error: refused, exitCode: EXIT_ENVIRONMENT };
     if (opts.verbose && opts.format === 'text') io.err(`build cache: ${cache.dir} (${cache.source})\n`);
-    // the run's time: its duration, the wait for the modules' inits past the launcher's default 10 s, and room to start and stop
-    const runSeconds = Math.ceil((request.duration ?? 10) + Math.max(0, (request.readyTimeout ?? 10) - 10) + 60);
     const service = new JobService({
         sandbox: opts.sandbox,
         concurrency: 1,
@@ -151,7 +168,7 @@ export async function runJob(
         projectRoots: [opts.dir],
         cacheDir: cache.dir,
         persistentWorkspaces: true,
-        limits: { runSeconds, buildSeconds: 600 },
+        limits: cliLimits(request),
         runtimeSource: runtime,
     });
     let job: Job | undefined;
@@ -211,6 +228,8 @@ const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
 /** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
 /** The service's line when a run's stdout or stderr went past its cap (job.ts). */
 const OUTPUT_TRUNCATED_LINE = /^\[output truncated: (stdout|stderr) limit .* reached\]$/;
+/** The service's line when a run's duration was shortened to fit its run time limit (job.ts). */
+const DURATION_CAPPED_LINE = /^duration \S+ s capped to \S+ s: the run time limit is /;
 
 /** Keeps `e` in `tail` (the last BUILD_TAIL_LINES) when it is a line of the build that says what failed. */
 export function noteBuildErrorLine(tail: string[], e: JobEvent): void {
@@ -246,6 +265,11 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             return;
         }
         if (opts.format !== 'text') return;
+        // a --duration that does not fit in --run-limit: the service shortens it, said (never silently)
+        if (e.step === 'run' && e.source === 'service' && DURATION_CAPPED_LINE.test(e.line) && !opts.verbose && !opts.progress) {
+            io.err(`${e.line}\n`);
+            return;
+        }
         // the run's output cut at its cap: said where it was cut, in the same stream (the modules' lines go on in their CSV logs)
         if (e.step === 'run' && e.source === 'service' && OUTPUT_TRUNCATED_LINE.test(e.line)) {
             io.out(`${e.line.slice(0, -1)}: later lines of the run are not shown; the CSV logs and --trace are whole]\n`);
@@ -354,7 +378,11 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
         // nothing gcc or ld reported: make's and the tools' error lines say why (the assembler's, a tool killed)
         io.err(`no compiler or linker error was reported; the build's last error lines:\n${outcome.buildTail.map((l) => `  | ${safeName(l.length > 500 ? `${l.slice(0, 500)}…` : l)}\n`).join('')}`);
     }
-    if (!result.ok && result.step === 'build' && !buildErrors && job.status !== 'cancelled' && !result.limitHit) io.err(`fix what the build's error lines say, then build again; --verbose shows every build line\n`);
-    else if (!result.ok && result.step === 'build') io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))}), then build again; --verbose shows every build line\n`);
+    if (!result.ok && result.step === 'build' && job.status !== 'cancelled') {
+        if (buildErrors) io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))}), then build again; --verbose shows every build line\n`);
+        // a limit stopped the build: the status line names it (and, for the disk, what filled it); no compiler error to fix
+        else if (result.limitHit) io.err(`the build was stopped by a sandbox limit, not by a compiler error (docs/sandbox.md "Limits"); --verbose shows every build line\n`);
+        else io.err(`fix what the build's error lines say, then build again; --verbose shows every build line\n`);
+    }
     return exitCodeOf(result, job);
 }

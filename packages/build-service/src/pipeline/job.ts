@@ -6,13 +6,14 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, SERVICE_BOUNDS } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogMaxBytes, RUNTIME_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
+import { workDiskState } from '../sandbox/work-disk.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
 import { hostWorkTreeDigest } from './work-tree-digest.js';
 import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
-import { collectRunArtifacts, hostWorkDirReader, type Artifact, type RunArtifacts } from './artifacts.js';
+import { collectRunArtifacts, hostWorkDirReader, LOG_DIR, RUN_DIR, type Artifact, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
@@ -273,6 +274,17 @@ export class Job {
         await this.orCancel(this.checkBuildOutputs(ctx.sandbox, ws, builtWith));
         this.timed('prepare', 'work tree check (digest)', t);
       }
+      if (!ctx.sandbox.readWorkDirs) {
+        // a kept work tree still holds the logs of earlier runs, collected by their own jobs (and
+        // saved by the CLI into the project): removed when any job starts, so that they count
+        // neither against this job's disk limit (a build step blamed for a log it never wrote)
+        // nor among its run's logs. No job process lives now (the workspace lock is held);
+        // rm -rf --one-file-system never follows what a job left there.
+        const tl = Date.now();
+        await removeTreeNoFollow(posix.join(ws.workDir, LOG_DIR));
+        await removeTreeNoFollow(posix.join(ws.workDir, RUN_DIR));
+        this.timed('prepare', 'earlier run logs removed', tl);
+      }
       t = Date.now();
       const prep = await this.orCancel(
         prepareWorkspace(ws, this.request.project, this.request.kind, this.request.limits, (l) => this.system('prepare', l), this.cancelled, ctx.generated ?? undefined),
@@ -342,14 +354,6 @@ export class Job {
 
       step = 'run';
       this.setStatus('running', 'run');
-      if (!ctx.sandbox.readWorkDirs) {
-        // a kept work tree still holds the logs of earlier runs: this run's logs only are collected.
-        // No job process lives now; rm -rf --one-file-system never follows what the job left there.
-        const tl = Date.now();
-        await removeTreeNoFollow(posix.join(ws.workDir, 'logs'));
-        await removeTreeNoFollow(posix.join(ws.workDir, 'run'));
-        this.timed('run', 'earlier run logs removed', tl);
-      }
       const runVars = [...vars, `RUN_DIR=${posix.join(work, 'run')}`, `LOG_DIR=${posix.join(work, 'logs')}`];
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
@@ -357,6 +361,9 @@ export class Job {
         this.system('run', `duration ${this.request.durationAsked} s capped to ${this.request.duration} s: the run time limit is ${this.request.limits.runSeconds} s, of which ${this.request.limits.runSeconds - this.request.duration!} s are kept to start and stop the architecture${this.request.readyTimeout !== undefined && this.request.readyTimeout > DEFAULT_READY_TIMEOUT_SECONDS ? ` (its modules' inits may take ${this.request.readyTimeout} s)` : ''}`);
       if (this.request.readyTimeout !== undefined) runVars.push(`READY_TIMEOUT=${this.request.readyTimeout}`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
+      // each module's CSV log is capped before it can fill the work dir (the disk limit would stop the
+      // whole run); a plain Makefile project has no runtime to read it
+      const logMaxBytes = this.request.kind === 'cactal' ? await this.runLogBound(ctx.sandbox, ws.workDir) : null;
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
       // a run pinned to CPUs has them to itself: the service's threads (the channel's work) keep off them
@@ -375,6 +382,7 @@ export class Job {
         const runEnv: Record<string, string> = {
           CONTRACT_STOP_BUDGET_MS: String(CANCEL_GRACE_MS - STOP_BUDGET_MARGIN_MS),
           CONTRACT_END_BY_S: String(longestDuration(this.request.limits.runSeconds)),
+          ...(logMaxBytes !== null ? { CONTRACT_LOG_MAX_BYTES: String(logMaxBytes) } : {}),
           ...(tail ? { CONTRACT_LOG_MARK: '1' } : {}),
         };
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
@@ -454,6 +462,41 @@ export class Job {
       this.emitEnd();
       this.finishedSignal();
     }
+  }
+
+  /**
+   * The run's CONTRACT_LOG_MAX_BYTES (limits.ts runLogMaxBytes): 3/4 of the room its work dir has
+   * left now (the build step ended, the earlier runs' logs are gone), said in one line. The room is
+   * the tmpfs's own free count (statfs) when the work dir is one, else the disk limit less the
+   * regular files' sizes (find, on the host or in the sandbox); the whole limit when neither answers.
+   * No job process runs now. Never throws.
+   */
+  private async runLogBound(sandbox: Sandbox, workDir: string): Promise<number> {
+    const t0 = Date.now();
+    const limit = workDiskBytes(this.request.limits);
+    let room: number | null = null;
+    try {
+      const disk = sandbox.readWorkDirs ? null : await workDiskState(workDir);
+      if (disk) room = Math.min(disk.freeBytes, limit);
+      else {
+        const usage = await (sandbox.workUsage ? sandbox.workUsage(workDir) : hostWorkUsage(workDir));
+        if (usage && !usage.partial) room = Math.max(0, limit - usage.totalBytes);
+      }
+    } catch {
+      room = null;
+    }
+    const bytes = runLogMaxBytes(room ?? limit);
+    this.timed('run', 'work dir room (the CSV log bound)', t0);
+    const left = room === null ? `what the work dir holds could not be measured (its disk limit: ${formatBytes(limit)})` : `the work dir has ${formatBytes(room)} left of its ${formatBytes(limit)} disk limit`;
+    const why = bytes === RUNTIME_LOG_MAX_BYTES
+      ? `the runtime's default: ${left}`
+      : bytes === RUN_LOG_MIN_BYTES
+        ? `the least the service gives: ${left}`
+        : room === null
+          ? `3/4 of the disk limit: ${left}`
+          : `3/4 of the ${formatBytes(room)} the work dir has left of its ${formatBytes(limit)} disk limit`;
+    this.system('run', `CSV logs capped at ${formatBytes(bytes)} per module (CONTRACT_LOG_MAX_BYTES: ${why}); a module's log past it ends with a log-capped record and the run goes on`);
+    return bytes;
   }
 
   private workTreeDigest(sandbox: Sandbox, ws: Workspace): Promise<string | null> {
@@ -580,6 +623,13 @@ export class Job {
       runtimeDir,
       owner: ws.owner,
       ...(step === 'run' && this.request.realtime ? { realtime: true } : {}),
+      // a limit hit during the run stops the architecture as Stop does (every module still running
+      // writes its last records), then kills; a build is killed at once
+      ...(step === 'run' ? { stopOnLimit: {
+        processName: LAUNCHER_PROCESS_NAME,
+        graceMs: CANCEL_GRACE_MS,
+        stopping: (hit: LimitHit) => this.system('run', `${describeLimitHit(hit)} reached: stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`),
+      } } : {}),
     });
     this.current = proc;
     this.currentStep = step;

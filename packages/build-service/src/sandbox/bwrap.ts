@@ -90,7 +90,8 @@ export class BwrapSandbox implements Sandbox {
       const choice = cgroupChoice();
       if (choice.kind !== 'none') {
         try {
-          cgroup = await createJobCgroup(choice, jobCgroupName(`contract-${cmd.name}`), memoryBytes(cmd.limits), cmd.limits.processes);
+          // a run stops its modules at an OOM kill (stopOnLimit): only the process the kernel picks is killed by it
+          cgroup = await createJobCgroup(choice, jobCgroupName(`contract-${cmd.name}`), memoryBytes(cmd.limits), cmd.limits.processes, undefined, !cmd.stopOnLimit);
         } catch (e) {
           cgroupError = (e as Error).message;
         }
@@ -181,6 +182,7 @@ export class BwrapSandbox implements Sandbox {
         await realtime?.cgroup?.destroy();
       } : undefined,
       ...(disk ? { workDisk: { dir: cmd.workDir, bytes: disk.sizeBytes } } : {}),
+      ...(cmd.stopOnLimit ? { stopOnLimit: cmd.stopOnLimit } : {}),
     });
   }
 }

@@ -24,13 +24,18 @@ export function cgroupChoice(): CgroupChoice {
   return cached;
 }
 
-/** A job step's cgroup under the chosen hierarchy; throws with the reason when it cannot be made. */
-export async function createJobCgroup(choice: CgroupChoice, name: string, memoryBytes: number, maxProcesses: number, paths: CgroupV2Paths = REAL_PATHS): Promise<LimitCgroup> {
+/**
+ * A job step's cgroup under the chosen hierarchy; throws with the reason when it cannot be made.
+ * `oomGroup` (cgroup v2): an OOM kill takes every process of the step at once (a build); without
+ * it the kernel kills the process using the most memory, as cgroup v1 does, and the service stops
+ * the rest (a run: its launcher stops the modules, SandboxCommand.stopOnLimit).
+ */
+export async function createJobCgroup(choice: CgroupChoice, name: string, memoryBytes: number, maxProcesses: number, paths: CgroupV2Paths = REAL_PATHS, oomGroup = true): Promise<LimitCgroup> {
   if (choice.kind === 'cgroup-v1') return JobCgroup.create(name, memoryBytes, maxProcesses);
   if (choice.kind === 'cgroup-v2') {
     v2Ready ??= enableV2Controllers(choice.dir, paths);
     await v2Ready;
-    return JobCgroupV2.create(choice.dir, name, memoryBytes, maxProcesses);
+    return JobCgroupV2.create(choice.dir, name, memoryBytes, maxProcesses, oomGroup);
   }
   throw new Error(choice.reason);
 }

@@ -8,6 +8,24 @@ import { join } from 'node:path';
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
+/**
+ * The first `maxBytes` of a small cgroup file (a counter file: memory.events, pids.events, ...), ''
+ * when it is gone or unreadable: one bounded read, whatever the file claims to hold.
+ */
+export async function readSmallFile(path: string, maxBytes = 4096): Promise<string> {
+  let fh: fsp.FileHandle | undefined;
+  try {
+    fh = await fsp.open(path, 'r');
+    const buf = Buffer.alloc(maxBytes);
+    const { bytesRead } = await fh.read(buf, 0, maxBytes, 0);
+    return buf.subarray(0, bytesRead).toString('utf8');
+  } catch {
+    return '';
+  } finally {
+    await fh?.close().catch(() => {});
+  }
+}
+
 /** The pids in `<dir>/cgroup.procs` (none when the folder is gone or unreadable). */
 export async function cgroupPids(dir: string): Promise<number[]> {
   const text = await fsp.readFile(join(dir, 'cgroup.procs'), 'utf8').catch(() => '');

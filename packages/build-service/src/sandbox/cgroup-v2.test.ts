@@ -86,6 +86,9 @@ describe('enableV2Controllers and JobCgroupV2', () => {
     expect(readFileSync(join(dir, 'memory.oom.group'), 'utf8')).toBe('1');
     expect(cg.mechanism).toBe('cgroup-v2');
     expect(cg.procsFiles).toEqual([join(dir, 'cgroup.procs')]);
+    // a run's: the kernel kills one process at an OOM, the run's launcher stops the others
+    await createJobCgroup({ kind: 'cgroup-v2', dir: m.own }, 'contract-j1-run', 512 * 1024 * 1024, 256, m.paths, false);
+    expect(readFileSync(join(m.own, 'contract-j1-run', 'memory.oom.group'), 'utf8')).toBe('0');
   });
 
   test('controllers already enabled: nothing moves', async () => {

@@ -11,7 +11,9 @@
  * `<own>/contract-service` (refused when other processes share its cgroup: they are not ours to
  * move), then writes `+memory +pids` to `<own>/cgroup.subtree_control`. Each job step then gets
  * `<own>/contract-<job>-<step>` with memory.max, memory.swap.max = 0, pids.max and
- * memory.oom.group = 1 (an OOM kill takes the whole job, not one random process of it); the hits
+ * memory.oom.group = 1 for a build (an OOM kill takes the whole step at once), 0 for a run (the
+ * kernel kills the process using the most memory, as v1 does, and the run's launcher stops the
+ * others so that they write their last records: host-process.ts stopOnLimit); the hits
  * are read from memory.events (`oom_kill`, `oom_group_kill`) and pids.events (`max`).
  *
  * Every path is given by a `CgroupV2Paths` (the real /proc and /sys/fs/cgroup by default), so the
@@ -19,7 +21,7 @@
  */
 import { promises as fsp, readFileSync, accessSync, constants } from 'node:fs';
 import { join } from 'node:path';
-import { cgroupPids, killUntilEmpty, removeCgroupDir } from './cgroup-procs.js';
+import { cgroupPids, killUntilEmpty, readSmallFile, removeCgroupDir } from './cgroup-procs.js';
 import { sweepStaleCgroups } from './cgroup-sweep.js';
 import type { LimitCgroup } from './cgroup.js';
 
@@ -113,13 +115,28 @@ export async function enableV2Controllers(dir: string, paths: CgroupV2Paths = RE
   await fsp.writeFile(join(dir, 'cgroup.subtree_control'), NEEDED.map((c) => `+${c}`).join(' '));
 }
 
+/** The `key N` line of a flat-keyed cgroup file (memory.events, pids.events); 0 without one. */
+function counterOf(text: string, key: string): number {
+  const m = new RegExp(`^${key} (\\d{1,15})$`, 'm').exec(text);
+  return m ? Number(m[1]) : 0;
+}
+
+/**
+ * OOM kills counted in a cgroup v2 folder (memory.events `oom_kill`, or `oom_group_kill` with
+ * memory.oom.group); also read for a Docker job's container (docker-cgroup.ts).
+ */
+export async function readV2OomKills(dir: string): Promise<number> {
+  const text = await readSmallFile(join(dir, 'memory.events'));
+  return Math.max(counterOf(text, 'oom_kill'), counterOf(text, 'oom_group_kill'));
+}
+
 /** One job step's cgroup v2. */
 export class JobCgroupV2 implements LimitCgroup {
   readonly mechanism = 'cgroup-v2' as const;
 
   private constructor(readonly dir: string) {}
 
-  static async create(parent: string, name: string, memoryBytes: number, maxProcesses: number): Promise<JobCgroupV2> {
+  static async create(parent: string, name: string, memoryBytes: number, maxProcesses: number, oomGroup = true): Promise<JobCgroupV2> {
     await sweepStaleCgroups(parent);
     const dir = join(parent, name);
     await fsp.mkdir(dir);
@@ -128,7 +145,7 @@ export class JobCgroupV2 implements LimitCgroup {
       // no swap beyond the limit where the kernel offers swap accounting
       await fsp.writeFile(join(dir, 'memory.swap.max'), '0').catch(() => {});
       await fsp.writeFile(join(dir, 'pids.max'), String(maxProcesses));
-      await fsp.writeFile(join(dir, 'memory.oom.group'), '1').catch(() => {});
+      await fsp.writeFile(join(dir, 'memory.oom.group'), oomGroup ? '1' : '0').catch(() => {});
     } catch (e) {
       await fsp.rmdir(dir).catch(() => {});
       throw e;
@@ -140,20 +157,14 @@ export class JobCgroupV2 implements LimitCgroup {
     return [join(this.dir, 'cgroup.procs')];
   }
 
-  private async counter(file: string, key: string): Promise<number> {
-    const text = await fsp.readFile(join(this.dir, file), 'utf8').catch(() => '');
-    const m = new RegExp(`^${key} (\\d+)$`, 'm').exec(text);
-    return m ? Number(m[1]) : 0;
-  }
-
   /** OOM kills in the job (memory.events `oom_kill`, or `oom_group_kill` with memory.oom.group). */
-  async oomKills(): Promise<number> {
-    return Math.max(await this.counter('memory.events', 'oom_kill'), await this.counter('memory.events', 'oom_group_kill'));
+  oomKills(): Promise<number> {
+    return readV2OomKills(this.dir);
   }
 
   /** Forks refused by pids.max (pids.events `max`). */
-  pidsLimitHits(): Promise<number> {
-    return this.counter('pids.events', 'max');
+  async pidsLimitHits(): Promise<number> {
+    return counterOf(await readSmallFile(join(this.dir, 'pids.events')), 'max');
   }
 
   async pids(): Promise<number[]> {

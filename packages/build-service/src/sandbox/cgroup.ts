@@ -5,7 +5,7 @@
  */
 import { promises as fsp, readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { cgroupPids, killUntilEmpty, removeCgroupDir } from './cgroup-procs.js';
+import { cgroupPids, killUntilEmpty, readSmallFile, removeCgroupDir } from './cgroup-procs.js';
 import { sweepStaleCgroups } from './cgroup-sweep.js';
 
 const CGROUP_ROOT = '/sys/fs/cgroup';
@@ -88,18 +88,12 @@ export class JobCgroup implements LimitCgroup {
 
   /** OOM kills inside the job since creation (memory.oom_control `oom_kill`, else memory.failcnt). */
   async oomKills(): Promise<number> {
-    const text = await fsp.readFile(join(this.dirs.memory, 'memory.oom_control'), 'utf8').catch(() => '');
-    const m = /^oom_kill (\d+)$/m.exec(text);
-    if (m) return Number(m[1]) - this.baseline.oomKills;
-    const fail = await fsp.readFile(join(this.dirs.memory, 'memory.failcnt'), 'utf8').catch(() => '0');
-    return Number(fail.trim()) - this.baseline.oomKills;
+    return (await readV1OomKills(this.dirs.memory)) - this.baseline.oomKills;
   }
 
   /** Times a fork/clone was refused by pids.max (pids.events `max`). */
-  async pidsLimitHits(): Promise<number> {
-    const text = await fsp.readFile(join(this.dirs.pids, 'pids.events'), 'utf8').catch(() => '');
-    const m = /^max (\d+)$/m.exec(text);
-    return m ? Number(m[1]) : 0;
+  pidsLimitHits(): Promise<number> {
+    return readPidsLimitHits(this.dirs.pids);
   }
 
   async pids(): Promise<number[]> {
@@ -116,6 +110,23 @@ export class JobCgroup implements LimitCgroup {
     await this.killAll();
     for (const c of CONTROLLERS) await removeCgroupDir(this.dirs[c]);
   }
+}
+
+/**
+ * OOM kills counted in a cgroup v1 memory folder (memory.oom_control `oom_kill`, else
+ * memory.failcnt on kernels before 4.13); also read for a Docker job's container (docker-cgroup.ts).
+ */
+export async function readV1OomKills(memoryDir: string): Promise<number> {
+  const m = /^oom_kill (\d{1,15})$/m.exec(await readSmallFile(join(memoryDir, 'memory.oom_control')));
+  if (m) return Number(m[1]);
+  const fail = Number((await readSmallFile(join(memoryDir, 'memory.failcnt'), 64)).trim());
+  return Number.isSafeInteger(fail) ? fail : 0;
+}
+
+/** Forks refused by pids.max in a pids cgroup folder, v1 or v2 (pids.events `max`). */
+export async function readPidsLimitHits(pidsDir: string): Promise<number> {
+  const m = /^max (\d{1,15})$/m.exec(await readSmallFile(join(pidsDir, 'pids.events')));
+  return m ? Number(m[1]) : 0;
 }
 
 let probeCache: string | null | undefined;

@@ -5,8 +5,11 @@
  * host work dir, so nothing needs to be shared with a remote engine; the volume of a project's
  * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec, user 1000,
  * no-new-privileges, all capabilities dropped, Memory (= MemorySwap) and PidsLimit.
- * A memory kill is read from State.OOMKilled (docker-oom.ts: the flag can come late); a refused fork
- * from the program's own messages.
+ * Limit hits are seen while the job runs, as in bwrap (docker-cgroup.ts): the container's own cgroup,
+ * found from its init's /proc/<pid>/cgroup, is polled every 100 ms (an OOM kill or a fork refused by
+ * the pids limit ends the job); where this host cannot read it (a remote engine, ...), an OOM kill
+ * is taken from the engine's `oom` events and a refused fork from the program's own messages. At
+ * the exit, State.OOMKilled is still asked (docker-oom.ts: the flag can come late).
  * Disk: the work volume is a tmpfs of workDiskMiB (local driver options); a tmpfs volume is only
  * kept while some container mounts it, so each workspace volume has a holder container (`sleep`,
  * volume read-only, no network, no capabilities) for its lifetime, which also answers the statfs
@@ -35,8 +38,9 @@ import { folderListFindArgs, readFolderList, type FoundFolder } from './docker-f
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
-import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess, StopOnLimit } from './types.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
+import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
 
@@ -60,6 +64,12 @@ export interface DockerOptions {
   log?: (line: string) => void;
   /** When containers and volumes without an owner label are removed (docker-sweep.ts). */
   sweepPolicy?: Partial<SweepPolicy>;
+  /**
+   * How a job's memory and process limit hits are seen while it runs (docker-cgroup.ts): `auto`
+   * (default) the container's cgroup when this host can read it, else the engine's oom events;
+   * `engine` the engine's events only (what a remote engine gives; tests).
+   */
+  limitWatch?: DockerLimitWatch;
 }
 
 /** The service's own log lines when nobody gave a log function. */
@@ -121,6 +131,9 @@ export class DockerSandbox implements Sandbox {
   readonly owner: ServiceOwner;
   private readonly log: (line: string) => void;
   private readonly sweepPolicy: SweepPolicy;
+  private readonly limitWatch: DockerLimitWatch;
+  /** The reason the containers' cgroups cannot be read here, once logged (one line per service). */
+  private limitWatchNoted = false;
   private sweeping: Promise<SweepReport> | null = null;
   /** Set once the engine answered this service (close() then looks for leftovers). */
   private engineSeen = false;
@@ -143,6 +156,7 @@ export class DockerSandbox implements Sandbox {
     this.owner = currentOwner();
     this.log = options.log ?? stderrLog;
     this.sweepPolicy = { ...DEFAULT_SWEEP_POLICY, ...options.sweepPolicy };
+    this.limitWatch = options.limitWatch ?? 'auto';
   }
 
   /**
@@ -318,16 +332,52 @@ export class DockerSandbox implements Sandbox {
       };
       let limitHit: LimitHit | null = null;
       let sawKilled = false;
+      const memoryHit: LimitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
+      const processHit: LimitHit = { name: 'processes', value: cmd.limits.processes, unit: 'count', mechanism: 'docker' };
+      let markExited!: () => void;
+      const exited = new Promise<void>((r) => (markExited = r));
+      /**
+       * A limit hit ends the job as in bwrap (host-process.ts): a run's launcher is first asked to
+       * stop the modules (stopOnLimit: SIGTERM, then the kill after its grace), a build is killed at once.
+       */
+      const hitLimit = (h: LimitHit): void => {
+        if (limitHit) return;
+        limitHit = h;
+        void (cmd.stopOnLimit ? stopThenKill(cmd.stopOnLimit, h) : kill());
+      };
+      const stopThenKill = async (stop: StopOnLimit, h: LimitHit): Promise<void> => {
+        const asked = await terminateNamed(stop.processName).catch(() => false);
+        if (asked) {
+          try {
+            stop.stopping?.(h);
+          } catch {
+            /* the teller's fault: the stop goes on */
+          }
+          let timer: NodeJS.Timeout | undefined;
+          await Promise.race([exited, new Promise((r) => (timer = setTimeout(r, stop.graceMs)))]);
+          clearTimeout(timer);
+        }
+        await kill();
+      };
+      // an OOM kill or a refused fork ends the job, as in bwrap (docker-cgroup.ts)
+      const watch = watchContainerLimits({
+        docker: this.docker,
+        container,
+        mode: this.limitWatch,
+        onHit: (kind) => hitLimit(kind === 'memory' ? memoryHit : processHit),
+        onFallback: (reason) => {
+          if (this.limitWatchNoted || this.limitWatch === 'engine') return;
+          this.limitWatchNoted = true;
+          this.log(`docker: the containers' cgroups cannot be read here (${reason}): a memory limit hit is taken from the engine's oom events, a process limit hit from the program's messages (docs/sandbox.md "Memory and process limits in Docker")`);
+        },
+      });
       const diskHit = async (): Promise<LimitHit | null> => {
         const state = await this.volumeState(volume);
         return state && isWorkDiskFull(state) ? { name: 'workDiskMiB', value: diskBytes, unit: 'bytes', mechanism: 'docker-tmpfs-volume' } : null;
       };
       const diskWatch = setInterval(() => {
         void diskHit().then((h) => {
-          if (h && !limitHit) {
-            limitHit = h;
-            void kill();
-          }
+          if (h) hitLimit(h);
         }, () => {});
       }, DISK_WATCH_INTERVAL_MS);
       let killing: Promise<void> | null = null;
@@ -337,12 +387,19 @@ export class DockerSandbox implements Sandbox {
       };
       const done: Promise<SandboxExit> = (async () => {
         const waited = (await container.wait().catch(() => ({ StatusCode: null }))) as { StatusCode: number | null };
+        markExited();
         clearInterval(diskWatch);
+        // the last counters, when the cgroup is still there (a kill just before the exit)
+        if (!limitHit && !killing) {
+          const last = await watch.finalLook();
+          if (last) limitHit = last === 'memory' ? memoryHit : processHit;
+        }
+        watch.stop();
         // the attach stream delivers the last bytes after the container ended: drain it first (a
         // shell's or make's "Killed" line, read below, is among them)
         await Promise.race([streamEnded, new Promise((r) => setTimeout(r, 1000))]);
         if (!limitHit && (await engineSaysOomKilled(() => container.inspect(), !killing && looksKilled(waited.StatusCode, sawKilled)))) {
-          limitHit = { name: 'memory', value: bytes, unit: 'bytes', mechanism: 'docker' };
+          limitHit = memoryHit;
         }
         // a job that was refused a write and gave up is reported too; not one the service stopped
         // itself (run time limit, cancel): its reason is known, and the look into the volume (an exec
@@ -356,14 +413,18 @@ export class DockerSandbox implements Sandbox {
       const noteLine = (line: string): void => {
         if (KILLED_LINE.test(line)) sawKilled = true;
         if (limitHit) return;
-        if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) {
-          limitHit = { name: 'processes', value: cmd.limits.processes, unit: 'count', mechanism: 'docker' };
-          void kill();
-        }
+        if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) hitLimit(processHit);
       };
       const terminateNamed = async (name: string): Promise<boolean> => {
         if (killing) return false;
         const comm = name.slice(0, 15);
+        // from this host, when the container's cgroup is read here and the service may signal its
+        // processes: no process to start in a container that may have no room for one (its pids limit)
+        const pids = await watch.pids().catch(() => null);
+        if (pids) {
+          const asked = await terminateNamedOnHost(pids, comm);
+          if (asked !== null) return asked;
+        }
         // the engine lists the container's processes without starting one in it (most runs that
         // are stopped by the time limit are no architecture, and a fork bomb leaves no room to exec)
         const listed = (await container.top({ ps_args: '-o pid,comm' }).catch(() => null)) as { Titles?: string[]; Processes?: string[][] } | null;

@@ -9,7 +9,7 @@ import type { LimitHit, Limits } from '../limits.js';
 import { memoryBytes } from '../limits.js';
 import type { LimitCgroup } from './cgroup.js';
 import { isWorkDiskFull, workDiskState } from './work-disk.js';
-import type { Mechanisms, SandboxExit, SandboxProcess } from './types.js';
+import type { Mechanisms, SandboxExit, SandboxProcess, StopOnLimit } from './types.js';
 
 export interface HostProcessOptions {
   argv: string[];
@@ -26,6 +26,8 @@ export interface HostProcessOptions {
   cleanup?: () => Promise<void>;
   /** The work tmpfs to watch (work-disk.ts): filling it is the workDiskMiB limit hit. */
   workDisk?: { dir: string; bytes: number };
+  /** A limit hit asks these processes to stop first (SandboxCommand.stopOnLimit). */
+  stopOnLimit?: StopOnLimit;
 }
 
 const WATCH_INTERVAL_MS = 100;
@@ -102,7 +104,27 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
   const hit = (h: LimitHit): void => {
     if (limitHit) return;
     limitHit = h;
-    void kill();
+    void (opts.stopOnLimit ? stopThenKill(opts.stopOnLimit, h) : kill());
+  };
+
+  /**
+   * A limit hit of a run: its launcher is asked to stop the modules (SIGTERM: it fits its stop in
+   * its budget), so that every module the limit left running writes its last records and its exit
+   * record; what still runs `graceMs` later is killed. The limit is the run's end either way.
+   */
+  const stopThenKill = async (stop: StopOnLimit, h: LimitHit): Promise<void> => {
+    const asked = await terminateNamed(stop.processName).catch(() => false);
+    if (asked) {
+      try {
+        stop.stopping?.(h);
+      } catch {
+        /* the teller's fault: the stop goes on */
+      }
+      let timer: NodeJS.Timeout | undefined;
+      await Promise.race([exitedPromise, new Promise((r) => (timer = setTimeout(r, stop.graceMs)))]);
+      clearTimeout(timer);
+    }
+    await kill();
   };
 
   const watcher = opts.cgroup

@@ -73,6 +73,7 @@ export class NoSandbox implements Sandbox {
       cgroup: null,
       guessLimitsFromOutput: false,
       ...(disk ? { workDisk: { dir: cmd.workDir, bytes: disk.sizeBytes } } : {}),
+      ...(cmd.stopOnLimit ? { stopOnLimit: cmd.stopOnLimit } : {}),
     });
   }
 }

@@ -43,6 +43,21 @@ export interface SandboxCommand {
   owner?: { uid: number; gid: number };
   /** Real-time mode: the processes may take SCHED_FIFO priorities, within REALTIME_BOUNDS. */
   realtime?: boolean;
+  /**
+   * What a limit hit (memory, processes, disk) does before it kills everything: SIGTERM to the
+   * processes named `processName` (the run's launcher, which then stops the modules as at the
+   * end of a run, so that each writes its last records), then the kill `graceMs` later, or as
+   * soon as every process is gone. Without it (a build step), a limit hit kills at once.
+   */
+  stopOnLimit?: StopOnLimit;
+}
+
+/** SandboxCommand.stopOnLimit. */
+export interface StopOnLimit {
+  processName: string;
+  graceMs: number;
+  /** Told when a limit hit asks `processName` to stop (the job says it in its log). */
+  stopping?: (hit: LimitHit) => void;
 }
 
 export interface SandboxExit {

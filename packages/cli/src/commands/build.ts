@@ -4,7 +4,7 @@
  */
 import { parseArgs } from '../args.js';
 import type { CliIO, Command } from '../command.js';
-import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
+import { CLI_BUILD_SECONDS, COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
 
 export const buildCommand: Command = {
     name: 'build',
@@ -13,6 +13,8 @@ export const buildCommand: Command = {
         'usage: contract build DIR [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  generates DIR/src-gen (user code in protected regions kept) in a private copy and compiles it;',
         '  gcc diagnostics are printed against src-gen/ paths, naming the protected region they are in.',
+        `  limits: the build step may take ${CLI_BUILD_SECONDS}s (the build service's default is 120s); the others are the service's defaults`,
+        '          (memory 512 MiB, 256 processes, disk 256 MiB: docs/sandbox.md "Limits"); a build a limit stopped says so',
         ...COMMON_USAGE,
         EXIT_TABLE,
     ].join('\n'),

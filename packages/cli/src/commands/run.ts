@@ -14,7 +14,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import type { JobEvent } from '@contract-studio/build-service';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
-import { COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
+import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
 import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
@@ -36,6 +36,18 @@ export function checkReadyTimeout(text: string): number {
     const seconds = parseDuration(text);
     if (seconds < MIN_READY_TIMEOUT_SECONDS) throw new UsageError(`bad --ready-timeout '${text}': at least ${MIN_READY_TIMEOUT_SECONDS * 1000}ms`);
     return seconds;
+}
+
+/**
+ * `--run-limit` as seconds: a duration (parseDuration), the run step's wall time limit. A run still
+ * going then is stopped as at the end of a run and fails `killed: run time limit N s` (exit 4).
+ */
+export function checkRunLimit(text: string): number {
+    try {
+        return parseDuration(text);
+    } catch (e) {
+        throw new UsageError(`bad --run-limit '${text}': ${(e as Error).message}`);
+    }
 }
 
 /**
@@ -134,8 +146,12 @@ export const runCommand: Command = {
     name: 'run',
     summary: 'build a Cactal project, run its architecture for a while, collect the CSV logs',
     usage: [
-        'usage: contract run DIR [--duration 10s] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
+        'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
+        `  --run-limit: the run step's wall time limit (default: the duration + ${CLI_RUN_ROOM_SECONDS}s, and the --ready-timeout past 10s: the run lasts as long as asked);`,
+        '             a run still going then is stopped and fails `killed: run time limit N s` (exit 4). A --duration longer than the limit less',
+        `             5s (half of it under 10s) is shortened to fit, said on stderr. The build step's limit is ${CLI_BUILD_SECONDS}s; the other limits are the`,
+        '             build service\'s defaults (memory 512 MiB, 256 processes, disk 256 MiB: docs/sandbox.md "Limits")',
         '  --start: the supervisor start request (default: the top supervisor\'s first function with its default parameters; \'\' starts nothing);',
         '           a supervisor, function or parameter the model does not have, or a value of the wrong type, is refused before the build (exit 2, with what it has)',
         '  --ready-timeout: how long every module\'s init may take before the start request is sent (default 10s); a module whose init has not returned by then stops the run (exit 4)',
@@ -149,10 +165,12 @@ export const runCommand: Command = {
         EXIT_TABLE,
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
-        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'start', 'logs', 'cpus', 'trace', 'ready-timeout'], [...COMMON_FLAGS, 'realtime']);
+        const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'run-limit', 'start', 'logs', 'cpus', 'trace', 'ready-timeout'], [...COMMON_FLAGS, 'realtime']);
         const opts = await parseJobOptions(parsed, io, onTerminal());
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
+        const runLimitOption = parsed.options.get('run-limit');
+        const runLimit = typeof runLimitOption === 'string' ? checkRunLimit(runLimitOption) : undefined;
         const readyOption = parsed.options.get('ready-timeout');
         const readyTimeout = typeof readyOption === 'string' ? checkReadyTimeout(readyOption) : undefined;
         const startOption = parsed.options.get('start');
@@ -190,7 +208,7 @@ export const runCommand: Command = {
             }
         }
         const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
-        const outcome = await runJob(opts, { action: 'run', duration, ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}) }, io, undefined, onEvent);
+        const outcome = await runJob(opts, { action: 'run', duration, ...(runLimit !== undefined ? { runLimit } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
             await live?.close().catch(() => {});
             io.err(`contract run: ${outcome.error}\n`);
