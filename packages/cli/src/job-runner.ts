@@ -271,8 +271,11 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             return;
         }
         // the run's output cut at its cap: said where it was cut, in the same stream (the modules' lines go on in their CSV logs)
-        if (e.step === 'run' && e.source === 'service' && OUTPUT_TRUNCATED_LINE.test(e.line)) {
-            io.out(`${e.line.slice(0, -1)}: later lines of the run are not shown; the CSV logs and --trace are whole]\n`);
+        // (the cap is per stream: the other one, with the launcher's lines on stderr, goes on)
+        const truncated = e.step === 'run' && e.source === 'service' ? OUTPUT_TRUNCATED_LINE.exec(e.line) : null;
+        if (truncated) {
+            const other = truncated[1] === 'stdout' ? 'stderr' : 'stdout';
+            io.out(`${e.line.slice(0, -1)}: the rest of the run's ${truncated[1]} is not shown (its ${other} still is); the CSV logs and --trace are whole]\n`);
             return;
         }
         // the service's own line for each model or generation problem: printed once, at the end, at

@@ -86,7 +86,7 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,MSC,run_started,,,0,a\n2,t,MSC,log-capped,,,8192,log reached its 8192-byte bound\n3,t,MSC,log-capped,,,8192,5 records not written\n';
     writeFileSync(join(work, 'logs', 'MSC_1.csv'), text);
     const a = await collectRunArtifacts(hostWorkDirReader, work);
-    expect(a.files.map((f) => [f.name, f.capped])).toEqual([['MSC_1.csv', 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written']]);
+    expect(a.files.map((f) => [f.name, f.capped])).toEqual([['MSC_1.csv', 'the module reached its CSV log bound of 8 KiB (CONTRACT_LOG_MAX_BYTES): later records were not written']]);
     expect(artifactBytes(a.files[0]!).toString()).toBe(text);
   });
 

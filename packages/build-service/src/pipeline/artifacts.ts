@@ -17,7 +17,7 @@ import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { gunzipSync, gzip as gzipCb } from 'node:zlib';
-import { SERVICE_BOUNDS } from '../limits.js';
+import { formatBytes, SERVICE_BOUNDS } from '../limits.js';
 import { readFileHeadNoFollow } from '../util/safe-fs.js';
 import type { TarEntryKind } from '../util/tar-reader.js';
 
@@ -37,6 +37,8 @@ export const ARTIFACT_BOUNDS: ArtifactBounds = { entries: SERVICE_BOUNDS.listedE
 
 /** The runtime's marker event (runtime/src/csvlog.c) and the one the service appends to a cut file. */
 export const LOG_CAPPED_EVENT = 'log-capped';
+/** A log-capped record's size column (the log's bound), in the log's tail. */
+const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),/;
 
 /** The folders of the work dir a run leaves things in: `logs/` (collected) and `run/` (names only). */
 export const LOG_DIR = 'logs';
@@ -156,7 +158,10 @@ export async function selectArtifacts(
         kept = Buffer.concat([data.subarray(0, end), Buffer.from(cutRecord(e.name, data.subarray(0, end), e.size, bound))]);
         capped = `${e.size} bytes: the first ${end} kept (the ${bound}-byte ${bound === bounds.fileBytes ? 'file' : 'total'} bound of the build service)`;
       } else if (data.subarray(Math.max(0, data.length - TAIL_BYTES)).includes(`,${LOG_CAPPED_EVENT},`)) {
-        capped = 'the module reached its CSV log bound (CONTRACT_LOG_MAX_BYTES): later records were not written';
+        // the bound is the log-capped record's size column (docs/runtime-api.md)
+        const m = CAPPED_SIZE.exec(data.subarray(Math.max(0, data.length - TAIL_BYTES)).toString('latin1'));
+        const of = m ? ` of ${formatBytes(Number(m[1]))}` : '';
+        capped = `the module reached its CSV log bound${of} (CONTRACT_LOG_MAX_BYTES): later records were not written`;
       }
       inspect?.(e.name, kept);
       total += kept.length;

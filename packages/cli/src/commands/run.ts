@@ -7,6 +7,7 @@
  * docs/runtime-api.md "Trace records"), and exits non-zero when a module crashed
  * (1) or when the run did not go as designed (4: a limit hit, a module stuck, hung at the stop or ended early, the start request refused, output or logs cut; docs/ci.md).
  */
+import { lstatSync } from 'node:fs';
 import { cpus as machineCpus } from 'node:os';
 import { join, resolve } from 'node:path';
 import { parseArgs } from '../args.js';
@@ -21,6 +22,22 @@ import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { moduleFailures, problemLines } from './run-problems.js';
 import { runSchemaFigures } from './run-schemas.js';
+
+/** Saved logs of at least this many bytes: `--trace`'s final check of its file is said before it begins. */
+const TRACE_CHECK_SAID_BYTES = 64 * 1048576;
+
+/** The bytes of the saved logs `names` in `dir` (a file gone or unreadable counts 0). */
+function logsBytes(dir: string, names: readonly string[]): number {
+    let sum = 0;
+    for (const n of names) {
+        try {
+            sum += lstatSync(join(dir, n)).size;
+        } catch {
+            /* counted as 0 */
+        }
+    }
+    return sum;
+}
 
 /** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
 export function parseDuration(text: string): number {
@@ -233,6 +250,9 @@ export const runCommand: Command = {
                 // the whole story in order (docker, its kept-lines bound, records sent late):
                 // both compared by digest, the logs read as a stream (a long run is gigabytes)
                 const digest = await live.close();
+                // a pass over every saved record: long for a long run (2 M records, ~17 s), said first
+                const bytes = logsBytes(logsDir, logs);
+                if (bytes >= TRACE_CHECK_SAID_BYTES) io.err(`trace: checking ${safeName(traceFile)} against the ${Math.round(bytes / 1048576)} MiB of CSV logs saved (one pass over every record)...\n`);
                 const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, counts: live.counts }, teller ? (r) => teller.tell(r) : undefined);
                 if (typeof whole === 'string') throw new Error(whole);
                 trace = { file: traceFile, ...whole };
