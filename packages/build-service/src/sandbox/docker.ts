@@ -38,7 +38,8 @@ import { folderListFindArgs, readFolderList, type FoundFolder } from './docker-f
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
-import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess, StopOnLimit } from './types.js';
+import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
+import { stopThenKill } from './limit-stop.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
@@ -343,21 +344,7 @@ export class DockerSandbox implements Sandbox {
       const hitLimit = (h: LimitHit): void => {
         if (limitHit) return;
         limitHit = h;
-        void (cmd.stopOnLimit ? stopThenKill(cmd.stopOnLimit, h) : kill());
-      };
-      const stopThenKill = async (stop: StopOnLimit, h: LimitHit): Promise<void> => {
-        const asked = await terminateNamed(stop.processName).catch(() => false);
-        if (asked) {
-          try {
-            stop.stopping?.(h);
-          } catch {
-            /* the teller's fault: the stop goes on */
-          }
-          let timer: NodeJS.Timeout | undefined;
-          await Promise.race([exited, new Promise((r) => (timer = setTimeout(r, stop.graceMs)))]);
-          clearTimeout(timer);
-        }
-        await kill();
+        void (cmd.stopOnLimit ? stopThenKill(cmd.stopOnLimit, h, { terminateNamed, exited, kill }) : kill());
       };
       // an OOM kill or a refused fork ends the job, as in bwrap (docker-cgroup.ts)
       const watch = watchContainerLimits({

@@ -10,6 +10,7 @@ import { memoryBytes } from '../limits.js';
 import type { LimitCgroup } from './cgroup.js';
 import { isWorkDiskFull, workDiskState } from './work-disk.js';
 import type { Mechanisms, SandboxExit, SandboxProcess, StopOnLimit } from './types.js';
+import { stopThenKill } from './limit-stop.js';
 
 export interface HostProcessOptions {
   argv: string[];
@@ -104,27 +105,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
   const hit = (h: LimitHit): void => {
     if (limitHit) return;
     limitHit = h;
-    void (opts.stopOnLimit ? stopThenKill(opts.stopOnLimit, h) : kill());
-  };
-
-  /**
-   * A limit hit of a run: its launcher is asked to stop the modules (SIGTERM: it fits its stop in
-   * its budget), so that every module the limit left running writes its last records and its exit
-   * record; what still runs `graceMs` later is killed. The limit is the run's end either way.
-   */
-  const stopThenKill = async (stop: StopOnLimit, h: LimitHit): Promise<void> => {
-    const asked = await terminateNamed(stop.processName).catch(() => false);
-    if (asked) {
-      try {
-        stop.stopping?.(h);
-      } catch {
-        /* the teller's fault: the stop goes on */
-      }
-      let timer: NodeJS.Timeout | undefined;
-      await Promise.race([exitedPromise, new Promise((r) => (timer = setTimeout(r, stop.graceMs)))]);
-      clearTimeout(timer);
-    }
-    await kill();
+    void (opts.stopOnLimit ? stopThenKill(opts.stopOnLimit, h, { terminateNamed, exited: exitedPromise, kill }) : kill());
   };
 
   const watcher = opts.cgroup

@@ -1,0 +1,32 @@
+/**
+ * What a limit hit (memory, processes, disk) does to a run in every sandbox (host-process.ts for
+ * bwrap and none, docker.ts): its launcher is asked to stop the modules (SIGTERM: it fits its stop
+ * in its budget, as for Stop), so that every module the limit left running writes its last records
+ * and its exit record; what still runs `graceMs` later is killed. The limit is the run's end
+ * either way. SandboxCommand.stopOnLimit; a build has none and is killed at once.
+ */
+import type { LimitHit } from '../limits.js';
+import type { StopOnLimit } from './types.js';
+
+/** The parts of a running sandbox command the stop uses. */
+export interface StoppableCommand {
+  terminateNamed(name: string): Promise<boolean>;
+  /** Resolves when the command's main process has exited. */
+  exited: Promise<void>;
+  kill(): Promise<void>;
+}
+
+export async function stopThenKill(stop: StopOnLimit, hit: LimitHit, cmd: StoppableCommand): Promise<void> {
+  const asked = await cmd.terminateNamed(stop.processName).catch(() => false);
+  if (asked) {
+    try {
+      stop.stopping?.(hit);
+    } catch {
+      /* the teller's fault: the stop goes on */
+    }
+    let timer: NodeJS.Timeout | undefined;
+    await Promise.race([cmd.exited, new Promise((r) => (timer = setTimeout(r, stop.graceMs)))]);
+    clearTimeout(timer);
+  }
+  await cmd.kill();
+}
