@@ -81,6 +81,7 @@ static size_t log_len;
 static char log_path[PATH_MAX];
 static unsigned long long log_max;      /* bound of the file, bytes                         */
 static unsigned long long log_written;  /* bytes in the file (the writer's)                 */
+static int log_failed;                  /* the errno that stopped the log (0: none, or the bound) */
 static int log_capped;                  /* the bound was reached: records are only counted;
                                            set by the writer, read by the module (atomic)   */
 static unsigned long long log_dropped;  /* records not written since, counted by the module */
@@ -197,6 +198,7 @@ int rt_log_open(void)
     }
     log_max = log_bound();
     log_capped = 0;
+    log_failed = 0;
     log_dropped = 0;
     log_dropped_w = 0;
     log_records = 0;
@@ -394,26 +396,6 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
     log_records++; /* counted once in the buffer (a crash inside the record does not count it) */
 }
 
-static void write_all(const char *buf, size_t len)
-{
-    size_t off = 0;
-    while (log_fd >= 0 && off < len) {
-        ssize_t n = write(log_fd, buf + off, len - off);
-        if (n < 0 && errno == EINTR) continue;
-        if (n <= 0) break; /* disk full: the records are lost, the module goes on */
-        off += (size_t)n;
-    }
-    log_written += off;
-}
-
-/* Writes one `log-capped` record (room for two is kept below the bound). Async-signal-safe. */
-static void write_cap_record(const char *detail)
-{
-    char rec[RECORD_MAX];
-    char *end = put_record(rec, GetTime(), "log-capped", "", -1, (size_t)log_max, detail);
-    write_all(rec, (size_t)(end - rec));
-}
-
 /* Counts the records (lines) of buf[0..len). */
 static unsigned long long count_records(const char *buf, size_t len)
 {
@@ -421,6 +403,91 @@ static unsigned long long count_records(const char *buf, size_t len)
     for (const char *p = buf, *e = buf + len; (p = memchr(p, '\n', (size_t)(e - p))) != NULL; p++) n++;
     return n;
 }
+
+/* Writes buf[0..len), whole records. A write that fails (a full disk, a quota) leaves the file at
+ * the end of its last whole record (the part of a record written is cut off again: no line of it
+ * is spliced to a later one) and returns the error; 0 when all was written. Async-signal-safe. */
+static int write_or_cut(const char *buf, size_t len)
+{
+    size_t off = 0;
+    int err = 0;
+    while (log_fd >= 0 && off < len) {
+        ssize_t n = write(log_fd, buf + off, len - off);
+        if (n < 0 && errno == EINTR) continue;
+        if (n <= 0) {
+            err = n < 0 ? errno : ENOSPC;
+            break;
+        }
+        off += (size_t)n;
+    }
+    if (log_fd < 0 && off < len) err = EBADF;
+    if (err == 0) {
+        log_written += off;
+        return 0;
+    }
+    size_t keep = 0;
+    for (size_t i = 0; i < off; i++)
+        if (buf[i] == '\n') keep = i + 1;
+    /* O_APPEND: later writes (the last log-capped record, when the disk takes it) go after it */
+    if (keep == off || ftruncate(log_fd, (off_t)(log_written + keep)) == 0) off = keep;
+    log_written += off;
+    return err;
+}
+
+/* What a write error is, in words, without strerror (async-signal-safe). */
+static const char *write_error_text(int err)
+{
+    switch (err) {
+    case ENOSPC: return "No space left on device";
+    case EDQUOT: return "Disk quota exceeded";
+    case EFBIG: return "File too large";
+    case EIO: return "Input/output error";
+    case EBADF: return "the log is closed";
+    default: return "write error";
+    }
+}
+
+/* Writes one `log-capped` record (room for two is kept below the bound). Async-signal-safe. */
+static void write_cap_record(const char *detail)
+{
+    char rec[RECORD_MAX];
+    /* size: the bound; for a log stopped by a write error, the bytes it holds */
+    size_t size = log_failed ? (size_t)log_written : (size_t)log_max;
+    char *end = put_record(rec, GetTime(), "log-capped", "", -1, size, detail);
+    (void)write_or_cut(rec, (size_t)(end - rec));
+}
+
+/* Writes whole records; a write error stops the log there for good (later records are only
+ * counted, like past the bound: a file with a gap in it would read as whole), said once on stderr
+ * and, when the disk takes it, by a `log-capped` record. Async-signal-safe. */
+static void write_all(const char *buf, size_t len)
+{
+    unsigned long long before = log_written;
+    int err = write_or_cut(buf, len);
+    if (err == 0) return;
+    size_t kept = (size_t)(log_written - before);
+    log_dropped_w += count_records(buf + kept, len - kept);
+    log_failed = err;
+    __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
+    char text[PATH_MAX + 300], *p = text; /* by hand: no stdio (a crash handler may be here) */
+    p = put_str(p, "log could not be written past ");
+    p = put_u64(p, log_written);
+    p = put_str(p, " bytes (");
+    p = put_str(p, write_error_text(err));
+    p = put_str(p, "): later records are not written");
+    *p = '\0';
+    write_cap_record(text);
+    p = put_str(text, g_rt.name);
+    p = put_str(p, ": warning: CSV log ");
+    p = put_str(p, log_path);
+    p = put_str(p, " not written past ");
+    p = put_u64(p, log_written);
+    p = put_str(p, " bytes (");
+    p = put_str(p, write_error_text(err));
+    p = put_str(p, "); it ends at its last whole record, later records are not written\n");
+    if (write(STDERR_FILENO, text, (size_t)(p - text)) < 0) { /* nothing more to say it with */ }
+}
+
 
 /* Writes buf[0..len) to the file within its bound (the writer's, or the module's without one), as
  * if `reserve` more bytes were in the file (a crash handler's: those the stalled writer may still
@@ -443,6 +510,7 @@ static void write_records_r(const char *buf, size_t len, unsigned long long rese
         if (buf[i] == '\n') keep = i + 1;
     write_all(buf, keep);
     log_dropped_w += count_records(buf + keep, len - keep);
+    if (log_failed) return; /* a write error stopped the log first: said by write_all */
     __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
     char text[PATH_MAX + 300], *p = text; /* by hand: no stdio (a crash handler may be here) */
     p = put_str(p, "log reached its ");
@@ -466,9 +534,17 @@ static void write_cap_final(void)
 {
     char detail[200], *p = detail;
     p = put_u64(p, log_dropped + log_dropped_w);
-    p = put_str(p, " records not written after the log reached its ");
-    p = put_u64(p, log_max);
-    p = put_str(p, "-byte bound");
+    if (log_failed) {
+        p = put_str(p, " records not written after the log could not be written past ");
+        p = put_u64(p, log_written);
+        p = put_str(p, " bytes (");
+        p = put_str(p, write_error_text(log_failed));
+        p = put_str(p, ")");
+    } else {
+        p = put_str(p, " records not written after the log reached its ");
+        p = put_u64(p, log_max);
+        p = put_str(p, "-byte bound");
+    }
     *p = '\0';
     write_cap_record(detail);
 }

@@ -2,6 +2,7 @@
  * with -Wl,--wrap=write: a write from any thread but the test's own can be made slow, as a disk
  * stall makes it. In process, on the tester's own log. */
 #define _GNU_SOURCE
+#include <errno.h>
 #include <fcntl.h>
 #include <pthread.h>
 #include <signal.h>
@@ -21,8 +22,23 @@ ssize_t __wrap_write(int fd, const void *buf, size_t len);
 static long long write_delay_ns; /* 0: writes as they are */
 static pthread_t test_thread;
 
+/* A full disk: while armed (>= 0), writes to a file (fd > 2) take at most this many more bytes,
+ * then fail with ENOSPC. */
+static long long write_room = -1;
+
 ssize_t __wrap_write(int fd, const void *buf, size_t len)
 {
+    long long room = __atomic_load_n(&write_room, __ATOMIC_ACQUIRE);
+    if (room >= 0 && fd > 2) {
+        if (room == 0) {
+            errno = ENOSPC;
+            return -1;
+        }
+        size_t n = len < (size_t)room ? len : (size_t)room;
+        ssize_t w = __real_write(fd, buf, n);
+        if (w > 0) __atomic_store_n(&write_room, room - w, __ATOMIC_RELEASE);
+        return w;
+    }
     long long d = __atomic_load_n(&write_delay_ns, __ATOMIC_ACQUIRE);
     if (d > 0 && !pthread_equal(pthread_self(), test_thread)) {
         struct timespec ts = { (time_t)(d / 1000000000LL), (long)(d % 1000000000LL) };
@@ -285,5 +301,63 @@ void test_csv_log_record_bounds(void)
     CHECK(strstr(log, want) != NULL);
     free(log);
     rt_log_close();
+    h_teardown();
+}
+
+/* A full disk (a write that takes part of a record, then ENOSPC): the log ends at its last whole
+ * record (the part written is cut off again), later records are only counted, even once the disk
+ * has room again (a gap in the file would read as whole), said once on stderr, and the last
+ * log-capped record at the close says how many were not written and why. */
+void test_csv_log_disk_full(void)
+{
+    REQUIRE(h_setup("logfull") == 0);
+    REQUIRE(rt_log_open() == 0);
+    char csv[1024], err_path[700];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
+    fflush(stderr);
+    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    REQUIRE(saved >= 0 && out >= 0);
+    dup2(out, 2);
+    close(out);
+    for (int i = 0; i < 5; i++) ContractLog("before", "", -1, 0, "room");
+    ContractLogFlush();
+    __atomic_store_n(&write_room, 150, __ATOMIC_RELEASE); /* the disk fills inside the second record */
+    for (int i = 0; i < 100; i++) ContractLog("during", "", i, 0, "the disk fills");
+    ContractLogFlush();
+    __atomic_store_n(&write_room, -1, __ATOMIC_RELEASE); /* room again: the log stays stopped */
+    for (int i = 0; i < 10; i++) ContractLog("after", "", -1, 0, "room again");
+    ContractLogFlush();
+    rt_log_close();
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    char *log = h_read_file(csv), *err = h_read_file(err_path);
+    REQUIRE(log);
+    int lines = 0, during = 0, cut = 0;
+    for (const char *l = log; *l;) {
+        const char *end = strchr(l, '\n');
+        if (!end) { cut = 1; break; }
+        int commas = 0;
+        for (const char *c = l; c < end; c++) commas += *c == ',';
+        if (commas < 7) cut = 1;
+        lines++;
+        if (strstr(l, ",during,") && strstr(l, ",during,") < end) during++;
+        l = end + 1;
+    }
+    CHECK_MSG(!cut, "the log holds a cut line:\n%s", log);
+    CHECK_MSG(during == 1 && !strstr(log, ",after,"), "records written after the disk filled: %d during (expected the 1 whole in 150 bytes), after: %s",
+              during, strstr(log, ",after,") ? "yes" : "no");
+    const char *last = strstr(log, ",log-capped,");
+    CHECK_MSG(last && strstr(last, "109 records not written after the log could not be written past ") &&
+                  strstr(last, " bytes (No space left on device)\n"),
+              "the last records: %s", last ? last : "(no log-capped record)");
+    CHECK_MSG(err && strstr(err, "tester: warning: CSV log ") &&
+                  strstr(err, "bytes (No space left on device); it ends at its last whole record, later records are not written") &&
+                  !strstr(strstr(err, "warning: CSV log") + 1, "warning: CSV log"),
+              "stderr: %s", err ? err : "(none)");
+    (void)lines;
+    free(log);
+    free(err);
     h_teardown();
 }
