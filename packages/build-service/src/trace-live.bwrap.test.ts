@@ -216,3 +216,28 @@ test('the memory limit hit mid-run stops the architecture as at the end of a run
     else expect(last, `${f.name}\n${lines.slice(-30).join('\n')}`).toBe('module_exit');
   }
 }, 240_000);
+
+test('a cancel (Stop, Ctrl+C) while a limit is stopping the run does not hide the limit: the run ends by it, the cancel said', async () => {
+  // MSC leaks at its first release; MSA takes 2 s in its exit region, so the limit's stop lasts its whole grace
+  const msc = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
+  const msa = 'src-gen/generated/architecture/modules/MSA_mod/module.c';
+  const leak = '    for (;;) { char *p = malloc((size_t)16 << 20); if (p) memset(p, 1, (size_t)16 << 20); }';
+  let files = withRegion(withRegion(await tutorialFiles(), msc, 'protect_exec_MSC', leak, true), msc, 'protect_additional_import_MSC', '#include <stdlib.h>\n#include <string.h>', true);
+  files = withRegion(files, msa, 'protect_exit_MSA', '    { struct timespec slow = { 2, 0 }; nanosleep(&slow, NULL); }', true);
+  const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 20, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  let cancelled = false;
+  const events = await readEvents(served.url, id, (e) => {
+    if (cancelled || e.type !== 'line' || !(e as { line: string }).line.startsWith('memory limit 512 MiB reached: stopping the architecture')) return;
+    cancelled = true;
+    void fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' });
+  });
+  const lines = events.filter((e) => e.type === 'line').map((e) => (e as { line: string }).line);
+  const job = await getJob(served.url, id);
+  expect(cancelled, lines.slice(-30).join('\n')).toBe(true);
+  expect(job.status, lines.slice(-30).join('\n')).toBe('failed');
+  expect(job.result.message).toBe('killed: memory limit 512 MiB');
+  expect(job.result.issues).toEqual(expect.arrayContaining([expect.objectContaining({ kind: 'limit', module: 'MSC' })]));
+  expect(lines).toContain('cancel asked while the run was being stopped by the memory limit 512 MiB: it ends by the limit');
+}, 240_000);

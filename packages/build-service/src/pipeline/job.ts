@@ -105,6 +105,8 @@ export class Job {
   /** A cancelled run whose launcher stopped the architecture itself: its logs are whole. */
   private stoppedGracefully = false;
   private cancelRequested = false;
+  /** The limit whose hit is stopping the run (its launcher asked to stop: stopOnLimit), else null. */
+  private limitStopping: LimitHit | null = null;
   private cancelSignal!: () => void;
   private readonly cancelled = new Promise<void>((r) => (this.cancelSignal = r));
   /** The first internal fault of this job (see InternalFault), null while there is none. */
@@ -200,6 +202,12 @@ export class Job {
    */
   async cancel(): Promise<void> {
     if (this.isDone) return;
+    // a run already being stopped by a limit (stopOnLimit) ends by it, within the same grace: a
+    // cancel then (Ctrl+C at the stop's lines) would only hide why it ended
+    if (this.limitStopping && this.currentStep === 'run') {
+      this.system('run', `cancel asked while the run was being stopped by the ${describeLimitHit(this.limitStopping)}: it ends by the limit`);
+      return;
+    }
     this.cancelRequested = true;
     this.cancelSignal();
     const proc = this.current;
@@ -628,7 +636,11 @@ export class Job {
       ...(step === 'run' ? { stopOnLimit: {
         processName: LAUNCHER_PROCESS_NAME,
         graceMs: CANCEL_GRACE_MS,
-        stopping: (hit: LimitHit) => this.system('run', `${describeLimitHit(hit)} reached: stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`),
+        stopping: (hit: LimitHit) => {
+          if (this.cancelRequested) return; // Stop came first: the run ends as cancelled, the limit in limitHit
+          this.limitStopping = hit;
+          this.system('run', `${describeLimitHit(hit)} reached: stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
+        },
       } } : {}),
     });
     this.current = proc;

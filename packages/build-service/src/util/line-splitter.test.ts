@@ -1,6 +1,6 @@
 import fc from 'fast-check';
 import { describe, expect, test } from 'vitest';
-import { LineSplitter } from './line-splitter.js';
+import { CUT_LINE, LineSplitter } from './line-splitter.js';
 
 function split(chunks: Buffer[], maxBytes = 1 << 20, maxLineBytes?: number): { lines: string[]; truncatedAt: number | null } {
   const lines: string[] = [];
@@ -32,8 +32,10 @@ describe('LineSplitter', () => {
 
   test('stops at maxBytes, reports the truncation once, keeps draining', () => {
     const { lines, truncatedAt } = split([Buffer.from('12345\n67'), Buffer.from('890\nabc\n'), Buffer.from('more\n')], 10);
-    expect(lines).toEqual(['12345', '6789']);
+    expect(lines).toEqual(['12345', `6789${CUT_LINE}`]); // the cut line is said cut: '6789' is not a line of the output
     expect(truncatedAt).toBe(10);
+    // a bound on a line's end cuts no line
+    expect(split([Buffer.from('12345\n6789\nabc\n')], 11).lines).toEqual(['12345', '6789']);
   });
 
   test('splits overlong lines and strips CR', () => {

@@ -1,6 +1,7 @@
 /**
  * Splits a byte stream into text lines, keeps at most `maxBytes` bytes of it (then reports the
- * truncation once and drops the rest while still draining the stream, so the writer never blocks).
+ * truncation once and drops the rest while still draining the stream, so the writer never blocks;
+ * the line the bound cuts ends with CUT_LINE).
  * A line is emitted without its newline; a line longer than `maxLineBytes` is split.
  */
 export interface LineSplitterOptions {
@@ -9,6 +10,9 @@ export interface LineSplitterOptions {
   onLine(line: string): void;
   onTruncated(keptBytes: number): void;
 }
+
+/** What ends the line that the byte bound cut (its first part, kept). */
+export const CUT_LINE = ' [cut here: the output limit]';
 
 export class LineSplitter {
   private pending: Buffer[] = [];
@@ -50,7 +54,8 @@ export class LineSplitter {
     }
     if (start < data.length) this.appendPending(data.subarray(start));
     if (data.length < chunk.length) {
-      if (this.pendingBytes > 0) this.flushPending();
+      // the line the bound cuts is emitted as far as it goes, said cut (it must not read as a whole line)
+      if (this.pendingBytes > 0) this.flushPending(CUT_LINE);
       this.truncated = true;
       this.options.onTruncated(this.keptBytes);
     }
@@ -76,12 +81,12 @@ export class LineSplitter {
     }
   }
 
-  private flushPending(): void {
+  private flushPending(suffix = ''): void {
     const buf = Buffer.concat(this.pending, this.pendingBytes);
     this.pending = [];
     this.pendingBytes = 0;
     let text = buf.toString('utf8');
     if (text.endsWith('\r')) text = text.slice(0, -1);
-    this.options.onLine(text);
+    this.options.onLine(text + suffix);
   }
 }
