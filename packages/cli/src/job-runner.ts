@@ -87,7 +87,7 @@ export function formatGccDiagnostic(d: GccDiagnostic, dirArg = '.'): string {
 export interface JobOutcome {
     job: Job;
     result: JobResult;
-    /** Lines of the run step: [source, line] (module tag or 'launcher'/'run'). */
+    /** Lines of the run step: [source, line] (module tag or 'launcher'/'run'; 'service': its lines of the run's stop, RUN_STOP_LINE). */
     runLines: { source: string; stream: string; line: string }[];
     /**
      * The build step's last error lines (make's `***`, the assembler's, a tool's): told when a
@@ -231,6 +231,15 @@ const OUTPUT_TRUNCATED_LINE = /^\[output truncated: (stdout|stderr) limit .* rea
 /** The service's line when a run's duration was shortened to fit its run time limit (job.ts). */
 const DURATION_CAPPED_LINE = /^duration \S+ s capped to \S+ s: the run time limit is /;
 
+/**
+ * The service's lines of a run's stop (job.ts): `memory limit 512 MiB reached: stopping the
+ * architecture as at the end of a run (...)` (a limit hit), `stopping the architecture as at the
+ * end of a run (...)` (the run time limit, Ctrl+C), `the architecture did not stop within 1000 ms:
+ * killed`. Printed on stderr in every text output and kept with the run's lines (`output` in JSON):
+ * without them a stop reads as a normal end (`contract-launch: stopping`).
+ */
+const RUN_STOP_LINE = /^(?:[^\n]{1,200} reached: )?stopping the architecture as at the end of a run \(|^the architecture did not stop within \d+ ms: killed$|^cancel asked while the run was being stopped by the [^\n]{1,200}: it ends by the limit$/;
+
 /** Keeps `e` in `tail` (the last BUILD_TAIL_LINES) when it is a line of the build that says what failed. */
 export function noteBuildErrorLine(tail: string[], e: JobEvent): void {
     if (e.type !== 'line' || e.step !== 'build' || e.source === 'service') return;
@@ -240,7 +249,8 @@ export function noteBuildErrorLine(tail: string[], e: JobEvent): void {
     if (tail.length > BUILD_TAIL_LINES) tail.shift();
 }
 
-function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[]): (e: JobEvent) => void {
+/** The printer of a job's events (exported for its tests). */
+export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[]): (e: JobEvent) => void {
     const madeParts = new Set<string>();
     return (e) => {
         noteBuildErrorLine(buildTail, e);
@@ -253,6 +263,13 @@ function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines
             return;
         }
         if (e.type !== 'line') return;
+        // the service stopping the architecture (a limit reached, the run time limit, Ctrl+C): said in
+        // every output, as the launcher's lines it causes are
+        if (e.step === 'run' && e.source === 'service' && RUN_STOP_LINE.test(e.line)) {
+            runLines.push({ source: e.source, stream: e.stream, line: e.line });
+            if (opts.format === 'text') io.err(`${e.line}\n`);
+            return;
+        }
         if (e.step === 'run' && e.source !== 'service') {
             runLines.push({ source: e.source, stream: e.stream, line: e.line });
             if (opts.format !== 'text') return;

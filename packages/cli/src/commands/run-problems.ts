@@ -7,17 +7,39 @@ import type { JobOutcome } from '../job-runner.js';
 
 export interface ModuleFailure {
     module: string;
+    /** How it ended, as the launcher said it (`died by signal 11 (Segmentation fault)`). */
     how: string;
+    /** `memory-limit`: it died by SIGKILL while the memory limit was hit (the kernel's OOM killer), not a crash of its code. */
+    killedBy?: 'memory-limit';
+    /** With killedBy, what `contract run` says of it instead of `module CTL crashed (...)`: `CTL was killed by the memory limit (...)`. */
+    message?: string;
 }
+
+/** `CTL crashed (died by signal 11 (Segmentation fault))`, `CTL was killed by the memory limit (...)`: the line `contract run` prints after `module `. */
+export function failureText(f: ModuleFailure): string {
+    return f.message ?? `${f.module} crashed (${f.how})`;
+}
+
+/** The launcher's `died by signal 9 (Killed)`, `... while the run stopped`: a SIGKILL it did not send (it terminates with SIGTERM). */
+const SIGKILLED = /^died by signal 9 \(Killed\)( while the run stopped)?$/;
+/** Why the kernel's OOM killer chose it, as `contract run` says it. */
+const OOM_KILL = "signal 9: the kernel's OOM killer, which kills the process using the most memory";
 
 /**
  * Module crashes reported by the launcher (`FAILED: module X crashed`, with the preceding exit/signal
- * line), read by the build service's reader of them (the failed run's message names the same).
+ * line), read by the build service's reader of them (the failed run's message names the same). A
+ * module that died by SIGKILL in a run the memory limit stopped (`limitHit`) was killed by that
+ * limit (the kernel's OOM killer), not crashed: said so (`killedBy`, `message`), `how` as the launcher said.
  */
-export function moduleFailures(lines: JobOutcome['runLines']): ModuleFailure[] {
+export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name: string } | null): ModuleFailure[] {
     const crashes = new LauncherCrashes();
     for (const { source, line } of lines) if (source === 'launcher') crashes.line(line);
-    return crashes.failures().map(({ module, how }) => ({ module, how: how ?? 'crashed' }));
+    return crashes.failures().map(({ module, how = 'crashed' }) => {
+        const killed = limitHit?.name === 'memory' ? SIGKILLED.exec(how) : null;
+        return killed
+            ? { module, how, killedBy: 'memory-limit' as const, message: `${module} was killed by the memory limit${killed[1] ?? ''} (${OOM_KILL})` }
+            : { module, how };
+    });
 }
 
 /** ORD's advice on a module that does not finish its release, which is wrong for one that crashed. */
@@ -28,9 +50,10 @@ const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
  * without the advice to set `*stateindex = -1` (its code ended by a crash, not a loop).
  */
 export function problemLines(issues: readonly { kind: string; module?: string; message: string }[], failures: readonly ModuleFailure[]): string[] {
-    const crashed = new Map(failures.map((f) => [f.module, f.how]));
+    const crashed = new Map(failures.map((f) => [f.module, f]));
     return issues.map((i) => {
-        const how = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
-        return how === undefined ? i.message : `${i.message.replace(STUCK_ADVICE, '')}: it crashed (${how})`;
+        const f = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
+        if (f === undefined) return i.message;
+        return `${i.message.replace(STUCK_ADVICE, '')}: ${f.killedBy === 'memory-limit' ? `it was killed by the memory limit (${OOM_KILL})` : `it crashed (${f.how})`}`;
     });
 }

@@ -20,7 +20,7 @@ import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-
 import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
 import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
-import { moduleFailures, problemLines } from './run-problems.js';
+import { failureText, moduleFailures, problemLines } from './run-problems.js';
 import { runSchemaFigures } from './run-schemas.js';
 
 /** Saved logs of at least this many bytes: `--trace`'s final check of its file is said before it begins. */
@@ -56,15 +56,29 @@ export function checkReadyTimeout(text: string): number {
 }
 
 /**
- * `--run-limit` as seconds: a duration (parseDuration), the run step's wall time limit. A run still
- * going then is stopped as at the end of a run and fails `killed: run time limit N s` (exit 4).
+ * The shortest `--run-limit`: the launcher needs about 1 s to stop the architecture (the build
+ * service's grace, CANCEL_GRACE_MS), and the run half of the limit to start it; a shorter limit
+ * stops the run while its modules still start, and blames one of them (field test ft57b: `--run-limit
+ * 100ms`, `ENC did not end when the run stopped`).
+ */
+export const MIN_RUN_LIMIT_SECONDS = 2;
+
+/**
+ * `--run-limit` as seconds: a duration (parseDuration) of MIN_RUN_LIMIT_SECONDS at least, the run
+ * step's wall time limit. A run still going then is stopped as at the end of a run and fails
+ * `killed: run time limit N s` (exit 4).
  */
 export function checkRunLimit(text: string): number {
+    let seconds: number;
     try {
-        return parseDuration(text);
+        seconds = parseDuration(text);
     } catch (e) {
         throw new UsageError(`bad --run-limit '${text}': ${(e as Error).message}`);
     }
+    if (seconds < MIN_RUN_LIMIT_SECONDS) {
+        throw new UsageError(`bad --run-limit '${text}': at least ${MIN_RUN_LIMIT_SECONDS}s (the architecture needs about 1 s to start and 1 s to stop: a shorter limit would stop it while its modules still start, and blame one of them)`);
+    }
+    return seconds;
 }
 
 /**
@@ -166,6 +180,7 @@ export const runCommand: Command = {
         'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
         `  --run-limit: the run step's wall time limit (default: the duration + ${CLI_RUN_ROOM_SECONDS}s, and the --ready-timeout past 10s: the run lasts as long as asked);`,
+        `             at least ${MIN_RUN_LIMIT_SECONDS}s (the architecture needs about 1s to start and 1s to stop; a shorter one is refused, exit 2);`,
         '             a run still going then is stopped and fails `killed: run time limit N s` (exit 4). A --duration longer than the limit less',
         `             5s (half of it under 10s) is shortened to fit, said on stderr. The build step's limit is ${CLI_BUILD_SECONDS}s; the other limits are the`,
         '             build service\'s defaults (memory 512 MiB, 256 processes, disk 256 MiB: docs/sandbox.md "Limits")',
@@ -263,7 +278,7 @@ export const runCommand: Command = {
         }
         const leftovers = artifacts?.runDirLeftovers ?? [];
         const leftOut = artifacts?.skipped ?? [];
-        const failures = moduleFailures(outcome.runLines);
+        const failures = moduleFailures(outcome.runLines, outcome.result.limitHit);
         const schemas = opts.format !== 'json' ? null : teller && trace ? teller.schemaFigures() : await runSchemaFigures(logsDir, logs).catch(() => null);
         const extra = {
             logsDir: logs.length ? logsDir : null, logs, logsRefused: savedLogs.refused, previousLogs: savedLogs.movedAside,
@@ -273,7 +288,7 @@ export const runCommand: Command = {
         const notSaved = savedLogs.refused.map((r) => `log ${r.replace(/: /, ' not written: ')}`);
         const code = reportBuild(opts, outcome, io, extra, problems, notSaved);
         if (opts.format === 'text') {
-            for (const f of failures) io.err(`module ${safeName(f.module)} crashed (${f.how})\n`);
+            for (const f of failures) io.err(`module ${safeName(failureText(f))}\n`);
             // a run a sandbox limit killed left its modules' files: expected, not a warning (the limit is the problem told)
             if (leftovers.length && !outcome.result.limitHit) io.err(`warning: the run left files in its run directory: ${leftovers.map(safeName).join(', ')}\n`);
             for (const s of leftOut) if (!s.bound) io.err(`warning: log ${safeName(s.name)} not collected: ${s.reason}\n`);
@@ -291,5 +306,5 @@ export const runCommand: Command = {
 };
 
 // the parts of `contract run` that live in their own files, for their tests
-export { moduleFailures, problemLines, type ModuleFailure } from './run-problems.js';
+export { failureText, moduleFailures, problemLines, type ModuleFailure } from './run-problems.js';
 export { refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';

@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { CUT_RECORD, STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -157,7 +157,10 @@ class Story {
     /** The record's line of the story ('' when it tells nothing). */
     line(r: TraceRecord): string {
         this.ends.see(r);
-        const told = this.teller.tell(r);
+        let told = this.teller.tell(r);
+        // a log-capped record (the runtime's at its log's bound and at its end, the build service's
+        // on a log it cut) is told here: the story teller tells it not (a cut one only as cut)
+        if (r.kind === 'log-capped' && (told === undefined || (r as TraceRecordBase).cut)) told = this.ends.cappedLine(r as TraceRecordBase);
         return told === undefined ? '' : safeName(told) + '\n';
     }
 
@@ -167,10 +170,20 @@ class Story {
     }
 }
 
+/** `+1.250000s` after the first record, `-0.000100s` before it (as the story's lines). */
+function offsetText(ns: bigint): string {
+    return `${ns < 0n ? '-' : '+'}${(Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6)}s`;
+}
+
 /** The module a log is named for (`<MODULE>_<date>.csv`). */
 function moduleOfLog(name: string): string {
     return name.slice(0, Math.max(1, name.indexOf('_')));
 }
+
+/** The runtime's last `log-capped` record, written as the module ends (exit, crash, stop signal; runtime/src/csvlog.c write_cap_final). */
+const CAP_FINAL = /^(\d+) records not written after the log (reached its \d+-byte bound|could not be written past)/;
+/** Characters of a log-capped record's detail told at most (the runtime's are shorter; a forged one is cut). */
+const CAPPED_DETAIL_CHARS = 200;
 
 /** Unreadable lines named one by one at the end of the story (the rest counted). */
 const UNREADABLE_NAMED = 5;
@@ -200,6 +213,12 @@ export class ModuleEnds {
     private readonly capped = new Set<string>();
     /** Modules whose log the build service cut at its bound (its log-capped record, peer build-service): what follows is not in the file. */
     private readonly cutByService = new Set<string>();
+    /**
+     * Modules whose log ends with the runtime's last log-capped record (CAP_FINAL), with the records
+     * it says were not written: the module ended after its log reached its bound, its exit record
+     * (or its crash record) among those not written.
+     */
+    private readonly endsCapped = new Map<string, { dropped: string; why: string }>();
     private readonly unknowns: string[] = [];
     private unknownCount = 0;
     /** The logs' modules, then those of records (a trace file has no log names), each as kept: a copy, never the line it was read from. */
@@ -241,6 +260,9 @@ export class ModuleEnds {
         if (m === undefined) return;
         this.last.set(m, at);
         this.read.set(m, (this.read.get(m) ?? 0) + 1);
+        const final = r.kind === 'log-capped' && base.peer !== 'build-service' ? CAP_FINAL.exec(base.detail) : null;
+        if (final) this.endsCapped.set(m, { dropped: ownString(final[1]!), why: final[2]!.startsWith('reached') ? 'its log reached its bound' : 'its log could not be written further (a full disk)' });
+        else this.endsCapped.delete(m); // a record after it: its log does not end capped
         if (r.kind === 'module_started') this.started.add(m);
         if (r.kind === 'log-capped') {
             this.capped.add(m);
@@ -253,6 +275,19 @@ export class ModuleEnds {
             const k = (r as KnownRecord).fields['records'];
             if (typeof k === 'number') this.counted.set(m, k);
         }
+    }
+
+    /**
+     * The story's line of a `log-capped` record (seen first: see): `+4.108s CTL  log capped: log
+     * reached its 197388288-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written`, at
+     * its end `log capped: 667375 records not written after the log reached its 197388288-byte
+     * bound`; the build service's `log cut by the build service: collected the first K of N bytes (...)`.
+     */
+    cappedLine(r: TraceRecordBase): string {
+        const at = BigInt(r.monoNs) - (this.t0 ?? BigInt(r.monoNs));
+        const detail = r.detail.length > CAPPED_DETAIL_CHARS ? `${r.detail.slice(0, CAPPED_DETAIL_CHARS)}…` : r.detail;
+        const what = r.peer === 'build-service' ? 'log cut by the build service' : 'log capped';
+        return `${offsetText(at)} ${r.module.padEnd(4)} ${what}: ${detail || 'its log reached its bound'}${r.cut ? CUT_RECORD : ''}`;
     }
 
     /** The unreadable lines, the first few by file and line (the summary counts them all). */
@@ -275,14 +310,19 @@ export class ModuleEnds {
         const open = [...this.modules.keys()].filter((m) => this.started.has(m) && !this.exited.has(m) && this.last.has(m))
             .sort((a, b) => (this.last.get(a)! < this.last.get(b)! ? -1 : this.last.get(a)! > this.last.get(b)! ? 1 : 0));
         const out: string[] = [];
-        if (open.length > 1 && open.length === this.started.size) {
+        // a log that ends capped lost its exit record to the cap: not a module that did not end
+        const uncapped = open.filter((m) => !this.endsCapped.has(m));
+        if (uncapped.length > 1 && uncapped.length === this.started.size) {
             // not one module's crash: the whole run ended without its modules' exit records
             out.push(`${at(this.last.get(open.at(-1)!)!)} the records end here: no module wrote its exit record (${open.length} modules): the run was killed before its end, or is still running`);
         } else {
             for (const m of open) {
+                const capped = this.endsCapped.get(m);
                 out.push(this.cutByService.has(m)
                     ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log was cut here by the build service (its bound on a collected log): later records, its exit record among them, are not in it`
-                    : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); \`contract run\` says which)`);
+                    : capped !== undefined
+                        ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log ends capped: the module ended after ${capped.why}, so its exit record is not in it (one of the ${capped.dropped} records not written), not lost to a crash; \`contract run\` says how it ended`
+                        : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); \`contract run\` says which)${this.capped.has(m) ? ` (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)` : ''}`);
             }
         }
         for (const m of this.modules.keys()) {
