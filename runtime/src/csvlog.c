@@ -457,6 +457,23 @@ static void write_cap_record(const char *detail)
     (void)write_or_cut(rec, (size_t)(end - rec));
 }
 
+/* The log stops here for good (its bound, or a write the disk refused): later records are only
+ * counted; a `log-capped` record says why (`record`) and one stderr line (`M: warning: CSV log
+ * PATH <warning>`). Async-signal-safe. */
+static void stop_log(const char *record, const char *warning)
+{
+    __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
+    write_cap_record(record);
+    char text[PATH_MAX + 300], *p = text;
+    p = put_str(p, g_rt.name);
+    p = put_str(p, ": warning: CSV log ");
+    p = put_str(p, log_path);
+    p = put_str(p, " ");
+    p = put_str(p, warning);
+    p = put_str(p, "\n");
+    if (write(STDERR_FILENO, text, (size_t)(p - text)) < 0) { /* nothing more to say it with */ }
+}
+
 /* Writes whole records; a write error stops the log there for good (later records are only
  * counted, like past the bound: a file with a gap in it would read as whole), said once on stderr
  * and, when the disk takes it, by a `log-capped` record. Async-signal-safe. */
@@ -468,26 +485,21 @@ static void write_all(const char *buf, size_t len)
     size_t kept = (size_t)(log_written - before);
     log_dropped_w += count_records(buf + kept, len - kept);
     log_failed = err;
-    __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
-    char text[PATH_MAX + 300], *p = text; /* by hand: no stdio (a crash handler may be here) */
+    char record[160], warning[200], *p = record; /* by hand: no stdio (a crash handler may be here) */
     p = put_str(p, "log could not be written past ");
     p = put_u64(p, log_written);
     p = put_str(p, " bytes (");
     p = put_str(p, write_error_text(err));
     p = put_str(p, "): later records are not written");
     *p = '\0';
-    write_cap_record(text);
-    p = put_str(text, g_rt.name);
-    p = put_str(p, ": warning: CSV log ");
-    p = put_str(p, log_path);
-    p = put_str(p, " not written past ");
+    p = put_str(warning, "not written past ");
     p = put_u64(p, log_written);
     p = put_str(p, " bytes (");
     p = put_str(p, write_error_text(err));
-    p = put_str(p, "); it ends at its last whole record, later records are not written\n");
-    if (write(STDERR_FILENO, text, (size_t)(p - text)) < 0) { /* nothing more to say it with */ }
+    p = put_str(p, "); it ends at its last whole record, later records are not written");
+    *p = '\0';
+    stop_log(record, warning);
 }
-
 
 /* Writes buf[0..len) to the file within its bound (the writer's, or the module's without one), as
  * if `reserve` more bytes were in the file (a crash handler's: those the stalled writer may still
@@ -511,20 +523,16 @@ static void write_records_r(const char *buf, size_t len, unsigned long long rese
     write_all(buf, keep);
     log_dropped_w += count_records(buf + keep, len - keep);
     if (log_failed) return; /* a write error stopped the log first: said by write_all */
-    __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
-    char text[PATH_MAX + 300], *p = text; /* by hand: no stdio (a crash handler may be here) */
+    char record[160], warning[160], *p = record;
     p = put_str(p, "log reached its ");
     p = put_u64(p, log_max);
     p = put_str(p, "-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written");
     *p = '\0';
-    write_cap_record(text);
-    p = put_str(text, g_rt.name);
-    p = put_str(p, ": warning: CSV log ");
-    p = put_str(p, log_path);
-    p = put_str(p, " capped at ");
+    p = put_str(warning, "capped at ");
     p = put_u64(p, log_max);
-    p = put_str(p, " bytes (CONTRACT_LOG_MAX_BYTES); later records are not written\n");
-    if (write(STDERR_FILENO, text, (size_t)(p - text)) < 0) { /* nothing more to say it with */ }
+    p = put_str(p, " bytes (CONTRACT_LOG_MAX_BYTES); later records are not written");
+    *p = '\0';
+    stop_log(record, warning);
 }
 
 static void write_records(const char *buf, size_t len) { write_records_r(buf, len, 0); }
