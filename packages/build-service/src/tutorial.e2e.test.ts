@@ -141,6 +141,8 @@ describe('user code in protected regions (bwrap)', () => {
       runJob({ action: 'run', sandbox: 'bwrap', duration: 3, project: { files: base } }),
     ]);
     expect(b.job.result.message).toBe('killed: process limit 256');
+    // MAA's forks keep its name: the limit's issue names the module whose code forks
+    expect(b.job.result.issues).toEqual(expect.arrayContaining([expect.objectContaining({ kind: 'limit', module: 'MAA', message: expect.stringMatching(/\(MAA had \d+ of the job's processes: its code forks\)$/) })]));
     expect(a.job.result.message).toBe('killed: memory limit 512 MiB');
     expectTutorialRan(honest.job, honest.lines);
   });

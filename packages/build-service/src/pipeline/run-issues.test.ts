@@ -106,6 +106,14 @@ describe('RunIssues', () => {
     memory.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
     expect(memory.all.map((i) => i.message)).toEqual([expect.stringMatching(/^the run was stopped by the memory limit 512 MiB.* \(the kernel killed MSC first: the module using the most memory\)$/)]);
     expect(memory.all.map((i) => i.module)).toEqual(['MSC']);
+    // at the process limit, the module most of the job's processes were named after
+    const forks = new RunIssues();
+    forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'HMI', moduleProcesses: 241 });
+    forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' });
+    expect(forks.all.map((i) => [i.module, i.message])).toEqual([
+      ['HMI', "the run was stopped by the process limit 256 (HMI had 241 of the job's processes: its code forks)"],
+      [undefined, 'the run was stopped by the process limit 256'],
+    ]);
     r.outputTruncated('stdout', 1024 * 1024);
     expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
       ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],

@@ -92,8 +92,10 @@ export class RunIssues {
   limit(hit: LimitHit): void {
     // at the memory limit the kernel kills the process using the most memory first: the module to look at
     const first = hit.name === 'memory' && this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
-    const module = hit.name === 'memory' ? this.killed[0] : undefined;
-    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}`, ...(module ? { module } : {}) });
+    // at the process limit, the module whose code forks: most of the job's processes had its name
+    const forks = hit.name === 'processes' && hit.module ? ` (${hit.module} had ${hit.moduleProcesses ?? 'most'} of the job's processes: its code forks)` : '';
+    const module = hit.name === 'memory' ? this.killed[0] : hit.name === 'processes' ? hit.module : undefined;
+    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}${forks}`, ...(module ? { module } : {}) });
   }
 
   /** The output went past its cap: said with the module that wrote most of it (its issue's `module`), when one did. */

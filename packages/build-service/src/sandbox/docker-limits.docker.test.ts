@@ -86,7 +86,7 @@ if (env.available) {
       expect(job.status).toBe('failed');
       expect(job.result.step).toBe('run');
       expect(job.result.message).toBe('killed: process limit 24');
-      expect(job.result.limitHit).toEqual({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker' });
+      expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker', module: 'prog' });
       // the program would have lived 20 s more
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
     });

@@ -40,6 +40,8 @@ import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolic
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
 import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { stopThenKill } from './limit-stop.js';
+import { forkingModule } from './forking-module.js';
+import { processName } from './host-process.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
@@ -351,13 +353,21 @@ export class DockerSandbox implements Sandbox {
         docker: this.docker,
         container,
         mode: this.limitWatch,
-        onHit: (kind) => hitLimit(kind === 'memory' ? memoryHit : processHit),
+        onHit: (kind) => (kind === 'memory' ? hitLimit(memoryHit) : hitProcessLimit()),
         onFallback: (reason) => {
           if (this.limitWatchNoted || this.limitWatch === 'engine') return;
           this.limitWatchNoted = true;
           this.log(`docker: the containers' cgroups cannot be read here (${reason}): a memory limit hit is taken from the engine's oom events, a process limit hit from the program's messages (docs/sandbox.md "Memory and process limits in Docker")`);
         },
       });
+      /** The process limit, with the module whose code forks, named while its processes are there (forking-module.ts). */
+      let namingForks = false; // one look at the processes (a fork loop's error lines come by thousands)
+      const hitProcessLimit = (): void => {
+        if (namingForks || limitHit) return;
+        namingForks = true;
+        void watch.ready.then(() => watch.pids()).then((pids) => forkingModule(pids ?? [], processName), () => null).then((who) =>
+          hitLimit(who ? { ...processHit, module: who.module, moduleProcesses: who.processes } : processHit));
+      };
       const diskHit = async (): Promise<LimitHit | null> => {
         const state = await this.volumeState(volume);
         return state && isWorkDiskFull(state) ? { name: 'workDiskMiB', value: diskBytes, unit: 'bytes', mechanism: 'docker-tmpfs-volume' } : null;
@@ -400,7 +410,7 @@ export class DockerSandbox implements Sandbox {
       const noteLine = (line: string): void => {
         if (KILLED_LINE.test(line)) sawKilled = true;
         if (limitHit) return;
-        if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) hitLimit(processHit);
+        if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) hitProcessLimit();
       };
       const terminateNamed = async (name: string): Promise<boolean> => {
         if (killing) return false;

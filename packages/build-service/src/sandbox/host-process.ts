@@ -11,6 +11,7 @@ import type { LimitCgroup } from './cgroup.js';
 import { isWorkDiskFull, workDiskState } from './work-disk.js';
 import type { Mechanisms, SandboxExit, SandboxProcess, StopOnLimit } from './types.js';
 import { stopThenKill } from './limit-stop.js';
+import { forkingModule } from './forking-module.js';
 
 export interface HostProcessOptions {
   argv: string[];
@@ -115,7 +116,9 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
           if ((await cg.oomKills()) > 0) {
             hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: cg.mechanism });
           } else if ((await cg.pidsLimitHits()) > 0) {
-            hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism });
+            // the module whose code forks, named while its processes are there
+            const who = forkingModule(await cg.pids().catch(() => []), processName);
+            hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism, ...(who ? { module: who.module, moduleProcesses: who.processes } : {}) });
           }
         })().catch(() => {});
       }, WATCH_INTERVAL_MS)
@@ -216,7 +219,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
 const COMM_MAX = 15;
 
 /** A process's name (/proc/<pid>/comm), '' when it is gone. */
-function processName(pid: number): string {
+export function processName(pid: number): string {
   try {
     return readFileSync(`/proc/${pid}/comm`, 'utf8').replace(/\n$/, '');
   } catch {

@@ -98,7 +98,9 @@ describe(`${sandbox} sandbox, adversarial jobs running together`, () => {
     const { job } = outcomes.forkBomb!;
     expect(job.status).toBe('failed');
     expect(job.result.message).toBe('killed: process limit 256');
-    expect(job.result.limitHit).toEqual({ name: 'processes', value: 256, unit: 'count', mechanism });
+    // the program whose forks filled the limit is named (its children keep its name)
+    expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 256, unit: 'count', mechanism, module: 'prog' });
+    expect(job.result.limitHit.moduleProcesses).toBeGreaterThan(100);
   });
 
   test('a 4 GiB allocation is stopped by the memory limit', () => {
