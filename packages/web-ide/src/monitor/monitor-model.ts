@@ -134,6 +134,9 @@ export const MAX_USER_MARKS = 2000;
 export const MAX_ERROR_MARKS = 2000;
 /** Marks the requests kept for full mailboxes may take, likewise (a module slow at every cycle begins a streak each time). */
 export const MAX_KEPT_MARKS = 2000;
+/** The mark kinds taken by records a module or a supervisor may write at every cycle, each capped at its first ones. */
+type CappedMarkKind = 'user' | 'error' | 'kept';
+const MARK_CAPS: Readonly<Record<CappedMarkKind, number>> = { user: MAX_USER_MARKS, error: MAX_ERROR_MARKS, kept: MAX_KEPT_MARKS };
 
 /**
  * An error of the run, for its mark: an `error` record (a request not sent, a datagram dropped), a
@@ -265,10 +268,8 @@ export class MonitorModel implements MonitorView {
   private readonly every: number;
   private readonly keep: number;
   private readonly maxMarks: number;
-  /** Marks of the modules' own records so far (userMark). */
-  private userMarks = 0;
-  private errorMarks = 0;
-  private keptMarks = 0;
+  /** Marks of each capped kind so far (cappedMark). */
+  private readonly cappedMarks: Record<CappedMarkKind, number> = { user: 0, error: 0, kept: 0 };
   private readonly checkpoints: Checkpoint[] = [];
   /** chunks[i] holds records [firstChunk + i) * every ...; dropped chunks leave their notable records. */
   private chunks: Chunk[] = [];
@@ -401,9 +402,10 @@ export class MonitorModel implements MonitorView {
     if (r.kind === 'ord_release' || r.kind === 'ord_finished' || r.kind === 'scheduler') this.followCycles(r as KnownRecord);
     if (r.kind === 'module_exit' || r.kind === 'module_crashed' || r.kind === 'module_started' || r.kind === 'scheduler') this.followGone(r as KnownRecord);
     if (NOTABLE.has(r.kind)) this.notableRecord({ t, r });
-    else if (r.kind === 'user') this.userMark(t, r as KnownRecord);
-    if (r.kind !== 'unknown') this.errorMark(t, r as KnownRecord);
-    if (r.kind === 'requests_kept' || r.kind === 'requests_kept_end') this.keptMark(t, r as KnownRecord);
+    // a module's own record: its detail cut so that the peer, port and size after it show
+    else if (r.kind === 'user') this.cappedMark(t, 'user', r as KnownRecord, (k) => userRecordText(k, 80));
+    if (r.kind !== 'unknown') this.cappedMark(t, 'error', r as KnownRecord, errorLabel);
+    if (r.kind === 'requests_kept' || r.kind === 'requests_kept_end') this.cappedMark(t, 'kept', r as KnownRecord, keptRequestsText);
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
 
@@ -565,41 +567,20 @@ export class MonitorModel implements MonitorView {
   }
 
   /**
-   * A module's own record (ContractLog under a name of its own): a mark, `gripper_closed: force=12.5 N`
-   * (`(peer MAB, port 2, 16 bytes)` after it when it gave them: userRecordText, the story's words).
-   * Not a notable record (it changes no state); the first MAX_USER_MARKS only, so that a module
-   * logging at every cycle cannot take the marks the supervisors' and ORD's records need.
+   * A mark of a record that changes no state but is worth seeing, in its kind's colour on the row
+   * of the functions, labelled by `label` (undefined: no mark): a module's own record (ContractLog
+   * under a name of its own: `gripper_closed: force=12.5 N (peer MAB, port 2, 16 bytes)`, the
+   * story's words), an error of the run (errorLabel), a supervisor's requests kept for a full
+   * mailbox, when that began and ended (keptRequestsText). Each kind takes its first
+   * MARK_CAPS[kind] marks only, so that a record written at every cycle cannot take the marks the
+   * supervisors' and ORD's records need; the label is made only for a mark that is kept.
    */
-  private userMark(t: Ns, k: KnownRecord): void {
-    if (this.userMarks >= MAX_USER_MARKS || this.marks.length >= this.maxMarks) return;
-    this.userMarks++;
-    // the detail cut so that the peer, port and size after it show
-    this.marks.push({ t, kind: 'user', where: k.module, label: userRecordText(k, 80).slice(0, 200) });
-  }
-
-  /**
-   * An error of the run (errorLabel) is a mark, in its own colour on the row of the functions: the
-   * first MAX_ERROR_MARKS only, as for the modules' own records.
-   */
-  private errorMark(t: Ns, k: KnownRecord): void {
-    if (this.errorMarks >= MAX_ERROR_MARKS || this.marks.length >= this.maxMarks) return;
-    const label = errorLabel(k);
-    if (label === undefined) return;
-    this.errorMarks++;
-    this.marks.push({ t, kind: 'error', where: k.module, label: label.slice(0, 200) });
-  }
-
-  /**
-   * A supervisor's requests kept for a receiver's full mailbox: a mark when it began and one when it
-   * ended, in the story's words (keptRequestsText), in their own colour on the row of the functions;
-   * the first MAX_KEPT_MARKS only, as for the errors.
-   */
-  private keptMark(t: Ns, k: KnownRecord): void {
-    if (this.keptMarks >= MAX_KEPT_MARKS || this.marks.length >= this.maxMarks) return;
-    const label = keptRequestsText(k);
-    if (label === undefined) return;
-    this.keptMarks++;
-    this.marks.push({ t, kind: 'kept', where: k.module, label: label.slice(0, 200) });
+  private cappedMark(t: Ns, kind: CappedMarkKind, k: KnownRecord, label: (k: KnownRecord) => string | undefined): void {
+    if (this.cappedMarks[kind] >= MARK_CAPS[kind] || this.marks.length >= this.maxMarks) return;
+    const text = label(k);
+    if (text === undefined) return;
+    this.cappedMarks[kind]++;
+    this.marks.push({ t, kind, where: k.module, label: text.slice(0, 200) });
   }
 
   private notableRecord(x: Timed): void {
