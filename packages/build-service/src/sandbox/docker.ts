@@ -40,7 +40,7 @@ import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolic
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
 import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { stopThenKill } from './limit-stop.js';
-import { forkingModule } from './forking-module.js';
+import { withForkingModule } from './forking-module.js';
 import { processName } from './host-process.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
@@ -365,8 +365,7 @@ export class DockerSandbox implements Sandbox {
       const hitProcessLimit = (): void => {
         if (namingForks || limitHit) return;
         namingForks = true;
-        void watch.ready.then(() => watch.pids()).then((pids) => forkingModule(pids ?? [], processName), () => null).then((who) =>
-          hitLimit(who ? { ...processHit, module: who.module, moduleProcesses: who.processes } : processHit));
+        void watch.ready.then(() => watch.pids()).then((pids) => withForkingModule(processHit, pids ?? [], processName), () => processHit).then(hitLimit);
       };
       const diskHit = async (): Promise<LimitHit | null> => {
         const state = await this.volumeState(volume);

@@ -1,5 +1,5 @@
 import { describe, expect, test } from 'vitest';
-import { forkingModule } from './forking-module.js';
+import { forkingModule, withForkingModule } from './forking-module.js';
 
 describe('forkingModule', () => {
   const names = (list: string[]) => (pid: number) => list[pid] ?? '';
@@ -16,5 +16,11 @@ describe('forkingModule', () => {
     expect(forkingModule(one.map((_, i) => i), names(one))).toBeNull();
     const odd = Array(9).fill('kworker/0:1');
     expect(forkingModule(odd.map((_, i) => i), names(odd))).toBeNull();
+  });
+  test('withForkingModule: the hit with the module and its count when one is named, else the hit as it was', () => {
+    const hit = { name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' } as const;
+    const list = ['make', 'CTL', 'CTL', 'CTL'];
+    expect(withForkingModule(hit, [0, 1, 2, 3], (p) => list[p] ?? '')).toEqual({ ...hit, module: 'CTL', moduleProcesses: 3 });
+    expect(withForkingModule(hit, [0, 1], (p) => list[p] ?? '')).toBe(hit);
   });
 });

@@ -5,6 +5,7 @@
  * programs are not modules; a name shared by fewer than 3 processes (a module and one child)
  * names no one.
  */
+import type { LimitHit } from '../limits.js';
 
 /** Programs of the sandbox and the build, never a module's code. */
 const NOT_MODULES: ReadonlySet<string> = new Set(['bwrap', 'make', 'sh', 'bash', 'dash', 'contract-launch', 'setpriv', 'prlimit', 'docker-init', 'tini', 'cc', 'gcc', 'cc1', 'as', 'ld', 'collect2', 'sleep', 'true']);
@@ -34,4 +35,10 @@ export function forkingModule(pids: readonly number[], nameOf: (pid: number) => 
     else if (processes === best.processes) tie = true;
   }
   return best && !tie && best.processes >= 3 ? best : null;
+}
+
+/** A process limit hit, with the module whose code forks (limitHit.module) when `pids` name one. */
+export function withForkingModule(hit: LimitHit, pids: readonly number[], nameOf: (pid: number) => string): LimitHit {
+  const who = forkingModule(pids, nameOf);
+  return who ? { ...hit, module: who.module, moduleProcesses: who.processes } : hit;
 }

@@ -11,7 +11,7 @@ import type { LimitCgroup } from './cgroup.js';
 import { isWorkDiskFull, workDiskState } from './work-disk.js';
 import type { Mechanisms, SandboxExit, SandboxProcess, StopOnLimit } from './types.js';
 import { stopThenKill } from './limit-stop.js';
-import { forkingModule } from './forking-module.js';
+import { withForkingModule } from './forking-module.js';
 
 export interface HostProcessOptions {
   argv: string[];
@@ -117,8 +117,8 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
             hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: cg.mechanism });
           } else if ((await cg.pidsLimitHits()) > 0) {
             // the module whose code forks, named while its processes are there
-            const who = forkingModule(await cg.pids().catch(() => []), processName);
-            hit({ name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism, ...(who ? { module: who.module, moduleProcesses: who.processes } : {}) });
+            const processes: LimitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism };
+            hit(withForkingModule(processes, await cg.pids().catch(() => []), processName));
           }
         })().catch(() => {});
       }, WATCH_INTERVAL_MS)
