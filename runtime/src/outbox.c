@@ -116,6 +116,18 @@ static void streak_begin(const char *module, const RequestMessage *request)
     ContractLog("requests_kept", module, -1, 0, detail);
 }
 
+/* What came of a request of module's streak, counted for its `requests_kept_end`. */
+typedef enum { KEPT_SENT, KEPT_FAILED, KEPT_REPLACED } KeptFate;
+
+static void streak_count(const char *module, KeptFate fate)
+{
+    Streak *st = streak_of(module);
+    if (!st) return;
+    if (fate == KEPT_SENT) st->sent++;
+    else if (fate == KEPT_FAILED) st->failed++;
+    else st->replaced++;
+}
+
 /* After a kept request for module went, failed or was replaced: its streak ends when none is left
  * (`requests_kept_end`). */
 static void streak_check_end(const char *module)
@@ -153,8 +165,7 @@ int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
         since = kept[old]->since;
         replaced = kept[old]->replaced + 1;
         take_out(old);
-        Streak *st = streak_of(module);
-        if (st) st->replaced++;
+        streak_count(module, KEPT_REPLACED);
     }
     int for_it = ContractQueuedFor(module);
     char why[CONTRACT_NAME_MAX + 96] = "";
@@ -165,8 +176,7 @@ int rt_outbox_add(const char *module, const RequestMessage *request, size_t len)
     Kept *k = why[0] ? NULL : malloc(sizeof *k + len);
     if (!k) {
         int code = rt_send_failed(module, request->Type, EAGAIN, why[0] ? why : "no memory to keep it");
-        Streak *st = streak_of(module);
-        if (st) st->failed++;
+        streak_count(module, KEPT_FAILED);
         streak_check_end(module); /* the value it replaced was its last kept request */
         return code;
     }
@@ -198,8 +208,7 @@ static void fail(int i, int err, const char *why)
     snprintf(text, sizeof text, "%s%s%s", why, replaced[0] ? ", " : "", replaced);
     int code = rt_send_failed(k->module, h->Type, err, text);
     rt_log_sent(k->module, h, 0, NULL);
-    Streak *st = streak_of(k->module);
-    if (st) st->failed++;
+    streak_count(k->module, KEPT_FAILED);
     char module[CONTRACT_NAME_MAX];
     snprintf(module, sizeof module, "%s", k->module);
     if (on_failed) on_failed(k->module, h, code);
@@ -228,8 +237,7 @@ RTIME ContractRetryQueuedSends(void)
             char replaced[64];
             replaced_text(replaced, sizeof replaced, k);
             rt_log_sent(k->module, header(k), 1, replaced);
-            Streak *st = streak_of(k->module);
-            if (st) st->sent++;
+            streak_count(k->module, KEPT_SENT);
             char module[CONTRACT_NAME_MAX];
             snprintf(module, sizeof module, "%s", k->module);
             take_out(i);
