@@ -165,6 +165,20 @@ export function keptRequestsText(k: Pick<KnownRecord, 'kind' | 'peer' | 'fields'
     return `the requests kept for ${peer}'s full mailbox ended${after}${parts.length ? `: ${parts.join(', ')}` : ''}`;
 }
 
+/** Characters of a log-capped record's detail told at most (the runtime's are shorter; a forged one is cut). */
+const CAPPED_DETAIL_CHARS = 200;
+
+/**
+ * A `log-capped` record as the story tells it: `log capped: log reached its 197388288-byte bound
+ * (CONTRACT_LOG_MAX_BYTES): later records are not written`, at the module's end `log capped: 667375
+ * records not written after ...`; the build service's `log cut by the build service: collected the
+ * first K of N bytes (...)`.
+ */
+function cappedText(k: KnownRecord): string {
+    const detail = k.detail.length > CAPPED_DETAIL_CHARS ? `${k.detail.slice(0, CAPPED_DETAIL_CHARS)}…` : k.detail;
+    return `${k.peer === 'build-service' ? 'log cut by the build service' : 'log capped'}: ${detail || 'its log reached its bound'}`;
+}
+
 /** What the story adds to a record cut at its log's end (TraceRecordBase.cut). */
 export const CUT_RECORD = ' [cut: its log ends inside this line, with no line end; the record may have lost its end (its module was killed while writing it, or still writes it)]';
 
@@ -357,6 +371,8 @@ export class StoryTeller {
             return text && `${at(k)} ${text}`;
         }
         if (k.kind === 'user') return `${at(k)} ${userRecordText(k)}`;
+        // a log's bound reached (the runtime's at the bound and at its end, the build service's on a log it cut)
+        if (k.kind === 'log-capped') return `${at(k)} ${cappedText(k)}`;
         // a supervisor's requests kept for a receiver's full mailbox: when it began, and what came of them
         if (k.kind === 'requests_kept' || k.kind === 'requests_kept_end') return `${at(k)} ${keptRequestsText(k)}`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)

@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { CUT_RECORD, STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -157,10 +157,7 @@ class Story {
     /** The record's line of the story ('' when it tells nothing). */
     line(r: TraceRecord): string {
         this.ends.see(r);
-        let told = this.teller.tell(r);
-        // a log-capped record (the runtime's at its log's bound and at its end, the build service's
-        // on a log it cut) is told here: the story teller tells it not (a cut one only as cut)
-        if (r.kind === 'log-capped' && (told === undefined || (r as TraceRecordBase).cut)) told = this.ends.cappedLine(r as TraceRecordBase);
+        const told = this.teller.tell(r);
         return told === undefined ? '' : safeName(told) + '\n';
     }
 
@@ -170,11 +167,6 @@ class Story {
     }
 }
 
-/** `+1.250000s` after the first record, `-0.000100s` before it (as the story's lines). */
-function offsetText(ns: bigint): string {
-    return `${ns < 0n ? '-' : '+'}${(Number(ns < 0n ? -ns : ns) / 1e9).toFixed(6)}s`;
-}
-
 /** The module a log is named for (`<MODULE>_<date>.csv`). */
 function moduleOfLog(name: string): string {
     return name.slice(0, Math.max(1, name.indexOf('_')));
@@ -182,8 +174,6 @@ function moduleOfLog(name: string): string {
 
 /** The runtime's last `log-capped` record, written as the module ends (exit, crash, stop signal; runtime/src/csvlog.c write_cap_final). */
 const CAP_FINAL = /^(\d+) records not written after the log (reached its \d+-byte bound|could not be written past)/;
-/** Characters of a log-capped record's detail told at most (the runtime's are shorter; a forged one is cut). */
-const CAPPED_DETAIL_CHARS = 200;
 
 /** Unreadable lines named one by one at the end of the story (the rest counted). */
 const UNREADABLE_NAMED = 5;
@@ -275,19 +265,6 @@ export class ModuleEnds {
             const k = (r as KnownRecord).fields['records'];
             if (typeof k === 'number') this.counted.set(m, k);
         }
-    }
-
-    /**
-     * The story's line of a `log-capped` record (seen first: see): `+4.108s CTL  log capped: log
-     * reached its 197388288-byte bound (CONTRACT_LOG_MAX_BYTES): later records are not written`, at
-     * its end `log capped: 667375 records not written after the log reached its 197388288-byte
-     * bound`; the build service's `log cut by the build service: collected the first K of N bytes (...)`.
-     */
-    cappedLine(r: TraceRecordBase): string {
-        const at = BigInt(r.monoNs) - (this.t0 ?? BigInt(r.monoNs));
-        const detail = r.detail.length > CAPPED_DETAIL_CHARS ? `${r.detail.slice(0, CAPPED_DETAIL_CHARS)}…` : r.detail;
-        const what = r.peer === 'build-service' ? 'log cut by the build service' : 'log capped';
-        return `${offsetText(at)} ${r.module.padEnd(4)} ${what}: ${detail || 'its log reached its bound'}${r.cut ? CUT_RECORD : ''}`;
     }
 
     /** The unreadable lines, the first few by file and line (the summary counts them all). */
