@@ -270,7 +270,7 @@ export interface LimitHit {
   value: number;
   unit: 'bytes' | 'count' | 's';
   mechanism: Mechanism;
-  /** The process limit: the module most of the job's processes were named after at the hit (its code forks; forking-module.ts), when one was. */
+  /** The process limit: the module most of the job's processes descended from at the hit (its code forks; forking-module.ts), when one was. */
   module?: string;
   /** ... and how many of them were. */
   moduleProcesses?: number;

@@ -126,7 +126,8 @@ describe('user code in protected regions (bwrap)', () => {
 
   test('a fork bomb and a 4 GiB allocation in MAA init are stopped while an honest run completes', async () => {
     const base = await tutorialFiles();
-    const bomb = withRegion(base, MAA_MODULE, 'protect_init_MAA', '    for (;;) { if (fork() < 0) { perror("fork"); sleep(1); } }');
+    // each child execs another program (`sleep`): it no longer bears MAA's name
+    const bomb = withRegion(base, MAA_MODULE, 'protect_init_MAA', '    for (;;) { pid_t p = fork(); if (p == 0) { execl("/bin/sleep", "sleep", "60", (char *)0); _exit(127); } if (p < 0) { perror("fork"); sleep(1); } }');
     const alloc = withRegion(
       base,
       MAA_MODULE,
@@ -141,7 +142,7 @@ describe('user code in protected regions (bwrap)', () => {
       runJob({ action: 'run', sandbox: 'bwrap', duration: 3, project: { files: base } }),
     ]);
     expect(b.job.result.message).toBe('killed: process limit 256');
-    // MAA's forks keep its name: the limit's issue names the module whose code forks
+    // the sleeps descend from MAA: the limit's issue names the module whose code forks
     expect(b.job.result.issues).toEqual(expect.arrayContaining([expect.objectContaining({ kind: 'limit', module: 'MAA', message: expect.stringMatching(/\(MAA had \d+ of the job's processes: its code forks\)$/) })]));
     expect(a.job.result.message).toBe('killed: memory limit 512 MiB');
     expectTutorialRan(honest.job, honest.lines);

@@ -106,7 +106,7 @@ describe('RunIssues', () => {
     memory.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
     expect(memory.all.map((i) => i.message)).toEqual([expect.stringMatching(/^the run was stopped by the memory limit 512 MiB.* \(the kernel killed MSC first: the module using the most memory\)$/)]);
     expect(memory.all.map((i) => i.module)).toEqual(['MSC']);
-    // at the process limit, the module most of the job's processes were named after
+    // at the process limit, the module most of the job's processes descended from
     const forks = new RunIssues();
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'HMI', moduleProcesses: 241 });
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' });

@@ -41,7 +41,7 @@ import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
 import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand, SandboxExit, SandboxProbe, SandboxProcess } from './types.js';
 import { stopThenKill } from './limit-stop.js';
 import { withForkingModule } from './forking-module.js';
-import { processName } from './host-process.js';
+import { HOST_PROCESSES } from './host-process.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
@@ -365,7 +365,7 @@ export class DockerSandbox implements Sandbox {
       const hitProcessLimit = (): void => {
         if (namingForks || limitHit) return;
         namingForks = true;
-        void watch.ready.then(() => watch.pids()).then((pids) => withForkingModule(processHit, pids ?? [], processName), () => processHit).then(hitLimit);
+        void watch.ready.then(() => watch.pids()).then((pids) => withForkingModule(processHit, pids ?? [], HOST_PROCESSES), () => processHit).then(hitLimit);
       };
       const diskHit = async (): Promise<LimitHit | null> => {
         const state = await this.volumeState(volume);

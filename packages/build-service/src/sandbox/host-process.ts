@@ -118,7 +118,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
           } else if ((await cg.pidsLimitHits()) > 0) {
             // the module whose code forks, named while its processes are there
             const processes: LimitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism };
-            hit(withForkingModule(processes, await cg.pids().catch(() => []), processName));
+            hit(withForkingModule(processes, await cg.pids().catch(() => []), HOST_PROCESSES));
           }
         })().catch(() => {});
       }, WATCH_INTERVAL_MS)
@@ -226,6 +226,19 @@ export function processName(pid: number): string {
     return '';
   }
 }
+
+/** A process's parent pid (/proc/<pid>/stat), 0 when it is gone. */
+export function processParent(pid: number): number {
+  try {
+    const stat = readFileSync(`/proc/${pid}/stat`, 'utf8');
+    return Number(stat.slice(stat.lastIndexOf(')') + 2).split(' ')[1]) || 0;
+  } catch {
+    return 0;
+  }
+}
+
+/** The kernel's view of the job's processes, as forkingModule reads it. */
+export const HOST_PROCESSES = { nameOf: processName, parentOf: processParent } as const;
 
 /** pid -> parent pid of every process of the machine (from /proc/<pid>/stat). */
 export function processParents(): Map<number, number> {
