@@ -20,7 +20,7 @@ import type { ArchitectureView } from '../views/architecture-view.js';
 import type { MonitorView } from './model-view.js';
 import type { MonitorState } from './monitor-state.js';
 import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.js';
-import { MarksStrip } from './marks-strip.js';
+import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
@@ -96,6 +96,11 @@ export class MonitorPanel {
   private readonly followBtn = h('button', { class: 'btn small', id: 'monitor-follow', title: 'Put the cursor at the end of the run (End)' }, '⇥ End');
   private readonly playBtn = h('button', { class: 'btn small', id: 'monitor-play', title: 'Play the run back from the cursor, in real time', 'aria-label': 'Play the run from the cursor' }, '▷ Play');
   private readonly strip: MarksStrip;
+  /**
+   * What the mark ◀ / ▶ ([ / ]) jumped to is, in its tooltip's words: shown under the strip and said
+   * (polite); written on a jump only, emptied when the cursor moves otherwise.
+   */
+  private readonly markSaid = h('div', { class: 'monitor-mark-said', role: 'status', 'aria-live': 'polite' });
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
   private readonly schemasEl = h('div', { class: 'monitor-schemas', role: 'group', 'aria-label': 'Active schemas' });
   private readonly periodicEl = h('div', { class: 'monitor-periodic' });
@@ -127,6 +132,7 @@ export class MonitorPanel {
           h('button', { class: 'btn small', id: 'monitor-next', title: 'Next mark (])', 'aria-label': 'Next mark', onclick: () => step(1) }, '▶'))),
       h('div', { class: 'monitor-cursor' }, this.slider, this.timeText),
       this.strip.canvas,
+      this.markSaid,
       h('div', { class: 'monitor-body' },
         this.boundEl,
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
@@ -203,6 +209,7 @@ export class MonitorPanel {
 
   setFollow(on: boolean): void {
     this.follow = on;
+    setText(this.markSaid, '');
     if (on) this.setPlaying(false);
     else this.cursor = this.model?.end ?? 0; // paused where the run is now
     this.drawFollow();
@@ -213,6 +220,7 @@ export class MonitorPanel {
     this.playing = on && !!this.model;
     if (this.playing) {
       this.follow = false;
+      setText(this.markSaid, '');
       this.drawFollow();
       if (this.model && this.cursor >= this.model.end) this.cursor = 0;
       this.lastPlayWall = performance.now();
@@ -226,6 +234,7 @@ export class MonitorPanel {
   /** Moves the cursor to t (ns since the start) and stops following. */
   seek(t: number): void {
     this.follow = false;
+    setText(this.markSaid, '');
     this.drawFollow();
     this.cursor = Math.max(0, Math.min(t, this.model?.end ?? 0));
     this.schedule();
@@ -288,6 +297,8 @@ export class MonitorPanel {
     const marks = dir > 0 ? m.marksBetween(t + 1, m.end) : m.marksBetween(0, t - 1);
     const next = dir > 0 ? marks[0] : marks[marks.length - 1];
     this.seek(next ? next.t : dir > 0 ? m.end : 0);
+    // said and shown: the marks at that time, in the strip's tooltip's words
+    setText(this.markSaid, next ? markTooltip(m.marksBetween(next.t, next.t)) : dir > 0 ? 'No next mark: the end of the run' : 'No previous mark: the start of the run');
   }
 
   /** The next frame draws even if the model and the cursor are as drawn (what it draws changed: a throttled part is due, the workspace model was read again). */
@@ -395,7 +406,7 @@ export class MonitorPanel {
             return b;
           });
           setAttr(el, 'data-active', String(!!rs?.active));
-          const texts = ruleTexts(fn, rule, rs, gone);
+          const texts = ruleTexts(fn, rule, rs, gone, notInModel.has(fn));
           // a plain button (it opens the rule): its name says its state, no aria-pressed
           setAttr(el, 'aria-label', texts.label);
           setAttr(el, 'data-in-model', String(!gone));

@@ -79,6 +79,10 @@ describe('the follow button and the rules say their state in words, not as press
     const gone = ruleTexts('action', 'OLD', second, true);
     expect(gone.label).toBe(`OLD, active since +2.010325 s ← MAA:2 = "disconnected" → schemaCommande1, ${NOT_IN_MODEL_LONG}`);
     expect(gone.title).toContain(`· ${NOT_IN_MODEL_LONG}: click to open its function`);
+    // its function (or its whole supervisor) gone too: the tooltip promises nothing to open
+    const orphan = ruleTexts('mission', 'SINGLE', undefined, true, true);
+    expect(orphan.label).toBe(`SINGLE, not active yet, ${NOT_IN_MODEL_LONG}`);
+    expect(orphan.title).toBe(`mission.SINGLE: not active yet · ${NOT_IN_MODEL_LONG}, and so is its function: nothing to open`);
   });
 });
 

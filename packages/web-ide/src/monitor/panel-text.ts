@@ -71,14 +71,17 @@ export interface RuleTexts {
   title: string;
 }
 
-/** The words of rule `fn.rule`'s row; `gone`: the model no longer has it. */
-export function ruleTexts(fn: string, rule: string, rs: Pick<RuleState, 'active' | 'since' | 'cause' | 'started'> | undefined, gone: boolean): RuleTexts {
+/**
+ * The words of rule `fn.rule`'s row; `gone`: the model no longer has it; `fnGone`: nor its function
+ * (or its supervisor): a click has nothing to open.
+ */
+export function ruleTexts(fn: string, rule: string, rs: Pick<RuleState, 'active' | 'since' | 'cause' | 'started'> | undefined, gone: boolean, fnGone = false): RuleTexts {
   const cause = rs ? `← ${readableCause(rs.cause)}${rs.active && rs.started.length ? ` → ${rs.started.join(', ')}` : ''}` : '';
   const state = rs ? `${rs.active ? 'active' : 'inactive'} since ${fmtT(rs.since)}${cause ? ` ${cause}` : ''}` : 'not active yet';
   return {
     shown: rs && !rs.active ? `off ${cause}` : cause,
     label: `${rule}, ${state}${gone ? `, ${NOT_IN_MODEL_LONG}` : ''}`,
-    title: `${fn}.${rule}${rs ? ` ${state}` : `: ${state}`}${gone ? ` · ${NOT_IN_MODEL_LONG}: click to open its function` : ' · click to open it in its .contract file'}`,
+    title: `${fn}.${rule}${rs ? ` ${state}` : `: ${state}`}${gone ? ` · ${NOT_IN_MODEL_LONG}${fnGone ? ', and so is its function: nothing to open' : ': click to open its function'}` : ' · click to open it in its .contract file'}`,
   };
 }
 

@@ -34,13 +34,28 @@ describe("the Monitor's supervisor rows against the model", () => {
     expect([...glb!.notInModel].sort()).toEqual(['mission', 'mission.SINGLE']);
   });
 
-  it('mark a supervisor the model does not have, and nothing in it', () => {
+  it('mark a supervisor the model does not have, and every function and rule of it', () => {
     const model: SupervisorCatalogue = new Map([['SUP', new Map([['action', ['FIRST', 'SECOND']]])]]);
     const [glb, sup] = supervisorRows(model, run().live);
     expect(glb!.inModel).toBe(false);
-    expect(glb!.notInModel.size).toBe(0);
+    expect([...glb!.notInModel].sort()).toEqual(['mission', 'mission.SINGLE']);
     expect(sup!.inModel).toBe(true);
     expect(sup!.notInModel.size).toBe(0);
+  });
+
+  it('mark a supervisor renamed since the run: the run\'s name and all of it, after the model\'s new name', () => {
+    // since the run, SUP was renamed SUP2 (same functions and rules)
+    const model: SupervisorCatalogue = new Map([
+      ['SUP2', new Map([['action', ['FIRST', 'SECOND']]])],
+      ['GLB', new Map([['mission', ['SINGLE']]])],
+    ]);
+    const rows = supervisorRows(model, run().live);
+    expect(rows.map((r) => [r.name, r.inModel, [...r.notInModel].sort()])).toEqual([
+      ['GLB', true, []],
+      ['SUP', false, ['action', 'action.FIRST', 'action.SECOND']],
+      ['SUP2', true, []],
+    ]);
+    expect(rows[1]!.functions).toEqual(new Map([['action', ['FIRST', 'SECOND']]]));
   });
 
   it('mark nothing while the model names no supervisor (not read yet, or the logs of another project)', () => {

@@ -20,8 +20,9 @@ export interface SupervisorRow {
    */
   inModel: boolean | undefined;
   /**
-   * `function.rule` of the rules and `function` of the functions the trace names and the model,
-   * which has this supervisor, does not: renamed or removed since the run was recorded.
+   * `function.rule` of the rules and `function` of the functions the trace names and the model
+   * does not (renamed or removed since the run was recorded): all of them when the model names
+   * supervisors but not this one; none when it names no supervisor (inModel undefined).
    */
   notInModel: Set<string>;
 }
@@ -34,9 +35,10 @@ export function supervisorRows(catalogue: SupervisorCatalogue, s: MonitorState):
     const fns = new Map<string, string[]>();
     for (const [fn, rules] of model ?? []) fns.set(fn, [...rules]);
     const notInModel = new Set<string>();
-    // only when the model has this supervisor: else nothing of it is the model's to compare
+    // a supervisor the model does not have (renamed or removed since the run): all of it; a model
+    // that names no supervisor (not read yet, another project's logs): nothing to compare with
     const traceOnly = (key: string): void => {
-      if (model) notInModel.add(key);
+      if (catalogue.size) notInModel.add(key);
     };
     for (const r of st?.rules.values() ?? []) {
       const rules = fns.get(r.function);
