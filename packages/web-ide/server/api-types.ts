@@ -126,3 +126,17 @@ export interface RenameEntityResponse {
   /** `.scenario` files that named the entity but were not rewritten, and why (changed meanwhile, not a regular file...). */
   scenariosLeft: Array<{ file: string; reason: string }>;
 }
+
+/** The answer of GET /api/log-folder. */
+export interface LogFolderListing {
+  /** Workspace-relative paths of the folder's `*.csv` regular files, by name, the first FOLDER_LOGS_MAX (256, server/log-api.ts). */
+  logs: string[];
+  /** Regular `*.csv` files past FOLDER_LOGS_MAX (not in `logs`). */
+  more: number;
+  /** FOLDER_LOGS_MAX: the logs of one folder a replay reads at most. */
+  max: number;
+  /** `*.csv` entries that are no regular file, never read (`PWD_1.csv: a symbolic link, not read ...`), the first 20. */
+  notRead: string[];
+  /** All such entries (notRead names the first). */
+  notReadCount: number;
+}

@@ -7,7 +7,7 @@ import { fileURLToPath } from 'node:url';
 import { WorkspacePaths } from './workspace-paths.js';
 import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import { handleFileApi } from './file-api.js';
-import { handleLogApi } from './log-api.js';
+import { handleLogApi, handleLogFolderApi } from './log-api.js';
 import { WorkspaceWatcher } from './workspace-watcher.js';
 import { serveStatic } from './static-files.js';
 import { HttpError } from './http-error.js';
@@ -141,6 +141,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
         if (req.method === 'GET' && url.pathname === '/api/events') return watcher.attach(res, greeting());
         if (await handleFileApi(paths, req, res, url, treeLock, fileLocks)) return;
         if (await handleLogApi(paths, req, res, url)) return;
+        if (await handleLogFolderApi(paths, req, res, url)) return;
         if (await handleProjectApi(req, res, url)) return;
         if (await simulate.handle(req, res, url)) return;
         throw new HttpError(404, `no such API route: ${req.method} ${url.pathname}`);

@@ -31,6 +31,12 @@ beforeAll(async () => {
     writeFileSync(join(base, 'secret.csv'), 'secret');
     symlinkSync(join(base, 'secret.csv'), join(ws, 'logs', 'link_1.csv'));
     execFileSync('mkfifo', [join(ws, 'logs', 'fifo_1.csv')]);
+    // 300 one-record logs: past a replay's 256
+    mkdirSync(join(ws, 'many'));
+    for (let i = 0; i < 300; i++) writeFileSync(join(ws, 'many', `M${String(i).padStart(3, '0')}_1.csv`), `mono_ns,wall_time,module,event,peer,port,size,detail\n${i},w,M,module_started,,,0,pid=1\n`);
+    symlinkSync(join(base), join(ws, 'many', 'dir_1.csv'));
+    mkdirSync(join(ws, 'many', 'sub_1.csv'));
+    symlinkSync(join(ws, 'logs'), join(ws, 'linked-logs'));
   } });
   ({ base, ws, ide } = server);
 });
@@ -72,5 +78,46 @@ describe('GET /api/log', () => {
 
   it('needs the session token', async () => {
     expect((await fetch(`${ide.url}/api/log?path=logs/empty_1.csv`)).status).toBe(401);
+  });
+});
+
+describe('GET /api/log-folder', () => {
+  it('lists the logs a replay reads, and says which entries it does not read and why', async () => {
+    const res = await get('/api/log-folder?path=logs');
+    expect(res.status).toBe(200);
+    expect(await res.json()).toEqual({
+      logs: ['logs/ORD_29-Nov-2026-10h00m00s.csv', 'logs/empty_1.csv'], // by name, as contract trace orders them
+      more: 0,
+      max: 256,
+      notRead: ['fifo_1.csv: a FIFO, not read', 'link_1.csv: a symbolic link, not read (logs are never read through a link)'],
+      notReadCount: 2,
+    });
+    const root = (await (await get('/api/log-folder?path=')).json()) as { logs: string[] };
+    expect(root.logs).toEqual(['huge_1.csv']);
+  });
+
+  it('past 256 logs: the first 256 by name, the others counted', async () => {
+    const many = (await (await get('/api/log-folder?path=many')).json()) as { logs: string[]; more: number; notRead: string[]; notReadCount: number };
+    expect(many.logs).toHaveLength(256);
+    expect(many.logs[0]).toBe('many/M000_1.csv');
+    expect(many.logs.at(-1)).toBe('many/M255_1.csv');
+    expect(many.more).toBe(44);
+    expect(many.notRead).toEqual(['dir_1.csv: a symbolic link, not read (logs are never read through a link)', 'sub_1.csv: a folder, not read']);
+    expect(many.notReadCount).toBe(2);
+  });
+
+  it('refuses a folder reached through a link, or outside the workspace, and needs the token', async () => {
+    const cases: Array<[string, number, RegExp]> = [
+      ['linked-logs', 403, /link/i],
+      ['../', 403, /'\.\.'/],
+      ['/etc', 403, /absolute/],
+      ['none', 404, /not found/],
+    ];
+    for (const [path, status, why] of cases) {
+      const res = await get(`/api/log-folder?path=${encodeURIComponent(path)}`);
+      expect(res.status, path).toBe(status);
+      expect(((await res.json()) as { error: string }).error, path).toMatch(why);
+    }
+    expect((await fetch(`${ide.url}/api/log-folder?path=logs`)).status).toBe(401);
   });
 });

@@ -16,6 +16,7 @@ import { pipeline } from 'node:stream/promises';
 import { HttpError } from './http-error.js';
 import { WorkspaceFs } from './workspace-fs.js';
 import type { WorkspacePaths } from './workspace-paths.js';
+import type { LogFolderListing } from './api-types.js';
 
 /** Largest CSV log read for a replay (the build service's ARTIFACT_BOUNDS.fileBytes). */
 export const LOG_READ_BYTES = 256 * 1024 * 1024;
@@ -40,5 +41,45 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
       await handle.close().catch(() => undefined);
     }
   });
+  return true;
+}
+
+/** Logs of one folder a replay reads at most (the Monitor's bound: its run list, its model). */
+export const FOLDER_LOGS_MAX = 256;
+/** Entries of a folder's listing named as not read, at most (the others counted). */
+const NOT_READ_NAMED = 20;
+
+/** Why a `*.csv` entry of a log folder is not read (contract trace's words), or '' for a regular file. */
+function notReadWhy(d: import('node:fs').Dirent): string {
+  if (d.isFile()) return '';
+  if (d.isSymbolicLink()) return 'a symbolic link, not read (logs are never read through a link)';
+  const kind = d.isFIFO() ? 'a FIFO' : d.isSocket() ? 'a socket' : d.isCharacterDevice() || d.isBlockDevice() ? 'a device' : d.isDirectory() ? 'a folder' : 'not a regular file';
+  return `${kind}, not read`;
+}
+
+/**
+ * GET /api/log-folder?path=F -> the `*.csv` logs of workspace folder F ('' = the root) a replay
+ * reads, and those it does not read, said (LogFolderListing): the Explorer's tree lists no link nor
+ * FIFO, so a replay built from it alone would miss them without a word. The folder is opened from
+ * the root without following links (workspace-fs.ts).
+ */
+export async function handleLogFolderApi(paths: WorkspacePaths, req: IncomingMessage, res: ServerResponse, url: URL): Promise<boolean> {
+  if (req.method !== 'GET' || url.pathname !== '/api/log-folder') return false;
+  paths.resolve(url.searchParams.get('path')); // the clear 400/403 answers
+  const rel = paths.normalise(url.searchParams.get('path'));
+  const listing = await paths.fs.withDir(rel ? rel.split('/') : [], false, async (dir) => {
+    const entries = (await WorkspaceFs.list(dir)).filter((d) => d.name.endsWith('.csv')).sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+    const regular = entries.filter((d) => d.isFile());
+    const odd = entries.filter((d) => !d.isFile());
+    return {
+      logs: regular.slice(0, FOLDER_LOGS_MAX).map((d) => (rel ? `${rel}/${d.name}` : d.name)),
+      more: Math.max(0, regular.length - FOLDER_LOGS_MAX),
+      max: FOLDER_LOGS_MAX,
+      notRead: odd.slice(0, NOT_READ_NAMED).map((d) => `${d.name}: ${notReadWhy(d)}`),
+      notReadCount: odd.length,
+    } satisfies LogFolderListing;
+  });
+  res.writeHead(200, { 'content-type': 'application/json; charset=utf-8', 'cache-control': 'no-store' });
+  res.end(JSON.stringify(listing));
   return true;
 }

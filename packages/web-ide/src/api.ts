@@ -1,5 +1,5 @@
 /** Typed client of the IDE server's HTTP API (see server/file-api.ts and server/ide-server.ts). */
-import type { FileReadResponse, FileWriteResponse, GenerateResponse, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
+import type { FileReadResponse, FileWriteResponse, GenerateResponse, LogFolderListing, RenameEntityResponse, SimulateResponse, StaleSaveDetails, TreeEntry } from '../server/api-types.js';
 
 export type { TreeEntry, FileWriteResponse, FileReadResponse, StaleSaveDetails };
 /** What POST /api/generate answers: codegen's report, the src-gen folder and the time taken. */
@@ -114,6 +114,8 @@ export const api = {
   read: (path: string) => call<FileReadResponse>('GET', `/api/file?path=${q(path)}`),
   /** A run's CSV log in the workspace, for a replay (up to 256 MiB, where `read` stops at 8 MiB; `maxBytes`: not downloaded beyond). */
   readLog,
+  /** The `*.csv` logs of a workspace folder a replay reads, and the entries it does not read (links, FIFOs), said. */
+  logFolder: (path: string) => call<LogFolderListing>('GET', `/api/log-folder?path=${q(path)}`),
   /**
    * Saves a file edited from version `base` (If-Match; 409 + staleDetails when the disk moved on;
    * no base = a blind write). For a generated file the answer may be `merged` (the text now on disk is in `content`).

@@ -1,7 +1,7 @@
 /** A trace file (JSON lines) read back as a run's logs, through the CSV reader's checks (jsonl.ts). */
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, type TraceRecord } from './index.js';
+import { CSV_HEADER, TRACE_KINDS, isRule, isUnknown, parseLogFile, parseTrace, recordOfJsonLine, renderStory, traceFileToLogs, traceFileToLogsSteps, type TraceRecord } from './index.js';
 
 /** A run's logs: every kind of the table (its example line, at its own time), in two modules' logs, plus quoting. */
 function sampleLogs() {
@@ -100,6 +100,23 @@ describe('trace files (JSON lines)', () => {
             const records = back.files.reduce((n, f) => n + f.text.split('\n').length - 2, 0);
             const nonEmpty = text.split('\n').filter((l) => l.replace(/\r$/, '').trim() !== '').length;
             expect(records + back.problems.length + back.skipped).toBe(nonEmpty);
+            expect(back.unreadable).toBe(back.problems.length);
         }));
+    });
+
+    it('in steps (the IDE draws between them): the same logs; every line that is no record counted, past the problems named', () => {
+        const good = jsonl(Array.from({ length: 1200 }, (_, i) => ({ kind: 'user', monoNs: String(1000 + i), module: i % 2 ? 'MAA' : 'MSC', detail: `n=${i}`, fields: { event: 'tick' } })) as unknown as TraceRecord[]).split('\n').filter(Boolean);
+        const lines = good.flatMap((l, i) => (i % 40 === 0 ? [l, 'not json {'] : [l]));
+        const text = lines.join('\n');
+        const steps = traceFileToLogsSteps('t.jsonl', text, 100);
+        let yields = 0;
+        let step = steps.next();
+        for (; !step.done; step = steps.next()) yields++;
+        expect(yields).toBe(Math.floor(lines.length / 100) + 2); // and once after each log (MAA's, MSC's) is made
+        const whole = traceFileToLogs('t.jsonl', text);
+        expect(step.value).toEqual(whole);
+        expect(whole.unreadable).toBe(30);
+        expect(whole.problems).toHaveLength(21); // 20 named, then `10 more line(s) that are no record`
+        expect(whole.problems.at(-1)).toBe('10 more line(s) that are no record');
     });
 });

@@ -22,6 +22,8 @@ export const MAX_JSON_LINE_CHARS = 16_384;
 /** Modules of one trace file: one log each; records of more modules are left out, said. */
 export const MAX_TRACE_FILE_MODULES = 256;
 const MODULE = /^[A-Za-z_][A-Za-z0-9_]{0,63}$/;
+/** Lines of a module joined at a time while a trace file is read (traceFileToLogsSteps). */
+const JOINED_LINES = 2000;
 
 /** What a JSON line is, read: a record's CSV line, an unreadable line of the logs it was written from (`carried`), a line to skip, or why it is none. */
 export type JsonLineRead =
@@ -93,6 +95,8 @@ export interface TraceFileLogs {
     problems: string[];
     /** Lines skipped: records the writer could not read (lines of the logs it was written from). */
     skipped: number;
+    /** The file's own lines that are no record (not JSON, no record's fields...), all of them: `problems` names the first. */
+    unreadable: number;
     /** A simulation's file (its `sim_start`): the scenario ('' when unnamed); of several simulations (several scenarios), the first's, the others left out (said in `problems`). */
     simulation?: string;
 }
@@ -102,14 +106,27 @@ export interface TraceFileLogs {
  * logs (the IDE's recorded run, `contract trace`). `name`: the file's name (in the logs' names).
  */
 export function traceFileToLogs(name: string, text: string, maxProblems = 20): TraceFileLogs {
+    const steps = traceFileToLogsSteps(name, text, Infinity, maxProblems);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    return step.value;
+}
+
+/**
+ * traceFileToLogs in steps: yields every `every` lines read, so that a page can draw between
+ * slices (a trace file of a 60 s run of a 1 kHz schema is some 500,000 JSON lines to parse).
+ */
+export function* traceFileToLogsSteps(name: string, text: string, every = 500, maxProblems = 20): Generator<void, TraceFileLogs> {
     const base = name.replace(/^.*\//, '').replace(/\.jsonl$/i, '').replace(/[^A-Za-z0-9_.-]/g, '_') || 'trace';
-    const lines = new Map<string, string[]>();
+    // each module's lines, joined a stretch at a time (one join of 500,000 lines would hold a page 140 ms)
+    const lines = new Map<string, { parts: string[]; pending: string[] }>();
     const problems: string[] = [];
     let bad = 0;
     let skipped = 0;
     let tooMany = 0;
     let simulation: string | undefined;
     for (let pos = 0, n = 1; pos < text.length; n++) {
+        if (n % every === 0) yield;
         let nl = text.indexOf('\n', pos);
         if (nl < 0) nl = text.length;
         const line = text.slice(pos, nl > pos && text.charCodeAt(nl - 1) === 13 ? nl - 1 : nl);
@@ -139,12 +156,21 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
                 tooMany++;
                 continue;
             }
-            lines.set(read.module, (log = []));
+            lines.set(read.module, (log = { parts: [], pending: [] }));
         }
-        log.push(read.csv);
+        log.pending.push(read.csv);
+        if (log.pending.length >= JOINED_LINES) {
+            log.parts.push(log.pending.join('\n'));
+            log.pending = [];
+        }
     }
     if (bad > maxProblems) problems.push(`${bad - maxProblems} more line(s) that are no record`);
     if (tooMany) problems.push(`${tooMany} record(s) of modules past the first ${MAX_TRACE_FILE_MODULES} left out`);
-    const files = [...lines].map(([module, l]) => ({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.join('\n')}\n` }));
-    return { files, problems, skipped, ...(simulation !== undefined ? { simulation } : {}) };
+    const files: LogFile[] = [];
+    for (const [module, l] of lines) {
+        if (l.pending.length) l.parts.push(l.pending.join('\n'));
+        files.push({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.parts.join('\n')}\n` });
+        yield;
+    }
+    return { files, problems, skipped, unreadable: bad, ...(simulation !== undefined ? { simulation } : {}) };
 }

@@ -19,8 +19,9 @@ import type { Workspace } from '../workspace/workspace.js';
 import { isContract } from '../workspace/file-kinds.js';
 import { debounce } from '../util/dom.js';
 import { toast } from '../util/toast.js';
+import { runSliced } from '../util/sliced.js';
 import { fetchJobLogs, MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
-import { socketUrl } from '../api.js';
+import { api, socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
@@ -36,7 +37,6 @@ import { count, recordCounts, recordCountsText, unreadableNote } from './record-
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
 /** Longest stretch of folding a recorded run's records without yielding to rendering and input. */
-const INGEST_SLICE_MS = 8;
 /** How long the end of a run waits for its worker to fold the last of the stream. */
 const SETTLE_MS = 5000;
 /** CSV files read from the workspace for one replay. */
@@ -333,16 +333,23 @@ export class MonitorController {
    */
   async openFolder(folder: string, asked = true): Promise<void> {
     const mine = asked ? ++this.picked : this.picked;
-    const paths = this.csvIn(folder);
-    this.folderFiles.set(`dir:${folder}`, paths.join('\n'));
-    const { files, problems: leftOut, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    this.folderFiles.set(`dir:${folder}`, this.csvIn(folder).join('\n'));
+    const where = folder || 'the workspace root';
+    if (asked) await this.reading(`the CSV logs in ${where}`);
+    // the folder as the server lists it: its links and FIFOs too, which the Explorer's tree does not show
+    const listing = await api.logFolder(folder).catch((e: Error) => ({ logs: this.csvIn(folder), more: 0, max: MAX_FILES, notRead: [`${where} could not be listed (${e.message}): its logs the Explorer shows are read`], notReadCount: 1 }));
+    const paths = listing.logs;
+    const { files, problems, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     // said in the label: a replay never misses a log silently; a run too long for the page is told
     // whole by the CLI, which reads it as a stream
-    const where = folder || 'the workspace root';
-    const whole = tooLarge ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
+    const leftOut = [...problems, ...listing.notRead];
+    if (listing.notReadCount > listing.notRead.length) leftOut.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);
+    if (listing.more) leftOut.push(`${count(listing.more)} more CSV log(s) past the first ${listing.max}: a replay reads ${listing.max} at most`);
+    const whole = tooLarge || listing.more ? ` — \`contract trace ${folder || '.'}\` tells a run of any length` : '';
     const { model, leftOut: unread } = await recordedRun(files);
     const counted = unreadableNote(recordCounts(model));
-    const read = leftOut.length ? `${files.length} of ${paths.length} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
+    const inFolder = paths.length + listing.more + listing.notReadCount;
+    const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
     const run: Run = { id: `dir:${folder}`, label, model, live: false };
     this.keepRecorded(run);
@@ -358,13 +365,20 @@ export class MonitorController {
   async openTraceFile(path: string, asked = true): Promise<void> {
     const mine = asked ? ++this.picked : this.picked;
     const id = `file:${path}`;
-    const { files, problems, skipped, simulation } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    if (asked) await this.reading(`trace file ${path}`);
+    const { files, problems, skipped, unreadable, simulation } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     const { model, leftOut: unread } = await recordedRun(files);
     const notWhole = [...problems, ...unread];
-    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
+    // counted as `contract trace` counts them: the logs' unreadable lines the file carries, and its own lines that are no record
+    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
     this.keepRecorded({ id, label, model, live: false });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();
+  }
+
+  /** Says in the panel's label what is being read (a run of a minute at 1 kHz takes a few seconds): until it is shown. */
+  private async reading(what: string): Promise<void> {
+    (await this.ensurePanel()).setLabel(`Reading ${what}…`);
   }
 
   private get isShown(): boolean {
@@ -431,36 +445,12 @@ export class MonitorController {
 }
 
 /**
- * The model of a recorded run's logs (recorded-run.ts), built in slices of INGEST_SLICE_MS with
- * the page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a
- * second or more of folding, during which the page would not draw nor answer a key.
+ * The model of a recorded run's logs (recorded-run.ts), built in slices (util/sliced.ts) with the
+ * page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a second
+ * or more of folding, during which the page would not draw nor answer a key.
  */
-async function recordedRun(files: LogFile[]): Promise<RecordedRun> {
-  let until = performance.now() + INGEST_SLICE_MS;
-  const steps = recordedRunSteps(files, 500);
-  let step = steps.next();
-  for (; !step.done; step = steps.next()) {
-    if (performance.now() < until) continue;
-    await yieldToPage();
-    until = performance.now() + INGEST_SLICE_MS;
-  }
-  return step.value;
-}
-
-/**
- * Lets the page draw a frame and handle input, and comes back as soon as it has: a message to
- * itself, not setTimeout (which a browser holds back at least 4 ms after a few nested calls: half
- * the build's time was spent waiting).
- */
-function yieldToPage(): Promise<void> {
-  return new Promise((resolve) => {
-    const channel = new MessageChannel();
-    channel.port1.onmessage = () => {
-      channel.port1.close();
-      resolve();
-    };
-    channel.port2.postMessage(undefined);
-  });
+function recordedRun(files: LogFile[]): Promise<RecordedRun> {
+  return runSliced(recordedRunSteps(files, 500));
 }
 
 function dirOf(path: string): string {

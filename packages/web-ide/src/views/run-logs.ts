@@ -4,7 +4,8 @@
  * service collected from a sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`,
  * docs/build-service-api.md), or a trace file of the workspace read as the logs it was written from.
  */
-import { traceFileToLogs } from '@contract-studio/build-service/trace';
+import { traceFileToLogsSteps, type TraceFileLogs } from '@contract-studio/build-service/trace';
+import { runSliced } from '../util/sliced.js';
 import { api, ApiError, getOk } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
@@ -90,10 +91,11 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
  * turned into the logs it was written from (build-service trace/jsonl.ts): `problems` says what
  * could not be read (the file itself, then its lines that are no record).
  */
-export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<{ files: LogFile[]; problems: string[]; skipped: number; simulation?: string }> {
+export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<TraceFileLogs> {
   const { files: read, problems } = await readWorkspaceLogs([path], nameOf, maxBytes);
-  if (!read[0]) return { files: [], problems, skipped: 0 };
-  const logs = traceFileToLogs(path, read[0].text);
+  if (!read[0]) return { files: [], problems, skipped: 0, unreadable: 0 };
+  // its JSON lines parsed in slices: the page draws and answers keys meanwhile
+  const logs = await runSliced(traceFileToLogsSteps(path, read[0].text));
   return { ...logs, problems: [...problems, ...logs.problems] };
 }
 

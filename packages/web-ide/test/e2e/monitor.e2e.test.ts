@@ -6,7 +6,7 @@
  *   live when the build service streams trace events, and on the job's recorded logs after the run.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, existsSync, mkdirSync, readdirSync, readFileSync, truncateSync, writeFileSync } from 'node:fs';
+import { cpSync, existsSync, mkdirSync, readdirSync, readFileSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
@@ -30,6 +30,9 @@ interface MarkJson { t: number; kind: string; where: string; label: string }
 const marksOf = (page: Page) => page.evaluate(() => ((window as any).__ide.monitor.current?.marks ?? []) as MarkJson[]);
 const rule = (page: Page, id: string) => page.locator(`.monitor-rule[data-rule="${id}"]`);
 const periodic = (page: Page, name: string) => page.locator(`.monitor-pschema[data-periodic="${name}"]`);
+/** What the panel says (a polite live region: null without one) of the mark ◀ / ▶ ([ / ]) jumped to: the strip's tooltip's words for the marks at `t`. */
+const markSaid = (page: Page) => page.evaluate(() => document.querySelector('.monitor-mark-said[role=status][aria-live=polite]')?.textContent ?? null);
+const saidOf = (marks: readonly MarkJson[], t: number) => marks.filter((m) => m.t === t).map((m) => `+${(m.t / 1e9).toFixed(6)} s ${m.where}: ${m.label}`).join('\n');
 
 /**
  * A taller screenshot of the IDE with the monitor (for docs/watching-a-run.md), then the usual size
@@ -155,6 +158,8 @@ describe('Monitor in headless Chromium', () => {
     expect(strip.filter((k) => k.kind === 'rule' && k.on).map((k) => k.colour)).toContain('#98c379');
     await page.keyboard.press(']');
     await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(marks.find((m) => m.t > 0)!.t);
+    // the mark jumped to is said and shown, in the words of the strip's tooltip
+    expect(await markSaid(page)).toBe(saidOf(marks, marks.find((m) => m.t > 0)!.t));
     // End follows the end again: every function stopped, no rule lit
     await page.keyboard.press('End');
     await expect.poll(() => page.locator('#monitor-follow').getAttribute('data-following')).toBe('true');
@@ -180,6 +185,39 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(supFile, supText);
     await expect.poll(() => rule(page, 'SUP.action.SECOND').getAttribute('data-in-model'), { timeout: 10_000 }).toBe('true');
     expect(await rule(page, 'SUP.action.SECOND_X').count()).toBe(0);
+    // a whole supervisor renamed since the run (GLB, now GLA): the run's GLB, its function and its
+    // rule are all marked as not in the model, like a renamed rule; a click says so and opens nothing
+    const glbFile = join(s.workspace, 'supervisor2.contract');
+    const glbText = readFileSync(glbFile, 'utf8');
+    writeFileSync(glbFile, glbText.replace('supervisor GLB{', 'supervisor GLA{'));
+    const glbHeader = page.locator('.monitor-sup[data-supervisor="GLB"] .monitor-sup-name');
+    await expect.poll(() => glbHeader.getAttribute('data-in-model'), { timeout: 10_000 }).toBe('false');
+    expect(await glbHeader.textContent()).toMatch(/^GLB \(not in the model\)/);
+    expect(await page.locator('.monitor-fn[data-function="GLB.mission"]').getAttribute('data-in-model')).toBe('false');
+    expect(await page.locator('.monitor-fn[data-function="GLB.mission"]').textContent()).toMatch(/^mission\(\) \(not in the model\) — /);
+    expect(await rule(page, 'GLB.mission.SINGLE').getAttribute('data-in-model')).toBe('false');
+    expect(await rule(page, 'GLB.mission.SINGLE').getAttribute('aria-label')).toMatch(/^SINGLE, .*, not in the model: renamed or removed since this run$/);
+    expect(await rule(page, 'GLB.mission.SINGLE').getAttribute('title')).toMatch(/ · not in the model: renamed or removed since this run, and so is its function: nothing to open$/);
+    expect(await rule(page, 'GLB.mission.SINGLE').locator('.rule-name').evaluate((e) => getComputedStyle(e).textDecorationLine)).toBe('line-through');
+    expect(await rule(page, 'GLA.mission.SINGLE').getAttribute('data-in-model')).toBe('true');
+    expect(await rule(page, 'SUP.action.SECOND').getAttribute('data-in-model')).toBe('true');
+    await rule(page, 'GLB.mission.SINGLE').click();
+    await expect.poll(() => page.locator('.toast').allTextContents()).toContainEqual(expect.stringContaining('GLB.mission is not in the model'));
+    // with a mark jumped to (GLB's rule lit): the picture of both
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('Home');
+    await expect.poll(() => markSaid(page)).toBe('');
+    await page.keyboard.press(']');
+    await page.keyboard.press(']');
+    const glbRuleOn = marks.filter((m) => m.t > 0)[1]!;
+    expect(glbRuleOn).toMatchObject({ where: 'GLB', label: expect.stringMatching(/^mission\.SINGLE active/) });
+    await expect.poll(() => markSaid(page)).toBe(saidOf(marks, glbRuleOn.t));
+    await expect.poll(() => rule(page, 'GLB.mission.SINGLE').getAttribute('data-active')).toBe('true');
+    expect(await rule(page, 'GLB.mission.SINGLE').getAttribute('data-in-model')).toBe('false');
+    await shot(page, 'monitor-01b-supervisor-not-in-model-mark-said');
+    writeFileSync(glbFile, glbText);
+    await expect.poll(() => glbHeader.getAttribute('data-in-model'), { timeout: 10_000 }).toBe('true');
+    expect(await rule(page, 'GLB.mission.SINGLE').getAttribute('data-in-model')).toBe('true');
     // ◉ Monitor hides it and shows it again, on the same run
     await page.locator('#btn-monitor').click();
     await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
@@ -201,7 +239,7 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(join(s.workspace, 'recorded.jsonl'), [sim, 'not json', ...records.map((r) => JSON.stringify(r))].join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="file:recorded.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('file:recorded.jsonl');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · a simulation · ${records.length} record(s) (not whole: line 2: not JSON)`);
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file recorded.jsonl · a simulation · ${records.length} record(s), 1 unreadable line(s) (not whole: line 2: not JSON)`);
     expect(await marksOf(page)).toEqual(fromLogs);
     await checkTutorialStory(page);
     // a click on the file in the explorer opens it in the Monitor (not as text in an editor tab)
@@ -258,6 +296,41 @@ describe('Monitor in headless Chromium', () => {
     await page.locator('.monitor-view').focus();
     await page.keyboard.press('End');
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe('1000');
+  }, 60_000);
+
+  it('a folder of 258 logs, a link and a FIFO: 256 read, the others named or counted; a trace file counts every line that is no record, as contract trace does', async () => {
+    const { page } = s;
+    const dir = join(s.workspace, 'odd-run');
+    mkdirSync(dir);
+    const header = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+    for (let i = 0; i < 258; i++) {
+      const m = `M${String(i).padStart(3, '0')}`;
+      writeFileSync(join(dir, `${m}_1.csv`), `${header}\n${1000 + i},w,${m},module_started,,,0,pid=${i + 1} priority=10\n`);
+    }
+    // the Explorer lists neither: before, the replay left them out without a word
+    symlinkSync('/etc/passwd', join(dir, 'PWD_1.csv'));
+    spawnSync('mkfifo', [join(dir, 'FIF_1.csv')]);
+    await monitorShown(page);
+    await expect.poll(() => page.locator('.monitor-sources option[value="dir:odd-run"]').count(), { timeout: 10_000 }).toBe(1);
+    // what the label says while the folder is read
+    await page.evaluate(() => {
+      const label = document.querySelector('.monitor-source')!;
+      (window as any).__labels = [];
+      new MutationObserver(() => (window as any).__labels.push(label.textContent)).observe(label, { childList: true, characterData: true, subtree: true });
+    });
+    await page.locator('.monitor-sources').selectOption('dir:odd-run');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
+      .toBe('256 of 260 CSV logs in odd-run (left out: FIF_1.csv: a FIFO, not read; PWD_1.csv: a symbolic link, not read (logs are never read through a link); 2 more CSV log(s) past the first 256: a replay reads 256 at most) — `contract trace odd-run` tells a run of any length');
+    expect(await page.evaluate(() => (window as any).__ide.monitor.current.recordCount)).toBe(256);
+    expect(await page.evaluate(() => (window as any).__labels[0])).toBe('Reading the CSV logs in odd-run…');
+    // a trace file: the lines that are no record counted (the first 20 named), as `contract trace` counts them
+    const records = Array.from({ length: 500 }, (_, i) => JSON.stringify({ kind: 'module_started', monoNs: String(1000 + i), wallTime: 'w', module: 'ORD', peer: '', port: null, size: 0, detail: 'pid=1 priority=10' }));
+    const lines = records.flatMap((r, i) => (i % 20 === 0 ? [r, '{"deep":' + '['.repeat(50) + ']'.repeat(50) + '}', 'garbage \u0001'] : [r]));
+    writeFileSync(join(s.workspace, 'odd.jsonl'), lines.join('\n') + '\n');
+    await expect.poll(() => page.locator('.monitor-sources option[value="file:odd.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('file:odd.jsonl');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toMatch(/^Trace file odd\.jsonl · 500 record\(s\), 50 unreadable line\(s\) \(not whole: line 2: kind, monoNs, module and detail must be strings; line 3: not JSON; .*; 30 more line\(s\) that are no record\)$/);
+    expect(await page.evaluate(() => (window as any).__labels)).toContain('Reading trace file odd.jsonl…');
   }, 60_000);
 
   it('a folder opened while another is still read and built: the last one asked for is shown, the other listed', async () => {
@@ -491,9 +564,17 @@ describe('Monitor in headless Chromium', () => {
     await page.keyboard.press(']');
     const second = marks.find((m) => m.t > firstMark)!.t;
     await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(second);
+    expect(await markSaid(page)).toBe(saidOf(marks, second));
     await page.keyboard.press('[');
     await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(firstMark);
+    expect(await markSaid(page)).toBe(saidOf(marks, firstMark));
     expect(await page.evaluate(() => document.activeElement?.classList.contains('monitor-slider'))).toBe(true);
+    // moved otherwise (Home), nothing is said; at the start, no previous mark: said so
+    await page.keyboard.press('Home');
+    await expect.poll(async () => Number(await page.locator('.monitor-view').getAttribute('data-t'))).toBe(0);
+    expect(await markSaid(page)).toBe('');
+    await page.keyboard.press('[');
+    await expect.poll(() => markSaid(page)).toBe('No previous mark: the start of the run');
   });
 
   it('looks: the diagram\'s sticky toolbar is opaque above the diagram; a narrow Monitor keeps its cursor buttons on one line', async () => {
