@@ -124,6 +124,23 @@ describe('user code in protected regions (bwrap)', () => {
     expect(err.line).toBeLessThan(err.protectedRegion.endLine);
   });
 
+  test('src-gen/ older than the model: an error in a region is told at the line of the user\'s own file', async () => {
+    const broken = withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', '    return undeclared_in_region;');
+    // the user's module.c is not the file the build generates (here: 3 more lines above the
+    // regions, as a model changed since the last generate shifts them): its region's lines move
+    const mine = `/* written by an older model */\n/* (a port since removed) */\n/* ... */\n${broken[MAA_MODULE]!}`;
+    const { job } = await runJob({ action: 'build', sandbox: 'bwrap', project: { files: { ...broken, [MAA_MODULE]: mine } } });
+    expect(job.status).toBe('failed');
+    const err = job.diagnostics.find((d: any) => d.severity === 'error');
+    const userLine = mine.split('\n').findIndex((l) => l.includes('undeclared_in_region')) + 1;
+    expect(err).toMatchObject({ file: 'generated/architecture/modules/MAA_mod/module.c', line: userLine, protectedRegion: { id: 'protect_init_MAA' } });
+    expect(mine.split('\n')[err.protectedRegion.startLine - 1]).toContain('protect_init_MAA');
+    expect(err.message).not.toMatch(/as this build generated it/);
+    // the same project with its src-gen/ up to date: the lines are the file's, 3 fewer
+    const { job: fresh } = await runJob({ action: 'build', sandbox: 'bwrap', project: { files: broken } });
+    expect(fresh.diagnostics.find((d: any) => d.severity === 'error').line).toBe(userLine - 3);
+  });
+
   test('a fork bomb and a 4 GiB allocation in MAA init are stopped while an honest run completes', async () => {
     const base = await tutorialFiles();
     // each child execs another program (`sleep`): it no longer bears MAA's name

@@ -65,6 +65,28 @@ describe('gcc diagnostics', () => {
     expect(renderDiagnostic(inRegion)).toMatch(/^MAA_mod\/module.c:5:14: error: .* \(in protected region protect_compute_MAA\)$/);
   });
 
+  test('src-gen/ older than the model: a line in a region is told in the user\'s copy of it, any other at the built file\'s, said', () => {
+    const stderr = compile('json').trim();
+    // the user's copy: 4 lines more above the region (an older model's tables), the region's text the same
+    const mine = ['/* 1 */', '/* 2 */', '/* 3 */', '/* 4 */', SOURCE].join('\n');
+    const withCopy = { ...ctx(), userCopies: new Map([['MAA_mod/module.c', { regions: findProtectedRegions(mine) }]]) };
+    const diags = parseGccJsonLine(stderr, withCopy)!;
+    const inRegion = diags.find((d) => /.missing. undeclared/.test(d.message))!;
+    expect(inRegion).toMatchObject({ file: 'MAA_mod/module.c', line: 9, column: 14, protectedRegion: { id: 'protect_compute_MAA', startLine: 7, endLine: 10 } });
+    expect(mine.split('\n')[inRegion.line! - 1]).toContain('missing');
+    expect(inRegion.message).not.toMatch(/as this build generated it/);
+    const outside = diags.find((d) => /.undeclared_too. undeclared/.test(d.message))!;
+    expect(outside.line).toBe(8);
+    expect(outside.message).toMatch(/ \(line 8 of the file as this build generated it: your copy in src-gen\/ differs, older than the model; contract generate, or Generate All in the IDE, brings src-gen\/ up to date\)$/);
+    // no copy of the file at all (src-gen/ never generated): every line is the built file's, said
+    const none = parseGccJsonLine(stderr, { ...ctx(), userCopies: new Map([['MAA_mod/module.c', { regions: null }]]) })!;
+    expect(none.find((d) => /.missing. undeclared/.test(d.message))).toMatchObject({ line: 5, message: expect.stringMatching(/\(line 5 of the file as this build generated it: src-gen\/ has no copy of it; /) });
+    // a copy whose region is not there any more (or not the same length): not moved, said
+    const other = ['/* 1 */', SOURCE.replace('protect_compute_MAA', 'protect_other')].join('\n');
+    const gone = parseGccJsonLine(stderr, { ...ctx(), userCopies: new Map([['MAA_mod/module.c', { regions: findProtectedRegions(other) }]]) })!;
+    expect(gone.find((d) => /.missing. undeclared/.test(d.message))).toMatchObject({ line: 5, protectedRegion: { id: 'protect_compute_MAA' }, message: expect.stringMatching(/your copy in src-gen\/ differs/) });
+  });
+
   test('gcc text output is parsed the same way (fallback)', () => {
     const lines = compile('text').split('\n');
     const diags = lines.map((l) => parseGccTextLine(l, ctx())).filter((d) => d !== null);

@@ -32,6 +32,41 @@ export interface DiagnosticContext {
   root: string;
   /** Protected regions of the files of the tree, indexed by root-relative path (trusted, read before the build). */
   regions: ReadonlyMap<string, readonly ProtectedRegion[]>;
+  /**
+   * The user's own copies of the tree's files that are not the file built (a Cactal project's
+   * src-gen/ older than its model: the build generates a copy of its own), indexed as `regions`:
+   * a diagnostic in one of these files is told at the user's line (userCopyPlace).
+   */
+  userCopies?: ReadonlyMap<string, UserCopy>;
+}
+
+/** The user's own copy of a file of the tree, when it is not the file built. */
+export interface UserCopy {
+  /** Its protected regions; null when the user has no copy of that file (src-gen/ never generated, or without it). */
+  regions: readonly ProtectedRegion[] | null;
+}
+
+/** What a diagnostic in a file the user's copy of which differs says: the line is the built file's. */
+const NOT_YOUR_LINE = (line: number, copy: UserCopy): string =>
+  ` (line ${line} of the file as this build generated it: ${copy.regions === null ? 'src-gen/ has no copy of it' : 'your copy in src-gen/ differs, older than the model'}; contract generate, or Generate All in the IDE, brings src-gen/ up to date)`;
+
+/**
+ * A diagnostic of a file built from a model newer than the user's src-gen/ copy, told in the
+ * user's copy: a line inside a protected region is moved to that region in the user's file (the
+ * build carried its text over, byte for byte: the same lines, at another place); any other line
+ * keeps the built file's number, and the message says so.
+ */
+export function userCopyPlace(d: GccDiagnostic, copy: UserCopy): GccDiagnostic {
+  if (d.line === null) return d;
+  const built = d.protectedRegion;
+  const mine = built ? copy.regions?.find((r) => r.id === built.id) : undefined;
+  if (built && mine && mine.endLine - mine.startLine === built.endLine - built.startLine) {
+    const shift = mine.startLine - built.startLine;
+    const { endLine, endColumn, ...rest } = d;
+    const end = endLine !== undefined && endLine >= built.startLine && endLine <= built.endLine ? { endLine: endLine + shift, ...(endColumn !== undefined ? { endColumn } : {}) } : {};
+    return { ...rest, ...end, line: d.line + shift, protectedRegion: mine };
+  }
+  return { ...d, message: d.message + NOT_YOUR_LINE(d.line, copy) };
 }
 
 export function relativeToRoot(file: string, ctx: DiagnosticContext): string | null {
@@ -56,7 +91,8 @@ export function located(
   const file = rawFile === null ? null : (relativeToRoot(rawFile, ctx) ?? rawFile);
   const regions = file ? ctx.regions.get(file) : undefined;
   const protectedRegion = regions && base.line !== null ? regionAt(regions, base.line) : null;
-  return { ...base, file, protectedRegion };
+  const copy = file ? ctx.userCopies?.get(file) : undefined;
+  return copy ? userCopyPlace({ ...base, file, protectedRegion }, copy) : { ...base, file, protectedRegion };
 }
 
 /** gcc-like one-line rendering, for the text log. */

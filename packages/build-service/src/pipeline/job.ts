@@ -333,6 +333,7 @@ export class Job {
         startDir: posix.join(work, makeDir(this.request.kind)),
         root: posix.join(work, treeRoot(this.request.kind)),
         regions: prep.regions,
+        userCopies: prep.userCopies,
         ...(parallel ? { diagnosticsOnStdout: true } : {}),
       });
       ws.acceptedOutputs = null;

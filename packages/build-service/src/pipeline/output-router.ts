@@ -6,7 +6,7 @@
  */
 import { posix } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
-import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic } from './gcc-diagnostics.js';
+import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
 import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
@@ -24,6 +24,8 @@ export interface BuildRouterOptions {
   /** Sandbox-side absolute tree root diagnostics are reported against. */
   root: string;
   regions: ReadonlyMap<string, readonly ProtectedRegion[]>;
+  /** The user's copies of the tree's files that are not the files built (DiagnosticContext.userCopies). */
+  userCopies?: ReadonlyMap<string, UserCopy>;
   /** gcc's JSON diagnostics come on stdout too (a build whose stderr is merged into its stdout, 2>&1). */
   diagnosticsOnStdout?: boolean;
 }
@@ -48,7 +50,7 @@ export class BuildOutputRouter {
     const entering = makeEnteringDirectory(head);
     if (entering) this.dirs.push(posix.resolve(this.cwd, entering));
     else if (makeLeavingDirectory(head) && this.dirs.length > 1) this.dirs.pop();
-    const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions };
+    const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions, ...(this.options.userCopies ? { userCopies: this.options.userCopies } : {}) };
     if ((stream === 'stderr' || this.options.diagnosticsOnStdout) && looksLikeGccJson(line)) {
       const diags = parseGccJsonLine(line, ctx);
       if (diags) {

@@ -11,6 +11,7 @@ import { LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
+import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
@@ -36,6 +37,8 @@ export interface PrepareOutcome {
   ok: boolean;
   problems: CactalProblem[];
   regions: Map<string, ProtectedRegion[]>;
+  /** The user's src-gen/ copies of the tree's C files that are not the files built (gcc-diagnostics.ts UserCopy). */
+  userCopies: Map<string, UserCopy>;
   /** Files of work/ rewritten by this prepare (0 on a no-op rebuild). */
   synced: number;
 }
@@ -154,7 +157,7 @@ export async function prepareWorkspace(
     for (const p of problems) log(`${p.file}:${p.line}:${p.column}: ${p.severity}: ${p.message}`);
     if (problems.some((p) => p.severity === 'error')) {
       log(`the project has ${problems.filter((p) => p.severity === 'error').length} error(s): nothing generated`);
-      return { ok: false, problems, regions: new Map(), synced: 0 };
+      return { ok: false, problems, regions: new Map(), userCopies: new Map(), synced: 0 };
     }
     log(`generated src-gen/ (${outcome.written} file(s) written, ${outcome.unchanged} unchanged) in ${Date.now() - t0} ms`);
   } else {
@@ -164,6 +167,7 @@ export async function prepareWorkspace(
   const root = treeRoot(kind);
   const stageTree = root ? join(stageProjectDir, root) : stageProjectDir;
   const regions = new Map<string, ProtectedRegion[]>();
+  const userCopies = new Map<string, UserCopy>();
   let synced = 0;
   const tCopy = Date.now();
   const files = await listFilesNoFollow(stageTree, (rel) => !/(^|\/)(logs|run)(\/|$)/.test(rel));
@@ -177,9 +181,16 @@ export async function prepareWorkspace(
     if (/\.(c|h)$/.test(rel)) {
       const found = findProtectedRegions(data.toString('utf8'));
       if (found.length) regions.set(rel, found);
+      // the user's copy (the project's src-gen/ as sent), when it is not this file: a model changed
+      // since the last generate: gcc's lines are this file's, the user reads theirs
+      if (kind === 'cactal') {
+        const mine = wanted.get(`${SRC_GEN_DIR}/${rel}`);
+        if (!mine) userCopies.set(rel, { regions: null });
+        else if (!mine.equals(data)) userCopies.set(rel, { regions: findProtectedRegions(mine.toString('utf8')) });
+      }
     }
   }
   await fsp.writeFile(digestFile, stamp);
   log(`work tree ready: ${files.length} file(s), ${synced} updated${ws.reused ? ' (incremental)' : ''} in ${Date.now() - tCopy} ms`);
-  return { ok: true, problems, regions, synced };
+  return { ok: true, problems, regions, userCopies, synced };
 }
