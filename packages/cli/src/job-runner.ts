@@ -230,6 +230,10 @@ const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
 const OUTPUT_TRUNCATED_LINE = /^\[output truncated: (stdout|stderr) limit .* reached\]$/;
 /** The service's line when a run's duration was shortened to fit its run time limit (job.ts). */
 const DURATION_CAPPED_LINE = /^duration \S+ s capped to \S+ s: the run time limit is /;
+/** The service's line while another command holds the project (build-service job.ts onWait): said in every mode. */
+const WAITING_LINE = /^waiting for the other command using this project \(/;
+/** The service's `time: <step> N ms` lines: --verbose only (a terminal's progress lines leave them out). */
+const TIME_LINE = /^time: /;
 
 /**
  * The service's lines of a run's stop (job.ts): `memory limit 512 MiB reached: stopping the
@@ -281,6 +285,11 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
             }
             return;
         }
+        // a command that waits says for whom in every output, in CI too (stderr no terminal): never a silent pause
+        if (e.source === 'service' && WAITING_LINE.test(e.line)) {
+            io.err(`${e.line}\n`);
+            return;
+        }
         if (opts.format !== 'text') return;
         // a --duration that does not fit in --run-limit: the service shortens it, said (never silently)
         if (e.step === 'run' && e.source === 'service' && DURATION_CAPPED_LINE.test(e.line) && !opts.verbose && !opts.progress) {
@@ -302,7 +311,7 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {
             io.err(`${e.line}\n`);
-        } else if (opts.progress && (e.source === 'service' || e.source === 'runtime')) {
+        } else if (opts.progress && (e.source === 'service' || e.source === 'runtime') && !(e.source === 'service' && TIME_LINE.test(e.line))) {
             io.err(`${e.line}\n`);
         } else if (opts.progress && e.step === 'build') {
             // one line per part of the tree make works on (modules, control tools)

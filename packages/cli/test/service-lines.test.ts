@@ -1,0 +1,50 @@
+/**
+ * Which of the build service's own lines `contract build` / `run` print (field test ft58c, defects
+ * 4 and 5): the line of a command waiting for another on the same project is printed in every
+ * mode (in CI stderr is no terminal: before, the wait was silent); the `time: <step> N ms` lines
+ * only with --verbose (a terminal's progress lines printed them too).
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import type { JobEvent } from '@contract-studio/build-service';
+import { makePrinter, type JobOptions } from '../src/job-runner.js';
+import { capture } from './capture-io.js';
+
+let root: string;
+beforeAll(() => {
+    root = mkdtempSync(join(tmpdir(), 'contract-service-lines-'));
+});
+afterAll(() => rmSync(root, { recursive: true, force: true }));
+
+const WAIT = 'waiting for the other command using this project (pid 4242, contract run) to finish ...';
+
+function service(step: 'prepare' | 'build', text: string): JobEvent {
+    return { type: 'line', seq: 0, t: 0, step, source: 'service', stream: 'system', line: text } as JobEvent;
+}
+
+/** stderr of the printer fed the service's lines of a prepare step, in a mode. */
+function stderrOf(mode: { format?: 'text' | 'json'; verbose?: boolean; progress?: boolean }): string {
+    const io = capture(root);
+    const opts = { dir: root, dirArg: '.', sandbox: 'bwrap', format: mode.format ?? 'text', verbose: !!mode.verbose, progress: !!mode.progress, runtime: undefined, cacheDir: undefined } as JobOptions;
+    const print = makePrinter(opts, io, [], []);
+    for (const e of [service('prepare', 'time: sandbox choice (probe) 16 ms'), service('prepare', WAIT), service('prepare', 'generated 23 files'), service('build', 'time: runtime (sources hash) 4 ms')]) print(e);
+    return io.stderr;
+}
+
+describe('the service\'s lines', () => {
+    it('a command waiting for another says for whom in every mode: CI (no terminal), JSON, a terminal, --verbose', () => {
+        expect(stderrOf({})).toBe(`${WAIT}\n`);
+        expect(stderrOf({ format: 'json' })).toBe(`${WAIT}\n`);
+        expect(stderrOf({ progress: true })).toContain(`${WAIT}\n`);
+        expect(stderrOf({ verbose: true }).split('\n').filter((l) => l === WAIT)).toHaveLength(1);
+    });
+
+    it('`time:` lines only with --verbose, on a terminal too; the other progress lines stay', () => {
+        const terminal = stderrOf({ progress: true });
+        expect(terminal).not.toMatch(/^time: /m);
+        expect(terminal).toContain('generated 23 files\n');
+        expect(stderrOf({ verbose: true })).toBe(`time: sandbox choice (probe) 16 ms\n${WAIT}\ngenerated 23 files\ntime: runtime (sources hash) 4 ms\n`);
+    });
+});
