@@ -85,6 +85,11 @@ export const CASES: Record<string, CodeCase> = {
         raise: { 'a.contract': 'datatype T {int a = 1.5};' },
         clean: { 'a.contract': 'datatype T {float a = 1};' }
     },
+    'number-out-of-range': {
+        raise: { 'a.contract': 'datatype T {int a = 9223372036854775808, float b = 1e400};' },
+        clean: { 'a.contract': 'datatype T {int a = 9223372036854775807, float b = 1e308};' },
+        message: "The real 1e400 for 'b' is too large for a float"
+    },
     'value-struct-arity': {
         raise: { 'a.contract': 'datatype A {float i, float j};\ndatatype B {A a = {1.0}};' },
         clean: { 'a.contract': 'datatype A {float i, float j};\ndatatype B {A a = {1.0, 2}};' }

@@ -115,6 +115,22 @@ describe('follow-on errors', () => {
         const clean = await build({ 'use.contract': 'periodic schema s() { modules { ENC (); } }' });
         expect(clean.diagnostics.find((d) => d.code === 'linking-error')?.message).not.toContain('syntax error');
     });
+    it('a misspelt name is not sent to an imported file with a syntax error that does not have it', async () => {
+        const files = {
+            'plan.contract': 'synchronous module PLN { }',
+            'motion.contract': 'synchronous module MOT { scheduling { C=5msec; } }',
+            'use.contract': 'import "plan.contract";\nimport "motion.contract";\nperiodic schema s() { modules { PLM (); } }'
+        };
+        const built = await build(files);
+        expect(built.diagnostics.some((d) => d.file === 'motion.contract' && d.code === 'parsing-error')).toBe(true);
+        const unknown = built.diagnostics.find((d) => d.file === 'use.contract' && d.code === 'linking-error');
+        expect(unknown?.message).toContain("Did you mean 'PLN'?");
+        expect(unknown?.message).not.toContain('syntax error');
+        // the broken file that has the name is still said, with the near name
+        const named = await build({ ...files, 'motion.contract': 'sync module PLM { }' });
+        const note = named.diagnostics.find((d) => d.file === 'use.contract' && d.code === 'linking-error');
+        expect(note?.message).toContain(`Did you mean 'PLN'? ("motion.contract" has a syntax error: fix it first, it may be where this is defined)`);
+    });
 });
 
 describe('unused imports and syntax errors', () => {

@@ -1,7 +1,7 @@
 import type { ConstantDecl, TypeRef } from '../model/architecture.js';
 import { namedTypeOf, type ArchitectureIndex } from '../model/lookup.js';
 import { architecturePath } from '@contract-studio/conventions';
-import { cDouble, cInitializer, cString, cTypeName } from './c/c-syntax.js';
+import { cDouble, cInitializer, cLongOf, cString, cTypeName } from './c/c-syntax.js';
 
 /**
  * `common/constants.h` (an extension): the named constants (`const int NJOINTS = 6;`) under their
@@ -27,21 +27,13 @@ export function constantsHeaderPath(): string {
 /** Include guard: `CONTRACT_` names are refused to Cactal elements, so no datatype or constant takes it. */
 const GUARD = 'CONTRACT_GENERATED_CONSTANTS_H';
 
-const LONG_MIN = -(2 ** 63);
-
-/** An integer literal of C that stays one for every long (`-9223372036854775808` is not a literal of C). */
-function cLongLiteral(n: number): string {
-    const v = Math.trunc(n);
-    return v <= LONG_MIN ? '-9223372036854775807L - 1' : String(v);
-}
-
 /** The replacement text of the macro of constant `c`. */
 function macroBody(c: ConstantDecl, index: ArchitectureIndex): string {
     const t: TypeRef = c.type;
     const v = c.value;
     if ('primitive' in t) {
         switch (t.primitive) {
-            case 'int': return `(${v.kind === 'int' || v.kind === 'real' ? cLongLiteral(v.value) : '0'})`;
+            case 'int': return `(${v.kind === 'int' || v.kind === 'real' ? cLongOf(v) : '0'})`;
             case 'float': return `(${v.kind === 'int' || v.kind === 'real' ? cDouble(v.value) : '0.0'})`;
             case 'bool': return v.kind === 'bool' && v.value ? '(true)' : '(false)';
             case 'string': return cString(v.kind === 'string' ? v.value : '');

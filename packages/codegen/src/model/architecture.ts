@@ -20,7 +20,8 @@ export type PathSegment = string | number;
  * the value of an array; `enum` is `Mode.AUTO`.
  */
 export type Value =
-    | { kind: 'int'; value: number }
+    /** `text`: the integer as written, exact (a number is exact up to 2^53 only); `value` where absent. */
+    | { kind: 'int'; value: number; text?: string }
     | { kind: 'real'; value: number }
     | { kind: 'string'; value: string }
     | { kind: 'bool'; value: boolean }

@@ -15,7 +15,7 @@ import {
     type Condition as AstCondition, type Event as AstEvent, type Action as AstAction, type Persistence as AstPersistence,
     type Extraction, type ParameterSetting, type TestOperand, type Test as AstTest, type Module as AstModule,
     type Supervisor as AstSupervisor, type Schema as AstSchema, type SupervisionFunction as AstFunction,
-    isBoolLiteral, isConstant, isEnumType, isFieldSegment, constantValue, segmentIndex, typeOf, typeOfVariableRef,
+    isBoolLiteral, isConstant, isEnumType, isFieldSegment, constantValue, exactIntegerText, segmentIndex, typeOf, typeOfVariableRef,
     type CactalType, type ConstantValue, type PathSegment as AstPathSegment,
 } from '@contract-studio/language';
 import type {
@@ -47,7 +47,7 @@ function typeRef(t: AstTypeRef | undefined): TypeRef {
 /** A constant of the language's value model as a written value. */
 function fromConstant(c: ConstantValue): Value {
     switch (c.kind) {
-        case 'int': return { kind: 'int', value: c.value };
+        case 'int': return c.text === undefined ? { kind: 'int', value: c.value } : { kind: 'int', value: c.value, text: c.text };
         case 'float': return { kind: 'real', value: c.value };
         case 'string': return { kind: 'string', value: c.value };
         case 'bool': return { kind: 'bool', value: c.value };
@@ -59,7 +59,11 @@ function fromConstant(c: ConstantValue): Value {
 
 function value(v: AstValue | TestOperand | undefined): Value | undefined {
     if (!v) return undefined;
-    if (isIntLiteral(v)) return { kind: 'int', value: Number(v.value) };
+    if (isIntLiteral(v)) {
+        // the text as written: the number it was read as is exact up to 2^53 only
+        const text = exactIntegerText(v.$cstNode?.text);
+        return text === undefined ? { kind: 'int', value: Number(v.value) } : { kind: 'int', value: Number(v.value), text };
+    }
     if (isRealLiteral(v)) return { kind: 'real', value: Number(v.value) };
     if (isStringLiteral(v)) return { kind: 'string', value: v.value };
     if (isBoolLiteral(v)) return { kind: 'bool', value: v.value };

@@ -10,9 +10,17 @@ import {
     type DataType, type EnumType, type TypeRef, type Value, type VariableRef
 } from '../generated/ast.js';
 import { segmentIndex, typeOf, type CactalType } from './types.js';
+import { exactInteger } from './numbers.js';
+
+/** The decimal text of the integer literal `text` (`007` -> `7`, exact beyond 2^53), or undefined. */
+export function exactIntegerText(text: string | undefined): string | undefined {
+    const n = text === undefined ? undefined : exactInteger(text);
+    return n === undefined ? undefined : n.toString();
+}
 
 export type ConstantValue =
-    | { kind: 'int'; value: number }
+    /** `text`: the integer written, exact, in decimal (`value` is exact up to 2^53 only); absent for a default. */
+    | { kind: 'int'; value: number; text?: string }
     | { kind: 'float'; value: number }
     | { kind: 'string'; value: string }
     | { kind: 'bool'; value: boolean }
@@ -67,7 +75,10 @@ export function constantValue(value: Value, type: CactalType, depth = 0): Consta
     if (isVariableRef(value)) return namedConstantValue(value, type, depth);
     switch (type.kind) {
         case 'primitive':
-            if (type.name === 'int' && isIntLiteral(value)) return { kind: 'int', value: value.value };
+            if (type.name === 'int' && isIntLiteral(value)) {
+                const text = exactIntegerText(value.$cstNode?.text);
+                return text === undefined ? { kind: 'int', value: value.value } : { kind: 'int', value: value.value, text };
+            }
             if (type.name === 'float' && (isIntLiteral(value) || isRealLiteral(value))) return { kind: 'float', value: value.value };
             if (type.name === 'string' && isStringLiteral(value)) return { kind: 'string', value: value.value };
             if (type.name === 'bool' && isBoolLiteral(value)) return { kind: 'bool', value: value.value };
@@ -149,7 +160,7 @@ export function effectiveValue(node: { type: TypeRef; value?: Value }, depth = 0
 /** Cactal/C textual form of a constant: `{1.0,{2,"a"}}`, `true`, `AUTO`, arrays `{0.0,0.1}` (the form control tools parse). */
 export function formatConstant(value: ConstantValue): string {
     switch (value.kind) {
-        case 'int': return String(value.value);
+        case 'int': return value.text ?? String(value.value);
         case 'float': return Number.isInteger(value.value) ? value.value.toFixed(1) : String(value.value);
         case 'string': return JSON.stringify(value.value);
         case 'bool': return value.value ? 'true' : 'false';

@@ -68,7 +68,7 @@ function asAst(v: ScenarioValue, index: ModelIndex): Lit {
                 path: [{ $type: 'FieldSegment', field: { ref: member, $refText: member.name } }]
             } as unknown as Lit;
         }
-        case 'int': return { $type: 'IntLiteral', value: v.value, span: v.span };
+        case 'int': return { $type: 'IntLiteral', value: v.value, $cstNode: { text: v.text }, span: v.span };
         case 'real': return { $type: 'RealLiteral', value: v.value, $cstNode: { text: v.text }, span: v.span };
         case 'string': return { $type: 'StringLiteral', value: v.value, span: v.span };
         case 'bool': return { $type: 'BoolLiteral', value: v.value, span: v.span };

@@ -36,19 +36,22 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
     }
 
     /**
-     * " ("encoder.contract" has a syntax error: fix it first, it may define this)" when a file this
-     * one imports did not parse: its elements may be missing only because of that error (a
-     * misspelt `synchronus module ENC`, before misspelt keywords were read as meant, made every use of
-     * ENC in three other files an error).
+     * " ("encoder.contract" has a syntax error: fix it first, it may be where this is defined)" when a
+     * file this one imports did not parse and its text has the unknown name: its elements may be
+     * missing only because of that error (a misspelt `synchronus module ENC`, before misspelt
+     * keywords were read as meant, made every use of ENC in three other files an error). A file
+     * whose text does not have the name cannot be where it is defined, syntax error or not: naming
+     * it sent the reader of "Unknown module 'PLM' ... Did you mean 'PLN'?" to a file with no PLM.
      */
-    private brokenImportNote(document: LangiumDocument, info: ReferenceInfo): string {
+    private brokenImportNote(document: LangiumDocument, info: ReferenceInfo, refText: string): string {
         const docs = this.services.shared.workspace.LangiumDocuments;
         const own = document.uri.toString();
         const broken: string[] = [];
         for (const uri of this.services.imports.ImportResolver.visibleUris(info.container)) {
             if (uri === own) continue;
             const other = docs.getDocument(URI.parse(uri));
-            if (other && (other.parseResult.parserErrors.length > 0 || other.parseResult.lexerErrors.length > 0)) {
+            if (other && (other.parseResult.parserErrors.length > 0 || other.parseResult.lexerErrors.length > 0)
+                && mentions(other.textDocument.getText(), refText)) {
                 broken.push(this.services.imports.ImportResolver.relativeImportPath(document.uri, other.uri));
             }
         }
@@ -102,7 +105,7 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             const described = describeUnresolved(info, refText, linkingError.message, globals);
             if (described === undefined) continue; // follows from another unresolved reference, reported there
             const near = isVariableRef(info.container) ? '' : nearName(refText, globals);
-            const message = topLevel ? described + near + this.brokenImportNote(document, info) : described;
+            const message = topLevel ? described + near + this.brokenImportNote(document, info, refText) : described;
             if (isTypeRef(info.container)) {
                 diagnostics.push(this.toDiagnostic(TypeCodes['type-unknown'].severity, message, {
                     ...base, code: 'type-unknown', data: { code: 'type-unknown', refText }
@@ -116,6 +119,15 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
             }));
         }
     }
+}
+
+/** Whether `text` has `name` as a whole word (not inside a longer name: `PLM` is not in `PLM2`). */
+function mentions(text: string, name: string): boolean {
+    if (!name) return false;
+    for (let at = text.indexOf(name); at >= 0; at = text.indexOf(name, at + 1)) {
+        if (!/[A-Za-z0-9_]/.test(text[at - 1] ?? '') && !/[A-Za-z0-9_]/.test(text[at + name.length] ?? '')) return true;
+    }
+    return false;
 }
 
 /**

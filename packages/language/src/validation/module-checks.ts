@@ -11,11 +11,14 @@ import type { CactalServices } from '../cactal-module.js';
 import { parametersOf, schedulingPropertiesOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import { parseTime } from '../model/time.js';
+import { C_INT_MAX, DURATION_NS_MAX, exactNanoseconds } from '../model/numbers.js';
 import { checkBlockOrder, type BlockOrder } from './block-order.js';
 import { ModuleCodes } from './codes/modules.js';
+import { TypeCodes } from './codes/types.js';
 import { otherLocations } from './locations.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
+import { writtenInt } from './value-checker.js';
 
 const NAME_PATTERN = /^[A-Z]{3}$/;
 const BLOCK_ORDER = ['parameters', 'scheduling', 'data flows', 'event flows'] as const;
@@ -132,6 +135,11 @@ function checkPorts(owner: Module | Supervisor, accept: ValidationAcceptor): voi
                 report(accept, ModuleCodes['port-index-negative'], `Port index ${m.index} is negative: indexes are 0, 1, 2, ...`, { node: m, property: 'index' });
                 continue;
             }
+            if (m.index > C_INT_MAX) {
+                report(accept, TypeCodes['number-out-of-range'],
+                    `Port index ${writtenInt(m, 'index')} is too large: a port index is a C int in the generated C and the runtime, at most ${C_INT_MAX}.`, { node: m, property: 'index' });
+                continue;
+            }
             if (used.has(m.index)) {
                 let free = 0;
                 while (allIndexes.has(free)) free++;
@@ -170,5 +178,11 @@ function checkTime(time: TimeValue, accept: ValidationAcceptor): void {
     const parsed = parseTime(time.text ?? '');
     if (parsed && parsed.amount <= 0) {
         report(accept, ModuleCodes['time-not-positive'], `Duration ${time.text} must be greater than zero (e.g. 500us, 1ms, 1s).`, { node: time });
+        return;
+    }
+    const ns = exactNanoseconds(time.text ?? '');
+    if (ns !== undefined && ns > BigInt(DURATION_NS_MAX)) {
+        report(accept, TypeCodes['number-out-of-range'],
+            `Duration ${time.text} is too long: a duration is at most ${DURATION_NS_MAX}ns (about 104 days), which the generated C and the tools hold exactly.`, { node: time });
     }
 }

@@ -11,15 +11,18 @@ import {
 import type { CactalServices } from '../cactal-module.js';
 import { communicationsOf, criticalDelayNs, moduleInstancesOf, periodNs, precedencesOf, realtimePropertiesOf } from '../model/blocks.js';
 import { formatNanoseconds } from '../model/time.js';
+import { C_INT_MAX } from '../model/numbers.js';
 import { sameType, typeName, typeOf } from '../model/types.js';
 import { checkBlockOrder, type BlockOrder } from './block-order.js';
 import { SchemaCodes } from './codes/schemas.js';
+import { TypeCodes } from './codes/types.js';
 import { SchedulerCodes } from './codes/scheduler.js';
 import { otherLocations } from './locations.js';
 import { ProjectElements } from './project-elements.js';
 import { ProjectNames } from './project-index.js';
 import { report, type ReportInfo } from './report.js';
 import { criticalPath, precedenceCycle, schemaModules } from './timing-analysis.js';
+import { writtenInt } from './value-checker.js';
 
 const BLOCK_ORDER = ['realtime', 'modules', 'scheduling graph', 'communications'] as const;
 type BlockName = (typeof BLOCK_ORDER)[number];
@@ -214,6 +217,10 @@ function checkCommunications(schema: Schema, accept: ValidationAcceptor): void {
         if (data && comm.periodicity !== undefined && (!Number.isInteger(comm.periodicity) || comm.periodicity < 1)) {
             report(accept, SchemaCodes['schema-periodicity'],
                 `Periodicity ${comm.periodicity} is not allowed: it is an integer >= 1 (* 1: every activation of ${source?.name ?? 'the producer'}, * 2: every second one, ...).`,
+                { node: comm, property: 'periodicity' });
+        } else if (data && comm.periodicity !== undefined && comm.periodicity > C_INT_MAX) {
+            report(accept, TypeCodes['number-out-of-range'],
+                `Periodicity ${writtenInt(comm, 'periodicity')} is too large: a periodicity is a C int in the generated C and the runtime, at most ${C_INT_MAX}.`,
                 { node: comm, property: 'periodicity' });
         }
         if (inp) {

@@ -21,7 +21,7 @@ import { ordSchemaTestName } from '../model/ord-schema-tests.js';
 import { ProjectNames } from './project-index.js';
 import { nearName } from './unresolved-messages.js';
 import { report } from './report.js';
-import { checkValue } from './value-checker.js';
+import { checkNumberRange, checkValue } from './value-checker.js';
 
 /** The ORD event ports (docs/semantics.md "Scheduler: critical delay (ORD:0)", "Scheduler: conflict (ORD:1)"): 0 = critical delay missed, 1 = activation refused. */
 export const ORD_EVENT_PORTS: Readonly<Record<number, string>> = { 0: 'critical delay missed', 1: 'schema activation refused' };
@@ -171,6 +171,10 @@ function checkTestOperands(test: EqualityTest | RelationalTest, accept: Validati
     if (!test.left || !test.right) return;
     const left = operandType(test.left);
     const right = operandType(test.right);
+    // a number compared is one of the C of the test: an integer is a long, or a double beside a float
+    const isFloat = (t: CactalType | undefined) => t?.kind === 'primitive' && t.name === 'float';
+    checkNumberRange(test.left, isFloat(left) || isFloat(right) ? 'float' : 'int', accept, 'this comparison');
+    checkNumberRange(test.right, isFloat(left) || isFloat(right) ? 'float' : 'int', accept, 'this comparison');
     if (!left || !right) {
         // a structured value takes the type of the other operand
         const [value, other] = !left ? [test.left, right] : [test.right, left];

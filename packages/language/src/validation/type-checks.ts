@@ -15,8 +15,9 @@ import { unknownEscapeMessage, unknownEscapes } from '../model/strings.js';
 import { TypeCodes } from './codes/types.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
-import { checkValue } from './value-checker.js';
+import { checkValue, writtenInt } from './value-checker.js';
 import { otherLocations } from './locations.js';
+import { C_INT_MAX } from '../model/numbers.js';
 
 type Declaration = { $type: string; name: string; type: TypeRef; value?: Value };
 
@@ -146,11 +147,17 @@ function checkArrayDimension(dim: ArrayDimension, accept: ValidationAcceptor): v
         const n = constantInt(constant);
         if (n !== undefined && n < 1) {
             report(accept, TypeCodes['array-size-invalid'], `An array has at least one element: '${constant.name}' is ${n}.`, { node: dim });
+        } else if (n !== undefined && n > C_INT_MAX) {
+            report(accept, TypeCodes['number-out-of-range'],
+                `Array size '${constant.name}' is too large: an array size is a C int in the generated C, at most ${C_INT_MAX}.`, { node: dim });
         }
         return;
     }
     if (dim.size !== undefined && dim.size < 1) {
         report(accept, TypeCodes['array-size-invalid'], `An array has at least one element: its size is a positive integer, found ${dim.size}.`, { node: dim });
+    } else if (dim.size !== undefined && dim.size > C_INT_MAX) {
+        report(accept, TypeCodes['number-out-of-range'],
+            `Array size ${writtenInt(dim, 'size')} is too large: an array size is a C int in the generated C, at most ${C_INT_MAX}.`, { node: dim, property: 'size' });
     }
 }
 

@@ -2,17 +2,20 @@
  * Type checking of written values (docs/language-reference.md §2), reusable wherever a value is written: defaults,
  * parameters, locals, parameterisations, extractions, notify, function arguments.
  * - an int literal fits int and float; a real fits float only (a real for an int is an error);
+ * - a number fits its type in the generated C: an int literal for an int is a C long (64 bits), a
+ *   number for a float a finite C double, not 0 unless written 0 (`number-out-of-range`);
  * - a string literal fits string and is at most 255 bytes (UTF-8);
  * - a structured value needs exactly one element per field of the datatype, recursively;
  * - (extensions) `true`/`false` fit bool; `{...}` for an array needs exactly its size in elements;
  *   `Mode.AUTO` fits Mode; a constant's name fits wherever its value would, even where variables cannot appear;
  * - a variable (with field path) must have the same type (an int variable fits a float).
  */
-import type { ValidationAcceptor } from 'langium';
+import { GrammarUtils, type AstNode, type ValidationAcceptor } from 'langium';
 import {
     isBoolLiteral, isConstant, isEnumType, isIntLiteral, isRealLiteral, isStringLiteral, isStructValue, isVariableRef,
-    type Value, type VariableRef
+    type IntLiteral, type RealLiteral, type TestOperand, type Value, type VariableRef
 } from '../generated/ast.js';
+import { floatLiteralProblem, intLiteralProblem } from '../model/numbers.js';
 import { sameType, typeName, typeOf, typeOfVariableRef, variableRefText, type CactalType } from '../model/types.js';
 import { TypeCodes } from './codes/types.js';
 import { report } from './report.js';
@@ -28,9 +31,34 @@ export interface ValueCheckOptions {
     what?: string;
 }
 
+/** An integer property as written (`99999999999999999999`, not the double it was read as). */
+export function writtenInt(node: AstNode, property: string): string {
+    const cst = node.$cstNode && GrammarUtils.findNodeForProperty(node.$cstNode, property);
+    return cst?.text ?? String((node as unknown as Record<string, unknown>)[property]);
+}
+
+/** A number literal as written (`99999999999999999999`, not the double it was read as); its value where no text is kept. */
+function literalText(value: IntLiteral | RealLiteral): string {
+    return value.$cstNode?.text ?? String(value.value);
+}
+
+/**
+ * Reports a number literal that does not fit `type` in the generated C (model/numbers.ts): an int
+ * literal for an int must fit a C long; an int or real literal for a float must be a finite C double
+ * that is not 0 unless written 0. Other values are left to the type check.
+ */
+export function checkNumberRange(value: Value | TestOperand, type: 'int' | 'float', accept: ValidationAcceptor, what?: string): void {
+    if (!isIntLiteral(value) && !isRealLiteral(value)) return;
+    const text = literalText(value);
+    const problem = type === 'int' ? (isIntLiteral(value) ? intLiteralProblem(text) : undefined) : floatLiteralProblem(text);
+    if (!problem) return;
+    report(accept, TypeCodes['number-out-of-range'],
+        `The ${isIntLiteral(value) ? 'integer' : 'real'} ${text}${what ? ` for ${what}` : ''} ${problem}.`, { node: value });
+}
+
 function describeValue(value: Value): string {
-    if (isIntLiteral(value)) return `the integer ${value.value}`;
-    if (isRealLiteral(value)) return `the real ${value.$cstNode?.text ?? value.value}`;
+    if (isIntLiteral(value)) return `the integer ${literalText(value)}`;
+    if (isRealLiteral(value)) return `the real ${literalText(value)}`;
     if (isStringLiteral(value)) return 'a string';
     if (isBoolLiteral(value)) return `the bool ${value.value ? 'true' : 'false'}`;
     if (isStructValue(value)) return 'a structured value {...}';
@@ -136,9 +164,11 @@ export function checkValue(value: Value, expected: CactalType, accept: Validatio
     switch (expected.name) {
         case 'int':
             if (!isIntLiteral(value)) mismatch(describeValue(value) + (isRealLiteral(value) ? ' (a real cannot be an int)' : ''));
+            else checkNumberRange(value, 'int', accept, options.what);
             return;
         case 'float':
             if (!isIntLiteral(value) && !isRealLiteral(value)) mismatch(describeValue(value));
+            else checkNumberRange(value, 'float', accept, options.what);
             return;
         case 'string':
             if (!isStringLiteral(value)) mismatch(describeValue(value));

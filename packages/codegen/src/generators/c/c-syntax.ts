@@ -64,15 +64,47 @@ export function cString(s: string): string {
     return out + '"';
 }
 
-/** A C double literal: always with a decimal point or exponent (`1.0`, `22.12`, `1e-07`). */
+/**
+ * A C double literal: always with a decimal point or exponent (`1.0`, `22.12`, `1e-07`), the
+ * shortest that reads back as the same double. An infinite or NaN value has no C literal: it is
+ * refused (an Error naming it), never written as another value (`1e400` was written `0.0`).
+ * `contract check` reports such a number (number-out-of-range); only a model built without the
+ * validator gets here.
+ */
 export function cDouble(n: number): string {
-    if (!Number.isFinite(n)) return '0.0';
+    if (!Number.isFinite(n)) {
+        throw new Error(`the float ${n} is not a finite C double (a float is a C double, from -${Number.MAX_VALUE} to ${Number.MAX_VALUE}): no C value for it`);
+    }
     const s = String(n);
     return /[.eE]/.test(s) ? s : `${s}.0`;
 }
 
-export function cLong(n: number): string {
-    return String(Math.trunc(n));
+/** The range of a Cactal int, a C long (LP64: 64 bits). */
+export const LONG_MIN = -(2n ** 63n);
+export const LONG_MAX = 2n ** 63n - 1n;
+
+/**
+ * A C long literal of the integer `n`, or of `text` when given (the integer as written, exact: a
+ * number is exact up to 2^53 only). `-9223372036854775807L - 1` for LONG_MIN (`-9223372036854775808`
+ * is the negation of a constant too large for a long, not a long). A value that is not an integer or
+ * does not fit a long is refused (an Error naming it), never written as another value (gcc would
+ * truncate `100000000000000000000`; a real used to be truncated to its integer part).
+ */
+export function cLong(n: number, text?: string): string {
+    const exact = text !== undefined && /^\s*[-+]?[0-9]+\s*$/.test(text) ? BigInt(text.trim()) : undefined;
+    if (exact === undefined && !Number.isInteger(n)) {
+        throw new Error(`the int ${text ?? n} is not an integer: no C long for it`);
+    }
+    const v = exact ?? BigInt(n);
+    if (v < LONG_MIN || v > LONG_MAX) {
+        throw new Error(`the int ${text?.trim() ?? v} does not fit a C long (an int is a C long, from ${LONG_MIN} to ${LONG_MAX}): no C value for it`);
+    }
+    return v === LONG_MIN ? '-9223372036854775807L - 1' : String(v);
+}
+
+/** The C long literal of an int or real value given for an int (an integral real: a model built by hand). */
+export function cLongOf(value: { kind: 'int'; value: number; text?: string } | { kind: 'real'; value: number }): string {
+    return value.kind === 'int' ? cLong(value.value, value.text) : cLong(value.value);
 }
 
 /**
@@ -95,7 +127,7 @@ export function cInitializer(index: ArchitectureIndex, t: TypeRef, value?: Value
     if ('primitive' in t) {
         switch (t.primitive) {
             case 'int':
-                return value && (value.kind === 'int' || value.kind === 'real') ? cLong(value.value) : '0';
+                return value && (value.kind === 'int' || value.kind === 'real') ? cLongOf(value) : '0';
             case 'float':
                 return value && (value.kind === 'int' || value.kind === 'real') ? cDouble(value.value) : '0.0';
             case 'bool':

@@ -42,6 +42,11 @@ export const { area: typesArea, codes: TypeCodes } = defineCodes('Data types, va
         description: 'A written value does not fit the expected type: a real for an `int`, a number for a `string`, a structured value for a primitive, a variable of another type. An integer literal for a `float` is accepted.',
         example: 'datatype T {int a = 1.5};'
     },
+    'number-out-of-range': {
+        severity: 'error',
+        description: 'A number does not fit where the generated C holds it, which would hold another value: an `int` value is a C `long` (from -9223372036854775808 to 9223372036854775807; gcc truncates a larger one), a `float` value a C `double` (finite, at most about ±1.8e308: `1e400` is infinite; a number that is not 0 must not round to 0, as `1e-400` does). Checked wherever a value is written: defaults, constants, parameter values, arguments, extractions, tests (a number compared with a `float` is a `float`) and scenario values. A port index, a periodicity (`* k`) and an array size are C `int`s (at most 2147483647); a duration is at most 9007199254740991ns (about 104 days: the tools hold durations exactly up to there).',
+        example: 'datatype T {int a = 99999999999999999999, float b = 1e400};'
+    },
     'value-struct-arity': {
         severity: 'error',
         description: 'A structured value needs exactly one element per field of its datatype, recursively.',
