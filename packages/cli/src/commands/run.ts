@@ -9,7 +9,7 @@
  */
 import { lstatSync } from 'node:fs';
 import { cpus as machineCpus } from 'node:os';
-import { join, resolve } from 'node:path';
+import { isAbsolute, join, relative, resolve, sep } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import type { JobEvent } from '@contract-studio/build-service';
@@ -39,13 +39,33 @@ function logsBytes(dir: string, names: readonly string[]): number {
     return sum;
 }
 
-/** `10s`, `500ms`, `2m`, `1.5` (seconds) -> seconds. */
+/**
+ * A folder as the text report names it: relative to the current directory when inside it
+ * (`my-robot/logs`), so the path opens from where the command ran; else absolute (JSON keeps it absolute).
+ */
+export function fromCwd(cwd: string, path: string): string {
+    const rel = relative(cwd, path);
+    return rel === '' ? '.' : rel === '..' || rel.startsWith(`..${sep}`) || isAbsolute(rel) ? path : rel;
+}
+
+/** `10s`, `500ms`, `2m`, `1.5` (seconds: said, bareDurationWarning) -> seconds. */
 export function parseDuration(text: string): number {
     const m = /^(\d+(?:\.\d+)?)(ms|s|m)?$/.exec(text.trim());
     if (!m) throw new UsageError(`bad duration '${text}' (expected e.g. 10s, 500ms, 2m)`);
     const value = Number(m[1]) * (m[2] === 'ms' ? 0.001 : m[2] === 'm' ? 60 : 1);
     if (!(value > 0)) throw new UsageError(`the duration must be positive (got '${text}')`);
     return value;
+}
+
+/**
+ * The warning for a duration option given as a bare number (`--duration 500`): read as seconds,
+ * but said on stderr, since a 500 meant as milliseconds runs 8 minutes (field test ft58c); null
+ * when the value has its unit. The same rule for every duration option of `contract run`.
+ */
+export function bareDurationWarning(option: string, text: string): string | null {
+    const value = text.trim();
+    if (!/^\d+(?:\.\d+)?$/.test(value) || !(Number(value) > 0)) return null; // a bad value: refused by parseDuration
+    return `--${option} ${value}: a number without a unit is seconds (${value} s); write ${value}ms for milliseconds, ${value}s to say seconds`;
 }
 
 /** `--ready-timeout` as seconds: a duration (parseDuration) of MIN_READY_TIMEOUT_SECONDS at least. */
@@ -179,6 +199,7 @@ export const runCommand: Command = {
     usage: [
         'usage: contract run DIR [--duration 10s] [--run-limit DURATION] [--start \'SUP.function(p={...})\'] [--logs OUT] [--trace FILE.jsonl] [--ready-timeout 10s] [--cpus LIST] [--realtime] [--sandbox auto|bwrap|docker|none] [--format text|json] [--runtime PATH] [--cache-dir DIR] [--verbose]',
         '  --duration: how long the architecture runs (default 10s; e.g. 500ms, 30s, 2m); then every module is stopped',
+        '  DURATION (--duration, --run-limit, --ready-timeout): a number and its unit, ms, s or m; a number without a unit is seconds, with a warning on stderr',
         `  --run-limit: the run step's wall time limit (default: the duration + ${CLI_RUN_ROOM_SECONDS}s, and the --ready-timeout past 10s: the run lasts as long as asked);`,
         `             at least ${MIN_RUN_LIMIT_SECONDS}s (the architecture needs about 1s to start and 1s to stop; a shorter one is refused, exit 2);`,
         '             a run still going then is stopped and fails `killed: run time limit N s` (exit 4). A --duration longer than the limit less',
@@ -199,6 +220,12 @@ export const runCommand: Command = {
     async run(args: string[], io: CliIO): Promise<number> {
         const parsed = parseArgs(args, [...COMMON_VALUED, 'duration', 'run-limit', 'start', 'logs', 'cpus', 'trace', 'ready-timeout'], [...COMMON_FLAGS, 'realtime']);
         const opts = await parseJobOptions(parsed, io, onTerminal());
+        // a bare number is seconds, said: `--duration 500` meant as milliseconds would run 8 minutes
+        for (const name of ['duration', 'run-limit', 'ready-timeout']) {
+            const value = parsed.options.get(name);
+            const warning = typeof value === 'string' ? bareDurationWarning(name, value) : null;
+            if (warning) io.err(`contract run: warning: ${warning}\n`);
+        }
         const durationOption = parsed.options.get('duration');
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
         const runLimitOption = parsed.options.get('run-limit');
@@ -293,8 +320,8 @@ export const runCommand: Command = {
             if (leftovers.length && !outcome.result.limitHit) io.err(`warning: the run left files in its run directory: ${leftovers.map(safeName).join(', ')}\n`);
             for (const s of leftOut) if (!s.bound) io.err(`warning: log ${safeName(s.name)} not collected: ${s.reason}\n`);
             for (const p of problems) io.err(`problem: ${p}\n`);
-            if (savedLogs.movedAside) io.err(`previous run's CSV logs: ${savedLogs.movedAside.files} file(s) moved to ${safeName(savedLogs.movedAside.folder)}\n`);
-            if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${safeName(logsDir)}\n`);
+            if (savedLogs.movedAside) io.err(`previous run's CSV logs: ${savedLogs.movedAside.files} file(s) moved to ${safeName(fromCwd(io.cwd, savedLogs.movedAside.folder))}\n`);
+            if (logs.length) io.err(`CSV logs: ${logs.length} file(s) in ${safeName(fromCwd(io.cwd, logsDir))}\n`);
             for (const r of savedLogs.refused) io.err(`contract run: log not written to ${safeName(logsDir)}: ${safeName(r)}\n`);
             if (trace) io.err(`trace: ${trace.records} record(s)${trace.unreadable ? `, ${trace.unreadable} unreadable line(s)` : ''} in ${safeName(trace.file)}\n`);
         }
