@@ -61,6 +61,21 @@ static int n_children;
 static char run_dir[PATH_MAX];
 static int stopping;
 static int stop_signalled;      /* the stop came from SIGINT, SIGTERM or SIGHUP */
+static const char *stop_why;    /* why the build service asked the stop (stop_reason), NULL when it did not say */
+
+/* Why the build service stops a run: the value it queues with its SIGTERM (sigqueue; `kill -q N`),
+ * as @contract-studio/conventions STOP_REASON_CODES numbers them. Each module's KILL says it. */
+static const char *stop_reason(int code)
+{
+    switch (code) {
+    case 1: return "the build service's memory limit was reached";
+    case 2: return "the build service's process limit was reached";
+    case 3: return "the build service's work disk limit was reached";
+    case 4: return "the build service's run time limit was reached";
+    case 5: return "the job was cancelled";
+    default: return NULL;
+    }
+}
 static RTIME stop_budget_ns;    /* CONTRACT_STOP_BUDGET_MS: a stop by a signal fits in it (stop_waits) */
 static double end_by_s;         /* CONTRACT_END_BY_S: the run stops this long after the launch at the latest */
 static const char *stop_first;  /* --stop-first: names, separated by spaces or commas */
@@ -444,7 +459,10 @@ static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
             struct signalfd_siginfo si;
             while (read(sfd, &si, sizeof si) == (ssize_t)sizeof si) {
                 if (si.ssi_signo == SIGCHLD) reap();
-                else stop = stop_signalled = 1;
+                else {
+                    stop = stop_signalled = 1;
+                    if (si.ssi_signo == SIGTERM && si.ssi_code == SI_QUEUE && !stop_why) stop_why = stop_reason(si.ssi_int);
+                }
             }
         }
         reap();
@@ -460,7 +478,8 @@ static int send_kills(int first)
     for (int i = 0; i < n_children; i++)
         if (children[i].alive && children[i].named && stops_first(children[i].name) == first &&
             ModuleState(children[i].name) == CONTRACT_OK) {
-            SendKill(children[i].name, ACK_NOTHING, -1);
+            if (stop_why) SendKillWhy(children[i].name, stop_why);
+            else SendKill(children[i].name, ACK_NOTHING, -1);
             sent++;
         }
     return sent;
@@ -732,7 +751,8 @@ int main(int argc, char *argv[])
         deadline = end_by_deadline(deadline, launched, duration);
         run_loop(sfd, deadline, all_ended);
     }
-    say("stopping");
+    if (stop_why) say("stopping: %s", stop_why);
+    else say("stopping");
     stop_all(sfd);
     ContractShutdown();
     int failed = 0;

@@ -236,6 +236,19 @@ int SendKill(const char *module, int wantedAck, int ackId)
     return rt_send_request_to(module, m);
 }
 
+int SendKillWhy(const char *module, const char *why)
+{
+    RequestMessage *m = blank(REQ_KILL);
+    set_ack(m->Param.Kil.ModAck, &m->Param.Kil.WantedAck, &m->Param.Kil.AckID, ACK_NOTHING, -1);
+    if (why && *why) {
+        size_t n = strnlen(why, CONTRACT_KILL_WHY_MAX);
+        memcpy(m->Data, why, n);
+        m->Data[n] = '\0';
+        m->DataSize = n + 1;
+    }
+    return rt_send_request_to(module, m);
+}
+
 int SendSetParam(const char *module, int port, const void *value, size_t size, int wantedAck, int ackId)
 {
     if (size > CONTRACT_REQUEST_DATA_MAX) {
@@ -414,6 +427,18 @@ static int accept_request(RequestMessage *m)
         port = m->Param.SubscribeEvent.sourcePort;
         snprintf(detail, sizeof detail, "SUB_EVENT %s:%d %s", m->Param.SubscribeEvent.targetModule,
                  m->Param.SubscribeEvent.targetPort, m->Param.SubscribeEvent.mode == EVENT_ONESHOT ? "oneshot" : "continuous");
+        break;
+    case REQ_KILL:
+        /* why the run stops, when the sender said (SendKillWhy): printable characters only, bounded */
+        if (m->DataSize > 1 && m->DataSize <= CONTRACT_KILL_WHY_MAX + 1) {
+            char why[CONTRACT_KILL_WHY_MAX + 1];
+            size_t n = 0;
+            for (; n < m->DataSize - 1 && m->Data[n]; n++) why[n] = (m->Data[n] >= 0x20 && m->Data[n] < 0x7f) ? (char)m->Data[n] : '?';
+            why[n] = '\0';
+            snprintf(detail, sizeof detail, "KILL (%s)", why);
+        } else {
+            snprintf(detail, sizeof detail, "KILL");
+        }
         break;
     default: snprintf(detail, sizeof detail, "%s", rt_request_name(m->Type)); break;
     }

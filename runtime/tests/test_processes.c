@@ -403,6 +403,54 @@ void test_launcher_sigint(void)
     h_teardown();
 }
 
+/* The build service's stop with a reason (a limit hit: SIGTERM with a value queued, `kill -q 1`):
+ * the launcher says it, and every module's KILL record reads it, so that the run's CSV logs say why
+ * it stopped. An unknown value is a plain stop. */
+void test_launcher_stop_why(void)
+{
+    REQUIRE(h_setup("stopwhy") == 0);
+    ContractShutdown();
+    char exe_p[600], exe_c1[600], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c1, NULL };
+    pid_t launcher = start_launcher(argv, out);
+    REQUIRE(launcher > 0);
+    CHECK(wait_for_text(out, "2 module(s) running", 5000));
+    CHECK(sigqueue(launcher, SIGTERM, (union sigval){ .sival_int = 1 }) == 0);
+    CHECK(h_wait_exit(launcher, 6000) == 0);
+    char *text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "contract-launch: stopping: the build service's memory limit was reached") && strstr(text, "all modules stopped cleanly"),
+              "launcher output: %s", text ? text : "(none)");
+    free(text);
+    const char *kill_why = ",request_received,contract-launch,,45,KILL (the build service's memory limit was reached)";
+    char *p_log = h_read_logs("P_"), *c1_log = h_read_logs("C1_");
+    CHECK_MSG(p_log && strstr(p_log, kill_why) && strstr(p_log, ",module_exit,"), "P's log: %s", p_log ? p_log : "(none)");
+    CHECK_MSG(c1_log && strstr(c1_log, kill_why), "C1's log: %s", c1_log ? c1_log : "(none)");
+    free(p_log);
+    free(c1_log);
+    h_teardown();
+
+    /* a value the launcher does not know: a plain stop, a plain KILL */
+    REQUIRE(h_setup("stopwhy2") == 0);
+    ContractShutdown();
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    char *argv2[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, NULL };
+    launcher = start_launcher(argv2, out);
+    REQUIRE(launcher > 0);
+    CHECK(wait_for_text(out, "1 module(s) running", 5000));
+    CHECK(sigqueue(launcher, SIGTERM, (union sigval){ .sival_int = 99 }) == 0);
+    CHECK(h_wait_exit(launcher, 6000) == 0);
+    text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "contract-launch: stopping\n"), "launcher output: %s", text ? text : "(none)");
+    free(text);
+    p_log = h_read_logs("P_");
+    CHECK_MSG(p_log && strstr(p_log, ",request_received,contract-launch,,0,KILL\n"), "P's log: %s", p_log ? p_log : "(none)");
+    free(p_log);
+    h_teardown();
+}
+
 /* A stop by a signal under CONTRACT_STOP_BUDGET_MS (the build service's cancel grace, 900 ms)
  * fits its waits in it: a module that does not answer its KILL is terminated by the launcher
  * (said, and its records written by its SIGTERM handler) before the budget ends, not killed

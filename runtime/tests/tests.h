@@ -32,6 +32,7 @@ void test_launcher_crash_cleanup(void);
 void test_launcher_start_duration(void);
 void test_launcher_module_ends(void);
 void test_launcher_sigint(void);
+void test_launcher_stop_why(void);
 void test_kill_without_launcher(void);
 void test_launcher_end_by(void);
 void test_launcher_stop_budget(void);
@@ -82,6 +83,7 @@ static const TestCase ALL_TESTS[] = {
     { "launcher_start_duration", test_launcher_start_duration },
     { "launcher_module_ends", test_launcher_module_ends },
     { "launcher_sigint", test_launcher_sigint },
+    { "launcher_stop_why", test_launcher_stop_why },
     { "kill_without_launcher", test_kill_without_launcher },
     { "launcher_end_by", test_launcher_end_by },
     { "launcher_stop_budget", test_launcher_stop_budget },

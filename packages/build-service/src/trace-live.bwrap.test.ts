@@ -136,16 +136,20 @@ test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs
 
 /**
  * The 9 collected logs of a job, by module, each checked to end with its module's exit record but
- * `killed`'s (a module SIGKILLed: its log does not); `context` is said with a failure.
+ * `killed`'s (a module SIGKILLed: its log does not); `context` is said with a failure. `why`: the
+ * reason the launcher's KILL must give in each of those logs (the service's stop said why).
  */
-async function logsEndingWithExit(id: string, job: Record<string, any>, killed?: string, context = ''): Promise<void> {
+async function logsEndingWithExit(id: string, job: Record<string, any>, killed?: string, context = '', why?: string): Promise<void> {
   const listing = job.artifacts as { files: { name: string }[] };
   expect(listing.files).toHaveLength(9);
   for (const f of listing.files) {
     const text = await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
     const last = parseLogFile({ name: f.name, text }).at(-1)?.kind;
     if (killed !== undefined && f.name.startsWith(`${killed}_`)) expect(last, f.name).not.toBe('module_exit');
-    else expect(last, `${f.name}${context ? `\n${context}` : ''}`).toBe('module_exit');
+    else {
+      expect(last, `${f.name}${context ? `\n${context}` : ''}`).toBe('module_exit');
+      if (why) expect(text, f.name).toContain(`,request_received,contract-launch,,${why.length + 1},KILL (${why})\n`);
+    }
   }
 }
 
@@ -193,7 +197,9 @@ test('the run time limit stops an architecture that runs on (no duration) as at 
   expect(job.result.message).toBe('killed: run time limit 3 s');
   expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
   expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
-  await logsEndingWithExit(id, job);
+  // the logs say why the run stopped: each module's KILL from the launcher
+  expect(lines).toContain("stopping: the build service's run time limit was reached");
+  await logsEndingWithExit(id, job, undefined, '', "the build service's run time limit was reached");
 }, 240_000);
 
 test('the memory limit hit mid-run stops the architecture as at the end of a run: every module the kernel left writes its last records and its exit record', async () => {
@@ -212,7 +218,7 @@ test('the memory limit hit mid-run stops the architecture as at the end of a run
   expect(lines.some((l) => /^module MSC \(pid \d+\) died by signal 9 \(Killed\)/.test(l)), lines.slice(-30).join('\n')).toBe(true);
   expect(job.result.issues).toEqual(expect.arrayContaining([expect.objectContaining({ kind: 'limit', module: 'MSC' })]));
   // the 8 others stopped as at a run's end: each log ends with its exit record; MSC's does not
-  await logsEndingWithExit(id, job, 'MSC', lines.slice(-30).join('\n'));
+  await logsEndingWithExit(id, job, 'MSC', lines.slice(-30).join('\n'), "the build service's memory limit was reached");
 }, 240_000);
 
 test('a cancel (Stop, Ctrl+C) while a limit is stopping the run does not hide the limit: the run ends by it, the cancel said', async () => {

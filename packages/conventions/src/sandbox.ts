@@ -26,6 +26,16 @@ export const SANDBOX_GID = 1000;
  */
 export const LAUNCHER_PROCESS_NAME = 'contract-launch';
 
+/**
+ * Why the build service stops a run: the value it queues with the launcher's SIGTERM (sigqueue,
+ * through `kill -q N`). contract-launch says it (`stopping: the build service's memory limit was
+ * reached`) and sends it with every module's KILL, whose request_received record reads `KILL (...)`:
+ * the run's CSV logs say why it stopped (runtime/launcher/contract-launch.c stop_reason: the same
+ * numbers, its texts).
+ */
+export const STOP_REASON_CODES = { memory: 1, processes: 2, workDiskMiB: 3, runSeconds: 4, cancel: 5 } as const;
+export type StopReason = keyof typeof STOP_REASON_CODES;
+
 /** The Docker image holding gcc, make and the runtime (built by scripts/docker-up.sh). */
 export const DOCKER_IMAGE = 'contract-gcc';
 

@@ -277,6 +277,11 @@ int SendStart(const char *module, int wantedAck, int ackId);
 int SendStartFunction(const char *module, const char *function, const char *args, int wantedAck, int ackId);
 int SendStop(const char *module, int wantedAck, int ackId);
 int SendKill(const char *module, int wantedAck, int ackId);
+/** KILL saying why the run stops (`why`: text, NUL-terminated in Data, at most
+ *  CONTRACT_KILL_WHY_MAX characters kept): the receiver's request_received record reads
+ *  `KILL (why)`. contract-launch sends it when the build service asked the stop with a reason. */
+int SendKillWhy(const char *module, const char *why);
+#define CONTRACT_KILL_WHY_MAX 120
 int SendSetParam(const char *module, int port, const void *value, size_t size, int wantedAck, int ackId);
 /** Connect producer:sourcePort -> consumer:targetPort * periodicity (request to the producer). */
 int SendSubscribe(const char *producer, int sourcePort, const char *consumer, int targetPort,

@@ -26,7 +26,7 @@ import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
-import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR } from '@contract-studio/conventions';
+import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR, type StopReason } from '@contract-studio/conventions';
 
 export interface JobRequest {
   action: 'build' | 'run';
@@ -212,7 +212,7 @@ export class Job {
     this.cancelSignal();
     const proc = this.current;
     if (!proc) return;
-    if (this.currentStep === 'run') await this.stopArchitecture(proc);
+    if (this.currentStep === 'run') await this.stopArchitecture(proc, 'cancel');
     else await proc.kill();
   }
 
@@ -220,11 +220,11 @@ export class Job {
    * Asks the run's launcher to stop the architecture as at the end of a run (Stop, the run time
    * limit); what still runs CANCEL_GRACE_MS later, or a run with no launcher, is killed.
    */
-  private async stopArchitecture(proc: SandboxProcess): Promise<void> {
+  private async stopArchitecture(proc: SandboxProcess, reason: StopReason): Promise<void> {
     // the grace counts from now: asking (an exec in Docker, on a loaded engine) is part of it
     let timer: NodeJS.Timeout | undefined;
     const graceOver = new Promise<false>((r) => (timer = setTimeout(() => r(false), CANCEL_GRACE_MS)));
-    const asked = await Promise.race([proc.terminateNamed(LAUNCHER_PROCESS_NAME).catch(() => false), graceOver]);
+    const asked = await Promise.race([proc.terminateNamed(LAUNCHER_PROCESS_NAME, reason).catch(() => false), graceOver]);
     if (asked) {
       this.system('run', `stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
       const ended = await Promise.race([proc.done.then(() => true), graceOver]);
@@ -658,7 +658,7 @@ export class Job {
         mechanism: 'service-timer',
       };
       this.events.append({ type: 'limit', limitHit: timeHit });
-      (step === 'run' ? this.stopArchitecture(proc) : proc.kill()).catch(() => {});
+      (step === 'run' ? this.stopArchitecture(proc, 'runSeconds') : proc.kill()).catch(() => {});
     }), seconds * 1000);
     if (this.cancelRequested || this.fault) proc.kill().catch(() => {});
     const pump = (stream: Readable, name: 'stdout' | 'stderr'): Promise<void> =>

@@ -16,6 +16,8 @@
  * events for the container (the API, so a remote engine too) and a refused fork from the
  * program's own messages (docker.ts `noteLine`).
  */
+import { queueTerm } from './queue-term.js';
+import type { StopReason } from '@contract-studio/conventions';
 import { join } from 'node:path';
 import type { Readable } from 'node:stream';
 import type Docker from 'dockerode';
@@ -176,18 +178,18 @@ export class ContainerCgroup {
 const COMM_MAX = 15;
 
 /**
- * SIGTERM, from this host, to each of `pids` named `name` (/proc/<pid>/comm): true when one was
+ * SIGTERM (`reason` queued with it: queue-term.ts), from this host, to each of `pids` named `name` (/proc/<pid>/comm): true when one was
  * asked, false when none is so named, null when this service may not signal them (not root:
  * the caller then asks inside the container).
  */
-export async function terminateNamedOnHost(pids: readonly number[], name: string, procRoot = '/proc'): Promise<boolean | null> {
+export async function terminateNamedOnHost(pids: readonly number[], name: string, procRoot = '/proc', reason?: StopReason): Promise<boolean | null> {
   const comm = name.slice(0, COMM_MAX);
   let asked = false;
   let denied = false;
   for (const pid of pids) {
     if ((await readSmallFile(join(procRoot, String(pid), 'comm'), 64)).replace(/\n$/, '') !== comm) continue;
     try {
-      process.kill(pid, 'SIGTERM');
+      queueTerm(pid, reason);
       asked = true;
     } catch (e) {
       if ((e as NodeJS.ErrnoException).code === 'EPERM') denied = true;

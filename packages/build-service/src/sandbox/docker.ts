@@ -45,7 +45,7 @@ import { HOST_PROCESSES } from './host-process.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
-import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID } from '@contract-studio/conventions';
+import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID, type StopReason } from '@contract-studio/conventions';
 
 export { DOCKER_IMAGE };
 export const DOCKER_WORK = '/work';
@@ -411,14 +411,14 @@ export class DockerSandbox implements Sandbox {
         if (limitHit) return;
         if (/Resource temporarily unavailable|cannot fork|fork failed/i.test(line)) hitProcessLimit();
       };
-      const terminateNamed = async (name: string): Promise<boolean> => {
+      const terminateNamed = async (name: string, reason?: StopReason): Promise<boolean> => {
         if (killing) return false;
         const comm = name.slice(0, 15);
         // from this host, when the container's cgroup is read here and the service may signal its
         // processes: no process to start in a container that may have no room for one (its pids limit)
         const pids = await watch.pids().catch(() => null);
         if (pids) {
-          const asked = await terminateNamedOnHost(pids, comm);
+          const asked = await terminateNamedOnHost(pids, comm, '/proc', reason);
           if (asked !== null) return asked;
         }
         // the engine lists the container's processes without starting one in it (most runs that

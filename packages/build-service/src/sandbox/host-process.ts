@@ -11,6 +11,8 @@ import type { LimitCgroup } from './cgroup.js';
 import { isWorkDiskFull, workDiskState } from './work-disk.js';
 import type { Mechanisms, SandboxExit, SandboxProcess, StopOnLimit } from './types.js';
 import { stopThenKill } from './limit-stop.js';
+import { queueTerm } from './queue-term.js';
+import type { StopReason } from '@contract-studio/conventions';
 import { withForkingModule } from './forking-module.js';
 
 export interface HostProcessOptions {
@@ -80,7 +82,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     if (opts.cgroup) await opts.cgroup.killAll();
   };
 
-  const terminateNamed = async (name: string): Promise<boolean> => {
+  const terminateNamed = async (name: string, reason?: StopReason): Promise<boolean> => {
     const pid = child.pid;
     if (pid === undefined || exited || killing) return false;
     const pids = new Set<number>(descendantsOf(pid));
@@ -89,7 +91,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     for (const p of pids) {
       if (processName(p) !== name.slice(0, COMM_MAX)) continue;
       try {
-        process.kill(p, 'SIGTERM');
+        queueTerm(p, reason);
         found = true;
       } catch {
         /* already gone */

@@ -7,17 +7,20 @@
  */
 import type { LimitHit } from '../limits.js';
 import type { StopOnLimit } from './types.js';
+import type { StopReason } from '@contract-studio/conventions';
 
 /** The parts of a running sandbox command the stop uses. */
 export interface StoppableCommand {
-  terminateNamed(name: string): Promise<boolean>;
+  terminateNamed(name: string, reason?: StopReason): Promise<boolean>;
   /** Resolves when the command's main process has exited. */
   exited: Promise<void>;
   kill(): Promise<void>;
 }
 
 export async function stopThenKill(stop: StopOnLimit, hit: LimitHit, cmd: StoppableCommand): Promise<void> {
-  const asked = await cmd.terminateNamed(stop.processName).catch(() => false);
+  // the launcher tells the modules why (their KILL records): the limit's name is its reason's
+  const reason: StopReason | undefined = hit.name === 'memory' || hit.name === 'processes' || hit.name === 'workDiskMiB' ? hit.name : undefined;
+  const asked = await cmd.terminateNamed(stop.processName, reason).catch(() => false);
   if (asked) {
     try {
       stop.stopping?.(hit);

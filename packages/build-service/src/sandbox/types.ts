@@ -4,7 +4,7 @@ import type { LimitHit, Limits, Mechanism } from '../limits.js';
 import type { DirListing } from '../pipeline/artifacts.js';
 
 export type { SandboxName, SandboxChoice } from '@contract-studio/conventions';
-import type { SandboxName } from '@contract-studio/conventions';
+import type { SandboxName, StopReason } from '@contract-studio/conventions';
 
 /** Which mechanism enforced each guarantee/limit for one sandboxed process (reported in job results). */
 export interface Mechanisms {
@@ -78,9 +78,10 @@ export interface SandboxProcess {
   /**
    * Sends SIGTERM to the command's processes named `name` (the kernel's `comm`, compared on its 15
    * characters), inside the sandbox and nowhere else; resolves with whether one was found. A
-   * program may take any name: this only asks, `kill` still ends everything.
+   * program may take any name: this only asks, `kill` still ends everything. `reason`: why, queued
+   * with the signal (STOP_REASON_CODES; queueTerm) where this host can, a plain SIGTERM elsewhere.
    */
-  terminateNamed(name: string): Promise<boolean>;
+  terminateNamed(name: string, reason?: StopReason): Promise<boolean>;
   /**
    * Every output line the job reads from the process: the sandbox may recognise a limit hit that
    * only shows in the output (a refused fork under RLIMIT_NPROC or in Docker, an allocation refused

@@ -179,6 +179,9 @@ function cappedText(k: KnownRecord): string {
     return `${k.peer === 'build-service' ? 'log cut by the build service' : 'log capped'}: ${detail || 'its log reached its bound'}`;
 }
 
+/** A KILL that says why the run stops (contract-launch's, when the build service said: `KILL (the build service's memory limit was reached)`). */
+const KILL_WHY = /^KILL \(([ -~]{1,120})\)$/;
+
 /** What the story adds to a record cut at its log's end (TraceRecordBase.cut). */
 export const CUT_RECORD = ' [cut: its log ends inside this line, with no line end; the record may have lost its end (its module was killed while writing it, or still writes it)]';
 
@@ -275,6 +278,8 @@ export class StoryTeller {
     private readonly runs = new Map<string, string>();
     /** Data flows (at most STORY_FOLLOWED) whose first dropped value was told: later drops are only counted. */
     private readonly droppingFlows = new Set<string>();
+    /** Why the run stopped was told (the first module's KILL that says it: the others say the same). */
+    private stopWhyTold = false;
     /** Per periodic schema (at most STORY_FOLLOWED): its figures, told before the counts (schemaLines). */
     private readonly schemas = new Map<string, SchemaFigures>();
     /** Schemas past STORY_FOLLOWED: counted in the totals only. */
@@ -341,6 +346,14 @@ export class StoryTeller {
             return undefined;
         }
         if (k.kind === 'ord_deadline_miss') return `${at(k)} ${this.missText(k)}`;
+        if (k.kind === 'request_received' && !this.stopWhyTold && k.peer === 'contract-launch') {
+            // the launcher's KILL saying why the run stops (the build service's limit, a cancel): told once
+            const why = KILL_WHY.exec(k.detail);
+            if (why) {
+                this.stopWhyTold = true;
+                return `${at(k)} asked to stop by contract-launch: ${why[1]} (every module's KILL says so; the first is told)`;
+            }
+        }
         if (k.kind === 'run_started') {
             if (k.peer === 'ORD') this.runs.delete(k.module);
             else if (this.runs.has(k.module) || this.runs.size < STORY_FOLLOWED) this.runs.set(ownString(k.module), ownString(k.peer));

@@ -276,6 +276,16 @@ describe('reading a log', () => {
         ]);
     });
 
+    it('tells once why the run stopped when the launcher\'s KILL says it (the build service\'s limit), not a plain KILL', () => {
+        const why = "the build service's memory limit was reached";
+        const text = [CSV_HEADER, '1000000000,w,MAA,request_received,contract-launch,,0,KILL',
+            `2000000000,w,MAA,request_received,contract-launch,,45,KILL (${why})`, `2000100000,w,MSC,request_received,contract-launch,,45,KILL (${why})`,
+            // a KILL from another sender, or a reason with a control character, is no launcher's stop
+            '1500000000,w,MSC,request_received,SUP,,20,KILL (not the launcher)'].join('\n');
+        const story = renderStory(parseTrace([{ name: 'X_1.csv', text }]));
+        expect(story.filter((l) => l.includes('asked to stop'))).toEqual([`+1.000000s MAA  asked to stop by contract-launch: ${why} (every module's KILL says so; the first is told)`]);
+    });
+
     it('counts the readable records apart from the unreadable lines, also for logs of unreadable lines only', () => {
         const teller = new StoryTeller();
         const records = parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER, '1000,w,SUP,error,,,0,x', 'junk', '2000,w,SUP,error,,,0,y', 'more junk', '3000,w,SUP'].join('\n') }]);

@@ -9,6 +9,8 @@ describe("the launcher's lines", () => {
       '5 module(s) running',
       'started GLB.mission(consigne={1.0,2.0,3.0})',
       'stopping',
+      'stopping: the job was cancelled',
+      "stopping: the build service's memory limit was reached",
       'module LOC (pid 15) exited with status 0',
       'module MAA (pid 25) terminated by signal 15 (Terminated)',
       'all modules stopped cleanly',

@@ -11,7 +11,8 @@ const NEWS: readonly RegExp[] = [
   /^CPU wake-up latency held at \d+ us /,
   /^\d+ module\(s\) running$/,
   /^started [A-Za-z_]\w*\.[A-Za-z_]\w*\(/,
-  /^stopping$/,
+  // the stop, with why when the build service said (`stopping: the job was cancelled`)
+  /^stopping(?:: [ -~]{1,120})?$/,
   /^module \S+ \(pid \d+\) exited with status 0$/,
   // a module stopped by the launcher's own SIGTERM at the end of a run (a death by signal says "died")
   /^module \S+ \(pid \d+\) terminated by signal 15 \([^)]*\)$/,
