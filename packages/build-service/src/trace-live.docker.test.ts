@@ -117,7 +117,7 @@ describe.skipIf(!docker.available)('live trace in docker', () => {
     console.info(`docker live trace: ${latencyMs.length} records while running; write -> SSE client latency p50 ${pct(latencyMs, 50).toFixed(1)} ms, p99 ${pct(latencyMs, 99).toFixed(1)} ms`);
   }, 300_000);
 
-  test('Stop mid-run: the launcher in the container is asked (SIGTERM by an exec) and stops the tutorial; every log ends with its exit record', async () => {
+  test('Stop mid-run: the launcher in the container is asked (SIGTERM from this host, the cancel queued as its reason) and stops the tutorial; every log ends with its exit record saying why', async () => {
     const files = await tutorialFiles();
     const r = await postJob(served.url, { action: 'run', duration: 60, project: { files } });
     expect(r.status, JSON.stringify(r.json)).toBe(201);
@@ -133,12 +133,16 @@ describe.skipIf(!docker.available)('live trace in docker', () => {
     expect(job.status, lines.slice(-20).join('\n')).toBe('cancelled');
     expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
     expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
+    // asked from this host (the container's cgroup is read here): the cancel queued as the stop's reason
+    expect(lines).toContain('stopping: the job was cancelled');
     const trace = traceLines(events);
     const listing = job.artifacts as { files: { name: string }[] };
     expect(listing.files).toHaveLength(9);
     for (const f of listing.files) {
-      const want = parseLogFile({ name: f.name, text: await artifactText(id, f.name) });
+      const text = await artifactText(id, f.name);
+      const want = parseLogFile({ name: f.name, text });
       expect(want.at(-1)?.kind, f.name).toBe('module_exit');
+      expect(text, f.name).toContain(',request_received,contract-launch,,22,KILL (the job was cancelled)\n');
       expect(trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text)), f.name).toEqual(want);
     }
   }, 300_000);
