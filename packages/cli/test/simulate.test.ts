@@ -5,6 +5,7 @@
  * are kept in the `sim/` folder of the build cache `contract build` uses (`--cache-dir`,
  * `$CONTRACT_CACHE_DIR`, the XDG cache folder), under the same trust rules.
  */
+import { spawnSync } from 'node:child_process';
 import { chmodSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
@@ -190,9 +191,25 @@ describe('contract simulate', { timeout: 60_000 }, () => {
         expect(io.stdout).toBe('');
         expect(await runCli(['simulate', TUTORIAL], capture(dir))).toBe(2);
         expect(await runCli(['simulate', TUTORIAL, 'bad.scenario', '--format', 'xml'], capture(dir))).toBe(2);
+        // a missing file: bad usage, said as such (not Node's ENOENT), before anything is built
         const missing = capture(dir);
-        expect(await runCli(['simulate', TUTORIAL, 'none.scenario', '--cache-dir', cache], missing)).toBe(2);
-        expect(missing.stderr).toContain('none.scenario: error: cannot read this scenario');
+        expect(await runCli(['simulate', TUTORIAL, 'none.scenario', 'bad.scenario', 'no/such.scenario', '--cache-dir', cache], missing)).toBe(2);
+        expect(missing.stderr.split('\n')[0]).toBe('contract simulate: no such scenario file: none.scenario, no/such.scenario');
+        expect(missing.stderr).not.toContain('ENOENT');
+        expect(missing.stderr).not.toContain('bad.scenario');
+        // a link (even to a file of the project), a folder or a FIFO is not read (a FIFO is not opened: that would wait for a writer)
+        symlinkSync('bad.scenario', join(dir, 'link.scenario'));
+        mkdirSync(join(dir, 'folder.scenario'));
+        expect(spawnSync('mkfifo', [join(dir, 'fifo.scenario')]).status).toBe(0);
+        const refused = capture(dir);
+        expect(await runCli(['simulate', TUTORIAL, 'link.scenario', 'folder.scenario', 'fifo.scenario', '--cache-dir', cache], refused)).toBe(2);
+        expect(refused.stderr).toBe([
+            'link.scenario: error: cannot read this scenario: a symbolic link (not followed)',
+            'folder.scenario: error: cannot read this scenario: not a regular file',
+            'fifo.scenario: error: cannot read this scenario: not a regular file',
+            'contract simulate: 3 scenario file(s) with errors: nothing was simulated',
+            '',
+        ].join('\n'));
         rmSync(dir, { recursive: true });
     });
 

@@ -7,7 +7,8 @@ import { closeSync, constants, fstatSync, openSync, readSync } from 'node:fs';
 export function readRegularFile(path: string, maxBytes: number): Buffer | { error: string } {
     let fd: number | undefined;
     try {
-        fd = openSync(path, constants.O_RDONLY | constants.O_NOFOLLOW);
+        // O_NONBLOCK: a FIFO named like a scenario or a header must not wait for a writer for ever (fstat refuses it next)
+        fd = openSync(path, constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
         const st = fstatSync(fd);
         if (!st.isFile()) return { error: 'not a regular file' };
         if (st.size > maxBytes) return { error: `larger than ${maxBytes} bytes` };

@@ -5,7 +5,7 @@
  * and reports each step and each failed expectation like a test runner; `--trace` also writes the
  * simulation as the run-time trace records `contract run --trace` writes (one JSON object a line).
  */
-import { existsSync } from 'node:fs';
+import { existsSync, lstatSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import type { LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
@@ -13,9 +13,28 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT, formatGccDiagnostic } from '../job-runner.js';
 import { safeName } from '../terminal-text.js';
-import { toJsonLines, writeTraceFileSync } from '../trace-files.js';
+import { openTraceFile, toJsonLines } from '../trace-files.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
+/** Lines of the --trace file written at once. */
+const TRACE_LINES_PER_WRITE = 10_000;
+
+/**
+ * What is wrong with a scenario path before it is opened, as lstat sees it (a link not followed):
+ * `missing`, why it is not read (a link, a folder, a FIFO: opening a FIFO would wait for a writer
+ * forever), or null for a regular file (its size and the rest: readScenarioFile).
+ */
+function scenarioPathProblem(path: string): 'missing' | string | null {
+    let info;
+    try {
+        info = lstatSync(path);
+    } catch (e) {
+        const code = (e as NodeJS.ErrnoException).code;
+        return code === 'ENOENT' || code === 'ENOTDIR' ? 'missing' : null; // another problem (a folder that cannot be searched): said when the file is read
+    }
+    if (info.isSymbolicLink()) return 'a symbolic link (not followed)';
+    return info.isFile() ? null : 'not a regular file';
+}
 
 export const simulateCommand: Command = {
     name: 'simulate',
@@ -43,7 +62,7 @@ export const simulateCommand: Command = {
         if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
-            DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, errorCount, jsonReport, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReport,
+            DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, errorCount, jsonReportParts, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReportParts,
         } = await import('@contract-studio/simulator');
         if (parsed.positionals.length < 2) throw new UsageError('expected DIR and at least one SCENARIO file');
         const sandbox = parsed.options.get('sandbox');
@@ -57,6 +76,9 @@ export const simulateCommand: Command = {
         const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
         const dir = resolve(io.cwd, parsed.positionals[0]!);
         if (!existsSync(dir)) throw new UsageError(`${parsed.positionals[0]} does not exist`);
+        // a scenario file that is not there is bad usage, said before the simulator is built (not as Node's ENOENT)
+        const missing = parsed.positionals.slice(1).filter((arg) => scenarioPathProblem(resolve(io.cwd, arg)) === 'missing');
+        if (missing.length) throw new UsageError(`no such scenario file: ${missing.map(safeName).join(', ')}`);
         const cache = simulatorCacheDir(cacheDir, process.env, io.cwd);
         if ('error' in cache) {
             io.err(`contract simulate: ${cache.error}\n`);
@@ -96,7 +118,8 @@ export const simulateCommand: Command = {
             const display = displayPath(io.cwd, file);
             // in messages and the text report the name is escaped (a newline in it cannot forge a line); json and junit keep it raw
             const shown = safeName(display);
-            const text = readScenarioFile(file);
+            const problem = scenarioPathProblem(file);
+            const text = problem ? { error: problem } : readScenarioFile(file);
             if (typeof text !== 'string') {
                 io.err(`${shown}: error: cannot read this scenario: ${text.error}\n`);
                 bad++;
@@ -112,15 +135,29 @@ export const simulateCommand: Command = {
             return EXIT_USAGE;
         }
         const results: ScenarioResult[] = [];
-        for (const s of scenarios) results.push(await runLoadedScenario(project, s));
-        if (format === 'json') io.out(jsonReport(results));
-        else if (format === 'junit') io.out(junitReport(results));
-        else io.out(textReport(results, { verbose: parsed.options.get('verbose') === true }));
+        // each scenario's parsed steps are let go once it has run (an 8 MiB scenario's take some 250 MB): not held through the reports
+        for (let s = scenarios.shift(); s; s = scenarios.shift()) results.push(await runLoadedScenario(project, s));
+        // written in parts (whole lines): the report of a scenario of many steps is never one string
+        const report = format === 'json' ? jsonReportParts(results) : format === 'junit' ? [junitReport(results)] : textReportParts(results, { verbose: parsed.options.get('verbose') === true });
+        for (const part of report) {
+            io.out(part);
+            await io.drained?.();
+        }
         if (typeof traceOption === 'string') {
             const { stepsToTrace, traceStepOf } = await import('@contract-studio/simulator/trace');
             const traceFile = resolve(io.cwd, traceOption);
             try {
-                writeTraceFileSync(traceFile, results.map((r) => toJsonLines(stepsToTrace(r.steps.map(traceStepOf), r.file))).join(''));
+                // one scenario's records at a time, written some thousands of lines at a time: the file is
+                // toJsonLines of them all, never one string
+                const handle = await openTraceFile(traceFile);
+                try {
+                    for (const r of results) {
+                        const records = stepsToTrace(r.steps.map(traceStepOf), r.file);
+                        for (let i = 0; i < records.length; i += TRACE_LINES_PER_WRITE) await handle.write(toJsonLines(records.slice(i, i + TRACE_LINES_PER_WRITE)));
+                    }
+                } finally {
+                    await handle.close();
+                }
             } catch (e) {
                 io.err(`contract simulate: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;

@@ -2,19 +2,11 @@
  * The three outputs of `contract simulate` (docs/simulation.md §3): text like a test runner,
  * JSON (every step's record, for the IDE), JUnit XML (CI reports).
  */
-import { ownRunEndText, readableCause, schedulerLineFields, StoryTeller, type KnownRecord, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
-import type { ScenarioResult } from './run-scenario.js';
-import { engineLine, typedRecord } from '../trace/steps-to-trace.js';
+import { ownRunEndText, readableCause, type NamedSchemaFigures } from '@contract-studio/build-service/trace';
+import type { ScenarioResult, StepResult, TrimmedRecords } from './run-scenario.js';
 import { actionLines } from '../trace/action-lines.js';
 import { outputLines } from './output-lines.js';
-
-/**
- * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
- * string value too: one line stays one line), line separators and bidi overrides shown as `?`.
- */
-function safe(s: string): string {
-    return s.replace(/[\u0000-\u001f\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g, '?');
-}
+import { isMissLine, MissTeller, ordWhat, safe } from './schema-story.js';
 
 const UNITS = [['s', 1_000_000_000], ['ms', 1_000_000], ['us', 1_000], ['ns', 1]] as const;
 
@@ -39,13 +31,6 @@ export function reportTimeFormat(times: number[]): (ns: number) => string {
 /** The times that choose a report's unit: its steps' and its end. */
 function timesOf(r: ScenarioResult): number[] {
     return [r.endNs, ...r.steps.map((s) => s.timeNs)];
-}
-
-/** What an engine's line is when ORD wrote it, read as the trace reader reads it (`release`, `activate`, `deadline_miss`, ...), else ''. */
-function ordWhat(l: { who: string; line: string }): { what: string; fields: Record<string, string | number> } {
-    if (l.who !== 'ORD') return { what: '', fields: {} };
-    const fields = schedulerLineFields(l.line);
-    return { what: String(fields['what']), fields };
 }
 
 /**
@@ -84,58 +69,38 @@ class ReleaseFolder {
     }
 }
 
-/** ORD's own line of a deadline miss; the verbose report says it from the typed record instead. */
-const isMissLine = (l: { who: string; line: string }) => ordWhat(l).what === 'deadline_miss';
-
 /**
- * The verbose report's deadline misses, told as `contract trace` tells them: `deadline miss (ORD:0):
- * S cycle k (not finished: ARM)` or `(held: nothing released, CTL still runs an earlier release)`,
- * from ORD's typed records and its held/resumed lines (followed over the scenario's steps), in place
- * of ORD's bare `deadline miss: S cycle k (ORD:0)` line.
+ * Each periodic schema's figures over scenario `r`, from ORD's records and lines of its steps (of a
+ * scenario whose records were not all kept, the runner's, told as they came).
  */
-class MissTeller {
-    private readonly story = new StoryTeller();
-
-    /** The step's misses, at their times; follows the step's cycles for the next. */
-    misses(step: ScenarioResult['steps'][number]['record']): Array<{ t: number; seq: number; text: string }> {
-        const out: Array<{ t: number; seq: number; text: string }> = [];
-        const ord = [
-            ...(step.records ?? []).filter((r) => r.module === 'ORD').map((r) => ({ t: r.timeNs, seq: r.seq ?? -1, rec: typedRecord(r) })),
-            ...step.log.filter((l) => l.who === 'ORD' && !isMissLine(l)).map((l) => ({ t: l.timeNs, seq: l.seq ?? -1, rec: engineLine(l.timeNs, 'ORD', 'scheduler', l.line) })),
-        ].map((x, i) => ({ ...x, i })).sort((a, b) => a.t - b.t || a.seq - b.seq || a.i - b.i);
-        for (const { t, seq, rec } of ord) {
-            if (rec.kind === 'ord_deadline_miss') out.push({ t, seq, text: `  ORD| ${safe(this.story.missText(rec as KnownRecord))}` });
-            this.story.tell(rec);
-        }
-        return out;
-    }
-
-    /** Each periodic schema's figures over the scenario, as `contract trace` ends a run's story. */
-    schemaLines(): string[] {
-        return this.story.schemaLines();
-    }
-
-    /** The same as data (`--format json`): the counts `expect deadline misses` and `expect overruns` check. */
-    schemaFigures(): NamedSchemaFigures[] {
-        return this.story.schemaFigures();
-    }
-}
-
-/** Each periodic schema's figures over scenario `r`, from ORD's records and lines of its steps. */
 function schemaCounts(r: ScenarioResult): NamedSchemaFigures[] {
+    if (r.trimmed) return r.trimmed.schemas;
     const teller = new MissTeller();
     for (const s of r.steps) teller.misses(s.record);
     return teller.schemaFigures();
 }
 
-export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
-    const out: string[] = [];
+/** Lines of one part of the text report (textReportParts). */
+const TEXT_LINES_PER_PART = 5_000;
+
+/**
+ * The text report in parts whose concatenation is textReport's text (each part whole lines), so
+ * that a scenario of many steps is written without the whole report in memory at once.
+ */
+export function* textReportParts(results: ScenarioResult[], options: { verbose?: boolean } = {}): Generator<string> {
+    let out: string[] = [];
     for (const r of results) {
         const formatTime = reportTimeFormat(timesOf(r));
         const releases = new ReleaseFolder();
         const misses = new MissTeller();
         out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
+        let trimmed: StepResult['trimmed'];
         for (const s of r.steps) {
+            // where the records kept whole end (RECORD_BOUNDS): said where it happens, told in the NOTE below
+            if (s.trimmed && s.trimmed !== trimmed) {
+                trimmed = s.trimmed;
+                out.push(`  ----  ${trimmed === 'compact' ? 'from here on the steps were kept without their actions, engine lines and records' : 'from here on the steps were kept without their rule changes and output either'} (NOTE below)`);
+            }
             const time = formatTime(s.timeNs).padStart(8);
             const mark = s.ok ? (s.kind === 'expect' ? 'ok  ' : '    ') : 'FAIL';
             // what happened since the step before, in the engines' order: what came before this
@@ -166,11 +131,17 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
             for (const h of ordered) if (!before(h)) out.push(line(h));
             // what the user's functions printed (with or without --verbose: docs/simulation.md §2), under the step's own lines
             out.push(...outputLines(s.record.output, ' '.repeat(26)));
-            if (s.kind === 'event' && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
+            // (an event that failed was delivered to nobody for its own reason, said below: not for want of a subscriber)
+            if (s.kind === 'event' && s.ok && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
             if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
+            if (out.length >= TEXT_LINES_PER_PART) {
+                yield out.join('\n') + '\n';
+                out = [];
+            }
         }
         // what ORD did of each periodic schema in the whole scenario (the counts `expect deadline misses` and `expect overruns` check)
-        if (options.verbose) for (const l of misses.schemaLines()) out.push(`                  ${safe(l)}`);
+        if (options.verbose) for (const l of r.trimmed?.schemaLines ?? misses.schemaLines()) out.push(`                  ${safe(l)}`);
+        if (r.trimmed) out.push(`  NOTE ${safe(r.trimmed.message)}`);
         if (r.error) out.push(`  ERROR ${safe(r.error)}`);
         const expectations = r.steps.filter((s) => s.kind === 'expect').length;
         out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
@@ -178,18 +149,49 @@ export function textReport(results: ScenarioResult[], options: { verbose?: boole
     }
     const failed = results.filter((r) => !r.passed).length;
     out.push(`${results.length - failed} passed, ${failed} failed`);
-    return out.join('\n') + '\n';
+    yield out.join('\n') + '\n';
+}
+
+export function textReport(results: ScenarioResult[], options: { verbose?: boolean } = {}): string {
+    return [...textReportParts(results, options)].join('');
+}
+
+/** What `--format json` says of the records not kept (the schema figures are the scenario's `schemas`). */
+function trimmedJson(t: TrimmedRecords) {
+    return { line: t.line, timeNs: t.timeNs, ...(t.bareLine !== undefined ? { bareLine: t.bareLine, bareTimeNs: t.bareTimeNs } : {}), droppedItems: t.droppedItems, message: t.message };
+}
+
+/** Steps of one part of the JSON report (jsonReportParts). */
+const JSON_STEPS_PER_PART = 2_000;
+
+/**
+ * `--format json` in parts whose concatenation is jsonReport's text, so that a scenario of many
+ * steps is written without the whole report in memory at once: a scenario's head, then its steps
+ * a few thousand at a time.
+ */
+export function* jsonReportParts(results: ScenarioResult[]): Generator<string> {
+    yield '{"scenarios":[';
+    for (const [i, r] of results.entries()) {
+        const head = JSON.stringify({
+            file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
+            ...(r.trimmed ? { trimmed: trimmedJson(r.trimmed) } : {}),
+            schemas: schemaCounts(r),
+            failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),
+            steps: [],
+        });
+        // `…,"steps":[]}`: the steps go between its brackets
+        yield `${i ? ',' : ''}${head.slice(0, -2)}`;
+        for (let from = 0; from < r.steps.length; from += JSON_STEPS_PER_PART) {
+            const part = r.steps.slice(from, from + JSON_STEPS_PER_PART).map((s) => JSON.stringify({ ...s.record, source: s.source, kind: s.kind }));
+            yield `${from ? ',' : ''}${part.join(',')}`;
+        }
+        yield ']}';
+    }
+    yield ']}\n';
 }
 
 export function jsonReport(results: ScenarioResult[]): string {
-    return JSON.stringify({
-        scenarios: results.map((r) => ({
-            file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
-            schemas: schemaCounts(r),
-            failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),
-            steps: r.steps.map((s) => ({ ...s.record, source: s.source, kind: s.kind })),
-        })),
-    }) + '\n';
+    return [...jsonReportParts(results)].join('');
 }
 
 function xml(s: string): string {
@@ -213,6 +215,7 @@ export function junitReport(results: ScenarioResult[]): string {
             out.push('    </testcase>');
         }
         if (r.error) out.push(`    <testcase classname="${xml(r.title ?? r.file)}" name="run"><error message="${xml(r.error)}"/></testcase>`);
+        if (r.trimmed) out.push(`    <system-out>${xml(r.trimmed.message)}</system-out>`);
         out.push('  </testsuite>');
     }
     out.push('</testsuites>');

@@ -1,14 +1,18 @@
 /**
  * Runs one checked scenario in a built harness: writes its steps, reads one record per step,
  * pairs them with the scenario's lines and says which expectations failed and why. The harness
- * is bounded (time, output size); whatever it prints is parsed defensively.
+ * is bounded (time, output size); whatever it prints is parsed defensively. What the result keeps
+ * of the records is bounded too (RECORD_BOUNDS): past it, the steps are kept without their lists,
+ * and the result says from which step (`trimmed`).
  */
 import { spawn } from 'node:child_process';
 import { dirname } from 'node:path';
+import type { NamedSchemaFigures } from '@contract-studio/build-service/trace';
 import { formatTime, type ParsedScenario, type Step } from '../scenario/index.js';
 import type { ResolvedLocal } from '../scenario/index.js';
 import { stepLine, type StepRecord } from './protocol.js';
 import type { Confinement } from '../harness/confine.js';
+import { MissTeller } from './schema-story.js';
 
 export interface StepResult {
     /** Scenario line (1-based) and its text; line 0 / '' for the end of the scenario. */
@@ -20,6 +24,31 @@ export interface StepResult {
     /** For a failure: what went wrong, naming the step, the expected and the actual state. */
     message?: string;
     record: StepRecord;
+    /**
+     * Set on the steps past RECORD_BOUNDS.wholeBytes: `compact`, the record kept without its
+     * actions, engine lines, typed records, schemas and locals; `bare`, past compactBytes too,
+     * without its rule changes and output either (and its error, expected and actual cut). What
+     * was left out is counted in the record's `dropped`.
+     */
+    trimmed?: 'compact' | 'bare';
+}
+
+/** What a scenario's result did not keep of its steps' records (RECORD_BOUNDS), said by each report. */
+export interface TrimmedRecords {
+    /** The first step kept `compact` (line 0: the end of the scenario), and its time. */
+    line: number;
+    timeNs: number;
+    /** The first step kept `bare`, if any. */
+    bareLine?: number;
+    bareTimeNs?: number;
+    /** Items of the steps' lists left out (also in the steps' `dropped`). */
+    droppedItems: number;
+    /** Each periodic schema's figures over the whole scenario, told as the records came. */
+    schemas: NamedSchemaFigures[];
+    /** The same as the verbose report's lines. */
+    schemaLines: string[];
+    /** What was not kept, from where, in a sentence of the reports. */
+    message: string;
 }
 
 export interface ScenarioResult {
@@ -38,7 +67,26 @@ export interface ScenarioResult {
     harnessMs: number;
     /** A problem of the run itself (harness crashed, timed out): the scenario failed. */
     error?: string;
+    /** Set when the steps' records were not all kept (RECORD_BOUNDS). */
+    trimmed?: TrimmedRecords;
 }
+
+/**
+ * What a scenario's result keeps of its steps' records: the harness writes each step's record as one
+ * JSON line, and the result keeps every record whole while they add up to `wholeBytes` of those
+ * lines (from the first step on); each later step keeps its verdict, error, expected and actual,
+ * rule changes and output while those add up to `compactBytes` more, and only its verdict past
+ * that. Whatever the scenario, the records kept stay some tens of MB in memory (a step's record
+ * parsed takes about 1.5 times its line); the harness's output itself is bounded at
+ * MAX_OUTPUT_BYTES. docs/simulation.md §4 "Bounds".
+ */
+export interface RecordBounds {
+    wholeBytes: number;
+    compactBytes: number;
+}
+
+/** 48 MiB: what the IDE's answer keeps of a simulation (200,000 items of its steps' lists, web-ide simulate-api.ts) fits in it. */
+export const RECORD_BOUNDS: RecordBounds = { wholeBytes: 48 * 1024 * 1024, compactBytes: 16 * 1024 * 1024 };
 
 export interface RunOptions {
     /** Wall-clock limit of one scenario (default 60 s). */
@@ -50,22 +98,85 @@ export interface RunOptions {
      * runs unconfined (tests of the runner itself only: prepareProject always gives one).
      */
     confinement?: Confinement;
+    /** What the result keeps of the records (default RECORD_BOUNDS). */
+    recordBounds?: RecordBounds;
 }
 
-const MAX_OUTPUT_BYTES = 512 * 1024 * 1024;
+/** The harness's output, all records together: the scenario is stopped past it. */
+export const MAX_OUTPUT_BYTES = 512 * 1024 * 1024;
+/** A `bare` step's error, expected and actual: the characters kept of each (the harness writes up to 8 KiB). */
+const BARE_TEXT_CHARS = 256;
+const MIB = 1024 * 1024;
+/** The lists a trimmed step no longer has (shared: nothing adds to a step's lists after the run). */
+const NONE: never[] = Object.freeze([]) as unknown as never[];
 
 function asRecord(line: string): StepRecord | undefined {
     try {
         const v = JSON.parse(line) as StepRecord;
         if (typeof v !== 'object' || v === null || typeof v.line !== 'number' || typeof v.ok !== 'boolean') return undefined;
-        v.rules ??= [];
-        v.actions ??= [];
-        v.log ??= [];
-        v.records ??= [];
+        // the lists are lists, whatever was written (the project's C runs in this process and may write on its output)
+        if (!Array.isArray(v.rules)) v.rules = [];
+        if (!Array.isArray(v.actions)) v.actions = [];
+        if (!Array.isArray(v.log)) v.log = [];
+        if (!Array.isArray(v.records)) v.records = [];
         return v;
     } catch {
         return undefined;
     }
+}
+
+const chars = (s: unknown) => (typeof s === 'string' ? s.length : 0);
+const items = (xs: unknown) => (Array.isArray(xs) ? xs.length : 0);
+
+/** About how many bytes what a `compact` step keeps takes. */
+function compactSize(r: StepRecord): number {
+    return chars(r.output) + chars(r.error) + chars(r.expected) + chars(r.actual) + (r.rules.length ? JSON.stringify(r.rules).length : 0);
+}
+
+function cut(s: string | undefined): string | undefined {
+    return typeof s !== 'string' || s.length <= BARE_TEXT_CHARS ? s : `${s.slice(0, BARE_TEXT_CHARS)}…`;
+}
+
+/** Record `r` as a `compact` or `bare` step keeps it, and how many of its lists' items it leaves out. */
+function trimRecord(r: StepRecord, bare: boolean): { record: StepRecord; left: number } {
+    const left = r.actions.length + r.log.length + r.records.length + items(r.schemas) + items(r.locals) + (bare ? r.rules.length : 0);
+    const dropped = (Number.isSafeInteger(r.dropped) ? r.dropped! : 0) + left;
+    // one shape for the many steps (an event's): no property added after (each would take room of its own)
+    const kept: StepRecord = {
+        line: r.line, timeNs: r.timeNs, verb: r.verb, ok: r.ok, delivered: r.delivered,
+        rules: bare || !r.rules.length ? NONE : r.rules, actions: NONE, log: NONE, records: NONE, dropped: dropped || undefined,
+    };
+    if (r.error !== undefined) kept.error = bare ? cut(r.error) : r.error;
+    if (r.expected !== undefined) kept.expected = bare ? cut(r.expected) : r.expected;
+    if (r.actual !== undefined) kept.actual = bare ? cut(r.actual) : r.actual;
+    if (r.output !== undefined && !bare) kept.output = r.output;
+    if (r.end) {
+        kept.end = r.end;
+        if (r.eventsProcessed !== undefined) kept.eventsProcessed = r.eventsProcessed;
+        if (r.wallNs !== undefined) kept.wallNs = r.wallNs;
+    }
+    return { record: kept, left };
+}
+
+/** Counts the step's records in the schemas' figures; a record that cannot be read is not counted. */
+function tell(story: MissTeller, r: StepRecord): void {
+    try {
+        story.count(r);
+    } catch {
+        // not of the harness's shape: not told
+    }
+}
+
+function stepName(line: number, timeNs: number): string {
+    return line ? `line ${line} (${formatTime(timeNs)})` : `the end of the scenario (${formatTime(timeNs)})`;
+}
+
+function trimmedMessage(t: Omit<TrimmedRecords, 'message'>, bounds: RecordBounds): string {
+    const mib = (n: number) => `${Math.round((n / MIB) * 10) / 10} MiB`;
+    return `the steps' records passed ${mib(bounds.wholeBytes)}: from ${stepName(t.line, t.timeNs)} on, the steps are kept without their actions, engine lines, `
+        + `typed records, schemas and locals (${t.droppedItems} items, counted in each step's dropped), so the --verbose lines, the --format json records and the --trace file stop before that step`
+        + (t.bareLine !== undefined ? `; from ${stepName(t.bareLine, t.bareTimeNs ?? 0)} on (${mib(bounds.compactBytes)} more), without their rule changes and output either` : '')
+        + '; the verdicts, failures and schema figures are the whole scenario\'s';
 }
 
 function failureMessage(file: string, step: Step | undefined, r: StepRecord): string {
@@ -83,12 +194,10 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
     const t0 = performance.now();
     const lastNs = scenario.steps.length ? scenario.steps[scenario.steps.length - 1]!.atNs : 0;
     const endNs = Math.max(scenario.untilNs ?? lastNs, lastNs);
-    const lines: string[] = [];
-    if (options.quiet) lines.push('0\t0\tquiet');
-    scenario.steps.forEach((s, i) => lines.push(stepLine(s, i, locals)));
-    lines.push(`${endNs}\t0\tend`);
+    let input = harnessInput(scenario, locals, endNs, options.quiet === true);
     const byLine = new Map<number, Step>();
     for (const s of scenario.steps) byLine.set(s.span.line, s);
+    const bounds = options.recordBounds ?? RECORD_BOUNDS;
 
     return new Promise((resolvePromise) => {
         const result: ScenarioResult = { file, title: scenario.title, passed: false, steps: [], failures: [], eventsProcessed: 0, endNs, ms: 0, harnessMs: 0 };
@@ -102,46 +211,85 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
             resolvePromise(result);
             return;
         }
-        let pending = '';
+        /** The pieces of the line being read (its bytes: a character split between two reads is whole once joined). */
+        let pending: Buffer[] = [];
         let bytes = 0;
         let stderr = '';
         let sawEnd = false;
+        /** Bytes of the records kept whole, and of what the `compact` steps keep. */
+        let whole = 0;
+        let compact = 0;
+        /** Once the records are no longer kept whole: what is said of it, and ORD's story told as the records come. */
+        let trimmed: (Omit<TrimmedRecords, 'message' | 'schemas' | 'schemaLines'> & { story: MissTeller }) | undefined;
         const timer = setTimeout(() => {
             result.error = `the simulation did not finish within ${(options.timeoutMs ?? 60_000) / 1000} s (a user function that never returns?)`;
             child.kill('SIGKILL');
         }, options.timeoutMs ?? 60_000);
-        const take = (line: string) => {
+        const take = (line: string, size: number) => {
             if (!line) return;
-            const record = asRecord(line);
+            let record = asRecord(line);
             if (!record) return;
             const step = byLine.get(record.line);
-            const sr: StepResult = {
-                line: record.line, source: step?.source ?? '', timeNs: record.timeNs, kind: record.end ? 'end' : step?.kind ?? 'end', ok: record.ok, record,
-            };
             if (record.end) {
                 sawEnd = true;
                 result.eventsProcessed = record.eventsProcessed ?? 0;
                 result.harnessMs = (record.wallNs ?? 0) / 1e6;
             }
+            let trim: StepResult['trimmed'];
+            if (!trimmed && whole + size <= bounds.wholeBytes) whole += size;
+            else {
+                if (!trimmed) {
+                    // the schemas' figures can no longer be told from the steps kept: told from here, as the records come
+                    const story = new MissTeller();
+                    for (const s of result.steps) tell(story, s.record);
+                    trimmed = { line: record.line, timeNs: record.timeNs, droppedItems: 0, story };
+                }
+                tell(trimmed.story, record);
+                const kept = compactSize(record);
+                const bare = trimmed.bareLine !== undefined || compact + kept > bounds.compactBytes;
+                if (bare && trimmed.bareLine === undefined) {
+                    trimmed.bareLine = record.line;
+                    trimmed.bareTimeNs = record.timeNs;
+                }
+                if (!bare) compact += kept;
+                const t = trimRecord(record, bare);
+                record = t.record;
+                trimmed.droppedItems += t.left;
+                trim = bare ? 'bare' : 'compact';
+            }
+            const kind = record.end ? 'end' : step?.kind ?? 'end';
+            const sr: StepResult = trim ? { line: record.line, source: step?.source ?? '', timeNs: record.timeNs, kind, ok: record.ok, record, trimmed: trim }
+                : { line: record.line, source: step?.source ?? '', timeNs: record.timeNs, kind, ok: record.ok, record };
             if (!record.ok) {
                 sr.message = failureMessage(file, step, record);
                 result.failures.push(sr);
             }
             result.steps.push(sr);
         };
+        const takeLine = (piece: Buffer) => {
+            const all = pending.length ? Buffer.concat([...pending, piece]) : piece;
+            pending = [];
+            try {
+                take(all.toString('utf8'), all.length);
+            } catch {
+                // a record not of the harness's shape (its lists' items): skipped, as a line that is no JSON
+            }
+        };
         child.stdout.on('data', (d: Buffer) => {
+            if (bytes > MAX_OUTPUT_BYTES) return;
             bytes += d.length;
             if (bytes > MAX_OUTPUT_BYTES) {
                 result.error = `the simulation wrote more than ${MAX_OUTPUT_BYTES} bytes: stopped`;
                 child.kill('SIGKILL');
                 return;
             }
-            pending += d.toString('utf8');
+            let from = 0;
             let nl;
-            while ((nl = pending.indexOf('\n')) >= 0) {
-                take(pending.slice(0, nl));
-                pending = pending.slice(nl + 1);
+            while ((nl = d.indexOf(10, from)) >= 0) {
+                takeLine(d.subarray(from, nl));
+                from = nl + 1;
             }
+            if (from < d.length) pending.push(d.subarray(from));
         });
         child.stderr.on('data', (d: Buffer) => {
             if (stderr.length < 16 * 1024) stderr += d.toString('utf8');
@@ -152,12 +300,27 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
         });
         child.on('close', (code, signal) => {
             clearTimeout(timer);
-            take(pending);
+            if (pending.length && bytes <= MAX_OUTPUT_BYTES) takeLine(Buffer.alloc(0));
             if (!sawEnd && !result.error) result.error = `the simulator ended before the end of the scenario (${signal ?? `exit ${code}`})${stderr ? `: ${stderr.trim()}` : ''}`;
+            if (trimmed) {
+                const { story, ...told } = trimmed;
+                const t = { ...told, schemas: story.schemaFigures(), schemaLines: story.schemaLines() };
+                result.trimmed = { ...t, message: trimmedMessage(t, bounds) };
+            }
             result.ms = performance.now() - t0;
             result.passed = !result.error && result.failures.length === 0;
             resolvePromise(result);
         });
-        child.stdin.end(lines.join('\n') + '\n');
+        child.stdin.end(input);
+        input = ''; // the pipe holds what it has not written yet
     });
+}
+
+/** The harness's input: one line per step, then the end. */
+function harnessInput(scenario: ParsedScenario, locals: Map<number, ResolvedLocal>, endNs: number, quiet: boolean): string {
+    const lines: string[] = [];
+    if (quiet) lines.push('0\t0\tquiet');
+    scenario.steps.forEach((s, i) => lines.push(stepLine(s, i, locals)));
+    lines.push(`${endNs}\t0\tend`);
+    return lines.join('\n') + '\n';
 }

@@ -52,9 +52,17 @@ export interface TraceStep {
     schemas?: string[];
 }
 
-/** A runner's step as the conversion reads it (its record's lists). */
-export function traceStepOf(step: { timeNs: number; source: string; ok: boolean; record: { rules: RuleChange[]; actions: ActionRecord[]; log?: LogLine[]; records?: SimTraceRecord[]; schemas?: string[] } }): TraceStep {
+/** The lists of a step that gives nothing (shared: the conversion only reads them). */
+const NOTHING: never[] = Object.freeze([]) as unknown as never[];
+
+/**
+ * A runner's step as the conversion reads it (its record's lists). A step whose record was not kept
+ * whole (`trimmed`: the runner's RECORD_BOUNDS) gives nothing: the trace is the scenario's up to the
+ * steps kept whole, not a part of what happened after (rule changes without the releases that made them).
+ */
+export function traceStepOf(step: { timeNs: number; source: string; ok: boolean; trimmed?: string; record: { rules: RuleChange[]; actions: ActionRecord[]; log?: LogLine[]; records?: SimTraceRecord[]; schemas?: string[] } }): TraceStep {
     const r = step.record;
+    if (step.trimmed) return { timeNs: step.timeNs, source: step.source, ok: step.ok, rules: NOTHING, actions: NOTHING, log: NOTHING, records: NOTHING };
     return { timeNs: step.timeNs, source: step.source, ok: step.ok, rules: r.rules, actions: r.actions, log: r.log, records: r.records, schemas: r.schemas };
 }
 
