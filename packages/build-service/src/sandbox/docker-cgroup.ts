@@ -189,7 +189,7 @@ export async function terminateNamedOnHost(pids: readonly number[], name: string
   for (const pid of pids) {
     if ((await readSmallFile(join(procRoot, String(pid), 'comm'), 64)).replace(/\n$/, '') !== comm) continue;
     try {
-      queueTerm(pid, reason);
+      await queueTerm(pid, reason);
       asked = true;
     } catch (e) {
       if ((e as NodeJS.ErrnoException).code === 'EPERM') denied = true;

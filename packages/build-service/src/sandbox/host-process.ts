@@ -91,7 +91,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     for (const p of pids) {
       if (processName(p) !== name.slice(0, COMM_MAX)) continue;
       try {
-        queueTerm(p, reason);
+        await queueTerm(p, reason);
         found = true;
       } catch {
         /* already gone */
