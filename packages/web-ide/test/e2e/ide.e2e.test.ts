@@ -345,9 +345,10 @@ describe('IDE in headless Chromium', () => {
     const userCode = disk(oldFile).replace(/(PROTECTED REGION ID\(protect_init_MSA\) ENABLED START\*\/)/, '$1\n/* MSA init by hand */');
     writeFileSync(join(s.workspace, oldFile), userCode);
     await renameWithF2(page, 'smodule1.contract', 'module MSA', 'module '.length, 'MSX');
+    // the rename's files are saved one by one (the open one by its editor): each is waited for
     await expect.poll(() => disk('sschema1.contract'), { timeout: 5000 }).toContain('MSX');
-    expect(disk('smodule1.contract')).toContain('module MSX');
-    expect(disk('sched.contract')).toContain('MSX;');
+    await expect.poll(() => disk('smodule1.contract'), { timeout: 5000 }).toContain('module MSX');
+    await expect.poll(() => disk('sched.contract'), { timeout: 5000 }).toContain('MSX;');
     expect(disk('sschema1.contract')).not.toMatch(/\bMSA\b/);
     const newFile = 'src-gen/generated/architecture/modules/MSX_mod/module.c';
     await expect.poll(() => existsSync(join(s.workspace, newFile)), { timeout: 10_000 }).toBe(true);
@@ -585,25 +586,28 @@ describe('IDE in headless Chromium', () => {
     expect(await second.locator('.job-origin').textContent()).toBe('(Build & Run of another tab)');
     expect(await second.locator('#btn-stop').isEnabled()).toBe(true);
     await shot(third, '06d-run-followed-in-another-tab');
+    // an info toast lasts 5 s: each is waited for from before what shows it, not after the checks between
+    const secondToast = second.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 30_000 });
     await second.locator('#btn-stop').click();
     for (const tab of [page, second, third]) {
       await expect.poll(() => tab.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
       await expect.poll(() => tab.locator('#btn-run').isEnabled()).toBe(true);
     }
-    await second.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 15_000 });
+    await secondToast;
     await second.close();
     await third.close();
     // a reload after the end shows the tab's last job again (it showed "No build yet"): its whole
     // log and its end, the Monitor and the run's CSV logs; nothing to stop
     await page.reload();
     await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
+    const pageToast = page.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 30_000 });
     await expect.poll(() => page.locator('.job-origin').textContent(), { timeout: 10_000 }).toBe('(shown again after a reload: it had ended)');
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
     await expect.poll(async () => (await lines()).length, { timeout: 10_000 }).toBeGreaterThan(before.length);
     expect((await lines()).slice(0, before.length)).toEqual(before);
     expect(await page.locator('#btn-stop').isEnabled()).toBe(false);
     expect(await page.locator('#btn-run').isEnabled()).toBe(true);
-    await page.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 15_000 });
+    await pageToast;
     expect(await page.locator('.monitor-view').count()).toBe(1);
   }, 240_000);
 
