@@ -182,6 +182,17 @@ function cappedText(k: KnownRecord): string {
 /** A KILL that says why the run stops (contract-launch's, when the build service said: `KILL (the build service's memory limit was reached)`). */
 const KILL_WHY = /^KILL \(([ -~]{1,120})\)$/;
 
+/**
+ * `asked to stop by contract-launch: <why>` for a request_received record of the launcher's KILL
+ * that says why the run stops; undefined for any other record. The story and the IDE's Monitor
+ * tell the first of them (every module gets one).
+ */
+export function askedToStopText(k: KnownRecord): string | undefined {
+    if (k.kind !== 'request_received' || k.peer !== 'contract-launch') return undefined;
+    const why = KILL_WHY.exec(k.detail);
+    return why ? `asked to stop by contract-launch: ${why[1]}` : undefined;
+}
+
 /** What the story adds to a record cut at its log's end (TraceRecordBase.cut). */
 export const CUT_RECORD = ' [cut: its log ends inside this line, with no line end; the record may have lost its end (its module was killed while writing it, or still writes it)]';
 
@@ -346,12 +357,12 @@ export class StoryTeller {
             return undefined;
         }
         if (k.kind === 'ord_deadline_miss') return `${at(k)} ${this.missText(k)}`;
-        if (k.kind === 'request_received' && !this.stopWhyTold && k.peer === 'contract-launch') {
+        if (k.kind === 'request_received' && !this.stopWhyTold) {
             // the launcher's KILL saying why the run stops (the build service's limit, a cancel): told once
-            const why = KILL_WHY.exec(k.detail);
-            if (why) {
+            const asked = askedToStopText(k);
+            if (asked) {
                 this.stopWhyTold = true;
-                return `${at(k)} asked to stop by contract-launch: ${why[1]} (every module's KILL says so; the first is told)`;
+                return `${at(k)} ${asked} (every module's KILL says so; the first is told)`;
             }
         }
         if (k.kind === 'run_started') {

@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, askedToStopText, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -289,6 +289,8 @@ export class MonitorModel implements MonitorView {
    * "still runs" it, as contract trace says.
    */
   private readonly gone = new Set<string>();
+  /** The run's stop was marked (askedToStopText: the first module's KILL saying why). */
+  private stopMarked = false;
   /** The schema a release or completion line named last, and its waits (a line naming it again is matched in place). */
   private lastWaits: CycleWaits | undefined;
   private lastWaitsName = '';
@@ -406,6 +408,11 @@ export class MonitorModel implements MonitorView {
     else if (r.kind === 'user') this.cappedMark(t, 'user', r as KnownRecord, (k) => userRecordText(k, 80));
     if (r.kind !== 'unknown') this.cappedMark(t, 'error', r as KnownRecord, errorLabel);
     if (r.kind === 'requests_kept' || r.kind === 'requests_kept_end') this.cappedMark(t, 'kept', r as KnownRecord, keptRequestsText);
+    // why the build service stopped the run (a limit, its run time limit, a cancel): the first KILL saying it, marked once
+    if (r.kind === 'request_received' && !this.stopMarked && askedToStopText(r as KnownRecord)) {
+      this.stopMarked = true;
+      this.cappedMark(t, 'error', r as KnownRecord, askedToStopText);
+    }
     applyRecord(this.live, r, t, this.t0 ?? 0);
   }
 
