@@ -6,7 +6,7 @@
  * simulator harness/compile-diagnostics.ts), so that `contract simulate` names the user's file,
  * line and region as `contract build` does.
  */
-export { renderDiagnostic, type DiagnosticContext, type GccDiagnostic } from '../pipeline/gcc-diagnostics.js';
+export { movedToRegion, renderDiagnostic, type DiagnosticContext, type GccDiagnostic } from '../pipeline/gcc-diagnostics.js';
 export { cutText, parseGccTextLine } from '../pipeline/gcc-text.js';
 export { LinkErrorReader, parseLinkerLine, type LinkerLine } from '../pipeline/ld-text.js';
 export { findProtectedRegions, regionAt, type ProtectedRegion } from '../pipeline/protected-regions.js';

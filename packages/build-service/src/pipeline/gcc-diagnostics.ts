@@ -60,13 +60,21 @@ export function userCopyPlace(d: GccDiagnostic, copy: UserCopy): GccDiagnostic {
   if (d.line === null) return d;
   const built = d.protectedRegion;
   const mine = built ? copy.regions?.find((r) => r.id === built.id) : undefined;
-  if (built && mine && mine.endLine - mine.startLine === built.endLine - built.startLine) {
-    const shift = mine.startLine - built.startLine;
-    const { endLine, endColumn, ...rest } = d;
-    const end = endLine !== undefined && endLine >= built.startLine && endLine <= built.endLine ? { endLine: endLine + shift, ...(endColumn !== undefined ? { endColumn } : {}) } : {};
-    return { ...rest, ...end, line: d.line + shift, protectedRegion: mine };
-  }
-  return { ...d, message: d.message + NOT_YOUR_LINE(d.line, copy) };
+  return (built && mine && movedToRegion(d, built, mine)) || { ...d, message: d.message + NOT_YOUR_LINE(d.line, copy) };
+}
+
+/**
+ * `d`, at a line of region `built` of the file compiled, moved to the same line of region `mine`
+ * of the user's file (its text carried over byte for byte: the same lines at another place; its
+ * end too when it is in the region); undefined when `mine` is not as long (another text). The
+ * build's placement (userCopyPlace) and the simulator's (compile-diagnostics.ts) both move so.
+ */
+export function movedToRegion(d: GccDiagnostic, built: ProtectedRegion, mine: ProtectedRegion): GccDiagnostic | undefined {
+  if (d.line === null || mine.endLine - mine.startLine !== built.endLine - built.startLine) return undefined;
+  const shift = mine.startLine - built.startLine;
+  const { endLine, endColumn, ...rest } = d;
+  const end = endLine !== undefined && endLine >= built.startLine && endLine <= built.endLine ? { endLine: endLine + shift, ...(endColumn !== undefined ? { endColumn } : {}) } : {};
+  return { ...rest, ...end, line: d.line + shift, protectedRegion: mine };
 }
 
 export function relativeToRoot(file: string, ctx: DiagnosticContext): string | null {

@@ -9,7 +9,8 @@ import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import { findContainerCgroup, isOomEvent, namesContainer, parseProcCgroup, planContainerCgroup, terminateNamedOnHost } from './docker-cgroup.js';
+import { findContainerCgroup, isOomEvent, namesContainer, parseProcCgroup, planContainerCgroup } from './docker-cgroup.js';
+import { terminateNamedOnHost } from './queue-term.js';
 
 const ID = '679a5f64faf5c7262d8e2534c61cb54143aff5392a16cec3168df7af66aa2338';
 const OTHER = 'b'.repeat(64);

@@ -16,8 +16,6 @@
  * events for the container (the API, so a remote engine too) and a refused fork from the
  * program's own messages (docker.ts `noteLine`).
  */
-import { queueTerm } from './queue-term.js';
-import type { StopReason } from '@contract-studio/conventions';
 import { join } from 'node:path';
 import type { Readable } from 'node:stream';
 import type Docker from 'dockerode';
@@ -172,30 +170,6 @@ export class ContainerCgroup {
     const dir = this.plan.pids?.dir ?? this.plan.memory?.dir;
     return dir ? cgroupPids(dir) : Promise.resolve([]);
   }
-}
-
-/** The kernel keeps a process's name (comm) to this many characters. */
-const COMM_MAX = 15;
-
-/**
- * SIGTERM (`reason` queued with it: queue-term.ts), from this host, to each of `pids` named `name` (/proc/<pid>/comm): true when one was
- * asked, false when none is so named, null when this service may not signal them (not root:
- * the caller then asks inside the container).
- */
-export async function terminateNamedOnHost(pids: readonly number[], name: string, procRoot = '/proc', reason?: StopReason): Promise<boolean | null> {
-  const comm = name.slice(0, COMM_MAX);
-  let asked = false;
-  let denied = false;
-  for (const pid of pids) {
-    if ((await readSmallFile(join(procRoot, String(pid), 'comm'), 64)).replace(/\n$/, '') !== comm) continue;
-    try {
-      await queueTerm(pid, reason);
-      asked = true;
-    } catch (e) {
-      if ((e as NodeJS.ErrnoException).code === 'EPERM') denied = true;
-    }
-  }
-  return asked ? true : denied ? null : false;
 }
 
 /** What `container.inspect()` gives that the watch needs. */

@@ -43,7 +43,8 @@ import { stopThenKill } from './limit-stop.js';
 import { withForkingModule } from './forking-module.js';
 import { HOST_PROCESSES } from './host-process.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
-import { terminateNamedOnHost, watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
+import { watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
+import { terminateNamedOnHost } from './queue-term.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
 import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID, type StopReason } from '@contract-studio/conventions';
 

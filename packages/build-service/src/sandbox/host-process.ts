@@ -11,7 +11,7 @@ import type { LimitCgroup } from './cgroup.js';
 import { isWorkDiskFull, workDiskState } from './work-disk.js';
 import type { Mechanisms, SandboxExit, SandboxProcess, StopOnLimit } from './types.js';
 import { stopThenKill } from './limit-stop.js';
-import { queueTerm } from './queue-term.js';
+import { terminateNamedOnHost } from './queue-term.js';
 import type { StopReason } from '@contract-studio/conventions';
 import { withForkingModule } from './forking-module.js';
 
@@ -87,17 +87,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     if (pid === undefined || exited || killing) return false;
     const pids = new Set<number>(descendantsOf(pid));
     if (opts.cgroup) for (const p of await opts.cgroup.pids()) if (p !== pid) pids.add(p);
-    let found = false;
-    for (const p of pids) {
-      if (processName(p) !== name.slice(0, COMM_MAX)) continue;
-      try {
-        await queueTerm(p, reason);
-        found = true;
-      } catch {
-        /* already gone */
-      }
-    }
-    return found;
+    return (await terminateNamedOnHost([...pids], name, '/proc', reason)) === true;
   };
 
   const kill = (): Promise<void> => {
@@ -216,9 +206,6 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     noteLine,
   };
 }
-
-/** The kernel keeps a process's name (comm) to this many characters. */
-const COMM_MAX = 15;
 
 /** A process's name (/proc/<pid>/comm), '' when it is gone. */
 export function processName(pid: number): string {

@@ -16,7 +16,7 @@
  */
 import { ARCHITECTURE_DIR } from '@contract-studio/conventions';
 import {
-    cutText, findProtectedRegions, LinkErrorReader, parseGccTextLine, parseLinkerLine, regionAt, renderDiagnostic, type DiagnosticContext, type GccDiagnostic, type ProtectedRegion,
+    cutText, findProtectedRegions, LinkErrorReader, movedToRegion, parseGccTextLine, parseLinkerLine, regionAt, renderDiagnostic, type DiagnosticContext, type GccDiagnostic, type ProtectedRegion,
 } from '@contract-studio/build-service/gcc';
 import { readUserFile } from './user-file.js';
 import type { SimSources } from './tables.js';
@@ -95,12 +95,8 @@ class FilePlacer {
         if (f.same) return { ...d, file: f.userPath, protectedRegion: regionAt(f.userRegions, d.line), children };
         const inCopy = regionAt(f.simRegions, d.line);
         const mine = inCopy ? f.userRegions.find((r) => r.id === inCopy.id) : undefined;
-        if (inCopy && mine && mine.endLine - mine.startLine === inCopy.endLine - inCopy.startLine) {
-            const shift = mine.startLine - inCopy.startLine;
-            const { endLine, endColumn, ...rest } = d;
-            const end = endLine !== undefined && endLine >= inCopy.startLine && endLine <= inCopy.endLine ? { endLine: endLine + shift, ...(endColumn !== undefined ? { endColumn } : {}) } : {};
-            return { ...rest, ...end, file: f.userPath, line: d.line + shift, protectedRegion: mine, children };
-        }
+        const moved = inCopy && mine && movedToRegion(d, inCopy, mine);
+        if (moved) return { ...moved, file: f.userPath, children };
         const why = f.userText === undefined ? 'you have no readable copy of it' : 'your copy differs';
         return {
             ...d, file: f.userPath, protectedRegion: inCopy, children,
