@@ -20,20 +20,18 @@ const FORMATS = ['text', 'json', 'junit'] as const;
 const TRACE_LINES_PER_WRITE = 10_000;
 
 /**
- * What is wrong with a scenario path before it is opened, as lstat sees it (a link not followed):
- * `missing`, why it is not read (a link, a folder, a FIFO: opening a FIFO would wait for a writer
- * forever), or null for a regular file (its size and the rest: readScenarioFile).
+ * Whether a scenario path names nothing, as lstat sees it (a link not followed): bad usage, said
+ * before the simulator is built. What is there but not a scenario (a link, a folder, a FIFO, too
+ * large) is said by readScenarioFile, which opens it without waiting or following a link.
  */
-function scenarioPathProblem(path: string): 'missing' | string | null {
-    let info;
+function scenarioMissing(path: string): boolean {
     try {
-        info = lstatSync(path);
+        lstatSync(path);
+        return false;
     } catch (e) {
         const code = (e as NodeJS.ErrnoException).code;
-        return code === 'ENOENT' || code === 'ENOTDIR' ? 'missing' : null; // another problem (a folder that cannot be searched): said when the file is read
+        return code === 'ENOENT' || code === 'ENOTDIR'; // another problem (a folder that cannot be searched): said when the file is read
     }
-    if (info.isSymbolicLink()) return 'a symbolic link (not followed)';
-    return info.isFile() ? null : 'not a regular file';
 }
 
 export const simulateCommand: Command = {
@@ -77,7 +75,7 @@ export const simulateCommand: Command = {
         const dir = resolve(io.cwd, parsed.positionals[0]!);
         if (!existsSync(dir)) throw new UsageError(`${parsed.positionals[0]} does not exist`);
         // a scenario file that is not there is bad usage, said before the simulator is built (not as Node's ENOENT)
-        const missing = parsed.positionals.slice(1).filter((arg) => scenarioPathProblem(resolve(io.cwd, arg)) === 'missing');
+        const missing = parsed.positionals.slice(1).filter((arg) => scenarioMissing(resolve(io.cwd, arg)));
         if (missing.length) throw new UsageError(`no such scenario file: ${missing.map(safeName).join(', ')}`);
         const cache = simulatorCacheDir(cacheDir, process.env, io.cwd);
         if ('error' in cache) {
@@ -118,8 +116,7 @@ export const simulateCommand: Command = {
             const display = displayPath(io.cwd, file);
             // in messages and the text report the name is escaped (a newline in it cannot forge a line); json and junit keep it raw
             const shown = safeName(display);
-            const problem = scenarioPathProblem(file);
-            const text = problem ? { error: problem } : readScenarioFile(file);
+            const text = readScenarioFile(file);
             if (typeof text !== 'string') {
                 io.err(`${shown}: error: cannot read this scenario: ${text.error}\n`);
                 bad++;
