@@ -38,6 +38,7 @@
 #include <unistd.h>
 #include "libmodule/libmodule.h"
 #include "rt_placement.h"
+#include "internal.h" /* rt_log_recover */
 
 #define MAX_MODULES 128
 #define LINE_MAX_LEN 4096
@@ -366,6 +367,16 @@ static const char *rttime_note(int sig, const struct rusage *ru, char *buf, size
     return buf;
 }
 
+/* A module that died without writing its CSV log (a SIGKILL, an _exit): the records it had logged
+ * and not written are written now, from its log buffers (runtime/src/log_recover.c). */
+static void recover_log(const Child *c, pid_t pid)
+{
+    RecoveredLog r;
+    if (!rt_log_recover(getenv("CONTRACT_LOG_DIR"), (long)pid, &r) || r.records == 0) return;
+    say("module %s: %llu record(s) it had logged and not written when it ended were written to its log %s from its log buffers%s",
+        c->name, r.records, r.log, r.dropped ? " (the log's bound, CONTRACT_LOG_MAX_BYTES, left out the rest)" : "");
+}
+
 static void reap(void)
 {
     int status;
@@ -393,6 +404,7 @@ static void reap(void)
                 say("module %s (pid %ld) exited with status %d%s", c->name, (long)pid, code,
                     c->signalled ? "" : stopping ? (code ? when : "") : code ? "" : " before the run's end");
             }
+            recover_log(c, pid);
             remove_module_files(run_dir, c->name);
         }
     }

@@ -30,7 +30,11 @@
  * Removed at close. Its second word is
  * the reader's: while a client watches the live trace the build service writes there the flush
  * delay it wants (25 ms), and the module writes its records that much sooner than LOG_FLUSH_NS
- * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS.
+ * (50 ms) when it waits; 0 (nobody watches): LOG_FLUSH_NS. The file also holds the two log buffers
+ * (log_mark.h), and words that say which bytes of the module's records each holds and how many
+ * bytes the file held before the first: a module killed by SIGKILL (the OOM killer) leaves its
+ * records there, and contract-launch writes the ones the log lacks (log_recover.c). Cost: one more
+ * store per record, and each buffer's words at a hand-off.
  *
  * Flush boundaries: a module that waits writes its records at the first multiple of the flush
  * delay on CLOCK_MONOTONIC after its oldest unwritten record (ContractLogFlushDue), not a delay
@@ -61,22 +65,21 @@
 #include <time.h>
 #include <unistd.h>
 #include "internal.h"
+#include "log_mark.h"
 
 #define CSV_HEADER "mono_ns,wall_time,module,event,peer,port,size,detail\n"
-#define LOG_BUF 65536
 #define EVENT_MAX 64     /* bytes of a record's event name: a longer one is cut (one warning) */
 #define DETAIL_MAX 400   /* bytes of a record's detail: a longer one is cut, ending with `…` */
-/* A record's room: its fields at their bounds, each quoted with every byte a doubled quote (the
- * detail with its cut mark), the separators and the line end: 20 + 27 + 63 + 2 * (2 + 2 * 64)
- * + 10 + 20 + (2 + 2 * (400 + 3)) + 8 = 1216 bytes. */
-#define RECORD_MAX 1280
 #define LOG_MAX_DEFAULT (256ULL * 1024 * 1024)
 
 #define WRITER_STACK (256 * 1024) /* locked with the rest by mlockall: not the default 8 MiB */
 
 static int log_fd = -1;
-static char log_bufs[2][LOG_BUF];
-static char *log_buf = log_bufs[0];     /* the buffer the module fills                      */
+static char log_store[2][LOG_BUF];      /* the buffers when there is no mark to hold them   */
+static char *log_bufs[2] = { log_store[0], log_store[1] }; /* in the mark's file when it has one */
+static char *log_buf = log_store[0];    /* the buffer the module fills ...                  */
+static int log_cur;                     /* ... its index                                    */
+static unsigned long long log_start[2]; /* each buffer's first byte in the module's records */
 static size_t log_len;
 static char log_path[PATH_MAX];
 static unsigned long long log_max;      /* bound of the file, bytes                         */
@@ -113,14 +116,31 @@ static int log_busy;                    /* BUSY_SWAP: the buffers change hands; 
 static _Thread_local int on_writer;     /* this thread is the writer                        */
 #define CRASH_WAIT_NS 100000000LL       /* the handler waits this long for a busy writer    */
 
-#define MARK_BYTES 4096
-
 static void writer_start(void);
 
 static void mark_set(unsigned long long v)
 {
     if (log_mark) __atomic_store_n(log_mark, v, __ATOMIC_SEQ_CST);
 }
+
+/* A word of the mark's page for log_recover.c (log_mark.h). Release: a SIGKILL between two of
+ * these stores leaves the earlier ones, and the record bytes before them, in the file. */
+static void mark_put(int word, unsigned long long v)
+{
+    if (log_mark) __atomic_store_n(&log_mark[word], v, __ATOMIC_RELEASE);
+}
+
+/* Buffer i begins the module's records anew at byte `start` (empty first: a SIGKILL in between
+ * leaves it empty). */
+static void buffer_begin(int i, unsigned long long start)
+{
+    mark_put(MARK_WORD_LEN(i), 0);
+    log_start[i] = start;
+    mark_put(MARK_WORD_START(i), start);
+}
+
+/* The log file now holds bytes that are not the module's records in order: no recovery. */
+static void mark_broken(void) { mark_put(MARK_WORD_BROKEN, 1); }
 
 /* Creates <log>.mark when CONTRACT_LOG_MARK=1 (no mark, silently, when it cannot). */
 static void mark_open(void)
@@ -132,30 +152,50 @@ static void mark_open(void)
     if (fd < 0) return;
     struct stat st;
     void *p = MAP_FAILED;
-    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (st.st_size >= MARK_BYTES || ftruncate(fd, MARK_BYTES) == 0))
-        p = mmap(NULL, MARK_BYTES, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
+    if (fstat(fd, &st) == 0 && S_ISREG(st.st_mode) && (st.st_size >= MARK_FILE_BYTES || ftruncate(fd, MARK_FILE_BYTES) == 0))
+        p = mmap(NULL, MARK_FILE_BYTES, PROT_READ | PROT_WRITE, MAP_SHARED, fd, 0);
     close(fd);
     if (p == MAP_FAILED) {
         unlink(mark_path);
         return;
     }
     log_mark = p;
+    mark_put(MARK_WORD_MAGIC, 0); /* a page an earlier module left: not this one's until rt_log_open sets it */
     mark_set(0);
+    log_bufs[0] = (char *)p + MARK_PAGE; /* the records are formatted in the file: a SIGKILL keeps them */
+    log_bufs[1] = (char *)p + MARK_PAGE + LOG_BUF;
+}
+
+/* The mark's words for recovery, once the log is open (`base`: the bytes the file holds). */
+static void mark_ready(unsigned long long base)
+{
+    if (!log_mark) return;
+    mark_put(MARK_WORD_PID, (unsigned long long)getpid());
+    mark_put(MARK_WORD_BASE, base);
+    mark_put(MARK_WORD_BROKEN, 0);
+    buffer_begin(0, 0);
+    buffer_begin(1, 0);
+    mark_put(MARK_WORD_MAGIC, MARK_MAGIC);
 }
 
 static void mark_close(void)
 {
     if (!log_mark) return;
+    mark_put(MARK_WORD_MAGIC, 0);
     mark_set(0);
-    munmap(log_mark, MARK_BYTES);
+    log_bufs[0] = log_store[0];
+    log_bufs[1] = log_store[1];
+    log_buf = log_bufs[log_cur];
+    munmap(log_mark, MARK_FILE_BYTES);
     log_mark = NULL;
     unlink(mark_path);
 }
 
 unsigned long long rt_log_records(void) { return log_records; }
 
-/* CONTRACT_LOG_MAX_BYTES: a byte count (at least 4 records' room); otherwise the default. */
-static unsigned long long log_bound(void)
+/* CONTRACT_LOG_MAX_BYTES: a byte count (at least 4 records' room); otherwise the default (said on
+ * stderr when `warn`). */
+static unsigned long long log_bound(int warn)
 {
     const char *v = getenv("CONTRACT_LOG_MAX_BYTES");
     if (!v || !*v) return LOG_MAX_DEFAULT;
@@ -163,12 +203,15 @@ static unsigned long long log_bound(void)
     errno = 0;
     unsigned long long n = strtoull(v, &end, 10);
     if (errno || *end || n < 4 * RECORD_MAX) {
-        fprintf(stderr, "%s: warning: CONTRACT_LOG_MAX_BYTES='%s' is not a byte count >= %d: using %llu\n", g_rt.name, v,
-                4 * RECORD_MAX, LOG_MAX_DEFAULT);
+        if (warn)
+            fprintf(stderr, "%s: warning: CONTRACT_LOG_MAX_BYTES='%s' is not a byte count >= %d: using %llu\n", g_rt.name, v,
+                    4 * RECORD_MAX, LOG_MAX_DEFAULT);
         return LOG_MAX_DEFAULT;
     }
     return n;
 }
+
+unsigned long long rt_log_max_bytes(void) { return log_bound(0); }
 
 int rt_log_enabled(void) { return log_fd >= 0; }
 
@@ -196,7 +239,7 @@ int rt_log_open(void)
         fprintf(stderr, "%s: warning: cannot open log %s: %s (no CSV log)\n", g_rt.name, path, strerror(errno));
         return -1;
     }
-    log_max = log_bound();
+    log_max = log_bound(1);
     log_capped = 0;
     log_failed = 0;
     log_dropped = 0;
@@ -212,6 +255,9 @@ int rt_log_open(void)
             log_written = sizeof CSV_HEADER - 1;
     }
     log_len = 0;
+    log_cur = 0;
+    log_buf = log_bufs[0];
+    mark_ready(log_written);
     writer_start();
     return 0;
 }
@@ -393,6 +439,7 @@ void ContractLog(const char *event, const char *peer, int port, size_t size, con
     }
     char *p = put_record(log_buf + log_len, mono, event, peer, port, size, detail);
     __atomic_store_n(&log_len, (size_t)(p - log_buf), __ATOMIC_RELEASE); /* whole: a crash handler may write it */
+    mark_put(MARK_WORD_LEN(log_cur), (unsigned long long)(p - log_buf)); /* ... and the launcher after a SIGKILL */
     log_records++; /* counted once in the buffer (a crash inside the record does not count it) */
 }
 
@@ -451,6 +498,7 @@ static void write_cap_record(const char *detail)
     char rec[RECORD_MAX];
     /* size: the bound; for a log stopped by a write error, the bytes it holds */
     size_t size = log_failed ? (size_t)log_written : (size_t)log_max;
+    mark_broken();
     char *end = put_record(rec, GetTime(), "log-capped", "", -1, size, detail);
     (void)write_or_cut(rec, (size_t)(end - rec));
 }
@@ -480,6 +528,7 @@ static void write_all(const char *buf, size_t len)
     unsigned long long before = log_written;
     int err = write_or_cut(buf, len);
     if (err == 0) return;
+    mark_broken();
     size_t kept = (size_t)(log_written - before);
     log_dropped_w += count_records(buf + kept, len - kept);
     log_failed = err;
@@ -518,6 +567,7 @@ static void write_records_r(const char *buf, size_t len, unsigned long long rese
     size_t keep = 0; /* whole records only */
     for (size_t i = 0; i < (size_t)room; i++)
         if (buf[i] == '\n') keep = i + 1;
+    mark_broken(); /* the file ends before these records */
     write_all(buf, keep);
     log_dropped_w += count_records(buf + keep, len - keep);
     if (log_failed) return; /* a write error stopped the log first: said by write_all */
@@ -588,6 +638,7 @@ int rt_log_hand_off(int wait)
     if (!writer_on) {
         int was = busy_enter(BUSY_WRITE);
         write_records(log_buf, log_len);
+        buffer_begin(log_cur, log_start[log_cur] + log_len);
         log_len = 0;
         g_rt.log_dirty_since = 0;
         mark_set(0); /* after the write: the file holds every record logged so far */
@@ -608,7 +659,10 @@ int rt_log_hand_off(int wait)
     pending_buf = log_buf;
     __atomic_store_n(&pending_len, log_len, __ATOMIC_RELEASE);
     __atomic_signal_fence(__ATOMIC_SEQ_CST);
-    log_buf = log_buf == log_bufs[0] ? log_bufs[1] : log_bufs[0];
+    int next = !log_cur;
+    buffer_begin(next, log_start[log_cur] + log_len); /* the handed buffer keeps its words: written or not */
+    log_buf = log_bufs[next];
+    log_cur = next;
     log_len = 0;
     busy_leave(was);
     g_rt.log_dirty_since = 0;
@@ -675,12 +729,16 @@ static void log_forget_in_child(void)
     if (log_fd >= 0) close(log_fd);
     log_fd = -1;
     log_len = 0;
+    log_mark = NULL; /* the parent's page and buffers: left mapped, never written */
+    log_bufs[0] = log_store[0];
+    log_bufs[1] = log_store[1];
+    log_buf = log_store[0];
+    log_cur = 0;
     writer_on = 0;
     __atomic_store_n(&pending_len, 0, __ATOMIC_RELAXED);
     __atomic_store_n(&pending_owner, OWNER_NONE, __ATOMIC_RELAXED);
     __atomic_store_n(&log_busy, BUSY_NONE, __ATOMIC_RELAXED);
     g_rt.log_dirty_since = 0;
-    log_mark = NULL; /* the parent's page: left mapped, never written */
     pthread_mutex_init(&log_lock, NULL);
     pthread_cond_init(&log_work, NULL);
     pthread_cond_init(&log_idle, NULL);
@@ -765,6 +823,9 @@ static const char *crash_signal_name(int sig)
 void rt_log_at_signal(int sig, int crashed)
 {
     if (log_fd < 0) return;
+    /* what this writes may interleave with a stalled writer's, and ends with records of its own:
+     * a SIGKILL from here on is not recovered from the buffers */
+    mark_broken();
     int busy = __atomic_load_n(&log_busy, __ATOMIC_RELAXED);
     __atomic_signal_fence(__ATOMIC_SEQ_CST);
     unsigned long long reserve = 0; /* bytes the writer may still write (it stalled) */

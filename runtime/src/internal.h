@@ -129,6 +129,22 @@ void rt_log_maybe_flush(RTIME now);
 int rt_log_hand_off(int wait);
 /* LOG_FLUSH_NS, or the shorter delay the flush mark asks for while a live monitor watches. */
 RTIME rt_log_flush_ns(void);
+/* CONTRACT_LOG_MAX_BYTES as the log reads it (the default when unset or wrong), without a word. */
+unsigned long long rt_log_max_bytes(void);
+
+/* log_recover.c: what rt_log_recover did for a module that died. */
+typedef struct {
+    char log[256];              /* the log's name in its folder ("" when no mark named the pid) */
+    unsigned long long records; /* records written from the module's buffers                   */
+    unsigned long long bytes;
+    int broken;                 /* the mark's words did not say which bytes the log lacks: left as it was */
+    int dropped;                /* the log's bound left some of them out                       */
+} RecoveredLog;
+/* For the module `pid` that died: writes to its log, in dir (CONTRACT_LOG_DIR; NULL or "": "."),
+ * the records it had logged and not written, from its flush mark's buffers, then removes the
+ * mark. 1 when a mark named it (out says what was done), 0 when none did. */
+int rt_log_recover(const char *dir, long pid, RecoveredLog *out);
+
 /* At a fatal signal (core.c): writes what the log holds and has not written yet, then, for a crash
  * (`crashed`), a `module_crashed` record; a stop signal writes none (async-signal-safe). */
 void rt_log_at_signal(int sig, int crashed);

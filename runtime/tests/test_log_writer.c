@@ -361,3 +361,152 @@ void test_csv_log_disk_full(void)
     free(err);
     h_teardown();
 }
+
+/* A child that logs `n` records (`<word> i`) on a log with its flush mark, hands them to its writer
+ * after `handed` of them when that is not 0 (the writer stalls in its write for 2 s), then dies by
+ * SIGKILL; returns its pid after its death (-1 when it did not die so). */
+static pid_t killed_child(int n, int handed, int flush_at, const char *word)
+{
+    pid_t pid = fork();
+    if (pid < 0) return -1;
+    if (pid == 0) {
+        setenv("CONTRACT_LOG_MARK", "1", 1);
+        if (rt_log_open() != 0) _exit(3);
+        char detail[32];
+        for (int i = 0; i < n; i++) {
+            if (handed && i == handed) {
+                slow_writes(2000000000LL);
+                if (rt_log_hand_off(0) != 1) _exit(4);
+                usleep(20000); /* the writer took the buffer: it stalls in its write */
+            }
+            if (flush_at && i == flush_at) ContractLogFlush();
+            snprintf(detail, sizeof detail, "%s %d", word, i);
+            ContractLog("test_record", "", -1, 0, detail);
+        }
+        raise(SIGKILL);
+        _exit(5);
+    }
+    int status = 0;
+    if (waitpid(pid, &status, 0) != pid || !WIFSIGNALED(status) || WTERMSIG(status) != SIGKILL) return -1;
+    return pid;
+}
+
+/* The log holds `word 0` .. `word n-1`, each once, in order, each a whole line. */
+static void check_records(const char *log, int n, const char *word, const char *what)
+{
+    const char *at = log;
+    for (int i = 0; i < n; i++) {
+        char want[48];
+        snprintf(want, sizeof want, ",test_record,,,0,%s %d\n", word, i);
+        const char *found = strstr(at, want);
+        CHECK_MSG(found != NULL, "%s: record '%s %d' missing or out of order", what, word, i);
+        if (!found) return;
+        CHECK_MSG(strstr(found + 1, want) == NULL, "%s: record '%s %d' written twice", what, word, i);
+        at = found + strlen(want);
+    }
+    CHECK_MSG(*at == '\0', "%s: the log goes on after the last record: '%.80s'", what, at);
+}
+
+/* A module killed by SIGKILL (the kernel's OOM killer) had logged records it had not written: the
+ * launcher's rt_log_recover writes them from the buffers in its flush mark's file, to the byte,
+ * once, in order, and removes the mark — with only the buffer being filled, with a buffer handed
+ * to a writer stalled in its write, and with a write cut inside a record. A mark whose words do
+ * not add up, or of a capped log, leaves the log as it is. */
+void test_csv_log_killed(void)
+{
+    struct { int n, handed, flush_at; const char *word; } cases[] = {
+        { 100, 0, 0, "filled" },   /* in the buffer being filled only */
+        { 150, 100, 0, "stalled" }, /* 100 handed to the stalled writer, 50 in the other buffer */
+        { 120, 0, 100, "cut" },     /* 100 written, 20 not; the file is then cut inside a record */
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        REQUIRE(h_setup("logkilled") == 0);
+        pid_t pid = killed_child(cases[c].n, cases[c].handed, cases[c].flush_at, cases[c].word);
+        REQUIRE(pid > 0);
+        char csv[1024], mark[1024];
+        REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+        REQUIRE(h_find_log_file("tester_", ".csv.mark", mark, sizeof mark));
+        char *before = h_read_file(csv);
+        REQUIRE(before);
+        int lines = 0;
+        for (const char *p = before; (p = strchr(p, '\n')) != NULL; p++) lines++;
+        CHECK_MSG(lines == 1 + (cases[c].flush_at ? cases[c].flush_at : 0), "%s: the log held %d lines before recovery", cases[c].word, lines);
+        size_t size = strlen(before);
+        free(before);
+        if (cases[c].flush_at) CHECK(truncate(csv, (off_t)(size - 7)) == 0); /* a write cut 7 bytes before its end */
+        RecoveredLog r;
+        CHECK(rt_log_recover(h_log_dir, (long)pid + 100000, &r) == 0); /* another pid: no mark names it */
+        CHECK(rt_log_recover(h_log_dir, (long)pid, &r) == 1);
+        unsigned long long want = (unsigned long long)(cases[c].n - cases[c].flush_at) + (cases[c].flush_at ? 1 : 0);
+        CHECK_MSG(r.records == want && !r.broken && !r.dropped, "%s: %llu records recovered (want %llu), broken %d, dropped %d",
+                  cases[c].word, r.records, want, r.broken, r.dropped);
+        CHECK(strstr(csv, r.log) != NULL);
+        char *log = h_read_file(csv);
+        REQUIRE(log);
+        CHECK(strncmp(log, "mono_ns,wall_time,module,event,peer,port,size,detail\n", 53) == 0);
+        check_records(log, cases[c].n, cases[c].word, cases[c].word);
+        free(log);
+        CHECK_MSG(access(mark, F_OK) != 0, "%s: the mark is still there", cases[c].word);
+        CHECK(rt_log_recover(h_log_dir, (long)pid, &r) == 0); /* once */
+        h_teardown();
+    }
+
+    /* within the log's bound (the launcher has the modules' CONTRACT_LOG_MAX_BYTES): whole records,
+     * the room for the writer's two `log-capped` records kept, the rest left out and said */
+    {
+        REQUIRE(h_setup("logkilledbound") == 0);
+        setenv("CONTRACT_LOG_MAX_BYTES", "16384", 1);
+        pid_t pid = killed_child(300, 0, 0, "bound");
+        REQUIRE(pid > 0);
+        RecoveredLog r;
+        CHECK(rt_log_recover(h_log_dir, (long)pid, &r) == 1);
+        unsetenv("CONTRACT_LOG_MAX_BYTES");
+        char csv[1024];
+        REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+        char *log = h_read_file(csv);
+        REQUIRE(log);
+        size_t size = strlen(log);
+        CHECK_MSG(r.dropped && !r.broken && r.records > 100 && r.records < 300, "bound: %llu records, dropped %d, broken %d", r.records, r.dropped, r.broken);
+        CHECK_MSG(size <= 16384 - 2 * 1280 && log[size - 1] == '\n', "bound: the log holds %zu bytes", size);
+        check_records(log, (int)r.records, "bound", "bound");
+        free(log);
+        h_teardown();
+    }
+
+    /* hostile or broken marks: the log is left as it is */
+    for (int k = 0; k < 3; k++) {
+        REQUIRE(h_setup("logkilledbad") == 0);
+        if (k == 2) setenv("CONTRACT_LOG_MAX_BYTES", "8192", 1); /* capped at its flush: the file is not its records in order */
+        pid_t pid = killed_child(k == 2 ? 300 : 30, 0, k == 2 ? 200 : 0, "bad");
+        REQUIRE(pid > 0);
+        char csv[1024], mark[1024];
+        REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+        REQUIRE(h_find_log_file("tester_", ".csv.mark", mark, sizeof mark));
+        if (k == 0) { /* a length past its buffer */
+            int fd = open(mark, O_WRONLY | O_CLOEXEC);
+            REQUIRE(fd >= 0);
+            unsigned long long len = 1ULL << 40;
+            CHECK(pwrite(fd, &len, sizeof len, 7 * sizeof len) == (ssize_t)sizeof len);
+            close(fd);
+        }
+        if (k == 1) { /* the mark is a link to another file: never followed */
+            char other[1100];
+            snprintf(other, sizeof other, "%s.elsewhere", mark);
+            CHECK(rename(mark, other) == 0);
+            CHECK(symlink(other, mark) == 0);
+        }
+        char *before = h_read_file(csv);
+        REQUIRE(before);
+        RecoveredLog r;
+        int found = rt_log_recover(h_log_dir, (long)pid, &r);
+        unsetenv("CONTRACT_LOG_MAX_BYTES");
+        CHECK_MSG(found == (k == 1 ? 0 : 1), "bad mark %d: rt_log_recover said %d", k, found);
+        CHECK_MSG(r.records == 0 && (k == 1 || r.broken), "bad mark %d: %llu records written, broken %d", k, r.records, r.broken);
+        char *after = h_read_file(csv);
+        REQUIRE(after);
+        CHECK_MSG(strcmp(before, after) == 0, "bad mark %d: the log changed", k);
+        free(before);
+        free(after);
+        h_teardown();
+    }
+}

@@ -202,11 +202,12 @@ test('the run time limit stops an architecture that runs on (no duration) as at 
   await logsEndingWithExit(id, job, undefined, '', "the build service's run time limit was reached");
 }, 240_000);
 
-test('the memory limit hit mid-run stops the architecture as at the end of a run: every module the kernel left writes its last records and its exit record', async () => {
+test('the memory limit hit mid-run stops the architecture as at the end of a run: every module the kernel left writes its last records and its exit record, and the killed one\'s unwritten records are written for it', async () => {
   // MSC's first release allocates without end: at the job's memory limit the kernel kills it (the
-  // process using the most memory); the service then asks the launcher to stop the rest
+  // process using the most memory); the service then asks the launcher to stop the rest. MSC never
+  // waits again after its record: only the launcher's recovery from its log buffers writes it
   const msc = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
-  const leak = '    for (;;) { char *p = malloc((size_t)16 << 20); if (p) memset(p, 1, (size_t)16 << 20); }';
+  const leak = '    ContractLog("leak_begins", "", -1, 0, "allocating without end");\n    for (;;) { char *p = malloc((size_t)16 << 20); if (p) memset(p, 1, (size_t)16 << 20); }';
   const files = withRegion(withRegion(await tutorialFiles(), msc, 'protect_exec_MSC', leak, true), msc, 'protect_additional_import_MSC', '#include <stdlib.h>\n#include <string.h>', true);
   const r = await postJob(served.url, { action: 'run', sandbox: 'bwrap', duration: 20, project: { files } });
   expect(r.status, JSON.stringify(r.json)).toBe(201);
@@ -216,7 +217,15 @@ test('the memory limit hit mid-run stops the architecture as at the end of a run
   expect(job.result.message, lines.slice(-30).join('\n')).toBe('killed: memory limit 512 MiB');
   expect(lines).toContain('memory limit 512 MiB reached: stopping the architecture as at the end of a run (what still runs after 1000 ms is killed)');
   expect(lines.some((l) => /^module MSC \(pid \d+\) died by signal 9 \(Killed\)/.test(l)), lines.slice(-30).join('\n')).toBe(true);
+  expect(lines.some((l) => /^module MSC: \d+ record\(s\) it had logged and not written when it ended were written to its log MSC_\S+\.csv from its log buffers$/.test(l)), lines.slice(-30).join('\n')).toBe(true);
   expect(job.result.issues).toEqual(expect.arrayContaining([expect.objectContaining({ kind: 'limit', module: 'MSC' })]));
+  const mscLog = (job.artifacts as { files: { name: string }[] }).files.find((f) => f.name.startsWith('MSC_'))!;
+  const mscRecords = parseLogFile({ name: mscLog.name, text: await (await fetch(`${served.url}/api/jobs/${id}/artifacts/${encodeURIComponent(mscLog.name)}`)).text() });
+  // its START, then its own last record, whole (none unreadable, none twice)
+  expect(mscRecords.filter((k) => k.kind === 'unknown')).toEqual([]);
+  const leaking = mscRecords.filter((k) => (k as { detail?: string }).detail === 'allocating without end');
+  expect(leaking, mscRecords.slice(-5).map((k) => JSON.stringify(k)).join('\n')).toHaveLength(1);
+  expect(mscRecords.indexOf(leaking[0]!)).toBeGreaterThan(0);
   // the 8 others stopped as at a run's end: each log ends with its exit record; MSC's does not
   await logsEndingWithExit(id, job, 'MSC', lines.slice(-30).join('\n'), "the build service's memory limit was reached");
 }, 240_000);
