@@ -100,7 +100,8 @@ static void usage(void)
             "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
             "                       [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']\n"
             "                       [--cpus LIST] [--pm-qos-us N] EXECUTABLE...\n"
-            "       contract-launch --kill RUN_DIR\n");
+            "       contract-launch --kill RUN_DIR\n"
+            "       contract-launch --term-why CODE PID\n");
 }
 
 static RTIME now_ns(void) { return GetTime(); }
@@ -200,6 +201,31 @@ static int process_running(long pid)
     buf[n] = '\0';
     const char *close = strrchr(buf, ')');
     return !(close && close[1] == ' ' && (close[2] == 'Z' || close[2] == 'X'));
+}
+
+/* --term-why CODE PID: SIGTERM to PID with CODE queued (sigqueue), as the build service's `kill -q`
+ * does from the host: where no `kill` with `-q` is at hand (a container of the image, which has only
+ * the shell's), the launcher it stops then says why. 0 when sent; 2 for a code it does not know or
+ * a pid that is no number (nothing sent); 1 when the signal could not be sent. */
+static int term_why_mode(const char *code_text, const char *pid_text)
+{
+    char *end;
+    long code = strtol(code_text, &end, 10);
+    if (*end || !*code_text || code < 0 || code > 1000 || !stop_reason((int)code)) {
+        say("--term-why '%s': not a stop reason's code", code_text);
+        return 2;
+    }
+    long pid = strtol(pid_text, &end, 10);
+    if (*end || !*pid_text || pid <= 1 || pid > 4194304) {
+        say("--term-why: '%s' is not a process id", pid_text);
+        return 2;
+    }
+    union sigval v = { .sival_int = (int)code };
+    if (sigqueue((pid_t)pid, SIGTERM, v) != 0) {
+        say("--term-why: pid %ld: %s", pid, strerror(errno));
+        return 1;
+    }
+    return 0;
 }
 
 static int kill_mode(const char *dir)
@@ -643,6 +669,10 @@ int main(int argc, char *argv[])
         if (strcmp(a, "--kill") == 0) {
             if (i + 1 >= argc) { usage(); return 2; }
             return kill_mode(argv[i + 1]);
+        }
+        if (strcmp(a, "--term-why") == 0) {
+            if (i + 2 >= argc) { usage(); return 2; }
+            return term_why_mode(argv[i + 1], argv[i + 2]);
         }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(); return 0; }
         if (a[0] != '-' || strcmp(a, "--") == 0) { if (strcmp(a, "--") == 0) i++; break; }

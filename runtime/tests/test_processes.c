@@ -449,6 +449,31 @@ void test_launcher_stop_why(void)
     CHECK_MSG(p_log && strstr(p_log, ",request_received,contract-launch,,0,KILL\n"), "P's log: %s", p_log ? p_log : "(none)");
     free(p_log);
     h_teardown();
+
+    /* `contract-launch --term-why CODE PID` (the build service's way in a container without a `kill`
+     * that queues): the same stop, the same words; a code it does not know sends nothing */
+    REQUIRE(h_setup("stopwhy3") == 0);
+    ContractShutdown();
+    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
+    launcher = start_launcher(argv2, out);
+    REQUIRE(launcher > 0);
+    CHECK(wait_for_text(out, "1 module(s) running", 5000));
+    char pid_text[24], why_out[600];
+    snprintf(pid_text, sizeof pid_text, "%ld", (long)launcher);
+    snprintf(why_out, sizeof why_out, "%s/why.out", h_work_dir);
+    char *unknown[] = { "contract-launch", "--term-why", "99", pid_text, NULL };
+    CHECK(h_run(unknown, why_out, 5000) == 2);
+    CHECK_MSG(h_wait_exit(launcher, 300) == -1, "the launcher stopped on a code --term-why does not know");
+    char *term[] = { "contract-launch", "--term-why", "5", pid_text, NULL };
+    CHECK(h_run(term, why_out, 5000) == 0);
+    CHECK(h_wait_exit(launcher, 6000) == 0);
+    text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "contract-launch: stopping: the job was cancelled\n"), "launcher output: %s", text ? text : "(none)");
+    free(text);
+    p_log = h_read_logs("P_");
+    CHECK_MSG(p_log && strstr(p_log, ",request_received,contract-launch,,22,KILL (the job was cancelled)\n"), "P's log: %s", p_log ? p_log : "(none)");
+    free(p_log);
+    h_teardown();
 }
 
 /* A stop by a signal under CONTRACT_STOP_BUDGET_MS (the build service's cancel grace, 900 ms)

@@ -118,33 +118,7 @@ describe.skipIf(!docker.available)('live trace in docker', () => {
   }, 300_000);
 
   test('Stop mid-run: the launcher in the container is asked (SIGTERM from this host, the cancel queued as its reason) and stops the tutorial; every log ends with its exit record saying why', async () => {
-    const files = await tutorialFiles();
-    const r = await postJob(served.url, { action: 'run', duration: 60, project: { files } });
-    expect(r.status, JSON.stringify(r.json)).toBe(201);
-    const id = r.json.id as string;
-    let asked = false;
-    const events = await readEvents(served.url, id, (e) => {
-      if (asked || e.type !== 'trace' || !e.records.some((l) => l.text.includes(',SUP,sup_rule,') && l.text.includes('action.SECOND active'))) return;
-      asked = true;
-      setTimeout(() => void fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' }), 500);
-    });
-    const job = await getJob(served.url, id);
-    const lines = events.filter((e): e is LineEvent => e.type === 'line').map((e) => e.line);
-    expect(job.status, lines.slice(-20).join('\n')).toBe('cancelled');
-    expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
-    expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
-    // asked from this host (the container's cgroup is read here): the cancel queued as the stop's reason
-    expect(lines).toContain('stopping: the job was cancelled');
-    const trace = traceLines(events);
-    const listing = job.artifacts as { files: { name: string }[] };
-    expect(listing.files).toHaveLength(9);
-    for (const f of listing.files) {
-      const text = await artifactText(id, f.name);
-      const want = parseLogFile({ name: f.name, text });
-      expect(want.at(-1)?.kind, f.name).toBe('module_exit');
-      expect(text, f.name).toContain(',request_received,contract-launch,,22,KILL (the job was cancelled)\n');
-      expect(trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text)), f.name).toEqual(want);
-    }
+    await stopMidRun(served.url);
   }, 300_000);
 
   test('the proof leaves nothing in the work tree, is kept per volume, and says why when the Mountpoint is not the volume', async () => {
@@ -308,4 +282,47 @@ int main(int argc, char **argv) {
   const files = makeProject(main);
   files.Makefile = files.Makefile!.replace('\t./prog', '\t./prog $(LOG_DIR)');
   return files;
+}
+
+describe.skipIf(!docker.available)("live trace in docker, the container's cgroup not read here (limitWatch: 'engine', as a remote engine)", () => {
+  const remote = useBuildServer({ concurrency: 1, sandbox: 'docker', docker: { limitWatch: 'engine' }, log: () => {} }, { skip: !docker.available, timeoutMs: 300_000 });
+
+  test('Stop mid-run: the launcher is asked inside the container (contract-launch --term-why: the image has no kill that queues), and says why as from the host', async () => {
+    await stopMidRun(remote.url);
+  }, 300_000);
+});
+
+/**
+ * The tutorial stopped (DELETE) half a second after SUP's rule SECOND became active: cancelled, every
+ * module stopped cleanly, the launcher says the cancel's reason, and every log ends with its exit
+ * record after a KILL saying it (whether the service signals from this host or inside the container).
+ */
+async function stopMidRun(url: string): Promise<void> {
+  const files = await tutorialFiles();
+  const r = await postJob(url, { action: 'run', duration: 60, project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  let asked = false;
+  const events = await readEvents(url, id, (e) => {
+    if (asked || e.type !== 'trace' || !e.records.some((l) => l.text.includes(',SUP,sup_rule,') && l.text.includes('action.SECOND active'))) return;
+    asked = true;
+    setTimeout(() => void fetch(`${url}/api/jobs/${id}`, { method: 'DELETE' }), 500);
+  });
+  const job = await getJob(url, id);
+  const lines = events.filter((e): e is LineEvent => e.type === 'line').map((e) => e.line);
+  expect(job.status, lines.slice(-20).join('\n')).toBe('cancelled');
+  expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
+  expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
+  // the cancel queued as the stop's reason
+  expect(lines).toContain('stopping: the job was cancelled');
+  const trace = traceLines(events);
+  const listing = job.artifacts as { files: { name: string }[] };
+  expect(listing.files).toHaveLength(9);
+  for (const f of listing.files) {
+    const text = await (await fetch(`${url}/api/jobs/${id}/artifacts/${encodeURIComponent(f.name)}`)).text();
+    const want = parseLogFile({ name: f.name, text });
+    expect(want.at(-1)?.kind, f.name).toBe('module_exit');
+    expect(text, f.name).toContain(',request_received,contract-launch,,22,KILL (the job was cancelled)\n');
+    expect(trace.filter((l) => l.file === f.name).map((l) => parseRecordLine(l.file, l.line, l.text)), f.name).toEqual(want);
+  }
 }

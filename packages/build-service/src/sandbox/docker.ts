@@ -46,7 +46,7 @@ import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { terminateNamedOnHost } from './queue-term.js';
 import { isWorkDiskFull, workDiskInodes, type WorkDiskState } from './work-disk.js';
-import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID, type StopReason } from '@contract-studio/conventions';
+import { DOCKER_IMAGE, SANDBOX_GID, SANDBOX_RUNTIME_DIR, SANDBOX_UID, STOP_REASON_CODES, type StopReason } from '@contract-studio/conventions';
 
 export { DOCKER_IMAGE };
 export const DOCKER_WORK = '/work';
@@ -56,9 +56,12 @@ const DOCKER_USER = `${SANDBOX_UID}:${SANDBOX_GID}`;
 const DISK_WATCH_INTERVAL_MS = 1000;
 /**
  * terminateNamed inside a container (sh + /proc, in any image; builtins only, no fork per
- * process): SIGTERM to each process whose comm is $1, printing its pid.
+ * process looked at): SIGTERM to each process whose comm is $1, printing its pid. With a stop
+ * reason's code ($2), through $3 (`contract-launch --term-why CODE PID`: the image has no `kill`
+ * that queues a value), so that the launcher says why; the shell's plain SIGTERM when that fails
+ * (an image whose launcher is older, a container with no room left for a process).
  */
-const TERMINATE_NAMED = 'for d in /proc/[0-9]*; do c=; read -r c < "$d/comm" || continue; [ "$c" = "$1" ] && kill -TERM "${d#/proc/}" && echo "${d#/proc/}"; done 2>/dev/null; true';
+const TERMINATE_NAMED = 'for d in /proc/[0-9]*; do c=; read -r c < "$d/comm" || continue; [ "$c" = "$1" ] || continue; p=${d#/proc/}; if [ -n "$2" ] && "$3" --term-why "$2" "$p"; then echo "$p"; elif kill -TERM "$p"; then echo "$p"; fi; done 2>/dev/null; true';
 
 export interface DockerOptions {
   image?: string;
@@ -431,7 +434,8 @@ export class DockerSandbox implements Sandbox {
         const out = new PassThrough();
         let text = '';
         out.on('data', (c: Buffer) => (text += c.toString()));
-        await this.execIn(container, ['sh', '-c', TERMINATE_NAMED, 'contract-terminate', comm], out).catch(() => null);
+        const code = reason !== undefined ? String(STOP_REASON_CODES[reason]) : '';
+        await this.execIn(container, ['sh', '-c', TERMINATE_NAMED, 'contract-terminate', comm, code, `${DOCKER_RUNTIME}/build/contract-launch`], out).catch(() => null);
         // a pid per process asked, as soon as it is: an architecture that stops at once ends the
         // container, and this exec with it, before the loop is done
         return /^\d+$/m.test(text);
