@@ -87,7 +87,7 @@ export type { SimTraceRecord };
  * One step of POST /api/simulate: the simulator's step result (scenario line, its record's time, ok
  * and message) with what its record changed and the state after it, bounded by the server.
  */
-export type SimulateStep = Pick<StepResult, 'line' | 'source' | 'timeNs' | 'kind' | 'ok' | 'message'>
+export type SimulateStep = Pick<StepResult, 'line' | 'source' | 'timeNs' | 'kind' | 'ok' | 'message' | 'trimmed'>
   & Pick<StepRecord, 'rules' | 'actions' | 'output' | 'error' | 'dropped'> & Partial<Pick<StepRecord, 'log' | 'records'>>
   & Required<Pick<StepRecord, 'schemas' | 'locals'>>;
 
@@ -100,6 +100,13 @@ export interface SimulateResponse {
   failures: Array<{ line: number; message: string }>;
   /** A problem of the run itself (harness crashed, timed out). */
   error?: string;
+  /**
+   * The steps' records passed the simulator's bound on a scenario's records: from step `line` on
+   * (0: the end), the steps were kept without their actions, typed records, schemas and locals;
+   * from `bareLine` on, without their rule changes and output either (each step's `trimmed`).
+   * `message` says it in the panel's words. The verdicts and failures are the whole scenario's.
+   */
+  trimmed?: { line: number; timeNs: number; bareLine?: number; bareTimeNs?: number; message: string };
   warnings: string[];
   eventsProcessed: number;
   /** Wall time of the request on the server, and of the harness run alone. */

@@ -101,6 +101,23 @@ describe('POST /api/simulate', () => {
     expect(d.find((x) => x.line === 3)?.code).toBe('scenario-value-type');
   }, 60_000);
 
+  it('a scenario whose records pass the simulator\'s bound: the answer says from which step they were not kept, and those steps are marked', async () => {
+    // schemaCommande2 for 40,000 s of virtual time, a step every 5,000 s: past 48 MiB of records at line 9
+    const scenario = ['until 40000s', 'start SUP.action(consigne = {1.0, 2.0, 3.0})', 't=300ms MAA:2 connection_status = "disconnected"',
+      't=1.2s MSC:1 failing_data = {"overheat", 3}', ...[1, 2, 3, 4, 5, 6, 7].map((i) => `expect at ${i * 5000}s schema schemaCommande2 active`)].join('\n');
+    const { status, json } = await post({ scenario });
+    expect(status, JSON.stringify(json).slice(0, 500)).toBe(200);
+    const r = json as SimulateResponse;
+    expect(r.passed).toBe(true); // the verdicts are the whole scenario's
+    expect(r.trimmed).toMatchObject({ line: expect.any(Number), timeNs: expect.any(Number) });
+    const from = r.trimmed!.line;
+    expect(from).toBeGreaterThan(4);
+    expect(r.trimmed!.message).toMatch(new RegExp(`^not whole: the steps' records passed the simulator's bound on a scenario's records; from line ${from} \\(\\d+\\.\\d{6}s\\) on, the steps were kept without their actions`));
+    const at = r.steps.findIndex((s) => s.line === from);
+    expect(r.steps.slice(0, at).every((s) => s.trimmed === undefined)).toBe(true);
+    expect(r.steps.slice(at).every((s) => s.trimmed === 'compact' && s.schemas.length === 0 && s.actions.length === 0)).toBe(true);
+  }, 120_000);
+
   it('answers the typed records of each step, and keeps at most MAX_ITEMS_PER_ANSWER items of all steps\' lists, the rest counted', async () => {
     // schemaCommande2 (two modules, 1 s) for 15,000 s of virtual time: about 13 records and 3 engine
     // lines a cycle, 80,000 items a step of 5,000 s (under the harness's 100,000 a list), 240,000 in all

@@ -142,13 +142,27 @@ export class SimulateApi {
     return {
       title: r.title, passed: r.passed, endNs: r.endNs, steps,
       failures: r.failures.slice(0, 200).map((f) => ({ line: f.line, message: f.message ?? '' })),
-      error: r.error, warnings: prepared.warnings.slice(0, 50), eventsProcessed: r.eventsProcessed,
+      error: r.error, ...(r.trimmed ? { trimmed: trimmedOf(r.trimmed) } : {}), warnings: prepared.warnings.slice(0, 50), eventsProcessed: r.eventsProcessed,
       ms: Math.round(performance.now() - t0), runMs: Math.round(r.ms),
     };
   }
 }
 
 type StepResult = Awaited<ReturnType<SimulatorApi['runLoadedScenario']>>['steps'][number];
+type Trimmed = NonNullable<Awaited<ReturnType<SimulatorApi['runLoadedScenario']>>['trimmed']>;
+
+/** A step as the panel names it. */
+function stepWords(line: number, timeNs: number): string {
+  return line ? `line ${line} (${(timeNs / 1e9).toFixed(6)}s)` : `the end (${(timeNs / 1e9).toFixed(6)}s)`;
+}
+
+/** What the simulator did not keep of the steps' records, in the panel's words (SimulateResponse.trimmed). */
+function trimmedOf(t: Trimmed): NonNullable<SimulateResponse['trimmed']> {
+  const message = `not whole: the steps' records passed the simulator's bound on a scenario's records; from ${stepWords(t.line, t.timeNs)} on, the steps were kept without their actions, typed records, schemas and locals (the schemas and locals shown, and the Monitor, stop before that step)`
+    + (t.bareLine !== undefined ? `; from ${stepWords(t.bareLine, t.bareTimeNs ?? 0)} on, without their rule changes and output either (the rules shown stop before that step)` : '')
+    + '; the verdicts and failures are the whole scenario\'s';
+  return { line: t.line, timeNs: t.timeNs, ...(t.bareLine !== undefined ? { bareLine: t.bareLine, bareTimeNs: t.bareTimeNs ?? 0 } : {}), message };
+}
 
 /** A step as answered: its lists kept while the answer's budget lasts (the small ones first), the rest counted. */
 function stepOf(s: StepResult, budget: { left: number }): SimulateStep {
@@ -164,7 +178,7 @@ function stepOf(s: StepResult, budget: { left: number }): SimulateStep {
   const rules = cut(rec.rules), actions = cut(rec.actions), schemas = cut(rec.schemas), locals = cut(rec.locals);
   const records = cut(rec.records), log = cut(rec.log);
   return {
-    line: s.line, source: s.source.slice(0, 1000), timeNs: s.timeNs, kind: s.kind, ok: s.ok, message: s.message,
+    line: s.line, source: s.source.slice(0, 1000), timeNs: s.timeNs, kind: s.kind, ok: s.ok, message: s.message, ...(s.trimmed ? { trimmed: s.trimmed } : {}),
     rules, actions, log, records, schemas, locals,
     output: rec.output?.slice(0, MAX_OUTPUT), error: rec.error, ...(dropped ? { dropped } : {}),
   };

@@ -183,13 +183,15 @@ export class SimulateController {
       this.lastShown = undefined;
       this.panel.showResult(r);
       const failed = r.failures.map((f) => `line ${f.line}: ${f.message}`);
+      if (r.trimmed) failed.push(r.trimmed.message);
       this.panel.showMessage(r.error ?? `simulated to ${formatTime(r.steps.at(-1)?.timeNs ?? 0)} in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
       const model = new MonitorModel();
       model.pushAll(stepsToTrace(r.steps));
       this.lastShown = model.live;
       // an answer keeps 200,000 records of all steps (the harness 100,000 of each kind a step): what was left out is said
       const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
-      await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}${dropped ? ` (not whole: ${dropped} records left out, from the longest steps on)` : ''}`);
+      const notWhole = r.trimmed ? ` (not whole: the records stop before ${r.trimmed.line ? `line ${r.trimmed.line}` : 'the end'}, the simulator's bound)` : dropped ? ` (not whole: ${dropped} records left out, from the longest steps on)` : '';
+      await this.deps.monitor.showSimulation(model, `Simulation: ${this.session.start.supervisor}.${this.session.start.fn}${notWhole}`);
       return true;
     } catch (e) {
       const diags = e instanceof ApiError && Array.isArray(e.details['diagnostics']) ? (e.details['diagnostics'] as Array<{ line: number; column: number; message: string; file?: string }>) : [];

@@ -125,13 +125,22 @@ export class SimulatePanel {
         h('span', { class: 'sim-cause' }, `← ${readableCause(s.cause)} at ${formatTime(s.timeNs)}`))));
     if (!rules.size) this.rules.textContent = 'no rule changed yet';
     const last = r.steps.at(-1);
-    this.schemas.replaceChildren(...(last?.schemas ?? []).map((s) => h('div', { class: 'sim-schema', 'data-schema': s }, s)));
-    this.locals.replaceChildren(...(last?.locals ?? []).map((l) =>
-      h('div', { class: 'sim-local' }, `${l.supervisor}.${l.function}.${l.name}: ${l.type} = ${l.value}`)));
+    // a step the simulator kept without its lists (its bound on a scenario's records): what it
+    // holds is not the state, and is not shown as one
+    const notKept = (what: string, from: number | undefined) => h('div', { class: 'sim-not-kept' }, `${what} not kept from ${from ? `line ${from}` : 'the end'} on (the simulator's bound on a scenario's records)`);
+    if (last?.trimmed === 'bare') this.rules.append(notKept('rule changes', r.trimmed?.bareLine));
+    if (last?.trimmed) {
+      this.schemas.replaceChildren(notKept('schemas', r.trimmed?.line));
+      this.locals.replaceChildren(notKept('locals', r.trimmed?.line));
+    } else {
+      this.schemas.replaceChildren(...(last?.schemas ?? []).map((s) => h('div', { class: 'sim-schema', 'data-schema': s }, s)));
+      this.locals.replaceChildren(...(last?.locals ?? []).map((l) =>
+        h('div', { class: 'sim-local' }, `${l.supervisor}.${l.function}.${l.name}: ${l.type} = ${l.value}`)));
+    }
     const shown = r.steps.slice(-MAX_SHOWN_STEPS);
     this.steps.replaceChildren(...shown.map((s) =>
       h('div', { class: `sim-step-row ${s.ok ? '' : 'failed'}` },
-        h('div', { class: 'sim-step-head' }, `${formatTime(s.timeNs)}  ${s.kind === 'end' ? '(end)' : s.source}${s.message ? `  ✖ ${s.message}` : ''}`),
+        h('div', { class: 'sim-step-head' }, `${formatTime(s.timeNs)}  ${s.kind === 'end' ? '(end)' : s.source}${s.message ? `  ✖ ${s.message}` : ''}${s.trimmed ? `  (kept without its ${s.trimmed === 'bare' ? 'lists' : 'actions and records'}: the simulator's bound)` : ''}`),
         ...s.rules.map((c) => h('div', { class: 'sim-change' }, `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${readableCause(c.cause)}`)),
         // in a run's words (`undo: stop module SCN`) with what the holds decided, as `simulate --verbose` shows them
         ...actionLines(s.actions, s.records).slice(0, 50).map((a) => h('div', { class: 'sim-action' }, `${a.who}: ${a.text}`)),
