@@ -2,12 +2,23 @@ import { describe, it, expect, afterEach } from 'vitest';
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { activationsFromLogs, fetchJobLogs, localLogFolders } from './run-logs.js';
+import { responseText } from '../api.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 const log = (m: string, starts: number[]) =>
   [HEADER, ...starts.flatMap((t) => [`${t},w,${m},run_started,ORD,,0,`, `${t + 5},w,${m},run_finished,,,0,`])].join('\n') + '\n';
 
 describe('run logs', () => {
+  it('reads a log\'s body chunk by chunk into the text text() gives: a character split across chunks, a bad byte, an empty body', async () => {
+    const bytes = new TextEncoder().encode(`${HEADER}\n1,w,MAA,user,,,0,température 12 € ✓\n`);
+    const withBad = new Uint8Array([...bytes, 0xff, 0x41, 0xe2, 0x82]); // a lone 0xff, then a character cut at the end
+    for (const body of [bytes, withBad, new Uint8Array()]) {
+      // every split point: 1-byte chunks
+      const chunked = new Response(new ReadableStream({ start(c) { for (const b of body) c.enqueue(new Uint8Array([b])); c.close(); } }));
+      expect(await responseText(chunked)).toBe(await new Response(body).text());
+    }
+  });
+
   it('merges the activations of several module logs in start order, and names an unreadable file', () => {
     const { acts, errors } = activationsFromLogs([
       { name: 'MSC_x.csv', text: log('MSC', [30, 10]) },

@@ -6,7 +6,7 @@
  */
 import { traceFileToLogsSteps, type TraceFileLogs } from '@contract-studio/build-service/trace';
 import { runSliced } from '../util/sliced.js';
-import { api, ApiError, getOk } from '../api.js';
+import { api, ApiError, getOk, responseText } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
 export interface LogFile {
@@ -116,7 +116,7 @@ export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, ma
     room -= f.size;
     if (f.capped) problems.push(`${f.name}: not whole: ${f.capped}`); // a log-capped record ends it (docs/build-service-api.md, GET /api/jobs/:id/artifacts)
     try {
-      files.push({ name: f.name, text: await (await getOk(`${base}/${encodeURIComponent(f.name)}`, fetchFn)).text() });
+      files.push({ name: f.name, text: await responseText(await getOk(`${base}/${encodeURIComponent(f.name)}`, fetchFn)) });
     } catch (e) {
       problems.push((e as Error).message);
     }
