@@ -111,10 +111,17 @@ export class TraceLineSplitter {
     }
   }
 
-  /** The file ended (the run is over): a last line without its newline is a line too (as parseLogFile reads it). */
+  /**
+   * The file ended (the run is over): a last line without its newline is a line too (as
+   * parseLogFile reads it), marked `cut` (its writer was killed inside it).
+   */
   end(): TraceLine[] {
     const out: TraceLine[] = [];
-    if (!this.skipping && this.partialBytes > 0) this.line(out, Buffer.concat(this.partial));
+    if (!this.skipping && this.partialBytes > 0) {
+      this.line(out, Buffer.concat(this.partial));
+      const last = out[out.length - 1];
+      if (last) last.cut = true;
+    }
     this.partial = [];
     this.partialBytes = 0;
     this.skipping = true;

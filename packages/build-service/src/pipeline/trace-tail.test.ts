@@ -46,7 +46,7 @@ describe('TraceLineSplitter', () => {
     const s = new TraceLineSplitter('M_1.csv', Buffer.byteLength(old));
     const out = s.push(Buffer.from(`${old}${rec(2)}\n${rec(3)}`));
     expect(out).toEqual([{ file: 'M_1.csv', line: 3, text: rec(2) }]);
-    expect(s.end()).toEqual([{ file: 'M_1.csv', line: 4, text: rec(3) }]);
+    expect(s.end()).toEqual([{ file: 'M_1.csv', line: 4, text: rec(3), cut: true }]);
   });
 });
 

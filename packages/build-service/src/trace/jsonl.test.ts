@@ -33,6 +33,17 @@ describe('trace files (JSON lines)', () => {
         expect(renderStory(parseTrace(back.files))).toEqual(renderStory(records));
     });
 
+    it('a record cut at its log\'s end (`cut`) reads back as that log\'s last line, again without its line end', () => {
+        const log = `${CSV_HEADER}\n1000,2026-12-03T10:00:00.000001Z,MSC,request_received,ORD,,0,START\n2000,2026-12-03T10:00:00.000002Z,MSC,request_received,ORD,,0,STA`;
+        const other = `${CSV_HEADER}\n1500,2026-12-03T10:00:00.000001Z,MSA,request_received,ORD,,0,START\n`;
+        const records = parseTrace([{ name: 'MSC_1.csv', text: log }, { name: 'MSA_1.csv', text: other }]);
+        expect(records.filter((r) => (r as { cut?: true }).cut)).toHaveLength(1);
+        const back = traceFileToLogs('run.jsonl', jsonl(records));
+        expect(back.files.find((f) => f.name.startsWith('MSC_'))!.text.endsWith(',STA')).toBe(true);
+        expect(back.files.find((f) => f.name.startsWith('MSA_'))!.text.endsWith('START\n')).toBe(true);
+        expect(parseTrace(back.files)).toEqual(records);
+    });
+
     it('a simulation\'s sim_start and records the writer kept as unknown are skipped as logs, counted; read one by one, the unknown ones come back', () => {
         const records = parseTrace(sampleLogs());
         const text = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} }) + '\n' +

@@ -119,7 +119,8 @@ export function traceFileToLogs(name: string, text: string, maxProblems = 20): T
 export function* traceFileToLogsSteps(name: string, text: string, every = 500, maxProblems = 20): Generator<void, TraceFileLogs> {
     const base = name.replace(/^.*\//, '').replace(/\.jsonl$/i, '').replace(/[^A-Za-z0-9_.-]/g, '_') || 'trace';
     // each module's lines, joined a stretch at a time (one join of 500,000 lines would hold a page 140 ms)
-    const lines = new Map<string, { parts: string[]; pending: string[] }>();
+    // lastCut: the module's last record was its log's last line, with no line end (`cut`): its text ends so again
+    const lines = new Map<string, { parts: string[]; pending: string[]; lastCut: boolean }>();
     const problems: string[] = [];
     let bad = 0;
     let skipped = 0;
@@ -156,9 +157,10 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
                 tooMany++;
                 continue;
             }
-            lines.set(read.module, (log = { parts: [], pending: [] }));
+            lines.set(read.module, (log = { parts: [], pending: [], lastCut: false }));
         }
         log.pending.push(read.csv);
+        log.lastCut = read.cut === true;
         if (log.pending.length >= JOINED_LINES) {
             log.parts.push(log.pending.join('\n'));
             log.pending = [];
@@ -169,7 +171,7 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
     const files: LogFile[] = [];
     for (const [module, l] of lines) {
         if (l.pending.length) l.parts.push(l.pending.join('\n'));
-        files.push({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.parts.join('\n')}\n` });
+        files.push({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.parts.join('\n')}${l.lastCut ? '' : '\n'}` });
         yield;
     }
     return { files, problems, skipped, unreadable: bad, ...(simulation !== undefined ? { simulation } : {}) };

@@ -7,7 +7,7 @@ const lineArb: fc.Arbitrary<TraceLine> = fc.record({
   file: fc.constantFrom('ORD_1.csv', 'MAA_1.csv', 'SUP_1.csv', 'a,b "c".csv'),
   line: fc.integer({ min: 1, max: 1_000_000 }),
   text: fc.string({ unit: 'grapheme', maxLength: 60 }).map((t) => t.replace(/\n/g, ' ')),
-});
+}).chain((l) => fc.boolean().map((cut) => (cut && l.line % 7 === 0 ? { ...l, cut: true as const } : l)));
 
 describe('trace wire form', () => {
   test('decode(encode(records)) is the records, in order (any texts, files, line numbers)', () => {
@@ -18,9 +18,9 @@ describe('trace wire form', () => {
         // the same records as ranges of the batch's text, in order, one text for all
         const ranged: TraceLine[] = [];
         const texts = new Set<string>();
-        forEachTraceLine(wire, (file, line, text, from, to) => {
+        forEachTraceLine(wire, (file, line, text, from, to, cut) => {
           texts.add(text);
-          ranged.push({ file, line, text: text.slice(from, to) });
+          ranged.push(cut ? { file, line, text: text.slice(from, to), cut: true } : { file, line, text: text.slice(from, to) });
         });
         expect(ranged).toEqual(records);
         expect(texts.size).toBeLessThanOrEqual(1);
@@ -36,6 +36,10 @@ describe('trace wire form', () => {
     expect(wire.runs).toEqual([0, 2, 3, 1, 7, 1, 0, 5, 1, 0, 9, 1, 2, 1, 1]);
     expect(wire.text.split('\n')).toHaveLength(7);
     expect(encodeTraceRecords([])).toEqual({ files: [], runs: [], text: '' });
+    // a record cut at its log's end (its module killed inside it) is named by its index
+    const cut = encodeTraceRecords([r('A.csv', 2), { ...r('A.csv', 3), cut: true }, r('B.csv', 9)]);
+    expect(cut.cut).toEqual([1]);
+    expect(decodeTraceRecords(cut)[1]).toEqual({ file: 'A.csv', line: 3, text: 'A.csv:3', cut: true });
     expect(decodeTraceRecords({ files: [], runs: [], text: '' })).toEqual([]);
     // empty texts survive (the count, not the text, says how many lines)
     const blanks = [r('A.csv', 2), { file: 'A.csv', line: 3, text: '' }, { file: 'A.csv', line: 4, text: '' }];
@@ -55,6 +59,10 @@ describe('trace wire form', () => {
     ['fewer lines than counted', { files: ['A'], runs: [0, 1, 3], text: 'x\ny' }, /count 3 records, the text holds 2 lines/],
     ['text without records', { files: [], runs: [], text: 'x' }, /text without records/],
     ['the old object form', { records: [{ file: 'A', line: 1, text: 'x' }] }, /"files"/],
+    ['cut not a list', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: 1 }, /"cut"/],
+    ['cut past the records', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: [2] }, /"cut"/],
+    ['cut not ascending', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: [1, 0] }, /"cut"/],
+    ['cut twice', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: [1, 1] }, /"cut"/],
   ])('a malformed batch (%s) is refused with a clear error, nothing decoded', (_name, wire, message) => {
     const got: unknown[] = [];
     expect(() => got.push(...decodeTraceRecords(wire))).toThrow(TraceWireError);

@@ -23,6 +23,11 @@ export interface TraceLine {
   line: number;
   /** The CSV line without its newline; readers parse it with the trace reader's parseRecordLine. */
   text: string;
+  /**
+   * The line was its log's last and had no line end when the run was over (its module was killed
+   * while writing it): the record may have lost its end (TraceRecordBase.cut).
+   */
+  cut?: true;
 }
 
 /** A batch of record lines on the wire. */
@@ -30,6 +35,8 @@ export interface TraceWire {
   files: string[];
   runs: number[];
   text: string;
+  /** Indexes (0-based, ascending) of the batch's records that are `cut`; absent when none is. */
+  cut?: number[];
 }
 
 /** The wire form of a batch (its records' order is kept exactly). */
@@ -38,12 +45,14 @@ export function encodeTraceRecords(records: readonly TraceLine[]): TraceWire {
   const index = new Map<string, number>();
   const runs: number[] = [];
   const texts = new Array<string>(records.length);
+  const cut: number[] = [];
   let runFile = -1;
   let nextLine = -1;
   let countAt = -1;
   for (let i = 0; i < records.length; i++) {
     const r = records[i]!;
     texts[i] = r.text;
+    if (r.cut) cut.push(i);
     let fi = index.get(r.file);
     if (fi === undefined) {
       fi = files.length;
@@ -59,7 +68,7 @@ export function encodeTraceRecords(records: readonly TraceLine[]): TraceWire {
     }
     nextLine = r.line + 1;
   }
-  return { files, runs, text: texts.join('\n') };
+  return cut.length ? { files, runs, text: texts.join('\n'), cut } : { files, runs, text: texts.join('\n') };
 }
 
 /** A trace event's payload that is not a well-formed wire batch. */
@@ -77,10 +86,10 @@ export class TraceWireError extends Error {
  * (files are strings, runs are triples of whole numbers naming a listed file, the text holds
  * exactly as many lines as the runs count) and throws TraceWireError otherwise, before any call.
  */
-export function forEachTraceLine(wire: unknown, fn: (file: string, line: number, text: string, from: number, to: number) => void): number {
+export function forEachTraceLine(wire: unknown, fn: (file: string, line: number, text: string, from: number, to: number, cut: boolean) => void): number {
   const w = wire as Partial<TraceWire> | null;
   if (!w || typeof w !== 'object') throw new TraceWireError('not an object');
-  const { files, runs, text } = w;
+  const { files, runs, text, cut } = w;
   if (!Array.isArray(files) || !files.every((f) => typeof f === 'string')) throw new TraceWireError('"files" is not a list of file names');
   if (!Array.isArray(runs) || runs.length % 3 !== 0) throw new TraceWireError('"runs" is not a list of [file, first line, count] triples');
   if (typeof text !== 'string') throw new TraceWireError('"text" is not a string');
@@ -101,15 +110,22 @@ export function forEachTraceLine(wire: unknown, fn: (file: string, line: number,
   let lines = 1;
   for (let nl = text.indexOf('\n'); nl >= 0; nl = text.indexOf('\n', nl + 1)) lines++;
   if (lines !== total) throw new TraceWireError(`the runs count ${total} records, the text holds ${lines} lines`);
+  if (cut !== undefined && (!Array.isArray(cut) || cut.length > total || cut.some((c, i) => !Number.isSafeInteger(c) || c < 0 || c >= total || (i > 0 && c <= cut[i - 1]!)))) {
+    throw new TraceWireError('"cut" is not an ascending list of the batch\'s record indexes');
+  }
   let from = 0;
+  let record = 0;
+  let nextCut = 0;
   for (let i = 0; i < runs.length; i += 3) {
     const file = files[runs[i]!]!;
     const first = runs[i + 1]!;
     const count = runs[i + 2]!;
-    for (let j = 0; j < count; j++) {
+    for (let j = 0; j < count; j++, record++) {
       let to = text.indexOf('\n', from);
       if (to < 0) to = text.length;
-      fn(file, first + j, text, from, to);
+      const isCut = cut !== undefined && cut[nextCut] === record;
+      if (isCut) nextCut++;
+      fn(file, first + j, text, from, to, isCut);
       from = to + 1;
     }
   }
@@ -117,13 +133,13 @@ export function forEachTraceLine(wire: unknown, fn: (file: string, line: number,
 }
 
 /** forEachTraceRecord with each record's line cut out of the batch (same checks, same order). */
-export function forEachTraceRecord(wire: unknown, fn: (file: string, line: number, text: string) => void): number {
-  return forEachTraceLine(wire, (file, line, text, from, to) => fn(file, line, text.slice(from, to)));
+export function forEachTraceRecord(wire: unknown, fn: (file: string, line: number, text: string, cut: boolean) => void): number {
+  return forEachTraceLine(wire, (file, line, text, from, to, cut) => fn(file, line, text.slice(from, to), cut));
 }
 
 /** The records of a wire batch, in order (throws TraceWireError on a malformed batch). */
 export function decodeTraceRecords(wire: unknown): TraceLine[] {
   const out: TraceLine[] = [];
-  forEachTraceRecord(wire, (file, line, text) => out.push({ file, line, text }));
+  forEachTraceRecord(wire, (file, line, text, cut) => out.push(cut ? { file, line, text, cut: true } : { file, line, text }));
   return out;
 }

@@ -88,6 +88,23 @@ describe('a live run followed in a worker', () => {
     expect(remote.marksBetween(0, local.end)).toEqual(local.marksBetween(0, local.end));
   });
 
+  it('marks a record the trace channel says was cut (its log\'s last line, with no line end), as a recorded run of the same log does', async () => {
+    const last = lines.length - 1;
+    const cutLines = lines.map((l, i) => (i === last ? { ...l, cut: true as const } : l));
+    const url = await listen((ws) => {
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(cutLines) }));
+      ws.send(JSON.stringify({ type: 'end', seq: 2, t: Date.now(), result: { ok: true } }));
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    const local = new MonitorModel();
+    for (const [i, l] of lines.entries()) local.pushLineIn(l.file, l.line, l.text, 0, l.text.length, undefined, i === last);
+    const cuts = remote.marks.filter((m) => m.label.startsWith('cut: its log ends inside this record'));
+    expect(cuts).toHaveLength(1);
+    expect(cuts[0]!.where).toBe(lines[last]!.text.split(',')[2]);
+    expect(remote.marks).toEqual(local.marks);
+  });
+
   it('takes a broken stream up again after the last event seen: nothing lost, nothing twice', async () => {
     const frames = events(25);
     const afters: number[] = [];

@@ -112,8 +112,8 @@ export class LiveFollower {
       this.fold(() => {
         let n = 0;
         try {
-          forEachTraceLine(e, (file, line, text, from, to) => {
-            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, from, to, arrival, textId);
+          forEachTraceLine(e, (file, line, text, from, to, cut) => {
+            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, from, to, arrival, textId, cut);
           });
         } catch (err) {
           this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
@@ -123,10 +123,10 @@ export class LiveFollower {
   }
 
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
-  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number): void {
+  private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number, cut = false): void {
     const name = file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
     this.followLines(name, line);
-    this.model.pushLineIn(name, line, text, from, Math.min(to, from + MAX_LINE + 1), textId);
+    this.model.pushLineIn(name, line, text, from, Math.min(to, from + MAX_LINE + 1), textId, cut);
     if (this.measure) {
       if (this.measured === this.walls.length) {
         const walls = new Float64Array(this.measured * 2);

@@ -330,14 +330,33 @@ export class MonitorModel implements MonitorView {
    * (hot-line.ts); any other line, and any the quick readers do not accept, is parsed.
    * `textId` (a whole number) names `text` when several lines are ranges of one text: the model
    * keeps each text once per chunk (a trace event's, a recorded log's); without it the text is
-   * taken as one of its own.
+   * taken as one of its own. `cut`: the line was its log's last, with no line end (markCut).
    */
-  pushLineIn(file: string, line: number, text: string, from: number, to: number, textId = --this.anonymousText): void {
-    if (scanLine(text, from, to) && this.pushScanned(text, from, to, textId)) return;
+  pushLineIn(file: string, line: number, text: string, from: number, to: number, textId = --this.anonymousText, cut = false): void {
+    if (scanLine(text, from, to)) {
+      const module = cut ? text.slice(scanned.comma[1]! + 1, scanned.comma[2]!) : '';
+      if (this.pushScanned(text, from, to, textId)) {
+        if (cut) this.markCut(module);
+        return;
+      }
+    }
     const r = parseRecordLine(file, line, text.slice(from, to));
     const t = this.timeOfRecord(r);
     this.keepLine(t, text, from, to, textId);
     this.fold(t, r);
+    if (cut && r.kind !== 'unknown') this.markCut((r as KnownRecord).module);
+  }
+
+  /**
+   * The record just folded was its log's last line, with no line end (`cut`: its module was killed
+   * while it wrote it), so it may have lost its end: marked on the strip among the error marks, in
+   * `contract trace`'s words (its story's `[cut: ...]`). A line that is no record is not (it is
+   * counted unreadable).
+   */
+  private markCut(module: string): void {
+    if (this.cappedMarks.error >= MARK_CAPS.error || this.marks.length >= this.maxMarks) return;
+    this.cappedMarks.error++;
+    this.marks.push({ t: this.live.t, kind: 'error', where: module.slice(0, 64), label: 'cut: its log ends inside this record, with no line end; the record may have lost its end (its module was killed while writing it)' });
   }
 
   /**
@@ -372,6 +391,7 @@ export class MonitorModel implements MonitorView {
     this.beforeKeep();
     this.chunks[this.chunks.length - 1]!.push(t, r);
     this.fold(t, r);
+    if (r.kind !== 'unknown' && (r as KnownRecord).cut) this.markCut((r as KnownRecord).module);
   }
 
   private timeOfRecord(r: TraceRecord): Ns {

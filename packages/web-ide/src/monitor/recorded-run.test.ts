@@ -96,12 +96,30 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
     expect(order(model)).toEqual(['f.R2 active', 'f.R1 active', 'f.R2 inactive', 'f.R1 inactive', 'f.R3 active']);
     // equal times in two logs: the log named first goes first; leading zeros are the same time
     const equal: LogFile[] = [
-      { name: 'E_x.csv', text: [HEADER, rule('5', 'f', 'R6', true), rule('6', 'f', 'R6', false)].join('\n') },
-      { name: 'D_x.csv', text: [HEADER, rule('00005', 'f', 'R5', true), rule('4', 'f', 'R7', true), rule('7', 'f', 'R5', false)].join('\n') },
+      { name: 'E_x.csv', text: [HEADER, rule('5', 'f', 'R6', true), rule('6', 'f', 'R6', false), ''].join('\n') },
+      { name: 'D_x.csv', text: [HEADER, rule('00005', 'f', 'R5', true), rule('4', 'f', 'R7', true), rule('7', 'f', 'R5', false), ''].join('\n') },
     ];
     const same = viaRanges(equal).model;
     expect(order(same)).toEqual(order(viaReader(equal)));
     expect(order(same)).toEqual(['f.R7 active', 'f.R5 active', 'f.R6 active', 'f.R6 inactive', 'f.R5 inactive']);
+  });
+
+  it('marks a record its log ends inside (no line end: its module was killed while writing it), as contract trace tells it; not a line that is no record', () => {
+    const CUT = 'cut: its log ends inside this record, with no line end; the record may have lost its end (its module was killed while writing it)';
+    const files: LogFile[] = [
+      // the rule change, cut after its fields: still a record
+      { name: 'SUP_x.csv', text: [HEADER, rule('5', 'f', 'R1', true), rule('9', 'f', 'R1', false)].join('\n') },
+      // a scanned kind, cut inside its detail
+      { name: 'MSC_x.csv', text: [HEADER, '6,2026-11-24T18:30:15.123456Z,MSC,request_received,ORD,,0,STA'].join('\n') },
+      // a line that is no record: counted unreadable, not marked
+      { name: 'MSA_x.csv', text: [HEADER, '7,2026-11-24T18:30:15.123456Z,MSA,request_rec'].join('\n') },
+      // ends with its line end: nothing
+      { name: 'MAA_x.csv', text: [HEADER, '8,2026-11-24T18:30:15.123456Z,MAA,request_received,ORD,,0,START', ''].join('\n') },
+    ];
+    const model = expectSame(files);
+    const cuts = model.marks.filter((m) => m.label === CUT);
+    expect(cuts.map((m) => [m.where, m.t, m.kind])).toEqual([['MSC', 1, 'error'], ['SUP', 4, 'error']]);
+    expect(model.live.unknownLines).toBe(1);
   });
 
   it('orders as parseTrace does, any logs: times out of order, equal, unreadable lines between, any step (property)', () => {

@@ -42,6 +42,8 @@ interface LogLines {
   commas: Uint16Array;
   /** The order of its lines by key (stable), when they are not in key order already. */
   order: Int32Array | undefined;
+  /** The index of its last line when the file ends inside it (no line end: its module was killed while writing it), else -1. */
+  cutAt: number;
 }
 
 /** The trace table's kinds, from 1 (LogLines.kind). */
@@ -106,7 +108,7 @@ function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a:
 function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
   const { name, text } = file;
   const size = Math.max(16, Math.ceil(text.length / 64));
-  const l: LogLines = { name, text, n: 0, from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined };
+  const l: LogLines = { name, text, n: 0, from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined, cutAt: -1 };
   let hi = 0;
   let lo = 0;
   let sorted = true;
@@ -142,6 +144,7 @@ function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut:
       l.kind[k] = KIND_INDEX.get(scanned.kind)!;
       for (let j = 0; j < 7; j++) l.commas[k * 7 + j] = scanned.comma[j]! - from;
     }
+    if (nl === text.length) l.cutAt = k; // the file's last line, with no line end
     l.from[k] = from;
     l.to[k] = to;
     l.line[k] = i + 1;
@@ -198,7 +201,9 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
       scanned.mono = digitsValue(l.text, from, scanned.comma[0]!);
       scanned.to = to;
     }
-    if (!kind || !model.pushScanned(l.text, from, to, f)) model.pushLineIn(l.name, l.line[i]!, l.text, from, to, f);
+    const cut = i === l.cutAt;
+    // a cut line goes the way that marks it (pushLineIn scans it again: it is one line of a run)
+    if (cut || !kind || !model.pushScanned(l.text, from, to, f)) model.pushLineIn(l.name, l.line[i]!, l.text, from, to, f, cut);
     if (++at[f]! >= l.n) heap.pop();
     else heap.topChanged();
     if (++folded % every === 0) yield;
