@@ -7,7 +7,8 @@
  */
 import { existsSync, lstatSync } from 'node:fs';
 import { join, resolve } from 'node:path';
-import type { LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
+import type { FileHandle } from 'node:fs/promises';
+import type { JunitSuite, LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import { defaultRuntimeSource } from '../runtime-source.js';
@@ -60,7 +61,8 @@ export const simulateCommand: Command = {
         if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
-            DEFAULT_RUNTIME_DIR, SIMULATOR_SANDBOXES, displayPath, errorCount, jsonReportParts, junitReport, loadScenario, prepareProject, readScenarioFile, runLoadedScenario, simulatorCacheDir, textReportParts,
+            DEFAULT_RUNTIME_DIR, JSON_REPORT_END, JSON_REPORT_HEAD, SIMULATOR_SANDBOXES, displayPath, errorCount, jsonScenarioParts, junitReportOf, junitSuite, loadScenario, prepareProject,
+            readScenarioFile, runLoadedScenario, simulatorCacheDir, textScenarioParts, textSummary,
         } = await import('@contract-studio/simulator');
         if (parsed.positionals.length < 2) throw new UsageError('expected DIR and at least one SCENARIO file');
         const sandbox = parsed.options.get('sandbox');
@@ -109,7 +111,12 @@ export const simulateCommand: Command = {
         }
         for (const w of project.warnings) io.err(`warning: ${w}\n`);
 
-        const scenarios: LoadedScenario[] = [];
+        // every scenario is read and checked before any runs (its diagnostics first: nothing runs when
+        // one has errors); then they run and are reported one at a time, each one's parsed steps (an
+        // 8 MiB scenario's take some 250 MB: a large one is parsed again when its turn comes) and
+        // records let go once its report is written, so that many long scenarios take no more
+        // memory than the longest one
+        const scenarios: ToRun[] = [];
         let bad = 0;
         for (const arg of parsed.positionals.slice(1)) {
             const file = resolve(io.cwd, arg);
@@ -122,44 +129,89 @@ export const simulateCommand: Command = {
                 bad++;
                 continue;
             }
-            const s = loadScenario(file, format === 'text' ? shown : display, text, project.index);
+            const named = format === 'text' ? shown : display;
+            const s = loadScenario(file, named, text, project.index);
             for (const d of s.diagnostics) io.err(`${shown}:${d.line}:${d.column}: ${d.severity}: ${d.message} [${d.code}]\n`);
             if (s.diagnostics.some((d) => d.severity === 'error')) bad++;
-            else scenarios.push(s);
+            else scenarios.push({ file, named, text, ...(text.length <= KEEP_PARSED_CHARS ? { loaded: s } : {}) });
         }
         if (bad) {
             io.err(`contract simulate: ${bad} scenario file(s) with errors: nothing was simulated\n`);
             return EXIT_USAGE;
         }
-        const results: ScenarioResult[] = [];
-        // each scenario's parsed steps are let go once it has run (an 8 MiB scenario's take some 250 MB): not held through the reports
-        for (let s = scenarios.shift(); s; s = scenarios.shift()) results.push(await runLoadedScenario(project, s));
+        const verbose = parsed.options.get('verbose') === true;
         // written in parts (whole lines): the report of a scenario of many steps is never one string
-        const report = format === 'json' ? jsonReportParts(results) : format === 'junit' ? [junitReport(results)] : textReportParts(results, { verbose: parsed.options.get('verbose') === true });
-        for (const part of report) {
+        const write = async (part: string): Promise<void> => {
             io.out(part);
             await io.drained?.();
+        };
+        const trace = typeof traceOption === 'string' ? new SimulationTrace(resolve(io.cwd, traceOption)) : undefined;
+        const suites: JunitSuite[] = [];
+        let passed = 0;
+        let failed = 0;
+        if (format === 'json') await write(JSON_REPORT_HEAD);
+        for (let next = scenarios.shift(); next; next = scenarios.shift()) {
+            const loaded = next.loaded ?? loadScenario(next.file, next.named, next.text, project.index);
+            const r = await runLoadedScenario(project, loaded);
+            if (r.passed) passed++;
+            else failed++;
+            if (format === 'json') for (const part of jsonScenarioParts(r, passed + failed === 1)) await write(part);
+            else if (format === 'junit') suites.push(junitSuite(r));
+            else for (const part of textScenarioParts(r, { verbose })) await write(part);
+            await trace?.add(r);
         }
-        if (typeof traceOption === 'string') {
-            const { stepsToTrace, traceStepOf } = await import('@contract-studio/simulator/trace');
-            const traceFile = resolve(io.cwd, traceOption);
-            try {
-                // one scenario's records at a time, written some thousands of lines at a time: the file is
-                // toJsonLines of them all, never one string
-                const handle = await openTraceFile(traceFile);
-                try {
-                    for (const r of results) {
-                        const records = stepsToTrace(r.steps.map(traceStepOf), r.file);
-                        for (let i = 0; i < records.length; i += TRACE_LINES_PER_WRITE) await handle.write(toJsonLines(records.slice(i, i + TRACE_LINES_PER_WRITE)));
-                    }
-                } finally {
-                    await handle.close();
-                }
-            } catch (e) {
-                io.err(`contract simulate: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
-                return EXIT_FAILURE;
-            }
+        await write(format === 'json' ? JSON_REPORT_END : format === 'junit' ? junitReportOf(suites) : textSummary(passed, failed));
+        const traceError = await trace?.close();
+        if (traceError) {
+            io.err(`contract simulate: cannot write the trace to ${safeName(traceError.file)}: ${traceError.message}\n`);
+            return EXIT_FAILURE;
         }
-        return results.every((r) => r.passed) ? EXIT_OK : EXIT_FAILURE;
+        return failed === 0 ? EXIT_OK : EXIT_FAILURE;
     },
 };
+
+/** A scenario checked, waiting for its turn: parsed already when it is small (KEEP_PARSED_CHARS). */
+interface ToRun {
+    file: string;
+    named: string;
+    text: string;
+    loaded?: LoadedScenario;
+}
+
+/** Scenarios up to this many characters stay parsed from their check to their run; a larger one is parsed again. */
+const KEEP_PARSED_CHARS = 256 * 1024;
+
+/**
+ * `--trace FILE`: each scenario's records written once it has run (the file opened at the first),
+ * some thousands of lines at a time (the file is toJsonLines of them all, never one string). A
+ * write that fails stops the trace and is said at the end (close), after the reports.
+ */
+class SimulationTrace {
+    private handle: FileHandle | undefined;
+    private error: Error | undefined;
+
+    constructor(private readonly file: string) {}
+
+    async add(r: ScenarioResult): Promise<void> {
+        if (this.error) return;
+        try {
+            const { stepsToTrace, traceStepOf } = await import('@contract-studio/simulator/trace');
+            this.handle ??= await openTraceFile(this.file);
+            const records = stepsToTrace(r.steps.map(traceStepOf), r.file);
+            for (let i = 0; i < records.length; i += TRACE_LINES_PER_WRITE) await this.handle.write(toJsonLines(records.slice(i, i + TRACE_LINES_PER_WRITE)));
+        } catch (e) {
+            this.error = e as Error;
+        }
+    }
+
+    /** Closes the file (made empty when no scenario ran); the first fault, if any. */
+    async close(): Promise<{ file: string; message: string } | undefined> {
+        try {
+            this.handle ??= this.error ? undefined : await openTraceFile(this.file);
+        } catch (e) {
+            this.error ??= e as Error;
+        }
+        await this.handle?.close().catch((e: Error) => (this.error ??= e));
+        return this.error ? { file: this.file, message: this.error.message } : undefined;
+    }
+}

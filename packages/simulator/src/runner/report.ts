@@ -88,8 +88,23 @@ const TEXT_LINES_PER_PART = 5_000;
  * that a scenario of many steps is written without the whole report in memory at once.
  */
 export function* textReportParts(results: ScenarioResult[], options: { verbose?: boolean } = {}): Generator<string> {
+    for (const r of results) yield* textScenarioParts(r, options);
+    yield textSummary(results.length - results.filter((r) => !r.passed).length, results.filter((r) => !r.passed).length);
+}
+
+/** The text report's last line, once every scenario's parts were written. */
+export function textSummary(passed: number, failed: number): string {
+    return `${passed} passed, ${failed} failed\n`;
+}
+
+/**
+ * One scenario's part of the text report (textReportParts: every scenario's, then textSummary), in
+ * parts of whole lines: a caller that writes each scenario's report once it has run holds one
+ * scenario's result at a time.
+ */
+export function* textScenarioParts(r: ScenarioResult, options: { verbose?: boolean } = {}): Generator<string> {
     let out: string[] = [];
-    for (const r of results) {
+    {
         const formatTime = reportTimeFormat(timesOf(r));
         const releases = new ReleaseFolder();
         const misses = new MissTeller();
@@ -147,8 +162,6 @@ export function* textReportParts(results: ScenarioResult[], options: { verbose?:
         out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
         out.push('');
     }
-    const failed = results.filter((r) => !r.passed).length;
-    out.push(`${results.length - failed} passed, ${failed} failed`);
     yield out.join('\n') + '\n';
 }
 
@@ -170,8 +183,18 @@ const JSON_STEPS_PER_PART = 2_000;
  * a few thousand at a time.
  */
 export function* jsonReportParts(results: ScenarioResult[]): Generator<string> {
-    yield '{"scenarios":[';
-    for (const [i, r] of results.entries()) {
+    yield JSON_REPORT_HEAD;
+    for (const [i, r] of results.entries()) yield* jsonScenarioParts(r, i === 0);
+    yield JSON_REPORT_END;
+}
+
+/** What the JSON report begins and ends with, around its scenarios' parts (jsonScenarioParts). */
+export const JSON_REPORT_HEAD = '{"scenarios":[';
+export const JSON_REPORT_END = ']}\n';
+
+/** One scenario's parts of the JSON report (`first`: the report's first scenario, not preceded by a comma). */
+export function* jsonScenarioParts(r: ScenarioResult, first: boolean): Generator<string> {
+    {
         const head = JSON.stringify({
             file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
             ...(r.trimmed ? { trimmed: trimmedJson(r.trimmed) } : {}),
@@ -180,14 +203,13 @@ export function* jsonReportParts(results: ScenarioResult[]): Generator<string> {
             steps: [],
         });
         // `…,"steps":[]}`: the steps go between its brackets
-        yield `${i ? ',' : ''}${head.slice(0, -2)}`;
+        yield `${first ? '' : ','}${head.slice(0, -2)}`;
         for (let from = 0; from < r.steps.length; from += JSON_STEPS_PER_PART) {
             const part = r.steps.slice(from, from + JSON_STEPS_PER_PART).map((s) => JSON.stringify({ ...s.record, source: s.source, kind: s.kind }));
             yield `${from ? ',' : ''}${part.join(',')}`;
         }
         yield ']}';
     }
-    yield ']}\n';
 }
 
 export function jsonReport(results: ScenarioResult[]): string {
@@ -200,22 +222,47 @@ function xml(s: string): string {
 }
 
 export function junitReport(results: ScenarioResult[]): string {
+    return junitReportOf(results.map(junitSuite));
+}
+
+/**
+ * What the JUnit report keeps of a scenario: its testcases (one per expectation and per failed
+ * step: an event or start the harness refused) and its figures, not its steps' records: a caller
+ * that runs many scenarios keeps this of each until the report's totals are known.
+ */
+export interface JunitSuite {
+    file: string;
+    name: string;
+    ms: number;
+    failures: number;
+    error?: string;
+    trimmed?: string;
+    cases: Array<{ name: string; failure?: { message: string; text: string } }>;
+}
+
+export function junitSuite(r: ScenarioResult): JunitSuite {
+    const cases = r.steps.filter((s) => s.kind === 'expect' || !s.ok).map((s) => ({
+        name: `line ${s.line}: ${s.source}`,
+        ...(!s.ok ? { failure: { message: s.message ?? 'failed', text: `expected: ${s.record.expected ?? ''}\nactual: ${s.record.actual ?? s.record.error ?? ''}` } } : {}),
+    }));
+    return { file: r.file, name: r.title ?? r.file, ms: r.ms, failures: r.failures.length, ...(r.error ? { error: r.error } : {}), ...(r.trimmed ? { trimmed: r.trimmed.message } : {}), cases };
+}
+
+/** The JUnit report of the suites (junitSuite of each scenario, in order). */
+export function junitReportOf(suites: JunitSuite[]): string {
     const out = ['<?xml version="1.0" encoding="UTF-8"?>'];
-    // one testcase per expectation and per failed step (an event or start the harness refused), as each testsuite counts them
-    const total = results.reduce((n, r) => n + r.steps.filter((s) => s.kind === 'expect' || !s.ok).length + (r.error ? 1 : 0), 0);
-    const failures = results.reduce((n, r) => n + r.failures.length + (r.error ? 1 : 0), 0);
+    const total = suites.reduce((n, r) => n + r.cases.length + (r.error ? 1 : 0), 0);
+    const failures = suites.reduce((n, r) => n + r.failures + (r.error ? 1 : 0), 0);
     out.push(`<testsuites name="contract simulate" tests="${total}" failures="${failures}">`);
-    for (const r of results) {
-        const cases = r.steps.filter((s) => s.kind === 'expect' || !s.ok);
-        out.push(`  <testsuite name="${xml(r.file)}" tests="${cases.length + (r.error ? 1 : 0)}" failures="${r.failures.length + (r.error ? 1 : 0)}" time="${(r.ms / 1000).toFixed(3)}">`);
-        for (const s of cases) {
-            const name = `line ${s.line}: ${s.source}`;
-            out.push(`    <testcase classname="${xml(r.title ?? r.file)}" name="${xml(name)}" time="0">`);
-            if (!s.ok) out.push(`      <failure message="${xml(s.message ?? 'failed')}">${xml(`expected: ${s.record.expected ?? ''}\nactual: ${s.record.actual ?? s.record.error ?? ''}`)}</failure>`);
+    for (const r of suites) {
+        out.push(`  <testsuite name="${xml(r.file)}" tests="${r.cases.length + (r.error ? 1 : 0)}" failures="${r.failures + (r.error ? 1 : 0)}" time="${(r.ms / 1000).toFixed(3)}">`);
+        for (const c of r.cases) {
+            out.push(`    <testcase classname="${xml(r.name)}" name="${xml(c.name)}" time="0">`);
+            if (c.failure) out.push(`      <failure message="${xml(c.failure.message)}">${xml(c.failure.text)}</failure>`);
             out.push('    </testcase>');
         }
-        if (r.error) out.push(`    <testcase classname="${xml(r.title ?? r.file)}" name="run"><error message="${xml(r.error)}"/></testcase>`);
-        if (r.trimmed) out.push(`    <system-out>${xml(r.trimmed.message)}</system-out>`);
+        if (r.error) out.push(`    <testcase classname="${xml(r.name)}" name="run"><error message="${xml(r.error)}"/></testcase>`);
+        if (r.trimmed) out.push(`    <system-out>${xml(r.trimmed)}</system-out>`);
         out.push('  </testsuite>');
     }
     out.push('</testsuites>');
