@@ -66,6 +66,22 @@ describe('the end of a run', () => {
   });
 });
 
+describe('a run held until a later time (a simulation\'s session past its last record)', () => {
+  it('moves the end, not the state; states before the last record are as they were', () => {
+    const model = new MonitorModel({ checkpointEvery: 4 });
+    model.pushAll([line(0, 'ORD', 'scheduler', '', '', 'activate goTo'), line(2_500_000, 'ORD', 'scheduler', '', '', 'deactivate goTo')]);
+    const before = model.stateAt(1_000_000);
+    const v = model.version;
+    model.holdUntil(3_000_000);
+    expect(model.end).toBe(3_000_000);
+    expect(model.version).toBeGreaterThan(v);
+    expect(model.stateAt(1_000_000)).toEqual(before);
+    expect(model.live.schemas.get('goTo')).toMatchObject({ active: false });
+    model.holdUntil(1_000); // never back
+    expect(model.end).toBe(3_000_000);
+  });
+});
+
 describe('monitor model on a recorded tutorial run', () => {
   const model = new MonitorModel({ checkpointEvery: 16 });
   model.pushAll(tutorial);

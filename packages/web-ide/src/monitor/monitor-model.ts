@@ -312,6 +312,17 @@ export class MonitorModel implements MonitorView {
     return this.live.t;
   }
 
+  /**
+   * Nothing happened after the last record up to `t` (ns since the first record): the run's end
+   * moves there, the state unchanged (a simulation's session stands at a virtual time past its
+   * last record). Only for a run that is over: a later record would be held at that time.
+   */
+  holdUntil(t: Ns): void {
+    if (!(t > this.live.t)) return;
+    this.live.t = t;
+    this.version++;
+  }
+
   /** Whether states before `t` are approximate (their raw records were dropped). */
   exactAt(t: Ns): boolean {
     const cp = this.checkpointBefore(t);

@@ -76,8 +76,14 @@ export class ScenarioSession {
    */
   static nextChange(steps: SimulateStep[], afterNs: number): number | undefined {
     let next: number | undefined;
+    const see = (timeNs: number): void => {
+      if (timeNs > afterNs && (next === undefined || timeNs < next)) next = timeNs;
+    };
     for (const st of steps) {
-      for (const x of [...st.rules, ...st.actions]) if (x.timeNs > afterNs && (next === undefined || x.timeNs < next)) next = x.timeNs;
+      for (const x of st.rules) see(x.timeNs);
+      for (const x of st.actions) see(x.timeNs);
+      // what the engines did by themselves, in their typed records: a release, a completion, a deadline miss
+      for (const x of st.records ?? []) see(x.timeNs);
     }
     return next;
   }

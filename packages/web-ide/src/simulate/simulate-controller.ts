@@ -38,6 +38,8 @@ export class SimulateController {
   private lastShown: SchedulerFigures | undefined;
   /** Runs one after the other: each is the whole session again. */
   private running: Promise<unknown> = Promise.resolve();
+  /** The existing file Save as scenario was last asked to write: a second ask replaces it. */
+  private replaceAsked: string | undefined;
 
   constructor(private readonly deps: { lsp: LspClient; workspace: Workspace; monitor: MonitorController; project: () => string; reveal: () => void }) {
     this.panel = new SimulatePanel({
@@ -187,6 +189,8 @@ export class SimulateController {
       this.panel.showMessage(r.error ?? `simulated to ${formatTime(r.steps.at(-1)?.timeNs ?? 0)} in ${r.ms} ms (${r.eventsProcessed} engine inputs)`, r.error || failed.length ? 'error' : 'info', failed);
       const model = new MonitorModel();
       model.pushAll(stepsToTrace(r.steps));
+      // the session stands at its own time, maybe past its last record: the Monitor's clock says it
+      if (model.t0 !== undefined) model.holdUntil(this.session.nowNs - model.t0);
       this.lastShown = model.live;
       // an answer keeps 200,000 records of all steps (the harness 100,000 of each kind a step): what was left out is said
       const dropped = r.steps.reduce((n, s) => n + (s.dropped ?? 0), 0);
@@ -213,12 +217,24 @@ export class SimulateController {
     const project = this.deps.project();
     const rel = project && !p.startsWith(`${project}/`) ? `${project}/${p}` : p;
     const text = this.session.withExpectations(this.last.steps, this.lastShown ?? { periodic: new Map() }, `session of ${this.session.start.supervisor}.${this.session.start.fn}`);
+    // a file that exists (a scenario written by hand, maybe) is replaced only when asked twice
+    const exists = this.deps.workspace.hasFile(rel);
+    if (exists && this.replaceAsked !== rel) {
+      this.replaceAsked = rel;
+      return this.panel.showMessage(`${rel} exists: Save as scenario again to replace it with this session (${text.split('\n').length - 1} lines)`, 'error');
+    }
+    this.replaceAsked = undefined;
     try {
-      if (this.deps.workspace.hasFile(rel)) await api.write(rel, text);
+      if (exists) await api.write(rel, text);
       else await api.create(rel, 'file', text);
-      this.panel.showMessage(`saved ${rel}: run it with \`contract simulate ${project || '.'} ${rel}\``);
+      this.panel.showMessage(`saved ${rel}: run it with \`contract simulate ${shellWord(project || '.')} ${shellWord(rel)}\``);
     } catch (e) {
       this.panel.showMessage(`could not save ${rel}: ${(e as Error).message}`, 'error');
     }
   }
+}
+
+/** `word` as one shell word (quoted when it holds anything but letters, digits and `_ . / - + , = :`). */
+export function shellWord(word: string): string {
+  return /^[A-Za-z0-9_./+,=:@%-]+$/.test(word) ? word : `'${word.replace(/'/g, `'\\''`)}'`;
 }

@@ -45,7 +45,7 @@ export class SimulatePanel {
   constructor(actions: SimulatePanelActions) {
     this.fnSelect.addEventListener('change', () => this.showSignature());
     const btn = (cls: string, label: string, title: string, on: () => void) => h('button', { class: `btn ${cls}`, title, onclick: on }, label);
-    this.stepInput = new StepInput((text) => actions.inject(text), 'MAA:2 connection_status = "disconnected"   (Ctrl+Space: completion)');
+    this.stepInput = new StepInput({ enter: (text) => actions.inject(text), escape: () => this.onEscape?.() }, 'MAA:2 connection_status = "disconnected"   (Ctrl+Space: completion)');
     this.timeInput.addEventListener('keydown', (e) => {
       if (e.key === 'Enter') actions.advance(this.timeInput.value);
     });
@@ -66,7 +66,7 @@ export class SimulatePanel {
         h('div', {}, h('h4', {}, 'Active schemas'), this.schemas, h('h4', {}, 'Locals'), this.locals),
         h('div', { class: 'sim-steps-col' }, h('h4', {}, 'Steps'), this.steps)));
     // Escape on a control goes back to the editor, as in the panel tabs (the step's own editor
-    // keeps it: it closes its completion list there)
+    // binds it itself: there it closes the completion list first)
     this.element.addEventListener('keydown', (e) => {
       if (e.key !== 'Escape' || e.defaultPrevented || (e.target as HTMLElement | null)?.closest('.monaco-editor')) return;
       e.preventDefault();
@@ -138,13 +138,22 @@ export class SimulatePanel {
         h('div', { class: 'sim-local' }, `${l.supervisor}.${l.function}.${l.name}: ${l.type} = ${l.value}`)));
     }
     const shown = r.steps.slice(-MAX_SHOWN_STEPS);
-    this.steps.replaceChildren(...shown.map((s) =>
-      h('div', { class: `sim-step-row ${s.ok ? '' : 'failed'}` },
+    this.steps.replaceChildren(...shown.map((s) => {
+      // what happened since the step before, at its own time: what came before the step (a timer,
+      // a release) above its line, as `contract simulate` prints it (an expectation looks at the
+      // state after its time: what happened at its time too)
+      const before = (t: number) => t < s.timeNs || (t === s.timeNs && (s.kind === 'expect' || s.kind === 'end'));
+      const at = (t: number) => (t === s.timeNs ? '' : `${formatTime(t)}  `);
+      const changes = s.rules.map((c) => ({ t: c.timeNs, el: h('div', { class: 'sim-change' }, `${at(c.timeNs)}${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${readableCause(c.cause)}`) }));
+      // in a run's words (`undo: stop module SCN`) with what the holds decided, as `simulate --verbose` shows them
+      const actions = actionLines(s.actions, s.records).slice(0, 50).map((a) => ({ t: a.t, el: h('div', { class: 'sim-action' }, `${at(a.t)}${a.who}: ${a.text}`) }));
+      const lines = [...changes, ...actions].map((x, i) => ({ ...x, i })).sort((x, y) => x.t - y.t || x.i - y.i);
+      return h('div', { class: `sim-step-row ${s.ok ? '' : 'failed'}` },
+        ...lines.filter((x) => before(x.t)).map((x) => x.el),
         h('div', { class: 'sim-step-head' }, `${formatTime(s.timeNs)}  ${s.kind === 'end' ? '(end)' : s.source}${s.message ? `  ✖ ${s.message}` : ''}${s.trimmed ? `  (kept without its ${s.trimmed === 'bare' ? 'lists' : 'actions and records'}: the simulator's bound)` : ''}`),
-        ...s.rules.map((c) => h('div', { class: 'sim-change' }, `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  ← ${readableCause(c.cause)}`)),
-        // in a run's words (`undo: stop module SCN`) with what the holds decided, as `simulate --verbose` shows them
-        ...actionLines(s.actions, s.records).slice(0, 50).map((a) => h('div', { class: 'sim-action' }, `${a.who}: ${a.text}`)),
-        s.output ? h('pre', { class: 'sim-output' }, s.output) : null)));
+        ...lines.filter((x) => !before(x.t)).map((x) => x.el),
+        s.output ? h('pre', { class: 'sim-output' }, s.output) : null);
+    }));
     this.steps.scrollTop = this.steps.scrollHeight;
   }
 }

@@ -134,6 +134,15 @@ describe('ScenarioSession.nextChange', () => {
     expect(ScenarioSession.nextChange(steps, 5e6)).toBeUndefined();
   });
 
+  it('finds the engines\' own records too: a release with no rule change or action goes before a later rule change', () => {
+    const steps = [step({ kind: 'end',
+      rules: [{ timeNs: 72e6, supervisor: 'S', function: 'f', rule: 'B', active: true, cause: 'elapsed=1000000ns' }],
+      records: [{ timeNs: 50e6, seq: 1, module: 'ORD', kind: 'ord_release', peer: 'CLS', detail: '' }, { timeNs: 62e6, seq: 2, module: 'ORD', kind: 'ord_release', peer: 'CLS', detail: '' }] })];
+    expect(ScenarioSession.nextChange(steps, 50e6)).toBe(62e6);
+    expect(ScenarioSession.nextChange(steps, 62e6)).toBe(72e6);
+    expect(ScenarioSession.nextChange(steps, 0)).toBe(50e6);
+  });
+
   it('a look-ahead text runs later than now without moving the session', () => {
     const s = new ScenarioSession();
     s.begin({ supervisor: 'SUP', fn: 'action', params: '' });

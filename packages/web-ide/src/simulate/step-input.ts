@@ -4,7 +4,12 @@
  * "Editing scenarios": `MAA:` -> its out event ports, `MAA:2 ` -> the values the rules compare it
  * with). The model is a file URI in the project's folder (never saved: the scenario's project is
  * found from its folder), holding just the line being typed. Enter injects it unless a suggestion
- * is being chosen.
+ * is being chosen; Tab and Shift+Tab leave it for the next or previous control, Escape goes back to
+ * the editor (with a suggestion list open, these keys are the list's).
+ *
+ * Monaco registers an editor's addCommand keybinding for every editor of the page: each of these
+ * is bound under a context key only this editor holds (STEP_CONTEXT_KEY), or Enter would inject in
+ * the code editors too.
  */
 import { monaco } from '../editor/monaco.js';
 import { SCENARIO_LANGUAGE_ID } from '../editor/scenario-language.js';
@@ -13,12 +18,25 @@ import { h } from '../util/dom.js';
 /** The model's file name: main.ts keeps its diagnostics out of the Problems panel. */
 export const STEP_INPUT_FILE = '.simulate-step.scenario';
 
+/** The context key set in the step editor's own context only: its keys are bound under it. */
+const STEP_CONTEXT_KEY = 'contractSimulateStep';
+const ITS_OWN = `${STEP_CONTEXT_KEY} && !suggestWidgetVisible`;
+
+/** What the step field's keys do (besides typing). */
+export interface StepKeys {
+  enter(text: string): void;
+  escape(): void;
+}
+
+/** The controls the keyboard reaches in the page, in document order. */
+const FOCUSABLE = 'button:not([disabled]), input:not([disabled]), select:not([disabled]), textarea:not([disabled]), a[href], [tabindex]:not([tabindex="-1"])';
+
 export class StepInput {
   readonly element = h('div', { class: 'sim-step', role: 'textbox', 'aria-label': 'step to inject' });
   private editor: monaco.editor.IStandaloneCodeEditor | undefined;
   private model: monaco.editor.ITextModel | undefined;
 
-  constructor(private readonly onEnter: (text: string) => void, private readonly placeholder: string) {}
+  constructor(private readonly keys: StepKeys, private readonly placeholder: string) {}
 
   /** Creates (or moves) the editor's model in `folderUri` (the project's folder). */
   attach(uri: monaco.Uri): void {
@@ -33,8 +51,13 @@ export class StepInput {
         scrollbar: { vertical: 'hidden', horizontal: 'hidden', handleMouseWheel: false }, fontSize: 12, automaticLayout: true,
         fixedOverflowWidgets: true, placeholder: this.placeholder,
       });
+      this.editor.createContextKey(STEP_CONTEXT_KEY, true);
       // Enter injects; with the suggestions open it accepts one (Monaco's own binding)
-      this.editor.addCommand(monaco.KeyCode.Enter, () => this.onEnter(this.value), '!suggestWidgetVisible');
+      this.editor.addCommand(monaco.KeyCode.Enter, () => this.keys.enter(this.value), ITS_OWN);
+      // a one-line field is no place for a tab character: Tab moves on, as in any form
+      this.editor.addCommand(monaco.KeyCode.Tab, () => this.moveFocus(false), ITS_OWN);
+      this.editor.addCommand(monaco.KeyMod.Shift | monaco.KeyCode.Tab, () => this.moveFocus(true), ITS_OWN);
+      this.editor.addCommand(monaco.KeyCode.Escape, () => this.keys.escape(), ITS_OWN);
       // one line: a pasted text keeps its first line only
       this.editor.onDidChangeModelContent(() => {
         const m = this.model;
@@ -62,5 +85,14 @@ export class StepInput {
 
   focus(): void {
     this.editor?.focus();
+  }
+
+  /** Focuses the next (or, `back`, the previous) control of the page outside this field. */
+  private moveFocus(back: boolean): void {
+    const all = [...document.querySelectorAll<HTMLElement>(FOCUSABLE)].filter((el) => el.getClientRects().length > 0 || el === this.element);
+    const outside = all.filter((el) => !this.element.contains(el));
+    const after = outside.filter((el) => this.element.compareDocumentPosition(el) & Node.DOCUMENT_POSITION_FOLLOWING);
+    const before = outside.filter((el) => this.element.compareDocumentPosition(el) & Node.DOCUMENT_POSITION_PRECEDING);
+    (back ? before.at(-1) : after[0])?.focus();
   }
 }

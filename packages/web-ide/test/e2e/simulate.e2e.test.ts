@@ -144,5 +144,39 @@ describe('Simulate panel', () => {
     await page.fill('.sim-time', '+1ms');
     await page.click('.sim-advance');
     await expect.poll(() => now(page), { timeout: 30_000 }).toBe('7ms');
+
+    // Save as scenario onto a file that exists replaces it only when asked twice
+    const before = readFileSync(join(s.workspace, 'scenarios/session.scenario'), 'utf8');
+    await page.fill('.sim-save-path', 'scenarios/session.scenario');
+    await page.click('.sim-save');
+    await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 10_000 }).toMatch(/^scenarios\/session\.scenario exists: Save as scenario again to replace it/);
+    expect(readFileSync(join(s.workspace, 'scenarios/session.scenario'), 'utf8')).toBe(before);
+    await page.click('.sim-save');
+    await expect.poll(() => page.locator('.sim-message').textContent(), { timeout: 10_000 }).toContain('saved scenarios/session.scenario');
+    expect(readFileSync(join(s.workspace, 'scenarios/session.scenario'), 'utf8')).toContain('expect at 7ms rule SUP.action.SECOND active');
+
+    // the step field's keys are its own: Tab and Shift+Tab leave it for the controls around it,
+    // Escape goes back to the code editor, where Enter makes a new line (it injected a step there,
+    // for every editor of the page, once the panel had been shown)
+    const focused = () => page.evaluate(() => (document.activeElement?.closest('.sim-step') ? 'step' : document.activeElement?.className ?? ''));
+    await page.locator('.sim-step .view-lines').click();
+    await page.keyboard.press('Tab');
+    await expect.poll(focused).toContain('sim-inject');
+    await page.keyboard.press('Shift+Tab');
+    await expect.poll(focused).toBe('step');
+    await page.keyboard.press('Shift+Tab');
+    await expect.poll(focused).toContain('sim-advance');
+    expect(await stepValue(page)).toBe(''); // no tab character typed into it
+    await page.locator('.sim-step .view-lines').click();
+    await page.keyboard.press('Escape');
+    await expect.poll(() => page.evaluate(() => !!document.activeElement?.closest('.simulate-panel'))).toBe(false);
+    const lines = () => page.evaluate(() => (window as any).__ide.editors.editor.getModel().getLineCount() as number);
+    const before2 = await lines();
+    await page.keyboard.press('End');
+    await page.keyboard.press('Enter');
+    await expect.poll(lines).toBe(before2 + 1);
+    expect(await page.evaluate(() => (window as any).__ide.simulate.session.lines.length)).toBe(2);
+    await page.keyboard.press('ControlOrMeta+Z');
+    await expect.poll(lines).toBe(before2);
   }, 180_000);
 });
