@@ -164,7 +164,6 @@ static void read_capture(SimSession *s, Buf *into, size_t max) {
 static void format_value(SimSession *s, Buf *b, const ContractType *type, const void *v) {
     switch (type->kind) {
     case CONTRACT_KIND_LONG: bfmt(b, "%ld", *(const long *)v); return;
-    case CONTRACT_KIND_DOUBLE: bfmt(b, "%.17g", *(const double *)v); return;
     case CONTRACT_KIND_STRING: {
         char tmp[CONTRACT_STRING_SIZE];
         memcpy(tmp, v, sizeof tmp);
@@ -173,7 +172,8 @@ static void format_value(SimSession *s, Buf *b, const ContractType *type, const 
         return;
     }
     case CONTRACT_KIND_STRUCT: break;
-    default: { /* bool, enums, arrays: their readable form (docs/runtime-api.md) */
+    default: { /* floats, bools, enums, arrays: their readable form (docs/runtime-api.md): a float as
+                  Cactal writes it (0.8, not the 0.80000000000000004 of all 17 digits) */
         char tmp[4096];
         contract_value_format(tmp, sizeof tmp, type, v);
         bstr(b, tmp);

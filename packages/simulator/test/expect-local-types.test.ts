@@ -21,7 +21,7 @@ beforeAll(async () => {
         'enum LineMode { SLOW, FAST };\ndatatype Report {string what, LineMode mode = LineMode.SLOW, bool ok = false};\n');
     writeFileSync(join(dir, 'supervisor.contract'), PROJECT_TEMPLATES['supervisor.contract']!.replace(
         'local { Position target = goal; string last; }',
-        'local { Position target = goal; string last; LineMode m = LineMode.FAST; bool on = true; float[3] gains = {0.5, 1.0, 2.0}; Report r = {"x", LineMode.FAST, true}; string note = "say \\"hi\\" a\\\\b"; }'));
+        'local { Position target = goal; string last; LineMode m = LineMode.FAST; bool on = true; float[3] gains = {0.5, 1.0, 2.0}; float speed = 0.8; float whole = 2.0; Report r = {"x", LineMode.FAST, true}; string note = "say \\"hi\\" a\\\\b"; }'));
     project = await prepared(dir);
 }, 240_000);
 afterAll(() => rmSync(dir, { recursive: true, force: true }));
@@ -46,6 +46,14 @@ describe('expect local on enumerations, bools and arrays', () => {
         expect(r.error).toBeUndefined();
         expect(r.failures.map((f) => f.message)).toEqual([]);
         expect(r.passed).toBe(true);
+    });
+
+    it('shows a float local as Cactal writes it (0.8, 2.0), not with a double\'s 17 digits', async () => {
+        const r = await run(['start MIS.mission()', 'expect at 2ms local MIS.mission.speed == 0.8'].join('\n'));
+        expect(r.passed).toBe(true);
+        const locals = r.steps.at(-1)!.record.locals ?? [];
+        expect(locals.find((l) => l.name === 'speed')).toMatchObject({ type: 'float', value: '0.8' });
+        expect(locals.find((l) => l.name === 'whole')).toMatchObject({ type: 'float', value: '2.0' });
     });
 
     it('a wrong value fails with the actual one', async () => {
