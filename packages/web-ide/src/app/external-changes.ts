@@ -1,5 +1,5 @@
 import type { LspClient } from '../lsp/lsp-client.js';
-import type { Workspace } from '../workspace/workspace.js';
+import { SAVE_SESSION_LOST, type Workspace } from '../workspace/workspace.js';
 import { debounce } from '../util/dom.js';
 import { dismissToasts, toast } from '../util/toast.js';
 import { api, ApiError } from '../api.js';
@@ -51,6 +51,8 @@ export function watchExternalChanges(workspace: Workspace, lsp: LspClient): Serv
   });
   events.on('hello', () => {
     if (sessionEnded) dismissToasts(SESSION_ENDED);
+    // a save refused for want of the session (workspace.ts) is saved again below: its notice goes too
+    dismissToasts(SAVE_SESSION_LOST);
     sessionEnded = false;
     if (wasDisconnected) {
       wasDisconnected = false;

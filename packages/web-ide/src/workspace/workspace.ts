@@ -63,6 +63,9 @@ const BACKUP_PREFIX = 'contract-studio:unsaved:';
  * edits are merged and saved, overlapping ones become a `conflict` the user resolves side by side.
  * A watcher change under unsaved edits is merged the same way (docs/ide.md, "Saves, versions and merges").
  */
+/** A save the server refused for want of this tab's session (its notice goes when the session is back: external-changes.ts). */
+export const SAVE_SESSION_LOST = 'Not saved: the IDE server no longer knows this tab\'s session (was it restarted?).';
+
 export class Workspace {
   root = '';
   name = '';
@@ -242,7 +245,7 @@ export class Workspace {
         this.setState(fs, 'error');
         this.onNotice.fire({
           level: 'error',
-          text: `Not saved: the IDE server no longer knows this tab's session (was it restarted?). Open the address it printed ` +
+          text: `${SAVE_SESSION_LOST} Open the address it printed ` +
             '(…/?token=…) in this tab: your text is kept in this browser, comes back there, and is saved then.',
         });
         return false;

@@ -801,6 +801,8 @@ describe('IDE in headless Chromium', () => {
     await other.goto(s.server.openUrl);
     await expect.poll(() => ended.count(), { timeout: 15_000 }).toBe(0);
     await expect.poll(() => disk('smodule3.contract'), { timeout: 10_000 }).toContain('// typed after the restart'); // saved on reconnecting
+    // and the save's own notice goes with it (it stayed, red, after the text was saved)
+    await expect.poll(() => notice.count(), { timeout: 10_000 }).toBe(0);
     await other.close();
     await page.goto(s.server.openUrl);
     await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
