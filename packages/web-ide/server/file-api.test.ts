@@ -88,6 +88,22 @@ describe('file API over HTTP', () => {
     expect(readFileSync(join(ws, 'sub', 'new.contract'), 'utf8')).toBe('datatype U {int y};');
   });
 
+  it('writes no file the editor could not open again (8 MiB), whether saved or created; the file on disk stays as it was', async () => {
+    const big = 'x'.repeat(8 * 1024 * 1024 + 1);
+    const put = await call('PUT', '/api/file?path=a.contract', big);
+    expect(put.status).toBe(413);
+    expect(put.body.error).toMatch(/^file larger than 8 MiB: not saved/);
+    expect(readFileSync(join(ws, 'a.contract'), 'utf8')).toBe('datatype T {int x};');
+    const created = await call('POST', '/api/create', { path: 'sub/big.contract', type: 'file', content: big });
+    expect(created.status).toBe(413);
+    expect(existsSync(join(ws, 'sub', 'big.contract'))).toBe(false);
+    // 8 MiB exactly is written and read back
+    const edge = 'y'.repeat(8 * 1024 * 1024);
+    expect((await call('PUT', '/api/file?path=sub/edge.txt', edge)).status).toBe(200);
+    expect((await call('GET', '/api/file?path=sub/edge.txt')).body.content).toBe(edge);
+    expect((await call('DELETE', '/api/file?path=sub/edge.txt')).status).toBe(200);
+  });
+
   it('creates, renames and deletes, with 409 on conflicts', async () => {
     expect((await call('POST', '/api/create', { path: 'sub/b.contract', type: 'file' })).status).toBe(201);
     expect((await call('POST', '/api/create', { path: 'sub/b.contract', type: 'file' })).status).toBe(409);

@@ -5,6 +5,9 @@ import { WorkspacePaths } from './workspace-paths.js';
 import { listTree } from './file-tree.js';
 import { HttpError } from './http-error.js';
 import { readBodyBytes, readJson, sendJson } from './http-util.js';
+
+/** A workspace file the editor opens or saves: 8 MiB at most (GET and PUT /api/file). */
+const MAX_FILE_BYTES = 8 * 1024 * 1024;
 import { saveWorkspaceFile } from './guarded-write.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { WorkspaceFs } from './workspace-fs.js';
@@ -48,7 +51,7 @@ export async function handleFileApi(
         const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
         try {
           if (st.isDirectory()) throw new HttpError(400, 'is a folder');
-          if (st.size > 8 * 1024 * 1024) throw new HttpError(413, 'file larger than 8 MiB');
+          if (st.size > MAX_FILE_BYTES) throw new HttpError(413, 'file larger than 8 MiB');
           const bytes = await handle.readFile();
           return { path: rel, content: bytes.toString('utf8'), mtimeMs: st.mtimeMs, version: fileVersion(bytes) };
         } finally {
@@ -63,12 +66,15 @@ export async function handleFileApi(
       const base = baseVersionOf(req.headers['if-match']);
       if (base === 'invalid') throw new HttpError(400, 'If-Match must be one quoted SHA-256 version, as GET /api/file gives it');
       const body = await readBodyBytes(req);
+      // what GET /api/file reads back: a file saved larger could not be opened again
+      if (body.length > MAX_FILE_BYTES) throw new HttpError(413, 'file larger than 8 MiB: not saved (the editor opens files of 8 MiB at most)');
       sendJson(res, 200, await saveWorkspaceFile(paths, rel, body, treeLock, { base, fileLocks }));
       return true;
     }
     case 'POST /api/create': {
       const body = await readJson(req);
       const rel = paths.entry(body.path);
+      if (typeof body.content === 'string' && Buffer.byteLength(body.content) > MAX_FILE_BYTES) throw new HttpError(413, 'file larger than 8 MiB: not created (the editor opens files of 8 MiB at most)');
       await fs.withParent(rel, true, async (dir, name) => {
         if (await WorkspaceFs.entry(dir, name)) throw new HttpError(409, `already exists: ${rel}`);
         if (body.type === 'dir') return mkdir(dir.at(name));
