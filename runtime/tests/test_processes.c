@@ -403,6 +403,32 @@ void test_launcher_sigint(void)
     h_teardown();
 }
 
+/* Test `name`: module P under a launcher, its output in `out`; the launcher's pid once P runs (-1: it did not start). */
+static pid_t launch_p(const char *name, char *out, size_t size)
+{
+    if (h_setup(name) != 0) return -1;
+    ContractShutdown();
+    char exe_p[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(out, size, "%s/launch.out", h_work_dir);
+    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, NULL };
+    pid_t launcher = start_launcher(argv, out);
+    if (launcher > 0) CHECK(wait_for_text(out, "1 module(s) running", 5000));
+    return launcher;
+}
+
+/* The launcher stopped: it exited 0 and said `said`, and P's log holds the KILL record `kill`. */
+static void stopped_saying(pid_t launcher, const char *out, const char *said, const char *kill)
+{
+    CHECK(h_wait_exit(launcher, 6000) == 0);
+    char *text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, said), "launcher output: %s", text ? text : "(none)");
+    free(text);
+    char *p_log = h_read_logs("P_");
+    CHECK_MSG(p_log && strstr(p_log, kill), "P's log: %s", p_log ? p_log : "(none)");
+    free(p_log);
+}
+
 /* The build service's stop with a reason (a limit hit: SIGTERM with a value queued, `kill -q 1`):
  * the launcher says it, and every module's KILL record reads it, so that the run's CSV logs say why
  * it stopped. An unknown value is a plain stop. */
@@ -433,31 +459,16 @@ void test_launcher_stop_why(void)
     h_teardown();
 
     /* a value the launcher does not know: a plain stop, a plain KILL */
-    REQUIRE(h_setup("stopwhy2") == 0);
-    ContractShutdown();
-    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
-    char *argv2[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, NULL };
-    launcher = start_launcher(argv2, out);
+    launcher = launch_p("stopwhy2", out, sizeof out);
     REQUIRE(launcher > 0);
-    CHECK(wait_for_text(out, "1 module(s) running", 5000));
     CHECK(sigqueue(launcher, SIGTERM, (union sigval){ .sival_int = 99 }) == 0);
-    CHECK(h_wait_exit(launcher, 6000) == 0);
-    text = h_read_file(out);
-    CHECK_MSG(text && strstr(text, "contract-launch: stopping\n"), "launcher output: %s", text ? text : "(none)");
-    free(text);
-    p_log = h_read_logs("P_");
-    CHECK_MSG(p_log && strstr(p_log, ",request_received,contract-launch,,0,KILL\n"), "P's log: %s", p_log ? p_log : "(none)");
-    free(p_log);
+    stopped_saying(launcher, out, "contract-launch: stopping\n", ",request_received,contract-launch,,0,KILL\n");
     h_teardown();
 
     /* `contract-launch --term-why CODE PID` (the build service's way in a container without a `kill`
      * that queues): the same stop, the same words; a code it does not know sends nothing */
-    REQUIRE(h_setup("stopwhy3") == 0);
-    ContractShutdown();
-    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
-    launcher = start_launcher(argv2, out);
+    launcher = launch_p("stopwhy3", out, sizeof out);
     REQUIRE(launcher > 0);
-    CHECK(wait_for_text(out, "1 module(s) running", 5000));
     char pid_text[24], why_out[600];
     snprintf(pid_text, sizeof pid_text, "%ld", (long)launcher);
     snprintf(why_out, sizeof why_out, "%s/why.out", h_work_dir);
@@ -466,13 +477,7 @@ void test_launcher_stop_why(void)
     CHECK_MSG(h_wait_exit(launcher, 300) == -1, "the launcher stopped on a code --term-why does not know");
     char *term[] = { "contract-launch", "--term-why", "5", pid_text, NULL };
     CHECK(h_run(term, why_out, 5000) == 0);
-    CHECK(h_wait_exit(launcher, 6000) == 0);
-    text = h_read_file(out);
-    CHECK_MSG(text && strstr(text, "contract-launch: stopping: the job was cancelled\n"), "launcher output: %s", text ? text : "(none)");
-    free(text);
-    p_log = h_read_logs("P_");
-    CHECK_MSG(p_log && strstr(p_log, ",request_received,contract-launch,,22,KILL (the job was cancelled)\n"), "P's log: %s", p_log ? p_log : "(none)");
-    free(p_log);
+    stopped_saying(launcher, out, "contract-launch: stopping: the job was cancelled\n", ",request_received,contract-launch,,22,KILL (the job was cancelled)\n");
     h_teardown();
 }
 
