@@ -19,6 +19,7 @@ import { ScenarioSession, type SchedulerFigures } from './scenario-session.js';
 import { SimulatePanel } from './simulate-panel.js';
 import { stepsToTrace } from '@contract-studio/simulator/trace';
 import { STEP_INPUT_FILE } from './step-input.js';
+import { shellWord } from '../util/shell-word.js';
 
 /**
  * Where the browser keeps the session (its start, its steps, its time) across a reload: one per
@@ -232,9 +233,4 @@ export class SimulateController {
       this.panel.showMessage(`could not save ${rel}: ${(e as Error).message}`, 'error');
     }
   }
-}
-
-/** `word` as one shell word (quoted when it holds anything but letters, digits and `_ . / - + , = :`). */
-export function shellWord(word: string): string {
-  return /^[A-Za-z0-9_./+,=:@%-]+$/.test(word) ? word : `'${word.replace(/'/g, `'\\''`)}'`;
 }
