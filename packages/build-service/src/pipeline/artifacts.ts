@@ -20,6 +20,7 @@ import { gunzipSync, gzip as gzipCb } from 'node:zlib';
 import { formatBytes, SERVICE_BOUNDS } from '../limits.js';
 import { readFileHeadNoFollow } from '../util/safe-fs.js';
 import type { TarEntryKind } from '../util/tar-reader.js';
+import { moduleOfLog } from '../trace/parse.js';
 
 const gzip = promisify(gzipCb);
 
@@ -114,7 +115,8 @@ function lastMonoNs(kept: Buffer): string {
 
 /** A CSV record (docs/runtime-api.md columns) saying the service cut the file. */
 function cutRecord(name: string, kept: Buffer, size: number, bound: number): string {
-  const module = /^([A-Za-z0-9_]+?)_\d/.exec(name)?.[1] ?? '';
+  // the log's module (a runtime log's name says it whole, `MSC_2_6-Dec-…`; another name up to its first `_<digit>`)
+  const module = moduleOfLog(name) ?? /^([A-Za-z0-9_]+?)_\d/.exec(name)?.[1] ?? '';
   return `${lastMonoNs(kept)},${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${kept.length} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
 }
 

@@ -70,6 +70,34 @@ export function parseCause(text: string): RuleCause {
 const RULE_DETAIL = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*) (active|inactive) cause=(.*)$/s;
 
 /** One CSV line (not the header) -> a record, or an unknown record saying what is wrong. */
+/** A runtime log's name (runtime/src/csvlog.c: `<MODULE>_<d>-<Mon>-<Y>-<H>h<M>m<S>s.csv`). */
+const LOG_NAME = /^(.+)_\d{1,2}-[A-Z][a-z]{2}-\d{4}-\d{2}h\d{2}m\d{2}s\.csv$/;
+/** moduleOfLog's answers (a replay interleaves its logs line by line); bounded, emptied when full. */
+const logModules = new Map<string, string | undefined>();
+
+/**
+ * The module whose log `file` is, when it is named as the runtime names a log (a folder before it
+ * is left out); undefined for any other name (a test's, a trace file's own logs).
+ */
+export function moduleOfLog(file: string): string | undefined {
+    if (logModules.has(file)) return logModules.get(file);
+    if (logModules.size >= 4096) logModules.clear();
+    const module = LOG_NAME.exec(file.slice(file.lastIndexOf('/') + 1))?.[1];
+    logModules.set(file, module);
+    return module;
+}
+
+/**
+ * Why a record of `module` read from `file` is not one: a runtime log holds its own module's
+ * records only, so a line naming another (ORD's deadline miss, SUP's KILL, in HOG's log) was
+ * written by that log's module's code, and is not taken for the other module's. Undefined when
+ * the record is where it belongs, or the file is not named as a log.
+ */
+export function foreignRecordReason(file: string, module: string): string | undefined {
+    const owner = moduleOfLog(file);
+    return owner === undefined || owner === module ? undefined : `a record of ${module.slice(0, 64)} in ${owner}'s log (a module's log holds its own records only: ${owner}'s code wrote this line?)`;
+}
+
 export function parseRecordLine(file: string, lineNo: number, line: string): TraceRecord {
     if (line.length > MAX_LINE_CHARS) return unknown(file, lineNo, `line longer than ${MAX_LINE_CHARS} characters`, line);
     const f = splitCsvLine(line);
@@ -79,6 +107,8 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     // (one shape for all): this runs for every record of a live trace and of `contract trace`
     if (!isDigitsIn(mono, 1, 20)) return unknown(file, lineNo, 'mono_ns is not a number', line);
     if (!isModuleNameIn(module)) return unknown(file, lineNo, 'bad module name', line);
+    const foreign = foreignRecordReason(file, module);
+    if (foreign) return unknown(file, lineNo, foreign, line);
     if ((port !== '' && !isDigitsIn(port, 1, 9)) || !isDigitsIn(size, 1, 15)) return unknown(file, lineNo, 'bad port or size', line);
     const kind = traceKind(event);
     const portN = port === '' ? null : Number(port);

@@ -7,11 +7,12 @@
  * (docs/monitor-performance.md "The live run's worker").
  *
  * scanLine makes exactly parseRecordLine's checks of a line without a quoted field (the field
- * checks are the reader's own, field-checks.ts): a line it accepts is one the full reader reads as
+ * checks are the reader's own, field-checks.ts; given the line's log, that the record is of its
+ * module, foreignRecordReason): a line it accepts is one the full reader reads as
  * a record of that kind, with that time. Anything else (a quoted field, a malformed line) is left
  * to the full reader, which says what is wrong with it.
  */
-import { MAX_LINE_CHARS, TRACE_KINDS, isDigitsIn, isModuleNameIn, isUserEventName } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, TRACE_KINDS, isDigitsIn, isModuleNameIn, isUserEventName, moduleOfLog } from '@contract-studio/build-service/trace';
 
 /**
  * What the last successful scanLine read (one object, reused: a scan makes none).
@@ -52,7 +53,7 @@ export function digitsValue(text: string, from: number, to: number): number {
  * mono_ns, module, port and size checks, an event of the trace table or a module's own); if so, `scanned` holds
  * its commas, time and kind.
  */
-export function scanLine(text: string, from: number, to: number): boolean {
+export function scanLine(text: string, from: number, to: number, file?: string): boolean {
   if (to - from > MAX_LINE_CHARS) return false;
   const comma = scanned.comma;
   let n = 0;
@@ -67,6 +68,11 @@ export function scanLine(text: string, from: number, to: number): boolean {
   if (n !== 7) return false;
   const c1 = comma[0]!, c2 = comma[1]!, c3 = comma[2]!, c4 = comma[3]!, c5 = comma[4]!, c6 = comma[5]!, c7 = comma[6]!;
   if (!isDigitsIn(text, 1, 20, from, c1) || !isModuleNameIn(text, c2 + 1, c3)) return false;
+  // a record of another module than the log's (its module's code wrote it): the full reader says so
+  if (file !== undefined) {
+    const owner = moduleOfLog(file);
+    if (owner !== undefined && (c3 - c2 - 1 !== owner.length || !text.startsWith(owner, c2 + 1))) return false;
+  }
   if ((c6 > c5 + 1 && !isDigitsIn(text, 1, 9, c5 + 1, c6)) || !isDigitsIn(text, 1, 15, c6 + 1, c7)) return false;
   // an event of the table, or a module's own (a `user` record, as the full reader reads it)
   const kind = kindIn(text, c3 + 1, c4) ?? (isUserEventName(text, c3 + 1, c4) ? 'user' : undefined);

@@ -344,7 +344,7 @@ export class MonitorModel implements MonitorView {
    * taken as one of its own. `cut`: the line was its log's last, with no line end (markCut).
    */
   pushLineIn(file: string, line: number, text: string, from: number, to: number, textId = --this.anonymousText, cut = false): void {
-    if (scanLine(text, from, to)) {
+    if (scanLine(text, from, to, file)) {
       const module = cut ? text.slice(scanned.comma[1]! + 1, scanned.comma[2]!) : '';
       if (this.pushScanned(text, from, to, textId)) {
         if (cut) this.markCut(module);
@@ -353,7 +353,12 @@ export class MonitorModel implements MonitorView {
     }
     const r = parseRecordLine(file, line, text.slice(from, to));
     const t = this.timeOfRecord(r);
-    this.keepLine(t, text, from, to, textId);
+    // a line that is no record is kept as what the reader made of it: read again without its
+    // log's name (a scrub back), a record of another module than its log's would be taken for one
+    if (r.kind === 'unknown') {
+      this.beforeKeep();
+      this.chunks[this.chunks.length - 1]!.push(t, r);
+    } else this.keepLine(t, text, from, to, textId);
     this.fold(t, r);
     if (cut && r.kind !== 'unknown') this.markCut((r as KnownRecord).module);
   }

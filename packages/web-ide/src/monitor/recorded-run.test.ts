@@ -59,7 +59,8 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
 
   it('keeps each log\'s text apart, when logs are alike to the byte or read in a different order', () => {
     // two logs with the same text (a copied module log): their lines are ranges of two texts
-    const twin = tutorial.map((f) => ({ name: f.name.replace(/^(\w+)_/, '$1X_'), text: f.text }));
+    // (named otherwise than a module's log: a log named as MSCX's holding MSC's records would be foreign lines)
+    const twin = tutorial.map((f) => ({ name: f.name.replace(/\.csv$/, '.copy.csv'), text: f.text }));
     expectSame([...tutorial, ...twin]);
     expectSame([...tutorial].reverse());
     // a bound of 64 records kept: the oldest chunks go and are reused for later stretches
@@ -102,6 +103,29 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
     const same = viaRanges(equal).model;
     expect(order(same)).toEqual(order(viaReader(equal)));
     expect(order(same)).toEqual(['f.R7 active', 'f.R5 active', 'f.R6 active', 'f.R6 inactive', 'f.R5 inactive']);
+  });
+
+  it('reads a record naming another module than its log\'s as a line that is no record (its log\'s module wrote it), as the trace reader does', () => {
+    const W2 = '2026-11-24T18:30:15.123456Z';
+    const hog = [HEADER, `1000,${W2},HOG,module_started,,,0,pid=7 priority=0`,
+      // ORD's deadline miss, SUP's rule change and KILL, forged by HOG's code
+      `1,${W2},ORD,ord_deadline_miss,,,0,schema=loop cycle=3`,
+      `99999999999999999,${W2},SUP,sup_rule,,,0,guard.NORMAL active cause=HOG:0 value="forged"`,
+      `2000,${W2},SUP,request_received,contract-launch,,22,KILL (the job was cancelled)`,
+      `3000,${W2},HOG,user,,,0,own`, ''].join('\n');
+    const sup = [HEADER, rule('1500', 'guard', 'LINK', true), ''].join('\n');
+    const files: LogFile[] = [{ name: 'HOG_6-Dec-2026-09h00m00s.csv', text: hog }, { name: 'SUP_6-Dec-2026-09h00m00s.csv', text: sup }];
+    const model = expectSame(files);
+    expect(model.live.unknownLines).toBe(3);
+    expect(model.t0).toBe(1000);
+    expect(model.end).toBe(2000);
+    expect(model.marks.map((m) => m.label)).not.toContainEqual(expect.stringContaining('NORMAL'));
+    expect(model.marks.map((m) => m.label)).not.toContainEqual(expect.stringContaining('asked to stop'));
+    expect(parseTrace(files).filter((r) => r.kind === 'unknown').map((r) => (r as { reason: string }).reason)).toEqual([
+      "a record of ORD in HOG's log (a module's log holds its own records only: HOG's code wrote this line?)",
+      "a record of SUP in HOG's log (a module's log holds its own records only: HOG's code wrote this line?)",
+      "a record of SUP in HOG's log (a module's log holds its own records only: HOG's code wrote this line?)",
+    ]);
   });
 
   it('marks a record its log ends inside (no line end: its module was killed while writing it), as contract trace tells it; not a line that is no record', () => {

@@ -87,7 +87,7 @@ const enum Read {
  * parsed.
  */
 function keyOf(file: string, lineNo: number, text: string, from: number, to: number): Read {
-  if (scanLine(text, from, to) && scanned.kind !== 'sup_rule') {
+  if (scanLine(text, from, to, file) && scanned.kind !== 'sup_rule') {
     setKey(text, from, scanned.comma[0]!);
     return Read.Scanned;
   }
