@@ -303,6 +303,21 @@ describe('6. a crashed module', () => {
         expect(lines.at(-2)).toMatch(/^5 records: /);
     });
 
+    it('contract trace says a log that lacks its start record was cut or rewritten (its module truncated it), and how it ended is not in it', async () => {
+        const dir = join(root, 'truncated-logs');
+        mkdirSync(dir);
+        writeFileSync(join(dir, 'ORD_1.csv'), moduleLog('ORD', 1_000_000_000));
+        // HOG's code truncated its log mid-run, then was killed: no header, no start, no exit
+        writeFileSync(join(dir, 'HOG_1.csv'), '1000400000,w,HOG,user,,,0,alloc 4 MiB\n1000500000,w,HOG,user,,,0,alloc 4 MiB\n');
+        // CTL's lost its start only
+        writeFileSync(join(dir, 'CTL_1.csv'), `${HEADER}\n1000001000,w,CTL,scheduler,,,0,activate S\n1002000000,w,CTL,module_exit,,,0,status=0\n`);
+        const io = capture(root);
+        expect(await runCli(['trace', 'truncated-logs'], io)).toBe(0);
+        expect(io.stdout).toContain('+0.000500s HOG  its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (`contract run` says it)\n');
+        expect(io.stdout).toContain('           CTL  its log lacks its start record: it was cut or rewritten after the module began (its code may have truncated it)\n');
+        expect(io.stdout).not.toContain('ORD  its log lacks');
+    });
+
     it('contract trace says a log the build service cut (its log-capped record) was cut, not that its module crashed', async () => {
         const dir = join(root, 'cut-by-service');
         mkdirSync(dir);

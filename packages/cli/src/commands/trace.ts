@@ -274,8 +274,9 @@ export class ModuleEnds {
     }
 
     /**
-     * One line per module whose log has its start but no exit record, or no record at all; said
-     * only of a run's logs (some module logged its start: the runtime's logs, not hand-made ones).
+     * One line per module whose log has its start but no exit record, records but not its start,
+     * or no record at all; said only of a run's logs (some module logged its start: the runtime's
+     * logs, not hand-made ones).
      */
     lines(): string[] {
         // a forged log's modules past MODULES_FOLLOWED: their records are counted, not followed
@@ -301,6 +302,14 @@ export class ModuleEnds {
                         ? `${at(this.last.get(m)!)} ${m.padEnd(4)} its log ends capped: the module ended after ${capped.why}, so its exit record is not in it (one of the ${capped.dropped} records not written), not lost to a crash; \`contract run\` says how it ended`
                         : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record: no exit record follows (it crashed, was killed, or its code called exit(); \`contract run\` says which)${this.capped.has(m) ? ` (its log had reached its bound; the last log-capped record, which the runtime writes at any end but a SIGKILL, is missing too)` : ''}`);
             }
+        }
+        // a log with records but not its start: cut or rewritten after its module began (its own
+        // code may have truncated it); with no exit either, how the module ended is not in it
+        const headless = [...this.modules.keys()].filter((m) => this.last.has(m) && !this.started.has(m));
+        for (const m of headless) {
+            out.push(this.exited.has(m)
+                ? `${''.padStart(10)} ${m.padEnd(4)} its log lacks its start record: it was cut or rewritten after the module began (its code may have truncated it)`
+                : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (\`contract run\` says it)`);
         }
         for (const m of this.modules.keys()) {
             if (!this.last.has(m)) {
