@@ -430,8 +430,9 @@ static void reap(void)
                 say("module %s (pid %ld) exited with status %d%s", c->name, (long)pid, code,
                     c->signalled ? "" : stopping ? (code ? when : "") : code ? "" : " before the run's end");
             }
-            recover_log(c, pid);
             remove_module_files(run_dir, c->name);
+            /* after its files are gone (nothing waits on its log) */
+            recover_log(c, pid);
         }
     }
 }
