@@ -489,14 +489,17 @@ describe('Monitor in headless Chromium', () => {
     const errors: string[] = [];
     page.on('pageerror', (e) => errors.push(e.message));
     mkdirSync(join(s.workspace, 'hostile-run'));
+    // (each module's records in its own log: a line of ORD's in SUP's log is no record of ORD's)
+    writeFileSync(join(s.workspace, 'hostile-run', 'ORD_1-Jan-2026-00h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
+      '3000,w,ORD,request_received,SUP,,0,START __proto__', '4000,w,ORD,scheduler,,,0,activate __proto__'].join('\n') + '\n');
     writeFileSync(join(s.workspace, 'hostile-run', 'SUP_1-Jan-2026-00h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
       '1000,w,SUP,supervisor,,,0,function constructor started', '2000,w,SUP,sup_rule,,,0,constructor.__proto__ active cause=stop',
-      '3000,w,ORD,request_received,SUP,,0,START __proto__', '4000,w,ORD,scheduler,,,0,activate __proto__', '5000,w,SUP,sup_rule,,,0,action.toString active cause=elapsed=1000ns',
+      '5000,w,SUP,sup_rule,,,0,action.toString active cause=elapsed=1000ns',
       // long names: a rule name of 27 characters is shown whole, a function name of 2,000 is cut to the pane
       '6000,w,SUP,sup_rule,,,0,action.OBSTACLE_AVOIDANCE_RECOVERY active cause=elapsed=1000ns', `7000,w,SUP,supervisor,,,0,function ${'F'.repeat(2000)} started`].join('\n') + '\n');
     await expect.poll(() => page.locator('.monitor-sources option[value="dir:hostile-run"]').count(), { timeout: 10_000 }).toBe(1);
     await page.locator('.monitor-sources').selectOption('dir:hostile-run');
-    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('1 CSV log(s) in hostile-run');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in hostile-run');
     await expect.poll(() => page.locator('.monitor-fn[data-function="SUP.constructor"]').textContent()).toMatch(/^constructor\(\) \(not in the model\) — running since/);
     expect(await rule(page, 'SUP.constructor.__proto__').getAttribute('data-active')).toBe('true');
     expect(await rule(page, 'SUP.action.toString').getAttribute('data-active')).toBe('true');
