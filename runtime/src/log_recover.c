@@ -79,6 +79,14 @@ static int write_fully(int fd, const char *buf, size_t len)
 
 static char recover_buf[LOG_BUF];
 
+/* Each buffer's words name bytes within it (a hostile or torn page does not). */
+static int buffers_in_bounds(const unsigned long long *w)
+{
+    for (int i = 0; i < 2; i++)
+        if (w[MARK_WORD_LEN(i)] > LOG_BUF || w[MARK_WORD_START(i)] > (1ULL << 62)) return 0;
+    return 1;
+}
+
 int rt_log_recover(const char *dir, long pid, RecoveredLog *out)
 {
     memset(out, 0, sizeof *out);
@@ -99,9 +107,7 @@ int rt_log_recover(const char *dir, long pid, RecoveredLog *out)
     /* the buffers in the order of their bytes; each within its buffer */
     int first = w[MARK_WORD_START(0)] <= w[MARK_WORD_START(1)] ? 0 : 1;
     int order[2] = { first, !first };
-    for (int i = 0; i < 2; i++)
-        if (w[MARK_WORD_LEN(i)] > LOG_BUF || w[MARK_WORD_START(i)] > (1ULL << 62)) w[MARK_WORD_BROKEN] = 2;
-    if (w[MARK_WORD_BROKEN] != 0) {
+    if (w[MARK_WORD_BROKEN] != 0 || !buffers_in_bounds(w)) {
         out->broken = 1; /* a capped log, a write error, a crash handler's own records: as it is */
         goto done;
     }
@@ -128,16 +134,20 @@ int rt_log_recover(const char *dir, long pid, RecoveredLog *out)
             out->broken = 1;
             break;
         }
-        size_t whole = 0; /* up to the last line end within the bound */
+        size_t whole = 0; /* up to the last line end within the bound: so many records */
+        unsigned long long records = 0;
         for (size_t b = 0; b < n && b < room; b++)
-            if (recover_buf[b] == '\n') whole = b + 1;
+            if (recover_buf[b] == '\n') {
+                whole = b + 1;
+                records++;
+            }
         if (whole < n) out->dropped = 1;
         if (whole == 0) break;
         if (write_fully(lfd, recover_buf, whole) != 0) {
             out->broken = 1;
             break;
         }
-        for (size_t b = 0; b < whole; b++) out->records += recover_buf[b] == '\n';
+        out->records += records;
         out->bytes += whole;
         have += whole;
         room -= whole;
