@@ -385,18 +385,36 @@ void test_priority(void)
     h_teardown();
 }
 
+/* Test `name`: `modules` (test executables, NULL-terminated, at most 4) under a launcher, its
+ * output in `out`; the launcher's pid once they all run (-1: it did not start). */
+static pid_t launch_modules(const char *name, const char *const modules[], char *out, size_t size)
+{
+    if (h_setup(name) != 0) return -1;
+    ContractShutdown(); /* the tester needs no mailbox here: it must not sit in the launcher's run dir */
+    char exes[4][600];
+    char *argv[10] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir };
+    int n = 0;
+    for (; modules[n] && n < 4; n++) {
+        snprintf(exes[n], sizeof exes[n], "%s/%s", h_bin_dir, modules[n]);
+        argv[5 + n] = exes[n];
+    }
+    argv[5 + n] = NULL;
+    snprintf(out, size, "%s/launch.out", h_work_dir);
+    pid_t launcher = start_launcher(argv, out);
+    char running[32];
+    snprintf(running, sizeof running, "%d module(s) running", n);
+    if (launcher > 0) CHECK(wait_for_text(out, running, 5000));
+    return launcher;
+}
+
+static const char *const P_ONLY[] = { "P", NULL };
+static const char *const P_AND_C1[] = { "P", "C1", NULL };
+
 void test_launcher_sigint(void)
 {
-    REQUIRE(h_setup("sigint") == 0);
-    ContractShutdown();
-    char exe_p[600], exe_c1[600], out[600];
-    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
-    snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
-    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
-    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c1, NULL };
-    pid_t launcher = start_launcher(argv, out);
+    char out[600];
+    pid_t launcher = launch_modules("sigint", P_AND_C1, out, sizeof out);
     REQUIRE(launcher > 0);
-    CHECK(wait_for_text(out, "2 module(s) running", 5000));
     long pp = pid_of(h_run_dir, "P"), pc1 = pid_of(h_run_dir, "C1");
     kill(launcher, SIGINT); /* what Ctrl-C in a terminal does */
     CHECK(h_wait_exit(launcher, 6000) == 0);
@@ -407,20 +425,6 @@ void test_launcher_sigint(void)
     CHECK(text && strstr(text, "all modules stopped cleanly"));
     free(text);
     h_teardown();
-}
-
-/* Test `name`: module P under a launcher, its output in `out`; the launcher's pid once P runs (-1: it did not start). */
-static pid_t launch_p(const char *name, char *out, size_t size)
-{
-    if (h_setup(name) != 0) return -1;
-    ContractShutdown();
-    char exe_p[600];
-    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
-    snprintf(out, size, "%s/launch.out", h_work_dir);
-    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, NULL };
-    pid_t launcher = start_launcher(argv, out);
-    if (launcher > 0) CHECK(wait_for_text(out, "1 module(s) running", 5000));
-    return launcher;
 }
 
 /* The launcher stopped: it exited 0 and said `said`, and P's log holds the KILL record `kill`. */
@@ -440,16 +444,9 @@ static void stopped_saying(pid_t launcher, const char *out, const char *said, co
  * it stopped. An unknown value is a plain stop. */
 void test_launcher_stop_why(void)
 {
-    REQUIRE(h_setup("stopwhy") == 0);
-    ContractShutdown();
-    char exe_p[600], exe_c1[600], out[600];
-    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
-    snprintf(exe_c1, sizeof exe_c1, "%s/C1", h_bin_dir);
-    snprintf(out, sizeof out, "%s/launch.out", h_work_dir);
-    char *argv[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, exe_p, exe_c1, NULL };
-    pid_t launcher = start_launcher(argv, out);
+    char out[600];
+    pid_t launcher = launch_modules("stopwhy", P_AND_C1, out, sizeof out);
     REQUIRE(launcher > 0);
-    CHECK(wait_for_text(out, "2 module(s) running", 5000));
     CHECK(sigqueue(launcher, SIGTERM, (union sigval){ .sival_int = 1 }) == 0);
     CHECK(h_wait_exit(launcher, 6000) == 0);
     char *text = h_read_file(out);
@@ -465,7 +462,7 @@ void test_launcher_stop_why(void)
     h_teardown();
 
     /* a value the launcher does not know: a plain stop, a plain KILL */
-    launcher = launch_p("stopwhy2", out, sizeof out);
+    launcher = launch_modules("stopwhy2", P_ONLY, out, sizeof out);
     REQUIRE(launcher > 0);
     CHECK(sigqueue(launcher, SIGTERM, (union sigval){ .sival_int = 99 }) == 0);
     stopped_saying(launcher, out, "contract-launch: stopping\n", ",request_received,contract-launch,,0,KILL\n");
@@ -473,7 +470,7 @@ void test_launcher_stop_why(void)
 
     /* `contract-launch --term-why CODE PID` (the build service's way in a container without a `kill`
      * that queues): the same stop, the same words; a code it does not know sends nothing */
-    launcher = launch_p("stopwhy3", out, sizeof out);
+    launcher = launch_modules("stopwhy3", P_ONLY, out, sizeof out);
     REQUIRE(launcher > 0);
     char pid_text[24], why_out[600];
     snprintf(pid_text, sizeof pid_text, "%ld", (long)launcher);
