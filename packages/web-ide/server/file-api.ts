@@ -5,14 +5,14 @@ import { WorkspacePaths } from './workspace-paths.js';
 import { listTree } from './file-tree.js';
 import { HttpError } from './http-error.js';
 import { readBodyBytes, readJson, sendJson } from './http-util.js';
-
-/** A workspace file the editor opens or saves: 8 MiB at most (GET and PUT /api/file). */
-const MAX_FILE_BYTES = 8 * 1024 * 1024;
 import { saveWorkspaceFile } from './guarded-write.js';
 import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { WorkspaceFs } from './workspace-fs.js';
 import { FileLocks } from './file-locks.js';
 import { baseVersionOf, fileVersion } from './file-version.js';
+
+/** A workspace file the editor opens, saves or creates: 8 MiB at most (GET and PUT /api/file, POST /api/create). */
+const MAX_FILE_BYTES = 8 * 1024 * 1024;
 
 const { O_WRONLY, O_CREAT, O_EXCL, O_NOFOLLOW } = constants;
 

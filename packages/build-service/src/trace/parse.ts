@@ -69,7 +69,6 @@ export function parseCause(text: string): RuleCause {
 
 const RULE_DETAIL = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*) (active|inactive) cause=(.*)$/s;
 
-/** One CSV line (not the header) -> a record, or an unknown record saying what is wrong. */
 /** A runtime log's name (runtime/src/csvlog.c: `<MODULE>_<d>-<Mon>-<Y>-<H>h<M>m<S>s.csv`). */
 const LOG_NAME = /^(.+)_\d{1,2}-[A-Z][a-z]{2}-\d{4}-\d{2}h\d{2}m\d{2}s\.csv$/;
 /** moduleOfLog's answers (a replay interleaves its logs line by line); bounded, emptied when full. */
@@ -98,6 +97,7 @@ export function foreignRecordReason(file: string, module: string): string | unde
     return owner === undefined || owner === module ? undefined : `a record of ${module.slice(0, 64)} in ${owner}'s log (a module's log holds its own records only: ${owner}'s code wrote this line?)`;
 }
 
+/** One CSV line (not the header) of log `file` -> a record, or an unknown record saying what is wrong. */
 export function parseRecordLine(file: string, lineNo: number, line: string): TraceRecord {
     if (line.length > MAX_LINE_CHARS) return unknown(file, lineNo, `line longer than ${MAX_LINE_CHARS} characters`, line);
     const f = splitCsvLine(line);
