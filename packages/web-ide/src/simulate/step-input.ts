@@ -14,6 +14,7 @@
 import { monaco } from '../editor/monaco.js';
 import { SCENARIO_LANGUAGE_ID } from '../editor/scenario-language.js';
 import { h } from '../util/dom.js';
+import { focusableIn } from '../util/focusable.js';
 
 /** The model's file name: main.ts keeps its diagnostics out of the Problems panel. */
 export const STEP_INPUT_FILE = '.simulate-step.scenario';
@@ -27,9 +28,6 @@ export interface StepKeys {
   enter(text: string): void;
   escape(): void;
 }
-
-/** The controls the keyboard reaches in the page, in document order. */
-const FOCUSABLE = 'button:not([disabled]), input:not([disabled]), select:not([disabled]), textarea:not([disabled]), a[href], [tabindex]:not([tabindex="-1"])';
 
 export class StepInput {
   readonly element = h('div', { class: 'sim-step', role: 'textbox', 'aria-label': 'step to inject' });
@@ -89,8 +87,7 @@ export class StepInput {
 
   /** Focuses the next (or, `back`, the previous) control of the page outside this field. */
   private moveFocus(back: boolean): void {
-    const all = [...document.querySelectorAll<HTMLElement>(FOCUSABLE)].filter((el) => el.getClientRects().length > 0 || el === this.element);
-    const outside = all.filter((el) => !this.element.contains(el));
+    const outside = focusableIn(document).filter((el) => !this.element.contains(el));
     const after = outside.filter((el) => this.element.compareDocumentPosition(el) & Node.DOCUMENT_POSITION_FOLLOWING);
     const before = outside.filter((el) => this.element.compareDocumentPosition(el) & Node.DOCUMENT_POSITION_PRECEDING);
     (back ? before.at(-1) : after[0])?.focus();

@@ -1,3 +1,5 @@
+import { focusableIn } from './focusable.js';
+
 /** One place the keyboard can go inside a modal: an element, or a widget (a Monaco editor) with its own focus. */
 export interface FocusStop {
   el: HTMLElement;
@@ -12,8 +14,6 @@ export interface Modal {
    */
   close(teardown?: () => void): void;
 }
-
-const FOCUSABLE = 'button:not([disabled]), input:not([disabled]), select:not([disabled]), textarea:not([disabled]), [href], [tabindex]:not([tabindex="-1"])';
 
 /**
  * Makes `dialog` a modal dialog (WAI-ARIA dialog pattern): `role="dialog"`, `aria-modal="true"`, the
@@ -33,7 +33,7 @@ export function openModal(overlay: HTMLElement, dialog: HTMLElement, opts: {
   dialog.setAttribute('role', 'dialog');
   dialog.setAttribute('aria-modal', 'true');
   const stops = (): FocusStop[] =>
-    opts.stops?.() ?? [...dialog.querySelectorAll<HTMLElement>(FOCUSABLE)].filter((el) => el.getClientRects().length > 0).map((el) => ({ el, focus: () => el.focus() }));
+    opts.stops?.() ?? focusableIn(dialog).map((el) => ({ el, focus: () => el.focus() }));
   const onKey = (e: KeyboardEvent) => {
     if (e.key !== 'Tab' || e.ctrlKey || e.altKey || e.metaKey) return;
     const list = stops();
