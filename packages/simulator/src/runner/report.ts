@@ -89,7 +89,8 @@ const TEXT_LINES_PER_PART = 5_000;
  */
 export function* textReportParts(results: ScenarioResult[], options: { verbose?: boolean } = {}): Generator<string> {
     for (const r of results) yield* textScenarioParts(r, options);
-    yield textSummary(results.length - results.filter((r) => !r.passed).length, results.filter((r) => !r.passed).length);
+    const failed = results.filter((r) => !r.passed).length;
+    yield textSummary(results.length - failed, failed);
 }
 
 /** The text report's last line, once every scenario's parts were written. */
@@ -104,64 +105,62 @@ export function textSummary(passed: number, failed: number): string {
  */
 export function* textScenarioParts(r: ScenarioResult, options: { verbose?: boolean } = {}): Generator<string> {
     let out: string[] = [];
-    {
-        const formatTime = reportTimeFormat(timesOf(r));
-        const releases = new ReleaseFolder();
-        const misses = new MissTeller();
-        out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
-        let trimmed: StepResult['trimmed'];
-        for (const s of r.steps) {
-            // where the records kept whole end (RECORD_BOUNDS): said where it happens, told in the NOTE below
-            if (s.trimmed && s.trimmed !== trimmed) {
-                trimmed = s.trimmed;
-                out.push(`  ----  ${trimmed === 'compact' ? 'from here on the steps were kept without their actions, engine lines and records' : 'from here on the steps were kept without their rule changes and output either'} (NOTE below)`);
-            }
-            const time = formatTime(s.timeNs).padStart(8);
-            const mark = s.ok ? (s.kind === 'expect' ? 'ok  ' : '    ') : 'FAIL';
-            // what happened since the step before, in the engines' order: what came before this
-            // step (a timer, a release) above its line, so that the time column reads down
-            const happened: Array<{ t: number; seq: number; text: string }> = s.record.rules.map((c) => ({
-                t: c.timeNs, seq: c.seq ?? -1,
-                text: `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`,
-            }));
-            if (options.verbose) {
-                // the actions in a run's words, and what a module or flow hold decided beyond its action line
-                for (const l of actionLines(s.record.actions, s.record.records)) happened.push({ t: l.t, seq: l.seq, text: `  ${l.who}: ${safe(l.text)}` });
-                // a run a `finish` ended (no STOP, no ack), in the words of `contract trace`
-                for (const rec of s.record.records ?? []) {
-                    const ended = rec.kind === 'run_finished' ? ownRunEndText(rec.detail) : undefined;
-                    if (ended) happened.push({ t: rec.timeNs, seq: rec.seq ?? -1, text: `  ${safe(rec.module)}| ${ended}` });
-                }
-                const told = misses.misses(s.record);
-                // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
-                const log = told.length ? s.record.log.filter((l) => !isMissLine(l)) : s.record.log;
-                happened.push(...releases.fold(log), ...told);
-            }
-            const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);
-            const line = (h: { t: number; text: string }) => `              ${formatTime(h.t).padStart(8)}  ${h.text}`;
-            // (an expectation looks at the state after its time: what happened at its time too)
-            const before = (h: { t: number }) => h.t < s.timeNs || (h.t === s.timeNs && (s.kind === 'expect' || s.kind === 'end'));
-            for (const h of ordered) if (before(h)) out.push(line(h));
-            out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
-            for (const h of ordered) if (!before(h)) out.push(line(h));
-            // what the user's functions printed (with or without --verbose: docs/simulation.md §2), under the step's own lines
-            out.push(...outputLines(s.record.output, ' '.repeat(26)));
-            // (an event that failed was delivered to nobody for its own reason, said below: not for want of a subscriber)
-            if (s.kind === 'event' && s.ok && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
-            if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
-            if (out.length >= TEXT_LINES_PER_PART) {
-                yield out.join('\n') + '\n';
-                out = [];
-            }
+    const formatTime = reportTimeFormat(timesOf(r));
+    const releases = new ReleaseFolder();
+    const misses = new MissTeller();
+    out.push(`${r.file}${r.title ? ` — ${safe(r.title)}` : ''}`);
+    let trimmed: StepResult['trimmed'];
+    for (const s of r.steps) {
+        // where the records kept whole end (RECORD_BOUNDS): said where it happens, told in the NOTE below
+        if (s.trimmed && s.trimmed !== trimmed) {
+            trimmed = s.trimmed;
+            out.push(`  ----  ${trimmed === 'compact' ? 'from here on the steps were kept without their actions, engine lines and records' : 'from here on the steps were kept without their rule changes and output either'} (NOTE below)`);
         }
-        // what ORD did of each periodic schema in the whole scenario (the counts `expect deadline misses` and `expect overruns` check)
-        if (options.verbose) for (const l of r.trimmed?.schemaLines ?? misses.schemaLines()) out.push(`                  ${safe(l)}`);
-        if (r.trimmed) out.push(`  NOTE ${safe(r.trimmed.message)}`);
-        if (r.error) out.push(`  ERROR ${safe(r.error)}`);
-        const expectations = r.steps.filter((s) => s.kind === 'expect').length;
-        out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
-        out.push('');
+        const time = formatTime(s.timeNs).padStart(8);
+        const mark = s.ok ? (s.kind === 'expect' ? 'ok  ' : '    ') : 'FAIL';
+        // what happened since the step before, in the engines' order: what came before this
+        // step (a timer, a release) above its line, so that the time column reads down
+        const happened: Array<{ t: number; seq: number; text: string }> = s.record.rules.map((c) => ({
+            t: c.timeNs, seq: c.seq ?? -1,
+            text: `${c.active ? '+' : '-'} ${c.supervisor}.${c.function}.${c.rule} ${c.active ? 'active' : 'inactive'}  <- ${safe(readableCause(c.cause))}`,
+        }));
+        if (options.verbose) {
+            // the actions in a run's words, and what a module or flow hold decided beyond its action line
+            for (const l of actionLines(s.record.actions, s.record.records)) happened.push({ t: l.t, seq: l.seq, text: `  ${l.who}: ${safe(l.text)}` });
+            // a run a `finish` ended (no STOP, no ack), in the words of `contract trace`
+            for (const rec of s.record.records ?? []) {
+                const ended = rec.kind === 'run_finished' ? ownRunEndText(rec.detail) : undefined;
+                if (ended) happened.push({ t: rec.timeNs, seq: rec.seq ?? -1, text: `  ${safe(rec.module)}| ${ended}` });
+            }
+            const told = misses.misses(s.record);
+            // ORD's bare line of a miss the typed record tells (with its cycle and what it waited for)
+            const log = told.length ? s.record.log.filter((l) => !isMissLine(l)) : s.record.log;
+            happened.push(...releases.fold(log), ...told);
+        }
+        const ordered = happened.map((h, i) => ({ ...h, i })).sort((x, y) => x.t - y.t || x.seq - y.seq || x.i - y.i);
+        const line = (h: { t: number; text: string }) => `              ${formatTime(h.t).padStart(8)}  ${h.text}`;
+        // (an expectation looks at the state after its time: what happened at its time too)
+        const before = (h: { t: number }) => h.t < s.timeNs || (h.t === s.timeNs && (s.kind === 'expect' || s.kind === 'end'));
+        for (const h of ordered) if (before(h)) out.push(line(h));
+        out.push(`  ${mark} ${time}  ${s.kind === 'end' ? `end of the scenario` : safe(s.source)}`);
+        for (const h of ordered) if (!before(h)) out.push(line(h));
+        // what the user's functions printed (with or without --verbose: docs/simulation.md §2), under the step's own lines
+        out.push(...outputLines(s.record.output, ' '.repeat(26)));
+        // (an event that failed was delivered to nobody for its own reason, said below: not for want of a subscriber)
+        if (s.kind === 'event' && s.ok && s.record.delivered === 0) out.push('                        (no supervisor is subscribed to this event: nobody received it)');
+        if (!s.ok && s.message) out.push(`       ${safe(s.message)}`);
+        if (out.length >= TEXT_LINES_PER_PART) {
+            yield out.join('\n') + '\n';
+            out = [];
+        }
     }
+    // what ORD did of each periodic schema in the whole scenario (the counts `expect deadline misses` and `expect overruns` check)
+    if (options.verbose) for (const l of r.trimmed?.schemaLines ?? misses.schemaLines()) out.push(`                  ${safe(l)}`);
+    if (r.trimmed) out.push(`  NOTE ${safe(r.trimmed.message)}`);
+    if (r.error) out.push(`  ERROR ${safe(r.error)}`);
+    const expectations = r.steps.filter((s) => s.kind === 'expect').length;
+    out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
+    out.push('');
     yield out.join('\n') + '\n';
 }
 
@@ -194,22 +193,20 @@ export const JSON_REPORT_END = ']}\n';
 
 /** One scenario's parts of the JSON report (`first`: the report's first scenario, not preceded by a comma). */
 export function* jsonScenarioParts(r: ScenarioResult, first: boolean): Generator<string> {
-    {
-        const head = JSON.stringify({
-            file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
-            ...(r.trimmed ? { trimmed: trimmedJson(r.trimmed) } : {}),
-            schemas: schemaCounts(r),
-            failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),
-            steps: [],
-        });
-        // `…,"steps":[]}`: the steps go between its brackets
-        yield `${first ? '' : ','}${head.slice(0, -2)}`;
-        for (let from = 0; from < r.steps.length; from += JSON_STEPS_PER_PART) {
-            const part = r.steps.slice(from, from + JSON_STEPS_PER_PART).map((s) => JSON.stringify({ ...s.record, source: s.source, kind: s.kind }));
-            yield `${from ? ',' : ''}${part.join(',')}`;
-        }
-        yield ']}';
+    const head = JSON.stringify({
+        file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
+        ...(r.trimmed ? { trimmed: trimmedJson(r.trimmed) } : {}),
+        schemas: schemaCounts(r),
+        failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),
+        steps: [],
+    });
+    // `…,"steps":[]}`: the steps go between its brackets
+    yield `${first ? '' : ','}${head.slice(0, -2)}`;
+    for (let from = 0; from < r.steps.length; from += JSON_STEPS_PER_PART) {
+        const part = r.steps.slice(from, from + JSON_STEPS_PER_PART).map((s) => JSON.stringify({ ...s.record, source: s.source, kind: s.kind }));
+        yield `${from ? ',' : ''}${part.join(',')}`;
     }
+    yield ']}';
 }
 
 export function jsonReport(results: ScenarioResult[]): string {
