@@ -475,10 +475,31 @@ static int first_ended(void)
 
 /* Poll outputs and signals until `deadline`, until `reached()` (may be NULL) or until stop is asked.
  * Returns 1 if a stop signal came. */
+/* Forwards what the modules have already written (their pipes are non-blocking): a module's
+ * output from before what the launcher does next (its `init done` before `started P.mission`)
+ * comes out before the launcher's line about it. Bounded: a module that writes without end
+ * does not hold the launcher here. */
+static void drain_output(void)
+{
+    for (int round = 0; round < 64; round++) {
+        struct pollfd pfd[MAX_MODULES];
+        int idx[MAX_MODULES];
+        int n = 0;
+        for (int i = 0; i < n_children; i++)
+            if (children[i].out_fd >= 0) { pfd[n].fd = children[i].out_fd; pfd[n].events = POLLIN; idx[n++] = i; }
+        if (n == 0 || poll(pfd, (nfds_t)n, 0) <= 0) return;
+        for (int k = 0; k < n; k++)
+            if (pfd[k].revents) pump(&children[idx[k]]);
+    }
+}
+
 static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
 {
     for (;;) {
-        if (reached && reached()) return 0;
+        if (reached && reached()) {
+            drain_output();
+            return 0;
+        }
         RTIME now = now_ns();
         if (deadline != INT64_MAX && now >= deadline) return 0;
         struct pollfd pfd[MAX_MODULES + 1];
