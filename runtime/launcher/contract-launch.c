@@ -55,6 +55,7 @@ typedef struct {
     int ready;            /* its <NAME>.ready file exists: its init returned */
     int failed;           /* died on its own with a signal or a non-zero status (also while the run stops) */
     int signalled;        /* the signal the launcher sent it at the stop (SIGTERM, then SIGKILL), 0 when none */
+    int killed;           /* failed by a SIGKILL the launcher did not send (the kernel's OOM killer, RLIMIT_RTTIME, another process) */
 } Child;
 
 static Child children[MAX_MODULES];
@@ -420,6 +421,7 @@ static void reap(void)
                 int sig = WTERMSIG(status);
                 int ours = c->signalled != 0;
                 if (!ours) c->failed = 1;
+                if (!ours && sig == SIGKILL) c->killed = 1;
                 char note[160];
                 say("module %s (pid %ld) %s by signal %d (%s)%s%s", c->name, (long)pid, ours ? "terminated" : "died",
                     sig, strsignal(sig), rttime_note(sig, &ru, note, sizeof note), ours ? "" : when);
@@ -823,7 +825,12 @@ int main(int argc, char *argv[])
     for (int k = 0; k < n_children; k++) {
         if (!children[k].failed) continue;
         failed++;
-        say("FAILED: module %s crashed", children[k].name);
+        /* a SIGKILL is no crash of its code: said apart, with who sends one (the `died by signal 9`
+         * line above says when; with a limit, the `stopping: ...` line says which) */
+        if (children[k].killed)
+            say("FAILED: module %s was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit or the real-time CPU bound, or another process's)", children[k].name);
+        else
+            say("FAILED: module %s crashed", children[k].name);
     }
     /* "cleanly" only when every module ended on its KILL request: one the launcher had to terminate
      * (it did not answer) is named again, after the lines of the others' last output */

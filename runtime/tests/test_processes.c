@@ -141,6 +141,14 @@ void test_launcher_module_ends(void)
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "FAILED: module P"));
     free(text);
 
+    /* a SIGKILL the launcher did not send (the kernel's OOM killer sends one) is no crash of its code: said apart */
+    text = launch_ending(argv, out, "C1:sigkill", 8000, &code);
+    CHECK(code == 1);
+    CHECK(text && strstr(text, "module C1 (pid") && strstr(text, "died by signal 9 (Killed)"));
+    CHECK(text && strstr(text, "FAILED: module C1 was killed (a SIGKILL the launcher did not send: "));
+    CHECK(text && !strstr(text, "FAILED: module C1 crashed"));
+    free(text);
+
     text = launch_ending(argv, out, "C1:exit3", 8000, &code);
     CHECK(code == 1);
     CHECK(text && strstr(text, "module C1 (pid") && strstr(text, "exited with status 3 while the run stopped"));

@@ -16,5 +16,5 @@ export type { Sandbox, SandboxChoice, SandboxName, Mechanisms } from './sandbox/
 export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
 export { ARTIFACT_BOUNDS, artifactBytes, type Artifact, type ArtifactBounds, type RunArtifacts, type SkippedArtifact } from './pipeline/artifacts.js';
 export { describeIssues, type RunIssue, type RunIssueKind } from './pipeline/run-issues.js';
-export { LauncherCrashes } from './pipeline/launcher-crashes.js';
+export { LauncherCrashes, type LauncherFailure } from './pipeline/launcher-crashes.js';
 export type { SweepPolicy, SweepReport } from './sandbox/docker-sweep.js';

@@ -94,12 +94,18 @@ describe('a module the memory limit killed (defect 7)', () => {
         expect(failureText(f!)).toBe("CTL was killed by the memory limit while the run stopped (signal 9: the kernel's OOM killer, which kills the process using the most memory)");
     });
 
-    it('without the memory limit hit (another limit, or none), a signal 9 is told as the launcher says it', () => {
+    it('without the memory limit hit (another limit, or none), a signal 9 the launcher did not send is told as a kill, not a crash', () => {
         for (const hit of [null, { name: 'processes' }]) {
             const [f] = moduleFailures(lines, hit);
-            expect(f).toEqual({ module: 'CTL', how: 'died by signal 9 (Killed)' });
-            expect(failureText(f!)).toBe('CTL crashed (died by signal 9 (Killed))');
+            expect(f).toMatchObject({ module: 'CTL', how: 'died by signal 9 (Killed)', killedBy: 'sigkill' });
+            expect(failureText(f!)).toBe("CTL was killed (a SIGKILL the launcher did not send: the kernel's at the real-time mode's CPU bound, or another process's)");
         }
+    });
+
+    it("the launcher's own `was killed` line is read as a kill whatever its exit line", () => {
+        const [f, g] = moduleFailures(launcher('module CTL (pid 21) died by signal 9 (Killed)', 'FAILED: module CTL was killed (a SIGKILL the launcher did not send: the kernel\'s at a memory limit or the real-time CPU bound, or another process\'s)', 'FAILED: module MOT crashed'), MEMORY_HIT);
+        expect(f).toMatchObject({ module: 'CTL', killedBy: 'memory-limit' });
+        expect(g).toEqual({ module: 'MOT', how: 'crashed' });
     });
 });
 

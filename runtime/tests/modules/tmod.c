@@ -21,7 +21,8 @@
  * output 8 s (forked at the end, it could be killed with the module's group before its setsid);
  * `inithang`: never leaves its init (it never looks for a request: the launcher must find it not
  * ready, stop the run without its start, and terminate it); `slowinit`: 300 ms in its init, then
- * `NAME init done` (the run's start request must come after). */
+ * `NAME init done` (the run's start request must come after); `sigkill`: 200 ms after start-up,
+ * a SIGKILL to itself (what the kernel's OOM killer sends: not the launcher's). */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <signal.h>
@@ -152,6 +153,7 @@ int ModuleMain(int argc, const char *argv[])
     const char *crash = getenv("TMOD_CRASH_NAME");
     if (crash && strcmp(crash, MODULE_NAME) == 0) { usleep(200000); abort(); }
     if (strcmp(end_how(), "exit0") == 0) { usleep(200000); exit(0); }
+    if (strcmp(end_how(), "sigkill") == 0) { usleep(200000); raise(SIGKILL); }
     /* in a session of its own from the start: the launcher's kill of the module's group at the stop cannot reach it */
     if (strcmp(end_how(), "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); }
     if (strcmp(end_how(), "inithang") == 0) for (;;) pause();

@@ -422,7 +422,7 @@ export class Job {
       if (!run.ok) {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
         // a module's crash is the failure to name (make's status alone reads like a build failure)
-        const crashed = crashes.summary();
+        const crashed = crashes.summary(run.limitHit);
         const launcher = launcherStatus !== null ? `contract-launch exit ${launcherStatus}; ` : '';
         const message = run.message ?? `run failed${crashed ? `: ${crashed}` : ''} (${launcher}make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);

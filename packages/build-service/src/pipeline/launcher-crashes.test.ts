@@ -21,4 +21,21 @@ describe("the launcher's crashes, for a failed run's message", () => {
     }
     expect(c.summary()).toBe('5 modules crashed: A (exited with status 3), B (died by signal 6 (Aborted)), C (exited with status 3 while the run stopped), D (exited with status 1) and 1 more');
   });
+
+  test("a kill (a SIGKILL the launcher did not send) is told apart from a crash, by the memory limit when that limit was hit", () => {
+    const c = new LauncherCrashes();
+    c.line('module HOG (pid 30) died by signal 9 (Killed)');
+    c.line("FAILED: module HOG was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit or the real-time CPU bound, or another process's)");
+    expect(c.failures()).toEqual([{ module: 'HOG', how: 'died by signal 9 (Killed)', killed: true }]);
+    expect(c.summary()).toBe('module HOG was killed (died by signal 9 (Killed))');
+    expect(c.summary({ name: 'memory' })).toBe('module HOG was killed by the memory limit (died by signal 9 (Killed))');
+    c.line('module MSC (pid 31) died by signal 11 (Segmentation fault)');
+    c.line('FAILED: module MSC crashed');
+    expect(c.summary({ name: 'memory' })).toBe('2 modules crashed or were killed by the memory limit: HOG (killed: died by signal 9 (Killed)), MSC (died by signal 11 (Segmentation fault))');
+    // an older launcher said `crashed` for a kill too: its signal 9 line tells
+    const old = new LauncherCrashes();
+    old.line('module HOG (pid 30) died by signal 9 (Killed) while the run stopped');
+    old.line('FAILED: module HOG crashed');
+    expect(old.summary()).toBe('module HOG was killed (died by signal 9 (Killed) while the run stopped)');
+  });
 });

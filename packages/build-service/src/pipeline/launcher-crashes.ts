@@ -1,21 +1,34 @@
 /**
- * The modules contract-launch saw crash (a signal, a non-zero exit: before or while the run
- * stopped), read from its own lines, for the failed run's message: `run failed: module MSC crashed
- * (died by signal 11 (Segmentation fault))` rather than make's exit status alone, which reads like
- * a build failure. The launcher's words (runtime/launcher/contract-launch.c reap, docs/runtime-api.md
- * "contract-launch"): `module X (pid N) died by signal ...` / `exited with status N ...`, then
- * `FAILED: module X crashed` at the end.
+ * The modules contract-launch saw fail (a crash: a signal, a non-zero exit; or a kill: a SIGKILL
+ * it did not send, the kernel's OOM killer at the memory limit), read from its own lines, for the
+ * failed run's message: `run failed: module MSC crashed (died by signal 11 (Segmentation fault))`
+ * rather than make's exit status alone, which reads like a build failure. The launcher's words
+ * (runtime/launcher/contract-launch.c reap, docs/runtime-api.md "contract-launch"): `module X (pid
+ * N) died by signal ...` / `exited with status N ...`, then `FAILED: module X crashed` or `FAILED:
+ * module X was killed (...)` at the end.
  */
 
 /** How a module ended, as the launcher said it. */
 const END_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) (exited with status \d+(?: while the run stopped)?|died by signal .{1,200})$/;
-const FAILED_LINE = /^FAILED: module ([A-Za-z_]\w*) crashed$/;
-/** Crashes named in one message at most (the others counted). */
+/** `crashed`, or `was killed (a SIGKILL the launcher did not send: ...)` (a launcher before that said `crashed` for both). */
+const FAILED_LINE = /^FAILED: module ([A-Za-z_]\w*) (crashed|was killed(?: \(.{1,300}\))?)$/;
+/** The launcher's `died by signal 9 (Killed)`, `... while the run stopped`: a SIGKILL it did not send (it terminates with SIGTERM, and says `terminated`). */
+const SIGKILLED = /^died by signal 9 \(Killed\)( while the run stopped)?$/;
+/** Failures named in one message at most (the others counted). */
 const NAMED = 4;
+
+/** One module the launcher saw fail. */
+export interface LauncherFailure {
+  module: string;
+  /** How it ended, as the launcher said it (`died by signal 11 (Segmentation fault)`); undefined: no exit line read. */
+  how: string | undefined;
+  /** It was killed (a SIGKILL the launcher did not send), not crashed by its code. */
+  killed: boolean;
+}
 
 export class LauncherCrashes {
   private readonly how = new Map<string, string>();
-  private readonly crashed: string[] = [];
+  private readonly failed: { module: string; killed: boolean }[] = [];
 
   /** A line of contract-launch (its `contract-launch: ` prefix removed). */
   line(text: string): void {
@@ -25,22 +38,38 @@ export class LauncherCrashes {
       return;
     }
     const failed = FAILED_LINE.exec(text);
-    if (failed && !this.crashed.includes(failed[1]!) && this.crashed.length < 1024) this.crashed.push(failed[1]!);
+    if (failed && !this.failed.some((f) => f.module === failed[1]) && this.failed.length < 1024)
+      this.failed.push({ module: failed[1]!, killed: failed[2] !== 'crashed' });
   }
 
-  /** The modules that crashed, in the order the launcher named them, each with how it ended (undefined: no exit line read). */
-  failures(): { module: string; how: string | undefined }[] {
-    return this.crashed.map((module) => ({ module, how: this.how.get(module) }));
+  /** The modules that failed, in the order the launcher named them, each with how it ended. */
+  failures(): LauncherFailure[] {
+    return this.failed.map(({ module, killed }) => {
+      const how = this.how.get(module);
+      return { module, how, killed: killed || (how !== undefined && SIGKILLED.test(how)) };
+    });
   }
 
-  /** `module MSC crashed (died by signal 11 (...))`, `2 modules crashed: MSC (...), MAB (...)`; undefined when none did. */
-  summary(): string | undefined {
+  /**
+   * `module MSC crashed (died by signal 11 (...))`, `module HOG was killed by the memory limit
+   * (died by signal 9 (Killed))`, `2 modules crashed: MSC (...), MAB (...)`; undefined when none
+   * failed. `limitHit`: the limit that stopped the run; a module killed while the memory limit was
+   * hit was killed by it (the kernel's OOM killer).
+   */
+  summary(limitHit?: { name: string } | null): string | undefined {
     const failures = this.failures();
     if (!failures.length) return undefined;
-    const one = (f: { module: string; how: string | undefined }) => `${f.module} (${f.how ?? 'no exit line'})`;
-    if (failures.length === 1) return `module ${failures[0]!.module} crashed (${failures[0]!.how ?? 'no exit line'})`;
-    const named = failures.slice(0, NAMED).map(one).join(', ');
-    const more = this.crashed.length > NAMED ? ` and ${this.crashed.length - NAMED} more` : '';
-    return `${this.crashed.length} modules crashed: ${named}${more}`;
+    const by = limitHit?.name === 'memory' ? ' by the memory limit' : '';
+    const how = (f: LauncherFailure) => f.how ?? 'no exit line';
+    if (failures.length === 1) {
+      const f = failures[0]!;
+      return `module ${f.module} ${f.killed ? `was killed${by}` : 'crashed'} (${how(f)})`;
+    }
+    const killed = failures.filter((f) => f.killed).length;
+    const verb = killed === 0 ? 'crashed' : killed === failures.length ? `were killed${by}` : `crashed or were killed${by}`;
+    const mixed = killed > 0 && killed < failures.length;
+    const named = failures.slice(0, NAMED).map((f) => `${f.module} (${mixed && f.killed ? 'killed: ' : ''}${how(f)})`).join(', ');
+    const more = failures.length > NAMED ? ` and ${failures.length - NAMED} more` : '';
+    return `${failures.length} modules ${verb}: ${named}${more}`;
   }
 }

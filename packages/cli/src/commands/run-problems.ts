@@ -9,8 +9,12 @@ export interface ModuleFailure {
     module: string;
     /** How it ended, as the launcher said it (`died by signal 11 (Segmentation fault)`). */
     how: string;
-    /** `memory-limit`: it died by SIGKILL while the memory limit was hit (the kernel's OOM killer), not a crash of its code. */
-    killedBy?: 'memory-limit';
+    /**
+     * Not a crash of its code: a SIGKILL the launcher did not send. `memory-limit`: while the memory
+     * limit was hit (the kernel's OOM killer); `sigkill`: otherwise (the real-time mode's hard CPU
+     * bound, or another process).
+     */
+    killedBy?: 'memory-limit' | 'sigkill';
     /** With killedBy, what `contract run` says of it instead of `module CTL crashed (...)`: `CTL was killed by the memory limit (...)`. */
     message?: string;
 }
@@ -20,25 +24,27 @@ export function failureText(f: ModuleFailure): string {
     return f.message ?? `${f.module} crashed (${f.how})`;
 }
 
-/** The launcher's `died by signal 9 (Killed)`, `... while the run stopped`: a SIGKILL it did not send (it terminates with SIGTERM). */
-const SIGKILLED = /^died by signal 9 \(Killed\)( while the run stopped)?$/;
 /** Why the kernel's OOM killer chose it, as `contract run` says it. */
 const OOM_KILL = "signal 9: the kernel's OOM killer, which kills the process using the most memory";
+/** Who sends a SIGKILL the launcher did not. */
+const OTHER_KILL = "a SIGKILL the launcher did not send: the kernel's at the real-time mode's CPU bound, or another process's";
 
 /**
- * Module crashes reported by the launcher (`FAILED: module X crashed`, with the preceding exit/signal
- * line), read by the build service's reader of them (the failed run's message names the same). A
- * module that died by SIGKILL in a run the memory limit stopped (`limitHit`) was killed by that
- * limit (the kernel's OOM killer), not crashed: said so (`killedBy`, `message`), `how` as the launcher said.
+ * Module failures reported by the launcher (`FAILED: module X crashed` or `... was killed (...)`,
+ * with the preceding exit/signal line), read by the build service's reader of them (the failed
+ * run's message names the same). A module killed (a SIGKILL the launcher did not send) in a run the
+ * memory limit stopped (`limitHit`) was killed by that limit (the kernel's OOM killer): said so
+ * (`killedBy`, `message`), `how` as the launcher said.
  */
 export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name: string } | null): ModuleFailure[] {
     const crashes = new LauncherCrashes();
     for (const { source, line } of lines) if (source === 'launcher') crashes.line(line);
-    return crashes.failures().map(({ module, how = 'crashed' }) => {
-        const killed = limitHit?.name === 'memory' ? SIGKILLED.exec(how) : null;
-        return killed
-            ? { module, how, killedBy: 'memory-limit' as const, message: `${module} was killed by the memory limit${killed[1] ?? ''} (${OOM_KILL})` }
-            : { module, how };
+    return crashes.failures().map(({ module, how = 'crashed', killed }) => {
+        if (!killed) return { module, how };
+        const stopped = how.endsWith(' while the run stopped') ? ' while the run stopped' : '';
+        return limitHit?.name === 'memory'
+            ? { module, how, killedBy: 'memory-limit' as const, message: `${module} was killed by the memory limit${stopped} (${OOM_KILL})` }
+            : { module, how, killedBy: 'sigkill' as const, message: `${module} was killed${stopped} (${OTHER_KILL})` };
     });
 }
 
@@ -54,6 +60,7 @@ export function problemLines(issues: readonly { kind: string; module?: string; m
     return issues.map((i) => {
         const f = i.kind === 'module-stuck' && i.module !== undefined ? crashed.get(i.module) : undefined;
         if (f === undefined) return i.message;
-        return `${i.message.replace(STUCK_ADVICE, '')}: ${f.killedBy === 'memory-limit' ? `it was killed by the memory limit (${OOM_KILL})` : `it crashed (${f.how})`}`;
+        const why = f.killedBy === 'memory-limit' ? `it was killed by the memory limit (${OOM_KILL})` : f.killedBy === 'sigkill' ? `it was killed (${OTHER_KILL})` : `it crashed (${f.how})`;
+        return `${i.message.replace(STUCK_ADVICE, '')}: ${why}`;
     });
 }
