@@ -49,6 +49,12 @@ interface Run {
   label: string;
   model: MonitorView;
   live: boolean;
+  /**
+   * Its records run to the run's end (a recorded run; a live one once its job's logs came): a module
+   * with no exit record at its end ended without one (crashed, killed), and is not shown running.
+   * Not a simulation's: its session goes on.
+   */
+  whole?: boolean;
   /** When it was made or last shown (the recorded runs used least recently are let go first). */
   used?: number;
   /** A job's run that ended: how (`succeeded`, `cancelled`, `failed: …`, `connection to the build service lost`). */
@@ -166,7 +172,7 @@ export class MonitorController {
     run.outcome = outcome;
     run.label = endedRunLabel(run.label, run.live, outcome);
     run.live = false;
-    if (this.shown === run.id) this.panel?.endLive(run.label);
+    if (this.shown === run.id) this.panel?.endLive(run.label, run.whole);
     void this.refreshSources();
   }
 
@@ -235,6 +241,7 @@ export class MonitorController {
     if (live?.model instanceof RemoteMonitorModel) await Promise.race([live.model.settled, new Promise((r) => setTimeout(r, SETTLE_MS))]);
     if (live) {
       live.live = false;
+      live.whole = true;
       live.label = streamedRunLabel(jobId, live.outcome);
       if (!live.model.recordCount) this.forget(live.id); // no live trace (an older build service): the logs tell it all
     }
@@ -246,7 +253,7 @@ export class MonitorController {
     // (not "the first N": a stream attached late got the first records and the last ones, a gap between)
     if (cut) live!.label = streamedRunLabel(jobId, live!.outcome, { streamed: live!.model.live.records, logged: run.model.live.records });
     if (this.shown === live?.id && live?.model.recordCount && !cut) {
-      this.panel?.endLive(live.label);
+      this.panel?.endLive(live.label, true);
       await this.refreshSources();
     } else if (picked === this.picked && (this.shown === undefined || this.shown === live?.id)) {
       await this.show(run.id); // the view followed this job (its stream was cut), or showed no run
@@ -263,7 +270,7 @@ export class MonitorController {
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
-    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model)), model, live: false, outcome };
+    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model)), model, live: false, whole: true, outcome };
     this.keepRecorded(run);
     return run;
   }
@@ -351,7 +358,7 @@ export class MonitorController {
     const inFolder = paths.length + listing.more + listing.notReadCount;
     const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
-    const run: Run = { id: `dir:${folder}`, label, model, live: false };
+    const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: true };
     this.keepRecorded(run);
     // shown unless the user asked for another run while it was read and built: then listed
     if (mine === this.picked && (asked || this.shown === run.id)) await this.show(run.id);
@@ -371,7 +378,7 @@ export class MonitorController {
     const notWhole = [...problems, ...unread];
     // counted as `contract trace` counts them: the logs' unreadable lines the file carries, and its own lines that are no record
     const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
-    this.keepRecorded({ id, label, model, live: false });
+    this.keepRecorded({ id, label, model, live: false, whole: simulation === undefined });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();
   }
@@ -401,7 +408,7 @@ export class MonitorController {
     if (run.used !== undefined) run.used = ++this.uses;
     this.shown = id;
     this.symbols = undefined; // the model may have changed since
-    panel.setModel(run.model, run.label, run.live);
+    panel.setModel(run.model, run.label, run.live, !!run.whole);
     await this.refreshSources();
   }
 

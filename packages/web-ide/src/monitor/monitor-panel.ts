@@ -63,6 +63,8 @@ export class MonitorPanel {
   readonly element: HTMLElement;
   private model: MonitorView | undefined;
   private live = false;
+  /** The records run to the run's end (setModel): at the end, a module with no exit record is said to have ended without one. */
+  private whole = false;
   private follow = true;
   private cursor = 0;
   private playing = false;
@@ -154,9 +156,10 @@ export class MonitorPanel {
   }
 
   /** Shows `model` (live: follows its end as records come). */
-  setModel(model: MonitorView, label: string, live: boolean): void {
+  setModel(model: MonitorView, label: string, live: boolean, whole = false): void {
     this.model = model;
     this.live = live;
+    this.whole = whole;
     this.label.textContent = label;
     this.element.dataset.mode = live ? 'live' : 'replay';
     this.setPlaying(false);
@@ -179,9 +182,10 @@ export class MonitorPanel {
     this.label.textContent = label;
   }
 
-  /** The live source ended (the model stays, as a recorded run). */
-  endLive(label: string): void {
+  /** The live source ended (the model stays, as a recorded run); `whole`: its records are known to run to the run's end (setModel). */
+  endLive(label: string, whole?: boolean): void {
     this.live = false;
+    if (whole !== undefined) this.whole = whole;
     this.label.textContent = label;
     this.element.dataset.mode = 'replay';
     this.drawFollow();
@@ -522,8 +526,14 @@ export class MonitorPanel {
     if (!drawDiagram && !drawFlows) return;
     const modules = new Set<string>();
     for (const name of active) for (const m of this.catalogue.find((c) => c.name === name)?.modules ?? []) modules.add(m);
+    // at the end of a whole run, a module still up has no exit record: it ended without one, not running
+    const atEnd = this.whole && !this.live && t >= (this.model?.end ?? 0);
     const running = new Set<string>();
-    for (const [k, m] of s.modules) if (m.running) running.add(k);
+    const noExit: string[] = [];
+    for (const [k, m] of s.modules) {
+      if (atEnd && m.alive) noExit.push(k);
+      else if (m.running) running.add(k);
+    }
     const pulsing = new Set<string>();
     const used = new Set<string>();
     for (const flows of [s.dataFlows, s.eventFlows]) {
@@ -534,7 +544,7 @@ export class MonitorPanel {
     }
     if (drawDiagram) d.highlight({ active: modules, running, pulsing, used });
     if (!drawFlows) return;
-    setText(this.modulesEl, `Running now: ${[...running].sort().join(', ') || 'none'}`);
+    setText(this.modulesEl, modulesText([...running], noExit));
     this.boundEl.hidden = s.namesPastBound === 0;
     setText(this.boundEl, namesPastBoundText(s.namesPastBound));
     // deliveries: the busiest flows, with their count and last delivery
@@ -550,6 +560,16 @@ export class MonitorPanel {
     });
     replaceIfChanged(this.flowsEl, rows);
   }
+}
+
+/**
+ * `Running now: MAA, MAB`; at the end of a whole run, the modules with no exit record are said as
+ * `contract trace` says them (its story's `no exit record follows`), not as running.
+ */
+export function modulesText(running: string[], noExit: string[]): string {
+  const now = `Running now: ${running.sort().join(', ') || 'none'}`;
+  if (!noExit.length) return now;
+  return `${now} · no exit record: ${noExit.sort().join(', ')} (crashed, killed, or ended by its code's exit(): the run's messages say which)`;
 }
 
 /** Whether `key` pressed on `target` is the focused control's own key, not the panel's shortcut. */

@@ -9,10 +9,12 @@
  * - at 900x700: every control of the top bar on screen, the Monitor's time, histogram and causes whole;
  * - a live run's quiet stretch: the time runs with the run's clock, the state stays at its last
  *   record, nothing else is drawn again; a deadline miss names the module its cycle waited for;
- *   PERIOD = CRITICAL_DELAY is one label.
+ *   PERIOD = CRITICAL_DELAY is one label;
+ * - a module killed mid-release (its log ends inside a release, no exit record): at the end of the
+ *   replay it is said to have no exit record, not listed as running; before its end, as it was.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, mkdirSync, readdirSync, readFileSync } from 'node:fs';
+import { cpSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
@@ -42,6 +44,12 @@ describe('Monitor field test', () => {
     s = await startSession();
     mkdirSync(join(s.workspace, 'recorded'));
     cpSync(FIXTURE, join(s.workspace, 'recorded'), { recursive: true });
+    // MSC killed inside its second release: its log ends with that release's run_started
+    mkdirSync(join(s.workspace, 'killed'));
+    cpSync(FIXTURE, join(s.workspace, 'killed'), { recursive: true });
+    const msc = readFileSync(join(FIXTURE, 'MSC.csv'), 'utf8').split('\n');
+    const cutAt = msc.findIndex((l, i) => i > msc.findIndex((k) => /,run_started,/.test(k)) && /,run_started,/.test(l));
+    writeFileSync(join(s.workspace, 'killed', 'MSC.csv'), msc.slice(0, cutAt + 1).join('\n') + '\n');
     await openIde(s);
   }, 60_000);
   afterAll(async () => {
@@ -317,5 +325,23 @@ describe('Monitor field test', () => {
     await page.evaluate((files) => (window as any).__ide.monitor.showRecorded('elsewhere', { label: 'Build & Run job elsewhere', files, problems: [] }), files);
     await expect.poll(() => page.locator('.monitor-sources option').allTextContents()).toContain('Build & Run job elsewhere · CSV logs');
     expect(await label(page)).toBe('9 CSV log(s) in recorded');
+  }, 60_000);
+
+  it('a module killed mid-release is not listed as running at the end of its run: it has no exit record, said as contract trace says it', async () => {
+    const { page } = s;
+    if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
+    await page.locator('.monitor-sources').selectOption('dir:killed');
+    await expect.poll(() => label(page)).toBe('9 CSV log(s) in killed');
+    const modules = () => page.locator('.monitor-modules').textContent();
+    await expect.poll(modules).toBe("Running now: none · no exit record: MSC (crashed, killed, or ended by its code's exit(): the run's messages say which)");
+    expect(await page.locator('.monitor-diagram .live-running').count()).toBe(0);
+    // back at the start, nothing has ended yet
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('Home');
+    await expect.poll(modules).toBe('Running now: none');
+    // the run that kept every exit record says none missing at its end
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => label(page)).toBe('9 CSV log(s) in recorded');
+    await expect.poll(modules).toBe('Running now: none');
   }, 60_000);
 });
