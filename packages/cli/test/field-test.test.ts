@@ -331,6 +331,36 @@ describe('6. a crashed module', () => {
         expect(io.stdout).toMatch(/, 0 unreadable lines\n$/);
     });
 
+    it('a module other modules\' records name, whose log is not read (a link under its name) or not there, is told, not left out of the story', async () => {
+        const dir = join(root, 'trace-unlogged');
+        mkdirSync(dir);
+        const ord = moduleLog('ORD', 1_000_000_000).split('\n');
+        // ORD releases HOG; CTL posts values to SRT; a control tool's request and a launcher's name no module
+        ord.splice(3, 0, '1000002000,w,ORD,ord_release,HOG,,0,schema=S cycle=0 tick_ns=1000002000 release_ns=1000002000 release=1',
+            '1000003000,w,ORD,request_received,controlHOG-77,,0,STATUS', '1000003500,w,ORD,data_posted,CTL,0,8,to_port=0');
+        writeFileSync(join(dir, 'ORD_1.csv'), ord.join('\n'));
+        const ctl = moduleLog('CTL', 1_000_000_000).split('\n');
+        ctl.splice(3, 0, '1000004000,w,CTL,data_posted,SRT,0,8,to_port=1', '1000005000,w,CTL,data_posted,not-a-module,0,8,to_port=1');
+        writeFileSync(join(dir, 'CTL_1.csv'), ctl.join('\n'));
+        symlinkSync('/etc/passwd', join(dir, 'HOG_1.csv'));
+        const io = capture(root);
+        expect(await runCli(['trace', 'trace-unlogged'], io)).toBe(0);
+        expect(io.stderr).toBe('contract trace: warning: HOG_1.csv: a symbolic link, not read (logs are never read through a link)\n');
+        expect(io.stdout.split('\n').filter((l) => l.includes('no log of it here'))).toEqual([
+            "+0.000002s HOG  no log of it here, though other modules' records name it (the first: ORD's ord_release): its log was not collected (`contract run` says why) or was removed",
+            "+0.000004s SRT  no log of it here, though other modules' records name it (the first: CTL's data_posted): its log was not collected (`contract run` says why) or was removed",
+        ]);
+        // a forged log naming many modules: 16 named, the others counted
+        const many = moduleLog('CTL', 1_000_000_000).split('\n');
+        many.splice(3, 0, ...Array.from({ length: 20 }, (_, i) => `${1_000_010_000 + i},w,CTL,data_posted,M${i},0,8,to_port=0`));
+        writeFileSync(join(dir, 'CTL_1.csv'), many.join('\n'));
+        const forged = capture(root);
+        expect(await runCli(['trace', 'trace-unlogged'], forged)).toBe(0);
+        const told = forged.stdout.split('\n').filter((l) => / no log of it here|with no log here$/.test(l));
+        expect(told).toHaveLength(17);
+        expect(told.at(-1)).toBe("           5 more module(s) named by other modules' records with no log here");
+    });
+
     it('contract trace names modules without an exit record in the order of their last record, and a whole run killed in one line', async () => {
         // two modules crashed (CTL's last record after LOC's, CTL read first), ORD exited
         const two = join(root, 'two-crashed');

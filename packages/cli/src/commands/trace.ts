@@ -177,6 +177,17 @@ const CAP_FINAL = /^(\d+) records not written after the log (reached its \d+-byt
 
 /** Unreadable lines named one by one at the end of the story (the rest counted). */
 const UNREADABLE_NAMED = 5;
+/**
+ * Records whose peer the runtime (or ORD) writes as another module of the run: ORD's release, a
+ * value or event posted to or received from it. A module named so with no log of its own in the
+ * folder is said (its log was not collected, or was removed), not left out of the story.
+ */
+const NAMING_KINDS = new Set(['ord_release', 'data_posted', 'data_received', 'event_posted', 'event_received']);
+/** A module's name (the peers a control tool or the launcher write, `control<M>-PID`, `contract-launch`, are none). */
+const MODULE_NAME = /^[A-Za-z_]\w{0,63}$/;
+/** Modules without a log of their own named one by one at most (a forged log could name many). */
+const UNLOGGED_NAMED = 16;
+
 /** Modules followed at most, as the story follows them (a run writes a log per module, 1,024 at most): the records of others (a forged log) are only counted. */
 const MODULES_FOLLOWED = STORY_FOLLOWED;
 
@@ -215,6 +226,8 @@ export class ModuleEnds {
     private readonly modules = new Map<string, string>();
     /** Records of modules past MODULES_FOLLOWED. */
     private notFollowed = 0;
+    /** Modules other modules' records name (NAMING_KINDS), at most MODULES_FOLLOWED: the first such record's time and module, and its kind. */
+    private readonly named = new Map<string, { at: bigint; by: string; kind: string }>();
 
     /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
     constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
@@ -250,6 +263,8 @@ export class ModuleEnds {
         if (m === undefined) return;
         this.last.set(m, at);
         this.read.set(m, (this.read.get(m) ?? 0) + 1);
+        if (NAMING_KINDS.has(r.kind) && base.peer !== m && !this.named.has(base.peer) && this.named.size < MODULES_FOLLOWED && MODULE_NAME.test(base.peer))
+            this.named.set(ownString(base.peer), { at, by: m, kind: r.kind });
         const final = r.kind === 'log-capped' && base.peer !== 'build-service' ? CAP_FINAL.exec(base.detail) : null;
         if (final) this.endsCapped.set(m, { dropped: ownString(final[1]!), why: final[2]!.startsWith('reached') ? 'its log reached its bound' : 'its log could not be written further (a full disk)' });
         else this.endsCapped.delete(m); // a record after it: its log does not end capped
@@ -322,6 +337,19 @@ export class ModuleEnds {
                 out.push(`${''.padStart(10)} ${m.padEnd(4)} not whole: its log holds ${read} record(s), its ${crashed ? 'crash' : 'exit'} record counts ${counted}: ${gap}`);
             }
         }
-        return [...out, ...past];
+        return [...out, ...this.unlogged(at), ...past];
+    }
+
+    /**
+     * Modules other modules' records name with no record of their own (no log of theirs in the
+     * folder, or an empty one is already told above): a log not collected (`contract run` refuses a
+     * link planted under its name) or removed; else the story would not name them at all.
+     */
+    private unlogged(at: (ns: bigint) => string): string[] {
+        const missing = [...this.named].filter(([m]) => !this.modules.has(m));
+        const told = missing.slice(0, UNLOGGED_NAMED).map(([m, first]) =>
+            `${at(first.at)} ${m.padEnd(4)} no log of it here, though other modules' records name it (the first: ${first.by}'s ${first.kind}): its log was not collected (\`contract run\` says why) or was removed`);
+        if (missing.length > UNLOGGED_NAMED) told.push(`${''.padStart(10)} ${missing.length - UNLOGGED_NAMED} more module(s) named by other modules' records with no log here`);
+        return told;
     }
 }
