@@ -318,6 +318,49 @@ describe('scenarioOfRun: the end of the run', () => {
     });
 });
 
+describe("scenarioOfRun: a run its own code ended while a supervisor's STOP of it was on its way", () => {
+    /**
+     * The tutorial's race: MAA posts "disconnected" (SUP receives it at 1.5 s), SUP's FIRST ends
+     * and stops MAA, but MAA's script ends its run `endAfter` ns after SUP's receipt; SUP's STOP
+     * reaches MAA 0.4 ms after that (or first, when `stopFirst`: then the run ends by the STOP).
+     */
+    const race = (endAfter: number, decidedAfterEnd = false) => {
+        const tr = 1_500_000_000;
+        const decided = decidedAfterEnd ? tr + endAfter + 50_000 : tr + 40_000;
+        return scenarioOfRun(parseTrace([
+            csv('SUP', ['1000000000,W,SUP,request_received,contract-launch,,0,START action', '1000000000,W,SUP,supervisor,,,0,function action started',
+                `${tr},W,SUP,request_received,MAA,2,256,EVENT from_port=2`,
+                `${decided},W,SUP,sup_rule,,,0,"action.FIRST inactive cause=MAA:2 value=""disconnected"""`,
+                `${decided + 300},W,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""`,
+                '3000000000,W,SUP,request_received,contract-launch,,0,STOP']),
+            csv('MAA', ['1000100000,W,MAA,request_received,SUP,,0,START', '1000100000,W,MAA,run_started,SUP,,0,activation=1',
+                `${tr - 90_000},W,MAA,event_posted,SUP,2,256,to_port=2`,
+                `${tr + endAfter},W,MAA,run_finished,,,0,activation=1`,
+                `${tr + endAfter + 400_000},W,MAA,request_received,SUP,,0,STOP`]),
+        ]), { supervisors: new Set(['SUP']), start: 'SUP.action()', fallback: () => '"connected"' });
+    };
+
+    it('replays the end just before the event SUP decided on: the simulator, which delivers the STOP at the decision, would stop the run first', () => {
+        const { text, adjustments, finished } = race(665_000);
+        expect(finished).toEqual(['MAA']);
+        expect(events(text).map((e) => `${e.t} ${e.source}`)).toEqual(['500000000 finish', '500000000 MAA:2']);
+        expect(text).toContain('t=500ms finish MAA\nt=500ms MAA:2 "disconnected"\n');
+        expect(adjustments).toEqual(["finish MAA: moved from t=500665us to t=500ms, before MAA:2: SUP's STOP of it, decided on that event, reached it after its run ended (at t=501065us)"]);
+    });
+
+    it('moves it too when SUP decided after the end (a loaded host): in the simulator the decision comes at the event', () => {
+        const { text, adjustments } = race(20_000, true);
+        expect(events(text).map((e) => `${e.t} ${e.source}`)).toEqual(['500000000 finish', '500000000 MAA:2']);
+        expect(adjustments).toHaveLength(1);
+    });
+
+    it('keeps the end at its time when SUP received the event after it', () => {
+        const { text, adjustments } = race(-20_000);
+        expect(events(text).map((e) => `${e.t} ${e.source}`)).toEqual(['499980000 finish', '500000000 MAA:2']);
+        expect(adjustments).toEqual([]);
+    });
+});
+
 describe('scenarioOfRun: events a busy supervisor took late', () => {
     it('a module event is replayed when the engine took it (event_received), with the value of the decision it caused', () => {
         // SUP waited for MAA's priority answer: the event that arrived at 1.0 s was taken at 1.25 s,

@@ -29,7 +29,9 @@
  * MAA after posting "disconnected" when its end comes before SUP's STOP) is replayed as `finish M`
  * at the time it ended, before an event
  * logged at the same time, so that the simulated supervisors find the module as the real ones did
- * (its STOP finding no run).
+ * (its STOP finding no run); or, when that STOP was decided on an event the supervisor received
+ * before the end, just before that event (ownEndBeforeStop: the simulator delivers the STOP at the
+ * decision).
  *
  * Which ORD events there are (deadline misses `ORD:0`, conflicts `ORD:1`) depends on the machine's
  * timing, so the simulated ORD (whose virtual modules are never late) cannot make them by itself:
@@ -229,7 +231,8 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
     // the runs their own code ended (not a supervisor's: its functions are what the scenario starts)
     const ownEnds = known.filter((r) => r.kind === 'run_finished' && !r.peer && !plan.supervisors.has(r.module) && ownRunEndText(r.detail) !== undefined && mono(r) >= t0 && mono(r) < end);
     const finished = ownEnds.map((r) => r.module);
-    const replayed = [...ownEnds.map((r): Emission => ({ t: mono(r), source: `finish ${r.module}` })), ...emissions.filter((e) => e.t >= t0 && e.t < end)]
+    const finishAt = (r: KnownRecord | RuleRecord): bigint => ownEndBeforeStop(known, plan, received, r, (why) => timeline.adjustments.push(why), (t) => timeline.at(t));
+    const replayed = [...ownEnds.map((r): Emission => ({ t: finishAt(r), source: `finish ${r.module}` })), ...emissions.filter((e) => e.t >= t0 && e.t < end)]
         .sort((a, b) => (a.t < b.t ? -1 : a.t > b.t ? 1 : 0)); // stable: a run's end before an event of the same time
     const counts = new Map<string, number>();
     const lines = [`until ${formatTime(Number(end - t0))}`, `start ${plan.start}`];
@@ -244,6 +247,33 @@ export function scenarioOfRun(records: TraceRecord[], plan: ReplayPlan): RunScen
         lines.push(`t=${formatTime(Number(e.t - t0))} ${e.source} ${value}`.trimEnd());
     }
     return { text: lines.join('\n') + '\n', real, counts, finished, adjustments: timeline.adjustments };
+}
+
+/**
+ * When to replay run end `r` (a module's `run_finished` that its own code ended): at its time, or,
+ * when the STOP a supervisor sent that module arrived after it (finding no run) but was decided on
+ * an event the supervisor had received before it, just before that event: the simulator delivers
+ * the STOP at the decision, and would stop the run before its own end (the tutorial's MAA ending
+ * its run 37 µs after posting "disconnected", while SUP's STOP of it is on its way, or before SUP
+ * has decided). The event itself still comes after: the simulator takes an event from a module
+ * whose run has ended, as SUP's mailbox did.
+ */
+function ownEndBeforeStop(known: readonly (KnownRecord | RuleRecord)[], plan: ReplayPlan, received: ReadonlyMap<string, Receipt[]>, r: KnownRecord | RuleRecord,
+    said: (why: string) => void, at: (t: bigint) => string): bigint {
+    const tf = mono(r);
+    const stop = known.find((x) => x.kind === 'request_received' && x.module === r.module && plan.supervisors.has(x.peer) && /^STOP\b/.test(x.detail) && mono(x) > tf);
+    if (!stop) return tf;
+    // the stopping supervisor's decision that sent it: its latest rule change before the STOP arrived, on an event
+    let decision: RuleRecord | undefined;
+    for (const x of known) if (isRule(x) && x.module === stop.peer && mono(x) < mono(stop)) decision = x;
+    const cause = decision?.causeEvent;
+    if (!decision || cause?.kind !== 'event') return tf;
+    const source = `${cause.module}:${cause.port}`;
+    let input: Receipt | undefined;
+    for (const x of received.get(`${stop.peer} ${source}`) ?? []) if (x.t <= mono(decision)) input = x;
+    if (!input?.emission || input.t > tf || input.emission.t >= tf) return tf;
+    said(`finish ${r.module}: moved from ${at(tf)} to ${at(input.emission.t)}, before ${source}: ${stop.peer}'s STOP of it, decided on that event, reached it after its run ended (at ${at(mono(stop))})`);
+    return input.emission.t;
 }
 
 /**

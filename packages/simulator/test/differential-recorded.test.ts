@@ -1,0 +1,67 @@
+/**
+ * The differential test's race, on a recorded bwrap run of the tutorial where it happened
+ * (test/differential/fixtures/tutorial-maa-won-race: MAA's script ended its run 0.7 ms after SUP
+ * received its "disconnected", while SUP's STOP of it was on its way): the scenario replays MAA's
+ * end before that event (replay-run.ts ownEndBeforeStop), and the simulator takes the same
+ * supervisor decisions and tells the same runs ended by their own code. The live run of
+ * differential.bwrap.test.ts meets this race about 1 time in 8; here it is met every time.
+ */
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { beforeAll, describe, expect, it } from 'vitest';
+import { parseTrace, renderStory, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
+import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
+import { prepared, TUTORIAL } from './support.js';
+import { firstDifference, realDecisions, scenarioOfRun, simulatedDecisions } from './differential/replay-run.js';
+
+const FIXTURE = fileURLToPath(new URL('./differential/fixtures/tutorial-maa-won-race', import.meta.url));
+const SUPERVISORS = new Set(['SUP', 'GLB']);
+const records = parseTrace(readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') })));
+const ownRunEnds = (rs: TraceRecord[]): string[] => renderStory(rs).filter((l) => l.includes(' ended by its own code ')).map((l) => l.slice(11));
+
+describe('simulator vs a recorded run of the tutorial where MAA ended its run before SUP\'s STOP reached it', () => {
+    let sim: ScenarioResult;
+    let real: RuleRecord[];
+    let text: string;
+    let adjustments: string[];
+
+    beforeAll(async () => {
+        ({ text, real, adjustments } = scenarioOfRun(records, {
+            supervisors: SUPERVISORS,
+            start: 'GLB.mission()',
+            requestRules: { SUP: ['GLB mission.SINGLE'] },
+            fallback: (module, port) => (module === 'MAA' && port === 2 ? '"connected"' : undefined),
+        }));
+        const project = await prepared(TUTORIAL);
+        const s = loadScenario('run.scenario', 'run.scenario', text, project.index);
+        expect(s.diagnostics, text).toEqual([]);
+        sim = await runLoadedScenario(project, s);
+    }, 120_000);
+
+    it('replays MAA\'s end before the "disconnected" SUP decided on, and says so', () => {
+        const lines = text.split('\n');
+        const finish = lines.findIndex((l) => / finish MAA$/.test(l));
+        expect(finish, text).toBeGreaterThan(0);
+        expect(lines[finish + 1], text).toMatch(/ MAA:2 "disconnected"$/);
+        expect(adjustments.filter((a) => a.startsWith('finish MAA: moved'))).toHaveLength(1);
+    });
+
+    it('the simulator takes the same decisions and tells the same own run ends', () => {
+        expect(sim.error, text).toBeUndefined();
+        const simulated = sim.steps.flatMap((s) => s.record.rules);
+        for (const sup of SUPERVISORS) {
+            const got = simulatedDecisions(simulated, sup);
+            const want = realDecisions(real, sup);
+            expect(got, firstDifference(sup, got, want, text, adjustments)).toEqual(want);
+        }
+        expect(realDecisions(real, 'SUP')).toContain('SUP action.SECOND active <- MAA:2 value="disconnected"');
+        const known = records.filter((r) => r.kind !== 'unknown');
+        const stop = known.find((r) => r.kind === 'request_received' && r.peer === 'contract-launch' && /^(STOP|KILL)/.test(r.detail));
+        const want = ownRunEnds(known.filter((r) => BigInt(r.monoNs) < BigInt(stop!.monoNs)));
+        expect(want).toContain('MAA  run #1 ended by its own code (started by SUP)');
+        expect(ownRunEnds(stepsToTrace(sim.steps.map(traceStepOf))), text).toEqual(want);
+        expect(sim.failures.map((f) => f.message), text).toEqual([]);
+    });
+});
