@@ -10,7 +10,7 @@ import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
-import { parseTrace, renderStory, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseTrace, renderStory, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
 import { prepared, TUTORIAL } from './support.js';
@@ -57,7 +57,7 @@ describe('simulator vs a recorded run of the tutorial where MAA ended its run be
             expect(got, firstDifference(sup, got, want, text, adjustments)).toEqual(want);
         }
         expect(realDecisions(real, 'SUP')).toContain('SUP action.SECOND active <- MAA:2 value="disconnected"');
-        const known = records.filter((r) => r.kind !== 'unknown');
+        const known = records.filter((r): r is KnownRecord => r.kind !== 'unknown');
         const stop = known.find((r) => r.kind === 'request_received' && r.peer === 'contract-launch' && /^(STOP|KILL)/.test(r.detail));
         const want = ownRunEnds(known.filter((r) => BigInt(r.monoNs) < BigInt(stop!.monoNs)));
         expect(want).toContain('MAA  run #1 ended by its own code (started by SUP)');

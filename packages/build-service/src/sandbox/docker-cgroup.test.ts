@@ -9,7 +9,7 @@ import { mkdirSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
-import { findContainerCgroup, isOomEvent, namesContainer, parseProcCgroup, planContainerCgroup } from './docker-cgroup.js';
+import { atPidsLimit, findContainerCgroup, isOomEvent, namesContainer, parseProcCgroup, planContainerCgroup } from './docker-cgroup.js';
 import { terminateNamedOnHost } from './queue-term.js';
 
 const ID = '679a5f64faf5c7262d8e2534c61cb54143aff5392a16cec3168df7af66aa2338';
@@ -269,5 +269,19 @@ describe('terminateNamedOnHost', () => {
       launcher.kill('SIGKILL');
       other.kill('SIGKILL');
     }
+  });
+});
+
+describe('atPidsLimit (the engine\'s stats, when the cgroup is not read here)', () => {
+  test('at or past the limit the sample gives, else the PidsLimit given; nothing known is no hit', () => {
+    expect(atPidsLimit({ current: 24, limit: 24 })).toBe(true);
+    expect(atPidsLimit({ current: 23, limit: 24 })).toBe(false);
+    expect(atPidsLimit({ current: 24 }, 24)).toBe(true);
+    expect(atPidsLimit({ current: 24, limit: 0 }, 24)).toBe(true);
+    expect(atPidsLimit({ current: 24 })).toBe(false);
+    expect(atPidsLimit({}, 24)).toBe(false);
+    expect(atPidsLimit(undefined, 24)).toBe(false);
+    // an engine that gives no limit (0, or a huge "max") and none given: no hit
+    expect(atPidsLimit({ current: 5, limit: 0 })).toBe(false);
   });
 });

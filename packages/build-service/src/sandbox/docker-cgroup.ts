@@ -29,6 +29,8 @@ export const CGROUP_V1_ROOT = '/sys/fs/cgroup';
 export const CGROUP_V2_ROOTS: readonly string[] = ['/sys/fs/cgroup', '/sys/fs/cgroup/unified'];
 /** How often the counters are read (as host-process.ts for bwrap). */
 export const CGROUP_WATCH_INTERVAL_MS = 100;
+/** How often the engine is asked for the container's process count when its cgroup's counters are not read here (a one-shot stats call: 2-8 ms of the engine's). */
+export const ENGINE_PIDS_INTERVAL_MS = 250;
 
 /** /proc/<pid>/cgroup is read up to this many bytes; lines, paths and lines kept are bounded too. */
 const PROC_CGROUP_MAX_BYTES = 16 * 1024;
@@ -176,6 +178,7 @@ export class ContainerCgroup {
 export interface InspectedContainer {
   Id?: string;
   State?: { Pid?: number; Running?: boolean; StartedAt?: string };
+  HostConfig?: { PidsLimit?: number | null };
 }
 
 export interface FindOptions {
@@ -262,6 +265,52 @@ export async function followEngineOom(docker: Docker, containerId: string, since
   };
 }
 
+/** The process count of a container's stats (`pids_stats`), as the engine gives it. */
+export interface PidsStats {
+  current?: number;
+  limit?: number;
+}
+
+/**
+ * Whether a stats sample shows the container at its process limit (`limit`: its PidsLimit, when
+ * the sample lacks it): then a fork is refused, whatever the program says of it. The engine gives
+ * no count of refused forks (`pids.events`), only the count now: a limit reached between two
+ * samples and left before the next is not seen.
+ */
+export function atPidsLimit(stats: PidsStats | undefined, limit?: number): boolean {
+  const max = typeof stats?.limit === 'number' && stats.limit > 0 ? stats.limit : limit;
+  return typeof stats?.current === 'number' && typeof max === 'number' && max > 0 && stats.current >= max;
+}
+
+/**
+ * Asks the engine for the container's process count every ENGINE_PIDS_INTERVAL_MS (stats, one
+ * shot); calls `onHit` at the first sample at its limit (atPidsLimit). For a container whose
+ * cgroup is not read here (a remote engine): a program that hides its refused forks is still seen.
+ */
+export function followEnginePids(container: Docker.Container, limit: number | undefined, onHit: () => void): { stop(): void } {
+  let stopped = false;
+  let busy = false;
+  const timer = setInterval(() => {
+    if (busy || stopped) return;
+    busy = true;
+    container.stats({ stream: false, 'one-shot': true })
+      .then((s) => {
+        if (!stopped && atPidsLimit(s?.pids_stats, limit)) {
+          stopped = true;
+          clearInterval(timer);
+          onHit();
+        }
+      }, () => {})
+      .finally(() => (busy = false));
+  }, ENGINE_PIDS_INTERVAL_MS);
+  return {
+    stop: () => {
+      stopped = true;
+      clearInterval(timer);
+    },
+  };
+}
+
 /** How a Docker job's limit hits are seen while it runs: `auto` the cgroup when readable, else the engine; `engine` the engine only. */
 export type DockerLimitWatch = 'auto' | 'engine';
 
@@ -300,6 +349,7 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
   let stopped = false;
   let timer: NodeJS.Timeout | null = null;
   let events: { stop(): void } | null = null;
+  let enginePids: { stop(): void } | null = null;
   let cgroup: ContainerCgroup | null = null;
   let fired = false;
   const fire = (kind: 'memory' | 'processes'): void => {
@@ -327,6 +377,8 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
           busy = true;
           look(found.cgroup).then((h) => h && fire(h), () => {}).finally(() => (busy = false));
         }, CGROUP_WATCH_INTERVAL_MS);
+        if (found.cgroup.plan.memory && found.cgroup.plan.pids) return;
+        if (!found.cgroup.plan.pids) enginePids = followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes'));
         if (found.cgroup.plan.memory) return;
         reason = `no memory counter of the container is readable here (${describePlan(found.cgroup.plan)})`;
       } else {
@@ -336,6 +388,8 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
       }
     }
     opts.onFallback?.(reason);
+    enginePids ??= followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes'));
+    if (stopped) enginePids.stop();
     const id = info.Id ?? '';
     if (!CONTAINER_ID.test(id)) return;
     const sub = await followEngineOom(opts.docker, id, sinceOf(info), () => fire('memory')).catch(() => null);
@@ -348,6 +402,7 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
       stopped = true;
       if (timer) clearInterval(timer);
       events?.stop();
+      enginePids?.stop();
     },
     finalLook: async () => (cgroup ? look(cgroup).catch(() => null) : null),
     pids: async () => (cgroup ? cgroup.pids() : null),

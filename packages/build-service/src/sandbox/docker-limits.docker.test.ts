@@ -4,7 +4,8 @@
  * failure, and one whose child is OOM-killed while the program goes on, are both stopped at the hit
  * with `killed: ...` and `limitHit` — not at the end of the run, not as a success. Read from the
  * container's cgroup (this host's cgroup v1), and the memory kill also from the engine's oom events
- * alone (`limitWatch: 'engine'`, what a remote engine gives). Starts dockerd and bootstraps the
+ * alone (`limitWatch: 'engine'`, what a remote engine gives), and the hidden forks from the engine's
+ * process count alone. Starts dockerd and bootstraps the
  * image when needed, or says SKIPPED loudly with the reason.
  */
 import { mkdtempSync, rmSync } from 'node:fs';
@@ -97,6 +98,15 @@ if (env.available) {
       expect(job.result.step).toBe('run');
       expect(job.result.message).toBe('killed: memory limit 96 MiB');
       expect(job.result.limitHit).toEqual({ name: 'memory', value: 96 * 1024 * 1024, unit: 'bytes', mechanism: 'docker' });
+      expect(job.result.durations_ms.run).toBeLessThan(10_000);
+    });
+
+    test("without the cgroup (limitWatch: 'engine', as a remote engine): forks refused and hidden are seen from the engine's process count, at the hit", async () => {
+      const job = await run(engineUrl, silentForks, { processes: 24 });
+      expect(job.status).toBe('failed');
+      expect(job.result.step).toBe('run');
+      expect(job.result.message).toBe('killed: process limit 24');
+      expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker' });
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
     });
 

@@ -361,7 +361,7 @@ export class DockerSandbox implements Sandbox {
         onFallback: (reason) => {
           if (this.limitWatchNoted || this.limitWatch === 'engine') return;
           this.limitWatchNoted = true;
-          this.log(`docker: the containers' cgroups cannot be read here (${reason}): a memory limit hit is taken from the engine's oom events, a process limit hit from the program's messages (docs/sandbox.md "Memory and process limits in Docker")`);
+          this.log(`docker: the containers' cgroups cannot be read here (${reason}): a memory limit hit is taken from the engine's oom events, a process limit hit from the engine's process count and the program's messages (docs/sandbox.md "Memory and process limits in Docker")`);
         },
       });
       /** The process limit, with the module whose code forks, named while its processes are there (forking-module.ts). */
