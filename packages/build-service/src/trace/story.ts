@@ -337,6 +337,9 @@ export class StoryTeller {
             if (what === 'held' && (this.held.has(schema) || this.held.size < STORY_FOLLOWED)) this.held.set(ownString(schema), ownString(String(k.fields['module'])));
             else if (what !== 'held') this.held.delete(schema);
         }
+        // a new activation counts its cycles from 0 again, and a deactivated one has no cycle left:
+        // the releases of the one before, acknowledged late or never, are not this one's to wait for
+        if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate')) this.forgetCycles(String(k.fields['schema']));
         if (k.kind === 'scheduler' && what === 'stuck' && stuckSaysGone(k.detail)) {
             const module = String(k.fields['module']);
             if (this.gone.has(module) || this.gone.size < STORY_FOLLOWED) this.gone.add(ownString(module));
@@ -467,6 +470,14 @@ export class StoryTeller {
         } else if (this.cycleOf(schema, cycle)?.running.delete(k.peer)) {
             this.running--;
         }
+    }
+
+    /** Schema `schema`'s cycles no longer followed (a new activation, or none). */
+    private forgetCycles(schema: string): void {
+        const s = this.cycles.get(schema);
+        if (!s) return;
+        this.running -= s.current.running.size + (s.previous?.running.size ?? 0);
+        this.cycles.delete(schema);
     }
 
     private cycleOf(schema: string, cycle: string): CycleRunning | undefined {

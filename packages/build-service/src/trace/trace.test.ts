@@ -589,6 +589,19 @@ describe('reading a log', () => {
             '+0.001600s ORD  deadline miss (ORD:0): conveyor cycle 66 (not finished: ENC, SPC; ORD released the cycle 13.4 ms after its tick)',
             '+0.021700s ORD  deadline miss (ORD:0): conveyor cycle 67 (not finished: ENC)', // 500 ns late: on time
         ]);
+        // a new activation's cycle 0 waits for its own releases only: DRV's release of the deactivated
+        // activation's cycle 0, acknowledged late, is not one of them (field test 7)
+        const again = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+            '4000000000,w,ORD,scheduler,,,0,activate armLoop (activation #1 from CEL)',
+            '4000100000,w,ORD,ord_release,DRV,,0,schema=armLoop cycle=0 tick_ns=4000000000 release_ns=4000100000 release=641',
+            '4000500000,w,ORD,scheduler,,,0,deactivate armLoop (activation #1 from CEL)',
+            '4000800000,w,ORD,scheduler,,,0,late ack: DRV release #641 (armLoop, deactivated): not counted',
+            '4300000000,w,ORD,scheduler,,,0,activate armLoop (activation #2 from CEL)',
+            '4300010000,w,ORD,ord_release,ENC,,0,schema=armLoop cycle=0 tick_ns=4300000000 release_ns=4300010000 release=642',
+            '4301000000,w,ORD,ord_deadline_miss,,,0,schema=armLoop cycle=0 tick_ns=4300000000',
+            '',
+        ].join('\n') }]));
+        expect(again.filter((l) => l.includes(' deadline miss ('))).toEqual(['+0.301000s ORD  deadline miss (ORD:0): armLoop cycle 0 (not finished: ENC)']);
         // a trace file's record placed before the first one (times are the file's): a negative offset, not "+-"
         const teller = new StoryTeller();
         teller.tell(parseRecordLine('X_1.csv', 2, '5000000000,w,X,error,,,0,first'));
