@@ -81,6 +81,12 @@ export interface ServiceBounds {
    * last event id it got (http/sse.ts, http/ws.ts).
    */
   streamBufferedBytes: number;
+  /**
+   * Bytes all the streaming clients of one server may leave unread together (their replays
+   * included): past it, the client with the most unread bytes is disconnected, until the others
+   * fit (http/stream-budget.ts). Thirty stalled monitors of a 1 kHz run held half a gigabyte.
+   */
+  streamsBufferedBytes: number;
   /** Milliseconds between two reads of a running job's CSV logs for the live trace channel (pipeline/trace-tail.ts). */
   tracePollMs: number;
   /** Bytes of the CSV logs read per poll, over all the files (the rest is read at the next polls). */
@@ -135,6 +141,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   requestBodySeconds: 30,
   wsMessageBytes: 4096,
   streamBufferedBytes: 64 * 1024 * 1024,
+  streamsBufferedBytes: 128 * 1024 * 1024,
   tracePollMs: 50,
   traceReadBytesPerPoll: 1024 * 1024,
   traceOrderWindowMs: 150,

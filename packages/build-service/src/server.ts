@@ -9,7 +9,9 @@
 import { createServer, type IncomingMessage, type Server, type ServerResponse } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import type { Duplex } from 'node:stream';
-import { afterSeq, createRouter } from './http/router.js';
+import { AFTER_ERROR, afterSeq, createRouter } from './http/router.js';
+import { StreamBudget } from './http/stream-budget.js';
+import { SERVICE_BOUNDS } from './limits.js';
 import { JobWebSockets, TRACE_FILTER_ERROR, traceFilter } from './http/ws.js';
 import { foreignRequest } from './http/local-guard.js';
 import { ServiceToken, unauthorizedBody } from './http/service-token.js';
@@ -53,8 +55,10 @@ export const DEFAULT_PORT = 7391;
 export function createBuildServer(options: BuildServerOptions = {}): BuildServer {
   const basePath = (options.basePath ?? '/api').replace(/\/$/, '');
   const service = new JobService(options);
-  const route = createRouter(service, basePath);
-  const sockets = new JobWebSockets(service);
+  // what all the streaming clients of this server may leave unread together (http/stream-budget.ts)
+  const budget = new StreamBudget(SERVICE_BOUNDS.streamsBufferedBytes);
+  const route = createRouter(service, basePath, budget);
+  const sockets = new JobWebSockets(service, budget);
   let server: Server | null = null;
   const token = options.token === false ? null : new ServiceToken(options.token);
   const standalone = { allowNoneSandbox: options.allowNoneSandbox === true };
@@ -69,7 +73,13 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
       socket.end(`HTTP/1.1 400 Bad Request\r\nConnection: close\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
       return true;
     }
-    if (!sockets.upgrade(m[1]!, afterSeq(req, url), req, socket, head, trace)) {
+    const after = afterSeq(req, url);
+    if (after === null) {
+      const body = `${AFTER_ERROR}\n`;
+      socket.end(`HTTP/1.1 400 Bad Request\r\nConnection: close\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
+      return true;
+    }
+    if (!sockets.upgrade(m[1]!, after, req, socket, head, trace)) {
       socket.end('HTTP/1.1 404 Not Found\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
     }
     return true;

@@ -132,7 +132,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     try {
       guardRequest(req, host);
       if (url.pathname.startsWith('/api/')) {
-        if (!token.presented(req)) throw new HttpError(401, NO_SESSION);
+        if (!token.presented(req)) throw new HttpError(401, NO_SESSION, { code: 'unauthorized' });
         if (BUILD_ROUTES.test(url.pathname)) {
           if (!build) throw new HttpError(503, buildServiceNote);
           if (await build.handle(req, res)) return;
@@ -223,7 +223,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
     // same Host/Origin checks and session token as the HTTP API: a socket is read cross-origin
     try {
       guardRequest(req, host);
-      if (!token.presented(req)) throw new HttpError(401, NO_SESSION);
+      if (!token.presented(req)) throw new HttpError(401, NO_SESSION, { code: 'unauthorized' });
     } catch (e) {
       const status = e instanceof HttpError ? e.status : 400;
       socket.end(`HTTP/1.1 ${status} ${status === 401 ? 'Unauthorized' : 'Forbidden'}\r\nConnection: close\r\nContent-Length: 0\r\n\r\n`);

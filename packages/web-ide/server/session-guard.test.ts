@@ -101,6 +101,14 @@ describe('session token', () => {
     untouched();
   }, 60_000);
 
+  it("an /api 401 says why in the same shape as the build service's: { error, code: 'unauthorized' }", async () => {
+    for (const path of ['/api/snapshot', '/api/file?path=ok.contract']) {
+      const res = await fetch(`${ide.url}${path}`);
+      expect(res.status, path).toBe(401);
+      expect(await res.json(), path).toEqual({ code: 'unauthorized', error: expect.stringMatching(/needs its session token/) });
+    }
+  });
+
   it('the same requests pass with the token, in the header or in the cookie', async () => {
     for (const [method, path] of ROUTES.filter(([m, p]) => m === 'GET' && p !== '/api/events')) {
       expect((await raw(method, path, { 'x-contract-token': ide.token })).status, path).not.toBe(401);

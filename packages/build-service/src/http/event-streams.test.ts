@@ -14,6 +14,7 @@ import { streamSse } from './sse.js';
 import { sseFrame, wsFrame } from './event-wire.js';
 import { decodeTraceRecords } from '../trace/wire.js';
 import { JobWebSockets } from './ws.js';
+import { StreamBudget } from './stream-budget.js';
 
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
@@ -28,14 +29,23 @@ describe('SSE stream of a job', () => {
     server = null;
   });
 
-  /** A server streaming `events` to every client, with a live-buffer bound of `bound` bytes. */
-  const serve = async (events: JobEvents, bound: number): Promise<string> => {
-    server = createServer((req, res) => streamSse({ events } as never, req, res, Number(new URL(req.url!, 'http://x').searchParams.get('after') ?? 0), bound));
+  /** A server streaming `events` to every client, with a live-buffer bound of `bound` bytes per client (and `budget` for all). */
+  const serve = async (events: JobEvents, bound: number, budget?: StreamBudget): Promise<string> => {
+    server = createServer((req, res) => streamSse({ events } as never, req, res, Number(new URL(req.url!, 'http://x').searchParams.get('after') ?? 0), budget, bound));
     await new Promise<void>((r) => server!.listen(0, '127.0.0.1', r));
     return `http://127.0.0.1:${(server!.address() as AddressInfo).port}`;
   };
   const records = (from: number, n: number): TraceLine[] =>
     Array.from({ length: n }, (_, i) => ({ file: 'M_1.csv', line: from + i, text: `${1000 + from + i},2026-11-26T12:00:00.000000Z,M,user,,,0,${'x'.repeat(200)}` }));
+
+  /** A client that connects to SSE and never reads. */
+  const stalledClient = (base: string) => {
+    const c = connect((new URL(base).port as unknown as number), '127.0.0.1');
+    c.write('GET /api/jobs/j/events HTTP/1.1\r\nHost: x\r\n\r\n');
+    c.pause();
+    c.on('error', () => {});
+    return c;
+  };
 
   /**
    * With two clients attached, one of them stalled: 30 MB of live trace (an event of 1000 records
@@ -104,7 +114,7 @@ describe('SSE stream of a job', () => {
 
   test('WebSocket: a stalled client is dropped past the bound, a reading one gets every record', async () => {
     const events = new JobEvents();
-    sockets = new JobWebSockets({ get: () => ({ events }) as never, cancel: async () => undefined }, 8 * 1024 * 1024);
+    sockets = new JobWebSockets({ get: () => ({ events }) as never, cancel: async () => undefined }, undefined, 8 * 1024 * 1024);
     server = createServer();
     server.on('upgrade', (req, socket, head) => sockets!.upgrade('j', 0, req, socket, head));
     await new Promise<void>((r) => server!.listen(0, '127.0.0.1', r));
@@ -128,5 +138,37 @@ describe('SSE stream of a job', () => {
     expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
     reader.close();
     stalled.terminate();
+  }, 30_000);
+
+  test("the server's budget for all its clients: stalled clients each under their own bound are dropped, the one with the most unread first, until the rest fit; a reading client gets every record", async () => {
+    const events = new JobEvents();
+    const budget = new StreamBudget(12 * 1024 * 1024);
+    // each stalled client alone stays under its own 64 MiB bound for the whole 30 MB flood
+    const base = await serve(events, 64 * 1024 * 1024, budget);
+    const stalled = [stalledClient(base), stalledClient(base), stalledClient(base)];
+    const got: TraceLine[] = [];
+    const reading = streamEvents(base, 'j', (e) => {
+      if (e.type === 'trace') got.push(...(e as TraceEvent).records);
+    });
+    for (let i = 0; i < 200 && events.subscriberCount < 4; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(4);
+    let line = 2;
+    let most = 0;
+    for (let k = 0; k < 120; k++) {
+      events.append({ type: 'trace', records: records(line, 1000) });
+      line += 1000;
+      most = Math.max(most, budget.held);
+      await sleep(15);
+    }
+    for (let i = 0; i < 200 && events.subscriberCount > 1; i++) await sleep(10);
+    expect(events.subscriberCount).toBe(1);
+    events.append({ type: 'end', result: null });
+    await reading;
+    expect(got.map((l) => l.line)).toEqual(Array.from({ length: line - 2 }, (_, i) => i + 2));
+    // never more than the budget held (as last told) after a write, and nothing once all have left
+    expect(most).toBeLessThanOrEqual(12 * 1024 * 1024);
+    for (let i = 0; i < 100 && budget.held > 0; i++) await sleep(10);
+    expect(budget.held).toBe(0);
+    for (const c of stalled) c.destroy();
   }, 30_000);
 });

@@ -10,6 +10,7 @@ import { artifactBytes } from '../pipeline/artifacts.js';
 import { ServiceError } from '../service-errors.js';
 import { BodyReader } from './body-reader.js';
 import { streamSse } from './sse.js';
+import type { StreamBudget } from './stream-budget.js';
 import { SANDBOX_NAMES } from '@contract-studio/conventions';
 
 function send(res: ServerResponse, status: number, body: unknown, headers: Record<string, string> = {}): void {
@@ -26,11 +27,16 @@ function sendError(res: ServerResponse, e: unknown, headers: Record<string, stri
   }
 }
 
-export function afterSeq(req: IncomingMessage, url: URL): number {
-  const raw = req.headers['last-event-id'] ?? url.searchParams.get('after') ?? '0';
-  const n = Number(Array.isArray(raw) ? raw[0] : raw);
-  return Number.isInteger(n) && n > 0 ? n : 0;
+export function afterSeq(req: IncomingMessage, url: URL): number | null {
+  const header = req.headers['last-event-id'];
+  const raw = (Array.isArray(header) ? header[0] : header) ?? url.searchParams.get('after') ?? '0';
+  // a decimal event number as the service gives them: `abc`, `0x10`, `1e400`, 5,000 digits are refused
+  if (!/^\d{1,15}$/.test(raw.trim())) return null;
+  return Number(raw.trim());
 }
+
+/** The refusal of a malformed `?after=` or `Last-Event-ID` (the body of its 400). */
+export const AFTER_ERROR = 'after (or Last-Event-ID) must be an event number: a whole number of 1 to 15 decimal digits (0: from the start)';
 
 function logText(lines: LineEvent[]): string {
   return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${l.line}\n`).join('');
@@ -63,7 +69,7 @@ function checkSandboxPolicy(service: JobService, body: unknown, policy: RoutePol
   }
 }
 
-export function createRouter(service: JobService, basePath: string) {
+export function createRouter(service: JobService, basePath: string, budget?: StreamBudget) {
   const bodies = new BodyReader();
   return async function handle(req: IncomingMessage, res: ServerResponse, policy: RoutePolicy = { allowNoneSandbox: true }): Promise<boolean> {
     const url = new URL(req.url ?? '/', 'http://localhost');
@@ -118,7 +124,11 @@ export function createRouter(service: JobService, basePath: string) {
             service.cancel(job.id).catch(() => {});
             send(res, 202, { id: job.id, status: 'cancelling' });
           }
-        } else if (sub === 'events' && parts.length === 3 && method === 'GET') streamSse(job, req, res, afterSeq(req, url));
+        } else if (sub === 'events' && parts.length === 3 && method === 'GET') {
+          const after = afterSeq(req, url);
+          if (after === null) throw new ServiceError(400, 'bad_request', AFTER_ERROR);
+          streamSse(job, req, res, after, budget);
+        }
         else if (sub === 'log' && parts.length === 3 && method === 'GET') {
           const text = logText(job.events.all.filter((e): e is LineEvent => e.type === 'line'));
           res.writeHead(200, { 'Content-Type': 'text/plain; charset=utf-8' });

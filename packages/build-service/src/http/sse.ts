@@ -10,9 +10,10 @@ import type { IncomingMessage, ServerResponse } from 'node:http';
 import type { Job } from '../pipeline/job.js';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LiveBacklog } from './live-backlog.js';
+import type { StreamBudget, StreamShare } from './stream-budget.js';
 import { sseFrame } from './event-wire.js';
 
-export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: ServerResponse, after: number, streamBufferedBytes = SERVICE_BOUNDS.streamBufferedBytes): void {
+export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: ServerResponse, after: number, budget?: StreamBudget, streamBufferedBytes = SERVICE_BOUNDS.streamBufferedBytes): void {
   res.writeHead(200, {
     'Content-Type': 'text/event-stream; charset=utf-8',
     'Cache-Control': 'no-cache, no-transform',
@@ -22,21 +23,27 @@ export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: S
   res.write(': contract build service\n\n');
   let closed = false;
   const backlog = new LiveBacklog(streamBufferedBytes);
+  // too far behind (its own bound, or the server's budget for all): dropped at once (end() would
+  // wait for it to read what is buffered)
+  const drop = (): void => {
+    if (closed) return;
+    closed = true;
+    clearInterval(ping);
+    share?.leave();
+    setImmediate(() => {
+      unsubscribe();
+      res.destroy();
+    });
+  };
+  const share: StreamShare | undefined = budget?.join(drop);
   // a client that goes away mid-write must end this stream only, never the service
   const write = (text: string): void => {
     if (closed) return;
     try {
       res.write(text);
       backlog.sent(Buffer.byteLength(text));
-      if (backlog.tooFarBehind(res.writableLength)) {
-        // too far behind: dropped at once (end() would wait for it to read what is buffered)
-        closed = true;
-        clearInterval(ping);
-        setImmediate(() => {
-          unsubscribe();
-          res.destroy();
-        });
-      }
+      if (backlog.tooFarBehind(res.writableLength)) drop();
+      else share?.holds(res.writableLength);
     } catch {
       setImmediate(stop);
     }
@@ -48,6 +55,7 @@ export function streamSse(job: Pick<Job, 'events'>, req: IncomingMessage, res: S
     if (closed) return;
     closed = true;
     clearInterval(ping);
+    share?.leave();
     unsubscribe();
     try {
       res.end();

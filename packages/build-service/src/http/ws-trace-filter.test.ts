@@ -137,4 +137,24 @@ describe('job WebSocket ?trace= filter', () => {
     appendLive();
     expect(await stream.frames).toEqual(ONLY);
   }, 10_000);
+
+  test('a resume position that is no event number (after=, Last-Event-ID) is a 400 on both streams, not a replay from the start', async () => {
+    appendReplay();
+    for (const q of ['?after=abc', '?after=', '?after=0x10', '?after=1e308', '?after=-3', '?after=1.5', `?after=${'9'.repeat(5000)}`]) {
+      const ws = await upgradeStatus(`/api/jobs/${ID}/ws${q}`);
+      expect(ws.status, q).toBe(400);
+      expect(ws.body, q).toMatch(/must be an event number/);
+      const sse = await fetch(`${built.url}/api/jobs/${ID}/events${q}`);
+      expect(sse.status, q).toBe(400);
+      expect(await sse.json(), q).toMatchObject({ code: 'bad_request', error: expect.stringMatching(/must be an event number/) });
+    }
+    const header = await fetch(`${built.url}/api/jobs/${ID}/events`, { headers: { 'Last-Event-ID': '1e400' } });
+    expect(header.status).toBe(400);
+    await header.body?.cancel();
+    // a good one resumes as before
+    const resumed = await follow('?after=3');
+    expect(events.subscriberCount).toBe(1);
+    appendLive();
+    expect(await resumed.frames).toEqual(['trace@4', 'line@5', 'trace@6', 'status@7', 'trace@8', 'end@9']);
+  }, 10_000);
 });

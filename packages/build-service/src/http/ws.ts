@@ -11,6 +11,7 @@ import { WebSocketServer } from 'ws';
 import type { JobService } from '../job-service.js';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LiveBacklog } from './live-backlog.js';
+import type { StreamBudget } from './stream-budget.js';
 import { wsFrame } from './event-wire.js';
 import type { JobEvent } from '../pipeline/job-events.js';
 
@@ -41,6 +42,7 @@ export class JobWebSockets {
 
   constructor(
     private readonly service: Pick<JobService, 'get' | 'cancel'>,
+    private readonly budget?: StreamBudget,
     private readonly streamBufferedBytes = SERVICE_BOUNDS.streamBufferedBytes,
   ) {}
 
@@ -59,17 +61,27 @@ export class JobWebSockets {
       // a client that leaves more than streamBufferedBytes of live events unread (beyond its
       // replay) is dropped, as on SSE (http/sse.ts)
       const backlog = new LiveBacklog(this.streamBufferedBytes);
+      // the server's budget for all its streaming clients may drop this one too (stream-budget.ts)
+      let dropped = false;
+      const drop = (): void => {
+        if (dropped) return;
+        dropped = true;
+        share?.leave();
+        unsubscribe();
+        ws.terminate();
+      };
+      const share = this.budget?.join(drop);
       unsubscribe = job.events.subscribe(after, (e) => {
         // a filtered event is not sent, nor counted in the backlog (the end always passes)
-        if (!wanted(trace, e)) return;
+        if (dropped || !wanted(trace, e)) return;
         const text = wsFrame(e);
         backlog.sent(Buffer.byteLength(text));
         ws.send(text, () => {}); // a send on a closing socket reports here, not thrown
         if (backlog.tooFarBehind(ws.bufferedAmount)) {
-          unsubscribe();
-          ws.terminate();
+          drop();
           return;
         }
+        share?.holds(ws.bufferedAmount);
         if (e.type === 'end') setImmediate(() => ws.close(1000, 'job ended'));
       });
       backlog.replayDone();
@@ -81,7 +93,10 @@ export class JobWebSockets {
           /* ignore malformed client frames */
         }
       });
-      ws.on('close', () => unsubscribe());
+      ws.on('close', () => {
+        share?.leave();
+        unsubscribe();
+      });
       if (job.events.isEnded) setImmediate(() => ws.close(1000, 'job ended'));
     });
     return true;
