@@ -43,13 +43,21 @@
 #define MAX_MODULES 128
 #define LINE_MAX_LEN 4096
 
+/* One of a module's output streams: the read end of its pipe, and the line being gathered. */
+typedef struct {
+    int fd;               /* -1 at EOF */
+    char line[LINE_MAX_LEN];
+    size_t len;
+} Output;
+
 typedef struct {
     const char *exe;
     char name[CONTRACT_NAME_MAX];
     pid_t pid;
-    int out_fd;           /* read end of its stdout+stderr pipe, -1 at EOF */
-    char line[LINE_MAX_LEN];
-    size_t line_len;
+    /* its stdout and its stderr, each a pipe of its own: forwarded as `[NAME] line` to the
+     * launcher's stdout and stderr, so that a reader (the build service, a terminal) tells them
+     * apart, and a line one of them leaves unfinished is never glued to the other's next */
+    Output out[2];
     int alive;
     int named;            /* its <NAME>.pid file was read: `name` is the module's own */
     int ready;            /* its <NAME>.ready file exists: its init returned */
@@ -277,35 +285,57 @@ static int kill_mode(const char *dir)
 
 /* ------------------------------------------------------------------ output */
 
-static void emit_line(Child *c, const char *text, size_t len)
+/* `[NAME] ` and line `text` (its bytes as they are: a NUL among them too) to stream `k` (0: the
+ * launcher's stdout, 1: its stderr), in one write so that lines of different modules never interleave. */
+static void emit_line(const Child *c, int k, const char *text, size_t len)
 {
-    /* one write per line so that lines of different modules never interleave */
     char buf[LINE_MAX_LEN + CONTRACT_NAME_MAX + 8];
-    int n = snprintf(buf, sizeof buf, "[%s] %.*s\n", c->name, (int)len, text);
-    if (n > (int)sizeof buf) n = (int)sizeof buf;
-    ssize_t w = write(STDOUT_FILENO, buf, (size_t)n);
+    int head = snprintf(buf, sizeof buf, "[%s] ", c->name);
+    if (head < 0) return;
+    if ((size_t)head + len + 1 > sizeof buf) len = sizeof buf - (size_t)head - 1;
+    memcpy(buf + head, text, len);
+    buf[(size_t)head + len] = '\n';
+    ssize_t w = write(k ? STDERR_FILENO : STDOUT_FILENO, buf, (size_t)head + len + 1);
     (void)w;
 }
 
-static void pump(Child *c)
+/* Output `k` of `c` at its end: its unfinished line forwarded, its pipe closed. */
+static void close_output(Child *c, int k)
 {
+    Output *o = &c->out[k];
+    if (o->fd < 0) return;
+    if (o->len) { emit_line(c, k, o->line, o->len); o->len = 0; }
+    close(o->fd);
+    o->fd = -1;
+}
+
+/* Reads what output `k` of `c` holds and forwards its whole lines (a line longer than
+ * LINE_MAX_LEN goes in pieces of that length, each a line). */
+static void pump(Child *c, int k)
+{
+    Output *o = &c->out[k];
     char buf[4096];
-    ssize_t n = read(c->out_fd, buf, sizeof buf);
+    ssize_t n = read(o->fd, buf, sizeof buf);
     if (n < 0 && (errno == EINTR || errno == EAGAIN)) return;
-    if (n <= 0) {
-        if (c->line_len) { emit_line(c, c->line, c->line_len); c->line_len = 0; }
-        close(c->out_fd);
-        c->out_fd = -1;
-        return;
-    }
+    if (n <= 0) { close_output(c, k); return; }
     for (ssize_t i = 0; i < n; i++) {
-        if (buf[i] == '\n' || c->line_len == LINE_MAX_LEN) {
-            emit_line(c, c->line, c->line_len);
-            c->line_len = 0;
+        if (buf[i] == '\n' || o->len == LINE_MAX_LEN) {
+            emit_line(c, k, o->line, o->len);
+            o->len = 0;
             if (buf[i] == '\n') continue;
         }
-        c->line[c->line_len++] = buf[i];
+        o->line[o->len++] = buf[i];
     }
+}
+
+/* The open outputs of every module in `pfd` (`idx`: child * 2 + stream), up to `max`; how many. */
+static int poll_outputs(struct pollfd *pfd, int *idx, int max)
+{
+    int n = 0;
+    for (int i = 0; i < n_children; i++)
+        for (int k = 0; k < 2; k++)
+            if (children[i].out[k].fd >= 0 && n < max) { pfd[n].fd = children[i].out[k].fd; pfd[n].events = POLLIN; idx[n++] = i * 2 + k; }
+    return n;
 }
 
 /* ------------------------------------------------------------------ children */
@@ -319,10 +349,11 @@ static void derive_name(Child *c)
 
 static int spawn(Child *c, const sigset_t *oldmask)
 {
-    int fds[2];
+    int fds[2], efds[2];
     if (pipe2(fds, O_CLOEXEC) != 0) { say("pipe: %s", strerror(errno)); return -1; }
+    if (pipe2(efds, O_CLOEXEC) != 0) { say("pipe: %s", strerror(errno)); close(fds[0]); close(fds[1]); return -1; }
     pid_t pid = fork();
-    if (pid < 0) { say("fork: %s", strerror(errno)); return -1; }
+    if (pid < 0) { say("fork: %s", strerror(errno)); close(fds[0]); close(fds[1]); close(efds[0]); close(efds[1]); return -1; }
     if (pid == 0) {
         setpgid(0, 0); /* terminal Ctrl-C reaches the launcher only; it stops the modules itself */
         sigprocmask(SIG_SETMASK, oldmask, NULL);
@@ -334,15 +365,18 @@ static int spawn(Child *c, const sigset_t *oldmask)
         int devnull = open("/dev/null", O_RDONLY);
         if (devnull >= 0) { dup2(devnull, STDIN_FILENO); close(devnull); }
         dup2(fds[1], STDOUT_FILENO);
-        dup2(fds[1], STDERR_FILENO);
+        dup2(efds[1], STDERR_FILENO);
         execl(c->exe, c->exe, (char *)NULL);
         fprintf(stderr, "cannot execute %s: %s\n", c->exe, strerror(errno));
         _exit(127);
     }
     close(fds[1]);
+    close(efds[1]);
     fcntl(fds[0], F_SETFL, O_NONBLOCK);
+    fcntl(efds[0], F_SETFL, O_NONBLOCK);
     c->pid = pid;
-    c->out_fd = fds[0];
+    c->out[0].fd = fds[0];
+    c->out[1].fd = efds[0];
     c->alive = 1;
     return 0;
 }
@@ -484,14 +518,12 @@ static int first_ended(void)
 static void drain_output(void)
 {
     for (int round = 0; round < 64; round++) {
-        struct pollfd pfd[MAX_MODULES];
-        int idx[MAX_MODULES];
-        int n = 0;
-        for (int i = 0; i < n_children; i++)
-            if (children[i].out_fd >= 0) { pfd[n].fd = children[i].out_fd; pfd[n].events = POLLIN; idx[n++] = i; }
+        struct pollfd pfd[2 * MAX_MODULES];
+        int idx[2 * MAX_MODULES];
+        int n = poll_outputs(pfd, idx, 2 * MAX_MODULES);
         if (n == 0 || poll(pfd, (nfds_t)n, 0) <= 0) return;
         for (int k = 0; k < n; k++)
-            if (pfd[k].revents) pump(&children[idx[k]]);
+            if (pfd[k].revents) pump(&children[idx[k] / 2], idx[k] % 2);
     }
 }
 
@@ -504,12 +536,10 @@ static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
         }
         RTIME now = now_ns();
         if (deadline != INT64_MAX && now >= deadline) return 0;
-        struct pollfd pfd[MAX_MODULES + 1];
-        int idx[MAX_MODULES + 1];
-        int n = 0;
-        pfd[n].fd = sfd; pfd[n].events = POLLIN; idx[n++] = -1;
-        for (int i = 0; i < n_children; i++)
-            if (children[i].out_fd >= 0) { pfd[n].fd = children[i].out_fd; pfd[n].events = POLLIN; idx[n++] = i; }
+        struct pollfd pfd[2 * MAX_MODULES + 1];
+        int idx[2 * MAX_MODULES + 1];
+        pfd[0].fd = sfd; pfd[0].events = POLLIN; idx[0] = -1;
+        int n = 1 + poll_outputs(pfd + 1, idx + 1, 2 * MAX_MODULES);
         int timeout = 100;
         if (deadline != INT64_MAX && (deadline - now) / 1000000 < timeout) timeout = (int)((deadline - now) / 1000000) + 1;
         int r = poll(pfd, (nfds_t)n, timeout);
@@ -517,7 +547,7 @@ static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
         int stop = 0;
         for (int k = 0; r > 0 && k < n; k++) {
             if (!pfd[k].revents) continue;
-            if (idx[k] >= 0) { pump(&children[idx[k]]); continue; }
+            if (idx[k] >= 0) { pump(&children[idx[k] / 2], idx[k] % 2); continue; }
             struct signalfd_siginfo si;
             while (read(sfd, &si, sizeof si) == (ssize_t)sizeof si) {
                 if (si.ssi_signo == SIGCHLD) reap();
@@ -554,24 +584,21 @@ static void drain_outputs(RTIME ns)
 {
     RTIME until = now_ns() + ns;
     for (;;) {
-        struct pollfd pfd[MAX_MODULES];
-        int idx[MAX_MODULES];
-        int n = 0;
-        for (int i = 0; i < n_children; i++)
-            if (children[i].out_fd >= 0) { pfd[n].fd = children[i].out_fd; pfd[n].events = POLLIN; idx[n++] = i; }
+        struct pollfd pfd[2 * MAX_MODULES];
+        int idx[2 * MAX_MODULES];
+        int n = poll_outputs(pfd, idx, 2 * MAX_MODULES);
         RTIME now = now_ns();
         if (n == 0 || now >= until) break;
         int r = poll(pfd, (nfds_t)n, (int)((until - now) / 1000000) + 1);
         if (r < 0 && errno != EINTR) break;
         for (int k = 0; r > 0 && k < n; k++)
-            if (pfd[k].revents) pump(&children[idx[k]]);
+            if (pfd[k].revents) pump(&children[idx[k] / 2], idx[k] % 2);
     }
     for (int i = 0; i < n_children; i++) {
         Child *c = &children[i];
-        if (c->out_fd < 0) continue;
-        if (c->line_len) { emit_line(c, c->line, c->line_len); c->line_len = 0; }
-        close(c->out_fd);
-        c->out_fd = -1;
+        if (c->out[0].fd < 0 && c->out[1].fd < 0) continue;
+        close_output(c, 0);
+        close_output(c, 1);
         say("module %s: a process it started still holds its output after it ended (it left the module's process group): not waited for", c->name);
     }
 }
@@ -787,7 +814,7 @@ int main(int argc, char *argv[])
         Child *c = &children[n_children++];
         memset(c, 0, sizeof *c);
         c->exe = argv[k];
-        c->out_fd = -1;
+        c->out[0].fd = c->out[1].fd = -1;
         derive_name(c);
         if (spawn(c, &oldmask) != 0) { n_children--; stop_all(sfd); clean_run_dir(run_dir); return 2; }
     }

@@ -30,6 +30,35 @@ static pid_t start_launcher(char *const argv[], const char *out_file)
     return pid;
 }
 
+/* The launcher with its stdout and its stderr in two files. */
+static pid_t start_launcher_split(char *const argv[], const char *out_file, const char *err_file)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/contract-launch", h_bin_dir);
+    pid_t pid = fork();
+    if (pid == 0) {
+        int fd = open(out_file, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        int efd = open(err_file, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) { dup2(fd, 1); close(fd); }
+        if (efd >= 0) { dup2(efd, 2); close(efd); }
+        execv(path, argv);
+        _exit(127);
+    }
+    return pid;
+}
+
+/* A file's bytes (NULs included) and their count; NULL when unreadable. */
+static char *read_bytes(const char *file, size_t *len)
+{
+    FILE *f = fopen(file, "rb");
+    if (!f) return NULL;
+    char *buf = malloc(1 << 16);
+    *len = buf ? fread(buf, 1, (1 << 16) - 1, f) : 0;
+    fclose(f);
+    if (buf) buf[*len] = '\0';
+    return buf;
+}
+
 static int wait_for_text(const char *file, const char *text, int timeout_ms)
 {
     for (int t = 0; t < timeout_ms; t += 20) {
@@ -140,6 +169,26 @@ void test_launcher_module_ends(void)
     CHECK(text && strstr(text, "FAILED: module C1 crashed"));
     CHECK(text && !strstr(text, "FAILED: module C2") && !strstr(text, "FAILED: module P"));
     free(text);
+
+    /* a module's stdout and stderr stay apart: its stderr lines on the launcher's stderr, a line
+     * its stdout left unfinished not glued to them, a NUL among a line's bytes kept */
+    {
+        char err[600];
+        snprintf(err, sizeof err, "%s/launch.err", h_work_dir);
+        setenv("TMOD_END", "C1:outputs", 1);
+        pid_t launcher = start_launcher_split(argv, out, err);
+        unsetenv("TMOD_END");
+        CHECK(launcher > 0 && h_wait_exit(launcher, 8000) == 0);
+        size_t olen = 0, elen = 0;
+        char *o = read_bytes(out, &olen), *e = read_bytes(err, &elen);
+        CHECK(o && memmem(o, olen, "[C1] C1 out-part C1 out-end\n", 28));
+        CHECK(o && memmem(o, olen, "[C1] C1 nul:before\0after\n", 25));
+        CHECK(o && !memmem(o, olen, "err line", 8));
+        CHECK(e && memmem(e, elen, "[C1] C1 err line\n", 17));
+        CHECK(e && strstr(e, "contract-launch: all modules stopped cleanly"));
+        free(o);
+        free(e);
+    }
 
     /* a SIGKILL the launcher did not send (the kernel's OOM killer sends one) is no crash of its code: said apart */
     text = launch_ending(argv, out, "C1:sigkill", 8000, &code);

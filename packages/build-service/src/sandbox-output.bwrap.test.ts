@@ -132,6 +132,26 @@ describe('lines made for a backtracking parser (the event loop must keep answeri
   });
 });
 
+describe("a module's output as it wrote it", () => {
+  test('its stderr lines come as stderr, its stdout lines as stdout, a line it left unfinished is not glued to the other stream, a NUL is kept', async () => {
+    const init = [
+      '    printf("MAA out-part "); fflush(stdout);',
+      '    usleep(50000);',
+      '    fprintf(stderr, "MAA to stderr\\n"); fflush(stderr);',
+      '    usleep(50000);',
+      '    printf("MAA out-end\\n");',
+      '    fwrite("MAA nul:before\\0after\\n", 1, 21, stdout); fflush(stdout);',
+    ].join('\n');
+    const files = withRegion(withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', init, true), MAA_MODULE, 'protect_additional_import_MAA', '#include <unistd.h>', true);
+    const { job, lines } = await runJob({ action: 'run', duration: 2, project: { files } });
+    expect(job.status, job.result?.message).toBe('succeeded');
+    const maa = lines.filter((l) => l.source === 'MAA').map((l) => `${l.stream} ${l.line}`);
+    expect(maa).toContain('stderr MAA to stderr');
+    expect(maa).toContain('stdout MAA out-part MAA out-end');
+    expect(maa).toContain('stdout MAA nul:before\u0000after');
+  }, 120_000);
+});
+
 describe('limit guesses from the output (rlimit mechanism)', () => {
   test('sixteen lines of "fork: " x 10800: the event loop keeps answering', async () => {
     const cache = mkdtempSync(join(tmpdir(), 'contract-cache-'));

@@ -22,7 +22,10 @@
  * `inithang`: never leaves its init (it never looks for a request: the launcher must find it not
  * ready, stop the run without its start, and terminate it); `slowinit`: 300 ms in its init, then
  * `NAME init done` (the run's start request must come after); `sigkill`: 200 ms after start-up,
- * a SIGKILL to itself (what the kernel's OOM killer sends: not the launcher's). */
+ * a SIGKILL to itself (what the kernel's OOM killer sends: not the launcher's); `outputs`: at
+ * start-up, `NAME out-part ` on stdout with no line end, `NAME err line` on stderr, `NAME out-end`
+ * on stdout, then `NAME nul:before<NUL>after` on stdout (the launcher keeps its streams apart and
+ * a line's bytes whole). */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
 #include <signal.h>
@@ -154,6 +157,19 @@ int ModuleMain(int argc, const char *argv[])
     if (crash && strcmp(crash, MODULE_NAME) == 0) { usleep(200000); abort(); }
     if (strcmp(end_how(), "exit0") == 0) { usleep(200000); exit(0); }
     if (strcmp(end_how(), "sigkill") == 0) { usleep(200000); raise(SIGKILL); }
+    if (strcmp(end_how(), "outputs") == 0) {
+        printf("%s out-part ", MODULE_NAME);
+        fflush(stdout);
+        usleep(50000);
+        fprintf(stderr, "%s err line\n", MODULE_NAME);
+        usleep(50000);
+        printf("%s out-end\n", MODULE_NAME);
+        char nul[64];
+        int n = snprintf(nul, sizeof nul, "%s nul:before", MODULE_NAME);
+        memcpy(nul + n, "\0after\n", 7);
+        fwrite(nul, 1, (size_t)n + 7, stdout);
+        fflush(stdout);
+    }
     /* in a session of its own from the start: the launcher's kill of the module's group at the stop cannot reach it */
     if (strcmp(end_how(), "daemon") == 0 && fork() == 0) { setsid(); sleep(8); _exit(0); }
     if (strcmp(end_how(), "inithang") == 0) for (;;) pause();
