@@ -11,7 +11,9 @@
  *   record, nothing else is drawn again; a deadline miss names the module its cycle waited for;
  *   PERIOD = CRITICAL_DELAY is one label;
  * - a module killed mid-release (its log ends inside a release, no exit record): at the end of the
- *   replay it is said to have no exit record, not listed as running; before its end, as it was.
+ *   replay it is said to have no exit record, not listed as running; before its end, as it was;
+ * - Follow again after scrubbing a live run back (Space, Home, ], [, Space): the first frame shows
+ *   the live state, not the one scrubbed to.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { cpSync, mkdirSync, readdirSync, readFileSync, writeFileSync } from 'node:fs';
@@ -343,5 +345,34 @@ describe('Monitor field test', () => {
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await expect.poll(() => label(page)).toBe('9 CSV log(s) in recorded');
     await expect.poll(modules).toBe('Running now: none');
+  }, 60_000);
+
+  it('Follow again after scrubbing back a live run: the first frame shows the live state, not the one scrubbed to', async () => {
+    const { page } = s;
+    await page.evaluate(() => (window as any).__ide.monitor.followLive('scrub', null));
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
+    const half = Math.floor(LINES.length / 2);
+    await page.evaluate((records) => (window as any).__ide.monitor.feed('scrub', records), LINES.slice(0, half));
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(half);
+    const sup = page.locator('.monitor-sup[data-supervisor="SUP"] .monitor-sup-name');
+    const liveText = async () => page.locator('.monitor-sup[data-supervisor="SUP"] .monitor-sup-name').textContent();
+    await expect.poll(liveText).toMatch(/· [1-9]\d* action\(s\) done/);
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press(' '); // pause
+    await page.keyboard.press('Home');
+    for (let i = 0; i < 3; i++) await page.keyboard.press(']');
+    await page.keyboard.press('[');
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t')).not.toBe(null);
+    const scrubbed = await sup.textContent();
+    // the run goes on meanwhile
+    await page.evaluate((records) => (window as any).__ide.monitor.feed('scrub', records), LINES.slice(half));
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(LINES.length);
+    await page.waitForTimeout(500);
+    expect(await sup.textContent()).toBe(scrubbed);
+    await page.keyboard.press(' '); // follow
+    const end = await page.evaluate(() => (window as any).__ide.monitor.current.end as number);
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t'), { timeout: 1000 }).toBe(String(Math.round(end)));
+    await expect.poll(liveText, { timeout: 300 }).not.toBe(scrubbed);
+    expect(await sup.textContent()).toMatch(/· [1-9]\d* action\(s\) done/);
   }, 60_000);
 });
