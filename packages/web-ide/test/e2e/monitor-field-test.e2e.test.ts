@@ -362,7 +362,9 @@ describe('Monitor field test', () => {
     await page.keyboard.press('Home');
     for (let i = 0; i < 3; i++) await page.keyboard.press(']');
     await page.keyboard.press('[');
-    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t')).not.toBe(null);
+    // the state at the mark comes from the worker: drawn in a frame after it answers
+    const mark = await page.evaluate(() => (window as any).__ide.monitor.panel.time as number);
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-t')).toBe(String(Math.round(mark)));
     const scrubbed = await sup.textContent();
     // the run goes on meanwhile
     await page.evaluate((records) => (window as any).__ide.monitor.feed('scrub', records), LINES.slice(half));
