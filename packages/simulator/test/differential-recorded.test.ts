@@ -11,13 +11,13 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { parseTrace, renderStory, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
+import type { ScenarioResult } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
-import { prepared, TUTORIAL } from './support.js';
-import { firstDifference, realDecisions, scenarioOfRun, simulatedDecisions } from './differential/replay-run.js';
+import { TUTORIAL } from './support.js';
+import { firstDifference, realDecisions, replayInSimulator, simulatedDecisions, TUTORIAL_PLAN } from './differential/replay-run.js';
 
 const FIXTURE = fileURLToPath(new URL('./differential/fixtures/tutorial-maa-won-race', import.meta.url));
-const SUPERVISORS = new Set(['SUP', 'GLB']);
+const SUPERVISORS = TUTORIAL_PLAN.supervisors;
 const records = parseTrace(readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') })));
 const ownRunEnds = (rs: TraceRecord[]): string[] => renderStory(rs).filter((l) => l.includes(' ended by its own code ')).map((l) => l.slice(11));
 
@@ -28,16 +28,9 @@ describe('simulator vs a recorded run of the tutorial where MAA ended its run be
     let adjustments: string[];
 
     beforeAll(async () => {
-        ({ text, real, adjustments } = scenarioOfRun(records, {
-            supervisors: SUPERVISORS,
-            start: 'GLB.mission()',
-            requestRules: { SUP: ['GLB mission.SINGLE'] },
-            fallback: (module, port) => (module === 'MAA' && port === 2 ? '"connected"' : undefined),
-        }));
-        const project = await prepared(TUTORIAL);
-        const s = loadScenario('run.scenario', 'run.scenario', text, project.index);
-        expect(s.diagnostics, text).toEqual([]);
-        sim = await runLoadedScenario(project, s);
+        let diagnostics: unknown[];
+        ({ text, real, adjustments, sim, diagnostics } = await replayInSimulator(TUTORIAL, records, TUTORIAL_PLAN));
+        expect(diagnostics, text).toEqual([]);
     }, 120_000);
 
     it('replays MAA\'s end before the "disconnected" SUP decided on, and says so', () => {

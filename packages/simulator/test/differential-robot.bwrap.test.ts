@@ -31,9 +31,9 @@
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { RuleRecord } from '@contract-studio/build-service/trace';
-import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
-import { prepared, ROBOT } from './support.js';
-import { firstDifference, realDecisions, runForReal, scenarioOfRun, simulatedDecisions, type RealRun } from './differential/replay-run.js';
+import type { ScenarioResult } from '../src/index.js';
+import { ROBOT } from './support.js';
+import { firstDifference, realDecisions, replayInSimulator, runForReal, simulatedDecisions, type RealRun } from './differential/replay-run.js';
 
 const SUPERVISORS = new Set(['MIS', 'DRV']);
 /** A LaserScan value in scenario syntax: 180 beams, then `blocked`. */
@@ -55,7 +55,8 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
 
     beforeAll(async () => {
         expect(run.code, run.output).toBe(0);
-        ({ text, real, counts, adjustments } = scenarioOfRun(run.records, {
+        let diagnostics: unknown[];
+        ({ text, real, counts, adjustments, sim, diagnostics } = await replayInSimulator(ROBOT, run.records, {
             supervisors: SUPERVISORS,
             start: 'MIS.mission()',
             // mission.contract: TELEOP, AUTO and STOP each `activate supervisor DRV.…()`
@@ -67,10 +68,7 @@ describe('simulator vs a real bwrap run of the mobile robot', () => {
                 return scan((i) => (blocked && i >= 80 && i <= 100 ? 0.35 : 5), blocked);
             },
         }));
-        const project = await prepared(ROBOT);
-        const s = loadScenario('run.scenario', 'run.scenario', text, project.index);
-        expect(s.diagnostics, text).toEqual([]);
-        sim = await runLoadedScenario(project, s);
+        expect(diagnostics, text).toEqual([]);
     }, 120_000);
 
     // which ends AUTO first, the obstacle (0.35 m) or a deadline miss, is timing: either is a safe stop

@@ -16,12 +16,12 @@
  */
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { renderStory, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { loadScenario, runLoadedScenario, type ScenarioResult } from '../src/index.js';
+import type { ScenarioResult } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
-import { prepared, TUTORIAL } from './support.js';
-import { firstDifference, realDecisions, runForReal, scenarioOfRun, simulatedDecisions, type RealRun } from './differential/replay-run.js';
+import { TUTORIAL } from './support.js';
+import { firstDifference, realDecisions, replayInSimulator, runForReal, simulatedDecisions, TUTORIAL_PLAN, type RealRun } from './differential/replay-run.js';
 
-const SUPERVISORS = new Set(['SUP', 'GLB']);
+const SUPERVISORS = TUTORIAL_PLAN.supervisors;
 let run: RealRun;
 
 /** The story's `run #N ended by its own code (started by X)` lines, without their times. */
@@ -41,17 +41,9 @@ describe('simulator vs a real bwrap run of the tutorial', () => {
 
     beforeAll(async () => {
         expect(run.code, run.output).toBe(0);
-        ({ text, real, finished, adjustments } = scenarioOfRun(run.records, {
-            supervisors: SUPERVISORS,
-            start: 'GLB.mission()',
-            // supervisor2.contract: SINGLE does `activate supervisor SUP.action(…)`
-            requestRules: { SUP: ['GLB mission.SINGLE'] },
-            fallback: (module, port) => (module === 'MAA' && port === 2 ? '"connected"' : undefined),
-        }));
-        const project = await prepared(TUTORIAL);
-        const s = loadScenario('run.scenario', 'run.scenario', text, project.index);
-        expect(s.diagnostics, text).toEqual([]);
-        sim = await runLoadedScenario(project, s);
+        let diagnostics: unknown[];
+        ({ text, real, finished, adjustments, sim, diagnostics } = await replayInSimulator(TUTORIAL, run.records, TUTORIAL_PLAN));
+        expect(diagnostics, text).toEqual([]);
     }, 120_000);
 
     it('the run took the report\'s decisions (FIRST, SECOND on "disconnected", the commutation)', () => {

@@ -51,8 +51,8 @@ import { cpSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync }
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { isRule, ownRunEndText, parseTrace, type KnownRecord, type RuleRecord, type TraceRecord } from '@contract-studio/build-service/trace';
-import { formatTime, type RuleChange } from '../../src/index.js';
-import { REPO } from '../support.js';
+import { formatTime, loadScenario, runLoadedScenario, type RuleChange, type ScenarioResult } from '../../src/index.js';
+import { prepared, REPO } from '../support.js';
 
 export interface RealRun {
     records: TraceRecord[];
@@ -274,6 +274,27 @@ function ownEndBeforeStop(known: readonly (KnownRecord | RuleRecord)[], plan: Re
     if (!input?.emission || input.t > tf || input.emission.t >= tf) return tf;
     said(`finish ${r.module}: moved from ${at(tf)} to ${at(input.emission.t)}, before ${source}: ${stop.peer}'s STOP of it, decided on that event, reached it after its run ended (at ${at(mono(stop))})`);
     return input.emission.t;
+}
+
+/**
+ * The tutorial's plan: its supervisors, GLB's mission started by the launcher, SUP's function
+ * started by GLB's rule SINGLE (supervisor2.contract: `activate supervisor SUP.action(…)`), and
+ * the value of MAA:2 events that changed no rule ("connected", the only other status the
+ * tutorial's MAA script posts).
+ */
+export const TUTORIAL_PLAN: ReplayPlan = {
+    supervisors: new Set(['SUP', 'GLB']),
+    start: 'GLB.mission()',
+    requestRules: { SUP: ['GLB mission.SINGLE'] },
+    fallback: (module, port) => (module === 'MAA' && port === 2 ? '"connected"' : undefined),
+};
+
+/** The scenario of a real run (scenarioOfRun), checked against project `dir` and run in the simulator. */
+export async function replayInSimulator(dir: string, records: TraceRecord[], plan: ReplayPlan): Promise<RunScenario & { sim: ScenarioResult; diagnostics: unknown[] }> {
+    const scenario = scenarioOfRun(records, plan);
+    const project = await prepared(dir);
+    const s = loadScenario('run.scenario', 'run.scenario', scenario.text, project.index);
+    return { ...scenario, diagnostics: s.diagnostics, sim: await runLoadedScenario(project, s) };
 }
 
 /**
