@@ -101,12 +101,12 @@ if (env.available) {
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
     });
 
-    test("without the cgroup (limitWatch: 'engine', as a remote engine): forks refused and hidden are seen from the engine's process count, at the hit", async () => {
+    test("without the cgroup (limitWatch: 'engine', as a remote engine): forks refused and hidden are seen from the engine's process count, at the hit, the forking program named from the engine's process list", async () => {
       const job = await run(engineUrl, silentForks, { processes: 24 });
       expect(job.status).toBe('failed');
       expect(job.result.step).toBe('run');
       expect(job.result.message).toBe('killed: process limit 24');
-      expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker' });
+      expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker', module: 'prog' });
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
     });
 

@@ -42,6 +42,7 @@ import type { LiveWorkRoot, Mechanisms, RealtimeSupport, Sandbox, SandboxCommand
 import { stopThenKill } from './limit-stop.js';
 import { withForkingModule } from './forking-module.js';
 import { HOST_PROCESSES } from './host-process.js';
+import { engineProcesses } from './docker-top.js';
 import { engineSaysOomKilled, KILLED_LINE, looksKilled } from './docker-oom.js';
 import { watchContainerLimits, type DockerLimitWatch } from './docker-cgroup.js';
 import { terminateNamedOnHost } from './queue-term.js';
@@ -369,7 +370,12 @@ export class DockerSandbox implements Sandbox {
       const hitProcessLimit = (): void => {
         if (namingForks || limitHit) return;
         namingForks = true;
-        void watch.ready.then(() => watch.pids()).then((pids) => withForkingModule(processHit, pids ?? [], HOST_PROCESSES), () => processHit).then(hitLimit);
+        // the processes from the container's cgroup and this host's /proc; without the cgroup, as the engine lists them
+        void watch.ready.then(() => watch.pids()).then(async (pids) => {
+          if (pids !== null) return withForkingModule(processHit, pids, HOST_PROCESSES);
+          const listed = await engineProcesses(container);
+          return withForkingModule(processHit, listed.pids, listed.table);
+        }, () => processHit).catch(() => processHit).then(hitLimit);
       };
       const diskHit = async (): Promise<LimitHit | null> => {
         const state = await this.volumeState(volume);
