@@ -292,6 +292,16 @@ export class Job {
         await removeTreeNoFollow(posix.join(ws.workDir, LOG_DIR));
         await removeTreeNoFollow(posix.join(ws.workDir, RUN_DIR));
         this.timed('prepare', 'earlier run logs removed', tl);
+      } else if (ws.reused && ctx.sandbox.removeRunOutputs) {
+        // the same in a work dir the sandbox keeps itself (a Docker volume): else an earlier run's
+        // logs would be collected as this one's, and a link a module left as logs/previous would
+        // break every later run
+        const tl = Date.now();
+        if (!(await this.orCancel(ctx.sandbox.removeRunOutputs(ws.workDir)))) {
+          this.system('prepare', "what earlier runs left in the work dir (logs/, run/) could not be removed: it is emptied, building from scratch");
+          await ws.reset();
+        }
+        this.timed('prepare', 'earlier run logs removed', tl);
       }
       t = Date.now();
       const prep = await this.orCancel(

@@ -635,7 +635,9 @@ export class DockerSandbox implements Sandbox {
    */
   private async startHolder(volume: string, name: string, jobId: string): Promise<void> {
     const spec = this.volumeReader(`contract-${name}-hold`, ['sleep', 'infinity'], volume, jobId);
-    const c = await this.docker.createContainer({ ...spec, HostConfig: { ...spec.HostConfig, Memory: 64 * 1024 * 1024, PidsLimit: 16, Init: true } });
+    // the volume writable, for the service's own exec that removes what earlier runs left (removeRunOutputs)
+    const Mounts = [{ Type: 'volume' as const, Source: volume, Target: DOCKER_WORK, ReadOnly: false }];
+    const c = await this.docker.createContainer({ ...spec, HostConfig: { ...spec.HostConfig, Mounts, Memory: 64 * 1024 * 1024, PidsLimit: 16, Init: true } });
     this.holders.set(volume, c);
     await c.start();
   }
@@ -712,6 +714,22 @@ export class DockerSandbox implements Sandbox {
     return (await exited) === 0 || usage.partial ? usage : null;
   }
 
+  /**
+   * Removes what earlier runs left in a workspace's volume (logs/, run/: a run's logs, a link a
+   * module planted there as `logs/previous`), by its holder as the jobs' user, never following a
+   * link: a folder a module made unreadable is first made the user's again (find -P, before it is
+   * entered). True when both are gone (or there is no volume yet); false otherwise: the caller
+   * then empties the work dir.
+   */
+  async removeRunOutputs(workDir: string): Promise<boolean> {
+    const volume = this.volumes.get(workDir);
+    if (!volume || !this.createdVolumes.has(volume)) return true;
+    const out = new PassThrough();
+    out.resume();
+    const code = await this.execInHolder(volume, ['sh', '-c', REMOVE_RUN_OUTPUTS], out).catch(() => null);
+    return code === 0;
+  }
+
   /** The work-tree digest of a workspace's volume (pipeline/work-tree-digest.ts), found by its holder. */
   async workTreeDigest(workDir: string): Promise<string | null> {
     const volume = this.volumes.get(workDir);
@@ -721,6 +739,9 @@ export class DockerSandbox implements Sandbox {
     return digestFindOutput(out, exited);
   }
 }
+
+/** removeRunOutputs' shell: each folder made enterable before find enters it, links never followed, then both removed and checked gone. */
+const REMOVE_RUN_OUTPUTS = `for d in ${DOCKER_WORK}/logs ${DOCKER_WORK}/run; do if [ -d "$d" ] && [ ! -L "$d" ]; then find -P "$d" -xdev -type d -exec chmod u+rwx {} \\; 2>/dev/null; fi; done; rm -rf --one-file-system ${DOCKER_WORK}/logs ${DOCKER_WORK}/run; ! [ -e ${DOCKER_WORK}/logs ] && ! [ -L ${DOCKER_WORK}/logs ] && ! [ -e ${DOCKER_WORK}/run ] && ! [ -L ${DOCKER_WORK}/run ]`;
 
 /** Room for a one-file archive's headers before the file's bytes (a PAX header with a long name). */
 const TAR_HEADER_ROOM = 64 * 1024;

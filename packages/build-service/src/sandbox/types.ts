@@ -139,6 +139,12 @@ export interface Sandbox {
    */
   readWorkDirs?(workDir: string, rels: string[], maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>>;
   /**
+   * For a sandbox whose work dir is not a host folder (readWorkDirs): removes what earlier runs
+   * left in it (logs/, run/) without following links; false when it could not (the job then
+   * empties the work dir). Called before a job's first step, no job process alive.
+   */
+  removeRunOutputs?(workDir: string): Promise<boolean>;
+  /**
    * For a sandbox whose work dir is not a host folder (readWorkDirs): a host folder that is proven
    * to be the same work dir as the sandboxed processes see it (docker: the work volume's
    * mountpoint on a local engine), for the live trace channel; called between two steps of a job

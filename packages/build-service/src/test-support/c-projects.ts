@@ -165,3 +165,31 @@ int main(void) {
   return system("rm -f prog && printf '#!/bin/sh\\\\necho POISONED\\\\n' > prog && chmod +x prog && touch -d 2100-01-01 prog");
 }
 `;
+
+/**
+ * A run that leaves hostile things in its log folder (argv[1]): an old log, `previous` a link to
+ * `/`, and a folder made unreadable (chmod 000) with one inside it.
+ */
+export const runLeaver = `${HEAD}#include <sys/stat.h>
+int main(int argc, char **argv) {
+  if (argc < 2) return 2;
+  char p[512];
+  mkdir(argv[1], 0755);
+  snprintf(p, sizeof p, "%s/OLD_1.csv", argv[1]);
+  FILE *f = fopen(p, "w");
+  if (!f) return 3;
+  fputs("mono_ns,wall_time,module,event,peer,port,size,detail\\n1,w,OLD,user,,,0,left by an earlier run\\n", f);
+  fclose(f);
+  snprintf(p, sizeof p, "%s/previous", argv[1]);
+  if (symlink("/", p) != 0) return 4;
+  snprintf(p, sizeof p, "%s/locked", argv[1]);
+  mkdir(p, 0755);
+  snprintf(p, sizeof p, "%s/locked/inner", argv[1]);
+  mkdir(p, 0755);
+  snprintf(p, sizeof p, "%s/locked", argv[1]);
+  chmod(p, 0);
+  puts("left its marks");
+  return 0;
+}
+`;
+

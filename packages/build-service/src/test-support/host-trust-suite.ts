@@ -2,14 +2,15 @@
  * The host-side trust boundary of a sandbox (docs/sandbox.md: "Host clean-up", "Limits", "Build
  * products between jobs"), run for bwrap and docker: a job filling /work hits the disk limit by
  * name; a 1,200-level tree with chmod 000 folders and links out is cleaned up; an executable a run
- * replaced (dated 2100) is never run by the next job, while a no-op rebuild stays a no-op.
+ * replaced (dated 2100) is never run by the next job, while a no-op rebuild stays a no-op; what a
+ * run leaves in its log folder is gone before the next job.
  */
 import { mkdirSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, test } from 'vitest';
 import { createBuildServer, type BuildServer } from '../server.js';
 import type { SandboxName } from '../sandbox/types.js';
-import { diskFiller, honestProgram, makeProject, poisoner } from './c-projects.js';
+import { diskFiller, honestProgram, makeProject, poisoner, runLeaver } from './c-projects.js';
 import { getJob, postJob, readEvents } from './client.js';
 import { hostileTreeProgram } from './hostile-tree.js';
 import { freshWorkspaces, useScratch } from './scratch.js';
@@ -76,6 +77,25 @@ export function hostTrustSuite(sandbox: SandboxName): void {
       await second.server.close();
       expect(leftovers()).toEqual([]);
       expect(readFileSync(join(outside, 'keep.txt'), 'utf8')).toBe('keep\n');
+    });
+
+    test("what a run leaves in its log folder (an old log, a link `previous` to /, a chmod 000 folder) is gone before the next job: its logs are its own, and it runs", async () => {
+      const { url } = await start();
+      const files = makeProject(runLeaver);
+      files.Makefile = files.Makefile!.replace('\t./prog', '\t./prog $(LOG_DIR)');
+      const dir = project('leaver', files);
+      const left = await runJob(url, { action: 'run', kind: 'make', project: { dir } });
+      expect(left.status, left.result.message).toBe('succeeded');
+      expect(lines(left)).toContain('left its marks');
+      expect((left.artifacts as { files: { name: string }[] }).files.map((f) => f.name)).toEqual(['OLD_1.csv']);
+      writeFileSync(join(dir, 'main.c'), honestProgram(1));
+      for (let i = 0; i < 2; i++) {
+        const next = await runJob(url, { action: 'run', kind: 'make', project: { dir } });
+        expect(next.status, next.result.message).toBe('succeeded');
+        expect(lines(next)).toContain('honest done');
+        expect((next.artifacts as { files: { name: string }[] }).files).toEqual([]);
+        expect(lines(next).some((l) => /could not be removed|from scratch/.test(l)), lines(next).join('\n')).toBe(false);
+      }
     });
 
     test('an executable a run replaced (dated 2100) is rebuilt, not run, by the next job; a no-op rebuild stays a no-op', async () => {
