@@ -81,6 +81,31 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     expect(a.files[1]!.gzip.length).toBeLessThan(a.files[1]!.size);
   });
 
+  test("a cut file that kept no record (a planted file of zeros) gets its log-capped record at the run's latest record, not at time 0", async () => {
+    mkdirSync(join(work, 'logs'));
+    writeFileSync(join(work, 'logs', 'BIG_1.csv'), Buffer.alloc(9000)); // sorts first, no line end
+    writeFileSync(join(work, 'logs', 'MOT_1.csv'), 'mono_ns,wall_time,module,event,peer,port,size,detail\n5000,w,MOT,ev,,,0,d\n7000,w,MOT,ev,,,0,d\n');
+    writeFileSync(join(work, 'logs', 'ORD_1.csv'), '6000,w,ORD,ev,,,0,d\n');
+    const a = await collectRunArtifacts(hostWorkDirReader, work, { entries: 100, files: 10, fileBytes: 4096, totalBytes: 1 << 20 });
+    expect(a.files.map((f) => f.name)).toEqual(['BIG_1.csv', 'MOT_1.csv', 'ORD_1.csv']);
+    const big = artifactBytes(a.files[0]!).toString();
+    expect(big).toMatch(/^7000,\d{4}-.*Z,BIG,log-capped,build-service,,9000,collected the first 0 of 9000 bytes \(the 4096-byte bound of the build service\)\n$/);
+    expect(a.files[0]!.size).toBe(big.length);
+    // alone, it has no other time than 0
+    rmSync(join(work, 'logs', 'MOT_1.csv'));
+    rmSync(join(work, 'logs', 'ORD_1.csv'));
+    const alone = await collectRunArtifacts(hostWorkDirReader, work, { entries: 100, files: 10, fileBytes: 4096, totalBytes: 1 << 20 });
+    expect(artifactBytes(alone.files[0]!).toString()).toMatch(/^0,/);
+  });
+
+  test('a log the disk refused (its log-capped record says so) is said to be cut by the full disk, not by its bound', async () => {
+    mkdirSync(join(work, 'logs'));
+    const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,CTL,run_started,,,0,a\n2,t,CTL,log-capped,,,24568,log could not be written past 24568 bytes (No space left on device): later records are not written\n';
+    writeFileSync(join(work, 'logs', 'CTL_1.csv'), text);
+    const a = await collectRunArtifacts(hostWorkDirReader, work);
+    expect(a.files.map((f) => [f.name, f.capped])).toEqual([['CTL_1.csv', 'the disk refused its module\'s writes past 23.99 KiB (the work dir was full): later records were not written']]);
+  });
+
   test("a log the runtime capped itself (its log-capped records at the end) is flagged, not cut", async () => {
     mkdirSync(join(work, 'logs'));
     const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,MSC,run_started,,,0,a\n2,t,MSC,log-capped,,,8192,log reached its 8192-byte bound\n3,t,MSC,log-capped,,,8192,5 records not written\n';

@@ -38,8 +38,10 @@ export const ARTIFACT_BOUNDS: ArtifactBounds = { entries: SERVICE_BOUNDS.listedE
 
 /** The runtime's marker event (runtime/src/csvlog.c) and the one the service appends to a cut file. */
 export const LOG_CAPPED_EVENT = 'log-capped';
-/** A log-capped record's size column (the log's bound), in the log's tail. */
-const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),/;
+/** A log-capped record's size column (the log's bound, or what the disk took), and its detail's head, in the log's tail. */
+const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),([^\n]{0,40})/;
+/** A log-capped record's detail when the disk refused a write (runtime/src/csvlog.c), not the bound. */
+const DISK_REFUSED = /^log could not be written past/;
 
 /** The folders of the work dir a run leaves things in: `logs/` (collected) and `run/` (names only). */
 export const LOG_DIR = 'logs';
@@ -102,23 +104,31 @@ const MARKER_ROOM = 512;
 const TAIL_BYTES = 4096;
 
 /**
- * The mono_ns of the last record of `kept` (whole lines), 0 when it has none (a header alone): the
- * time of the service's log-capped record, so that it is read as a record (a trace reader needs
- * a time) and sorts after what was kept, where the cut is.
+ * The mono_ns of the last record of `kept` (whole lines), undefined when it has none (a header
+ * alone, a file of zeros): the time of the service's log-capped record, so that it is read as a
+ * record (a trace reader needs a time) and sorts after what was kept, where the cut is.
  */
-function lastMonoNs(kept: Buffer): string {
+function lastMonoNs(kept: Buffer): string | undefined {
   const start = kept.lastIndexOf(10, kept.length - 2) + 1;
   const comma = kept.indexOf(44, start);
   const first = comma === -1 ? '' : kept.subarray(start, comma).toString('latin1');
-  return /^\d{1,19}$/.test(first) ? first : '0';
+  return /^\d{1,19}$/.test(first) ? first : undefined;
 }
 
-/** A CSV record (docs/runtime-api.md columns) saying the service cut the file. */
-function cutRecord(name: string, kept: Buffer, size: number, bound: number): string {
+/**
+ * A CSV record (docs/runtime-api.md columns) saying the service cut the file, at `mono` (the last
+ * kept record's time; for a file that kept none, the latest record of the run's other logs: a time
+ * of 0 would make the run begin at the machine's boot, hours before its records).
+ */
+function cutRecord(name: string, keptBytes: number, size: number, bound: number, mono: string): string {
   // the log's module (a runtime log's name says it whole, `MSC_2_6-Dec-…`; another name up to its first `_<digit>`)
   const module = moduleOfLog(name) ?? /^([A-Za-z0-9_]+?)_\d/.exec(name)?.[1] ?? '';
-  return `${lastMonoNs(kept)},${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${kept.length} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
+  return `${mono},${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${keptBytes} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
 }
+
+/** The later of two mono_ns texts (digits only). */
+const laterMono = (a: string | undefined, b: string | undefined): string | undefined =>
+  a === undefined ? b : b === undefined ? a : a.length !== b.length ? (a.length > b.length ? a : b) : a > b ? a : b;
 
 /** Sees the bytes of each collected file before they are compressed (run-issues.ts). */
 export type ArtifactInspector = (name: string, data: Buffer) => void;
@@ -134,6 +144,9 @@ export async function selectArtifacts(
   if (listing === null) return { files, skipped };
   if ('notDirectory' in listing) return { files, skipped: [{ name: LOG_DIR, reason: `${LOG_DIR}/ is a ${listing.notDirectory}, not a directory: not followed` }] };
   let total = 0;
+  /** The latest record of the logs collected, and the cut files that kept none (their record waits for it). */
+  let latest: string | undefined;
+  const timeless: { index: number; name: string; kept: Buffer; size: number; bound: number; capped: string }[] = [];
   // the sandbox decides how many entries there are: only a bounded number is looked at
   const all = [...listing.entries].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
   const sorted = all.slice(0, bounds.entries);
@@ -157,18 +170,38 @@ export async function selectArtifacts(
       if (cut) {
         const end = data.lastIndexOf(10) + 1; // whole records only
         const bound = room === bounds.fileBytes ? bounds.fileBytes : bounds.totalBytes;
-        kept = Buffer.concat([data.subarray(0, end), Buffer.from(cutRecord(e.name, data.subarray(0, end), e.size, bound))]);
         capped = `${e.size} bytes: the first ${end} kept (the ${bound}-byte ${bound === bounds.fileBytes ? 'file' : 'total'} bound of the build service)`;
-      } else if (data.subarray(Math.max(0, data.length - TAIL_BYTES)).includes(`,${LOG_CAPPED_EVENT},`)) {
-        // the bound is the log-capped record's size column (docs/runtime-api.md)
-        const m = CAPPED_SIZE.exec(data.subarray(Math.max(0, data.length - TAIL_BYTES)).toString('latin1'));
-        const of = m ? ` of ${formatBytes(Number(m[1]))}` : '';
-        capped = `the module reached its CSV log bound${of} (CONTRACT_LOG_MAX_BYTES): later records were not written`;
+        const mono = lastMonoNs(data.subarray(0, end));
+        latest = laterMono(latest, mono);
+        if (mono === undefined) {
+          // its record's time is the run's latest, known once every log was read
+          timeless.push({ index: files.length, name: e.name, kept: data.subarray(0, end), size: e.size, bound, capped });
+          files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: end, gzip: Buffer.alloc(0), capped });
+          total += end + MARKER_ROOM;
+          continue;
+        }
+        kept = Buffer.concat([data.subarray(0, end), Buffer.from(cutRecord(e.name, end, e.size, bound, mono))]);
+      } else {
+        latest = laterMono(latest, lastMonoNs(data));
+        const tail = data.subarray(Math.max(0, data.length - TAIL_BYTES));
+        if (tail.includes(`,${LOG_CAPPED_EVENT},`)) {
+          // the bound is the log-capped record's size column (docs/runtime-api.md); a write the disk
+          // refused ends the log the same way, its size column then what the disk took
+          const m = CAPPED_SIZE.exec(tail.toString('latin1'));
+          capped = m && DISK_REFUSED.test(m[2]!)
+            ? `the disk refused its module's writes past ${formatBytes(Number(m[1]))} (the work dir was full): later records were not written`
+            : `the module reached its CSV log bound${m ? ` of ${formatBytes(Number(m[1]))}` : ''} (CONTRACT_LOG_MAX_BYTES): later records were not written`;
+        }
       }
       inspect?.(e.name, kept);
       total += kept.length;
       files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: kept.length, gzip: await gzip(kept), capped });
     }
+  }
+  for (const t of timeless) {
+    const kept = Buffer.concat([t.kept, Buffer.from(cutRecord(t.name, t.kept.length, t.size, t.bound, latest ?? '0'))]);
+    inspect?.(t.name, kept);
+    files[t.index] = { name: t.name, path: `${LOG_DIR}/${t.name}`, size: kept.length, gzip: await gzip(kept), capped: t.capped };
   }
   if (listing.more || all.length > sorted.length) {
     skipped.push({ name: `${LOG_DIR}/`, reason: `more than ${bounds.entries} entries: the others were not looked at` });
