@@ -51,4 +51,24 @@ describe('contract serve', () => {
         expect(file.status).toBe(200);
         expect(((await file.json()) as { content: string }).content).toBe(readFileSync(join(dir, 'a.contract'), 'utf8'));
     }, 60_000);
+
+    it('--sandbox docker makes Docker the default of the IDE\'s jobs (GET /api/sandboxes says it); a sandbox it does not take is refused, exit 2', async () => {
+        const bad = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', '--sandbox', 'none'], { stdio: ['ignore', 'pipe', 'pipe'] });
+        let err = '';
+        bad.stderr!.on('data', (d: Buffer) => (err += d.toString('utf8')));
+        expect(await new Promise((r) => bad.once('exit', r))).toBe(2);
+        expect(err).toContain('--sandbox needs one of auto, bwrap, docker, got none');
+        const docker = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', '--sandbox', 'docker'], { stdio: ['ignore', 'pipe', 'inherit'] });
+        try {
+            const m = /^ContrACT Studio IDE: (http:\/\/127\.0\.0\.1:\d+)\/\?token=([A-Za-z0-9_-]{43}) /.exec(await firstLine(docker))!;
+            const res = await fetch(`${m[1]}/api/sandboxes`, { headers: { 'x-contract-token': m[2]! } });
+            expect(res.status).toBe(200);
+            expect(((await res.json()) as { default: string }).default).toBe('docker');
+        } finally {
+            const exited = new Promise((r) => docker.once('exit', r));
+            docker.kill('SIGTERM');
+            await exited;
+        }
+    }, 60_000);
 });
+

@@ -5,11 +5,18 @@ export interface ServeArgs {
   workspace: string;
   port: number;
   host: string;
+  /** The build service's sandbox for the IDE's jobs (default auto: bubblewrap where it works, else Docker). */
+  sandbox: ServeSandbox;
 }
 
-/** Parses `[DIR] [--port N] [--host H]`; throws with a usage message on bad input. */
+/** The sandboxes `--sandbox` takes (`none` is not one: the IDE's build service refuses it). */
+export const SERVE_SANDBOXES = ['auto', 'bwrap', 'docker'] as const;
+export type ServeSandbox = (typeof SERVE_SANDBOXES)[number];
+const USAGE = 'usage: serve [DIR] [--port N] [--host ADDR] [--sandbox auto|bwrap|docker]';
+
+/** Parses `[DIR] [--port N] [--host H] [--sandbox S]`; throws with a usage message on bad input. */
 export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
-  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1' };
+  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto' };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--port' || a === '-p') {
@@ -22,8 +29,12 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
       const h = argv[++i];
       if (!h) throw new Error('--host needs an address');
       out.host = h;
+    } else if (a === '--sandbox' || a.startsWith('--sandbox=')) {
+      const s = a === '--sandbox' ? argv[++i] : a.slice('--sandbox='.length);
+      if (!SERVE_SANDBOXES.includes(s as ServeSandbox)) throw new Error(`--sandbox needs one of ${SERVE_SANDBOXES.join(', ')}, got ${s ?? 'nothing'}\n${USAGE}`);
+      out.sandbox = s as ServeSandbox;
     } else if (a.startsWith('-')) {
-      throw new Error(`unknown option ${a}\nusage: serve [DIR] [--port N] [--host ADDR]`);
+      throw new Error(`unknown option ${a}\n${USAGE}`);
     } else out.workspace = a;
   }
   out.workspace = resolve(out.workspace);

@@ -37,6 +37,8 @@ export interface IdeServerOptions {
   distDir?: string;
   /** Mount the build service API (default true). */
   buildService?: boolean;
+  /** The build service's sandbox for jobs that name none (default auto: bubblewrap where it works, else Docker). */
+  sandbox?: 'auto' | 'bwrap' | 'docker';
   /** The session token (default: 32 random bytes, base64url); see session-token.ts. */
   token?: string;
 }
@@ -110,7 +112,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   let build: BuildServerLike | undefined;
   let buildServiceNote = 'build service disabled';
   if (options.buildService !== false) {
-    const b = await createEmbeddedBuildServer(paths.root);
+    const b = await createEmbeddedBuildServer(paths.root, undefined, options.sandbox);
     if (typeof b === 'string') buildServiceNote = b;
     else {
       build = b;

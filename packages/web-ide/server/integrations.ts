@@ -110,7 +110,7 @@ export async function loadTreeChecks(): Promise<TreeChecks> {
  * cache folder), so Build & Run after a CLI build (or the reverse) compiles nothing new; when that
  * folder is refused, the reason is logged and the service keeps a private temporary cache.
  */
-export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`)): Promise<BuildServerLike | string> {
+export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`), sandbox: 'auto' | 'bwrap' | 'docker' = 'auto'): Promise<BuildServerLike | string> {
   try {
     const name = '@contract-studio/build-service';
     const bs = (await import(name)) as BuildServiceApi;
@@ -118,7 +118,7 @@ export async function createEmbeddedBuildServer(workspaceRoot: string, log: (lin
     const refused = bs.prepareCacheDir(cache.dir, process.getuid?.() === 0);
     if (refused) log(`build cache: ${refused}; using a private temporary cache instead`);
     const cacheOptions = refused ? {} : { cacheDir: cache.dir, persistentWorkspaces: true };
-    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, ...cacheOptions });
+    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...cacheOptions });
   } catch (e) {
     return `build service unavailable: ${(e as Error).message.split('\n')[0]}`;
   }
