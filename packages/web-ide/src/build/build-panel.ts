@@ -265,6 +265,7 @@ export class BuildPanel {
 
   private setStatus(status: string, message: string | undefined, running: boolean): void {
     this.statusEl.textContent = `${status}${message ? ` — ${message}` : ''}`;
+    this.statusEl.title = this.statusEl.textContent; // whole, when the row cuts it
     this.statusEl.className = `job-status ${status}`;
     this.onStatus.fire({ status, message, running });
   }

@@ -377,4 +377,25 @@ describe('Monitor field test', () => {
     await expect.poll(liveText, { timeout: 300 }).not.toBe(scrubbed);
     expect(await sup.textContent()).toMatch(/· [1-9]\d* action\(s\) done/);
   }, 60_000);
+
+  it("a long failure message leaves every control of the Build & Run panel on screen, the message whole in the status's tooltip", async () => {
+    const { page } = s;
+    await page.setViewportSize({ width: 1280, height: 800 });
+    await page.getByRole('tab', { name: /build & run/i }).click();
+    const message = `run finished with 1 problem(s): ${'the run\'s stdout went past the output limit (1 MiB per stream) '.repeat(8)}`;
+    await page.evaluate((m) => (window as any).__ide.build.setStatus('failed', m, false), message);
+    const status = page.locator('.build-panel .job-status');
+    await expect.poll(() => status.getAttribute('title')).toBe(`failed — ${message}`);
+    const width = page.viewportSize()!.width;
+    for (const control of [page.locator('.build-panel .log-search'), page.locator('.build-panel button', { hasText: 'Clear' }), page.locator('.build-panel .toggle', { hasText: 'Follow' })]) {
+      const box = (await control.boundingBox())!;
+      expect(box.x + box.width, await control.evaluate((e) => e.outerHTML.slice(0, 80))).toBeLessThanOrEqual(width);
+    }
+    await shot(page, 'monitor-field-08-build-panel-long-failure');
+    // focusing the filter scrolls nothing sideways: the log's rows stay where they were
+    await page.locator('.build-panel .log-search').focus();
+    expect(await page.locator('.build-panel').evaluate((e) => e.scrollLeft + (e.querySelector('.log-toolbar') as HTMLElement).scrollLeft)).toBe(0);
+    await page.setViewportSize({ width: 1440, height: 900 });
+  }, 60_000);
 });
+
