@@ -29,14 +29,18 @@ function sendError(res: ServerResponse, e: unknown, headers: Record<string, stri
 
 export function afterSeq(req: IncomingMessage, url: URL): number | null {
   const header = req.headers['last-event-id'];
-  const raw = (Array.isArray(header) ? header[0] : header) ?? url.searchParams.get('after') ?? '0';
-  // a decimal event number as the service gives them: `abc`, `0x10`, `1e400`, 5,000 digits are refused
-  if (!/^\d{1,15}$/.test(raw.trim())) return null;
-  return Number(raw.trim());
+  const asked = url.searchParams.getAll('after');
+  // the parameter repeated with different values says no one position
+  if (asked.some((a) => a !== asked[0])) return null;
+  // the header (what a reconnecting EventSource sends) before the parameter
+  const raw = (Array.isArray(header) ? header[0] : header) ?? asked[0] ?? '0';
+  // a decimal event number as the service gives them: `abc`, `+1`, `0x10`, `1e400`, 5,000 digits are refused
+  if (!/^\d{1,15}$/.test(raw)) return null;
+  return Number(raw);
 }
 
 /** The refusal of a malformed `?after=` or `Last-Event-ID` (the body of its 400). */
-export const AFTER_ERROR = 'after (or Last-Event-ID) must be an event number: a whole number of 1 to 15 decimal digits (0: from the start)';
+export const AFTER_ERROR = 'after (or Last-Event-ID) must be an event number: a whole number of 1 to 15 decimal digits (0: from the start), the parameter given once';
 
 function logText(lines: LineEvent[]): string {
   return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${l.line}\n`).join('');

@@ -140,7 +140,7 @@ describe('job WebSocket ?trace= filter', () => {
 
   test('a resume position that is no event number (after=, Last-Event-ID) is a 400 on both streams, not a replay from the start', async () => {
     appendReplay();
-    for (const q of ['?after=abc', '?after=', '?after=0x10', '?after=1e308', '?after=-3', '?after=1.5', `?after=${'9'.repeat(5000)}`]) {
+    for (const q of ['?after=abc', '?after=', '?after=+1', '?after=%201', '?after=0x10', '?after=1e308', '?after=-3', '?after=1.5', `?after=${'9'.repeat(5000)}`, '?after=1&after=abc', '?after=1&after=2']) {
       const ws = await upgradeStatus(`/api/jobs/${ID}/ws${q}`);
       expect(ws.status, q).toBe(400);
       expect(ws.body, q).toMatch(/must be an event number/);
@@ -151,6 +151,10 @@ describe('job WebSocket ?trace= filter', () => {
     const header = await fetch(`${built.url}/api/jobs/${ID}/events`, { headers: { 'Last-Event-ID': '1e400' } });
     expect(header.status).toBe(400);
     await header.body?.cancel();
+    // the header before the parameter (what a reconnecting EventSource sends); one value given twice is one
+    const both = await fetch(`${built.url}/api/jobs/${ID}/events?after=1&after=1`, { headers: { 'Last-Event-ID': '4' } });
+    expect(both.status).toBe(200);
+    await both.body?.cancel();
     // a good one resumes as before
     const resumed = await follow('?after=3');
     expect(events.subscriberCount).toBe(1);
