@@ -89,7 +89,7 @@ const CASES: Record<string, CodeCase> = {
     },
     'supervisor-subscribe-conflict': {
         raise: sup('A: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nB: [elapsed=3ms] subscribe MAB:1 =* :2 [elapsed=4ms]'),
-        clean: sup('A: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nB: [elapsed=3ms] subscribe MAA:2 =* :2 [elapsed=4ms]'),
+        clean: sup('A: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nB: [elapsed=3ms] compute doit("y", 1.0) [elapsed=4ms]'),
         message: 'Input event port :2 (connection_status) is also subscribed to MAA:2 (rule A)'
     },
     'supervisor-endof-own-postcondition': {
@@ -163,6 +163,12 @@ describe('supervisors: more behaviour', () => {
                 SINGLE: [elapsed=1ms] subscribe SUP:1 => :0; activate supervisor SUP.action(consigne = c) [SUP:1<s == "commutation">]
             } } }`
         }))).toEqual([]);
+    });
+
+    it('the same producer subscribed twice to one input port is the same warning: the runtime refuses the second while the first holds the port', async () => {
+        const built = await build(sup('A: [elapsed=1ms] subscribe MAA:2 =* :2 [elapsed=2ms]\nB: [elapsed=3ms] subscribe MAA:2 =* :2 [elapsed=4ms]'));
+        const warned = built.diagnostics.filter((d) => d.code === 'supervisor-subscribe-conflict').map((d) => d.message);
+        expect(warned).toEqual(['Input event port :2 (connection_status) is also subscribed to MAA:2 by rule A: an input port takes one subscribe at a time, the same producer\'s too (the second is refused while the first holds it: `port :2 already subscribed`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.']);
     });
 
     it('a label referenced but not defined is a linking error listing the labels', async () => {

@@ -111,10 +111,11 @@ function checkSubscribeConflicts(sup: Supervisor, accept: ValidationAcceptor): v
             firstProducer.set(target, { key, subscribe: s });
             continue;
         }
-        if (first.key === key) continue;
         const rule = AstUtils.getContainerOfType(first.subscribe, isRule);
-        report(accept, SupervisorCodes['supervisor-subscribe-conflict'],
-            `Input event port :${target.index} (${target.name}) is also subscribed to ${first.key} (rule ${rule?.name ?? '?'}): an input port has at most one producer at a time. Make sure these rules are never active at once, or use another input port for ${key}.`,
+        // the same producer twice is refused at run time too (`port :i already subscribed`): one subscription at a time
+        report(accept, SupervisorCodes['supervisor-subscribe-conflict'], first.key === key
+            ? `Input event port :${target.index} (${target.name}) is also subscribed to ${key} by rule ${rule?.name ?? '?'}: an input port takes one subscribe at a time, the same producer's too (the second is refused while the first holds it: \`port :${target.index} already subscribed\`). Make sure these rules are never active at once, or subscribe once in a rule active whenever either needs the events.`
+            : `Input event port :${target.index} (${target.name}) is also subscribed to ${first.key} (rule ${rule?.name ?? '?'}): an input port has at most one producer at a time. Make sure these rules are never active at once, or use another input port for ${key}.`,
             { node: s, property: 'targetPort' });
     }
 }

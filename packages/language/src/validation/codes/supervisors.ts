@@ -84,7 +84,7 @@ export const { area: supervisorsArea, codes: SupervisorCodes } = defineCodes('Su
     },
     'supervisor-subscribe-conflict': {
         severity: 'warning',
-        description: 'An input event port has at most one producer at a time (language-reference.md §4). Two `subscribe` actions of the supervisor (in any of its functions: they share the ports) connect different producers to the same input port; whether their rules can be active at once is not decidable statically, so this is a warning: make sure they never are, or use one input port per producer.',
+        description: 'An input event port has at most one producer at a time (language-reference.md §4). Two `subscribe` actions of the supervisor (in any of its functions: they share the ports) connect producers to the same input port: different ones, or the same one twice (the runtime refuses the second while the first holds the port: `port :i already subscribed`); whether their rules can be active at once is not decidable statically, so this is a warning: make sure they never are, or use one input port per producer (the same producer: one subscribe, in a rule active whenever either needs the events).',
         example: 'A: [elapsed=1ms] subscribe MAA:2 =* :2 [...]  B: [elapsed=2ms] subscribe MAB:1 =* :2 [...]'
     },
     'supervisor-endof-own-postcondition': {
