@@ -598,16 +598,27 @@ describe('IDE in headless Chromium', () => {
     await third.close();
     // a reload after the end shows the tab's last job again (it showed "No build yet"): its whole
     // log and its end, the Monitor and the run's CSV logs; nothing to stop
+    // the reloaded page may show its 5 s toast before it is ready (its logs fetched early, the page
+    // slow to load on a busy machine): every toast of the new page is kept from its first script on
+    await page.addInitScript(() => {
+      const seen: Element[] = ((window as any).__toasts = []);
+      new MutationObserver((changes) => {
+        for (const c of changes) for (const n of c.addedNodes) if (n instanceof Element && n.closest('.toast')) seen.push(n.closest('.toast')!);
+      }).observe(document, { childList: true, subtree: true });
+    });
     await page.reload();
     await page.waitForSelector('body[data-ready=true]', { timeout: 30_000 });
-    const pageToast = page.locator('.toast', { hasText: 'Run logs of' }).first().waitFor({ timeout: 30_000 });
+    const pageToast = expect.poll(() => page.evaluate(() => ((window as any).__toasts as Element[]).some((t) => (t.textContent ?? '').includes('Run logs of'))), { timeout: 30_000 }).toBe(true);
     await expect.poll(() => page.locator('.job-origin').textContent(), { timeout: 10_000 }).toBe('(shown again after a reload: it had ended)');
     await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 10_000 }).toMatch(/cancelled|failed|succeeded/);
     await expect.poll(async () => (await lines()).length, { timeout: 10_000 }).toBeGreaterThan(before.length);
     expect((await lines()).slice(0, before.length)).toEqual(before);
     expect(await page.locator('#btn-stop').isEnabled()).toBe(false);
     expect(await page.locator('#btn-run').isEnabled()).toBe(true);
-    await pageToast;
+    // (a failure says what the log said of the run's logs: `timeline: ...` when they could not be fetched)
+    await pageToast.catch(async (e: Error) => {
+      throw new Error(`${e.message}\nthe log's last lines: ${(await lines()).slice(-8).join(' | ')}`);
+    });
     expect(await page.locator('.monitor-view').count()).toBe(1);
   }, 240_000);
 
