@@ -82,14 +82,18 @@ if (env.available) {
   });
 
   describe('docker: limit hits end the job at once, as in bwrap', () => {
-    test('forks refused by the pids limit, every failure hidden: killed: process limit, at the hit', async () => {
-      const job = await run(cgroupUrl, silentForks, { processes: 24 });
+    /** A job of silentForks at `processes: 24`: stopped at the hit (the program would have lived 20 s more), the forking program named. */
+    const stoppedByProcessLimit = async (url: string): Promise<void> => {
+      const job = await run(url, silentForks, { processes: 24 });
       expect(job.status).toBe('failed');
       expect(job.result.step).toBe('run');
       expect(job.result.message).toBe('killed: process limit 24');
       expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker', module: 'prog' });
-      // the program would have lived 20 s more
       expect(job.result.durations_ms.run).toBeLessThan(10_000);
+    };
+
+    test('forks refused by the pids limit, every failure hidden: killed: process limit, at the hit', async () => {
+      await stoppedByProcessLimit(cgroupUrl);
     });
 
     test("a child OOM-killed while the program goes on: the whole job is killed: memory limit, at the kill", async () => {
@@ -102,12 +106,7 @@ if (env.available) {
     });
 
     test("without the cgroup (limitWatch: 'engine', as a remote engine): forks refused and hidden are seen from the engine's process count, at the hit, the forking program named from the engine's process list", async () => {
-      const job = await run(engineUrl, silentForks, { processes: 24 });
-      expect(job.status).toBe('failed');
-      expect(job.result.step).toBe('run');
-      expect(job.result.message).toBe('killed: process limit 24');
-      expect(job.result.limitHit).toMatchObject({ name: 'processes', value: 24, unit: 'count', mechanism: 'docker', module: 'prog' });
-      expect(job.result.durations_ms.run).toBeLessThan(10_000);
+      await stoppedByProcessLimit(engineUrl);
     });
 
     test("without the cgroup (limitWatch: 'engine', as a remote engine): the engine's oom event ends the job at the kill", async () => {
