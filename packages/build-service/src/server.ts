@@ -50,6 +50,13 @@ export interface BuildServer {
   close(): Promise<void>;
 }
 
+/** A 400 before the upgrade, its body `why` (text): the socket is closed; true (the request was ours). */
+function refuseUpgrade(socket: Duplex, why: string): true {
+  const body = `${why}\n`;
+  socket.end(`HTTP/1.1 400 Bad Request\r\nConnection: close\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
+  return true;
+}
+
 export const DEFAULT_PORT = 7391;
 
 export function createBuildServer(options: BuildServerOptions = {}): BuildServer {
@@ -68,17 +75,9 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
     const m = new RegExp(`^${basePath.replace(/[.*+?^${}()|[\]\\]/g, '\\$&')}/jobs/([^/]+)/ws$`).exec(url.pathname);
     if (!m) return false;
     const trace = traceFilter(url);
-    if (!trace) {
-      const body = `${TRACE_FILTER_ERROR}\n`;
-      socket.end(`HTTP/1.1 400 Bad Request\r\nConnection: close\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
-      return true;
-    }
+    if (!trace) return refuseUpgrade(socket, TRACE_FILTER_ERROR);
     const after = afterSeq(req, url);
-    if (after === null) {
-      const body = `${AFTER_ERROR}\n`;
-      socket.end(`HTTP/1.1 400 Bad Request\r\nConnection: close\r\nContent-Type: text/plain; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
-      return true;
-    }
+    if (after === null) return refuseUpgrade(socket, AFTER_ERROR);
     if (!sockets.upgrade(m[1]!, after, req, socket, head, trace)) {
       socket.end('HTTP/1.1 404 Not Found\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
     }

@@ -365,6 +365,8 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
   const ready = (async () => {
     const info = (await opts.container.inspect().catch(() => null)) as InspectedContainer | null;
     if (!info || stopped) return;
+    /** The process limit from the engine's process count, when the cgroup's pids counter is not read here (started once). */
+    const followPidsByEngine = (): void => void (enginePids ??= followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes')));
     let reason = 'the limits are watched through the engine (limitWatch: engine)';
     if (opts.mode === 'auto') {
       const found = await findContainerCgroup(info);
@@ -377,8 +379,7 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
           busy = true;
           look(found.cgroup).then((h) => h && fire(h), () => {}).finally(() => (busy = false));
         }, CGROUP_WATCH_INTERVAL_MS);
-        if (found.cgroup.plan.memory && found.cgroup.plan.pids) return;
-        if (!found.cgroup.plan.pids) enginePids = followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes'));
+        if (!found.cgroup.plan.pids) followPidsByEngine();
         if (found.cgroup.plan.memory) return;
         reason = `no memory counter of the container is readable here (${describePlan(found.cgroup.plan)})`;
       } else {
@@ -388,8 +389,7 @@ export function watchContainerLimits(opts: LimitWatchOptions): LimitWatch {
       }
     }
     opts.onFallback?.(reason);
-    enginePids ??= followEnginePids(opts.container, info.HostConfig?.PidsLimit ?? undefined, () => fire('processes'));
-    if (stopped) enginePids.stop();
+    if (!stopped) followPidsByEngine();
     const id = info.Id ?? '';
     if (!CONTAINER_ID.test(id)) return;
     const sub = await followEngineOom(opts.docker, id, sinceOf(info), () => fire('memory')).catch(() => null);
