@@ -130,6 +130,10 @@ function cutRecord(name: string, keptBytes: number, size: number, bound: number,
 const laterMono = (a: string | undefined, b: string | undefined): string | undefined =>
   a === undefined ? b : b === undefined ? a : a.length !== b.length ? (a.length > b.length ? a : b) : a > b ? a : b;
 
+/** A collected file's entry, its bytes compressed. */
+const artifactOf = async (name: string, kept: Buffer, capped: string | null): Promise<Artifact> =>
+  ({ name, path: `${LOG_DIR}/${name}`, size: kept.length, gzip: await gzip(kept), capped });
+
 /** Sees the bytes of each collected file before they are compressed (run-issues.ts). */
 export type ArtifactInspector = (name: string, data: Buffer) => void;
 
@@ -195,13 +199,13 @@ export async function selectArtifacts(
       }
       inspect?.(e.name, kept);
       total += kept.length;
-      files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: kept.length, gzip: await gzip(kept), capped });
+      files.push(await artifactOf(e.name, kept, capped));
     }
   }
   for (const t of timeless) {
     const kept = Buffer.concat([t.kept, Buffer.from(cutRecord(t.name, t.kept.length, t.size, t.bound, latest ?? '0'))]);
     inspect?.(t.name, kept);
-    files[t.index] = { name: t.name, path: `${LOG_DIR}/${t.name}`, size: kept.length, gzip: await gzip(kept), capped: t.capped };
+    files[t.index] = await artifactOf(t.name, kept, t.capped);
   }
   if (listing.more || all.length > sorted.length) {
     skipped.push({ name: `${LOG_DIR}/`, reason: `more than ${bounds.entries} entries: the others were not looked at` });
