@@ -91,6 +91,11 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     const big = artifactBytes(a.files[0]!).toString();
     expect(big).toMatch(/^7000,\d{4}-.*Z,BIG,log-capped,build-service,,9000,collected the first 0 of 9000 bytes \(the 4096-byte bound of the build service\)\n$/);
     expect(a.files[0]!.size).toBe(big.length);
+    // the latest by value: a forged log's leading zeros do not make its time later
+    writeFileSync(join(work, 'logs', 'ZZZ_1.csv'), '0000006500,w,ZZZ,ev,,,0,d\n');
+    const zeros = await collectRunArtifacts(hostWorkDirReader, work, { entries: 100, files: 10, fileBytes: 4096, totalBytes: 1 << 20 });
+    expect(artifactBytes(zeros.files[0]!).toString()).toMatch(/^7000,/);
+    rmSync(join(work, 'logs', 'ZZZ_1.csv'));
     // alone, it has no other time than 0
     rmSync(join(work, 'logs', 'MOT_1.csv'));
     rmSync(join(work, 'logs', 'ORD_1.csv'));

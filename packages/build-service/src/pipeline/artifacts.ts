@@ -126,9 +126,9 @@ function cutRecord(name: string, keptBytes: number, size: number, bound: number,
   return `${mono},${new Date().toISOString()},${module},${LOG_CAPPED_EVENT},build-service,,${size},collected the first ${keptBytes} of ${size} bytes (the ${bound}-byte bound of the build service)\n`;
 }
 
-/** The later of two mono_ns texts (digits only). */
+/** The later of two mono_ns texts (digits only: compared as numbers, a leading zero too). */
 const laterMono = (a: string | undefined, b: string | undefined): string | undefined =>
-  a === undefined ? b : b === undefined ? a : a.length !== b.length ? (a.length > b.length ? a : b) : a > b ? a : b;
+  a === undefined ? b : b === undefined ? a : BigInt(a) >= BigInt(b) ? a : b;
 
 /** A collected file's entry, its bytes compressed. */
 const artifactOf = async (name: string, kept: Buffer, capped: string | null): Promise<Artifact> =>
