@@ -5,6 +5,9 @@ import { CSV_HEADER, CUT_RECORD, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, mi
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
+/** The story of one log: `lines` (records, without their line ends) after the CSV header. */
+const storyOfLog = (name: string, lines: string[]): string[] => renderStory(parseTrace([{ name, text: [CSV_HEADER, ...lines, ''].join('\n') }]));
+
 describe('trace record kinds', () => {
     it('docs/runtime-api.md holds the table generated from record-kinds.ts (npm run docs:trace -w packages/build-service)', () => {
         expect(readFileSync(DOC, 'utf8')).toContain(renderTraceTable());
@@ -399,13 +402,12 @@ describe('reading a log', () => {
             'MIS  module GCS: last hold dropped (stop failed)',
         ]);
         // a hold record confirms only its own supervisor's action line, the one just before it
-        const two = renderStory(parseTrace([{ name: 'A_1.csv', text: [CSV_HEADER,
+        const two = storyOfLog('A_1.csv', [
             '1000,w,SUA,supervisor,GCS,,0,start module GCS (priority 30)',
             '1010,w,SUB,module_hold,GCS,,0,hold taken (started it)',
             '1020,w,SUA,supervisor,,,0,rule f.R active',
             '1030,w,SUA,module_hold,GCS,,0,hold taken (started it)',
-            '',
-        ].join('\n') }])).slice(0, -1).map((l) => l.slice(11));
+        ]).slice(0, -1).map((l) => l.slice(11));
         expect(two).toEqual(['SUA  start module GCS (priority 30)', 'SUB  module GCS: hold taken (started it)', 'SUA  module GCS: hold taken (started it)']);
     });
 
@@ -438,29 +440,26 @@ describe('reading a log', () => {
             '+0.000001s LIN  (a supervisor line this reader does not know) launch the missiles',
         ]);
         // a module that had exited (a crash the simulator made) is not told to set *stateindex = -1
-        const crashed = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+        const crashed = storyOfLog('X_1.csv', [
             '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): does its exec region set *stateindex = -1? (conveyor)',
             '2503000000,w,ORD,scheduler,,,0,stuck: ENC has not finished release #229 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
-            '',
-        ].join('\n') }]));
+        ]);
         // a crash the runtime's signal handler wrote (module_crashed): told as the crash, and a later stuck report says it
-        const segv = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+        const segv = storyOfLog('X_1.csv', [
             '1500000000,w,SPC,module_crashed,,,0,signal 11 (SIGSEGV) records=42',
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(segv.slice(0, 2)).toEqual([
             '+0.000000s SPC  crashed: signal 11 (SIGSEGV)',
             '+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods: it had exited before (crashed: signal 11 (SIGSEGV)) (conveyor)',
         ]);
         // started again after its exit: a later stuck report gets ORD's advice again
-        const again = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+        const again = storyOfLog('X_1.csv', [
             '1500000000,w,SPC,module_exit,,,0,crashed (simulated)',
             '1600000000,w,SPC,module_started,,,0,pid=7 priority=84',
             '2502000000,w,ORD,scheduler,,,0,stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(again.filter((l) => l.includes('stuck:'))).toEqual(['+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods: does its exec region set *stateindex = -1? (conveyor)']);
         expect(crashed.filter((l) => l.includes('stuck:'))).toEqual([
             '+1.002000s ORD  stuck: SPC has not finished release #228 after 50 periods (of a deactivated activation): it had exited before (crashed (simulated)) (conveyor)',
@@ -469,7 +468,7 @@ describe('reading a log', () => {
     });
 
     it("tells a run a supervisor or a control tool began that its module's own code ended (no STOP, no ack); not a release's end or a stopped run", () => {
-        const story = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+        const story = storyOfLog('X_1.csv', [
             '1000000,w,MAB,run_started,SUP,,0,activation=1',
             '1200000,w,MAB,run_finished,,,0,activation=1',                // its code set *stateindex = -1
             '2000000,w,SCN,run_started,ALF,,0,activation=1',
@@ -479,8 +478,7 @@ describe('reading a log', () => {
             '5000000,w,TEL,run_started,,,0,activation=2',                 // a control tool's START
             '6000000,w,TEL,run_finished,,,0,activation=2',
             '7000000,w,TEL,run_finished,,,0,activation=3',               // no start read: not told
-            '',
-        ].join('\n') }]));
+        ]);
         expect(story.slice(0, -1)).toEqual([
             '+0.000200s MAB  run #1 ended by its own code (started by SUP)',
             '+0.005000s TEL  run #2 ended by its own code (started by a control tool)',
@@ -488,15 +486,14 @@ describe('reading a log', () => {
     });
 
     it('tells the first value each data flow dropped, with why, and counts every drop at the end', () => {
-        const story = renderStory(parseTrace([{ name: 'X_1.csv', text: [CSV_HEADER,
+        const story = storyOfLog('X_1.csv', [
             '1000000,w,CAM,data_posted,SRT,0,24,to_port=0',
             '2000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',      // SRT never reads: told once
             '3000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',
             '3000000,w,CAM,data_dropped,LOG,0,24,to_port=2 queue full',      // another flow of the same port
             '4000000,w,CAM,data_dropped,SRT,0,24,to_port=0 queue full',
             '5000000,w,GPS,data_dropped,NAV,1,16,to_port=3 Connection refused',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(story).toEqual([
             '+0.001000s CAM  data CAM:0 -> SRT:0 dropped: queue full (SRT does not read its input :0 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
             '+0.002000s CAM  data CAM:0 -> LOG:2 dropped: queue full (LOG does not read its input :2 as fast as it comes: its exec region calls GetData or GetLatestData too seldom, or not at all); its later drops are counted at the end',
@@ -533,7 +530,7 @@ describe('reading a log', () => {
         ]);
         // a stuck record that says its module is no longer running (a crash, ORD's words on stderr too): the cycles
         // held for it and their misses do not say it "still runs" its release; started again, it is followed afresh
-        const dead = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+        const dead = storyOfLog('ORD_1.csv', [
             '1000000000,w,ORD,scheduler,,,0,cycle of loop held: VEL still runs a release of an earlier activation',
             '1500000000,w,ORD,scheduler,,,0,stuck: VEL has not finished release #204 after 100 periods: it is no longer running (it crashed or was killed) (loop)',
             '1518000000,w,ORD,scheduler,,,0,activate loop (activation #4 from DRV)',
@@ -542,8 +539,7 @@ describe('reading a log', () => {
             '1600000000,w,VEL,module_started,,,0,pid=9 priority=84',
             '1700000000,w,ORD,scheduler,,,0,cycle of loop held: VEL still runs a release of an earlier activation',
             '1710000000,w,ORD,ord_deadline_miss,,,0,schema=loop cycle=0 tick_ns=1700000000',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(dead.filter((l) => / ORD {2}(deadline|cycle|stuck)/.test(l))).toEqual([
             '+0.000000s ORD  cycle of loop held: VEL still runs a release of an earlier activation',
             '+0.500000s ORD  stuck: VEL has not finished release #204 after 100 periods: it is no longer running (it crashed or was killed) (loop)',
@@ -556,7 +552,7 @@ describe('reading a log', () => {
         expect(missWaitText('VEL', '')).toBe(' (held: nothing released, VEL still runs an earlier release)');
         // every line ORD writes to its CSV log is typed; those a reader needs are told (an overrun's end, a stuck
         // module finishing at last, a table warning), the expected ones are not, and a line no version writes is told as such
-        const ord = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+        const ord = storyOfLog('ORD_1.csv', [
             '1000,w,ORD,scheduler,,,0,"overrun: alt cycle still running, release skipped"',
             '2000,w,ORD,scheduler,,,0,overrun: alt cycle ended after 2 skipped releases',
             '3000,w,ORD,scheduler,,,0,"GRP finished release #21 at last (reported stuck, pick)"',
@@ -564,8 +560,7 @@ describe('reading a log', () => {
             '5000,w,ORD,scheduler,,,0,ignored: GRP finished outside a cycle (release #22 is not outstanding)',
             '6000,w,ORD,scheduler,,,0,"warning: alt activated with 4 parameter bytes, its tables say 8 (tables of ORD and FLT from different generations?)"',
             '7000,w,ORD,scheduler,,,0,reboot the drone',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(ord.slice(0, -1)).toEqual([
             '+0.000000s ORD  overrun: alt cycle still running, release skipped',
             '+0.000001s ORD  overrun: alt cycle ended after 2 skipped releases',
@@ -577,21 +572,20 @@ describe('reading a log', () => {
         // the summary counts every skipped release, as ORD does: the first line is one, its end says 2 in all
         expect(ord.at(-1)).toContain(', 2 overruns, 0 held cycles, ');
         // a cycle ORD released late (it woke 13.4 ms after the tick): said, not only the module that then missed
-        const late = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+        const late = storyOfLog('ORD_1.csv', [
             '3000000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=66 tick_ns=2986600000 release_ns=3000000000 release=300',
             '3000100000,w,ORD,ord_release,SPC,,0,schema=conveyor cycle=66 tick_ns=2986600000 release_ns=3000100000 release=301',
             '3001600000,w,ORD,ord_deadline_miss,,,0,schema=conveyor cycle=66 tick_ns=2986600000',
             '3020000000,w,ORD,ord_release,ENC,,0,schema=conveyor cycle=67 tick_ns=3006600000 release_ns=3006600500 release=302',
             '3021700000,w,ORD,ord_deadline_miss,,,0,schema=conveyor cycle=67 tick_ns=3006600000',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(late.filter((l) => l.includes(' deadline miss ('))).toEqual([
             '+0.001600s ORD  deadline miss (ORD:0): conveyor cycle 66 (not finished: ENC, SPC; ORD released the cycle 13.4 ms after its tick)',
             '+0.021700s ORD  deadline miss (ORD:0): conveyor cycle 67 (not finished: ENC)', // 500 ns late: on time
         ]);
         // a new activation's cycle 0 waits for its own releases only: DRV's release of the deactivated
         // activation's cycle 0, acknowledged late, is not one of them (field test 7)
-        const again = renderStory(parseTrace([{ name: 'ORD_1.csv', text: [CSV_HEADER,
+        const again = storyOfLog('ORD_1.csv', [
             '4000000000,w,ORD,scheduler,,,0,activate armLoop (activation #1 from CEL)',
             '4000100000,w,ORD,ord_release,DRV,,0,schema=armLoop cycle=0 tick_ns=4000000000 release_ns=4000100000 release=641',
             '4000500000,w,ORD,scheduler,,,0,deactivate armLoop (activation #1 from CEL)',
@@ -599,8 +593,7 @@ describe('reading a log', () => {
             '4300000000,w,ORD,scheduler,,,0,activate armLoop (activation #2 from CEL)',
             '4300010000,w,ORD,ord_release,ENC,,0,schema=armLoop cycle=0 tick_ns=4300000000 release_ns=4300010000 release=642',
             '4301000000,w,ORD,ord_deadline_miss,,,0,schema=armLoop cycle=0 tick_ns=4300000000',
-            '',
-        ].join('\n') }]));
+        ]);
         expect(again.filter((l) => l.includes(' deadline miss ('))).toEqual(['+0.301000s ORD  deadline miss (ORD:0): armLoop cycle 0 (not finished: ENC)']);
         // a trace file's record placed before the first one (times are the file's): a negative offset, not "+-"
         const teller = new StoryTeller();
