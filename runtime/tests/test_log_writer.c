@@ -21,6 +21,7 @@ ssize_t __wrap_write(int fd, const void *buf, size_t len);
 
 static long long write_delay_ns; /* 0: writes as they are */
 static pthread_t test_thread;
+static int writes_stalling; /* writes made slow so far (a test waits for its writer to be in one) */
 
 /* A full disk: while armed (>= 0), writes to a file (fd > 2) take at most this many more bytes,
  * then fail with ENOSPC. */
@@ -42,6 +43,7 @@ ssize_t __wrap_write(int fd, const void *buf, size_t len)
     long long d = __atomic_load_n(&write_delay_ns, __ATOMIC_ACQUIRE);
     if (d > 0 && !pthread_equal(pthread_self(), test_thread)) {
         struct timespec ts = { (time_t)(d / 1000000000LL), (long)(d % 1000000000LL) };
+        __atomic_add_fetch(&writes_stalling, 1, __ATOMIC_ACQ_REL);
         nanosleep(&ts, NULL);
     }
     return __real_write(fd, buf, len);
@@ -50,6 +52,7 @@ ssize_t __wrap_write(int fd, const void *buf, size_t len)
 static void slow_writes(long long ns)
 {
     test_thread = pthread_self();
+    __atomic_store_n(&writes_stalling, 0, __ATOMIC_RELEASE);
     __atomic_store_n(&write_delay_ns, ns, __ATOMIC_RELEASE);
 }
 
@@ -206,7 +209,11 @@ void test_csv_log_crash_writer_busy(void)
                 ContractLog("test_record", "", -1, 0, detail);
             }
             if (rt_log_hand_off(0) != 1) _exit(4);
-            usleep(20000); /* the writer took the buffer: it stalls in its write */
+            /* the writer took the buffer and stalls in its write (waited for: on a loaded machine
+             * the writer thread may not run for a while, and the handler would write the buffer
+             * itself, as it must when the writer has not begun it) */
+            for (int w = 0; w < 1000 && __atomic_load_n(&writes_stalling, __ATOMIC_ACQUIRE) == 0; w++) usleep(2000);
+            if (__atomic_load_n(&writes_stalling, __ATOMIC_ACQUIRE) == 0) _exit(6);
             for (int i = 0; i < 50; i++) {
                 snprintf(detail, sizeof detail, "second %d", i);
                 ContractLog("test_record", "", -1, 0, detail);
