@@ -56,6 +56,15 @@ static void slow_writes(long long ns)
     __atomic_store_n(&write_delay_ns, ns, __ATOMIC_RELEASE);
 }
 
+/* Waits (up to 2 s) until the writer thread took the buffer handed to it and stalls in its slow
+ * write: on a loaded machine the writer may not run for a while, and a crash handler or the
+ * recovery would then find the buffer not begun, which is another case. 1 once it does. */
+static int wait_writer_stalled(void)
+{
+    for (int w = 0; w < 1000 && __atomic_load_n(&writes_stalling, __ATOMIC_ACQUIRE) == 0; w++) usleep(2000);
+    return __atomic_load_n(&writes_stalling, __ATOMIC_ACQUIRE) > 0;
+}
+
 static unsigned long long mark_word(int fd)
 {
     unsigned long long w = 7;
@@ -209,11 +218,7 @@ void test_csv_log_crash_writer_busy(void)
                 ContractLog("test_record", "", -1, 0, detail);
             }
             if (rt_log_hand_off(0) != 1) _exit(4);
-            /* the writer took the buffer and stalls in its write (waited for: on a loaded machine
-             * the writer thread may not run for a while, and the handler would write the buffer
-             * itself, as it must when the writer has not begun it) */
-            for (int w = 0; w < 1000 && __atomic_load_n(&writes_stalling, __ATOMIC_ACQUIRE) == 0; w++) usleep(2000);
-            if (__atomic_load_n(&writes_stalling, __ATOMIC_ACQUIRE) == 0) _exit(6);
+            if (!wait_writer_stalled()) _exit(6);
             for (int i = 0; i < 50; i++) {
                 snprintf(detail, sizeof detail, "second %d", i);
                 ContractLog("test_record", "", -1, 0, detail);
@@ -384,7 +389,7 @@ static pid_t killed_child(int n, int handed, int flush_at, const char *word)
             if (handed && i == handed) {
                 slow_writes(2000000000LL);
                 if (rt_log_hand_off(0) != 1) _exit(4);
-                usleep(20000); /* the writer took the buffer: it stalls in its write */
+                if (!wait_writer_stalled()) _exit(6);
             }
             if (flush_at && i == flush_at) ContractLogFlush();
             snprintf(detail, sizeof detail, "%s %d", word, i);
