@@ -66,31 +66,60 @@ export async function getOk(url: string, fetchFn: typeof fetch = fetch): Promise
   throw new ApiError(res.status, `${url}: HTTP ${res.status}${said}`, data as Record<string, unknown>);
 }
 
+/** Characters a piece of a downloaded text holds at least before it is cut (after a line end). */
+export const PIECE_CHARS = 1 << 20;
+
 /**
- * A response's body as text, decoded as its chunks come (UTF-8, as Response.text()): a log of
- * hundreds of MB read with text() is decoded in one task at the end, which held the page's frames
- * for 150–450 ms on a 200 MB log; decoded chunk by chunk, the only long task left is the final
- * join (one copy). The same text, byte for byte (a character split across chunks included).
+ * A response's body as text in pieces of whole lines (UTF-8, as Response.text()), decoded as its
+ * chunks come. A log of hundreds of MB read with text() is decoded in one task at the end, which
+ * held the page's frames for 150–450 ms on a 200 MB log; decoded chunk by chunk and joined once,
+ * the join (one copy of 100 MB) still held them up to 380 ms. Here no string is longer than a piece
+ * of about PIECE_CHARS (1 Mi characters), each ending at a line end (the last one: where the text
+ * ends), but for a line longer than that, which is one piece: joining them gives the text, byte for
+ * byte (a character split across chunks included). None for an empty body.
  */
-export async function responseText(res: Response): Promise<string> {
-  if (!res.body) return res.text();
+export async function responsePieces(res: Response): Promise<string[]> {
+  if (!res.body) {
+    const text = await res.text();
+    return text ? [text] : [];
+  }
   const reader = res.body.getReader();
   const decoder = new TextDecoder();
-  const parts: string[] = [];
+  const pieces: string[] = [];
+  let pending: string[] = []; // decoded chunks not in a piece yet (the first may start inside a line)
+  let pendingChars = 0;
+  const add = (chunk: string): void => {
+    if (!chunk) return;
+    if (pendingChars + chunk.length >= PIECE_CHARS) {
+      // cut after the chunk's last line end: only the chunk is searched, so a line without end is never searched again
+      const nl = chunk.lastIndexOf('\n');
+      if (nl >= 0) {
+        pending.push(chunk.slice(0, nl + 1));
+        pieces.push(pending.join(''));
+        pending = nl + 1 < chunk.length ? [chunk.slice(nl + 1)] : [];
+        pendingChars = pending[0]?.length ?? 0;
+        return;
+      }
+    }
+    pending.push(chunk);
+    pendingChars += chunk.length;
+  };
   for (;;) {
     const { done, value } = await reader.read();
     if (done) break;
-    parts.push(decoder.decode(value, { stream: true }));
+    add(decoder.decode(value, { stream: true }));
   }
-  parts.push(decoder.decode());
-  return parts.join('');
+  add(decoder.decode());
+  if (pending.length) pieces.push(pending.join(''));
+  return pieces;
 }
 
 /**
- * A CSV log of the workspace as text (GET /api/log: bounded for logs, not for the editor's tabs).
- * `maxBytes`: a log larger than that (the server says its size first) is not downloaded: 413.
+ * A CSV log of the workspace as text in pieces of whole lines (responsePieces; GET /api/log: bounded
+ * for logs, not for the editor's tabs). `maxBytes`: a log larger than that (the server says its
+ * size first) is not downloaded: 413.
  */
-async function readLog(path: string, maxBytes = Infinity): Promise<string> {
+async function readLog(path: string, maxBytes = Infinity): Promise<string[]> {
   let res: Response;
   try {
     res = await fetch(`/api/log?path=${q(path)}`);
@@ -102,7 +131,7 @@ async function readLog(path: string, maxBytes = Infinity): Promise<string> {
     await res.body?.cancel().catch(() => undefined);
     throw new ApiError(413, `${size} bytes, past the ${maxBytes} bytes left of the replay's bound`);
   }
-  if (res.ok) return responseText(res);
+  if (res.ok) return responsePieces(res);
   throw errorOf(res.status, answerOf(await res.text().catch(() => '')));
 }
 

@@ -11,7 +11,7 @@
  * Everything read from the stream or a log file is hostile: bounded and validated here or by the
  * trace reader (parseRecordLine never throws).
  */
-import { TRACE_LINES_KEPT, type LogFile, type TraceLine } from '@contract-studio/build-service/trace';
+import { TRACE_LINES_KEPT, type TraceLine } from '@contract-studio/build-service/trace';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
@@ -23,7 +23,7 @@ import { runSliced } from '../util/sliced.js';
 import { fetchJobLogs, MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
 import { api, socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
-import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
+import { recordedRunSteps, type RecordedLog, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
@@ -456,7 +456,7 @@ export class MonitorController {
  * page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a second
  * or more of folding, during which the page would not draw nor answer a key.
  */
-function recordedRun(files: LogFile[]): Promise<RecordedRun> {
+function recordedRun(files: readonly RecordedLog[]): Promise<RecordedRun> {
   return runSliced(recordedRunSteps(files, 500));
 }
 

@@ -5,7 +5,8 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseTrace, type LogFile } from '@contract-studio/build-service/trace';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
-import { recordedRunSteps } from './recorded-run.js';
+import { recordedRunSteps, type RecordedLog } from './recorded-run.js';
+import { piecedLog } from '../views/run-logs.js';
 
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
 /** The tutorial's run: nine logs (more than a chunk looks back through for a line's text). */
@@ -20,7 +21,21 @@ function viaReader(files: LogFile[], opts = OPTS): MonitorModel {
   return m;
 }
 
-function viaRanges(files: LogFile[], every = 7, opts = OPTS): { model: MonitorModel; steps: number } {
+/** The log as a download gives it (views/run-logs.ts piecedLog): its text cut after every `each`-th line end. */
+function inPieces(f: LogFile, each: number): RecordedLog {
+  const pieces: string[] = [];
+  let from = 0;
+  for (let at = 0, n = 0; (at = f.text.indexOf('\n', at) + 1) > 0; ) {
+    if (++n % each === 0) {
+      pieces.push(f.text.slice(from, at));
+      from = at;
+    }
+  }
+  if (from < f.text.length) pieces.push(f.text.slice(from));
+  return piecedLog(f.name, pieces);
+}
+
+function viaRanges(files: RecordedLog[], every = 7, opts = OPTS): { model: MonitorModel; steps: number } {
   const steps = recordedRunSteps(files, every, opts);
   let n = 0;
   let step = steps.next();
@@ -29,17 +44,23 @@ function viaRanges(files: LogFile[], every = 7, opts = OPTS): { model: MonitorMo
   return { model: step.value.model, steps: n };
 }
 
-/** The two models are the same: counts, marks, the live state and the state at 97 times (each scrub back re-reads kept lines). */
+/**
+ * The two models are the same: counts, marks, the live state and the state at 97 times (each scrub
+ * back re-reads kept lines); and so is the model of the same logs read in pieces (a download's: a
+ * line a piece, and three).
+ */
 function expectSame(files: LogFile[], opts = OPTS): MonitorModel {
   const full = viaReader(files, opts);
   const { model } = viaRanges(files, 7, opts);
-  expect(model.recordCount).toBe(full.recordCount);
-  expect(model.t0).toBe(full.t0);
-  expect(model.marks).toEqual(full.marks);
-  expect(model.live).toEqual(full.live);
-  for (let t = 0; t <= full.end; t += Math.max(1, full.end / 97)) {
-    expect(model.stateAt(t), `t=${t}`).toEqual(full.stateAt(t));
-    expect(model.exactAt(t)).toBe(full.exactAt(t));
+  for (const m of [model, ...[1, 3].map((each) => viaRanges(files.map((f) => inPieces(f, each)), 7, opts).model)]) {
+    expect(m.recordCount).toBe(full.recordCount);
+    expect(m.t0).toBe(full.t0);
+    expect(m.marks).toEqual(full.marks);
+    expect(m.live).toEqual(full.live);
+    for (let t = 0; t <= full.end; t += Math.max(1, full.end / 97)) {
+      expect(m.stateAt(t), `t=${t}`).toEqual(full.stateAt(t));
+      expect(m.exactAt(t)).toBe(full.exactAt(t));
+    }
   }
   return model;
 }
@@ -154,9 +175,10 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
     );
     const log = fc.tuple(fc.constantFrom('A_1.csv', 'B_1.csv', 'C_1.csv', 'D_1.csv'), fc.array(line, { maxLength: 25 }), fc.boolean())
       .map(([name, lines, crlf]) => ({ name, text: [HEADER, ...lines].join(crlf ? '\r\n' : '\n') }));
-    fc.assert(fc.property(fc.array(log, { maxLength: 5 }), fc.integer({ min: 1, max: 9 }), (files, every) => {
+    fc.assert(fc.property(fc.array(log, { maxLength: 5 }), fc.integer({ min: 1, max: 9 }), fc.integer({ min: 0, max: 4 }), (files, every, each) => {
       const full = viaReader(files);
-      const { model } = viaRanges(files, every);
+      // read whole, or in pieces of `each` lines (a download's)
+      const { model } = viaRanges(each ? files.map((f) => inPieces(f, each)) : files, every);
       expect(model.marks).toEqual(full.marks);
       expect(model.recordCount).toBe(full.recordCount);
       expect(model.live).toEqual(full.live);

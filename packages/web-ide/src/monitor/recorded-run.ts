@@ -17,11 +17,20 @@ import { MinHeap, TRACE_KINDS, parseRecordLine, recordLineEnd, type KnownRecord,
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
 
-/** The record lines of one log, in file order: ranges of its text and their sort keys. */
+/**
+ * A log to read: its text, or its pieces of whole lines when it came so (a download, views/run-logs.ts
+ * piecedLog): read piece by piece, never joined (joining a 100 MB log held the page's frames).
+ */
+export type RecordedLog = LogFile & { readonly pieces?: readonly string[] };
+
+/** The record lines of one log, in file order: ranges of its pieces and their sort keys. */
 interface LogLines {
   name: string;
-  text: string;
+  /** Its text in pieces, each ending at a line end (the last one: where the file ends). */
+  pieces: readonly string[];
   n: number;
+  /** The piece each line is in; from and to are offsets in it. */
+  piece: Uint16Array;
   from: Int32Array;
   to: Int32Array;
   /** 1-based line number in the file. */
@@ -98,6 +107,17 @@ function keyOf(file: string, lineNo: number, text: string, from: number, to: num
   return Read.Parsed;
 }
 
+/** Pieces a log's lines can name (LogLines.piece); a log in more is joined into fewer. */
+const MAX_PIECES = 0xffff;
+
+/** A log's pieces: `pieces` when it has them (at most MAX_PIECES: else joined into that many), else its text. */
+function piecesOf(file: RecordedLog): readonly string[] {
+  const pieces = file.pieces ?? [file.text];
+  if (pieces.length <= MAX_PIECES) return pieces;
+  const per = Math.ceil(pieces.length / MAX_PIECES);
+  return Array.from({ length: Math.ceil(pieces.length / per) }, (_, k) => pieces.slice(k * per, (k + 1) * per).join(''));
+}
+
 function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a: A): A {
   const b = new (a.constructor as new (n: number) => A)(a.length * 2);
   b.set(a);
@@ -105,52 +125,61 @@ function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a:
 }
 
 /** The record lines of a log (the trace reader's rule, recordLineEnd: header and empty lines are not records; a `\r` before a newline is not the line's). */
-function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
-  const { name, text } = file;
-  const size = Math.max(16, Math.ceil(text.length / 64));
-  const l: LogLines = { name, text, n: 0, from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined, cutAt: -1 };
+function* logLines(file: RecordedLog, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
+  const name = file.name;
+  const pieces = piecesOf(file);
+  const chars = pieces.reduce((n, p) => n + p.length, 0);
+  const size = Math.max(16, Math.ceil(chars / 64));
+  const l: LogLines = { name, pieces, n: 0, piece: new Uint16Array(size), from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined, cutAt: -1 };
   let hi = 0;
   let lo = 0;
   let sorted = true;
   let unreadable = 0;
-  for (let pos = 0, i = 0; pos < text.length; i++) {
-    let nl = text.indexOf('\n', pos);
-    if (nl < 0) nl = text.length;
-    const from = pos;
-    const to = recordLineEnd(text, i, from, nl);
-    pos = nl + 1;
-    if (to < 0) continue;
-    const read = keyOf(name, i + 1, text, from, to);
-    if (read === Read.None && ++unreadable > maxUnreadable) {
-      leftOut.push(`${name}: more than ${maxUnreadable} lines that are not trace records, the rest of it from line ${i + 1} left out`);
-      break;
+  let i = 0; // the line's index in the file
+  lines: for (let p = 0; p < pieces.length; p++) {
+    const text = pieces[p]!;
+    const last = p === pieces.length - 1;
+    for (let pos = 0; pos < text.length; i++) {
+      let nl = text.indexOf('\n', pos);
+      if (nl < 0) nl = text.length;
+      const from = pos;
+      const to = recordLineEnd(text, i, from, nl);
+      pos = nl + 1;
+      if (to < 0) continue;
+      const read = keyOf(name, i + 1, text, from, to);
+      if (read === Read.None && ++unreadable > maxUnreadable) {
+        leftOut.push(`${name}: more than ${maxUnreadable} lines that are not trace records, the rest of it from line ${i + 1} left out`);
+        break lines;
+      }
+      if (read !== Read.None) {
+        if (key.hi < hi || (key.hi === hi && key.lo < lo)) sorted = false;
+        hi = key.hi;
+        lo = key.lo;
+      }
+      if (l.n === l.from.length) {
+        l.piece = grow(l.piece);
+        l.from = grow(l.from);
+        l.to = grow(l.to);
+        l.line = grow(l.line);
+        l.hi = grow(l.hi);
+        l.lo = grow(l.lo);
+        l.kind = grow(l.kind);
+        l.commas = grow(l.commas);
+      }
+      const k = l.n++;
+      if (read === Read.Scanned) {
+        l.kind[k] = KIND_INDEX.get(scanned.kind)!;
+        for (let j = 0; j < 7; j++) l.commas[k * 7 + j] = scanned.comma[j]! - from;
+      }
+      if (last && nl === text.length) l.cutAt = k; // the file's last line, with no line end
+      l.piece[k] = p;
+      l.from[k] = from;
+      l.to[k] = to;
+      l.line[k] = i + 1;
+      l.hi[k] = hi;
+      l.lo[k] = lo;
+      if (l.n % every === 0) yield;
     }
-    if (read !== Read.None) {
-      if (key.hi < hi || (key.hi === hi && key.lo < lo)) sorted = false;
-      hi = key.hi;
-      lo = key.lo;
-    }
-    if (l.n === l.from.length) {
-      l.from = grow(l.from);
-      l.to = grow(l.to);
-      l.line = grow(l.line);
-      l.hi = grow(l.hi);
-      l.lo = grow(l.lo);
-      l.kind = grow(l.kind);
-      l.commas = grow(l.commas);
-    }
-    const k = l.n++;
-    if (read === Read.Scanned) {
-      l.kind[k] = KIND_INDEX.get(scanned.kind)!;
-      for (let j = 0; j < 7; j++) l.commas[k * 7 + j] = scanned.comma[j]! - from;
-    }
-    if (nl === text.length) l.cutAt = k; // the file's last line, with no line end
-    l.from[k] = from;
-    l.to[k] = to;
-    l.line[k] = i + 1;
-    l.hi[k] = hi;
-    l.lo[k] = lo;
-    if (l.n % every === 0) yield;
   }
   // a log is in time order but for hostile or clock-stepped lines
   if (!sorted) l.order = Int32Array.from(Array.from({ length: l.n }, (_, k) => k).sort((a, b) => l.hi[a]! - l.hi[b]! || l.lo[a]! - l.lo[b]! || a - b));
@@ -169,7 +198,7 @@ export interface RecordedRun {
  * `maxUnreadable` lines that are not records, whose rest is left out (and said). The model is
  * made with `options`.
  */
-export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
+export function* recordedRunSteps(files: readonly RecordedLog[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
   const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
   const logs: LogLines[] = [];
   const leftOut: string[] = [];
@@ -186,24 +215,30 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     return al < bl || (al === bl && f < g);
   });
   logs.forEach((l, f) => l.n && heap.push(f));
+  // each piece of each log is a text of its own to the model (its textId)
+  const firstTextId: number[] = [];
+  logs.reduce((id, l, f) => ((firstTextId[f] = id), id + l.pieces.length), 0);
   const model = new MonitorModel(options);
   let folded = 0;
   while (heap.size) {
     const f = heap.peek()!;
     const l = logs[f]!;
     const i = index(f);
+    const piece = l.piece[i]!;
+    const text = l.pieces[piece]!;
+    const textId = firstTextId[f]! + piece;
     const from = l.from[i]!, to = l.to[i]!;
     const kind = l.kind[i]!;
     if (kind) {
       // what keyOf's scan read, put back: the line is not scanned again
       for (let j = 0; j < 7; j++) scanned.comma[j] = from + l.commas[i * 7 + j]!;
       scanned.kind = KINDS[kind]!;
-      scanned.mono = digitsValue(l.text, from, scanned.comma[0]!);
+      scanned.mono = digitsValue(text, from, scanned.comma[0]!);
       scanned.to = to;
     }
     const cut = i === l.cutAt;
     // a cut line goes the way that marks it (pushLineIn scans it again: it is one line of a run)
-    if (cut || !kind || !model.pushScanned(l.text, from, to, f)) model.pushLineIn(l.name, l.line[i]!, l.text, from, to, f, cut);
+    if (cut || !kind || !model.pushScanned(text, from, to, textId)) model.pushLineIn(l.name, l.line[i]!, text, from, to, textId, cut);
     if (++at[f]! >= l.n) heap.pop();
     else heap.topChanged();
     if (++folded % every === 0) yield;

@@ -2,7 +2,7 @@ import { describe, it, expect, afterEach } from 'vitest';
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
 import { activationsFromLogs, fetchJobLogs, localLogFolders } from './run-logs.js';
-import { responseText } from '../api.js';
+import { PIECE_CHARS, responsePieces } from '../api.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 const log = (m: string, starts: number[]) =>
@@ -15,7 +15,25 @@ describe('run logs', () => {
     for (const body of [bytes, withBad, new Uint8Array()]) {
       // every split point: 1-byte chunks
       const chunked = new Response(new ReadableStream({ start(c) { for (const b of body) c.enqueue(new Uint8Array([b])); c.close(); } }));
-      expect(await responseText(chunked)).toBe(await new Response(body).text());
+      expect((await responsePieces(chunked)).join('')).toBe(await new Response(body).text());
+    }
+    expect(await responsePieces(new Response(new Uint8Array()))).toEqual([]);
+  });
+
+  it('reads a long body in pieces of whole lines, none joined longer than a piece but a line longer than one', async () => {
+    const line = (i: number) => `${1000 + i},w,MSC,run_started,ORD,,0,activation=${i} ${'x'.repeat(i % 90)}\n`;
+    let text = '';
+    for (let i = 0; text.length < 3.5 * PIECE_CHARS; i++) text += line(i);
+    const long = 'y'.repeat(PIECE_CHARS + 12345); // one line longer than a piece, then one without a line end
+    for (const body of [text, text + long + '\n' + text, text + long]) {
+      const bytes = new TextEncoder().encode(body);
+      // 64 KiB chunks, as a socket gives them, cut anywhere
+      const chunked = new Response(new ReadableStream({ start(c) { for (let at = 0; at < bytes.length; at += 65_531) c.enqueue(bytes.subarray(at, at + 65_531)); c.close(); } }));
+      const pieces = await responsePieces(chunked);
+      expect(pieces.join('')).toBe(body);
+      expect(pieces.length).toBeGreaterThan(3);
+      pieces.slice(0, -1).forEach((p) => expect(p.endsWith('\n')).toBe(true));
+      for (const p of pieces) if (!p.includes(long)) expect(p.length).toBeLessThan(PIECE_CHARS + 65_531);
     }
   });
 

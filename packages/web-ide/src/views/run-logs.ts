@@ -6,13 +6,32 @@
  */
 import { traceFileToLogsSteps, type TraceFileLogs } from '@contract-studio/build-service/trace';
 import { runSliced } from '../util/sliced.js';
-import { api, ApiError, getOk, responseText } from '../api.js';
+import { api, ApiError, getOk, responsePieces } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
 
 export interface LogFile {
   name: string;
-  text: string;
+  /** The whole text (for a downloaded log, its pieces joined each time it is read). */
+  readonly text: string;
+  /**
+   * A downloaded log's text in pieces of whole lines (api.ts responsePieces), which the Monitor's
+   * reader reads piece by piece: joining a long log into one string held the page's frames.
+   */
+  readonly pieces?: readonly string[];
 }
+
+/** A downloaded log: its pieces, and its text when a reader needs it whole (joined then). */
+export function piecedLog(name: string, pieces: readonly string[]): LogFile {
+  return {
+    name,
+    pieces,
+    get text() {
+      return pieces.join('');
+    },
+  };
+}
+
+const piecesLength = (pieces: readonly string[]): number => pieces.reduce((n, p) => n + p.length, 0);
 
 export interface RunLogs {
   /** Where the files come from, shown to the user (e.g. `Build & Run job 12`). */
@@ -75,9 +94,9 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
   for (const p of paths) {
     const name = nameOf(p);
     try {
-      const text = await api.readLog(p, room);
-      room -= text.length;
-      files.push({ name, text });
+      const pieces = await api.readLog(p, room);
+      room -= piecesLength(pieces);
+      files.push(piecedLog(name, pieces));
     } catch (e) {
       problems.push(`${name}: ${(e as Error).message}`);
       tooLarge ||= e instanceof ApiError && e.status === 413;
@@ -116,7 +135,7 @@ export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, ma
     room -= f.size;
     if (f.capped) problems.push(`${f.name}: not whole: ${f.capped}`); // a log-capped record ends it (docs/build-service-api.md, GET /api/jobs/:id/artifacts)
     try {
-      files.push({ name: f.name, text: await responseText(await getOk(`${base}/${encodeURIComponent(f.name)}`, fetchFn)) });
+      files.push(piecedLog(f.name, await responsePieces(await getOk(`${base}/${encodeURIComponent(f.name)}`, fetchFn))));
     } catch (e) {
       problems.push((e as Error).message);
     }
