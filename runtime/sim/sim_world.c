@@ -300,6 +300,16 @@ static void sio_share_module(void *ctx, const char *module, int hold) {
     int i = module_index(p->w, module, 1);
     if (i >= 0 && hold_take(p, module) == 0) hold_record(p, module, "hold taken (it was running)");
 }
+/* sup_main.c's b_module_run_ended: the run a START began has ended by the module's own code
+   (finish), so a supervisor that holds it and needs it again starts it again; a crashed module
+   has no run to start */
+static int sio_module_run_ended(void *ctx, const char *module) {
+    SimSup *p = ctx;
+    int i = module_index(p->w, module, 0);
+    if (i < 0) return 0;
+    const SimModule *m = &p->w->mods[i];
+    return !m->crashed && !m->started && m->outstanding == 0 && m->activations > 0;
+}
 static int sio_claim_priority(void *ctx, const char *module, uint32_t id, int priority) {
     SimSup *p = ctx;
     action(p->w, p->v->name, ACTION_CLAIM_PRIORITY, module, priority, id);
@@ -615,6 +625,7 @@ SimWorld *sim_world_create(const ContractSupervisorVocabulary *const *sups, int 
         io.trace = sio_trace;
         io.rule = sio_rule;
         io.action = sio_action;
+        io.module_run_ended = sio_module_run_ended;
         p->core = sup_core_create(sups[i], &io, err, errlen);
         if (!p->core) {
             sim_world_destroy(w);

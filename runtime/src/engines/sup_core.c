@@ -287,6 +287,12 @@ static void hold_acquire(SupCore *c, const char *module, int priority) {
             h->shared = 1;
         }
         lock_module(c, module, 0);
+    } else if (h->owned && c->io.module_run_ended) {
+        /* held for another rule or schema of this supervisor: a run it started that the module's
+           own code has ended since is started again, as a module not running is */
+        lock_module(c, module, 1);
+        if (c->io.module_run_ended(c->io.ctx, module) && c->io.start_module) c->io.start_module(c->io.ctx, module, priority);
+        lock_module(c, module, 0);
     }
     h->holders++;
 }

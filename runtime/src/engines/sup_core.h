@@ -80,6 +80,13 @@ typedef struct SupIo {
        `undo: deactivate schema S (event schema)` (before the holds and flows they take or drop),
        `compute f` (after the call). NULL: none */
     void (*action)(void *ctx, int64_t t, const char *line);
+    /* a module this supervisor started and still holds, needed by one more of its rules or
+       schemas: 1 when the run it started has ended by the module's own code since (an
+       asynchronous module's exec region set `*stateindex = -1`: it no longer runs, its START
+       taken), 0 when it still runs or that is not known; on 1 the core starts it again, as it
+       starts a module not running (docs/engines.md). NULL: never asked (a held module is taken
+       for running) */
+    int (*module_run_ended)(void *ctx, const char *module);
 } SupIo;
 
 typedef struct SupCore SupCore;

@@ -180,14 +180,61 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
    within 0.5 s: it is busy in its own code, hence running -- unless the last engine decision
    on m was to stop it (holds_stopped): then m is paused or starved with that STOP still in its
    mailbox, and a START sent now comes after it. (The core asks this under m's lock.) */
+/* What this supervisor knows of the modules' runs, for b_module_run_ended: the `activations=N` of
+   each module's last status, and the count its status shows once the START this supervisor last
+   sent it was taken (that status's plus one; -1: not known). A run may end by the module's own
+   code; a START still in its mailbox must not be taken for such an end. */
+#define RUNS_KNOWN 64
+static struct {
+    char module[CONTRACT_NAME_MAX];
+    long seen, after_start;
+} runs_known[RUNS_KNOWN];
+
+static int run_slot(const char *m) {
+    int free_slot = -1;
+    for (int i = 0; i < RUNS_KNOWN; i++) {
+        if (runs_known[i].module[0] == '\0') {
+            if (free_slot < 0) free_slot = i;
+        } else if (strcmp(runs_known[i].module, m) == 0) {
+            return i;
+        }
+    }
+    if (free_slot >= 0) {
+        snprintf(runs_known[free_slot].module, sizeof runs_known[free_slot].module, "%s", m);
+        runs_known[free_slot].seen = runs_known[free_slot].after_start = -1;
+    }
+    return free_slot; /* -1: more modules than the table holds (then never taken for ended) */
+}
+
+/* A module's status (mailbox.c: `... running=yes|no activations=N ...`): running, and its activations noted */
+static int status_running(const char *m, const char *status) {
+    const char *a = strstr(status, " activations=");
+    int i = run_slot(m);
+    if (a && i >= 0) runs_known[i].seen = strtol(a + 13, NULL, 10);
+    return strstr(status, " running=yes") != NULL;
+}
+
 static int b_module_running(void *ctx, const char *m) {
     (void)ctx;
     char status[1024] = "";
     int rc = QueryStatus(m, status, sizeof status, GetTime() + 500000000LL);
     if (rc == CONTRACT_EBUSY) return !holds_stopped(m, 0);
-    int running = rc == CONTRACT_OK && strstr(status, " running=yes") != NULL;
+    int running = rc == CONTRACT_OK && status_running(m, status);
     if (running) holds_stopped(m, 1); /* it says it runs: someone started it since the engines' STOP */
     return running;
+}
+
+/* Has the run this supervisor started of `m` (which it still holds) ended by the module's own
+   code? Asked to the module: not running, and its activations past the START sent (so that START
+   was taken). A module busy in its own code, answering nothing within 50 ms, runs; no answer
+   at all (gone, crashed) is no run to start again. */
+static int b_module_run_ended(void *ctx, const char *m) {
+    (void)ctx;
+    int i = run_slot(m);
+    if (i < 0 || runs_known[i].after_start < 0) return 0;
+    char status[1024] = "";
+    if (QueryStatus(m, status, sizeof status, GetTime() + 50000000LL) != CONTRACT_OK) return 0;
+    return !status_running(m, status) && runs_known[i].seen >= runs_known[i].after_start;
 }
 
 /* A request kept for a full mailbox (ContractSetQueuedSends) that failed after all, 2 s later:
@@ -218,6 +265,8 @@ static void b_start_module(void *ctx, const char *m, int prio) {
         say_cannot("start %s: %s", m, ContractStrError(rc));
         return;
     }
+    int i = run_slot(m);
+    if (i >= 0) runs_known[i].after_start = runs_known[i].seen >= 0 ? runs_known[i].seen + 1 : -1;
     holds_take(m, 1);
 }
 
@@ -465,7 +514,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
     SupIo io = {&b, b_ord_activate, b_ord_deactivate, b_module_running, b_start_module, b_stop_module,
                 b_claim_priority, b_release_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
                 b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
-                b_rule, b_action};
+                b_rule, b_action, b_module_run_ended};
     char err[512] = "";
     /* A request to a module whose mailbox is full is kept and sent as soon as it has room
        (ContractSetQueuedSends), for up to 2 s, while the supervisor goes on: its requests are

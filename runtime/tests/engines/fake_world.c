@@ -70,6 +70,23 @@ void fake_set_running(FakeWorld *w, const char *module, int priority) {
 
 int fake_is_running(const FakeWorld *w, const char *module) { return find_running(w, module) >= 0; }
 
+static int find_ended(const FakeWorld *w, const char *m) {
+    for (int i = 0; i < w->nended; i++)
+        if (strcmp(w->ended[i], m) == 0) return i;
+    return -1;
+}
+
+void fake_end_own_run(FakeWorld *w, const char *module) {
+    int i = find_running(w, module);
+    if (i >= 0) {
+        w->nrunning--;
+        memmove(w->running[i], w->running[i + 1], (size_t)(w->nrunning - i) * sizeof w->running[0]);
+        memmove(&w->prio[i], &w->prio[i + 1], (size_t)(w->nrunning - i) * sizeof w->prio[0]);
+    }
+    if (find_ended(w, module) < 0 && w->nended < FW_MAX) snprintf(w->ended[w->nended++], sizeof w->ended[0], "%s", module);
+}
+
+
 static void format_block(char *out, size_t n, const ContractVar *vars, int nvars, const void *block) {
     size_t used = 0;
     out[0] = '\0';
@@ -191,6 +208,11 @@ static void s_start_module(void *ctx, const char *m, int prio) {
     require_locked(w, m);
     fake_set_running(w, m, prio);
     WLOG(w, "start %s prio %d", m, prio);
+}
+static int s_module_run_ended(void *ctx, const char *m) {
+    FakeWorld *w = ctx;
+    require_locked(w, m);
+    return find_ended(w, m) >= 0 && find_running(w, m) < 0;
 }
 static void s_stop_module(void *ctx, const char *m) {
     FakeWorld *w = ctx;
@@ -355,7 +377,7 @@ SupIo fake_sup_io(FakeWorld *w) {
     SupIo io = {w, s_ord_activate, s_ord_deactivate, s_module_running, s_start_module,
                 s_stop_module, s_claim_priority, s_release_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
                 s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module,
-                s_lock_module, NULL, s_action};
+                s_lock_module, NULL, s_action, s_module_run_ended};
     return io;
 }
 

@@ -45,6 +45,10 @@ typedef struct FakeWorld {
     int ngone;
     char gone[FW_MAX][16];
     char stuck_message[320];
+    /* SupIo.module_run_ended: the modules whose run ended by their own code (fake_end_own_run),
+       until started again */
+    int nended;
+    char ended[FW_MAX][16];
 } FakeWorld;
 
 SupIo fake_sup_io(FakeWorld *w);
@@ -54,6 +58,9 @@ OrdIo fake_ord_io(FakeWorld *w);
 /** Marks a module as already running (started by someone else) at a priority. */
 void fake_set_running(FakeWorld *w, const char *module, int priority);
 int fake_is_running(const FakeWorld *w, const char *module);
+/** The run of a module ends by its own code: it no longer runs, and SupIo.module_run_ended
+ *  says so until it is started again. */
+void fake_end_own_run(FakeWorld *w, const char *module);
 /** Marks a module as no longer running (crashed or killed): OrdIo.module_gone says so. */
 void fake_set_gone(FakeWorld *w, const char *module);
 /** The id of the latest ORD release of `module` (0: never released). */

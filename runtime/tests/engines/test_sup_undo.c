@@ -243,3 +243,27 @@ void test_undo_spent_oneshot_subscription_made_again_by_another_rule(void) {
                        __FILE__, __LINE__);
     sup_core_destroy(c);
 }
+
+/* PRI.flows again, MFA's run (started by F1's schema) ending by MFA's own code before F2's schema
+   needs it: F2 starts it again (as a module not running), then the last undo stops it; while it
+   still runs, F2 only shares F1's hold (one start: the test above) */
+void test_held_module_whose_run_ended_is_started_again(void) {
+    log_clear(&LOG);
+    FakeWorld w;
+    SupCore *c = make_sup(&w, &PRI, NULL);
+    if (!c) { CHECK(0); return; }
+    sup_core_start_function(c, 0, "flows", NULL, 0);
+    sup_core_advance(c, 1500000);
+    CHECK(fake_is_running(&w, "MFA"));
+    fake_end_own_run(&w, "MFA");
+    sup_core_advance(c, 10 * MS);
+    static const char *const lines[] = {"start MFA", "stop MFA", "rule", NULL};
+    check_log_filtered(&LOG, lines,
+                       (const char *const[]){"rule flows.F1 active", "start MFA prio 40",
+                                             "rule flows.F2 active", "start MFA prio 40",
+                                             "rule flows.F1 inactive", "rule flows.F2 inactive", "stop MFA", NULL},
+                       __FILE__, __LINE__);
+    CHECK(!fake_is_running(&w, "MFA"));
+    CHECK(w.unlocked_effects == 0);
+    sup_core_destroy(c);
+}
