@@ -4,7 +4,8 @@
  * - a live run followed by a page that attached late (a reload during a long run): the records the
  *   build service did not keep are said missing while it runs, and the end-of-run label is true;
  * - Space on a focused control of the panel presses that control (▷ Play, ▶, a rule, the run list),
- *   and toggles Pause/Follow only elsewhere in the panel;
+ *   and toggles Pause/Follow only elsewhere in the panel; the run list keeps the focus while the
+ *   runs its arrows pick are read and shown;
  * - axe-core while a rule is lit on a live run; the panel's and a rule's focus rings;
  * - at 900x700: every control of the top bar on screen, the Monitor's time, histogram and causes whole;
  * - a live run's quiet stretch: the time runs with the run's clock, the state stays at its last
@@ -156,6 +157,25 @@ describe('Monitor field test', () => {
     await page.keyboard.press('Space');
     await expect.poll(() => activeTab(page)).toBe('supervisor.contract');
     expect(await follow()).toBe('true');
+  }, 60_000);
+
+  it('the run list keeps the keyboard focus while the runs its arrows pick are read and shown', async () => {
+    const { page } = s;
+    await showRecorded(page);
+    const list = page.locator('.monitor-sources');
+    await list.focus();
+    const focused = () => page.evaluate(() => document.activeElement?.className ?? '');
+    const shown = () => page.locator('.monitor-sources option:checked').getAttribute('value');
+    const options = await page.locator('.monitor-sources option:not([disabled])').evaluateAll((os) => os.map((o) => (o as HTMLOptionElement).value));
+    const at = options.indexOf('dir:recorded');
+    // two runs down, then back: each is read (a folder) and shown, the focus staying on the list
+    for (const [key, want] of [['ArrowDown', options[at + 1]], ['ArrowUp', 'dir:recorded']] as const) {
+      await page.keyboard.press(key);
+      await expect.poll(shown).toBe(want);
+      await expect.poll(() => label(page)).not.toMatch(/^Reading /);
+      await page.waitForTimeout(300);
+      expect(await focused()).toBe('monitor-sources');
+    }
   }, 60_000);
 
   it('axe-core finds no serious violation while a rule is lit on a live run; the panel and a focused rule show a ring', async () => {
