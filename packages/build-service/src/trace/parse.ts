@@ -4,7 +4,7 @@
  * a sandbox, so the input is hostile: lines are bounded, nothing throws, and every line that is
  * not a record of the table is kept as an `unknown` record saying why.
  */
-import { splitCsvLine } from './csv-line.js';
+import { splitCsvRecord } from './csv-line.js';
 import { MinHeap } from './min-heap.js';
 import { USER_KIND, isUserEventName, traceKind } from './record-kinds.js';
 import { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
@@ -100,7 +100,8 @@ export function foreignRecordReason(file: string, module: string): string | unde
 /** One CSV line (not the header) of log `file` -> a record, or an unknown record saying what is wrong. */
 export function parseRecordLine(file: string, lineNo: number, line: string): TraceRecord {
     if (line.length > MAX_LINE_CHARS) return unknown(file, lineNo, `line longer than ${MAX_LINE_CHARS} characters`, line);
-    const f = splitCsvLine(line);
+    const f = splitCsvRecord(line);
+    if (!f) return unknown(file, lineNo, 'a quoted field is not closed (the line was cut or forged)', line);
     if (f.length !== 8) return unknown(file, lineNo, `${f.length} fields, expected 8`, line);
     const [mono, wall, module, event, peer, port, size, detail] = f as [string, string, string, string, string, string, string, string];
     // checked by character rather than by regular expression, and the record made as one literal

@@ -221,12 +221,21 @@ describe('reading a log', () => {
         expect(of('subscribe MAA:2 =* :2')).toBeUndefined();
     });
 
+    it('reads a line whose quoted field is not closed as no record: a rule change forged or cut inside its detail is not told', () => {
+        const text = [CSV_HEADER, '500,w,SUP,sup_rule,,,0,"cell.RUN active cause=', '600,w,SUP,sup_rule,,,0,"cell.RUN inactive cause=ORD:0 value=""loop"""', ''].join('\n');
+        const records = parseLogFile({ name: 'SUP_1.csv', text });
+        expect(records.map((r) => (isUnknown(r) ? r.reason : `${r.kind} ${(r as RuleRecord).cause}`))).toEqual([
+            'a quoted field is not closed (the line was cut or forged)', 'sup_rule ORD:0 value="loop"',
+        ]);
+        expect(renderStory(parseTrace([{ name: 'SUP_1.csv', text }])).filter((l) => l.includes('cell.RUN'))).toEqual(['+0.000000s SUP  rule cell.RUN inactive <- ORD:0 = "loop"']);
+    });
+
     it('keeps what it cannot read as unknown records saying why, and never throws', () => {
         const text = [CSV_HEADER, 'garbage', `1,w,MSC,${'x'.repeat(65)},,,0,`, `1,w,MSC,error,,,0,${'y'.repeat(MAX_LINE_CHARS)}`, 'a,w,MSC,error,,,0,', '1,w,M/S,error,,,0,', '\u0000\u00ff,",,', ''].join('\n');
         const records = parseLogFile({ name: 'MSC_1.csv', text });
         expect(records.map((r) => r.kind)).toEqual(['unknown', 'unknown', 'unknown', 'unknown', 'unknown', 'unknown']);
         expect(records.map((r) => (isUnknown(r) ? r.reason : ''))).toEqual([
-            '1 fields, expected 8', `unknown event '${'x'.repeat(64)}'`, `line longer than ${MAX_LINE_CHARS} characters`, 'mono_ns is not a number', 'bad module name', '2 fields, expected 8',
+            '1 fields, expected 8', `unknown event '${'x'.repeat(64)}'`, `line longer than ${MAX_LINE_CHARS} characters`, 'mono_ns is not a number', 'bad module name', 'a quoted field is not closed (the line was cut or forged)',
         ]);
         fc.assert(fc.property(fc.string({ maxLength: 300 }), (s) => {
             const lines = s.split('\n').map((l) => (l.endsWith('\r') ? l.slice(0, -1) : l)).filter((l, i) => l !== '' && !(i === 0 && l === CSV_HEADER));
@@ -265,7 +274,7 @@ describe('reading a log', () => {
             '1000000000,w,SUP,supervisor,MAA,,0,"parameterize MAA:0 (24 bytes) = {i=27.12,j=0,k=0.04}"',
             '1000000000,w,SUP,supervisor,MAA,,0,subscribe MAA:2 =* :2',
             '1500000000,w,ORD,ord_deadline_miss,,,0,schema=S cycle=4 tick_ns=1',
-            '1500000000,w,SUP,supervisor,,,0,"notify :1 (string) = ""commutation""', '2000000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""', 'junk'].join('\n');
+            '1500000000,w,SUP,supervisor,,,0,"notify :1 (string) = ""commutation"""', '2000000000,w,SUP,sup_rule,,,0,"action.SECOND active cause=MAA:2 value=""disconnected"""', 'junk'].join('\n');
         expect(renderStory(parseTrace([{ name: 'X_1.csv', text }]))).toEqual([
             '+0.000000s SUP  rule action.FIRST active   <- elapsed=1ms',
             '+0.000000s SUP  parameterize MAA:0 (24 bytes) = {i=27.12,j=0,k=0.04}',
