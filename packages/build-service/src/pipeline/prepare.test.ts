@@ -3,7 +3,7 @@
  * of src-gen names host files. Generation runs on the host in stage/ (docs/codegen.md, "What
  * generate refuses"), so the entries must be dropped, never acted on. Real language + codegen.
  */
-import { mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, copyFileSync, cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, renameSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -90,4 +90,61 @@ describe('prepareWorkspace on a workspace prepared before', () => {
     expect(again).not.toContain('project unchanged since the last build: generation skipped');
     expect(again.some((l) => l.startsWith('generated src-gen/'))).toBe(true);
   }, 60_000);
+});
+
+describe('prepareWorkspace on a project folder: what of it is read', () => {
+  const MSC_C = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
+  const project = (): string => {
+    const dir = mkdtempSync(join(base, 'project-'));
+    cpSync(TUTORIAL, dir, { recursive: true });
+    // the user's code, in a protected region of MSC
+    const text = readFileSync(join(dir, MSC_C), 'utf8');
+    const id = '/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/';
+    writeFileSync(join(dir, MSC_C), text.replace(id, `${id}\n    /* the user's marker */`));
+    return dir;
+  };
+  const prepare = async (dir: string) => {
+    const ws = workspace();
+    const log: string[] = [];
+    const out = await prepareWorkspace(ws, { dir }, 'cactal', { ...DEFAULT_LIMITS }, (l: string) => log.push(l));
+    expect(out.ok, log.join('\n')).toBe(true);
+    return ws;
+  };
+
+  it('reads a source with an executable bit (a FAT or WSL mount, an unzip) and leaves out only the programs a local build made', async () => {
+    const dir = project();
+    chmodSync(join(dir, MSC_C), 0o755);
+    mkdirSync(join(dir, 'src-gen/generated/architecture/bin'), { recursive: true });
+    copyFileSync(process.execPath, join(dir, 'src-gen/generated/architecture/bin/MSC')); // an ELF program, as make leaves it
+    const ws = await prepare(dir);
+    expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
+    expect(existsSync(join(ws.workDir, 'src-gen/generated/architecture/bin/MSC'))).toBe(false);
+  }, 120_000);
+
+  it('refuses, naming it, a source that is a link (the file, the tree, a .contract), never building without it; a link elsewhere is no source', async () => {
+    const cases: Array<[string, (dir: string) => void]> = [
+      [`${MSC_C} (a symbolic link)`, (dir) => {
+        renameSync(join(dir, MSC_C), join(dir, 'elsewhere.c'));
+        symlinkSync(join(dir, 'elsewhere.c'), join(dir, MSC_C));
+      }],
+      ['src-gen (a symbolic link)', (dir) => {
+        renameSync(join(dir, 'src-gen'), join(dir, 'tree'));
+        symlinkSync(join(dir, 'tree'), join(dir, 'src-gen'));
+      }],
+      ['smodule3.contract (a symbolic link)', (dir) => {
+        renameSync(join(dir, 'smodule3.contract'), join(dir, 'keep.txt'));
+        symlinkSync(join(dir, 'keep.txt'), join(dir, 'smodule3.contract'));
+      }],
+    ];
+    for (const [named, make] of cases) {
+      const dir = project();
+      make(dir);
+      const err = await prepareWorkspace(workspace(), { dir }, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e);
+      expect(err?.message, named).toMatch(new RegExp(`^${named.replace(/[.()]/g, '\\$&')}: the build service never reads a project's source through a link .*nothing was built$`));
+    }
+    const dir = project();
+    symlinkSync('/etc', join(dir, 'notes'));
+    const ws = await prepare(dir);
+    expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
+  }, 120_000);
 });

@@ -57,6 +57,28 @@ function acceptProjectPath(kind: ProjectKind) {
   };
 }
 
+/**
+ * Whether an entry of the project that is not a regular file (a link, a FIFO) stands where a source
+ * is read: a `.contract` file, anything of the generated tree (the user's code is there), any file
+ * of a Makefile project. Such an entry is refused, never followed: left out, the build would use
+ * the generated default code instead of the user's, and say it succeeded.
+ */
+function isProjectSource(kind: ProjectKind, rel: string, accept: (rel: string, isDir: boolean) => boolean): boolean {
+  if (/(^|\/)(logs|run)$/.test(rel)) return false; // a run's output folders, never read
+  if (kind === 'make') return accept(rel, false) || accept(rel, true);
+  return rel.endsWith('.contract') || rel === SRC_GEN_DIR || rel.startsWith(`${SRC_GEN_DIR}/`) ? accept(rel, false) || accept(rel, true) : false;
+}
+
+/** The refusal of a project whose sources include links or other non-files (the first 5 named). */
+function notReadMessage(refused: string[]): string {
+  const named = refused.slice(0, 5).join(', ') + (refused.length > 5 ? ` and ${refused.length - 5} more` : '');
+  return `${named}: the build service never reads a project's source through a link (nor a FIFO or device): `
+    + 'put the file itself there (`cp --remove-destination "$(readlink -f F)" F` for a link F); nothing was built';
+}
+
+/** An ELF file (a compiled program or object): the build products of a local build in src-gen/. */
+const isElf = (data: Buffer): boolean => data.length >= 4 && data[0] === 0x7f && data[1] === 0x45 && data[2] === 0x4c && data[3] === 0x46;
+
 /** Reads the project's files (never through links); returns them and a digest of paths + contents. */
 async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ wanted: Map<string, Buffer>; digest: string }> {
   const wanted = new Map<string, Buffer>();
@@ -70,12 +92,16 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
   if ('files' in source) {
     for (const [rel, text] of Object.entries(source.files)) add(rel, Buffer.from(text, 'utf8'));
   } else {
-    const files = await listFilesNoFollow(source.dir, acceptProjectPath(kind));
+    const accept = acceptProjectPath(kind);
+    const refused: string[] = [];
+    const files = await listFilesNoFollow(source.dir, accept, '', (rel, what) => {
+      if (isProjectSource(kind, rel, accept)) refused.push(`${rel} (${what === 'symlink' ? 'a symbolic link' : 'not a regular file'})`);
+    });
+    if (refused.length) throw new PrepareError(notReadMessage(refused));
     for (const rel of files) {
-      // build products of an earlier local build (executables) are not sources: skip them
-      if (kind === 'cactal' && rel.startsWith(`${SRC_GEN_DIR}/`) && ((await fsp.lstat(join(source.dir, rel))).mode & 0o111) !== 0) continue;
       const data = await readFileNoFollow(source.dir, rel, MAX_FILE_BYTES);
-      if (data) add(rel, data);
+      // a program an earlier local build made (make in src-gen/) is no source: left out, whatever its mode
+      if (data && !(kind === 'cactal' && rel.startsWith(`${SRC_GEN_DIR}/`) && isElf(data))) add(rel, data);
     }
   }
   const hash = createHash('sha256').update(kind);

@@ -231,11 +231,16 @@ function runTool(cmd: string, args: string[]): Promise<{ code: number | null; st
   });
 }
 
-/** Lists regular files under root (relative POSIX paths), never entering symlinked dirs. */
+/**
+ * Lists regular files under root (relative POSIX paths), never entering symlinked dirs; an entry
+ * that is neither a file nor a folder (a link, a FIFO, a device) is not listed, and given to
+ * `notListed` when set.
+ */
 export async function listFilesNoFollow(
   root: string,
   accept: (rel: string, isDir: boolean) => boolean = () => true,
   rel = '',
+  notListed?: (rel: string, kind: 'symlink' | 'other') => void,
 ): Promise<string[]> {
   const out: string[] = [];
   const dir = rel ? join(root, rel) : root;
@@ -249,10 +254,10 @@ export async function listFilesNoFollow(
   for (const e of entries) {
     const childRel = rel ? `${rel}/${e.name}` : e.name;
     if (e.isDirectory()) {
-      if (accept(childRel, true)) out.push(...(await listFilesNoFollow(root, accept, childRel)));
+      if (accept(childRel, true)) out.push(...(await listFilesNoFollow(root, accept, childRel, notListed)));
     } else if (e.isFile()) {
       if (accept(childRel, false)) out.push(childRel);
-    }
+    } else notListed?.(childRel, e.isSymbolicLink() ? 'symlink' : 'other'); // never followed nor opened: said to the caller
   }
   return out;
 }
