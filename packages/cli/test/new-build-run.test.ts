@@ -251,6 +251,18 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(readdirSync(join(root, 'robot', 'logs')).filter((f) => f.endsWith('.csv'))).toHaveLength(4);
     }, 240_000);
 
+    it('refuses before the run a --logs OUT that is a file, or whose way holds one (the logs could not be written after it)', async () => {
+        writeFileSync(join(root, 'a-file'), 'mine\n');
+        for (const [out, said] of [['a-file', `${join(root, 'a-file')} is not a folder: the CSV logs are written to a folder; name one with --logs OUT`],
+            ['a-file/sub/logs', `${join(root, 'a-file/sub/logs')} cannot be made: ${join(root, 'a-file')} is not a folder; name a folder with --logs OUT`]] as const) {
+            const io = capture(root);
+            expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s', '--logs', out], io)).toBe(1);
+            expect(io.stderr).toBe(`contract run: ${said}\n`);
+            expect(io.stdout).toBe(''); // refused before the run
+        }
+        expect(readFileSync(join(root, 'a-file'), 'utf8')).toBe('mine\n');
+    }, 60_000);
+
     it("starts nothing with --start ''", async () => {
         const io = capture(root);
         expect(await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1s', '--start', '', '--logs', 'idle-logs'], io)).toBe(0);

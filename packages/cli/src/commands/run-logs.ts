@@ -6,7 +6,7 @@
  * a link, a FIFO or a folder refused and said, the others written.
  */
 import { constants, promises as fsp } from 'node:fs';
-import { join } from 'node:path';
+import { dirname, join } from 'node:path';
 import { Readable } from 'node:stream';
 import { pipeline } from 'node:stream/promises';
 import { createGunzip } from 'node:zlib';
@@ -28,6 +28,23 @@ export async function refusedDefaultLogs(logsDir: string): Promise<string | null
         return `${safeName(logsDir)} is a symbolic link (to ${safeName(target)}): the CSV logs are not written through a link found in the project folder; remove it, or name a folder with --logs OUT`;
     }
     return `${safeName(logsDir)} is not a folder: remove it, or name a folder with --logs OUT`;
+}
+
+/**
+ * Why a folder the user named with `--logs OUT` cannot take the run's logs, said before the run
+ * (a file there, or a file on its way: the logs could not be written once the run ended), or null.
+ * A link the user named is followed: it is theirs.
+ */
+export async function refusedLogsOut(logsDir: string): Promise<string | null> {
+    const st = await fsp.stat(logsDir).catch((e: NodeJS.ErrnoException) => e);
+    if (!(st instanceof Error)) return st.isDirectory() ? null : `${safeName(logsDir)} is not a folder: the CSV logs are written to a folder; name one with --logs OUT`;
+    if (st.code !== 'ENOENT' && st.code !== 'ENOTDIR') return `${safeName(logsDir)} cannot be used for the CSV logs (${st.code ?? st.message})`;
+    // made when the run ends: the nearest existing folder on its way must be one
+    for (let up = dirname(logsDir); ; up = dirname(up)) {
+        const a = await fsp.stat(up).catch(() => null);
+        if (a) return a.isDirectory() ? null : `${safeName(logsDir)} cannot be made: ${safeName(up)} is not a folder; name a folder with --logs OUT`;
+        if (dirname(up) === up) return null;
+    }
 }
 
 /** Where the previous run's logs are moved, inside the logs folder. */

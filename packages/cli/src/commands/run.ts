@@ -19,7 +19,7 @@ import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_USAGE, CO
 import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 import { closestName } from '@contract-studio/language/near-names';
 import { safeName } from '../terminal-text.js';
-import { refusedDefaultLogs, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
+import { refusedDefaultLogs, refusedLogsOut, refusedPrevious, saveLogs, type SavedLogs } from './run-logs.js';
 import { failureText, moduleFailures, problemLines } from './run-problems.js';
 import { runSchemaFigures } from './run-schemas.js';
 
@@ -241,7 +241,7 @@ export const runCommand: Command = {
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
         const defaultLogs = typeof logsOption !== 'string';
         // said before the run, not after it
-        const refused = (defaultLogs ? await refusedDefaultLogs(logsDir) : null) ?? (await refusedPrevious(logsDir));
+        const refused = (defaultLogs ? await refusedDefaultLogs(logsDir) : await refusedLogsOut(logsDir)) ?? (await refusedPrevious(logsDir));
         if (refused) {
             io.err(`contract run: ${refused}\n`);
             return EXIT_FAILURE;
