@@ -30,7 +30,7 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
     const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
     try {
       if (!st.isFile()) throw new HttpError(400, `${rel} is a folder`);
-      if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the bound of a log collected from a Build & Run job)`);
+      if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the IDE replays files of at most that size, the bound of a log a Build & Run job keeps)`);
       res.writeHead(200, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store', 'x-log-bytes': String(st.size) });
       if (st.size === 0) {
         res.end();

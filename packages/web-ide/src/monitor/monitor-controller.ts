@@ -373,11 +373,11 @@ export class MonitorController {
     const mine = asked ? ++this.picked : this.picked;
     const id = `file:${path}`;
     if (asked) await this.reading(`trace file ${path}`);
-    const { files, problems, skipped, unreadable, simulation } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    const { files, problems, skipped, unreadable, simulation, tooLarge } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
     const { model, leftOut: unread } = await recordedRun(files);
     const notWhole = [...problems, ...unread];
     // counted as `contract trace` counts them: the logs' unreadable lines the file carries, and its own lines that are no record
-    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}`;
+    const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}${tooLarge ? ` — \`contract trace ${path}\` tells a run of any length` : ''}`;
     this.keepRecorded({ id, label, model, live: false, whole: simulation === undefined });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();

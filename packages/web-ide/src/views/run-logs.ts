@@ -110,12 +110,12 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
  * turned into the logs it was written from (build-service trace/jsonl.ts): `problems` says what
  * could not be read (the file itself, then its lines that are no record).
  */
-export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<TraceFileLogs> {
-  const { files: read, problems } = await readWorkspaceLogs([path], nameOf, maxBytes);
-  if (!read[0]) return { files: [], problems, skipped: 0, unreadable: 0 };
+export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<TraceFileLogs & { tooLarge: boolean }> {
+  const { files: read, problems, tooLarge } = await readWorkspaceLogs([path], nameOf, maxBytes);
+  if (!read[0]) return { files: [], problems, skipped: 0, unreadable: 0, tooLarge };
   // its JSON lines parsed in slices: the page draws and answers keys meanwhile
   const logs = await runSliced(traceFileToLogsSteps(path, read[0].text));
-  return { ...logs, problems: [...problems, ...logs.problems] };
+  return { ...logs, problems: [...problems, ...logs.problems], tooLarge };
 }
 
 /** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */

@@ -282,6 +282,11 @@ describe('Monitor in headless Chromium', () => {
     await page.evaluate(() => (window as any).__ide.monitor.openFolder('long-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
       .toMatch(/^0 of 2 CSV logs in long-run \(left out: CTL_.*larger than 256 MiB.*; ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound\) — `contract trace long-run` tells a run of any length$/);
+    // a trace file past it: named, and the command that tells it whole
+    await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 1000));
+    await page.evaluate(() => (window as any).__ide.monitor.openTraceFile('recorded.jsonl'));
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
+      .toMatch(/^Trace file recorded\.jsonl · 0 record\(s\) \(not whole: recorded\.jsonl: \d+ bytes, past the 1000 bytes left of the replay's bound\) — `contract trace recorded\.jsonl` tells a run of any length$/);
     await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 512 * 1024 * 1024));
   }, 60_000);
 
