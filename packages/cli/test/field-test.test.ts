@@ -303,6 +303,23 @@ describe('6. a crashed module', () => {
         expect(lines.at(-2)).toMatch(/^5 records: /);
     });
 
+    it('contract trace tells a file named as a log that holds no record, only unreadable lines, as no runtime log; and names two logs of one module', async () => {
+        const dir = join(root, 'not-logs');
+        mkdirSync(dir);
+        writeFileSync(join(dir, 'ORD_1.csv'), moduleLog('ORD', 1_000_000_000));
+        writeFileSync(join(dir, 'CTL_1.csv'), moduleLog('CTL', 1_000_000_000));
+        writeFileSync(join(dir, 'CTL_2.csv'), '{"not":"a log"}\n'); // a second file under CTL's name
+        writeFileSync(join(dir, 'JSN_1.csv'), '{"kind":"user"}\n');
+        writeFileSync(join(dir, 'EMP_1.csv'), `${HEADER}\n`);
+        const io = capture(root);
+        expect(await runCli(['trace', 'not-logs'], io)).toBe(0);
+        const lines = io.stdout.split('\n');
+        expect(lines).toContain('           CTL  2 logs of it in this folder (CTL_1.csv, CTL_2.csv), read as one: a run writes one log per module (two runs\' logs together, or a file named as its log that is not one)');
+        expect(lines).toContain('           JSN  no record in its log, only 1 unreadable line(s): not a runtime log (one begins with the CSV header, then the module\'s start record)');
+        expect(lines).toContain('           EMP  no record in its log: it crashed, hung or was killed before writing any (`contract run` says which)');
+        expect(lines.filter((l) => / ORD  .*logs of it|ORD  no record/.test(l))).toEqual([]);
+    });
+
     it('contract trace says a log that lacks its start record was cut or rewritten (its module truncated it), and how it ended is not in it', async () => {
         const dir = join(root, 'truncated-logs');
         mkdirSync(dir);

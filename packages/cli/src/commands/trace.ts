@@ -230,8 +230,16 @@ export class ModuleEnds {
     private readonly named = new Map<string, { at: bigint; by: string; kind: string }>();
 
     /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
+    /** Modules with more than one log in the folder, and those logs' names (the first few). */
+    private readonly twins = new Map<string, string[]>();
+
     constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
-        for (const l of logs) this.follow(moduleOfLog(l.name));
+        const names = new Map<string, string[]>();
+        for (const l of logs) {
+            const m = this.follow(moduleOfLog(l.name));
+            if (m !== undefined) (names.get(m) ?? names.set(m, []).get(m)!).push(l.name);
+        }
+        for (const [m, files] of names) if (files.length > 1) this.twins.set(m, files);
     }
 
     /** The module's name as kept, or undefined past MODULES_FOLLOWED modules (its record is only counted). */
@@ -326,9 +334,15 @@ export class ModuleEnds {
                 ? `${''.padStart(10)} ${m.padEnd(4)} its log lacks its start record: it was cut or rewritten after the module began (its code may have truncated it)`
                 : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (\`contract run\` says it)`);
         }
+        for (const [m, files] of this.twins) {
+            out.push(`${''.padStart(10)} ${m.padEnd(4)} ${files.length} logs of it in this folder (${files.slice(0, 3).map(safeName).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: a run writes one log per module (two runs' logs together, or a file named as its log that is not one)`);
+        }
         for (const m of this.modules.keys()) {
             if (!this.last.has(m)) {
-                out.push(`${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed, hung or was killed before writing any (\`contract run\` says which)`);
+                const unreadable = this.read.get(m) ?? 0;
+                out.push(unreadable
+                    ? `${''.padStart(10)} ${m.padEnd(4)} no record in its log, only ${unreadable} unreadable line(s): not a runtime log (one begins with the CSV header, then the module's start record)`
+                    : `${''.padStart(10)} ${m.padEnd(4)} no record in its log: it crashed, hung or was killed before writing any (\`contract run\` says which)`);
             }
             const counted = this.counted.get(m), read = this.read.get(m) ?? 0;
             if (counted !== undefined && counted !== read && !this.capped.has(m)) {
