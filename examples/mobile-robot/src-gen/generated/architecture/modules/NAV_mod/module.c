@@ -85,6 +85,8 @@ int ModuleMain(int argc, const char * argv[])
         switch(receivedMessage.Type)
         {
             case REQ_UNKNOWN :
+                if (cycleRunning && state != -1 && PendingRequests() > 0 && WaitForRequestUntil(&receivedMessage, 0) == 1)
+                    break; //a request read with the one just handled (a STOP behind an UNSUB_EVENT) is handled before the run's next state
                 if (cycleRunning){
                     if (state != -1){ //the execution has not been interrupted
                         //filling the received message with old START request information
