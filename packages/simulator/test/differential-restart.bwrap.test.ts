@@ -7,14 +7,16 @@
  * that are not running: LGR is started again (`start module LGR` a second time, its run #2), not
  * taken for running because WARN holds it. A real run (`contract run --sandbox bwrap`) and the
  * simulator (`finish LGR after 0`: each run of LGR ends at its start) tell the same story of SUP
- * and of LGR. Before, SUP started HMI alone and telemetry ran without its logger.
+ * and of LGR. Before, SUP started HMI alone and telemetry ran without its logger. And HMI, posting a
+ * note every 10 ms, gets its disconnection and its STOP together at HOLD's undo: the STOP ends its run
+ * before its next state (the generated loop ran one more state between them, a post to no subscriber).
  */
 import { spawnSync } from 'node:child_process';
 import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { renderStory } from '@contract-studio/build-service/trace';
+import { renderStory, type KnownRecord } from '@contract-studio/build-service/trace';
 import { loadScenario, runLoadedScenario } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
 import { runForReal, type RealRun } from './differential/replay-run.js';
@@ -41,7 +43,8 @@ const FILES: Record<string, string> = {
 const REGIONS: Array<{ module: string; body: string }> = [
     // the logger's run ends at once, by its own code (it still gets its events)
     { module: 'LGR', body: '\n    *stateindex = -1;\n    ' },
-    { module: 'HMI', body: '\n    nanosleep(&(struct timespec){0, 10 * 1000000L}, NULL);\n    ' },
+    // the operator panel posts a note every 10 ms while it runs
+    { module: 'HMI', body: '\n    nanosleep(&(struct timespec){0, 10 * 1000000L}, NULL);\n    snprintf(note, sizeof note, "tick");\n    PostEvent(&note);\n    ' },
 ];
 
 let dir: string;
@@ -102,4 +105,13 @@ describe('a held module whose own code ended its run, needed again: a real bwrap
         expect(simulated.get('LGR')).toEqual(real.get('LGR'));
         expect(simulated.get('SUP')).toEqual(sup);
     }, 120_000);
+
+    it('a STOP read with the disconnection before it ends the run before its next state: nothing posted after its run ended', () => {
+        // HOLD's undo sends HMI an UNSUB_EVENT, then its STOP: read together while HMI sleeps in a state; the
+        // generated loop ran one more state between them (a post to no subscriber after `run_finished ... STOP`)
+        const hmi = run.records.filter((r): r is KnownRecord => r.kind !== 'unknown' && (r as KnownRecord).module === 'HMI');
+        const stopped = hmi.findIndex((r) => r.kind === 'run_finished' && / STOP$/.test(r.detail));
+        expect(stopped, hmi.map((r) => `${r.kind} ${r.detail}`).join('\n')).toBeGreaterThan(0);
+        expect(hmi.slice(stopped).filter((r) => r.kind === 'event_posted').map((r) => `${r.kind} ${r.peer} ${r.detail}`)).toEqual([]);
+    });
 });
