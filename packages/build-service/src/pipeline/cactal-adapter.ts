@@ -15,6 +15,8 @@ export interface CactalProblem {
   column: number;
   severity: 'error' | 'warning' | 'info';
   message: string;
+  /** The model diagnostic's stable code (docs/diagnostics.md), as `contract check` gives it; none for the generator's own problems. */
+  code?: string;
 }
 
 export interface GenerateOutcome {
@@ -31,6 +33,7 @@ export function workspaceProblems(diagnostics: readonly WorkspaceDiagnostic[]): 
     column: d.column,
     severity: d.severity === 'hint' ? 'info' : d.severity,
     message: d.message,
+    code: d.code,
   }));
 }
 
