@@ -278,6 +278,14 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(io.stderr).toMatch(/broken\/types\.contract:1:\d+: error: /);
         expect(io.stderr).toContain('FAILED: project has 1 error(s)');
         expect(io.stderr).toContain('contract check broken');
+        // in JSON, with the diagnostic's code, as contract check gives it
+        const json = capture(root);
+        expect(await runCli(['build', 'broken', '--sandbox', 'bwrap', '--format', 'json'], json)).toBe(1);
+        const check = capture(root);
+        expect(await runCli(['check', 'broken', '--format', 'json'], check)).toBe(1);
+        const codes = (JSON.parse(check.stdout) as { diagnostics: { code: string }[] }).diagnostics.map((d) => d.code);
+        expect(codes.length).toBeGreaterThan(0);
+        expect((JSON.parse(json.stdout) as { prepareDiagnostics: { code?: string }[] }).prepareDiagnostics.map((d) => d.code)).toEqual(codes);
     }, 120_000);
 
     it('reports the gcc errors of every module in one build, each at a path that opens from where the command was typed', async () => {

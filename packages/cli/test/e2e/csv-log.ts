@@ -119,6 +119,12 @@ export interface DeliveryWindow {
     activations: number;
     /** Values it posted to the consumer's port in that time. */
     posted: number;
+    /**
+     * The subscription came while the producer was running (between two states of a run: the
+     * generated loop handles requests there): that run's post may go to it, though its start is
+     * not counted in `activations`.
+     */
+    midRun: boolean;
 }
 
 /**
@@ -129,11 +135,14 @@ export interface DeliveryWindow {
 export function deliveryWindows(records: LogRecord[], producer: string, port: number, consumer: string): DeliveryWindow[] {
     const windows: DeliveryWindow[] = [];
     let open: DeliveryWindow | null = null;
+    let running = false;
     for (const r of records) {
         if (r.module !== producer) continue;
+        if (r.event === 'run_started') running = true;
+        else if (r.event === 'run_finished') running = false;
         const ours = r.peer === consumer && r.port === String(port);
         if (r.event === 'subscribed' && ours) {
-            open = { periodicity: Number(/periodicity=(\d+)/.exec(r.detail)?.[1] ?? NaN), activations: 0, posted: 0 };
+            open = { periodicity: Number(/periodicity=(\d+)/.exec(r.detail)?.[1] ?? NaN), activations: 0, posted: 0, midRun: running };
             windows.push(open);
         } else if (r.event === 'unsubscribed' && ours) {
             open = null;

@@ -132,10 +132,12 @@ export class RunController {
     // a job that had ended may since have left the service's last 50 (other tabs' jobs): gone
     // without a word, as it would have been for a restarted server, not said to be one
     // another tab's job says so again, as before the reload (docs/ide.md "Several tabs")
-    const followed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended, stoppedHere: f.stopped, ...(f.otherTabs ? { why: `${f.otherTabs} of another tab` } : {}) });
-    if (!followed) sessionStorage.removeItem(FOLLOWED_JOB_KEY);
-    else this.d.showPanel('output');
-    return followed;
+    const resumed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended, stoppedHere: f.stopped, ...(f.otherTabs ? { why: `${f.otherTabs} of another tab` } : {}) });
+    // forgotten only when the service no longer knows it: a panel busy a moment, or a failed
+    // request, keeps it for the next reload (it was dropped, and the job lost to this tab)
+    if (resumed === 'gone') sessionStorage.removeItem(FOLLOWED_JOB_KEY);
+    else if (resumed === 'followed') this.d.showPanel('output');
+    return resumed === 'followed';
   }
 
   /**
@@ -156,7 +158,7 @@ export class RunController {
     const project = this.project;
     this.project = job.project;
     const what: SharedWhat = job.action === 'run' ? 'Build & Run' : 'build';
-    const followed = await this.d.build.resume(job.id, { why: `${what} of another tab` });
+    const followed = (await this.d.build.resume(job.id, { why: `${what} of another tab` })) === 'followed';
     if (!followed) {
       if (this.project === job.project) this.project = project;
       return false;

@@ -169,24 +169,32 @@ export class BuildPanel {
    * restarted service: said when `sayIfGone`), or this panel is busy with a job of its own. `why`
    * is shown beside the status.
    */
-  async resume(jobId: string, opts: { why?: string; sayIfGone?: boolean; ended?: boolean; stoppedHere?: boolean } = {}): Promise<boolean> {
+  /**
+   * Follows job `jobId` in the panel (again): `followed`; `gone` when the build service no longer
+   * knows it (said when `sayIfGone`), or it is no build nor run; `not now` when the panel is busy
+   * with another job, the job ended and `ended` is not set, or the service could not be asked (a
+   * reload's job is then kept for the next one).
+   */
+  async resume(jobId: string, opts: { why?: string; sayIfGone?: boolean; ended?: boolean; stoppedHere?: boolean } = {}): Promise<'followed' | 'gone' | 'not now'> {
     const why = opts.why ?? 'followed again after a reload';
     const sayIfGone = opts.sayIfGone ?? why === 'followed again after a reload';
-    if (this.busy) return false;
+    if (this.busy) return 'not now';
     let job: { id: string; status: string; action: string; finishedAt: number | null };
     try {
       job = await api.getJob(jobId);
     } catch (e) {
+      if (!(e instanceof ApiError && e.status === 404)) return 'not now';
       // the job this tab followed before a reload is gone: the IDE server (and its build service)
       // was restarted, which ends its jobs. Said, rather than an empty panel as if nothing had run.
-      if (sayIfGone && e instanceof ApiError && e.status === 404 && !this.busy) {
+      if (sayIfGone && !this.busy) {
         this.clear();
         this.originEl.textContent = `(${why})`;
         this.setStatus('gone', `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs (the CSV logs a run had written are in its project's logs folder only if the run ended before)`, false);
       }
-      return false;
+      return 'gone';
     }
-    if ((job.finishedAt && !opts.ended) || this.busy || (job.action !== 'build' && job.action !== 'run')) return false;
+    if (job.action !== 'build' && job.action !== 'run') return 'gone';
+    if ((job.finishedAt && !opts.ended) || this.busy) return 'not now';
     this.clear();
     this.jobId = job.id;
     this.originEl.textContent = job.finishedAt ? '(shown again after a reload: it had ended)' : `(${why})`;
@@ -194,7 +202,7 @@ export class BuildPanel {
     // this tab's Stop before the reload is still its own
     this.stopAsked = opts.stoppedHere ? job.id : undefined;
     this.follow(job.id, job.action, { hadEnded: !!job.finishedAt });
-    return true;
+    return 'followed';
   }
 
   /**
