@@ -99,3 +99,21 @@ describe('loadWorkspace confineImportsTo', () => {
         expect(ws.diagnostics.filter((d) => d.severity === 'error').map((d) => d.code)).toEqual(['import-missing-file']);
     });
 });
+
+describe('loadWorkspace without confinement (contract check)', () => {
+    it('warns of an import of the project that is a link, or in a linked folder, which a build refuses; a plain import gets none', async () => {
+        const dir = mkdtempSync(join(root, 'linked-'));
+        mkdirSync(join(dir, 'real'));
+        writeFileSync(join(dir, 'real/vec.contract'), 'datatype Vec {float x};\n');
+        writeFileSync(join(dir, 'real/pose.contract'), 'datatype Pose {float t};\n');
+        writeFileSync(join(dir, 'plain.contract'), 'datatype Plain {int p};\n');
+        symlinkSync(join(dir, 'real/vec.contract'), join(dir, 'vec.contract'));
+        symlinkSync(join(dir, 'real'), join(dir, 'lib'));
+        writeFileSync(join(dir, 'main.contract'), 'import "vec.contract";\nimport "lib/pose.contract";\nimport "plain.contract";\ndatatype A {Vec v, Pose p, Plain q};\n');
+        const ws = await loadWorkspace(dir, { skipDirs: ['real', 'lib'] });
+        expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
+        const links = ws.diagnostics.filter((d) => d.code === 'import-link');
+        expect(links.map((d) => [d.file, d.line, d.severity])).toEqual([['main.contract', 1, 'warning'], ['main.contract', 2, 'warning']]);
+        expect(links[0]!.message).toBe('"vec.contract" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE\'s build service) never reads a project\'s source through a link and refuses it; put the file itself there');
+    });
+});

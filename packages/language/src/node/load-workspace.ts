@@ -3,7 +3,7 @@
  * system) and returns the documents with their diagnostics in a tool-friendly form (1-based lines
  * and columns, paths relative to `dir`). Used by `contract check`, code generation and the build service.
  */
-import { readFileSync, statSync } from 'node:fs';
+import { lstatSync, readFileSync, statSync } from 'node:fs';
 import { readdir, stat } from 'node:fs/promises';
 import { dirname, isAbsolute, join, relative, resolve, sep } from 'node:path';
 import { GrammarUtils, URI, type LangiumDocument } from 'langium';
@@ -81,6 +81,13 @@ export class ModelTooLargeError extends Error {
     }
 }
 
+/**
+ * Code of the loader's warning for an import of the project that is a symbolic link: followed here
+ * (`contract check`), but the build service never reads a project's source through a link and
+ * refuses the build (docs/sandbox.md).
+ */
+export const IMPORT_LINK_CODE = 'import-link';
+
 /** Code of the loader's diagnostic for an import that `confineImportsTo` does not allow. */
 export const IMPORT_REFUSED_CODE = 'import-refused';
 
@@ -130,6 +137,30 @@ export function toWorkspaceDiagnostic(file: string, d: Diagnostic): WorkspaceDia
     return out;
 }
 
+/** A file of the project (under `root`) that is a symbolic link, or reached through one (a linked folder). */
+function isLinkInside(root: string, path: string): boolean {
+    const rel = relative(root, path);
+    if (rel.startsWith('..') || isAbsolute(rel)) return false;
+    let at = root;
+    for (const part of rel.split(sep)) {
+        at = join(at, part);
+        try {
+            if (lstatSync(at).isSymbolicLink()) return true;
+        } catch {
+            return false;
+        }
+    }
+    return false;
+}
+
+/** A warning on an import of the project that is a link: `contract check` reads it, a build refuses it. */
+function reportLinkedImport(document: LangiumDocument<Model>, imp: Import): void {
+    const node = (imp.$cstNode && GrammarUtils.findNodeForProperty(imp.$cstNode, 'path')) ?? imp.$cstNode;
+    if (!node) return;
+    (document.diagnostics ??= []).push({ range: node.range, severity: 2, code: IMPORT_LINK_CODE, source: 'cactal',
+        message: `"${imp.path}" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE's build service) never reads a project's source through a link and refuses it; put the file itself there` });
+}
+
 /** Replaces the validator's "does not exist" on a refused import by the reason it was not loaded. */
 function reportRefusedImport(document: LangiumDocument<Model>, imp: Import, reason: string): void {
     const node = (imp.$cstNode && GrammarUtils.findNodeForProperty(imp.$cstNode, 'path')) ?? imp.$cstNode;
@@ -158,6 +189,7 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     const langiumDocs = shared.workspace.LangiumDocuments;
     const confine = options.confineImportsTo === undefined ? undefined : resolve(options.confineImportsTo);
     const refused: { document: LangiumDocument<Model>; imp: Import; reason: string }[] = [];
+    const links: { document: LangiumDocument<Model>; imp: Import }[] = [];
     const load = (path: string, text = readFileSync(path, 'utf8')) => {
         loaded.add(path);
         const uri = URI.file(path);
@@ -187,12 +219,15 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
                 continue;
             }
             const target = resolve(dirname(path), imp.path);
-            if (loaded.has(target) || !isFile(target)) continue;
+            if (!isFile(target)) continue;
+            if (isLinkInside(root, target)) links.push({ document: documents[i]!.document, imp });
+            if (loaded.has(target)) continue;
             load(target);
         }
     }
     await shared.workspace.DocumentBuilder.build(documents.map((d) => d.document), { validation: true });
     for (const r of refused) reportRefusedImport(r.document, r.imp, r.reason);
+    for (const l of links) reportLinkedImport(l.document, l.imp);
     const diagnostics = documents.flatMap((d) => (d.document.diagnostics ?? []).map((diag) => toWorkspaceDiagnostic(d.file, diag)));
     diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
     return { dir: root, documents, diagnostics, services };
