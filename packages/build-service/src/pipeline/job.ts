@@ -270,12 +270,18 @@ export class Job {
         this.timed('prepare', 'runtime (sources hash)', tr);
       }
       const builtWith = runtimeSources?.name ?? null;
-      ws = await this.orCancel(
-        ctx.acquireWorkspace(this, {
-          onWait: (holder) => this.system('prepare', `waiting for the other command using this project (${holder}) to finish ...`),
-          cancelled: this.cancelled,
-        }),
-      );
+      const acquiring = ctx.acquireWorkspace(this, {
+        onWait: (holder) => this.system('prepare', `waiting for the other command using this project (${holder}) to finish ...`),
+        cancelled: this.cancelled,
+      });
+      try {
+        ws = await this.orCancel(acquiring);
+      } catch (e) {
+        // cancelled while the workspace was being acquired (its lock taken, its folders checked):
+        // released once it is, else the project stayed locked and every later job of it waited for ever
+        void acquiring.then((w) => w.release(), () => {}).catch(() => {});
+        throw e;
+      }
       this.timed('prepare', 'workspace (lock, checks)', t0);
       let t = Date.now();
       if (ws.reused) {
