@@ -9,16 +9,14 @@
  * decisions with their causes. Compared per module (PAN's lines, HOM's lines): which of two
  * processes logs first is timing, not semantics (under load HOM logs its run's end after PAN's reaction).
  */
-import { spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { renderStory, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { loadScenario, runLoadedScenario } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
 import { runForReal, type RealRun } from './differential/replay-run.js';
-import { prepared, REPO } from './support.js';
+import { generatedProject, prepared } from './support.js';
 
 const FILES: Record<string, string> = {
     'cam.contract': 'synchronous module CAM {\n    scheduling { C=1ms; }\n    data flows { out :0 float u; }\n}\n',
@@ -80,18 +78,7 @@ let dir: string;
 let run: RealRun;
 
 beforeAll(() => {
-    dir = mkdtempSync(join(tmpdir(), 'sim-diff-finish-'));
-    for (const [name, text] of Object.entries(FILES)) writeFileSync(join(dir, name), text);
-    const gen = spawnSync(process.execPath, [join(REPO, 'packages/cli/bin/contract.js'), 'generate', dir], { encoding: 'utf8' });
-    if (gen.status !== 0) throw new Error(`contract generate: ${gen.stdout}${gen.stderr}`);
-    for (const { module, body } of REGIONS) {
-        const file = join(dir, 'src-gen/generated/architecture/modules', `${module}_mod`, 'module.c');
-        const id = `/*PROTECTED REGION ID(protect_exec_${module}) ENABLED START*/`;
-        const text = readFileSync(file, 'utf8');
-        const from = text.indexOf(id), to = text.indexOf('/*PROTECTED REGION END*/', from);
-        if (from < 0 || to < 0) throw new Error(`no exec region in ${file}`);
-        writeFileSync(file, text.slice(0, from + id.length) + body + text.slice(to));
-    }
+    dir = generatedProject('sim-diff-finish-', FILES, REGIONS);
     // HOM ends its run at ~0.4 s after the start; the second limit comes at ~0.7 s
     run = runForReal(dir, '1.5s'); // (a margin for a loaded machine: only the first homing is compared)
 }, 300_000);

@@ -11,16 +11,14 @@
  * note every 10 ms, gets its disconnection and its STOP together at HOLD's undo: the STOP ends its run
  * before its next state (the generated loop ran one more state between them, a post to no subscriber).
  */
-import { spawnSync } from 'node:child_process';
-import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { rmSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { renderStory, type KnownRecord } from '@contract-studio/build-service/trace';
 import { loadScenario, runLoadedScenario } from '../src/index.js';
 import { stepsToTrace, traceStepOf } from '../src/trace/steps-to-trace.js';
 import { runForReal, type RealRun } from './differential/replay-run.js';
-import { prepared, REPO } from './support.js';
+import { generatedProject, prepared } from './support.js';
 
 const FILES: Record<string, string> = {
     'hmi.contract': 'asynchronous module HMI {\n    event flows { out :0 string note; }\n}\n',
@@ -51,18 +49,7 @@ let dir: string;
 let run: RealRun;
 
 beforeAll(() => {
-    dir = mkdtempSync(join(tmpdir(), 'sim-diff-restart-'));
-    for (const [name, text] of Object.entries(FILES)) writeFileSync(join(dir, name), text);
-    const gen = spawnSync(process.execPath, [join(REPO, 'packages/cli/bin/contract.js'), 'generate', dir], { encoding: 'utf8' });
-    if (gen.status !== 0) throw new Error(`contract generate: ${gen.stdout}${gen.stderr}`);
-    for (const { module, body } of REGIONS) {
-        const file = join(dir, 'src-gen/generated/architecture/modules', `${module}_mod`, 'module.c');
-        const id = `/*PROTECTED REGION ID(protect_exec_${module}) ENABLED START*/`;
-        const text = readFileSync(file, 'utf8');
-        const from = text.indexOf(id), to = text.indexOf('/*PROTECTED REGION END*/', from);
-        if (from < 0 || to < 0) throw new Error(`no exec region in ${file}`);
-        writeFileSync(file, text.slice(0, from + id.length) + body + text.slice(to));
-    }
+    dir = generatedProject('sim-diff-restart-', FILES, REGIONS);
     run = runForReal(dir, '1s');
 }, 300_000);
 afterAll(() => {

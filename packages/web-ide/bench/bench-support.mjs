@@ -26,6 +26,14 @@ export async function launchChromium(dir, extraArgs = []) {
   return chromium.launchPersistentContext(dir, { executablePath: '/usr/bin/chromium', args: [...CHROMIUM_ARGS, ...extraArgs], viewport: { width: 1440, height: 900 } });
 }
 
+/** The IDE's page in `context`, loaded from `server` and ready (its first page, or a new one). */
+export async function openIdePage(context, server) {
+  const page = context.pages()[0] ?? (await context.newPage());
+  await page.goto(server.openUrl);
+  await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
+  return page;
+}
+
 /** Writes bench/parts/<name>.json (flat metric -> number), which bench/run-all.mjs merges. */
 export function writePart(name, result) {
   const out = join(root, 'bench/parts');

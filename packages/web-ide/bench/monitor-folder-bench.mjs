@@ -14,7 +14,7 @@
 import { cpSync, mkdirSync, mkdtempSync, realpathSync, rmSync, statSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
-import { buildProductionIde, installFrameRecorder, launchChromium, root, writePart } from './bench-support.mjs';
+import { buildProductionIde, installFrameRecorder, launchChromium, openIdePage, root, writePart } from './bench-support.mjs';
 import { khzCycle } from './khz-cycle.mjs';
 import { LATE_FRAME_MS } from './steal-sampler.mjs';
 
@@ -41,9 +41,7 @@ const server = await startIdeServer({ workspace, port: 0, buildService: false })
 let context;
 try {
   context = await launchChromium(join(base, 'profile'));
-  const page = context.pages()[0] ?? (await context.newPage());
-  await page.goto(server.openUrl);
-  await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
+  const page = await openIdePage(context, server);
   await installFrameRecorder(page);
   const r = await page.evaluate(async (lateMs) => {
     const ide = window.__ide;

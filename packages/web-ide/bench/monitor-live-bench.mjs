@@ -23,7 +23,7 @@
 import { mkdirSync, writeFileSync, mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
 import { join } from 'node:path';
 import { tmpdir } from 'node:os';
-import { buildProductionIde, launchChromium, writePart } from './bench-support.mjs';
+import { buildProductionIde, launchChromium, openIdePage, writePart } from './bench-support.mjs';
 import { LATE_FRAME_MS, lateFramesAndSteal, startStealSampler } from './steal-sampler.mjs';
 import { installLatencyMeter } from './latency-meter.mjs';
 import { startFrameTrace } from './frame-trace.mjs';
@@ -42,9 +42,7 @@ const server = await startIdeServer({ workspace, port: 0, buildService: true });
 let context;
 try {
   context = await launchChromium(join(base, 'profile'));
-  const page = context.pages()[0] ?? (await context.newPage());
-  await page.goto(server.openUrl);
-  await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
+  const page = await openIdePage(context, server);
   await installLatencyMeter(page);
   await page.evaluate(({ duration, lateMs }) => {
     localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration }));
