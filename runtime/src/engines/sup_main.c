@@ -175,11 +175,6 @@ static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
    mailbox (SCHED_FIFO where permitted, else a nice level, which an unprivileged module may lower
    but not raise); the supervisor does not wait for the answer (prio_requests.h). */
 
-/* Is module `m` running (a run started and not finished or stopped)? Asked to the module
-   itself, so that a module started by another supervisor is not started twice. No answer
-   within 0.5 s: it is busy in its own code, hence running -- unless the last engine decision
-   on m was to stop it (holds_stopped): then m is paused or starved with that STOP still in its
-   mailbox, and a START sent now comes after it. (The core asks this under m's lock.) */
 /* What this supervisor knows of the modules' runs, for b_module_run_ended: the `activations=N` of
    each module's last status, and the count its status shows once the START this supervisor last
    sent it was taken (that status's plus one; -1: not known). A run may end by the module's own
@@ -208,12 +203,18 @@ static int run_slot(const char *m) {
 
 /* A module's status (mailbox.c: `... running=yes|no activations=N ...`): running, and its activations noted */
 static int status_running(const char *m, const char *status) {
-    const char *a = strstr(status, " activations=");
+    static const char key[] = " activations=";
+    const char *a = strstr(status, key);
     int i = run_slot(m);
-    if (a && i >= 0) runs_known[i].seen = strtol(a + 13, NULL, 10);
+    if (a && i >= 0) runs_known[i].seen = strtol(a + sizeof key - 1, NULL, 10);
     return strstr(status, " running=yes") != NULL;
 }
 
+/* Is module `m` running (a run started and not finished or stopped)? Asked to the module
+   itself, so that a module started by another supervisor is not started twice. No answer
+   within 0.5 s: it is busy in its own code, hence running -- unless the last engine decision
+   on m was to stop it (holds_stopped): then m is paused or starved with that STOP still in its
+   mailbox, and a START sent now comes after it. (The core asks this under m's lock.) */
 static int b_module_running(void *ctx, const char *m) {
     (void)ctx;
     char status[1024] = "";

@@ -76,16 +76,19 @@ static int find_ended(const FakeWorld *w, const char *m) {
     return -1;
 }
 
-void fake_end_own_run(FakeWorld *w, const char *module) {
+/* Takes `module` out of the running ones (its slot gets the last one), if it runs. */
+static void stop_running(FakeWorld *w, const char *module) {
     int i = find_running(w, module);
-    if (i >= 0) {
-        w->nrunning--;
-        memmove(w->running[i], w->running[i + 1], (size_t)(w->nrunning - i) * sizeof w->running[0]);
-        memmove(&w->prio[i], &w->prio[i + 1], (size_t)(w->nrunning - i) * sizeof w->prio[0]);
-    }
-    if (find_ended(w, module) < 0 && w->nended < FW_MAX) snprintf(w->ended[w->nended++], sizeof w->ended[0], "%s", module);
+    if (i < 0) return;
+    w->nrunning--;
+    memmove(w->running[i], w->running[w->nrunning], sizeof w->running[i]);
+    w->prio[i] = w->prio[w->nrunning];
 }
 
+void fake_end_own_run(FakeWorld *w, const char *module) {
+    stop_running(w, module);
+    if (find_ended(w, module) < 0 && w->nended < FW_MAX) snprintf(w->ended[w->nended++], sizeof w->ended[0], "%s", module);
+}
 
 static void format_block(char *out, size_t n, const ContractVar *vars, int nvars, const void *block) {
     size_t used = 0;
@@ -217,12 +220,7 @@ static int s_module_run_ended(void *ctx, const char *m) {
 static void s_stop_module(void *ctx, const char *m) {
     FakeWorld *w = ctx;
     require_locked(w, m);
-    int i = find_running(w, m);
-    if (i >= 0) {
-        w->nrunning--;
-        memmove(w->running[i], w->running[w->nrunning], sizeof w->running[i]);
-        w->prio[i] = w->prio[w->nrunning];
-    }
+    stop_running(w, m);
     WLOG(w, "stop %s", m);
 }
 static int set_priority(FakeWorld *w, const char *m, int prio) {
