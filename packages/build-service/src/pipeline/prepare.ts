@@ -43,6 +43,9 @@ export interface PrepareOutcome {
   synced: number;
 }
 
+/** The folders a run writes its output to (LOG_DIR, RUN_DIR), anywhere in the project: never read. */
+const RUN_OUTPUT_DIR = /(^|\/)(logs|run)$/;
+
 /** What of a project folder is copied: Cactal sources, the generated tree with user code, Makefile projects. */
 function acceptProjectPath(kind: ProjectKind) {
   return (rel: string, isDir: boolean): boolean => {
@@ -50,7 +53,7 @@ function acceptProjectPath(kind: ProjectKind) {
     const inTree = rel.startsWith(`${SRC_GEN_DIR}/`);
     if (base === 'node_modules' || base === '.git') return false;
     if (base.startsWith('.') && !inTree) return false;
-    if (isDir) return !/(^|\/)(logs|run)$/.test(rel);
+    if (isDir) return !RUN_OUTPUT_DIR.test(rel);
     if (/\.(o|a|so|out|csv|log)$/.test(base)) return false;
     if (kind === 'cactal') return rel.endsWith('.contract') || inTree;
     return true;
@@ -64,7 +67,7 @@ function acceptProjectPath(kind: ProjectKind) {
  * the generated default code instead of the user's, and say it succeeded.
  */
 function isProjectSource(kind: ProjectKind, rel: string, accept: (rel: string, isDir: boolean) => boolean): boolean {
-  if (/(^|\/)(logs|run)$/.test(rel)) return false; // a run's output folders, never read
+  if (RUN_OUTPUT_DIR.test(rel)) return false;
   if (kind === 'make') return accept(rel, false) || accept(rel, true);
   return rel.endsWith('.contract') || rel === SRC_GEN_DIR || rel.startsWith(`${SRC_GEN_DIR}/`) ? accept(rel, false) || accept(rel, true) : false;
 }

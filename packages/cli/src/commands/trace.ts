@@ -229,10 +229,10 @@ export class ModuleEnds {
     /** Modules other modules' records name (NAMING_KINDS), at most MODULES_FOLLOWED: the first such record's time and module, and its kind. */
     private readonly named = new Map<string, { at: bigint; by: string; kind: string }>();
 
-    /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
-    /** Modules with more than one log in the folder, and those logs' names (the first few). */
+    /** Modules with more than one log in the folder, and those logs' names. */
     private readonly twins = new Map<string, string[]>();
 
+    /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
     constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
         const names = new Map<string, string[]>();
         for (const l of logs) {

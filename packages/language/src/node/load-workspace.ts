@@ -153,19 +153,23 @@ function isLinkInside(root: string, path: string): boolean {
     return false;
 }
 
+/** Where an import's path is written (the whole import when its path has no node), for a diagnostic on it. */
+function importPathRange(imp: Import) {
+    return ((imp.$cstNode && GrammarUtils.findNodeForProperty(imp.$cstNode, 'path')) ?? imp.$cstNode)?.range;
+}
+
 /** A warning on an import of the project that is a link: `contract check` reads it, a build refuses it. */
 function reportLinkedImport(document: LangiumDocument<Model>, imp: Import): void {
-    const node = (imp.$cstNode && GrammarUtils.findNodeForProperty(imp.$cstNode, 'path')) ?? imp.$cstNode;
-    if (!node) return;
-    (document.diagnostics ??= []).push({ range: node.range, severity: 2, code: IMPORT_LINK_CODE, source: 'cactal',
+    const range = importPathRange(imp);
+    if (!range) return;
+    (document.diagnostics ??= []).push({ range, severity: 2, code: IMPORT_LINK_CODE, source: 'cactal',
         message: `"${imp.path}" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE's build service) never reads a project's source through a link and refuses it; put the file itself there` });
 }
 
 /** Replaces the validator's "does not exist" on a refused import by the reason it was not loaded. */
 function reportRefusedImport(document: LangiumDocument<Model>, imp: Import, reason: string): void {
-    const node = (imp.$cstNode && GrammarUtils.findNodeForProperty(imp.$cstNode, 'path')) ?? imp.$cstNode;
-    if (!node) return;
-    const range = node.range;
+    const range = importPathRange(imp);
+    if (!range) return;
     const same = (d: Diagnostic) => d.range.start.line === range.start.line && d.range.start.character === range.start.character;
     const kept = (document.diagnostics ?? []).filter((d) => !(d.code === 'import-missing-file' && same(d)));
     kept.push({ range, severity: 1, code: IMPORT_REFUSED_CODE, source: 'cactal', message: `import "${imp.path}" is refused: ${reason} (imports must stay inside the project folder)` });

@@ -186,11 +186,9 @@ export class EditorArea {
 
   /** Shows `element` in a pane at the right of the editor (side by side), or removes the pane. */
   dock(element: HTMLElement | undefined): void {
+    if (!element) this.sidePane.replaceChildren();
     // the element docked already stays where it is: moved again, it would lose the keyboard focus it holds
-    if (element && this.docked === element && this.sidePane.childElementCount === 1) {
-      /* docked */
-    } else if (element) this.sidePane.replaceChildren(element);
-    else this.sidePane.replaceChildren();
+    else if (this.docked !== element || this.sidePane.childElementCount !== 1) this.sidePane.replaceChildren(element);
     this.sidePane.classList.toggle('hidden', !element);
     this.stack.classList.toggle('docked', !!element);
   }

@@ -20,10 +20,10 @@ import { isContract } from '../workspace/file-kinds.js';
 import { debounce } from '../util/dom.js';
 import { toast } from '../util/toast.js';
 import { runSliced } from '../util/sliced.js';
-import { fetchJobLogs, MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type RunLogs } from '../views/run-logs.js';
+import { fetchJobLogs, MAX_RUN_LOG_BYTES, readTraceFile, readWorkspaceLogs, type LogFile, type RunLogs } from '../views/run-logs.js';
 import { api, socketUrl } from '../api.js';
 import { MonitorModel } from './monitor-model.js';
-import { recordedRunSteps, type RecordedLog, type RecordedRun } from './recorded-run.js';
+import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
@@ -456,7 +456,7 @@ export class MonitorController {
  * page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a second
  * or more of folding, during which the page would not draw nor answer a key.
  */
-function recordedRun(files: readonly RecordedLog[]): Promise<RecordedRun> {
+function recordedRun(files: readonly LogFile[]): Promise<RecordedRun> {
   return runSliced(recordedRunSteps(files, 500));
 }
 

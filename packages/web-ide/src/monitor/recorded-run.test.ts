@@ -5,8 +5,8 @@ import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { parseTrace, type LogFile } from '@contract-studio/build-service/trace';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
-import { recordedRunSteps, type RecordedLog } from './recorded-run.js';
-import { piecedLog } from '../views/run-logs.js';
+import { recordedRunSteps } from './recorded-run.js';
+import { piecedLog, type LogFile as PiecedLogFile } from '../views/run-logs.js';
 
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
 /** The tutorial's run: nine logs (more than a chunk looks back through for a line's text). */
@@ -22,7 +22,7 @@ function viaReader(files: LogFile[], opts = OPTS): MonitorModel {
 }
 
 /** The log as a download gives it (views/run-logs.ts piecedLog): its text cut after every `each`-th line end. */
-function inPieces(f: LogFile, each: number): RecordedLog {
+function inPieces(f: LogFile, each: number): PiecedLogFile {
   const pieces: string[] = [];
   let from = 0;
   for (let at = 0, n = 0; (at = f.text.indexOf('\n', at) + 1) > 0; ) {
@@ -35,7 +35,7 @@ function inPieces(f: LogFile, each: number): RecordedLog {
   return piecedLog(f.name, pieces);
 }
 
-function viaRanges(files: RecordedLog[], every = 7, opts = OPTS): { model: MonitorModel; steps: number } {
+function viaRanges(files: PiecedLogFile[], every = 7, opts = OPTS): { model: MonitorModel; steps: number } {
   const steps = recordedRunSteps(files, every, opts);
   let n = 0;
   let step = steps.next();

@@ -13,24 +13,23 @@
  * Built in steps (a generator that yields every `every` lines) so that its caller can let the
  * page draw between slices.
  */
-import { MinHeap, TRACE_KINDS, parseRecordLine, recordLineEnd, type KnownRecord, type LogFile } from '@contract-studio/build-service/trace';
+import { MinHeap, TRACE_KINDS, parseRecordLine, recordLineEnd, type KnownRecord } from '@contract-studio/build-service/trace';
+import { piecesLength, type LogFile } from '../views/run-logs.js';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
 
 /**
- * A log to read: its text, or its pieces of whole lines when it came so (a download, views/run-logs.ts
- * piecedLog): read piece by piece, never joined (joining a 100 MB log held the page's frames).
+ * The record lines of one log, in file order: ranges of its pieces and their sort keys. A log read
+ * from its text is one piece; a download is in pieces of whole lines (views/run-logs.ts piecedLog),
+ * read piece by piece and never joined (joining a 100 MB log held the page's frames).
  */
-export type RecordedLog = LogFile & { readonly pieces?: readonly string[] };
-
-/** The record lines of one log, in file order: ranges of its pieces and their sort keys. */
 interface LogLines {
   name: string;
   /** Its text in pieces, each ending at a line end (the last one: where the file ends). */
   pieces: readonly string[];
   n: number;
   /** The piece each line is in; from and to are offsets in it. */
-  piece: Uint16Array;
+  piece: Int32Array;
   from: Int32Array;
   to: Int32Array;
   /** 1-based line number in the file. */
@@ -107,17 +106,6 @@ function keyOf(file: string, lineNo: number, text: string, from: number, to: num
   return Read.Parsed;
 }
 
-/** Pieces a log's lines can name (LogLines.piece); a log in more is joined into fewer. */
-const MAX_PIECES = 0xffff;
-
-/** A log's pieces: `pieces` when it has them (at most MAX_PIECES: else joined into that many), else its text. */
-function piecesOf(file: RecordedLog): readonly string[] {
-  const pieces = file.pieces ?? [file.text];
-  if (pieces.length <= MAX_PIECES) return pieces;
-  const per = Math.ceil(pieces.length / MAX_PIECES);
-  return Array.from({ length: Math.ceil(pieces.length / per) }, (_, k) => pieces.slice(k * per, (k + 1) * per).join(''));
-}
-
 function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a: A): A {
   const b = new (a.constructor as new (n: number) => A)(a.length * 2);
   b.set(a);
@@ -125,12 +113,11 @@ function grow<A extends Int32Array | Float64Array | Uint8Array | Uint16Array>(a:
 }
 
 /** The record lines of a log (the trace reader's rule, recordLineEnd: header and empty lines are not records; a `\r` before a newline is not the line's). */
-function* logLines(file: RecordedLog, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
+function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut: string[]): Generator<void, LogLines> {
   const name = file.name;
-  const pieces = piecesOf(file);
-  const chars = pieces.reduce((n, p) => n + p.length, 0);
-  const size = Math.max(16, Math.ceil(chars / 64));
-  const l: LogLines = { name, pieces, n: 0, piece: new Uint16Array(size), from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined, cutAt: -1 };
+  const pieces = file.pieces ?? [file.text];
+  const size = Math.max(16, Math.ceil(piecesLength(pieces) / 64));
+  const l: LogLines = { name, pieces, n: 0, piece: new Int32Array(size), from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined, cutAt: -1 };
   let hi = 0;
   let lo = 0;
   let sorted = true;
@@ -198,7 +185,7 @@ export interface RecordedRun {
  * `maxUnreadable` lines that are not records, whose rest is left out (and said). The model is
  * made with `options`.
  */
-export function* recordedRunSteps(files: readonly RecordedLog[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
+export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
   const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
   const logs: LogLines[] = [];
   const leftOut: string[] = [];

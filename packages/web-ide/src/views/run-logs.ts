@@ -31,7 +31,8 @@ export function piecedLog(name: string, pieces: readonly string[]): LogFile {
   };
 }
 
-const piecesLength = (pieces: readonly string[]): number => pieces.reduce((n, p) => n + p.length, 0);
+/** Characters of a text in pieces. */
+export const piecesLength = (pieces: readonly string[]): number => pieces.reduce((n, p) => n + p.length, 0);
 
 export interface RunLogs {
   /** Where the files come from, shown to the user (e.g. `Build & Run job 12`). */
