@@ -123,6 +123,8 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     if (event === 'sup_rule') {
         const m = RULE_DETAIL.exec(detail);
         if (!m) return unknown(file, lineNo, 'sup_rule detail is not `F.R active|inactive cause=C`', line);
+        // `stop` is the cause of the rules a stopping function turns off, never of a rule turned on
+        if (m[3] === 'active' && m[4] === 'stop') return unknown(file, lineNo, 'a rule turned active with cause=stop (only a stopping function gives that cause, to the rules it turns inactive)', line);
         const rule: RuleRecord = { kind: 'sup_rule', monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, function: m[1]!, rule: m[2]!, active: m[3] === 'active', cause: m[4]!, causeEvent: parseCause(m[4]!) };
         return rule;
     }

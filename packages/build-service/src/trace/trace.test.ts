@@ -230,6 +230,15 @@ describe('reading a log', () => {
         expect(renderStory(parseTrace([{ name: 'SUP_1.csv', text }])).filter((l) => l.includes('cell.RUN'))).toEqual(['+0.000000s SUP  rule cell.RUN inactive <- ORD:0 = "loop"']);
     });
 
+    it('reads a rule turned active with cause=stop as no record: a stopping function only turns rules off', () => {
+        const text = [CSV_HEADER, '500,w,SUP,sup_rule,,,0,cell.RUN active cause=stop', '600,w,SUP,sup_rule,,,0,cell.RUN inactive cause=stop', ''].join('\n');
+        const records = parseLogFile({ name: 'SUP_1.csv', text });
+        expect(records.map((r) => (isUnknown(r) ? r.reason : `${r.kind} ${(r as RuleRecord).active} ${(r as RuleRecord).cause}`))).toEqual([
+            'a rule turned active with cause=stop (only a stopping function gives that cause, to the rules it turns inactive)', 'sup_rule false stop',
+        ]);
+        expect(renderStory(parseTrace([{ name: 'SUP_1.csv', text }])).filter((l) => l.includes('cell.RUN'))).toEqual(['+0.000000s SUP  rule cell.RUN inactive <- its function stopped']);
+    });
+
     it('keeps what it cannot read as unknown records saying why, and never throws', () => {
         const text = [CSV_HEADER, 'garbage', `1,w,MSC,${'x'.repeat(65)},,,0,`, `1,w,MSC,error,,,0,${'y'.repeat(MAX_LINE_CHARS)}`, 'a,w,MSC,error,,,0,', '1,w,M/S,error,,,0,', '\u0000\u00ff,",,', ''].join('\n');
         const records = parseLogFile({ name: 'MSC_1.csv', text });
