@@ -137,7 +137,11 @@ async function main(): Promise<void> {
   if (!(await layout.restore()) && first) await editors.open(first);
   layout.start();
   // a run this tab started before a reload goes on in the build service: follow it again
-  void info.then((i) => (i?.buildAvailable ? runs.resume() : undefined));
+  // then the workspace log folder or trace file this tab's Monitor showed, read again (it comes back on top)
+  void info.then(async (i) => {
+    if (i?.buildAvailable) await runs.resume().catch(() => false);
+    await monitor.restore();
+  });
   performance.mark('ide:editor-open');
   await lsp.workspaceBuilt();
   performance.mark('ide:ready');

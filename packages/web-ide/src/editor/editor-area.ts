@@ -27,6 +27,8 @@ export class EditorArea {
   readonly onActiveChanged = new Emitter<string | undefined>();
   /** Tabs opened, closed, renamed or reordered (the layout store saves them: app/layout-state.ts). */
   readonly onTabsChanged = new Emitter<void>();
+  /** The side pane shows another element, or none (dock). */
+  readonly onDocked = new Emitter<HTMLElement | undefined>();
   private readonly tabsEl: HTMLElement;
   private readonly editorHost: HTMLElement;
   private readonly viewHost: HTMLElement;
@@ -191,6 +193,7 @@ export class EditorArea {
     else if (this.docked !== element || this.sidePane.childElementCount !== 1) this.sidePane.replaceChildren(element);
     this.sidePane.classList.toggle('hidden', !element);
     this.stack.classList.toggle('docked', !!element);
+    this.onDocked.fire(element);
   }
 
   /** Shows a tab (a click, Enter on it) and puts the keyboard focus in it: Ctrl+Z then undoes in that file. */

@@ -43,6 +43,12 @@ const SETTLE_MS = 5000;
 const MAX_FILES = 256;
 /** A shown log folder whose files changed is read again this long after the last change (a run writing its logs changes them all the time). */
 const REREAD_MS = 1000;
+/**
+ * The workspace log folder or trace file this tab's Monitor shows, kept for a reload (sessionStorage:
+ * one per tab): `dir:FOLDER` or `file:PATH`. A job's run needs no such key: the run controller follows
+ * its job again after a reload, and the Monitor with it.
+ */
+const SHOWN_REPLAY_KEY = 'contract-studio:monitor-replay';
 
 interface Run {
   id: string;
@@ -101,6 +107,10 @@ export class MonitorController {
       if (this.panel) void this.panel.refreshModel();
     }, 400);
     deps.lsp.onDiagnostics.on(remodel);
+    // the side pane given to something else (the docked diagram, hide): a reload no longer brings back a replay
+    deps.editors.onDocked.on((element) => {
+      if (!this.panel || element !== this.panel.element) this.keepShown(undefined);
+    });
     // a workspace log folder changed on disk (a `contract run` wrote logs, a log was added or
     // removed): the run list offers new folders at once, and a folder's replay is read again —
     // now if it is shown, else when it is picked
@@ -383,6 +393,42 @@ export class MonitorController {
     else await this.refreshSources();
   }
 
+  /** Keeps the workspace folder or trace file shown for a reload (any other run shown, or none: nothing kept). */
+  private keepShown(id: string | undefined): void {
+    try {
+      if (id && /^(dir|file):/.test(id)) sessionStorage.setItem(SHOWN_REPLAY_KEY, id);
+      else sessionStorage.removeItem(SHOWN_REPLAY_KEY);
+    } catch {
+      /* storage refused: a reload then shows the Monitor's default */
+    }
+  }
+
+  /**
+   * After a reload: the workspace log folder or trace file this tab's Monitor showed is read and
+   * shown again, if the workspace still has it (its logs are read as they are now). Called once the
+   * run controller has followed its job again: the replay the user looked at last comes back on
+   * top, the job's run listed. True when it shows one.
+   */
+  async restore(): Promise<boolean> {
+    let id: string | null = null;
+    try {
+      id = sessionStorage.getItem(SHOWN_REPLAY_KEY);
+    } catch {
+      return false;
+    }
+    // whatever is kept is checked against the workspace: only a folder with logs or an existing trace file opens
+    const folder = id?.startsWith('dir:') ? id.slice(4) : undefined;
+    const file = id?.startsWith('file:') ? id.slice(5) : undefined;
+    const there = folder !== undefined ? this.csvIn(folder).length > 0 : file !== undefined && file.endsWith('.jsonl') && this.deps.workspace.hasFile(file);
+    if (!there) {
+      this.keepShown(undefined);
+      return false;
+    }
+    if (folder !== undefined) await this.openFolder(folder);
+    else await this.openTraceFile(file!);
+    return true;
+  }
+
   /** Says in the panel's label what is being read (a run of a minute at 1 kHz takes a few seconds): until it is shown. */
   private async reading(what: string): Promise<void> {
     (await this.ensurePanel()).setLabel(`Reading ${what}…`);
@@ -407,6 +453,7 @@ export class MonitorController {
     if (!run) return;
     if (run.used !== undefined) run.used = ++this.uses;
     this.shown = id;
+    this.keepShown(id);
     this.symbols = undefined; // the model may have changed since
     panel.setModel(run.model, run.label, run.live, !!run.whole);
     await this.refreshSources();

@@ -544,6 +544,45 @@ describe('Monitor in headless Chromium', () => {
     expect(await page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(3);
   }, 60_000);
 
+  it('a reload brings back the workspace folder or trace file the Monitor showed, read again; a Monitor hidden before the reload stays hidden', async () => {
+    const { page } = s;
+    const reloaded = async () => {
+      await page.reload();
+      await page.waitForSelector('body[data-ready=true]', { timeout: 60_000 });
+    };
+    await monitorShown(page);
+    await page.locator('.monitor-sources').selectOption('dir:recorded');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('9 CSV log(s) in recorded');
+    const marks = await marksOf(page);
+    await reloaded();
+    // before, the Monitor was closed after a reload (and, opened, said "No run yet")
+    await page.locator('.side-pane .monitor-view').waitFor({ timeout: 30_000 });
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe('9 CSV log(s) in recorded');
+    expect(await page.locator('.monitor-sources').inputValue()).toBe('dir:recorded');
+    expect(await marksOf(page)).toEqual(marks);
+    // a trace file, the same
+    const records = parseTrace(readdirSync(FIXTURE).map((name) => ({ name, text: readFileSync(join(FIXTURE, name), 'utf8') })));
+    writeFileSync(join(s.workspace, 'reload.jsonl'), records.map((r) => JSON.stringify(r)).join('\n') + '\n');
+    await expect.poll(() => page.locator('.monitor-sources option[value="file:reload.jsonl"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('file:reload.jsonl');
+    await expect.poll(() => page.locator('.monitor-source').textContent()).toBe(`Trace file reload.jsonl · ${records.length} record(s)`);
+    await reloaded();
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(`Trace file reload.jsonl · ${records.length} record(s)`);
+    expect(await marksOf(page)).toEqual(marks);
+    // hidden, then reloaded: not shown again
+    await page.locator('#btn-monitor').click();
+    await expect.poll(() => page.locator('.side-pane').isHidden()).toBe(true);
+    await reloaded();
+    await page.waitForTimeout(1000);
+    expect(await page.locator('.side-pane .monitor-view').count()).toBe(0);
+    // a kept folder gone from the workspace since: nothing opens, nothing is said wrong
+    await page.evaluate(() => sessionStorage.setItem('contract-studio:monitor-replay', 'dir:no-such-folder'));
+    await reloaded();
+    await page.waitForTimeout(1000);
+    expect(await page.locator('.side-pane .monitor-view').count()).toBe(0);
+    expect(await page.evaluate(() => sessionStorage.getItem('contract-studio:monitor-replay'))).toBeNull();
+  }, 120_000);
+
   it('keyboard: Open Monitor (Alt+Shift+M) opens it and puts the focus in it, again keeps it open; the brackets step marks from the slider', async () => {
     const { page } = s;
     await monitorShown(page);
