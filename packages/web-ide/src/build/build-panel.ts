@@ -50,6 +50,17 @@ export class BuildPanel {
   private stopAsked: string | undefined;
   /** A submission is on its way (no job id yet). */
   private submitting = false;
+  /**
+   * The last start asked: a start asked while another is submitting waits for it, then replaces
+   * its job as it replaces a running one (two at once, Build & Run then Ctrl+Shift+B, submitted
+   * both, and the panel followed one and Stop cancelled the other).
+   */
+  private starting: Promise<void> = Promise.resolve();
+  /** Starts asked, and how many of them a Stop came after (those not yet submitted are dropped). */
+  private startsAsked = 0;
+  private stoppedStarts = 0;
+  /** Stop was asked while a submission was on its way: the job it gets is cancelled at once. */
+  private stopWhenSubmitted = false;
   private stream: JobStream | undefined;
   private diagnostics: GccDiagnostic[] = [];
   private chipSources = '';
@@ -130,14 +141,29 @@ export class BuildPanel {
     }));
   }
 
-  async start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
-    if (this.jobId) await this.stop();
+  /**
+   * Submits a job and follows it; a job this panel follows is cancelled first (replaced). Starts
+   * asked one after the other are submitted one after the other; a Stop asked after a start that
+   * is not submitted yet drops it.
+   */
+  start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
+    const asked = ++this.startsAsked;
+    const next = this.starting.catch(() => undefined).then(() => (asked <= this.stoppedStarts ? undefined : this.submitAndFollow(projectDir, action, duration, start, cpus, realtime, readyTimeout)));
+    this.starting = next;
+    return next;
+  }
+
+  private async submitAndFollow(projectDir: string, action: 'build' | 'run', duration: number, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
+    if (this.jobId) await this.cancelFollowed();
     this.clear();
     this.setStatus('submitting', undefined, true);
     this.submitting = true;
     let job;
     try {
       job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(readyTimeout ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
+    } catch (e) {
+      this.stopWhenSubmitted = false; // nothing to cancel
+      throw e;
     } finally {
       this.submitting = false;
     }
@@ -145,6 +171,10 @@ export class BuildPanel {
     for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);
     this.follow(job.id, action);
+    if (this.stopWhenSubmitted) {
+      this.stopWhenSubmitted = false;
+      await this.cancelFollowed();
+    }
   }
 
   /** Empties the log, the source chips and the diagnostics (a new job is followed). */
@@ -260,6 +290,18 @@ export class BuildPanel {
   }
 
   async stop(): Promise<void> {
+    // the starts asked until now and not yet submitted are dropped; one being submitted is cancelled once it is
+    this.stoppedStarts = this.startsAsked;
+    if (this.submitting) {
+      this.stopWhenSubmitted = true;
+      this.setStatus('cancelling', 'once the build service has the job', true);
+      return;
+    }
+    await this.cancelFollowed();
+  }
+
+  /** Cancels the job this panel follows (Stop, or a new start replacing it). */
+  private async cancelFollowed(): Promise<void> {
     const id = this.jobId;
     if (!id) return;
     this.stopAsked = id;

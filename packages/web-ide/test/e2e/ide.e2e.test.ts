@@ -681,6 +681,45 @@ describe('IDE in headless Chromium', () => {
     }
   }, 300_000);
 
+  it.skipIf(!canBuild || !canGenerate)('Build & Run pressed twice at once (the button, then Ctrl+Shift+B before the first job is submitted): the second replaces the first, and Stop leaves no job running; a Stop before the submission ends cancels the job it gets', async () => {
+    const { page } = s;
+    await page.evaluate(() => localStorage.setItem('contract-studio:run-settings', JSON.stringify({ duration: 60, start: 'GLB.mission(consigne={1.0,2.0,3.0})', cpus: '0' })));
+    const submitted: string[] = [];
+    const onResponse = async (r: import('playwright-core').Response) => {
+      if (r.request().method() === 'POST' && new URL(r.url()).pathname === '/api/jobs' && r.status() === 201) submitted.push(((await r.json()) as { id: string }).id);
+    };
+    page.on('response', onResponse);
+    const statusOf = (id: string) => page.evaluate(async (id) => ((await (await fetch(`/api/jobs/${encodeURIComponent(id)}`)).json()) as { status: string }).status, id);
+    const followed = () => page.evaluate(() => JSON.parse(sessionStorage.getItem('contract-studio:followed-job') ?? 'null')?.jobId as string | undefined);
+    try {
+      await openFile(page, 'supervisor.contract');
+      await page.locator('#btn-run').click();
+      await page.keyboard.press('Control+Shift+B');
+      await expect.poll(() => submitted.length, { timeout: 60_000 }).toBe(2);
+      await expect.poll(() => page.locator('#status-job').textContent(), { timeout: 140_000 }).toContain('running: run');
+      // the panel follows the second; the first was replaced (cancelled), as a running one is
+      expect(await followed()).toBe(submitted[1]);
+      await expect.poll(() => statusOf(submitted[0]!), { timeout: 30_000 }).toBe('cancelled');
+      await page.keyboard.press('Alt+Shift+S');
+      // before, the panel had followed one job and Stop cancelled the other: one ran on for its 60 s
+      for (const id of submitted) await expect.poll(() => statusOf(id), { timeout: 30_000 }).toBe('cancelled');
+      await expect.poll(() => page.locator('#btn-run').isEnabled(), { timeout: 30_000 }).toBe(true);
+      // Stop pressed while the submission is on its way (or just after): the job it gets is cancelled
+      await page.locator('#btn-run').click();
+      await page.keyboard.press('Alt+Shift+S');
+      await expect.poll(() => submitted.length, { timeout: 60_000 }).toBe(3);
+      await expect.poll(() => statusOf(submitted[2]!), { timeout: 30_000 }).toBe('cancelled');
+      await expect.poll(() => page.locator('#status-job').getAttribute('data-status'), { timeout: 30_000 }).toBe('cancelled');
+      expect(await page.locator('#status-job').textContent()).not.toContain('another tab');
+    } finally {
+      page.off('response', onResponse);
+      if (await page.locator('#btn-stop').isEnabled().catch(() => false)) {
+        await page.locator('#btn-stop').click().catch(() => undefined);
+        await expect.poll(() => page.locator('#btn-run').isEnabled(), { timeout: 30_000 }).toBe(true).catch(() => undefined);
+      }
+    }
+  }, 300_000);
+
   it.skipIf(!canBuild || !canGenerate)('the real-time run setting reaches the build service, which says how it granted it or why not', async () => {
     const { page } = s;
     const settings = () => page.evaluate(() => JSON.parse(localStorage.getItem('contract-studio:run-settings')!));
