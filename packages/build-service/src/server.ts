@@ -37,6 +37,12 @@ export interface BuildServerOptions extends BuildServiceOptions {
    * Default false: such jobs are refused with 403. Mounted (`handle()`), the caller decides.
    */
   allowNoneSandbox?: boolean;
+  /**
+   * Every job runs in this sandbox (`contract serve --sandbox bwrap|docker`, the IDE's choice made
+   * for all its jobs): a job naming another one (`none` and `auto` too) is refused with 403, one
+   * naming none gets it (as the default `sandbox`, which it should be). Both `handle()` and `listen()`.
+   */
+  onlySandbox?: 'bwrap' | 'docker';
 }
 
 export interface BuildServer {
@@ -68,7 +74,9 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
   const sockets = new JobWebSockets(service, budget);
   let server: Server | null = null;
   const token = options.token === false ? null : new ServiceToken(options.token);
-  const standalone = { allowNoneSandbox: options.allowNoneSandbox === true };
+  const only = options.onlySandbox ? { onlySandbox: options.onlySandbox } : {};
+  const standalone = { allowNoneSandbox: options.allowNoneSandbox === true, ...only };
+  const mounted = { allowNoneSandbox: true, ...only };
 
   const handleUpgrade = (req: IncomingMessage, socket: Duplex, head: Buffer): boolean => {
     const url = new URL(req.url ?? '/', 'http://localhost');
@@ -86,7 +94,7 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
 
   return {
     service,
-    handle: (req, res) => route(req, res),
+    handle: (req, res) => route(req, res, mounted),
     handleUpgrade,
     async listen() {
       const host = options.host ?? '127.0.0.1';

@@ -118,7 +118,9 @@ export async function createEmbeddedBuildServer(workspaceRoot: string, log: (lin
     const refused = bs.prepareCacheDir(cache.dir, process.getuid?.() === 0);
     if (refused) log(`build cache: ${refused}; using a private temporary cache instead`);
     const cacheOptions = refused ? {} : { cacheDir: cache.dir, persistentWorkspaces: true };
-    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...cacheOptions });
+    // `contract serve --sandbox bwrap|docker`: every job of the IDE in that one, a request naming another refused
+    const only = sandbox === 'auto' ? {} : { onlySandbox: sandbox };
+    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...only, ...cacheOptions });
   } catch (e) {
     return `build service unavailable: ${(e as Error).message.split('\n')[0]}`;
   }

@@ -62,12 +62,20 @@ function clientOwner(req: IncomingMessage): string | undefined {
 export interface RoutePolicy {
   /** Accept `sandbox: "none"` jobs (no isolation). The standalone server sets it from its option. */
   allowNoneSandbox: boolean;
+  /** Every job runs in this sandbox (the server's `onlySandbox`): a job naming another is refused. */
+  onlySandbox?: 'bwrap' | 'docker';
 }
 
-/** 403 for a `sandbox: "none"` job (named, or the service's default) the policy does not allow. */
+/**
+ * 403 for a job naming a sandbox other than the policy's only one, and for a `sandbox: "none"`
+ * job (named, or the service's default) the policy does not allow.
+ */
 function checkSandboxPolicy(service: JobService, body: unknown, policy: RoutePolicy): void {
-  if (policy.allowNoneSandbox) return;
   const named = body && typeof body === 'object' ? (body as { sandbox?: unknown }).sandbox : undefined;
+  if (policy.onlySandbox && named !== undefined && named !== policy.onlySandbox) {
+    throw new ServiceError(403, 'forbidden', `sandbox ${JSON.stringify(String(named).slice(0, 40))} refused: this server runs every job in ${policy.onlySandbox} (it was started so, e.g. \`contract serve --sandbox ${policy.onlySandbox}\`); name ${policy.onlySandbox} or no sandbox`);
+  }
+  if (policy.allowNoneSandbox) return;
   if ((named ?? service.defaultSandbox) === 'none') {
     throw new ServiceError(403, 'forbidden', 'sandbox "none" jobs (no isolation: they run as the service\'s user) are refused: this service was not started with allowNoneSandbox: true; use "bwrap", "docker" or "auto"');
   }

@@ -195,4 +195,30 @@ describe('a mounted service', () => {
     const r = await call(url, '/api/jobs', {}, 'POST', JSON.stringify({ action: 'build', kind: 'make', sandbox: 'none', project: { files: MAKE } }));
     expect(r.status, JSON.stringify(r.json)).toBe(201);
   });
+
+  test('started with onlySandbox (contract serve --sandbox bwrap): a job naming another sandbox is 403, mounted or standalone; one naming it or none is accepted', async () => {
+    const service = createBuildServer({ cacheDir: temp('contract-token-only-'), concurrency: 1, log: () => {}, sandbox: 'bwrap', onlySandbox: 'bwrap' });
+    serve(service);
+    const only = createServer((req, res) => void service.handle(req, res));
+    await new Promise<void>((resolve) => only.listen(0, '127.0.0.1', () => resolve()));
+    try {
+      const url = `http://127.0.0.1:${(only.address() as AddressInfo).port}`;
+      const job = (sandbox?: string) => JSON.stringify({ action: 'build', kind: 'make', ...(sandbox ? { sandbox } : {}), project: { files: MAKE } });
+      for (const named of ['none', 'auto', 'docker']) {
+        const r = await call(url, '/api/jobs', {}, 'POST', job(named));
+        expect(r.status, named).toBe(403);
+        expect(r.json).toEqual({ code: 'forbidden', error: `sandbox "${named}" refused: this server runs every job in bwrap (it was started so, e.g. \`contract serve --sandbox bwrap\`); name bwrap or no sandbox` });
+      }
+      for (const named of ['bwrap', undefined]) {
+        const r = await call(url, '/api/jobs', {}, 'POST', job(named));
+        expect(r.status, JSON.stringify(r.json)).toBe(201);
+        expect(r.json.sandbox).toBe('bwrap');
+      }
+      // standalone, with none allowed: still refused
+      const { url: standalone, token } = await start({ sandbox: 'bwrap', onlySandbox: 'bwrap', allowNoneSandbox: true });
+      expect((await call(standalone, '/api/jobs', { 'X-Contract-Token': token! }, 'POST', job('none'))).status).toBe(403);
+    } finally {
+      await new Promise<void>((resolve) => only.close(() => resolve()));
+    }
+  });
 });
