@@ -102,7 +102,8 @@ export function loadScenario(file: string, display: string, text: string, index:
     return { file, display, parsed, locals: check.locals, diagnostics };
 }
 
-export async function runLoadedScenario(project: PreparedProject, s: LoadedScenario, options: RunOptions = {}): Promise<ScenarioResult> {
+/** Runs a loaded scenario; what the run keeps of it is its own (run-scenario.ts): let `s` go meanwhile, and its steps go with it. */
+export function runLoadedScenario(project: PreparedProject, s: LoadedScenario, options: RunOptions = {}): Promise<ScenarioResult> {
     return runScenario(project.build.exe, s.display, s.parsed, s.locals, { ...options, confinement: project.confinement });
 }
 

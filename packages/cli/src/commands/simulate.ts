@@ -113,7 +113,7 @@ export const simulateCommand: Command = {
 
         // every scenario is read and checked before any runs (its diagnostics first: nothing runs when
         // one has errors); then they run and are reported one at a time, each one's parsed steps (an
-        // 8 MiB scenario's take some 250 MB: a large one is parsed again when its turn comes) and
+        // 8 MiB scenario's take some 290 MB: a large one is parsed again when its turn comes, unless it is the only one) and
         // records let go once its report is written, so that many long scenarios take no more
         // memory than the longest one
         const scenarios: ToRun[] = [];
@@ -133,7 +133,8 @@ export const simulateCommand: Command = {
             const s = loadScenario(file, named, text, project.index);
             for (const d of s.diagnostics) io.err(`${shown}:${d.line}:${d.column}: ${d.severity}: ${d.message} [${d.code}]\n`);
             if (s.diagnostics.some((d) => d.severity === 'error')) bad++;
-            else scenarios.push({ file, named, text, ...(text.length <= KEEP_PARSED_CHARS ? { loaded: s } : {}) });
+            // kept parsed when small, or when it is the command's only scenario (nothing else is checked meanwhile)
+            else scenarios.push({ file, named, text, ...(text.length <= KEEP_PARSED_CHARS || parsed.positionals.length === 2 ? { loaded: s } : {}) });
         }
         if (bad) {
             io.err(`contract simulate: ${bad} scenario file(s) with errors: nothing was simulated\n`);
@@ -149,17 +150,27 @@ export const simulateCommand: Command = {
         const suites: JunitSuite[] = [];
         let passed = 0;
         let failed = 0;
-        if (format === 'json') await write(JSON_REPORT_HEAD);
-        for (let next = scenarios.shift(); next; next = scenarios.shift()) {
+        // An async function keeps its temporaries in its frame across its awaits (V8): a scenario's
+        // parse handed to its run, or its result, held by the loop's frame, stayed in memory while
+        // the next scenario ran (two 8 MiB scenarios took 2.1 GB). So the run starts in a plain
+        // function (its frame gone when it returns: the run keeps what it needs of the steps), and each
+        // scenario is run and reported in a function of its own, whose frame is gone before the next.
+        const startRun = (next: ToRun): Promise<ScenarioResult> => {
             const loaded = next.loaded ?? loadScenario(next.file, next.named, next.text, project.index);
-            const r = await runLoadedScenario(project, loaded);
+            next.loaded = undefined;
+            return runLoadedScenario(project, loaded);
+        };
+        const runAndReport = async (next: ToRun): Promise<void> => {
+            const r = await startRun(next);
             if (r.passed) passed++;
             else failed++;
             if (format === 'json') for (const part of jsonScenarioParts(r, passed + failed === 1)) await write(part);
             else if (format === 'junit') suites.push(junitSuite(r));
             else for (const part of textScenarioParts(r, { verbose })) await write(part);
             await trace?.add(r);
-        }
+        };
+        if (format === 'json') await write(JSON_REPORT_HEAD);
+        for (let next = scenarios.shift(); next; next = scenarios.shift()) await runAndReport(next);
         await write(format === 'json' ? JSON_REPORT_END : format === 'junit' ? junitReportOf(suites) : textSummary(passed, failed));
         const traceError = await trace?.close();
         if (traceError) {
@@ -178,7 +189,7 @@ interface ToRun {
     loaded?: LoadedScenario;
 }
 
-/** Scenarios up to this many characters stay parsed from their check to their run; a larger one is parsed again. */
+/** Scenarios up to this many characters stay parsed from their check to their run; a larger one is parsed again (unless it is the only one). */
 const KEEP_PARSED_CHARS = 256 * 1024;
 
 /**

@@ -179,7 +179,13 @@ function trimmedMessage(t: Omit<TrimmedRecords, 'message'>, bounds: RecordBounds
         + '; the verdicts, failures and schema figures are the whole scenario\'s';
 }
 
-function failureMessage(file: string, step: Step | undefined, r: StepRecord): string {
+/** What a step's record needs of the step: its source line and kind. */
+interface StepOfLine {
+    source: string;
+    kind: Step['kind'];
+}
+
+function failureMessage(file: string, step: StepOfLine | undefined, r: StepRecord): string {
     const where = `${file}:${r.line}`;
     const src = step ? ` (${step.source})` : '';
     if (r.verb.startsWith('expect-')) {
@@ -195,12 +201,16 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
     const lastNs = scenario.steps.length ? scenario.steps[scenario.steps.length - 1]!.atNs : 0;
     const endNs = Math.max(scenario.untilNs ?? lastNs, lastNs);
     let input = harnessInput(scenario, locals, endNs, options.quiet === true);
-    const byLine = new Map<number, Step>();
-    for (const s of scenario.steps) byLine.set(s.span.line, s);
+    // what the records need of their steps, by line: the parsed steps (1.4 KB each: names, values and
+    // their spans) are not held while the scenario runs, nor is anything else of `scenario` (only this
+    // function's own code reads it, never the closures below): an 8 MiB scenario's are some 290 MB
+    const byLine = new Map<number, StepOfLine>();
+    for (const s of scenario.steps) byLine.set(s.span.line, { source: s.source, kind: s.kind });
+    const title = scenario.title;
     const bounds = options.recordBounds ?? RECORD_BOUNDS;
 
     return new Promise((resolvePromise) => {
-        const result: ScenarioResult = { file, title: scenario.title, passed: false, steps: [], failures: [], eventsProcessed: 0, endNs, ms: 0, harnessMs: 0 };
+        const result: ScenarioResult = { file, title, passed: false, steps: [], failures: [], eventsProcessed: 0, endNs, ms: 0, harnessMs: 0 };
         let child;
         try {
             // the simulator sees its own folder (read-only) and the toolchain's libraries, nothing else
@@ -309,6 +319,11 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
             }
             result.ms = performance.now() - t0;
             result.passed = !result.error && result.failures.length === 0;
+            // the child's streams outlive its close for a while (their handles close later): their
+            // listeners, and through them the result, are let go now, not then — else a command that
+            // runs a second long scenario at once holds the first one's records meanwhile
+            for (const stream of [child.stdout, child.stderr, child.stdin]) stream.removeAllListeners();
+            child.removeAllListeners();
             resolvePromise(result);
         });
         child.stdin.end(input);
