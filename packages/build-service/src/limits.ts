@@ -112,6 +112,12 @@ export interface ServiceBounds {
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
   traceLinesKept: number;
   /**
+   * Trace lines that are no record (they do not begin with a `mono_ns`: junk a module wrote into
+   * `logs/`) sent per job; the later ones are counted, not sent (a wire entry says how many, trace/wire.ts `unsent`),
+   * so that they neither fill the stream nor take the room of the records kept for replay.
+   */
+  traceUnreadableKept: number;
+  /**
    * Project workspaces the persistent build cache keeps (each a work tree: a tmpfs in memory when
    * the service is root). A process's first acquire removes the least recently used beyond this
    * number, and those whose project folder is gone; one a command holds stays.
@@ -151,6 +157,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceFiles: 256,
   traceLinesPerEvent: 1000,
   traceLinesKept: TRACE_LINES_KEPT,
+  traceUnreadableKept: 1000,
   projectFileBytes: 8 * 1024 * 1024,
   projectBytes: 64 * 1024 * 1024,
   diagnosticsPerJob: 1000,

@@ -544,6 +544,26 @@ describe('TraceTail on a folder written while it is read', () => {
     expect(system.filter((l) => /5 records kept for replay/.test(l))).toHaveLength(1);
   });
 
+  test('lines that are no record past unreadableKept are counted in one entry, not sent, and take no room of the records kept for replay', async () => {
+    mkdirSync(logs);
+    const j = join(logs, 'J_1.csv');
+    const junk = Array.from({ length: 50 }, (_, i) => `\u0001junk ${i}`);
+    liveOnly = [];
+    const tail = await TraceTail.start(work, sink, { ...fast, linesKept: 10, unreadableKept: 3 });
+    writeFileSync(j, [CSV_HEADER, rec(1, 'J'), ...junk, ...[2, 3, 4, 5].map((m) => rec(m, 'J')), '7 is no time either', ''].join('\n'));
+    await tail.finish();
+    // before, the 50 junk lines were sent and took the kept room: the records after them went live-only
+    expect(liveOnly).toEqual([]);
+    expect(traced).toEqual([
+      { file: 'J_1.csv', line: 2, text: rec(1, 'J') },
+      ...junk.slice(0, 3).map((text, i) => ({ file: 'J_1.csv', line: 3 + i, text })),
+      { file: 'J_1.csv', line: 6, text: '', unsent: 47 },
+      ...[2, 3, 4, 5].map((m, i) => ({ file: 'J_1.csv', line: 53 + i, text: rec(m, 'J') })),
+      { file: 'J_1.csv', line: 57, text: '', unsent: 1 },
+    ]);
+    expect(system.filter((l) => /more than 3 lines of the logs are no record/.test(l))).toHaveLength(1);
+  });
+
   test('a sparse log of 1 TiB: read no further than the collector keeps of a log (finish() returns)', async () => {
     mkdirSync(logs);
     const tail = await TraceTail.start(work, sink, fast);

@@ -42,6 +42,8 @@ export interface TraceTailBounds {
   entries: number;
   linesPerEvent: number;
   linesKept: number;
+  /** Lines that are no record sent per run; the later ones are counted in `unsent` entries (trace/wire.ts). */
+  unreadableKept: number;
 }
 
 export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
@@ -55,6 +57,7 @@ export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
   entries: SERVICE_BOUNDS.listedEntries,
   linesPerEvent: SERVICE_BOUNDS.traceLinesPerEvent,
   linesKept: SERVICE_BOUNDS.traceLinesKept,
+  unreadableKept: SERVICE_BOUNDS.traceUnreadableKept,
 });
 
 /** Where the tail's output goes (the job: trace events and system lines). */
@@ -122,6 +125,9 @@ export class TraceTail {
   /** process.hrtime (CLOCK_MONOTONIC, the clock of mono_ns: bwrap, none, and Docker containers, which get no time namespace) at the last listing. */
   private listedAt: bigint | null = null;
   private sent = 0;
+  /** Lines that are no record sent so far (unreadableKept), and those counted only. */
+  private unreadableSent = 0;
+  private unreadableUnsent = 0;
   /** Past the kept-lines bound: lines go to the attached clients only. */
   private liveOnly = false;
   private liveSent = 0;
@@ -550,8 +556,9 @@ export class TraceTail {
    * to the clients attached now (a 1 kHz schema passes the bound in seconds, and a live monitor
    * must follow the whole run), but are not kept: a later client replays them from the collected logs.
    */
-  private emit(lines: TraceLine[]): void {
-    if (this.stopped || lines.length === 0) return;
+  private emit(read: TraceLine[]): void {
+    if (this.stopped || read.length === 0) return;
+    const lines = this.unsentPastBound(read);
     const room = Math.max(0, this.bounds.linesKept - this.sent);
     const take = lines.length > room ? lines.slice(0, room) : lines;
     for (let i = 0; i < take.length; i += this.bounds.linesPerEvent) this.sink.trace(take.slice(i, i + this.bounds.linesPerEvent));
@@ -565,6 +572,31 @@ export class TraceTail {
       for (let i = 0; i < rest.length; i += this.bounds.linesPerEvent) this.sink.live(rest.slice(i, i + this.bounds.linesPerEvent));
       this.liveSent += rest.length;
     }
+  }
+
+  /**
+   * The lines with those that are no record past the unreadableKept bound replaced: a stretch of
+   * them in one log, one after the other, by one `unsent` entry counting them (trace/wire.ts). A
+   * record line begins with its `mono_ns`, digits then a comma; anything else cannot be one.
+   */
+  private unsentPastBound(lines: TraceLine[]): TraceLine[] {
+    let out: TraceLine[] | undefined;
+    for (let i = 0; i < lines.length; i++) {
+      const l = lines[i]!;
+      if (beginsWithTime(l.text) || this.unreadableSent < this.bounds.unreadableKept) {
+        if (!beginsWithTime(l.text)) this.unreadableSent++;
+        out?.push(l);
+        continue;
+      }
+      out ??= lines.slice(0, i);
+      if (this.unreadableUnsent++ === 0) {
+        this.safeSystem(`trace: more than ${this.bounds.unreadableKept} lines of the logs are no record (junk written into logs/?): the later ones are counted, not sent (the build service's traceUnreadableKept bound); they are in the run's collected logs`);
+      }
+      const last = out[out.length - 1];
+      if (last?.unsent && last.file === l.file && last.line + last.unsent === l.line) last.unsent++;
+      else out.push({ file: l.file, line: l.line, text: '', unsent: 1 });
+    }
+    return out ?? lines;
   }
 
   private async close(): Promise<void> {
@@ -583,4 +615,16 @@ export class TraceTail {
     await this.dir?.close().catch(() => {});
     this.dir = null;
   }
+}
+
+/** Whether a log line can be a record: 1 to 20 digits (its `mono_ns`), then a comma. */
+function beginsWithTime(text: string): boolean {
+  let i = 0;
+  while (i < text.length && i <= 20) {
+    const c = text.charCodeAt(i);
+    if (c === 44) return i > 0;
+    if (c < 48 || c > 57) return false;
+    i++;
+  }
+  return false;
 }

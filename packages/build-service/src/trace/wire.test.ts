@@ -7,7 +7,9 @@ const lineArb: fc.Arbitrary<TraceLine> = fc.record({
   file: fc.constantFrom('ORD_1.csv', 'MAA_1.csv', 'SUP_1.csv', 'a,b "c".csv'),
   line: fc.integer({ min: 1, max: 1_000_000 }),
   text: fc.string({ unit: 'grapheme', maxLength: 60 }).map((t) => t.replace(/\n/g, ' ')),
-}).chain((l) => fc.boolean().map((cut) => (cut && l.line % 7 === 0 ? { ...l, cut: true as const } : l)));
+}).chain((l) => fc.boolean().map((cut) => (cut && l.line % 7 === 0 ? { ...l, cut: true as const } : l)))
+  // now and then an entry standing for lines the service counted without sending them (its text empty)
+  .chain((l) => fc.integer({ min: 0, max: 30 }).map((n) => (n > 0 && l.line % 5 === 0 && !l.cut ? { file: l.file, line: l.line, text: '', unsent: n } : l)));
 
 describe('trace wire form', () => {
   test('decode(encode(records)) is the records, in order (any texts, files, line numbers)', () => {
@@ -18,9 +20,12 @@ describe('trace wire form', () => {
         // the same records as ranges of the batch's text, in order, one text for all
         const ranged: TraceLine[] = [];
         const texts = new Set<string>();
-        forEachTraceLine(wire, (file, line, text, from, to, cut) => {
+        forEachTraceLine(wire, (file, line, text, from, to, cut, unsent) => {
           texts.add(text);
-          ranged.push(cut ? { file, line, text: text.slice(from, to), cut: true } : { file, line, text: text.slice(from, to) });
+          const l: TraceLine = { file, line, text: text.slice(from, to) };
+          if (cut) l.cut = true;
+          if (unsent) l.unsent = unsent;
+          ranged.push(l);
         });
         expect(ranged).toEqual(records);
         expect(texts.size).toBeLessThanOrEqual(1);
@@ -41,6 +46,11 @@ describe('trace wire form', () => {
     expect(cut.cut).toEqual([1]);
     expect(decodeTraceRecords(cut)[1]).toEqual({ file: 'A.csv', line: 3, text: 'A.csv:3', cut: true });
     expect(decodeTraceRecords({ files: [], runs: [], text: '' })).toEqual([]);
+    // an entry standing for unsent lines: named with its count; the line after it starts a run of its own
+    const skipped = encodeTraceRecords([r('A.csv', 2), { file: 'A.csv', line: 3, text: '', unsent: 40 }, r('A.csv', 43), r('A.csv', 44)]);
+    expect(skipped.unsent).toEqual([1, 40]);
+    expect(skipped.runs).toEqual([0, 2, 2, 0, 43, 2]);
+    expect(decodeTraceRecords(skipped)).toEqual([r('A.csv', 2), { file: 'A.csv', line: 3, text: '', unsent: 40 }, r('A.csv', 43), r('A.csv', 44)]);
     // empty texts survive (the count, not the text, says how many lines)
     const blanks = [r('A.csv', 2), { file: 'A.csv', line: 3, text: '' }, { file: 'A.csv', line: 4, text: '' }];
     expect(decodeTraceRecords(encodeTraceRecords(blanks))).toEqual(blanks);
@@ -63,6 +73,10 @@ describe('trace wire form', () => {
     ['cut past the records', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: [2] }, /"cut"/],
     ['cut not ascending', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: [1, 0] }, /"cut"/],
     ['cut twice', { files: ['A'], runs: [0, 1, 2], text: 'x\ny', cut: [1, 1] }, /"cut"/],
+    ['unsent not pairs', { files: ['A'], runs: [0, 1, 2], text: 'x\n', unsent: [1] }, /"unsent"/],
+    ['unsent past the records', { files: ['A'], runs: [0, 1, 2], text: 'x\n', unsent: [2, 5] }, /"unsent"/],
+    ['unsent counting 0 lines', { files: ['A'], runs: [0, 1, 2], text: 'x\n', unsent: [1, 0] }, /"unsent"/],
+    ['unsent not ascending', { files: ['A'], runs: [0, 1, 2], text: '\n', unsent: [1, 3, 0, 2] }, /"unsent"/],
   ])('a malformed batch (%s) is refused with a clear error, nothing decoded', (_name, wire, message) => {
     const got: unknown[] = [];
     expect(() => got.push(...decodeTraceRecords(wire))).toThrow(TraceWireError);

@@ -219,7 +219,7 @@ export class BuildPanel {
       if (sayIfGone && !this.busy) {
         this.clear();
         this.originEl.textContent = `(${why})`;
-        this.setStatus('gone', `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs (the CSV logs a run had written are in its project's logs folder only if the run ended before)`, false);
+        this.setStatus('gone', `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs: their logs and a run's CSV logs went with them (a Build & Run writes nothing into the workspace); run it again`, false);
       }
       return 'gone';
     }

@@ -205,6 +205,23 @@ describe('a live run followed in a worker', () => {
     expect(remote.missed).toBeLessThanOrEqual(gone);
   });
 
+  it('counts the lines the service counted without sending them (no record: junk past its bound) as unreadable, not as records missed', async () => {
+    const file = lines[0]!.file;
+    const own = lines.filter((l) => l.file === file).slice(0, 3);
+    // the log's line 2 a record, lines 3..42 junk the service did not send, then its records again
+    const sent: TraceLine[] = [{ ...own[0]!, line: 2 }, { file, line: 3, text: '', unsent: 40 }, { ...own[1]!, line: 43 }, { ...own[2]!, line: 44 }];
+    const url = await listen((ws) => {
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(sent) }));
+      ws.send(JSON.stringify({ type: 'end', seq: 2, t: Date.now(), result: { ok: true } }));
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    // before, such lines came whole (millions of them, the kept room gone) or not at all (said missed records)
+    expect(remote.missed).toBe(0);
+    expect(remote.live.records).toBe(3);
+    expect(remote.live.unknownLines).toBe(40);
+  });
+
   it('sends the page at most one snapshot per snapshotMs, and the last one always', async () => {
     const frames = events(2); // many small events, sent at once
     const url = await listen((ws) => {

@@ -78,7 +78,7 @@ export class LiveFollower {
         if (typeof m.url === 'string' && !this.stream) {
           this.stream = new JobStream(m.url, {
             event: (e) => this.receive(e),
-            lost: (why) => this.finish(why === undefined ? 'lost the connection to the build service: the trace stops here (a run that goes on to its end has all of it in its CSV logs, which Replay shows)' : `the trace stream could not be opened (${why})`),
+            lost: (why) => this.finish(why === undefined ? 'lost the connection to the build service: the trace stops here (if the build service is still there when the job ends, the Monitor shows the run from its CSV logs)' : `the trace stream could not be opened (${why})`),
           }, this.openSocket);
         }
         return;
@@ -86,7 +86,12 @@ export class LiveFollower {
         if (Array.isArray(m.records)) this.fold(() => {
           const arrival = Date.now();
           let n = 0;
-          for (const r of m.records) if (r && typeof r.text === 'string' && typeof r.file === 'string' && n++ < MAX_LINES_PER_EVENT) this.pushLine(r.file, Number.isInteger(r.line) ? r.line : 0, r.text, 0, r.text.length, arrival);
+          for (const r of m.records) {
+            if (!r || typeof r.text !== 'string' || typeof r.file !== 'string' || n++ >= MAX_LINES_PER_EVENT) continue;
+            const line = Number.isInteger(r.line) ? r.line : 0;
+            if (Number.isSafeInteger(r.unsent) && r.unsent! > 0) this.pushUnsent(r.file, line, r.unsent!);
+            else this.pushLine(r.file, line, r.text, 0, r.text.length, arrival);
+          }
         });
         return;
       case 'stateAt': {
@@ -112,8 +117,10 @@ export class LiveFollower {
       this.fold(() => {
         let n = 0;
         try {
-          forEachTraceLine(e, (file, line, text, from, to, cut) => {
-            if (n++ < MAX_LINES_PER_EVENT) this.pushLine(file, line, text, from, to, arrival, textId, cut);
+          forEachTraceLine(e, (file, line, text, from, to, cut, unsent) => {
+            if (n++ >= MAX_LINES_PER_EVENT) return;
+            if (unsent) this.pushUnsent(file, line, unsent);
+            else this.pushLine(file, line, text, from, to, arrival, textId, cut);
           });
         } catch (err) {
           this.problem(`a trace event could not be read (${(err as Error).message}); the whole trace is in the run's collected logs`);
@@ -139,6 +146,17 @@ export class LiveFollower {
       this.walls[this.measured] = this.wallOf(text, from);
       this.arrived[this.measured++] = arrival;
     }
+  }
+
+  /**
+   * `count` lines of `file` from `line` on that are no record, which the service counted without
+   * sending them (trace/wire.ts `unsent`): counted unreadable, and not missed (they were not lost).
+   */
+  private pushUnsent(file: string, line: number, count: number): void {
+    const name = file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
+    this.followLines(name, line);
+    if (line + count > this.gapNext) this.gapNext = Math.min(Number.MAX_SAFE_INTEGER, line + count);
+    this.model.countUnsent(count);
   }
 
   /** Counts the lines of `file` skipped before `line` (missed). */

@@ -329,6 +329,15 @@ export class MonitorModel implements MonitorView {
     return cp.index / this.every >= this.firstChunk;
   }
 
+  /**
+   * `n` lines of a log that are no record, which the build service counted without sending them
+   * (past its bound of such lines: trace/wire.ts `unsent`): counted unreadable, as a replay of the
+   * logs counts them (not in the states scrubbed back to).
+   */
+  countUnsent(n: number): void {
+    if (Number.isSafeInteger(n) && n > 0) this.live.unknownLines = Math.min(Number.MAX_SAFE_INTEGER, this.live.unknownLines + n);
+  }
+
   /** One CSV line of the live trace channel (job-events.ts TraceLine). */
   pushLine(file: string, line: number, text: string): void {
     this.pushLineIn(file, line, text, 0, text.length);

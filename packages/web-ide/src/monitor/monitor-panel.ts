@@ -472,11 +472,17 @@ export class MonitorPanel {
         setAttr(hist.root, 'data-overruns', String(p?.overruns ?? 0));
         drawHistogram(hist.canvas, p?.histogram ?? [], cd, period);
         // each miss's tooltip: its mark's label, which names what the cycle was still waiting for
-        hist.misses.replaceChildren(...(p?.recentMisses ?? []).slice(-5).map((x) => h('span', {
+        // the last few of each, said so when there were more (the timeline marks the others)
+        const misses = (p?.recentMisses ?? []).slice(-5);
+        const overruns = (p?.recentOverruns ?? []).slice(-3);
+        const lastOf = (shown: number, all: number, what: string) =>
+          all > shown ? [h('span', { class: 'miss-more', title: 'The earlier ones are marked on the timeline ([ and ] step through the marks)' }, `the last ${shown} of ${all} ${what}:`)] : [];
+        hist.misses.replaceChildren(...lastOf(misses.length, p?.deadlineMisses ?? 0, 'deadline misses'), ...misses.map((x) => h('span', {
           class: 'miss', 'data-cycle': x.cycle,
           title: m.marksBetween(x.t, x.t).find((k) => k.kind === 'miss' && k.where === name)?.label ?? `deadline miss (ORD:0) cycle ${x.cycle}`,
         }, `ORD:0 cycle ${x.cycle} at ${fmtT(x.t)}`)),
-          ...(p?.recentOverruns ?? []).slice(-3).map((x) => h('span', { class: 'overrun' }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
+          ...lastOf(overruns.length, p?.overruns ?? 0, 'overruns'),
+          ...overruns.map((x) => h('span', { class: 'overrun' }, `overrun after cycle ${x.cycle} at ${fmtT(x.t)}`)));
       }
       return hist.root;
     });

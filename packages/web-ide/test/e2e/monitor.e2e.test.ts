@@ -583,6 +583,25 @@ describe('Monitor in headless Chromium', () => {
     expect(await page.evaluate(() => sessionStorage.getItem('contract-studio:monitor-replay'))).toBeNull();
   }, 120_000);
 
+  it('a periodic schema with more deadline misses than it lists says the list holds the last ones', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    const dir = join(s.workspace, 'many-misses');
+    mkdirSync(dir, { recursive: true });
+    const ord = ['mono_ns,wall_time,module,event,peer,port,size,detail', '1000000,w,ORD,scheduler,,,0,activate S'];
+    for (let c = 0; c < 9; c++) ord.push(`${2_000_000 + c * 1_000_000},w,ORD,ord_deadline_miss,,,0,schema=S cycle=${c} tick_ns=${1_000_000 + c * 1_000_000}`);
+    writeFileSync(join(dir, 'ORD_1-Jan-2026-00h00m00s.csv'), ord.join('\n') + '\n');
+    await expect.poll(() => page.locator('.monitor-sources option[value="dir:many-misses"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('dir:many-misses');
+    await page.locator('.monitor-view').focus();
+    await page.keyboard.press('End');
+    await expect.poll(() => periodic(page, 'S').getAttribute('data-misses')).toBe('9');
+    // before, 5 chips under "9 deadline miss(es)", and nothing said of the 4 others
+    expect(await periodic(page, 'S').locator('.monitor-misses > span').allTextContents()).toEqual([
+      'the last 5 of 9 deadline misses:', ...[4, 5, 6, 7, 8].map((c) => expect.stringMatching(new RegExp(`^ORD:0 cycle ${c} at `))),
+    ]);
+  });
+
   it('keyboard: Open Monitor (Alt+Shift+M) opens it and puts the focus in it, again keeps it open; the brackets step marks from the slider', async () => {
     const { page } = s;
     await monitorShown(page);
@@ -715,7 +734,7 @@ describe('Monitor in headless Chromium', () => {
       for (const [job, outcome] of [['cancelled', 'cancelled'], ['failed', 'failed: run: MAA exited with status 3'], ['killed', 'connection to the build service lost']] as const) {
         await page.evaluate(([job, url]) => (window as any).__ide.monitor.followLive(job, url), [job, url(job)]);
         // (the lost stream also says, as before, that the trace is not whole)
-        const label = `Build & Run job ${job} · ended: ${outcome}${job === 'killed' ? ' (trace not whole: lost the connection to the build service: the trace stops here (a run that goes on to its end has all of it in its CSV logs, which Replay shows))' : ''}`;
+        const label = `Build & Run job ${job} · ended: ${outcome}${job === 'killed' ? ' (trace not whole: lost the connection to the build service: the trace stops here (if the build service is still there when the job ends, the Monitor shows the run from its CSV logs))' : ''}`;
         await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 }).toBe(label);
         // nowhere live: the header, the run list, the time line, the follow button
         expect(await page.locator('.monitor-view').getAttribute('data-mode')).toBe('replay');
