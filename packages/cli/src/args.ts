@@ -1,4 +1,5 @@
 /** Minimal argument parsing: positionals and `--name value` / `--name=value` options. */
+import { resolve } from 'node:path';
 import { UsageError } from './command.js';
 
 export interface ParsedArgs {
@@ -33,4 +34,16 @@ export function parseArgs(args: string[], valued: string[], flags: string[] = []
         }
     }
     return { positionals, options };
+}
+
+/**
+ * The folder a path option names (`--cache-dir DIR`), resolved against `cwd`; undefined when the
+ * option is not given. An empty value is refused: resolved, it would name the current folder, and
+ * `contract cache clear --cache-dir "$UNSET"` would then empty it.
+ */
+export function folderOption(options: Map<string, string | true>, name: string, cwd: string): string | undefined {
+    const value = options.get(name);
+    if (typeof value !== 'string') return undefined;
+    if (value.trim() === '') throw new UsageError(`--${name} was given an empty value (an unset variable in the command?): name a folder, or leave the option out`);
+    return resolve(cwd, value);
 }

@@ -8,7 +8,7 @@ import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
-import type { ParsedArgs } from './args.js';
+import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO } from './command.js';
 import { SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
@@ -71,8 +71,7 @@ export async function parseJobOptions(parsed: ParsedArgs, io: CliIO, isTTY: bool
     const runtimeOption = options.get('runtime');
     const runtime = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || undefined;
     if (runtime && !existsSync(join(runtime, 'Makefile'))) throw new UsageError(`${runtime} is not a runtime folder (no Makefile); pass --runtime PATH to the ContrACT runtime/`);
-    const cacheOption = options.get('cache-dir');
-    const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
+    const cacheDir = folderOption(options, 'cache-dir', io.cwd);
     return { dir, dirArg, sandbox, format, verbose: options.get('verbose') === true, progress: isTTY && format === 'text', runtime, cacheDir };
 }
 

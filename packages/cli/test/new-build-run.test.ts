@@ -192,6 +192,26 @@ describe('contract build / run on a project (bwrap)', () => {
         expect(existsSync(join(root, 'cache-opt'))).toBe(false);
     });
 
+    it('contract cache clear never empties a folder that is no build cache; an empty --cache-dir (an unset variable) is a usage error', async () => {
+        // before: `--cache-dir ""` named the current folder, and clear removed it whole
+        const here = join(root, 'work-here');
+        mkdirSync(here, { mode: 0o700 });
+        writeFileSync(join(here, 'important.txt'), 'precious');
+        mkdirSync(join(here, 'projects'));
+        for (const command of [['cache', 'clear', '--cache-dir', ''], ['cache', 'clear', '--cache-dir='], ['simulate', '.', 'x.scenario', '--cache-dir', ' '], ['build', '.', '--cache-dir', '']]) {
+            const empty = capture(here);
+            expect(await runCli(command, empty), command.join(' ')).toBe(2);
+            expect(empty.stderr).toContain('--cache-dir was given an empty value (an unset variable in the command?)');
+        }
+        // named, a folder that holds anything else than a cache's entries is refused, nothing removed
+        const named = capture(root);
+        expect(await runCli(['cache', 'clear', '--cache-dir', 'work-here'], named)).toBe(1);
+        expect(named.stderr).toBe(`contract cache: refusing to clear ${here}: it holds what a build cache does not ("important.txt"), so it is not one; a build cache holds runtime/, projects/, generated/, sim/, ws/ only. Nothing was removed\n`);
+        expect(readFileSync(join(here, 'important.txt'), 'utf8')).toBe('precious');
+        expect(existsSync(join(here, 'projects'))).toBe(true);
+        expect(readdirSync(here).sort()).toEqual(['important.txt', 'projects']);
+    });
+
     it('refuses a cache folder that is a link, or writable by others, with exit 3 and what to do', async () => {
         mkdirSync(join(root, 'open-cache'), { mode: 0o777 });
         chmodSync(join(root, 'open-cache'), 0o777);

@@ -5,8 +5,8 @@
  * (docs/getting-started.md "The build cache").
  */
 import { existsSync, readdirSync } from 'node:fs';
-import { join, resolve } from 'node:path';
-import { parseArgs } from '../args.js';
+import { join } from 'node:path';
+import { folderOption, parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 
 export const cacheCommand: Command = {
@@ -22,8 +22,7 @@ export const cacheCommand: Command = {
         const { positionals, options } = parseArgs(args, ['cache-dir'], []);
         if (positionals.length > 1 || (positionals[0] !== undefined && positionals[0] !== 'clear')) throw new UsageError(`unknown cache action '${positionals.join(' ')}' (expected nothing or clear)`);
         const { resolveCacheDir, clearCache, CACHE_DIR_ENV, CACHE_ENTRY_NAMES } = await import('@contract-studio/build-service');
-        const option = options.get('cache-dir');
-        const cache = resolveCacheDir(typeof option === 'string' ? resolve(io.cwd, option) : undefined, process.env, process.getuid?.(), undefined, io.cwd);
+        const cache = resolveCacheDir(folderOption(options, 'cache-dir', io.cwd), process.env, process.getuid?.(), undefined, io.cwd);
         if (positionals[0] === 'clear') {
             if (!existsSync(cache.dir)) {
                 io.err(`${cache.dir}: no build cache there, nothing to clear\n`);

@@ -9,7 +9,7 @@ import { existsSync, lstatSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import type { FileHandle } from 'node:fs/promises';
 import type { JunitSuite, LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
-import { parseArgs } from '../args.js';
+import { folderOption, parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT, formatGccDiagnostic } from '../job-runner.js';
@@ -72,8 +72,7 @@ export const simulateCommand: Command = {
         const runtimeOption = parsed.options.get('runtime');
         const runtimeDir = typeof runtimeOption === 'string' ? resolve(io.cwd, runtimeOption) : process.env.CONTRACT_RUNTIME || defaultRuntimeSource(DEFAULT_RUNTIME_DIR);
         if (!existsSync(join(runtimeDir, 'include', 'contract', 'vocabulary.h'))) throw new UsageError(`${runtimeDir} is not a ContrACT runtime folder; pass --runtime PATH`);
-        const cacheOption = parsed.options.get('cache-dir');
-        const cacheDir = typeof cacheOption === 'string' ? resolve(io.cwd, cacheOption) : undefined;
+        const cacheDir = folderOption(parsed.options, 'cache-dir', io.cwd);
         const dir = resolve(io.cwd, parsed.positionals[0]!);
         if (!existsSync(dir)) throw new UsageError(`${parsed.positionals[0]} does not exist`);
         // a scenario file that is not there is bad usage, said before the simulator is built (not as Node's ENOENT)
