@@ -108,6 +108,8 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             const bad = capture(dir);
             expect(await runCli(['simulate', TUTORIAL, scenario('mission.scenario'), '--cache-dir', cache, '--trace', join(dir, 'no', 'such', 'folder.jsonl')], bad)).toBe(1);
             expect(bad.stderr).toMatch(/contract simulate: cannot write the trace to .*folder\.jsonl: ENOENT/);
+            // said before anything ran (before, after the whole run and its report)
+            expect(bad.stdout).toBe('');
             // a link planted where the trace goes (a hostile checkout): never written through, said so
             writeFileSync(join(dir, 'victim.txt'), 'mine\n');
             symlinkSync(join(dir, 'victim.txt'), join(dir, 'planted.jsonl'));

@@ -87,10 +87,30 @@ export interface LoadedScenario {
     diagnostics: ScenarioDiagnostic[];
 }
 
-/** Reads a scenario file: a regular file (no link followed), at most MAX_SCENARIO_BYTES. */
+/**
+ * Reads a scenario file: a regular file (no link followed), at most MAX_SCENARIO_BYTES, of UTF-8
+ * text (a byte order mark is dropped by the parser). Anything else is refused, saying where: a
+ * byte that is no UTF-8 was read as U+FFFD, and an event's value then changed without a word.
+ */
 export function readScenarioFile(path: string): string | { error: string } {
     const data = readRegularFile(path, MAX_SCENARIO_BYTES);
-    return Buffer.isBuffer(data) ? data.toString('utf8') : data;
+    if (!Buffer.isBuffer(data)) return data;
+    return decodeScenarioText(data);
+}
+
+/** A scenario file's bytes as text, or why they are not UTF-8 text (UTF-16, a byte of another encoding, with its line). */
+export function decodeScenarioText(data: Buffer): string | { error: string } {
+    if ((data[0] === 0xff && data[1] === 0xfe) || (data[0] === 0xfe && data[1] === 0xff)) return { error: 'UTF-16 text (its byte order mark says so): save it as UTF-8' };
+    try {
+        return new TextDecoder('utf-8', { fatal: true, ignoreBOM: true }).decode(data);
+    } catch {
+        // where: the first byte the lenient decoder replaces
+        const text = data.toString('utf8');
+        const at = text.indexOf('\ufffd');
+        const line = at < 0 ? 1 : text.slice(0, at).split('\n').length;
+        const byteAt = Buffer.byteLength(text.slice(0, Math.max(0, at)));
+        return { error: `not UTF-8 text: byte 0x${(data[byteAt] ?? 0).toString(16).padStart(2, '0')} on line ${line} is no UTF-8 (Latin-1? save it as UTF-8)` };
+    }
 }
 
 /** Parses and checks a scenario text against the project's model. */

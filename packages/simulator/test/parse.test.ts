@@ -96,6 +96,20 @@ describe('parseScenario', () => {
         expect(p.diagnostics[4]!.message).toContain('unknown directive');
     });
 
+    it('a second title or end, and a time finer than a nanosecond, are errors (they were taken silently: the last header won, the time was rounded)', () => {
+        const p = parseScenario(['scenario a', 'scenario b', 'until 1s', 'until 2s', 't=0.5ns stop SUP.action', 't=1.0000000006ms stop SUP.action', 'exec CTL 0.7ns', 't=2.5us stop SUP.action', 't=0.500000000s stop SUP.action'].join('\n'));
+        expect(p.diagnostics.map((d) => [d.line, d.column, d.message])).toEqual([
+            [2, 1, "a second 'scenario' line: a scenario has one title ('a' already)"],
+            [4, 1, "a second 'until' line: a scenario has one end (1s already)"],
+            [5, 3, '0.5ns is not a whole number of nanoseconds (the virtual clock\'s step): no fraction of a nanosecond'],
+            [6, 3, '1.0000000006ms is not a whole number of nanoseconds (the virtual clock\'s step): at most 6 decimals in ms'],
+            [7, 10, '0.7ns is not a whole number of nanoseconds (the virtual clock\'s step): no fraction of a nanosecond'],
+        ]);
+        expect(p.title).toBe('a');
+        expect(p.untilNs).toBe(1e9);
+        expect(p.steps.map((s) => s.atNs)).toEqual([2500, 0.5e9]);
+    });
+
     it('offers the word a misspelt one was meant to be', () => {
         const p = parseScenario([
             'exepct rule SUP.action.FIRST active',

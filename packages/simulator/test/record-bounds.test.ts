@@ -50,7 +50,7 @@ const items = (r: ScenarioResult['steps'][number]['record']) =>
 function wholeJson(results: ScenarioResult[]): string {
     return JSON.stringify({
         scenarios: results.map((r) => ({
-            file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
+            file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, reachedNs: r.reachedNs, expectations: r.expectationsPlanned, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
             ...(r.trimmed ? { trimmed: JSON.parse(jsonReport([r])).scenarios[0].trimmed } : {}),
             schemas: JSON.parse(jsonReport([r])).scenarios[0].schemas,
             failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),

@@ -5,7 +5,7 @@
  * and reports each step and each failed expectation like a test runner; `--trace` also writes the
  * simulation as the run-time trace records `contract run --trace` writes (one JSON object a line).
  */
-import { existsSync, lstatSync } from 'node:fs';
+import { existsSync, lstatSync, statSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import type { FileHandle } from 'node:fs/promises';
 import type { JunitSuite, LoadedScenario, ScenarioResult, SimulatorSandboxChoice } from '@contract-studio/simulator';
@@ -75,6 +75,7 @@ export const simulateCommand: Command = {
         const cacheDir = folderOption(parsed.options, 'cache-dir', io.cwd);
         const dir = resolve(io.cwd, parsed.positionals[0]!);
         if (!existsSync(dir)) throw new UsageError(`${parsed.positionals[0]} does not exist`);
+        if (!statSync(dir).isDirectory()) throw new UsageError(`${safeName(parsed.positionals[0]!)} is not a directory (DIR is the folder of the .contract files)`);
         // a scenario file that is not there is bad usage, said before the simulator is built (not as Node's ENOENT)
         const missing = parsed.positionals.slice(1).filter((arg) => scenarioMissing(resolve(io.cwd, arg)));
         if (missing.length) throw new UsageError(`no such scenario file: ${missing.map(safeName).join(', ')}`);
@@ -146,6 +147,12 @@ export const simulateCommand: Command = {
             await io.drained?.();
         };
         const trace = typeof traceOption === 'string' ? new SimulationTrace(resolve(io.cwd, traceOption)) : undefined;
+        // a trace file that cannot be written is said before the scenarios run (as contract run does), not after them
+        const unwritable = await trace?.open();
+        if (unwritable) {
+            io.err(`contract simulate: cannot write the trace to ${safeName(unwritable.file)}: ${unwritable.message}\n`);
+            return EXIT_FAILURE;
+        }
         const suites: JunitSuite[] = [];
         let passed = 0;
         let failed = 0;
@@ -201,6 +208,16 @@ class SimulationTrace {
     private error: Error | undefined;
 
     constructor(private readonly file: string) {}
+
+    /** Opens (creates or empties) the file now; the fault, if it cannot be. */
+    async open(): Promise<{ file: string; message: string } | undefined> {
+        try {
+            this.handle ??= await openTraceFile(this.file);
+            return undefined;
+        } catch (e) {
+            return { file: this.file, message: (e as Error).message };
+        }
+    }
 
     async add(r: ScenarioResult): Promise<void> {
         if (this.error) return;

@@ -107,6 +107,9 @@ export const MAX_TIME_NS = 86_400_000_000_000;
 const UNIT_NS: Record<string, number> = { ns: 1, us: 1_000, ms: 1_000_000, s: 1_000_000_000 };
 
 /** Parses a time literal (`300ms`, `1.5s`, `0`) to nanoseconds; undefined when it is not one. */
+/** Decimals a time in each unit may have and stay a whole number of nanoseconds. */
+const DECIMALS_TO_NS: Readonly<Record<string, number>> = { ns: 0, us: 3, ms: 6, s: 9 };
+
 export function parseTimeLiteral(text: string): number | undefined {
     if (text === '0') return 0;
     const m = /^([0-9]+(?:\.[0-9]+)?)(ns|us|ms|s)$/.exec(text);
@@ -192,6 +195,9 @@ class LineCursor {
         const ns = parseTimeLiteral(text);
         if (ns === undefined) this.fail(`expected ${what} (a time such as 300ms, 1.5s, 250us, 0), found '${text || this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`, from, from + Math.max(text.length, 1));
         if (ns > MAX_TIME_NS) this.fail(`${text} is beyond the longest scenario (1 day)`, from, from + text.length);
+        // the virtual clock counts whole nanoseconds: a finer time was rounded without a word
+        const fine = /\.([0-9]+)(ns|us|ms|s)$/.exec(text);
+        if (fine && fine[1]!.replace(/0+$/, '').length > DECIMALS_TO_NS[fine[2]!]!) this.fail(`${text} is not a whole number of nanoseconds (the virtual clock's step): ${fine[2] === 'ns' ? 'no fraction of a nanosecond' : `at most ${DECIMALS_TO_NS[fine[2]!]} decimals in ${fine[2]}`}`, from, from + text.length);
         this.pos += text.length;
         return { ns, span: this.span(from, this.pos) };
     }
@@ -384,6 +390,7 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
     };
     if (word === 'scenario') {
         headerOnly('scenario');
+        if (out.title !== undefined) throw new Failure(wordSpan.column, wordSpan.endColumn, `a second 'scenario' line: a scenario has one title ('${out.title.slice(0, 60)}' already)`);
         cur.keyword('scenario');
         cur.skipSpaces();
         out.title = cur.text.slice(cur.pos).trim();
@@ -391,6 +398,7 @@ function parseDirective(cur: LineCursor, out: ParsedScenario, timed: boolean): S
     }
     if (word === 'until') {
         headerOnly('until');
+        if (out.untilNs !== undefined) throw new Failure(wordSpan.column, wordSpan.endColumn, `a second 'until' line: a scenario has one end (${formatTime(out.untilNs)} already)`);
         cur.keyword('until');
         out.untilNs = cur.time('the end of the scenario').ns;
         cur.endOfLine('the end time');
@@ -500,6 +508,8 @@ export function parseScenario(text: string): ParsedScenario {
         diag({ line: 1, column: 1, endColumn: 2, code: 'scenario-too-large', message: `the scenario is ${text.length} characters long; at most ${MAX_SCENARIO_BYTES} are read` });
         return out;
     }
+    // a byte order mark (a file saved by a Windows editor) is no part of the first line
+    if (text.charCodeAt(0) === 0xfeff) text = text.slice(1);
     const lines = text.split(/\r?\n/);
     let now = 0;
     let sawStep = false;

@@ -158,8 +158,12 @@ export function* textScenarioParts(r: ScenarioResult, options: { verbose?: boole
     if (options.verbose) for (const l of r.trimmed?.schemaLines ?? misses.schemaLines()) out.push(`                  ${safe(l)}`);
     if (r.trimmed) out.push(`  NOTE ${safe(r.trimmed.message)}`);
     if (r.error) out.push(`  ERROR ${safe(r.error)}`);
-    const expectations = r.steps.filter((s) => s.kind === 'expect').length;
-    out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${expectations - r.failures.filter((f) => f.kind === 'expect').length}/${expectations} expectations, ${r.failures.length} failure(s); ${formatTime(r.endNs)} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
+    const answered = r.steps.filter((s) => s.kind === 'expect').length;
+    // a run stopped short (timed out, crashed) says how many expectations it never reached, and how far it got
+    const planned = Math.max(r.expectationsPlanned ?? answered, answered);
+    const unreached = planned > answered ? ` (${planned - answered} not reached)` : '';
+    const simulated = r.error && r.reachedNs < r.endNs ? `${formatTime(r.reachedNs)} of ${formatTime(r.endNs)}` : formatTime(r.endNs);
+    out.push(`  ${r.passed ? 'passed' : 'FAILED'}: ${answered - r.failures.filter((f) => f.kind === 'expect').length}/${planned} expectations${unreached}, ${r.failures.length} failure(s); ${simulated} simulated in ${r.ms.toFixed(0)} ms (${r.eventsProcessed} engine inputs)`);
     out.push('');
     yield out.join('\n') + '\n';
 }
@@ -194,7 +198,7 @@ export const JSON_REPORT_END = ']}\n';
 /** One scenario's parts of the JSON report (`first`: the report's first scenario, not preceded by a comma). */
 export function* jsonScenarioParts(r: ScenarioResult, first: boolean): Generator<string> {
     const head = JSON.stringify({
-        file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
+        file: r.file, title: r.title, passed: r.passed, error: r.error, endNs: r.endNs, reachedNs: r.reachedNs, expectations: r.expectationsPlanned, ms: Math.round(r.ms), eventsProcessed: r.eventsProcessed,
         ...(r.trimmed ? { trimmed: trimmedJson(r.trimmed) } : {}),
         schemas: schemaCounts(r),
         failures: r.failures.map((f) => ({ line: f.line, source: f.source, timeNs: f.timeNs, message: f.message, expected: f.record.expected, actual: f.record.actual })),

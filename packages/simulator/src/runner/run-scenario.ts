@@ -59,8 +59,15 @@ export interface ScenarioResult {
     failures: StepResult[];
     /** Inputs the engines processed (module events, timers, ORD events, release acks...). */
     eventsProcessed: number;
-    /** Virtual end time. */
+    /** Virtual end time (the scenario's `until`, or its last step's time). */
     endNs: number;
+    /**
+     * Virtual time the simulation reached: the last step it answered (endNs when it ended; less
+     * when it was stopped: timed out, crashed), and the expectations the scenario has (some may
+     * not have been reached).
+     */
+    reachedNs: number;
+    expectationsPlanned: number;
     /** Wall time of the harness run, seen from here (process start and pipes included). */
     ms: number;
     /** The harness's own wall time (its end record). */
@@ -179,6 +186,15 @@ function trimmedMessage(t: Omit<TrimmedRecords, 'message'>, bounds: RecordBounds
         + '; the verdicts, failures and schema figures are the whole scenario\'s';
 }
 
+/** Where a run stopped short stood: the last step it answered, and the next one it did not reach. */
+function stoppedAt(result: ScenarioResult, lines: Int32Array, times: Float64Array, endNs: number): string {
+    const last = result.steps[result.steps.length - 1];
+    const done = last ? `it had answered the steps up to line ${last.line} (at ${formatTime(last.timeNs)} of virtual time)` : 'it had answered no step yet';
+    const at = last ? lines.indexOf(last.line) : -1;
+    const next = at + 1 < lines.length ? `, the next one is line ${lines[at + 1]} at ${formatTime(times[at + 1]!)}` : `, the end of the scenario at ${formatTime(endNs)}`;
+    return done + next;
+}
+
 /** What a step's record needs of the step: its source line and kind. */
 interface StepOfLine {
     source: string;
@@ -208,9 +224,13 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
     for (const s of scenario.steps) byLine.set(s.span.line, { source: s.source, kind: s.kind });
     const title = scenario.title;
     const bounds = options.recordBounds ?? RECORD_BOUNDS;
+    const expectationsPlanned = scenario.steps.reduce((n, s) => n + (s.kind === 'expect' ? 1 : 0), 0);
+    // each step's line and time, in order (12 bytes a step): what a run stopped short says it had not reached
+    const stepLines = Int32Array.from(scenario.steps, (s) => s.span.line);
+    const stepTimes = Float64Array.from(scenario.steps, (s) => s.atNs);
 
     return new Promise((resolvePromise) => {
-        const result: ScenarioResult = { file, title, passed: false, steps: [], failures: [], eventsProcessed: 0, endNs, ms: 0, harnessMs: 0 };
+        const result: ScenarioResult = { file, title, passed: false, steps: [], failures: [], eventsProcessed: 0, endNs, reachedNs: 0, expectationsPlanned, ms: 0, harnessMs: 0 };
         let child;
         try {
             // the simulator sees its own folder (read-only) and the toolchain's libraries, nothing else
@@ -232,7 +252,7 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
         /** Once the records are no longer kept whole: what is said of it, and ORD's story told as the records come. */
         let trimmed: (Omit<TrimmedRecords, 'message' | 'schemas' | 'schemaLines'> & { story: MissTeller }) | undefined;
         const timer = setTimeout(() => {
-            result.error = `the simulation did not finish within ${(options.timeoutMs ?? 60_000) / 1000} s (a user function that never returns?)`;
+            result.error = `the simulation did not finish within ${(options.timeoutMs ?? 60_000) / 1000} s of wall time: ${stoppedAt(result, stepLines, stepTimes, endNs)} (a user function that never returns, or more virtual time than the simulator goes through in that time: every period of every active periodic schema is simulated)`;
             child.kill('SIGKILL');
         }, options.timeoutMs ?? 60_000);
         const take = (line: string, size: number) => {
@@ -240,6 +260,7 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
             let record = asRecord(line);
             if (!record) return;
             const step = byLine.get(record.line);
+            if (record.timeNs > result.reachedNs) result.reachedNs = record.timeNs;
             if (record.end) {
                 sawEnd = true;
                 result.eventsProcessed = record.eventsProcessed ?? 0;
