@@ -110,6 +110,10 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             expect(bad.stderr).toMatch(/contract simulate: cannot write the trace to .*folder\.jsonl: ENOENT/);
             // said before anything ran (before, after the whole run and its report)
             expect(bad.stdout).toBe('');
+            // DIR a file, not a folder: a usage error (it was exit 1, as a failed run)
+            const notDir = capture(dir);
+            expect(await runCli(['simulate', scenario('mission.scenario'), scenario('mission.scenario'), '--cache-dir', cache], notDir)).toBe(2);
+            expect(notDir.stderr).toContain('is not a directory (DIR is the folder of the .contract files)');
             // a link planted where the trace goes (a hostile checkout): never written through, said so
             writeFileSync(join(dir, 'victim.txt'), 'mine\n');
             symlinkSync(join(dir, 'victim.txt'), join(dir, 'planted.jsonl'));
