@@ -7,9 +7,9 @@ const lineArb: fc.Arbitrary<TraceLine> = fc.record({
   file: fc.constantFrom('ORD_1.csv', 'MAA_1.csv', 'SUP_1.csv', 'a,b "c".csv'),
   line: fc.integer({ min: 1, max: 1_000_000 }),
   text: fc.string({ unit: 'grapheme', maxLength: 60 }).map((t) => t.replace(/\n/g, ' ')),
-}).chain((l) => fc.boolean().map((cut) => (cut && l.line % 7 === 0 ? { ...l, cut: true as const } : l)))
+}).chain((l) => fc.boolean().map((cut): TraceLine => (cut && l.line % 7 === 0 ? { ...l, cut: true as const } : l)))
   // now and then an entry standing for lines the service counted without sending them (its text empty)
-  .chain((l) => fc.integer({ min: 0, max: 30 }).map((n) => (n > 0 && l.line % 5 === 0 && !l.cut ? { file: l.file, line: l.line, text: '', unsent: n } : l)));
+  .chain((l) => fc.integer({ min: 0, max: 30 }).map((n): TraceLine => (n > 0 && l.line % 5 === 0 && !l.cut ? { file: l.file, line: l.line, text: '', unsent: n } : l)));
 
 describe('trace wire form', () => {
   test('decode(encode(records)) is the records, in order (any texts, files, line numbers)', () => {
