@@ -222,6 +222,19 @@ describe('a live run followed in a worker', () => {
     expect(remote.live.unknownLines).toBe(40);
   });
 
+  it('says a second log of one module in the run\'s folder (forged by some module\'s code) while the run goes on', async () => {
+    const ord = lines.find((l) => l.file === 'ORD.csv')!;
+    const own = { ...ord, file: 'ORD_6-Dec-2026-10h00m00s.csv' };
+    const sent: TraceLine[] = [own, { ...own, file: 'ORD_6-Dec-2026-99h99m99s.csv', line: 2 }];
+    const url = await listen((ws) => {
+      ws.send(JSON.stringify({ type: 'trace', seq: 1, t: Date.now(), ...encodeTraceRecords(sent) }));
+      ws.send(JSON.stringify({ type: 'end', seq: 2, t: Date.now(), result: { ok: true } }));
+    });
+    const { remote } = pair(url);
+    await settled(remote);
+    expect(remote.problems).toEqual([`ORD: a second log of it in the run's logs folder (ORD_6-Dec-2026-99h99m99s.csv, beside ${own.file}), read with the first: a run writes one log per module (a file named as its log that is not one)`]);
+  });
+
   it('sends the page at most one snapshot per snapshotMs, and the last one always', async () => {
     const frames = events(2); // many small events, sent at once
     const url = await listen((ws) => {

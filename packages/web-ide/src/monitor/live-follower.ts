@@ -9,7 +9,7 @@
  * does not decode is skipped and said (problems), lines and batches are bounded.
  * A broken stream is taken up again after the last event seen (job-stream.ts, as for the build panel).
  */
-import { forEachTraceLine } from '@contract-studio/build-service/trace';
+import { forEachTraceLine, moduleOfLog } from '@contract-studio/build-service/trace';
 import { JobStream, type SocketLike, type StreamEvent } from '../build/job-stream.js';
 import { MonitorModel } from './monitor-model.js';
 import { jobOutcome, type FromFollower, type Snapshot, type ToFollower } from './live-follow-protocol.js';
@@ -60,6 +60,9 @@ export class LiveFollower {
    * run of lines of one log).
    */
   private missed = 0;
+  /** The logs seen, and each module's first (noteLogFile). */
+  private readonly logFiles = new Set<string>();
+  private readonly logOf = new Map<string, string>();
   private readonly nextLines = new Map<string, number>();
   private gapFile: string | undefined;
   private gapNext = FIRST_RECORD_LINE;
@@ -132,6 +135,7 @@ export class LiveFollower {
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
   private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number, cut = false): void {
     const name = file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
+    if (name !== this.gapFile) this.noteLogFile(name);
     this.followLines(name, line);
     this.model.pushLineIn(name, line, text, from, Math.min(to, from + MAX_LINE + 1), textId, cut);
     if (this.measure) {
@@ -157,6 +161,21 @@ export class LiveFollower {
     this.followLines(name, line);
     if (line + count > this.gapNext) this.gapNext = Math.min(Number.MAX_SAFE_INTEGER, line + count);
     this.model.countUnsent(count);
+  }
+
+  /**
+   * A second log of one module in the run's logs folder (named as the runtime names a log): said
+   * while the run goes on, as a replay and `contract trace` say it — a run writes one log per
+   * module, so it was written by some module's code under that name (forged deadline misses, rules).
+   */
+  private noteLogFile(name: string): void {
+    if (this.logFiles.has(name) || this.logFiles.size >= MAX_GAP_FILES) return;
+    this.logFiles.add(name);
+    const module = moduleOfLog(name);
+    if (module === undefined) return;
+    const first = this.logOf.get(module);
+    if (first === undefined) this.logOf.set(module, name);
+    else this.problem(`${module}: a second log of it in the run's logs folder (${name}, beside ${first}), read with the first: a run writes one log per module (a file named as its log that is not one)`);
   }
 
   /** Counts the lines of `file` skipped before `line` (missed). */

@@ -208,6 +208,15 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
     expect(w.value.model.recordCount).toBe(viaReader(files).recordCount);
   });
 
+  it('says a module with two logs (a run writes one: the other is another run\'s, or forged by some module\'s code), as contract trace says it', () => {
+    const ord = (name: string, cycle: number) => ({ name, text: `${HEADER}\n${1000 + cycle},${W},ORD,ord_deadline_miss,,,0,schema=S cycle=${cycle} tick_ns=1\n` });
+    const steps = recordedRunSteps([ord('ORD_6-Dec-2026-10h00m00s.csv', 1), ord('ORD_6-Dec-2026-99h99m99s.csv', 2), { name: 'SUP_6-Dec-2026-10h00m00s.csv', text: `${HEADER}\n` }], 7, OPTS);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    // before, read as one without a word (forged deadline misses shown as ORD's)
+    expect(step.value.leftOut).toEqual(['ORD: 2 logs of it (ORD_6-Dec-2026-10h00m00s.csv, ORD_6-Dec-2026-99h99m99s.csv), read as one: a run writes one log per module (two runs\' logs together, or a file named as its log that is not one)']);
+  });
+
   it('builds nothing of logs with no record', () => {
     const empty = [{ name: 'A.csv', text: '' }, { name: 'B.csv', text: `${HEADER}\n` }, { name: 'C.csv', text: '\n\n' }];
     expect(viaRanges(empty).model.recordCount).toBe(0);

@@ -13,7 +13,7 @@
  * Built in steps (a generator that yields every `every` lines) so that its caller can let the
  * page draw between slices.
  */
-import { MinHeap, TRACE_KINDS, parseRecordLine, recordLineEnd, type KnownRecord } from '@contract-studio/build-service/trace';
+import { MinHeap, TRACE_KINDS, moduleOfLog, parseRecordLine, recordLineEnd, type KnownRecord } from '@contract-studio/build-service/trace';
 import { piecesLength, type LogFile } from '../views/run-logs.js';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
@@ -188,7 +188,7 @@ export interface RecordedRun {
 export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
   const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
   const logs: LogLines[] = [];
-  const leftOut: string[] = [];
+  const leftOut: string[] = [...twinLogNotes(sorted.map((f) => f.name))];
   for (const file of sorted) logs.push(yield* logLines(file, every, maxUnreadable, leftOut));
   // merge: a heap of the logs by their next line (key, then file order)
   const at = logs.map(() => 0);
@@ -231,4 +231,19 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     if (++folded % every === 0) yield;
   }
   return { model, leftOut };
+}
+
+/**
+ * A module with more than one log among `names` (named as the runtime names a log): said, as
+ * `contract trace` says it — a run writes one log per module, so the others are another run's, or
+ * a file a module's code wrote under another module's name (forged deadline misses, rule changes).
+ */
+export function twinLogNotes(names: readonly string[]): string[] {
+  const byModule = new Map<string, string[]>();
+  for (const name of names) {
+    const m = moduleOfLog(name);
+    if (m !== undefined) byModule.set(m, [...(byModule.get(m) ?? []), name]);
+  }
+  return [...byModule].filter(([, files]) => files.length > 1).map(([m, files]) =>
+    `${m}: ${files.length} logs of it (${files.slice(0, 3).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: a run writes one log per module (two runs' logs together, or a file named as its log that is not one)`);
 }
