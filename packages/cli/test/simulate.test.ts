@@ -114,6 +114,12 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             const notDir = capture(dir);
             expect(await runCli(['simulate', scenario('mission.scenario'), scenario('mission.scenario'), '--cache-dir', cache], notDir)).toBe(2);
             expect(notDir.stderr).toContain('is not a directory (DIR is the folder of the .contract files)');
+            // a folder with no model: said once (it was "no supervisor ..." on every line of the scenario)
+            mkdirSync(join(dir, 'empty'));
+            const empty = capture(dir);
+            expect(await runCli(['simulate', 'empty', scenario('mission.scenario'), '--cache-dir', cache], empty)).toBe(2);
+            expect(empty.stderr).toContain('error: no .contract file in this folder (or below it): DIR is the folder of the project\'s .contract files [no-model]');
+            expect(empty.stderr).not.toContain('no supervisor');
             // a link planted where the trace goes (a hostile checkout): never written through, said so
             writeFileSync(join(dir, 'victim.txt'), 'mine\n');
             symlinkSync(join(dir, 'victim.txt'), join(dir, 'planted.jsonl'));

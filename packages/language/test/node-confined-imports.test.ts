@@ -114,6 +114,6 @@ describe('loadWorkspace without confinement (contract check)', () => {
         expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
         const links = ws.diagnostics.filter((d) => d.code === 'import-link');
         expect(links.map((d) => [d.file, d.line, d.severity])).toEqual([['main.contract', 1, 'warning'], ['main.contract', 2, 'warning']]);
-        expect(links[0]!.message).toBe('"vec.contract" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE\'s build service) never reads a project\'s source through a link and refuses it; put the file itself there');
+        expect(links[0]!.message).toBe('"vec.contract" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE\'s build service) and contract simulate never read a project\'s source through a link and refuse it; put the file itself there');
     });
 });

@@ -60,6 +60,10 @@ export async function prepareProject(dir: string, options: SimulateOptions): Pro
     const workspace = await loadWorkspace(dir, { confineImportsTo: dir, maxModelBytes: options.maxModelBytes });
     const modelErrors = workspace.diagnostics.filter((d) => d.severity === 'error');
     if (modelErrors.length) return { modelErrors };
+    // a folder with no model: said once, not as "no supervisor ..." on every line of the scenario
+    if (workspace.documents.length === 0) {
+        return { modelErrors: [{ file: '.', line: 1, column: 1, endLine: 1, endColumn: 1, severity: 'error', code: 'no-model', message: 'no .contract file in this folder (or below it): DIR is the folder of the project\'s .contract files' }] };
+    }
     const docs = [...workspace.documents].sort((a, b) => {
         const ua = a.document.uri.toString();
         const ub = b.document.uri.toString();

@@ -1,4 +1,5 @@
 import { describe, expect, it } from 'vitest';
+import { safe } from '../src/runner/schema-story.js';
 import fc from 'fast-check';
 import { parseScenario } from '../src/scenario/index.js';
 
@@ -108,6 +109,14 @@ describe('parseScenario', () => {
         expect(p.title).toBe('a');
         expect(p.untilNs).toBe(1e9);
         expect(p.steps.map((s) => s.atNs)).toEqual([2500, 0.5e9]);
+    });
+
+    it('a lone CR ends a line, as editors read it (a CR-only file was one line, quoted \'\' at its first CR); a tab in an echoed line stays a tab', () => {
+        const p = parseScenario('start SUP.action()\rt=1ms stop SUP.action\r\nt=2ms start SUP.action()\n');
+        expect(p.diagnostics).toEqual([]);
+        expect(p.steps.map((s) => [s.span.line, s.kind])).toEqual([[1, 'start'], [2, 'stop'], [3, 'start']]);
+        expect(safe('start\tSUP.action()')).toBe('start\tSUP.action()');
+        expect(safe('a\nb\rc\u001bd')).toBe('a?b?c?d');
     });
 
     it('offers the word a misspelt one was meant to be', () => {

@@ -95,7 +95,7 @@ export const simulateCommand: Command = {
             }
             for (const d of project.modelErrors) io.err(`${safeName(displayPath(io.cwd, join(dir, d.file)))}:${d.line}:${d.column}: error: ${d.message} [${d.code}]\n`);
             if (project.modelErrors.length) {
-                io.err(`contract simulate: the model has ${project.modelErrors.length} error(s): fix them first (contract check)\n`);
+                io.err(`contract simulate: the model has ${project.modelErrors.length} error(s): fix them first (\`contract check\` shows the model's own; a linked import, refused here as in a build, it shows as warning import-link)\n`);
                 return EXIT_USAGE;
             }
             if (project.compile?.diagnostics.length) {

@@ -163,7 +163,7 @@ function reportLinkedImport(document: LangiumDocument<Model>, imp: Import): void
     const range = importPathRange(imp);
     if (!range) return;
     (document.diagnostics ??= []).push({ range, severity: 2, code: IMPORT_LINK_CODE, source: 'cactal',
-        message: `"${imp.path}" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE's build service) never reads a project's source through a link and refuses it; put the file itself there` });
+        message: `"${imp.path}" is a symbolic link, or in a linked folder: read here, but a build (contract build, the IDE's build service) and contract simulate never read a project's source through a link and refuse it; put the file itself there` });
 }
 
 /** Replaces the validator's "does not exist" on a refused import by the reason it was not loaded. */

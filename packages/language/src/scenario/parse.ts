@@ -510,7 +510,8 @@ export function parseScenario(text: string): ParsedScenario {
     }
     // a byte order mark (a file saved by a Windows editor) is no part of the first line
     if (text.charCodeAt(0) === 0xfeff) text = text.slice(1);
-    const lines = text.split(/\r?\n/);
+    // a line ends at LF, CRLF or a lone CR (an old Mac's, as editors read it): a CR inside a line was quoted as ''
+    const lines = text.split(/\r\n|\r|\n/);
     let now = 0;
     let sawStep = false;
     for (let i = 0; i < lines.length; i++) {

@@ -10,11 +10,12 @@ import type { StepRecord } from './protocol.js';
 import { engineLine, typedRecord } from '../trace/steps-to-trace.js';
 
 /**
- * A terminal-safe piece of a line: control characters of simulated output (a newline or tab in a
- * string value too: one line stays one line), line separators and bidi overrides shown as `?`.
+ * A terminal-safe piece of a line: control characters of simulated output (a newline in a string
+ * value too: one line stays one line), line separators and bidi overrides shown as `?`; a tab is
+ * kept (a scenario line indented with tabs read `start?SUP.f()`).
  */
 export function safe(s: string): string {
-    return s.replace(/[\u0000-\u001f\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g, '?');
+    return s.replace(/[\u0000-\u0008\u000a-\u001f\u007f-\u009f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g, '?');
 }
 
 /** What an engine's line is when ORD wrote it, read as the trace reader reads it (`release`, `activate`, `deadline_miss`, ...), else ''. */

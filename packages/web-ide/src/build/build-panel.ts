@@ -187,7 +187,7 @@ export class BuildPanel {
     this.renderChips();
     this.diagnostics = [];
     this.onDiagnostics.fire([]);
-    this.originEl.textContent = '';
+    this.setOrigin('');
   }
 
   /**
@@ -218,7 +218,7 @@ export class BuildPanel {
       // was restarted, which ends its jobs. Said, rather than an empty panel as if nothing had run.
       if (sayIfGone && !this.busy) {
         this.clear();
-        this.originEl.textContent = `(${why})`;
+        this.setOrigin(`(${why})`);
         this.setStatus('gone', `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs: their logs and a run's CSV logs went with them (a Build & Run writes nothing into the workspace); run it again`, false);
       }
       return 'gone';
@@ -227,7 +227,7 @@ export class BuildPanel {
     if ((job.finishedAt && !opts.ended) || this.busy) return 'not now';
     this.clear();
     this.jobId = job.id;
-    this.originEl.textContent = job.finishedAt ? '(shown again after a reload: it had ended)' : `(${why})`;
+    this.setOrigin(job.finishedAt ? '(shown again after a reload: it had ended)' : `(${why})`);
     this.setStatus(job.status, undefined, !job.finishedAt);
     // this tab's Stop before the reload is still its own
     this.stopAsked = opts.stoppedHere ? job.id : undefined;
@@ -311,6 +311,12 @@ export class BuildPanel {
     } catch (e) {
       this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: `cancel failed: ${(e as Error).message}` });
     }
+  }
+
+  /** Where the job followed comes from (whole in its tooltip: a narrow panel cuts it). */
+  private setOrigin(text: string): void {
+    this.originEl.textContent = text;
+    this.originEl.title = text;
   }
 
   private setStatus(status: string, message: string | undefined, running: boolean): void {

@@ -17,7 +17,7 @@ function hostileRun(): MonitorModel {
   const lines: string[] = [];
   for (const n of NAMES) {
     lines.push(`${ns++},${W},SUP,supervisor,,,0,function ${n} started`);
-    lines.push(`${ns++},${W},SUP,sup_rule,,,0,${n}.${n} active cause=stop`);
+    lines.push(`${ns++},${W},SUP,sup_rule,,,0,${n}.${n} active cause=elapsed=1ns`);
     lines.push(`${ns++},${W},SUP,sup_rule,,,0,action.${n} active cause=started(${n})`);
     lines.push(`${ns++},${W},ORD,request_received,SUP,,0,START ${n}`);
     lines.push(`${ns++},${W},ORD,scheduler,,,0,activate ${n}`);
@@ -40,7 +40,7 @@ describe('names from a model or a log that are also Object.prototype names', () 
     const sup = s.supervisors.get('SUP')!;
     for (const n of NAMES) {
       expect(sup.functions.get(n)?.state, n).toBe('running');
-      expect(sup.rules.get(`${n}.${n}`), n).toMatchObject({ function: n, rule: n, active: true, cause: 'stop' });
+      expect(sup.rules.get(`${n}.${n}`), n).toMatchObject({ function: n, rule: n, active: true, cause: 'elapsed=1ns' });
       expect(s.schemas.get(n), n).toMatchObject({ active: true, activations: 1 });
       expect(s.periodic.get(n), n).toMatchObject({ releases: 1, completions: 1 });
     }
@@ -88,7 +88,7 @@ describe('a log that names something new on every line (a module may write its o
       push('to_port=0', 'data_posted', 'CAM', `P${k}`);                 // a new flow
       push('activation=1', 'run_started', `M${k}`);                     // a new module
       push(`schema=S${k} cycle=0 release_ns=${k}`, 'ord_release', 'ORD', 'CAM'); // a new schema
-      push(`fn.R${k} active cause=stop`, 'sup_rule', 'SUP');            // a new rule
+      push(`fn.R${k} active cause=elapsed=1ns`, 'sup_rule', 'SUP');            // a new rule
     }
     push('activation=1', 'run_started');                                // CAM, known: still folded
     const s = m.live;

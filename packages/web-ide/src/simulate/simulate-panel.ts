@@ -30,7 +30,7 @@ const MAX_SHOWN_STEPS = 200;
 export class SimulatePanel {
   readonly element: HTMLElement;
   private readonly fnSelect = h('select', { class: 'sim-fn', 'aria-label': 'supervisor function' });
-  private readonly params = h('input', { class: 'sim-params', placeholder: 'parameters: consigne = {1.0, 2.0, 3.0} (empty: defaults)', spellcheck: false });
+  private readonly params = h('input', { class: 'sim-params', 'aria-label': 'the function\'s parameters (empty: its defaults)', placeholder: 'parameters: consigne = {1.0, 2.0, 3.0} (empty: defaults)', spellcheck: false });
   private readonly timeInput = h('input', { class: 'sim-time', value: '+1ms', 'aria-label': 'time: +1ms steps, 1ms runs to', spellcheck: false });
   /** A one-line scenario editor (completion from the language server): step-input.ts. */
   readonly stepInput: StepInput;

@@ -498,7 +498,7 @@ describe('Monitor in headless Chromium', () => {
     writeFileSync(join(s.workspace, 'hostile-run', 'ORD_1-Jan-2026-00h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
       '3000,w,ORD,request_received,SUP,,0,START __proto__', '4000,w,ORD,scheduler,,,0,activate __proto__'].join('\n') + '\n');
     writeFileSync(join(s.workspace, 'hostile-run', 'SUP_1-Jan-2026-00h00m00s.csv'), ['mono_ns,wall_time,module,event,peer,port,size,detail',
-      '1000,w,SUP,supervisor,,,0,function constructor started', '2000,w,SUP,sup_rule,,,0,constructor.__proto__ active cause=stop',
+      '1000,w,SUP,supervisor,,,0,function constructor started', '2000,w,SUP,sup_rule,,,0,constructor.__proto__ active cause=elapsed=1ns',
       '5000,w,SUP,sup_rule,,,0,action.toString active cause=elapsed=1000ns',
       // long names: a rule name of 27 characters is shown whole, a function name of 2,000 is cut to the pane
       '6000,w,SUP,sup_rule,,,0,action.OBSTACLE_AVOIDANCE_RECOVERY active cause=elapsed=1000ns', `7000,w,SUP,supervisor,,,0,function ${'F'.repeat(2000)} started`].join('\n') + '\n');
