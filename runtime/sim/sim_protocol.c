@@ -406,7 +406,7 @@ int sim_session_line(SimSession *s, char *line) {
             if (r.delivered < 0) { r.ok = 0; r.delivered = 0; }
         } else if (strcmp(verb, "crash") == 0) {
             NEED(1);
-            sim_world_crash(s->w, a[0]);
+            if (sim_world_crash(s->w, a[0], r.error, sizeof r.error)) r.ok = 0;
         } else if (strcmp(verb, "finish") == 0) {
             NEED(1);
             if (sim_world_finish(s->w, a[0], r.error, sizeof r.error)) r.ok = 0;

@@ -820,15 +820,22 @@ int sim_world_event(SimWorld *w, const char *module, int port, const char *value
     return n;
 }
 
-void sim_world_crash(SimWorld *w, const char *module) {
+int sim_world_crash(SimWorld *w, const char *module, char *err, size_t errlen) {
     int i = module_index(w, module, 1);
-    if (i < 0) return;
+    if (i < 0) return 0;
+    /* a module that is not running yet may crash (its process dies before it is started); one that
+       has crashed has no process left to crash: a second crash was taken without a word */
+    if (w->mods[i].crashed) {
+        snprintf(err, errlen, "%s has already crashed: there is no process of it left to crash", module);
+        return -1;
+    }
     w->mods[i].crashed = 1;
     w->mods[i].started = 0;
     for (int k = 0; k < w->nfin;) /* its releases never finish */
         if (w->fin[k].module == i) w->fin[k] = w->fin[--w->nfin];
         else k++;
     action(w, module, "crashed");
+    return 0;
 }
 
 int sim_world_finish(SimWorld *w, const char *module, char *err, size_t errlen) {

@@ -60,8 +60,9 @@ int sim_world_stop(SimWorld *w, const char *sup, const char *fn, char *err, size
  *  supervisors it was delivered to, or -1 and a message (unparsable value, crashed module). */
 int sim_world_event(SimWorld *w, const char *module, int port, const char *value_text, char *err,
                     size_t errlen);
-/** The module crashes: not running, never acks a release again. */
-void sim_world_crash(SimWorld *w, const char *module);
+/** The module crashes: not running, never acks a release again (also one not started yet). -1 and
+ *  a message when it has crashed already. */
+int sim_world_crash(SimWorld *w, const char *module, char *err, size_t errlen);
 /** The asynchronous module's code returns: its run ends (run_finished), it no longer runs; its
  *  holders keep their holds (the last one's STOP finds no run), and a supervisor that needs it later starts it again. -1 and a
  *  message when it is not running. */

@@ -165,6 +165,11 @@ describe('modules and event flows two supervisors share', () => {
         expect(runs(late)).toEqual(['1ms run_started activation=1', '40ms run_finished activation=1 STOP']);
     }, 60_000);
 
+    it('a module may crash before it is started; a second crash fails that step and says why (it was taken without a word)', async () => {
+        const r = await run(['t=1ms crash SCN', 't=2ms crash SCN', 'expect at 3ms module SCN stopped'].join('\n'));
+        expect(r.failures.map((f) => [f.line, f.message])).toEqual([[2, expect.stringContaining('crash failed: SCN has already crashed: there is no process of it left to crash')]]);
+    }, 60_000);
+
     it("finish of a module that is not running fails that step and says why; the last holder of a finished module still stops it, as a run does", async () => {
         const r = await run(['t=1ms finish SCN', 'start ALF.first()', 't=3ms finish SCN', 'expect at 30ms module SCN stopped'].join('\n'));
         expect(r.failures.map((f) => f.message)).toEqual([expect.stringContaining('SCN is not running: it has no run to finish')]);
