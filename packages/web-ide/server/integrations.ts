@@ -130,6 +130,6 @@ export async function createEmbeddedBuildServer(workspaceRoot: string, log: (lin
 export type SimulatorApi = typeof import('@contract-studio/simulator');
 
 export async function loadSimulator(): Promise<SimulatorApi> {
-  const sim = await importWith<SimulatorApi, 'prepareProject' | 'loadScenario' | 'runLoadedScenario'>('@contract-studio/simulator', ['prepareProject', 'loadScenario', 'runLoadedScenario']);
+  const sim = await importWith<SimulatorApi, 'prepareProject' | 'loadScenario' | 'runLoadedScenario' | 'decodeScenarioText'>('@contract-studio/simulator', ['prepareProject', 'loadScenario', 'runLoadedScenario', 'decodeScenarioText']);
   return sim as SimulatorApi;
 }

@@ -207,6 +207,13 @@ describe('POST /api/simulate', () => {
     expect((await post({ project: '../..', scenario: 'until 1ms' })).status).toBe(403);
     expect((await post({ path: '../../etc/x.scenario' })).status).toBeGreaterThanOrEqual(400);
     expect((await post({ path: 'scenarios/evil.scenario' })).status).toBe(403);
+    // a missing file, a folder, a path that is no .scenario, a file that is no UTF-8: said with the path (it was a bare "not found" or the generic 400)
+    expect(await post({ path: 'scenarios/none.scenario' })).toMatchObject({ status: 404, json: { error: 'no such scenario file in the workspace: scenarios/none.scenario' } });
+    mkdirSync(join(base, 'tutorial', 'scenarios', 'dir.scenario'), { recursive: true });
+    expect(await post({ path: 'scenarios/dir.scenario' })).toMatchObject({ status: 400, json: { error: 'scenarios/dir.scenario is a folder, not a scenario file' } });
+    expect(await post({ path: 'scenarios' })).toMatchObject({ status: 400, json: { error: 'path must name a .scenario file of the workspace ("scenarios" does not)' } });
+    writeFileSync(join(base, 'tutorial', 'scenarios', 'latin1.scenario'), Buffer.from('start SUP.action()\nt=1ms MAA:2 connection_status = "déjà"\n', 'latin1'));
+    expect(await post({ path: 'scenarios/latin1.scenario' })).toMatchObject({ status: 422, json: { error: 'scenarios/latin1.scenario: not UTF-8 text: byte 0xe9 on line 2 is no UTF-8 (Latin-1? save it as UTF-8)' } });
     expect((await post({ scenario: 'x'.repeat(300_000) })).status).toBe(413);
     const junk = await post({ scenario: '\u0000\u0001 t=-5 start start ((((\n'.repeat(50) });
     expect(junk.status).toBe(422);

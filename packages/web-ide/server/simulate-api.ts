@@ -75,15 +75,24 @@ export class SimulateApi {
     const project = body.project ?? '';
     if (typeof project !== 'string') throw new HttpError(400, 'project must be a workspace folder');
     const projectDir = this.paths.resolve(project);
-    let text: string;
+    let text: string | undefined;
+    let bytes: Buffer | undefined;
     let display = 'scenario';
     if (typeof body.scenario === 'string') text = body.scenario;
     else if (typeof body.path === 'string' && body.path.endsWith('.scenario')) {
       display = this.paths.toRelative(this.paths.resolve(body.path));
-      text = await readText(this.paths.fs, display);
-    } else throw new HttpError(400, 'give the scenario text (scenario) or a workspace .scenario file (path)');
-    if (text.length > MAX_SCENARIO_CHARS) throw new HttpError(413, `scenario longer than ${MAX_SCENARIO_CHARS} characters`);
+      bytes = await readBytes(this.paths.fs, display);
+    } else if (typeof body.path === 'string') throw new HttpError(400, `path must name a .scenario file of the workspace (${JSON.stringify(body.path.slice(0, 200))} does not)`);
+    else throw new HttpError(400, 'give the scenario text (scenario) or a workspace .scenario file (path)');
     const sim = await loadSimulator();
+    // a file's bytes are UTF-8 text, or refused saying where (a Latin-1 value was read as U+FFFD), as contract simulate does
+    if (bytes) {
+      const decoded = sim.decodeScenarioText(bytes);
+      if (typeof decoded !== 'string') throw new HttpError(422, `${display}: ${decoded.error}`);
+      text = decoded;
+    }
+    if (text === undefined) throw new HttpError(400, 'give the scenario text (scenario) or a workspace .scenario file (path)');
+    if (text.length > MAX_SCENARIO_CHARS) throw new HttpError(413, `scenario longer than ${MAX_SCENARIO_CHARS} characters`);
     // a client sending faster than the simulations run is told so instead of queueing without end
     if (this.waiting >= MAX_WAITING) throw new HttpError(429, `${MAX_WAITING} simulations already waiting: try again when they are done`);
     this.waiting++;
@@ -184,15 +193,20 @@ function stepOf(s: StepResult, budget: { left: number }): SimulateStep {
   };
 }
 
-async function readText(fs: WorkspaceFs, rel: string): Promise<string> {
+/** A workspace scenario file's bytes; a missing one, or a folder, said with its path. */
+async function readBytes(fs: WorkspaceFs, rel: string): Promise<Buffer> {
   return fs.withParent(rel, false, async (dir, name) => {
     const { handle, stats } = await WorkspaceFs.openFile(dir, name, rel);
     try {
+      if (stats.isDirectory()) throw new HttpError(400, `${rel} is a folder, not a scenario file`);
       if (stats.size > MAX_SCENARIO_CHARS * 4) throw new HttpError(413, `${rel} is too large for a scenario`);
-      return await handle.readFile('utf8');
+      return await handle.readFile();
     } finally {
       await handle.close();
     }
+  }).catch((e: unknown) => {
+    if ((e instanceof HttpError && e.status === 404) || (e as NodeJS.ErrnoException)?.code === 'ENOENT') throw new HttpError(404, `no such scenario file in the workspace: ${rel}`);
+    throw e;
   });
 }
 
