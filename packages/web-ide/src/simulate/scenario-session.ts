@@ -132,7 +132,7 @@ export class ScenarioSession {
   text(title = 'simulation session', untilNs = this.nowNs): string {
     if (!this.start) return '';
     const s = this.start;
-    const out = [`scenario ${title.replace(/[\n\r#]/g, ' ')}`, `until ${formatTime(Math.max(untilNs, this.nowNs))}`, `start ${s.supervisor}.${s.fn}${s.params ? `(${s.params})` : ''}`];
+    const out = [`scenario ${title.replace(/[\n\r#]/g, ' ')}`, `until ${formatTime(Math.max(untilNs, this.nowNs))}`, `start ${s.supervisor}.${s.fn}(${s.params ?? ''})`];
     for (const l of this.lines) out.push(`t=${formatTime(l.atNs)} ${l.text}`);
     return `${out.join('\n')}\n`;
   }

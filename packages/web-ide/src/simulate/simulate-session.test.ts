@@ -67,7 +67,7 @@ describe('ScenarioSession', () => {
       { ...kept, lines: [{ atNs: '1ms', text: 'MAA:2 "a"' }] },
     ];
     for (const b of bad) expect(other.restore(b), JSON.stringify(b)?.slice(0, 80)).toBeTruthy();
-    expect(other.text()).toBe('scenario simulation session\nuntil 0\nstart GLB.mission\n');
+    expect(other.text()).toBe('scenario simulation session\nuntil 0\nstart GLB.mission()\n');
   });
 
   it('refuses times going back, non-times, several lines, comments and unknown directives', () => {
@@ -85,7 +85,7 @@ describe('ScenarioSession', () => {
     expect(s.inject('')).toBeTruthy();
     expect(s.lines).toEqual([]);
     expect(s.nowNs).toBe(2_000_000);
-    expect(s.text()).toBe('scenario simulation session\nuntil 2ms\nstart SUP.action\n');
+    expect(s.text()).toBe('scenario simulation session\nuntil 2ms\nstart SUP.action()\n');
   });
 
   it('saves the shown state as expectations at the session time', () => {
@@ -146,7 +146,7 @@ describe('ScenarioSession.nextChange', () => {
   it('a look-ahead text runs later than now without moving the session', () => {
     const s = new ScenarioSession();
     s.begin({ supervisor: 'SUP', fn: 'action', params: '' });
-    expect(s.text('x', 10e9)).toBe('scenario x\nuntil 10s\nstart SUP.action\n');
+    expect(s.text('x', 10e9)).toBe('scenario x\nuntil 10s\nstart SUP.action()\n');
     expect(s.nowNs).toBe(0);
   });
 });
