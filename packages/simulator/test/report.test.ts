@@ -133,5 +133,9 @@ describe('the text report\'s times', () => {
         const junit = junitReport([result]);
         expect(junit).toMatch(/<testsuites name="contract simulate" tests="1" failures="1">/);
         expect(junit).toMatch(/<testsuite name="x.scenario" tests="1" failures="1"/);
+        // a title of megabytes is cut in the test cases' classname (it was repeated whole in each)
+        const long = junitReport([{ ...result, title: 'T'.repeat(5_000_000) } as ScenarioResult]);
+        expect(long).toContain(`classname="${'T'.repeat(200)}…"`);
+        expect(long.length).toBeLessThan(5_000);
     });
 });

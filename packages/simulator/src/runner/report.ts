@@ -191,6 +191,9 @@ export function* jsonReportParts(results: ScenarioResult[]): Generator<string> {
     yield JSON_REPORT_END;
 }
 
+/** Characters of a scenario's title kept as its JUnit test cases' classname. */
+const JUNIT_NAME_CHARS = 200;
+
 /** What the JSON report begins and ends with, around its scenarios' parts (jsonScenarioParts). */
 export const JSON_REPORT_HEAD = '{"scenarios":[';
 export const JSON_REPORT_END = ']}\n';
@@ -246,7 +249,9 @@ export function junitSuite(r: ScenarioResult): JunitSuite {
         name: `line ${s.line}: ${s.source}`,
         ...(!s.ok ? { failure: { message: s.message ?? 'failed', text: `expected: ${s.record.expected ?? ''}\nactual: ${s.record.actual ?? s.record.error ?? ''}` } } : {}),
     }));
-    return { file: r.file, name: r.title ?? r.file, ms: r.ms, failures: r.failures.length, ...(r.error ? { error: r.error } : {}), ...(r.trimmed ? { trimmed: r.trimmed.message } : {}), cases };
+    // the title names every test case (classname): a title of megabytes was repeated in each
+    const name = r.title ?? r.file;
+    return { file: r.file, name: name.length > JUNIT_NAME_CHARS ? `${name.slice(0, JUNIT_NAME_CHARS)}…` : name, ms: r.ms, failures: r.failures.length, ...(r.error ? { error: r.error } : {}), ...(r.trimmed ? { trimmed: r.trimmed.message } : {}), cases };
 }
 
 /** The JUnit report of the suites (junitSuite of each scenario, in order). */
