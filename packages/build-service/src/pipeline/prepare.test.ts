@@ -147,4 +147,16 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     const ws = await prepare(dir);
     expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
   }, 120_000);
+
+  it('refuses, naming it, a source larger than the file bound (a 9 MiB .contract was left out and the build said ok); an ELF program of any size in src-gen/ is still left out', async () => {
+    const dir = project();
+    writeFileSync(join(dir, 'extra.contract'), `// ${'x'.repeat(9 * 1024 * 1024)}\n`);
+    const err = await prepareWorkspace(workspace(), { dir }, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e);
+    expect(err?.message).toBe('extra.contract: file larger than 8388608 bytes (a project\'s file is read up to that size, never left out: the build would go on without it); nothing was built');
+    const elf = project();
+    rmSync(join(elf, 'extra.contract'), { force: true });
+    writeFileSync(join(elf, 'src-gen', 'generated', 'big-program'), Buffer.concat([Buffer.from([0x7f, 0x45, 0x4c, 0x46]), Buffer.alloc(9 * 1024 * 1024)]));
+    const ws = await prepare(elf);
+    expect(existsSync(join(ws.workDir, 'src-gen', 'generated', 'big-program'))).toBe(false);
+  }, 120_000);
 });

@@ -14,7 +14,7 @@ import { findProtectedRegions, type ProtectedRegion } from './protected-regions.
 import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
-import { checkRelativePath, listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
+import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
 import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
@@ -87,7 +87,7 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
   const wanted = new Map<string, Buffer>();
   let total = 0;
   const add = (rel: string, data: Buffer): void => {
-    if (data.length > MAX_FILE_BYTES) throw new PrepareError(`${rel}: file larger than ${MAX_FILE_BYTES} bytes`);
+    if (data.length > MAX_FILE_BYTES) throw new PrepareError(`${rel}: file larger than ${MAX_FILE_BYTES} bytes (a project's file is read up to that size, never left out: the build would go on without it); nothing was built`);
     total += data.length;
     if (total > MAX_PROJECT_BYTES) throw new PrepareError(`project larger than ${MAX_PROJECT_BYTES} bytes`);
     wanted.set(checkRelativePath(rel), data);
@@ -102,9 +102,13 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
     });
     if (refused.length) throw new PrepareError(notReadMessage(refused));
     for (const rel of files) {
-      const data = await readFileNoFollow(source.dir, rel, MAX_FILE_BYTES);
-      // a program an earlier local build made (make in src-gen/) is no source: left out, whatever its mode
-      if (data && !(kind === 'cactal' && rel.startsWith(`${SRC_GEN_DIR}/`) && isElf(data))) add(rel, data);
+      // one byte past the bound is read: a larger file fails the job, naming it (add); it was left out
+      // without a word, and a 9 MiB .contract that check refused built "ok" without it
+      const data = await readFileHeadNoFollow(source.dir, rel, MAX_FILE_BYTES + 1);
+      if (!data) continue; // gone since it was listed
+      // a program an earlier local build made (make in src-gen/) is no source: left out, whatever its mode or size
+      if (kind === 'cactal' && rel.startsWith(`${SRC_GEN_DIR}/`) && isElf(data)) continue;
+      add(rel, data);
     }
   }
   const hash = createHash('sha256').update(kind);
