@@ -83,6 +83,14 @@ describe('contract-language-server driven by vscode-jsonrpc', () => {
         expect(diagnostics.every((d) => d.range.start.line === 0 && typeof d.code === 'string' && d.message.length > 0)).toBe(true);
     }, LSP_TEST_MS);
 
+    it('a file nested thousands of brackets deep gets the nesting error and the server goes on (it crashed: the guard was not on the server\'s way in)', async () => {
+        const deep = `const D K = ${'{'.repeat(5000)}1${'}'.repeat(5000)};`;
+        await connection.sendNotification(DidOpenTextDocumentNotification.type, { textDocument: { uri: uri('deep.contract'), languageId: 'cactal', version: 1, text: deep } });
+        const { diagnostics } = await diagnosticsOf('deep.contract');
+        expect(diagnostics.map((d) => d.message)).toEqual([expect.stringContaining('Brackets are nested 65 levels deep here; Cactal accepts at most 64')]);
+        expect(child.exitCode).toBeNull();
+    }, LSP_TEST_MS);
+
     it('answers hover and a definition in another file', async () => {
         await connection.sendNotification(DidOpenTextDocumentNotification.type, { textDocument: { uri: uri('schema.contract'), languageId: 'cactal', version: 1, text: text('schema.contract') } });
         const position = at('schema.contract', 'MSC:1 -> MSD', 1);

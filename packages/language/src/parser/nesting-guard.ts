@@ -4,6 +4,7 @@
  * down. Text nested deeper than MAX_NESTING yields an empty model with one clear error instead.
  */
 import { DefaultLangiumDocumentFactory, type AstNode, type ParseResult, type URI } from 'langium';
+import type { CancellationToken } from 'vscode-languageserver-protocol';
 
 /** Deepest bracket nesting accepted ({, (, [ together). Real Cactal nests a handful of levels. */
 export const MAX_NESTING = 64;
@@ -58,19 +59,34 @@ function emptyResult<T extends AstNode>(message: string, at: { offset: number; l
     } as ParseResult<T>;
 }
 
-/** Document factory that refuses pathological nesting before it reaches the parser. */
+const tooDeep = (): string => `Brackets are nested ${MAX_NESTING + 1} levels deep here; Cactal accepts at most ${MAX_NESTING}. The file is not analysed until this is fixed.`;
+const overflowed = (err: RangeError): string => `The file is too deeply nested to be parsed (${err.message}).`;
+
+/**
+ * Document factory that refuses pathological nesting before it reaches the parser, on both of
+ * Langium's ways in: `parse` (a document made from a text: `contract check`) and `parseAsync`
+ * (a document the language server opens or updates). The server went through the second one
+ * only, unguarded: 5,000 levels crashed it (RangeError), and such a file on disk left it silent.
+ */
 export class CactalDocumentFactory extends DefaultLangiumDocumentFactory {
     protected override parse<T extends AstNode>(uri: URI, text: string, options?: Parameters<DefaultLangiumDocumentFactory['parse']>[2]): ParseResult<T> {
         const deep = findExcessiveNesting(text);
-        if (deep) {
-            return emptyResult(`Brackets are nested ${MAX_NESTING + 1} levels deep here; Cactal accepts at most ${MAX_NESTING}. The file is not analysed until this is fixed.`, deep);
-        }
+        if (deep) return emptyResult(tooDeep(), deep);
         try {
             return super.parse<T>(uri, text, options);
         } catch (err) {
-            if (err instanceof RangeError) {
-                return emptyResult(`The file is too deeply nested to be parsed (${err.message}).`, { offset: 0, line: 1, column: 1 });
-            }
+            if (err instanceof RangeError) return emptyResult(overflowed(err), { offset: 0, line: 1, column: 1 });
+            throw err;
+        }
+    }
+
+    protected override async parseAsync<T extends AstNode>(uri: URI, text: string, cancellationToken: CancellationToken): Promise<ParseResult<T>> {
+        const deep = findExcessiveNesting(text);
+        if (deep) return emptyResult(tooDeep(), deep);
+        try {
+            return await super.parseAsync<T>(uri, text, cancellationToken);
+        } catch (err) {
+            if (err instanceof RangeError) return emptyResult(overflowed(err), { offset: 0, line: 1, column: 1 });
             throw err;
         }
     }
