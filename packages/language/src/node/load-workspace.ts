@@ -91,11 +91,18 @@ export const IMPORT_LINK_CODE = 'import-link';
 /** Code of the loader's diagnostic for an import that `confineImportsTo` does not allow. */
 export const IMPORT_REFUSED_CODE = 'import-refused';
 
+/** Code of the loader's error for a `.contract` file larger than a build reads (MAX_SOURCE_BYTES). */
+export const SOURCE_TOO_LARGE_CODE = 'source-too-large';
+/** Code of the loader's warning for a `.contract` entry that is a link or no regular file, which a build refuses. */
+export const SOURCE_NOT_FILE_CODE = 'source-not-file';
+/** Bytes of one `.contract` file of a project, as a build reads them (the build service's projectFileBytes). */
+export const MAX_SOURCE_BYTES = 8 * 1024 * 1024;
+
 const SEVERITIES: Record<number, SeverityName> = { 1: 'error', 2: 'warning', 3: 'info', 4: 'hint' };
 const DEFAULT_SKIP = ['node_modules', '.git', SRC_GEN_DIR];
 
 /** Every `.contract` file under `dir`, sorted, as absolute paths. */
-export async function findContractFiles(dir: string, skipDirs: string[] = DEFAULT_SKIP): Promise<string[]> {
+export async function findContractFiles(dir: string, skipDirs: string[] = DEFAULT_SKIP, notFiles?: Array<{ path: string; what: string }>): Promise<string[]> {
     const found: string[] = [];
     async function walk(d: string): Promise<void> {
         const entries = await readdir(d, { withFileTypes: true });
@@ -105,6 +112,9 @@ export async function findContractFiles(dir: string, skipDirs: string[] = DEFAUL
                 if (!skipDirs.includes(e.name)) await walk(full);
             } else if (e.isFile() && e.name.endsWith('.contract')) {
                 found.push(full);
+            } else if (e.name.endsWith('.contract')) {
+                // not read as a file of the project (a build refuses the project for it): said by loadWorkspace
+                notFiles?.push({ path: full, what: e.isSymbolicLink() ? 'a symbolic link' : 'not a regular file (a FIFO, socket or device)' });
             }
         }
     }
@@ -182,7 +192,16 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     if (!info?.isDirectory()) throw new Error(`${dir} is not a directory`);
     const services = options.services ?? createCactalServices(NodeFileSystem).Cactal;
     const shared = services.shared;
-    const files = await findContractFiles(root, options.skipDirs);
+    const notFiles: Array<{ path: string; what: string }> = [];
+    const found = await findContractFiles(root, options.skipDirs, notFiles);
+    // a file larger than a build reads is not read either (a 700 MB file ended check with V8's "Cannot create a string longer than ...")
+    const tooLarge: Array<{ path: string; bytes: number }> = [];
+    const files: string[] = [];
+    for (const f of found) {
+        const bytes = (await stat(f).catch(() => undefined))?.size ?? 0;
+        if (bytes > MAX_SOURCE_BYTES) tooLarge.push({ path: f, bytes });
+        else files.push(f);
+    }
     if (options.maxModelBytes !== undefined) {
         let bytes = 0;
         for (const f of files) bytes += (await stat(f).catch(() => undefined))?.size ?? 0;
@@ -233,6 +252,13 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     for (const r of refused) reportRefusedImport(r.document, r.imp, r.reason);
     for (const l of links) reportLinkedImport(l.document, l.imp);
     const diagnostics = documents.flatMap((d) => (d.document.diagnostics ?? []).map((diag) => toWorkspaceDiagnostic(d.file, diag)));
+    const whole = (path: string, severity: SeverityName, code: string, message: string): WorkspaceDiagnostic =>
+        ({ file: relative(root, path).split(sep).join('/'), line: 1, column: 1, endLine: 1, endColumn: 1, severity, code, message });
+    for (const t of tooLarge) diagnostics.push(whole(t.path, 'error', SOURCE_TOO_LARGE_CODE, `${t.bytes} bytes, above the ${MAX_SOURCE_BYTES} a project's file may hold: not read (a build refuses the project for it too)`));
+    for (const n of notFiles) {
+        if (loaded.has(n.path)) continue; // imported: read, and said on its import (import-link)
+        diagnostics.push(whole(n.path, 'warning', SOURCE_NOT_FILE_CODE, `${n.what}: not read here, and a build (contract build, the IDE's build service) refuses the project for it, nothing built; put the file itself there`));
+    }
     diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
     return { dir: root, documents, diagnostics, services };
 }
