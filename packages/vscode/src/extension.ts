@@ -1,6 +1,6 @@
 /**
  * The Cactal extension: starts the ContrACT Studio language server over stdio (the one bundled in
- * dist/server.js, or `cactal.server.path`) for the .contract files of the workspace.
+ * dist/server.js, or `cactal.server.path`) for the .contract and .scenario files of the workspace.
  */
 import * as path from 'node:path';
 import type { ExtensionContext } from 'vscode';
@@ -17,8 +17,9 @@ export async function activate(context: ExtensionContext): Promise<void> {
         debug: { module, transport: TransportKind.stdio, options: { execArgv: ['--nolazy', '--inspect=6009'] } },
     };
     const clientOptions: LanguageClientOptions = {
-        documentSelector: [{ scheme: 'file', language: 'cactal' }],
-        synchronize: { fileEvents: workspace.createFileSystemWatcher('**/*.contract') },
+        // .scenario files too (language id cactal-scenario): the server checks them against the model
+        documentSelector: [{ scheme: 'file', language: 'cactal' }, { scheme: 'file', language: 'cactal-scenario' }],
+        synchronize: { fileEvents: workspace.createFileSystemWatcher('**/*.{contract,scenario}') },
     };
     client = new LanguageClient('cactal', 'Cactal language server', serverOptions, clientOptions);
     await client.start();

@@ -33,7 +33,13 @@ describe('cactal-vscode.vsix', () => {
             main: string;
             contributes: { languages: Array<{ id: string; extensions: string[] }>; grammars: Array<{ language: string; scopeName: string; path: string }> };
         };
-        expect(manifest.contributes.languages).toEqual([expect.objectContaining({ id: 'cactal', extensions: ['.contract'] })]);
+        // .scenario files too (they were not contributed: no checks, completion nor hover in VS Code), with their # comments
+        expect(manifest.contributes.languages).toEqual([
+            expect.objectContaining({ id: 'cactal', extensions: ['.contract'] }),
+            expect.objectContaining({ id: 'cactal-scenario', extensions: ['.scenario'], configuration: './scenario-language-configuration.json' }),
+        ]);
+        expect(JSON.parse(fromVsix('extension/scenario-language-configuration.json')).comments).toEqual({ lineComment: '#' });
+        expect(fromVsix(`extension/${manifest.main.replace(/^\.\//, '')}`)).toContain('cactal-scenario');
         const grammar = manifest.contributes.grammars[0]!;
         const packed = fromVsix(`extension/${grammar.path.replace(/^\.\//, '')}`);
         const generated = readFileSync(join(PACKAGE, '..', 'language', 'syntaxes', 'cactal.tmLanguage.json'), 'utf8');
