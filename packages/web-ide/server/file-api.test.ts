@@ -59,6 +59,29 @@ describe('file API over HTTP', () => {
     }
   });
 
+  it('past 50,000 entries: a folder\'s own files come before its sub-folders, and what the bound cut is marked truncated (a generated tree of 40,000 files took the root\'s own files, without a word)', async () => {
+    // 50,100 generated files listed before the root's own, as readdir may give them
+    execFileSync('python3', ['-c', `import os\nos.chdir(${JSON.stringify(ws)})\nos.makedirs('src-gen/a')\nos.makedirs('src-gen/b')\nfor i in range(50100):\n    open('src-gen/a/f%d.c' % i, 'w').close()\nopen('src-gen/b/g.c', 'w').close()`]);
+    try {
+      const tree = await call('GET', '/api/tree');
+      expect(tree.status).toBe(200);
+      type Entry = { name: string; path: string; type: string; children?: Entry[]; truncated?: boolean };
+      const root = tree.body.entries as Entry[];
+      // the root's own files are all there
+      expect(root.filter((e) => e.type === 'file').map((e) => e.name)).toEqual(expect.arrayContaining(['a.contract']));
+      const gen = root.find((e) => e.name === 'src-gen')!;
+      const a = gen.children!.find((e) => e.name === 'a')!;
+      expect(a.truncated).toBe(true);
+      expect(a.children!.length).toBeGreaterThan(40_000);
+      expect(a.children!.length).toBeLessThan(50_100);
+      // a folder after the bound: listed, marked, no content
+      expect(gen.children!.find((e) => e.name === 'b')).toMatchObject({ type: 'dir', truncated: true, children: [] });
+      expect(gen.truncated).toBeUndefined();
+    } finally {
+      rmSync(join(ws, 'src-gen'), { recursive: true, force: true });
+    }
+  }, 60_000);
+
   it('lists a tree of 200 nested folders down to 64 levels, the deeper one marked truncated (one descriptor per level)', async () => {
     execFileSync('python3', ['-c', `import os\nos.chdir(${JSON.stringify(ws)})\nfor i in range(200):\n    os.mkdir('d'); os.chdir('d')\nopen('deep.contract', 'w').write('x')`]);
     try {

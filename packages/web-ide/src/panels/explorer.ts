@@ -128,7 +128,7 @@ export class Explorer {
         const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : kind === 'trace' ? '◉' : '≡'; // a trace file opens in the ◉ Monitor
         const row = h('div', {
           class: `tree-row ${kind}${e.path === this.active ? ' active' : ''}${e === this.selected || e.path === this.selected?.path ? ' selected' : ''}`,
-          role: 'treeitem', 'data-path': e.path, title: e.truncated ? `${e.path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)` : e.path, style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
+          role: 'treeitem', 'data-path': e.path, title: e.truncated ? (e.children?.length ? `${e.path}: not all of its content is listed (past the listing's 50,000 entries)` : `${e.path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)`) : e.path, style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
           'aria-level': depth + 1, 'aria-selected': e.path === this.active ? 'true' : 'false', 'aria-expanded': isDir ? String(open) : undefined,
           onclick: () => this.click(e),
         },
