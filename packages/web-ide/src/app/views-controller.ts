@@ -86,6 +86,17 @@ export class ViewsController {
     } else editors.openView(this.archTab());
   }
 
+  /**
+   * The Architecture command (Alt+Shift+D, the palette): opens the diagram and puts the keyboard
+   * focus in it (it stayed on the page's body), as Open Timeline does. The toolbar button and a
+   * reload's restored layout open it without taking the focus from the editor.
+   */
+  async openArchitectureFocused(): Promise<void> {
+    await this.openArchitecture();
+    if (this.archDocked) this.arch?.element.querySelector<HTMLElement>('[data-autofocus]')?.focus({ focusVisible: true } as FocusOptions);
+    else this.d.editors.focusActive();
+  }
+
   async openTimeline(): Promise<void> {
     if (!this.timeline) {
       const { TimelineView } = await import('../views/timeline-view.js');

@@ -81,8 +81,15 @@ export class OutlinePanel {
     }
     if (uri !== this.uri) return;
     const rows: HTMLElement[] = [];
+    let more = 0;
     const walk = (list: lsp.DocumentSymbol[], depth: number) => {
       for (const s of list) {
+        // a file of 60,000 datatypes: the first MAX_ROWS, the others counted (a row each crashed
+        // the panel: too many arguments to replaceChildren, and the last file's symbols stayed)
+        if (rows.length >= MAX_ROWS) {
+          more += 1 + countSymbols(s.children ?? []);
+          continue;
+        }
         rows.push(h('div', {
           class: 'outline-row', role: 'treeitem', 'aria-level': depth + 1, 'aria-selected': 'false', style: `padding-left:${8 + depth * 14}px`, 'data-name': s.name,
           onclick: () => this.reveal(s.selectionRange),
@@ -92,6 +99,16 @@ export class OutlinePanel {
       }
     };
     walk(symbols ?? [], 0);
+    if (more) rows.push(h('div', { class: 'outline-more muted', role: 'note' }, `… ${more} more symbols: the outline lists the file's first ${MAX_ROWS} (go to a symbol with F12 or Shift+F12 from where it is used)`));
     this.setRows(rows, 'No symbols');
   }
+}
+
+/** Symbols the outline lists for one file; the rest are counted. */
+const MAX_ROWS = 5000;
+
+function countSymbols(list: readonly lsp.DocumentSymbol[]): number {
+  let n = 0;
+  for (const s of list) n += 1 + countSymbols(s.children ?? []);
+  return n;
 }
