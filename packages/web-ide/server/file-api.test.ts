@@ -127,6 +127,19 @@ describe('file API over HTTP', () => {
     expect((await call('DELETE', '/api/file?path=sub/edge.txt')).status).toBe(200);
   });
 
+  it('refuses to make a name with a bidirectional override or a control character (it shows as another name), or a part over 255 bytes, saying why', async () => {
+    const spoof = await call('POST', '/api/create', { path: 'x\u202Etnoc.c', type: 'file' });
+    expect(spoof.status).toBe(400);
+    expect(spoof.body.error).toBe('a name with the character U+202E is refused: a control or bidirectional character shows a name as another one');
+    expect((await call('POST', '/api/create', { path: 'tab\there.contract', type: 'file' })).status).toBe(400);
+    const long = await call('POST', '/api/create', { path: `${'n'.repeat(300)}.contract`, type: 'file' });
+    expect(long.status, JSON.stringify(long.body)).toBe(400);
+    expect(long.body.error).toMatch(/^a name of more than 255 bytes is refused/);
+    const renamed = await call('POST', '/api/rename', { from: 'a.contract', to: 'a\u2066.contract' });
+    expect(renamed.status, JSON.stringify(renamed.body)).toBe(400);
+    expect(existsSync(join(ws, 'a.contract'))).toBe(true);
+  });
+
   it('creates, renames and deletes, with 409 on conflicts', async () => {
     expect((await call('POST', '/api/create', { path: 'sub/b.contract', type: 'file' })).status).toBe(201);
     expect((await call('POST', '/api/create', { path: 'sub/b.contract', type: 'file' })).status).toBe(409);

@@ -73,6 +73,7 @@ export async function handleFileApi(
     }
     case 'POST /api/create': {
       const body = await readJson(req);
+      checkNewName(body.path);
       const rel = paths.entry(body.path);
       if (typeof body.content === 'string' && Buffer.byteLength(body.content) > MAX_FILE_BYTES) throw new HttpError(413, 'file larger than 8 MiB: not created (the editor opens files of 8 MiB at most)');
       await fs.withParent(rel, true, async (dir, name) => {
@@ -92,6 +93,7 @@ export async function handleFileApi(
     case 'POST /api/rename': {
       const body = await readJson(req);
       const from = paths.entry(body.from);
+      checkNewName(body.to);
       const to = paths.entry(body.to);
       if (to.startsWith(from + '/')) throw new HttpError(400, 'cannot move a folder into itself');
       await fs.withParent(from, false, (fromDir, fromName) =>
@@ -117,4 +119,18 @@ export async function handleFileApi(
     default:
       return false;
   }
+}
+
+/**
+ * A name the IDE makes (a new file or folder, a rename's target): no control character, and no
+ * bidirectional override, which shows a name as another (`x\u202Etnoc.c` reads `xc.contract`);
+ * a part longer than the file system takes is said as such (it was a raw ENAMETOOLONG).
+ */
+function checkNewName(rel: unknown): void {
+  if (typeof rel !== 'string') return; // the path's own checks say what is wrong
+  // eslint-disable-next-line no-control-regex
+  const bad = /[\u0000-\u001f\u007f\u200e\u200f\u202a-\u202e\u2066-\u2069]/.exec(rel);
+  if (bad) throw new HttpError(400, `a name with the character U+${bad[0].charCodeAt(0).toString(16).toUpperCase().padStart(4, '0')} is refused: a control or bidirectional character shows a name as another one`);
+  const long = rel.split(/[\\/]/).find((part) => Buffer.byteLength(part) > 255);
+  if (long) throw new HttpError(400, `a name of more than 255 bytes is refused (the file system's bound): ${long.slice(0, 40)}…`);
 }

@@ -36,8 +36,10 @@ export class FileOperations {
 
   async newEntry(type: 'file' | 'dir', folder = this.d.explorer.targetFolder()): Promise<void> {
     const { workspace, editors, explorer } = this.d;
-    const name = await askText(type === 'file' ? 'New file' : 'New folder', type === 'file' ? 'new.contract' : 'folder', `in ${folder || 'the workspace root'}`);
-    if (!name) return;
+    const asked = await askText(type === 'file' ? 'New file' : 'New folder', type === 'file' ? 'new.contract' : 'folder', `in ${folder || 'the workspace root'}`);
+    if (!asked) return;
+    // the dialog selects the name without its extension: a whole name typed over it ended `.contract.contract`
+    const name = type === 'file' ? asked.replace(/(\.[A-Za-z0-9]{1,12})\1$/, '$1') : asked;
     try {
       const { path } = await api.create(join(folder, name), type);
       await workspace.refreshTree();
