@@ -64,6 +64,8 @@ async function main(): Promise<void> {
     explorer.setEntries(entries);
     editors.closeMissing((p) => workspace.hasFile(p) || files.isRenaming(p));
   });
+  // the file of the active tab left the workspace (another tab's rename, a delete): said, with the tab now shown
+  editors.onActiveClosed.on((path) => toast('warning', `${path} is no longer in the workspace (renamed, moved or deleted, perhaps by another tab): its tab was closed${editors.active ? `; ${editors.active} is shown now` : ''}`));
   showSaveStatus(workspace, ui.status.save);
 
   ui.toolbar.newFile.addEventListener('click', () => void files.newEntry('file'));

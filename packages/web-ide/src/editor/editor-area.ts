@@ -275,9 +275,22 @@ export class EditorArea {
     this.render();
   }
 
-  closeMissing(exists: (p: string) => boolean): void {
-    for (const t of [...this.tabs]) if (!this.views.has(t) && !exists(t)) this.close(t);
+  /**
+   * Closes the tabs of files no longer in the workspace (deleted or moved: by this tab, another tab,
+   * a command outside the IDE); the active one is said, so that typing does not go on, unnoticed,
+   * into the file shown next (a generated module.c whose module another tab renamed closed silently).
+   * Returns the paths closed.
+   */
+  closeMissing(exists: (p: string) => boolean): string[] {
+    const gone = this.tabs.filter((t) => !this.views.has(t) && !exists(t));
+    const wasActive = this.active !== undefined && gone.includes(this.active) ? this.active : undefined;
+    for (const t of gone) this.close(t);
+    if (wasActive) this.onActiveClosed.fire(wasActive);
+    return gone;
   }
+
+  /** The active tab was closed because its file left the workspace (closeMissing). */
+  readonly onActiveClosed = new Emitter<string>();
 
   private updateReadOnly(): void {
     const guard = this.active ? this.guards.get(this.active) : undefined;
