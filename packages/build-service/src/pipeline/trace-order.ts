@@ -80,17 +80,26 @@ export interface ReleaseWhen {
  * /^(\d{1,20}),/ reads, without a match object per record).
  */
 export function monoOf(text: string): bigint {
-  let i = 0;
+  const i = monoDigits(text);
+  if (i === 0) return -1n;
+  if (i > 15) return BigInt(text.slice(0, i)); // up to 15 digits are exact in a double; more are read from the text
   let n = 0;
+  for (let k = 0; k < i; k++) n = n * 10 + (text.charCodeAt(k) - 48);
+  return BigInt(n);
+}
+
+/**
+ * How many digits the line's mono_ns has: its leading 1 to 20 digits, followed by a comma; 0 when
+ * it has none (the line cannot be a record). No allocation: what the trace tail asks of every line.
+ */
+export function monoDigits(text: string): number {
+  let i = 0;
   for (; i < text.length && i <= 20; i++) {
     const c = text.charCodeAt(i);
     if (c === 44) break; // ','
-    if (c < 48 || c > 57) return -1n;
-    if (i < 15) n = n * 10 + (c - 48);
+    if (c < 48 || c > 57) return 0;
   }
-  if (i === 0 || i > 20 || i === text.length) return -1n;
-  // up to 15 digits are exact in a double; more are read from the text
-  return i <= 15 ? BigInt(n) : BigInt(text.slice(0, i));
+  return i === 0 || i > 20 || i === text.length ? 0 : i;
 }
 
 export class TraceOrder {

@@ -24,7 +24,7 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { ARTIFACT_BOUNDS, LOG_DIR, SAFE_NAME } from './artifacts.js';
 import type { TraceLine } from './job-events.js';
 import { TraceLineSplitter } from './trace-lines.js';
-import { endsItsLog, monoOf, TraceOrder } from './trace-order.js';
+import { endsItsLog, monoDigits, monoOf, TraceOrder } from './trace-order.js';
 import { openDirNoFollow, openedDirPath, openRegularFileIn } from '../util/safe-fs.js';
 
 export interface TraceTailBounds {
@@ -583,8 +583,9 @@ export class TraceTail {
     let out: TraceLine[] | undefined;
     for (let i = 0; i < lines.length; i++) {
       const l = lines[i]!;
-      if (beginsWithTime(l.text) || this.unreadableSent < this.bounds.unreadableKept) {
-        if (!beginsWithTime(l.text)) this.unreadableSent++;
+      const record = monoDigits(l.text) > 0;
+      if (record || this.unreadableSent < this.bounds.unreadableKept) {
+        if (!record) this.unreadableSent++;
         out?.push(l);
         continue;
       }
@@ -615,16 +616,4 @@ export class TraceTail {
     await this.dir?.close().catch(() => {});
     this.dir = null;
   }
-}
-
-/** Whether a log line can be a record: 1 to 20 digits (its `mono_ns`), then a comma. */
-function beginsWithTime(text: string): boolean {
-  let i = 0;
-  while (i < text.length && i <= 20) {
-    const c = text.charCodeAt(i);
-    if (c === 44) return i > 0;
-    if (c < 48 || c > 57) return false;
-    i++;
-  }
-  return false;
 }

@@ -86,6 +86,20 @@ export function moduleOfLog(file: string): string | undefined {
     return module;
 }
 
+/** Why two logs of one module in a folder are said, in a replay and by `contract trace`: a run writes one log per module. */
+export const TWIN_LOGS_WHY = 'a run writes one log per module (two runs\' logs together, or a file named as its log that is not one)';
+
+/** The modules with more than one log among `names` (named as the runtime names a log), each with its logs' names in order. */
+export function twinLogs(names: Iterable<string>): Map<string, string[]> {
+    const byModule = new Map<string, string[]>();
+    for (const name of names) {
+        const m = moduleOfLog(name);
+        if (m !== undefined) (byModule.get(m) ?? byModule.set(m, []).get(m)!).push(name);
+    }
+    for (const [m, files] of byModule) if (files.length < 2) byModule.delete(m);
+    return byModule;
+}
+
 /**
  * Why a record of `module` read from `file` is not one: a runtime log holds its own module's
  * records only, so a line naming another (ORD's deadline miss, SUP's KILL, in HOG's log) was

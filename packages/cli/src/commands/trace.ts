@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { STORY_FOLLOWED, StoryTeller, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -335,7 +335,7 @@ export class ModuleEnds {
                 : `${at(this.last.get(m)!)} ${m.padEnd(4)} its last record; its log holds neither its start nor its exit record: it was cut or rewritten after the module began (its code may have truncated it), and how it ended is not in it (\`contract run\` says it)`);
         }
         for (const [m, files] of this.twins) {
-            out.push(`${''.padStart(10)} ${m.padEnd(4)} ${files.length} logs of it in this folder (${files.slice(0, 3).map(safeName).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: a run writes one log per module (two runs' logs together, or a file named as its log that is not one)`);
+            out.push(`${''.padStart(10)} ${m.padEnd(4)} ${files.length} logs of it in this folder (${files.slice(0, 3).map(safeName).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
         }
         for (const m of this.modules.keys()) {
             if (!this.last.has(m)) {

@@ -134,7 +134,7 @@ export class LiveFollower {
 
   /** The line text.slice(from, to) (read in place: the model keeps its range of the event's text, `textId`). */
   private pushLine(file: string, line: number, text: string, from: number, to: number, arrival: number, textId?: number, cut = false): void {
-    const name = file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
+    const name = boundedName(file);
     if (name !== this.gapFile) this.noteLogFile(name);
     this.followLines(name, line);
     this.model.pushLineIn(name, line, text, from, Math.min(to, from + MAX_LINE + 1), textId, cut);
@@ -157,7 +157,7 @@ export class LiveFollower {
    * sending them (trace/wire.ts `unsent`): counted unreadable, and not missed (they were not lost).
    */
   private pushUnsent(file: string, line: number, count: number): void {
-    const name = file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
+    const name = boundedName(file);
     this.followLines(name, line);
     if (line + count > this.gapNext) this.gapNext = Math.min(Number.MAX_SAFE_INTEGER, line + count);
     this.model.countUnsent(count);
@@ -259,3 +259,7 @@ export class LiveFollower {
   }
 }
 
+/** A log's name as the follower keeps it (a hostile stream's file names are bounded). */
+function boundedName(file: string): string {
+  return file.length > MAX_FILE_NAME ? file.slice(0, MAX_FILE_NAME) : file;
+}

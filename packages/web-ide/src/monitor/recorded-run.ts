@@ -13,7 +13,7 @@
  * Built in steps (a generator that yields every `every` lines) so that its caller can let the
  * page draw between slices.
  */
-import { MinHeap, TRACE_KINDS, moduleOfLog, parseRecordLine, recordLineEnd, type KnownRecord } from '@contract-studio/build-service/trace';
+import { MinHeap, TRACE_KINDS, TWIN_LOGS_WHY, parseRecordLine, recordLineEnd, twinLogs, type KnownRecord } from '@contract-studio/build-service/trace';
 import { piecesLength, type LogFile } from '../views/run-logs.js';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
@@ -239,11 +239,5 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
  * a file a module's code wrote under another module's name (forged deadline misses, rule changes).
  */
 export function twinLogNotes(names: readonly string[]): string[] {
-  const byModule = new Map<string, string[]>();
-  for (const name of names) {
-    const m = moduleOfLog(name);
-    if (m !== undefined) byModule.set(m, [...(byModule.get(m) ?? []), name]);
-  }
-  return [...byModule].filter(([, files]) => files.length > 1).map(([m, files]) =>
-    `${m}: ${files.length} logs of it (${files.slice(0, 3).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: a run writes one log per module (two runs' logs together, or a file named as its log that is not one)`);
+  return [...twinLogs(names)].map(([m, files]) => `${m}: ${files.length} logs of it (${files.slice(0, 3).join(', ')}${files.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
 }
