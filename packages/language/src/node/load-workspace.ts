@@ -11,7 +11,7 @@ import { NodeFileSystem } from 'langium/node';
 import type { Diagnostic } from 'vscode-languageserver-types';
 import { createCactalServices, type CactalServices } from '../cactal-module.js';
 import type { Import, Model } from '../generated/ast.js';
-import { lexicalRefusal, resolveConfinedImport } from './confined-import.js';
+import { DEFAULT_MAX_IMPORT_BYTES, lexicalRefusal, resolveConfinedImport } from './confined-import.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export type SeverityName = 'error' | 'warning' | 'info' | 'hint';
@@ -91,12 +91,13 @@ export const IMPORT_LINK_CODE = 'import-link';
 /** Code of the loader's diagnostic for an import that `confineImportsTo` does not allow. */
 export const IMPORT_REFUSED_CODE = 'import-refused';
 
-/** Code of the loader's error for a `.contract` file larger than a build reads (MAX_SOURCE_BYTES). */
+/**
+ * Code of the loader's error for a `.contract` file larger than a build reads: the bound of one
+ * imported file (DEFAULT_MAX_IMPORT_BYTES, 8 MiB, as the build service's projectFileBytes).
+ */
 export const SOURCE_TOO_LARGE_CODE = 'source-too-large';
 /** Code of the loader's warning for a `.contract` entry that is a link or no regular file, which a build refuses. */
 export const SOURCE_NOT_FILE_CODE = 'source-not-file';
-/** Bytes of one `.contract` file of a project, as a build reads them (the build service's projectFileBytes). */
-export const MAX_SOURCE_BYTES = 8 * 1024 * 1024;
 
 const SEVERITIES: Record<number, SeverityName> = { 1: 'error', 2: 'warning', 3: 'info', 4: 'hint' };
 const DEFAULT_SKIP = ['node_modules', '.git', SRC_GEN_DIR];
@@ -197,16 +198,16 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     // a file larger than a build reads is not read either (a 700 MB file ended check with V8's "Cannot create a string longer than ...")
     const tooLarge: Array<{ path: string; bytes: number }> = [];
     const files: string[] = [];
+    let modelBytes = 0;
     for (const f of found) {
         const bytes = (await stat(f).catch(() => undefined))?.size ?? 0;
-        if (bytes > MAX_SOURCE_BYTES) tooLarge.push({ path: f, bytes });
-        else files.push(f);
+        if (bytes > DEFAULT_MAX_IMPORT_BYTES) tooLarge.push({ path: f, bytes });
+        else {
+            files.push(f);
+            modelBytes += bytes;
+        }
     }
-    if (options.maxModelBytes !== undefined) {
-        let bytes = 0;
-        for (const f of files) bytes += (await stat(f).catch(() => undefined))?.size ?? 0;
-        if (bytes > options.maxModelBytes) throw new ModelTooLargeError(bytes, options.maxModelBytes);
-    }
+    if (options.maxModelBytes !== undefined && modelBytes > options.maxModelBytes) throw new ModelTooLargeError(modelBytes, options.maxModelBytes);
     const documents: WorkspaceDocument[] = [];
     const loaded = new Set<string>();
     const langiumDocs = shared.workspace.LangiumDocuments;
@@ -254,7 +255,7 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     const diagnostics = documents.flatMap((d) => (d.document.diagnostics ?? []).map((diag) => toWorkspaceDiagnostic(d.file, diag)));
     const whole = (path: string, severity: SeverityName, code: string, message: string): WorkspaceDiagnostic =>
         ({ file: relative(root, path).split(sep).join('/'), line: 1, column: 1, endLine: 1, endColumn: 1, severity, code, message });
-    for (const t of tooLarge) diagnostics.push(whole(t.path, 'error', SOURCE_TOO_LARGE_CODE, `${t.bytes} bytes, above the ${MAX_SOURCE_BYTES} a project's file may hold: not read (a build refuses the project for it too)`));
+    for (const t of tooLarge) diagnostics.push(whole(t.path, 'error', SOURCE_TOO_LARGE_CODE, `${t.bytes} bytes, above the ${DEFAULT_MAX_IMPORT_BYTES} a project's file may hold: not read (a build refuses the project for it too)`));
     for (const n of notFiles) {
         if (loaded.has(n.path)) continue; // imported: read, and said on its import (import-link)
         diagnostics.push(whole(n.path, 'warning', SOURCE_NOT_FILE_CODE, `${n.what}: not read here, and a build (contract build, the IDE's build service) refuses the project for it, nothing built; put the file itself there`));

@@ -107,9 +107,6 @@ export const MAX_TIME_NS = 86_400_000_000_000;
 const UNIT_NS: Record<string, number> = { ns: 1, us: 1_000, ms: 1_000_000, s: 1_000_000_000 };
 
 /** Parses a time literal (`300ms`, `1.5s`, `0`) to nanoseconds; undefined when it is not one. */
-/** Decimals a time in each unit may have and stay a whole number of nanoseconds. */
-const DECIMALS_TO_NS: Readonly<Record<string, number>> = { ns: 0, us: 3, ms: 6, s: 9 };
-
 export function parseTimeLiteral(text: string): number | undefined {
     if (text === '0') return 0;
     const m = /^([0-9]+(?:\.[0-9]+)?)(ns|us|ms|s)$/.exec(text);
@@ -195,9 +192,11 @@ class LineCursor {
         const ns = parseTimeLiteral(text);
         if (ns === undefined) this.fail(`expected ${what} (a time such as 300ms, 1.5s, 250us, 0), found '${text || this.text.slice(this.pos, this.tokenEnd(this.pos)) || 'the end of the line'}'`, from, from + Math.max(text.length, 1));
         if (ns > MAX_TIME_NS) this.fail(`${text} is beyond the longest scenario (1 day)`, from, from + text.length);
-        // the virtual clock counts whole nanoseconds: a finer time was rounded without a word
+        // the virtual clock counts whole nanoseconds: a finer time was rounded without a word (a
+        // unit of 10^k ns takes k decimals)
         const fine = /\.([0-9]+)(ns|us|ms|s)$/.exec(text);
-        if (fine && fine[1]!.replace(/0+$/, '').length > DECIMALS_TO_NS[fine[2]!]!) this.fail(`${text} is not a whole number of nanoseconds (the virtual clock's step): ${fine[2] === 'ns' ? 'no fraction of a nanosecond' : `at most ${DECIMALS_TO_NS[fine[2]!]} decimals in ${fine[2]}`}`, from, from + text.length);
+        const decimals = fine ? String(UNIT_NS[fine[2]!]).length - 1 : 0;
+        if (fine && fine[1]!.replace(/0+$/, '').length > decimals) this.fail(`${text} is not a whole number of nanoseconds (the virtual clock's step): ${decimals === 0 ? 'no fraction of a nanosecond' : `at most ${decimals} decimals in ${fine[2]}`}`, from, from + text.length);
         this.pos += text.length;
         return { ns, span: this.span(from, this.pos) };
     }

@@ -56,11 +56,12 @@ export class BuildPanel {
    * both, and the panel followed one and Stop cancelled the other).
    */
   private starting: Promise<void> = Promise.resolve();
-  /** Starts asked, and how many of them a Stop came after (those not yet submitted are dropped). */
+  /**
+   * Starts asked, and how many of them a Stop came after: those not yet submitted are dropped, and
+   * one that was being submitted has its job cancelled as soon as the service has it.
+   */
   private startsAsked = 0;
   private stoppedStarts = 0;
-  /** Stop was asked while a submission was on its way: the job it gets is cancelled at once. */
-  private stopWhenSubmitted = false;
   private stream: JobStream | undefined;
   private diagnostics: GccDiagnostic[] = [];
   private chipSources = '';
@@ -148,12 +149,12 @@ export class BuildPanel {
    */
   start(projectDir: string, action: 'build' | 'run', duration = 10, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
     const asked = ++this.startsAsked;
-    const next = this.starting.catch(() => undefined).then(() => (asked <= this.stoppedStarts ? undefined : this.submitAndFollow(projectDir, action, duration, start, cpus, realtime, readyTimeout)));
+    const next = this.starting.catch(() => undefined).then(() => (asked <= this.stoppedStarts ? undefined : this.submitAndFollow(asked, projectDir, action, duration, start, cpus, realtime, readyTimeout)));
     this.starting = next;
     return next;
   }
 
-  private async submitAndFollow(projectDir: string, action: 'build' | 'run', duration: number, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
+  private async submitAndFollow(asked: number, projectDir: string, action: 'build' | 'run', duration: number, start?: string, cpus?: string, realtime?: boolean, readyTimeout?: number): Promise<void> {
     if (this.jobId) await this.cancelFollowed();
     this.clear();
     this.setStatus('submitting', undefined, true);
@@ -161,9 +162,6 @@ export class BuildPanel {
     let job;
     try {
       job = await api.submitJob({ action, project: { dir: projectDir }, kind: 'cactal', duration, ...(start ? { start } : {}), ...(readyTimeout ? { readyTimeout } : {}), ...(cpus ? { cpus } : {}), ...(realtime ? { realtime } : {}) });
-    } catch (e) {
-      this.stopWhenSubmitted = false; // nothing to cancel
-      throw e;
     } finally {
       this.submitting = false;
     }
@@ -171,10 +169,8 @@ export class BuildPanel {
     for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);
     this.follow(job.id, action);
-    if (this.stopWhenSubmitted) {
-      this.stopWhenSubmitted = false;
-      await this.cancelFollowed();
-    }
+    // a Stop came while it was on its way
+    if (asked <= this.stoppedStarts) await this.cancelFollowed();
   }
 
   /** Empties the log, the source chips and the diagnostics (a new job is followed). */
@@ -293,8 +289,7 @@ export class BuildPanel {
     // the starts asked until now and not yet submitted are dropped; one being submitted is cancelled once it is
     this.stoppedStarts = this.startsAsked;
     if (this.submitting) {
-      this.stopWhenSubmitted = true;
-      this.setStatus('cancelling', 'once the build service has the job', true);
+      this.setStatus('cancelling', 'once the build service has the job', true); // submitAndFollow cancels it
       return;
     }
     await this.cancelFollowed();
