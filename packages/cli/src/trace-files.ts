@@ -9,9 +9,6 @@ import type { FileHandle } from 'node:fs/promises';
 import type { TraceRecord } from '@contract-studio/build-service/trace';
 import { escapeControls } from './terminal-text.js';
 
-/** `<MODULE>_<date>.csv`, as runtime/src/csvlog.c names them. */
-export const LOG_FILE_NAME = /^[A-Za-z_]\w*_[\w.-]*\.csv$/;
-
 /**
  * A record as one JSON line, spelled as `contract trace --format json` prints it: DEL, C1 and the
  * bidi and line-separator characters, which JSON.stringify leaves raw, written `\uXXXX` (the same

@@ -11,9 +11,9 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MAX_LINE_CHARS, MinHeap, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, MinHeap, isLogFileName, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
-import { jsonLine, LOG_FILE_NAME } from './trace-files.js';
+import { jsonLine } from './trace-files.js';
 import { safeName } from './terminal-text.js';
 
 /** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
@@ -68,11 +68,11 @@ function kindOf(st: { isFIFO(): boolean; isSocket(): boolean; isCharacterDevice(
 export async function openLogFolder(dir: string, only?: readonly string[], skipped: string[] = [], shownAs = dir): Promise<OpenLog[] | string> {
     let names: string[];
     try {
-        names = (await fsp.readdir(dir)).filter((n) => LOG_FILE_NAME.test(n) && (!only || only.includes(n))).sort();
+        names = (await fsp.readdir(dir)).filter((n) => isLogFileName(n) && (!only || only.includes(n))).sort();
     } catch (e) {
         return `cannot read the log folder ${safeName(shownAs)}: ${(e as Error).message.replace(dir, shownAs)}`;
     }
-    if (names.length === 0) return `no CSV log (<MODULE>_*.csv) in ${safeName(shownAs)}`;
+    if (names.length === 0) return `no CSV log (*.csv) in ${safeName(shownAs)}`;
     if (names.length > MAX_LOG_FILES) return `${safeName(shownAs)} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
     const logs: OpenLog[] = [];
     for (const name of names) {

@@ -320,6 +320,24 @@ describe('6. a crashed module', () => {
         expect(lines.filter((l) => / ORD  .*logs of it|ORD  no record/.test(l))).toEqual([]);
     });
 
+    it('contract trace reads a log folder as the Monitor does: every *.csv file, a module named with _ is one module, a log of another name is read and its lines said', async () => {
+        const dir = join(root, 'underscore-logs');
+        mkdirSync(dir);
+        writeFileSync(join(dir, 'ORD_6-Dec-2026-18h00m00s.csv'), moduleLog('ORD', 1_000_000_000));
+        writeFileSync(join(dir, 'ARM_CTL_6-Dec-2026-18h00m00s.csv'), moduleLog('ARM_CTL', 1_000_000_000));
+        writeFileSync(join(dir, 'ARM_GRIP_6-Dec-2026-18h00m00s.csv'), moduleLog('ARM_GRIP', 1_000_000_000, true));
+        writeFileSync(join(dir, 'calibration.csv'), 'x,y\n1,2\n');
+        const io = capture(root);
+        expect(await runCli(['trace', 'underscore-logs'], io)).toBe(0);
+        expect(io.stdout).not.toContain('logs of it in this folder');
+        expect(io.stdout).toContain('ARM_GRIP its last record: no exit record follows');
+        expect(io.stdout).toContain('unreadable: calibration.csv line 1:');
+        const json = capture(root);
+        expect(await runCli(['trace', 'underscore-logs', '--format', 'json'], json)).toBe(0);
+        const modules = new Set(json.stdout.trim().split('\n').map((l) => JSON.parse(l) as { module?: string }).map((r) => r.module).filter(Boolean));
+        expect([...modules].sort()).toEqual(['ARM_CTL', 'ARM_GRIP', 'ORD']);
+    });
+
     it('contract trace says a log that lacks its start record was cut or rewritten (its module truncated it), and how it ended is not in it', async () => {
         const dir = join(root, 'truncated-logs');
         mkdirSync(dir);

@@ -188,11 +188,11 @@ describe('contract trace', () => {
         const empty = mkdtempSync(join(tmpdir(), 'contract-trace-empty-'));
         const io = capture(dir);
         expect(await runCli(['trace', empty], io)).toBe(1);
-        expect(io.stderr).toBe(`contract trace: no CSV log (<MODULE>_*.csv) in ${empty}\n`);
+        expect(io.stderr).toBe(`contract trace: no CSV log (*.csv) in ${empty}\n`);
         // named as typed: a relative folder stays relative
         const typed = capture(tmpdir());
         expect(await runCli(['trace', basename(empty)], typed)).toBe(1);
-        expect(typed.stderr).toBe(`contract trace: no CSV log (<MODULE>_*.csv) in ${basename(empty)}\n`);
+        expect(typed.stderr).toBe(`contract trace: no CSV log (*.csv) in ${basename(empty)}\n`);
         rmSync(empty, { recursive: true });
     });
 

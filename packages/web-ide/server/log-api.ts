@@ -17,6 +17,7 @@ import { HttpError } from './http-error.js';
 import { WorkspaceFs } from './workspace-fs.js';
 import type { WorkspacePaths } from './workspace-paths.js';
 import type { LogFolderListing } from './api-types.js';
+import { isLogFileName } from '@contract-studio/build-service/trace';
 
 /** Largest CSV log read for a replay (the build service's ARTIFACT_BOUNDS.fileBytes). */
 export const LOG_READ_BYTES = 256 * 1024 * 1024;
@@ -68,7 +69,7 @@ export async function handleLogFolderApi(paths: WorkspacePaths, req: IncomingMes
   paths.resolve(url.searchParams.get('path')); // the clear 400/403 answers
   const rel = paths.normalise(url.searchParams.get('path'));
   const listing = await paths.fs.withDir(rel ? rel.split('/') : [], false, async (dir) => {
-    const entries = (await WorkspaceFs.list(dir)).filter((d) => d.name.endsWith('.csv')).sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+    const entries = (await WorkspaceFs.list(dir)).filter((d) => isLogFileName(d.name)).sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
     const regular = entries.filter((d) => d.isFile());
     const odd = entries.filter((d) => !d.isFile());
     return {

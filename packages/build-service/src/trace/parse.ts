@@ -86,14 +86,35 @@ export function moduleOfLog(file: string): string | undefined {
     return module;
 }
 
+/**
+ * Which files of a log folder are its logs — one rule for `contract trace`, the Monitor and the IDE
+ * server's folder listing: every `*.csv` file (a regular file: a link or a FIFO is named, never read).
+ */
+export function isLogFileName(name: string): boolean {
+    return name.length > 4 && name.endsWith('.csv');
+}
+
+/**
+ * The module a log's name names: the runtime's `<MODULE>_<date>.csv` exactly (a module named with
+ * `_`, `ARM_CTL_<date>.csv`, is ARM_CTL), else the name before its first `_` when it is a name
+ * (`CTL_1.csv`: a test's, a copy's), else none (`data.csv`, `copy-of-CTL_1.csv`). Said of logs as a folder holds them (two logs of one module);
+ * a record's own module is always its `module` field.
+ */
+const NAMED_BEFORE_UNDERSCORE = /^([A-Za-z][A-Za-z0-9]*)_.*\.csv$/s;
+export function moduleNamedByLog(file: string): string | undefined {
+    const exact = moduleOfLog(file);
+    if (exact !== undefined) return exact;
+    return NAMED_BEFORE_UNDERSCORE.exec(file.slice(file.lastIndexOf('/') + 1))?.[1];
+}
+
 /** Why two logs of one module in a folder are said, in a replay and by `contract trace`: a run writes one log per module. */
 export const TWIN_LOGS_WHY = 'a run writes one log per module (two runs\' logs together, or a file named as its log that is not one)';
 
-/** The modules with more than one log among `names` (named as the runtime names a log), each with its logs' names in order. */
+/** The modules with more than one log among `names` (the module a name names: moduleNamedByLog), each with its logs' names in order. */
 export function twinLogs(names: Iterable<string>): Map<string, string[]> {
     const byModule = new Map<string, string[]>();
     for (const name of names) {
-        const m = moduleOfLog(name);
+        const m = moduleNamedByLog(name);
         if (m !== undefined) (byModule.get(m) ?? byModule.set(m, []).get(m)!).push(name);
     }
     for (const [m, files] of byModule) if (files.length < 2) byModule.delete(m);

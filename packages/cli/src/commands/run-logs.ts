@@ -12,7 +12,7 @@ import { pipeline } from 'node:stream/promises';
 import { createGunzip } from 'node:zlib';
 import type { RunArtifacts } from '@contract-studio/build-service';
 import { safeName } from '../terminal-text.js';
-import { LOG_FILE_NAME } from '../trace-files.js';
+import { isLogFileName } from '@contract-studio/build-service/trace';
 
 /**
  * Why the default logs folder (DIR/logs) cannot be written, or null. It is a name in the project
@@ -83,7 +83,7 @@ async function openSubfolder(parent: fsp.FileHandle, name: string, exclusive: bo
 }
 
 /**
- * One run per logs folder: the CSV logs (regular files named `<MODULE>_*.csv`) already in the
+ * One run per logs folder: the CSV logs (regular `*.csv` files, isLogFileName) already in the
  * folder open as `dir` — the previous run's — are moved into `previous/run-<time of the newest>/`
  * (never deleted; a link or anything else there is left alone). Returns that folder and the
  * number moved, or null when there was none.
@@ -92,7 +92,7 @@ async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<Saved
     const here = `/proc/self/fd/${dir.fd}`;
     const old: { name: string; mtime: number }[] = [];
     for (const name of await fsp.readdir(here)) {
-        if (!LOG_FILE_NAME.test(name)) continue;
+        if (!isLogFileName(name)) continue;
         const st = await fsp.lstat(`${here}/${name}`).catch(() => null);
         if (st?.isFile()) old.push({ name, mtime: st.mtimeMs });
     }

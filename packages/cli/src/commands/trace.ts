@@ -7,7 +7,7 @@
  */
 import { stat } from 'node:fs/promises';
 import { resolve } from 'node:path';
-import { STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, ownString, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { STORY_FOLLOWED, StoryTeller, TWIN_LOGS_WHY, isUnknown, moduleNamedByLog, ownString, twinLogs, type KnownRecord, type RecordCounts, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { safeName } from '../terminal-text.js';
@@ -167,11 +167,6 @@ class Story {
     }
 }
 
-/** The module a log is named for (`<MODULE>_<date>.csv`). */
-function moduleOfLog(name: string): string {
-    return name.slice(0, Math.max(1, name.indexOf('_')));
-}
-
 /** The runtime's last `log-capped` record, written as the module ends (exit, crash, stop signal; runtime/src/csvlog.c write_cap_final). */
 const CAP_FINAL = /^(\d+) records not written after the log (reached its \d+-byte bound|could not be written past)/;
 
@@ -234,12 +229,14 @@ export class ModuleEnds {
 
     /** `namedElsewhere`: a trace file whose own bad lines its reader names (not named again here). */
     constructor(logs: readonly { name: string }[], private readonly namedElsewhere?: string) {
-        const names = new Map<string, string[]>();
         for (const l of logs) {
-            const m = this.follow(moduleOfLog(l.name));
-            if (m !== undefined) (names.get(m) ?? names.set(m, []).get(m)!).push(l.name);
+            const named = moduleNamedByLog(l.name);
+            if (named !== undefined) this.follow(named);
         }
-        for (const [m, files] of names) if (files.length > 1) this.twins.set(m, files);
+        for (const [m, files] of twinLogs(logs.map((l) => l.name))) {
+            const kept = this.follow(m);
+            if (kept !== undefined) this.twins.set(kept, files);
+        }
     }
 
     /** The module's name as kept, or undefined past MODULES_FOLLOWED modules (its record is only counted). */
@@ -259,7 +256,8 @@ export class ModuleEnds {
         if (r.kind === 'unknown') {
             const u = r as UnknownRecord;
             if (u.file === this.namedElsewhere) return;
-            const m = this.follow(moduleOfLog(u.file));
+            const named = moduleNamedByLog(u.file);
+            const m = named === undefined ? undefined : this.follow(named);
             if (m !== undefined) this.read.set(m, (this.read.get(m) ?? 0) + 1);
             if (this.unknownCount++ < UNREADABLE_NAMED) this.unknowns.push(`unreadable: ${safeName(u.file)} line ${u.line}: ${u.reason}`);
             return;

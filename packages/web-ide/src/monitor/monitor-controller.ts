@@ -11,7 +11,7 @@
  * Everything read from the stream or a log file is hostile: bounded and validated here or by the
  * trace reader (parseRecordLine never throws).
  */
-import { TRACE_LINES_KEPT, type TraceLine } from '@contract-studio/build-service/trace';
+import { TRACE_LINES_KEPT, isLogFileName, type TraceLine } from '@contract-studio/build-service/trace';
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { BuildPanel } from '../build/build-panel.js';
@@ -325,7 +325,7 @@ export class MonitorController {
 
   /** The `*.csv` logs of workspace folder `folder` (those a replay reads). */
   private csvIn(folder: string): string[] {
-    return this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv') && dirOf(f) === folder).slice(0, MAX_FILES);
+    return this.deps.workspace.allFiles().filter((f) => isLogFileName(f.slice(f.lastIndexOf('/') + 1)) && dirOf(f) === folder).slice(0, MAX_FILES);
   }
 
   /** Log folder or trace file run `id` changed on disk: read again now if it is shown (once the changes pause), else when it is picked. */
@@ -463,7 +463,7 @@ export class MonitorController {
     const panel = await this.ensurePanel();
     const options: SourceOption[] = [...this.runs.values()].map((r) => ({ id: r.id, label: r.label }));
     for (const [id, label] of this.letGo) if (!this.runs.has(id)) options.push({ id, label });
-    const folders = [...new Set(this.deps.workspace.allFiles().filter((f) => f.endsWith('.csv')).map(dirOf))].sort();
+    const folders = [...new Set(this.deps.workspace.allFiles().filter((f) => isLogFileName(f.slice(f.lastIndexOf('/') + 1))).map(dirOf))].sort();
     for (const f of folders) if (!this.runs.has(`dir:${f}`)) options.push({ id: `dir:${f}`, label: `Workspace logs: ${f || '(root)'}` });
     const traceFiles = this.deps.workspace.allFiles().filter((f) => f.endsWith('.jsonl')).sort().slice(0, MAX_FILES);
     for (const f of traceFiles) if (!this.runs.has(`file:${f}`)) options.push({ id: `file:${f}`, label: `Trace file: ${f}` });

@@ -80,8 +80,9 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
 
   it('keeps each log\'s text apart, when logs are alike to the byte or read in a different order', () => {
     // two logs with the same text (a copied module log): their lines are ranges of two texts
-    // (named otherwise than a module's log: a log named as MSCX's holding MSC's records would be foreign lines)
-    const twin = tutorial.map((f) => ({ name: f.name.replace(/\.csv$/, '.copy.csv'), text: f.text }));
+    // (named for no module: a log named as MSCX's holding MSC's records would be foreign lines, and
+    // one named for MSC a second log of it, said)
+    const twin = tutorial.map((f, k) => ({ name: `copy-${k}.csv`, text: f.text }));
     expectSame([...tutorial, ...twin]);
     expectSame([...tutorial].reverse());
     // a bound of 64 records kept: the oldest chunks go and are reused for later stretches
@@ -173,7 +174,7 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
       fc.constantFrom('bad', `7,${W},SUP,sup_rule,,,0,f R active cause=x`, `x,${W},SUP,sup_rule,,,0,f.R active cause=x`),
       fc.tuple(fc.integer({ min: 0, max: 40 }), fc.integer({ min: 0, max: 3 }), fc.boolean()).map(([t, r, on]) => rule(`${t}`, 'f', `R${r}`, on, `elapsed=${t}ns`)),
     );
-    const log = fc.tuple(fc.constantFrom('A_1.csv', 'B_1.csv', 'C_1.csv', 'D_1.csv'), fc.array(line, { maxLength: 25 }), fc.boolean())
+    const log = fc.tuple(fc.constantFrom('A.csv', 'B.csv', 'C.csv', 'D.csv'), fc.array(line, { maxLength: 25 }), fc.boolean())
       .map(([name, lines, crlf]) => ({ name, text: [HEADER, ...lines].join(crlf ? '\r\n' : '\n') }));
     fc.assert(fc.property(fc.array(log, { maxLength: 5 }), fc.integer({ min: 1, max: 9 }), fc.integer({ min: 0, max: 4 }), (files, every, each) => {
       const full = viaReader(files);
@@ -189,15 +190,15 @@ describe('a recorded run built from its logs read in place (recorded-run.ts)', (
     const garbage = Array.from({ length: 50 }, (_, i) => `junk ${i}`);
     const records = tutorial.find((f) => f.name.startsWith('SUP_'))!.text.split('\n').slice(1).filter(Boolean);
     const files: LogFile[] = [
-      { name: 'SUP_x.csv', text: [HEADER, ...records.slice(0, 3), ...garbage, ...records.slice(3)].join('\n') },
-      { name: 'SUP_y.csv', text: [HEADER, ...garbage.slice(0, 10), ...records].join('\n') },
+      { name: 'x.csv', text: [HEADER, ...records.slice(0, 3), ...garbage, ...records.slice(3)].join('\n') },
+      { name: 'y.csv', text: [HEADER, ...garbage.slice(0, 10), ...records].join('\n') },
     ];
     const steps = recordedRunSteps(files, 7, OPTS, 20);
     let step = steps.next();
     while (!step.done) step = steps.next();
     const { model, leftOut } = step.value;
     // x: 3 records, then 20 unreadable lines kept; the 21st and the rest left out. y: whole
-    expect(leftOut).toEqual(['SUP_x.csv: more than 20 lines that are not trace records, the rest of it from line 25 left out']);
+    expect(leftOut).toEqual(['x.csv: more than 20 lines that are not trace records, the rest of it from line 25 left out']);
     expect(model.recordCount).toBe(3 + 20 + 10 + records.length);
     expect(model.live.unknownLines).toBe(30);
     // under the bound, nothing is left out
