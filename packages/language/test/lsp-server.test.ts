@@ -113,3 +113,49 @@ describe('contract-language-server (stdio)', () => {
         expect(latestCodes('schema.contract')).not.toContain('scheduler-missing');
     }, LSP_TEST_MS);
 });
+
+describe('contract-language-server (stdio) given no workspace folder', () => {
+    let dir: string;
+    let child: ChildProcessWithoutNullStreams;
+    let client: Client;
+    const uri = (file: string) => pathToFileURL(join(dir, file)).toString();
+
+    beforeAll(async () => {
+        dir = mkdtempSync(join(tmpdir(), 'cactal-lsp-nofolder-'));
+        for (const [file, text] of Object.entries(ARCHITECTURE)) writeFileSync(join(dir, file), text);
+        child = spawn(process.execPath, [SERVER, '--stdio'], { stdio: 'pipe' });
+        client = new Client(child);
+        await client.request('initialize', { processId: process.pid, rootUri: null, capabilities: {}, workspaceFolders: null });
+        client.notify('initialized', {});
+    }, LSP_TEST_MS);
+
+    afterAll(async () => {
+        await client?.stop();
+        if (dir) rmSync(dir, { recursive: true, force: true });
+    }, LSP_TEST_MS);
+
+    it('reads the files an open file imports from disk, and theirs: no import-missing-file, and definition leads into them', async () => {
+        // schema.contract imports types, msa, msc and msd; those import types.contract again
+        client.notify('textDocument/didOpen', { textDocument: { uri: uri('schema.contract'), languageId: 'cactal', version: 1, text: ARCHITECTURE['schema.contract'] } });
+        const deadline = Date.now() + LSP_WAIT_MS;
+        const codes = () => client.latestDiagnostics<{ code?: string }>(uri('schema.contract'))?.map((d) => String(d.code));
+        while (Date.now() < deadline && (codes() === undefined || codes()!.includes('import-missing-file') || codes()!.some((c) => c.startsWith('linking')))) {
+            await new Promise((r) => setTimeout(r, 100));
+        }
+        expect(codes()).toBeDefined();
+        expect(codes()).not.toContain('import-missing-file');
+        const line = ARCHITECTURE['schema.contract']!.split('\n').findIndex((l) => l.includes('MSC:1 -> MSD'));
+        const col = ARCHITECTURE['schema.contract']!.split('\n')[line]!.indexOf('MSC:1 -> MSD') + 1;
+        const def = await client.request<Array<{ uri?: string; targetUri?: string }>>('textDocument/definition', { textDocument: { uri: uri('schema.contract') }, position: { line, character: col } });
+        expect(def.map((d) => d.targetUri ?? d.uri)).toEqual([uri('msc.contract')]);
+    }, LSP_TEST_MS);
+
+    it('leaves an import of a missing file reported missing', async () => {
+        client.notify('textDocument/didOpen', { textDocument: { uri: uri('lone.contract'), languageId: 'cactal', version: 1, text: 'import "nowhere.contract";\nimport "types.contract";\n' } });
+        const deadline = Date.now() + LSP_WAIT_MS;
+        const codes = () => client.latestDiagnostics<{ code?: string }>(uri('lone.contract'))?.map((d) => String(d.code));
+        while (Date.now() < deadline && codes() === undefined) await new Promise((r) => setTimeout(r, 100));
+        expect(codes()).toContain('import-missing-file');
+        expect(client.latestDiagnostics<{ message: string }>(uri('lone.contract'))!.filter((d) => /types\.contract/.test(d.message) && /not found|missing|does not exist/i.test(d.message))).toEqual([]);
+    }, LSP_TEST_MS);
+});

@@ -11,11 +11,13 @@ import { NodeFileSystem } from 'langium/node';
 import { createConnection, ProposedFeatures } from 'vscode-languageserver/node.js';
 import { createCactalServices } from '../cactal-module.js';
 import { addScenarioSupport } from '../lsp/scenario/scenario-server.js';
+import { followImportsWithoutFolders } from './follow-imports.js';
 
 if (!process.argv.some((a) => a === '--stdio' || a === '--node-ipc' || a.startsWith('--socket') || a.startsWith('--pipe'))) {
     process.argv.push('--stdio');
 }
 const connection = createConnection(ProposedFeatures.all);
-const { shared } = createCactalServices({ connection, ...NodeFileSystem });
+const { shared, Cactal } = createCactalServices({ connection, ...NodeFileSystem });
+followImportsWithoutFolders(shared, Cactal);
 addScenarioSupport(shared);
 startLanguageServer(shared);
