@@ -280,7 +280,10 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
                 // make's own lines (directories, recipes) only with --verbose; its errors always
                 if (opts.verbose || /\*\*\*|error/i.test(e.line)) io.err(`${e.line}\n`);
             } else {
-                io.out(e.source === 'launcher' ? `contract-launch: ${e.line}\n` : `[${e.source}] ${e.line}\n`);
+                // each line on the stream it was written to: a module's stderr (ORD's warnings, a
+                // module's errors) and the launcher's lines (it writes on stderr) go to stderr
+                const text = e.source === 'launcher' ? `contract-launch: ${e.line}\n` : `[${e.source}] ${e.line}\n`;
+                if (e.stream === 'stderr') io.err(text); else io.out(text);
             }
             return;
         }

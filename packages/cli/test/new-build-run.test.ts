@@ -240,10 +240,12 @@ describe('contract build / run on a project (bwrap)', () => {
     it('runs with a given start request and duration, and collects the CSV logs', async () => {
         const io = capture(root);
         const code = await runCli(['run', 'robot', '--sandbox', 'bwrap', '--duration', '1500ms', '--start', 'MIS.mission(goal={2.0,0.0,0.0})', '--logs', 'robot-logs', '--cpus', '1'], io);
-        expect(io.stdout).toContain('contract-launch: started MIS.mission(goal={2.0,0.0,0.0})');
-        expect(io.stdout).toContain('contract-launch: modules pinned to CPUs 1');
+        expect(io.stderr).toContain('contract-launch: started MIS.mission(goal={2.0,0.0,0.0})');
+        expect(io.stderr).toContain('contract-launch: modules pinned to CPUs 1');
         expect(io.stdout).toContain('[ORD] activate goTo');
-        expect(io.stdout).toContain('contract-launch: all modules stopped cleanly');
+        expect(io.stderr).toContain('contract-launch: all modules stopped cleanly');
+        // each line on its own stream: the launcher's on stderr, ORD's trace lines on stdout
+        expect(io.stdout).not.toContain('contract-launch:');
         // the live trace channel's records are not output lines (docs/build-service-api.md "Trace channel")
         expect(io.stdout + io.stderr).not.toMatch(/^\d+,\d{4}-\d\d-\d\dT[^,]*,[A-Z]+,/m);
         // the folder from where the command ran, as the page shows it (`CSV logs: 4 file(s) in my-robot/logs`)
@@ -382,9 +384,9 @@ describe('contract build / run on a project (bwrap)', () => {
         // make's "*** [...: run] Error 1" in the log and its own exit 2 are both named, not left to contradict
         expect(io.stdout + io.stderr).toMatch(/^make: \*\*\* \[Makefile:\d+: run\] Error 1$/m);
         expect(io.stderr).toContain('(contract-launch exit 1; make exit 2)');
-        expect(io.stdout).toContain('contract-launch: FAILED: module CTL crashed');
+        expect(io.stderr).toContain('contract-launch: FAILED: module CTL crashed');
         // ORD sees the release never finish: it says the module is gone, not that its code loops
-        expect(io.stdout).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: it is no longer running \(it crashed or was killed\)$/m);
+        expect(io.stderr).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: it is no longer running \(it crashed or was killed\)$/m);
         expect(io.stdout + io.stderr).not.toContain('*stateindex = -1?');
         expect(code).toBe(1);
         expect(readdirSync(join(dir, 'logs')).some((f) => f.startsWith('CTL_'))).toBe(true);
@@ -401,7 +403,7 @@ describe('contract build / run on a project (bwrap)', () => {
         writeFileSync(file, looping);
         const io = capture(root);
         const code = await runCli(['run', 'stuck', '--sandbox', 'bwrap', '--duration', '3s'], io);
-        expect(io.stdout).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: does its exec region set \*stateindex = -1\?$/m);
+        expect(io.stderr).toMatch(/^\[ORD\] STUCK: CTL has not finished release #\d+ after \d+ periods: does its exec region set \*stateindex = -1\?$/m);
         // one line when the cycle begins to overrun, not one per tick; and, when the schema is deactivated
         // before ORD stops, one saying how many releases the cycle skipped in all
         const overruns = io.stdout.match(/^\[ORD\] overrun.*$/gm) ?? [];

@@ -26,9 +26,13 @@ async function runningTutorial(until = 'contract-launch: started GLB.mission'): 
     });
     let stdout = '';
     let stderr = '';
-    child.stderr.on('data', (d: Buffer) => { stderr += d.toString(); });
     const exited = new Promise<number | null>((resolve) => child.on('exit', (code) => resolve(code)));
+    // the launcher's lines come on stderr, the modules' stdout lines on stdout
     await new Promise<void>((resolve) => {
+        child.stderr.on('data', (d: Buffer) => {
+            stderr += d.toString();
+            if (stderr.includes(until)) resolve();
+        });
         child.stdout.on('data', (d: Buffer) => {
             stdout += d.toString();
             if (stdout.includes(until)) resolve();
