@@ -65,7 +65,7 @@ async function main(): Promise<void> {
     editors.closeMissing((p) => workspace.hasFile(p) || files.isRenaming(p));
   });
   // the file of the active tab left the workspace (another tab's rename, a delete): said, with the tab now shown
-  editors.onActiveClosed.on((path) => toast('warning', `${path} is no longer in the workspace (renamed, moved or deleted, perhaps by another tab): its tab was closed${editors.active ? `; ${editors.active} is shown now` : ''}`));
+  editors.onActiveClosed.on((path) => toast('warning', `${path} is no longer in the workspace (renamed, moved or deleted, perhaps by another tab): its tab was closed${editors.active ? `; ${editors.active} is shown now, the keyboard out of it (click in it to type there)` : ''}`));
   showSaveStatus(workspace, ui.status.save);
 
   ui.toolbar.newFile.addEventListener('click', () => void files.newEntry('file'));

@@ -284,6 +284,11 @@ export class EditorArea {
   closeMissing(exists: (p: string) => boolean): string[] {
     const gone = this.tabs.filter((t) => !this.views.has(t) && !exists(t));
     const wasActive = this.active !== undefined && gone.includes(this.active) ? this.active : undefined;
+    // typing into the closed file must not go on into the one shown next: the keyboard leaves the
+    // editor, for no element (not the tab strip either: a space there shows the tab and types on),
+    // before the model changes (Monaco keeps the focus it had through setModel); a click, or Tab
+    // to the tab strip then Enter, brings it back
+    if (wasActive !== undefined && (this.editor.hasTextFocus() || this.editorHost.contains(document.activeElement))) (document.activeElement as HTMLElement | null)?.blur();
     for (const t of gone) this.close(t);
     if (wasActive) this.onActiveClosed.fire(wasActive);
     return gone;

@@ -223,6 +223,30 @@ describe('one file edited in two IDE tabs and by a script', () => {
     await waitSaved(a);
   });
 
+  it('a file moved away by a script while the user types in it: its tab closes, said, and the keys typed after go into no other file', async () => {
+    const a = s.page;
+    const moved = 'sschema2.contract';
+    const shownBefore = readFileSync(join(s.workspace, SCHED), 'utf8');
+    await openFile(a, SCHED);
+    await openFile(a, moved);
+    await placeCursor(a, 'schema', 0);
+    await a.keyboard.type('/* typed */ ');
+    await expect.poll(() => readFileSync(join(s.workspace, moved), 'utf8'), { timeout: 10_000 }).toContain('/* typed */ ');
+    await waitSaved(a);
+    renameSync(join(s.workspace, moved), join(s.workspace, 'elsewhere.contract'));
+    try {
+      await a.locator('.toast', { hasText: `${moved} is no longer in the workspace` }).waitFor({ timeout: 15_000 });
+      // the keyboard is out of the editor of the file shown now (on no element): words typed on go nowhere
+      expect(await a.evaluate(() => document.activeElement === document.body)).toBe(true);
+      await a.keyboard.type('LOST words typed on');
+      await new Promise((r) => setTimeout(r, 1500));
+      expect(readFileSync(join(s.workspace, SCHED), 'utf8')).toBe(shownBefore);
+      expect(await activeValue(a)).toBe(shownBefore);
+    } finally {
+      renameSync(join(s.workspace, 'elsewhere.contract'), join(s.workspace, moved));
+    }
+  }, 60_000);
+
   it('seven tabs in one browser: every tab gets file changes and saves (no tab holds one of the six HTTP connections the browser allows a server)', async () => {
     const streams: string[] = [];
     // every request of that browser's tabs, those to come included, from their first
