@@ -41,6 +41,11 @@ export interface FileReadResponse {
   mtimeMs: number;
   /** SHA-256 (hex) of the file's bytes: the base a save of this text names (`If-Match`). */
   version: string;
+  /**
+   * Set when the file holds bytes that are not UTF-8 (Latin-1, binary): the first line with one.
+   * `content` shows each as U+FFFD; the tab opens read-only, and a save of another text is refused.
+   */
+  undecodableLine?: number;
 }
 
 /** The details of a 409 answer to a save made on a stale base (the file on disk now). */

@@ -127,6 +127,26 @@ describe('file API over HTTP', () => {
     expect((await call('DELETE', '/api/file?path=sub/edge.txt')).status).toBe(200);
   });
 
+  it('a file whose bytes are not UTF-8 (Latin-1) is read with its first such line, and no text is written over it, blind or on its version; its own bytes back are', async () => {
+    const latin1 = Buffer.from('/* ok */\nint x; /* caf\xe9 \xff */\nint y;\n', 'latin1');
+    writeFileSync(join(ws, 'sub', 'latin1.c'), latin1);
+    const read = await call('GET', '/api/file?path=sub/latin1.c');
+    expect(read.body.undecodableLine).toBe(2);
+    expect(read.body.content).toContain('caf\uFFFD');
+    // what the editor would save: its text of the file, one line added
+    const edited = `${read.body.content as string}int z;\n`;
+    for (const headers of [{}, { 'if-match': `"${read.body.version as string}"` }]) {
+      const put = await call('PUT', '/api/file?path=sub/latin1.c', edited, headers);
+      expect(put.status).toBe(409);
+      expect(put.body.error).toMatch(/^sub\/latin1\.c holds bytes that are not UTF-8 \(line 2: Latin-1 or binary\).*nothing was written/);
+      expect(put.body.undecodableLine).toBe(2);
+      expect(readFileSync(join(ws, 'sub', 'latin1.c')).equals(latin1)).toBe(true);
+    }
+    // a UTF-8 file reads without the mark
+    expect((await call('GET', '/api/file?path=a.contract')).body.undecodableLine).toBeUndefined();
+    rmSync(join(ws, 'sub', 'latin1.c'));
+  });
+
   it('refuses to make a name with a bidirectional override or a control character (it shows as another name), or a part over 255 bytes, saying why', async () => {
     const spoof = await call('POST', '/api/create', { path: 'x\u202Etnoc.c', type: 'file' });
     expect(spoof.status).toBe(400);

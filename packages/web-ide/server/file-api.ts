@@ -10,6 +10,7 @@ import { GeneratedTreeLock } from './generated-tree-lock.js';
 import { WorkspaceFs } from './workspace-fs.js';
 import { FileLocks } from './file-locks.js';
 import { baseVersionOf, fileVersion } from './file-version.js';
+import { undecodableLine } from './undecodable.js';
 
 /** A workspace file the editor opens, saves or creates: 8 MiB at most (GET and PUT /api/file, POST /api/create). */
 const MAX_FILE_BYTES = 8 * 1024 * 1024;
@@ -19,7 +20,8 @@ const { O_WRONLY, O_CREAT, O_EXCL, O_NOFOLLOW } = constants;
 /**
  * The workspace file API (all paths workspace-relative, '/' separators):
  *   GET    /api/tree                      -> {root, entries}
- *   GET    /api/file?path=P               -> {path, content, mtimeMs, version}   (version: file-version.ts)
+ *   GET    /api/file?path=P               -> {path, content, mtimeMs, version, undecodableLine?}   (version: file-version.ts;
+ *          undecodableLine: the first line holding a byte that is not UTF-8, undecodable.ts)
  *   PUT    /api/file?path=P   body=text   -> {path, mtimeMs, version}   (atomic write; creates parents)
  *          header If-Match: "<version>" = the version the text was edited from: when the disk no
  *          longer has it -> 409 {stale: true, content, version} of the disk, nothing written
@@ -53,7 +55,8 @@ export async function handleFileApi(
           if (st.isDirectory()) throw new HttpError(400, 'is a folder');
           if (st.size > MAX_FILE_BYTES) throw new HttpError(413, 'file larger than 8 MiB');
           const bytes = await handle.readFile();
-          return { path: rel, content: bytes.toString('utf8'), mtimeMs: st.mtimeMs, version: fileVersion(bytes) };
+          const line = undecodableLine(bytes);
+          return { path: rel, content: bytes.toString('utf8'), mtimeMs: st.mtimeMs, version: fileVersion(bytes), ...(line !== undefined ? { undecodableLine: line } : {}) };
         } finally {
           await handle.close();
         }

@@ -10,6 +10,7 @@ import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import type { FileWriteResponse } from './api-types.js';
 import { fileVersion } from './file-version.js';
 import { FileLocks } from './file-locks.js';
+import { undecodableLine, undecodableRefusal } from './undecodable.js';
 
 const MAX_COMPARED_BYTES = 8 * 1024 * 1024;
 
@@ -77,8 +78,11 @@ export async function saveWorkspaceFile(
     if (entry && !entry.isFile() && !entry.isSymbolicLink()) throw new HttpError(409, `${rel} is not a regular file (a FIFO, socket or device): not overwritten`);
     // the version check comes first, for every file; a generated file's save that passes it then
     // goes through the region guard (docs/ide.md, "Saves, versions and merges")
-    const diskBytes = options.base !== undefined || splitGeneratedPath(rel) ? await readIfPresent(dir, name, rel) : undefined;
+    const diskBytes = entry?.isFile() || options.base !== undefined || splitGeneratedPath(rel) ? await readIfPresent(dir, name, rel) : undefined;
     checkBase(rel, options.base, diskBytes);
+    // bytes that are not UTF-8 are never overwritten by the editor's text of them (undecodable.ts)
+    const badLine = diskBytes === undefined ? undefined : undecodableLine(diskBytes);
+    if (badLine !== undefined && !diskBytes!.equals(body)) throw new HttpError(409, undecodableRefusal(rel, badLine), { undecodableLine: badLine });
     if (!splitGeneratedPath(rel)) {
       await writeFileAtomic(file, body);
       return written(rel, file, body);

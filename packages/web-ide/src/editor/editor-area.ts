@@ -9,6 +9,15 @@ import { confirmAction } from '../util/dialog.js';
 import { RovingFocus } from '../util/roving-focus.js';
 import { fitActionMenus } from './action-menu-width.js';
 
+
+/** What the editor says of a keystroke in a generated file outside its regions. */
+const GENERATED_READ_ONLY = 'Generated code: only the content of PROTECTED REGIONs can be edited.';
+
+/** Why a file whose bytes are not all UTF-8 is shown read-only. */
+function undecodableMessage(path: string, line: number): string {
+  return `${path} holds bytes that are not UTF-8 (from line ${line}: Latin-1 or binary), shown as \uFFFD: it is read-only here, so that a save cannot replace them. Convert it to UTF-8 (iconv -f latin1 -t utf-8) to edit it in the IDE.`;
+}
+
 /** A non-file tab (architecture, timeline) rendered by its owner into `element`. */
 export interface ViewTab {
   id: string;
@@ -85,10 +94,11 @@ export class EditorArea {
       model: null,
       tabSize: 4,
       'semanticHighlighting.enabled': true,
-      readOnlyMessage: { value: 'Generated code: only the content of PROTECTED REGIONs can be edited.' },
+      readOnlyMessage: { value: GENERATED_READ_ONLY },
     });
     fitActionMenus(this.editor);
     this.editor.onDidChangeCursorSelection(() => this.updateReadOnly());
+    workspace.onEncodingChanged.on((path) => path === this.active && this.updateReadOnly());
     this.editor.addCommand(monaco.KeyMod.CtrlCmd | monaco.KeyCode.KeyS, () => {
       // (the keybinding is the page's: only when this editor has the focus, not the conflict view's editors)
       if (!this.editor.hasTextFocus() || !this.active || this.views.has(this.active)) return;
@@ -241,6 +251,7 @@ export class EditorArea {
       }
       this.guards.get(id)?.decorate(this.editor);
       this.updateReadOnly();
+      if (fs?.undecodableLine !== undefined) toast('warning', undecodableMessage(id, fs.undecodableLine));
       const guard = this.guards.get(id);
       if (guard?.malformed.length) toast('error', `${id} has malformed protected regions: ${guard.malformed.join('; ')}`);
     }
@@ -299,9 +310,15 @@ export class EditorArea {
 
   private updateReadOnly(): void {
     const guard = this.active ? this.guards.get(this.active) : undefined;
+    const badLine = this.active ? this.workspace.files.get(this.active)?.undecodableLine : undefined;
+    if (badLine !== undefined) {
+      // bytes that are not UTF-8: a save would write U+FFFD over them (server/undecodable.ts)
+      this.editor.updateOptions({ readOnly: true, readOnlyMessage: { value: undecodableMessage(this.active!, badLine) } });
+      return;
+    }
     const selections = this.editor.getSelections();
     const readOnly = !!guard && !!selections && !guard.selectionsEditable(selections);
-    this.editor.updateOptions({ readOnly });
+    this.editor.updateOptions({ readOnly, readOnlyMessage: { value: GENERATED_READ_ONLY } });
   }
 
   private renderTabState(fs: FileState): void {

@@ -35,6 +35,8 @@ export interface FileState {
   conflict?: Conflict;
   /** The text of a save sent and not answered yet (a reload before the answer must know it may have landed). */
   sending?: string;
+  /** The disk's bytes are not all UTF-8 (the first such line): the tab is read-only (server/undecodable.ts). */
+  undecodableLine?: number;
 }
 
 /** What localStorage keeps of a file with unsaved edits: the text and the base it was edited from. */
@@ -78,6 +80,8 @@ export class Workspace {
   readonly onConflict = new Emitter<Conflict>();
   /** A file changed on disk by another program (the server's watcher), open or not (the Monitor re-reads a log folder). */
   readonly onExternalChange = new Emitter<string>();
+  /** A file's bytes became, or stopped being, all UTF-8 on disk (its tab's read-only state follows). */
+  readonly onEncodingChanged = new Emitter<string>();
   /** Files whose watcher change arrived while a save was in flight: looked at again after it. */
   private readonly recheck = new Set<string>();
   private readonly timers = new Map<string, ReturnType<typeof setTimeout>>();
@@ -141,8 +145,10 @@ export class Workspace {
   async ensureModel(path: string): Promise<FileState> {
     const existing = this.files.get(path);
     if (existing) return existing;
-    const { content, version } = await api.read(path);
-    return this.adopt(path, content, version);
+    const { content, version, undecodableLine } = await api.read(path);
+    const fs = this.adopt(path, content, version);
+    fs.undecodableLine = undecodableLine;
+    return fs;
   }
 
   /** Creates the model of a file whose disk content is known (once). */
@@ -379,7 +385,8 @@ export class Workspace {
   async revertToDisk(path: string): Promise<void> {
     const fs = this.files.get(path);
     if (!fs) return;
-    const { content, version } = await api.read(path);
+    const { content, version, undecodableLine } = await api.read(path);
+    fs.undecodableLine = undecodableLine;
     this.cancelPendingSave(path);
     this.retryDelay.delete(path);
     fs.conflict = undefined;
@@ -417,7 +424,12 @@ export class Workspace {
     let content: string;
     let version: string;
     try {
-      ({ content, version } = await api.read(path));
+      let undecodableLine: number | undefined;
+      ({ content, version, undecodableLine } = await api.read(path));
+      if (undecodableLine !== fs.undecodableLine) {
+        fs.undecodableLine = undecodableLine;
+        this.onEncodingChanged.fire(path);
+      }
     } catch {
       return; // deleted (the tree refresh handles it) or unreachable (the reconnect re-saves)
     }

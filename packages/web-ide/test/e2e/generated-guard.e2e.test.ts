@@ -121,4 +121,25 @@ describe.skipIf(!canGenerate)('the server guards generated C against stale tabs'
     await waitSaved(page);
     expect(await page.evaluate((p) => Object.keys(localStorage).filter((k) => k.endsWith(`:${p}`)).length, MAA)).toBe(0);
   });
+
+  it('a generated file holding Latin-1 bytes (written by another editor) turns read-only when they arrive: typing in a region writes nothing over them, and the tab says why', async () => {
+    const { page } = s;
+    const file = join(s.workspace, MAA);
+    const marker = '/*PROTECTED REGION ID(protect_exec_MAA) ENABLED START*/';
+    const latin1 = Buffer.from(readFileSync(file, 'latin1').replace(marker, `${marker}\n/* caf\xe9 */`), 'latin1');
+    writeFileSync(file, latin1);
+    await expect.poll(() => activeValue(page), { timeout: 15_000 }).toContain('/* caf\uFFFD */');
+    await typeInRegion('protect_exec_MAA', '/* typed over Latin-1 */');
+    await page.waitForTimeout(1500); // past the autosave delay
+    expect(readFileSync(file).equals(latin1)).toBe(true);
+    expect(await activeValue(page)).not.toContain('/* typed over Latin-1 */');
+    await page.locator('.monaco-editor .monaco-editor-overlaymessage', { hasText: 'holds bytes that are not UTF-8' }).waitFor({ timeout: 5000 });
+    await shot(page, '12-latin1-read-only');
+    // converted to UTF-8 by the user: the tab is editable again
+    writeFileSync(file, readFileSync(file, 'latin1'));
+    await expect.poll(() => activeValue(page), { timeout: 15_000 }).toContain('/* café */');
+    await typeInRegion('protect_exec_MAA', '/* typed after conversion */');
+    await expect.poll(() => readFileSync(file, 'utf8'), { timeout: 10_000 }).toContain('/* typed after conversion */');
+    await waitSaved(page);
+  });
 });
