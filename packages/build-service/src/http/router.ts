@@ -42,8 +42,12 @@ export function afterSeq(req: IncomingMessage, url: URL): number | null {
 /** The refusal of a malformed `?after=` or `Last-Event-ID` (the body of its 400). */
 export const AFTER_ERROR = 'after (or Last-Event-ID) must be an event number: a whole number of 1 to 15 decimal digits (0: from the start), the parameter given once';
 
-function logText(lines: LineEvent[]): string {
-  return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${l.line}\n`).join('');
+/** A line break or a bidi override inside a line's text (a file name a sandboxed program chose): escaped, never a line of its own. */
+const LINE_UNSAFE = /[\n\r\x0b\x0c\x85\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
+
+/** The job's lines as text, one line each: what a line carries cannot begin another (a forged service line). */
+export function logText(lines: LineEvent[]): string {
+  return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${l.line.replace(LINE_UNSAFE, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`)}\n`).join('');
 }
 
 /** The header a client sends to list its own jobs: any secret of its own, 16 to 200 characters. */

@@ -592,7 +592,7 @@ export class Job {
       this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
       this.runIssues.artifacts(a);
-      this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${s.name} (${s.reason})`).join(', ')}` : ''}`);
+      this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${JSON.stringify(s.name).slice(1, -1)} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);
     }
