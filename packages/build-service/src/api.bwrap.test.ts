@@ -141,6 +141,12 @@ describe('requests', () => {
   test.each([
     [{ project: { files: { '../x': '' } }, kind: 'make' }, 400, /"\.\." component/],
     [{ project: { files: { '/etc/passwd': '' } }, kind: 'make' }, 400, /absolute path/],
+    // what a stage could not hold, or shows as another name: refused before anything is queued
+    [{ project: { files: Object.fromEntries(Array.from({ length: 10_001 }, (_, i) => [`m${i}.contract`, ''])) } }, 400, /project\.files holds 10001 files: more than the 10000 a job is given/],
+    [{ project: { files: { [`${'a/'.repeat(600)}x.contract`]: '' } } }, 400, /a path of at most 1024 bytes, each part at most 255/],
+    [{ project: { files: { [`${'n'.repeat(256)}.contract`]: '' } } }, 400, /each part at most 255/],
+    [{ project: { files: { '\u202eevil.contract': '' } } }, 400, /the character U\+202E is refused in a path/],
+    [{ project: { files: { 'a\u0001b.contract': '' } } }, 400, /the character U\+0001 is refused in a path/],
     [{ project: { dir: '/etc' } }, 403, /outside the folders/],
     [{ project: { files: {} }, sandbox: 'chroot' }, 400, /sandbox must be one of/],
     [{ project: { files: {} }, limits: { memoryMiB: 4096 } }, 400, /above the server's 512/],

@@ -8,7 +8,7 @@ import { chmodSync, mkdirSync, mkdtempSync, promises as fsp, realpathSync } from
 import { availableParallelism, cpus, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { DEFAULT_LIMITS, LimitsError, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
+import { DEFAULT_LIMITS, LimitsError, SERVICE_BOUNDS, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
 import { Job, type JobRequest } from './pipeline/job.js';
 import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
@@ -23,6 +23,9 @@ import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
 import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
 import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
+
+/** Characters no inline file path holds: controls, line separators, bidirectional overrides (a name shown as another one). */
+const INLINE_NAME_UNSAFE = /[\x00-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/;
 
 export interface BuildServiceOptions {
   /** Default sandbox of jobs that name none. Default 'auto'. */
@@ -214,8 +217,16 @@ export class JobService {
     if (p.files !== undefined) {
       if (!p.files || typeof p.files !== 'object' || Array.isArray(p.files)) throw new ServiceError(400, 'bad_request', 'project.files must be an object path -> text');
       const files: Record<string, string> = {};
-      for (const [rel, text] of Object.entries(p.files as Record<string, unknown>)) {
-        if (typeof text !== 'string') throw new ServiceError(400, 'bad_request', `project.files["${rel}"] must be a string`);
+      const entries = Object.entries(p.files as Record<string, unknown>);
+      if (entries.length > SERVICE_BOUNDS.projectFiles) throw new ServiceError(400, 'bad_request', `project.files holds ${entries.length} files: more than the ${SERVICE_BOUNDS.projectFiles} a job is given`);
+      for (const [rel, text] of entries) {
+        const shown = JSON.stringify(rel.slice(0, 200));
+        if (typeof text !== 'string') throw new ServiceError(400, 'bad_request', `project.files[${shown}] must be a string`);
+        if (Buffer.byteLength(rel) > SERVICE_BOUNDS.inlinePathBytes || rel.split('/').some((part) => Buffer.byteLength(part) > 255)) {
+          throw new ServiceError(400, 'bad_request', `project.files[${shown}${rel.length > 200 ? '...' : ''}]: a path of at most ${SERVICE_BOUNDS.inlinePathBytes} bytes, each part at most 255, is given`);
+        }
+        const bad = INLINE_NAME_UNSAFE.exec(rel);
+        if (bad) throw new ServiceError(400, 'bad_request', `project.files[${shown}]: the character U+${bad[0].charCodeAt(0).toString(16).toUpperCase().padStart(4, '0')} is refused in a path (a control or bidirectional character shows a name as another one)`);
         try {
           files[checkRelativePath(rel)] = text;
         } catch (e) {

@@ -107,6 +107,10 @@ export interface ServiceBounds {
   projectFileBytes: number;
   /** Bytes of all the files of a project a job is given. */
   projectBytes: number;
+  /** Files of a project a job is given (inline, or read from its folder): more are refused, not left out. */
+  projectFiles: number;
+  /** Bytes of one inline file's path (`project.files`; a part at most 255, the file systems' bound). */
+  inlinePathBytes: number;
   /** gcc diagnostics kept per job (the rest stay in the log as text). */
   diagnosticsPerJob: number;
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
@@ -160,6 +164,8 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceUnreadableKept: 1000,
   projectFileBytes: 8 * 1024 * 1024,
   projectBytes: 64 * 1024 * 1024,
+  projectFiles: 10_000,
+  inlinePathBytes: 1024,
   diagnosticsPerJob: 1000,
   keptProjectWorkspaces: 32,
   keptSimulators: 64,

@@ -90,6 +90,7 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
     if (data.length > MAX_FILE_BYTES) throw new PrepareError(`${rel}: file larger than ${MAX_FILE_BYTES} bytes (a project's file is read up to that size, never left out: the build would go on without it); nothing was built`);
     total += data.length;
     if (total > MAX_PROJECT_BYTES) throw new PrepareError(`project larger than ${MAX_PROJECT_BYTES} bytes`);
+    if (wanted.size >= SERVICE_BOUNDS.projectFiles) throw new PrepareError(`project of more than ${SERVICE_BOUNDS.projectFiles} files (a job is given that many at most); nothing was built`);
     wanted.set(checkRelativePath(rel), data);
   };
   if ('files' in source) {
