@@ -31,4 +31,22 @@ describe('.contract entries a build does not read', () => {
         ]));
         expect(ws.diagnostics).toHaveLength(3);
     });
+
+    it('a folder too deep to list (its path longer than the system allows) is said, and the project around it is read', async () => {
+        const deep = mkdtempSync(join(tmpdir(), 'cactal-deep-'));
+        try {
+            writeFileSync(join(deep, 'ok.contract'), 'datatype U {int b = 1};\n');
+            // 2,100 nested folders, made from inside (each mkdir a short relative path)
+            execFileSync('python3', ['-c', 'import os, sys\nos.chdir(sys.argv[1])\nfor name in ["junk"] + ["d"] * 2100:\n    os.mkdir(name)\n    os.chdir(name)', deep]);
+            const ws = await loadWorkspace(deep);
+            expect(ws.documents.map((d) => d.file)).toEqual(['ok.contract']);
+            expect(ws.diagnostics.map((d) => [d.severity, d.code, d.message])).toEqual([
+                ['warning', 'source-not-file', 'a folder that could not be listed (its path is longer than the system allows): any .contract file in it is not read'],
+            ]);
+            expect(ws.diagnostics[0]!.file).toMatch(/^junk\/d\/d\/.*\.\.\.$/);
+            expect(ws.diagnostics[0]!.file.length).toBe(303);
+        } finally {
+            execFileSync('rm', ['-rf', deep]);
+        }
+    });
 });

@@ -103,10 +103,20 @@ const SEVERITIES: Record<number, SeverityName> = { 1: 'error', 2: 'warning', 3: 
 const DEFAULT_SKIP = ['node_modules', '.git', SRC_GEN_DIR];
 
 /** Every `.contract` file under `dir`, sorted, as absolute paths. */
-export async function findContractFiles(dir: string, skipDirs: string[] = DEFAULT_SKIP, notFiles?: Array<{ path: string; what: string }>): Promise<string[]> {
+export async function findContractFiles(dir: string, skipDirs: string[] = DEFAULT_SKIP, notFiles?: Array<{ path: string; what: string; folder?: true }>): Promise<string[]> {
     const found: string[] = [];
     async function walk(d: string): Promise<void> {
-        const entries = await readdir(d, { withFileTypes: true });
+        let entries;
+        try {
+            entries = await readdir(d, { withFileTypes: true });
+        } catch (e) {
+            // the project's own folder unreadable is the command's error; a sub-folder that cannot be
+            // listed (its path too long for the system, no permission) is said, and the others read
+            if (d === dir) throw e;
+            const code = (e as NodeJS.ErrnoException).code;
+            notFiles?.push({ path: d, folder: true, what: `a folder that could not be listed (${code === 'ENAMETOOLONG' ? 'its path is longer than the system allows' : code ?? (e as Error).message}): any .contract file in it is not read` });
+            return;
+        }
         for (const e of entries) {
             const full = join(d, e.name);
             if (e.isDirectory()) {
@@ -193,7 +203,7 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     if (!info?.isDirectory()) throw new Error(`${dir} is not a directory`);
     const services = options.services ?? createCactalServices(NodeFileSystem).Cactal;
     const shared = services.shared;
-    const notFiles: Array<{ path: string; what: string }> = [];
+    const notFiles: Array<{ path: string; what: string; folder?: true }> = [];
     const found = await findContractFiles(root, options.skipDirs, notFiles);
     // a file larger than a build reads is not read either (a 700 MB file ended check with V8's "Cannot create a string longer than ...")
     const tooLarge: Array<{ path: string; bytes: number }> = [];
@@ -258,6 +268,11 @@ export async function loadWorkspace(dir: string, options: LoadWorkspaceOptions =
     for (const t of tooLarge) diagnostics.push(whole(t.path, 'error', SOURCE_TOO_LARGE_CODE, `${t.bytes} bytes, above the ${DEFAULT_MAX_IMPORT_BYTES} a project's file may hold: not read (a build refuses the project for it too)`));
     for (const n of notFiles) {
         if (loaded.has(n.path)) continue; // imported: read, and said on its import (import-link)
+        if (n.folder) {
+            const shown = whole(n.path, 'warning', SOURCE_NOT_FILE_CODE, n.what);
+            diagnostics.push({ ...shown, file: shown.file.length > 300 ? `${shown.file.slice(0, 300)}...` : shown.file });
+            continue;
+        }
         diagnostics.push(whole(n.path, 'warning', SOURCE_NOT_FILE_CODE, `${n.what}: not read here, and a build (contract build, the IDE's build service) refuses the project for it, nothing built; put the file itself there`));
     }
     diagnostics.sort((a, b) => a.file.localeCompare(b.file) || a.line - b.line || a.column - b.column);
