@@ -51,6 +51,23 @@ describe('contract generate', () => {
         for (const [path, text] of a) expect(text, path).not.toContain(scratch);
     }, 60_000);
 
+    it('refuses a folder without a .contract file, and the folder above a project with its own src-gen/ (nothing written); check fails on no .contract file', async () => {
+        mkdirSync(join(scratch, 'nothing'));
+        const empty = capture(scratch);
+        expect(await runCli(['generate', 'nothing'], empty)).toBe(1);
+        expect(empty.stderr).toBe('no .contract file in nothing: nothing was generated (a project is the folder of its .contract files)\n');
+        const checked = capture(scratch);
+        expect(await runCli(['check', 'nothing'], checked)).toBe(1);
+        expect(checked.stderr).toContain('no .contract file in nothing: nothing was checked');
+        expect(readdirSync(join(scratch, 'nothing'))).toEqual([]);
+        sources(join(scratch, 'repo', 'robot'));
+        expect(await runCli(['generate', 'repo/robot'], capture(scratch))).toBe(0);
+        const above = capture(scratch);
+        expect(await runCli(['generate', 'repo'], above)).toBe(1);
+        expect(above.stderr).toBe('the .contract files of repo are all in robot/, which has its own src-gen/ (its generated code and yours): generate repo/robot instead (or name the output with -o OUT); nothing was generated\n');
+        expect(readdirSync(join(scratch, 'repo'))).toEqual(['robot']);
+    }, 60_000);
+
     it('refuses --runtime (exit 2, nothing written) and says where the runtime is given', async () => {
         sources(join(scratch, 'three'));
         const io = capture(scratch);

@@ -16,3 +16,22 @@ export const SRC_GEN_ARCHITECTURE_DIR = `${SRC_GEN_DIR}/${ARCHITECTURE_DIR}`;
 export function architecturePath(rel: string): string {
     return `${ARCHITECTURE_DIR}/${rel}`;
 }
+
+/**
+ * The folders that hold every one of `files` (project-relative `/` paths of its `.contract` files),
+ * deepest first, the project's own folder ('') not included. A project run one folder too high
+ * (`contract generate .` at a repository's root) has its files all in one of them, which has its
+ * own `src-gen/`: `contract generate` and a build refuse it then, rather than make a second,
+ * fresh tree here or build without the user's code.
+ */
+export function foldersHoldingAll(files: readonly string[]): string[] {
+    if (!files.length) return [];
+    let common = files[0]!.split('/').slice(0, -1);
+    for (const f of files.slice(1)) {
+        const parts = f.split('/').slice(0, -1);
+        let n = 0;
+        while (n < common.length && n < parts.length && common[n] === parts[n]) n++;
+        common = common.slice(0, n);
+    }
+    return common.map((_, i) => common.slice(0, common.length - i).join('/'));
+}

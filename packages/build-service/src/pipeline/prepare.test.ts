@@ -159,4 +159,20 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     const ws = await prepare(elf);
     expect(existsSync(join(ws.workDir, 'src-gen', 'generated', 'big-program'))).toBe(false);
   }, 120_000);
+
+  it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
+    const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
+    const empty = mkdtempSync(join(base, 'empty-'));
+    writeFileSync(join(empty, 'notes.txt'), 'no model here\n');
+    expect(await refusal({ dir: empty })).toBe('no .contract file in the project: nothing to build (a project is the folder of its .contract files)');
+    expect(await refusal({ files: { 'notes.txt': '' } })).toBe('no .contract file in the project: nothing to build (a project is the folder of its .contract files)');
+    const above = mkdtempSync(join(base, 'above-'));
+    cpSync(project(), join(above, 'robot'), { recursive: true });
+    const said = 'the project\'s .contract files are all in robot/, which has its own src-gen/ (its generated code and yours, which this build would leave out): build robot instead; nothing was built';
+    expect(await refusal({ dir: above })).toBe(said);
+    expect(await refusal({ files: { 'robot/a.contract': 'datatype T {int x = 1};', 'robot/src-gen/generated/x.c': '' } })).toBe(said);
+    // a project whose own src-gen/ is there builds, sub-folders and all
+    writeFileSync(join(above, 'top.contract'), 'datatype TopT {int y = 1};\n');
+    expect(await refusal({ dir: above })).not.toBe(said);
+  }, 120_000);
 });

@@ -15,7 +15,7 @@ import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
-import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, foldersHoldingAll } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -93,11 +93,21 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
     if (wanted.size >= SERVICE_BOUNDS.projectFiles) throw new PrepareError(`project of more than ${SERVICE_BOUNDS.projectFiles} files (a job is given that many at most); nothing was built`);
     wanted.set(checkRelativePath(rel), data);
   };
+  // the folders holding a `src-gen/` below the project's own (a project in a sub-folder: checkProjectFolder)
+  const nestedTrees = new Set<string>();
   if ('files' in source) {
     for (const [rel, text] of Object.entries(source.files)) add(rel, Buffer.from(text, 'utf8'));
+    for (const rel of wanted.keys()) {
+      const at = rel.indexOf(`/${SRC_GEN_DIR}/`);
+      if (at > 0) nestedTrees.add(rel.slice(0, at));
+    }
   } else {
-    const accept = acceptProjectPath(kind);
+    const acceptPath = acceptProjectPath(kind);
     const refused: string[] = [];
+    const accept = (rel: string, isDir: boolean): boolean => {
+      if (isDir && rel.endsWith(`/${SRC_GEN_DIR}`)) nestedTrees.add(rel.slice(0, -SRC_GEN_DIR.length - 1));
+      return acceptPath(rel, isDir);
+    };
     const files = await listFilesNoFollow(source.dir, accept, '', (rel, what) => {
       if (isProjectSource(kind, rel, accept)) refused.push(`${rel} (${what === 'symlink' ? 'a symbolic link' : 'not a regular file'})`);
     });
@@ -112,6 +122,7 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
       add(rel, data);
     }
   }
+  if (kind === 'cactal') checkProjectFolder([...wanted.keys()], nestedTrees);
   const hash = createHash('sha256').update(kind);
   for (const rel of [...wanted.keys()].sort()) hash.update('\0').update(rel).update('\0').update(wanted.get(rel)!);
   return { wanted, digest: hash.digest('hex') };
@@ -126,6 +137,21 @@ async function stageProject(wanted: Map<string, Buffer>, kind: ProjectKind, stag
 }
 
 export class PrepareError extends Error {}
+
+/**
+ * A Cactal project with no `.contract` file, or whose `.contract` files are all in a sub-folder
+ * that has its own `src-gen/` while the project has none (a build run one folder too high: the
+ * user's code in that `src-gen/` would not be built, the generated defaults would), is refused.
+ */
+function checkProjectFolder(files: readonly string[], nestedTrees: ReadonlySet<string>): void {
+  const models = files.filter((f) => f.endsWith('.contract'));
+  if (!models.length) throw new PrepareError('no .contract file in the project: nothing to build (a project is the folder of its .contract files)');
+  if (files.some((f) => f.startsWith(`${SRC_GEN_DIR}/`))) return;
+  const sub = foldersHoldingAll(models).find((folder) => nestedTrees.has(folder));
+  if (sub !== undefined) {
+    throw new PrepareError(`the project's .contract files are all in ${sub}/, which has its own ${SRC_GEN_DIR}/ (its generated code and yours, which this build would leave out): build ${sub} instead; nothing was built`);
+  }
+}
 
 export async function prepareWorkspace(
   ws: Workspace,

@@ -21,7 +21,7 @@ export const checkCommand: Command = {
         '  text (default): one line per diagnostic, `DIR/file:line:col severity code message`',
         '  json: {"diagnostics":[{"file","line","column","severity","code","message"}]} (file relative to DIR)',
         '  sarif: SARIF 2.1.0 log',
-        'exit status: 1 when there is an error, 0 otherwise (warnings and hints do not fail), 2 on bad usage'
+        'exit status: 1 when there is an error or no .contract file in DIR, 0 otherwise (warnings and hints do not fail), 2 on bad usage'
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['format']);
@@ -43,6 +43,11 @@ export const checkCommand: Command = {
             const text = formatText(diagnostics, (file) => join(dirArg, file));
             if (text) io.out(text);
             io.err(`${summarize(diagnostics)} in ${workspace.documents.length} file${workspace.documents.length === 1 ? '' : 's'}\n`);
+        }
+        if (workspace.documents.length === 0 && !diagnostics.some((d) => d.code === 'source-too-large')) {
+            // nothing checked is no green light (a CI step given the wrong folder)
+            io.err(`no .contract file in ${safeName(dirArg)}: nothing was checked (a project is the folder of its .contract files)\n`);
+            return EXIT_FAILURE;
         }
         return diagnostics.some((d) => d.severity === 'error') ? EXIT_FAILURE : EXIT_OK;
     }

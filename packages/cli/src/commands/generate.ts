@@ -11,7 +11,7 @@ import type { GenerationProblem, GenerationReport } from '@contract-studio/codeg
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
-import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, foldersHoldingAll } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
 
 function list(io: CliIO, label: string, paths: string[], show = true): void {
@@ -44,7 +44,7 @@ export const generateCommand: Command = {
         '  --verbose: also list the files kept unchanged (otherwise only counted)',
         'User code in protected regions is kept; code whose region or entity disappeared goes to OUT/orphans/.',
         'The runtime is not part of the tree: give it when building (contract build --runtime PATH, or make CONTRACT_RUNTIME=PATH).',
-        'exit status: 1 when the model has errors (nothing generated) or a file could not be merged, 0 otherwise, 2 on bad usage',
+        'exit status: 1 when the model has errors, DIR holds no .contract file, or its files are all in a sub-folder with its own src-gen/ (nothing generated), or a file could not be merged; 0 otherwise, 2 on bad usage',
     ].join('\n'),
     async run(args: string[], io: CliIO): Promise<number> {
         const { positionals, options } = parseArgs(args, ['o', 'output', 'runtime'], ['verbose']);
@@ -68,6 +68,17 @@ export const generateCommand: Command = {
             io.err(`${summarize(workspace.diagnostics)}: the model has errors, nothing was generated\n`);
             return EXIT_FAILURE;
         }
+        if (workspace.documents.length === 0) {
+            io.err(`no .contract file in ${safeName(dirArg)}: nothing was generated (a project is the folder of its .contract files)\n`);
+            return EXIT_FAILURE;
+        }
+        // DIR holds a project in a sub-folder that has its own src-gen/ (generate run one folder up):
+        // a second, fresh tree here would not hold the user's code of that one
+        const nested = typeof outOption === 'string' ? undefined : await nestedProject(dir, workspace.documents.map((d) => d.file), out);
+        if (nested !== undefined) {
+            io.err(`the .contract files of ${safeName(dirArg)} are all in ${safeName(nested)}/, which has its own ${SRC_GEN_DIR}/ (its generated code and yours): generate ${safeName(join(dirArg, nested))} instead (or name the output with -o OUT); nothing was generated\n`);
+            return EXIT_FAILURE;
+        }
         const report = generateArchitecture(workspace.documents, out);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
         await printReport(io, report, outLabel, options.get('verbose') === true);
@@ -75,3 +86,12 @@ export const generateCommand: Command = {
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
     },
 };
+
+/** The sub-folder of `dir` that holds every one of `files` and has a `src-gen/` of its own, when `dir` has none (`out` absent): the project is that folder. */
+async function nestedProject(dir: string, files: readonly string[], out: string): Promise<string | undefined> {
+    if (await stat(out).catch(() => undefined)) return undefined;
+    for (const sub of foldersHoldingAll(files)) {
+        if ((await stat(join(dir, sub, SRC_GEN_DIR)).catch(() => undefined))?.isDirectory()) return sub;
+    }
+    return undefined;
+}
