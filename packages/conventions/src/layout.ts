@@ -35,3 +35,6 @@ export function foldersHoldingAll(files: readonly string[]): string[] {
     }
     return common.map((_, i) => common.slice(0, common.length - i).join('/'));
 }
+
+/** The write lock of a generated tree, in its output folder (codegen's tree-lock.ts); no listing of the tree shows it. */
+export const TREE_LOCK_NAME = '.contract-lock';

@@ -1,11 +1,12 @@
 import { lstat } from 'node:fs/promises';
+import { TREE_LOCK_NAME } from '@contract-studio/conventions';
 import type { WorkspacePaths } from './workspace-paths.js';
 import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import { writeFileAtomic } from './atomic-write.js';
 import { HttpError } from './http-error.js';
 import { isGeneratedFile, splitGeneratedPath } from './generated-files.js';
 import { guardGeneratedWrite } from './region-guard.js';
-import { loadRegionParser } from './integrations.js';
+import { loadRegionParser, loadTreeLock } from './integrations.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import type { FileWriteResponse } from './api-types.js';
 import { fileVersion } from './file-version.js';
@@ -89,8 +90,12 @@ export async function saveWorkspaceFile(
     }
     return guardedSave(paths, rel, file, diskBytes, body);
   });
-  // the whole read-compare-write of one file runs in its queue; generated files also in the tree lock
-  const locked = () => (splitGeneratedPath(rel) ? lock.run(save) : save());
+  // the whole read-compare-write of one file runs in its queue; generated files also in the tree
+  // lock, and in the tree's write lock that `contract generate` and `contract rename` take in
+  // another process (codegen tree-lock.ts): a terminal's generate cannot write the file between
+  // this save's read and its write
+  const generated = splitGeneratedPath(rel);
+  const locked = () => (generated ? lock.run(() => withTreeWriteLock(paths, generated.srcGen, save)) : save());
   return (options.fileLocks ?? new FileLocks()).run(rel, locked);
 }
 
@@ -108,4 +113,22 @@ async function guardedSave(paths: WorkspacePaths, rel: string, file: string, dis
   if (decision.text !== disk) await writeFileAtomic(file, bytes);
   if (decision.kind === 'write') return written(rel, file, bytes);
   return written(rel, file, bytes, { merged: true, reason: decision.reason, content: bytes.toString('utf8') });
+}
+
+/** Runs `write` holding the write lock of generated tree `srcGen` (a workspace-relative folder), taken from its opened folder. */
+async function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write: () => Promise<T>): Promise<T> {
+  const lockTree = await loadTreeLock();
+  return paths.fs.withParent(`${srcGen}/${TREE_LOCK_NAME}`, true, async (dir) => {
+    let release: () => void;
+    try {
+      release = await lockTree(dir.at('.'), srcGen);
+    } catch (e) {
+      throw new HttpError(409, `not saved: ${(e as Error).message}`);
+    }
+    try {
+      return await write();
+    } finally {
+      release(); // while the folder is still open: the lock's path names it through its descriptor
+    }
+  });
 }

@@ -93,6 +93,12 @@ export async function loadRegionParser(): Promise<RegionParser> {
   return { parseRegions: codegen.parseRegions, RegionSyntaxError: codegen.RegionSyntaxError };
 }
 
+/** codegen's write lock of a generated tree (tree-lock.ts): the IDE's saves of generated files take the one `contract generate` takes. */
+export async function loadTreeLock(): Promise<CodegenApi['lockTree']> {
+  const codegen = await importWith<CodegenApi, 'lockTree'>('@contract-studio/codegen', ['lockTree']);
+  return codegen.lockTree;
+}
+
 /**
  * codegen's checks of an output tree (safe-paths.ts, output-tree.ts): the IDE reads the
  * generator's manifest and carries renames over in src-gen with the same rules as Generate All

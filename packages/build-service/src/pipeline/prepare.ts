@@ -15,7 +15,7 @@ import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
-import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, foldersHoldingAll } from '@contract-studio/conventions';
+import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, foldersHoldingAll } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -51,7 +51,7 @@ function acceptProjectPath(kind: ProjectKind) {
   return (rel: string, isDir: boolean): boolean => {
     const base = rel.split('/').pop() ?? rel;
     const inTree = rel.startsWith(`${SRC_GEN_DIR}/`);
-    if (base === 'node_modules' || base === '.git') return false;
+    if (base === 'node_modules' || base === '.git' || base === TREE_LOCK_NAME) return false;
     if (base.startsWith('.') && !inTree) return false;
     if (isDir) return !RUN_OUTPUT_DIR.test(rel);
     if (/\.(o|a|so|out|csv|log)$/.test(base)) return false;

@@ -4,6 +4,7 @@ import { syncFolder, writeFileAtomic } from './atomic-write.js';
 import { closeQuietly, fdPath, openDirNoFollow, requireProcFd } from './dir-fd.js';
 import { checkTreePath, checkTreeRoot, linkRefused, UnsafePathError } from './safe-paths.js';
 import { removeStaleTemps } from './stale-temp.js';
+import { lockTreeSync } from './tree-lock.js';
 
 /**
  * Opened folders kept per tree (least recently used closed first): a generation walks its files
@@ -45,8 +46,22 @@ export class OutputTree {
         this.openRoot(true);
     }
 
-    /** Closes the opened folders; the tree can still be used after (folders are opened again). */
+    /**
+     * Takes the output folder's write lock (tree-lock.ts: one writer of a tree at a time, across
+     * processes), waiting for another writer's; released by close().
+     */
+    lock(): void {
+        if (this.release) return;
+        this.openRoot(true);
+        this.release = lockTreeSync(fdPath(this.rootFd!), this.root);
+    }
+
+    private release: (() => void) | undefined;
+
+    /** Closes the opened folders and releases the lock; the tree can still be used after (folders are opened again). */
     close(): void {
+        this.release?.();
+        this.release = undefined;
         for (const fd of this.dirs.values()) this.syncAndClose(fd);
         this.dirs.clear();
         if (this.rootFd !== undefined) this.syncAndClose(this.rootFd);

@@ -69,6 +69,7 @@ export async function renameInGeneratedTree(srcGen: string, from: string, to: st
     const tree = openTreeForCarry(srcGen, `carry ${from} -> ${to} over`);
     if (!tree) return report;
     try {
+        tree.lock(); // one writer of the tree at a time (tree-lock.ts)
         const loaded = loadManifest(tree); // before anything moves: the recorded skeletons are of the files as they were
         const carries = new Map<string, FileCarry>();
         walk(tree, '', from, to, report, carries);

@@ -149,6 +149,7 @@ export function renameIdentifiersInGeneratedTree(srcGen: string, renames: Map<st
     const tree = openTreeForCarry(srcGen, `carry ${[...renames.keys()][0]} -> ${[...renames.values()][0]} over in the protected regions`);
     if (!tree) return report;
     try {
+        tree.lock(); // one writer of the tree at a time (tree-lock.ts)
         const files: Array<{ rel: string; text: string; regions: ReturnType<typeof parseRegions>['regions'] }> = [];
         for (const rel of generatedCFiles(tree, '', [])) {
             if (owner !== undefined && !rel.split('/').includes(`${owner}_mod`)) continue;

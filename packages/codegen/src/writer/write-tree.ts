@@ -129,6 +129,8 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
     const tree = new OutputTree(outDir);
     try {
         tree.prepare();
+        // one writer of the tree at a time: a terminal's generate and the IDE's saves (tree-lock.ts)
+        tree.lock();
         return writeInto(tree, files, options);
     } finally {
         tree.close();
