@@ -72,7 +72,11 @@ export async function openLogFolder(dir: string, only?: readonly string[], skipp
     } catch (e) {
         return `cannot read the log folder ${safeName(shownAs)}: ${(e as Error).message.replace(dir, shownAs)}`;
     }
-    if (names.length === 0) return `no CSV log (*.csv) in ${safeName(shownAs)}`;
+    if (names.length === 0) {
+        // a project folder given for its logs folder: say where `contract run` wrote them
+        const logs = await fsp.stat(join(dir, 'logs')).then((st) => st.isDirectory(), () => false);
+        return `no CSV log (*.csv) in ${safeName(shownAs)}${logs ? `; its logs/ folder (where contract run writes a run's logs) may hold them: contract trace ${safeName(join(shownAs, 'logs'))}` : ''}`;
+    }
     if (names.length > MAX_LOG_FILES) return `${safeName(shownAs)} holds ${names.length} CSV logs: more than the ${MAX_LOG_FILES} read at once (a run writes one per module); give the folder of one run`;
     const logs: OpenLog[] = [];
     for (const name of names) {

@@ -1,6 +1,6 @@
 /** `contract trace`: story and JSON lines of a log folder, hostile lines, links, usage errors. */
 import { execFileSync, spawn } from 'node:child_process';
-import { closeSync, mkdtempSync, openSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
+import { closeSync, mkdirSync, mkdtempSync, openSync, rmSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { basename, join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -193,6 +193,11 @@ describe('contract trace', () => {
         const typed = capture(tmpdir());
         expect(await runCli(['trace', basename(empty)], typed)).toBe(1);
         expect(typed.stderr).toBe(`contract trace: no CSV log (*.csv) in ${basename(empty)}\n`);
+        // a project folder given for its logs: where contract run wrote them is said
+        mkdirSync(join(empty, 'logs'));
+        const project = capture(tmpdir());
+        expect(await runCli(['trace', basename(empty)], project)).toBe(1);
+        expect(project.stderr).toBe(`contract trace: no CSV log (*.csv) in ${basename(empty)}; its logs/ folder (where contract run writes a run's logs) may hold them: contract trace ${basename(empty)}/logs\n`);
         rmSync(empty, { recursive: true });
     });
 
