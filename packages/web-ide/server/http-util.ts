@@ -4,14 +4,31 @@ import { HttpError } from './http-error.js';
 const MAX_BODY = 16 * 1024 * 1024;
 
 /** The request body as raw bytes (at most 16 MiB). */
-export async function readBodyBytes(req: IncomingMessage): Promise<Buffer> {
+/** How long a request body may take to arrive (the build service's requestBodySeconds): a client that sends a byte a minute holds nothing longer. */
+export const BODY_SECONDS = 30;
+
+export async function readBodyBytes(req: IncomingMessage, seconds = BODY_SECONDS): Promise<Buffer> {
+  if (Number(req.headers['content-length']) > MAX_BODY) throw new HttpError(413, 'request body larger than 16 MiB');
   const chunks: Buffer[] = [];
   let size = 0;
-  for await (const chunk of req) {
-    size += (chunk as Buffer).length;
-    if (size > MAX_BODY) throw new HttpError(413, 'request body larger than 16 MiB');
-    chunks.push(chunk as Buffer);
+  let late = false;
+  const timer = setTimeout(() => {
+    late = true;
+    req.destroy(); // ends the read below
+  }, seconds * 1000);
+  try {
+    for await (const chunk of req) {
+      size += (chunk as Buffer).length;
+      if (size > MAX_BODY) throw new HttpError(413, 'request body larger than 16 MiB');
+      chunks.push(chunk as Buffer);
+    }
+  } catch (e) {
+    if (late) throw new HttpError(408, `the request body did not arrive within ${seconds} s`);
+    throw e;
+  } finally {
+    clearTimeout(timer);
   }
+  if (late) throw new HttpError(408, `the request body did not arrive within ${seconds} s`);
   return Buffer.concat(chunks);
 }
 
