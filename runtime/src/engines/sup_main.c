@@ -149,6 +149,17 @@ static int not_sent(const char *peer, int rc) {
 /* undo requests go to modules that may already have ended (architecture stopping): skip those */
 static int alive(const char *module) { return ModuleState(module) == CONTRACT_OK; }
 
+/* An undo whose receiver has already ended (the launcher stops the supervisors first at a run's
+   end, one after the other; a crash): the undo is logged all the same, then why no request went,
+   as an `error` record (the log says every undo its rule's end made, none is left out silently);
+   stderr stays quiet, as for a peer gone at the run's stop (rt_send_failed). */
+static void undo_skipped(const char *peer) {
+    char line[256];
+    snprintf(line, sizeof line, "STOP request to %.64s: not sent, it has ended (%s)", peer,
+             ContractRunStopping() ? "its stop came first; the run is stopping" : "it crashed or was stopped");
+    ContractLog("error", "", -1, 0, line);
+}
+
 static void b_ord_activate(void *ctx, const ContractSchema *s, const void *params, size_t size,
                            uint32_t id) {
     (void)ctx;
@@ -163,8 +174,11 @@ static void b_ord_activate(void *ctx, const ContractSchema *s, const void *param
 
 static void b_ord_deactivate(void *ctx, const ContractSchema *s, uint32_t id) {
     (void)ctx;
-    if (!alive("ORD")) return;
     log_action("ORD", "undo: deactivate schema %s (activation #%u, to ORD)", s->name, id);
+    if (!alive("ORD")) {
+        undo_skipped("ORD");
+        return;
+    }
     int rc = engine_send_stop("ORD", s->name, (int)id);
     if (not_sent("ORD", rc))
         say_cannot("ask ORD to deactivate %s: %s", s->name,
@@ -437,8 +451,11 @@ static int b_start_function(void *ctx, const ContractFunctionSignature *callee, 
 
 static void b_stop_function(void *ctx, const char *sup, const char *fn, uint32_t id) {
     (void)ctx;
-    if (!alive(sup)) return;
     log_action(sup, "undo: stop %s.%s (activation #%u)", sup, fn, id);
+    if (!alive(sup)) {
+        undo_skipped(sup);
+        return;
+    }
     not_sent(sup, engine_send_stop(sup, fn, (int)id));
 }
 
