@@ -351,12 +351,17 @@ export class MonitorPanel {
 
   private render(m: MonitorView, t: number, s: MonitorState): void {
     this.element.dataset.t = String(Math.round(t));
-    if (this.due('clock', CLOCK_REDRAW_MS)) this.drawClock(m, t, performance.now());
-    this.strip.draw(m.marks, m.end, t);
     // at every frame of a live run of a fast schema, records come but the supervisors seldom
     // change: their list (strings and arrays for every rule) is rebuilt only when they did
     const d = this.supsDrawn;
-    if (!(this.live && this.follow && d.model === m && d.changes === s.supervisorChanges && d.sups === this.sups)) {
+    const supervisorsMoved = !(this.live && this.follow && d.model === m && d.changes === s.supervisorChanges && d.sups === this.sups);
+    // the time readout is throttled, but never behind what the frame shows: drawn with a rule change
+    if (supervisorsMoved) {
+      this.drawnAt.set('clock', performance.now());
+      this.drawClock(m, t, performance.now());
+    } else if (this.due('clock', CLOCK_REDRAW_MS)) this.drawClock(m, t, performance.now());
+    this.strip.draw(m.marks, m.end, t);
+    if (supervisorsMoved) {
       this.renderSupervisors(s);
       this.supsDrawn = { model: m, changes: s.supervisorChanges, sups: this.sups };
     }
