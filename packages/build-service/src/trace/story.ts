@@ -287,6 +287,9 @@ export class StoryTeller {
      * with an ack and are not followed.
      */
     private readonly runs = new Map<string, string>();
+    /** Event ports (at most STORY_FOLLOWED) whose first event with no subscriber was told; all such events are counted. */
+    private readonly unheardPorts = new Set<string>();
+    private unheard = 0;
     /** Data flows (at most STORY_FOLLOWED) whose first dropped value was told: later drops are only counted. */
     private readonly droppingFlows = new Set<string>();
     /** Why the run stopped was told (the first module's KILL that says it: the others say the same). */
@@ -396,6 +399,15 @@ export class StoryTeller {
         if (k.kind === 'data_dropped') {
             const text = this.firstDropText(k);
             return text && `${at(k)} ${text}`;
+        }
+        if (k.kind === 'event_posted' && k.detail === 'no subscriber') {
+            // an event no one received (its subscriber had unsubscribed, none ever did): why a rule
+            // waiting for it did not fire; the port's first told, the others counted at the end
+            this.unheard++;
+            const port = `${k.module}:${k.port ?? '?'}`;
+            if (this.unheardPorts.has(port) || this.unheardPorts.size >= STORY_FOLLOWED) return undefined;
+            this.unheardPorts.add(ownString(port));
+            return `${at(k)} event ${port} posted with no subscriber: no one received it (no supervisor or module subscribed to ${port} then); its later ones are counted at the end`;
         }
         if (k.kind === 'user') return `${at(k)} ${userRecordText(k)}`;
         // a log's bound reached (the runtime's at the bound and at its end, the build service's on a log it cut)
@@ -578,7 +590,8 @@ export class StoryTeller {
             `${plural(n('ord_deadline_miss'), 'deadline miss', 'deadline misses')}, ${plural(n('scheduler:overrun'), 'overrun')}, ` +
             `${plural(n('scheduler:held'), 'held cycle')}, ${plural(n('sup_rule'), 'rule change')}, ` +
             `${n('data_received')} data and ${plural(n('event_received'), 'event delivery', 'event deliveries')}, ` +
-            `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}${plural(this.counted.unreadable, 'unreadable line')}`;
+            `${n('data_dropped') ? `${plural(n('data_dropped'), 'data value')} dropped, ` : ''}` +
+            `${this.unheard ? `${plural(this.unheard, 'event')} with no subscriber, ` : ''}${plural(this.counted.unreadable, 'unreadable line')}`;
     }
 }
 

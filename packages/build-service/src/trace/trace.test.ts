@@ -520,6 +520,20 @@ describe('reading a log', () => {
         ]);
     });
 
+    it('tells the first event of each port that no one received (no subscriber), and counts them all at the end', () => {
+        const story = storyOfLog('X_1.csv', [
+            '1000000,w,DET,event_posted,PRD,0,32,to_port=1',
+            '2000000,w,DET,event_posted,,0,32,no subscriber',      // PRD had unsubscribed: why its rule did not fire
+            '3000000,w,DET,event_posted,,0,32,no subscriber',
+            '4000000,w,HMI,event_posted,,2,8,no subscriber',
+        ]);
+        expect(story).toEqual([
+            '+0.001000s DET  event DET:0 posted with no subscriber: no one received it (no supervisor or module subscribed to DET:0 then); its later ones are counted at the end',
+            '+0.003000s HMI  event HMI:2 posted with no subscriber: no one received it (no supervisor or module subscribed to HMI:2 then); its later ones are counted at the end',
+            '4 records: 0 module releases, 0 completed cycles, 0 deadline misses, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 3 events with no subscriber, 0 unreadable lines',
+        ]);
+    });
+
     it('names the modules a missed cycle still waits for, or the module its held cycle waits for; tells held, resumed and stuck; a record before the first is at a negative time', () => {
         const text = [CSV_HEADER,
             '1000000000,w,ORD,ord_release,CAM,,0,schema=pick cycle=7 tick_ns=1000000000 release_ns=1000000000 release=20',
