@@ -125,12 +125,33 @@ describe('code written outside the protected regions', () => {
         expect(read(dir, A)).toContain(region('protect_vars_MSC', '\nint mine = 1;\n'));
     });
 
-    it('does not count line endings turned into CRLF (a checkout with autocrlf)', () => {
+    it('does not count line endings turned into CRLF (a checkout with autocrlf), and keeps them: unchanged, or updated all CRLF', () => {
         const dir = out();
         writeTree(dir, [file()]);
-        write(dir, A, read(dir, A).replace(/\n/g, '\r\n'));
+        write(dir, A, read(dir, A).replace(/\n/g, '\r\n').replace('//TODO\r\n', '// mine\r\n'));
+        const crlf = read(dir, A);
         const r = writeTree(dir, [file()]);
         expect([r.orphaned, r.warnings]).toEqual([[], []]);
+        // the same model: nothing to write (the file was rewritten LF outside its regions: mixed endings, every line a diff)
+        expect(r.unchanged).toContain(A);
+        expect(read(dir, A)).toBe(crlf);
+        // a model change: the new lines are CRLF too, the user's code kept
+        const changed = writeTree(dir, [file('int added_port;\n')]);
+        expect(changed.updated).toContain(A);
+        const text = read(dir, A);
+        expect(text).toContain('int added_port;\r\n');
+        expect(text).toContain('// mine\r\n');
+        expect(text.replace(/\r\n/g, '')).not.toContain('\n');
+    });
+
+    it('warns of a file its regions make larger than a build reads (8 MiB), keeping it all', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        const big = `/* ${'x'.repeat(9 * 1024 * 1024)} */`;
+        write(dir, A, read(dir, A).replace('//TODO', big));
+        const r = writeTree(dir, [file('int added_port;\n')]);
+        expect(r.warnings.map((w) => w.message)).toEqual([expect.stringMatching(/^is \d+ bytes with its protected regions, above the 8388608 a build reads of a project's file \(and the IDE opens\): contract build and Build & Run will refuse the project/)]);
+        expect(read(dir, A)).toContain(big);
     });
 
     it('the skeleton reduces each region to its ID', () => {

@@ -37,6 +37,20 @@ function knownDefaultCheck(defaults: Record<string, string> | undefined) {
     };
 }
 
+/** Whether `text` ends its lines with CRLF: some do, and no more end with a bare LF. */
+function hasCrlfEndings(text: string): boolean {
+    let crlf = 0;
+    let lf = 0;
+    for (let i = text.indexOf('\n'); i >= 0; i = text.indexOf('\n', i + 1)) {
+        if (i > 0 && text.charCodeAt(i - 1) === 13) crlf++;
+        else lf++;
+    }
+    return crlf > 0 && lf <= crlf;
+}
+
+/** What a build reads of a project's file, at most (the build service's projectFileBytes; the IDE opens the same). */
+const MAX_SOURCE_BYTES = 8 * 1024 * 1024;
+
 /** 1-based number of the first line of `a` that differs from `b`'s line of the same number. */
 export function firstDifferingLine(a: string, b: string): number {
     let line = 1;
@@ -264,6 +278,16 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                     file: file.path,
                     line: merged.orphans[0]!.line,
                     message: `user code of vanished protected region(s) ${merged.orphans.map((r) => r.id).join(', ')} moved to ${orphan.path}`,
+                });
+            }
+            // a file with CRLF line endings (a Windows checkout) keeps them: the generator's lines are
+            // written CRLF too, not LF beside the regions' CRLF (every line a diff)
+            if (hasCrlfEndings(existing)) merged.text = merged.text.replace(/(?<!\r)\n/g, '\r\n');
+            if (merged.text.length > MAX_SOURCE_BYTES) {
+                report.warnings.push({
+                    file: file.path,
+                    line: 1,
+                    message: `is ${merged.text.length} bytes with its protected regions, above the ${MAX_SOURCE_BYTES} a build reads of a project's file (and the IDE opens): contract build and Build & Run will refuse the project; keep large data out of the regions (a file the code reads)`,
                 });
             }
             if (merged.text === existing) {
