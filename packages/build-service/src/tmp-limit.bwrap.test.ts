@@ -13,14 +13,20 @@ import { getJob, postJob, readEvents } from './test-support/client.js';
 const fillTmp = `#include <errno.h>
 #include <stdio.h>
 #include <string.h>
-int main(void) {
+static void fill(const char *path) {
   static char chunk[1024 * 1024];
   memset(chunk, 'x', sizeof chunk);
-  FILE *f = fopen("/tmp/fill", "wb");
-  if (!f) { printf("open failed\\n"); return 1; }
+  FILE *f = fopen(path, "wb");
+  if (!f) { printf("%s: open failed: %s\\n", path, strerror(errno)); return; }
   long mib = 0;
   while (mib < 1024 && fwrite(chunk, 1, sizeof chunk, f) == sizeof chunk && fflush(f) == 0) mib++;
-  printf("wrote %ld MiB: %s\\n", mib, mib < 1024 ? strerror(errno) : "no limit");
+  printf("%s: wrote %ld MiB: %s\\n", path, mib, mib < 1024 ? strerror(errno) : "no limit");
+  fclose(f);
+}
+int main(void) {
+  fill("/tmp/fill");
+  fill("/dev/shm/fill");
+  fill("/dev/fill");
   return 0;
 }
 `;
@@ -32,7 +38,7 @@ afterAll(async () => {
   rmSync(cache, { recursive: true, force: true });
 });
 
-test('a job filling /tmp stops at tmpMiB with ENOSPC', async () => {
+test('a job filling /tmp or /dev/shm stops at tmpMiB with ENOSPC; /dev is read-only', async () => {
   server = createBuildServer({ token: false, port: 0, cacheDir: cache });
   const { url } = await server.listen();
   const posted = await postJob(url, { action: 'run', kind: 'make', sandbox: 'bwrap', project: { files: makeProject(fillTmp) }, limits: { tmpMiB: 8 } });
@@ -41,8 +47,12 @@ test('a job filling /tmp stops at tmpMiB with ENOSPC', async () => {
   const job = await getJob(url, posted.json.id as string);
   expect(job.status).toBe('succeeded');
   const text = events.map((e) => (e.type === 'line' ? e.line : '')).join('\n');
-  const m = /wrote (\d+) MiB: (.*)/.exec(text);
-  expect(m, text).not.toBeNull();
-  expect(Number(m![1])).toBeLessThanOrEqual(8);
-  expect(m![2]).toMatch(/No space left on device/);
+  for (const dir of ['/tmp', '/dev/shm']) {
+    const m = new RegExp(`${dir}/fill: wrote (\\d+) MiB: (.*)`).exec(text);
+    expect(m, text).not.toBeNull();
+    expect(Number(m![1])).toBeLessThanOrEqual(8);
+    expect(m![2]).toMatch(/No space left on device/);
+  }
+  // /dev itself is read-only (its tmpfs took writes bounded by the memory limit alone)
+  expect(text).toContain('/dev/fill: open failed: Read-only file system');
 });

@@ -149,7 +149,11 @@ export class BwrapSandbox implements Sandbox {
       '--hostname', 'contract-sandbox',
       ...toolchainArgs(),
       '--proc', '/proc',
+      // /dev read-only (its tmpfs was writable, bounded by nothing but the memory limit), and its
+      // shm a tmpfs of its own, bounded as /tmp is
       '--dev', '/dev',
+      '--remount-ro', '/dev',
+      '--size', String(tmpBytes(cmd.limits)), '--tmpfs', '/dev/shm',
       '--size', String(tmpBytes(cmd.limits)), '--tmpfs', '/tmp',
       '--bind', cmd.workDir, SANDBOX_WORK,
       ...(cmd.runtimeDir ? ['--ro-bind', cmd.runtimeDir, SANDBOX_RUNTIME] : []),
