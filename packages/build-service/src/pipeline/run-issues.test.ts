@@ -114,6 +114,16 @@ describe('RunIssues', () => {
       ['HMI', "the run was stopped by the process limit 256 (HMI had 241 of the job's processes: its code forks)"],
       [undefined, 'the run was stopped by the process limit 256'],
     ]);
+    // a fork bomb's run: the modules that did not answer the stop's KILL in time are not blamed for looping
+    const bomb = new RunIssues();
+    bomb.line('module MSA did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
+    bomb.line('module MAB did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
+    bomb.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'MSA', moduleProcesses: 250 });
+    expect(bomb.all.map((i) => [i.kind, i.module, i.message])).toEqual([
+      ['module-hung', 'MSA', 'MSA did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)'],
+      ['module-hung', 'MAB', "MAB did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated, while the process limit 256 held the job (MSA's doing): likely kept from answering by that, not by its own code"],
+      ['limit', 'MSA', "the run was stopped by the process limit 256 (MSA had 250 of the job's processes: its code forks)"],
+    ]);
     r.outputTruncated('stdout', 1024 * 1024);
     expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
       ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],

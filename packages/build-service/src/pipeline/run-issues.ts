@@ -50,6 +50,8 @@ export class RunIssues {
   private readonly stuckSeen = new Set<string>();
   /** Modules the launcher saw killed by SIGKILL during the run (at most 16): at the memory limit, the kernel's choice. */
   private readonly killed: string[] = [];
+  /** Modules that did not answer the stop's KILL, and for how long (s, as the launcher said), at most 64. */
+  private readonly hungSeconds = new Map<string, string>();
   /** Modules the launcher found not ready (at most 16): their KILL unanswered at the stop is not told again. */
   private readonly notReady = new Set<string>();
   /** Characters of output lines per source (at most MAX_SOURCES: a module tag, `launcher`, `run`): who filled the output. */
@@ -95,6 +97,15 @@ export class RunIssues {
     // at the process limit, the module whose code forks: most of the job's processes had its name
     const forks = hit.name === 'processes' && hit.module ? ` (${hit.module} had ${hit.moduleProcesses ?? 'most'} of the job's processes: its code forks)` : '';
     const module = hit.name === 'memory' ? this.killed[0] : hit.name === 'processes' ? hit.module : undefined;
+    // modules that did not answer the stop's KILL while a fork bomb or a memory hog held the
+    // machine: not blamed for looping (every module of a fork bomb's run was "hung")
+    if (hit.name === 'processes' || hit.name === 'memory') {
+      for (const issue of this.list) {
+        if (issue.kind !== 'module-hung' || issue.module === module) continue;
+        const seconds = this.hungSeconds.get(issue.module!) ?? '?';
+        issue.message = `${issue.module!} did not end when the run stopped: it did not answer its KILL request for ${seconds} s and was terminated, while the ${describeLimitHit(hit)} held the job${module ? ` (${module}'s doing)` : ''}: likely kept from answering by that, not by its own code`;
+      }
+    }
     this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}${forks}`, ...(module ? { module } : {}) });
   }
 
@@ -138,6 +149,7 @@ export class RunIssues {
     // a module not ready does not answer the stop's KILL either: the same fault, told once
     if (hung && this.notReady.has(hung[1]!)) return;
     if (hung) {
+      if (this.hungSeconds.size < 64) this.hungSeconds.set(hung[1]!, hung[2]!);
       this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for ${hung[2]!} s and was terminated (does a region of it loop or block: its exec or exit code?)` });
       return;
     }
