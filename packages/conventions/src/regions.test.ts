@@ -33,7 +33,7 @@ describe('scanRegions', () => {
         expect(errors.map((e) => [e.line, e.message])).toEqual([
             [2, "nested protected region start 'x' inside region 'x' (opened line 1, never closed)"],
             [2, "duplicate protected region ID 'x' (first at line 1)"],
-            [4, 'protected region END without a START'],
+            [4, "protected region END without a START; region 'x' before it ended at line 3: is that END (or a marker inside a string or comment of its code) one too many?"],
             [5, 'protected region with an empty ID'],
             [5, "protected region ' ' START without END"],
         ]);
@@ -64,9 +64,11 @@ describe('scanRegions and a start marker with a typo', () => {
         expect(at('/* PROTECTED REGION ID( a )\n ENABLED STRAT */\nx\n' + END)).toEqual([[1, "protected region start 'a' is malformed: 'ENABLED STRAT' (expected 'ENABLED START' or 'START')"]]);
         expect(at('\n/*PROTECTED REGION ID(a) ENABLED*/x' + END)).toEqual([[2, "protected region start 'a' is malformed: 'ENABLED' (expected 'ENABLED START' or 'START')"]]);
         expect(at('/*PROTECTED REGIN ID(a) ENABLED START*/\nx\n' + END)).toEqual([[1, "protected region start marker is malformed: '/*PROTECTED REGIN ID(a) ENABLED START*/' (expected '/*PROTECTED REGION ID(<id>) ENABLED START*/')"]]);
-        expect(at(`${region('a', 'x')}\n/* a comment */\n${END}`)).toEqual([[3, 'protected region END without a START']]);
+        expect(at(`${region('a', 'x')}\n/* a comment */\n${END}`)).toEqual([[3, "protected region END without a START; region 'a' before it ended at line 1: is that END (or a marker inside a string or comment of its code) one too many?"]]);
         // a typo'd start before an earlier, well-formed region is not blamed for a later stray END
-        expect(at(`/*PROTECTED REGION ID(a) ENABELD START*/${region('b', 'x')}\n${END}`)).toEqual([[2, 'protected region END without a START']]);
+        expect(at(`/*PROTECTED REGION ID(a) ENABELD START*/${region('b', 'x')}\n${END}`)).toEqual([[2, "protected region END without a START; region 'b' before it ended at line 1: is that END (or a marker inside a string or comment of its code) one too many?"]]);
+        // an END with no region before it says nothing more
+        expect(at(`int a;\n${END}`)).toEqual([[2, 'protected region END without a START']]);
     });
 
     it('stays linear on hostile texts (ReDoS)', () => {

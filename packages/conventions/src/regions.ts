@@ -159,7 +159,13 @@ export function scanRegions(text: string): RegionScan {
                 // a start marker with a typo (`ENABELD START`) is no start: say so at its line rather than at this END
                 const miss = nearMissStart(text, previousEnd, at);
                 if (miss) errors.push({ offset: miss.offset, line: line - countNewlines(text, miss.offset, at), message: miss.message });
-                else errors.push({ offset: at, line, message: 'protected region END without a START' });
+                else {
+                    // right after a region that ended: its END may be the one too many (one typed in
+                    // the region, or a marker in a string), not this one
+                    const before = regions[regions.length - 1];
+                    const closedBefore = before !== undefined && before.end === previousEnd ? `; region '${before.rawId}' before it ended at line ${before.endLine}: is that END (or a marker inside a string or comment of its code) one too many?` : '';
+                    errors.push({ offset: at, line, message: `protected region END without a START${closedBefore}` });
+                }
                 previousEnd = at + m[0].length;
                 continue;
             }
