@@ -33,4 +33,36 @@ describe('a job cancelled while its workspace is acquired', () => {
     await new Promise((r) => setTimeout(r, 20));
     expect(released).toBe(1);
   });
+
+  it('a cancel between two steps of the prepare (while earlier run logs are removed) rejects nothing unhandled, and the prepare it let go of is awaited before the workspace goes', async () => {
+    // the cancel comes at the timing line of the workspace's acquire: the next await (the earlier
+    // run's logs removed) is no cancellable step, so the prepare that follows is asked for after the
+    // cancel — its rejection ('cancelled', or here a missing folder) was left unhandled, and Node
+    // ended the whole service (a Stop 60 ms into a Build & Run)
+    const order: string[] = [];
+    const workspace = { root: '/nonexistent', stageDir: '/nonexistent/stage', workDir: '/nonexistent/work', owner: { uid: 0, gid: 0 }, reused: false, acceptedOutputs: null,
+      reset: async () => {}, release: async () => void order.push('released') } as unknown as Workspace;
+    const ctx: JobContext = {
+      sandbox: { name: 'none', needsHostRuntime: false } as unknown as Sandbox,
+      sandboxNote: 'sandbox: none (test)',
+      runtime: null,
+      acquireWorkspace: async () => workspace,
+    };
+    const unhandled: unknown[] = [];
+    const seen = (e: unknown) => unhandled.push(e);
+    process.on('unhandledRejection', seen);
+    try {
+      const job = new Job('j2', { action: 'build', project: { files: { 'a.contract': 'datatype T {int x = 1};' } }, projectKey: '/p', kind: 'cactal', limits: { ...DEFAULT_LIMITS } }, 'none');
+      job.events.subscribe(0, (e) => {
+        if (e.type === 'line' && e.line.startsWith('time: workspace (lock, checks)')) void job.cancel();
+      });
+      await job.execute(ctx);
+      expect(job.status).toBe('cancelled');
+      expect(order).toEqual(['released']);
+      await new Promise((r) => setTimeout(r, 50));
+      expect(unhandled).toEqual([]);
+    } finally {
+      process.off('unhandledRejection', seen);
+    }
+  });
 });

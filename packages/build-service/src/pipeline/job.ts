@@ -28,6 +28,9 @@ import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
 import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR, type StopReason } from '@contract-studio/conventions';
 
+/** How long a cancelled job waits for the host-side work it let go of (a generation stopping at its next check) before releasing its workspace. */
+const ABANDONED_WAIT_MS = 10_000;
+
 export interface JobRequest {
   action: 'build' | 'run';
   project: ProjectSource;
@@ -475,6 +478,8 @@ export class Job {
       }
     } finally {
       // the job's processes are all gone here (runStep awaits them), so the work dir is safe to touch
+      // once the host-side work a cancel let go of has stopped too (a generation writing into it)
+      if (this.abandoned.size) await Promise.race([Promise.all(this.abandoned), new Promise((r) => setTimeout(r, ABANDONED_WAIT_MS))]);
       if (ws) {
         const tr = Date.now();
         await ws.release().catch(() => {});
@@ -610,10 +615,22 @@ export class Job {
     return { files: a.files.map(({ name, path, size, gzip, capped }) => ({ name, path, size, gzipSize: gzip.length, capped })), skipped: a.skipped, runDirLeftovers: a.runDirLeftovers, collect_ms: this.artifactsCollectMs };
   }
 
+  /**
+   * `p`, or a rejection as soon as the job is cancelled (or faulted). The work `p` stands for goes
+   * on meanwhile (prepareWorkspace stops at its next check of the cancel): its end is always
+   * observed — a rejection nobody handled ended the whole service (a Stop 60 ms into a run: the
+   * generator's 'cancelled') — and awaited before the job lets its workspace go (abandoned).
+   */
   private orCancel<T>(p: Promise<T>): Promise<T> {
+    const settled = p.then(() => undefined, () => undefined);
+    this.abandoned.add(settled);
+    void settled.then(() => this.abandoned.delete(settled));
     if (this.cancelRequested || this.fault) return Promise.reject(this.fault ?? new Cancelled());
     return Promise.race([p, this.cancelled.then(() => Promise.reject(this.fault ?? new Cancelled()))]);
   }
+
+  /** Work an orCancel let go of that has not ended yet: awaited (bounded) before the workspace is released. */
+  private readonly abandoned = new Set<Promise<void>>();
 
   private addDiagnostic(d: GccDiagnostic): void {
     if (this.diagnostics.length >= MAX_DIAGNOSTICS) return;
