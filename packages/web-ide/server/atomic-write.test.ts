@@ -1,6 +1,7 @@
 import { describe, it, expect, beforeEach, afterEach } from 'vitest';
 import { mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync, mkdirSync, chmodSync } from 'node:fs';
 import { tmpdir } from 'node:os';
+import { spawnSync } from 'node:child_process';
 import { join } from 'node:path';
 import { writeFileAtomic, isAtomicTempFile } from './atomic-write.js';
 
@@ -50,6 +51,19 @@ describe('writeFileAtomic', () => {
     const text = readFileSync(f, 'utf8');
     expect(text === a || text === b).toBe(true);
     expect(readdirSync(dir)).toEqual(['race.txt']);
+  });
+
+  it('removes the temp file a killed server left for the same target (its writer gone), not a live writer\'s nor another file\'s', async () => {
+    const f = join(dir, 'big.txt');
+    writeFileSync(f, 'old');
+    const dead = spawnSync(process.execPath, ['-e', 'process.stdout.write(String(process.pid))'], { encoding: 'utf8' }).stdout;
+    writeFileSync(join(dir, `.big.txt.tmp-${dead}`), 'half a save');
+    writeFileSync(join(dir, `.big.txt.tmp-${process.pid + 0}x`), 'not a temp name');
+    writeFileSync(join(dir, `.other.txt.tmp-${dead}`), 'another target: left to its own save');
+    writeFileSync(join(dir, `.big.txt.tmp-${process.ppid}`), 'a live writer');
+    await writeFileAtomic(f, 'new');
+    expect(readFileSync(f, 'utf8')).toBe('new');
+    expect(readdirSync(dir).sort()).toEqual([`.big.txt.tmp-${process.pid}x`, `.big.txt.tmp-${process.ppid}`, `.other.txt.tmp-${dead}`, 'big.txt'].sort());
   });
 
   it('recognises its own temp names only', () => {

@@ -8,13 +8,31 @@
  */
 import { mkdir } from 'node:fs/promises';
 import { basename, dirname } from 'node:path';
-import { writeFileAtomic as writeInFolder } from '@contract-studio/codegen/atomic-write';
+import { readdirSync, type Dirent } from 'node:fs';
+import { isAtomicTempFile, writeFileAtomic as writeInFolder } from '@contract-studio/codegen/atomic-write';
+import { removeStaleTemps } from '@contract-studio/codegen/stale-temp';
 
-export { isAtomicTempFile } from '@contract-studio/codegen/atomic-write';
+export { isAtomicTempFile };
 
-/** Writes `data` to `target` atomically, creating its parent folders. */
+/** The temp file of `name` a killed server (or generator) left in `dir`, removed once it is stale (stale-temp.ts: its writer gone). */
+function removeStaleTempOf(dir: string, name: string): void {
+  const prefix = `.${name}.tmp-`;
+  let own: Dirent[];
+  try {
+    own = readdirSync(dir, { withFileTypes: true }).filter((e) => e.name.startsWith(prefix) && isAtomicTempFile(e.name));
+  } catch {
+    return;
+  }
+  if (own.length) removeStaleTemps(dir, own);
+}
+
+/**
+ * Writes `data` to `target` atomically, creating its parent folders; a temp file of the same
+ * target that a server killed mid-save left there is removed first (it stayed, hidden, for ever).
+ */
 export async function writeFileAtomic(target: string, data: string | Uint8Array): Promise<void> {
   const dir = dirname(target);
   await mkdir(dir, { recursive: true });
+  removeStaleTempOf(dir, basename(target));
   writeInFolder(dir, basename(target), typeof data === 'string' ? Buffer.from(data) : data);
 }

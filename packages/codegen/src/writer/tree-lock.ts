@@ -13,6 +13,7 @@
 import { closeSync, constants, openSync, readSync, unlinkSync, writeSync } from 'node:fs';
 import { join } from 'node:path';
 import { TREE_LOCK_NAME } from '@contract-studio/conventions';
+import { pidAlive } from './stale-temp.js';
 
 export { TREE_LOCK_NAME };
 
@@ -28,15 +29,6 @@ export function isTreeLock(name: string): boolean {
 
 export class TreeLockedError extends Error {}
 
-/** Whether process `pid` runs here (a lock of a killed writer is stale). */
-function alive(pid: number): boolean {
-    try {
-        process.kill(pid, 0);
-        return true;
-    } catch (e) {
-        return (e as NodeJS.ErrnoException).code === 'EPERM';
-    }
-}
 
 /**
  * One try at the lock of output folder `dir` (a path; `/proc/self/fd/N` for an opened folder):
@@ -67,7 +59,7 @@ export function tryTreeLock(dir: string): (() => void) | { holder: number | unde
                 if (code !== 'ELOOP') throw readError;
             }
             // a writer killed mid-write (or a lock with no pid in it, written by no writer of ours)
-            if (holder === undefined || !alive(holder)) {
+            if (holder === undefined || !pidAlive(holder)) {
                 try {
                     unlinkSync(path);
                 } catch (unlinkError) {
