@@ -66,7 +66,8 @@ export function watchExternalChanges(workspace: Workspace, lsp: LspClient): Serv
 
 const LOST = 'Lost the connection to the IDE server';
 export const SESSION_ENDED = 'The IDE server was restarted and no longer knows this tab\'s session: open the address it printed ' +
-  '(…/?token=…) in this tab or another one of this browser. Your unsaved edits are kept in this browser and saved then.';
+  '(…/?token=…) in this tab or another one of this browser. Your unsaved edits are kept in this browser, for this address: they come back ' +
+  'and are saved when the server listens on the same port again (contract serve --port N; another port is another address to the browser).';
 
 /** True when the IDE server answers but refuses this tab's session (401); false when it is unreachable. */
 async function sessionRefused(): Promise<boolean> {

@@ -11,6 +11,19 @@ interface Problem {
  * Shows what Generate All did: counts, the generated tree (click opens the file), orphaned user
  * code and malformed files (click opens them at the line).
  */
+/** An entry that opens its file: a click, or Enter / Space from the keyboard (each is a tab stop). */
+function openable(open: () => void): Record<string, unknown> {
+  return {
+    role: 'button', tabindex: 0, onclick: open,
+    onkeydown: (e: Event) => {
+      const key = (e as KeyboardEvent).key;
+      if (key !== 'Enter' && key !== ' ') return;
+      e.preventDefault();
+      open();
+    },
+  };
+}
+
 export class GeneratePanel {
   readonly element: HTMLElement;
 
@@ -29,11 +42,11 @@ export class GeneratePanel {
   show(r: GenerateReport): void {
     const base = r.srcGen ? `${r.srcGen}/` : '';
     const fileLink = (rel: string, cls = '', line?: number) =>
-      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, onclick: () => this.open(base + rel, line) }, h('span', { class: 'file-glyph', 'aria-hidden': 'true' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), h('span', { class: 'gen-name', title: rel }, rel));
+      h('div', { class: `gen-file ${cls}`, 'data-path': base + rel, ...openable(() => this.open(base + rel, line)) }, h('span', { class: 'file-glyph', 'aria-hidden': 'true' }, /\.(c|h)$/.test(rel) ? 'C' : '≡'), h('span', { class: 'gen-name', title: rel }, rel));
     const problems = (title: string, list: Problem[], cls: string) =>
       list.length
         ? h('div', { class: `gen-section ${cls}` }, h('div', { class: 'gen-title' }, `${title} (${list.length})`),
-            ...list.map((p) => h('div', { class: 'gen-problem', 'data-path': base + p.file, onclick: () => this.open(base + p.file, p.line) },
+            ...list.map((p) => h('div', { class: 'gen-problem', 'data-path': base + p.file, ...openable(() => this.open(base + p.file, p.line)) },
               h('span', { class: 'sev' }, cls === 'errors' ? '✖' : '⚠'), h('span', { class: 'mono' }, `${p.file}${p.line ? `:${p.line}` : ''}`), ' ', p.message)))
         : null;
     const generated = [...r.created.map((f) => [f, 'created']), ...r.updated.map((f) => [f, 'updated']), ...r.unchanged.map((f) => [f, 'unchanged'])]

@@ -135,6 +135,9 @@ export class ConflictView {
       // (the language server does not know these models anyway)
       quickSuggestions: false, suggestOnTriggerCharacters: false,
       ariaLabel: `${conflict.path}: on disk (left) and yours (right)`,
+      // each side named: a screen reader tells the disk's text from the user's
+      originalAriaLabel: `${conflict.path} on disk now (read-only)`,
+      modifiedAriaLabel: `${conflict.path}: your text, to edit into the merge`,
     });
     const viewModel = diff.createViewModel({ original, modified });
     diff.setModel(viewModel);

@@ -67,7 +67,8 @@ export class EditorArea {
       onKey: (tab, e) => {
         if (e.key !== 'Delete') return false;
         this.close(tab.dataset.path!);
-        this.tabFocus.focus();
+        // the last tab closed: the keyboard goes to the empty editor's hint (Ctrl+P from there), not the page's body
+        if (!this.tabFocus.focus()) this.emptyEl.focus();
         return true;
       },
     });
@@ -76,10 +77,19 @@ export class EditorArea {
     // this host, and had none of them (a transparent menu, black text over the code)
     this.editorHost = h('div', { class: 'editor-host monaco-component' });
     this.viewHost = h('div', { class: 'view-host hidden' });
-    this.emptyEl = h('div', { class: 'editor-empty' }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer, or Ctrl+P'),
+    this.emptyEl = h('div', { class: 'editor-empty', tabindex: -1 }, h('div', { class: 'empty-logo' }, '◈'), h('div', {}, 'Open a file from the explorer, or Ctrl+P'),
       h('div', { class: 'muted' }, 'F1 all commands · Ctrl+S saves now · F12 go to definition · F2 rename · Ctrl+Shift+I format'));
     this.sidePane = h('div', { class: 'side-pane hidden' });
     this.stack = h('div', { class: 'editor-stack' }, this.editorHost, this.viewHost, this.emptyEl, this.sidePane);
+    // Escape in a view (the Monitor, the Timeline, the architecture diagram) that did not use it
+    // goes back as in the panels: from the side pane to the editor beside it, from a view tab to the tab strip
+    const escape = (e: KeyboardEvent, back: () => unknown) => {
+      if (e.key !== 'Escape' || e.defaultPrevented || (e.target as HTMLElement | null)?.closest('.monaco-editor, .dialog, .quick-pick')) return;
+      e.preventDefault();
+      back();
+    };
+    this.sidePane.addEventListener('keydown', (e) => escape(e, () => (this.active && !this.views.has(this.active) ? this.editor.focus() : this.focusTabs())));
+    this.viewHost.addEventListener('keydown', (e) => escape(e, () => this.focusTabs()));
     root.append(this.tabsEl, this.stack);
     this.editor = monaco.editor.create(this.editorHost, {
       theme: 'contract-dark',

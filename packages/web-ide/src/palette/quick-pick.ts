@@ -16,7 +16,7 @@ let openPick: { close(): void } | undefined;
 /**
  * A quick-pick box at the top of the window (quick open, command palette): type to filter
  * (fuzzy), ↑/↓ (PageUp/PageDown, Home/End) to move, Enter to pick, Escape to close. A combobox
- * with a listbox (WAI-ARIA combobox pattern); focus goes back where it was when nothing is picked.
+ * with a listbox (WAI-ARIA combobox pattern); focus goes back where it was when it closes (what a picked item runs moves it on).
  * Resolves the picked item, or undefined.
  */
 export function quickPick<T extends PickItem>(opts: { placeholder: string; label: string; items: readonly T[]; id: string }): Promise<T | undefined> {
@@ -39,7 +39,9 @@ export function quickPick<T extends PickItem>(opts: { placeholder: string; label
       done = true;
       overlay.remove();
       if (openPick === handle) openPick = undefined;
-      if (!item && returnFocus?.isConnected) returnFocus.focus();
+      // back where it was, a pick too: a command then opening a dialog gives the focus back there on
+      // Escape (the list's removal had left it on the page's body)
+      if (returnFocus?.isConnected) returnFocus.focus();
       resolve(item);
     };
     const handle = { close: () => finish(undefined) };

@@ -264,7 +264,8 @@ export class Workspace {
         this.onNotice.fire({
           level: 'error',
           text: `${SAVE_SESSION_LOST} Open the address it printed ` +
-            '(…/?token=…) in this tab: your text is kept in this browser, comes back there, and is saved then.',
+            '(…/?token=…) in this tab: your text is kept in this browser for this address, comes back there, and is saved then ' +
+            '(the same port: contract serve --port N; on another port the browser does not give it back).',
         });
         return false;
       }

@@ -125,6 +125,14 @@ describe('keyboard-first IDE', () => {
     await page.locator('.gen-summary').waitFor({ timeout: 60_000 });
     expect(await page.locator('.gen-summary .pill').first().textContent()).toContain('generated');
     expect(await page.locator('.panel-tab[data-panel=generate]').getAttribute('aria-selected')).toBe('true');
+    // the generated files are tab stops: Enter on one opens it (the panel had no focusable entry)
+    const entry = page.locator('.gen-file[data-path$="MSA_mod/module.c"]');
+    await entry.focus();
+    expect(await focusOf(page)).toMatch(/^button:.*MSA_mod\/module\.c$/);
+    await page.keyboard.press('Enter');
+    await expect.poll(() => activeTab(page), { timeout: 5000 }).toMatch(/MSA_mod\/module\.c$/);
+    expect(await focusOf(page)).toBe('editor');
+    scans.push(await axeScan(page, 'Generate panel'));
     // Run settings has no shortcut: the palette opens its dialog, Escape closes it
     await page.keyboard.press('F1');
     await palette.waitFor({ timeout: 5000 });
@@ -136,6 +144,8 @@ describe('keyboard-first IDE', () => {
     expect(await dialog.textContent()).toContain('Duration of a run');
     await page.keyboard.press('Escape');
     await expect.poll(() => dialog.count()).toBe(0);
+    // the focus is back where it was before the palette (the editor), not on the page's body
+    expect(await focusOf(page)).toBe('editor');
   }, 150_000);
 
   it.skipIf(!canBuild)('Build & Run from the palette, to the end of the run, without the mouse', async () => {
@@ -228,6 +238,16 @@ describe('keyboard-first IDE', () => {
     await page.keyboard.press('Escape');
     expect(await focusOf(page)).toBe('editor');
     await shot(page, 'kb-05-keyboard-lists');
+
+    // Delete closes tab after tab; after the last, the focus is on the empty editor's hint, not the page's body
+    await page.keyboard.press('Alt+Shift+W');
+    for (let i = 0; i < 30 && (await page.locator('.tabs .tab').count()) > 0; i++) await page.keyboard.press('Delete');
+    expect(await page.locator('.tabs .tab').count()).toBe(0);
+    expect(await page.evaluate(() => document.activeElement?.className)).toBe('editor-empty');
+    await page.keyboard.press('Control+p'); // and on from there
+    await page.keyboard.type('sched.contract');
+    await page.keyboard.press('Enter');
+    await expect.poll(() => activeTab(page)).toBe('sched.contract');
   });
 
   it('New File… and Rename File… from their shortcuts, in the keyboard-driven dialog', async () => {
