@@ -152,6 +152,17 @@ describe("a module's output as it wrote it", () => {
   }, 120_000);
 });
 
+describe('a module that kills its launcher', () => {
+  test('the run fails saying the launcher was killed (SIGKILL), not only "make exit 2"; nothing of it is left running', async () => {
+    const init = '    printf("MAA before the kill\\n"); fflush(stdout);\n    usleep(300000);\n    kill(getppid(), SIGKILL);';
+    const files = withRegion(withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', init, true), MAA_MODULE, 'protect_additional_import_MAA', '#include <signal.h>\n#include <unistd.h>', true);
+    const { job } = await runJob({ action: 'run', duration: 3, project: { files } });
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toMatch(/^run failed: contract-launch was killed \(SIGKILL\) before the run ended — a module's code can do that \(kill\(getppid\(\), SIGKILL\)\), or the kernel; the modules' output it had not relayed yet is lost, their CSV logs are what they wrote \(.*make exit 2\)$/);
+    await expectHealthy();
+  }, 120_000);
+});
+
 describe('limit guesses from the output (rlimit mechanism)', () => {
   test('sixteen lines of "fork: " x 10800: the event loop keeps answering', async () => {
     const cache = mkdtempSync(join(tmpdir(), 'contract-cache-'));

@@ -28,6 +28,9 @@ import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
 import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR, type StopReason } from '@contract-studio/conventions';
 
+/** make's line when the run recipe (contract-launch) died by SIGKILL. */
+const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Killed$/;
+
 /** How long a cancelled job waits for the host-side work it let go of (a generation stopping at its next check) before releasing its workspace. */
 const ABANDONED_WAIT_MS = 10_000;
 
@@ -401,6 +404,8 @@ export class Job {
       const crashes = new LauncherCrashes();
       // the launcher's exit status, as make's "*** [...: run] Error N" line gives it (make itself exits 2)
       let launcherStatus: number | null = null;
+      // make's `*** [...: run] Killed`: the launcher itself got a SIGKILL (not the service's: it stops the run by its launcher)
+      let launcherKilled = false;
       try {
         // with a live channel the modules keep a flush mark beside each log: the exact order (trace-order.ts)
         // a stop asked for (cancel, the run time limit) is killed CANCEL_GRACE_MS later: the launcher fits its
@@ -418,6 +423,7 @@ export class Job {
           if (routed.source === 'run') {
             const failed = makeRecipeStatus(routed.line);
             if (failed?.target === 'run') launcherStatus = failed.status;
+            if (LAUNCHER_KILLED.test(routed.line)) launcherKilled = true;
           }
           this.runIssues.line(routed.line, routed.source);
           if (routed.source === 'launcher') crashes.line(routed.line);
@@ -443,7 +449,10 @@ export class Job {
         // a module's crash is the failure to name (make's status alone reads like a build failure)
         const crashed = crashes.summary(run.limitHit);
         const launcher = launcherStatus !== null ? `contract-launch exit ${launcherStatus}; ` : '';
-        const message = run.message ?? `run failed${crashed ? `: ${crashed}` : ''} (${launcher}make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
+        const why = crashed ? `: ${crashed}` : launcherKilled && !this.cancelRequested
+          ? ': contract-launch was killed (SIGKILL) before the run ended — a module\'s code can do that (kill(getppid(), SIGKILL)), or the kernel; the modules\' output it had not relayed yet is lost, their CSV logs are what they wrote'
+          : '';
+        const message = run.message ?? `run failed${why} (${launcher}make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;
         this.result = this.makeResult('run', false, run.exitCode, run.signal, message, run.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;
