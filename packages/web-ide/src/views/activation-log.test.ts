@@ -50,3 +50,38 @@ describe('activation log from a real tutorial run (runtime CSV excerpt)', () => 
     expect(acts).toEqual([{ module: 'MSC', start: 5520151929160, end: 5520151960477, detail: 'activation=1' }]);
   });
 });
+
+describe('activation log of the engines (ORD and supervisors serve several activations at once)', () => {
+  it('ORD is active while a schema is, whatever its run records say (one supervisor\'s STOP ended "its run" while another\'s schema went on)', () => {
+    const csv = [
+      HEADER,
+      '100,w,ORD,run_started,SFT,,0,activation=1',
+      '101,w,ORD,scheduler,,,0,activate conveyorLoop (activation #1 from SFT)',
+      '200,w,ORD,scheduler,,,0,activate pickLoop (activation #2 from PRD)',
+      '300,w,ORD,run_finished,PRD,,0,activation=2 STOP',
+      '301,w,ORD,scheduler,,,0,deactivate pickLoop (activation #2 from PRD)',
+      '450,w,ORD,run_started,PRD,,0,activation=3',
+      '451,w,ORD,scheduler,,,0,activate degradedLoop',
+      '500,w,ORD,scheduler,,,0,deactivate conveyorLoop (activation #1 from SFT)',
+      '600,w,ORD,scheduler,,,0,deactivate degradedLoop',
+      '700,w,ORD,scheduler,,,0,activate pickLoop (activation #4 from PRD)',
+    ].join('\n');
+    expect(activationsFromCsv(csv).map((a) => [a.module, a.start, a.end])).toEqual([['ORD', 101, 600], ['ORD', 700, undefined]]);
+  });
+
+  it('a supervisor is active while one of its functions runs; a module\'s own run records still make its bars', () => {
+    const csv = [
+      HEADER,
+      '10,w,SFT,run_started,contract-launch,,0,activation=1',
+      '11,w,SFT,supervisor,,,0,function cell() started',
+      '20,w,SFT,supervisor,SAF,,0,subscribe SAF:0 =* :0 (activation #1)',
+      '30,w,SFT,supervisor,,,0,function aux(n = 2) started',
+      '40,w,SFT,run_finished,contract-launch,,0,activation=2 STOP',
+      '41,w,SFT,supervisor,,,0,function aux stopped',
+      '90,w,SFT,supervisor,,,0,function cell stopped',
+      '50,w,MSC,run_started,ORD,,0,activation=1',
+      '60,w,MSC,run_finished,,,0,activation=1 ACK_FINISHED',
+    ].join('\n');
+    expect(activationsFromCsv(csv).map((a) => [a.module, a.start, a.end])).toEqual([['SFT', 11, 90], ['MSC', 50, 60]]);
+  });
+});

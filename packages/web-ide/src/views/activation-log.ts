@@ -14,6 +14,11 @@ export interface Activation {
   detail: string;
 }
 
+/** ORD's readable line of a schema activated or deactivated (`activate S (activation #N from SUP)`). */
+const ENGINE_SCHEMA = /^(activate|deactivate) [A-Za-z_]\w*(?: \(|$)/;
+/** A supervisor's readable line of a function started or stopped (`function F(p = v) started`, `function F stopped`). */
+const ENGINE_FUNCTION = /^function [A-Za-z_]\w*(?:\(.*\))? (started|stopped)$/s;
+
 export function activationsFromCsv(text: string): Activation[] {
   const lines = text.split(/\r?\n/).filter((l) => l.length > 0);
   if (!lines.length) return [];
@@ -23,23 +28,56 @@ export function activationsFromCsv(text: string): Activation[] {
   if (iMono < 0 || iModule < 0 || iEvent < 0) throw new Error('not a ContrACT CSV log (missing mono_ns/module/event columns)');
   const open = new Map<string, Activation>();
   const out: Activation[] = [];
-  // only run_started / run_finished lines matter (a 1 kHz run's logs are most of a million lines):
-  // with the event column between two others, such a line holds `,run_started,` or `,run_finished,`
+  // ORD and the supervisors serve several activations at once (every schema, every function): one
+  // STOP ends one of them, not the module's activity, so their run records are not their bars; a
+  // bar of theirs lasts while at least one schema is active (ORD's `scheduler` activate/deactivate
+  // lines) or one function runs (a supervisor's `function F() started` / `stopped`)
+  const engines = new Map<string, number>(); // engine module -> what it serves now
+  const engineLine = (module: string, t: number, up: boolean, detail: string) => {
+    const n = engines.get(module) ?? 0;
+    const next = Math.max(0, n + (up ? 1 : -1));
+    engines.set(module, next);
+    if (n === 0 && next === 1) {
+      const a: Activation = { module, start: t, detail };
+      open.set(module, a);
+      out.push(a);
+    } else if (n > 0 && next === 0) {
+      const a = open.get(module);
+      if (a && a.end === undefined) a.end = t;
+    }
+  };
+  // only run_started / run_finished lines, and the engines' activate/deactivate and function lines,
+  // matter (a 1 kHz run's logs are most of a million lines): with the event column between two
+  // others, such a line holds `,run_started,`, `,run_finished,`, `,scheduler,` or `,supervisor,`
   const inside = iEvent > 0 && iEvent < header.length - 1;
   for (let n = 1; n < lines.length; n++) {
     const l = lines[n]!;
-    if (inside && !l.includes(',run_started,') && !l.includes(',run_finished,')) continue;
+    if (inside && !l.includes(',run_started,') && !l.includes(',run_finished,') && !l.includes(',scheduler,') && !l.includes(',supervisor,')) continue;
     const f = splitCsvLine(l);
     const t = Number(f[iMono]);
     const module = f[iModule] ?? '?';
     if (!Number.isFinite(t)) continue;
-    if (f[iEvent] === 'run_started') {
+    const event = f[iEvent];
+    if (event === 'scheduler' || event === 'supervisor') {
+      const detail = f[iDetail] ?? '';
+      if (!engines.has(module)) {
+        engines.set(module, 0);
+        // its run records so far were no bars of its own
+        open.delete(module);
+        for (let i = out.length - 1; i >= 0; i--) if (out[i]!.module === module) out.splice(i, 1);
+      }
+      const m = event === 'scheduler' ? ENGINE_SCHEMA.exec(detail) : ENGINE_FUNCTION.exec(detail);
+      if (m) engineLine(module, t, m[1] === 'activate' || m[1] === 'started', detail);
+      continue;
+    }
+    if (engines.has(module)) continue;
+    if (event === 'run_started') {
       const a: Activation = { module, start: t, detail: f[iDetail] ?? '' };
       const prev = open.get(module);
       if (prev && prev.end === undefined) prev.end = t;
       open.set(module, a);
       out.push(a);
-    } else if (f[iEvent] === 'run_finished') {
+    } else if (event === 'run_finished') {
       const a = open.get(module);
       if (a && a.end === undefined) a.end = t;
     }
