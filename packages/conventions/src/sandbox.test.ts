@@ -4,7 +4,7 @@ import { cpuMissingFrom, isCpuList, SANDBOX_CHOICES, SANDBOX_NAMES } from './san
 describe('sandbox conventions', () => {
     it('accepts CPU lists and refuses anything else', () => {
         for (const ok of ['0', '1', '0-1', '0,2', '0-3,6,8-9']) expect(isCpuList(ok)).toBe(true);
-        for (const bad of ['', 'a', '1-', '-1', '1,,2', '1 2', '0-1,', '1;rm']) expect(isCpuList(bad)).toBe(false);
+        for (const bad of ['', 'a', '1-', '-1', '1,,2', '1 2', '0-1,', '1;rm', '1-0', '0,3-2']) expect(isCpuList(bad)).toBe(false);
     });
 
     it('names the first CPU of a list that a machine does not have', () => {

@@ -47,11 +47,16 @@ export const MIN_READY_TIMEOUT_SECONDS = 0.1;
 const CPU_LIST = /^\d+(-\d+)?(,\d+(-\d+)?)*$/;
 
 /**
- * True for a CPU list such as `1`, `0-1` or `0,2` (contract-launch checks that the CPUs exist on
- * the machine that runs).
+ * True for a CPU list such as `1`, `0-1` or `0,2`, its ranges upwards (contract-launch checks that
+ * the CPUs exist on the machine that runs).
  */
 export function isCpuList(text: string): boolean {
-    return CPU_LIST.test(text);
+    if (!CPU_LIST.test(text)) return false;
+    // a range runs upwards (`1-0` is what contract-launch refuses after the build: refused before it)
+    return text.split(',').every((part) => {
+        const [a, b] = part.split('-');
+        return b === undefined || Number(b) >= Number(a);
+    });
 }
 
 /**

@@ -1,3 +1,4 @@
+import { statSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { startIdeServer, DEFAULT_PORT } from './ide-server.js';
 
@@ -12,7 +13,7 @@ export interface ServeArgs {
 /** The sandboxes `--sandbox` takes (`none` is not one: the IDE's build service refuses it). */
 export const SERVE_SANDBOXES = ['auto', 'bwrap', 'docker'] as const;
 export type ServeSandbox = (typeof SERVE_SANDBOXES)[number];
-const USAGE = 'usage: serve [DIR] [--port N] [--host ADDR] [--sandbox auto|bwrap|docker]';
+const USAGE = 'usage: contract serve [DIR] [--port N] [--host ADDR] [--sandbox auto|bwrap|docker]\n(contract serve --help lists every option)';
 
 /** Parses `[DIR] [--port N] [--host H] [--sandbox S]`; throws with a usage message on bad input. */
 export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
@@ -21,13 +22,13 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
     const a = argv[i]!;
     if (a === '--port' || a === '-p') {
       const n = Number(argv[++i]);
-      if (!Number.isInteger(n) || n < 0 || n > 65535) throw new Error(`--port needs a number 0..65535, got ${argv[i] ?? 'nothing'}`);
+      if (!Number.isInteger(n) || n < 0 || n > 65535) throw new Error(`--port needs a number 0..65535, got ${argv[i] ?? 'nothing'}\n${USAGE}`);
       out.port = n;
     } else if (a.startsWith('--port=')) {
       return parseServeArgs([...argv.slice(0, i), '--port', a.slice(7), ...argv.slice(i + 1)], defaultDir);
     } else if (a === '--host') {
       const h = argv[++i];
-      if (!h) throw new Error('--host needs an address');
+      if (!h) throw new Error(`--host needs an address\n${USAGE}`);
       out.host = h;
     } else if (a === '--sandbox' || a.startsWith('--sandbox=')) {
       const s = a === '--sandbox' ? argv[++i] : a.slice('--sandbox='.length);
@@ -47,7 +48,13 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
   try {
     args = parseServeArgs(argv, defaultDir);
   } catch (e) {
-    console.error(`error: ${(e as Error).message}`);
+    console.error(`contract serve: ${(e as Error).message}`);
+    return 2;
+  }
+  // a DIR that is not there (or not a folder) is bad usage, said before anything starts
+  const dir = statSync(args.workspace, { throwIfNoEntry: false });
+  if (!dir?.isDirectory()) {
+    console.error(`contract serve: ${args.workspace} is ${dir ? 'not a folder' : 'not there'}: give the workspace folder (the project, or a folder of projects)\n${USAGE}`);
     return 2;
   }
   try {
@@ -64,8 +71,8 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
     return await new Promise<number>(() => undefined);
   } catch (e) {
     const err = e as NodeJS.ErrnoException;
-    if (err.code === 'EADDRINUSE') console.error(`error: port ${args.port} is in use; pick another with --port N`);
-    else console.error(`error: ${err.message}`);
+    if (err.code === 'EADDRINUSE') console.error(`contract serve: port ${args.port} is in use; pick another with --port N`);
+    else console.error(`contract serve: ${err.message}`);
     return 1;
   }
 }

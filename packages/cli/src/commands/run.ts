@@ -70,7 +70,14 @@ export function bareDurationWarning(option: string, text: string): string | null
 
 /** `--ready-timeout` as seconds: a duration (parseDuration) of MIN_READY_TIMEOUT_SECONDS at least. */
 export function checkReadyTimeout(text: string): number {
-    const seconds = parseDuration(text);
+    let seconds: number;
+    try {
+        seconds = parseDuration(text);
+    } catch (e) {
+        // the option named, as --run-limit's refusal names its own
+        if (e instanceof UsageError) throw new UsageError(`bad --ready-timeout '${text}': ${e.message}`);
+        throw e;
+    }
     if (seconds < MIN_READY_TIMEOUT_SECONDS) throw new UsageError(`bad --ready-timeout '${text}': at least ${MIN_READY_TIMEOUT_SECONDS * 1000}ms`);
     return seconds;
 }
