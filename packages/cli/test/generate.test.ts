@@ -2,7 +2,8 @@
  * `contract generate`: the tree it writes depends only on the model (teams commit src-gen,
  * docs/ci.md), and the runtime is a build-time input (docs/architecture.md, Seam 3).
  */
-import { cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync } from 'node:fs';
+import { spawn } from 'node:child_process';
+import { cpSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join, relative } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -66,6 +67,25 @@ describe('contract generate', () => {
         expect(await runCli(['generate', 'repo'], above)).toBe(1);
         expect(above.stderr).toBe('the .contract files of repo are all in robot/, which has its own src-gen/ (its generated code and yours): generate repo/robot instead (or name the output with -o OUT); nothing was generated\n');
         expect(readdirSync(join(scratch, 'repo'))).toEqual(['robot']);
+    }, 60_000);
+
+    it('waits for another writer of the tree (its lock held), saying for whom, then generates', async () => {
+        sources(join(scratch, 'locked'));
+        expect(await runCli(['generate', 'locked'], capture(scratch))).toBe(0);
+        const holder = spawn(process.execPath, ['-e', 'setTimeout(() => {}, 60000)']);
+        const lock = join(scratch, 'locked', 'src-gen', '.contract-lock');
+        writeFileSync(lock, `${holder.pid}\n`);
+        try {
+            setTimeout(() => rmSync(lock, { force: true }), 400); // the other writer ends
+            const io = capture(scratch);
+            const started = Date.now();
+            expect(await runCli(['generate', 'locked'], io)).toBe(0);
+            expect(Date.now() - started).toBeGreaterThanOrEqual(350);
+            expect(io.stderr).toContain(`waiting for the other writer of locked/src-gen (pid ${holder.pid}: a contract generate or rename, or the IDE server) to finish ...\n`);
+            expect(existsSync(lock)).toBe(false);
+        } finally {
+            holder.kill();
+        }
     }, 60_000);
 
     it('refuses --runtime (exit 2, nothing written) and says where the runtime is given', async () => {

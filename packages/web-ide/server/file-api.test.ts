@@ -24,8 +24,22 @@ beforeAll(async () => {
 });
 afterAll(() => server.close());
 
+/**
+ * fetch, tried again once when the connection it reused was closed by the server meanwhile (its
+ * keep-alive timeout ran out while a slow step of the test, a loaded machine's mkdir of 200
+ * folders, kept it idle: ECONNRESET before any byte of the answer).
+ */
+async function fetchOnce(url: string, init: RequestInit): Promise<Response> {
+  try {
+    return await fetch(url, init);
+  } catch (e) {
+    if ((e as { cause?: { code?: string } }).cause?.code !== 'ECONNRESET') throw e;
+    return fetch(url, init);
+  }
+}
+
 const call = async (method: string, path: string, body?: unknown, headers: Record<string, string> = {}) => {
-  const res = await fetch(ide.url + path, {
+  const res = await fetchOnce(ide.url + path, {
     method,
     headers: { 'x-contract-token': ide.token, ...(typeof body === 'object' ? { 'content-type': 'application/json' } : {}), ...headers },
     body: body === undefined ? undefined : typeof body === 'string' ? body : JSON.stringify(body),

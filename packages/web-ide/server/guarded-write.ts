@@ -1,5 +1,7 @@
+import { lstatSync, mkdirSync } from 'node:fs';
 import { lstat } from 'node:fs/promises';
-import { TREE_LOCK_NAME } from '@contract-studio/conventions';
+import { join } from 'node:path';
+import { SRC_GEN_DIR, TREE_LOCK_NAME } from '@contract-studio/conventions';
 import type { WorkspacePaths } from './workspace-paths.js';
 import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 import { writeFileAtomic } from './atomic-write.js';
@@ -81,6 +83,7 @@ export async function saveWorkspaceFile(
     // goes through the region guard (docs/ide.md, "Saves, versions and merges")
     const diskBytes = entry?.isFile() || options.base !== undefined || splitGeneratedPath(rel) ? await readIfPresent(dir, name, rel) : undefined;
     checkBase(rel, options.base, diskBytes);
+    if (options.base !== undefined && diskBytes === undefined && splitGeneratedPath(rel)) throw goneGenerated(rel);
     // bytes that are not UTF-8 are never overwritten by the editor's text of them (undecodable.ts)
     const badLine = diskBytes === undefined ? undefined : undecodableLine(diskBytes);
     if (badLine !== undefined && !diskBytes!.equals(body)) throw new HttpError(409, undecodableRefusal(rel, badLine), { undecodableLine: badLine });
@@ -90,6 +93,12 @@ export async function saveWorkspaceFile(
     }
     return guardedSave(paths, rel, file, diskBytes, body);
   });
+  // a generated file edited from a version whose folder is gone: refused before any folder of its
+  // path is made again (goneGenerated)
+  if (options.base !== undefined && splitGeneratedPath(rel)) {
+    const there = await paths.fs.withParent(rel, false, async (dir, name) => !!(await WorkspaceFs.entry(dir, name))).catch(() => false);
+    if (!there) throw goneGenerated(rel);
+  }
   // the whole read-compare-write of one file runs in its queue; generated files also in the tree
   // lock, and in the tree's write lock that `contract generate` and `contract rename` take in
   // another process (codegen tree-lock.ts): a terminal's generate cannot write the file between
@@ -123,7 +132,8 @@ async function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write
     try {
       release = await lockTree(dir.at('.'), srcGen);
     } catch (e) {
-      throw new HttpError(409, `not saved: ${(e as Error).message}`);
+      // a wait, not a refusal: 503, which the tab retries (a 4xx it keeps without retrying)
+      throw new HttpError(503, `not saved yet: ${(e as Error).message}`);
     }
     try {
       return await write();
@@ -131,4 +141,43 @@ async function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write
       release(); // while the folder is still open: the lock's path names it through its descriptor
     }
   });
+}
+
+/**
+ * Runs `work` (Generate All, a rename's carry-over) holding the write lock of the generated tree of
+ * project folder `dir` (an opened folder's path), taken without blocking the event loop: the
+ * generator's own take in writeTree then finds it held by this process (re-entrant) and does not
+ * wait — it waited with a sleeping thread, and a terminal's generate holding the lock froze the
+ * whole server for up to 30 s. A src-gen that is not a real folder is left to the generator's
+ * refusal. `create`: make src-gen first (Generate All makes it anyway).
+ */
+export async function withProjectTreeLock<T>(dir: string, create: boolean, work: () => Promise<T>): Promise<T> {
+  const srcGen = join(dir, SRC_GEN_DIR);
+  let st = lstatSync(srcGen, { throwIfNoEntry: false });
+  if (!st && create) {
+    mkdirSync(srcGen);
+    st = lstatSync(srcGen, { throwIfNoEntry: false });
+  }
+  if (!st?.isDirectory()) return work();
+  const lockTree = await loadTreeLock();
+  let release: () => void;
+  try {
+    release = await lockTree(srcGen, SRC_GEN_DIR);
+  } catch (e) {
+    throw new HttpError(503, `${(e as Error).message}`);
+  }
+  try {
+    return await work();
+  } finally {
+    release();
+  }
+}
+
+/**
+ * A generated file edited from a version that is no longer on disk at all: its module was renamed
+ * or removed since (a terminal's contract rename, Generate All). Recreated, it would be a stale copy
+ * outside the build with its old region IDs (typing during a rename went there, unseen).
+ */
+function goneGenerated(rel: string): HttpError {
+  return new HttpError(409, `${rel} no longer exists (its module was renamed or removed since this text was loaded): not recreated, as a copy outside the build; your text is kept in this browser — copy your code into the file's new place`, { gone: true });
 }

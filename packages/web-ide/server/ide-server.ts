@@ -26,6 +26,7 @@ import { SimulateApi } from './simulate-api.js';
 import { SharedRuns } from './shared-runs.js';
 import { WebSocketServer } from 'ws';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { withProjectTreeLock } from './guarded-write.js';
 
 export interface IdeServerOptions {
   /** The workspace folder opened by the IDE. */
@@ -194,10 +195,12 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const body = await readJson(req);
       const projectDir = paths.resolve(body.project ?? '');
       const t0 = Date.now();
-      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, async (dir) => {
+      // the tree's write lock before the model is read: a terminal's rename, whose .contract files
+      // and tree change together, is seen whole or not at all
+      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, false, async () => {
         const { documents } = await loadWorkspaceDocuments(dir);
         return runCodegen(documents, join(dir, SRC_GEN_DIR));
-      }));
+      })));
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));
       const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
       sendJson(res, 200, answer);

@@ -17,7 +17,7 @@ import type { RenameEntityResponse } from './api-types.js';
 import type { FileLocks } from './file-locks.js';
 import { fileVersion } from './file-version.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
-import { saveWorkspaceFile } from './guarded-write.js';
+import { saveWorkspaceFile, withProjectTreeLock } from './guarded-write.js';
 import { HttpError } from './http-error.js';
 import { renameGeneratedEntity, renameInScenarioFiles, renameInUserCode } from './integrations.js';
 import { inProjectFolder } from './project-folder.js';
@@ -66,7 +66,7 @@ export async function renameEntity(paths: WorkspacePaths, treeLock: GeneratedTre
   const projectDir = paths.resolve(projectArg);
   const project = paths.toRelative(projectDir);
   try {
-    return await treeLock.run(() => inProjectFolder(paths, projectDir, async (dir) => {
+    return await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, false, async () => {
       const srcGen = join(dir, SRC_GEN_DIR);
       const moved = kind === undefined || GENERATED_NAME_KINDS.has(kind) ? await renameGeneratedEntity(srcGen, from, to) : { movedPaths: [], regionIds: [] };
       const code = kind !== undefined && USER_CODE_KINDS.has(kind) ? await renameInUserCode(srcGen, kind, from, to, owner) : { rewritten: [], remaining: [] };
@@ -90,7 +90,7 @@ export async function renameEntity(paths: WorkspacePaths, treeLock: GeneratedTre
         movedPaths: moved.movedPaths, regionIds: moved.regionIds, rewritten: code.rewritten, remaining: code.remaining, scenarios, scenariosLeft,
         ...(code.refused ? { refused: code.refused } : {}),
       };
-    }));
+    })));
   } catch (e) {
     if (e instanceof HttpError) throw e; // a package not built: 503
     throw new HttpError(409, (e as Error).message);

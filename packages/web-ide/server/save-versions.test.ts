@@ -5,7 +5,7 @@
  * and merges".
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { writeFileSync, readFileSync } from 'node:fs';
+import { existsSync, mkdirSync, writeFileSync, readFileSync } from 'node:fs';
 import { createHash } from 'node:crypto';
 import { join } from 'node:path';
 import type { IdeServer } from './ide-server.js';
@@ -66,10 +66,16 @@ describe('PUT /api/file with a base version', () => {
     expect(disk('c.txt')).toBe('y');
   });
 
-  it('a save whose file was deleted meanwhile recreates it (nothing on disk to lose)', async () => {
+  it('a save whose file was deleted meanwhile recreates it (nothing on disk to lose); not a generated file whose module was renamed away (a stale copy outside the build)', async () => {
     const w = await put('gone.contract', 'kept\n', sha('before\n'));
     expect(w.status).toBe(200);
     expect(disk('gone.contract')).toBe('kept\n');
+    mkdirSync(join(ws, 'src-gen', 'generated', 'architecture', 'modules'), { recursive: true });
+    const renamed = await put('src-gen/generated/architecture/modules/MSC_mod/module.c', '/* typed during a rename */\n', sha('before\n'));
+    expect(renamed.status).toBe(409);
+    expect(renamed.body).toMatchObject({ gone: true });
+    expect(String(renamed.body.error)).toMatch(/^src-gen\/generated\/architecture\/modules\/MSC_mod\/module\.c no longer exists \(its module was renamed or removed since this text was loaded\): not recreated/);
+    expect(existsSync(join(ws, 'src-gen', 'generated', 'architecture', 'modules', 'MSC_mod'))).toBe(false);
   });
 
   it('concurrent saves of one file on the same base never interleave: exactly one is written, the others get 409 with its text', async () => {

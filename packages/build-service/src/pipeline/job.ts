@@ -488,7 +488,11 @@ export class Job {
     } finally {
       // the job's processes are all gone here (runStep awaits them), so the work dir is safe to touch
       // once the host-side work a cancel let go of has stopped too (a generation writing into it)
-      if (this.abandoned.size) await Promise.race([Promise.all(this.abandoned), new Promise((r) => setTimeout(r, ABANDONED_WAIT_MS))]);
+      if (this.abandoned.size) {
+        let timer: NodeJS.Timeout | undefined;
+        await Promise.race([Promise.all(this.abandoned), new Promise((r) => (timer = setTimeout(r, ABANDONED_WAIT_MS)))]);
+        clearTimeout(timer); // else it kept a CLI that was done alive for 10 s (Ctrl+C in prepare)
+      }
       if (ws) {
         const tr = Date.now();
         await ws.release().catch(() => {});

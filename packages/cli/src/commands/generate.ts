@@ -13,6 +13,7 @@ import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../
 import { formatText, summarize } from '../diagnostic-format.js';
 import { SRC_GEN_DIR, foldersHoldingAll } from '@contract-studio/conventions';
 import { safeName } from '../terminal-text.js';
+import { holdTreeLock } from '../tree-lock-hold.js';
 
 function list(io: CliIO, label: string, paths: string[], show = true): void {
     if (paths.length === 0) return;
@@ -61,6 +62,23 @@ export const generateCommand: Command = {
         // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
         const { loadWorkspace } = await import('@contract-studio/language/node');
         const { generateArchitecture } = await import('@contract-studio/codegen');
+        // the tree's write lock before the model is read (a rename in another terminal or the IDE
+        // changes the .contract files and the tree together: seen whole or not at all)
+        const release = await holdTreeLock(out, typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR), io);
+        try {
+            return await generateHeld(dir, dirArg, out, outOption, options.get('verbose') === true, io, loadWorkspace, generateArchitecture);
+        } finally {
+            release();
+        }
+    },
+};
+
+/** generate's work, the tree's write lock held. */
+async function generateHeld(
+    dir: string, dirArg: string, out: string, outOption: unknown, verbose: boolean, io: CliIO,
+    loadWorkspace: typeof import('@contract-studio/language/node').loadWorkspace,
+    generateArchitecture: typeof import('@contract-studio/codegen').generateArchitecture,
+): Promise<number> {
         const workspace = await loadWorkspace(dir);
         const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
         if (errors.length > 0) {
@@ -81,11 +99,10 @@ export const generateCommand: Command = {
         }
         const report = generateArchitecture(workspace.documents, out);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
-        await printReport(io, report, outLabel, options.get('verbose') === true);
+        await printReport(io, report, outLabel, verbose);
         io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
         return report.errors.length > 0 ? EXIT_FAILURE : EXIT_OK;
-    },
-};
+}
 
 /** The sub-folder of `dir` that holds every one of `files` and has a `src-gen/` of its own, when `dir` has none (`out` absent): the project is that folder. */
 async function nestedProject(dir: string, files: readonly string[], out: string): Promise<string | undefined> {

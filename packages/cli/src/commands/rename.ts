@@ -19,6 +19,7 @@ import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
 import { safeName } from '../terminal-text.js';
+import { holdTreeLock } from '../tree-lock-hold.js';
 import { printReport } from './generate.js';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 
@@ -48,99 +49,109 @@ export const renameCommand: Command = {
         const out = typeof outOption === 'string' ? resolve(io.cwd, outOption) : join(dir, SRC_GEN_DIR);
         const outLabel = typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR);
 
-        // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
-        const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
-        const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic } = await import('@contract-studio/codegen');
-        const workspace = await loadWorkspace(dir);
-        // a rename needs the text parsed and every reference resolved; other errors (a reserved
-        // name, a bad value...) do not stop it: renaming is often how they are fixed
-        const unresolved = workspace.documents.some((d) => d.document.references.some((r) => r.error !== undefined));
-        const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
-        if (unresolved || errors.some((d) => blocksRename(d.code))) {
-            io.err(formatText(errors, (file) => join(dirArg, file)));
-            io.err(`${summarize(errors)}: fix these first (a rename needs the files parsed and every reference resolved); nothing was renamed\n`);
-            return EXIT_FAILURE;
-        }
-        let plan;
+        // the tree's write lock for the whole rename (carry-over, .contract files, generation): a
+        // generate in another terminal or the IDE reads the model and the tree after it, whole
+        const release = await holdTreeLock(out, outLabel, io);
+        const renameHeld = async (): Promise<number> => {
+            // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
+            const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
+            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic } = await import('@contract-studio/codegen');
+            const workspace = await loadWorkspace(dir);
+            // a rename needs the text parsed and every reference resolved; other errors (a reserved
+            // name, a bad value...) do not stop it: renaming is often how they are fixed
+            const unresolved = workspace.documents.some((d) => d.document.references.some((r) => r.error !== undefined));
+            const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
+            if (unresolved || errors.some((d) => blocksRename(d.code))) {
+                io.err(formatText(errors, (file) => join(dirArg, file)));
+                io.err(`${summarize(errors)}: fix these first (a rename needs the files parsed and every reference resolved); nothing was renamed\n`);
+                return EXIT_FAILURE;
+            }
+            let plan;
+            try {
+                plan = planRename(workspace, oldSpec, newName);
+            } catch (e) {
+                if (!(e instanceof RenameError)) throw e;
+                // (the editor's messages are sentences: no '.;' before the CLI's end)
+                io.err(`contract rename: ${e.message.replace(/\.$/, '')}; nothing was renamed\n`);
+                return EXIT_FAILURE;
+            }
+            // the generated tree first: if a target path is taken there, the .contract files stay as they were
+            if (plan.generatedNames) {
+                try {
+                    const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName);
+                    io.out(`${safeName(outLabel)}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
+                    for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
+                    for (const d of carried.descriptions) io.out(`${safeName(`${outLabel.replace(/\/+$/, '')}/${d.file}`)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);
+                } catch (e) {
+                    io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
+                    return EXIT_FAILURE;
+                }
+            }
+            // the user code: a port or parameter is a variable of its module's module.c, a datatype or
+            // a function a C name of every file: their uses in the protected regions follow (whole C
+            // identifiers in code only; a module's name is in strings, if anywhere: listed below)
+            const owner = plan.owner;
+            const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
+            const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
+            const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
+            if (identifiers.size > 0) {
+                try {
+                    const carried = renameIdentifiersInGeneratedTree(out, identifiers, variable ? owner : undefined);
+                    for (const r of carried.rewritten) {
+                        io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${plan.oldName}${identifiers.size > 1 ? ' (or its functions)' : ''} renamed\n`);
+                    }
+                    if (carried.refused) io.err(`warning: ${safeName(carried.refused)}\n`);
+                } catch (e) {
+                    io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
+                    return EXIT_FAILURE;
+                }
+            }
+            const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
+                kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner,
+            });
+            for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
+            const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
+            io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
+            for (const f of plan.files) io.out(`  ${safeName(join(dirArg, f.file))} (${f.occurrences})\n`);
+            for (const change of scenarioChanges) {
+                writeFileAtomic(dirname(change.path), basename(change.path), Buffer.from(change.text, 'utf8'));
+                for (const e of change.edits) io.out(`${safeName(join(dirArg, e.file))}:${e.line}: ${safeName(e.before.trim())}  ->  ${safeName(e.after.trim())}\n`);
+            }
+
+            const renamed = await loadWorkspace(dir);
+            const after = renamed.diagnostics.filter((d) => d.severity === 'error');
+            if (after.length > 0) {
+                io.err(formatText(after, (file) => join(dirArg, file)));
+                io.err(`${summarize(renamed.diagnostics)} after the rename: nothing was generated\n`);
+                return EXIT_FAILURE;
+            }
+            const report = generateArchitecture(renamed.documents, out);
+            await printReport(io, report, outLabel, options.get('verbose') === true);
+            io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
+
+            // user code the rename did not change: the build needs what is in code changed by hand
+            let inCode = 0;
+            if (MENTIONED_KINDS.has(plan.kind)) {
+                const mentions = findRegionMentions(out, mentionMatcher(plan.kind, plan.oldName), variable ? owner : undefined);
+                for (const m of mentions) {
+                    const where = `${inTree(m.file)}:${m.line}: protected region ${safeName(m.id)}`;
+                    // a header named after the entity is gone: an #include of it fails like code does
+                    if (m.context === 'code' || (m.word !== plan.oldName && m.word.startsWith('Shared'))) {
+                        inCode++;
+                        io.err(`warning: ${where} still uses ${safeName(m.word)} (the old name) ${m.context === 'code' ? 'in its code' : 'in an #include'}: change it by hand, the build fails until then\n`);
+                    } else {
+                        io.err(`note: ${where} mentions ${safeName(m.word)} (the old name) in a ${m.context === 'comment' ? 'comment' : 'string or character literal'}: not changed\n`);
+                    }
+                }
+                if (inCode > 0) io.err(`contract rename: ${plan.kind} renamed, but ${inCode} use(s) of ${plan.oldName} in protected-region code were not changed (listed above)\n`);
+            }
+            return report.errors.length > 0 || inCode > 0 ? EXIT_FAILURE : EXIT_OK;
+        };
         try {
-            plan = planRename(workspace, oldSpec, newName);
-        } catch (e) {
-            if (!(e instanceof RenameError)) throw e;
-            // (the editor's messages are sentences: no '.;' before the CLI's end)
-            io.err(`contract rename: ${e.message.replace(/\.$/, '')}; nothing was renamed\n`);
-            return EXIT_FAILURE;
+            return await renameHeld();
+        } finally {
+            release();
         }
-        // the generated tree first: if a target path is taken there, the .contract files stay as they were
-        if (plan.generatedNames) {
-            try {
-                const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName);
-                io.out(`${safeName(outLabel)}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
-                for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
-                for (const d of carried.descriptions) io.out(`${safeName(`${outLabel.replace(/\/+$/, '')}/${d.file}`)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);
-            } catch (e) {
-                io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
-                return EXIT_FAILURE;
-            }
-        }
-        // the user code: a port or parameter is a variable of its module's module.c, a datatype or
-        // a function a C name of every file: their uses in the protected regions follow (whole C
-        // identifiers in code only; a module's name is in strings, if anywhere: listed below)
-        const owner = plan.owner;
-        const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
-        const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
-        const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
-        if (identifiers.size > 0) {
-            try {
-                const carried = renameIdentifiersInGeneratedTree(out, identifiers, variable ? owner : undefined);
-                for (const r of carried.rewritten) {
-                    io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${plan.oldName}${identifiers.size > 1 ? ' (or its functions)' : ''} renamed\n`);
-                }
-                if (carried.refused) io.err(`warning: ${safeName(carried.refused)}\n`);
-            } catch (e) {
-                io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
-                return EXIT_FAILURE;
-            }
-        }
-        const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
-            kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner,
-        });
-        for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
-        const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
-        io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
-        for (const f of plan.files) io.out(`  ${safeName(join(dirArg, f.file))} (${f.occurrences})\n`);
-        for (const change of scenarioChanges) {
-            writeFileAtomic(dirname(change.path), basename(change.path), Buffer.from(change.text, 'utf8'));
-            for (const e of change.edits) io.out(`${safeName(join(dirArg, e.file))}:${e.line}: ${safeName(e.before.trim())}  ->  ${safeName(e.after.trim())}\n`);
-        }
-
-        const renamed = await loadWorkspace(dir);
-        const after = renamed.diagnostics.filter((d) => d.severity === 'error');
-        if (after.length > 0) {
-            io.err(formatText(after, (file) => join(dirArg, file)));
-            io.err(`${summarize(renamed.diagnostics)} after the rename: nothing was generated\n`);
-            return EXIT_FAILURE;
-        }
-        const report = generateArchitecture(renamed.documents, out);
-        await printReport(io, report, outLabel, options.get('verbose') === true);
-        io.err(`generated ${safeName(outLabel)}: ${report.created.length} created, ${report.updated.length} updated, ${report.unchanged.length} kept, ${report.orphaned.length} orphaned, ${report.errors.length} error(s)\n`);
-
-        // user code the rename did not change: the build needs what is in code changed by hand
-        let inCode = 0;
-        if (MENTIONED_KINDS.has(plan.kind)) {
-            const mentions = findRegionMentions(out, mentionMatcher(plan.kind, plan.oldName), variable ? owner : undefined);
-            for (const m of mentions) {
-                const where = `${inTree(m.file)}:${m.line}: protected region ${safeName(m.id)}`;
-                // a header named after the entity is gone: an #include of it fails like code does
-                if (m.context === 'code' || (m.word !== plan.oldName && m.word.startsWith('Shared'))) {
-                    inCode++;
-                    io.err(`warning: ${where} still uses ${safeName(m.word)} (the old name) ${m.context === 'code' ? 'in its code' : 'in an #include'}: change it by hand, the build fails until then\n`);
-                } else {
-                    io.err(`note: ${where} mentions ${safeName(m.word)} (the old name) in a ${m.context === 'comment' ? 'comment' : 'string or character literal'}: not changed\n`);
-                }
-            }
-            if (inCode > 0) io.err(`contract rename: ${plan.kind} renamed, but ${inCode} use(s) of ${plan.oldName} in protected-region code were not changed (listed above)\n`);
-        }
-        return report.errors.length > 0 || inCode > 0 ? EXIT_FAILURE : EXIT_OK;
     },
 };
 

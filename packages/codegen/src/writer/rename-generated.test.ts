@@ -36,6 +36,17 @@ describe('renameInGeneratedTree', () => {
         expect(report.regionIds).toEqual([{ file: 'generated/architecture/modules/MSK_mod/module.c', from: 'protect_init_MSC', to: 'protect_init_MSK' }]);
     });
 
+    it('leaves orphans/ as it is: user code moved aside keeps the name and IDs of where it came from', async () => {
+        const root = scratch();
+        const orphan = join(root, 'orphans', 'generated', 'architecture', 'modules', 'MSC_mod');
+        mkdirSync(orphan, { recursive: true });
+        const body = '/* orphaned from generated/architecture/modules/MSC_mod/module.c */\n/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/\nold();\n/*PROTECTED REGION END*/\n';
+        writeFileSync(join(orphan, 'module.c'), body);
+        const report = await renameInGeneratedTree(root, 'MSC', 'MSK');
+        expect(report.movedPaths).toEqual([]);
+        expect(readFileSync(join(orphan, 'module.c'), 'utf8')).toBe(body);
+    });
+
     it('refuses to overwrite an existing target', async () => {
         const root = scratch();
         mkdirSync(join(root, 'MSC_mod'));

@@ -13,6 +13,7 @@ import { bytesOf } from './byte-string.js';
 import { hashContent, loadManifest, MANIFEST_NAME, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
 import { encodeLineHashes, skeletonLines } from './skeleton-lines.js';
 import { OutputTree } from './output-tree.js';
+import { ORPHANS_DIR } from './orphans.js';
 import { checkTreeRoot, linkRefused } from './safe-paths.js';
 
 const ENTITY_NAME = /^[A-Za-z][A-Za-z0-9_]*$/;
@@ -97,6 +98,8 @@ function firstLink(abs: string, rel: string): string | undefined {
 /** Renames and rewrites under folder `rel` of the tree; every entry is reached from opened folders (output-tree.ts). */
 function walk(tree: OutputTree, rel: string, from: string, to: string, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
     for (const e of tree.list(rel) ?? []) {
+        // orphans are user code as it was moved aside, named for where it came from: never carried over
+        if (rel === '' && e.name === ORPHANS_DIR) continue;
         const newName = renameGeneratedName(e.name, from, to);
         let childRel = rel ? `${rel}/${e.name}` : e.name;
         if (newName !== e.name) {
