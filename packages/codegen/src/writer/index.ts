@@ -14,4 +14,4 @@ export { OutputTree } from './output-tree.js';
 export { PROC_FD, fdPath, openDirNoFollow, requireProcFd, closeQuietly, type DirOpen, type NotAFolder } from './dir-fd.js';
 export { manifestEntryProblem, loadManifest, skeletonText, skeletonHash, type ManifestLoad, type LoadedManifest } from './manifest.js';
 export { STALE_TEMP_AGE_MS, removeStaleTemps } from './stale-temp.js';
-export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, isTreeLock, tryTreeLock, lockTree, lockTreeSync } from './tree-lock.js';
+export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, tryTreeLock, lockTree, lockTreeSync } from './tree-lock.js';

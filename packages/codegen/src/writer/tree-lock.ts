@@ -30,10 +30,6 @@ export const LOCK_WAIT_MS = 30_000;
 /** Between two tries. */
 const POLL_MS = 20;
 
-export function isTreeLock(name: string): boolean {
-    return name === TREE_LOCK_NAME;
-}
-
 export class TreeLockedError extends Error {}
 
 /**
@@ -157,27 +153,37 @@ function lockedError(what: string, holder: number | undefined, waitMs: number): 
 /** Says once, when a take has to wait, who holds the lock. */
 export type LockWaitNotice = (holder: number | undefined) => void;
 
-/** Takes the lock of `dir`, waiting (the thread sleeps) up to `waitMs`; `what` names the folder in the error. */
-export function lockTreeSync(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice): () => void {
-    const sleeper = new Int32Array(new SharedArrayBuffer(4));
+/**
+ * The tries of a wait for the lock of `dir`, one per step: the release once taken, undefined to
+ * wait POLL_MS and step again; the first blocked try tells `onWait`, one past `waitMs` throws.
+ * lockTreeSync and lockTree differ only in how they wait between steps.
+ */
+function* lockTries(dir: string, what: string, waitMs: number, onWait?: LockWaitNotice): Generator<undefined, () => void> {
     const until = Date.now() + waitMs;
     for (let first = true; ; first = false) {
         const got = tryTreeLock(dir);
         if (typeof got === 'function') return got;
         if (first) onWait?.(got.holder);
         if (Date.now() >= until) throw lockedError(what, got.holder, waitMs);
+        yield undefined;
+    }
+}
+
+/** Takes the lock of `dir`, waiting (the thread sleeps) up to `waitMs`; `what` names the folder in the error. */
+export function lockTreeSync(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice): () => void {
+    const sleeper = new Int32Array(new SharedArrayBuffer(4));
+    const tries = lockTries(dir, what, waitMs, onWait);
+    for (let step = tries.next(); ; step = tries.next()) {
+        if (step.done) return step.value;
         Atomics.wait(sleeper, 0, 0, POLL_MS);
     }
 }
 
 /** Takes the lock of `dir`, waiting (without blocking the event loop) up to `waitMs`. */
 export async function lockTree(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice): Promise<() => void> {
-    const until = Date.now() + waitMs;
-    for (let first = true; ; first = false) {
-        const got = tryTreeLock(dir);
-        if (typeof got === 'function') return got;
-        if (first) onWait?.(got.holder);
-        if (Date.now() >= until) throw lockedError(what, got.holder, waitMs);
+    const tries = lockTries(dir, what, waitMs, onWait);
+    for (let step = tries.next(); ; step = tries.next()) {
+        if (step.done) return step.value;
         await new Promise((r) => setTimeout(r, POLL_MS));
     }
 }
