@@ -52,8 +52,13 @@ export class OutputTree {
      */
     lock(): void {
         if (this.release) return;
-        this.openRoot(true);
-        this.release = lockTreeSync(fdPath(this.rootFd!), this.root);
+        const fd = this.openRoot(true)!;
+        try {
+            this.release = lockTreeSync(fdPath(fd), this.root);
+        } catch (e) {
+            // the folder removed or moved away since it was opened: said as every other write says it
+            throw this.readable(e, fd, '');
+        }
     }
 
     private release: (() => void) | undefined;
