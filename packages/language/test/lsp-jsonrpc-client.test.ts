@@ -9,7 +9,7 @@ import { spawn, type ChildProcessWithoutNullStreams } from 'node:child_process';
 import { existsSync, mkdtempSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import {
     createProtocolConnection, DefinitionRequest, DidOpenTextDocumentNotification, ExitNotification, HoverRequest,
@@ -18,9 +18,8 @@ import {
     type ProtocolConnection, type PublishDiagnosticsParams,
 } from 'vscode-languageserver-protocol/node.js';
 import { ARCHITECTURE } from './lsp-workspace.js';
-import { LSP_TEST_MS } from './lsp-stdio-client.js';
+import { LSP_TEST_MS, SERVER } from './lsp-stdio-client.js';
 
-const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
 
 describe('contract-language-server driven by vscode-jsonrpc', () => {
     let dir: string;

@@ -6,15 +6,13 @@
  * a `.contract` change re-checks an open scenario; completion and hover answer from the project
  * the scenario belongs to. Runs the built server: `npm run build` first.
  */
-import { spawn, type ChildProcessWithoutNullStreams } from 'node:child_process';
-import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
+import { cpSync, mkdtempSync, readFileSync, readdirSync, rmSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { fileURLToPath, pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
-import { Client, LSP_TEST_MS, waitFor } from './lsp-stdio-client.js';
+import { LSP_TEST_MS, startServer, waitFor, type Client } from './lsp-stdio-client.js';
 
-const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
 const EXAMPLES = fileURLToPath(new URL('../../../examples/', import.meta.url));
 
 interface Diag { range: { start: { line: number; character: number }; end: { line: number; character: number } }; severity: number; code: string; source: string; message: string }
@@ -23,7 +21,6 @@ type Hover = { contents: { kind: string; value: string } } | null;
 
 describe('contract-language-server: .scenario files', () => {
     let dir: string;
-    let child: ChildProcessWithoutNullStreams;
     let client: Client;
     const uri = (file: string) => pathToFileURL(join(dir, file)).toString();
     const versions = new Map<string, number>();
@@ -48,19 +45,12 @@ describe('contract-language-server: .scenario files', () => {
         client.request<Hover>('textDocument/hover', { textDocument: { uri: uri(file) }, position: { line, character } });
 
     beforeAll(async () => {
-        if (!existsSync(SERVER)) throw new Error(`${SERVER} is missing: run \`npm run build -w packages/language\` first`);
         dir = mkdtempSync(join(tmpdir(), 'cactal-lsp-scenario-'));
         for (const example of ['tutorial', 'mobile-robot']) {
             for (const f of readdirSync(join(EXAMPLES, example)).filter((x) => x.endsWith('.contract'))) cpSync(join(EXAMPLES, example, f), join(dir, example, f));
             cpSync(join(EXAMPLES, example, 'scenarios'), join(dir, example, 'scenarios'), { recursive: true });
         }
-        child = spawn(process.execPath, [SERVER, '--stdio'], { stdio: 'pipe' });
-        client = new Client(child);
-        await client.request('initialize', {
-            processId: process.pid, rootUri: pathToFileURL(dir).toString(), capabilities: {},
-            workspaceFolders: [{ uri: pathToFileURL(dir).toString(), name: 'ws' }],
-        });
-        client.notify('initialized', {});
+        ({ client } = await startServer(dir));
     }, LSP_TEST_MS);
 
     afterAll(async () => {

@@ -3,39 +3,28 @@
  * session: initialize (capabilities), didOpen of files on disk, outline, hover, definition across
  * files, formatting, then shutdown/exit. Runs the built server: `npm run build` first.
  */
-import { spawn, type ChildProcessWithoutNullStreams } from 'node:child_process';
-import { existsSync, mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
+import { mkdtempSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
-import { fileURLToPath, pathToFileURL } from 'node:url';
+import { pathToFileURL } from 'node:url';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { ARCHITECTURE } from './lsp-workspace.js';
-import { Client, LSP_TEST_MS, LSP_WAIT_MS } from './lsp-stdio-client.js';
-
-
-const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
+import { LSP_TEST_MS, LSP_WAIT_MS, startServer, type Client } from './lsp-stdio-client.js';
 
 describe('contract-language-server (stdio)', () => {
     let dir: string;
-    let child: ChildProcessWithoutNullStreams;
     let client: Client;
     const uri = (file: string) => pathToFileURL(join(dir, file)).toString();
 
     beforeAll(async () => {
-        if (!existsSync(SERVER)) throw new Error(`${SERVER} is missing: run \`npm run build -w packages/language\` first`);
         dir = mkdtempSync(join(tmpdir(), 'cactal-lsp-'));
         for (const [file, text] of Object.entries(ARCHITECTURE)) writeFileSync(join(dir, file), text);
-        child = spawn(process.execPath, [SERVER, '--stdio'], { stdio: 'pipe' });
-        client = new Client(child);
-        const init = await client.request<{ capabilities: Record<string, unknown> }>('initialize', {
-            processId: process.pid, rootUri: pathToFileURL(dir).toString(), capabilities: {},
-            workspaceFolders: [{ uri: pathToFileURL(dir).toString(), name: 'ws' }]
-        });
-        expect(Object.keys(init.capabilities)).toEqual(expect.arrayContaining([
+        let capabilities: Record<string, unknown>;
+        ({ client, capabilities } = await startServer(dir));
+        expect(Object.keys(capabilities)).toEqual(expect.arrayContaining([
             'documentSymbolProvider', 'hoverProvider', 'completionProvider', 'definitionProvider', 'referencesProvider',
             'renameProvider', 'documentFormattingProvider', 'codeActionProvider', 'semanticTokensProvider'
         ]));
-        client.notify('initialized', {});
         for (const file of ['schema.contract', 'msc.contract']) {
             client.notify('textDocument/didOpen', { textDocument: { uri: uri(file), languageId: 'cactal', version: 1, text: readFileSync(join(dir, file), 'utf8') } });
         }
@@ -116,17 +105,13 @@ describe('contract-language-server (stdio)', () => {
 
 describe('contract-language-server (stdio) given no workspace folder', () => {
     let dir: string;
-    let child: ChildProcessWithoutNullStreams;
     let client: Client;
     const uri = (file: string) => pathToFileURL(join(dir, file)).toString();
 
     beforeAll(async () => {
         dir = mkdtempSync(join(tmpdir(), 'cactal-lsp-nofolder-'));
         for (const [file, text] of Object.entries(ARCHITECTURE)) writeFileSync(join(dir, file), text);
-        child = spawn(process.execPath, [SERVER, '--stdio'], { stdio: 'pipe' });
-        client = new Client(child);
-        await client.request('initialize', { processId: process.pid, rootUri: null, capabilities: {}, workspaceFolders: null });
-        client.notify('initialized', {});
+        ({ client } = await startServer(null));
     }, LSP_TEST_MS);
 
     afterAll(async () => {

@@ -2,7 +2,12 @@
  * Minimal LSP client over a language server's stdio (Content-Length framing), for the tests that
  * drive the built `contract-language-server` (lsp-server.test.ts, lsp-scenario-server.test.ts).
  */
-import type { ChildProcessWithoutNullStreams } from 'node:child_process';
+import { spawn, type ChildProcessWithoutNullStreams } from 'node:child_process';
+import { existsSync } from 'node:fs';
+import { fileURLToPath, pathToFileURL } from 'node:url';
+
+/** The built stdio server (`contract-language-server`): `npm run build -w packages/language` first. */
+export const SERVER = fileURLToPath(new URL('../dist/node/main.js', import.meta.url));
 
 /**
  * How long a test waits for the server's answer or notification: an answer, not a latency. `make
@@ -88,4 +93,20 @@ export class Client {
 export async function waitFor(condition: () => boolean, ms = LSP_WAIT_MS): Promise<void> {
     const deadline = Date.now() + ms;
     while (Date.now() < deadline && !condition()) await new Promise((r) => setTimeout(r, 50));
+}
+
+/**
+ * Starts the built server over stdio and initializes it, on workspace folder `folder` (its rootUri
+ * too), or on none (`null`: a client that sends no folder); the capabilities it answered.
+ */
+export async function startServer(folder: string | null): Promise<{ client: Client; capabilities: Record<string, unknown> }> {
+    if (!existsSync(SERVER)) throw new Error(`${SERVER} is missing: run \`npm run build -w packages/language\` first`);
+    const client = new Client(spawn(process.execPath, [SERVER, '--stdio'], { stdio: 'pipe' }));
+    const uri = folder === null ? null : pathToFileURL(folder).toString();
+    const init = await client.request<{ capabilities: Record<string, unknown> }>('initialize', {
+        processId: process.pid, rootUri: uri, capabilities: {},
+        workspaceFolders: uri === null ? null : [{ uri, name: 'ws' }],
+    });
+    client.notify('initialized', {});
+    return { client, capabilities: init.capabilities };
 }
