@@ -1,4 +1,4 @@
-import { lstatSync, mkdirSync } from 'node:fs';
+import { lstatSync } from 'node:fs';
 import { lstat } from 'node:fs/promises';
 import { join } from 'node:path';
 import { SRC_GEN_DIR, TREE_LOCK_NAME } from '@contract-studio/conventions';
@@ -124,53 +124,44 @@ async function guardedSave(paths: WorkspacePaths, rel: string, file: string, dis
   return written(rel, file, bytes, { merged: true, reason: decision.reason, content: bytes.toString('utf8') });
 }
 
-/** Runs `write` holding the write lock of generated tree `srcGen` (a workspace-relative folder), taken from its opened folder. */
-async function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write: () => Promise<T>): Promise<T> {
-  const lockTree = await loadTreeLock();
-  return paths.fs.withParent(`${srcGen}/${TREE_LOCK_NAME}`, true, async (dir) => {
-    let release: () => void;
-    try {
-      release = await lockTree(dir.at('.'), srcGen);
-    } catch (e) {
-      // a wait, not a refusal: 503, which the tab retries (a 4xx it keeps without retrying)
-      throw new HttpError(503, `not saved yet: ${(e as Error).message}`);
-    }
-    try {
-      return await write();
-    } finally {
-      release(); // while the folder is still open: the lock's path names it through its descriptor
-    }
-  });
-}
-
 /**
- * Runs `work` (Generate All, a rename's carry-over) holding the write lock of the generated tree of
- * project folder `dir` (an opened folder's path), taken without blocking the event loop: the
- * generator's own take in writeTree then finds it held by this process (re-entrant) and does not
- * wait — it waited with a sleeping thread, and a terminal's generate holding the lock froze the
- * whole server for up to 30 s. A src-gen that is not a real folder is left to the generator's
- * refusal. `create`: make src-gen first (Generate All makes it anyway).
+ * Runs `work` holding the write lock of the generated tree in folder `srcGen` (a path that names it
+ * through an opened folder), taken without blocking the event loop; a lock still held by another
+ * writer after the wait is a 503 (`prefix` then the wait's message), which a tab retries (a 4xx it
+ * keeps without retrying). Released while the folder is still open: the lock's path names it
+ * through its descriptor.
  */
-export async function withProjectTreeLock<T>(dir: string, create: boolean, work: () => Promise<T>): Promise<T> {
-  const srcGen = join(dir, SRC_GEN_DIR);
-  let st = lstatSync(srcGen, { throwIfNoEntry: false });
-  if (!st && create) {
-    mkdirSync(srcGen);
-    st = lstatSync(srcGen, { throwIfNoEntry: false });
-  }
-  if (!st?.isDirectory()) return work();
+async function holdingTreeLock<T>(srcGen: string, what: string, prefix: string, work: () => Promise<T>): Promise<T> {
   const lockTree = await loadTreeLock();
   let release: () => void;
   try {
-    release = await lockTree(srcGen, SRC_GEN_DIR);
+    release = await lockTree(srcGen, what);
   } catch (e) {
-    throw new HttpError(503, `${(e as Error).message}`);
+    throw new HttpError(503, `${prefix}${(e as Error).message}`);
   }
   try {
     return await work();
   } finally {
     release();
   }
+}
+
+/** Runs `write` (a save) holding the write lock of generated tree `srcGen` (a workspace-relative folder), taken from its opened folder. */
+function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write: () => Promise<T>): Promise<T> {
+  return paths.fs.withParent(`${srcGen}/${TREE_LOCK_NAME}`, true, (dir) => holdingTreeLock(dir.at('.'), srcGen, 'not saved yet: ', write));
+}
+
+/**
+ * Runs `work` (Generate All, a rename's carry-over) holding the write lock of the generated tree of
+ * project folder `dir` (an opened folder's path): the generator's own take in writeTree then finds
+ * it held by this process (re-entrant) and does not wait — it waited with a sleeping thread, and a
+ * terminal's generate holding the lock froze the whole server for up to 30 s. A src-gen that is
+ * not there (Generate All makes it) or not a real folder (the generator refuses it) is not locked.
+ */
+export function withProjectTreeLock<T>(dir: string, work: () => Promise<T>): Promise<T> {
+  const srcGen = join(dir, SRC_GEN_DIR);
+  if (!lstatSync(srcGen, { throwIfNoEntry: false })?.isDirectory()) return work();
+  return holdingTreeLock(srcGen, SRC_GEN_DIR, '', work);
 }
 
 /**

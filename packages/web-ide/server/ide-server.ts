@@ -197,7 +197,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const t0 = Date.now();
       // the tree's write lock before the model is read: a terminal's rename, whose .contract files
       // and tree change together, is seen whole or not at all
-      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, false, async () => {
+      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async () => {
         const { documents } = await loadWorkspaceDocuments(dir);
         return runCodegen(documents, join(dir, SRC_GEN_DIR));
       })));
