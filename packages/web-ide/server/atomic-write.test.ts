@@ -66,6 +66,16 @@ describe('writeFileAtomic', () => {
     expect(readdirSync(dir).sort()).toEqual([`.big.txt.tmp-${process.pid}x`, `.big.txt.tmp-${process.ppid}`, `.other.txt.tmp-${dead}`, 'big.txt'].sort());
   });
 
+  it('looks for leftover temp files of a file once per process, not at every save', async () => {
+    const f = join(dir, 'often.txt');
+    await writeFileAtomic(f, 'first');
+    const dead = spawnSync(process.execPath, ['-e', 'process.stdout.write(String(process.pid))'], { encoding: 'utf8' }).stdout;
+    writeFileSync(join(dir, `.often.txt.tmp-${dead}`), 'left after this process looked');
+    await writeFileAtomic(f, 'second');
+    expect(readFileSync(f, 'utf8')).toBe('second');
+    expect(readdirSync(dir).sort()).toEqual([`.often.txt.tmp-${dead}`, 'often.txt']); // the next server's first save removes it
+  });
+
   it('recognises its own temp names only', () => {
     expect(isAtomicTempFile('.x.contract.tmp-123')).toBe(true);
     expect(isAtomicTempFile('x.contract')).toBe(false);

@@ -8,14 +8,32 @@
  */
 import { mkdir } from 'node:fs/promises';
 import { basename, dirname } from 'node:path';
-import { readdirSync, type Dirent } from 'node:fs';
+import { readdirSync, statSync, type Dirent } from 'node:fs';
 import { isAtomicTempFile, writeFileAtomic as writeInFolder } from '@contract-studio/codegen/atomic-write';
 import { removeStaleTemps } from '@contract-studio/codegen/stale-temp';
 
 export { isAtomicTempFile };
 
+/**
+ * Folder (dev:ino) and file names whose leftover temp files this process already looked for: a
+ * temp file is left only by a writer killed mid-save, so one look per file and process is
+ * enough, not a listing of the folder at every save. Bounded: forgotten (looked again) past it.
+ */
+const swept = new Set<string>();
+const SWEPT_MAX = 10_000;
+
 /** The temp file of `name` a killed server (or generator) left in `dir`, removed once it is stale (stale-temp.ts: its writer gone). */
 function removeStaleTempOf(dir: string, name: string): void {
+  let key: string;
+  try {
+    const st = statSync(dir);
+    key = `${st.dev}:${st.ino}/${name}`;
+  } catch {
+    return;
+  }
+  if (swept.has(key)) return;
+  if (swept.size >= SWEPT_MAX) swept.clear();
+  swept.add(key);
   const prefix = `.${name}.tmp-`;
   let own: Dirent[];
   try {

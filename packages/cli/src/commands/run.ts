@@ -11,7 +11,7 @@ import { lstatSync } from 'node:fs';
 import { cpus as machineCpus } from 'node:os';
 import { isAbsolute, join, relative, resolve, sep } from 'node:path';
 import { parseArgs } from '../args.js';
-import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command } from '../command.js';
+import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import type { JobEvent } from '@contract-studio/build-service';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
@@ -256,10 +256,8 @@ export const runCommand: Command = {
         // a misspelt function is refused before anything is built or started (the run would idle)
         if (start) {
             const problem = await startProblem(start, opts.dir);
-            if (problem) {
-                io.err(`contract run: ${problem}\n`);
-                return EXIT_USAGE;
-            }
+            // bad usage as any other: the message, then the synopsis
+            if (problem) throw new UsageError(problem);
         }
         const traceOption = parsed.options.get('trace');
         const traceFile = typeof traceOption === 'string' ? resolve(io.cwd, traceOption) : null;
