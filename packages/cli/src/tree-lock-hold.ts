@@ -2,17 +2,34 @@
  * `contract generate` and `contract rename` hold the generated tree's write lock (codegen
  * tree-lock.ts) for their whole work: taken before the model is read, so that a rename running in
  * another terminal or in the IDE (its .contract files and its tree change together) is seen whole
- * or not at all. A wait says for whom, as a build waiting for another command does.
+ * or not at all. A wait says for whom, as a build waiting for another command does. A rename that
+ * was killed half-way left its journal in the tree (codegen rename-journal.ts): it is finished
+ * here, lock held, before the model is read, and said.
  */
 import { lstatSync } from 'node:fs';
+import { join } from 'node:path';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
 import type { CliIO } from './command.js';
 import { safeName } from './terminal-text.js';
 
-/** Holds the lock of output folder `out` (when it is a real folder: else the generator's refusal applies); the release. */
-export async function holdTreeLock(out: string, shownAs: string, io: CliIO): Promise<() => void> {
+/**
+ * Holds the lock of output folder `out` (when it is a real folder: else the generator's refusal
+ * applies); the release. `project`: the project folder (`dir`) and its name as the user wrote it
+ * (`label`); a journal is finished only when `out` is its src-gen (its paths are the project's).
+ */
+export async function holdTreeLock(out: string, shownAs: string, io: CliIO, project?: { dir: string; label: string }): Promise<() => void> {
     if (!lstatSync(out, { throwIfNoEntry: false })?.isDirectory()) return () => {};
-    const { lockTree } = await import('@contract-studio/codegen');
-    return lockTree(out, shownAs, undefined, (holder) => {
+    const { lockTree, finishInterruptedRename, describeFinishedRename } = await import('@contract-studio/codegen');
+    const release = await lockTree(out, shownAs, undefined, (holder) => {
         io.err(`waiting for the other writer of ${safeName(shownAs)}${holder !== undefined ? ` (pid ${holder}: a contract generate or rename, or the IDE server)` : ''} to finish ...\n`);
     });
+    if (project === undefined || out !== join(project.dir, SRC_GEN_DIR)) return release;
+    try {
+        const done = await finishInterruptedRename(project.dir, out);
+        if (done) for (const line of describeFinishedRename(done, (f) => safeName(join(project.label, f)))) io.err(`${line}\n`);
+    } catch (e) {
+        // said, and left: the generation then refuses the tree, naming the journal
+        io.err(`warning: ${safeName((e as Error).message)}\n`);
+    }
+    return release;
 }

@@ -38,3 +38,6 @@ export function foldersHoldingAll(files: readonly string[]): string[] {
 
 /** The write lock of a generated tree, in its output folder (codegen's tree-lock.ts); no listing of the tree shows it. */
 export const TREE_LOCK_NAME = '.contract-lock';
+
+/** The journal of a rename under way, in its output folder (codegen's rename-journal.ts): there only while a rename runs, or after one was killed. */
+export const RENAME_JOURNAL_NAME = '.contract-rename.json';

@@ -1,9 +1,9 @@
 import type { TreeEntry } from './api-types.js';
-import { TREE_LOCK_NAME } from '@contract-studio/conventions';
+import { RENAME_JOURNAL_NAME, TREE_LOCK_NAME } from '@contract-studio/conventions';
 import { isAtomicTempFile } from './atomic-write.js';
 import { WorkspaceFs, type DirAt } from './workspace-fs.js';
 
-const SKIPPED = new Set(['node_modules', '.git', '.vite', TREE_LOCK_NAME]);
+const SKIPPED = new Set(['node_modules', '.git', '.vite', TREE_LOCK_NAME, RENAME_JOURNAL_NAME]);
 
 /**
  * Bounds of one listing: a hostile folder (20,000 nested folders, millions of files) must not

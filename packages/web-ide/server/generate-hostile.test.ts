@@ -157,3 +157,28 @@ describe('a model too large to load', () => {
     expect(s.body.error).toMatch(/over the limit of 1048576 bytes/);
   });
 });
+
+describe('a terminal rename killed half-way (its journal in src-gen)', () => {
+  it('Generate All finishes it before reading the model, says so in its warnings, and orphans nothing', async () => {
+    const p = project('p10');
+    expect((await post('/api/generate', { project: 'p10' })).status).toBe(200);
+    const codegen = await import('@contract-studio/codegen');
+    const file = join(p, 'src-gen/generated/architecture/modules/MSC_mod/module.c');
+    writeFileSync(file, readFileSync(file, 'latin1').replace('/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/', '/*PROTECTED REGION ID(protect_init_MSC) ENABLED START*/\n    int ide_marker = 1; (void)ide_marker;'), 'latin1');
+    // the rename's journal (each .contract file's text after MSC -> MSK), then its tree carry-over: killed there
+    const files = readdirSync(p).filter((f) => f.endsWith('.contract')).flatMap((f) => {
+      const text = readFileSync(join(p, f), 'utf8');
+      const after = text.replace(/\bMSC\b/g, 'MSK');
+      return after === text ? [] : [{ path: f, before: codegen.sha256(Buffer.from(text, 'utf8')), after }];
+    });
+    codegen.writeRenameJournal(join(p, 'src-gen'), { version: 1, kind: 'module', oldName: 'MSC', newName: 'MSK', generatedNames: true, identifiers: [], files });
+    await codegen.renameInGeneratedTree(join(p, 'src-gen'), 'MSC', 'MSK');
+    const r = await post('/api/generate', { project: 'p10' });
+    expect(r.status).toBe(200);
+    expect(r.body.errors, JSON.stringify(r.body.warnings)).toEqual([]);
+    expect((r.body.warnings as Array<{ message: string }>)[0]!.message).toMatch(new RegExp(`^finished the rename of module MSC -> MSK that was interrupted \\(its journal src-gen/\\.contract-rename\\.json\\): ${files.length} file\\(s\\) written`));
+    expect(r.body.orphaned).toEqual([]);
+    expect(readFileSync(join(p, 'src-gen/generated/architecture/modules/MSK_mod/module.c'), 'latin1')).toContain('int ide_marker = 1;');
+    expect(lstatSync(join(p, 'src-gen/.contract-rename.json'), { throwIfNoEntry: false })).toBeUndefined();
+  });
+});

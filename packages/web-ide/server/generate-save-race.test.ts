@@ -77,3 +77,30 @@ describe('contract generate in another process while the IDE saves a generated f
     expect(refused + confirmed.length).toBe(SAVES);
   }, 120_000);
 });
+
+describe('contract rename in another process while the IDE saves a .contract file', () => {
+  it('the save waits for the rename\'s lock, then finds the renamed file (409 stale, its text): neither the rename nor the typing is lost', async () => {
+    const model = join(base, 'robot.contract');
+    const loaded = 'synchronous module LOC { }\n';
+    writeFileSync(model, loaded);
+    const read = await call('GET', '/api/file?path=robot.contract');
+    // the rename: holds the tree's lock, rewrites the model it loaded, releases (codegen tree-lock.ts)
+    const script = `
+      const { writeFileSync } = await import('node:fs');
+      const { lockTreeSync } = await import(${JSON.stringify(CODEGEN)});
+      const release = lockTreeSync(process.argv[1], 'src-gen');
+      console.log('locked');
+      await new Promise((r) => setTimeout(r, 1500));
+      writeFileSync(process.argv[2], 'synchronous module LCX { }\\n');
+      release();`;
+    const child = spawn(process.execPath, ['--input-type=module', '-e', script, join(base, 'src-gen'), model], { stdio: ['ignore', 'pipe', 'inherit'] });
+    await new Promise<void>((resolve) => child.stdout!.once('data', () => resolve()));
+    const typed = 'synchronous module LOC { } // typed\n';
+    const put = await call('PUT', '/api/file?path=robot.contract', typed, { 'if-match': `"${read.body.version as string}"` });
+    await new Promise((r) => child.on('exit', r));
+    expect(put.status).toBe(409);
+    expect(put.body.stale).toBe(true);
+    expect(put.body.content).toBe('synchronous module LCX { }\n'); // the tab merges its typing into this
+    expect(readFileSync(model, 'utf8')).toBe('synchronous module LCX { }\n');
+  }, 60_000);
+});

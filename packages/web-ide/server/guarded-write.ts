@@ -8,7 +8,7 @@ import { writeFileAtomic } from './atomic-write.js';
 import { HttpError } from './http-error.js';
 import { isGeneratedFile, splitGeneratedPath } from './generated-files.js';
 import { guardGeneratedWrite } from './region-guard.js';
-import { loadRegionParser, loadTreeLock } from './integrations.js';
+import { finishInterruptedRename, loadRegionParser, loadTreeLock } from './integrations.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import type { FileWriteResponse } from './api-types.js';
 import { fileVersion } from './file-version.js';
@@ -104,7 +104,11 @@ export async function saveWorkspaceFile(
   // another process (codegen tree-lock.ts): a terminal's generate cannot write the file between
   // this save's read and its write
   const generated = splitGeneratedPath(rel);
-  const locked = () => (generated ? lock.run(() => withTreeWriteLock(paths, generated.srcGen, save)) : save());
+  // a model or scenario file of a project that has a src-gen: a terminal's `contract rename` holds
+  // that tree's lock while it rewrites them (the .contract files it loaded, renamed): this save then
+  // waits for it, and finds the renamed file (409 stale: the tab merges), never writes under it
+  const model = generated ? undefined : projectTreeOf(paths, rel);
+  const locked = () => (generated ? lock.run(() => withTreeWriteLock(paths, generated.srcGen, save)) : model !== undefined ? withTreeWriteLock(paths, model, save) : save());
   return (options.fileLocks ?? new FileLocks()).run(rel, locked);
 }
 
@@ -146,6 +150,21 @@ async function holdingTreeLock<T>(srcGen: string, what: string, prefix: string, 
   }
 }
 
+/**
+ * The src-gen (workspace-relative) of the project that `.contract` or `.scenario` file `rel`
+ * belongs to: that of its folder or the nearest folder above it (a real folder, not a link), or
+ * undefined.
+ */
+function projectTreeOf(paths: WorkspacePaths, rel: string): string | undefined {
+  if (!/\.(contract|scenario)$/.test(rel)) return undefined;
+  const parts = rel.split('/').slice(0, -1);
+  for (let n = parts.length; n >= 0; n--) {
+    const tree = [...parts.slice(0, n), SRC_GEN_DIR].join('/');
+    if (lstatSync(join(paths.root, tree), { throwIfNoEntry: false })?.isDirectory()) return tree;
+  }
+  return undefined;
+}
+
 /** Runs `write` (a save) holding the write lock of generated tree `srcGen` (a workspace-relative folder), taken from its opened folder. */
 function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write: () => Promise<T>): Promise<T> {
   return paths.fs.withParent(`${srcGen}/${TREE_LOCK_NAME}`, true, (dir) => holdingTreeLock(dir.at('.'), srcGen, 'not saved yet: ', write));
@@ -158,10 +177,11 @@ function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write: () =
  * terminal's generate holding the lock froze the whole server for up to 30 s. A src-gen that is
  * not there (Generate All makes it) or not a real folder (the generator refuses it) is not locked.
  */
-export function withProjectTreeLock<T>(dir: string, work: () => Promise<T>): Promise<T> {
+export function withProjectTreeLock<T>(dir: string, work: (finished: string[]) => Promise<T>, shown: (path: string) => string = (p) => p): Promise<T> {
   const srcGen = join(dir, SRC_GEN_DIR);
-  if (!lstatSync(srcGen, { throwIfNoEntry: false })?.isDirectory()) return work();
-  return holdingTreeLock(srcGen, SRC_GEN_DIR, '', work);
+  if (!lstatSync(srcGen, { throwIfNoEntry: false })?.isDirectory()) return work([]);
+  // a `contract rename` killed half-way is finished first, lock held (codegen rename-journal.ts)
+  return holdingTreeLock(srcGen, SRC_GEN_DIR, '', async () => work(await finishInterruptedRename(dir, srcGen, shown)));
 }
 
 /**

@@ -25,7 +25,7 @@ import { fileVersion } from './file-version.js';
 import { SimulateApi } from './simulate-api.js';
 import { SharedRuns } from './shared-runs.js';
 import { WebSocketServer } from 'ws';
-import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { withProjectTreeLock } from './guarded-write.js';
 
 export interface IdeServerOptions {
@@ -197,10 +197,14 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       const t0 = Date.now();
       // the tree's write lock before the model is read: a terminal's rename, whose .contract files
       // and tree change together, is seen whole or not at all
-      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async () => {
+      const project = paths.toRelative(projectDir);
+      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async (finished) => {
         const { documents } = await loadWorkspaceDocuments(dir);
-        return runCodegen(documents, join(dir, SRC_GEN_DIR));
-      })));
+        const generated = await runCodegen(documents, join(dir, SRC_GEN_DIR));
+        // an interrupted terminal rename finished first: said in the Generate panel
+        for (const line of finished.reverse()) generated.warnings.unshift({ file: RENAME_JOURNAL_NAME, message: line.replace(/^warning: /, '') });
+        return generated;
+      }, (f) => (project ? `${project}/${f}` : f))));
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));
       const answer: GenerateResponse = { ...report, srcGen, ms: Date.now() - t0 };
       sendJson(res, 200, answer);

@@ -94,6 +94,21 @@ export async function loadRegionParser(): Promise<RegionParser> {
 }
 
 /** codegen's write lock of a generated tree (tree-lock.ts): the IDE's saves of generated files take the one `contract generate` takes. */
+/**
+ * codegen's finishing of a rename killed half-way (rename-journal.ts: `contract rename` journals
+ * its work in src-gen), run by Generate All and the rename, lock held, before the model is read;
+ * the lines that say what it did (warnings included), none when there was no journal.
+ */
+export async function finishInterruptedRename(projectDir: string, srcGen: string, shown: (path: string) => string): Promise<string[]> {
+  const codegen = await importWith<CodegenApi, 'finishInterruptedRename' | 'describeFinishedRename'>('@contract-studio/codegen', ['finishInterruptedRename', 'describeFinishedRename']);
+  try {
+    const done = await codegen.finishInterruptedRename(projectDir, srcGen);
+    return done ? codegen.describeFinishedRename(done, shown) : [];
+  } catch (e) {
+    return [`warning: ${(e as Error).message}`];
+  }
+}
+
 export async function loadTreeLock(): Promise<CodegenApi['lockTree']> {
   const codegen = await importWith<CodegenApi, 'lockTree'>('@contract-studio/codegen', ['lockTree']);
   return codegen.lockTree;

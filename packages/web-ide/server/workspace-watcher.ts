@@ -1,11 +1,11 @@
 import { watch, readdirSync, type FSWatcher } from 'node:fs';
-import { TREE_LOCK_NAME } from '@contract-studio/conventions';
+import { RENAME_JOURNAL_NAME, TREE_LOCK_NAME } from '@contract-studio/conventions';
 import { basename, join } from 'node:path';
 import type { ServerResponse } from 'node:http';
 import type { WebSocket } from 'ws';
 import { isAtomicTempFile } from './atomic-write.js';
 
-const SKIPPED = new Set(['node_modules', '.git', '.vite', TREE_LOCK_NAME]);
+const SKIPPED = new Set(['node_modules', '.git', '.vite', TREE_LOCK_NAME, RENAME_JOURNAL_NAME]);
 
 /**
  * Watches the workspace folder and pushes changed paths to every connected client, batched over

@@ -64,7 +64,7 @@ export const generateCommand: Command = {
         const { generateArchitecture } = await import('@contract-studio/codegen');
         // the tree's write lock before the model is read (a rename in another terminal or the IDE
         // changes the .contract files and the tree together: seen whole or not at all)
-        const release = await holdTreeLock(out, typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR), io);
+        const release = await holdTreeLock(out, typeof outOption === 'string' ? outOption : join(dirArg, SRC_GEN_DIR), io, { dir, label: dirArg });
         try {
             return await generateHeld(dir, dirArg, out, outOption, options.get('verbose') === true, io, loadWorkspace, generateArchitecture);
         } finally {

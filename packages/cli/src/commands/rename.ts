@@ -13,8 +13,9 @@
  * errors (a rename needs every reference resolved); nothing is changed then. Exit 1 too, after
  * the rename, when the code of a protected region still uses the old name (the build would fail).
  */
+import { readFileSync } from 'node:fs';
 import { stat } from 'node:fs/promises';
-import { basename, dirname, join, resolve } from 'node:path';
+import { basename, dirname, join, relative, resolve, sep } from 'node:path';
 import { parseArgs } from '../args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../command.js';
 import { formatText, summarize } from '../diagnostic-format.js';
@@ -51,11 +52,11 @@ export const renameCommand: Command = {
 
         // the tree's write lock for the whole rename (carry-over, .contract files, generation): a
         // generate in another terminal or the IDE reads the model and the tree after it, whole
-        const release = await holdTreeLock(out, outLabel, io);
+        const release = await holdTreeLock(out, outLabel, io, { dir, label: dirArg });
         const renameHeld = async (): Promise<number> => {
             // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
             const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
-            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic } = await import('@contract-studio/codegen');
+            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256 } = await import('@contract-studio/codegen');
             const workspace = await loadWorkspace(dir);
             // a rename needs the text parsed and every reference resolved; other errors (a reserved
             // name, a bad value...) do not stop it: renaming is often how they are fixed
@@ -75,6 +76,30 @@ export const renameCommand: Command = {
                 io.err(`contract rename: ${e.message.replace(/\.$/, '')}; nothing was renamed\n`);
                 return EXIT_FAILURE;
             }
+            const owner = plan.owner;
+            const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
+            const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
+            const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
+                kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner,
+            });
+            // the journal first (codegen rename-journal.ts): killed from here on, the next generate or
+            // rename finishes this one instead of orphaning the renamed code. Only for the project's
+            // own src-gen, which is there (-o OUT: docs/codegen.md "A rename killed half-way")
+            const files = [...plan.files.map((f) => ({ path: f.path, text: f.text })), ...scenarioChanges.map((c) => ({ path: c.path, text: c.text }))];
+            const inProject = files.every((f) => !relative(dir, f.path).startsWith('..'));
+            const journaled = inProject && out === join(dir, SRC_GEN_DIR) && (await stat(out).catch(() => undefined))?.isDirectory() === true;
+            if (journaled) {
+                try {
+                    writeRenameJournal(out, {
+                        version: 1, kind: plan.kind, oldName: plan.oldName, newName: plan.newName, generatedNames: plan.generatedNames,
+                        identifiers: [...identifiers], ...(variable ? { identifierOwner: owner } : {}),
+                        files: files.map((f) => ({ path: relative(dir, f.path).split(sep).join('/'), before: sha256(readFileSync(f.path)), after: f.text })),
+                    });
+                } catch (e) {
+                    io.err(`contract rename: cannot write its journal in ${safeName(outLabel)}: ${(e as Error).message}; nothing was renamed\n`);
+                    return EXIT_FAILURE;
+                }
+            }
             // the generated tree first: if a target path is taken there, the .contract files stay as they were
             if (plan.generatedNames) {
                 try {
@@ -83,6 +108,7 @@ export const renameCommand: Command = {
                     for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
                     for (const d of carried.descriptions) io.out(`${safeName(`${outLabel.replace(/\/+$/, '')}/${d.file}`)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);
                 } catch (e) {
+                    if (journaled) removeRenameJournal(out);
                     io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
                     return EXIT_FAILURE;
                 }
@@ -90,10 +116,7 @@ export const renameCommand: Command = {
             // the user code: a port or parameter is a variable of its module's module.c, a datatype or
             // a function a C name of every file: their uses in the protected regions follow (whole C
             // identifiers in code only; a module's name is in strings, if anywhere: listed below)
-            const owner = plan.owner;
-            const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
             const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
-            const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
             if (identifiers.size > 0) {
                 try {
                     const carried = renameIdentifiersInGeneratedTree(out, identifiers, variable ? owner : undefined);
@@ -102,13 +125,11 @@ export const renameCommand: Command = {
                     }
                     if (carried.refused) io.err(`warning: ${safeName(carried.refused)}\n`);
                 } catch (e) {
+                    if (journaled) removeRenameJournal(out);
                     io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
                     return EXIT_FAILURE;
                 }
             }
-            const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
-                kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner,
-            });
             for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
             const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
             io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
@@ -117,6 +138,7 @@ export const renameCommand: Command = {
                 writeFileAtomic(dirname(change.path), basename(change.path), Buffer.from(change.text, 'utf8'));
                 for (const e of change.edits) io.out(`${safeName(join(dirArg, e.file))}:${e.line}: ${safeName(e.before.trim())}  ->  ${safeName(e.after.trim())}\n`);
             }
+            if (journaled) removeRenameJournal(out); // every file written: the rename is whole
 
             const renamed = await loadWorkspace(dir);
             const after = renamed.diagnostics.filter((d) => d.severity === 'error');

@@ -15,3 +15,7 @@ export { PROC_FD, fdPath, openDirNoFollow, requireProcFd, closeQuietly, type Dir
 export { manifestEntryProblem, loadManifest, skeletonText, skeletonHash, type ManifestLoad, type LoadedManifest } from './manifest.js';
 export { STALE_TEMP_AGE_MS, removeStaleTemps } from './stale-temp.js';
 export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, tryTreeLock, lockTree, lockTreeSync } from './tree-lock.js';
+export {
+    RENAME_JOURNAL_NAME, writeRenameJournal, removeRenameJournal, finishInterruptedRename, describeFinishedRename, sha256,
+    type RenameJournal, type RenameJournalFile, type FinishedRename,
+} from './rename-journal.js';

@@ -73,6 +73,9 @@ export async function renameInGeneratedTree(srcGen: string, from: string, to: st
         tree.lock(); // one writer of the tree at a time (tree-lock.ts)
         const loaded = loadManifest(tree); // before anything moves: the recorded skeletons are of the files as they were
         const carries = new Map<string, FileCarry>();
+        // every target checked before anything moves: a refusal leaves the tree as it was
+        const conflict = firstConflict(tree, '', from, to);
+        if (conflict) throw new Error(`cannot carry ${conflict.path} over: ${conflict.taken} already exists`);
         walk(tree, '', from, to, report, carries);
         carryManifest(tree, loaded, from, to, report, carries);
     } finally {
@@ -90,6 +93,21 @@ function firstLink(abs: string, rel: string): string | undefined {
         if (e.isDirectory()) {
             const found = firstLink(join(abs, e.name), childRel);
             if (found) return found;
+        }
+    }
+    return undefined;
+}
+
+/** The first entry under folder `rel` whose renamed name is taken beside it (walk's order), or undefined. */
+function firstConflict(tree: OutputTree, rel: string, from: string, to: string): { path: string; taken: string } | undefined {
+    for (const e of tree.list(rel) ?? []) {
+        if (rel === '' && e.name === ORPHANS_DIR) continue;
+        const childRel = rel ? `${rel}/${e.name}` : e.name;
+        const newName = renameGeneratedName(e.name, from, to);
+        if (newName !== e.name && tree.stat(rel ? `${rel}/${newName}` : newName)) return { path: childRel, taken: newName };
+        if (e.isDirectory()) {
+            const inner = firstConflict(tree, childRel, from, to);
+            if (inner) return inner;
         }
     }
     return undefined;
@@ -161,13 +179,20 @@ function rewriteRegions(tree: OutputTree, rel: string, from: string, to: string,
  * (the user's edit outside the regions is still reported at the next generation).
  */
 function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to: string, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
-    if (!loaded.manifest || (report.movedPaths.length === 0 && report.regionIds.length === 0)) return;
+    if (!loaded.manifest) return;
+    // each component as walk() renames it (not only the paths this walk moved): a carry-over killed
+    // after moving the folders but before writing the manifest is finished by running it again
     const movePath = (path: string): string => {
-        for (const m of report.movedPaths) {
-            if (path === m.from || path.startsWith(`${m.from}/`)) return m.to + path.slice(m.from.length);
-        }
-        return path;
+        const parts = path.split('/');
+        if (parts[0] === ORPHANS_DIR) return path;
+        return parts.map((part) => renameGeneratedName(part, from, to)).join('/');
     };
+    let changed = report.movedPaths.length > 0 || report.regionIds.length > 0;
+    for (const [path, regions] of loaded.manifest.files) {
+        if (changed) break;
+        changed = movePath(path) !== path || Object.keys(regions).some((id) => renameRegionId(id, from, to) !== id);
+    }
+    if (!changed) return;
     const files = new Map<string, Record<string, string>>();
     const skeletons = new Map<string, string>();
     const lineTable = new Map<string, string>();
@@ -183,15 +208,39 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to:
         files.set(moved, ids);
         const skeleton = loaded.manifest.skeletons.get(path);
         if (skeleton === undefined) continue;
+        // a file this walk did not rewrite, though its IDs name the entity: rewritten by a carry-over
+        // that was killed before the manifest (rename-journal.ts), followed as if rewritten now
+        const earlier = carry === undefined && Object.keys(regions).some((id) => renameRegionId(id, from, to) !== id) ? carriedEarlier(tree, moved, skeleton, from, to) : undefined;
         const followed = carry !== undefined && carry.skeletonBefore === skeleton && carry.skeletonAfter !== undefined;
-        skeletons.set(moved, followed ? carry.skeletonAfter! : skeleton);
+        skeletons.set(moved, followed ? carry.skeletonAfter! : earlier?.skeleton ?? skeleton);
         // line hashes name the region IDs: they follow with the hash, or (an edit outside the
         // regions not carried) are dropped, and the next generation's warning names the first
         // line that differs instead
-        const lines = followed ? carry.linesAfter : carry ? undefined : loaded.manifest.skeletonLines.get(path);
+        const lines = followed ? carry.linesAfter : carry ? undefined : earlier ? earlier.lines : loaded.manifest.skeletonLines.get(path);
         if (lines !== undefined) lineTable.set(moved, lines);
     }
     tree.write(MANIFEST_NAME, Buffer.from(serialiseManifest(files, skeletons, lineTable), 'utf8'));
+}
+
+/**
+ * The skeleton of file `rel` when its region IDs were already rewritten from `from` to `to` and,
+ * but for them, its skeleton is still the recorded one (`recorded`): the generator's file, carried
+ * over by an earlier, interrupted walk. Undefined otherwise (an edit outside the regions stays one).
+ */
+function carriedEarlier(tree: OutputTree, rel: string, recorded: string, from: string, to: string): { skeleton: string; lines: string } | undefined {
+    try {
+        const text = tree.read(rel);
+        if (text === undefined) return undefined;
+        const back = text.replace(START_MARKER, (all: string, rawId: string) => {
+            const id = rawId.trim();
+            const renamed = renameRegionId(id, to, from);
+            return renamed === id ? all : all.replace(`(${rawId})`, `(${rawId.replace(id, renamed)})`);
+        });
+        if (back === text || skeletonHash(back, rel) !== recorded) return undefined;
+        return { skeleton: skeletonHash(text, rel), lines: encodeLineHashes(skeletonLines(text, rel).hashes) };
+    } catch {
+        return undefined; // a malformed file: generate reports it
+    }
 }
 
 /** The tree to carry a change over in: refused (an error naming `what`) when src-gen is not a real folder or holds a link; undefined when there is none. */

@@ -8,6 +8,7 @@ import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './or
 import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
 import { UnsafePathError } from './safe-paths.js';
+import { RENAME_JOURNAL_NAME, hasRenameJournal } from './rename-journal.js';
 
 /** One file the generators produced: path relative to the output folder ('/'-separated) and its text. */
 export interface GeneratedFile {
@@ -145,6 +146,14 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
         tree.prepare();
         // one writer of the tree at a time: a terminal's generate and the IDE's saves (tree-lock.ts)
         tree.lock();
+        // a rename killed half-way (rename-journal.ts): the model given is the half-renamed one, and
+        // generating from it would move the renamed code to orphans/; the writers that read the model
+        // after taking the lock (contract generate, rename, Generate All) finish the rename first
+        if (hasRenameJournal(tree)) {
+            const report = emptyReport();
+            report.errors.push({ file: RENAME_JOURNAL_NAME, message: `an interrupted rename left its journal here: the .contract files and the generated tree are half renamed. Run \`contract generate\` on the project (or the IDE's Generate All) to finish the rename; nothing was generated` });
+            return report;
+        }
         return writeInto(tree, files, options);
     } finally {
         tree.close();

@@ -1,0 +1,158 @@
+/**
+ * A `contract rename` killed half-way (docs/codegen.md, "A rename killed half-way"): it journals
+ * its work in src-gen/.contract-rename.json before it changes anything, and the next `contract
+ * generate` (or rename, or the IDE's Generate All) finishes it, so the renamed module's code is
+ * never moved to orphans/. The killed states are made here with the library calls the rename
+ * makes, in its order, stopped where a SIGKILL would stop them (after the tree's carry-over,
+ * before the manifest); a hostile journal is refused and changes nothing.
+ */
+import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { renameInGeneratedTree, sha256, writeRenameJournal, type RenameJournal } from '@contract-studio/codegen';
+import { runCli } from '../src/cli.js';
+import { capture } from './capture-io.js';
+
+const MODULES = 'src-gen/generated/architecture/modules';
+const JOURNAL = 'src-gen/.contract-rename.json';
+const MARK = 'int journal_marker = 7; (void)journal_marker;';
+
+let root: string;
+/** The new project's .contract files after `contract rename robot LOC LCX`, by name. */
+let renamedTexts: Map<string, string>;
+
+/** A fresh copy of the generated project with user code in LOC's init region. */
+function project(name: string): string {
+    const dir = join(root, name);
+    cpSync(join(root, 'robot'), dir, { recursive: true });
+    return dir;
+}
+
+function contractFiles(dir: string): string[] {
+    return readdirSync(dir).filter((f) => f.endsWith('.contract')).sort();
+}
+
+/** The journal `contract rename robot LOC LCX` writes for project `dir` as it is now. */
+function journalOf(dir: string, files = contractFiles(dir)): RenameJournal {
+    return {
+        version: 1, kind: 'module', oldName: 'LOC', newName: 'LCX', generatedNames: true, identifiers: [],
+        files: files.filter((f) => readFileSync(join(dir, f), 'utf8') !== renamedTexts.get(f)).map((f) => ({
+            path: f, before: sha256(readFileSync(join(dir, f))), after: renamedTexts.get(f)!,
+        })),
+    };
+}
+
+/** Where the user code is now: the module folder of the model's name, and orphans/. */
+function userCode(dir: string): { module: boolean; orphans: string[] } {
+    const orphans: string[] = [];
+    const walk = (d: string): void => {
+        if (!existsSync(d)) return;
+        for (const e of readdirSync(d, { withFileTypes: true })) {
+            const p = join(d, e.name);
+            if (e.isDirectory()) walk(p);
+            else if (readFileSync(p, 'latin1').includes('journal_marker')) orphans.push(p.slice(dir.length + 1));
+        }
+    };
+    walk(join(dir, 'src-gen/orphans'));
+    const file = join(dir, MODULES, 'LCX_mod/module.c');
+    return { module: existsSync(file) && readFileSync(file, 'latin1').includes(MARK), orphans };
+}
+
+beforeAll(async () => {
+    root = mkdtempSync(join(tmpdir(), 'contract-rename-journal-'));
+    expect(await runCli(['new', 'robot'], capture(root))).toBe(0);
+    expect(await runCli(['generate', 'robot'], capture(root))).toBe(0);
+    const file = join(root, 'robot', MODULES, 'LOC_mod/module.c');
+    writeFileSync(file, readFileSync(file, 'latin1').replace('/*PROTECTED REGION ID(protect_init_LOC) ENABLED START*/', `/*PROTECTED REGION ID(protect_init_LOC) ENABLED START*/\n    ${MARK}`), 'latin1');
+    const whole = project('whole');
+    const io = capture(root);
+    expect(await runCli(['rename', 'whole', 'LOC', 'LCX'], io), io.stderr).toBe(0);
+    expect(existsSync(join(whole, JOURNAL))).toBe(false); // a whole rename leaves no journal
+    renamedTexts = new Map(contractFiles(whole).map((f) => [f, readFileSync(join(whole, f), 'utf8')]));
+}, 120_000);
+afterAll(() => rmSync(root, { recursive: true, force: true }));
+
+describe('a contract rename killed half-way', () => {
+    it('killed after the tree was carried over, before the .contract files: the next generate finishes it, nothing orphaned', async () => {
+        const dir = project('after-carry');
+        writeRenameJournal(join(dir, 'src-gen'), journalOf(dir));
+        await renameInGeneratedTree(join(dir, 'src-gen'), 'LOC', 'LCX');
+        expect(readFileSync(join(dir, 'module1.contract'), 'utf8')).toContain('module LOC'); // the half state
+
+        const io = capture(root);
+        expect(await runCli(['generate', 'after-carry'], io), io.stderr).toBe(0);
+        expect(io.stderr).toContain('finished the rename of module LOC -> LCX that was interrupted (its journal src-gen/.contract-rename.json): 3 file(s) written, 0 already renamed');
+        expect(io.stderr).toMatch(/generated after-carry\/src-gen: \d+ created, \d+ updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+        for (const f of contractFiles(dir)) expect(readFileSync(join(dir, f), 'utf8')).toBe(renamedTexts.get(f));
+        expect(userCode(dir)).toEqual({ module: true, orphans: [] });
+        expect(existsSync(join(dir, JOURNAL))).toBe(false);
+        // the journal is gone: the next generate says nothing of it and writes nothing
+        const again = capture(root);
+        expect(await runCli(['generate', 'after-carry'], again)).toBe(0);
+        expect(again.stderr).not.toContain('finished the rename');
+        expect(again.stderr).toMatch(/: 0 created, 0 updated, \d+ kept, 0 orphaned, 0 error\(s\)/);
+    });
+
+    it('killed in the carry-over, after the files moved but before the manifest: finished, no false "edited outside its regions"', async () => {
+        const dir = project('mid-carry');
+        const manifest = readFileSync(join(dir, 'src-gen/.contract-manifest.json'));
+        writeRenameJournal(join(dir, 'src-gen'), journalOf(dir));
+        await renameInGeneratedTree(join(dir, 'src-gen'), 'LOC', 'LCX');
+        writeFileSync(join(dir, 'src-gen/.contract-manifest.json'), manifest); // the manifest as the kill left it
+
+        const io = capture(root);
+        expect(await runCli(['generate', 'mid-carry'], io), io.stderr).toBe(0);
+        expect(io.stderr).toContain('finished the rename of module LOC -> LCX');
+        expect(io.stderr).not.toContain('edited outside its protected regions');
+        expect(userCode(dir)).toEqual({ module: true, orphans: [] });
+    });
+
+    it('killed before the tree was touched, or while the .contract files were written: finished the same way', async () => {
+        const before = project('before-carry');
+        writeRenameJournal(join(before, 'src-gen'), journalOf(before));
+        const io = capture(root);
+        expect(await runCli(['generate', 'before-carry'], io), io.stderr).toBe(0);
+        expect(userCode(before)).toEqual({ module: true, orphans: [] });
+
+        const during = project('during-files');
+        writeRenameJournal(join(during, 'src-gen'), journalOf(during));
+        await renameInGeneratedTree(join(during, 'src-gen'), 'LOC', 'LCX');
+        writeFileSync(join(during, 'module1.contract'), renamedTexts.get('module1.contract')!); // one file written, then killed
+        const io2 = capture(root);
+        expect(await runCli(['rename', 'during-files', 'CTL', 'CTX'], io2), io2.stderr).toBe(0); // a rename finishes it too, then renames
+        expect(io2.stderr).toContain('finished the rename of module LOC -> LCX that was interrupted (its journal src-gen/.contract-rename.json): 2 file(s) written, 1 already renamed');
+        expect(userCode(during)).toEqual({ module: true, orphans: [] });
+        expect(readFileSync(join(during, 'module2.contract'), 'utf8')).toContain('module CTX');
+    });
+
+    it('a .contract file changed since the rename began is left as it is and named; the others are written', async () => {
+        const dir = project('edited');
+        writeRenameJournal(join(dir, 'src-gen'), journalOf(dir));
+        await renameInGeneratedTree(join(dir, 'src-gen'), 'LOC', 'LCX');
+        const edited = `${readFileSync(join(dir, 'sched.contract'), 'utf8')}// typed meanwhile\n`;
+        writeFileSync(join(dir, 'sched.contract'), edited);
+        const io = capture(root);
+        await runCli(['generate', 'edited'], io);
+        expect(io.stderr).toContain('2 file(s) written, 0 already renamed');
+        expect(io.stderr).toContain('warning: edited/sched.contract changed since the rename began (or is gone): left as it is; rename LOC there by hand');
+        expect(readFileSync(join(dir, 'sched.contract'), 'utf8')).toBe(edited);
+        expect(readFileSync(join(dir, 'module1.contract'), 'utf8')).toBe(renamedTexts.get('module1.contract'));
+    });
+
+    it('a hostile journal (a path out of the project) is refused: nothing is written, the generation refuses the tree and says why', async () => {
+        const dir = project('hostile');
+        const journal = journalOf(dir);
+        journal.files.push({ path: '../outside.contract', before: sha256(Buffer.from('')), after: 'pwned' });
+        writeFileSync(join(root, 'outside.contract'), '');
+        writeFileSync(join(dir, JOURNAL), JSON.stringify(journal));
+        const texts = contractFiles(dir).map((f) => readFileSync(join(dir, f), 'utf8'));
+        const io = capture(root);
+        expect(await runCli(['generate', 'hostile'], io)).toBe(1);
+        expect(io.stderr).toContain('warning: src-gen/.contract-rename.json is not the journal of an unfinished rename (file "../outside.contract": empty, "." or ".." component): nothing was changed; remove it to go on');
+        expect(io.stderr).toContain('an interrupted rename left its journal here');
+        expect(readFileSync(join(root, 'outside.contract'), 'utf8')).toBe('');
+        expect(contractFiles(dir).map((f) => readFileSync(join(dir, f), 'utf8'))).toEqual(texts);
+        expect(existsSync(join(dir, MODULES, 'LOC_mod/module.c'))).toBe(true); // the tree untouched
+    });
+});
