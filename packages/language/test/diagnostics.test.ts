@@ -214,6 +214,18 @@ export const CASES: Record<string, CodeCase> = {
     'time-not-positive': {
         raise: { 'a.contract': sync('scheduling { C=0ms; }') },
         clean: { 'a.contract': sync('scheduling { C=1ns; }') }
+    },
+    'time-rounded': {
+        raise: { 'a.contract': sync('scheduling { C=1.5ns; }') },
+        clean: { 'a.contract': sync('scheduling { C=1.5us; }') }
+    },
+    'parameter-index-too-large': {
+        raise: { 'a.contract': sync('parameters { int g :1024; } scheduling { C=1ms; }') },
+        clean: { 'a.contract': sync('parameters { int g :1023; } scheduling { C=1ms; }') }
+    },
+    'identifier-too-long': {
+        raise: { 't.contract': `datatype ${'T'.repeat(201)} {int v};\n` },
+        clean: { 't.contract': `datatype ${'T'.repeat(200)} {int v};\n` }
     }
 };
 

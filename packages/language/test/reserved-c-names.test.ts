@@ -210,6 +210,71 @@ describe('named constants: macros of common/constants.h in every module.c', () =
     });
 });
 
+describe("enumeration members' C names (Mode_AUTO) against every other file-scope name", () => {
+    const errors = (built: Built) => built.diagnostics.filter((d) => d.severity === 'error').map((d) => `${d.file}:${d.line} ${d.code} ${d.message}`);
+
+    it("two members of two enumerations that make the same C constant (A_B + C and A + B_C) are both refused", async () => {
+        const built = await build({ 't.contract': 'enum A_B { C, D }\nenum A { B_C, X }\n' });
+        expect(errors(built)).toEqual([
+            "t.contract:1 identifier-c-reserved Member 'C' of enumeration A_B becomes the C name A_B_C, which cannot be used: member B_C of enumeration A becomes the same C enumeration constant. Choose another name (e.g. 'C_').",
+            "t.contract:2 identifier-c-reserved Member 'B_C' of enumeration A becomes the C name A_B_C, which cannot be used: member C of enumeration A_B becomes the same C enumeration constant. Choose another name (e.g. 'B_C_').",
+        ]);
+    });
+
+    it('a datatype, an enumeration, a function or a module port or parameter named like a member\'s C name: refused, on both sides where both are names', async () => {
+        const built = await build({
+            't.contract': 'enum Mode { AUTO, MAN, IDLE }\ndatatype Mode_AUTO { int v };\nenum Mode_MAN { X }\nfunction void Mode_IDLE(int x);\n',
+            'm.contract': 'import "t.contract";\nasynchronous module EEE { parameters { Mode p1 :0; int Mode_AUTO_ = 1 :1; } event flows { in :0 int Mode_MAN; } }\n',
+        });
+        const found = errors(built);
+        expect(found.map((e) => e.split(' ').slice(0, 2).join(' ')).sort()).toEqual([
+            'm.contract:2 identifier-c-reserved', // the port Mode_MAN
+            't.contract:1 identifier-c-reserved', 't.contract:1 identifier-c-reserved', 't.contract:1 identifier-c-reserved', // AUTO, MAN, IDLE
+            't.contract:2 identifier-c-reserved', 't.contract:3 identifier-c-reserved', 't.contract:4 identifier-c-reserved',
+        ]);
+        expect(found).toContain("t.contract:2 identifier-c-reserved 'Mode_AUTO' cannot name a datatype in the generated C: member AUTO of enumeration Mode becomes the C enumeration constant Mode_AUTO, a file-scope name. Choose another name (e.g. 'Mode_AUTO_').");
+        expect(found).toContain("t.contract:3 identifier-c-reserved 'Mode_MAN' cannot name an enumeration in the generated C: member MAN of enumeration Mode becomes the C enumeration constant Mode_MAN, a file-scope name. Choose another name (e.g. 'Mode_MAN_').");
+        expect(found.find((e) => e.startsWith('m.contract:2'))).toContain("'Mode_MAN' cannot name a port in the generated C: member MAN of enumeration Mode becomes the C enumeration constant Mode_MAN");
+        expect(found.find((e) => e.includes("Member 'IDLE'"))).toContain('a function has that name');
+    });
+
+    it('a rename to a name that makes such a clash is refused, whichever side is renamed', async () => {
+        const ws = await build({ 't.contract': 'enum Mode { AUTO, MAN }\nenum Gear { LOW }\ndatatype P { int v };\n', 'm.contract': `import "t.contract";\n${syncModule('speed')}` });
+        const index = ws.services.shared.workspace.IndexManager;
+        const find = (file: string, name: string) => AstUtils.streamAllContents(ws.docs.get(file)!.parseResult.value).find((n) => (n as { name?: string }).name === name)!;
+        expect(renameProblem(find('m.contract', 'speed'), 'Mode_AUTO', ws.services.Grammar, index)).toContain('member AUTO of enumeration Mode becomes the C enumeration constant Mode_AUTO');
+        expect(renameProblem(find('t.contract', 'P'), 'Gear_LOW', ws.services.Grammar, index)).toContain('member LOW of enumeration Gear');
+        expect(renameProblem(find('t.contract', 'LOW'), 'AUTO', ws.services.Grammar, index)).toBeUndefined(); // Gear_AUTO is free
+        expect(renameProblem(find('t.contract', 'P'), 'Mode_STOP', ws.services.Grammar, index)).toBeUndefined();
+        expect(renameProblem(find('t.contract', 'MAN'), 'P', ws.services.Grammar, index)).toBeUndefined(); // Mode_P: free
+    });
+});
+
+describe('names made into file names, parameter indexes and durations', () => {
+    it('a name of more than 200 characters is refused (its common/ header file name would pass 255 bytes); 200 is fine', async () => {
+        const built = await build({ 't.contract': `datatype ${'T'.repeat(201)} {int v};\nfunction void ${'f'.repeat(200)}(int x);\nenum E { ${'M'.repeat(201)} }\n` });
+        expect(built.diagnostics.filter((d) => d.severity === 'error').map((d) => `${d.line} ${d.code}`)).toEqual(['1 identifier-too-long', '3 identifier-too-long']);
+    });
+
+    it('a parameter port index above 1023 is refused (PARAM_SIZE_IN has one entry per index); event ports may go to 2147483647', async () => {
+        const built = await build({ 'm.contract': 'asynchronous module AAA { parameters { int big = 1 :1024; int ok = 1 :1023; } event flows { out :2147483647 int e; } }\n' });
+        expect(built.diagnostics.filter((d) => d.severity === 'error').map((d) => `${d.code} ${d.message}`)).toEqual([
+            'parameter-index-too-large Parameter port index :1024 is too large: at most 1023. The generated module.c gives the runtime a table of one size per parameter index up to the largest (PARAM_SIZE_IN), so :1024 would make it 1025 entries long.',
+        ]);
+    });
+
+    it('a duration below the nanosecond is rounded, with a warning saying to what; one that rounds to 0ns is an error', async () => {
+        const built = await build({
+            'a.contract': 'synchronous module BBB { scheduling { C=1.5ns; } }\n', 'b.contract': 'synchronous module CCC { scheduling { C=0.4ns; } }\n',
+            'c.contract': 'synchronous module DDD { scheduling { C=1.5us; } }\n',
+        });
+        expect(built.diagnostics.filter((d) => d.code.startsWith('time-')).map((d) => `${d.file} ${d.severity} ${d.code} ${d.message}`)).toEqual([
+            'a.contract warning time-rounded Duration 1.5ns is not a whole number of nanoseconds: it is rounded to 2ns (durations are whole nanoseconds in the generated C and the runtime).',
+            'b.contract error time-not-positive Duration 0.4ns is less than half a nanosecond: durations are whole nanoseconds, and it rounds to 0ns.',
+        ]);
+    });
+});
+
 describe('renames and named constants', () => {
     it('a rename of a constant to a name of the request loop, or of a port to a constant, is refused; a constant keeps its own name', async () => {
         const ws = await build({ 't.contract': 'const int NJOINTS = 6;\n', 'a.contract': `import "t.contract";\n${syncModule('stamp')}` });

@@ -77,6 +77,17 @@ function siblingNames(node: AstNode): string[] {
     return members.filter((m) => m !== node).flatMap((m) => (m.name ? [m.name] : []));
 }
 
+/** The project's enumeration constants (`Mode_AUTO`) -> the members that become them. */
+function enumConstantsOf(index: IndexManager): Map<string, string[]> {
+    const out = new Map<string, string[]>();
+    for (const d of index.allElements('EnumType')) {
+        const e = d.node;
+        if (!isEnumType(e) || !e.name) continue;
+        for (const m of e.members ?? []) if (m.name) out.set(`${e.name}_${m.name}`, [...(out.get(`${e.name}_${m.name}`) ?? []), `member ${m.name} of enumeration ${e.name}`]);
+    }
+    return out;
+}
+
 /** `a datatype`, `an enumeration`. */
 function aWord(what: string): string {
     return `${/^[aeiou]/.test(what) ? 'an' : 'a'} ${what}`;
@@ -96,7 +107,7 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
     if (role && !newName.startsWith('_')) {
         const datatypes = new Set(index.allElements('DataType').map((d) => d.name).filter((n) => n !== node.name || role !== 'datatype'));
         const others = (type: string) => new Set(index.allElements(type).filter((d) => d.node !== node).map((d) => d.name));
-        const why = cNameConflict(newName, role, { datatypes, constants: others('Constant'), functions: others('FunctionPrototype') });
+        const why = cNameConflict(newName, role, { datatypes, constants: others('Constant'), functions: others('FunctionPrototype'), enumConstants: enumConstantsOf(index) });
         if (why) return `'${newName}' cannot name ${aWord(what)} in the generated C: ${why}.`;
     }
     if (isModule(node) || isSupervisor(node)) {
@@ -121,5 +132,18 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
         return undefined;
     }
     if (siblingNames(node).includes(newName)) return `'${newName}' is already used by another member next to this ${what}.`;
+    // a member becomes the enumeration constant <Enum>_<member>: a file-scope name of its own
+    if (isEnumMember(node) && isEnumType(node.$container) && node.$container.name && !newName.startsWith('_')) {
+        const cName = `${node.$container.name}_${newName}`;
+        const self = `member ${node.name} of enumeration ${node.$container.name}`;
+        const typeNames = new Set([...index.allElements('DataType'), ...index.allElements('EnumType')].map((d) => d.name));
+        const other = (enumConstantsOf(index).get(cName) ?? []).find((m) => m !== self);
+        const why = cNameConflict(cName, 'datatype', { datatypes: typeNames, constants: new Set(index.allElements('Constant').map((d) => d.name)) })
+            ?? (typeNames.has(cName) ? 'a datatype or enumeration has that name' : undefined)
+            ?? (index.allElements('FunctionPrototype').some((d) => d.name === cName) ? 'a function has that name' : undefined)
+            ?? (index.allElements('Constant').some((d) => d.name === cName) ? 'a named constant has that name' : undefined)
+            ?? (other ? `${other} becomes the same C enumeration constant` : undefined);
+        if (why) return `'${newName}' would make the C enumeration constant ${cName}, which cannot be used: ${why}.`;
+    }
     return undefined;
 }

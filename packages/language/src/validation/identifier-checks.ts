@@ -26,6 +26,9 @@ export const C_KEYWORDS = new Set([
     'thread_local', 'typeof', 'typeof_unqual', 'asm'
 ]);
 
+/** The longest name (docs/language-reference.md §1): `.SharedFunction<name>.h.tmp-<pid>` stays under 255 bytes. */
+export const MAX_NAME_LENGTH = 200;
+
 const NAMED_TYPES = [
     'Constant', 'DataType', 'EnumType', 'Field', 'FunctionPrototype', 'FunctionArgument', 'Module', 'Parameter', 'Port', 'Schema',
     'SchemaParameter', 'Supervisor', 'SupervisionFunction', 'FunctionParameter', 'LocalVariable', 'Rule'
@@ -54,10 +57,20 @@ export function projectCNames(names: ProjectNames): ProjectCNames {
     const byName = names.byName(['DataType', 'EnumType']);
     let project = datatypeSets.get(byName);
     if (!project) {
+        const enumConstants = new Map<string, string[]>();
+        for (const node of names.nodesOf('EnumType')) {
+            const e = node as EnumType;
+            for (const m of e.members ?? []) {
+                if (!e.name || !m.name) continue;
+                const cName = `${e.name}_${m.name}`;
+                enumConstants.set(cName, [...(enumConstants.get(cName) ?? []), `member ${m.name} of enumeration ${e.name}`]);
+            }
+        }
         project = {
             datatypes: new Set(byName.keys()),
             constants: new Set(names.byName(['Constant']).keys()),
-            functions: new Set(names.byName(['FunctionPrototype']).keys())
+            functions: new Set(names.byName(['FunctionPrototype']).keys()),
+            enumConstants
         };
         datatypeSets.set(byName, project);
     }
@@ -71,6 +84,10 @@ function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAc
         report(accept, ModuleCodes['identifier-c-keyword'], `'${name}' is a C keyword and the generated C uses Cactal names as they are: choose another name (e.g. '${name}_').`, { node, property: 'name' as never });
         return;
     }
+    if (name.length > MAX_NAME_LENGTH) {
+        report(accept, ModuleCodes['identifier-too-long'], `A name is at most ${MAX_NAME_LENGTH} characters (this one has ${name.length}): generated file names are made of names, and a file name is at most 255 bytes.`, { node, property: 'name' as never });
+        return;
+    }
     if (name.startsWith('_')) {
         report(accept, ModuleCodes['identifier-reserved-prefix'], `'${name}' starts with '_', which is reserved for generated code: choose a name starting with a letter.`, { node, property: 'name' as never });
         return;
@@ -82,7 +99,7 @@ function checkIdentifier(node: AstNode & { name?: string }, accept: ValidationAc
     if (!why) return;
     const suggestion = suggestName(name, (candidate) => cNameConflict(candidate, role, project) === undefined);
     report(accept, ModuleCodes['identifier-c-reserved'],
-        `'${name}' cannot name a ${kindWord(node)} in the generated C: ${why}. Choose another name (e.g. '${suggestion}').`,
+        `'${name}' cannot name ${/^[aeiou]/.test(kindWord(node)) ? 'an' : 'a'} ${kindWord(node)} in the generated C: ${why}. Choose another name (e.g. '${suggestion}').`,
         { node, property: 'name' as never, data: { suggestion } });
 }
 
@@ -118,11 +135,23 @@ export function commonHeaders(names: ProjectNames): CommonHeaderIndex {
 function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: ProjectNames): void {
     const owner = member.$container;
     if (!member.name || !owner?.name) return;
+    if (member.name.length > MAX_NAME_LENGTH) {
+        report(accept, ModuleCodes['identifier-too-long'], `A name is at most ${MAX_NAME_LENGTH} characters (this one has ${member.name.length}).`, { node: member, property: 'name' });
+        return;
+    }
     const cName = `${owner.name}_${member.name}`;
-    const project = projectCNames(names);
-    // a datatype name never equals a constant's (type-checks.ts), but a member's C name may
+    const all = projectCNames(names);
+    const project: ProjectCNames = { ...all, enumConstants: undefined };
+    const self = `member ${member.name} of enumeration ${owner.name}`;
+    const others = (c: string) => (all.enumConstants?.get(c) ?? []).filter((other) => other !== self);
+    // a datatype name never equals a constant's (type-checks.ts), but a member's C name may; nor
+    // may it be a datatype's, a function's or another member's C name (a module port or parameter
+    // of that name is refused on the port: cNameConflict)
     const conflict = (c: string) => cNameConflict(c, 'datatype', project)
-        ?? (project.constants?.has(c) ? 'a named constant has that name, and constants are macros in the generated C (common/constants.h)' : undefined);
+        ?? (project.constants?.has(c) ? 'a named constant has that name, and constants are macros in the generated C (common/constants.h)' : undefined)
+        ?? (project.datatypes.has(c) ? 'a datatype or enumeration has that name, a type name in the generated C' : undefined)
+        ?? (project.functions?.has(c) ? 'a function has that name, a file-scope name in the generated C' : undefined)
+        ?? (others(c).length ? `${others(c)[0]} becomes the same C enumeration constant` : undefined);
     const why = conflict(cName);
     if (!why) return;
     const suggestion = suggestName(member.name, (candidate) => conflict(`${owner.name}_${candidate}`) === undefined);

@@ -40,6 +40,10 @@ const MODULE_BLOCKS: BlockOrder<ModuleBlock, BlockName> = {
     duplicate: ModuleCodes['module-block-duplicate'], outOfOrder: ModuleCodes['module-block-order']
 };
 
+
+/** The largest parameter port index (docs/language-reference.md §3): PARAM_SIZE_IN is indexed by port number. */
+export const MAX_PARAMETER_INDEX = 1023;
+
 export function moduleChecks(services: CactalServices): ValidationChecks<CactalAstType> {
     const names = new ProjectNames(services);
     const checkName = (node: Module | Supervisor, accept: ValidationAcceptor) => checkModuleName(node, names, accept);
@@ -140,6 +144,11 @@ function checkPorts(owner: Module | Supervisor, accept: ValidationAcceptor): voi
                     `Port index ${writtenInt(m, 'index')} is too large: a port index is a C int in the generated C and the runtime, at most ${C_INT_MAX}.`, { node: m, property: 'index' });
                 continue;
             }
+            if (group === 'parameter' && m.index > MAX_PARAMETER_INDEX) {
+                report(accept, ModuleCodes['parameter-index-too-large'],
+                    `Parameter port index :${m.index} is too large: at most ${MAX_PARAMETER_INDEX}. The generated module.c gives the runtime a table of one size per parameter index up to the largest (PARAM_SIZE_IN), so :${m.index} would make it ${m.index + 1} entries long.`, { node: m, property: 'index' });
+                continue;
+            }
             if (used.has(m.index)) {
                 let free = 0;
                 while (allIndexes.has(free)) free++;
@@ -174,6 +183,14 @@ function checkPorts(owner: Module | Supervisor, accept: ValidationAcceptor): voi
     }
 }
 
+const UNIT_DECIMALS: Record<string, number> = { ns: 0, us: 3, ms: 6, s: 9 };
+
+/** Whether duration `text` has digits below the nanosecond (`1.5ns`, `0.0001us`), which exactNanoseconds rounds. */
+function subNanosecond(text: string): boolean {
+    const m = /^-?[0-9]+(?:\.([0-9]+))?(ns|us|ms|s)$/.exec(text.trim());
+    return !!m && /[1-9]/.test((m[1] ?? '').slice(UNIT_DECIMALS[m[2]!]));
+}
+
 function checkTime(time: TimeValue, accept: ValidationAcceptor): void {
     const parsed = parseTime(time.text ?? '');
     if (parsed && parsed.amount <= 0) {
@@ -181,6 +198,14 @@ function checkTime(time: TimeValue, accept: ValidationAcceptor): void {
         return;
     }
     const ns = exactNanoseconds(time.text ?? '');
+    const rounded = subNanosecond(time.text ?? '');
+    if (ns === 0n && rounded) {
+        report(accept, ModuleCodes['time-not-positive'], `Duration ${time.text} is less than half a nanosecond: durations are whole nanoseconds, and it rounds to 0ns.`, { node: time });
+        return;
+    }
+    if (ns !== undefined && rounded) {
+        report(accept, ModuleCodes['time-rounded'], `Duration ${time.text} is not a whole number of nanoseconds: it is rounded to ${ns}ns (durations are whole nanoseconds in the generated C and the runtime).`, { node: time });
+    }
     if (ns !== undefined && ns > BigInt(DURATION_NS_MAX)) {
         report(accept, TypeCodes['number-out-of-range'],
             `Duration ${time.text} is too long: a duration is at most ${DURATION_NS_MAX}ns (about 104 days), which the generated C and the tools hold exactly.`, { node: time });

@@ -31,6 +31,8 @@ export interface ProjectCNames {
     readonly constants?: ReadonlySet<string>;
     /** Function prototypes (a constant of that name would replace the function's name). */
     readonly functions?: ReadonlySet<string>;
+    /** Enumeration constants (`<Enum>_<member>`) -> the members that become them (`member AUTO of enumeration Mode`). */
+    readonly enumConstants?: ReadonlyMap<string, readonly string[]>;
 }
 
 const macros = new Set(HEADER_MACROS);
@@ -51,6 +53,8 @@ export function cNameConflict(name: string, role: CNameRole, project: ProjectCNa
         return 'a named constant has that name, and constants are macros in the generated C (common/constants.h, included by every module.c)';
     }
     if (role === 'member') return undefined;
+    const member = role !== 'argument' && role !== 'constant' ? project.enumConstants?.get(name)?.[0] : undefined;
+    if (member) return `${member} becomes the C enumeration constant ${name}, a file-scope name`;
     if (role === 'argument') {
         return project.datatypes.has(name) ? 'it names a datatype, which the generated prototype may use for another argument' : undefined;
     }
