@@ -21,6 +21,14 @@
 extern const ContractSupervisorVocabulary *const SIM_SUPERVISORS[];
 extern const ContractOrdVocabulary *const SIM_ORD;
 
+/* The session whose virtual clock GetTime() reads. */
+static SimSession *g_session;
+
+/* libmodule's clock (RTIME GetTime(void), RTIME = int64_t), for the project's test and compute
+ * functions: in a simulation it is the virtual time, ns since the simulation started. */
+int64_t GetTime(void);
+int64_t GetTime(void) { return g_session ? sim_session_now(g_session) : 0; }
+
 int main(void) {
     /* our records go to the real stdout; fd 1 becomes the capture file for user prints */
     int out_fd = dup(1);
@@ -43,6 +51,7 @@ int main(void) {
         fprintf(stderr, "contract-sim: %s\n", err);
         return 2;
     }
+    g_session = s;
     char *line = malloc(SIM_MAX_LINE + 2);
     if (!line) return 2;
     int ended = 0;
@@ -57,6 +66,7 @@ int main(void) {
         ended = sim_session_line(s, line);
     }
     int failures = sim_session_failures(s);
+    g_session = NULL;
     sim_session_destroy(s);
     free(line);
     fclose(out);

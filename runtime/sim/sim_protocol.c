@@ -298,6 +298,8 @@ void sim_session_destroy(SimSession *s) {
 
 int sim_session_failures(const SimSession *s) { return s->failures; }
 
+int64_t sim_session_now(const SimSession *s) { return sim_world_now(s->w); }
+
 /* ---- one line ----------------------------------------------------------------------------- */
 
 static int parse_i64(const char *text, int64_t *out) {

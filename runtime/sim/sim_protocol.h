@@ -53,4 +53,7 @@ int sim_session_line(SimSession *s, char *line);
 /** Count of failed expectations and refused steps so far. */
 int sim_session_failures(const SimSession *s);
 
+/** The session's virtual time (ns since the simulation started): what GetTime() returns to the project's functions. */
+int64_t sim_session_now(const SimSession *s);
+
 #endif

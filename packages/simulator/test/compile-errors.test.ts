@@ -11,7 +11,7 @@ import { cpSync, mkdirSync, mkdtempSync, readFileSync, rmSync, writeFileSync } f
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, describe, expect, it } from 'vitest';
-import { compileDiagnostics, DEFAULT_RUNTIME_DIR, describeCompileFailure, linkDiagnostics, prepareProject, type SimSources } from '../src/index.js';
+import { compileDiagnostics, DEFAULT_RUNTIME_DIR, describeCompileFailure, linkDiagnostics, loadScenario, prepareProject, runLoadedScenario, type SimSources } from '../src/index.js';
 import { CACHE, TUTORIAL } from './support.js';
 
 const scratch = mkdtempSync(join(tmpdir(), 'contract-sim-compile-errors-'));
@@ -88,6 +88,18 @@ describe('compile errors of the project\'s C name the user\'s file, line and pro
         expect(p.buildError).toContain(`src-gen/${TESTIT}:${line}: error: undefined reference to \`gripper_ready'`);
         expect(p.buildError).not.toContain(CACHE);
         expect(p.buildError).not.toMatch(/sim-[0-9a-f]{20}|unit\d+\.o/);
+    });
+
+    it('a compute function calling libmodule\'s GetTime() links, and reads the virtual time (ns since the simulation started)', async () => {
+        const doit = 'generated/architecture/common/SharedFunctiondoit.h';
+        const dir = brokenCopy('gettime', doit, (t) => intoRegion(t, 'protect_function_impl_doit', 'printf("virtual now=%lld\\n", (long long)GetTime());'));
+        const p = await prepareProject(dir, { runtimeDir: DEFAULT_RUNTIME_DIR, cacheDir: CACHE });
+        if (!('build' in p)) throw new Error(p.buildError ?? 'not built');
+        const file = join(dir, 'scenarios/mission.scenario');
+        const result = await runLoadedScenario(p, loadScenario(file, 'mission.scenario', readFileSync(file, 'utf8'), p.index));
+        const printed = result.steps.flatMap((st) => (st.record?.output ?? '').split('\n').filter((l) => l.startsWith('virtual now=')).map((l) => ({ at: st.timeNs, now: Number(l.slice(12)) })));
+        expect(printed.length).toBeGreaterThan(0);
+        for (const x of printed) expect(x.now).toBe(x.at); // the step's virtual instant, not the host's clock
     });
 
     it('a broken module.c region does not stop the simulation: modules are virtual, their code is not compiled', async () => {
