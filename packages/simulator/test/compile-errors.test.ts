@@ -92,7 +92,8 @@ describe('compile errors of the project\'s C name the user\'s file, line and pro
 
     it('a compute function calling libmodule\'s GetTime() links, and reads the virtual time (ns since the simulation started)', async () => {
         const doit = 'generated/architecture/common/SharedFunctiondoit.h';
-        const dir = brokenCopy('gettime', doit, (t) => intoRegion(t, 'protect_function_impl_doit', 'printf("virtual now=%lld\\n", (long long)GetTime());'));
+        const dir = brokenCopy('gettime', doit, (t) => intoRegion(intoRegion(t, 'protect_function_impl_doit', 'printf("virtual now=%lld\\n", (long long)GetTime());'),
+            'protect_additional_import_function_doit', '#include <libmodule/libmodule.h>'));
         const p = await prepareProject(dir, { runtimeDir: DEFAULT_RUNTIME_DIR, cacheDir: CACHE });
         if (!('build' in p)) throw new Error(p.buildError ?? 'not built');
         const file = join(dir, 'scenarios/mission.scenario');
