@@ -70,5 +70,34 @@ describe('contract serve', () => {
             await exited;
         }
     }, 60_000);
-});
 
+    it('--limit NAME=VALUE sets the build service\'s limits for the IDE\'s jobs (an hour-long run); an unknown limit or a bad value is refused, exit 2', async () => {
+        for (const [arg, message] of [['bogus=1', 'unknown limit "bogus"'], ['runSeconds=0', '--limit needs NAME=VALUE with a positive number'], ['runSeconds', '--limit needs NAME=VALUE']]) {
+            const bad = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', '--limit', arg!], { stdio: ['ignore', 'pipe', 'pipe'] });
+            let err = '';
+            bad.stderr!.on('data', (d: Buffer) => (err += d.toString('utf8')));
+            expect(await new Promise((r) => bad.once('exit', r))).toBe(2);
+            expect(err).toContain(message);
+        }
+        // a job may only lower the server's limits: asking 3600 s of run passes with --limit runSeconds=3660, not without
+        const ask = async (extra: string[]): Promise<number> => {
+            const c = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', ...extra], { stdio: ['ignore', 'pipe', 'inherit'] });
+            try {
+                const m = /^ContrACT Studio IDE: (http:\/\/127\.0\.0\.1:\d+)\/\?token=([A-Za-z0-9_-]{43}) /.exec(await firstLine(c))!;
+                const headers = { 'x-contract-token': m[2]!, 'content-type': 'application/json' };
+                const res = await fetch(`${m[1]}/api/jobs`, { method: 'POST', headers, body: JSON.stringify({ action: 'build', project: { dir }, limits: { runSeconds: 3600 } }) });
+                if (res.status === 201) {
+                    const { id } = (await res.json()) as { id: string };
+                    await fetch(`${m[1]}/api/jobs/${id}/cancel`, { method: 'POST', headers });
+                }
+                return res.status;
+            } finally {
+                const exited = new Promise((r) => c.once('exit', r));
+                c.kill('SIGTERM');
+                await exited;
+            }
+        };
+        expect(await ask([])).toBe(400);
+        expect(await ask(['--limit', 'runSeconds=3660', '--limit=workDiskMiB=1024'])).toBe(201);
+    }, 90_000);
+});

@@ -8,16 +8,18 @@ export interface ServeArgs {
   host: string;
   /** The build service's sandbox for the IDE's jobs (default auto: bubblewrap where it works, else Docker). */
   sandbox: ServeSandbox;
+  /** `--limit NAME=VALUE`: the build service's limits for the IDE's jobs (docs/sandbox.md "Limits"), above or below the defaults. */
+  limits: Record<string, number>;
 }
 
 /** The sandboxes `--sandbox` takes (`none` is not one: the IDE's build service refuses it). */
 export const SERVE_SANDBOXES = ['auto', 'bwrap', 'docker'] as const;
 export type ServeSandbox = (typeof SERVE_SANDBOXES)[number];
-const USAGE = 'usage: contract serve [DIR] [--port N] [--host ADDR] [--sandbox auto|bwrap|docker]\n(contract serve --help lists every option)';
+const USAGE = 'usage: contract serve [DIR] [--port N] [--host ADDR] [--sandbox auto|bwrap|docker] [--limit NAME=VALUE]...\n(contract serve --help lists every option)';
 
 /** Parses `[DIR] [--port N] [--host H] [--sandbox S]`; throws with a usage message on bad input. */
 export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
-  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto' };
+  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', limits: {} };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--port' || a === '-p') {
@@ -34,12 +36,35 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
       const s = a === '--sandbox' ? argv[++i] : a.slice('--sandbox='.length);
       if (!SERVE_SANDBOXES.includes(s as ServeSandbox)) throw new Error(`--sandbox needs one of ${SERVE_SANDBOXES.join(', ')}, got ${s ?? 'nothing'}\n${USAGE}`);
       out.sandbox = s as ServeSandbox;
+    } else if (a === '--limit' || a.startsWith('--limit=')) {
+      const v = a === '--limit' ? argv[++i] : a.slice('--limit='.length);
+      const m = /^([A-Za-z]+)=(\d+(?:\.\d+)?)$/.exec(v ?? '');
+      if (!m || Number(m[2]) <= 0) throw new Error(`--limit needs NAME=VALUE with a positive number (e.g. runSeconds=3600), got ${v ?? 'nothing'}\n${USAGE}`);
+      out.limits[m[1]!] = Number(m[2]);
     } else if (a.startsWith('-')) {
       throw new Error(`unknown option ${a}\n${USAGE}`);
     } else out.workspace = a;
   }
   out.workspace = resolve(out.workspace);
   return out;
+}
+
+/** Why the build service refuses `limits` (its mergeLimits), or undefined (also when it is not built: its own note then says so). */
+async function checkLimits(limits: Record<string, number>): Promise<string | undefined> {
+  if (Object.keys(limits).length === 0) return undefined;
+  let bs: { mergeLimits: (base: unknown, overrides: unknown, lowerOnly: boolean) => unknown; DEFAULT_LIMITS: unknown };
+  try {
+    const name = '@contract-studio/build-service';
+    bs = (await import(name)) as typeof bs;
+  } catch {
+    return undefined;
+  }
+  try {
+    bs.mergeLimits(bs.DEFAULT_LIMITS, limits, false);
+    return undefined;
+  } catch (e) {
+    return (e as Error).message;
+  }
 }
 
 /** Runs the server until SIGINT/SIGTERM; returns the exit code on failure to start. */
@@ -55,6 +80,12 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
   const dir = statSync(args.workspace, { throwIfNoEntry: false });
   if (!dir?.isDirectory()) {
     console.error(`contract serve: ${args.workspace} is ${dir ? 'not a folder' : 'not there'}: give the workspace folder (the project, or a folder of projects)\n${USAGE}`);
+    return 2;
+  }
+  // a limit the build service does not know, or a value it refuses: bad usage, before anything starts
+  const limitsProblem = await checkLimits(args.limits);
+  if (limitsProblem) {
+    console.error(`contract serve: --limit: ${limitsProblem}\n${USAGE}`);
     return 2;
   }
   try {

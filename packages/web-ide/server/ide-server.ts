@@ -42,6 +42,8 @@ export interface IdeServerOptions {
   sandbox?: 'auto' | 'bwrap' | 'docker';
   /** The session token (default: 32 random bytes, base64url); see session-token.ts. */
   token?: string;
+  /** The build service's limits for the IDE's jobs (`contract serve --limit NAME=VALUE`; docs/sandbox.md "Limits"). */
+  limits?: Record<string, number>;
 }
 
 export interface IdeServer {
@@ -113,7 +115,7 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   let build: BuildServerLike | undefined;
   let buildServiceNote = 'build service disabled';
   if (options.buildService !== false) {
-    const b = await createEmbeddedBuildServer(paths.root, undefined, options.sandbox);
+    const b = await createEmbeddedBuildServer(paths.root, undefined, options.sandbox, options.limits);
     if (typeof b === 'string') buildServiceNote = b;
     else {
       build = b;

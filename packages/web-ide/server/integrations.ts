@@ -131,7 +131,7 @@ export async function loadTreeChecks(): Promise<TreeChecks> {
  * cache folder), so Build & Run after a CLI build (or the reverse) compiles nothing new; when that
  * folder is refused, the reason is logged and the service keeps a private temporary cache.
  */
-export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`), sandbox: 'auto' | 'bwrap' | 'docker' = 'auto'): Promise<BuildServerLike | string> {
+export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`), sandbox: 'auto' | 'bwrap' | 'docker' = 'auto', limits: Record<string, number> = {}): Promise<BuildServerLike | string> {
   try {
     const name = '@contract-studio/build-service';
     const bs = (await import(name)) as BuildServiceApi;
@@ -141,7 +141,7 @@ export async function createEmbeddedBuildServer(workspaceRoot: string, log: (lin
     const cacheOptions = refused ? {} : { cacheDir: cache.dir, persistentWorkspaces: true };
     // `contract serve --sandbox bwrap|docker`: every job of the IDE in that one, a request naming another refused
     const only = sandbox === 'auto' ? {} : { onlySandbox: sandbox };
-    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...only, ...cacheOptions });
+    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...only, ...cacheOptions, ...(Object.keys(limits).length ? { limits } : {}) });
   } catch (e) {
     return `build service unavailable: ${(e as Error).message.split('\n')[0]}`;
   }
