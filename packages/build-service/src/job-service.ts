@@ -337,6 +337,9 @@ export class JobService {
     const finished = [...this.jobs.values()].filter((j) => j.isDone);
     const excess = this.jobs.size - this.keepJobs;
     for (const j of finished.slice(0, Math.max(0, excess))) this.jobs.delete(j.id);
+    // the trace records of ended jobs are the bulk of what a kept job holds: only the newest
+    // ended ones keep them for replay (docs/build-service-api.md "Trace channel")
+    for (const j of olderThanNewest(finished.filter((f) => this.jobs.has(f.id)), SERVICE_BOUNDS.traceReplayEndedJobs)) j.events.dropTrace();
   }
 
   /** Cancels a job (queued: removed at once; running: stopped within 2 s). */
@@ -370,4 +373,9 @@ export class JobService {
       await fsp.rmdir(join(this.cacheDir, 'ws')).catch(() => {});
     }
   }
+}
+
+/** The items of `list` (oldest first) but its `keep` newest: the ended jobs whose trace records are let go. */
+export function olderThanNewest<T>(list: readonly T[], keep: number): T[] {
+  return list.slice(0, Math.max(0, list.length - keep));
 }

@@ -116,6 +116,11 @@ export interface ServiceBounds {
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
   traceLinesKept: number;
   /**
+   * Ended jobs whose trace records stay for replay (the newest ones); an older ended job's trace
+   * events replay empty, the first with `dropped` (JobEvents.dropTrace): its CSV logs hold them.
+   */
+  traceReplayEndedJobs: number;
+  /**
    * Trace lines that are no record (they do not begin with a `mono_ns`: junk a module wrote into
    * `logs/`) sent per job; the later ones are counted, not sent (a wire entry says how many, trace/wire.ts `unsent`),
    * so that they neither fill the stream nor take the room of the records kept for replay.
@@ -161,6 +166,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   traceFiles: 256,
   traceLinesPerEvent: 1000,
   traceLinesKept: TRACE_LINES_KEPT,
+  traceReplayEndedJobs: 4,
   traceUnreadableKept: 1000,
   projectFileBytes: 8 * 1024 * 1024,
   projectBytes: 64 * 1024 * 1024,

@@ -10,7 +10,7 @@ import { encodeTraceRecords } from '../trace/wire.js';
 
 /** The event's fields on the wire, without its type. */
 export function eventPayload(e: JobEvent): Record<string, unknown> {
-  if (e.type === 'trace') return { seq: e.seq, t: e.t, ...encodeTraceRecords(e.records) };
+  if (e.type === 'trace') return { seq: e.seq, t: e.t, ...encodeTraceRecords(e.records), ...(e.dropped ? { dropped: e.dropped } : {}) };
   const { type: _type, ...data } = e;
   return data;
 }
