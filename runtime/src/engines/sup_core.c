@@ -1017,7 +1017,7 @@ int sup_core_start_function_for(SupCore *c, int64_t t, const char *name, const v
     }
     int rc = local_start(c, t, f, params, size, caller, activation_id);
     drain_queue(c);
-    return rc;
+    return rc == 0 ? 0 : -2;
 }
 
 int sup_core_start_function_text(SupCore *c, int64_t t, const char *name, const char *args,

@@ -104,7 +104,8 @@ int sup_core_start_function(SupCore *c, int64_t t, const char *name, const void 
                             size_t size);
 /** Same, for activation `activation_id` of supervisor `caller` (`activate supervisor`): the
  *  function then belongs to that activation, and only a stop naming it (or a stop with id 0)
- *  ends it. */
+ *  ends it. Returns 0, -1 when the supervisor has no such function (traced `refused: no
+ *  function F`), -2 when it is already running (traced `refused: function F already running`). */
 int sup_core_start_function_for(SupCore *c, int64_t t, const char *name, const void *params,
                                 size_t size, const char *caller, uint32_t activation_id);
 /** Same, with parameters in text form `p1={1.0,2.0,3.0} p2="x"` (control tools). -1 when the

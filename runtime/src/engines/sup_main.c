@@ -499,7 +499,11 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
     size_t size;
     if (engine_binary_args(m, &block, &size)) { /* `activate supervisor` of another supervisor */
         rc = sup_core_start_function_for(c, t, fn, block, size, m->Sender, (uint32_t)m->Param.Start.AckID);
-        if (rc != 0) fprintf(stderr, "%s: start refused: %s.%s refused (unknown or already running)\n", v->name, v->name, fn);
+        /* the precise reason, in the words of the core's `refused: ...` record */
+        if (rc != 0)
+            fprintf(stderr, "%s: start refused: activation #%d of %s.%s from %s: %s %s%s\n", v->name,
+                    m->Param.Start.AckID, v->name, fn, m->Sender, rc == -1 ? "no function" : "function", fn,
+                    rc == -1 ? "" : " already running");
     } else {
         char args[CONTRACT_REQUEST_DATA_MAX + 1];
         size_t n = m->DataSize < CONTRACT_REQUEST_DATA_MAX ? m->DataSize : CONTRACT_REQUEST_DATA_MAX;

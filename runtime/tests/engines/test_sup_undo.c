@@ -141,7 +141,8 @@ void test_undo_leaves_a_function_a_control_tool_started(void) {
     SupCore *sem = make_sup(&ws, &SEM, "SEM");
     if (!sem) { CHECK(0); return; }
     CHECK(sup_core_start_function(sem, 0, "aux", NULL, 0) == 0);
-    CHECK(sup_core_start_function_for(sem, 1 * MS, "aux", NULL, 0, "PAR", 7) == -1);
+    CHECK(sup_core_start_function_for(sem, 1 * MS, "aux", NULL, 0, "PAR", 7) == -2); /* already running */
+    CHECK(sup_core_start_function_for(sem, 1 * MS, "nope", NULL, 0, "PAR", 8) == -1);   /* no such function */
     CHECK(sup_core_stop_function_for(sem, 2 * MS, "aux", "PAR", 7) == -1);
     CHECK(sup_core_function_running(sem, "aux"));
     CHECK(log_find(&LOG, "SEM: ignored: stop of aux for activation #7 of PAR (started by a control tool)", 0) >= 0);

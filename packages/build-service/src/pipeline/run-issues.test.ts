@@ -24,7 +24,7 @@ describe('RunIssues', () => {
   test("the run's start request refused by its supervisor is an issue (once); a control tool's, or an activation another supervisor refused, is not", () => {
     const r = new RunIssues();
     r.line("STA: start request from contract-control refused: STA.station has no parameter 'sped'");
-    r.line('SUP: start refused: SUP.action refused (unknown or already running)');
+    r.line('SUP: start refused: activation #2 of SUP.action from GLB: function action already running');
     expect(r.all).toEqual([]);
     r.line("STA: start request from contract-launch refused: STA.station has no parameter 'sped'");
     r.line("STA: start request from contract-launch refused: STA.station has no parameter 'sped'");

@@ -38,6 +38,11 @@ void scenario_undo_own(const char *root, const char *bin, const char *launcher) 
     check(txt && strstr(txt, "[USM] refused: function aux already running") &&
               strstr(txt, "of USM.aux refused: its undo stops nothing"),
           "activate supervisor: USM refused K2's activation of aux and UPA learned it");
+    /* its stderr line gives the reason its CSV record gives, not "unknown or already running" */
+    check(txt && strstr(txt, "[USM] USM: start refused: activation #") &&
+              strstr(txt, " of USM.aux from UPA: function aux already running\n") &&
+              !strstr(txt, "(unknown or already running)"),
+          "activate supervisor: USM's stderr says why it refused (function aux already running)");
     long long k1_end = csv_time_of(upa, NULL, "rule top.K1 inactive", NULL);
     long long k2_end = csv_time_of(upa, NULL, "rule top.K2 inactive", NULL);
     long long aux_end = csv_time_of(usm, NULL, "function aux stopped", NULL);
