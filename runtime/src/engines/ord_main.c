@@ -20,6 +20,7 @@
  * lateness figures (used by the benchmark).
  */
 #define _POSIX_C_SOURCE 200809L
+#include <ctype.h>
 #include <stdint.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -133,6 +134,79 @@ static void b_ack(void *ctx, const char *requester, uint32_t id, int ok) {
     if (b->reply_to) SendAck(b->reply_to, b->reply_wanted, ok ? ACK_START : ACK_NOTDONE, (int)id);
 }
 
+/* ORD's lines on stdout, rate-limited as libmodule's error lines are (ContractSay), but by kind:
+   a schema missing every deadline of a 1 ms period wrote some 700 lines a second (`deadline miss:
+   S cycle 812 (ORD:0)`, `overrun: ...`), a line each of its own numbers, and a run's output is
+   bounded (the build service and contract run fail a run past 1 MiB a stream). A line whose kind
+   (the line with each number that is not part of a name read as N: `deadline miss: S cycle N
+   (ORD:0)`) was printed less than 1 s ago is counted, not printed; the count is said with the
+   kind's next print or at ORD's end: `(the same line 249 more times in 1.0 s, in the CSV log
+   only: deadline miss: S cycle N (ORD:0))`. The CSV log keeps every line (b_trace). */
+#define SAID_KINDS 32
+#define SAID_AGAIN_NS 1000000000LL
+typedef struct {
+    char kind[ACTION_LINE_MAX];
+    RTIME said;
+    unsigned repeats;
+} SaidKind;
+static SaidKind said_kinds[SAID_KINDS];
+static int n_said_kinds;
+
+/* `line` with each run of digits not inside a name (after a letter, digit, `_` or `:`, as in
+   `S1`, `ORD:0`) written `N` */
+static void line_kind(const char *line, char *kind, size_t size) {
+    size_t o = 0;
+    for (const char *p = line; *p && o + 1 < size; p++) {
+        int in_name = p > line && (isalnum((unsigned char)p[-1]) || p[-1] == '_' || p[-1] == ':');
+        if (isdigit((unsigned char)*p) && !in_name) {
+            kind[o++] = 'N';
+            while (isdigit((unsigned char)p[1])) p++;
+        } else {
+            kind[o++] = *p;
+        }
+    }
+    kind[o] = '\0';
+}
+
+static void say_repeats(SaidKind *k) {
+    if (!k->repeats) return;
+    printf("(the same line %u more time%s in %.1f s, in the CSV log only: %s)\n", k->repeats,
+           k->repeats == 1 ? "" : "s", (double)(GetTime() - k->said) / 1e9, k->kind);
+    k->repeats = 0;
+}
+
+static void say_line(const char *line) {
+    char kind[ACTION_LINE_MAX];
+    line_kind(line, kind, sizeof kind);
+    RTIME now = GetTime();
+    SaidKind *k = NULL;
+    for (int i = 0; i < n_said_kinds && !k; i++)
+        if (strcmp(said_kinds[i].kind, kind) == 0) k = &said_kinds[i];
+    if (k && now - k->said < SAID_AGAIN_NS) {
+        k->repeats++;
+        return;
+    }
+    if (!k) { /* a new kind: a free slot, or the one said longest ago (its count said first) */
+        if (n_said_kinds < SAID_KINDS) {
+            k = &said_kinds[n_said_kinds++];
+        } else {
+            k = &said_kinds[0];
+            for (int i = 1; i < SAID_KINDS; i++)
+                if (said_kinds[i].said < k->said) k = &said_kinds[i];
+        }
+        say_repeats(k);
+        snprintf(k->kind, sizeof k->kind, "%s", kind);
+    }
+    say_repeats(k);
+    printf("%s\n", line);
+    k->said = now;
+}
+
+static void say_all_repeats(void) {
+    for (int i = 0; i < n_said_kinds; i++) say_repeats(&said_kinds[i]);
+    fflush(stdout);
+}
+
 static void b_trace(void *ctx, int64_t t, const char *line) {
     (void)ctx;
     (void)t;
@@ -143,7 +217,7 @@ static void b_trace(void *ctx, int64_t t, const char *line) {
     if (!strstr(line, "finished outside a cycle") && strncmp(line, "late ack: ", 10) != 0 &&
         strncmp(line, "stuck: ", 7) != 0 && /* said once on stderr by b_stuck */
         !strstr(line, " held: ") && !strstr(line, " resumed"))
-        printf("%s\n", line);
+        say_line(line);
 }
 
 /* A module that never finishes its release (ord_core check_stuck): one line on stderr, prefixed
@@ -308,6 +382,7 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
     }
 out:
     ord_core_stop(c); /* a cycle still overrunning tells its count (the trace's overruns are ORD's) */
+    say_all_repeats();
     if (b.record) write_stats(&b, c, stats_path);
     free(b.late);
     free(m);

@@ -6,7 +6,7 @@
  * the reactivation scenario: schema RSC: RMA -> RMB -> RMC, supervisor RSU (tables: itables.h).
  * Built with -DIORD_UNDO (as undo/ORD) for the undo scenario: schema PSC: UMA, supervisors UPA
  * and USM. Built with -DIORD_STK (as stk/ORD) for the stuck- and crashed-module scenarios:
- * schemas FST (STK), SLW (OKM) and CRH (CRS), supervisor SKS.
+ * schemas FST (STK), SLW (OKM), CRH (CRS) and FLD (FLM), supervisor SKS.
  */
 #include "../engine_executable.h"
 
@@ -15,8 +15,9 @@ ENGINE_EXECUTABLE("ORD", 80, "engines integration test scheduler")
 #include "itables.h"
 
 #if defined(IORD_STK)
-static const ContractOrdModule modules[] = {{"STK", 50, 300000}, {"OKM", 50, 300000}, {"CRS", 50, 300000}};
-static const ContractSchema *const schemas[] = {&ITEST_FST, &ITEST_SLW, &ITEST_CRH};
+static const ContractOrdModule modules[] = {{"STK", 50, 300000}, {"OKM", 50, 300000}, {"CRS", 50, 300000},
+                                            {"FLM", 50, 300000}};
+static const ContractSchema *const schemas[] = {&ITEST_FST, &ITEST_SLW, &ITEST_CRH, &ITEST_FLD};
 static const char *const supervisors[] = {"SKS"};
 #elif defined(IORD_UNDO)
 static const ContractOrdModule modules[] = {{"UMA", 50, 300000}};

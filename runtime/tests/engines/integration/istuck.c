@@ -20,6 +20,9 @@
  *     Q:  [endof(P)] [duration(Q)=5ms]
  * for the kept-stop scenario: AMS, busy 5 s in its own code from its START, reads nothing, so
  * P's values fill its mailbox; A's undo, the STOP of AMS, is kept behind them and fails 2 s later.
+ *   SKS.flood:
+ *     F:  [elapsed=10ms] activate schema FLD() [ ]
+ * for the output-flood scenario: FLM takes 3 ms a release of FLD (1 ms): ORD misses every deadline.
  */
 #include "../engine_executable.h"
 
@@ -74,10 +77,13 @@ static const ContractClause q_post[] = {{1, q_end}};
 static const ContractRule busy_rules[] = {{"A", {1, c10b}, 1, a_actions, {1, a_post}},
                                           {"P", {2, p_pre}, 1, p_actions, {1, p_post}},
                                           {"Q", {1, q_pre}, 0, NULL, {1, q_post}}};
+static const ContractAction f_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_FLD}};
+static const ContractRule flood_rules[] = {{"F", {1, c10}, 1, f_actions, {0, NULL}}};
 static const ContractFunction functions[] = {{"go", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, go_rules},
                                              {"crash", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, crash_rules},
-                                             {"busy", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, busy_rules}};
+                                             {"busy", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, busy_rules},
+                                             {"flood", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, flood_rules}};
 static const ContractSupervisorVocabulary SKS_VOCABULARY = {
-    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 3, functions};
+    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 4, functions};
 
 int ModuleMain(int argc, const char *argv[]) { return contract_supervisor_main(&SKS_VOCABULARY, argc, argv); }

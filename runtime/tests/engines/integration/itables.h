@@ -6,7 +6,9 @@
  *   PSC (20 ms, critical delay 15 ms): UMA alone (activated by UPA and USM: undo scenario).
  *   FST (10 ms, critical delay 10 ms): STK (gain :0), which never finishes its 5th release;
  *   SLW (20 ms, critical delay 15 ms): OKM alone (stuck-module scenario).
- *   CRH (20 ms, critical delay 15 ms): CRS alone, killed in its 5th release (crashed-module scenario). */
+ *   CRH (20 ms, critical delay 15 ms): CRS alone, killed in its 5th release (crashed-module scenario).
+ *   FLD (1 ms, critical delay 1 ms): FLM alone, 3 ms a release: every cycle misses its deadline and
+ *       overruns (output-flood scenario). */
 #ifndef ITEST_TABLES_H
 #define ITEST_TABLES_H
 #include <contract/vocabulary.h>
@@ -47,4 +49,7 @@ static const ContractSchema ITEST_SLW = {"SLW", CONTRACT_SCHEMA_PERIODIC, 20 * I
 static const ContractSchemaModule crh_modules[] = {{"CRS", 0, NULL}};
 static const ContractSchema ITEST_CRH = {"CRH", CONTRACT_SCHEMA_PERIODIC, 20 * ITEST_MS, 15 * ITEST_MS,
                                          0, NULL, 0, 1, crh_modules, 0, NULL, 0, NULL, 0, NULL};
+static const ContractSchemaModule fld_modules[] = {{"FLM", 0, NULL}};
+static const ContractSchema ITEST_FLD = {"FLD", CONTRACT_SCHEMA_PERIODIC, 1 * ITEST_MS, 1 * ITEST_MS,
+                                         0, NULL, 0, 1, fld_modules, 0, NULL, 0, NULL, 0, NULL};
 #endif

@@ -4,7 +4,7 @@
  * kept for inspection when a check fails.
  * Usage: itest <dir with the test executables> <contract-launch>. Prints "N passed, N failed".
  * ITEST_ONLY=name[,name…] runs only those scenarios (scheduler, nested, shared, reactivation,
- * toggles, toggles-paused, undo, late-priority, crossed-claims, stuck, crashed, kept-stop): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
+ * toggles, toggles-paused, undo, late-priority, crossed-claims, stuck, crashed, kept-stop, output-flood): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
  * ITEST_KEEP=1 keeps the directory when every check passed too.
  */
 #define _GNU_SOURCE
@@ -28,7 +28,8 @@ static const struct {
                  {"crossed-claims", scenario_crossed_claims},
                  {"stuck", scenario_stuck_module},
                  {"crashed", scenario_crashed_module},
-                 {"kept-stop", scenario_kept_stop}};
+                 {"kept-stop", scenario_kept_stop},
+                 {"output-flood", scenario_output_flood}};
 #define NSCENARIOS (sizeof SCENARIOS / sizeof SCENARIOS[0])
 
 /* is `name` in the comma-separated list `only` (NULL or empty: every scenario)? */

@@ -37,4 +37,8 @@ void scenario_crashed_module(const char *root, const char *bin, const char *laun
  *  fails 2 s later, and is tied back to its action: `error: not sent: ...`, its hold "still runs". */
 void scenario_kept_stop(const char *root, const char *bin, const char *launcher);
 
+/** SKS activates FLD (1 ms) whose FLM takes 3 ms a release: ORD's deadline-miss and overrun lines
+ *  on stdout stay a few a second (each kind once a second, then its count), its CSV log has each. */
+void scenario_output_flood(const char *root, const char *bin, const char *launcher);
+
 #endif
