@@ -343,14 +343,52 @@ static void activate_event_schema(SupCore *c, int f, const ContractSchema *sc,
                                 sm->settings[k].type->size, sm->settings[k].type);
         }
     }
-    /* connected at every activation (the same subscription again: a spent one-shot flow is
-       armed again), disconnected by the last active schema using it */
-    for (int i = 0; i < sc->nevent_flows; i++) {
-        sup_claims_flow_use(&c->claims, &sc->event_flows[i], +1);
-        if (c->io.connect_events) c->io.connect_events(c->io.ctx, &sc->event_flows[i]);
+    /* Flows are connected at every activation (the same subscription again: a spent one-shot
+       flow is armed again), disconnected by the last active schema using it. Consumers first: a
+       module is started only once the consumers of its flows are started, and its flows are
+       connected just before its start. Each mailbox reads in order, so a consumer's START is
+       ahead of any event of the schema's flows (a producer posts only once subscribed), and a
+       producer is subscribed before its START: its first events reach their consumers. (Connected
+       before the starts, a producer posting a burst filled its consumer's mailbox ahead of the
+       consumer's START, which waited ~1.5 s behind the events.) A cycle of flows is broken in the
+       modules' order: the first module left is started after connecting its flows. */
+    unsigned char *started = calloc((size_t)sc->nmodules + 1, 1);
+    unsigned char *connected = calloc((size_t)sc->nevent_flows + 1, 1);
+    if (!started || !connected) {
+        trace(c, "error: out of memory activating schema %s", sc->name);
+        free(started);
+        free(connected);
+        return;
     }
-    for (int m = 0; m < sc->nmodules; m++)
-        hold_acquire(c, sc->modules[m].module, c->v->priority_interaction);
+    for (int left = sc->nmodules + 1; left > 0; left--) { /* a module at least per pass, then the rest */
+        int next = -1;
+        for (int m = 0; m < sc->nmodules && next < 0; m++) {
+            if (started[m]) continue;
+            int ready = 1;
+            for (int i = 0; i < sc->nevent_flows && ready; i++) {
+                const ContractEventFlow *fl = &sc->event_flows[i];
+                if (connected[i] || strcmp(fl->src_module, sc->modules[m].module) != 0) continue;
+                for (int d = 0; d < sc->nmodules; d++)
+                    if (!started[d] && d != m && strcmp(fl->dst_module, sc->modules[d].module) == 0) ready = 0;
+            }
+            if (ready) next = m;
+        }
+        for (int m = 0; m < sc->nmodules && next < 0; m++) /* a cycle: the first module left */
+            if (!started[m]) next = m;
+        /* the flows of `next` (all the others once every module is started: a producer outside) */
+        for (int i = 0; i < sc->nevent_flows; i++) {
+            const ContractEventFlow *fl = &sc->event_flows[i];
+            if (connected[i] || (next >= 0 && strcmp(fl->src_module, sc->modules[next].module) != 0)) continue;
+            connected[i] = 1;
+            sup_claims_flow_use(&c->claims, fl, +1);
+            if (c->io.connect_events) c->io.connect_events(c->io.ctx, fl);
+        }
+        if (next < 0) break;
+        started[next] = 1;
+        hold_acquire(c, sc->modules[next].module, c->v->priority_interaction);
+    }
+    free(started);
+    free(connected);
 }
 
 static void deactivate_event_schema(SupCore *c, const ContractSchema *sc) {

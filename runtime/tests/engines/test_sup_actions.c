@@ -103,7 +103,7 @@ void test_actions_event_schemas_share_modules_and_module_activation(void) {
     sup_core_advance(c, 10 * MS);
     CHECK_LOG(&LOG, "function schemas() started",
               /* 1 ms */
-              "rule schemas.A active", "connect MAA:0 =* MAB:0", "start MAA prio 40", "start MAB prio 40",
+              "rule schemas.A active", "start MAB prio 40", "connect MAA:0 =* MAB:0", "start MAA prio 40",
               "rule schemas.C active", "start MCR prio 70",
               "rule schemas.D active", "priority MRT 5 (was 33)",
               /* 2 ms: postconditions first, then B's precondition */
@@ -157,5 +157,44 @@ void test_actions_ord_events_ord_schema(void) {
     CHECK(strcmp(sup_core_local(c, "ordev", "ls"), "S1") == 0);
     sup_core_ord_event(c, 3 * MS, 1, "S9"); /* ORD:1 ends R, no subscription needed */
     CHECK(sup_core_rule_active(c, "ordev", "R") == 0);
+    sup_core_destroy(c);
+}
+
+/* An event schema's activation starts each consumer before it connects the flows that feed it,
+   and connects a producer's flows before it starts the producer: every mailbox reads in order, so
+   no event of the schema reaches a module ahead of its START (field test: EVA's burst of 30
+   events filled EVB's mailbox ahead of EVB's START, which waited 1.5 s behind them), and no
+   event a producer posts at its start is lost. A chain C <- B <- A starts C, B, A; a cycle is
+   broken in the modules' order. */
+static const ContractSchemaModule chain_modules[] = {{"PA", 0, NULL}, {"PB", 0, NULL}, {"PC", 0, NULL}};
+static const ContractEventFlow chain_flows[] = {{"PA", 0, "PB", 0, CONTRACT_CONTINUOUS},
+                                                {"PB", 0, "PC", 0, CONTRACT_CONTINUOUS}};
+static const ContractSchema CHAIN = {"CHAIN", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 3, chain_modules,
+                                     0, NULL, 0, NULL, 2, chain_flows};
+static const ContractSchemaModule loop_modules[] = {{"LX", 0, NULL}, {"LY", 0, NULL}};
+static const ContractEventFlow loop_flows[] = {{"LX", 0, "LY", 0, CONTRACT_CONTINUOUS},
+                                               {"LY", 0, "LX", 0, CONTRACT_ONESHOT}};
+static const ContractSchema LOOP = {"LOOP", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 2, loop_modules,
+                                    0, NULL, 0, NULL, 2, loop_flows};
+static const ContractAction chain_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &CHAIN}};
+static const ContractAction loop_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &LOOP}};
+static const ContractRule order_rules[] = {{"CH", {1, at1}, 1, chain_actions, {0, NULL}},
+                                           {"LO", {1, at2}, 1, loop_actions, {0, NULL}}};
+static const ContractFunction order_functions[] = {{"order", 0, NULL, 0, 0, NULL, 0, 0, NULL, 2, order_rules}};
+static const ContractSupervisorVocabulary ORDER = {
+    CONTRACT_VOCABULARY_VERSION, "ORS", 90, 40, 5, 70, 0, NULL, 0, NULL, 1, order_functions};
+
+void test_actions_event_schema_starts_consumers_before_their_flows(void) {
+    FakeWorld w;
+    log_clear(&LOG);
+    SupCore *c = fake_make_sup(&w, &LOG, &ORDER, NULL);
+    if (!c) { CHECK(0); return; }
+    sup_core_start_function(c, 0, "order", NULL, 0);
+    sup_core_advance(c, 5 * MS);
+    CHECK_LOG(&LOG, "function order() started",
+              "rule order.CH active", "start PC prio 40", "connect PB:0 =* PC:0", "start PB prio 40",
+              "connect PA:0 =* PB:0", "start PA prio 40",
+              "rule order.LO active", "connect LX:0 =* LY:0", "start LX prio 40", "connect LY:0 => LX:0",
+              "start LY prio 40");
     sup_core_destroy(c);
 }

@@ -80,9 +80,9 @@ void test_report_sup_full_sequence(void) {
               "subscribe MAA:0 =* :1",
               "activate schema schemaReceptionMessage(param = {24 bytes}) (event schema)",
               "setparam MAA:0 {27.12,0,0.04}",
+              "start MAB prio 40", /* the consumer before its producer's flow and start */
               "connect MAA:0 =* MAB:0",
               "start MAA prio 40",
-              "start MAB prio 40",
               /* MAA:0 */
               "rule action.RECEPTION active",
               "setparam MSC:0 {4,5,6}",
