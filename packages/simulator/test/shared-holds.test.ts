@@ -61,14 +61,15 @@ describe('modules and event flows two supervisors share', () => {
         ].join('\n'));
         expect(r.failures.map((f) => f.message)).toEqual([]);
         expect(story(r)).toEqual([
+            // the consumer first, then the producer's flow, then the producer (docs/semantics.md)
             'ALF  activate schema watch() (event schema)',
+            'ALF  start module LGR (priority 30)',
             'ALF  connect SCN:0 =* LGR:0',
             'ALF  start module SCN (priority 30)',
-            'ALF  start module LGR (priority 30)',
             'BET  activate schema watch() (event schema)',
+            'BET  module LGR: hold taken (it was running)',
             'BET  connect SCN:0 =* LGR:0',
             'BET  module SCN: hold taken (it was running)',
-            'BET  module LGR: hold taken (it was running)',
             'ALF  undo: deactivate schema watch (event schema)',
             'ALF  undo: disconnect SCN:0 =* LGR:0',
             'ALF  event flow SCN:0 -> LGR:0: hold dropped (kept connected: used by 1 other supervisor(s))',
@@ -84,12 +85,12 @@ describe('modules and event flows two supervisors share', () => {
         // each hold record once, as the harness wrote it (none added from the action lines)
         const holds = stepsToTrace(r.steps.map(traceStepOf)).filter((x) => x.kind === 'module_hold' || x.kind === 'flow_hold') as KnownRecord[];
         expect(holds.map((h) => `${h.module} ${h.peer} ${h.detail}`)).toEqual([
+            'ALF LGR hold taken (started it)',
             'ALF flow-SCN-0-LGR-0 hold taken',
             'ALF SCN hold taken (started it)',
-            'ALF LGR hold taken (started it)',
+            'BET LGR hold taken (it was running)',
             'BET flow-SCN-0-LGR-0 hold taken',
             'BET SCN hold taken (it was running)',
-            'BET LGR hold taken (it was running)',
             'ALF flow-SCN-0-LGR-0 hold dropped (kept connected: used by 1 other supervisor(s))',
             'ALF SCN hold dropped (kept running: still used by 1 other supervisor(s))',
             'ALF LGR hold dropped (kept running: still used by 1 other supervisor(s))',
