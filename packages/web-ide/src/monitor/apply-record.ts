@@ -83,15 +83,21 @@ function count(s: MonitorState, map: Map<string, FlowCount>, key: string, t: Ns)
 const num = (v: unknown): number | undefined => (typeof v === 'number' && Number.isFinite(v) ? v : undefined);
 const str = (v: unknown): string | undefined => (typeof v === 'string' && v ? v : undefined);
 
-/** The rule (`SUP.F.R`) behind a request of supervisor `name`: the last one that became active. */
-function ruleOf(s: MonitorState, name: string): string | undefined {
-  const r = s.supervisors.get(name)?.lastRule;
-  return r ? `${name}.${r}` : undefined;
+/**
+ * The rule (`F.R`) of supervisor `name` whose action asked ORD for periodic `schema`: the one its
+ * log names at its `activate schema S() (... to ORD)` line; the last rule that became active when
+ * its log has no such line (an older version's).
+ */
+function requestRuleOf(s: MonitorState, name: string, schema: string): string | undefined {
+  const sv = s.supervisors.get(name);
+  return sv?.schemaRequests?.get(schema) ?? sv?.lastRule;
 }
 
-function noteStarted(s: MonitorState, supName: string, what: string): void {
+/** `what` started by supervisor `supName`'s rule `ruleKey` (`F.R`; by default the one that became active last). */
+function noteStarted(s: MonitorState, supName: string, what: string, ruleKey?: string): void {
   const sv = s.supervisors.get(supName);
-  const rule = sv?.lastRule ? sv.rules.get(sv.lastRule) : undefined;
+  const key = ruleKey ?? sv?.lastRule;
+  const rule = key ? sv?.rules.get(key) : undefined;
   if (rule && !rule.started.includes(what) && rule.started.length < MAX_STARTED) {
     rule.started.push(what);
     s.supervisorChanges++;
@@ -232,6 +238,11 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
           // an event schema it runs itself: what its rule started, as ORD's START names a periodic one
           const schema = str(f['schema']);
           if (schema && k.detail.endsWith('(event schema)')) noteStarted(s, k.module, schema);
+          else if (schema && k.detail.endsWith(', to ORD)') && sv.lastRule) {
+            // a periodic schema asked of ORD: its activation is this rule's, whenever ORD receives it
+            const requests = (sv.schemaRequests ??= new Map());
+            if (entry(s, requests, schema, () => sv.lastRule!) !== undefined) requests.set(schema, sv.lastRule);
+          }
         }
       }
       return;
@@ -266,8 +277,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (m) {
         const sc = schemaActivation(s, m[1]!, t);
         if (!sc) return;
-        sc.by = ruleOf(s, k.peer) ?? k.peer;
-        if (s.supervisors.has(k.peer)) noteStarted(s, k.peer, m[1]!);
+        const rule = requestRuleOf(s, k.peer, m[1]!);
+        sc.by = rule ? `${k.peer}.${rule}` : k.peer;
+        if (s.supervisors.has(k.peer)) noteStarted(s, k.peer, m[1]!, rule);
       }
       return;
     }

@@ -42,8 +42,15 @@ export interface SupervisorState {
   actionsUndone: number;
   /** Its log writes a line for each module start, flow connect and priority claim (field `action`): their records are not counted again. */
   actionLines?: boolean;
-  /** The rule (`F.R`) that became active last: holds and START requests that follow belong to it. */
+  /** The rule (`F.R`) that became active last: holds and event schemas that follow belong to it. */
   lastRule?: string;
+  /**
+   * The rule (`F.R`) whose action asked ORD for each periodic schema, keyed by the schema: the rule
+   * that became active last when the supervisor logged `activate schema S() (activation #N, to ORD)`.
+   * ORD's `request_received START S` may come after the supervisor's next rule became active: the
+   * activation is that action's rule's, not the rule active when ORD received it.
+   */
+  schemaRequests?: Map<string, string>;
   /** Modules and event flows this supervisor holds (an event schema it activated), with the rule. */
   heldModules: Map<string, string>;
   heldFlows: Map<string, string>;
