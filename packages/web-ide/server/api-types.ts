@@ -143,6 +143,8 @@ export interface RenameEntityResponse {
 export interface LogFolderListing {
   /** Workspace-relative paths of the folder's `*.csv` regular files, by name, the first FOLDER_LOGS_MAX (256, server/log-api.ts). */
   logs: string[];
+  /** The size in bytes of each of `logs`, in its order, when listed (0 for one gone meanwhile): a replay keeps the small ones first under its bound. */
+  sizes?: number[];
   /** Regular `*.csv` files past FOLDER_LOGS_MAX (not in `logs`). */
   more: number;
   /** FOLDER_LOGS_MAX: the logs of one folder a replay reads at most. */

@@ -87,6 +87,7 @@ describe('GET /api/log-folder', () => {
     expect(res.status).toBe(200);
     expect(await res.json()).toEqual({
       logs: ['logs/ORD_29-Nov-2026-10h00m00s.csv', 'logs/empty_1.csv'], // by name, as contract trace orders them
+      sizes: [Buffer.byteLength(big), 0], // each log's bytes: a replay reads the small ones first under its bound
       more: 0,
       max: 256,
       notRead: ['fifo_1.csv: a FIFO, not read', 'link_1.csv: a symbolic link, not read (logs are never read through a link)'],

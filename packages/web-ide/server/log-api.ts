@@ -72,8 +72,12 @@ export async function handleLogFolderApi(paths: WorkspacePaths, req: IncomingMes
     const entries = (await WorkspaceFs.list(dir)).filter((d) => isLogFileName(d.name)).sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
     const regular = entries.filter((d) => d.isFile());
     const odd = entries.filter((d) => !d.isFile());
+    const listed = regular.slice(0, FOLDER_LOGS_MAX);
+    // their sizes (lstat: no link followed): the replay reads the small logs first under its bound
+    const sizes = await Promise.all(listed.map(async (d) => (await WorkspaceFs.entry(dir, d.name).catch(() => undefined))?.size ?? 0));
     return {
-      logs: regular.slice(0, FOLDER_LOGS_MAX).map((d) => (rel ? `${rel}/${d.name}` : d.name)),
+      logs: listed.map((d) => (rel ? `${rel}/${d.name}` : d.name)),
+      sizes,
       more: Math.max(0, regular.length - FOLDER_LOGS_MAX),
       max: FOLDER_LOGS_MAX,
       notRead: odd.slice(0, NOT_READ_NAMED).map((d) => `${d.name}: ${notReadWhy(d)}`),

@@ -356,7 +356,9 @@ export class MonitorController {
     // the folder as the server lists it: its links and FIFOs too, which the Explorer's tree does not show
     const listing = await api.logFolder(folder).catch((e: Error) => ({ logs: this.csvIn(folder), more: 0, max: MAX_FILES, notRead: [`${where} could not be listed (${e.message}): its logs the Explorer shows are read`], notReadCount: 1 }));
     const paths = listing.logs;
-    const { files, problems, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    // past the replay's bound the large module logs are left out, never ORD's nor the supervisors' (run-logs.ts replayOrder)
+    const sizes = 'sizes' in listing ? listing.sizes : undefined;
+    const { files, problems, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes, { sizes, supervisors: await this.supervisorNames() });
     // said in the label: a replay never misses a log silently; a run too long for the page is told
     // whole by the CLI, which reads it as a stream
     const leftOut = [...problems, ...listing.notRead];
@@ -468,6 +470,18 @@ export class MonitorController {
     const traceFiles = this.deps.workspace.allFiles().filter((f) => f.endsWith('.jsonl')).sort().slice(0, MAX_FILES);
     for (const f of traceFiles) if (!this.runs.has(`file:${f}`)) options.push({ id: `file:${f}`, label: `Trace file: ${f}` });
     panel.setSources(options, this.shown);
+  }
+
+  /**
+   * The model's supervisors' names, for the order a replay reads logs in under its bound: none when
+   * the language server does not give them within 2 s (the smallest logs are read first then).
+   */
+  private async supervisorNames(): Promise<Set<string>> {
+    let timer: ReturnType<typeof setTimeout> | undefined;
+    const late = new Promise<undefined>((r) => (timer = setTimeout(() => r(undefined), 2000)));
+    const symbols = await Promise.race([this.readSymbols().catch(() => undefined), late]);
+    clearTimeout(timer);
+    return new Set(symbols?.catalogue.keys() ?? []);
   }
 
   private async readSymbols(): Promise<SupervisorSymbols> {

@@ -1,7 +1,7 @@
-import { describe, it, expect, afterEach } from 'vitest';
+import { describe, it, expect, afterEach, vi } from 'vitest';
 import { createServer, type Server } from 'node:http';
 import type { AddressInfo } from 'node:net';
-import { activationsFromLogs, fetchJobLogs, localLogFolders } from './run-logs.js';
+import { activationsFromLogs, fetchJobLogs, localLogFolders, readWorkspaceLogs, replayOrder } from './run-logs.js';
 import { PIECE_CHARS, responsePieces } from '../api.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
@@ -97,9 +97,29 @@ describe('run logs', () => {
       });
       const counting = ((url: string) => (fetched.push(url), f(url))) as typeof fetch;
       const logs = await fetchJobLogs('j', counting, 100);
-      expect(logs.files.map((x) => x.name)).toEqual(['A_1.csv', 'C_1.csv']);
-      expect(logs.problems).toEqual(['B_1.csv: left out (50 bytes, past the 100 bytes a replay reads in all)']);
-      expect(fetched.some((u) => u.endsWith('B_1.csv'))).toBe(false);
+      // the smallest first: C and B kept, A past what is left
+      expect(logs.files.map((x) => x.name)).toEqual(['B_1.csv', 'C_1.csv']);
+      expect(logs.problems).toEqual(['A_1.csv: left out (60 bytes, past the 100 bytes a replay reads in all)']);
+      expect(fetched.some((u) => u.endsWith('A_1.csv'))).toBe(false);
+    });
+
+    it('past its byte bound keeps ORD\'s and the supervisors\' logs (the rules and activations), then the smallest: the large module logs are left out', async () => {
+      // the field test's folder, scaled down: two large module logs named before the small ones
+      const names = { LOC: 'LOC_1.csv', MOB: 'MOB_1.csv', MON: 'MON_1.csv', ORD: 'ORD_1.csv', SUP: 'SUP_1.csv', VEL: 'VEL_1.csv' };
+      const listing = { id: 'j', status: 'succeeded', artifacts: { files: [
+        { name: names.LOC, size: 400 }, { name: names.MOB, size: 30 }, { name: names.MON, size: 500 },
+        { name: names.ORD, size: 60 }, { name: names.SUP, size: 40 }, { name: names.VEL, size: 20 },
+      ], skipped: [] } };
+      const routes: Record<string, [number, string]> = { '/api/jobs/j/artifacts': [200, JSON.stringify(listing)] };
+      for (const [m, n] of Object.entries(names)) routes[`/api/jobs/j/artifacts/${n}`] = [200, log(m, [1])];
+      const f = await serve(routes);
+      // MON is a supervisor of the model: kept before the smaller VEL and MOB
+      const logs = await fetchJobLogs('j', f, 610, new Set(['SUP', 'MON']));
+      expect(logs.files.map((x) => x.name)).toEqual([names.MON, names.ORD, names.SUP]);
+      expect(logs.problems).toEqual([`${names.VEL}: left out (20 bytes, past the 610 bytes a replay reads in all)`, `${names.MOB}: left out (30 bytes, past the 610 bytes a replay reads in all)`, `${names.LOC}: left out (400 bytes, past the 610 bytes a replay reads in all)`]);
+      // no supervisor known: ORD's first, then the smallest (a supervisor's log is small)
+      const bySize = await fetchJobLogs('j', f, 160);
+      expect(bySize.files.map((x) => x.name)).toEqual([names.MOB, names.ORD, names.SUP, names.VEL]);
     });
 
     it('fails with a clear message when the job is unknown', async () => {
@@ -118,5 +138,39 @@ describe('local run logs', () => {
       { folder: 'robot/src-gen/generated/architecture/logs', csvs: ['robot/src-gen/generated/architecture/logs/ORD_1.csv'] },
     ]);
     expect(localLogFolders('', files)).toEqual([{ folder: 'logs', csvs: ['logs/ROOT_1.csv'] }, { folder: 'src-gen/generated/architecture/logs', csvs: [] }]);
+  });
+
+  it('reads a workspace folder\'s logs past the replay\'s bound keeping ORD\'s and the supervisors\', then the smallest; the large ones left out and named', async () => {
+    // GET /api/log as the IDE server answers it: the size first (x-log-bytes), then the bytes
+    const texts: Record<string, string> = {
+      'logs/LOC_1.csv': log('LOC', [1, 2, 3, 4, 5, 6, 7, 8]),
+      'logs/MON_1.csv': log('MON', [1, 2, 3, 4, 5, 6, 7, 8, 9, 10]),
+      'logs/ORD_1.csv': log('ORD', [1, 2]),
+      'logs/SUP_1.csv': log('SUP', [1, 2, 3]),
+    };
+    const asked: string[] = [];
+    vi.stubGlobal('fetch', async (url: string) => {
+      const path = decodeURIComponent(/path=([^&]*)/.exec(url)![1]!);
+      asked.push(path);
+      return new Response(texts[path]!, { headers: { 'x-log-bytes': String(Buffer.byteLength(texts[path]!)) } });
+    });
+    try {
+      const paths = Object.keys(texts); // by name, as GET /api/log-folder lists them
+      const sizes = paths.map((p) => Buffer.byteLength(texts[p]!));
+      const bound = sizes[1]! + sizes[2]! + sizes[3]!; // room for MON, ORD and SUP, not LOC too
+      const { files, problems, tooLarge } = await readWorkspaceLogs(paths, (p) => p.slice(5), bound, { sizes, supervisors: new Set(['SUP', 'MON']) });
+      expect(files.map((x) => x.name)).toEqual(['MON_1.csv', 'ORD_1.csv', 'SUP_1.csv']); // in the folder's order
+      expect(problems).toEqual([`LOC_1.csv: ${sizes[0]} bytes, past the 0 bytes left of the replay's bound`]);
+      expect(tooLarge).toBe(true);
+      expect(asked).toEqual(['logs/ORD_1.csv', 'logs/SUP_1.csv', 'logs/MON_1.csv', 'logs/LOC_1.csv']); // LOC last: its size past what is left, its bytes not read
+    } finally {
+      vi.unstubAllGlobals();
+    }
+  });
+
+  it('orders a replay\'s logs: ORD\'s and the supervisors\' first, then the others, each group smallest first; unknown sizes last; equal ones as listed', () => {
+    const logs = [{ name: 'A_1.csv', size: 5 }, { name: 'ORD_1.csv', size: 900 }, { name: 'B_1.csv' }, { name: 'SUP_x.csv', size: 700 }, { name: 'C_1.csv', size: 5 }, { name: 'D_1.csv', size: 1 }];
+    expect(replayOrder(logs, new Set(['SUP'])).map((l) => l.name)).toEqual(['SUP_x.csv', 'ORD_1.csv', 'D_1.csv', 'A_1.csv', 'C_1.csv', 'B_1.csv']);
+    expect(replayOrder(logs).map((l) => l.name)).toEqual(['ORD_1.csv', 'D_1.csv', 'A_1.csv', 'C_1.csv', 'SUP_x.csv', 'B_1.csv']);
   });
 });

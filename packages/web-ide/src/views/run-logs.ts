@@ -83,26 +83,53 @@ interface ArtifactListing {
 export const MAX_RUN_LOG_BYTES = 512 * 1024 * 1024;
 
 /**
+ * The order a replay reads a run's logs in under MAX_RUN_LOG_BYTES, so that what it keeps tells the
+ * run right: ORD's log and the supervisors' first (they carry the rules, the actions and the
+ * schemas' activations, and are small), then the others; each group smallest first (a module's log
+ * at 1 kHz is the large one), a log whose size is not known last, equal ones as listed (by name). `logs`:
+ * each log's file name (`SUP_6-Dec-2026-10h00m00s.csv`, the module before the first `_`) and
+ * size; `supervisors`: the model's supervisors' names (none known: the smallest first keeps them,
+ * a supervisor's log being small).
+ */
+export function replayOrder<T extends { name: string; size?: number }>(logs: readonly T[], supervisors: ReadonlySet<string> = new Set()): T[] {
+  const first = (l: T): boolean => {
+    const module = l.name.slice(l.name.lastIndexOf('/') + 1).split(/[_.]/)[0]!;
+    return module === 'ORD' || supervisors.has(module);
+  };
+  const size = (l: T): number => (l.size !== undefined && Number.isFinite(l.size) ? l.size : Infinity);
+  return logs.map((l, i) => ({ l, i, first: first(l) })).sort((a, b) =>
+    a.first !== b.first ? (a.first ? -1 : 1) : size(a.l) !== size(b.l) ? size(a.l) - size(b.l) : a.i - b.i).map((x) => x.l);
+}
+
+/**
  * Reads the workspace's CSV logs `paths` (GET /api/log), `maxBytes` in all: each file under the
  * name `nameOf(path)`; a log that cannot be read or is past the bound is a problem naming why, not
- * downloaded (`tooLarge`: one was past a bound).
+ * downloaded (`tooLarge`: one was past a bound). With `sizes` (each path's, GET /api/log-folder),
+ * they are read in replayOrder (`supervisors`: the model's), so that the bound leaves out the
+ * large module logs, never the supervisors' nor ORD's; the files come back in the paths' order.
  */
-export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<{ files: LogFile[]; problems: string[]; tooLarge: boolean }> {
-  const files: LogFile[] = [];
+export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES,
+  order?: { sizes?: readonly number[]; supervisors?: ReadonlySet<string> }): Promise<{ files: LogFile[]; problems: string[]; tooLarge: boolean }> {
+  const read = new Map<string, LogFile>();
   const problems: string[] = [];
   let tooLarge = false;
   let room = maxBytes;
-  for (const p of paths) {
+  const sizes = order?.sizes;
+  const ordered = sizes || order?.supervisors
+    ? replayOrder(paths.map((p, i) => ({ name: nameOf(p), path: p, size: sizes?.[i] })), order.supervisors).map((x) => x.path)
+    : paths;
+  for (const p of ordered) {
     const name = nameOf(p);
     try {
       const pieces = await api.readLog(p, room);
       room -= piecesLength(pieces);
-      files.push(piecedLog(name, pieces));
+      read.set(p, piecedLog(name, pieces));
     } catch (e) {
       problems.push(`${name}: ${(e as Error).message}`);
       tooLarge ||= e instanceof ApiError && e.status === 413;
     }
   }
+  const files = paths.flatMap((p) => read.get(p) ?? []);
   return { files, problems, tooLarge };
 }
 
@@ -119,21 +146,30 @@ export async function readTraceFile(path: string, nameOf: (path: string) => stri
   return { ...logs, problems: [...problems, ...logs.problems], tooLarge };
 }
 
-/** Downloads the CSV logs the build service collected from job `id` (only `.csv` files, MAX_RUN_LOG_BYTES in all). */
-export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, maxBytes = MAX_RUN_LOG_BYTES): Promise<RunLogs> {
+/**
+ * Downloads the CSV logs the build service collected from job `id` (only `.csv` files,
+ * MAX_RUN_LOG_BYTES in all, taken in replayOrder: ORD's and the supervisors' first, then the
+ * smallest), in the listing's order.
+ */
+export async function fetchJobLogs(id: string, fetchFn: typeof fetch = fetch, maxBytes = MAX_RUN_LOG_BYTES, supervisors: ReadonlySet<string> = new Set()): Promise<RunLogs> {
   const base = `/api/jobs/${encodeURIComponent(id)}/artifacts`;
   const listing = (await (await getOk(base, fetchFn)).json()) as ArtifactListing;
   // a skipped artifact that is not a CSV log (a core file, an output too large) is no hole in the logs
   const problems = (listing.artifacts?.skipped ?? []).filter((s) => s.name.endsWith('.csv')).map((s) => `${s.name}: ${s.reason}`);
-  const files: LogFile[] = [];
+  const listed = (listing.artifacts?.files ?? []).filter((f) => f.name.endsWith('.csv'));
+  const kept = new Set<string>();
   let room = maxBytes;
-  for (const f of listing.artifacts?.files ?? []) {
-    if (!f.name.endsWith('.csv')) continue;
+  for (const f of replayOrder(listed, supervisors)) {
     if (f.size > room) {
       problems.push(`${f.name}: left out (${f.size} bytes, past the ${maxBytes} bytes a replay reads in all)`);
       continue;
     }
     room -= f.size;
+    kept.add(f.name);
+  }
+  const files: LogFile[] = [];
+  for (const f of listed) {
+    if (!kept.has(f.name)) continue;
     if (f.capped) problems.push(`${f.name}: not whole: ${f.capped}`); // a log-capped record ends it (docs/build-service-api.md, GET /api/jobs/:id/artifacts)
     try {
       files.push(piecedLog(f.name, await responsePieces(await getOk(`${base}/${encodeURIComponent(f.name)}`, fetchFn))));

@@ -276,12 +276,12 @@ describe('Monitor in headless Chromium', () => {
     await page.keyboard.press('End');
     await expect.poll(() => periodic(page, 'S').getAttribute('data-releases')).toBe(String(LONG_RUN_RELEASES));
     // the replay's total bound (512 MiB: a folder of sparse 255 MiB logs must not fill the tab): a
-    // log past what is left is not downloaded, and named
+    // log past what is left is not downloaded, and named (ORD's is read first: run-logs.ts replayOrder)
     await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 1_000_000));
     await page.locator('.monitor-sources').selectOption('dir:recorded');
     await page.evaluate(() => (window as any).__ide.monitor.openFolder('long-run'));
     await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 30_000 })
-      .toMatch(/^0 of 2 CSV logs in long-run \(left out: CTL_.*larger than 256 MiB.*; ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound\) — `contract trace long-run` tells a run of any length$/);
+      .toMatch(/^0 of 2 CSV logs in long-run \(left out: ORD_29-Nov-2026-10h00m00s\.csv: \d+ bytes, past the 1000000 bytes left of the replay's bound; CTL_.*larger than 256 MiB.*\) — `contract trace long-run` tells a run of any length$/);
     // a trace file past it: named, and the command that tells it whole
     await page.evaluate(() => ((window as any).__ide.monitor.replayBytes = 1000));
     await page.evaluate(() => (window as any).__ide.monitor.openTraceFile('recorded.jsonl'));
