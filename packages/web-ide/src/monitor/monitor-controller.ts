@@ -91,6 +91,10 @@ export class MonitorController {
   /** The CSV logs each workspace folder replay was read from (to see that the folder changed). */
   private readonly folderFiles = new Map<string, string>();
   private rereadTimer: ReturnType<typeof setTimeout> | undefined;
+  /** The run rereadTimer reads again; the one being read again (folderChanged), and whether it changed meanwhile. */
+  private rereadDue: string | undefined;
+  private rereading: string | undefined;
+  private changedWhileRereading = false;
 
   constructor(
     private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
@@ -328,7 +332,13 @@ export class MonitorController {
     return this.deps.workspace.allFiles().filter((f) => isLogFileName(f.slice(f.lastIndexOf('/') + 1)) && dirOf(f) === folder).slice(0, MAX_FILES);
   }
 
-  /** Log folder or trace file run `id` changed on disk: read again now if it is shown (once the changes pause), else when it is picked. */
+  /**
+   * Log folder or trace file run `id` changed on disk: read again if it is shown, else when it is
+   * picked. Read again REREAD_MS after its first change not read yet — not after the changes pause:
+   * a run writes its logs without a pause, and putting the read off at each change put it off for
+   * as long as the run went on — and never twice at once: a change while it is read (a large folder
+   * takes seconds) reads it again once that read is done.
+   */
   private folderChanged(id: string): void {
     if (this.shown !== id || !this.isShown) {
       this.folderFiles.delete(id);
@@ -336,11 +346,35 @@ export class MonitorController {
       return;
     }
     if (id.startsWith('dir:')) this.folderFiles.set(id, ''); // changed: still watched until read again
+    if (this.rereading === id) {
+      this.changedWhileRereading = true;
+      return;
+    }
+    if (this.rereadTimer !== undefined && this.rereadDue === id) return; // already due
     clearTimeout(this.rereadTimer);
-    this.rereadTimer = setTimeout(() => {
-      if (this.shown === id && this.isShown) void (id.startsWith('file:') ? this.openTraceFile(id.slice(5), false) : this.openFolder(id.slice(4), false));
-      else this.runs.delete(id);
-    }, REREAD_MS);
+    this.rereadDue = id;
+    this.rereadTimer = setTimeout(() => void this.reread(id), REREAD_MS);
+  }
+
+  /** Reads log folder or trace file run `id` again (folderChanged), if it is still shown. */
+  private async reread(id: string): Promise<void> {
+    this.rereadTimer = undefined;
+    this.rereadDue = undefined;
+    if (this.shown !== id || !this.isShown) {
+      this.runs.delete(id);
+      return;
+    }
+    this.rereading = id;
+    this.changedWhileRereading = false;
+    try {
+      await (id.startsWith('file:') ? this.openTraceFile(id.slice(5), false) : this.openFolder(id.slice(4), false));
+    } finally {
+      this.rereading = undefined;
+      if (this.changedWhileRereading) {
+        this.changedWhileRereading = false;
+        this.folderChanged(id);
+      }
+    }
   }
 
   /**

@@ -6,7 +6,7 @@
  *   live when the build service streams trace events, and on the job's recorded logs after the run.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, existsSync, mkdirSync, readdirSync, readFileSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
+import { appendFileSync, cpSync, existsSync, mkdirSync, readdirSync, readFileSync, symlinkSync, truncateSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
@@ -543,6 +543,36 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => page.locator('.monitor-source').textContent()).toBe('2 CSV log(s) in growing-run');
     expect(await page.evaluate(() => (window as any).__ide.monitor.current?.recordCount)).toBe(3);
   }, 60_000);
+
+  it('a shown workspace log folder a run keeps writing is read again 1 s after a change, not only once the writes pause: the view catches up while they go on', async () => {
+    const { page } = s;
+    await monitorShown(page);
+    const dir = join(s.workspace, 'busy-run');
+    mkdirSync(dir);
+    const header = 'mono_ns,wall_time,module,event,peer,port,size,detail';
+    // a large log beside the one written to (a read takes a while: changes come while it goes on)
+    const ord = [header, '999000000,w,ORD,scheduler,,,0,activate S'];
+    for (let i = 0; i < 200_000; i++) ord.push(`${1_000_000_000 + i * 1_000_000},w,ORD,ord_release,CTL,,0,schema=S cycle=${i} tick_ns=${1_000_000_000 + i * 1_000_000} release_ns=${1_000_000_100 + i * 1_000_000} release=${i + 1}`);
+    writeFileSync(join(dir, 'ORD_1-Jan-2026-00h00m00s.csv'), ord.join('\n') + '\n');
+    const sup = join(dir, 'SUP_1-Jan-2026-00h00m00s.csv');
+    writeFileSync(sup, `${header}\n1000000,w,SUP,supervisor,,,0,function action started\n`);
+    await expect.poll(() => page.locator('.monitor-sources option[value="dir:busy-run"]').count(), { timeout: 10_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('dir:busy-run');
+    const records = () => page.evaluate(() => (window as any).__ide.monitor.current?.recordCount as number | undefined);
+    await expect.poll(records, { timeout: 30_000 }).toBe(200_002);
+    // the run writes a line every 0.3 s, without a pause of 1 s, for 20 s
+    let n = 0;
+    const writer = setInterval(() => appendFileSync(sup, `${2_000_000 + n++},w,SUP,user,,,0,tick\n`), 300);
+    try {
+      // read again while the writes go on (before: each change put the re-read off by 1 s more, so it never came)
+      await expect.poll(records, { timeout: 12_000, interval: 250 }).toBeGreaterThan(200_002);
+      const caughtUp = (await records())!;
+      // and again: it follows the end
+      await expect.poll(records, { timeout: 8_000, interval: 250 }).toBeGreaterThan(caughtUp);
+    } finally {
+      clearInterval(writer);
+    }
+  }, 90_000);
 
   it('a reload brings back the workspace folder or trace file the Monitor showed, read again; a Monitor hidden before the reload stays hidden', async () => {
     const { page } = s;
