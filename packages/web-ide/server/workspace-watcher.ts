@@ -33,7 +33,12 @@ export class WorkspaceWatcher {
     this.heartbeat.unref();
   }
 
-  private watchTree(rel: string): void {
+  /**
+   * Watches folder `rel` and the folders under it. `announce`: a folder that appeared since the
+   * last flush — what was made in it before its watcher was set (a run's `logs/` and its first
+   * CSV files, made within a few ms) is told as changed too, at the next flush.
+   */
+  private watchTree(rel: string, announce = false): void {
     if (this.closed || this.watchers.has(rel)) return;
     const abs = rel ? join(this.root, rel) : this.root;
     let entries;
@@ -45,7 +50,13 @@ export class WorkspaceWatcher {
     } catch {
       return; // folder gone or unreadable: nothing to watch
     }
-    for (const e of entries) if (e.isDirectory() && !SKIPPED.has(e.name)) this.watchTree(rel ? `${rel}/${e.name}` : e.name);
+    for (const e of entries) {
+      if (SKIPPED.has(e.name) || isAtomicTempFile(e.name)) continue;
+      const child = rel ? `${rel}/${e.name}` : e.name;
+      if (announce) this.pending.add(child);
+      if (e.isDirectory()) this.watchTree(child, announce);
+    }
+    if (announce && this.pending.size) this.timer ??= setTimeout(() => this.flush(), 60);
   }
 
   private unwatch(rel: string): void {
@@ -94,12 +105,19 @@ export class WorkspaceWatcher {
   private flush(): void {
     this.timer = undefined;
     // new folders get a watcher, removed ones lose theirs
-    for (const rel of this.pending) {
-      this.unwatchIfGone(rel);
-      this.watchTree(rel);
-    }
-    const paths = [...this.pending];
+    const changed = [...this.pending];
     this.pending.clear();
+    for (const rel of changed) {
+      this.unwatchIfGone(rel);
+      this.watchTree(rel, true);
+    }
+    // what new folders held when their watchers were set is told with them
+    const paths = [...new Set([...changed, ...this.pending])];
+    this.pending.clear();
+    if (this.timer) {
+      clearTimeout(this.timer);
+      this.timer = undefined;
+    }
     if (paths.length) this.broadcast('change', { paths });
   }
 
