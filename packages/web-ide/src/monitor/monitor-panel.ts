@@ -189,6 +189,9 @@ export class MonitorPanel {
     this.label.textContent = label;
     this.element.dataset.mode = 'replay';
     this.drawFollow();
+    // the readout stops saying live now, not at the next frame: with a large run that frame can
+    // come seconds later on a loaded machine, while the run list already says "ended"
+    if (this.model) this.drawClock(this.model, this.time, performance.now());
     this.redrawAll(); // what was held back while following is drawn now
   }
 

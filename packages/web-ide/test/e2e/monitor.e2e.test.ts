@@ -488,6 +488,21 @@ describe('Monitor in headless Chromium', () => {
     await expect.poll(() => row.textContent(), { timeout: 1000 }).toBe('┅ MAA:0 → MAB:0 ×1001 · last +1.000000 s');
   });
 
+  it('a live run that ends stops saying live in the readout at once, not at the next frame (a large run\'s frame came seconds later while the run list said ended)', async () => {
+    const { page } = s;
+    await page.evaluate(() => (window as any).__ide.monitor.followLive('ends', null));
+    await expect.poll(() => page.locator('.monitor-view').getAttribute('data-mode')).toBe('live');
+    await page.evaluate(() => (window as any).__ide.monitor.feed('ends', [{ file: 'MAB.csv', line: 2, text: '1000000000,2026-11-29T10:00:01.000000Z,MAB,event_received,MAA,0,288,from_port=0 latency_ns=1000' }]));
+    await expect.poll(() => page.locator('.monitor-time').textContent()).toMatch(/ · live \(last record \+\d+\.\d{6} s\)$/);
+    // ended, then read in the same task: no frame has been drawn in between
+    const readout = await page.evaluate(() => {
+      (window as any).__ide.monitor.panel.endLive('Build & Run job ends · ended: cancelled');
+      return document.querySelector('.monitor-time')!.textContent;
+    });
+    expect(readout).not.toContain('live');
+    expect(readout).toMatch(/^\+\d+\.\d{6} s \/ \+\d+\.\d{6} s$/);
+  });
+
   it('a log naming a supervisor function `constructor` and a rule `__proto__` is shown like any other, and pollutes nothing', async () => {
     const { page } = s;
     await monitorShown(page);
