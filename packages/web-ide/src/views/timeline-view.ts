@@ -126,7 +126,8 @@ export class TimelineView {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${cli} nor in ${make} yet. \`contract run\` writes a run's logs to ${cli} (or the folder its --logs names: open it in the Monitor), \`make -C src-gen/generated/architecture run\` to ${make}; a Build & Run shows its own run here when it ends.`));
       return;
     }
-    const { files, problems } = await readWorkspaceLogs(csvs, (f) => f);
+    // past the bound, ORD's log (the schemas' activations) is read first, not left out by name order
+    const { files, problems } = await readWorkspaceLogs(csvs, (f) => f, undefined, { supervisors: new Set() });
     this.drawLogs(files, problems, '');
   }
 
