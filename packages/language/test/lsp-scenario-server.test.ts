@@ -64,6 +64,19 @@ describe('contract-language-server: .scenario files', () => {
         for (const f of files) expect(await nextDiagnostics(f, 0), f).toEqual([]);
     }, LSP_TEST_MS);
 
+    it('a scenario opened with the Cactal language id (a client that maps every file to cactal) is still checked as a scenario, against its project', async () => {
+        const f = 'tutorial/scenarios/as-cactal.scenario';
+        const text = readFileSync(join(dir, 'tutorial/scenarios/mission.scenario'), 'utf8');
+        open(f, text, 'cactal');
+        expect(await nextDiagnostics(f, 0)).toEqual([]);
+        // and its problems are the scenario checker's, against the tutorial's modules
+        change(f, `${text}\nt=999s NOM:0 1\n`);
+        const after = await nextDiagnostics(f, 1);
+        const unknown = after.filter((d) => d.code === 'scenario-unknown-module');
+        expect(unknown).toHaveLength(1);
+        expect(unknown[0]!.message).toBe("no module or supervisor 'NOM' emits events in the project (those that do: MAA, MSC, SUP)");
+    }, LSP_TEST_MS);
+
     it('reports each problem of a broken scenario with its range, code, severity and message', async () => {
         const text = [
             'scenario broken on purpose',                   // 0
