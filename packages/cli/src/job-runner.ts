@@ -10,7 +10,7 @@ import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO } from './command.js';
-import { SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
 import { safeName } from './terminal-text.js';
 
@@ -399,10 +399,13 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
     if (!result.ok && result.step === 'prepare' && job.prepareDiagnostics.length) {
         const dir = safeName(opts.dirArg);
         const model = job.prepareDiagnostics.filter((p) => p.severity === 'error' && isModelProblem(p)).length;
-        const generated = job.prepareDiagnostics.filter((p) => p.severity === 'error' && !isModelProblem(p)).length;
+        // a rename killed half-way (codegen rename-journal.ts): generate finishes it, nothing to fix by hand
+        const journal = job.prepareDiagnostics.some((p) => p.severity === 'error' && (p.file === RENAME_JOURNAL_NAME || p.file.endsWith(`/${RENAME_JOURNAL_NAME}`)));
+        const generated = journal ? 0 : job.prepareDiagnostics.filter((p) => p.severity === 'error' && !isModelProblem(p)).length;
+        if (journal) io.err(`run \`contract generate ${dir}\` to finish the interrupted rename, then build again\n`);
         if (model) io.err(`fix the model errors above (\`contract check ${dir}\` lists them), then build again\n`);
         if (generated) io.err(`fix the generated tree's errors above in ${safeName(join(opts.dirArg, SRC_GEN_DIR))} (a protected-region marker broken or edited: \`contract generate ${dir}\` lists them), then build again\n`);
-        if (!model && !generated) io.err(`fix the problems above, then build again\n`);
+        if (!model && !generated && !journal) io.err(`fix the problems above, then build again\n`);
     }
     const buildErrors = result.step === 'build' ? job.diagnostics.filter((x) => x.severity === 'error').length : 0;
     if (!result.ok && result.step === 'build' && !buildErrors && !opts.verbose && outcome.buildTail.length && job.status !== 'cancelled' && !result.limitHit) {

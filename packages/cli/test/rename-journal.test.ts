@@ -6,13 +6,14 @@
  * makes, in its order, stopped where a SIGKILL would stop them (after the tree's carry-over,
  * before the manifest); a hostile journal is refused and changes nothing.
  */
-import { cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { renameInGeneratedTree, sha256, writeRenameJournal, type RenameJournal } from '@contract-studio/codegen';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
+import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 
 const MODULES = 'src-gen/generated/architecture/modules';
 const JOURNAL = 'src-gen/.contract-rename.json';
@@ -61,6 +62,7 @@ function userCode(dir: string): { module: boolean; orphans: string[] } {
 
 beforeAll(async () => {
     root = mkdtempSync(join(tmpdir(), 'contract-rename-journal-'));
+    chmodSync(root, 0o711); // the sandbox's own uid must reach the cache folder inside
     expect(await runCli(['new', 'robot'], capture(root))).toBe(0);
     expect(await runCli(['generate', 'robot'], capture(root))).toBe(0);
     const file = join(root, 'robot', MODULES, 'LOC_mod/module.c');
@@ -139,6 +141,19 @@ describe('a contract rename killed half-way', () => {
         expect(readFileSync(join(dir, 'sched.contract'), 'utf8')).toBe(edited);
         expect(readFileSync(join(dir, 'module1.contract'), 'utf8')).toBe(renamedTexts.get('module1.contract'));
     });
+
+    it('a build of a tree holding a journal is refused before anything is built, saying to run contract generate', async () => {
+        const dir = project('build-refused');
+        writeRenameJournal(join(dir, 'src-gen'), journalOf(dir));
+        const io = capture(root);
+        const cache = join(root, 'cache');
+        await seedRuntime(cache); // the test run's built runtime
+        expect(await runCli(['build', 'build-refused', '--sandbox', 'none', '--cache-dir', cache], io), io.stderr).toBe(1);
+        expect(io.stderr).toContain('an interrupted rename left its journal here');
+        expect(io.stderr).toContain('run `contract generate build-refused` to finish the interrupted rename, then build again');
+        expect(io.stderr).not.toContain('a protected-region marker broken or edited');
+        expect(existsSync(join(dir, JOURNAL))).toBe(true); // a build never writes the project
+    }, 120_000);
 
     it('a hostile journal (a path out of the project) is refused: nothing is written, the generation refuses the tree and says why', async () => {
         const dir = project('hostile');
