@@ -302,6 +302,9 @@ export interface LimitHit {
   moduleProcesses?: number;
 }
 
+/** The longest time limit (`buildSeconds`, `runSeconds`, `prepareSeconds`): a timer's range, 2^31-1 ms. */
+export const MAX_LIMIT_SECONDS = 2_147_483;
+
 /** Merges overrides onto a base; with `lowerOnly`, an override above the base is an error. */
 export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean): Limits {
   if (overrides === undefined || overrides === null) return { ...base };
@@ -315,6 +318,10 @@ export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean
     }
     if (typeof value !== 'number' || !Number.isFinite(value) || value <= 0) {
       throw new LimitsError(`limit ${key} must be a positive number, got ${JSON.stringify(value)}`);
+    }
+    // the service's timers hold at most 2^31-1 ms: a longer time limit would fire at once
+    if (key.endsWith('Seconds') && value > MAX_LIMIT_SECONDS) {
+      throw new LimitsError(`limit ${key} must be at most ${MAX_LIMIT_SECONDS} s (about 24.8 days, a timer's range), got ${value}`);
     }
     const name = key as LimitName;
     if (lowerOnly && value > base[name]) {

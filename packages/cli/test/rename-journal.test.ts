@@ -169,5 +169,16 @@ describe('a contract rename killed half-way', () => {
         expect(readFileSync(join(root, 'outside.contract'), 'utf8')).toBe('');
         expect(contractFiles(dir).map((f) => readFileSync(join(dir, f), 'utf8'))).toEqual(texts);
         expect(existsSync(join(dir, MODULES, 'LOC_mod/module.c'))).toBe(true); // the tree untouched
+        // a rename neither goes past nor replaces a journal it could not finish: it may be the only record of a killed rename
+        const rename = capture(root);
+        expect(await runCli(['rename', 'hostile', 'LOC', 'LCY'], rename)).toBe(1);
+        expect(rename.stderr).toContain('contract rename: hostile/src-gen/.contract-rename.json (an interrupted rename) could not be finished (said above): nothing was renamed');
+        expect(readFileSync(join(dir, JOURNAL), 'utf8')).toBe(JSON.stringify(journal));
+        expect(contractFiles(dir).map((f) => readFileSync(join(dir, f), 'utf8'))).toEqual(texts);
+        // not JSON: said so
+        writeFileSync(join(dir, JOURNAL), '{ truncated');
+        const again = capture(root);
+        expect(await runCli(['generate', 'hostile'], again)).toBe(1);
+        expect(again.stderr).toContain('is not the journal of an unfinished rename (not JSON)');
     });
 });

@@ -72,7 +72,10 @@ describe('contract serve', () => {
     }, 60_000);
 
     it('--limit NAME=VALUE sets the build service\'s limits for the IDE\'s jobs (an hour-long run); an unknown limit or a bad value is refused, exit 2', async () => {
-        for (const [arg, message] of [['bogus=1', 'unknown limit "bogus"'], ['runSeconds=0', '--limit needs NAME=VALUE with a positive number'], ['runSeconds', '--limit needs NAME=VALUE']]) {
+        for (const [arg, message] of [
+            ['bogus=1', 'unknown limit "bogus"'], ['__proto__=1', 'unknown limit "__proto__"'], ['runSeconds=0', '--limit needs NAME=VALUE with a positive number'],
+            ['runSeconds', '--limit needs NAME=VALUE'], ['runSeconds=99999999999999999999', 'limit runSeconds must be at most 2147483 s'], ['buildSeconds=2200000', 'limit buildSeconds must be at most 2147483 s'],
+        ]) {
             const bad = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', '--limit', arg!], { stdio: ['ignore', 'pipe', 'pipe'] });
             let err = '';
             bad.stderr!.on('data', (d: Buffer) => (err += d.toString('utf8')));

@@ -19,7 +19,8 @@ const USAGE = 'usage: contract serve [DIR] [--port N] [--host ADDR] [--sandbox a
 
 /** Parses `[DIR] [--port N] [--host H] [--sandbox S]`; throws with a usage message on bad input. */
 export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
-  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', limits: {} };
+  // no prototype: `--limit __proto__=1` is a name like any other (refused as unknown), not a prototype
+  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', limits: Object.create(null) as Record<string, number> };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--port' || a === '-p') {
@@ -38,7 +39,7 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
       out.sandbox = s as ServeSandbox;
     } else if (a === '--limit' || a.startsWith('--limit=')) {
       const v = a === '--limit' ? argv[++i] : a.slice('--limit='.length);
-      const m = /^([A-Za-z]+)=(\d+(?:\.\d+)?)$/.exec(v ?? '');
+      const m = /^([A-Za-z_]\w*)=(\d+(?:\.\d+)?)$/.exec(v ?? '');
       if (!m || Number(m[2]) <= 0) throw new Error(`--limit needs NAME=VALUE with a positive number (e.g. runSeconds=3600), got ${v ?? 'nothing'}\n${USAGE}`);
       out.limits[m[1]!] = Number(m[2]);
     } else if (a.startsWith('-')) {

@@ -13,7 +13,7 @@
  * errors (a rename needs every reference resolved); nothing is changed then. Exit 1 too, after
  * the rename, when the code of a protected region still uses the old name (the build would fail).
  */
-import { readFileSync } from 'node:fs';
+import { lstatSync, readFileSync } from 'node:fs';
 import { stat } from 'node:fs/promises';
 import { basename, dirname, join, relative, resolve, sep } from 'node:path';
 import { parseArgs } from '../args.js';
@@ -22,7 +22,7 @@ import { formatText, summarize } from '../diagnostic-format.js';
 import { safeName } from '../terminal-text.js';
 import { holdTreeLock } from '../tree-lock-hold.js';
 import { printReport } from './generate.js';
-import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
 
 export const renameCommand: Command = {
     name: 'rename',
@@ -54,6 +54,12 @@ export const renameCommand: Command = {
         // generate in another terminal or the IDE reads the model and the tree after it, whole
         const release = await holdTreeLock(out, outLabel, io, { dir, label: dirArg });
         const renameHeld = async (): Promise<number> => {
+            // a journal still there was refused (said above): it may be the only record of a killed
+            // rename, so this rename neither goes past it nor replaces it
+            if (lstatSync(join(out, RENAME_JOURNAL_NAME), { throwIfNoEntry: false })) {
+                io.err(`contract rename: ${safeName(join(outLabel, RENAME_JOURNAL_NAME))} (an interrupted rename) could not be finished (said above): nothing was renamed; once it is dealt with (remove it to go on), rename again\n`);
+                return EXIT_FAILURE;
+            }
             // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
             const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
             const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256 } = await import('@contract-studio/codegen');

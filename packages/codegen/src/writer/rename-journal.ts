@@ -133,15 +133,21 @@ export async function finishInterruptedRename(projectDir: string, srcGen: string
     }
     if (text === undefined) return undefined;
     let journal: RenameJournal;
+    let problem: string | undefined;
     try {
         journal = JSON.parse(Buffer.from(text, 'latin1').toString('utf8')) as RenameJournal;
+        problem = journalProblem(journal);
     } catch {
         journal = null as unknown as RenameJournal;
+        problem = 'not JSON';
     }
-    const problem = journalProblem(journal);
     if (problem) throw new Error(`${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME} is not the journal of an unfinished rename (${problem}): nothing was changed; remove it to go on`);
-    if (journal.generatedNames) await renameInGeneratedTree(srcGen, journal.oldName, journal.newName);
-    if (journal.identifiers.length > 0) renameIdentifiersInGeneratedTree(srcGen, new Map(journal.identifiers), journal.identifierOwner);
+    try {
+        if (journal.generatedNames) await renameInGeneratedTree(srcGen, journal.oldName, journal.newName);
+        if (journal.identifiers.length > 0) renameIdentifiersInGeneratedTree(srcGen, new Map(journal.identifiers), journal.identifierOwner);
+    } catch (e) {
+        throw new Error(`the rename of ${journal.kind} ${journal.oldName} -> ${journal.newName} in ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME} cannot be finished: ${(e as Error).message}; nothing was changed; remove the journal to go on (the tree keeps what the killed rename moved)`);
+    }
     const done: FinishedRename = { kind: journal.kind, oldName: journal.oldName, newName: journal.newName, written: [], already: [], changed: [] };
     // the project folder as named (a link to it, or the IDE's /proc/self/fd path of the folder it
     // opened, is the user's own choice); below it no link is followed

@@ -151,7 +151,7 @@ export function writeTree(outDir: string, files: GeneratedFile[], options: Write
         // after taking the lock (contract generate, rename, Generate All) finish the rename first
         if (hasRenameJournal(tree)) {
             const report = emptyReport();
-            report.errors.push({ file: RENAME_JOURNAL_NAME, message: `an interrupted rename left its journal here: the .contract files and the generated tree are half renamed. Run \`contract generate\` on the project (or the IDE's Generate All) to finish the rename; nothing was generated` });
+            report.errors.push({ file: RENAME_JOURNAL_NAME, message: `an interrupted rename left its journal here: the .contract files and the generated tree are half renamed. \`contract generate\` on the project (or the IDE's Generate All) finishes the rename; when it could not (a warning says why), remove this file; nothing was generated` });
             return report;
         }
         return writeInto(tree, files, options);

@@ -8,6 +8,7 @@ import { monaco } from '../editor/monaco.js';
 import { BrowserMessageReader, BrowserMessageWriter, createMessageConnection, type MessageConnection } from 'vscode-jsonrpc/browser.js';
 import type * as lsp from 'vscode-languageserver-protocol';
 import { Emitter } from '../util/emitter.js';
+import { toast } from '../util/toast.js';
 import { CACTAL_LANGUAGE_ID } from '../editor/cactal-language.js';
 import { SCENARIO_LANGUAGE_ID } from '../editor/scenario-language.js';
 import * as conv from './lsp-convert.js';
@@ -193,7 +194,15 @@ export class LspClient {
         const symbols = (await this.documentSymbols(targetUri).catch(() => null)) ?? [];
         const topLevel = symbols.some((s) => s.name === oldName && NAMES_GENERATED_FILES.includes(s.kind));
         const target = renamedSymbol(symbols, oldName, conv.toLocations(defs)[0]?.range.startLineNumber);
-        const r = await this.request<lsp.WorkspaceEdit | null>('textDocument/rename', { ...at(model, position), newName });
+        let r: lsp.WorkspaceEdit | null;
+        try {
+          r = await this.request<lsp.WorkspaceEdit | null>('textDocument/rename', { ...at(model, position), newName });
+        } catch (e) {
+          // a name the rename rules refuse: said where the user looks (Monaco only logged it to the console)
+          const reason = (e as Error).message || 'the rename was refused';
+          toast('warning', `Rename refused: ${reason}`);
+          return { edits: [], rejectReason: reason };
+        }
         const edit = conv.toWorkspaceEdit(r);
         if (edit.edits.length) this.onRename.fire({ oldName, newName, topLevel, ...target });
         return edit;

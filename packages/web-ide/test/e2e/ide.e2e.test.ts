@@ -395,6 +395,14 @@ describe('IDE in headless Chromium', () => {
     expect(disk('supervisor.contract')).toContain('LINK_LOST:[');
   });
 
+  it('a rename the rules refuse (F2, a supervisor named abc) says why on the page, and changes nothing', async () => {
+    const { page } = s;
+    const before = disk('supervisor.contract');
+    await renameWithF2(page, 'supervisor.contract', 'supervisor SUP', 'supervisor '.length, 'abc');
+    await page.locator('.toast.warning', { hasText: "Rename refused: 'abc' is not a valid supervisor name" }).first().waitFor({ timeout: 10_000 });
+    expect(disk('supervisor.contract')).toBe(before);
+  });
+
   it('log view: follows the tail as lines stream in, keeps its rows when scrolled up, and filters', async () => {
     const { page } = s;
     await page.locator('.panel-tab[data-panel=output]').click();
