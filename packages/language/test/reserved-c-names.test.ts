@@ -229,13 +229,17 @@ describe("enumeration members' C names (Mode_AUTO) against every other file-scop
         const found = errors(built);
         expect(found.map((e) => e.split(' ').slice(0, 2).join(' ')).sort()).toEqual([
             'm.contract:2 identifier-c-reserved', // the port Mode_MAN
-            't.contract:1 identifier-c-reserved', 't.contract:1 identifier-c-reserved', 't.contract:1 identifier-c-reserved', // AUTO, MAN, IDLE
+            't.contract:1 identifier-c-reserved', 't.contract:1 identifier-c-reserved', 't.contract:1 identifier-c-reserved', // AUTO, MAN (the port and the enumeration), IDLE
             't.contract:2 identifier-c-reserved', 't.contract:3 identifier-c-reserved', 't.contract:4 identifier-c-reserved',
         ]);
         expect(found).toContain("t.contract:2 identifier-c-reserved 'Mode_AUTO' cannot name a datatype in the generated C: member AUTO of enumeration Mode becomes the C enumeration constant Mode_AUTO, a file-scope name. Choose another name (e.g. 'Mode_AUTO_').");
         expect(found).toContain("t.contract:3 identifier-c-reserved 'Mode_MAN' cannot name an enumeration in the generated C: member MAN of enumeration Mode becomes the C enumeration constant Mode_MAN, a file-scope name. Choose another name (e.g. 'Mode_MAN_').");
         expect(found.find((e) => e.startsWith('m.contract:2'))).toContain("'Mode_MAN' cannot name a port in the generated C: member MAN of enumeration Mode becomes the C enumeration constant Mode_MAN");
         expect(found.find((e) => e.includes("Member 'IDLE'"))).toContain('a function has that name');
+        // the member whose C name a port takes is refused too, not only the port
+        const ports = await build({ 't.contract': 'enum Gear { LOW, HIGH }\n', 'm.contract': 'import "t.contract";\nasynchronous module EEE { parameters { Gear g :0; int Gear_LOW = 0 :1; } }\n' });
+        expect(errors(ports).map((e) => e.split(' ').slice(0, 2).join(' ')).sort()).toEqual(['m.contract:2 identifier-c-reserved', 't.contract:1 identifier-c-reserved']);
+        expect(errors(ports).find((e) => e.startsWith('t.contract'))).toContain("Member 'LOW' of enumeration Gear becomes the C name Gear_LOW, which cannot be used: a module port or parameter has that name");
     });
 
     it('a rename to a name that makes such a clash is refused, whichever side is renamed', async () => {

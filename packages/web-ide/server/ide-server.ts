@@ -204,7 +204,11 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
         const { documents } = await loadWorkspaceDocuments(dir);
         const generated = await runCodegen(documents, join(dir, SRC_GEN_DIR));
         // an interrupted terminal rename finished first: said in the Generate panel
-        for (const line of finished.reverse()) generated.warnings.unshift({ file: RENAME_JOURNAL_NAME, message: line.replace(/^warning: /, '') });
+        // (one entry for the rename with the files it wrote, one per file left as it was)
+        const written = finished.filter((l) => l.startsWith('  ')).map((l) => l.trim());
+        const entries = finished.filter((l) => !l.startsWith('  ')).map((l) => l.replace(/^warning: /, ''));
+        if (entries.length && written.length) entries[0] = `${entries[0]} (${written.join(', ')})`;
+        for (const message of entries.reverse()) generated.warnings.unshift({ file: RENAME_JOURNAL_NAME, message });
         return generated;
       }, (f) => (project ? `${project}/${f}` : f))));
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));

@@ -4,7 +4,9 @@
  * docs/language-reference.md, "Reserved names").
  */
 import { AstUtils, type AstNode, type MultiMap, type AstNodeDescription, type ValidationAcceptor, type ValidationChecks } from 'langium';
-import { isFunctionPrototype, isModule, type CactalAstType, type DataType, type EnumMember, type EnumType, type FunctionPrototype } from '../generated/ast.js';
+import { isFunctionPrototype, isModule, type CactalAstType, type DataType, type EnumMember, type EnumType, type FunctionPrototype, type Module } from '../generated/ast.js';
+import { parametersOf } from '../model/blocks.js';
+import { portsOf } from '../model/ports.js';
 import type { CactalServices } from '../cactal-module.js';
 import { CommonHeaderIndex } from './c-names/common-headers.js';
 import { cNameConflict, suggestName, type CNameRole, type ProjectCNames } from './c-names/reserved-names.js';
@@ -66,11 +68,17 @@ export function projectCNames(names: ProjectNames): ProjectCNames {
                 enumConstants.set(cName, [...(enumConstants.get(cName) ?? []), `member ${m.name} of enumeration ${e.name}`]);
             }
         }
+        const moduleVariables = new Set<string>();
+        for (const node of names.nodesOf('Module')) {
+            const m = node as Module;
+            for (const v of [...parametersOf(m), ...portsOf(m).map((p) => p.port)]) if (v.name) moduleVariables.add(v.name);
+        }
         project = {
             datatypes: new Set(byName.keys()),
             constants: new Set(names.byName(['Constant']).keys()),
             functions: new Set(names.byName(['FunctionPrototype']).keys()),
-            enumConstants
+            enumConstants,
+            moduleVariables
         };
         datatypeSets.set(byName, project);
     }
@@ -151,6 +159,7 @@ function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: 
         ?? (project.constants?.has(c) ? 'a named constant has that name, and constants are macros in the generated C (common/constants.h)' : undefined)
         ?? (project.datatypes.has(c) ? 'a datatype or enumeration has that name, a type name in the generated C' : undefined)
         ?? (project.functions?.has(c) ? 'a function has that name, a file-scope name in the generated C' : undefined)
+        ?? (project.moduleVariables?.has(c) ? 'a module port or parameter has that name, a global variable of its module.c' : undefined)
         ?? (others(c).length ? `${others(c)[0]} becomes the same C enumeration constant` : undefined);
     const why = conflict(cName);
     if (!why) return;

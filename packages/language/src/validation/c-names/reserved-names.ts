@@ -33,6 +33,8 @@ export interface ProjectCNames {
     readonly functions?: ReadonlySet<string>;
     /** Enumeration constants (`<Enum>_<member>`) -> the members that become them (`member AUTO of enumeration Mode`). */
     readonly enumConstants?: ReadonlyMap<string, readonly string[]>;
+    /** Module ports and parameters (globals of their module.c), for the enumeration members' check. */
+    readonly moduleVariables?: ReadonlySet<string>;
 }
 
 const macros = new Set(HEADER_MACROS);
