@@ -8,14 +8,14 @@
  */
 import { lstatSync } from 'node:fs';
 import { join } from 'node:path';
-import { SRC_GEN_DIR } from '@contract-studio/conventions';
 import type { CliIO } from './command.js';
 import { safeName } from './terminal-text.js';
 
 /**
  * Holds the lock of output folder `out` (when it is a real folder: else the generator's refusal
  * applies); the release. `project`: the project folder (`dir`) and its name as the user wrote it
- * (`label`); a journal is finished only when `out` is its src-gen (its paths are the project's).
+ * (`label`); a journal in `out` is finished for it (one of `-o OUT` only when it journals that
+ * very project: finishInterruptedRename checks it).
  */
 export async function holdTreeLock(out: string, shownAs: string, io: CliIO, project?: { dir: string; label: string }): Promise<() => void> {
     if (!lstatSync(out, { throwIfNoEntry: false })?.isDirectory()) return () => {};
@@ -23,7 +23,7 @@ export async function holdTreeLock(out: string, shownAs: string, io: CliIO, proj
     const release = await lockTree(out, shownAs, undefined, (holder) => {
         io.err(`waiting for the other writer of ${safeName(shownAs)}${holder !== undefined ? ` (pid ${holder}: a contract generate or rename, or the IDE server)` : ''} to finish ...\n`);
     });
-    if (project === undefined || out !== join(project.dir, SRC_GEN_DIR)) return release;
+    if (project === undefined) return release;
     try {
         const done = await finishInterruptedRename(project.dir, out);
         if (done) for (const line of describeFinishedRename(done, (f) => safeName(join(project.label, f)))) io.err(`${line}\n`);

@@ -6,7 +6,7 @@
  * makes, in its order, stopped where a SIGKILL would stop them (after the tree's carry-over,
  * before the manifest); a hostile journal is refused and changes nothing.
  */
-import { chmodSync, cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, rmSync, writeFileSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdtempSync, readFileSync, readdirSync, realpathSync, rmSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -126,6 +126,28 @@ describe('a contract rename killed half-way', () => {
         expect(io2.stderr).toContain('finished the rename of module LOC -> LCX that was interrupted (its journal src-gen/.contract-rename.json): 2 file(s) written, 1 already renamed');
         expect(userCode(during)).toEqual({ module: true, orphans: [] });
         expect(readFileSync(join(during, 'module2.contract'), 'utf8')).toContain('module CTX');
+    });
+
+    it('with -o OUT: the journal names the project, and only a generate of that project into that OUT finishes it', async () => {
+        const dir = project('outside');
+        const out = join(root, 'outside-out');
+        cpSync(join(dir, 'src-gen'), out, { recursive: true });
+        rmSync(join(dir, 'src-gen'), { recursive: true });
+        writeRenameJournal(out, { ...journalOf(dir), project: realpathSync(dir) });
+        await renameInGeneratedTree(out, 'LOC', 'LCX');
+        // another project generating into that folder: refused, nothing changed
+        const other = project('other');
+        const wrong = capture(root);
+        expect(await runCli(['generate', 'other', '-o', 'outside-out'], wrong)).toBe(1);
+        expect(wrong.stderr).toContain(`journals a rename of ${realpathSync(dir)}, not of ${join(root, 'other')}`);
+        expect(readFileSync(join(other, 'module1.contract'), 'utf8')).toContain('module LOC');
+        // the project itself: finished
+        const io = capture(root);
+        expect(await runCli(['generate', 'outside', '-o', 'outside-out'], io), io.stderr).toBe(0);
+        expect(io.stderr).toContain('finished the rename of module LOC -> LCX that was interrupted');
+        expect(readFileSync(join(dir, 'module1.contract'), 'utf8')).toBe(renamedTexts.get('module1.contract'));
+        expect(readFileSync(join(out, 'generated/architecture/modules/LCX_mod/module.c'), 'latin1')).toContain(MARK);
+        expect(existsSync(join(out, 'orphans'))).toBe(false);
     });
 
     it('a .contract file changed since the rename began is left as it is and named; the others are written', async () => {

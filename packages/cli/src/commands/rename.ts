@@ -62,7 +62,7 @@ export const renameCommand: Command = {
             }
             // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
             const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
-            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256 } = await import('@contract-studio/codegen');
+            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256, realOrSelf } = await import('@contract-studio/codegen');
             const workspace = await loadWorkspace(dir);
             // a rename needs the text parsed and every reference resolved; other errors (a reserved
             // name, a bad value...) do not stop it: renaming is often how they are fixed
@@ -93,12 +93,13 @@ export const renameCommand: Command = {
             // own src-gen, which is there (-o OUT: docs/codegen.md "A rename killed half-way")
             const files = [...plan.files.map((f) => ({ path: f.path, text: f.text })), ...scenarioChanges.map((c) => ({ path: c.path, text: c.text }))];
             const inProject = files.every((f) => !relative(dir, f.path).startsWith('..'));
-            const journaled = inProject && out === join(dir, SRC_GEN_DIR) && (await stat(out).catch(() => undefined))?.isDirectory() === true;
+            const own = out === join(dir, SRC_GEN_DIR);
+            const journaled = inProject && (await stat(out).catch(() => undefined))?.isDirectory() === true;
             if (journaled) {
                 try {
                     writeRenameJournal(out, {
                         version: 1, kind: plan.kind, oldName: plan.oldName, newName: plan.newName, generatedNames: plan.generatedNames,
-                        identifiers: [...identifiers], ...(variable ? { identifierOwner: owner } : {}),
+                        identifiers: [...identifiers], ...(variable ? { identifierOwner: owner } : {}), ...(own ? {} : { project: realOrSelf(dir) }),
                         files: files.map((f) => ({ path: relative(dir, f.path).split(sep).join('/'), before: sha256(readFileSync(f.path)), after: f.text })),
                     });
                 } catch (e) {

@@ -16,6 +16,6 @@ export { manifestEntryProblem, loadManifest, skeletonText, skeletonHash, type Ma
 export { STALE_TEMP_AGE_MS, removeStaleTemps } from './stale-temp.js';
 export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, tryTreeLock, lockTree, lockTreeSync } from './tree-lock.js';
 export {
-    RENAME_JOURNAL_NAME, writeRenameJournal, removeRenameJournal, finishInterruptedRename, describeFinishedRename, sha256,
+    RENAME_JOURNAL_NAME, writeRenameJournal, removeRenameJournal, finishInterruptedRename, describeFinishedRename, sha256, realOrSelf,
     type RenameJournal, type RenameJournalFile, type FinishedRename,
 } from './rename-journal.js';

@@ -17,6 +17,8 @@
  * without following any link (OutputTree); anything else refuses the whole journal, naming why.
  */
 import { createHash } from 'node:crypto';
+import { realpathSync } from 'node:fs';
+import { resolve } from 'node:path';
 import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { OutputTree } from './output-tree.js';
 import { renameInGeneratedTree } from './rename-generated.js';
@@ -50,6 +52,12 @@ export interface RenameJournal {
     /** The module whose module.c alone holds those identifiers (a port or parameter). */
     identifierOwner?: string;
     files: RenameJournalFile[];
+    /**
+     * The project folder (real path) of a rename whose tree is not the project's own src-gen
+     * (`contract rename -o OUT`): finished only by a generate or rename of that folder with that
+     * OUT. Absent for the project's src-gen, whose parent is the project wherever it was cloned.
+     */
+    project?: string;
 }
 
 export function sha256(bytes: Buffer): string {
@@ -67,6 +75,7 @@ function journalProblem(value: unknown): string | undefined {
     if (typeof j.generatedNames !== 'boolean') return 'bad generatedNames';
     if (!Array.isArray(j.identifiers) || !j.identifiers.every((p) => Array.isArray(p) && p.length === 2 && p.every((n) => typeof n === 'string' && NAME.test(n)))) return 'bad identifiers';
     if (j.identifierOwner !== undefined && (typeof j.identifierOwner !== 'string' || !NAME.test(j.identifierOwner))) return 'bad identifierOwner';
+    if (j.project !== undefined && (typeof j.project !== 'string' || !j.project.startsWith('/') || j.project.length > 4096 || /[\u0000-\u001f]/.test(j.project))) return 'bad project';
     if (!Array.isArray(j.files) || j.files.length > 10_000) return 'bad files';
     for (const f of j.files) {
         if (typeof f !== 'object' || f === null || typeof f.path !== 'string' || typeof f.before !== 'string' || typeof f.after !== 'string') return 'bad file entry';
@@ -142,6 +151,11 @@ export async function finishInterruptedRename(projectDir: string, srcGen: string
         problem = 'not JSON';
     }
     if (problem) throw new Error(`${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME} is not the journal of an unfinished rename (${problem}): nothing was changed; remove it to go on`);
+    // a tree out of the project (-o OUT) is finished only for the project whose rename it journals
+    const own = resolve(srcGen) === resolve(projectDir, SRC_GEN_DIR);
+    if (!own && (journal.project === undefined || journal.project !== realOrSelf(projectDir))) {
+        throw new Error(`${RENAME_JOURNAL_NAME} in this output folder journals a rename of ${journal.project ?? 'the project whose src-gen it was'}, not of ${projectDir}: nothing was changed; run contract generate on that project with this output folder, or remove it`);
+    }
     try {
         if (journal.generatedNames) await renameInGeneratedTree(srcGen, journal.oldName, journal.newName);
         if (journal.identifiers.length > 0) renameIdentifiersInGeneratedTree(srcGen, new Map(journal.identifiers), journal.identifierOwner);
@@ -168,6 +182,15 @@ export async function finishInterruptedRename(projectDir: string, srcGen: string
     }
     removeRenameJournal(srcGen);
     return done;
+}
+
+/** `dir`'s real path, or `dir` when it cannot be resolved. */
+export function realOrSelf(dir: string): string {
+    try {
+        return realpathSync(dir);
+    } catch {
+        return resolve(dir);
+    }
 }
 
 /** The lines telling what finishInterruptedRename did, for a terminal or the IDE. */
