@@ -13,6 +13,7 @@ import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { renameInGeneratedTree, sha256, writeRenameJournal, type RenameJournal } from '@contract-studio/codegen';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
+import { removeScratch } from './scratch.js';
 import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 
 const MODULES = 'src-gen/generated/architecture/modules';
@@ -73,7 +74,8 @@ beforeAll(async () => {
     expect(existsSync(join(whole, JOURNAL))).toBe(false); // a whole rename leaves no journal
     renamedTexts = new Map(contractFiles(whole).map((f) => [f, readFileSync(join(whole, f), 'utf8')]));
 }, 120_000);
-afterAll(() => rmSync(root, { recursive: true, force: true }));
+// (a build's work tree stays mounted in its cache: removeScratch unmounts it first)
+afterAll(() => removeScratch(root));
 
 describe('a contract rename killed half-way', () => {
     it('killed after the tree was carried over, before the .contract files: the next generate finishes it, nothing orphaned', async () => {
