@@ -11,7 +11,7 @@ import {
 import { localsOf, parametersOf, rulesOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import { CommonHeaderIndex } from '../validation/c-names/common-headers.js';
-import { cNameConflict } from '../validation/c-names/reserved-names.js';
+import { cNameConflict, enumConstantConflict, enumConstantsOf } from '../validation/c-names/reserved-names.js';
 import { C_KEYWORDS, cNameRole } from '../validation/identifier-checks.js';
 
 const IDENTIFIER = /^[A-Za-z][A-Za-z0-9_]*$/;
@@ -77,15 +77,9 @@ function siblingNames(node: AstNode): string[] {
     return members.filter((m) => m !== node).flatMap((m) => (m.name ? [m.name] : []));
 }
 
-/** The project's enumeration constants (`Mode_AUTO`) -> the members that become them. */
-function enumConstantsOf(index: IndexManager): Map<string, string[]> {
-    const out = new Map<string, string[]>();
-    for (const d of index.allElements('EnumType')) {
-        const e = d.node;
-        if (!isEnumType(e) || !e.name) continue;
-        for (const m of e.members ?? []) if (m.name) out.set(`${e.name}_${m.name}`, [...(out.get(`${e.name}_${m.name}`) ?? []), `member ${m.name} of enumeration ${e.name}`]);
-    }
-    return out;
+/** The project's enumeration constants (reserved-names.ts enumConstantsOf), from the index. */
+function projectEnumConstants(index: IndexManager): Map<string, string[]> {
+    return enumConstantsOf(index.allElements('EnumType').map((d) => d.node).filter(isEnumType));
 }
 
 /** `a datatype`, `an enumeration`. */
@@ -107,7 +101,7 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
     if (role && !newName.startsWith('_')) {
         const datatypes = new Set(index.allElements('DataType').map((d) => d.name).filter((n) => n !== node.name || role !== 'datatype'));
         const others = (type: string) => new Set(index.allElements(type).filter((d) => d.node !== node).map((d) => d.name));
-        const why = cNameConflict(newName, role, { datatypes, constants: others('Constant'), functions: others('FunctionPrototype'), enumConstants: enumConstantsOf(index) });
+        const why = cNameConflict(newName, role, { datatypes, constants: others('Constant'), functions: others('FunctionPrototype'), enumConstants: projectEnumConstants(index) });
         if (why) return `'${newName}' cannot name ${aWord(what)} in the generated C: ${why}.`;
     }
     if (isModule(node) || isSupervisor(node)) {
@@ -136,13 +130,12 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
     if (isEnumMember(node) && isEnumType(node.$container) && node.$container.name && !newName.startsWith('_')) {
         const cName = `${node.$container.name}_${newName}`;
         const self = `member ${node.name} of enumeration ${node.$container.name}`;
-        const typeNames = new Set([...index.allElements('DataType'), ...index.allElements('EnumType')].map((d) => d.name));
-        const other = (enumConstantsOf(index).get(cName) ?? []).find((m) => m !== self);
-        const why = cNameConflict(cName, 'datatype', { datatypes: typeNames, constants: new Set(index.allElements('Constant').map((d) => d.name)) })
-            ?? (typeNames.has(cName) ? 'a datatype or enumeration has that name' : undefined)
-            ?? (index.allElements('FunctionPrototype').some((d) => d.name === cName) ? 'a function has that name' : undefined)
-            ?? (index.allElements('Constant').some((d) => d.name === cName) ? 'a named constant has that name' : undefined)
-            ?? (other ? `${other} becomes the same C enumeration constant` : undefined);
+        const why = enumConstantConflict(cName, self, {
+            datatypes: new Set([...index.allElements('DataType'), ...index.allElements('EnumType')].map((d) => d.name)),
+            constants: new Set(index.allElements('Constant').map((d) => d.name)),
+            functions: new Set(index.allElements('FunctionPrototype').map((d) => d.name)),
+            enumConstants: projectEnumConstants(index),
+        });
         if (why) return `'${newName}' would make the C enumeration constant ${cName}, which cannot be used: ${why}.`;
     }
     return undefined;

@@ -9,7 +9,7 @@ import { parametersOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import type { CactalServices } from '../cactal-module.js';
 import { CommonHeaderIndex } from './c-names/common-headers.js';
-import { cNameConflict, suggestName, type CNameRole, type ProjectCNames } from './c-names/reserved-names.js';
+import { cNameConflict, enumConstantConflict, enumConstantsOf, suggestName, type CNameRole, type ProjectCNames } from './c-names/reserved-names.js';
 import { ModuleCodes } from './codes/modules.js';
 import { ProjectNames } from './project-index.js';
 import { report } from './report.js';
@@ -59,15 +59,7 @@ export function projectCNames(names: ProjectNames): ProjectCNames {
     const byName = names.byName(['DataType', 'EnumType']);
     let project = datatypeSets.get(byName);
     if (!project) {
-        const enumConstants = new Map<string, string[]>();
-        for (const node of names.nodesOf('EnumType')) {
-            const e = node as EnumType;
-            for (const m of e.members ?? []) {
-                if (!e.name || !m.name) continue;
-                const cName = `${e.name}_${m.name}`;
-                enumConstants.set(cName, [...(enumConstants.get(cName) ?? []), `member ${m.name} of enumeration ${e.name}`]);
-            }
-        }
+        const enumConstants = enumConstantsOf(names.nodesOf('EnumType') as EnumType[]);
         const moduleVariables = new Set<string>();
         for (const node of names.nodesOf('Module')) {
             const m = node as Module;
@@ -148,19 +140,10 @@ function checkEnumMember(member: EnumMember, accept: ValidationAcceptor, names: 
         return;
     }
     const cName = `${owner.name}_${member.name}`;
-    const all = projectCNames(names);
-    const project: ProjectCNames = { ...all, enumConstants: undefined };
+    const project = projectCNames(names);
     const self = `member ${member.name} of enumeration ${owner.name}`;
-    const others = (c: string) => (all.enumConstants?.get(c) ?? []).filter((other) => other !== self);
-    // a datatype name never equals a constant's (type-checks.ts), but a member's C name may; nor
-    // may it be a datatype's, a function's or another member's C name (a module port or parameter
-    // of that name is refused on the port: cNameConflict)
-    const conflict = (c: string) => cNameConflict(c, 'datatype', project)
-        ?? (project.constants?.has(c) ? 'a named constant has that name, and constants are macros in the generated C (common/constants.h)' : undefined)
-        ?? (project.datatypes.has(c) ? 'a datatype or enumeration has that name, a type name in the generated C' : undefined)
-        ?? (project.functions?.has(c) ? 'a function has that name, a file-scope name in the generated C' : undefined)
-        ?? (project.moduleVariables?.has(c) ? 'a module port or parameter has that name, a global variable of its module.c' : undefined)
-        ?? (others(c).length ? `${others(c)[0]} becomes the same C enumeration constant` : undefined);
+    // a datatype name never equals a constant's (type-checks.ts), but a member's C name may
+    const conflict = (c: string) => enumConstantConflict(c, self, project);
     const why = conflict(cName);
     if (!why) return;
     const suggestion = suggestName(member.name, (candidate) => conflict(`${owner.name}_${candidate}`) === undefined);

@@ -81,6 +81,36 @@ export function cNameConflict(name: string, role: CNameRole, project: ProjectCNa
     return undefined;
 }
 
+/** The C enumeration constants (`<Enum>_<member>`) of `enums` -> the members that become them (`member AUTO of enumeration Mode`). */
+export function enumConstantsOf(enums: Iterable<{ name?: string; members?: ReadonlyArray<{ name?: string }> }>): Map<string, string[]> {
+    const out = new Map<string, string[]>();
+    for (const e of enums) {
+        if (!e.name) continue;
+        for (const m of e.members ?? []) {
+            if (!m.name) continue;
+            const cName = `${e.name}_${m.name}`;
+            out.set(cName, [...(out.get(cName) ?? []), `member ${m.name} of enumeration ${e.name}`]);
+        }
+    }
+    return out;
+}
+
+/**
+ * Why the C enumeration constant `cName` of member `self` (`member AUTO of enumeration Mode`) cannot
+ * be used, or undefined: a file-scope name (as a datatype's), a constant's, a datatype's or
+ * enumeration's, a function's, a module port's or parameter's (when `project` lists them), or
+ * another member's C name. The check of `contract check` and of a rename of the member.
+ */
+export function enumConstantConflict(cName: string, self: string, project: ProjectCNames): string | undefined {
+    const other = (project.enumConstants?.get(cName) ?? []).find((m) => m !== self);
+    return cNameConflict(cName, 'datatype', { ...project, enumConstants: undefined })
+        ?? (project.constants?.has(cName) ? 'a named constant has that name, and constants are macros in the generated C (common/constants.h)' : undefined)
+        ?? (project.datatypes.has(cName) ? 'a datatype or enumeration has that name, a type name in the generated C' : undefined)
+        ?? (project.functions?.has(cName) ? 'a function has that name, a file-scope name in the generated C' : undefined)
+        ?? (project.moduleVariables?.has(cName) ? 'a module port or parameter has that name, a global variable of its module.c' : undefined)
+        ?? (other ? `${other} becomes the same C enumeration constant` : undefined);
+}
+
 /** A name like `name` (`time_`, `time_2`, ...) that `accepts` takes; used by the message and the quick fix. */
 export function suggestName(name: string, accepts: (candidate: string) => boolean): string {
     for (let n = 1; n < 100; n++) {
