@@ -94,10 +94,12 @@ describe('contract rename in another process while the IDE saves a .contract fil
       writeFileSync(process.argv[2], 'synchronous module LCX { }\\n');
       release();`;
     const child = spawn(process.execPath, ['--input-type=module', '-e', script, join(base, 'src-gen'), model], { stdio: ['ignore', 'pipe', 'inherit'] });
+    // listened to from the start: the child may exit before the save's answer comes back
+    const exited = new Promise((r) => child.on('exit', r));
     await new Promise<void>((resolve) => child.stdout!.once('data', () => resolve()));
     const typed = 'synchronous module LOC { } // typed\n';
     const put = await call('PUT', '/api/file?path=robot.contract', typed, { 'if-match': `"${read.body.version as string}"` });
-    await new Promise((r) => child.on('exit', r));
+    await exited;
     expect(put.status).toBe(409);
     expect(put.body.stale).toBe(true);
     expect(put.body.content).toBe('synchronous module LCX { }\n'); // the tab merges its typing into this
