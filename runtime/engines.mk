@@ -44,7 +44,7 @@ ENG_IT_MAIN := $(wildcard $(ENG_IT_SRC)/itest*.c) $(ENG_IT_SRC)/stall_watch.c
 # The test's executables: ENG_IT_FROM_<exe> = its source in $(ENG_IT_SRC), ENG_IT_FLAGS_<exe> =
 # its -D flags. Each is built twice: $(ENG_OUT)/it (plain) and $(ENG_OUT)/it-san (ASan+UBSan).
 ENG_IT_EXES := IMA IMB IMC ORD ISU AMX GLT SLV SHA SHB rsc/ORD RMA RMB RMC RSU HTA HTB \
-               undo/ORD UMA AMY UPA USM PQS AMB DLA DLB AMD AME stk/ORD SKS STK OKM CRS AMS FLM
+               undo/ORD UMA AMY UPA USM PQS AMB DLA DLB AMD AME stk/ORD SKS STK OKM CRS AMS FLM AMF AMC
 $(foreach m,IMA IMB IMC RMA RMB RMC UMA,$(eval ENG_IT_FROM_$(m) := imod.c)$(eval ENG_IT_FLAGS_$(m) := -DIMOD_NAME='"$(m)"'))
 ENG_IT_FLAGS_RMB += -DIMOD_SLOW_AT=4
 ENG_IT_FROM_ORD := iord.c
@@ -84,6 +84,10 @@ $(foreach m,STK OKM CRS FLM,$(eval ENG_IT_FROM_$(m) := imod.c)$(eval ENG_IT_FLAG
 ENG_IT_FLAGS_STK += -DIMOD_STUCK_AT=5
 ENG_IT_FLAGS_CRS += -DIMOD_KILLED_AT=5
 ENG_IT_FLAGS_FLM += -DIMOD_WORK_NS=3000000
+ENG_IT_FROM_AMF := amod.c
+ENG_IT_FLAGS_AMF := -DAMOD_NAME='"AMF"' -DAMOD_PERIOD_NS=0
+ENG_IT_FROM_AMC := amod.c
+ENG_IT_FLAGS_AMC := -DAMOD_NAME='"AMC"' -DAMOD_EVENT_MS=5
 $(foreach m,AMD AME,$(eval ENG_IT_FROM_$(m) := amod.c)$(eval ENG_IT_FLAGS_$(m) := -DAMOD_NAME='"$(m)"' -DAMOD_BUSY_MS=250 -DAMOD_BUSY_ALWAYS=1))
 
 # $(1) = output dir, $(2) = libmodule.a, $(3) = extra flags, $(4) = executable

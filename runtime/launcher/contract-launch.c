@@ -138,13 +138,13 @@ static long read_pid_file(const char *path)
     return pid;
 }
 
-/* The runtime's files in a run directory, by their ends: NAME.mbx, NAME.<port>.in, NAME.pid,
+/* The runtime's files in a run directory, by their ends: NAME.mbx, NAME.ctl, NAME.<port>.in, NAME.pid,
  * NAME.ready, and the module and flow holds of the supervisor engines (NAME.<module>.hold,
  * NAME.started.hold, NAME.engine-stopped.hold, NAME.flow-<...>.hold, NAME.prio-<module>-<id>.hold);
  * launcher.pid too. */
 static int is_runtime_file(const char *file)
 {
-    static const char *const ends[] = { ".mbx", ".pid", ".ready", ".in", ".hold" };
+    static const char *const ends[] = { ".mbx", ".ctl", ".pid", ".ready", ".in", ".hold" };
     size_t l = strlen(file);
     for (size_t i = 0; i < sizeof ends / sizeof ends[0]; i++) {
         size_t n = strlen(ends[i]);

@@ -13,7 +13,7 @@
 #include <unistd.h>
 #include "internal.h"
 
-ContractRuntime g_rt = { .run_dir_fd = -1, .mbx_fd = -1 };
+ContractRuntime g_rt = { .run_dir_fd = -1, .mbx_fd = -1, .ctl_fd = -1, .wait_fd = -1 };
 
 RTIME GetTime(void)
 {
@@ -235,6 +235,20 @@ int rt_bind_dgram(const char *file, int *fd_out)
     return rc;
 }
 
+int rt_bind_mailbox(void)
+{
+    char file[CONTRACT_NAME_MAX + 8];
+    snprintf(file, sizeof file, "%s.mbx", g_rt.name);
+    if (rt_bind_dgram(file, &g_rt.mbx_fd) != 0) return -1;
+    snprintf(file, sizeof file, "%s.ctl", g_rt.name);
+    if (rt_bind_dgram(file, &g_rt.ctl_fd) != 0) {
+        close(g_rt.mbx_fd);
+        g_rt.mbx_fd = -1;
+        return -1;
+    }
+    return 0;
+}
+
 int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock)
 {
     int fd = above_stdio(socket(AF_UNIX, SOCK_DGRAM | SOCK_CLOEXEC | (nonblock ? SOCK_NONBLOCK : 0), 0));
@@ -429,7 +443,8 @@ void ContractShutdown(void)
     rt_dataflow_teardown();
     rt_eventflow_teardown();
     if (g_rt.mbx_fd >= 0) { close(g_rt.mbx_fd); g_rt.mbx_fd = -1; }
-    g_rt.mbx_rcvtimeo = 0; /* a new mailbox socket starts without receive timeout */
+    if (g_rt.ctl_fd >= 0) { close(g_rt.ctl_fd); g_rt.ctl_fd = -1; }
+    if (g_rt.wait_fd >= 0) { close(g_rt.wait_fd); g_rt.wait_fd = -1; }
     rt_close_peers();
     remove_created_files();
     while (g_rt.pending_head) {
@@ -455,9 +470,7 @@ int ContractClientInit(const char *name)
     }
     snprintf(g_rt.name, sizeof g_rt.name, "%s", name);
     if (rt_init_run_dir() != 0) return -1;
-    char file[CONTRACT_NAME_MAX + 8];
-    snprintf(file, sizeof file, "%s.mbx", name);
-    if (rt_bind_dgram(file, &g_rt.mbx_fd) != 0) return -1;
+    if (rt_bind_mailbox() != 0) return -1;
     static int registered = 0;
     if (!registered) { atexit(shutdown_at_exit); registered = 1; }
     return 0;

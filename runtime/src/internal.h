@@ -33,14 +33,16 @@ typedef struct Subscriber {
     int fd;            /* connected sender socket, -1 until first use */
 } Subscriber;
 
-typedef struct Pending { struct Pending *next; RequestMessage msg; } Pending;
+typedef struct Pending { struct Pending *next; int ctl; RequestMessage msg; } Pending; /* ctl: came by the control channel */
 
 typedef struct {
     char name[CONTRACT_NAME_MAX];
     char run_dir[PATH_MAX];
     int run_dir_fd;         /* O_PATH fd, for socket paths longer than sun_path */
     int run_dir_created;    /* we created it (fresh dir under /tmp) */
-    int mbx_fd;
+    int mbx_fd;             /* <NAME>.mbx: the mailbox (events, the modules' requests and acks) */
+    int ctl_fd;             /* <NAME>.ctl: its control channel (what supervisors, ORD and the launcher send), read first */
+    int wait_fd;            /* MailboxFd(): an epoll fd readable when either has a request (-1 until asked for) */
     int is_module;          /* interface tables bound */
     ModuleUse *iuse; ModuleProduce *iproduce; ModuleReact *ireact; ModuleDetect *idetect;
     size_t *param_in; size_t *param_out;
@@ -58,7 +60,6 @@ typedef struct {
     char created[8][PATH_MAX]; /* files to remove at exit */
     int n_created;
     RTIME log_dirty_since;  /* 0 = nothing unflushed */
-    RTIME mbx_rcvtimeo;     /* SO_RCVTIMEO currently set on the mailbox (0 = none) */
     int priority;           /* current priority 1..99 (0: never set) */
     int send_nowait;        /* ContractSetNonBlockingSends: requests never wait for a full mailbox */
     int send_queued;        /* ContractSetQueuedSends: requests to a full mailbox are kept (outbox.c) */
@@ -73,6 +74,9 @@ int rt_init_run_dir(void);
 int rt_addr(const char *file, struct sockaddr_un *sa, socklen_t *len);
 int rt_module_addr(const char *module, const char *suffix, struct sockaddr_un *sa, socklen_t *len);
 int rt_bind_dgram(const char *file, int *fd_out);
+/* Binds g_rt.name's mailbox <NAME>.mbx and its control channel <NAME>.ctl (mailbox.c's header
+ * says what travels on each). 0, or -1 (said). */
+int rt_bind_mailbox(void);
 /* A datagram socket connected to sa (the path is resolved once, not at every send). */
 int rt_connect_peer(const struct sockaddr_un *sa, socklen_t len, int nonblock);
 void rt_close_peers(void);
@@ -93,8 +97,9 @@ void rt_install_signal_cleanup(void);
 
 /* mailbox.c */
 int rt_send_request_to(const char *module, RequestMessage *msg);
-/* One datagram (a request's header and payload) to module's mailbox: 0 sent, else its errno
- * (EAGAIN: the mailbox is full; dontwait = 0 waits SEND_TIMEOUT_MS for room first). */
+/* One datagram (a request's header and payload) to module's mailbox, or to its control channel
+ * when this process never waits for a full mailbox (queued or non-blocking sends): 0 sent, else
+ * its errno (EAGAIN: full; dontwait = 0 waits SEND_TIMEOUT_MS for room first). */
 int rt_send_datagram(const char *module, const void *request, size_t len, int dontwait);
 /* The `error` record and stderr line of a request that could not be sent (why_more: the end of
  * its parenthesis); returns the CONTRACT_E* code of err. */

@@ -1,12 +1,31 @@
 /* The request mailbox: receiving requests (WaitForRequest, LookForRequest, deadlines, acks),
- * sending requests and acks to other modules. One AF_UNIX datagram socket per process,
- * bound to <run dir>/<NAME>.mbx; one datagram = one request (prefix + header + payload). */
+ * sending requests and acks to other modules. Two AF_UNIX datagram sockets per process, bound
+ * to <run dir>/<NAME>.mbx (the mailbox) and <NAME>.ctl (its control channel); one datagram = one
+ * request (prefix + header + payload).
+ *
+ * The control channel carries what the processes that never wait for a full mailbox send:
+ * the supervisors (queued sends), ORD and the launcher (non-blocking sends): START, STOP,
+ * PRIORITY, SETPARAM (parameterize), subscriptions, status queries, KILL. Everything else — the
+ * modules' events, values, acks and requests, which wait for room (PostEvent) — goes to the
+ * mailbox. A receiver reads its control channel first. Why: a producer whose PostEvent waits for
+ * room in a flooded consumer's mailbox is woken by the kernel the moment the consumer reads one
+ * request, and takes that slot at once; a supervisor's request that found the mailbox full
+ * (kept, tried again every 5 ms: outbox.c) found it full again at nearly every try, and a STOP or
+ * PRIORITY change waited behind the flood up to 2 s, then failed. Waiting for writability
+ * (poll POLLOUT) instead does not help: the supervisor is woken with the producer, and the
+ * producer, still in its sendmsg, wins the slot most of the time (a quick test with a 2 ms
+ * consumer: 24 to 370 ms for one request, no bound). On its own channel, which only these
+ * senders fill, a control request has room unless the receiver reads nothing at all, and it is
+ * read before the events waiting. Each sender's requests stay in their order (a sender uses one
+ * channel); a control request can overtake events sent before it. A receiver without a control
+ * channel (a process of an older library) gets them in its mailbox. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
 #include <poll.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/epoll.h>
 #include <sys/stat.h>
 #include <sys/uio.h>
 #include <unistd.h>
@@ -14,14 +33,14 @@
 
 extern const char ContractModuleDescription[] __attribute__((weak));
 
-#define COARSE_WAIT_NS 100000000LL /* deadlines further than this are checked every 100 ms */
-
 static RequestMessage rx_buffer; /* every datagram lands here first: user messages stay intact */
 
 /* ---------------------------------------------------------------- sending */
 
-/* Connected sockets to the mailboxes we talk to (a send then skips the path lookup). */
-typedef struct { char module[CONTRACT_NAME_MAX]; int fd; } Peer;
+/* Connected sockets to the mailboxes and control channels we talk to (a send then skips the path
+ * lookup). `ctl`: the channel asked for (the socket is the mailbox's when the receiver has no
+ * control channel). */
+typedef struct { char module[CONTRACT_NAME_MAX]; int ctl; int fd; } Peer;
 #define MAX_PEERS 32
 static Peer peers[MAX_PEERS];
 static int next_victim;
@@ -35,10 +54,19 @@ void rt_close_peers(void)
     }
 }
 
-static Peer *peer_for(const char *module, int reconnect)
+static int connect_to(const char *module, const char *suffix)
+{
+    struct sockaddr_un sa;
+    socklen_t len;
+    if (rt_module_addr(module, suffix, &sa, &len) != 0) return -1;
+    return rt_connect_peer(&sa, len, 0);
+}
+
+static Peer *peer_for(const char *module, int ctl, int reconnect)
 {
     Peer *p = NULL;
-    for (int i = 0; i < MAX_PEERS && !p; i++) if (peers[i].module[0] && strcmp(peers[i].module, module) == 0) p = &peers[i];
+    for (int i = 0; i < MAX_PEERS && !p; i++)
+        if (peers[i].module[0] && peers[i].ctl == ctl && strcmp(peers[i].module, module) == 0) p = &peers[i];
     if (p && !reconnect) return p;
     if (!p) {
         for (int i = 0; i < MAX_PEERS && !p; i++) if (!peers[i].module[0]) p = &peers[i];
@@ -46,12 +74,11 @@ static Peer *peer_for(const char *module, int reconnect)
     }
     if (p->module[0] && p->fd >= 0) close(p->fd);
     p->module[0] = '\0';
-    struct sockaddr_un sa;
-    socklen_t len;
-    if (rt_module_addr(module, ".mbx", &sa, &len) != 0) return NULL;
-    p->fd = rt_connect_peer(&sa, len, 0);
+    p->fd = ctl ? connect_to(module, ".ctl") : -1;
+    if (p->fd < 0) p->fd = connect_to(module, ".mbx"); /* no control channel: its mailbox */
     if (p->fd < 0) return NULL;
     snprintf(p->module, sizeof p->module, "%s", module);
+    p->ctl = ctl;
     return p;
 }
 
@@ -65,8 +92,9 @@ int rt_send_datagram(const char *module, const void *request, size_t len, int do
     mh.msg_iovlen = 2;
     ssize_t n = -1;
     int flags = MSG_NOSIGNAL | (dontwait ? MSG_DONTWAIT : 0);
+    int ctl = g_rt.send_queued || g_rt.send_nowait; /* the control channel: this file's header */
     for (int attempt = 0; attempt < 2; attempt++) {
-        Peer *p = peer_for(module, attempt > 0);
+        Peer *p = peer_for(module, ctl, attempt > 0);
         if (!p) break;
         do n = sendmsg(p->fd, &mh, flags); while (n < 0 && errno == EINTR);
         if (n >= 0) break;
@@ -458,13 +486,13 @@ static int accept_request(RequestMessage *m)
     return 1;
 }
 
-/* One datagram from the mailbox into rx_buffer. Returns RX_GOT (a request for the caller),
+/* One datagram from fd (the mailbox or the control channel) into rx_buffer. Returns RX_GOT (a request for the caller),
  * RX_NONE (EAGAIN, or the receive timed out), RX_TAKEN (one the library answered itself, or an
  * invalid datagram that was reported and dropped: read on), -1 (error, errno set). */
 #define RX_NONE 0
 #define RX_GOT 1
 #define RX_TAKEN 2
-static int receive_one(int flags)
+static int receive_from(int fd, int flags)
 {
     WirePrefix pre;
     struct iovec iov[2] = { { &pre, sizeof pre }, { &rx_buffer, sizeof rx_buffer } };
@@ -472,7 +500,7 @@ static int receive_one(int flags)
     memset(&mh, 0, sizeof mh);
     mh.msg_iov = iov;
     mh.msg_iovlen = 2;
-    ssize_t n = recvmsg(g_rt.mbx_fd, &mh, flags | MSG_TRUNC);
+    ssize_t n = recvmsg(fd, &mh, flags | MSG_TRUNC);
     if (n < 0) {
         if (errno == EAGAIN || errno == EWOULDBLOCK) return 0;
         return -1;
@@ -490,6 +518,22 @@ static int receive_one(int flags)
     rx_buffer.Sender[CONTRACT_NAME_MAX - 1] = '\0';
     rx_buffer.ReceptionTime = now;
     return accept_request(&rx_buffer) ? RX_GOT : RX_TAKEN;
+}
+
+static int rx_ctl; /* the request in rx_buffer came by the control channel */
+
+/* The control channel first (never waited on), then the mailbox (flags). */
+static int receive_one(int flags)
+{
+    if (g_rt.ctl_fd >= 0) {
+        int r = receive_from(g_rt.ctl_fd, MSG_DONTWAIT);
+        if (r != RX_NONE) {
+            rx_ctl = 1;
+            return r;
+        }
+    }
+    rx_ctl = 0;
+    return receive_from(g_rt.mbx_fd, flags);
 }
 
 /* At most this many datagrams a non-blocking read goes through (answered queries, dropped
@@ -527,14 +571,19 @@ static int pop_pending(RequestMessage *out)
     return 1;
 }
 
-static void push_pending(const RequestMessage *m)
+/* Kept for later, in order, those of the control channel before those of the mailbox (a STOP read
+ * behind the events read ahead is handed over before them, as it would have been read). */
+static void push_pending(const RequestMessage *m, int ctl)
 {
     Pending *p = malloc(sizeof *p);
     if (!p) { rt_error("out of memory: dropped a %s request", rt_request_name(m->Type)); return; }
     memcpy(&p->msg, m, REQUEST_HEADER_SIZE + m->DataSize);
-    p->next = NULL;
-    if (g_rt.pending_tail) g_rt.pending_tail->next = p; else g_rt.pending_head = p;
-    g_rt.pending_tail = p;
+    p->ctl = ctl;
+    Pending **at = &g_rt.pending_head;
+    while (*at && (!ctl || (*at)->ctl)) at = &(*at)->next;
+    p->next = *at;
+    *at = p;
+    if (!p->next) g_rt.pending_tail = p;
     g_rt.pending_count++;
 }
 
@@ -548,9 +597,9 @@ static int check_mailbox(void)
 }
 
 /* Receive the next accepted request into rx_buffer until `deadline`. 1 / 0 timeout / -1 error.
- * System calls per request: one blocking recvmsg when nothing is due in the log, else
- * ppoll (bounded by the log flush delay, and by the next try of requests kept for full
- * mailboxes: outbox.c) + recvmsg. */
+ * System calls per request: ppoll on the mailbox and the control channel (bounded by the
+ * deadline, the log flush delay, and the next try of requests kept for full mailboxes: outbox.c)
+ * + a recvmsg of each (the control channel's, when empty, says so at once). */
 static int receive_until(RTIME deadline)
 {
     if (check_mailbox() != 0) return -1;
@@ -566,8 +615,7 @@ static int receive_until(RTIME deadline)
             return RX_NONE;
         }
         RTIME wait = deadline == INT64_MAX ? -1 : deadline - now;
-        RTIME flush_ns = rt_log_flush_ns();
-        RTIME due = ContractLogFlushDue(flush_ns);
+        RTIME due = ContractLogFlushDue(rt_log_flush_ns());
         if (due) {
             RTIME flush_in = due - now;
             if (flush_in < 0) flush_in = 0;
@@ -577,25 +625,11 @@ static int receive_until(RTIME deadline)
             RTIME retry_in = retry > now ? retry - now : 0;
             if (wait < 0 || retry_in < wait) wait = retry_in;
         }
-        int r;
-        if (!retry && (deadline == INT64_MAX || deadline - now >= COARSE_WAIT_NS)) {
-            /* Plain blocking receive (one system call). It times out after the flush delay while log
-             * records wait to be written, so that they reach the file even when idle, and after
-             * COARSE_WAIT_NS when a far deadline must be checked; near deadlines use ppoll. */
-            RTIME timeo = g_rt.log_dirty_since ? flush_ns : (deadline == INT64_MAX ? 0 : COARSE_WAIT_NS);
-            if (timeo != g_rt.mbx_rcvtimeo) {
-                struct timeval tv = { (time_t)(timeo / 1000000000LL), (long)(timeo % 1000000000LL) / 1000 };
-                setsockopt(g_rt.mbx_fd, SOL_SOCKET, SO_RCVTIMEO, &tv, sizeof tv);
-                g_rt.mbx_rcvtimeo = timeo;
-            }
-            r = receive_one(0);
-            if (r == RX_GOT || r < 0) return r;
-            continue;
-        }
-        struct pollfd pfd = { g_rt.mbx_fd, POLLIN, 0 };
+        struct pollfd pfd[2] = { { g_rt.mbx_fd, POLLIN, 0 }, { g_rt.ctl_fd, POLLIN, 0 } };
         struct timespec ts = { (time_t)(wait / 1000000000LL), (long)(wait % 1000000000LL) };
-        int pr = ppoll(&pfd, 1, &ts, NULL);
+        int pr = ppoll(pfd, g_rt.ctl_fd >= 0 ? 2 : 1, wait < 0 ? NULL : &ts, NULL);
         if (pr < 0) return -1;
+        int r;
         if (pr > 0 && ((r = receive_one(MSG_DONTWAIT)) == RX_GOT || r < 0)) return r;
     }
 }
@@ -634,7 +668,7 @@ static void read_ahead(void)
 {
     for (int taken = 0; g_rt.pending_count < READ_AHEAD_MAX && taken < RX_TAKEN_MAX;) {
         int r = receive_one(MSG_DONTWAIT);
-        if (r == RX_GOT) push_pending(&rx_buffer);
+        if (r == RX_GOT) push_pending(&rx_buffer, rx_ctl);
         else if (r == RX_TAKEN) taken++;
         else break; /* none left, or an error the next read meets again */
     }
@@ -647,7 +681,22 @@ RequestMessage *LookForRequest(RequestMessage *msg)
     return msg;
 }
 
-int MailboxFd(void) { return g_rt.mbx_fd; }
+/* One fd for the caller's poll, readable when a request waits in the mailbox or the control
+ * channel: an epoll instance holding both (made at the first call). */
+int MailboxFd(void)
+{
+    if (g_rt.wait_fd >= 0 || g_rt.mbx_fd < 0 || g_rt.ctl_fd < 0) return g_rt.wait_fd >= 0 ? g_rt.wait_fd : g_rt.mbx_fd;
+    int ep = epoll_create1(EPOLL_CLOEXEC);
+    if (ep < 0) return g_rt.mbx_fd;
+    struct epoll_event ev = { .events = EPOLLIN };
+    ev.data.fd = g_rt.mbx_fd;
+    int ok = epoll_ctl(ep, EPOLL_CTL_ADD, g_rt.mbx_fd, &ev) == 0;
+    ev.data.fd = g_rt.ctl_fd;
+    ok = ok && epoll_ctl(ep, EPOLL_CTL_ADD, g_rt.ctl_fd, &ev) == 0;
+    if (!ok) { close(ep); return g_rt.mbx_fd; }
+    g_rt.wait_fd = ep;
+    return ep;
+}
 int PendingRequests(void) { return g_rt.pending_count; }
 
 typedef int (*Matcher)(const RequestMessage *m, const void *ctx);
@@ -669,7 +718,7 @@ static int wait_for_match(Matcher match, const void *ctx, RTIME deadline, Reques
             if (out) deliver(out, &rx_buffer);
             return 1;
         }
-        if (m != MATCH_STALE) push_pending(&rx_buffer);
+        if (m != MATCH_STALE) push_pending(&rx_buffer, rx_ctl);
     }
 }
 

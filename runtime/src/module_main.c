@@ -59,9 +59,7 @@ int main(int argc, char *argv[])
     if (rt_init_run_dir() != 0) return 2;
     rt_install_signal_cleanup();
     atexit(shutdown_at_exit);
-    char file[CONTRACT_NAME_MAX + 8];
-    snprintf(file, sizeof file, "%s.mbx", g_rt.name);
-    if (rt_bind_dgram(file, &g_rt.mbx_fd) != 0) return 2;
+    if (rt_bind_mailbox() != 0) return 2;
     if (rt_dataflow_setup() != 0 || rt_eventflow_setup() != 0) return 2;
     rt_log_open();
     char detail[64];

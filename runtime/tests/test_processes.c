@@ -379,8 +379,8 @@ void test_control_tool(void)
     CHECK(text && strstr(text, "not running"));
     free(text);
     char f[700];
-    const char *left[] = { "MSC.mbx", "MSC.0.in", "MSC.pid", "MSC.ready" };
-    for (int i = 0; i < 4; i++) { snprintf(f, sizeof f, "%s/%s", h_run_dir, left[i]); unlink(f); }
+    const char *left[] = { "MSC.mbx", "MSC.ctl", "MSC.0.in", "MSC.pid", "MSC.ready" };
+    for (int i = 0; i < 5; i++) { snprintf(f, sizeof f, "%s/%s", h_run_dir, left[i]); unlink(f); }
     unsetenv("CONTRACT_RUN_DIR");
     CHECK(control(out, "status", NULL, NULL) == 2);
     setenv("CONTRACT_RUN_DIR", h_run_dir, 1);

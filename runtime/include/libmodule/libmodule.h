@@ -340,7 +340,9 @@ void ContractSetKeptSendFailed(ContractKeptSendFailed handler);
 /** Wait for a request until the absolute CLOCK_MONOTONIC `deadline` (ns; <= 0: no wait,
  *  INT64_MAX: forever). Returns 1 (msg filled), 0 (deadline passed), -1 (error / EINTR). */
 int WaitForRequestUntil(RequestMessage *msg, RTIME deadline);
-/** The mailbox file descriptor, to poll together with other fds (POLLIN: call LookForRequest).
+/** A file descriptor to poll together with other fds (POLLIN: call LookForRequest): an epoll fd
+ *  readable when a request waits in the mailbox or in the control channel (the mailbox's own fd
+ *  when there is no control channel).
  *  Call LookForRequest until NULL before polling: requests kept by WaitForAck or read ahead are
  *  not in the fd. */
 int MailboxFd(void);

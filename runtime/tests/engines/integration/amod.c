@@ -6,7 +6,10 @@
  * "post <v>", "got <v>" and "stop" lines to $ITEST_OUT/<name>.trace. Built with
  * -DAMOD_BUSY_MS=N (AMB), each START first runs N ms of its own code without reading its
  * mailbox (a requested priority is answered after); with -DAMOD_BUSY_ALWAYS too (AMD, AME),
- * each post is followed by those N ms as well: the module is almost always busy.
+ * each post is followed by those N ms as well: the module is almost always busy. Built with
+ * -DAMOD_PERIOD_NS=0 (AMF) it posts as fast as its consumers take its events (PostEvent waits
+ * for room), reading its mailbox between posts; with -DAMOD_EVENT_MS=N (AMC) each event it
+ * receives takes N ms of its own code: a producer flooding a consumer (event-flood scenario).
  */
 #define _GNU_SOURCE
 #include <libmodule/libmodule.h>
@@ -28,13 +31,20 @@ MODULE_AUTHOR("engines tests");
 #ifndef AMOD_BUSY_ALWAYS
 #define AMOD_BUSY_ALWAYS 0
 #endif
+#ifndef AMOD_PERIOD_NS
+#define AMOD_PERIOD_NS 10000000LL
+#endif
+#ifndef AMOD_EVENT_MS
+#define AMOD_EVENT_MS 0
+#endif
 
 /* AMOD_BUSY_MS of the module's own code: no mailbox read meanwhile */
-static void busy(void) {
-    struct timespec left = {AMOD_BUSY_MS / 1000, (AMOD_BUSY_MS % 1000) * 1000000L};
+static void busy_ms(long ms) {
+    struct timespec left = {ms / 1000, (ms % 1000) * 1000000L};
     while (nanosleep(&left, &left) != 0) {
     }
 }
+static void busy(void) { busy_ms(AMOD_BUSY_MS); }
 
 static long counter, received, param_step = 1;
 char MODULE_NAME[] = AMOD_NAME;
@@ -62,8 +72,8 @@ int ModuleMain(int argc, const char *argv[]) {
             if (trace) fprintf(trace, "post %ld\n", counter);
             PostEvent(&counter);
             if (AMOD_BUSY_ALWAYS) busy();
-            next += 10000000LL;
-            if (AMOD_BUSY_ALWAYS && next < GetTime()) next = GetTime() + 10000000LL;
+            next += AMOD_PERIOD_NS;
+            if (AMOD_BUSY_ALWAYS && next < GetTime()) next = GetTime() + AMOD_PERIOD_NS;
             continue;
         }
         if (imodule_connect(m)) continue;
@@ -73,7 +83,7 @@ int ModuleMain(int argc, const char *argv[]) {
             if (AMOD_BUSY_MS > 0) busy();
             running = 1;
             counter = 0;
-            next = GetTime() + 10000000LL;
+            next = GetTime() + AMOD_PERIOD_NS;
             break;
         case REQ_STOP:
             if (trace) fprintf(trace, "stop\n");
@@ -87,6 +97,7 @@ int ModuleMain(int argc, const char *argv[]) {
             break;
         case REQ_EVENT:
             if (GetEventId(NULL, NULL) == 0 && trace) fprintf(trace, "got %ld\n", received);
+            if (AMOD_EVENT_MS > 0) busy_ms(AMOD_EVENT_MS);
             break;
         case REQ_KILL:
             if (trace) fclose(trace);

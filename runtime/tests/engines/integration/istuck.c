@@ -23,6 +23,13 @@
  *   SKS.flood:
  *     F:  [elapsed=10ms] activate schema FLD() [ ]
  * for the output-flood scenario: FLM takes 3 ms a release of FLD (1 ms): ORD misses every deadline.
+ *   SKS.evflood:
+ *     E:  [elapsed=10ms] activate schema EVF() [duration(E)=600ms]
+ *     R:  [elapsed=300ms] activate resttime module AMC, parameterize AMC(5 :0) [duration(R)=100ms]
+ *   with event schema EVF { modules { AMC (); AMF (); } communications { AMF:0 =* AMC:0; } }
+ * for the event-flood scenario: AMF posts as fast as AMC, 5 ms an event, takes them, so AMC's
+ * mailbox is always full; R's priority change and parameter, and E's undo (the STOP of AMC),
+ * are requests to the flooded AMC.
  */
 #include "../engine_executable.h"
 
@@ -79,11 +86,28 @@ static const ContractRule busy_rules[] = {{"A", {1, c10b}, 1, a_actions, {1, a_p
                                           {"Q", {1, q_pre}, 0, NULL, {1, q_post}}};
 static const ContractAction f_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &ITEST_FLD}};
 static const ContractRule flood_rules[] = {{"F", {1, c10}, 1, f_actions, {0, NULL}}};
+static const ContractSchemaModule evf_modules[] = {{"AMC", 0, NULL}, {"AMF", 0, NULL}};
+static const ContractEventFlow evf_flows[] = {{"AMF", 0, "AMC", 0, CONTRACT_CONTINUOUS}};
+static const ContractSchema EVF = {"EVF", CONTRACT_SCHEMA_EVENT, 0, 0, 0, NULL, 0, 2, evf_modules, 0, NULL, 0, NULL, 1, evf_flows};
+static const ContractAction e_actions[] = {{.kind = CONTRACT_ACT_SCHEMA, .schema = &EVF}};
+static const ContractEvent e_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 0, .time_ns = 600 * ITEST_MS}};
+static const ContractClause e_post[] = {{1, e_end}};
+ELAPSED(c300, 300 * ITEST_MS)
+static const long k_five = 5;
+static const ContractAssign amc_step[] = {{0, 0, &contract_type_long, {CONTRACT_REF_CONST, 0, 0, &contract_type_long, &k_five}}};
+static const ContractParamSetting amc_settings[] = {{0, &contract_type_long, 1, amc_step, "step"}};
+static const ContractAction r_actions[] = {{.kind = CONTRACT_ACT_RESTTIME_MODULE, .module = "AMC"},
+                                           {.kind = CONTRACT_ACT_PARAMETERIZE, .module = "AMC", .nsettings = 1, .settings = amc_settings}};
+static const ContractEvent r_end[] = {{.kind = CONTRACT_EV_DURATION, .rule = 1, .time_ns = 100 * ITEST_MS}};
+static const ContractClause r_post[] = {{1, r_end}};
+static const ContractRule evflood_rules[] = {{"E", {1, c10}, 1, e_actions, {1, e_post}},
+                                             {"R", {1, c300}, 2, r_actions, {1, r_post}}};
 static const ContractFunction functions[] = {{"go", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, go_rules},
                                              {"crash", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, crash_rules},
                                              {"busy", 0, NULL, 0, 0, NULL, 0, 0, NULL, 3, busy_rules},
-                                             {"flood", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, flood_rules}};
+                                             {"flood", 0, NULL, 0, 0, NULL, 0, 0, NULL, 1, flood_rules},
+                                             {"evflood", 0, NULL, 0, 0, NULL, 0, 0, NULL, 2, evflood_rules}};
 static const ContractSupervisorVocabulary SKS_VOCABULARY = {
-    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 4, functions};
+    CONTRACT_VOCABULARY_VERSION, "SKS", 90, 40, 5, 70, 0, NULL, 0, NULL, 5, functions};
 
 int ModuleMain(int argc, const char *argv[]) { return contract_supervisor_main(&SKS_VOCABULARY, argc, argv); }

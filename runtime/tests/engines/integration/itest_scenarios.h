@@ -41,4 +41,8 @@ void scenario_kept_stop(const char *root, const char *bin, const char *launcher)
  *  on stdout stay a few a second (each kind once a second, then its count), its CSV log has each. */
 void scenario_output_flood(const char *root, const char *bin, const char *launcher);
 
+/** SKS activates EVF, where AMF floods AMC with events: AMC's START comes before them, and the
+ *  priority change, parameter and STOP that SKS sends the flooded AMC reach it within 200 ms. */
+void scenario_event_flood(const char *root, const char *bin, const char *launcher);
+
 #endif
