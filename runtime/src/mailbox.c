@@ -599,7 +599,7 @@ static int check_mailbox(void)
 /* Receive the next accepted request into rx_buffer until `deadline`. 1 / 0 timeout / -1 error.
  * System calls per request: ppoll on the mailbox and the control channel (bounded by the
  * deadline, the log flush delay, and the next try of requests kept for full mailboxes: outbox.c)
- * + a recvmsg of each (the control channel's, when empty, says so at once). */
+ * + one recvmsg of the socket it found readable, the control channel first. */
 static int receive_until(RTIME deadline)
 {
     if (check_mailbox() != 0) return -1;
@@ -629,8 +629,12 @@ static int receive_until(RTIME deadline)
         struct timespec ts = { (time_t)(wait / 1000000000LL), (long)(wait % 1000000000LL) };
         int pr = ppoll(pfd, g_rt.ctl_fd >= 0 ? 2 : 1, wait < 0 ? NULL : &ts, NULL);
         if (pr < 0) return -1;
-        int r;
-        if (pr > 0 && ((r = receive_one(MSG_DONTWAIT)) == RX_GOT || r < 0)) return r;
+        if (pr <= 0) continue;
+        /* Read the socket ppoll found readable (the control channel first): one recvmsg. */
+        int from_ctl = g_rt.ctl_fd >= 0 && pfd[1].revents != 0;
+        int r = receive_from(from_ctl ? g_rt.ctl_fd : g_rt.mbx_fd, MSG_DONTWAIT);
+        rx_ctl = from_ctl;
+        if (r == RX_GOT || r < 0) return r;
     }
 }
 
