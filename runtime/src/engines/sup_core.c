@@ -970,7 +970,6 @@ static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t 
     engine_init_block(fs->locals, fn->locals, fn->nlocals);
     fs->running = 1;
     fs->start_seq = c->seq;
-    fs->started_at = c->now;
     EngineScope s = fn_scope(c, f);
     for (int i = 0; i < fn->nlocal_inits; i++)
         engine_apply_assign(&s, &fn->local_inits[i], fs->locals, fn->locals);
@@ -979,6 +978,9 @@ static int local_start(SupCore *c, int64_t t, int f, const void *params, size_t 
     char args[ACTION_VALUE_MAX];
     engine_format_params(args, sizeof args, fn->params, fn->nparams, fs->params);
     trace(c, "function %s%s started", fn->name, args);
+    /* its clock (its elapsed timers, its duration) starts at the time of that line */
+    if (c->io.last_trace_time) set_now(c, c->io.last_trace_time(c->io.ctx));
+    fs->started_at = c->now;
     for (int i = 0; i < fs->nslots; i++) {
         const ContractEvent *ev = fs->slots[i].ev;
         if (ev->kind != CONTRACT_EV_ELAPSED) continue;

@@ -87,6 +87,12 @@ typedef struct SupIo {
        starts a module not running (docs/engines.md). NULL: never asked (a held module is taken
        for running) */
     int (*module_run_ended)(void *ctx, const char *module);
+    /* the time of the last trace line written (the binding's clock, read as it writes the line):
+       a function's clock starts at its `function F(...) started` line's time, so that
+       `elapsed=t` counts from the time the trace shows, not from the reading of the START before
+       it (a supervisor preempted between the two showed an `elapsed=2ms` rule active 1.78 ms after
+       that line). NULL: the core's time (the simulator's virtual time) */
+    int64_t (*last_trace_time)(void *ctx);
 } SupIo;
 
 typedef struct SupCore SupCore;

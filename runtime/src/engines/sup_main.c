@@ -459,11 +459,19 @@ static void b_stop_function(void *ctx, const char *sup, const char *fn, uint32_t
     not_sent(sup, engine_send_stop(sup, fn, (int)id));
 }
 
+static int64_t last_trace_time; /* read just before the last trace line's record (b_last_trace_time) */
+
 static void b_trace(void *ctx, int64_t t, const char *line) {
     (void)ctx;
     (void)t;
-    printf("%s\n", line);
+    last_trace_time = GetTime(); /* the record's own time, to a few ns: taken right after this */
     ContractLog("supervisor", "", -1, 0, line);
+    printf("%s\n", line); /* after the record: a slow stdout does not separate the two times */
+}
+
+static int64_t b_last_trace_time(void *ctx) {
+    (void)ctx;
+    return last_trace_time;
 }
 
 /* an action the core has no other call for (event schemas, compute): CSV only, as the others */
@@ -536,7 +544,7 @@ int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, co
     SupIo io = {&b, b_ord_activate, b_ord_deactivate, b_module_running, b_start_module, b_stop_module,
                 b_claim_priority, b_release_priority, b_set_param, b_connect, b_disconnect, b_subscribe, b_unsubscribe,
                 b_notify, b_start_function, b_stop_function, b_trace, b_share_module, b_lock_module,
-                b_rule, b_action, b_module_run_ended};
+                b_rule, b_action, b_module_run_ended, b_last_trace_time};
     char err[512] = "";
     /* A request to a module whose mailbox is full is kept and sent as soon as it has room
        (ContractSetQueuedSends), for up to 2 s, while the supervisor goes on: its requests are

@@ -375,7 +375,7 @@ SupIo fake_sup_io(FakeWorld *w) {
     SupIo io = {w, s_ord_activate, s_ord_deactivate, s_module_running, s_start_module,
                 s_stop_module, s_claim_priority, s_release_priority, s_set_param, s_connect, s_disconnect, s_subscribe,
                 s_unsubscribe, s_notify, s_start_function, s_stop_function, s_trace, s_share_module,
-                s_lock_module, NULL, s_action, s_module_run_ended};
+                s_lock_module, NULL, s_action, s_module_run_ended, NULL};
     return io;
 }
 

@@ -262,6 +262,34 @@ void test_stop_undoes_active_rules_in_order(void) {
     sup_core_destroy(c);
 }
 
+/* the binding's clock when it writes a trace line: 0.4 ms past the time the START was read */
+static int64_t late_trace_clock(void *ctx) {
+    (void)ctx;
+    return 400000;
+}
+
+void test_elapsed_counts_from_the_started_line(void) {
+    FakeWorld w;
+    log_clear(&LOG);
+    memset(&w, 0, sizeof w);
+    w.log = &LOG;
+    SupIo io = fake_sup_io(&w);
+    io.last_trace_time = late_trace_clock;
+    char err[256] = "";
+    SupCore *c = sup_core_create(&TST, &io, err, sizeof err);
+    if (!c) { CHECK(0); return; }
+    /* read at 0, its `function window started` line written at 0.4 ms: elapsed=1ms is due at
+       1.4 ms (the time the trace shows + 1 ms), not at 1 ms */
+    CHECK(sup_core_start_function(c, 0, "window", NULL, 0) == 0);
+    int64_t d = 0;
+    CHECK(sup_core_next_deadline(c, &d) == 1 && d == 1400000);
+    sup_core_advance(c, 1399999);
+    CHECK(sup_core_rule_active(c, "window", "S") == 0);
+    sup_core_advance(c, 1400000);
+    CHECK(sup_core_rule_active(c, "window", "S") == 1);
+    sup_core_destroy(c);
+}
+
 void test_invalid_tables_are_refused_with_a_message(void) {
     static const ContractEvent bad_ev[] = {{.kind = CONTRACT_EV_STARTED, .rule = 7}};
     static const ContractClause bad_cl[] = {{1, bad_ev}};
