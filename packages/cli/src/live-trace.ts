@@ -20,29 +20,48 @@ export class LiveTrace {
     /** Written so far: records (readable ones) and, apart, unreadable lines (their `unknown` objects). */
     readonly counts: RecordCounts = { records: 0, unreadable: 0 };
 
+    /** Emptied yet: the file keeps what it held until the run's first records (or its end). */
+    private emptied = false;
+
     private constructor(private readonly handle: FileHandle) {}
 
-    /** Creates or truncates FILE, never through a link found there. */
+    /** Opens or creates FILE, never through a link, a FIFO or anything but a regular file; not emptied yet. */
     static async open(path: string): Promise<LiveTrace> {
         return new LiveTrace(await openTraceFile(path));
     }
 
-    /** A job event: a trace event's records are appended to the file. */
+    /** Empties the file, once, before the first write. */
+    private empty(): void {
+        if (this.emptied) return;
+        this.emptied = true;
+        this.writing = this.writing.then(() => this.handle.truncate(0)).catch((err: Error) => void (this.failed ??= err));
+    }
+
+    /** A job event: a trace event's records are appended to the file (emptied at the first). */
     event(e: JobEvent): void {
         if (e.type !== 'trace' || this.failed) return;
         const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text));
         for (const r of records) countRecord(this.counts, r);
         const text = toJsonLines(records);
         this.written.update(text);
+        this.empty();
         this.writing = this.writing.then(() => this.handle.write(text)).catch((err: Error) => void (this.failed ??= err));
     }
 
-    /** Waits for the writes and closes; the sha256 (hex) of what the file holds. Throws a write error. */
+    /** The run ran: waits for the writes (the file emptied if no record came) and closes; the sha256 (hex) of what the file holds. Throws a write error. */
     async close(): Promise<string> {
+        this.empty();
         await this.writing;
         await this.handle.close();
         if (this.failed) throw this.failed;
         return this.written.digest('hex');
+    }
+
+    /** Nothing ran (the build failed): closes; true when the file was left as it was (no record had come). */
+    async abandon(): Promise<boolean> {
+        await this.writing;
+        await this.handle.close().catch(() => {});
+        return !this.emptied;
     }
 }
 
@@ -60,7 +79,7 @@ export async function settleTraceFile(dir: string, names: readonly string[], tra
         const hash = createHash('sha256');
         const { counts } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe);
         if (hash.digest('hex') === live.digest) return counts;
-        const out = await openTraceFile(traceFile);
+        const out = await openTraceFile(traceFile, { empty: true });
         try {
             await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
         } finally {

@@ -4,10 +4,11 @@
  * trace file's opening for writing (`--trace`: never through a link).
  * The parsing itself is the browser-safe reader of @contract-studio/build-service/trace.
  */
-import { closeSync, constants, openSync, promises as fsp, writeSync } from 'node:fs';
+import { constants, promises as fsp } from 'node:fs';
+import { basename } from 'node:path';
 import type { FileHandle } from 'node:fs/promises';
 import type { TraceRecord } from '@contract-studio/build-service/trace';
-import { escapeControls } from './terminal-text.js';
+import { escapeControls, safeName as safeNameOf } from './terminal-text.js';
 
 /**
  * A record as one JSON line, spelled as `contract trace --format json` prints it: DEL, C1 and the
@@ -23,35 +24,58 @@ export function toJsonLines(records: TraceRecord[]): string {
     return records.map(jsonLine).join('\n') + (records.length ? '\n' : '');
 }
 
-/** Flags of a trace file opened for writing: created or truncated, never through a link found there. */
-const TRACE_FILE_FLAGS = constants.O_WRONLY | constants.O_CREAT | constants.O_TRUNC | constants.O_NOFOLLOW;
+/**
+ * Why `--trace FILE` is refused before anything is built or run, or undefined: a trace file is
+ * named `*.jsonl` (as `contract trace` reads only those), so that a slip of the name (`--trace
+ * model.contract`) never overwrites a file that is not a trace.
+ */
+export function traceNameProblem(file: string): string | undefined {
+    if (/\.jsonl$/i.test(file) && !/^\.jsonl$/i.test(basename(file))) return undefined;
+    return `--trace ${safeNameOf(file)}: a trace file is named *.jsonl (e.g. --trace run.jsonl): it is created or emptied, and only such a name is taken, so that no other file is overwritten`;
+}
 
-/** ELOOP said as what it is: a link where the trace file goes (`--trace` never writes through one). */
+/**
+ * Flags of a trace file opened for writing: created if missing, never through a link found
+ * there, never waiting on a FIFO (non-blocking: with no reader the open fails at once, ENXIO);
+ * not truncated by the opening (the caller empties it when it writes the first record: a build
+ * that fails leaves an earlier trace as it was).
+ */
+const TRACE_FILE_FLAGS = constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW | constants.O_NONBLOCK;
+
+/** The opening's errors said as what they are: a link, a FIFO, a folder where the trace file goes. */
 export function traceFileError(e: unknown): Error {
     const code = (e as NodeJS.ErrnoException).code;
-    return code === 'ELOOP' ? new Error('it is a symbolic link: a trace file is never written through a link (remove it, or name another file)') : (e as Error);
+    if (code === 'ELOOP') return new Error('it is a symbolic link: a trace file is never written through a link (remove it, or name another file)');
+    if (code === 'ENXIO') return new Error('it is a FIFO: a trace file is a regular file (remove it, or name another file)');
+    if (code === 'EISDIR') return new Error('it is a folder: name a file in it (e.g. run.jsonl)');
+    return e as Error;
 }
 
-/** Opens a trace file for writing (TRACE_FILE_FLAGS); a link there is said so (traceFileError). */
-export async function openTraceFile(path: string): Promise<FileHandle> {
+/** What a path found open is, when it is not a regular file (the trace is never written into one). */
+function notRegular(kind: { isFIFO(): boolean; isDirectory(): boolean; isFile(): boolean }): Error | undefined {
+    if (kind.isFile()) return undefined;
+    return new Error(kind.isFIFO() ? 'it is a FIFO: a trace file is a regular file (remove it, or name another file)' : 'it is not a regular file (a device or a socket): name another file');
+}
+
+/**
+ * Opens a trace file for writing (TRACE_FILE_FLAGS: not emptied; `empty: true` empties it at
+ * once). A link, a FIFO, a folder or any other file that is not a regular one is refused with
+ * what it is (traceFileError).
+ */
+export async function openTraceFile(path: string, opts: { empty?: boolean } = {}): Promise<FileHandle> {
+    let handle: FileHandle;
     try {
-        return await fsp.open(path, TRACE_FILE_FLAGS, 0o644);
+        handle = await fsp.open(path, TRACE_FILE_FLAGS, 0o644);
     } catch (e) {
         throw traceFileError(e);
     }
-}
-
-/** Writes a whole trace file at once, with openTraceFile's rules. */
-export function writeTraceFileSync(path: string, text: string): void {
-    let fd: number;
     try {
-        fd = openSync(path, TRACE_FILE_FLAGS, 0o644);
+        const bad = notRegular(await handle.stat());
+        if (bad) throw bad;
+        if (opts.empty) await handle.truncate(0);
+        return handle;
     } catch (e) {
-        throw traceFileError(e);
-    }
-    try {
-        writeSync(fd, text);
-    } finally {
-        closeSync(fd);
+        await handle.close().catch(() => {});
+        throw e;
     }
 }

@@ -260,6 +260,22 @@ describe('5. model and generation problems in build/run: once, at the right path
         expect(io.stderr).toContain('fix the model errors above (`contract check broken` lists them), then build again');
     }, 240_000);
 
+    it('a run whose build fails leaves an earlier --trace file as it was, and says so; --trace takes only a *.jsonl name (bwrap)', async () => {
+        mkdirSync(join(root, 'broken-run'));
+        writeFileSync(join(root, 'broken-run', 'types.contract'), 'datatype T {int a = 1.5};\n');
+        writeFileSync(join(root, 'earlier.jsonl'), 'the earlier run\n');
+        const io = capture(root);
+        expect(await runCli(['run', 'broken-run', '--sandbox', 'bwrap', '--duration', '1s', '--trace', 'earlier.jsonl'], io)).toBe(1);
+        expect(readFileSync(join(root, 'earlier.jsonl'), 'utf8')).toBe('the earlier run\n');
+        expect(io.stderr).toMatch(/earlier\.jsonl was left as it was \(no record: nothing ran\)/);
+        // a slip of the name: refused before anything is built, the file untouched
+        const model = readFileSync(join(root, 'broken-run', 'types.contract'), 'utf8');
+        const slip = capture(root);
+        expect(await runCli(['run', 'broken-run', '--sandbox', 'bwrap', '--trace', 'broken-run/types.contract'], slip)).toBe(2);
+        expect(slip.stderr).toContain('a trace file is named *.jsonl');
+        expect(readFileSync(join(root, 'broken-run', 'types.contract'), 'utf8')).toBe(model);
+    }, 240_000);
+
     it('a broken protected-region marker is printed once at its src-gen path, and the hint names the command that lists it (bwrap)', async () => {
         expect(await runCli(['new', 'marker'], capture(root))).toBe(0);
         expect(await runCli(['generate', 'marker'], capture(root))).toBe(0);

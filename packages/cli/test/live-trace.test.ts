@@ -1,13 +1,14 @@
 /** `contract run --trace FILE`: records written as the trace events arrive, not only at the end. */
 import { createHash } from 'node:crypto';
-import { mkdtempSync, readFileSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
+import { spawnSync } from 'node:child_process';
+import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, it } from 'vitest';
 import type { JobEvent } from '@contract-studio/build-service';
 import { CSV_HEADER, parseRecordLine, parseTrace, type TraceRecord } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../src/live-trace.js';
-import { toJsonLines } from '../src/trace-files.js';
+import { toJsonLines, traceNameProblem } from '../src/trace-files.js';
 
 const line = (n: number) => ({ file: 'SUP_1.csv', line: n + 1, text: `${1000 + n},2026-11-24T18:30:15.123456Z,SUP,module_started,,,0,pid=${n} priority=98` });
 const trace = (from: number, count: number): JobEvent => ({ type: 'trace', seq: from, t: 0, records: Array.from({ length: count }, (_, i) => line(from + i)) });
@@ -48,6 +49,38 @@ describe('LiveTrace', () => {
     it('never writes through a link', async () => {
         symlinkSync(join(dir, 'target'), join(dir, 'link.jsonl'));
         await expect(LiveTrace.open(join(dir, 'link.jsonl'))).rejects.toThrow(/it is a symbolic link: a trace file is never written through a link/);
+    });
+
+    it('never opens a FIFO, a folder or a device as the trace (a FIFO would wait for a reader for ever)', async () => {
+        expect(spawnSync('mkfifo', [join(dir, 'fifo.jsonl')]).status).toBe(0);
+        await expect(LiveTrace.open(join(dir, 'fifo.jsonl'))).rejects.toThrow(/it is a FIFO: a trace file is a regular file/);
+        mkdirSync(join(dir, 'folder.jsonl'));
+        await expect(LiveTrace.open(join(dir, 'folder.jsonl'))).rejects.toThrow(/it is a folder/);
+        await expect(LiveTrace.open('/dev/null')).rejects.toThrow(/it is not a regular file/);
+    });
+
+    it('keeps an earlier trace until the run\'s first record; a run that ran empties it, one that never ran leaves it', async () => {
+        const earlier = 'earlier run\n';
+        writeFileSync(join(dir, 'kept.jsonl'), earlier);
+        const kept = await LiveTrace.open(join(dir, 'kept.jsonl'));
+        expect(readFileSync(join(dir, 'kept.jsonl'), 'utf8')).toBe(earlier); // the opening alone empties nothing
+        expect(await kept.abandon()).toBe(true);
+        expect(readFileSync(join(dir, 'kept.jsonl'), 'utf8')).toBe(earlier);
+        // a run that came to its first record: the earlier text is gone, not mixed with the new
+        const ran = await LiveTrace.open(join(dir, 'kept.jsonl'));
+        ran.event(trace(1, 1));
+        await ran.close();
+        expect(readFileSync(join(dir, 'kept.jsonl'), 'utf8')).toBe(toJsonLines([parseRecordLine('SUP_1.csv', 2, line(1).text)]));
+        // a run that ran without a record: emptied at its end
+        writeFileSync(join(dir, 'kept.jsonl'), earlier);
+        await (await LiveTrace.open(join(dir, 'kept.jsonl'))).close();
+        expect(readFileSync(join(dir, 'kept.jsonl'), 'utf8')).toBe('');
+    });
+
+    it('takes only a *.jsonl name, so that a slip of the name never overwrites a model or a source', () => {
+        for (const bad of ['supervisor.contract', 'run.json', 'trace', '.jsonl', 'dir/.jsonl', 'x.jsonl.bak'])
+            expect(traceNameProblem(bad), bad).toMatch(/a trace file is named \*\.jsonl/);
+        for (const good of ['run.jsonl', 'ci/out/run.JSONL', '../t.jsonl']) expect(traceNameProblem(good), good).toBeUndefined();
     });
 
     describe('settleTraceFile (the end of the run)', () => {

@@ -15,6 +15,7 @@ import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO, type Command } from '../
 import type { JobEvent } from '@contract-studio/build-service';
 import { StoryTeller } from '@contract-studio/build-service/trace';
 import { LiveTrace, settleTraceFile } from '../live-trace.js';
+import { traceNameProblem } from '../trace-files.js';
 import { CLI_BUILD_SECONDS, CLI_RUN_ROOM_SECONDS, COMMON_FLAGS, COMMON_USAGE, COMMON_VALUED, EXIT_TABLE, onTerminal, parseJobOptions, reportBuild, runJob } from '../job-runner.js';
 import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 import { closestName } from '@contract-studio/language/near-names';
@@ -219,7 +220,7 @@ export const runCommand: Command = {
         '  --realtime: modules take their SCHED_FIFO priorities in the sandbox, bounded so that a runaway loop cannot freeze the machine (docs/sandbox.md "Real-time mode"); refused, saying why, where the host cannot grant it',
         '  --logs: folder the CSV logs (one per module) are copied to (default DIR/logs, never a link found there; collected from every sandbox, docker included);',
         '          it holds one run: the previous run\'s logs there are moved to OUT/previous/run-<time>/ first (never deleted)',
-        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json`',
+        '  --trace: also write the records of those logs to FILE as JSON lines, in time order, as the run writes them (the live trace channel); at the end the same as `contract trace OUT --format json`. FILE is named *.jsonl, a regular file or none (never a link or a FIFO); it is emptied at the run\'s first record: a build that fails leaves it as it was',
         ...COMMON_USAGE,
         '  module output is printed as `[MODULE] line`, launcher lines as they come',
         EXIT_TABLE,
@@ -244,6 +245,10 @@ export const runCommand: Command = {
         const cpusOption = parsed.options.get('cpus');
         const cpus = typeof cpusOption === 'string' ? checkCpus(cpusOption) : undefined;
         const realtime = parsed.options.get('realtime') === true;
+        const traceOption = parsed.options.get('trace');
+        if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
+        const traceNameBad = typeof traceOption === 'string' ? traceNameProblem(traceOption) : undefined;
+        if (traceNameBad) throw new UsageError(traceNameBad);
         const logsOption = parsed.options.get('logs');
         const logsDir = typeof logsOption === 'string' ? resolve(io.cwd, logsOption) : join(opts.dir, 'logs');
         const defaultLogs = typeof logsOption !== 'string';
@@ -259,7 +264,6 @@ export const runCommand: Command = {
             // bad usage as any other: the message, then the synopsis
             if (problem) throw new UsageError(problem);
         }
-        const traceOption = parsed.options.get('trace');
         const traceFile = typeof traceOption === 'string' ? resolve(io.cwd, traceOption) : null;
 
         let live: LiveTrace | null = null;
@@ -274,8 +278,9 @@ export const runCommand: Command = {
         const onEvent = live ? (e: JobEvent) => live.event(e) : undefined;
         const outcome = await runJob(opts, { action: 'run', duration, ...(runLimit !== undefined ? { runLimit } : {}), ...(readyTimeout !== undefined ? { readyTimeout } : {}), ...(start !== undefined ? { start } : {}), ...(cpus !== undefined ? { cpus } : {}), ...(realtime ? { realtime } : {}) }, io, undefined, onEvent);
         if ('error' in outcome) {
-            await live?.close().catch(() => {});
+            const untouched = await live?.abandon();
             io.err(`contract run: ${outcome.error}\n`);
+            if (traceFile && untouched) io.err(`contract run: ${safeName(traceFile)} was left as it was (no record: nothing ran)\n`);
             return outcome.exitCode;
         }
         const artifacts = outcome.job.artifacts;
@@ -291,7 +296,10 @@ export const runCommand: Command = {
         // each periodic schema's figures, for a CI script's gate (--format json only): told by the
         // pass over the saved logs that checks the trace file, else by a read of its own
         const teller = opts.format === 'json' && traceFile && logs.length ? new StoryTeller() : null;
-        if (traceFile && live) {
+        if (traceFile && live && !logs.length && !live.counts.records && !live.counts.unreadable) {
+            // nothing ran (a build that failed): an earlier trace in the file is left as it was
+            if (await live.abandon()) io.err(`contract run: ${safeName(traceFile)} was left as it was (no record: nothing ran)\n`);
+        } else if (traceFile && live) {
             try {
                 // written live; rewritten from the collected logs when the live channel was not
                 // the whole story in order (docker, its kept-lines bound, records sent late):

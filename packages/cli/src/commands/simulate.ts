@@ -14,7 +14,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT, formatGccDiagnostic } from '../job-runner.js';
 import { safeName } from '../terminal-text.js';
-import { openTraceFile, toJsonLines } from '../trace-files.js';
+import { openTraceFile, toJsonLines, traceNameProblem } from '../trace-files.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 /** Lines of the --trace file written at once. */
@@ -59,6 +59,8 @@ export const simulateCommand: Command = {
         const parsed = parseArgs(args, ['format', 'runtime', 'cache-dir', 'sandbox', 'trace'], ['verbose']);
         const traceOption = parsed.options.get('trace');
         if (traceOption === '') throw new UsageError('--trace needs a file: --trace FILE.jsonl');
+        const traceNameBad = typeof traceOption === 'string' ? traceNameProblem(traceOption) : undefined;
+        if (traceNameBad) throw new UsageError(traceNameBad);
         // loaded when the command runs: other commands (a no-op `contract build`) do not pay for the simulator and the language
         const {
             DEFAULT_RUNTIME_DIR, JSON_REPORT_END, JSON_REPORT_HEAD, SIMULATOR_SANDBOXES, displayPath, errorCount, jsonScenarioParts, junitReportOf, junitSuite, loadScenario, prepareProject,
@@ -212,7 +214,7 @@ class SimulationTrace {
     /** Opens (creates or empties) the file now; the fault, if it cannot be. */
     async open(): Promise<{ file: string; message: string } | undefined> {
         try {
-            this.handle ??= await openTraceFile(this.file);
+            this.handle ??= await openTraceFile(this.file, { empty: true });
             return undefined;
         } catch (e) {
             return { file: this.file, message: (e as Error).message };
@@ -223,7 +225,7 @@ class SimulationTrace {
         if (this.error) return;
         try {
             const { stepsToTrace, traceStepOf } = await import('@contract-studio/simulator/trace');
-            this.handle ??= await openTraceFile(this.file);
+            this.handle ??= await openTraceFile(this.file, { empty: true });
             const records = stepsToTrace(r.steps.map(traceStepOf), r.file);
             for (let i = 0; i < records.length; i += TRACE_LINES_PER_WRITE) await this.handle.write(toJsonLines(records.slice(i, i + TRACE_LINES_PER_WRITE)));
         } catch (e) {
@@ -234,7 +236,7 @@ class SimulationTrace {
     /** Closes the file (made empty when no scenario ran); the first fault, if any. */
     async close(): Promise<{ file: string; message: string } | undefined> {
         try {
-            this.handle ??= this.error ? undefined : await openTraceFile(this.file);
+            this.handle ??= this.error ? undefined : await openTraceFile(this.file, { empty: true });
         } catch (e) {
             this.error ??= e as Error;
         }
