@@ -244,7 +244,15 @@ describe('messages say what is wrong and what would be right', () => {
     });
     it('shows the import cycle', async () => {
         const built = await build(CASES['import-cycle']!.raise);
-        expect(built.lines.join('\n')).toContain('a.contract -> b.contract -> a.contract');
+        expect(built.lines.join('\n')).toContain('a.contract -> b.contract -> a.contract, and nothing from "a.contract" is used in b.contract: remove that import');
+    });
+    it('says no import cycle for files that use each other\'s names (each must import the other)', async () => {
+        const built = await build({
+            'a.contract': 'import "b.contract";\ndatatype A {B b};\ndatatype A2 {int x};',
+            'b.contract': 'import "a.contract";\ndatatype B {A2 y};'
+        });
+        expect(built.lines.join('\n')).not.toContain('Import cycle');
+        expect(built.lines.join('\n')).not.toContain('import-');
     });
     it('lists the available ports when a port index does not resolve', async () => {
         const built = await build({

@@ -158,6 +158,23 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         expect(ws.codesOf('b.contract')).toEqual([]);
     });
 
+    const cTypes = (argType: string) => `import "a.contract";\ndatatype C {int x};\nfunction void g(${argType} v);\n`;
+    it('import-cycle comes and goes on every file of a cycle as an edit of one file stops or starts using what it imports', async () => {
+        const ws = await liveWorkspace({
+            'a.contract': 'import "b.contract";\ndatatype A {B b};\ndatatype A2 {int x};\n',
+            'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
+            'c.contract': cTypes('A2')
+        });
+        // files using each other's names import each other: no cycle to fix
+        for (const f of ['a.contract', 'b.contract', 'c.contract']) expect(ws.codesOf(f), f).toEqual([]);
+        // c's function no longer uses a's type (no other fact of c changes; a refers to nothing of c)
+        await ws.write('c.contract', cTypes('C'));
+        expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
+        expect(ws.codesOf('b.contract')).toEqual(['import-cycle']);
+        await ws.write('c.contract', cTypes('A2'));
+        for (const f of ['a.contract', 'b.contract', 'c.contract']) expect(ws.codesOf(f), f).toEqual([]);
+    });
+
     it('type-recursive is reported on every datatype of a cycle closed by an edit of one file whose imports do not change', async () => {
         const ws = await liveWorkspace({
             'a.contract': 'import "b.contract";\ndatatype A {B b};\n',
@@ -166,7 +183,8 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         });
         expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
         await ws.write('c.contract', 'import "a.contract";\ndatatype C {A a};\n');
-        expect(ws.codesOf('a.contract')).toEqual(['import-cycle', 'type-recursive']);
+        // each import of the cycle is used now: no import-cycle (files that use each other import each other)
+        expect(ws.codesOf('a.contract')).toEqual(['type-recursive']);
         await ws.write('c.contract', 'import "a.contract";\ndatatype C {int x};\n');
         expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
     });

@@ -69,10 +69,14 @@ class ImportChecker {
                 continue;
             }
             const cycle = this.findCycle(document.uri.toString(), key);
-            if (cycle) {
-                const names = [document.uri.toString(), ...cycle].map((u) => UriUtils.basename(URI.parse(u)));
+            // a cycle of imports each used is two (or more) files using each other's names, which
+            // must import each other: nothing to fix. One with an import of nothing used is said, naming it.
+            const unused = cycle ? this.unusedImportOf([document.uri.toString(), ...cycle]) : undefined;
+            if (cycle && unused) {
+                const name = (u: string) => UriUtils.basename(URI.parse(u));
+                const names = [document.uri.toString(), ...cycle].map(name);
                 report(accept, ImportCodes['import-cycle'],
-                    `Import cycle: ${names.join(' -> ')}. Imports are not transitive, so no file needs to import a file that imports it back.`,
+                    `Import cycle: ${names.join(' -> ')}, and nothing from "${name(unused.to)}" is used in ${name(unused.from)}: remove that import (imports are not transitive: a file imports only the files whose names it uses).`,
                     { node: imp, property: 'path' });
             }
             // a syntax error here or there: the recovery may have lost the use or the definition (and the quick fix would remove a needed import)
@@ -117,6 +121,23 @@ class ImportChecker {
                 }
                 queue.push(next);
             }
+        }
+        return undefined;
+    }
+
+    /**
+     * The first import along `path` (file URIs, each importing the next) whose file uses nothing
+     * of the imported one, or undefined when each is used (or a file of it has a syntax error: its
+     * uses may be what did not parse).
+     */
+    private unusedImportOf(path: string[]): { from: string; to: string } | undefined {
+        const byUri = this.documentsByUri();
+        for (let i = 0; i + 1 < path.length; i++) {
+            const doc = byUri.get(path[i]!);
+            const model = doc?.parseResult.value;
+            if (!doc || !isModel(model) || hasSyntaxError(doc)) return undefined;
+            const importUris = model.imports.filter((m) => m.path !== undefined).map((m) => this.imports.resolveImport(m).toString());
+            if (!this.usedUris(model, doc, importUris).has(path[i + 1]!)) return { from: path[i]!, to: path[i + 1]! };
         }
         return undefined;
     }

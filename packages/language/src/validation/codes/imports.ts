@@ -9,8 +9,8 @@ export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and 
     },
     'import-cycle': {
         severity: 'warning',
-        description: 'The file imports (directly or through other files) a file that imports it back. The message shows the cycle. Imports are not transitive, so a cycle is never needed.',
-        example: '// a.contract\nimport "b.contract";\n// b.contract\nimport "a.contract";'
+        description: 'The file imports (directly or through other files) a file that imports it back, and one import of that cycle is of a file nothing of which is used: the message shows the cycle and names that import, to remove (imports are not transitive: a file imports only the files whose names it uses). Files that use each other\'s names (a supervisor activating another that subscribes to its port) import each other: a cycle whose imports are all used is not reported.',
+        example: '// a.contract\nimport "b.contract";\ndatatype A {B b};\n// b.contract (uses nothing of a.contract)\nimport "a.contract";\ndatatype B {int x};'
     },
     'import-unused': {
         severity: 'hint',
