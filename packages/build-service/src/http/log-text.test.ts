@@ -20,6 +20,11 @@ describe('the text log of a job', () => {
     ]);
   });
 
+  test('a terminal command (ESC, CSI, C1), a NUL or a DEL inside a line is escaped: a `curl` of the log cannot retitle, clear or rewrite the terminal', () => {
+    const hostile = 'x\x1b]0;pwned\x07\x1b[2J\x1b[1A\x1b[2K\u009b2J\u0000\u007f';
+    expect(logText([line(hostile)])).toBe('2026-12-06T18:00:00.000Z run service system | x\\u001b]0;pwned\\u0007\\u001b[2J\\u001b[1A\\u001b[2K\\u009b2J\\u0000\\u007f\n');
+  });
+
   test('a tab and other text are kept as they are', () => {
     expect(logText([line('a\tb é ✓')])).toBe('2026-12-06T18:00:00.000Z run service system | a\tb é ✓\n');
   });

@@ -42,8 +42,13 @@ export function afterSeq(req: IncomingMessage, url: URL): number | null {
 /** The refusal of a malformed `?after=` or `Last-Event-ID` (the body of its 400). */
 export const AFTER_ERROR = 'after (or Last-Event-ID) must be an event number: a whole number of 1 to 15 decimal digits (0: from the start), the parameter given once';
 
-/** A line break or a bidi override inside a line's text (a file name a sandboxed program chose): escaped, never a line of its own. */
-const LINE_UNSAFE = /[\n\r\x0b\x0c\x85\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
+/**
+ * A line break, a bidi override, or any other control but a tab inside a line's text (a file name
+ * or an output a sandboxed program chose): escaped, never a line of its own, never a terminal
+ * command (ESC, CSI: a `curl` of the log in a terminal would retitle it, clear it, or overwrite
+ * the line before).
+ */
+const LINE_UNSAFE = /[\x00-\x08\x0a-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
 
 /** The job's lines as text, one line each: what a line carries cannot begin another (a forged service line). */
 export function logText(lines: LineEvent[]): string {

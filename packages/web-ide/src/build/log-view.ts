@@ -1,6 +1,7 @@
 import { h } from '../util/dom.js';
 import type { LogLine, LogStore } from './log-store.js';
 import { isLauncherNews } from './launcher-lines.js';
+import { visibleText } from '../util/visible-text.js';
 
 const ROW = 18;
 /** Rows drawn above and below the viewport. */
@@ -147,6 +148,6 @@ export class LogView {
     const time = new Date(l.t).toISOString().slice(11, 23);
     const news = l.source === 'launcher' && l.stream === 'stderr' && isLauncherNews(l.line);
     return h('div', { class: `log-row ${l.stream}${news ? ' news' : ''}`, 'data-source': l.source },
-      h('span', { class: 'log-time' }, time), h('span', { class: `log-src src-${l.source.replace(/\W/g, '')}` }, l.source), h('span', { class: 'log-text' }, l.line));
+      h('span', { class: 'log-time' }, time), h('span', { class: `log-src src-${l.source.replace(/\W/g, '')}` }, l.source), h('span', { class: 'log-text' }, visibleText(l.line)));
   }
 }

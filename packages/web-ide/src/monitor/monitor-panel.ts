@@ -24,6 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
+import { visibleText } from '../util/visible-text.js';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 
@@ -160,7 +161,7 @@ export class MonitorPanel {
     this.model = model;
     this.live = live;
     this.whole = whole;
-    this.label.textContent = label;
+    this.label.textContent = visibleText(label);
     this.element.dataset.mode = live ? 'live' : 'replay';
     this.setPlaying(false);
     this.setFollow(true);
@@ -170,7 +171,7 @@ export class MonitorPanel {
   /** The runs the user can pick (`selected` shown). */
   setSources(options: SourceOption[], selected: string | undefined): void {
     this.sourceSelect.replaceChildren(h('option', { value: '', disabled: true, selected: !selected }, options.length ? 'Choose a run…' : 'No run yet'),
-      ...options.map((o) => h('option', { value: o.id, selected: o.id === selected }, o.label)));
+      ...options.map((o) => h('option', { value: o.id, selected: o.id === selected }, visibleText(o.label))));
   }
 
   get current(): MonitorView | undefined {
@@ -179,14 +180,14 @@ export class MonitorPanel {
 
   /** The label of the run shown (what it is, and what it lacks). */
   setLabel(label: string): void {
-    this.label.textContent = label;
+    this.label.textContent = visibleText(label);
   }
 
   /** The live source ended (the model stays, as a recorded run); `whole`: its records are known to run to the run's end (setModel). */
   endLive(label: string, whole?: boolean): void {
     this.live = false;
     if (whole !== undefined) this.whole = whole;
-    this.label.textContent = label;
+    this.label.textContent = visibleText(label);
     this.element.dataset.mode = 'replay';
     this.drawFollow();
     // the readout stops saying live now, not at the next frame: with a large run that frame can
