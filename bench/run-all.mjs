@@ -40,6 +40,8 @@ const benches = [
   { part: 'monitor-folder', cmd: ['npm', 'run', '-s', 'bench:monitor-folder', '-w', 'packages/web-ide'] },
   // a real Build & Run of a 1 kHz schema, 55 s, watched live in the Monitor: record written -> drawn (about 75 s)
   { part: 'monitor-live', cmd: ['npm', 'run', '-s', 'bench:monitor-live', '-w', 'packages/web-ide'] },
+  // a real Build & Run whose module prints 10,000 lines a second for 20 s, the log panel and the Monitor open: frames, long tasks, keys, how far behind the page reads (about 60 s)
+  { part: 'log-flood', cmd: ['npm', 'run', '-s', 'bench:log-flood', '-w', 'packages/web-ide'] },
   // the Simulate panel's server side: POST /api/simulate of a growing session, cold then per step (about 15 s)
   { part: 'simulate-panel', cmd: ['npm', 'run', '-s', 'bench:simulate-panel', '-w', 'packages/web-ide'] },
   // 10 minutes of the mobile-robot example, every CSV record counted (SOAK_SECONDS to change it)
