@@ -12,7 +12,7 @@ import type { Duplex } from 'node:stream';
 import { AFTER_ERROR, afterSeq, createRouter } from './http/router.js';
 import { StreamBudget } from './http/stream-budget.js';
 import { SERVICE_BOUNDS } from './limits.js';
-import { JobWebSockets, TRACE_FILTER_ERROR, traceFilter } from './http/ws.js';
+import { BATCH_ERROR, JobWebSockets, TRACE_FILTER_ERROR, batchParam, traceFilter } from './http/ws.js';
 import { foreignRequest } from './http/local-guard.js';
 import { ServiceToken, unauthorizedBody } from './http/service-token.js';
 import { JobService, type BuildServiceOptions } from './job-service.js';
@@ -84,9 +84,11 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
     if (!m) return false;
     const trace = traceFilter(url);
     if (!trace) return refuseUpgrade(socket, TRACE_FILTER_ERROR);
+    const batch = batchParam(url);
+    if (batch === null) return refuseUpgrade(socket, BATCH_ERROR);
     const after = afterSeq(req, url);
     if (after === null) return refuseUpgrade(socket, AFTER_ERROR);
-    if (!sockets.upgrade(m[1]!, after, req, socket, head, trace)) {
+    if (!sockets.upgrade(m[1]!, after, req, socket, head, trace, batch)) {
       socket.end('HTTP/1.1 404 Not Found\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
     }
     return true;

@@ -4,6 +4,10 @@
  * falls behind by more than SERVICE_BOUNDS.streamBufferedBytes of live events is dropped.
  * `?trace=all|none|only` chooses the events (traceFilter): all, all but `trace`, or `trace` and
  * `end` only; the ones sent keep their seq, so `?after=` resumes a filtered stream as any other.
+ * `?batch=1` (batchParam): the events go several to a frame, a JSON array of them in order, at
+ * most one frame every BATCH_MS while they stream (the first after a quiet spell at once). A module
+ * printing 10,000 lines a second was 10,000 frames a second, each a task of the page's main
+ * thread: the page fell seconds behind the run and stopped answering (docs/build-service-api.md).
  */
 import type { IncomingMessage } from 'node:http';
 import type { Duplex } from 'node:stream';
@@ -23,6 +27,22 @@ const TRACE_FILTERS: readonly TraceFilter[] = ['all', 'none', 'only'];
 export const TRACE_FILTER_ERROR = 'trace must be one of: all, none, only (default all)';
 
 /** The `?trace=` of an upgrade URL: 'all' when absent; null for any other value (or several). */
+/** The refusal of a bad `?batch=`, the body of its 400. */
+export const BATCH_ERROR = 'batch must be 0 or 1 (default 0)';
+
+/** The `?batch=` of an upgrade URL: false when absent or 0, true for 1; null for any other value (or several). */
+export function batchParam(url: URL): boolean | null {
+  const values = url.searchParams.getAll('batch');
+  if (values.length === 0) return false;
+  const v = values[0]!;
+  return (v === '0' || v === '1') && values.every((x) => x === v) ? v === '1' : null;
+}
+
+/** A batching socket sends at most one frame per this many ms while events stream. */
+export const BATCH_MS = 50;
+/** A batching socket's frame holds at most this many bytes of events (a replay goes as several frames; an event bigger than that alone). */
+export const BATCH_BYTES = 256 * 1024;
+
 export function traceFilter(url: URL): TraceFilter | null {
   const values = url.searchParams.getAll('trace');
   if (values.length === 0) return 'all';
@@ -47,7 +67,7 @@ export class JobWebSockets {
   ) {}
 
   /** Handles an upgrade for a job id; returns false when the job does not exist. */
-  upgrade(id: string, after: number, req: IncomingMessage, socket: Duplex, head: Buffer, trace: TraceFilter = 'all'): boolean {
+  upgrade(id: string, after: number, req: IncomingMessage, socket: Duplex, head: Buffer, trace: TraceFilter = 'all', batch = false): boolean {
     const job = this.service.get(id);
     if (!job) return false;
     this.wss.handleUpgrade(req, socket, head, (ws) => {
@@ -63,27 +83,58 @@ export class JobWebSockets {
       const backlog = new LiveBacklog(this.streamBufferedBytes);
       // the server's budget for all its streaming clients may drop this one too (stream-budget.ts)
       let dropped = false;
+      /** Events not sent yet (a batching socket): their frames, and their bytes with a comma each. */
+      let pending: string[] = [];
+      let pendingBytes = 0;
+      let flushTimer: NodeJS.Timeout | undefined;
+      let lastFlush = -Infinity;
       const drop = (): void => {
         if (dropped) return;
         dropped = true;
+        clearTimeout(flushTimer);
+        pending = [];
         share?.leave();
         unsubscribe();
         ws.terminate();
       };
       const share = this.budget?.join(drop);
+      const send = (text: string): void => {
+        backlog.sent(Buffer.byteLength(text));
+        ws.send(text, () => {}); // a send on a closing socket reports here, not thrown
+        if (backlog.tooFarBehind(ws.bufferedAmount)) return drop();
+        share?.holds(ws.bufferedAmount);
+      };
+      /** Sends the events held, as one frame (a batching socket). */
+      const flush = (): void => {
+        clearTimeout(flushTimer);
+        flushTimer = undefined;
+        if (dropped || pending.length === 0) return;
+        const text = `[${pending.join(',')}]`;
+        pending = [];
+        pendingBytes = 0;
+        lastFlush = performance.now();
+        send(text);
+      };
       unsubscribe = job.events.subscribe(after, (e) => {
         // a filtered event is not sent, nor counted in the backlog (the end always passes)
         if (dropped || !wanted(trace, e)) return;
         const text = wsFrame(e);
-        backlog.sent(Buffer.byteLength(text));
-        ws.send(text, () => {}); // a send on a closing socket reports here, not thrown
-        if (backlog.tooFarBehind(ws.bufferedAmount)) {
-          drop();
-          return;
+        if (!batch) send(text);
+        else {
+          // a burst (a replay) goes in frames of BATCH_BYTES at most (a bigger event alone): the
+          // frame is each event and a comma or bracket after it, and its opening bracket
+          const bytes = Buffer.byteLength(text) + 1;
+          if (pending.length && 1 + pendingBytes + bytes > BATCH_BYTES) flush();
+          pending.push(text);
+          pendingBytes += bytes;
+          // the end goes at once, with what is held
+          if (e.type === 'end') flush();
+          else flushTimer ??= setTimeout(flush, Math.max(0, lastFlush + BATCH_MS - performance.now()));
         }
-        share?.holds(ws.bufferedAmount);
         if (e.type === 'end') setImmediate(() => ws.close(1000, 'job ended'));
       });
+      // the replay's last frame is the replay's, not live events
+      flush();
       backlog.replayDone();
       ws.on('message', (data) => {
         try {
@@ -94,6 +145,7 @@ export class JobWebSockets {
         }
       });
       ws.on('close', () => {
+        clearTimeout(flushTimer);
         share?.leave();
         unsubscribe();
       });
