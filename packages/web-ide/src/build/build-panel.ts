@@ -243,7 +243,9 @@ export class BuildPanel {
     // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts);
     // a broken stream is taken up again after the last event seen (job-stream.ts)
     let lastStatus: string | undefined;
-    const stream: JobStream = new JobStream(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none`), {
+    // batch=1: the events several to a frame, one frame every 50 ms at most while they stream (a
+    // module printing 10,000 lines a second was as many frames, each a task of the page: job-stream.ts)
+    const stream: JobStream = new JobStream(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none&batch=1`), {
       event: (e) => {
         switch (e.type) {
           case 'line':

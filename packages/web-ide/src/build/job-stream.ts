@@ -5,8 +5,12 @@
  * RETRIES times, 300 ms more apart each time; past that it is lost (a service that forgot the job).
  * Shared by the build panel (its log, diagnostics and status, `?trace=none`) and the Monitor's
  * live-run worker (the trace, `?trace=only`): no DOM, it runs in a worker too.
- * Frames are hostile: one that is not a JSON object is skipped; a seq counts only when it is a
- * whole number past the last.
+ * A socket opened with `batch=1` in its query gets its events several to a frame, a JSON array of
+ * them in order (the build service sends at most one such frame every 50 ms while they stream:
+ * a module printing 10,000 lines a second was 10,000 frames, each a task of the page's thread);
+ * each is handled as if it had come alone.
+ * Frames are hostile: one that is not a JSON object (or an array of them) is skipped, as is an
+ * element of an array that is not one; a seq counts only when it is a whole number past the last.
  */
 
 /** What a stream needs of a WebSocket (the browser's, or the `ws` package's in tests). */
@@ -53,6 +57,15 @@ export class JobStream {
     ws?.close();
   }
 
+  /** One event of a frame. */
+  private take(e: unknown): void {
+    if (!e || typeof e !== 'object' || Array.isArray(e)) return;
+    const ev = e as StreamEvent;
+    if (typeof ev.seq === 'number' && Number.isSafeInteger(ev.seq) && ev.seq > this.last) this.last = ev.seq;
+    this.retries = 0;
+    this.on.event(ev);
+  }
+
   private connect(): void {
     const url = this.last ? `${this.url}${this.url.includes('?') ? '&' : '?'}after=${this.last}` : this.url;
     let ws: SocketLike;
@@ -65,16 +78,18 @@ export class JobStream {
     this.socket = ws;
     ws.onmessage = (m) => {
       if (this.done || this.socket !== ws) return;
-      let e: StreamEvent | null;
+      let data: unknown;
       try {
-        e = JSON.parse(String(m.data));
+        data = JSON.parse(String(m.data));
       } catch {
         return; // not an event of the service
       }
-      if (!e || typeof e !== 'object') return;
-      if (typeof e.seq === 'number' && Number.isSafeInteger(e.seq) && e.seq > this.last) this.last = e.seq;
-      this.retries = 0;
-      this.on.event(e);
+      if (!Array.isArray(data)) return this.take(data);
+      for (const e of data) {
+        // a handler may close the stream (the end) or move on: the frame's later events go with it
+        if (this.done || this.socket !== ws) return;
+        this.take(e);
+      }
     };
     ws.onclose = () => {
       if (this.done || this.socket !== ws) return;
