@@ -45,6 +45,12 @@ export class BuildPanel {
   /** Where the job followed comes from when this page did not submit it ("Build & Run of another tab"). */
   private readonly originEl: HTMLElement;
   private readonly followBox: HTMLInputElement;
+  /** Says how many of the oldest lines the panel let go (its bound), with the job's whole log. */
+  private readonly droppedEl: HTMLElement;
+  /** The store's `dropped` count droppedEl says. */
+  private droppedShown = 0;
+  /** The job whose lines the log holds (the one followed, or the last one, until the next). */
+  private logJobId: string | undefined;
   private jobId: string | undefined;
   /** The job this tab asked to stop (its Stop, or its own next Build & Run). */
   private stopAsked: string | undefined;
@@ -95,11 +101,13 @@ export class BuildPanel {
       this.store.setFilter({ text: search.value });
       this.view.schedule();
     });
+    this.droppedEl = h('div', { class: 'log-dropped', role: 'status', hidden: true });
     this.element = h('div', { class: 'build-panel' },
       h('div', { class: 'log-toolbar' }, this.statusEl, this.originEl, h('span', { class: 'sep' }), this.chips, h('span', { class: 'grow' }),
         streamToggle('stdout'), streamToggle('stderr'), streamToggle('system'), search,
         h('label', { class: 'toggle' }, this.followBox, 'Follow'),
-        h('button', { class: 'btn small', title: 'Clear the log', onclick: () => { this.store.clear(); this.view.schedule(); } }, 'Clear')),
+        h('button', { class: 'btn small', title: 'Clear the log', onclick: () => { this.store.clear(); this.showDropped(); this.view.schedule(); } }, 'Clear')),
+      this.droppedEl,
       this.view.element);
   }
 
@@ -117,7 +125,25 @@ export class BuildPanel {
     const isNew = !this.store.sources.has(l.source);
     this.store.push(l);
     if (isNew) this.renderChips();
+    if (this.store.dropped !== this.droppedShown) this.showDropped();
     this.view.scheduleAppend();
+  }
+
+  /**
+   * Says how many of the oldest lines the panel let go (it keeps the last `capacity`, a quarter
+   * more at most): never silently. The job's whole log stays in the build service, as text at GET
+   * /api/jobs/:id/log (as long as the service keeps the job: its last 50), linked here.
+   */
+  private showDropped(): void {
+    const n = this.store.dropped;
+    this.droppedShown = n;
+    this.droppedEl.hidden = n === 0;
+    if (n === 0) return this.droppedEl.replaceChildren();
+    const id = this.logJobId;
+    const text = `${n.toLocaleString('en-US')} earlier line(s) not shown: this panel keeps the last ${this.store.capacity.toLocaleString('en-US')}`;
+    this.droppedEl.replaceChildren(...(id
+      ? [`${text}; the whole log: `, h('a', { href: `/api/jobs/${encodeURIComponent(id)}/log`, download: `job-${id}.log`, target: '_blank', rel: 'noopener' }, 'download it')]
+      : [`${text}.`]));
   }
 
   private renderChips(): void {
@@ -179,6 +205,8 @@ export class BuildPanel {
     this.stream = undefined;
     stream?.close();
     this.store.clear();
+    this.logJobId = undefined;
+    this.showDropped();
     this.chipSources = '';
     this.renderChips();
     this.diagnostics = [];
@@ -243,6 +271,7 @@ export class BuildPanel {
     // the run's trace goes to the Monitor's worker on a socket of its own (monitor/live-follower.ts);
     // a broken stream is taken up again after the last event seen (job-stream.ts)
     let lastStatus: string | undefined;
+    this.logJobId = jobId;
     // batch=1: the events several to a frame, one frame every 50 ms at most while they stream (a
     // module printing 10,000 lines a second was as many frames, each a task of the page: job-stream.ts)
     const stream: JobStream = new JobStream(socketUrl(`/api/jobs/${encodeURIComponent(jobId)}/ws?trace=none&batch=1`), {

@@ -32,6 +32,20 @@ describe('LogStore', () => {
     expect(s.visibleAt(0)?.source).toBe('A');
   });
 
+  it('counts the lines it let go (the panel says how many), none after a clear', () => {
+    const s = new LogStore(1000);
+    for (let i = 0; i < 1250; i++) s.push(line('A', 'stdout', `l${i}`));
+    expect(s.dropped).toBe(0);
+    s.push(line('A', 'stdout', 'l1250'));
+    expect(s.dropped).toBe(251);
+    expect(s.total + s.dropped).toBe(1251);
+    for (let i = 1251; i < 5000; i++) s.push(line('A', 'stdout', `l${i}`));
+    expect(s.total + s.dropped).toBe(5000);
+    expect(s.visibleAt(0)?.line).toBe(`l${s.dropped}`);
+    s.clear();
+    expect(s.dropped).toBe(0);
+  });
+
   it('appends 100k lines quickly (no quadratic work)', () => {
     const s = new LogStore();
     const t0 = performance.now();

@@ -1,7 +1,9 @@
 /**
  * Log lines of a build/run, kept in a bounded buffer with an incrementally maintained filtered
  * index (filter by source = module/build/service, and by stream). Appending is O(1) amortised,
- * so 10k lines/s cost nothing noticeable; the view renders only the visible rows.
+ * so 10k lines/s cost nothing noticeable; the view renders only the visible rows. Past `capacity`
+ * (a quarter more, then back to it) the oldest lines are let go and counted (`dropped`): the
+ * panel says how many, with the job's whole log to download (build-panel.ts).
  */
 export interface LogLine {
   t: number;
@@ -33,6 +35,11 @@ export class LogStore {
 
   get total(): number {
     return this.lines.length;
+  }
+
+  /** Lines let go from the front since the last clear (the bound), oldest first. */
+  get dropped(): number {
+    return this.offset;
   }
 
   get visibleCount(): number {

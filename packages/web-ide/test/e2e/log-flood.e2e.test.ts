@@ -6,7 +6,9 @@
  * lines a second the page fell seconds behind the run, drew ten frames a second and answered a
  * key in seconds (bench/log-flood-bench.mjs measures it). The panel's socket now asks for its
  * events several to a frame (`?batch=1`, docs/build-service-api.md "Events"): what is checked
- * here is that coalescing — every line comes, in order, in a few frames — not a time.
+ * here is that coalescing — every line comes, in order, in a few frames — not a time. Then the
+ * panel's bound: past the lines it keeps, it says how many it let go, with the whole log to
+ * download (docs/ide.md, Build & Run).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { mkdtempSync, rmSync, realpathSync, chmodSync } from 'node:fs';
@@ -90,4 +92,27 @@ describe.skipIf(!canBuild)('a module flooding its output, watched in the IDE', (
     expect(got.rowsMax).toBeGreaterThan(0);
     expect(got.rowsMax).toBeLessThan(80);
   }, 200_000);
+
+  it('past the lines it keeps, the panel says how many it let go and links the job\'s whole log; Clear ends it', async () => {
+    const { page } = s;
+    const marker = page.locator('.log-dropped');
+    expect(await marker.isVisible()).toBe(false);
+    // 230,000 more lines into the panel that shows the flood's job: past its 200,000 and a quarter more
+    const dropped = await page.evaluate(() => {
+      const build = (window as unknown as { __ide: { build: { append(l: unknown): void; store: { dropped: number } } } }).__ide.build;
+      for (let i = 0; i < 230_000; i++) build.append({ t: Date.now(), step: 'run', source: 'MSB', stream: 'stdout', line: `more ${i}` });
+      return build.store.dropped;
+    });
+    expect(dropped).toBeGreaterThan(0);
+    await expect.poll(() => marker.isVisible()).toBe(true);
+    expect(await marker.textContent()).toBe(`${dropped.toLocaleString('en-US')} earlier line(s) not shown: this panel keeps the last 200,000; the whole log: download it`);
+    const href = await marker.locator('a').getAttribute('href');
+    expect(href).toMatch(/^\/api\/jobs\/[^/]+\/log$/);
+    // the service's log has what the panel let go: the flood's first line
+    const log = await page.evaluate(async (u) => (await fetch(u)).text(), href!);
+    expect(log).toMatch(/ run MSA stdout \| flood 0000000: /);
+    expect(log).toContain(`flood done: ${FLOOD} lines`);
+    await page.locator('.build-panel .btn', { hasText: 'Clear' }).click();
+    await expect.poll(() => marker.isVisible()).toBe(false);
+  }, 60_000);
 });
