@@ -50,7 +50,7 @@ try {
     const m = { frames: [], longTasks: [], inputs: [], streaming: false, rowsMax: 0, received: 0, flood: 0, slow: [], startedAt: 0, endedAt: 0, endWall: 0 };
     window.__flood = m;
     new PerformanceObserver((list) => {
-      for (const e of list.getEntries()) if (m.streaming) m.longTasks.push(e.duration);
+      for (const e of list.getEntries()) if (m.streaming) m.longTasks.push([Math.round(e.startTime - m.startedAt), e.duration]);
     }).observe({ type: 'longtask' });
     const probe = document.createElement('input');
     probe.id = 'flood-probe';
@@ -132,8 +132,8 @@ try {
   const result = {
     'ide.flood_max_frame_ms': round(Math.max(...r.frames)),
     'ide.flood_frame_ms_p99': round(pct(r.frames, 99)),
-    'ide.flood_max_long_task_ms': round(Math.max(0, ...r.longTasks)),
-    'ide.flood_long_task_ms_per_s': round(r.longTasks.reduce((a, b) => a + b, 0) / Math.max(1, r.seconds)),
+    'ide.flood_max_long_task_ms': round(Math.max(0, ...r.longTasks.map((t) => t[1]))),
+    'ide.flood_long_task_ms_per_s': round(r.longTasks.reduce((a, t) => a + t[1], 0) / Math.max(1, r.seconds)),
     'ide.flood_input_delay_ms_max': round(Math.max(0, ...r.inputs)),
     'ide.flood_input_delay_ms_p50': round(pct(r.inputs, 50)),
     'ide.flood_key_ms_max': Math.max(0, ...driverKeys),
@@ -147,7 +147,7 @@ try {
   };
   if (!process.env.NO_PART) writePart('log-flood', result);
   console.log(JSON.stringify({ ...result, status: r.status, seconds: round(r.seconds), frames: r.frames.length, framesOver50: r.frames.filter((f) => f > 50).length, slowFrames: r.slow,
-    longTasks: r.longTasks.length, inputs: r.inputs.length, keys: driverKeys.length, rate, floodSeconds, outputMiB, jobFinishedAt: job?.finishedAt }));
+    longTasks: r.longTasks, inputs: r.inputs.length, keys: driverKeys.length, rate, floodSeconds, outputMiB, jobFinishedAt: job?.finishedAt }));
 } finally {
   await context?.close().catch(() => undefined);
   await server.close();
