@@ -26,7 +26,6 @@ const TRACE_FILTERS: readonly TraceFilter[] = ['all', 'none', 'only'];
 /** The refusal of a bad `?trace=`, the body of its 400. */
 export const TRACE_FILTER_ERROR = 'trace must be one of: all, none, only (default all)';
 
-/** The `?trace=` of an upgrade URL: 'all' when absent; null for any other value (or several). */
 /** The refusal of a bad `?batch=`, the body of its 400. */
 export const BATCH_ERROR = 'batch must be 0 or 1 (default 0)';
 
@@ -43,6 +42,7 @@ export const BATCH_MS = 50;
 /** A batching socket's frame holds at most this many bytes of events (a replay goes as several frames; an event bigger than that alone). */
 export const BATCH_BYTES = 256 * 1024;
 
+/** The `?trace=` of an upgrade URL: 'all' when absent; null for any other value (or several). */
 export function traceFilter(url: URL): TraceFilter | null {
   const values = url.searchParams.getAll('trace');
   if (values.length === 0) return 'all';
