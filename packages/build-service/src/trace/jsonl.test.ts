@@ -33,6 +33,26 @@ describe('trace files (JSON lines)', () => {
         expect(renderStory(parseTrace(back.files))).toEqual(renderStory(records));
     });
 
+    it('say the file\'s order of the records (the order contract trace tells them in): records of one time keep it, whatever their modules\' names', () => {
+        // a simulation's step: every record at one time, its causes first (ORD's conflict before the rule it ends)
+        const text = [
+            '{"kind":"sim_start","monoNs":"0","module":"SIM","detail":"simulation start: s.scenario"}',
+            '{"kind":"supervisor","monoNs":"313000000","module":"MNP","peer":"ORD","detail":"activate schema armLoop() (activation #5, to ORD)"}',
+            '{"kind":"scheduler","monoNs":"313000000","module":"ORD","peer":"","detail":"conflict: armLoop shares a module with active armLoop (ORD:1)"}',
+            '{"kind":"sup_rule","monoNs":"313000000","module":"MNP","peer":"","detail":"manipulate.AGAIN inactive cause=ORD:1 value=\\"armLoop\\""}',
+            'not JSON',
+            '{"kind":"scheduler","monoNs":"313000000","module":"ORD","peer":"","detail":"ignored: deactivate armLoop (not this activation)"}',
+            '',
+        ].join('\n');
+        const back = traceFileToLogs('sim.jsonl', text);
+        expect(back.files.map((f) => f.name)).toEqual(['MNP_sim.csv', 'ORD_sim.csv']);
+        expect([...back.order]).toEqual([0, 1, 0, 1]);
+        // the file's records, in its order, from the logs and that order
+        const next = back.files.map(() => 0);
+        const lines = back.files.map((f) => f.text.split('\n').slice(1));
+        expect([...back.order].map((f) => lines[f]![next[f]!++]!.split(',')[3])).toEqual(['supervisor', 'scheduler', 'sup_rule', 'scheduler']);
+    });
+
     it('a record cut at its log\'s end (`cut`) reads back as that log\'s last line, again without its line end', () => {
         const log = `${CSV_HEADER}\n1000,2026-12-03T10:00:00.000001Z,MSC,request_received,ORD,,0,START\n2000,2026-12-03T10:00:00.000002Z,MSC,request_received,ORD,,0,STA`;
         const other = `${CSV_HEADER}\n1500,2026-12-03T10:00:00.000001Z,MSA,request_received,ORD,,0,START\n`;

@@ -99,6 +99,15 @@ export interface TraceFileLogs {
     unreadable: number;
     /** A simulation's file (its `sim_start`): the scenario ('' when unnamed); of several simulations (several scenarios), the first's, the others left out (said in `problems`). */
     simulation?: string;
+    /**
+     * The file's order of the records: for each record line of the logs, in the order the file
+     * gives them, the index in `files` of its log (each log's lines in its own order). `contract
+     * trace FILE` tells the records in the file's order; a reader that merges the logs by time
+     * would put records of one time in another order (a simulation writes every record of a step
+     * at one time, its causes before their effects: docs/simulation.md "seq"). Its length is the
+     * number of record lines of all the logs.
+     */
+    order: Uint16Array;
 }
 
 /**
@@ -120,12 +129,15 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
     const base = name.replace(/^.*\//, '').replace(/\.jsonl$/i, '').replace(/[^A-Za-z0-9_.-]/g, '_') || 'trace';
     // each module's lines, joined a stretch at a time (one join of 500,000 lines would hold a page 140 ms)
     // lastCut: the module's last record was its log's last line, with no line end (`cut`): its text ends so again
-    const lines = new Map<string, { parts: string[]; pending: string[]; lastCut: boolean }>();
+    const lines = new Map<string, { parts: string[]; pending: string[]; lastCut: boolean; index: number }>();
     const problems: string[] = [];
     let bad = 0;
     let skipped = 0;
     let tooMany = 0;
     let simulation: string | undefined;
+    // the log of each record line, in the file's order (a module's index: its place in `lines`, as in `files`)
+    let order = new Uint16Array(1024);
+    let records = 0;
     for (let pos = 0, n = 1; pos < text.length; n++) {
         if (n % every === 0) yield;
         let nl = text.indexOf('\n', pos);
@@ -157,10 +169,16 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
                 tooMany++;
                 continue;
             }
-            lines.set(read.module, (log = { parts: [], pending: [], lastCut: false }));
+            lines.set(read.module, (log = { parts: [], pending: [], lastCut: false, index: lines.size }));
         }
         log.pending.push(read.csv);
         log.lastCut = read.cut === true;
+        if (records === order.length) {
+            const more = new Uint16Array(order.length * 2);
+            more.set(order);
+            order = more;
+        }
+        order[records++] = log.index;
         if (log.pending.length >= JOINED_LINES) {
             log.parts.push(log.pending.join('\n'));
             log.pending = [];
@@ -174,5 +192,5 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
         files.push({ name: `${module}_${base}.csv`, text: `${CSV_HEADER}\n${l.parts.join('\n')}${l.lastCut ? '' : '\n'}` });
         yield;
     }
-    return { files, problems, skipped, unreadable: bad, ...(simulation !== undefined ? { simulation } : {}) };
+    return { files, problems, skipped, unreadable: bad, ...(simulation !== undefined ? { simulation } : {}), order: order.slice(0, records) };
 }

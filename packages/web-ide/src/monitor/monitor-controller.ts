@@ -419,8 +419,9 @@ export class MonitorController {
     const mine = asked ? ++this.picked : this.picked;
     const id = `file:${path}`;
     if (asked) await this.reading(`trace file ${path}`);
-    const { files, problems, skipped, unreadable, simulation, tooLarge } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
-    const { model, leftOut: unread } = await recordedRun(files);
+    const { files, problems, skipped, unreadable, simulation, order, tooLarge } = await readTraceFile(path, (p) => p.slice(p.lastIndexOf('/') + 1), this.replayBytes);
+    // in the file's order, as `contract trace FILE` tells it (a simulation's records of one time: causes first)
+    const { model, leftOut: unread } = await recordedRun(files, order);
     const notWhole = [...problems, ...unread];
     // counted as `contract trace` counts them: the logs' unreadable lines the file carries, and its own lines that are no record
     const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}${tooLarge ? ` — \`contract trace ${path}\` tells a run of any length` : ''}`;
@@ -551,8 +552,8 @@ export class MonitorController {
  * page's other work between them: a 60 s run of a 1 kHz schema is some 840,000 records, a second
  * or more of folding, during which the page would not draw nor answer a key.
  */
-function recordedRun(files: readonly LogFile[]): Promise<RecordedRun> {
-  return runSliced(recordedRunSteps(files, 500));
+function recordedRun(files: readonly LogFile[], fileOrder?: Uint16Array): Promise<RecordedRun> {
+  return runSliced(recordedRunSteps(files, 500, undefined, undefined, fileOrder));
 }
 
 function dirOf(path: string): string {

@@ -3,7 +3,8 @@
  * the logs' text read in place: each record line is folded as a range of its file's text
  * (MonitorModel.pushLineIn, as the live run's worker folds a trace event), in the order the trace
  * reader gives a run's records (parseTrace: mono_ns, then file name, then line; a line with no
- * readable time right after the line before it in its file).
+ * readable time right after the line before it in its file), or, for the logs of a trace file, in
+ * the file's own order (the order `contract trace FILE` tells them in).
  *
  * Parsing a 60 s run of a 1 kHz schema (some 840,000 records) into record objects first, then
  * sorting them on BigInt keys, made the page's heap grow by hundreds of MB and its collector stop
@@ -183,34 +184,25 @@ export interface RecordedRun {
  * Builds the model of a recorded run from its logs, yielding every `every` lines read or folded.
  * Gives the same model as parseTrace's records pushed in order, but for a log with more than
  * `maxUnreadable` lines that are not records, whose rest is left out (and said). The model is
- * made with `options`.
+ * made with `options`. `fileOrder`: the logs of a trace file (build-service trace/jsonl.ts
+ * TraceFileLogs.order: the log of each record line, an index in `files`, in the file's order):
+ * their lines are folded in that order, the order `contract trace FILE` tells them in, not merged
+ * by time (at one time, a simulation's causes come before their effects in the file, whatever
+ * their logs' names).
  */
-export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES): Generator<void, RecordedRun> {
-  const sorted = [...files].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+export function* recordedRunSteps(files: readonly LogFile[], every = 2000, options?: MonitorModelOptions, maxUnreadable = MAX_UNREADABLE_LINES, fileOrder?: Uint16Array): Generator<void, RecordedRun> {
+  const byName = files.map((_, i) => i).sort((a, b) => (files[a]!.name < files[b]!.name ? -1 : files[a]!.name > files[b]!.name ? 1 : 0));
+  const sorted = byName.map((i) => files[i]!);
   const logs: LogLines[] = [];
   const leftOut: string[] = [...twinLogNotes(sorted.map((f) => f.name))];
   for (const file of sorted) logs.push(yield* logLines(file, every, maxUnreadable, leftOut));
-  // merge: a heap of the logs by their next line (key, then file order)
-  const at = logs.map(() => 0);
-  const index = (f: number): number => logs[f]!.order?.[at[f]!] ?? at[f]!;
-  const heap = new MinHeap<number>((f, g) => {
-    const a = logs[f]!, i = index(f);
-    const b = logs[g]!, j = index(g);
-    const ah = a.hi[i]!, bh = b.hi[j]!;
-    if (ah !== bh) return ah < bh;
-    const al = a.lo[i]!, bl = b.lo[j]!;
-    return al < bl || (al === bl && f < g);
-  });
-  logs.forEach((l, f) => l.n && heap.push(f));
   // each piece of each log is a text of its own to the model (its textId)
   const firstTextId: number[] = [];
   logs.reduce((id, l, f) => ((firstTextId[f] = id), id + l.pieces.length), 0);
   const model = new MonitorModel(options);
-  let folded = 0;
-  while (heap.size) {
-    const f = heap.peek()!;
+  /** Folds line i (an index in file order) of log f. */
+  const fold = (f: number, i: number): void => {
     const l = logs[f]!;
-    const i = index(f);
     const piece = l.piece[i]!;
     const text = l.pieces[piece]!;
     const textId = firstTextId[f]! + piece;
@@ -226,7 +218,43 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     const cut = i === l.cutAt;
     // a cut line goes the way that marks it (pushLineIn scans it again: it is one line of a run)
     if (cut || !kind || !model.pushScanned(text, from, to, textId)) model.pushLineIn(l.name, l.line[i]!, text, from, to, textId, cut);
-    if (++at[f]! >= l.n) heap.pop();
+  };
+  const at = logs.map(() => 0);
+  let folded = 0;
+  if (fileOrder) {
+    // a trace file: its order, each log's lines in their own order (a log left out past its bound of unreadable lines: its rest skipped)
+    const logOf = new Int32Array(files.length);
+    byName.forEach((i, f) => (logOf[i] = f));
+    for (let k = 0; k < fileOrder.length; k++) {
+      const f = fileOrder[k]! < files.length ? logOf[fileOrder[k]!]! : -1;
+      if (f < 0 || at[f]! >= logs[f]!.n) continue;
+      fold(f, at[f]!++);
+      if (++folded % every === 0) yield;
+    }
+    // (lines the order does not name: none when it is the file's; folded after, each log's in its order)
+    for (let f = 0; f < logs.length; f++) {
+      while (at[f]! < logs[f]!.n) {
+        fold(f, at[f]!++);
+        if (++folded % every === 0) yield;
+      }
+    }
+    return { model, leftOut };
+  }
+  // merge: a heap of the logs by their next line (key, then file order)
+  const index = (f: number): number => logs[f]!.order?.[at[f]!] ?? at[f]!;
+  const heap = new MinHeap<number>((f, g) => {
+    const a = logs[f]!, i = index(f);
+    const b = logs[g]!, j = index(g);
+    const ah = a.hi[i]!, bh = b.hi[j]!;
+    if (ah !== bh) return ah < bh;
+    const al = a.lo[i]!, bl = b.lo[j]!;
+    return al < bl || (al === bl && f < g);
+  });
+  logs.forEach((l, f) => l.n && heap.push(f));
+  while (heap.size) {
+    const f = heap.peek()!;
+    fold(f, index(f));
+    if (++at[f]! >= logs[f]!.n) heap.pop();
     else heap.topChanged();
     if (++folded % every === 0) yield;
   }

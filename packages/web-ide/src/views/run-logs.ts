@@ -140,7 +140,7 @@ export async function readWorkspaceLogs(paths: readonly string[], nameOf: (path:
  */
 export async function readTraceFile(path: string, nameOf: (path: string) => string, maxBytes = MAX_RUN_LOG_BYTES): Promise<TraceFileLogs & { tooLarge: boolean }> {
   const { files: read, problems, tooLarge } = await readWorkspaceLogs([path], nameOf, maxBytes);
-  if (!read[0]) return { files: [], problems, skipped: 0, unreadable: 0, tooLarge };
+  if (!read[0]) return { files: [], problems, skipped: 0, unreadable: 0, order: new Uint16Array(0), tooLarge };
   // its JSON lines parsed in slices: the page draws and answers keys meanwhile
   const logs = await runSliced(traceFileToLogsSteps(path, read[0].text));
   return { ...logs, problems: [...problems, ...logs.problems], tooLarge };

@@ -1,0 +1,66 @@
+/**
+ * The field test's 7-module project (fixtures/manip-run: its README says what was kept of the
+ * real run's logs and of its simulation's trace file): supervisors MIS (function mission) and MNP
+ * (function manipulate), periodic schema armLoop, event schema safetyNet (EST, GRP). MNP's rule
+ * ARMON activates armLoop (activation #4) and safetyNet, sharing EST, which MIS's BOOT started;
+ * GRAB then AGAIN asks ORD for armLoop again (#5): refused (conflict, ORD:1), AGAIN ends on it
+ * and its undo is ignored by ORD (not this activation). What the Monitor shows of it is what
+ * `contract trace` tells: in a folder's replay, and in a trace file's, in the file's order.
+ */
+import { describe, it, expect } from 'vitest';
+import { readdirSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { fileURLToPath } from 'node:url';
+import { StoryTeller, recordOfJsonLine, traceFileToLogs, type LogFile } from '@contract-studio/build-service/trace';
+import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
+import type { MonitorModel } from './monitor-model.js';
+
+const dir = fileURLToPath(new URL('./fixtures/manip-run', import.meta.url));
+const logs: LogFile[] = readdirSync(dir).filter((n) => n.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(dir, name), 'utf8') }));
+const simText = readFileSync(join(dir, 'sim1.jsonl'), 'utf8');
+
+function built(steps: Generator<void, RecordedRun>): MonitorModel {
+  let step = steps.next();
+  while (!step.done) step = steps.next();
+  return step.value.model;
+}
+
+/** The folder's replay (its logs merged by time, as `contract trace logs` reads them). */
+const folder = () => built(recordedRunSteps(logs, 7, { checkpointEvery: 16 }));
+/** The simulation's trace file replayed as the Monitor replays a trace file: its logs, folded in the file's order. */
+function simulation(withOrder = true): MonitorModel {
+  const t = traceFileToLogs('sim1.jsonl', simText);
+  return built(recordedRunSteps(t.files, 7, { checkpointEvery: 16 }, undefined, withOrder ? t.order : undefined));
+}
+
+
+describe('the field test\'s manipulator run in the Monitor (fixtures/manip-run)', () => {
+  it('replays a simulation\'s trace file in the file\'s order, causes before effects at one time, as contract trace tells it', () => {
+    // what `contract trace sim1.jsonl` tells, in its order: each told record's module and words
+    const teller = new StoryTeller();
+    const story = simText.split('\n').map((l, i) => recordOfJsonLine('sim1.jsonl', i + 1, l)).flatMap((r) => (r ? [teller.tell(r)] : [])).filter((l): l is string => !!l);
+    const told = (s: string) => story.findIndex((l) => l.includes(s));
+    expect(told('ORD  conflict: armLoop')).toBeLessThan(told('MNP  rule manipulate.AGAIN inactive'));
+    expect(told('ORD  deadline miss (ORD:0): armLoop cycle 40')).toBeLessThan(told('MIS  rule mission.MISS active'));
+    for (const withOrder of [true, false]) {
+      const labels = simulation(withOrder).marks.map((x) => `${x.where}: ${x.label}`);
+      const pos = (s: string) => labels.findIndex((l) => l.startsWith(s));
+      const inOrder = [
+        pos('armLoop: conflict') < pos('MNP: manipulate.AGAIN inactive ← ORD:1'),
+        pos('armLoop: deadline miss (ORD:0) cycle 40') < pos('MIS: mission.MISS active ← ORD:0'),
+        pos('armLoop: deadline miss (ORD:0) cycle 40') < pos('MNP: manipulate.LATE active ← ORD:0'),
+      ];
+      // merged by time then log name (the logs' order), MIS and MNP came before ORD at one time
+      expect(inOrder, withOrder ? 'in the file\'s order' : 'merged by time').toEqual(withOrder ? [true, true, true] : [false, false, false]);
+    }
+  });
+
+  it('folds a trace file\'s records in the file\'s order, each record once', () => {
+    const t = traceFileToLogs('sim1.jsonl', simText);
+    const lines = simText.split('\n').filter((l) => l && !l.includes('"kind":"sim_start"'));
+    expect(t.order.length).toBe(lines.length);
+    expect(simulation().recordCount).toBe(lines.length);
+    // each entry names the log of its line's module
+    lines.forEach((l, i) => expect(t.files[t.order[i]!]!.name.startsWith(`${JSON.parse(l).module}_`)).toBe(true));
+  });
+});
