@@ -39,9 +39,22 @@ function describeCause(c: RuleCause): string {
 
 /* the readable lines told (by their `what`, text-lines.ts); deadline misses come from their typed record */
 const SUPERVISOR_TOLD = new Set(['function_started', 'function_stopped', 'function_refused', 'refused', 'error', 'warning', 'activation_refused']);
-/* (not told: ORD's `ignored`, `late_ack`, expected when a schema is deactivated while its modules run) */
+/* (not told: ORD's `late_ack` and `ignored: M finished outside a cycle`, expected when a schema is
+   deactivated while its modules run; its `ignored: deactivate S (not this activation)` is: ignoredUndo) */
 const SCHEDULER_TOLD = new Set(['activate', 'deactivate', 'conflict', 'refused', 'overrun', 'overrun_ended', 'missed_tick', 'missed_ticks_ended', 'gave_up', 'held', 'resumed', 'stuck', 'unstuck', 'warning',
     'parameterize', 'connect', 'disconnect']);
+
+/**
+ * Whether a record is ORD's `ignored: deactivate S (not this activation)`: the answer to a
+ * supervisor's undo of an activation ORD does not serve (it refused it: ORD:1; or the schema's
+ * active activation is another's), which deactivates nothing (docs/semantics.md "Scheduler:
+ * conflict"). Told by `contract trace` after that undo, and marked by the IDE's Monitor with the
+ * schema's (de)activations; not ORD's other `ignored` line (a module that finished outside a
+ * cycle).
+ */
+export function ignoredUndo(k: Pick<KnownRecord, 'kind' | 'fields'>): boolean {
+    return k.kind === 'scheduler' && k.fields['what'] === 'ignored' && typeof k.fields['schema'] === 'string';
+}
 
 /** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
 const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
@@ -356,7 +369,7 @@ export class StoryTeller {
             // a module that had ended (a crash the simulator made, an exit) never finishes: the advice to set *stateindex = -1 does not fit it
             return `${at(k)} ${k.detail.replace(STUCK_ADVICE, `: it had exited before (${this.exited.get(String(k.fields['module']))})`)}`;
         }
-        if (k.kind === 'scheduler' && SCHEDULER_TOLD.has(what)) return `${at(k)} ${k.detail}`;
+        if (k.kind === 'scheduler' && (SCHEDULER_TOLD.has(what) || ignoredUndo(k))) return `${at(k)} ${k.detail}`;
         if (k.kind === 'scheduler' && what === 'other') return `${at(k)} (an ORD line this reader does not know) ${k.detail}`;
         if (k.kind === 'ord_release' || k.kind === 'ord_finished') {
             this.followCycle(k);

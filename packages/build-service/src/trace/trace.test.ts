@@ -677,6 +677,34 @@ describe("a supervisor's requests kept for a full mailbox", () => {
     });
 });
 
+describe('ORD\'s answer to the undo of an activation it refused', () => {
+    it('tells ORD ignoring it after the supervisor\'s undo (what ORD does next), not its other ignored line', () => {
+        // the field test's manipulator run (+0.424 s): AGAIN asks ORD for armLoop while ARMON's activation #4 is active
+        const mnp = (ns: number, event: string, peer: string, detail: string) => `${ns},w,MNP,${event},${peer},,0,${detail}`;
+        const ord = (ns: number, event: string, peer: string, detail: string) => `${ns},w,ORD,${event},${peer},,0,${detail}`;
+        const story = renderStory(parseTrace([
+            { name: 'MNP_6-Dec-2026-23h50m00s.csv', text: [CSV_HEADER,
+                mnp(1000, 'supervisor', 'ORD', '"activate schema armLoop(mode = OPEN) (activation #4, to ORD)"'),
+                mnp(5000, 'sup_rule', '', 'manipulate.AGAIN active cause=started(GRAB)'),
+                mnp(5001, 'supervisor', 'ORD', '"activate schema armLoop(mode = CLOSED) (activation #5, to ORD)"'),
+                mnp(5200, 'sup_rule', '', 'manipulate.AGAIN inactive cause=ORD:1 value="armLoop"'),
+                mnp(5201, 'supervisor', 'ORD', '"undo: deactivate schema armLoop (activation #5, to ORD)"'), ''].join('\n') },
+            { name: 'ORD_6-Dec-2026-23h50m00s.csv', text: [CSV_HEADER,
+                ord(1100, 'scheduler', '', 'activate armLoop (activation #4 from MNP)'),
+                ord(5100, 'scheduler', '', 'conflict: armLoop shares a module with active armLoop (ORD:1)'),
+                ord(5300, 'request_received', 'MNP', 'STOP'),
+                ord(5301, 'scheduler', '', 'ignored: deactivate armLoop (not this activation)'),
+                // expected when a schema is deactivated while its module runs: not told
+                ord(6000, 'scheduler', '', 'ignored: ARM finished outside a cycle'), ''].join('\n') },
+        ])).slice(0, -1);
+        expect(story.slice(-3)).toEqual([
+            '+0.000004s MNP  rule manipulate.AGAIN inactive <- ORD:1 = "armLoop"',
+            '+0.000004s MNP  undo: deactivate schema armLoop (activation #5, to ORD)',
+            '+0.000004s ORD  ignored: deactivate armLoop (not this activation)',
+        ]);
+    });
+});
+
 describe('a rule cause in the words of the model', () => {
     it('writes times as Cactal time literals, an event as its port and value, and says what stop means', () => {
         expect(['elapsed=1000000ns', 'elapsed=250000ns', 'elapsed=1500000000ns', 'elapsed=2000000000ns', 'elapsed=1234ns', 'duration(PAUSE)=100000000ns'].map(readableCause))

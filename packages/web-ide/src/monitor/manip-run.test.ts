@@ -35,6 +35,17 @@ function simulation(withOrder = true): MonitorModel {
 
 
 describe('the field test\'s manipulator run in the Monitor (fixtures/manip-run)', () => {
+  for (const [what, model] of [['a folder of its logs', folder], ['its simulation\'s trace file', simulation]] as const) {
+    it(`marks ORD's ignored undo of the refused activation after that undo, as contract trace tells it: ${what}`, () => {
+      const labels = model().marks.map((x) => `${x.where}: ${x.label}`);
+      const conflict = labels.indexOf('armLoop: conflict: armLoop shares a module with active armLoop (ORD:1)');
+      const ignored = labels.indexOf('armLoop: ignored: deactivate armLoop (not this activation)');
+      expect(conflict).toBeGreaterThanOrEqual(0);
+      expect(ignored).toBeGreaterThan(conflict);
+      expect(labels.indexOf('MNP: manipulate.AGAIN inactive ← ORD:1 = "armLoop"')).toBeGreaterThan(conflict);
+    });
+  }
+
   it('replays a simulation\'s trace file in the file\'s order, causes before effects at one time, as contract trace tells it', () => {
     // what `contract trace sim1.jsonl` tells, in its order: each told record's module and words
     const teller = new StoryTeller();

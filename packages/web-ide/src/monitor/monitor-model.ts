@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, askedToStopText, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -648,7 +648,8 @@ function markOf({ t, r }: Timed, late: string): Mark | undefined {
   const k = r as KnownRecord;
   const what = k.fields?.['what'];
   if (k.kind === 'ord_deadline_miss') return { t, kind: 'miss', where: String(k.fields['schema'] ?? '?'), label: `deadline miss (ORD:0) cycle ${k.fields['cycle'] ?? '?'}${late}` };
-  if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict')) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
+  // ORD's answers to a supervisor's requests for a periodic schema, its ignored undo of an activation it does not serve included (ignoredUndo: as `contract trace` tells it)
+  if (k.kind === 'scheduler' && (what === 'activate' || what === 'deactivate' || what === 'conflict' || ignoredUndo(k))) return { t, kind: 'schema', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
   // an overrun's first skipped release, and, when the cycle skipped more, its count at its end
   if (k.kind === 'scheduler' && (what === 'overrun' || what === 'overrun_ended')) return { t, kind: 'overrun', where: String(k.fields['schema'] ?? '?'), label: k.detail.slice(0, 120) };
   if (k.kind === 'supervisor' && (what === 'function_started' || what === 'function_stopped' || what === 'function_refused')) return { t, kind: 'function', where: k.module, label: k.detail.slice(0, 120) };
