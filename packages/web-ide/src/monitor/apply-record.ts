@@ -256,8 +256,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         const rule = sv.lastRule ?? '';
         if (entry(s, held, k.peer, () => rule) !== undefined) held.set(k.peer, rule);
         if (!sv.actionLines) sv.actionsDone++;
-        // what its rule started: not a module another supervisor had started (`hold taken (it was running)`)
-        if (k.kind === 'module_hold' && !k.detail.includes('(it was running)')) noteStarted(s, k.module, k.peer);
+        // the modules its rule took a hold on: one that was running already (another supervisor, the
+        // user or the launcher started it) is said shared, not started by it
+        if (k.kind === 'module_hold') noteStarted(s, k.module, k.detail.includes('(it was running)') ? `${k.peer} (shared)` : k.peer);
       } else if (k.detail.startsWith('last hold dropped') || k.detail.startsWith('hold dropped')) {
         // its hold is gone either way: the last one, or kept for another supervisor (`hold dropped (kept running: …)`)
         held.delete(k.peer);

@@ -27,6 +27,8 @@ function built(steps: Generator<void, RecordedRun>): MonitorModel {
 
 /** The folder's replay (its logs merged by time, as `contract trace logs` reads them). */
 const folder = () => built(recordedRunSteps(logs, 7, { checkpointEvery: 16 }));
+/** The state `s` seconds after the run's first record. */
+const at = (m: MonitorModel, s: number) => m.stateAt(Math.round(s * 1e9));
 /** The simulation's trace file replayed as the Monitor replays a trace file: its logs, folded in the file's order. */
 function simulation(withOrder = true): MonitorModel {
   const t = traceFileToLogs('sim1.jsonl', simText);
@@ -36,6 +38,12 @@ function simulation(withOrder = true): MonitorModel {
 
 describe('the field test\'s manipulator run in the Monitor (fixtures/manip-run)', () => {
   for (const [what, model] of [['a folder of its logs', folder], ['its simulation\'s trace file', simulation]] as const) {
+    it(`lists what ARMON started and the modules it took a hold on, EST shared: ${what}`, () => {
+      const m = model();
+      const started = at(m, 1.0).supervisors.get('MNP')!.rules.get('manipulate.ARMON')!.started;
+      expect([...started].sort()).toEqual(['EST (shared)', 'GRP', 'armLoop', 'safetyNet']);
+    });
+
     it(`marks ORD's ignored undo of the refused activation after that undo, as contract trace tells it: ${what}`, () => {
       const labels = model().marks.map((x) => `${x.where}: ${x.label}`);
       const conflict = labels.indexOf('armLoop: conflict: armLoop shares a module with active armLoop (ORD:1)');

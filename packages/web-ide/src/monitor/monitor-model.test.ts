@@ -477,7 +477,7 @@ describe('a supervisor\'s actions counted once', () => {
     expect([...sup.heldModules.keys(), ...sup.heldFlows.keys()]).toEqual([]);
     expect([sup.actionsDone, sup.actionsUndone]).toEqual([2, 2]);
   });
-  it('a module its rule shares (another supervisor started it) is not listed as what the rule started', () => {
+  it('a module its rule took a hold on that was running already (another supervisor started it) is listed, said shared, not started by it', () => {
     const s = emptyState();
     [`1,${W},SUP,sup_rule,,,0,action.R active cause=elapsed=1000000ns`,
       `2,${W},SUP,supervisor,,,0,activate schema watch (event schema)`,
@@ -485,7 +485,8 @@ describe('a supervisor\'s actions counted once', () => {
       `4,${W},SUP,supervisor,MAB,,0,start module MAB (priority 30)`,
       `5,${W},SUP,module_hold,MAB,,0,hold taken (started it)`,
     ].forEach((l, i) => applyRecord(s, parseRecordLine('SUP.csv', i + 2, l), i, 0));
-    expect(s.supervisors.get('SUP')!.rules.get('action.R')!.started).toEqual(['watch', 'MAB']);
+    // docs/watching-a-run.md: `→ MAA, MAB`: the schemas it asked ORD for and the modules it took a hold on
+    expect(s.supervisors.get('SUP')!.rules.get('action.R')!.started).toEqual(['watch', 'MAA (shared)', 'MAB']);
   });
   it('a log of an older version, without those lines, counts its holds and priorities', () => {
     const sup = fold([
