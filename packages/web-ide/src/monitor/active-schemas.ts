@@ -15,7 +15,11 @@ export interface SchemaInfo {
 export interface ActiveSchema {
   name: string;
   kind: string;
-  /** `SUP.F.R` that activated it, when the trace tells. */
+  /**
+   * `SUP.F.R` that activated it, when the trace tells: a periodic schema's, the rule whose action
+   * asked ORD for the activation ORD serves; an event schema's, the rule whose action activated it
+   * (else, a log of an older version, a supervisor holding every module of it).
+   */
   by?: string;
 }
 
@@ -29,12 +33,30 @@ export function activeSchemas(s: MonitorState, catalogue: readonly SchemaInfo[])
     }
     return undefined;
   };
+  // the rule whose action activated event schema `schema` (`activate schema S() (event schema)`, not undone yet)
+  const activator = (schema: string): string | undefined => {
+    for (const [name, sv] of s.supervisors) {
+      const rule = sv.eventSchemas?.get(schema);
+      if (rule !== undefined) return rule ? `${name}.${rule}` : name;
+    }
+    return undefined;
+  };
+  // a log of an older version, without that line: a supervisor that holds every module of it
+  // (another may hold one of them for a schema of its own, or have started it)
+  const holderOfAll = (modules: readonly string[]): string | undefined => {
+    for (const [name, sv] of s.supervisors) {
+      if (!modules.every((m) => sv.heldModules.has(m))) continue;
+      const rule = sv.heldModules.get(modules[0]!);
+      return rule ? `${name}.${rule}` : name;
+    }
+    return undefined;
+  };
   for (const c of catalogue) {
     if (c.kind === 'periodic') {
       const a = s.schemas.get(c.name);
       if (a?.active) out.push(a.by ? { name: c.name, kind: c.kind, by: a.by } : { name: c.name, kind: c.kind });
     } else if (c.modules.length && c.modules.every((m) => holder(m) !== undefined)) {
-      const by = holder(c.modules[0]!);
+      const by = activator(c.name) ?? holderOfAll(c.modules) ?? holder(c.modules[0]!);
       out.push(by ? { name: c.name, kind: c.kind, by } : { name: c.name, kind: c.kind });
     }
   }

@@ -84,13 +84,48 @@ const num = (v: unknown): number | undefined => (typeof v === 'number' && Number
 const str = (v: unknown): string | undefined => (typeof v === 'string' && v ? v : undefined);
 
 /**
- * The rule (`F.R`) of supervisor `name` whose action asked ORD for periodic `schema`: the one its
- * log names at its `activate schema S() (... to ORD)` line; the last rule that became active when
- * its log has no such line (an older version's).
+ * Supervisor `sup`'s request to ORD for periodic `schema` that ORD's START from it stands for: the
+ * oldest one its log names and ORD has not answered (`activate schema S() (activation #N, to
+ * ORD)`: requests reach ORD in the order they are sent), else none (a log of an older version,
+ * without that line: the rule that became active last is taken).
  */
-function requestRuleOf(s: MonitorState, name: string, schema: string): string | undefined {
-  const sv = s.supervisors.get(name);
-  return sv?.schemaRequests?.get(schema) ?? sv?.lastRule;
+function askedOf(s: MonitorState, sup: string, schema: string): { sup: string; rule?: string; activation?: string } {
+  const sv = s.supervisors.get(sup);
+  for (const [activation, req] of sv?.toOrd ?? []) {
+    if (req.schema === schema) return { sup, rule: req.rule || undefined, activation };
+  }
+  return { sup, rule: sv?.lastRule };
+}
+
+/** Supervisor `sup`'s request to ORD `activation` answered or undone: no longer followed. */
+function answered(s: MonitorState, sup: string, activation: string | undefined): void {
+  if (activation !== undefined && s.supervisors.get(sup)?.toOrd?.delete(activation)) s.names--;
+}
+
+/**
+ * ORD activated periodic `schema` (its `activate` line, `f` its fields): whose activation it
+ * serves, from the line's `(activation #N from SUP)` and that supervisor's own line for #N (the
+ * rule whose action asked for it), else from the START it received last for the schema.
+ */
+function servedBy(s: MonitorState, sc: SchemaActivation, schema: string, f: Record<string, unknown>): void {
+  const requester = str(f['requester']);
+  const activation = num(f['activation']);
+  const asked = sc.asked;
+  sc.asked = undefined;
+  let sup: string | undefined;
+  let rule: string | undefined;
+  if (requester !== undefined && activation !== undefined) {
+    sup = requester;
+    const req = s.supervisors.get(requester)?.toOrd?.get(String(activation));
+    if (req?.schema === schema) rule = req.rule || undefined;
+    else if (asked?.sup === requester) rule = asked.rule;
+    answered(s, requester, String(activation));
+  } else if (asked) {
+    ({ sup, rule } = asked);
+    answered(s, asked.sup, asked.activation);
+  }
+  sc.by = sup === undefined ? undefined : rule ? `${sup}.${rule}` : sup;
+  if (sup !== undefined && s.supervisors.has(sup)) noteStarted(s, sup, schema, rule);
 }
 
 /** `what` started by supervisor `supName`'s rule `ruleKey` (`F.R`; by default the one that became active last). */
@@ -232,16 +267,28 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
         // released (field `action`): counted here, once; the hold and priority records that follow
         // are then not counted (a log of an older version has no such line: they count instead)
         if (f['action'] !== undefined) sv.actionLines = true;
-        if (/^undo\b|^un/.test(k.detail)) sv.actionsUndone++;
-        else {
+        const schema = str(f['schema']);
+        const activation = num(f['activation']);
+        if (/^undo\b|^un/.test(k.detail)) {
+          sv.actionsUndone++;
+          if (schema && k.detail.endsWith('(event schema)')) {
+            if (sv.eventSchemas?.delete(schema)) s.names--;
+          } else if (schema && activation !== undefined && k.detail.endsWith(', to ORD)')) {
+            // the undo of a request ORD never activated (refused: ORD:1): no longer waited for
+            answered(s, k.module, String(activation));
+          }
+        } else {
           sv.actionsDone++;
-          // an event schema it runs itself: what its rule started, as ORD's START names a periodic one
-          const schema = str(f['schema']);
-          if (schema && k.detail.endsWith('(event schema)')) noteStarted(s, k.module, schema);
-          else if (schema && k.detail.endsWith(', to ORD)') && sv.lastRule) {
-            // a periodic schema asked of ORD: its activation is this rule's, whenever ORD receives it
-            const requests = (sv.schemaRequests ??= new Map());
-            if (entry(s, requests, schema, () => sv.lastRule!) !== undefined) requests.set(schema, sv.lastRule);
+          const rule = sv.lastRule ?? '';
+          if (schema && k.detail.endsWith('(event schema)')) {
+            // an event schema it runs itself: what its rule started, and whose it is while it runs
+            noteStarted(s, k.module, schema);
+            const runs = (sv.eventSchemas ??= new Map());
+            if (entry(s, runs, schema, () => rule) !== undefined) runs.set(schema, rule);
+          } else if (schema && activation !== undefined && k.detail.endsWith(', to ORD)')) {
+            // a periodic schema asked of ORD: the activation ORD serves for #N is this rule's, whenever ORD receives it
+            const requests = (sv.toOrd ??= new Map());
+            entry(s, requests, String(activation), () => ({ schema, rule }));
           }
         }
       }
@@ -272,15 +319,13 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       return;
     }
     case 'request_received': {
-      // ORD receives `START schema` from the supervisor whose rule activates it
+      // ORD receives `START schema` from a supervisor: whose request it is, until ORD activates
+      // the schema (its `activate` line names the activation it serves) or refuses it (`conflict`)
       if (k.module !== 'ORD') return;
       const m = /^START ([A-Za-z_]\w*)$/.exec(k.detail);
-      if (m) {
+      if (m && k.peer) {
         const sc = schemaActivation(s, m[1]!, t);
-        if (!sc) return;
-        const rule = requestRuleOf(s, k.peer, m[1]!);
-        sc.by = rule ? `${k.peer}.${rule}` : k.peer;
-        if (s.supervisors.has(k.peer)) noteStarted(s, k.peer, m[1]!, rule);
+        if (sc) sc.asked = askedOf(s, k.peer, m[1]!);
       }
       return;
     }
@@ -295,12 +340,17 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
           sc.active = true;
           sc.since = t;
           sc.activations++;
+          servedBy(s, sc, schema, f);
         } else if (what === 'deactivate') {
           sc.active = false;
           sc.since = t;
           const p = s.periodic.get(schema);
           if (p) p.overrunning = false;
-        } else sc.conflicts++;
+        } else {
+          // refused: the START it received is answered, the activation shown stays the one ORD serves
+          sc.conflicts++;
+          sc.asked = undefined;
+        }
       } else if (what === 'overrun' || what === 'overrun_ended') {
         // every skipped release, as ORD counts them (ord-counts.ts); a mark at each cycle's first
         const p = periodic(s, schema);

@@ -14,10 +14,17 @@ import { fileURLToPath } from 'node:url';
 import { StoryTeller, recordOfJsonLine, traceFileToLogs, type LogFile } from '@contract-studio/build-service/trace';
 import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import type { MonitorModel } from './monitor-model.js';
+import { activeSchemas, type SchemaInfo } from './active-schemas.js';
 
 const dir = fileURLToPath(new URL('./fixtures/manip-run', import.meta.url));
 const logs: LogFile[] = readdirSync(dir).filter((n) => n.endsWith('.csv')).map((name) => ({ name, text: readFileSync(join(dir, name), 'utf8') }));
 const simText = readFileSync(join(dir, 'sim1.jsonl'), 'utf8');
+
+const CATALOGUE: SchemaInfo[] = [
+  { name: 'armLoop', kind: 'periodic', modules: ['ARM'] },
+  { name: 'baseLoop', kind: 'periodic', modules: ['LDR', 'ODM', 'PLN'] },
+  { name: 'safetyNet', kind: 'event', modules: ['EST', 'GRP'] },
+];
 
 function built(steps: Generator<void, RecordedRun>): MonitorModel {
   let step = steps.next();
@@ -27,17 +34,35 @@ function built(steps: Generator<void, RecordedRun>): MonitorModel {
 
 /** The folder's replay (its logs merged by time, as `contract trace logs` reads them). */
 const folder = () => built(recordedRunSteps(logs, 7, { checkpointEvery: 16 }));
-/** The state `s` seconds after the run's first record. */
-const at = (m: MonitorModel, s: number) => m.stateAt(Math.round(s * 1e9));
 /** The simulation's trace file replayed as the Monitor replays a trace file: its logs, folded in the file's order. */
 function simulation(withOrder = true): MonitorModel {
   const t = traceFileToLogs('sim1.jsonl', simText);
   return built(recordedRunSteps(t.files, 7, { checkpointEvery: 16 }, undefined, withOrder ? t.order : undefined));
 }
 
+/** The state `s` seconds after the run's first record. */
+const at = (m: MonitorModel, s: number) => m.stateAt(Math.round(s * 1e9));
+const by = (m: MonitorModel, s: number) => Object.fromEntries(activeSchemas(at(m, s), CATALOGUE).map((a) => [a.name, a.by]));
 
 describe('the field test\'s manipulator run in the Monitor (fixtures/manip-run)', () => {
-  for (const [what, model] of [['a folder of its logs', folder], ['its simulation\'s trace file', simulation]] as const) {
+  // the real run: ARMON at +0.119885 s, ORD activates #4 at +0.120059, AGAIN's #5 refused at +0.424444,
+  // ORD deactivates #4 at +2.639007; the simulation: +0.007, +0.313, +2.527
+  for (const [what, model, times] of [
+    ['a folder of its logs', folder, [0.2, 0.4245, 0.5, 1.0, 2.2, 2.6]],
+    ['its simulation\'s trace file', simulation, [0.1, 0.3131, 0.5, 1.0, 2.2, 2.52]],
+  ] as const) {
+    it(`shows armLoop with the rule whose request ORD serves (ARMON's #4), not AGAIN's refused #5: ${what}`, () => {
+      const m = model();
+      for (const s of times) expect(by(m, s).armLoop, `+${s} s`).toBe('MNP.manipulate.ARMON');
+      // AGAIN's row never says it started armLoop (ORD refused its request)
+      for (const s of times) expect(at(m, s).supervisors.get('MNP')!.rules.get('manipulate.AGAIN')?.started ?? [], `+${s} s`).toEqual([]);
+    });
+
+    it(`shows safetyNet with MNP's ARMON, whose action activated it, not MIS's BOOT, which started EST: ${what}`, () => {
+      const m = model();
+      for (const s of times) expect(by(m, s).safetyNet, `+${s} s`).toBe('MNP.manipulate.ARMON');
+    });
+
     it(`lists what ARMON started and the modules it took a hold on, EST shared: ${what}`, () => {
       const m = model();
       const started = at(m, 1.0).supervisors.get('MNP')!.rules.get('manipulate.ARMON')!.started;

@@ -45,12 +45,21 @@ export interface SupervisorState {
   /** The rule (`F.R`) that became active last: holds and event schemas that follow belong to it. */
   lastRule?: string;
   /**
-   * The rule (`F.R`) whose action asked ORD for each periodic schema, keyed by the schema: the rule
-   * that became active last when the supervisor logged `activate schema S() (activation #N, to ORD)`.
-   * ORD's `request_received START S` may come after the supervisor's next rule became active: the
-   * activation is that action's rule's, not the rule active when ORD received it.
+   * Its requests to ORD not answered yet, keyed by its activation number (`N` of its `activate
+   * schema S() (activation #N, to ORD)` line): the schema and the rule (`F.R`, '' when none) that
+   * became active last when it logged the line. ORD's `activate S (activation #N from SUP)` takes
+   * its rule from here (ORD may receive the request after the supervisor's next rule became active,
+   * and a refused request's START comes like any other); the entry goes when ORD activates it or
+   * the supervisor undoes it (a refused one: `undo: deactivate schema S (activation #N, to ORD)`).
    */
-  schemaRequests?: Map<string, string>;
+  toOrd?: Map<string, { schema: string; rule: string }>;
+  /**
+   * The event schemas it runs now (`activate schema S() (event schema)` until its `undo:
+   * deactivate schema S (event schema)`), with the rule (`F.R`, '' when none) whose action it was:
+   * the Monitor shows an active event schema with that rule, not with another supervisor that
+   * holds one of its modules.
+   */
+  eventSchemas?: Map<string, string>;
   /** Modules and event flows this supervisor holds (an event schema it activated), with the rule. */
   heldModules: Map<string, string>;
   heldFlows: Map<string, string>;
@@ -72,8 +81,14 @@ export interface KeptRequests {
 export interface SchemaActivation {
   active: boolean;
   since: Ns;
-  /** `SUP.F.R` that asked for it, when known. */
+  /** `SUP.F.R` whose activation ORD serves (its `activate` line), when known. */
   by?: string;
+  /**
+   * The START ORD received last for it and has not answered yet (activated or refused): its
+   * supervisor and the rule (`F.R`) it is taken for, for an ORD line that does not say whose
+   * activation it serves (a log of an older version).
+   */
+  asked?: { sup: string; rule?: string; activation?: string };
   activations: number;
   conflicts: number;
 }
