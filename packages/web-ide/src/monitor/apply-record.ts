@@ -326,6 +326,9 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       if (m && k.peer) {
         const sc = schemaActivation(s, m[1]!, t);
         if (sc) sc.asked = askedOf(s, k.peer, m[1]!);
+        // an older simulation's trace has ORD's `activate` (without activation numbers) before the
+        // START it answers, at the same time: the START says whose it is then
+        if (sc?.active && sc.by === undefined && sc.since === t) servedBy(s, sc, m[1]!, {});
       }
       return;
     }
