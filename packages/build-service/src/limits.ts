@@ -305,6 +305,17 @@ export interface LimitHit {
 /** The longest time limit (`buildSeconds`, `runSeconds`, `prepareSeconds`): a timer's range, 2^31-1 ms. */
 export const MAX_LIMIT_SECONDS = 2_147_483;
 
+/**
+ * The limits that are counts or sizes (every limit but the `...Seconds` ones): whole numbers,
+ * written as they are to a cgroup file or a Docker field (`pids.max` refuses `10.5`), and at most
+ * this much (a size in MiB: so that its bytes are a safe integer; a process count: the kernel's
+ * highest pid_max).
+ */
+const MAX_WHOLE_LIMIT: Record<string, number> = {
+  memoryMiB: 2 ** 33, workDiskMiB: 2 ** 33, tmpMiB: 2 ** 33,
+  processes: 4_194_304,
+};
+
 /** Merges overrides onto a base; with `lowerOnly`, an override above the base is an error. */
 export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean): Limits {
   if (overrides === undefined || overrides === null) return { ...base };
@@ -318,6 +329,11 @@ export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean
     }
     if (typeof value !== 'number' || !Number.isFinite(value) || value <= 0) {
       throw new LimitsError(`limit ${key} must be a positive number, got ${JSON.stringify(value)}`);
+    }
+    if (!key.endsWith('Seconds')) {
+      const max = MAX_WHOLE_LIMIT[key] ?? Number.MAX_SAFE_INTEGER;
+      if (!Number.isInteger(value)) throw new LimitsError(`limit ${key} must be a whole number (a count or a size), got ${value}`);
+      if (value > max) throw new LimitsError(`limit ${key} must be at most ${max}, got ${value}`);
     }
     // the service's timers hold at most 2^31-1 ms: a longer time limit would fire at once
     if (key.endsWith('Seconds') && value > MAX_LIMIT_SECONDS) {
