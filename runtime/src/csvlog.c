@@ -412,9 +412,37 @@ static void warn_long_event(const char *event)
             g_rt.name[0] ? g_rt.name : "libmodule", EVENT_MAX, EVENT_MAX, event);
 }
 
+/* The engine whose own record kind `event` is (RT_ENGINE_NONE: anyone's). The trace readers take
+ * these kinds from that engine only (docs/runtime-api.md "Whose records, and their times"). */
+void rt_log_engine(int engine) { g_rt.engine = engine; }
+
+static int engine_kind(const char *event)
+{
+    static const char *const ord[] = { "scheduler", "ord_release", "ord_finished", "ord_complete", "ord_deadline_miss" };
+    static const char *const sup[] = { "supervisor", "sup_rule", "module_hold", "flow_hold", "module_priority", "priority_kept" };
+    if (!event) return RT_ENGINE_NONE;
+    for (size_t i = 0; i < sizeof ord / sizeof ord[0]; i++)
+        if (strcmp(event, ord[i]) == 0) return RT_ENGINE_ORD;
+    for (size_t i = 0; i < sizeof sup / sizeof sup[0]; i++)
+        if (strcmp(event, sup[i]) == 0) return RT_ENGINE_SUPERVISOR;
+    return RT_ENGINE_NONE;
+}
+
 void ContractLog(const char *event, const char *peer, int port, size_t size, const char *detail)
 {
     if (log_fd < 0) return;
+    int engine = engine_kind(event);
+    if (engine != RT_ENGINE_NONE && engine != g_rt.engine) {
+        /* a module's code logging under an engine's own kind (ORD's deadline miss, a supervisor's
+         * rule change): refused, logged as an error record of this module that says so, the first
+         * one said on stderr (rt_error counts the repeats) */
+        char text[600];
+        snprintf(text, sizeof text, "ContractLog: '%s' is %s own record kind: refused in %s, which is %s (give your records names of their own); its detail: %.300s",
+                 event, engine == RT_ENGINE_ORD ? "ORD's" : "the supervisors'", g_rt.name[0] ? g_rt.name : "this process",
+                 engine == RT_ENGINE_ORD ? "not ORD" : "no supervisor", detail ? detail : "");
+        rt_error("%s", text);
+        return;
+    }
     if (event && strnlen(event, EVENT_MAX + 1) > EVENT_MAX) warn_long_event(event);
     if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) {
         log_records++;

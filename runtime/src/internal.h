@@ -64,7 +64,10 @@ typedef struct {
     int send_nowait;        /* ContractSetNonBlockingSends: requests never wait for a full mailbox */
     int send_queued;        /* ContractSetQueuedSends: requests to a full mailbox are kept (outbox.c) */
     int ready;              /* a module: its <NAME>.ready is written (rt_mark_ready) */
+    int engine;             /* RT_ENGINE_*: which engine runs in this process (its own record kinds: csvlog.c) */
 } ContractRuntime;
+
+#include "log_engine.h" /* RT_ENGINE_*: g_rt.engine */
 
 extern ContractRuntime g_rt;
 

@@ -522,3 +522,39 @@ void test_csv_log_killed(void)
         h_teardown();
     }
 }
+
+/* A module's code logging under an engine's own kind (ORD's deadline miss, a supervisor's rule
+ * change) through ContractLog: refused, an error record of this process says so (the trace readers
+ * would not take it for the engine's either: docs/runtime-api.md "Whose records, and their times").
+ * The engine itself logs them. */
+void test_csv_log_engine_kinds(void)
+{
+    REQUIRE(h_setup("logengine") == 0);
+    REQUIRE(rt_log_open() == 0);
+    char csv[1024];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    ContractLog("ord_deadline_miss", "", -1, 0, "schema=schemaCommande1 cycle=99 tick_ns=1");
+    ContractLog("sup_rule", "", -1, 0, "f.r active cause=elapsed=5ns");
+    ContractLog("my_own", "", -1, 0, "kept");
+    g_rt.engine = RT_ENGINE_ORD;
+    ContractLog("ord_deadline_miss", "", -1, 0, "schema=S cycle=1 tick_ns=2");
+    ContractLog("sup_rule", "", -1, 0, "f.r active cause=elapsed=6ns");
+    g_rt.engine = RT_ENGINE_SUPERVISOR;
+    ContractLog("sup_rule", "", -1, 0, "f.r active cause=elapsed=7ns");
+    g_rt.engine = RT_ENGINE_NONE;
+    ContractLogFlush();
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    CHECK(strstr(log, ",ord_deadline_miss,,,0,schema=schemaCommande1") == NULL);
+    CHECK(strstr(log, ",error,,,0,\"ContractLog: 'ord_deadline_miss' is ORD's own record kind: refused in ") != NULL);
+    CHECK(strstr(log, "which is not ORD (give your records names of their own); its detail: schema=schemaCommande1 cycle=99 tick_ns=1") != NULL);
+    CHECK(strstr(log, ",error,,,0,\"ContractLog: 'sup_rule' is the supervisors' own record kind") != NULL);
+    CHECK(strstr(log, ",sup_rule,,,0,f.r active cause=elapsed=5ns") == NULL);
+    CHECK(strstr(log, ",my_own,,,0,kept") != NULL);
+    CHECK(strstr(log, ",ord_deadline_miss,,,0,schema=S cycle=1 tick_ns=2") != NULL);
+    CHECK(strstr(log, ",sup_rule,,,0,f.r active cause=elapsed=6ns") == NULL);
+    CHECK(strstr(log, ",sup_rule,,,0,f.r active cause=elapsed=7ns") != NULL);
+    free(log);
+    rt_log_close();
+    h_teardown();
+}

@@ -51,6 +51,7 @@ void test_csv_log_crash_writer_busy(void);
 void test_csv_log_writer_thread(void);
 void test_csv_log_fork_child(void);
 void test_csv_log_record_bounds(void);
+void test_csv_log_engine_kinds(void);
 void test_csv_log_disk_full(void);
 void test_csv_log_killed(void);
 
@@ -103,6 +104,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_writer_thread", test_csv_log_writer_thread },
     { "csv_log_fork_child", test_csv_log_fork_child },
     { "csv_log_record_bounds", test_csv_log_record_bounds },
+    { "csv_log_engine_kinds", test_csv_log_engine_kinds },
     { "csv_log_disk_full", test_csv_log_disk_full },
     { "csv_log_killed", test_csv_log_killed },
     { "ext_types_round_trip", test_ext_types_round_trip },

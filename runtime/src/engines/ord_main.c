@@ -31,6 +31,7 @@
 #include "engine_wait.h"
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
+#include "log_engine.h"
 #include "ord_core.h"
 
 typedef struct OrdBinding {
@@ -301,6 +302,7 @@ static void write_stats(OrdBinding *b, OrdCore *c, const char *path) {
 }
 
 int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv[]) {
+    rt_log_engine(RT_ENGINE_ORD); /* its own record kinds are logged by it only (csvlog.c) */
     (void)argc;
     (void)argv;
     OrdBinding b;

@@ -35,6 +35,7 @@
 #include "engine_wait.h"
 #include "engine_wire.h"
 #include "libmodule/libmodule.h"
+#include "log_engine.h"
 #include "module_holds.h"
 #include "prio_requests.h"
 #include "sup_core.h"
@@ -536,6 +537,7 @@ static void handle_start(SupCore *c, const ContractSupervisorVocabulary *v, Requ
 }
 
 int contract_supervisor_main(const ContractSupervisorVocabulary *v, int argc, const char *argv[]) {
+    rt_log_engine(RT_ENGINE_SUPERVISOR); /* its own record kinds are logged by it only (csvlog.c) */
     (void)argc;
     (void)argv;
     SupBinding b;
