@@ -592,6 +592,7 @@ export class Job {
       },
       live: (records) => this.events.broadcast({ type: 'trace', records }),
       system: (line) => this.system('run', line),
+      tampered: (file, why) => this.runIssues.logTampered(file, why),
     });
     // the modules write their logs sooner only while a client follows the job
     tail.setWatched(this.events.subscriberCount > 0);
@@ -604,7 +605,7 @@ export class Job {
     const t0 = Date.now();
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
-      const collected = await collectRunArtifacts(reader, workDir, undefined, (_name, data) => this.runIssues.log(data));
+      const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => this.runIssues.log(data, name));
       // a cancelled run's processes were killed: the mailboxes and pid files they leave say nothing
       this.artifacts = this.cancelRequested ? { ...collected, runDirLeftovers: [] } : collected;
       this.artifactsCollectMs = Date.now() - t0;

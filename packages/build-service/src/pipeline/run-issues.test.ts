@@ -152,4 +152,47 @@ describe('RunIssues', () => {
     expect([...launcher.all, ...shared.all].map((i) => i.module)).toEqual([undefined, undefined]);
     expect(shared.all[0]!.message).toBe("the run's stdout went past the output limit (1 KiB per stream): later lines were not kept");
   });
+
+  describe("a log a process of the run erased, cut or replaced (log-tampered)", () => {
+    const H = 'mono_ns,wall_time,module,event,peer,port,size,detail\n';
+    const ORD = 'ORD_7-Dec-2026-00h08m44s.csv';
+    const whole = `${H}1,t,ORD,module_started,,,0,pid=24 priority=90\n2,t,ORD,priority,,,0,nice 1 (priority 90)\n3,t,ORD,module_exit,,,0,status=0 records=3\n`;
+    const none = { files: [], skipped: [], runDirLeftovers: [] };
+    const issuesOf = (data: string, launcher = 'module ORD (pid 24) exited with status 0') => {
+      const r = new RunIssues();
+      r.line(launcher, 'launcher');
+      r.log(Buffer.from(data), ORD);
+      r.artifacts(none);
+      return r.all.map((i) => [i.kind, i.file ?? i.module, i.message]);
+    };
+
+    test("ORD's whole log is no issue; one truncated, replaced, grown by another process or gone is one, naming it", () => {
+      expect(issuesOf(whole)).toEqual([]);
+      // truncate(ORD's log, 0) then ORD appended on: no header any more
+      expect(issuesOf('4,t,ORD,request_received,contract-launch,,0,KILL\n5,t,ORD,module_exit,,,0,status=0 records=5\n')).toEqual([['log-tampered', ORD, expect.stringMatching(/does not begin with the runtime's header/)]]);
+      expect(issuesOf('')).toEqual([['log-tampered', ORD, expect.stringMatching(/it is empty/)]]);
+      // a copy renamed over it: ORD wrote its exit record to the unlinked file
+      expect(issuesOf(`${H}1,t,ORD,module_started,,,0,pid=24 priority=90\n`)).toEqual([['log-tampered', ORD, expect.stringMatching(/does not end with ORD's exit record although ORD exited normally/)]]);
+      // ... which is said only of a module that exited normally (a killed one writes no exit record)
+      expect(issuesOf(`${H}1,t,ORD,module_started,,,0,pid=24 priority=90\n`, 'module ORD (pid 24) terminated by signal 15')).toEqual([]);
+      // lines added or removed by another process: the exit record counts what its module logged
+      expect(issuesOf(whole.replace('\n3,', '\n2,t,ORD,ord_deadline_miss,,,0,schema=S cycle=1 tick_ns=1\n3,'))).toEqual([['log-tampered', ORD, expect.stringMatching(/holds 4 record\(s\) since its module started where its exit record counts 3/)]]);
+      // a capped log is said by log-capped
+      expect(issuesOf(`${H}1,t,ORD,log-capped,,,4096,log reached its 4096-byte bound\n`)).toEqual([]);
+      // its log gone altogether (unlinked or renamed away), the others collected
+      const r = new RunIssues();
+      r.line('module ORD (pid 24) exited with status 0', 'launcher');
+      r.log(Buffer.from(whole.replace(/ORD/g, 'MSA')), 'MSA_7-Dec-2026-00h08m44s.csv');
+      r.artifacts(none);
+      expect(r.all).toEqual([{ kind: 'log-tampered', module: 'ORD', message: 'ORD ran and exited normally, but no log of it was collected: a process of the run removed or renamed it' }]);
+    });
+
+    test('a log the live trace saw shrink is one issue, once', () => {
+      const r = new RunIssues();
+      r.logTampered(ORD, 'it shrank while the run went on (219 -> 0 bytes; the runtime only appends to a log)');
+      r.log(Buffer.from('5,t,ORD,module_exit,,,0,status=0 records=5\n'), ORD);
+      r.artifacts(none);
+      expect(r.all).toEqual([{ kind: 'log-tampered', file: ORD, message: `log ${ORD} was changed by a process of the run, not only appended to by its module: it shrank while the run went on (219 -> 0 bytes; the runtime only appends to a log); its records are not the module's whole record` }]);
+    });
+  });
 });

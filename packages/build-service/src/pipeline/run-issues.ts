@@ -6,14 +6,15 @@
  */
 import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import type { RunArtifacts } from './artifacts.js';
+import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
 
-export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost';
+export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost' | 'log-tampered';
 
 export interface RunIssue {
   kind: RunIssueKind;
   /** One sentence for people. */
   message: string;
-  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor; limit: the module the kernel killed first at the memory limit; output-truncated: the module that wrote most of the output), or the log file (log-capped, log-lost). */
+  /** The module it is about (module-stuck, module-not-ready, module-hung, module-ended; start-refused: the supervisor; limit: the module the kernel killed first at the memory limit; output-truncated: the module that wrote most of the output), or the log file (log-capped, log-lost, log-tampered). */
   module?: string;
   file?: string;
 }
@@ -42,6 +43,11 @@ const ENDED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0 befo
 /** contract-launch's line for a module killed by SIGKILL it did not send (the kernel's OOM killer, at the memory limit). */
 const KILLED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) died by signal 9 \(Killed\)/;
 
+/** contract-launch's line for a module that ended normally at the run's stop (its main returned: its log ends with its exit record). */
+const EXITED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0$/;
+/** A `module_exit` record's count of the records its module logged (runtime/src/module_main.c). */
+const EXIT_RECORDS = /,module_exit,[^,\n]*,[^,\n]*,\d+,status=-?\d+ records=(\d{1,15})\s*$/;
+
 /** Sources of output lines counted apart (a run has far fewer modules; a hostile tag stream more). */
 const MAX_SOURCES = 256;
 
@@ -57,6 +63,13 @@ export class RunIssues {
   /** Characters of output lines per source (at most MAX_SOURCES: a module tag, `launcher`, `run`): who filled the output. */
   private readonly outputChars = new Map<string, number>();
 
+  /** Modules the launcher saw end normally at the stop (at most 256): their logs must end with their exit record. */
+  private readonly exitedClean = new Set<string>();
+  /** What a collected log of a module named as the runtime names logs says of itself (at most 1024 logs). */
+  private readonly logs: Array<{ file: string; module: string; notWhole?: string; noExit: boolean }> = [];
+  /** Logs already named log-tampered (once each). */
+  private readonly tampered = new Set<string>();
+
   get all(): readonly RunIssue[] {
     return this.list;
   }
@@ -71,7 +84,11 @@ export class RunIssues {
     }
     const m = STUCK_LINE.exec(text);
     if (m) this.stuck(m[2]!, m[3]!, m[1]!);
-    if (source === 'launcher') this.moduleEnd(text);
+    if (source === 'launcher') {
+      this.moduleEnd(text);
+      const exited = EXITED_LINE.exec(text);
+      if (exited && this.exitedClean.size < 256) this.exitedClean.add(exited[1]!);
+    }
     if (this.list.some((i) => i.kind === 'start-refused')) return;
     const refused = START_REFUSED_LINE.exec(text);
     if (refused) {
@@ -85,8 +102,25 @@ export class RunIssues {
     }
   }
 
-  /** The bytes of a collected CSV log: stuck reports the output may have lost (truncated). */
-  log(data: Buffer): void {
+  /**
+   * A log changed under the runtime's feet while the run went on (the live trace saw it shrink: the
+   * runtime only appends): a process of the run truncated or rewrote it, so its records are not the
+   * module's whole record.
+   */
+  logTampered(file: string, why: string): void {
+    if (this.tampered.has(file) || this.tampered.size >= 64) return;
+    this.tampered.add(file);
+    this.list.push({ kind: 'log-tampered', file, message: `log ${file} was changed by a process of the run, not only appended to by its module: ${why}; its records are not the module's whole record` });
+  }
+
+  /**
+   * The bytes of a collected CSV log (`file`: its name): stuck reports the output may have lost
+   * (truncated), and whether the log is as its module's runtime left it — its header first, its
+   * exit record last (checked against the launcher's word in artifacts()), as many records as that
+   * record counts. A log the runtime or the service capped is said by log-capped instead.
+   */
+  log(data: Buffer, file?: string): void {
+    if (file !== undefined) this.logShape(data, file);
     if (!data.includes(',scheduler,,,0,stuck: ')) return;
     for (const m of data.toString('utf8').matchAll(STUCK_RECORD)) this.stuck(m[2]!, m[3]!, m[1]!);
   }
@@ -126,7 +160,47 @@ export class RunIssues {
     return best && most * 2 >= all ? { module: best, percent: Math.floor((most * 100) / all) } : undefined;
   }
 
+  private logShape(data: Buffer, file: string): void {
+    const module = moduleOfLog(file);
+    if (module === undefined || this.logs.length >= 1024 || data.includes(',log-capped,')) return;
+    const entry: { file: string; module: string; notWhole?: string; noExit: boolean } = { file, module, noExit: true };
+    this.logs.push(entry);
+    if (data.length === 0) {
+      entry.notWhole = 'it is empty (the runtime writes its header and its module\'s first record at start)';
+      return;
+    }
+    if (!data.subarray(0, CSV_HEADER.length + 1).equals(Buffer.from(`${CSV_HEADER}\n`))) {
+      entry.notWhole = 'it does not begin with the runtime\'s header: its beginning was cut off or it was rewritten';
+      return;
+    }
+    let end = data.length;
+    while (end > 0 && (data[end - 1] === 10 || data[end - 1] === 13)) end--;
+    const lastLine = data.toString('utf8', data.lastIndexOf(10, end - 1) + 1, end);
+    entry.noExit = !lastLine.includes(',module_exit,') && !lastLine.includes(',module_crashed,');
+    const counted = EXIT_RECORDS.exec(lastLine)?.[1];
+    if (counted === undefined) return;
+    // the records of its module's last start (a log a restarted module appended to holds two)
+    const started = data.lastIndexOf(`,${module},module_started,`);
+    let from = started < 0 ? CSV_HEADER.length + 1 : data.lastIndexOf(10, started) + 1;
+    let lines = 0;
+    for (; (from = data.indexOf(10, from)) >= 0 && from < end; from++) lines++;
+    lines++; // the exit record's line
+    if (lines !== Number(counted)) entry.notWhole = `it holds ${lines} record(s) since its module started where its exit record counts ${counted} (records were removed or added by another process)`;
+  }
+
   artifacts(a: RunArtifacts): void {
+    // logs that are not what the runtime left: said, so that a run whose ORD log was erased or
+    // replaced by a module's code is not reported as a success with that log as its record
+    const logged = new Set(this.logs.map((l) => l.module));
+    for (const l of this.logs) {
+      if (l.notWhole) this.logTampered(l.file, l.notWhole);
+      else if (l.noExit && this.exitedClean.has(l.module)) this.logTampered(l.file, `it does not end with ${l.module}'s exit record although ${l.module} exited normally (status 0): it was replaced or cut by another process (the runtime appends every record, its exit record last)`);
+    }
+    if (logged.size) {
+      for (const m of this.exitedClean) {
+        if (!logged.has(m)) this.list.push({ kind: 'log-tampered', module: m, message: `${m} ran and exited normally, but no log of it was collected: a process of the run removed or renamed it` });
+      }
+    }
     for (const f of a.files) {
       if (f.capped) this.list.push({ kind: 'log-capped', file: f.name, message: `log ${f.name} is not whole: ${f.capped}` });
     }

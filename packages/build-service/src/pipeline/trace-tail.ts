@@ -67,6 +67,8 @@ export interface TraceSink {
   /** Lines beyond the kept-lines bound: sent to the clients attached now, not kept. */
   live(lines: TraceLine[]): void;
   system(line: string): void;
+  /** A log changed otherwise than by appends while it was read (a run issue, run-issues.ts log-tampered). */
+  tampered?(file: string, why: string): void;
 }
 
 interface Tailed {
@@ -527,6 +529,11 @@ export class TraceTail {
       f.done = true;
       this.order.close(f.name);
       this.safeSystem(`trace: ${f.name} shrank while it was read (${f.splitter.offset} -> ${size} bytes): its live trace stops there; the collected log is what the run left`);
+      try {
+        this.sink.tampered?.(f.name, `it shrank while the run went on (${f.splitter.offset} -> ${size} bytes; the runtime only appends to a log)`);
+      } catch {
+        /* the job's sink: nothing to do here */
+      }
       return { read: 0, more: false };
     }
     let read = 0;
