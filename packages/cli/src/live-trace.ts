@@ -9,7 +9,7 @@
 import { createHash, type Hash } from 'node:crypto';
 import type { FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
-import { countRecord, parseRecordLine, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, countRecord, parseRecordLine, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
 import { openTraceFile, toJsonLines } from './trace-files.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
@@ -22,6 +22,8 @@ export class LiveTrace {
 
     /** Emptied yet: the file keeps what it held until the run's first records (or its end). */
     private emptied = false;
+    /** Each log's time check: its lines come in file order. */
+    private readonly clocks = new LogClocks();
 
     private constructor(private readonly handle: FileHandle) {}
 
@@ -40,7 +42,7 @@ export class LiveTrace {
     /** A job event: a trace event's records are appended to the file (emptied at the first). */
     event(e: JobEvent): void {
         if (e.type !== 'trace' || this.failed) return;
-        const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text));
+        const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text, this.clocks.of(l.file)));
         for (const r of records) countRecord(this.counts, r);
         const text = toJsonLines(records);
         this.written.update(text);

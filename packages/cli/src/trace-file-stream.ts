@@ -9,13 +9,15 @@
  * (the lines: bounded-lines.ts, as for the CSV logs).
  */
 import type { promises as fsp } from 'node:fs';
-import { MAX_JSON_LINE_CHARS, recordOfJsonLine, unendedLine, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, MAX_JSON_LINE_CHARS, recordOfJsonLine, unendedLine, type TraceRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES } from './bounded-lines.js';
 
 /** Records of a trace file in batches (one batch a chunk read), until the file's size when opened. */
 export async function* traceFileBatches(handle: fsp.FileHandle, name: string, chunkBytes = CHUNK_BYTES): AsyncGenerator<TraceRecord[]> {
     const size = (await handle.stat()).size;
     let lineNo = 0;
+    /** Each module's time check (its records come in the file's order). */
+    const clocks = new LogClocks();
     /** The record that stands for a line no record can be (`head`: its first characters). */
     const noRecord = (reason: string, head: string): TraceRecord => ({ kind: 'unknown', file: name, line: lineNo, reason, text: head.slice(0, 200) });
     // a line of MAX_JSON_LINE_CHARS and its `\r` is whole: its reader takes the `\r` off
@@ -24,7 +26,7 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
         for (const l of lines) {
             lineNo++;
             if (l.kind === 'line') {
-                const r = recordOfJsonLine(name, lineNo, l.text.endsWith('\r') ? l.text.slice(0, -1) : l.text);
+                const r = recordOfJsonLine(name, lineNo, l.text.endsWith('\r') ? l.text.slice(0, -1) : l.text, clocks);
                 if (r) out.push(l.unended ? unendedLine(r) : r);
             } else if (l.kind === 'overLong') {
                 const r = noRecord(`longer than ${MAX_JSON_LINE_CHARS} characters`, l.head);

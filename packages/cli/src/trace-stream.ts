@@ -11,7 +11,7 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { MAX_LINE_CHARS, MinHeap, isLogFileName, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
+import { LogClock, MAX_LINE_CHARS, MinHeap, isLogFileName, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
 import { jsonLine } from './trace-files.js';
 import { safeName } from './terminal-text.js';
@@ -121,6 +121,8 @@ class LogRecords {
     private lineNo = 0;
     private index = 0;
     private lastKey = 0n;
+    /** The log's time check (its lines read in file order). */
+    private readonly clock = new LogClock();
     private pending: Keyed[] = [];
     private at = 0;
     private ended = false;
@@ -154,7 +156,7 @@ class LogRecords {
     }
 
     private line(raw: string, unended: boolean): void {
-        const read = recordOfLine(this.log.name, this.lineNo++, raw);
+        const read = recordOfLine(this.log.name, this.lineNo++, raw, this.clock);
         if (!read) return;
         const record = unended ? unendedLine(read) : read;
         if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);

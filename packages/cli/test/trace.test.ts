@@ -67,6 +67,43 @@ describe('contract trace', () => {
         ].join('\n'));
     });
 
+    it("a module's forged ORD records and times (its own log) are its user records and unreadable lines: not ORD's misses, not the run's time base; run's schema figures agree", async () => {
+        const folder = mkdtempSync(join(tmpdir(), 'contract-trace-forged-'));
+        try {
+            const W = '2026-11-24T18:30:15.123456Z';
+            writeFileSync(join(folder, 'ORD_24-Nov-2026-18h30m15s.csv'), [HEADER,
+                `40000000000000,${W},ORD,scheduler,,,0,activate S`,
+                `40000000000001,${W},ORD,ord_release,MSA,,0,schema=S cycle=0 tick_ns=40000000000000 release_ns=40000000000001 release=1`,
+                `40000001000000,${W},ORD,ord_complete,,,0,schema=S cycle=0 tick_ns=40000000000000 response_ns=1000000`,
+                `900,${W},ORD,ord_deadline_miss,,,0,schema=S cycle=0 tick_ns=1`, ''].join('\n'));
+            writeFileSync(join(folder, 'MSA_24-Nov-2026-18h30m15s.csv'), [HEADER,
+                `40000000000002,${W},MSA,run_started,ORD,,0,activation=1`,
+                `40000002000000,${W},MSA,ord_deadline_miss,,,0,schema=S cycle=99 tick_ns=1`,
+                `1,${W},MSA,user,,,0,EARLY`,
+                `18000000000000000000,${W},MSA,user,,,0,LATE`, ''].join('\n'));
+            const out = capture(folder);
+            expect(await runCli(['trace', '.'], out)).toBe(0);
+            expect(out.stdout).toContain("+0.002000s MSA  ord_deadline_miss: schema=S cycle=99 tick_ns=1 [MSA's own record under the name of ORD's records: not taken for ORD's]");
+            expect(out.stdout).toContain('schema S: 1 completed cycle (response max 1 ms), 0 deadline misses, 0 overruns');
+            expect(out.stdout).not.toMatch(/EARLY|LATE|\+18000000000|\+4000\d\./);
+            expect(out.stdout).toContain('unreadable: ORD_24-Nov-2026-18h30m15s.csv line 5: mono_ns goes back in its log');
+            expect(out.stdout).toContain('unreadable: MSA_24-Nov-2026-18h30m15s.csv line 4: mono_ns goes back in its log');
+            expect(out.stdout).toContain('unreadable: MSA_24-Nov-2026-18h30m15s.csv line 5: mono_ns is past a 64-bit time');
+            // contract run --format json's figures (the CI gate) read the saved logs the same way
+            const { runSchemaFigures } = await import('../src/commands/run-schemas.js');
+            expect(await runSchemaFigures(folder, ['MSA_24-Nov-2026-18h30m15s.csv', 'ORD_24-Nov-2026-18h30m15s.csv'])).toEqual([expect.objectContaining({ schema: 'S', deadlineMisses: 0, completedCycles: 1 })]);
+            // the same records as a trace file: the same story, the forged lines named
+            const json = capture(folder);
+            expect(await runCli(['trace', '.', '--format', 'json'], json)).toBe(0);
+            writeFileSync(join(folder, 't.jsonl'), json.stdout);
+            const back = capture(folder);
+            await runCli(['trace', 't.jsonl'], back);
+            expect(back.stdout).toContain('schema S: 1 completed cycle (response max 1 ms), 0 deadline misses, 0 overruns');
+        } finally {
+            rmSync(folder, { recursive: true, force: true });
+        }
+    });
+
     it('exits 1 for logs that hold no record (empty, or only their header), saying so', async () => {
         const folder = mkdtempSync(join(tmpdir(), 'contract-trace-empty-'));
         try {

@@ -69,7 +69,8 @@ describe('trace files (JSON lines)', () => {
         const text = JSON.stringify({ kind: 'sim_start', monoNs: '0', wallTime: '', module: 'SIM', peer: '', port: null, size: 0, detail: 'simulation start', fields: {} }) + '\n' +
             JSON.stringify({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' }) + '\n' + jsonl(records);
         const back = traceFileToLogs('sim.jsonl', text);
-        expect([back.skipped, back.problems]).toEqual([1, []]);
+        // the carried line is named, as `contract trace FILE.jsonl` warns about it
+        expect([back.skipped, back.problems]).toEqual([1, ['line 2: a line of X.csv (line 3) that is no record: bad']]);
         expect(parseTrace(back.files)).toEqual(records);
         // one record at a time (contract trace FILE.jsonl), the unknown record comes back as it was, bounded
         expect(recordOfJsonLine('t.jsonl', 2, text.split('\n')[1]!)).toEqual({ kind: 'unknown', file: 'X.csv', line: 3, reason: 'bad', text: 'x' });
@@ -79,7 +80,7 @@ describe('trace files (JSON lines)', () => {
         // two simulations in one file (two scenarios): each from time 0; the first is kept, the second said left out
         const two = traceFileToLogs('sim.jsonl', text.replace('simulation start', 'simulation start: a.scenario') + text.replace('simulation start', 'simulation start: b.scenario'));
         expect(two.simulation).toBe('a.scenario');
-        expect(two.problems).toEqual([`the file's other simulations, from line ${text.split('\n').length}, left out: one is shown at a time`]);
+        expect(two.problems).toEqual(['line 2: a line of X.csv (line 3) that is no record: bad', `the file's other simulations, from line ${text.split('\n').length}, left out: one is shown at a time`]);
         expect(parseTrace(two.files)).toEqual(records);
     });
 
@@ -98,13 +99,18 @@ describe('trace files (JSON lines)', () => {
             'x'.repeat(20_000),
         ];
         const back = traceFileToLogs('../../evil name.jsonl', lines.join('\n') + '\n');
-        expect(back.problems).toEqual(['line 2: not JSON', 'line 3: not a JSON object', 'line 4: kind, monoNs, module and detail must be strings', 'line 5: bad module name', 'line 9: longer than 16384 characters']);
+        // every bad line is named, with the CSV reader's own reason for those it refuses (the Monitor
+        // names what `contract trace FILE.jsonl` warns about, and counts as many)
+        expect(back.problems).toEqual(['line 2: not JSON', 'line 3: not a JSON object', 'line 4: kind, monoNs, module and detail must be strings', 'line 5: bad module name',
+            'line 6: mono_ns is not a number', 'line 7: bad port or size', "line 8: unknown event 'no such kind'", 'line 9: longer than 16384 characters']);
+        expect(back.unreadable).toBe(8);
+        const streamed = lines.map((l, i) => recordOfJsonLine('t.jsonl', i + 1, l)).filter((r) => r && isUnknown(r));
+        expect(streamed).toHaveLength(back.unreadable);
         // the log names are plain: no path from the file's name
         expect(back.files.map((f) => f.name)).toEqual([`${rule.module}_evil_name.csv`]);
         const read = parseTrace(back.files);
-        // the lying line is the rule as its columns say; the others are the CSV reader's unknown records
-        expect(read[0]).toEqual(rule);
-        expect(read.slice(1).map((r) => (isUnknown(r) ? r.reason : r.kind))).toEqual(['mono_ns is not a number', 'bad port or size', "unknown event 'no such kind'"]);
+        // the lying line is the rule as its columns say; the others were named above, not carried into the logs
+        expect(read).toEqual([rule]);
         expect(recordOfJsonLine('t.jsonl', 2, 'not json')).toMatchObject({ kind: 'unknown', file: 't.jsonl', line: 2, reason: 'not JSON' });
         expect(recordOfJsonLine('t.jsonl', 3, '  ')).toBeUndefined();
     });

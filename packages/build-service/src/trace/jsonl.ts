@@ -16,6 +16,7 @@
 import { csvField } from './csv-line.js';
 import { CSV_HEADER, UNENDED_LINE, parseRecordLine, type LogFile } from './parse.js';
 import type { KnownRecord, TraceRecord, UnknownRecord } from './records.js';
+import { LogClocks, type LogClock } from './log-clock.js';
 
 /** Longer lines are not records (a record's CSV line is at most MAX_LINE_CHARS; its JSON adds the derived fields). */
 export const MAX_JSON_LINE_CHARS = 16_384;
@@ -78,14 +79,20 @@ export function jsonLineToCsv(line: string): JsonLineRead {
  * written from comes back as the unknown record it was (its own file and line); a simulation's
  * `sim_start` as itself (its detail bounded: `simulation start: SCENARIO`).
  */
-export function recordOfJsonLine(file: string, lineNo: number, line: string): TraceRecord | undefined {
+export function recordOfJsonLine(file: string, lineNo: number, line: string, clocks?: LogClocks): TraceRecord | undefined {
     if (line.trim() === '') return undefined;
     const read = jsonLineToCsv(line);
     if ('simStart' in read) return read.simStart;
     if ('carried' in read) return read.carried;
     if ('problem' in read) return { kind: 'unknown', file, line: lineNo, reason: read.problem, text: line.slice(0, 200) };
-    const record = parseRecordLine(file, lineNo, read.csv);
+    const record = parseRecordLine(file, lineNo, read.csv, clocks?.of(read.module));
     return read.cut && record.kind !== 'unknown' ? { ...record, cut: true } : record;
+}
+
+/** Why the CSV line of a trace file's record is no record (the logs' reader's reason), or undefined. */
+function csvProblem(file: string, lineNo: number, csv: string, clock: LogClock): string | undefined {
+    const r = parseRecordLine(file, lineNo, csv, clock);
+    return r.kind === 'unknown' ? (r as UnknownRecord).reason : undefined;
 }
 
 export interface TraceFileLogs {
@@ -138,6 +145,7 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
     // the log of each record line, in the file's order (a module's index: its place in `lines`, as in `files`)
     let order = new Uint16Array(1024);
     let records = 0;
+    const clocks = new LogClocks();
     for (let pos = 0, n = 1; pos < text.length; n++) {
         if (n % every === 0) yield;
         let nl = text.indexOf('\n', pos);
@@ -156,11 +164,17 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
             continue;
         }
         if ('carried' in read) {
+            // named as `contract trace FILE.jsonl` names it (a warning each), within the same bound
             skipped++;
+            const c = read.carried;
+            if (bad + skipped <= maxProblems) problems.push(`line ${n}: a line of ${c.file || 'its logs'}${c.line ? ` (line ${c.line})` : ''} that is no record: ${c.reason}`);
             continue;
         }
-        if ('problem' in read) {
-            if (bad++ < maxProblems) problems.push(`line ${n}: ${read.problem}${nl === text.length ? UNENDED_LINE : ''}`);
+        // a line whose record the CSV reader does not read (its checks, its log's time check) is
+        // named here as `contract trace FILE.jsonl` names it, not left for the logs' reader to count
+        const problem = 'problem' in read ? read.problem : csvProblem(name, n, read.csv, clocks.of(read.module));
+        if (problem !== undefined || 'problem' in read) {
+            if (bad++ + skipped < maxProblems) problems.push(`line ${n}: ${problem}${nl === text.length ? UNENDED_LINE : ''}`);
             continue;
         }
         let log = lines.get(read.module);
@@ -184,7 +198,7 @@ export function* traceFileToLogsSteps(name: string, text: string, every = 500, m
             log.pending = [];
         }
     }
-    if (bad > maxProblems) problems.push(`${bad - maxProblems} more line(s) that are no record`);
+    if (bad + skipped > maxProblems) problems.push(`${bad + skipped - maxProblems} more line(s) that are no record`);
     if (tooMany) problems.push(`${tooMany} record(s) of modules past the first ${MAX_TRACE_FILE_MODULES} left out`);
     const files: LogFile[] = [];
     for (const [module, l] of lines) {

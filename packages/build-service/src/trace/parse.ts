@@ -10,6 +10,7 @@ import { USER_KIND, isUserEventName, traceKind } from './record-kinds.js';
 import { isDigitsIn, isModuleNameIn, isPlainIntegerIn, spaceIn, wordValueIn } from './field-checks.js';
 import { SCHEDULER_LINES, SUPERVISOR_LINES, classifyLine } from './text-lines.js';
 import type { KnownRecord, RuleCause, RuleRecord, TraceRecord, UnknownRecord } from './records.js';
+import { LogClock, monoTextProblem, posingAs } from './log-clock.js';
 
 export const CSV_HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 /** Longer lines are not records (csvlog.c writes at most about 1 KiB per record). */
@@ -132,8 +133,20 @@ export function foreignRecordReason(file: string, module: string): string | unde
     return owner === undefined || owner === module ? undefined : `a record of ${module.slice(0, 64)} in ${owner}'s log (a module's log holds its own records only: ${owner}'s code wrote this line?)`;
 }
 
-/** One CSV line (not the header) of log `file` -> a record, or an unknown record saying what is wrong. */
-export function parseRecordLine(file: string, lineNo: number, line: string): TraceRecord {
+/**
+ * One CSV line (not the header) of log `file` -> a record, or an unknown record saying what is wrong.
+ * `clock`: the log's time check (log-clock.ts), given by a reader that reads the log's lines in
+ * file order: a record whose time it does not believe is an unknown record saying why.
+ */
+export function parseRecordLine(file: string, lineNo: number, line: string, clock?: LogClock): TraceRecord {
+    const r = readRecordLine(file, lineNo, line);
+    if (!clock || r.kind === 'unknown') return r;
+    const k = r as KnownRecord;
+    const why = clock.check(Number(k.monoNs), k.wallTime);
+    return why ? unknown(file, lineNo, why, line) : r;
+}
+
+function readRecordLine(file: string, lineNo: number, line: string): TraceRecord {
     if (line.length > MAX_LINE_CHARS) return unknown(file, lineNo, `line longer than ${MAX_LINE_CHARS} characters`, line);
     const f = splitCsvRecord(line);
     if (!f) return unknown(file, lineNo, 'a quoted field is not closed (the line was cut or forged)', line);
@@ -142,6 +155,8 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     // checked by character rather than by regular expression, and the record made as one literal
     // (one shape for all): this runs for every record of a live trace and of `contract trace`
     if (!isDigitsIn(mono, 1, 20)) return unknown(file, lineNo, 'mono_ns is not a number', line);
+    const past = monoTextProblem(mono);
+    if (past) return unknown(file, lineNo, past, line);
     if (!isModuleNameIn(module)) return unknown(file, lineNo, 'bad module name', line);
     const foreign = foreignRecordReason(file, module);
     if (foreign) return unknown(file, lineNo, foreign, line);
@@ -149,10 +164,12 @@ export function parseRecordLine(file: string, lineNo: number, line: string): Tra
     const kind = traceKind(event);
     const portN = port === '' ? null : Number(port);
     const sizeN = Number(size);
-    // a module's own record (ContractLog with an event name of its own): a `user` record naming it
-    if (!kind || kind === USER_KIND) {
+    // a module's own record (ContractLog with an event name of its own): a `user` record naming it;
+    // so is one under the name of an engine's own kind that another module wrote (log-clock.ts posingAs)
+    const posing = kind ? posingAs(kind.area, module) : undefined;
+    if (!kind || kind === USER_KIND || posing) {
         if (!isUserEventName(event)) return unknown(file, lineNo, `unknown event '${event.slice(0, 64)}'`, line);
-        const user: KnownRecord = { kind: 'user', monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields: { event } };
+        const user: KnownRecord = { kind: 'user', monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields: posing ? { event, posingAs: posing } : { event } };
         return user;
     }
     if (event === 'sup_rule') {
@@ -178,11 +195,12 @@ export function parseLogFile(file: LogFile): TraceRecord[] {
 function* logFileRecords(file: LogFile): Generator<TraceRecord> {
     // line by line (not one split of the whole text: a log of hundreds of MB would be one long step)
     const text = file.text;
+    const clock = new LogClock();
     for (let pos = 0, i = 0; pos < text.length; i++) {
         let nl = text.indexOf('\n', pos);
         const unended = nl < 0;
         if (nl < 0) nl = text.length;
-        const record = recordOfLine(file.name, i, text.slice(pos, nl));
+        const record = recordOfLine(file.name, i, text.slice(pos, nl), clock);
         pos = nl + 1;
         if (record) yield unended ? unendedLine(record) : record;
     }
@@ -206,9 +224,9 @@ export const UNENDED_LINE = ' (the file ends inside this line: its writer was st
  * newline taken off); undefined for an empty line and the header on the first line. Shared by the
  * readers of a whole log (here) and of a streamed one (the CLI's `contract trace`).
  */
-export function recordOfLine(file: string, index: number, raw: string): TraceRecord | undefined {
+export function recordOfLine(file: string, index: number, raw: string, clock?: LogClock): TraceRecord | undefined {
     const end = recordLineEnd(raw, index, 0, raw.length);
-    return end < 0 ? undefined : parseRecordLine(file, index + 1, end === raw.length ? raw : raw.slice(0, end));
+    return end < 0 ? undefined : parseRecordLine(file, index + 1, end === raw.length ? raw : raw.slice(0, end), clock);
 }
 
 /**

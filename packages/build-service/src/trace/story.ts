@@ -5,6 +5,7 @@
  * conflicts, deadline misses with their cycle, overruns, module starts and exits. Releases,
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
+import { posingText } from './log-clock.js';
 import { formatNanoseconds } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
@@ -141,7 +142,8 @@ function plural(n: number, one: string, many = `${one}s`): string {
 export function userRecordText(k: KnownRecord, detailChars = Infinity): string {
     const detail = k.detail.slice(0, detailChars);
     const given = [k.peer ? `peer ${k.peer}` : '', k.port !== null ? `port ${k.port}` : '', k.size > 0 ? plural(k.size, 'byte') : ''].filter(Boolean);
-    return `${k.fields['event'] ?? k.kind}${detail ? `: ${detail}` : ''}${given.length ? ` (${given.join(', ')})` : ''}`;
+    const posing = k.fields['posingAs'];
+    return `${k.fields['event'] ?? k.kind}${detail ? `: ${detail}` : ''}${given.length ? ` (${given.join(', ')})` : ''}${typeof posing === 'string' ? ` ${posingText(k.module, posing)}` : ''}`;
 }
 
 /** How the runtime tries a request kept for a full mailbox again (docs/runtime-api.md, queued sends). */

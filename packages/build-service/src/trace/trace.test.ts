@@ -96,7 +96,7 @@ describe('reading a log', () => {
     });
 
     it('types the engines\' readable lines: what they are and the names they hold', () => {
-        const fields = (event: string, detail: string) => (parseRecordLine('L', 2, `1,w,X,${event},,,0,"${detail}"`) as KnownRecord).fields;
+        const fields = (event: string, detail: string) => (parseRecordLine('L', 2, `1,w,${event === 'scheduler' ? 'ORD' : 'X'},${event},,,0,"${detail}"`) as KnownRecord).fields;
         expect(fields('scheduler', 'activate schemaCommande1')).toEqual({ what: 'activate', schema: 'schemaCommande1' }); // older logs
         expect(fields('scheduler', 'activate schemaCommande1 (activation #4 from SUP)')).toEqual({ what: 'activate', schema: 'schemaCommande1', activation: 4, requester: 'SUP' });
         expect(fields('scheduler', 'deactivate conveyor (activation #2 from LIN)')).toEqual({ what: 'deactivate', schema: 'conveyor', activation: 2, requester: 'LIN' });

@@ -2,7 +2,7 @@ import { describe, it, expect } from 'vitest';
 import { readdirSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
-import { TRACE_KINDS, parseRecordLine, type KnownRecord } from '@contract-studio/build-service/trace';
+import { LogClock, TRACE_KINDS, parseRecordLine, type KnownRecord } from '@contract-studio/build-service/trace';
 import { scanLine, scanned } from './line-scan.js';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { HOT_KINDS, applyHotLine } from './hot-line.js';
@@ -107,9 +107,11 @@ describe('a live line read in place (line-scan.ts, hot-line.ts)', () => {
     const quick = new MonitorModel({ checkpointEvery: 16 });
     const batched = new MonitorModel({ checkpointEvery: 16 });
     const full = new MonitorModel({ checkpointEvery: 16 });
+    // the full reader with the log's time check, as the model checks each log's lines (log-clock.ts)
+    const clock = new LogClock();
     lines.forEach((text, i) => {
       quick.pushLine('x.csv', i + 2, text);
-      full.push(parseRecordLine('x.csv', i + 2, text));
+      full.push(parseRecordLine('x.csv', i + 2, text, clock));
     });
     // the same lines as ranges of batches of 50, as the live run's trace events bring them
     for (let i = 0; i < lines.length; i += 50) {

@@ -12,7 +12,7 @@
  * a record of that kind, with that time. Anything else (a quoted field, a malformed line) is left
  * to the full reader, which says what is wrong with it.
  */
-import { MAX_LINE_CHARS, TRACE_KINDS, isDigitsIn, isModuleNameIn, isUserEventName, moduleOfLog } from '@contract-studio/build-service/trace';
+import { MAX_LINE_CHARS, ORD_MODULE, TRACE_KINDS, isDigitsIn, isModuleNameIn, isUserEventName, monoBeyondInt64, moduleOfLog, posingAs, type TraceArea } from '@contract-studio/build-service/trace';
 
 /**
  * What the last successful scanLine read (one object, reused: a scan makes none).
@@ -32,6 +32,8 @@ export const scanned = {
 /** The trace table's kinds by length, to name a line's event without cutting it out. */
 const KINDS_BY_LENGTH: string[][] = [];
 for (const { kind } of TRACE_KINDS) (KINDS_BY_LENGTH[kind.length] ??= []).push(kind);
+/** The area of each kind (an engine's own kinds: log-clock.ts posingAs). */
+const AREA = new Map<string, TraceArea>(TRACE_KINDS.map((k) => [k.kind, k.area]));
 
 /** The kind whose name is text[from, to), or undefined. */
 function kindIn(text: string, from: number, to: number): string | undefined {
@@ -67,7 +69,7 @@ export function scanLine(text: string, from: number, to: number, file?: string):
   }
   if (n !== 7) return false;
   const c1 = comma[0]!, c2 = comma[1]!, c3 = comma[2]!, c4 = comma[3]!, c5 = comma[4]!, c6 = comma[5]!, c7 = comma[6]!;
-  if (!isDigitsIn(text, 1, 20, from, c1) || !isModuleNameIn(text, c2 + 1, c3)) return false;
+  if (!isDigitsIn(text, 1, 20, from, c1) || monoBeyondInt64(text, from, c1) || !isModuleNameIn(text, c2 + 1, c3)) return false;
   // a record of another module than the log's (its module's code wrote it): the full reader says so
   if (file !== undefined) {
     const owner = moduleOfLog(file);
@@ -75,8 +77,11 @@ export function scanLine(text: string, from: number, to: number, file?: string):
   }
   if ((c6 > c5 + 1 && !isDigitsIn(text, 1, 9, c5 + 1, c6)) || !isDigitsIn(text, 1, 15, c6 + 1, c7)) return false;
   // an event of the table, or a module's own (a `user` record, as the full reader reads it)
-  const kind = kindIn(text, c3 + 1, c4) ?? (isUserEventName(text, c3 + 1, c4) ? 'user' : undefined);
+  let kind = kindIn(text, c3 + 1, c4) ?? (isUserEventName(text, c3 + 1, c4) ? 'user' : undefined);
   if (!kind) return false;
+  // an engine's own kind written by another module is that module's own record (the reader's posingAs)
+  const area = AREA.get(kind)!;
+  if ((area === 'scheduler' || area === 'supervisor') && posingAs(area, c3 - c2 - 1 === ORD_MODULE.length && text.startsWith(ORD_MODULE, c2 + 1) ? ORD_MODULE : '') !== undefined) kind = 'user';
   scanned.kind = kind;
   scanned.mono = digitsValue(text, from, c1);
   scanned.to = to;

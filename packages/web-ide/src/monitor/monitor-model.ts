@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -279,6 +279,8 @@ export class MonitorModel implements MonitorView {
   private count = 0;
   /** Bumped on every change, so a view redraws only when something happened. */
   version = 0;
+  /** Each log's time check (log-clock.ts), for the lines pushed with pushLineIn. */
+  private readonly clocks = new LogClocks();
   /** Ids of the texts fed without one (each a text of its own: negative, the callers' ids are not). */
   private anonymousText = 0;
   /** Per periodic schema, what its cycles wait for (a deadline miss's mark names it). */
@@ -352,15 +354,23 @@ export class MonitorModel implements MonitorView {
    * keeps each text once per chunk (a trace event's, a recorded log's); without it the text is
    * taken as one of its own. `cut`: the line was its log's last, with no line end (markCut).
    */
-  pushLineIn(file: string, line: number, text: string, from: number, to: number, textId = --this.anonymousText, cut = false): void {
+  pushLineIn(file: string, line: number, text: string, from: number, to: number, textId = --this.anonymousText, cut = false, timeChecked = false): void {
+    // each log's time check (log-clock.ts), its lines in file order (a recorded run checks them itself: timeChecked)
+    let clock = timeChecked ? undefined : this.clocks.of(file);
     if (scanLine(text, from, to, file)) {
+      const why = clock?.check(scanned.mono, text, scanned.comma[0]! + 1, scanned.comma[1]!);
+      if (why !== undefined) {
+        this.push({ kind: 'unknown', file, line, reason: why, text: text.slice(from, Math.min(to, from + 200)) });
+        return;
+      }
       const module = cut ? text.slice(scanned.comma[1]! + 1, scanned.comma[2]!) : '';
       if (this.pushScanned(text, from, to, textId)) {
         if (cut) this.markCut(module);
         return;
       }
+      clock = undefined; // checked above
     }
-    const r = parseRecordLine(file, line, text.slice(from, to));
+    const r = parseRecordLine(file, line, text.slice(from, to), clock);
     const t = this.timeOfRecord(r);
     // a line that is no record is kept as what the reader made of it: read again without its
     // log's name (a scrub back), a record of another module than its log's would be taken for one

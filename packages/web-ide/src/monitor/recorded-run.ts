@@ -14,7 +14,7 @@
  * Built in steps (a generator that yields every `every` lines) so that its caller can let the
  * page draw between slices.
  */
-import { MinHeap, TRACE_KINDS, TWIN_LOGS_WHY, parseRecordLine, recordLineEnd, twinLogs, type KnownRecord } from '@contract-studio/build-service/trace';
+import { LogClock, MinHeap, TRACE_KINDS, TWIN_LOGS_WHY, parseRecordLine, recordLineEnd, twinLogs, type KnownRecord, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { piecesLength, type LogFile } from '../views/run-logs.js';
 import { MonitorModel, type MonitorModelOptions } from './monitor-model.js';
 import { digitsValue, scanLine, scanned } from './line-scan.js';
@@ -49,6 +49,8 @@ interface LogLines {
    */
   kind: Uint8Array;
   commas: Uint16Array;
+  /** The lines the trace reader reads no record of (by index): what it made of them, pushed as that. */
+  refused: Map<number, UnknownRecord>;
   /** The order of its lines by key (stable), when they are not in key order already. */
   order: Int32Array | undefined;
   /** The index of its last line when the file ends inside it (no line end: its module was killed while writing it), else -1. */
@@ -95,13 +97,22 @@ const enum Read {
  * `sup_rule` line (its detail has a form of its own) and any line the scan does not accept are
  * parsed.
  */
-function keyOf(file: string, lineNo: number, text: string, from: number, to: number): Read {
+function keyOf(file: string, lineNo: number, text: string, from: number, to: number, clock: LogClock, refused: Map<number, UnknownRecord>, k: number): Read {
   if (scanLine(text, from, to, file) && scanned.kind !== 'sup_rule') {
+    // the log's time check (log-clock.ts): a time it does not believe makes the line unreadable
+    const why = clock.check(scanned.mono, text, scanned.comma[0]! + 1, scanned.comma[1]!);
+    if (why !== undefined) {
+      refused.set(k, { kind: 'unknown', file, line: lineNo, reason: why, text: text.slice(from, Math.min(to, from + 200)) });
+      return Read.None;
+    }
     setKey(text, from, scanned.comma[0]!);
     return Read.Scanned;
   }
-  const r = parseRecordLine(file, lineNo, text.slice(from, to));
-  if (r.kind === 'unknown') return Read.None;
+  const r = parseRecordLine(file, lineNo, text.slice(from, to), clock);
+  if (r.kind === 'unknown') {
+    refused.set(k, r as UnknownRecord);
+    return Read.None;
+  }
   const mono = (r as KnownRecord).monoNs;
   setKey(mono, 0, mono.length);
   return Read.Parsed;
@@ -118,7 +129,8 @@ function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut:
   const name = file.name;
   const pieces = file.pieces ?? [file.text];
   const size = Math.max(16, Math.ceil(piecesLength(pieces) / 64));
-  const l: LogLines = { name, pieces, n: 0, piece: new Int32Array(size), from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), order: undefined, cutAt: -1 };
+  const l: LogLines = { name, pieces, n: 0, piece: new Int32Array(size), from: new Int32Array(size), to: new Int32Array(size), line: new Int32Array(size), hi: new Float64Array(size), lo: new Float64Array(size), kind: new Uint8Array(size), commas: new Uint16Array(size * 7), refused: new Map(), order: undefined, cutAt: -1 };
+  const clock = new LogClock();
   let hi = 0;
   let lo = 0;
   let sorted = true;
@@ -134,7 +146,7 @@ function* logLines(file: LogFile, every: number, maxUnreadable: number, leftOut:
       const to = recordLineEnd(text, i, from, nl);
       pos = nl + 1;
       if (to < 0) continue;
-      const read = keyOf(name, i + 1, text, from, to);
+      const read = keyOf(name, i + 1, text, from, to, clock, l.refused, l.n);
       if (read === Read.None && ++unreadable > maxUnreadable) {
         leftOut.push(`${name}: more than ${maxUnreadable} lines that are not trace records, the rest of it from line ${i + 1} left out`);
         break lines;
@@ -217,7 +229,9 @@ export function* recordedRunSteps(files: readonly LogFile[], every = 2000, optio
     }
     const cut = i === l.cutAt;
     // a cut line goes the way that marks it (pushLineIn scans it again: it is one line of a run)
-    if (cut || !kind || !model.pushScanned(text, from, to, textId)) model.pushLineIn(l.name, l.line[i]!, text, from, to, textId, cut);
+    const refused = l.refused.get(i);
+    if (refused) model.push(refused);
+    else if (cut || !kind || !model.pushScanned(text, from, to, textId)) model.pushLineIn(l.name, l.line[i]!, text, from, to, textId, cut, true);
   };
   const at = logs.map(() => 0);
   let folded = 0;

@@ -4,7 +4,7 @@
  * paired with the module's next `run_finished` (fields split by the trace reader's splitCsvLine). Pure: used by
  * the timeline view and tests.
  */
-import { splitCsvLine } from '@contract-studio/build-service/trace';
+import { LogClocks, parseRecordLine, splitCsvLine, type KnownRecord } from '@contract-studio/build-service/trace';
 
 export interface Activation {
   module: string;
@@ -19,12 +19,18 @@ const ENGINE_SCHEMA = /^(activate|deactivate) [A-Za-z_]\w*(?: \(|$)/;
 /** A supervisor's readable line of a function started or stopped (`function F(p = v) started`, `function F stopped`). */
 const ENGINE_FUNCTION = /^function [A-Za-z_]\w*(?:\(.*\))? (started|stopped)$/s;
 
-export function activationsFromCsv(text: string): Activation[] {
+/**
+ * `file`: the log's name (a line of another module than the one it names is no record of that
+ * module's). Each line the bars use is read by the trace reader (parseRecordLine, with each
+ * module's time check, log-clock.ts): a line it does not read as a record, or whose time it does
+ * not believe, makes no bar; `unreadable` (when given) counts them.
+ */
+export function activationsFromCsv(text: string, file = '', unreadable?: { n: number }): Activation[] {
   const lines = text.split(/\r?\n/).filter((l) => l.length > 0);
   if (!lines.length) return [];
   const header = splitCsvLine(lines[0]!);
   const col = (name: string) => header.indexOf(name);
-  const [iMono, iModule, iEvent, iDetail] = [col('mono_ns'), col('module'), col('event'), col('detail')];
+  const [iMono, iModule, iEvent] = [col('mono_ns'), col('module'), col('event')];
   if (iMono < 0 || iModule < 0 || iEvent < 0) throw new Error('not a ContrACT CSV log (missing mono_ns/module/event columns)');
   const open = new Map<string, Activation>();
   const out: Activation[] = [];
@@ -50,16 +56,21 @@ export function activationsFromCsv(text: string): Activation[] {
   // matter (a 1 kHz run's logs are most of a million lines): with the event column between two
   // others, such a line holds `,run_started,`, `,run_finished,`, `,scheduler,` or `,supervisor,`
   const inside = iEvent > 0 && iEvent < header.length - 1;
+  const clocks = new LogClocks();
   for (let n = 1; n < lines.length; n++) {
     const l = lines[n]!;
     if (inside && !l.includes(',run_started,') && !l.includes(',run_finished,') && !l.includes(',scheduler,') && !l.includes(',supervisor,')) continue;
-    const f = splitCsvLine(l);
-    const t = Number(f[iMono]);
-    const module = f[iModule] ?? '?';
-    if (!Number.isFinite(t)) continue;
-    const event = f[iEvent];
+    const r = parseRecordLine(file, n + 1, l, clocks.of(recordModule(l)));
+    if (r.kind === 'unknown') {
+      if (unreadable) unreadable.n++;
+      continue;
+    }
+    const k = r as KnownRecord;
+    const t = Number(k.monoNs);
+    const module = k.module;
+    const event = k.kind;
     if (event === 'scheduler' || event === 'supervisor') {
-      const detail = f[iDetail] ?? '';
+      const detail = k.detail;
       if (!engines.has(module)) {
         engines.set(module, 0);
         // its run records so far were no bars of its own
@@ -72,7 +83,7 @@ export function activationsFromCsv(text: string): Activation[] {
     }
     if (engines.has(module)) continue;
     if (event === 'run_started') {
-      const a: Activation = { module, start: t, detail: f[iDetail] ?? '' };
+      const a: Activation = { module, start: t, detail: k.detail };
       const prev = open.get(module);
       if (prev && prev.end === undefined) prev.end = t;
       open.set(module, a);
@@ -98,4 +109,12 @@ export function inferPeriodOf(acts: Activation[]): { ns: number; module: string 
   if (best.length < 3) return undefined;
   const gaps = best.slice(1).map((s, i) => s - best[i]!).sort((a, b) => a - b);
   return { ns: gaps[Math.floor(gaps.length / 2)]!, module };
+}
+
+/** The module field of a record line (the third), to key its time check; '' when none. */
+function recordModule(line: string): string {
+  const a = line.indexOf(',');
+  const b = a < 0 ? -1 : line.indexOf(',', a + 1);
+  const c = b < 0 ? -1 : line.indexOf(',', b + 1);
+  return c < 0 ? '' : line.slice(b + 1, c);
 }

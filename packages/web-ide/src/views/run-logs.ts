@@ -4,7 +4,7 @@
  * service collected from a sandboxed Build & Run job (`GET /api/jobs/:id/artifacts[/<name>]`,
  * docs/build-service-api.md), or a trace file of the workspace read as the logs it was written from.
  */
-import { traceFileToLogsSteps, type TraceFileLogs } from '@contract-studio/build-service/trace';
+import { TWIN_LOGS_WHY, traceFileToLogsSteps, twinLogs, type TraceFileLogs } from '@contract-studio/build-service/trace';
 import { runSliced } from '../util/sliced.js';
 import { api, ApiError, getOk, responsePieces } from '../api.js';
 import { activationsFromCsv, type Activation } from './activation-log.js';
@@ -61,9 +61,13 @@ export function localLogFolders(project: string, files: readonly string[]): Arra
 export function activationsFromLogs(files: LogFile[]): { acts: Activation[]; errors: string[] } {
   const acts: Activation[] = [];
   const errors: string[] = [];
+  // two logs of one module are said, as the Monitor and `contract trace` say them
+  for (const [m, names] of twinLogs(files.map((f) => f.name))) errors.push(`${m}: ${names.length} logs of it (${names.slice(0, 3).join(', ')}${names.length > 3 ? ', ...' : ''}), read as one: ${TWIN_LOGS_WHY}`);
   for (const f of files) {
     try {
-      for (const a of activationsFromCsv(f.text)) acts.push(a); // not push(...): a long run's hundreds of thousands overflow the stack
+      const unreadable = { n: 0 };
+      for (const a of activationsFromCsv(f.text, f.name, unreadable)) acts.push(a); // not push(...): a long run's hundreds of thousands overflow the stack
+      if (unreadable.n) errors.push(`${f.name}: ${unreadable.n} line(s) of activations or engine activity that are no record, or whose time is not believed (\`contract trace\` names each), left out`);
     } catch (e) {
       errors.push(`${f.name}: ${(e as Error).message}`);
     }

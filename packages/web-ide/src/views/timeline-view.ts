@@ -1,4 +1,5 @@
 import { h } from '../util/dom.js';
+import { api } from '../api.js';
 import type { Workspace } from '../workspace/workspace.js';
 import { inferPeriodOf, type Activation } from './activation-log.js';
 import { laneBars, lanesOf, lastTime, type LaneBar } from './timeline-bars.js';
@@ -126,9 +127,16 @@ export class TimelineView {
       this.canvas.replaceChildren(h('div', { class: 'pad muted' }, `No CSV logs in ${cli} nor in ${make} yet. \`contract run\` writes a run's logs to ${cli} (or the folder its --logs names: open it in the Monitor), \`make -C src-gen/generated/architecture run\` to ${make}; a Build & Run shows its own run here when it ends.`));
       return;
     }
+    // the folder as the server lists it (its links and FIFOs too, which the Explorer's tree does
+    // not show), as the Monitor reads it: a log left out is named with why
+    const folder = (held.find((f) => `local:${f.folder}` === this.source.value) ?? held[0])!.folder;
+    const listing = await api.logFolder(folder).catch((e: Error) => ({ logs: csvs, more: 0, max: 0, notRead: [`${folder} could not be listed (${e.message}): its logs the Explorer shows are read`], notReadCount: 1 }));
     // past the bound, ORD's log (the schemas' activations) is read first, not left out by name order
-    const { files, problems } = await readWorkspaceLogs(csvs, (f) => f, undefined, { supervisors: new Set() });
-    this.drawLogs(files, problems, '');
+    const { files, problems } = await readWorkspaceLogs(listing.logs, (f) => f, undefined, { supervisors: new Set() });
+    const notRead = [...listing.notRead];
+    if (listing.notReadCount > listing.notRead.length) notRead.push(`${listing.notReadCount - listing.notRead.length} more entries that are no regular file`);
+    if (listing.more) notRead.push(`${listing.more} more CSV log(s) past the first ${listing.max}`);
+    this.drawLogs(files, [...problems, ...notRead], '');
   }
 
   private drawLogs(files: LogFile[], problems: string[], emptyText: string): void {
@@ -223,7 +231,7 @@ export class TimelineView {
     };
     root.append(axis);
     const leftOut = leftOutModules ? ` · ${leftOutModules} more modules named in the logs, past the ${MAX_LANES} lanes shown (${leftOutActs} activations left out: did a module's code write into its log?)` : '';
-    this.info.textContent = `${acts.length} activations · ${modules.length} modules${leftOut} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · ${errors.length} unreadable log(s)` : ''}`;
+    this.info.textContent = `${acts.length} activations · ${modules.length} modules${leftOut} · ${(span / 1e6).toFixed(1)} ms${periodOf ? ` · period ≈ ${(periodOf.ns / 1e6).toFixed(2)} ms (of ${periodOf.module}: the grid's #k)` : ''}${errors.length ? ` · left out or not whole: ${errors.slice(0, 8).join('; ')}${errors.length > 8 ? `; ${errors.length - 8} more` : ''}` : ''}`;
     this.canvas.replaceChildren(root);
     // drawn once the svg is in place: a zoom keeps the scroll position, clamped to the new width
     drawBars();
