@@ -7,10 +7,11 @@
  * stream, trace-stream.ts) and rewrites the file when they differ.
  */
 import { createHash, type Hash } from 'node:crypto';
-import type { FileHandle } from 'node:fs/promises';
+import { constants, promises as fsp } from 'node:fs';
+import { lstat, type FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
 import { LogClocks, countRecord, parseRecordLine, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
-import { openTraceFile, toJsonLines } from './trace-files.js';
+import { lockTraceFile, openTraceFile, toJsonLines } from './trace-files.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
 export class LiveTrace {
@@ -25,11 +26,28 @@ export class LiveTrace {
     /** Each log's time check: its lines come in file order. */
     private readonly clocks = new LogClocks();
 
-    private constructor(private readonly handle: FileHandle) {}
+    /** Bytes written (the file's size when nothing else wrote it). */
+    private bytes = 0;
 
-    /** Opens or creates FILE, never through a link, a FIFO or anything but a regular file; not emptied yet. */
+    private constructor(private readonly handle: FileHandle, private readonly path: string, private readonly unlock: () => void) {}
+
+    /**
+     * Opens or creates FILE, never through a link, a FIFO or anything but a regular file; not
+     * emptied yet. Takes its writer lock first (lockTraceFile: another run writing it refuses this one).
+     */
     static async open(path: string): Promise<LiveTrace> {
-        return new LiveTrace(await openTraceFile(path));
+        const unlock = lockTraceFile(path);
+        try {
+            return new LiveTrace(await openTraceFile(path), path, unlock);
+        } catch (e) {
+            unlock();
+            throw e;
+        }
+    }
+
+    /** The writer lock let go, once the file is whole (after settleTraceFile). */
+    release(): void {
+        this.unlock();
     }
 
     /** Empties the file, once, before the first write. */
@@ -46,48 +64,74 @@ export class LiveTrace {
         for (const r of records) countRecord(this.counts, r);
         const text = toJsonLines(records);
         this.written.update(text);
+        this.bytes += Buffer.byteLength(text);
         this.empty();
         this.writing = this.writing.then(() => this.handle.write(text)).catch((err: Error) => void (this.failed ??= err));
     }
 
-    /** The run ran: waits for the writes (the file emptied if no record came) and closes; the sha256 (hex) of what the file holds. Throws a write error. */
-    async close(): Promise<string> {
+    /**
+     * The run ran: waits for the writes (the file emptied if no record came) and closes; the
+     * sha256 (hex) of what was written, and whether the file at its path is still this one and
+     * holds just that (`intact`: another run writing the same file, or the file moved or replaced
+     * meanwhile, make it false). Throws a write error.
+     */
+    async close(): Promise<{ digest: string; intact: boolean }> {
         this.empty();
         await this.writing;
+        let intact = false;
+        try {
+            const own = await this.handle.stat();
+            const there = await lstat(this.path);
+            intact = there.isFile() && there.ino === own.ino && there.dev === own.dev && own.size === this.bytes;
+        } catch {
+            intact = false; // gone from its path
+        }
         await this.handle.close();
         if (this.failed) throw this.failed;
-        return this.written.digest('hex');
+        return { digest: this.written.digest('hex'), intact };
     }
 
     /** Nothing ran (the build failed): closes; true when the file was left as it was (no record had come). */
     async abandon(): Promise<boolean> {
         await this.writing;
         await this.handle.close().catch(() => {});
+        this.unlock();
         return !this.emptied;
     }
 }
 
 /**
  * The JSON lines of the run's saved logs `names` in `dir`: their digest compared with what was
- * written live (`live.digest`), and `traceFile` rewritten from them when it differs. The records
- * counted, or why the logs could not be read. A run that left no logs keeps what came live
- * (`live.counts`). `observe` sees each record of the logs once, in the order written.
+ * written live (`live.digest`), and `traceFile` rewritten from them when it differs or when the
+ * file is not intact (LiveTrace.close: another writer, a move or a replacement during the run):
+ * written whole to a new file beside it, then renamed over the path (never through a link: a link
+ * put there meanwhile is replaced, its target untouched). The records counted (with `replaced`
+ * when the file was not intact), or why the logs could not be read. A run that left no logs keeps
+ * what came live (`live.counts`). `observe` sees each record of the logs once, in the order written.
  */
-export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; counts: RecordCounts }, observe?: (r: TraceRecord) => void): Promise<RecordCounts | string> {
-    if (!names.length) return { ...live.counts };
+export async function settleTraceFile(dir: string, names: readonly string[], traceFile: string, live: { digest: string; counts: RecordCounts; intact?: boolean }, observe?: (r: TraceRecord) => void): Promise<(RecordCounts & { replaced?: boolean }) | string> {
+    const replaced = live.intact === false ? { replaced: true } : {};
+    if (!names.length) return { ...live.counts, ...replaced };
     const logs = await openLogFolder(dir, names);
     if (typeof logs === 'string') return logs;
     try {
         const hash = createHash('sha256');
         const { counts } = await jsonLinesOf(logs, (piece) => void hash.update(piece), observe);
-        if (hash.digest('hex') === live.digest) return counts;
-        const out = await openTraceFile(traceFile, { empty: true });
+        if (hash.digest('hex') === live.digest && live.intact !== false) return counts;
+        const temp = `${traceFile}.tmp-${process.pid}`;
+        const out = await fsp.open(temp, constants.O_WRONLY | constants.O_CREAT | constants.O_EXCL | constants.O_NOFOLLOW, 0o644);
         try {
-            await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
-        } finally {
-            await out.close();
+            try {
+                await jsonLinesOf(logs, async (piece) => void (await out.write(piece)));
+            } finally {
+                await out.close();
+            }
+            await fsp.rename(temp, traceFile);
+        } catch (e) {
+            await fsp.unlink(temp).catch(() => {});
+            throw e;
         }
-        return counts;
+        return { ...counts, ...replaced };
     } finally {
         await closeLogs(logs);
     }

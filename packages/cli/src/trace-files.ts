@@ -4,7 +4,7 @@
  * trace file's opening for writing (`--trace`: never through a link).
  * The parsing itself is the browser-safe reader of @contract-studio/build-service/trace.
  */
-import { constants, promises as fsp } from 'node:fs';
+import { closeSync, constants, openSync, promises as fsp, readFileSync, readSync, unlinkSync, writeSync } from 'node:fs';
 import { basename } from 'node:path';
 import type { FileHandle } from 'node:fs/promises';
 import type { TraceRecord } from '@contract-studio/build-service/trace';
@@ -78,4 +78,75 @@ export async function openTraceFile(path: string, opts: { empty?: boolean } = {}
         await handle.close().catch(() => {});
         throw e;
     }
+}
+
+/** How many attempts at a trace file's writer lock (a dead writer's lock removed in between). */
+const LOCK_TRIES = 3;
+
+function pidAlive(pid: number): boolean {
+    try {
+        process.kill(pid, 0);
+        return true;
+    } catch (e) {
+        return (e as NodeJS.ErrnoException).code === 'EPERM';
+    }
+}
+
+/**
+ * One writer of a trace file at a time: `FILE.writing` beside it, created exclusively (never
+ * through a link), holding the writer's pid, removed when it is done (two `contract run --trace
+ * run.jsonl` at once mixed their records in one file, a line cut, and both said it was whole).
+ * Another live writer's lock refuses this one, saying whose; a dead writer's is taken over.
+ * The release.
+ */
+export function lockTraceFile(path: string): () => void {
+    const lock = `${path}.writing`;
+    for (let attempt = 0; attempt < LOCK_TRIES; attempt++) {
+        let fd: number;
+        try {
+            fd = openSync(lock, constants.O_WRONLY | constants.O_CREAT | constants.O_EXCL | constants.O_NOFOLLOW, 0o644);
+        } catch (e) {
+            if ((e as NodeJS.ErrnoException).code !== 'EEXIST') throw e;
+            let holder = NaN;
+            try {
+                const rfd = openSync(lock, constants.O_RDONLY | constants.O_NOFOLLOW | constants.O_NONBLOCK);
+                try {
+                    const buffer = Buffer.alloc(32);
+                    holder = Number(/^(\d{1,10})\n?$/.exec(buffer.subarray(0, readSync(rfd, buffer, 0, 32, 0)).toString('utf8'))?.[1]);
+                } finally {
+                    closeSync(rfd);
+                }
+            } catch {
+                // a link or unreadable: no writer of ours
+            }
+            if (Number.isSafeInteger(holder) && holder !== process.pid && pidAlive(holder)) {
+                throw new Error(`it is being written by another contract command (pid ${holder}; its lock ${safeNameOf(basename(lock))}): wait for it to end, or name another file`);
+            }
+            try {
+                unlinkSync(lock); // a dead writer's (killed), or garbage
+            } catch {
+                // removed meanwhile
+            }
+            continue;
+        }
+        try {
+            writeSync(fd, `${process.pid}\n`);
+        } finally {
+            closeSync(fd);
+        }
+        let released = false;
+        const release = (): void => {
+            if (released) return;
+            released = true;
+            process.off('exit', release);
+            try {
+                if (readFileSync(lock, 'utf8') === `${process.pid}\n`) unlinkSync(lock);
+            } catch {
+                // gone already
+            }
+        };
+        process.once('exit', release); // an interrupted command leaves no lock behind
+        return release;
+    }
+    throw new Error(`its lock ${safeNameOf(basename(lock))} could not be taken`);
 }

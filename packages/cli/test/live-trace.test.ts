@@ -1,7 +1,7 @@
 /** `contract run --trace FILE`: records written as the trace events arrive, not only at the end. */
 import { createHash } from 'node:crypto';
-import { spawnSync } from 'node:child_process';
-import { mkdirSync, mkdtempSync, readFileSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
+import { spawn, spawnSync } from 'node:child_process';
+import { existsSync, lstatSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, renameSync, rmSync, statSync, symlinkSync, writeFileSync } from 'node:fs';
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, it } from 'vitest';
@@ -28,7 +28,7 @@ describe('LiveTrace', () => {
         expect(readFileSync(path, 'utf8')).toBe(want1); // before the end of the run
         live.event(trace(4, 2));
         const whole = want1 + toJsonLines([4, 5].map((n) => parseRecordLine('SUP_1.csv', n + 1, line(n).text)));
-        expect(await live.close()).toBe(createHash('sha256').update(whole).digest('hex')); // all a long run keeps of it
+        expect(await live.close()).toEqual({ digest: createHash('sha256').update(whole).digest('hex'), intact: true }); // all a long run keeps of it
         expect(readFileSync(path, 'utf8')).toBe(whole);
         expect(live.counts).toEqual({ records: 5, unreadable: 0 });
     });
@@ -43,7 +43,7 @@ describe('LiveTrace', () => {
     it('its digest differs from that of another text (the caller then rewrites the file)', async () => {
         const live = await LiveTrace.open(join(dir, 'a.jsonl'));
         live.event(trace(1, 1));
-        expect(await live.close()).not.toBe(createHash('sha256').update('something else\n').digest('hex'));
+        expect((await live.close()).digest).not.toBe(createHash('sha256').update('something else\n').digest('hex'));
     });
 
     it('never writes through a link', async () => {
@@ -115,10 +115,46 @@ describe('LiveTrace', () => {
             expect(readFileSync(file, 'utf8')).toBe('as written live\n');
         });
 
-        it('keeps what came live when the run left no logs; never rewrites through a link', async () => {
+        it('keeps what came live when the run left no logs; never rewrites through a link (a link put there is replaced, its target untouched)', async () => {
             expect(await settleTraceFile(dir, [], join(dir, 'none.jsonl'), { digest: 'x', counts: { records: 7, unreadable: 1 } })).toEqual({ records: 7, unreadable: 1 });
+            writeFileSync(join(dir, 'target'), 'not a trace\n');
             symlinkSync(join(dir, 'target'), join(dir, 'link.jsonl'));
-            await expect(settleTraceFile(dir, ['SUP_1.csv'], join(dir, 'link.jsonl'), { digest: 'x', counts: { records: 0, unreadable: 0 } })).rejects.toThrow(/it is a symbolic link: a trace file is never written through a link/);
+            await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], join(dir, 'link.jsonl'), { digest: 'x', counts: { records: 0, unreadable: 0 } });
+            expect(readFileSync(join(dir, 'target'), 'utf8')).toBe('not a trace\n');
+            expect(lstatSync(join(dir, 'link.jsonl')).isFile()).toBe(true);
+            expect(readFileSync(join(dir, 'link.jsonl'), 'utf8')).toBe(whole());
+        });
+
+        it('one writer at a time: a trace file another live command writes is refused, saying whose; a dead writer\'s lock is taken over; none is left', async () => {
+            const file = join(dir, 'both.jsonl');
+            const other = spawn('sleep', ['30']);
+            try {
+                writeFileSync(`${file}.writing`, `${other.pid}\n`);
+                await expect(LiveTrace.open(file)).rejects.toThrow(`it is being written by another contract command (pid ${other.pid}; its lock both.jsonl.writing): wait for it to end, or name another file`);
+                expect(existsSync(file)).toBe(false); // nothing created nor emptied
+            } finally {
+                other.kill();
+            }
+            await new Promise((r) => other.once('exit', r));
+            // its writer is gone (killed): taken over
+            const live = await LiveTrace.open(file);
+            expect(readFileSync(`${file}.writing`, 'utf8')).toBe(`${process.pid}\n`);
+            live.event(trace(1, 1));
+            await live.close();
+            live.release();
+            expect(existsSync(`${file}.writing`)).toBe(false);
+        });
+
+        it('a trace file moved aside during the run: written again at its path, whole', async () => {
+            const file = join(dir, 'moved.jsonl');
+            const live = await LiveTrace.open(file);
+            live.event(trace(1, 3));
+            await new Promise((r) => setTimeout(r, 20));
+            renameSync(file, join(dir, 'aside.jsonl'));
+            const end = await live.close();
+            expect(end.intact).toBe(false);
+            expect(await settleTraceFile(dir, ['ORD_1.csv', 'SUP_1.csv'], file, { ...end, counts: live.counts })).toMatchObject({ replaced: true });
+            expect(readFileSync(file, 'utf8')).toBe(whole());
         });
     });
 });

@@ -289,6 +289,7 @@ export const runCommand: Command = {
             savedLogs = await saveLogs(artifacts, logsDir, defaultLogs);
         } catch (e) {
             io.err(`contract run: cannot write the CSV logs to ${safeName(logsDir)}: ${(e as Error).message}\n`);
+            await live?.abandon();
             return EXIT_FAILURE;
         }
         const logs = savedLogs.saved;
@@ -304,16 +305,20 @@ export const runCommand: Command = {
                 // written live; rewritten from the collected logs when the live channel was not
                 // the whole story in order (docker, its kept-lines bound, records sent late):
                 // both compared by digest, the logs read as a stream (a long run is gigabytes)
-                const digest = await live.close();
+                const { digest, intact } = await live.close();
                 // a pass over every saved record: long for a long run (2 M records, ~17 s), said first
                 const bytes = logsBytes(logsDir, logs);
                 if (bytes >= TRACE_CHECK_SAID_BYTES) io.err(`trace: checking ${safeName(traceFile)} against the ${Math.round(bytes / 1048576)} MiB of CSV logs saved (one pass over every record)...\n`);
-                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, counts: live.counts }, teller ? (r) => teller.tell(r) : undefined);
+                const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, counts: live.counts, intact }, teller ? (r) => teller.tell(r) : undefined);
                 if (typeof whole === 'string') throw new Error(whole);
-                trace = { file: traceFile, ...whole };
+                const { replaced, ...counted } = whole;
+                if (replaced) io.err(`trace: ${safeName(traceFile)} was written by another process, or moved or replaced, during the run: ${logs.length ? 'written again whole from this run\'s logs' : 'no log to write it again from: it is not this run\'s trace'}\n`);
+                trace = { file: traceFile, ...counted };
             } catch (e) {
                 io.err(`contract run: cannot write the trace to ${safeName(traceFile)}: ${(e as Error).message}\n`);
                 return EXIT_FAILURE;
+            } finally {
+                live.release();
             }
         }
         const leftovers = artifacts?.runDirLeftovers ?? [];

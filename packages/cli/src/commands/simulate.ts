@@ -14,7 +14,7 @@ import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO, type Command
 import { defaultRuntimeSource } from '../runtime-source.js';
 import { EXIT_ENVIRONMENT, formatGccDiagnostic } from '../job-runner.js';
 import { safeName } from '../terminal-text.js';
-import { openTraceFile, toJsonLines, traceNameProblem } from '../trace-files.js';
+import { lockTraceFile, openTraceFile, toJsonLines, traceNameProblem } from '../trace-files.js';
 
 const FORMATS = ['text', 'json', 'junit'] as const;
 /** Lines of the --trace file written at once. */
@@ -208,12 +208,14 @@ const KEEP_PARSED_CHARS = 256 * 1024;
 class SimulationTrace {
     private handle: FileHandle | undefined;
     private error: Error | undefined;
+    private unlock: (() => void) | undefined;
 
     constructor(private readonly file: string) {}
 
-    /** Opens (creates or empties) the file now; the fault, if it cannot be. */
+    /** Takes the file's writer lock (lockTraceFile) and opens (creates or empties) the file now; the fault, if it cannot be. */
     async open(): Promise<{ file: string; message: string } | undefined> {
         try {
+            this.unlock ??= lockTraceFile(this.file);
             this.handle ??= await openTraceFile(this.file, { empty: true });
             return undefined;
         } catch (e) {
@@ -241,6 +243,7 @@ class SimulationTrace {
             this.error ??= e as Error;
         }
         await this.handle?.close().catch((e: Error) => (this.error ??= e));
+        this.unlock?.();
         return this.error ? { file: this.file, message: this.error.message } : undefined;
     }
 }
