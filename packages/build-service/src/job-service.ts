@@ -9,7 +9,7 @@ import { availableParallelism, cpus, tmpdir } from 'node:os';
 import { dirname, join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { DEFAULT_LIMITS, LimitsError, SERVICE_BOUNDS, longestDuration, mergeLimits, workDiskBytes, type Limits } from './limits.js';
-import { Job, type JobRequest } from './pipeline/job.js';
+import { durationCapMessage, Job, type JobRequest } from './pipeline/job.js';
 import type { ProjectKind, ProjectSource } from './pipeline/prepare.js';
 import { RuntimeCache } from './pipeline/runtime-cache.js';
 import { GenerationCache } from './cache/generation-cache.js';
@@ -132,6 +132,11 @@ export class JobService {
    */
   sweepDocker(): Promise<SweepReport> {
     return this.sandboxes.docker.sweep();
+  }
+
+  /** True from close() on: no job is taken any more (503 closing), the running ones are being cancelled. */
+  get closing(): boolean {
+    return this.closed;
   }
 
   get stats(): { running: number; queued: number; concurrency: number; queueSize: number } {
@@ -286,6 +291,9 @@ export class JobService {
     const job = new Job(id, request, resolved.sandbox.name);
     job.owner = owner;
     job.warnings.push(...resolved.warnings);
+    // a run shortened to fit its run time limit is not a full run: said where a client reads (docs/build-service-api.md)
+    const capped = request.action === 'run' ? durationCapMessage(request) : null;
+    if (capped) job.warnings.push(capped);
     job.sandboxNote = resolved.note;
     job.sandboxProbeMs = probeMs;
     this.jobs.set(id, job);
@@ -363,6 +371,8 @@ export class JobService {
     const running = [...this.running];
     await Promise.all(running.map((j) => j.cancel()));
     await Promise.all(running.map((j) => j.finished));
+    // a runtime build a cancelled job left going (job.ts): stopped before its folder is removed
+    await this.runtime.close();
     await this.workspaces.removeAll();
     await this.startupSweep;
     for (const sandbox of Object.values(this.sandboxes.sandboxes)) await sandbox.close?.();

@@ -65,6 +65,27 @@ function refuseUpgrade(socket: Duplex, why: string): true {
 
 export const DEFAULT_PORT = 7391;
 
+/**
+ * The answer to a request the HTTP parser refused ('clientError'): Node's own status (431 headers
+ * too large, 408 request timeout, else 400) with a JSON body {error, code} where the socket can
+ * still be written to; the connection is closed. Exported for a server that mounts the service.
+ */
+export function answerClientError(err: NodeJS.ErrnoException, socket: Duplex): void {
+  if (err.code === 'ECONNRESET' || !socket.writable) {
+    socket.destroy();
+    return;
+  }
+  const [status, reason, code] =
+    err.code === 'HPE_HEADER_OVERFLOW'
+      ? [431, 'Request Header Fields Too Large', 'bad_request']
+      : err.code === 'ERR_HTTP_REQUEST_TIMEOUT'
+        ? [408, 'Request Timeout', 'timeout']
+        : [400, 'Bad Request', 'bad_request'];
+  const what = (err as { reason?: string }).reason ?? err.message;
+  const body = JSON.stringify({ error: `malformed HTTP request: ${String(what).slice(0, 200)}${err.code ? ` (${err.code})` : ''}`, code });
+  socket.end(`HTTP/1.1 ${status} ${reason}\r\nConnection: close\r\nContent-Type: application/json; charset=utf-8\r\nContent-Length: ${Buffer.byteLength(body)}\r\n\r\n${body}`);
+}
+
 export function createBuildServer(options: BuildServerOptions = {}): BuildServer {
   const basePath = (options.basePath ?? '/api').replace(/\/$/, '');
   const service = new JobService(options);
@@ -122,6 +143,9 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
           // a request's failure ends that request only, never the service
           .catch(() => res.destroy());
       });
+      // a request Node's parser refuses (a malformed Content-Length, a bad header): a JSON
+      // {error, code} as every other error (docs/build-service-api.md), not Node's empty 400
+      server.on('clientError', (err: NodeJS.ErrnoException, socket: Duplex) => answerClientError(err, socket));
       server.on('upgrade', (req, socket, head) => {
         if (foreignRequest(req, host)) {
           socket.end('HTTP/1.1 403 Forbidden\r\nConnection: close\r\nContent-Length: 0\r\n\r\n');
@@ -143,8 +167,10 @@ export function createBuildServer(options: BuildServerOptions = {}): BuildServer
       return { url: `http://${shown}:${addr.port}`, host: addr.address, port: addr.port, token: token?.value ?? null };
     },
     async close() {
-      sockets.close();
+      // the jobs end first (cancelled), so that every stream, SSE and WebSocket alike, gets its
+      // job's `end` before its socket closes (1001 going away for a WebSocket still open)
       await service.close();
+      await sockets.shutdown();
       if (server) {
         server.closeAllConnections();
         await new Promise<void>((resolve) => server!.close(() => resolve()));

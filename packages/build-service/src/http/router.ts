@@ -102,7 +102,9 @@ export function createRouter(service: JobService, basePath: string, budget?: Str
     let bodyUnread = method === 'POST' || method === 'PUT' || method === 'PATCH';
     try {
       if (parts[0] === 'health' && parts.length === 1 && method === 'GET') {
-        send(res, 200, { ok: true, ...service.stats });
+        // a service shutting down takes no job (503 closing): said here too, not ok
+        if (service.closing) send(res, 503, { ok: false, closing: true, ...service.stats });
+        else send(res, 200, { ok: true, closing: false, ...service.stats });
       } else if (parts[0] === 'sandboxes' && parts.length === 1 && method === 'GET') {
         const sandboxes = [];
         for (const name of SANDBOX_NAMES) sandboxes.push({ name, ...(await service.sandboxes.probe(name)) });
@@ -148,7 +150,12 @@ export function createRouter(service: JobService, basePath: string, budget?: Str
         } else if (sub === 'events' && parts.length === 3 && method === 'GET') {
           const after = afterSeq(req, url);
           if (after === null) throw new ServiceError(400, 'bad_request', AFTER_ERROR);
-          streamSse(job, req, res, after, budget);
+          // nothing will ever follow: 204 No Content, which stops an EventSource (WHATWG HTML
+          // "Server-sent events": a 200 stream closed at once made it reconnect every 3 s for ever)
+          if (job.events.isEnded && after >= job.events.all.length) {
+            res.writeHead(204, { 'Cache-Control': 'no-cache' });
+            res.end();
+          } else streamSse(job, req, res, after, budget);
         }
         else if (sub === 'log' && parts.length === 3 && method === 'GET') {
           const text = logText(job.events.all.filter((e): e is LineEvent => e.type === 'line'));

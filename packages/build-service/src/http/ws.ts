@@ -11,7 +11,7 @@
  */
 import type { IncomingMessage } from 'node:http';
 import type { Duplex } from 'node:stream';
-import { WebSocketServer } from 'ws';
+import { WebSocket, WebSocketServer } from 'ws';
 import type { JobService } from '../job-service.js';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LiveBacklog } from './live-backlog.js';
@@ -157,5 +157,23 @@ export class JobWebSockets {
   close(): void {
     for (const c of this.wss.clients) c.terminate();
     this.wss.close();
+  }
+
+  /**
+   * The service going away (its jobs ended, each socket sent its job's `end`): every socket still
+   * open is closed with 1001 (going away) and given up to `graceMs` for its closing handshake,
+   * then cut (a socket that does not answer).
+   */
+  async shutdown(graceMs = 1000): Promise<void> {
+    const open = [...this.wss.clients];
+    // a socket closing already (1000 after its job's end) finishes its own handshake
+    for (const c of open) if (c.readyState === WebSocket.OPEN) c.close(1001, 'service closing');
+    let timer: NodeJS.Timeout | undefined;
+    await Promise.race([
+      Promise.all(open.map((c) => (c.readyState === WebSocket.CLOSED ? undefined : new Promise((r) => c.once('close', r))))),
+      new Promise((r) => (timer = setTimeout(r, graceMs))),
+    ]);
+    clearTimeout(timer);
+    this.close();
   }
 }

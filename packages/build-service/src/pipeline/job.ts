@@ -34,6 +34,17 @@ const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Kil
 /** How long a cancelled job waits for the host-side work it let go of (a generation stopping at its next check) before releasing its workspace. */
 const ABANDONED_WAIT_MS = 10_000;
 
+/**
+ * What a run whose `duration` did not fit in its run time limit is told (it is shortened to fit):
+ * one of the job's `warnings` (the 201, the job, the CLI's JSON) and its run's service line; null
+ * when the duration was not shortened.
+ */
+export function durationCapMessage(request: Pick<JobRequest, 'duration' | 'durationAsked' | 'limits' | 'readyTimeout'>): string | null {
+  if (request.durationAsked === undefined || request.duration === undefined) return null;
+  const inits = request.readyTimeout !== undefined && request.readyTimeout > DEFAULT_READY_TIMEOUT_SECONDS ? ` (its modules' inits may take ${request.readyTimeout} s)` : '';
+  return `duration ${request.durationAsked} s capped to ${request.duration} s: the run time limit is ${request.limits.runSeconds} s, of which ${request.limits.runSeconds - request.duration} s are kept to start and stop the architecture${inits}`;
+}
+
 export interface JobRequest {
   action: 'build' | 'run';
   project: ProjectSource;
@@ -325,7 +336,9 @@ export class Job {
       let runtimeDir: string | undefined;
       if (prep.ok && hostRuntime && runtimeSources) {
         t = Date.now();
-        runtimeDir = await this.orCancel(hostRuntime.ensureBuilt(runtimeSources, (l, s) => this.line('prepare', 'runtime', s, l)));
+        // the runtime's build is the service's, shared by its jobs, outside the workspace: a cancel
+        // lets it go on without this job (not awaited: it ends now, not once the build is done)
+        runtimeDir = await this.orCancel(hostRuntime.ensureBuilt(runtimeSources, (l, s) => this.line('prepare', 'runtime', s, l)), { detached: true });
         runtimePath = ctx.sandbox.runtimePath(runtimeDir);
         this.timed('prepare', 'runtime (cache)', t);
       }
@@ -389,7 +402,7 @@ export class Job {
       if (this.request.start !== undefined) runVars.push(`START=${this.request.start}`);
       if (this.request.duration !== undefined) runVars.push(`DURATION=${this.request.duration}`);
       if (this.request.durationAsked !== undefined)
-        this.system('run', `duration ${this.request.durationAsked} s capped to ${this.request.duration} s: the run time limit is ${this.request.limits.runSeconds} s, of which ${this.request.limits.runSeconds - this.request.duration!} s are kept to start and stop the architecture${this.request.readyTimeout !== undefined && this.request.readyTimeout > DEFAULT_READY_TIMEOUT_SECONDS ? ` (its modules' inits may take ${this.request.readyTimeout} s)` : ''}`);
+        this.system('run', durationCapMessage(this.request)!);
       if (this.request.readyTimeout !== undefined) runVars.push(`READY_TIMEOUT=${this.request.readyTimeout}`);
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       // each module's CSV log is capped before it can fill the work dir (the disk limit would stop the
@@ -633,12 +646,16 @@ export class Job {
    * `p`, or a rejection as soon as the job is cancelled (or faulted). The work `p` stands for goes
    * on meanwhile (prepareWorkspace stops at its next check of the cancel): its end is always
    * observed — a rejection nobody handled ended the whole service (a Stop 60 ms into a run: the
-   * generator's 'cancelled') — and awaited before the job lets its workspace go (abandoned).
+   * generator's 'cancelled') — and awaited before the job lets its workspace go (abandoned),
+   * unless `detached` (work outside the workspace that other jobs share: the runtime's build).
    */
-  private orCancel<T>(p: Promise<T>): Promise<T> {
+  private orCancel<T>(p: Promise<T>, { detached = false }: { detached?: boolean } = {}): Promise<T> {
     const settled = p.then(() => undefined, () => undefined);
-    this.abandoned.add(settled);
-    void settled.then(() => this.abandoned.delete(settled));
+    // detached: work that never touches the job's workspace (the shared runtime build): not waited for
+    if (!detached) {
+      this.abandoned.add(settled);
+      void settled.then(() => this.abandoned.delete(settled));
+    }
     if (this.cancelRequested || this.fault) return Promise.reject(this.fault ?? new Cancelled());
     return Promise.race([p, this.cancelled.then(() => Promise.reject(this.fault ?? new Cancelled()))]);
   }

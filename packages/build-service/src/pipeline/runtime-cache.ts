@@ -9,7 +9,7 @@
  * complete, so two processes never see half a runtime, and a killed build leaves only a temporary
  * folder that no key names.
  */
-import { execFileSync, spawn } from 'node:child_process';
+import { execFileSync, spawn, type ChildProcess } from 'node:child_process';
 import { createHash, randomBytes } from 'node:crypto';
 import { existsSync, promises as fsp } from 'node:fs';
 import { availableParallelism, machine } from 'node:os';
@@ -56,6 +56,9 @@ export interface RuntimeSources {
 
 export class RuntimeCache {
   private readonly builds = new Map<string, Promise<string>>();
+  /** The runtime builds' make processes running now (close() stops them). */
+  private readonly makes = new Set<ChildProcess>();
+  private closed = false;
 
   constructor(
     private readonly sourceDir: string,
@@ -93,9 +96,22 @@ export class RuntimeCache {
     return { key, name: `runtime-${key}`, contents };
   }
 
+  /**
+   * Stops the builds in progress (a job cancelled during the first build no longer waits for it:
+   * it goes on for the service's other and later jobs until the service closes) and waits for
+   * them to have removed their temporary folders. No build starts afterwards.
+   */
+  async close(): Promise<void> {
+    this.closed = true;
+    // GNU make passes a SIGTERM on to the compilers it runs and waits for them
+    for (const child of this.makes) child.kill('SIGTERM');
+    await Promise.all([...this.builds.values()].map((b) => b.catch(() => undefined)));
+  }
+
   /** The host folder of the runtime of `s` (sources()), building it first when needed. */
   ensureBuilt(s: RuntimeSources, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
     let build = this.builds.get(s.key);
+    if (this.closed) return Promise.reject(new Error('the build service is closing: the runtime is not built'));
     if (!build) {
       build = this.build(s.key, s.contents, onLine);
       this.builds.set(s.key, build);
@@ -152,14 +168,17 @@ export class RuntimeCache {
   private async make(dir: string, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<void> {
     await new Promise<void>((resolve, reject) => {
       // parallel: the runtime's Makefile is (the same libmodule.a, byte for byte); 10.4 -> 5.7 s on two cores
+      if (this.closed) return reject(new Error('the build service is closing: the runtime build was stopped'));
       const child = spawn('make', ['-s', `-j${RUNTIME_BUILD_JOBS}`, '-C', dir], { stdio: ['ignore', 'pipe', 'pipe'] });
+      this.makes.add(child);
+      child.on('close', () => this.makes.delete(child));
       const forward = (stream: 'stdout' | 'stderr') => (chunk: Buffer) => {
         for (const line of chunk.toString('utf8').split('\n')) if (line) onLine(line, stream);
       };
       child.stdout.on('data', forward('stdout'));
       child.stderr.on('data', forward('stderr'));
       child.on('error', reject);
-      child.on('close', (code) => (code === 0 ? resolve() : reject(new Error(`runtime build failed (make exit ${code})`))));
+      child.on('close', (code, signal) => (code === 0 ? resolve() : reject(new Error(this.closed ? 'the build service is closing: the runtime build was stopped' : `runtime build failed (make ${signal ? `killed by ${signal}` : `exit ${code}`})`))));
     });
     for (const needed of ['build/libmodule.a', 'build/contract-launch']) {
       if (!existsSync(join(dir, needed))) onLine(`warning: the runtime build did not produce ${needed}`, 'stderr');
