@@ -229,6 +229,8 @@ const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
 const OUTPUT_TRUNCATED_LINE = /^\[output truncated: (stdout|stderr) limit .* reached\]$/;
 /** The service's line when a run's duration was shortened to fit its run time limit (job.ts). */
 const DURATION_CAPPED_LINE = /^duration \S+ s capped to \S+ s: the run time limit is /;
+/** The same said among the job's warnings (build-service durationCapMessage). */
+const DURATION_CAPPED_WARNING = DURATION_CAPPED_LINE;
 /** The service's line while another command holds the project (build-service job.ts onWait): said in every mode. */
 const WAITING_LINE = /^waiting for the other command using this project \(/;
 /** The service's `time: <step> N ms` lines: --verbose only (a terminal's progress lines leave them out). */
@@ -292,12 +294,13 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
             io.err(`${e.line}\n`);
             return;
         }
-        if (opts.format !== 'text') return;
-        // a --duration that does not fit in --run-limit: the service shortens it, said (never silently)
-        if (e.step === 'run' && e.source === 'service' && DURATION_CAPPED_LINE.test(e.line) && !opts.verbose && !opts.progress) {
+        // a --duration that does not fit in --run-limit: the service shortens it, said on stderr in
+        // every output (never silently; also among the job's warnings, `warnings` in JSON)
+        if (e.step === 'run' && e.source === 'service' && DURATION_CAPPED_LINE.test(e.line)) {
             io.err(`${e.line}\n`);
             return;
         }
+        if (opts.format !== 'text') return;
         // the run's output cut at its cap: said where it was cut, in the same stream (the modules' lines go on in their CSV logs)
         // (the cap is per stream: the other one, with the launcher's lines on stderr, goes on)
         const truncated = e.step === 'run' && e.source === 'service' ? OUTPUT_TRUNCATED_LINE.exec(e.line) : null;
@@ -384,7 +387,8 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
         return exitCodeOf(result, job);
     }
     io.err(prepareErrors(job, opts.dirArg));
-    for (const w of job.warnings) io.err(`warning: ${w}\n`);
+    // the duration's cap is said as the run begins (makePrinter), not twice (a job that never ran: moot)
+    for (const w of job.warnings) if (!DURATION_CAPPED_WARNING.test(w)) io.err(`warning: ${w}\n`);
     const seconds = (ms: number | undefined) => (ms === undefined ? '-' : (ms / 1000).toFixed(1));
     const d = result.durations_ms;
     let message = result.message;

@@ -109,3 +109,18 @@ describe('contract run --run-limit on a real run (bwrap)', () => {
         expect(Date.now() - t0).toBeLessThan(60_000);
     }, 240_000);
 });
+
+describe('a --duration too long for --run-limit (bwrap)', () => {
+    it('is among the warnings of --format json and said on stderr, in json as in text (once)', async () => {
+        expect(await runCli(['new', 'capped'], capture(root))).toBe(0);
+        const said = 'duration 10 s capped to 1 s: the run time limit is 2 s, of which 1 s are kept to start and stop the architecture';
+        const json = capture(root);
+        await runCli(['run', 'capped', '--sandbox', 'bwrap', '--duration', '10s', '--run-limit', '2s', '--format', 'json'], json);
+        const out = JSON.parse(json.stdout) as { warnings: string[] };
+        expect(out.warnings).toContain(said);
+        expect(json.stderr).toContain(`${said}\n`);
+        const text = capture(root);
+        await runCli(['run', 'capped', '--sandbox', 'bwrap', '--duration', '10s', '--run-limit', '2s'], text);
+        expect(text.stderr.split(said).length - 1).toBe(1);
+    }, 240_000);
+});
