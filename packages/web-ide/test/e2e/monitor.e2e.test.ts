@@ -819,8 +819,17 @@ describe('Monitor in headless Chromium', () => {
         constructor(url: string | URL, protocols?: string | string[]) {
           super(url, protocols);
           this.addEventListener('message', (m) => {
-            const type = /^\{"type":"([a-z]+)"/.exec(String(m.data))?.[1] ?? '?';
-            w.__pageEvents[type] = (w.__pageEvents[type] ?? 0) + 1;
+            // a frame is one event, or several (`?batch=1`: a JSON array of them)
+            let data: unknown;
+            try {
+              data = JSON.parse(String(m.data));
+            } catch {
+              data = undefined;
+            }
+            for (const e of Array.isArray(data) ? data : [data]) {
+              const type = typeof (e as { type?: unknown })?.type === 'string' ? (e as { type: string }).type : '?';
+              w.__pageEvents[type] = (w.__pageEvents[type] ?? 0) + 1;
+            }
           });
         }
       };
