@@ -80,7 +80,7 @@ async function main(): Promise<void> {
   const generator = new GenerateController({ workspace, explorer, problems, panel: generatePanel, button: ui.toolbar.generate, showPanel: ui.showPanel, project: currentProject });
 
   // the Monitor: live during a run (trace events), then the job's CSV logs as a recorded run
-  const monitor = new MonitorController({ editors, lsp, workspace, build, button: ui.toolbar.monitor, project: () => currentProject() });
+  const monitor = new MonitorController({ editors, lsp, workspace, build, button: ui.toolbar.monitor, project: () => currentProject(), projectOf: (path) => projectOf(path, files.rootHasContracts()) });
   // a trace file (`contract run --trace`: *.jsonl) opens in the Monitor as the run it records; any other file in its editor
   explorer.onOpen.on((path) => void (path.endsWith('.jsonl') ? monitor.openTraceFile(path) : editors.open(path)));
   // Simulate: supervisors in virtual time, shown in its panel and in the Monitor (docs/simulation.md "In the IDE")

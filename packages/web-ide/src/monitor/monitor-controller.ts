@@ -33,6 +33,7 @@ import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symb
 import { NOT_IN_MODEL_LONG } from './panel-text.js';
 import { csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
 import { count, recordCounts, recordCountsText, unreadableNote } from './record-counts.js';
+import type { ArchSchema } from '../lsp/architecture-model.js';
 
 /** Live runs kept (each holds a worker and up to its model's bound of records); older ones go. */
 const MAX_LIVE_RUNS = 4;
@@ -65,6 +66,12 @@ interface Run {
   used?: number;
   /** A job's run that ended: how (`succeeded`, `cancelled`, `failed: …`, `connection to the build service lost`). */
   outcome?: string;
+  /**
+   * The project whose model it is read against (its schemas, its supervisors' rules): the one that
+   * holds its log folder or trace file, the one a job ran; not the active editor tab's (a trace file
+   * of another project showed every rule "not in the model" and that tab's schemas).
+   */
+  project: string;
 }
 
 export class MonitorController {
@@ -75,6 +82,8 @@ export class MonitorController {
   private readonly runs = new Map<string, Run>();
   private shown: string | undefined;
   private symbols: SupervisorSymbols | undefined;
+  /** The project `symbols` were read for. */
+  private symbolsProject: string | undefined;
   private previous: HTMLElement | undefined;
   /** The model of the last Build & Run's live trace (tests compare it with the job's logs). */
   lastLive: RemoteMonitorModel | undefined;
@@ -97,7 +106,7 @@ export class MonitorController {
   private changedWhileRereading = false;
 
   constructor(
-    private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string },
+    private readonly deps: { editors: EditorArea; lsp: LspClient; workspace: Workspace; build: BuildPanel; button: HTMLButtonElement; project: () => string; projectOf: (path: string) => string },
   ) {
     deps.button.addEventListener('click', () => (this.panel && deps.editors.docked === this.panel.element ? this.hide() : void this.show()));
     deps.build.onStarted.on(({ jobId, action }) => {
@@ -148,7 +157,7 @@ export class MonitorController {
     this.picked++;
     const model = new RemoteMonitorModel(worker, url, { measure: this.measure });
     worker.addEventListener('error', (e) => model.fail(`the live trace's worker failed (${e.message || 'it could not start'}): the run is shown from its CSV logs when it ends`));
-    const run: Run = { id: `live:${jobId}`, label: liveRunLabel(jobId), model, live: true };
+    const run: Run = { id: `live:${jobId}`, label: liveRunLabel(jobId), model, live: true, project: this.deps.project() };
     let problems = 0;
     let missed = 0;
     model.onChange = () => {
@@ -207,7 +216,7 @@ export class MonitorController {
     if (this.panel) return this.panel;
     const { lsp } = this.deps;
     this.panel = new MonitorPanel({
-      schemas: () => lsp.architecture(),
+      schemas: () => this.projectSchemas(),
       supervisors: async () => (await this.readSymbols()).catalogue,
       openRule: (sup, fn, rule) => void this.openRule(sup, fn, rule),
       createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture()),
@@ -284,7 +293,8 @@ export class MonitorController {
     // a log the service left out or capped, one that could not be downloaded, or the rest of one
     // that is not a trace is said: the replay lacks it
     const problems = [...logs.problems, ...unread];
-    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model)), model, live: false, whole: true, outcome };
+    const project = this.runs.get(`live:${jobId}`)?.project ?? this.runs.get(`job:${jobId}`)?.project ?? this.deps.project();
+    const run: Run = { id: `job:${jobId}`, label: csvLogsRunLabel(jobId, problems, outcome, recordCounts(model)), model, live: false, whole: true, outcome, project };
     this.keepRecorded(run);
     return run;
   }
@@ -323,7 +333,7 @@ export class MonitorController {
   /** A simulation's state (@contract-studio/simulator/trace): the same view as runs, replacing the previous simulation. */
   async showSimulation(model: MonitorModel, label: string): Promise<void> {
     this.picked++;
-    this.runs.set('sim', { id: 'sim', label, model, live: false });
+    this.runs.set('sim', { id: 'sim', label, model, live: false, project: this.deps.project() });
     await this.show('sim');
   }
 
@@ -404,7 +414,7 @@ export class MonitorController {
     const inFolder = paths.length + listing.more + listing.notReadCount;
     const read = leftOut.length ? `${files.length} of ${inFolder} CSV logs in ${where}${counted} (left out: ${leftOut.join('; ')})${whole}` : `${files.length} CSV log(s) in ${where}${counted}`;
     const label = unread.length ? `${read} (not whole: ${unread.join('; ')})` : read;
-    const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: true };
+    const run: Run = { id: `dir:${folder}`, label, model, live: false, whole: true, project: this.deps.projectOf(folder ? `${folder}/x` : 'x') };
     this.keepRecorded(run);
     // shown unless the user asked for another run while it was read and built: then listed
     if (mine === this.picked && (asked || this.shown === run.id)) await this.show(run.id);
@@ -425,7 +435,7 @@ export class MonitorController {
     const notWhole = [...problems, ...unread];
     // counted as `contract trace` counts them: the logs' unreadable lines the file carries, and its own lines that are no record
     const label = `Trace file ${path}${simulation === undefined ? '' : simulation ? ` · simulation of ${simulation}` : ' · a simulation'} · ${recordCountsText(recordCounts(model, skipped + unreadable))}${notWhole.length ? ` (not whole: ${notWhole.join('; ')})` : ''}${tooLarge ? ` — \`contract trace ${path}\` tells a run of any length` : ''}`;
-    this.keepRecorded({ id, label, model, live: false, whole: simulation === undefined });
+    this.keepRecorded({ id, label, model, live: false, whole: simulation === undefined, project: this.deps.projectOf(path) });
     if (mine === this.picked && (asked || this.shown === id)) await this.show(id);
     else await this.refreshSources();
   }
@@ -519,13 +529,35 @@ export class MonitorController {
     return new Set(symbols?.catalogue.keys() ?? []);
   }
 
+  /** The project of the run shown (Run.project), else the active tab's. */
+  private shownProject(): string {
+    return (this.shown !== undefined ? this.runs.get(this.shown)?.project : undefined) ?? this.deps.project();
+  }
+
+  /** Whether workspace path `path` is in project `project` ('' : the workspace root's). */
+  private inProject(path: string, project: string): boolean {
+    return !project || path.startsWith(`${project}/`);
+  }
+
   private async readSymbols(): Promise<SupervisorSymbols> {
-    if (this.symbols) return this.symbols;
+    const project = this.shownProject();
+    if (this.symbols && this.symbolsProject === project) return this.symbols;
     const { workspace, lsp } = this.deps;
-    const project = this.deps.project();
-    const files = workspace.allFiles().filter((p) => isContract(p) && (!project || p.startsWith(`${project}/`)));
-    this.symbols = await readSupervisorSymbols(files.map((p) => workspace.uriOf(p).toString()), (uri) => lsp.documentSymbols(uri));
-    return this.symbols;
+    const files = workspace.allFiles().filter((p) => isContract(p) && this.inProject(p, project));
+    const symbols = await readSupervisorSymbols(files.map((p) => workspace.uriOf(p).toString()), (uri) => lsp.documentSymbols(uri));
+    this.symbols = symbols;
+    this.symbolsProject = project;
+    return symbols;
+  }
+
+  /** The schemas of the shown run's project (the language server gives the whole workspace's). */
+  private async projectSchemas(): Promise<ArchSchema[]> {
+    const project = this.shownProject();
+    const all = await this.deps.lsp.architecture();
+    return all.filter((sc) => {
+      const path = this.deps.workspace.pathOf(sc.uri);
+      return path === undefined || this.inProject(path, project);
+    });
   }
 
   /**

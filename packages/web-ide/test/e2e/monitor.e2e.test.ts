@@ -12,7 +12,7 @@ import { spawnSync } from 'node:child_process';
 import { fileURLToPath } from 'node:url';
 import { WebSocketServer } from 'ws';
 import { encodeTraceRecords, parseTrace } from '@contract-studio/build-service/trace';
-import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, type Session } from './harness.js';
+import { startSession, openIde, shot, openFile, activeTab, activeValue, MOBILE_ROBOT, TUTORIAL, type Session } from './harness.js';
 import { activationsFromLogs } from '../../src/views/run-logs.js';
 
 const canBuild =
@@ -1020,4 +1020,39 @@ describe.skipIf(!canBuild)('Monitor on examples/mobile-robot with a velocity-loo
     await shot(page, 'monitor-04-mobile-robot-deadline-miss');
     await docShot(page, 'doc-monitor-mobile-robot');
   }, 300_000);
+});
+
+describe('Monitor in a workspace of two projects', () => {
+  let s: Session;
+  beforeAll(async () => {
+    s = await startSession({ empty: true });
+    cpSync(TUTORIAL, join(s.workspace, 'tut'), { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
+    cpSync(MOBILE_ROBOT, join(s.workspace, 'mob'), { recursive: true, filter: (src) => !/[\/]logs$/.test(src) });
+    cpSync(FIXTURE, join(s.workspace, 'tut', 'logs'), { recursive: true });
+    await openIde(s);
+  }, 60_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
+  it('replays a project\'s logs against that project\'s model, whichever project\'s file the editor shows', async () => {
+    const { page } = s;
+    // the active tab is the other project's: its model is not the run's
+    const mobFile = readdirSync(join(s.workspace, 'mob')).find((f) => f.endsWith('.contract'))!;
+    await openFile(page, `mob/${mobFile}`);
+    await page.keyboard.press('Alt+Shift+M');
+    await expect.poll(() => page.locator('.monitor-sources option[value="dir:tut/logs"]').count(), { timeout: 15_000 }).toBe(1);
+    await page.locator('.monitor-sources').selectOption('dir:tut/logs');
+    await expect.poll(() => page.locator('.monitor-source').textContent(), { timeout: 15_000 }).toMatch(/ in tut\/logs$/);
+    // the model's supervisors read (for the run shown): the tutorial's, not the active tab's project
+    await expect.poll(() => page.evaluate(() => (window as any).__ide.monitor.symbols?.catalogue.size ?? 0), { timeout: 15_000 }).toBeGreaterThan(0);
+    expect(await page.evaluate(() => [...(window as any).__ide.monitor.symbols.catalogue.keys()].sort())).toEqual(['GLB', 'SUP']);
+    // SUP's rules are in its model (they were "not in the model", struck through), mobile-robot's MIS is not listed
+    await expect.poll(() => page.locator('.monitor-sup[data-supervisor="SUP"] .monitor-sup-name').getAttribute('data-in-model'), { timeout: 15_000 }).toBe('true');
+    await expect.poll(() => rule(page, 'SUP.action.FIRST').getAttribute('data-in-model')).toBe('true');
+    expect(await page.locator('.monitor-sup[data-supervisor="MIS"]').count()).toBe(0);
+    // the schemas the panel reads are the tutorial's, none of mobile-robot's
+    const schemas = await page.evaluate(async () => ((await (window as any).__ide.monitor.projectSchemas()) as { name: string }[]).map((x) => x.name).sort());
+    expect(schemas).toEqual(['schemaCommande1', 'schemaCommande2', 'schemaReceptionMessage']);
+  }, 120_000);
 });
