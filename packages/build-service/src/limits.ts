@@ -335,6 +335,10 @@ export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean
       if (!Number.isInteger(value)) throw new LimitsError(`limit ${key} must be a whole number (a count or a size), got ${value}`);
       if (value > max) throw new LimitsError(`limit ${key} must be at most ${max}, got ${value}`);
     }
+    // at least a millisecond: a tinier one (1e-300) went as `DURATION=5e-301` to make and the launcher
+    if (key.endsWith('Seconds') && value < 0.001) {
+      throw new LimitsError(`limit ${key} must be at least 0.001 s, got ${value}`);
+    }
     // the service's timers hold at most 2^31-1 ms: a longer time limit would fire at once
     if (key.endsWith('Seconds') && value > MAX_LIMIT_SECONDS) {
       throw new LimitsError(`limit ${key} must be at most ${MAX_LIMIT_SECONDS} s (about 24.8 days, a timer's range), got ${value}`);

@@ -30,7 +30,7 @@ export function toJsonLines(records: TraceRecord[]): string {
  * model.contract`) never overwrites a file that is not a trace.
  */
 export function traceNameProblem(file: string): string | undefined {
-    if (/\.jsonl$/i.test(file) && !/^\.jsonl$/i.test(basename(file))) return undefined;
+    if (file.endsWith('.jsonl') && basename(file) !== '.jsonl') return undefined; // as contract trace reads them: .JSONL is not one
     return `--trace ${safeNameOf(file)}: a trace file is named *.jsonl (e.g. --trace run.jsonl): it is created or emptied, and only such a name is taken, so that no other file is overwritten`;
 }
 

@@ -78,9 +78,9 @@ describe('LiveTrace', () => {
     });
 
     it('takes only a *.jsonl name, so that a slip of the name never overwrites a model or a source', () => {
-        for (const bad of ['supervisor.contract', 'run.json', 'trace', '.jsonl', 'dir/.jsonl', 'x.jsonl.bak'])
+        for (const bad of ['supervisor.contract', 'run.json', 'trace', '.jsonl', 'dir/.jsonl', 'x.jsonl.bak', 'up.JSONL'])
             expect(traceNameProblem(bad), bad).toMatch(/a trace file is named \*\.jsonl/);
-        for (const good of ['run.jsonl', 'ci/out/run.JSONL', '../t.jsonl']) expect(traceNameProblem(good), good).toBeUndefined();
+        for (const good of ['run.jsonl', 'ci/out/run.jsonl', '../t.jsonl']) expect(traceNameProblem(good), good).toBeUndefined();
     });
 
     describe('settleTraceFile (the end of the run)', () => {

@@ -76,7 +76,7 @@ describe('contract serve', () => {
             ['bogus=1', 'unknown limit "bogus"'], ['__proto__=1', 'unknown limit "__proto__"'], ['runSeconds=0', '--limit needs NAME=VALUE with a positive number'],
             ['runSeconds', '--limit needs NAME=VALUE'], ['runSeconds=99999999999999999999', 'limit runSeconds must be at most 2147483 s'], ['buildSeconds=2200000', 'limit buildSeconds must be at most 2147483 s'],
             // counts and sizes are whole numbers (a cgroup's pids.max refuses 10.5), bounded
-            ['processes=10.5', 'limit processes must be a whole number (a count or a size), got 10.5'], ['memoryMiB=9000000000', 'limit memoryMiB must be at most 8589934592, got 9000000000'],
+            ['processes=10.5', 'limit processes must be a whole number (a count or a size), got 10.5'], ['runSeconds=0.0000001', 'limit runSeconds must be at least 0.001 s'], ['memoryMiB=9000000000', 'limit memoryMiB must be at most 8589934592, got 9000000000'],
         ]) {
             const bad = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', '--limit', arg!], { stdio: ['ignore', 'pipe', 'pipe'] });
             let err = '';
@@ -104,5 +104,8 @@ describe('contract serve', () => {
         };
         expect(await ask([])).toBe(400);
         expect(await ask(['--limit', 'runSeconds=3660', '--limit=workDiskMiB=1024'])).toBe(201);
+        // a time limit written `.5` or `3660.` is a number too (it was refused as "needs a positive number")
+        expect(await ask(['--limit', 'runSeconds=3660.'])).toBe(201);
+        expect(await ask(['--limit', 'runSeconds=.5'])).toBe(400);
     }, 90_000);
 });

@@ -39,7 +39,7 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
       out.sandbox = s as ServeSandbox;
     } else if (a === '--limit' || a.startsWith('--limit=')) {
       const v = a === '--limit' ? argv[++i] : a.slice('--limit='.length);
-      const m = /^([A-Za-z_]\w*)=(\d+(?:\.\d+)?)$/.exec(v ?? '');
+      const m = /^([A-Za-z_]\w*)=(\d+(?:\.\d*)?|\.\d+)$/.exec(v ?? ''); // 30, 0.5, .5, 5.
       if (!m || Number(m[2]) <= 0) throw new Error(`--limit needs NAME=VALUE with a positive number (e.g. runSeconds=3600), got ${v ?? 'nothing'}\n${USAGE}`);
       out.limits[m[1]!] = Number(m[2]);
     } else if (a.startsWith('-')) {

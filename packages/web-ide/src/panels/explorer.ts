@@ -2,6 +2,7 @@ import { h } from '../util/dom.js';
 import type { TreeEntry } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { RovingFocus } from '../util/roving-focus.js';
+import { visibleText } from '../util/visible-text.js';
 
 /**
  * The project explorer: a collapsible tree of the workspace. Emits open/select; the owner runs
@@ -128,11 +129,11 @@ export class Explorer {
         const glyph = isDir ? '' : kind === 'cactal' ? '◈' : kind === 'c' ? 'C' : kind === 'trace' ? '◉' : '≡'; // a trace file opens in the ◉ Monitor
         const row = h('div', {
           class: `tree-row ${kind}${e.path === this.active ? ' active' : ''}${e === this.selected || e.path === this.selected?.path ? ' selected' : ''}`,
-          role: 'treeitem', 'data-path': e.path, title: e.truncated ? (e.children?.length ? `${e.path}: not all of its content is listed (past the listing's 50,000 entries)` : `${e.path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)`) : e.path, style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
+          role: 'treeitem', 'data-path': e.path, title: visibleText(e.truncated ? (e.children?.length ? `${e.path}: not all of its content is listed (past the listing's 50,000 entries)` : `${e.path}: its content is not listed (deeper than 64 folders, or past 50,000 entries)`) : e.path), style: `padding-left:${8 + depth * 14}px`, tabindex: -1,
           'aria-level': depth + 1, 'aria-selected': e.path === this.active ? 'true' : 'false', 'aria-expanded': isDir ? String(open) : undefined,
           onclick: () => this.click(e),
         },
-          h('span', { class: 'twisty', 'aria-hidden': 'true' }, icon), h('span', { class: `file-glyph ${kind}`, 'aria-hidden': 'true' }, glyph), h('span', { class: 'tree-name' }, e.name),
+          h('span', { class: 'twisty', 'aria-hidden': 'true' }, icon), h('span', { class: `file-glyph ${kind}`, 'aria-hidden': 'true' }, glyph), h('span', { class: 'tree-name' }, visibleText(e.name)),
           h('span', { class: 'row-actions', 'aria-hidden': 'true' },
             isDir ? h('span', { class: 'row-action', title: 'New file here', 'data-action': 'new-file', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'new-file', entry: e }); } }, '+') : null,
             h('span', { class: 'row-action', title: 'Rename', 'data-action': 'rename', onclick: (ev: Event) => { ev.stopPropagation(); this.selected = e; this.onContextAction.fire({ action: 'rename', entry: e }); } }, '✎'),
