@@ -8,11 +8,11 @@
  * event a frame, as before. The job is a JobEvents of our own, handed out by the service for one
  * id (no sandbox needed).
  */
-import { request } from 'node:http';
 import WebSocket from 'ws';
 import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
 import { JobEvents } from '../pipeline/job-events.js';
 import { useBuildServer } from '../test-support/build-server.js';
+import { upgradeStatus as rawUpgradeStatus } from '../test-support/client.js';
 import { BATCH_BYTES, BATCH_MS } from './ws.js';
 
 const built = useBuildServer({ sandbox: 'none', allowNoneSandbox: true }, { snapshotRuntime: false });
@@ -55,27 +55,8 @@ async function follow(query: string): Promise<Followed> {
   return { done };
 }
 
-/** Status of a raw upgrade request (101 for an accepted one) and its body. */
-function upgradeStatus(path: string): Promise<{ status: number; body: string }> {
-  return new Promise((resolve, reject) => {
-    const r = request(built.url + path, {
-      agent: false,
-      headers: { connection: 'Upgrade', upgrade: 'websocket', 'sec-websocket-version': '13', 'sec-websocket-key': 'dGhlIHNhbXBsZSBub25jZQ==' },
-    });
-    r.on('response', (res) => {
-      let body = '';
-      res.setEncoding('utf8');
-      res.on('data', (c: string) => (body += c));
-      res.on('end', () => resolve({ status: res.statusCode ?? 0, body }));
-    });
-    r.on('upgrade', (res, socket) => {
-      socket.destroy();
-      resolve({ status: res.statusCode ?? 0, body: '' });
-    });
-    r.on('error', reject);
-    r.end();
-  });
-}
+/** Status and body of a raw upgrade request to the service (101 for an accepted one). */
+const upgradeStatus = (path: string) => rawUpgradeStatus(built.url + path);
 
 /** `type@seq` of events `from`..`to`. */
 const seqs = (type: string, from: number, to: number) => Array.from({ length: to - from + 1 }, (_, i) => `${type}@${from + i}`);

@@ -4,11 +4,11 @@
  * `?after=`; any other value is a 400 that leaves the service serving. The job is a JobEvents of
  * a few events of our own, handed out by the service for one id (no sandbox needed).
  */
-import { request } from 'node:http';
 import WebSocket from 'ws';
 import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
 import { JobEvents } from '../pipeline/job-events.js';
 import { useBuildServer } from '../test-support/build-server.js';
+import { upgradeStatus as rawUpgradeStatus } from '../test-support/client.js';
 
 const built = useBuildServer({ sandbox: 'none', allowNoneSandbox: true }, { snapshotRuntime: false });
 const ID = 'j-fake';
@@ -59,27 +59,8 @@ async function follow(query: string): Promise<{ frames: Promise<string[]> }> {
   return { frames };
 }
 
-/** Status and body of a raw upgrade request (101 for an accepted one). */
-function upgradeStatus(path: string): Promise<{ status: number; body: string }> {
-  return new Promise((resolve, reject) => {
-    const r = request(built.url + path, {
-      agent: false,
-      headers: { connection: 'Upgrade', upgrade: 'websocket', 'sec-websocket-version': '13', 'sec-websocket-key': 'dGhlIHNhbXBsZSBub25jZQ==' },
-    });
-    r.on('response', (res) => {
-      let body = '';
-      res.setEncoding('utf8');
-      res.on('data', (c: string) => (body += c));
-      res.on('end', () => resolve({ status: res.statusCode ?? 0, body }));
-    });
-    r.on('upgrade', (res, socket) => {
-      socket.destroy();
-      resolve({ status: res.statusCode ?? 0, body: '' });
-    });
-    r.on('error', reject);
-    r.end();
-  });
-}
+/** Status and body of a raw upgrade request to the service (101 for an accepted one). */
+const upgradeStatus = (path: string) => rawUpgradeStatus(built.url + path);
 
 const ALL = ['status@1', 'line@2', 'trace@3', 'trace@4', 'line@5', 'trace@6', 'status@7', 'trace@8', 'end@9'];
 const NONE = ['status@1', 'line@2', 'line@5', 'status@7', 'end@9'];

@@ -1,4 +1,5 @@
 /** Test/bench helpers: a tiny HTTP + SSE client of the build service. */
+import { request } from 'node:http';
 import type { JobEvent } from '../pipeline/job-events.js';
 import { decodeTraceRecords } from '../trace/wire.js';
 
@@ -61,4 +62,26 @@ export async function readEvents(base: string, id: string, onEvent?: (e: JobEven
 export async function waitJob(base: string, id: string): Promise<Record<string, any>> {
   await readEvents(base, id);
   return getJob(base, id);
+}
+
+/** Status and body of a raw WebSocket upgrade request to `url` (101 for an accepted one; its socket is closed at once). */
+export function upgradeStatus(url: string): Promise<{ status: number; body: string }> {
+  return new Promise((resolve, reject) => {
+    const r = request(url, {
+      agent: false,
+      headers: { connection: 'Upgrade', upgrade: 'websocket', 'sec-websocket-version': '13', 'sec-websocket-key': 'dGhlIHNhbXBsZSBub25jZQ==' },
+    });
+    r.on('response', (res) => {
+      let body = '';
+      res.setEncoding('utf8');
+      res.on('data', (c: string) => (body += c));
+      res.on('end', () => resolve({ status: res.statusCode ?? 0, body }));
+    });
+    r.on('upgrade', (res, socket) => {
+      socket.destroy();
+      resolve({ status: res.statusCode ?? 0, body: '' });
+    });
+    r.on('error', reject);
+    r.end();
+  });
 }
