@@ -179,6 +179,13 @@ describe('RunIssues', () => {
       expect(issuesOf(whole.replace('\n3,', '\n2,t,ORD,ord_deadline_miss,,,0,schema=S cycle=1 tick_ns=1\n3,'))).toEqual([['log-tampered', ORD, expect.stringMatching(/holds 4 record\(s\) since its module started where its exit record counts 3/)]]);
       // a capped log is said by log-capped
       expect(issuesOf(`${H}1,t,ORD,log-capped,,,4096,log reached its 4096-byte bound\n`)).toEqual([]);
+      // ... and it is collected: its module's log is not said gone (a real run's capped MSC was)
+      const capped = new RunIssues();
+      capped.line('module MSC (pid 31) exited with status 0', 'launcher');
+      capped.log(Buffer.from(whole), ORD);
+      capped.log(Buffer.from(`${H}1,t,MSC,log-capped,,,4096,log reached its 4096-byte bound\n`), 'MSC_7-Dec-2026-00h08m44s.csv');
+      capped.artifacts(none);
+      expect(capped.all).toEqual([]);
       // its log gone altogether (unlinked or renamed away), the others collected
       const r = new RunIssues();
       r.line('module ORD (pid 24) exited with status 0', 'launcher');

@@ -67,6 +67,8 @@ export class RunIssues {
   private readonly exitedClean = new Set<string>();
   /** What a collected log of a module named as the runtime names logs says of itself (at most 1024 logs). */
   private readonly logs: Array<{ file: string; module: string; notWhole?: string; noExit: boolean }> = [];
+  /** The modules a log was collected of, those whose shape is not checked too (a capped log, past the first 1024). */
+  private readonly collected = new Set<string>();
   /** Logs already named log-tampered (once each). */
   private readonly tampered = new Set<string>();
 
@@ -162,7 +164,10 @@ export class RunIssues {
 
   private logShape(data: Buffer, file: string): void {
     const module = moduleOfLog(file);
-    if (module === undefined || this.logs.length >= 1024 || data.includes(',log-capped,')) return;
+    if (module === undefined) return;
+    this.collected.add(module);
+    // a capped log ends with its cap record, not its exit record: its shape is the cap's (log-capped)
+    if (this.logs.length >= 1024 || data.includes(',log-capped,')) return;
     const entry: { file: string; module: string; notWhole?: string; noExit: boolean } = { file, module, noExit: true };
     this.logs.push(entry);
     if (data.length === 0) {
@@ -191,7 +196,7 @@ export class RunIssues {
   artifacts(a: RunArtifacts): void {
     // logs that are not what the runtime left: said, so that a run whose ORD log was erased or
     // replaced by a module's code is not reported as a success with that log as its record
-    const logged = new Set(this.logs.map((l) => l.module));
+    const logged = this.collected;
     for (const l of this.logs) {
       if (l.notWhole) this.logTampered(l.file, l.notWhole);
       else if (l.noExit && this.exitedClean.has(l.module)) this.logTampered(l.file, `it does not end with ${l.module}'s exit record although ${l.module} exited normally (status 0): it was replaced or cut by another process (the runtime appends every record, its exit record last)`);

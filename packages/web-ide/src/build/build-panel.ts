@@ -192,7 +192,7 @@ export class BuildPanel {
       this.submitting = false;
     }
     this.jobId = job.id;
-    for (const w of job.warnings ?? []) this.append({ t: Date.now(), step: 'prepare', source: 'service', stream: 'system', line: `warning: ${w}` });
+    // its warnings (job.warnings) come as the service's `warning:` lines of the stream: not added here too (they were shown twice, once only after a reload)
     this.setStatus(job.status, job.sandbox ? `sandbox ${job.sandbox}` : undefined, true);
     this.follow(job.id, action);
     // a Stop came while it was on its way
