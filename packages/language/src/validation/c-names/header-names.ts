@@ -192,7 +192,7 @@ export const RUNTIME_LIBRARY_SYMBOLS: readonly string[] = [
     'rt_bind_dgram', 'rt_bind_mailbox', 'rt_close_peers', 'rt_connect_peer', 'rt_dataflow_setup',
     'rt_dataflow_teardown', 'rt_errno_to_code', 'rt_error', 'rt_error_repeats_say', 'rt_eventflow_setup',
     'rt_eventflow_teardown', 'rt_init_run_dir', 'rt_install_signal_cleanup', 'rt_lock_memory', 'rt_log_at_signal',
-    'rt_log_close', 'rt_log_enabled', 'rt_log_flush_ns', 'rt_log_hand_off', 'rt_log_max_bytes',
+    'rt_log_close', 'rt_log_enabled', 'rt_log_engine', 'rt_log_flush_ns', 'rt_log_hand_off', 'rt_log_max_bytes',
     'rt_log_maybe_flush', 'rt_log_open', 'rt_log_records', 'rt_log_recover', 'rt_log_sent', 'rt_mark_ready',
     'rt_module_addr', 'rt_outbox_add', 'rt_outbox_drain', 'rt_outbox_holds', 'rt_register_file',
     'rt_remember_event', 'rt_request_name', 'rt_run_stopping', 'rt_send_datagram', 'rt_send_failed',
