@@ -9,25 +9,14 @@
  * id (no sandbox needed).
  */
 import WebSocket from 'ws';
-import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
-import { JobEvents } from '../pipeline/job-events.js';
-import { useBuildServer } from '../test-support/build-server.js';
+import { describe, expect, test } from 'vitest';
+import { useServedJob } from '../test-support/served-job.js';
 import { upgradeStatus as rawUpgradeStatus } from '../test-support/client.js';
 import { BATCH_BYTES, BATCH_MS } from './ws.js';
 
-const built = useBuildServer({ sandbox: 'none', allowNoneSandbox: true }, { snapshotRuntime: false });
 const ID = 'j-flood';
-let events: JobEvents;
-
-beforeEach(() => {
-  events = new JobEvents();
-  const service = built.server.service;
-  const real = service.get.bind(service);
-  vi.spyOn(service, 'get').mockImplementation((id) => (id === ID ? ({ id: ID, events } as never) : real(id)));
-});
-afterEach(() => {
-  vi.restoreAllMocks();
-});
+const job = useServedJob(ID);
+const built = job.built;
 
 const line = (n: number) => ({ type: 'line' as const, step: 'run' as const, source: 'MSA', stream: 'stdout' as const, line: `flood ${String(n).padStart(7, '0')}: the quick brown fox jumps over the lazy dog` });
 const trace = (n: number) => ({ type: 'trace' as const, records: [{ file: 'M_1.csv', line: n, text: `${n},2026-11-26T12:00:00.000000Z,M,user,,,0,x` }] });
@@ -63,7 +52,7 @@ const seqs = (type: string, from: number, to: number) => Array.from({ length: to
 
 describe('job WebSocket ?batch=1', () => {
   test('a live flood (10 lines a ms for 1 s) comes whole and in order, in at most one frame per 50 ms; without batch, one frame a line', async () => {
-    events.append({ type: 'status', status: 'running', step: 'run' });
+    job.events.append({ type: 'status', status: 'running', step: 'run' });
     const batched = await follow('?trace=none&batch=1');
     const single = await follow('?trace=none');
     const t0 = performance.now();
@@ -71,7 +60,7 @@ describe('job WebSocket ?batch=1', () => {
     await new Promise<void>((resolve) => {
       const tick = setInterval(() => {
         const due = Math.min(10_000, Math.floor((performance.now() - t0) * 10));
-        for (; n < due; n++) events.append(line(n));
+        for (; n < due; n++) job.events.append(line(n));
         if (n >= 10_000) {
           clearInterval(tick);
           resolve();
@@ -79,7 +68,7 @@ describe('job WebSocket ?batch=1', () => {
       }, 1);
     });
     const seconds = (performance.now() - t0) / 1000;
-    events.append({ type: 'end', result: null });
+    job.events.append({ type: 'end', result: null });
     const want = ['status@1', ...seqs('line', 2, 10_001), 'end@10002'];
     const b = await batched.done;
     expect(b.frames.flat()).toEqual(want);
@@ -92,21 +81,21 @@ describe('job WebSocket ?batch=1', () => {
   }, 20_000);
 
   test('events far apart go one a frame, as they come', async () => {
-    events.append({ type: 'status', status: 'running', step: 'run' });
+    job.events.append({ type: 'status', status: 'running', step: 'run' });
     const batched = await follow('?batch=1');
     for (let i = 1; i <= 3; i++) {
       await new Promise((r) => setTimeout(r, BATCH_MS * 2));
-      events.append(line(i));
+      job.events.append(line(i));
     }
     await new Promise((r) => setTimeout(r, BATCH_MS * 2));
-    events.append({ type: 'end', result: null });
+    job.events.append({ type: 'end', result: null });
     expect((await batched.done).frames).toEqual([['status@1'], ['line@2'], ['line@3'], ['line@4'], ['end@5']]);
   }, 10_000);
 
   test('a replay of 20,000 events goes in frames of BATCH_BYTES at most, every event once; with ?trace= and ?after=', async () => {
-    events.append({ type: 'status', status: 'running', step: 'run' });
-    for (let i = 0; i < 20_000; i++) events.append(i % 4 === 3 ? trace(i) : line(i));
-    events.append({ type: 'end', result: null });
+    job.events.append({ type: 'status', status: 'running', step: 'run' });
+    for (let i = 0; i < 20_000; i++) job.events.append(i % 4 === 3 ? trace(i) : line(i));
+    job.events.append({ type: 'end', result: null });
     const all = await (await follow('?batch=1')).done;
     expect(all.frames.flat()).toEqual([...Array.from({ length: 20_001 }, (_, i) => `${i === 0 ? 'status' : (i - 1) % 4 === 3 ? 'trace' : 'line'}@${i + 1}`), 'end@20002']);
     expect(all.frames.length).toBeLessThan(20_002 / 100);
@@ -116,17 +105,17 @@ describe('job WebSocket ?batch=1', () => {
   }, 20_000);
 
   test('any other value is a 400 saying what is allowed; batch=0 is one event a frame', async () => {
-    events.append({ type: 'status', status: 'running', step: 'run' });
+    job.events.append({ type: 'status', status: 'running', step: 'run' });
     for (const q of ['?batch=2', '?batch=', '?batch=true', '?batch=1&batch=0']) {
       const { status, body } = await upgradeStatus(`/api/jobs/${ID}/ws${q}`);
       expect(status, q).toBe(400);
       expect(body, q).toMatch(/batch must be 0 or 1/);
     }
-    expect(events.subscriberCount).toBe(0);
+    expect(job.events.subscriberCount).toBe(0);
     const zero = await follow('?batch=0');
-    events.append(line(1));
-    events.append(line(2));
-    events.append({ type: 'end', result: null });
+    job.events.append(line(1));
+    job.events.append(line(2));
+    job.events.append({ type: 'end', result: null });
     expect((await zero.done).frames).toEqual([['status@1'], ['line@2'], ['line@3'], ['end@4']]);
   }, 10_000);
 });

@@ -5,42 +5,31 @@
  * a few events of our own, handed out by the service for one id (no sandbox needed).
  */
 import WebSocket from 'ws';
-import { afterEach, beforeEach, describe, expect, test, vi } from 'vitest';
-import { JobEvents } from '../pipeline/job-events.js';
-import { useBuildServer } from '../test-support/build-server.js';
+import { describe, expect, test } from 'vitest';
+import { useServedJob } from '../test-support/served-job.js';
 import { upgradeStatus as rawUpgradeStatus } from '../test-support/client.js';
 
-const built = useBuildServer({ sandbox: 'none', allowNoneSandbox: true }, { snapshotRuntime: false });
 const ID = 'j-fake';
-let events: JobEvents;
-
-beforeEach(() => {
-  events = new JobEvents();
-  const service = built.server.service;
-  const real = service.get.bind(service);
-  vi.spyOn(service, 'get').mockImplementation((id) => (id === ID ? ({ id: ID, events } as never) : real(id)));
-});
-afterEach(() => {
-  vi.restoreAllMocks();
-});
+const job = useServedJob(ID);
+const built = job.built;
 
 const trace = (line: number) => ({ type: 'trace' as const, records: [{ file: 'M_1.csv', line, text: `${line},2026-11-26T12:00:00.000000Z,M,user,,,0,x` }] });
 
 /** seqs 1..5, kept for replay: status, line, trace, trace, line. */
 function appendReplay(): void {
-  events.append({ type: 'status', status: 'running', step: 'run' });
-  events.append({ type: 'line', step: 'run', source: 'M', stream: 'stdout', line: 'hello' });
-  events.append(trace(2));
-  events.append(trace(3));
-  events.append({ type: 'line', step: 'run', source: 'M', stream: 'stderr', line: 'oops' });
+  job.events.append({ type: 'status', status: 'running', step: 'run' });
+  job.events.append({ type: 'line', step: 'run', source: 'M', stream: 'stdout', line: 'hello' });
+  job.events.append(trace(2));
+  job.events.append(trace(3));
+  job.events.append({ type: 'line', step: 'run', source: 'M', stream: 'stderr', line: 'oops' });
 }
 
 /** seqs 6..9 live: trace, status, trace, end. */
 function appendLive(): void {
-  events.append(trace(4));
-  events.append({ type: 'status', status: 'succeeded' });
-  events.append(trace(5));
-  events.append({ type: 'end', result: null });
+  job.events.append(trace(4));
+  job.events.append({ type: 'status', status: 'succeeded' });
+  job.events.append(trace(5));
+  job.events.append({ type: 'end', result: null });
 }
 
 /** Opens a socket on `query`; `frames` resolves the `type@seq` of every frame it got once the server closed it. */
@@ -79,7 +68,7 @@ describe('job WebSocket ?trace= filter', () => {
       onlyAfter5: await follow('?trace=only&after=5'),
     };
     // every socket attached before the live events: these come by live delivery, not replay
-    expect(events.subscriberCount).toBe(Object.keys(streams).length);
+    expect(job.events.subscriberCount).toBe(Object.keys(streams).length);
     appendLive();
     expect(await streams.absent.frames).toEqual(ALL);
     expect(await streams.all.frames).toEqual(ALL);
@@ -111,7 +100,7 @@ describe('job WebSocket ?trace= filter', () => {
     expect((await upgradeStatus('/api/jobs/j-none/ws?trace=x')).status).toBe(400);
     expect((await upgradeStatus('/api/jobs/j-none/ws?trace=only')).status).toBe(404);
     // nobody was attached by a refused upgrade, and the service still serves HTTP and sockets
-    expect(events.subscriberCount).toBe(0);
+    expect(job.events.subscriberCount).toBe(0);
     expect((await fetch(`${built.url}/api/health`)).status).toBe(200);
     expect((await upgradeStatus(`/api/jobs/${ID}/ws?trace=only&trace=only`)).status).toBe(101);
     const stream = await follow('?trace=only');
@@ -138,7 +127,7 @@ describe('job WebSocket ?trace= filter', () => {
     await both.body?.cancel();
     // a good one resumes as before
     const resumed = await follow('?after=3');
-    expect(events.subscriberCount).toBe(1);
+    expect(job.events.subscriberCount).toBe(1);
     appendLive();
     expect(await resumed.frames).toEqual(['trace@4', 'line@5', 'trace@6', 'status@7', 'trace@8', 'end@9']);
   }, 10_000);
