@@ -118,17 +118,23 @@ static const ContractFunction tst_functions[] = {
 static const ContractSupervisorVocabulary TST = {
     CONTRACT_VOCABULARY_VERSION, "TST", 90, 40, 5, 70, 3, tst_in, 1, tst_out, 4, tst_functions};
 
-static SupCore *start(FakeWorld *w, const char *fn) {
+/* TST on a fresh world logging to LOG; `last_trace_time`: the binding's clock of its trace lines
+   (NULL: the core's time, as in the simulator). NULL when it cannot be made (said). */
+static SupCore *make_tst(FakeWorld *w, int64_t (*last_trace_time)(void *ctx)) {
     log_clear(&LOG);
     memset(w, 0, sizeof *w);
     w->log = &LOG;
     SupIo io = fake_sup_io(w);
+    io.last_trace_time = last_trace_time;
     char err[256] = "";
     SupCore *c = sup_core_create(&TST, &io, err, sizeof err);
-    if (!c) {
-        fprintf(stderr, "  %s\n", err);
-        return NULL;
-    }
+    if (!c) fprintf(stderr, "  %s\n", err);
+    return c;
+}
+
+static SupCore *start(FakeWorld *w, const char *fn) {
+    SupCore *c = make_tst(w, NULL);
+    if (!c) return NULL;
     sup_core_start_function(c, 0, fn, NULL, 0);
     sup_core_advance(c, T0);
     return c;
@@ -270,13 +276,7 @@ static int64_t late_trace_clock(void *ctx) {
 
 void test_elapsed_counts_from_the_started_line(void) {
     FakeWorld w;
-    log_clear(&LOG);
-    memset(&w, 0, sizeof w);
-    w.log = &LOG;
-    SupIo io = fake_sup_io(&w);
-    io.last_trace_time = late_trace_clock;
-    char err[256] = "";
-    SupCore *c = sup_core_create(&TST, &io, err, sizeof err);
+    SupCore *c = make_tst(&w, late_trace_clock);
     if (!c) { CHECK(0); return; }
     /* read at 0, its `function window started` line written at 0.4 ms: elapsed=1ms is due at
        1.4 ms (the time the trace shows + 1 ms), not at 1 ms */

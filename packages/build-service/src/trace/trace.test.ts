@@ -680,8 +680,9 @@ describe("a supervisor's requests kept for a full mailbox", () => {
 describe('ORD\'s answer to the undo of an activation it refused', () => {
     it('tells ORD ignoring it after the supervisor\'s undo (what ORD does next), not its other ignored line', () => {
         // the field test's manipulator run (+0.424 s): AGAIN asks ORD for armLoop while ARMON's activation #4 is active
-        const mnp = (ns: number, event: string, peer: string, detail: string) => `${ns},w,MNP,${event},${peer},,0,${detail}`;
-        const ord = (ns: number, event: string, peer: string, detail: string) => `${ns},w,ORD,${event},${peer},,0,${detail}`;
+        const recordOf = (module: string) => (ns: number, event: string, peer: string, detail: string) => `${ns},w,${module},${event},${peer},,0,${detail}`;
+        const mnp = recordOf('MNP');
+        const ord = recordOf('ORD');
         const story = renderStory(parseTrace([
             { name: 'MNP_6-Dec-2026-23h50m00s.csv', text: [CSV_HEADER,
                 mnp(1000, 'supervisor', 'ORD', '"activate schema armLoop(mode = OPEN) (activation #4, to ORD)"'),

@@ -79,9 +79,7 @@ void scenario_event_flood(const char *root, const char *bin, const char *launche
     check(count_of(sks, ",requests_kept,") == 0 && count_of(sks, ",error,") == 0, what);
     if (scenario_failed(&s)) {
         char *txt = slurp(s.launch);
-        size_t n = txt ? strlen(txt) : 0;
-        fprintf(stderr, "launcher output (event-flood scenario, last 3000 bytes):\n%s\n",
-                txt ? txt + (n > 3000 ? n - 3000 : 0) : "(none)");
+        say_output_tail("event-flood", txt, 3000);
         free(txt);
     }
     free(sks);

@@ -75,11 +75,7 @@ void scenario_output_flood(const char *root, const char *bin, const char *launch
     check(txt && strstr(txt, "[ORD] overrun: FLD cycle still running, release skipped\n") &&
               strstr(txt, "in the CSV log only: overrun: FLD cycle still running, release skipped)\n"),
           "ORD's overrun lines are summarised the same way");
-    if (scenario_failed(&s)) {
-        size_t n = txt ? strlen(txt) : 0;
-        fprintf(stderr, "launcher output (output-flood scenario, last 4000 bytes):\n%s\n",
-                txt ? txt + (n > 4000 ? n - 4000 : 0) : "(none)");
-    }
+    if (scenario_failed(&s)) say_output_tail("output-flood", txt, 4000);
     free(txt);
     free(ord);
     free(js);

@@ -90,6 +90,11 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
     return WIFEXITED(st) && WEXITSTATUS(st) == 0;
 }
 
+void say_output_tail(const char *scenario, const char *txt, size_t max) {
+    size_t n = txt ? strlen(txt) : 0;
+    fprintf(stderr, "launcher output (%s scenario, last %zu bytes):\n%s\n", scenario, max, txt ? txt + (n > max ? n - max : 0) : "(none)");
+}
+
 char *slurp(const char *path) {
     FILE *f = fopen(path, "r");
     if (!f) return NULL;

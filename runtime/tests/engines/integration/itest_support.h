@@ -38,6 +38,8 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
 
 /** A file's contents (up to 1 MiB, NUL-terminated) or NULL; free() it. */
 char *slurp(const char *path);
+/** Prints on stderr the last `max` bytes of a failed scenario's launcher output `txt` (NULL: none). */
+void say_output_tail(const char *scenario, const char *txt, size_t max);
 /** The contents of `module`'s CSV log in s->logs (the first file named <module>_*.csv), or NULL. */
 char *read_csv_log(const Scenario *s, const char *module);
 /** The integer value of "key" in a flat JSON object (ORD's stats), or -1. */
