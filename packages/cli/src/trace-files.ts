@@ -6,6 +6,7 @@
  */
 import { closeSync, constants, openSync, promises as fsp, readFileSync, readSync, unlinkSync, writeSync } from 'node:fs';
 import { basename } from 'node:path';
+import { pidAlive } from '@contract-studio/codegen/stale-temp';
 import type { FileHandle } from 'node:fs/promises';
 import type { TraceRecord } from '@contract-studio/build-service/trace';
 import { escapeControls, safeName as safeNameOf } from './terminal-text.js';
@@ -82,15 +83,6 @@ export async function openTraceFile(path: string, opts: { empty?: boolean } = {}
 
 /** How many attempts at a trace file's writer lock (a dead writer's lock removed in between). */
 const LOCK_TRIES = 3;
-
-function pidAlive(pid: number): boolean {
-    try {
-        process.kill(pid, 0);
-        return true;
-    } catch (e) {
-        return (e as NodeJS.ErrnoException).code === 'EPERM';
-    }
-}
 
 /**
  * One writer of a trace file at a time: `FILE.writing` beside it, created exclusively (never
