@@ -1,9 +1,10 @@
 /**
  * @contract-studio/conventions — what the packages agree on (browser-safe, no dependencies): the
  * generated tree's layout, the sandbox conventions, the protected-region markers with their
- * one parser and the writing of a time literal (docs/architecture.md "Shared conventions").
+ * one parser, the writing of a time literal and of untrusted text as it reads (visibleText) (docs/architecture.md "Shared conventions").
  */
 export * from './layout.js';
 export * from './sandbox.js';
 export * from './regions.js';
 export * from './time-literal.js';
+export * from './visible-text.js';

@@ -11,7 +11,7 @@ import { ServiceError } from '../service-errors.js';
 import { BodyReader } from './body-reader.js';
 import { streamSse } from './sse.js';
 import type { StreamBudget } from './stream-budget.js';
-import { SANDBOX_NAMES } from '@contract-studio/conventions';
+import { SANDBOX_NAMES, visibleText } from '@contract-studio/conventions';
 
 function send(res: ServerResponse, status: number, body: unknown, headers: Record<string, string> = {}): void {
   const text = JSON.stringify(body);
@@ -42,17 +42,9 @@ export function afterSeq(req: IncomingMessage, url: URL): number | null {
 /** The refusal of a malformed `?after=` or `Last-Event-ID` (the body of its 400). */
 export const AFTER_ERROR = 'after (or Last-Event-ID) must be an event number: a whole number of 1 to 15 decimal digits (0: from the start), the parameter given once';
 
-/**
- * A line break, a bidi override, or any other control but a tab inside a line's text (a file name
- * or an output a sandboxed program chose): escaped, never a line of its own, never a terminal
- * command (ESC, CSI: a `curl` of the log in a terminal would retitle it, clear it, or overwrite
- * the line before).
- */
-const LINE_UNSAFE = /[\x00-\x08\x0a-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/g;
-
-/** The job's lines as text, one line each: what a line carries cannot begin another (a forged service line). */
+/** The job's lines as text, one line each (visibleText): what a line carries cannot begin another (a forged service line) nor act on a terminal. */
 export function logText(lines: LineEvent[]): string {
-  return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${l.line.replace(LINE_UNSAFE, (c) => `\\u${c.charCodeAt(0).toString(16).padStart(4, '0')}`)}\n`).join('');
+  return lines.map((l) => `${new Date(l.t).toISOString()} ${l.step} ${l.source} ${l.stream} | ${visibleText(l.line)}\n`).join('');
 }
 
 /** The header a client sends to list its own jobs: any secret of its own, 16 to 200 characters. */

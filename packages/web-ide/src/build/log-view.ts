@@ -1,7 +1,7 @@
 import { h } from '../util/dom.js';
 import type { LogLine, LogStore } from './log-store.js';
 import { isLauncherNews } from './launcher-lines.js';
-import { visibleText } from '../util/visible-text.js';
+import { visibleText } from '@contract-studio/conventions';
 
 const ROW = 18;
 /** Rows drawn above and below the viewport. */

@@ -24,7 +24,7 @@ import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
 import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
-import { visibleText } from '../util/visible-text.js';
+import { visibleText } from '@contract-studio/conventions';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
 

@@ -2,7 +2,7 @@ import { h } from '../util/dom.js';
 import type { TreeEntry } from '../api.js';
 import { Emitter } from '../util/emitter.js';
 import { RovingFocus } from '../util/roving-focus.js';
-import { visibleText } from '../util/visible-text.js';
+import { visibleText } from '@contract-studio/conventions';
 
 /**
  * The project explorer: a collapsible tree of the workspace. Emits open/select; the owner runs
