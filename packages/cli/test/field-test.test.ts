@@ -3,9 +3,9 @@
  * files): each test fails without its fix. Fast ones on files and fake jobs; a few real bwrap
  * builds and one run.
  */
-import { execFileSync } from 'node:child_process';
+import { execFileSync, spawn } from 'node:child_process';
 import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { hostname, tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { gzipSync } from 'node:zlib';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -188,6 +188,47 @@ describe('3. contract run: one run per logs folder', () => {
         utimesSync(join(out, 'ORD_2-Dec-2026-11h00m00s.csv'), when, when);
         const third = await saveLogs(artifacts({ 'ORD_3-Dec-2026-12h00m00s.csv': moduleLog('ORD', 1) }), out, true);
         expect(third.movedAside).toEqual({ folder: join(out, 'previous', 'run-2026-12-01T10-00-07-2'), files: 1 });
+    });
+
+    it('two runs ending at once into one logs folder (two projects, one --logs): one run\'s logs stay, the other\'s and the earlier run\'s are moved aside whole, none lost or mixed', async () => {
+        for (let round = 0; round < 10; round++) {
+            const out = join(root, `shared-${round}`);
+            await saveLogs(artifacts({ 'OLD_1.csv': moduleLog('OLD', 1), 'ORD_1.csv': moduleLog('ORD', 1) }), out, true);
+            const a = artifacts(Object.fromEntries(['AAA', 'ABB', 'ACC', 'ORD'].map((m) => [`${m}_2.csv`, moduleLog(m, 2)])));
+            const b = artifacts(Object.fromEntries(['BAA', 'BBB', 'ORD'].map((m) => [`${m}_2.csv`, moduleLog(m, 3)])));
+            const [ra, rb] = await Promise.all([saveLogs(a, out, true), saveLogs(b, out, true)]);
+            expect(ra.refused).toEqual([]);
+            expect(rb.refused).toEqual([]);
+            // every folder holds one run's logs, whole: the earlier run, and the two runs in either order
+            const runs = [out, ...readdirSync(join(out, 'previous')).map((f) => join(out, 'previous', f))]
+                .map((dir) => readdirSync(dir).filter((f) => f.endsWith('.csv')).sort()
+                    .map((f) => `${f}:${readFileSync(join(dir, f), 'utf8').split('\n')[1].split(',')[0]}`).join(' '));
+            expect(runs.sort()).toEqual([
+                'AAA_2.csv:2 ABB_2.csv:2 ACC_2.csv:2 ORD_2.csv:2',
+                'BAA_2.csv:3 BBB_2.csv:3 ORD_2.csv:3',
+                'OLD_1.csv:1 ORD_1.csv:1',
+            ]);
+        }
+    });
+
+    it('a run of another process saving into the folder (its .contract-lock) is waited for, then the logs are saved', async () => {
+        const out = join(root, 'shared-process');
+        mkdirSync(out);
+        const other = spawn('sleep', ['30'], { stdio: 'ignore' });
+        try {
+            writeFileSync(join(out, '.contract-lock'), `${other.pid} ${hostname()}\n`);
+            let done = false;
+            const saving = saveLogs(artifacts({ 'ORD_1.csv': moduleLog('ORD', 1) }), out, true).then((r) => { done = true; return r; });
+            await new Promise((r) => setTimeout(r, 400));
+            expect(done).toBe(false); // the other run holds the folder
+            expect(readdirSync(out)).toEqual(['.contract-lock']);
+            other.kill('SIGKILL');
+            await new Promise((r) => other.once('exit', r));
+            expect((await saving).saved).toEqual(['ORD_1.csv']); // its lock is stale once it is gone
+            expect(readdirSync(out)).toEqual(['ORD_1.csv']); // and this one's is released
+        } finally {
+            other.kill('SIGKILL');
+        }
     });
 
     it('a run that collects no log leaves the previous run\'s in place', async () => {

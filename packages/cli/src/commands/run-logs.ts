@@ -3,14 +3,16 @@
  * folder"): the default DIR/logs is refused when it is a link (a name in an untrusted project
  * folder); the previous run's logs are moved aside to `OUT/previous/run-<time>/` (never deleted);
  * each log is written on its own (O_NOFOLLOW|O_NONBLOCK through the opened folder), a name taken by
- * a link, a FIFO or a folder refused and said, the others written.
+ * a link, a FIFO or a folder refused and said, the others written. One run saves into a folder at a
+ * time (two projects run with one --logs OUT and ending together): the folder's `.contract-lock`
+ * (codegen's tree lock) across processes, a queue within one.
  */
 import { constants, promises as fsp } from 'node:fs';
 import { dirname, join } from 'node:path';
 import { Readable } from 'node:stream';
 import { pipeline } from 'node:stream/promises';
 import { createGunzip } from 'node:zlib';
-import type { RunArtifacts } from '@contract-studio/build-service';
+import type { Artifact, RunArtifacts } from '@contract-studio/build-service';
 import { safeName } from '../terminal-text.js';
 import { isLogFileName } from '@contract-studio/build-service/trace';
 
@@ -121,6 +123,38 @@ async function moveAsidePrevious(dir: fsp.FileHandle, to: string): Promise<Saved
     }
 }
 
+/** Who takes a logs folder's lock, as its error names the holder. */
+const LOGS_WRITERS = 'a contract run saving its logs';
+
+/** The saves of this process, by logs folder (device:inode): the tree lock is re-entrant within a process. */
+const saving = new Map<string, Promise<unknown>>();
+
+/**
+ * `work` on the logs folder open as `dir`, when no other save of this process or of another holds
+ * it: moving the previous run aside and writing this one's is then one step, not interleaved with
+ * another run's (whose moves failed on the files this one had moved, and whose logs were mixed).
+ */
+async function holdingLogsFolder<T>(dir: fsp.FileHandle, shownAs: string, work: () => Promise<T>): Promise<T> {
+    const st = await dir.stat();
+    const key = `${st.dev}:${st.ino}`;
+    const mine = (saving.get(key) ?? Promise.resolve()).catch(() => {}).then(async () => {
+        const { lockTree } = await import('@contract-studio/codegen');
+        const release = await lockTree(`/proc/self/fd/${dir.fd}`, shownAs, undefined, undefined, LOGS_WRITERS);
+        try {
+            return await work();
+        } finally {
+            release();
+        }
+    });
+    const settled = mine.catch(() => {});
+    saving.set(key, settled);
+    try {
+        return await mine;
+    } finally {
+        if (saving.get(key) === settled) saving.delete(key);
+    }
+}
+
 /**
  * Writes the run's CSV logs, as the build service collected them out of the sandbox (any sandbox:
  * `job.artifacts`), into `to`, after moving the previous run's logs there aside (one run per
@@ -136,34 +170,39 @@ export async function saveLogs(artifacts: RunArtifacts | null, to: string, noFol
     await fsp.mkdir(to, { recursive: true });
     const dir = await fsp.open(to, constants.O_RDONLY | constants.O_DIRECTORY | (noFollowDir ? constants.O_NOFOLLOW : 0));
     try {
-        result.movedAside = await moveAsidePrevious(dir, to);
-        for (const file of files) {
-            let handle: fsp.FileHandle;
-            try {
-                // O_NONBLOCK: a FIFO planted under a log's name fails (ENXIO) rather than wait for a reader
-                handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW | constants.O_NONBLOCK, 0o644);
-            } catch (e) {
-                const code = (e as NodeJS.ErrnoException).code;
-                result.refused.push(`${file.name}: ${code === 'ELOOP' ? 'a symbolic link of that name is there (never written through)' : code === 'ENXIO' ? 'a FIFO of that name is there' : `cannot be written (${code ?? (e as Error).message})`}`);
-                continue;
+        await holdingLogsFolder(dir, safeName(to), async () => {
+            result.movedAside = await moveAsidePrevious(dir, to);
+            for (const file of files) {
+                const refused = await writeLog(dir, file);
+                if (refused) result.refused.push(`${file.name}: ${refused}`);
+                else result.saved.push(file.name);
             }
-            try {
-                const st = await handle.stat();
-                if (!st.isFile()) {
-                    result.refused.push(`${file.name}: ${st.isDirectory() ? 'a folder' : 'something other than a file'} of that name is there`);
-                    continue;
-                }
-                await handle.truncate(0);
-                // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
-                await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
-                result.saved.push(file.name);
-            } finally {
-                await handle.close().catch(() => {});
-            }
-        }
+        });
     } finally {
         await dir.close().catch(() => {});
     }
     result.saved.sort();
     return result;
+}
+
+/** Writes one collected log into the folder open as `dir`; why it was not, or null. */
+async function writeLog(dir: fsp.FileHandle, file: Artifact): Promise<string | null> {
+    let handle: fsp.FileHandle;
+    try {
+        // O_NONBLOCK: a FIFO planted under a log's name fails (ENXIO) rather than wait for a reader
+        handle = await fsp.open(`/proc/self/fd/${dir.fd}/${file.name}`, constants.O_WRONLY | constants.O_CREAT | constants.O_NOFOLLOW | constants.O_NONBLOCK, 0o644);
+    } catch (e) {
+        const code = (e as NodeJS.ErrnoException).code;
+        return code === 'ELOOP' ? 'a symbolic link of that name is there (never written through)' : code === 'ENXIO' ? 'a FIFO of that name is there' : `cannot be written (${code ?? (e as Error).message})`;
+    }
+    try {
+        const st = await handle.stat();
+        if (!st.isFile()) return `${st.isDirectory() ? 'a folder' : 'something other than a file'} of that name is there`;
+        await handle.truncate(0);
+        // kept gzip-compressed by the service (an hour of logs is hundreds of MB): inflated as it is written
+        await pipeline(Readable.from([file.gzip]), createGunzip(), handle.createWriteStream());
+        return null;
+    } finally {
+        await handle.close().catch(() => {});
+    }
 }

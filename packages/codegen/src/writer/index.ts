@@ -14,7 +14,7 @@ export { OutputTree } from './output-tree.js';
 export { PROC_FD, fdPath, openDirNoFollow, requireProcFd, closeQuietly, type DirOpen, type NotAFolder } from './dir-fd.js';
 export { manifestEntryProblem, loadManifest, skeletonText, skeletonHash, type ManifestLoad, type LoadedManifest } from './manifest.js';
 export { STALE_TEMP_AGE_MS, removeStaleTemps } from './stale-temp.js';
-export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, tryTreeLock, lockTree, lockTreeSync } from './tree-lock.js';
+export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, tryTreeLock, lockTree, lockTreeSync, TREE_WRITERS } from './tree-lock.js';
 export {
     RENAME_JOURNAL_NAME, writeRenameJournal, removeRenameJournal, finishInterruptedRename, describeFinishedRename, sha256, realOrSelf,
     type RenameJournal, type RenameJournalFile, type FinishedRename,

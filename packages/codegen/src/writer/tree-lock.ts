@@ -146,8 +146,11 @@ function releaser(dir: string, key: string): () => void {
     };
 }
 
-function lockedError(what: string, holder: number | undefined, waitMs: number): TreeLockedError {
-    return new TreeLockedError(`${what} is being written by another process${holder !== undefined ? ` (pid ${holder}: a contract generate or rename, or the IDE server)` : ''} for more than ${waitMs / 1000} s: try again when it has finished (or remove its ${TREE_LOCK_NAME} if no such process runs)`);
+/** Who takes the lock of a generated tree, as a locked error names its holder. */
+export const TREE_WRITERS = 'a contract generate or rename, or the IDE server';
+
+function lockedError(what: string, holder: number | undefined, waitMs: number, writers: string): TreeLockedError {
+    return new TreeLockedError(`${what} is being written by another process${holder !== undefined ? ` (pid ${holder}: ${writers})` : ''} for more than ${waitMs / 1000} s: try again when it has finished (or remove its ${TREE_LOCK_NAME} if no such process runs)`);
 }
 
 /** Says once, when a take has to wait, who holds the lock. */
@@ -158,21 +161,25 @@ export type LockWaitNotice = (holder: number | undefined) => void;
  * wait POLL_MS and step again; the first blocked try tells `onWait`, one past `waitMs` throws.
  * lockTreeSync and lockTree differ only in how they wait between steps.
  */
-function* lockTries(dir: string, what: string, waitMs: number, onWait?: LockWaitNotice): Generator<undefined, () => void> {
+function* lockTries(dir: string, what: string, waitMs: number, onWait: LockWaitNotice | undefined, writers: string): Generator<undefined, () => void> {
     const until = Date.now() + waitMs;
     for (let first = true; ; first = false) {
         const got = tryTreeLock(dir);
         if (typeof got === 'function') return got;
         if (first) onWait?.(got.holder);
-        if (Date.now() >= until) throw lockedError(what, got.holder, waitMs);
+        if (Date.now() >= until) throw lockedError(what, got.holder, waitMs, writers);
         yield undefined;
     }
 }
 
-/** Takes the lock of `dir`, waiting (the thread sleeps) up to `waitMs`; `what` names the folder in the error. */
-export function lockTreeSync(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice): () => void {
+/**
+ * Takes the lock of `dir`, waiting (the thread sleeps) up to `waitMs`; `what` names the folder in
+ * the error, `writers` the kinds of process that take it (another folder than a generated tree
+ * can use the same lock: contract run's logs folder).
+ */
+export function lockTreeSync(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice, writers = TREE_WRITERS): () => void {
     const sleeper = new Int32Array(new SharedArrayBuffer(4));
-    const tries = lockTries(dir, what, waitMs, onWait);
+    const tries = lockTries(dir, what, waitMs, onWait, writers);
     for (let step = tries.next(); ; step = tries.next()) {
         if (step.done) return step.value;
         Atomics.wait(sleeper, 0, 0, POLL_MS);
@@ -180,8 +187,8 @@ export function lockTreeSync(dir: string, what: string, waitMs = LOCK_WAIT_MS, o
 }
 
 /** Takes the lock of `dir`, waiting (without blocking the event loop) up to `waitMs`. */
-export async function lockTree(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice): Promise<() => void> {
-    const tries = lockTries(dir, what, waitMs, onWait);
+export async function lockTree(dir: string, what: string, waitMs = LOCK_WAIT_MS, onWait?: LockWaitNotice, writers = TREE_WRITERS): Promise<() => void> {
+    const tries = lockTries(dir, what, waitMs, onWait, writers);
     for (let step = tries.next(); ; step = tries.next()) {
         if (step.done) return step.value;
         await new Promise((r) => setTimeout(r, POLL_MS));
