@@ -78,6 +78,17 @@ describe('B: a time the runtime did not write is no time of the run', () => {
         expect(recs.map((r) => (isUnknown(r) ? r.reason.slice(0, 40) : r.kind))).toEqual(['module_started', 'mono_ns jumps 8999959999.999 s past the ', 'user']);
     });
 
+    it("a machine suspended mid-run (the wall time moves on, CLOCK_MONOTONIC does not) is no forged time; a wall clock set back during a jump still is", () => {
+        const lines = [
+            `${at(1)},${W(0)},MSA,module_started,,,0,pid=2 priority=84`,
+            // 3 s of run between the two records, and 10 min of sleep the monotonic clock did not count
+            `${at(3001)},2026-11-24T18:40:18.123456Z,MSA,user,,,0,after the machine woke up`,
+            `${at(6001)},2026-11-24T18:38:21.123456Z,MSA,user,,,0,wall clock set 2 min back`,
+        ];
+        const recs = parseLogFile({ name: MSA, text: [CSV_HEADER, ...lines, ''].join('\n') });
+        expect(recs.map((r) => (isUnknown(r) ? r.reason.slice(0, 60) : r.kind))).toEqual(['module_started', 'user', 'mono_ns jumps 3.000 s past the record before it in its log w']);
+    });
+
     it("an out-of-order line of ORD's log does not become the run's time 0", () => {
         const records = parseTrace(runLogs([], [`900,${W(0)},ORD,scheduler,,,0,activate schemaCommande1 (activation #2 from SUP)`]));
         expect(records.filter(isUnknown)).toHaveLength(1);

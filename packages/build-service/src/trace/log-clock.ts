@@ -13,7 +13,8 @@
  * - Times (LogClock, one per log, its lines in file order): the runtime writes each log in
  *   CLOCK_MONOTONIC order and takes a record's mono_ns and wall_time at the same moment, so a
  *   record whose mono_ns goes back in its log (more than BACK_TOLERANCE_NS), jumps forward more
- *   than JUMP_CHECKED_NS while its wall_time does not move with it (WALL_TOLERANCE_NS), or is past
+ *   than JUMP_CHECKED_NS while its wall_time moves less (by WALL_TOLERANCE_NS: a suspend moves the
+ *   wall time on, not the monotonic one), or is past
  *   a 64-bit time, was not written by the runtime: an unreadable line, never the run's time.
  */
 import type { TraceArea } from './record-kinds.js';
@@ -56,7 +57,7 @@ export function monoTextProblem(s: string, from = 0, to = s.length): string | un
 export const BACK_TOLERANCE_NS = 1_000_000;
 /** A step forward longer than this in a log has its wall_time checked. */
 export const JUMP_CHECKED_NS = 1_000_000_000;
-/** How far a step's wall_time may differ from its mono_ns step (a wall clock set during the run). */
+/** How far a step's wall_time may fall short of its mono_ns step (a wall clock set back during the run). */
 export const WALL_TOLERANCE_NS = 60_000_000_000;
 
 const d2 = (s: string, at: number): number => {
@@ -107,7 +108,9 @@ export class LogClock {
                     const now = wallTimeMs(text, wallFrom, wallTo);
                     if (Number.isNaN(now)) return `mono_ns jumps ${seconds(mono - last)} past the record before it in its log, with no wall_time to confirm it`;
                     const wallStep = (now - before) * 1e6;
-                    if (Math.abs(mono - last - wallStep) > WALL_TOLERANCE_NS) return `mono_ns jumps ${seconds(mono - last)} past the record before it in its log while its wall_time moved ${seconds(wallStep)} (the runtime takes both at the same moment)`;
+                    // one-sided: the wall time moving on further (a machine suspended mid-run, which
+                    // CLOCK_MONOTONIC does not count; a wall clock set forward) is no forged time
+                    if (mono - last - wallStep > WALL_TOLERANCE_NS) return `mono_ns jumps ${seconds(mono - last)} past the record before it in its log while its wall_time moved ${seconds(wallStep)} (the runtime takes both at the same moment)`;
                 }
             }
         }
