@@ -143,23 +143,24 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         expect(ws.codesOf('msa.contract')).toEqual([]);
     });
 
-    it('import-cycle is reported on every file of a cycle closed or opened by an edit of one file', async () => {
+    it('import-cycle is reported on the unused import of a cycle closed or opened by an edit of another file', async () => {
         const ws = await liveWorkspace({
-            'a.contract': 'import "b.contract";\ndatatype A {B b};\n',
+            'a.contract': 'import "b.contract";\ndatatype A {int x};\n',
             'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
-            'c.contract': 'datatype C {int x};\n'
+            'c.contract': 'datatype C {int x};\nfunction void g(int v);\n'
         });
-        expect(ws.codesOf('a.contract')).toEqual([]);
-        await ws.write('c.contract', 'import "a.contract";\ndatatype C {int x};\n');
-        expect(ws.codesOf('a.contract')).toContain('import-cycle');
-        expect(ws.codesOf('b.contract')).toContain('import-cycle');
-        await ws.write('c.contract', 'datatype C {int x};\n');
-        expect(ws.codesOf('a.contract')).toEqual([]);
+        expect(ws.codesOf('a.contract')).toEqual(['import-unused']);
+        // c closes the cycle with an import it uses (only c's imports and uses change): the import to remove is a's
+        await ws.write('c.contract', 'import "a.contract";\ndatatype C {int x};\nfunction void g(A v);\n');
+        expect(ws.codesOf('a.contract')).toEqual(['import-cycle', 'import-unused']);
         expect(ws.codesOf('b.contract')).toEqual([]);
+        expect(ws.codesOf('c.contract')).toEqual([]);
+        await ws.write('c.contract', 'datatype C {int x};\nfunction void g(int v);\n');
+        expect(ws.codesOf('a.contract')).toEqual(['import-unused']);
     });
 
     const cTypes = (argType: string) => `import "a.contract";\ndatatype C {int x};\nfunction void g(${argType} v);\n`;
-    it('import-cycle comes and goes on every file of a cycle as an edit of one file stops or starts using what it imports', async () => {
+    it('import-cycle comes and goes on the import an edit stops or starts using, and nowhere else on the cycle', async () => {
         const ws = await liveWorkspace({
             'a.contract': 'import "b.contract";\ndatatype A {B b};\ndatatype A2 {int x};\n',
             'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
@@ -169,8 +170,9 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         for (const f of ['a.contract', 'b.contract', 'c.contract']) expect(ws.codesOf(f), f).toEqual([]);
         // c's function no longer uses a's type (no other fact of c changes; a refers to nothing of c)
         await ws.write('c.contract', cTypes('C'));
-        expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
-        expect(ws.codesOf('b.contract')).toEqual(['import-cycle']);
+        expect(ws.codesOf('c.contract')).toEqual(['import-cycle', 'import-unused']);
+        expect(ws.codesOf('a.contract')).toEqual([]);
+        expect(ws.codesOf('b.contract')).toEqual([]);
         await ws.write('c.contract', cTypes('A2'));
         for (const f of ['a.contract', 'b.contract', 'c.contract']) expect(ws.codesOf(f), f).toEqual([]);
     });
@@ -181,12 +183,15 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
             'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
             'c.contract': 'import "a.contract";\ndatatype C {int x};\n'
         });
-        expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
+        expect(ws.codesOf('a.contract')).toEqual([]);
+        expect(ws.codesOf('c.contract')).toEqual(['import-cycle', 'import-unused']);
         await ws.write('c.contract', 'import "a.contract";\ndatatype C {A a};\n');
         // each import of the cycle is used now: no import-cycle (files that use each other import each other)
         expect(ws.codesOf('a.contract')).toEqual(['type-recursive']);
+        expect(ws.codesOf('c.contract')).toEqual(['type-recursive']);
         await ws.write('c.contract', 'import "a.contract";\ndatatype C {int x};\n');
-        expect(ws.codesOf('a.contract')).toEqual(['import-cycle']);
+        expect(ws.codesOf('a.contract')).toEqual([]);
+        expect(ws.codesOf('c.contract')).toEqual(['import-cycle', 'import-unused']);
     });
 
     it('supervisor-activation-cycle is reported on every supervisor of a cycle closed or opened by an edit of one file', async () => {

@@ -9,7 +9,7 @@
  * | `activations` (supervisor -> activated supervisors) | `supervisor-activation-cycle` |
  * | `datatypeEdges` (datatype -> field datatypes) | `type-recursive` |
  * | `imports` (import paths) | `import-cycle`, and the file-name suggestion of `import-missing-file` |
- * | `referenced` (the names a file with imports refers to) | `import-cycle` (said only when an import of the cycle is of nothing used) |
+ * | `referenced` (the names a file with imports refers to) | `import-cycle` (said on an import of the cycle of nothing used) |
  *
  * Duplicate names (`*-name-duplicate`) are handled by the document builder from the index.
  * `projectDependents` compares the facts of the changed files before and after a change and names

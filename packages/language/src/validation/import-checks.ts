@@ -68,21 +68,19 @@ class ImportChecker {
                     { node: imp, property: 'path', data: suggestion ? { suggestion } : {} });
                 continue;
             }
+            // a syntax error here or there: the recovery may have lost the use or the definition (and the quick fix would remove a needed import)
+            const unused = !used.has(key) && !hasSyntaxError(document) && !hasSyntaxError(docs.getDocument(uri));
+            if (!unused) continue;
+            // a cycle of imports each used is two (or more) files using each other's names, which must import each
+            // other: nothing to fix. The import of nothing used that closes a cycle is said there, the one to remove.
             const cycle = this.findCycle(document.uri.toString(), key);
-            // a cycle of imports each used is two (or more) files using each other's names, which
-            // must import each other: nothing to fix. One with an import of nothing used is said, naming it.
-            const unused = cycle ? this.unusedImportOf([document.uri.toString(), ...cycle]) : undefined;
-            if (cycle && unused) {
-                const name = (u: string) => UriUtils.basename(URI.parse(u));
-                const names = [document.uri.toString(), ...cycle].map(name);
+            if (cycle) {
+                const names = [document.uri.toString(), ...cycle].map((u) => UriUtils.basename(URI.parse(u)));
                 report(accept, ImportCodes['import-cycle'],
-                    `Import cycle: ${names.join(' -> ')}, and nothing from "${name(unused.to)}" is used in ${name(unused.from)}: remove that import (imports are not transitive: a file imports only the files whose names it uses).`,
+                    `Import cycle: ${names.join(' -> ')}, and nothing from "${imp.path}" is used in this file: remove this import (imports are not transitive: a file imports only the files whose names it uses).`,
                     { node: imp, property: 'path' });
             }
-            // a syntax error here or there: the recovery may have lost the use or the definition (and the quick fix would remove a needed import)
-            if (!used.has(key) && !hasSyntaxError(document) && !hasSyntaxError(docs.getDocument(uri))) {
-                report(accept, ImportCodes['import-unused'], `Nothing from "${imp.path}" is used in this file.`, { node: imp, property: 'path', tags: [1] });
-            }
+            report(accept, ImportCodes['import-unused'], `Nothing from "${imp.path}" is used in this file.`, { node: imp, property: 'path', tags: [1] });
         }
         this.checkContent(model, accept);
     }
@@ -121,23 +119,6 @@ class ImportChecker {
                 }
                 queue.push(next);
             }
-        }
-        return undefined;
-    }
-
-    /**
-     * The first import along `path` (file URIs, each importing the next) whose file uses nothing
-     * of the imported one, or undefined when each is used (or a file of it has a syntax error: its
-     * uses may be what did not parse).
-     */
-    private unusedImportOf(path: string[]): { from: string; to: string } | undefined {
-        const byUri = this.documentsByUri();
-        for (let i = 0; i + 1 < path.length; i++) {
-            const doc = byUri.get(path[i]!);
-            const model = doc?.parseResult.value;
-            if (!doc || !isModel(model) || hasSyntaxError(doc)) return undefined;
-            const importUris = model.imports.filter((m) => m.path !== undefined).map((m) => this.imports.resolveImport(m).toString());
-            if (!this.usedUris(model, doc, importUris).has(path[i + 1]!)) return { from: path[i]!, to: path[i + 1]! };
         }
         return undefined;
     }

@@ -9,7 +9,7 @@ export const { area: importsArea, codes: ImportCodes } = defineCodes('Files and 
     },
     'import-cycle': {
         severity: 'warning',
-        description: 'The file imports (directly or through other files) a file that imports it back, and one import of that cycle is of a file nothing of which is used: the message shows the cycle and names that import, to remove (imports are not transitive: a file imports only the files whose names it uses). Files that use each other\'s names (a supervisor activating another that subscribes to its port) import each other: a cycle whose imports are all used is not reported.',
+        description: 'An import of a file nothing of which is used closes an import cycle (the imported file imports this one back, directly or through other files): the warning is on that import, the one to remove, and its message shows the cycle from this file (imports are not transitive: a file imports only the files whose names it uses). The other files of the cycle get nothing: their imports are used. Files that use each other\'s names (a supervisor activating another that subscribes to its port) import each other: a cycle whose imports are all used is not reported.',
         example: '// a.contract\nimport "b.contract";\ndatatype A {B b};\n// b.contract (uses nothing of a.contract)\nimport "a.contract";\ndatatype B {int x};'
     },
     'import-unused': {
