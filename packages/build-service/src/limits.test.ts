@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
-import { RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, runLogMaxBytes } from './limits.js';
+import { DEFAULT_LIMITS, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogMaxBytes } from './limits.js';
 
 describe('longestDuration: a run asked for the longest still ends on its own', () => {
   it('keeps RUN_STOP_ROOM_SECONDS (half the limit when that is less) to start and stop the architecture', () => {
@@ -30,5 +30,31 @@ describe('runLogMaxBytes: a module flooding its CSV log is capped before the wor
     // the runtime refuses a bound under 4 records of 1280 bytes (runtime/src/csvlog.c): never given one
     expect(RUN_LOG_MIN_BYTES).toBeGreaterThanOrEqual(4 * 1280);
     expect(Number.isInteger(runLogMaxBytes(1234567))).toBe(true);
+  });
+});
+
+describe('mergeLimits with the values as written (contract serve --limit NAME=VALUE)', () => {
+  const refusal = (name: string, text: string): string => {
+    try {
+      mergeLimits(DEFAULT_LIMITS, { [name]: Number(text) }, false, { [name]: text });
+    } catch (e) {
+      return (e as Error).message;
+    }
+    return 'accepted';
+  };
+
+  it('quotes the text in a refusal, not the number it became (17 digits and more are rounded)', () => {
+    expect(refusal('processes', '12345678901234567')).toBe('limit processes must be at most 4194304, got 12345678901234567');
+    expect(refusal('modelBytes', '9007199254740993')).toBe('limit modelBytes must be at most 9007199254740991, got 9007199254740993');
+    expect(refusal('runSeconds', '99999999999999999999')).toBe('limit runSeconds must be at most 2147483 s (about 24.8 days, a timer\'s range), got 99999999999999999999');
+    expect(refusal('runSeconds', '0.00010000000000000000001')).toBe('limit runSeconds must be at least 0.001 s, got 0.00010000000000000000001');
+  });
+
+  it('refuses a count or a size whose text is no whole number, even when the number it became is one', () => {
+    expect(refusal('generatedFiles', '10.0000000000000001')).toBe('limit generatedFiles must be a whole number (a count or a size), got 10.0000000000000001');
+    expect(refusal('memoryMiB', '1023.99999999999999')).toBe('limit memoryMiB must be a whole number (a count or a size), got 1023.99999999999999');
+    expect(refusal('generatedFiles', '10.0')).toBe('accepted');
+    expect(refusal('modelBytes', '9007199254740991')).toBe('accepted');
+    expect(refusal('runSeconds', '3660.5')).toBe('accepted');
   });
 });

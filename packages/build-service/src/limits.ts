@@ -316,8 +316,13 @@ const MAX_WHOLE_LIMIT: Record<string, number> = {
   processes: 4_194_304,
 };
 
-/** Merges overrides onto a base; with `lowerOnly`, an override above the base is an error. */
-export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean): Limits {
+/**
+ * Merges overrides onto a base; with `lowerOnly`, an override above the base is an error.
+ * `written`: overrides as the user wrote them (`contract serve --limit NAME=VALUE`, by name): a
+ * message quotes that text, not the number it became (`99999999999999999` is no `100000000000000000`),
+ * and a count or a size must be written as the whole number it is (`10.0000000000000001` became 10).
+ */
+export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean, written: Readonly<Record<string, string>> = {}): Limits {
   if (overrides === undefined || overrides === null) return { ...base };
   if (typeof overrides !== 'object' || Array.isArray(overrides)) {
     throw new LimitsError('limits must be an object');
@@ -327,29 +332,39 @@ export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean
     if (!(LIMIT_NAMES as readonly string[]).includes(key)) {
       throw new LimitsError(`unknown limit "${key}" (known: ${LIMIT_NAMES.join(', ')})`);
     }
+    const text = Object.hasOwn(written, key) ? written[key] : undefined;
+    const shown = text ?? JSON.stringify(value);
     if (typeof value !== 'number' || !Number.isFinite(value) || value <= 0) {
-      throw new LimitsError(`limit ${key} must be a positive number, got ${JSON.stringify(value)}`);
+      throw new LimitsError(`limit ${key} must be a positive number, got ${shown}`);
     }
     if (!key.endsWith('Seconds')) {
       const max = MAX_WHOLE_LIMIT[key] ?? Number.MAX_SAFE_INTEGER;
-      if (!Number.isInteger(value)) throw new LimitsError(`limit ${key} must be a whole number (a count or a size), got ${value}`);
-      if (value > max) throw new LimitsError(`limit ${key} must be at most ${max}, got ${value}`);
+      const whole = text === undefined ? (Number.isInteger(value) ? BigInt(value) : undefined) : wholeNumberWritten(text);
+      if (whole === undefined) throw new LimitsError(`limit ${key} must be a whole number (a count or a size), got ${shown}`);
+      // compared as written: a max is a safe integer, so a value at most that is the number written
+      if (whole > BigInt(max)) throw new LimitsError(`limit ${key} must be at most ${max}, got ${shown}`);
     }
     // at least a millisecond: a tinier one (1e-300) went as `DURATION=5e-301` to make and the launcher
     if (key.endsWith('Seconds') && value < 0.001) {
-      throw new LimitsError(`limit ${key} must be at least 0.001 s, got ${value}`);
+      throw new LimitsError(`limit ${key} must be at least 0.001 s, got ${shown}`);
     }
     // the service's timers hold at most 2^31-1 ms: a longer time limit would fire at once
     if (key.endsWith('Seconds') && value > MAX_LIMIT_SECONDS) {
-      throw new LimitsError(`limit ${key} must be at most ${MAX_LIMIT_SECONDS} s (about 24.8 days, a timer's range), got ${value}`);
+      throw new LimitsError(`limit ${key} must be at most ${MAX_LIMIT_SECONDS} s (about 24.8 days, a timer's range), got ${shown}`);
     }
     const name = key as LimitName;
     if (lowerOnly && value > base[name]) {
-      throw new LimitsError(`limit ${key}=${value} is above the server's ${base[name]}`);
+      throw new LimitsError(`limit ${key}=${shown} is above the server's ${base[name]}`);
     }
     out[name] = value;
   }
   return out;
+}
+
+/** The whole number `text` writes (decimal digits, perhaps a point and zeros), else undefined. */
+function wholeNumberWritten(text: string): bigint | undefined {
+  const m = /^(\d+)(?:\.0*)?$/.exec(text);
+  return m ? BigInt(m[1]!) : undefined;
 }
 
 export class LimitsError extends Error {}

@@ -74,9 +74,13 @@ describe('contract serve', () => {
     it('--limit NAME=VALUE sets the build service\'s limits for the IDE\'s jobs (an hour-long run); an unknown limit or a bad value is refused, exit 2', async () => {
         for (const [arg, message] of [
             ['bogus=1', 'unknown limit "bogus"'], ['__proto__=1', 'unknown limit "__proto__"'], ['runSeconds=0', '--limit needs NAME=VALUE with a positive number'],
-            ['runSeconds', '--limit needs NAME=VALUE'], ['runSeconds=99999999999999999999', 'limit runSeconds must be at most 2147483 s'], ['buildSeconds=2200000', 'limit buildSeconds must be at most 2147483 s'],
+            ['runSeconds', '--limit needs NAME=VALUE'], ['runSeconds=99999999999999999999', 'limit runSeconds must be at most 2147483 s (about 24.8 days, a timer\'s range), got 99999999999999999999\n'], ['buildSeconds=2200000', 'limit buildSeconds must be at most 2147483 s'],
             // counts and sizes are whole numbers (a cgroup's pids.max refuses 10.5), bounded
             ['processes=10.5', 'limit processes must be a whole number (a count or a size), got 10.5'], ['runSeconds=0.0000001', 'limit runSeconds must be at least 0.001 s'], ['memoryMiB=9000000000', 'limit memoryMiB must be at most 8589934592, got 9000000000'],
+            // the value as written, not as a JavaScript number shows it (17 digits and more are rounded); a count or size
+            // written with a fraction is refused even when the number it became is whole
+            ['processes=12345678901234567', 'limit processes must be at most 4194304, got 12345678901234567\n'],
+            ['generatedFiles=10.0000000000000001', 'limit generatedFiles must be a whole number (a count or a size), got 10.0000000000000001\n'],
         ]) {
             const bad = spawn(process.execPath, [BIN, 'serve', dir, '--port', '0', '--limit', arg!], { stdio: ['ignore', 'pipe', 'pipe'] });
             let err = '';

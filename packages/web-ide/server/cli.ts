@@ -10,6 +10,8 @@ export interface ServeArgs {
   sandbox: ServeSandbox;
   /** `--limit NAME=VALUE`: the build service's limits for the IDE's jobs (docs/sandbox.md "Limits"), above or below the defaults. */
   limits: Record<string, number>;
+  /** The same values as written (messages quote them; a count or a size must be written as the whole number it is). */
+  limitTexts: Record<string, string>;
 }
 
 /** The sandboxes `--sandbox` takes (`none` is not one: the IDE's build service refuses it). */
@@ -20,7 +22,7 @@ const USAGE = 'usage: contract serve [DIR] [--port N] [--host ADDR] [--sandbox a
 /** Parses `[DIR] [--port N] [--host H] [--sandbox S]`; throws with a usage message on bad input. */
 export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
   // no prototype: `--limit __proto__=1` is a name like any other (refused as unknown), not a prototype
-  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', limits: Object.create(null) as Record<string, number> };
+  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', limits: Object.create(null) as Record<string, number>, limitTexts: Object.create(null) as Record<string, string> };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--port' || a === '-p') {
@@ -42,6 +44,7 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
       const m = /^([A-Za-z_]\w*)=(\d+(?:\.\d*)?|\.\d+)$/.exec(v ?? ''); // 30, 0.5, .5, 5.
       if (!m || Number(m[2]) <= 0) throw new Error(`--limit needs NAME=VALUE with a positive number (e.g. runSeconds=3600), got ${v ?? 'nothing'}\n${USAGE}`);
       out.limits[m[1]!] = Number(m[2]);
+      out.limitTexts[m[1]!] = m[2]!;
     } else if (a.startsWith('-')) {
       throw new Error(`unknown option ${a}\n${USAGE}`);
     } else out.workspace = a;
@@ -51,9 +54,9 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
 }
 
 /** Why the build service refuses `limits` (its mergeLimits), or undefined (also when it is not built: its own note then says so). */
-async function checkLimits(limits: Record<string, number>): Promise<string | undefined> {
+async function checkLimits(limits: Record<string, number>, written: Record<string, string>): Promise<string | undefined> {
   if (Object.keys(limits).length === 0) return undefined;
-  let bs: { mergeLimits: (base: unknown, overrides: unknown, lowerOnly: boolean) => unknown; DEFAULT_LIMITS: unknown };
+  let bs: { mergeLimits: (base: unknown, overrides: unknown, lowerOnly: boolean, written: Record<string, string>) => unknown; DEFAULT_LIMITS: unknown };
   try {
     const name = '@contract-studio/build-service';
     bs = (await import(name)) as typeof bs;
@@ -61,7 +64,7 @@ async function checkLimits(limits: Record<string, number>): Promise<string | und
     return undefined;
   }
   try {
-    bs.mergeLimits(bs.DEFAULT_LIMITS, limits, false);
+    bs.mergeLimits(bs.DEFAULT_LIMITS, limits, false, written);
     return undefined;
   } catch (e) {
     return (e as Error).message;
@@ -84,7 +87,7 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
     return 2;
   }
   // a limit the build service does not know, or a value it refuses: bad usage, before anything starts
-  const limitsProblem = await checkLimits(args.limits);
+  const limitsProblem = await checkLimits(args.limits, args.limitTexts);
   if (limitsProblem) {
     console.error(`contract serve: --limit: ${limitsProblem}\n${USAGE}`);
     return 2;
