@@ -532,9 +532,11 @@ describe('6. a crashed module', () => {
 });
 
 describe('7. names from a project or a sandbox cannot forge a line', () => {
-    it('safeName escapes newlines, tabs, CR, every control, line separators and bidi overrides', () => {
+    it('safeName escapes newlines, tabs, CR, every control, line separators, bidi overrides and directional marks', () => {
         expect(safeName('a\nok: run finished (exit 0)')).toBe('a\\u000aok: run finished (exit 0)');
         expect(safeName('t\tb\rc\x1b[2J\x9b\u2028\u202e')).toBe('t\\u0009b\\u000dc\\u001b[2J\\u009b\\u2028\\u202e');
+        // the marks reorder what is around them as the overrides do (the IDE's and the job log's rule, conventions' visibleText)
+        expect(safeName('ORD_\u200fvsc.csv \u200e\u061c')).toBe('ORD_\\u200fvsc.csv \\u200e\\u061c');
         expect(safeName('robot/src-gen/modules/CTL_mod/module.c')).toBe('robot/src-gen/modules/CTL_mod/module.c');
     });
 
@@ -545,6 +547,14 @@ describe('7. names from a project or a sandbox cannot forge a line', () => {
         expect(await runCli(['check', 'nl'], io)).toBe(1);
         expect(io.stdout).toMatch(/^nl\/x\\u000aok: run finished \(exit 0\) \[bwrap\]\.contract:1:21 error /);
         expect(io.stdout.split('\n').filter((l) => l.startsWith('ok:'))).toEqual([]);
+    });
+
+    it('contract check on a project file whose name holds a directional mark prints the mark escaped', async () => {
+        mkdirSync(join(root, 'rlm'));
+        writeFileSync(join(root, 'rlm', 'types\u200f.contract'), 'datatype T {int a = 1.5};\n');
+        const io = capture(root);
+        expect(await runCli(['check', 'rlm'], io)).toBe(1);
+        expect(io.stdout).toMatch(/^rlm\/types\\u200f\.contract:1:21 error /);
     });
 
     it('gcc and prepare diagnostics, and the logs folder, are printed escaped', () => {

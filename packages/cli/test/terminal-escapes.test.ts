@@ -35,7 +35,7 @@ function contract(args: string[]): { code: number | null; stdout: string; stderr
 }
 
 describe('escapeControls', () => {
-    it('renders C0 (but tab and newline), DEL and C1 as visible \\uXXXX, and leaves other text alone', () => {
+    it('renders C0 (but tab and newline), DEL, C1, bidi overrides and directional marks as visible \\uXXXX, and leaves other text alone', () => {
         expect(escapeControls('\x1b]0;pwned\x07\x1b[2J')).toBe('\\u001b]0;pwned\\u0007\\u001b[2J');
         expect(escapeControls('a\tb\n')).toBe('a\tb\n');
         expect(escapeControls('100%\rOVER')).toBe('100%\\u000dOVER');
@@ -43,6 +43,8 @@ describe('escapeControls', () => {
         expect(escapeControls('héllo → ü 日本 עברית')).toBe('héllo → ü 日本 עברית');
         // bidi overrides and isolates, line and paragraph separators: they reorder or break the terminal's line
         expect(escapeControls('ok \u202eevil\u202c \u2066x\u2069 a\u2028b')).toBe('ok \\u202eevil\\u202c \\u2066x\\u2069 a\\u2028b');
+        // the directional marks reorder it too (the IDE's rule, conventions' visibleText)
+        expect(escapeControls('live \u200f(1) \u200e\u061c\n')).toBe('live \\u200f(1) \\u200e\\u061c\n');
         // the JSON view stays valid JSON with the same strings
         const json = JSON.stringify({ line: '\x9b\x7f\x1b' });
         expect(JSON.parse(escapeControls(json))).toEqual({ line: '\x9b\x7f\x1b' });

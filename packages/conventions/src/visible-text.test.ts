@@ -10,3 +10,18 @@ describe('visibleText', () => {
     expect(visibleText('a\tb é ✓ 日本 مرحبا')).toBe('a\tb é ✓ 日本 مرحبا');
   });
 });
+
+describe('visibleText with escapeTab (a name inside a message: the CLI\'s safeName)', () => {
+  it('writes a tab as its escape too, and everything else as visibleText does', () => {
+    expect(visibleText('t\tb\nc', { escapeTab: true })).toBe('t\\u0009b\\u000ac');
+    const marks = 'x\u200ey\u200fz\u061cw\u202e';
+    expect(visibleText(marks, { escapeTab: true })).toBe(visibleText(marks));
+    expect(visibleText('a é ✓ 日本 مرحبا', { escapeTab: true })).toBe('a é ✓ 日本 مرحبا');
+  });
+});
+
+describe('visibleText with keepNewlines (many lines, each shown as one: all the CLI prints)', () => {
+  it('keeps newlines and tabs, and writes the rest as visibleText does', () => {
+    expect(visibleText('a\tb\nc\u200fd\r\n', { keepNewlines: true })).toBe('a\tb\nc\\u200fd\\u000d\n');
+  });
+});
