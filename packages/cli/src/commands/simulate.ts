@@ -115,7 +115,7 @@ export const simulateCommand: Command = {
 
         // every scenario is read and checked before any runs (its diagnostics first: nothing runs when
         // one has errors); then they run and are reported one at a time, each one's parsed steps (an
-        // 8 MiB scenario's take some 290 MB: a large one is parsed again when its turn comes, unless it is the only one) and
+        // 8 MiB scenario's take some 210 MB: a large one is parsed again when its turn comes, unless it is the only one) and
         // records let go once its report is written, so that many long scenarios take no more
         // memory than the longest one
         const scenarios: ToRun[] = [];

@@ -217,9 +217,9 @@ export function runScenario(exe: string, file: string, scenario: ParsedScenario,
     const lastNs = scenario.steps.length ? scenario.steps[scenario.steps.length - 1]!.atNs : 0;
     const endNs = Math.max(scenario.untilNs ?? lastNs, lastNs);
     let input = harnessInput(scenario, locals, endNs, options.quiet === true);
-    // what the records need of their steps, by line: the parsed steps (1.4 KB each: names, values and
+    // what the records need of their steps, by line: the parsed steps (about 1 KB each: names, values and
     // their spans) are not held while the scenario runs, nor is anything else of `scenario` (only this
-    // function's own code reads it, never the closures below): an 8 MiB scenario's are some 290 MB
+    // function's own code reads it, never the closures below): an 8 MiB scenario's are some 210 MB
     const byLine = new Map<number, StepOfLine>();
     for (const s of scenario.steps) byLine.set(s.span.line, { source: s.source, kind: s.kind });
     const title = scenario.title;
