@@ -177,6 +177,17 @@ describe('project-wide diagnostics refresh on changes of other files', () => {
         for (const f of ['a.contract', 'b.contract', 'c.contract']) expect(ws.codesOf(f), f).toEqual([]);
     });
 
+    it('an edit that stops using what a file of a cycle imports revalidates that file and its importers, not the rest of the cycle', async () => {
+        const ws = await liveWorkspace({
+            'a.contract': 'import "b.contract";\ndatatype A {B b};\ndatatype A2 {int x};\n',
+            'b.contract': 'import "c.contract";\ndatatype B {C c};\n',
+            'c.contract': cTypes('A2')
+        });
+        // the warning goes on c's import (c is validated); b imports c (its import diagnostics follow c's); a's depend on neither
+        expect(await ws.validatedDuring(() => ws.write('c.contract', cTypes('C')))).toEqual(['b.contract', 'c.contract']);
+        expect(ws.codesOf('c.contract')).toEqual(['import-cycle', 'import-unused']);
+    });
+
     it('type-recursive is reported on every datatype of a cycle closed by an edit of one file whose imports do not change', async () => {
         const ws = await liveWorkspace({
             'a.contract': 'import "b.contract";\ndatatype A {B b};\n',

@@ -9,7 +9,6 @@
  * | `activations` (supervisor -> activated supervisors) | `supervisor-activation-cycle` |
  * | `datatypeEdges` (datatype -> field datatypes) | `type-recursive` |
  * | `imports` (import paths) | `import-cycle`, and the file-name suggestion of `import-missing-file` |
- * | `referenced` (the names a file with imports refers to) | `import-cycle` (said on an import of the cycle of nothing used) |
  *
  * Duplicate names (`*-name-duplicate`) are handled by the document builder from the index.
  * `projectDependents` compares the facts of the changed files before and after a change and names
@@ -29,7 +28,6 @@ export interface DocumentFacts {
     activations?: string;
     datatypeEdges?: string;
     imports: string;
-    referenced?: string;
 }
 
 const NO_FACTS: DocumentFacts = { imports: '' };
@@ -43,17 +41,8 @@ export function documentFacts(document: LangiumDocument | undefined): DocumentFa
         scheduledSchemas: scheduledSchemasFact(model),
         activations: activationsFact(model),
         datatypeEdges: datatypeEdgesFact(model),
-        imports: model.imports.map((i) => i.path ?? '').join('\n'),
-        referenced: referencedFact(model)
+        imports: model.imports.map((i) => i.path ?? '').join('\n')
     };
-}
-
-/** The names a file with imports refers to (sorted, once each): whether it uses what it imports. */
-function referencedFact(model: Model): string | undefined {
-    if (model.imports.length === 0) return undefined;
-    const names = new Set<string>();
-    for (const node of AstUtils.streamAst(model)) for (const r of AstUtils.streamReferences(node)) names.add(r.reference.$refText);
-    return [...names].sort().join(',');
 }
 
 function scheduledSchemasFact(model: Model): string | undefined {
@@ -105,7 +94,7 @@ export function projectDependents(
     if (changed('activations')) addWhere((m) => m.elements.some(isSupervisor));
     if (changed('datatypeEdges')) addWhere((m) => m.elements.some(isDataType));
     const filesAddedOrDeleted = [...before.keys()].some((uri) => (before.get(uri) === NO_FACTS) !== (after.get(uri) === NO_FACTS));
-    if (changed('imports') || changed('referenced') || filesAddedOrDeleted) {
+    if (changed('imports') || filesAddedOrDeleted) {
         // a cycle that is gone: its files reported it; a new cycle: it goes through a changed file
         addWhere((_, doc) => hasDiagnostic(doc, 'import-cycle') || hasDiagnostic(doc, 'import-missing-file'));
         for (const doc of importCycleMembers([...before.keys()], all)) {
