@@ -1,6 +1,7 @@
 /**
  * GET /api/jobs/:id/ws: the same events as the SSE stream as WebSocket JSON text frames
- * ({type, seq, t, ...}), replay included; the client may send {"type":"cancel"}. A client that
+ * ({type, seq, t, ...}), replay included; the client may send {"type":"cancel"}, any other frame
+ * is answered with an error frame (ws-client-frames.ts). A client that
  * falls behind by more than SERVICE_BOUNDS.streamBufferedBytes of live events is dropped.
  * `?trace=all|none|only` chooses the events (traceFilter): all, all but `trace`, or `trace` and
  * `end` only; the ones sent keep their seq, so `?after=` resumes a filtered stream as any other.
@@ -17,6 +18,7 @@ import { SERVICE_BOUNDS } from '../limits.js';
 import { LiveBacklog } from './live-backlog.js';
 import type { StreamBudget } from './stream-budget.js';
 import { wsFrame } from './event-wire.js';
+import { clientErrorFrame, readClientFrame } from './ws-client-frames.js';
 import type { JobEvent } from '../pipeline/job-events.js';
 
 /** Which events a socket gets (`?trace=`): every one, all but `trace` ones, `trace` ones and `end`. */
@@ -57,7 +59,7 @@ function wanted(filter: TraceFilter, e: JobEvent): boolean {
 }
 
 export class JobWebSockets {
-  // clients only send {"type":"cancel"}: a bounded frame size (SERVICE_BOUNDS.wsMessageBytes)
+  // clients only send {"type":"cancel"} (ws-client-frames.ts): a bounded frame size (SERVICE_BOUNDS.wsMessageBytes)
   private readonly wss = new WebSocketServer({ noServer: true, maxPayload: SERVICE_BOUNDS.wsMessageBytes });
 
   constructor(
@@ -136,13 +138,11 @@ export class JobWebSockets {
       // the replay's last frame is the replay's, not live events
       flush();
       backlog.replayDone();
-      ws.on('message', (data) => {
-        try {
-          const msg = JSON.parse(String(data)) as { type?: string };
-          if (msg?.type === 'cancel') this.service.cancel(id).catch(() => {});
-        } catch {
-          /* ignore malformed client frames */
-        }
+      ws.on('message', (data, isBinary) => {
+        const frame = readClientFrame(data, isBinary);
+        if (frame.type === 'cancel') this.service.cancel(id).catch(() => {});
+        // a frame the service does not take is said to the client (not an event: no seq, never batched); the stream goes on
+        else if (!dropped && ws.readyState === WebSocket.OPEN) send(clientErrorFrame(frame.error));
       });
       ws.on('close', () => {
         clearTimeout(flushTimer);
