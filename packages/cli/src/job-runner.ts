@@ -240,10 +240,10 @@ const TIME_LINE = /^time: /;
  * The service's lines of a run's stop (job.ts): `memory limit 512 MiB reached: stopping the
  * architecture as at the end of a run (...)` (a limit hit), `stopping the architecture as at the
  * end of a run (...)` (the run time limit, Ctrl+C), `the architecture did not stop within 1000 ms:
- * killed`. Printed on stderr in every text output and kept with the run's lines (`output` in JSON):
+ * killed`, `no contract-launch process to ask (...): killed`. Printed on stderr in every text output and kept with the run's lines (`output` in JSON):
  * without them a stop reads as a normal end (`contract-launch: stopping`).
  */
-const RUN_STOP_LINE = /^(?:[^\n]{1,200} reached: )?stopping the architecture as at the end of a run \(|^the architecture did not stop within \d+ ms: killed$|^cancel asked while the run was being stopped by the [^\n]{1,200}: it ends by the limit$/;
+const RUN_STOP_LINE = /^(?:[^\n]{1,200} reached: )?stopping the architecture as at the end of a run \(|^the architecture did not stop within \d+ ms: killed$|^no contract-launch process to ask \([^\n]{1,200}\): killed$|^cancel asked while the run was being stopped by the [^\n]{1,200}: it ends by the limit$/;
 
 /** Keeps `e` in `tail` (the last BUILD_TAIL_LINES) when it is a line of the build that says what failed. */
 export function noteBuildErrorLine(tail: string[], e: JobEvent): void {

@@ -31,6 +31,9 @@ import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_D
 /** make's line when the run recipe (contract-launch) died by SIGKILL. */
 const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Killed$/;
 
+/** The stop of a run that found no launcher to ask (a run of something that is not an architecture, or one ending already). */
+export const NO_LAUNCHER_ASKED = `no ${LAUNCHER_PROCESS_NAME} process to ask (not an architecture, or it was ending)`;
+
 /** How long a cancelled job waits for the host-side work it let go of (a generation stopping at its next check) before releasing its workspace. */
 const ABANDONED_WAIT_MS = 10_000;
 
@@ -241,9 +244,13 @@ export class Job {
     // the grace counts from now: asking (an exec in Docker, on a loaded engine) is part of it
     let timer: NodeJS.Timeout | undefined;
     const graceOver = new Promise<false>((r) => (timer = setTimeout(() => r(false), CANCEL_GRACE_MS)));
-    const asked = await Promise.race([proc.terminateNamed(LAUNCHER_PROCESS_NAME, reason).catch(() => false), graceOver]);
-    if (asked) {
-      this.system('run', `stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
+    // said before asking: what the launcher prints as it stops comes after it in the log
+    this.system('run', `stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
+    // null: asking took the whole grace
+    const asked = await Promise.race([proc.terminateNamed(LAUNCHER_PROCESS_NAME, reason).catch(() => false), graceOver.then(() => null)]);
+    if (asked === null) this.system('run', `the architecture did not stop within ${CANCEL_GRACE_MS} ms: killed`);
+    else if (!asked) this.system('run', `${NO_LAUNCHER_ASKED}: killed`);
+    else {
       const ended = await Promise.race([proc.done.then(() => true), graceOver]);
       this.stoppedGracefully = ended;
       if (!ended) this.system('run', `the architecture did not stop within ${CANCEL_GRACE_MS} ms: killed`);
