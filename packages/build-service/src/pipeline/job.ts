@@ -31,6 +31,15 @@ import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_D
 /** make's line when the run recipe (contract-launch) died by SIGKILL. */
 const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Killed$/;
 
+/**
+ * The job's warning when its build step's output went past the output limit: the lines after the
+ * cut are in no log, event or artifact (a build's output is kept nowhere else); a service with a
+ * higher limit keeps more.
+ */
+export function buildOutputCutWarning(stream: 'stdout' | 'stderr', limitBytes: number): string {
+  return `the build's ${stream} was cut at the output limit (${formatBytes(limitBytes)} per stream, outputBytesPerStream): its later lines are not kept anywhere (not in the log, the events or the artifacts): the whole output cannot be got from this job; a service started with a higher outputBytesPerStream (e.g. contract serve --limit outputBytesPerStream=N) keeps more`;
+}
+
 /** The stop of a run that found no launcher to ask (a run of something that is not an architecture, or one ending already). */
 export const NO_LAUNCHER_ASKED = `no ${LAUNCHER_PROCESS_NAME} process to ask (not an architecture, or it was ending)`;
 
@@ -392,13 +401,13 @@ export class Job {
       }
       if (!build.ok) {
         const errors = this.diagnostics.filter((d) => d.severity === 'error').length;
-        const message = build.message ?? (errors ? `build failed: ${errors} error(s) (make exit ${build.exitCode})` : `build failed (make exit ${build.exitCode})`);
+        const message = (build.message ?? (errors ? `build failed: ${errors} error(s) (make exit ${build.exitCode})` : `build failed (make exit ${build.exitCode})`)) + this.buildOutputCut();
         this.result = this.makeResult('build', false, build.exitCode, build.signal, message, build.limitHit);
         this.finish(this.cancelRequested ? 'cancelled' : 'failed');
         return;
       }
       if (this.request.action === 'build') {
-        this.result = this.makeResult('build', true, 0, null, `build succeeded${this.diagnostics.length ? ` (${this.diagnostics.length} diagnostic(s))` : ''}`, null);
+        this.result = this.makeResult('build', true, 0, null, `build succeeded${this.diagnostics.length ? ` (${this.diagnostics.length} diagnostic(s))` : ''}${this.buildOutputCut()}`, null);
         this.finish('succeeded');
         return;
       }
@@ -745,6 +754,13 @@ export class Job {
             this.truncated[name] = true;
             if (step === 'run') this.runIssues.outputTruncated(name, this.request.limits.outputBytesPerStream);
             this.system(step, `[output truncated: ${name} limit ${formatBytes(this.request.limits.outputBytesPerStream)} reached]`);
+            // a build's output is kept nowhere else: said among the job's warnings (the 201's
+            // listeners, GET, the CLI's closing lines) and in its log, not in `truncated` alone
+            if (step === 'build') {
+              const warning = buildOutputCutWarning(name, this.request.limits.outputBytesPerStream);
+              this.warnings.push(warning);
+              this.system(step, `warning: ${warning}`);
+            }
           },
         });
         // the sandbox's output is untrusted: whatever its handling throws stops this job, never the service
@@ -777,8 +793,16 @@ export class Job {
       if (usage) message = `${message}: filled by ${describeWorkUsage(usage)}`;
     }
     const ok = !this.cancelRequested && !limitHit && exit.exitCode === 0;
-    this.system(step, ok ? `${step} finished in ${this.durations[step]} ms` : `${step}: ${message ?? `exit ${exit.exitCode}${exit.signal ? ` (${exit.signal})` : ''}`}`);
+    const cut = step === 'build' ? this.buildOutputCut() : '';
+    this.system(step, ok ? `${step} finished in ${this.durations[step]} ms${cut}` : `${step}: ${message ?? `exit ${exit.exitCode}${exit.signal ? ` (${exit.signal})` : ''}`}${cut}`);
     return { ok, exitCode: exit.exitCode, signal: exit.signal, limitHit, message };
+  }
+
+  /** `; its stdout was cut at the output limit (...)` when the build step's output was cut, else ''. */
+  private buildOutputCut(): string {
+    const cut = (['stdout', 'stderr'] as const).filter((n) => this.truncated[n]);
+    if (!cut.length) return '';
+    return `; its ${cut.join(' and ')} ${cut.length > 1 ? 'were' : 'was'} cut at the output limit (${formatBytes(this.request.limits.outputBytesPerStream)} per stream): the rest is not kept`;
   }
 
   private makeResult(
