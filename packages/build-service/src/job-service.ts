@@ -22,7 +22,7 @@ import { SANDBOX_CHOICES, SandboxRegistry, SandboxUnavailableError } from './san
 import type { SandboxChoice, SandboxName } from './sandbox/types.js';
 import { ServiceError } from './service-errors.js';
 import { checkRelativePath, isInside, removeTreeNoFollow, UnsafePathError } from './util/safe-fs.js';
-import { MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
+import { JSON_BODY_NOT_OBJECT, MIN_READY_TIMEOUT_SECONDS, cpuMissingFrom, isCpuList } from '@contract-studio/conventions';
 
 /** Characters no inline file path holds: controls, line separators, bidirectional overrides (a name shown as another one). */
 const INLINE_NAME_UNSAFE = /[\x00-\x1f\x7f-\x9f\u2028\u2029\u202a-\u202e\u2066-\u2069]/;
@@ -165,7 +165,7 @@ export class JobService {
 
   /** Validates a request body (the JSON of POST /api/jobs); throws ServiceError 400/403. */
   parseRequest(body: unknown): { request: JobRequest; sandbox: SandboxChoice } {
-    if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', 'the body must be a JSON object');
+    if (!body || typeof body !== 'object' || Array.isArray(body)) throw new ServiceError(400, 'bad_request', JSON_BODY_NOT_OBJECT);
     const b = body as Record<string, unknown>;
     const known = new Set(['action', 'project', 'kind', 'sandbox', 'start', 'duration', 'readyTimeout', 'cpus', 'realtime', 'limits']);
     for (const k of Object.keys(b)) if (!known.has(k)) throw new ServiceError(400, 'bad_request', `unknown field "${k}"`);

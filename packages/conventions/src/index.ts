@@ -8,3 +8,4 @@ export * from './sandbox.js';
 export * from './regions.js';
 export * from './time-literal.js';
 export * from './visible-text.js';
+export * from './json-body.js';

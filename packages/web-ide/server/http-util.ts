@@ -1,4 +1,5 @@
 import type { IncomingMessage, ServerResponse } from 'node:http';
+import { JSON_BODY_NOT_OBJECT, parseJsonBody } from '@contract-studio/conventions';
 import { HttpError } from './http-error.js';
 
 const MAX_BODY = 16 * 1024 * 1024;
@@ -36,15 +37,17 @@ export async function readBody(req: IncomingMessage): Promise<string> {
   return (await readBodyBytes(req)).toString('utf8');
 }
 
+/**
+ * The request's JSON object (an empty body: {}). Text that is not JSON is a 400 naming the
+ * parser's error, as the build service answers it (the one reading: conventions' parseJsonBody):
+ * `{ code: "bad_request", error: "invalid JSON: ..." }`; JSON that is no object, `the body must be a JSON object`.
+ */
 export async function readJson(req: IncomingMessage): Promise<Record<string, unknown>> {
-  const text = await readBody(req);
-  try {
-    const v = JSON.parse(text || '{}');
-    if (v === null || typeof v !== 'object' || Array.isArray(v)) throw new Error('not an object');
-    return v as Record<string, unknown>;
-  } catch {
-    throw new HttpError(400, 'request body must be a JSON object');
-  }
+  const parsed = parseJsonBody((await readBody(req)) || '{}');
+  if (!parsed.ok) throw new HttpError(400, parsed.error, { code: 'bad_request' });
+  const v = parsed.value;
+  if (v === null || typeof v !== 'object' || Array.isArray(v)) throw new HttpError(400, JSON_BODY_NOT_OBJECT, { code: 'bad_request' });
+  return v as Record<string, unknown>;
 }
 
 export function sendJson(res: ServerResponse, status: number, body: unknown): void {

@@ -8,6 +8,7 @@
 import type { IncomingMessage } from 'node:http';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { ServiceError } from '../service-errors.js';
+import { parseJsonBody } from '@contract-studio/conventions';
 
 /** `Content-Type: application/json` (any parameters): a browser cannot send it cross-site without a preflight. */
 function isJson(req: IncomingMessage): boolean {
@@ -97,11 +98,9 @@ function readJson(req: IncomingMessage, length: number | null, maxBytes: number,
       clearTimeout(timer);
       const body = whole ? whole.subarray(0, size) : Buffer.concat(chunks, size);
       chunks.length = 0;
-      try {
-        resolve(JSON.parse(body.toString('utf8') || 'null'));
-      } catch (e) {
-        reject(new ServiceError(400, 'bad_request', `invalid JSON: ${(e as Error).message.slice(0, 200)}`));
-      }
+      const parsed = parseJsonBody(body.toString('utf8') || 'null');
+      if (parsed.ok) resolve(parsed.value);
+      else reject(new ServiceError(400, 'bad_request', parsed.error));
     });
     req.on('error', (e) => fail(e));
     req.on('close', () => fail(new ServiceError(400, 'bad_request', 'the request ended before its body')));
