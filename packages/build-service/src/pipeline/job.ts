@@ -353,8 +353,9 @@ export class Job {
       if (prep.ok && hostRuntime && runtimeSources) {
         t = Date.now();
         // the runtime's build is the service's, shared by its jobs, outside the workspace: a cancel
-        // lets it go on without this job (not awaited: it ends now, not once the build is done)
-        runtimeDir = await this.orCancel(hostRuntime.ensureBuilt(runtimeSources, (l, s) => this.line('prepare', 'runtime', s, l)), { detached: true });
+        // lets it go on without this job (not awaited: it ends now, not once the build is done),
+        // and its later lines go to the jobs still waiting for it, not into this job's log
+        runtimeDir = await this.orCancel(hostRuntime.ensureBuilt(runtimeSources, (l, s) => this.line('prepare', 'runtime', s, l), this.cancelled), { detached: true });
         runtimePath = ctx.sandbox.runtimePath(runtimeDir);
         this.timed('prepare', 'runtime (cache)', t);
       }

@@ -19,6 +19,7 @@ import { markUsed, removeLeastRecentlyUsed } from '../cache/least-recently-used.
 import { SERVICE_BOUNDS } from '../limits.js';
 import { assertCacheEntry, CACHE_ENTRY_NAMES } from '../cache/cache-dir.js';
 import { listFilesNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
+import { RuntimeBuildLines, type RuntimeLineListener } from './runtime-build-lines.js';
 
 let toolchainCache: string | undefined;
 
@@ -54,8 +55,15 @@ export interface RuntimeSources {
   contents: Map<string, Buffer>;
 }
 
+/** One runtime build of this cache: its end, its lines (told to the jobs waiting for it), whether it ended. */
+interface SharedBuild {
+  done: Promise<string>;
+  lines: RuntimeBuildLines;
+  settled: boolean;
+}
+
 export class RuntimeCache {
-  private readonly builds = new Map<string, Promise<string>>();
+  private readonly builds = new Map<string, SharedBuild>();
   /** The runtime builds' make processes running now (close() stops them). */
   private readonly makes = new Set<ChildProcess>();
   private closed = false;
@@ -70,8 +78,8 @@ export class RuntimeCache {
   }
 
   /** Returns the host folder of the built runtime, building it first when needed. */
-  ensure(onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
-    return this.sources().then((s) => this.ensureBuilt(s, onLine));
+  ensure(onLine: RuntimeLineListener, until?: Promise<unknown>): Promise<string> {
+    return this.sources().then((s) => this.ensureBuilt(s, onLine, until));
   }
 
   /**
@@ -105,22 +113,36 @@ export class RuntimeCache {
     this.closed = true;
     // GNU make passes a SIGTERM on to the compilers it runs and waits for them
     for (const child of this.makes) child.kill('SIGTERM');
-    await Promise.all([...this.builds.values()].map((b) => b.catch(() => undefined)));
+    await Promise.all([...this.builds.values()].map((b) => b.done.catch(() => undefined)));
   }
 
-  /** The host folder of the runtime of `s` (sources()), building it first when needed. */
-  ensureBuilt(s: RuntimeSources, onLine: (line: string, stream: 'stdout' | 'stderr') => void): Promise<string> {
+  /**
+   * The host folder of the runtime of `s` (sources()), building it first when needed. `onLine`
+   * gets the build's lines (those so far too, for a build already in progress) until `until`
+   * settles (the job stopped waiting: cancelled) or the build ends (runtime-build-lines.ts).
+   */
+  ensureBuilt(s: RuntimeSources, onLine: RuntimeLineListener, until?: Promise<unknown>): Promise<string> {
     let build = this.builds.get(s.key);
     if (this.closed) return Promise.reject(new Error('the build service is closing: the runtime is not built'));
     if (!build) {
-      build = this.build(s.key, s.contents, onLine);
-      this.builds.set(s.key, build);
-      build.catch(() => this.builds.delete(s.key));
-    } else {
+      const lines = new RuntimeBuildLines();
+      lines.follow(onLine, until);
+      const shared: SharedBuild = { done: this.build(s.key, s.contents, (l, st) => lines.line(l, st)), lines, settled: false };
+      build = shared;
+      this.builds.set(s.key, shared);
+      shared.done.catch(() => this.builds.delete(s.key)).finally(() => {
+        shared.settled = true;
+        lines.end();
+      });
+    } else if (build.settled) {
       onLine(`runtime ${s.key} already built`, 'stdout');
+    } else {
+      // another job's build in progress: its lines so far, then the later ones
+      onLine(`runtime ${s.key} is being built for another job: its lines follow`, 'stdout');
+      build.lines.follow(onLine, until);
     }
     // each job marks the runtime it links against as used (the cache's bound keeps it)
-    return build.then(async (dir) => {
+    return build.done.then(async (dir) => {
       await markUsed(dir);
       return dir;
     });

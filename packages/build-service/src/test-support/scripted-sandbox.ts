@@ -13,6 +13,7 @@ import { afterAll } from 'vitest';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProcess } from '../sandbox/types.js';
 import type { Workspace } from '../pipeline/workspaces.js';
 import type { JobContext } from '../pipeline/job.js';
+import type { RuntimeCache } from '../pipeline/runtime-cache.js';
 
 const MECHANISMS: Mechanisms = { memory: 'none', processes: 'none', network: 'none', filesystem: 'none', user: 'test', time: 'service-timer', output: 'service-cap', disk: 'none' } as unknown as Mechanisms;
 
@@ -64,11 +65,11 @@ export interface ScriptedStep {
   terminate?(p: ScriptedProcess): Promise<boolean>;
 }
 
-/** A sandbox ("none" to the job: a host work dir, no host runtime) running the steps' scripts. */
-export function scriptedSandbox(steps: Partial<Record<'build' | 'run', ScriptedStep>>): Sandbox {
+/** A sandbox ("none" to the job: a host work dir; a host runtime with `needsHostRuntime`) running the steps' scripts. */
+export function scriptedSandbox(steps: Partial<Record<'build' | 'run', ScriptedStep>>, { needsHostRuntime = false } = {}): Sandbox {
   return {
     name: 'none',
-    needsHostRuntime: false,
+    needsHostRuntime,
     unenforced: [],
     workPath: (d) => d,
     runtimePath: (d) => d,
@@ -102,7 +103,7 @@ export function scratchWorkspace(): Workspace {
   } as unknown as Workspace;
 }
 
-/** The context of a Job run in `sandbox` on `ws` (no runtime: a plain Makefile project). */
-export function scriptedContext(sandbox: Sandbox, ws: Workspace): JobContext {
-  return { sandbox, sandboxNote: 'sandbox: scripted (test)', runtime: null, acquireWorkspace: async () => ws };
+/** The context of a Job run in `sandbox` on `ws` (no runtime, as for a plain Makefile project, unless given). */
+export function scriptedContext(sandbox: Sandbox, ws: Workspace, runtime: RuntimeCache | null = null): JobContext {
+  return { sandbox, sandboxNote: 'sandbox: scripted (test)', runtime, acquireWorkspace: async () => ws };
 }
