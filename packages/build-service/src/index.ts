@@ -7,7 +7,7 @@ export { JobService, DEFAULT_RUNTIME_SOURCE, type BuildServiceOptions } from './
 export { ServiceError } from './service-errors.js';
 export { clearCache } from './cache/clear-cache.js';
 export { CACHE_DIR_ENV, CACHE_ENTRY_NAMES, CacheRefusedError, prepareCacheDir, resolveCacheDir, type CacheDirChoice } from './cache/cache-dir.js';
-export { DEFAULT_LIMITS, CANCEL_DEADLINE_MS, describeLimitHit, mergeLimits, type Limits, type LimitHit, type Mechanism } from './limits.js';
+export { DEFAULT_LIMITS, CANCEL_DEADLINE_MS, describeLimitHit, LimitsError, mergeLimits, type Limits, type LimitHit, type Mechanism } from './limits.js';
 export type { Job, JobRequest, JobResult } from './pipeline/job.js';
 export type { JobEvent, JobStatus, JobStep, LineEvent } from './pipeline/job-events.js';
 export type { GccDiagnostic } from './pipeline/gcc-diagnostics.js';

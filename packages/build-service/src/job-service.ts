@@ -36,6 +36,8 @@ export interface BuildServiceOptions {
   queueSize?: number;
   /** Overrides of DEFAULT_LIMITS for this service (jobs may only lower them). */
   limits?: Partial<Limits>;
+  /** The limits as the user wrote them (`contract serve --limit NAME=VALUE`): quoted in a refusal, and a count or size checked exactly. */
+  limitTexts?: Readonly<Record<string, string>>;
   /** Folders a job's project.dir must be inside. Default [] (inline files only). */
   projectRoots?: string[];
   /** Where workspaces and the runtime cache live. Default: a fresh temp dir, removed on close. */
@@ -86,7 +88,7 @@ export class JobService {
   private readonly startupSweep: Promise<unknown>;
 
   constructor(options: BuildServiceOptions = {}) {
-    this.limits = mergeLimits(DEFAULT_LIMITS, options.limits, false);
+    this.limits = mergeLimits(DEFAULT_LIMITS, options.limits, false, options.limitTexts);
     this.concurrency = Math.max(1, options.concurrency ?? availableParallelism());
     this.queueSize = Math.max(0, options.queueSize ?? 2 * this.concurrency);
     this.defaultSandbox = options.sandbox ?? 'auto';

@@ -1,6 +1,7 @@
 import { statSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { startIdeServer, DEFAULT_PORT } from './ide-server.js';
+import { BuildLimitsRefused } from './integrations.js';
 
 export interface ServeArgs {
   workspace: string;
@@ -53,24 +54,6 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
   return out;
 }
 
-/** Why the build service refuses `limits` (its mergeLimits), or undefined (also when it is not built: its own note then says so). */
-async function checkLimits(limits: Record<string, number>, written: Record<string, string>): Promise<string | undefined> {
-  if (Object.keys(limits).length === 0) return undefined;
-  let bs: { mergeLimits: (base: unknown, overrides: unknown, lowerOnly: boolean, written: Record<string, string>) => unknown; DEFAULT_LIMITS: unknown };
-  try {
-    const name = '@contract-studio/build-service';
-    bs = (await import(name)) as typeof bs;
-  } catch {
-    return undefined;
-  }
-  try {
-    bs.mergeLimits(bs.DEFAULT_LIMITS, limits, false, written);
-    return undefined;
-  } catch (e) {
-    return (e as Error).message;
-  }
-}
-
 /** Runs the server until SIGINT/SIGTERM; returns the exit code on failure to start. */
 export async function runServe(argv: string[], defaultDir: string): Promise<number> {
   let args: ServeArgs;
@@ -86,12 +69,6 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
     console.error(`contract serve: ${args.workspace} is ${dir ? 'not a folder' : 'not there'}: give the workspace folder (the project, or a folder of projects)\n${USAGE}`);
     return 2;
   }
-  // a limit the build service does not know, or a value it refuses: bad usage, before anything starts
-  const limitsProblem = await checkLimits(args.limits, args.limitTexts);
-  if (limitsProblem) {
-    console.error(`contract serve: --limit: ${limitsProblem}\n${USAGE}`);
-    return 2;
-  }
   try {
     const ide = await startIdeServer(args);
     // the URL carries the session token (session-token.ts): only whoever reads this output may drive the IDE
@@ -105,6 +82,12 @@ export async function runServe(argv: string[], defaultDir: string): Promise<numb
     process.once('SIGTERM', stop);
     return await new Promise<number>(() => undefined);
   } catch (e) {
+    // a limit the build service does not know, or a value it refuses: bad usage, said by the
+    // service's own check as the server starts (nothing runs yet: it is the first thing started)
+    if (e instanceof BuildLimitsRefused) {
+      console.error(`contract serve: --limit: ${e.message}\n${USAGE}`);
+      return 2;
+    }
     const err = e as NodeJS.ErrnoException;
     if (err.code === 'EADDRINUSE') console.error(`contract serve: port ${args.port} is in use; pick another with --port N`);
     else console.error(`contract serve: ${err.message}`);

@@ -44,6 +44,8 @@ export interface IdeServerOptions {
   token?: string;
   /** The build service's limits for the IDE's jobs (`contract serve --limit NAME=VALUE`; docs/sandbox.md "Limits"). */
   limits?: Record<string, number>;
+  /** Those limits as written on the command line (the service quotes them, and checks a count or size exactly). */
+  limitTexts?: Record<string, string>;
 }
 
 export interface IdeServer {
@@ -107,21 +109,22 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
   const paths = new WorkspacePaths(options.workspace);
   const host = options.host ?? '127.0.0.1';
   const distDir = options.distDir ?? fileURLToPath(new URL('../dist', import.meta.url));
-  const watcher = new WorkspaceWatcher(paths.root);
   // Generate All, the rename carry-over and guarded saves of generated files run one at a time.
   const treeLock = new GeneratedTreeLock();
   // the saves of one file run one at a time (version compare + write: docs/ide.md)
   const fileLocks = new FileLocks();
   let build: BuildServerLike | undefined;
   let buildServiceNote = 'build service disabled';
+  // first: limits the service refuses (BuildLimitsRefused) stop the start before anything runs
   if (options.buildService !== false) {
-    const b = await createEmbeddedBuildServer(paths.root, undefined, options.sandbox, options.limits);
+    const b = await createEmbeddedBuildServer(paths.root, undefined, options.sandbox, options.limits, options.limitTexts);
     if (typeof b === 'string') buildServiceNote = b;
     else {
       build = b;
       buildServiceNote = 'build service mounted at /api/jobs';
     }
   }
+  const watcher = new WorkspaceWatcher(paths.root);
   // every tab hears of the runs the others start (docs/ide.md "Several tabs")
   const runs = build ? new SharedRuns(build.service, paths.root, (job) => watcher.broadcast('job', job)) : undefined;
   /** What a client of /api/events is told first: the runs going on. */

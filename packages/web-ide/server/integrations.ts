@@ -126,23 +126,39 @@ export async function loadTreeChecks(): Promise<TreeChecks> {
 }
 
 /**
+ * Limits the build service refuses (`contract serve --limit`: an unknown name, a value out of its
+ * range): the IDE server does not start, rather than start without its build service. The service's
+ * own check is the only one (its message is this error's).
+ */
+export class BuildLimitsRefused extends Error {
+  override readonly name = 'BuildLimitsRefused';
+}
+
+/**
  * The build service mounted by the IDE server. It uses the same persistent build cache as
  * `contract build` (docs/getting-started.md "The build cache": `$CONTRACT_CACHE_DIR`, else the XDG
  * cache folder), so Build & Run after a CLI build (or the reverse) compiles nothing new; when that
  * folder is refused, the reason is logged and the service keeps a private temporary cache.
  */
-export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`), sandbox: 'auto' | 'bwrap' | 'docker' = 'auto', limits: Record<string, number> = {}): Promise<BuildServerLike | string> {
+export async function createEmbeddedBuildServer(workspaceRoot: string, log: (line: string) => void = (l) => process.stderr.write(`${l}\n`), sandbox: 'auto' | 'bwrap' | 'docker' = 'auto', limits: Record<string, number> = {}, limitTexts: Record<string, string> = {}): Promise<BuildServerLike | string> {
+  let bs: BuildServiceApi;
   try {
     const name = '@contract-studio/build-service';
-    const bs = (await import(name)) as BuildServiceApi;
+    bs = (await import(name)) as BuildServiceApi;
+  } catch (e) {
+    return `build service unavailable: ${(e as Error).message.split('\n')[0]}`;
+  }
+  try {
     const cache = bs.resolveCacheDir(undefined);
     const refused = bs.prepareCacheDir(cache.dir, process.getuid?.() === 0);
     if (refused) log(`build cache: ${refused}; using a private temporary cache instead`);
     const cacheOptions = refused ? {} : { cacheDir: cache.dir, persistentWorkspaces: true };
     // `contract serve --sandbox bwrap|docker`: every job of the IDE in that one, a request naming another refused
     const only = sandbox === 'auto' ? {} : { onlySandbox: sandbox };
-    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...only, ...cacheOptions, ...(Object.keys(limits).length ? { limits } : {}) });
+    return bs.createBuildServer({ host: '127.0.0.1', port: 0, projectRoots: [workspaceRoot], basePath: '/api', concurrency: 1, sandbox, ...only, ...cacheOptions, ...(Object.keys(limits).length ? { limits, limitTexts } : {}) });
   } catch (e) {
+    // the limits asked (contract serve --limit): the service's own check, the only one
+    if (e instanceof bs.LimitsError) throw new BuildLimitsRefused(e.message);
     return `build service unavailable: ${(e as Error).message.split('\n')[0]}`;
   }
 }
