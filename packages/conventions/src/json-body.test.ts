@@ -8,6 +8,12 @@ describe('parseJsonBody', () => {
     const bad = parseJsonBody('{"a":');
     expect(bad.ok).toBe(false);
     expect(!bad.ok && bad.error).toMatch(/^invalid JSON: \S/);
-    expect(!bad.ok && bad.error).toBe(`invalid JSON: ${(() => { try { JSON.parse('{"a":'); } catch (e) { return (e as Error).message; } })()}`);
+    let parserError = '';
+    try {
+      JSON.parse('{"a":');
+    } catch (e) {
+      parserError = (e as Error).message;
+    }
+    expect(!bad.ok && bad.error).toBe(`invalid JSON: ${parserError}`);
   });
 });
