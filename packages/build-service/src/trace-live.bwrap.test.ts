@@ -114,6 +114,9 @@ test('Stop mid-run: the launcher stops the tutorial as at the end of a run; logs
   expect(lines, lines.slice(-30).join('\n')).toContain('all modules stopped cleanly');
   expect(lines.some((l) => l.startsWith('stopping the architecture as at the end of a run'))).toBe(true);
   expect(lines.filter((l) => /did not stop within|: killed|terminated/.test(l))).toEqual([]);
+  // the service's line first, then the launcher's as it stops (they came the other way round)
+  const launcherStops = lines.findIndex((l) => /^stopping(: |$)/.test(l));
+  expect(launcherStops, lines.slice(-30).join('\n')).toBeGreaterThan(lines.findIndex((l) => l.startsWith('stopping the architecture as at the end of a run')));
 
   // every log is whole: it ends with its module's exit record, and the live trace has each of its records
   const trace = traceLines(live);
@@ -216,6 +219,8 @@ test('the memory limit hit mid-run stops the architecture as at the end of a run
   const job = await getJob(served.url, id);
   expect(job.result.message, lines.slice(-30).join('\n')).toBe('killed: memory limit 512 MiB');
   expect(lines).toContain('memory limit 512 MiB reached: stopping the architecture as at the end of a run (what still runs after 1000 ms is killed)');
+  // the service's line first, then the launcher's as it stops
+  expect(lines.findIndex((l) => /^stopping(: |$)/.test(l)), lines.slice(-30).join('\n')).toBeGreaterThan(lines.indexOf('memory limit 512 MiB reached: stopping the architecture as at the end of a run (what still runs after 1000 ms is killed)'));
   expect(lines.some((l) => /^module MSC \(pid \d+\) died by signal 9 \(Killed\)/.test(l)), lines.slice(-30).join('\n')).toBe(true);
   // a kill, not a crash of its code
   expect(lines, lines.slice(-30).join('\n')).toContain("FAILED: module MSC was killed (a SIGKILL the launcher did not send: the kernel's at a memory limit or the real-time CPU bound, or another process's)");

@@ -723,6 +723,9 @@ export class Job {
           this.limitStopping = hit;
           this.system('run', `${describeLimitHit(hit)} reached: stopping the architecture as at the end of a run (what still runs after ${CANCEL_GRACE_MS} ms is killed)`);
         },
+        unanswered: () => {
+          if (this.limitStopping) this.system('run', `${NO_LAUNCHER_ASKED}: killed`);
+        },
       } } : {}),
     });
     this.current = proc;

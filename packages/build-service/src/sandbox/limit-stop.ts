@@ -20,16 +20,22 @@ export interface StoppableCommand {
 export async function stopThenKill(stop: StopOnLimit, hit: LimitHit, cmd: StoppableCommand): Promise<void> {
   // the launcher tells the modules why (their KILL records): the limit's name is its reason's
   const reason: StopReason | undefined = hit.name === 'memory' || hit.name === 'processes' || hit.name === 'workDiskMiB' ? hit.name : undefined;
+  // told before asking: what the launcher prints as it stops comes after it in the job's log
+  tellSafely(() => stop.stopping?.(hit));
   const asked = await cmd.terminateNamed(stop.processName, reason).catch(() => false);
+  if (!asked) tellSafely(() => stop.unanswered?.(hit));
   if (asked) {
-    try {
-      stop.stopping?.(hit);
-    } catch {
-      /* the teller's fault: the stop goes on */
-    }
     let timer: NodeJS.Timeout | undefined;
     await Promise.race([cmd.exited, new Promise((r) => (timer = setTimeout(r, stop.graceMs)))]);
     clearTimeout(timer);
   }
   await cmd.kill();
+}
+
+function tellSafely(tell: () => void): void {
+  try {
+    tell();
+  } catch {
+    /* the teller's fault: the stop goes on */
+  }
 }

@@ -56,8 +56,10 @@ export interface SandboxCommand {
 export interface StopOnLimit {
   processName: string;
   graceMs: number;
-  /** Told when a limit hit asks `processName` to stop (the job says it in its log). */
+  /** Told when a limit hit is about to ask `processName` to stop, before asking (the job says it in its log). */
   stopping?: (hit: LimitHit) => void;
+  /** Told when no process named `processName` was asked (none, or none left): everything is killed at once. */
+  unanswered?: (hit: LimitHit) => void;
 }
 
 export interface SandboxExit {
