@@ -110,6 +110,20 @@ class Cancelled extends Error {}
  */
 class InternalFault extends Error {}
 
+/**
+ * What a successful build's message says of its compiler diagnostics: ` (1 compiler warning)`,
+ * ` (3 compiler warnings, 1 other compiler diagnostic)`, or nothing. Said as the compiler's: the
+ * model's own hints and warnings (`contract check`'s) are told apart from them by whoever prints both.
+ */
+export function compilerDiagnosticsCount(diagnostics: readonly { severity: string }[]): string {
+  const warnings = diagnostics.filter((d) => d.severity === 'warning').length;
+  const others = diagnostics.length - warnings;
+  const parts: string[] = [];
+  if (warnings) parts.push(`${warnings} compiler warning${warnings === 1 ? '' : 's'}`);
+  if (others) parts.push(`${others} other compiler diagnostic${others === 1 ? '' : 's'}`);
+  return parts.length ? ` (${parts.join(', ')})` : '';
+}
+
 export class Job {
   readonly events = new JobEvents();
   readonly createdAt = Date.now();
@@ -408,7 +422,7 @@ export class Job {
         return;
       }
       if (this.request.action === 'build') {
-        this.result = this.makeResult('build', true, 0, null, `build succeeded${this.diagnostics.length ? ` (${this.diagnostics.length} diagnostic(s))` : ''}${this.buildOutputCut()}`, null);
+        this.result = this.makeResult('build', true, 0, null, `build succeeded${compilerDiagnosticsCount(this.diagnostics)}${this.buildOutputCut()}`, null);
         this.finish('succeeded');
         return;
       }
