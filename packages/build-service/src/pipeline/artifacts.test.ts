@@ -111,6 +111,18 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     expect(a.files.map((f) => [f.name, f.capped])).toEqual([['CTL_1.csv', 'the disk refused its module\'s writes past 23.99 KiB (the work dir was full): later records were not written']]);
   });
 
+  test("a log whose only log-capped record is the runtime's last one after the disk refused it (`K records not written after the log could not be written past N bytes`) is said to be cut by the full disk, with what the disk took", async () => {
+    mkdirSync(join(work, 'logs'));
+    const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,CTL,run_started,,,0,a\n2,t,CTL,log-capped,,,4085,257 records not written after the log could not be written past 4085 bytes (No space left on device)\n';
+    writeFileSync(join(work, 'logs', 'CTL_1.csv'), text);
+    const a = await collectRunArtifacts(hostWorkDirReader, work);
+    expect(a.files.map((f) => [f.name, f.capped])).toEqual([['CTL_1.csv', 'the disk refused its module\'s writes past 3.99 KiB (the work dir was full): later records were not written']]);
+    // the runtime's exit record at its bound is still the bound's
+    writeFileSync(join(work, 'logs', 'CTL_1.csv'), text.replace(/4085,257 records.*\n$/, '65536,257 records not written after the log reached its 65536-byte bound\n'));
+    const bound = await collectRunArtifacts(hostWorkDirReader, work);
+    expect(bound.files[0]!.capped).toBe('the module reached its CSV log bound of 64 KiB (CONTRACT_LOG_MAX_BYTES): later records were not written');
+  });
+
   test("a log the runtime capped itself (its log-capped records at the end) is flagged, not cut", async () => {
     mkdirSync(join(work, 'logs'));
     const text = 'mono_ns,wall_time,module,event,peer,port,size,detail\n1,t,MSC,run_started,,,0,a\n2,t,MSC,log-capped,,,8192,log reached its 8192-byte bound\n3,t,MSC,log-capped,,,8192,5 records not written\n';

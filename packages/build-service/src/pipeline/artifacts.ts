@@ -39,9 +39,13 @@ export const ARTIFACT_BOUNDS: ArtifactBounds = { entries: SERVICE_BOUNDS.listedE
 /** The runtime's marker event (runtime/src/csvlog.c) and the one the service appends to a cut file. */
 export const LOG_CAPPED_EVENT = 'log-capped';
 /** A log-capped record's size column (the log's bound, or what the disk took), and its detail's head, in the log's tail. */
-const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),([^\n]{0,40})/;
-/** A log-capped record's detail when the disk refused a write (runtime/src/csvlog.c), not the bound. */
-const DISK_REFUSED = /^log could not be written past/;
+const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),([^\n]{0,120})/;
+/**
+ * A log-capped record's detail when the disk refused a write (runtime/src/csvlog.c write_all, and
+ * write_cap_final at exit: `K records not written after the log could not be written past N bytes
+ * (...)`), not the bound: its size column is then what the disk took.
+ */
+const DISK_REFUSED = /^(?:\d{1,20} records not written after the )?log could not be written past /;
 
 /** The folders of the work dir a run leaves things in: `logs/` (collected) and `run/` (names only). */
 export const LOG_DIR = 'logs';
