@@ -26,7 +26,7 @@ import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
-import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR, type StopReason } from '@contract-studio/conventions';
+import { DEFAULT_READY_TIMEOUT_SECONDS, LAUNCHER_PROCESS_NAME, SANDBOX_RUNTIME_DIR, visibleText, type StopReason } from '@contract-studio/conventions';
 
 /** make's line when the run recipe (contract-launch) died by SIGKILL. */
 const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Killed$/;
@@ -655,7 +655,7 @@ export class Job {
       this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
       this.runIssues.artifacts(a);
-      this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${JSON.stringify(s.name).slice(1, -1)} (${s.reason})`).join(', ')}` : ''}`);
+      this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${visibleText(s.name, { escapeTab: true })} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);
     }

@@ -194,6 +194,12 @@ describe('RunIssues', () => {
       expect(r.all).toEqual([{ kind: 'log-tampered', module: 'ORD', message: 'ORD ran and exited normally, but no log of it was collected: a process of the run removed or renamed it' }]);
     });
 
+    test("a start request's refusal text (a module's words) is written visibly in its issue", () => {
+      const r = new RunIssues();
+      r.line('STA: start request from contract-launch refused: bad\u001b[2J\u202eevil', 'STA');
+      expect(r.all.map((i) => i.message)).toEqual(["STA refused the run's start request: bad\\u001b[2J\\u202eevil (nothing was started by it)"]);
+    });
+
     test('a log the live trace saw shrink is one issue, once', () => {
       const r = new RunIssues();
       r.logTampered(ORD, 'it shrank while the run went on (219 -> 0 bytes; the runtime only appends to a log)');

@@ -4,6 +4,7 @@
  * them does not end `succeeded`: its result says `ok: false` and lists them in `issues`, so a
  * 4 s run of a module that never ends is never reported as a success.
  */
+import { visibleText } from '@contract-studio/conventions';
 import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import type { RunArtifacts } from './artifacts.js';
 import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
@@ -94,13 +95,13 @@ export class RunIssues {
     if (this.list.some((i) => i.kind === 'start-refused')) return;
     const refused = START_REFUSED_LINE.exec(text);
     if (refused) {
-      this.list.push({ kind: 'start-refused', module: refused[1]!, message: `${refused[1]!} refused the run's start request: ${refused[2]!.slice(0, 300)} (nothing was started by it)` });
+      this.list.push({ kind: 'start-refused', module: refused[1]!, message: `${refused[1]!} refused the run's start request: ${visibleText(refused[2]!.slice(0, 300))} (nothing was started by it)` });
       return;
     }
     // the launcher sends one START, the run's: a module's own failed requests are not the start's
     const unsent = source === 'launcher' ? START_UNSENT_LINE.exec(text) : null;
     if (unsent) {
-      this.list.push({ kind: 'start-refused', module: unsent[1]!, message: `the run's start request names ${unsent[1]!}, which the launcher could not reach: ${unsent[2]!.slice(0, 300)} (nothing was started: is ${unsent[1]!} a supervisor of this project?)` });
+      this.list.push({ kind: 'start-refused', module: unsent[1]!, message: `the run's start request names ${unsent[1]!}, which the launcher could not reach: ${visibleText(unsent[2]!.slice(0, 300))} (nothing was started: is ${unsent[1]!} a supervisor of this project?)` });
     }
   }
 

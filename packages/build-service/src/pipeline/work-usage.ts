@@ -8,6 +8,7 @@
  */
 import { spawn } from 'node:child_process';
 import type { Readable } from 'node:stream';
+import { visibleText } from '@contract-studio/conventions';
 import { formatBytes } from '../limits.js';
 
 export interface WorkFileSize {
@@ -92,8 +93,12 @@ export function hostWorkUsage(workDir: string): Promise<WorkUsage | null> {
   return Promise.race([readWorkUsage(child.stdout, () => child.kill('SIGKILL')), failed]);
 }
 
-/** "logs/MOT_x.csv 180 MiB, logs/ODO_x.csv 20 MiB (of 201 MiB in 14 files)". */
+/**
+ * "logs/MOT_x.csv 180 MiB, logs/ODO_x.csv 20 MiB (of 201 MiB in 14 files)". The paths are the
+ * sandbox's to choose: written visibly (visibleText), so that a name with line breaks cannot add a
+ * line to the message that reads as the service's (`ok: run finished`) nor act on a terminal.
+ */
 export function describeWorkUsage(u: WorkUsage): string {
-  const top = u.biggest.map((f) => `${f.path} ${formatBytes(f.bytes)}`).join(', ');
+  const top = u.biggest.map((f) => `${visibleText(f.path, { escapeTab: true })} ${formatBytes(f.bytes)}`).join(', ');
   return `${top || 'no regular file'} (of ${u.partial ? 'at least ' : ''}${formatBytes(u.totalBytes)} in ${u.files} file(s))`;
 }
