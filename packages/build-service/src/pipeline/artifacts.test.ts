@@ -140,6 +140,18 @@ describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {
     expect(few.skipped).toEqual([{ name: 'c.csv', reason: 'more than 2 files', bound: true }]);
   });
 
+  test("the modules' logs are collected before other files, even past the file bound and the entries looked at (a module wrote 1500 F_*.csv there)", async () => {
+    mkdirSync(join(work, 'logs'));
+    const logs = ['CTL_7-Dec-2026-02h45m54s.csv', 'MIS_7-Dec-2026-02h45m54s.csv', 'ORD_7-Dec-2026-02h45m54s.csv'];
+    for (let i = 0; i < 1500; i++) writeFileSync(join(work, 'logs', `F_${i}.csv`), '');
+    for (const name of logs) writeFileSync(join(work, 'logs', name), 'mono_ns\n');
+    const a = await collectRunArtifacts(hostWorkDirReader, work, { entries: 100, files: 10, fileBytes: 100, totalBytes: 10_000 });
+    expect(a.files.map((f) => f.name).slice(0, 3)).toEqual(logs);
+    expect(a.files).toHaveLength(10);
+    expect(a.skipped.filter((s) => s.bound)).toHaveLength(90);
+    expect(a.skipped.at(-1)).toEqual({ name: 'logs/', reason: 'more than 100 entries: the others were not looked at' });
+  });
+
   test('a logs/ and run/ of thousands of entries: a bounded number is looked at and listed', async () => {
     mkdirSync(join(work, 'logs'));
     mkdirSync(join(work, 'run'));

@@ -141,6 +141,15 @@ const artifactOf = async (name: string, kept: Buffer, capped: string | null): Pr
 /** Sees the bytes of each collected file before they are compressed (run-issues.ts). */
 export type ArtifactInspector = (name: string, data: Buffer) => void;
 
+/** A name the runtime gives a module's log (`MSC_7-Dec-2026-02h45m54s.csv`). */
+export const isModuleLogName = (name: string): boolean => SAFE_NAME.test(name) && moduleOfLog(name) !== undefined;
+
+/** The order files are collected in: the modules' logs, then the other entries, each by name. */
+function moduleLogsFirst(a: DirEntryInfo, b: DirEntryInfo): number {
+  const rank = Number(!isModuleLogName(a.name)) - Number(!isModuleLogName(b.name));
+  return rank || (a.name < b.name ? -1 : a.name > b.name ? 1 : 0);
+}
+
 /** Picks the artifacts of a `logs/` listing under the bounds. */
 export async function selectArtifacts(
   listing: DirListing,
@@ -155,8 +164,9 @@ export async function selectArtifacts(
   /** The latest record of the logs collected, and the cut files that kept none (their record waits for it). */
   let latest: string | undefined;
   const timeless: { index: number; name: string; kept: Buffer; size: number; bound: number; capped: string }[] = [];
-  // the sandbox decides how many entries there are: only a bounded number is looked at
-  const all = [...listing.entries].sort((a, b) => (a.name < b.name ? -1 : a.name > b.name ? 1 : 0));
+  // the sandbox decides how many entries there are: only a bounded number is looked at, the
+  // modules' own logs first (a module that writes thousands of files there does not push them out)
+  const all = [...listing.entries].sort(moduleLogsFirst);
   const sorted = all.slice(0, bounds.entries);
   for (const e of sorted) {
     const skip = (reason: string, bound?: true): void => void skipped.push({ name: e.name, reason, ...(bound ? { bound } : {}) });
@@ -222,8 +232,15 @@ function kindOfStats(st: { isFile(): boolean; isDirectory(): boolean; isSymbolic
 }
 
 /**
+ * Names a listing reads past its `maxEntries` for the modules' logs alone, as a multiple of it: a
+ * module's log a flood of other files hides in the folder's order is still found, within a bound.
+ */
+export const MODULE_LOG_SCAN_FACTOR = 16;
+
+/**
  * Lists workDir/rel on the host (bwrap, none) with lstat only, at most `maxEntries` entries (the
- * folder is read as a stream, never whole); reads with O_NOFOLLOW.
+ * folder is read as a stream, never whole), then, up to MODULE_LOG_SCAN_FACTOR times as many names
+ * read, the modules' logs among the rest (at most ARTIFACT_BOUNDS.files of them); reads with O_NOFOLLOW.
  */
 export async function listHostDir(workDir: string, rel: string, maxEntries = ARTIFACT_BOUNDS.entries): Promise<DirListing> {
   const dir = join(workDir, rel);
@@ -240,13 +257,20 @@ export async function listHostDir(workDir: string, rel: string, maxEntries = ART
   const handle = await fsp.opendir(dir, { bufferSize: 64 }).catch(() => null);
   if (!handle) return null;
   const names: string[] = [];
+  let read = 0;
+  let laterLogs = 0;
   try {
     for await (const d of handle) {
-      if (names.length >= maxEntries) {
-        more = true;
-        break; // leaving the loop closes the handle
+      if (++read <= maxEntries) {
+        names.push(d.name);
+        continue;
       }
-      names.push(d.name);
+      more = true;
+      if (read > maxEntries * MODULE_LOG_SCAN_FACTOR || laterLogs >= ARTIFACT_BOUNDS.files) break; // leaving the loop closes the handle
+      if (isModuleLogName(d.name)) {
+        names.push(d.name);
+        laterLogs++;
+      }
     }
   } catch {
     /* the folder changed or went away while it was read: what was read is listed */
