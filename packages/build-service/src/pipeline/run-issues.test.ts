@@ -127,7 +127,7 @@ describe('RunIssues', () => {
     r.outputTruncated('stdout', 1024 * 1024);
     expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
       ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],
-      ['log-lost', 'C_1.csv', 'log C_1.csv was not collected: more than 256 files'],
+      ['log-lost', 'C_1.csv', 'log C_1.csv was not collected: logs/ held more than 256 files'],
       ['limit', null, 'the run was stopped by the run time limit 60 s'],
       ['output-truncated', null, "the run's stdout went past the output limit (1 MiB per stream) (MSA wrote 100 % of the run's output lines until then): later lines were not kept"],
     ]);
@@ -192,6 +192,28 @@ describe('RunIssues', () => {
       r.log(Buffer.from(whole.replace(/ORD/g, 'MSA')), 'MSA_7-Dec-2026-00h08m44s.csv');
       r.artifacts(none);
       expect(r.all).toEqual([{ kind: 'log-tampered', module: 'ORD', message: 'ORD ran and exited normally, but no log of it was collected: a process of the run removed or renamed it' }]);
+    });
+
+    test("no log at all collected of a run whose modules exited normally (its logs/ moved away and made anew) is one log-tampered issue", () => {
+      const r = new RunIssues();
+      for (const [m, pid] of [['MIS', 23], ['LOC', 21], ['CTL', 22], ['ORD', 20]] as const) r.line(`module ${m} (pid ${pid}) exited with status 0`, 'launcher');
+      r.artifacts(none);
+      expect(r.all).toEqual([{ kind: 'log-tampered', message: 'no CSV log of the run was collected although MIS, LOC, CTL and 1 more ran and exited normally: a process of the run removed or renamed the logs (or logs/ itself)' }]);
+      // a run no module of which the launcher saw end normally (killed, crashed) has no such issue
+      const killed = new RunIssues();
+      killed.line('module ORD (pid 24) terminated by signal 15', 'launcher');
+      killed.artifacts(none);
+      expect(killed.all).toEqual([]);
+    });
+
+    test("files a bound of the collection left out are one log-lost issue, naming the modules whose log may be among them, not one per file nor a module's log said removed", () => {
+      const r = new RunIssues();
+      r.line('module MIS (pid 23) exited with status 0', 'launcher');
+      r.line('module ORD (pid 24) exited with status 0', 'launcher');
+      r.log(Buffer.from(whole), ORD);
+      const skipped = Array.from({ length: 1244 }, (_, i) => ({ name: `F_${i + 256}.csv`, reason: 'more than 256 files', bound: true as const }));
+      r.artifacts({ files: [], skipped: [{ name: '.x', reason: 'name not allowed (letters, digits, _ . - only)' }, ...skipped], runDirLeftovers: [] });
+      expect(r.all).toEqual([{ kind: 'log-lost', message: '1244 files of logs/ were not collected: logs/ held more than 256 files (F_256.csv, F_257.csv, F_258.csv and 1241 more); no log of MIS, which exited normally, was collected: it may be among them' }]);
     });
 
     test("a start request's refusal text (a module's words) is written visibly in its issue", () => {

@@ -6,7 +6,7 @@
  */
 import { visibleText } from '@contract-studio/conventions';
 import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
-import type { RunArtifacts } from './artifacts.js';
+import { LOG_DIR, type RunArtifacts } from './artifacts.js';
 import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
 
 export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost' | 'log-tampered';
@@ -202,17 +202,19 @@ export class RunIssues {
       if (l.notWhole) this.logTampered(l.file, l.notWhole);
       else if (l.noExit && this.exitedClean.has(l.module)) this.logTampered(l.file, `it does not end with ${l.module}'s exit record although ${l.module} exited normally (status 0): it was replaced or cut by another process (the runtime appends every record, its exit record last)`);
     }
-    if (logged.size) {
-      for (const m of this.exitedClean) {
-        if (!logged.has(m)) this.list.push({ kind: 'log-tampered', module: m, message: `${m} ran and exited normally, but no log of it was collected: a process of the run removed or renamed it` });
-      }
+    const missing = [...this.exitedClean].filter((m) => !logged.has(m));
+    // a bound of the collection left files out: a module's log missing may be among them (said there, not blamed on the run)
+    const lost = lostToBounds(a);
+    if (!lost.length && logged.size) {
+      for (const m of missing) this.list.push({ kind: 'log-tampered', module: m, message: `${m} ran and exited normally, but no log of it was collected: a process of the run removed or renamed it` });
+    } else if (!lost.length && missing.length) {
+      // not one log of the run left where the runtime writes them: its logs/ was emptied, moved or replaced
+      this.list.push({ kind: 'log-tampered', message: `no CSV log of the run was collected although ${listModules(missing)} ran and exited normally: a process of the run removed or renamed the logs (or ${LOG_DIR}/ itself)` });
     }
     for (const f of a.files) {
       if (f.capped) this.list.push({ kind: 'log-capped', file: f.name, message: `log ${f.name} is not whole: ${f.capped}` });
     }
-    for (const s of a.skipped) {
-      if (s.bound) this.list.push({ kind: 'log-lost', file: s.name, message: `log ${s.name} was not collected: ${s.reason}` });
-    }
+    lost.forEach((l, i) => this.list.push({ kind: 'log-lost', ...(l.files.length === 1 ? { file: l.files[0]! } : {}), message: describeLost(l, i === 0 ? missing : []) }));
   }
 
   /** A module that did not end when the run stopped, or whose own code ended it before (the launcher's lines). */
@@ -243,6 +245,44 @@ export class RunIssues {
     this.stuckSeen.add(key);
     this.list.push({ kind: 'module-stuck', module, message });
   }
+}
+
+/** Files a bound of the collection left out, for one reason (the count bound, the total bound). */
+interface LostToBound {
+  reason: string;
+  files: string[];
+}
+
+/** The files of `a` a bound left out, grouped by why, in the order they were met. */
+function lostToBounds(a: RunArtifacts): LostToBound[] {
+  const byReason = new Map<string, string[]>();
+  for (const s of a.skipped) {
+    if (s.bound) (byReason.get(s.reason) ?? byReason.set(s.reason, []).get(s.reason)!).push(s.name);
+  }
+  return [...byReason].map(([reason, files]) => ({ reason, files }));
+}
+
+/** Names shown of a list, the rest counted. */
+const NAMES_SHOWN = 3;
+
+function listNames(names: readonly string[]): string {
+  const shown = names.slice(0, NAMES_SHOWN).join(', ');
+  return names.length > NAMES_SHOWN ? `${shown} and ${names.length - NAMES_SHOWN} more` : shown;
+}
+
+const listModules = (modules: readonly string[]): string => (modules.length === 1 ? modules[0]! : listNames(modules));
+
+/**
+ * One sentence for all the files one bound left out (a module writing thousands of files into
+ * logs/ is one problem, not one per file): `log X was not collected: …`, or `1244 files of logs/
+ * were not collected: more than 256 files (F_1.csv, … )`, with the modules whose log was not collected.
+ */
+function describeLost(l: LostToBound, missing: readonly string[]): string {
+  const what = l.files.length === 1 ? `log ${l.files[0]!} was` : `${l.files.length} files of ${LOG_DIR}/ were`;
+  const where = l.files.length === 1 ? '' : ` (${listNames(l.files)})`;
+  const modules = missing.length ? `; no log of ${listModules(missing)}, which exited normally, was collected: it may be among them` : '';
+  const why = l.reason.startsWith('more than ') ? `${LOG_DIR}/ held ${l.reason}` : l.reason;
+  return `${what} not collected: ${why}${where}${modules}`;
 }
 
 /** "run finished with 2 problem(s): CTL has not finished …; log X is not whole: …". */
