@@ -4,7 +4,9 @@
  * Host side rules (docs/sandbox.md): the sandbox is stopped first; only regular files are taken,
  * never through a link the sandboxed code planted (no-follow host reads; Docker's archive API,
  * whose tar reports links as links); names are plain (`[A-Za-z0-9_.-]`, no leading dot); the
- * number of entries looked at, of files, each file's size and the total are bounded. What is left out is listed with why.
+ * number of entries looked at, of files, each file's size and the total are bounded, the modules' own
+ * logs (named as the runtime names them) taken before any other file, so that a module writing
+ * thousands of files there cannot push the others' logs out. What is left out is listed with why.
  *
  * A log is never dropped for its size (docs/build-service-api.md "Artifacts"): one above the file
  * bound, or past the total bound, is kept up to the bound, cut after its last whole record, with a

@@ -199,6 +199,15 @@ describe('RunIssues', () => {
       for (const [m, pid] of [['MIS', 23], ['LOC', 21], ['CTL', 22], ['ORD', 20]] as const) r.line(`module ${m} (pid ${pid}) exited with status 0`, 'launcher');
       r.artifacts(none);
       expect(r.all).toEqual([{ kind: 'log-tampered', message: 'no CSV log of the run was collected although MIS, LOC, CTL and 1 more ran and exited normally: a process of the run removed or renamed the logs (or logs/ itself)' }]);
+      // at the disk limit, the full disk may have refused them
+      const full = new RunIssues();
+      full.line('module MIS (pid 23) exited with status 0', 'launcher');
+      full.limit({ name: 'workDiskMiB', value: 256 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
+      full.artifacts(none);
+      expect(full.all.map((i) => [i.kind, i.message])).toEqual([
+        ['limit', 'the run was stopped by the disk limit 256 MiB (work dir)'],
+        ['log-tampered', 'no CSV log of the run was collected although MIS ran and exited normally: a process of the run removed or renamed the logs (or logs/ itself), or the full disk kept them from being written'],
+      ]);
       // a run no module of which the launcher saw end normally (killed, crashed) has no such issue
       const killed = new RunIssues();
       killed.line('module ORD (pid 24) terminated by signal 15', 'launcher');

@@ -72,6 +72,8 @@ export class RunIssues {
   private readonly collected = new Set<string>();
   /** Logs already named log-tampered (once each). */
   private readonly tampered = new Set<string>();
+  /** The disk limit stopped the run: a log may be missing because the full disk refused it. */
+  private diskFull = false;
 
   get all(): readonly RunIssue[] {
     return this.list;
@@ -129,6 +131,7 @@ export class RunIssues {
   }
 
   limit(hit: LimitHit): void {
+    if (hit.name === 'workDiskMiB') this.diskFull = true;
     // at the memory limit the kernel kills the process using the most memory first: the module to look at
     const first = hit.name === 'memory' && this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
     // at the process limit, the module whose code forks: most of the job's processes had its name
@@ -209,7 +212,7 @@ export class RunIssues {
       for (const m of missing) this.list.push({ kind: 'log-tampered', module: m, message: `${m} ran and exited normally, but no log of it was collected: a process of the run removed or renamed it` });
     } else if (!lost.length && missing.length) {
       // not one log of the run left where the runtime writes them: its logs/ was emptied, moved or replaced
-      this.list.push({ kind: 'log-tampered', message: `no CSV log of the run was collected although ${listModules(missing)} ran and exited normally: a process of the run removed or renamed the logs (or ${LOG_DIR}/ itself)` });
+      this.list.push({ kind: 'log-tampered', message: `no CSV log of the run was collected although ${listModules(missing)} ran and exited normally: a process of the run removed or renamed the logs (or ${LOG_DIR}/ itself)${this.diskFull ? ', or the full disk kept them from being written' : ''}` });
     }
     for (const f of a.files) {
       if (f.capped) this.list.push({ kind: 'log-capped', file: f.name, message: `log ${f.name} is not whole: ${f.capped}` });
