@@ -214,7 +214,7 @@ describe('contract rename', () => {
         const snapshot = contractFiles(dir);
         const tree = readFileSync(join(dir, MODULES, 'MSK_mod/module.c'));
         for (const [args, message] of [
-            [['MSC', 'MSZ'], "no module, supervisor, schema, datatype or function named 'MSC'"],
+            [['MSC', 'MSZ'], "no module, supervisor, schema, datatype, enumeration or function named 'MSC'"],
             [['MSK', 'MSD'], "'MSD' already names a module or supervisor (in smodule4.contract)"],
             [['MSK', 'msk'], "'msk' is not a valid module name: module and supervisor names are exactly three upper-case letters (A-Z)"],
             [['Vec3', 'int'], "'int' is a Cactal keyword and cannot name a datatype"],

@@ -6,8 +6,10 @@ import { fileURLToPath } from 'node:url';
 import { beforeAll, describe, expect, it } from 'vitest';
 import { loadWorkspace, type LoadedWorkspace } from '../src/node/load-workspace.js';
 import { planRename } from '../src/node/rename-entity.js';
+import { renameInScenarios } from '../src/node/rename-scenarios.js';
 
 const TUTORIAL = fileURLToPath(new URL('../../../examples/tutorial', import.meta.url));
+const MOBILE_ROBOT = fileURLToPath(new URL('../../../examples/mobile-robot', import.meta.url));
 let ws: LoadedWorkspace;
 beforeAll(async () => { ws = await loadWorkspace(TUTORIAL); });
 
@@ -57,12 +59,44 @@ describe('planRename', () => {
     });
 
     it('clear errors: unknown entity, ambiguous index, invalid name, name taken', () => {
-        expect(() => planRename(ws, 'MSX', 'MSK')).toThrow("no module, supervisor, schema, datatype or function named 'MSX'");
+        expect(() => planRename(ws, 'MSX', 'MSK')).toThrow("no module, supervisor, schema, datatype, enumeration or function named 'MSX'");
         expect(() => planRename(ws, 'MSC:9', 'x')).toThrow('MSC has no port or parameter \'9\'; its ports and parameters: param (parameter :0), in_coordinates (in data port :0)');
         expect(() => planRename(ws, 'MSC:1', 'x')).toThrow("'MSC:1' is ambiguous: out_coordinates_commmmand (out data port :1), failing_data (out event port :1)");
         expect(() => planRename(ws, 'MSC', 'msk')).toThrow("'msk' is not a valid module name: module and supervisor names are exactly three upper-case letters");
         expect(() => planRename(ws, 'MSC', 'MSD')).toThrow("'MSD' already names a module or supervisor (in smodule4.contract)");
         expect(() => planRename(ws, 'TypeA', 'struct')).toThrow("'struct' is a C keyword");
         expect(() => planRename(ws, 'SUP.nope', 'x')).toThrow('supervisor SUP has no function \'nope\'; its functions: action');
+    });
+
+    it('an enumeration by its name (its members with it, for their C constants); a member by ENUM.MEMBER, owned by its enumeration', async () => {
+        const robot = await loadWorkspace(MOBILE_ROBOT);
+        const enumeration = planRename(robot, 'DriveMode', 'Mode');
+        expect(enumeration).toMatchObject({ kind: 'enumeration', oldName: 'DriveMode', generatedNames: true, members: ['TELEOP', 'AUTO', 'SAFESTOP'] });
+        expect(enumeration.owner).toBeUndefined();
+        expect(enumeration.files.map((f) => f.file)).toEqual(['control-loop.contract', 'drive.contract', 'types.contract', 'velocity.contract']);
+        const member = planRename(robot, 'DriveMode.AUTO', 'AUTONOMOUS');
+        expect(member).toMatchObject({ kind: 'enumeration member', oldName: 'AUTO', generatedNames: false, owner: 'DriveMode' });
+        expect(member.members).toBeUndefined();
+        const drive = member.files.find((f) => f.file === 'drive.contract')!;
+        expect(drive.text).toContain('mode = DriveMode.AUTONOMOUS)');
+        expect(drive.text).not.toMatch(/DriveMode\.AUTO\b/);
+        expect(member.files.find((f) => f.file === 'types.contract')!.text).toContain('enum DriveMode { TELEOP, AUTONOMOUS, SAFESTOP }');
+        expect(() => planRename(robot, 'DriveMode.FAST', 'X')).toThrow("enumeration DriveMode has no member 'FAST'; its members: TELEOP, AUTO, SAFESTOP");
+        expect(() => planRename(robot, 'DriveMode.AUTO', 'TELEOP')).toThrow("'TELEOP' is already used by another member");
+    });
+
+    it('a scenario\'s Mode.AUTO values follow an enumeration\'s rename and a member\'s (of that enumeration only)', () => {
+        const dir = mkdtempSync(join(tmpdir(), 'rename-enum-scenario-'));
+        try {
+            const file = join(dir, 'modes.scenario');
+            writeFileSync(file, 'scenario S\nt=1s CTL:0 DriveMode.AUTO\nt=2s CTL:0 Gear.AUTO\nexpect local DRV.f.mode == DriveMode.AUTO\n');
+            const renamed = renameInScenarios(dir, [file], { kind: 'enumeration', oldName: 'DriveMode', newName: 'Mode' });
+            expect(renamed[0]!.text).toBe('scenario S\nt=1s CTL:0 Mode.AUTO\nt=2s CTL:0 Gear.AUTO\nexpect local DRV.f.mode == Mode.AUTO\n');
+            const member = renameInScenarios(dir, [file], { kind: 'enumeration member', oldName: 'AUTO', newName: 'AUTONOMOUS', owner: 'DriveMode' });
+            expect(member[0]!.text).toBe('scenario S\nt=1s CTL:0 DriveMode.AUTONOMOUS\nt=2s CTL:0 Gear.AUTO\nexpect local DRV.f.mode == DriveMode.AUTONOMOUS\n');
+            expect(member[0]!.edits.map((e) => e.line)).toEqual([2, 4]);
+        } finally {
+            rmSync(dir, { recursive: true, force: true });
+        }
     });
 });

@@ -69,12 +69,14 @@ export async function renameGeneratedEntity(srcGen: string, from: string, to: st
 
 /**
  * codegen's carry-over of a rename into the user code (the one `contract rename` uses): the uses of
- * a renamed port or parameter in its module's protected regions, of a datatype (and its generated
- * functions) or a function in every region, whole C identifiers in code only.
+ * a renamed port or parameter in its module's protected regions, of a datatype or an enumeration
+ * (and its generated functions; an enumeration's `members` name its constants), an enumeration
+ * member's constant (`owner`: its enumeration) or a function in every region, whole C identifiers
+ * in code only.
  */
-export async function renameInUserCode(srcGen: string, kind: string, from: string, to: string, owner?: string) {
+export async function renameInUserCode(srcGen: string, kind: string, from: string, to: string, owner?: string, members?: string[]) {
   const codegen = await importWith<CodegenApi, 'identifierRenames' | 'renameIdentifiersInGeneratedTree'>('@contract-studio/codegen', ['identifierRenames', 'renameIdentifiersInGeneratedTree']);
-  const renames = codegen.identifierRenames(kind, from, to);
+  const renames = codegen.identifierRenames(kind, from, to, kind === 'enumeration member' ? { enumeration: owner } : { members });
   return codegen.renameIdentifiersInGeneratedTree(srcGen, renames, kind === 'port' || kind === 'parameter' ? owner : undefined);
 }
 

@@ -3,7 +3,7 @@
  * on copies of the tutorial (its two scenarios), real files, links and FIFOs.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { cpSync, readFileSync, writeFileSync, symlinkSync } from 'node:fs';
+import { cpSync, existsSync, readFileSync, writeFileSync, symlinkSync } from 'node:fs';
 import { execFileSync } from 'node:child_process';
 import { join } from 'node:path';
 import { fileURLToPath } from 'node:url';
@@ -12,6 +12,7 @@ import { startTempIdeServer, type TempIdeServer } from './temp-ide-server.test-s
 import type { RenameEntityResponse } from './api-types.js';
 
 const TUTORIAL = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/tutorial');
+const MOBILE_ROBOT = join(fileURLToPath(new URL('../../..', import.meta.url)), 'examples/mobile-robot');
 
 let base: string;
 let ws: string;
@@ -134,5 +135,34 @@ describe('a rename carried into the .scenario files', () => {
     expect(r.status).toBe(200);
     expect(scenario(p, 'commutation.scenario')).toContain('expect module MAZ stopped');
     expect(scenario(inner, 'commutation.scenario')).toContain('expect module MAA stopped');
+  });
+});
+
+describe('a rename of an enumeration or of one of its members carried into src-gen', () => {
+  const VEL = 'src-gen/generated/architecture/modules/VEL_mod/module.c';
+  const COMMON = 'src-gen/generated/architecture/common';
+
+  it('an enumeration: common/Shared<Enum>.h moves, its type and constants in the regions\' code follow; a member: its constant follows', async () => {
+    const p = join(ws, 'enum');
+    cpSync(MOBILE_ROBOT, p, { recursive: true });
+    expect(readFileSync(join(p, VEL), 'latin1')).toContain('if (mode == DriveMode_SAFESTOP) { v = 0.0; w = 0.0; }');
+    const r = await rename({ project: 'enum', from: 'DriveMode', to: 'Mode', kind: 'enumeration', members: ['TELEOP', 'AUTO', 'SAFESTOP'] });
+    expect(r.status).toBe(200);
+    expect(r.body.movedPaths).toEqual([{ from: 'generated/architecture/common/SharedDriveMode.h', to: 'generated/architecture/common/SharedMode.h' }]);
+    expect(existsSync(join(p, COMMON, 'SharedDriveMode.h'))).toBe(false);
+    expect(existsSync(join(p, COMMON, 'SharedMode.h'))).toBe(true);
+    expect(r.body.rewritten).toEqual([expect.objectContaining({ file: 'generated/architecture/modules/VEL_mod/module.c', id: 'protect_exec_VEL', occurrences: 2 })]);
+    expect(readFileSync(join(p, VEL), 'latin1')).toContain('print_Mode(&mode);');
+    expect(readFileSync(join(p, VEL), 'latin1')).toContain('if (mode == Mode_SAFESTOP) { v = 0.0; w = 0.0; }');
+
+    const member = await rename({ project: 'enum', from: 'SAFESTOP', to: 'HALT', kind: 'enumeration member', owner: 'Mode' });
+    expect(member.status).toBe(200);
+    expect(member.body.movedPaths).toEqual([]);
+    expect(member.body.rewritten).toEqual([expect.objectContaining({ file: 'generated/architecture/modules/VEL_mod/module.c', occurrences: 1 })]);
+    expect(readFileSync(join(p, VEL), 'latin1')).toContain('if (mode == Mode_HALT) { v = 0.0; w = 0.0; }');
+    // a member's rename needs its enumeration; members only name an enumeration's, as identifiers
+    expect((await rename({ project: 'enum', from: 'HALT', to: 'STOP', kind: 'enumeration member' })).status).toBe(400);
+    expect((await rename({ project: 'enum', from: 'Mode', to: 'Gear', kind: 'enumeration', members: ['A', 'b-c'] })).status).toBe(400);
+    expect((await rename({ project: 'enum', from: 'Pose', to: 'Place', kind: 'datatype', members: ['A'] })).status).toBe(400);
   });
 });

@@ -1,12 +1,15 @@
 /**
- * `contract rename DIR OLD NEW [-o OUT]`: renames a module, supervisor, schema, datatype, function,
- * port or parameter (`MODULE:port`), supervision function (`SUP.function`) or a parameter, local or
- * rule label of one (`SUP.function.NAME`) in the `.contract`
+ * `contract rename DIR OLD NEW [-o OUT]`: renames a module, supervisor, schema, datatype,
+ * enumeration, function, port or parameter (`MODULE:port`), enumeration member (`ENUM.MEMBER`),
+ * supervision function (`SUP.function`) or a parameter, local or rule label of one
+ * (`SUP.function.NAME`) in the `.contract`
  * files with the language server's rename, carries the generated tree over for entities that name
  * generated files (codegen's renameInGeneratedTree, as the IDE's rename does: paths and region IDs
- * move, user code is kept byte for byte, a default MODULE_DESCRIPTION follows), rewrites the uses
- * of a renamed port or parameter in its module's protected regions (whole C identifiers in code:
- * codegen's renameIdentifierInGeneratedTree), renames the entity in the project's `.scenario`
+ * move, user code is kept byte for byte, a default MODULE_DESCRIPTION follows), rewrites the C
+ * names of the entity in the protected regions' code (a port's or parameter's variable in its
+ * module's regions; a datatype's, an enumeration's or a function's C names, an enumeration's
+ * constants `Mode_AUTO` in every region; whole C identifiers in code: codegen's
+ * renameIdentifiersInGeneratedTree), renames the entity in the project's `.scenario`
  * files (language's rename-scenarios.ts), then generates and lists the protected regions that still mention
  * the old name (file:line). docs/getting-started.md, "Renaming"; docs/codegen.md, "Renames".
  * Exit 1 with a message when the entity is unknown, the name invalid or taken, or the model has
@@ -29,13 +32,15 @@ export const renameCommand: Command = {
     summary: 'rename an entity in the .contract files and carry its generated code over, then generate',
     usage: [
         'usage: contract rename DIR OLD NEW [-o OUT] [--verbose]',
-        '  OLD: a module, supervisor, schema, datatype or function name; MODULE:port (a port or parameter,',
-        '       by name, or by index when only one has it); SUPERVISOR.function (a supervision function);',
-        '       SUPERVISOR.function.NAME (a parameter, local or rule label of that function)',
+        '  OLD: a module, supervisor, schema, datatype, enumeration or function name; MODULE:port (a port or',
+        '       parameter, by name, or by index when only one has it); ENUM.MEMBER (an enumeration member);',
+        '       SUPERVISOR.function (a supervision function); SUPERVISOR.function.NAME (a parameter, local or',
+        '       rule label of that function)',
         '  NEW: the new name (same rules as the editor\'s rename: modules and supervisors are three upper-case letters)',
         '  OUT: the generated tree (default DIR/src-gen): files and protected-region IDs named after OLD move to NEW',
         'User code in protected regions is kept byte for byte; the uses of a renamed port or parameter in its module\'s',
-        'protected regions follow (whole C identifiers in code; not in comments or strings); the .scenario files follow;',
+        'protected regions follow, as do those of a datatype, enumeration (and its constants ENUM_MEMBER), enumeration',
+        'member or function in every region (whole C identifiers in code; not in comments or strings); the .scenario files follow;',
         'the tree is then regenerated, and the protected regions that still mention the old name are listed (file:line).',
         'exit status: 1 unknown entity, invalid or taken name, model errors (nothing renamed), generation errors, or',
         '  protected-region code still using the old name (renamed, but the build would fail); 0 otherwise, 2 on bad usage',
@@ -84,7 +89,9 @@ export const renameCommand: Command = {
             }
             const owner = plan.owner;
             const variable = (plan.kind === 'port' || plan.kind === 'parameter') && owner !== undefined;
-            const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName);
+            // an enumeration's constants are named after it and its members (Mode_AUTO), a member's after its enumeration
+            const enumeration = { ...(plan.members ? { members: plan.members } : {}), ...(plan.kind === 'enumeration member' && owner !== undefined ? { enumeration: owner } : {}) };
+            const identifiers = identifierRenames(plan.kind, plan.oldName, plan.newName, enumeration);
             const scenarioChanges = renameInScenarios(dir, projectScenarios(dir, [out]), {
                 kind: plan.kind, oldName: plan.oldName, newName: plan.newName, owner,
             });
@@ -120,15 +127,16 @@ export const renameCommand: Command = {
                     return EXIT_FAILURE;
                 }
             }
-            // the user code: a port or parameter is a variable of its module's module.c, a datatype or
-            // a function a C name of every file: their uses in the protected regions follow (whole C
-            // identifiers in code only; a module's name is in strings, if anywhere: listed below)
+            // the user code: a port or parameter is a variable of its module's module.c, a datatype, an
+            // enumeration (its constants too) or a function a C name of every file: their uses in the
+            // protected regions follow (whole C identifiers in code only; a module's name is in
+            // strings, if anywhere: listed below)
             const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
             if (identifiers.size > 0) {
                 try {
                     const carried = renameIdentifiersInGeneratedTree(out, identifiers, variable ? owner : undefined);
                     for (const r of carried.rewritten) {
-                        io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${plan.oldName}${identifiers.size > 1 ? ' (or its functions)' : ''} renamed\n`);
+                        io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${[...identifiers.keys()][0]}${identifiers.size > 1 ? ` (or its ${plan.kind === 'enumeration' ? 'functions and constants' : 'functions'})` : ''} renamed\n`);
                     }
                     if (carried.refused) io.err(`warning: ${safeName(carried.refused)}\n`);
                 } catch (e) {
@@ -161,7 +169,7 @@ export const renameCommand: Command = {
             // user code the rename did not change: the build needs what is in code changed by hand
             let inCode = 0;
             if (MENTIONED_KINDS.has(plan.kind)) {
-                const mentions = findRegionMentions(out, mentionMatcher(plan.kind, plan.oldName), variable ? owner : undefined);
+                const mentions = findRegionMentions(out, mentionMatcher(plan.kind, plan.oldName, enumeration), variable ? owner : undefined);
                 for (const m of mentions) {
                     const where = `${inTree(m.file)}:${m.line}: protected region ${safeName(m.id)}`;
                     // a header named after the entity is gone: an #include of it fails like code does
@@ -185,7 +193,7 @@ export const renameCommand: Command = {
 };
 
 /** Kinds whose names the generated C or the user code uses (a schema or a supervision function is in no module's C). */
-const MENTIONED_KINDS = new Set(['module', 'supervisor', 'datatype', 'enumeration', 'function', 'port', 'parameter']);
+const MENTIONED_KINDS = new Set(['module', 'supervisor', 'datatype', 'enumeration', 'enumeration member', 'function', 'port', 'parameter']);
 
 /** Errors that leave the text or the imports unknown (unresolved references are checked on the documents). */
 function blocksRename(code: string): boolean {

@@ -5,7 +5,7 @@ export { MANIFEST_NAME } from './manifest.js';
 export { renameInGeneratedTree, renameRegionId, renameGeneratedName, type RenameGeneratedReport } from './rename-generated.js';
 export {
     renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher,
-    type IdentifierCarryReport, type RegionMention,
+    type IdentifierCarryReport, type RegionMention, type EnumerationNames,
 } from './rename-user-code.js';
 export { cWords, renameIdentifier, type CWord, type WordContext } from './c-identifiers.js';
 export { writeFileAtomic, isAtomicTempFile } from './atomic-write.js';

@@ -84,6 +84,38 @@ describe('renameIdentifierInGeneratedTree (a renamed port or parameter)', () => 
         expect(r.remaining.map((m) => [m.word, m.context])).toEqual([['TypeA', 'comment']]);
         expect(identifierRenames('schema', 'a', 'b').size).toBe(0);
     });
+
+    it('a renamed enumeration: the type, its generated functions and its constants (Mode_AUTO) in every region\'s code; text and other enumerations left alone', () => {
+        const dir = out();
+        mkdirSync(join(dir, 'generated/architecture/modules/MSC_mod'), { recursive: true });
+        const exec = 'Mode m = Mode_AUTO; if (eq_Mode(&m, &mode)) print_Mode(&m); Gear g = Gear_AUTO; /* Mode_AUTO */ puts("Mode_SAFE");';
+        writeFileSync(join(dir, path('MSC')), file('MSC', exec, 'static Mode last = Mode_SAFE;'));
+        const renames = identifierRenames('enumeration', 'Mode', 'Drive', { members: ['AUTO', 'SAFE'] });
+        expect(renames.get('Mode_AUTO')).toBe('Drive_AUTO');
+        const r = renameIdentifiersInGeneratedTree(dir, renames);
+        expect(r.refused).toBeUndefined();
+        expect(r.rewritten.map((x) => [x.id, x.occurrences])).toEqual([['protect_internal_vars_MSC', 2], ['protect_exec_MSC', 4]]);
+        expect(readFileSync(join(dir, path('MSC')), 'latin1')).toBe(file('MSC',
+            'Drive m = Drive_AUTO; if (eq_Drive(&m, &mode)) print_Drive(&m); Gear g = Gear_AUTO; /* Mode_AUTO */ puts("Mode_SAFE");', 'static Drive last = Drive_SAFE;'));
+        expect(r.remaining.map((m) => [m.word, m.context])).toEqual([['Mode_AUTO', 'comment'], ['Mode_SAFE', 'string']]);
+        // what is left afterwards, as the rename lists it: the constants and the header count
+        expect(mentionMatcher('enumeration', 'Mode', { members: ['AUTO'] })('Mode_AUTO')).toBe(true);
+        expect(mentionMatcher('enumeration', 'Mode')('SharedMode')).toBe(true);
+    });
+
+    it('a renamed enumeration member: its constant only (Mode_AUTO -> Mode_AUTOMATIC), not another enumeration\'s nor the bare word', () => {
+        const dir = out();
+        mkdirSync(join(dir, 'generated/architecture/modules/MSC_mod'), { recursive: true });
+        writeFileSync(join(dir, path('MSC')), file('MSC', 'int AUTO = 1; Mode m = Mode_AUTO; Gear g = Gear_AUTO; (void)AUTO;'));
+        const renames = identifierRenames('enumeration member', 'AUTO', 'AUTOMATIC', { enumeration: 'Mode' });
+        expect([...renames]).toEqual([['Mode_AUTO', 'Mode_AUTOMATIC']]);
+        const r = renameIdentifiersInGeneratedTree(dir, renames);
+        expect(r.rewritten.map((x) => [x.id, x.occurrences])).toEqual([['protect_exec_MSC', 1]]);
+        expect(readFileSync(join(dir, path('MSC')), 'latin1')).toBe(file('MSC', 'int AUTO = 1; Mode m = Mode_AUTOMATIC; Gear g = Gear_AUTO; (void)AUTO;'));
+        // the bare member name is no C name of the enumeration: not a mention of it
+        const matches = mentionMatcher('enumeration member', 'AUTO', { enumeration: 'Mode' });
+        expect([matches('AUTO'), matches('Mode_AUTO'), matches('Gear_AUTO')]).toEqual([false, true, false]);
+    });
 });
 
 describe('renameInGeneratedTree and the manifest', () => {

@@ -4,6 +4,7 @@
  * protected regions' code rewritten (renameIdentifiersInGeneratedTree), and the regions that still
  * mention the old name afterwards (findRegionMentions), for `contract rename` and the IDE.
  */
+import { cEnumMember } from '../generators/c/c-syntax.js';
 import { parseRegions } from '../regions/parse-regions.js';
 import { bytesOf } from './byte-string.js';
 import { cWords, type WordContext } from './c-identifiers.js';
@@ -25,12 +26,14 @@ export interface RegionMention {
 
 /**
  * Whether a word of user code refers to the entity `name` of kind `kind` (the words of the
- * language's rename: `module`, `datatype`, `function`, `port`, `parameter`, ...): the name itself,
- * and for a datatype the generated functions and header named after it (`eq_TypeA`, ...,
- * `SharedTypeA` of `#include "SharedTypeA.h"`), for a function its header (`SharedFunctiondoit`).
+ * language's rename: `module`, `datatype`, `enumeration`, `function`, `port`, `parameter`, ...):
+ * the name itself, and for a datatype or an enumeration the generated functions and header named
+ * after it (`eq_TypeA`, ..., `SharedTypeA` of `#include "SharedTypeA.h"`) and an enumeration's
+ * constants (`Mode_AUTO`), for a function its header (`SharedFunctiondoit`); for an enumeration
+ * member only its constant (`Mode_AUTO`: the bare member name is no C name).
  */
-export function mentionMatcher(kind: string, name: string): (word: string) => boolean {
-    const words = new Set([name, ...identifierRenames(kind, name, name).keys()]);
+export function mentionMatcher(kind: string, name: string, enumeration: EnumerationNames = {}): (word: string) => boolean {
+    const words = new Set([...(kind === 'enumeration member' ? [] : [name]), ...identifierRenames(kind, name, name, enumeration).keys()]);
     if (kind === 'datatype' || kind === 'enumeration') words.add(`Shared${name}`);
     if (kind === 'function') words.add(`SharedFunction${name}`);
     return (w) => words.has(w);
@@ -106,13 +109,35 @@ export interface IdentifierCarryReport {
 const TYPE_FUNCTIONS = ['serialize', 'deserialize', 'set', 'get', 'print', 'eq', 'diff', 'inf', 'sup', 'infeq', 'supeq'];
 
 /**
- * The C identifiers a rename changes in user code, old -> new: a port's or parameter's variable,
- * a function, a datatype and its generated functions (`eq_TypeA`, `print_TypeA`, ...). Empty for
- * other kinds (a module's or supervisor's name is in strings, if anywhere: reported, not rewritten).
+ * What the C names of an enumeration are made of besides its name (shared-enum-header.ts): its
+ * members, for an enumeration's rename (the constants `<Enum>_<member>`), and the enumeration, for
+ * a member's rename (its constant).
  */
-export function identifierRenames(kind: string, from: string, to: string): Map<string, string> {
+export interface EnumerationNames {
+    /** The members of a renamed enumeration. */
+    members?: readonly string[];
+    /** The enumeration of a renamed member. */
+    enumeration?: string;
+}
+
+/**
+ * The C identifiers a rename changes in user code, old -> new: a port's or parameter's variable,
+ * a function, a datatype and its generated functions (`eq_TypeA`, `print_TypeA`, ...), an
+ * enumeration, its generated functions and its constants (`Mode_AUTO` -> `Drive_AUTO`), an
+ * enumeration member's constant (`Mode_AUTO` -> `Mode_AUTOMATIC`). Empty for other kinds (a
+ * module's or supervisor's name is in strings, if anywhere: reported, not rewritten).
+ */
+export function identifierRenames(kind: string, from: string, to: string, enumeration: EnumerationNames = {}): Map<string, string> {
     if (kind === 'port' || kind === 'parameter' || kind === 'function') return new Map([[from, to]]);
-    if (kind === 'datatype') return new Map([[from, to], ...TYPE_FUNCTIONS.map((f): [string, string] => [`${f}_${from}`, `${f}_${to}`])]);
+    const typeFunctions = TYPE_FUNCTIONS.map((f): [string, string] => [`${f}_${from}`, `${f}_${to}`]);
+    if (kind === 'datatype') return new Map([[from, to], ...typeFunctions]);
+    if (kind === 'enumeration') {
+        const constants = (enumeration.members ?? []).map((m): [string, string] => [cEnumMember(from, m), cEnumMember(to, m)]);
+        return new Map([[from, to], ...typeFunctions, ...constants]);
+    }
+    if (kind === 'enumeration member' && enumeration.enumeration !== undefined) {
+        return new Map([[cEnumMember(enumeration.enumeration, from), cEnumMember(enumeration.enumeration, to)]]);
+    }
     return new Map();
 }
 

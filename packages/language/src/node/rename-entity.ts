@@ -1,13 +1,16 @@
 /**
  * Renaming an entity of a loaded workspace outside an editor (`contract rename`): the entity is
- * found by name (`MSC`, `TypeA`, `SUP.mission`, `MSC:in_coordinates`, `SUP.action.FIRST`), the new name is checked by
+ * found by name (`MSC`, `TypeA`, `Mode`, `Mode.AUTO`, `SUP.mission`, `MSC:in_coordinates`, `SUP.action.FIRST`), the new name is checked by
  * the same rules as the editor's rename and the edits are the editor's rename edits
  * (`lsp/name-rules.ts`, `lsp/rename-edits.ts`), so that both rename the same references.
  * Pure over the workspace: the caller writes the new texts (docs/getting-started.md, "Renaming").
  */
 import { AstUtils, type AstNode } from 'langium';
 import { TextDocument } from 'vscode-languageserver-textdocument';
-import { isDataType, isFunctionParameter, isFunctionPrototype, isModel, isModule, isSchema, isSupervisionFunction, isSupervisor, type Module, type SupervisionFunction, type Supervisor } from '../generated/ast.js';
+import {
+    isDataType, isEnumMember, isEnumType, isFunctionParameter, isFunctionPrototype, isModel, isModule, isSchema, isSupervisionFunction, isSupervisor,
+    type EnumType, type Module, type SupervisionFunction, type Supervisor,
+} from '../generated/ast.js';
 import { parametersOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
 import { kindWord, renameProblem } from '../lsp/name-rules.js';
@@ -37,21 +40,25 @@ export interface RenamePlan {
     newName: string;
     /**
      * Whether generated files and region IDs are named after the entity (modules, supervisors,
-     * datatypes, functions): their generated tree is carried over (codegen's renameInGeneratedTree).
+     * datatypes, enumerations, functions): their generated tree is carried over (codegen's renameInGeneratedTree).
      */
     generatedNames: boolean;
     /**
      * What the entity belongs to, as the scenarios and the generated tree name it: a port's or
      * parameter's module or supervisor, a supervision function's supervisor, a rule label's,
-     * local's or function parameter's function (`SUP.function`); undefined for a top-level name.
+     * local's or function parameter's function (`SUP.function`), an enumeration member's
+     * enumeration; undefined for a top-level name.
      */
     owner?: string;
+    /** A renamed enumeration's members: its C constants `<Enum>_<member>` follow it (codegen's identifierRenames). */
+    members?: string[];
     files: PlannedFileEdit[];
 }
 
 /** The owner of `node` (RenamePlan.owner), from where it stands in the model. */
 function ownerOf(node: AstNode): string | undefined {
     if (isSupervisionFunction(node)) return node.$container.name;
+    if (isEnumMember(node)) return isEnumType(node.$container) ? node.$container.name : undefined;
     const fn = AstUtils.getContainerOfType(node.$container, isSupervisionFunction);
     if (fn) return `${fn.$container.name}.${fn.name}`;
     if (isModule(node) || isSupervisor(node)) return undefined;
@@ -60,7 +67,7 @@ function ownerOf(node: AstNode): string | undefined {
 
 /** Top-level elements whose names the generated tree carries (paths and region IDs, docs/codegen.md). */
 function namesGeneratedFiles(node: AstNode): boolean {
-    return isModule(node) || isSupervisor(node) || isDataType(node) || isFunctionPrototype(node);
+    return isModule(node) || isSupervisor(node) || isDataType(node) || isEnumType(node) || isFunctionPrototype(node);
 }
 
 function topLevelElements(ws: LoadedWorkspace): Named[] {
@@ -89,11 +96,18 @@ function supervisionFunction(ws: LoadedWorkspace, sup: string, fn: string, spec:
     return found;
 }
 
+/** The member `name` of enumeration `e` (named in `spec`), or a RenameError. */
+function enumerationMember(e: EnumType, name: string): Named {
+    const found = e.members.find((m) => m.name === name);
+    if (!found) throw new RenameError(`enumeration ${e.name} has no member '${name}'; its members: ${e.members.map((m) => m.name).join(', ') || 'none'}`);
+    return found as Named;
+}
+
 /**
- * The entity `spec` designates: a top-level name (module, supervisor, schema, datatype, function),
- * `OWNER:port` (a port or parameter of a module or supervisor, by name or by index when only one
- * port has it), `SUP.function` (a supervision function), or `SUP.function.NAME` (a parameter, a
- * local or a rule label of that function).
+ * The entity `spec` designates: a top-level name (module, supervisor, schema, datatype,
+ * enumeration, function), `OWNER:port` (a port or parameter of a module or supervisor, by name or
+ * by index when only one port has it), `ENUM.MEMBER` (a member of an enumeration), `SUP.function`
+ * (a supervision function), or `SUP.function.NAME` (a parameter, a local or a rule label of that function).
  */
 export function findEntity(ws: LoadedWorkspace, spec: string): Named {
     const port = /^([^:.]+):([^:.]+)$/.exec(spec);
@@ -122,10 +136,15 @@ export function findEntity(ws: LoadedWorkspace, spec: string): Named {
         return matches[0]!;
     }
     const fn = /^([^:.]+)\.([^:.]+)$/.exec(spec);
-    if (fn) return supervisionFunction(ws, fn[1]!, fn[2]!, spec) as Named;
-    const found = topLevelElements(ws).filter((e) => e.name === spec && (isModule(e) || isSupervisor(e) || isSchema(e) || isDataType(e) || isFunctionPrototype(e)));
+    if (fn) {
+        // ENUM.MEMBER or SUP.function (a supervisor of the enumeration's name, if any, is meant)
+        const enumeration = topLevelElements(ws).find((e): e is EnumType & Named => isEnumType(e) && e.name === fn[1]);
+        if (enumeration && !topLevelElements(ws).some((e) => isSupervisor(e) && e.name === fn[1])) return enumerationMember(enumeration, fn[2]!);
+        return supervisionFunction(ws, fn[1]!, fn[2]!, spec) as Named;
+    }
+    const found = topLevelElements(ws).filter((e) => e.name === spec && (isModule(e) || isSupervisor(e) || isSchema(e) || isDataType(e) || isEnumType(e) || isFunctionPrototype(e)));
     if (found.length === 0) {
-        throw new RenameError(`no module, supervisor, schema, datatype or function named '${spec}' (a port is 'MODULE:port', a supervision function 'SUPERVISOR.function')`);
+        throw new RenameError(`no module, supervisor, schema, datatype, enumeration or function named '${spec}' (a port is 'MODULE:port', a supervision function 'SUPERVISOR.function', an enumeration member 'ENUM.MEMBER')`);
     }
     if (found.length > 1) throw new RenameError(`'${spec}' names several elements: ${found.map((e) => located(e, ws)).join(', ')}; rename one by hand first`);
     return found[0]!;
@@ -154,5 +173,6 @@ export function planRename(ws: LoadedWorkspace, spec: string, newName: string): 
         files.push({ file: doc.file, path: doc.path, text: TextDocument.applyEdits(copy, edits), occurrences: edits.length });
     }
     files.sort((a, b) => a.file.localeCompare(b.file));
-    return { kind, oldName: target.name, newName, generatedNames: namesGeneratedFiles(target), owner: ownerOf(target), files };
+    const members = isEnumType(target) ? target.members.map((m) => m.name) : undefined;
+    return { kind, oldName: target.name, newName, generatedNames: namesGeneratedFiles(target), owner: ownerOf(target), ...(members ? { members } : {}), files };
 }

@@ -4,7 +4,7 @@
  * a text search): a module or supervisor (`M:P`, `crash M`, `exec M`, `expect module M`, `start
  * SUP.fn`, `expect rule SUP.fn.RULE`, ...), a schema (`expect schema S`, `ORD:0 "S"`), a supervision
  * function (`SUP.fn` of that supervisor), an out event port's variable name (`M:P name = value` of
- * that module), an enumeration (`Mode.AUTO` values), a rule label or a local of a supervision
+ * that module), an enumeration or one of its members (`Mode.AUTO` values), a rule label or a local of a supervision
  * function (`expect rule SUP.fn.RULE`, `expect local [SUP.fn.]x`), a parameter of one (`start
  * SUP.fn(x = ...)`). `contract rename` and the IDE's rename
  * (POST /api/rename-entity) both use it.
@@ -16,14 +16,15 @@ import { parseScenario, type ScenarioValue, type SourceSpan, type Step } from '.
 export interface ScenarioRename {
     /**
      * The rename's kind word: `module`, `supervisor`, `schema`, `supervision function`, `port`,
-     * `datatype`, `enumeration`, `rule label`, `local`, `function parameter` (any other: nothing to rename).
+     * `datatype`, `enumeration`, `enumeration member`, `rule label`, `local`, `function parameter` (any other: nothing to rename).
      */
     kind: string;
     oldName: string;
     newName: string;
     /**
      * For a port: its module (or supervisor); for a supervision function: its supervisor; for a
-     * rule label, a local or a function parameter: its function as `SUP.function`.
+     * rule label, a local or a function parameter: its function as `SUP.function`; for an
+     * enumeration member: its enumeration.
      */
     owner?: string;
 }
@@ -110,6 +111,10 @@ function valueReplacements(value: ScenarioValue | undefined, r: ScenarioRename, 
     if (value.kind === 'struct') for (const e of value.elements) valueReplacements(e, r, out);
     if (value.kind === 'enum' && value.enumName === r.oldName && (r.kind === 'datatype' || r.kind === 'enumeration')) {
         out.push({ span: value.span, from: r.oldName, to: r.newName });
+    }
+    // `Mode.AUTO` of a renamed member AUTO of Mode: the member's part of the value
+    if (value.kind === 'enum' && r.kind === 'enumeration member' && value.enumName === r.owner && value.member === r.oldName && value.text === `${value.enumName}.${value.member}`) {
+        out.push({ span: { ...value.span, column: value.span.column + value.enumName.length + 1 }, from: r.oldName, to: r.newName });
     }
 }
 

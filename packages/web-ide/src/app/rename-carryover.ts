@@ -7,22 +7,23 @@ import { reportError } from './report-error.js';
 
 /**
  * A rename refactoring carries the generated tree over, then regenerates: a module, supervisor,
- * datatype or function moves its generated files and region IDs; a port's or parameter's uses in
- * its module's protected-region code follow, as a datatype's and a function's do in every region
- * (whole C identifiers in code); the project's `.scenario` files follow a module, supervisor,
- * schema, supervision function, event port, datatype or enumeration (`contract rename` does the
- * same). Uses it could not change (the new name already in that code, a scenario changed
+ * datatype, enumeration or function moves its generated files and region IDs; a port's or
+ * parameter's uses in its module's protected-region code follow, as a datatype's, an
+ * enumeration's (its constants `Mode_AUTO` too), an enumeration member's constant and a
+ * function's do in every region (whole C identifiers in code); the project's `.scenario` files
+ * follow a module, supervisor, schema, supervision function, event port, datatype, enumeration or
+ * enumeration member (`contract rename` does the same). Uses it could not change (the new name already in that code, a scenario changed
  * meanwhile) are said, with where.
  */
 export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspace; editors: EditorArea; project(): string; generate(): Promise<boolean> }): void {
   const { lsp, workspace, editors } = d;
-  lsp.onRename.on(({ oldName: old, newName, topLevel, kind, owner }) => {
+  lsp.onRename.on(({ oldName: old, newName, topLevel, kind, owner, members }) => {
     if (!old || old === newName || (!topLevel && !kind)) return; // schemas' parameters, fields: neither the generated tree nor a scenario names them
     void (async () => {
       await new Promise((r) => setTimeout(r, 50));
       await workspace.saveAll();
       const project = d.project();
-      const r = await api.renameEntity(project, old, newName, { kind, owner });
+      const r = await api.renameEntity(project, old, newName, { kind, owner, members });
       const base = `${project ? `${project}/` : ''}src-gen/`;
       const uses = r.rewritten.reduce((n, w) => n + w.occurrences, 0);
       const scenarioFiles = new Set(r.scenarios.map((e) => e.file)).size;

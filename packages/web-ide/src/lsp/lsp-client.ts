@@ -20,7 +20,7 @@ import LanguageWorker from './language-worker.ts?worker';
  * modules and supervisors (Class), datatypes (Struct), functions (Function). A schema (Namespace)
  * names none, so its rename carries nothing over — as `contract rename` does.
  */
-const NAMES_GENERATED_FILES: readonly number[] = [5, 23, 12];
+const NAMES_GENERATED_FILES: readonly number[] = [5, 23, 10, 12];
 
 export const MARKER_OWNER = 'cactal';
 
@@ -315,36 +315,41 @@ export interface RenameEvent {
   topLevel: boolean;
   kind?: RenamedKind;
   owner?: string;
+  /** A renamed enumeration's members: its C constants (`Mode_AUTO`) in the user code follow it. */
+  members?: string[];
 }
 
 /** What a rename renamed, as POST /api/rename-entity names it (its carry-over into src-gen and the `.scenario` files). */
 export type RenamedKind = 'module' | 'supervisor' | 'schema' | 'supervision function' | 'port' | 'parameter' | 'datatype' | 'enumeration' | 'function'
-  | 'rule label' | 'local' | 'function parameter';
+  | 'enumeration member' | 'rule label' | 'local' | 'function parameter';
 
 /** LSP SymbolKind numbers of the Cactal document symbols (language cactal-document-symbol-provider.ts). */
-const SYMBOL = { Namespace: 3, Class: 5, Method: 6, Property: 7, Enum: 10, Function: 12, Variable: 13, Key: 20, Struct: 23, Event: 24, TypeParameter: 26 } as const;
+const SYMBOL = { Namespace: 3, Class: 5, Method: 6, Property: 7, Enum: 10, Function: 12, Variable: 13, Key: 20, EnumMember: 22, Struct: 23, Event: 24, TypeParameter: 26 } as const;
 
 /**
  * What a rename renames, from the document symbols of its definition's file: a module or a
- * supervisor (Class, told apart by its detail), a schema (Namespace), a datatype, an enumeration or
- * a function at top level; a port (Event, Variable) or parameter (Property) of a module or
+ * supervisor (Class, told apart by its detail), a schema (Namespace), a datatype, an enumeration
+ * (with its members) or a function at top level; a member of an enumeration, the enumeration named; a port (Event, Variable) or parameter (Property) of a module or
  * supervisor, a supervision function (Method) of a supervisor, the owner named; a rule label (Key),
  * local (Variable) or parameter (TypeParameter) of a supervision function, owned by `SUP.function`. `line` (1-based) is
  * the definition's line, to tell apart two ports of one name in two modules of a file. Nothing for
  * other names (schemas' parameters, fields...).
  */
-function renamedSymbol(symbols: lsp.DocumentSymbol[], name: string, line: number | undefined): Pick<RenameEvent, 'kind' | 'owner'> {
+function renamedSymbol(symbols: lsp.DocumentSymbol[], name: string, line: number | undefined): Pick<RenameEvent, 'kind' | 'owner' | 'members'> {
   const at = (s: lsp.DocumentSymbol) => line === undefined || (s.range.start.line + 1 <= line && line <= s.range.end.line + 1);
   for (const top of symbols) {
     if (top.name === name && at(top)) {
       if (top.kind === SYMBOL.Struct) return { kind: 'datatype' };
-      if (top.kind === SYMBOL.Enum) return { kind: 'enumeration' };
+      if (top.kind === SYMBOL.Enum) return { kind: 'enumeration', members: (top.children ?? []).map((m) => m.name) };
       if (top.kind === SYMBOL.Function) return { kind: 'function' };
       if (top.kind === SYMBOL.Namespace) return { kind: 'schema' };
       // a port's line is inside its module's range: the module itself only when the line is its own
       if (top.kind === SYMBOL.Class && (line === undefined || top.selectionRange.start.line + 1 === line)) {
         return { kind: top.detail === 'supervisor' ? 'supervisor' : 'module' };
       }
+    }
+    if (top.kind === SYMBOL.Enum && at(top) && (top.children ?? []).some((m) => m.name === name && m.kind === SYMBOL.EnumMember)) {
+      return { kind: 'enumeration member', owner: top.name };
     }
     if (top.kind !== SYMBOL.Class || !at(top)) continue;
     for (const child of top.children ?? []) {

@@ -82,10 +82,28 @@ export async function placeCursor(page: Page, text: string, offset = 0, occurren
   if (!ok) throw new Error(`text not found in the active editor: ${text}`);
 }
 
+/**
+ * Waits until the language server answers a rename at the active editor's cursor with a range (its
+ * `textDocument/prepareRename`): before that, F2 finds nothing to rename (the server still building
+ * the documents after an edit) and no rename box opens.
+ */
+export async function waitRenameLocation(page: Page, timeout = 30_000): Promise<void> {
+  await page.waitForFunction(async () => {
+    const ide = (window as unknown as { __ide: { lsp: { request(m: string, p: unknown): Promise<unknown> }; editors: { editor: { getModel(): { uri: { toString(): string } } | null; getPosition(): { lineNumber: number; column: number } | null } } } }).__ide;
+    const model = ide.editors.editor.getModel();
+    const at = ide.editors.editor.getPosition();
+    if (!model || !at) return false;
+    const r = await ide.lsp.request('textDocument/prepareRename', { textDocument: { uri: model.uri.toString() }, position: { line: at.lineNumber - 1, character: at.column - 1 } }).catch(() => null);
+    return r !== null && r !== undefined;
+  }, undefined, { timeout, polling: 250 });
+}
+
 /** Opens `file`, puts the cursor `offset` characters into the first `text`, and renames what is there to `newName` with F2 (the editor's rename box, Enter). */
 export async function renameWithF2(page: Page, file: string, text: string, offset: number, newName: string): Promise<void> {
   await openFile(page, file);
   await placeCursor(page, text, offset);
+  await waitRenameLocation(page);
+  await placeCursor(page, text, offset); // the editor focused again (the wait ran in the page, not in the editor)
   await page.keyboard.press('F2');
   await page.waitForFunction(() => document.activeElement?.classList.contains('rename-input'));
   await page.keyboard.press('Control+a');

@@ -1,0 +1,51 @@
+/**
+ * End-to-end: F2 renames on the mobile robot (docs/ide.md, "Rename carry-over"). An enumeration's
+ * rename moves its generated `common/Shared<Enum>.h` and rewrites its C names (the type,
+ * `print_<Enum>`, the constants `<Enum>_<MEMBER>`) in the protected regions' code; a member's
+ * rename its constant.
+ * Every step waits on what it needs: the language server answering a rename at the cursor
+ * (waitRenameLocation), the rename box focused, the files on disk, the toast.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { existsSync, readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { startSession, openIde, renameWithF2, MOBILE_ROBOT, type Session } from './harness.js';
+
+const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
+
+let s: Session;
+const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
+const VEL = 'src-gen/generated/architecture/modules/VEL_mod/module.c';
+const COMMON = 'src-gen/generated/architecture/common';
+
+describe('F2 renames in the IDE', () => {
+  beforeAll(async () => {
+    s = await startSession({ example: MOBILE_ROBOT, buildService: false });
+    await openIde(s);
+  }, 60_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
+  it.skipIf(!canGenerate)('an enumeration: the .contract files, common/Shared<Enum>.h and its C names in the regions\' code follow; then a member', async () => {
+    const { page } = s;
+    expect(disk(VEL)).toContain('if (mode == DriveMode_SAFESTOP) { v = 0.0; w = 0.0; }');
+    await renameWithF2(page, 'types.contract', 'enum DriveMode', 'enum '.length, 'Mode');
+    await expect.poll(() => disk('types.contract'), { timeout: 10_000 }).toContain('enum Mode { TELEOP, AUTO, SAFESTOP }');
+    await expect.poll(() => disk('velocity.contract'), { timeout: 10_000 }).toContain('Mode mode = Mode.TELEOP :1;');
+    await expect.poll(() => existsSync(join(s.workspace, COMMON, 'SharedMode.h')), { timeout: 15_000 }).toBe(true);
+    await expect.poll(() => disk(VEL), { timeout: 15_000 }).toContain('if (mode == Mode_SAFESTOP) { v = 0.0; w = 0.0; }');
+    expect(disk(VEL)).toContain('print_Mode(&mode);');
+    await page.locator('.toast', { hasText: 'Renamed DriveMode → Mode: 1 generated path(s)' }).first().waitFor({ timeout: 15_000 });
+    // Generate All ran after the carry-over: the old header is not made again, nothing was orphaned
+    await expect.poll(() => disk(VEL), { timeout: 15_000 }).toContain('Mode mode = Mode_TELEOP;');
+    expect(existsSync(join(s.workspace, COMMON, 'SharedDriveMode.h'))).toBe(false);
+    expect(existsSync(join(s.workspace, 'src-gen/orphans'))).toBe(false);
+
+    await renameWithF2(page, 'types.contract', 'SAFESTOP', 0, 'HALT');
+    await expect.poll(() => disk('types.contract'), { timeout: 10_000 }).toContain('enum Mode { TELEOP, AUTO, HALT }');
+    await expect.poll(() => disk(VEL), { timeout: 15_000 }).toContain('if (mode == Mode_HALT) { v = 0.0; w = 0.0; }');
+    await expect.poll(() => disk('drive.contract'), { timeout: 10_000 }).toContain('Mode.HALT');
+    expect(disk('drive.contract')).not.toMatch(/\bSAFESTOP\b/);
+  }, 120_000);
+});
