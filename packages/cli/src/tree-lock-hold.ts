@@ -9,6 +9,7 @@
 import { lstatSync } from 'node:fs';
 import { join } from 'node:path';
 import type { CliIO } from './command.js';
+import { finishedRenameText } from './finished-rename-text.js';
 import { safeName } from './terminal-text.js';
 
 /**
@@ -26,7 +27,7 @@ export async function holdTreeLock(out: string, shownAs: string, io: CliIO, proj
     if (project === undefined) return release;
     try {
         const done = await finishInterruptedRename(project.dir, out);
-        if (done) for (const line of describeFinishedRename(done, (f) => safeName(join(project.label, f)))) io.err(`${line}\n`);
+        if (done) io.err(finishedRenameText(describeFinishedRename(done, (f) => safeName(join(project.label, f)))));
     } catch (e) {
         // said, and left: the generation then refuses the tree, naming the journal
         io.err(`warning: ${safeName((e as Error).message)}\n`);

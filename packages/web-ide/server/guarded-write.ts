@@ -8,7 +8,7 @@ import { writeFileAtomic } from './atomic-write.js';
 import { HttpError } from './http-error.js';
 import { isGeneratedFile, splitGeneratedPath } from './generated-files.js';
 import { guardGeneratedWrite } from './region-guard.js';
-import { finishInterruptedRename, loadRegionParser, loadTreeLock } from './integrations.js';
+import { finishInterruptedRename, loadRegionParser, loadTreeLock, type JournalOutcome } from './integrations.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import type { FileWriteResponse } from './api-types.js';
 import { fileVersion } from './file-version.js';
@@ -177,9 +177,9 @@ function withTreeWriteLock<T>(paths: WorkspacePaths, srcGen: string, write: () =
  * terminal's generate holding the lock froze the whole server for up to 30 s. A src-gen that is
  * not there (Generate All makes it) or not a real folder (the generator refuses it) is not locked.
  */
-export function withProjectTreeLock<T>(dir: string, work: (finished: string[]) => Promise<T>, shown: (path: string) => string = (p) => p): Promise<T> {
+export function withProjectTreeLock<T>(dir: string, work: (journal: JournalOutcome) => Promise<T>, shown: (path: string) => string = (p) => p): Promise<T> {
   const srcGen = join(dir, SRC_GEN_DIR);
-  if (!lstatSync(srcGen, { throwIfNoEntry: false })?.isDirectory()) return work([]);
+  if (!lstatSync(srcGen, { throwIfNoEntry: false })?.isDirectory()) return work({});
   // a `contract rename` killed half-way is finished first, lock held (codegen rename-journal.ts)
   return holdingTreeLock(srcGen, SRC_GEN_DIR, '', async () => work(await finishInterruptedRename(dir, srcGen, shown)));
 }

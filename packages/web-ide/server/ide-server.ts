@@ -25,7 +25,8 @@ import { fileVersion } from './file-version.js';
 import { SimulateApi } from './simulate-api.js';
 import { SharedRuns } from './shared-runs.js';
 import { WebSocketServer } from 'ws';
-import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { journalWarnings } from './journal-warnings.js';
 import { withProjectTreeLock } from './guarded-write.js';
 
 export interface IdeServerOptions {
@@ -203,15 +204,11 @@ export async function startIdeServer(options: IdeServerOptions): Promise<IdeServ
       // the tree's write lock before the model is read: a terminal's rename, whose .contract files
       // and tree change together, is seen whole or not at all
       const project = paths.toRelative(projectDir);
-      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async (finished) => {
+      const report = await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async (journal) => {
         const { documents } = await loadWorkspaceDocuments(dir);
         const generated = await runCodegen(documents, join(dir, SRC_GEN_DIR));
-        // an interrupted terminal rename finished first: said in the Generate panel
-        // (one entry for the rename with the files it wrote, one per file left as it was)
-        const written = finished.filter((l) => l.startsWith('  ')).map((l) => l.trim());
-        const entries = finished.filter((l) => !l.startsWith('  ')).map((l) => l.replace(/^warning: /, ''));
-        if (entries.length && written.length) entries[0] = `${entries[0]} (${written.join(', ')})`;
-        for (const message of entries.reverse()) generated.warnings.unshift({ file: RENAME_JOURNAL_NAME, message });
+        // an interrupted terminal rename finished first: said in the Generate panel, first
+        generated.warnings.unshift(...journalWarnings(journal));
         return generated;
       }, (f) => (project ? `${project}/${f}` : f))));
       const srcGen = paths.toRelative(join(projectDir, SRC_GEN_DIR));

@@ -11,6 +11,7 @@ import { HttpError } from './http-error.js';
 
 type LanguageNodeApi = typeof import('@contract-studio/language/node');
 type CodegenApi = typeof import('@contract-studio/codegen');
+type FinishedRenameDescription = import('@contract-studio/codegen').FinishedRenameDescription;
 type BuildServiceApi = typeof import('@contract-studio/build-service');
 
 export type BuildServerLike = ReturnType<BuildServiceApi['createBuildServer']>;
@@ -98,17 +99,24 @@ export async function loadRegionParser(): Promise<RegionParser> {
 /** codegen's write lock of a generated tree (tree-lock.ts): the IDE's saves of generated files take the one `contract generate` takes. */
 /**
  * codegen's finishing of a rename killed half-way (rename-journal.ts: `contract rename` journals
- * its work in src-gen), run by Generate All and the rename, lock held, before the model is read;
- * the lines that say what it did (warnings included), none when there was no journal.
+ * its work in src-gen), run by Generate All and the rename, lock held, before the model is read:
+ * what it did (codegen's describeFinishedRename), or why the journal was left; nothing when there
+ * was no journal.
  */
-export async function finishInterruptedRename(projectDir: string, srcGen: string, shown: (path: string) => string): Promise<string[]> {
+export async function finishInterruptedRename(projectDir: string, srcGen: string, shown: (path: string) => string): Promise<JournalOutcome> {
   const codegen = await importWith<CodegenApi, 'finishInterruptedRename' | 'describeFinishedRename'>('@contract-studio/codegen', ['finishInterruptedRename', 'describeFinishedRename']);
   try {
     const done = await codegen.finishInterruptedRename(projectDir, srcGen);
-    return done ? codegen.describeFinishedRename(done, shown) : [];
+    return done ? { finished: codegen.describeFinishedRename(done, shown) } : {};
   } catch (e) {
-    return [`warning: ${(e as Error).message}`];
+    return { refused: (e as Error).message };
   }
+}
+
+/** What became of a rename journal found in src-gen: the rename finished, or the journal refused (why); neither when there was none. */
+export interface JournalOutcome {
+  finished?: FinishedRenameDescription;
+  refused?: string;
 }
 
 export async function loadTreeLock(): Promise<CodegenApi['lockTree']> {

@@ -17,5 +17,5 @@ export { STALE_TEMP_AGE_MS, removeStaleTemps } from './stale-temp.js';
 export { TREE_LOCK_NAME, LOCK_WAIT_MS, TreeLockedError, tryTreeLock, lockTree, lockTreeSync, TREE_WRITERS } from './tree-lock.js';
 export {
     RENAME_JOURNAL_NAME, writeRenameJournal, removeRenameJournal, finishInterruptedRename, describeFinishedRename, sha256, realOrSelf,
-    type RenameJournal, type RenameJournalFile, type FinishedRename,
+    type RenameJournal, type RenameJournalFile, type FinishedRename, type FinishedRenameDescription,
 } from './rename-journal.js';

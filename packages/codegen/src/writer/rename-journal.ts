@@ -193,10 +193,21 @@ export function realOrSelf(dir: string): string {
     }
 }
 
-/** The lines telling what finishInterruptedRename did, for a terminal or the IDE. */
-export function describeFinishedRename(done: FinishedRename, inProject: (path: string) => string): string[] {
-    const lines = [`finished the rename of ${done.kind} ${done.oldName} -> ${done.newName} that was interrupted (its journal ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME}): ${done.written.length} file(s) written, ${done.already.length} already renamed`];
-    for (const f of done.written) lines.push(`  ${inProject(f)}`);
-    for (const f of done.changed) lines.push(`warning: ${inProject(f)} changed since the rename began (or is gone): left as it is; rename ${done.oldName} there by hand`);
-    return lines;
+/** What finishInterruptedRename did, in words: each caller (a terminal, the IDE) lays it out its own way. */
+export interface FinishedRenameDescription {
+    /** What was finished, and how many files it wrote: one sentence. */
+    summary: string;
+    /** The project files given their renamed text, as the caller names them. */
+    written: string[];
+    /** One sentence per project file left as it was (changed since the rename began, or gone). */
+    warnings: string[];
+}
+
+/** Says what finishInterruptedRename did; `inProject` names a project file (relative path) for the reader. */
+export function describeFinishedRename(done: FinishedRename, inProject: (path: string) => string): FinishedRenameDescription {
+    return {
+        summary: `finished the rename of ${done.kind} ${done.oldName} -> ${done.newName} that was interrupted (its journal ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME}): ${done.written.length} file(s) written, ${done.already.length} already renamed`,
+        written: done.written.map(inProject),
+        warnings: done.changed.map((f) => `${inProject(f)} changed since the rename began (or is gone): left as it is; rename ${done.oldName} there by hand`),
+    };
 }
