@@ -1,15 +1,17 @@
 /**
- * End-to-end: F2 renames on the mobile robot (docs/ide.md, "Rename carry-over"). An enumeration's
- * rename moves its generated `common/Shared<Enum>.h` and rewrites its C names (the type,
- * `print_<Enum>`, the constants `<Enum>_<MEMBER>`) in the protected regions' code; a member's
- * rename its constant.
- * Every step waits on what it needs: the language server answering a rename at the cursor
- * (waitRenameLocation), the rename box focused, the files on disk, the toast.
+ * End-to-end: F2 renames on the mobile robot (docs/ide.md, "Rename carry-over"). A name the rename
+ * rules refuse says why on the page (a toast) and changes nothing; an enumeration's rename moves
+ * its generated `common/Shared<Enum>.h` and rewrites its C names (the type, `print_<Enum>`, the
+ * constants `<Enum>_<MEMBER>`) in the protected regions' code; a member's rename its constant.
+ * Every step waits on what it needs, never for a time: the language server answering a rename at
+ * the cursor (waitRenameLocation: before, F2 found nothing to rename and no rename box opened, the
+ * flaky part of the refused-rename test that ide.e2e.test had), the rename box focused, the toast
+ * (its 5 s on the page are enough: it is waited for from the moment Enter is pressed), the files.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
 import { existsSync, readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startSession, openIde, renameWithF2, MOBILE_ROBOT, type Session } from './harness.js';
+import { startSession, openIde, renameWithF2, activeValue, MOBILE_ROBOT, type Session } from './harness.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 
@@ -26,6 +28,15 @@ describe('F2 renames in the IDE', () => {
   afterAll(async () => {
     await s?.close();
   });
+
+  it('a rename the rules refuse (a supervisor named abc) says why in a toast, and changes nothing', async () => {
+    const { page } = s;
+    const before = disk('mission.contract');
+    await renameWithF2(page, 'mission.contract', 'supervisor MIS', 'supervisor '.length, 'abc');
+    await page.locator('.toast.warning', { hasText: "Rename refused: 'abc' is not a valid supervisor name" }).first().waitFor({ timeout: 15_000 });
+    expect(await activeValue(page)).toBe(before);
+    expect(disk('mission.contract')).toBe(before);
+  }, 60_000);
 
   it.skipIf(!canGenerate)('an enumeration: the .contract files, common/Shared<Enum>.h and its C names in the regions\' code follow; then a member', async () => {
     const { page } = s;
