@@ -63,9 +63,9 @@ export async function runCodegen(documents: WorkspaceDocument[], outDir: string)
  * codegen's carry-over of a renamed entity in a generated tree (paths and region IDs), the one
  * `contract rename` uses too (docs/codegen.md, "Renames").
  */
-export async function renameGeneratedEntity(srcGen: string, from: string, to: string): Promise<RenameGeneratedReport> {
+export async function renameGeneratedEntity(srcGen: string, from: string, to: string, kind?: string): Promise<RenameGeneratedReport> {
   const codegen = await importWith<CodegenApi, 'renameInGeneratedTree'>('@contract-studio/codegen', ['renameInGeneratedTree']);
-  return codegen.renameInGeneratedTree(srcGen, from, to);
+  return codegen.renameInGeneratedTree(srcGen, from, to, kind);
 }
 
 /**

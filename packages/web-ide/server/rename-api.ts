@@ -81,7 +81,7 @@ export async function renameEntity(paths: WorkspacePaths, treeLock: GeneratedTre
   try {
     return await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async () => {
       const srcGen = join(dir, SRC_GEN_DIR);
-      const moved = kind === undefined || GENERATED_NAME_KINDS.has(kind) ? await renameGeneratedEntity(srcGen, from, to) : { movedPaths: [], regionIds: [] };
+      const moved = kind === undefined || GENERATED_NAME_KINDS.has(kind) ? await renameGeneratedEntity(srcGen, from, to, kind) : { movedPaths: [], regionIds: [] };
       const code = kind !== undefined && USER_CODE_KINDS.has(kind) ? await renameInUserCode(srcGen, kind, from, to, owner, members) : { rewritten: [], remaining: [] };
       const scenarios: RenameEntityResponse['scenarios'] = [];
       const scenariosLeft: RenameEntityResponse['scenariosLeft'] = [];

@@ -117,7 +117,7 @@ export const renameCommand: Command = {
             // the generated tree first: if a target path is taken there, the .contract files stay as they were
             if (plan.generatedNames) {
                 try {
-                    const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName);
+                    const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName, plan.kind);
                     io.out(`${safeName(outLabel)}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
                     for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
                     for (const d of carried.descriptions) io.out(`${safeName(`${outLabel.replace(/\/+$/, '')}/${d.file}`)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);

@@ -36,6 +36,27 @@ describe('renameInGeneratedTree', () => {
         expect(report.regionIds).toEqual([{ file: 'generated/architecture/modules/MSK_mod/module.c', from: 'protect_init_MSC', to: 'protect_init_MSK' }]);
     });
 
+    it('an enumeration moves its Shared<Enum>.h only: no region ID (one whose role is its name: an enumeration named init), no module\'s folder of its name', async () => {
+        const root = scratch();
+        const common = join(root, 'generated', 'architecture', 'common');
+        const mod = join(root, 'generated', 'architecture', 'modules', 'CTL_mod');
+        mkdirSync(common, { recursive: true });
+        mkdirSync(mod, { recursive: true });
+        writeFileSync(join(common, 'Sharedinit.h'), 'typedef enum init { init_A = 0 } init;\n');
+        const body = '/*PROTECTED REGION ID(protect_init_CTL) ENABLED START*/\nmy_code();\n/*PROTECTED REGION END*/\n';
+        writeFileSync(join(mod, 'module.c'), body);
+        const report = await renameInGeneratedTree(root, 'init', 'Phase', 'enumeration');
+        expect(report.movedPaths).toEqual([{ from: 'generated/architecture/common/Sharedinit.h', to: 'generated/architecture/common/SharedPhase.h' }]);
+        expect(report.regionIds).toEqual([]);
+        expect(readFileSync(join(mod, 'module.c'), 'utf8')).toBe(body);
+        // an enumeration named like a module moves no file of the module's
+        expect(await renameInGeneratedTree(root, 'CTL', 'Ctl', 'enumeration')).toMatchObject({ movedPaths: [], regionIds: [] });
+        expect(existsSync(join(mod, 'module.c'))).toBe(true);
+        // the module itself (kind told, or not): its folder and IDs
+        expect((await renameInGeneratedTree(root, 'CTL', 'CTX', 'module')).regionIds).toHaveLength(1);
+        expect((await renameInGeneratedTree(root, 'CTX', 'CTY')).movedPaths).toEqual([{ from: 'generated/architecture/modules/CTX_mod', to: 'generated/architecture/modules/CTY_mod' }]);
+    });
+
     it('leaves orphans/ as it is: user code moved aside keeps the name and IDs of where it came from', async () => {
         const root = scratch();
         const orphan = join(root, 'orphans', 'generated', 'architecture', 'modules', 'MSC_mod');

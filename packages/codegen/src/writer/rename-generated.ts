@@ -44,26 +44,57 @@ export function renameRegionId(id: string, from: string, to: string): string {
         .join('');
 }
 
-/** File or folder names that carry an entity name in the generated tree (docs/codegen.md). */
-export function renameGeneratedName(name: string, from: string, to: string): string {
-    const patterns: Array<[string, string]> = [
-        [`${from}_mod`, `${to}_mod`],
-        [`control${from}.c`, `control${to}.c`],
-        [`makecontrol${from}`, `makecontrol${to}`],
-        [`Shared${from}.h`, `Shared${to}.h`],
-        [`SharedFunction${from}.h`, `SharedFunction${to}.h`],
-    ];
-    for (const [a, b] of patterns) if (name === a) return b;
+/** The file and folder names an entity of each kind gives the generated tree (docs/codegen.md). */
+const GENERATED_NAMES: Record<string, Array<(name: string) => string>> = {
+    module: [(n) => `${n}_mod`, (n) => `control${n}.c`, (n) => `makecontrol${n}`],
+    supervisor: [(n) => `${n}_mod`, (n) => `control${n}.c`, (n) => `makecontrol${n}`],
+    datatype: [(n) => `Shared${n}.h`],
+    enumeration: [(n) => `Shared${n}.h`],
+    function: [(n) => `SharedFunction${n}.h`],
+};
+
+/**
+ * A file or folder name renamed when it carries the entity's name in the generated tree: only the
+ * names an entity of `kind` gives (an enumeration named like a module does not move the module's
+ * folder); any kind's when the kind is not known.
+ */
+export function renameGeneratedName(name: string, from: string, to: string, kind?: string): string {
+    const patterns = (kind !== undefined ? GENERATED_NAMES[kind] : undefined) ?? Object.values(GENERATED_NAMES).flat();
+    for (const pattern of patterns) if (name === pattern(from)) return pattern(to);
     return name;
 }
 
+/** One carry-over: the names, and how it renames a generated file's or folder's name and a region ID. */
+interface Carry {
+    from: string;
+    to: string;
+    renameName(name: string): string;
+    renameId(id: string): string;
+}
+
 /**
- * Carries a renamed entity (module, supervisor, datatype or function) over in the generated tree
- * `srcGen` (a missing folder is nothing to carry). Refuses invalid names, and a target path that
- * already exists (nothing is overwritten). The manifest follows the moved paths and IDs.
+ * Whether the protected-region IDs of the generated tree name an entity of `kind` (the language's
+ * word; undefined: an entity of unknown kind, whose IDs are renamed). An enumeration's are not: its
+ * `Shared<Enum>.h` has no region, and an enumeration may be named like a region's role (`init`,
+ * `exec`) that is no part of its name.
  */
-export async function renameInGeneratedTree(srcGen: string, from: string, to: string): Promise<RenameGeneratedReport> {
+function regionIdsName(kind: string | undefined): boolean {
+    return kind !== 'enumeration';
+}
+
+/**
+ * Carries a renamed entity (module, supervisor, datatype, enumeration or function; `kind`, the
+ * language's word for it, when known) over in the generated tree `srcGen` (a missing folder is
+ * nothing to carry). Refuses invalid names, and a target path that already exists (nothing is
+ * overwritten). The manifest follows the moved paths and IDs.
+ */
+export async function renameInGeneratedTree(srcGen: string, from: string, to: string, kind?: string): Promise<RenameGeneratedReport> {
     if (!ENTITY_NAME.test(from) || !ENTITY_NAME.test(to)) throw new Error(`invalid entity name: ${from} -> ${to}`);
+    const carry: Carry = {
+        from, to,
+        renameName: (name) => renameGeneratedName(name, from, to, kind),
+        renameId: regionIdsName(kind) ? (id) => renameRegionId(id, from, to) : (id) => id,
+    };
     const report: RenameGeneratedReport = { movedPaths: [], rewrittenFiles: [], regionIds: [], descriptions: [] };
     // the generator's rules (docs/codegen.md, "What generate refuses"): src-gen is a real folder
     // holding no symlink; checked before anything moves, so that a refusal changes nothing
@@ -74,10 +105,10 @@ export async function renameInGeneratedTree(srcGen: string, from: string, to: st
         const loaded = loadManifest(tree); // before anything moves: the recorded skeletons are of the files as they were
         const carries = new Map<string, FileCarry>();
         // every target checked before anything moves: a refusal leaves the tree as it was
-        const conflict = firstConflict(tree, '', from, to);
+        const conflict = firstConflict(tree, '', carry);
         if (conflict) throw new Error(`cannot carry ${conflict.path} over: ${conflict.taken} already exists`);
-        walk(tree, '', from, to, report, carries);
-        carryManifest(tree, loaded, from, to, report, carries);
+        walk(tree, '', carry, report, carries);
+        carryManifest(tree, loaded, carry, report, carries);
     } finally {
         tree.close();
     }
@@ -99,14 +130,14 @@ function firstLink(abs: string, rel: string): string | undefined {
 }
 
 /** The first entry under folder `rel` whose renamed name is taken beside it (walk's order), or undefined. */
-function firstConflict(tree: OutputTree, rel: string, from: string, to: string): { path: string; taken: string } | undefined {
+function firstConflict(tree: OutputTree, rel: string, carry: Carry): { path: string; taken: string } | undefined {
     for (const e of tree.list(rel) ?? []) {
         if (rel === '' && e.name === ORPHANS_DIR) continue;
         const childRel = rel ? `${rel}/${e.name}` : e.name;
-        const newName = renameGeneratedName(e.name, from, to);
+        const newName = carry.renameName(e.name);
         if (newName !== e.name && tree.stat(rel ? `${rel}/${newName}` : newName)) return { path: childRel, taken: newName };
         if (e.isDirectory()) {
-            const inner = firstConflict(tree, childRel, from, to);
+            const inner = firstConflict(tree, childRel, carry);
             if (inner) return inner;
         }
     }
@@ -114,11 +145,11 @@ function firstConflict(tree: OutputTree, rel: string, from: string, to: string):
 }
 
 /** Renames and rewrites under folder `rel` of the tree; every entry is reached from opened folders (output-tree.ts). */
-function walk(tree: OutputTree, rel: string, from: string, to: string, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
+function walk(tree: OutputTree, rel: string, carry: Carry, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
     for (const e of tree.list(rel) ?? []) {
         // orphans are user code as it was moved aside, named for where it came from: never carried over
         if (rel === '' && e.name === ORPHANS_DIR) continue;
-        const newName = renameGeneratedName(e.name, from, to);
+        const newName = carry.renameName(e.name);
         let childRel = rel ? `${rel}/${e.name}` : e.name;
         if (newName !== e.name) {
             const newRel = rel ? `${rel}/${newName}` : newName;
@@ -127,22 +158,22 @@ function walk(tree: OutputTree, rel: string, from: string, to: string, report: R
             report.movedPaths.push({ from: childRel, to: newRel });
             childRel = newRel;
         }
-        if (e.isDirectory()) walk(tree, childRel, from, to, report, carries);
-        else if (e.isFile()) rewriteRegions(tree, childRel, from, to, report, carries);
+        if (e.isDirectory()) walk(tree, childRel, carry, report, carries);
+        else if (e.isFile()) rewriteRegions(tree, childRel, carry, report, carries);
     }
 }
 
 /** The generated default of a module's description region (module-source.ts), for module `name`. */
 const DEFAULT_DESCRIPTION = /^"(synchronous|asynchronous) module ([A-Za-z][A-Za-z0-9_]*)"$/;
 
-function rewriteRegions(tree: OutputTree, rel: string, from: string, to: string, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
+function rewriteRegions(tree: OutputTree, rel: string, { from, to, renameId }: Carry, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
     if (!/\.(c|h)$/.test(rel)) return;
     const text = tree.read(rel);
     if (text === undefined || !text.includes('PROTECTED')) return;
     let changed = false;
     let next = text.replace(START_MARKER, (all: string, rawId: string) => {
         const id = rawId.trim();
-        const renamed = renameRegionId(id, from, to);
+        const renamed = renameId(id);
         if (renamed === id) return all;
         changed = true;
         report.regionIds.push({ file: rel, from: id, to: renamed });
@@ -178,19 +209,19 @@ function rewriteRegions(tree: OutputTree, rel: string, from: string, to: string,
  * rewritten file's (the carry-over is no edit outside the regions); one that did not match stays
  * (the user's edit outside the regions is still reported at the next generation).
  */
-function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to: string, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
+function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renameName, renameId }: Carry, report: RenameGeneratedReport, carries: Map<string, FileCarry>): void {
     if (!loaded.manifest) return;
     // each component as walk() renames it (not only the paths this walk moved): a carry-over killed
     // after moving the folders but before writing the manifest is finished by running it again
     const movePath = (path: string): string => {
         const parts = path.split('/');
         if (parts[0] === ORPHANS_DIR) return path;
-        return parts.map((part) => renameGeneratedName(part, from, to)).join('/');
+        return parts.map(renameName).join('/');
     };
     let changed = report.movedPaths.length > 0 || report.regionIds.length > 0;
     for (const [path, regions] of loaded.manifest.files) {
         if (changed) break;
-        changed = movePath(path) !== path || Object.keys(regions).some((id) => renameRegionId(id, from, to) !== id);
+        changed = movePath(path) !== path || Object.keys(regions).some((id) => renameId(id) !== id);
     }
     if (!changed) return;
     const files = new Map<string, Record<string, string>>();
@@ -201,7 +232,7 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to:
         const carry = carries.get(moved);
         const ids: Record<string, string> = {};
         for (const [id, hash] of Object.entries(regions)) {
-            const renamed = renameRegionId(id, from, to);
+            const renamed = renameId(id);
             const content = carry?.contents.get(renamed);
             ids[renamed] = content && content[0] === hash ? content[1] : hash;
         }
@@ -210,7 +241,7 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, from: string, to:
         if (skeleton === undefined) continue;
         // a file this walk did not rewrite, though its IDs name the entity: rewritten by a carry-over
         // that was killed before the manifest (rename-journal.ts), followed as if rewritten now
-        const earlier = carry === undefined && Object.keys(regions).some((id) => renameRegionId(id, from, to) !== id) ? carriedEarlier(tree, moved, skeleton, from, to) : undefined;
+        const earlier = carry === undefined && Object.keys(regions).some((id) => renameId(id) !== id) ? carriedEarlier(tree, moved, skeleton, from, to) : undefined;
         const followed = carry !== undefined && carry.skeletonBefore === skeleton && carry.skeletonAfter !== undefined;
         skeletons.set(moved, followed ? carry.skeletonAfter! : earlier?.skeleton ?? skeleton);
         // line hashes name the region IDs: they follow with the hash, or (an edit outside the

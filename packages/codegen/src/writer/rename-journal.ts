@@ -157,7 +157,7 @@ export async function finishInterruptedRename(projectDir: string, srcGen: string
         throw new Error(`${RENAME_JOURNAL_NAME} in this output folder journals a rename of ${journal.project ?? 'the project whose src-gen it was'}, not of ${projectDir}: nothing was changed; run contract generate on that project with this output folder, or remove it`);
     }
     try {
-        if (journal.generatedNames) await renameInGeneratedTree(srcGen, journal.oldName, journal.newName);
+        if (journal.generatedNames) await renameInGeneratedTree(srcGen, journal.oldName, journal.newName, journal.kind);
         if (journal.identifiers.length > 0) renameIdentifiersInGeneratedTree(srcGen, new Map(journal.identifiers), journal.identifierOwner);
     } catch (e) {
         throw new Error(`the rename of ${journal.kind} ${journal.oldName} -> ${journal.newName} in ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME} cannot be finished: ${(e as Error).message}; nothing was changed; remove the journal to go on (the tree keeps what the killed rename moved)`);
