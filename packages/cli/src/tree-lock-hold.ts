@@ -20,9 +20,9 @@ import { safeName } from './terminal-text.js';
  */
 export async function holdTreeLock(out: string, shownAs: string, io: CliIO, project?: { dir: string; label: string }): Promise<() => void> {
     if (!lstatSync(out, { throwIfNoEntry: false })?.isDirectory()) return () => {};
-    const { lockTree, finishInterruptedRename, describeFinishedRename } = await import('@contract-studio/codegen');
+    const { lockTree, finishInterruptedRename, describeFinishedRename, TREE_WRITERS } = await import('@contract-studio/codegen');
     const release = await lockTree(out, shownAs, undefined, (holder) => {
-        io.err(`waiting for the other writer of ${safeName(shownAs)}${holder !== undefined ? ` (pid ${holder}: a contract generate or rename, or the IDE server)` : ''} to finish ...\n`);
+        io.err(`waiting for the other writer of ${safeName(shownAs)}${holder !== undefined ? ` (pid ${holder}: ${TREE_WRITERS})` : ''} to finish ...\n`);
     });
     if (project === undefined) return release;
     try {
