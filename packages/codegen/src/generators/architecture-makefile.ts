@@ -14,7 +14,9 @@ export function defaultStart(arch: Architecture): string {
 
 /**
  * `architecture/Makefile` (Seam 3, Seam 5): all | clean | run | kill. Every executable is its own
- * target so that `make -j` builds them in parallel; the runtime is built once, first.
+ * target so that `make -j` builds them in parallel; the runtime is built once, first. Every
+ * recursive make names its makefile (`-f Makefile`): a `GNUmakefile` or `makefile` put beside a
+ * generated Makefile, which make would read first, is never the build (docs/codegen.md).
  */
 export function generateArchitectureMakefile(arch: Architecture, executables: string[]): string {
     const node = expandToNode`
@@ -47,12 +49,12 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         all: $(EXECUTABLES) tools
 
         runtime:
-        	$(MAKE) -C $(RUNTIME) build/libmodule.a build/contract-launch
+        	$(MAKE) -C $(RUNTIME) -f Makefile build/libmodule.a build/contract-launch
 
-        ${joinToNode(executables, (e) => `${e}: runtime\n\t$(MAKE) -C modules/${e}_mod CONTRACT_RUNTIME=$(RUNTIME)`, { appendNewLineIfNotEmpty: true, separator: '\n' })}
+        ${joinToNode(executables, (e) => `${e}: runtime\n\t$(MAKE) -C modules/${e}_mod -f Makefile CONTRACT_RUNTIME=$(RUNTIME)`, { appendNewLineIfNotEmpty: true, separator: '\n' })}
 
         tools: runtime
-        	$(MAKE) -C tools CONTRACT_RUNTIME=$(RUNTIME)
+        	$(MAKE) -C tools -f Makefile CONTRACT_RUNTIME=$(RUNTIME)
 
         run: all
         	@if ls '$(LOG_DIR)'/*.csv >/dev/null 2>&1; then \\
@@ -66,8 +68,8 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	$(LAUNCH) --kill '$(RUN_DIR)'
 
         clean:
-        	${joinToNode(executables, (e) => `$(MAKE) -C modules/${e}_mod clean`, { separator: '\n\t' })}
-        	$(MAKE) -C tools clean
+        	${joinToNode(executables, (e) => `$(MAKE) -C modules/${e}_mod -f Makefile clean`, { separator: '\n\t' })}
+        	$(MAKE) -C tools -f Makefile clean
     `;
     return toString(node) + '\n';
 }

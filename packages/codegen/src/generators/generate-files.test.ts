@@ -89,4 +89,12 @@ describe('generateFiles on the report example', () => {
     it('names the default START after the top supervisor', () => {
         expect(byPath().get('generated/architecture/Makefile')).toContain('START ?= GLB.mission()');
     });
+
+    it('names the makefile of every recursive make (-f), so a GNUmakefile or makefile beside a generated Makefile is never read', () => {
+        const makes = [...byPath().entries()]
+            .filter(([path]) => /(^|\/)(Makefile|makecontrol\w+)$/.test(path))
+            .flatMap(([path, text]) => text.split('\n').filter((line) => line.includes('$(MAKE)')).map((line) => `${path}: ${line.trim()}`));
+        expect(makes.length).toBeGreaterThan(10);
+        for (const line of makes) expect(line).toMatch(/\$\(MAKE\) (-C \S+ )?-f (Makefile|makecontrol\w+)( |$)/);
+    });
 });
