@@ -18,7 +18,7 @@ import type { CactalProblem } from './cactal-adapter.js';
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
-import { makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
+import { generatedMakefileArgs, makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
@@ -391,7 +391,10 @@ export class Job {
       // make's directories through them; -k: every module is compiled, so one build reports the
       // errors of all (with -j, which modules a first error stops would be timing); a plain
       // Makefile project builds as its author wrote it
-      const make = ['make', '-C', dir, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'];
+      // a generated tree is built by its generated Makefile, named (-f): never by a GNUmakefile or
+      // makefile beside it, which make would read first (foreign-makefiles.ts)
+      const makefile = generatedMakefileArgs(this.request.kind);
+      const make = ['make', '-C', dir, ...makefile, 'all', ...vars, 'EXTRA_CFLAGS=-fdiagnostics-format=json'];
       const parallel = this.request.kind === 'cactal';
       const parallelMake = ['make', '-k', `-j${buildJobs(this.request.limits)}`, '--output-sync=recurse', ...make.slice(1)];
       const argv = parallel ? ['sh', '-c', 'exec "$@" 2>&1', 'sh', ...parallelMake] : make;
@@ -462,7 +465,7 @@ export class Job {
           ...(logMaxBytes !== null ? { CONTRACT_LOG_MAX_BYTES: String(logMaxBytes) } : {}),
           ...(tail ? { CONTRACT_LOG_MARK: '1' } : {}),
         };
-        run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
+        run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, ...makefile, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
           const routed = routeRunLine(line);
           if (routed.source === 'run') {
             const failed = makeRecipeStatus(routed.line);

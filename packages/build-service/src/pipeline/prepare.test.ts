@@ -160,6 +160,26 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(existsSync(join(ws.workDir, 'src-gen', 'generated', 'big-program'))).toBe(false);
   }, 120_000);
 
+  it('refuses, naming them, a GNUmakefile or makefile in the generated tree (make would read it instead of the generated Makefile: PWNED, "ok")', async () => {
+    const arch = 'src-gen/generated/architecture';
+    const dir = project();
+    writeFileSync(join(dir, arch, 'GNUmakefile'), 'all: ; echo PWNED\nrun: ; echo PWNED\n');
+    writeFileSync(join(dir, arch, 'modules/MSC_mod/makefile'), 'all: ; echo PWNED\n');
+    const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
+    const said = (named: string) => `${named}: a makefile in the generated tree that is not the generated one (GNU make would read it instead of the generated Makefile, and its recipes would be the build); a Cactal build runs only the generated Makefiles: remove it, or rename it (the generated Makefiles never read it); nothing was built`;
+    expect(await refusal({ dir })).toBe(said(`${arch}/GNUmakefile, ${arch}/modules/MSC_mod/makefile`));
+    const files: Record<string, string> = {};
+    for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) files[f] = readFileSync(join(TUTORIAL, f), 'utf8');
+    expect(await refusal({ files: { ...files, [`${arch}/tools/GNUmakefile`]: 'all: ; echo PWNED\n' } })).toBe(said(`${arch}/tools/GNUmakefile`));
+    // a makefile of the user's outside the generated tree, or a file make never reads by itself (*.mk), is no build
+    rmSync(join(dir, arch, 'GNUmakefile'));
+    rmSync(join(dir, arch, 'modules/MSC_mod/makefile'));
+    writeFileSync(join(dir, 'GNUmakefile'), 'all: ; echo mine\n');
+    writeFileSync(join(dir, arch, 'extra.mk'), 'all: ; echo PWNED\n');
+    const ws = await prepare(dir);
+    expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
+  }, 120_000);
+
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
     const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
     const empty = mkdtempSync(join(base, 'empty-'));

@@ -11,6 +11,7 @@ import { LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
+import { foreignMakefiles, foreignMakefilesMessage } from './foreign-makefiles.js';
 import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
@@ -31,6 +32,14 @@ export function treeRoot(kind: ProjectKind): string {
 
 export function makeDir(kind: ProjectKind): string {
   return kind === 'cactal' ? SRC_GEN_ARCHITECTURE_DIR : '';
+}
+
+/**
+ * make's arguments naming the makefile of the folder it runs in: a generated tree's own `Makefile`
+ * (its recursive makes name theirs too); a plain Makefile project's make chooses as it always does.
+ */
+export function generatedMakefileArgs(kind: ProjectKind): string[] {
+  return kind === 'cactal' ? ['-f', 'Makefile'] : [];
 }
 
 export interface PrepareOutcome {
@@ -122,7 +131,11 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
       add(rel, data);
     }
   }
-  if (kind === 'cactal') checkProjectFolder([...wanted.keys()], nestedTrees);
+  if (kind === 'cactal') {
+    checkProjectFolder([...wanted.keys()], nestedTrees);
+    const foreign = foreignMakefiles(wanted.keys());
+    if (foreign.length) throw new PrepareError(foreignMakefilesMessage(foreign));
+  }
   const hash = createHash('sha256').update(kind);
   for (const rel of [...wanted.keys()].sort()) hash.update('\0').update(rel).update('\0').update(wanted.get(rel)!);
   return { wanted, digest: hash.digest('hex') };
