@@ -54,6 +54,16 @@ export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
  * spends on it (docs/sandbox.md, "Limits"; docs/build-service-api.md, POST /api/jobs).
  */
 export interface ServiceBounds {
+  /** Bytes of one line of a step's output; a longer line is split (outputs of a sandbox, util/line-splitter.ts). */
+  outputLineBytes: number;
+  /**
+   * Bytes of one line of gcc's JSON diagnostics (a line that begins as gcc's does: `[{"kind"`), in
+   * place of outputLineBytes: gcc writes a compilation's diagnostics as one line, about 400 bytes
+   * each (gcc 12, a `#warning`), so that diagnosticsPerJsonLine of them fit with room for their
+   * notes. A longer one (or one the stream's outputBytesPerStream cuts) is read up to its last
+   * complete diagnostic, errors first, and the cut is said (pipeline/gcc-json-salvage.ts).
+   */
+  gccJsonLineBytes: number;
   /** Characters of one output line looked at by the diagnostic/tag parsers (the rest is cut with a marker). */
   parsedLineChars: number;
   /** Characters kept of a diagnostic's message, file or option (the rest is cut with a marker). */
@@ -62,7 +72,11 @@ export interface ServiceBounds {
   diagnosticsPerJsonLine: number;
   /** Nesting of `children` in a gcc JSON diagnostic; deeper: the line stays plain text. */
   diagnosticDepth: number;
-  /** `children` (and `locations`) of one gcc JSON diagnostic; more: the line stays plain text. */
+  /**
+   * `children` (and `locations`) of one gcc JSON diagnostic; more: the line stays plain text. As
+   * many as diagnosticsPerJsonLine: gcc 12 puts a compilation's preprocessor diagnostics (`#warning`)
+   * and the errors after them in the first one's `children`.
+   */
   diagnosticChildren: number;
   /** Entries of a run's logs/ and run/ looked at when collecting artifacts; the rest are not listed. */
   listedEntries: number;
@@ -145,11 +159,13 @@ export interface ServiceBounds {
 }
 
 export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
+  outputLineBytes: 64 * 1024,
+  gccJsonLineBytes: 1024 * 1024,
   parsedLineChars: 8192,
   diagnosticTextChars: 4096,
   diagnosticsPerJsonLine: 1000,
   diagnosticDepth: 8,
-  diagnosticChildren: 256,
+  diagnosticChildren: 1000,
   listedEntries: 1024,
   requestBodyBytes: 80 * 1024 * 1024,
   requestBodiesAtOnce: 2,

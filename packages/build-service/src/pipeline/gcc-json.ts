@@ -8,6 +8,7 @@
 import { z } from 'zod';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { located, severityOf, type DiagnosticContext, type GccDiagnostic } from './gcc-diagnostics.js';
+import { completeDiagnosticsPrefix } from './gcc-json-salvage.js';
 
 const text = z.string().max(SERVICE_BOUNDS.diagnosticTextChars);
 /** Line and column numbers: non-negative integers of a plausible size. */
@@ -63,15 +64,49 @@ export function looksLikeGccJson(line: string): boolean {
   return /^\[\s*(\]|\{\s*"kind")/.test(line.slice(0, 64));
 }
 
-/** Parses one line of gcc JSON diagnostics; null when it is not valid JSON of the declared shape. */
-export function parseGccJsonLine(line: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
+/**
+ * A compilation's diagnostics as they are reported: a child that is no note (gcc 12 puts every
+ * preprocessor diagnostic of a compilation, `#warning` or `#error`, and the errors after them, in
+ * the first one's `children`) is a diagnostic of its own, so that an error is counted as one
+ * wherever gcc nested it; the errors come first (the job keeps diagnosticsPerJob of them: a
+ * compilation's hundreds of warnings must not push its error out), each in gcc's order.
+ */
+function asReported(diagnostics: GccDiagnostic[]): GccDiagnostic[] {
+  const out: GccDiagnostic[] = [];
+  const add = (d: GccDiagnostic): void => {
+    const own = d.children.filter((c) => c.severity !== 'note');
+    out.push(own.length ? { ...d, children: d.children.filter((c) => c.severity === 'note') } : d);
+    for (const c of own) add(c);
+  };
+  for (const d of diagnostics) add(d);
+  return [...out.filter((d) => d.severity === 'error'), ...out.filter((d) => d.severity !== 'error')];
+}
+
+function parseDiagnostics(text: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
   let data: unknown;
   try {
-    data = JSON.parse(line);
+    data = JSON.parse(text);
   } catch {
     return null;
   }
   const parsed = GCC_JSON_LINE.safeParse(data);
   if (!parsed.success) return null;
-  return parsed.data.map((d) => fromJson(d, ctx));
+  return asReported(parsed.data.map((d) => fromJson(d, ctx)));
+}
+
+/** Parses one line of gcc JSON diagnostics; null when it is not valid JSON of the declared shape. */
+export function parseGccJsonLine(line: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
+  return parseDiagnostics(line, ctx);
+}
+
+/**
+ * The complete diagnostics of a gcc JSON line that was cut (gcc-json-salvage.ts), with the number
+ * of characters they were read from; null when none of it is a complete diagnostic of the declared
+ * shape. The caller says the cut: what followed is lost.
+ */
+export function parseCutGccJsonLine(line: string, ctx: DiagnosticContext): { diagnostics: GccDiagnostic[]; readChars: number } | null {
+  const prefix = completeDiagnosticsPrefix(line);
+  if (prefix === null) return null;
+  const diagnostics = parseDiagnostics(prefix, ctx);
+  return diagnostics?.length ? { diagnostics, readChars: prefix.length } : null;
 }

@@ -10,6 +10,7 @@ import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, lo
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { workDiskState } from '../sandbox/work-disk.js';
 import { LineSplitter } from '../util/line-splitter.js';
+import { looksLikeGccJson } from './gcc-json.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
 import { hostWorkTreeDigest } from './work-tree-digest.js';
 import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
@@ -409,6 +410,11 @@ export class Job {
       const build = await this.runStep(ctx.sandbox, ws, runtimeDir, 'build', argv, this.request.limits.buildSeconds, (line, stream) => {
         const routed = router.route(line, stream);
         for (const d of routed.diagnostics) this.addDiagnostic(d);
+        if (routed.cut) {
+          // said among the job's warnings and in its log, before the diagnostics read from the line
+          this.warnings.push(routed.cut);
+          this.system('build', `warning: ${routed.cut}`);
+        }
         return routed.lines;
       }, {}, parallel ? `${parallelMake.join(' ')} 2>&1` : undefined);
       // what this build step left (it ended by itself) is what the next job may build on
@@ -766,6 +772,8 @@ export class Job {
       new Promise((resolve) => {
         const splitter = new LineSplitter({
           maxBytes: this.request.limits.outputBytesPerStream,
+          // a build's gcc JSON line (a compilation's diagnostics, one line) has a bound of its own
+          ...(step === 'build' ? { longLine: { maxBytes: SERVICE_BOUNDS.gccJsonLineBytes, begins: looksLikeGccJson } } : {}),
           onLine: (line) => {
             if (this.fault) return; // the job is being stopped: its output is only drained
             note(line);

@@ -7,7 +7,7 @@
 import { posix } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
-import { looksLikeGccJson, parseGccJsonLine } from './gcc-json.js';
+import { looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
 import { parseAssemblerLine } from './as-text.js';
@@ -43,8 +43,11 @@ export class BuildOutputRouter {
     return this.dirs[this.dirs.length - 1] ?? this.options.startDir;
   }
 
-  /** Returns the lines to log and the diagnostics found in one output line. */
-  route(line: string, stream: 'stdout' | 'stderr'): { lines: RoutedLine[]; diagnostics: GccDiagnostic[] } {
+  /**
+   * Returns the lines to log and the diagnostics found in one output line; `cut` says when they
+   * were read from a gcc JSON line that was cut (the job's warning), what followed being lost.
+   */
+  route(line: string, stream: 'stdout' | 'stderr'): { lines: RoutedLine[]; diagnostics: GccDiagnostic[]; cut?: string } {
     // untrusted text: no regular expression sees more than the parsed-line bound (docs/sandbox.md)
     const head = line.length > SERVICE_BOUNDS.parsedLineChars ? line.slice(0, SERVICE_BOUNDS.parsedLineChars) : line;
     const entering = makeEnteringDirectory(head);
@@ -53,9 +56,12 @@ export class BuildOutputRouter {
     const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions, ...(this.options.userCopies ? { userCopies: this.options.userCopies } : {}) };
     if ((stream === 'stderr' || this.options.diagnosticsOnStdout) && looksLikeGccJson(line)) {
       const diags = parseGccJsonLine(line, ctx);
-      if (diags) {
-        const lines = diags.flatMap((d) => [d, ...d.children]).map((d) => ({ source: 'build', line: renderDiagnostic(d) }));
-        return { lines, diagnostics: diags };
+      if (diags) return { lines: rendered(diags), diagnostics: diags };
+      // a compilation's line that an output bound cut (it does not close): its complete diagnostics
+      const cut = parseCutGccJsonLine(line, ctx);
+      if (cut) {
+        const said = gccJsonCutMessage(line.length, cut.readChars, cut.diagnostics);
+        return { lines: rendered(cut.diagnostics), diagnostics: cut.diagnostics, cut: said };
       }
     }
     const text = parseGccTextLine(line, ctx);
@@ -67,6 +73,19 @@ export class BuildOutputRouter {
     if (!d || !this.linkErrors.first(renderDiagnostic(d))) return { lines: [{ source: 'build', line }], diagnostics: [] };
     return { lines: [{ source: 'build', line }], diagnostics: [d] };
   }
+}
+
+/** The log lines of a compilation's diagnostics: each, then its notes. */
+function rendered(diags: GccDiagnostic[]): RoutedLine[] {
+  return diags.flatMap((d) => [d, ...d.children]).map((d) => ({ source: 'build', line: renderDiagnostic(d) }));
+}
+
+/** What a build says of a gcc JSON line that was cut: how much of it was read, what is lost. */
+export function gccJsonCutMessage(lineChars: number, readChars: number, diags: readonly GccDiagnostic[]): string {
+  const errors = diags.filter((d) => d.severity === 'error').length;
+  return `a line of gcc's JSON diagnostics (one compilation's) was cut after ${lineChars} characters by an output bound `
+    + `(gccJsonLineBytes ${SERVICE_BOUNDS.gccJsonLineBytes} bytes, or the step's outputBytesPerStream): its first ${diags.length} complete `
+    + `diagnostic(s) (${errors} error(s)) were read from its first ${readChars} characters, those after them are lost`;
 }
 
 // only a bounded prefix is matched; the rest is sliced off, so a module line holding a bare CR

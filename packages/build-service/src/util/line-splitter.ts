@@ -1,18 +1,26 @@
+import { SERVICE_BOUNDS } from '../limits.js';
+
 /**
  * Splits a byte stream into text lines, keeps at most `maxBytes` bytes of it (then reports the
  * truncation once and drops the rest while still draining the stream, so the writer never blocks;
  * the line the bound cuts ends with CUT_LINE).
- * A line is emitted without its newline; a line longer than `maxLineBytes` is split.
+ * A line is emitted without its newline; a line longer than `maxLineBytes` is split, or than
+ * `longLine.maxBytes` when its beginning is one `longLine.begins` takes (gcc's JSON diagnostics).
  */
 export interface LineSplitterOptions {
   maxBytes: number;
   maxLineBytes?: number;
+  /** Lines allowed a bound of their own, told by their first LONG_LINE_HEAD_BYTES bytes. */
+  longLine?: { maxBytes: number; begins(head: string): boolean };
   onLine(line: string): void;
   onTruncated(keptBytes: number): void;
 }
 
 /** What ends the line that the byte bound cut (its first part, kept). */
 export const CUT_LINE = ' [cut here: the output limit]';
+
+/** Bytes of a line's beginning that `longLine.begins` is given. */
+export const LONG_LINE_HEAD_BYTES = 64;
 
 export class LineSplitter {
   private pending: Buffer[] = [];
@@ -21,9 +29,11 @@ export class LineSplitter {
   private droppedBytes = 0;
   private truncated = false;
   private readonly maxLineBytes: number;
+  /** The bound of the line being read, once it went past maxLineBytes (0: not decided yet). */
+  private lineBound = 0;
 
   constructor(private readonly options: LineSplitterOptions) {
-    this.maxLineBytes = options.maxLineBytes ?? 64 * 1024;
+    this.maxLineBytes = options.maxLineBytes ?? SERVICE_BOUNDS.outputLineBytes;
   }
 
   get wasTruncated(): boolean {
@@ -68,8 +78,15 @@ export class LineSplitter {
 
   private appendPending(part: Buffer): void {
     let rest = part;
-    while (this.pendingBytes + rest.length > this.maxLineBytes) {
-      const take = this.maxLineBytes - this.pendingBytes;
+    while (this.pendingBytes + rest.length > (this.lineBound || this.maxLineBytes)) {
+      if (!this.lineBound) {
+        // decided once per line, when it first goes past the common bound
+        const long = this.options.longLine;
+        const head = Buffer.concat([...this.pending, rest.subarray(0, LONG_LINE_HEAD_BYTES)]).subarray(0, LONG_LINE_HEAD_BYTES).toString('utf8');
+        this.lineBound = long && long.maxBytes > this.maxLineBytes && long.begins(head) ? long.maxBytes : this.maxLineBytes;
+        continue;
+      }
+      const take = this.lineBound - this.pendingBytes;
       this.pending.push(rest.subarray(0, take));
       this.pendingBytes += take;
       this.flushPending();
@@ -85,6 +102,7 @@ export class LineSplitter {
     const buf = Buffer.concat(this.pending, this.pendingBytes);
     this.pending = [];
     this.pendingBytes = 0;
+    this.lineBound = 0;
     let text = buf.toString('utf8');
     if (text.endsWith('\r')) text = text.slice(0, -1);
     this.options.onLine(text + suffix);

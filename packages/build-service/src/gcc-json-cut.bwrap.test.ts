@@ -1,0 +1,59 @@
+/**
+ * A compilation with hundreds of diagnostics, built for real in bwrap (the field tester's
+ * `diag200.c`): 200 `#warning`s and one real error in MAA's protected region. gcc writes them as one
+ * JSON line of ~80 KB, past the common 64 KiB line bound: the line was cut, did not parse, and the
+ * error vanished ("no compiler or linker error was reported", no diagnostics). The line now has its
+ * own bound (gccJsonLineBytes) and the error is reported at its place; a line an output bound still
+ * cuts (a lowered outputBytesPerStream here) gives its complete diagnostics, errors first, and the
+ * cut is said among the job's warnings and in its log.
+ */
+import { describe, expect, test } from 'vitest';
+import type { LineEvent } from './pipeline/job-events.js';
+import { useBuildServer } from './test-support/build-server.js';
+import { getJob, postJob, readEvents } from './test-support/client.js';
+import { MAA_MODULE, tutorialFiles, withRegion } from './test-support/tutorial.js';
+
+const served = useBuildServer({ concurrency: 1, sandbox: 'bwrap', log: () => {} }, { timeoutMs: 240_000 });
+
+const ERROR_LINE = 'int bad = undeclared_symbol_x;';
+const warnings = (from: number, n: number): string[] => Array.from({ length: n }, (_, i) => `#warning "w${from + i}"`);
+
+async function build(code: string[], limits: Record<string, number> = {}): Promise<{ job: Record<string, any>; lines: LineEvent[]; errorLine: number }> {
+  const files = withRegion(await tutorialFiles(), MAA_MODULE, 'protect_additional_import_MAA', code.join('\n'), true); // the region's own code kept
+  // lines are counted from 1
+  const errorLine = files[MAA_MODULE]!.split('\n').indexOf(ERROR_LINE) + 1;
+  const r = await postJob(served.url, { action: 'build', project: { files }, limits });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const events = await readEvents(served.url, r.json.id as string);
+  return { job: await getJob(served.url, r.json.id as string), lines: events.filter((e): e is LineEvent => e.type === 'line'), errorLine };
+}
+
+const theError = (line: number) => ({
+  severity: 'error',
+  file: 'generated/architecture/modules/MAA_mod/module.c',
+  line,
+  column: 11,
+  message: expect.stringContaining('undeclared_symbol_x'),
+  protectedRegion: expect.objectContaining({ id: 'protect_additional_import_MAA' }),
+});
+
+describe('a compilation of hundreds of diagnostics in bwrap', () => {
+  test('200 #warnings and an error: the error reported at its line, in its region, every warning too', async () => {
+    const { job, errorLine } = await build([...warnings(0, 200), ERROR_LINE]);
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toMatch(/^build failed: 1 error\(s\) \(make exit 2\)$/);
+    expect(job.diagnostics.filter((d: any) => d.severity === 'error')).toEqual([expect.objectContaining(theError(errorLine))]);
+    expect(job.diagnostics.filter((d: any) => d.severity === 'warning' && /^#warning "w\d+"$/.test(d.message))).toHaveLength(200);
+    expect(job.warnings).toEqual([]);
+  });
+
+  test('a JSON line an output bound cuts: its complete diagnostics read, the error among them, the cut said', async () => {
+    const { job, lines, errorLine } = await build([...warnings(0, 100), ERROR_LINE, ...warnings(100, 400)], { outputBytesPerStream: 96 * 1024 });
+    expect(job.status).toBe('failed');
+    expect(job.result.message).toMatch(/^build failed: 1 error\(s\) \(make exit 2\)/);
+    expect(job.diagnostics[0]).toMatchObject(theError(errorLine));
+    const cut = job.warnings.find((w: string) => w.startsWith("a line of gcc's JSON diagnostics (one compilation's) was cut after "));
+    expect(cut, job.warnings.join('\n')).toMatch(/: its first \d+ complete diagnostic\(s\) \(1 error\(s\)\) were read from its first \d+ characters, those after them are lost$/);
+    expect(lines.some((l) => l.source === 'service' && l.line === `warning: ${cut}`)).toBe(true);
+  });
+});
