@@ -11,7 +11,7 @@ import { join } from 'node:path';
 import { afterAll, describe, expect, test } from 'vitest';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { LineSplitter } from '../util/line-splitter.js';
-import { looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
+import { looksLikeGccJson, MESSAGE_CUT, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
 import { BuildOutputRouter } from './output-router.js';
 
 const dir = mkdtempSync(join(tmpdir(), 'gccjson-cut-'));
@@ -37,15 +37,20 @@ describe('a compilation of hundreds of diagnostics (one gcc JSON line)', () => {
     expect(line.length).toBeLessThan(SERVICE_BOUNDS.gccJsonLineBytes);
     const diags = parseGccJsonLine(line, ctx())!;
     expect(diags).toHaveLength(201);
-    expect(diags[0]).toMatchObject({ ...theError, line: 201, column: 11 });
-    expect(diags.slice(1).map((d) => d.message)).toEqual(Array.from({ length: 200 }, (_, i) => `#warning "w${i}"`));
+    expect(diags.slice(0, 200).map((d) => d.message)).toEqual(Array.from({ length: 200 }, (_, i) => `#warning "w${i}"`));
+    expect(diags[200]).toMatchObject({ ...theError, line: 201, column: 11 });
     expect(diags.every((d) => d.children.every((c) => c.severity === 'note'))).toBe(true);
+    // the job's diagnostics: the error first (a job keeps diagnosticsPerJob); the log in gcc's order
+    const routed = new BuildOutputRouter({ startDir: dir, root: dir, regions: new Map(), diagnosticsOnStdout: true }).route(line, 'stdout');
+    expect(routed.diagnostics[0]).toMatchObject({ ...theError, line: 201 });
+    expect(routed.lines[0]!.line).toMatch(/warning: #warning "w0"/);
+    expect(routed.lines).toHaveLength(201);
   });
 
   test('the documented 1000 diagnostics of one line are read (gcc 12 nests them: 999 children of the first)', () => {
     const diags = parseGccJsonLine(compile(999, 0), ctx())!;
     expect(diags).toHaveLength(1000);
-    expect(diags[0]).toMatchObject({ ...theError, line: 1000 });
+    expect(diags[999]).toMatchObject({ ...theError, line: 1000 });
   });
 
   test('the splitter keeps a gcc JSON line whole up to gccJsonLineBytes; another line is split at 64 KiB', () => {
@@ -74,13 +79,25 @@ describe('a compilation of hundreds of diagnostics (one gcc JSON line)', () => {
     const cut = line.slice(0, cutAt);
     expect(parseGccJsonLine(cut, ctx())).toBeNull();
     const salvaged = parseCutGccJsonLine(cut, ctx())!;
-    expect(salvaged.diagnostics[0]).toMatchObject({ ...theError, line: 101, column: 11 });
+    expect(salvaged.diagnostics[100]).toMatchObject({ ...theError, line: 101, column: 11 });
+    // the first #warning holds the others (gcc 12), left open by the cut: its message if gcc wrote it before its children
+    expect(salvaged.diagnostics[0]).toMatchObject({ severity: 'warning', line: 1, message: expect.toBeOneOf(['#warning "w0"', MESSAGE_CUT]) });
+    expect(salvaged.diagnostics[1]).toMatchObject({ severity: 'warning', line: 2, message: '#warning "w1"' });
     expect(salvaged.diagnostics.filter((d) => d.severity === 'error')).toHaveLength(1);
     expect(salvaged.diagnostics.length).toBeGreaterThan(150);
     expect(salvaged.readChars).toBeLessThanOrEqual(cutAt + 8);
     const routed = new BuildOutputRouter({ startDir: dir, root: dir, regions: new Map(), diagnosticsOnStdout: true }).route(`${cut} [cut here: the output limit]`, 'stdout');
-    expect(routed.diagnostics).toEqual(salvaged.diagnostics);
+    expect(routed.diagnostics).toEqual([salvaged.diagnostics[100], ...salvaged.diagnostics.filter((d) => d.severity !== 'error')]);
     expect(routed.cut).toMatch(new RegExp(`^a line of gcc's JSON diagnostics \\(one compilation's\\) was cut after ${cutAt + 29} characters by an output bound .*: its first ${salvaged.diagnostics.length} complete diagnostic\\(s\\) \\(1 error\\(s\\)\\) were read .*, those after them are lost$`));
+  });
+
+  test('a diagnostic the cut left open keeps the fields it had, its message said cut; its complete children are read', () => {
+    const at = (line: number) => ({ caret: { file: 'module.c', line, column: 1 } });
+    const line = `[{"kind":"warning","locations":[${JSON.stringify(at(1))}],"children":[{"kind":"error","message":"e","locations":[${JSON.stringify(at(3))}]},{"kind":"note","mess`;
+    expect(parseCutGccJsonLine(line, ctx())?.diagnostics).toEqual([
+      expect.objectContaining({ severity: 'warning', line: 1, message: MESSAGE_CUT, children: [] }),
+      expect.objectContaining({ severity: 'error', line: 3, message: 'e', file: 'module.c' }),
+    ]);
   });
 
   test('a cut line with no complete diagnostic, or a JSON-looking line that is no gcc output, stays text', () => {

@@ -40,19 +40,22 @@ function diagnosticSchema(depth: number): z.ZodType<JsonDiagnostic> {
 /** One line of gcc JSON output: the declared shape every parsed field is checked against. */
 export const GCC_JSON_LINE = z.array(diagnosticSchema(SERVICE_BOUNDS.diagnosticDepth)).max(SERVICE_BOUNDS.diagnosticsPerJsonLine);
 
-function fromJson(d: JsonDiagnostic, ctx: DiagnosticContext): GccDiagnostic {
+/** The message of a diagnostic a cut line left open before its `message` (gcc 12 writes it last). */
+export const MESSAGE_CUT = '(its message was cut with the line)';
+
+function fromJson(d: JsonDiagnostic, ctx: DiagnosticContext, noMessage = ''): GccDiagnostic {
   const loc = d.locations?.[0];
   const caret = loc?.caret;
   return located(
     {
       severity: severityOf(d.kind),
-      message: d.message ?? '',
+      message: d.message ?? noMessage,
       ...(d.option ? { option: d.option } : {}),
       line: caret?.line ?? null,
       column: caret?.column ?? null,
       ...(loc?.finish?.line ? { endLine: loc.finish.line } : {}),
       ...(loc?.finish?.column ? { endColumn: loc.finish.column } : {}),
-      children: (d.children ?? []).map((c) => fromJson(c, ctx)),
+      children: (d.children ?? []).map((c) => fromJson(c, ctx, noMessage)),
     },
     caret?.file ?? null,
     ctx,
@@ -68,8 +71,7 @@ export function looksLikeGccJson(line: string): boolean {
  * A compilation's diagnostics as they are reported: a child that is no note (gcc 12 puts every
  * preprocessor diagnostic of a compilation, `#warning` or `#error`, and the errors after them, in
  * the first one's `children`) is a diagnostic of its own, so that an error is counted as one
- * wherever gcc nested it; the errors come first (the job keeps diagnosticsPerJob of them: a
- * compilation's hundreds of warnings must not push its error out), each in gcc's order.
+ * wherever gcc nested it; in gcc's order.
  */
 function asReported(diagnostics: GccDiagnostic[]): GccDiagnostic[] {
   const out: GccDiagnostic[] = [];
@@ -79,10 +81,18 @@ function asReported(diagnostics: GccDiagnostic[]): GccDiagnostic[] {
     for (const c of own) add(c);
   };
   for (const d of diagnostics) add(d);
-  return [...out.filter((d) => d.severity === 'error'), ...out.filter((d) => d.severity !== 'error')];
+  return out;
 }
 
-function parseDiagnostics(text: string, ctx: DiagnosticContext): GccDiagnostic[] | null {
+/**
+ * A compilation's diagnostics as the job keeps them: the errors first, each in gcc's order (a job
+ * keeps diagnosticsPerJob: a compilation's hundreds of warnings must not push its error out).
+ */
+export function errorsFirst(diagnostics: readonly GccDiagnostic[]): GccDiagnostic[] {
+  return [...diagnostics.filter((d) => d.severity === 'error'), ...diagnostics.filter((d) => d.severity !== 'error')];
+}
+
+function parseDiagnostics(text: string, ctx: DiagnosticContext, noMessage = ''): GccDiagnostic[] | null {
   let data: unknown;
   try {
     data = JSON.parse(text);
@@ -91,7 +101,7 @@ function parseDiagnostics(text: string, ctx: DiagnosticContext): GccDiagnostic[]
   }
   const parsed = GCC_JSON_LINE.safeParse(data);
   if (!parsed.success) return null;
-  return asReported(parsed.data.map((d) => fromJson(d, ctx)));
+  return asReported(parsed.data.map((d) => fromJson(d, ctx, noMessage)));
 }
 
 /** Parses one line of gcc JSON diagnostics; null when it is not valid JSON of the declared shape. */
@@ -107,6 +117,6 @@ export function parseGccJsonLine(line: string, ctx: DiagnosticContext): GccDiagn
 export function parseCutGccJsonLine(line: string, ctx: DiagnosticContext): { diagnostics: GccDiagnostic[]; readChars: number } | null {
   const prefix = completeDiagnosticsPrefix(line);
   if (prefix === null) return null;
-  const diagnostics = parseDiagnostics(prefix, ctx);
+  const diagnostics = parseDiagnostics(prefix, ctx, MESSAGE_CUT);
   return diagnostics?.length ? { diagnostics, readChars: prefix.length } : null;
 }

@@ -7,7 +7,7 @@
 import { posix } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
-import { looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
+import { errorsFirst, looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
 import { parseAssemblerLine } from './as-text.js';
@@ -56,12 +56,13 @@ export class BuildOutputRouter {
     const ctx = { cwd: this.cwd, root: this.options.root, regions: this.options.regions, ...(this.options.userCopies ? { userCopies: this.options.userCopies } : {}) };
     if ((stream === 'stderr' || this.options.diagnosticsOnStdout) && looksLikeGccJson(line)) {
       const diags = parseGccJsonLine(line, ctx);
-      if (diags) return { lines: rendered(diags), diagnostics: diags };
+      // the log in gcc's order; the job's diagnostics errors first
+      if (diags) return { lines: rendered(diags), diagnostics: errorsFirst(diags) };
       // a compilation's line that an output bound cut (it does not close): its complete diagnostics
       const cut = parseCutGccJsonLine(line, ctx);
       if (cut) {
         const said = gccJsonCutMessage(line.length, cut.readChars, cut.diagnostics);
-        return { lines: rendered(cut.diagnostics), diagnostics: cut.diagnostics, cut: said };
+        return { lines: rendered(cut.diagnostics), diagnostics: errorsFirst(cut.diagnostics), cut: said };
       }
     }
     const text = parseGccTextLine(line, ctx);
