@@ -697,7 +697,8 @@ export class DockerSandbox implements Sandbox {
     const out = new PassThrough();
     let text = '';
     out.on('data', (c: Buffer) => (text += c.toString()));
-    const code = await this.execInHolder(volume, ['stat', '-f', '-c', '%b %a %f %S', DOCKER_WORK], out);
+    // %b blocks, %a blocks free to users, %d free inodes (not %f: free blocks), %S block size
+    const code = await this.execInHolder(volume, ['stat', '-f', '-c', '%b %a %d %S', DOCKER_WORK], out);
     const m = /^(\d+) (\d+) (\d+) (\d+)/.exec(text.trim());
     if (code !== 0 || !m) return null;
     const [blocks, avail, freeInodes, bsize] = m.slice(1).map(Number) as [number, number, number, number];
