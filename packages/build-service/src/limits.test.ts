@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
-import { DEFAULT_LIMITS, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogMaxBytes } from './limits.js';
+import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogMaxBytes } from './limits.js';
 
 describe('longestDuration: a run asked for the longest still ends on its own', () => {
   it('keeps RUN_STOP_ROOM_SECONDS (half the limit when that is less) to start and stop the architecture', () => {
@@ -56,5 +56,14 @@ describe('mergeLimits with the values as written (contract serve --limit NAME=VA
     expect(refusal('generatedFiles', '10.0')).toBe('accepted');
     expect(refusal('modelBytes', '9007199254740991')).toBe('accepted');
     expect(refusal('runSeconds', '3660.5')).toBe('accepted');
+  });
+});
+
+describe('the least memoryMiB, one minimum for every sandbox (MIN_WHOLE_LIMIT)', () => {
+  it('refuses a memory limit under 16 MiB, naming the minimum (Docker refused 1 MiB only after the job was accepted)', () => {
+    expect(MIN_WHOLE_LIMIT.memoryMiB).toBe(16);
+    expect(() => mergeLimits(DEFAULT_LIMITS, { memoryMiB: 1 }, true)).toThrow('limit memoryMiB must be at least 16 MiB (the least every sandbox can enforce and run a build in), got 1');
+    expect(() => mergeLimits(DEFAULT_LIMITS, { memoryMiB: 15 }, true)).toThrow(/at least 16 MiB/);
+    expect(mergeLimits(DEFAULT_LIMITS, { memoryMiB: 16 }, true).memoryMiB).toBe(16);
   });
 });

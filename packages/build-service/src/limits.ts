@@ -333,6 +333,16 @@ const MAX_WHOLE_LIMIT: Record<string, number> = {
 };
 
 /**
+ * The least a limit may be, for every sandbox (a job asking for less is refused at submit, 400):
+ * `memoryMiB` 16 — the Docker Engine refuses a container under 6 MiB (the job then failed with the
+ * engine's raw message after it was accepted), and under 16 MiB neither make nor gcc starts in any
+ * sandbox (the job's /tmp and /dev/shm count in it too).
+ */
+export const MIN_WHOLE_LIMIT: Readonly<Partial<Record<LimitName, number>>> = Object.freeze({
+  memoryMiB: 16,
+});
+
+/**
  * Merges overrides onto a base; with `lowerOnly`, an override above the base is an error.
  * `written`: overrides as the user wrote them (`contract serve --limit NAME=VALUE`, by name): a
  * message quotes that text, not the number it became (`99999999999999999` is no `100000000000000000`),
@@ -359,6 +369,8 @@ export function mergeLimits(base: Limits, overrides: unknown, lowerOnly: boolean
       if (whole === undefined) throw new LimitsError(`limit ${key} must be a whole number (a count or a size), got ${shown}`);
       // compared as written: a max is a safe integer, so a value at most that is the number written
       if (whole > BigInt(max)) throw new LimitsError(`limit ${key} must be at most ${max}, got ${shown}`);
+      const min = MIN_WHOLE_LIMIT[key as LimitName];
+      if (min !== undefined && whole < BigInt(min)) throw new LimitsError(`limit ${key} must be at least ${min}${key.endsWith('MiB') ? ' MiB' : ''} (the least every sandbox can enforce and run a build in), got ${shown}`);
     }
     // at least a millisecond: a tinier one (1e-300) went as `DURATION=5e-301` to make and the launcher
     if (key.endsWith('Seconds') && value < 0.001) {
