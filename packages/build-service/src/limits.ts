@@ -80,6 +80,11 @@ export interface ServiceBounds {
   diagnosticChildren: number;
   /** Entries of a run's logs/ and run/ looked at when collecting artifacts; the rest are not listed. */
   listedEntries: number;
+  /**
+   * Names of a run's logs/ read on the host (bwrap, none) to find the runtime's logs, listed first
+   * (names only, none kept but theirs): the inode count of the default 256 MiB work disk.
+   */
+  scannedLogNames: number;
   /** Bytes of a POST /api/jobs body; a larger Content-Length is refused (413) before any byte is read. */
   requestBodyBytes: number;
   /** Request bodies read at once; beyond, 503 before reading (memory stays below this x requestBodyBytes). */
@@ -167,6 +172,7 @@ export const SERVICE_BOUNDS: Readonly<ServiceBounds> = Object.freeze({
   diagnosticDepth: 8,
   diagnosticChildren: 1000,
   listedEntries: 1024,
+  scannedLogNames: 65_536,
   requestBodyBytes: 80 * 1024 * 1024,
   requestBodiesAtOnce: 2,
   requestBodySeconds: 30,

@@ -58,8 +58,11 @@ export interface DirEntryInfo {
   name: string;
   kind: TarEntryKind;
   size: number;
-  /** The first maxBytes bytes of a regular file, all of it when smaller (null when it is gone or not regular). */
-  read(maxBytes: number): Promise<Buffer | null>;
+  /**
+   * The first maxBytes bytes of a regular file, all of it when smaller (null when it is gone, not
+   * regular, or the signal aborted the read).
+   */
+  read(maxBytes: number, signal?: AbortSignal): Promise<Buffer | null>;
 }
 
 /**
@@ -143,13 +146,33 @@ const artifactOf = async (name: string, kept: Buffer, capped: string | null): Pr
 /** Sees the bytes of each collected file before they are compressed (run-issues.ts). */
 export type ArtifactInspector = (name: string, data: Buffer) => void;
 
-/** A name the runtime gives a module's log (`MSC_7-Dec-2026-02h45m54s.csv`). */
-export const isModuleLogName = (name: string): boolean => SAFE_NAME.test(name) && moduleOfLog(name) !== undefined;
+export interface CollectOptions {
+  /** Modules the run's launcher started (run-issues.ts): their logs are taken first. */
+  launchedModules?: ReadonlySet<string>;
+  /** A cancel: the files not read yet are left out (listed in `skipped`), a read under way is stopped. */
+  signal?: AbortSignal;
+}
 
-/** The order files are collected in: the modules' logs, then the other entries, each by name. */
-function moduleLogsFirst(a: DirEntryInfo, b: DirEntryInfo): number {
-  const rank = Number(!isModuleLogName(a.name)) - Number(!isModuleLogName(b.name));
-  return rank || (a.name < b.name ? -1 : a.name > b.name ? 1 : 0);
+/** Why a file was not read: the job was cancelled while its logs were collected. */
+export const CANCELLED_REASON = 'not read: the job was cancelled during the collection';
+
+/**
+ * Which entries of logs/ are taken first when there are more than the bounds allow (one rule for
+ * every sandbox): 0 the runtime's log of a module the launcher started (`<MODULE>_<date>.csv`), 1
+ * another name the runtime gives its logs, 2 anything else; by name within each rank. A program
+ * that fills logs/ with files of its own does not push the modules' logs out.
+ */
+export function collectionRank(name: string, launchedModules?: ReadonlySet<string>): number {
+  const module = moduleOfLog(name);
+  if (module === undefined) return 2;
+  return launchedModules?.has(module) ? 0 : 1;
+}
+
+/** The entries in collection order (collectionRank, then name). */
+export function inCollectionOrder<T extends { name: string }>(entries: readonly T[], launchedModules?: ReadonlySet<string>): T[] {
+  const ranked = entries.map((e) => ({ e, rank: collectionRank(e.name, launchedModules) }));
+  ranked.sort((a, b) => a.rank - b.rank || (a.e.name < b.e.name ? -1 : a.e.name > b.e.name ? 1 : 0));
+  return ranked.map((r) => r.e);
 }
 
 /** Picks the artifacts of a `logs/` listing under the bounds. */
@@ -157,6 +180,7 @@ export async function selectArtifacts(
   listing: DirListing,
   bounds: ArtifactBounds = ARTIFACT_BOUNDS,
   inspect?: ArtifactInspector,
+  options: CollectOptions = {},
 ): Promise<Pick<RunArtifacts, 'files' | 'skipped'>> {
   const files: Artifact[] = [];
   const skipped: SkippedArtifact[] = [];
@@ -166,23 +190,23 @@ export async function selectArtifacts(
   /** The latest record of the logs collected, and the cut files that kept none (their record waits for it). */
   let latest: string | undefined;
   const timeless: { index: number; name: string; kept: Buffer; size: number; bound: number; capped: string }[] = [];
-  // the sandbox decides how many entries there are: only a bounded number is looked at, the
-  // modules' own logs first (a module that writes thousands of files there does not push them out)
-  const all = [...listing.entries].sort(moduleLogsFirst);
+  // the sandbox decides how many entries there are: only a bounded number is looked at, the modules' logs first
+  const all = inCollectionOrder(listing.entries, options.launchedModules);
   const sorted = all.slice(0, bounds.entries);
   for (const e of sorted) {
     const skip = (reason: string, bound?: true): void => void skipped.push({ name: e.name, reason, ...(bound ? { bound } : {}) });
     const room = Math.min(bounds.fileBytes, bounds.totalBytes - total);
-    if (e.kind !== 'file') skip(`not a regular file (${e.kind}): not followed`);
+    if (options.signal?.aborted) skip(CANCELLED_REASON);
+    else if (e.kind !== 'file') skip(`not a regular file (${e.kind}): not followed`);
     else if (!SAFE_NAME.test(e.name)) skip('name not allowed (letters, digits, _ . - only)');
     else if (files.length >= bounds.files) skip(`more than ${bounds.files} files`, true);
     else if (e.size > room && room <= MARKER_ROOM)
       skip(room < bounds.fileBytes ? `the ${bounds.totalBytes}-byte total bound is reached` : `${e.size} bytes, above the ${bounds.fileBytes}-byte file bound`, true);
     else {
       const cut = e.size > room;
-      const data = await e.read(cut ? room - MARKER_ROOM : room);
+      const data = await e.read(cut ? room - MARKER_ROOM : room, options.signal);
       if (!data) {
-        skip('not readable as a regular file');
+        skip(options.signal?.aborted ? CANCELLED_REASON : 'not readable as a regular file');
         continue;
       }
       let kept = data;
@@ -195,7 +219,8 @@ export async function selectArtifacts(
         latest = laterMono(latest, mono);
         if (mono === undefined) {
           // its record's time is the run's latest, known once every log was read
-          timeless.push({ index: files.length, name: e.name, kept: data.subarray(0, end), size: e.size, bound, capped });
+          // a copy of the kept bytes: a view would hold the whole read (256 MiB of a sparse file) until the end
+          timeless.push({ index: files.length, name: e.name, kept: Buffer.from(data.subarray(0, end)), size: e.size, bound, capped });
           files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: end, gzip: Buffer.alloc(0), capped });
           total += end + MARKER_ROOM;
           continue;
@@ -234,15 +259,12 @@ function kindOfStats(st: { isFile(): boolean; isDirectory(): boolean; isSymbolic
 }
 
 /**
- * Names a listing reads past its `maxEntries` for the modules' logs alone, as a multiple of it: a
- * module's log a flood of other files hides in the folder's order is still found, within a bound.
- */
-export const MODULE_LOG_SCAN_FACTOR = 16;
-
-/**
  * Lists workDir/rel on the host (bwrap, none) with lstat only, at most `maxEntries` entries (the
- * folder is read as a stream, never whole), then, up to MODULE_LOG_SCAN_FACTOR times as many names
- * read, the modules' logs among the rest (at most ARTIFACT_BOUNDS.files of them); reads with O_NOFOLLOW.
+ * folder is read as a stream, never whole); reads with O_NOFOLLOW. The entries named as the
+ * runtime names its logs come first (as in Docker's listing, docker-folder-list.ts): a first pass
+ * over the folder's names (at most SERVICE_BOUNDS.scannedLogNames of them, nothing kept but those
+ * names) finds them, so that thousands of files a program left beside them do not push them out of
+ * the entries looked at; then the folder's other entries, in its order.
  */
 export async function listHostDir(workDir: string, rel: string, maxEntries = ARTIFACT_BOUNDS.entries): Promise<DirListing> {
   const dir = join(workDir, rel);
@@ -253,30 +275,14 @@ export async function listHostDir(workDir: string, rel: string, maxEntries = ART
     return null;
   }
   if (!st.isDirectory()) return { notDirectory: kindOfStats(st) };
+  const logs = await readNames(dir, SERVICE_BOUNDS.scannedLogNames, maxEntries, (name) => moduleOfLog(name) !== undefined);
+  if (!logs) return null;
+  const chosen = new Set(logs.names);
+  const rest = await readNames(dir, Number.MAX_SAFE_INTEGER, maxEntries - chosen.size, (name) => !chosen.has(name));
+  if (!rest) return null;
+  const names = [...logs.names, ...rest.names];
+  const more = rest.more || logs.more;
   const entries: DirEntryInfo[] = [];
-  let more = false;
-  // the folder is the sandbox's: read a bounded number of its entries, not all of them at once
-  const handle = await fsp.opendir(dir, { bufferSize: 64 }).catch(() => null);
-  if (!handle) return null;
-  const names: string[] = [];
-  let read = 0;
-  let laterLogs = 0;
-  try {
-    for await (const d of handle) {
-      if (++read <= maxEntries) {
-        names.push(d.name);
-        continue;
-      }
-      more = true;
-      if (read > maxEntries * MODULE_LOG_SCAN_FACTOR || laterLogs >= ARTIFACT_BOUNDS.files) break; // leaving the loop closes the handle
-      if (isModuleLogName(d.name)) {
-        names.push(d.name);
-        laterLogs++;
-      }
-    }
-  } catch {
-    /* the folder changed or went away while it was read: what was read is listed */
-  }
   for (const name of names) {
     const est = await fsp.lstat(join(dir, name)).catch(() => null);
     if (!est) continue;
@@ -288,6 +294,37 @@ export async function listHostDir(workDir: string, rel: string, maxEntries = ART
     });
   }
   return { entries, ...(more ? { more } : {}) };
+}
+
+/**
+ * The names of `dir` that `keep` takes, at most `maxKept` of them, out of at most `maxRead` names
+ * read (the folder read as a stream); `more` when a name past either bound was left. Null when the
+ * folder cannot be opened.
+ */
+async function readNames(dir: string, maxRead: number, maxKept: number, keep: (name: string) => boolean): Promise<{ names: string[]; more: boolean } | null> {
+  // the folder is the sandbox's: read a bounded number of its entries, not all of them at once
+  const handle = await fsp.opendir(dir, { bufferSize: 64 }).catch(() => null);
+  if (!handle) return null;
+  const names: string[] = [];
+  let read = 0;
+  let more = false;
+  try {
+    for await (const d of handle) {
+      if (!keep(d.name)) {
+        if (++read >= maxRead) break; // leaving the loop closes the handle
+        continue;
+      }
+      if (names.length >= maxKept) {
+        more = true;
+        break;
+      }
+      names.push(d.name);
+      read++;
+    }
+  } catch {
+    /* the folder changed or went away while it was read: what was read is listed */
+  }
+  return { names, more };
 }
 
 /** How a sandbox lists work-dir folders (docker: through the archive API of its volume). */
@@ -305,9 +342,10 @@ export async function collectRunArtifacts(
   workDir: string,
   bounds: ArtifactBounds = ARTIFACT_BOUNDS,
   inspect?: ArtifactInspector,
+  options: CollectOptions = {},
 ): Promise<RunArtifacts> {
   const listings = await read(workDir, [LOG_DIR, RUN_DIR], bounds.totalBytes, bounds.entries);
-  const { files, skipped } = await selectArtifacts(listings.get(LOG_DIR) ?? null, bounds, inspect);
+  const { files, skipped } = await selectArtifacts(listings.get(LOG_DIR) ?? null, bounds, inspect, options);
   const run = listings.get(RUN_DIR) ?? null;
   const runDirLeftovers = run && 'entries' in run ? run.entries.map((e) => e.name).sort().slice(0, bounds.entries) : [];
   return { files, skipped, runDirLeftovers };

@@ -152,6 +152,8 @@ export class Job {
   /** The limit whose hit is stopping the run (its launcher asked to stop: stopOnLimit), else null. */
   private limitStopping: LimitHit | null = null;
   private cancelSignal!: () => void;
+  /** Aborted by a cancel: stops the collection of the run's logs (a cancel ends the job within CANCEL_DEADLINE_MS). */
+  private readonly collectAbort = new AbortController();
   private readonly cancelled = new Promise<void>((r) => (this.cancelSignal = r));
   /** The first internal fault of this job (see InternalFault), null while there is none. */
   private fault: InternalFault | null = null;
@@ -254,6 +256,7 @@ export class Job {
     }
     this.cancelRequested = true;
     this.cancelSignal();
+    this.collectAbort.abort();
     const proc = this.current;
     if (!proc) return;
     if (this.currentStep === 'run') await this.stopArchitecture(proc, 'cancel');
@@ -495,7 +498,9 @@ export class Job {
       else await tail?.finish();
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
       // a cancelled run's logs too: what it wrote until it was stopped is the user's record of it
+      // (a cancel during the collection stops it: what was read by then is kept)
       await this.collectArtifacts(ctx.sandbox, ws.workDir);
+      if (this.cancelRequested && run.ok) throw new Cancelled();
       const issues = this.runIssues.all;
       if (!run.ok) {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
@@ -658,7 +663,10 @@ export class Job {
     const t0 = Date.now();
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
-      const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => this.runIssues.log(data, name));
+      const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => this.runIssues.log(data, name), {
+        launchedModules: this.runIssues.launchedModules,
+        signal: this.collectAbort.signal,
+      });
       // a cancelled run's processes were killed: the mailboxes and pid files they leave say nothing
       this.artifacts = this.cancelRequested ? { ...collected, runDirLeftovers: [] } : collected;
       this.artifactsCollectMs = Date.now() - t0;

@@ -49,6 +49,9 @@ const EXITED_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) exited with status 0$/;
 /** A `module_exit` record's count of the records its module logged (runtime/src/module_main.c). */
 const EXIT_RECORDS = /,module_exit,[^,\n]*,[^,\n]*,\d+,status=-?\d+ records=(\d{1,15})\s*$/;
 
+/** contract-launch's line about one of the modules it started (its end, whatever the cause). */
+const MODULE_PID_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) /;
+
 /** Sources of output lines counted apart (a run has far fewer modules; a hostile tag stream more). */
 const MAX_SOURCES = 256;
 
@@ -64,6 +67,8 @@ export class RunIssues {
   /** Characters of output lines per source (at most MAX_SOURCES: a module tag, `launcher`, `run`): who filled the output. */
   private readonly outputChars = new Map<string, number>();
 
+  /** Modules the launcher named with their pid (at most 256): those it started, whose logs are collected first. */
+  private readonly launched = new Set<string>();
   /** Modules the launcher saw end normally at the stop (at most 256): their logs must end with their exit record. */
   private readonly exitedClean = new Set<string>();
   /** What a collected log of a module named as the runtime names logs says of itself (at most 1024 logs). */
@@ -79,6 +84,11 @@ export class RunIssues {
     return this.list;
   }
 
+  /** The modules the launcher started, as its lines named them (artifacts.ts collectionRank). */
+  get launchedModules(): ReadonlySet<string> {
+    return this.launched;
+  }
+
   /**
    * A line of the run's output, without its source's tag (any source: ORD's module tag is the
    * scheduler's name); `source`: `launcher` for contract-launch's own lines.
@@ -90,6 +100,8 @@ export class RunIssues {
     const m = STUCK_LINE.exec(text);
     if (m) this.stuck(m[2]!, m[3]!, m[1]!);
     if (source === 'launcher') {
+      const named = MODULE_PID_LINE.exec(text);
+      if (named && this.launched.size < 256) this.launched.add(named[1]!);
       this.moduleEnd(text);
       const exited = EXITED_LINE.exec(text);
       if (exited && this.exitedClean.size < 256) this.exitedClean.add(exited[1]!);

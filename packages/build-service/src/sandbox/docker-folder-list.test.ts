@@ -4,14 +4,15 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { PassThrough } from 'node:stream';
 import { afterAll, describe, expect, test } from 'vitest';
-import { folderListFindArgs, readFolderList } from './docker-folder-list.js';
+import { folderListCommand, readFolderList } from './docker-folder-list.js';
 
 const root = mkdtempSync(join(tmpdir(), 'folder-list-'));
 afterAll(() => rmSync(root, { recursive: true, force: true }));
 
 /** find (GNU, as in the sandbox image) run here with the arguments the holder runs it with. */
 function listWithFind(dir: string, maxEntries: number) {
-  const child = spawn('find', folderListFindArgs(dir), { stdio: ['ignore', 'pipe', 'ignore'] });
+  const [cmd, ...args] = folderListCommand(dir);
+  const child = spawn(cmd!, args, { stdio: ['ignore', 'pipe', 'ignore'] });
   return readFolderList(child.stdout, maxEntries, () => child.kill());
 }
 
@@ -53,6 +54,19 @@ describe('a work folder listed by find before anything is read', () => {
     const found = await listWithFind(many, 10);
     expect(found).toMatchObject({ more: true });
     expect(found && 'entries' in found && found.entries.length).toBe(10);
+  });
+
+  test("the runtime's logs come first: 1500 files a program left beside them do not push them out of the entries looked at", async () => {
+    const logs = join(root, 'crowded');
+    mkdirSync(logs);
+    writeFileSync(join(logs, 'CTL_7-Dec-2026-03h00m00s.csv'), 'x\n');
+    writeFileSync(join(logs, 'ORD_17-Dec-2026-23h59m59s.csv'), 'y\n');
+    for (let i = 0; i < 1500; i++) writeFileSync(join(logs, `F_${i}.csv`), '');
+    const found = await listWithFind(logs, 1024);
+    expect(found).toMatchObject({ more: true });
+    const names = found && 'entries' in found ? found.entries.map((e) => e.name) : [];
+    expect(names).toHaveLength(1024);
+    expect(names.slice(0, 2).sort()).toEqual(['CTL_7-Dec-2026-03h00m00s.csv', 'ORD_17-Dec-2026-23h59m59s.csv']);
   });
 
   test('output that is not find\'s ends the listing where it stops making sense, never a throw', async () => {

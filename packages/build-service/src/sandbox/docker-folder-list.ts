@@ -6,6 +6,7 @@
  */
 import type { Readable } from 'node:stream';
 import type { TarEntryKind } from '../util/tar-reader.js';
+import { LOG_NAME_GLOB } from '../trace/parse.js';
 
 export interface FoundEntry {
   name: string;
@@ -16,9 +17,20 @@ export interface FoundEntry {
 /** A folder as find saw it: its entries (`more` when there were others), not a folder, or none (null). */
 export type FoundFolder = { entries: FoundEntry[]; more: boolean } | { notDirectory: TarEntryKind } | null;
 
-/** find's arguments: the folder itself first (depth 0, an empty name), then each entry, `type size name\0`. */
-export function folderListFindArgs(dir: string): string[] {
-  return [dir, '-maxdepth', '1', '-printf', '%y %s %P\\0'];
+/** One entry as find prints it: `type size name\0`. */
+const PRINTF = '%y %s %P\\0';
+
+/**
+ * The command that lists `dir`: the folder itself first (depth 0, an empty name), then its entries
+ * named as the runtime names its logs (LOG_NAME_GLOB), then the others, `type size name\0` each.
+ * The runtime's logs come first so that the entries looked at (a bound) hold them even when the
+ * program left thousands of files of its own beside them (artifacts.ts collectionRank takes them
+ * first too); find never follows a link (-P), the folder itself included.
+ */
+export function folderListCommand(dir: string): string[] {
+  const find = (what: string): string => `find -P "$1" ${what} -printf '${PRINTF}'`;
+  const script = `${find('-maxdepth 0')} && ${find('-mindepth 1 -maxdepth 1 -name "$2"')} && ${find('-mindepth 1 -maxdepth 1 ! -name "$2"')}`;
+  return ['sh', '-c', script, 'folder-list', dir, LOG_NAME_GLOB];
 }
 
 /** A name longer than this is not one a file system gives (255 bytes): the output is not find's. */
@@ -27,7 +39,7 @@ const MAX_RECORD = 4096;
 const kindOf = (y: string): TarEntryKind => (y === 'f' ? 'file' : y === 'd' ? 'dir' : y === 'l' ? 'symlink' : 'other');
 
 /**
- * Reads find's output (folderListFindArgs) up to `maxEntries` entries, then calls `stop`. Never
+ * Reads find's output (folderListCommand) up to `maxEntries` entries, then calls `stop`. Never
  * throws: output it cannot read ends the listing there.
  */
 export function readFolderList(stdout: Readable, maxEntries: number, stop: () => void): Promise<FoundFolder> {

@@ -21,7 +21,7 @@
  * removes this service's own leftovers.
  */
 import { spawn } from 'node:child_process';
-import { createHash, randomBytes } from 'node:crypto';
+import { createHash } from 'node:crypto';
 import type { Readable } from 'node:stream';
 import { PassThrough } from 'node:stream';
 import { createRequire } from 'node:module';
@@ -32,9 +32,9 @@ import { memoryBytes, REALTIME_BOUNDS, tmpBytes, workDiskBytes } from '../limits
 import { dockerRealtimeError, dockerRealtimeHostConfig, dockerRealtimeSupport } from './docker-realtime.js';
 import { digestFindOutput, workTreeFindArgs } from '../pipeline/work-tree-digest.js';
 import { readWorkUsage, workUsageFindArgs, type WorkUsage } from '../pipeline/work-usage.js';
-import { ARTIFACT_BOUNDS, type DirListing } from '../pipeline/artifacts.js';
+import { SAFE_NAME, type DirListing } from '../pipeline/artifacts.js';
 import { firstTarEntry, readTar } from '../util/tar-reader.js';
-import { folderListFindArgs, readFolderList, type FoundFolder } from './docker-folder-list.js';
+import { folderListCommand, readFolderList, type FoundEntry, type FoundFolder } from './docker-folder-list.js';
 import { currentOwner, ownerLabels, ownerLabelValue, type ServiceOwner } from './docker-owner.js';
 import { DEFAULT_SWEEP_POLICY, removeOwnLeftovers, sweepOrphans, type SweepPolicy, type SweepReport } from './docker-sweep.js';
 import { proveLiveRoot, type EngineInfo } from './docker-live-root.js';
@@ -487,71 +487,48 @@ export class DockerSandbox implements Sandbox {
   }
 
   /**
-   * Lists work-dir folders out of the volume through the archive API of a never-started
-   * container (volume mounted read-only): the engine resolves paths inside the container and
-   * its tar reports links as links, so nothing the job planted is followed on the host. Each
-   * archive is read up to maxBytes + 1 MiB; entries cut by that bound come without data.
-   *
-   * The sizes come first, from `find` in the volume's holder: the archive API streams every byte
-   * of a file, so a folder whose files are bigger than the bounds (a sparse file of a terabyte
-   * planted in logs/) is not archived whole; each of its files is then read on its own, only as
-   * far as the collector asks (its first maxBytes), through the holder.
+   * Lists work-dir folders of the volume with `find` in its holder (docker-folder-list.ts: names,
+   * kinds and sizes, no link followed, at most maxEntries entries), then reads each regular file
+   * the collector takes on its own, by name, through the holder's archive API (the engine resolves
+   * the path inside the container and its tar reports a link as a link), only as far as the
+   * collector asks and never past the size find gave. A folder is never archived whole: its archive
+   * streams every byte of every file in it (a sparse file of a terabyte, thousands of files past
+   * the entries looked at), so its cost would be the program's choice. A folder find cannot list
+   * is an error (the collection's warning line), not a reason to read it another way.
    */
-  async readWorkDirs(workDir: string, rels: string[], maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>> {
+  async readWorkDirs(workDir: string, rels: string[], _maxBytes: number, maxEntries: number): Promise<Map<string, DirListing>> {
     const out = new Map<string, DirListing>();
     const volume = this.volumes.get(workDir);
     if (!volume || !this.createdVolumes.has(volume)) {
       for (const rel of rels) out.set(rel, null);
       return out;
     }
-    const archived: string[] = [];
     for (const rel of rels) {
       const found = await this.listFolder(volume, rel, maxEntries);
-      const files = found && 'entries' in found ? found.entries.filter((e) => e.kind === 'file') : [];
-      const bytes = files.reduce((sum, e) => sum + e.size, 0);
-      if (found && 'entries' in found && (bytes > maxBytes || files.some((e) => e.size > ARTIFACT_BOUNDS.fileBytes))) {
-        out.set(rel, {
-          ...(found.more ? { more: true } : {}),
-          entries: found.entries.map((e) => ({ ...e, read: async (max: number) => (e.kind === 'file' ? this.readFilePrefix(volume, `${DOCKER_WORK}/${rel}/${e.name}`, Math.min(max, e.size)) : null) })),
-        });
-      } else archived.push(rel); // within the bounds, or find could not tell: the folder's archive
-    }
-    if (archived.length === 0) return out;
-    const c = await this.docker.createContainer(
-      this.volumeReader(`contract-collect-${randomBytes(6).toString('hex')}`, ['true'], volume, this.jobOfWorkDir.get(workDir) ?? 'collect'),
-    );
-    try {
-      for (const rel of archived) {
-        let stream: Readable;
-        try {
-          stream = (await c.getArchive({ path: `${DOCKER_WORK}/${rel}` })) as unknown as Readable;
-        } catch (e) {
-          if ((e as { statusCode?: number }).statusCode === 404) {
-            out.set(rel, null);
-            continue;
-          }
-          throw e;
-        }
-        const entries = readTar(await readBounded(stream, maxBytes + 1024 * 1024));
-        const top = entries.find((e) => e.name === rel);
-        if (top && top.kind !== 'dir') {
-          out.set(rel, { notDirectory: top.kind });
-          continue;
-        }
-        const all = entries.filter((e) => e.name.startsWith(`${rel}/`) && !e.name.slice(rel.length + 1).includes('/'));
-        const children = all.slice(0, maxEntries);
-        out.set(rel, {
-          ...(all.length > maxEntries ? { more: true } : {}),
-          entries: children.map((e) => ({
-            name: e.name.slice(rel.length + 1),
-            kind: e.kind,
-            size: e.size,
-            read: async (max: number) => (e.kind === 'file' && e.data && e.data.length === e.size ? e.data.subarray(0, max) : null),
-          })),
-        });
+      if (found === undefined) throw new Error(`the work volume's ${rel}/ could not be listed (find in its holder failed)`);
+      if (found === null || 'notDirectory' in found) {
+        out.set(rel, found);
+        continue;
       }
-    } finally {
-      await c.remove({ force: true }).catch(() => {});
+      // the small files in one tar of the holder, the first time one of them is asked for (an
+      // archive call per file takes about 80 ms: 256 files of a flooded logs/ took 22 s)
+      const small = found.entries.filter((e) => e.kind === 'file' && e.size <= BATCHED_FILE_BYTES && SAFE_NAME.test(e.name));
+      let batch: Promise<Map<string, Buffer>> | null = null;
+      out.set(rel, {
+        ...(found.more ? { more: true } : {}),
+        entries: found.entries.map((e) => ({
+          ...e,
+          read: async (max: number, signal?: AbortSignal) => {
+            if (e.kind !== 'file') return null;
+            if (small.includes(e)) {
+              batch ??= this.readSmallFiles(volume, `${DOCKER_WORK}/${rel}`, small, signal);
+              const data = (await batch).get(e.name);
+              if (data) return data.subarray(0, max);
+            }
+            return this.readFilePrefix(volume, `${DOCKER_WORK}/${rel}/${e.name}`, Math.min(max, e.size), signal);
+          },
+        })),
+      });
     }
     return out;
   }
@@ -647,22 +624,52 @@ export class DockerSandbox implements Sandbox {
     if (!this.holders.has(volume)) return undefined;
     const out = new PassThrough();
     out.on('error', () => {});
-    const exited = this.execInHolder(volume, ['find', ...folderListFindArgs(`${DOCKER_WORK}/${rel}`)], out).catch(() => undefined);
+    const exited = this.execInHolder(volume, folderListCommand(`${DOCKER_WORK}/${rel}`), out).catch(() => undefined);
     const found = await readFolderList(out, maxEntries, () => out.destroy());
     return (await exited) === undefined ? undefined : found;
   }
 
-  /** The first `bytes` bytes of a regular file of a work volume (a bounded read of its archive, through the holder). */
-  private async readFilePrefix(volume: string, path: string, bytes: number): Promise<Buffer | null> {
+  /**
+   * The first `bytes` bytes of a regular file of a work volume (a bounded read of its one-file
+   * archive, through the holder); null when it cannot be read or the signal aborted the read.
+   */
+  private async readFilePrefix(volume: string, path: string, bytes: number, signal?: AbortSignal): Promise<Buffer | null> {
     const holder = this.holders.get(volume);
-    if (!holder) return null;
+    if (!holder || signal?.aborted) return null;
     try {
       const stream = (await holder.getArchive({ path })) as unknown as Readable;
-      const entry = firstTarEntry(await readBounded(stream, bytes + TAR_HEADER_ROOM));
+      const entry = firstTarEntry(await readBounded(stream, bytes + TAR_HEADER_ROOM, signal));
       return entry?.kind === 'file' && entry.data && entry.data.length >= bytes ? entry.data.subarray(0, bytes) : null;
     } catch {
       return null;
     }
+  }
+
+  /**
+   * The listed regular files of `dir` (each at most BATCHED_FILE_BYTES), read together by one `tar`
+   * in the holder (no link followed: tar archives a link as a link), read no further than their
+   * listed sizes allow; a file that is not there as listed (a regular file of that size) is left
+   * out of the answer (its own read then tries). Never throws.
+   */
+  private async readSmallFiles(volume: string, dir: string, files: readonly FoundEntry[], signal?: AbortSignal): Promise<Map<string, Buffer>> {
+    const got = new Map<string, Buffer>();
+    if (files.length === 0 || signal?.aborted) return got;
+    const out = new PassThrough();
+    out.on('error', () => {});
+    // a header block, a PAX header and its block for a long name, the data in blocks; two end blocks and tar's record padding
+    const bound = files.reduce((sum, e) => sum + 3 * 512 + Math.ceil(e.size / 512) * 512, 0) + 20 * 512;
+    const exited = this.execInHolder(volume, ['tar', '-C', dir, '--no-recursion', '-cf', '-', ...files.map((e) => `./${e.name}`)], out).catch(() => null);
+    try {
+      const listed = new Map(files.map((e) => [e.name, e.size]));
+      for (const entry of readTar(await readBounded(out, bound, signal))) {
+        if (entry.kind === 'file' && entry.data && entry.data.length === listed.get(entry.name)) got.set(entry.name, entry.data);
+      }
+    } catch {
+      /* cancelled, or the tar failed: each file is read on its own */
+    }
+    out.destroy();
+    await exited;
+    return got;
   }
 
   /** Runs a command in a volume's holder; stdout to `out`, resolves with the exit code. */
@@ -744,24 +751,48 @@ export class DockerSandbox implements Sandbox {
 /** removeRunOutputs' shell: each folder made enterable before find enters it, links never followed, then both removed and checked gone. */
 const REMOVE_RUN_OUTPUTS = `for d in ${DOCKER_WORK}/logs ${DOCKER_WORK}/run; do if [ -d "$d" ] && [ ! -L "$d" ]; then find -P "$d" -xdev -type d -exec chmod u+rwx {} \\; 2>/dev/null; fi; done; rm -rf --one-file-system ${DOCKER_WORK}/logs ${DOCKER_WORK}/run; ! [ -e ${DOCKER_WORK}/logs ] && ! [ -L ${DOCKER_WORK}/logs ] && ! [ -e ${DOCKER_WORK}/run ] && ! [ -L ${DOCKER_WORK}/run ]`;
 
+/** Files of logs/ at most this big are read together (readSmallFiles), the bigger ones each on its own. */
+const BATCHED_FILE_BYTES = 64 * 1024;
+
 /** Room for a one-file archive's headers before the file's bytes (a PAX header with a long name). */
 const TAR_HEADER_ROOM = 64 * 1024;
 
-/** Reads a stream up to `limit` bytes (then stops reading it). */
-function readBounded(stream: Readable, limit: number): Promise<Buffer> {
+/**
+ * Reads a stream up to `limit` bytes (then stops reading it), into one buffer of that size, made
+ * first (the callers' limit is what find said the file holds, at most the collector's file bound:
+ * no chunk list copied at the end, a 256 MiB read costs 256 MiB). An abort of `signal` stops the
+ * read and rejects.
+ */
+export function readBounded(stream: Readable, limit: number, signal?: AbortSignal): Promise<Buffer> {
   return new Promise((resolve, reject) => {
-    const chunks: Buffer[] = [];
+    const buf = Buffer.allocUnsafe(limit);
     let size = 0;
-    const finish = (): void => resolve(Buffer.concat(chunks).subarray(0, limit));
+    let settled = false;
+    const settle = (f: () => void): void => {
+      if (settled) return;
+      settled = true;
+      signal?.removeEventListener('abort', onAbort);
+      f();
+    };
+    const finish = (): void => settle(() => resolve(buf.subarray(0, size)));
+    const onAbort = (): void => {
+      stream.destroy();
+      settle(() => reject(new Error('the read was cancelled')));
+    };
+    if (signal?.aborted) return onAbort();
+    signal?.addEventListener('abort', onAbort, { once: true });
     stream.on('data', (c: Buffer) => {
-      chunks.push(c);
-      size += c.length;
+      if (settled) return;
+      const take = Math.min(c.length, limit - size);
+      c.copy(buf, size, 0, take);
+      size += take;
       if (size >= limit) {
         stream.destroy();
         finish();
       }
     });
     stream.on('end', finish);
-    stream.on('error', (e) => (size >= limit ? finish() : reject(e)));
+    stream.on('close', finish);
+    stream.on('error', (e) => (size >= limit ? finish() : settle(() => reject(e))));
   });
 }

@@ -72,6 +72,11 @@ const RULE_DETAIL = /^([A-Za-z_]\w*)\.([A-Za-z_]\w*) (active|inactive) cause=(.*
 
 /** A runtime log's name (runtime/src/csvlog.c: `<MODULE>_<d>-<Mon>-<Y>-<H>h<M>m<S>s.csv`). */
 const LOG_NAME = /^(.+)_\d{1,2}-[A-Z][a-z]{2}-\d{4}-\d{2}h\d{2}m\d{2}s\.csv$/;
+/**
+ * The names LOG_NAME matches, as a shell glob (find -name), a little wider (a day of any digits):
+ * the listing of a Docker work volume's logs/ gives these first (docker-folder-list.ts).
+ */
+export const LOG_NAME_GLOB = '*_[0-9]*-[A-Z][a-z][a-z]-[0-9][0-9][0-9][0-9]-[0-9][0-9]h[0-9][0-9]m[0-9][0-9]s.csv';
 /** moduleOfLog's answers (a replay interleaves its logs line by line); bounded, emptied when full. */
 const logModules = new Map<string, string | undefined>();
 
