@@ -3,7 +3,8 @@
  * `contract-gcc` (gcc, make, the runtime at /opt/contract/runtime), NetworkMode none, read-only
  * root, the job's files in a Docker volume at /work (filled through the API with a tar of the
  * host work dir, so nothing needs to be shared with a remote engine; the volume of a project's
- * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec, user 1000,
+ * workspace is kept between its jobs for no-op rebuilds), /tmp a tmpfs with exec and /dev/shm both
+ * of tmpMiB, user 1000 (the host's uid 1000 too: docs/sandbox.md "Docker jobs share one uid"),
  * no-new-privileges, all capabilities dropped, Memory (= MemorySwap) and PidsLimit.
  * Limit hits are seen while the job runs, as in bwrap (docker-cgroup.ts): the container's own cgroup,
  * found from its init's /proc/<pid>/cgroup, is polled every 100 ms (an OOM kill or a fork refused by
@@ -303,6 +304,8 @@ export class DockerSandbox implements Sandbox {
         ReadonlyRootfs: true,
         Mounts: [{ Type: 'volume', Source: volume, Target: DOCKER_WORK }],
         Tmpfs: { '/tmp': `rw,exec,nosuid,nodev,size=${tmpBytes(cmd.limits)}` },
+        // /dev/shm the size of /tmp, as in bwrap (Docker's default is 64 MiB whatever tmpMiB says)
+        ShmSize: tmpBytes(cmd.limits),
         SecurityOpt: ['no-new-privileges'],
         CapDrop: ['ALL'],
         Memory: bytes,
