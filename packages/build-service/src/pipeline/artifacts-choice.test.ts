@@ -105,4 +105,20 @@ describe('a cancel during the collection of a run\'s logs', () => {
     const lines = job.events.all.filter((e): e is LineEvent => e.type === 'line').map((e) => e.line);
     expect(lines).toContain(`collected 0 artifact(s) in ${job.artifactsJSON()!.collect_ms} ms; left out: BIG.csv (${CANCELLED_REASON})`);
   });
+
+  test('a cancel during the run still lets the collection take what the stopped run wrote', async () => {
+    const makefile = 'all:\n\ttrue\nrun:\n\ttrue\n';
+    const job = new Job('j-run-cancel', { action: 'run', project: { files: { Makefile: makefile } }, projectKey: null, kind: 'make', limits: { ...DEFAULT_LIMITS } }, 'none');
+    const sandbox: Sandbox = {
+      ...scriptedSandbox({ run: { start: (p) => p.write('stdout', 'running'), terminate: async (p) => (setTimeout(() => p.exit(0), 10), true) } }),
+      readWorkDirs: async (_w: string, rels: string[]) => new Map(rels.map((rel) => [rel, rel === 'logs' ? { entries: [file(ORD_LOG, RECORDS)] } : null])),
+      removeRunOutputs: async () => true,
+    };
+    job.events.subscribe(0, (e) => {
+      if (e.type === 'line' && e.line === 'running') void job.cancel();
+    });
+    await job.execute(scriptedContext(sandbox, scratchWorkspace()));
+    expect(job.status).toBe('cancelled');
+    expect(job.artifactsJSON()!.files.map((f) => f.name)).toEqual([ORD_LOG]);
+  });
 });

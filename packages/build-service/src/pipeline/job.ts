@@ -152,8 +152,12 @@ export class Job {
   /** The limit whose hit is stopping the run (its launcher asked to stop: stopOnLimit), else null. */
   private limitStopping: LimitHit | null = null;
   private cancelSignal!: () => void;
-  /** Aborted by a cancel: stops the collection of the run's logs (a cancel ends the job within CANCEL_DEADLINE_MS). */
-  private readonly collectAbort = new AbortController();
+  /**
+   * The collection of the run's logs under way, aborted by a cancel that comes during it (the job
+   * ends within CANCEL_DEADLINE_MS); a cancel before it (during the run) lets it collect what the
+   * stopped run wrote.
+   */
+  private collectAbort: AbortController | null = null;
   private readonly cancelled = new Promise<void>((r) => (this.cancelSignal = r));
   /** The first internal fault of this job (see InternalFault), null while there is none. */
   private fault: InternalFault | null = null;
@@ -256,7 +260,7 @@ export class Job {
     }
     this.cancelRequested = true;
     this.cancelSignal();
-    this.collectAbort.abort();
+    this.collectAbort?.abort();
     const proc = this.current;
     if (!proc) return;
     if (this.currentStep === 'run') await this.stopArchitecture(proc, 'cancel');
@@ -661,11 +665,12 @@ export class Job {
   /** Copies the run's logs out of the sandbox (its processes are gone); a failure is a warning line. */
   private async collectArtifacts(sandbox: Sandbox, workDir: string): Promise<void> {
     const t0 = Date.now();
+    const abort = (this.collectAbort = new AbortController());
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
       const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => this.runIssues.log(data, name), {
         launchedModules: this.runIssues.launchedModules,
-        signal: this.collectAbort.signal,
+        signal: abort.signal,
       });
       // a cancelled run's processes were killed: the mailboxes and pid files they leave say nothing
       this.artifacts = this.cancelRequested ? { ...collected, runDirLeftovers: [] } : collected;
@@ -675,6 +680,8 @@ export class Job {
       this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${visibleText(s.name, { escapeTab: true })} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);
+    } finally {
+      this.collectAbort = null;
     }
   }
 

@@ -491,10 +491,11 @@ export class DockerSandbox implements Sandbox {
 
   /**
    * Lists work-dir folders of the volume with `find` in its holder (docker-folder-list.ts: names,
-   * kinds and sizes, no link followed, at most maxEntries entries), then reads each regular file
-   * the collector takes on its own, by name, through the holder's archive API (the engine resolves
-   * the path inside the container and its tar reports a link as a link), only as far as the
-   * collector asks and never past the size find gave. A folder is never archived whole: its archive
+   * kinds and sizes, no link followed, at most maxEntries entries, the runtime's logs first), then
+   * reads the regular files the collector takes, by name: those of at most BATCHED_FILE_BYTES
+   * together by one tar in the holder (readSmallFiles), each bigger one through the holder's archive
+   * API (the engine resolves the path inside the container and its tar reports a link as a link),
+   * only as far as the collector asks and never past the size find gave. A folder is never archived whole: its archive
    * streams every byte of every file in it (a sparse file of a terabyte, thousands of files past
    * the entries looked at), so its cost would be the program's choice. A folder find cannot list
    * is an error (the collection's warning line), not a reason to read it another way.
