@@ -96,3 +96,29 @@ test.skipIf(!docker.available)('logs/ with a 1 TiB and a 300 MiB sparse file bes
   // two reads of 256 MiB, one after the other, each into one buffer
   expect(peak - before).toBeLessThan(1024 * MiB);
 }, 300_000);
+
+test.skipIf(!docker.available)('a cancel while the two 256 MiB reads are under way ends the job cancelled within 2 s, the files not read said', async () => {
+  const files = makeProject(flood(0));
+  files.Makefile = files.Makefile!.replace('\t./prog', '\t./prog $(LOG_DIR)');
+  const r = await postJob(served.url, { action: 'run', kind: 'make', project: { files } });
+  expect(r.status, JSON.stringify(r.json)).toBe(201);
+  const id = r.json.id as string;
+  let cancelledAt = 0;
+  let endedAt = 0;
+  await readEvents(served.url, id, (e) => {
+    // the program's last line (ls | wc -l); the container then ends and the collection starts
+    if (e.type === 'line' && (e as { line: string }).line === '3' && !cancelledAt) {
+      setTimeout(() => {
+        cancelledAt = Date.now();
+        void fetch(`${served.url}/api/jobs/${id}`, { method: 'DELETE' });
+      }, 2000);
+    }
+    if (e.type === 'end') endedAt = Date.now();
+  });
+  const job = await getJob(served.url, id);
+  expect(job.status).toBe('cancelled');
+  expect(cancelledAt).toBeGreaterThan(0);
+  expect(endedAt - cancelledAt).toBeLessThan(2000);
+  const skipped = job.artifacts.skipped as { name: string; reason: string }[];
+  expect(skipped.filter((s) => s.reason === 'not read: the job was cancelled during the collection').length, JSON.stringify(job.artifacts)).toBeGreaterThan(0);
+}, 300_000);
