@@ -38,9 +38,10 @@
 #include <unistd.h>
 #include "libmodule/libmodule.h"
 #include "rt_placement.h"
+#include "run_bounds.h" /* CONTRACT_LAUNCHER_MAX_MODULES, from packages/conventions/src/run-bounds.ts */
 #include "internal.h" /* rt_log_recover */
 
-#define MAX_MODULES 128
+#define MAX_MODULES CONTRACT_LAUNCHER_MAX_MODULES
 #define LINE_MAX_LEN 4096
 
 /* One of a module's output streams: the read end of its pipe, and the line being gathered. */
@@ -752,7 +753,7 @@ int main(int argc, char *argv[])
     }
     if (pm_qos && *pm_qos && rt_parse_pm_qos_us(pm_qos, &pm_qos_us, rt_err, sizeof rt_err) != 0) { say("%s", rt_err); return 2; }
     if (i >= argc) { say("no module executable given"); usage(); return 2; }
-    if (argc - i > MAX_MODULES) { say("too many modules (max %d)", MAX_MODULES); return 2; }
+    if (argc - i > MAX_MODULES) { say("too many modules: %d module executables given, at most %d (ORD and the supervisors count)", argc - i, MAX_MODULES); return 2; }
     for (int k = i; k < argc; k++) {
         if (access(argv[k], X_OK) != 0) { say("%s: %s", argv[k], strerror(errno)); return 2; }
     }

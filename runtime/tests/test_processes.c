@@ -15,6 +15,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 #include "harness.h"
+#include "../launcher/run_bounds.h"
 
 static pid_t start_launcher(char *const argv[], const char *out_file)
 {
@@ -827,5 +828,39 @@ void test_launcher_placement(void)
     free(text2);
     char *bad_qos[] = { "contract-launch", "--pm-qos-us", "-1", exe_p, NULL };
     CHECK(h_run(bad_qos, out, 3000) == 2);
+    h_teardown();
+}
+
+/* The launcher takes CONTRACT_LAUNCHER_MAX_MODULES module executables (run_bounds.h, written from
+ * packages/conventions/src/run-bounds.ts: the number `contract check` and the docs give), and
+ * refuses one more before starting anything, naming both counts. Paths that do not exist: the
+ * count is checked first, so a count it takes goes on to say the path is missing. */
+void test_launcher_module_bound(void)
+{
+    REQUIRE(h_setup("modbound") == 0);
+    enum { MAX = CONTRACT_LAUNCHER_MAX_MODULES };
+    CHECK(MAX > 128); /* 128 modules + 7 supervisors + ORD were refused */
+    static char *argv[MAX + 8];
+    char missing[600];
+    snprintf(missing, sizeof missing, "%s/no-such-module", h_work_dir);
+    int n = 0;
+    argv[n++] = "contract-launch";
+    argv[n++] = "--run-dir";
+    argv[n++] = h_run_dir;
+    for (int k = 0; k < MAX; k++) argv[n++] = missing;
+    argv[n] = NULL;
+    char out[600], want[200];
+    snprintf(out, sizeof out, "%s/bound.out", h_work_dir);
+    CHECK(h_run(argv, out, 5000) == 2);
+    char *text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "no-such-module: No such file or directory") && !strstr(text, "too many modules"), "%d modules: %s", MAX, text ? text : "(no output)");
+    free(text);
+    argv[n++] = missing;
+    argv[n] = NULL;
+    CHECK(h_run(argv, out, 5000) == 2);
+    text = h_read_file(out);
+    snprintf(want, sizeof want, "contract-launch: too many modules: %d module executables given, at most %d", MAX + 1, MAX);
+    CHECK_MSG(text && strstr(text, want), "%d modules: %s", MAX + 1, text ? text : "(no output)");
+    free(text);
     h_teardown();
 }

@@ -9,3 +9,4 @@ export * from './regions.js';
 export * from './time-literal.js';
 export * from './visible-text.js';
 export * from './json-body.js';
+export * from './run-bounds.js';
