@@ -10,7 +10,7 @@
  * Numeric limits (configurable per server, and per job downwards only):
  */
 import { availableParallelism } from 'node:os';
-import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
+import { DEFAULT_PROCESS_LIMIT, DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
 import { TRACE_LINES_KEPT } from './trace/replay-bound.js';
 export interface Limits {
   /** Memory of the whole job (all processes, tmpfs included), MiB. */
@@ -37,7 +37,7 @@ export interface Limits {
 
 export const DEFAULT_LIMITS: Readonly<Limits> = Object.freeze({
   memoryMiB: 512,
-  processes: 256,
+  processes: DEFAULT_PROCESS_LIMIT,
   buildSeconds: 120,
   runSeconds: 60,
   outputBytesPerStream: 1024 * 1024,

@@ -114,7 +114,9 @@ try {
         const c = process.cpuUsage(c0);
         fullCpu.push((c.user + c.system) / 1000);
     }
-    const errors = workspace.diagnostics.filter((d) => d.severity === 'error');
+    // 1,000 modules are more processes than one run starts (architecture-too-many-processes,
+    // docs/language-reference.md §7): the one error the benchmark's workspace is meant to have
+    const errors = workspace.diagnostics.filter((d) => d.severity === 'error' && d.code !== 'architecture-too-many-processes');
     if (errors.length) {
         console.error(`synthetic architecture has ${errors.length} errors, first: ${JSON.stringify(errors[0])}`);
         process.exit(1);

@@ -17,13 +17,14 @@ import { supervisorChecks } from './supervisor-checks.js';
 import { supervisorRuleChecks } from './supervisor-rule-checks.js';
 import { supervisorActionChecks } from './supervisor-action-checks.js';
 import { schemaConflictChecks } from './schema-conflict-checks.js';
+import { architectureChecks } from './architecture-checks.js';
 
 export type CheckFactory = (services: CactalServices) => ValidationChecks<CactalAstType>;
 
 /** The check sets, one per area. */
 export const CHECK_FACTORIES: CheckFactory[] = [importChecks, typeChecks, moduleChecks, identifierChecks,
     schemaChecks, parameterisationChecks, schedulerChecks, supervisorChecks, supervisorRuleChecks, supervisorActionChecks,
-    schemaConflictChecks];
+    schemaConflictChecks, architectureChecks];
 
 export function registerValidationChecks(services: CactalServices): void {
     const registry = services.validation.ValidationRegistry;

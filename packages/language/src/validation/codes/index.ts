@@ -10,6 +10,7 @@ import { modulesArea } from './modules.js';
 import { schemasArea } from './schemas.js';
 import { schedulerArea } from './scheduler.js';
 import { supervisorsArea } from './supervisors.js';
+import { architectureArea } from './architecture.js';
 
 export * from './code-table.js';
 export { SyntaxCodes } from './syntax.js';
@@ -19,8 +20,9 @@ export { ModuleCodes } from './modules.js';
 export { SchemaCodes } from './schemas.js';
 export { SchedulerCodes } from './scheduler.js';
 export { SupervisorCodes } from './supervisors.js';
+export { ArchitectureCodes } from './architecture.js';
 
-export const CODE_AREAS: CodeArea[] = [syntaxArea, importsArea, typesArea, modulesArea, schemasArea, schedulerArea, supervisorsArea];
+export const CODE_AREAS: CodeArea[] = [syntaxArea, importsArea, typesArea, modulesArea, schemasArea, schedulerArea, supervisorsArea, architectureArea];
 
 export function allCodes(): DiagnosticCode[] {
     return CODE_AREAS.flatMap((a) => a.codes);

@@ -1,0 +1,18 @@
+import { defineCodes } from './code-table.js';
+
+/**
+ * docs/language-reference.md §7: what a run of the whole architecture needs — one process per
+ * module and supervisor, and ORD (packages/conventions/src/run-bounds.ts gives the numbers).
+ */
+export const { area: architectureArea, codes: ArchitectureCodes } = defineCodes('Architecture size', 'language-reference.md §7', {
+    'architecture-too-many-processes': {
+        severity: 'error',
+        description: 'The architecture has more module processes (its modules, its supervisors and ORD) than contract-launch starts in one run (256): its run would be refused after the build. Reported once, on the first module or supervisor past the bound (files in path order); the diagnostic data holds `processes` and `max`.',
+        example: '// 250 modules and 7 supervisors: 258 processes with ORD'
+    },
+    'architecture-over-process-limit': {
+        severity: 'warning',
+        description: 'The architecture\'s processes and their threads (2 per module process, its own and its log writer\'s, and 4 for make, its shell, contract-launch and the sandbox) are more than the build service\'s default process limit (256): its run would fail to start them all (`fork: Resource temporarily unavailable`). Raise the limit (`contract run --limit processes=N`, `contract build`, `contract serve` likewise) or make the architecture smaller. Reported once, on the first module or supervisor past the limit (files in path order); the diagnostic data holds `processes`, `threads`, `limit` and `suggested`.',
+        example: '// 120 modules and 7 supervisors: 128 processes with ORD, 260 processes and threads'
+    }
+});
