@@ -501,6 +501,8 @@ export class Job {
       if (this.cancelRequested && !this.stoppedGracefully) await tail?.stop();
       else await tail?.finish();
       if (run.limitHit && !this.cancelRequested) this.runIssues.limit(run.limitHit);
+      // the launcher refused the run before starting anything (too many modules, a CPU list...): said as such
+      const refused = launcherStatus !== null && !this.cancelRequested ? this.runIssues.launcherExit(launcherStatus) : undefined;
       // a cancelled run's logs too: what it wrote until it was stopped is the user's record of it
       // (a cancel during the collection stops it: what was read by then is kept)
       await this.collectArtifacts(ctx.sandbox, ws.workDir);
@@ -511,7 +513,7 @@ export class Job {
         // a module's crash is the failure to name (make's status alone reads like a build failure)
         const crashed = crashes.summary(run.limitHit);
         const launcher = launcherStatus !== null ? `contract-launch exit ${launcherStatus}; ` : '';
-        const why = crashed ? `: ${crashed}` : launcherKilled && !this.cancelRequested
+        const why = crashed ? `: ${crashed}` : refused ? `: ${refused}` : launcherKilled && !this.cancelRequested
           ? ': contract-launch was killed (SIGKILL) before the run ended — a module\'s code can do that (kill(getppid(), SIGKILL)), or the kernel; the modules\' output it had not relayed yet is lost, their CSV logs are what they wrote'
           : '';
         const message = run.message ?? `run failed${why} (${launcher}make exit ${run.exitCode}${run.signal ? `, signal ${run.signal}` : ''})`;

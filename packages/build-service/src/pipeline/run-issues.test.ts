@@ -111,8 +111,8 @@ describe('RunIssues', () => {
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'HMI', moduleProcesses: 241 });
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' });
     expect(forks.all.map((i) => [i.module, i.message])).toEqual([
-      ['HMI', "the run was stopped by the process limit 256 (HMI had 241 of the job's processes: its code forks)"],
       [undefined, 'the run was stopped by the process limit 256'],
+      ['HMI', "the run was stopped by the process limit 256 (HMI had 241 of the job's processes: its code forks)"],
     ]);
     // a fork bomb's run: the modules that did not answer the stop's KILL in time are not blamed for looping
     const bomb = new RunIssues();
@@ -120,15 +120,15 @@ describe('RunIssues', () => {
     bomb.line('module MAB did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
     bomb.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'MSA', moduleProcesses: 250 });
     expect(bomb.all.map((i) => [i.kind, i.module, i.message])).toEqual([
+      ['limit', 'MSA', "the run was stopped by the process limit 256 (MSA had 250 of the job's processes: its code forks)"],
       ['module-hung', 'MSA', 'MSA did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)'],
       ['module-hung', 'MAB', "MAB did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated, while the process limit 256 held the job (MSA's doing): likely kept from answering by that, not by its own code"],
-      ['limit', 'MSA', "the run was stopped by the process limit 256 (MSA had 250 of the job's processes: its code forks)"],
     ]);
     r.outputTruncated('stdout', 1024 * 1024);
     expect(r.all.map((i) => [i.kind, i.file ?? null, i.message])).toEqual([
+      ['limit', null, 'the run was stopped by the run time limit 60 s'],
       ['log-capped', 'B_1.csv', 'log B_1.csv is not whole: the module reached its CSV log bound'],
       ['log-lost', 'C_1.csv', 'log C_1.csv was not collected: logs/ held more than 256 files'],
-      ['limit', null, 'the run was stopped by the run time limit 60 s'],
       ['output-truncated', null, "the run's stdout went past the output limit (1 MiB per stream) (MSA wrote 100 % of the run's output lines until then): later lines were not kept"],
     ]);
   });
@@ -238,5 +238,50 @@ describe('RunIssues', () => {
       r.artifacts(none);
       expect(r.all).toEqual([{ kind: 'log-tampered', file: ORD, message: `log ${ORD} was changed by a process of the run, not only appended to by its module: it shrank while the run went on (219 -> 0 bytes; the runtime only appends to a log); its records are not the module's whole record` }]);
     });
+  });
+  test('a run the process limit stopped: the limit first, the 127 modules it took down with the run in one line, every duration a number', () => {
+    // the field tester's 120 modules + 7 supervisors + ORD at the default process limit: 127 of them did not answer the stop's KILL
+    const r = new RunIssues();
+    const names = Array.from({ length: 127 }, (_v, i) => `M${String(i).padStart(3, '0')}`);
+    for (const [i, m] of names.entries()) r.line(`module ${m} did not end on its KILL request within ${i % 2 ? '0.36' : '1'} s: terminating it (SIGTERM)`, 'launcher');
+    r.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' });
+    expect(r.all.map((i) => [i.kind, i.message])).toEqual([
+      ['limit', 'the run was stopped by the process limit 256'],
+      ['module-hung', '127 modules were stopped with the run (M000, M001, M002, M003, M004, M005, M006, M007 and 119 more): they did not answer their KILL request for 0.36 to 1 s and were terminated, while the process limit 256 held the job: likely kept from answering by that, not by their own code'],
+    ]);
+    expect(r.all.map((i) => i.message).join('\n')).not.toContain('?');
+    // past the 64th module's line the duration was lost (`for ? s`): every one is kept, at the memory limit too
+    const one = new RunIssues();
+    for (const m of names.slice(0, 70)) one.line(`module ${m} did not end on its KILL request within 2 s: terminating it (SIGTERM)`, 'launcher');
+    one.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
+    expect(one.all).toHaveLength(2);
+    expect(one.all[1]!.message).toMatch(/^70 modules were stopped with the run \(M000, .* and 62 more\): they did not answer their KILL request for 2 s and were terminated, while the memory limit 512 MiB/);
+    // the module whose code forks keeps its own line; the others are summarised after the limit
+    const last = new RunIssues();
+    for (const m of names.slice(0, 70)) last.line(`module ${m} did not end on its KILL request within 2 s: terminating it (SIGTERM)`, 'launcher');
+    last.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'M000', moduleProcesses: 200 });
+    expect(last.all[0]!.kind).toBe('limit');
+    expect(last.all.map((i) => i.message).join('\n')).not.toContain('for ? s');
+  });
+  test("contract-launch's refusal before it starts anything (exit 2) is an issue, first; its exit 2 after starting the modules is not one", () => {
+    const r = new RunIssues();
+    r.line('make -C /work/gen run', 'run');
+    r.line('too many modules: 257 module executables given, at most 256 (ORD and the supervisors count)', 'launcher');
+    r.line('/tmp/x.contract:1:8: info: something else', 'run');
+    expect(r.launcherExit(2)).toBe('contract-launch refused to start the run: too many modules: 257 module executables given, at most 256 (ORD and the supervisors count) (nothing was started)');
+    expect(r.all.map((i) => [i.kind, i.message])).toEqual([
+      ['launcher-refused', 'contract-launch refused to start the run: too many modules: 257 module executables given, at most 256 (ORD and the supervisors count) (nothing was started)'],
+    ]);
+    expect(r.launcherExit(2)).toBeUndefined(); // told once
+    const started = new RunIssues();
+    started.line('modules pinned to CPUs 1', 'launcher');
+    started.line('run directory /tmp/contract-run-x', 'launcher');
+    started.line('fork: Resource temporarily unavailable', 'launcher');
+    expect(started.launcherExit(2)).toBeUndefined();
+    expect(started.all).toEqual([]);
+    const other = new RunIssues();
+    other.line('--cpus 7: CPU 7 is not online', 'launcher');
+    expect(other.launcherExit(1)).toBeUndefined(); // not a refusal's status
+    expect(other.launcherExit(2)).toMatch(/^contract-launch refused to start the run: --cpus 7/);
   });
 });

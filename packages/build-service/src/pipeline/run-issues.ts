@@ -9,7 +9,7 @@ import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import { LOG_DIR, type RunArtifacts } from './artifacts.js';
 import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
 
-export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost' | 'log-tampered';
+export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'launcher-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost' | 'log-tampered';
 
 export interface RunIssue {
   kind: RunIssueKind;
@@ -37,6 +37,9 @@ const START_UNSENT_LINE = /^error: START request to ([A-Za-z_]\w*): (.*)$/;
  * its init has not returned, and the run stops without its start request (runtime/launcher main).
  */
 const NOT_READY_LINE = /^module ([A-Za-z_]\w*) is not ready after (\d+(?:\.\d+)?) s: its init has not returned/;
+/** contract-launch's line once it has made its run directory, just before it starts the modules (runtime/launcher main). */
+const RUN_DIR_LINE = /^run directory /;
+
 /** contract-launch's line when a module does not end on the KILL request of the run's stop (runtime/launcher stop_all). */
 const HUNG_LINE = /^module ([A-Za-z_]\w*) did not end on its KILL request within (\d+(?:\.\d+)?) s: terminating it \(SIGTERM\)$/;
 /** contract-launch's line when a module's own code ended it, status 0, before the run's stop (reap). */
@@ -52,6 +55,19 @@ const EXIT_RECORDS = /,module_exit,[^,\n]*,[^,\n]*,\d+,status=-?\d+ records=(\d{
 /** contract-launch's line about one of the modules it started (its end, whatever the cause). */
 const MODULE_PID_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) /;
 
+/** Modules named in the one line of those a limit took down with the run (the others counted). */
+const HUNG_NAMED = 8;
+
+/**
+ * ` for 2 s`, ` for 0.36 to 2 s`: how long modules did not answer their KILL request, as the
+ * launcher said it; nothing when it is not known (never a `?`).
+ */
+function forSeconds(seconds: readonly (string | undefined)[]): string {
+  const known = [...new Set(seconds.filter((s): s is string => s !== undefined))].sort((a, b) => Number(a) - Number(b));
+  if (!known.length) return '';
+  return known.length === 1 ? ` for ${known[0]!} s` : ` for ${known[0]!} to ${known[known.length - 1]!} s`;
+}
+
 /** Sources of output lines counted apart (a run has far fewer modules; a hostile tag stream more). */
 const MAX_SOURCES = 256;
 
@@ -60,8 +76,8 @@ export class RunIssues {
   private readonly stuckSeen = new Set<string>();
   /** Modules the launcher saw killed by SIGKILL during the run (at most 16): at the memory limit, the kernel's choice. */
   private readonly killed: string[] = [];
-  /** Modules that did not answer the stop's KILL, and for how long (s, as the launcher said), at most 64. */
-  private readonly hungSeconds = new Map<string, string>();
+  /** How long each module-hung issue's module did not answer the stop's KILL (s, as the launcher said): one per issue of the list. */
+  private readonly hungSeconds = new Map<RunIssue, string>();
   /** Modules the launcher found not ready (at most 16): their KILL unanswered at the stop is not told again. */
   private readonly notReady = new Set<string>();
   /** Characters of output lines per source (at most MAX_SOURCES: a module tag, `launcher`, `run`): who filled the output. */
@@ -79,6 +95,11 @@ export class RunIssues {
   private readonly tampered = new Set<string>();
   /** The disk limit stopped the run: a log may be missing because the full disk refused it. */
   private diskFull = false;
+
+  /** contract-launch has said its run directory: it went on to start the modules (its refusals come before). */
+  private launcherStarted = false;
+  /** contract-launch's last line before that (at most 300 characters kept): its refusal, when it then exits 2. */
+  private launcherBefore: string | undefined;
 
   get all(): readonly RunIssue[] {
     return this.list;
@@ -102,6 +123,8 @@ export class RunIssues {
     if (source === 'launcher') {
       const named = MODULE_PID_LINE.exec(text);
       if (named && this.launched.size < 256) this.launched.add(named[1]!);
+      if (RUN_DIR_LINE.test(text)) this.launcherStarted = true;
+      else if (!this.launcherStarted) this.launcherBefore = text.slice(0, 300);
       this.moduleEnd(text);
       const exited = EXITED_LINE.exec(text);
       if (exited && this.exitedClean.size < 256) this.exitedClean.add(exited[1]!);
@@ -152,13 +175,40 @@ export class RunIssues {
     // modules that did not answer the stop's KILL while a fork bomb or a memory hog held the
     // machine: not blamed for looping (every module of a fork bomb's run was "hung")
     if (hit.name === 'processes' || hit.name === 'memory') {
-      for (const issue of this.list) {
-        if (issue.kind !== 'module-hung' || issue.module === module) continue;
-        const seconds = this.hungSeconds.get(issue.module!) ?? '?';
-        issue.message = `${issue.module!} did not end when the run stopped: it did not answer its KILL request for ${seconds} s and was terminated, while the ${describeLimitHit(hit)} held the job${module ? ` (${module}'s doing)` : ''}: likely kept from answering by that, not by its own code`;
+      const held = `while the ${describeLimitHit(hit)} held the job${module ? ` (${module}'s doing)` : ''}: likely kept from answering by that, not by their own code`;
+      const others = this.list.filter((i) => i.kind === 'module-hung' && i.module !== module);
+      if (others.length === 1) {
+        const issue = others[0]!;
+        issue.message = `${issue.module!} did not end when the run stopped: it did not answer its KILL request${forSeconds([this.hungSeconds.get(issue)])} and was terminated, ${held.replace('their own', 'its own')}`;
+      } else if (others.length > 1) {
+        // the modules a limit took down with the run: one line naming how many (a run of 127
+        // modules stopped by the process limit printed 127 lines, burying the limit's own)
+        const names = others.map((i) => i.module!);
+        const named = names.length > HUNG_NAMED ? `${names.slice(0, HUNG_NAMED).join(', ')} and ${names.length - HUNG_NAMED} more` : names.join(', ');
+        const summary: RunIssue = {
+          kind: 'module-hung',
+          message: `${others.length} modules were stopped with the run (${named}): they did not answer their KILL request${forSeconds(others.map((i) => this.hungSeconds.get(i)))} and were terminated, ${held}`,
+        };
+        const at = this.list.indexOf(others[0]!);
+        for (const i of others) this.list.splice(this.list.indexOf(i), 1);
+        this.list.splice(at, 0, summary);
       }
     }
-    this.list.push({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}${forks}`, ...(module ? { module } : {}) });
+    // the limit that stopped the run comes first: what followed from it (modules taken down with the run) after
+    this.list.unshift({ kind: 'limit', message: `the run was stopped by the ${describeLimitHit(hit)}${first}${forks}`, ...(module ? { module } : {}) });
+  }
+
+  /**
+   * contract-launch ended with `status` (make's `*** [...: run] Error N`). Exit 2 with a line of
+   * its own before its run directory is its refusal to start the run (too many modules, a CPU list
+   * it cannot use, an executable missing...): an issue, first, rather than make's status alone.
+   * Returns the refusal's message, undefined when it was none.
+   */
+  launcherExit(status: number): string | undefined {
+    if (status !== 2 || this.launcherStarted || this.launcherBefore === undefined || this.list.some((i) => i.kind === 'launcher-refused')) return undefined;
+    const message = `contract-launch refused to start the run: ${this.launcherBefore} (nothing was started)`;
+    this.list.unshift({ kind: 'launcher-refused', message });
+    return message;
   }
 
   /** The output went past its cap: said with the module that wrote most of it (its issue's `module`), when one did. */
@@ -246,8 +296,9 @@ export class RunIssues {
     // a module not ready does not answer the stop's KILL either: the same fault, told once
     if (hung && this.notReady.has(hung[1]!)) return;
     if (hung) {
-      if (this.hungSeconds.size < 64) this.hungSeconds.set(hung[1]!, hung[2]!);
-      this.list.push({ kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for ${hung[2]!} s and was terminated (does a region of it loop or block: its exec or exit code?)` });
+      const issue: RunIssue = { kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for ${hung[2]!} s and was terminated (does a region of it loop or block: its exec or exit code?)` };
+      this.hungSeconds.set(issue, hung[2]!);
+      this.list.push(issue);
       return;
     }
     const ended = ENDED_LINE.exec(text);
