@@ -5,22 +5,29 @@ import { UsageError } from './command.js';
 export interface ParsedArgs {
     positionals: string[];
     options: Map<string, string | true>;
+    /** The values of each repeatable option, in order (`--limit a=1 --limit b=2`). */
+    repeated: Map<string, string[]>;
 }
 
 /**
- * `valued` lists options that take a value, `flags` those that do not; anything else is a
- * usage error.
+ * `valued` lists options that take a value, `flags` those that do not, `repeatable` valued options
+ * that may be given more than once (ParsedArgs.repeated); anything else is a usage error.
  */
-export function parseArgs(args: string[], valued: string[], flags: string[] = []): ParsedArgs {
+export function parseArgs(args: string[], valued: string[], flags: string[] = [], repeatable: string[] = []): ParsedArgs {
     const positionals: string[] = [];
     const options = new Map<string, string | true>();
+    const repeated = new Map<string, string[]>();
     for (let i = 0; i < args.length; i++) {
         const arg = args[i]!;
         if (arg === '--') { positionals.push(...args.slice(i + 1)); break; }
         if (arg.startsWith('-') && arg !== '-') {
             const eq = arg.indexOf('=');
             const name = (eq >= 0 ? arg.slice(0, eq) : arg).replace(/^--?/, '');
-            if (valued.includes(name)) {
+            if (repeatable.includes(name)) {
+                const value = eq >= 0 ? arg.slice(eq + 1) : args[++i];
+                if (value === undefined) throw new UsageError(`option --${name} needs a value`);
+                repeated.set(name, [...(repeated.get(name) ?? []), value]);
+            } else if (valued.includes(name)) {
                 const value = eq >= 0 ? arg.slice(eq + 1) : args[++i];
                 if (value === undefined) throw new UsageError(`option --${name} needs a value`);
                 options.set(name, value);
@@ -33,7 +40,7 @@ export function parseArgs(args: string[], valued: string[], flags: string[] = []
             positionals.push(arg);
         }
     }
-    return { positionals, options };
+    return { positionals, options, repeated };
 }
 
 /**

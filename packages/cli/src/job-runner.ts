@@ -9,8 +9,8 @@ import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
-import { EXIT_FAILURE, EXIT_OK, UsageError, type CliIO } from './command.js';
-import { RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR } from '@contract-studio/conventions';
+import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
+import { addLimitOption, emptyLimitOptions, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, type LimitOptions } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
 import { safeName } from './terminal-text.js';
 
@@ -46,6 +46,26 @@ export interface JobOptions {
 
 export const COMMON_VALUED = ['sandbox', 'format', 'runtime', 'cache-dir'];
 export const COMMON_FLAGS = ['verbose'];
+/** Options build and run take more than once. */
+export const COMMON_REPEATABLE = ['limit'];
+/** Their usage line of `--limit` (the reading `contract serve` shares: conventions' limit-option.ts). */
+export const LIMIT_USAGE = [
+    '  --limit NAME=VALUE (repeatable): one of the build service\'s limits for this job, above or below its default (docs/sandbox.md "Limits"),',
+    '               as `contract serve --limit`: e.g. processes=512 for an architecture of more than 126 module processes',
+    '               (`contract check` warns: architecture-over-process-limit), memoryMiB=1024; runSeconds and buildSeconds replace the CLI\'s own',
+];
+
+/** The `--limit NAME=VALUE` values of a command line, read as `contract serve` reads them; a bad one is bad usage. */
+export function parseLimitOptions(parsed: ParsedArgs): LimitOptions | undefined {
+    const given = parsed.repeated.get('limit');
+    if (!given?.length) return undefined;
+    const out = emptyLimitOptions();
+    for (const text of given) {
+        const refused = addLimitOption(out, text);
+        if (refused) throw new UsageError(refused);
+    }
+    return out;
+}
 export const COMMON_USAGE = [
     '  --sandbox: auto (default: bwrap when it works, else docker), bwrap, docker, none (no isolation)',
     '  --format: text (default) or json (one JSON object on stdout at the end, no progress)',
@@ -111,6 +131,8 @@ export interface RunRequest {
     realtime?: boolean;
     /** --run-limit: the run step's wall time limit in seconds (default: cliLimits). */
     runLimit?: number;
+    /** `--limit NAME=VALUE`: the build service's limits for this job, above or below its defaults (docs/sandbox.md "Limits"), and their texts as written. */
+    limitOptions?: LimitOptions;
 }
 
 /** The build step's wall time limit of `contract build` and `contract run` (the service's default is 120 s). */
@@ -143,7 +165,15 @@ export async function runJob(
     onEvent?: (e: JobEvent) => void,
 ): Promise<JobOutcome | { error: string; exitCode: number }> {
     const t0 = Date.now();
-    const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE, resolveCacheDir, prepareCacheDir } = await import('@contract-studio/build-service');
+    const { JobService, ServiceError, DEFAULT_RUNTIME_SOURCE, resolveCacheDir, prepareCacheDir, DEFAULT_LIMITS, LimitsError, mergeLimits } = await import('@contract-studio/build-service');
+    // --limit: the service's own check (names, whole counts, ranges), as `contract serve` has it, before anything else
+    const limits = { ...cliLimits(request), ...(request.limitOptions?.limits ?? {}) };
+    try {
+        mergeLimits(DEFAULT_LIMITS, limits, false, request.limitOptions?.limitTexts);
+    } catch (e) {
+        if (e instanceof LimitsError) return { error: `--limit: ${e.message}`, exitCode: EXIT_USAGE };
+        throw e;
+    }
     const timing = (what: string, since: number): void => {
         if (opts.verbose && opts.format === 'text') io.err(`time: ${what} ${Date.now() - since} ms\n`);
     };
@@ -167,7 +197,9 @@ export async function runJob(
         projectRoots: [opts.dir],
         cacheDir: cache.dir,
         persistentWorkspaces: true,
-        limits: cliLimits(request),
+        // --limit over the CLI's own time limits (checked above)
+        limits,
+        ...(request.limitOptions ? { limitTexts: request.limitOptions.limitTexts } : {}),
         runtimeSource: runtime,
     });
     let job: Job | undefined;

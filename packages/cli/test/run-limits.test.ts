@@ -55,6 +55,35 @@ describe('contract run --run-limit: parsing and the limits the CLI gives its job
     });
 });
 
+describe('contract run and contract build --limit NAME=VALUE: the build service\'s limits, read as contract serve reads them', () => {
+    it('is in --help of both; a bad value or an unknown limit is a usage error (exit 2) before any work, said as contract serve says it', async () => {
+        for (const command of ['run', 'build']) {
+            const help = capture(root);
+            expect(await runCli([command, '--help'], help)).toBe(0);
+            expect(help.stdout).toContain('[--limit NAME=VALUE]...');
+            expect(help.stdout).toContain('e.g. processes=512 for an architecture of more than 126 module processes');
+            for (const [value, said] of [
+                ['processes', '--limit needs NAME=VALUE with a positive number (e.g. processes=512, runSeconds=3600), got processes'],
+                ['processes=0', '--limit needs NAME=VALUE with a positive number'],
+                ['bogus=1', '--limit: unknown limit "bogus"'],
+                ['processes=10.5', '--limit: limit processes must be a whole number (a count or a size), got 10.5'],
+                ['processes=12345678901234567', '--limit: limit processes must be at most 4194304, got 12345678901234567'],
+            ] as const) {
+                const bad = capture(root);
+                expect(await runCli([command, root, '--limit', value], bad), `${command} --limit ${value}`).toBe(2);
+                expect(bad.stderr).toContain(`contract ${command}: ${said}`);
+            }
+        }
+    });
+
+    it('reaches the job: a build under --limit buildSeconds=0.001 is stopped by that limit; the later of two values of a name counts', async () => {
+        expect(await runCli(['new', 'limited'], capture(root))).toBe(0);
+        const io = capture(root);
+        expect(await runCli(['build', 'limited', '--sandbox', 'bwrap', '--limit', 'buildSeconds=600', '--limit=buildSeconds=0.001', '--limit', 'processes=512'], io)).not.toBe(0);
+        expect(io.stderr).toMatch(/build time limit 0\.001 s/);
+    }, 240_000);
+});
+
 describe('the advice after a build that failed', () => {
     const outcome = (result: Record<string, unknown>, diagnostics: unknown[] = [], status = 'failed') => ({
         job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status, diagnostics },

@@ -10,3 +10,4 @@ export * from './time-literal.js';
 export * from './visible-text.js';
 export * from './json-body.js';
 export * from './run-bounds.js';
+export * from './limit-option.js';

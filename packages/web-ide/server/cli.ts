@@ -2,6 +2,7 @@ import { statSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { startIdeServer, DEFAULT_PORT } from './ide-server.js';
 import { BuildLimitsRefused } from './integrations.js';
+import { addLimitOption, emptyLimitOptions } from '@contract-studio/conventions';
 
 export interface ServeArgs {
   workspace: string;
@@ -23,7 +24,7 @@ const USAGE = 'usage: contract serve [DIR] [--port N] [--host ADDR] [--sandbox a
 /** Parses `[DIR] [--port N] [--host H] [--sandbox S]`; throws with a usage message on bad input. */
 export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
   // no prototype: `--limit __proto__=1` is a name like any other (refused as unknown), not a prototype
-  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', limits: Object.create(null) as Record<string, number>, limitTexts: Object.create(null) as Record<string, string> };
+  const out: ServeArgs = { workspace: defaultDir, port: DEFAULT_PORT, host: '127.0.0.1', sandbox: 'auto', ...emptyLimitOptions() };
   for (let i = 0; i < argv.length; i++) {
     const a = argv[i]!;
     if (a === '--port' || a === '-p') {
@@ -41,11 +42,9 @@ export function parseServeArgs(argv: string[], defaultDir: string): ServeArgs {
       if (!SERVE_SANDBOXES.includes(s as ServeSandbox)) throw new Error(`--sandbox needs one of ${SERVE_SANDBOXES.join(', ')}, got ${s ?? 'nothing'}\n${USAGE}`);
       out.sandbox = s as ServeSandbox;
     } else if (a === '--limit' || a.startsWith('--limit=')) {
-      const v = a === '--limit' ? argv[++i] : a.slice('--limit='.length);
-      const m = /^([A-Za-z_]\w*)=(\d+(?:\.\d*)?|\.\d+)$/.exec(v ?? ''); // 30, 0.5, .5, 5.
-      if (!m || Number(m[2]) <= 0) throw new Error(`--limit needs NAME=VALUE with a positive number (e.g. runSeconds=3600), got ${v ?? 'nothing'}\n${USAGE}`);
-      out.limits[m[1]!] = Number(m[2]);
-      out.limitTexts[m[1]!] = m[2]!;
+      // the reading contract run and contract build share (conventions' limit-option.ts)
+      const refused = addLimitOption(out, a === '--limit' ? argv[++i] : a.slice('--limit='.length));
+      if (refused) throw new Error(`${refused}\n${USAGE}`);
     } else if (a.startsWith('-')) {
       throw new Error(`unknown option ${a}\n${USAGE}`);
     } else out.workspace = a;
