@@ -9,15 +9,16 @@ import { DEFAULT_PROCESS_LIMIT, LAUNCHER_MAX_MODULES } from '@contract-studio/co
 import { createCactalServices, type CactalServices } from '../src/cactal-module.js';
 import { describeCodeCases, type CodeCase, type Files } from './code-cases.js';
 import { build } from './helpers.js';
+import { threeLetterName } from '../bench/synthetic-architecture.js';
 
 /** An architecture of `modules` synchronous modules (in files of 20) and `supervisors` supervisors. */
 function architecture(modules: number, supervisors: number): Files {
     const files: Files = {};
     for (let m = 0; m < modules; m++) {
         const file = `m${String(Math.floor(m / 20)).padStart(2, '0')}.contract`;
-        files[file] = `${files[file] ?? ''}synchronous module M${String(m).padStart(3, '0')} { scheduling { C=1ms; } }\n`;
+        files[file] = `${files[file] ?? ''}synchronous module ${threeLetterName(m)} { scheduling { C=1ms; } }\n`;
     }
-    for (let s = 0; s < supervisors; s++) files[`s${s}.contract`] = `supervisor SUP${s} { f() { rules { R: [elapsed=1ms] [elapsed=2ms] } } }`;
+    for (let s = 0; s < supervisors; s++) files[`s${s}.contract`] = `supervisor ${threeLetterName(1000 + s)} { f() { rules { R: [elapsed=1ms] [elapsed=2ms] } } }`;
     return files;
 }
 
@@ -46,10 +47,10 @@ describe('architecture size: told once', () => {
         const built = await build(architecture(120, 7), services);
         const found = built.diagnostics.filter((d) => d.code === 'architecture-over-process-limit');
         expect(found).toHaveLength(1);
-        // ORD is process 1, M000..M119 processes 2..121, SUP0..SUP6 122..128: SUP5, process 127, is the first that does not fit
-        expect(found[0]!.message).toContain('SUP5 is process 127');
+        // ORD is process 1, the 120 modules processes 2..121, the 7 supervisors 122..128: the sixth supervisor, process 127, is the first that does not fit
+        expect(found[0]!.message).toContain(`${threeLetterName(1005)} is process 127`);
         expect(found[0]!.message).toContain('contract run --limit processes=320');
-        expect(built.diagnostics.filter((d) => d.severity === 1)).toEqual([]);
+        expect(built.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
     });
 
     it('past the launcher\'s bound the error alone is told (not the process limit\'s warning too)', async () => {
