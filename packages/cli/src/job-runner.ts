@@ -10,7 +10,7 @@ import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
-import { addLimitOption, emptyLimitOptions, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, type LimitOptions } from '@contract-studio/conventions';
+import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, type LimitOptions } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
 import { safeName } from './terminal-text.js';
 
@@ -51,7 +51,7 @@ export const COMMON_REPEATABLE = ['limit'];
 /** Their usage line of `--limit` (the reading `contract serve` shares: conventions' limit-option.ts). */
 export const LIMIT_USAGE = [
     '  --limit NAME=VALUE (repeatable): one of the build service\'s limits for this job, above or below its default (docs/sandbox.md "Limits"),',
-    '               as `contract serve --limit`: e.g. processes=512 for an architecture of more than 126 module processes',
+    `               as \`contract serve --limit\`: e.g. processes=512 for an architecture of more than ${modulesUnderProcessLimit(DEFAULT_PROCESS_LIMIT)} module processes`,
     '               (`contract check` warns: architecture-over-process-limit), memoryMiB=1024; runSeconds and buildSeconds replace the CLI\'s own',
 ];
 

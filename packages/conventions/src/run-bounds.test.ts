@@ -17,4 +17,16 @@ describe('run bounds', () => {
         expect(runThreads(modulesUnderProcessLimit(DEFAULT_PROCESS_LIMIT) + 1)).toBeGreaterThan(DEFAULT_PROCESS_LIMIT);
         expect(modulesUnderProcessLimit(DEFAULT_PROCESS_LIMIT)).toBe(126);
     });
+
+    it('the docs give the same numbers (docs/runtime-api.md, language-reference.md, sandbox.md)', () => {
+        const doc = (name: string) => readFileSync(fileURLToPath(new URL(`../../../docs/${name}`, import.meta.url)), 'utf8').replace(/\s+/g, ' ');
+        const fit = modulesUnderProcessLimit(DEFAULT_PROCESS_LIMIT);
+        expect(doc('runtime-api.md')).toContain(`Takes at most ${LAUNCHER_MAX_MODULES} module executables`);
+        expect(doc('runtime-api.md')).toContain(`at most ${LAUNCHER_MAX_MODULES + 1 - 1} (ORD and the supervisors count)`);
+        expect(doc('runtime-api.md')).toContain(`default process limit of ${DEFAULT_PROCESS_LIMIT} (docs/sandbox.md), at most ${fit} module processes fit`);
+        expect(doc('language-reference.md')).toContain(`\`contract-launch\` starts at most ${LAUNCHER_MAX_MODULES} module processes in one run`);
+        expect(doc('language-reference.md')).toContain(`at most ${fit} module processes fit under the default`);
+        expect(doc('sandbox.md')).toContain(`${fit} module processes fit under ${DEFAULT_PROCESS_LIMIT}`);
+        expect(doc('sandbox.md')).toContain(`contract-launch itself takes at most ${LAUNCHER_MAX_MODULES} module processes`);
+    });
 });
