@@ -22,6 +22,7 @@ import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-rout
 import { generatedMakefileArgs, makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
+import { holdsUnderProcessLimit } from './process-limit-warning.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
 import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
@@ -368,7 +369,8 @@ export class Job {
       const prep = await this.orCancel(
         prepareWorkspace(ws, this.request.project, this.request.kind, this.request.limits, (l) => this.system('prepare', l), this.cancelled, ctx.generated ?? undefined),
       );
-      this.prepareDiagnostics = prep.problems;
+      // the check's warning about the default process limit is not this job's when its own limit fits
+      this.prepareDiagnostics = prep.problems.filter((p) => holdsUnderProcessLimit(p, this.request.limits.processes));
       this.timed('prepare', 'generation + copy into the work tree', t);
       let runtimePath = SANDBOX_RUNTIME_DIR;
       let runtimeDir: string | undefined;
