@@ -219,7 +219,7 @@ export class MonitorController {
       schemas: () => this.projectSchemas(),
       supervisors: async () => (await this.readSymbols()).catalogue,
       openRule: (sup, fn, rule) => void this.openRule(sup, fn, rule),
-      createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture()),
+      createDiagram: async () => new (await import('../views/architecture-view.js')).ArchitectureView(() => lsp.architecture(), undefined, undefined, { inScrolledPanel: true }),
       onSource: (id) => {
         this.picked++;
         void this.select(id, true);

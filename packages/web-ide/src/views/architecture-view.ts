@@ -248,21 +248,24 @@ export class ArchitectureView {
     private readonly fetchSchemas: () => Promise<ArchSchema[]>,
     onToggleDock?: () => void,
     private readonly onGoTo?: (where: ArchLocation) => void,
+    /** `inScrolledPanel`: the diagram is a section of a panel that scrolls (the Monitor): a plain wheel scrolls the panel. */
+    private readonly opts: { inScrolledPanel?: boolean } = {},
   ) {
     this.select = h('select', { class: 'arch-select', 'aria-label': 'Schema shown' });
     this.select.addEventListener('change', () => {
       this.chosen = this.select.value;
+      this.reveal();
       void this.draw();
     });
     this.info = h('span', { class: 'arch-info muted' });
     this.canvas = h('div', {
       class: 'arch-canvas', tabindex: 0, role: 'group', 'data-autofocus': true,
-      'aria-label': 'Architecture diagram: wheel or + and − zoom, drag or arrows pan, F fits; click a module, port or flow to go to its definition',
+      'aria-label': `Architecture diagram: ${opts.inScrolledPanel ? 'Ctrl + wheel' : 'wheel'} or + and − zoom, drag or arrows pan, F fits; click a module, port or flow to go to its definition`,
     });
     this.panZoom = new PanZoom(this.canvas, (v) => {
       this.canvas.querySelector('.arch-scene')?.setAttribute('transform', `translate(${v.x.toFixed(1)},${v.y.toFixed(1)}) scale(${v.scale.toFixed(4)})`);
       this.canvas.dataset.scale = v.scale.toFixed(4);
-    }, { smallestFontPx: SMALLEST_FONT_PX, minFontPx: MIN_FONT_PX });
+    }, { smallestFontPx: SMALLEST_FONT_PX, minFontPx: MIN_FONT_PX, wheelScrollsPage: !!opts.inScrolledPanel }, () => this.reveal());
     const goTo = (target: EventTarget | null) => {
       for (let el = target as Element | null; el && el !== this.canvas; el = el.parentElement) {
         const def = definitionOf.get(el);
@@ -277,7 +280,7 @@ export class ArchitectureView {
       h('div', { class: 'arch-toolbar' }, h('span', { class: 'arch-label' }, 'Schema'), this.select, this.info, h('span', { class: 'grow' }),
         zoomBtn('arch-zoom-out', '−', 'Zoom out (−)', () => this.panZoom.zoom(0.8)),
         zoomBtn('arch-zoom-in', '+', 'Zoom in (+)', () => this.panZoom.zoom(1.25)),
-        zoomBtn('arch-fit', 'Fit', 'Fit the diagram to the pane (F)', () => this.panZoom.fit()),
+        zoomBtn('arch-fit', 'Fit', 'Fit the diagram to the pane (F)', () => this.panZoom.fit()), // fit() reveals the pane first
         onToggleDock ? h('button', { class: 'btn small', id: 'arch-dock', title: 'Show the diagram beside the editor (or back in a tab)', onclick: onToggleDock }, '⇆ Side by side') : null,
         h('span', { class: 'legend data' }, '━ data flow'), h('span', { class: 'legend event' }, '┅ event flow'), h('span', { class: 'legend prec' }, '┈ precedence')),
       this.canvas);
@@ -295,6 +298,21 @@ export class ArchitectureView {
       for (const waiter of this.onObserved.splice(0)) waiter();
       relayout();
     }).observe(this.canvas);
+  }
+
+  /**
+   * In a scrolled panel, brings the whole view (its toolbar and the diagram's pane) on screen: a pane
+   * partly scrolled away, or under the toolbar that sticks at the top of the panel, would hide the
+   * top of a diagram just fitted or just picked. Nothing to do in a view that is not scrolled.
+   */
+  private reveal(): void {
+    if (!this.opts.inScrolledPanel) return;
+    let panel = this.element.parentElement;
+    while (panel && !/auto|scroll/.test(getComputedStyle(panel).overflowY)) panel = panel.parentElement;
+    if (!panel) return;
+    // its top when that is above the panel's (else 'nearest' leaves a view taller than the panel where it is)
+    const above = this.element.getBoundingClientRect().top < panel.getBoundingClientRect().top;
+    this.element.scrollIntoView({ block: above ? 'start' : 'nearest', inline: 'nearest' });
   }
 
   /** The schema shown, when one is. */

@@ -1,6 +1,7 @@
 /**
  * Zoom and pan of an SVG drawing inside its pane (the architecture diagram): the wheel zooms at the
- * pointer, a drag pans, +/- zoom, arrows pan, F or 0 fits. The drawing is laid out at its natural
+ * pointer (in a scrolled panel: with Ctrl, or once the drawing has the focus), a drag pans, +/- zoom,
+ * arrows pan, F or 0 fits. The drawing is laid out at its natural
  * size; the automatic view never scales it below a readable font (docs/ide.md "Architecture").
  */
 export interface View {
@@ -51,9 +52,17 @@ export class PanZoom {
   constructor(
     private readonly pane: HTMLElement,
     private readonly apply: (v: View) => void,
-    private readonly opts: { smallestFontPx: number; minFontPx: number },
+    private readonly opts: { smallestFontPx: number; minFontPx: number; wheelScrollsPage?: boolean },
+    /** Called before a fit (button, F, 0): the pane's owner brings the pane whole on screen. */
+    private readonly beforeFit?: () => void,
   ) {
     pane.addEventListener('wheel', (e) => {
+      // in a scrolled panel (the Monitor) a plain wheel scrolls the panel: the diagram coming under the
+      // pointer must not take the wheel and shrink to nothing; Ctrl (a pinch) or the focus in the diagram zooms
+      if (this.opts.wheelScrollsPage && !e.ctrlKey && !e.metaKey && !pane.contains(document.activeElement)) {
+        this.hintWheel();
+        return;
+      }
       e.preventDefault();
       const r = pane.getBoundingClientRect();
       this.set(zoomAt(this.view, Math.exp(-e.deltaY * (e.deltaMode === 1 ? 0.05 : 0.0015)), e.clientX - r.left, e.clientY - r.top));
@@ -118,6 +127,7 @@ export class PanZoom {
 
   /** The whole drawing in the pane. */
   fit(): void {
+    this.beforeFit?.();
     this.set(fitView(this.content, this.paneSize()));
   }
 
@@ -126,7 +136,17 @@ export class PanZoom {
     this.set(zoomAt(this.view, factor, p.width / 2, p.height / 2));
   }
 
+  private hintTimer: ReturnType<typeof setTimeout> | undefined;
+
+  /** Says, for a moment, how the wheel zooms here (CSS .arch-canvas[data-wheel-hint]). */
+  private hintWheel(): void {
+    this.pane.dataset.wheelHint = '';
+    clearTimeout(this.hintTimer);
+    this.hintTimer = setTimeout(() => delete this.pane.dataset.wheelHint, 1500);
+  }
+
   set(v: View): void {
+    if (this.pane.dataset.wheelHint !== undefined) (clearTimeout(this.hintTimer), delete this.pane.dataset.wheelHint); // zoomed or panned: said enough
     this.view = v;
     this.apply(v);
   }
