@@ -59,6 +59,8 @@ export const definitionOf = new WeakMap<Element, ArchLocation>();
 
 /** The smallest text of the drawing (port and flow labels, CSS .port-label/.edge-label) and the smallest size it is shown at automatically. */
 const SMALLEST_FONT_PX = 11;
+/** Layouts kept for schemas shown again (ArchitectureView.layoutOf). */
+const LAYOUTS_KEPT = 24;
 const MIN_FONT_PX = 9;
 
 /**
@@ -405,7 +407,7 @@ export class ArchitectureView {
       const source = JSON.stringify(schema);
       const d = this.drawn;
       if (d?.source === source && d.schema === schema.name && pane && d.pane.width === pane.width && d.pane.height === pane.height) return;
-      const graph = await layoutSchema(schema, pane);
+      const graph = await this.layoutOf(schema, source, pane);
       if (seq !== this.seq) return;
       const drawing = renderSchema(schema, graph);
       this.canvas.replaceChildren(drawing);
@@ -419,6 +421,29 @@ export class ArchitectureView {
       if (this.drawn) this.drawn.source = undefined; // the error replaced the drawing: the next draw makes one
       this.canvas.replaceChildren(h('div', { class: 'pad gen-error' }, `Layout failed: ${(e as Error).message}`));
     }
+  }
+
+  /**
+   * The layouts made, by schema model and pane size (the last LAYOUTS_KEPT): the Monitor shows the
+   * schema active at its cursor, and a run whose schemas take turns switched the diagram back and
+   * forth several times a second, each time laying the schema out again in ELK's worker (up to four
+   * layouts with the folded tries), competing for the CPU with the run. A layout depends on nothing
+   * else; the drawing is still made anew from it (renderSchema), fresh for its highlight.
+   */
+  private readonly layouts = new Map<string, ElkNode>();
+
+  private async layoutOf(schema: ArchSchema, source: string, pane: Size | undefined): Promise<ElkNode> {
+    const key = `${pane ? `${pane.width}x${pane.height}` : '-'} ${source}`;
+    const kept = this.layouts.get(key);
+    if (kept) {
+      this.layouts.delete(key);
+      this.layouts.set(key, kept); // the most recent last
+      return kept;
+    }
+    const graph = await layoutSchema(schema, pane);
+    this.layouts.set(key, graph);
+    for (const old of this.layouts.keys()) if (this.layouts.size > LAYOUTS_KEPT) this.layouts.delete(old);
+    return graph;
   }
 
   /**

@@ -183,4 +183,38 @@ describe('Monitor: the architecture diagram in the scrolled panel', () => {
     expectPaneAndModulesShown(v, false);
     await shot(page, 'monitor-diagram-03-schema-picked');
   });
+
+  it('a schema shown again (schemas taking turns as the run goes) is drawn from the layout made before: no new ELK layout', async () => {
+    const { page } = s;
+    // counts the layouts asked of ELK's worker (elk-api's messages: { cmd: 'layout', ... })
+    await page.evaluate(() => {
+      const w = window as unknown as { __elkLayouts: number };
+      w.__elkLayouts = 0;
+      const post = Worker.prototype.postMessage;
+      Worker.prototype.postMessage = function (this: Worker, msg: unknown, ...rest: unknown[]) {
+        if ((msg as { cmd?: string })?.cmd === 'layout') w.__elkLayouts++;
+        return (post as (...a: unknown[]) => void).call(this, msg, ...rest);
+      } as typeof Worker.prototype.postMessage;
+    });
+    const layouts = () => page.evaluate(() => (window as unknown as { __elkLayouts: number }).__elkLayouts);
+    const select = page.locator('.monitor-diagram .arch-select');
+    const names = await select.locator('option').evaluateAll((os) => os.map((o) => (o as HTMLOptionElement).value));
+    const now = (await page.locator('.monitor-diagram .arch-svg').getAttribute('data-schema'))!;
+    const other = names.find((n) => n !== now)!;
+    await select.selectOption(other);
+    await expect.poll(() => page.locator('.monitor-diagram .arch-svg').getAttribute('data-schema')).toBe(other);
+    const first = await seen(page);
+    const before = await layouts();
+    await select.selectOption(now);
+    await expect.poll(() => page.locator('.monitor-diagram .arch-svg').getAttribute('data-schema')).toBe(now);
+    await select.selectOption(other);
+    await expect.poll(() => page.locator('.monitor-diagram .arch-svg').getAttribute('data-schema')).toBe(other);
+    await page.waitForTimeout(300);
+    expect(await layouts()).toBe(before);
+    // the same drawing, in the same first view
+    const again = await seen(page);
+    expect(again.natural).toEqual(first.natural);
+    expect(again.scene.width).toBeCloseTo(first.scene.width, 0);
+    expectFirstView(again);
+  });
 });
