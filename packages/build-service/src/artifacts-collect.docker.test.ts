@@ -37,24 +37,29 @@ int main(int argc, char **argv) {
 }
 `;
 
-if (!docker.available) test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});
+const MiB = 1024 * 1024;
 
-test.skipIf(!docker.available)("logs/ flooded (1 TiB and 300 MiB sparse files, 1500 empty ones): the module's log is collected, the rest bounded and said, memory bounded", async () => {
-  const files = makeProject(flood(1500));
-  files.Makefile = files.Makefile!.replace('\t./prog', '\t./prog $(LOG_DIR)');
+/** Runs the flood program (`files` empty files beside the sparse ones) to its end; the job, and the service's RSS before and at its peak. */
+async function runWatchingMemory(files: number): Promise<{ job: Record<string, any>; before: number; peak: number }> {
+  const project = makeProject(flood(files));
+  project.Makefile = project.Makefile!.replace('\t./prog', '\t./prog $(LOG_DIR)');
   let peak = process.memoryUsage().rss;
   const before = peak;
   const sampler = setInterval(() => (peak = Math.max(peak, process.memoryUsage().rss)), 20);
-  let job: Record<string, any>;
   try {
-    const r = await postJob(served.url, { action: 'run', kind: 'make', project: { files } });
+    const r = await postJob(served.url, { action: 'run', kind: 'make', project: { files: project } });
     expect(r.status, JSON.stringify(r.json)).toBe(201);
     await readEvents(served.url, r.json.id as string);
-    job = await getJob(served.url, r.json.id as string);
+    return { job: await getJob(served.url, r.json.id as string), before, peak };
   } finally {
     clearInterval(sampler);
   }
-  const MiB = 1024 * 1024;
+}
+
+if (!docker.available) test.skip(`docker: SKIPPED — ${docker.reason}`, () => {});
+
+test.skipIf(!docker.available)("logs/ flooded (1 TiB and 300 MiB sparse files, 1500 empty ones): the module's log is collected, the rest bounded and said, memory bounded", async () => {
+  const { job, before, peak } = await runWatchingMemory(1500);
   console.info(`flooded logs/: service RSS ${Math.round(before / MiB)} MiB before, peak ${Math.round(peak / MiB)} MiB; collect ${job.artifacts.collect_ms} ms`);
   const a = job.artifacts as { files: { name: string; size: number; capped: string | null }[]; skipped: { name: string; reason: string; bound?: true }[]; collect_ms: number };
   // the module's log, whole, among the files taken
@@ -72,21 +77,7 @@ test.skipIf(!docker.available)("logs/ flooded (1 TiB and 300 MiB sparse files, 1
 }, 300_000);
 
 test.skipIf(!docker.available)('logs/ with a 1 TiB and a 300 MiB sparse file beside the module\'s log: each read up to the file bound, cut, said; memory bounded', async () => {
-  const files = makeProject(flood(0));
-  files.Makefile = files.Makefile!.replace('\t./prog', '\t./prog $(LOG_DIR)');
-  let peak = process.memoryUsage().rss;
-  const before = peak;
-  const sampler = setInterval(() => (peak = Math.max(peak, process.memoryUsage().rss)), 20);
-  let job: Record<string, any>;
-  try {
-    const r = await postJob(served.url, { action: 'run', kind: 'make', project: { files } });
-    expect(r.status, JSON.stringify(r.json)).toBe(201);
-    await readEvents(served.url, r.json.id as string);
-    job = await getJob(served.url, r.json.id as string);
-  } finally {
-    clearInterval(sampler);
-  }
-  const MiB = 1024 * 1024;
+  const { job, before, peak } = await runWatchingMemory(0);
   console.info(`big sparse logs: service RSS ${Math.round(before / MiB)} MiB before, peak ${Math.round(peak / MiB)} MiB; collect ${job.artifacts.collect_ms} ms`);
   const a = job.artifacts as { files: { name: string; size: number; capped: string | null }[]; collect_ms: number };
   expect(a.files.map((f) => f.name)).toEqual([LOG, 'BIG_1.csv', 'MID_1.csv']);

@@ -4,8 +4,8 @@
  * builds and one run.
  */
 import { execFileSync, spawn } from 'node:child_process';
-import { chmodSync, existsSync, mkdirSync, mkdtempSync, readdirSync, readFileSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
-import { hostname, tmpdir } from 'node:os';
+import { existsSync, mkdirSync, readdirSync, readFileSync, symlinkSync, utimesSync, writeFileSync } from 'node:fs';
+import { hostname } from 'node:os';
 import { join } from 'node:path';
 import { gzipSync } from 'node:zlib';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -15,23 +15,16 @@ import { problemLines, refusedPrevious, saveLogs, startProblem } from '../src/co
 import { formatGccDiagnostic, noteBuildErrorLine, prepareErrors, reportBuild, type JobOutcome } from '../src/job-runner.js';
 import { safeName } from '../src/terminal-text.js';
 import { capture } from './capture-io.js';
-import { removeScratch } from './scratch.js';
-import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
+import { makeSeededScratch, removeSeededScratch } from './scratch.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
 
 let root: string;
 beforeAll(async () => {
-    root = mkdtempSync(join(tmpdir(), 'contract-field-'));
-    chmodSync(root, 0o711);
-    process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
-    await seedRuntime(join(root, 'cache')); // the test run's built runtime
+    root = await makeSeededScratch('contract-field-');
     expect(await runCli(['new', 'robot'], capture(root))).toBe(0);
 }, 240_000);
-afterAll(() => {
-    delete process.env.CONTRACT_CACHE_DIR;
-    removeScratch(root);
-});
+afterAll(() => removeSeededScratch(root));
 
 /** A log of one module: started, one scheduler line, exited unless `crashed`. */
 function moduleLog(module: string, t0: number, crashed = false): string {

@@ -6,15 +6,13 @@
  * is left (comments, strings, an `#include` of the old header) is listed. The project still builds.
  * A rename killed half-way is journaled and finished by the next generate.
  */
-import { chmodSync, existsSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { existsSync, readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { identifierRenames, parseRegions, renameIdentifiersInGeneratedTree, renameInGeneratedTree, sha256, writeRenameJournal } from '@contract-studio/codegen';
-import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
 import { runCli } from '../src/cli.js';
 import { capture } from './capture-io.js';
-import { removeScratch } from './scratch.js';
+import { makeSeededScratch, removeSeededScratch } from './scratch.js';
 
 const COMMON = 'src-gen/generated/architecture/common';
 const CTL = 'src-gen/generated/architecture/modules/CTL_mod/module.c';
@@ -44,15 +42,9 @@ async function projectWithEnumeration(name: string): Promise<string> {
 }
 
 beforeAll(async () => {
-    root = mkdtempSync(join(tmpdir(), 'contract-rename-enum-'));
-    chmodSync(root, 0o711); // the sandbox's own uid must reach the cache folder inside
-    process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
-    await seedRuntime(join(root, 'cache')); // the test run's built runtime
+    root = await makeSeededScratch('contract-rename-enum-');
 }, 240_000);
-afterAll(() => {
-    delete process.env.CONTRACT_CACHE_DIR;
-    removeScratch(root);
-});
+afterAll(() => removeSeededScratch(root));
 
 describe('contract rename of an enumeration', () => {
     let dir: string;

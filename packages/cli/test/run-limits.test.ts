@@ -4,28 +4,20 @@
  * its job by default (the run lasts as long as asked), and the advice after a build a limit
  * stopped (no "gcc errors above" when there were none).
  */
-import { chmodSync, mkdtempSync, readFileSync, writeFileSync } from 'node:fs';
-import { tmpdir } from 'node:os';
+import { readFileSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { runCli } from '../src/cli.js';
 import { checkRunLimit } from '../src/commands/run.js';
 import { CLI_BUILD_SECONDS, cliLimits, reportBuild, type JobOutcome } from '../src/job-runner.js';
 import { capture } from './capture-io.js';
-import { removeScratch } from './scratch.js';
-import { seedRuntime } from '@contract-studio/build-service/test-support/runtime-seed';
+import { makeSeededScratch, removeSeededScratch } from './scratch.js';
 
 let root: string;
 beforeAll(async () => {
-    root = mkdtempSync(join(tmpdir(), 'contract-limits-'));
-    chmodSync(root, 0o711);
-    process.env.CONTRACT_CACHE_DIR = join(root, 'cache');
-    await seedRuntime(join(root, 'cache')); // the test run's built runtime
+    root = await makeSeededScratch('contract-limits-');
 }, 240_000);
-afterAll(() => {
-    delete process.env.CONTRACT_CACHE_DIR;
-    removeScratch(root);
-});
+afterAll(() => removeSeededScratch(root));
 
 describe('contract run --run-limit: parsing and the limits the CLI gives its job', () => {
     it('parses a duration; refuses a bad or non-positive one', () => {
