@@ -8,7 +8,7 @@
  * it: nothing of the user's is left out without a word, and no one reads a success that their
  * makefile did not make.
  */
-import { SRC_GEN_DIR } from '@contract-studio/conventions';
+import { SRC_GEN_DIR, visibleText } from '@contract-studio/conventions';
 
 /** The names GNU make reads before `Makefile` in a folder it is run in without `-f`. */
 export const MAKEFILE_NAMES_BEFORE_THE_GENERATED = ['GNUmakefile', 'makefile'] as const;
@@ -21,7 +21,7 @@ export function foreignMakefiles(files: Iterable<string>): string[] {
 
 /** The refusal of a project whose generated tree holds such makefiles (the first 5 named). */
 export function foreignMakefilesMessage(found: readonly string[]): string {
-  const named = found.slice(0, 5).join(', ') + (found.length > 5 ? ` and ${found.length - 5} more` : '');
+  const named = found.slice(0, 5).map((f) => visibleText(f)).join(', ') + (found.length > 5 ? ` and ${found.length - 5} more` : '');
   return `${named}: a makefile in the generated tree that is not the generated one (GNU make would read it instead of `
     + 'the generated Makefile, and its recipes would be the build); a Cactal build runs only the generated Makefiles: '
     + 'remove it, or rename it (the generated Makefiles never read it); nothing was built';
