@@ -53,6 +53,24 @@ describe('a compilation of hundreds of diagnostics (one gcc JSON line)', () => {
     expect(diags[999]).toMatchObject({ ...theError, line: 1000 });
   });
 
+  test('past the documented 1000 (1001 #warnings, nested, then the error; or 1000 top-level warnings then the error): read up to the bound, the error first, the rest said left out', () => {
+    const nested = compile(1001, 0);
+    expect(parseGccJsonLine(nested, ctx())).toBeNull(); // past the declared shape (1001 children of the first)
+    const routed = new BuildOutputRouter({ startDir: dir, root: dir, regions: new Map(), diagnosticsOnStdout: true }).route(nested, 'stdout');
+    expect(routed.diagnostics[0]).toMatchObject({ ...theError, line: 1002 });
+    expect(routed.cut).toMatch(/held more than the 1000 diagnostics read .*: 1001 read, its errors first \(1 error\(s\)\), 1 other\(s\) not reported$/);
+    // 1000 unused functions (top-level warnings, gcc's order) and the error in the last one's body
+    const fns = Array.from({ length: 1000 }, (_, i) => `static int unused_v${i}(void) { return 0; }`);
+    writeFileSync(join(dir, 'module.c'), [...fns, `int f(void) { ${ERROR_LINE} return bad; }`, ''].join('\n'));
+    const r = spawnSync('gcc', ['-std=c11', '-Wall', '-c', 'module.c', '-o', '/dev/null', '-fdiagnostics-format=json'], { cwd: dir, encoding: 'utf8' });
+    const flat = r.stderr.trim();
+    expect(flat.length).toBeLessThan(SERVICE_BOUNDS.gccJsonLineBytes);
+    const top = new BuildOutputRouter({ startDir: dir, root: dir, regions: new Map(), diagnosticsOnStdout: true }).route(flat, 'stdout');
+    expect(top.diagnostics[0]).toMatchObject({ ...theError, line: 1001 });
+    expect(top.diagnostics).toHaveLength(1000);
+    expect(top.cut).toMatch(/1000 read, its errors first \(1 error\(s\)\), 1 other\(s\) not reported$/);
+  });
+
   test('the splitter keeps a gcc JSON line whole up to gccJsonLineBytes; another line is split at 64 KiB', () => {
     const json = compile(200, 0);
     const split = (text: string): string[] => {

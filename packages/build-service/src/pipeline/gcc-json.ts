@@ -120,3 +120,48 @@ export function parseCutGccJsonLine(line: string, ctx: DiagnosticContext): { dia
   const diagnostics = parseDiagnostics(prefix, ctx, MESSAGE_CUT);
   return diagnostics?.length ? { diagnostics, readChars: prefix.length } : null;
 }
+
+const isObject = (v: unknown): v is Record<string, unknown> => typeof v === 'object' && v !== null && !Array.isArray(v);
+
+/**
+ * A diagnostics list (a line's, or a diagnostic's `children`, recursively) cut to
+ * diagnosticsPerJsonLine (children: diagnosticChildren), its errors kept first and the others
+ * after them, each in gcc's order; how many were left out. Only the raw JSON is looked at here:
+ * the declared schema then checks what is kept.
+ */
+function withinBounds(list: unknown[], bound: number, depth: number): { list: unknown[]; left: number } {
+  let left = 0;
+  const trimmed = list.map((d) => {
+    if (!isObject(d) || depth <= 0 || !Array.isArray(d.children)) return d;
+    const children = withinBounds(d.children, SERVICE_BOUNDS.diagnosticChildren, depth - 1);
+    left += children.left;
+    return { ...d, children: children.list };
+  });
+  if (trimmed.length <= bound) return { list: trimmed, left };
+  const isError = (d: unknown): boolean => isObject(d) && d.kind === 'error';
+  const keep = new Set<number>();
+  trimmed.forEach((d, i) => keep.size < bound && isError(d) && keep.add(i));
+  trimmed.forEach((d, i) => keep.size < bound && !isError(d) && keep.add(i));
+  return { list: trimmed.filter((_, i) => keep.has(i)), left: left + trimmed.length - keep.size };
+}
+
+/**
+ * A whole gcc JSON line holding more diagnostics than the bounds read (a compilation's 1,000
+ * warnings and its error): read up to the bounds, its errors first, with how many were left out;
+ * null when it is no such line (the caller says what was left out: the errors are never among them
+ * unless they alone pass the bound).
+ */
+export function parseOverfullGccJsonLine(line: string, ctx: DiagnosticContext): { diagnostics: GccDiagnostic[]; left: number } | null {
+  let data: unknown;
+  try {
+    data = JSON.parse(line);
+  } catch {
+    return null;
+  }
+  if (!Array.isArray(data)) return null;
+  const { list, left } = withinBounds(data, SERVICE_BOUNDS.diagnosticsPerJsonLine, SERVICE_BOUNDS.diagnosticDepth);
+  if (!left) return null;
+  const parsed = GCC_JSON_LINE.safeParse(list);
+  if (!parsed.success) return null;
+  return { diagnostics: asReported(parsed.data.map((d) => fromJson(d, ctx))), left };
+}

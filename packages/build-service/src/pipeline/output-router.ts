@@ -7,7 +7,7 @@
 import { posix } from 'node:path';
 import { SERVICE_BOUNDS } from '../limits.js';
 import { makeEnteringDirectory, makeLeavingDirectory, renderDiagnostic, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
-import { errorsFirst, looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine } from './gcc-json.js';
+import { errorsFirst, looksLikeGccJson, parseCutGccJsonLine, parseGccJsonLine, parseOverfullGccJsonLine } from './gcc-json.js';
 import { parseGccTextLine } from './gcc-text.js';
 import { LinkErrorReader, parseLinkerLine } from './ld-text.js';
 import { parseAssemblerLine } from './as-text.js';
@@ -58,6 +58,12 @@ export class BuildOutputRouter {
       const diags = parseGccJsonLine(line, ctx);
       // the log in gcc's order; the job's diagnostics errors first
       if (diags) return { lines: rendered(diags), diagnostics: errorsFirst(diags) };
+      // a whole line of more diagnostics than are read: its errors first, the rest said left out
+      const overfull = parseOverfullGccJsonLine(line, ctx);
+      if (overfull) {
+        const said = gccJsonOverfullMessage(overfull.diagnostics, overfull.left);
+        return { lines: rendered(overfull.diagnostics), diagnostics: errorsFirst(overfull.diagnostics), cut: said };
+      }
       // a compilation's line that an output bound cut (it does not close): its complete diagnostics
       const cut = parseCutGccJsonLine(line, ctx);
       if (cut) {
@@ -79,6 +85,13 @@ export class BuildOutputRouter {
 /** The log lines of a compilation's diagnostics: each, then its notes. */
 function rendered(diags: GccDiagnostic[]): RoutedLine[] {
   return diags.flatMap((d) => [d, ...d.children]).map((d) => ({ source: 'build', line: renderDiagnostic(d) }));
+}
+
+/** What a build says of a gcc JSON line that held more diagnostics than are read: which were, how many were not. */
+export function gccJsonOverfullMessage(diags: readonly GccDiagnostic[], left: number): string {
+  const errors = diags.filter((d) => d.severity === 'error').length;
+  return `a line of gcc's JSON diagnostics (one compilation's) held more than the ${SERVICE_BOUNDS.diagnosticsPerJsonLine} diagnostics read `
+    + `(diagnosticsPerJsonLine, diagnosticChildren): ${diags.length} read, its errors first (${errors} error(s)), ${left} other(s) not reported`;
 }
 
 /** What a build says of a gcc JSON line that was cut: how much of it was read, what is lost. */
