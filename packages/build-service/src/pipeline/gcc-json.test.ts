@@ -33,8 +33,6 @@ describe('gcc JSON lines of the wrong shape stay text', () => {
     ['too long a message', JSON.stringify([{ kind: 'error', message: 'x'.repeat(SERVICE_BOUNDS.diagnosticTextChars + 1) }])],
     ['nesting one level too deep', JSON.stringify([nested(SERVICE_BOUNDS.diagnosticDepth + 1)])],
     ['huge nesting', `[${'{"kind":"error","children":['.repeat(5000)}${']}'.repeat(5000)}]`], // too deep for JSON.stringify here
-    ['too many children', JSON.stringify([{ kind: 'error', children: Array.from({ length: SERVICE_BOUNDS.diagnosticChildren + 1 }, () => ({ kind: 'note' })) }])],
-    ['too many diagnostics', JSON.stringify(Array.from({ length: SERVICE_BOUNDS.diagnosticsPerJsonLine + 1 }, () => ({ kind: 'error' })))],
   ])('%s', (_name, line) => {
     expect(() => parseGccJsonLine(line, ctx)).not.toThrow();
     expect(parseGccJsonLine(line, ctx)).toBeNull();
@@ -42,6 +40,19 @@ describe('gcc JSON lines of the wrong shape stay text', () => {
     const routed = router.route(line, 'stderr');
     expect(routed.diagnostics).toEqual([]);
     expect(routed.lines).toEqual([{ source: 'build', line }]);
+  });
+});
+
+describe('gcc JSON lines of more diagnostics than are read', () => {
+  test.each([
+    ['too many children', JSON.stringify([{ kind: 'warning', children: [...Array.from({ length: SERVICE_BOUNDS.diagnosticChildren }, () => ({ kind: 'note' })), { kind: 'error', message: 'last' }] }]), 2], // the warning and its error; its notes stay its children
+    ['too many diagnostics', JSON.stringify([...Array.from({ length: SERVICE_BOUNDS.diagnosticsPerJsonLine }, () => ({ kind: 'warning' })), { kind: 'error', message: 'last' }]), SERVICE_BOUNDS.diagnosticsPerJsonLine],
+  ])('%s: read up to the bound, the error kept first, the one left out said', (_name, line, read) => {
+    expect(parseGccJsonLine(line, ctx)).toBeNull(); // not of the declared shape as a whole
+    const routed = new BuildOutputRouter({ startDir: ctx.cwd, root: ctx.root, regions: ctx.regions }).route(line, 'stderr');
+    expect(routed.diagnostics[0]).toMatchObject({ severity: 'error', message: 'last' });
+    expect(routed.diagnostics.filter((d) => d.severity !== 'note')).toHaveLength(read);
+    expect(routed.cut).toMatch(/its errors first \(1 error\(s\)\), 1 other\(s\) not reported$/);
   });
 });
 
