@@ -87,6 +87,24 @@ function aWord(what: string): string {
     return `${/^[aeiou]/.test(what) ? 'an' : 'a'} ${what}`;
 }
 
+/** The kinds `contract rename DIR NAME` finds by their name alone (rename-entity.ts). */
+const FOUND_BY_NAME = ['Module', 'Supervisor', 'Schema', 'DataType', 'EnumType', 'FunctionPrototype'] as const;
+
+/**
+ * Why `newName` would give `node` the name of an element of another kind that `contract rename`
+ * finds by name alone (an enumeration named like a module: legal Cactal, but then neither could be
+ * renamed by that name), or undefined. Clashes of one kind are said by the rules below.
+ */
+function renamedByNameClash(node: AstNode, newName: string, index: IndexManager): string | undefined {
+    const foundByName = isModule(node) || isSupervisor(node) || isSchema(node) || isDataType(node) || isEnumType(node) || isFunctionPrototype(node);
+    if (!foundByName) return undefined;
+    const family: readonly string[] = isModule(node) || isSupervisor(node) ? ['Module', 'Supervisor'] : isDataType(node) || isEnumType(node) ? ['DataType', 'EnumType'] : [];
+    const clash = FOUND_BY_NAME.flatMap((t) => index.allElements(t).toArray())
+        .find((d) => d.name === newName && d.node !== node && !family.includes(d.type) && !(d.type === node.$type));
+    if (!clash) return undefined;
+    return `'${newName}' already names ${aWord(kindWord({ $type: clash.type } as AstNode))} (in ${clash.documentUri.path.split('/').pop()}): two elements of one name could not be told apart by a rename; choose another name.`;
+}
+
 /** Why `newName` cannot name `node`, or undefined when it can. */
 export function renameProblem(node: AstNode & { name?: string }, newName: string, grammar: Grammar, index: IndexManager): string | undefined {
     const what = kindWord(node);
@@ -104,6 +122,8 @@ export function renameProblem(node: AstNode & { name?: string }, newName: string
         const why = cNameConflict(newName, role, { datatypes, constants: others('Constant'), functions: others('FunctionPrototype'), enumConstants: projectEnumConstants(index) });
         if (why) return `'${newName}' cannot name ${aWord(what)} in the generated C: ${why}.`;
     }
+    const byName = renamedByNameClash(node, newName, index);
+    if (byName) return byName;
     if (isModule(node) || isSupervisor(node)) {
         if (newName === 'ORD') return `'ORD' is the scheduler's name and cannot name ${aWord(what)}.`;
         if (!MODULE_NAME.test(newName)) return `'${newName}' is not a valid ${what} name: module and supervisor names are exactly three upper-case letters (A-Z).`;
