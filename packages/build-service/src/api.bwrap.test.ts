@@ -152,7 +152,7 @@ describe('requests', () => {
     [{ project: { files: {} }, limits: { memoryMiB: 4096 } }, 400, /above the server's 512/],
     [{ project: { files: {} }, limits: { cpu: 1 } }, 400, /unknown limit "cpu"/],
     // under what every sandbox can enforce (Docker's engine refused 1 MiB only once the job was accepted)
-    [{ project: { files: {} }, limits: { memoryMiB: 1 } }, 400, /limit memoryMiB must be at least 16 MiB/],
+    [{ project: { files: {} }, limits: { memoryMiB: 1 } }, 400, /limit memoryMiB must be at least 32 MiB/],
     [{ project: { files: {} }, action: 'deploy' }, 400, /action must be/],
     [{ project: { files: {} }, cpus: '0; reboot' }, 400, /cpus must be a CPU list/],
     [{ project: { files: {} }, cpus: 1 }, 400, /cpus must be a CPU list/],

@@ -60,10 +60,10 @@ describe('mergeLimits with the values as written (contract serve --limit NAME=VA
 });
 
 describe('the least memoryMiB, one minimum for every sandbox (MIN_WHOLE_LIMIT)', () => {
-  it('refuses a memory limit under 16 MiB, naming the minimum (Docker refused 1 MiB only after the job was accepted)', () => {
-    expect(MIN_WHOLE_LIMIT.memoryMiB).toBe(16);
-    expect(() => mergeLimits(DEFAULT_LIMITS, { memoryMiB: 1 }, true)).toThrow('limit memoryMiB must be at least 16 MiB (the least every sandbox can enforce and run a build in), got 1');
-    expect(() => mergeLimits(DEFAULT_LIMITS, { memoryMiB: 15 }, true)).toThrow(/at least 16 MiB/);
-    expect(mergeLimits(DEFAULT_LIMITS, { memoryMiB: 16 }, true).memoryMiB).toBe(16);
+  it('refuses a memory limit under 32 MiB, naming the minimum (Docker refused 1 MiB only after the job was accepted; at 16 MiB the prepare of a changed model stopped)', () => {
+    expect(MIN_WHOLE_LIMIT.memoryMiB).toBe(32);
+    expect(() => mergeLimits(DEFAULT_LIMITS, { memoryMiB: 1 }, true)).toThrow('limit memoryMiB must be at least 32 MiB (the least every sandbox can enforce and run a build in), got 1');
+    expect(() => mergeLimits(DEFAULT_LIMITS, { memoryMiB: 31 }, true)).toThrow(/at least 32 MiB/);
+    expect(mergeLimits(DEFAULT_LIMITS, { memoryMiB: 32 }, true).memoryMiB).toBe(32);
   });
 });

@@ -340,12 +340,13 @@ const MAX_WHOLE_LIMIT: Record<string, number> = {
 
 /**
  * The least a limit may be, for every sandbox (a job asking for less is refused at submit, 400):
- * `memoryMiB` 16 — the Docker Engine refuses a container under 6 MiB (the job then failed with the
- * engine's raw message after it was accepted), and under 16 MiB neither make nor gcc starts in any
- * sandbox (the job's /tmp and /dev/shm count in it too).
+ * `memoryMiB` 32 — the Docker Engine refuses a container under 6 MiB (the job then failed with the
+ * engine's raw message after it was accepted), under 16 MiB neither make nor gcc starts in any
+ * sandbox (the job's /tmp and /dev/shm count in it too), and at 16 MiB the prepare step's generation
+ * (its worker's heap is the memory limit too) stopped on the tutorial once its model changed.
  */
 export const MIN_WHOLE_LIMIT: Readonly<Partial<Record<LimitName, number>>> = Object.freeze({
-  memoryMiB: 16,
+  memoryMiB: 32,
 });
 
 /**

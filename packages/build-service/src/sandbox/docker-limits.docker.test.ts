@@ -95,7 +95,7 @@ if (env.available) {
     test('a memory limit under the minimum (1 MiB; the engine takes 6 MiB at least) is refused at submit, 400, naming the minimum', async () => {
       const r = await postJob(cgroupUrl, { action: 'run', kind: 'make', project: { files: makeProject(silentForks) }, limits: { memoryMiB: 1 } });
       expect(r.status).toBe(400);
-      expect(r.json.error).toMatch(/^limit memoryMiB must be at least 16 MiB/);
+      expect(r.json.error).toMatch(/^limit memoryMiB must be at least 32 MiB/);
     });
 
     test('forks refused by the pids limit, every failure hidden: killed: process limit, at the hit', async () => {
