@@ -39,7 +39,7 @@ const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Kil
  * higher limit keeps more.
  */
 export function buildOutputCutWarning(stream: 'stdout' | 'stderr', limitBytes: number): string {
-  return `the build's ${stream} was cut at the output limit (${formatBytes(limitBytes)} per stream, outputBytesPerStream): its later lines are not kept anywhere (not in the log, the events or the artifacts): the whole output cannot be got from this job; a service started with a higher outputBytesPerStream (e.g. contract serve --limit outputBytesPerStream=N) keeps more`;
+  return `the build's ${stream} was cut at the output limit (${formatBytes(limitBytes)} per stream, outputBytesPerStream): its later lines are not kept anywhere (not in the log, the events or the artifacts): the whole output cannot be got from this job; a higher outputBytesPerStream keeps more (contract build or contract run --limit outputBytesPerStream=N; a service's own: contract serve --limit)`;
 }
 
 /** The stop of a run that found no launcher to ask (a run of something that is not an architecture, or one ending already). */
