@@ -68,10 +68,22 @@ describe('contract run and contract build --limit NAME=VALUE: the build service\
         }
     });
 
-    it('reaches the job: a build under --limit buildSeconds=0.001 is stopped by that limit; the later of two values of a name counts', async () => {
+    it('a name given twice, or --limit runSeconds beside --run-limit or under its least value, is a usage error (it was taken silently: the later value, or runSeconds, won)', async () => {
+        const twice = capture(root);
+        expect(await runCli(['run', root, '--limit', 'processes=512', '--limit', 'processes=20'], twice)).toBe(2);
+        expect(twice.stderr).toContain('contract run: --limit processes is given twice (512 and 20): give it once');
+        const both = capture(root);
+        expect(await runCli(['run', root, '--run-limit', '20s', '--limit', 'runSeconds=4'], both)).toBe(2);
+        expect(both.stderr).toContain("contract run: --run-limit and --limit runSeconds=4 both set the run's time limit: give one");
+        const short = capture(root);
+        expect(await runCli(['run', root, '--limit', 'runSeconds=1'], short)).toBe(2);
+        expect(short.stderr).toContain('contract run: bad --limit runSeconds=1: at least 2 (the architecture needs about 1 s to start and 1 s to stop');
+    });
+
+    it('reaches the job: a build under --limit buildSeconds=0.001 is stopped by that limit', async () => {
         expect(await runCli(['new', 'limited'], capture(root))).toBe(0);
         const io = capture(root);
-        expect(await runCli(['build', 'limited', '--sandbox', 'bwrap', '--limit', 'buildSeconds=600', '--limit=buildSeconds=0.001', '--limit', 'processes=512'], io)).not.toBe(0);
+        expect(await runCli(['build', 'limited', '--sandbox', 'bwrap', '--limit=buildSeconds=0.001', '--limit', 'processes=512'], io)).not.toBe(0);
         expect(io.stderr).toMatch(/build time limit 0\.001 s/);
     }, 240_000);
 });

@@ -20,11 +20,13 @@ export function emptyLimitOptions(): LimitOptions {
 
 /**
  * Adds one `--limit` value (`processes=512`) to `into`; returns why it is refused (`--limit needs
- * NAME=VALUE ...`) or undefined. A later value of the same name replaces an earlier one.
+ * NAME=VALUE ...`, or a name given twice: which one was meant is not guessed) or undefined.
  */
 export function addLimitOption(into: LimitOptions, text: string | undefined): string | undefined {
     const m = LIMIT_OPTION.exec(text ?? '');
     if (!m || Number(m[2]) <= 0) return `--limit needs NAME=VALUE with a positive number (e.g. processes=512, runSeconds=3600), got ${text ?? 'nothing'}`;
+    const earlier = into.limitTexts[m[1]!];
+    if (earlier !== undefined) return `--limit ${m[1]!} is given twice (${earlier} and ${m[2]!}): give it once`;
     into.limits[m[1]!] = Number(m[2]);
     into.limitTexts[m[1]!] = m[2]!;
     return undefined;

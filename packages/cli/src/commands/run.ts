@@ -240,6 +240,12 @@ export const runCommand: Command = {
         const duration = typeof durationOption === 'string' ? parseDuration(durationOption) : 10;
         const runLimitOption = parsed.options.get('run-limit');
         const runLimit = typeof runLimitOption === 'string' ? checkRunLimit(runLimitOption) : undefined;
+        // --limit runSeconds=N is --run-limit said the service's way: one of the two, with the same least value
+        const runSecondsText = limitOptions?.limitTexts.runSeconds;
+        if (runSecondsText !== undefined) {
+            if (runLimit !== undefined) throw new UsageError(`--run-limit and --limit runSeconds=${runSecondsText} both set the run's time limit: give one`);
+            if (limitOptions!.limits.runSeconds! < MIN_RUN_LIMIT_SECONDS) throw new UsageError(`bad --limit runSeconds=${runSecondsText}: at least ${MIN_RUN_LIMIT_SECONDS} (the architecture needs about 1 s to start and 1 s to stop: a shorter limit would stop it while its modules still start, and blame one of them)`);
+        }
         const readyOption = parsed.options.get('ready-timeout');
         const readyTimeout = typeof readyOption === 'string' ? checkReadyTimeout(readyOption) : undefined;
         const startOption = parsed.options.get('start');
