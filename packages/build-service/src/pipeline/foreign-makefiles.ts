@@ -13,10 +13,13 @@ import { SRC_GEN_DIR, visibleText } from '@contract-studio/conventions';
 /** The names GNU make reads before `Makefile` in a folder it is run in without `-f`. */
 export const MAKEFILE_NAMES_BEFORE_THE_GENERATED = ['GNUmakefile', 'makefile'] as const;
 
-/** The project-relative paths (`src-gen/...`) among `files` that make would read instead of a generated Makefile. */
+/** Where the build's makes run: the generated tree's `generated/` (not `orphans/`, which no make reads). */
+const BUILT = `${SRC_GEN_DIR}/generated/`;
+
+/** The project-relative paths (`src-gen/generated/...`) among `files` that make would read instead of a generated Makefile. */
 export function foreignMakefiles(files: Iterable<string>): string[] {
   const names: ReadonlySet<string> = new Set(MAKEFILE_NAMES_BEFORE_THE_GENERATED);
-  return [...files].filter((rel) => rel.startsWith(`${SRC_GEN_DIR}/`) && names.has(rel.split('/').pop()!)).sort();
+  return [...files].filter((rel) => rel.startsWith(BUILT) && names.has(rel.split('/').pop()!)).sort();
 }
 
 /** The refusal of a project whose generated tree holds such makefiles (the first 5 named). */

@@ -176,6 +176,9 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     rmSync(join(dir, arch, 'modules/MSC_mod/makefile'));
     writeFileSync(join(dir, 'GNUmakefile'), 'all: ; echo mine\n');
     writeFileSync(join(dir, arch, 'extra.mk'), 'all: ; echo PWNED\n');
+    // nor one in src-gen/orphans/ (user code kept from a removed module: no make runs there)
+    mkdirSync(join(dir, 'src-gen/orphans'), { recursive: true });
+    writeFileSync(join(dir, 'src-gen/orphans/makefile'), 'all: ; echo old\n');
     const ws = await prepare(dir);
     expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
   }, 120_000);
