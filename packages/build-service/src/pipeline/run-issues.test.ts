@@ -1,5 +1,5 @@
 import { describe, expect, test } from 'vitest';
-import { RunIssues } from './run-issues.js';
+import { PROCESS_LIMIT_ADVICE, RunIssues } from './run-issues.js';
 
 describe('RunIssues', () => {
   test("a stuck module is one issue, whether seen in ORD's output, in its CSV log, or both", () => {
@@ -111,7 +111,7 @@ describe('RunIssues', () => {
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'HMI', moduleProcesses: 241 });
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' });
     expect(forks.all.map((i) => [i.module, i.message])).toEqual([
-      [undefined, 'the run was stopped by the process limit 256'],
+      [undefined, `the run was stopped by the process limit 256${PROCESS_LIMIT_ADVICE}`],
       ['HMI', "the run was stopped by the process limit 256 (HMI had 241 of the job's processes: its code forks)"],
     ]);
     // a fork bomb's run: the modules that did not answer the stop's KILL in time are not blamed for looping
@@ -246,7 +246,7 @@ describe('RunIssues', () => {
     for (const [i, m] of names.entries()) r.line(`module ${m} did not end on its KILL request within ${i % 2 ? '0.36' : '1'} s: terminating it (SIGTERM)`, 'launcher');
     r.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1' });
     expect(r.all.map((i) => [i.kind, i.message])).toEqual([
-      ['limit', 'the run was stopped by the process limit 256'],
+      ['limit', `the run was stopped by the process limit 256${PROCESS_LIMIT_ADVICE}`],
       ['module-hung', '127 modules were stopped with the run (M000, M001, M002, M003, M004, M005, M006, M007 and 119 more): they did not answer their KILL request for 0.36 to 1 s and were terminated, while the process limit 256 held the job: likely kept from answering by that, not by their own code'],
     ]);
     expect(r.all.map((i) => i.message).join('\n')).not.toContain('?');

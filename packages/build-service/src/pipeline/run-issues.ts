@@ -55,6 +55,12 @@ const EXIT_RECORDS = /,module_exit,[^,\n]*,[^,\n]*,\d+,status=-?\d+ records=(\d{
 /** contract-launch's line about one of the modules it started (its end, whatever the cause). */
 const MODULE_PID_LINE = /^module ([A-Za-z_]\w*) \(pid \d+\) /;
 
+/**
+ * What the process limit's issue adds when no module's code forked: the architecture may be too
+ * big for the limit (the run gave no hint of the fix; contract check's warning is the other place).
+ */
+export const PROCESS_LIMIT_ADVICE = ': the limit counts threads, 2 for each module, supervisor and ORD (contract check\'s architecture-over-process-limit names a limit that fits the architecture: contract run --limit processes=N)';
+
 /** Modules named in the one line of those a limit took down with the run (the others counted). */
 const HUNG_NAMED = 8;
 
@@ -170,7 +176,8 @@ export class RunIssues {
     // at the memory limit the kernel kills the process using the most memory first: the module to look at
     const first = hit.name === 'memory' && this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
     // at the process limit, the module whose code forks: most of the job's processes had its name
-    const forks = hit.name === 'processes' && hit.module ? ` (${hit.module} had ${hit.moduleProcesses ?? 'most'} of the job's processes: its code forks)` : '';
+    // no module's code forking: the architecture itself may not fit (a big one at the default limit)
+    const forks = hit.name !== 'processes' ? '' : hit.module ? ` (${hit.module} had ${hit.moduleProcesses ?? 'most'} of the job's processes: its code forks)` : PROCESS_LIMIT_ADVICE;
     const module = hit.name === 'memory' ? this.killed[0] : hit.name === 'processes' ? hit.module : undefined;
     // modules that did not answer the stop's KILL while a fork bomb or a memory hog held the
     // machine: not blamed for looping (every module of a fork bomb's run was "hung")
