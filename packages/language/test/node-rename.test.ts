@@ -82,6 +82,7 @@ describe('planRename', () => {
         expect(drive.text).not.toMatch(/DriveMode\.AUTO\b/);
         expect(member.files.find((f) => f.file === 'types.contract')!.text).toContain('enum DriveMode { TELEOP, AUTONOMOUS, SAFESTOP }');
         expect(() => planRename(robot, 'DriveMode.FAST', 'X')).toThrow("enumeration DriveMode has no member 'FAST'; its members: TELEOP, AUTO, SAFESTOP");
+        expect(() => planRename(robot, 'DriveMod.AUTO', 'X')).toThrow("no supervisor or enumeration named 'DriveMod' (in 'DriveMod.AUTO': 'SUPERVISOR.function' or 'ENUM.MEMBER'). Did you mean 'DriveMode'?");
         expect(() => planRename(robot, 'DriveMode.AUTO', 'TELEOP')).toThrow("'TELEOP' is already used by another member");
         // an element of another kind that a rename finds by name alone: the two could not be told apart afterwards
         expect(() => planRename(robot, 'DriveMode', 'LOC')).toThrow("'LOC' already names a module (in localisation.contract): two elements of one name could not be told apart by a rename; choose another name.");

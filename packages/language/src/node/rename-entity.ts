@@ -13,6 +13,7 @@ import {
 } from '../generated/ast.js';
 import { parametersOf } from '../model/blocks.js';
 import { portsOf } from '../model/ports.js';
+import { closestName } from '../model/near-names.js';
 import { kindWord, renameProblem } from '../lsp/name-rules.js';
 import { renameEdits } from '../lsp/rename-edits.js';
 import type { LoadedWorkspace } from './load-workspace.js';
@@ -89,6 +90,12 @@ function owner(ws: LoadedWorkspace, name: string, spec: string): Module | Superv
 
 /** The supervision function `fn` of supervisor `sup` (named in `spec`), or a RenameError. */
 function supervisionFunction(ws: LoadedWorkspace, sup: string, fn: string, spec: string): SupervisionFunction {
+    // 'NAME.x' is SUPERVISOR.function or ENUM.MEMBER: a name that is neither says both, with the nearest
+    const holders = topLevelElements(ws).filter((e) => isSupervisor(e) || isModule(e) || isEnumType(e));
+    if (!holders.some((e) => e.name === sup)) {
+        const near = closestName(sup, holders.filter((e) => isSupervisor(e) || isEnumType(e)).map((e) => e.name));
+        throw new RenameError(`no supervisor or enumeration named '${sup}' (in '${spec}': 'SUPERVISOR.function' or 'ENUM.MEMBER')${near ? `. Did you mean '${near}'?` : ''}`);
+    }
     const holder = owner(ws, sup, spec);
     if (!isSupervisor(holder)) throw new RenameError(`${holder.name} is a module; 'NAME.function' names a supervision function of a supervisor`);
     const found = holder.functions.find((f) => f.name === fn);
