@@ -3,7 +3,8 @@
 // the incremental rebuild after a one-character change in one module file, and three editor requests
 // on the built workspace: format every file, hover on a periodic schema (timing analysis), rename a
 // module referenced by its schema and the scheduler configuration; and the check of a `.scenario`
-// naming every module, schema and rule against that workspace.
+// naming every module, schema and rule against that workspace; and the stdio language server's
+// latency on a field-sized project with a 350-line supervisor (large-supervisor-latency.mjs).
 // Writes bench/parts/language.json (repository root). Needs `npm run build -w packages/language`.
 import { mkdtempSync, readFileSync, rmSync, writeFileSync, mkdirSync } from 'node:fs';
 import { tmpdir } from 'node:os';
@@ -14,6 +15,7 @@ import { isModule, isSchema, isSupervisor, rulesOf } from '../dist/index.js';
 import { loadWorkspace } from '../dist/node/index.js';
 import { scenarioDiagnostics } from '../dist/lsp/scenario/scenario-diagnostics.js';
 import { writeSyntheticArchitecture } from './synthetic-architecture.js';
+import { measureLargeSupervisorLatency } from './large-supervisor-latency.mjs';
 
 const FULL_RUNS = 3;
 const SCENARIO_RUNS = 21;
@@ -125,6 +127,7 @@ try {
 
     const lsp = await measureEditorRequests(workspace);
     const scenario = measureScenarioCheck(workspace);
+    const largeSupervisor = await measureLargeSupervisorLatency();
 
     // incremental: one character of one module file (C=10us <-> C=20us), rebuilt through the DocumentBuilder
     const target = workspace.documents.find((d) => d.file.startsWith('modules/'));
@@ -153,6 +156,7 @@ try {
         'lsp.incremental_edit_cpu_ms': Math.round(median(editCpu) * 10) / 10,
         ...lsp,
         ...scenario,
+        ...largeSupervisor,
         'lsp.workspace_files': files,
         'lsp.workspace_errors': errors.length + editErrors,
         'lsp.workspace_warnings': warnings

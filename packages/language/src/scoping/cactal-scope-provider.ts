@@ -22,6 +22,7 @@ import { portsOfKind, type PortDirection, type PortKind } from '../model/ports.j
 import { typeOfPathPrefix } from '../model/types.js';
 import type { CactalServices } from '../cactal-module.js';
 import type { ImportResolver } from './import-resolver.js';
+import { MemberScopes } from './member-scopes.js';
 
 /**
  * Scope of ports (or parameters) named by their index. Descriptions are created only for what is
@@ -51,11 +52,14 @@ export class CactalScopeProvider extends DefaultScopeProvider {
     private readonly imports: ImportResolver;
     /** Visible top-level scope per (document, reference type), rebuilt after every workspace change. */
     private readonly visibleScopes: WorkspaceCache<string, Scope>;
+    /** Scopes of the names declared in an element, made once per element and build (member-scopes.ts). */
+    readonly memberScopes: MemberScopes;
 
     constructor(services: CactalServices) {
         super(services);
         this.imports = services.imports.ImportResolver;
         this.visibleScopes = new WorkspaceCache(services.shared);
+        this.memberScopes = new MemberScopes(services.shared, this.nameProvider, this.descriptions);
     }
 
     override getScope(context: ReferenceInfo): Scope {
@@ -92,19 +96,19 @@ export class CactalScopeProvider extends DefaultScopeProvider {
         // members
         if (isSchemaArgument(container)) {
             const schema = isActivateSchema(container.$container) ? container.$container.schema?.ref : undefined;
-            return schema ? this.createScopeForNodes(schema.parameters) : EMPTY_SCOPE;
+            return schema ? this.memberScopes.get(schema, 'parameters', () => schema.parameters) : EMPTY_SCOPE;
         }
         if (isActivateSupervisor(container) && property === 'function') {
             const sup = container.supervisor?.ref;
-            return sup ? this.createScopeForNodes(sup.functions) : EMPTY_SCOPE;
+            return sup ? this.memberScopes.get(sup, 'functions', () => sup.functions) : EMPTY_SCOPE;
         }
         if (isFunctionArgumentAssignment(container)) {
             const fn = isActivateSupervisor(container.$container) ? container.$container.function?.ref : undefined;
-            return fn ? this.createScopeForNodes(fn.parameters) : EMPTY_SCOPE;
+            return fn ? this.memberScopes.get(fn, 'parameters', () => fn.parameters) : EMPTY_SCOPE;
         }
         if (isStartedEvent(container) || isEndofEvent(container) || isDurationEvent(container)) {
             const fn = AstUtils.getContainerOfType(container, isSupervisionFunction);
-            return fn ? this.createScopeForNodes(rulesOf(fn)) : EMPTY_SCOPE;
+            return fn ? this.memberScopes.get(fn, 'labels', () => rulesOf(fn)) : EMPTY_SCOPE;
         }
 
         // top-level names through imports
@@ -149,15 +153,17 @@ export class CactalScopeProvider extends DefaultScopeProvider {
         const fn = AstUtils.getContainerOfType(ref, isSupervisionFunction);
         if (fn) {
             if (AstUtils.getContainerOfType(ref, isFunctionParameter)) return globals; // defaults are constants
-            if (AstUtils.getContainerOfType(ref, isLocalBlock)) return this.createScopeForNodes(fn.parameters, globals);
-            const sup = fn.$container;
-            const ports = isSupervisor(sup) ? sup.eventFlows.flatMap((b) => b.ports) : [];
+            if (AstUtils.getContainerOfType(ref, isLocalBlock)) return this.memberScopes.get(fn, 'locals', () => fn.parameters, globals);
             // locals first, then the supervisor's port variables, then parameters (rules may not use
             // them: validation reports it with a clear message rather than "unresolved").
-            return this.createScopeForNodes([...localsOf(fn), ...ports, ...fn.parameters], globals);
+            return this.memberScopes.get(fn, 'rules', () => {
+                const sup = fn.$container;
+                const ports = isSupervisor(sup) ? sup.eventFlows.flatMap((b) => b.ports) : [];
+                return [...localsOf(fn), ...ports, ...fn.parameters];
+            }, globals);
         }
         const schema = AstUtils.getContainerOfType(ref, isSchema);
-        if (schema) return this.createScopeForNodes(schema.parameters, globals);
+        if (schema) return this.memberScopes.get(schema, 'variables', () => schema.parameters, globals);
         return globals;
     }
 
@@ -166,8 +172,8 @@ export class CactalScopeProvider extends DefaultScopeProvider {
         if (!isVariableRef(ref)) return EMPTY_SCOPE;
         const index = segment.$containerIndex ?? ref.path.indexOf(segment as never);
         const head = ref.variable?.ref;
-        if (index === 0 && isEnumType(head)) return this.createScopeForNodes(head.members);
+        if (index === 0 && isEnumType(head)) return this.memberScopes.get(head, 'members', () => head.members);
         const type = typeOfPathPrefix(ref, index);
-        return type.kind === 'struct' ? this.createScopeForNodes(type.datatype.fields) : EMPTY_SCOPE;
+        return type.kind === 'struct' ? this.memberScopes.get(type.datatype, 'fields', () => type.datatype.fields) : EMPTY_SCOPE;
     }
 }

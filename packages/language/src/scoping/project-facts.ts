@@ -14,12 +14,12 @@
  * `projectDependents` compares the facts of the changed files before and after a change and names
  * the other files to revalidate: only when a fact really changed, so an ordinary edit costs nothing.
  */
-import { AstUtils, UriUtils, type LangiumDocument } from 'langium';
+import { UriUtils, type LangiumDocument } from 'langium';
 import {
     isActivateSupervisor, isDataType, isModel, isSchedulerConfiguration, isSchema, isSupervisor,
     type Model
 } from '../generated/ast.js';
-import { scheduledSchemasOf } from '../model/blocks.js';
+import { rulesOf, scheduledSchemasOf } from '../model/blocks.js';
 
 /** What one file contributes to project-wide checks (undefined: nothing of that kind). */
 export interface DocumentFacts {
@@ -55,7 +55,8 @@ function activationsFact(model: Model): string | undefined {
     const supervisors = model.elements.filter(isSupervisor);
     if (supervisors.length === 0) return undefined;
     return supervisors.map((s) => {
-        const targets = AstUtils.streamAllContents(s).filter(isActivateSupervisor).map((a) => a.supervisor?.$refText ?? '').toArray();
+        // an activation is a rule's action: the rules' actions only, not every node of the conditions
+        const targets = s.functions.flatMap((f) => rulesOf(f).flatMap((r) => r.actions.filter(isActivateSupervisor).map((a) => a.supervisor?.$refText ?? '')));
         return `${s.name}>${[...new Set(targets)].sort().join(',')}`;
     }).join(';');
 }
