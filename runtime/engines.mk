@@ -10,7 +10,7 @@ ENG_INC     := -Iinclude -Isrc/engines -Itests/engines -Isim
 ENG_SAN     := -fsanitize=address,undefined -fno-omit-frame-pointer -fno-sanitize-recover=all
 ENG_OUT     := $(BUILD)/engines
 ENG_CORE    := src/engines/engine_values.c src/engines/value_ops.c src/engines/engine_check.c src/engines/sup_core.c src/engines/sup_claims.c \
-               src/engines/ord_core.c
+               src/engines/ord_core.c src/engines/ord_stuck_cause.c
 ENG_HDRS    := $(wildcard include/contract/*.h src/engines/*.h tests/engines/*.h tests/engines/*.def sim/*.h)
 ENG_TESTS   := $(wildcard tests/engines/*.c)
 # libmodule-free parts of the bindings, tested with the cores

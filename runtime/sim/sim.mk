@@ -7,7 +7,7 @@
 SIM_DIR   := sim
 SIM_OUT   := $(BUILD)/sim
 SIM_SRCS  := src/engines/engine_values.c src/engines/value_ops.c src/engines/engine_check.c src/engines/sup_core.c \
-             src/engines/sup_claims.c src/engines/ord_core.c src/tools.c \
+             src/engines/sup_claims.c src/engines/ord_core.c src/engines/ord_stuck_cause.c src/tools.c \
              $(SIM_DIR)/sim_world.c $(SIM_DIR)/sim_protocol.c
 SIM_HDRS  := $(wildcard include/*.h include/*/*.h src/engines/*.h $(SIM_DIR)/*.h)
 SIM_CFLAGS := -std=c11 -Wall -Wextra -Werror -O2 -g -Iinclude -Isrc/engines -I$(SIM_DIR)

@@ -10,7 +10,7 @@ import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
-import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, type LimitOptions } from '@contract-studio/conventions';
+import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
 import { defaultRuntimeSource } from './runtime-source.js';
 import { safeName } from './terminal-text.js';
 
@@ -427,7 +427,7 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
     (result.issues ?? []).forEach((i, n) => {
         const told = problems?.[n];
         if (told === undefined || told === i.message) return;
-        const short = i.message.replace(/: does its exec region set \*stateindex = -1\?$/, '');
+        const short = withoutStuckAdvice(i.message);
         message = message.includes(i.message) ? message.replace(i.message, told) : message.replace(short, told);
     });
     if (afterwards.length) message = `${message}, but ${afterwards.join('; ')}`;

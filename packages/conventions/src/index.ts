@@ -11,3 +11,4 @@ export * from './visible-text.js';
 export * from './json-body.js';
 export * from './run-bounds.js';
 export * from './limit-option.js';
+export * from './stuck-advice.js';

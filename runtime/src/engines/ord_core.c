@@ -34,6 +34,9 @@ typedef struct SchemaState {
     long cycle_overruns;   /* ticks skipped by the current cycle (the first traced, the count at its end) */
     long cycle_missed;     /* ticks missed (ORD late) while the current cycle ran (idem)     */
     char *stuck;           /* per module: its outstanding release was reported stuck */
+    uint32_t *looked;      /* per module: the release seen half way to its stuck report (0: none) */
+    int64_t *looked_t;     /* per module: when (the core's time) */
+    OrdModuleActivity *look; /* per module: what module_activity said then */
     OrdSchemaStats stats;
 } SchemaState;
 
@@ -220,18 +223,38 @@ static int64_t stuck_limit(const SchemaState *ss) {
     return limit < ORD_STUCK_MIN_NS ? ORD_STUCK_MIN_NS : limit;
 }
 
+/* Half way to a stuck report of module m's outstanding release: one look at the module
+   (OrdIo.module_activity), which the report compares with its own (ord_stuck_cause.h). */
+static void look_at(OrdCore *c, SchemaState *ss, int m) {
+    if (!c->io.module_activity || ss->looked[m] == ss->outstanding[m]) return;
+    ss->looked[m] = ss->outstanding[m];
+    ss->looked_t[m] = c->now;
+    if (c->io.module_activity(c->io.ctx, ss->s->modules[m].module, &ss->look[m]) != 0)
+        ss->look[m].state = 0; /* unreadable: not asked again for this release */
+}
+
 /* Reports module m's outstanding release stuck, once (`periods` periods of ss after it): with the
-   likely cause, an exec region that never sets *stateindex = -1, unless the module is no longer
-   running (crashed, killed: OrdIo.module_gone), which the trace line and the stuck call then say. */
+   likely cause, as the looks at the module show it (running, waiting or starved:
+   ord_stuck_cause.h), else the question whether its exec region sets *stateindex = -1, unless
+   the module is no longer running (crashed, killed: OrdIo.module_gone), which the trace line and
+   the stuck call then say. */
 static void report_stuck(OrdCore *c, SchemaState *ss, int m, long periods, const char *whose) {
     ss->stuck[m] = 1;
     ss->stats.stuck_releases++;
     const char *module = ss->s->modules[m].module;
     int gone = c->io.module_gone && c->io.module_gone(c->io.ctx, module);
-    char msg[320];
+    char cause[200];
+    if (gone) {
+        snprintf(cause, sizeof cause, "%s", "it is no longer running (it crashed or was killed)");
+    } else {
+        OrdModuleActivity now;
+        int seen = c->io.module_activity && c->io.module_activity(c->io.ctx, module, &now) == 0;
+        int looked = ss->looked[m] == ss->outstanding[m] && ss->look[m].state != 0;
+        ord_stuck_cause(looked ? &ss->look[m] : NULL, ss->looked_t[m], seen ? &now : NULL, c->now, cause, sizeof cause);
+    }
+    char msg[400];
     snprintf(msg, sizeof msg, "%s has not finished release #%u after %ld periods%s: %s", module, ss->outstanding[m],
-             periods, whose,
-             gone ? "it is no longer running (it crashed or was killed)" : "does its exec region set *stateindex = -1?");
+             periods, whose, cause);
     trace(c, "stuck: %s (%s)", msg, ss->s->name);
     if (c->io.stuck)
         c->io.stuck(c->io.ctx, ss->s->modules[m].module, ss->s->name, ss->outstanding[m], periods, msg);
@@ -242,11 +265,13 @@ static void report_stuck(OrdCore *c, SchemaState *ss, int m, long periods, const
    with the likely cause (a synchronous module's exec region that never sets *stateindex = -1
    runs for ever: docs/engines.md §4), instead of an overrun at every tick. */
 static void check_stuck(OrdCore *c, SchemaState *ss, int64_t tick) {
-    int64_t period = ss->s->period_ns, elapsed = tick - ss->cycle_tick;
-    if (period <= 0 || elapsed < stuck_limit(ss)) return;
-    for (int m = 0; m < ss->s->nmodules; m++)
-        if (ss->released[m] && !ss->finished[m] && !ss->stuck[m] && ss->outstanding[m] == ss->cycle_rel[m])
-            report_stuck(c, ss, m, (long)(elapsed / period), "");
+    int64_t period = ss->s->period_ns, elapsed = tick - ss->cycle_tick, limit = stuck_limit(ss);
+    if (period <= 0 || elapsed < limit / 2) return;
+    for (int m = 0; m < ss->s->nmodules; m++) {
+        if (!ss->released[m] || ss->finished[m] || ss->stuck[m] || ss->outstanding[m] != ss->cycle_rel[m]) continue;
+        if (elapsed >= limit) report_stuck(c, ss, m, (long)(elapsed / period), "");
+        else look_at(c, ss, m);
+    }
 }
 
 /* A release outside the running cycle of its schema: its activation was deactivated (the module
@@ -553,7 +578,10 @@ OrdCore *ord_core_create(const ContractOrdVocabulary *v, const OrdIo *io, char *
         ss->outstanding = calloc(n, sizeof(uint32_t));
         ss->outstanding_t = calloc(n, sizeof(int64_t));
         ss->stuck = calloc(n, 1);
-        if (!ss->stuck || !ss->cycle_rel || !ss->outstanding || !ss->outstanding_t || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
+        ss->looked = calloc(n, sizeof(uint32_t));
+        ss->looked_t = calloc(n, sizeof(int64_t));
+        ss->look = calloc(n, sizeof(OrdModuleActivity));
+        if (!ss->stuck || !ss->looked || !ss->looked_t || !ss->look || !ss->cycle_rel || !ss->outstanding || !ss->outstanding_t || !ss->params || !ss->npreds || !ss->waiting || !ss->released || !ss->finished) goto oom;
         for (int e = 0; e < s->nprecedences; e++) ss->npreds[s->precedences[e].after]++;
         /* the precedence graph must be acyclic: Kahn's algorithm */
         int *w = ss->waiting, done = 0;
@@ -602,6 +630,9 @@ void ord_core_destroy(OrdCore *c) {
             free(c->st[i].outstanding);
             free(c->st[i].outstanding_t);
             free(c->st[i].stuck);
+            free(c->st[i].looked);
+            free(c->st[i].looked_t);
+            free(c->st[i].look);
         }
     free(c->st);
     free(c);

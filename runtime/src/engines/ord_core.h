@@ -13,6 +13,7 @@
 #include <stdint.h>
 
 #include "contract/vocabulary.h"
+#include "ord_stuck_cause.h"
 
 /** A fact of the periodic timeline, for the run-time trace (docs/runtime-api.md "Trace
  *  records"): times are the core's clock, `cycle` is k of tick_k = activation + k * PERIOD. */
@@ -59,8 +60,9 @@ typedef struct OrdIo {
     /* a released module has not finished its release `release_id` after `periods` periods of
        its schema (ORD_STUCK_PERIODS, at least ORD_STUCK_MIN_NS): called once per release, with
        the sentence to show, the `stuck: ` trace line's ("MSC has not finished release #2 after
-       10 periods: does its exec region set *stateindex = -1?", or "...: it is no longer running
-       (it crashed or was killed)" when module_gone says so). Optional (NULL: the trace line only). */
+       10 periods: does its exec region set *stateindex = -1?", "...: it is no longer running
+       (it crashed or was killed)" when module_gone says so, or the cause module_activity shows:
+       ord_stuck_cause.h). Optional (NULL: the trace line only). */
     void (*stuck)(void *ctx, const char *module, const char *schema, uint32_t release_id,
                   long periods, const char *message);
     /* typed facts of the timeline at time t (NULL: none); the readable lines stay in trace */
@@ -69,6 +71,11 @@ typedef struct OrdIo {
        its releases is reported stuck, whose sentence then says so instead of the advice about
        its exec region, which fits only a module that runs on. Optional (NULL: never asked). */
     int (*module_gone)(void *ctx, const char *module);
+    /* a look at a running module's main thread (ord_stuck_cause.h): its state and CPU time, 0
+       when read. Asked for a release not finished half way to its stuck report, and at the
+       report, whose sentence then says whether the module was running, waiting or starved
+       instead of the bare advice. Optional (NULL: never asked; the advice). */
+    int (*module_activity)(void *ctx, const char *module, OrdModuleActivity *out);
 } OrdIo;
 
 /* A release not finished after this many periods of its schema, and at least ORD_STUCK_MIN_NS

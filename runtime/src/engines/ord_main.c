@@ -25,6 +25,8 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <limits.h>
+#include <unistd.h>
 
 #include "contract/vocabulary.h"
 #include "engine_values.h"
@@ -245,6 +247,54 @@ static int b_module_gone(void *ctx, const char *module) {
     return state == CONTRACT_ENOTRUNNING || state == CONTRACT_EUNKNOWN;
 }
 
+/* A look at a running module's main thread for a stuck report (ord_stuck_cause.h): its pid from
+   <run dir>/<module>.pid (written by the module at start-up), then in /proc/<pid>/task/<pid>/:
+   the state letter from `stat`, the CPU time and the time spent waiting for a CPU from
+   `schedstat` (ns; without it, stat's utime + stime and an unknown wait). Asked at most twice per
+   stuck release. -1 when the pid or stat cannot be read (the report then keeps the question). */
+static int b_module_activity(void *ctx, const char *module, OrdModuleActivity *out) {
+    (void)ctx;
+    char path[PATH_MAX];
+    if (snprintf(path, sizeof path, "%s/%s.pid", ContractRunDir(), module) >= (int)sizeof path) return -1;
+    FILE *f = fopen(path, "r");
+    if (!f) return -1;
+    long pid = 0;
+    int got = fscanf(f, "%ld", &pid);
+    fclose(f);
+    if (got != 1 || pid <= 0) return -1;
+    snprintf(path, sizeof path, "/proc/%ld/task/%ld/stat", pid, pid);
+    f = fopen(path, "r");
+    if (!f) return -1;
+    char line[1024];
+    char *text = fgets(line, sizeof line, f);
+    fclose(f);
+    /* "pid (comm) S ppid ...": comm may hold spaces and ')', the state follows the last ')' */
+    char *close = text ? strrchr(line, ')') : NULL;
+    if (!close) return -1;
+    char state = 0;
+    unsigned long long utime = 0, stime = 0;
+    /* fields 3 (state) to 15 (stime): state, ppid, pgrp, session, tty, tpgid, flags, minflt,
+       cminflt, majflt, cmajflt, utime, stime */
+    if (sscanf(close + 1, " %c %*d %*d %*d %*d %*d %*u %*u %*u %*u %*u %llu %llu", &state, &utime, &stime) != 3)
+        return -1;
+    long hz = sysconf(_SC_CLK_TCK);
+    if (hz <= 0) return -1;
+    out->state = state;
+    out->cpu_ns = (int64_t)((utime + stime) * (1000000000ULL / (unsigned long long)hz));
+    out->wait_ns = -1;
+    snprintf(path, sizeof path, "/proc/%ld/task/%ld/schedstat", pid, pid);
+    f = fopen(path, "r");
+    if (f) {
+        unsigned long long run = 0, wait = 0;
+        if (fscanf(f, "%llu %llu", &run, &wait) == 2) {
+            out->cpu_ns = (int64_t)run;
+            out->wait_ns = (int64_t)wait;
+        }
+        fclose(f);
+    }
+    return 0;
+}
+
 /* the typed records of the periodic timeline (docs/runtime-api.md "Trace records"): CSV only */
 static void b_fact(void *ctx, int64_t t, const OrdFact *f) {
     (void)ctx;
@@ -310,7 +360,8 @@ int contract_ord_main(const ContractOrdVocabulary *v, int argc, const char *argv
     b.v = v;
     const char *stats_path = getenv("CONTRACT_ORD_STATS");
     b.record = stats_path && *stats_path;
-    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace, b_stuck, b_fact, b_module_gone};
+    OrdIo io = {&b, b_set_param, b_connect, b_disconnect, b_release, b_emit, b_ack, b_trace, b_stuck, b_fact, b_module_gone,
+                b_module_activity};
     char err[512] = "";
     OrdCore *c = ord_core_create(v, &io, err, sizeof err);
     if (!c) {

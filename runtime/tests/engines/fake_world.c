@@ -433,6 +433,42 @@ void fake_set_gone(FakeWorld *w, const char *module) {
     if (w->ngone < FW_MAX) snprintf(w->gone[w->ngone++], sizeof w->gone[0], "%s", module);
 }
 
+static int activity_index(const FakeWorld *w, const char *module) {
+    for (int i = 0; i < w->nact; i++)
+        if (strcmp(w->act_module[i], module) == 0) return i;
+    return -1;
+}
+
+static int o_module_activity(void *ctx, const char *m, OrdModuleActivity *out) {
+    FakeWorld *w = ctx;
+    int i = activity_index(w, m);
+    if (i < 0) return -1;
+    w->act_looks[i]++;
+    w->act_cpu[i] += w->act_step[i];
+    w->act_wait[i] += w->act_wait_step[i] < 0 ? 0 : w->act_wait_step[i];
+    out->state = w->act_state[i];
+    out->cpu_ns = w->act_cpu[i];
+    out->wait_ns = w->act_wait_step[i] < 0 ? -1 : w->act_wait[i];
+    return 0;
+}
+
+void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu_step_ns, int64_t wait_step_ns) {
+    int i = activity_index(w, module);
+    if (i < 0) {
+        if (w->nact >= FW_MAX) return;
+        i = w->nact++;
+        snprintf(w->act_module[i], sizeof w->act_module[0], "%s", module);
+    }
+    w->act_state[i] = state;
+    w->act_step[i] = cpu_step_ns;
+    w->act_wait_step[i] = wait_step_ns;
+}
+
+int fake_activity_looks(const FakeWorld *w, const char *module) {
+    int i = activity_index(w, module);
+    return i < 0 ? 0 : w->act_looks[i];
+}
+
 uint32_t fake_last_release(const FakeWorld *w, const char *module) {
     for (int i = w->nrel - 1; i >= 0; i--)
         if (strcmp(w->rel_module[i], module) == 0) return w->rel_id[i];
@@ -440,6 +476,7 @@ uint32_t fake_last_release(const FakeWorld *w, const char *module) {
 }
 
 OrdIo fake_ord_io(FakeWorld *w) {
-    OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace, o_stuck, NULL, o_module_gone};
+    OrdIo io = {w, o_set_param, o_connect, o_disconnect, o_release, o_emit, o_ack, o_trace, o_stuck, NULL, o_module_gone,
+                o_module_activity};
     return io;
 }

@@ -44,7 +44,15 @@ typedef struct FakeWorld {
        last OrdIo.stuck call */
     int ngone;
     char gone[FW_MAX][16];
-    char stuck_message[320];
+    char stuck_message[400];
+    /* OrdIo.module_activity: the modules that can be looked at (fake_set_activity): each look
+       answers `state`, a CPU time `cpu_step_ns` and a wait for a CPU `wait_step_ns` further than
+       the last look's (a negative wait step: the wait is unknown) */
+    int nact;
+    char act_module[FW_MAX][16];
+    char act_state[FW_MAX];
+    int64_t act_step[FW_MAX], act_cpu[FW_MAX], act_wait_step[FW_MAX], act_wait[FW_MAX];
+    int act_looks[FW_MAX];
     /* SupIo.module_run_ended: the modules whose run ended by their own code (fake_end_own_run),
        until started again */
     int nended;
@@ -63,6 +71,11 @@ int fake_is_running(const FakeWorld *w, const char *module);
 void fake_end_own_run(FakeWorld *w, const char *module);
 /** Marks a module as no longer running (crashed or killed): OrdIo.module_gone says so. */
 void fake_set_gone(FakeWorld *w, const char *module);
+/** Lets OrdIo.module_activity look at `module`: in scheduler state `state`, its CPU time going
+ *  `cpu_step_ns` further at each look and its wait for a CPU `wait_step_ns` (< 0: unknown). */
+void fake_set_activity(FakeWorld *w, const char *module, char state, int64_t cpu_step_ns, int64_t wait_step_ns);
+/** How many times OrdIo.module_activity looked at `module`. */
+int fake_activity_looks(const FakeWorld *w, const char *module);
 /** The id of the latest ORD release of `module` (0: never released). */
 uint32_t fake_last_release(const FakeWorld *w, const char *module);
 /** Formats a value for log lines: ints, floats (%g), strings, TypeA {i,j,k}, TypeD {name,v}. */

@@ -502,6 +502,52 @@ void test_ord_stuck_report_of_a_module_no_longer_running(void) {
     ord_core_destroy(c);
 }
 
+/* What ORD saw of the module tells the cause of a stuck release (ord_stuck_cause.h): it looks at
+   the module half way to the report (1 s) and at it (2 s). A module that ran 97% of that second
+   is asked whether its exec region loops; one that ran 3% while ready to run 90% of it is
+   starved; one that ran 3% and waited for a CPU 2% slept: it waits, whatever its state at the
+   last look. One look at each point, not one per tick. */
+static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *cause) {
+    FakeWorld w;
+    OrdCore *c = make(&w);
+    if (!c) { CHECK(0); return; }
+    fake_set_activity(&w, "G", state, cpu_step_ns, wait_step_ns);
+    ord_core_activate(c, 0, "SLW", NULL, 0, "SUP", 1);
+    uint32_t g = fake_last_release(&w, "G");
+    ord_core_advance(c, 1900 * MS);
+    CHECK(fake_activity_looks(&w, "G") == 1);
+    ord_core_advance(c, 3000 * MS);
+    char said[400], stuck[LOG_LINE]; /* the log keeps LOG_LINE - 1 characters of a line, as stuck */
+    snprintf(said, sizeof said, "G has not finished release #%u after 10 periods: %s", g, cause);
+    char full[450];
+    snprintf(full, sizeof full, "2000000us stuck: %s (SLW)", said);
+    snprintf(stuck, sizeof stuck, "%.*s", (int)sizeof stuck - 1, full);
+    check_log_filtered(&LOG, (const char *const[]){"stuck:", NULL}, (const char *const[]){stuck, NULL}, __FILE__,
+                       __LINE__);
+    if (strcmp(w.stuck_message, said) != 0) fprintf(stderr, "  the stuck call's sentence: %s\n", w.stuck_message);
+    CHECK(strcmp(w.stuck_message, said) == 0);
+    CHECK(fake_activity_looks(&w, "G") == 2);
+    ord_core_destroy(c);
+}
+
+#define LOOPS "does its exec region loop, or never set *stateindex = -1? (it ran 97% of the last 1.0 s)"
+#define STARVED                                                                                                   \
+    "it wanted the CPU but got only 3% of it in the last 1.0 s: do processes at real-time priority or an "      \
+    "overloaded machine starve it, or does its exec region loop?"
+#define WAITS "it is waiting, not running (a sleep, a read, a lock or a send to a full mailbox in its exec region?)"
+
+void test_ord_stuck_report_says_what_the_module_was_doing(void) {
+    stuck_with_activity('R', 970 * MS, 20 * MS, LOOPS);
+    stuck_with_activity('S', 970 * MS, -1, LOOPS); /* asleep at the last look, but it ran */
+    stuck_with_activity('R', 30 * MS, 900 * MS, STARVED);
+    stuck_with_activity('R', 30 * MS, -1, STARVED); /* no wait known: ready to run at the last look */
+    stuck_with_activity('R', 30 * MS, 20 * MS, WAITS); /* runnable at the last look, asleep nearly all along */
+    stuck_with_activity('S', 30 * MS, -1, WAITS);
+    stuck_with_activity('D', 0, 0, WAITS);
+    stuck_with_activity('T', 0, 0, "it is stopped (by SIGSTOP, or a debugger holds it)");
+    stuck_with_activity('Z', 0, 0, "it is no longer running (it crashed or was killed)");
+}
+
 /* Short periods: a loaded machine may hold a module for a few periods; it is declared stuck only
    after ORD_STUCK_MIN_NS (1 s), i.e. 334 periods of 3 ms. */
 void test_ord_stuck_needs_at_least_1s_on_short_periods(void) {

@@ -6,7 +6,7 @@
  * completions and deliveries are counted, not told one by one. Pure: returns the lines.
  */
 import { posingText } from './log-clock.js';
-import { formatNanoseconds } from '@contract-studio/conventions';
+import { formatNanoseconds, STUCK_ADVICE } from '@contract-studio/conventions';
 import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
@@ -57,8 +57,6 @@ export function ignoredUndo(k: Pick<KnownRecord, 'kind' | 'fields'>): boolean {
     return k.kind === 'scheduler' && k.fields['what'] === 'ignored' && typeof k.fields['schema'] === 'string';
 }
 
-/** ORD's advice in a `stuck:` line (ord_core.c report_stuck), for a module that runs on. */
-const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
 /** What a `stuck:` line says instead of the advice when its module is no longer running (crashed, killed). */
 const STUCK_GONE = /: it is no longer running \(it crashed or was killed\)/;
 

@@ -3,6 +3,7 @@
  * the run's problems with ORD's `*stateindex` advice left out for a module that crashed.
  */
 import { LauncherCrashes } from '@contract-studio/build-service';
+import { STUCK_ADVICE } from '@contract-studio/conventions';
 import type { JobOutcome } from '../job-runner.js';
 
 export interface ModuleFailure {
@@ -48,8 +49,6 @@ export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name:
     });
 }
 
-/** ORD's advice on a module that does not finish its release, which is wrong for one that crashed. */
-const STUCK_ADVICE = /: does its exec region set \*stateindex = -1\?/;
 
 /**
  * The run's problems as told: a module ORD declared stuck because it crashed is told as crashed,

@@ -12,7 +12,8 @@
  * to STK reported within 100 ms of the request, FST toggled many times, and ORD ending on KILL.
  * 11 (D4b): CRS, killed in its 5th release of CRH, is reported stuck as a module that is no
  * longer running, in ORD's CSV record (what contract trace and the IDE's Monitor show) in the
- * same words as on ORD's stderr, not with the advice to set *stateindex = -1.
+ * same words as on ORD's stderr, not with the advice to set *stateindex = -1. STK, asleep in its
+ * release, is reported as waiting (ORD looks at its thread: ord_stuck_cause.h).
  */
 #define _GNU_SOURCE
 #include <stdio.h>
@@ -101,6 +102,17 @@ void scenario_stuck_module(const char *root, const char *bin, const char *launch
 
     char *ord = read_csv_log(&s, "ORD"), *txt = slurp(s.launch), *js = slurp(s.stats);
     check(txt && strstr(txt, "[ORD] STUCK: STK has not finished release #"), "ORD reported STK stuck");
+    /* STK sleeps in its 5th release: ORD looked at its thread (/proc) and says it waits, not that
+       its exec region may never set *stateindex = -1 */
+    const char *stk_line = txt ? strstr(txt, "[ORD] STUCK: STK has not finished release #") : NULL;
+    size_t stk_len = stk_line ? strcspn(stk_line, "\n") : 0;
+    char said[400] = "";
+    if (stk_len && stk_len < sizeof said) memcpy(said, stk_line, stk_len);
+    char what_stk[500];
+    snprintf(what_stk, sizeof what_stk, "ORD's STUCK line says the sleeping STK is waiting (`%s`)", said);
+    check(strstr(said, ": it is waiting, not running (a sleep, a read, a lock or a send to a full mailbox in its "
+                       "exec region?)") != NULL,
+          what_stk);
 
     /* ORD went on serving SKS: each ORD:0 of FST became a deactivation and an activation */
     int toggles = count_of(ord, ",activate FST (activation #");

@@ -1,0 +1,55 @@
+/*
+ * ord_stuck_cause.c — the cause part of ORD's stuck report (ord_stuck_cause.h).
+ */
+#include "ord_stuck_cause.h"
+
+#include <stdio.h>
+
+/* a thread that runs at least this share of the wall time is running its code, not starved; one
+   ready to run (running or waiting for a CPU) that long wants the CPU */
+#define RUNNING_SHARE_PERCENT 50
+
+#define WAITING "it is waiting, not running (a sleep, a read, a lock or a send to a full mailbox in its exec region?)"
+
+static long percent_of(int64_t part, int64_t whole) {
+    return part >= whole ? 100 : (long)(part * 100 / whole);
+}
+
+const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const OrdModuleActivity *now,
+                            int64_t now_t, char *buf, size_t n) {
+    if (!now) {
+        snprintf(buf, n, "%s", ORD_STUCK_ADVICE);
+        return buf;
+    }
+    if (now->state == 'Z' || now->state == 'X') {
+        snprintf(buf, n, "it is no longer running (it crashed or was killed)");
+        return buf;
+    }
+    if (now->state == 'T' || now->state == 't') {
+        snprintf(buf, n, "it is stopped (by SIGSTOP, or a debugger holds it)");
+        return buf;
+    }
+    int64_t wall = now_t - then_t;
+    int compared = then && wall > 0 && now->cpu_ns >= then->cpu_ns;
+    if (!compared) {
+        if (now->state == 'S' || now->state == 'D')
+            snprintf(buf, n, "%s", WAITING);
+        else
+            snprintf(buf, n, "%s", ORD_STUCK_ADVICE);
+        return buf;
+    }
+    long ran = percent_of(now->cpu_ns - then->cpu_ns, wall);
+    double seconds = (double)wall / 1e9;
+    /* ready to run while not running: known when both looks read it */
+    int wait_known = then->wait_ns >= 0 && now->wait_ns >= then->wait_ns;
+    long wanted = wait_known ? ran + percent_of(now->wait_ns - then->wait_ns, wall) : -1;
+    if (ran >= RUNNING_SHARE_PERCENT)
+        snprintf(buf, n, "does its exec region loop, or never set *stateindex = -1? (it ran %ld%% of the last %.1f s)",
+                 ran, seconds);
+    else if (wanted >= RUNNING_SHARE_PERCENT || (!wait_known && now->state != 'S' && now->state != 'D'))
+        snprintf(buf, n, "it wanted the CPU but got only %ld%% of it in the last %.1f s: do processes at real-time "
+                         "priority or an overloaded machine starve it, or does its exec region loop?", ran, seconds);
+    else
+        snprintf(buf, n, "%s", WAITING);
+    return buf;
+}

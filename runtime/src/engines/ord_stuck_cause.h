@@ -1,0 +1,42 @@
+/*
+ * ord_stuck_cause.h — why a module has not finished its release, as ORD's stuck report says it.
+ *
+ * ORD looks at the module's main thread twice (OrdIo.module_activity): half way to the stuck
+ * report and at it. From its state then and the CPU time it got in between, the report tells
+ * apart three cases that a bare "does its exec region set *stateindex = -1?" mixed up:
+ *  - running nearly all the time (>= 50% of a CPU): its exec region loops, or returns without
+ *    ever setting *stateindex = -1 (the module calls it again at once);
+ *  - waiting (sleeping, blocked): its exec region sleeps, reads, waits on a lock or on a full
+ *    mailbox;
+ *  - ready to run most of the time but given little CPU: starved by processes at real-time
+ *    priority or a machine loaded past its CPUs (or a loop on such a machine);
+ * and says a module that has ended (a zombie: "no longer running", as OrdIo.module_gone) or is
+ * stopped (SIGSTOP, a debugger).
+ * Without both looks (no module_activity, the module's /proc entry unreadable, a release
+ * reported before the half-way look) the report keeps the question.
+ */
+#ifndef CONTRACT_ORD_STUCK_CAUSE_H
+#define CONTRACT_ORD_STUCK_CAUSE_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+/** One look at a module's main thread: its scheduler state ('R' running or ready, 'S' sleeping,
+ *  'D' uninterruptible wait, ...: /proc's letter), the CPU time it has used and the time it has
+ *  spent ready to run but waiting for a CPU (-1: unknown), in ns. */
+typedef struct OrdModuleActivity {
+    char state;
+    int64_t cpu_ns;
+    int64_t wait_ns;
+} OrdModuleActivity;
+
+/** The advice ORD gives when it cannot tell (no look at the module). */
+#define ORD_STUCK_ADVICE "does its exec region set *stateindex = -1?"
+
+/** The cause part of a stuck report (after "after N periods: "), written into buf: from the
+ *  look `then` at time then_t and the look `now` at now_t (ns, one clock). then may be NULL
+ *  (no earlier look) and now NULL (unreadable): the question ORD_STUCK_ADVICE. Returns buf. */
+const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const OrdModuleActivity *now,
+                            int64_t now_t, char *buf, size_t n);
+
+#endif
