@@ -8,6 +8,7 @@ import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
+import { foreignMakefilesMessage } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
 import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
@@ -265,6 +266,8 @@ const DURATION_CAPPED_LINE = /^duration \S+ s capped to \S+ s: the run time limi
 const DURATION_CAPPED_WARNING = DURATION_CAPPED_LINE;
 /** The service's line while another command holds the project (build-service job.ts onWait): said in every mode. */
 const WAITING_LINE = /^waiting for the other command using this project \(/;
+/** The service's line of the error that ended the prepare step (job.ts): the status line says it (`FAILED: prepare failed: ...`), once. */
+const PREPARE_FAILED_LINE = /^error: /;
 /** The service's `time: <step> N ms` lines: --verbose only (a terminal's progress lines leave them out). */
 const TIME_LINE = /^time: /;
 
@@ -344,6 +347,8 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
         // the service's own line for each model or generation problem: printed once, at the end, at
         // its path from where the command ran (prepareErrors), not here relative to the project
         if (e.step === 'prepare' && e.source === 'service' && (PREPARE_PROBLEM_LINE.test(e.line) || /^the project has \d+ error\(s\): nothing generated$/.test(e.line))) return;
+        // the error that ended the prepare step: said once, by the status line at the end (reportBuild)
+        if (e.step === 'prepare' && e.source === 'service' && PREPARE_FAILED_LINE.test(e.line)) return;
         if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {
@@ -423,7 +428,8 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
     for (const w of job.warnings) if (!DURATION_CAPPED_WARNING.test(w)) io.err(`warning: ${w}\n`);
     const seconds = (ms: number | undefined) => (ms === undefined ? '-' : (ms / 1000).toFixed(1));
     const d = result.durations_ms;
-    let message = result.message;
+    // a foreign makefile's refusal names it from where the command ran (DIR/src-gen/...), as every other path here
+    let message = job.foreignMakefiles.length ? `prepare failed: ${foreignMakefilesMessage(job.foreignMakefiles, (rel) => join(opts.dirArg, rel))}` : result.message;
     (result.issues ?? []).forEach((i, n) => {
         const told = problems?.[n];
         if (told === undefined || told === i.message) return;

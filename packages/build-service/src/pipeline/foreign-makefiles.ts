@@ -22,9 +22,13 @@ export function foreignMakefiles(files: Iterable<string>): string[] {
   return [...files].filter((rel) => rel.startsWith(BUILT) && names.has(rel.split('/').pop()!)).sort();
 }
 
-/** The refusal of a project whose generated tree holds such makefiles (the first 5 named). */
-export function foreignMakefilesMessage(found: readonly string[]): string {
-  const named = found.slice(0, 5).map((f) => visibleText(f)).join(', ') + (found.length > 5 ? ` and ${found.length - 5} more` : '');
+/**
+ * The refusal of a project whose generated tree holds such makefiles (the first 5 named), each
+ * path as `pathOf` writes it: the service's, relative to the project; the CLI's, from where the
+ * command was typed (`DIR/src-gen/...`).
+ */
+export function foreignMakefilesMessage(found: readonly string[], pathOf: (rel: string) => string = (rel) => rel): string {
+  const named = found.slice(0, 5).map((f) => visibleText(pathOf(f))).join(', ') + (found.length > 5 ? ` and ${found.length - 5} more` : '');
   return `${named}: a makefile in the generated tree that is not the generated one (GNU make would read it instead of `
     + 'the generated Makefile, and its recipes would be the build); a Cactal build runs only the generated Makefiles: '
     + 'remove it, or rename it (the generated Makefiles never read it); nothing was built';

@@ -19,7 +19,7 @@ import type { CactalProblem } from './cactal-adapter.js';
 import type { GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
-import { generatedMakefileArgs, makeDir, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
+import { generatedMakefileArgs, makeDir, PrepareError, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
 import { holdsUnderProcessLimit } from './process-limit-warning.js';
@@ -135,6 +135,8 @@ export class Job {
   result: JobResult | null = null;
   readonly diagnostics: GccDiagnostic[] = [];
   prepareDiagnostics: CactalProblem[] = [];
+  /** The makefiles of the generated tree prepare refused the project for (foreign-makefiles.ts), project-relative; empty otherwise. */
+  foreignMakefiles: readonly string[] = [];
   readonly warnings: string[] = [];
   /** What sandbox was picked and why ("sandbox auto: picked bwrap (...)"). */
   sandboxNote = '';
@@ -547,6 +549,7 @@ export class Job {
         this.finish('failed');
       } else {
         const msg = (e as Error).message;
+        if (e instanceof PrepareError) this.foreignMakefiles = e.foreignMakefiles;
         this.system(step, `error: ${msg}`);
         this.result = this.makeResult(step, false, null, null, `${step} failed: ${msg}`, null);
         this.finish('failed');

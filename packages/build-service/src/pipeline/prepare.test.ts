@@ -183,6 +183,22 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
   }, 120_000);
 
+  it('refuses a link named GNUmakefile or makefile in the generated tree as a foreign makefile (remove it), not as a link to copy in, which would only meet that refusal next', async () => {
+    const arch = 'src-gen/generated/architecture';
+    const dir = project();
+    writeFileSync(join(dir, 'mine.mk'), 'all: ; echo PWNED\n');
+    symlinkSync(join(dir, 'mine.mk'), join(dir, arch, 'GNUmakefile'));
+    writeFileSync(join(dir, arch, 'tools/makefile'), 'all: ; echo PWNED\n');
+    const err = await prepareWorkspace(workspace(), { dir }, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e);
+    expect(err?.message).toBe(`${arch}/GNUmakefile, ${arch}/tools/makefile: a makefile in the generated tree that is not the generated one (GNU make would read it instead of the generated Makefile, and its recipes would be the build); a Cactal build runs only the generated Makefiles: remove it, or rename it (the generated Makefiles never read it); nothing was built`);
+    // a link of another name is still refused as a link
+    rmSync(join(dir, arch, 'GNUmakefile'));
+    rmSync(join(dir, arch, 'tools/makefile'));
+    symlinkSync(join(dir, 'mine.mk'), join(dir, arch, 'extra.mk'));
+    const link = await prepareWorkspace(workspace(), { dir }, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e);
+    expect(link?.message).toMatch(/^src-gen\/generated\/architecture\/extra\.mk \(a symbolic link\): the build service never reads a project's source through a link /);
+  }, 120_000);
+
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
     const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
     const empty = mkdtempSync(join(base, 'empty-'));

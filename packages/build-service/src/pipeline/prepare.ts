@@ -112,15 +112,22 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
     }
   } else {
     const acceptPath = acceptProjectPath(kind);
-    const refused: string[] = [];
+    const refused: { rel: string; what: string }[] = [];
     const accept = (rel: string, isDir: boolean): boolean => {
       if (isDir && rel.endsWith(`/${SRC_GEN_DIR}`)) nestedTrees.add(rel.slice(0, -SRC_GEN_DIR.length - 1));
       return acceptPath(rel, isDir);
     };
     const files = await listFilesNoFollow(source.dir, accept, '', (rel, what) => {
-      if (isProjectSource(kind, rel, accept)) refused.push(`${rel} (${what === 'symlink' ? 'a symbolic link' : 'not a regular file'})`);
+      if (isProjectSource(kind, rel, accept)) refused.push({ rel, what });
     });
-    if (refused.length) throw new PrepareError(notReadMessage(refused));
+    // a link (or FIFO) named as a foreign makefile gets that refusal, whose advice (remove it) ends
+    // the matter: the link's own (copy the file in) would only meet the makefile's refusal next
+    const foreignLinks = kind === 'cactal' ? foreignMakefiles(refused.map((r) => r.rel)) : [];
+    if (foreignLinks.length) {
+      const foreign = foreignMakefiles([...files, ...foreignLinks]);
+      throw new PrepareError(foreignMakefilesMessage(foreign), foreign);
+    }
+    if (refused.length) throw new PrepareError(notReadMessage(refused.map(({ rel, what }) => `${rel} (${what === 'symlink' ? 'a symbolic link' : 'not a regular file'})`)));
     for (const rel of files) {
       // one byte past the bound is read: a larger file fails the job, naming it (add); it was left out
       // without a word, and a 9 MiB .contract that check refused built "ok" without it
@@ -134,7 +141,7 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
   if (kind === 'cactal') {
     checkProjectFolder([...wanted.keys()], nestedTrees);
     const foreign = foreignMakefiles(wanted.keys());
-    if (foreign.length) throw new PrepareError(foreignMakefilesMessage(foreign));
+    if (foreign.length) throw new PrepareError(foreignMakefilesMessage(foreign), foreign);
   }
   const hash = createHash('sha256').update(kind);
   for (const rel of [...wanted.keys()].sort()) hash.update('\0').update(rel).update('\0').update(wanted.get(rel)!);
@@ -149,7 +156,12 @@ async function stageProject(wanted: Map<string, Buffer>, kind: ProjectKind, stag
   for (const [rel, data] of wanted) await syncFileNoFollow(stageProjectDir, rel, data);
 }
 
-export class PrepareError extends Error {}
+/** A project prepare refuses; `foreignMakefiles`: the refused makefiles of its generated tree (foreign-makefiles.ts), project-relative, when that is why. */
+export class PrepareError extends Error {
+  constructor(message: string, readonly foreignMakefiles: readonly string[] = []) {
+    super(message);
+  }
+}
 
 /**
  * A Cactal project with no `.contract` file, or whose `.contract` files are all in a sub-folder
