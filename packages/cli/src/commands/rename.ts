@@ -138,7 +138,8 @@ export const renameCommand: Command = {
                     for (const r of carried.rewritten) {
                         io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${[...identifiers.keys()][0]}${identifiers.size > 1 ? ` (or its ${plan.kind === 'enumeration' ? 'functions and constants' : 'functions'})` : ''} renamed\n`);
                     }
-                    if (carried.refused) io.err(`warning: ${safeName(carried.refused)}\n`);
+                    const taken = carried.refused;
+                    if (taken) io.err(`warning: ${inTree(taken.file)}:${taken.line}: protected region ${safeName(taken.id)} already uses ${safeName(taken.word)} in its code: uses of ${[...identifiers.keys()].join(', ')} were not rewritten\n`);
                 } catch (e) {
                     if (journaled) removeRenameJournal(out);
                     io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);

@@ -60,7 +60,7 @@ describe('renameIdentifierInGeneratedTree (a renamed port or parameter)', () => 
         const text = file('MSC', 'double position = in_coordinates.x;', 'static int n; // in_coordinates');
         writeFileSync(join(dir, path('MSC')), text);
         const r = renameIdentifierInGeneratedTree(dir, 'MSC', 'in_coordinates', 'position');
-        expect(r.refused).toBe(`'position' is already used in the code of protected region protect_exec_MSC (${path('MSC')}:7): uses of 'in_coordinates' were not rewritten`);
+        expect(r.refused).toEqual({ file: path('MSC'), line: 7, id: 'protect_exec_MSC', word: 'position', context: 'code' });
         expect(r.rewritten).toEqual([]);
         expect(readFileSync(join(dir, path('MSC')), 'latin1')).toBe(text);
         expect(r.remaining.map((m) => [m.line, m.id, m.context])).toEqual([[3, 'protect_internal_vars_MSC', 'comment'], [7, 'protect_exec_MSC', 'code']]);

@@ -101,8 +101,11 @@ export interface IdentifierCarryReport {
     rewritten: Array<{ file: string; line: number; id: string; occurrences: number }>;
     /** Mentions of the old names left in the searched regions: in comments and literals, or in code when the rewrite was refused. */
     remaining: RegionMention[];
-    /** Why uses in code were not rewritten, when they were not. */
-    refused?: string;
+    /**
+     * Why uses in code were not rewritten, when they were not: the first use in code of a new name
+     * (its file relative to the tree, as every file here), which a local of that name would capture.
+     */
+    refused?: RegionMention;
 }
 
 /** The generated functions named after a datatype (shared-type-header.ts, shared-enum-header.ts). */
@@ -189,8 +192,7 @@ export function renameIdentifiersInGeneratedTree(srcGen: string, renames: Map<st
         const newNames = new Set(renames.values());
         const taken = files.flatMap((f) => mentionsIn(f.rel, f.text, (w) => newNames.has(w)).filter((m) => m.context === 'code'));
         if (taken.length > 0) {
-            const t = taken[0]!;
-            report.refused = `'${t.word}' is already used in the code of protected region ${t.id} (${t.file}:${t.line}): uses of '${[...renames.keys()].join("', '")}' were not rewritten`;
+            report.refused = taken[0]!;
         } else {
             for (const f of files) {
                 let next = '';
