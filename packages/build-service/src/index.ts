@@ -10,7 +10,7 @@ export { CACHE_DIR_ENV, CACHE_ENTRY_NAMES, CacheRefusedError, prepareCacheDir, r
 export { DEFAULT_LIMITS, CANCEL_DEADLINE_MS, describeLimitHit, LimitsError, mergeLimits, type Limits, type LimitHit, type Mechanism } from './limits.js';
 export type { Job, JobRequest, JobResult } from './pipeline/job.js';
 export type { JobEvent, JobStatus, JobStep, LineEvent } from './pipeline/job-events.js';
-export type { GccDiagnostic } from './pipeline/gcc-diagnostics.js';
+export { renderDiagnostic, type GccDiagnostic } from './pipeline/gcc-diagnostics.js';
 export type { ProtectedRegion } from './pipeline/protected-regions.js';
 export type { Sandbox, SandboxChoice, SandboxName, Mechanisms } from './sandbox/types.js';
 export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';

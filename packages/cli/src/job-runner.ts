@@ -8,7 +8,7 @@ import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
-import { foreignMakefilesMessage } from '@contract-studio/build-service';
+import { foreignMakefilesMessage, renderDiagnostic } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
 import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
@@ -292,10 +292,28 @@ export function noteBuildErrorLine(tail: string[], e: JobEvent): void {
 /** The printer of a job's events (exported for its tests). */
 export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[]): (e: JobEvent) => void {
     const madeParts = new Set<string>();
+    // the service's log line of each diagnostic printed (its rendering, as the line after it says it),
+    // by count: --verbose prints the diagnostic once, as the CLI writes it (the path from here, the region)
+    const printedDiagnostics = new Map<string, number>();
+    const alreadyPrinted = (line: string): boolean => {
+        const n = printedDiagnostics.get(line);
+        if (!n) return false;
+        if (n > 1) printedDiagnostics.set(line, n - 1); else printedDiagnostics.delete(line);
+        return true;
+    };
     return (e) => {
         noteBuildErrorLine(buildTail, e);
         if (e.type === 'diagnostic') {
-            if (opts.format === 'text') io.err(formatGccDiagnostic(e.diagnostic, opts.dirArg));
+            if (opts.format !== 'text') return;
+            io.err(formatGccDiagnostic(e.diagnostic, opts.dirArg));
+            // --verbose: its notes follow it, written the same way, and the log's lines of both are not printed again
+            if (opts.verbose) {
+                for (const note of e.diagnostic.children) io.err(formatGccDiagnostic(note, opts.dirArg));
+                for (const d of [e.diagnostic, ...e.diagnostic.children]) {
+                    const line = renderDiagnostic(d);
+                    printedDiagnostics.set(line, (printedDiagnostics.get(line) ?? 0) + 1);
+                }
+            }
             return;
         }
         if (e.type === 'status') {
@@ -349,6 +367,8 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
         if (e.step === 'prepare' && e.source === 'service' && (PREPARE_PROBLEM_LINE.test(e.line) || /^the project has \d+ error\(s\): nothing generated$/.test(e.line))) return;
         // the error that ended the prepare step: said once, by the status line at the end (reportBuild)
         if (e.step === 'prepare' && e.source === 'service' && PREPARE_FAILED_LINE.test(e.line)) return;
+        // a diagnostic's line, or one of its notes, in the build's log: printed above with the diagnostic
+        if (e.step === 'build' && e.source === 'build' && alreadyPrinted(e.line)) return;
         if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {
