@@ -17,6 +17,8 @@ export interface CactalProblem {
   message: string;
   /** The model diagnostic's stable code (docs/diagnostics.md), as `contract check` gives it; none for the generator's own problems. */
   code?: string;
+  /** The model diagnostic's data, when it has any (docs/diagnostics.md names it per code: e.g. `threads` of architecture-over-process-limit). */
+  data?: unknown;
 }
 
 export interface GenerateOutcome {
@@ -34,6 +36,7 @@ export function workspaceProblems(diagnostics: readonly WorkspaceDiagnostic[]): 
     severity: d.severity === 'hint' ? 'info' : d.severity,
     message: d.message,
     code: d.code,
+    ...(d.data !== undefined ? { data: d.data } : {}),
   }));
 }
 
