@@ -60,8 +60,9 @@ export interface ServiceBounds {
    * Bytes of one line of gcc's JSON diagnostics (a line that begins as gcc's does: `[{"kind"`), in
    * place of outputLineBytes: gcc writes a compilation's diagnostics as one line, about 400 bytes
    * each (gcc 12, a `#warning`), so that diagnosticsPerJsonLine of them fit with room for their
-   * notes. A longer one (or one the stream's outputBytesPerStream cuts) is read up to its last
-   * complete diagnostic, errors first, and the cut is said (pipeline/gcc-json-salvage.ts).
+   * notes. A longer one is read up to its last complete diagnostic, errors first, and the cut is
+   * said (pipeline/gcc-json-salvage.ts); one past the stream's outputBytesPerStream is still read
+   * whole up to this bound, kept in no log (util/past-cap-lines.ts).
    */
   gccJsonLineBytes: number;
   /** Characters of one output line looked at by the diagnostic/tag parsers (the rest is cut with a marker). */
@@ -130,7 +131,7 @@ export interface ServiceBounds {
   projectFiles: number;
   /** Bytes of one inline file's path (`project.files`; a part at most 255, the file systems' bound). */
   inlinePathBytes: number;
-  /** gcc diagnostics kept per job (the rest stay in the log as text). */
+  /** gcc diagnostics kept per job (the rest stay in the log as text), and errors kept past them (job.ts addDiagnostic). */
   diagnosticsPerJob: number;
   /** Trace lines kept in a job's event log (for replay); later lines go live to the attached clients only (one system line says so). */
   traceLinesKept: number;

@@ -111,6 +111,11 @@ export function renderDiagnostic(d: GccDiagnostic): string {
   return `${where}${d.severity}: ${d.message}${opt}${region}`;
 }
 
+/** Whether a line begins as make's "Entering directory" or "Leaving directory" (its first bytes are enough). */
+export function beginsAsMakeDirectory(head: string): boolean {
+  return /^g?make(?:\[\d+\])?: (?:Entering|Leaving) directory /.test(head);
+}
+
 /** make's "make[1]: Entering directory '/work/x'" -> '/work/x'. */
 export function makeEnteringDirectory(line: string): string | null {
   const m = /^g?make(?:\[\d+\])?: Entering directory [`'"](.*)['"]$/.exec(line);

@@ -16,7 +16,7 @@ import { hostWorkTreeDigest } from './work-tree-digest.js';
 import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
 import { collectRunArtifacts, hostWorkDirReader, LOG_DIR, RUN_DIR, type Artifact, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
-import type { GccDiagnostic } from './gcc-diagnostics.js';
+import { beginsAsMakeDirectory, type GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
 import { generatedMakefileArgs, makeDir, PrepareError, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
@@ -39,7 +39,7 @@ const LAUNCHER_KILLED = /^make(?:\[\d{1,4}\])?: \*\*\* \[[^\]]{0,300}: run\] Kil
  * higher limit keeps more.
  */
 export function buildOutputCutWarning(stream: 'stdout' | 'stderr', limitBytes: number): string {
-  return `the build's ${stream} was cut at the output limit (${formatBytes(limitBytes)} per stream, outputBytesPerStream): its later lines are not kept anywhere (not in the log, the events or the artifacts): the whole output cannot be got from this job; a higher outputBytesPerStream keeps more (contract build or contract run --limit outputBytesPerStream=N; a service's own: contract serve --limit)`;
+  return `the build's ${stream} was cut at the output limit (${formatBytes(limitBytes)} per stream, outputBytesPerStream): its later lines are not kept anywhere (not in the log, the events or the artifacts; gcc's diagnostics in them are still read, as the job's diagnostics): the whole output cannot be got from this job; a higher outputBytesPerStream keeps more (contract build or contract run --limit outputBytesPerStream=N; a service's own: contract serve --limit)`;
 }
 
 /** The stop of a run that found no launcher to ask (a run of something that is not an architecture, or one ending already). */
@@ -166,6 +166,10 @@ export class Job {
   private fault: InternalFault | null = null;
   private readonly durations: Partial<Record<JobStep, number>> = {};
   private readonly truncated = { stdout: false, stderr: false };
+  /** gcc diagnostics a build read past its output cap (LineSplitter's pastCap): the job's, in no log line. */
+  private diagnosticsPastCap = 0;
+  /** Errors kept past the job's diagnostics bound (addDiagnostic). */
+  private errorsPastBound = 0;
   private mechanisms: Mechanisms | null = null;
   private readonly runIssues = new RunIssues();
   private finalStatus: 'succeeded' | 'failed' | 'cancelled' | null = null;
@@ -725,8 +729,17 @@ export class Job {
   /** Work an orCancel let go of that has not ended yet: awaited (bounded) before the workspace is released. */
   private readonly abandoned = new Set<Promise<void>>();
 
+  /** Whether the job takes no more diagnostics: its bound is full, and so is the errors' room past it. */
+  private get diagnosticsFull(): boolean {
+    return this.diagnostics.length >= MAX_DIAGNOSTICS && this.errorsPastBound >= MAX_DIAGNOSTICS;
+  }
+
+  /** Keeps a gcc diagnostic: up to the job's bound, and an error past it in a room of its own (errors first: a flood of warnings does not hide it). */
   private addDiagnostic(d: GccDiagnostic): void {
-    if (this.diagnostics.length >= MAX_DIAGNOSTICS) return;
+    if (this.diagnostics.length >= MAX_DIAGNOSTICS) {
+      if (d.severity !== 'error' || this.errorsPastBound >= MAX_DIAGNOSTICS) return;
+      this.errorsPastBound++;
+    }
     this.diagnostics.push(d);
     this.events.append({ type: 'diagnostic', diagnostic: d });
   }
@@ -796,6 +809,19 @@ export class Job {
           maxBytes: this.request.limits.outputBytesPerStream,
           // a build's gcc JSON line (a compilation's diagnostics, one line) has a bound of its own
           ...(step === 'build' ? { longLine: { maxBytes: SERVICE_BOUNDS.gccJsonLineBytes, begins: looksLikeGccJson } } : {}),
+          // past the cap a build's gcc diagnostics are still read (make's directory lines say where
+          // gcc ran), up to the job's diagnostics bound: kept in no log, but an error after a flood
+          // of warnings is still the job's, at its line (addDiagnostic)
+          ...(step === 'build' ? { pastCap: {
+            wanted: (head: string) => !this.diagnosticsFull && (looksLikeGccJson(head) || beginsAsMakeDirectory(head)),
+            boundOf: (head: string) => (looksLikeGccJson(head) ? SERVICE_BOUNDS.gccJsonLineBytes : SERVICE_BOUNDS.outputLineBytes),
+            onLine: (line: string) => {
+              if (this.fault) return;
+              const before = this.diagnostics.length;
+              route(line, name); // its log lines are not kept: the cap bounds the log
+              this.diagnosticsPastCap += this.diagnostics.length - before;
+            },
+          } } : {}),
           onLine: (line) => {
             if (this.fault) return; // the job is being stopped: its output is only drained
             note(line);
@@ -853,7 +879,8 @@ export class Job {
   private buildOutputCut(): string {
     const cut = (['stdout', 'stderr'] as const).filter((n) => this.truncated[n]);
     if (!cut.length) return '';
-    return `; its ${cut.join(' and ')} ${cut.length > 1 ? 'were' : 'was'} cut at the output limit (${formatBytes(this.request.limits.outputBytesPerStream)} per stream): the rest is not kept`;
+    const read = this.diagnosticsPastCap ? ` (${this.diagnosticsPastCap} gcc diagnostic(s) in it still read)` : '';
+    return `; its ${cut.join(' and ')} ${cut.length > 1 ? 'were' : 'was'} cut at the output limit (${formatBytes(this.request.limits.outputBytesPerStream)} per stream): the rest is not kept${read}`;
   }
 
   private makeResult(

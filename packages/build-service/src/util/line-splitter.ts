@@ -1,4 +1,5 @@
 import { SERVICE_BOUNDS } from '../limits.js';
+import { PastCapLines, type PastCapOptions } from './past-cap-lines.js';
 
 /**
  * Splits a byte stream into text lines, keeps at most `maxBytes` bytes of it (then reports the
@@ -14,6 +15,12 @@ export interface LineSplitterOptions {
   longLine?: { maxBytes: number; begins(head: string): boolean };
   onLine(line: string): void;
   onTruncated(keptBytes: number): void;
+  /**
+   * Past `maxBytes`, the lines still read though not kept (past-cap-lines.ts: a build's gcc
+   * diagnostics), given to `pastCap.onLine`; the line the cap cuts goes there whole when `wanted`
+   * takes its beginning, not to `onLine`.
+   */
+  pastCap?: Omit<PastCapOptions, 'headBytes'>;
 }
 
 /** What ends the line that the byte bound cut (its first part, kept). */
@@ -31,9 +38,11 @@ export class LineSplitter {
   private readonly maxLineBytes: number;
   /** The bound of the line being read, once it went past maxLineBytes (0: not decided yet). */
   private lineBound = 0;
+  private readonly pastCap: PastCapLines | null;
 
   constructor(private readonly options: LineSplitterOptions) {
     this.maxLineBytes = options.maxLineBytes ?? SERVICE_BOUNDS.outputLineBytes;
+    this.pastCap = options.pastCap ? new PastCapLines({ ...options.pastCap, headBytes: LONG_LINE_HEAD_BYTES }) : null;
   }
 
   get wasTruncated(): boolean {
@@ -47,6 +56,7 @@ export class LineSplitter {
   push(chunk: Buffer): void {
     if (this.truncated) {
       this.droppedBytes += chunk.length;
+      this.pastCap?.push(chunk);
       return;
     }
     const room = this.options.maxBytes - this.keptBytes;
@@ -64,16 +74,29 @@ export class LineSplitter {
     }
     if (start < data.length) this.appendPending(data.subarray(start));
     if (data.length < chunk.length) {
-      // the line the bound cuts is emitted as far as it goes, said cut (it must not read as a whole line)
-      if (this.pendingBytes > 0) this.flushPending(CUT_LINE);
+      // the line the bound cuts is emitted as far as it goes, said cut (it must not read as a whole
+      // line), unless it is one read past the cap: then it is read whole there
+      if (this.pendingBytes > 0) {
+        const head = Buffer.concat(this.pending, this.pendingBytes).subarray(0, LONG_LINE_HEAD_BYTES).toString('utf8');
+        if (this.pastCap && this.options.pastCap!.wanted(head)) {
+          this.pastCap.startWith(this.pending);
+          this.pending = [];
+          this.pendingBytes = 0;
+          this.lineBound = 0;
+        } else {
+          this.flushPending(CUT_LINE);
+        }
+      }
       this.truncated = true;
       this.options.onTruncated(this.keptBytes);
+      this.pastCap?.push(chunk.subarray(data.length));
     }
   }
 
   /** End of stream: emits a last line that had no newline. */
   end(): void {
     if (this.pendingBytes > 0) this.flushPending();
+    this.pastCap?.end();
   }
 
   private appendPending(part: Buffer): void {
