@@ -802,7 +802,13 @@ static void writer_start(void)
     int r = pthread_create(&writer, &attr, log_writer, NULL);
     pthread_sigmask(SIG_SETMASK, &old, NULL);
     pthread_attr_destroy(&attr);
-    if (r != 0)
+    /* EAGAIN: the kernel refused the thread, most likely at the process limit (RLIMIT_NPROC, the
+     * pids cgroup), which counts threads: the line says so, the cause the run's other failures share */
+    if (r == EAGAIN)
+        fprintf(stderr, "%s: warning: no log writer thread (%s: a new thread was refused, most likely by the process limit, "
+                        "which counts threads: 2 per module; a build service run raises it with --limit processes=N): "
+                        "the module writes its log itself\n", g_rt.name, strerror(r));
+    else if (r != 0)
         fprintf(stderr, "%s: warning: no log writer thread (%s): the module writes its log itself\n", g_rt.name, strerror(r));
     writer_on = r == 0;
 }

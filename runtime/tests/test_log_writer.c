@@ -1,6 +1,7 @@
 /* The CSV log's writer thread (csvlog.c): a module never waits in write(). The runner is linked
  * with -Wl,--wrap=write: a write from any thread but the test's own can be made slow, as a disk
- * stall makes it. In process, on the tester's own log. */
+ * stall makes it; and with -Wl,--wrap=pthread_create: a thread can be refused, as the process
+ * limit refuses it. In process, on the tester's own log. */
 #define _GNU_SOURCE
 #include <errno.h>
 #include <fcntl.h>
@@ -18,6 +19,17 @@
 
 ssize_t __real_write(int fd, const void *buf, size_t len);
 ssize_t __wrap_write(int fd, const void *buf, size_t len);
+int __real_pthread_create(pthread_t *thread, const pthread_attr_t *attr, void *(*start)(void *), void *arg);
+int __wrap_pthread_create(pthread_t *thread, const pthread_attr_t *attr, void *(*start)(void *), void *arg);
+
+/* While set, pthread_create fails with EAGAIN, as at the process limit (RLIMIT_NPROC, the pids cgroup). */
+static int threads_refused;
+
+int __wrap_pthread_create(pthread_t *thread, const pthread_attr_t *attr, void *(*start)(void *), void *arg)
+{
+    if (__atomic_load_n(&threads_refused, __ATOMIC_ACQUIRE)) return EAGAIN;
+    return __real_pthread_create(thread, attr, start, arg);
+}
 
 static long long write_delay_ns; /* 0: writes as they are */
 static pthread_t test_thread;
@@ -143,6 +155,45 @@ void test_csv_log_writer_thread(void)
     free(log);
     rt_log_close();
     close(fd);
+    h_teardown();
+}
+
+/* A log writer thread the process limit refuses (EAGAIN): the module's warning names that limit as
+ * the likely cause (it said only "Resource temporarily unavailable"), and the module writes its
+ * log itself, every record kept. */
+void test_csv_log_writer_refused(void)
+{
+    REQUIRE(h_setup("logrefused") == 0);
+    char said[1024];
+    snprintf(said, sizeof said, "%s/stderr.txt", h_log_dir);
+    fflush(stderr);
+    int saved = dup(2);
+    int out = open(said, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
+    REQUIRE(saved >= 0 && out >= 0);
+    dup2(out, 2);
+    __atomic_store_n(&threads_refused, 1, __ATOMIC_RELEASE);
+    int opened = rt_log_open();
+    __atomic_store_n(&threads_refused, 0, __ATOMIC_RELEASE);
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    close(out);
+    REQUIRE(opened == 0);
+    char *text = h_read_file(said);
+    REQUIRE(text);
+    CHECK_MSG(strstr(text, "warning: no log writer thread (Resource temporarily unavailable: a new thread was refused, most likely by the process limit, "
+                           "which counts threads: 2 per module; a build service run raises it with --limit processes=N): the module writes its log itself\n") != NULL,
+              "the warning does not name the process limit: %s", text);
+    free(text);
+    ContractLog("test_record", "", -1, 0, "written without the thread");
+    ContractLogFlush();
+    char csv[1024];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    char *log = h_read_file(csv);
+    REQUIRE(log);
+    CHECK(strstr(log, ",written without the thread\n") != NULL);
+    free(log);
+    rt_log_close();
     h_teardown();
 }
 

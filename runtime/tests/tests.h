@@ -50,6 +50,7 @@ void test_csv_log_flush_boundary(void);
 void test_csv_log_crash(void);
 void test_csv_log_crash_writer_busy(void);
 void test_csv_log_writer_thread(void);
+void test_csv_log_writer_refused(void);
 void test_csv_log_fork_child(void);
 void test_csv_log_record_bounds(void);
 void test_csv_log_engine_kinds(void);
@@ -104,6 +105,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_crash", test_csv_log_crash },
     { "csv_log_crash_writer_busy", test_csv_log_crash_writer_busy },
     { "csv_log_writer_thread", test_csv_log_writer_thread },
+    { "csv_log_writer_refused", test_csv_log_writer_refused },
     { "csv_log_fork_child", test_csv_log_fork_child },
     { "csv_log_record_bounds", test_csv_log_record_bounds },
     { "csv_log_engine_kinds", test_csv_log_engine_kinds },
