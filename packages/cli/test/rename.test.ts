@@ -280,7 +280,7 @@ describe('contract rename', () => {
         const port = /in :0 \w+ (\w+);/.exec(contractFiles(dir)['smodule3.contract']!)![1]!;
         const io = capture(scratch.root);
         expect(await runCli(['rename', 'tutorial', `MSK:${port}`, 'spare'], io)).toBe(1);
-        expect(io.stderr).toMatch(new RegExp(`warning: tutorial/src-gen/generated/architecture/modules/MSK_mod/module\\.c:\\d+: protected region protect_init_MSK already uses spare in its code: uses of ${port} were not rewritten\n`));
+        expect(io.stderr).toMatch(new RegExp(`warning: 'spare' is already used in the code of protected region protect_init_MSK \\(tutorial/src-gen/generated/architecture/modules/MSK_mod/module\\.c:\\d+\\): uses of '${port}' were not rewritten\n`));
         expect(io.stderr).toMatch(new RegExp(`warning: tutorial/src-gen/generated/architecture/modules/MSK_mod/module\\.c:\\d+: protected region protect_exec_MSK still uses ${port} \\(the old name\\) in its code: change it by hand, the build fails until then\n`));
         expect(io.stderr).toContain(`contract rename: port renamed, but 6 use(s) of ${port} in protected-region code were not changed (listed above)\n`);
         expect(regions(file).get('protect_exec_MSK')).toContain(`GetLatestData(&${port}, `);

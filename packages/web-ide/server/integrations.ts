@@ -76,9 +76,11 @@ export async function renameGeneratedEntity(srcGen: string, from: string, to: st
  * in code only.
  */
 export async function renameInUserCode(srcGen: string, kind: string, from: string, to: string, owner?: string, members?: string[]) {
-  const codegen = await importWith<CodegenApi, 'identifierRenames' | 'renameIdentifiersInGeneratedTree'>('@contract-studio/codegen', ['identifierRenames', 'renameIdentifiersInGeneratedTree']);
+  const codegen = await importWith<CodegenApi, 'identifierRenames' | 'renameIdentifiersInGeneratedTree' | 'carryRefusedMessage'>('@contract-studio/codegen', ['identifierRenames', 'renameIdentifiersInGeneratedTree', 'carryRefusedMessage']);
   const renames = codegen.identifierRenames(kind, from, to, kind === 'enumeration member' ? { enumeration: owner } : { members });
-  return codegen.renameIdentifiersInGeneratedTree(srcGen, renames, kind === 'port' || kind === 'parameter' ? owner : undefined);
+  const { refused, ...report } = codegen.renameIdentifiersInGeneratedTree(srcGen, renames, kind === 'port' || kind === 'parameter' ? owner : undefined);
+  // the refusal as the IDE says it (its file relative to src-gen)
+  return { ...report, ...(refused ? { refused: codegen.carryRefusedMessage(refused, [...renames.keys()]) } : {}) };
 }
 
 /**

@@ -67,7 +67,7 @@ export const renameCommand: Command = {
             }
             // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
             const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
-            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256, realOrSelf } = await import('@contract-studio/codegen');
+            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, carryRefusedMessage, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256, realOrSelf } = await import('@contract-studio/codegen');
             const workspace = await loadWorkspace(dir);
             // a rename needs the text parsed and every reference resolved; other errors (a reserved
             // name, a bad value...) do not stop it: renaming is often how they are fixed
@@ -139,7 +139,7 @@ export const renameCommand: Command = {
                         io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${[...identifiers.keys()][0]}${identifiers.size > 1 ? ` (or its ${plan.kind === 'enumeration' ? 'functions and constants' : 'functions'})` : ''} renamed\n`);
                     }
                     const taken = carried.refused;
-                    if (taken) io.err(`warning: ${inTree(taken.file)}:${taken.line}: protected region ${safeName(taken.id)} already uses ${safeName(taken.word)} in its code: uses of ${[...identifiers.keys()].join(', ')} were not rewritten\n`);
+                    if (taken) io.err(`warning: ${safeName(carryRefusedMessage(taken, [...identifiers.keys()], `${outLabel.replace(/\/+$/, '')}/${taken.file}:${taken.line}`))}\n`);
                 } catch (e) {
                     if (journaled) removeRenameJournal(out);
                     io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);

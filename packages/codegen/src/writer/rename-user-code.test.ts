@@ -11,7 +11,7 @@ import { region } from '../regions/markers.js';
 import { scratchDirs } from '../test-support/temp-dir.js';
 import { cWords, renameIdentifier } from './c-identifiers.js';
 import { renameInGeneratedTree } from './rename-generated.js';
-import { findRegionMentions, identifierRenames, mentionMatcher, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree } from './rename-user-code.js';
+import { carryRefusedMessage, findRegionMentions, identifierRenames, mentionMatcher, renameIdentifierInGeneratedTree, renameIdentifiersInGeneratedTree } from './rename-user-code.js';
 import { writeTree } from './write-tree.js';
 
 /** A fresh output folder per call, removed after each test. */
@@ -61,6 +61,7 @@ describe('renameIdentifierInGeneratedTree (a renamed port or parameter)', () => 
         writeFileSync(join(dir, path('MSC')), text);
         const r = renameIdentifierInGeneratedTree(dir, 'MSC', 'in_coordinates', 'position');
         expect(r.refused).toEqual({ file: path('MSC'), line: 7, id: 'protect_exec_MSC', word: 'position', context: 'code' });
+        expect(carryRefusedMessage(r.refused!, ['in_coordinates'])).toBe(`'position' is already used in the code of protected region protect_exec_MSC (${path('MSC')}:7): uses of 'in_coordinates' were not rewritten`);
         expect(r.rewritten).toEqual([]);
         expect(readFileSync(join(dir, path('MSC')), 'latin1')).toBe(text);
         expect(r.remaining.map((m) => [m.line, m.id, m.context])).toEqual([[3, 'protect_internal_vars_MSC', 'comment'], [7, 'protect_exec_MSC', 'code']]);

@@ -108,6 +108,14 @@ export interface IdentifierCarryReport {
     refused?: RegionMention;
 }
 
+/**
+ * Why a carry was refused (IdentifierCarryReport.refused), as one sentence: the new name's use, at
+ * `where` (its file relative to the tree and line by default; the CLI's from where it ran).
+ */
+export function carryRefusedMessage(taken: RegionMention, oldNames: readonly string[], where = `${taken.file}:${taken.line}`): string {
+    return `'${taken.word}' is already used in the code of protected region ${taken.id} (${where}): uses of '${oldNames.join("', '")}' were not rewritten`;
+}
+
 /** The generated functions named after a datatype (shared-type-header.ts, shared-enum-header.ts). */
 const TYPE_FUNCTIONS = ['serialize', 'deserialize', 'set', 'get', 'print', 'eq', 'diff', 'inf', 'sup', 'infeq', 'supeq'];
 
