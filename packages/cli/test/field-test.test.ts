@@ -98,7 +98,7 @@ describe('2. contract run: a link planted among the logs', () => {
 
     it("a run whose log could not be saved does not end on an 'ok' line (it said ok, then refused the log, then exited 1)", () => {
         const outcome = {
-            job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status: 'succeeded' },
+            job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], foreignMakefiles: [], status: 'succeeded' },
             result: { ok: true, message: 'run finished (exit 0)', step: 'run', issues: [], durations_ms: { prepare: 1900, build: 900, run: 2300 } },
             runLines: [], buildTail: [],
         } as unknown as JobOutcome;
@@ -123,7 +123,7 @@ describe('a build that fails with no compiler, assembler or linker diagnostic', 
         ['run', 'CTL', 'error: a module\'s own line is not the build\'s'],
     ] as const;
     const failed = (buildTail: string[], diagnostics: unknown[]) => ({
-        job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status: 'failed', diagnostics },
+        job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], foreignMakefiles: [], status: 'failed', diagnostics },
         result: { ok: false, message: 'build failed (make exit 2)', step: 'build', issues: [], durations_ms: { prepare: 300, build: 900 } },
         runLines: [], buildTail,
     } as unknown as JobOutcome);

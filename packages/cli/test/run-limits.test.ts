@@ -90,7 +90,7 @@ describe('contract run and contract build --limit NAME=VALUE: the build service\
 
 describe('the advice after a build that failed', () => {
     const outcome = (result: Record<string, unknown>, diagnostics: unknown[] = [], status = 'failed') => ({
-        job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], status, diagnostics },
+        job: { sandboxName: 'bwrap', warnings: [], prepareDiagnostics: [], foreignMakefiles: [], status, diagnostics },
         result: { ok: false, step: 'build', issues: [], durations_ms: { prepare: 300, build: 700 }, ...result },
         runLines: [], buildTail: [],
     } as unknown as JobOutcome);
