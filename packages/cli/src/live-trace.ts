@@ -11,7 +11,8 @@ import { constants, promises as fsp } from 'node:fs';
 import { lstat, type FileHandle } from 'node:fs/promises';
 import type { JobEvent } from '@contract-studio/build-service';
 import { LogClocks, countRecord, parseRecordLine, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
-import { lockTraceFile, openTraceFile, toJsonLines } from './trace-files.js';
+import { lockTraceFile, openTraceFile } from './trace-files.js';
+import { JsonLines } from './record-json.js';
 import { closeLogs, jsonLinesOf, openLogFolder } from './trace-stream.js';
 
 export class LiveTrace {
@@ -28,6 +29,8 @@ export class LiveTrace {
 
     /** Bytes written (the file's size when nothing else wrote it). */
     private bytes = 0;
+    /** The records' JSON lines, as `contract trace --format json` writes them (record-json.ts). */
+    private readonly lines = new JsonLines(16 * 1024);
 
     private constructor(private readonly handle: FileHandle, private readonly path: string, private readonly unlock: () => void) {}
 
@@ -62,11 +65,12 @@ export class LiveTrace {
         if (e.type !== 'trace' || this.failed) return;
         const records = e.records.map((l) => parseRecordLine(l.file, l.line, l.text, this.clocks.of(l.file)));
         for (const r of records) countRecord(this.counts, r);
-        const text = toJsonLines(records);
-        this.written.update(text);
-        this.bytes += Buffer.byteLength(text);
+        for (const r of records) this.lines.add(r);
+        const bytes = this.lines.take();
+        this.written.update(bytes);
+        this.bytes += bytes.length;
         this.empty();
-        this.writing = this.writing.then(() => this.handle.write(text)).catch((err: Error) => void (this.failed ??= err));
+        this.writing = this.writing.then(() => this.handle.write(bytes)).catch((err: Error) => void (this.failed ??= err));
     }
 
     /**

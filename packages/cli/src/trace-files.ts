@@ -9,20 +9,22 @@ import { basename } from 'node:path';
 import { pidAlive } from '@contract-studio/codegen/stale-temp';
 import type { FileHandle } from 'node:fs/promises';
 import type { TraceRecord } from '@contract-studio/build-service/trace';
-import { escapeControls, safeName as safeNameOf } from './terminal-text.js';
+import { safeName as safeNameOf } from './terminal-text.js';
+import { recordJson, recordsJson } from './record-json.js';
 
 /**
  * A record as one JSON line, spelled as `contract trace --format json` prints it: DEL, C1 and the
  * bidi and line-separator characters, which JSON.stringify leaves raw, written `\uXXXX` (the same
- * JSON; a `cat` of a trace file does not act on them), so a `--trace` file is byte for byte that output.
+ * JSON; a `cat` of a trace file does not act on them), so a `--trace` file is byte for byte that
+ * output: `escapeControls(JSON.stringify(r))`, written in one pass (record-json.ts).
  */
 export function jsonLine(r: TraceRecord): string {
-    return escapeControls(JSON.stringify(r));
+    return recordJson(r);
 }
 
-/** One JSON object per line, in order. */
+/** One JSON object per line, in order (jsonLine's, each ended by its newline). */
 export function toJsonLines(records: TraceRecord[]): string {
-    return records.map(jsonLine).join('\n') + (records.length ? '\n' : '');
+    return recordsJson(records);
 }
 
 /**

@@ -13,7 +13,7 @@ import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { LogClock, MAX_LINE_CHARS, MinHeap, isLogFileName, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
 import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
-import { jsonLine } from './trace-files.js';
+import { JsonLines } from './record-json.js';
 import { safeName } from './terminal-text.js';
 
 /** Records held per file to put slightly out-of-order lines in place (fewer when there are more than 64 files). */
@@ -292,32 +292,31 @@ export function streamTrace(logs: readonly OpenLog[], { window = windowFor(logs.
     return { batches: batches(), outOfOrder: () => windows.reduce((n, w) => n + w.outOfOrder, 0), problems: () => windows.flatMap((w) => w.problems) };
 }
 
-/** JSON lines are handed on in pieces of about this many characters. */
-export const PIECE_CHARS = 64 * 1024;
+/** JSON lines are handed on in pieces of about this many bytes. */
+export const PIECE_BYTES = 256 * 1024;
 
 /**
  * The records of `logs` as JSON lines (one object per record, time order: `contract trace
- * --format json`), handed to `sink` in pieces, each awaited; a sink answering false stops the
- * read. `observe` sees each record as it is written (another reader of the same pass: `contract
- * run`'s schema figures). Returns the records handed on (readable ones, and unreadable lines
- * apart: countRecord) and those told later than their time.
+ * --format json`), handed to `sink` in pieces of whole lines (UTF-8 bytes, record-json.ts), each
+ * awaited; a sink answering false stops the read. `observe` sees each record as it is written
+ * (another reader of the same pass: `contract run`'s schema figures). Returns the records handed
+ * on (readable ones, and unreadable lines apart: countRecord) and those told later than their time.
  */
-export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: string) => Promise<boolean | void> | boolean | void, observe?: (r: TraceRecord) => void): Promise<{ counts: RecordCounts; outOfOrder: number; problems: string[] }> {
+export async function jsonLinesOf(logs: readonly OpenLog[], sink: (piece: Buffer) => Promise<boolean | void> | boolean | void, observe?: (r: TraceRecord) => void): Promise<{ counts: RecordCounts; outOfOrder: number; problems: string[] }> {
     const stream = streamTrace(logs);
     const counts: RecordCounts = { records: 0, unreadable: 0 };
-    let piece = '';
+    const lines = new JsonLines(PIECE_BYTES + 64 * 1024);
     for await (const batch of stream.batches) {
         for (const r of batch) {
-            piece += jsonLine(r) + '\n';
+            lines.add(r);
             countRecord(counts, r);
             observe?.(r);
         }
-        if (piece.length >= PIECE_CHARS) {
-            const go = await sink(piece);
-            piece = '';
+        if (lines.length >= PIECE_BYTES) {
+            const go = await sink(lines.take());
             if (go === false) return { counts, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
         }
     }
-    if (piece) await sink(piece);
+    if (lines.length) await sink(lines.take());
     return { counts, outOfOrder: stream.outOfOrder(), problems: stream.problems() };
 }

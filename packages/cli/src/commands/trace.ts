@@ -116,7 +116,7 @@ interface Printed {
  * the reader took the last; stops when the reader went away (`| head`: its choice).
  */
 async function printJson(logs: readonly OpenLog[], io: CliIO): Promise<Printed> {
-    const { outOfOrder, problems, counts } = await jsonLinesOf(logs, (piece) => print(io, piece));
+    const { outOfOrder, problems, counts } = await jsonLinesOf(logs, (piece) => print(io, piece.toString('utf8')));
     return { late: outOfOrder, problems, counts };
 }
 

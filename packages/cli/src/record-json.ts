@@ -1,0 +1,203 @@
+/**
+ * Trace records as JSON lines, byte for byte `escapeControls(JSON.stringify(record)) + '\n'` (the
+ * spelling of `contract trace --format json`, of `contract run --trace` as the run goes, and of
+ * the check that settles the file at its end: the three must give the same bytes), written as
+ * UTF-8 straight into a buffer instead of strings joined and escaped afterwards. A long run is
+ * millions of records: the general path (a string per value, their concatenation, a regular
+ * expression over every line, the text encoded again to be hashed or written) was most of the
+ * end of `contract run --trace`, and its garbage most of the rest.
+ *
+ * Each string is scanned once as it is copied: one that holds only printable ASCII but `"` and
+ * `\` (nearly every field of a runtime log) is the same text in JSON and is written as it is; any
+ * other string goes the general way (JSON.stringify, then escapeControls), and so does a record
+ * holding anything that is not plain data (a toJSON, a bigint, a boxed value, an object of a class).
+ */
+import { escapeControls } from './terminal-text.js';
+
+/** A character JSON.stringify or escapeControls writes otherwise than as itself: a control, `"`, `\`, DEL, anything past ASCII. */
+const NEEDS_GENERAL_PATH = /[^\x20\x21\x23-\x5b\x5d-\x7e]/;
+/** Strings of this many characters or more are checked by NEEDS_GENERAL_PATH and copied in one call, shorter ones character by character. */
+const LONG_STRING = 40;
+
+/** Thrown where a value is not plain data: the whole record is then written the general way. */
+const NOT_PLAIN = Symbol('not plain data');
+
+/** The bytes of JSON lines, appended record by record (`add`), then taken (`take`, `text`). */
+export class JsonLines {
+    private buf: Buffer;
+    private pos = 0;
+
+    constructor(private readonly initialBytes = 64 * 1024) {
+        this.buf = Buffer.allocUnsafe(initialBytes);
+    }
+
+    /** Bytes written and not taken yet. */
+    get length(): number {
+        return this.pos;
+    }
+
+    /** Appends `record` as one JSON line, its newline included. */
+    add(record: object): void {
+        const start = this.pos;
+        try {
+            this.value(record);
+        } catch (e) {
+            this.pos = start;
+            if (e !== NOT_PLAIN) throw e;
+            this.utf8(escapeControls(JSON.stringify(record)));
+        }
+        this.room(1);
+        this.buf[this.pos++] = 10;
+    }
+
+    /** The bytes written (a buffer of its own), the writer emptied. */
+    take(): Buffer {
+        const out = this.buf.subarray(0, this.pos);
+        this.buf = Buffer.allocUnsafe(Math.max(this.initialBytes, this.pos));
+        this.pos = 0;
+        return out;
+    }
+
+    /** The text written (UTF-8 decoded: every string was written whole, so it decodes to what was written), the writer emptied. */
+    text(): string {
+        const out = this.buf.toString('utf8', 0, this.pos);
+        this.pos = 0;
+        return out;
+    }
+
+    private room(bytes: number): void {
+        if (this.pos + bytes <= this.buf.length) return;
+        const grown = Buffer.allocUnsafe(Math.max(this.buf.length * 2, this.pos + bytes));
+        this.buf.copy(grown, 0, 0, this.pos);
+        this.buf = grown;
+    }
+
+    private utf8(text: string): void {
+        this.room(3 * text.length);
+        this.pos += this.buf.write(text, this.pos, 'utf8');
+    }
+
+    /** ASCII text known to need no escape (a number's digits, punctuation). */
+    private ascii(text: string): void {
+        this.room(text.length);
+        const buf = this.buf;
+        let p = this.pos;
+        for (let i = 0; i < text.length; i++) buf[p++] = text.charCodeAt(i);
+        this.pos = p;
+    }
+
+    /** A safe integer >= 0 (-0 too: JSON writes it `0`) in decimal, as String writes it. */
+    private digits(n: number): void {
+        let width = 1;
+        for (let t = n; t >= 10; t = Math.floor(t / 10)) width++;
+        this.room(width);
+        const buf = this.buf;
+        let p = this.pos + width;
+        this.pos = p;
+        do {
+            const q = Math.floor(n / 10);
+            buf[--p] = 48 + n - q * 10;
+            n = q;
+        } while (n > 0);
+    }
+
+    /** `s` as a JSON string: copied as it is while it holds nothing to escape, else the general way. */
+    private string(s: string): void {
+        const n = s.length;
+        if (n >= LONG_STRING) {
+            if (NEEDS_GENERAL_PATH.test(s)) return this.utf8(escapeControls(JSON.stringify(s)));
+            this.room(n + 2);
+            this.buf[this.pos] = 34;
+            this.buf.write(s, this.pos + 1, 'latin1');
+            this.buf[this.pos + n + 1] = 34;
+            this.pos += n + 2;
+            return;
+        }
+        this.room(n + 2);
+        const buf = this.buf;
+        let p = this.pos;
+        buf[p++] = 34; // "
+        for (let i = 0; i < n; i++) {
+            const c = s.charCodeAt(i);
+            // a control, `"`, `\`, DEL and every character past ASCII: JSON.stringify and escapeControls decide
+            if (c < 0x20 || c > 0x7e || c === 0x22 || c === 0x5c) {
+                this.utf8(escapeControls(JSON.stringify(s)));
+                return;
+            }
+            buf[p++] = c;
+        }
+        buf[p++] = 34;
+        this.pos = p;
+    }
+
+    /** `v` written as JSON.stringify writes it (the caller leaves out what it leaves out: `omitted`). */
+    private value(v: unknown): void {
+        switch (typeof v) {
+            case 'string':
+                return this.string(v);
+            case 'number':
+                if (Number.isSafeInteger(v) && v >= 0) return this.digits(v);
+                return this.ascii(Number.isFinite(v) ? String(v) : 'null');
+            case 'boolean':
+                return this.ascii(v ? 'true' : 'false');
+            case 'object':
+                if (v === null) return this.ascii('null');
+                if (Array.isArray(v)) return this.array(v);
+                return this.object(v);
+            default:
+                throw NOT_PLAIN; // a bigint (JSON.stringify throws), or undefined, a function, a symbol at the top
+        }
+    }
+
+    private array(a: unknown[]): void {
+        if (Object.getPrototypeOf(a) !== Array.prototype || typeof (a as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
+        this.ascii('[');
+        for (let i = 0; i < a.length; i++) {
+            if (i) this.ascii(',');
+            const v = a[i];
+            if (omitted(v)) this.ascii('null');
+            else this.value(v);
+        }
+        this.ascii(']');
+    }
+
+    private object(o: object): void {
+        const proto = Object.getPrototypeOf(o) as unknown;
+        if ((proto !== Object.prototype && proto !== null) || typeof (o as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
+        this.ascii('{');
+        let first = true;
+        // its own enumerable string keys, in JSON.stringify's order
+        const keys = Object.keys(o);
+        for (let k = 0; k < keys.length; k++) {
+            const key = keys[k]!;
+            const v = (o as Record<string, unknown>)[key];
+            if (omitted(v)) continue;
+            if (!first) this.ascii(',');
+            first = false;
+            this.string(key);
+            this.ascii(':');
+            this.value(v);
+        }
+        this.ascii('}');
+    }
+}
+
+/** A property JSON.stringify leaves out of an object (an array's element of that kind is `null`). */
+function omitted(v: unknown): boolean {
+    const t = typeof v;
+    return t === 'undefined' || t === 'function' || t === 'symbol';
+}
+
+const one = new JsonLines(4096);
+
+/** A record as one line of JSON, without its newline: escapeControls(JSON.stringify(record)). */
+export function recordJson(record: object): string {
+    one.add(record);
+    return one.text().slice(0, -1);
+}
+
+/** Records as JSON lines, each ended by its newline (none for no record). */
+export function recordsJson(records: readonly object[]): string {
+    for (const r of records) one.add(r);
+    return one.text();
+}
