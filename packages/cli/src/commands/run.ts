@@ -314,7 +314,7 @@ export const runCommand: Command = {
                 // the whole story in order (docker, its kept-lines bound, records sent late):
                 // both compared by digest, the logs read as a stream (a long run is gigabytes)
                 const { digest, intact } = await live.close();
-                // a pass over every saved record: long for a long run (2 M records, ~17 s), said first
+                // a pass over every saved record: long for a long run (2 M records, ~10 s of CPU), said first
                 const bytes = logsBytes(logsDir, logs);
                 if (bytes >= TRACE_CHECK_SAID_BYTES) io.err(`trace: checking ${safeName(traceFile)} against the ${Math.round(bytes / 1048576)} MiB of CSV logs saved (one pass over every record)...\n`);
                 const whole = await settleTraceFile(logsDir, logs, traceFile, { digest, counts: live.counts, intact }, teller ? (r) => teller.tell(r) : undefined);
