@@ -6,6 +6,7 @@
 export * from './layout.js';
 export * from './sandbox.js';
 export * from './regions.js';
+export * from './conflict-markers.js';
 export * from './time-literal.js';
 export * from './visible-text.js';
 export * from './json-body.js';

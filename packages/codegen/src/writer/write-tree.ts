@@ -9,6 +9,7 @@ import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
 import { UnsafePathError } from './safe-paths.js';
 import { RENAME_JOURNAL_NAME, hasRenameJournal } from './rename-journal.js';
+import { conflictRefusal } from './conflicts.js';
 
 /** One file the generators produced: path relative to the output folder ('/'-separated) and its text. */
 export interface GeneratedFile {
@@ -251,6 +252,12 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 report.unchanged.push(file.path);
                 continue;
             }
+            const conflict = conflictRefusal(existing);
+            if (conflict) {
+                report.errors.push({ file: file.path, line: conflict.line, message: conflict.message });
+                keepPrevious(file.path);
+                continue;
+            }
             const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)), knownDefaultCheck(oldDefaults(file.path)));
             // code written outside the regions: the skeleton differs from the one written last time
             // (and from the fresh one: a file edited into what the generator now writes loses nothing)
@@ -318,6 +325,12 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         try {
             const existing = tree.read(path);
             if (existing === undefined) continue;
+            const conflict = conflictRefusal(existing);
+            if (conflict) {
+                report.errors.push({ file: path, line: conflict.line, message: conflict.message });
+                keepPrevious(path);
+                continue;
+            }
             const owned = userRegions(existing, path, defaultCheck(oldDefaults(path)));
             const recorded = recordedSkeleton(path);
             const editedOutside = recorded !== undefined && skeletonHash(existing, path) !== recorded;
