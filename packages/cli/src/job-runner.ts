@@ -466,7 +466,7 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
         const generated = journal ? 0 : job.prepareDiagnostics.filter((p) => p.severity === 'error' && !isModelProblem(p)).length;
         if (journal) io.err(`run \`contract generate ${dir}\` to finish the interrupted rename, then build again\n`);
         if (model) io.err(`fix the model errors above (\`contract check ${dir}\` lists them), then build again\n`);
-        if (generated) io.err(`fix the generated tree's errors above in ${safeName(join(opts.dirArg, SRC_GEN_DIR))} (a protected-region marker broken or edited: \`contract generate ${dir}\` lists them), then build again\n`);
+        if (generated) io.err(`fix the generated tree's errors above in ${safeName(join(opts.dirArg, SRC_GEN_DIR))} (a protected-region marker broken or edited, a merge conflict left in a file, user code a regeneration would move to orphans/: \`contract generate ${dir}\` lists them and moves that code aside in the project), then build again\n`);
         if (!model && !generated && !journal) io.err(`fix the problems above, then build again\n`);
     }
     const buildErrors = result.step === 'build' ? job.diagnostics.filter((x) => x.severity === 'error').length : 0;

@@ -5,7 +5,7 @@ import { generateFiles } from './generators/generate-files.js';
 import { architectureFromModels } from './model/from-langium.js';
 import type { Architecture } from './model/architecture.js';
 import { emptyReport, type GenerationReport } from './writer/report.js';
-import { writeTree } from './writer/write-tree.js';
+import { writeTree, type WriteTreeOptions } from './writer/write-tree.js';
 
 /** Anything that carries a Cactal model: a Langium document, a loadWorkspace() document, or a model. */
 export type ModelSource = LangiumDocument<Model> | { document: LangiumDocument<Model> } | Model;
@@ -26,7 +26,7 @@ function modelOf(s: ModelSource): Model {
  * src-gen), merging protected regions. The tree depends only on the model and the generator, never on `outDir` or the machine:
  * the runtime is chosen at build time (docs/architecture.md, Seam 3).
  */
-export function generateFromArchitecture(arch: Architecture, outDir: string): GenerationReport {
+export function generateFromArchitecture(arch: Architecture, outDir: string, options: WriteTreeOptions = {}): GenerationReport {
     let files;
     try {
         files = generateFiles(arch);
@@ -36,7 +36,7 @@ export function generateFromArchitecture(arch: Architecture, outDir: string): Ge
         return report;
     }
     try {
-        return writeTree(resolve(outDir), files);
+        return writeTree(resolve(outDir), files, options);
     } catch (e) {
         const report = emptyReport();
         report.errors.push({ file: '(output)', message: `cannot write ${outDir}: ${(e as Error).message}` });
@@ -46,9 +46,10 @@ export function generateFromArchitecture(arch: Architecture, outDir: string): Ge
 
 /**
  * Seam 4: generates the C tree of a checked Cactal workspace into `outDir`. Refuses (report with
- * errors, nothing written) when a document has parse, link or validation errors.
+ * errors, nothing written) when a document has parse, link or validation errors. `options`:
+ * writeTree's (a build's generation passes `displacedCode: 'refuse'`).
  */
-export function generateArchitecture(documents: ModelSource[], outDir: string): GenerationReport {
+export function generateArchitecture(documents: ModelSource[], outDir: string, options: WriteTreeOptions = {}): GenerationReport {
     const report = emptyReport();
     const sorted = [...documents].sort((a, b) => {
         const ua = documentOf(a)?.uri.toString() ?? '';
@@ -69,5 +70,5 @@ export function generateArchitecture(documents: ModelSource[], outDir: string): 
         report.errors.unshift({ file: '(model)', message: 'the model has errors: nothing was generated (run `contract check` for details)' });
         return report;
     }
-    return generateFromArchitecture(architectureFromModels(sorted.map(modelOf)), outDir);
+    return generateFromArchitecture(architectureFromModels(sorted.map(modelOf)), outDir, options);
 }

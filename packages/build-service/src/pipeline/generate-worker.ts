@@ -30,7 +30,9 @@ const plain = (v) => JSON.parse(JSON.stringify(v === undefined ? null : v));
     parentPort.postMessage({ kind: 'loaded', diagnostics: plain(ws.diagnostics) });
   });
   if (!go) return;
-  const res = await codegen.generateArchitecture(ws.documents, workerData.outDir);
+  // the job's private copy of the project: user code the merge cannot place is refused, not moved
+  // to an orphans/ nobody sees (and built without); contract generate on the project moves it
+  const res = await codegen.generateArchitecture(ws.documents, workerData.outDir, { displacedCode: 'refuse' });
   const count = (k) => (Array.isArray(res[k]) ? res[k].length : 0);
   parentPort.postMessage({ kind: 'generated', written: count('created') + count('updated'), unchanged: count('unchanged'), errors: plain(res.errors), warnings: plain(res.warnings) });
 })().catch((e) => parentPort.postMessage({ kind: 'error', message: String((e && e.message) || e) }));

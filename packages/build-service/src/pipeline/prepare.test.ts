@@ -199,6 +199,30 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(link?.message).toMatch(/^src-gen\/generated\/architecture\/extra\.mk \(a symbolic link\): the build service never reads a project's source through a link /);
   }, 120_000);
 
+  it("refuses code a regeneration would move to orphans/ (a private copy's orphan reaches no one: the build ran without it and said ok), naming region, file and line; carries a rename git merged over with a warning", async () => {
+    const MSC = 'src-gen/generated/architecture/modules/MSC_mod/module.c';
+    const problemsOf = async (dir: string) => {
+      const ws = workspace();
+      const out = await prepareWorkspace(ws, { dir }, 'cactal', { ...DEFAULT_LIMITS }, () => {});
+      return { ok: out.ok, problems: out.problems.map((p) => `${p.file}:${p.line}: ${p.severity}: ${p.message}`), ws };
+    };
+    // protect_init_MSC holding the user's code, its ENABLED lost (MSD's ID, still generated, would be the same)
+    const disabled = project();
+    writeFileSync(join(disabled, MSC), readFileSync(join(disabled, MSC), 'utf8').replace('ID(protect_init_MSC) ENABLED START', 'ID(protect_init_MSC) START'));
+    const refused = await problemsOf(disabled);
+    expect(refused.ok).toBe(false);
+    expect(refused.problems).toEqual([expect.stringMatching(/^generated\/architecture\/modules\/MSC_mod\/module\.c:\d+: error: protected region\(s\) protect_init_MSC not ENABLED, .*run `contract generate` on the project \(it moves that code to src-gen\/orphans\/, where you get it back\), then build again; left untouched$/)]);
+    expect(existsSync(join(disabled, 'src-gen/orphans'))).toBe(false);
+    // the exec region left with the ID of a module that is gone (PLN, renamed MSC on the other branch)
+    const merged = project();
+    const text = readFileSync(join(merged, MSC), 'utf8');
+    writeFileSync(join(merged, MSC), text.replace('ID(protect_exec_MSC)', 'ID(protect_exec_PLN)'));
+    const carried = await problemsOf(merged);
+    expect(carried.ok, carried.problems.join('\n')).toBe(true);
+    expect(carried.problems).toEqual([expect.stringMatching(/^generated\/architecture\/modules\/MSC_mod\/module\.c:\d+: warning: protected region protect_exec_PLN carried over to protect_exec_MSC: /)]);
+    expect(readFileSync(join(carried.ws.workDir, MSC), 'utf8')).toBe(text);
+  }, 120_000);
+
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
     const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
     const empty = mkdtempSync(join(base, 'empty-'));

@@ -1,5 +1,7 @@
 import { posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
+import { carryRenamedRegions, type GeneratedOutput } from '../regions/carry-renamed-regions.js';
+import { scanRegions } from '@contract-studio/conventions';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
 import { decodeLineHashes, describeEdits, editsOutside, skeletonLines } from './skeleton-lines.js';
@@ -20,6 +22,15 @@ export interface GeneratedFile {
 export interface WriteTreeOptions {
     /** Folder (relative to the output folder) that only the generator writes; scanned for stale files when there is no manifest. */
     managedRoot?: string;
+    /**
+     * What to do with user code the merge cannot place (a vanished region, a region without
+     * ENABLED, code outside the regions): 'orphan' (default) moves it to `orphans/`; 'refuse' (a
+     * build's generation into its private copy of the project, where an orphan reaches no one)
+     * leaves the file untouched with an error naming the region, file and line, saying to run
+     * `contract generate` on the project, and leaves a file of a deleted entity holding user code
+     * in place with a warning.
+     */
+    displacedCode?: 'orphan' | 'refuse';
 }
 
 type DefaultsOf = (path: string) => Record<string, string> | undefined;
@@ -192,6 +203,10 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     };
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
+    const refuseDisplacing = options.displacedCode === 'refuse';
+    /** Every region ID of the new output, read once when a carry-over asks (carry-renamed-regions.ts). */
+    let output: GeneratedOutput | undefined;
+    const outputOf = (): GeneratedOutput => (output ??= { ids: new Set(sorted.flatMap((f) => scanRegions(f.content).regions.map((r) => r.id))), paths: [...produced] });
 
     // the generator's files before this generation: the manifest's, else (none, or unreadable) the
     // files holding protected regions, found before writing (a new tree has none: nothing is listed or
@@ -240,7 +255,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const recordedLines = recordedSkeleton(file.path) === record.skeleton ? loaded.manifest?.skeletonLines.get(file.path) : undefined;
         newSkeletonLines.set(file.path, recordedLines ?? record.lines());
         try {
-            const existing = mayExist(file.path) ? tree.read(file.path) : undefined;
+            let existing = mayExist(file.path) ? tree.read(file.path) : undefined;
             if (existing === undefined) {
                 tree.write(file.path, bytesOf(generated));
                 report.created.push(file.path);
@@ -258,43 +273,69 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 keepPrevious(file.path);
                 continue;
             }
+            const original = existing;
+            // a rename merged by git left the old entity's region ID in the new entity's file
+            const carry = carryRenamedRegions(existing, file.path, Object.keys(record.defaults), outputOf);
+            existing = carry.text;
+            for (const c of carry.carried) {
+                report.warnings.push({
+                    file: file.path,
+                    line: c.line,
+                    message: `protected region ${c.from} carried over to ${c.to}: nothing generates ${c.from} any more and this file had no ${c.to} of its own (a rename merged by git?); its code is kept byte for byte under the new ID: check that it belongs here`,
+                });
+            }
             const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)), knownDefaultCheck(oldDefaults(file.path)));
-            // code written outside the regions: the skeleton differs from the one written last time
-            // (and from the fresh one: a file edited into what the generator now writes loses nothing)
+            // user code this generation would move aside: code outside the regions (the skeleton
+            // differs from the one written last time, and from the fresh one: a file edited into what
+            // the generator now writes loses nothing), regions without ENABLED, vanished regions
+            const displaced: { line: number; what: string; orphan: () => string; message: (orphan: string) => string }[] = [];
             const recorded = recordedSkeleton(file.path);
             if (recorded !== undefined) {
                 const skeleton = skeletonHash(existing, file.path);
                 if (skeleton !== recorded && skeleton !== record.skeleton) {
                     const { line, where } = whereEditedOutside(existing, file.path, loaded.manifest?.skeletonLines.get(file.path), merged.text);
-                    const orphan = writeOrphan(tree, file.path, fileOrphanText(file.path, existing, [where], undefined, 'skeleton'));
-                    if (orphan.written) report.filesWritten++;
-                    report.orphaned.push(orphan.path);
-                    report.warnings.push({
-                        file: file.path,
+                    displaced.push({
                         line,
-                        message: `edited outside its protected regions (${where}): that code is regenerated, not kept; the file as it was is in ${orphan.path} (move your code into a protected region)`,
+                        what: `edited outside its protected regions (${where})`,
+                        orphan: () => fileOrphanText(file.path, original, [where], undefined, 'skeleton'),
+                        message: (orphan) => `edited outside its protected regions (${where}): that code is regenerated, not kept; the file as it was is in ${orphan} (move your code into a protected region)`,
                     });
                 }
             }
             if (merged.disabled.length > 0) {
-                const orphan = writeOrphan(tree, file.path, regionOrphanText(file.path, existing, merged.disabled, undefined, 'disabled'));
-                if (orphan.written) report.filesWritten++;
-                report.orphaned.push(orphan.path);
-                report.warnings.push({
-                    file: file.path,
+                const ids = merged.disabled.map((r) => r.id).join(', ');
+                displaced.push({
                     line: merged.disabled[0]!.line,
-                    message: `protected region(s) ${merged.disabled.map((r) => r.id).join(', ')} not ENABLED: their content was replaced by the generated default; what they held is in ${orphan.path} (put ENABLED back in the start marker to keep your code)`,
+                    what: `protected region(s) ${ids} not ENABLED, holding user code the generated default would replace`,
+                    orphan: () => regionOrphanText(file.path, existing, merged.disabled, undefined, 'disabled'),
+                    message: (orphan) => `protected region(s) ${ids} not ENABLED: their content was replaced by the generated default; what they held is in ${orphan} (put ENABLED back in the start marker to keep your code)`,
                 });
             }
             if (merged.orphans.length > 0) {
-                const orphan = writeOrphan(tree, file.path, regionOrphanText(file.path, existing, merged.orphans));
+                const ids = merged.orphans.map((r) => r.id).join(', ');
+                displaced.push({
+                    line: merged.orphans[0]!.line,
+                    what: `protected region(s) ${ids} hold user code but are not generated in this file any more (a renamed or removed module, port, datatype or function)`,
+                    orphan: () => regionOrphanText(file.path, existing, merged.orphans),
+                    message: (orphan) => `user code of vanished protected region(s) ${ids} moved to ${orphan}`,
+                });
+            }
+            if (refuseDisplacing && displaced.length > 0) {
+                for (const d of displaced) {
+                    report.errors.push({
+                        file: file.path,
+                        line: d.line,
+                        message: `${d.what}: a build leaves no user code out; run \`contract generate\` on the project (it moves that code to src-gen/orphans/, where you get it back), then build again; left untouched`,
+                    });
+                }
+                keepPrevious(file.path);
+                continue;
+            }
+            for (const d of displaced) {
+                const orphan = writeOrphan(tree, file.path, d.orphan());
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
-                report.warnings.push({
-                    file: file.path,
-                    line: merged.orphans[0]!.line,
-                    message: `user code of vanished protected region(s) ${merged.orphans.map((r) => r.id).join(', ')} moved to ${orphan.path}`,
-                });
+                report.warnings.push({ file: file.path, line: d.line, message: d.message(orphan.path) });
             }
             // a file with CRLF line endings (a Windows checkout) keeps them: the generator's lines are
             // written CRLF too, not LF beside the regions' CRLF (every line a diff)
@@ -306,7 +347,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                     message: `is ${merged.text.length} bytes with its protected regions, above the ${MAX_SOURCE_BYTES} a build reads of a project's file (and the IDE opens): contract build and Build & Run will refuse the project; keep large data out of the regions (a file the code reads)`,
                 });
             }
-            if (merged.text === existing) {
+            if (merged.text === original) {
                 report.unchanged.push(file.path);
             } else {
                 tree.write(file.path, bytesOf(merged.text));
@@ -334,6 +375,15 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             const owned = userRegions(existing, path, defaultCheck(oldDefaults(path)));
             const recorded = recordedSkeleton(path);
             const editedOutside = recorded !== undefined && skeletonHash(existing, path) !== recorded;
+            if ((owned.length > 0 || editedOutside) && refuseDisplacing) {
+                const what = [...owned.map((r) => r.id), ...(editedOutside ? ['code outside the protected regions'] : [])];
+                report.warnings.push({
+                    file: path,
+                    message: `its entity no longer exists; the file holds user code (${what.join(', ')}), which this build leaves out; \`contract generate\` on the project moves it to src-gen/orphans/`,
+                });
+                keepPrevious(path);
+                continue;
+            }
             if (owned.length > 0 || editedOutside) {
                 const what = [...owned.map((r) => r.id), ...(editedOutside ? ['code outside the protected regions'] : [])];
                 const orphan = writeOrphan(tree, path, fileOrphanText(path, existing, what));
