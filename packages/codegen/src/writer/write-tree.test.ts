@@ -140,3 +140,20 @@ describe('writeTree', () => {
         expect(readFileSync(join(dir, 'orphans/generated/old.c'), 'utf8')).toContain('legacy();');
     });
 });
+
+describe('writeTree: a CRLF checkout (core.autocrlf=true)', () => {
+    it('does not rewrite a manifest whose only difference is its CRLF line endings, and keeps them when it changes', () => {
+        const dir = out();
+        const files = [file('generated/a.c', 'x')];
+        writeTree(dir, files);
+        const path = join(dir, MANIFEST_NAME);
+        const crlf = readFileSync(path, 'utf8').replace(/\n/g, '\r\n');
+        writeFileSync(path, crlf);
+        expect(writeTree(dir, files).filesWritten).toBe(0);
+        expect(readFileSync(path, 'utf8')).toBe(crlf);
+        writeTree(dir, [...files, file('generated/b.c', 'y')]);
+        const changed = readFileSync(path, 'utf8');
+        expect(changed).toContain('generated/b.c');
+        expect(changed.replace(/\r\n/g, '')).not.toContain('\n');
+    });
+});

@@ -405,9 +405,12 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     }
 
     if (!manifestRefused) {
-        const manifestText = serialiseManifest(newManifest, newSkeletons, newSkeletonLines);
+        let manifestText = serialiseManifest(newManifest, newSkeletons, newSkeletonLines);
         try {
-            if (tree.read(MANIFEST_NAME) !== manifestText) {
+            const previous = tree.read(MANIFEST_NAME);
+            // a CRLF checkout's manifest keeps its line endings (as the C files do): not rewritten for them alone
+            if (previous !== undefined && hasCrlfEndings(previous)) manifestText = manifestText.replace(/\n/g, '\r\n');
+            if (previous !== manifestText) {
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));
                 report.filesWritten++;
             }
