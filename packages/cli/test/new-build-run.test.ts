@@ -31,8 +31,11 @@ describe('contract new', () => {
     it('creates the template project, which checks without errors', async () => {
         const io = capture(root);
         expect(await runCli(['new', 'robot'], io)).toBe(0);
-        expect(readdirSync(join(root, 'robot')).sort()).toEqual(['datatype.contract', 'module1.contract', 'module2.contract', 'sched.contract', 'schema.contract', 'supervisor.contract']);
+        expect(readdirSync(join(root, 'robot')).sort()).toEqual(['.gitignore', 'datatype.contract', 'module1.contract', 'module2.contract', 'sched.contract', 'schema.contract', 'supervisor.contract']);
         expect(io.stdout).toContain('created robot/supervisor.contract');
+        // what it writes that is no source is ignored by git; src-gen/ (manifest, orphans/) is not
+        const ignored = readFileSync(join(root, 'robot', '.gitignore'), 'utf8').split('\n').filter((l) => l && !l.startsWith('#'));
+        expect(ignored).toEqual(['logs/', 'src-gen/.contract-lock', 'src-gen/.contract-rename.json', '*.o']);
         const check = capture(root);
         expect(await runCli(['check', 'robot'], check)).toBe(0);
         expect(check.stderr).toMatch(/^0 errors, 0 warnings/);
