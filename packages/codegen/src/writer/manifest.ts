@@ -1,4 +1,5 @@
 import { createHash } from 'node:crypto';
+import { conflictMarkerLines, conflictMarkers } from '@contract-studio/conventions';
 import { parseRegions, type Region } from '../regions/parse-regions.js';
 import { ORPHANS_DIR } from './orphans.js';
 import type { OutputTree } from './output-tree.js';
@@ -134,6 +135,10 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
     try {
         data = JSON.parse(Buffer.from(text, 'latin1').toString('utf8')) as typeof data;
     } catch (e) {
+        const markers = conflictMarkers(text);
+        if (markers.length > 0) {
+            return { problems: [`holds git merge conflict markers (lines ${conflictMarkerLines(markers)}): unreadable, ignored, and written anew by this generation; resolve a conflict in the manifest by taking either side (git checkout --theirs or --ours ${MANIFEST_NAME}), then generate`] };
+        }
         return { problems: [`unreadable manifest, ignored (${(e as Error).message})`] };
     }
     if (data?.version !== 1 || typeof data.files !== 'object' || data.files === null || Array.isArray(data.files)) {

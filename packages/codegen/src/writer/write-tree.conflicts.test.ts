@@ -70,3 +70,14 @@ describe('writeTree: files holding git merge conflict markers', () => {
         expect(report.orphaned).toEqual([]);
     });
 });
+
+describe('writeTree: a manifest holding git merge conflict markers', () => {
+    it('says so (not a JSON parser position), naming the marker lines and how to resolve it', () => {
+        const dir = out();
+        writeTree(dir, [module('GTG')]);
+        const text = readFileSync(join(dir, MANIFEST_NAME), 'utf8').replace('\n "files"', '\n<<<<<<< HEAD\n "x": 1,\n=======\n "y": 2,\n>>>>>>> eng-b\n "files"');
+        writeFileSync(join(dir, MANIFEST_NAME), text);
+        const report = writeTree(dir, [module('GTG')]);
+        expect(report.warnings).toEqual([{ file: MANIFEST_NAME, message: expect.stringMatching(/^holds git merge conflict markers \(lines 3, 5, 7\): unreadable, ignored, and written anew by this generation; resolve a conflict in the manifest by taking either side \(git checkout --theirs or --ours/) }]);
+    });
+});
