@@ -66,6 +66,7 @@
 #include <unistd.h>
 #include "internal.h"
 #include "log_mark.h"
+#include "log_reserve.h"
 
 #define CSV_HEADER "mono_ns,wall_time,module,event,peer,port,size,detail\n"
 #define EVENT_MAX 64     /* bytes of a record's event name: a longer one is cut (one warning) */
@@ -87,6 +88,9 @@ static unsigned long long log_written;  /* bytes in the file (the writer's)     
 static int log_failed;                  /* the errno that stopped the log (0: none, or the bound) */
 static int log_capped;                  /* the bound was reached: records are only counted;
                                            set by the writer, read by the module (atomic)   */
+static LogReserve log_reserve;          /* the logs' disk reserve (all 0: none, log_reserve.c) */
+static unsigned long long log_unchecked; /* bytes written since the last look at the free space */
+static int log_low;                     /* the free space fell below the reserve: the log stopped */
 static unsigned long long log_dropped;  /* records not written since, counted by the module */
 static unsigned long long log_dropped_w; /* ... and by the writer                           */
 static unsigned long long log_records;  /* records logged (written or not) since the open   */
@@ -240,6 +244,9 @@ int rt_log_open(void)
         return -1;
     }
     log_max = log_bound(1);
+    rt_log_reserve_read(&log_reserve, 1);
+    log_unchecked = LOG_RESERVE_CHECK_BYTES; /* the first write looks */
+    log_low = 0;
     log_capped = 0;
     log_failed = 0;
     log_dropped = 0;
@@ -525,7 +532,7 @@ static void write_cap_record(const char *detail)
 {
     char rec[RECORD_MAX];
     /* size: the bound; for a log stopped by a write error, the bytes it holds */
-    size_t size = log_failed ? (size_t)log_written : (size_t)log_max;
+    size_t size = log_failed || log_low ? (size_t)log_written : (size_t)log_max;
     mark_broken();
     char *end = put_record(rec, GetTime(), "log-capped", "", -1, size, detail);
     (void)write_or_cut(rec, (size_t)(end - rec));
@@ -576,15 +583,56 @@ static void write_all(const char *buf, size_t len)
     stop_log(record, warning);
 }
 
+/* The log's disk below its reserve (log_reserve.c), looked at once per LOG_RESERVE_CHECK_BYTES
+ * written: the log stops before buf[0..len) as at its bound — these records only counted, a
+ * `log-capped` record and one stderr line saying why. 1 when it stopped. */
+static int stop_at_reserve(const char *buf, size_t len)
+{
+    if (log_reserve.modules == 0 && log_reserve.engines == 0 && log_reserve.supervisors == 0) return 0;
+    log_unchecked += len;
+    if (log_unchecked < LOG_RESERVE_CHECK_BYTES) return 0;
+    log_unchecked = 0;
+    unsigned long long keep = rt_log_reserve_for(&log_reserve, g_rt.engine), free_bytes = 0;
+    if (!rt_log_reserve_reached(log_fd, keep, &free_bytes)) return 0;
+    const char *var = rt_log_reserve_name(g_rt.engine);
+    mark_broken(); /* the file ends before these records */
+    log_low = 1;
+    log_dropped_w += count_records(buf, len);
+    char record[240], warning[240], *p = record;
+    p = put_str(p, "log stopped at ");
+    p = put_u64(p, log_written);
+    p = put_str(p, " bytes: its disk had ");
+    p = put_u64(p, free_bytes);
+    p = put_str(p, " bytes free; less than the logs' ");
+    p = put_u64(p, keep);
+    p = put_str(p, "-byte reserve (");
+    p = put_str(p, var);
+    p = put_str(p, "): later records are not written");
+    *p = '\0';
+    p = put_str(warning, "stopped at ");
+    p = put_u64(p, log_written);
+    p = put_str(p, " bytes: its disk had ");
+    p = put_u64(p, free_bytes);
+    p = put_str(p, " bytes free; less than the logs' ");
+    p = put_u64(p, keep);
+    p = put_str(p, "-byte reserve (");
+    p = put_str(p, var);
+    p = put_str(p, "); later records are not written");
+    *p = '\0';
+    stop_log(record, warning);
+    return 1;
+}
+
 /* Writes buf[0..len) to the file within its bound (the writer's, or the module's without one), as
  * if `reserve` more bytes were in the file (a crash handler's: those the stalled writer may still
- * write). Async-signal-safe. */
+ * write). Async-signal-safe (fstatvfs aside: one statfs system call). */
 static void write_records_r(const char *buf, size_t len, unsigned long long reserve)
 {
     if (__atomic_load_n(&log_capped, __ATOMIC_RELAXED)) { /* handed off before the bound was seen */
         log_dropped_w += count_records(buf, len);
         return;
     }
+    if (stop_at_reserve(buf, len)) return;
     /* the room left before the bound, keeping two records' room for the markers */
     unsigned long long used = log_written + reserve + 2 * RECORD_MAX;
     unsigned long long room = used < log_max ? log_max - used : 0;
@@ -624,6 +672,12 @@ static void write_cap_final(void)
         p = put_str(p, " bytes (");
         p = put_str(p, write_error_text(log_failed));
         p = put_str(p, ")");
+    } else if (log_low) {
+        p = put_str(p, " records not written after the log stopped at ");
+        p = put_u64(p, log_written);
+        p = put_str(p, " bytes (its disk below the logs' ");
+        p = put_u64(p, rt_log_reserve_for(&log_reserve, g_rt.engine));
+        p = put_str(p, "-byte reserve)");
     } else {
         p = put_str(p, " records not written after the log reached its ");
         p = put_u64(p, log_max);

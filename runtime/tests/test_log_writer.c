@@ -10,6 +10,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/statvfs.h>
 #include <sys/types.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -59,6 +60,25 @@ ssize_t __wrap_write(int fd, const void *buf, size_t len)
         nanosleep(&ts, NULL);
     }
     return __real_write(fd, buf, len);
+}
+
+int __real_fstatvfs(int fd, struct statvfs *s);
+int __wrap_fstatvfs(int fd, struct statvfs *s);
+
+/* A disk with this many bytes free (>= 0) as fstatvfs tells it; -1: the real answer. */
+static long long disk_free = -1;
+static int disk_looks; /* fstatvfs calls while disk_free is set */
+
+int __wrap_fstatvfs(int fd, struct statvfs *s)
+{
+    int r = __real_fstatvfs(fd, s);
+    long long f = __atomic_load_n(&disk_free, __ATOMIC_ACQUIRE);
+    if (r == 0 && f >= 0) {
+        s->f_frsize = 4096;
+        s->f_bavail = (fsblkcnt_t)(f / 4096);
+        __atomic_add_fetch(&disk_looks, 1, __ATOMIC_ACQ_REL);
+    }
+    return r;
 }
 
 static void slow_writes(long long ns)
@@ -423,6 +443,107 @@ void test_csv_log_disk_full(void)
     free(log);
     free(err);
     h_teardown();
+}
+
+/* The logs' disk reserve (CONTRACT_LOG_DISK_RESERVE_BYTES): a log whose disk has less free than
+ * the reserve stops as at its bound — whole records, a log-capped record saying why, later records
+ * only counted, the count at the close — looked at once per 64 KiB written, not per record; ORD's
+ * log (and a supervisor's) keeps going down to a quarter of it. Several logs growing together
+ * filled the work dir before any reached its own bound, and the disk limit killed the run. */
+static void reserve_run(int engine, long long free_then, int *looks, char *err_out, size_t err_size, char **log_out)
+{
+    *log_out = NULL;
+    REQUIRE(h_setup(engine ? "logreserve-ord" : "logreserve") == 0);
+    setenv("CONTRACT_LOG_DISK_RESERVE_BYTES", "1000000", 1);
+    int r = rt_log_open();
+    unsetenv("CONTRACT_LOG_DISK_RESERVE_BYTES");
+    REQUIRE(r == 0);
+    g_rt.engine = engine;
+    char csv[1024], err_path[700];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
+    fflush(stderr);
+    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    REQUIRE(saved >= 0 && out >= 0);
+    dup2(out, 2);
+    close(out);
+    __atomic_store_n(&disk_looks, 0, __ATOMIC_RELEASE);
+    __atomic_store_n(&disk_free, 4000000, __ATOMIC_RELEASE); /* room: written */
+    for (int i = 0; i < 2000; i++) ContractLog("before", "", i, 0, "the disk has room");
+    ContractLogFlush();
+    __atomic_store_n(&disk_free, free_then, __ATOMIC_RELEASE);
+    for (int i = 0; i < 2000; i++) ContractLog("during", "", i, 0, "the disk has less than the reserve");
+    ContractLogFlush();
+    *looks = __atomic_load_n(&disk_looks, __ATOMIC_ACQUIRE);
+    rt_log_close();
+    __atomic_store_n(&disk_free, -1, __ATOMIC_RELEASE);
+    g_rt.engine = RT_ENGINE_NONE;
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+    char *err = h_read_file(err_path);
+    snprintf(err_out, err_size, "%s", err ? err : "");
+    free(err);
+    *log_out = h_read_file(csv);
+    h_teardown();
+}
+
+void test_csv_log_disk_reserve(void)
+{
+    int looks = 0;
+    char err[2048];
+    /* a module: 600,000 bytes free is below its 1,000,000-byte reserve */
+    char *log;
+    reserve_run(RT_ENGINE_NONE, 600000, &looks, err, sizeof err, &log);
+    REQUIRE(log);
+    int before = 0, during = 0, cut = 0;
+    for (const char *l = log; *l;) {
+        const char *end = strchr(l, '\n');
+        if (!end) { cut = 1; break; }
+        const char *b = strstr(l, ",before,"), *d = strstr(l, ",during,");
+        before += b && b < end;
+        during += d && d < end;
+        l = end + 1;
+    }
+    CHECK_MSG(!cut, "the log holds a cut line");
+    CHECK_MSG(before == 2000, "%d records written while the disk had room, expected 2000", before);
+    /* at most 64 KiB and one buffer past the moment the disk went below the reserve */
+    CHECK_MSG(during < 2000, "every record was written below the reserve (%d)", during);
+    /* one look per 64 KiB written: a few for 300 KB, not one per record */
+    CHECK_MSG(looks >= 1 && looks <= 8, "%d looks at the free space for about 150 KB written below the reserve", looks);
+    const char *cap = strstr(log, ",log-capped,");
+    CHECK_MSG(cap && strstr(cap, "bytes: its disk had 598016 bytes free; less than the logs' 1000000-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES): later records are not written\n"),
+              "the cap record: %s", cap ? cap : "(none)");
+    char want[128];
+    snprintf(want, sizeof want, "%d records not written after the log stopped at ", 2000 - during);
+    const char *last = cap ? strstr(cap + 1, ",log-capped,") : NULL;
+    CHECK_MSG(last && strstr(last, want) && strstr(last, " bytes (its disk below the logs' 1000000-byte reserve)\n"), "the last records: %s", cap ? cap : "(none)");
+    CHECK_MSG(strstr(err, "tester: warning: CSV log ") && strstr(err, "less than the logs' 1000000-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES); later records are not written"),
+              "stderr: %s", err);
+    free(log);
+    /* ORD (and a supervisor) keep going down to a quarter of it: 600,000 bytes free is room */
+    reserve_run(RT_ENGINE_ORD, 600000, &looks, err, sizeof err, &log);
+    REQUIRE(log);
+    during = 0;
+    for (const char *d = log; (d = strstr(d, ",during,")) != NULL; d++) during++;
+    CHECK_MSG(during == 2000 && !strstr(log, ",log-capped,"), "ORD's log: %d records written at 600000 bytes free, %s", during,
+              strstr(log, ",log-capped,") ? "capped" : "not capped");
+    free(log);
+    reserve_run(RT_ENGINE_ORD, 200000, &looks, err, sizeof err, &log);
+    REQUIRE(log);
+    cap = strstr(log, ",log-capped,");
+    CHECK_MSG(cap && strstr(cap, "bytes free; less than the logs' 250000-byte reserve (CONTRACT_LOG_ENGINE_DISK_RESERVE_BYTES)"), "ORD's cap record at 200000 bytes free: %s", cap ? cap : "(none)");
+    free(log);
+    /* a supervisor (rule changes, its end) keeps going below ORD's, down to an eighth of it */
+    reserve_run(RT_ENGINE_SUPERVISOR, 200000, &looks, err, sizeof err, &log);
+    REQUIRE(log);
+    CHECK_MSG(!strstr(log, ",log-capped,"), "the supervisor's log was capped at 200000 bytes free");
+    free(log);
+    reserve_run(RT_ENGINE_SUPERVISOR, 100000, &looks, err, sizeof err, &log);
+    REQUIRE(log);
+    cap = strstr(log, ",log-capped,");
+    CHECK_MSG(cap && strstr(cap, "less than the logs' 125000-byte reserve (CONTRACT_LOG_SUPERVISOR_DISK_RESERVE_BYTES)"), "the supervisor's cap record at 100000 bytes free: %s", cap ? cap : "(none)");
+    free(log);
 }
 
 /* A child that logs `n` records (`<word> i`) on a log with its flush mark, hands them to its writer

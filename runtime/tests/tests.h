@@ -55,6 +55,7 @@ void test_csv_log_fork_child(void);
 void test_csv_log_record_bounds(void);
 void test_csv_log_engine_kinds(void);
 void test_csv_log_disk_full(void);
+void test_csv_log_disk_reserve(void);
 void test_csv_log_killed(void);
 
 static const TestCase ALL_TESTS[] = {
@@ -110,6 +111,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_record_bounds", test_csv_log_record_bounds },
     { "csv_log_engine_kinds", test_csv_log_engine_kinds },
     { "csv_log_disk_full", test_csv_log_disk_full },
+    { "csv_log_disk_reserve", test_csv_log_disk_reserve },
     { "csv_log_killed", test_csv_log_killed },
     { "ext_types_round_trip", test_ext_types_round_trip },
     { NULL, NULL },

@@ -1,7 +1,8 @@
 # C tests: every test executable is built twice, normally (build/tests) and under
 # ASan+UBSan (build/san/tests); `make test` runs the runner on both sets. The runner is linked with
 # -Wl,--wrap=write: test_log_writer.c can stall writes as a slow disk does; -Wl,--wrap=pthread_create: it
-# can refuse the log writer's thread as the process limit does (EAGAIN).
+# can refuse the log writer's thread as the process limit does (EAGAIN); -Wl,--wrap=fstatvfs: it can make
+# the disk as full as it likes (the logs' disk reserve).
 TEST_SRCS    := tests/runner.c tests/harness.c tests/test_tools.c tests/test_modules.c tests/test_processes.c \
                 tests/test_ext_types.c tests/test_log_writer.c
 TEST_HDRS    := $(wildcard tests/*.h tests/modules/*.h tests/report_msc/*.h tests/report_maa/*.h)
@@ -36,7 +37,7 @@ $(1)/contract-launch: $(4)
 	cp $$< $$@
 $(1)/runner: $(TEST_SRCS) $(2) $(HDRS) $(TEST_HDRS)
 	@mkdir -p $(1)
-	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) $(TEST_SRCS) $(2) -lm -pthread -Wl,--wrap=write -Wl,--wrap=pthread_create -o $$@
+	$$(CC) $$(ALLFLAGS) $(3) $(TEST_INC) $(TEST_SRCS) $(2) -lm -pthread -Wl,--wrap=write -Wl,--wrap=pthread_create -Wl,--wrap=fstatvfs -o $$@
 endef
 
 TEST_BINS = P C1 C2 ECHO controlECHO MSC MAA controlMSC contract-launch runner
