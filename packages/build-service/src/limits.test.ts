@@ -1,6 +1,6 @@
 import { describe, expect, it } from 'vitest';
 import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
-import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogMaxBytes } from './limits.js';
+import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogDiskReserve, runLogMaxBytes } from './limits.js';
 
 describe('longestDuration: a run asked for the longest still ends on its own', () => {
   it('keeps RUN_STOP_ROOM_SECONDS (half the limit when that is less) to start and stop the architecture', () => {
@@ -30,6 +30,25 @@ describe('runLogMaxBytes: a module flooding its CSV log is capped before the wor
     // the runtime refuses a bound under 4 records of 1280 bytes (runtime/src/csvlog.c): never given one
     expect(RUN_LOG_MIN_BYTES).toBeGreaterThanOrEqual(4 * 1280);
     expect(Number.isInteger(runLogMaxBytes(1234567))).toBe(true);
+  });
+});
+
+describe('runLogDiskReserve: the logs together stop before the work dir, or the memory its files take, is full', () => {
+  const MiB = 1024 * 1024;
+  it('keeps a sixteenth of the work dir (at least 1 MiB) free of modules\' logs, a quarter of that of ORD\'s, an eighth of a supervisor\'s', () => {
+    expect(runLogDiskReserve(DEFAULT_LIMITS, true)).toEqual({ modules: 16 * MiB, ord: 4 * MiB, supervisors: 2 * MiB, usable: 256 * MiB, unusable: 0 });
+    expect(runLogDiskReserve({ ...DEFAULT_LIMITS, workDiskMiB: 8 }, true)).toMatchObject({ modules: MiB, ord: MiB / 4, supervisors: MiB / 8 });
+  });
+  it('keeps out of the logs\' reach the part of a tmpfs work dir the memory limit cannot hold beside the processes', () => {
+    // the field run: a 3 GiB work dir under 512 MiB of memory; the logs filled the memory and the OOM killer ended every process
+    const r = runLogDiskReserve({ ...DEFAULT_LIMITS, workDiskMiB: 3072 }, true);
+    expect(r.usable).toBe(384 * MiB); // 512 MiB less a quarter kept for the processes
+    expect(r.unusable).toBe(2688 * MiB);
+    expect(r).toMatchObject({ modules: 2688 * MiB + 24 * MiB, ord: 2688 * MiB + 6 * MiB, supervisors: 2688 * MiB + 3 * MiB });
+    expect(runLogDiskReserve({ ...DEFAULT_LIMITS, memoryMiB: 96 }, true).usable).toBe(72 * MiB);
+    expect(runLogDiskReserve({ ...DEFAULT_LIMITS, memoryMiB: 32 }, true).usable).toBe(16 * MiB); // at least 16 MiB for the processes
+    // a work dir whose files are not memory (sandbox none): the disk limit alone
+    expect(runLogDiskReserve({ ...DEFAULT_LIMITS, workDiskMiB: 3072 }, false)).toMatchObject({ usable: 3072 * MiB, unusable: 0 });
   });
 });
 

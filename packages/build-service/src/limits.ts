@@ -280,6 +280,52 @@ export function runLogMaxBytes(roomBytes: number): number {
   return Math.max(RUN_LOG_MIN_BYTES, Math.min(RUNTIME_LOG_MAX_BYTES, Math.floor((room * 3) / 4)));
 }
 
+/**
+ * Memory a run keeps for its processes when its work dir's files count against its memory limit
+ * (bwrap and docker: the work dir is a tmpfs, its pages charged to the job's memory cgroup): a
+ * quarter of memoryMiB, at least 16 MiB. The CSV logs stop before the work dir holds more than
+ * memoryMiB less this (runLogDiskReserve).
+ */
+export function runProcessesMemoryBytes(limits: Limits): number {
+  const memory = Math.floor(limits.memoryMiB * 1024 * 1024);
+  return Math.min(memory, Math.max(16 * 1024 * 1024, Math.floor(memory / 4)));
+}
+
+/**
+ * The part of the work dir the run's CSV logs may fill (docs/sandbox.md "The disk limit"): the disk
+ * limit, or, when the work dir's files count against the memory limit (`memoryBacked`) and the
+ * disk limit is larger than what the memory limit leaves beside the processes
+ * (runProcessesMemoryBytes), that: a 3 GiB work dir under a 512 MiB memory limit filled the memory
+ * with logs, and the kernel's OOM killer killed every process one after the other (killing frees no
+ * tmpfs page) before the service could stop the run.
+ */
+export function runLogUsableBytes(limits: Limits, memoryBacked: boolean): number {
+  const disk = workDiskBytes(limits);
+  if (!memoryBacked) return disk;
+  const memory = Math.floor(limits.memoryMiB * 1024 * 1024);
+  return Math.max(0, Math.min(disk, memory - runProcessesMemoryBytes(limits)));
+}
+
+/**
+ * The logs' disk reserve of a run, in bytes of the work dir's free space (the runtime's
+ * CONTRACT_LOG_DISK_RESERVE_BYTES, CONTRACT_LOG_ENGINE_DISK_RESERVE_BYTES and
+ * CONTRACT_LOG_SUPERVISOR_DISK_RESERVE_BYTES, docs/runtime-api.md "CSV log"): a module's log stops
+ * (a `log-capped` record, the run goes on) once the work dir has less than `modules` free, ORD's
+ * less than `ord`, a supervisor's less than `supervisors`, so that the
+ * logs together never fill the work dir (the disk limit killed the run: each log's own bound,
+ * runLogMaxBytes, holds for one log only) nor the memory the work dir's files take. `base` is a
+ * sixteenth of the usable part (runLogUsableBytes), at least 1 MiB: room for what the logs write
+ * between two looks at the free space (64 KiB and a buffer each) and for the last records; ORD
+ * keeps a quarter of it, a supervisor an eighth (its rule changes and its end outlast ORD's log).
+ * `unusable`: the part of the disk limit the memory limit cannot hold.
+ */
+export function runLogDiskReserve(limits: Limits, memoryBacked: boolean): { modules: number; ord: number; supervisors: number; usable: number; unusable: number } {
+  const usable = runLogUsableBytes(limits, memoryBacked);
+  const unusable = workDiskBytes(limits) - usable;
+  const base = Math.max(1024 * 1024, Math.floor(usable / 16));
+  return { modules: unusable + base, ord: unusable + Math.floor(base / 4), supervisors: unusable + Math.floor(base / 8), usable, unusable };
+}
+
 export type LimitName = keyof Limits;
 
 export const LIMIT_NAMES: readonly LimitName[] = [

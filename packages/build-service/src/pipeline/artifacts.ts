@@ -48,6 +48,8 @@ const CAPPED_SIZE = /,log-capped,[^,\n]{0,64},[^,\n]{0,16},(\d{1,15}),([^\n]{0,1
  * (...)`), not the bound: its size column is then what the disk took.
  */
 const DISK_REFUSED = /^(?:\d{1,20} records not written after the )?log could not be written past /;
+/** A log the logs' disk reserve stopped (CONTRACT_LOG_DISK_RESERVE_BYTES: the work dir nearly full of logs). */
+const DISK_RESERVE = /^(?:\d{1,20} records not written after the )?log stopped at \d{1,20} bytes/;
 
 /** The folders of the work dir a run leaves things in: `logs/` (collected) and `run/` (names only). */
 export const LOG_DIR = 'logs';
@@ -235,7 +237,9 @@ export async function selectArtifacts(
           const m = CAPPED_SIZE.exec(tail.toString('latin1'));
           capped = m && DISK_REFUSED.test(m[2]!)
             ? `the disk refused its module's writes past ${formatBytes(Number(m[1]))} (the work dir was full): later records were not written`
-            : `the module reached its CSV log bound${m ? ` of ${formatBytes(Number(m[1]))}` : ''} (CONTRACT_LOG_MAX_BYTES): later records were not written`;
+            : m && DISK_RESERVE.test(m[2]!)
+              ? `its module stopped writing at ${formatBytes(Number(m[1]))}: the work dir was nearly full of the run's logs (the logs' disk reserve, CONTRACT_LOG_DISK_RESERVE_BYTES): later records were not written`
+              : `the module reached its CSV log bound${m ? ` of ${formatBytes(Number(m[1]))}` : ''} (CONTRACT_LOG_MAX_BYTES): later records were not written`;
         }
       }
       inspect?.(e.name, kept);

@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogMaxBytes, RUNTIME_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogDiskReserve, runLogMaxBytes, runProcessesMemoryBytes, RUNTIME_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
 import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { workDiskState } from '../sandbox/work-disk.js';
 import { LineSplitter } from '../util/line-splitter.js';
@@ -462,7 +462,7 @@ export class Job {
       if (this.request.cpus !== undefined) runVars.push(`CPUS=${this.request.cpus}`);
       // each module's CSV log is capped before it can fill the work dir (the disk limit would stop the
       // whole run); a plain Makefile project has no runtime to read it
-      const logMaxBytes = this.request.kind === 'cactal' ? await this.runLogBound(ctx.sandbox, ws.workDir) : null;
+      const logBound = this.request.kind === 'cactal' ? await this.runLogBound(ctx.sandbox, ws.workDir) : null;
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
       const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
       // a run pinned to CPUs has them to itself: the service's threads (the channel's work) keep off them
@@ -483,7 +483,12 @@ export class Job {
         const runEnv: Record<string, string> = {
           CONTRACT_STOP_BUDGET_MS: String(CANCEL_GRACE_MS - STOP_BUDGET_MARGIN_MS),
           CONTRACT_END_BY_S: String(longestDuration(this.request.limits.runSeconds)),
-          ...(logMaxBytes !== null ? { CONTRACT_LOG_MAX_BYTES: String(logMaxBytes) } : {}),
+          ...(logBound !== null ? {
+            CONTRACT_LOG_MAX_BYTES: String(logBound.maxBytes),
+            CONTRACT_LOG_DISK_RESERVE_BYTES: String(logBound.reserve.modules),
+            CONTRACT_LOG_ENGINE_DISK_RESERVE_BYTES: String(logBound.reserve.ord),
+            CONTRACT_LOG_SUPERVISOR_DISK_RESERVE_BYTES: String(logBound.reserve.supervisors),
+          } : {}),
           ...(tail ? { CONTRACT_LOG_MARK: '1' } : {}),
         };
         run = await this.runStep(ctx.sandbox, ws, runtimeDir, 'run', ['make', '-C', dir, ...makefile, 'run', ...runVars], this.request.limits.runSeconds, (line) => {
@@ -587,9 +592,11 @@ export class Job {
    * regular files' sizes (find, on the host or in the sandbox); the whole limit when neither answers.
    * No job process runs now. Never throws.
    */
-  private async runLogBound(sandbox: Sandbox, workDir: string): Promise<number> {
+  private async runLogBound(sandbox: Sandbox, workDir: string): Promise<{ maxBytes: number; reserve: ReturnType<typeof runLogDiskReserve> }> {
     const t0 = Date.now();
     const limit = workDiskBytes(this.request.limits);
+    // the work dir's files count against the memory limit where it is enforced (a tmpfs charged to the job's cgroup)
+    const reserve = runLogDiskReserve(this.request.limits, sandbox.name !== 'none');
     let room: number | null = null;
     try {
       const disk = sandbox.readWorkDirs ? null : await workDiskState(workDir);
@@ -601,7 +608,9 @@ export class Job {
     } catch {
       room = null;
     }
-    const bytes = runLogMaxBytes(room ?? limit);
+    // the room the logs have: what the work dir has left, less the part the memory limit cannot hold
+    const usableRoom = Math.max(0, Math.min(room ?? limit, room === null ? reserve.usable : reserve.usable - (limit - room)));
+    const bytes = runLogMaxBytes(usableRoom);
     this.timed('run', 'work dir room (the CSV log bound)', t0);
     const left = room === null ? `what the work dir holds could not be measured (its disk limit: ${formatBytes(limit)})` : `the work dir has ${formatBytes(room)} left of its ${formatBytes(limit)} disk limit`;
     const why = bytes === RUNTIME_LOG_MAX_BYTES
@@ -610,9 +619,15 @@ export class Job {
         ? `the least the service gives: ${left}`
         : room === null
           ? `3/4 of the disk limit: ${left}`
-          : `3/4 of the ${formatBytes(room)} the work dir has left of its ${formatBytes(limit)} disk limit`;
+          : usableRoom < room
+            ? `3/4 of the ${formatBytes(usableRoom)} the logs may still fill: ${left}, and its files count against the memory limit`
+            : `3/4 of the ${formatBytes(room)} the work dir has left of its ${formatBytes(limit)} disk limit`;
     this.system('run', `CSV logs capped at ${formatBytes(bytes)} per module (CONTRACT_LOG_MAX_BYTES: ${why}); a module's log past it ends with a log-capped record and the run goes on`);
-    return bytes;
+    const memory = reserve.unusable > 0
+      ? ` (the work dir's files count against the ${this.request.limits.memoryMiB} MiB memory limit: the logs may fill ${formatBytes(reserve.usable)} of its ${formatBytes(limit)}, the memory limit less ${formatBytes(runProcessesMemoryBytes(this.request.limits))} kept for the processes; raise memoryMiB with workDiskMiB for more)`
+      : '';
+    this.system('run', `CSV logs stopped together before the work dir is full: a module's once it has less than ${formatBytes(reserve.modules - reserve.unusable)} free, ORD's less than ${formatBytes(reserve.ord - reserve.unusable)}, a supervisor's less than ${formatBytes(reserve.supervisors - reserve.unusable)}${memory}; each then ends with a log-capped record and the run goes on`);
+    return { maxBytes: bytes, reserve };
   }
 
   private workTreeDigest(sandbox: Sandbox, ws: Workspace): Promise<string | null> {

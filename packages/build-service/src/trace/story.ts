@@ -311,6 +311,12 @@ export class StoryTeller {
     private readonly schemas = new Map<string, SchemaFigures>();
     /** Schemas past STORY_FOLLOWED: counted in the totals only. */
     private schemasLeftOut = 0;
+    /**
+     * Logs (at most STORY_FOLLOWED) that stopped before the run's end — their module's first
+     * `log-capped` record: its bound, the logs' disk reserve, a full disk, the build service's cut —
+     * with the run's time then: the figures and counts after it are partial (partialLines).
+     */
+    private readonly cappedLogs = new Map<string, string>();
 
     /**
      * `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every
@@ -424,7 +430,10 @@ export class StoryTeller {
         }
         if (k.kind === 'user') return `${at(k)} ${userRecordText(k)}`;
         // a log's bound reached (the runtime's at the bound and at its end, the build service's on a log it cut)
-        if (k.kind === 'log-capped') return `${at(k)} ${cappedText(k)}`;
+        if (k.kind === 'log-capped') {
+            if (!this.cappedLogs.has(k.module) && this.cappedLogs.size < STORY_FOLLOWED) this.cappedLogs.set(ownString(k.module), offset(BigInt(k.monoNs) - t0).trim());
+            return `${at(k)} ${cappedText(k)}`;
+        }
         // a supervisor's requests kept for a receiver's full mailbox: when it began, and what came of them
         if (k.kind === 'requests_kept' || k.kind === 'requests_kept_end') return `${at(k)} ${keptRequestsText(k)}`;
         // a request to a module already gone while the launcher stopped the run (no error line on stderr either)
@@ -575,12 +584,28 @@ export class StoryTeller {
      * deadline misses, 9 overruns, 1 held cycle` (held cycles and ORD's missed ticks when any).
      */
     schemaLines(): string[] {
+        // ORD's log stopped early: its completions, misses and overruns after that were not written
+        const ordCapped = this.cappedLogs.get('ORD');
+        const upTo = ordCapped ? ` — up to ${ordCapped} only: ORD's log stopped then (log-capped), its later cycles are not counted` : '';
         const lines = this.schemaFigures().map((f) =>
             `schema ${f.schema}: ${plural(f.completedCycles, 'completed cycle')}${f.completedCycles ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
             `${plural(f.deadlineMisses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
-            `${f.heldCycles ? `, ${plural(f.heldCycles, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}`);
+            `${f.heldCycles ? `, ${plural(f.heldCycles, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}${upTo}`);
         if (this.schemasLeftOut) lines.push(`(${plural(this.schemasLeftOut, 'record')} of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
+        lines.push(...this.partialLines());
         return lines;
+    }
+
+    /**
+     * One line when some log stopped before the run's end (a `log-capped` record: `partial counts:
+     * the logs of ORD (from +28.1 s), CUR (from +27.9 s) stopped before the run's end (log-capped):
+     * the figures above and the counts below hold only their records up to then`); none otherwise.
+     */
+    partialLines(): string[] {
+        if (!this.cappedLogs.size) return [];
+        const logs = [...this.cappedLogs].map(([m, at]) => `${m} (from ${at})`).join(', ');
+        return [`partial counts: the log${this.cappedLogs.size > 1 ? 's' : ''} of ${logs} stopped before the run's end (log-capped): ` +
+            'the figures above and the counts below hold only their records up to then'];
     }
 
     /** The same figures as data, in name order (`contract run` and `contract simulate --format json`). */

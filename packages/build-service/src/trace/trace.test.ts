@@ -297,6 +297,23 @@ describe('reading a log', () => {
         ]);
     });
 
+    it('says the figures and counts are partial when a log stopped before the run\'s end (log-capped): ORD\'s misses after its cap are not counted', () => {
+        const ord = [CSV_HEADER,
+            '1000000000,w,ORD,ord_complete,,,0,schema=fastLoop cycle=0 tick_ns=0 response_ns=500000',
+            '1001000000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=1 tick_ns=0',
+            '3000000000,w,ORD,log-capped,,,5242880,log stopped at 5242880 bytes: its disk had 1040384 bytes free; less than the logs\' 1048576-byte reserve (CONTRACT_LOG_ENGINE_DISK_RESERVE_BYTES): later records are not written',
+            '9000000000,w,ORD,log-capped,,,5242880,120000 records not written after the log stopped at 5242880 bytes (its disk below the logs\' 1048576-byte reserve)', ''].join('\n');
+        const cur = [CSV_HEADER, '2500000000,w,CUR,log-capped,,,4194304,log stopped at 4194304 bytes: its disk had 3000000 bytes free; less than the logs\' 4194304-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES): later records are not written', ''].join('\n');
+        const story = renderStory(parseTrace([{ name: 'ORD_1.csv', text: ord }, { name: 'CUR_1.csv', text: cur }]));
+        expect(story.slice(-3)).toEqual([
+            'schema fastLoop: 1 completed cycle (response max 500 µs), 1 deadline miss, 0 overruns — up to +2.000000s only: ORD\'s log stopped then (log-capped), its later cycles are not counted',
+            'partial counts: the logs of CUR (from +1.500000s), ORD (from +2.000000s) stopped before the run\'s end (log-capped): the figures above and the counts below hold only their records up to then',
+            '5 records: 0 module releases, 1 completed cycle, 1 deadline miss, 0 overruns, 0 held cycles, 0 rule changes, 0 data and 0 event deliveries, 0 unreadable lines',
+        ]);
+        // a run whose logs are whole says nothing of the kind
+        expect(renderStory(parseTrace([{ name: 'ORD_1.csv', text: ord.split('\n').slice(0, 3).join('\n') + '\n' }])).join('\n')).not.toMatch(/partial counts|up to \+/);
+    });
+
     it('tells once why the run stopped when the launcher\'s KILL says it (the build service\'s limit), not a plain KILL', () => {
         const why = "the build service's memory limit was reached";
         const text = [CSV_HEADER, '1000000000,w,MAA,request_received,contract-launch,,0,KILL',
