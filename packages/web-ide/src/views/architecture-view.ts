@@ -304,7 +304,7 @@ export class ArchitectureView {
 
   /**
    * In a scrolled panel, brings the whole view (its toolbar and the diagram's pane) on screen: a pane
-   * partly scrolled away, or under the toolbar that sticks at the top of the panel, would hide the
+   * partly scrolled away (its toolbar with it: the Monitor's does not stick, monitor.css) would hide the
    * top of a diagram just fitted or just picked. Nothing to do in a view that is not scrolled.
    */
   private reveal(): void {

@@ -3,8 +3,9 @@
  * "Architecture", docs/watching-a-run.md "Architecture"): the first view never shows the smallest
  * labels (11 px) below 9 px and starts whole or at the top left; the wheel that scrolls the panel to
  * the diagram does not zoom it away (it did: the diagram coming under the pointer took the wheel
- * and shrank to 0.15, labels 2 px, bottom centre); Fit and a schema picked in the list bring the
- * pane whole on screen, not under the toolbar that sticks at the top of the panel. Measured with
+ * and shrank to 0.15, labels 2 px, bottom centre); the toolbar scrolls with the pane and never
+ * covers it, whatever the scroll (it stuck at the panel's top, over the pane, at the panel's very end
+ * too); Fit and a schema picked in the list bring the pane whole on screen. Measured with
  * getBoundingClientRect on the real page (real server, headless Chromium, the recorded tutorial run).
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
@@ -79,15 +80,23 @@ function expectPaneAndModulesShown(v: Seen, whole: boolean): void {
   }
 }
 
-/** Scrolls the Monitor so that the diagram's view starts `by` px above the panel's top: the toolbar sticks over the pane. */
-async function scrollUnderToolbar(page: Page, by: number): Promise<number> {
+/** Scrolls the Monitor so that the diagram's view starts `by` px above the panel's top: the top of the pane is out of sight. */
+async function scrollViewAbovePanel(page: Page, by: number): Promise<number> {
   return page.evaluate((by) => {
     const body = document.querySelector('.monitor-body') as HTMLElement;
     const view = document.querySelector('.monitor-diagram .arch-view') as HTMLElement;
     body.scrollTop += view.getBoundingClientRect().top - body.getBoundingClientRect().top + by;
-    const tb = (view.querySelector('.arch-toolbar') as HTMLElement).getBoundingClientRect().bottom;
-    return tb - (view.querySelector('.arch-canvas') as HTMLElement).getBoundingClientRect().top; // the pane's part under the toolbar
+    const top = Math.max(body.getBoundingClientRect().top, (view.querySelector('.arch-toolbar') as HTMLElement).getBoundingClientRect().bottom);
+    return top - (view.querySelector('.arch-canvas') as HTMLElement).getBoundingClientRect().top; // the pane's part out of sight
   }, by);
+}
+
+/** The Monitor open on the recorded run, its diagram drawn (the first test opens it; a test run alone opens it itself). */
+async function showRecordedRun(page: Page): Promise<void> {
+  if (!(await page.locator('.side-pane .monitor-view').isVisible())) await page.locator('#btn-monitor').click();
+  await page.locator('.side-pane .monitor-view').waitFor();
+  if ((await page.locator('.monitor-sources').inputValue()) !== 'dir:recorded') await page.locator('.monitor-sources').selectOption('dir:recorded');
+  await expect.poll(() => page.locator('.monitor-view .arch-svg').getAttribute('data-schema'), { timeout: 15_000 }).toBeTruthy();
 }
 
 describe('Monitor: the architecture diagram in the scrolled panel', () => {
@@ -150,11 +159,33 @@ describe('Monitor: the architecture diagram in the scrolled panel', () => {
     await page.locator('.monitor-diagram #arch-fit').click();
   });
 
-  it('Fit with the panel scrolled so that its toolbar sticks over the diagram: the pane comes whole on screen, every module in it', async () => {
+  it('the panel scrolled to its very end, or anywhere: the toolbar never covers the pane (no Fit pressed)', async () => {
+    const { page } = s;
+    await showRecordedRun(page);
+    const at = (where: 'end' | number) => page.evaluate((where) => {
+      const body = document.querySelector('.monitor-body') as HTMLElement;
+      body.scrollTop = where === 'end' ? body.scrollHeight : where;
+      const view = document.querySelector('.monitor-diagram .arch-view') as HTMLElement;
+      const bar = (view.querySelector('.arch-toolbar') as HTMLElement).getBoundingClientRect();
+      const pane = (view.querySelector('.arch-canvas') as HTMLElement).getBoundingClientRect();
+      return { scrollTop: body.scrollTop, max: body.scrollHeight - body.clientHeight, toolbarBottom: bar.bottom, paneTop: pane.top, paneBottom: pane.bottom, panelTop: body.getBoundingClientRect().top };
+    }, where);
+    const end = await at('end');
+    expect(end.scrollTop).toBeGreaterThan(0);
+    await shot(page, 'monitor-diagram-00-scrolled-to-end');
+    expect(end.paneTop, JSON.stringify(end)).toBeGreaterThanOrEqual(end.toolbarBottom - 0.5);
+    // every scroll position: the pane starts below the toolbar (or the toolbar is scrolled away with it)
+    for (let top = 0; top <= end.max; top += 40) {
+      const v = await at(top);
+      if (v.toolbarBottom > v.panelTop) expect(v.paneTop, JSON.stringify(v)).toBeGreaterThanOrEqual(v.toolbarBottom - 0.5);
+    }
+  });
+
+  it('Fit with the panel scrolled past the top of the diagram: the pane comes whole on screen, every module in it', async () => {
     const { page } = s;
     await page.locator('.monitor-diagram .arch-svg').waitFor();
-    const hidden = await scrollUnderToolbar(page, 90);
-    expect(hidden, 'the toolbar covers the top of the pane').toBeGreaterThan(20);
+    const hidden = await scrollViewAbovePanel(page, 90);
+    expect(hidden, 'the top of the pane is out of sight').toBeGreaterThan(10);
     await page.locator('.monitor-diagram #arch-fit').click();
     await page.waitForTimeout(300);
     const v = await seen(page);
@@ -167,14 +198,14 @@ describe('Monitor: the architecture diagram in the scrolled panel', () => {
     await shot(page, 'monitor-diagram-02-fit-scrolled');
   });
 
-  it('a schema picked in the list with the toolbar over the diagram: its pane on screen, below the toolbar, in its readable first view', async () => {
+  it('a schema picked in the list with the panel scrolled past the top of the diagram: its pane on screen, below the toolbar, in its readable first view', async () => {
     const { page } = s;
     const select = page.locator('.monitor-diagram .arch-select');
     const now = await page.locator('.monitor-diagram .arch-svg').getAttribute('data-schema');
     const other = (await select.locator('option').evaluateAll((os) => os.map((o) => (o as HTMLOptionElement).value))).find((n) => n !== now)!;
     expect(other).toBeTruthy();
-    const hidden = await scrollUnderToolbar(page, 90);
-    expect(hidden).toBeGreaterThan(20);
+    const hidden = await scrollViewAbovePanel(page, 90);
+    expect(hidden).toBeGreaterThan(10);
     await select.selectOption(other);
     await expect.poll(() => page.locator('.monitor-diagram .arch-svg').getAttribute('data-schema')).toBe(other);
     await page.waitForTimeout(300);
