@@ -1,5 +1,6 @@
 import { monaco } from './monaco.js';
-import { registerScenarioLanguage } from './scenario-language.js';
+import { registerScenarioLanguage, SCENARIO_LANGUAGE_ID } from './scenario-language.js';
+import { turnOffWordSuggestions } from './word-suggestions.js';
 
 export const CACTAL_LANGUAGE_ID = 'cactal';
 
@@ -67,6 +68,8 @@ export function registerCactalLanguage(): void {
     indentationRules: { increaseIndentPattern: /\{[^}]*$/, decreaseIndentPattern: /^\s*\}/ },
     wordPattern: /[A-Za-z_][A-Za-z0-9_]*|-?\d+(\.\d*)?(ns|us|ms|s)?/,
   });
+  // completion is the language server's alone: real candidates, never the file's words (word-suggestions.ts)
+  turnOffWordSuggestions([CACTAL_LANGUAGE_ID, SCENARIO_LANGUAGE_ID]);
 }
 
 /** The IDE's dark theme. */

@@ -5,7 +5,7 @@
  * Format on a file with a syntax error says why it did nothing (docs/ide.md, "Using it").
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { startSession, openIde, placeCursor, activeValue, openFile, waitSaved, type Session } from './harness.js';
+import { startSession, openIde, placeCursor, activeValue, openFile, waitSaved, shot, type Session } from './harness.js';
 
 let s: Session;
 
@@ -50,6 +50,51 @@ describe('language server feedback in the IDE', () => {
     await page.locator('.suggest-widget .monaco-list-row').first().waitFor({ timeout: 5000 });
     const labels = await page.locator('.suggest-widget .monaco-list-row .label-name').allTextContents();
     expect(labels).toEqual(expect.arrayContaining(['activate schema', 'activate supervisor', 'notify'])); // the list renders only its visible rows
+    await page.keyboard.press('Escape');
+    await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
+    await waitSaved(page);
+  });
+
+  it('completion lists the language server\'s candidates only, never the file\'s words (Monaco\'s word-based suggestions off for Cactal)', async () => {
+    const { page } = s;
+    await openFile(page, 'supervisor.contract');
+    const before = await activeValue(page);
+    // words of the file that name nothing a module reference can take
+    await placeCursor(page, 'temp_consigne = consigne;', 'temp_consigne = consigne;'.length);
+    await page.keyboard.type(' // r1 rx');
+    /** The list Monaco shows once it has its answer: its rows, or none when it says "No suggestions." (an explicit Ctrl+Space). */
+    const shown = async () => {
+      await page.waitForFunction(() => {
+        const widget = document.querySelector('.suggest-widget.visible');
+        const message = widget?.querySelector<HTMLElement>('.message');
+        return !!widget && (!!widget.querySelector('.monaco-list-row') || (!!message && message.offsetParent !== null && /No suggestions/.test(message.textContent ?? '')));
+      }, undefined, { timeout: 10_000 });
+      return page.locator('.suggest-widget.visible .monaco-list-row').evaluateAll((rows) => rows.map((r) => ({
+        label: r.querySelector('.label-name')?.textContent ?? '',
+        word: !!r.querySelector('.suggest-icon.codicon-symbol-text'), // Monaco's word-based items are of kind Text
+      })));
+    };
+    // a module reference: the modules in scope, and nothing else
+    await placeCursor(page, 'activate resttime module MAA', 'activate resttime module '.length);
+    for (let i = 0; i < 3; i++) await page.keyboard.press('Delete');
+    await page.keyboard.type('M');
+    await page.keyboard.press('Control+Space');
+    await expect.poll(async () => (await shown()).map((r) => r.label), { timeout: 10_000 }).toEqual(['MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD']);
+    await page.keyboard.press('Escape');
+    await page.keyboard.press('Backspace');
+    // a letter no module starts with: the server has no candidate, and no word of the file is offered in its place
+    await page.keyboard.type('r');
+    await page.keyboard.press('Control+Space');
+    const words = await shown();
+    expect(words, JSON.stringify(words)).toEqual([]);
+    await shot(page, 'completion-no-words');
+    await page.keyboard.press('Escape');
+    // a rule label in a condition: the rules, no words
+    await placeCursor(page, 'started(THIRD)', 'started('.length);
+    for (let i = 0; i < 5; i++) await page.keyboard.press('Delete');
+    await page.keyboard.type('R');
+    await page.keyboard.press('Control+Space');
+    await expect.poll(async () => (await shown()).map((r) => r.label), { timeout: 10_000 }).toEqual(['RECEPTION']);
     await page.keyboard.press('Escape');
     await page.evaluate((text) => (window as any).__ide.editors.editor.getModel().setValue(text), before);
     await waitSaved(page);
