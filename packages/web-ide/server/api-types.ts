@@ -137,6 +137,10 @@ export interface RenameEntityResponse {
   scenarios: Array<{ file: string; line: number; before: string; after: string }>;
   /** `.scenario` files that named the entity but were not rewritten, and why (changed meanwhile, not a regular file...). */
   scenariosLeft: Array<{ file: string; reason: string }>;
+  /** The renamed `.contract` files of the request written (workspace path), with the version now on disk. */
+  written: Array<{ file: string; version: string }>;
+  /** Those not written, and why (changed on disk since the version the rename was made on...). */
+  filesLeft: Array<{ file: string; reason: string }>;
 }
 
 /** The answer of GET /api/log-folder. */

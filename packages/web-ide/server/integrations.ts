@@ -69,18 +69,47 @@ export async function renameGeneratedEntity(srcGen: string, from: string, to: st
 }
 
 /**
- * codegen's carry-over of a rename into the user code (the one `contract rename` uses): the uses of
- * a renamed port or parameter in its module's protected regions, of a datatype or an enumeration
- * (and its generated functions; an enumeration's `members` name its constants), an enumeration
- * member's constant (`owner`: its enumeration) or a function in every region, whole C identifiers
- * in code only.
+ * The C identifiers a rename changes in the user code (the ones `contract rename` changes): a port's
+ * or parameter's (only in its module's files: `owner`), a datatype's or an enumeration's (and its
+ * generated functions; an enumeration's `members` name its constants), an enumeration member's
+ * constant (`owner`: its enumeration), a function's.
  */
-export async function renameInUserCode(srcGen: string, kind: string, from: string, to: string, owner?: string, members?: string[]) {
-  const codegen = await importWith<CodegenApi, 'identifierRenames' | 'renameIdentifiersInGeneratedTree' | 'carryRefusedMessage'>('@contract-studio/codegen', ['identifierRenames', 'renameIdentifiersInGeneratedTree', 'carryRefusedMessage']);
+export async function userCodeRenames(kind: string, from: string, to: string, owner?: string, members?: string[]): Promise<UserCodeRenames> {
+  const codegen = await importWith<CodegenApi, 'identifierRenames'>('@contract-studio/codegen', ['identifierRenames']);
   const renames = codegen.identifierRenames(kind, from, to, kind === 'enumeration member' ? { enumeration: owner } : { members });
-  const { refused, ...report } = codegen.renameIdentifiersInGeneratedTree(srcGen, renames, kind === 'port' || kind === 'parameter' ? owner : undefined);
+  return { renames, ...(kind === 'port' || kind === 'parameter' ? { owner } : {}) };
+}
+
+export interface UserCodeRenames {
+  renames: ReadonlyMap<string, string>;
+  /** The module whose module.c alone holds them (a port or parameter), else absent: every file. */
+  owner?: string;
+}
+
+/** codegen's carry-over of those renames into the protected regions' code, whole C identifiers in code only. */
+export async function renameInUserCode(srcGen: string, code: UserCodeRenames) {
+  const codegen = await importWith<CodegenApi, 'renameIdentifiersInGeneratedTree' | 'carryRefusedMessage'>('@contract-studio/codegen', ['renameIdentifiersInGeneratedTree', 'carryRefusedMessage']);
+  const { refused, ...report } = codegen.renameIdentifiersInGeneratedTree(srcGen, new Map(code.renames), code.owner);
   // the refusal as the IDE says it (its file relative to src-gen)
-  return { ...report, ...(refused ? { refused: codegen.carryRefusedMessage(refused, [...renames.keys()]) } : {}) };
+  return { ...report, ...(refused ? { refused: codegen.carryRefusedMessage(refused, [...code.renames.keys()]) } : {}) };
+}
+
+type RenameJournal = import('@contract-studio/codegen').RenameJournal;
+
+/**
+ * codegen's rename journal (rename-journal.ts, the one `contract rename` writes), written in
+ * `srcGen` before the rename changes anything: killed from then on, the next Generate All (or
+ * `contract generate`) finishes the rename.
+ */
+export async function writeRenameJournal(srcGen: string, journal: RenameJournal): Promise<void> {
+  const codegen = await importWith<CodegenApi, 'writeRenameJournal'>('@contract-studio/codegen', ['writeRenameJournal']);
+  codegen.writeRenameJournal(srcGen, journal);
+}
+
+/** Removes the journal: the rename is whole (or changed nothing). */
+export async function removeRenameJournal(srcGen: string): Promise<void> {
+  const codegen = await importWith<CodegenApi, 'removeRenameJournal'>('@contract-studio/codegen', ['removeRenameJournal']);
+  codegen.removeRenameJournal(srcGen);
 }
 
 /**

@@ -10,8 +10,16 @@
  *   enumeration, enumeration member; a rule label, local or parameter of a supervision function) is rewritten in the project's `.scenario` files (the language package's
  *   renameInScenarios), each file saved as the editor saves it: in its queue, its folder opened
  *   without following links, refused if it changed since it was read (then listed in `scenariosLeft`).
- * All of it runs under the generated-tree lock, on the project folder as opened (project-folder.ts).
+ * - the `.contract` files the editor's rename changed (`files`: their text after it and the version
+ *   it was made on) are written here, after the generated tree, as `contract rename` writes them.
+ * All of it runs under the generated-tree lock, on the project folder as opened (project-folder.ts),
+ * journaled as `contract rename` journals it (codegen rename-journal.ts): before anything changes,
+ * `src-gen/.contract-rename.json` holds each project file's version before and text after; it is
+ * removed once every file is written. A rename stopped half-way (the server killed, a disk error) is
+ * finished by the next Generate All or `contract generate`, never half-applied: the renamed
+ * module's code is not moved to orphans/ by a generation of the model not renamed yet.
  */
+import { lstat } from 'node:fs/promises';
 import { join } from 'node:path';
 import { SRC_GEN_DIR } from '@contract-studio/conventions';
 import type { RenameEntityResponse } from './api-types.js';
@@ -20,7 +28,7 @@ import { fileVersion } from './file-version.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import { saveWorkspaceFile, withProjectTreeLock } from './guarded-write.js';
 import { HttpError } from './http-error.js';
-import { renameGeneratedEntity, renameInScenarioFiles, renameInUserCode } from './integrations.js';
+import { removeRenameJournal, renameGeneratedEntity, renameInScenarioFiles, renameInUserCode, userCodeRenames, writeRenameJournal } from './integrations.js';
 import { inProjectFolder } from './project-folder.js';
 import type { WorkspacePaths } from './workspace-paths.js';
 
@@ -48,14 +56,52 @@ export interface RenameRequest {
   owner?: string;
   /** A renamed enumeration's members (its C constants `<Enum>_<member>` follow it). */
   members?: string[];
+  /** The project's `.contract` files as the rename left them in the editor (checkFiles, once the project is known): written here, journaled. */
+  files: unknown;
 }
+
+export interface RenamedFile {
+  /** Workspace path, in the project, outside its src-gen. */
+  path: string;
+  /** The text after the rename. */
+  text: string;
+  /** The version (SHA-256) of the file on disk the rename was made on. */
+  base: string;
+}
+
+/** Where a rename may stop, for a test's simulated crash: after the journal is written, after the generated tree is carried over. */
+export type RenameStep = 'journaled' | 'tree carried over';
 
 /** More members than an enumeration of a sane model has: refused. */
 const MAX_MEMBERS = 10_000;
+/** More renamed files, or text, than a journal holds (codegen's MAX_JOURNAL_BYTES): refused. */
+const MAX_FILES = 10_000;
+const MAX_FILES_BYTES = 48 * 1024 * 1024;
+
+/** The renamed `.contract` files of the request checked against project folder `project` (workspace path, '' for the root). */
+function checkFiles(files: unknown, project: string): RenamedFile[] {
+  if (files === undefined) return [];
+  if (!Array.isArray(files) || files.length > MAX_FILES) throw new HttpError(400, `files are at most ${MAX_FILES} renamed .contract files`);
+  const prefix = project ? `${project}/` : '';
+  let bytes = 0;
+  const seen = new Set<string>();
+  return files.map((f: unknown) => {
+    const { path, text, base } = (f ?? {}) as Record<string, unknown>;
+    if (typeof path !== 'string' || typeof text !== 'string' || typeof base !== 'string' || !/^[0-9a-f]{64}$/.test(base)) throw new HttpError(400, 'each file is { path, text, base } (base: the version the rename was made on)');
+    const rel = path.startsWith(prefix) ? path.slice(prefix.length) : '';
+    if (!rel.endsWith('.contract') || rel.split('/').some((p) => p === '' || p === '.' || p === '..') || rel === SRC_GEN_DIR || rel.startsWith(`${SRC_GEN_DIR}/`) || seen.has(rel)) {
+      throw new HttpError(400, `file ${JSON.stringify(path.slice(0, 200))}: not a .contract file of the project, once, outside ${SRC_GEN_DIR}`);
+    }
+    seen.add(rel);
+    bytes += Buffer.byteLength(text, 'utf8');
+    if (bytes > MAX_FILES_BYTES) throw new HttpError(400, 'the renamed files are larger than a rename journal holds');
+    return { path, text, base };
+  });
+}
 
 /** The request's body checked: 400 with what is wrong. */
 function checkRequest(body: Record<string, unknown>): RenameRequest {
-  const { project, from, to, kind, owner, members } = body;
+  const { project, from, to, kind, owner, members, files } = body;
   if (typeof from !== 'string' || typeof to !== 'string') throw new HttpError(400, 'from and to are required');
   if (project !== undefined && typeof project !== 'string') throw new HttpError(400, 'project must be a workspace folder');
   if (kind !== undefined && !(typeof kind === 'string' && RENAME_KINDS.has(kind))) throw new HttpError(400, `kind must be one of ${[...RENAME_KINDS].join(', ')}`);
@@ -70,38 +116,78 @@ function checkRequest(body: Record<string, unknown>): RenameRequest {
   }
   return {
     project: project ?? '', from, to, ...(kind !== undefined ? { kind } : {}), ...(owner !== undefined ? { owner } : {}),
-    ...(members !== undefined ? { members: members as string[] } : {}),
+    ...(members !== undefined ? { members: members as string[] } : {}), files,
   };
 }
 
-export async function renameEntity(paths: WorkspacePaths, treeLock: GeneratedTreeLock, fileLocks: FileLocks, body: Record<string, unknown>): Promise<RenameEntityResponse> {
-  const { project: projectArg, from, to, kind, owner, members } = checkRequest(body);
+export async function renameEntity(
+  paths: WorkspacePaths, treeLock: GeneratedTreeLock, fileLocks: FileLocks, body: Record<string, unknown>,
+  /** Tests only: called at each step; what it throws stops the rename there, as a crash would (the journal left). */
+  step?: (at: RenameStep) => void,
+): Promise<RenameEntityResponse> {
+  const { project: projectArg, from, to, kind, owner, members, files: asked } = checkRequest(body);
   const projectDir = paths.resolve(projectArg);
   const project = paths.toRelative(projectDir);
+  const files = checkFiles(asked, project);
+  const inProject = (file: string) => (project ? file.slice(project.length + 1) : file);
   try {
-    return await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async () => {
+    return await treeLock.run(() => inProjectFolder(paths, projectDir, (dir) => withProjectTreeLock(dir, async (journal) => {
+      if (journal.refused) throw new HttpError(409, `${journal.refused}; nothing was renamed`);
       const srcGen = join(dir, SRC_GEN_DIR);
-      const moved = kind === undefined || GENERATED_NAME_KINDS.has(kind) ? await renameGeneratedEntity(srcGen, from, to, kind) : { movedPaths: [], regionIds: [] };
-      const code = kind !== undefined && USER_CODE_KINDS.has(kind) ? await renameInUserCode(srcGen, kind, from, to, owner, members) : { rewritten: [], remaining: [] };
-      const scenarios: RenameEntityResponse['scenarios'] = [];
-      const scenariosLeft: RenameEntityResponse['scenariosLeft'] = [];
-      if (kind !== undefined) {
-        const changes = await renameInScenarioFiles(dir, [srcGen], { kind, oldName: from, newName: to, ...(owner !== undefined ? { owner } : {}) });
-        for (const change of changes) {
-          const rel = project ? `${project}/${change.file}` : change.file;
-          try {
-            await saveWorkspaceFile(paths, rel, Buffer.from(change.text, 'utf8'), treeLock, { base: fileVersion(Buffer.from(change.original, 'utf8')), fileLocks });
-          } catch (e) {
-            if (!(e instanceof HttpError)) throw e;
-            scenariosLeft.push({ file: rel, reason: e.message });
-            continue;
-          }
-          for (const edit of change.edits) scenarios.push({ file: rel, line: edit.line, before: edit.before, after: edit.after });
+      const generatedNames = kind === undefined || GENERATED_NAME_KINDS.has(kind);
+      const identifiers = kind !== undefined && USER_CODE_KINDS.has(kind) ? await userCodeRenames(kind, from, to, owner, members) : undefined;
+      const changes = kind !== undefined ? await renameInScenarioFiles(dir, [srcGen], { kind, oldName: from, newName: to, ...(owner !== undefined ? { owner } : {}) }) : [];
+      // the journal first (as contract rename's): stopped from here on, the next generation finishes the rename
+      const journaled = (files.length > 0 || changes.length > 0) && (await lstat(srcGen).catch(() => undefined))?.isDirectory() === true;
+      if (journaled) {
+        await writeRenameJournal(srcGen, {
+          version: 1, kind: kind ?? 'entity', oldName: from, newName: to, generatedNames,
+          identifiers: [...(identifiers?.renames ?? [])], ...(identifiers?.owner !== undefined ? { identifierOwner: identifiers.owner } : {}),
+          files: [
+            ...files.map((f) => ({ path: inProject(f.path), before: f.base, after: f.text })),
+            ...changes.map((c) => ({ path: c.file, before: fileVersion(Buffer.from(c.original, 'utf8')), after: c.text })),
+          ],
+        });
+      }
+      step?.('journaled');
+      let moved: Awaited<ReturnType<typeof renameGeneratedEntity>> | { movedPaths: []; regionIds: [] } = { movedPaths: [], regionIds: [] };
+      let code: Awaited<ReturnType<typeof renameInUserCode>> | { rewritten: []; remaining: []; refused?: undefined } = { rewritten: [], remaining: [] };
+      try {
+        // the generated tree first: a target path taken there leaves every project file as it was
+        if (generatedNames) moved = await renameGeneratedEntity(srcGen, from, to, kind);
+        if (identifiers) code = await renameInUserCode(srcGen, identifiers);
+      } catch (e) {
+        if (journaled) await removeRenameJournal(srcGen);
+        throw e;
+      }
+      step?.('tree carried over');
+      const filesLeft: RenameEntityResponse['filesLeft'] = [];
+      const written: RenameEntityResponse['written'] = [];
+      for (const f of files) {
+        try {
+          written.push({ file: f.path, version: (await saveWorkspaceFile(paths, f.path, Buffer.from(f.text, 'utf8'), treeLock, { base: f.base, fileLocks })).version });
+        } catch (e) {
+          if (!(e instanceof HttpError)) throw e; // the journal stays: the next generation finishes the rename
+          filesLeft.push({ file: f.path, reason: e.message });
         }
       }
+      const scenarios: RenameEntityResponse['scenarios'] = [];
+      const scenariosLeft: RenameEntityResponse['scenariosLeft'] = [];
+      for (const change of changes) {
+        const rel = project ? `${project}/${change.file}` : change.file;
+        try {
+          await saveWorkspaceFile(paths, rel, Buffer.from(change.text, 'utf8'), treeLock, { base: fileVersion(Buffer.from(change.original, 'utf8')), fileLocks });
+        } catch (e) {
+          if (!(e instanceof HttpError)) throw e;
+          scenariosLeft.push({ file: rel, reason: e.message });
+          continue;
+        }
+        for (const edit of change.edits) scenarios.push({ file: rel, line: edit.line, before: edit.before, after: edit.after });
+      }
+      if (journaled) await removeRenameJournal(srcGen); // every file written (or left, said): the rename is whole
       return {
         movedPaths: moved.movedPaths, regionIds: moved.regionIds, rewritten: code.rewritten, remaining: code.remaining, scenarios, scenariosLeft,
-        ...(code.refused ? { refused: code.refused } : {}),
+        written, filesLeft, ...(code.refused ? { refused: code.refused } : {}),
       };
     })));
   } catch (e) {

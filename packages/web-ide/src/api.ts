@@ -176,7 +176,7 @@ export const api = {
   remove: (path: string) => call<{ path: string }>('DELETE', `/api/file?path=${q(path)}`),
   newProject: (folder: string) => call<{ folder: string; files: string[] }>('POST', '/api/new-project', { folder }),
   generate: (project: string) => call<GenerateReport>('POST', '/api/generate', { project }),
-  renameEntity: (project: string, from: string, to: string, what: { kind?: string; owner?: string; members?: string[] } = {}) =>
+  renameEntity: (project: string, from: string, to: string, what: { kind?: string; owner?: string; members?: string[]; files?: Array<{ path: string; text: string; base: string }> } = {}) =>
     call<RenameEntityResponse>('POST', '/api/rename-entity', { project, from, to, ...what }),
   submitJob: (body: unknown) => call<{ id: string; status: string; sandbox?: string; warnings?: string[] }>('POST', '/api/jobs', body),
   /** Runs a scenario text on a project in virtual time (422 with `diagnostics` when it has errors). */

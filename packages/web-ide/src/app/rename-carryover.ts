@@ -13,17 +13,30 @@ import { reportError } from './report-error.js';
  * function's do in every region (whole C identifiers in code); the project's `.scenario` files
  * follow a module, supervisor, schema, supervision function, event port, datatype, enumeration or
  * enumeration member (`contract rename` does the same). Uses it could not change (the new name already in that code, a scenario changed
- * meanwhile) are said, with where.
+ * meanwhile) are said, with where. The `.contract` files the rename edited are written by the server
+ * after the generated tree, under the rename's journal (server/rename-api.ts), not by autosave:
+ * their saves are held until then.
  */
 export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspace; editors: EditorArea; project(): string; generate(): Promise<boolean> }): void {
   const { lsp, workspace, editors } = d;
-  lsp.onRename.on(({ oldName: old, newName, topLevel, kind, owner, members }) => {
+  lsp.onRename.on(({ oldName: old, newName, topLevel, kind, owner, members, files }) => {
     if (!old || old === newName || (!topLevel && !kind)) return; // schemas' parameters, fields: neither the generated tree nor a scenario names them
+    // held before the edit applies (this event comes first): no autosave writes a renamed text before the server's journal
+    const project = d.project();
+    const inProject = (path: string) => path.endsWith('.contract') && (!project || path.startsWith(`${project}/`)) && !path.slice(project ? project.length + 1 : 0).startsWith('src-gen/');
+    const renamed = files.flatMap((f) => { const path = workspace.pathOf(f.uri); return path !== undefined && inProject(path) ? [{ path, text: f.text }] : []; });
+    const bases = workspace.holdSaves(renamed.map((f) => f.path));
+    const sent = renamed.flatMap((f) => (bases.has(f.path) ? [{ path: f.path, text: f.text, base: bases.get(f.path)! }] : []));
     void (async () => {
-      await new Promise((r) => setTimeout(r, 50));
-      await workspace.saveAll();
-      const project = d.project();
-      const r = await api.renameEntity(project, old, newName, { kind, owner, members });
+      let r;
+      try {
+        r = await api.renameEntity(project, old, newName, { kind, owner, members, files: sent });
+      } finally {
+        // what the server wrote is the tabs' new base; a file it did not write (refused, left) is saved as any edit
+        const written = new Map((r?.written ?? []).map((w) => [w.file, { text: sent.find((f) => f.path === w.file)!.text, version: w.version }]));
+        workspace.releaseSaves([...bases.keys()], written);
+      }
+      if (r.filesLeft.length) toast('warning', `${r.filesLeft.length} renamed file(s) were not written by the rename (first: ${r.filesLeft[0]!.file}: ${r.filesLeft[0]!.reason}): saved from the editor instead`);
       const base = `${project ? `${project}/` : ''}src-gen/`;
       const uses = r.rewritten.reduce((n, w) => n + w.occurrences, 0);
       const scenarioFiles = new Set(r.scenarios.map((e) => e.file)).size;

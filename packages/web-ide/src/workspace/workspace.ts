@@ -220,6 +220,7 @@ export class Workspace {
     const fs = this.files.get(path);
     if (!fs || fs.model.isDisposed()) return false;
     this.cancelPendingSave(path);
+    if (this.held.has(path)) return false; // a rename's server write is on its way (holdSaves): saved after it, if still needed
     if (fs.state === 'conflict') return false; // the conflict view decides what is written
     const text = fs.model.getValue();
     if (text === fs.diskText && fs.state !== 'error') {
@@ -398,6 +399,48 @@ export class Workspace {
     fs.diskVersion = version;
     this.clearBackup(path);
     this.setState(fs, 'saved');
+  }
+
+  /** Files the server is writing for a rename (rename-carryover.ts): their saves wait for releaseSaves. */
+  private readonly held = new Set<string>();
+
+  /**
+   * Holds the saves of `paths` (the files a rename is about to edit): the server writes their
+   * renamed text under the rename's journal, so no autosave may write it before that journal is.
+   * Returns the version on disk each was loaded or last saved as (the rename's base).
+   */
+  holdSaves(paths: readonly string[]): Map<string, string> {
+    const bases = new Map<string, string>();
+    for (const path of paths) {
+      const fs = this.files.get(path);
+      if (!fs || fs.diskVersion === undefined) continue;
+      this.held.add(path);
+      this.cancelPendingSave(path);
+      bases.set(path, fs.diskVersion);
+    }
+    return bases;
+  }
+
+  /**
+   * The rename's server write is over: `written` (the file now holds `text`, version `version`) is
+   * the tab's new base; every held file then saves whatever differs from its disk text.
+   */
+  releaseSaves(paths: readonly string[], written: ReadonlyMap<string, { text: string; version: string }>): void {
+    for (const path of paths) {
+      this.held.delete(path);
+      const fs = this.files.get(path);
+      if (!fs || fs.model.isDisposed()) continue;
+      const w = written.get(path);
+      if (w) {
+        fs.diskText = w.text;
+        fs.diskVersion = w.version;
+      }
+      if (fs.state === 'conflict') continue;
+      if (fs.model.getValue() === fs.diskText) {
+        this.clearBackup(path);
+        this.setState(fs, 'saved');
+      } else this.markDirty(fs);
+    }
   }
 
   async saveAll(): Promise<void> {
