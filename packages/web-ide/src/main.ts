@@ -145,7 +145,9 @@ async function main(): Promise<void> {
     await monitor.restore();
   });
   performance.mark('ide:editor-open');
-  await lsp.workspaceBuilt();
+  // ready: the first full validation of the workspace published and shown (its counts in the status bar)
+  await lsp.workspaceValidated();
+  problems.renderIfPending();
   performance.mark('ide:ready');
   document.body.dataset.ready = 'true';
   (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco, monitor, simulate, commands, views };

@@ -2,7 +2,9 @@
 /**
  * Web Worker entry: the Cactal Langium language server over postMessage. The main thread opens
  * every workspace .contract file (didOpen), so cross-file references resolve for files that have
- * no tab. Extra request `cactal/architecture` returns the schemas for the architecture view.
+ * no tab. Extra request `cactal/architecture` returns the schemas for the architecture view;
+ * `cactal/validated` answers once every document opened before it is validated, its diagnostics
+ * published (the IDE's ready mark waits for it).
  */
 import { DocumentState, EmptyFileSystem, URI } from 'langium';
 import { startLanguageServer } from 'langium/lsp';
@@ -25,6 +27,15 @@ connection.onNotification('cactal/revalidateAll', () => {
   const docs = shared.workspace.LangiumDocuments;
   const uris = shared.workspace.TextDocuments.all().map((d) => URI.parse(d.uri)).filter((u) => docs.hasDocument(u));
   void shared.workspace.DocumentBuilder.update(uris, []);
+});
+
+// After the builds of every change received before it (the update handler queues each as a write of
+// the workspace lock once the workspace manager is ready; a read runs after the writes queued
+// before it): the diagnostics of that validation are sent before this answer, on the same connection.
+connection.onRequest('cactal/validated', async (): Promise<null> => {
+  await shared.workspace.WorkspaceManager.ready;
+  await shared.workspace.WorkspaceLock.read(() => shared.workspace.DocumentBuilder.waitUntil(DocumentState.Validated).catch(() => undefined));
+  return null;
 });
 
 connection.onRequest('cactal/architecture', async (): Promise<ArchSchema[]> => {

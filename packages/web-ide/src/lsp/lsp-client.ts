@@ -149,6 +149,16 @@ export class LspClient {
     });
   }
 
+  /**
+   * Resolves once the server has validated every document opened so far, with whatever they
+   * import, and every diagnostic of that validation has arrived (the worker's `cactal/validated`):
+   * a document's first diagnostics may come from a build made before the files it imports were
+   * opened (on 1,231 files: 75 errors for 12 s, then 1). No time cap; a worker that died: at once.
+   */
+  async workspaceValidated(): Promise<void> {
+    await this.connection.sendRequest('cactal/validated', {}).catch(() => undefined);
+  }
+
   request<R>(method: string, params: unknown): Promise<R> {
     // models that are not workspace files (the conflict view's side-by-side copies) are not in the worker
     const uri = (params as { textDocument?: { uri?: unknown } } | undefined)?.textDocument?.uri;

@@ -26,7 +26,8 @@ export class ProblemsPanel {
   readonly onOpen = new Emitter<Problem>();
   private readonly sets = new Map<string, Problem[]>();
   private readonly list: HTMLElement;
-  private readonly scheduleRender = debounce(() => this.render(), 30);
+  private readonly scheduleRender = debounce(() => this.renderIfPending(), 30);
+  private pending = false;
   /** Escape in the list: the owner focuses the editor. */
   readonly onEscape = new Emitter<void>();
   private readonly roving: RovingFocus;
@@ -65,7 +66,13 @@ export class ProblemsPanel {
   set(key: string, problems: Problem[]): void {
     if (problems.length) this.sets.set(key, problems);
     else this.sets.delete(key);
+    this.pending = true;
     this.scheduleRender();
+  }
+
+  /** Shows now the problems set since the last render (instead of within 30 ms): the ready mark comes after. */
+  renderIfPending(): void {
+    if (this.pending) this.render();
   }
 
   all(): Problem[] {
@@ -73,6 +80,7 @@ export class ProblemsPanel {
   }
 
   private render(): void {
+    this.pending = false;
     const all = this.all();
     const byFile = new Map<string, Problem[]>();
     for (const p of all) (byFile.get(p.path) ?? byFile.set(p.path, []).get(p.path)!).push(p);
