@@ -150,6 +150,10 @@ async function main(): Promise<void> {
   problems.renderIfPending();
   performance.mark('ide:ready');
   document.body.dataset.ready = 'true';
+  // ELK's worker warmed up while nothing else runs (architecture-view.ts warmUpLayout): the first
+  // diagram (the Monitor that Build & Run opens, the Architecture tab) no longer compiles it then
+  const whenIdle = window.requestIdleCallback ?? ((run: () => void) => setTimeout(run, 1000));
+  whenIdle(() => void import('./views/architecture-view.js').then((m) => m.warmUpLayout()).catch(() => undefined));
   (window as unknown as { __ide: unknown }).__ide = { workspace, editors, lsp, problems, build, monaco, monitor, simulate, commands, views };
 }
 

@@ -111,6 +111,13 @@ describe('Monitor: the architecture diagram in the scrolled panel', () => {
     await s?.close();
   });
 
+  it('ELK\'s worker is warmed up once the IDE is ready, before any diagram is opened (the Monitor\'s first diagram no longer compiles it)', async () => {
+    const { page } = s;
+    expect(await page.locator('.arch-svg').count()).toBe(0);
+    await page.waitForFunction(() => performance.getEntriesByName('ide:layout-warmed').length > 0, undefined, { timeout: 20_000 });
+    expect(await page.locator('.arch-svg').count()).toBe(0); // no diagram made it
+  });
+
   it('replay opened: readable first view; the wheel scrolling the panel over the diagram leaves it as it is (Ctrl + wheel zooms)', async () => {
     const { page } = s;
     await page.locator('#btn-monitor').click();
