@@ -56,7 +56,7 @@ static void fact(OrdCore *c, const SchemaState *ss, OrdFactKind kind, int m, uin
     if (!c->io.fact) return;
     OrdFact f = {kind, ss->s->name, m >= 0 ? ss->s->modules[m].module : NULL,
                  (long)((ss->cycle_tick - ss->act_t) / ss->s->period_ns), ss->cycle_tick, id,
-                 c->now - ss->cycle_tick};
+                 c->now - ss->cycle_tick, ss->s->critical_delay_ns};
     c->io.fact(c->io.ctx, c->now, &f);
 }
 
@@ -77,7 +77,9 @@ const char *ord_fact_record(const OrdFact *f, int64_t t, char *detail, size_t n)
     case ORD_FACT_DEADLINE_MISS:
         break;
     }
-    snprintf(detail, n, "schema=%s cycle=%ld tick_ns=%lld", f->schema, f->cycle, (long long)f->tick);
+    /* the deadline it missed, so that a reader tells a cycle ORD released past it from a module late */
+    snprintf(detail, n, "schema=%s cycle=%ld tick_ns=%lld critical_delay_ns=%lld", f->schema, f->cycle,
+             (long long)f->tick, (long long)f->critical_delay_ns);
     return "ord_deadline_miss";
 }
 

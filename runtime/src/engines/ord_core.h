@@ -32,6 +32,7 @@ typedef struct OrdFact {
     int64_t tick;           /* the cycle's tick                                                */
     uint32_t release_id;    /* RELEASE / FINISHED                                              */
     int64_t response_ns;    /* FINISHED / COMPLETE: time since the tick                        */
+    int64_t critical_delay_ns; /* the schema's CRITICAL_DELAY (DEADLINE_MISS writes it)           */
 } OrdFact;
 
 /** The record a fact is in a run's CSV log (docs/runtime-api.md "Trace records"): returns its

@@ -611,6 +611,31 @@ static void fact_to_log(void *ctx, int64_t t, const OrdFact *f) {
             f->kind == ORD_FACT_FINISHED || f->kind == ORD_FACT_COMPLETE ? (long long)(f->response_ns / 1000) : 0LL);
 }
 
+/* OrdIo.fact: each fact as the record ORD's log holds ("ord_deadline_miss schema=..."), in the log */
+static void fact_record_to_log(void *ctx, int64_t t, const OrdFact *f) {
+    char detail[256];
+    const char *kind = ord_fact_record(f, t, detail, sizeof detail);
+    log_add(((FakeWorld *)ctx)->log, "%s %s", kind, detail);
+}
+
+/* the miss record carries the deadline it missed: a reader tells from it a cycle ORD released past
+   CRITICAL_DELAY (ORD late) from a module that ran out of its time */
+void test_ord_deadline_miss_record_says_its_critical_delay(void) {
+    FakeWorld w;
+    log_clear(&LOG);
+    memset(&w, 0, sizeof w);
+    w.log = &LOG;
+    OrdIo io = fake_ord_io(&w);
+    io.fact = fact_record_to_log;
+    char err[256] = "";
+    OrdCore *c = ord_core_create(&VOC, &io, err, sizeof err);
+    if (!c) { CHECK(0); return; }
+    ord_core_activate(c, 5 * MS, "FST", NULL, 0, "SUP", 1); /* E every 3 ms, critical 3 ms */
+    ord_core_advance(c, 8 * MS + 1);                        /* cycle 0 missed at 8 ms */
+    CHECK(log_find(&LOG, "ord_deadline_miss schema=FST cycle=0 tick_ns=5000000 critical_delay_ns=3000000", 0) >= 0);
+    ord_core_destroy(c);
+}
+
 void test_ord_facts_release_finished_complete_miss_with_cycle(void) {
     FakeWorld w;
     log_clear(&LOG);

@@ -195,7 +195,7 @@ void test_sim_overrun_makes_ord_emit_deadline_miss(void) {
     HAS(record(out, 3), "ORD:0 \\\"schemaCommande1\\\" (deadline miss)");
     HAS(record(out, 3), "\"timeNs\":1300000000,\"who\":\"ORD\",\"what\":\"ORD:0");
     /* the same miss typed, on cycle 0; MSC, released after MSA's 0.5 ms, answered 1.5 s later */
-    HAS(record(out, 3), "{\"timeNs\":1300000000,\"module\":\"ORD\",\"kind\":\"ord_deadline_miss\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000\"}");
+    HAS(record(out, 3), "{\"timeNs\":1300000000,\"module\":\"ORD\",\"kind\":\"ord_deadline_miss\",\"peer\":\"\",\"detail\":\"schema=schemaCommande1 cycle=0 tick_ns=300000000 critical_delay_ns=1000000000\"}");
     HAS(record(out, 3), "{\"timeNs\":1800500000,\"module\":\"MSC\",\"kind\":\"run_finished\",\"peer\":\"\",\"detail\":\"activation=1 ACK_FINISHED\"}");
     HAS(record(out, 3), "\"kind\":\"ord_finished\",\"peer\":\"MSC\",\"detail\":\"schema=schemaCommande1 cycle=0 release=");
     HAS(record(out, 3), " response_ns=1500500000\"}");

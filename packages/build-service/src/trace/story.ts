@@ -70,27 +70,63 @@ function crashText(detail: string): string {
     return `crashed: ${detail.replace(/ records=\d+$/, '')}`;
 }
 
-/** A cycle whose first release ORD sent this long after its tick or more is said released late. */
+/**
+ * A cycle whose first release ORD sent this long after its tick or more is said released late, when
+ * the deadline miss does not say its CRITICAL_DELAY (logs written before it did).
+ */
 export const LATE_RELEASE_NS = 1_000_000;
+
+/**
+ * The share of CRITICAL_DELAY that tells a cycle ORD released late: from this share of it after its
+ * tick on, the story notes when ORD released the cycle; with less than this share of it left (or
+ * none), its modules had no time to finish: ORD was late, not they.
+ */
+export const LATE_RELEASE_SHARE = 0.1;
 
 /**
  * What a missed cycle was waiting for, as `contract trace` and the IDE's Monitor say it after
  * `deadline miss (ORD:0): S cycle k`: ` (held: nothing released, GRP still runs an earlier
  * release)` when its cycle was held for `heldFor` (` (held: nothing released, GRP never finished an
  * earlier release: it is no longer running)` when `heldForGone`: a stuck record or its exit said it
- * had crashed, been killed or ended), ` (not finished: ARM, GRP)` for the modules
- * released and not finished (`notFinished`, written out), and, when ORD sent the cycle's first
- * release LATE_RELEASE_NS or more after its tick (`firstReleaseLateNs`: release_ns - tick_ns; ORD
- * woke late on a loaded machine, or the cycle was held and resumed), `; ORD released the cycle 13.4 ms
- * after its tick`, else ''.
+ * had crashed, been killed or ended), ` (not finished: ARM, GRP)` for the modules released and not
+ * finished (`notFinished`, written out), and when ORD sent the cycle's first release late
+ * (`firstReleaseLateNs`: release_ns - tick_ns; ORD woke late on a loaded machine, or the cycle was
+ * held and resumed), measured against the schema's CRITICAL_DELAY (`criticalDelayNs`, the miss
+ * record's `critical_delay_ns`; LATE_RELEASE_SHARE):
+ * - with less than a tenth of CRITICAL_DELAY left, or none, the modules are not blamed: ` (ORD
+ *   late: it released the cycle 826 µs after its tick, past CRITICAL_DELAY 800 µs, leaving ENC no
+ *   time)` (`..., 30 µs before CRITICAL_DELAY 800 µs, leaving ENC 30 µs)`);
+ * - from a tenth of it on: ` (not finished: ENC; ORD released the cycle 200 µs after its tick, of
+ *   CRITICAL_DELAY 800 µs)`;
+ * - a miss record without CRITICAL_DELAY (an older log): `; ORD released the cycle 13.4 ms after its
+ *   tick` from LATE_RELEASE_NS on.
  */
-export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number, heldForGone = false): string {
+export function missWaitText(heldFor: string | undefined, notFinished: string, firstReleaseLateNs?: number, heldForGone = false, criticalDelayNs?: number): string {
     if (heldFor !== undefined && heldForGone) return ` (held: nothing released, ${heldFor} never finished an earlier release: it is no longer running)`;
     if (heldFor !== undefined) return ` (held: nothing released, ${heldFor} still runs an earlier release)`;
-    const late = firstReleaseLateNs !== undefined && firstReleaseLateNs >= LATE_RELEASE_NS
-        ? `ORD released the cycle ${(firstReleaseLateNs / 1e6).toFixed(1)} ms after its tick` : '';
+    const lateNs = firstReleaseLateNs;
+    if (lateNs !== undefined && criticalDelayNs !== undefined && criticalDelayNs > 0) {
+        const leftNs = criticalDelayNs - lateNs;
+        const released = `released the cycle ${durationText(lateNs)} after its tick`;
+        if (leftNs < criticalDelayNs * LATE_RELEASE_SHARE) {
+            const when = leftNs <= 0 ? 'past' : `${durationText(leftNs)} before`;
+            const leaving = notFinished ? `, leaving ${notFinished} ${leftNs <= 0 ? 'no time' : durationText(leftNs)}` : '';
+            return ` (ORD late: it ${released}, ${when} CRITICAL_DELAY ${durationText(criticalDelayNs)}${leaving})`;
+        }
+        const late = lateNs >= criticalDelayNs * LATE_RELEASE_SHARE ? `ORD ${released}, of CRITICAL_DELAY ${durationText(criticalDelayNs)}` : '';
+        if (notFinished) return ` (not finished: ${notFinished}${late ? `; ${late}` : ''})`;
+        return late ? ` (${late})` : '';
+    }
+    const late = lateNs !== undefined && lateNs >= LATE_RELEASE_NS
+        ? `ORD released the cycle ${(lateNs / 1e6).toFixed(1)} ms after its tick` : '';
     if (notFinished) return ` (not finished: ${notFinished}${late ? `; ${late}` : ''})`;
     return late ? ` (${late})` : '';
+}
+
+/** A miss record's `critical_delay_ns` (the deadline it missed), when it says one. */
+export function missCriticalDelayNs(fields: KnownRecord['fields']): number | undefined {
+    const cd = fields['critical_delay_ns'];
+    return typeof cd === 'number' && Number.isFinite(cd) && cd > 0 ? cd : undefined;
 }
 
 /** `flow-SCN-0-DIV-0` (a flow_hold record's peer) as `SCN:0 -> DIV:0`; another name as it is. */
@@ -523,7 +559,7 @@ export class StoryTeller {
         const schema = String(k.fields['schema'] ?? '');
         const c = this.cycleOf(schema, String(k.fields['cycle'] ?? ''));
         const heldFor = this.held.get(schema);
-        return missWaitText(heldFor, c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs, heldFor !== undefined && this.isGone(heldFor));
+        return missWaitText(heldFor, c ? [...c.running].sort().join(', ') : '', c?.firstReleaseLateNs, heldFor !== undefined && this.isGone(heldFor), missCriticalDelayNs(k.fields));
     }
 
     /** Whether `module` is known to be no longer running: a stuck record said so, or its exit record was read. */

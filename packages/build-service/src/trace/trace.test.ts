@@ -632,6 +632,27 @@ describe('reading a log', () => {
             '+0.001600s ORD  deadline miss (ORD:0): conveyor cycle 66 (not finished: ENC, SPC; ORD released the cycle 13.4 ms after its tick)',
             '+0.021700s ORD  deadline miss (ORD:0): conveyor cycle 67 (not finished: ENC)', // 500 ns late: on time
         ]);
+        // a miss that says its CRITICAL_DELAY (800 µs): the release lateness is measured against it, not 1 ms. ORD
+        // released cycle 67 826 µs after its tick (the field test's fastLoop, 7 µs before the miss): ORD was late, not
+        // ENC; cycle 68 with 20 µs of the 800 left: ORD late too; cycle 69 released 200 µs late: noted, ENC named;
+        // cycle 70 released 50 µs late (under a tenth): ENC named alone
+        const cd = storyOfLog('ORD_1.csv', [
+            '5000826000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=67 tick_ns=5000000000 release_ns=5000826000 release=1',
+            '5000833000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=67 tick_ns=5000000000 critical_delay_ns=800000',
+            '5001780000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=68 tick_ns=5001000000 release_ns=5001780000 release=2',
+            '5001800000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=68 tick_ns=5001000000 critical_delay_ns=800000',
+            '5002200000,w,ORD,ord_release,CUR,,0,schema=fastLoop cycle=69 tick_ns=5002000000 release_ns=5002200000 release=3',
+            '5002200000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=69 tick_ns=5002000000 release_ns=5002200000 release=4',
+            '5002800000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=69 tick_ns=5002000000 critical_delay_ns=800000',
+            '5003050000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=70 tick_ns=5003000000 release_ns=5003050000 release=5',
+            '5003800000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=70 tick_ns=5003000000 critical_delay_ns=800000',
+        ]);
+        expect(cd.filter((l) => l.includes(' deadline miss ('))).toEqual([
+            '+0.000007s ORD  deadline miss (ORD:0): fastLoop cycle 67 (ORD late: it released the cycle 826 µs after its tick, past CRITICAL_DELAY 800 µs, leaving ENC no time)',
+            '+0.000974s ORD  deadline miss (ORD:0): fastLoop cycle 68 (ORD late: it released the cycle 780 µs after its tick, 20 µs before CRITICAL_DELAY 800 µs, leaving ENC 20 µs)',
+            '+0.001974s ORD  deadline miss (ORD:0): fastLoop cycle 69 (not finished: CUR, ENC; ORD released the cycle 200 µs after its tick, of CRITICAL_DELAY 800 µs)',
+            '+0.002974s ORD  deadline miss (ORD:0): fastLoop cycle 70 (not finished: ENC)',
+        ]);
         // a new activation's cycle 0 waits for its own releases only: DRV's release of the deactivated
         // activation's cycle 0, acknowledged late, is not one of them (field test 7)
         const again = storyOfLog('ORD_1.csv', [

@@ -259,6 +259,37 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     expect(told).toEqual(expected);
   });
 
+  it('a cycle ORD released past (or nearly at) the CRITICAL_DELAY its miss names blames ORD, not the module, as contract trace says, live, parsed and recorded', () => {
+    // the field test's fastLoop (CRITICAL_DELAY 800 µs): ENC released 826 µs after the tick, the miss 7 µs later
+    const log = [
+      '5000826000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=67 tick_ns=5000000000 release_ns=5000826000 release=1',
+      '5000833000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=67 tick_ns=5000000000 critical_delay_ns=800000',
+      '5001780000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=68 tick_ns=5001000000 release_ns=5001780000 release=2',
+      '5001800000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=68 tick_ns=5001000000 critical_delay_ns=800000',
+      '5002050000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=69 tick_ns=5002000000 release_ns=5002050000 release=3',
+      '5002800000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=69 tick_ns=5002000000 critical_delay_ns=800000',
+    ];
+    const want = [
+      'deadline miss (ORD:0) cycle 67 (ORD late: it released the cycle 826 µs after its tick, past CRITICAL_DELAY 800 µs, leaving ENC no time)',
+      'deadline miss (ORD:0) cycle 68 (ORD late: it released the cycle 780 µs after its tick, 20 µs before CRITICAL_DELAY 800 µs, leaving ENC 20 µs)',
+      'deadline miss (ORD:0) cycle 69 (not finished: ENC)',
+    ];
+    const live = new MonitorModel({ checkpointEvery: 16 });
+    log.forEach((l, i) => live.pushLine('ORD.csv', i + 2, l));
+    expect(missLabels(live)).toEqual(want);
+    const parsed = new MonitorModel({ checkpointEvery: 16 });
+    parsed.pushAll(log.map((l, i) => parseRecordLine('ORD.csv', i + 2, l)));
+    expect(missLabels(parsed)).toEqual(want);
+    const text = `mono_ns,wall_time,module,event,peer,port,size,detail\n${log.join('\n')}\n`;
+    const steps = recordedRunSteps([{ name: 'ORD_1.csv', text }], 1000);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    expect(missLabels(step.value.model)).toEqual(want);
+    const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]))
+      .filter((l) => l.includes(' deadline miss ')).map((l) => l.replace(/^.* deadline miss \(ORD:0\): \w+ cycle /, 'deadline miss (ORD:0) cycle '));
+    expect(told).toEqual(want);
+  });
+
   it('a cycle held for a module ORD said is no longer running: "never finished", as contract trace says, live and parsed', () => {
     // GRP crashed: ORD's stuck record says it is gone before the held cycle misses its deadline
     const log = [...ORD_LOG];

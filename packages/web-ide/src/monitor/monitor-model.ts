@@ -21,7 +21,7 @@
  * Memory per record is therefore bounded by keepRecords, not by the run's length (a 1 kHz schema
  * for 60 s is about 1.5 million records).
  */
-import { LogClocks, parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
+import { LogClocks, parseRecordLine, isRule, askedToStopText, ignoredUndo, keptRequestsText, missCriticalDelayNs, missWaitText, readableCause, stuckSaysGone, userRecordText, type KnownRecord, type TraceRecord } from '@contract-studio/build-service/trace';
 import { FOLDED_KINDS, applyRecord, applyUnfolded } from './apply-record.js';
 import { nameIn, scanLine, scanned } from './line-scan.js';
 import { HOT_KINDS, applyHotLine, cycleLine, hotRelease, readCycleLine } from './hot-line.js';
@@ -250,10 +250,14 @@ class CycleWaits {
     this.previous.reset(-1);
   }
 
-  /** What the miss of `cycle` waited for, in contract trace's words (missWaitText); `gone`: the modules known to be no longer running. */
-  lateOf(cycle: number, gone: ReadonlySet<string>): string {
+  /**
+   * What the miss of `cycle` waited for, in contract trace's words (missWaitText); `gone`: the modules known to be no
+   * longer running; `criticalDelayNs`: the miss record's CRITICAL_DELAY (a cycle ORD released with less than a tenth of
+   * it left blames ORD, not its modules).
+   */
+  lateOf(cycle: number, gone: ReadonlySet<string>, criticalDelayNs?: number): string {
     const c = this.current.cycle === cycle ? this.current : this.previous.cycle === cycle ? this.previous : undefined;
-    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs, this.held !== undefined && gone.has(this.held));
+    return missWaitText(this.held, c?.n ? c.text() : '', c?.firstLateNs, this.held !== undefined && gone.has(this.held), criticalDelayNs);
   }
 }
 
@@ -511,7 +515,7 @@ export class MonitorModel implements MonitorView {
     const schema = k.fields?.['schema'];
     const cycle = k.fields?.['cycle'];
     if (typeof schema !== 'string' || typeof cycle !== 'number') return '';
-    return this.waits.get(schema)?.lateOf(cycle, this.gone) ?? '';
+    return this.waits.get(schema)?.lateOf(cycle, this.gone, missCriticalDelayNs(k.fields)) ?? '';
   }
 
   /** Which modules are no longer running: a stuck record saying so, an exit; started again, or finished at last, it runs. */
