@@ -129,6 +129,17 @@ export function missCriticalDelayNs(fields: KnownRecord['fields']): number | und
     return typeof cd === 'number' && Number.isFinite(cd) && cd > 0 ? cd : undefined;
 }
 
+/**
+ * A `priority` record (`SCHED_FIFO 90`, `nice 1 (priority 90)`) as the story tells ORD's, so that a
+ * run's story says whether it ran real-time: `priority SCHED_FIFO 90 (real-time)`, `priority nice 1
+ * (priority 90): not real-time, a nice level`.
+ */
+export function priorityText(detail: string): string {
+    if (detail.startsWith('SCHED_FIFO')) return `priority ${detail} (real-time)`;
+    if (detail.startsWith('nice')) return `priority ${detail}: not real-time, a nice level`;
+    return `priority ${detail}`;
+}
+
 /** `flow-SCN-0-DIV-0` (a flow_hold record's peer) as `SCN:0 -> DIV:0`; another name as it is. */
 function flowName(peer: string): string {
     const m = /^flow-([A-Za-z_]\w*)-(\d+)-([A-Za-z_]\w*)-(\d+)$/.exec(peer);
@@ -442,6 +453,8 @@ export class StoryTeller {
             this.gone.delete(k.module);
             return `${at(k)} started (${k.detail})`;
         }
+        // ORD's priority, right after its start: whether the run was real-time (SCHED_FIFO) or at nice levels
+        if (k.kind === 'priority' && k.module === 'ORD') return `${at(k)} ${priorityText(k.detail)}`;
         if (k.kind === 'module_exit') {
             if (this.exited.has(k.module) || this.exited.size < STORY_FOLLOWED) this.exited.set(ownString(k.module), ownString(k.detail.slice(0, 120)));
             return `${at(k)} exited (${k.detail})`;

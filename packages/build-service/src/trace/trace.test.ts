@@ -671,6 +671,16 @@ describe('reading a log', () => {
         expect(teller.tell(parseRecordLine('X_1.csv', 3, '4999900000,w,X,error,,,0,earlier'))).toBe('-0.000100s X    error: earlier');
     });
 
+    it('says after ORD\'s start whether the run was real-time: ORD\'s priority record, SCHED_FIFO or a nice level', () => {
+        const rt = storyOfLog('ORD_1.csv', ['1000,w,ORD,module_started,,,0,pid=24 priority=90', '2000,w,ORD,priority,,,0,SCHED_FIFO 90']);
+        expect(rt.slice(0, 2)).toEqual(['+0.000000s ORD  started (pid=24 priority=90)', '+0.000001s ORD  priority SCHED_FIFO 90 (real-time)']);
+        const nice = storyOfLog('ORD_1.csv', ['1000,w,ORD,module_started,,,0,pid=24 priority=90', '2000,w,ORD,priority,,,0,nice 1 (priority 90)']);
+        expect(nice.slice(0, 2)).toEqual(['+0.000000s ORD  started (pid=24 priority=90)', '+0.000001s ORD  priority nice 1 (priority 90): not real-time, a nice level']);
+        // a module's own priority record is not told (ORD's says which mode the run had)
+        expect(storyOfLog('MSC_1.csv', ['1000,w,MSC,module_started,,,0,pid=41 priority=40', '2000,w,MSC,priority,,,0,nice 11 (priority 40)'])
+            .filter((l) => l.includes(' priority '))).toEqual([]);
+    });
+
     it('tells an error as an error, and a request to a module gone while the launcher stopped the run as such', () => {
         const text = [CSV_HEADER, '1000000000,w,OBS,error,,,0,input data port 0: dropped a malformed datagram of 3 bytes',
             '2000000000,w,OBS,error,,,0,EVENT request to MIS: unknown module (no mailbox in the run directory) (No such file or directory; the run is stopping)', ''].join('\n');
