@@ -11,6 +11,7 @@ import { ownString, parseCause } from './parse.js';
 import { confirmingHold, type ConfirmingHold } from './action-holds.js';
 import { missedTicksOf, skippedReleasesOf } from './ord-counts.js';
 import { durationText } from './duration-text.js';
+import { ReleaseLateness } from './release-lateness.js';
 import { countRecord, isRule, type KnownRecord, type RecordCounts, type RuleCause, type TraceRecord, type TraceRecordBase } from './records.js';
 
 /** How the runtime ends the detail of an `error` record written while contract-launch stops the run. */
@@ -364,6 +365,8 @@ export class StoryTeller {
      * with the run's time then: the figures and counts after it are partial (partialLines).
      */
     private readonly cappedLogs = new Map<string, string>();
+    /** Per periodic schema (at most STORY_FOLLOWED): how late ORD released its cycles, told in its schema line. */
+    private readonly lateness = new Map<string, ReleaseLateness>();
 
     /**
      * `+S.mmmmmm MODULE what` for a told record, else undefined; counts every record, and every
@@ -544,6 +547,7 @@ export class StoryTeller {
                     s = { current: { cycle: ownString(cycle), running: new Set() }, previous: s.current };
                 }
                 s.current.firstReleaseLateNs = Number.isFinite(late) ? late : 0;
+                this.latenessOf(schema)?.add(late);
             }
             this.cycles.set(schema, s);
             if (this.running < RUNNING_FOLLOWED && !s.current.running.has(k.peer)) {
@@ -553,6 +557,13 @@ export class StoryTeller {
         } else if (this.cycleOf(schema, cycle)?.running.delete(k.peer)) {
             this.running--;
         }
+    }
+
+    /** The release lateness of schema `schema` (undefined past STORY_FOLLOWED schemas). */
+    private latenessOf(schema: string): ReleaseLateness | undefined {
+        let l = this.lateness.get(schema);
+        if (!l && this.lateness.size < STORY_FOLLOWED) this.lateness.set(ownString(schema), (l = new ReleaseLateness()));
+        return l;
     }
 
     /** Schema `schema`'s cycles no longer followed (a new activation, or none). */
@@ -630,7 +641,9 @@ export class StoryTeller {
     /**
      * One line per periodic schema ORD completed, missed or overran a cycle of, in name order, told
      * before the counts: `schema velocityLoop: 492 completed cycles (response max 89.221 ms), 2
-     * deadline misses, 9 overruns, 1 held cycle` (held cycles and ORD's missed ticks when any).
+     * deadline misses, 9 overruns, 1 held cycle; release lateness p50 23.1 µs, p99 965 µs, max 8.8 ms`
+     * (held cycles and ORD's missed ticks when any; how late ORD released its cycles when the log has
+     * their releases: release-lateness.ts).
      */
     schemaLines(): string[] {
         // ORD's log stopped early: its completions, misses and overruns after that were not written
@@ -639,7 +652,8 @@ export class StoryTeller {
         const lines = this.schemaFigures().map((f) =>
             `schema ${f.schema}: ${plural(f.completedCycles, 'completed cycle')}${f.completedCycles ? ` (response max ${durationText(f.maxResponseNs)})` : ''}, ` +
             `${plural(f.deadlineMisses, 'deadline miss', 'deadline misses')}, ${plural(f.overruns, 'overrun')}` +
-            `${f.heldCycles ? `, ${plural(f.heldCycles, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}${upTo}`);
+            `${f.heldCycles ? `, ${plural(f.heldCycles, 'held cycle')}` : ''}${f.missedTicks ? `, ${plural(f.missedTicks, 'missed tick')} (ORD itself late)` : ''}` +
+            `${this.lateness.get(f.schema)?.text().replace(/^./, '; $&') ?? ''}${upTo}`);
         if (this.schemasLeftOut) lines.push(`(${plural(this.schemasLeftOut, 'record')} of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
         lines.push(...this.partialLines());
         return lines;

@@ -377,6 +377,19 @@ describe('reading a log', () => {
         expect(told.at(-2)).toBe(`(3 records of schemas past the ${STORY_FOLLOWED} followed: in the counts below only)`);
     });
 
+    it('tells how late ORD released each periodic schema\'s cycles (release_ns - tick_ns of each cycle\'s first release): p50, p99, max', () => {
+        // 100 cycles of a 10 ms schema: 98 released 20 µs late, one 965 µs, one 8.8 ms; the second release of a cycle is not ORD's lateness
+        const lines = Array.from({ length: 100 }, (_, c) => {
+            const tick = 1_000_000_000 + c * 10_000_000;
+            const late = c === 40 ? 965_000 : c === 70 ? 8_800_000 : 20_000;
+            return [`${tick + late},w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=${c} tick_ns=${tick} release_ns=${tick + late} release=${2 * c + 1}`,
+                `${tick + late + 500_000},w,ORD,ord_release,CUR,,0,schema=fastLoop cycle=${c} tick_ns=${tick} release_ns=${tick + late + 500_000} release=${2 * c + 2}`,
+                `${tick + late + 600_000},w,ORD,ord_complete,,,0,schema=fastLoop cycle=${c} tick_ns=${tick} response_ns=${late + 600_000}`];
+        }).flat();
+        const story = storyOfLog('ORD_1.csv', lines);
+        expect(story.at(-2)).toBe('schema fastLoop: 100 completed cycles (response max 9.4 ms), 0 deadline misses, 0 overruns; release lateness p50 20 µs, p99 965 µs, max 8.8 ms');
+    });
+
     it('tells a supervisor\'s start, stop, connect, disconnect and priority claims in the simulator\'s words, and not again the hold records that only confirm them', () => {
         const text = [CSV_HEADER,
             '1000,w,MIS,supervisor,,,0,activate schema groundLink(channel = 2) (event schema)',
