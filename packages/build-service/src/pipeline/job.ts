@@ -7,7 +7,7 @@ import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
 import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogDiskReserve, runLogMaxBytes, runProcessesMemoryBytes, RUNTIME_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
-import type { Mechanisms, Sandbox, SandboxProcess } from '../sandbox/types.js';
+import type { Mechanisms, RealtimeBudgetShare, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { workDiskState } from '../sandbox/work-disk.js';
 import { LineSplitter } from '../util/line-splitter.js';
 import { looksLikeGccJson } from './gcc-json.js';
@@ -24,6 +24,8 @@ import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
 import { holdsUnderProcessLimit } from './process-limit-warning.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
+import { budgetThrottling, throttlingWarning, type Throttling } from './realtime-throttling.js';
+import { moduleOfLog } from '../trace/parse.js';
 import { TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
@@ -172,6 +174,8 @@ export class Job {
   private errorsPastBound = 0;
   private mechanisms: Mechanisms | null = null;
   private readonly runIssues = new RunIssues();
+  /** A real-time run's own CPU budget (a per-job cpu cgroup): its ORD log is read for throttling (realtime-throttling.ts). */
+  private realtimeBudget: RealtimeBudgetShare | null = null;
   private finalStatus: 'succeeded' | 'failed' | 'cancelled' | null = null;
   private finishedSignal!: () => void;
   /** Resolves when the job has ended and released everything it held. */
@@ -317,6 +321,7 @@ export class Job {
           return;
         }
         this.system('prepare', `real-time mode: ${rt.detail}`);
+        this.realtimeBudget = rt.budget ?? null;
       }
       const t0 = Date.now();
       // Cactal trees link against the runtime (Seam 3): prebuilt on the host for bwrap/none, in
@@ -694,7 +699,12 @@ export class Job {
     const abort = (this.collectAbort = new AbortController());
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
-      const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => this.runIssues.log(data, name), {
+      let throttled: Throttling | undefined;
+      const budget = this.realtimeBudget;
+      const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => {
+        this.runIssues.log(data, name);
+        if (budget && moduleOfLog(name) === 'ORD') throttled = budgetThrottling(data.toString('utf8'), budget.periodUs * 1000);
+      }, {
         launchedModules: this.runIssues.launchedModules,
         signal: abort.signal,
       });
@@ -703,6 +713,7 @@ export class Job {
       this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
       this.runIssues.artifacts(a);
+      if (throttled && budget && !this.cancelRequested) this.system('run', throttlingWarning(throttled, budget.runtimeUs, budget.periodUs));
       this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${visibleText(s.name, { escapeTab: true })} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);

@@ -76,7 +76,11 @@ export class BwrapSandbox implements Sandbox {
     const facts = readRealtimeFacts();
     const plan = planRealtime(facts, REALTIME_BOUNDS);
     if (!plan.ok) return plan;
-    return { ok: true, detail: describeRealtime(plan.grant, plan.budget, REALTIME_BOUNDS, facts.globalRtRuntimeUs) };
+    return {
+      ok: true,
+      detail: describeRealtime(plan.grant, plan.budget, REALTIME_BOUNDS, facts.globalRtRuntimeUs),
+      ...(plan.budget === 'cgroup-v1-rt' ? { budget: { runtimeUs: REALTIME_BOUNDS.cpuRuntimeUs, periodUs: REALTIME_BOUNDS.cpuPeriodUs } } : {}),
+    };
   }
 
   async start(cmd: SandboxCommand): Promise<SandboxProcess> {

@@ -248,7 +248,8 @@ export class DockerSandbox implements Sandbox {
   }
 
   async realtimeSupport(): Promise<RealtimeSupport> {
-    return dockerRealtimeSupport(this.docker, REALTIME_BOUNDS);
+    const rt = await dockerRealtimeSupport(this.docker, REALTIME_BOUNDS);
+    return rt.ok && rt.cgroupBudget ? { ...rt, budget: { runtimeUs: REALTIME_BOUNDS.cpuRuntimeUs, periodUs: REALTIME_BOUNDS.cpuPeriodUs } } : rt;
   }
 
 

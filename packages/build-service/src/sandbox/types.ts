@@ -22,7 +22,13 @@ export interface Mechanisms {
 }
 
 /** Whether the opt-in real-time mode can be granted: how, or why not, said to the user as is. */
-export type RealtimeSupport = { ok: true; detail: string } | { ok: false; reason: string };
+export type RealtimeSupport = { ok: true; detail: string; budget?: RealtimeBudgetShare } | { ok: false; reason: string };
+
+/** A real-time job's own CPU budget, when it has one (a per-job cpu cgroup): µs per period on each CPU. */
+export interface RealtimeBudgetShare {
+  runtimeUs: number;
+  periodUs: number;
+}
 
 /** One command to run in the sandbox. */
 export interface SandboxCommand {
