@@ -15,6 +15,10 @@ const sup = (rule: string) => ({
 export const CASES: Record<string, CodeCase> = {
     'lexing-error': { raise: { 'a.contract': 'datatype T {int a = 1 $};' }, clean: { 'a.contract': 'datatype T {int a = 1 };' } },
     'parsing-error': { raise: { 'a.contract': 'datatype T {int a = };' }, clean: { 'a.contract': 'datatype T {int a = 1};' } },
+    'merge-conflict-marker': {
+        raise: { 'a.contract': 'datatype T {\n<<<<<<< HEAD\nint a = 1\n=======\nint a = 2\n>>>>>>> eng-b\n};' },
+        clean: { 'a.contract': 'datatype T {\nint a = 1\n};' }
+    },
     'linking-error': {
         raise: { 'a.contract': sync('scheduling { C=1ms; }'), 's.contract': 'import "a.contract";\nperiodic schema s() { modules { MSA (); MSZ (); } }' },
         clean: { 'a.contract': sync('scheduling { C=1ms; }'), 's.contract': 'import "a.contract";\nperiodic schema s() { modules { MSA (); } }' }

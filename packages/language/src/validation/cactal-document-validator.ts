@@ -15,6 +15,8 @@ import { ImportCodes } from './codes/imports.js';
 import { SyntaxCodes } from './codes/syntax.js';
 import { TypeCodes } from './codes/types.js';
 import { isTypeRef, isVariableRef } from '../generated/ast.js';
+import { conflictMarkers } from '@contract-studio/conventions';
+import { conflictMarkerDiagnostics } from './conflict-marker-diagnostics.js';
 
 export class CactalDocumentValidator extends DefaultDocumentValidator {
     private readonly services: CactalServices;
@@ -25,6 +27,9 @@ export class CactalDocumentValidator extends DefaultDocumentValidator {
     }
 
     override async validateDocument(document: LangiumDocument, options?: ValidationOptions, cancelToken?: Cancellation.CancellationToken): Promise<Diagnostic[]> {
+        // an unresolved git merge: the markers alone, not the parser's tens of errors on them and on two sides read as one text
+        const markers = conflictMarkers(document.textDocument.getText());
+        if (markers.length > 0) return conflictMarkerDiagnostics(markers);
         const diagnostics = await super.validateDocument(document, options, cancelToken);
         for (const d of diagnostics) {
             if (d.code === undefined) {
