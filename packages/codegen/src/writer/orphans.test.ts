@@ -47,6 +47,21 @@ describe('orphan files', () => {
         expect(text).toContain(region('protect_exec_MSC', '\nkeep_me();\n'));
     });
 
+    it('a file with no protected region that differs from the generated one: the advice fits a file generated whole (a git merge, or code to put in a region), not "move it into a region of this file"', () => {
+        const dir = out();
+        const VOC = 'generated/architecture/modules/NAV_mod/vocabulary.c';
+        writeTree(dir, [{ path: VOC, content: '// tables\nint rules = 1;\n' }]);
+        // two generated versions git merged: the manifest's (one side's) hash no longer matches
+        writeFileSync(join(dir, VOC), '// tables\nint rules = 1;\nint slow = 2;\n');
+        const r = writeTree(dir, [{ path: VOC, content: '// tables\nint rules = 1;\nint slow = 2;\nint guide = 3;\n' }]);
+        expect(r.orphaned).toEqual([`orphans/${VOC}`]);
+        const text = readFileSync(join(dir, 'orphans', VOC), 'utf8');
+        expect(text).toContain('it has no protected region: it is generated');
+        expect(text).toContain('If the difference came from a git merge of two generated versions');
+        expect(text).not.toContain('move it into a protected region of');
+        expect(text.endsWith('// tables\nint rules = 1;\nint slow = 2;\n')).toBe(true);
+    });
+
     it('the same orphaned code written again at another time reuses the first orphan', () => {
         const dir = new OutputTree(out());
         const first = writeOrphan(dir, MSC, fileOrphanText(MSC, 'x();\n', ['a'], new Date('2026-01-01T00:00:00Z')));

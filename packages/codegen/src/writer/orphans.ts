@@ -66,7 +66,7 @@ export type OrphanReason = 'vanished' | 'deleted' | 'disabled' | 'skeleton';
  * The comment an orphan file starts with: which entity and file the code came from, when it was
  * moved, why, and how to bring it back (docs/codegen.md, "Renames", "Protected regions").
  */
-function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanReason): string {
+function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanReason, regionless = false): string {
     const head = `${HEADER_START} of ${path} (${orphanEntity(path)}), moved here on ${when.toISOString()}.\n`;
     const tail = ` * Then delete this file. Renaming with \`contract rename DIR OLD NEW\` or the IDE's rename carries regions over. */\n`;
     if (reason === 'disabled') {
@@ -76,6 +76,15 @@ function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanRea
             ` * To bring the code back: paste each region's content into the region of the same ID in ${path}, make its start\n` +
             ` * marker say ENABLED again (PROTECTED REGION ID(<id>) ENABLED START), then generate.\n` +
             ` * Then delete this file. (Removing ENABLED is the way to ask for the default: if you meant that, just delete this file.) */\n`;
+    }
+    if (reason === 'skeleton' && regionless) {
+        return head +
+            ` * The file differed from what the generator wrote (${ids.join('; ')}), and it has no protected region: it is generated\n` +
+            ` * whole, so nothing written in it is kept, and it was regenerated. Below is the file as it was, byte for byte.\n` +
+            ` * If the difference came from a git merge of two generated versions (a rename on one branch, a model change on the\n` +
+            ` * other), the regenerated file is the merged model's and this copy can be deleted. If you wrote code here, put it in\n` +
+            ` * a protected region of the module's module.c, or change the .contract model, then generate.\n` +
+            tail;
     }
     if (reason === 'skeleton') {
         return head +
@@ -106,5 +115,5 @@ export function regionOrphanText(path: string, source: string, regions: Region[]
  * what is known of where, e.g. the first line that differs).
  */
 export function fileOrphanText(path: string, source: string, ids: string[], when = new Date(), reason: 'deleted' | 'skeleton' = 'deleted'): string {
-    return orphanHeader(path, ids, when, reason) + source;
+    return orphanHeader(path, ids, when, reason, !source.includes('PROTECTED REGION ID(')) + source;
 }
