@@ -20,7 +20,7 @@ const MAX_STARTED = 16;
 export const FOLDED_KINDS: ReadonlySet<string> = new Set([
   'sup_rule', 'supervisor', 'module_hold', 'flow_hold', 'module_priority', 'request_received', 'scheduler',
   'ord_release', 'ord_complete', 'ord_deadline_miss', 'run_started', 'run_finished', 'module_started', 'module_exit',
-  'module_crashed', 'data_posted', 'data_dropped', 'event_received', 'requests_kept', 'requests_kept_end',
+  'module_crashed', 'data_posted', 'data_dropped', 'event_received', 'requests_kept', 'requests_kept_end', 'priority',
 ]);
 
 /** What applyRecord does with a well-formed record of a kind not in FOLDED_KINDS, at time t. */
@@ -64,7 +64,7 @@ function moduleState(s: MonitorState, name: string, t: Ns): ModuleState | undefi
 function periodic(s: MonitorState, schema: string): PeriodicState | undefined {
   return entry(s, s.periodic, schema, () => ({
     releases: 0, lastCycle: -1, lastRelease: 0, completions: 0, lastResponseNs: 0, maxResponseNs: 0, sumResponseNs: 0,
-    histogram: new Array<number>(HIST_BUCKETS).fill(0), deadlineMisses: 0, overruns: 0, overrunning: false, missedTicks: 0, recentMisses: [], recentOverruns: [],
+    histogram: new Array<number>(HIST_BUCKETS).fill(0), lateHistogram: new Array<number>(HIST_BUCKETS).fill(0), lateCycles: 0, maxLateNs: 0, deadlineMisses: 0, overruns: 0, overrunning: false, missedTicks: 0, recentMisses: [], recentOverruns: [],
   }));
 }
 
@@ -142,12 +142,19 @@ function noteStarted(s: MonitorState, supName: string, what: string, ruleKey?: s
 // The folds of the kinds a 1 kHz schema writes most, from the fields they use: applyRecord calls
 // them with a parsed record's fields, hot-line.ts with the fields read off the line in place.
 
-/** ord_release: `schema`, `cycle`, `release_ns` as the reader types them (str/num). */
-export function foldRelease(s: MonitorState, schema: string | undefined, cycle: number | undefined, releaseNs: number | undefined, t: Ns, t0: number): void {
+/** ord_release: `schema`, `cycle`, `release_ns`, `tick_ns` as the reader types them (str/num). */
+export function foldRelease(s: MonitorState, schema: string | undefined, cycle: number | undefined, releaseNs: number | undefined, t: Ns, t0: number, tickNs?: number): void {
   if (!schema) return;
   const p = periodic(s, schema);
   if (!p) return;
   p.releases++;
+  if (cycle !== undefined && cycle !== p.lastCycle && releaseNs !== undefined && tickNs !== undefined && releaseNs >= tickNs) {
+    // a cycle's first release: how late ORD sent it after its tick
+    const late = releaseNs - tickNs;
+    p.lateHistogram[histogramBucket(late)]!++;
+    p.lateCycles++;
+    if (late > p.maxLateNs) p.maxLateNs = late;
+  }
   if (cycle !== undefined) p.lastCycle = cycle;
   p.lastRelease = releaseNs !== undefined ? releaseNs - t0 : t;
 }
@@ -368,7 +375,7 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
       return;
     }
     case 'ord_release':
-      foldRelease(s, str(f['schema']), num(f['cycle']), num(f['release_ns']), t, t0);
+      foldRelease(s, str(f['schema']), num(f['cycle']), num(f['release_ns']), t, t0, num(f['tick_ns']));
       return;
     case 'ord_complete':
       foldComplete(s, str(f['schema']), num(f['response_ns']));
@@ -385,6 +392,10 @@ export function applyRecord(s: MonitorState, r: TraceRecord, t: Ns, t0: number):
     case 'run_started':
     case 'run_finished':
       foldRun(s, k.module, k.kind === 'run_started', t);
+      return;
+    case 'priority':
+      // ORD's: whether the run was real-time (SCHED_FIFO) or at nice levels, as contract trace says after its start
+      if (k.module === 'ORD') s.ordPriority = k.detail.slice(0, 80);
       return;
     case 'module_started':
     case 'module_exit':

@@ -88,11 +88,11 @@ export function applyHotLine(s: MonitorState, text: string, t: Ns, t0: number): 
       const schema = nameOf(text, detail, to, 'schema');
       const cycle = numberOf(text, detail, to, 'cycle');
       const releaseNs = numberOf(text, detail, to, 'release_ns');
-      foldRelease(s, schema, cycle, releaseNs, t, t0);
+      const tickNs = releaseNs === undefined ? undefined : numberOf(text, detail, to, 'tick_ns');
+      foldRelease(s, schema, cycle, releaseNs, t, t0, tickNs);
       // what a deadline miss names (MonitorModel): the release's schema and cycle, as read here, and how late ORD sent it
       hotRelease.schema = schema;
       hotRelease.cycle = cycle;
-      const tickNs = releaseNs === undefined ? undefined : numberOf(text, detail, to, 'tick_ns');
       hotRelease.lateNs = releaseNs !== undefined && tickNs !== undefined ? releaseNs - tickNs : 0;
       return;
     }

@@ -8,6 +8,7 @@ import { applyRecord } from './apply-record.js';
 import { emptyState, histogramBucket, bucketStartNs, type MonitorState } from './monitor-state.js';
 import { activeSchemas } from './active-schemas.js';
 import { recordedRunSteps } from './recorded-run.js';
+import { releaseLatenessText } from './panel-text.js';
 
 // a real run of examples/tutorial (`contract run --duration 4s`, bwrap; recorded again 2026-12-04 when supervisors began to write their event schemas' activations)
 const dir = fileURLToPath(new URL('./fixtures/tutorial-run', import.meta.url));
@@ -288,6 +289,42 @@ describe('a deadline miss names what its cycle was waiting for', () => {
     const told = renderStory(parseTrace([{ name: 'ORD_1.csv', text }]))
       .filter((l) => l.includes(' deadline miss ')).map((l) => l.replace(/^.* deadline miss \(ORD:0\): \w+ cycle /, 'deadline miss (ORD:0) cycle '));
     expect(told).toEqual(want);
+  });
+
+  it('counts how late ORD released each cycle (its first release only), live, parsed and recorded alike, and says it as the panel does', () => {
+    // cycle 0 on its tick + 30 µs, cycle 1 + 900 µs (its second module released later: not counted again), cycle 2 + 40 µs
+    const log = [
+      '30000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=0 tick_ns=0 release_ns=30000 release=1',
+      '1900000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=1 tick_ns=1000000 release_ns=1900000 release=2',
+      '1950000,w,ORD,ord_release,CUR,,0,schema=fastLoop cycle=1 tick_ns=1000000 release_ns=1950000 release=3',
+      '2040000,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=2 tick_ns=2000000 release_ns=2040000 release=4',
+    ];
+    const figures = (m: MonitorModel) => {
+      const p = m.stateAt(Number.MAX_SAFE_INTEGER).periodic.get('fastLoop')!;
+      return { cycles: p.lateCycles, max: p.maxLateNs, text: releaseLatenessText(p) };
+    };
+    const want = { cycles: 3, max: 900_000, text: ' · release lateness p50 ≤ 42.2 µs, p99 ≤ 900 µs, max 900 µs' };
+    const live = new MonitorModel({ checkpointEvery: 16 });
+    log.forEach((l, i) => live.pushLine('ORD.csv', i + 2, l));
+    expect(figures(live)).toEqual(want);
+    const parsed = new MonitorModel({ checkpointEvery: 16 });
+    parsed.pushAll(log.map((l, i) => parseRecordLine('ORD.csv', i + 2, l)));
+    expect(figures(parsed)).toEqual(want);
+    const steps = recordedRunSteps([{ name: 'ORD_1.csv', text: `mono_ns,wall_time,module,event,peer,port,size,detail\n${log.join('\n')}\n` }], 1000);
+    let step = steps.next();
+    while (!step.done) step = steps.next();
+    expect(figures(step.value.model)).toEqual(want);
+    // ORD's priority record says whether the run was real-time (shown under Active schemas, as contract trace tells it)
+    for (const [detail, said] of [['SCHED_FIFO 90', 'SCHED_FIFO 90'], ['nice 1 (priority 90)', 'nice 1 (priority 90)']] as const) {
+      const m = new MonitorModel({ checkpointEvery: 16 });
+      m.pushLine('ORD.csv', 2, `1000,w,ORD,priority,,,0,${detail}`);
+      m.pushLine('MSC.csv', 2, '2000,w,MSC,priority,,,0,SCHED_FIFO 50');
+      expect(m.stateAt(Number.MAX_SAFE_INTEGER).ordPriority).toBe(said);
+    }
+    // a simulation releases on its ticks: nothing to say
+    const onTicks = new MonitorModel({ checkpointEvery: 16 });
+    onTicks.pushLine('ORD.csv', 2, '0,w,ORD,ord_release,ENC,,0,schema=fastLoop cycle=0 tick_ns=0 release_ns=0 release=1');
+    expect(figures(onTicks).text).toBe('');
   });
 
   it('a cycle held for a module ORD said is no longer running: "never finished", as contract trace says, live and parsed', () => {

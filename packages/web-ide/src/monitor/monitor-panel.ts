@@ -22,8 +22,9 @@ import type { MonitorState } from './monitor-state.js';
 import { activeSchemas, lastActivated, type SchemaInfo } from './active-schemas.js';
 import { MarksStrip, markTooltip } from './marks-strip.js';
 import { drawHistogram, fmtNs, timeNs } from './response-histogram.js';
+import { priorityText } from '@contract-studio/build-service/trace';
 import { supervisorRows, type SupervisorCatalogue } from './supervisor-rows.js';
-import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, ruleTexts, timeReadout } from './panel-text.js';
+import { NOT_IN_MODEL, flowDropText, fmtT, followButton, keptRequestsLine, namesPastBoundText, releaseLatenessText, ruleTexts, timeReadout } from './panel-text.js';
 import { visibleText } from '@contract-studio/conventions';
 
 export type { SupervisorCatalogue } from './supervisor-rows.js';
@@ -107,6 +108,8 @@ export class MonitorPanel {
   private readonly supEl = h('div', { class: 'monitor-sups', role: 'list', 'aria-label': 'Supervisors' });
   private readonly schemasEl = h('div', { class: 'monitor-schemas', role: 'group', 'aria-label': 'Active schemas' });
   private readonly periodicEl = h('div', { class: 'monitor-periodic' });
+  /** ORD's priority: whether the run was real-time (the story's line after ORD's start). */
+  private readonly schedEl = h('div', { class: 'monitor-sched muted', hidden: true });
   private readonly diagramEl = h('div', { class: 'monitor-diagram' });
   private readonly modulesEl = h('div', { class: 'monitor-modules' });
   private readonly flowsEl = h('div', { class: 'monitor-flows', role: 'group', 'aria-label': 'Deliveries' });
@@ -139,7 +142,7 @@ export class MonitorPanel {
       h('div', { class: 'monitor-body' },
         this.boundEl,
         h('section', { class: 'monitor-section' }, h('h3', {}, 'Supervisors'), this.supEl),
-        h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schemasEl, this.periodicEl),
+        h('section', { class: 'monitor-section' }, h('h3', {}, 'Active schemas'), this.schedEl, this.schemasEl, this.periodicEl),
         h('section', { class: 'monitor-section monitor-arch' }, h('h3', {}, 'Architecture'), this.modulesEl, this.diagramEl, this.flowsEl)));
     this.element.addEventListener('keydown', (e) => {
       // a control's own keys are its own: Space presses a focused button (▷ Play, ▶, a rule), the
@@ -447,6 +450,8 @@ export class MonitorPanel {
     });
     if (!items.length) items.push(this.row('schema:none', () => h('div', { class: 'muted' }, 'none')));
     replaceIfChanged(this.schemasEl, items);
+    setText(this.schedEl, s.ordPriority ? `ORD ${priorityText(visibleText(s.ordPriority))}` : '');
+    if (this.schedEl.hidden !== !s.ordPriority) this.schedEl.hidden = !s.ordPriority;
     const periodic = [...new Set([...this.catalogue.filter((c) => c.kind === 'periodic').map((c) => c.name), ...s.periodic.keys()])];
     const blocks = periodic.map((name) => {
       const p = s.periodic.get(name);
@@ -474,7 +479,7 @@ export class MonitorPanel {
         hist.counts = { releases: p?.releases ?? -1, completions: p?.completions ?? -1, misses: p?.deadlineMisses, overruns: p?.overruns, cd, period };
         setText(hist.title, `${name} · PERIOD ${def?.period ?? '?'} · CRITICAL_DELAY ${def?.criticalDelay ?? '?'}`);
         setText(hist.text, p
-          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}`
+          ? `${p.releases} module release(s) · last cycle ${p.lastCycle} · ${p.completions} cycle(s) complete · ${p.completions ? `response last ${fmtNs(p.lastResponseNs)}, mean ${fmtNs(p.sumResponseNs / p.completions)}, max ${fmtNs(p.maxResponseNs)}` : 'no response time yet'} · ${p.deadlineMisses} deadline miss(es) · ${p.overruns} overrun(s)${p.overrunning ? ' (its last cycle overran: ORD tells how many releases it skipped only when it ends)' : ''}${p.missedTicks ? ` · ${p.missedTicks} missed tick(s)` : ''}${releaseLatenessText(p)}`
           : 'not released yet');
         setAttr(hist.root, 'data-releases', String(p?.releases ?? 0));
         setAttr(hist.root, 'data-misses', String(p?.deadlineMisses ?? 0));

@@ -113,6 +113,14 @@ export interface PeriodicState {
   maxResponseNs: number;
   sumResponseNs: number;
   histogram: number[];
+  /**
+   * How late ORD released its cycles (`release_ns - tick_ns` of each cycle's first release), in
+   * the response histogram's buckets, and the largest: `contract trace` tells the same in its
+   * schema line (finer: 64 bins a decade); none in a simulation, released on its ticks.
+   */
+  lateHistogram: number[];
+  lateCycles: number;
+  maxLateNs: number;
   deadlineMisses: number;
   /** Every release ORD skipped (as ORD counts them: its lines tell a cycle's first skip, and the rest when the cycle ends). */
   overruns: number;
@@ -165,6 +173,8 @@ export interface MonitorState {
   names: number;
   /** Records whose name would have gone past MAX_NAMES: not folded (a forged log; a run has far fewer). */
   namesPastBound: number;
+  /** ORD's `priority` record (`SCHED_FIFO 90`, `nice 1 (priority 90)`): whether the run was real-time; '' before it. */
+  ordPriority: string;
 }
 
 /**
@@ -178,7 +188,7 @@ export const MAX_NAMES = 1024;
 export const RECENT_MARKS = 64;
 
 export function emptyState(): MonitorState {
-  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unknownLines: 0, names: 0, namesPastBound: 0 };
+  return { t: 0, records: 0, supervisors: new Map(), supervisorChanges: 0, schemas: new Map(), periodic: new Map(), modules: new Map(), dataFlows: new Map(), eventFlows: new Map(), unknownLines: 0, names: 0, namesPastBound: 0, ordPriority: '' };
 }
 
 /** A deep copy (the state is plain data: objects, arrays and Maps, which structuredClone and postMessage keep). */
@@ -195,4 +205,18 @@ export function histogramBucket(ns: number): number {
 /** Lower bound (ns) of a bucket (bucket 0: below 1 µs). */
 export function bucketStartNs(b: number): number {
   return b <= 0 ? 0 : HIST_MIN_NS * 10 ** ((b - 1) / HIST_PER_DECADE);
+}
+
+/**
+ * The upper bound (ns) of the bucket that holds the q-quantile (0 < q < 1) of a histogram of
+ * `total` counts: the quantile is below it (a bucket is an eighth of a decade); `max` bounds it.
+ */
+export function quantileBoundNs(histogram: readonly number[], total: number, q: number, max: number): number {
+  const rank = Math.ceil(q * total);
+  let seen = 0;
+  for (let b = 0; b < histogram.length; b++) {
+    seen += histogram[b]!;
+    if (seen >= rank) return Math.min(max, bucketStartNs(b + 1));
+  }
+  return max;
 }
