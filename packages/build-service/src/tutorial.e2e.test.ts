@@ -129,7 +129,16 @@ describe('user code in protected regions (bwrap)', () => {
     // the user's module.c is not the file the build generates (here: 3 more lines above the
     // regions, as a model changed since the last generate shifts them): its region's lines move
     const mine = `/* written by an older model */\n/* (a port since removed) */\n/* ... */\n${broken[MAA_MODULE]!}`;
-    const { job } = await runJob({ action: 'build', sandbox: 'bwrap', project: { files: { ...broken, [MAA_MODULE]: mine } } });
+    // the manifest of that older generation recorded that file's own skeleton, not this one's: here
+    // it records none of it (as a manifest of a version before the skeleton check), so the three
+    // lines are the generator's, not an edit outside the regions that the build would refuse
+    const manifest = JSON.parse(broken['src-gen/.contract-manifest.json']!) as { skeletons: Record<string, string>; skeletonLines: Record<string, string> };
+    const inManifest = MAA_MODULE.replace(/^src-gen\//, '');
+    expect(manifest.skeletons[inManifest]).toBeDefined();
+    delete manifest.skeletons[inManifest];
+    delete manifest.skeletonLines[inManifest];
+    const older = { ...broken, [MAA_MODULE]: mine, 'src-gen/.contract-manifest.json': JSON.stringify(manifest, null, 2) };
+    const { job } = await runJob({ action: 'build', sandbox: 'bwrap', project: { files: older } });
     expect(job.status).toBe('failed');
     const err = job.diagnostics.find((d: any) => d.severity === 'error');
     const userLine = mine.split('\n').findIndex((l) => l.includes('undeclared_in_region')) + 1;
