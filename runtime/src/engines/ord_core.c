@@ -252,7 +252,8 @@ static void report_stuck(OrdCore *c, SchemaState *ss, int m, long periods, const
         OrdModuleActivity now;
         int seen = c->io.module_activity && c->io.module_activity(c->io.ctx, module, &now) == 0;
         int looked = ss->looked[m] == ss->outstanding[m] && ss->look[m].state != 0;
-        ord_stuck_cause(looked ? &ss->look[m] : NULL, ss->looked_t[m], seen ? &now : NULL, c->now, cause, sizeof cause);
+        ord_stuck_cause(looked ? &ss->look[m] : NULL, ss->looked_t[m], seen ? &now : NULL, c->now, ss->s->period_ns, cause,
+                        sizeof cause);
     }
     char msg[400];
     snprintf(msg, sizeof msg, "%s has not finished release #%u after %ld periods%s: %s", module, ss->outstanding[m],

@@ -16,7 +16,7 @@ static long percent_of(int64_t part, int64_t whole) {
 }
 
 const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const OrdModuleActivity *now,
-                            int64_t now_t, char *buf, size_t n) {
+                            int64_t now_t, int64_t period_ns, char *buf, size_t n) {
     if (!now) {
         snprintf(buf, n, "%s", ORD_STUCK_ADVICE);
         return buf;
@@ -38,12 +38,15 @@ const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const
             snprintf(buf, n, "%s", ORD_STUCK_ADVICE);
         return buf;
     }
-    long ran = percent_of(now->cpu_ns - then->cpu_ns, wall);
+    int64_t cpu = now->cpu_ns - then->cpu_ns;
+    long ran = percent_of(cpu, wall);
     double seconds = (double)wall / 1e9;
     /* ready to run while not running: known when both looks read it */
     int wait_known = then->wait_ns >= 0 && now->wait_ns >= then->wait_ns;
     long wanted = wait_known ? ran + percent_of(now->wait_ns - then->wait_ns, wall) : -1;
-    if (ran >= RUNNING_SHARE_PERCENT)
+    /* more CPU than a period of its schema and not done: no starvation explains it (a loaded
+       machine or the real-time budget may hold a loop under half a CPU) */
+    if (ran >= RUNNING_SHARE_PERCENT || (period_ns > 0 && cpu > period_ns))
         snprintf(buf, n, "does its exec region loop, or never set *stateindex = -1? (it ran %ld%% of the last %.1f s)",
                  ran, seconds);
     else if (wanted >= RUNNING_SHARE_PERCENT || (!wait_known && now->state != 'S' && now->state != 'D'))

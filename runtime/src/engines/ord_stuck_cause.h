@@ -4,12 +4,14 @@
  * ORD looks at the module's main thread twice (OrdIo.module_activity): half way to the stuck
  * report and at it. From its state then and the CPU time it got in between, the report tells
  * apart three cases that a bare "does its exec region set *stateindex = -1?" mixed up:
- *  - running nearly all the time (>= 50% of a CPU): its exec region loops, or returns without
- *    ever setting *stateindex = -1 (the module calls it again at once);
+ *  - running: it got more CPU time between the looks than one period of its schema (a release
+ *    that needs less, as a release of a schema that meets its deadlines does, would have finished
+ *    with it), or at least half of a CPU: its exec region loops, or returns without ever setting
+ *    *stateindex = -1 (the module calls it again at once);
  *  - waiting (sleeping, blocked): its exec region sleeps, reads, waits on a lock or on a full
  *    mailbox;
- *  - ready to run most of the time but given little CPU: starved by processes at real-time
- *    priority or a machine loaded past its CPUs (or a loop on such a machine);
+ *  - ready to run most of the time but given less CPU than that: starved by processes at
+ *    real-time priority or a machine loaded past its CPUs;
  * and says a module that has ended (a zombie: "no longer running", as OrdIo.module_gone) or is
  * stopped (SIGSTOP, a debugger).
  * Without both looks (no module_activity, the module's /proc entry unreadable, a release
@@ -34,9 +36,10 @@ typedef struct OrdModuleActivity {
 #define ORD_STUCK_ADVICE "does its exec region set *stateindex = -1?"
 
 /** The cause part of a stuck report (after "after N periods: "), written into buf: from the
- *  look `then` at time then_t and the look `now` at now_t (ns, one clock). then may be NULL
- *  (no earlier look) and now NULL (unreadable): the question ORD_STUCK_ADVICE. Returns buf. */
+ *  look `then` at time then_t and the look `now` at now_t (ns, one clock), for a release of a
+ *  schema of period period_ns. then may be NULL (no earlier look) and now NULL (unreadable): the
+ *  question ORD_STUCK_ADVICE. Returns buf. */
 const char *ord_stuck_cause(const OrdModuleActivity *then, int64_t then_t, const OrdModuleActivity *now,
-                            int64_t now_t, char *buf, size_t n);
+                            int64_t now_t, int64_t period_ns, char *buf, size_t n);
 
 #endif

@@ -503,8 +503,8 @@ void test_ord_stuck_report_of_a_module_no_longer_running(void) {
 }
 
 /* What ORD saw of the module tells the cause of a stuck release (ord_stuck_cause.h): it looks at
-   the module half way to the report (1 s) and at it (2 s). A module that ran 97% of that second
-   is asked whether its exec region loops; one that ran 3% while ready to run 90% of it is
+   the module half way to the report (1 s) and at it (2 s). A module that ran 97% of that second,
+   or more CPU time than its 200 ms period, is asked whether its exec region loops; one that ran 3% while ready to run 90% of it is
    starved; one that ran 3% and waited for a CPU 2% slept: it waits, whatever its state at the
    last look. One look at each point, not one per tick. */
 static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_step_ns, const char *cause) {
@@ -531,6 +531,7 @@ static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_st
 }
 
 #define LOOPS "does its exec region loop, or never set *stateindex = -1? (it ran 97% of the last 1.0 s)"
+#define LOOPS_HELD "does its exec region loop, or never set *stateindex = -1? (it ran 30% of the last 1.0 s)"
 #define STARVED                                                                                                   \
     "it wanted the CPU but got only 3% of it in the last 1.0 s: do processes at real-time priority or an "      \
     "overloaded machine starve it, or does its exec region loop?"
@@ -539,6 +540,9 @@ static void stuck_with_activity(char state, int64_t cpu_step_ns, int64_t wait_st
 void test_ord_stuck_report_says_what_the_module_was_doing(void) {
     stuck_with_activity('R', 970 * MS, 20 * MS, LOOPS);
     stuck_with_activity('S', 970 * MS, -1, LOOPS); /* asleep at the last look, but it ran */
+    /* held under half a CPU (a loaded machine, the real-time budget), but 300 ms of CPU is more
+       than a 200 ms period: a release that finishes in time would have */
+    stuck_with_activity('R', 300 * MS, 650 * MS, LOOPS_HELD);
     stuck_with_activity('R', 30 * MS, 900 * MS, STARVED);
     stuck_with_activity('R', 30 * MS, -1, STARVED); /* no wait known: ready to run at the last look */
     stuck_with_activity('R', 30 * MS, 20 * MS, WAITS); /* runnable at the last look, asleep nearly all along */
