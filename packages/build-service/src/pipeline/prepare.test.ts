@@ -211,7 +211,7 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     writeFileSync(join(disabled, MSC), readFileSync(join(disabled, MSC), 'utf8').replace('ID(protect_init_MSC) ENABLED START', 'ID(protect_init_MSC) START'));
     const refused = await problemsOf(disabled);
     expect(refused.ok).toBe(false);
-    expect(refused.problems).toEqual([expect.stringMatching(/^generated\/architecture\/modules\/MSC_mod\/module\.c:\d+: error: protected region\(s\) protect_init_MSC not ENABLED, .*run `contract generate` on the project \(it moves that code to src-gen\/orphans\/, where you get it back\), then build again; left untouched$/)]);
+    expect(refused.problems).toEqual([expect.stringMatching(/^generated\/architecture\/modules\/MSC_mod\/module\.c:\d+: error: protected region\(s\) protect_init_MSC not ENABLED, .*run `contract generate` on the project \(Generate All in the IDE: it moves that code to src-gen\/orphans\/, where you get it back\), then build again; left untouched$/)]);
     expect(existsSync(join(disabled, 'src-gen/orphans'))).toBe(false);
     // the exec region left with the ID of a module that is gone (PLN, renamed MSC on the other branch)
     const merged = project();

@@ -33,7 +33,7 @@ describe("writeTree's displacedCode 'refuse' (a build's private copy): no user c
             const report = writeTree(dir, [module('GTG'), module('NAV')], { displacedCode: 'refuse' });
             // a changed region ID is also a change of the skeleton (an edit outside the regions): said too
             expect(report.errors.filter((e) => said.test(e.message)).map((e) => [e.file, e.line]), what).toEqual([[GTG, line]]);
-            for (const e of report.errors) expect(e.message, what).toMatch(/a build leaves no user code out; run `contract generate` on the project \(it moves that code to src-gen\/orphans\/, where you get it back\), then build again; left untouched$/);
+            for (const e of report.errors) expect(e.message, what).toMatch(/a build leaves no user code out; run `contract generate` on the project \(Generate All in the IDE: it moves that code to src-gen\/orphans\/, where you get it back\), then build again; left untouched$/);
             expect(readFileSync(join(dir, GTG), 'utf8'), what).toBe(text);
             expect(report.orphaned, what).toEqual([]);
             expect(existsSync(join(dir, 'orphans')), what).toBe(false);

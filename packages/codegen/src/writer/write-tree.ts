@@ -325,7 +325,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                     report.errors.push({
                         file: file.path,
                         line: d.line,
-                        message: `${d.what}: a build leaves no user code out; run \`contract generate\` on the project (it moves that code to src-gen/orphans/, where you get it back), then build again; left untouched`,
+                        message: `${d.what}: a build leaves no user code out; run \`contract generate\` on the project (Generate All in the IDE: it moves that code to src-gen/orphans/, where you get it back), then build again; left untouched`,
                     });
                 }
                 keepPrevious(file.path);
