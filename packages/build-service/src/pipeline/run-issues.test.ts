@@ -66,6 +66,17 @@ describe('RunIssues', () => {
     ]);
   });
 
+  test('a module ORD saw stopped (SIGSTOP, a debugger) that then did not end is told so, not asked whether its code loops', () => {
+    const r = new RunIssues();
+    r.line('STUCK: MON has not finished release #7 after 100 periods: it is stopped (by SIGSTOP, or a debugger holds it)', 'ORD');
+    r.line('module MON did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
+    r.line('module LOC did not end on its KILL request within 2 s: terminating it (SIGTERM)', 'launcher');
+    expect(r.all.filter((i) => i.kind === 'module-hung').map((i) => i.message)).toEqual([
+      'MON did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (ORD saw it stopped: by SIGSTOP, or a debugger holds it)',
+      'LOC did not end when the run stopped: it did not answer its KILL request for 2 s and was terminated (does a region of it loop or block: its exec or exit code?)',
+    ]);
+  });
+
   test('a stop fitted in the cancel grace (CONTRACT_STOP_BUDGET_MS) says its own wait, and the issue says the same', () => {
     const r = new RunIssues();
     r.line('module VEL did not end on its KILL request within 0.36 s: terminating it (SIGTERM)', 'launcher');

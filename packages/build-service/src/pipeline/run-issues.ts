@@ -9,6 +9,9 @@ import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
 import { LOG_DIR, type RunArtifacts } from './artifacts.js';
 import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
 
+/** The end of ORD's stuck sentence for a module whose thread it saw stopped (runtime ord_stuck_cause.c). */
+const STOPPED_CAUSE = ': it is stopped (by SIGSTOP, or a debugger holds it)';
+
 export type RunIssueKind = 'module-stuck' | 'module-not-ready' | 'module-hung' | 'module-ended' | 'start-refused' | 'launcher-refused' | 'limit' | 'output-truncated' | 'log-capped' | 'log-lost' | 'log-tampered';
 
 export interface RunIssue {
@@ -303,7 +306,10 @@ export class RunIssues {
     // a module not ready does not answer the stop's KILL either: the same fault, told once
     if (hung && this.notReady.has(hung[1]!)) return;
     if (hung) {
-      const issue: RunIssue = { kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for ${hung[2]!} s and was terminated (does a region of it loop or block: its exec or exit code?)` };
+      // what ORD saw of it when it declared it stuck, when it saw it stopped: the advice about its code does not fit
+      const stopped = this.list.some((i) => i.kind === 'module-stuck' && i.module === hung[1] && i.message.endsWith(STOPPED_CAUSE));
+      const why = stopped ? 'ORD saw it stopped: by SIGSTOP, or a debugger holds it' : 'does a region of it loop or block: its exec or exit code?';
+      const issue: RunIssue = { kind: 'module-hung', module: hung[1]!, message: `${hung[1]!} did not end when the run stopped: it did not answer its KILL request for ${hung[2]!} s and was terminated (${why})` };
       this.hungSeconds.set(issue, hung[2]!);
       this.list.push(issue);
       return;
