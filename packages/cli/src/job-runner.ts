@@ -289,6 +289,17 @@ export function noteBuildErrorLine(tail: string[], e: JobEvent): void {
     if (tail.length > BUILD_TAIL_LINES) tail.shift();
 }
 
+/** The function ld named, which the service adds to an undefined reference's message (ld-text.ts). */
+const LD_FUNCTION_SUFFIX = / \(in function [^()]*\)$/;
+/** Linker places remembered for --verbose at most (a build has a few; the job keeps 1000 diagnostics). */
+const MAX_LINKER_PLACES = 2000;
+
+/** `generated/...:L: message` of one of ld's lines naming a place in the tree (after `/work/src-gen/`, `/usr/bin/ld: `), else ''. */
+function linkerPlaceOf(line: string): string {
+    const at = line.indexOf('src-gen/');
+    return at < 0 ? '' : line.slice(at + 'src-gen/'.length);
+}
+
 /** The printer of a job's events (exported for its tests). */
 export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[]): (e: JobEvent) => void {
     const madeParts = new Set<string>();
@@ -301,6 +312,10 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
         if (n > 1) printedDiagnostics.set(line, n - 1); else printedDiagnostics.delete(line);
         return true;
     };
+    // the linker's errors printed (--verbose): ld writes each undefined reference on two lines of its
+    // own (`/work/src-gen/F:L: undefined reference to ...`, and the same after `/usr/bin/ld: `), which
+    // the diagnostic stands for: `F:L: message` (F relative to src-gen, the function ld named left out)
+    const printedLinkerPlaces = new Set<string>();
     return (e) => {
         noteBuildErrorLine(buildTail, e);
         if (e.type === 'diagnostic') {
@@ -312,6 +327,9 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
                 for (const d of [e.diagnostic, ...e.diagnostic.children]) {
                     const line = renderDiagnostic(d);
                     printedDiagnostics.set(line, (printedDiagnostics.get(line) ?? 0) + 1);
+                    if (d.file !== null && d.line !== null && d.column === null && printedLinkerPlaces.size < MAX_LINKER_PLACES) {
+                        printedLinkerPlaces.add(`${d.file}:${d.line}: ${d.message.replace(LD_FUNCTION_SUFFIX, '')}`);
+                    }
                 }
             }
             return;
@@ -369,6 +387,7 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
         if (e.step === 'prepare' && e.source === 'service' && PREPARE_FAILED_LINE.test(e.line)) return;
         // a diagnostic's line, or one of its notes, in the build's log: printed above with the diagnostic
         if (e.step === 'build' && e.source === 'build' && alreadyPrinted(e.line)) return;
+        if (e.step === 'build' && e.source === 'build' && printedLinkerPlaces.size && printedLinkerPlaces.has(linkerPlaceOf(e.line))) return;
         if (e.step === 'prepare' && (e.source === 'service' || (e.source === 'runtime' && e.stream === 'stderr')) && /error/i.test(e.line)) {
             io.err(`${e.line}\n`);
         } else if (opts.verbose) {

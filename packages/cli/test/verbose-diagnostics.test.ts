@@ -60,4 +60,27 @@ describe('contract build --verbose: gcc diagnostics', () => {
             '',
         ].join('\n'));
     });
+
+    it("a linker error is printed once too: ld's two lines of it (its place from the debug info, and the same after /usr/bin/ld:) are not printed again; its 'in function' line stays", () => {
+        const io = capture('/tmp');
+        const opts = { dir: '/tmp/robot', dirArg: 'robot', sandbox: 'bwrap', format: 'text', verbose: true, progress: false, runtime: undefined, cacheDir: undefined } as JobOptions;
+        const print = makePrinter(opts, io, [], []);
+        const FILE_CTL = 'generated/architecture/modules/CTL_mod/module.c';
+        const linked: GccDiagnostic = { severity: 'error', message: "undefined reference to `no_such_function' (in function _exec_module_state)", file: FILE_CTL, line: 249, column: null, protectedRegion: { id: 'protect_exec_CTL', startLine: 247, endLine: 251 } as unknown as GccDiagnostic['protectedRegion'], children: [] };
+        for (const e of [
+            buildLine("/usr/bin/ld: /tmp/ccwsWicQ.o: in function `_exec_module_state':"),
+            diagnosticEvent(linked),
+            buildLine(`/work/src-gen/${FILE_CTL}:249: undefined reference to \`no_such_function'`),
+            buildLine(`/usr/bin/ld: /work/src-gen/${FILE_CTL}:249: undefined reference to \`no_such_function'`),
+            buildLine(`/usr/bin/ld: /work/src-gen/${FILE_CTL}:250: undefined reference to \`another_function'`),
+            buildLine('collect2: error: ld returned 1 exit status'),
+        ]) print(e);
+        expect(io.stderr).toBe([
+            "/usr/bin/ld: /tmp/ccwsWicQ.o: in function `_exec_module_state':",
+            `robot/src-gen/${FILE_CTL}:249: error: undefined reference to \`no_such_function' (in function _exec_module_state) [in protected region protect_exec_CTL]`,
+            `/usr/bin/ld: /work/src-gen/${FILE_CTL}:250: undefined reference to \`another_function'`,
+            'collect2: error: ld returned 1 exit status',
+            '',
+        ].join('\n'));
+    });
 });
