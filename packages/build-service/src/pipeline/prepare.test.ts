@@ -223,6 +223,26 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(readFileSync(join(carried.ws.workDir, MSC), 'utf8')).toBe(text);
   }, 120_000);
 
+  it("builds once an interrupted rename's journal is gone from the project (generate finished it): the stage drops its copy, which refused every later build of that workspace", async () => {
+    const dir = project();
+    const ws = workspace();
+    const prepareIn = async () => {
+      const log: string[] = [];
+      const out = await prepareWorkspace(ws, { dir }, 'cactal', { ...DEFAULT_LIMITS }, (l: string) => log.push(l));
+      return { out, log };
+    };
+    writeFileSync(join(dir, 'src-gen/.contract-rename.json'), JSON.stringify({ version: 1, kind: 'module', oldName: 'MSC', newName: 'MSK', files: [] }));
+    const refused = await prepareIn();
+    expect(refused.out.ok).toBe(false);
+    expect(refused.out.problems).toEqual([expect.objectContaining({ file: '.contract-rename.json', severity: 'error', message: expect.stringContaining('an interrupted rename left its journal here') })]);
+    // the log names the journal from the project folder, as the IDE's Build & Run shows it
+    expect(refused.log).toContainEqual(expect.stringMatching(/^src-gen\/\.contract-rename\.json: error: an interrupted rename left its journal here/));
+    rmSync(join(dir, 'src-gen/.contract-rename.json'));
+    const built = await prepareIn();
+    expect(built.out.ok, built.log.join('\n')).toBe(true);
+    expect(existsSync(join(ws.stageDir, 'project/src-gen/.contract-rename.json'))).toBe(false);
+  }, 120_000);
+
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
     const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
     const empty = mkdtempSync(join(base, 'empty-'));

@@ -16,7 +16,7 @@ import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
-import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, foldersHoldingAll } from '@contract-studio/conventions';
+import { RENAME_JOURNAL_NAME, SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, foldersHoldingAll } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -148,12 +148,27 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
   return { wanted, digest: hash.digest('hex') };
 }
 
+/** The journal of an interrupted rename (codegen rename-journal.ts), as the project and its stage hold it. */
+const STAGED_RENAME_JOURNAL = `${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME}`;
+
 async function stageProject(wanted: Map<string, Buffer>, kind: ProjectKind, stageProjectDir: string): Promise<void> {
-  // drop staged sources that the project no longer has (stale .contract files would still load)
+  // drop staged sources that the project no longer has (stale .contract files would still load), and
+  // a rename's journal that generate removed since (a stale copy refused every build of the workspace)
   for (const rel of await listFilesNoFollow(stageProjectDir)) {
-    if (!wanted.has(rel) && (kind === 'make' || rel.endsWith('.contract'))) await removeTreeNoFollow(join(stageProjectDir, rel));
+    if (!wanted.has(rel) && (kind === 'make' || rel.endsWith('.contract') || rel === STAGED_RENAME_JOURNAL)) await removeTreeNoFollow(join(stageProjectDir, rel));
   }
   for (const [rel, data] of wanted) await syncFileNoFollow(stageProjectDir, rel, data);
+}
+
+/**
+ * Where a prepare problem is, from the project folder, as the log says it: the model's at its
+ * `.contract` file, line and column; the generator's (relative to src-gen) at `src-gen/FILE` and
+ * its line when known (the generator's own notes, "(manifest)" or an absolute path, as they are).
+ */
+export function problemAt(p: CactalProblem): string {
+  if (p.file.endsWith('.contract')) return `${p.file}:${p.line}:${p.column}`;
+  const file = p.file.startsWith('(') || p.file.startsWith('/') ? p.file : `${SRC_GEN_DIR}/${p.file}`;
+  return p.line ? `${file}:${p.line}` : file;
 }
 
 /** A project prepare refuses; `foreignMakefiles`: the refused makefiles of its generated tree (foreign-makefiles.ts), project-relative, when that is why. */
@@ -239,7 +254,7 @@ export async function prepareWorkspace(
       }
     }
     problems = outcome.problems;
-    for (const p of problems) log(`${p.file}:${p.line}:${p.column}: ${p.severity}: ${p.message}`);
+    for (const p of problems) log(`${problemAt(p)}: ${p.severity}: ${p.message}`);
     if (problems.some((p) => p.severity === 'error')) {
       log(`the project has ${problems.filter((p) => p.severity === 'error').length} error(s): nothing generated`);
       return { ok: false, problems, regions: new Map(), userCopies: new Map(), synced: 0 };
