@@ -254,8 +254,12 @@ export async function runJob(
     }
 }
 
-/** How the service logs a prepare problem (build-service pipeline/prepare.ts): `file:line:col: severity: message`. */
-const PREPARE_PROBLEM_LINE = /^[^\n]*:\d+:\d+: (?:error|warning|info): /;
+/**
+ * How the service logs a prepare problem (build-service pipeline/prepare.ts problemAt): the model's
+ * `file.contract:line:col: severity: message`; the generator's `src-gen/FILE[:line]: severity: message`,
+ * or its own notes `(manifest): ...` and an absolute path.
+ */
+const PREPARE_PROBLEM_LINE = /^(?:[^\n]*:\d+:\d+|src-gen\/[^\n]*?(?::\d+)?|\([^\n]*?\)|\/[^\n]*?(?::\d+)?): (?:error|warning|info): /;
 
 /** Text output of the job's events: progress on a TTY, diagnostics always, module output for run. */
 /** The service's line when a run's stdout or stderr went past its cap (job.ts). */

@@ -48,3 +48,22 @@ describe('the service\'s lines', () => {
         expect(stderrOf({ verbose: true })).toBe(`time: sandbox choice (probe) 16 ms\n${WAIT}\ngenerated 23 files\ntime: runtime (sources hash) 4 ms\n`);
     });
 });
+
+describe('the service\'s line of each prepare problem', () => {
+    it('is not printed as it comes, in any mode: the closing lines print each once, at its path from here (prepareErrors)', () => {
+        const lines = [
+            'robot/sched.contract:3:7: error: unknown module MON',
+            'src-gen/.contract-rename.json: error: an interrupted rename left its journal here: ...',
+            'src-gen/generated/architecture/modules/MSC_mod/module.c:12: error: protected region(s) protect_init_MSC not ENABLED',
+            '(manifest): warning: note',
+            'the project has 2 error(s): nothing generated',
+        ];
+        for (const mode of [{}, { verbose: true }, { progress: true }]) {
+            const io = capture(root);
+            const opts = { dir: root, dirArg: '.', sandbox: 'bwrap', format: 'text', verbose: !!(mode as { verbose?: boolean }).verbose, progress: !!(mode as { progress?: boolean }).progress, runtime: undefined, cacheDir: undefined } as JobOptions;
+            const print = makePrinter(opts, io, [], []);
+            for (const l of lines) print(service('prepare', l));
+            expect(io.stderr, JSON.stringify(mode)).toBe('');
+        }
+    });
+});
