@@ -713,7 +713,12 @@ export class Job {
       this.artifactsCollectMs = Date.now() - t0;
       const a = this.artifacts;
       this.runIssues.artifacts(a);
-      if (throttled && budget && !this.cancelRequested) this.system('run', throttlingWarning(throttled, budget.runtimeUs, budget.periodUs));
+      if (throttled && budget && !this.cancelRequested) {
+        // among the job's warnings (the CLI's closing lines, GET, JSON) and in its log, as a build's cut output
+        const warning = throttlingWarning(throttled, budget.runtimeUs, budget.periodUs);
+        this.warnings.push(warning);
+        this.system('run', `warning: ${warning}`);
+      }
       this.system('run', `collected ${a.files.length} artifact(s) in ${this.artifactsCollectMs} ms${a.skipped.length ? `; left out: ${a.skipped.map((s) => `${visibleText(s.name, { escapeTab: true })} (${s.reason})`).join(', ')}` : ''}`);
     } catch (e) {
       this.system('run', `warning: the run's logs could not be collected: ${(e as Error).message.split('\n')[0]}`);

@@ -1,4 +1,9 @@
 import { describe, expect, it } from 'vitest';
+import { DEFAULT_LIMITS } from '../limits.js';
+import type { Sandbox } from '../sandbox/types.js';
+import { scratchWorkspace, scriptedContext, scriptedSandbox } from '../test-support/scripted-sandbox.js';
+import type { LineEvent } from './job-events.js';
+import { Job } from './job.js';
 import { budgetThrottling, throttlingWarning } from './realtime-throttling.js';
 
 const HEADER = 'mono_ns,wall_time,module,event,peer,port,size,detail';
@@ -29,7 +34,7 @@ describe('a real-time run throttled by its budget', () => {
     expect(t.totalNs / t.times).toBeGreaterThan(14 * MS);
     expect(t.totalNs / t.times).toBeLessThan(27 * MS);
     expect(throttlingWarning(t, 40_000, 100_000)).toMatch(
-      /^warning: the architecture was throttled by its real-time CPU budget about \d+ times \(0\.\d\d s in all\): the sandbox gives the whole architecture 40 ms of each 100 ms on each CPU, .*contract run --cpus 0,1.*REALTIME_BOUNDS\.cpuRuntimeUs/);
+      /^the architecture was throttled by its real-time CPU budget about \d+ times \(0\.\d\d s in all\): the sandbox gives the whole architecture 40 ms of each 100 ms on each CPU, .*contract run --cpus 0,1.*REALTIME_BOUNDS\.cpuRuntimeUs/);
   });
 
   it('does not take a loaded machine\'s stalls, which end anywhere in the period, for it', () => {
@@ -47,5 +52,27 @@ describe('a real-time run throttled by its budget', () => {
     expect(budgetThrottling(ordLog(1_000_000_000, 1000, () => false), 100 * MS)).toBeUndefined();
     expect(budgetThrottling(`${HEADER}\n`, 100 * MS)).toBeUndefined();
     expect(budgetThrottling('', 100 * MS)).toBeUndefined();
+  });
+});
+
+describe('the throttling warning of a job', () => {
+  it('is one of the job\'s warnings (the CLI says those at the end in every mode), and its run\'s `warning:` line, once each', async () => {
+    const from = 59_529_770_322_845;
+    // the field test (khzb): the budget used up about 58 ms into each 100 ms period
+    const log = ordLog(from, 2000, (t) => t % (100 * MS) >= 58 * MS);
+    const job = new Job('j-throttled', { action: 'run', realtime: true, project: { files: { Makefile: 'all:\n\ttrue\nrun:\n\ttrue\n' } }, projectKey: null, kind: 'make', limits: { ...DEFAULT_LIMITS } } as never, 'none');
+    const sandbox: Sandbox = {
+      ...scriptedSandbox({ run: { start: (p) => p.exit(0) } }),
+      realtimeSupport: async () => ({ ok: true, detail: 'scripted (test)', budget: { runtimeUs: 40_000, periodUs: 100_000 } }),
+      readWorkDirs: async (_w: string, rels: string[]) => new Map(rels.map((rel) => [rel, rel === 'logs'
+        ? { entries: [{ name: 'ORD_7-Dec-2026-03h00m00s.csv', kind: 'file' as const, size: log.length, read: async (max: number) => Buffer.from(log).subarray(0, max) }] }
+        : null])),
+      removeRunOutputs: async () => true,
+    };
+    await job.execute(scriptedContext(sandbox, scratchWorkspace()));
+    const said = job.warnings.filter((w) => w.startsWith('the architecture was throttled by its real-time CPU budget about '));
+    expect(said, job.events.all.map((e) => (e.type === 'line' ? e.line : '')).join('\n')).toHaveLength(1);
+    const lines = job.events.all.filter((e): e is LineEvent => e.type === 'line' && e.step === 'run' && e.source === 'service').map((e) => e.line);
+    expect(lines.filter((l) => l.includes('throttled'))).toEqual([`warning: ${said[0]}`]);
   });
 });

@@ -76,11 +76,11 @@ export function budgetThrottling(ordLog: string, periodNs: number): Throttling |
 }
 
 /**
- * The run's warning: `the architecture was throttled by its real-time CPU budget about 149 times
+ * The run's warning (one of the job's `warnings`, and a `warning: ...` line of its run): `the architecture was throttled by its real-time CPU budget about 149 times
  * (3.52 s in all): ...`, with the budget and how to give it more.
  */
 export function throttlingWarning(t: Throttling, runtimeUs: number, periodUs: number): string {
-  return `warning: the architecture was throttled by its real-time CPU budget about ${t.times} times (${(t.totalNs / 1e9).toFixed(2)} s in all): ` +
+  return `the architecture was throttled by its real-time CPU budget about ${t.times} times (${(t.totalNs / 1e9).toFixed(2)} s in all): ` +
     `the sandbox gives the whole architecture ${runtimeUs / 1000} ms of each ${periodUs / 1000} ms on each CPU, and it used them up; ` +
     `nothing of it ran for the rest of those periods (ORD silent, ending each time at the same point of the period), so ORD's missed ticks ` +
     `and the deadline misses then are the budget's, not the modules'. ${THROTTLED_ADVICE}`;
