@@ -230,7 +230,7 @@ export async function runJob(
         if (io.outputClosed?.aborted) onSigint();
         const runLines: JobOutcome['runLines'] = [];
         const buildTail: string[] = [];
-        const print = makePrinter(opts, io, runLines, buildTail);
+        const print = makePrinter(opts, io, runLines, buildTail, () => job!.warnings);
         const unsubscribe = job.events.subscribe(0, (e) => {
             print(e);
             try {
@@ -304,8 +304,13 @@ function linkerPlaceOf(line: string): string {
     return at < 0 ? '' : line.slice(at + 'src-gen/'.length);
 }
 
-/** The printer of a job's events (exported for its tests). */
-export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[]): (e: JobEvent) => void {
+/**
+ * The printer of a job's events (exported for its tests). `jobWarnings`: the job's warnings so far;
+ * the service's `warning: W` line of one of them is left out, in every mode (--verbose, a terminal's
+ * progress): the closing lines (reportBuild) say each once. The service adds a warning to the job
+ * before it logs its line.
+ */
+export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['runLines'], buildTail: string[], jobWarnings: () => readonly string[] = () => []): (e: JobEvent) => void {
     const madeParts = new Set<string>();
     // the service's log line of each diagnostic printed (its rendering, as the line after it says it),
     // by count: --verbose prints the diagnostic once, as the CLI writes it (the path from here, the region)
@@ -376,6 +381,8 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
             return;
         }
         if (opts.format !== 'text') return;
+        // one of the job's warnings (a build's output cut, a real-time run throttled): said once, at the end
+        if (e.source === 'service' && e.line.startsWith('warning: ') && jobWarnings().includes(e.line.slice('warning: '.length))) return;
         // the run's output cut at its cap: said where it was cut, in the same stream (the modules' lines go on in their CSV logs)
         // (the cap is per stream: the other one, with the launcher's lines on stderr, goes on)
         const truncated = e.step === 'run' && e.source === 'service' ? OUTPUT_TRUNCATED_LINE.exec(e.line) : null;

@@ -9,7 +9,7 @@ import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import type { JobEvent } from '@contract-studio/build-service';
-import { makePrinter, type JobOptions } from '../src/job-runner.js';
+import { makePrinter, reportBuild, type JobOptions, type JobOutcome } from '../src/job-runner.js';
 import { capture } from './capture-io.js';
 
 let root: string;
@@ -64,6 +64,36 @@ describe('the service\'s line of each prepare problem', () => {
             const print = makePrinter(opts, io, [], []);
             for (const l of lines) print(service('prepare', l));
             expect(io.stderr, JSON.stringify(mode)).toBe('');
+        }
+    });
+});
+
+describe('a warning of the job said by a line of its log too (a real-time run throttled, a build\'s output cut)', () => {
+    const THROTTLED = 'the architecture was throttled by its real-time CPU budget about 99 times (4.33 s in all): the sandbox gives ...';
+    const CUT = "the build's stdout was cut at the output limit (4 KiB per stream, outputBytesPerStream): ...";
+    it('is printed once, among the closing lines, in every mode: without --verbose, with it, on a terminal', () => {
+        for (const mode of [{ verbose: false, progress: false }, { verbose: true, progress: false }, { verbose: false, progress: true }]) {
+            const io = capture(root);
+            const opts = { dir: root, dirArg: '.', sandbox: 'bwrap', format: 'text', ...mode, runtime: undefined, cacheDir: undefined } as JobOptions;
+            const warnings: string[] = [];
+            const print = makePrinter(opts, io, [], [], () => warnings);
+            // the service adds each to the job's warnings, then logs its line (job.ts)
+            warnings.push(CUT);
+            print(service('build', `warning: ${CUT}`));
+            warnings.push(THROTTLED);
+            print({ type: 'line', seq: 0, t: 0, step: 'run', source: 'service', stream: 'system', line: `warning: ${THROTTLED}` } as JobEvent);
+            print({ type: 'line', seq: 0, t: 0, step: 'run', source: 'service', stream: 'system', line: 'warning: the run\'s logs could not be collected: EIO' } as JobEvent);
+            const outcome = {
+                job: { sandboxName: 'bwrap', warnings, prepareDiagnostics: [], foreignMakefiles: [], status: 'succeeded' },
+                result: { ok: true, message: 'run finished (exit 0)', step: 'run', issues: [], durations_ms: { prepare: 1900, build: 900, run: 10000 } },
+                runLines: [], buildTail: [],
+            } as unknown as JobOutcome;
+            reportBuild(opts, outcome, io);
+            const said = (w: string) => io.stderr.split('\n').filter((l) => l === `warning: ${w}`).length;
+            expect(said(THROTTLED), JSON.stringify(mode)).toBe(1);
+            expect(said(CUT), JSON.stringify(mode)).toBe(1);
+            // a warning line that is no warning of the job is printed as before (--verbose, a terminal)
+            expect(said("the run's logs could not be collected: EIO"), JSON.stringify(mode)).toBe(mode.verbose || mode.progress ? 1 : 0);
         }
     });
 });
