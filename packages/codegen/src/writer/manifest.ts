@@ -100,7 +100,26 @@ export interface ManifestLoad {
     manifest?: LoadedManifest;
     /** Why the manifest, or some of its entries, were ignored (one warning each). */
     problems: string[];
+    /**
+     * Set when a manifest is there but could not be read (conflict markers, not JSON, unknown
+     * format): what is wrong with it, as a clause ("holds git merge conflict markers"). There is then
+     * no record of what the generator wrote: it cannot tell its own lines from the user's.
+     */
+    unreadable?: string;
 }
+
+/**
+ * What to do about a manifest that could not be read (paths from the project root): one holding git
+ * conflict markers is resolved by taking either side; any other is written anew by generate.
+ */
+export function unreadableManifestAdvice(unreadable: string): string {
+    return unreadable === CONFLICTED
+        ? `take either side of it (git checkout --theirs src-gen/${MANIFEST_NAME}, or --ours), then run \`contract generate\` on the project`
+        : `run \`contract generate\` on the project (it writes it anew)`;
+}
+
+/** ManifestLoad.unreadable of a manifest holding git's conflict markers. */
+export const CONFLICTED = 'holds git merge conflict markers';
 
 /**
  * Why a manifest entry is not a file the generator may act on, or undefined. The manifest is read
@@ -137,12 +156,12 @@ export function loadManifest(tree: OutputTree): ManifestLoad {
     } catch (e) {
         const markers = conflictMarkers(text);
         if (markers.length > 0) {
-            return { problems: [`holds git merge conflict markers (lines ${conflictMarkerLines(markers)}): unreadable, ignored, and written anew by this generation; resolve a conflict in the manifest by taking either side (git checkout --theirs or --ours ${MANIFEST_NAME}), then generate`] };
+            return { problems: [`holds git merge conflict markers (lines ${conflictMarkerLines(markers)}): unreadable, ignored`], unreadable: CONFLICTED };
         }
-        return { problems: [`unreadable manifest, ignored (${(e as Error).message})`] };
+        return { problems: [`unreadable manifest, ignored (${(e as Error).message})`], unreadable: 'is unreadable' };
     }
     if (data?.version !== 1 || typeof data.files !== 'object' || data.files === null || Array.isArray(data.files)) {
-        return { problems: ['unknown manifest format, ignored'] };
+        return { problems: ['unknown manifest format, ignored'], unreadable: 'has an unknown format' };
     }
     const files = new Map<string, Record<string, string>>();
     const problems: string[] = [];
@@ -195,6 +214,27 @@ export function serialiseManifest(files: Map<string, Record<string, string>>, sk
         manifest.skeletonLines = sortedLines;
     }
     return JSON.stringify(manifest, null, 1) + '\n';
+}
+
+/** Whether `text` ends its lines with CRLF: some do, and no more end with a bare LF. */
+export function hasCrlfEndings(text: string): boolean {
+    let crlf = 0;
+    let lf = 0;
+    for (let i = text.indexOf('\n'); i >= 0; i = text.indexOf('\n', i + 1)) {
+        if (i > 0 && text.charCodeAt(i - 1) === 13) crlf++;
+        else lf++;
+    }
+    return crlf > 0 && lf <= crlf;
+}
+
+/**
+ * The manifest text (serialiseManifest's, LF) in the line-ending style of the manifest it replaces
+ * (`previous`, undefined: none): a CRLF checkout's manifest (git's autocrlf) stays CRLF, as the C
+ * files do, so it is not rewritten, nor shown changed, for its line endings alone. Generate and a
+ * rename's carry-over write it through this.
+ */
+export function manifestTextLike(previous: string | undefined, text: string): string {
+    return previous !== undefined && hasCrlfEndings(previous) ? text.replace(/\r?\n/g, '\r\n') : text;
 }
 
 /**

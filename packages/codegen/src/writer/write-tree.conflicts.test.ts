@@ -78,6 +78,84 @@ describe('writeTree: a manifest holding git merge conflict markers', () => {
         const text = readFileSync(join(dir, MANIFEST_NAME), 'utf8').replace('\n "files"', '\n<<<<<<< HEAD\n "x": 1,\n=======\n "y": 2,\n>>>>>>> eng-b\n "files"');
         writeFileSync(join(dir, MANIFEST_NAME), text);
         const report = writeTree(dir, [module('GTG')]);
-        expect(report.warnings).toEqual([{ file: MANIFEST_NAME, message: expect.stringMatching(/^holds git merge conflict markers \(lines 3, 5, 7\): unreadable, ignored, and written anew by this generation; resolve a conflict in the manifest by taking either side \(git checkout --theirs or --ours/) }]);
+        expect(report.warnings).toEqual([{ file: MANIFEST_NAME, message: expect.stringMatching(/^holds git merge conflict markers \(lines 3, 5, 7\): unreadable, ignored, and written anew by this generation; next time, resolve such a conflict before generating: take either side of it \(git checkout --theirs src-gen\/\.contract-manifest\.json, or --ours\), then run `contract generate` on the project$/) }]);
+    });
+
+    /** The manifest of `dir` with a conflict hunk in it, as a merge of two branches' generations leaves it. */
+    const conflictManifest = (dir: string) => {
+        const text = readFileSync(join(dir, MANIFEST_NAME), 'utf8').replace('\n "files"', '\n<<<<<<< HEAD\n "x": 1,\n=======\n "y": 2,\n>>>>>>> eng-b\n "files"');
+        writeFileSync(join(dir, MANIFEST_NAME), text);
+        return text;
+    };
+    const helper = 'static int my_helper_outside(void){return 42;}\n';
+
+    it('with no record of what it wrote, copies a file that differs outside its regions to orphans/ before regenerating it, saying why', () => {
+        const dir = out();
+        const path = 'generated/GTG_mod/module.c';
+        writeTree(dir, [module('GTG')]);
+        const edited = readFileSync(join(dir, path), 'utf8').replace('void _exec(void){', `${helper}void _exec(void){`);
+        writeFileSync(join(dir, path), edited);
+        conflictManifest(dir);
+        const report = writeTree(dir, [module('GTG')]);
+        expect(report.orphaned).toEqual([`orphans/${path}`]);
+        expect(readFileSync(join(dir, 'orphans', path), 'utf8')).toContain(helper);
+        expect(report.warnings).toContainEqual({ file: path, line: 7, message: expect.stringContaining('differs outside its protected regions from what the generator now writes (first line that differs from the regenerated file: 7), and the manifest holds git merge conflict markers, so the generator cannot tell its own lines from code written outside the protected regions: the file as it was is copied to orphans/') });
+        // the manifest is written anew: the next generation knows the regenerated file
+        expect(readFileSync(join(dir, MANIFEST_NAME), 'utf8')).not.toContain('<<<<<<<');
+        expect(writeTree(dir, [module('GTG')]).orphaned).toEqual([]);
+    });
+
+    it('a build refuses it: an error saying to take either side and generate, the file untouched', () => {
+        const dir = out();
+        const path = 'generated/GTG_mod/module.c';
+        writeTree(dir, [module('GTG')]);
+        const edited = readFileSync(join(dir, path), 'utf8').replace('void _exec(void){', `${helper}void _exec(void){`);
+        writeFileSync(join(dir, path), edited);
+        conflictManifest(dir);
+        const report = writeTree(dir, [module('GTG')], { displacedCode: 'refuse' });
+        expect(report.errors).toContainEqual({ file: MANIFEST_NAME, message: expect.stringMatching(/^holds git merge conflict markers \(lines 3, 5, 7\): unreadable, ignored: with no record of what the generator wrote, a build cannot tell its lines from code written outside the protected regions, and would leave that code out; take either side of it \(git checkout --theirs src-gen\/\.contract-manifest\.json, or --ours\), then run `contract generate` on the project, then build again$/) });
+        expect(report.errors).toContainEqual({ file: path, line: 7, message: expect.stringContaining('a build leaves no user code out') });
+        expect(readFileSync(join(dir, path), 'utf8')).toBe(edited);
+        expect(report.orphaned).toEqual([]);
+        // an unedited tree is refused too: nothing tells the build that no code is left out
+        const clean = out();
+        writeTree(clean, [module('GTG')]);
+        conflictManifest(clean);
+        expect(writeTree(clean, [module('GTG')], { displacedCode: 'refuse' }).errors.map((e) => e.file)).toEqual([MANIFEST_NAME]);
+    });
+
+    it('leaves it as it is while a generated file is refused, so that the file, once resolved with a line outside its regions, is copied to orphans/', () => {
+        const dir = out();
+        const path = 'generated/GTG_mod/module.c';
+        writeTree(dir, [module('GTG'), module('NAV')]);
+        const generated = readFileSync(join(dir, path), 'utf8');
+        writeFileSync(join(dir, path), conflicted());
+        const manifest = conflictManifest(dir);
+        const first = writeTree(dir, [module('GTG'), module('NAV')]);
+        expect(first.errors.map((e) => e.file)).toEqual([path]);
+        expect(first.warnings).toContainEqual({ file: MANIFEST_NAME, message: expect.stringContaining('unreadable, ignored; left as it is while generated files are refused') });
+        expect(readFileSync(join(dir, MANIFEST_NAME), 'utf8')).toBe(manifest);
+        // resolved: the user's side, with a helper written outside the regions
+        const resolved = generated.replace('void _exec(void){', `${helper}void _exec(void){`);
+        writeFileSync(join(dir, path), resolved);
+        const second = writeTree(dir, [module('GTG'), module('NAV')]);
+        expect(second.errors).toEqual([]);
+        expect(second.orphaned).toEqual([`orphans/${path}`]);
+        expect(readFileSync(join(dir, 'orphans', path), 'utf8')).toContain(helper);
+    });
+});
+
+describe('writeTree: a file refused (conflict markers) keeps its manifest records', () => {
+    it('files, skeletons and skeletonLines of the refused file are in the manifest written, so an edit outside its regions is still found once resolved', () => {
+        const dir = out();
+        const path = 'generated/GTG_mod/module.c';
+        writeTree(dir, [module('GTG')]);
+        const before = JSON.parse(readFileSync(join(dir, MANIFEST_NAME), 'utf8')) as Record<string, Record<string, unknown>>;
+        writeFileSync(join(dir, path), conflicted());
+        // a model change in the same generation: the manifest is rewritten
+        writeTree(dir, [module('GTG'), module('NAV')]);
+        const after = JSON.parse(readFileSync(join(dir, MANIFEST_NAME), 'utf8')) as Record<string, Record<string, unknown>>;
+        for (const table of ['files', 'skeletons', 'skeletonLines']) expect(after[table]![path]).toEqual(before[table]![path]);
+        expect(after.files!['generated/NAV_mod/module.c']).toBeDefined();
     });
 });

@@ -5,7 +5,7 @@ import { scanRegions } from '@contract-studio/conventions';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
 import { decodeLineHashes, describeEdits, editsOutside, skeletonLines } from './skeleton-lines.js';
-import { MANIFEST_NAME, fileRecord, hashContent, loadManifest, looksLikeDefault, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
+import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, manifestTextLike, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
 import { emptyReport, type GenerationReport } from './report.js';
@@ -48,17 +48,6 @@ function knownDefaultCheck(defaults: Record<string, string> | undefined) {
         const known = defaults?.[id];
         return known !== undefined ? known === hashContent(content) : undefined;
     };
-}
-
-/** Whether `text` ends its lines with CRLF: some do, and no more end with a bare LF. */
-function hasCrlfEndings(text: string): boolean {
-    let crlf = 0;
-    let lf = 0;
-    for (let i = text.indexOf('\n'); i >= 0; i = text.indexOf('\n', i + 1)) {
-        if (i > 0 && text.charCodeAt(i - 1) === 13) crlf++;
-        else lf++;
-    }
-    return crlf > 0 && lf <= crlf;
 }
 
 /** What a build reads of a project's file, at most (the build service's projectFileBytes; the IDE opens the same). */
@@ -184,7 +173,24 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         refusals.add(MANIFEST_NAME, e);
         manifestRefused = true;
     }
-    for (const problem of loaded.problems) report.warnings.push({ file: MANIFEST_NAME, message: problem });
+    const refuseDisplacing = options.displacedCode === 'refuse';
+    // a manifest there but unreadable (git conflict markers...): no record of what the generator
+    // wrote, so it cannot tell its own lines from code written outside the regions. A build refuses
+    // (it would build without that code); generate copies each file that differs from what it now
+    // writes to orphans/, and writes the manifest anew unless a refused file's record would be lost
+    const unreadable = loaded.unreadable;
+    let unreadableNote: { file: string; message: string } | undefined;
+    for (const problem of loaded.problems) {
+        if (unreadable !== undefined && refuseDisplacing) {
+            report.errors.push({ file: MANIFEST_NAME, message: `${problem}: with no record of what the generator wrote, a build cannot tell its lines from code written outside the protected regions, and would leave that code out; ${unreadableManifestAdvice(unreadable)}, then build again` });
+        } else {
+            const warning = { file: MANIFEST_NAME, message: problem };
+            report.warnings.push(warning);
+            if (unreadable !== undefined) unreadableNote = warning;
+        }
+    }
+    /** A file refused (left untouched) while the manifest was unreadable: no record of it to write. */
+    let refusedUnrecorded = false;
     const oldDefaults: DefaultsOf = (p) => loaded.manifest?.files.get(p);
     const newManifest = new Map<string, Record<string, string>>();
     const newSkeletons = new Map<string, string>();
@@ -192,6 +198,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     /** The skeleton hash recorded when the file was last written (undefined: an older manifest, or none: no check). */
     const recordedSkeleton = (p: string) => loaded.manifest?.skeletons.get(p);
     const keepPrevious = (path: string) => {
+        if (unreadable !== undefined) refusedUnrecorded = true;
         const previous = oldDefaults(path);
         if (previous) newManifest.set(path, previous);
         const skeleton = recordedSkeleton(path);
@@ -203,7 +210,6 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     };
     const sorted = [...files].sort((a, b) => (a.path < b.path ? -1 : a.path > b.path ? 1 : 0));
     const produced = new Set(sorted.map((f) => f.path));
-    const refuseDisplacing = options.displacedCode === 'refuse';
     /** Every region ID of the new output, read once when a carry-over asks (carry-renamed-regions.ts). */
     let output: GeneratedOutput | undefined;
     const outputOf = (): GeneratedOutput => (output ??= { ids: new Set(sorted.flatMap((f) => scanRegions(f.content).regions.map((r) => r.id))), paths: [...produced] });
@@ -301,6 +307,17 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                         message: (orphan) => `edited outside its protected regions (${where}): that code is regenerated, not kept; the file as it was is in ${orphan} (move your code into a protected region)`,
                     });
                 }
+            } else if (unreadable !== undefined && skeletonHash(existing, file.path) !== record.skeleton) {
+                // no record: a file that differs from what the generator now writes outside its
+                // regions may hold the user's code there (or an older generation's lines)
+                const { line, where } = whereEditedOutside(existing, file.path, undefined, merged.text);
+                const why = `the manifest ${unreadable}, so the generator cannot tell its own lines from code written outside the protected regions`;
+                displaced.push({
+                    line,
+                    what: `differs outside its protected regions from what the generator now writes (${where}), and ${why}`,
+                    orphan: () => fileOrphanText(file.path, original, [`${where}; ${why}`], undefined, 'skeleton'),
+                    message: (orphan) => `differs outside its protected regions from what the generator now writes (${where}), and ${why}: the file as it was is copied to ${orphan} before it is regenerated (move any code of yours there into a protected region; if it holds none, delete the copy)`,
+                });
             }
             if (merged.disabled.length > 0) {
                 const ids = merged.disabled.map((r) => r.id).join(', ');
@@ -374,9 +391,11 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             }
             const owned = userRegions(existing, path, defaultCheck(oldDefaults(path)));
             const recorded = recordedSkeleton(path);
-            const editedOutside = recorded !== undefined && skeletonHash(existing, path) !== recorded;
+            // no record (an unreadable manifest): code may have been written outside its regions
+            const editedOutside = recorded !== undefined ? skeletonHash(existing, path) !== recorded : unreadable !== undefined;
+            const outside = recorded !== undefined ? 'code outside the protected regions' : `perhaps code outside the protected regions (the manifest ${unreadable})`;
             if ((owned.length > 0 || editedOutside) && refuseDisplacing) {
-                const what = [...owned.map((r) => r.id), ...(editedOutside ? ['code outside the protected regions'] : [])];
+                const what = [...owned.map((r) => r.id), ...(editedOutside ? [outside] : [])];
                 report.warnings.push({
                     file: path,
                     message: `its entity no longer exists; the file holds user code (${what.join(', ')}), which this build leaves out; \`contract generate\` on the project moves it to src-gen/orphans/`,
@@ -385,7 +404,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 continue;
             }
             if (owned.length > 0 || editedOutside) {
-                const what = [...owned.map((r) => r.id), ...(editedOutside ? ['code outside the protected regions'] : [])];
+                const what = [...owned.map((r) => r.id), ...(editedOutside ? [outside] : [])];
                 const orphan = writeOrphan(tree, path, fileOrphanText(path, existing, what));
                 if (orphan.written) report.filesWritten++;
                 report.orphaned.push(orphan.path);
@@ -404,12 +423,17 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
     }
 
-    if (!manifestRefused) {
-        let manifestText = serialiseManifest(newManifest, newSkeletons, newSkeletonLines);
+    if (unreadableNote && refusedUnrecorded && !refuseDisplacing) {
+        // written anew, it would hold no record of the refused files: once resolved, their code
+        // outside the regions would pass for the generator's. Left as it is, the next generation
+        // still has no record, and copies a resolved file that differs to orphans/
+        unreadableNote.message += `; left as it is while generated files are refused (errors above): written anew, it would hold no record of what the generator wrote in them; ${unreadableManifestAdvice(unreadable!)}`;
+    } else if (!manifestRefused) {
+        if (unreadableNote) unreadableNote.message += `, and written anew by this generation${unreadable === CONFLICTED ? `; next time, resolve such a conflict before generating: ${unreadableManifestAdvice(unreadable)}` : ''}`;
         try {
             const previous = tree.read(MANIFEST_NAME);
             // a CRLF checkout's manifest keeps its line endings (as the C files do): not rewritten for them alone
-            if (previous !== undefined && hasCrlfEndings(previous)) manifestText = manifestText.replace(/\n/g, '\r\n');
+            const manifestText = manifestTextLike(previous, serialiseManifest(newManifest, newSkeletons, newSkeletonLines));
             if (previous !== manifestText) {
                 tree.write(MANIFEST_NAME, Buffer.from(manifestText, 'utf8'));
                 report.filesWritten++;
