@@ -139,6 +139,21 @@ describe('renameInGeneratedTree and the manifest', () => {
     const content = (m: string) => `// module\nint step(void);\n/*PROTECTED REGION ID(protect_exec_${m}) ENABLED START*/\nreturn 0;\n/*PROTECTED REGION END*/\nint done;\n`;
     const append = (root: string, m: string, text: string) => writeFileSync(join(root, path(m)), readFileSync(join(root, path(m)), 'utf8') + text);
 
+    it('writes the manifest in its own line-ending style: a CRLF checkout (core.autocrlf=true) keeps CRLF, as generate does', async () => {
+        const root = scratch();
+        writeTree(root, [{ path: path('MSC'), content: content('MSC') }]);
+        const manifestPath = join(root, MANIFEST_NAME);
+        writeFileSync(manifestPath, readFileSync(manifestPath, 'utf8').replace(/\n/g, '\r\n'));
+        await renameInGeneratedTree(root, 'MSC', 'MSK');
+        const after = readFileSync(manifestPath, 'utf8');
+        expect(after).toContain('protect_exec_MSK');
+        expect(after).toContain('\r\n');
+        expect(after.replace(/\r\n/g, '')).not.toContain('\n');
+        // and generate then finds nothing to rewrite in it for its line endings
+        writeTree(root, [{ path: path('MSK'), content: content('MSK') }]);
+        expect(readFileSync(manifestPath, 'utf8')).toBe(after);
+    });
+
     it('carries the skeleton line hashes with the region IDs: a later edit outside the regions is named at its own line', async () => {
         const root = scratch();
         writeTree(root, [{ path: path('MSC'), content: content('MSC') }]);

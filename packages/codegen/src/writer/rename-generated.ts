@@ -10,7 +10,7 @@ import { join } from 'node:path';
 import { START_MARKER } from '../regions/markers.js';
 import { parseRegions } from '../regions/parse-regions.js';
 import { bytesOf } from './byte-string.js';
-import { hashContent, loadManifest, MANIFEST_NAME, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
+import { hashContent, loadManifest, MANIFEST_NAME, manifestTextLike, serialiseManifest, skeletonHash, type ManifestLoad } from './manifest.js';
 import { encodeLineHashes, skeletonLines } from './skeleton-lines.js';
 import { OutputTree } from './output-tree.js';
 import { ORPHANS_DIR } from './orphans.js';
@@ -250,7 +250,8 @@ function carryManifest(tree: OutputTree, loaded: ManifestLoad, { from, to, renam
         const lines = followed ? carry.linesAfter : carry ? undefined : earlier ? earlier.lines : loaded.manifest.skeletonLines.get(path);
         if (lines !== undefined) lineTable.set(moved, lines);
     }
-    tree.write(MANIFEST_NAME, Buffer.from(serialiseManifest(files, skeletons, lineTable), 'utf8'));
+    // in the line-ending style of the manifest it replaces (a CRLF checkout's stays CRLF), as generate writes it
+    tree.write(MANIFEST_NAME, Buffer.from(manifestTextLike(tree.read(MANIFEST_NAME), serialiseManifest(files, skeletons, lineTable)), 'utf8'));
 }
 
 /**
