@@ -583,6 +583,20 @@ static void write_all(const char *buf, size_t len)
     stop_log(record, warning);
 }
 
+/* "<written> bytes: its disk had F bytes free; less than the logs' K-byte reserve (VAR)": why a log
+   stopped at its disk's reserve, in its log-capped record and its stderr warning alike */
+static char *put_reserve_reason(char *p, unsigned long long free_bytes, unsigned long long keep, const char *var)
+{
+    p = put_u64(p, log_written);
+    p = put_str(p, " bytes: its disk had ");
+    p = put_u64(p, free_bytes);
+    p = put_str(p, " bytes free; less than the logs' ");
+    p = put_u64(p, keep);
+    p = put_str(p, "-byte reserve (");
+    p = put_str(p, var);
+    return put_str(p, ")");
+}
+
 /* The log's disk below its reserve (log_reserve.c), looked at once per LOG_RESERVE_CHECK_BYTES
  * written: the log stops before buf[0..len) as at its bound — these records only counted, a
  * `log-capped` record and one stderr line saying why. 1 when it stopped. */
@@ -598,27 +612,11 @@ static int stop_at_reserve(const char *buf, size_t len)
     mark_broken(); /* the file ends before these records */
     log_low = 1;
     log_dropped_w += count_records(buf, len);
-    char record[240], warning[240], *p = record;
-    p = put_str(p, "log stopped at ");
-    p = put_u64(p, log_written);
-    p = put_str(p, " bytes: its disk had ");
-    p = put_u64(p, free_bytes);
-    p = put_str(p, " bytes free; less than the logs' ");
-    p = put_u64(p, keep);
-    p = put_str(p, "-byte reserve (");
-    p = put_str(p, var);
-    p = put_str(p, "): later records are not written");
-    *p = '\0';
-    p = put_str(warning, "stopped at ");
-    p = put_u64(p, log_written);
-    p = put_str(p, " bytes: its disk had ");
-    p = put_u64(p, free_bytes);
-    p = put_str(p, " bytes free; less than the logs' ");
-    p = put_u64(p, keep);
-    p = put_str(p, "-byte reserve (");
-    p = put_str(p, var);
-    p = put_str(p, "); later records are not written");
-    *p = '\0';
+    char record[240], warning[240], *p;
+    p = put_reserve_reason(put_str(record, "log stopped at "), free_bytes, keep, var);
+    *put_str(p, ": later records are not written") = '\0';
+    p = put_reserve_reason(put_str(warning, "stopped at "), free_bytes, keep, var);
+    *put_str(p, "; later records are not written") = '\0';
     stop_log(record, warning);
     return 1;
 }
