@@ -40,16 +40,20 @@ static const ContractOrdModule modules[] = {{"A", 50, 0}, {"B", 50, 0}, {"C", 50
 static const char *const sups[] = {"SUP"};
 static const ContractOrdVocabulary VOC = {CONTRACT_VOCABULARY_VERSION, 7, modules, 4, schemas, 1, sups};
 
-static OrdCore *make(FakeWorld *w) {
+/* A core over a fresh fake world; `fact` (NULL: none) gets its typed facts. */
+static OrdCore *make_with_facts(FakeWorld *w, void (*fact)(void *ctx, int64_t t, const OrdFact *f)) {
     log_clear(&LOG);
     memset(w, 0, sizeof *w);
     w->log = &LOG;
     OrdIo io = fake_ord_io(w);
+    io.fact = fact;
     char err[256] = "";
     OrdCore *c = ord_core_create(&VOC, &io, err, sizeof err);
     if (!c) fprintf(stderr, "  %s\n", err);
     return c;
 }
+
+static OrdCore *make(FakeWorld *w) { return make_with_facts(w, NULL); }
 
 static const char *const SCHED[] = {"release", "deadline", "overrun", "missed", NULL};
 
@@ -626,13 +630,7 @@ static void fact_record_to_log(void *ctx, int64_t t, const OrdFact *f) {
    CRITICAL_DELAY (ORD late) from a module that ran out of its time */
 void test_ord_deadline_miss_record_says_its_critical_delay(void) {
     FakeWorld w;
-    log_clear(&LOG);
-    memset(&w, 0, sizeof w);
-    w.log = &LOG;
-    OrdIo io = fake_ord_io(&w);
-    io.fact = fact_record_to_log;
-    char err[256] = "";
-    OrdCore *c = ord_core_create(&VOC, &io, err, sizeof err);
+    OrdCore *c = make_with_facts(&w, fact_record_to_log);
     if (!c) { CHECK(0); return; }
     ord_core_activate(c, 5 * MS, "FST", NULL, 0, "SUP", 1); /* E every 3 ms, critical 3 ms */
     ord_core_advance(c, 8 * MS + 1);                        /* cycle 0 missed at 8 ms */
@@ -642,13 +640,7 @@ void test_ord_deadline_miss_record_says_its_critical_delay(void) {
 
 void test_ord_facts_release_finished_complete_miss_with_cycle(void) {
     FakeWorld w;
-    log_clear(&LOG);
-    memset(&w, 0, sizeof w);
-    w.log = &LOG;
-    OrdIo io = fake_ord_io(&w);
-    io.fact = fact_to_log;
-    char err[256] = "";
-    OrdCore *c = ord_core_create(&VOC, &io, err, sizeof err);
+    OrdCore *c = make_with_facts(&w, fact_to_log);
     if (!c) { CHECK(0); return; }
     ord_core_activate(c, 5 * MS, "FST", NULL, 0, "SUP", 1); /* E every 3 ms, critical 3 ms */
     ord_core_module_finished(c, 6 * MS, "E");               /* cycle 0: 1 ms */
