@@ -254,3 +254,23 @@ int h_unix_socket_listed(const char *text)
     free(s);
     return found;
 }
+
+/* This process's stderr into <work dir>/stderr.txt (its path in path): the fd to give back to
+ * h_stderr_back, -1 when it could not. */
+int h_stderr_to_file(char *path, size_t cap)
+{
+    snprintf(path, cap, "%s/stderr.txt", h_work_dir);
+    fflush(stderr);
+    int saved = dup(2), out = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (saved < 0 || out < 0) return -1;
+    dup2(out, 2);
+    close(out);
+    return saved;
+}
+
+void h_stderr_back(int saved)
+{
+    fflush(stderr);
+    dup2(saved, 2);
+    close(saved);
+}

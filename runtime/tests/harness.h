@@ -41,6 +41,11 @@ char *h_read_file(const char *path);
 int h_find_log_file(const char *prefix, const char *suffix, char *out, size_t cap);
 /* Concatenation of every file of h_log_dir whose name starts with prefix. */
 char *h_read_logs(const char *prefix);
+/* This process's stderr into <work dir>/stderr.txt (its path in path): the fd to give back to
+ * h_stderr_back, -1 when it could not. */
+int h_stderr_to_file(char *path, size_t cap);
+/* stderr back where it was (the fd h_stderr_to_file gave). */
+void h_stderr_back(int saved);
 /* Number of entries in a directory (-1 if it does not exist). */
 int h_count_entries(const char *dir);
 /* 1 if /proc/net/unix lists a socket whose path contains `text`. */

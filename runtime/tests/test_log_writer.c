@@ -185,19 +185,12 @@ void test_csv_log_writer_refused(void)
 {
     REQUIRE(h_setup("logrefused") == 0);
     char said[1024];
-    snprintf(said, sizeof said, "%s/stderr.txt", h_log_dir);
-    fflush(stderr);
-    int saved = dup(2);
-    int out = open(said, O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0600);
-    REQUIRE(saved >= 0 && out >= 0);
-    dup2(out, 2);
+    int saved = h_stderr_to_file(said, sizeof said);
+    REQUIRE(saved >= 0);
     __atomic_store_n(&threads_refused, 1, __ATOMIC_RELEASE);
     int opened = rt_log_open();
     __atomic_store_n(&threads_refused, 0, __ATOMIC_RELEASE);
-    fflush(stderr);
-    dup2(saved, 2);
-    close(saved);
-    close(out);
+    h_stderr_back(saved);
     REQUIRE(opened == 0);
     char *text = h_read_file(said);
     REQUIRE(text);
@@ -397,12 +390,8 @@ void test_csv_log_disk_full(void)
     REQUIRE(rt_log_open() == 0);
     char csv[1024], err_path[700];
     REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
-    fflush(stderr);
-    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    REQUIRE(saved >= 0 && out >= 0);
-    dup2(out, 2);
-    close(out);
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
+    REQUIRE(saved >= 0);
     for (int i = 0; i < 5; i++) ContractLog("before", "", -1, 0, "room");
     ContractLogFlush();
     __atomic_store_n(&write_room, 150, __ATOMIC_RELEASE); /* the disk fills inside the second record */
@@ -412,9 +401,7 @@ void test_csv_log_disk_full(void)
     for (int i = 0; i < 10; i++) ContractLog("after", "", -1, 0, "room again");
     ContractLogFlush();
     rt_log_close();
-    fflush(stderr);
-    dup2(saved, 2);
-    close(saved);
+    h_stderr_back(saved);
     char *log = h_read_file(csv), *err = h_read_file(err_path);
     REQUIRE(log);
     int lines = 0, during = 0, cut = 0;
@@ -461,12 +448,8 @@ static void reserve_run(int engine, long long free_then, int *looks, char *err_o
     g_rt.engine = engine;
     char csv[1024], err_path[700];
     REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
-    snprintf(err_path, sizeof err_path, "%s/stderr.txt", h_work_dir);
-    fflush(stderr);
-    int saved = dup(2), out = open(err_path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    REQUIRE(saved >= 0 && out >= 0);
-    dup2(out, 2);
-    close(out);
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
+    REQUIRE(saved >= 0);
     __atomic_store_n(&disk_looks, 0, __ATOMIC_RELEASE);
     __atomic_store_n(&disk_free, 4000000, __ATOMIC_RELEASE); /* room: written */
     for (int i = 0; i < 2000; i++) ContractLog("before", "", i, 0, "the disk has room");
@@ -478,9 +461,7 @@ static void reserve_run(int engine, long long free_then, int *looks, char *err_o
     rt_log_close();
     __atomic_store_n(&disk_free, -1, __ATOMIC_RELEASE);
     g_rt.engine = RT_ENGINE_NONE;
-    fflush(stderr);
-    dup2(saved, 2);
-    close(saved);
+    h_stderr_back(saved);
     char *err = h_read_file(err_path);
     snprintf(err_out, err_size, "%s", err ? err : "");
     free(err);

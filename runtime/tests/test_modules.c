@@ -446,26 +446,6 @@ void test_peer_gone_at_stop(void)
     h_teardown();
 }
 
-/* This process's stderr into <work dir>/stderr.txt (its path in path): the fd to give back to
- * stderr_back, -1 when it could not. */
-static int stderr_to_file(char *path, size_t cap)
-{
-    snprintf(path, cap, "%s/stderr.txt", h_work_dir);
-    fflush(stderr);
-    int saved = dup(2), out = open(path, O_WRONLY | O_CREAT | O_TRUNC, 0644);
-    if (saved < 0 || out < 0) return -1;
-    dup2(out, 2);
-    close(out);
-    return saved;
-}
-
-static void stderr_back(int saved)
-{
-    fflush(stderr);
-    dup2(saved, 2);
-    close(saved);
-}
-
 /* ContractSetNonBlockingSends (ORD sets it at start): a request to a mailbox that is full (its
  * module stuck, not reading it) fails at once with CONTRACT_EBUSY, said on stderr; without it
  * (every module's default) the sender waits for room, here made by a reader 300 ms later. */
@@ -479,14 +459,14 @@ void test_nonblocking_sends(void)
     REQUIRE(fd >= 0);
     REQUIRE(bind(fd, (struct sockaddr *)&sa, len) == 0);
     char err_path[700];
-    int saved = stderr_to_file(err_path, sizeof err_path);
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
     REQUIRE(saved >= 0);
     int before = ContractSetNonBlockingSends(1);
     int sent = 0, rc = CONTRACT_OK;
     RTIME t0 = GetTime();
     while (sent < 1000 && (rc = SendStart("FULL", ACK_NOTHING, 0)) == CONTRACT_OK) sent++;
     RTIME took = GetTime() - t0;
-    stderr_back(saved);
+    h_stderr_back(saved);
     CHECK_MSG(before == 0, "non-blocking sends were on (%d) before the call: every process starts waiting", before);
     CHECK_MSG(rc == CONTRACT_EBUSY && sent > 0 && sent < 1000, "%d requests taken, then %d (expected CONTRACT_EBUSY)", sent, rc);
     CHECK_MSG(took < 500000000LL, "filling the mailbox and the refused request took %lld ms (a full mailbox is not waited for)",
@@ -595,7 +575,7 @@ void test_queued_sends(void)
     REQUIRE(rt_log_open() == 0); /* the tester's own log: the kept requests' records */
     struct sockaddr_un full_sa, other_sa;
     char err_path[700];
-    int saved = stderr_to_file(err_path, sizeof err_path);
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
     REQUIRE(saved >= 0);
     int fd = full_mailbox("FULL", &full_sa);
     socklen_t other_len;
@@ -663,7 +643,7 @@ void test_queued_sends(void)
     int reader_rc = h_wait_exit(reader, 3000);
     ContractSetQueuedSends(before);
     ContractSetKeptSendFailed(NULL);
-    stderr_back(saved);
+    h_stderr_back(saved);
 
     CHECK_MSG(calls_late == 2 && failed_calls == 2 && failed_type == REQ_START && failed_code == CONTRACT_EBUSY &&
                   !strcmp(failed_module, "FULL"),
@@ -725,7 +705,7 @@ void test_queued_sends_room(void)
     REQUIRE(h_setup("queuedroom") == 0);
     REQUIRE(rt_log_open() == 0); /* the tester's own log: the kept requests' records */
     char err_path[700];
-    int saved = stderr_to_file(err_path, sizeof err_path);
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
     REQUIRE(saved >= 0);
     struct sockaddr_un a_sa, b_sa;
     int a = full_mailbox("ROOMA", &a_sa), b = full_mailbox("ROOMB", &b_sa);
@@ -757,7 +737,7 @@ void test_queued_sends_room(void)
     ContractShutdown(); /* ROOMA's 64 fail at the exit, 0.5 s later */
     RTIME exit_took = GetTime() - t0;
     ContractSetQueuedSends(before);
-    stderr_back(saved);
+    h_stderr_back(saved);
     CHECK(a >= 0 && b >= 0);
     CHECK_MSG(taken == 64 && rc == CONTRACT_EBUSY && for_a == 64, "%d requests kept for ROOMA (%d counted), then %d (expected 64, then CONTRACT_EBUSY)",
               taken, for_a, rc);
@@ -796,13 +776,13 @@ void test_error_repeats(void)
 {
     REQUIRE(h_setup("repeats") == 0);
     char err_path[700];
-    int saved = stderr_to_file(err_path, sizeof err_path);
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
     REQUIRE(saved >= 0);
     for (int i = 0; i < 50; i++) SendStart("GONE", ACK_NOTHING, 0);
     SendStop("GONE", ACK_NOTHING, 0); /* another line: printed, after the count */
     for (int i = 0; i < 3; i++) SendStop("GONE", ACK_NOTHING, 0);
     ContractShutdown(); /* the count of the last one */
-    stderr_back(saved);
+    h_stderr_back(saved);
     char *err = h_read_file(err_path);
     const char *start = "tester: error: START request to GONE: unknown module";
     const char *stop = "tester: error: STOP request to GONE: unknown module";
