@@ -5,7 +5,7 @@
  * types are the packages' own (type-only imports: nothing is loaded until a function runs).
  */
 import type { LoadedWorkspace, ScenarioRename, WorkspaceDocument } from '@contract-studio/language/node';
-import type { GenerationReport, RenameGeneratedReport } from '@contract-studio/codegen';
+import type { GenerationReport } from '@contract-studio/codegen';
 import type { RegionParser } from './region-guard.js';
 import { HttpError } from './http-error.js';
 
@@ -60,15 +60,6 @@ export async function runCodegen(documents: WorkspaceDocument[], outDir: string)
 }
 
 /**
- * codegen's carry-over of a renamed entity in a generated tree (paths and region IDs), the one
- * `contract rename` uses too (docs/codegen.md, "Renames").
- */
-export async function renameGeneratedEntity(srcGen: string, from: string, to: string, kind?: string): Promise<RenameGeneratedReport> {
-  const codegen = await importWith<CodegenApi, 'renameInGeneratedTree'>('@contract-studio/codegen', ['renameInGeneratedTree']);
-  return codegen.renameInGeneratedTree(srcGen, from, to, kind);
-}
-
-/**
  * The C identifiers a rename changes in the user code (the ones `contract rename` changes): a port's
  * or parameter's (only in its module's files: `owner`), a datatype's or an enumeration's (and its
  * generated functions; an enumeration's `members` name its constants), an enumeration member's
@@ -86,30 +77,22 @@ export interface UserCodeRenames {
   owner?: string;
 }
 
-/** codegen's carry-over of those renames into the protected regions' code, whole C identifiers in code only. */
-export async function renameInUserCode(srcGen: string, code: UserCodeRenames) {
-  const codegen = await importWith<CodegenApi, 'renameIdentifiersInGeneratedTree' | 'carryRefusedMessage'>('@contract-studio/codegen', ['renameIdentifiersInGeneratedTree', 'carryRefusedMessage']);
-  const { refused, ...report } = codegen.renameIdentifiersInGeneratedTree(srcGen, new Map(code.renames), code.owner);
-  // the refusal as the IDE says it (its file relative to src-gen)
-  return { ...report, ...(refused ? { refused: codegen.carryRefusedMessage(refused, [...code.renames.keys()]) } : {}) };
-}
-
 type RenameJournal = import('@contract-studio/codegen').RenameJournal;
+type JournaledRenameOptions<W> = import('@contract-studio/codegen').JournaledRenameOptions<W>;
 
 /**
- * codegen's rename journal (rename-journal.ts, the one `contract rename` writes), written in
- * `srcGen` before the rename changes anything: killed from then on, the next Generate All (or
- * `contract generate`) finishes the rename.
+ * codegen's rename sequence (journaled-rename.ts, the one `contract rename` runs): `journal` written
+ * in `srcGen` when `options.journaled`, the generated tree carried over (paths and region IDs, then
+ * the identifiers of the user code), `options.writeFiles`, the journal removed. Killed after the
+ * journal, the next Generate All (or `contract generate`) finishes the rename. A refused identifier
+ * carry-over is said as the IDE says it (its file relative to src-gen).
  */
-export async function writeRenameJournal(srcGen: string, journal: RenameJournal): Promise<void> {
-  const codegen = await importWith<CodegenApi, 'writeRenameJournal'>('@contract-studio/codegen', ['writeRenameJournal']);
-  codegen.writeRenameJournal(srcGen, journal);
-}
-
-/** Removes the journal: the rename is whole (or changed nothing). */
-export async function removeRenameJournal(srcGen: string): Promise<void> {
-  const codegen = await importWith<CodegenApi, 'removeRenameJournal'>('@contract-studio/codegen', ['removeRenameJournal']);
-  codegen.removeRenameJournal(srcGen);
+export async function journaledRename<W>(srcGen: string, journal: RenameJournal, options: JournaledRenameOptions<W>) {
+  const codegen = await importWith<CodegenApi, 'runJournaledRename' | 'carryRefusedMessage'>('@contract-studio/codegen', ['runJournaledRename', 'carryRefusedMessage']);
+  const { carried } = await codegen.runJournaledRename(srcGen, journal, options);
+  const moved = carried.moved ?? { movedPaths: [], regionIds: [] };
+  const { refused, ...code } = carried.code ?? { rewritten: [], remaining: [] };
+  return { moved, code: { ...code, ...(refused ? { refused: codegen.carryRefusedMessage(refused, journal.identifiers.map(([from]) => from)) } : {}) } };
 }
 
 /**

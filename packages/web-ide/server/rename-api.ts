@@ -28,7 +28,7 @@ import { fileVersion } from './file-version.js';
 import type { GeneratedTreeLock } from './generated-tree-lock.js';
 import { saveWorkspaceFile, withProjectTreeLock } from './guarded-write.js';
 import { HttpError } from './http-error.js';
-import { removeRenameJournal, renameGeneratedEntity, renameInScenarioFiles, renameInUserCode, userCodeRenames, writeRenameJournal } from './integrations.js';
+import { journaledRename, renameInScenarioFiles, userCodeRenames } from './integrations.js';
 import { inProjectFolder } from './project-folder.js';
 import type { WorkspacePaths } from './workspace-paths.js';
 
@@ -137,54 +137,44 @@ export async function renameEntity(
       const generatedNames = kind === undefined || GENERATED_NAME_KINDS.has(kind);
       const identifiers = kind !== undefined && USER_CODE_KINDS.has(kind) ? await userCodeRenames(kind, from, to, owner, members) : undefined;
       const changes = kind !== undefined ? await renameInScenarioFiles(dir, [srcGen], { kind, oldName: from, newName: to, ...(owner !== undefined ? { owner } : {}) }) : [];
-      // the journal first (as contract rename's): stopped from here on, the next generation finishes the rename
+      // journal, generated tree, project files, journal removed: the sequence of contract rename
+      // (codegen journaled-rename.ts); stopped after the journal, the next generation finishes the rename
       const journaled = (files.length > 0 || changes.length > 0) && (await lstat(srcGen).catch(() => undefined))?.isDirectory() === true;
-      if (journaled) {
-        await writeRenameJournal(srcGen, {
-          version: 1, kind: kind ?? 'entity', oldName: from, newName: to, generatedNames,
-          identifiers: [...(identifiers?.renames ?? [])], ...(identifiers?.owner !== undefined ? { identifierOwner: identifiers.owner } : {}),
-          files: [
-            ...files.map((f) => ({ path: inProject(f.path), before: f.base, after: f.text })),
-            ...changes.map((c) => ({ path: c.file, before: fileVersion(Buffer.from(c.original, 'utf8')), after: c.text })),
-          ],
-        });
-      }
-      step?.('journaled');
-      let moved: Awaited<ReturnType<typeof renameGeneratedEntity>> | { movedPaths: []; regionIds: [] } = { movedPaths: [], regionIds: [] };
-      let code: Awaited<ReturnType<typeof renameInUserCode>> | { rewritten: []; remaining: []; refused?: undefined } = { rewritten: [], remaining: [] };
-      try {
-        // the generated tree first: a target path taken there leaves every project file as it was
-        if (generatedNames) moved = await renameGeneratedEntity(srcGen, from, to, kind);
-        if (identifiers) code = await renameInUserCode(srcGen, identifiers);
-      } catch (e) {
-        if (journaled) await removeRenameJournal(srcGen);
-        throw e;
-      }
-      step?.('tree carried over');
+      const renameJournal = {
+        version: 1 as const, kind: kind ?? 'entity', oldName: from, newName: to, generatedNames,
+        identifiers: [...(identifiers?.renames ?? [])], ...(identifiers?.owner !== undefined ? { identifierOwner: identifiers.owner } : {}),
+        files: [
+          ...files.map((f) => ({ path: inProject(f.path), before: f.base, after: f.text })),
+          ...changes.map((c) => ({ path: c.file, before: fileVersion(Buffer.from(c.original, 'utf8')), after: c.text })),
+        ],
+      };
       const filesLeft: RenameEntityResponse['filesLeft'] = [];
       const written: RenameEntityResponse['written'] = [];
-      for (const f of files) {
-        try {
-          written.push({ file: f.path, version: (await saveWorkspaceFile(paths, f.path, Buffer.from(f.text, 'utf8'), treeLock, { base: f.base, fileLocks })).version });
-        } catch (e) {
-          if (!(e instanceof HttpError)) throw e; // the journal stays: the next generation finishes the rename
-          filesLeft.push({ file: f.path, reason: e.message });
-        }
-      }
       const scenarios: RenameEntityResponse['scenarios'] = [];
       const scenariosLeft: RenameEntityResponse['scenariosLeft'] = [];
-      for (const change of changes) {
-        const rel = project ? `${project}/${change.file}` : change.file;
-        try {
-          await saveWorkspaceFile(paths, rel, Buffer.from(change.text, 'utf8'), treeLock, { base: fileVersion(Buffer.from(change.original, 'utf8')), fileLocks });
-        } catch (e) {
-          if (!(e instanceof HttpError)) throw e;
-          scenariosLeft.push({ file: rel, reason: e.message });
-          continue;
+      const writeFiles = async () => {
+        for (const f of files) {
+          try {
+            written.push({ file: f.path, version: (await saveWorkspaceFile(paths, f.path, Buffer.from(f.text, 'utf8'), treeLock, { base: f.base, fileLocks })).version });
+          } catch (e) {
+            if (!(e instanceof HttpError)) throw e; // the journal stays: the next generation finishes the rename
+            filesLeft.push({ file: f.path, reason: e.message });
+          }
         }
-        for (const edit of change.edits) scenarios.push({ file: rel, line: edit.line, before: edit.before, after: edit.after });
-      }
-      if (journaled) await removeRenameJournal(srcGen); // every file written (or left, said): the rename is whole
+        for (const change of changes) {
+          const rel = project ? `${project}/${change.file}` : change.file;
+          try {
+            await saveWorkspaceFile(paths, rel, Buffer.from(change.text, 'utf8'), treeLock, { base: fileVersion(Buffer.from(change.original, 'utf8')), fileLocks });
+          } catch (e) {
+            if (!(e instanceof HttpError)) throw e;
+            scenariosLeft.push({ file: rel, reason: e.message });
+            continue;
+          }
+          for (const edit of change.edits) scenarios.push({ file: rel, line: edit.line, before: edit.before, after: edit.after });
+        }
+      };
+      // every file written (or left, said): the rename is whole, its journal removed
+      const { moved, code } = await journaledRename(srcGen, renameJournal, { journaled, writeFiles, ...(step ? { step } : {}) });
       return {
         movedPaths: moved.movedPaths, regionIds: moved.regionIds, rewritten: code.rewritten, remaining: code.remaining, scenarios, scenariosLeft,
         written, filesLeft, ...(code.refused ? { refused: code.refused } : {}),

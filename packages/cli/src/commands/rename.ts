@@ -67,7 +67,7 @@ export const renameCommand: Command = {
             }
             // loaded when the command runs: `contract build`/`run` never pay for the language server (docs/getting-started.md "The build cache")
             const { loadWorkspace, planRename, RenameError, projectScenarios, renameInScenarios } = await import('@contract-studio/language/node');
-            const { generateArchitecture, renameInGeneratedTree, renameIdentifiersInGeneratedTree, carryRefusedMessage, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, writeRenameJournal, removeRenameJournal, sha256, realOrSelf } = await import('@contract-studio/codegen');
+            const { generateArchitecture, runJournaledRename, RenameStepError, carryRefusedMessage, identifierRenames, findRegionMentions, mentionMatcher, writeFileAtomic, sha256, realOrSelf } = await import('@contract-studio/codegen');
             const workspace = await loadWorkspace(dir);
             // a rename needs the text parsed and every reference resolved; other errors (a reserved
             // name, a bad value...) do not stop it: renaming is often how they are fixed
@@ -102,59 +102,53 @@ export const renameCommand: Command = {
             const inProject = files.every((f) => !relative(dir, f.path).startsWith('..'));
             const own = out === join(dir, SRC_GEN_DIR);
             const journaled = inProject && (await stat(out).catch(() => undefined))?.isDirectory() === true;
-            if (journaled) {
-                try {
-                    writeRenameJournal(out, {
-                        version: 1, kind: plan.kind, oldName: plan.oldName, newName: plan.newName, generatedNames: plan.generatedNames,
-                        identifiers: [...identifiers], ...(variable ? { identifierOwner: owner } : {}), ...(own ? {} : { project: realOrSelf(dir) }),
-                        files: files.map((f) => ({ path: relative(dir, f.path).split(sep).join('/'), before: sha256(readFileSync(f.path)), after: f.text })),
-                    });
-                } catch (e) {
-                    io.err(`contract rename: cannot write its journal in ${safeName(outLabel)}: ${(e as Error).message}; nothing was renamed\n`);
-                    return EXIT_FAILURE;
-                }
+            const journal = {
+                version: 1 as const, kind: plan.kind, oldName: plan.oldName, newName: plan.newName, generatedNames: plan.generatedNames,
+                identifiers: [...identifiers], ...(variable ? { identifierOwner: owner } : {}), ...(own ? {} : { project: realOrSelf(dir) }),
+                files: journaled ? files.map((f) => ({ path: relative(dir, f.path).split(sep).join('/'), before: sha256(readFileSync(f.path)), after: f.text })) : [],
+            };
+            const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
+            // journal, generated tree, project files, journal removed (codegen journaled-rename.ts): if a
+            // target path is taken in the tree, the .contract files stay as they were
+            let carried;
+            try {
+                ({ carried } = await runJournaledRename(out, journal, {
+                    journaled,
+                    writeFiles: () => {
+                        for (const f of files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
+                    },
+                }));
+            } catch (e) {
+                if (!(e instanceof RenameStepError)) throw e;
+                io.err(e.step === 'journal'
+                    ? `contract rename: cannot write its journal in ${safeName(outLabel)}: ${e.message}; nothing was renamed\n`
+                    : e.step === 'carry-over'
+                        ? `contract rename: ${e.message}; the .contract files were not changed\n`
+                        : `contract rename: writing the renamed files failed: ${e.message}; ${journaled ? `the next contract generate finishes the rename (its journal ${safeName(join(outLabel, RENAME_JOURNAL_NAME))} is kept)` : 'some may be renamed and others not'}\n`);
+                return EXIT_FAILURE;
             }
-            // the generated tree first: if a target path is taken there, the .contract files stay as they were
-            if (plan.generatedNames) {
-                try {
-                    const carried = await renameInGeneratedTree(out, plan.oldName, plan.newName, plan.kind);
-                    io.out(`${safeName(outLabel)}: ${carried.movedPaths.length} path(s) moved, ${carried.regionIds.length} protected region ID(s) rewritten\n`);
-                    for (const m of carried.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
-                    for (const d of carried.descriptions) io.out(`${safeName(`${outLabel.replace(/\/+$/, '')}/${d.file}`)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);
-                } catch (e) {
-                    if (journaled) removeRenameJournal(out);
-                    io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
-                    return EXIT_FAILURE;
-                }
+            if (carried.moved) {
+                io.out(`${safeName(outLabel)}: ${carried.moved.movedPaths.length} path(s) moved, ${carried.moved.regionIds.length} protected region ID(s) rewritten\n`);
+                for (const m of carried.moved.movedPaths) io.out(`  ${safeName(m.from)} -> ${safeName(m.to)}\n`);
+                for (const d of carried.moved.descriptions) io.out(`${inTree(d.file)}:${d.line}: default description ${safeName(d.from)} -> ${safeName(d.to)}\n`);
             }
             // the user code: a port or parameter is a variable of its module's module.c, a datatype, an
             // enumeration (its constants too) or a function a C name of every file: their uses in the
-            // protected regions follow (whole C identifiers in code only; a module's name is in
+            // protected regions followed (whole C identifiers in code only; a module's name is in
             // strings, if anywhere: listed below)
-            const inTree = (file: string) => safeName(`${outLabel.replace(/\/+$/, '')}/${file}`);
-            if (identifiers.size > 0) {
-                try {
-                    const carried = renameIdentifiersInGeneratedTree(out, identifiers, variable ? owner : undefined);
-                    for (const r of carried.rewritten) {
-                        io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${[...identifiers.keys()][0]}${identifiers.size > 1 ? ` (or its ${plan.kind === 'enumeration' ? 'functions and constants' : 'functions'})` : ''} renamed\n`);
-                    }
-                    const taken = carried.refused;
-                    if (taken) io.err(`warning: ${safeName(carryRefusedMessage(taken, [...identifiers.keys()], `${outLabel.replace(/\/+$/, '')}/${taken.file}:${taken.line}`))}\n`);
-                } catch (e) {
-                    if (journaled) removeRenameJournal(out);
-                    io.err(`contract rename: ${(e as Error).message}; the .contract files were not changed\n`);
-                    return EXIT_FAILURE;
+            if (carried.code) {
+                for (const r of carried.code.rewritten) {
+                    io.out(`${inTree(r.file)}:${r.line}: protected region ${safeName(r.id)}: ${r.occurrences} use(s) of ${[...identifiers.keys()][0]}${identifiers.size > 1 ? ` (or its ${plan.kind === 'enumeration' ? 'functions and constants' : 'functions'})` : ''} renamed\n`);
                 }
+                const taken = carried.code.refused;
+                if (taken) io.err(`warning: ${safeName(carryRefusedMessage(taken, [...identifiers.keys()], `${outLabel.replace(/\/+$/, '')}/${taken.file}:${taken.line}`))}\n`);
             }
-            for (const f of plan.files) writeFileAtomic(dirname(f.path), basename(f.path), Buffer.from(f.text, 'utf8'));
             const count = plan.files.reduce((n, f) => n + f.occurrences, 0);
             io.out(`renamed ${plan.kind} ${plan.oldName} -> ${plan.newName}: ${count} occurrence(s) in ${plan.files.length} file(s)\n`);
             for (const f of plan.files) io.out(`  ${safeName(join(dirArg, f.file))} (${f.occurrences})\n`);
             for (const change of scenarioChanges) {
-                writeFileAtomic(dirname(change.path), basename(change.path), Buffer.from(change.text, 'utf8'));
                 for (const e of change.edits) io.out(`${safeName(join(dirArg, e.file))}:${e.line}: ${safeName(e.before.trim())}  ->  ${safeName(e.after.trim())}\n`);
             }
-            if (journaled) removeRenameJournal(out); // every file written: the rename is whole
 
             const renamed = await loadWorkspace(dir);
             const after = renamed.diagnostics.filter((d) => d.severity === 'error');

@@ -19,3 +19,5 @@ export {
     RENAME_JOURNAL_NAME, writeRenameJournal, removeRenameJournal, finishInterruptedRename, describeFinishedRename, sha256, realOrSelf,
     type RenameJournal, type RenameJournalFile, type FinishedRename, type FinishedRenameDescription,
 } from './rename-journal.js';
+export { carryRenameIntoTree, type TreeRename, type TreeCarryOver } from './carry-rename.js';
+export { runJournaledRename, RenameStepError, type RenameStep, type JournaledRenameOptions } from './journaled-rename.js';

@@ -21,8 +21,7 @@ import { realpathSync } from 'node:fs';
 import { resolve } from 'node:path';
 import { RENAME_JOURNAL_NAME, SRC_GEN_DIR } from '@contract-studio/conventions';
 import { OutputTree } from './output-tree.js';
-import { renameInGeneratedTree } from './rename-generated.js';
-import { renameIdentifiersInGeneratedTree } from './rename-user-code.js';
+import { carryRenameIntoTree } from './carry-rename.js';
 import { treePathProblem } from './safe-paths.js';
 
 export { RENAME_JOURNAL_NAME };
@@ -157,8 +156,7 @@ export async function finishInterruptedRename(projectDir: string, srcGen: string
         throw new Error(`${RENAME_JOURNAL_NAME} in this output folder journals a rename of ${journal.project ?? 'the project whose src-gen it was'}, not of ${projectDir}: nothing was changed; run contract generate on that project with this output folder, or remove it`);
     }
     try {
-        if (journal.generatedNames) await renameInGeneratedTree(srcGen, journal.oldName, journal.newName, journal.kind);
-        if (journal.identifiers.length > 0) renameIdentifiersInGeneratedTree(srcGen, new Map(journal.identifiers), journal.identifierOwner);
+        await carryRenameIntoTree(srcGen, journal);
     } catch (e) {
         throw new Error(`the rename of ${journal.kind} ${journal.oldName} -> ${journal.newName} in ${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME} cannot be finished: ${(e as Error).message}; nothing was changed; remove the journal to go on (the tree keeps what the killed rename moved)`);
     }
