@@ -60,3 +60,26 @@ describe('a compilation of hundreds of diagnostics in bwrap', () => {
     expect(lines.some((l) => l.source === 'service' && l.line === '[output truncated: stdout limit 96 KiB reached]')).toBe(true);
   });
 });
+
+describe('a helper of your own that two modules include, built for real in bwrap', () => {
+  test('its error is one problem, told once and counted once (each module compiles it again)', async () => {
+    const helper = 'src-gen/generated/architecture/common/axis_helper.h';
+    const MAB_MODULE = MAA_MODULE.replace(/MAA/g, 'MAB');
+    let files = { ...(await tutorialFiles()), [helper]: '/* my own helper, included by MAA and MAB */\nstatic int helper_gain = undeclared_gain_y;\n' };
+    files = withRegion(files, MAA_MODULE, 'protect_additional_import_MAA', '#include "axis_helper.h"', true);
+    files = withRegion(files, MAB_MODULE, 'protect_additional_import_MAB', '#include "axis_helper.h"', true);
+    const r = await postJob(served.url, { action: 'build', project: { files } });
+    expect(r.status, JSON.stringify(r.json)).toBe(201);
+    const events = await readEvents(served.url, r.json.id as string);
+    const job = await getJob(served.url, r.json.id as string);
+    expect(job.status).toBe('failed');
+    // both modules failed on it (make builds on: each compiled the header again), the job tells the error once
+    const failed = events.filter((e: any) => e.type === 'line' && /^make: \*\*\* \[Makefile:\d+: MA[AB]\] Error/.test(e.line));
+    expect(failed).toHaveLength(2);
+    expect(job.diagnostics.filter((d: any) => d.severity === 'error')).toEqual([
+      expect.objectContaining({ file: 'generated/architecture/common/axis_helper.h', line: 2, message: expect.stringContaining('undeclared_gain_y') }),
+    ]);
+    expect(events.filter((e: any) => e.type === 'diagnostic' && e.diagnostic.severity === 'error')).toHaveLength(1);
+    expect(job.result.message).toMatch(/^build failed: 1 error\(s\) \(make exit 2\)$/);
+  });
+});

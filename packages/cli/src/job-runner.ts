@@ -505,7 +505,7 @@ export function reportBuild(opts: JobOptions, outcome: JobOutcome, io: CliIO, ex
         io.err(`no compiler or linker error was reported; the build's last error lines:\n${outcome.buildTail.map((l) => `  | ${safeName(l.length > 500 ? `${l.slice(0, 500)}…` : l)}\n`).join('')}`);
     }
     if (!result.ok && result.step === 'build' && job.status !== 'cancelled') {
-        if (buildErrors) io.err(`fix the gcc errors above (user code lives in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))}), then build again; --verbose shows every build line\n`);
+        if (buildErrors) io.err(`fix the gcc errors above (your code is in the PROTECTED REGION blocks of ${safeName(join(opts.dirArg, SRC_GEN_DIR))} and in any file of your own there), then build again; --verbose shows every build line\n`);
         // a limit stopped the build: the status line names it (and, for the disk, what filled it); no compiler error to fix
         else if (result.limitHit) io.err(`the build was stopped by a sandbox limit, not by a compiler error (docs/sandbox.md "Limits"); --verbose shows every build line\n`);
         else io.err(`fix what the build's error lines say, then build again; --verbose shows every build line\n`);

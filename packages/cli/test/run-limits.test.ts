@@ -110,7 +110,7 @@ describe('the advice after a build that failed', () => {
     it('gcc errors: "fix the gcc errors above"; a cancelled build: no advice', () => {
         const io = capture(root);
         reportBuild(opts, outcome({ message: 'build failed: 1 error(s) (make exit 2)', exitCode: 2, limitHit: null }, [{ severity: 'error' }]), io);
-        expect(io.stderr).toContain('fix the gcc errors above (user code lives in the PROTECTED REGION blocks of arm/src-gen)');
+        expect(io.stderr).toContain('fix the gcc errors above (your code is in the PROTECTED REGION blocks of arm/src-gen and in any file of your own there)');
         const cancelled = capture(root);
         reportBuild(opts, outcome({ message: 'cancelled', exitCode: null, limitHit: null }, [], 'cancelled'), cancelled);
         expect(cancelled.stderr).toBe('FAILED: cancelled [bwrap; prepare 0.3 s, build 0.7 s]\n');

@@ -185,7 +185,7 @@ describe('contract simulate', { timeout: 60_000 }, () => {
             const io = capture(dir);
             expect(await runCli(['simulate', 'tut', join('tut', 'scenarios', 'commutation.scenario'), '--cache-dir', cache], io), io.stderr).toBe(1);
             expect(io.stderr).toMatch(new RegExp(`^tut/src-gen/${rel}:${line}:\\d+: error: .*oops.* \\[in protected region protect_function_impl_testit\\]$`, 'm'));
-            expect(io.stderr).toContain('contract simulate: cannot compile the simulator: 1 error(s) in your C (above; user code lives in the PROTECTED REGION blocks of tut/src-gen)');
+            expect(io.stderr).toContain('contract simulate: cannot compile the simulator: 1 error(s) in your C (above; your code is in the PROTECTED REGION blocks of tut/src-gen and in any file of your own there)');
             expect(io.stderr).not.toContain(cache);
             expect(io.stderr).not.toMatch(/sim-[0-9a-f]{20}|\.tmp-\d+-/);
             expect(io.stdout).toBe('');

@@ -765,8 +765,20 @@ export class Job {
     return this.diagnostics.length >= MAX_DIAGNOSTICS && this.errorsPastBound >= MAX_DIAGNOSTICS;
   }
 
-  /** Keeps a gcc diagnostic: up to the job's bound, and an error past it in a room of its own (errors first: a flood of warnings does not hide it). */
+  /** Keys of the diagnostics kept (sameDiagnosticKey): a header two modules include gives its problems once. */
+  private readonly diagnosticKeys = new Set<string>();
+
+  /**
+   * Keeps a gcc diagnostic: up to the job's bound, and an error past it in a room of its own (errors
+   * first: a flood of warnings does not hide it). One already kept (the same file, place and
+   * message: a header or a `.c` of your own that two modules include) is not kept again.
+   */
   private addDiagnostic(d: GccDiagnostic): void {
+    const key = sameDiagnosticKey(d);
+    if (key !== undefined) {
+      if (this.diagnosticKeys.has(key)) return;
+      this.diagnosticKeys.add(key);
+    }
     if (this.diagnostics.length >= MAX_DIAGNOSTICS) {
       if (d.severity !== 'error' || this.errorsPastBound >= MAX_DIAGNOSTICS) return;
       this.errorsPastBound++;
@@ -977,4 +989,14 @@ export class Job {
 export function acceptance(digest: string | null, builtWith: string | null): string | null {
   if (digest === null || builtWith === null) return digest;
   return createHash('sha256').update(digest).update('\0').update(builtWith).digest('hex');
+}
+
+/**
+ * What makes two gcc diagnostics one problem told twice: the same severity, message and place in a
+ * file of the tree (each module including it compiles it again). A diagnostic with no file (a
+ * linker's) is each module's own: undefined (never merged).
+ */
+export function sameDiagnosticKey(d: GccDiagnostic): string | undefined {
+  if (d.file === null) return undefined;
+  return JSON.stringify([d.severity, d.file, d.line, d.column, d.option ?? null, d.message]);
 }

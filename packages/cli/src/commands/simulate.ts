@@ -105,7 +105,7 @@ export const simulateCommand: Command = {
                 const dirArg = parsed.positionals[0]!;
                 for (const d of project.compile.diagnostics) io.err(formatGccDiagnostic(d, dirArg));
                 for (const l of project.compile.other) io.err(`${l}\n`);
-                io.err(`contract simulate: cannot ${project.compile.stage === 'link' ? 'link' : 'compile'} the simulator: ${errorCount(project.compile)} error(s) in your C (above; user code lives in the PROTECTED REGION blocks of ${safeName(join(dirArg, 'src-gen'))})\n`);
+                io.err(`contract simulate: cannot ${project.compile.stage === 'link' ? 'link' : 'compile'} the simulator: ${errorCount(project.compile)} error(s) in your C (above; your code is in the PROTECTED REGION blocks of ${safeName(join(dirArg, 'src-gen'))} and in any file of your own there)\n`);
                 return EXIT_FAILURE;
             }
             io.err(`contract simulate: ${project.buildError}\n`);
