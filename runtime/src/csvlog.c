@@ -89,7 +89,7 @@ static int log_failed;                  /* the errno that stopped the log (0: no
 static int log_capped;                  /* the bound was reached: records are only counted;
                                            set by the writer, read by the module (atomic)   */
 static LogReserve log_reserve;          /* the logs' disk reserve (all 0: none, log_reserve.c) */
-static unsigned long long log_unchecked; /* bytes written since the last look at the free space */
+static unsigned long long log_budget;   /* bytes the log may write before it looks at the free space */
 static int log_low;                     /* the free space fell below the reserve: the log stopped */
 static unsigned long long log_dropped;  /* records not written since, counted by the module */
 static unsigned long long log_dropped_w; /* ... and by the writer                           */
@@ -245,7 +245,7 @@ int rt_log_open(void)
     }
     log_max = log_bound(1);
     rt_log_reserve_read(&log_reserve, 1);
-    log_unchecked = LOG_RESERVE_CHECK_BYTES; /* the first write looks */
+    log_budget = 0; /* the first write looks */
     log_low = 0;
     log_capped = 0;
     log_failed = 0;
@@ -545,7 +545,7 @@ static void stop_log(const char *record, const char *warning)
 {
     __atomic_store_n(&log_capped, 1, __ATOMIC_RELAXED);
     write_cap_record(record);
-    char text[PATH_MAX + 300], *p = text;
+    char text[PATH_MAX + 400], *p = text;
     p = put_str(p, g_rt.name);
     p = put_str(p, ": warning: CSV log ");
     p = put_str(p, log_path);
@@ -583,9 +583,10 @@ static void write_all(const char *buf, size_t len)
     stop_log(record, warning);
 }
 
-/* "<written> bytes: its disk had F bytes free; less than the logs' K-byte reserve (VAR)": why a log
-   stopped at its disk's reserve, in its log-capped record and its stderr warning alike */
-static char *put_reserve_reason(char *p, unsigned long long free_bytes, unsigned long long keep, const char *var)
+/* "<written> bytes: its disk had F bytes free; less than the logs' K-byte reserve (VAR) and the L
+   bytes to write": why a log stopped at its disk's reserve, in its log-capped record and its stderr
+   warning alike */
+static char *put_reserve_reason(char *p, unsigned long long free_bytes, unsigned long long keep, const char *var, size_t len)
 {
     p = put_u64(p, log_written);
     p = put_str(p, " bytes: its disk had ");
@@ -594,28 +595,32 @@ static char *put_reserve_reason(char *p, unsigned long long free_bytes, unsigned
     p = put_u64(p, keep);
     p = put_str(p, "-byte reserve (");
     p = put_str(p, var);
-    return put_str(p, ")");
+    p = put_str(p, ") and the ");
+    p = put_u64(p, len);
+    return put_str(p, " bytes to write");
 }
 
-/* The log's disk below its reserve (log_reserve.c), looked at once per LOG_RESERVE_CHECK_BYTES
- * written: the log stops before buf[0..len) as at its bound — these records only counted, a
- * `log-capped` record and one stderr line saying why. 1 when it stopped. */
+/* The log's disk would go below its reserve with buf[0..len) (log_reserve.c; looked at once the
+ * writes since the last look exceed what it allowed, log_budget): the log stops before buf[0..len)
+ * as at its bound — these records only counted, a `log-capped` record and one stderr line saying
+ * why. 1 when it stopped. */
 static int stop_at_reserve(const char *buf, size_t len)
 {
     if (log_reserve.modules == 0 && log_reserve.engines == 0 && log_reserve.supervisors == 0) return 0;
-    log_unchecked += len;
-    if (log_unchecked < LOG_RESERVE_CHECK_BYTES) return 0;
-    log_unchecked = 0;
+    if (len <= log_budget) {
+        log_budget -= len;
+        return 0;
+    }
     unsigned long long keep = rt_log_reserve_for(&log_reserve, g_rt.engine), free_bytes = 0;
-    if (!rt_log_reserve_reached(log_fd, keep, &free_bytes)) return 0;
+    if (!rt_log_reserve_reached(log_fd, keep, len, &free_bytes, &log_budget)) return 0;
     const char *var = rt_log_reserve_name(g_rt.engine);
     mark_broken(); /* the file ends before these records */
     log_low = 1;
     log_dropped_w += count_records(buf, len);
-    char record[240], warning[240], *p;
-    p = put_reserve_reason(put_str(record, "log stopped at "), free_bytes, keep, var);
+    char record[320], warning[320], *p;
+    p = put_reserve_reason(put_str(record, "log stopped at "), free_bytes, keep, var, len);
     *put_str(p, ": later records are not written") = '\0';
-    p = put_reserve_reason(put_str(warning, "stopped at "), free_bytes, keep, var);
+    p = put_reserve_reason(put_str(warning, "stopped at "), free_bytes, keep, var, len);
     *put_str(p, "; later records are not written") = '\0';
     stop_log(record, warning);
     return 1;

@@ -9,8 +9,12 @@
  * logs stopped, a supervisor's after ORD's, and every log keeps room for its last records. The build service gives
  * both (docs/sandbox.md "The disk limit"): they also keep the part of the work dir that its memory
  * limit cannot hold (a tmpfs's files are memory) out of the logs' reach.
- * The free space is asked of the kernel (fstatvfs) once per LOG_RESERVE_CHECK_BYTES written, not
- * per record: a log writes at most that much plus one buffer past the moment it went below.
+ * The free space is asked of the kernel (fstatvfs) before a write, not per record: once per
+ * LOG_RESERVE_CHECK_BYTES written while the disk has room, more often as it nears the reserve (a
+ * log then writes at most 1/LOG_RESERVE_SHARERS of what is left above it before it looks again),
+ * and a write that would leave less than the reserve is not made: the logs of a run, all flooding,
+ * go past the reserve only by what they wrote between a look and their write, where each could go
+ * 128 KiB past it (a look per 64 KiB, after it a 64 KiB buffer).
  * 0 or unset: no reserve (the bound alone, as contract-launch run by hand on a disk of its own). */
 #define _GNU_SOURCE
 #include <errno.h>
@@ -54,13 +58,19 @@ unsigned long long rt_log_reserve_for(const LogReserve *r, int engine)
     return engine == RT_ENGINE_NONE ? r->modules : engine == RT_ENGINE_ORD ? r->engines : r->supervisors;
 }
 
-int rt_log_reserve_reached(int fd, unsigned long long reserve, unsigned long long *free_bytes)
+int rt_log_reserve_reached(int fd, unsigned long long reserve, unsigned long long len, unsigned long long *free_bytes,
+                           unsigned long long *budget)
 {
+    /* far from the reserve, a look per LOG_RESERVE_CHECK_BYTES written, these `len` among them */
+    *budget = len < LOG_RESERVE_CHECK_BYTES ? LOG_RESERVE_CHECK_BYTES - len : 0;
     if (reserve == 0 || fd < 0) return 0;
     struct statvfs s;
     if (fstatvfs(fd, &s) != 0) return 0; /* not known: the bound and the disk's own refusal still hold */
     unsigned long long unit = s.f_frsize ? (unsigned long long)s.f_frsize : (unsigned long long)s.f_bsize;
     unsigned long long avail = (unsigned long long)s.f_bavail * unit;
     if (free_bytes) *free_bytes = avail;
-    return avail < reserve;
+    if (avail < reserve + len) return 1;
+    unsigned long long share = (avail - reserve - len) / LOG_RESERVE_SHARERS;
+    if (share < *budget) *budget = share;
+    return 0;
 }

@@ -17,6 +17,7 @@
 #include <unistd.h>
 #include "harness.h"
 #include "internal.h"
+#include "log_mark.h"
 
 ssize_t __real_write(int fd, const void *buf, size_t len);
 ssize_t __wrap_write(int fd, const void *buf, size_t len);
@@ -31,6 +32,14 @@ int __wrap_pthread_create(pthread_t *thread, const pthread_attr_t *attr, void *(
     if (__atomic_load_n(&threads_refused, __ATOMIC_ACQUIRE)) return EAGAIN;
     return __real_pthread_create(thread, attr, start, arg);
 }
+
+/* A disk with this many bytes free (>= 0) as fstatvfs tells it; -1: the real answer. */
+static long long disk_free = -1;
+static int disk_looks; /* fstatvfs calls while disk_free is set */
+/* A disk that fills as the log writes: while not 0, each byte written to a file takes this many
+ * (counted in disk_filled) from disk_free (1: the log alone on it; k: k logs writing as much at once). */
+static long long disk_fill_per_byte;
+static long long disk_filled;
 
 static long long write_delay_ns; /* 0: writes as they are */
 static pthread_t test_thread;
@@ -59,21 +68,22 @@ ssize_t __wrap_write(int fd, const void *buf, size_t len)
         __atomic_add_fetch(&writes_stalling, 1, __ATOMIC_ACQ_REL);
         nanosleep(&ts, NULL);
     }
-    return __real_write(fd, buf, len);
+    ssize_t w = __real_write(fd, buf, len);
+    long long fill = __atomic_load_n(&disk_fill_per_byte, __ATOMIC_ACQUIRE);
+    if (fill && w > 0 && fd > 2) __atomic_add_fetch(&disk_filled, fill * (long long)w, __ATOMIC_ACQ_REL);
+    return w;
 }
 
 int __real_fstatvfs(int fd, struct statvfs *s);
 int __wrap_fstatvfs(int fd, struct statvfs *s);
-
-/* A disk with this many bytes free (>= 0) as fstatvfs tells it; -1: the real answer. */
-static long long disk_free = -1;
-static int disk_looks; /* fstatvfs calls while disk_free is set */
 
 int __wrap_fstatvfs(int fd, struct statvfs *s)
 {
     int r = __real_fstatvfs(fd, s);
     long long f = __atomic_load_n(&disk_free, __ATOMIC_ACQUIRE);
     if (r == 0 && f >= 0) {
+        f -= __atomic_load_n(&disk_filled, __ATOMIC_ACQUIRE);
+        if (f < 0) f = 0;
         s->f_frsize = 4096;
         s->f_bavail = (fsblkcnt_t)(f / 4096);
         __atomic_add_fetch(&disk_looks, 1, __ATOMIC_ACQ_REL);
@@ -493,13 +503,15 @@ void test_csv_log_disk_reserve(void)
     /* one look per 64 KiB written: a few for 300 KB, not one per record */
     CHECK_MSG(looks >= 1 && looks <= 8, "%d looks at the free space for about 150 KB written below the reserve", looks);
     const char *cap = strstr(log, ",log-capped,");
-    CHECK_MSG(cap && strstr(cap, "bytes: its disk had 598016 bytes free; less than the logs' 1000000-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES): later records are not written\n"),
-              "the cap record: %s", cap ? cap : "(none)");
+    const char *cap_end = cap ? strchr(cap, '\n') : NULL;
+    const char *why = cap ? strstr(cap, "bytes: its disk had 598016 bytes free; less than the logs' 1000000-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES) and the ") : NULL;
+    CHECK_MSG(why && why < cap_end && strstr(why, " bytes to write: later records are not written\n") < cap_end, "the cap record: %s", cap ? cap : "(none)");
     char want[128];
     snprintf(want, sizeof want, "%d records not written after the log stopped at ", 2000 - during);
     const char *last = cap ? strstr(cap + 1, ",log-capped,") : NULL;
     CHECK_MSG(last && strstr(last, want) && strstr(last, " bytes (its disk below the logs' 1000000-byte reserve)\n"), "the last records: %s", cap ? cap : "(none)");
-    CHECK_MSG(strstr(err, "tester: warning: CSV log ") && strstr(err, "less than the logs' 1000000-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES); later records are not written"),
+    CHECK_MSG(strstr(err, "tester: warning: CSV log ") && strstr(err, "less than the logs' 1000000-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES) and the ") &&
+                  strstr(err, " bytes to write; later records are not written"),
               "stderr: %s", err);
     free(log);
     /* ORD (and a supervisor) keep going down to a quarter of it: 600,000 bytes free is room */
@@ -525,6 +537,71 @@ void test_csv_log_disk_reserve(void)
     cap = strstr(log, ",log-capped,");
     CHECK_MSG(cap && strstr(cap, "less than the logs' 125000-byte reserve (CONTRACT_LOG_SUPERVISOR_DISK_RESERVE_BYTES)"), "the supervisor's cap record at 100000 bytes free: %s", cap ? cap : "(none)");
     free(log);
+}
+
+/* A disk that fills as the logs write, `margin` bytes above a module's 1,000,000-byte reserve when
+ * the log opens; `fill`: bytes it loses per byte this log writes (1: the log alone; k: k logs
+ * flooding together as it does). The log floods it (20,000 records, about 1.6 MB, in 64 KiB
+ * buffers). `*left`: the bytes the disk has left (less than 1,000,000: the logs went past the
+ * reserve); `*looks`: the fstatvfs calls; `*capped`: the log stopped with its log-capped record. */
+static void reserve_flood(long long margin, long long fill, long long *left, int *looks, int *capped)
+{
+    *left = -1;
+    *capped = 0;
+    REQUIRE(h_setup("logreserve-flood") == 0);
+    setenv("CONTRACT_LOG_DISK_RESERVE_BYTES", "1000000", 1);
+    int r = rt_log_open();
+    unsetenv("CONTRACT_LOG_DISK_RESERVE_BYTES");
+    REQUIRE(r == 0);
+    char csv[1024], err_path[700];
+    REQUIRE(h_find_log_file("tester_", ".csv", csv, sizeof csv));
+    int saved = h_stderr_to_file(err_path, sizeof err_path);
+    REQUIRE(saved >= 0);
+    __atomic_store_n(&disk_looks, 0, __ATOMIC_RELEASE);
+    __atomic_store_n(&disk_filled, 0, __ATOMIC_RELEASE);
+    __atomic_store_n(&disk_free, 1000000 + margin, __ATOMIC_RELEASE);
+    __atomic_store_n(&disk_fill_per_byte, fill, __ATOMIC_RELEASE);
+    for (int i = 0; i < 20000; i++) ContractLog("flood", "", i, 0, "a module logging as fast as it can");
+    ContractLogFlush();
+    rt_log_close();
+    __atomic_store_n(&disk_fill_per_byte, 0, __ATOMIC_RELEASE);
+    *left = 1000000 + margin - __atomic_load_n(&disk_filled, __ATOMIC_ACQUIRE);
+    *looks = __atomic_load_n(&disk_looks, __ATOMIC_ACQUIRE);
+    __atomic_store_n(&disk_free, -1, __ATOMIC_RELEASE);
+    __atomic_store_n(&disk_filled, 0, __ATOMIC_RELEASE);
+    h_stderr_back(saved);
+    char *log = h_read_file(csv);
+    *capped = log && strstr(log, ",log-capped,") != NULL;
+    free(log);
+    h_teardown();
+}
+
+/* How far past the disk reserve flooding logs go: a log alone not at all (it looks before a write
+ * that would go past, more often as the free space nears the reserve), k logs flooding together at
+ * most what the k-1 others wrote between its look and its write (a buffer each), where each went up
+ * to 128 KiB past it (a look per 64 KiB written, then a 64 KiB buffer). Far from the reserve the
+ * looks stay one per 64 KiB written. */
+void test_csv_log_reserve_overshoot(void)
+{
+    int looks = 0, capped = 0;
+    long long left = 0;
+    for (long long margin = 40000; margin <= 400000; margin += 60000) {
+        reserve_flood(margin, 1, &left, &looks, &capped);
+        CHECK_MSG(capped, "margin %lld: the log was not capped", margin);
+        CHECK_MSG(left >= 1000000, "margin %lld: a log alone went %lld bytes past the 1000000-byte reserve", margin, 1000000 - left);
+        /* near it a look per write: about one per 64 KiB buffer of the margin, a few more */
+        CHECK_MSG(looks <= (int)(margin / 65536) + 8, "margin %lld: %d looks", margin, looks);
+    }
+    for (long long margin = 100000; margin <= 1000000; margin += 300000) {
+        reserve_flood(margin, 4, &left, &looks, &capped);
+        CHECK_MSG(capped, "4 logs, margin %lld: the log was not capped", margin);
+        CHECK_MSG(left >= 1000000 - 3 * LOG_BUF, "margin %lld: 4 logs went %lld bytes past the 1000000-byte reserve (at most 3 buffers)", margin, 1000000 - left);
+    }
+    /* far from the reserve (100 MB free): one look per 64 KiB, as before */
+    reserve_flood(100000000, 1, &left, &looks, &capped);
+    CHECK_MSG(!capped && left > 1000000, "100 MB free: the log was capped");
+    long long written = 1000000 + 100000000 - left, per64k = written / 65536;
+    CHECK_MSG(looks >= per64k - 1 && looks <= per64k + 2, "%d looks for %lld bytes written far from the reserve (one per 64 KiB: %lld)", looks, written, per64k);
 }
 
 /* A child that logs `n` records (`<word> i`) on a log with its flush mark, hands them to its writer

@@ -56,6 +56,7 @@ void test_csv_log_record_bounds(void);
 void test_csv_log_engine_kinds(void);
 void test_csv_log_disk_full(void);
 void test_csv_log_disk_reserve(void);
+void test_csv_log_reserve_overshoot(void);
 void test_csv_log_killed(void);
 
 static const TestCase ALL_TESTS[] = {
@@ -112,6 +113,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_engine_kinds", test_csv_log_engine_kinds },
     { "csv_log_disk_full", test_csv_log_disk_full },
     { "csv_log_disk_reserve", test_csv_log_disk_reserve },
+    { "csv_log_reserve_overshoot", test_csv_log_reserve_overshoot },
     { "csv_log_killed", test_csv_log_killed },
     { "ext_types_round_trip", test_ext_types_round_trip },
     { NULL, NULL },

@@ -301,9 +301,9 @@ describe('reading a log', () => {
         const ord = [CSV_HEADER,
             '1000000000,w,ORD,ord_complete,,,0,schema=fastLoop cycle=0 tick_ns=0 response_ns=500000',
             '1001000000,w,ORD,ord_deadline_miss,,,0,schema=fastLoop cycle=1 tick_ns=0',
-            '3000000000,w,ORD,log-capped,,,5242880,log stopped at 5242880 bytes: its disk had 1040384 bytes free; less than the logs\' 1048576-byte reserve (CONTRACT_LOG_ENGINE_DISK_RESERVE_BYTES): later records are not written',
+            '3000000000,w,ORD,log-capped,,,5242880,log stopped at 5242880 bytes: its disk had 1040384 bytes free; less than the logs\' 1048576-byte reserve (CONTRACT_LOG_ENGINE_DISK_RESERVE_BYTES) and the 6144 bytes to write: later records are not written',
             '9000000000,w,ORD,log-capped,,,5242880,120000 records not written after the log stopped at 5242880 bytes (its disk below the logs\' 1048576-byte reserve)', ''].join('\n');
-        const cur = [CSV_HEADER, '2500000000,w,CUR,log-capped,,,4194304,log stopped at 4194304 bytes: its disk had 3000000 bytes free; less than the logs\' 4194304-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES): later records are not written', ''].join('\n');
+        const cur = [CSV_HEADER, '2500000000,w,CUR,log-capped,,,4194304,log stopped at 4194304 bytes: its disk had 3000000 bytes free; less than the logs\' 4194304-byte reserve (CONTRACT_LOG_DISK_RESERVE_BYTES) and the 6144 bytes to write: later records are not written', ''].join('\n');
         const story = renderStory(parseTrace([{ name: 'ORD_1.csv', text: ord }, { name: 'CUR_1.csv', text: cur }]));
         expect(story.slice(-3)).toEqual([
             'schema fastLoop: 1 completed cycle (response max 500 µs), 1 deadline miss, 0 overruns — up to +2.000000s only: ORD\'s log stopped then (log-capped), its later cycles are not counted',
