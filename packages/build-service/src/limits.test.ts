@@ -1,6 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
-import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogDiskReserve, runLogMaxBytes } from './limits.js';
+import { ARTIFACT_BOUNDS } from './pipeline/artifacts.js';
+import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogDiskReserve, runLogMaxBytes } from './limits.js';
 
 describe('longestDuration: a run asked for the longest still ends on its own', () => {
   it('keeps RUN_STOP_ROOM_SECONDS (half the limit when that is less) to start and stop the architecture', () => {
@@ -19,10 +20,18 @@ describe('longestDuration: a run asked for the longest still ends on its own', (
 
 describe('runLogMaxBytes: a module flooding its CSV log is capped before the work dir is full', () => {
   const MiB = 1024 * 1024;
-  it('is 3/4 of the room left, at most the runtime\'s 256 MiB default, at least 64 KiB', () => {
+  it('is 3/4 of the room left, at most what the service collects of a log (1 GiB), at least 64 KiB', () => {
     expect(runLogMaxBytes(250 * MiB)).toBe(187.5 * MiB); // the default 256 MiB work dir less a 6 MiB build
     expect(runLogMaxBytes(16 * MiB)).toBe(12 * MiB);
-    expect(runLogMaxBytes(2048 * MiB)).toBe(RUNTIME_LOG_MAX_BYTES);
+    // a large work dir keeps a longer log, past the runtime's own 256 MiB default: a 1 GiB work dir
+    // less a 6 MiB build gives ORD (0.7 MB/s at 1 kHz) about 18 minutes, not 6.5
+    expect(runLogMaxBytes(1018 * MiB)).toBe(763.5 * MiB);
+    expect(runLogMaxBytes(1018 * MiB)).toBeGreaterThan(RUNTIME_LOG_MAX_BYTES);
+    expect(runLogMaxBytes(2048 * MiB)).toBe(RUN_LOG_MAX_BYTES);
+    expect(runLogMaxBytes(64 * 1024 * MiB)).toBe(RUN_LOG_MAX_BYTES);
+    expect(RUN_LOG_MAX_BYTES).toBe(1024 * MiB);
+    // the service collects that much of a log: half of what it collects of a run
+    expect(RUN_LOG_MAX_BYTES * 2).toBeLessThanOrEqual(ARTIFACT_BOUNDS.totalBytes);
     expect(RUNTIME_LOG_MAX_BYTES).toBe(256 * MiB);
     expect(runLogMaxBytes(10_000)).toBe(RUN_LOG_MIN_BYTES);
     expect(runLogMaxBytes(-5)).toBe(RUN_LOG_MIN_BYTES);

@@ -260,8 +260,17 @@ export const CANCEL_GRACE_MS = 1000;
  */
 export const STOP_BUDGET_MARGIN_MS = 100;
 
-/** The runtime's own bound of a module's CSV log (runtime/src/csvlog.c, CONTRACT_LOG_MAX_BYTES' default). */
+/** The runtime's own bound of a module's CSV log (runtime/src/csvlog.c, CONTRACT_LOG_MAX_BYTES' default when unset). */
 export const RUNTIME_LOG_MAX_BYTES = 256 * 1024 * 1024;
+/**
+ * The most CONTRACT_LOG_MAX_BYTES the service gives a run, and so the most it collects of one log
+ * (pipeline/artifacts.ts artifactBoundsFor): half of what it collects of a run's logs in all
+ * (ARTIFACT_BOUNDS.totalBytes, 2 GiB), so that ORD's log at its bound leaves as much to the
+ * others. About 25 minutes of ORD at 1 kHz (0.7 MB/s), where the runtime's own 256 MiB default
+ * held about 6.5. The collection reads a log as bytes, never as one string (V8's longest is 2^29 -
+ * 24 characters, less than this).
+ */
+export const RUN_LOG_MAX_BYTES = 1024 * 1024 * 1024;
 /**
  * The least CONTRACT_LOG_MAX_BYTES the service gives a run: room for about a thousand records (the
  * runtime refuses a bound under 4 records of 1280 bytes, and would then use its 256 MiB default).
@@ -270,14 +279,15 @@ export const RUN_LOG_MIN_BYTES = 64 * 1024;
 
 /**
  * CONTRACT_LOG_MAX_BYTES of a run (docs/sandbox.md "The disk limit"): 3/4 of the room left in its
- * work dir when the run starts (`roomBytes`: the disk limit less what the build left there), at
- * most the runtime's default and at least RUN_LOG_MIN_BYTES. A module that floods its CSV log is
+ * work dir when the run starts (`roomBytes`: the disk limit less what the build left there), so
+ * that a larger work dir keeps a longer log (ORD's, the schedule's trace, writes most), at most
+ * RUN_LOG_MAX_BYTES and at least RUN_LOG_MIN_BYTES. A module that floods its CSV log is
  * then capped (a `log-capped` record, the run goes on) before the disk limit stops the whole run;
  * the last quarter keeps room for the other modules' logs.
  */
 export function runLogMaxBytes(roomBytes: number): number {
   const room = Number.isFinite(roomBytes) ? Math.max(0, roomBytes) : 0;
-  return Math.max(RUN_LOG_MIN_BYTES, Math.min(RUNTIME_LOG_MAX_BYTES, Math.floor((room * 3) / 4)));
+  return Math.max(RUN_LOG_MIN_BYTES, Math.min(RUN_LOG_MAX_BYTES, Math.floor((room * 3) / 4)));
 }
 
 /**
@@ -315,7 +325,7 @@ export function runLogUsableBytes(limits: Limits, memoryBacked: boolean): number
  * logs together never fill the work dir (the disk limit killed the run: each log's own bound,
  * runLogMaxBytes, holds for one log only) nor the memory the work dir's files take. `base` is a
  * sixteenth of the usable part (runLogUsableBytes), at least 1 MiB: room for what the logs write
- * between two looks at the free space (64 KiB and a buffer each) and for the last records; ORD
+ * at the same moment past their looks at the free space (a buffer each at most) and for the last records; ORD
  * keeps a quarter of it, a supervisor an eighth (its rule changes and its end outlast ORD's log).
  * `unusable`: the part of the disk limit the memory limit cannot hold.
  */

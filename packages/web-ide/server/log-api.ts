@@ -7,8 +7,9 @@
  * them to PROJECT/logs, `make run` to src-gen/generated/architecture/logs) read them here, not with
  * GET /api/file: that answer is bounded at 8 MiB for the editor's tabs, and a 1 kHz schema's ORD
  * log passes 8 MiB in about 20 s of run, so a replay of a longer run lost its scheduler records.
- * The bound here is the build service's for a collected log (the same files, had from a Build &
- * Run job): LOG_READ_BYTES. The bytes are streamed from the file to the size seen when it was
+ * The bound here is the build service's default for a collected log (the same files, had from a
+ * Build & Run job; a run with a larger work dir may keep longer logs, up to 1 GiB, which
+ * `contract trace` reads as a stream): LOG_READ_BYTES. The bytes are streamed from the file to the size seen when it was
  * opened (a log still written to stays whole up to there), never held whole in the server.
  */
 import type { IncomingMessage, ServerResponse } from 'node:http';
@@ -19,7 +20,7 @@ import type { WorkspacePaths } from './workspace-paths.js';
 import type { LogFolderListing } from './api-types.js';
 import { isLogFileName } from '@contract-studio/build-service/trace';
 
-/** Largest CSV log read for a replay (the build service's ARTIFACT_BOUNDS.fileBytes). */
+/** Largest CSV log read for a replay (the build service's default ARTIFACT_BOUNDS.fileBytes: the page holds what it replays). */
 export const LOG_READ_BYTES = 256 * 1024 * 1024;
 
 /** Answers GET /api/log; false for any other request. */
@@ -31,7 +32,7 @@ export async function handleLogApi(paths: WorkspacePaths, req: IncomingMessage, 
     const { handle, stats: st } = await WorkspaceFs.openFile(dir, name, rel);
     try {
       if (!st.isFile()) throw new HttpError(400, `${rel} is a folder`);
-      if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the IDE replays files of at most that size, the bound of a log a Build & Run job keeps)`);
+      if (st.size > LOG_READ_BYTES) throw new HttpError(413, `${rel} is larger than ${LOG_READ_BYTES / 1024 / 1024} MiB (${st.size} bytes): not read for a replay (the IDE replays files of at most that size; \`contract trace\` tells a log of any size)`);
       res.writeHead(200, { 'content-type': 'text/plain; charset=utf-8', 'cache-control': 'no-store', 'x-log-bytes': String(st.size) });
       if (st.size === 0) {
         res.end();

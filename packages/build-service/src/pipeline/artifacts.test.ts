@@ -2,8 +2,8 @@ import { mkdirSync, mkdtempSync, rmSync, symlinkSync, writeFileSync } from 'node
 import { tmpdir } from 'node:os';
 import { join } from 'node:path';
 import { afterEach, beforeEach, describe, expect, test } from 'vitest';
-import { SERVICE_BOUNDS } from '../limits.js';
-import { artifactBytes, collectRunArtifacts, hostWorkDirReader, listHostDir } from './artifacts.js';
+import { RUN_LOG_MAX_BYTES, RUNTIME_LOG_MAX_BYTES, runLogMaxBytes, SERVICE_BOUNDS } from '../limits.js';
+import { ARTIFACT_BOUNDS, artifactBoundsFor, artifactBytes, collectRunArtifacts, hostWorkDirReader, listHostDir } from './artifacts.js';
 import { parseRecordLine } from '../trace/parse.js';
 
 let work: string;
@@ -16,6 +16,23 @@ beforeEach(() => {
 afterEach(() => {
   rmSync(work, { recursive: true, force: true });
   rmSync(outside, { recursive: true, force: true });
+});
+
+describe('artifactBoundsFor: a run\'s logs are collected as far as its modules were let write them', () => {
+  const MiB = 1024 * 1024;
+  test('a large work dir\'s bound (over the 256 MiB default) is the file bound; a smaller one, or none, leaves the default', () => {
+    // a 1 GiB work dir less a 6 MiB build: ORD may write 763.5 MiB, all of it collected
+    const big = runLogMaxBytes(1018 * MiB);
+    expect(artifactBoundsFor(big)).toEqual({ ...ARTIFACT_BOUNDS, fileBytes: big });
+    expect(artifactBoundsFor(big).fileBytes).toBeGreaterThan(RUNTIME_LOG_MAX_BYTES);
+    expect(artifactBoundsFor(runLogMaxBytes(64 * 1024 * MiB)).fileBytes).toBe(RUN_LOG_MAX_BYTES);
+    expect(artifactBoundsFor(2 * RUN_LOG_MAX_BYTES).fileBytes).toBe(RUN_LOG_MAX_BYTES); // never more
+    // the default work dir (188 MiB logs), a Makefile project (no bound given): the collector's default
+    expect(artifactBoundsFor(runLogMaxBytes(250 * MiB))).toBe(ARTIFACT_BOUNDS);
+    expect(artifactBoundsFor(null)).toBe(ARTIFACT_BOUNDS);
+    expect(artifactBoundsFor(Number.NaN)).toBe(ARTIFACT_BOUNDS);
+    expect(ARTIFACT_BOUNDS.fileBytes).toBe(RUNTIME_LOG_MAX_BYTES);
+  });
 });
 
 describe('collectRunArtifacts on a host work dir (bwrap, none)', () => {

@@ -12,14 +12,16 @@
  * bound, or past the total bound, is kept up to the bound, cut after its last whole record, with a
  * `log-capped` record saying so. The bounds are large enough for the logs of an hour of the
  * mobile-robot example (the soak benchmark: 141 MiB of CSV in 10 min, 28 MiB for its biggest module): the
- * runtime bounds each module's file itself at the same 256 MiB (CONTRACT_LOG_MAX_BYTES,
- * docs/runtime-api.md), and the service keeps every collected file gzip-compressed in memory.
+ * runtime bounds each module's file itself (CONTRACT_LOG_MAX_BYTES, docs/runtime-api.md: 3/4 of the
+ * work dir's room, at most limits.ts RUN_LOG_MAX_BYTES), a run's collection keeps that much of a file
+ * when it is more than the 256 MiB default (artifactBoundsFor), and the service keeps every
+ * collected file gzip-compressed in memory.
  */
 import { promises as fsp } from 'node:fs';
 import { join } from 'node:path';
 import { promisify } from 'node:util';
 import { gunzipSync, gzip as gzipCb } from 'node:zlib';
-import { formatBytes, SERVICE_BOUNDS } from '../limits.js';
+import { formatBytes, RUN_LOG_MAX_BYTES, RUNTIME_LOG_MAX_BYTES, SERVICE_BOUNDS } from '../limits.js';
 import { readFileHeadNoFollow } from '../util/safe-fs.js';
 import type { TarEntryKind } from '../util/tar-reader.js';
 import { moduleOfLog } from '../trace/parse.js';
@@ -30,13 +32,25 @@ export interface ArtifactBounds {
   /** Entries of a folder looked at (a run may leave millions): the rest is not listed. */
   entries: number;
   files: number;
-  /** Bytes kept of one file (the runtime's own per-module bound, CONTRACT_LOG_MAX_BYTES' default). */
+  /** Bytes kept of one file (the runtime's own per-module bound, CONTRACT_LOG_MAX_BYTES' default; a run's own bound when larger: artifactBoundsFor). */
   fileBytes: number;
   /** Bytes kept over all the files (uncompressed). */
   totalBytes: number;
 }
 
-export const ARTIFACT_BOUNDS: ArtifactBounds = { entries: SERVICE_BOUNDS.listedEntries, files: 256, fileBytes: 256 * 1024 * 1024, totalBytes: 2 * 1024 * 1024 * 1024 };
+export const ARTIFACT_BOUNDS: ArtifactBounds = { entries: SERVICE_BOUNDS.listedEntries, files: 256, fileBytes: RUNTIME_LOG_MAX_BYTES, totalBytes: 2 * 1024 * 1024 * 1024 };
+
+/**
+ * The bounds of a run whose modules were given `logMaxBytes` (CONTRACT_LOG_MAX_BYTES; null: none
+ * given): a file is kept up to that bound when it is above the default, so that a large work dir's
+ * longer logs (ORD's) are collected whole, never more than RUN_LOG_MAX_BYTES. The default
+ * otherwise: a small run's collection reads no more than before (a sparse file of a terabyte costs
+ * a read of the bound).
+ */
+export function artifactBoundsFor(logMaxBytes: number | null): ArtifactBounds {
+  if (logMaxBytes === null || !(logMaxBytes > ARTIFACT_BOUNDS.fileBytes)) return ARTIFACT_BOUNDS;
+  return { ...ARTIFACT_BOUNDS, fileBytes: Math.min(RUN_LOG_MAX_BYTES, Math.floor(logMaxBytes)) };
+}
 
 /** The runtime's marker event (runtime/src/csvlog.c) and the one the service appends to a cut file. */
 export const LOG_CAPPED_EVENT = 'log-capped';
@@ -221,7 +235,7 @@ export async function selectArtifacts(
         latest = laterMono(latest, mono);
         if (mono === undefined) {
           // its record's time is the run's latest, known once every log was read
-          // a copy of the kept bytes: a view would hold the whole read (256 MiB of a sparse file) until the end
+          // a copy of the kept bytes: a view would hold the whole read (up to the file bound, of a sparse file) until the end
           timeless.push({ index: files.length, name: e.name, kept: Buffer.from(data.subarray(0, end)), size: e.size, bound, capped });
           files.push({ name: e.name, path: `${LOG_DIR}/${e.name}`, size: end, gzip: Buffer.alloc(0), capped });
           total += end + MARKER_ROOM;

@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogDiskReserve, runLogMaxBytes, runProcessesMemoryBytes, RUNTIME_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogDiskReserve, runLogMaxBytes, runProcessesMemoryBytes, RUN_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
 import type { Mechanisms, RealtimeBudgetShare, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { workDiskState } from '../sandbox/work-disk.js';
 import { LineSplitter } from '../util/line-splitter.js';
@@ -14,7 +14,7 @@ import { looksLikeGccJson } from './gcc-json.js';
 import { removeTreeNoFollow } from '../util/safe-fs.js';
 import { hostWorkTreeDigest } from './work-tree-digest.js';
 import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
-import { collectRunArtifacts, hostWorkDirReader, LOG_DIR, RUN_DIR, type Artifact, type RunArtifacts } from './artifacts.js';
+import { artifactBoundsFor, collectRunArtifacts, hostWorkDirReader, LOG_DIR, RUN_DIR, type Artifact, type ArtifactBounds, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { beginsAsMakeDirectory, type GccDiagnostic } from './gcc-diagnostics.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
@@ -26,7 +26,7 @@ import { holdsUnderProcessLimit } from './process-limit-warning.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
 import { budgetThrottling, throttlingWarning, type Throttling } from './realtime-throttling.js';
 import { moduleOfLog } from '../trace/parse.js';
-import { TraceTail } from './trace-tail.js';
+import { TRACE_TAIL_BOUNDS, TraceTail } from './trace-tail.js';
 import type { RuntimeCache, RuntimeSources } from './runtime-cache.js';
 import type { GenerationCache } from '../cache/generation-cache.js';
 import type { AcquireHooks, Workspace } from './workspaces.js';
@@ -468,8 +468,10 @@ export class Job {
       // each module's CSV log is capped before it can fill the work dir (the disk limit would stop the
       // whole run); a plain Makefile project has no runtime to read it
       const logBound = this.request.kind === 'cactal' ? await this.runLogBound(ctx.sandbox, ws.workDir) : null;
+      // a log is read and collected up to that bound when it is above the collector's default (a large work dir's ORD log)
+      const collectBounds = artifactBoundsFor(logBound?.maxBytes ?? null);
       // the live trace channel: the run's CSV logs as they grow, drained before the artifacts and the end
-      const tail = await this.startTraceTail(ctx.sandbox, ws.workDir);
+      const tail = await this.startTraceTail(ctx.sandbox, ws.workDir, collectBounds);
       // a run pinned to CPUs has them to itself: the service's threads (the channel's work) keep off them
       const keptOff = this.request.cpus !== undefined ? await SERVICE_AFFINITY.keepOff(this.request.cpus) : null;
       if (keptOff?.said) this.system('run', keptOff.said);
@@ -523,7 +525,7 @@ export class Job {
       const refused = launcherStatus !== null && !this.cancelRequested ? this.runIssues.launcherExit(launcherStatus) : undefined;
       // a cancelled run's logs too: what it wrote until it was stopped is the user's record of it
       // (a cancel during the collection stops it: what was read by then is kept)
-      await this.collectArtifacts(ctx.sandbox, ws.workDir);
+      await this.collectArtifacts(ctx.sandbox, ws.workDir, collectBounds);
       if (this.cancelRequested && run.ok) throw new Cancelled();
       const issues = this.runIssues.all;
       if (!run.ok) {
@@ -618,8 +620,8 @@ export class Job {
     const bytes = runLogMaxBytes(usableRoom);
     this.timed('run', 'work dir room (the CSV log bound)', t0);
     const left = room === null ? `what the work dir holds could not be measured (its disk limit: ${formatBytes(limit)})` : `the work dir has ${formatBytes(room)} left of its ${formatBytes(limit)} disk limit`;
-    const why = bytes === RUNTIME_LOG_MAX_BYTES
-      ? `the runtime's default: ${left}`
+    const why = bytes === RUN_LOG_MAX_BYTES
+      ? `the most the service collects of one log: ${left}`
       : bytes === RUN_LOG_MIN_BYTES
         ? `the least the service gives: ${left}`
         : room === null
@@ -665,7 +667,7 @@ export class Job {
    * container has the host's CLOCK_MONOTONIC (Docker gives it no time namespace; the proof
    * refuses a holder whose time namespace differs), so the same comparison holds for it.
    */
-  private async startTraceTail(sandbox: Sandbox, workDir: string): Promise<TraceTail | null> {
+  private async startTraceTail(sandbox: Sandbox, workDir: string, bounds: ArtifactBounds): Promise<TraceTail | null> {
     let root = workDir;
     if (sandbox.readWorkDirs) {
       const t0 = Date.now();
@@ -686,7 +688,7 @@ export class Job {
       live: (records) => this.events.broadcast({ type: 'trace', records }),
       system: (line) => this.system('run', line),
       tampered: (file, why) => this.runIssues.logTampered(file, why),
-    });
+    }, { ...TRACE_TAIL_BOUNDS, fileBytes: bounds.fileBytes });
     // the modules write their logs sooner only while a client follows the job
     tail.setWatched(this.events.subscriberCount > 0);
     this.events.onSubscribers = (count) => tail.setWatched(count > 0);
@@ -694,16 +696,16 @@ export class Job {
   }
 
   /** Copies the run's logs out of the sandbox (its processes are gone); a failure is a warning line. */
-  private async collectArtifacts(sandbox: Sandbox, workDir: string): Promise<void> {
+  private async collectArtifacts(sandbox: Sandbox, workDir: string, bounds: ArtifactBounds): Promise<void> {
     const t0 = Date.now();
     const abort = (this.collectAbort = new AbortController());
     try {
       const reader = sandbox.readWorkDirs ? sandbox.readWorkDirs.bind(sandbox) : hostWorkDirReader;
       let throttled: Throttling | undefined;
       const budget = this.realtimeBudget;
-      const collected = await collectRunArtifacts(reader, workDir, undefined, (name, data) => {
+      const collected = await collectRunArtifacts(reader, workDir, bounds, (name, data) => {
         this.runIssues.log(data, name);
-        if (budget && moduleOfLog(name) === 'ORD') throttled = budgetThrottling(data.toString('utf8'), budget.periodUs * 1000);
+        if (budget && moduleOfLog(name) === 'ORD') throttled = budgetThrottling(data, budget.periodUs * 1000);
       }, {
         launchedModules: this.runIssues.launchedModules,
         signal: abort.signal,

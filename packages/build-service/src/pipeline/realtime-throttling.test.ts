@@ -37,6 +37,18 @@ describe('a real-time run throttled by its budget', () => {
       /^the architecture was throttled by its real-time CPU budget about \d+ times \(0\.\d\d s in all\): the sandbox gives the whole architecture 40 ms of each 100 ms on each CPU, .*contract run --cpus 0,1.*REALTIME_BOUNDS\.cpuRuntimeUs/);
   });
 
+  it('reads ORD\'s log as bytes: one larger than a string can be (up to RUN_LOG_MAX_BYTES) is read too', () => {
+    const from = 59_529_770_322_845;
+    const records = Buffer.from(ordLog(from, 2000, (t) => t % (100 * MS) >= 80 * MS));
+    // 600 MB of zeros (untouched pages) first, as one line: past V8's longest string (2^29 - 24 characters)
+    const big = Buffer.alloc(600_000_001 + records.length);
+    big[600_000_000] = 10;
+    records.copy(big, 600_000_001);
+    const t = budgetThrottling(big, 100 * MS)!;
+    expect(t.times).toBeGreaterThanOrEqual(19);
+    expect(t.times).toBeLessThanOrEqual(21);
+  });
+
   it('does not take a loaded machine\'s stalls, which end anywhere in the period, for it', () => {
     // 3-9 ms stalls every 37-ish ms: at nice levels on a busy machine
     let seed = 7;

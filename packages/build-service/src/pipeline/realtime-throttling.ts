@@ -30,14 +30,14 @@ export interface Throttling {
 }
 
 /** The mono_ns of each record line of a CSV log (its first field; the header and other lines skipped). */
-function recordTimes(log: string): number[] {
+function recordTimes(log: Buffer): number[] {
   const times: number[] = [];
   for (let at = 0; at < log.length;) {
-    let end = log.indexOf('\n', at);
+    let end = log.indexOf(10, at); // the bytes, never the whole log as one string: ORD's may be larger than a string can be
     if (end < 0) end = log.length;
-    const comma = log.indexOf(',', at);
-    if (comma > at && comma < end) {
-      const t = Number(log.slice(at, comma));
+    const comma = log.indexOf(44, at);
+    if (comma > at && comma < end && comma - at <= 20) {
+      const t = Number(log.toString('latin1', at, comma));
       if (Number.isSafeInteger(t) && t >= 0) times.push(t);
     }
     at = end + 1;
@@ -51,8 +51,8 @@ function recordTimes(log: string): number[] {
  * SILENCE_NS or more that end within 1 ms of one point of the period, and at least half of all its
  * silences.
  */
-export function budgetThrottling(ordLog: string, periodNs: number): Throttling | undefined {
-  const times = recordTimes(ordLog).sort((a, b) => a - b);
+export function budgetThrottling(ordLog: Buffer | string, periodNs: number): Throttling | undefined {
+  const times = recordTimes(typeof ordLog === 'string' ? Buffer.from(ordLog, 'utf8') : ordLog).sort((a, b) => a - b);
   const bins = Math.max(1, Math.round(periodNs / PHASE_BIN_NS));
   const silences: Array<{ ns: number; bin: number }> = [];
   const count = new Uint32Array(bins);

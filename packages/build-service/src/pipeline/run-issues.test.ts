@@ -21,6 +21,21 @@ describe('RunIssues', () => {
     ]);
   });
 
+  test('a collected log larger than a string can be (ORD\'s, up to RUN_LOG_MAX_BYTES) is still read for stuck records', () => {
+    const r = new RunIssues();
+    const head = Buffer.from('mono_ns,wall_time,module,event,peer,port,size,detail\n5,t,ORD,scheduler,,,0,start\n');
+    const stuck = Buffer.from('6,t,ORD,scheduler,,,0,stuck: CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1? (goTo)\n');
+    // 600 MB of zeros (untouched pages: no memory taken) between them: past V8's longest string (2^29 - 24 characters)
+    const big = Buffer.alloc(head.length + 600_000_000 + 1 + stuck.length);
+    head.copy(big, 0);
+    big[big.length - stuck.length - 1] = 10;
+    stuck.copy(big, big.length - stuck.length);
+    expect(() => r.log(big, 'ORD_7-Dec-2026-08h00m00s.csv')).not.toThrow();
+    expect(r.all).toEqual([
+      { kind: 'module-stuck', module: 'CTL', message: 'CTL has not finished release #2 after 100 periods: does its exec region set *stateindex = -1?' },
+    ]);
+  });
+
   test("the run's start request refused by its supervisor is an issue (once); a control tool's, or an activation another supervisor refused, is not", () => {
     const r = new RunIssues();
     r.line("STA: start request from contract-control refused: STA.station has no parameter 'sped'");

@@ -26,6 +26,7 @@ export interface RunIssue {
 /** ORD's line on stderr (runtime/src/engines/ord_main.c b_stuck). */
 const STUCK_LINE = /^STUCK: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods.*)$/;
 /** The same report in ORD's CSV log (its `scheduler` records, docs/runtime-api.md). */
+const STUCK_MARK = ',scheduler,,,0,stuck: ';
 const STUCK_RECORD = /,scheduler,,,0,stuck: (([A-Za-z_]\w*) has not finished release #(\d+) after \d+ periods[^\n]*?)(?: \([A-Za-z_]\w*\))?\n/g;
 
 /** A supervisor's line on stderr when the run's start request cannot start anything (runtime/src/engines/sup_main.c handle_start). */
@@ -170,8 +171,14 @@ export class RunIssues {
    */
   log(data: Buffer, file?: string): void {
     if (file !== undefined) this.logShape(data, file);
-    if (!data.includes(',scheduler,,,0,stuck: ')) return;
-    for (const m of data.toString('utf8').matchAll(STUCK_RECORD)) this.stuck(m[2]!, m[3]!, m[1]!);
+    // line by line, never the whole log as one string: a log may be larger than a string can be (RUN_LOG_MAX_BYTES)
+    for (let at = data.indexOf(STUCK_MARK); at >= 0;) {
+      const start = data.lastIndexOf(10, at) + 1;
+      const nl = data.indexOf(10, at);
+      const end = nl < 0 ? data.length : nl + 1;
+      for (const m of data.toString('utf8', start, end).matchAll(STUCK_RECORD)) this.stuck(m[2]!, m[3]!, m[1]!);
+      at = data.indexOf(STUCK_MARK, end);
+    }
   }
 
   limit(hit: LimitHit): void {

@@ -44,6 +44,8 @@ export interface TraceTailBounds {
   linesKept: number;
   /** Lines that are no record sent per run; the later ones are counted in `unsent` entries (trace/wire.ts). */
   unreadableKept: number;
+  /** Bytes read of one log at most: as far as the collector keeps of it (artifacts.ts artifactBoundsFor). */
+  fileBytes: number;
 }
 
 export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
@@ -58,6 +60,7 @@ export const TRACE_TAIL_BOUNDS: Readonly<TraceTailBounds> = Object.freeze({
   linesPerEvent: SERVICE_BOUNDS.traceLinesPerEvent,
   linesKept: SERVICE_BOUNDS.traceLinesKept,
   unreadableKept: SERVICE_BOUNDS.traceUnreadableKept,
+  fileBytes: ARTIFACT_BOUNDS.fileBytes,
 });
 
 /** Where the tail's output goes (the job: trace events and system lines). */
@@ -518,7 +521,7 @@ export class TraceTail {
     const whole = this.wholeUpTo(f);
     // no further than the collector keeps of a log: a sparse file of terabytes (a truncate in the
     // sandbox) must not keep finish() reading zeros after the run
-    const size = Math.min((await f.fh.stat()).size, ARTIFACT_BOUNDS.fileBytes);
+    const size = Math.min((await f.fh.stat()).size, this.bounds.fileBytes);
     if (f.dormantUntil > 0) {
       if (size <= f.dormantUntil) return { read: 0, more: false };
       f.dormantUntil = 0; // it grew: this run writes to it too (a module restarted within the same second)
