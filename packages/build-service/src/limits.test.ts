@@ -1,7 +1,7 @@
 import { describe, expect, it } from 'vitest';
 import { DEFAULT_READY_TIMEOUT_SECONDS } from '@contract-studio/conventions';
 import { ARTIFACT_BOUNDS } from './pipeline/artifacts.js';
-import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, mergeLimits, runLogDiskReserve, runLogMaxBytes } from './limits.js';
+import { DEFAULT_LIMITS, MIN_WHOLE_LIMIT, RUN_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, RUN_STOP_ROOM_SECONDS, RUNTIME_LOG_MAX_BYTES, longestDuration, memoryHeldByFiles, mergeLimits, runLogDiskReserve, runLogMaxBytes } from './limits.js';
 
 describe('longestDuration: a run asked for the longest still ends on its own', () => {
   it('keeps RUN_STOP_ROOM_SECONDS (half the limit when that is less) to start and stop the architecture', () => {
@@ -39,6 +39,17 @@ describe('runLogMaxBytes: a module flooding its CSV log is capped before the wor
     // the runtime refuses a bound under 4 records of 1280 bytes (runtime/src/csvlog.c): never given one
     expect(RUN_LOG_MIN_BYTES).toBeGreaterThanOrEqual(4 * 1280);
     expect(Number.isInteger(runLogMaxBytes(1234567))).toBe(true);
+  });
+});
+
+describe('memoryHeldByFiles: a memory limit hit whose memory the job\'s tmpfs files held', () => {
+  const MiB = 1024 * 1024;
+  it('gives those bytes when they are half of the limit or more; else, or for another limit, undefined', () => {
+    const hit = { name: 'memory' as const, value: 512 * MiB, unit: 'bytes' as const, mechanism: 'cgroup-v2' as const };
+    expect(memoryHeldByFiles({ ...hit, memoryFilesBytes: 256 * MiB })).toBe(256 * MiB);
+    expect(memoryHeldByFiles({ ...hit, memoryFilesBytes: 255 * MiB })).toBeUndefined();
+    expect(memoryHeldByFiles(hit)).toBeUndefined(); // not read (rlimit-as, a cgroup that did not say)
+    expect(memoryHeldByFiles({ name: 'workDiskMiB', value: 256 * MiB, unit: 'bytes', mechanism: 'tmpfs-size', memoryFilesBytes: 256 * MiB })).toBeUndefined();
   });
 });
 

@@ -379,6 +379,20 @@ export interface LimitHit {
   module?: string;
   /** ... and how many of them were. */
   moduleProcesses?: number;
+  /**
+   * The memory limit, read from the job's cgroup: bytes of it the job's files in its tmpfs mounts
+   * held at the hit (the work dir, /tmp, /dev/shm: memory.stat `shmem`), which no kill frees.
+   */
+  memoryFilesBytes?: number;
+}
+
+/**
+ * A memory limit hit whose memory was mostly the job's files in its tmpfs mounts (memoryFilesBytes:
+ * half of the limit or more): the kernel's OOM killer then kills one process after the other, none
+ * of them the cause. Those bytes, else undefined.
+ */
+export function memoryHeldByFiles(hit: LimitHit): number | undefined {
+  return hit.name === 'memory' && hit.memoryFilesBytes !== undefined && hit.memoryFilesBytes * 2 >= hit.value ? hit.memoryFilesBytes : undefined;
 }
 
 /** The longest time limit (`buildSeconds`, `runSeconds`, `prepareSeconds`): a timer's range, 2^31-1 ms. */

@@ -6,7 +6,7 @@ import { createHash } from 'node:crypto';
 import { posix } from 'node:path';
 import type { Readable } from 'node:stream';
 import type { LimitHit, Limits } from '../limits.js';
-import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, runLogDiskReserve, runLogMaxBytes, runProcessesMemoryBytes, RUN_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
+import { buildJobs, CANCEL_GRACE_MS, STOP_BUDGET_MARGIN_MS, describeLimitHit, longestDuration, formatBytes, LimitHitError, memoryHeldByFiles, runLogDiskReserve, runLogMaxBytes, runProcessesMemoryBytes, RUN_LOG_MAX_BYTES, RUN_LOG_MIN_BYTES, SERVICE_BOUNDS, workDiskBytes } from '../limits.js';
 import type { Mechanisms, RealtimeBudgetShare, Sandbox, SandboxProcess } from '../sandbox/types.js';
 import { workDiskState } from '../sandbox/work-disk.js';
 import { LineSplitter } from '../util/line-splitter.js';
@@ -909,10 +909,16 @@ export class Job {
     let message: string | null = null;
     if (this.cancelRequested) message = 'cancelled';
     else if (limitHit) message = `killed: ${describeLimitHit(limitHit)}`;
+    const workUsage = () => (sandbox.workUsage ? sandbox.workUsage(ws.workDir) : hostWorkUsage(ws.workDir)).catch(() => null);
+    const memoryFiles = limitHit && !this.cancelRequested ? memoryHeldByFiles(limitHit) : undefined;
     if (limitHit?.name === 'workDiskMiB' && !this.cancelRequested) {
       // say which files (which module's logs, which build products) took the space
-      const usage = await (sandbox.workUsage ? sandbox.workUsage(ws.workDir) : hostWorkUsage(ws.workDir)).catch(() => null);
+      const usage = await workUsage();
       if (usage) message = `${message}: filled by ${describeWorkUsage(usage)}`;
+    } else if (memoryFiles !== undefined) {
+      // the job's cgroup counted the OOM kill and says what held the memory: its files, not a process
+      const usage = await workUsage();
+      message = `${message}: ${formatBytes(memoryFiles)} of it were the job's files in its tmpfs mounts (the work dir, /tmp, /dev/shm), which no kill frees${usage ? `; the work dir held ${describeWorkUsage(usage)}` : ''}`;
     }
     const ok = !this.cancelRequested && !limitHit && exit.exitCode === 0;
     const cut = step === 'build' ? this.buildOutputCut() : '';

@@ -132,6 +132,20 @@ describe('RunIssues', () => {
     memory.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'service-check' });
     expect(memory.all.map((i) => i.message)).toEqual([expect.stringMatching(/^the run was stopped by the memory limit 512 MiB.* \(the kernel killed MSC first: the module using the most memory\)$/)]);
     expect(memory.all.map((i) => i.module)).toEqual(['MSC']);
+    // ... unless the job's cgroup says its tmpfs files (the work dir's logs) held most of the memory:
+    // the kernel then kills processes that are not the cause, and no module is blamed
+    const files = new RunIssues();
+    files.line('module MSC (pid 29) died by signal 9 (Killed)', 'launcher');
+    files.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'cgroup-v1', memoryFilesBytes: 490 * 1024 * 1024 });
+    expect(files.all.map((i) => i.message)).toEqual([
+      expect.stringMatching(/^the run was stopped by the memory limit 512 MiB.* \(490 MiB of it were the job's files in its tmpfs mounts, the work dir's logs among them, which no kill frees: the kernel killed MSC, not for its own memory\)$/),
+    ]);
+    expect(files.all.map((i) => i.module)).toEqual([undefined]);
+    // a memory hog's own memory (the files a small part): named as before
+    const hog = new RunIssues();
+    hog.line('module MSC (pid 29) died by signal 9 (Killed)', 'launcher');
+    hog.limit({ name: 'memory', value: 512 * 1024 * 1024, unit: 'bytes', mechanism: 'cgroup-v1', memoryFilesBytes: 3 * 1024 * 1024 });
+    expect(hog.all.map((i) => [i.module, /the module using the most memory\)$/.test(i.message)])).toEqual([['MSC', true]]);
     // at the process limit, the module most of the job's processes descended from
     const forks = new RunIssues();
     forks.limit({ name: 'processes', value: 256, unit: 'count', mechanism: 'cgroup-v1', module: 'HMI', moduleProcesses: 241 });

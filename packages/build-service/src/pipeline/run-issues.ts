@@ -5,7 +5,7 @@
  * 4 s run of a module that never ends is never reported as a success.
  */
 import { visibleText } from '@contract-studio/conventions';
-import { describeLimitHit, formatBytes, type LimitHit } from '../limits.js';
+import { describeLimitHit, formatBytes, memoryHeldByFiles, type LimitHit } from '../limits.js';
 import { LOG_DIR, type RunArtifacts } from './artifacts.js';
 import { CSV_HEADER, moduleOfLog } from '../trace/parse.js';
 
@@ -183,12 +183,18 @@ export class RunIssues {
 
   limit(hit: LimitHit): void {
     if (hit.name === 'workDiskMiB') this.diskFull = true;
-    // at the memory limit the kernel kills the process using the most memory first: the module to look at
-    const first = hit.name === 'memory' && this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
+    // at the memory limit the kernel kills the process using the most memory first: the module to look at,
+    // unless the job's cgroup says its tmpfs files held most of it (the logs in the work dir): no process's doing
+    const files = memoryHeldByFiles(hit);
+    const first = hit.name !== 'memory'
+      ? ''
+      : files !== undefined
+        ? ` (${formatBytes(files)} of it were the job's files in its tmpfs mounts, the work dir's logs among them, which no kill frees${this.killed.length ? `: the kernel killed ${this.killed.join(', ')}, not for its own memory` : ''})`
+        : this.killed.length ? ` (the kernel killed ${this.killed.join(', ')} first: the module using the most memory)` : '';
     // at the process limit, the module whose code forks: most of the job's processes had its name
     // no module's code forking: the architecture itself may not fit (a big one at the default limit)
     const forks = hit.name !== 'processes' ? '' : hit.module ? ` (${hit.module} had ${hit.moduleProcesses ?? 'most'} of the job's processes: its code forks)` : PROCESS_LIMIT_ADVICE;
-    const module = hit.name === 'memory' ? this.killed[0] : hit.name === 'processes' ? hit.module : undefined;
+    const module = hit.name === 'memory' ? (files === undefined ? this.killed[0] : undefined) : hit.name === 'processes' ? hit.module : undefined;
     // modules that did not answer the stop's KILL while a fork bomb or a memory hog held the
     // machine: not blamed for looping (every module of a fork bomb's run was "hung")
     if (hit.name === 'processes' || hit.name === 'memory') {

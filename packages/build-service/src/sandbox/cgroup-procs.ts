@@ -9,6 +9,18 @@ import { join } from 'node:path';
 const sleep = (ms: number) => new Promise((r) => setTimeout(r, ms));
 
 /**
+ * Bytes of tmpfs and shared-memory pages charged to a memory cgroup folder (its memory.stat: v1
+ * `total_shmem`, its whole subtree, else `shmem`; v2 `shmem`); null when the file does not say. At
+ * the memory limit they are the job's files in its tmpfs mounts (the work dir, /tmp, /dev/shm):
+ * memory no kill frees.
+ */
+export async function readShmemBytes(memoryDir: string): Promise<number | null> {
+  const text = await readSmallFile(join(memoryDir, 'memory.stat'), 16384);
+  const m = /^total_shmem (\d{1,19})$/m.exec(text) ?? /^shmem (\d{1,19})$/m.exec(text);
+  return m ? Number(m[1]) : null;
+}
+
+/**
  * The first `maxBytes` of a small cgroup file (a counter file: memory.events, pids.events, ...), ''
  * when it is gone or unreadable: one bounded read, whatever the file claims to hold.
  */

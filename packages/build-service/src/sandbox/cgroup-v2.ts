@@ -21,7 +21,7 @@
  */
 import { promises as fsp, readFileSync, accessSync, constants } from 'node:fs';
 import { join } from 'node:path';
-import { cgroupPids, killUntilEmpty, readSmallFile, removeCgroupDir } from './cgroup-procs.js';
+import { cgroupPids, killUntilEmpty, readShmemBytes, readSmallFile, removeCgroupDir } from './cgroup-procs.js';
 import { sweepStaleCgroups } from './cgroup-sweep.js';
 import type { LimitCgroup } from './cgroup.js';
 
@@ -160,6 +160,10 @@ export class JobCgroupV2 implements LimitCgroup {
   /** OOM kills in the job (memory.events `oom_kill`, or `oom_group_kill` with memory.oom.group). */
   oomKills(): Promise<number> {
     return readV2OomKills(this.dir);
+  }
+
+  memoryFiles(): Promise<number | null> {
+    return readShmemBytes(this.dir);
   }
 
   /** Forks refused by pids.max (pids.events `max`). */

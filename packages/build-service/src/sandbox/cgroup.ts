@@ -5,7 +5,7 @@
  */
 import { promises as fsp, readFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { cgroupPids, killUntilEmpty, readSmallFile, removeCgroupDir } from './cgroup-procs.js';
+import { cgroupPids, killUntilEmpty, readShmemBytes, readSmallFile, removeCgroupDir } from './cgroup-procs.js';
 import { sweepStaleCgroups } from './cgroup-sweep.js';
 
 const CGROUP_ROOT = '/sys/fs/cgroup';
@@ -35,6 +35,8 @@ export interface LimitCgroup {
   /** The cgroup.procs files a process writes its pid into to join the job (before exec). */
   readonly procsFiles: string[];
   oomKills(): Promise<number>;
+  /** Bytes of the job's files in tmpfs mounts charged to it (memory.stat `shmem`; null: not said). */
+  memoryFiles?(): Promise<number | null>;
   pidsLimitHits(): Promise<number>;
   pids(): Promise<number[]>;
   killAll(deadlineMs?: number): Promise<boolean>;
@@ -89,6 +91,10 @@ export class JobCgroup implements LimitCgroup {
   /** OOM kills inside the job since creation (memory.oom_control `oom_kill`, else memory.failcnt). */
   async oomKills(): Promise<number> {
     return (await readV1OomKills(this.dirs.memory)) - this.baseline.oomKills;
+  }
+
+  memoryFiles(): Promise<number | null> {
+    return readShmemBytes(this.dirs.memory);
   }
 
   /** Times a fork/clone was refused by pids.max (pids.events `max`). */

@@ -101,12 +101,18 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
     void (opts.stopOnLimit ? stopThenKill(opts.stopOnLimit, h, { terminateNamed, exited: exitedPromise, kill }) : kill());
   };
 
+  // an OOM kill the job's cgroup counted, with what of the memory the job's tmpfs files held (no kill frees them)
+  const memoryHit = async (cg: LimitCgroup): Promise<LimitHit> => {
+    const files = (await cg.memoryFiles?.().catch(() => null)) ?? null;
+    return { name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: cg.mechanism, ...(files !== null ? { memoryFilesBytes: files } : {}) };
+  };
+
   const watcher = opts.cgroup
     ? setInterval(() => {
         void (async () => {
           const cg = opts.cgroup!;
           if ((await cg.oomKills()) > 0) {
-            hit({ name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: cg.mechanism });
+            hit(await memoryHit(cg));
           } else if ((await cg.pidsLimitHits()) > 0) {
             // the module whose code forks, named while its processes are there
             const processes: LimitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: cg.mechanism };
@@ -136,7 +142,7 @@ export function startHostProcess(opts: HostProcessOptions): SandboxProcess {
       // final look at the counters: the kernel may have killed the process just before it exited
       if (opts.cgroup && !limitHit) {
         if ((await opts.cgroup.oomKills()) > 0) {
-          limitHit = { name: 'memory', value: memoryBytes(opts.limits), unit: 'bytes', mechanism: opts.cgroup.mechanism };
+          limitHit = await memoryHit(opts.cgroup);
         } else if ((await opts.cgroup.pidsLimitHits()) > 0) {
           limitHit = { name: 'processes', value: opts.limits.processes, unit: 'count', mechanism: opts.cgroup.mechanism };
         }

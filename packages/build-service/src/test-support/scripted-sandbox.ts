@@ -11,6 +11,7 @@ import { join } from 'node:path';
 import { PassThrough } from 'node:stream';
 import { afterAll } from 'vitest';
 import type { Mechanisms, Sandbox, SandboxCommand, SandboxExit, SandboxProcess } from '../sandbox/types.js';
+import type { LimitHit } from '../limits.js';
 import type { Workspace } from '../pipeline/workspaces.js';
 import type { JobContext } from '../pipeline/job.js';
 import type { RuntimeCache } from '../pipeline/runtime-cache.js';
@@ -36,14 +37,14 @@ export class ScriptedProcess implements SandboxProcess {
     if (!this.exited) this[stream].write(lines.map((l) => `${l}\n`).join(''));
   }
 
-  /** Ends the step's process: its streams close, then `done` resolves. */
-  exit(exitCode: number | null = 0, signal: string | null = null): void {
+  /** Ends the step's process: its streams close, then `done` resolves (with `limitHit`: as a sandbox that saw a limit stop it). */
+  exit(exitCode: number | null = 0, signal: string | null = null, limitHit: LimitHit | null = null): void {
     if (this.exited) return;
     this.exited = true;
     this.stdout.end();
     this.stderr.end();
     // the streams' close events before done, as a real process's pipes
-    setImmediate(() => this.ended({ exitCode, signal, limitHit: null }));
+    setImmediate(() => this.ended({ exitCode, signal, limitHit }));
   }
 
   kill(): Promise<void> {
