@@ -10,11 +10,11 @@ SIM_SRCS  := src/engines/engine_values.c src/engines/value_ops.c src/engines/eng
              src/engines/sup_claims.c src/engines/ord_core.c src/engines/ord_stuck_cause.c src/tools.c \
              $(SIM_DIR)/sim_world.c $(SIM_DIR)/sim_protocol.c
 SIM_HDRS  := $(wildcard include/*.h include/*/*.h src/engines/*.h $(SIM_DIR)/*.h)
-SIM_CFLAGS := -std=c11 -Wall -Wextra -Werror -O2 -g -Iinclude -Isrc/engines -I$(SIM_DIR)
+SIM_CFLAGS := -std=c11 -Wall -Wextra $(WERROR) -O2 -g -Iinclude -Isrc/engines -I$(SIM_DIR)
 SIM_OBJS  := $(patsubst %.c,$(SIM_OUT)/obj/%.o,$(notdir $(SIM_SRCS)))
 
 vpath %.c src/engines src $(SIM_DIR)
-$(SIM_OUT)/obj/%.o: %.c $(SIM_HDRS)
+$(SIM_OUT)/obj/%.o: %.c $(SIM_HDRS) $(BUILD_CONFIG)
 	@mkdir -p $(dir $@)
 	$(CC) $(SIM_CFLAGS) -c $< -o $@
 
@@ -22,7 +22,7 @@ $(SIM_OUT)/libcontractsim.a: $(SIM_OBJS)
 	@rm -f $@
 	$(AR) rcs $@ $^
 
-$(SIM_OUT)/sim_main.o: $(SIM_DIR)/sim_main.c $(SIM_HDRS)
+$(SIM_OUT)/sim_main.o: $(SIM_DIR)/sim_main.c $(SIM_HDRS) $(BUILD_CONFIG)
 	@mkdir -p $(dir $@)
 	$(CC) $(SIM_CFLAGS) -c $< -o $@
 

@@ -147,7 +147,7 @@ describe('named constants in the generated C', () => {
             expect(readFileSync(modulePath, 'utf8')).toContain('int a[NJOINTS];');
 
             ensureRuntimeLibrary();
-            const out = run('make', ['-j2', '-C', arch, 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
+            const out = run('make', ['-j2', '-C', arch, 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'EXTRA_CFLAGS=-Werror -O0']);
             expect(out).not.toMatch(/warning:/);
 
             // the region's code, run on its own: the values are those of the .contract

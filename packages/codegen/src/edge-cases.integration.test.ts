@@ -40,7 +40,7 @@ describe('edge-case models', () => {
             expect(tree.get('generated/architecture/modules/MAX_mod/module.c')).toContain('char label[256] = "\\?\\?=";');
             expect(tree.get('generated/architecture/Makefile')).toMatch(/^START \?= $/m); // no supervisor function to start
             ensureRuntimeLibrary();
-            const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
+            const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'EXTRA_CFLAGS=-Werror -O0']);
             expect(out).not.toMatch(/warning:/);
         } finally {
             cleanup();

@@ -119,7 +119,7 @@ describe('extension types (bool, arrays, enumerations, constants)', () => {
             expect(tool).toMatch(/\{ 0, &contract_array_float_2 \},\s*\{ 1, &contract_type_Mode \},\s*\{ 2, &contract_type_bool \},\s*CONTROL_TYPED_PARAM_TERM/);
             expect(tree.get('generated/architecture/tools/controlDRV.c')).toContain('return ControlMain("DRV", PARAMS, argc, argv);');
             ensureRuntimeLibrary();
-            const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
+            const out = run('make', ['-j2', '-C', join(dir, 'generated', 'architecture'), 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'EXTRA_CFLAGS=-Werror -O0']);
             expect(out).not.toMatch(/warning:/);
             // the engines accept the tables (types of both sides of assignments and tests, paths inside their variables, descriptors)
             const arch = join(dir, 'generated', 'architecture');

@@ -21,7 +21,7 @@ describe("the benchmark's synthetic architecture (reduced size)", () => {
             run('diff', ['-r', join(dir, 'a'), join(dir, 'b')]);
             ensureRuntimeLibrary();
             const arch = join(dir, 'a', 'generated', 'architecture');
-            const out = run('make', ['-j2', '-C', arch, 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'CFLAGS=-std=c11 -Wall -Wextra -Werror -O0']);
+            const out = run('make', ['-j2', '-C', arch, 'all', `CONTRACT_RUNTIME=${RUNTIME_DIR}`, 'EXTRA_CFLAGS=-Werror -O0']);
             expect(out).not.toMatch(/warning:/);
             const executables = readdirSync(join(arch, 'modules')).map((d) => d.replace('_mod', ''));
             for (const exe of executables) expect(readdirSync(join(arch, 'modules', `${exe}_mod`))).toContain(exe);
