@@ -15,14 +15,14 @@ import { cpSync, existsSync, mkdirSync, mkdtempSync, readFileSync, readdirSync, 
 import { tmpdir } from 'node:os';
 import { dirname, join, relative, resolve, sep } from 'node:path';
 import { fileURLToPath } from 'node:url';
+// what of runtime/ a user's build needs, copied without build products (as contract runtime-source does)
+import { copyRuntimeSources } from '../dist/runtime-source.js';
 
 const cliDir = resolve(dirname(fileURLToPath(import.meta.url)), '..');
 const repo = resolve(cliDir, '..', '..');
 const out = resolve(process.argv[2] ?? join(repo, 'dist-packages'));
 /** The workspace packages the CLI needs, in dependency order. */
 const WORKSPACES = ['conventions', 'language', 'codegen', 'build-service', 'simulator'];
-/** What of runtime/ a user's build needs (its tests and benchmarks stay in the repository). */
-const RUNTIME_PARTS = ['Makefile', 'engines.mk', 'README.md', 'include', 'src', 'launcher', 'sim'];
 
 function run(cmd, args, cwd) {
     return execFileSync(cmd, args, { cwd, encoding: 'utf8', stdio: ['ignore', 'pipe', 'inherit'], env: { ...process.env, npm_config_update_notifier: 'false', npm_config_fund: 'false', npm_config_audit: 'false' } });
@@ -85,7 +85,7 @@ try {
     const pkg = JSON.parse(readFileSync(join(cliDir, 'package.json'), 'utf8'));
     for (const f of pkg.files) cpSync(join(cliDir, f), join(stage, f), { recursive: true });
     if (existsSync(join(cliDir, 'README.md'))) cpSync(join(cliDir, 'README.md'), join(stage, 'README.md'));
-    for (const part of RUNTIME_PARTS) cpSync(join(repo, 'runtime', part), join(stage, 'runtime', part), { recursive: true, filter: (src) => !/\/build(\/|$)/.test(src.slice(join(repo, 'runtime').length)) });
+    copyRuntimeSources(join(repo, 'runtime'), join(stage, 'runtime'));
     const byName = new Map(readdirSync(tarballs).map((t) => [t.replace(/-\d+\.\d+\.\d+\.tgz$/, '').replace(/^contract-studio-/, ''), join(tarballs, t)]));
     for (const w of WORKSPACES) if (!byName.get(w)) throw new Error(`npm pack made no tarball for packages/${w}`);
     // the workspace packages unpacked as npm would install them, and the registry packages they

@@ -10,5 +10,6 @@ import { renameCommand } from './rename.js';
 import { traceCommand } from './trace.js';
 import { simulateCommand } from './simulate.js';
 import { cacheCommand } from './cache.js';
+import { runtimeSourceCommand } from './runtime-source.js';
 
-export const COMMANDS: Command[] = [newCommand, checkCommand, generateCommand, renameCommand, buildCommand, runCommand, traceCommand, simulateCommand, serveCommand, cacheCommand];
+export const COMMANDS: Command[] = [newCommand, checkCommand, generateCommand, renameCommand, buildCommand, runCommand, traceCommand, simulateCommand, serveCommand, cacheCommand, runtimeSourceCommand];

@@ -6,8 +6,9 @@
  * - `npm install -g --offline` puts it in a temp prefix (offline: every dependency is in the
  *   tarball), and `contract new`, `check`, `build` and `run --duration 2s` work from a temp folder
  *   outside the repository with no CONTRACT_RUNTIME: the runtime sources inside the package are
- *   built into the (empty) build cache on first use; `contract-language-server` answers an LSP
- *   initialize;
+ *   built into the (empty) build cache on first use; `contract runtime-source` copies them out
+ *   (no build product) and the copy builds with plain make; `contract-language-server` answers an
+ *   LSP initialize;
  * - installed offline as a devDependency of a temp project next to a copy of examples/tutorial,
  *   `npx contract check .` works there (docs/ci.md).
  * Nothing is cached in the repository (all in a temp folder).
@@ -95,6 +96,14 @@ describe('the packed CLI, installed as users install it', () => {
         expect(readdirSync(join(root, 'cache')).some((n) => n === 'runtime')).toBe(true); // built into the cache, not in place
         const ran = contract(['run', 'robot', '--sandbox', 'bwrap', '--duration', '2s']);
         expect(ran.status, ran.out).toBe(0);
+
+        // the runtime's sources packed with it, for a build by hand (a robot with no checkout): no build product
+        const copied = contract(['runtime-source', 'robot-runtime']);
+        expect(copied.status, copied.out).toBe(0);
+        for (const f of ['Makefile', 'include/libmodule/libmodule.h', 'src/core.c', 'launcher/contract-launch.c']) expect(existsSync(join(work, 'robot-runtime', f)), f).toBe(true);
+        expect(existsSync(join(work, 'robot-runtime', 'build'))).toBe(false);
+        const made = spawnSync('make', ['-s', '-j2', '-C', join(work, 'robot-runtime'), 'build/libmodule.a', 'build/contract-launch', 'CFLAGS=-O0'], { encoding: 'utf8', timeout: 300_000 });
+        expect(made.status, made.stderr).toBe(0);
 
         // the language server for desktop editors comes with it (docs/editors.md)
         expect(await initializeAnswer('contract-language-server', work, env)).toMatch(/"renameProvider":/);
