@@ -79,6 +79,7 @@ describe('generated trees do not depend on the folder or the machine', () => {
                 const r = make(dir, 'all');
                 expect(r.status, r.stderr).not.toBe(0);
                 expect(r.stderr).toContain(`no ContrACT runtime at CONTRACT_RUNTIME=${DEFAULT_RUNTIME}: set CONTRACT_RUNTIME to the runtime/ folder of ContrACT Studio`);
+                expect(r.stderr).toContain(`or install one there: make install PREFIX=${DEFAULT_RUNTIME} from that runtime/ folder`);
                 expect(r.stdout).not.toMatch(/\bcc\b|gcc/);
             }
             const tool = spawnSync('make', ['-C', join(arch(), 'tools'), '-f', 'makecontrolMSC'], { env, encoding: 'utf8' });

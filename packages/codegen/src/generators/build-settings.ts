@@ -17,21 +17,32 @@ export function runtimeSettings(): string {
         `CONTRACT_RUNTIME ?= ${DEFAULT_RUNTIME}`,
         'ifeq ($(wildcard $(CONTRACT_RUNTIME)/include/libmodule/libmodule.h),)',
         'ifneq ($(MAKECMDGOALS),clean)',
-        '$(error no ContrACT runtime at CONTRACT_RUNTIME=$(CONTRACT_RUNTIME): set CONTRACT_RUNTIME to the runtime/ folder of ContrACT Studio, e.g. make CONTRACT_RUNTIME=/path/to/contract-studio/runtime)',
+        '$(error no ContrACT runtime at CONTRACT_RUNTIME=$(CONTRACT_RUNTIME): set CONTRACT_RUNTIME to the runtime/ folder of ContrACT Studio, e.g. make CONTRACT_RUNTIME=/path/to/contract-studio/runtime, or install one there: make install PREFIX=$(CONTRACT_RUNTIME) from that runtime/ folder (an installed CLI gives its sources: contract runtime-source DIR))',
         'endif',
         'endif',
     ].join('\n');
 }
 
-/** Compiler settings shared by the Makefiles of executables and tools (the runtime library holds libmodule and the engines). */
+/**
+ * Compiler settings shared by the Makefiles of executables and tools (the runtime library holds
+ * libmodule and the engines). What the generated C needs to compile right (C11, POSIX 2008, the
+ * runtime's and the tree's include folders, the runtime library) is always applied: `CFLAGS`,
+ * `CPPFLAGS` or `LDLIBS` given on make's command line add to it (`override`), never drop it.
+ * `CFLAGS` itself is the optimisation, debug and warning flags: given, it replaces them;
+ * `EXTRA_CFLAGS` adds to them.
+ */
 export function makeSettings(extraIncludes: string[]): string {
     return [
         runtimeSettings(),
-        'CFLAGS ?= -std=c11 -Wall -Wextra -O2 -g',
-        '# extra flags from the caller (the build service adds -fdiagnostics-format=json)',
-        'CFLAGS += $(EXTRA_CFLAGS)',
-        `CPPFLAGS += -D_POSIX_C_SOURCE=200809L -I$(CONTRACT_RUNTIME)/include ${extraIncludes.map((i) => `-I${i}`).join(' ')}`,
+        '# the language and what the generated C needs: always given (CFLAGS and CPPFLAGS add to them)',
+        'CONTRACT_CFLAGS = -std=c11',
+        `CONTRACT_CPPFLAGS = -D_POSIX_C_SOURCE=200809L -I$(CONTRACT_RUNTIME)/include ${extraIncludes.map((i) => `-I${i}`).join(' ')}`,
+        '# optimisation, debug and warnings: CFLAGS=... replaces them, EXTRA_CFLAGS=... adds to them',
+        '# (the build service adds -fdiagnostics-format=json)',
+        'CFLAGS ?= -Wall -Wextra -O2 -g',
+        'override CFLAGS := $(CONTRACT_CFLAGS) $(CFLAGS) $(EXTRA_CFLAGS)',
+        'override CPPFLAGS := $(CONTRACT_CPPFLAGS) $(CPPFLAGS)',
         'CONTRACT_LIB = $(CONTRACT_RUNTIME)/build/libmodule.a',
-        'LDLIBS += $(CONTRACT_LIB) -lpthread -lrt -lm',
+        'override LDLIBS := $(LDLIBS) $(CONTRACT_LIB) -lpthread -lrt -lm',
     ].join('\n');
 }
