@@ -1,21 +1,14 @@
-import { cpSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
-import { join, resolve } from 'node:path';
-import { fileURLToPath } from 'node:url';
+import { readFileSync, readdirSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
 import { loadWorkspace } from '@contract-studio/language/node';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
 import { generateArchitecture } from './generate-architecture.js';
 import { parseRegions } from './regions/parse-regions.js';
 import { readTree, tempDir } from './test-support/temp-dir.js';
 import { RUNTIME_DIR, ensureRuntimeLibrary, run } from './test-support/c-toolchain.js';
+import { copyTutorial } from './test-support/tutorial-project.js';
 
-const TUTORIAL = resolve(fileURLToPath(new URL('.', import.meta.url)), '..', '..', '..', 'examples', 'tutorial');
 const MODULES = 'generated/architecture/modules';
-
-/** A copy of the tutorial project (sources and committed src-gen with user code). */
-function copyTutorial(dir: string): void {
-    for (const f of readdirSync(TUTORIAL)) if (f.endsWith('.contract')) cpSync(join(TUTORIAL, f), join(dir, f));
-    cpSync(join(TUTORIAL, 'src-gen'), join(dir, 'src-gen'), { recursive: true, filter: (src) => !/\/(run|logs)(\/|$)|_mod\/[A-Z]{3}$|tools\/control[A-Z]{3}$/.test(src) });
-}
 
 function enabledRegions(text: string, file: string): Map<string, string> {
     return new Map(parseRegions(text, file).regions.filter((r) => r.enabled).map((r) => [r.id, r.content]));

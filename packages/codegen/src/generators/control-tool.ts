@@ -6,6 +6,7 @@ import { getValue } from './shared-type-header.js';
 import { namedTypeOf, typeName, type ArchitectureIndex } from '../model/lookup.js';
 import { TableBuilder } from './vocabulary/table-builder.js';
 import { makeSettings } from './build-settings.js';
+import { commonHeaderPrerequisites, commonHeaderVariables, type CommonHeaderDependencies } from './executable-makefile.js';
 import { architecturePath } from '@contract-studio/conventions';
 
 /** `tools/control<M>.c` and `tools/makecontrol<M>`: the shell control command of a module or supervisor. */
@@ -15,6 +16,8 @@ export function controlSourcePath(name: string): string {
 export function controlMakefilePath(name: string): string {
     return architecturePath(`tools/makecontrol${name}`);
 }
+/** `tools/`: the folder of the control tools. */
+export const TOOLS_DIR = architecturePath('tools');
 
 function getter(t: TypeRef): { fn: string; ctype: string } {
     if ('array' in t) return { fn: `get_${typeName(t).replace(/\]\[|\[|\]/g, '_').replace(/_$/, '')}`, ctype: '' };
@@ -92,15 +95,17 @@ export function generateControlSource(name: string, kind: string, parameters: Po
     return toString(node) + '\n';
 }
 
-export function generateControlMakefile(name: string): string {
+/** The Makefile of the control tool of `name`, depending on the headers of common/ in `deps`. */
+export function generateControlMakefile(name: string, deps: CommonHeaderDependencies): string {
     const node = expandToNode`
         # makecontrol${name}: builds the control tool control${name} (make -f makecontrol${name})
         ${makeSettings(['.', '../common'])}
+        ${commonHeaderVariables('../common', deps)}
 
         .PHONY: all clean
         all: control${name}
 
-        control${name}: control${name}.c $(wildcard ../common/*.h) $(CONTRACT_LIB)
+        control${name}: control${name}.c ${commonHeaderPrerequisites('../common')} $(CONTRACT_LIB)
         	$(CC) $(CPPFLAGS) $(CFLAGS) -o $@ control${name}.c $(LDLIBS)
 
         clean:

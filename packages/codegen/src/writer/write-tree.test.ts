@@ -157,3 +157,34 @@ describe('writeTree: a CRLF checkout (core.autocrlf=true)', () => {
         expect(changed.replace(/\r\n/g, '')).not.toContain('\n');
     });
 });
+
+describe('writeTree: a file derived from the tree as written', () => {
+    /** A file listing what `a.c`'s region holds and what `user.h` (not generated) holds. */
+    const derived: GeneratedFile = {
+        path: 'generated/A.list',
+        content: 'fresh\n',
+        derive: (textOf) => `a.c: ${/START\*\/([\s\S]*?)\/\*PROTECTED/.exec(textOf('generated/a.c') ?? '')?.[1]?.trim()}\nuser.h: ${textOf('generated/user.h') ?? 'none'}\n`,
+    };
+
+    it('is written after the others, from their text with the regions merged and from the user\'s files; then left alone while they stay', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/a.c', 'x'), derived]);
+        expect(readFileSync(join(dir, 'generated/A.list'), 'utf8')).toBe('a.c: //TODO\nuser.h: none\n');
+        edit(dir, 'generated/a.c', 'x', '\nmine();\n');
+        writeFileSync(join(dir, 'generated/user.h'), 'int u;');
+        const report = writeTree(dir, [file('generated/a.c', 'x'), derived]);
+        expect(report.updated).toEqual(['generated/A.list']);
+        expect(readFileSync(join(dir, 'generated/A.list'), 'utf8')).toBe('a.c: mine();\nuser.h: int u;\n');
+        expect(writeTree(dir, [file('generated/a.c', 'x'), derived]).unchanged).toEqual(['generated/A.list', 'generated/a.c']);
+    });
+
+    it('is told when a file could not be written (textOf throws)', () => {
+        const dir = out();
+        writeTree(dir, [file('generated/a.c', 'x')]);
+        writeFileSync(join(dir, 'generated/a.c'), '/*PROTECTED REGION ID(x) ENABLED START*/ unterminated\n');
+        let told: unknown;
+        const report = writeTree(dir, [file('generated/a.c', 'x'), { ...derived, derive: (textOf) => { try { textOf('generated/a.c'); } catch (e) { told = e; } return 'unknown\n'; } }]);
+        expect(report.errors.map((e) => e.file)).toEqual(['generated/a.c']);
+        expect(String(told)).toMatch(/generated\/a\.c could not be written/);
+    });
+});

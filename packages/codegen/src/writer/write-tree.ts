@@ -17,6 +17,13 @@ import { conflictRefusal } from './conflicts.js';
 export interface GeneratedFile {
     path: string;
     content: string;
+    /**
+     * For a file that depends on what the others hold once written, protected regions included (an
+     * executable's Makefile names the headers its code includes): its text from the tree as written
+     * (`textOf`: a file's text after this generation, undefined when there is none; throws when it
+     * cannot tell). Such a file holds no protected region; `content` is its text for a fresh tree.
+     */
+    derive?: (textOf: (path: string) => string | undefined) => string;
 }
 
 export interface WriteTreeOptions {
@@ -252,7 +259,22 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
         return names.has(posix.basename(rel));
     };
-    for (const file of sorted) {
+    /** The text of each generated file after this generation (what it holds on disk), as it was written or left. */
+    const onDisk = new Map<string, string>();
+    const textOf = (path: string): string | undefined => {
+        if (produced.has(path)) {
+            const text = onDisk.get(path);
+            if (text === undefined) throw new Error(`${path} could not be written`);
+            return text;
+        }
+        return mayExist(path) ? tree.read(path) : undefined; // a user's file (a header in common/)
+    };
+    // the files derived from the others (derive) come last, from the tree as written
+    const inWritingOrder = function* (): Generator<GeneratedFile> {
+        for (const file of sorted) if (!file.derive) yield file;
+        for (const file of sorted) if (file.derive) yield { path: file.path, content: file.derive(textOf) };
+    };
+    for (const file of inWritingOrder()) {
         const generated = toByteString(file.content);
         const record = fileRecord(generated, file.path);
         newManifest.set(file.path, record.defaults);
@@ -264,10 +286,12 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             let existing = mayExist(file.path) ? tree.read(file.path) : undefined;
             if (existing === undefined) {
                 tree.write(file.path, bytesOf(generated));
+                onDisk.set(file.path, generated);
                 report.created.push(file.path);
                 report.filesWritten++;
                 continue;
             }
+            onDisk.set(file.path, existing); // until it is rewritten below
             if (existing === generated) {
                 // identical to the fresh output: nothing to merge (every region holds the default)
                 report.unchanged.push(file.path);
@@ -368,10 +392,12 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 report.unchanged.push(file.path);
             } else {
                 tree.write(file.path, bytesOf(merged.text));
+                onDisk.set(file.path, merged.text);
                 report.updated.push(file.path);
                 report.filesWritten++;
             }
         } catch (e) {
+            onDisk.delete(file.path); // not known: what derives from it assumes the worst
             recordFailure(report, refusals, file.path, e, 'left untouched');
             // keep what we knew of the untouched file so that its defaults (and skeleton) stay recognisable
             keepPrevious(file.path);
@@ -443,6 +469,8 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             else report.errors.push({ file: MANIFEST_NAME, message: `cannot write the manifest: ${(e as Error).message}` });
         }
     }
+    // in path order, as the files are given (the derived ones were written last)
+    for (const list of [report.created, report.updated, report.unchanged]) list.sort();
     refusals.report(report);
     return report;
 }

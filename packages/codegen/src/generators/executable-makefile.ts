@@ -1,0 +1,64 @@
+import { posix } from 'node:path';
+import { architecturePath } from '@contract-studio/conventions';
+import type { GeneratedFile } from '../writer/write-tree.js';
+import { includedCommonHeaders, type TreeText } from './header-dependencies.js';
+
+/** The generated tree's common/ folder (the shared headers). */
+export const COMMON_DIR = architecturePath('common');
+
+/**
+ * The headers of common/ an executable's Makefile makes it depend on: the generated ones its
+ * sources include (undefined: unknown, every header of common/), and every generated one (a header
+ * of common/ that is not among them is a user's: a dependency of every executable).
+ */
+export interface CommonHeaderDependencies {
+    included: string[] | undefined;
+    generated: string[];
+}
+
+/**
+ * The Makefile lines defining COMMON_HEADERS (the headers of common/ the executable includes) and
+ * GENERATED_COMMON_HEADERS; `common` is common/ as the Makefile names it (e.g. `../../common`).
+ */
+export function commonHeaderVariables(common: string, deps: CommonHeaderDependencies): string {
+    const named = (paths: string[]) => paths.map((p) => `${common}/${posix.basename(p)}`);
+    const variable = (name: string, values: string[]) => [`${name} =`, ...values].join(' ');
+    return [
+        deps.included !== undefined
+            ? '# the headers of common/ this executable includes: named by its sources (protected regions too) or by the headers they include'
+            : '# a file could not be read when this Makefile was generated: every header of common/',
+        variable('COMMON_HEADERS', deps.included !== undefined ? named(deps.included) : [`$(wildcard ${common}/*.h)`]),
+        '# the headers the generator writes in common/; any other header there (yours) is a dependency of every executable',
+        variable('GENERATED_COMMON_HEADERS', named(deps.generated)),
+    ].join('\n');
+}
+
+/** The prerequisites of an executable on common/: the headers it includes, and the user's headers there. */
+export function commonHeaderPrerequisites(common: string): string {
+    return `$(COMMON_HEADERS) $(filter-out $(GENERATED_COMMON_HEADERS),$(wildcard ${common}/*.h))`;
+}
+
+/** An executable's Makefile to generate: at `path`, compiling `sources` (tree paths) in `own` (its folder). */
+export interface ExecutableMakefile {
+    path: string;
+    sources: string[];
+    own: string;
+    render: (deps: CommonHeaderDependencies) => string;
+}
+
+/**
+ * The Makefiles of executables (modules', control tools'), each with its text for the freshly
+ * generated tree (`files`, every protected region at its default) and how to derive it again from
+ * the tree as written, protected regions included (the writer calls `derive` after writing the
+ * other files): each executable depends on the headers of common/ it can include, no other
+ * generated one, so that a change to one datatype rebuilds only the executables using it.
+ */
+export function executableMakefiles(makefiles: readonly ExecutableMakefile[], files: readonly GeneratedFile[]): GeneratedFile[] {
+    const generated = files.map((f) => f.path).filter((p) => posix.dirname(p) === COMMON_DIR && p.endsWith('.h')).sort();
+    const generatedSet = new Set(generated);
+    const fresh = new Map(files.map((f) => [f.path, f.content]));
+    return makefiles.map(({ path, sources, own, render }) => {
+        const text = (textOf: TreeText) => render({ included: includedCommonHeaders(sources, { own, common: COMMON_DIR }, generatedSet, textOf), generated });
+        return { path, content: text((p) => fresh.get(p)), derive: text };
+    });
+}

@@ -1,0 +1,74 @@
+import { posix } from 'node:path';
+
+/**
+ * A file's text in the generated tree as it stands after the generation (protected regions
+ * included); undefined when there is no such file. Throws when it cannot tell (a file that could
+ * not be read or written).
+ */
+export type TreeText = (path: string) => string | undefined;
+
+/** One `#include` line of C text: the name between the quotes or angle brackets. */
+export interface IncludeLine {
+    name: string;
+    /** `#include "name"` (searched first in the including file's folder), not `#include <name>`. */
+    quoted: boolean;
+}
+
+const INCLUDE = /^[ \t]*#[ \t]*include[ \t]*(?:"([^"\r\n]+)"|<([^>\r\n]+)>)/gm;
+
+/**
+ * The `#include` lines of `text`, in order: the generator's and those written in protected
+ * regions alike. Commented-out or `#if 0` lines count too (a dependency too many, never one too few).
+ */
+export function includeLines(text: string): IncludeLine[] {
+    return [...text.matchAll(INCLUDE)].map((m) => (m[1] !== undefined ? { name: m[1], quoted: true } : { name: m[2]!, quoted: false }));
+}
+
+/** Where an executable's compilation looks for headers (tree paths): its own folder (`-I.`) and common/ (`-I<common>`). */
+export interface IncludeFolders {
+    own: string;
+    common: string;
+}
+
+/**
+ * The tree paths an `#include` of `including` can name: for `"name"`, the including file's folder,
+ * then the executable's own folder and common/; for `<name>`, those two. Paths leaving the tree
+ * (`../..` past its root, absolute names) are the runtime's or the system's: none.
+ */
+function candidates(including: string, line: IncludeLine, folders: IncludeFolders): string[] {
+    if (posix.isAbsolute(line.name)) return [];
+    const dirs = line.quoted ? [posix.dirname(including), folders.own, folders.common] : [folders.own, folders.common];
+    const paths = dirs.map((d) => posix.normalize(posix.join(d, line.name))).filter((p) => !p.startsWith('../') && p !== '..');
+    return [...new Set(paths)];
+}
+
+/**
+ * The headers of `generatedCommon` (tree paths of the headers the generator writes in common/)
+ * that compiling `sources` can include: named by an `#include` of a source, or of a header of the
+ * tree those include, and so on (the generated headers' own includes, those written in protected
+ * regions, and those of a user's header in the tree), sorted. Every candidate of an include that
+ * exists is followed (a dependency too many, never one too few). Undefined when a file could not
+ * be read: the caller then depends on every header.
+ */
+export function includedCommonHeaders(sources: string[], folders: IncludeFolders, generatedCommon: ReadonlySet<string>, textOf: TreeText): string[] | undefined {
+    const seen = new Set<string>(sources);
+    const pending = [...sources];
+    const found = new Set<string>();
+    try {
+        for (let path = pending.pop(); path !== undefined; path = pending.pop()) {
+            const text = textOf(path);
+            if (text === undefined) continue;
+            for (const line of includeLines(text)) {
+                for (const candidate of candidates(path, line, folders)) {
+                    if (seen.has(candidate) || textOf(candidate) === undefined) continue;
+                    seen.add(candidate);
+                    pending.push(candidate);
+                    if (generatedCommon.has(candidate)) found.add(candidate);
+                }
+            }
+        }
+    } catch {
+        return undefined;
+    }
+    return [...found].sort();
+}

@@ -1,0 +1,85 @@
+/**
+ * With real make on the tutorial: a change to one datatype rebuilds only the executables whose
+ * code can include its header (the generated includes, those written in protected regions, and
+ * what those headers include), not every executable.
+ */
+import { readFileSync, writeFileSync } from 'node:fs';
+import { join } from 'node:path';
+import { loadWorkspace } from '@contract-studio/language/node';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import { generateArchitecture } from './generate-architecture.js';
+import { RUNTIME_DIR, ensureRuntimeLibrary, run } from './test-support/c-toolchain.js';
+import { tempDir } from './test-support/temp-dir.js';
+import { copyTutorial } from './test-support/tutorial-project.js';
+
+const EXECUTABLES = ['GLB', 'MAA', 'MAB', 'MSA', 'MSB', 'MSC', 'MSD', 'ORD', 'SUP'];
+
+describe('the executables a datatype change rebuilds (tutorial, real make)', () => {
+    let dir: string;
+    let cleanup: () => void;
+    let arch: string;
+    const make = (...args: string[]) => run('make', ['-C', arch, `CONTRACT_RUNTIME=${RUNTIME_DIR}`, ...args]);
+    /** The executables and control tools `make all` would link now (make -n: nothing is built). */
+    const wouldRebuild = () => [...make('-n', 'all').matchAll(/ -o (\w+) /g)].map((m) => m[1]!).sort();
+    const edit = (file: string, from: string, to: string) => {
+        const text = readFileSync(file, 'latin1');
+        expect(text).toContain(from);
+        writeFileSync(file, text.replace(from, to), 'latin1');
+    };
+    const generate = async () => {
+        const ws = await loadWorkspace(dir);
+        expect(ws.diagnostics.filter((d) => d.severity === 'error')).toEqual([]);
+        const report = generateArchitecture(ws.documents, join(dir, 'src-gen'));
+        expect(report.errors).toEqual([]);
+        return report;
+    };
+
+    beforeAll(() => {
+        ({ dir, cleanup } = tempDir('codegen-makedeps-'));
+        copyTutorial(dir);
+        ensureRuntimeLibrary();
+        arch = join(dir, 'src-gen', 'generated', 'architecture');
+        make('-j2', 'all');
+    }, 240_000);
+    afterAll(() => cleanup());
+
+    it('is built: make all has nothing left to link', () => {
+        expect(wouldRebuild()).toEqual([]);
+    });
+
+    it('a field added to TypeE (used by MAA only) rebuilds MAA alone', async () => {
+        edit(join(dir, 'datatype.contract'), 'datatype TypeE {TypeC message, TypeD data_ };', 'datatype TypeE {TypeC message, TypeD data_, int extra = 0 };');
+        const report = await generate();
+        expect(report.updated).toContain('generated/architecture/common/SharedTypeE.h');
+        expect(wouldRebuild()).toEqual(['MAA']);
+        make('-j2', 'all');
+        expect(wouldRebuild()).toEqual([]);
+    }, 120_000);
+
+    it('a change to TypeC rebuilds the executables including it or a header that includes it (SharedTypeE.h)', async () => {
+        edit(join(dir, 'datatype.contract'), 'datatype TypeC {string message, int messagetype=0, TypeA value };', 'datatype TypeC {string message, int messagetype=0, TypeA value, int extra = 0 };');
+        await generate();
+        expect(wouldRebuild()).toEqual(['MAA', 'MAB', 'SUP']);
+        make('-j2', 'all');
+    }, 120_000);
+
+    it('an #include of SharedTypeF.h written in MSA\'s protected region makes MSA (alone) rebuild when TypeF changes', async () => {
+        const msa = join(arch, 'modules', 'MSA_mod', 'module.c');
+        edit(msa, '/*PROTECTED REGION ID(protect_additional_import_MSA) ENABLED START*/\n//TODO\n', '/*PROTECTED REGION ID(protect_additional_import_MSA) ENABLED START*/\n#include "SharedTypeF.h"\n');
+        const regenerated = await generate();
+        expect(regenerated.updated).toEqual(['generated/architecture/modules/MSA_mod/Makefile']);
+        expect(readFileSync(join(arch, 'modules', 'MSA_mod', 'Makefile'), 'latin1')).toMatch(/^COMMON_HEADERS = .*\.\.\/\.\.\/common\/SharedTypeF\.h/m);
+        make('-j2', 'all');
+        expect(wouldRebuild()).toEqual([]);
+
+        edit(join(dir, 'datatype.contract'), 'datatype TypeF {int fufu, int juju};', 'datatype TypeF {int fufu, int juju, int extra = 0};');
+        await generate();
+        expect(wouldRebuild()).toEqual(['MSA']);
+    }, 120_000);
+
+    it('a header of common/ the generator did not write is a dependency of every executable', () => {
+        make('-j2', 'all');
+        writeFileSync(join(arch, 'common', 'mine.h'), '#define MINE 1\n');
+        expect(wouldRebuild()).toEqual([...EXECUTABLES, ...EXECUTABLES.filter((e) => e !== 'ORD').map((e) => `control${e}`)].sort());
+    }, 120_000);
+});
