@@ -18,24 +18,24 @@ export interface CommonHeaderDependencies {
 
 /**
  * The Makefile lines defining COMMON_HEADERS (the headers of common/ the executable includes) and
- * GENERATED_COMMON_HEADERS; `common` is common/ as the Makefile names it (e.g. `../../common`).
+ * GENERATED_COMMON_HEADERS, by name; `common` is common/ as the Makefile names it (e.g. `../../common`).
  */
 export function commonHeaderVariables(common: string, deps: CommonHeaderDependencies): string {
-    const named = (paths: string[]) => paths.map((p) => `${common}/${posix.basename(p)}`);
+    const names = (paths: string[]) => paths.map((p) => posix.basename(p));
     const variable = (name: string, values: string[]) => [`${name} =`, ...values].join(' ');
     return [
         deps.included !== undefined
-            ? '# the headers of common/ this executable includes: named by its sources (protected regions too) or by the headers they include'
-            : '# a file could not be read when this Makefile was generated: every header of common/',
-        variable('COMMON_HEADERS', deps.included !== undefined ? named(deps.included) : [`$(wildcard ${common}/*.h)`]),
-        '# the headers the generator writes in common/; any other header there (yours) is a dependency of every executable',
-        variable('GENERATED_COMMON_HEADERS', named(deps.generated)),
+            ? `# the headers of ${common} this executable includes: named by its sources (protected regions too) or by the headers they include`
+            : `# a file could not be read when this Makefile was generated: every header of ${common}`,
+        variable('COMMON_HEADERS', deps.included !== undefined ? names(deps.included) : [`$(notdir $(wildcard ${common}/*.h))`]),
+        `# the headers the generator writes in ${common}; any other header there (yours) is a dependency of every executable`,
+        variable('GENERATED_COMMON_HEADERS', names(deps.generated)),
     ].join('\n');
 }
 
 /** The prerequisites of an executable on common/: the headers it includes, and the user's headers there. */
 export function commonHeaderPrerequisites(common: string): string {
-    return `$(COMMON_HEADERS) $(filter-out $(GENERATED_COMMON_HEADERS),$(wildcard ${common}/*.h))`;
+    return `$(addprefix ${common}/,$(COMMON_HEADERS)) $(filter-out $(addprefix ${common}/,$(GENERATED_COMMON_HEADERS)),$(wildcard ${common}/*.h))`;
 }
 
 /** An executable's Makefile to generate: at `path`, compiling `sources` (tree paths) in `own` (its folder). */
@@ -59,6 +59,8 @@ export function executableMakefiles(makefiles: readonly ExecutableMakefile[], fi
     const fresh = new Map(files.map((f) => [f.path, f.content]));
     return makefiles.map(({ path, sources, own, render }) => {
         const text = (textOf: TreeText) => render({ included: includedCommonHeaders(sources, { own, common: COMMON_DIR }, generatedSet, textOf), generated });
-        return { path, content: text((p) => fresh.get(p)), derive: text };
+        let content: string | undefined;
+        // the text for a fresh tree is made when asked for: the writer derives it from the tree as written instead
+        return { path, get content() { return (content ??= text((p) => fresh.get(p))); }, derive: text };
     });
 }

@@ -219,7 +219,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const produced = new Set(sorted.map((f) => f.path));
     /** Every region ID of the new output, read once when a carry-over asks (carry-renamed-regions.ts). */
     let output: GeneratedOutput | undefined;
-    const outputOf = (): GeneratedOutput => (output ??= { ids: new Set(sorted.flatMap((f) => scanRegions(f.content).regions.map((r) => r.id))), paths: [...produced] });
+    const outputOf = (): GeneratedOutput => (output ??= { ids: new Set(sorted.flatMap((f) => (f.derive ? [] : scanRegions(f.content).regions.map((r) => r.id)))), paths: [...produced] });
 
     // the generator's files before this generation: the manifest's, else (none, or unreadable) the
     // files holding protected regions, found before writing (a new tree has none: nothing is listed or
