@@ -135,7 +135,29 @@ export function twinLogs(names: Iterable<string>): Map<string, string[]> {
  */
 export function foreignRecordReason(file: string, module: string): string | undefined {
     const owner = moduleOfLog(file);
-    return owner === undefined || owner === module ? undefined : `a record of ${module.slice(0, 64)} in ${owner}'s log (a module's log holds its own records only: ${owner}'s code wrote this line?)`;
+    return owner === undefined || owner === module ? undefined : foreignReason(owner, module);
+}
+
+function foreignReason(owner: string, module: string): string {
+    return `a record of ${module.slice(0, 64)} in ${owner}'s log (a module's log holds its own records only: ${owner}'s code wrote this line?)`;
+}
+
+/** The names records repeat (peers), each kept once; bounded, emptied when full (a forged log of many names). */
+const names = new Map<string, string>();
+
+/**
+ * One string for each name a record repeats (its module: its log's name's, its kind: the table's,
+ * its peer, up to 64 characters: kept here, a copy of its own): a record held for the merge of a
+ * long run keeps no string of its own for them.
+ */
+function sharedName(name: string): string {
+    if (name === '' || name.length > 64) return name;
+    const known = names.get(name);
+    if (known !== undefined) return known;
+    if (names.size >= 4096) names.clear();
+    const own = ownString(name);
+    names.set(own, own);
+    return own;
 }
 
 /**
@@ -153,18 +175,37 @@ export function parseRecordLine(file: string, lineNo: number, line: string, cloc
 
 function readRecordLine(file: string, lineNo: number, line: string): TraceRecord {
     if (line.length > MAX_LINE_CHARS) return unknown(file, lineNo, `line longer than ${MAX_LINE_CHARS} characters`, line);
-    const f = splitCsvRecord(line);
-    if (!f) return unknown(file, lineNo, 'a quoted field is not closed (the line was cut or forged)', line);
-    if (f.length !== 8) return unknown(file, lineNo, `${f.length} fields, expected 8`, line);
-    const [mono, wall, module, event, peer, port, size, detail] = f as [string, string, string, string, string, string, string, string];
+    if (line.includes('"')) {
+        const f = splitCsvRecord(line);
+        if (!f) return unknown(file, lineNo, 'a quoted field is not closed (the line was cut or forged)', line);
+        if (f.length !== 8) return unknown(file, lineNo, `${f.length} fields, expected 8`, line);
+        return recordOfFields(file, lineNo, line, f[0]!, f[1]!, f[2]!, f[3]!, f[4]!, f[5]!, f[6]!, f[7]!);
+    }
+    // the common line, with no quoted field: its seven commas found in place, its fields cut out
+    // with no array of them (splitCsvRecord's fields of such a line: split at every comma)
+    const c1 = line.indexOf(',');
+    const c2 = line.indexOf(',', c1 + 1);
+    const c3 = line.indexOf(',', c2 + 1);
+    const c4 = line.indexOf(',', c3 + 1);
+    const c5 = line.indexOf(',', c4 + 1);
+    const c6 = line.indexOf(',', c5 + 1);
+    const c7 = line.indexOf(',', c6 + 1);
+    if (c1 < 0 || c2 < 0 || c3 < 0 || c4 < 0 || c5 < 0 || c6 < 0 || c7 < 0 || line.includes(',', c7 + 1)) return unknown(file, lineNo, `${line.split(',').length} fields, expected 8`, line);
+    return recordOfFields(file, lineNo, line, line.slice(0, c1), line.slice(c1 + 1, c2), line.slice(c2 + 1, c3), line.slice(c3 + 1, c4), line.slice(c4 + 1, c5), line.slice(c5 + 1, c6), line.slice(c6 + 1, c7), line.slice(c7 + 1));
+}
+
+/** The record of a line of eight fields (their text, unquoted), or an unknown record saying what is wrong. */
+function recordOfFields(file: string, lineNo: number, line: string, mono: string, wall: string, moduleText: string, event: string, peerText: string, port: string, size: string, detail: string): TraceRecord {
     // checked by character rather than by regular expression, and the record made as one literal
     // (one shape for all): this runs for every record of a live trace and of `contract trace`
     if (!isDigitsIn(mono, 1, 20)) return unknown(file, lineNo, 'mono_ns is not a number', line);
     const past = monoTextProblem(mono);
     if (past) return unknown(file, lineNo, past, line);
-    if (!isModuleNameIn(module)) return unknown(file, lineNo, 'bad module name', line);
-    const foreign = foreignRecordReason(file, module);
-    if (foreign) return unknown(file, lineNo, foreign, line);
+    if (!isModuleNameIn(moduleText)) return unknown(file, lineNo, 'bad module name', line);
+    const owner = moduleOfLog(file);
+    if (owner !== undefined && owner !== moduleText) return unknown(file, lineNo, foreignReason(owner, moduleText), line);
+    const module = owner ?? sharedName(moduleText);
+    const peer = sharedName(peerText);
     if ((port !== '' && !isDigitsIn(port, 1, 9)) || !isDigitsIn(size, 1, 15)) return unknown(file, lineNo, 'bad port or size', line);
     const kind = traceKind(event);
     const portN = port === '' ? null : Number(port);
@@ -188,7 +229,7 @@ function readRecordLine(file: string, lineNo: number, line: string): TraceRecord
     const fields = event === 'scheduler' ? classifyLine(SCHEDULER_LINES, detail)
         : event === 'supervisor' ? classifyLine(SUPERVISOR_LINES, detail)
             : detailFields(detail, kind.detailKeys ?? []);
-    const known: KnownRecord = { kind: event, monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields };
+    const known: KnownRecord = { kind: kind.kind, monoNs: mono, wallTime: wall, module, peer, port: portN, size: sizeN, detail, fields };
     return known;
 }
 

@@ -1,7 +1,7 @@
 import { readdirSync, readFileSync } from 'node:fs';
 import fc from 'fast-check';
 import { describe, expect, it } from 'vitest';
-import { CSV_HEADER, CUT_RECORD, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, missWaitText, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
+import { CSV_HEADER, CUT_RECORD, MAX_LINE_CHARS, STORY_FOLLOWED, StoryTeller, missedTicksOf, overrunningAfter, skippedReleasesOf, TRACE_KINDS, confirmingHold, flowHoldName, isRule, isUnknown, missWaitText, parseLogFile, parseRecordLine, parseTrace, readableCause, renderStory, renderTraceTable, splitCsvLine, traceFileToLogs, type KnownRecord, type RuleRecord } from './index.js';
 
 const DOC = new URL('../../../../docs/runtime-api.md', import.meta.url);
 
@@ -250,6 +250,31 @@ describe('reading a log', () => {
             const lines = s.split('\n').map((l) => (l.endsWith('\r') ? l.slice(0, -1) : l)).filter((l, i) => l !== '' && !(i === 0 && l === CSV_HEADER));
             expect(parseLogFile({ name: 'F', text: s }).length).toBe(lines.length);
         }));
+    });
+
+    it('reads a line with no quote (its fields found in place) as the same record as the line with every field quoted (split by the CSV reader), any fields', () => {
+        const example = (k: (typeof TRACE_KINDS)[number]) => k.example.split(',');
+        const field = (i: number) => fc.oneof(
+            fc.constantFrom(...TRACE_KINDS.map((k) => example(k)[i] ?? '')),
+            fc.constantFrom('', '12', '007', 'ORD', 'x y', '99999999999999999999', '-3'),
+            fc.string({ maxLength: 12 }),
+        ).map((t) => t.replace(/"/g, ''));
+        const line = fc.array(fc.nat(7), { maxLength: 10 }).chain((slots) => fc.tuple(...slots.map((slot) => field(slot)))).map((fields) => fields.join(','));
+        // the table's example lines (quotes taken out), some fields changed (each a record, or why not), and any others
+        const examples = TRACE_KINDS.map((k) => splitCsvLine(k.example).map((f) => f.replace(/"/g, '')));
+        const changed = fc.tuple(fc.constantFrom(...examples), fc.array(fc.nat(7), { maxLength: 2 }))
+            .chain(([fields, slots]) => fc.tuple(fc.constant(fields), ...slots.map((slot) => fc.tuple(fc.constant(slot), field(slot)))))
+            .map(([fields, ...changes]) => {
+                const out = [...fields];
+                for (const [slot, value] of changes) out[slot] = value;
+                return out.join(',');
+            });
+        fc.assert(fc.property(fc.oneof({ arbitrary: changed, weight: 4 }, { arbitrary: line, weight: 1 }), (l) => {
+            const plain = parseRecordLine('MSC_1.csv', 2, l);
+            const quoted = parseRecordLine('MSC_1.csv', 2, l.split(',').map((f) => `"${f}"`).join(','));
+            if (isUnknown(quoted)) expect(isUnknown(plain) && plain.reason).toBe(quoted.reason);
+            else expect(plain).toEqual(quoted);
+        }), { numRuns: 2000 });
     });
 
     it('orders the records of several files by mono_ns, equal times in file order, unknown lines after their predecessor', () => {
