@@ -24,8 +24,10 @@ export const BATCH_LINES = 1024;
 export const BATCH_CHARS = 64 * 1024;
 
 export type BoundedLine =
-    /** A whole line of at most maxChars characters, without its '\n' (`unended`: the file's last, with none). */
-    | { kind: 'line'; text: string; unended?: boolean }
+    /** A whole line of at most maxChars characters, without its '\n' (the common line: a string, no object made for it). */
+    | string
+    /** The file's last line, whole, with no '\n' after it. */
+    | { kind: 'line'; text: string; unended: true }
     /** A line longer than maxChars: its first maxChars + 1 characters (`unended` as for a line). */
     | { kind: 'overLong'; head: string; unended?: boolean }
     /** The last item: no line end in maxSkipBytes after this line began (its head), `leftBytes` not read. */
@@ -62,10 +64,10 @@ export async function* boundedLines(handle: fsp.FileHandle, size: number, { maxC
     /** maxChars + 1 characters of a line (`bytes`: its first holdBytes bytes or more; a character they cut is left out). */
     const headOf = (bytes: Buffer): string => new StringDecoder('utf8').write(bytes.subarray(0, holdBytes)).slice(0, maxChars + 1);
     /** The line of `bytes` (all of it), whole or its head. */
-    const lineOf = (bytes: Buffer, from: number, to: number): Exclude<BoundedLine, { kind: 'noEnd' }> => {
+    const lineOf = (bytes: Buffer, from: number, to: number): string | { kind: 'overLong'; head: string } => {
         if (to - from > holdBytes) return { kind: 'overLong', head: headOf(bytes.subarray(from, to)) };
         const text = bytes.toString('utf8', from, to);
-        return text.length > maxChars ? { kind: 'overLong', head: text.slice(0, maxChars + 1) } : { kind: 'line', text };
+        return text.length > maxChars ? { kind: 'overLong', head: text.slice(0, maxChars + 1) } : text;
     };
     /** The line ending at chunk[0, end) after the carried bytes (or the skipped head). */
     const endLine = (chunk: Buffer, end: number): BoundedLine => {
@@ -92,7 +94,7 @@ export async function* boundedLines(handle: fsp.FileHandle, size: number, { maxC
                 skipped = undefined;
             } else line = lineOf(chunk, pos, nl);
             out.push(line);
-            outChars += line.kind === 'line' ? line.text.length : line.head.length;
+            outChars += typeof line === 'string' ? line.length : line.kind === 'line' ? line.text.length : line.head.length;
             pos = nl + 1;
             if (out.length >= batchLines || outChars >= batchChars) {
                 yield out;
@@ -129,6 +131,7 @@ export async function* boundedLines(handle: fsp.FileHandle, size: number, { maxC
     if (skipped !== undefined) yield [{ kind: 'overLong', head: skipped, unended: true }];
     else if (carryBytes) {
         const bytes = Buffer.concat(carry);
-        yield [{ ...lineOf(bytes, 0, bytes.length), unended: true }];
+        const line = lineOf(bytes, 0, bytes.length);
+        yield [typeof line === 'string' ? { kind: 'line', text: line, unended: true } : { ...line, unended: true }];
     }
 }

@@ -166,10 +166,10 @@ export class JsonLines {
         if ((proto !== Object.prototype && proto !== null) || typeof (o as { toJSON?: unknown }).toJSON === 'function') throw NOT_PLAIN;
         this.ascii('{');
         let first = true;
-        // its own enumerable string keys, in JSON.stringify's order
-        const keys = Object.keys(o);
-        for (let k = 0; k < keys.length; k++) {
-            const key = keys[k]!;
+        // its own enumerable string keys, in JSON.stringify's order (for-in gives them in that
+        // order, then inherited ones, left out; unlike Object.keys it makes no array of them)
+        for (const key in o) {
+            if (!hasOwn.call(o, key)) continue;
             const v = (o as Record<string, unknown>)[key];
             if (omitted(v)) continue;
             if (!first) this.ascii(',');
@@ -181,6 +181,8 @@ export class JsonLines {
         this.ascii('}');
     }
 }
+
+const hasOwn = Object.prototype.hasOwnProperty;
 
 /** A property JSON.stringify leaves out of an object (an array's element of that kind is `null`). */
 function omitted(v: unknown): boolean {

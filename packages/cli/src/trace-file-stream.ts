@@ -25,9 +25,10 @@ export async function* traceFileBatches(handle: fsp.FileHandle, name: string, ch
         const out: TraceRecord[] = [];
         for (const l of lines) {
             lineNo++;
-            if (l.kind === 'line') {
-                const r = recordOfJsonLine(name, lineNo, l.text.endsWith('\r') ? l.text.slice(0, -1) : l.text, clocks);
-                if (r) out.push(l.unended ? unendedLine(r) : r);
+            if (typeof l === 'string' || l.kind === 'line') {
+                const text = typeof l === 'string' ? l : l.text;
+                const r = recordOfJsonLine(name, lineNo, text.endsWith('\r') ? text.slice(0, -1) : text, clocks);
+                if (r) out.push(typeof l === 'string' ? r : unendedLine(r));
             } else if (l.kind === 'overLong') {
                 const r = noRecord(`longer than ${MAX_JSON_LINE_CHARS} characters`, l.head);
                 out.push(l.unended ? unendedLine(r) : r);

@@ -11,8 +11,9 @@
  */
 import { constants, promises as fsp } from 'node:fs';
 import { join } from 'node:path';
-import { LogClock, MAX_LINE_CHARS, MinHeap, isLogFileName, countRecord, type RecordCounts, recordOfLine, unendedLine, type TraceRecord, type TraceRecordBase, type UnknownRecord } from '@contract-studio/build-service/trace';
-import { boundedLines, CHUNK_BYTES, MAX_SKIP_BYTES, type BoundedLine } from './bounded-lines.js';
+import { MinHeap, isLogFileName, countRecord, type RecordCounts, type TraceRecord } from '@contract-studio/build-service/trace';
+import { CHUNK_BYTES } from './bounded-lines.js';
+import { LogRecords, LogWindow } from './log-window.js';
 import { JsonLines } from './record-json.js';
 import { safeName } from './terminal-text.js';
 
@@ -105,149 +106,6 @@ export async function closeLogs(logs: readonly OpenLog[]): Promise<void> {
     await Promise.all(logs.map((l) => l.handle.close().catch(() => {})));
 }
 
-interface Keyed {
-    key: bigint;
-    index: number;
-    record: TraceRecord;
-    /** Characters of its line (what the record keeps, at most). */
-    chars: number;
-}
-
-/** One log's records in file order, a batch of lines at a time, each keyed by its time (an unknown line by the time before it). */
-class LogRecords {
-    private readonly lines: AsyncGenerator<BoundedLine[]>;
-    /** What was left out of the file, and why. */
-    readonly problems: string[] = [];
-    private lineNo = 0;
-    private index = 0;
-    private lastKey = 0n;
-    /** The log's time check (its lines read in file order). */
-    private readonly clock = new LogClock();
-    private pending: Keyed[] = [];
-    private at = 0;
-    private ended = false;
-
-    constructor(private readonly log: OpenLog, chunkBytes: number) {
-        // a line of MAX_LINE_CHARS and its `\r` is whole: recordOfLine reads it as parseTrace does
-        this.lines = boundedLines(log.handle, log.size, { maxChars: MAX_LINE_CHARS + 1, chunkBytes });
-    }
-
-    /** The next record; null when the next lines must be read first (`readChunk`), undefined at the end. */
-    next(): Keyed | null | undefined {
-        if (this.at < this.pending.length) return this.pending[this.at++];
-        return this.ended ? undefined : null;
-    }
-
-    /** Reads the next batch of lines' records (none at the end of the size seen: then `next` gives undefined). */
-    async readChunk(): Promise<void> {
-        this.pending = [];
-        this.at = 0;
-        const batch = await this.lines.next();
-        if (batch.done) {
-            this.ended = true;
-            return;
-        }
-        for (const l of batch.value) {
-            // a line too long is one unreadable record (recordOfLine says why)
-            this.line(l.kind === 'line' ? l.text : l.head, l.kind !== 'noEnd' && l.unended === true);
-            if (l.kind === 'noEnd')
-                this.problems.push(`${this.log.name}: no line end in ${MAX_SKIP_BYTES / 1024 / 1024} MiB after line ${this.lineNo}: the rest of the file (${l.leftBytes} bytes) left out`);
-        }
-    }
-
-    private line(raw: string, unended: boolean): void {
-        const read = recordOfLine(this.log.name, this.lineNo++, raw, this.clock);
-        if (!read) return;
-        const record = unended ? unendedLine(read) : read;
-        if (record.kind !== 'unknown') this.lastKey = BigInt((record as TraceRecordBase).monoNs);
-        // what the record keeps: its line, or, a line that is no record, why and its first 200 characters (copies)
-        const chars = record.kind === 'unknown' ? (record as UnknownRecord).text.length + (record as UnknownRecord).reason.length : raw.length;
-        this.pending.push({ key: this.lastKey, index: this.index++, record, chars });
-    }
-}
-
-/**
- * One file's window: its next `size` records in order (time, then line), and no more than `chars`
- * characters of their lines (always one record at least). A log is in time order, so a record
- * read almost always goes last; one out of order is put in its place.
- */
-class LogWindow {
-    /** The records from `head` on (those before it were taken: their places emptied). */
-    private held: (Keyed | undefined)[] = [];
-    private head = 0;
-    /** Characters of the lines of the records held. */
-    private heldChars = 0;
-    private lastOut: bigint | undefined;
-    outOfOrder = 0;
-
-    constructor(
-        private readonly records: LogRecords,
-        readonly order: number,
-        private readonly size: number,
-        private readonly chars: number,
-    ) {}
-
-    get length(): number {
-        return this.held.length - this.head;
-    }
-
-    get problems(): readonly string[] {
-        return this.records.problems;
-    }
-
-    /** Reads records in until the window is full or the file ended. */
-    async fill(): Promise<void> {
-        while (this.topUp()) await this.records.readChunk();
-    }
-
-    /** Reads in the records at hand; true when the file must be read to go on (`fill`). */
-    topUp(): boolean {
-        while (this.length < this.size && (this.heldChars < this.chars || this.length === 0)) {
-            const r = this.records.next();
-            if (r === undefined) return false;
-            if (r === null) return true;
-            this.hold(r);
-        }
-        return false;
-    }
-
-    private hold(r: Keyed): void {
-        const held = this.held;
-        this.heldChars += r.chars;
-        if (this.length === 0 || held[held.length - 1]!.key <= r.key) {
-            held.push(r);
-            return;
-        }
-        // after every held record of the same or an earlier time (they came first in the file)
-        let lo = this.head;
-        let hi = held.length;
-        while (lo < hi) {
-            const mid = (lo + hi) >>> 1;
-            if (held[mid]!.key <= r.key) lo = mid + 1;
-            else hi = mid;
-        }
-        held.splice(lo, 0, r);
-    }
-
-    peek(): Keyed | undefined {
-        return this.held[this.head];
-    }
-
-    /** The first record held (the window then is one short: `fill` it). */
-    take(): TraceRecord {
-        const k = this.held[this.head]!;
-        this.held[this.head++] = undefined; // told: its place no longer keeps it (and its line) until the array is cut
-        this.heldChars -= k.chars;
-        if (this.head > 4096 && this.head * 2 > this.held.length) {
-            this.held = this.held.slice(this.head);
-            this.head = 0;
-        }
-        if (this.lastOut !== undefined && k.key < this.lastOut) this.outOfOrder++;
-        else this.lastOut = k.key;
-        return k.record;
-    }
-}
-
 export interface TraceStream {
     /** The records in time order, in batches. */
     batches: AsyncGenerator<TraceRecord[]>;
@@ -269,18 +127,14 @@ export function streamTrace(logs: readonly OpenLog[], { window = windowFor(logs.
     const windows = sorted.map((log, i) => new LogWindow(new LogRecords(log, chunkBytes), i, window, window * LINE_CHARS_HELD));
     async function* batches(): AsyncGenerator<TraceRecord[]> {
         for (const w of windows) await w.fill();
-        const files = new MinHeap<LogWindow>((f, g) => {
-            const a = f.peek()!;
-            const b = g.peek()!;
-            return a.key < b.key || (a.key === b.key && f.order < g.order);
-        });
-        for (const w of windows) if (w.peek()) files.push(w);
+        const files = new MinHeap<LogWindow>((f, g) => f.before(g));
+        for (const w of windows) if (w.length) files.push(w);
         let batch: TraceRecord[] = [];
         while (files.size) {
             const w = files.peek()!;
             batch.push(w.take());
             if (w.topUp()) await w.fill();
-            if (w.peek()) files.topChanged();
+            if (w.length) files.topChanged();
             else files.pop();
             if (batch.length >= BATCH) {
                 yield batch;

@@ -33,21 +33,21 @@ async function linesOf(text: string | Buffer, opts: BoundedLinesOptions, size?: 
 }
 
 describe('boundedLines', () => {
-    it('gives every line whole whatever the chunk size, multi-byte characters cut by a chunk end included, the last one without its newline', async () => {
+    it('gives every line whole (its text) whatever the chunk size, multi-byte characters cut by a chunk end included, the last one without its newline as a line with no end', async () => {
         const text = 'première ligne\nzwei ✓ drei\n\nπ∑ last';
         for (const chunkBytes of [1, 2, 3, 5, 7, 64]) {
             const { items } = await linesOf(text, { maxChars: 100, chunkBytes });
             // the last one, with no line end, is said to have none (a writer stopped mid-line)
-            expect(items, `chunk ${chunkBytes}`).toEqual([...['première ligne', 'zwei ✓ drei', ''].map((t) => ({ kind: 'line', text: t })), { kind: 'line', text: 'π∑ last', unended: true }]);
+            expect(items, `chunk ${chunkBytes}`).toEqual(['première ligne', 'zwei ✓ drei', '', { kind: 'line', text: 'π∑ last', unended: true }]);
         }
     });
 
     it('a line longer than maxChars before its end is given once, at its end, as its first maxChars + 1 characters; the next lines follow', async () => {
         const { items } = await linesOf(`a\n${'x'.repeat(50)}\nb\n${'y'.repeat(30)}`, { maxChars: 10, chunkBytes: 4 });
         expect(items).toEqual([
-            { kind: 'line', text: 'a' },
+            'a',
             { kind: 'overLong', head: 'x'.repeat(11) },
-            { kind: 'line', text: 'b' },
+            'b',
             { kind: 'overLong', head: 'y'.repeat(11), unended: true },
         ]);
         // whole in one chunk too: a long line is never given whole (its pieces would keep it, or the chunk, alive)
@@ -55,7 +55,7 @@ describe('boundedLines', () => {
         // a line of maxChars characters is whole, in bytes of any length (3 a character), cut by chunks anywhere
         for (const chunkBytes of [1, 2, 5, 31, 32, 33, 1024]) {
             expect((await linesOf(`${'€'.repeat(10)}\n${'€'.repeat(11)}\n${'€'.repeat(12)}`, { maxChars: 10, chunkBytes })).items, `chunk ${chunkBytes}`).toEqual([
-                { kind: 'line', text: '€'.repeat(10) },
+                '€'.repeat(10),
                 { kind: 'overLong', head: '€'.repeat(11) },
                 { kind: 'overLong', head: '€'.repeat(11), unended: true },
             ]);
@@ -64,7 +64,7 @@ describe('boundedLines', () => {
 
     it('no line end in maxSkipBytes: the last item says how many bytes were not read', async () => {
         const { items } = await linesOf(Buffer.concat([Buffer.from('ok\n'), Buffer.alloc(10_000)]), { maxChars: 10, chunkBytes: 100, maxSkipBytes: 1000 });
-        expect(items[0]).toEqual({ kind: 'line', text: 'ok' });
+        expect(items[0]).toEqual('ok');
         expect(items).toHaveLength(2);
         const last = items[1] as Extract<BoundedLine, { kind: 'noEnd' }>;
         expect(last.kind).toBe('noEnd');
@@ -77,16 +77,16 @@ describe('boundedLines', () => {
         const lines = Array.from({ length: 100 }, (_, i) => `line ${String(i).padStart(2, '0')}`); // 7 characters each
         const text = lines.join('\n') + '\n';
         const byLines = await linesOf(text, { maxChars: 100, chunkBytes: 1 << 20, batchLines: 10 });
-        expect(byLines.items).toEqual(lines.map((t) => ({ kind: 'line', text: t })));
+        expect(byLines.items).toEqual(lines);
         expect(byLines.batches).toBe(10);
         const byChars = await linesOf(text, { maxChars: 100, chunkBytes: 1 << 20, batchChars: 70 });
-        expect(byChars.items).toEqual(lines.map((t) => ({ kind: 'line', text: t })));
+        expect(byChars.items).toEqual(lines);
         expect(byChars.batches).toBe(10);
     });
 
     it('reads no further than the size given (the size a growing file had when opened)', async () => {
         const { items } = await linesOf('one\ntwo\n', { maxChars: 100, chunkBytes: 2 }, 4);
-        expect(items).toEqual([{ kind: 'line', text: 'one' }]);
+        expect(items).toEqual(['one']);
         expect((await linesOf('', { maxChars: 100, chunkBytes: 2 })).items).toEqual([]);
     });
 });
