@@ -13,3 +13,4 @@ export * from './json-body.js';
 export * from './run-bounds.js';
 export * from './limit-option.js';
 export * from './stuck-advice.js';
+export * from './histogram-quantile.js';

@@ -4,6 +4,7 @@
  * from 1 µs (a lateness under 1 µs counts in the first bin, one of 1000 s or more in the last), with
  * the largest lateness of each bin. `contract trace` tells p50, p99 and max in its schema lines.
  */
+import { quantileBin } from '@contract-studio/conventions';
 import { durationText } from './duration-text.js';
 
 const BINS_PER_DECADE = 64;
@@ -37,13 +38,8 @@ export class ReleaseLateness {
      * 3.7 % above the quantile (a bin is 1/64 of a decade), at most 1 µs above it under 1 µs.
      */
     quantileNs(q: number): number {
-        const rank = Math.ceil(q * this.n);
-        let seen = 0;
-        for (let i = 0; i < BINS; i++) {
-            seen += this.bins[i]!;
-            if (seen >= rank) return this.binMax[i]!;
-        }
-        return this.maxNs;
+        const i = quantileBin(this.bins, this.n, q);
+        return i < 0 ? this.maxNs : this.binMax[i]!;
     }
 
     /**

@@ -7,6 +7,8 @@
  * kept in lists.
  */
 
+import { quantileBin } from '@contract-studio/conventions';
+
 /** Times are ns since the first record of the run (its mono_ns), so live and replay agree. */
 export type Ns = number;
 
@@ -212,11 +214,6 @@ export function bucketStartNs(b: number): number {
  * `total` counts: the quantile is below it (a bucket is an eighth of a decade); `max` bounds it.
  */
 export function quantileBoundNs(histogram: readonly number[], total: number, q: number, max: number): number {
-  const rank = Math.ceil(q * total);
-  let seen = 0;
-  for (let b = 0; b < histogram.length; b++) {
-    seen += histogram[b]!;
-    if (seen >= rank) return Math.min(max, bucketStartNs(b + 1));
-  }
-  return max;
+  const b = quantileBin(histogram, total, q);
+  return b < 0 ? max : Math.min(max, bucketStartNs(b + 1));
 }
