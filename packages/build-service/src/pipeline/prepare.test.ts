@@ -243,6 +243,33 @@ describe('prepareWorkspace on a project folder: what of it is read', () => {
     expect(existsSync(join(ws.stageDir, 'project/src-gen/.contract-rename.json'))).toBe(false);
   }, 120_000);
 
+  it('mirrors the files the user deleted from src-gen/: a module.c deleted to start afresh is generated with its defaults, not built from the stale copy; a deleted header leaves work/ while the build products stay', async () => {
+    const dir = project();
+    const ws = workspace();
+    const prepareIn = async () => {
+      const log: string[] = [];
+      const out = await prepareWorkspace(ws, { dir }, 'cactal', { ...DEFAULT_LIMITS }, (l: string) => log.push(l));
+      expect(out.ok, log.join('\n')).toBe(true);
+      return log;
+    };
+    const helper = 'src-gen/generated/architecture/modules/MSC_mod/helper.h';
+    writeFileSync(join(dir, helper), '#define HELPER 1\n');
+    await prepareIn();
+    expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).toContain("the user's marker");
+    expect(existsSync(join(ws.workDir, helper))).toBe(true);
+    // what a build leaves in work/ beside the sources
+    const product = 'src-gen/generated/architecture/modules/MSC_mod/module.o';
+    writeFileSync(join(ws.workDir, product), 'object');
+    rmSync(join(dir, MSC_C));
+    rmSync(join(dir, helper));
+    const log = await prepareIn();
+    expect(readFileSync(join(ws.workDir, MSC_C), 'utf8')).not.toContain("the user's marker");
+    expect(existsSync(join(ws.stageDir, 'project', helper))).toBe(false);
+    expect(existsSync(join(ws.workDir, helper))).toBe(false);
+    expect(readFileSync(join(ws.workDir, product), 'utf8')).toBe('object');
+    expect(log).toContainEqual(expect.stringMatching(/^work tree ready: \d+ file\(s\), 1 updated, 1 removed /));
+  }, 120_000);
+
   it('refuses a folder without a .contract file, and one whose project is in a sub-folder with its own src-gen/ (built from there, the user\'s code would be left out)', async () => {
     const refusal = (source: Parameters<typeof prepareWorkspace>[1]) => prepareWorkspace(workspace(), source, 'cactal', { ...DEFAULT_LIMITS }, () => {}).then(() => null, (e: Error) => e.message);
     const empty = mkdtempSync(join(base, 'empty-'));

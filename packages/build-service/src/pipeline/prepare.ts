@@ -11,12 +11,13 @@ import { LimitHitError, SERVICE_BOUNDS } from '../limits.js';
 import type { CactalProblem } from './cactal-adapter.js';
 import { generateProjectBounded } from './generate-worker.js';
 import { findProtectedRegions, type ProtectedRegion } from './protected-regions.js';
+import { dropStaleWorkSources } from './work-sources.js';
 import { foreignMakefiles, foreignMakefilesMessage } from './foreign-makefiles.js';
 import type { UserCopy } from './gcc-diagnostics.js';
 import type { Workspace } from './workspaces.js';
 import { generatorIdentity, type GenerationCache } from '../cache/generation-cache.js';
 import { checkRelativePath, listFilesNoFollow, readFileHeadNoFollow, readFileNoFollow, removeTreeNoFollow, syncFileNoFollow } from '../util/safe-fs.js';
-import { RENAME_JOURNAL_NAME, SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, foldersHoldingAll } from '@contract-studio/conventions';
+import { SRC_GEN_ARCHITECTURE_DIR, SRC_GEN_DIR, TREE_LOCK_NAME, foldersHoldingAll } from '@contract-studio/conventions';
 
 export type ProjectKind = 'cactal' | 'make';
 
@@ -148,14 +149,16 @@ async function readProject(source: ProjectSource, kind: ProjectKind): Promise<{ 
   return { wanted, digest: hash.digest('hex') };
 }
 
-/** The journal of an interrupted rename (codegen rename-journal.ts), as the project and its stage hold it. */
-const STAGED_RENAME_JOURNAL = `${SRC_GEN_DIR}/${RENAME_JOURNAL_NAME}`;
-
-async function stageProject(wanted: Map<string, Buffer>, kind: ProjectKind, stageProjectDir: string): Promise<void> {
-  // drop staged sources that the project no longer has (stale .contract files would still load), and
-  // a rename's journal that generate removed since (a stale copy refused every build of the workspace)
+/**
+ * Mirrors the project into its stage: every staged file the project no longer has is dropped (a
+ * stale .contract would still load; a stale src-gen/ file would be merged as the user's: a module.c
+ * deleted to have it generated from scratch kept its old regions, a deleted helper header was still
+ * included; a rename's journal that generate removed refused every later build), then the
+ * project's files are written. What the stage's generation adds is generated again from the model.
+ */
+async function stageProject(wanted: Map<string, Buffer>, stageProjectDir: string): Promise<void> {
   for (const rel of await listFilesNoFollow(stageProjectDir)) {
-    if (!wanted.has(rel) && (kind === 'make' || rel.endsWith('.contract') || rel === STAGED_RENAME_JOURNAL)) await removeTreeNoFollow(join(stageProjectDir, rel));
+    if (!wanted.has(rel)) await removeTreeNoFollow(join(stageProjectDir, rel));
   }
   for (const [rel, data] of wanted) await syncFileNoFollow(stageProjectDir, rel, data);
 }
@@ -228,7 +231,7 @@ export async function prepareWorkspace(
     await fsp.rm(digestFile, { force: true });
     const stageGen = join(stageProjectDir, SRC_GEN_DIR);
     const freshStage = !(await fsp.lstat(stageGen).catch(() => null));
-    await stageProject(wanted, kind, stageProjectDir);
+    await stageProject(wanted, stageProjectDir);
     const t0 = Date.now();
     const hit = await generated?.get(digest);
     let outcome;
@@ -262,7 +265,7 @@ export async function prepareWorkspace(
     log(`generated src-gen/ (${outcome.written} file(s) written, ${outcome.unchanged} unchanged) in ${Date.now() - t0} ms`);
   } else {
     await fsp.rm(digestFile, { force: true });
-    await stageProject(wanted, kind, stageProjectDir);
+    await stageProject(wanted, stageProjectDir);
   }
   const root = treeRoot(kind);
   const stageTree = root ? join(stageProjectDir, root) : stageProjectDir;
@@ -290,7 +293,9 @@ export async function prepareWorkspace(
       }
     }
   }
+  // what the project no longer has leaves work/ too (the build's products stay)
+  const dropped = await dropStaleWorkSources(ws.stageDir, ws.workDir, files.map((rel) => (root ? `${root}/${rel}` : rel)));
   await fsp.writeFile(digestFile, stamp);
-  log(`work tree ready: ${files.length} file(s), ${synced} updated${ws.reused ? ' (incremental)' : ''} in ${Date.now() - tCopy} ms`);
+  log(`work tree ready: ${files.length} file(s), ${synced} updated${dropped ? `, ${dropped} removed` : ''}${ws.reused ? ' (incremental)' : ''} in ${Date.now() - tCopy} ms`);
   return { ok: true, problems, regions, userCopies, synced };
 }

@@ -218,6 +218,22 @@ export async function removeTreeNoFollow(path: string): Promise<void> {
   if (again.code !== 0) throw new Error(`cannot remove ${path}: ${again.stderr.split('\n')[0] || `rm exit ${again.code}`}`);
 }
 
+/**
+ * Removes root/rel (a file, or whatever sits there, without following it) when every folder on the
+ * way below `root` is a real folder; a missing component, a link or a non-folder on the way: nothing
+ * is removed (what a link points to is never reached).
+ */
+export async function removeFileNoFollow(root: string, rel: string): Promise<void> {
+  const parts = checkRelativePath(rel).split('/');
+  let current = root;
+  for (const part of parts.slice(0, -1)) {
+    current = join(current, part);
+    const st = await fsp.lstat(current).catch(() => null);
+    if (!st?.isDirectory()) return;
+  }
+  await removeTreeNoFollow(join(current, parts[parts.length - 1]!));
+}
+
 /** Runs a coreutils tool; keeps the first 4 KiB of its stderr for the error message. */
 function runTool(cmd: string, args: string[]): Promise<{ code: number | null; stderr: string }> {
   return new Promise((resolvePromise) => {
