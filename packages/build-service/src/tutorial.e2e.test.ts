@@ -126,12 +126,14 @@ describe('user code in protected regions (bwrap)', () => {
 
   test('src-gen/ older than the model: an error in a region is told at the line of the user\'s own file', async () => {
     const broken = withRegion(await tutorialFiles(), MAA_MODULE, 'protect_init_MAA', '    return undeclared_in_region;');
-    // the user's module.c is not the file the build generates (here: 3 more lines above the
-    // regions, as a model changed since the last generate shifts them): its region's lines move
-    const mine = `/* written by an older model */\n/* (a port since removed) */\n/* ... */\n${broken[MAA_MODULE]!}`;
+    // the user's module.c is not the file the build generates (here: 3 lines fewer above the
+    // regions, as a port added to the model since the last generate shifts them): its region's lines move
+    const generatedLines = broken[MAA_MODULE]!.split('\n');
+    expect(generatedLines.slice(0, 3).every((l) => l.startsWith('//'))).toBe(true);
+    const mine = generatedLines.slice(3).join('\n');
     // the manifest of that older generation recorded that file's own skeleton, not this one's: here
-    // it records none of it (as a manifest of a version before the skeleton check), so the three
-    // lines are the generator's, not an edit outside the regions that the build would refuse
+    // it records none of it (as a manifest of a version before the skeleton check), so the file is
+    // compared with the regenerated one: generated lines missing lose none of the user's code
     const manifest = JSON.parse(broken['src-gen/.contract-manifest.json']!) as { skeletons: Record<string, string>; skeletonLines: Record<string, string> };
     const inManifest = MAA_MODULE.replace(/^src-gen\//, '');
     expect(manifest.skeletons[inManifest]).toBeDefined();
@@ -145,9 +147,9 @@ describe('user code in protected regions (bwrap)', () => {
     expect(err).toMatchObject({ file: 'generated/architecture/modules/MAA_mod/module.c', line: userLine, protectedRegion: { id: 'protect_init_MAA' } });
     expect(mine.split('\n')[err.protectedRegion.startLine - 1]).toContain('protect_init_MAA');
     expect(err.message).not.toMatch(/as this build generated it/);
-    // the same project with its src-gen/ up to date: the lines are the file's, 3 fewer
+    // the same project with its src-gen/ up to date: the lines are the file's, 3 more
     const { job: fresh } = await runJob({ action: 'build', sandbox: 'bwrap', project: { files: broken } });
-    expect(fresh.diagnostics.find((d: any) => d.severity === 'error').line).toBe(userLine - 3);
+    expect(fresh.diagnostics.find((d: any) => d.severity === 'error').line).toBe(userLine + 3);
   });
 
   test('a fork bomb and a 4 GiB allocation in MAA init are stopped while an honest run completes', async () => {

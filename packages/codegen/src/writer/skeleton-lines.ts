@@ -165,7 +165,7 @@ export function editsOutside(recorded: readonly number[], current: SkeletonLines
 }
 
 /** `line 12`, `lines 12-14`, ... for ascending line numbers, at most `max` runs named. */
-function runsText(lines: readonly number[], max = 3): string {
+export function runsText(lines: readonly number[], max = 3): string {
     const runs: [number, number][] = [];
     for (const l of lines) {
         const last = runs[runs.length - 1];

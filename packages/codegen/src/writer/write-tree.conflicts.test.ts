@@ -99,10 +99,29 @@ describe('writeTree: a manifest holding git merge conflict markers', () => {
         const report = writeTree(dir, [module('GTG')]);
         expect(report.orphaned).toEqual([`orphans/${path}`]);
         expect(readFileSync(join(dir, 'orphans', path), 'utf8')).toContain(helper);
-        expect(report.warnings).toContainEqual({ file: path, line: 7, message: expect.stringContaining('differs outside its protected regions from what the generator now writes (first line that differs from the regenerated file: 7), and the manifest holds git merge conflict markers, so the generator cannot tell its own lines from code written outside the protected regions: the file as it was is copied to orphans/') });
+        expect(report.warnings).toContainEqual({ file: path, line: 7, message: expect.stringContaining('differs outside its protected regions from what the generator now writes (line 7 not in the regenerated file), and the manifest holds git merge conflict markers, so the generator cannot tell its own lines (an older version\'s among them) from code written outside the protected regions: the file as it was is copied to orphans/') });
         // the manifest is written anew: the next generation knows the regenerated file
         expect(readFileSync(join(dir, MANIFEST_NAME), 'utf8')).not.toContain('<<<<<<<');
         expect(writeTree(dir, [module('GTG')]).orphaned).toEqual([]);
+    });
+
+    it('copies only a file holding text a regeneration would lose: not one whose differences are generated lines removed, whitespace, or a region the new output drops', () => {
+        const dir = out();
+        const names = ['GTG', 'NAV', 'LOC', 'MAP'];
+        writeTree(dir, names.map(module));
+        const at = (name: string) => `generated/${name}_mod/module.c`;
+        const edit = (name: string, change: (text: string) => string) => writeFileSync(join(dir, at(name)), change(readFileSync(join(dir, at(name)), 'utf8')));
+        // what a merge of two generations can leave: a generated line gone, another one re-indented,
+        // a region (default) of a port the other branch removed; and in MAP, the user's helper
+        edit('GTG', (t) => t.replace('// module GTG\n', ''));
+        edit('NAV', (t) => t.replace('void _exit_module(void){', 'void  _exit_module( void )  {'));
+        edit('LOC', (t) => t.replace('void _exec(void){\n', `void _exec(void){\n    ${region('protect_event_LOC', '\n    //TODO\n    ')}\n`));
+        edit('MAP', (t) => t.replace('void _exec(void){', `${helper}void _exec(void){`));
+        conflictManifest(dir);
+        const report = writeTree(dir, names.map(module));
+        expect(report.orphaned).toEqual([`orphans/${at('MAP')}`]);
+        expect(report.warnings.filter((w) => w.file !== MANIFEST_NAME).map((w) => [w.file, w.line])).toEqual([[at('MAP'), 7]]);
+        for (const name of names) expect(readFileSync(join(dir, at(name)), 'utf8')).toBe(module(name).content);
     });
 
     it('a build refuses it: an error saying to take either side and generate, the file untouched', () => {

@@ -143,7 +143,9 @@ describe('writeTree: manifest entries are plain relative paths inside the tree, 
     it('still removes a listed generated file of a deleted entity (good entries keep working)', () => {
         const { out } = setup();
         writeTree(out, [file('generated/a.c', 'x'), file('generated/gone/b.c', 'x')]);
-        writeManifest(out, { 'generated/a.c': {}, 'generated/gone/b.c': {}, '../x': {} });
+        // the manifest generate wrote (its skeleton records tell b.c holds nothing of the user's), plus a bad entry
+        const written = JSON.parse(readFileSync(join(out, '.contract-manifest.json'), 'utf8')) as { files: Record<string, unknown> };
+        writeFileSync(join(out, '.contract-manifest.json'), JSON.stringify({ ...written, files: { ...written.files, '../x': {} } }));
         const r = writeTree(out, [file('generated/a.c', 'x')]);
         expect(r.removed).toEqual(['generated/gone/b.c']);
         expect(existsSync(join(out, 'generated/gone'))).toBe(false);

@@ -3,7 +3,7 @@
  * ENABLED flag is gone: regenerated as documented, but never silently (docs/codegen.md, "Protected
  * regions"): the code as it was goes to orphans/ with a header saying why, and a warning says where.
  */
-import { existsSync, readFileSync, writeFileSync } from 'node:fs';
+import { existsSync, readFileSync, rmSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { describe, expect, it } from 'vitest';
 import { region } from '../regions/markers.js';
@@ -170,29 +170,101 @@ describe('code written outside the protected regions', () => {
         expect(existsSync(join(dir, A))).toBe(false);
     });
 
-    it('manifest: one skeleton hash per file; an old manifest without them loads and skips the check; bad entries are ignored', () => {
+    it('manifest: one skeleton hash per file; an old manifest without them loads, and the file is compared with the regenerated one instead; bad entries are ignored', () => {
         const dir = out();
         writeTree(dir, [file()]);
         const m = manifest(dir);
         expect(m.version).toBe(1);
         expect(Object.keys(m.skeletons!)).toEqual([A]);
         expect(m.skeletons![A]).toBe(skeletonHash(file().content, A));
-        // an older manifest: no skeletons. The edit outside is regenerated as before, no orphan, no warning
+        // an older manifest: no skeletons. The edit outside is not the regenerated file's: copied to orphans/
         delete m.skeletons;
         writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify(m));
         write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
         const old = writeTree(dir, [file()]);
-        expect([old.orphaned, old.warnings, old.errors]).toEqual([[], [], []]);
+        expect(old.orphaned).toEqual([`orphans/${A}`]);
+        expect(old.warnings).toEqual([{ file: A, line: 4, message: expect.stringContaining('differs outside its protected regions from what the generator now writes (line 4 not in the regenerated file), and the manifest holds no record of its text (a manifest of an older version), so the generator cannot tell its own lines') }]);
+        expect(read(dir, `orphans/${A}`)).toContain('int mine;\n');
+        expect(read(dir, A)).toBe(file().content);
         expect(manifest(dir).skeletons).toEqual({ [A]: hashContent(skeletonText(file().content, A)) });
-        // hostile skeleton entries: not a hash, not a listed file, not an object: ignored, nothing acted on
+        // hostile skeleton entries: not a hash, not a listed file, not an object: ignored (no record of
+        // the file, which is compared with the regenerated one), nothing acted on through them
         for (const skeletons of [{ [A]: 'not a hash' }, { '../../etc/passwd': '0123456789abcdef' }, ['x'], 'x', { [A]: 42 }]) {
             writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify({ ...manifest(dir), skeletons }));
             write(dir, A, read(dir, A).replace('int step(void);\n', 'int step(void);\nint mine;\n'));
             const r = writeTree(dir, [file()]);
-            expect([r.orphaned, r.warnings, r.errors], JSON.stringify(skeletons)).toEqual([[], [], []]);
+            expect([r.orphaned, r.warnings.map((w) => w.line), r.errors], JSON.stringify(skeletons)).toEqual([[`orphans/${A}`], [4], []]);
             expect(read(dir, A)).toBe(file().content);
         }
+        expect(existsSync(join(dir, 'etc'))).toBe(false);
+    });
+});
+
+describe('code outside the protected regions with no record of what the generator wrote (no manifest, an older one)', () => {
+    const helper = 'static int my_helper(void) { return 42; }\n';
+
+    it('a deleted manifest: code outside the regions is copied to orphans/, not dropped; a build refuses it', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        const edited = read(dir, A).replace('int step(void);\n', `int step(void);\n${helper}`);
+        write(dir, A, edited);
+        rmSync(join(dir, MANIFEST_NAME));
+        const build = writeTree(dir, [file()], { displacedCode: 'refuse' });
+        expect(build.errors).toEqual([{ file: A, line: 4, message: expect.stringMatching(/^differs outside its protected regions from what the generator now writes \(line 4 not in the regenerated file\), and there is no manifest \(\.contract-manifest\.json\) recording what the generator wrote, .*: a build leaves no user code out; .*left untouched$/) }]);
+        expect(read(dir, A)).toBe(edited);
+        const r = writeTree(dir, [file()]);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings).toEqual([{ file: A, line: 4, message: expect.stringContaining(`the file as it was is copied to orphans/${A} before it is regenerated`) }]);
+        expect(read(dir, `orphans/${A}`)).toContain(helper);
+        expect(read(dir, A)).toBe(file().content);
+    });
+
+    it('an unmodified generated file, one with code in its regions only, one whose generated lines were removed, re-indented or re-spaced (an older generator\'s spacing), or one with a region the new output drops: not copied', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        rmSync(join(dir, MANIFEST_NAME));
+        const variants = [
+            file().content,
+            read(dir, A).replace('return -1;', 'return step() + 1;'),
+            read(dir, A).replace('#include "tools.h"\n', ''),
+            read(dir, A).replace('int step(void);', '  int   step( void ) ;\t').replace('// generated\n', '// generated\n\n\n'),
+            read(dir, A).replace('\n', '\r\n'),
+            read(dir, A).replace('int step(void);\n', `int step(void);\n${region('protect_event_MSC', '\n//TODO\n')}\n`),
+        ];
+        for (const text of variants) {
+            write(dir, A, text);
+            rmSync(join(dir, MANIFEST_NAME), { force: true });
+            const r = writeTree(dir, [file()]);
+            expect([r.orphaned, r.warnings, r.errors], JSON.stringify(text)).toEqual([[], [], []]);
+        }
         expect(existsSync(join(dir, 'orphans'))).toBe(false);
+    });
+
+    it('a file of a deleted entity, with no record of it: moved to orphans/ whole, saying why (nothing generated to compare it with)', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        write(dir, A, read(dir, A).replace('int step(void);\n', `int step(void);\n${helper}`));
+        rmSync(join(dir, MANIFEST_NAME));
+        const r = writeTree(dir, []);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings).toEqual([{ file: A, message: expect.stringContaining('perhaps code outside the protected regions (there is no manifest (.contract-manifest.json) recording what the generator wrote)') }]);
+        expect(read(dir, `orphans/${A}`)).toContain(helper);
+        expect(existsSync(join(dir, A))).toBe(false);
+    });
+
+    it('an older generator\'s line that differs by more than whitespace (a reworded comment) is copied, saying it may be an older version\'s', () => {
+        const dir = out();
+        writeTree(dir, [file()]);
+        const m = manifest(dir);
+        delete m.skeletons;
+        delete m.skeletonLines;
+        writeFileSync(join(dir, MANIFEST_NAME), JSON.stringify(m));
+        write(dir, A, read(dir, A).replace('// generated\n', '// generated by version 0.9\n'));
+        const r = writeTree(dir, [file()]);
+        expect(r.orphaned).toEqual([`orphans/${A}`]);
+        expect(r.warnings[0]!.message).toContain('(line 1 not in the regenerated file)');
+        expect(r.warnings[0]!.message).toContain("cannot tell its own lines (an older version's among them) from code written outside the protected regions");
+        expect(r.warnings[0]!.message).toContain('lines of an older generator need nothing: then delete the copy');
     });
 });
 

@@ -4,7 +4,8 @@ import { carryRenamedRegions, type GeneratedOutput } from '../regions/carry-rena
 import { scanRegions } from '@contract-studio/conventions';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
-import { decodeLineHashes, describeEdits, editsOutside, skeletonLines } from './skeleton-lines.js';
+import { decodeLineHashes, describeEdits, editsOutside, runsText, skeletonLines } from './skeleton-lines.js';
+import { linesNotRegenerated } from './outside-regions.js';
 import { CONFLICTED, MANIFEST_NAME, fileRecord, hasCrlfEndings, hashContent, loadManifest, looksLikeDefault, manifestTextLike, serialiseManifest, skeletonHash, unreadableManifestAdvice, type ManifestLoad } from './manifest.js';
 import { ORPHANS_DIR, fileOrphanText, regionOrphanText, writeOrphan } from './orphans.js';
 import { OutputTree } from './output-tree.js';
@@ -202,8 +203,15 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     const newManifest = new Map<string, Record<string, string>>();
     const newSkeletons = new Map<string, string>();
     const newSkeletonLines = new Map<string, string>();
-    /** The skeleton hash recorded when the file was last written (undefined: an older manifest, or none: no check). */
+    /** The skeleton hash recorded when the file was last written (undefined: no manifest, an older or unreadable one). */
     const recordedSkeleton = (p: string) => loaded.manifest?.skeletons.get(p);
+    /** Why a file has no recorded skeleton, as a clause. */
+    const noRecord = (): string => {
+        if (unreadable !== undefined) return `the manifest ${unreadable}`;
+        if (manifestRefused) return 'the manifest is not read (a link)';
+        if (loaded.manifest) return 'the manifest holds no record of its text (a manifest of an older version)';
+        return `there is no manifest (${MANIFEST_NAME}) recording what the generator wrote`;
+    };
     const keepPrevious = (path: string) => {
         if (unreadable !== undefined) refusedUnrecorded = true;
         const previous = oldDefaults(path);
@@ -331,17 +339,20 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                         message: (orphan) => `edited outside its protected regions (${where}): that code is regenerated, not kept; the file as it was is in ${orphan} (move your code into a protected region)`,
                     });
                 }
-            } else if (unreadable !== undefined && skeletonHash(existing, file.path) !== record.skeleton) {
-                // no record: a file that differs from what the generator now writes outside its
-                // regions may hold the user's code there (or an older generation's lines)
-                const { line, where } = whereEditedOutside(existing, file.path, undefined, merged.text);
-                const why = `the manifest ${unreadable}, so the generator cannot tell its own lines from code written outside the protected regions`;
-                displaced.push({
-                    line,
-                    what: `differs outside its protected regions from what the generator now writes (${where}), and ${why}`,
-                    orphan: () => fileOrphanText(file.path, original, [`${where}; ${why}`], undefined, 'skeleton'),
-                    message: (orphan) => `differs outside its protected regions from what the generator now writes (${where}), and ${why}: the file as it was is copied to ${orphan} before it is regenerated (move any code of yours there into a protected region; if it holds none, delete the copy)`,
-                });
+            } else if (skeletonHash(existing, file.path) !== record.skeleton) {
+                // no record of what the generator wrote in it (no manifest, an older or unreadable one):
+                // the lines a regeneration would lose, from the regenerated file (outside-regions.ts)
+                const lost = linesNotRegenerated(existing, merged.text, file.path);
+                if (lost.length > 0) {
+                    const where = `${runsText(lost)} not in the regenerated file`;
+                    const why = `${noRecord()}, so the generator cannot tell its own lines (an older version's among them) from code written outside the protected regions`;
+                    displaced.push({
+                        line: lost[0]!,
+                        what: `differs outside its protected regions from what the generator now writes (${where}), and ${why}`,
+                        orphan: () => fileOrphanText(file.path, original, [`${where}; ${why}`], undefined, 'skeleton'),
+                        message: (orphan) => `differs outside its protected regions from what the generator now writes (${where}), and ${why}: the file as it was is copied to ${orphan} before it is regenerated (move any code of yours there into a protected region; lines of an older generator need nothing: then delete the copy)`,
+                    });
+                }
             }
             if (merged.disabled.length > 0) {
                 const ids = merged.disabled.map((r) => r.id).join(', ');
@@ -417,9 +428,10 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             }
             const owned = userRegions(existing, path, defaultCheck(oldDefaults(path)));
             const recorded = recordedSkeleton(path);
-            // no record (an unreadable manifest): code may have been written outside its regions
-            const editedOutside = recorded !== undefined ? skeletonHash(existing, path) !== recorded : unreadable !== undefined;
-            const outside = recorded !== undefined ? 'code outside the protected regions' : `perhaps code outside the protected regions (the manifest ${unreadable})`;
+            // no record (no manifest, an older or unreadable one): code may have been written outside its
+            // regions, and nothing is generated to compare it with: the file is kept whole
+            const editedOutside = recorded !== undefined ? skeletonHash(existing, path) !== recorded : true;
+            const outside = recorded !== undefined ? 'code outside the protected regions' : `perhaps code outside the protected regions (${noRecord()})`;
             if ((owned.length > 0 || editedOutside) && refuseDisplacing) {
                 const what = [...owned.map((r) => r.id), ...(editedOutside ? [outside] : [])];
                 report.warnings.push({
