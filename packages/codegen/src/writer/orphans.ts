@@ -66,7 +66,7 @@ export type OrphanReason = 'vanished' | 'deleted' | 'disabled' | 'skeleton';
  * The comment an orphan file starts with: which entity and file the code came from, when it was
  * moved, why, and how to bring it back (docs/codegen.md, "Renames", "Protected regions").
  */
-function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanReason, regionless = false): string {
+function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanReason, regionless = false, homes: ReadonlyMap<string, string> = new Map()): string {
     const head = `${HEADER_START} of ${path} (${orphanEntity(path)}), moved here on ${when.toISOString()}.\n`;
     const tail = ` * Then delete this file. Renaming with \`contract rename DIR OLD NEW\` or the IDE's rename carries regions over. */\n`;
     if (reason === 'disabled') {
@@ -96,17 +96,24 @@ function orphanHeader(path: string, ids: string[], when: Date, reason: OrphanRea
             tail;
     }
     const wholeFile = reason === 'deleted';
+    const elsewhere = ids.filter((id) => homes.has(id)).map((id) => ` * ${id} is no region of this file but of ${homes.get(id)} (a git merge or a paste put it here): paste its\n * content into the region of that ID there (beside any code that region holds), then generate.\n`).join('');
     return head +
-        ` * ${wholeFile ? 'The entity no longer exists' : 'These protected regions no longer exist'} in the generated code (renamed or deleted entity, removed port...): ${ids.join(', ')}.\n` +
+        (elsewhere !== '' && !wholeFile
+            ? ` * These protected regions are not generated in this file: ${ids.join(', ')}.\n`
+            : ` * ${wholeFile ? 'The entity no longer exists' : 'These protected regions no longer exist'} in the generated code (renamed or deleted entity, removed port...): ${ids.join(', ')}.\n`) +
+        elsewhere +
         ` * To bring the code back: if the entity was renamed, paste each region's content into the region of the same\n` +
         ` * role in the new entity's file (protect_exec_OLD -> protect_exec_NEW); if it was deleted by mistake, restore it\n` +
         ` * in the .contract files${wholeFile ? ` and copy this file, without this comment, back to ${path}` : ''}, then generate.\n` +
         tail;
 }
 
-/** The text of an orphan file holding regions of `path`: vanished from the generated code, or (`disabled`) replaced by their default. */
-export function regionOrphanText(path: string, source: string, regions: Region[], when = new Date(), reason: 'vanished' | 'disabled' = 'vanished'): string {
-    return orphanHeader(path, regions.map((r) => r.id), when, reason) + regions.map((r) => `\n${source.slice(r.start, r.end)}\n`).join('');
+/**
+ * The text of an orphan file holding regions of `path`: vanished from the generated code (`homes`:
+ * those generated in another file, by ID: found in the wrong file), or (`disabled`) replaced by their default.
+ */
+export function regionOrphanText(path: string, source: string, regions: Region[], when = new Date(), reason: 'vanished' | 'disabled' = 'vanished', homes?: ReadonlyMap<string, string>): string {
+    return orphanHeader(path, regions.map((r) => r.id), when, reason, false, homes) + regions.map((r) => `\n${source.slice(r.start, r.end)}\n`).join('');
 }
 
 /**

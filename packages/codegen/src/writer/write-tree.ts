@@ -1,6 +1,7 @@
 import { posix } from 'node:path';
 import { mergeRegions, userRegions } from '../regions/merge-regions.js';
 import { carryRenamedRegions, type GeneratedOutput } from '../regions/carry-renamed-regions.js';
+import { fillRegions, planMisplacedRegions, withoutForeignRegions } from '../regions/misplaced-regions.js';
 import { scanRegions } from '@contract-studio/conventions';
 import { RegionSyntaxError } from '../regions/region-error.js';
 import { bytesOf, toByteString } from './byte-string.js';
@@ -267,6 +268,22 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         }
         return names.has(posix.basename(rel));
     };
+    /** The files on disk, read once (a region found in the wrong file is looked for before writing). */
+    const texts = new Map<string, string | undefined>();
+    const readExisting = (path: string): string | undefined => {
+        if (!texts.has(path)) texts.set(path, mayExist(path) ? tree.read(path) : undefined);
+        return texts.get(path);
+    };
+    // regions a git merge (or a paste) put in another generated file than their own (misplaced-regions.ts;
+    // a derived file, a Makefile, holds no region)
+    const misplaced = planMisplacedRegions(sorted.filter((f) => !f.derive), (path) => {
+        try {
+            const text = readExisting(path);
+            return text !== undefined && conflictRefusal(text) ? null : text;
+        } catch {
+            return null; // reported when the file itself is written
+        }
+    }, (path, id, content) => defaultCheck(oldDefaults(path))(id, content));
     /** The text of each generated file after this generation (what it holds on disk), as it was written or left. */
     const onDisk = new Map<string, string>();
     const textOf = (path: string): string | undefined => {
@@ -284,6 +301,8 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
     };
     for (const file of inWritingOrder()) {
         const generated = toByteString(file.content);
+        /** Regions of this file found in another one, whose code comes home. */
+        const carriedIn = misplaced.into.get(file.path);
         const record = fileRecord(generated, file.path);
         newManifest.set(file.path, record.defaults);
         newSkeletons.set(file.path, record.skeleton);
@@ -291,16 +310,17 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
         const recordedLines = recordedSkeleton(file.path) === record.skeleton ? loaded.manifest?.skeletonLines.get(file.path) : undefined;
         newSkeletonLines.set(file.path, recordedLines ?? record.lines());
         try {
-            let existing = mayExist(file.path) ? tree.read(file.path) : undefined;
+            let existing = readExisting(file.path);
             if (existing === undefined) {
-                tree.write(file.path, bytesOf(generated));
-                onDisk.set(file.path, generated);
+                const text = carriedIn ? fillRegions(generated, file.path, carriedIn) : generated;
+                tree.write(file.path, bytesOf(text));
+                onDisk.set(file.path, text);
                 report.created.push(file.path);
                 report.filesWritten++;
                 continue;
             }
             onDisk.set(file.path, existing); // until it is rewritten below
-            if (existing === generated) {
+            if (existing === generated && !carriedIn) {
                 // identical to the fresh output: nothing to merge (every region holds the default)
                 report.unchanged.push(file.path);
                 continue;
@@ -323,13 +343,27 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                 });
             }
             const merged = mergeRegions(generated, existing, file.path, defaultCheck(oldDefaults(file.path)), knownDefaultCheck(oldDefaults(file.path)));
-            // user code this generation would move aside: code outside the regions (the skeleton
+            if (carriedIn) merged.text = fillRegions(merged.text, file.path, carriedIn);
+            const carriedOut = misplaced.outOf.get(file.path) ?? [];
+            for (const m of carriedOut) {
+                report.warnings.push({
+                    file: file.path,
+                    line: m.line,
+                    message: `protected region ${m.id} is no region of this file but of ${m.to} (a git merge or a paste put it here?): its code was carried there, byte for byte, into its ${m.id}, which held the generated default; check that it belongs there`,
+                });
+            }
+            merged.orphans = merged.orphans.filter((r) => !carriedOut.some((m) => m.id === r.id));            // user code this generation would move aside: code outside the regions (the skeleton
             // differs from the one written last time, and from the fresh one: a file edited into what
             // the generator now writes loses nothing), regions without ENABLED, vanished regions
             const displaced: { line: number; what: string; orphan: () => string; message: (orphan: string) => string }[] = [];
             const recorded = recordedSkeleton(file.path);
+            // a region of another file found here is none of this file's skeleton (carried home, or orphaned below)
+            const ownSkeleton = () => {
+                const skeleton = skeletonHash(existing!, file.path);
+                return skeleton === recorded || skeleton === record.skeleton ? skeleton : skeletonHash(withoutForeignRegions(existing!, file.path, misplaced.homes), file.path);
+            };
             if (recorded !== undefined) {
-                const skeleton = skeletonHash(existing, file.path);
+                const skeleton = ownSkeleton();
                 if (skeleton !== recorded && skeleton !== record.skeleton) {
                     const { line, where } = whereEditedOutside(existing, file.path, loaded.manifest?.skeletonLines.get(file.path), merged.text);
                     displaced.push({
@@ -339,7 +373,7 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
                         message: (orphan) => `edited outside its protected regions (${where}): that code is regenerated, not kept; the file as it was is in ${orphan} (move your code into a protected region)`,
                     });
                 }
-            } else if (skeletonHash(existing, file.path) !== record.skeleton) {
+            } else if (ownSkeleton() !== record.skeleton) {
                 // no record of what the generator wrote in it (no manifest, an older or unreadable one):
                 // the lines a regeneration would lose, from the regenerated file (outside-regions.ts)
                 const lost = linesNotRegenerated(existing, merged.text, file.path);
@@ -365,11 +399,14 @@ function writeInto(tree: OutputTree, files: GeneratedFile[], options: WriteTreeO
             }
             if (merged.orphans.length > 0) {
                 const ids = merged.orphans.map((r) => r.id).join(', ');
+                // a region of another generated file (found here, but not carried home): says where it belongs
+                const homes = new Map(merged.orphans.flatMap((r) => (misplaced.homes.has(r.id) ? [[r.id, misplaced.homes.get(r.id)!] as const] : [])));
+                const elsewhere = [...homes].map(([id, home]) => `; ${id} is no region of this file but of ${home} (a git merge or a paste put it here?), whose ${id} holds code of its own (or it is in more than one file): not carried there, paste its code into that region by hand`).join('');
                 displaced.push({
                     line: merged.orphans[0]!.line,
-                    what: `protected region(s) ${ids} hold user code but are not generated in this file any more (a renamed or removed module, port, datatype or function)`,
-                    orphan: () => regionOrphanText(file.path, existing, merged.orphans),
-                    message: (orphan) => `user code of vanished protected region(s) ${ids} moved to ${orphan}`,
+                    what: `protected region(s) ${ids} hold user code but are not generated in this file${homes.size === merged.orphans.length ? '' : ' any more (a renamed or removed module, port, datatype or function)'}${elsewhere}`,
+                    orphan: () => regionOrphanText(file.path, existing, merged.orphans, undefined, 'vanished', homes),
+                    message: (orphan) => `user code of ${homes.size === merged.orphans.length ? '' : 'vanished '}protected region(s) ${ids} moved to ${orphan}${elsewhere}`,
                 });
             }
             if (refuseDisplacing && displaced.length > 0) {
