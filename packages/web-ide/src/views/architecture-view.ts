@@ -81,6 +81,8 @@ const SMALLEST_FONT_PX = 11;
 /** Layouts kept for schemas shown again (ArchitectureView.layoutOf). */
 const LAYOUTS_KEPT = 24;
 const MIN_FONT_PX = 9;
+/** A fold that shows the schema less than this much larger than the drawing before it ends the folded tries (layoutSchema). */
+const FOLD_GAIN = 1.05;
 
 /**
  * A folded drawing is tighter, so that more of the schema fits the pane at a readable size: an
@@ -133,14 +135,20 @@ export async function layoutSchema(schema: ArchSchema, pane?: Size): Promise<Elk
   if (!pane) return straight;
   // folded only when the straight drawing does not fit the pane at a readable size: into rows shaped
   // like the pane, then (ELK's folding only approaches the shape asked) twice and four times as many,
-  // keeping the one that shows most of the schema
+  // keeping the one that shows most of the schema. A try that shows hardly more of it (FOLD_GAIN) than
+  // the best so far ends the tries: ELK could not fold the graph (two modules flowing both ways: the same drawing
+  // at every shape asked), or folded it as far as it goes (each further try is as tall or taller).
+  // Every try was made whatever it gave, and the Monitor's first diagram of the tutorial was laid out
+  // four times in ELK's worker while gcc built the job (straight, then three folds giving one drawing).
   const readable = MIN_FONT_PX / SMALLEST_FONT_PX;
   const fitScale = (g: ElkNode) => Math.min((pane.width - 32) / Math.max(1, g.width ?? 1), (pane.height - 32) / Math.max(1, g.height ?? 1));
   let best = straight;
   for (const k of [1, 2, 4]) {
     if (fitScale(best) >= readable) break;
     const folded = await layout(pane.width / Math.max(1, pane.height) / k);
-    if (fitScale(folded) > fitScale(best)) best = folded;
+    const gain = fitScale(folded) / fitScale(best);
+    if (gain > 1) best = folded;
+    if (gain <= FOLD_GAIN) break;
   }
   return best;
 }
@@ -447,11 +455,14 @@ export class ArchitectureView {
    * schema active at its cursor, and a run whose schemas take turns switched the diagram back and
    * forth several times a second, each time laying the schema out again in ELK's worker (up to four
    * layouts with the folded tries), competing for the CPU with the run. A layout depends on nothing
-   * else; the drawing is still made anew from it (renderSchema), fresh for its highlight.
+   * else; the drawing is still made anew from it (renderSchema), fresh for its highlight. A layout
+   * still being made is kept too: a draw asked meanwhile (the model read again, the schema chosen
+   * while the Monitor opens) waits for it instead of asking ELK for the same one; a failed one is
+   * let go, so the next draw tries again.
    */
-  private readonly layouts = new Map<string, ElkNode>();
+  private readonly layouts = new Map<string, Promise<ElkNode>>();
 
-  private async layoutOf(schema: ArchSchema, source: string, pane: Size | undefined): Promise<ElkNode> {
+  private layoutOf(schema: ArchSchema, source: string, pane: Size | undefined): Promise<ElkNode> {
     const key = `${pane ? `${pane.width}x${pane.height}` : '-'} ${source}`;
     const kept = this.layouts.get(key);
     if (kept) {
@@ -459,8 +470,9 @@ export class ArchitectureView {
       this.layouts.set(key, kept); // the most recent last
       return kept;
     }
-    const graph = await layoutSchema(schema, pane);
+    const graph = layoutSchema(schema, pane);
     this.layouts.set(key, graph);
+    graph.catch(() => this.layouts.get(key) === graph && this.layouts.delete(key));
     for (const old of this.layouts.keys()) if (this.layouts.size > LAYOUTS_KEPT) this.layouts.delete(old);
     return graph;
   }
