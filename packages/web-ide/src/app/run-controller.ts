@@ -81,10 +81,11 @@ export class RunController {
     });
     // a finished run's CSV logs (collected from the sandbox by the build service) feed the timeline
     // (the job stays this tab's after its end: a reload shows it again, its log, the Monitor and its logs)
-    build.onFinished.on(({ jobId, action, cancelledElsewhere }) => {
+    build.onFinished.on(({ jobId, action, cancelledElsewhere, gone }) => {
       const f = this.followed();
       if (f?.jobId === jobId) this.keep({ ...f, ended: true });
-      if (action === 'run') void this.fetchLogs(jobId);
+      // a job gone with the IDE server left no logs to fetch
+      if (action === 'run' && !gone) void this.fetchLogs(jobId);
       // cancelled by another tab's Build & Run, announced while this tab was busy: its new run is
       // followed now (the run this one was replaced by); after any other end the log stays
       const next = this.passedOver;

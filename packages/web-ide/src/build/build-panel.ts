@@ -4,7 +4,10 @@ import { JobStream } from './job-stream.js';
 import { Emitter } from '../util/emitter.js';
 import { LogStore, type LogLine } from './log-store.js';
 import { LogView } from './log-view.js';
-import { jobEndStatus } from './job-end.js';
+import { jobEndStatus, goneJobText, LOST_WITH_SERVER } from './job-end.js';
+
+/** How often the build service is asked about a job whose stream was lost, until it answers (askAfterLoss). */
+const ASK_AGAIN_MS = 1000;
 
 export interface GccDiagnostic {
   severity: 'error' | 'warning' | 'note';
@@ -34,9 +37,11 @@ export class BuildPanel {
    * A job's event stream ended (`ok` = succeeded); a run's CSV logs are then at GET
    * /api/jobs/:id/artifacts. `cancelledElsewhere`: it was cancelled while this tab followed it, not
    * by this tab's Stop (another tab's Stop or Build & Run, a script); false for a job that had
-   * ended before the tab showed it (a reload).
+   * ended before the tab showed it (a reload). `gone`: its stream was lost, and the build service,
+   * answering again, no longer knows the job (the IDE server was restarted): it ended with the server,
+   * leaving no logs.
    */
-  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean; message?: string; cancelledElsewhere: boolean }>();
+  readonly onFinished = new Emitter<{ jobId: string; action: 'build' | 'run'; ok: boolean; message?: string; cancelledElsewhere: boolean; gone?: boolean }>();
   /** A job was submitted (its events follow). */
   readonly onStarted = new Emitter<{ jobId: string; action: 'build' | 'run' }>();
   readonly element: HTMLElement;
@@ -243,7 +248,7 @@ export class BuildPanel {
       if (sayIfGone && !this.busy) {
         this.clear();
         this.setOrigin(`(${why})`);
-        this.setStatus('gone', `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs: their logs and a run's CSV logs went with them (a Build & Run writes nothing into the workspace); run it again`, false);
+        this.setStatus('gone', goneJobText(jobId), false);
       }
       return 'gone';
     }
@@ -309,11 +314,45 @@ export class BuildPanel {
         if (this.stream !== stream || this.jobId !== jobId) return;
         this.stream = undefined;
         this.jobId = undefined;
-        this.setStatus('disconnected', 'lost the connection to the build service', false);
+        this.setStatus('disconnected', 'lost the connection to the build service: asking it about the job until it answers', false);
+        void this.askAfterLoss(jobId, action);
       },
     });
     this.stream = stream;
     this.onStarted.fire({ jobId, action });
+  }
+
+  /**
+   * After job `jobId`'s stream was lost for good: asks the build service about the job every
+   * ASK_AGAIN_MS until it answers, while the log still holds that job and the panel follows no other.
+   * It no longer knows it (the IDE server was restarted, ending its jobs): said in the log and the
+   * status, and the job ends (`gone`: the Monitor says so too) — every tab that followed it comes to
+   * the same, instead of "disconnected" for ever beside a reloaded tab's "gone". It still knows it
+   * (the connection broke, not the server): followed again, or its end shown.
+   */
+  private async askAfterLoss(jobId: string, action: 'build' | 'run'): Promise<void> {
+    const movedOn = () => this.logJobId !== jobId || this.busy;
+    for (;;) {
+      await new Promise((r) => setTimeout(r, ASK_AGAIN_MS));
+      if (movedOn()) return;
+      try {
+        await api.getJob(jobId);
+      } catch (e) {
+        // no answer (the server still down) or a refused session (401: restarted with a new token,
+        // until the tab has its session back): asked again
+        if (!(e instanceof ApiError && e.status === 404)) continue;
+        if (movedOn()) return;
+        const text = goneJobText(jobId);
+        this.append({ t: Date.now(), step: 'run', source: 'service', stream: 'system', line: text });
+        this.setStatus('gone', text, false);
+        this.onFinished.fire({ jobId, action, ok: false, message: LOST_WITH_SERVER, cancelledElsewhere: false, gone: true });
+        return;
+      }
+      if (movedOn()) return;
+      const origin = this.originEl.textContent?.replace(/^\((.*)\)$/, '$1');
+      await this.resume(jobId, { ended: true, why: origin || 'followed again once the build service answered' });
+      return;
+    }
   }
 
   async stop(): Promise<void> {

@@ -18,3 +18,14 @@ export function jobEndStatus(result: { ok?: unknown; message?: unknown } | null 
 export function jobStatusText(status: string, message: string | undefined, running: boolean): string {
   return `${running ? '⟳' : status === 'succeeded' ? '✓' : '■'} ${status}${message ? `: ${message}` : ''}`;
 }
+
+/** How a job the IDE server no longer knows ended, for every tab alike (the Monitor's run list says it too). */
+export const LOST_WITH_SERVER = 'lost with the IDE server (it was stopped or restarted, which ends its jobs)';
+
+/**
+ * What the build panel says of job `jobId` when the build service no longer knows it: after a
+ * reload, or when the server answers again after the job's stream was lost.
+ */
+export function goneJobText(jobId: string): string {
+  return `job ${jobId.slice(0, 8)}… is no longer known to the build service: the IDE server was restarted, which ends its jobs: their logs and a run's CSV logs went with them (a Build & Run writes nothing into the workspace); run it again`;
+}

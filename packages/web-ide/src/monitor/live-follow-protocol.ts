@@ -42,6 +42,11 @@ export interface Snapshot {
 
 export type FromFollower = Snapshot | { type: 'state'; t: Ns; state: MonitorState; exact: boolean };
 
+/** A live run's outcome when its trace stream broke for good (the job's own end not known then). */
+export const CONNECTION_LOST = 'connection to the build service lost';
+/** Why its trace is not whole then. */
+export const LOST_TRACE = 'lost the connection to the build service: the trace stops here (if the build service is still there when the job ends, the Monitor shows the run from its CSV logs)';
+
 /**
  * How a job ended, from its `end` event's result (build-service JobResult: `ok`, `message`;
  * hostile like any stream data): `succeeded`, `cancelled`, or `failed: <message>`.

@@ -12,7 +12,7 @@
 import { forEachTraceLine, moduleOfLog } from '@contract-studio/build-service/trace';
 import { JobStream, type SocketLike, type StreamEvent } from '../build/job-stream.js';
 import { MonitorModel } from './monitor-model.js';
-import { jobOutcome, type FromFollower, type Snapshot, type ToFollower } from './live-follow-protocol.js';
+import { jobOutcome, CONNECTION_LOST, LOST_TRACE, type FromFollower, type Snapshot, type ToFollower } from './live-follow-protocol.js';
 
 /** Bounds on what one trace event may bring (the producer sends far less per event). */
 export const MAX_LINES_PER_EVENT = 100_000;
@@ -81,7 +81,7 @@ export class LiveFollower {
         if (typeof m.url === 'string' && !this.stream) {
           this.stream = new JobStream(m.url, {
             event: (e) => this.receive(e),
-            lost: (why) => this.finish(why === undefined ? 'lost the connection to the build service: the trace stops here (if the build service is still there when the job ends, the Monitor shows the run from its CSV logs)' : `the trace stream could not be opened (${why})`),
+            lost: (why) => this.finish(why === undefined ? LOST_TRACE : `the trace stream could not be opened (${why})`, why === undefined ? CONNECTION_LOST : undefined),
           }, this.openSocket);
         }
         return;
@@ -204,7 +204,7 @@ export class LiveFollower {
   private finish(problem?: string, outcome?: string): void {
     if (this.ended) return;
     this.ended = true;
-    this.outcome = outcome ?? (problem?.startsWith('lost the connection') ? 'connection to the build service lost' : 'the trace stream could not be opened');
+    this.outcome = outcome ?? 'the trace stream could not be opened';
     if (problem) this.problems.push(problem);
     this.stream?.close();
     clearTimeout(this.postTimer);

@@ -1,5 +1,7 @@
 import { describe, it, expect } from 'vitest';
-import { csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { csvLogsRunLabel, endedRunLabel, endKnownAfterLossLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { CONNECTION_LOST, LOST_TRACE } from './live-follow-protocol.js';
+import { LOST_WITH_SERVER } from '../build/job-end.js';
 
 describe("a live job's label in the Monitor's run list", () => {
   it('says how the job ended whichever reaches the page first, its end or its CSV logs', () => {
@@ -27,5 +29,13 @@ describe("a live job's label in the Monitor's run list", () => {
       .toBe('Build & Run job j-3 · CSV logs (not whole: MSC_1.csv capped; LOC_1.csv not downloaded) · ended: cancelled');
     // its outcome given later, by the build panel's end
     expect(endedRunLabel(csvLogsRunLabel('j-3', []), false, 'failed')).toBe('Build & Run job j-3 · CSV logs · ended: failed');
+  });
+
+  it("a lost stream's outcome gives way to the job's end known after: gone with the IDE server, its promise of CSV logs dropped", () => {
+    const lost = endedRunLabel(`${liveRunLabel('j-4')} (trace not whole: ${LOST_TRACE})`, true, CONNECTION_LOST);
+    expect(endKnownAfterLossLabel(lost, CONNECTION_LOST, LOST_TRACE, LOST_WITH_SERVER)).toBe(`Build & Run job j-4 · ended: ${LOST_WITH_SERVER}`);
+    // another note of the stream stays
+    const missed = endedRunLabel(`${liveRunLabel('j-4')} (trace not whole: 12 records not received; ${LOST_TRACE})`, true, CONNECTION_LOST);
+    expect(endKnownAfterLossLabel(missed, CONNECTION_LOST, LOST_TRACE, LOST_WITH_SERVER)).toBe(`Build & Run job j-4 · ended: ${LOST_WITH_SERVER} (trace not whole: 12 records not received)`);
   });
 });

@@ -28,6 +28,18 @@ export function endedRunLabel(label: string, stillLive: boolean, outcome: string
 }
 
 /**
+ * Its label once the job's end became known after its trace stream was lost (`lost`: that outcome,
+ * `lostTrace`: the note it left): the outcome said instead, and the note's promise of CSV logs
+ * dropped with it (the job gone with the IDE server left none); any other note kept.
+ */
+export function endKnownAfterLossLabel(label: string, lost: string, lostTrace: string, outcome: string): string {
+  return label
+    .replace(endedText(lost), endedText(outcome))
+    .replace(` (trace not whole: ${lostTrace})`, '')
+    .replace(`; ${lostTrace}`, '');
+}
+
+/**
  * Its label once its CSV logs are shown: `· as streamed`, with the records the stream did not
  * receive (a stream attached late, or taken up again past the service's bound: its first records
  * and its newest, a gap between) and how it ended when that is known yet.

@@ -27,11 +27,12 @@ import { recordedRunSteps, type RecordedRun } from './recorded-run.js';
 import { recordedRunsToLetGo } from './recorded-runs.js';
 import type { MonitorView } from './model-view.js';
 import { RemoteMonitorModel } from './remote-model.js';
-import { jobOutcome } from './live-follow-protocol.js';
+import { jobOutcome, CONNECTION_LOST, LOST_TRACE } from './live-follow-protocol.js';
 import { MonitorPanel, type SourceOption } from './monitor-panel.js';
 import { readSupervisorSymbols, type SupervisorSymbols } from './supervisor-symbols.js';
 import { NOT_IN_MODEL_LONG } from './panel-text.js';
-import { csvLogsRunLabel, endedRunLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { csvLogsRunLabel, endedRunLabel, endKnownAfterLossLabel, liveRunLabel, streamedRunLabel } from './live-run-label.js';
+import { LOST_WITH_SERVER } from '../build/job-end.js';
 import { count, recordCounts, recordCountsText, unreadableNote } from './record-counts.js';
 import type { ArchSchema } from '../lsp/architecture-model.js';
 
@@ -64,7 +65,7 @@ interface Run {
   whole?: boolean;
   /** When it was made or last shown (the recorded runs used least recently are let go first). */
   used?: number;
-  /** A job's run that ended: how (`succeeded`, `cancelled`, `failed: …`, `connection to the build service lost`). */
+  /** A job's run that ended: how (`succeeded`, `cancelled`, `failed: …`, `connection to the build service lost`, then how the job ended when the service answers again). */
   outcome?: string;
   /**
    * The project whose model it is read against (its schemas, its supervisors' rules): the one that
@@ -138,10 +139,10 @@ export class MonitorController {
     });
     // the job's end as the build panel's own stream tells it: a run whose live trace did not say
     // so (its worker failed) is not left 'live'
-    deps.build.onFinished.on(({ jobId, action, ok, message }) => {
+    deps.build.onFinished.on(({ jobId, action, ok, message, gone }) => {
       // (or its logs' run, when the live one was forgotten for want of records)
       const run = this.runs.get(`live:${jobId}`) ?? this.runs.get(`job:${jobId}`);
-      if (action === 'run' && run) this.ended(run, jobOutcome({ ok, message }));
+      if (action === 'run' && run) this.ended(run, gone ? LOST_WITH_SERVER : jobOutcome({ ok, message }));
     });
   }
 
@@ -191,6 +192,15 @@ export class MonitorController {
    * SETTLE_MS, or only the build panel's end says it), the label they gave gets the outcome too.
    */
   private ended(run: Run, outcome: string): void {
+    // once said, an outcome stays; but a lost stream's is only what this tab saw: the job's own end,
+    // known after (the build panel asked the service once it answered again), says it instead
+    if (run.outcome === CONNECTION_LOST && outcome !== CONNECTION_LOST) {
+      run.outcome = outcome;
+      run.label = endKnownAfterLossLabel(run.label, CONNECTION_LOST, LOST_TRACE, outcome);
+      if (this.shown === run.id) this.panel?.setLabel(run.label);
+      void this.refreshSources();
+      return;
+    }
     if (run.outcome !== undefined) return;
     run.outcome = outcome;
     run.label = endedRunLabel(run.label, run.live, outcome);
