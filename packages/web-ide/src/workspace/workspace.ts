@@ -4,6 +4,7 @@ import { Emitter } from '../util/emitter.js';
 import { languageOf, isContract } from './file-kinds.js';
 import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
 import { replaceByDiff } from '../editor/replace-by-diff.js';
+import { withCopy, othersCopies, type BrowserCopy } from './browser-copies.js';
 import { threeWayMerge } from './three-way-merge.js';
 
 /** `conflict`: the tab's edits and a change made elsewhere overlap; nothing is saved until the user chose. */
@@ -39,18 +40,13 @@ export interface FileState {
   undecodableLine?: number;
 }
 
-/** What localStorage keeps of a file with unsaved edits: the text and the base it was edited from. */
-interface Backup {
-  v: 1;
-  text: string;
-  baseText: string;
-  baseVersion?: string;
-  /** A save in flight when the copy was made: if the disk holds it after a reload, it landed and is the base. */
-  sentText?: string;
-}
-
 const SAVE_DELAY_MS = 300;
 const BACKUP_PREFIX = 'contract-studio:unsaved:';
+/**
+ * How long after this tab saved a file another tab's copy of it is left for that tab to save
+ * itself (its retries, the server back, are 2 s apart at first) before this tab takes it up.
+ */
+const TAKE_UP_AFTER_MS = 5000;
 
 /**
  * The open workspace: its file tree, one Monaco model per loaded file, and autosave.
@@ -512,7 +508,7 @@ export class Workspace {
     const fs = this.files.get(path);
     if (!fs) return;
     this.files.delete(path);
-    this.clearBackup(path);
+    this.dropCopy(path, this.tabId); // this tab's only: another tab's unsaved text is its to save (or recreate)
     this.cancelPendingSave(path);
     fs.model.dispose();
   }
@@ -527,60 +523,97 @@ export class Workspace {
     return `${BACKUP_PREFIX}${this.root}:${path}`;
   }
 
-  /** Keeps the tab's text and the base it was edited from (a reload can then still merge). */
+  /** This page's copies among the browser's (browser-copies.ts): a reload is a new page, whose copy the old one's does not hide. */
+  private readonly tabId = `${Date.now().toString(36)}-${Math.random().toString(36).slice(2, 10)}`;
+
+  /** Keeps the tab's text and the base it was edited from (a reload can then still merge), beside other tabs' copies. */
   private backup(fs: FileState, text: string): void {
-    const entry: Backup = { v: 1, text, baseText: fs.diskText, baseVersion: fs.diskVersion, ...(fs.sending !== undefined ? { sentText: fs.sending } : {}) };
+    const copy: BrowserCopy = { text, baseText: fs.diskText, ...(fs.diskVersion !== undefined ? { baseVersion: fs.diskVersion } : {}), ...(fs.sending !== undefined ? { sentText: fs.sending } : {}), at: Date.now() };
+    const key = this.backupKey(fs.path);
     try {
-      localStorage.setItem(this.backupKey(fs.path), JSON.stringify(entry));
+      localStorage.setItem(key, withCopy(localStorage.getItem(key), this.tabId, copy)!);
     } catch {
       this.onNotice.fire({ level: 'warning', text: 'Browser storage full: unsaved text is only in memory until the server confirms' });
     }
   }
 
+  /** Drops this tab's copy of `path` (other tabs' stay); once saved, any copy another tab left is taken up after a while. */
   private clearBackup(path: string): void {
-    localStorage.removeItem(this.backupKey(path));
+    this.dropCopy(path, this.tabId);
+    if (othersCopies(localStorage.getItem(this.backupKey(path)), this.tabId).length && !this.takeUpTimers.has(path)) {
+      this.takeUpTimers.set(path, setTimeout(() => {
+        this.takeUpTimers.delete(path);
+        void this.takeUpCopies(path);
+      }, TAKE_UP_AFTER_MS));
+    }
   }
 
-  /** A stored copy: the current JSON form, or a bare text (copies made before versions existed). */
-  private static parseBackup(raw: string): { text: string; baseText?: string; baseVersion?: string; sentText?: string } {
+  private readonly takeUpTimers = new Map<string, ReturnType<typeof setTimeout>>();
+
+  private dropCopy(path: string, tab: string): void {
+    const key = this.backupKey(path);
+    const next = withCopy(localStorage.getItem(key), tab, undefined);
     try {
-      const v = JSON.parse(raw) as Partial<Backup>;
-      if (v && v.v === 1 && typeof v.text === 'string' && typeof v.baseText === 'string') {
-        return {
-          text: v.text, baseText: v.baseText, baseVersion: typeof v.baseVersion === 'string' ? v.baseVersion : undefined,
-          sentText: typeof v.sentText === 'string' ? v.sentText : undefined,
-        };
-      }
+      if (next === null) localStorage.removeItem(key);
+      else localStorage.setItem(key, next);
     } catch {
-      // not JSON: an old bare copy
+      /* storage refused: the copy stays, taken up again later (merged, nothing doubled) */
     }
-    return { text: raw };
   }
 
   /**
-   * Re-applies text that was edited but not confirmed by the server before the last reload. When
-   * the disk moved on since the copy's base, the copy is merged with it (or becomes a conflict)
-   * rather than written over it.
+   * Re-applies text that was edited but not confirmed by the server before the last reload, or by
+   * another tab of this browser that could not save it (closed, or reloaded, while the server was
+   * away): every copy, each of its own tab. When the disk moved on since a copy's base, the copy is
+   * merged with it (or becomes a conflict) rather than written over it.
    */
   private restoreBackups(): void {
     const prefix = `${BACKUP_PREFIX}${this.root}:`;
-    const keys: string[] = [];
+    const paths: string[] = [];
     for (let i = 0; i < localStorage.length; i++) {
       const key = localStorage.key(i);
-      if (key?.startsWith(prefix)) keys.push(key);
+      if (key?.startsWith(prefix)) paths.push(key.slice(prefix.length));
     }
-    for (const key of keys) {
-      const path = key.slice(prefix.length);
-      const copy = Workspace.parseBackup(localStorage.getItem(key) ?? '');
-      void this.ensureModel(path)
-        .then((fs) => {
-          if (fs.model.getValue() === copy.text) return this.clearBackup(path);
-          this.onNotice.fire({ level: 'info', text: `Restored unsaved edits of ${path}` });
-          // the disk still holds the copy's base, or the save in flight at the reload landed (then it is the base)
-          if (copy.baseText === undefined || copy.baseVersion === fs.diskVersion || copy.baseText === fs.diskText || copy.sentText === fs.diskText) {
-            fs.model.setValue(copy.text); // triggers markDirty -> save on the disk's version
-            return;
-          }
+    for (const path of paths) void this.takeUpCopies(path);
+  }
+
+  /** Files whose other tabs' copies are being taken up (one pass at a time). */
+  private readonly takingUp = new Set<string>();
+
+  /**
+   * Takes up the copies other tabs left of `path`, oldest first, one at a time: each while the
+   * file is saved in this tab (its own edits on disk), so that it is merged with the disk (the
+   * other copies and this tab's edits included) as a restored copy is, never put over unsaved text;
+   * a copy is dropped only once this tab holds its text (and keeps its own copy of it).
+   */
+  private async takeUpCopies(path: string): Promise<void> {
+    if (this.takingUp.has(path)) return;
+    this.takingUp.add(path);
+    try {
+      for (;;) {
+        const next = othersCopies(localStorage.getItem(this.backupKey(path)), this.tabId)[0];
+        if (!next) return;
+        const [tab, copy] = next;
+        let fs: FileState;
+        try {
+          fs = await this.ensureModel(path);
+        } catch {
+          // The file is gone on disk: recreate it rather than lose the text.
+          this.onNotice.fire({ level: 'warning', text: `${path} no longer existed on disk: recreated from your unsaved edits` });
+          await api.write(path, copy.text).then(() => this.refreshTree()).then(() => this.dropCopy(path, tab)).catch(() => undefined);
+          return;
+        }
+        if (fs.state !== 'saved' && !(await this.savedAgain(fs))) return; // taken up again after this tab's next save
+        if (fs.model.isDisposed()) return;
+        if (fs.model.getValue() === copy.text) {
+          this.dropCopy(path, tab);
+          continue;
+        }
+        this.onNotice.fire({ level: 'info', text: `Restored unsaved edits of ${path} kept in this browser (by this tab before a reload, or by another tab that could not save them)` });
+        // the disk still holds the copy's base, or the save in flight at the reload landed (then it is the base)
+        if (copy.baseText === undefined || copy.baseVersion === fs.diskVersion || copy.baseText === fs.diskText || copy.sentText === fs.diskText) {
+          fs.model.setValue(copy.text); // triggers markDirty -> this tab's copy, and a save on the disk's version
+        } else {
           // edited from an older text: merge with the disk's (whose text the model shows now)
           const disk = { text: fs.diskText, version: fs.diskVersion ?? '' };
           fs.diskText = copy.baseText;
@@ -588,12 +621,22 @@ export class Workspace {
           this.showText(fs, copy.text);
           this.setState(fs, 'dirty');
           this.reconcile(fs, disk.text, disk.version);
-        })
-        .catch(() => {
-          // The file is gone on disk: recreate it rather than lose the text.
-          void api.write(path, copy.text).then(() => this.refreshTree()).then(() => this.clearBackup(path));
-          this.onNotice.fire({ level: 'warning', text: `${path} no longer existed on disk: recreated from your unsaved edits` });
-        });
+        }
+        this.dropCopy(path, tab); // its text is this tab's now, in this tab's copy
+      }
+    } finally {
+      this.takingUp.delete(path);
     }
+  }
+
+  /** Resolves true once `fs` is saved (its text on disk), false when its model went away first. */
+  private savedAgain(fs: FileState): Promise<boolean> {
+    return new Promise((done) => {
+      const off = this.onFileState.on((f) => {
+        if (f !== fs || (f.state !== 'saved' && !f.model.isDisposed())) return;
+        off();
+        done(!f.model.isDisposed());
+      });
+    });
   }
 }

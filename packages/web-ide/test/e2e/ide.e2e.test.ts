@@ -886,7 +886,9 @@ describe('IDE in headless Chromium', () => {
     });
     const sentInCopy = () => page.evaluate((p) => {
       const key = Object.keys(localStorage).find((k) => k.startsWith('contract-studio:unsaved:') && k.endsWith(`:${p}`));
-      return key ? (JSON.parse(localStorage.getItem(key)!) as { sentText?: string }).sentText ?? '' : '';
+      // this tab's copy (browser-copies.ts: one per tab, the only one here)
+      const copies = key ? (JSON.parse(localStorage.getItem(key)!) as { copies: Record<string, { sentText?: string }> }).copies : {};
+      return Object.values(copies)[0]?.sentText ?? '';
     }, path);
     try {
       await placeCursor(page, 'asynchronous module MAB');

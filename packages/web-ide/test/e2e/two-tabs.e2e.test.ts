@@ -104,7 +104,10 @@ describe('one file edited in two IDE tabs and by a script', () => {
     expect(await activeValue(b)).toContain('// from tab B');
     const copy = await backups(b);
     expect(copy).toHaveLength(1);
-    expect(JSON.parse(copy[0]!).text).toContain('// from tab B');
+    // this tab's copy (browser-copies.ts: one per tab; B is the only tab of its browser)
+    const mine = Object.values((JSON.parse(copy[0]!) as { copies: Record<string, { text: string }> }).copies);
+    expect(mine).toHaveLength(1);
+    expect(mine[0]!.text).toContain('// from tab B');
     expect(await b.locator('#status-save').textContent()).toMatch(/Overlapping edits/);
     // no save is retried while the user has not chosen
     const sent = puts.length;

@@ -1,0 +1,78 @@
+/**
+ * Two tabs of one browser (one localStorage) editing the same file while the IDE server is down
+ * (docs/ide.md "Saving"): the browser keeps each tab's unsaved text (one copy per tab), the second
+ * tab's never over the first's. The first tab closed before the server is back: its edits were
+ * only in that shared copy, which the second tab's typing had replaced — lost, without a word.
+ * Now the tab left saves its own, then takes up the closed tab's copy, merges it with the disk and
+ * says so. Real server stopped and started again on its port (the same session), real Chromium.
+ */
+import { describe, it, expect, beforeAll, afterAll } from 'vitest';
+import { readFileSync } from 'node:fs';
+import { join } from 'node:path';
+import type { Page } from 'playwright-core';
+import { startIdeServer } from '../../server/ide-server.js';
+import { startSession, openIde, openAnotherTab, openFile, placeCursor, waitSaved, activeValue, shot, type Session } from './harness.js';
+
+const SCHED = 'sched.contract';
+let s: Session;
+const disk = () => readFileSync(join(s.workspace, SCHED), 'utf8');
+/** The browser's copies of the file's unsaved text, by tab (browser-copies.ts). */
+const copies = (page: Page) => page.evaluate((p) => {
+  const key = Object.keys(localStorage).find((k) => k.startsWith('contract-studio:unsaved:') && k.endsWith(`:${p}`));
+  if (!key) return [];
+  const v = JSON.parse(localStorage.getItem(key)!) as { copies?: Record<string, { text: string }>; text?: string };
+  return v.copies ? Object.values(v.copies).map((c) => c.text) : [v.text ?? '']; // (one shared copy, as it was)
+}, SCHED);
+/** Every notice shown (toasts), kept by the page. */
+const noticesOf = (page: Page) => page.evaluate(() => [...document.querySelectorAll('.toast')].map((t) => t.textContent ?? ''));
+
+describe('two tabs of one browser edit a file while the server is down', () => {
+  beforeAll(async () => {
+    s = await startSession({ buildService: false });
+    await openIde(s);
+  }, 60_000);
+  afterAll(async () => {
+    await s?.close();
+  });
+
+  it("one tab's edit never replaces the other's in the browser; the first tab closed before the server is back, both edits reach the disk, said", async () => {
+    const a = s.page;
+    await openFile(a, SCHED);
+    const b = await openAnotherTab(s, a);
+    await openFile(b, SCHED);
+    await waitSaved(a);
+    const base = disk();
+    const port = Number(new URL(s.server.url).port);
+    const token = s.server.token; // restarted with the same session: the tabs keep theirs
+    await s.server.close();
+    try {
+      await placeCursor(a, 'MSB;', 4);
+      await a.keyboard.insertText(' // from tab A');
+      await a.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await b.bringToFront();
+      await placeCursor(b, 'MSD;', 4);
+      await b.keyboard.insertText(' // from tab B');
+      await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      // both texts in the browser, each its tab's
+      const kept = await copies(b);
+      expect(kept.length, JSON.stringify(kept)).toBe(2);
+      expect(kept.some((t) => t.includes('// from tab A') && !t.includes('// from tab B'))).toBe(true);
+      expect(kept.some((t) => t.includes('// from tab B') && !t.includes('// from tab A'))).toBe(true);
+      // tab A goes before the server is back: its text is only in the browser now
+      await a.close();
+      expect(disk()).toBe(base);
+    } finally {
+      s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false, token });
+    }
+    const both = base.replace('MSB;', 'MSB; // from tab A').replace('MSD;', 'MSD; // from tab B');
+    await expect.poll(disk, { timeout: 30_000 }).toBe(both);
+    await waitSaved(b);
+    expect(await activeValue(b)).toBe(both);
+    expect(await copies(b)).toEqual([]);
+    // said: the closed tab's edits came back, merged with this tab's
+    const notices = await noticesOf(b);
+    expect(notices.some((n) => n.includes(`Restored unsaved edits of ${SCHED} kept in this browser`)), notices.join('\n')).toBe(true);
+    await shot(b, 'offline-two-tabs-01-merged');
+    s.page = b; // the session's page for close()
+  }, 90_000);
+});
