@@ -4,7 +4,7 @@ import { Emitter } from '../util/emitter.js';
 import { languageOf, isContract } from './file-kinds.js';
 import { replaceKeepingCursor } from '../editor/replace-keeping-cursor.js';
 import { replaceByDiff } from '../editor/replace-by-diff.js';
-import { withCopy, othersCopies, type BrowserCopy } from './browser-copies.js';
+import { withCopy, othersCopies, parseCopies, type BrowserCopy } from './browser-copies.js';
 import { threeWayMerge } from './three-way-merge.js';
 
 /** `conflict`: the tab's edits and a change made elsewhere overlap; nothing is saved until the user chose. */
@@ -42,11 +42,10 @@ export interface FileState {
 
 const SAVE_DELAY_MS = 300;
 const BACKUP_PREFIX = 'contract-studio:unsaved:';
-/**
- * How long after this tab saved a file another tab's copy of it is left for that tab to save
- * itself (its retries, the server back, are 2 s apart at first) before this tab takes it up.
- */
-const TAKE_UP_AFTER_MS = 5000;
+/** How long after this tab saved a file it takes up the copies of it that tabs closed since left. */
+const TAKE_UP_AFTER_MS = 2000;
+/** How long a tab asked whether it is open has to answer (a loaded machine: generous). */
+const TAB_ANSWER_MS = 1000;
 
 /**
  * The open workspace: its file tree, one Monaco model per loaded file, and autosave.
@@ -590,10 +589,11 @@ export class Workspace {
     if (this.takingUp.has(path)) return;
     this.takingUp.add(path);
     try {
-      for (;;) {
-        const next = othersCopies(localStorage.getItem(this.backupKey(path)), this.tabId)[0];
-        if (!next) return;
-        const [tab, copy] = next;
+      for (const [tab] of othersCopies(localStorage.getItem(this.backupKey(path)), this.tabId)) {
+        // a tab still open saves its own text (taken up here too, its overlap would be asked twice)
+        if (await this.tabOpen(tab)) continue;
+        const copy = parseCopies(localStorage.getItem(this.backupKey(path))).get(tab);
+        if (!copy) continue; // saved by its tab meanwhile
         let fs: FileState;
         try {
           fs = await this.ensureModel(path);
@@ -627,6 +627,36 @@ export class Workspace {
     } finally {
       this.takingUp.delete(path);
     }
+  }
+
+  /**
+   * The tabs of this browser on this address (BroadcastChannel: the origin, as localStorage): each
+   * answers when asked whether it is open, so that only the copies of tabs gone are taken up.
+   */
+  private readonly tabs = (() => {
+    const channel = new BroadcastChannel('contract-studio:tabs');
+    channel.addEventListener('message', (e: MessageEvent<{ open?: string }>) => {
+      if (e.data?.open === this.tabId) channel.postMessage({ isOpen: this.tabId });
+    });
+    return channel;
+  })();
+
+  /** Whether tab `tab` is open in this browser (it answers within TAB_ANSWER_MS). */
+  private tabOpen(tab: string): Promise<boolean> {
+    return new Promise((done) => {
+      const heard = (e: MessageEvent<{ isOpen?: string }>) => {
+        if (e.data?.isOpen !== tab) return;
+        clearTimeout(timer);
+        this.tabs.removeEventListener('message', heard);
+        done(true);
+      };
+      const timer = setTimeout(() => {
+        this.tabs.removeEventListener('message', heard);
+        done(false);
+      }, TAB_ANSWER_MS);
+      this.tabs.addEventListener('message', heard);
+      this.tabs.postMessage({ open: tab });
+    });
   }
 
   /** Resolves true once `fs` is saved (its text on disk), false when its model went away first. */

@@ -75,4 +75,41 @@ describe('two tabs of one browser edit a file while the server is down', () => {
     await shot(b, 'offline-two-tabs-01-merged');
     s.page = b; // the session's page for close()
   }, 90_000);
+
+  it("both tabs still open, their offline edits overlapping: the tab whose save lost is asked, the other does not take up its copy (nor ask it again)", async () => {
+    const a = s.page;
+    await openFile(a, SCHED);
+    const b = await openAnotherTab(s, a);
+    await openFile(b, SCHED);
+    await waitSaved(a);
+    await waitSaved(b);
+    const base = disk();
+    const port = Number(new URL(s.server.url).port);
+    const token = s.server.token;
+    await s.server.close();
+    try {
+      await a.bringToFront();
+      await placeCursor(a, 'MSC;', 4);
+      await a.keyboard.insertText(' // A says this');
+      await a.locator('#status-save.error').waitFor({ timeout: 10_000 });
+      await b.bringToFront();
+      await placeCursor(b, 'MSC;', 4);
+      await b.keyboard.insertText(' // B says that');
+      await b.locator('#status-save.error').waitFor({ timeout: 10_000 });
+    } finally {
+      s.server = await startIdeServer({ workspace: s.workspace, port, buildService: false, token });
+    }
+    // one of them saves first; the other's save is refused as stale and, overlapping, asks its user
+    await expect.poll(disk, { timeout: 30_000 }).not.toBe(base);
+    const winner = disk().includes('// A says this') ? a : b;
+    const loser = winner === a ? b : a;
+    await loser.locator('.conflict-overlay').waitFor({ timeout: 30_000 });
+    // the loser's copy stays in the browser while it is asked; the winner, saved, leaves it to it
+    await winner.waitForTimeout(4000);
+    expect(await winner.locator('.conflict-overlay').count()).toBe(0);
+    expect((await copies(winner)).length).toBe(1);
+    await shot(loser, 'offline-two-tabs-02-overlap-asked');
+    await loser.locator('#conflict-take-theirs').click().catch(() => undefined);
+    await loser.close();
+  }, 90_000);
 });
