@@ -280,7 +280,7 @@ describe('Monitor: its first diagram laid out as it opens', () => {
     await s?.close();
   });
 
-  it('each schema is laid out once for its pane: no layout asked twice, and folded tries stop when folding shows no more of it (the tutorial\'s first schema was laid out 4 times)', async () => {
+  it('no layout asked of ELK twice as it opens, and the folded tries stop when folding shows no more of the schema (the tutorial\'s first schema was laid out 4 times, now 2)', async () => {
     const { page } = s;
     await page.waitForFunction(() => performance.getEntriesByName('ide:layout-warmed').length > 0, undefined, { timeout: 20_000 });
     await page.evaluate(() => ((window as unknown as { __elkAsked: string[] }).__elkAsked = [])); // the warm-up's left out
