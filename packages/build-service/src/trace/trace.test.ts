@@ -729,6 +729,44 @@ describe('reading a log', () => {
     });
 });
 
+describe("a supervisor's undo that reached ORD's mailbox after ORD's last read of it", () => {
+    // field test 68: a service manager's stop signalled ORD itself; BSE's undo at the stop was sent, ORD ended without serving it
+    const bse = (lines: string[]) => [CSV_HEADER, '1000000000,w,BSE,supervisor,ORD,,0,"activate schema fastLoop() (activation #4, to ORD)"', ...lines, ''].join('\n');
+    const ord = (lines: string[]) => [CSV_HEADER, '1000100000,w,ORD,scheduler,,,0,activate fastLoop (activation #4 from BSE)', ...lines, ''].join('\n');
+    const story = (b: string[], o: string[]) => renderStory(parseTrace([{ name: 'BSE_1.csv', text: bse(b) }, { name: 'ORD_1.csv', text: ord(o) }]));
+
+    it('tells with ORD\'s end the undo it never served, as of a run that was stopping', () => {
+        const lines = story([
+            '6000000000,w,BSE,request_received,contract-launch,,0,KILL',
+            '6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"',
+            '6000000200,w,BSE,supervisor,,,0,function drive stopped',
+        ], [
+            '6000000050,w,ORD,request_received,contract-launch,,0,KILL',
+            '6000000300,w,ORD,module_exit,,,0,status=0 records=3',
+        ]);
+        expect(lines).toContain('+5.000000s ORD  exited (status=0 records=3); while the run stopped: ORD ended before it served BSE\'s undo: deactivate schema fastLoop (activation #4): ' +
+            'fastLoop stayed active to its end (the undo reached ORD\'s mailbox after ORD\'s last read of it)');
+    });
+
+    it('says nothing more when ORD served the undo, or when the undo was not sent (its own record tells it)', () => {
+        const served = story(['6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"'], [
+            '6000000200,w,ORD,scheduler,,,0,deactivate fastLoop (activation #4 from BSE)',
+            '6000000300,w,ORD,module_exit,,,0,status=0 records=3',
+        ]);
+        expect(served).toContain('+5.000000s ORD  exited (status=0 records=3)');
+        const notSent = story([
+            '6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"',
+            '6000000150,w,BSE,error,,,0,"STOP request to ORD: not sent, it has ended (its stop came first; the run is stopping)"',
+        ], ['6000000300,w,ORD,module_exit,,,0,status=0 records=3']);
+        expect(notSent).toContain('+5.000000s ORD  exited (status=0 records=3)');
+        expect(notSent).toContain('+5.000000s BSE  while the run stopped: STOP request to ORD: not sent, it has ended (its stop came first; the run is stopping)');
+        // ORD crashed during the run with the undo in its mailbox: told without "while the run stopped"
+        const crashed = story(['6000000100,w,BSE,supervisor,ORD,,0,"undo: deactivate schema fastLoop (activation #4, to ORD)"'],
+            ['6000000300,w,ORD,module_exit,,,0,status=3 records=3']);
+        expect(crashed.find((l) => l.includes('ORD  exited'))).toMatch(/records=3\); ORD ended before it served BSE's undo: deactivate schema fastLoop \(activation #4\)/);
+    });
+});
+
 describe("a supervisor's requests kept for a full mailbox", () => {
     it('reads the request kept as a word, and the counts and the time of their end as numbers', () => {
         expect((parseRecordLine('SUP.csv', 2, '5100000000,w,SUP,requests_kept,VEL,,0,request=STOP') as KnownRecord).fields).toEqual({ request: 'STOP' });
