@@ -5,7 +5,7 @@
  *
  *   contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']
  *                   [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']
- *                   [--cpus LIST] [--pm-qos-us N] EXECUTABLE...
+ *                   [--cpus LIST] [--pm-qos-us N] [--require-realtime] EXECUTABLE...
  *
  * Stopping (end of --duration, SIGINT, SIGTERM, --kill): the modules named by --stop-first (the
  * generated Makefile names the supervisors) get their KILL request first and the launcher waits
@@ -109,7 +109,7 @@ static void usage(void)
     fprintf(stderr,
             "usage: contract-launch [--run-dir DIR] [--log-dir DIR] [--start 'SUP.function(p=v,...)']\n"
             "                       [--duration SECONDS] [--ready-timeout SECONDS] [--stop-first 'NAME ...']\n"
-            "                       [--cpus LIST] [--pm-qos-us N] EXECUTABLE...\n"
+            "                       [--cpus LIST] [--pm-qos-us N] [--require-realtime] EXECUTABLE...\n"
             "       contract-launch --kill RUN_DIR\n"
             "       contract-launch --term-why CODE PID\n");
 }
@@ -510,8 +510,6 @@ static int first_ended(void)
     return 1;
 }
 
-/* Poll outputs and signals until `deadline`, until `reached()` (may be NULL) or until stop is asked.
- * Returns 1 if a stop signal came. */
 /* Forwards what the modules have already written (their pipes are non-blocking): a module's
  * output from before what the launcher does next (its `init done` before `started P.mission`)
  * comes out before the launcher's line about it. Bounded: a module that writes without end
@@ -528,6 +526,21 @@ static void drain_output(void)
     }
 }
 
+/* A stop signal while the run already stops (a service manager's stop sends SIGTERM to make, the
+ * launcher and every module at once: make passes its own on, each module started by the launcher
+ * passes its own on too, core.c): the stop goes on as it is, supervisors first, bounded by its
+ * waits (stop_waits); it is said once, with who sent it. */
+static void stop_signal_while_stopping(const struct signalfd_siginfo *si)
+{
+    static int said;
+    if (said++) return;
+    const char *name = si->ssi_signo == SIGINT ? "SIGINT" : si->ssi_signo == SIGHUP ? "SIGHUP" : "SIGTERM";
+    say("%s (from pid %u) while the run stops: the stop goes on in order (the supervisors first, then the others)",
+        name, si->ssi_pid);
+}
+
+/* Poll outputs and signals until `deadline`, until `reached()` (may be NULL) or until stop is asked.
+ * Returns 1 if a stop signal came; while the run stops (stop_all), a stop signal ends no wait. */
 static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
 {
     for (;;) {
@@ -552,6 +565,7 @@ static int run_loop(int sfd, RTIME deadline, int (*reached)(void))
             struct signalfd_siginfo si;
             while (read(sfd, &si, sizeof si) == (ssize_t)sizeof si) {
                 if (si.ssi_signo == SIGCHLD) reap();
+                else if (stopping) stop_signal_while_stopping(&si);
                 else {
                     stop = stop_signalled = 1;
                     if (si.ssi_signo == SIGTERM && si.ssi_code == SI_QUEUE && !stop_why) stop_why = stop_reason(si.ssi_int);
@@ -624,10 +638,14 @@ static void stop_all(int sfd)
     mark_stopping();
     StopWaits w = stop_waits();
     if (send_kills(1) > 0) {
-        run_loop(sfd, now_ns() + w.first, first_ended);
+        RTIME until = now_ns() + w.first;
+        run_loop(sfd, until, first_ended);
+        int waited = now_ns() >= until; /* else the wait ended early (poll failed): said as such */
         for (int i = 0; i < n_children; i++)
-            if (children[i].alive && stops_first(children[i].name))
-                say("module %s did not end within %g s: stopping the others", children[i].name, (double)w.first / 1e9);
+            if (children[i].alive && stops_first(children[i].name)) {
+                if (waited) say("module %s did not end within %g s: stopping the others", children[i].name, (double)w.first / 1e9);
+                else say("module %s has not ended yet: stopping the others (the wait for it could not go on)", children[i].name);
+            }
     }
     send_kills(0);
     run_loop(sfd, now_ns() + w.kill, all_ended);
@@ -645,6 +663,36 @@ static void stop_all(int sfd)
     /* leftover children of modules (same process group) */
     for (int i = 0; i < n_children; i++) kill(-children[i].pid, SIGKILL);
     drain_outputs(w.last);
+}
+
+/* --require-realtime ($CONTRACT_REQUIRE_REALTIME=1): whether a process of this user, here, may take
+ * SCHED_FIFO (a child tries it: the launcher's own policy is left as it is). 0 when it may; else
+ * the reason said, and the architecture is not started. */
+static int check_realtime_permitted(void)
+{
+    const char *mode = getenv("CONTRACT_SCHED");
+    if (mode && strcmp(mode, "other") == 0) {
+        say("real-time is required (--require-realtime, %s=1) but CONTRACT_SCHED=other asks the modules for nice levels: nothing started",
+            CONTRACT_REQUIRE_REALTIME_ENV);
+        return -1;
+    }
+    pid_t pid = fork();
+    if (pid < 0) { say("fork: %s", strerror(errno)); return -1; }
+    if (pid == 0) {
+        struct sched_param sp = { .sched_priority = 1 };
+        _exit(sched_setscheduler(0, SCHED_FIFO, &sp) == 0 ? 0 : errno & 0xff);
+    }
+    int status = 0;
+    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {}
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0) return 0;
+    int err = WIFEXITED(status) ? WEXITSTATUS(status) : EPERM;
+    struct rlimit rl;
+    char limit[48] = "";
+    if (getrlimit(RLIMIT_RTPRIO, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
+        snprintf(limit, sizeof limit, "; RLIMIT_RTPRIO is %llu", (unsigned long long)rl.rlim_cur);
+    say("real-time is required (--require-realtime, %s=1) but SCHED_FIFO is not permitted here (%s%s): nothing started. %s",
+        CONTRACT_REQUIRE_REALTIME_ENV, strerror(err), limit, CONTRACT_REALTIME_HOWTO);
+    return -1;
 }
 
 /* The run's end: `deadline` (its duration from the start request), or CONTRACT_END_BY_S after the
@@ -715,6 +763,7 @@ int main(int argc, char *argv[])
     }
     RTIME launched = now_ns();
     double duration = -1, ready_timeout = 10;
+    int require_realtime = rt_realtime_required();
     int i = 1;
     for (; i < argc; i++) {
         const char *a = argv[i];
@@ -727,6 +776,7 @@ int main(int argc, char *argv[])
             return term_why_mode(argv[i + 1], argv[i + 2]);
         }
         if (strcmp(a, "--help") == 0 || strcmp(a, "-h") == 0) { usage(); return 0; }
+        if (strcmp(a, "--require-realtime") == 0) { require_realtime = 1; continue; }
         if (a[0] != '-' || strcmp(a, "--") == 0) { if (strcmp(a, "--") == 0) i++; break; }
         if (i + 1 >= argc) { say("option %s needs a value", a); usage(); return 2; }
         const char *v = argv[++i];
@@ -752,6 +802,10 @@ int main(int argc, char *argv[])
         pin_modules = 1;
     }
     if (pm_qos && *pm_qos && rt_parse_pm_qos_us(pm_qos, &pm_qos_us, rt_err, sizeof rt_err) != 0) { say("%s", rt_err); return 2; }
+    if (require_realtime) {
+        if (check_realtime_permitted() != 0) return 2;
+        setenv(CONTRACT_REQUIRE_REALTIME_ENV, "1", 1); /* each module asks it at its own priority (priority.c) */
+    }
     if (i >= argc) { say("no module executable given"); usage(); return 2; }
     if (argc - i > MAX_MODULES) { say("too many modules: %d module executables given, at most %d (ORD and the supervisors count)", argc - i, MAX_MODULES); return 2; }
     for (int k = i; k < argc; k++) {
@@ -777,6 +831,11 @@ int main(int argc, char *argv[])
     fprintf(lp, "%ld\n", (long)getpid());
     fclose(lp);
     setenv("CONTRACT_RUN_DIR", run_dir, 1);
+    { /* the modules leave a stop signal another process sends them to the launcher (core.c) */
+        char pid_text[24];
+        snprintf(pid_text, sizeof pid_text, "%ld", (long)getpid());
+        setenv(CONTRACT_LAUNCHER_PID_ENV, pid_text, 1);
+    }
     { /* a launcher that died while stopping left its mark: this run is not stopping */
         char stale[PATH_MAX + 32];
         if (stopping_file(stale, sizeof stale)) unlink(stale);
@@ -838,6 +897,14 @@ int main(int argc, char *argv[])
                 children[k].name, ready_timeout);
         }
     if (not_ready) stop = 1;
+    /* required real time: a module refused SCHED_FIFO at its priority ended (it said why): the
+     * architecture would run without it */
+    for (int k = 0; k < n_children && !stop && require_realtime; k++)
+        if (children[k].failed) {
+            say("module %s ended before the start, and real-time is required: the architecture does not run without it; the run stops without its start request",
+                children[k].name);
+            stop = 1;
+        }
     if (!stop) say("%d module(s) running", alive_count());
     if (!stop && start && *start) send_start(start);
     if (!stop) {

@@ -379,8 +379,44 @@ static int log_dying; /* a handler writes the log's last records (only one: the 
  * in its own code, which the launcher terminates at the stop, would lose what it did before: its
  * buffer is written only when it calls the library), then its files are removed and it dies by the
  * signal. Async-signal-safe (rt_log_at_signal). */
-static void on_fatal_signal(int sig)
+static pid_t launcher_pid; /* $CONTRACT_LAUNCHER_PID: the launcher that started this module, 0 when none */
+
+/* Decimal digits of v at the end of buf (of `size`); returns where they begin. Async-signal-safe. */
+static char *digits_of(long v, char *buf, size_t size)
 {
+    char *p = buf + size;
+    *--p = '\0';
+    do { *--p = (char)('0' + v % 10); v /= 10; } while (v > 0 && p > buf);
+    return p;
+}
+
+/* A stop signal from another process than the launcher that started this module (and still is its
+ * parent): passed to the launcher, which stops the architecture in order, and said on stderr
+ * (rt_install_signal_cleanup). 1 when it was passed on. Async-signal-safe. */
+static int pass_stop_to_launcher(int sig, const siginfo_t *si)
+{
+    if (launcher_pid <= 0 || getppid() != launcher_pid) return 0;
+    if (si && si->si_code <= 0 && si->si_pid == launcher_pid) return 0; /* the launcher's own: end */
+    if (kill(launcher_pid, sig) != 0) return 0;
+    char from[24], to[24], line[CONTRACT_NAME_MAX + 320];
+    const char *name = sig == SIGINT ? "SIGINT" : sig == SIGHUP ? "SIGHUP" : "SIGTERM";
+    const char *parts[] = { self_name(), ": ", name, si && si->si_code <= 0 ? " from pid " : " from the kernel",
+                            si && si->si_code <= 0 ? digits_of((long)si->si_pid, from, sizeof from) : "",
+                            " passed to contract-launch (pid ", digits_of((long)launcher_pid, to, sizeof to),
+                            "): it stops the architecture in order, the supervisors first\n" };
+    size_t len = 0;
+    for (size_t i = 0; i < sizeof parts / sizeof parts[0]; i++)
+        for (const char *c = parts[i]; *c && len < sizeof line; c++) line[len++] = *c;
+    ssize_t w = write(STDERR_FILENO, line, len);
+    (void)w;
+    return 1;
+}
+
+static void on_fatal_signal(int sig, siginfo_t *si, void *context)
+{
+    (void)context;
+    int saved = errno;
+    if (pass_stop_to_launcher(sig, si)) { errno = saved; return; }
     if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) rt_log_at_signal(sig, 0);
     remove_created_files(); /* unlinkat / rmdir are async-signal-safe */
     signal(sig, SIG_DFL);
@@ -414,11 +450,19 @@ static void on_crash_signal(int sig)
 
 void rt_install_signal_cleanup(void)
 {
+    const char *launcher = getenv(CONTRACT_LAUNCHER_PID_ENV);
+    char *end;
+    long lp = launcher && *launcher ? strtol(launcher, &end, 10) : 0;
+    launcher_pid = lp > 1 && *end == '\0' ? (pid_t)lp : 0;
     struct sigaction sa;
     memset(&sa, 0, sizeof sa);
-    sa.sa_handler = on_fatal_signal;
+    sa.sa_sigaction = on_fatal_signal;
     sigemptyset(&sa.sa_mask);
-    sa.sa_flags = SA_RESETHAND;
+    /* the stop signals wait for each other's handler; each is set back to SIG_DFL as it ends the process */
+    sigaddset(&sa.sa_mask, SIGTERM);
+    sigaddset(&sa.sa_mask, SIGINT);
+    sigaddset(&sa.sa_mask, SIGHUP);
+    sa.sa_flags = SA_SIGINFO;
     sigaction(SIGTERM, &sa, NULL);
     sigaction(SIGINT, &sa, NULL);
     sigaction(SIGHUP, &sa, NULL);

@@ -96,7 +96,14 @@ const char *rt_request_name(int type);
 const char *rt_ack_name(int ack);
 int rt_write_pid_file(void);
 void rt_mark_ready(void);
+/* SIGTERM, SIGINT, SIGHUP end the module (its log's last records written, its files removed), but
+ * one a module started by contract-launch gets from another process (a service manager's stop,
+ * which signals every process of the service at once; `kill PID` by hand) is passed to the
+ * launcher, which stops the whole architecture in order: the supervisors first, so that their undo
+ * still reaches ORD. The launcher's pid is $CONTRACT_LAUNCHER_PID (the launcher sets it); a module
+ * whose parent is not that process any more (the launcher died) ends on the signal as before. */
 void rt_install_signal_cleanup(void);
+#define CONTRACT_LAUNCHER_PID_ENV "CONTRACT_LAUNCHER_PID"
 
 /* mailbox.c */
 int rt_send_request_to(const char *module, RequestMessage *msg);
@@ -118,6 +125,13 @@ int rt_outbox_holds(const char *module);
 int rt_outbox_add(const char *module, const RequestMessage *request, size_t len);
 void rt_outbox_drain(void); /* at exit: tries the kept requests 0.5 s more, then fails those left */
 
+/* priority.c: $CONTRACT_REQUIRE_REALTIME=1 asks for SCHED_FIFO or no run (1 when it does); the
+ * ways to grant it, said by the module refused it and by contract-launch. */
+#define CONTRACT_REQUIRE_REALTIME_ENV "CONTRACT_REQUIRE_REALTIME"
+#define CONTRACT_REALTIME_HOWTO "Grant real-time priorities: run as root, or give the process CAP_SYS_NICE " \
+    "(systemd: AmbientCapabilities=CAP_SYS_NICE), or raise the user's rtprio limit (a line `USER - rtprio 99` " \
+    "in /etc/security/limits.d/, then log in again; systemd: LimitRTPRIO=99); check with `ulimit -r`"
+int rt_realtime_required(void);
 /* priority.c: apply `priority` to this process without a stderr warning (requests from a
  * supervisor). Returns 1 SCHED_FIFO, 0 nice, CONTRACT_EPERM (errno set) when not permitted. */
 int rt_apply_priority(int priority, const char *requester);

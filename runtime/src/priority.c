@@ -41,6 +41,15 @@ static int try_fifo(int priority)
 
 int ContractPriority(void) { return g_rt.priority; }
 
+/* $CONTRACT_REQUIRE_REALTIME=1 (`make run REQUIRE_REALTIME=1`): a module refused SCHED_FIFO at its
+ * priority does not run at a nice level instead: it says how to grant it and ends (status 2),
+ * before it is ready, and contract-launch stops the run without its start (docs/deploying.md). */
+int rt_realtime_required(void)
+{
+    const char *v = getenv(CONTRACT_REQUIRE_REALTIME_ENV);
+    return v && strcmp(v, "1") == 0;
+}
+
 int ContractSetPriority(int priority)
 {
     priority = clamp(priority);
@@ -53,6 +62,17 @@ int ContractSetPriority(int priority)
         return 1;
     }
     int err = errno;
+    if (want_fifo && rt_realtime_required()) {
+        struct rlimit rl;
+        char limit[48] = "";
+        if (getrlimit(RLIMIT_RTPRIO, &rl) == 0 && rl.rlim_cur != RLIM_INFINITY)
+            snprintf(limit, sizeof limit, " (RLIMIT_RTPRIO is %llu)", (unsigned long long)rl.rlim_cur);
+        fprintf(stderr, "%s: error: SCHED_FIFO priority %d not permitted (%s)%s and real-time is required (%s=1): "
+                "not starting. %s\n", g_rt.name[0] ? g_rt.name : "libmodule", priority, strerror(err), limit,
+                CONTRACT_REQUIRE_REALTIME_ENV, CONTRACT_REALTIME_HOWTO);
+        ContractLog("priority", "", -1, 0, "SCHED_FIFO refused: real-time required, not starting");
+        exit(2);
+    }
     int nice_level = nice_of(priority);
     int ok = setpriority(PRIO_PROCESS, 0, nice_level) == 0;
     g_rt.priority = priority;

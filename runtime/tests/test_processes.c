@@ -10,8 +10,11 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <linux/capability.h>
+#include <sys/prctl.h>
 #include <sys/resource.h>
 #include <sys/stat.h>
+#include <sys/syscall.h>
 #include <sys/wait.h>
 #include <unistd.h>
 #include "harness.h"
@@ -861,6 +864,115 @@ void test_launcher_module_bound(void)
     text = h_read_file(out);
     snprintf(want, sizeof want, "contract-launch: too many modules: %d module executables given, at most %d", MAX + 1, MAX);
     CHECK_MSG(text && strstr(text, want), "%d modules: %s", MAX + 1, text ? text : "(no output)");
+    free(text);
+    h_teardown();
+}
+
+/* This process without the right to SCHED_FIFO above priority `rtprio` (0: none): RLIMIT_RTPRIO,
+ * and no CAP_SYS_NICE, dropped from the bounding set too, so that a test run as root is refused
+ * as an unprivileged user is (the executables it starts then get none either). */
+static void without_realtime_rights(rlim_t rtprio)
+{
+    struct rlimit rl = { rtprio, rtprio };
+    setrlimit(RLIMIT_RTPRIO, &rl);
+    prctl(PR_CAPBSET_DROP, CAP_SYS_NICE, 0, 0, 0);
+    struct __user_cap_header_struct hdr = { _LINUX_CAPABILITY_VERSION_3, 0 };
+    struct __user_cap_data_struct caps[2];
+    if (syscall(SYS_capget, &hdr, caps) != 0) return;
+    uint32_t bit = 1u << (CAP_SYS_NICE % 32);
+    caps[CAP_SYS_NICE / 32].effective &= ~bit;
+    caps[CAP_SYS_NICE / 32].permitted &= ~bit;
+    caps[CAP_SYS_NICE / 32].inheritable &= ~bit;
+    syscall(SYS_capset, &hdr, caps);
+}
+
+/* contract-launch without real-time rights above `rtprio`, `require` as $CONTRACT_REQUIRE_REALTIME
+ * (NULL: unset), the modules asking SCHED_FIFO (no CONTRACT_SCHED=other); its exit status. */
+static int launch_without_realtime(char *const argv[], const char *out, rlim_t rtprio, const char *require)
+{
+    char path[1024];
+    snprintf(path, sizeof path, "%s/contract-launch", h_bin_dir);
+    pid_t pid = fork();
+    if (pid == 0) {
+        without_realtime_rights(rtprio);
+        unsetenv("CONTRACT_SCHED");
+        if (require) setenv("CONTRACT_REQUIRE_REALTIME", require, 1);
+        else unsetenv("CONTRACT_REQUIRE_REALTIME");
+        int fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        execv(path, argv);
+        _exit(127);
+    }
+    return h_wait_exit(pid, 15000);
+}
+
+/* Required real time (field test 68: a run as a user without rights went on at nice levels, exit 0):
+ * --require-realtime or CONTRACT_REQUIRE_REALTIME=1 refuses to start anything when SCHED_FIFO is not
+ * permitted, saying how to grant it; a module refused its own priority (the limit below it) ends
+ * before the start and the run stops without it; without the requirement the run goes on as before. */
+void test_launcher_require_realtime(void)
+{
+    REQUIRE(h_setup("realtime") == 0);
+    char exe_p[1024], out[600];
+    snprintf(exe_p, sizeof exe_p, "%s/P", h_bin_dir);
+    snprintf(out, sizeof out, "%s/realtime.out", h_work_dir);
+    char *flag[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "0.3", "--require-realtime", exe_p, NULL };
+    char *plain[] = { "contract-launch", "--run-dir", h_run_dir, "--log-dir", h_log_dir, "--duration", "0.3", exe_p, NULL };
+    const char *refused = "contract-launch: real-time is required (--require-realtime, CONTRACT_REQUIRE_REALTIME=1) but SCHED_FIFO is not "
+                          "permitted here (Operation not permitted; RLIMIT_RTPRIO is 0): nothing started. Grant real-time priorities: run as root";
+    for (int env = 0; env < 2; env++) {
+        CHECK(launch_without_realtime(env ? plain : flag, out, 0, env ? "1" : NULL) == 2);
+        char *text = h_read_file(out);
+        CHECK_MSG(text && strstr(text, refused) && strstr(text, "LimitRTPRIO=99") && strstr(text, "/etc/security/limits.d/") &&
+                  strstr(text, "CAP_SYS_NICE") && !strstr(text, "[P]") && !strstr(text, "run directory"),
+                  "%s: %s", env ? "CONTRACT_REQUIRE_REALTIME=1" : "--require-realtime", text ? text : "(no output)");
+        free(text);
+    }
+    /* SCHED_FIFO 1 permitted, P's priority 30 not: P says so and ends, the run stops without its start
+     * (raising RLIMIT_RTPRIO's hard limit to 1 needs CAP_SYS_RESOURCE: where this test has none, P is
+     * run alone instead, the module's half of it) */
+    struct rlimit rl;
+    int raisable = getrlimit(RLIMIT_RTPRIO, &rl) == 0 && (rl.rlim_max == RLIM_INFINITY || rl.rlim_max >= 1);
+    pid_t probe = raisable ? -1 : fork();
+    if (probe == 0) { struct rlimit one = { 1, 1 }; _exit(setrlimit(RLIMIT_RTPRIO, &one) == 0 ? 0 : 1); }
+    if (probe > 0) raisable = h_wait_exit(probe, 3000) == 0;
+    const char *p_refused = "P: error: SCHED_FIFO priority 30 not permitted (Operation not permitted) (RLIMIT_RTPRIO is %d) and real-time is "
+                            "required (CONTRACT_REQUIRE_REALTIME=1): not starting. Grant real-time priorities";
+    char want[400];
+    char *text;
+    if (raisable) {
+        CHECK(launch_without_realtime(flag, out, 1, NULL) == 1);
+        text = h_read_file(out);
+        snprintf(want, sizeof want, p_refused, 1);
+        CHECK_MSG(text && strstr(text, want) &&
+                  strstr(text, "module P ended before the start, and real-time is required: the architecture does not run without it; the run stops without its start request"),
+                  "%s", text ? text : "(no output)");
+        free(text);
+    }
+    char *alone[] = { exe_p, NULL };
+    pid_t p = fork();
+    if (p == 0) {
+        without_realtime_rights(0);
+        unsetenv("CONTRACT_SCHED");
+        setenv("CONTRACT_REQUIRE_REALTIME", "1", 1);
+        int fd = open(out, O_WRONLY | O_CREAT | O_TRUNC, 0644);
+        if (fd >= 0) { dup2(fd, 1); dup2(fd, 2); close(fd); }
+        execv(exe_p, alone);
+        _exit(127);
+    }
+    int p_status = h_wait_exit(p, 5000);
+    if (p_status == -1) { kill(p, SIGKILL); waitpid(p, NULL, 0); }
+    CHECK(p_status == 2);
+    text = h_read_file(out);
+    snprintf(want, sizeof want, p_refused, 0);
+    CHECK_MSG(text && strstr(text, want), "%s", text ? text : "(no output)");
+    free(text);
+    CHECK(access(h_run_dir, F_OK) != 0 || pid_of(h_run_dir, "P") < 0); /* it left nothing behind */
+    /* not required: the run goes on at a nice level, as before */
+    CHECK(launch_without_realtime(plain, out, 0, NULL) == 0);
+    text = h_read_file(out);
+    CHECK_MSG(text && strstr(text, "[P] P: warning: SCHED_FIFO not permitted (Operation not permitted): priority 30 runs as nice") &&
+              strstr(text, "all modules stopped cleanly"), "%s", text ? text : "(no output)");
     free(text);
     h_teardown();
 }

@@ -39,6 +39,7 @@ void test_launcher_stop_budget(void);
 void test_stop_signal_at_startup(void);
 void test_launcher_placement(void);
 void test_launcher_module_bound(void);
+void test_launcher_require_realtime(void);
 void test_two_run_dirs(void);
 void test_control_tool(void);
 void test_priority(void);
@@ -96,6 +97,7 @@ static const TestCase ALL_TESTS[] = {
     { "stop_signal_at_startup", test_stop_signal_at_startup },
     { "launcher_placement", test_launcher_placement },
     { "launcher_module_bound", test_launcher_module_bound },
+    { "launcher_require_realtime", test_launcher_require_realtime },
     { "two_run_dirs", test_two_run_dirs },
     { "control_tool", test_control_tool },
     { "priority", test_priority },

@@ -4,7 +4,7 @@
  * kept for inspection when a check fails.
  * Usage: itest <dir with the test executables> <contract-launch>. Prints "N passed, N failed".
  * ITEST_ONLY=name[,name…] runs only those scenarios (scheduler, nested, shared, reactivation,
- * toggles, toggles-paused, undo, late-priority, crossed-claims, stuck, crashed, kept-stop, output-flood, event-flood): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
+ * toggles, toggles-paused, undo, late-priority, crossed-claims, stuck, crashed, kept-stop, service-stop, output-flood, event-flood): to repeat one that failed, e.g. ITEST_ONLY=toggles in a loop.
  * ITEST_KEEP=1 keeps the directory when every check passed too.
  */
 #define _GNU_SOURCE
@@ -29,6 +29,7 @@ static const struct {
                  {"stuck", scenario_stuck_module},
                  {"crashed", scenario_crashed_module},
                  {"kept-stop", scenario_kept_stop},
+                 {"service-stop", scenario_service_stop},
                  {"output-flood", scenario_output_flood},
                  {"event-flood", scenario_event_flood}};
 #define NSCENARIOS (sizeof SCENARIOS / sizeof SCENARIOS[0])

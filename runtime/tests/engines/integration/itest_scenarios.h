@@ -36,6 +36,9 @@ void scenario_crashed_module(const char *root, const char *bin, const char *laun
 /** SKS's undo (the STOP of AMS, busy in its own code, its mailbox full of SKS's values) is kept,
  *  fails 2 s later, and is tied back to its action: `error: not sent: ...`, its hold "still runs". */
 void scenario_kept_stop(const char *root, const char *bin, const char *launcher);
+/** A service manager's stop (SIGTERM to the launcher, twice, and to every module at once): the
+ *  stop still goes supervisors first, RSU's undo reaches ORD (no module ends on that SIGTERM). */
+void scenario_service_stop(const char *root, const char *bin, const char *launcher);
 
 /** SKS activates FLD (1 ms) whose FLM takes 3 ms a release: ORD's deadline-miss and overrun lines
  *  on stdout stay a few a second (each kind once a second, then its count), its CSV log has each. */

@@ -50,8 +50,8 @@ int scenario_begin(Scenario *s, const char *root, const char *name) {
 
 int scenario_failed(const Scenario *s) { return failed > s->failed_before; }
 
-int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
-                    const char *duration, const char *const *names) {
+pid_t scenario_spawn(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
+                     const char *duration, const char *const *names) {
     enum { MAX_EXE = 16 };
     static char exe[MAX_EXE][512];
     const char *argv[MAX_EXE + 14];
@@ -63,8 +63,10 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
     argv[n++] = s->logs;
     argv[n++] = "--start";
     argv[n++] = start;
-    argv[n++] = "--duration";
-    argv[n++] = duration;
+    if (duration) {
+        argv[n++] = "--duration";
+        argv[n++] = duration;
+    }
     if (s->stop_first) {
         argv[n++] = "--stop-first";
         argv[n++] = s->stop_first;
@@ -75,16 +77,20 @@ int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher
     }
     argv[n] = NULL;
     pid_t pid = fork();
-    if (pid < 0) {
-        perror("fork");
-        return 0;
-    }
+    if (pid < 0) perror("fork");
     if (pid == 0) {
         FILE *o = freopen(s->launch, "w", stdout);
         if (!o || dup2(fileno(stdout), 2) < 0) _exit(127);
         execv(launcher, (char *const *)argv);
         _exit(127);
     }
+    return pid;
+}
+
+int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
+                    const char *duration, const char *const *names) {
+    pid_t pid = scenario_spawn(s, bin_dir, launcher, start, duration, names);
+    if (pid < 0) return 0;
     int st = 0;
     if (waitpid(pid, &st, 0) != pid) return 0;
     return WIFEXITED(st) && WEXITSTATUS(st) == 0;

@@ -7,6 +7,7 @@
 #define ITEST_SUPPORT_H
 
 #include <stddef.h>
+#include <sys/types.h>
 
 /** Records one check ("ok  " / "FAIL" line on stdout). Returns ok. */
 int check(int ok, const char *what);
@@ -31,6 +32,10 @@ typedef struct Scenario {
 int scenario_begin(Scenario *s, const char *root, const char *name);
 /** 1 if a check of this scenario failed (then print what helps to understand it). */
 int scenario_failed(const Scenario *s);
+/** Starts contract-launch as scenario_launch does (`duration` NULL: none, it runs until stopped),
+ *  without waiting for it; its pid, or -1. */
+pid_t scenario_spawn(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
+                     const char *duration, const char *const *names);
 /** Runs contract-launch with `start` for `duration` seconds on the executables `names` (NULL
  *  terminated) of `bin_dir`. Returns 1 if the launcher exited 0. */
 int scenario_launch(const Scenario *s, const char *bin_dir, const char *launcher, const char *start,
