@@ -7,7 +7,7 @@
  * by `echo`, the second test reads the command line: the supervisors are given to `--stop-first`.
  */
 import { spawnSync } from 'node:child_process';
-import { cpSync, existsSync, mkdirSync, readdirSync, utimesSync, writeFileSync } from 'node:fs';
+import { chmodSync, cpSync, existsSync, mkdirSync, readdirSync, utimesSync, writeFileSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { fileURLToPath } from 'node:url';
 import { afterAll, describe, expect, it } from 'vitest';
@@ -18,8 +18,12 @@ const MAKEFILE = join(REPO, 'examples', 'tutorial', 'src-gen', 'generated', 'arc
 const { dir: root, cleanup } = tempDir('codegen-make-run-');
 afterAll(() => cleanup());
 
-function makeRun(arch: string, logDir: string): { status: number | null; out: string } {
-    const r = spawnSync('make', ['-s', '-o', 'all', 'run', 'LAUNCH=true', `LOG_DIR=${logDir}`, `CONTRACT_RUNTIME=${join(REPO, 'runtime')}`], { cwd: arch, encoding: 'utf8' });
+/** `make run` with the launcher replaced by `true`; `asUser` (root only): as that user (setpriv). */
+function makeRun(arch: string, logDir: string, asUser?: string): { status: number | null; out: string } {
+    const args = ['-s', '-o', 'all', 'run', 'LAUNCH=true', `LOG_DIR=${logDir}`, `CONTRACT_RUNTIME=${join(REPO, 'runtime')}`];
+    const r = asUser
+        ? spawnSync('setpriv', [`--reuid=${asUser}`, `--regid=${asUser === 'nobody' ? 'nogroup' : asUser}`, '--clear-groups', 'make', ...args], { cwd: arch, encoding: 'utf8' })
+        : spawnSync('make', args, { cwd: arch, encoding: 'utf8' });
     return { status: r.status, out: `${r.stdout}${r.stderr}` };
 }
 
@@ -66,6 +70,55 @@ describe('make run: one run per LOG_DIR', () => {
         expect(readdirSync(join(logs, 'previous')).sort()).toEqual([stamp(newest), `${stamp(newest)}-2`]);
         expect(readdirSync(join(logs, 'previous', `${stamp(newest)}-2`))).toEqual(['MAA_28-Nov-2026-09h30m07s.csv']);
         expect(readdirSync(to)).toHaveLength(2);
+    });
+});
+
+describe('make run: a logs folder it may not write', () => {
+    const asRoot = process.getuid?.() === 0;
+    // field test 68: `make run` as a user over root's earlier logs said only mkdir's `Permission denied`
+    it.runIf(asRoot)('says whose the logs folder is and what to do, when the previous logs cannot be moved (another user\'s folder)', () => {
+        const top = join(root, 'shared');
+        mkdirSync(top);
+        chmodSync(root, 0o755);
+        chmodSync(top, 0o777);
+        const arch = join(top, 'architecture');
+        mkdirSync(arch);
+        cpSync(MAKEFILE, join(arch, 'Makefile'));
+        const logs = join(top, 'logs'); // root's, from an earlier run
+        mkdirSync(logs);
+        log(logs, 'MAA_28-Nov-2026-09h30m05s.csv', new Date(2026, 10, 28, 9, 30, 5));
+        const r = makeRun(arch, logs, 'nobody');
+        expect(r.status, r.out).toBe(2);
+        expect(r.out).toContain('Permission denied'); // mkdir's own line first
+        expect(r.out).toContain(`make run: cannot move the previous run's logs to ${join(logs, 'previous', 'run-2026-11-28T09-30-05')}: ` +
+            `the logs folder belongs to root, and this is nobody: remove it (as root: rm -rf '${logs}'), run as root, or give another LOG_DIR=`);
+        expect(readdirSync(logs)).toEqual(['MAA_28-Nov-2026-09h30m05s.csv']); // nothing lost
+    });
+
+    it.runIf(!asRoot)('says the previous logs could not be moved and what to do (a folder of this user it may not write)', () => {
+        const logs = join(root, 'read-only logs');
+        mkdirSync(logs);
+        log(logs, 'MAA_28-Nov-2026-09h30m05s.csv', new Date(2026, 10, 28, 9, 30, 5));
+        chmodSync(logs, 0o555);
+        const arch = join(root, 'ro-architecture');
+        mkdirSync(arch);
+        cpSync(MAKEFILE, join(arch, 'Makefile'));
+        const r = makeRun(arch, logs);
+        chmodSync(logs, 0o755);
+        expect(r.status, r.out).toBe(2);
+        expect(r.out).toContain("(the line above says why): move them away, or give another LOG_DIR=");
+    });
+});
+
+describe('make run: REQUIRE_REALTIME', () => {
+    it('gives contract-launch --require-realtime with REQUIRE_REALTIME=1 only', () => {
+        const arch = join(root, 'realtime');
+        mkdirSync(arch);
+        cpSync(MAKEFILE, join(arch, 'Makefile'));
+        const run = (...extra: string[]) => spawnSync('make', ['-s', '-o', 'all', 'run', 'LAUNCH=echo', `LOG_DIR=${join(root, 'realtime-logs')}`, `CONTRACT_RUNTIME=${join(REPO, 'runtime')}`, ...extra], { cwd: arch, encoding: 'utf8' });
+        expect(run('REQUIRE_REALTIME=1').stdout).toContain(' --require-realtime ');
+        expect(run().stdout).not.toContain('--require-realtime');
+        expect(run('REQUIRE_REALTIME=0').stdout).not.toContain('--require-realtime');
     });
 });
 

@@ -25,6 +25,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         #   make run      run the architecture: make run [START='SUP.fn(p={1.0,2.0})'] [DURATION=10] [RUN_DIR=dir] [LOG_DIR=dir]
         #                 [CPUS=1] (pin every module to these CPUs) [PM_QOS_US=0] (hold CPU wake-up latency; root)
         #                 [READY_TIMEOUT=10] (seconds every module's init may take before the start; else the run stops)
+        #                 [REQUIRE_REALTIME=1] (refuse to run unless the modules may run at SCHED_FIFO; also CONTRACT_REQUIRE_REALTIME=1)
         #                 one run per LOG_DIR, as contract run: the CSV logs of the run before are moved to
         #                 LOG_DIR/previous/run-<time of the newest>/ first (never deleted)
         #                 stopping (DURATION, Ctrl-C, make kill) stops the SUPERVISORS first, then the others:
@@ -42,6 +43,7 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         CPUS ?=
         PM_QOS_US ?=
         READY_TIMEOUT ?=
+        REQUIRE_REALTIME ?=
         RUN_DIR ?= $(CURDIR)/run
         LOG_DIR ?= $(CURDIR)/logs
 
@@ -60,9 +62,16 @@ export function generateArchitectureMakefile(arch: Architecture, executables: st
         	@if ls '$(LOG_DIR)'/*.csv >/dev/null 2>&1; then \\
         	  to='$(LOG_DIR)'/previous/run-$$(date -r "$$(ls -t '$(LOG_DIR)'/*.csv | head -n 1)" +%Y-%m-%dT%H-%M-%S); \\
         	  at="$$to"; n=2; while [ -e "$$to" ]; do to="$$at-$$n"; n=$$((n + 1)); done; \\
-        	  mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/ && echo "make run: the previous run's logs moved to $$to"; \\
+        	  if ! { mkdir -p "$$to" && mv '$(LOG_DIR)'/*.csv "$$to"/; }; then \\
+        	    own=$$(stat -c %U "$$(if [ -d '$(LOG_DIR)'/previous ]; then echo '$(LOG_DIR)'/previous; else echo '$(LOG_DIR)'; fi)"); \\
+        	    me=$$(id -un); \\
+        	    if [ "$$own" != "$$me" ]; then echo "make run: cannot move the previous run's logs to $$to: the logs folder belongs to $$own, and this is $$me: remove it (as $$own: rm -rf '$(LOG_DIR)'), run as $$own, or give another LOG_DIR=" >&2; \\
+        	    else echo "make run: cannot move the previous run's logs to $$to (the line above says why): move them away, or give another LOG_DIR=" >&2; fi; \\
+        	    exit 2; \\
+        	  fi; \\
+        	  echo "make run: the previous run's logs moved to $$to"; \\
         	fi
-        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(if $(READY_TIMEOUT),--ready-timeout '$(READY_TIMEOUT)') $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
+        	$(LAUNCH) --run-dir '$(RUN_DIR)' --log-dir '$(LOG_DIR)' --start '$(START)' $(if $(SUPERVISORS),--stop-first '$(SUPERVISORS)') $(if $(DURATION),--duration '$(DURATION)') $(if $(CPUS),--cpus '$(CPUS)') $(if $(PM_QOS_US),--pm-qos-us '$(PM_QOS_US)') $(if $(READY_TIMEOUT),--ready-timeout '$(READY_TIMEOUT)') $(if $(filter 1,$(REQUIRE_REALTIME)),--require-realtime) $(foreach e,$(EXECUTABLES),modules/$(e)_mod/$(e))
 
         kill:
         	$(LAUNCH) --kill '$(RUN_DIR)'
