@@ -3,7 +3,7 @@
  * code can include its header (the generated includes, those written in protected regions, and
  * what those headers include), not every executable.
  */
-import { readFileSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, utimesSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { loadWorkspace } from '@contract-studio/language/node';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -75,6 +75,29 @@ describe('the executables a datatype change rebuilds (tutorial, real make)', () 
         edit(join(dir, 'datatype.contract'), 'datatype TypeF {int fufu, int juju};', 'datatype TypeF {int fufu, int juju, int extra = 0};');
         await generate();
         expect(wouldRebuild()).toEqual(['MSA']);
+    }, 120_000);
+
+    it('a helper .c of your own in common/ (and the header it includes from a subfolder) rebuilds the module including it when edited (one at the top of common/: every executable)', async () => {
+        make('-j2', 'all');
+        mkdirSync(join(arch, 'common', 'lib'), { recursive: true });
+        writeFileSync(join(arch, 'common', 'lib', 'gain.h'), '#define GAIN 3\n');
+        writeFileSync(join(arch, 'common', 'axis_ctl.c'), '#include "lib/gain.h"\nstatic inline int helper_gain(void) { return GAIN; }\n');
+        const msb = join(arch, 'modules', 'MSB_mod', 'module.c');
+        edit(msb, '/*PROTECTED REGION ID(protect_additional_import_MSB) ENABLED START*/\n', '/*PROTECTED REGION ID(protect_additional_import_MSB) ENABLED START*/\n#include "axis_ctl.c"\n');
+        await generate();
+        make('-j2', 'all');
+        expect(wouldRebuild()).toEqual([]);
+        const touch = (file: string) => {
+            const now = new Date(); // later than the executables make just wrote
+            utimesSync(file, now, now);
+        };
+        // the header in a subfolder: MSB alone (found through the include lines)
+        touch(join(arch, 'common', 'lib', 'gain.h'));
+        expect(wouldRebuild()).toEqual(['MSB']);
+        make('-j2', 'all');
+        // a .c of your own at common/'s top: every executable (a file there may be included in ways the generator does not follow), MSB among them
+        touch(join(arch, 'common', 'axis_ctl.c'));
+        expect(wouldRebuild()).toEqual([...EXECUTABLES, ...EXECUTABLES.filter((e) => e !== 'ORD').map((e) => `control${e}`)].sort());
     }, 120_000);
 
     it('a header of common/ the generator did not write is a dependency of every executable', () => {

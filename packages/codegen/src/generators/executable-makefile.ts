@@ -21,21 +21,26 @@ export interface CommonHeaderDependencies {
  * GENERATED_COMMON_HEADERS, by name; `common` is common/ as the Makefile names it (e.g. `../../common`).
  */
 export function commonHeaderVariables(common: string, deps: CommonHeaderDependencies): string {
-    const names = (paths: string[]) => paths.map((p) => posix.basename(p));
+    // by their path in common/ (a file of your own may be in a subfolder)
+    const names = (paths: string[]) => paths.map((p) => posix.relative(COMMON_DIR, p));
     const variable = (name: string, values: string[]) => [`${name} =`, ...values].join(' ');
     return [
         deps.included !== undefined
-            ? `# the headers of ${common} this executable includes: named by its sources (protected regions too) or by the headers they include`
+            ? `# the files of ${common} this executable includes: named by its sources (protected regions too) or by the files they include`
             : `# a file could not be read when this Makefile was generated: every header of ${common}`,
         variable('COMMON_HEADERS', deps.included !== undefined ? names(deps.included) : [`$(notdir $(wildcard ${common}/*.h))`]),
-        `# the headers the generator writes in ${common}; any other header there (yours) is a dependency of every executable`,
+        `# the headers the generator writes in ${common}; any other .h, .c or .inc there (yours) is a dependency of every executable`,
         variable('GENERATED_COMMON_HEADERS', names(deps.generated)),
     ].join('\n');
 }
 
-/** The prerequisites of an executable on common/: the headers it includes, and the user's headers there. */
+/**
+ * The prerequisites of an executable on common/: the files it includes, and the C files of your own
+ * there (`.h`, `.c`, `.inc`: one added since the generation, or included by a way the generator
+ * cannot follow, rebuilds every executable: a dependency too many, never one too few).
+ */
 export function commonHeaderPrerequisites(common: string): string {
-    return `$(addprefix ${common}/,$(COMMON_HEADERS)) $(filter-out $(addprefix ${common}/,$(GENERATED_COMMON_HEADERS)),$(wildcard ${common}/*.h))`;
+    return `$(addprefix ${common}/,$(COMMON_HEADERS)) $(filter-out $(addprefix ${common}/,$(GENERATED_COMMON_HEADERS)),$(wildcard ${common}/*.h ${common}/*.c ${common}/*.inc))`;
 }
 
 /** An executable's Makefile to generate: at `path`, compiling `sources` (tree paths) in `own` (its folder). */

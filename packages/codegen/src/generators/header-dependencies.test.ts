@@ -40,7 +40,18 @@ describe('includedCommonHeaders', () => {
             [`${COMMON}/SharedA.h`]: '',
             [`${COMMON}/SharedD.h`]: '',
         });
-        expect(includedCommonHeaders([`${OWN}/module.c`], folders, GENERATED, tree)).toEqual([`${COMMON}/SharedA.h`, `${COMMON}/SharedC.h`, `${COMMON}/SharedD.h`]);
+        expect(includedCommonHeaders([`${OWN}/module.c`], folders, GENERATED, tree)).toEqual([`${COMMON}/SharedA.h`, `${COMMON}/SharedC.h`, `${COMMON}/SharedD.h`, `${COMMON}/mine.h`]);
+    });
+
+    it('names the files of your own in common/ it includes, a .c and one in a subfolder too', () => {
+        const tree = treeOf({
+            [`${OWN}/module.c`]: '/*PROTECTED REGION ID(protect_additional_import_M) ENABLED START*/\n#include "axis_ctl.c"\n/*PROTECTED REGION END*/\n',
+            [`${COMMON}/axis_ctl.c`]: '#include "lib/gain.h"\n#include "SharedA.h"\n',
+            [`${COMMON}/lib/gain.h`]: '#define GAIN 3\n',
+            [`${COMMON}/SharedA.h`]: '',
+            [`${COMMON}/unused.c`]: '',
+        });
+        expect(includedCommonHeaders([`${OWN}/module.c`], folders, GENERATED, tree)).toEqual([`${COMMON}/SharedA.h`, `${COMMON}/axis_ctl.c`, `${COMMON}/lib/gain.h`]);
     });
 
     it('ignores includes leaving the tree (the runtime\'s, the system\'s)', () => {

@@ -43,8 +43,9 @@ function candidates(including: string, line: IncludeLine, folders: IncludeFolder
 }
 
 /**
- * The headers of `generatedCommon` (tree paths of the headers the generator writes in common/)
- * that compiling `sources` can include: named by an `#include` of a source, or of a header of the
+ * The files of common/ (the headers of `generatedCommon`, the tree paths of those the generator
+ * writes there, and any file of your own there, in a subfolder too) that compiling `sources` can
+ * include: named by an `#include` of a source, or of a header of the
  * tree those include, and so on (the generated headers' own includes, those written in protected
  * regions, and those of a user's header in the tree), sorted. Every candidate of an include that
  * exists is followed (a dependency too many, never one too few). Undefined when a file could not
@@ -63,7 +64,8 @@ export function includedCommonHeaders(sources: string[], folders: IncludeFolders
                     if (seen.has(candidate) || textOf(candidate) === undefined) continue;
                     seen.add(candidate);
                     pending.push(candidate);
-                    if (generatedCommon.has(candidate)) found.add(candidate);
+                    // a generated header, or a file of your own in common/ (a helper .c, a header in a subfolder)
+                    if (generatedCommon.has(candidate) || candidate.startsWith(`${folders.common}/`)) found.add(candidate);
                 }
             }
         }
