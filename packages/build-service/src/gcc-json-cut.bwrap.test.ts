@@ -65,7 +65,7 @@ describe('a helper of your own that two modules include, built for real in bwrap
   test('its error is one problem, told once and counted once (each module compiles it again)', async () => {
     const helper = 'src-gen/generated/architecture/common/axis_helper.h';
     const MAB_MODULE = MAA_MODULE.replace(/MAA/g, 'MAB');
-    let files = { ...(await tutorialFiles()), [helper]: '/* my own helper, included by MAA and MAB */\nstatic int helper_gain = undeclared_gain_y;\n' };
+    let files: Record<string, string> = { ...(await tutorialFiles()), [helper]: '/* my own helper, included by MAA and MAB */\nstatic int helper_gain = undeclared_gain_y;\n' };
     files = withRegion(files, MAA_MODULE, 'protect_additional_import_MAA', '#include "axis_helper.h"', true);
     files = withRegion(files, MAB_MODULE, 'protect_additional_import_MAB', '#include "axis_helper.h"', true);
     const r = await postJob(served.url, { action: 'build', project: { files } });
