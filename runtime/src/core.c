@@ -423,7 +423,8 @@ static void on_fatal_signal(int sig, siginfo_t *si, void *context)
     raise(sig);
 }
 
-/* A crash of the module's code: its CSV log's records not written yet are written, then the
+/* A crash of the module's code: the crash report (crash_report.c: where it crashed, on stderr)
+ * is written, and its CSV log's records not written yet, then the
  * process dies by the same signal (the launcher's `died by signal 11`, core dump and exit status as
  * without the handler). Async-signal-safe (rt_log_at_signal). The signal is reset to SIG_DFL on entry
  * (SA_RESETHAND) and every crash signal is blocked while the handler runs: a fault in the handler
@@ -434,10 +435,11 @@ static void on_fatal_signal(int sig, siginfo_t *si, void *context)
 static const int crash_signals[] = { SIGSEGV, SIGBUS, SIGFPE, SIGILL, SIGABRT };
 static char crash_stack[64 * 1024]; /* the handler's stack: a stack overflow leaves none */
 
-static void on_crash_signal(int sig)
+static void on_crash_signal(int sig, siginfo_t *info, void *context)
 {
     int saved = errno;
     if (!__atomic_exchange_n(&log_dying, 1, __ATOMIC_SEQ_CST)) {
+        rt_crash_report_write(sig, info, context); /* where: first, the log may take up to 100 ms */
         rt_log_at_signal(sig, 1);
     } else {
         struct timespec ts = { 1, 0 };
@@ -472,10 +474,11 @@ void rt_install_signal_cleanup(void)
     int on_alt = sigaltstack(&alt, NULL) == 0;
     struct sigaction ca;
     memset(&ca, 0, sizeof ca);
-    ca.sa_handler = on_crash_signal;
+    ca.sa_sigaction = on_crash_signal;
     sigemptyset(&ca.sa_mask);
     for (size_t i = 0; i < sizeof crash_signals / sizeof crash_signals[0]; i++) sigaddset(&ca.sa_mask, crash_signals[i]);
-    ca.sa_flags = SA_RESETHAND | (on_alt ? SA_ONSTACK : 0);
+    ca.sa_flags = SA_SIGINFO | SA_RESETHAND | (on_alt ? SA_ONSTACK : 0);
+    rt_crash_report_prepare();
     for (size_t i = 0; i < sizeof crash_signals / sizeof crash_signals[0]; i++) sigaction(crash_signals[i], &ca, NULL);
 }
 

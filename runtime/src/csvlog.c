@@ -892,18 +892,6 @@ void rt_log_close(void)
     mark_close();
 }
 
-static const char *crash_signal_name(int sig)
-{
-    switch (sig) {
-    case SIGSEGV: return "SIGSEGV";
-    case SIGBUS: return "SIGBUS";
-    case SIGFPE: return "SIGFPE";
-    case SIGILL: return "SIGILL";
-    case SIGABRT: return "SIGABRT";
-    default: return "?";
-    }
-}
-
 /* The crash handler's part (core.c on_crash_signal; async-signal-safe: write, clock_gettime,
  * nanosleep, atomics; no lock, no stdio, no allocation). Writes what the log holds and has not
  * written, in order: the buffer handed to the writer (itself if the writer has not begun it, else
@@ -956,7 +944,7 @@ void rt_log_at_signal(int sig, int crashed)
     d = put_str(d, "signal ");
     d = put_u64(d, (unsigned long long)sig);
     d = put_str(d, " (");
-    d = put_str(d, crash_signal_name(sig));
+    d = put_str(d, rt_crash_signal_name(sig));
     d = put_str(d, ") records=");
     d = put_u64(d, log_records);
     *d = '\0';

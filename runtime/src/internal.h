@@ -167,6 +167,15 @@ typedef struct {
  * mark. 1 when a mark named it (out says what was done), 0 when none did. */
 int rt_log_recover(const char *dir, long pid, RecoveredLog *out);
 
+/* crash_report.c: the block a crash writes on stderr, each line beginning with RT_CRASH_MARK
+ * (its format: crash_report.c; read by the build service). rt_crash_report_prepare at start-up,
+ * rt_crash_report_write in the crash handler (async-signal-safe). */
+#define RT_CRASH_MARK "==contract-crash=="
+#include <signal.h>
+void rt_crash_report_prepare(void);
+void rt_crash_report_write(int sig, const siginfo_t *info, const void *context);
+const char *rt_crash_signal_name(int sig);
+
 /* At a fatal signal (core.c): writes what the log holds and has not written yet, then, for a crash
  * (`crashed`), a `module_crashed` record; a stop signal writes none (async-signal-safe). */
 void rt_log_at_signal(int sig, int crashed);

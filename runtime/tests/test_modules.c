@@ -1295,6 +1295,67 @@ static const char *crash_records_in_order(const char *from, int n)
     return at;
 }
 
+/* The function addr2line names for offset `off` of the test's module P (a static copy; "" when none). */
+static const char *function_at(const char *off)
+{
+    static char fn[256];
+    char cmd[1400];
+    snprintf(cmd, sizeof cmd, "addr2line -f -i -e '%s/P' %s 2>/dev/null", h_bin_dir, off);
+    fn[0] = '\0';
+    FILE *f = popen(cmd, "r");
+    if (!f) return fn;
+    if (!fgets(fn, sizeof fn, f)) fn[0] = '\0';
+    pclose(f);
+    fn[strcspn(fn, "\n")] = '\0';
+    return fn;
+}
+
+/* A crash writes one crash report on stderr (crash_report.c): the module, the signal, then the
+   frames, the first the instruction that faulted, each an offset in its object that addr2line maps
+   to the function it is in; a stack overflow too (the handler's stack is its own); the process
+   still dies by its signal. */
+void test_crash_report(void)
+{
+    static const struct { const char *how; int sig; const char *name; const char *fn; int first; } cases[] = {
+        { "segv", SIGSEGV, "SIGSEGV", "null_store", 1 }, { "fpe", SIGFPE, "SIGFPE", "divide_by_zero", 1 },
+        { "stack", SIGSEGV, "SIGSEGV", "deep", 1 }, { "abort", SIGABRT, "SIGABRT", "exec_state", 0 },
+    };
+    for (size_t c = 0; c < sizeof cases / sizeof cases[0]; c++) {
+        REQUIRE(h_setup("crashreport") == 0);
+        int status;
+        free(crash_run(cases[c].how, &status));
+        CHECK_MSG(status == 128 + cases[c].sig, "%s: the module ended with %d, not by signal %d", cases[c].how, status, cases[c].sig);
+        char out[1024];
+        snprintf(out, sizeof out, "%s/P.out", h_work_dir);
+        char *text = h_read_file(out);
+        REQUIRE(text);
+        char head[128];
+        snprintf(head, sizeof head, "==contract-crash== module P signal %d %s addr 0x", cases[c].sig, cases[c].name);
+        const char *at = strstr(text, head);
+        CHECK_MSG(at != NULL, "%s: no crash report head '%s' in: %s", cases[c].how, head, text);
+        CHECK_MSG(!at || !strstr(at + 1, "==contract-crash== module "), "%s: two crash reports", cases[c].how);
+        int frames = 0, found = 0, told = -1;
+        for (const char *line = at; line && *line; line = strchr(line, '\n') ? strchr(line, '\n') + 1 : NULL) {
+            int i;
+            char object[64], off[32];
+            if (sscanf(line, "==contract-crash== frame %d %63s %31s", &i, object, off) == 3) {
+                CHECK_MSG(i == frames, "%s: frame %d numbered %d", cases[c].how, frames, i);
+                frames++;
+                /* a caller's frame is a return address: its call is the instruction before */
+                char call[32];
+                snprintf(call, sizeof call, "0x%llx", strtoull(off, NULL, 16) - (i > 0));
+                if (strcmp(object, "exe") == 0 && (!cases[c].first || i == 0) && strcmp(function_at(call), cases[c].fn) == 0) found = 1;
+            } else if (sscanf(line, "==contract-crash== end %d frames", &told) == 1) {
+                break;
+            }
+        }
+        CHECK_MSG(frames > 0 && frames <= 48 && told == frames, "%s: %d frames, the end line says %d", cases[c].how, frames, told);
+        CHECK_MSG(found, "%s: no frame (%s) in %s: %s", cases[c].how, cases[c].first ? "the first" : "any", cases[c].fn, at ? at : text);
+        free(text);
+        h_teardown();
+    }
+}
+
 /* A module whose code crashes loses none of its records: the records it logged just before the
    crash (well inside the flush delay, still in its buffer) are written, in order, after those the
    writer thread wrote, then a `module_crashed` record; the process still dies by its signal

@@ -49,6 +49,7 @@ void test_csv_log_mark(void);
 void test_csv_log_mark_delay(void);
 void test_csv_log_flush_boundary(void);
 void test_csv_log_crash(void);
+void test_crash_report(void);
 void test_csv_log_crash_writer_busy(void);
 void test_csv_log_writer_thread(void);
 void test_csv_log_writer_refused(void);
@@ -107,6 +108,7 @@ static const TestCase ALL_TESTS[] = {
     { "csv_log_mark_delay", test_csv_log_mark_delay },
     { "csv_log_flush_boundary", test_csv_log_flush_boundary },
     { "csv_log_crash", test_csv_log_crash },
+    { "crash_report", test_crash_report },
     { "csv_log_crash_writer_busy", test_csv_log_crash_writer_busy },
     { "csv_log_writer_thread", test_csv_log_writer_thread },
     { "csv_log_writer_refused", test_csv_log_writer_refused },
