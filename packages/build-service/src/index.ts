@@ -17,5 +17,6 @@ export { SandboxRegistry, SandboxUnavailableError } from './sandbox/select.js';
 export { ARTIFACT_BOUNDS, artifactBytes, type Artifact, type ArtifactBounds, type RunArtifacts, type SkippedArtifact } from './pipeline/artifacts.js';
 export { describeIssues, type RunIssue, type RunIssueKind } from './pipeline/run-issues.js';
 export { LauncherCrashes, type LauncherFailure } from './pipeline/launcher-crashes.js';
+export { CRASH_MARK, crashSiteOfLine } from './pipeline/crash-reports.js';
 export { foreignMakefilesMessage } from './pipeline/foreign-makefiles.js';
 export type { SweepPolicy, SweepReport } from './sandbox/docker-sweep.js';

@@ -8,7 +8,7 @@ import { existsSync } from 'node:fs';
 import { join, resolve } from 'node:path';
 import { stat } from 'node:fs/promises';
 import type { GccDiagnostic, Job, JobEvent, JobResult, JobService as JobServiceType, SandboxChoice } from '@contract-studio/build-service';
-import { foreignMakefilesMessage, renderDiagnostic } from '@contract-studio/build-service';
+import { CRASH_MARK, crashSiteOfLine, foreignMakefilesMessage, renderDiagnostic } from '@contract-studio/build-service';
 import { folderOption, type ParsedArgs } from './args.js';
 import { EXIT_FAILURE, EXIT_OK, EXIT_USAGE, UsageError, type CliIO } from './command.js';
 import { addLimitOption, DEFAULT_PROCESS_LIMIT, emptyLimitOptions, modulesUnderProcessLimit, RENAME_JOURNAL_NAME, SANDBOX_CHOICES, SRC_GEN_DIR, withoutStuckAdvice, type LimitOptions } from '@contract-studio/conventions';
@@ -355,9 +355,13 @@ export function makePrinter(opts: JobOptions, io: CliIO, runLines: JobOutcome['r
             if (opts.format === 'text') io.err(`${e.line}\n`);
             return;
         }
+        // where a module crashed (the service maps its crash report): read back for `module X crashed (...) at ...`
+        if (e.step === 'run' && e.source === 'service' && crashSiteOfLine(e.line)) runLines.push({ source: e.source, stream: e.stream, line: e.line });
         if (e.step === 'run' && e.source !== 'service') {
             runLines.push({ source: e.source, stream: e.stream, line: e.line });
             if (opts.format !== 'text') return;
+            // a crashed module's crash report (its frames as offsets): the service tells where it crashed; its lines with --verbose
+            if (!opts.verbose && e.source !== 'run' && e.source !== 'launcher' && e.line.startsWith(CRASH_MARK)) return;
             if (e.source === 'run') {
                 // make's own lines (directories, recipes) only with --verbose; its errors always
                 if (opts.verbose || /\*\*\*|error/i.test(e.line)) io.err(`${e.line}\n`);

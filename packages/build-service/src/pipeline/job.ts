@@ -16,12 +16,15 @@ import { hostWorkTreeDigest } from './work-tree-digest.js';
 import { describeWorkUsage, hostWorkUsage } from './work-usage.js';
 import { artifactBoundsFor, collectRunArtifacts, hostWorkDirReader, LOG_DIR, RUN_DIR, type Artifact, type ArtifactBounds, type RunArtifacts } from './artifacts.js';
 import type { CactalProblem } from './cactal-adapter.js';
-import { beginsAsMakeDirectory, type GccDiagnostic } from './gcc-diagnostics.js';
+import { beginsAsMakeDirectory, type GccDiagnostic, type UserCopy } from './gcc-diagnostics.js';
+import type { ProtectedRegion } from './protected-regions.js';
 import { JobEvents, type JobStatus, type JobStep, type StreamName } from './job-events.js';
 import { BuildOutputRouter, makeRecipeStatus, routeRunLine } from './output-router.js';
 import { generatedMakefileArgs, makeDir, PrepareError, prepareWorkspace, treeRoot, type ProjectKind, type ProjectSource } from './prepare.js';
 import { SERVICE_AFFINITY } from './service-affinity.js';
 import { LauncherCrashes } from './launcher-crashes.js';
+import { addr2lineArgs, crashSite, crashSiteLine, CrashReports, MAX_ADDR2LINE_CHARS, parseAddr2line } from './crash-reports.js';
+import { captureInSandbox } from './sandbox-capture.js';
 import { holdsUnderProcessLimit } from './process-limit-warning.js';
 import { describeIssues, RunIssues, type RunIssue } from './run-issues.js';
 import { budgetThrottling, throttlingWarning, type Throttling } from './realtime-throttling.js';
@@ -104,6 +107,10 @@ export interface JobContext {
 }
 
 const MAX_DIAGNOSTICS = SERVICE_BOUNDS.diagnosticsPerJob;
+/** Crashed modules whose crash site is looked for (addr2line each), at most. */
+const CRASH_SITES_TOLD = 4;
+/** addr2line's time in the sandbox, at most. */
+const CRASH_SITE_TIMEOUT_MS = 10_000;
 
 class Cancelled extends Error {}
 
@@ -477,6 +484,8 @@ export class Job {
       if (keptOff?.said) this.system('run', keptOff.said);
       let run: Awaited<ReturnType<Job['runStep']>>;
       const crashes = new LauncherCrashes();
+      // the crash reports crashed modules wrote on their stderr (runtime crash_report.c): where they crashed
+      const crashReports = new CrashReports();
       // the launcher's exit status, as make's "*** [...: run] Error N" line gives it (make itself exits 2)
       let launcherStatus: number | null = null;
       // make's `*** [...: run] Killed`: the launcher itself got a SIGKILL (not the service's: it stops the run by its launcher)
@@ -507,6 +516,7 @@ export class Job {
           }
           this.runIssues.line(routed.line, routed.source);
           if (routed.source === 'launcher') crashes.line(routed.line);
+          else if (routed.source !== 'run') crashReports.line(routed.line, routed.source);
           return [routed];
         }, runEnv);
       } catch (e) {
@@ -531,7 +541,8 @@ export class Job {
       if (!run.ok) {
         // the failure is the message; the issues (a limit, cut output...) stay in result.issues
         // a module's crash is the failure to name (make's status alone reads like a build failure)
-        const crashed = crashes.summary(run.limitHit);
+        const sites = this.request.kind === 'cactal' ? await this.crashSites(ctx.sandbox, ws, runtimeDir, runtimePath, crashes, crashReports, prep) : undefined;
+        const crashed = crashes.summary(run.limitHit, sites);
         const launcher = launcherStatus !== null ? `contract-launch exit ${launcherStatus}; ` : '';
         const why = crashed ? `: ${crashed}` : refused ? `: ${refused}` : launcherKilled && !this.cancelRequested
           ? ': contract-launch was killed (SIGKILL) before the run ended — a module\'s code can do that (kill(getppid(), SIGKILL)), or the kernel; the modules\' output it had not relayed yet is lost, their CSV logs are what they wrote'
@@ -590,6 +601,43 @@ export class Job {
       this.emitEnd();
       this.finishedSignal();
     }
+  }
+
+  /**
+   * Where each module that crashed (died by a signal) crashed, from the crash report it wrote
+   * (crash-reports.ts): addr2line, in the job's sandbox, maps its frames in its executable to
+   * function, file and line; the site is the first place in the project's code (` at FILE:LINE in
+   * its protected region ID (function)`), told in the run's message, as an error at that line
+   * among the job's diagnostics (the IDE's Problems panel), and its frames in the job's log. At
+   * most CRASH_SITES_TOLD modules; none when no report or no place is known. Never throws.
+   */
+  private async crashSites(sandbox: Sandbox, ws: Workspace, runtimeDir: string | undefined, runtimePath: string, crashes: LauncherCrashes, reports: CrashReports, prep: { regions: ReadonlyMap<string, readonly ProtectedRegion[]>; userCopies?: ReadonlyMap<string, UserCopy> }): Promise<Map<string, string>> {
+    const sites = new Map<string, string>();
+    const work = sandbox.workPath(ws.workDir);
+    const crashed = crashes.failures().filter((f) => !f.killed && f.how?.startsWith('died by signal')).slice(0, CRASH_SITES_TOLD);
+    for (const f of crashed) {
+      const report = reports.of(f.module);
+      if (!report) continue;
+      // the module's executable as the generated Makefile builds it: never a path the module's output names
+      const moduleDir = posix.join(work, makeDir(this.request.kind), 'modules', `${f.module}_mod`);
+      const argv = addr2lineArgs(report, posix.join(moduleDir, f.module));
+      if (!argv.length) continue;
+      const t0 = Date.now();
+      const out = await captureInSandbox(sandbox, { name: `${this.id}-crash-site`, jobId: this.id, workDir: ws.workDir, cwd: '', argv, env: {}, limits: this.request.limits, runtimeDir, owner: ws.owner }, MAX_ADDR2LINE_CHARS, CRASH_SITE_TIMEOUT_MS);
+      this.timed('run', `crash site of ${f.module} (addr2line)`, t0);
+      if (out === null) {
+        this.system('run', `${f.module}'s crash report could not be mapped to its code (addr2line failed in the sandbox)`);
+        continue;
+      }
+      const ctx = { cwd: moduleDir, root: posix.join(work, treeRoot(this.request.kind)), regions: prep.regions, ...(prep.userCopies ? { userCopies: prep.userCopies } : {}) };
+      const site = crashSite(report, parseAddr2line(out), ctx, treeRoot(this.request.kind), runtimePath);
+      if (!site) continue;
+      sites.set(f.module, site.said);
+      this.system('run', crashSiteLine(f.module, site));
+      for (const frame of site.frames) this.system('run', `${f.module} crash frame ${frame}`);
+      if (site.diagnostic) this.addDiagnostic(site.diagnostic);
+    }
+    return sites;
   }
 
   /**

@@ -13,6 +13,17 @@ describe("the launcher's crashes, for a failed run's message", () => {
     expect(c.summary()).toBe('module MSC crashed (died by signal 11 (Segmentation fault) while the run stopped)');
   });
 
+  test('where a module crashed, when its crash site is known, after how it ended', () => {
+    const c = new LauncherCrashes();
+    c.line('module EST (pid 21) died by signal 11 (Segmentation fault)');
+    c.line('FAILED: module EST crashed');
+    const sites = new Map([['EST', ' at src-gen/m.c:248 in its protected region protect_exec_EST (est_update)']]);
+    expect(c.summary(null, sites)).toBe('module EST crashed (died by signal 11 (Segmentation fault)) at src-gen/m.c:248 in its protected region protect_exec_EST (est_update)');
+    c.line('module PID (pid 22) died by signal 6 (Aborted)');
+    c.line('FAILED: module PID crashed');
+    expect(c.summary(null, sites)).toBe('2 modules crashed: EST (died by signal 11 (Segmentation fault) at src-gen/m.c:248 in its protected region protect_exec_EST (est_update)), PID (died by signal 6 (Aborted))');
+  });
+
   test('several: each named with how it ended, the fifth on counted', () => {
     const c = new LauncherCrashes();
     for (const [m, how] of [['A', 'exited with status 3'], ['B', 'died by signal 6 (Aborted)'], ['C', 'exited with status 3 while the run stopped'], ['D', 'exited with status 1'], ['E', 'exited with status 2']]) {

@@ -54,16 +54,18 @@ export class LauncherCrashes {
    * `module MSC crashed (died by signal 11 (...))`, `module HOG was killed by the memory limit
    * (died by signal 9 (Killed))`, `2 modules crashed: MSC (...), MAB (...)`; undefined when none
    * failed. `limitHit`: the limit that stopped the run; a module killed while the memory limit was
-   * hit was killed by it (the kernel's OOM killer).
+   * hit was killed by it (the kernel's OOM killer). `sites`: where each crashed module crashed
+   * (` at FILE:LINE in its protected region ID (function)`), told after how it ended.
    */
-  summary(limitHit?: { name: string } | null): string | undefined {
+  summary(limitHit?: { name: string } | null, sites?: ReadonlyMap<string, string>): string | undefined {
     const failures = this.failures();
     if (!failures.length) return undefined;
     const by = limitHit?.name === 'memory' ? ' by the memory limit' : '';
-    const how = (f: LauncherFailure) => f.how ?? 'no exit line';
+    // where it crashed (` at FILE:LINE ...`: crash-reports.ts), after how it ended
+    const how = (f: LauncherFailure) => `${f.how ?? 'no exit line'}${f.killed ? '' : sites?.get(f.module) ?? ''}`;
     if (failures.length === 1) {
       const f = failures[0]!;
-      return `module ${f.module} ${f.killed ? `was killed${by}` : 'crashed'} (${how(f)})`;
+      return `module ${f.module} ${f.killed ? `was killed${by}` : 'crashed'} (${f.how ?? 'no exit line'})${f.killed ? '' : sites?.get(f.module) ?? ''}`;
     }
     const killed = failures.filter((f) => f.killed).length;
     const verb = killed === 0 ? 'crashed' : killed === failures.length ? `were killed${by}` : `crashed or were killed${by}`;

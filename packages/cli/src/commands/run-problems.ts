@@ -2,7 +2,7 @@
  * What went wrong in a `contract run`, as told to the user: the modules the launcher saw crash, and
  * the run's problems with ORD's `*stateindex` advice left out for a module that crashed.
  */
-import { LauncherCrashes } from '@contract-studio/build-service';
+import { crashSiteOfLine, LauncherCrashes } from '@contract-studio/build-service';
 import { STUCK_ADVICE } from '@contract-studio/conventions';
 import type { JobOutcome } from '../job-runner.js';
 
@@ -16,13 +16,15 @@ export interface ModuleFailure {
      * bound, or another process).
      */
     killedBy?: 'memory-limit' | 'sigkill';
+    /** Where it crashed, as the build service found it from the module's crash report: ` at FILE:LINE in its protected region ID (function)`. */
+    site?: string;
     /** With killedBy, what `contract run` says of it instead of `module CTL crashed (...)`: `CTL was killed by the memory limit (...)`. */
     message?: string;
 }
 
 /** `CTL crashed (died by signal 11 (Segmentation fault))`, `CTL was killed by the memory limit (...)`: the line `contract run` prints after `module `. */
 export function failureText(f: ModuleFailure): string {
-    return f.message ?? `${f.module} crashed (${f.how})`;
+    return f.message ?? `${f.module} crashed (${f.how})${f.site ?? ''}`;
 }
 
 /** Why the kernel's OOM killer chose it, as `contract run` says it. */
@@ -35,13 +37,20 @@ const OTHER_KILL = "a SIGKILL the launcher did not send: the kernel's at the rea
  * with the preceding exit/signal line), read by the build service's reader of them (the failed
  * run's message names the same). A module killed (a SIGKILL the launcher did not send) in a run the
  * memory limit stopped (`limitHit`) was killed by that limit (the kernel's OOM killer): said so
- * (`killedBy`, `message`), `how` as the launcher said.
+ * (`killedBy`, `message`), `how` as the launcher said. A crashed module's `site`: the service's
+ * line that tells where it crashed (its crash report mapped to the code).
  */
 export function moduleFailures(lines: JobOutcome['runLines'], limitHit?: { name: string } | null): ModuleFailure[] {
     const crashes = new LauncherCrashes();
-    for (const { source, line } of lines) if (source === 'launcher') crashes.line(line);
+    const sites = new Map<string, string>();
+    for (const { source, line } of lines) {
+        if (source === 'launcher') crashes.line(line);
+        const site = source === 'service' ? crashSiteOfLine(line) : undefined;
+        if (site) sites.set(site.module, site.said);
+    }
     return crashes.failures().map(({ module, how = 'crashed', killed }) => {
-        if (!killed) return { module, how };
+        const site = sites.get(module);
+        if (!killed) return site ? { module, how, site } : { module, how };
         const stopped = how.endsWith(' while the run stopped') ? ' while the run stopped' : '';
         return limitHit?.name === 'memory'
             ? { module, how, killedBy: 'memory-limit' as const, message: `${module} was killed by the memory limit${stopped} (${OOM_KILL})` }

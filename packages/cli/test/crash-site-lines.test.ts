@@ -1,0 +1,68 @@
+/**
+ * Where a module crashed, as `contract run` tells it: the module's crash report (its frames as
+ * offsets) is not printed but with --verbose, as the service's frames mapped to the code; the
+ * service's crash-site line makes `module EST crashed (...) at FILE:LINE ...`.
+ */
+import { mkdtempSync, rmSync } from 'node:fs';
+import { tmpdir } from 'node:os';
+import { join } from 'node:path';
+import { afterAll, beforeAll, describe, expect, it } from 'vitest';
+import type { JobEvent } from '@contract-studio/build-service';
+import { makePrinter, type JobOptions, type JobOutcome } from '../src/job-runner.js';
+import { failureText, moduleFailures } from '../src/commands/run-problems.js';
+import { capture } from './capture-io.js';
+
+let root: string;
+beforeAll(() => {
+    root = mkdtempSync(join(tmpdir(), 'contract-crash-site-'));
+});
+afterAll(() => rmSync(root, { recursive: true, force: true }));
+
+const SITE = ' at src-gen/generated/architecture/modules/EST_mod/module.c:248 in its protected region protect_exec_EST (_exec_module_state)';
+const line = (source: string, text: string, stream = 'stderr'): JobEvent => ({ type: 'line', seq: 0, t: 0, step: 'run', source, stream, line: text }) as JobEvent;
+const EVENTS = [
+    line('EST', '==contract-crash== module EST signal 11 SIGSEGV addr 0x0'),
+    line('EST', '==contract-crash== frame 0 exe 0x40d8'),
+    line('EST', '==contract-crash== end 1 frames'),
+    line('launcher', 'module EST (pid 21) died by signal 11 (Segmentation fault)'),
+    line('launcher', 'FAILED: module EST crashed'),
+    line('service', `EST crashed${SITE}`, 'system'),
+    line('service', 'EST crash frame #0 _exec_module_state at src-gen/generated/architecture/modules/EST_mod/module.c:248', 'system'),
+];
+
+function printed(verbose: boolean): { stderr: string; runLines: JobOutcome['runLines'] } {
+    const io = capture(root);
+    const opts = { dir: root, dirArg: '.', sandbox: 'bwrap', format: 'text', verbose, progress: false, runtime: undefined, cacheDir: undefined } as JobOptions;
+    const runLines: JobOutcome['runLines'] = [];
+    const print = makePrinter(opts, io, runLines, []);
+    for (const e of EVENTS) print(e);
+    return { stderr: io.stderr, runLines };
+}
+
+describe('a crash site in contract run', () => {
+    it('names the site after how the module ended', () => {
+        const { runLines } = printed(false);
+        const failures = moduleFailures(runLines);
+        expect(failures).toEqual([{ module: 'EST', how: 'died by signal 11 (Segmentation fault)', site: SITE }]);
+        expect(failureText(failures[0]!)).toBe(`EST crashed (died by signal 11 (Segmentation fault))${SITE}`);
+    });
+
+    it('the crash report and the frames only with --verbose', () => {
+        const plain = printed(false).stderr;
+        expect(plain).not.toContain('==contract-crash==');
+        expect(plain).not.toContain('crash frame');
+        expect(plain).toContain('contract-launch: FAILED: module EST crashed');
+        const verbose = printed(true).stderr;
+        expect(verbose).toContain('[EST] ==contract-crash== frame 0 exe 0x40d8');
+        expect(verbose).toContain('EST crash frame #0 _exec_module_state at src-gen/generated/architecture/modules/EST_mod/module.c:248');
+    });
+
+    it('a module\'s own line that reads like the service\'s is not its site', () => {
+        const failures = moduleFailures([
+            { source: 'EST', stream: 'stderr', line: 'EST crashed at /etc/passwd:1' },
+            { source: 'launcher', stream: 'stderr', line: 'module EST (pid 21) died by signal 11 (Segmentation fault)' },
+            { source: 'launcher', stream: 'stderr', line: 'FAILED: module EST crashed' },
+        ]);
+        expect(failures).toEqual([{ module: 'EST', how: 'died by signal 11 (Segmentation fault)' }]);
+    });
+});
