@@ -174,7 +174,9 @@ void rt_crash_report_write(int sig, const siginfo_t *info, const void *context)
     p = put(p, " ");
     p = put(p, rt_crash_signal_name(sig));
     p = put(p, " addr ");
-    p = put_hex(p, info ? (uintptr_t)info->si_addr : 0);
+    /* si_addr is the fault's address only for a fault (si_code > 0): a signal a process sent
+     * (abort(), kill) holds its sender's pid there */
+    p = put_hex(p, info && info->si_code > 0 ? (uintptr_t)info->si_addr : 0);
     p = put(p, "\n");
     int told = 0;
     if (pc) p = put_frame(p, told++, pc);

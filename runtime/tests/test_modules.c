@@ -1330,7 +1330,9 @@ void test_crash_report(void)
         char *text = h_read_file(out);
         REQUIRE(text);
         char head[128];
-        snprintf(head, sizeof head, "==contract-crash== module P signal %d %s addr 0x", cases[c].sig, cases[c].name);
+        /* a null store's address is 0; abort() is sent, no fault: no address either */
+        snprintf(head, sizeof head, "==contract-crash== module P signal %d %s addr 0x%s", cases[c].sig, cases[c].name,
+                 strcmp(cases[c].how, "segv") == 0 || strcmp(cases[c].how, "abort") == 0 ? "0\n" : "");
         const char *at = strstr(text, head);
         CHECK_MSG(at != NULL, "%s: no crash report head '%s' in: %s", cases[c].how, head, text);
         CHECK_MSG(!at || !strstr(at + 1, "==contract-crash== module "), "%s: two crash reports", cases[c].how);
