@@ -613,6 +613,7 @@ export class Job {
    */
   private async crashSites(sandbox: Sandbox, ws: Workspace, runtimeDir: string | undefined, runtimePath: string, crashes: LauncherCrashes, reports: CrashReports, prep: { regions: ReadonlyMap<string, readonly ProtectedRegion[]>; userCopies?: ReadonlyMap<string, UserCopy> }): Promise<Map<string, string>> {
     const sites = new Map<string, string>();
+    if (this.cancelRequested || this.fault) return sites; // a stop asked for: no more sandboxed work
     const work = sandbox.workPath(ws.workDir);
     const crashed = crashes.failures().filter((f) => !f.killed && f.how?.startsWith('died by signal')).slice(0, CRASH_SITES_TOLD);
     for (const f of crashed) {
