@@ -3,7 +3,7 @@
  * code can include its header (the generated includes, those written in protected regions, and
  * what those headers include), not every executable.
  */
-import { mkdirSync, readFileSync, utimesSync, writeFileSync } from 'node:fs';
+import { mkdirSync, readFileSync, rmSync, utimesSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
 import { loadWorkspace } from '@contract-studio/language/node';
 import { afterAll, beforeAll, describe, expect, it } from 'vitest';
@@ -98,6 +98,31 @@ describe('the executables a datatype change rebuilds (tutorial, real make)', () 
         // a .c of your own at common/'s top: every executable (a file there may be included in ways the generator does not follow), MSB among them
         touch(join(arch, 'common', 'axis_ctl.c'));
         expect(wouldRebuild()).toEqual([...EXECUTABLES, ...EXECUTABLES.filter((e) => e !== 'ORD').map((e) => `control${e}`)].sort());
+    }, 120_000);
+
+    it('a header of your own that a region includes, deleted: the module is rebuilt (and the compiler says it is missing), not left on its old binary', async () => {
+        const mine = join(arch, 'modules', 'MSC_mod', 'mine.h');
+        writeFileSync(mine, '#define MINE 2\n');
+        writeFileSync(join(arch, 'common', 'shared_gain.h'), '#define SHARED_GAIN 4\n');
+        const msc = join(arch, 'modules', 'MSC_mod', 'module.c');
+        edit(msc, '/*PROTECTED REGION ID(protect_additional_import_MSC) ENABLED START*/\n', '/*PROTECTED REGION ID(protect_additional_import_MSC) ENABLED START*/\n#include "mine.h"\n#include "shared_gain.h"\n');
+        await generate();
+        make('-j2', 'all');
+        expect(wouldRebuild()).toEqual([]);
+        for (const deleted of [mine, join(arch, 'common', 'shared_gain.h')]) {
+            rmSync(deleted);
+            await generate(); // as contract build does before make
+            expect(wouldRebuild(), deleted).toContain('MSC');
+            expect(() => make('-j2', 'all'), deleted).toThrow(/No such file or directory/);
+            writeFileSync(deleted, '#define PUT_BACK 1\n');
+            await generate();
+            make('-j2', 'all');
+        }
+        edit(msc, '#include "mine.h"\n#include "shared_gain.h"\n', '');
+        rmSync(mine);
+        rmSync(join(arch, 'common', 'shared_gain.h'));
+        await generate();
+        make('-j2', 'all');
     }, 120_000);
 
     it('a header of common/ the generator did not write is a dependency of every executable', () => {

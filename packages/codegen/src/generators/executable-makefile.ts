@@ -1,7 +1,7 @@
 import { posix } from 'node:path';
 import { architecturePath } from '@contract-studio/conventions';
 import type { GeneratedFile } from '../writer/write-tree.js';
-import { includedCommonHeaders, type TreeText } from './header-dependencies.js';
+import { commonFiles, includedFiles, type TreeText } from './header-dependencies.js';
 
 /** The generated tree's common/ folder (the shared headers). */
 export const COMMON_DIR = architecturePath('common');
@@ -14,6 +14,12 @@ export const COMMON_DIR = architecturePath('common');
 export interface CommonHeaderDependencies {
     included: string[] | undefined;
     generated: string[];
+    /**
+     * The files of the executable's own folder its sources include (names in that folder; its
+     * sources not among them): named in the Makefile, so that one deleted changes the Makefile,
+     * which its executable depends on (rebuilt: the compiler then says the file is missing).
+     */
+    own?: string[] | undefined;
 }
 
 /**
@@ -31,6 +37,8 @@ export function commonHeaderVariables(common: string, deps: CommonHeaderDependen
         variable('COMMON_HEADERS', deps.included !== undefined ? names(deps.included) : [`$(notdir $(wildcard ${common}/*.h))`]),
         `# the headers the generator writes in ${common}; any other .h, .c or .inc there (yours) is a dependency of every executable`,
         variable('GENERATED_COMMON_HEADERS', names(deps.generated)),
+        '# the files of this folder the sources include (one removed changes this Makefile, which the executable depends on)',
+        variable('OWN_FILES', deps.own ?? []),
     ].join('\n');
 }
 
@@ -63,7 +71,15 @@ export function executableMakefiles(makefiles: readonly ExecutableMakefile[], fi
     const generatedSet = new Set(generated);
     const fresh = new Map(files.map((f) => [f.path, f.content]));
     return makefiles.map(({ path, sources, own, render }) => {
-        const text = (textOf: TreeText) => render({ included: includedCommonHeaders(sources, { own, common: COMMON_DIR }, generatedSet, textOf), generated });
+        const text = (textOf: TreeText) => {
+            const folders = { own, common: COMMON_DIR };
+            const files = includedFiles(sources, folders, textOf);
+            return render({
+                included: files && commonFiles(files, generatedSet, COMMON_DIR),
+                generated,
+                own: files?.filter((p) => posix.dirname(p) === own).map((p) => posix.basename(p)),
+            });
+        };
         let content: string | undefined;
         // the text for a fresh tree is made when asked for: the writer derives it from the tree as written instead
         return { path, get content() { return (content ??= text((p) => fresh.get(p))); }, derive: text };

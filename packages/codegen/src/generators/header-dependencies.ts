@@ -52,6 +52,21 @@ function candidates(including: string, line: IncludeLine, folders: IncludeFolder
  * be read: the caller then depends on every header.
  */
 export function includedCommonHeaders(sources: string[], folders: IncludeFolders, generatedCommon: ReadonlySet<string>, textOf: TreeText): string[] | undefined {
+    const files = includedFiles(sources, folders, textOf);
+    return files && commonFiles(files, generatedCommon, folders.common);
+}
+
+/** Those of `files` (tree paths) that are in common/: a generated header, or a file of your own there (a helper .c, a header in a subfolder). */
+export function commonFiles(files: readonly string[], generatedCommon: ReadonlySet<string>, common: string): string[] {
+    return files.filter((p) => generatedCommon.has(p) || p.startsWith(`${common}/`));
+}
+
+/**
+ * Every file of the tree that compiling `sources` can include (as includedCommonHeaders follows
+ * them: any folder, the own folder's files too), not `sources` themselves, sorted; undefined when a
+ * file could not be read.
+ */
+export function includedFiles(sources: string[], folders: IncludeFolders, textOf: TreeText): string[] | undefined {
     const seen = new Set<string>(sources);
     const pending = [...sources];
     const found = new Set<string>();
@@ -64,8 +79,7 @@ export function includedCommonHeaders(sources: string[], folders: IncludeFolders
                     if (seen.has(candidate) || textOf(candidate) === undefined) continue;
                     seen.add(candidate);
                     pending.push(candidate);
-                    // a generated header, or a file of your own in common/ (a helper .c, a header in a subfolder)
-                    if (generatedCommon.has(candidate) || candidate.startsWith(`${folders.common}/`)) found.add(candidate);
+                    found.add(candidate);
                 }
             }
         }
