@@ -1,9 +1,10 @@
 import type { EditorArea } from '../editor/editor-area.js';
 import type { LspClient } from '../lsp/lsp-client.js';
 import type { Workspace } from '../workspace/workspace.js';
-import { api } from '../api.js';
+import { api, ApiError } from '../api.js';
 import { toast } from '../util/toast.js';
 import { reportError } from './report-error.js';
+import { undoRename } from './rename-undo.js';
 
 /**
  * A rename refactoring carries the generated tree over, then regenerates: a module, supervisor,
@@ -15,7 +16,8 @@ import { reportError } from './report-error.js';
  * enumeration member (`contract rename` does the same). Uses it could not change (the new name already in that code, a scenario changed
  * meanwhile) are said, with where. The `.contract` files the rename edited are written by the server
  * after the generated tree, under the rename's journal (server/rename-api.ts), not by autosave:
- * their saves are held until then.
+ * their saves are held until then. A rename the server does not make (refused, or no answer) is
+ * taken back in the editor (rename-undo.ts) before the saves are let go: nothing renamed is saved.
  */
 export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspace; editors: EditorArea; project(): string; generate(): Promise<boolean> }): void {
   const { lsp, workspace, editors } = d;
@@ -31,11 +33,16 @@ export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspac
       let r;
       try {
         r = await api.renameEntity(project, old, newName, { kind, owner, members, files: sent });
-      } finally {
-        // what the server wrote is the tabs' new base; a file it did not write (refused, left) is saved as any edit
-        const written = new Map((r?.written ?? []).map((w) => [w.file, { text: sent.find((f) => f.path === w.file)!.text, version: w.version }]));
-        workspace.releaseSaves([...bases.keys()], written);
+      } catch (e) {
+        // not made (refused: a target path taken...; or no answer): the editor's rename is taken
+        // back before the held saves go, so none writes a renamed text
+        const left = await undoRename(files, (uri) => workspace.pathOf(uri) ?? uri).finally(() => workspace.releaseSaves([...bases.keys()], new Map()));
+        toast('error', renameNotMadeText(old, newName, e, left));
+        return;
       }
+      // what the server wrote is the tabs' new base; a file it did not write (refused, left) is saved as any edit
+      const written = new Map(r.written.map((w) => [w.file, { text: sent.find((f) => f.path === w.file)!.text, version: w.version }]));
+      workspace.releaseSaves([...bases.keys()], written);
       if (r.filesLeft.length) toast('warning', `${r.filesLeft.length} renamed file(s) were not written by the rename (first: ${r.filesLeft[0]!.file}: ${r.filesLeft[0]!.reason}): saved from the editor instead`);
       const base = `${project ? `${project}/` : ''}src-gen/`;
       const uses = r.rewritten.reduce((n, w) => n + w.occurrences, 0);
@@ -70,4 +77,15 @@ export function carryRenamesToGenerated(d: { lsp: LspClient; workspace: Workspac
       }
     })().catch(reportError);
   });
+}
+
+/** The error notice of a rename the server did not make (`e`: its refusal, or why it did not answer); `left`: files whose edits since overlap it. */
+function renameNotMadeText(old: string, newName: string, e: unknown, left: readonly string[]): string {
+  const answered = e instanceof ApiError && e.status > 0;
+  const why = e instanceof Error ? e.message : String(e);
+  return `Rename ${old} → ${newName} not made: ${why}. ` +
+    (answered ? 'No file was changed; ' : 'The IDE server did not answer (if it stopped half-way through the rename, the next Generate All finishes it); ') +
+    (left.length
+      ? `the editor's rename was taken back except in ${left.join(', ')} (edited since, over the renamed names: change them back by hand)`
+      : 'the editor\'s rename was taken back, nothing renamed was saved');
 }

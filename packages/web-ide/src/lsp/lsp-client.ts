@@ -327,23 +327,27 @@ export interface RenameEvent {
   owner?: string;
   /** A renamed enumeration's members: its C constants (`Mode_AUTO`) in the user code follow it. */
   members?: string[];
-  /** Each file the rename edits, with its text once edited (the server writes them, journaled). */
-  files: Array<{ uri: string; text: string }>;
+  /**
+   * Each file the rename edits, with its text before and once edited (the server writes them,
+   * journaled; refused, the editor's rename is taken back: app/rename-undo.ts).
+   */
+  files: Array<{ uri: string; before: string; text: string }>;
 }
 
-/** The text of each open model `edit` changes, as it will be once edited (computed on the models as they are, before the edit applies). */
-function textsAfter(edit: monaco.languages.WorkspaceEdit): Array<{ uri: string; text: string }> {
+/** The text of each open model `edit` changes, as it is and as it will be once edited (computed on the models as they are, before the edit applies). */
+function textsAfter(edit: monaco.languages.WorkspaceEdit): Array<{ uri: string; before: string; text: string }> {
   const byUri = new Map<string, monaco.languages.IWorkspaceTextEdit[]>();
   for (const e of edit.edits) if ('textEdit' in e) byUri.set(e.resource.toString(), [...(byUri.get(e.resource.toString()) ?? []), e]);
-  const files: Array<{ uri: string; text: string }> = [];
+  const files: Array<{ uri: string; before: string; text: string }> = [];
   for (const [uri, edits] of byUri) {
     const model = monaco.editor.getModel(monaco.Uri.parse(uri));
     if (!model) continue;
-    let text = model.getValue();
+    const before = model.getValue();
+    let text = before;
     // from the last edit back: the offsets of those before stay right
     const at = edits.map((e) => ({ start: model.getOffsetAt({ lineNumber: e.textEdit.range.startLineNumber, column: e.textEdit.range.startColumn }), end: model.getOffsetAt({ lineNumber: e.textEdit.range.endLineNumber, column: e.textEdit.range.endColumn }), text: e.textEdit.text }));
     for (const e of at.sort((a, b) => b.start - a.start)) text = text.slice(0, e.start) + e.text + text.slice(e.end);
-    files.push({ uri, text });
+    files.push({ uri, before, text });
   }
   return files;
 }

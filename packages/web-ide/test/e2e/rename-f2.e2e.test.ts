@@ -7,11 +7,14 @@
  * the cursor (waitRenameLocation: before, F2 found nothing to rename and no rename box opened, the
  * flaky part of the refused-rename test that ide.e2e.test had), the rename box focused, the toast
  * (its 5 s on the page are enough: it is waited for from the moment Enter is pressed), the files.
+ * A rename the server cannot carry over (a target path taken) is taken back in the editor and
+ * saves nothing: it said so in a notice, yet kept the renamed text in every tab and saved it, so
+ * the next Generate All orphaned the module's code and generated into the user's folder.
  */
 import { describe, it, expect, beforeAll, afterAll } from 'vitest';
-import { existsSync, readFileSync } from 'node:fs';
+import { existsSync, mkdirSync, readFileSync, readdirSync, writeFileSync } from 'node:fs';
 import { join } from 'node:path';
-import { startSession, openIde, renameWithF2, activeValue, MOBILE_ROBOT, type Session } from './harness.js';
+import { startSession, openIde, renameWithF2, activeValue, waitSaved, shot, MOBILE_ROBOT, type Session } from './harness.js';
 
 const canGenerate = await import('@contract-studio/codegen').then((m) => typeof (m as Record<string, unknown>).generateArchitecture === 'function').catch(() => false);
 
@@ -19,6 +22,7 @@ let s: Session;
 const disk = (p: string) => readFileSync(join(s.workspace, p), 'utf8');
 const VEL = 'src-gen/generated/architecture/modules/VEL_mod/module.c';
 const COMMON = 'src-gen/generated/architecture/common';
+const MODULES = 'src-gen/generated/architecture/modules';
 
 describe('F2 renames in the IDE', () => {
   beforeAll(async () => {
@@ -37,6 +41,42 @@ describe('F2 renames in the IDE', () => {
     expect(await activeValue(page)).toBe(before);
     expect(disk('mission.contract')).toBe(before);
   }, 60_000);
+
+  it.skipIf(!canGenerate)('a rename whose generated tree cannot be carried over (QQQ_mod/ taken) is taken back: nothing saved, the module\'s code not orphaned', async () => {
+    const { page } = s;
+    const renamed = ['odometry.contract', 'control-loop.contract', 'scheduler.contract'];
+    const before = new Map(renamed.map((f) => [f, disk(f)]));
+    const userCode = 'double dl = (double)ticks.count[0] / ODO_TICKS_PER_RAD * wheel_radius;';
+    expect(disk(`${MODULES}/ODO_mod/module.c`)).toContain(userCode);
+    // the user's own folder where the renamed module's generated files would go
+    mkdirSync(join(s.workspace, MODULES, 'QQQ_mod'));
+    writeFileSync(join(s.workspace, MODULES, 'QQQ_mod/notes.txt'), 'notes\n');
+
+    await renameWithF2(page, 'odometry.contract', 'module ODO', 'module '.length, 'QQQ');
+    const notice = page.locator('.toast.error', { hasText: 'QQQ_mod already exists' }).first();
+    await notice.waitFor({ timeout: 15_000 });
+    // every model the rename edited shows its text again, the open tab as the others
+    await expect.poll(() => activeValue(page), { timeout: 10_000 }).toBe(before.get('odometry.contract'));
+    for (const f of renamed) {
+      expect(await page.evaluate((p) => (window as any).__ide.workspace.files.get(p).model.getValue(), f)).toBe(before.get(f));
+    }
+    await waitSaved(page);
+    await page.waitForTimeout(1000); // past autosave's delay: a held save let go would have been written by now
+    await shot(page, 'rename-f2-not-carried-over');
+    for (const f of renamed) expect(disk(f), f).toBe(before.get(f));
+    expect(existsSync(join(s.workspace, 'src-gen/.contract-rename.json'))).toBe(false);
+    expect(await page.locator('#status-save').textContent()).toContain('All saved');
+    expect(await page.locator('.toast', { hasText: 'Renamed ODO → QQQ' }).count()).toBe(0);
+    expect(await notice.textContent()).toContain('Rename ODO → QQQ not made: cannot carry generated/architecture/modules/ODO_mod over: QQQ_mod already exists');
+    expect(await notice.textContent()).toContain('No file was changed; the editor\'s rename was taken back, nothing renamed was saved');
+
+    // the next Generate All: ODO's code stays ODO's, nothing generated into the user's folder
+    await page.locator('#btn-generate').click();
+    await page.locator('.gen-summary').waitFor({ timeout: 30_000 });
+    expect(disk(`${MODULES}/ODO_mod/module.c`)).toContain(userCode);
+    expect(readdirSync(join(s.workspace, MODULES, 'QQQ_mod'))).toEqual(['notes.txt']);
+    expect(existsSync(join(s.workspace, 'src-gen/orphans'))).toBe(false);
+  }, 90_000);
 
   it.skipIf(!canGenerate)('an enumeration: the .contract files, common/Shared<Enum>.h and its C names in the regions\' code follow; then a member', async () => {
     const { page } = s;
