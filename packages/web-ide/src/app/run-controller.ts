@@ -12,8 +12,9 @@ import type { SharedJob } from '../../server/api-types.js';
 const RUN_SETTINGS_KEY = 'contract-studio:run-settings';
 /**
  * The job this tab follows or followed last, kept for a reload (sessionStorage: one per tab):
- * { jobId, project, ended, stopped }. Replaced by the next job the tab follows; removed when the build
- * service no longer knows it.
+ * { jobId, project, ended, stopped, otherTabs, gone }. Replaced by the next job the tab follows;
+ * removed when the build service no longer knows a job that had ended (it left the service's last
+ * 50); one lost with the IDE server (`gone`) is kept, and every reload says it gone again.
  */
 const FOLLOWED_JOB_KEY = 'contract-studio:followed-job';
 /** How soon after this tab's job was cancelled from elsewhere a job another tab announces is taken for its replacement. */
@@ -28,10 +29,11 @@ const JOB_ID = /^[A-Za-z0-9_-]{1,100}$/;
 type RunSettings = { duration: number; start?: string; readyTimeout?: number; cpus?: string; realtime?: boolean };
 /**
  * The job a tab follows or followed last, whether it had ended (a reload shows it again), whether
- * this tab stopped it, and, for a job another tab started, what it was (its status says so again
- * after a reload).
+ * this tab stopped it, for a job another tab started, what it was (its status says so again
+ * after a reload), and whether it was lost with the IDE server (a reload says it gone again, in
+ * the tab that started it as in those that followed it).
  */
-type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat };
+type Followed = { jobId: string; project: string; ended: boolean; stopped?: boolean; otherTabs?: SharedWhat; gone?: boolean };
 type SharedWhat = 'Build & Run' | 'build';
 
 /** Whether `v` is a ready timeout a run may ask for (seconds: MIN_READY_TIMEOUT_SECONDS or more). */
@@ -83,7 +85,7 @@ export class RunController {
     // (the job stays this tab's after its end: a reload shows it again, its log, the Monitor and its logs)
     build.onFinished.on(({ jobId, action, cancelledElsewhere, gone }) => {
       const f = this.followed();
-      if (f?.jobId === jobId) this.keep({ ...f, ended: true });
+      if (f?.jobId === jobId) this.keep({ ...f, ended: true, ...(gone ? { gone: true } : {}) });
       // a job gone with the IDE server left no logs to fetch
       if (action === 'run' && !gone) void this.fetchLogs(jobId);
       // cancelled by another tab's Build & Run, announced while this tab was busy: its new run is
@@ -107,10 +109,10 @@ export class RunController {
   /** The job this tab followed before a reload, as kept (anything else there is ignored). */
   private followed(): Followed | undefined {
     try {
-      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown; stopped?: unknown; otherTabs?: unknown } | null;
+      const v = JSON.parse(sessionStorage.getItem(FOLLOWED_JOB_KEY) ?? 'null') as { jobId?: unknown; project?: unknown; ended?: unknown; stopped?: unknown; otherTabs?: unknown; gone?: unknown } | null;
       if (v && typeof v.jobId === 'string' && JOB_ID.test(v.jobId)) {
         const otherTabs = v.otherTabs === 'Build & Run' || v.otherTabs === 'build' ? { otherTabs: v.otherTabs as SharedWhat } : {};
-        return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true, ...otherTabs };
+        return { jobId: v.jobId, project: typeof v.project === 'string' ? v.project : '', ended: v.ended === true, stopped: v.stopped === true, ...otherTabs, ...(v.gone === true ? { gone: true } : {}) };
       }
     } catch {
       /* not JSON */
@@ -131,12 +133,16 @@ export class RunController {
     }
     this.project = f.project;
     // a job that had ended may since have left the service's last 50 (other tabs' jobs): gone
-    // without a word, as it would have been for a restarted server, not said to be one
+    // without a word, not said to be lost with a restarted server — unless the tab saw it lost so
+    // (`gone`: its stream lost, then the service no longer knew it), or it was running at the reload
     // another tab's job says so again, as before the reload (docs/ide.md "Several tabs")
-    const resumed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: !f.ended, stoppedHere: f.stopped, ...(f.otherTabs ? { why: `${f.otherTabs} of another tab` } : {}) });
+    const lost = !f.ended || f.gone === true;
+    const resumed = await this.d.build.resume(f.jobId, { ended: true, sayIfGone: lost, stoppedHere: f.stopped, ...(f.otherTabs ? { why: `${f.otherTabs} of another tab` } : {}) });
     // forgotten only when the service no longer knows it: a panel busy a moment, or a failed
-    // request, keeps it for the next reload (it was dropped, and the job lost to this tab)
-    if (resumed === 'gone') sessionStorage.removeItem(FOLLOWED_JOB_KEY);
+    // request, keeps it for the next reload (it was dropped, and the job lost to this tab); one
+    // lost with the server stays, said gone by every reload until the tab follows another job
+    if (resumed === 'gone' && lost) this.keep({ ...f, ended: true, gone: true });
+    else if (resumed === 'gone') sessionStorage.removeItem(FOLLOWED_JOB_KEY);
     else if (resumed === 'followed') this.d.showPanel('output');
     return resumed === 'followed';
   }
